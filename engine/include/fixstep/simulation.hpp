@@ -1,0 +1,61 @@
+// A World whose precision is chosen at run time (from a scene file or a flag).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <variant>
+#include <vector>
+
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+
+/// What the renderer needs of one moment of the world, in float (pixels need no more).
+struct Snapshot {
+  struct SpringLine {
+    float anchor_x = 0, anchor_y = 0;  ///< m
+    std::uint32_t body = 0;            ///< index into x / y
+  };
+  std::vector<float> x, y;      ///< body positions, m (interpolated when taken with alpha)
+  std::vector<float> radius;    ///< m; 0 = no Appearance (drawn at a default size)
+  std::vector<Rgba8> color;     ///< colour; alpha 0 = no Appearance (palette colour)
+  std::vector<SpringLine> springs;
+};
+
+/// A World<float> or World<double> behind one interface.
+class Simulation {
+ public:
+  /// Throws std::invalid_argument on invalid settings (see World).
+  Simulation(Precision precision, const WorldSettings& settings);
+
+  [[nodiscard]] Precision precision() const { return world_.index() == 0 ? Precision::f32 : Precision::f64; }
+  /// Calls f(World<float>&) or f(World<double>&).
+  template <class F>
+  decltype(auto) visit(F&& f) { return std::visit(std::forward<F>(f), world_); }
+  template <class F>
+  decltype(auto) visit(F&& f) const { return std::visit(std::forward<F>(f), world_); }
+
+  Entity create_body(const BodyDef& def);
+  void step(const TickInput& input = {});
+  void set_keep_previous(bool keep);
+
+  [[nodiscard]] std::uint64_t tick() const;
+  [[nodiscard]] double time() const;                 ///< s
+  [[nodiscard]] const WorldSettings& settings() const;
+  [[nodiscard]] std::size_t body_count() const;
+  [[nodiscard]] const std::string& name(std::size_t index) const;
+  [[nodiscard]] EnergyReport energy() const;         ///< J
+  [[nodiscard]] std::uint64_t state_hash() const;
+  /// Position and velocity of body `index` in double (m, m/s).
+  [[nodiscard]] Body body_at(std::size_t index) const;
+
+  /// Fills out with positions lerp(previous, current, alpha) (alpha in [0, 1]; needs
+  /// set_keep_previous(true) to differ from the current state) and appearances. Reuses out's
+  /// storage: no allocation once it has grown to the body count.
+  void snapshot(double alpha, Snapshot& out) const;
+
+ private:
+  std::variant<World<float>, World<double>> world_;
+};
+
+}  // namespace fixstep

@@ -1,0 +1,277 @@
+// The world: entities, their components, and the fixed-step integration of their bodies.
+//
+// Layout (the EnTT idea, kept minimal): every component type lives in its own sparse set keyed
+// by entity slot, so adding or removing a component never touches the others. Body state is
+// stored structure-of-arrays (x, y, vx, vy, 1/m) in the set's dense order, which is the order
+// the integrator walks. Each force term (spring-damper, constant force, gravity, drag) keeps a
+// compact list of the bodies that carry it together with its parameters converted once to the
+// world's precision; the lists are rebuilt only when components are added or removed, never per
+// tick. A term with no bodies has an empty list and costs nothing: active_terms() says which
+// terms run.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "fixstep/components.hpp"
+#include "fixstep/entity.hpp"
+#include "fixstep/input.hpp"
+#include "fixstep/integrators.hpp"
+
+namespace fixstep {
+
+/// World-wide simulation settings.
+struct WorldSettings {
+  double dt = 1.0 / 60.0;  ///< fixed physics step, s; finite and > 0
+  Integrator integrator = Integrator::semi_implicit_euler;
+};
+
+/// Bits of World::active_terms(): which force terms run each tick.
+enum ForceTermBits : unsigned {
+  term_spring = 1u << 0,
+  term_constant_force = 1u << 1,
+  term_gravity = 1u << 2,
+  term_drag = 1u << 3,
+};
+
+/// Mechanical energy, J. Potentials: spring ½k(|x-anchor|-L)², gravity -m g·x, constant force
+/// -F·x (both zero at the origin). Damping and drag are dissipative and have no potential.
+struct EnergyReport {
+  double kinetic = 0.0;         ///< ½ m |v|², J
+  double spring = 0.0;          ///< J
+  double gravity = 0.0;         ///< J
+  double constant_force = 0.0;  ///< J
+  [[nodiscard]] double total() const { return kinetic + spring + gravity + constant_force; }
+};
+
+namespace detail {
+
+/// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
+struct SparseSet {
+  std::vector<std::uint32_t> sparse;  ///< slot -> dense index + 1; 0 = absent
+  std::vector<Entity> dense;
+
+  [[nodiscard]] bool contains(Entity e) const {
+    return !e.is_null() && e.slot() < sparse.size() && sparse[e.slot()] != 0 &&
+           dense[sparse[e.slot()] - 1] == e;
+  }
+  [[nodiscard]] std::size_t index(Entity e) const { return sparse[e.slot()] - 1; }
+  std::size_t insert(Entity e);
+  /// Removes e and returns the dense index it had; the last element moved into that index.
+  std::size_t erase(Entity e);
+};
+
+/// A component type stored array-of-structs: cold, authoritative data.
+template <class C>
+struct Store {
+  SparseSet set;
+  std::vector<C> data;
+};
+
+}  // namespace detail
+
+/// A world of point bodies stepped at a fixed dt in precision Real (float or double).
+///
+/// Errors: creation and setters throw std::invalid_argument naming the body and field when a
+/// value is non-finite (also after narrowing to Real) or out of range; using a stale or null
+/// Entity throws std::invalid_argument. step() never throws and allocates nothing.
+template <class Real>
+class World {
+ public:
+  using real_type = Real;
+
+  /// Throws std::invalid_argument if settings.dt is not finite and > 0.
+  explicit World(const WorldSettings& settings);
+
+  // --- entities -------------------------------------------------------------------------
+  /// Creates an entity with a Body and the optional components set in def.
+  Entity create_body(const BodyDef& def);
+  /// Destroys the entity and all its components; its handle (and copies) become stale.
+  void destroy(Entity e);
+  [[nodiscard]] bool contains(Entity e) const { return bodies_.contains(e); }
+  [[nodiscard]] std::size_t body_count() const { return bodies_.dense.size(); }
+  /// Dense index of e's body (the index into x(), y(), ...); throws if e is stale.
+  [[nodiscard]] std::size_t index_of(Entity e) const;
+
+  // --- components (cold path; each change rebuilds the force-term lists before next step) --
+  /// Adds or replaces component C on e. C is one of SpringDamper, ConstantForce, Gravity,
+  /// LinearDrag, Appearance.
+  template <class C>
+  void set(Entity e, const C& component);
+  /// Removes component C from e (no-op if absent).
+  template <class C>
+  void remove(Entity e);
+  /// The component C of e, or nullptr.
+  template <class C>
+  [[nodiscard]] const C* get(Entity e) const;
+
+  /// Body state of e converted to double.
+  [[nodiscard]] Body body(Entity e) const;
+  /// Overwrites mass, position and velocity of e (validated like create_body).
+  void set_body(Entity e, const Body& body);
+
+  // --- stepping ---------------------------------------------------------------------------
+  /// Advances every body by one tick of settings().dt with the chosen integrator.
+  void step(const TickInput& input = {});
+  /// Number of ticks taken since creation.
+  [[nodiscard]] std::uint64_t tick() const { return tick_; }
+  /// Simulated time tick()·dt, s.
+  [[nodiscard]] double time() const { return static_cast<double>(tick_) * settings_.dt; }
+  [[nodiscard]] const WorldSettings& settings() const { return settings_; }
+  void set_integrator(Integrator integrator) { settings_.integrator = integrator; }
+  /// When on, step() first copies positions to previous_x()/previous_y() so a renderer can
+  /// interpolate between the last two ticks. Off by default (costs a copy per tick).
+  void set_keep_previous(bool keep);
+
+  /// Accelerations a(x, v) at the current state, m/s²; ax and ay must hold body_count().
+  void accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input = {});
+  /// Which force terms run (bits of ForceTermBits).
+  [[nodiscard]] unsigned active_terms();
+
+  // --- state (dense body order) -----------------------------------------------------------
+  [[nodiscard]] std::span<const Real> x() const { return x_; }
+  [[nodiscard]] std::span<const Real> y() const { return y_; }
+  [[nodiscard]] std::span<const Real> vx() const { return vx_; }
+  [[nodiscard]] std::span<const Real> vy() const { return vy_; }
+  [[nodiscard]] std::span<const Real> previous_x() const { return prev_x_; }
+  [[nodiscard]] std::span<const Real> previous_y() const { return prev_y_; }
+  [[nodiscard]] std::span<const Entity> entities() const { return bodies_.dense; }
+  [[nodiscard]] const std::string& name(std::size_t index) const { return names_[index]; }
+
+  // --- measurements -----------------------------------------------------------------------
+  /// Total mechanical energy by kind, J (see EnergyReport for the potentials).
+  [[nodiscard]] EnergyReport energy() const;
+  /// Mechanical energy of each body, J; out must hold body_count() values.
+  void body_energies(std::span<double> out) const;
+  /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
+  /// equal hashes mean bit-identical states.
+  [[nodiscard]] std::uint64_t state_hash() const;
+
+ private:
+  template <class C>
+  detail::Store<C>& store();
+  template <class C>
+  const detail::Store<C>& store() const;
+  void validate(const Body& body, const std::string& who) const;
+  static void validate_component(const SpringDamper& c, const std::string& who);
+  static void validate_component(const ConstantForce& c, const std::string& who);
+  static void validate_component(const Gravity& c, const std::string& who);
+  static void validate_component(const LinearDrag& c, const std::string& who);
+  static void validate_component(const Appearance& c, const std::string& who);
+  [[nodiscard]] std::string describe(Entity e) const;
+  void require(Entity e) const;
+  void rebuild_terms();
+  template <class Add>
+  void for_each_energy(Add&& add) const;
+  void evaluate(Real* ax, Real* ay, const TickInput& input) const;
+
+  WorldSettings settings_;
+  std::uint64_t tick_ = 0;
+  bool keep_previous_ = false;
+  bool terms_dirty_ = true;
+
+  // entity slots
+  std::vector<std::uint32_t> generations_;
+  std::vector<std::uint32_t> free_slots_;
+
+  // bodies: SoA in dense order
+  detail::SparseSet bodies_;
+  std::vector<Real> x_, y_, vx_, vy_, prev_x_, prev_y_, inv_mass_;
+  std::vector<double> mass_;
+  std::vector<std::string> names_;
+  std::vector<Real> ax_, ay_;  // scratch accelerations, sized with the bodies
+
+  // components (authoritative, double)
+  detail::Store<SpringDamper> springs_;
+  detail::Store<ConstantForce> constant_forces_;
+  detail::Store<Gravity> gravities_;
+  detail::Store<LinearDrag> drags_;
+  detail::Store<Appearance> appearances_;
+
+  // force-term kernels: body index + parameters in Real, rebuilt when terms_dirty_
+  struct LinearSprings {  // rest length 0: F = -k (x - anchor) - b v
+    std::vector<std::uint32_t> body;
+    std::vector<Real> anchor_x, anchor_y, k, b;
+  } linear_springs_;
+  struct RestLengthSprings {  // rest length L > 0
+    std::vector<std::uint32_t> body;
+    std::vector<Real> anchor_x, anchor_y, k, b, rest;
+  } rest_springs_;
+  struct Forces {
+    std::vector<std::uint32_t> body;
+    std::vector<Real> fx, fy;
+  } forces_;
+  struct Gravities {
+    std::vector<std::uint32_t> body;
+    std::vector<Real> gx, gy;
+  } gravity_terms_;
+  struct Drags {
+    std::vector<std::uint32_t> body;
+    std::vector<Real> c;
+  } drag_terms_;
+};
+
+// --- component access (templates, so defined here) ---------------------------------------
+
+template <class Real>
+template <class C>
+detail::Store<C>& World<Real>::store() {
+  if constexpr (std::is_same_v<C, SpringDamper>) return springs_;
+  else if constexpr (std::is_same_v<C, ConstantForce>) return constant_forces_;
+  else if constexpr (std::is_same_v<C, Gravity>) return gravities_;
+  else if constexpr (std::is_same_v<C, LinearDrag>) return drags_;
+  else {
+    static_assert(std::is_same_v<C, Appearance>, "not a fixstep component");
+    return appearances_;
+  }
+}
+
+template <class Real>
+template <class C>
+const detail::Store<C>& World<Real>::store() const {
+  return const_cast<World*>(this)->store<C>();
+}
+
+template <class Real>
+template <class C>
+void World<Real>::set(Entity e, const C& component) {
+  require(e);
+  validate_component(component, describe(e));
+  auto& s = store<C>();
+  if (s.set.contains(e)) {
+    s.data[s.set.index(e)] = component;
+  } else {
+    s.set.insert(e);
+    s.data.push_back(component);
+  }
+  terms_dirty_ = true;
+}
+
+template <class Real>
+template <class C>
+void World<Real>::remove(Entity e) {
+  require(e);
+  auto& s = store<C>();
+  if (!s.set.contains(e)) return;
+  const std::size_t i = s.set.erase(e);
+  s.data[i] = s.data.back();
+  s.data.pop_back();
+  terms_dirty_ = true;
+}
+
+template <class Real>
+template <class C>
+const C* World<Real>::get(Entity e) const {
+  const auto& s = store<C>();
+  return s.set.contains(e) ? &s.data[s.set.index(e)] : nullptr;
+}
+
+extern template class World<float>;
+extern template class World<double>;
+
+}  // namespace fixstep

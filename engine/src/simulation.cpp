@@ -1,0 +1,78 @@
+#include "fixstep/simulation.hpp"
+
+namespace fixstep {
+
+namespace {
+std::variant<World<float>, World<double>> make_world(Precision p, const WorldSettings& s) {
+  if (p == Precision::f32) return World<float>(s);
+  return World<double>(s);
+}
+}  // namespace
+
+Simulation::Simulation(Precision precision, const WorldSettings& settings)
+    : world_(make_world(precision, settings)) {}
+
+Entity Simulation::create_body(const BodyDef& def) {
+  return visit([&](auto& w) { return w.create_body(def); });
+}
+void Simulation::step(const TickInput& input) {
+  visit([&](auto& w) { w.step(input); });
+}
+void Simulation::set_keep_previous(bool keep) {
+  visit([&](auto& w) { w.set_keep_previous(keep); });
+}
+std::uint64_t Simulation::tick() const {
+  return visit([](const auto& w) { return w.tick(); });
+}
+double Simulation::time() const {
+  return visit([](const auto& w) { return w.time(); });
+}
+const WorldSettings& Simulation::settings() const {
+  return visit([](const auto& w) -> const WorldSettings& { return w.settings(); });
+}
+std::size_t Simulation::body_count() const {
+  return visit([](const auto& w) { return w.body_count(); });
+}
+const std::string& Simulation::name(std::size_t index) const {
+  return visit([&](const auto& w) -> const std::string& { return w.name(index); });
+}
+EnergyReport Simulation::energy() const {
+  return visit([](const auto& w) { return w.energy(); });
+}
+std::uint64_t Simulation::state_hash() const {
+  return visit([](const auto& w) { return w.state_hash(); });
+}
+Body Simulation::body_at(std::size_t i) const {
+  return visit([&](const auto& w) { return w.body(w.entities()[i]); });
+}
+
+void Simulation::snapshot(double alpha, Snapshot& out) const {
+  visit([&](const auto& w) {
+    const std::size_t n = w.body_count();
+    out.x.resize(n);
+    out.y.resize(n);
+    out.radius.resize(n);
+    out.color.resize(n);
+    out.springs.clear();
+    const double a = alpha;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double px = w.previous_x()[j], py = w.previous_y()[j];
+      out.x[j] = static_cast<float>(px + (double(w.x()[j]) - px) * a);
+      out.y[j] = static_cast<float>(py + (double(w.y()[j]) - py) * a);
+      const Entity e = w.entities()[j];
+      if (const Appearance* ap = w.template get<Appearance>(e)) {
+        out.radius[j] = static_cast<float>(ap->radius);
+        out.color[j] = ap->color;
+      } else {
+        out.radius[j] = 0.0f;
+        out.color[j] = Rgba8{0, 0, 0, 0};
+      }
+      if (const SpringDamper* s = w.template get<SpringDamper>(e)) {
+        out.springs.push_back({static_cast<float>(s->anchor.x), static_cast<float>(s->anchor.y),
+                               static_cast<std::uint32_t>(j)});
+      }
+    }
+  });
+}
+
+}  // namespace fixstep

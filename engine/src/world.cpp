@@ -1,0 +1,453 @@
+#include "fixstep/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace fixstep {
+
+namespace detail {
+
+std::size_t SparseSet::insert(Entity e) {
+  if (e.slot() >= sparse.size()) sparse.resize(e.slot() + 1, 0);
+  dense.push_back(e);
+  sparse[e.slot()] = static_cast<std::uint32_t>(dense.size());
+  return dense.size() - 1;
+}
+
+std::size_t SparseSet::erase(Entity e) {
+  const std::size_t i = index(e);
+  const std::size_t last = dense.size() - 1;
+  if (i != last) {
+    dense[i] = dense[last];
+    sparse[dense[i].slot()] = static_cast<std::uint32_t>(i + 1);
+  }
+  dense.pop_back();
+  sparse[e.slot()] = 0;
+  return i;
+}
+
+}  // namespace detail
+
+namespace {
+
+/// A value is acceptable when it is finite in double and stays finite once narrowed to Real
+/// (1e39 is a fine double but +inf as a float).
+template <class Real>
+bool representable(double v) {
+  return std::isfinite(v) && std::isfinite(static_cast<Real>(v));
+}
+
+template <class Real>
+void check_value(double v, bool ok_range, const std::string& who, const char* field,
+                 const char* allowed) {
+  if (!representable<Real>(v) || !ok_range) {
+    throw std::invalid_argument(
+        fmt::format("{}: {} must be {} (got {})", who, field, allowed, v));
+  }
+}
+
+template <class Real>
+void check_vec(const Vec2& v, const std::string& who, const char* field) {
+  check_value<Real>(v.x, true, who, field, "finite");
+  check_value<Real>(v.y, true, who, field, "finite");
+}
+
+/// Swap-and-pop element i of every array in the pack (keeps SoA arrays aligned).
+template <class... Vs>
+void swap_pop(std::size_t i, Vs&... vs) {
+  ((vs[i] = std::move(vs.back()), vs.pop_back()), ...);
+}
+
+}  // namespace
+
+template <class Real>
+World<Real>::World(const WorldSettings& settings) : settings_(settings) {
+  if (!representable<Real>(settings.dt) || settings.dt <= 0.0) {
+    throw std::invalid_argument(fmt::format("world: dt must be finite and > 0 s (got {})",
+                                            settings.dt));
+  }
+}
+
+template <class Real>
+std::string World<Real>::describe(Entity e) const {
+  if (bodies_.contains(e)) {
+    const auto& n = names_[bodies_.index(e)];
+    if (!n.empty()) return fmt::format("body '{}'", n);
+  }
+  return fmt::format("entity {}:{}", e.index1, e.generation);
+}
+
+template <class Real>
+void World<Real>::require(Entity e) const {
+  if (!bodies_.contains(e)) {
+    throw std::invalid_argument(fmt::format(
+        "entity {}:{} is null or was destroyed", e.index1, e.generation));
+  }
+}
+
+template <class Real>
+std::size_t World<Real>::index_of(Entity e) const {
+  require(e);
+  return bodies_.index(e);
+}
+
+template <class Real>
+void World<Real>::validate(const Body& b, const std::string& who) const {
+  check_value<Real>(b.mass, b.mass > 0.0, who, "mass", "finite and > 0 kg");
+  check_vec<Real>(b.position, who, "position");
+  check_vec<Real>(b.velocity, who, "velocity");
+}
+
+template <class Real>
+void World<Real>::validate_component(const SpringDamper& c, const std::string& who) {
+  check_vec<Real>(c.anchor, who, "spring.anchor");
+  check_value<Real>(c.stiffness, c.stiffness >= 0.0, who, "spring.stiffness",
+                    "finite and >= 0 N/m");
+  check_value<Real>(c.damping, c.damping >= 0.0, who, "spring.damping",
+                    "finite and >= 0 N*s/m");
+  check_value<Real>(c.rest_length, c.rest_length >= 0.0, who, "spring.rest_length",
+                    "finite and >= 0 m");
+}
+
+template <class Real>
+void World<Real>::validate_component(const ConstantForce& c, const std::string& who) {
+  check_vec<Real>(c.force, who, "force");
+}
+
+template <class Real>
+void World<Real>::validate_component(const Gravity& c, const std::string& who) {
+  check_vec<Real>(c.acceleration, who, "gravity");
+}
+
+template <class Real>
+void World<Real>::validate_component(const LinearDrag& c, const std::string& who) {
+  check_value<Real>(c.coefficient, c.coefficient >= 0.0, who, "drag", "finite and >= 0 N*s/m");
+}
+
+template <class Real>
+void World<Real>::validate_component(const Appearance& c, const std::string& who) {
+  check_value<Real>(c.radius, c.radius > 0.0, who, "radius", "finite and > 0 m");
+}
+
+template <class Real>
+Entity World<Real>::create_body(const BodyDef& def) {
+  const std::string who = def.name.empty() ? std::string("body") : "body '" + def.name + "'";
+  validate(def.body, who);
+  if (def.spring) validate_component(*def.spring, who);
+  if (def.constant_force) validate_component(*def.constant_force, who);
+  if (def.gravity) validate_component(*def.gravity, who);
+  if (def.drag) validate_component(*def.drag, who);
+  if (def.appearance) validate_component(*def.appearance, who);
+
+  Entity e;
+  if (!free_slots_.empty()) {
+    const std::uint32_t slot = free_slots_.back();
+    free_slots_.pop_back();
+    e = Entity{slot + 1, generations_[slot]};
+  } else {
+    generations_.push_back(1);
+    e = Entity{static_cast<std::uint32_t>(generations_.size()), 1};
+  }
+  bodies_.insert(e);
+  mass_.push_back(def.body.mass);
+  inv_mass_.push_back(static_cast<Real>(1.0 / def.body.mass));
+  x_.push_back(static_cast<Real>(def.body.position.x));
+  y_.push_back(static_cast<Real>(def.body.position.y));
+  vx_.push_back(static_cast<Real>(def.body.velocity.x));
+  vy_.push_back(static_cast<Real>(def.body.velocity.y));
+  prev_x_.push_back(x_.back());
+  prev_y_.push_back(y_.back());
+  ax_.push_back(Real(0));
+  ay_.push_back(Real(0));
+  names_.push_back(def.name);
+
+  if (def.spring) set(e, *def.spring);
+  if (def.constant_force) set(e, *def.constant_force);
+  if (def.gravity) set(e, *def.gravity);
+  if (def.drag) set(e, *def.drag);
+  if (def.appearance) set(e, *def.appearance);
+  terms_dirty_ = true;
+  return e;
+}
+
+template <class Real>
+void World<Real>::destroy(Entity e) {
+  require(e);
+  remove<SpringDamper>(e);
+  remove<ConstantForce>(e);
+  remove<Gravity>(e);
+  remove<LinearDrag>(e);
+  remove<Appearance>(e);
+  const std::size_t i = bodies_.erase(e);
+  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, inv_mass_, ax_, ay_, mass_, names_);
+  ++generations_[e.slot()];
+  free_slots_.push_back(e.slot());
+  terms_dirty_ = true;
+}
+
+template <class Real>
+Body World<Real>::body(Entity e) const {
+  const std::size_t i = index_of(e);
+  return Body{mass_[i], {double(x_[i]), double(y_[i])}, {double(vx_[i]), double(vy_[i])}};
+}
+
+template <class Real>
+void World<Real>::set_body(Entity e, const Body& b) {
+  const std::size_t i = index_of(e);
+  validate(b, describe(e));
+  mass_[i] = b.mass;
+  inv_mass_[i] = static_cast<Real>(1.0 / b.mass);
+  x_[i] = prev_x_[i] = static_cast<Real>(b.position.x);
+  y_[i] = prev_y_[i] = static_cast<Real>(b.position.y);
+  vx_[i] = static_cast<Real>(b.velocity.x);
+  vy_[i] = static_cast<Real>(b.velocity.y);
+}
+
+template <class Real>
+void World<Real>::set_keep_previous(bool keep) {
+  keep_previous_ = keep;
+  prev_x_ = x_;
+  prev_y_ = y_;
+}
+
+template <class Real>
+void World<Real>::rebuild_terms() {
+  auto body_of = [&](Entity e) { return static_cast<std::uint32_t>(bodies_.index(e)); };
+  auto r = [](double v) { return static_cast<Real>(v); };
+
+  linear_springs_ = {};
+  rest_springs_ = {};
+  for (std::size_t i = 0; i < springs_.data.size(); ++i) {
+    const SpringDamper& s = springs_.data[i];
+    const std::uint32_t b = body_of(springs_.set.dense[i]);
+    if (s.rest_length == 0.0) {
+      auto& t = linear_springs_;
+      t.body.push_back(b);
+      t.anchor_x.push_back(r(s.anchor.x));
+      t.anchor_y.push_back(r(s.anchor.y));
+      t.k.push_back(r(s.stiffness));
+      t.b.push_back(r(s.damping));
+    } else {
+      auto& t = rest_springs_;
+      t.body.push_back(b);
+      t.anchor_x.push_back(r(s.anchor.x));
+      t.anchor_y.push_back(r(s.anchor.y));
+      t.k.push_back(r(s.stiffness));
+      t.b.push_back(r(s.damping));
+      t.rest.push_back(r(s.rest_length));
+    }
+  }
+  forces_ = {};
+  for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
+    forces_.body.push_back(body_of(constant_forces_.set.dense[i]));
+    forces_.fx.push_back(r(constant_forces_.data[i].force.x));
+    forces_.fy.push_back(r(constant_forces_.data[i].force.y));
+  }
+  gravity_terms_ = {};
+  for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
+    gravity_terms_.body.push_back(body_of(gravities_.set.dense[i]));
+    gravity_terms_.gx.push_back(r(gravities_.data[i].acceleration.x));
+    gravity_terms_.gy.push_back(r(gravities_.data[i].acceleration.y));
+  }
+  drag_terms_ = {};
+  for (std::size_t i = 0; i < drags_.data.size(); ++i) {
+    drag_terms_.body.push_back(body_of(drags_.set.dense[i]));
+    drag_terms_.c.push_back(r(drags_.data[i].coefficient));
+  }
+  terms_dirty_ = false;
+}
+
+template <class Real>
+unsigned World<Real>::active_terms() {
+  if (terms_dirty_) rebuild_terms();
+  unsigned bits = 0;
+  if (!linear_springs_.body.empty() || !rest_springs_.body.empty()) bits |= term_spring;
+  if (!forces_.body.empty()) bits |= term_constant_force;
+  if (!gravity_terms_.body.empty()) bits |= term_gravity;
+  if (!drag_terms_.body.empty()) bits |= term_drag;
+  return bits;
+}
+
+// Accelerations a(x, v) for every body: forces are summed per term over the bodies that carry
+// it (N), scaled by 1/m, then the mass-independent input push and gravity are added (m/s²). Each term's loop is
+// skipped entirely when it has no bodies.
+template <class Real>
+void World<Real>::evaluate(Real* ax, Real* ay, const TickInput& input) const {
+  const std::size_t n = x_.size();
+  const Real* x = x_.data();
+  const Real* y = y_.data();
+  const Real* vx = vx_.data();
+  const Real* vy = vy_.data();
+  std::fill_n(ax, n, Real(0));
+  std::fill_n(ay, n, Real(0));
+
+  {  // Hooke + dashpot, rest length 0: F = -k (x - anchor) - b v, per axis.
+    const auto& t = linear_springs_;
+    for (std::size_t i = 0; i < t.body.size(); ++i) {
+      const std::uint32_t j = t.body[i];
+      ax[j] += -t.k[i] * (x[j] - t.anchor_x[i]) - t.b[i] * vx[j];
+      ay[j] += -t.k[i] * (y[j] - t.anchor_y[i]) - t.b[i] * vy[j];
+    }
+  }
+  {  // Rest length L > 0: F = -k (|d| - L) d/|d| - b v; no spring force when |d| = 0.
+    const auto& t = rest_springs_;
+    for (std::size_t i = 0; i < t.body.size(); ++i) {
+      const std::uint32_t j = t.body[i];
+      const Real dx = x[j] - t.anchor_x[i];
+      const Real dy = y[j] - t.anchor_y[i];
+      const Real len = std::sqrt(dx * dx + dy * dy);
+      const Real s = len > Real(0) ? -t.k[i] * (len - t.rest[i]) / len : Real(0);
+      ax[j] += s * dx - t.b[i] * vx[j];
+      ay[j] += s * dy - t.b[i] * vy[j];
+    }
+  }
+  for (std::size_t i = 0; i < forces_.body.size(); ++i) {
+    ax[forces_.body[i]] += forces_.fx[i];
+    ay[forces_.body[i]] += forces_.fy[i];
+  }
+  for (std::size_t i = 0; i < drag_terms_.body.size(); ++i) {  // Stokes drag F = -c v
+    const std::uint32_t j = drag_terms_.body[i];
+    ax[j] += -drag_terms_.c[i] * vx[j];
+    ay[j] += -drag_terms_.c[i] * vy[j];
+  }
+  const Real* inv_m = inv_mass_.data();
+  for (std::size_t j = 0; j < n; ++j) {
+    ax[j] *= inv_m[j];
+    ay[j] *= inv_m[j];
+  }
+  if (input.push.x != 0.0 || input.push.y != 0.0) {  // user input, m/s²
+    const Real px = static_cast<Real>(input.push.x);
+    const Real py = static_cast<Real>(input.push.y);
+    for (std::size_t j = 0; j < n; ++j) {
+      ax[j] += px;
+      ay[j] += py;
+    }
+  }
+  for (std::size_t i = 0; i < gravity_terms_.body.size(); ++i) {
+    ax[gravity_terms_.body[i]] += gravity_terms_.gx[i];
+    ay[gravity_terms_.body[i]] += gravity_terms_.gy[i];
+  }
+}
+
+template <class Real>
+void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input) {
+  if (ax.size() < body_count() || ay.size() < body_count()) {
+    throw std::invalid_argument("World::accelerations: output spans are shorter than body_count()");
+  }
+  if (terms_dirty_) rebuild_terms();
+  evaluate(ax.data(), ay.data(), input);
+}
+
+template <class Real>
+void World<Real>::step(const TickInput& input) {
+  if (terms_dirty_) rebuild_terms();
+  const std::size_t n = x_.size();
+  if (keep_previous_) {
+    std::copy(x_.begin(), x_.end(), prev_x_.begin());
+    std::copy(y_.begin(), y_.end(), prev_y_.begin());
+  }
+  Real* x = x_.data();
+  Real* y = y_.data();
+  Real* vx = vx_.data();
+  Real* vy = vy_.data();
+  const Real* ax = ax_.data();
+  const Real* ay = ay_.data();
+  const Real dt = static_cast<Real>(settings_.dt);
+  evaluate(ax_.data(), ay_.data(), input);
+
+  switch (settings_.integrator) {
+    case Integrator::semi_implicit_euler:
+      // v_{n+1} = v_n + a_n dt; x_{n+1} = x_n + v_{n+1} dt  ("Integration Basics")
+      for (std::size_t j = 0; j < n; ++j) {
+        vx[j] += ax[j] * dt;
+        vy[j] += ay[j] * dt;
+        x[j] += vx[j] * dt;
+        y[j] += vy[j] * dt;
+      }
+      break;
+    case Integrator::explicit_euler:
+      // x_{n+1} = x_n + v_n dt; v_{n+1} = v_n + a_n dt
+      for (std::size_t j = 0; j < n; ++j) {
+        x[j] += vx[j] * dt;
+        y[j] += vy[j] * dt;
+        vx[j] += ax[j] * dt;
+        vy[j] += ay[j] * dt;
+      }
+      break;
+  }
+  ++tick_;
+}
+
+// Calls add(body index, kind, J) for every energy contribution: kinetic ½m|v|² per body, then
+// each potential (see EnergyReport). Shared by energy() and body_energies().
+template <class Real>
+template <class Add>
+void World<Real>::for_each_energy(Add&& add) const {
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    const double vx = vx_[j], vy = vy_[j];
+    add(j, &EnergyReport::kinetic, 0.5 * mass_[j] * (vx * vx + vy * vy));
+  }
+  for (std::size_t i = 0; i < springs_.data.size(); ++i) {
+    const SpringDamper& s = springs_.data[i];
+    const std::size_t j = bodies_.index(springs_.set.dense[i]);
+    const double dx = double(x_[j]) - s.anchor.x, dy = double(y_[j]) - s.anchor.y;
+    const double d2 = dx * dx + dy * dy;
+    const double stretch = std::sqrt(d2) - s.rest_length;
+    add(j, &EnergyReport::spring,
+        0.5 * s.stiffness * (s.rest_length == 0.0 ? d2 : stretch * stretch));
+  }
+  for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
+    const Vec2 g = gravities_.data[i].acceleration;
+    const std::size_t j = bodies_.index(gravities_.set.dense[i]);
+    add(j, &EnergyReport::gravity, -mass_[j] * (g.x * double(x_[j]) + g.y * double(y_[j])));
+  }
+  for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
+    const Vec2 f = constant_forces_.data[i].force;
+    const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
+    add(j, &EnergyReport::constant_force, -(f.x * double(x_[j]) + f.y * double(y_[j])));
+  }
+}
+
+template <class Real>
+void World<Real>::body_energies(std::span<double> out) const {
+  if (out.size() < body_count()) throw std::invalid_argument("World::body_energies: span too short");
+  std::fill_n(out.begin(), body_count(), 0.0);
+  for_each_energy([&](std::size_t j, double EnergyReport::*, double joules) { out[j] += joules; });
+}
+
+template <class Real>
+EnergyReport World<Real>::energy() const {
+  EnergyReport e;
+  for_each_energy([&](std::size_t, double EnergyReport::*kind, double joules) { e.*kind += joules; });
+  return e;
+}
+
+template <class Real>
+std::uint64_t World<Real>::state_hash() const {
+  // FNV-1a, 64-bit (Fowler, Noll, Vo): offset basis 14695981039346656037, prime 1099511628211.
+  std::uint64_t h = 14695981039346656037ull;
+  auto mix = [&h](Real v) {
+    unsigned char bytes[sizeof(Real)];
+    std::memcpy(bytes, &v, sizeof(Real));
+    for (unsigned char c : bytes) {
+      h ^= c;
+      h *= 1099511628211ull;
+    }
+  };
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    mix(x_[j]);
+    mix(y_[j]);
+    mix(vx_[j]);
+    mix(vy_[j]);
+  }
+  return h;
+}
+
+template class World<float>;
+template class World<double>;
+
+}  // namespace fixstep
