@@ -1,0 +1,66 @@
+// Scene files: TOML describing a world, its bodies and the view. See README "Scene format".
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fixstep/components.hpp"
+#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+
+/// A scene that cannot be used. what() reads "FILE:LINE:COLUMN: KEY: MESSAGE", e.g.
+/// "spring.toml:12:13: body[0].spring.stiffness: expected a number, found a string".
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string file, std::size_t line, std::size_t column, std::string key,
+             const std::string& message);
+  [[nodiscard]] const std::string& file() const { return file_; }
+  [[nodiscard]] std::size_t line() const { return line_; }      ///< 1-based; 0 = unknown
+  [[nodiscard]] std::size_t column() const { return column_; }  ///< 1-based; 0 = unknown
+  [[nodiscard]] const std::string& key() const { return key_; }  ///< e.g. "world.dt"
+
+ private:
+  std::string file_;
+  std::size_t line_, column_;
+  std::string key_;
+};
+
+/// The optional [view] table: what part of the world the frames show.
+struct SceneView {
+  std::optional<Vec2> center;   ///< m; default: centre of the bodies and anchors
+  std::optional<double> width;  ///< visible width, m; default: fits bodies and spring ranges
+};
+
+/// A parsed, validated scene.
+struct Scene {
+  std::string file;                ///< where it came from (for messages)
+  WorldSettings world;             ///< [world] dt (s) and integrator
+  Precision precision = Precision::f64;
+  SceneView view;
+  std::vector<BodyDef> bodies;     ///< in file order, names unique
+  std::vector<std::string> warnings;  ///< non-fatal findings (unknown keys, with suggestions)
+};
+
+/// Largest scene file accepted, bytes.
+inline constexpr std::size_t max_scene_bytes = 4u << 20;
+
+/// Reads and validates a scene file. Throws SceneError (file, line, column, key) for syntax
+/// errors, missing or mistyped keys, vectors that are not [x, y], non-finite numbers, values out
+/// of range (mass <= 0, negative stiffness/damping/drag, dt <= 0), unknown integrator or
+/// precision, duplicate body names, and unreadable, binary or oversized files.
+[[nodiscard]] Scene load_scene(const std::filesystem::path& file);
+/// As load_scene, from text; `source_name` is used in messages.
+[[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);
+
+/// Builds the world a scene describes. Throws std::invalid_argument if a value is not
+/// representable in the scene's precision (the loader checks this first).
+[[nodiscard]] Simulation make_simulation(const Scene& scene);
+
+}  // namespace fixstep

@@ -1,0 +1,366 @@
+#include "fixstep/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <limits>
+#include <set>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+namespace fixstep {
+
+SceneError::SceneError(std::string file, std::size_t line, std::size_t column, std::string key,
+                       const std::string& message)
+    : std::runtime_error(fmt::format("{}:{}:{}: {}{}{}", file, line, column, key,
+                                     key.empty() ? "" : ": ", message)),
+      file_(std::move(file)),
+      line_(line),
+      column_(column),
+      key_(std::move(key)) {}
+
+namespace {
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string_view type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date/time";
+  }
+}
+
+/// Walks a parsed document, turning every problem into a SceneError with its position.
+class Reader {
+ public:
+  struct Warning {
+    std::size_t line, column;
+    std::string text;
+  };
+
+  explicit Reader(const std::string& file) : file_(file) {}
+
+  /// The warnings in file order.
+  std::vector<std::string> take_warnings() {
+    std::stable_sort(warnings_.begin(), warnings_.end(), [](const Warning& a, const Warning& b) {
+      return a.line != b.line ? a.line < b.line : a.column < b.column;
+    });
+    std::vector<std::string> out;
+    for (Warning& w : warnings_) out.push_back(std::move(w.text));
+    return out;
+  }
+
+  [[noreturn]] void fail(const toml::source_region& where, const std::string& key,
+                         const std::string& message) const {
+    throw SceneError(file_, where.begin.line, where.begin.column, key, message);
+  }
+
+  /// Warns about keys of `table` not in `allowed`, suggesting the closest allowed key.
+  void check_keys(const toml::table& table, const std::string& path,
+                  std::initializer_list<std::string_view> allowed) {
+    for (auto&& [key, node] : table) {
+      const std::string_view k = key.str();
+      if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
+      std::string_view best;
+      std::size_t best_d = 3;  // suggest only within two edits
+      for (std::string_view a : allowed) {
+        const std::size_t d = edit_distance(k, a);
+        if (d < best_d) best_d = d, best = a;
+      }
+      const auto& at = key.source().begin;
+      const std::string full = path.empty() ? std::string(k) : path + "." + std::string(k);
+      warnings_.push_back({at.line, at.column, fmt::format("{}:{}:{}: {}: unknown key ignored{}", file_, at.line,
+                                      at.column, full,
+                                      best.empty() ? std::string()
+                                                   : fmt::format(" (did you mean `{}`?)", best))});
+    }
+  }
+
+  /// A finite number (integer or float) at table[key]; nullopt when absent.
+  std::optional<double> number(const toml::table& t, std::string_view key,
+                               const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    return number_node(*n, path);
+  }
+
+  double number_node(const toml::node& n, const std::string& path) const {
+    if (!n.is_number()) {
+      fail(n.source(), path, fmt::format("expected a number, found {}", type_name(n)));
+    }
+    const double v = *n.value<double>();
+    if (!std::isfinite(v)) fail(n.source(), path, fmt::format("must be finite (got {})", v));
+    return v;
+  }
+
+  double required_number(const toml::table& t, const toml::source_region& table_at,
+                         std::string_view key, const std::string& path) const {
+    auto v = number(t, key, path);
+    if (!v) fail(table_at, path, "missing (required)");
+    return *v;
+  }
+
+  std::optional<Vec2> vec2(const toml::table& t, std::string_view key,
+                           const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 2) {
+      fail(n->source(), path,
+           a ? fmt::format("expected [x, y] (2 numbers), found {} elements", a->size())
+             : fmt::format("expected [x, y], found {}", type_name(*n)));
+    }
+    return Vec2{number_node(*a->get(0), path + "[0]"), number_node(*a->get(1), path + "[1]")};
+  }
+
+  std::optional<std::string> string(const toml::table& t, std::string_view key,
+                                    const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    if (!n->is_string()) {
+      fail(n->source(), path, fmt::format("expected a string, found {}", type_name(*n)));
+    }
+    return std::string(n->as_string()->get());
+  }
+
+  const toml::table* table(const toml::table& t, std::string_view key,
+                           const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) {
+      fail(n->source(), path, fmt::format("expected a table, found {}", type_name(*n)));
+    }
+    return n->as_table();
+  }
+
+  /// v must satisfy ok, else "must be <allowed> (got v)" at t[key].
+  void require(bool ok, const toml::table& t, std::string_view key, const std::string& path,
+               std::string_view allowed, double v) const {
+    if (!ok) fail(t.get(key)->source(), path, fmt::format("must be {} (got {})", allowed, v));
+  }
+
+  /// Narrowing to f32 must keep the value finite.
+  void require_f32(double v, const toml::node* n, const std::string& path) const {
+    if (std::abs(v) > double(std::numeric_limits<float>::max())) {
+      fail(n->source(), path,
+           fmt::format("{} overflows precision = \"f32\" (largest float is {:g})", v,
+                       double(std::numeric_limits<float>::max())));
+    }
+  }
+
+ private:
+  const std::string& file_;
+  std::vector<Warning> warnings_;
+};
+
+Rgba8 parse_color(const Reader& r, const toml::table& t, const std::string& path) {
+  const toml::node* n = t.get("color");
+  const std::string s = *r.string(t, "color", path);
+  auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  const bool shape_ok = (s.size() == 7 || s.size() == 9) && s[0] == '#' &&
+                        std::all_of(s.begin() + 1, s.end(), [&](char c) { return hex(c) >= 0; });
+  if (!shape_ok) {
+    r.fail(n->source(), path, fmt::format("expected \"#rrggbb\" or \"#rrggbbaa\", found \"{}\"", s));
+  }
+  auto byte = [&](std::size_t i) {
+    return static_cast<std::uint8_t>(hex(s[i]) * 16 + hex(s[i + 1]));
+  };
+  return Rgba8{byte(1), byte(3), byte(5), s.size() == 9 ? byte(7) : std::uint8_t{255}};
+}
+
+BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path) {
+  r.check_keys(t, path,
+               {"name", "mass", "position", "velocity", "spring", "force", "gravity", "drag",
+                "radius", "color"});
+  BodyDef def;
+  if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
+  def.body.mass = r.required_number(t, t.source(), "mass", path + ".mass");
+  r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
+  auto position = r.vec2(t, "position", path + ".position");
+  if (!position) r.fail(t.source(), path + ".position", "missing (required)");
+  def.body.position = *position;
+  if (auto v = r.vec2(t, "velocity", path + ".velocity")) def.body.velocity = *v;
+
+  if (const toml::table* s = r.table(t, "spring", path + ".spring")) {
+    const std::string sp = path + ".spring";
+    r.check_keys(*s, sp, {"anchor", "stiffness", "damping", "rest_length"});
+    SpringDamper spring;
+    if (auto a = r.vec2(*s, "anchor", sp + ".anchor")) spring.anchor = *a;
+    spring.stiffness = r.required_number(*s, s->source(), "stiffness", sp + ".stiffness");
+    r.require(spring.stiffness >= 0.0, *s, "stiffness", sp + ".stiffness", ">= 0 N/m",
+              spring.stiffness);
+    if (auto b = r.number(*s, "damping", sp + ".damping")) {
+      r.require(*b >= 0.0, *s, "damping", sp + ".damping", ">= 0 N*s/m", *b);
+      spring.damping = *b;
+    }
+    if (auto l = r.number(*s, "rest_length", sp + ".rest_length")) {
+      r.require(*l >= 0.0, *s, "rest_length", sp + ".rest_length", ">= 0 m", *l);
+      spring.rest_length = *l;
+    }
+    def.spring = spring;
+  }
+  if (auto f = r.vec2(t, "force", path + ".force")) def.constant_force = ConstantForce{*f};
+  if (auto g = r.vec2(t, "gravity", path + ".gravity")) def.gravity = Gravity{*g};
+  if (auto c = r.number(t, "drag", path + ".drag")) {
+    r.require(*c >= 0.0, t, "drag", path + ".drag", ">= 0 N*s/m", *c);
+    def.drag = LinearDrag{*c};
+  }
+  if (t.get("radius") || t.get("color")) {
+    Appearance ap;
+    if (auto rad = r.number(t, "radius", path + ".radius")) {
+      r.require(*rad > 0.0, t, "radius", path + ".radius", "> 0 m", *rad);
+      ap.radius = *rad;
+    }
+    if (t.get("color")) ap.color = parse_color(r, t, path + ".color");
+    def.appearance = ap;
+  }
+  return def;
+}
+
+/// Every number of an f32 scene must stay finite as a float.
+void check_f32(const Reader& r, const toml::node& node, const std::string& path) {
+  if (const toml::table* t = node.as_table()) {
+    for (auto&& [k, v] : *t) check_f32(r, v, path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
+  } else if (const toml::array* a = node.as_array()) {
+    for (std::size_t i = 0; i < a->size(); ++i) check_f32(r, *a->get(i), fmt::format("{}[{}]", path, i));
+  } else if (node.is_number()) {
+    const double v = *node.value<double>();
+    if (std::isfinite(v)) r.require_f32(v, &node, path);
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& source_name) {
+  Scene scene;
+  scene.file = source_name;
+  Reader r(scene.file);
+
+  if (text.size() > max_scene_bytes) {
+    throw SceneError(source_name, 0, 0, "",
+                     fmt::format("file is {} bytes; scenes are limited to {} bytes", text.size(),
+                                 max_scene_bytes));
+  }
+  if (text.find('\0') != std::string_view::npos) {
+    throw SceneError(source_name, 0, 0, "", "binary data (NUL byte): not a TOML scene file");
+  }
+  toml::table doc;
+  try {
+    doc = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(source_name, e.source().begin.line, e.source().begin.column, "",
+                     fmt::format("TOML syntax error: {}", e.description()));
+  }
+  r.check_keys(doc, "", {"world", "view", "body"});
+
+  const toml::table* world = r.table(doc, "world", "world");
+  if (!world) throw SceneError(source_name, 1, 1, "world", "missing [world] table (required)");
+  r.check_keys(*world, "world", {"dt", "integrator", "precision"});
+  scene.world.dt = r.required_number(*world, world->source(), "dt", "world.dt");
+  r.require(scene.world.dt > 0.0 && scene.world.dt <= 1.0, *world, "dt", "world.dt",
+            "> 0 and <= 1 s", scene.world.dt);
+  if (auto name = r.string(*world, "integrator", "world.integrator")) {
+    auto i = parse_integrator(*name);
+    if (!i) {
+      r.fail(world->get("integrator")->source(), "world.integrator",
+             fmt::format("unknown integrator \"{}\" (valid: {})", *name, integrator_names()));
+    }
+    scene.world.integrator = *i;
+  }
+  if (auto name = r.string(*world, "precision", "world.precision")) {
+    auto p = parse_precision(*name);
+    if (!p) {
+      r.fail(world->get("precision")->source(), "world.precision",
+             fmt::format("unknown precision \"{}\" (valid: f32, f64)", *name));
+    }
+    scene.precision = *p;
+  }
+
+  if (const toml::table* view = r.table(doc, "view", "view")) {
+    r.check_keys(*view, "view", {"center", "width"});
+    scene.view.center = r.vec2(*view, "center", "view.center");
+    if (auto w = r.number(*view, "width", "view.width")) {
+      r.require(*w > 0.0, *view, "width", "view.width", "> 0 m", *w);
+      scene.view.width = *w;
+    }
+  }
+
+  const toml::node* bodies = doc.get("body");
+  if (!bodies) throw SceneError(source_name, 1, 1, "body", "no [[body]] tables: a scene needs at least one body");
+  const toml::array* list = bodies->as_array();
+  if (!list || !list->is_array_of_tables()) {
+    r.fail(bodies->source(), "body", "expected [[body]] tables");
+  }
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::table& t = *list->get(i)->as_table();
+    const std::string path = fmt::format("body[{}]", i);
+    BodyDef def = parse_body(r, t, path);
+    if (def.name.empty()) def.name = fmt::format("body{}", i);
+    if (!names.insert(def.name).second) {
+      const toml::node* n = t.get("name");
+      r.fail(n ? n->source() : t.source(), path + ".name",
+             fmt::format("duplicate body name \"{}\" (names must be unique)", def.name));
+    }
+    scene.bodies.push_back(std::move(def));
+  }
+  if (scene.precision == Precision::f32) check_f32(r, doc, "");
+  scene.warnings = r.take_warnings();
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) {
+    throw SceneError(name, 0, 0, "", "is a directory, not a scene file");
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(name, 0, 0, "", "cannot open scene file (does it exist?)");
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_scene_bytes) {
+      throw SceneError(name, 0, 0, "",
+                       fmt::format("file is larger than the {} bytes a scene may have",
+                                   max_scene_bytes));
+    }
+  }
+  if (in.bad()) throw SceneError(name, 0, 0, "", "read error");
+  return parse_scene(text, name);
+}
+
+Simulation make_simulation(const Scene& scene) {
+  Simulation sim(scene.precision, scene.world);
+  for (const BodyDef& def : scene.bodies) sim.create_body(def);
+  return sim;
+}
+
+}  // namespace fixstep
