@@ -1,0 +1,60 @@
+// A scene being played: simulation + fixed-step loop + renderer, the one frame pipeline shared
+// by headless capture (`fixstep render`) and the window (`fixstep view`).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fixstep/loop.hpp"
+#include "fixstep/render.hpp"
+#include "fixstep/scene.hpp"
+#include "fixstep/simulation.hpp"
+
+namespace fixstep {
+
+/// The camera a scene asks for: its [view] table, otherwise a fit of the bodies' positions,
+/// their anchors and each spring's reach (|x0 - anchor| + |v0|/ω) with a 15 % margin.
+/// `width` and `height` are the frame size in pixels (for the aspect ratio).
+[[nodiscard]] Camera fit_camera(const Scene& scene, int width, int height);
+
+/// "ticks=N t=T state_hash=HHHHHHHHHHHHHHHH energy=E drift=D": the summary `run` and `render`
+/// print. energy in J; drift = (E - E0)/|E0| relative to initial_energy (absolute J if E0 = 0).
+[[nodiscard]] std::string summary_line(const Simulation& sim, double initial_energy);
+
+/// 16 lowercase hex digits.
+[[nodiscard]] std::string hex_hash(std::uint64_t hash);
+
+class Session {
+ public:
+  /// Builds the world, loop and renderer. Throws RenderError / std::invalid_argument.
+  Session(Scene scene, int width, int height);
+
+  /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets
+  /// `input` (see TickInput).
+  FrameResult advance(double frame_seconds, const TickInput& input = {});
+  /// Renders the state interpolated by the loop's alpha, with the HUD, into renderer().pixels().
+  void draw();
+  /// Back to the scene's initial state (tick 0), trails cleared; pause and time scale are kept.
+  void restart();
+  /// Shows the window's key help in the HUD.
+  void set_show_controls(bool show) { show_controls_ = show; }
+
+  [[nodiscard]] const Scene& scene() const { return scene_; }
+  [[nodiscard]] const Simulation& simulation() const { return *sim_; }
+  [[nodiscard]] FixedStepLoop& loop() { return loop_; }
+  [[nodiscard]] const Renderer& renderer() const { return renderer_; }
+  [[nodiscard]] double initial_energy() const { return initial_energy_; }
+
+ private:
+  Scene scene_;
+  std::unique_ptr<Simulation> sim_;
+  FixedStepLoop loop_;
+  Renderer renderer_;
+  Snapshot snapshot_;
+  std::vector<std::string> hud_;
+  double initial_energy_ = 0.0;
+  bool show_controls_ = false;
+};
+
+}  // namespace fixstep

@@ -1,0 +1,370 @@
+#include "fixstep/render.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+
+#include <fmt/format.h>
+
+// GL entry points are resolved against libOSMesa, which exports every GL function (checked:
+// `nm -D libOSMesa.so | grep glCreateShader`). The engine links OSMesa and never libGL: with
+// -lGL first, the same symbols would bind to libGL's dispatch, which has no current context in
+// an OSMesa program, and every call would silently do nothing (black frames).
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/osmesa.h>
+#include <stb/stb_easy_font.h>
+
+namespace fixstep {
+
+namespace {
+
+constexpr Rgba8 background{18, 21, 28, 255};
+constexpr Rgba8 grid_minor{32, 37, 48, 255};
+constexpr Rgba8 grid_axis{62, 70, 90, 255};
+constexpr Rgba8 spring_color{170, 180, 200, 255};
+constexpr Rgba8 anchor_color{120, 130, 150, 255};
+constexpr Rgba8 outline{8, 10, 14, 255};
+constexpr Rgba8 text_color{235, 238, 245, 255};
+constexpr Rgba8 panel{0, 0, 0, 150};
+constexpr Rgba8 palette[] = {{230, 87, 46, 255},  {76, 175, 240, 255}, {250, 200, 60, 255},
+                             {120, 210, 110, 255}, {200, 120, 230, 255}, {240, 140, 170, 255},
+                             {90, 220, 200, 255},  {240, 240, 240, 255}};
+constexpr float default_radius_px = 9.0f;
+constexpr float min_radius_px = 3.0f;
+
+constexpr const char* vertex_shader = R"(#version 330 core
+layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
+layout(location = 1) in vec2 a_uv;     // shape coordinates (discs, lines)
+layout(location = 2) in vec4 a_color;
+layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line
+uniform vec2 u_size;
+out vec2 v_uv;
+out vec4 v_color;
+out float v_kind;
+void main() {
+  gl_Position = vec4(a_pos.x / u_size.x * 2.0 - 1.0, 1.0 - a_pos.y / u_size.y * 2.0, 0.0, 1.0);
+  v_uv = a_uv;
+  v_color = a_color;
+  v_kind = a_kind;
+}
+)";
+
+// Discs and lines are anti-aliased analytically: coverage falls from 1 to 0 over one pixel at
+// the shape's edge (distance 1 in shape coordinates), measured with fwidth.
+constexpr const char* fragment_shader = R"(#version 330 core
+in vec2 v_uv;
+in vec4 v_color;
+in float v_kind;
+out vec4 frag;
+void main() {
+  float a = v_color.a;
+  if (v_kind > 0.5) {
+    float d = v_kind < 1.5 ? length(v_uv) : abs(v_uv.y);
+    float w = max(fwidth(d), 1e-6);
+    a *= clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  }
+  frag = vec4(v_color.rgb, a);
+}
+)";
+
+GLuint compile(GLenum type, const char* source) {
+  GLuint s = glCreateShader(type);
+  glShaderSource(s, 1, &source, nullptr);
+  glCompileShader(s);
+  GLint ok = 0;
+  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(s, sizeof log, nullptr, log);
+    glDeleteShader(s);
+    throw RenderError(fmt::format("render: shader compilation failed: {}", log));
+  }
+  return s;
+}
+
+}  // namespace
+
+struct Renderer::Gl {
+  OSMesaContext context = nullptr;
+  GLuint program = 0, vao = 0, vbo = 0;
+  GLint size_uniform = -1;
+};
+
+Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(new Gl) {
+  if (width < min_frame_size || height < min_frame_size || width > max_frame_size ||
+      height > max_frame_size) {
+    throw RenderError(fmt::format("render: frame size {}x{} is outside {}..{} pixels", width,
+                                  height, min_frame_size, max_frame_size));
+  }
+  pixels_.assign(static_cast<std::size_t>(width) * height * 4, 0);
+  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS, 0,
+                         OSMESA_STENCIL_BITS, 0,
+                         OSMESA_ACCUM_BITS, 0,
+                         OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION, 3,
+                         OSMESA_CONTEXT_MINOR_VERSION, 3,
+                         0};
+  gl_->context = OSMesaCreateContextAttribs(attribs, nullptr);
+  if (!gl_->context) {
+    throw RenderError(
+        "render: OSMesaCreateContextAttribs failed to create an OpenGL 3.3 core context "
+        "(is libosmesa6 from Mesa >= 17 installed?)");
+  }
+  make_current();
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (!renderer) {
+    OSMesaDestroyContext(gl_->context);
+    gl_->context = nullptr;
+    throw RenderError(
+        "render: GL_RENDERER is null: GL calls are not reaching OSMesa. Link libOSMesa only; a "
+        "libGL linked before it captures every gl* call and frames come out black.");
+  }
+  gl_renderer_ = renderer;
+
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex_shader);
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_shader);
+  gl_->program = glCreateProgram();
+  glAttachShader(gl_->program, vs);
+  glAttachShader(gl_->program, fs);
+  glLinkProgram(gl_->program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint linked = 0;
+  glGetProgramiv(gl_->program, GL_LINK_STATUS, &linked);
+  if (!linked) throw RenderError("render: shader program failed to link");
+  gl_->size_uniform = glGetUniformLocation(gl_->program, "u_size");
+
+  glGenVertexArrays(1, &gl_->vao);
+  glGenBuffers(1, &gl_->vbo);
+  glBindVertexArray(gl_->vao);
+  glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
+  const auto stride = static_cast<GLsizei>(sizeof(Vertex));
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<void*>(offsetof(Vertex, x)));
+  glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<void*>(offsetof(Vertex, u)));
+  glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride,
+                        reinterpret_cast<void*>(offsetof(Vertex, r)));
+  glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<void*>(offsetof(Vertex, kind)));
+  for (GLuint i = 0; i < 4; ++i) glEnableVertexAttribArray(i);
+  font_scratch_.resize(64 * 1024);
+}
+
+Renderer::~Renderer() {
+  if (gl_ && gl_->context) {
+    make_current();
+    glDeleteBuffers(1, &gl_->vbo);
+    glDeleteVertexArrays(1, &gl_->vao);
+    glDeleteProgram(gl_->program);
+    OSMesaDestroyContext(gl_->context);
+  }
+}
+
+void Renderer::make_current() {
+  // Several renderers may live in one process (tests): bind ours before drawing. Y_UP = 0
+  // makes row 0 of the buffer the top of the image.
+  if (!OSMesaMakeCurrent(gl_->context, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
+    throw RenderError("render: OSMesaMakeCurrent failed");
+  }
+  OSMesaPixelStore(OSMESA_Y_UP, 0);
+}
+
+std::array<double, 2> Renderer::to_pixel(double x, double y) const {
+  const double scale = width_ / camera_.width;  // px per m
+  return {(x - camera_.center.x) * scale + width_ * 0.5,
+          height_ * 0.5 - (y - camera_.center.y) * scale};
+}
+
+void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind) {
+  static constexpr int order[6] = {0, 1, 2, 0, 2, 3};
+  for (int i : order) {
+    vertices_.push_back({p[i][0], p[i][1], uv[i][0], uv[i][1], c.r, c.g, c.b, c.a, kind});
+  }
+}
+
+void Renderer::rect(float x0, float y0, float x1, float y1, Rgba8 c) {
+  quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
+}
+
+void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c) {
+  const float dx = x1 - x0, dy = y1 - y0;
+  const float len = std::sqrt(dx * dx + dy * dy);
+  if (len < 1e-3f) return;
+  const float h = 0.5f * width, pad = h + 1.0f;  // one extra pixel for the anti-aliased edge
+  const float nx = -dy / len * pad, ny = dx / len * pad;
+  const float e = pad / h;
+  quad({{x0 + nx, y0 + ny}, {x1 + nx, y1 + ny}, {x1 - nx, y1 - ny}, {x0 - nx, y0 - ny}},
+       {{0, e}, {0, e}, {0, -e}, {0, -e}}, c, 2.0f);
+}
+
+void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
+  const float pad = r + 1.0f, e = pad / r;
+  quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
+       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, 1.0f);
+}
+
+void Renderer::text(float x, float y, const std::string& s, float scale, Rgba8 c) {
+  // stb_easy_font emits quads of 4 vertices {x, y, z, rgba8} (16 bytes each) in font units.
+  std::string copy = s;
+  unsigned char rgba[4] = {c.r, c.g, c.b, c.a};
+  const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, font_scratch_.data(),
+                                        static_cast<int>(font_scratch_.size()));
+  const char* base = font_scratch_.data();
+  for (int q = 0; q < quads; ++q) {
+    float p[4][2];
+    for (int k = 0; k < 4; ++k) {
+      float v[2];
+      std::memcpy(v, base + (q * 4 + k) * 16, sizeof v);
+      p[k][0] = x + v[0] * scale;
+      p[k][1] = y + v[1] * scale;
+    }
+    quad(p, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
+  }
+}
+
+void Renderer::grid() {
+  // Grid spacing: the power of ten that gives 4..40 lines across the view.
+  const double step = std::pow(10.0, std::floor(std::log10(camera_.width / 4.0)));
+  const double half_w = camera_.width * 0.5, half_h = half_w * height_ / width_;
+  const double scale = width_ / camera_.width;
+  for (double gx = std::ceil((camera_.center.x - half_w) / step) * step;
+       gx <= camera_.center.x + half_w; gx += step) {
+    const float px = static_cast<float>(to_pixel(gx, 0)[0]);
+    const bool axis = std::abs(gx) < step * 1e-6;
+    line(px, 0, px, float(height_), axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
+  }
+  for (double gy = std::ceil((camera_.center.y - half_h) / step) * step;
+       gy <= camera_.center.y + half_h; gy += step) {
+    const float py = static_cast<float>(to_pixel(0, gy)[1]);
+    const bool axis = std::abs(gy) < step * 1e-6;
+    line(0, py, float(width_), py, axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
+  }
+  // Scale bar, bottom right: one grid step.
+  const float bar = static_cast<float>(step * scale);
+  const float x1 = width_ - 20.0f, x0 = x1 - bar, y = height_ - 20.0f;
+  line(x0, y, x1, y, 3.0f, text_color);
+  line(x0, y - 5, x0, y + 5, 2.0f, text_color);
+  line(x1, y - 5, x1, y + 5, 2.0f, text_color);
+  text(x0, y - 24, fmt::format("{:g} m", step), 2.0f, text_color);
+}
+
+void Renderer::clear_trails() {
+  trail_count_ = 0;
+  trail_head_ = 0;
+}
+
+void Renderer::record_trails(const Snapshot& s) {
+  const std::size_t n = s.x.size();
+  if (n != trail_bodies_) {
+    trail_bodies_ = n;
+    trail_x_.assign(n * trail_frames, 0.0f);
+    trail_y_.assign(n * trail_frames, 0.0f);
+    clear_trails();
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto p = to_pixel(s.x[j], s.y[j]);
+    trail_x_[j * trail_frames + trail_head_] = static_cast<float>(p[0]);
+    trail_y_[j * trail_frames + trail_head_] = static_cast<float>(p[1]);
+  }
+  trail_head_ = (trail_head_ + 1) % trail_frames;
+  trail_count_ = std::min(trail_count_ + 1, trail_frames);
+}
+
+void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
+  make_current();
+  vertices_.clear();
+  record_trails(s);
+  grid();
+
+  const std::size_t n = s.x.size();
+  const double scale = width_ / camera_.width;
+  auto color_of = [&](std::size_t j) {
+    return s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
+  };
+
+  // Trails: oldest sample transparent, newest 60 % opaque.
+  for (std::size_t j = 0; j < n; ++j) {
+    Rgba8 c = color_of(j);
+    for (int k = 1; k < trail_count_; ++k) {
+      const int a = (trail_head_ - trail_count_ + k - 1 + 2 * trail_frames) % trail_frames;
+      const int b = (a + 1) % trail_frames;
+      c.a = static_cast<std::uint8_t>(150 * k / trail_count_);
+      line(trail_x_[j * trail_frames + a], trail_y_[j * trail_frames + a],
+           trail_x_[j * trail_frames + b], trail_y_[j * trail_frames + b], 2.0f, c);
+    }
+  }
+
+  // Springs: a zigzag of 12 coils from the anchor to the body, with straight leads.
+  for (const Snapshot::SpringLine& sp : s.springs) {
+    const auto a = to_pixel(sp.anchor_x, sp.anchor_y);
+    const auto b = to_pixel(s.x[sp.body], s.y[sp.body]);
+    const float ax = float(a[0]), ay = float(a[1]), bx = float(b[0]), by = float(b[1]);
+    const float dx = bx - ax, dy = by - ay, len = std::sqrt(dx * dx + dy * dy);
+    if (len < 24.0f) {
+      line(ax, ay, bx, by, 2.0f, spring_color);
+    } else {
+      constexpr int coils = 12;
+      const float nx = -dy / len * 7.0f, ny = dx / len * 7.0f;
+      float px = ax + dx * 0.1f, py = ay + dy * 0.1f;
+      line(ax, ay, px, py, 2.0f, spring_color);
+      for (int k = 1; k <= 2 * coils; ++k) {
+        const float f = 0.1f + 0.8f * float(k) / (2 * coils);
+        const float side = k == 2 * coils ? 0.0f : (k % 2 ? 1.0f : -1.0f);
+        const float qx = ax + dx * f + nx * side, qy = ay + dy * f + ny * side;
+        line(px, py, qx, qy, 2.0f, spring_color);
+        px = qx, py = qy;
+      }
+      line(px, py, bx, by, 2.0f, spring_color);
+    }
+    rect(ax - 5, ay - 5, ax + 5, ay + 5, anchor_color);
+  }
+
+  // Bodies: an outlined disc of the body's radius (at least min_radius_px).
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto p = to_pixel(s.x[j], s.y[j]);
+    const float r = s.radius[j] > 0.0f
+                        ? std::max(float(s.radius[j] * scale), min_radius_px)
+                        : default_radius_px;
+    disc(float(p[0]), float(p[1]), r + 1.5f, outline);
+    disc(float(p[0]), float(p[1]), r, color_of(j));
+  }
+
+  // HUD: text lines on a translucent panel, top left.
+  if (!hud_lines.empty()) {
+    constexpr float scale_text = 2.0f, line_h = 22.0f, margin = 10.0f;
+    float widest = 0;
+    for (const std::string& l : hud_lines) {
+      std::string copy = l;
+      widest = std::max(widest, float(stb_easy_font_width(copy.data())) * scale_text);
+    }
+    rect(margin, margin, margin + widest + 16, margin + 10 + line_h * hud_lines.size(), panel);
+    float y = margin + 8;
+    for (const std::string& l : hud_lines) {
+      text(margin + 8, y, l, scale_text, text_color);
+      y += line_h;
+    }
+  }
+
+  glViewport(0, 0, width_, height_);
+  glClearColor(background.r / 255.0f, background.g / 255.0f, background.b / 255.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glEnable(GL_BLEND);
+  // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glUseProgram(gl_->program);
+  glUniform2f(gl_->size_uniform, float(width_), float(height_));
+  glBindVertexArray(gl_->vao);
+  glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(Vertex)),
+               vertices_.data(), GL_STREAM_DRAW);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_.size()));
+  glFinish();
+  if (const GLenum err = glGetError(); err != GL_NO_ERROR) {
+    throw RenderError(fmt::format("render: GL error 0x{:x} while drawing", err));
+  }
+}
+
+}  // namespace fixstep

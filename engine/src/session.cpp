@@ -1,0 +1,92 @@
+#include "fixstep/session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace fixstep {
+
+Camera fit_camera(const Scene& scene, int width, int height) {
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  auto include = [&](double x, double y, double r) {
+    x0 = std::min(x0, x - r), x1 = std::max(x1, x + r);
+    y0 = std::min(y0, y - r), y1 = std::max(y1, y + r);
+  };
+  for (const BodyDef& b : scene.bodies) {
+    include(b.body.position.x, b.body.position.y, b.appearance ? b.appearance->radius : 0.0);
+    if (b.spring) {
+      const auto& s = *b.spring;
+      const double dx = b.body.position.x - s.anchor.x, dy = b.body.position.y - s.anchor.y;
+      const double omega = std::sqrt(s.stiffness / b.body.mass);
+      const double speed = std::hypot(b.body.velocity.x, b.body.velocity.y);
+      const double reach = std::hypot(dx, dy) + s.rest_length + (omega > 0 ? speed / omega : 0);
+      include(s.anchor.x, s.anchor.y, reach);
+    }
+  }
+  const double aspect = double(width) / double(height);
+  Camera c;
+  c.center = {0.5 * (x0 + x1), 0.5 * (y0 + y1)};
+  c.width = std::max({(x1 - x0), (y1 - y0) * aspect, 1.0}) * 1.15;
+  if (scene.view.center) c.center = *scene.view.center;
+  if (scene.view.width) c.width = *scene.view.width;
+  return c;
+}
+
+std::string hex_hash(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
+
+std::string summary_line(const Simulation& sim, double initial_energy) {
+  const double e = sim.energy().total();
+  const std::string drift = initial_energy != 0.0
+                                ? fmt::format("{:.6e}", (e - initial_energy) / std::abs(initial_energy))
+                                : fmt::format("{:.6e}J", e - initial_energy);
+  return fmt::format("ticks={} t={:.6f} state_hash={} energy={:.9e} drift={}", sim.tick(),
+                     sim.time(), hex_hash(sim.state_hash()), e, drift);
+}
+
+Session::Session(Scene scene, int width, int height)
+    : scene_(std::move(scene)),
+      sim_(std::make_unique<Simulation>(make_simulation(scene_))),
+      loop_(LoopSettings{.dt = scene_.world.dt}),
+      renderer_(width, height) {
+  sim_->set_keep_previous(true);
+  initial_energy_ = sim_->energy().total();
+  renderer_.set_camera(fit_camera(scene_, width, height));
+}
+
+FrameResult Session::advance(double frame_seconds, const TickInput& input) {
+  return loop_.advance(frame_seconds, input, [&](const TickInput& in) { sim_->step(in); });
+}
+
+void Session::restart() {
+  sim_ = std::make_unique<Simulation>(make_simulation(scene_));
+  sim_->set_keep_previous(true);
+  loop_.reset();
+  renderer_.clear_trails();
+}
+
+void Session::draw() {
+  sim_->snapshot(loop_.alpha(), snapshot_);
+  const double e = sim_->energy().total();
+  const std::string file = std::filesystem::path(scene_.file).filename().string();
+  hud_.clear();
+  hud_.push_back(fmt::format("fixstep  {}  ({} bodies)", file, sim_->body_count()));
+  hud_.push_back(fmt::format("tick {}   t = {:.3f} s   dt = {:g} s", sim_->tick(), sim_->time(),
+                             sim_->settings().dt));
+  hud_.push_back(fmt::format("{} ({})", integrator_name(sim_->settings().integrator),
+                             precision_name(sim_->precision())));
+  if (initial_energy_ != 0.0) {
+    hud_.push_back(fmt::format("energy {:.6g} J   drift {:+.4f} %", e,
+                               100.0 * (e - initial_energy_) / std::abs(initial_energy_)));
+  } else {
+    hud_.push_back(fmt::format("energy {:.6g} J   drift {:+.4g} J", e, e - initial_energy_));
+  }
+  if (show_controls_) {
+    hud_.push_back(fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
+    hud_.push_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
+  }
+  renderer_.draw(snapshot_, hud_);
+}
+
+}  // namespace fixstep
