@@ -1,0 +1,56 @@
+// The fixstep subcommands, separated from argument parsing.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <fixstep/scene.hpp>
+
+namespace fixstep::cli {
+
+struct SceneOptions {
+  std::string scene;
+  std::optional<std::string> integrator;
+  std::optional<double> dt;         ///< s
+  std::optional<std::string> precision;
+};
+
+struct RunOptions {
+  SceneOptions scene;
+  std::optional<std::int64_t> steps;
+  std::optional<double> duration;  ///< s
+  std::optional<std::string> csv;
+  std::int64_t every = 1;
+};
+
+struct RenderOptions {
+  SceneOptions scene;
+  std::string out;
+  std::int64_t frames = 120;
+  double fps = 60.0;
+  std::string size = "1280x720";
+};
+
+struct ViewOptions {
+  SceneOptions scene;
+  std::string size = "1280x720";
+  std::int64_t frames = 0;
+  std::optional<double> fps;
+};
+
+/// CLI11 validator text: "" when value is a finite number > 0.
+std::string positive_finite(const std::string& value);
+/// CLI11 validator text: "" when value is WxH within the renderer's limits.
+std::string frame_size_validator(const std::string& value);
+/// Parses "WxH" (validated by frame_size_validator).
+std::pair<int, int> parse_frame_size(const std::string& value);
+
+/// Loads the scene, prints its warnings to stderr, applies the overrides.
+Scene load_with_overrides(const SceneOptions& options);
+
+int run_command(const RunOptions& options);
+int render_command(const RenderOptions& options);
+int view_command(const ViewOptions& options);
+
+}  // namespace fixstep::cli

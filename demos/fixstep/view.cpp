@@ -1,0 +1,60 @@
+// `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock.
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include <fixstep/session.hpp>
+#include <fixstep/window.hpp>
+#include <fmt/format.h>
+
+#include "commands.hpp"
+
+namespace fixstep::cli {
+
+int view_command(const ViewOptions& o) {
+  const Scene scene = load_with_overrides(o.scene);
+  const auto [width, height] = parse_frame_size(o.size);
+  // The window first: without a display it fails at once with a pointer to `render`.
+  Window window(fmt::format("fixstep - {}", scene.file), width, height);
+  Session session(scene, width, height);
+  session.set_show_controls(true);
+
+  // Arrow keys push every body at half a view-width per s² (visible at any scene scale).
+  const double push = 0.5 * session.renderer().camera().width;
+  RealClock real_clock;
+  const std::optional<VirtualClock> virtual_clock =
+      o.fps ? std::optional<VirtualClock>(VirtualClock(*o.fps)) : std::nullopt;
+  constexpr auto frame_budget = std::chrono::microseconds(16667);  // ~60 Hz presentation
+
+  for (std::int64_t frame = 0; o.frames == 0 || frame < o.frames; ++frame) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    const WindowEvents ev = window.poll();
+    if (ev.quit) break;
+    FixedStepLoop& loop = session.loop();
+    if (ev.toggle_pause) loop.set_paused(!loop.paused());
+    if (ev.single_step) {
+      loop.set_paused(true);
+      loop.request_single_step();
+    }
+    if (ev.time_scale_steps != 0) {
+      loop.set_time_scale(
+          std::clamp(loop.time_scale() * std::pow(2.0, ev.time_scale_steps), 1.0 / 16, 16.0));
+    }
+    if (ev.restart) session.restart();
+
+    const double seconds = virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
+    TickInput input;
+    input.push = {ev.push_direction.x * push, ev.push_direction.y * push};
+    if (frame > 0) session.advance(seconds, input);
+    session.draw();
+    window.present(session.renderer().pixels());
+    if (!virtual_clock) std::this_thread::sleep_until(frame_start + frame_budget);
+  }
+  fmt::print("scene={} integrator={} precision={} dt={} driver={}\n", scene.file,
+             integrator_name(scene.world.integrator), precision_name(scene.precision),
+             scene.world.dt, window.driver());
+  fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
+  return 0;
+}
+
+}  // namespace fixstep::cli
