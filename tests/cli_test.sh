@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# End-to-end checks of the fixstep program and the hello_fixstep demo.
+#   cli_test.sh FIXSTEP HELLO SOURCE_DIR
+# Each check prints "ok - ..." or "FAIL - ..."; the script exits non-zero if any failed.
+set -u
+fixstep=$1 hello=$2 src=$3
+scenes=$src/assets/scenes
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0 passes=0
+
+ok() { passes=$((passes + 1)); echo "ok - $1"; }
+fail() { failures=$((failures + 1)); echo "FAIL - $1"; }
+# expect NAME PATTERN FILE: FILE matches the extended regex PATTERN
+expect() { if grep -Eq -- "$2" "$3"; then ok "$1"; else fail "$1: no /$2/ in:"; cat "$3"; fi; }
+hash_of() { grep -Eo 'state_hash=[0-9a-f]{16}' "$1"; }
+
+# --- run ---------------------------------------------------------------------------------
+"$fixstep" run "$scenes/spring_damper.toml" --steps 1000 >"$work/run.out" 2>&1
+[ $? -eq 0 ] && ok "run exits 0" || fail "run exits 0"
+expect "run summary has ticks and a 16-digit hash" '^ticks=1000 t=10\.000000 state_hash=[0-9a-f]{16} ' "$work/run.out"
+
+"$fixstep" run "$scenes/spring_damper.toml" --duration 10 >"$work/run_d.out" 2>&1
+[ "$(hash_of "$work/run.out")" = "$(hash_of "$work/run_d.out")" ] \
+  && ok "--duration 10 equals --steps 1000 at dt 0.01" || fail "--duration 10 equals --steps 1000"
+
+"$fixstep" run "$scenes/projectile.toml" --steps 100 --every 10 --csv "$work/p.csv" >"$work/csv.out" 2>&1
+head -1 "$work/p.csv" | grep -q '^tick,t,body,x,y,vx,vy,energy$' && ok "csv header" || fail "csv header"
+rows=$(($(wc -l <"$work/p.csv") - 1))
+[ "$rows" -eq 55 ] && ok "csv has 5 bodies x 11 recorded ticks" || fail "csv rows: $rows, want 55"
+grep -q '^0,0,vacuum,0,0,15,20,' "$work/p.csv" && ok "csv tick 0 is the initial state" || fail "csv tick 0"
+# vacuum after 100 ticks: x = 15 m/s * 1 s (no x force; 100 additions of 0.15 m round a little),
+# y_n = n dt vy0 - g dt^2 n (n+1) / 2 = 15.04595 m (semi-implicit Euler: below the exact 15.095 m
+# by g t dt / 2), vx = 15.
+awk -F, '$1 == 100 && $3 == "vacuum" { ok = ($4 - 15 < 1e-9 && 15 - $4 < 1e-9 && $5 - 15.04595 < 1e-9 && 15.04595 - $5 < 1e-9 && $6 == 15) }
+         END { exit !ok }' "$work/p.csv" && ok "csv values: vacuum at t = 1 s matches the closed form" \
+  || { fail "csv values"; grep '^100,1,vacuum' "$work/p.csv"; }
+
+# --- render, and the same physics whatever the path --------------------------------------
+"$fixstep" render "$scenes/default.toml" --out "$work/frames" --frames 30 --size 320x180 >"$work/render.out" 2>&1
+[ $? -eq 0 ] && ok "render exits 0" || { fail "render exits 0"; cat "$work/render.out"; }
+n=$(ls "$work/frames" | grep -c '^frame_[0-9]\{6\}\.png$')
+[ "$n" -eq 30 ] && ok "render wrote 30 frames" || fail "render wrote $n frames"
+[ "$(ls -A "$work/frames" | wc -l)" -eq 30 ] && ok "no temporary files left" || fail "stray files in frames/"
+expect "render says where the frames are" "frames=30 .*frame_000000\.png \.\.\. .*frame_000029\.png" "$work/render.out"
+ticks=$(grep -Eo '^ticks=[0-9]+' "$work/render.out" | cut -d= -f2)
+"$fixstep" run "$scenes/default.toml" --steps "$ticks" >"$work/run_same.out" 2>&1
+[ -n "$ticks" ] && [ "$(hash_of "$work/render.out")" = "$(hash_of "$work/run_same.out")" ] \
+  && ok "render (60 fps) and run reach the same state after $ticks ticks" \
+  || fail "render vs run state hash"
+"$fixstep" render "$scenes/default.toml" --out "$work/f144" --frames 100 --fps 144 --size 64x64 >"$work/r144.out" 2>&1
+t144=$(grep -Eo '^ticks=[0-9]+' "$work/r144.out" | cut -d= -f2)
+"$fixstep" run "$scenes/default.toml" --steps "$t144" >"$work/run144.out" 2>&1
+[ "$(hash_of "$work/r144.out")" = "$(hash_of "$work/run144.out")" ] \
+  && ok "render at 144 fps and run agree after $t144 ticks" || fail "144 fps hash"
+
+# --- bad input: clear message, non-zero exit ---------------------------------------------
+printf '[world]\ndt = 0.01\n[[body]]\nmass = -2\nposition = [0, 0]\n' >"$work/bad.toml"
+"$fixstep" run "$work/bad.toml" --steps 1 >"$work/bad.out" 2>&1
+[ $? -ne 0 ] && ok "bad scene exits non-zero" || fail "bad scene exit code"
+expect "bad scene names file:line:col and key" "bad\.toml:4:[0-9]+: body\[0\]\.mass: must be > 0 kg" "$work/bad.out"
+
+"$fixstep" run "$work/missing.toml" --steps 1 >"$work/missing.out" 2>&1
+[ $? -ne 0 ] && ok "missing scene exits non-zero" || fail "missing scene exit code"
+expect "missing scene is named" "missing\.toml.*cannot open" "$work/missing.out"
+
+for args in "--dt -1" "--dt nan" "--integrator rk5" "--precision f16" "--steps -3"; do
+  # shellcheck disable=SC2086
+  "$fixstep" run "$scenes/default.toml" --steps 1 $args >"$work/flag.out" 2>&1 </dev/null
+  [ $? -ne 0 ] && ok "rejects run $args" || fail "accepted run $args"
+done
+"$fixstep" run "$scenes/default.toml" >"$work/nosteps.out" 2>&1
+[ $? -ne 0 ] && ok "run without --steps/--duration exits non-zero" || fail "run without length"
+"$fixstep" render "$scenes/default.toml" --out "$work/x" --size 10x10 >"$work/size.out" 2>&1
+[ $? -ne 0 ] && ok "rejects --size 10x10" || fail "accepted --size 10x10"
+"$fixstep" render "$scenes/default.toml" --out /proc/fixstep_frames --frames 1 >"$work/unwritable.out" 2>&1
+[ $? -ne 0 ] && ok "unwritable --out exits non-zero" || fail "unwritable --out"
+expect "unwritable --out is named" "/proc/fixstep_frames" "$work/unwritable.out"
+"$fixstep" run "$scenes/default.toml" --steps 1 --csv /proc/nope/out.csv >"$work/csv_bad.out" 2>&1
+[ $? -ne 0 ] && ok "unwritable --csv exits non-zero" || fail "unwritable --csv"
+
+# --- view --------------------------------------------------------------------------------
+env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$fixstep" view "$scenes/default.toml" --frames 1 >"$work/nodisp.out" 2>&1
+[ $? -ne 0 ] && ok "view without a display exits non-zero" || fail "view without display"
+expect "view without a display points at render" "no display.*fixstep render" "$work/nodisp.out"
+
+if command -v xvfb-run >/dev/null; then
+  xvfb-run -a -s "-screen 0 1024x768x24" "$fixstep" view "$scenes/default.toml" --frames 30 --fps 60 \
+    --size 320x180 >"$work/view.out" 2>&1
+  [ $? -eq 0 ] && ok "view runs under Xvfb" || { fail "view under Xvfb"; cat "$work/view.out"; }
+  [ "$(hash_of "$work/view.out")" = "$(hash_of "$work/render.out")" ] \
+    && ok "window and headless reach the same state after 30 frames" || fail "view vs render hash"
+else
+  echo "skip - xvfb-run not installed (bash .ci/install-deps installs it)"
+fi
+
+# --- the demo ----------------------------------------------------------------------------
+(cd "$work" && "$hello" demo_frames >"$work/hello.out" 2>&1)
+[ "$(ls "$work/demo_frames" | wc -l)" -eq 90 ] && ok "hello_fixstep writes 90 frames" || fail "hello_fixstep"
+
+echo "$passes passed, $failures failed"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,112 @@
+// Headless rendering through OSMesa: sizes, the world-to-pixel mapping, and what is drawn.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "fixstep/render.hpp"
+#include "fixstep/session.hpp"
+
+namespace fixstep {
+namespace {
+
+struct Pixel {
+  int r, g, b, a;
+};
+Pixel at(const Renderer& r, int x, int y) {
+  const auto p = r.pixels().subspan((static_cast<std::size_t>(y) * r.width() + x) * 4, 4);
+  return {p[0], p[1], p[2], p[3]};
+}
+bool near(Pixel p, Rgba8 c, int tol) {
+  return std::abs(p.r - c.r) <= tol && std::abs(p.g - c.g) <= tol && std::abs(p.b - c.b) <= tol;
+}
+
+TEST(Render, FrameHasTheRequestedSizeAndIsOpaque) {
+  Renderer r(320, 200);
+  EXPECT_FALSE(r.gl_renderer().empty());
+  Snapshot empty;
+  r.draw(empty, {});
+  ASSERT_EQ(r.pixels().size(), 320u * 200u * 4u);
+  for (std::size_t i = 3; i < r.pixels().size(); i += 4) ASSERT_EQ(r.pixels()[i], 255);
+}
+
+TEST(Render, BodyIsDrawnWhereItsPositionMaps) {
+  // Camera 10 m wide on 320 px: 32 px/m, origin at pixel (160, 100), y up.
+  // A red body of radius 0.5 m (16 px) at (2, 1) m must cover pixel (224, 68) and only there:
+  // the mirrored points (96, 132) (y flipped and x flipped) and (224, 132) (y flipped) are not red.
+  Renderer r(320, 200);
+  r.set_camera(Camera{.center = {0, 0}, .width = 10.0});
+  Simulation sim(Precision::f64, WorldSettings{});
+  BodyDef d;
+  d.body.position = {2.0, 1.0};
+  d.appearance = Appearance{.radius = 0.5, .color = {255, 0, 0, 255}};
+  sim.create_body(d);
+  Snapshot s;
+  sim.snapshot(0.0, s);
+  r.draw(s, {});
+  const auto p = r.to_pixel(2.0, 1.0);
+  EXPECT_DOUBLE_EQ(p[0], 224.0);
+  EXPECT_DOUBLE_EQ(p[1], 68.0);
+  const Rgba8 red{255, 0, 0, 255};
+  EXPECT_TRUE(near(at(r, 224, 68), red, 2));
+  EXPECT_TRUE(near(at(r, 224 + 12, 68), red, 2));   // inside the 16 px radius
+  EXPECT_FALSE(near(at(r, 224 + 22, 68), red, 60));  // outside radius + outline
+  EXPECT_FALSE(near(at(r, 224, 132), red, 60));      // y is not flipped
+  EXPECT_FALSE(near(at(r, 96, 132), red, 60));
+}
+
+TEST(Render, InterpolatesBetweenTicksWithAlpha) {
+  Simulation sim(Precision::f64, WorldSettings{.dt = 1.0});
+  BodyDef d;
+  d.body.velocity = {4.0, 0.0};
+  sim.create_body(d);
+  sim.set_keep_previous(true);
+  sim.step();  // x: 0 -> 4
+  Snapshot s;
+  sim.snapshot(0.25, s);
+  EXPECT_FLOAT_EQ(s.x[0], 1.0f);
+}
+
+TEST(Render, HudTextAndSpringAreDrawn) {
+  Renderer r(400, 200);
+  r.set_camera(Camera{.center = {0, 0}, .width = 20.0});
+  Snapshot s;
+  s.x = {5.0f};
+  s.y = {0.0f};
+  s.radius = {0.0f};
+  s.color = {Rgba8{0, 0, 0, 0}};
+  s.springs = {{-5.0f, 0.0f, 0}};
+  const std::string hud[] = {"tick 0"};
+  r.draw(s, hud);
+  // HUD: bright text pixels inside the panel at the top left.
+  int bright = 0;
+  for (int y = 10; y < 40; ++y)
+    for (int x = 10; x < 120; ++x) bright += at(r, x, y).r > 200;
+  EXPECT_GT(bright, 20);
+  // Spring: light-grey pixels between anchor (100, 100) and body (300, 100).
+  int spring = 0;
+  for (int y = 90; y < 110; ++y)
+    for (int x = 150; x < 250; ++x) spring += at(r, x, y).b > 150 && at(r, x, y).r > 120;
+  EXPECT_GT(spring, 50);
+}
+
+TEST(Render, RejectsImpossibleSizes) {
+  EXPECT_THROW(Renderer(4, 4), RenderError);
+  EXPECT_THROW(Renderer(100000, 10), RenderError);
+}
+
+TEST(Render, SessionFramesAreReproducible) {
+  // Two sessions of the same scene produce the same pixels frame for frame (virtual clock).
+  const Scene scene = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml");
+  Session a(scene, 160, 90), b(scene, 160, 90);
+  for (int f = 0; f < 5; ++f) {
+    a.advance(1.0 / 60);
+    b.advance(1.0 / 60);
+    a.draw();
+    b.draw();
+  }
+  EXPECT_TRUE(std::equal(a.renderer().pixels().begin(), a.renderer().pixels().end(),
+                         b.renderer().pixels().begin()));
+}
+
+}  // namespace
+}  // namespace fixstep

@@ -1,0 +1,154 @@
+// The entity/component world: handles, components, force terms only where declared.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "fixstep/scene.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+namespace {
+
+BodyDef at(double x, double y) {
+  BodyDef d;
+  d.body.position = {x, y};
+  return d;
+}
+
+TEST(Entity, ZeroIsNullAndHandlesAreGenerational) {
+  EXPECT_TRUE(Entity{}.is_null());
+  World<double> w(WorldSettings{});
+  const Entity a = w.create_body(at(1, 0));
+  EXPECT_FALSE(a.is_null());
+  EXPECT_TRUE(w.contains(a));
+  EXPECT_FALSE(w.contains(Entity{}));
+  w.destroy(a);
+  EXPECT_FALSE(w.contains(a));
+  const Entity b = w.create_body(at(2, 0));  // reuses the slot with a new generation
+  EXPECT_EQ(b.slot(), a.slot());
+  EXPECT_NE(b.generation, a.generation);
+  EXPECT_FALSE(w.contains(a));
+  EXPECT_THROW(w.destroy(a), std::invalid_argument);
+  EXPECT_THROW((void)w.body(Entity{}), std::invalid_argument);
+  EXPECT_EQ(w.body(b).position.x, 2.0);
+}
+
+TEST(World, DestroyKeepsOtherBodiesAndTheirComponents) {
+  World<double> w(WorldSettings{.dt = 0.01});
+  BodyDef s = at(5, 0);
+  s.name = "spring";
+  s.spring = SpringDamper{.anchor = {}, .stiffness = 4.0};
+  const Entity a = w.create_body(at(0, 0));
+  const Entity b = w.create_body(s);
+  w.destroy(a);  // b moves to dense index 0; its spring must follow
+  ASSERT_EQ(w.body_count(), 1u);
+  EXPECT_EQ(w.name(0), "spring");
+  std::vector<double> ax(1), ay(1);
+  w.accelerations(std::span(ax), std::span(ay));
+  EXPECT_DOUBLE_EQ(ax[0], -4.0 * 5.0);  // F = -k x on the surviving body
+  ASSERT_NE(w.get<SpringDamper>(b), nullptr);
+  w.remove<SpringDamper>(b);
+  EXPECT_EQ(w.get<SpringDamper>(b), nullptr);
+  w.accelerations(std::span(ax), std::span(ay));
+  EXPECT_EQ(ax[0], 0.0);
+}
+
+TEST(World, AccelerationsSumEveryDeclaredTerm) {
+  World<double> w(WorldSettings{});
+  BodyDef d = at(2, 3);
+  d.body.mass = 2.0;
+  d.body.velocity = {1, -1};
+  d.spring = SpringDamper{.anchor = {1, 1}, .stiffness = 3.0, .damping = 0.5};
+  d.constant_force = ConstantForce{{4, 6}};
+  d.drag = LinearDrag{0.25};
+  d.gravity = Gravity{{0, -9.81}};
+  w.create_body(d);
+  std::vector<double> ax(1), ay(1);
+  w.accelerations(std::span(ax), std::span(ay), TickInput{.tick = 0, .push = {0.5, 0}});
+  // F = -k(x - anchor) - b v + F_c - c v;  a = F/m + g + push
+  EXPECT_DOUBLE_EQ(ax[0], (-3.0 * 1 - 0.5 * 1 + 4 - 0.25 * 1) / 2 + 0.5);
+  EXPECT_DOUBLE_EQ(ay[0], (-3.0 * 2 + 0.5 * 1 + 6 + 0.25 * 1) / 2 - 9.81);
+}
+
+TEST(World, RestLengthSpringPullsAlongTheSpring) {
+  World<double> w(WorldSettings{});
+  BodyDef d = at(0, 5);
+  d.spring = SpringDamper{.anchor = {}, .stiffness = 2.0, .damping = 0, .rest_length = 3.0};
+  w.create_body(d);
+  std::vector<double> ax(1), ay(1);
+  w.accelerations(std::span(ax), std::span(ay));
+  EXPECT_DOUBLE_EQ(ax[0], 0.0);
+  EXPECT_DOUBLE_EQ(ay[0], -2.0 * (5.0 - 3.0));  // stretched by 2 m towards the anchor
+}
+
+TEST(World, OnlyDeclaredForceTermsRun) {
+  // A projectile scene declares no spring: the spring term must not exist.
+  const Scene projectile = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/projectile.toml");
+  Simulation sim = make_simulation(projectile);
+  const unsigned terms = sim.visit([](auto& w) { return w.active_terms(); });
+  EXPECT_EQ(terms & term_spring, 0u);
+  EXPECT_NE(terms & term_gravity, 0u);
+  EXPECT_NE(terms & term_drag, 0u);
+
+  World<double> w(WorldSettings{});
+  EXPECT_EQ(w.active_terms(), 0u);
+  BodyDef d = at(1, 0);
+  d.spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
+  const Entity e = w.create_body(d);
+  EXPECT_EQ(w.active_terms(), unsigned(term_spring));
+  w.remove<SpringDamper>(e);
+  EXPECT_EQ(w.active_terms(), 0u);
+}
+
+TEST(World, RejectsInvalidValuesNamingBodyAndField) {
+  World<float> w(WorldSettings{});
+  BodyDef d = at(0, 0);
+  d.name = "bob";
+  d.body.mass = 0.0;
+  try {
+    w.create_body(d);
+    FAIL() << "mass 0 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("body 'bob': mass"), std::string::npos) << e.what();
+  }
+  d.body.mass = 1.0;
+  d.body.position = {1e39, 0.0};  // finite double, infinite float
+  EXPECT_THROW(w.create_body(d), std::invalid_argument);
+  d.body.position = {std::nan(""), 0.0};
+  EXPECT_THROW(w.create_body(d), std::invalid_argument);
+  d.body.position = {};
+  d.spring = SpringDamper{.anchor = {}, .stiffness = -1.0};
+  EXPECT_THROW(w.create_body(d), std::invalid_argument);
+  EXPECT_EQ(w.body_count(), 0u);  // nothing half-created
+  EXPECT_THROW(World<double>(WorldSettings{.dt = 0.0}), std::invalid_argument);
+  EXPECT_THROW(World<double>(WorldSettings{.dt = std::numeric_limits<double>::infinity()}),
+               std::invalid_argument);
+}
+
+TEST(World, StateHashSeesEveryBit) {
+  World<double> a(WorldSettings{}), b(WorldSettings{});
+  a.create_body(at(1, 2));
+  b.create_body(at(1, 2));
+  EXPECT_EQ(a.state_hash(), b.state_hash());
+  World<double> c(WorldSettings{});
+  c.create_body(at(std::nextafter(1.0, 2.0), 2));  // one ulp apart
+  EXPECT_NE(a.state_hash(), c.state_hash());
+}
+
+TEST(World, KeepPreviousStoresTheLastTick) {
+  World<double> w(WorldSettings{.dt = 0.5});
+  BodyDef d = at(0, 0);
+  d.body.velocity = {2, 0};
+  w.create_body(d);
+  w.set_keep_previous(true);
+  w.step();
+  w.step();
+  EXPECT_DOUBLE_EQ(w.previous_x()[0], 1.0);
+  EXPECT_DOUBLE_EQ(w.x()[0], 2.0);
+}
+
+}  // namespace
+}  // namespace fixstep
