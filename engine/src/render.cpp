@@ -159,6 +159,7 @@ Renderer::~Renderer() {
     glDeleteBuffers(1, &gl_->vbo);
     glDeleteVertexArrays(1, &gl_->vao);
     glDeleteProgram(gl_->program);
+    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);  // unbind before destroying
     OSMesaDestroyContext(gl_->context);
   }
 }
@@ -248,7 +249,9 @@ void Renderer::grid() {
   line(x0, y, x1, y, 3.0f, text_color);
   line(x0, y - 5, x0, y + 5, 2.0f, text_color);
   line(x1, y - 5, x1, y + 5, 2.0f, text_color);
-  text(x0, y - 24, fmt::format("{:g} m", step), 2.0f, text_color);
+  std::string label = fmt::format("{:g} m", step);
+  const float label_w = float(stb_easy_font_width(label.data())) * 2.0f;
+  text(x1 - label_w, y - 24, label, 2.0f, text_color);  // right-aligned: never off the frame
 }
 
 void Renderer::clear_trails() {

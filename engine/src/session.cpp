@@ -71,7 +71,8 @@ void Session::draw() {
   const double e = sim_->energy().total();
   const std::string file = std::filesystem::path(scene_.file).filename().string();
   hud_.clear();
-  hud_.push_back(fmt::format("fixstep  {}  ({} bodies)", file, sim_->body_count()));
+  const std::size_t n = sim_->body_count();
+  hud_.push_back(fmt::format("fixstep  {}  ({} bod{})", file, n, n == 1 ? "y" : "ies"));
   hud_.push_back(fmt::format("tick {}   t = {:.3f} s   dt = {:g} s", sim_->tick(), sim_->time(),
                              sim_->settings().dt));
   hud_.push_back(fmt::format("{} ({})", integrator_name(sim_->settings().integrator),
