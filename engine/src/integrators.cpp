@@ -6,6 +6,10 @@ std::string_view integrator_name(Integrator integrator) {
   switch (integrator) {
     case Integrator::semi_implicit_euler: return "semi_implicit_euler";
     case Integrator::explicit_euler: return "explicit_euler";
+    case Integrator::velocity_verlet: return "velocity_verlet";
+    case Integrator::rk4: return "rk4";
+    case Integrator::implicit_euler: return "implicit_euler";
+    case Integrator::forest_ruth: return "forest_ruth";
   }
   return "unknown";
 }
@@ -17,7 +21,19 @@ std::optional<Integrator> parse_integrator(std::string_view name) {
   return std::nullopt;
 }
 
-std::string_view integrator_names() { return "semi_implicit_euler, explicit_euler"; }
+std::string_view integrator_names() {
+  return "semi_implicit_euler, explicit_euler, velocity_verlet, rk4, implicit_euler, "
+         "forest_ruth";
+}
+
+int integrator_order(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::velocity_verlet: return 2;
+    case Integrator::rk4:
+    case Integrator::forest_ruth: return 4;
+    default: return 1;
+  }
+}
 
 std::string_view precision_name(Precision precision) {
   return precision == Precision::f32 ? "f32" : "f64";

@@ -70,6 +70,10 @@ World<Real>::World(const WorldSettings& settings) : settings_(settings) {
     throw std::invalid_argument(fmt::format("world: dt must be finite and > 0 s (got {})",
                                             settings.dt));
   }
+  if (settings.substeps < 1) {
+    throw std::invalid_argument(fmt::format("world: substeps must be >= 1 (got {})",
+                                            settings.substeps));
+  }
 }
 
 template <class Real>
@@ -205,6 +209,7 @@ void World<Real>::set_body(Entity e, const Body& b) {
   y_[i] = prev_y_[i] = static_cast<Real>(b.position.y);
   vx_[i] = static_cast<Real>(b.velocity.x);
   vy_[i] = static_cast<Real>(b.velocity.y);
+  terms_dirty_ = true;  // 1/m enters the per-body coefficients; x moved: no cached acceleration
 }
 
 template <class Real>
@@ -258,6 +263,47 @@ void World<Real>::rebuild_terms() {
     drag_terms_.body.push_back(body_of(drags_.set.dense[i]));
     drag_terms_.c.push_back(r(drags_.data[i].coefficient));
   }
+
+  // Per-body coefficients, summed in double and rounded once to Real.
+  const std::size_t n = body_count();
+  std::vector<double> gamma(n, 0.0), stiffness(n, 0.0), ax(n, 0.0), ay(n, 0.0), cx(n, 0.0),
+      cy(n, 0.0), rest(n, 0.0);
+  for (std::size_t i = 0; i < springs_.data.size(); ++i) {
+    const SpringDamper& s = springs_.data[i];
+    const std::size_t j = bodies_.index(springs_.set.dense[i]);
+    stiffness[j] = s.stiffness / mass_[j];
+    gamma[j] += s.damping / mass_[j];
+    ax[j] = s.anchor.x, ay[j] = s.anchor.y, rest[j] = s.rest_length;
+  }
+  for (std::size_t i = 0; i < drags_.data.size(); ++i) {
+    const std::size_t j = bodies_.index(drags_.set.dense[i]);
+    gamma[j] += drags_.data[i].coefficient / mass_[j];
+  }
+  for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
+    const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
+    cx[j] += constant_forces_.data[i].force.x / mass_[j];
+    cy[j] += constant_forces_.data[i].force.y / mass_[j];
+  }
+  for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
+    const std::size_t j = bodies_.index(gravities_.set.dense[i]);
+    cx[j] += gravities_.data[i].acceleration.x;
+    cy[j] += gravities_.data[i].acceleration.y;
+  }
+  auto to_real = [](const std::vector<double>& v) { return std::vector<Real>(v.begin(), v.end()); };
+  coeff_.gamma = to_real(gamma);
+  coeff_.stiffness = to_real(stiffness);
+  coeff_.anchor_x = to_real(ax);
+  coeff_.anchor_y = to_real(ay);
+  coeff_.rest = to_real(rest);
+  coeff_.accel_x = to_real(cx);
+  coeff_.accel_y = to_real(cy);
+  coeff_.damped.clear();
+  for (std::size_t j = 0; j < n; ++j) {
+    if (coeff_.gamma[j] > Real(0)) coeff_.damped.push_back(static_cast<std::uint32_t>(j));
+  }
+  flows_.clear();
+  for (auto* v : {&sx_, &sy_, &svx_, &svy_, &dx_, &dy_, &dvx_, &dvy_}) v->assign(n, Real(0));
+  accel_valid_ = false;
   terms_dirty_ = false;
 }
 
@@ -270,116 +316,6 @@ unsigned World<Real>::active_terms() {
   if (!gravity_terms_.body.empty()) bits |= term_gravity;
   if (!drag_terms_.body.empty()) bits |= term_drag;
   return bits;
-}
-
-// Accelerations a(x, v) for every body: forces are summed per term over the bodies that carry
-// it (N), scaled by 1/m, then the mass-independent input push and gravity are added (m/s²). Each term's loop is
-// skipped entirely when it has no bodies.
-template <class Real>
-void World<Real>::evaluate(Real* ax, Real* ay, const TickInput& input) const {
-  const std::size_t n = x_.size();
-  const Real* x = x_.data();
-  const Real* y = y_.data();
-  const Real* vx = vx_.data();
-  const Real* vy = vy_.data();
-  std::fill_n(ax, n, Real(0));
-  std::fill_n(ay, n, Real(0));
-
-  {  // Hooke + dashpot, rest length 0: F = -k (x - anchor) - b v, per axis.
-    const auto& t = linear_springs_;
-    for (std::size_t i = 0; i < t.body.size(); ++i) {
-      const std::uint32_t j = t.body[i];
-      ax[j] += -t.k[i] * (x[j] - t.anchor_x[i]) - t.b[i] * vx[j];
-      ay[j] += -t.k[i] * (y[j] - t.anchor_y[i]) - t.b[i] * vy[j];
-    }
-  }
-  {  // Rest length L > 0: F = -k (|d| - L) d/|d| - b v; no spring force when |d| = 0.
-    const auto& t = rest_springs_;
-    for (std::size_t i = 0; i < t.body.size(); ++i) {
-      const std::uint32_t j = t.body[i];
-      const Real dx = x[j] - t.anchor_x[i];
-      const Real dy = y[j] - t.anchor_y[i];
-      const Real len = std::sqrt(dx * dx + dy * dy);
-      const Real s = len > Real(0) ? -t.k[i] * (len - t.rest[i]) / len : Real(0);
-      ax[j] += s * dx - t.b[i] * vx[j];
-      ay[j] += s * dy - t.b[i] * vy[j];
-    }
-  }
-  for (std::size_t i = 0; i < forces_.body.size(); ++i) {
-    ax[forces_.body[i]] += forces_.fx[i];
-    ay[forces_.body[i]] += forces_.fy[i];
-  }
-  for (std::size_t i = 0; i < drag_terms_.body.size(); ++i) {  // Stokes drag F = -c v
-    const std::uint32_t j = drag_terms_.body[i];
-    ax[j] += -drag_terms_.c[i] * vx[j];
-    ay[j] += -drag_terms_.c[i] * vy[j];
-  }
-  const Real* inv_m = inv_mass_.data();
-  for (std::size_t j = 0; j < n; ++j) {
-    ax[j] *= inv_m[j];
-    ay[j] *= inv_m[j];
-  }
-  if (input.push.x != 0.0 || input.push.y != 0.0) {  // user input, m/s²
-    const Real px = static_cast<Real>(input.push.x);
-    const Real py = static_cast<Real>(input.push.y);
-    for (std::size_t j = 0; j < n; ++j) {
-      ax[j] += px;
-      ay[j] += py;
-    }
-  }
-  for (std::size_t i = 0; i < gravity_terms_.body.size(); ++i) {
-    ax[gravity_terms_.body[i]] += gravity_terms_.gx[i];
-    ay[gravity_terms_.body[i]] += gravity_terms_.gy[i];
-  }
-}
-
-template <class Real>
-void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input) {
-  if (ax.size() < body_count() || ay.size() < body_count()) {
-    throw std::invalid_argument("World::accelerations: output spans are shorter than body_count()");
-  }
-  if (terms_dirty_) rebuild_terms();
-  evaluate(ax.data(), ay.data(), input);
-}
-
-template <class Real>
-void World<Real>::step(const TickInput& input) {
-  if (terms_dirty_) rebuild_terms();
-  const std::size_t n = x_.size();
-  if (keep_previous_) {
-    std::copy(x_.begin(), x_.end(), prev_x_.begin());
-    std::copy(y_.begin(), y_.end(), prev_y_.begin());
-  }
-  Real* x = x_.data();
-  Real* y = y_.data();
-  Real* vx = vx_.data();
-  Real* vy = vy_.data();
-  const Real* ax = ax_.data();
-  const Real* ay = ay_.data();
-  const Real dt = static_cast<Real>(settings_.dt);
-  evaluate(ax_.data(), ay_.data(), input);
-
-  switch (settings_.integrator) {
-    case Integrator::semi_implicit_euler:
-      // v_{n+1} = v_n + a_n dt; x_{n+1} = x_n + v_{n+1} dt  ("Integration Basics")
-      for (std::size_t j = 0; j < n; ++j) {
-        vx[j] += ax[j] * dt;
-        vy[j] += ay[j] * dt;
-        x[j] += vx[j] * dt;
-        y[j] += vy[j] * dt;
-      }
-      break;
-    case Integrator::explicit_euler:
-      // x_{n+1} = x_n + v_n dt; v_{n+1} = v_n + a_n dt
-      for (std::size_t j = 0; j < n; ++j) {
-        x[j] += vx[j] * dt;
-        y[j] += vy[j] * dt;
-        vx[j] += ax[j] * dt;
-        vy[j] += ay[j] * dt;
-      }
-      break;
-  }
-  ++tick_;
 }
 
 // Calls add(body index, kind, J) for every energy contribution: kinetic ½m|v|² per body, then
@@ -447,6 +383,7 @@ std::uint64_t World<Real>::state_hash() const {
   return h;
 }
 
+// Force evaluation and the integrators are in world_step.cpp, instantiated there.
 template class World<float>;
 template class World<double>;
 
