@@ -6,6 +6,7 @@
 
 #include <fixstep/capture.hpp>
 #include <fixstep/session.hpp>
+#include <fixstep/stability.hpp>
 #include <fmt/format.h>
 
 namespace fixstep::cli {
@@ -38,10 +39,15 @@ std::pair<int, int> parse_frame_size(const std::string& value) {
 
 Scene load_with_overrides(const SceneOptions& o) {
   Scene scene = load_scene(o.scene);
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (o.integrator) scene.world.integrator = *parse_integrator(*o.integrator);
   if (o.dt) scene.world.dt = *o.dt;
   if (o.precision) scene.precision = *parse_precision(*o.precision);
+  if (o.substeps) scene.world.substeps = *o.substeps;
+  if (o.allow_unstable) scene.allow_unstable = true;
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const std::string& w : enforce_stability(scene)) {
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   return scene;
 }
 

@@ -14,6 +14,8 @@ struct SceneOptions {
   std::optional<std::string> integrator;
   std::optional<double> dt;         ///< s
   std::optional<std::string> precision;
+  std::optional<int> substeps;
+  bool allow_unstable = false;
 };
 
 struct RunOptions {
@@ -46,7 +48,8 @@ std::string frame_size_validator(const std::string& value);
 /// Parses "WxH" (validated by frame_size_validator).
 std::pair<int, int> parse_frame_size(const std::string& value);
 
-/// Loads the scene, prints its warnings to stderr, applies the overrides.
+/// Loads the scene, applies the overrides, runs the stability guard (throws SceneError for an
+/// unstable body) and prints the warnings of both to stderr.
 Scene load_with_overrides(const SceneOptions& options);
 
 int run_command(const RunOptions& options);

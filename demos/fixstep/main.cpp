@@ -23,6 +23,10 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o) {
       ->check(fixstep::cli::positive_finite);
   cmd->add_option("--precision", o.precision, "override [world] precision")
       ->check(CLI::IsMember({"f32", "f64"}));
+  cmd->add_option("--substeps", o.substeps, "override [world] substeps (integration steps per tick)")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_flag("--allow-unstable", o.allow_unstable,
+                "run even when the stability guard finds an unstable body (warns instead)");
 }
 
 }  // namespace

@@ -11,12 +11,16 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "fixstep/stability.hpp"
+
 namespace fixstep {
 
 SceneError::SceneError(std::string file, std::size_t line, std::size_t column, std::string key,
                        const std::string& message)
-    : std::runtime_error(fmt::format("{}:{}:{}: {}{}{}", file, line, column, key,
-                                     key.empty() ? "" : ": ", message)),
+    : std::runtime_error(fmt::format("{}{}{}: {}{}{}", file,
+                                     line ? fmt::format(":{}", line) : std::string(),
+                                     line && column ? fmt::format(":{}", column) : std::string(),
+                                     key, key.empty() ? "" : ": ", message)),
       file_(std::move(file)),
       line_(line),
       column_(column),
@@ -281,7 +285,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
 
   const toml::table* world = r.table(doc, "world", "world");
   if (!world) throw SceneError(source_name, 1, 1, "world", "missing [world] table (required)");
-  r.check_keys(*world, "world", {"dt", "integrator", "precision"});
+  r.check_keys(*world, "world", {"dt", "integrator", "precision", "substeps", "allow_unstable"});
   scene.world.dt = r.required_number(*world, world->source(), "dt", "world.dt");
   r.require(scene.world.dt > 0.0 && scene.world.dt <= 1.0, *world, "dt", "world.dt",
             "> 0 and <= 1 s", scene.world.dt);
@@ -300,6 +304,23 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
              fmt::format("unknown precision \"{}\" (valid: f32, f64)", *name));
     }
     scene.precision = *p;
+  }
+
+  if (const toml::node* n = world->get("substeps")) {
+    const auto v = n->value<std::int64_t>();
+    if (!n->is_integer() || *v < 1 || *v > 1000000) {
+      r.fail(n->source(), "world.substeps",
+             n->is_integer() ? fmt::format("must be 1 .. 1000000 (got {})", *v)
+                             : fmt::format("expected an integer, found {}", type_name(*n)));
+    }
+    scene.world.substeps = static_cast<int>(*v);
+  }
+  if (const toml::node* n = world->get("allow_unstable")) {
+    if (!n->is_boolean()) {
+      r.fail(n->source(), "world.allow_unstable",
+             fmt::format("expected true or false, found {}", type_name(*n)));
+    }
+    scene.allow_unstable = n->as_boolean()->get();
   }
 
   if (const toml::table* view = r.table(doc, "view", "view")) {
@@ -329,6 +350,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
              fmt::format("duplicate body name \"{}\" (names must be unique)", def.name));
     }
     scene.bodies.push_back(std::move(def));
+    scene.body_lines.push_back(t.source().begin.line);
   }
   if (scene.precision == Precision::f32) check_f32(r, doc, "");
   scene.warnings = r.take_warnings();
@@ -358,6 +380,7 @@ Scene load_scene(const std::filesystem::path& file) {
 }
 
 Simulation make_simulation(const Scene& scene) {
+  (void)enforce_stability(scene);  // throws for unstable bodies; callers print the warnings
   Simulation sim(scene.precision, scene.world);
   for (const BodyDef& def : scene.bodies) sim.create_body(def);
   return sim;

@@ -15,7 +15,8 @@
 
 namespace fixstep {
 
-/// A scene that cannot be used. what() reads "FILE:LINE:COLUMN: KEY: MESSAGE", e.g.
+/// A scene that cannot be used. what() reads "FILE:LINE:COLUMN: KEY: MESSAGE" (column or line
+/// left out when unknown), e.g.
 /// "spring.toml:12:13: body[0].spring.stiffness: expected a number, found a string".
 class SceneError : public std::runtime_error {
  public:
@@ -45,6 +46,10 @@ struct Scene {
   Precision precision = Precision::f64;
   SceneView view;
   std::vector<BodyDef> bodies;     ///< in file order, names unique
+  std::vector<std::size_t> body_lines;  ///< line of each [[body]] table (0 if not from a file)
+  /// [world] allow_unstable: the stability guard warns instead of refusing (for demos that
+  /// show blow-ups on purpose).
+  bool allow_unstable = false;
   std::vector<std::string> warnings;  ///< non-fatal findings (unknown keys, with suggestions)
 };
 
@@ -59,7 +64,9 @@ inline constexpr std::size_t max_scene_bytes = 4u << 20;
 /// As load_scene, from text; `source_name` is used in messages.
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);
 
-/// Builds the world a scene describes. Throws std::invalid_argument if a value is not
+/// Builds the world a scene describes, after the stability guard (see stability.hpp): throws
+/// SceneError naming the body, ω·h, the bound and the smallest stable substep count when a body
+/// is unstable and the scene does not allow it. Throws std::invalid_argument if a value is not
 /// representable in the scene's precision (the loader checks this first).
 [[nodiscard]] Simulation make_simulation(const Scene& scene);
 

@@ -1,0 +1,154 @@
+#include "fixstep/stability.hpp"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "fixstep/scene.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+
+namespace {
+// ρ <= 1 + tolerance counts as bounded. The round-off in ρ is ~1e-16; the smallest growth the
+// scan must see is explicit Euler's 1 + s²/2 at its first point s = 1e-4, i.e. 5e-9.
+constexpr double tolerance = 1e-14;
+constexpr double scan_from = 1e-4, scan_to = 1e6;  // dimensionless steps s = ω h (or γ h)
+constexpr double margin = 0.9;       // warn above 90 % of the largest stable step
+}  // namespace
+
+double amplification(Integrator integrator, double omega, double gamma, double h) {
+  World<double> w(WorldSettings{.dt = h, .integrator = integrator, .substeps = 1,
+                                .flush_denormals = false});
+  auto unit = [&](Vec2 position, Vec2 velocity) {
+    BodyDef d;
+    d.body = Body{.mass = 1.0, .position = position, .velocity = velocity};
+    if (omega > 0.0) {
+      d.spring = SpringDamper{.anchor = {}, .stiffness = omega * omega, .damping = gamma};
+    } else if (gamma > 0.0) {
+      d.drag = LinearDrag{gamma};
+    }
+    w.create_body(d);
+  };
+  unit({1.0, 0.0}, {});  // first column of M: the step applied to (x, v) = (1, 0)
+  unit({}, {1.0, 0.0});  // second column: (0, 1)
+  w.step();
+  const double a = w.x()[0], b = w.x()[1], c = w.vx()[0], d = w.vx()[1];
+  // Eigenvalues of [[a, b], [c, d]]: tr/2 ± sqrt(disc) with disc = tr²/4 - det, written as
+  // ((a - d)/2)² + bc, which does not cancel when both eigenvalues are near 1 (drag: 1 and
+  // 1 - γh). A complex pair has |λ|² = det exactly.
+  const double half_trace = 0.5 * (a + d), det = a * d - b * c;
+  const double disc = 0.25 * (a - d) * (a - d) + b * c;
+  if (disc < 0.0) return std::sqrt(det);
+  const double root = std::sqrt(disc);
+  return std::max(std::abs(half_trace + root), std::abs(half_trace - root));
+}
+
+double max_stable_step(Integrator integrator, double omega, double gamma) {
+  if (omega == 0.0 && gamma == 0.0) return std::numeric_limits<double>::infinity();
+  static std::mutex mutex;
+  static std::map<std::tuple<Integrator, double, double>, double> cache;
+  const std::lock_guard lock(mutex);
+  const auto key = std::make_tuple(integrator, omega, gamma);
+  if (auto it = cache.find(key); it != cache.end()) return it->second;
+
+  // Scan the dimensionless step s = rate·h (rate = ω, or γ without spring), then bisect.
+  const double rate = omega > 0.0 ? omega : gamma;
+  auto stable = [&](double s) {
+    return amplification(integrator, omega, gamma, s / rate) <= 1.0 + tolerance;
+  };
+  double result;
+  double lo = scan_from;
+  if (!stable(lo)) {
+    result = 0.0;
+  } else {
+    double hi = lo;
+    while (hi < scan_to && stable(hi)) lo = hi, hi *= 1.25;
+    if (hi >= scan_to) {
+      result = std::numeric_limits<double>::infinity();
+    } else {
+      for (int i = 0; i < 80 && hi - lo > 1e-12 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (stable(mid) ? lo : hi) = mid;
+      }
+      result = lo / rate;
+    }
+  }
+  cache.emplace(key, result);
+  return result;
+}
+
+std::vector<BodyStability> check_stability(const Scene& scene) {
+  std::vector<BodyStability> out;
+  const Integrator integrator = scene.world.integrator;
+  const std::string_view method = integrator_name(integrator);
+  const double dt = scene.world.dt;
+  const int substeps = scene.world.substeps;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDef& def = scene.bodies[i];
+    BodyStability r;
+    r.body = i;
+    const double m = def.body.mass;
+    r.omega = def.spring ? std::sqrt(def.spring->stiffness / m) : 0.0;
+    r.gamma = ((def.spring ? def.spring->damping : 0.0) + (def.drag ? def.drag->coefficient : 0.0)) / m;
+    if (r.omega == 0.0 && r.gamma == 0.0) continue;
+    r.h = dt / substeps;
+    r.max_step = max_stable_step(integrator, r.omega, r.gamma);
+    r.radius = amplification(integrator, r.omega, r.gamma, r.h);
+    const bool spring = r.omega > 0.0;
+    const double rate = spring ? r.omega : r.gamma;
+    const char* what = spring ? "ω·h" : "γ·h";
+    const std::string who = fmt::format("body '{}'", def.name);
+    if (r.radius > 1.0 + tolerance) {
+      r.verdict = Stability::unstable;
+      if (r.max_step > 0.0) {
+        r.min_substeps = static_cast<int>(std::min(std::ceil(dt / r.max_step), 1e9));
+        while (r.min_substeps < 1000000000 &&
+               amplification(integrator, r.omega, r.gamma, dt / r.min_substeps) > 1.0 + tolerance) {
+          ++r.min_substeps;
+        }
+        r.message = fmt::format(
+            "{} is unstable with {} at dt = {:g} s and substeps = {}: {} = {:.4g} exceeds the "
+            "stability bound {:.4g} (ω = {:.4g} rad/s, γ = {:.4g} 1/s; growth {:.6g}x per step). "
+            "Use substeps = {} in [world] (or dt <= {:.4g} s), or set allow_unstable = true",
+            who, method, dt, substeps, what, rate * r.h, rate * r.max_step, r.omega, r.gamma,
+            r.radius, r.min_substeps, r.max_step * substeps);
+      } else {
+        r.message = fmt::format(
+            "{} is unstable with {} at every dt: its energy grows each step ({} = {:.4g}, growth "
+            "{:.6g}x per step). Choose semi_implicit_euler, velocity_verlet, rk4, "
+            "implicit_euler or forest_ruth, or set allow_unstable = true",
+            who, method, what, rate * r.h, r.radius);
+      }
+    } else if (r.h > margin * r.max_step) {
+      r.verdict = Stability::near_limit;
+      r.message = fmt::format(
+          "{} is within 10 % of {}'s stability bound: {} = {:.4g}, bound {:.4g}", who, method,
+          what, rate * r.h, rate * r.max_step);
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::vector<std::string> enforce_stability(const Scene& scene) {
+  std::vector<std::string> warnings;
+  for (const BodyStability& r : check_stability(scene)) {
+    const std::size_t line = r.body < scene.body_lines.size() ? scene.body_lines[r.body] : 0;
+    const std::string key = fmt::format("body[{}]", r.body);
+    if (r.verdict == Stability::unstable && !scene.allow_unstable) {
+      throw SceneError(scene.file, line, 0, key, r.message);
+    }
+    if (r.verdict != Stability::stable) {
+      warnings.push_back(fmt::format("{}:{}: {}: {}{}", scene.file, line, key, r.message,
+                                     r.verdict == Stability::unstable ? " (allowed)" : ""));
+    }
+  }
+  return warnings;
+}
+
+}  // namespace fixstep
