@@ -1,0 +1,60 @@
+// Exact solutions of the systems fixstep models with linear forces, the truth that tests,
+// benchmarks and `fixstep run` measure integrators against.
+#pragma once
+
+#include <optional>
+
+#include "fixstep/components.hpp"
+
+namespace fixstep::exact {
+
+/// Position (m) and velocity (m/s) along one axis.
+struct AxisState {
+  double x = 0.0;
+  double v = 0.0;
+};
+
+/// Damping regime of x'' + γ x' + ω² x = f: ζ = γ / (2ω).
+enum class Regime {
+  none,      ///< ω = 0: no spring (projectile or constant force; γ may be > 0: drag)
+  undamped,  ///< γ = 0, ω > 0
+  under,     ///< 0 < ζ < 1
+  critical,  ///< ζ = 1 (within a relative 1e-9)
+  over,      ///< ζ > 1
+};
+
+/// Regime of the linear system with ω² = omega2 (1/s², >= 0) and γ = gamma (1/s, >= 0).
+/// Informative only: linear() needs no regime switch near ζ = 1 (see there).
+/// Throws std::invalid_argument for negative or non-finite omega2 or gamma.
+[[nodiscard]] Regime regime(double omega2, double gamma);
+
+/// Exact solution at time t (s) of the scalar linear ODE
+///   x'' = -ω² (x - anchor) - γ x' + accel,   x(0) = x0, x'(0) = v0
+/// with omega2 = ω² (1/s², >= 0), gamma = γ (1/s, >= 0), anchor (m), accel (m/s², constant).
+/// Covers every fixstep body whose forces are linear: spring-dampers with rest length 0
+/// (ω² = k/m), damping and drag (γ = (b + c)/m), constant force and gravity
+/// (accel = F/m + g). The damped oscillator in all regimes (under-, critically and
+/// over-damped), the projectile with and without linear drag and the constant force are
+/// special cases. Formulas: Thornton & Marion, Classical Dynamics, 5th ed., §3.5 (damped
+/// oscillations); Taylor, Classical Mechanics, §2.2–2.3 (linear air resistance).
+/// Numerically stable in every regime (no cancellation near ζ = 1, for tiny γt or huge ω t):
+/// the result is continuous across ζ = 1, and with no spring it tends smoothly to
+/// x0 + v0 t + accel t²/2 as γ -> 0. With ω² > 0 the motion is computed about the equilibrium
+/// anchor + accel/ω², so the absolute error is a few ulps of that equilibrium as well as of
+/// the motion: a very weak spring under a strong constant force loses digits (the force is
+/// then better modelled with ω² = 0). t may be negative (the same exact flow backwards).
+/// Throws std::invalid_argument, naming the parameter, for negative or non-finite
+/// omega2/gamma and for non-finite x0, v0, anchor, accel or t.
+[[nodiscard]] AxisState linear(double x0, double v0, double omega2, double gamma, double anchor,
+                               double accel, double t);
+
+/// Exact state of a body at time t (s) under the components in def, when its forces are linear
+/// (no spring, or a spring with rest length 0); std::nullopt otherwise (rest length > 0 makes
+/// the force nonlinear). Each axis is linear() with ω² = k/m, γ = (b + c)/m (b only with a
+/// spring, c only with drag), anchor = the spring's anchor (0 without one) and
+/// accel = F/m + g. The returned Body has def's mass. Throws std::invalid_argument for a mass
+/// that is not finite and > 0, a negative or non-finite stiffness, damping, rest length or
+/// drag coefficient, and (as linear() does) for a non-finite t or non-finite inputs to an axis.
+[[nodiscard]] std::optional<Body> solve(const BodyDef& def, double t);
+
+}  // namespace fixstep::exact
