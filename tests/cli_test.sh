@@ -25,7 +25,12 @@ expect "run summary has ticks and a 16-digit hash" '^ticks=1000 t=10\.000000 sta
   && ok "--duration 10 equals --steps 1000 at dt 0.01" || fail "--duration 10 equals --steps 1000"
 
 "$fixstep" run "$scenes/projectile.toml" --steps 100 --every 10 --csv "$work/p.csv" >"$work/csv.out" 2>&1
-head -1 "$work/p.csv" | grep -q '^tick,t,body,x,y,vx,vy,energy$' && ok "csv header" || fail "csv header"
+head -1 "$work/p.csv" | grep -q '^tick,t,body,x,y,vx,vy,energy,x_exact,y_exact,error$' \
+  && ok "csv header (with the exact solution's columns)" || fail "csv header"
+expect "run reports the error against the exact solution" '^exact_error=[0-9.e+-]+ m' "$work/csv.out"
+# the vacuum body's semi-implicit error at t = 1 s is g t dt / 2 = 0.04905 m (see below)
+awk -F, '$1 == 100 && $3 == "vacuum" { ok = ($11 - 0.04905 < 1e-9 && 0.04905 - $11 < 1e-9) } END { exit !ok }' \
+  "$work/p.csv" && ok "csv error column: vacuum at t = 1 s is off by g t dt / 2" || fail "csv error column"
 rows=$(($(wc -l <"$work/p.csv") - 1))
 [ "$rows" -eq 55 ] && ok "csv has 5 bodies x 11 recorded ticks" || fail "csv rows: $rows, want 55"
 grep -q '^0,0,vacuum,0,0,15,20,' "$work/p.csv" && ok "csv tick 0 is the initial state" || fail "csv tick 0"
@@ -35,6 +40,17 @@ grep -q '^0,0,vacuum,0,0,15,20,' "$work/p.csv" && ok "csv tick 0 is the initial 
 awk -F, '$1 == 100 && $3 == "vacuum" { ok = ($4 - 15 < 1e-9 && 15 - $4 < 1e-9 && $5 - 15.04595 < 1e-9 && 15.04595 - $5 < 1e-9 && $6 == 15) }
          END { exit !ok }' "$work/p.csv" && ok "csv values: vacuum at t = 1 s matches the closed form" \
   || { fail "csv values"; grep '^100,1,vacuum' "$work/p.csv"; }
+
+# --- the stability guard -----------------------------------------------------------------
+"$fixstep" run "$scenes/spring_damper.toml" --steps 10 --integrator explicit_euler >"$work/guard.out" 2>&1
+[ $? -ne 0 ] && ok "guard refuses explicit Euler on the article's spring" || fail "guard exit code"
+expect "guard names body, line, bound and substeps" \
+  "spring_damper\.toml:[0-9]+: body\[0\]: body 'bob' is unstable .*ω·h = 0\.0387.*bound 0\.0258.*substeps = 2" "$work/guard.out"
+"$fixstep" run "$scenes/spring_damper.toml" --steps 10 --integrator explicit_euler --substeps 2 >"$work/guard2.out" 2>&1
+[ $? -eq 0 ] && ok "with the suggested --substeps 2 it runs" || { fail "--substeps 2"; cat "$work/guard2.out"; }
+"$fixstep" run "$scenes/spring_damper.toml" --steps 10 --integrator explicit_euler --allow-unstable >"$work/guard3.out" 2>&1
+[ $? -eq 0 ] && ok "--allow-unstable runs" || fail "--allow-unstable"
+expect "--allow-unstable still warns" "warning: .*unstable.*\(allowed\)" "$work/guard3.out"
 
 # --- render, and the same physics whatever the path --------------------------------------
 "$fixstep" render "$scenes/default.toml" --out "$work/frames" --frames 30 --size 320x180 >"$work/render.out" 2>&1

@@ -1,10 +1,12 @@
 #include "commands.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include <fixstep/capture.hpp>
+#include <fixstep/exact.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
 #include <fmt/format.h>
@@ -63,19 +65,42 @@ std::uint64_t ticks_for(double duration, double dt) {
                                         : std::ceil(n));
 }
 
-void append_rows(AtomicFile& csv, const Simulation& sim, std::vector<double>& energies,
-                 std::string& buffer) {
+/// Largest position error (m) against the exact solution over the bodies that have one;
+/// nullopt when none has (rest-length springs).
+std::optional<double> exact_error(const Scene& scene, const Simulation& sim) {
+  std::optional<double> worst;
+  for (std::size_t j = 0; j < sim.body_count(); ++j) {
+    if (const auto exact = exact::solve(scene.bodies[j], sim.time())) {
+      const Body b = sim.body_at(j);
+      const double e = std::hypot(b.position.x - exact->position.x, b.position.y - exact->position.y);
+      worst = std::max(worst.value_or(0.0), e);
+    }
+  }
+  return worst;
+}
+
+void append_rows(AtomicFile& csv, const Scene& scene, const Simulation& sim, bool with_exact,
+                 std::vector<double>& energies, std::string& buffer) {
   sim.visit([&](const auto& w) {
     energies.resize(w.body_count());
     w.body_energies(energies);
   });
   buffer.clear();
+  auto out = std::back_inserter(buffer);
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
     const Body b = sim.body_at(j);
     // {} prints the shortest text that reads back as the same double: exact, no lost bits.
-    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{}\n", sim.tick(),
-                   sim.time(), sim.name(j), b.position.x, b.position.y, b.velocity.x,
-                   b.velocity.y, energies[j]);
+    fmt::format_to(out, "{},{},{},{},{},{},{},{}", sim.tick(), sim.time(), sim.name(j),
+                   b.position.x, b.position.y, b.velocity.x, b.velocity.y, energies[j]);
+    if (with_exact) {
+      if (const auto exact = exact::solve(scene.bodies[j], sim.time())) {
+        fmt::format_to(out, ",{},{},{}", exact->position.x, exact->position.y,
+                       std::hypot(b.position.x - exact->position.x, b.position.y - exact->position.y));
+      } else {
+        fmt::format_to(out, ",,,");  // no closed form for this body (rest-length spring)
+      }
+    }
+    buffer.push_back('\n');
   }
   csv.append(buffer);
 }
@@ -92,15 +117,17 @@ int run_command(const RunOptions& o) {
   std::optional<AtomicFile> csv;
   std::vector<double> energies;
   std::string buffer;
+  const bool has_exact = exact_error(scene, sim).has_value();
   if (o.csv) {
     csv.emplace(*o.csv);
-    csv->append("tick,t,body,x,y,vx,vy,energy\n");
-    append_rows(*csv, sim, energies, buffer);
+    csv->append(has_exact ? "tick,t,body,x,y,vx,vy,energy,x_exact,y_exact,error\n"
+                          : "tick,t,body,x,y,vx,vy,energy\n");
+    append_rows(*csv, scene, sim, has_exact, energies, buffer);
   }
   for (std::uint64_t i = 1; i <= ticks; ++i) {
     sim.step();
     if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks)) {
-      append_rows(*csv, sim, energies, buffer);
+      append_rows(*csv, scene, sim, has_exact, energies, buffer);
     }
   }
   if (csv) csv->commit();
@@ -108,6 +135,9 @@ int run_command(const RunOptions& o) {
              integrator_name(scene.world.integrator), precision_name(scene.precision),
              scene.world.dt);
   fmt::print("{}\n", summary_line(sim, e0));
+  if (const auto error = exact_error(scene, sim)) {
+    fmt::print("exact_error={:.6e} m (largest position error against the exact solution)\n", *error);
+  }
   if (o.csv) fmt::print("csv={}\n", *o.csv);
   return 0;
 }

@@ -1,0 +1,220 @@
+// Stability at the edges of each integrator, the guard at scene load, parameter extremes, and
+// float hygiene.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "fixstep/exact.hpp"
+#include "fixstep/scene.hpp"
+#include "fixstep/stability.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+namespace {
+
+/// Unit-mass undamped oscillator (ω = 1 rad/s) from x = 1 m, stepped at dt = omega_dt.
+World<double> oscillator(Integrator integrator, double omega_dt) {
+  World<double> w(WorldSettings{.dt = omega_dt, .integrator = integrator});
+  BodyDef d;
+  d.body.position = {1.0, 0.0};
+  d.spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
+  w.create_body(d);
+  return w;
+}
+
+/// Largest |x| over n steps.
+double max_amplitude(World<double>& w, int n) {
+  double m = 0;
+  for (int i = 0; i < n; ++i) {
+    w.step();
+    m = std::max(m, std::abs(w.x()[0]));
+  }
+  return m;
+}
+
+TEST(StabilityEdges, SymplecticEulerAndVerletBoundedBelowTwoGrowingAbove) {
+  for (Integrator i : {Integrator::semi_implicit_euler, Integrator::velocity_verlet}) {
+    // At ω·dt = 1.99 the invariant ellipse of the one-step map stretches |x| by at most
+    // 1/sqrt(1 - (ω dt/2)²) ≈ 10; 10^5 steps must stay inside it.
+    auto w = oscillator(i, 1.99);
+    EXPECT_LE(max_amplitude(w, 100'000), 1.0 / std::sqrt(1 - 0.995 * 0.995) + 1e-6)
+        << integrator_name(i);
+    // At 2.01 the eigenvalues are real, the larger |λ| ≈ 1.22: growth past 1e6 in 200 steps.
+    auto u = oscillator(i, 2.01);
+    EXPECT_GT(max_amplitude(u, 200), 1e6) << integrator_name(i);
+  }
+}
+
+TEST(StabilityEdges, Rk4BoundedWithEnergyNonIncreasingAt280GrowingAt285) {
+  // |R(iy)|² = 1 - y⁶/72 + y⁸/576: 0.866 at y = 2.80, 1.114 at 2.85; the step is normal in the
+  // energy norm, so the energy changes by exactly that factor every step.
+  auto w = oscillator(Integrator::rk4, 2.80);
+  double e = w.energy().total();
+  for (int n = 0; n < 1000; ++n) {
+    w.step();
+    const double next = w.energy().total();
+    ASSERT_LE(next, e) << "step " << n;
+    e = next;
+  }
+  auto u = oscillator(Integrator::rk4, 2.85);
+  const double e0 = u.energy().total();
+  for (int n = 0; n < 100; ++n) u.step();
+  EXPECT_NEAR(u.energy().total() / e0, std::pow(1.1143, 100), 0.05 * std::pow(1.1143, 100));
+}
+
+TEST(StabilityEdges, ImplicitEulerLosesEnergyEveryTickEvenAtOmegaDtThousand) {
+  for (double omega_dt : {0.1, 10.0, 1000.0}) {
+    auto w = oscillator(Integrator::implicit_euler, omega_dt);
+    double e = w.energy().total();
+    for (int n = 0; n < 40; ++n) {  // at ω·dt = 1000, 40 steps take E0 to 1e-240 J
+      w.step();
+      const double next = w.energy().total();
+      // exactly e / (1 + (ω dt)²) per step for the undamped oscillator
+      ASSERT_NEAR(next, e / (1 + omega_dt * omega_dt), 1e-12 * e) << omega_dt;
+      ASSERT_LT(next, e);
+      e = next;
+    }
+  }
+}
+
+TEST(StabilityEdges, ComputedBoundsMatchTheory) {
+  // Largest stable ω·h on the undamped oscillator: symplectic Euler and Verlet 2, RK4 2√2
+  // (imaginary-axis limit of its stability function), Forest–Ruth ≈ 1.5734, explicit Euler 0,
+  // implicit Euler unbounded. Bisection is to 1e-12; the tolerances allow the scan's tolerance.
+  EXPECT_NEAR(max_stable_step(Integrator::semi_implicit_euler, 1.0, 0.0), 2.0, 1e-6);
+  EXPECT_NEAR(max_stable_step(Integrator::velocity_verlet, 1.0, 0.0), 2.0, 1e-6);
+  EXPECT_NEAR(max_stable_step(Integrator::rk4, 1.0, 0.0), 2.0 * std::sqrt(2.0), 1e-6);
+  EXPECT_NEAR(max_stable_step(Integrator::forest_ruth, 1.0, 0.0), 1.5734, 1e-3);
+  EXPECT_EQ(max_stable_step(Integrator::explicit_euler, 1.0, 0.0), 0.0);
+  EXPECT_TRUE(std::isinf(max_stable_step(Integrator::implicit_euler, 1.0, 0.0)));
+  // Explicit Euler with damping γ = 2ζω: stable for ω h < 2ζ (|1 - γh + ...| analysis)
+  EXPECT_NEAR(max_stable_step(Integrator::explicit_euler, 1.0, 0.2), 0.2, 1e-6);
+  // Pure drag (no spring): v' = -γ v is stable for γh < 2 with either Euler
+  EXPECT_NEAR(max_stable_step(Integrator::semi_implicit_euler, 0.0, 3.0), 2.0 / 3.0, 1e-6);
+}
+
+// --- the guard --------------------------------------------------------------------------------
+
+std::string scene_text(double k, double m, double dt, const char* integrator, int substeps = 1,
+                       bool allow = false, double b = 0.0) {
+  return fmt::format(
+      "[world]\ndt = {}\nintegrator = \"{}\"\nsubsteps = {}\nallow_unstable = {}\n\n"
+      "[[body]]\nname = \"bob\"\nmass = {}\nposition = [1.0, 0.0]\n"
+      "spring = {{ anchor = [0.0, 0.0], stiffness = {}, damping = {} }}\n",
+      dt, integrator, substeps, allow ? "true" : "false", m, k, b);
+}
+
+TEST(Guard, RefusesWithTheSmallestStableSubstepCountWhichThenRuns) {
+  // k = 400 N/m, m = 1 kg: ω = 20 rad/s; dt = 0.25 s gives ω·dt = 5 > 2 for symplectic Euler,
+  // so the smallest stable substep count is ceil(5 / 2) = 3.
+  const Scene scene = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler"), "stiff.toml");
+  try {
+    (void)make_simulation(scene);
+    FAIL() << "unstable scene accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.line(), 7u) << what;  // the [[body]] line
+    EXPECT_NE(what.find("body 'bob'"), std::string::npos) << what;
+    EXPECT_NE(what.find("ω·h = 5 "), std::string::npos) << what;
+    EXPECT_NE(what.find("bound 2"), std::string::npos) << what;
+    EXPECT_NE(what.find("substeps = 3"), std::string::npos) << what;
+  }
+  const auto report = check_stability(scene);
+  ASSERT_EQ(report.size(), 1u);
+  EXPECT_EQ(report[0].min_substeps, 3);
+
+  Scene fixed = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler", 3), "stiff.toml");
+  Simulation sim = make_simulation(fixed);
+  const double e0 = sim.energy().total();
+  for (int i = 0; i < 10'000; ++i) sim.step();
+  // bounded: ω h = 5/3, so |E/E0 - 1| <= (ωh)/(1 - ωh/2) = 10 at most, far from blow-up
+  EXPECT_LT(sim.energy().total() / e0, 11.0);
+  EXPECT_TRUE(std::isfinite(sim.body_at(0).position.x));
+}
+
+TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
+  const Scene allowed = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler", 1, true), "a.toml");
+  const auto warnings = enforce_stability(allowed);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("(allowed)"), std::string::npos) << warnings[0];
+  // ω·dt = 1.9: stable but within 10 % of 2
+  const Scene near = parse_scene(scene_text(361, 1, 0.1, "semi_implicit_euler"), "n.toml");
+  const auto near_warnings = enforce_stability(near);
+  ASSERT_EQ(near_warnings.size(), 1u);
+  EXPECT_NE(near_warnings[0].find("within 10 %"), std::string::npos) << near_warnings[0];
+  // explicit Euler on an undamped spring: no substep count helps
+  const Scene euler = parse_scene(scene_text(1, 1, 0.01, "explicit_euler"), "e.toml");
+  try {
+    (void)make_simulation(euler);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("at every dt"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Guard, ParameterExtremesRunBoundedOrAreRefusedNeverNaN) {
+  // k from 1e-6 to 1e9 N/m, m from 1e-6 to 1e6 kg, dt from 1e-6 to 0.1 s, every integrator:
+  // each case is refused with a message naming the body, or runs 2000 ticks with a finite state
+  // whose position stays within the exact solution's amplitude (1 m here, plus v0/ω = 0) times
+  // the worst stable band 1/sqrt(1 - (ωh/2)²) for ωh <= 1.9 (3.2), and whose error against the
+  // exact solution is bounded by that too.
+  int ran = 0, refused = 0;
+  for (double k : {1e-6, 1.0, 1e9})
+    for (double m : {1e-6, 1.0, 1e6})
+      for (double dt : {1e-6, 1e-3, 0.1})
+        for (Integrator integrator : all_integrators) {
+          const std::string name(integrator_name(integrator));
+          const Scene scene = parse_scene(scene_text(k, m, dt, name.c_str(), 1, false, 0.0), "x.toml");
+          std::optional<Simulation> sim;
+          try {
+            sim.emplace(make_simulation(scene));
+          } catch (const SceneError& e) {
+            ++refused;
+            EXPECT_NE(std::string(e.what()).find("body 'bob'"), std::string::npos) << e.what();
+            continue;
+          }
+          ++ran;
+          for (int i = 0; i < 2000; ++i) sim->step();
+          const Body b = sim->body_at(0);
+          const auto exact = exact::solve(scene.bodies[0], sim->time());
+          const std::string where = fmt::format("{} k={} m={} dt={}", name, k, m, dt);
+          ASSERT_TRUE(std::isfinite(b.position.x) && std::isfinite(b.velocity.x)) << where;
+          EXPECT_LE(std::abs(b.position.x), 3.3) << where;
+          EXPECT_LE(std::abs(b.position.x - exact->position.x), 4.3) << where;
+        }
+  EXPECT_GT(ran, 100);     // most cases run...
+  EXPECT_GT(refused, 10);  // ...and the stiff ones at large dt are refused
+}
+
+// --- float hygiene ------------------------------------------------------------------------
+
+bool any_subnormal(const World<float>& w) {
+  for (auto span : {w.x(), w.y(), w.vx(), w.vy()})
+    for (float v : span)
+      if (std::fpclassify(v) == FP_SUBNORMAL) return true;
+  return false;
+}
+
+TEST(FloatHygiene, DampedF32StateFlushesToZeroInsteadOfGoingSubnormal) {
+  // A strongly damped f32 spring (ζ = 2.5) decays by e^{-0.1} per tick: it passes 1e-38 after
+  // some 900 ticks. With flush_denormals the state goes from normal floats straight to 0.
+  for (bool flush : {true, false}) {
+    World<float> w(WorldSettings{.dt = 0.01, .flush_denormals = flush});
+    BodyDef d;
+    d.body.position = {1.0, 1.0};
+    d.spring = SpringDamper{.anchor = {}, .stiffness = 100.0, .damping = 50.0};
+    w.create_body(d);
+    bool seen = false;
+    for (int i = 0; i < 20'000; ++i) {
+      w.step();
+      seen = seen || any_subnormal(w);
+    }
+    EXPECT_EQ(seen, !flush) << "flush_denormals = " << flush;
+  }
+}
+
+}  // namespace
+}  // namespace fixstep
