@@ -73,8 +73,10 @@ void Session::draw() {
   hud_.clear();
   const std::size_t n = sim_->body_count();
   hud_.push_back(fmt::format("fixstep  {}  ({} bod{})", file, n, n == 1 ? "y" : "ies"));
-  hud_.push_back(fmt::format("tick {}   t = {:.3f} s   dt = {:g} s", sim_->tick(), sim_->time(),
-                             sim_->settings().dt));
+  const int substeps = sim_->settings().substeps;
+  hud_.push_back(fmt::format("tick {}   t = {:.3f} s   dt = {:g} s{}", sim_->tick(), sim_->time(),
+                             sim_->settings().dt,
+                             substeps > 1 ? fmt::format(" ({} substeps)", substeps) : ""));
   hud_.push_back(fmt::format("{} ({})", integrator_name(sim_->settings().integrator),
                              precision_name(sim_->precision())));
   if (initial_energy_ != 0.0) {
