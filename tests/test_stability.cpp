@@ -96,6 +96,50 @@ TEST(StabilityEdges, ComputedBoundsMatchTheory) {
   EXPECT_NEAR(max_stable_step(Integrator::semi_implicit_euler, 0.0, 3.0), 2.0 / 3.0, 1e-6);
 }
 
+TEST(ImplicitEuler, NewtonSolvesTheBackwardEulerEquationsForRestLengthSprings) {
+  // A stiff rest-length spring under gravity at a large step: after one step the backward
+  // Euler equations x1 = x0 + h v1, v1 = v0 + h a(x1, v1) must hold to round-off (1e-12 of
+  // the terms' scale), whatever Newton's path.
+  const double h = 0.5, k = 200.0, b = 1.0, c = 0.5, L = 2.0, g = -9.81;
+  World<double> w(WorldSettings{.dt = h, .integrator = Integrator::implicit_euler});
+  BodyDef d;
+  d.body = Body{.mass = 2.0, .position = {3.0, 1.0}, .velocity = {-1.0, 4.0}};
+  d.spring = SpringDamper{.anchor = {0.0, 0.0}, .stiffness = k, .damping = b, .rest_length = L};
+  d.gravity = Gravity{{0.0, g}};
+  d.drag = LinearDrag{c};
+  w.create_body(d);
+  w.step();
+  const double x = w.x()[0], y = w.y()[0], vx = w.vx()[0], vy = w.vy()[0];
+  const double len = std::hypot(x, y), m = 2.0;
+  const double ax = (-k * (len - L) * x / len - (b + c) * vx) / m;
+  const double ay = (-k * (len - L) * y / len - (b + c) * vy) / m + g;
+  EXPECT_NEAR(x, 3.0 + h * vx, 1e-12 * 10);
+  EXPECT_NEAR(y, 1.0 + h * vy, 1e-12 * 10);
+  EXPECT_NEAR(vx, -1.0 + h * ax, 1e-12 * 1000);
+  EXPECT_NEAR(vy, 4.0 + h * ay, 1e-12 * 1000);
+}
+
+TEST(Substeps, ATickOfNSubstepsIsNStepsOfDtOverN) {
+  // Bit for bit: substeps only divide the tick; every integrator, f32 and f64.
+  for (Integrator i : all_integrators) {
+    World<float> a(WorldSettings{.dt = 0.04, .integrator = i, .substeps = 4});
+    World<float> b(WorldSettings{.dt = 0.04 / 4, .integrator = i});
+    BodyDef d;
+    d.body = Body{.mass = 1.5, .position = {1.0, 2.0}, .velocity = {0.5, 0.0}};
+    d.spring = SpringDamper{.anchor = {}, .stiffness = 9.0, .damping = 0.3, .rest_length = 0.5};
+    d.drag = LinearDrag{0.1};
+    a.create_body(d);
+    b.create_body(d);
+    for (int t = 0; t < 50; ++t) {
+      a.step();
+      for (int s = 0; s < 4; ++s) b.step();
+    }
+    EXPECT_EQ(a.state_hash(), b.state_hash()) << integrator_name(i);
+    EXPECT_EQ(a.tick(), 50u);
+    EXPECT_EQ(b.tick(), 200u);
+  }
+}
+
 // --- the guard --------------------------------------------------------------------------------
 
 std::string scene_text(double k, double m, double dt, const char* integrator, int substeps = 1,
