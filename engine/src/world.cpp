@@ -229,21 +229,18 @@ void World<Real>::rebuild_terms() {
   for (std::size_t i = 0; i < springs_.data.size(); ++i) {
     const SpringDamper& s = springs_.data[i];
     const std::uint32_t b = body_of(springs_.set.dense[i]);
+    auto add = [&](auto& t) {  // the fields both spring kernels share
+      t.body.push_back(b);
+      t.anchor_x.push_back(r(s.anchor.x));
+      t.anchor_y.push_back(r(s.anchor.y));
+      t.k.push_back(r(s.stiffness));
+      t.b.push_back(r(s.damping));
+    };
     if (s.rest_length == 0.0) {
-      auto& t = linear_springs_;
-      t.body.push_back(b);
-      t.anchor_x.push_back(r(s.anchor.x));
-      t.anchor_y.push_back(r(s.anchor.y));
-      t.k.push_back(r(s.stiffness));
-      t.b.push_back(r(s.damping));
+      add(linear_springs_);
     } else {
-      auto& t = rest_springs_;
-      t.body.push_back(b);
-      t.anchor_x.push_back(r(s.anchor.x));
-      t.anchor_y.push_back(r(s.anchor.y));
-      t.k.push_back(r(s.stiffness));
-      t.b.push_back(r(s.damping));
-      t.rest.push_back(r(s.rest_length));
+      add(rest_springs_);
+      rest_springs_.rest.push_back(r(s.rest_length));
     }
   }
   forces_ = {};
