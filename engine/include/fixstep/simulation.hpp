@@ -35,6 +35,9 @@ class Simulation {
   template <class F>
   decltype(auto) visit(F&& f) const { return std::visit(std::forward<F>(f), world_); }
 
+  // The members below forward to the World<float> or World<double> inside: units, shapes and
+  // errors are those documented in world.hpp (create_body throws std::invalid_argument naming
+  // the body and field; step never throws and allocates nothing).
   Entity create_body(const BodyDef& def);
   void step(const TickInput& input = {});
   void set_keep_previous(bool keep);
