@@ -37,7 +37,7 @@ class Simulation {
 
   // The members below forward to the World<float> or World<double> inside: units, shapes and
   // errors are those documented in world.hpp (create_body throws std::invalid_argument naming
-  // the body and field; step never throws and allocates nothing).
+  // the body and field; step never throws and allocates nothing once warmed up).
   Entity create_body(const BodyDef& def);
   void step(const TickInput& input = {});
   void set_keep_previous(bool keep);

@@ -86,7 +86,9 @@ struct Store {
 ///
 /// Errors: creation and setters throw std::invalid_argument naming the body and field when a
 /// value is non-finite (also after narrowing to Real) or out of range; using a stale or null
-/// Entity throws std::invalid_argument. step() never throws and allocates nothing.
+/// Entity throws std::invalid_argument. step() never throws; it allocates only on the first
+/// step after a structural change (rebuilding the force-term lists) and the first time a step
+/// length is seen (damping-flow factors), and nothing per tick after that.
 template <class Real>
 class World {
  public:
