@@ -53,6 +53,14 @@ Scene load_with_overrides(const SceneOptions& o) {
   return scene;
 }
 
+std::string describe(const Scene& scene) {
+  return fmt::format("scene={} integrator={} precision={} dt={}{}", scene.file,
+                     integrator_name(scene.world.integrator), precision_name(scene.precision),
+                     scene.world.dt,
+                     scene.world.substeps > 1 ? fmt::format(" substeps={}", scene.world.substeps)
+                                              : std::string());
+}
+
 namespace {
 
 /// Ticks for a simulated duration: the nearest whole number when duration/dt is one to within
@@ -131,9 +139,7 @@ int run_command(const RunOptions& o) {
     }
   }
   if (csv) csv->commit();
-  fmt::print("scene={} integrator={} precision={} dt={}\n", scene.file,
-             integrator_name(scene.world.integrator), precision_name(scene.precision),
-             scene.world.dt);
+  fmt::print("{}\n", describe(scene));
   fmt::print("{}\n", summary_line(sim, e0));
   if (const auto error = exact_error(scene, sim)) {
     fmt::print("exact_error={:.6e} m (largest position error against the exact solution)\n", *error);
@@ -154,9 +160,7 @@ int render_command(const RenderOptions& o) {
     session.draw();
     write_png(frame_path(o.out, f), width, height, session.renderer().pixels());
   }
-  fmt::print("scene={} integrator={} precision={} dt={} renderer=\"{}\"\n", scene.file,
-             integrator_name(scene.world.integrator), precision_name(scene.precision),
-             scene.world.dt, session.renderer().gl_renderer());
+  fmt::print("{} renderer=\"{}\"\n", describe(scene), session.renderer().gl_renderer());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
   fmt::print("frames={} fps={} size={}x{}: {} ... {}\n", frames, o.fps, width, height,
              frame_path(o.out, 0).string(), frame_path(o.out, frames - 1).string());

@@ -48,6 +48,10 @@ std::string frame_size_validator(const std::string& value);
 /// Parses "WxH" (validated by frame_size_validator).
 std::pair<int, int> parse_frame_size(const std::string& value);
 
+/// "scene=FILE integrator=NAME precision=f32|f64 dt=S [substeps=N]": the first line every
+/// subcommand prints.
+std::string describe(const Scene& scene);
+
 /// Loads the scene, applies the overrides, runs the stability guard (throws SceneError for an
 /// unstable body) and prints the warnings of both to stderr.
 Scene load_with_overrides(const SceneOptions& options);

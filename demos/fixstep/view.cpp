@@ -50,9 +50,7 @@ int view_command(const ViewOptions& o) {
     window.present(session.renderer().pixels());
     if (!virtual_clock) std::this_thread::sleep_until(frame_start + frame_budget);
   }
-  fmt::print("scene={} integrator={} precision={} dt={} driver={}\n", scene.file,
-             integrator_name(scene.world.integrator), precision_name(scene.precision),
-             scene.world.dt, window.driver());
+  fmt::print("{} driver={}\n", describe(scene), window.driver());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
   return 0;
 }
