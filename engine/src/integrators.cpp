@@ -35,6 +35,15 @@ int integrator_order(Integrator integrator) {
   }
 }
 
+int integrator_evaluations(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::velocity_verlet: return 2;
+    case Integrator::rk4: return 4;
+    case Integrator::forest_ruth: return 6;
+    default: return 1;
+  }
+}
+
 std::string_view precision_name(Precision precision) {
   return precision == Precision::f32 ? "f32" : "f64";
 }

@@ -158,15 +158,12 @@ Entity World<Real>::create_body(const BodyDef& def) {
   }
   bodies_.insert(e);
   mass_.push_back(def.body.mass);
-  inv_mass_.push_back(static_cast<Real>(1.0 / def.body.mass));
   x_.push_back(static_cast<Real>(def.body.position.x));
   y_.push_back(static_cast<Real>(def.body.position.y));
   vx_.push_back(static_cast<Real>(def.body.velocity.x));
   vy_.push_back(static_cast<Real>(def.body.velocity.y));
   prev_x_.push_back(x_.back());
   prev_y_.push_back(y_.back());
-  ax_.push_back(Real(0));
-  ay_.push_back(Real(0));
   names_.push_back(def.name);
 
   if (def.spring) set(e, *def.spring);
@@ -187,7 +184,7 @@ void World<Real>::destroy(Entity e) {
   remove<LinearDrag>(e);
   remove<Appearance>(e);
   const std::size_t i = bodies_.erase(e);
-  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, inv_mass_, ax_, ay_, mass_, names_);
+  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, names_);
   ++generations_[e.slot()];
   free_slots_.push_back(e.slot());
   terms_dirty_ = true;
@@ -204,12 +201,11 @@ void World<Real>::set_body(Entity e, const Body& b) {
   const std::size_t i = index_of(e);
   validate(b, describe(e));
   mass_[i] = b.mass;
-  inv_mass_[i] = static_cast<Real>(1.0 / b.mass);
   x_[i] = prev_x_[i] = static_cast<Real>(b.position.x);
   y_[i] = prev_y_[i] = static_cast<Real>(b.position.y);
   vx_[i] = static_cast<Real>(b.velocity.x);
   vy_[i] = static_cast<Real>(b.velocity.y);
-  terms_dirty_ = true;  // 1/m enters the per-body coefficients; x moved: no cached acceleration
+  terms_dirty_ = true;  // 1/m enters the per-body coefficients
 }
 
 template <class Real>
@@ -220,47 +216,17 @@ void World<Real>::set_keep_previous(bool keep) {
 }
 
 template <class Real>
+void World<Real>::reserve(std::size_t bodies) {
+  bodies_.dense.reserve(bodies);
+  bodies_.sparse.reserve(bodies);
+  generations_.reserve(bodies);
+  for (auto* v : {&x_, &y_, &vx_, &vy_, &prev_x_, &prev_y_}) v->reserve(bodies);
+  mass_.reserve(bodies);
+  names_.reserve(bodies);
+}
+
+template <class Real>
 void World<Real>::rebuild_terms() {
-  auto body_of = [&](Entity e) { return static_cast<std::uint32_t>(bodies_.index(e)); };
-  auto r = [](double v) { return static_cast<Real>(v); };
-
-  linear_springs_ = {};
-  rest_springs_ = {};
-  for (std::size_t i = 0; i < springs_.data.size(); ++i) {
-    const SpringDamper& s = springs_.data[i];
-    const std::uint32_t b = body_of(springs_.set.dense[i]);
-    auto add = [&](auto& t) {  // the fields both spring kernels share
-      t.body.push_back(b);
-      t.anchor_x.push_back(r(s.anchor.x));
-      t.anchor_y.push_back(r(s.anchor.y));
-      t.k.push_back(r(s.stiffness));
-      t.b.push_back(r(s.damping));
-    };
-    if (s.rest_length == 0.0) {
-      add(linear_springs_);
-    } else {
-      add(rest_springs_);
-      rest_springs_.rest.push_back(r(s.rest_length));
-    }
-  }
-  forces_ = {};
-  for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
-    forces_.body.push_back(body_of(constant_forces_.set.dense[i]));
-    forces_.fx.push_back(r(constant_forces_.data[i].force.x));
-    forces_.fy.push_back(r(constant_forces_.data[i].force.y));
-  }
-  gravity_terms_ = {};
-  for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
-    gravity_terms_.body.push_back(body_of(gravities_.set.dense[i]));
-    gravity_terms_.gx.push_back(r(gravities_.data[i].acceleration.x));
-    gravity_terms_.gy.push_back(r(gravities_.data[i].acceleration.y));
-  }
-  drag_terms_ = {};
-  for (std::size_t i = 0; i < drags_.data.size(); ++i) {
-    drag_terms_.body.push_back(body_of(drags_.set.dense[i]));
-    drag_terms_.c.push_back(r(drags_.data[i].coefficient));
-  }
-
   // Per-body coefficients, summed in double and rounded once to Real.
   const std::size_t n = body_count();
   std::vector<double> gamma(n, 0.0), stiffness(n, 0.0), ax(n, 0.0), ay(n, 0.0), cx(n, 0.0),
@@ -286,32 +252,33 @@ void World<Real>::rebuild_terms() {
     cx[j] += gravities_.data[i].acceleration.x;
     cy[j] += gravities_.data[i].acceleration.y;
   }
-  auto to_real = [](const std::vector<double>& v) { return std::vector<Real>(v.begin(), v.end()); };
-  coeff_.gamma = to_real(gamma);
-  coeff_.stiffness = to_real(stiffness);
-  coeff_.anchor_x = to_real(ax);
-  coeff_.anchor_y = to_real(ay);
-  coeff_.rest = to_real(rest);
-  coeff_.accel_x = to_real(cx);
-  coeff_.accel_y = to_real(cy);
-  coeff_.damped.clear();
-  for (std::size_t j = 0; j < n; ++j) {
-    if (coeff_.gamma[j] > Real(0)) coeff_.damped.push_back(static_cast<std::uint32_t>(j));
-  }
+  auto to_real = [](std::vector<Real>& out, const std::vector<double>& v) {
+    out.assign(v.begin(), v.end());
+  };
+  Coefficients& c = coeff_;
+  to_real(c.stiffness, stiffness);
+  to_real(c.anchor_x, ax);
+  to_real(c.anchor_y, ay);
+  to_real(c.rest, rest);
+  to_real(c.gamma, gamma);
+  to_real(c.accel_x, cx);
+  to_real(c.accel_y, cy);
+  c.spring = !springs_.data.empty();
+  c.rest_length = std::any_of(c.rest.begin(), c.rest.end(), [](Real r) { return r != Real(0); });
+  c.damping = std::any_of(c.gamma.begin(), c.gamma.end(), [](Real g) { return g != Real(0); });
+  c.accel = false;
+  for (std::size_t j = 0; j < n; ++j) c.accel = c.accel || c.accel_x[j] != 0 || c.accel_y[j] != 0;
   flows_.clear();
-  for (auto* v : {&sx_, &sy_, &svx_, &svy_, &dx_, &dy_, &dvx_, &dvy_}) v->assign(n, Real(0));
-  accel_valid_ = false;
   terms_dirty_ = false;
 }
 
 template <class Real>
-unsigned World<Real>::active_terms() {
-  if (terms_dirty_) rebuild_terms();
+unsigned World<Real>::active_terms() const {
   unsigned bits = 0;
-  if (!linear_springs_.body.empty() || !rest_springs_.body.empty()) bits |= term_spring;
-  if (!forces_.body.empty()) bits |= term_constant_force;
-  if (!gravity_terms_.body.empty()) bits |= term_gravity;
-  if (!drag_terms_.body.empty()) bits |= term_drag;
+  if (!springs_.data.empty()) bits |= term_spring;
+  if (!constant_forces_.data.empty()) bits |= term_constant_force;
+  if (!gravities_.data.empty()) bits |= term_gravity;
+  if (!drags_.data.empty()) bits |= term_drag;
   return bits;
 }
 

@@ -48,74 +48,121 @@ const double fr_w0 = -cbrt2 / (2.0 - cbrt2);
 
 }  // namespace
 
-// Accelerations a(x, v) for every body: forces are summed per term over the bodies that carry
-// it (N), scaled by 1/m, then the mass-independent push and gravity are added (m/s²). Each
-// term's loop is skipped entirely when it has no bodies. with_damping = false leaves out the
-// velocity-dependent terms (spring damping, drag): the conservative part a_c(x).
-template <class Real>
-template <bool with_damping>
-void World<Real>::evaluate(const Real* x, const Real* y, const Real* vx, const Real* vy, Real* ax,
-                           Real* ay, const Real push[2]) const {
-  const std::size_t n = x_.size();
-  std::fill_n(ax, n, Real(0));
-  std::fill_n(ay, n, Real(0));
-  {  // Hooke + dashpot, rest length 0: F = -k (x - anchor) - b v, per axis.
-    const auto& t = linear_springs_;
-    for (std::size_t i = 0; i < t.body.size(); ++i) {
-      const std::uint32_t j = t.body[i];
-      if constexpr (with_damping) {
-        ax[j] += -t.k[i] * (x[j] - t.anchor_x[i]) - t.b[i] * vx[j];
-        ay[j] += -t.k[i] * (y[j] - t.anchor_y[i]) - t.b[i] * vy[j];
-      } else {
-        ax[j] += -t.k[i] * (x[j] - t.anchor_x[i]);
-        ay[j] += -t.k[i] * (y[j] - t.anchor_y[i]);
+// --- the force field of one body and the fused sweep over all bodies ---------------------
+
+namespace {
+
+enum class SpringShape { none, linear, rest_length };
+
+/// One body's force field a(x, v) = -K s(d) - γ v + c + push (see World::Coefficients),
+/// loaded once per sweep. Parts no body declares are compile-time absent: their arrays are
+/// never read and their arithmetic never runs. `Decays` damping-flow factors are loaded too
+/// (Verlet 1, Forest–Ruth 2).
+template <class Real, SpringShape S, bool Damped, bool Accel, int Decays>
+struct BodyField {
+  static constexpr SpringShape shape = S;
+  static constexpr bool damped = Damped;
+  static constexpr bool accel = Accel;
+  static constexpr int decays = Decays;
+  Real k{}, anchor_x{}, anchor_y{}, rest{}, gamma{}, cx{}, cy{}, push_x{}, push_y{};
+  Real decay[Decays > 0 ? Decays : 1]{};
+
+  /// a_c(x): the conservative part (spring, constant force, gravity, push), m/s².
+  void conservative(Real x, Real y, Real& ax, Real& ay) const {
+    if constexpr (S == SpringShape::none) {
+      ax = Real(0), ay = Real(0);
+    } else {
+      Real dx = x - anchor_x, dy = y - anchor_y;
+      if constexpr (S == SpringShape::rest_length) {
+        // s(d) = (|d| - L) d/|d|; no force at |d| = 0. Both branches are value selects (no
+        // division by zero is ever executed), so the sweep stays vectorizable; bodies with
+        // L = 0 take factor 1 and get exactly the linear spring's value.
+        const Real len = std::sqrt(dx * dx + dy * dy);
+        const bool away = len > Real(0);
+        const Real stretch = (len - rest) / (away ? len : Real(1));
+        const Real f = rest == Real(0) ? Real(1) : (away ? stretch : Real(0));
+        dx = f * dx, dy = f * dy;
       }
+      ax = -k * dx, ay = -k * dy;
     }
+    if constexpr (Accel) ax += cx, ay += cy;
+    ax += push_x, ay += push_y;
   }
-  {  // Rest length L > 0: F = -k (|d| - L) d/|d| - b v; no spring force when |d| = 0.
-    const auto& t = rest_springs_;
-    for (std::size_t i = 0; i < t.body.size(); ++i) {
-      const std::uint32_t j = t.body[i];
-      const Real dx = x[j] - t.anchor_x[i];
-      const Real dy = y[j] - t.anchor_y[i];
-      const Real len = std::sqrt(dx * dx + dy * dy);
-      const Real s = len > Real(0) ? -t.k[i] * (len - t.rest[i]) / len : Real(0);
-      if constexpr (with_damping) {
-        ax[j] += s * dx - t.b[i] * vx[j];
-        ay[j] += s * dy - t.b[i] * vy[j];
-      } else {
-        ax[j] += s * dx;
-        ay[j] += s * dy;
-      }
-    }
+  /// a(x, v) = a_c(x) - γ v, m/s².
+  void full(Real x, Real y, Real vx, Real vy, Real& ax, Real& ay) const {
+    conservative(x, y, ax, ay);
+    if constexpr (Damped) ax -= gamma * vx, ay -= gamma * vy;
   }
-  for (std::size_t i = 0; i < forces_.body.size(); ++i) {
-    ax[forces_.body[i]] += forces_.fx[i];
-    ay[forces_.body[i]] += forces_.fy[i];
-  }
-  if constexpr (with_damping) {
-    for (std::size_t i = 0; i < drag_terms_.body.size(); ++i) {  // Stokes drag F = -c v
-      const std::uint32_t j = drag_terms_.body[i];
-      ax[j] += -drag_terms_.c[i] * vx[j];
-      ay[j] += -drag_terms_.c[i] * vy[j];
-    }
-  }
-  const Real* inv_m = inv_mass_.data();
+};
+
+/// Runs step(x, y, vx, vy, field) on every body: one pass, each body's state loaded and stored
+/// once, each declared coefficient read once. The restrict-qualified parameters promise the
+/// compiler that the arrays do not overlap, so it can vectorize the loop (see the -O3 note in
+/// engine/CMakeLists.txt). Pointers of parts the Field leaves out may be null.
+template <class Field, class Real, class Step>
+void sweep(std::size_t n, Real* __restrict x, Real* __restrict y, Real* __restrict vx,
+           Real* __restrict vy, const Real* __restrict k, const Real* __restrict anchor_x,
+           const Real* __restrict anchor_y, const Real* __restrict rest,
+           const Real* __restrict gamma, const Real* __restrict cx, const Real* __restrict cy,
+           const Real* __restrict decay0, const Real* __restrict decay1, const Real push[2],
+           Step step) {
+  const Real push_x = push[0], push_y = push[1];
   for (std::size_t j = 0; j < n; ++j) {
-    ax[j] *= inv_m[j];
-    ay[j] *= inv_m[j];
-  }
-  if (push[0] != Real(0) || push[1] != Real(0)) {  // user input, m/s²
-    for (std::size_t j = 0; j < n; ++j) {
-      ax[j] += push[0];
-      ay[j] += push[1];
+    Field f;
+    f.push_x = push_x, f.push_y = push_y;
+    if constexpr (Field::shape != SpringShape::none) {
+      f.k = k[j], f.anchor_x = anchor_x[j], f.anchor_y = anchor_y[j];
     }
-  }
-  for (std::size_t i = 0; i < gravity_terms_.body.size(); ++i) {
-    ax[gravity_terms_.body[i]] += gravity_terms_.gx[i];
-    ay[gravity_terms_.body[i]] += gravity_terms_.gy[i];
+    if constexpr (Field::shape == SpringShape::rest_length) f.rest = rest[j];
+    if constexpr (Field::damped && Field::decays == 0) f.gamma = gamma[j];
+    if constexpr (Field::damped && Field::decays >= 1) f.decay[0] = decay0[j];
+    if constexpr (Field::damped && Field::decays >= 2) f.decay[1] = decay1[j];
+    if constexpr (Field::accel) f.cx = cx[j], f.cy = cy[j];
+    Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j];
+    step(X, Y, VX, VY, f);
+    x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
   }
 }
+
+/// Calls visit(field) with a default BodyField whose compile-time parts match the world's
+/// flags: 3 spring shapes x damped or not x constant acceleration or not.
+template <class Real, int Decays, class Visit>
+void with_field(SpringShape shape, bool damped, bool accel, Visit&& visit) {
+  auto pick_accel = [&]<SpringShape S, bool D>() {
+    if (accel) visit(BodyField<Real, S, D, true, Decays>{});
+    else visit(BodyField<Real, S, D, false, Decays>{});
+  };
+  auto pick_damped = [&]<SpringShape S>() {
+    if (damped) pick_accel.template operator()<S, true>();
+    else pick_accel.template operator()<S, false>();
+  };
+  switch (shape) {
+    case SpringShape::none: pick_damped.template operator()<SpringShape::none>(); break;
+    case SpringShape::linear: pick_damped.template operator()<SpringShape::linear>(); break;
+    case SpringShape::rest_length:
+      pick_damped.template operator()<SpringShape::rest_length>();
+      break;
+  }
+}
+
+/// Velocity Verlet (kick-drift-kick) on a_c, between two halves of the exact damping flow with
+/// factor `decay` = e^{-γh/2}: S(h) = D(h/2) ∘ VV(h) ∘ D(h/2) (Strang). Symmetric, so second
+/// order, and a valid base for the triple jump.
+template <class Field, class Real>
+inline void strang_verlet(Real& x, Real& y, Real& vx, Real& vy, const Field& f, Real h,
+                          Real decay) {
+  const Real half = h * Real(0.5);
+  Real ax, ay;
+  if constexpr (Field::damped) vx *= decay, vy *= decay;
+  f.conservative(x, y, ax, ay);
+  vx += ax * half, vy += ay * half;  // kick h/2
+  x += vx * h, y += vy * h;          // drift h
+  f.conservative(x, y, ax, ay);
+  vx += ax * half, vy += ay * half;  // kick h/2
+  if constexpr (Field::damped) vx *= decay, vy *= decay;
+}
+
+}  // namespace
 
 template <class Real>
 void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input) {
@@ -123,8 +170,51 @@ void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const Ti
     throw std::invalid_argument("World::accelerations: output spans are shorter than body_count()");
   }
   if (terms_dirty_) rebuild_terms();
-  const Real push[2] = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)};
-  evaluate<true>(x_.data(), y_.data(), vx_.data(), vy_.data(), ax.data(), ay.data(), push);
+  const Coefficients& c = coeff_;
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    BodyField<Real, SpringShape::rest_length, true, true, 0> f;
+    f.k = c.stiffness[j], f.anchor_x = c.anchor_x[j], f.anchor_y = c.anchor_y[j];
+    f.rest = c.rest[j], f.gamma = c.gamma[j], f.cx = c.accel_x[j], f.cy = c.accel_y[j];
+    f.push_x = static_cast<Real>(input.push.x), f.push_y = static_cast<Real>(input.push.y);
+    f.full(x_[j], y_[j], vx_[j], vy_[j], ax[j], ay[j]);
+  }
+}
+
+// The damping-flow factors e^{-γτ} of every body (1 where γ = 0), computed in double once per
+// τ and cached: a tick of Verlet needs one τ, of Forest–Ruth two.
+template <class Real>
+const Real* World<Real>::damping_decay(double tau) {
+  auto flow = std::find_if(flows_.begin(), flows_.end(),
+                           [tau](const DampingFlow& f) { return f.tau == tau; });
+  if (flow == flows_.end()) {
+    if (flows_.size() >= 4) flows_.clear();  // the step sizes changed
+    DampingFlow f;
+    f.tau = tau;
+    f.decay.resize(coeff_.gamma.size());
+    for (std::size_t j = 0; j < f.decay.size(); ++j) {
+      f.decay[j] = static_cast<Real>(std::exp(-double(coeff_.gamma[j]) * tau));
+    }
+    flows_.push_back(std::move(f));
+    flow = flows_.end() - 1;
+  }
+  return flow->decay.data();
+}
+
+template <class Real>
+std::size_t World<Real>::bytes_per_body_step() {
+  if (terms_dirty_) rebuild_terms();
+  const Coefficients& c = coeff_;
+  std::size_t arrays = 8;  // x, y, vx, vy: read and written
+  if (settings_.integrator == Integrator::implicit_euler) {
+    arrays += 7;
+  } else {
+    if (c.spring) arrays += c.rest_length ? 4 : 3;
+    if (c.damping) arrays += settings_.integrator == Integrator::forest_ruth ? 2 : 1;
+    if (c.accel) arrays += 2;
+  }
+  arrays *= static_cast<std::size_t>(settings_.substeps);
+  if (keep_previous_) arrays += 4;
+  return arrays * sizeof(Real);
 }
 
 template <class Real>
@@ -136,163 +226,97 @@ void World<Real>::step(const TickInput& input) {
     std::copy(y_.begin(), y_.end(), prev_y_.begin());
   }
   const Real push[2] = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)};
-  if (push[0] != cached_push_[0] || push[1] != cached_push_[1]) {
-    accel_valid_ = false;
-    cached_push_[0] = push[0];
-    cached_push_[1] = push[1];
-  }
   const Real h = static_cast<Real>(settings_.dt / settings_.substeps);
-  for (int s = 0; s < settings_.substeps; ++s) substep(h, push);
+  const Coefficients& c = coeff_;
+  const SpringShape shape = !c.spring        ? SpringShape::none
+                            : c.rest_length ? SpringShape::rest_length
+                                            : SpringShape::linear;
+  const std::size_t n = x_.size();
+  // Every sweep gets the same arrays; each Field reads only its own.
+  auto run = [&](auto field, const Real* decay0, const Real* decay1, auto body_step) {
+    sweep<decltype(field)>(n, x_.data(), y_.data(), vx_.data(), vy_.data(), c.stiffness.data(),
+                           c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), c.gamma.data(),
+                           c.accel_x.data(), c.accel_y.data(), decay0, decay1, push, body_step);
+  };
+
+  for (int s = 0; s < settings_.substeps; ++s) {
+    switch (settings_.integrator) {
+      case Integrator::semi_implicit_euler:
+        with_field<Real, 0>(shape, c.damping, c.accel, [&](auto field) {
+          run(field, nullptr, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
+            Real ax, ay;
+            f.full(x, y, vx, vy, ax, ay);
+            vx += ax * h, vy += ay * h;  // v_{n+1} = v_n + a_n h
+            x += vx * h, y += vy * h;    // x_{n+1} = x_n + v_{n+1} h
+          });
+        });
+        break;
+      case Integrator::explicit_euler:
+        with_field<Real, 0>(shape, c.damping, c.accel, [&](auto field) {
+          run(field, nullptr, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
+            Real ax, ay;
+            f.full(x, y, vx, vy, ax, ay);
+            x += vx * h, y += vy * h;    // x_{n+1} = x_n + v_n h
+            vx += ax * h, vy += ay * h;  // v_{n+1} = v_n + a_n h
+          });
+        });
+        break;
+      case Integrator::velocity_verlet: {
+        const Real* d = c.damping ? damping_decay(0.5 * double(h)) : nullptr;
+        with_field<Real, 1>(shape, c.damping, c.accel, [&](auto field) {
+          run(field, d, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
+            strang_verlet(x, y, vx, vy, f, h, f.decay[0]);
+          });
+        });
+        break;
+      }
+      case Integrator::forest_ruth: {
+        const Real h1 = static_cast<Real>(fr_w1 * double(h));
+        const Real h0 = static_cast<Real>(fr_w0 * double(h));
+        const Real* d1 = c.damping ? damping_decay(0.5 * double(h1)) : nullptr;
+        const Real* d0 = c.damping ? damping_decay(0.5 * double(h0)) : nullptr;
+        with_field<Real, 2>(shape, c.damping, c.accel, [&](auto field) {
+          run(field, d1, d0, [h1, h0](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
+            strang_verlet(x, y, vx, vy, f, h1, f.decay[0]);
+            strang_verlet(x, y, vx, vy, f, h0, f.decay[1]);
+            strang_verlet(x, y, vx, vy, f, h1, f.decay[0]);
+          });
+        });
+        break;
+      }
+      case Integrator::rk4:
+        with_field<Real, 0>(shape, c.damping, c.accel, [&](auto field) {
+          run(field, nullptr, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
+            // y = (x, v), f(y) = (v, a(x, v)); d accumulates k1 + 2 k2 + 2 k3, s is the stage.
+            const Real half = h * Real(0.5);
+            Real ax, ay;
+            f.full(x, y, vx, vy, ax, ay);  // k1
+            Real dx = vx, dy = vy, dvx = ax, dvy = ay;
+            Real sx = x + half * vx, sy = y + half * vy;
+            Real svx = vx + half * ax, svy = vy + half * ay;
+            f.full(sx, sy, svx, svy, ax, ay);  // k2 at y + h k1 / 2
+            dx += Real(2) * svx, dy += Real(2) * svy;
+            dvx += Real(2) * ax, dvy += Real(2) * ay;
+            sx = x + half * svx, sy = y + half * svy;
+            svx = vx + half * ax, svy = vy + half * ay;
+            f.full(sx, sy, svx, svy, ax, ay);  // k3 at y + h k2 / 2
+            dx += Real(2) * svx, dy += Real(2) * svy;
+            dvx += Real(2) * ax, dvy += Real(2) * ay;
+            sx = x + h * svx, sy = y + h * svy;
+            svx = vx + h * ax, svy = vy + h * ay;
+            f.full(sx, sy, svx, svy, ax, ay);  // k4 at y + h k3
+            const Real sixth = h / Real(6);
+            x += sixth * (dx + svx), y += sixth * (dy + svy);
+            vx += sixth * (dvx + ax), vy += sixth * (dvy + ay);
+          });
+        });
+        break;
+      case Integrator::implicit_euler:
+        implicit_euler_step(h, push);
+        break;
+    }
+  }
   ++tick_;
-}
-
-template <class Real>
-void World<Real>::substep(Real h, const Real push[2]) {
-  const std::size_t n = x_.size();
-  Real* x = x_.data();
-  Real* y = y_.data();
-  Real* vx = vx_.data();
-  Real* vy = vy_.data();
-  const Real* ax = ax_.data();
-  const Real* ay = ay_.data();
-  switch (settings_.integrator) {
-    case Integrator::semi_implicit_euler:
-      evaluate<true>(x, y, vx, vy, ax_.data(), ay_.data(), push);
-      for (std::size_t j = 0; j < n; ++j) {  // v_{n+1} = v_n + a_n h; x_{n+1} = x_n + v_{n+1} h
-        vx[j] += ax[j] * h;
-        vy[j] += ay[j] * h;
-        x[j] += vx[j] * h;
-        y[j] += vy[j] * h;
-      }
-      accel_valid_ = false;
-      break;
-    case Integrator::explicit_euler:
-      evaluate<true>(x, y, vx, vy, ax_.data(), ay_.data(), push);
-      for (std::size_t j = 0; j < n; ++j) {  // x_{n+1} = x_n + v_n h; v_{n+1} = v_n + a_n h
-        x[j] += vx[j] * h;
-        y[j] += vy[j] * h;
-        vx[j] += ax[j] * h;
-        vy[j] += ay[j] * h;
-      }
-      accel_valid_ = false;
-      break;
-    case Integrator::velocity_verlet:
-      strang_verlet(h, push);
-      break;
-    case Integrator::forest_ruth: {
-      const Real h1 = static_cast<Real>(fr_w1 * double(h));
-      const Real h0 = static_cast<Real>(fr_w0 * double(h));
-      strang_verlet(h1, push);
-      strang_verlet(h0, push);
-      strang_verlet(h1, push);
-      break;
-    }
-    case Integrator::rk4:
-      rk4_step(h, push);
-      accel_valid_ = false;
-      break;
-    case Integrator::implicit_euler:
-      implicit_euler_step(h, push);
-      accel_valid_ = false;
-      break;
-  }
-}
-
-// S(h) = D(h/2) ∘ VV(h) ∘ D(h/2): Strang splitting of the exact damping flow D around velocity
-// Verlet on a_c. Symmetric, so second order, and a valid base for the triple jump.
-template <class Real>
-void World<Real>::strang_verlet(Real h, const Real push[2]) {
-  const bool damped = !coeff_.damped.empty();
-  if (damped) damping_flow(0.5 * double(h));
-  kick_drift_kick(h, push);
-  if (damped) damping_flow(0.5 * double(h));
-}
-
-template <class Real>
-void World<Real>::kick_drift_kick(Real h, const Real push[2]) {
-  const std::size_t n = x_.size();
-  Real* x = x_.data();
-  Real* y = y_.data();
-  Real* vx = vx_.data();
-  Real* vy = vy_.data();
-  Real* ax = ax_.data();
-  Real* ay = ay_.data();
-  const Real half = h * Real(0.5);
-  if (!accel_valid_) evaluate<false>(x, y, vx, vy, ax, ay, push);
-  for (std::size_t j = 0; j < n; ++j) {  // kick h/2, drift h
-    vx[j] += ax[j] * half;
-    vy[j] += ay[j] * half;
-    x[j] += vx[j] * h;
-    y[j] += vy[j] * h;
-  }
-  evaluate<false>(x, y, vx, vy, ax, ay, push);
-  for (std::size_t j = 0; j < n; ++j) {  // kick h/2
-    vx[j] += ax[j] * half;
-    vy[j] += ay[j] * half;
-  }
-  accel_valid_ = true;  // a_c(x) at the current x: the next kick can reuse it
-}
-
-// D(τ): the exact flow of the dissipative part v' = -γ v (x' = 0: the drift x' = v belongs
-// to the Verlet part of the splitting), for every damped body.
-template <class Real>
-void World<Real>::damping_flow(double tau) {
-  auto flow = std::find_if(flows_.begin(), flows_.end(),
-                           [tau](const DampingFlow& f) { return f.tau == tau; });
-  if (flow == flows_.end()) {
-    if (flows_.size() >= 4) flows_.clear();  // the step sizes changed
-    DampingFlow f;
-    f.tau = tau;
-    for (std::uint32_t j : coeff_.damped) {
-      f.decay.push_back(static_cast<Real>(std::exp(-double(coeff_.gamma[j]) * tau)));
-    }
-    flows_.push_back(std::move(f));
-    flow = flows_.end() - 1;
-  }
-  for (std::size_t i = 0; i < coeff_.damped.size(); ++i) {
-    const std::uint32_t j = coeff_.damped[i];
-    vx_[j] *= flow->decay[i];
-    vy_[j] *= flow->decay[i];
-  }
-  // x is unchanged, so a cached a_c(x) stays valid.
-}
-
-template <class Real>
-void World<Real>::rk4_step(Real h, const Real push[2]) {
-  const std::size_t n = x_.size();
-  Real *x = x_.data(), *y = y_.data(), *vx = vx_.data(), *vy = vy_.data();
-  Real *ax = ax_.data(), *ay = ay_.data();
-  Real *sx = sx_.data(), *sy = sy_.data(), *svx = svx_.data(), *svy = svy_.data();
-  Real *dx = dx_.data(), *dy = dy_.data(), *dvx = dvx_.data(), *dvy = dvy_.data();
-  const Real half = h * Real(0.5);
-  evaluate<true>(x, y, vx, vy, ax, ay, push);  // k1 = (v, a(x, v))
-  for (std::size_t j = 0; j < n; ++j) {
-    dx[j] = vx[j], dy[j] = vy[j], dvx[j] = ax[j], dvy[j] = ay[j];
-    sx[j] = x[j] + half * vx[j], sy[j] = y[j] + half * vy[j];
-    svx[j] = vx[j] + half * ax[j], svy[j] = vy[j] + half * ay[j];
-  }
-  evaluate<true>(sx, sy, svx, svy, ax, ay, push);  // k2 at y + h k1 / 2
-  for (std::size_t j = 0; j < n; ++j) {
-    dx[j] += Real(2) * svx[j], dy[j] += Real(2) * svy[j];
-    dvx[j] += Real(2) * ax[j], dvy[j] += Real(2) * ay[j];
-    sx[j] = x[j] + half * svx[j], sy[j] = y[j] + half * svy[j];
-    svx[j] = vx[j] + half * ax[j], svy[j] = vy[j] + half * ay[j];
-  }
-  evaluate<true>(sx, sy, svx, svy, ax, ay, push);  // k3 at y + h k2 / 2
-  for (std::size_t j = 0; j < n; ++j) {
-    dx[j] += Real(2) * svx[j], dy[j] += Real(2) * svy[j];
-    dvx[j] += Real(2) * ax[j], dvy[j] += Real(2) * ay[j];
-    sx[j] = x[j] + h * svx[j], sy[j] = y[j] + h * svy[j];
-    svx[j] = vx[j] + h * ax[j], svy[j] = vy[j] + h * ay[j];
-  }
-  evaluate<true>(sx, sy, svx, svy, ax, ay, push);  // k4 at y + h k3
-  const Real sixth = h / Real(6);
-  for (std::size_t j = 0; j < n; ++j) {
-    x[j] += sixth * (dx[j] + svx[j]);
-    y[j] += sixth * (dy[j] + svy[j]);
-    vx[j] += sixth * (dvx[j] + ax[j]);
-    vy[j] += sixth * (dvy[j] + ay[j]);
-  }
 }
 
 // Backward Euler, per body (fixstep's forces never couple bodies). With r = x_{n+1} the
@@ -346,15 +370,8 @@ void World<Real>::implicit_euler_step(Real h, const Real push[2]) {
 #define FIXSTEP_INSTANTIATE(Real)                                                               \
   template void World<Real>::step(const TickInput&);                                            \
   template void World<Real>::accelerations(std::span<Real>, std::span<Real>, const TickInput&); \
-  template void World<Real>::evaluate<true>(const Real*, const Real*, const Real*, const Real*, \
-                                            Real*, Real*, const Real[2]) const;                 \
-  template void World<Real>::evaluate<false>(const Real*, const Real*, const Real*,             \
-                                             const Real*, Real*, Real*, const Real[2]) const;   \
-  template void World<Real>::substep(Real, const Real[2]);                                      \
-  template void World<Real>::strang_verlet(Real, const Real[2]);                                \
-  template void World<Real>::kick_drift_kick(Real, const Real[2]);                              \
-  template void World<Real>::damping_flow(double);                                              \
-  template void World<Real>::rk4_step(Real, const Real[2]);                                     \
+  template std::size_t World<Real>::bytes_per_body_step();                                      \
+  template const Real* World<Real>::damping_decay(double);                                      \
   template void World<Real>::implicit_euler_step(Real, const Real[2]);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

@@ -34,9 +34,10 @@ enum class Integrator {
   explicit_euler,
   /// Velocity Verlet (kick-drift-kick) for a_c, Strang-split with the exact damping flow:
   ///   D(h/2); v += a_c(x) h/2; x += v h; v += a_c(x) h/2; D(h/2)
-  /// Order 2 (also with damping and drag); symplectic when γ = 0; 1 evaluation per step
-  /// undamped (the last kick's acceleration is reused by the next step), 2 with damping; stable
-  /// for ω·h < 2. Sources: Swope, Andersen, Berens & Wilson, J. Chem. Phys. 76, 637 (1982);
+  /// Order 2 (also with damping and drag); symplectic when γ = 0; 1 new evaluation per step
+  /// when the last kick's acceleration is stored for the next step (FSAL) — fixstep instead
+  /// re-evaluates a_c(x) in registers (2 per step), which is cheaper than storing and reloading
+  /// two arrays per body; stable for ω·h < 2. Sources: Swope, Andersen, Berens & Wilson, J. Chem. Phys. 76, 637 (1982);
   /// Strang, SIAM J. Numer. Anal. 5, 506 (1968) for the splitting.
   velocity_verlet,
   /// Classical fourth-order Runge–Kutta on the full a(x, v):
@@ -59,8 +60,9 @@ enum class Integrator {
   /// Forest–Ruth: the fourth-order symplectic composition of three velocity-Verlet steps of
   /// w1·h, w0·h, w1·h with w1 = 1/(2 - 2^{1/3}), w0 = -2^{1/3} w1 (Yoshida's triple jump). Here
   /// each step is the Strang-split damped Verlet step above, which is symmetric, so the
-  /// composition stays order 4 with damping and drag. Order 4; 3 evaluations per step
-  /// undamped (shared kicks), 6 with damping; stable for ω·h below about 1.57. Sources: Forest
+  /// composition stays order 4 with damping and drag. Order 4; 3 new evaluations per step
+  /// with shared kicks (FSAL), 6 as fixstep evaluates them in registers; stable for ω·h below
+  /// about 1.57. Sources: Forest
   /// & Ruth, Physica D 43, 105 (1990); Yoshida, Phys. Lett. A 150, 262 (1990).
   forest_ruth,
 };
@@ -78,6 +80,11 @@ inline constexpr Integrator all_integrators[] = {
 [[nodiscard]] std::string_view integrator_names();
 /// Theoretical order of accuracy (global error O(h^order)).
 [[nodiscard]] int integrator_order(Integrator integrator);
+/// Force evaluations a(x, v) per body per step as fixstep performs them: 1 (semi-implicit,
+/// explicit and implicit Euler — the latter solved in closed form for linear forces, by
+/// Newton's method otherwise), 2 (velocity Verlet), 4 (RK4), 6 (Forest–Ruth). Verlet and
+/// Forest–Ruth need only 1 and 3 when the last acceleration is kept (see their entries).
+[[nodiscard]] int integrator_evaluations(Integrator integrator);
 
 /// "f32" or "f64".
 [[nodiscard]] std::string_view precision_name(Precision precision);

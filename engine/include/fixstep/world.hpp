@@ -2,12 +2,12 @@
 //
 // Layout (the EnTT idea, kept minimal): every component type lives in its own sparse set keyed
 // by entity slot, so adding or removing a component never touches the others. Body state is
-// stored structure-of-arrays (x, y, vx, vy, 1/m) in the set's dense order, which is the order
-// the integrator walks. Each force term (spring-damper, constant force, gravity, drag) keeps a
-// compact list of the bodies that carry it together with its parameters converted once to the
-// world's precision; the lists are rebuilt only when components are added or removed, never per
-// tick. A term with no bodies has an empty list and costs nothing: active_terms() says which
-// terms run.
+// stored structure-of-arrays (x, y, vx, vy) in the set's dense order, which is the order the
+// integrator walks. Since every fixstep force acts on one body, the components fold into one
+// per-body force field a(x, v) = -K s(x - anchor) - γ v + c, kept as arrays in the world's
+// precision and rebuilt only when components are added or removed, never per tick. A tick is
+// one fused pass over the bodies that reads only the arrays of the parts some body declares:
+// a force nobody declares costs nothing. active_terms() says which terms are declared.
 #pragma once
 
 #include <cstddef>
@@ -100,6 +100,8 @@ class World {
   // --- entities -------------------------------------------------------------------------
   /// Creates an entity with a Body and the optional components set in def.
   Entity create_body(const BodyDef& def);
+  /// Reserves room for `bodies` bodies (avoids regrowth when creating many).
+  void reserve(std::size_t bodies);
   /// Destroys the entity and all its components; its handle (and copies) become stale.
   void destroy(Entity e);
   [[nodiscard]] bool contains(Entity e) const { return bodies_.contains(e); }
@@ -126,24 +128,32 @@ class World {
 
   // --- stepping ---------------------------------------------------------------------------
   /// Advances every body by one tick of settings().dt with the chosen integrator.
+  ///
+  /// One fused pass over the bodies: fixstep's forces never couple bodies, so each body's
+  /// whole tick (every substep, every stage) runs in registers and its state is loaded and
+  /// stored once. The pass reads only the coefficient arrays of force parts some body
+  /// declares; bytes_per_body_step() gives the resulting memory traffic.
   void step(const TickInput& input = {});
+  /// Bytes one tick moves between memory and the core per body (STREAM's convention: each
+  /// array element read or written counts once, write-allocate traffic is not counted):
+  /// x, y, vx, vy read and written, plus each coefficient array the kernel reads, plus
+  /// x and y copied to previous_x()/previous_y() when set_keep_previous is on. Implicit Euler
+  /// reads every coefficient array. Rebuilds the force field first if components changed.
+  [[nodiscard]] std::size_t bytes_per_body_step();
   /// Number of ticks taken since creation.
   [[nodiscard]] std::uint64_t tick() const { return tick_; }
   /// Simulated time tick()·dt, s.
   [[nodiscard]] double time() const { return static_cast<double>(tick_) * settings_.dt; }
   [[nodiscard]] const WorldSettings& settings() const { return settings_; }
-  void set_integrator(Integrator integrator) {
-    settings_.integrator = integrator;
-    accel_valid_ = false;
-  }
+  void set_integrator(Integrator integrator) { settings_.integrator = integrator; }
   /// When on, step() first copies positions to previous_x()/previous_y() so a renderer can
   /// interpolate between the last two ticks. Off by default (costs a copy per tick).
   void set_keep_previous(bool keep);
 
   /// Accelerations a(x, v) at the current state, m/s²; ax and ay must hold body_count().
   void accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input = {});
-  /// Which force terms run (bits of ForceTermBits).
-  [[nodiscard]] unsigned active_terms();
+  /// Which force terms some body declares (bits of ForceTermBits).
+  [[nodiscard]] unsigned active_terms() const;
 
   // --- state (dense body order) -----------------------------------------------------------
   [[nodiscard]] std::span<const Real> x() const { return x_; }
@@ -171,14 +181,7 @@ class World {
   const detail::Store<C>& store() const;
   void validate(const Body& body, const std::string& who) const;
   // stepping (world_step.cpp)
-  template <bool with_damping>
-  void evaluate(const Real* x, const Real* y, const Real* vx, const Real* vy, Real* ax, Real* ay,
-                const Real push[2]) const;
-  void substep(Real h, const Real push[2]);
-  void kick_drift_kick(Real h, const Real push[2]);
-  void damping_flow(double tau);
-  void strang_verlet(Real h, const Real push[2]);
-  void rk4_step(Real h, const Real push[2]);
+  const Real* damping_decay(double tau);
   void implicit_euler_step(Real h, const Real push[2]);
   static void validate_component(const SpringDamper& c, const std::string& who);
   static void validate_component(const ConstantForce& c, const std::string& who);
@@ -202,10 +205,9 @@ class World {
 
   // bodies: SoA in dense order
   detail::SparseSet bodies_;
-  std::vector<Real> x_, y_, vx_, vy_, prev_x_, prev_y_, inv_mass_;
+  std::vector<Real> x_, y_, vx_, vy_, prev_x_, prev_y_;
   std::vector<double> mass_;
   std::vector<std::string> names_;
-  std::vector<Real> ax_, ay_;  // scratch accelerations, sized with the bodies
 
   // components (authoritative, double)
   detail::Store<SpringDamper> springs_;
@@ -214,45 +216,26 @@ class World {
   detail::Store<LinearDrag> drags_;
   detail::Store<Appearance> appearances_;
 
-  // force-term kernels: body index + parameters in Real, rebuilt when terms_dirty_
-  struct LinearSprings {  // rest length 0: F = -k (x - anchor) - b v
-    std::vector<std::uint32_t> body;
-    std::vector<Real> anchor_x, anchor_y, k, b;
-  } linear_springs_;
-  struct RestLengthSprings {  // rest length L > 0
-    std::vector<std::uint32_t> body;
-    std::vector<Real> anchor_x, anchor_y, k, b, rest;
-  } rest_springs_;
-  struct Forces {
-    std::vector<std::uint32_t> body;
-    std::vector<Real> fx, fy;
-  } forces_;
-  struct Gravities {
-    std::vector<std::uint32_t> body;
-    std::vector<Real> gx, gy;
-  } gravity_terms_;
-  struct Drags {
-    std::vector<std::uint32_t> body;
-    std::vector<Real> c;
-  } drag_terms_;
-
-  // Per-body coefficients of a(x, v) = -K (|d| - L) d/|d| + c - γ v (K = k/m, γ = (b + c)/m,
-  // c = F/m + g), for the damping flow and implicit Euler; rebuilt with the terms.
+  // The force field per body, in dense order, rebuilt from the components when terms_dirty_:
+  //   a(x, v) = -K s(d) - γ v + c + push,   d = x - anchor,
+  // with K = k/m, s(d) = d for rest length 0 and (|d| - L) d/|d| otherwise, γ = (b + c_drag)/m,
+  // c = F/m + g. The step kernels read only the arrays of the parts some body declares (the
+  // flags): a scene without springs never touches stiffness or anchors, one without damping
+  // never reads γ.
   struct Coefficients {
-    std::vector<Real> gamma, stiffness, anchor_x, anchor_y, rest, accel_x, accel_y;
-    std::vector<std::uint32_t> damped;  ///< bodies with γ > 0
+    std::vector<Real> stiffness, anchor_x, anchor_y, rest, gamma, accel_x, accel_y;
+    bool spring = false;  ///< some body has a spring (stiffness, anchor_x, anchor_y are read)
+    bool rest_length = false;  ///< some spring has L > 0 (rest is read; |d| needs a sqrt)
+    bool damping = false;      ///< some body has γ > 0 (gamma or the damping-flow decay)
+    bool accel = false;        ///< some body has c != 0 (accel_x, accel_y are read)
   } coeff_;
-  // Exact damping flow D(τ) factors per damped body, cached per τ (at most a few τ per tick).
+  // Exact damping flow D(τ) factors e^{-γτ} per body (1 where γ = 0), cached per τ: a Verlet
+  // tick needs one τ, Forest–Ruth two.
   struct DampingFlow {
     double tau = -1.0;
-    std::vector<Real> decay;  ///< e^{-γτ}
+    std::vector<Real> decay;
   };
   std::vector<DampingFlow> flows_;
-  // Verlet's first-same-as-last acceleration: valid while x and the push are unchanged.
-  bool accel_valid_ = false;
-  Real cached_push_[2] = {0, 0};
-  // RK4 stage state and weighted sums
-  std::vector<Real> sx_, sy_, svx_, svy_, dx_, dy_, dvx_, dvy_;
 };
 
 // --- component access (templates, so defined here) ---------------------------------------
