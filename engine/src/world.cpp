@@ -228,41 +228,45 @@ void World<Real>::reserve(std::size_t bodies) {
 template <class Real>
 void World<Real>::rebuild_terms() {
   // Per-body coefficients, summed in double and rounded once to Real.
+  struct Field {
+    double stiffness = 0, anchor_x = 0, anchor_y = 0, rest = 0, gamma = 0, cx = 0, cy = 0;
+  };
   const std::size_t n = body_count();
-  std::vector<double> gamma(n, 0.0), stiffness(n, 0.0), ax(n, 0.0), ay(n, 0.0), cx(n, 0.0),
-      cy(n, 0.0), rest(n, 0.0);
+  std::vector<Field> f(n);
   for (std::size_t i = 0; i < springs_.data.size(); ++i) {
     const SpringDamper& s = springs_.data[i];
-    const std::size_t j = bodies_.index(springs_.set.dense[i]);
-    stiffness[j] = s.stiffness / mass_[j];
-    gamma[j] += s.damping / mass_[j];
-    ax[j] = s.anchor.x, ay[j] = s.anchor.y, rest[j] = s.rest_length;
+    Field& fj = f[bodies_.index(springs_.set.dense[i])];
+    const double m = mass_[bodies_.index(springs_.set.dense[i])];
+    fj.stiffness = s.stiffness / m;
+    fj.gamma += s.damping / m;
+    fj.anchor_x = s.anchor.x, fj.anchor_y = s.anchor.y, fj.rest = s.rest_length;
   }
   for (std::size_t i = 0; i < drags_.data.size(); ++i) {
     const std::size_t j = bodies_.index(drags_.set.dense[i]);
-    gamma[j] += drags_.data[i].coefficient / mass_[j];
+    f[j].gamma += drags_.data[i].coefficient / mass_[j];
   }
   for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
     const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
-    cx[j] += constant_forces_.data[i].force.x / mass_[j];
-    cy[j] += constant_forces_.data[i].force.y / mass_[j];
+    f[j].cx += constant_forces_.data[i].force.x / mass_[j];
+    f[j].cy += constant_forces_.data[i].force.y / mass_[j];
   }
   for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
     const std::size_t j = bodies_.index(gravities_.set.dense[i]);
-    cx[j] += gravities_.data[i].acceleration.x;
-    cy[j] += gravities_.data[i].acceleration.y;
+    f[j].cx += gravities_.data[i].acceleration.x;
+    f[j].cy += gravities_.data[i].acceleration.y;
   }
-  auto to_real = [](std::vector<Real>& out, const std::vector<double>& v) {
-    out.assign(v.begin(), v.end());
-  };
   Coefficients& c = coeff_;
-  to_real(c.stiffness, stiffness);
-  to_real(c.anchor_x, ax);
-  to_real(c.anchor_y, ay);
-  to_real(c.rest, rest);
-  to_real(c.gamma, gamma);
-  to_real(c.accel_x, cx);
-  to_real(c.accel_y, cy);
+  auto to_real = [&](std::vector<Real>& out, double Field::*member) {
+    out.resize(n);
+    for (std::size_t j = 0; j < n; ++j) out[j] = static_cast<Real>(f[j].*member);
+  };
+  to_real(c.stiffness, &Field::stiffness);
+  to_real(c.anchor_x, &Field::anchor_x);
+  to_real(c.anchor_y, &Field::anchor_y);
+  to_real(c.rest, &Field::rest);
+  to_real(c.gamma, &Field::gamma);
+  to_real(c.accel_x, &Field::cx);
+  to_real(c.accel_y, &Field::cy);
   c.spring = !springs_.data.empty();
   c.rest_length = std::any_of(c.rest.begin(), c.rest.end(), [](Real r) { return r != Real(0); });
   c.damping = std::any_of(c.gamma.begin(), c.gamma.end(), [](Real g) { return g != Real(0); });

@@ -64,13 +64,15 @@ struct BodyField {
   static constexpr bool damped = Damped;
   static constexpr bool accel = Accel;
   static constexpr int decays = Decays;
-  Real k{}, anchor_x{}, anchor_y{}, rest{}, gamma{}, cx{}, cy{}, push_x{}, push_y{};
+  Real k{}, anchor_x{}, anchor_y{}, rest{}, gamma{}, cx{}, cy{};  ///< c includes the push
   Real decay[Decays > 0 ? Decays : 1]{};
 
-  /// a_c(x): the conservative part (spring, constant force, gravity, push), m/s².
-  void conservative(Real x, Real y, Real& ax, Real& ay) const {
+  /// a_c(x): the conservative part (spring, constant force, gravity, push), m/s². The push
+  /// is folded into c when the sweep loads it (Accel is on whenever the push is non-zero).
+  [[gnu::always_inline]] void conservative(Real x, Real y, Real& ax, Real& ay) const {
     if constexpr (S == SpringShape::none) {
-      ax = Real(0), ay = Real(0);
+      if constexpr (Accel) ax = cx, ay = cy;
+      else ax = Real(0), ay = Real(0);
     } else {
       Real dx = x - anchor_x, dy = y - anchor_y;
       if constexpr (S == SpringShape::rest_length) {
@@ -84,12 +86,11 @@ struct BodyField {
         dx = f * dx, dy = f * dy;
       }
       ax = -k * dx, ay = -k * dy;
+      if constexpr (Accel) ax += cx, ay += cy;
     }
-    if constexpr (Accel) ax += cx, ay += cy;
-    ax += push_x, ay += push_y;
   }
   /// a(x, v) = a_c(x) - γ v, m/s².
-  void full(Real x, Real y, Real vx, Real vy, Real& ax, Real& ay) const {
+  [[gnu::always_inline]] void full(Real x, Real y, Real vx, Real vy, Real& ax, Real& ay) const {
     conservative(x, y, ax, ay);
     if constexpr (Damped) ax -= gamma * vx, ay -= gamma * vy;
   }
@@ -109,7 +110,6 @@ void sweep(std::size_t n, Real* __restrict x, Real* __restrict y, Real* __restri
   const Real push_x = push[0], push_y = push[1];
   for (std::size_t j = 0; j < n; ++j) {
     Field f;
-    f.push_x = push_x, f.push_y = push_y;
     if constexpr (Field::shape != SpringShape::none) {
       f.k = k[j], f.anchor_x = anchor_x[j], f.anchor_y = anchor_y[j];
     }
@@ -117,7 +117,7 @@ void sweep(std::size_t n, Real* __restrict x, Real* __restrict y, Real* __restri
     if constexpr (Field::damped && Field::decays == 0) f.gamma = gamma[j];
     if constexpr (Field::damped && Field::decays >= 1) f.decay[0] = decay0[j];
     if constexpr (Field::damped && Field::decays >= 2) f.decay[1] = decay1[j];
-    if constexpr (Field::accel) f.cx = cx[j], f.cy = cy[j];
+    if constexpr (Field::accel) f.cx = cx[j] + push_x, f.cy = cy[j] + push_y;
     Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j];
     step(X, Y, VX, VY, f);
     x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
@@ -149,7 +149,7 @@ void with_field(SpringShape shape, bool damped, bool accel, Visit&& visit) {
 /// factor `decay` = e^{-γh/2}: S(h) = D(h/2) ∘ VV(h) ∘ D(h/2) (Strang). Symmetric, so second
 /// order, and a valid base for the triple jump.
 template <class Field, class Real>
-inline void strang_verlet(Real& x, Real& y, Real& vx, Real& vy, const Field& f, Real h,
+[[gnu::always_inline]] inline void strang_verlet(Real& x, Real& y, Real& vx, Real& vy, const Field& f, Real h,
                           Real decay) {
   const Real half = h * Real(0.5);
   Real ax, ay;
@@ -160,6 +160,56 @@ inline void strang_verlet(Real& x, Real& y, Real& vx, Real& vy, const Field& f, 
   f.conservative(x, y, ax, ay);
   vx += ax * half, vy += ay * half;  // kick h/2
   if constexpr (Field::damped) vx *= decay, vy *= decay;
+}
+
+// Backward Euler for one body (fixstep's forces never couple bodies). With r = x_{n+1} the
+// equations reduce to R(r) = (1 + hγ)(r - x) - h v - h² a_c(r) = 0, v_{n+1} = (r - x)/h.
+template <class Field, class Real>
+[[gnu::always_inline]] inline void implicit_euler(Real& x, Real& y, Real& vx, Real& vy, const Field& f, Real h) {
+  const Real one(1);
+  const Real g = Field::damped ? f.gamma : Real(0);
+  const Real cx = Field::accel ? f.cx : Real(0), cy = Field::accel ? f.cy : Real(0);
+  if constexpr (Field::shape != SpringShape::rest_length) {
+    // Linear: a_c(r) = -K (r - anchor) + c, so R is linear in r: closed form.
+    Real denom = one, vxn = vx, vyn = vy;
+    if constexpr (Field::damped) denom += h * g;
+    if constexpr (Field::shape == SpringShape::linear) {
+      denom += h * h * f.k;
+      Real ax = -f.k * (x - f.anchor_x), ay = -f.k * (y - f.anchor_y);
+      if constexpr (Field::accel) ax += cx, ay += cy;
+      vxn += h * ax, vyn += h * ay;
+    } else if constexpr (Field::accel) {
+      vxn += h * cx, vyn += h * cy;
+    }
+    vxn /= denom, vyn /= denom;
+    vx = vxn, vy = vyn;
+    x += h * vxn, y += h * vyn;
+  } else {
+    // Rest length L > 0 (or a mix with L = 0 bodies): Newton on R(r) with the Jacobian
+    //   J = (1 + hγ) I + h² K [(1 - L/|d|) I + (L/|d|) n nᵀ],  d = r - anchor, n = d/|d|.
+    const Real k = f.k, L = f.rest;
+    Real rx = x + h * vx, ry = y + h * vy;
+    for (int it = 0; it < 50; ++it) {
+      const Real dx = rx - f.anchor_x, dy = ry - f.anchor_y;
+      const Real len = std::sqrt(dx * dx + dy * dy);
+      if (!(len > Real(0))) break;
+      const Real s = k * (len - L) / len;  // a_c = -s d + c
+      const Real res_x = (one + h * g) * (rx - x) - h * vx - h * h * (-s * dx + cx);
+      const Real res_y = (one + h * g) * (ry - y) - h * vy - h * h * (-s * dy + cy);
+      const Real nx = dx / len, ny = dy / len;
+      const Real t1 = one + h * g + h * h * k * (one - L / len), t2 = h * h * k * L / len;
+      const Real j00 = t1 + t2 * nx * nx, j01 = t2 * nx * ny, j11 = t1 + t2 * ny * ny;
+      const Real det = j00 * j11 - j01 * j01;
+      if (!(std::abs(det) > Real(0))) break;
+      const Real step_x = (j11 * res_x - j01 * res_y) / det;
+      const Real step_y = (j00 * res_y - j01 * res_x) / det;
+      rx -= step_x, ry -= step_y;
+      const Real scale = std::abs(rx) + std::abs(ry) + len;
+      if (std::abs(step_x) + std::abs(step_y) <= Real(4) * std::numeric_limits<Real>::epsilon() * scale) break;
+    }
+    vx = (rx - x) / h, vy = (ry - y) / h;
+    x = rx, y = ry;
+  }
 }
 
 }  // namespace
@@ -174,8 +224,9 @@ void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const Ti
   for (std::size_t j = 0; j < body_count(); ++j) {
     BodyField<Real, SpringShape::rest_length, true, true, 0> f;
     f.k = c.stiffness[j], f.anchor_x = c.anchor_x[j], f.anchor_y = c.anchor_y[j];
-    f.rest = c.rest[j], f.gamma = c.gamma[j], f.cx = c.accel_x[j], f.cy = c.accel_y[j];
-    f.push_x = static_cast<Real>(input.push.x), f.push_y = static_cast<Real>(input.push.y);
+    f.rest = c.rest[j], f.gamma = c.gamma[j];
+    f.cx = c.accel_x[j] + static_cast<Real>(input.push.x);
+    f.cy = c.accel_y[j] + static_cast<Real>(input.push.y);
     f.full(x_[j], y_[j], vx_[j], vy_[j], ax[j], ay[j]);
   }
 }
@@ -205,13 +256,9 @@ std::size_t World<Real>::bytes_per_body_step() {
   if (terms_dirty_) rebuild_terms();
   const Coefficients& c = coeff_;
   std::size_t arrays = 8;  // x, y, vx, vy: read and written
-  if (settings_.integrator == Integrator::implicit_euler) {
-    arrays += 7;
-  } else {
-    if (c.spring) arrays += c.rest_length ? 4 : 3;
-    if (c.damping) arrays += settings_.integrator == Integrator::forest_ruth ? 2 : 1;
-    if (c.accel) arrays += 2;
-  }
+  if (c.spring) arrays += c.rest_length ? 4 : 3;
+  if (c.damping) arrays += settings_.integrator == Integrator::forest_ruth ? 2 : 1;
+  if (c.accel) arrays += 2;
   arrays *= static_cast<std::size_t>(settings_.substeps);
   if (keep_previous_) arrays += 4;
   return arrays * sizeof(Real);
@@ -232,6 +279,7 @@ void World<Real>::step(const TickInput& input) {
                             : c.rest_length ? SpringShape::rest_length
                                             : SpringShape::linear;
   const std::size_t n = x_.size();
+  const bool accel = c.accel || push[0] != Real(0) || push[1] != Real(0);
   // Every sweep gets the same arrays; each Field reads only its own.
   auto run = [&](auto field, const Real* decay0, const Real* decay1, auto body_step) {
     sweep<decltype(field)>(n, x_.data(), y_.data(), vx_.data(), vy_.data(), c.stiffness.data(),
@@ -242,7 +290,7 @@ void World<Real>::step(const TickInput& input) {
   for (int s = 0; s < settings_.substeps; ++s) {
     switch (settings_.integrator) {
       case Integrator::semi_implicit_euler:
-        with_field<Real, 0>(shape, c.damping, c.accel, [&](auto field) {
+        with_field<Real, 0>(shape, c.damping, accel, [&](auto field) {
           run(field, nullptr, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
             Real ax, ay;
             f.full(x, y, vx, vy, ax, ay);
@@ -252,7 +300,7 @@ void World<Real>::step(const TickInput& input) {
         });
         break;
       case Integrator::explicit_euler:
-        with_field<Real, 0>(shape, c.damping, c.accel, [&](auto field) {
+        with_field<Real, 0>(shape, c.damping, accel, [&](auto field) {
           run(field, nullptr, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
             Real ax, ay;
             f.full(x, y, vx, vy, ax, ay);
@@ -263,7 +311,7 @@ void World<Real>::step(const TickInput& input) {
         break;
       case Integrator::velocity_verlet: {
         const Real* d = c.damping ? damping_decay(0.5 * double(h)) : nullptr;
-        with_field<Real, 1>(shape, c.damping, c.accel, [&](auto field) {
+        with_field<Real, 1>(shape, c.damping, accel, [&](auto field) {
           run(field, d, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
             strang_verlet(x, y, vx, vy, f, h, f.decay[0]);
           });
@@ -275,7 +323,7 @@ void World<Real>::step(const TickInput& input) {
         const Real h0 = static_cast<Real>(fr_w0 * double(h));
         const Real* d1 = c.damping ? damping_decay(0.5 * double(h1)) : nullptr;
         const Real* d0 = c.damping ? damping_decay(0.5 * double(h0)) : nullptr;
-        with_field<Real, 2>(shape, c.damping, c.accel, [&](auto field) {
+        with_field<Real, 2>(shape, c.damping, accel, [&](auto field) {
           run(field, d1, d0, [h1, h0](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
             strang_verlet(x, y, vx, vy, f, h1, f.decay[0]);
             strang_verlet(x, y, vx, vy, f, h0, f.decay[1]);
@@ -285,7 +333,7 @@ void World<Real>::step(const TickInput& input) {
         break;
       }
       case Integrator::rk4:
-        with_field<Real, 0>(shape, c.damping, c.accel, [&](auto field) {
+        with_field<Real, 0>(shape, c.damping, accel, [&](auto field) {
           run(field, nullptr, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
             // y = (x, v), f(y) = (v, a(x, v)); d accumulates k1 + 2 k2 + 2 k3, s is the stage.
             const Real half = h * Real(0.5);
@@ -312,57 +360,15 @@ void World<Real>::step(const TickInput& input) {
         });
         break;
       case Integrator::implicit_euler:
-        implicit_euler_step(h, push);
+        with_field<Real, 0>(shape, c.damping, accel, [&](auto field) {
+          run(field, nullptr, nullptr, [h](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
+            implicit_euler(x, y, vx, vy, f, h);
+          });
+        });
         break;
     }
   }
   ++tick_;
-}
-
-// Backward Euler, per body (fixstep's forces never couple bodies). With r = x_{n+1} the
-// equations reduce to R(r) = (1 + hγ)(r - x) - h v - h² a_c(r) = 0, v_{n+1} = (r - x)/h.
-template <class Real>
-void World<Real>::implicit_euler_step(Real h, const Real push[2]) {
-  const std::size_t n = x_.size();
-  const Coefficients& c = coeff_;
-  const Real one(1);
-  for (std::size_t j = 0; j < n; ++j) {
-    const Real k = c.stiffness[j], g = c.gamma[j];
-    const Real cx = c.accel_x[j] + push[0], cy = c.accel_y[j] + push[1];
-    if (c.rest[j] == Real(0)) {
-      // Linear: a_c(r) = -K (r - anchor) + c, so R is linear in r: solve in closed form.
-      const Real denom = one + h * g + h * h * k;
-      const Real vxn = (vx_[j] + h * (-k * (x_[j] - c.anchor_x[j]) + cx)) / denom;
-      const Real vyn = (vy_[j] + h * (-k * (y_[j] - c.anchor_y[j]) + cy)) / denom;
-      vx_[j] = vxn, vy_[j] = vyn;
-      x_[j] += h * vxn, y_[j] += h * vyn;
-      continue;
-    }
-    // Rest length L > 0: Newton on R(r) with the Jacobian
-    //   J = (1 + hγ) I + h² K [(1 - L/|d|) I + (L/|d|) n nᵀ],  d = r - anchor, n = d/|d|.
-    const Real L = c.rest[j];
-    Real rx = x_[j] + h * vx_[j], ry = y_[j] + h * vy_[j];
-    for (int it = 0; it < 50; ++it) {
-      const Real dx = rx - c.anchor_x[j], dy = ry - c.anchor_y[j];
-      const Real len = std::sqrt(dx * dx + dy * dy);
-      if (!(len > Real(0))) break;
-      const Real s = k * (len - L) / len;  // a_c = -s d + c
-      const Real res_x = (one + h * g) * (rx - x_[j]) - h * vx_[j] - h * h * (-s * dx + cx);
-      const Real res_y = (one + h * g) * (ry - y_[j]) - h * vy_[j] - h * h * (-s * dy + cy);
-      const Real nx = dx / len, ny = dy / len;
-      const Real t1 = one + h * g + h * h * k * (one - L / len), t2 = h * h * k * L / len;
-      const Real j00 = t1 + t2 * nx * nx, j01 = t2 * nx * ny, j11 = t1 + t2 * ny * ny;
-      const Real det = j00 * j11 - j01 * j01;
-      if (!(std::abs(det) > Real(0))) break;
-      const Real step_x = (j11 * res_x - j01 * res_y) / det;
-      const Real step_y = (j00 * res_y - j01 * res_x) / det;
-      rx -= step_x, ry -= step_y;
-      const Real scale = std::abs(rx) + std::abs(ry) + len;
-      if (std::abs(step_x) + std::abs(step_y) <= Real(4) * std::numeric_limits<Real>::epsilon() * scale) break;
-    }
-    vx_[j] = (rx - x_[j]) / h, vy_[j] = (ry - y_[j]) / h;
-    x_[j] = rx, y_[j] = ry;
-  }
 }
 
 // world.hpp declares `extern template class World<Real>`, so every member defined in this
@@ -371,8 +377,7 @@ void World<Real>::implicit_euler_step(Real h, const Real push[2]) {
   template void World<Real>::step(const TickInput&);                                            \
   template void World<Real>::accelerations(std::span<Real>, std::span<Real>, const TickInput&); \
   template std::size_t World<Real>::bytes_per_body_step();                                      \
-  template const Real* World<Real>::damping_decay(double);                                      \
-  template void World<Real>::implicit_euler_step(Real, const Real[2]);
+  template const Real* World<Real>::damping_decay(double);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

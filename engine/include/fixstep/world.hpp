@@ -137,8 +137,8 @@ class World {
   /// Bytes one tick moves between memory and the core per body (STREAM's convention: each
   /// array element read or written counts once, write-allocate traffic is not counted):
   /// x, y, vx, vy read and written, plus each coefficient array the kernel reads, plus
-  /// x and y copied to previous_x()/previous_y() when set_keep_previous is on. Implicit Euler
-  /// reads every coefficient array. Rebuilds the force field first if components changed.
+  /// x and y copied to previous_x()/previous_y() when set_keep_previous is on. Rebuilds the
+  /// force field first if components changed.
   [[nodiscard]] std::size_t bytes_per_body_step();
   /// Number of ticks taken since creation.
   [[nodiscard]] std::uint64_t tick() const { return tick_; }
@@ -182,7 +182,6 @@ class World {
   void validate(const Body& body, const std::string& who) const;
   // stepping (world_step.cpp)
   const Real* damping_decay(double tau);
-  void implicit_euler_step(Real h, const Real push[2]);
   static void validate_component(const SpringDamper& c, const std::string& who);
   static void validate_component(const ConstantForce& c, const std::string& who);
   static void validate_component(const Gravity& c, const std::string& who);
