@@ -108,5 +108,53 @@ TEST(Render, SessionFramesAreReproducible) {
                          b.renderer().pixels().begin()));
 }
 
+
+TEST(Canvas, PrimitivesLandOnTheirPixelsAndClipIsExact) {
+  // 100 x 80 frame on a blue background: a red 4 px horizontal line along y = 20.5 from x = 10
+  // to 90 under a clip of x in [30, 60), y in [10, 40): red exactly on columns 30..59; a second
+  // line along y = 60.5 lies outside the clip and leaves no trace.
+  Renderer r(100, 80);
+  const Rgba8 blue{0, 0, 255, 255}, red{255, 0, 0, 255}, green{0, 255, 0, 255};
+  r.begin(blue);
+  r.set_clip(Renderer::ClipRect{30, 10, 60, 40});
+  r.line(10, 20.5f, 90, 20.5f, 4.0f, red);
+  r.line(10, 60.5f, 90, 60.5f, 4.0f, red);
+  r.set_clip(std::nullopt);
+  r.triangle(10, 50, 40, 50, 10, 75, green);
+  r.rect(70, 50, 90, 70, red);
+  r.finish();
+  EXPECT_TRUE(near(at(r, 30, 20), red, 2));
+  EXPECT_TRUE(near(at(r, 59, 20), red, 2));
+  EXPECT_TRUE(near(at(r, 29, 20), blue, 0));
+  EXPECT_TRUE(near(at(r, 60, 20), blue, 0));
+  EXPECT_TRUE(near(at(r, 45, 10), blue, 0));      // off the line
+  EXPECT_TRUE(near(at(r, 45, 60), blue, 0));      // the clipped-away line
+  EXPECT_TRUE(near(at(r, 15, 55), green, 0));     // inside the triangle
+  EXPECT_TRUE(near(at(r, 38, 72), blue, 0));      // beyond its hypotenuse
+  EXPECT_TRUE(near(at(r, 80, 60), red, 0));       // the unclipped rectangle
+  EXPECT_TRUE(near(at(r, 5, 5), blue, 0));
+}
+
+TEST(Canvas, VerticalTextReadsUpwardsFromItsAnchor) {
+  // "0000" at scale 2 is 4 * 6 * 2 = 48 px long; drawn vertically at (20, 70) its ink lies in
+  // x in [20, 20 + 9*2) and y in (70 - 48, 70].
+  Renderer r(64, 96);
+  const std::string s = "0000";
+  ASSERT_FLOAT_EQ(Renderer::text_width(s, 2.0f), 48.0f);
+  r.begin(Rgba8{0, 0, 0, 255});
+  r.text_vertical(20, 70, s, 2.0f, Rgba8{255, 255, 255, 255});
+  r.finish();
+  int inside = 0, outside = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool ink = at(r, x, y).r > 128;
+      const bool in_box = x >= 20 && x < 38 && y >= 70 - 48 && y < 70;
+      inside += ink && in_box;
+      outside += ink && !in_box;
+    }
+  EXPECT_GT(inside, 100);
+  EXPECT_EQ(outside, 0);
+}
+
 }  // namespace
 }  // namespace fixstep

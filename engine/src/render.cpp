@@ -207,8 +207,17 @@ void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
        {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, 1.0f);
 }
 
-void Renderer::text(float x, float y, const std::string& s, float scale, Rgba8 c) {
-  // stb_easy_font emits quads of 4 vertices {x, y, z, rgba8} (16 bytes each) in font units.
+void Renderer::triangle(float x0, float y0, float x1, float y1, float x2, float y2, Rgba8 c) {
+  const float p[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};
+  for (const auto& v : p) vertices_.push_back({v[0], v[1], 0.0f, 0.0f, c.r, c.g, c.b, c.a, 0.0f});
+}
+
+template <class Transform>
+void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel) {
+  // stb_easy_font emits quads of 4 vertices {x, y, z, rgba8} (16 bytes each) in font units,
+  // at most ~270 bytes per character on average (its documentation); give it room for long
+  // strings rather than letting it truncate them.
+  font_scratch_.resize(std::max(font_scratch_.size(), s.size() * 1024));
   std::string copy = s;
   unsigned char rgba[4] = {c.r, c.g, c.b, c.a};
   const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, font_scratch_.data(),
@@ -219,10 +228,42 @@ void Renderer::text(float x, float y, const std::string& s, float scale, Rgba8 c
     for (int k = 0; k < 4; ++k) {
       float v[2];
       std::memcpy(v, base + (q * 4 + k) * 16, sizeof v);
-      p[k][0] = x + v[0] * scale;
-      p[k][1] = y + v[1] * scale;
+      const std::array<float, 2> px = to_pixel(v[0] * scale, v[1] * scale);
+      p[k][0] = px[0];
+      p[k][1] = px[1];
     }
     quad(p, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
+  }
+}
+
+void Renderer::text(float x, float y, const std::string& s, float scale, Rgba8 c) {
+  glyphs(s, scale, c, [&](float u, float v) { return std::array<float, 2>{x + u, y + v}; });
+}
+
+void Renderer::text_vertical(float x, float y, const std::string& s, float scale, Rgba8 c) {
+  // Turned 90° counter-clockwise about (x, y) and moved right by nothing: font x (along the
+  // text) goes up the frame, font y (down the glyph) goes right.
+  glyphs(s, scale, c, [&](float u, float v) { return std::array<float, 2>{x + v, y - u}; });
+}
+
+float Renderer::text_width(const std::string& s, float scale) {
+  std::string copy = s;
+  return float(stb_easy_font_width(copy.data())) * scale;
+}
+
+void Renderer::begin(Rgba8 background) {
+  make_current();
+  vertices_.clear();
+  batches_.assign(1, Batch{});
+  background_ = background;
+}
+
+void Renderer::set_clip(std::optional<ClipRect> clip) {
+  if (batches_.empty()) batches_.push_back(Batch{});
+  if (batches_.back().first == vertices_.size()) {
+    batches_.back().clip = clip;  // nothing drawn under the previous clip yet
+  } else {
+    batches_.push_back(Batch{vertices_.size(), clip});
   }
 }
 
@@ -249,8 +290,8 @@ void Renderer::grid() {
   line(x0, y, x1, y, 3.0f, text_color);
   line(x0, y - 5, x0, y + 5, 2.0f, text_color);
   line(x1, y - 5, x1, y + 5, 2.0f, text_color);
-  std::string label = fmt::format("{:g} m", step);
-  const float label_w = float(stb_easy_font_width(label.data())) * 2.0f;
+  const std::string label = fmt::format("{:g} m", step);
+  const float label_w = text_width(label, 2.0f);
   text(x1 - label_w, y - 24, label, 2.0f, text_color);  // right-aligned: never off the frame
 }
 
@@ -277,8 +318,7 @@ void Renderer::record_trails(const Snapshot& s) {
 }
 
 void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
-  make_current();
-  vertices_.clear();
+  begin(background);
   record_trails(s);
   grid();
 
@@ -339,10 +379,7 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
   if (!hud_lines.empty()) {
     constexpr float scale_text = 2.0f, line_h = 22.0f, margin = 10.0f;
     float widest = 0;
-    for (const std::string& l : hud_lines) {
-      std::string copy = l;
-      widest = std::max(widest, float(stb_easy_font_width(copy.data())) * scale_text);
-    }
+    for (const std::string& l : hud_lines) widest = std::max(widest, text_width(l, scale_text));
     rect(margin, margin, margin + widest + 16, margin + 10 + line_h * hud_lines.size(), panel);
     float y = margin + 8;
     for (const std::string& l : hud_lines) {
@@ -351,8 +388,14 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     }
   }
 
+  finish();
+}
+
+void Renderer::finish() {
+  make_current();
   glViewport(0, 0, width_, height_);
-  glClearColor(background.r / 255.0f, background.g / 255.0f, background.b / 255.0f, 1.0f);
+  glDisable(GL_SCISSOR_TEST);
+  glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
   // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
@@ -363,7 +406,22 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(Vertex)),
                vertices_.data(), GL_STREAM_DRAW);
-  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices_.size()));
+  for (std::size_t b = 0; b < batches_.size(); ++b) {
+    const std::size_t first = batches_[b].first;
+    const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : vertices_.size();
+    if (end == first) continue;
+    if (const auto& c = batches_[b].clip) {
+      // GL's scissor box has its origin at the bottom-left; pixels() rows run top down.
+      const int x0 = std::clamp(c->x0, 0, width_), x1 = std::clamp(c->x1, x0, width_);
+      const int y0 = std::clamp(c->y0, 0, height_), y1 = std::clamp(c->y1, y0, height_);
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(x0, height_ - y1, x1 - x0, y1 - y0);
+    } else {
+      glDisable(GL_SCISSOR_TEST);
+    }
+    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(end - first));
+  }
+  glDisable(GL_SCISSOR_TEST);
   glFinish();
   if (const GLenum err = glGetError(); err != GL_NO_ERROR) {
     throw RenderError(fmt::format("render: GL error 0x{:x} while drawing", err));

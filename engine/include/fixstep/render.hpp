@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -58,7 +59,8 @@ class Renderer {
   [[nodiscard]] std::array<double, 2> to_pixel(double x, double y) const;
 
   /// Draws grid, trails, springs, bodies and the HUD text lines into pixels(). Each call also
-  /// appends the bodies' positions to their trails (one sample per frame).
+  /// appends the bodies' positions to their trails (one sample per frame). Implemented with
+  /// the canvas calls below: begin(), primitives, finish().
   void draw(const Snapshot& snapshot, std::span<const std::string> hud_lines);
   /// Forgets the trails (after a restart or a jump).
   void clear_trails();
@@ -66,6 +68,50 @@ class Renderer {
   static constexpr int trail_frames = 45;
 
   [[nodiscard]] std::span<const std::uint8_t> pixels() const { return pixels_; }
+
+  // --- canvas: 2D drawing in pixel coordinates ---------------------------------------------
+  // The one GL pipeline of the renderer, shared by draw() and by plots (plot.hpp). Coordinates
+  // are pixels, x right and y down, origin at the top-left corner of the frame, continuous
+  // (pixel (i, j) covers [i, i+1) x [j, j+1), so its centre is (i + 0.5, j + 0.5)); sizes are
+  // pixels. Colours blend "over" what was drawn before in call order; alpha stays 255.
+  // Primitives only record vertices: nothing reaches pixels() until finish().
+
+  /// An axis-aligned pixel rectangle [x0, x1) x [y0, y1).
+  struct ClipRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  };
+
+  /// Starts a new picture that finish() fills with `background` before drawing the
+  /// primitives recorded in between. Forgets primitives recorded since the last finish().
+  void begin(Rgba8 background);
+  /// Rasterises everything recorded since begin() into pixels() (one upload, one draw call per
+  /// clip change). Throws RenderError if GL reports an error.
+  void finish();
+  /// Primitives recorded after this call are cut to `clip` (GL scissor: exact to the pixel)
+  /// until the next set_clip(); std::nullopt draws on the whole frame again.
+  void set_clip(std::optional<ClipRect> clip);
+
+  /// A filled axis-aligned rectangle from corner (x0, y0) to corner (x1, y1), not smoothed.
+  void rect(float x0, float y0, float x1, float y1, Rgba8 c);
+  /// A filled triangle (any winding), not smoothed.
+  void triangle(float x0, float y0, float x1, float y1, float x2, float y2, Rgba8 c);
+  /// An anti-aliased straight line of `width` px from (x0, y0) to (x1, y1) with flat ends
+  /// (no caps); lines shorter than 1e-3 px are skipped.
+  void line(float x0, float y0, float x1, float y1, float width, Rgba8 c);
+  /// An anti-aliased filled disc of radius r px centred on (cx, cy).
+  void disc(float cx, float cy, float r, Rgba8 c);
+  /// Text in stb_easy_font's bitmap font (ASCII; '\n' starts a new line), `scale` px per font
+  /// unit, with the top-left corner of the first glyph cell at (x, y). A line of capitals is
+  /// about 7·scale px tall; lines are 12·scale px apart.
+  void text(float x, float y, const std::string& s, float scale, Rgba8 c);
+  /// The same text turned 90° counter-clockwise (reading upwards), the top-left corner of the
+  /// unrotated glyph cell at (x, y): the text ends text_width() px above y and occupies
+  /// [x, x + text_height()) horizontally.
+  void text_vertical(float x, float y, const std::string& s, float scale, Rgba8 c);
+  /// Advance width of `s` drawn at `scale`, px (the longest line when s has several).
+  [[nodiscard]] static float text_width(const std::string& s, float scale);
+  /// Height of one line of text at `scale` (the glyph cell, capitals and descenders), px.
+  [[nodiscard]] static float text_height(float scale) { return 9.0f * scale; }
 
  private:
   struct Vertex {
@@ -75,10 +121,8 @@ class Renderer {
   };
   void make_current();
   void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind);
-  void rect(float x0, float y0, float x1, float y1, Rgba8 c);
-  void line(float x0, float y0, float x1, float y1, float width, Rgba8 c);
-  void disc(float cx, float cy, float r, Rgba8 c);
-  void text(float x, float y, const std::string& s, float scale, Rgba8 c);
+  template <class Transform>
+  void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
   void grid();
   void record_trails(const Snapshot& s);
 
@@ -89,6 +133,13 @@ class Renderer {
   std::string gl_renderer_;
   Camera camera_;
   std::vector<Vertex> vertices_;
+  // Draw batches: vertices [first, next batch's first) share one clip rectangle.
+  struct Batch {
+    std::size_t first = 0;
+    std::optional<ClipRect> clip;
+  };
+  std::vector<Batch> batches_;
+  Rgba8 background_{};
   std::vector<char> font_scratch_;
   // trails: ring buffers of trail_frames samples per body, pixel coordinates
   std::vector<float> trail_x_, trail_y_;
