@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Regenerates every table and figure of docs/PERFORMANCE.md on this machine, in one command:
+#   bash bench/reproduce.sh            (about 10 minutes on 2 cores)
+# Builds the optimised benchmark tree (build/bench), runs each study into docs/perf/, and
+# splices the generated markdown into docs/PERFORMANCE.md between its
+# "<!-- BEGIN name -->" / "<!-- END name -->" markers. Run on an otherwise idle machine:
+# timings are medians, but other load still shifts them.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash .ci/install-deps
+cmake --workflow --preset bench
+
+out=docs/perf
+bin=build/bench/bin
+mkdir -p "$out"
+
+# The machine the numbers come from.
+{
+  echo "| | |"
+  echo "|---|---|"
+  echo "| CPU | $(lscpu | sed -n 's/^Model name: *//p' | head -1) |"
+  echo "| cores | $(nproc) |"
+  echo "| caches | $(lscpu | sed -n 's/^L\([123][a-z]*\) cache: *\(.*\)/L\1 \2/p' | paste -sd ',' | sed 's/,/, /g') |"
+  echo "| memory | $(free -g | awk '/^Mem:/ {print $2 " GiB"}') |"
+  echo "| compiler | $(c++ --version | head -1) |"
+  echo "| build | CMake preset \`bench\` (Release, -O3 on the sweep, -ffp-contract=off, baseline x86-64 ISA) |"
+  echo "| date | $(date -u +%Y-%m-%d) |"
+} > "$out/machine.md"
+
+"$bin/bench_throughput" --report="$out/throughput.md" > "$out/throughput.log"
+"$bin/work_precision" --out "$out" > "$out/work_precision.log"
+
+splice() {  # splice NAME FILE: replace the text between the NAME markers with FILE
+  local doc=docs/PERFORMANCE.md
+  awk -v name="$1" -v src="$2" '
+    $0 == "<!-- BEGIN " name " -->" { print; while ((getline line < src) > 0) print line; skip = 1; next }
+    $0 == "<!-- END " name " -->" { skip = 0 }
+    !skip { print }' "$doc" > "$doc.tmp"
+  mv "$doc.tmp" "$doc"
+}
+splice machine "$out/machine.md"
+splice throughput "$out/throughput.md"
+splice work_precision "$out/work_precision.md"
+echo "reproduce: docs/PERFORMANCE.md and $out/ regenerated"
