@@ -73,6 +73,7 @@ TEST(NiceTicks, RejectsBadRanges) {
   EXPECT_THROW((void)nice_ticks(0, 10, true), std::invalid_argument);
   EXPECT_THROW((void)nice_ticks(-1, 10, true), std::invalid_argument);
   EXPECT_THROW((void)nice_ticks(0, 10, false, 1), std::invalid_argument);
+  EXPECT_THROW((void)nice_ticks(-1e308, 1e308, false), std::invalid_argument);  // span overflows
 }
 
 TEST(TickLabels, ShortestCommonDecimalsAndTidyExponents) {

@@ -232,6 +232,9 @@ Ticks nice_ticks(double min, double max, bool log, int max_major) {
     throw std::invalid_argument(fmt::format("nice_ticks: min {} is not below max {}", min, max));
   if (max_major < 2)
     throw std::invalid_argument(fmt::format("nice_ticks: max_major {} is below 2", max_major));
+  if (!std::isfinite(max - min))
+    throw std::invalid_argument(
+        fmt::format("nice_ticks: range [{}, {}] is too wide (its span overflows)", min, max));
   if (log && min <= 0)
     throw std::invalid_argument(
         fmt::format("nice_ticks: a log axis needs min > 0, got min = {}", min));

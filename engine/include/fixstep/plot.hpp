@@ -101,8 +101,8 @@ struct Ticks {
 /// otherwise at the unlabelled decades. When fewer than two decades fall inside the range, the
 /// majors are 1, 2 and 5·10^k (minors the other digits), and when even those give fewer than
 /// two, the linear rule is used.
-/// Throws std::invalid_argument when min or max is not finite, min >= max, max_major < 2, or
-/// (log) min <= 0.
+/// Throws std::invalid_argument when min or max is not finite, min >= max, max - min overflows,
+/// max_major < 2, or (log) min <= 0.
 [[nodiscard]] Ticks nice_ticks(double min, double max, bool log, int max_major = 8);
 
 /// Labels for major tick values, one per value.
@@ -169,7 +169,8 @@ struct PlotLayout {
 /// Throws std::invalid_argument naming the axis or series for: a given min or max that is not
 /// finite, min >= max, a log axis with a given min or max <= 0, a negative or non-finite
 /// margin, a series whose x and y lengths differ or whose line width or marker size is not
-/// > 0, a non-finite reference value, and a frame too small to leave a plot area.
+/// > 0, a non-finite reference value, a range whose span overflows a double (data from -1e308
+/// to 1e308), and a frame too small to leave a plot area.
 [[nodiscard]] PlotLayout layout_plot(const PlotSpec& spec, PixelBox frame);
 
 /// Records the chart into the picture `renderer` is composing (between Renderer::begin() and
