@@ -10,7 +10,9 @@
 
 namespace fixstep::demo {
 
-double Oscillator::omega() const { return std::sqrt(stiffness / mass); }
+double Oscillator::omega() const {
+  return std::sqrt(stiffness / mass);
+}
 
 double Oscillator::energy(double x, double v) const {
   return 0.5 * mass * v * v + 0.5 * stiffness * x * x;
@@ -23,8 +25,8 @@ void Trace::add(double time, double position, double velocity, double e) {
   energy.push_back(e);
 }
 
-OscillatorRun::OscillatorRun(const Oscillator& system, Integrator integrator,
-                             Precision precision, double dt)
+OscillatorRun::OscillatorRun(const Oscillator& system, Integrator integrator, Precision precision,
+                             double dt)
     : system_(system),
       integrator_(integrator),
       sim_(precision, WorldSettings{.dt = dt, .integrator = integrator}) {
@@ -33,9 +35,8 @@ OscillatorRun::OscillatorRun(const Oscillator& system, Integrator integrator,
   BodyDef def;
   def.name = "bob";
   def.body = Body{.mass = system.mass, .position = {system.x0, 0.0}, .velocity = {system.v0, 0.0}};
-  def.spring = SpringDamper{.anchor = {0.0, 0.0},
-                            .stiffness = system.stiffness,
-                            .damping = system.damping};
+  def.spring =
+      SpringDamper{.anchor = {0.0, 0.0}, .stiffness = system.stiffness, .damping = system.damping};
   sim_.create_body(def);
   const Body b = sim_.body_at(0);
   trace_.add(0.0, b.position.x, b.velocity.x, sim_.energy().total());
@@ -167,7 +168,8 @@ double growth_per_tick(const std::vector<double>& energy) {
 std::string two_digits(double v) {
   if (!(v > 0) || !std::isfinite(v)) return fmt::format("{}", v);
   const double p = std::pow(10.0, std::floor(std::log10(v)) - 1);
-  return fmt::format("{:.{}f}", std::round(v / p) * p, std::max(0, -static_cast<int>(std::log10(p))));
+  return fmt::format("{:.{}f}", std::round(v / p) * p,
+                     std::max(0, -static_cast<int>(std::log10(p))));
 }
 
 std::string describe(const Oscillator& s) {
@@ -293,11 +295,10 @@ Report article_figures(Precision precision) {
     f.spec.title = fmt::format("(d) Zoomed in near t = {:.2f} s: RK4 is closer", tc);
     f.spec.x = time_axis(t0, t1);
     f.spec.y = position_axis();
-    f.spec.series = {line("exact (wide, beneath)", zoom.t, zoom.x, exact_color, 7.0f),
-                     with_markers(line("semi-implicit Euler", sie.t, sie.x, semi_color),
-                                  Marker::square, 5.0f),
-                     with_markers(line("RK4", rk4.t, rk4.x, rk4_color, 1.5f), Marker::circle,
-                                  3.5f)};
+    f.spec.series = {
+        line("exact (wide, beneath)", zoom.t, zoom.x, exact_color, 7.0f),
+        with_markers(line("semi-implicit Euler", sie.t, sie.x, semi_color), Marker::square, 5.0f),
+        with_markers(line("RK4", rk4.t, rk4.x, rk4_color, 1.5f), Marker::circle, 3.5f)};
     const auto at = [&](const Trace& tr) { return tr.x[c]; };
     f.spec.caption = {
         fmt::format("{}, dt = {:g} s, {}; markers are ticks. At t = {:.2f} s: exact {:.4f} m, "
@@ -382,9 +383,8 @@ Report article_figures(Precision precision) {
     note(k + ".rk4_phase_theory", rk4_phase_theory, "rad");
     note(k + ".rk4_frequency_ratio", rk4_freq, "omega");
 
-    const std::string setup =
-        fmt::format("{}, dt = {:g} s (omega*dt = {:.4f}), {}, {:g} ticks", describe(u), dt, th,
-                    prec, ticks);
+    const std::string setup = fmt::format("{}, dt = {:g} s (omega*dt = {:.4f}), {}, {:g} ticks",
+                                          describe(u), dt, th, prec, ticks);
     const std::string sie_line = fmt::format(
         "Semi-implicit Euler runs fast: frequency {:.5f} omega from its zero crossings (theory "
         "acos(1 - (omega*dt)^2/2)/(omega*dt) = {:.5f}), gaining {:.2f} rad in {:g} s; {:+.2f} rad "
@@ -395,11 +395,13 @@ Report article_figures(Precision precision) {
         "{:+.3f} rad (theory n*(arg R - omega*dt) = {:+.3f}), frequency {:.5f} omega.",
         U, rk4_ratio, rk4_ratio_theory, rk4_phase, rk4_phase_theory, rk4_freq);
     const double window = letter == 'e' ? 5.0 : 10.0;
-    const auto markers = [&](PlotSeries p, Marker m) { return with_markers(std::move(p), m, 4.0f); };
+    const auto markers = [&](PlotSeries p, Marker m) {
+      return with_markers(std::move(p), m, 4.0f);
+    };
     if (letter == 'e') {
       Figure f{tag + "_last5s", {}};
-      f.spec.title = fmt::format(
-          "(e) No damping, dt = {:g} s: the last {:g} of {:g} s", dt, window, U);
+      f.spec.title =
+          fmt::format("(e) No damping, dt = {:g} s: the last {:g} of {:g} s", dt, window, U);
       f.spec.x = time_axis(U - window, U);
       f.spec.y = position_axis();
       f.spec.series = {line("exact", ufine.t, ufine.x, exact_color, 1.5f),
@@ -410,8 +412,8 @@ Report article_figures(Precision precision) {
       rep.figures.push_back(std::move(f));
     } else {
       Figure f1{tag + "_rk4", {}};
-      f1.spec.title = fmt::format(
-          "(f) dt = {:g} s: RK4 stays nearly in phase but loses energy", dt);
+      f1.spec.title =
+          fmt::format("(f) dt = {:g} s: RK4 stays nearly in phase but loses energy", dt);
       f1.spec.x = time_axis(U - window, U);
       f1.spec.y = position_axis();
       f1.spec.series = {line("exact", ufine.t, ufine.x, exact_color, 1.5f),
@@ -421,8 +423,8 @@ Report article_figures(Precision precision) {
                          rk4_line};
       rep.figures.push_back(std::move(f1));
       Figure f2{tag + "_semi_implicit", {}};
-      f2.spec.title = fmt::format(
-          "(f) dt = {:g} s: semi-implicit Euler keeps energy, drifts in phase", dt);
+      f2.spec.title =
+          fmt::format("(f) dt = {:g} s: semi-implicit Euler keeps energy, drifts in phase", dt);
       f2.spec.x = time_axis(U - window, U);
       f2.spec.y = position_axis();
       f2.spec.series = {line("exact", ufine.t, ufine.x, exact_color, 1.5f),
@@ -511,8 +513,8 @@ std::string csv(const std::vector<ForceRow>& rows) {
   std::string out =
       "t,explicit_euler_x,explicit_euler_v,semi_implicit_x,semi_implicit_v,exact_x,exact_v\n";
   for (const ForceRow& r : rows) {
-    out += fmt::format("{},{},{},{},{},{},{}\n", r.t, r.ee_x, r.ee_v, r.sie_x, r.sie_v,
-                       r.exact_x, r.exact_v);
+    out += fmt::format("{},{},{},{},{},{},{}\n", r.t, r.ee_x, r.ee_v, r.sie_x, r.sie_v, r.exact_x,
+                       r.exact_v);
   }
   return out;
 }

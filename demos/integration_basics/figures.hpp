@@ -15,12 +15,12 @@ namespace fixstep::demo {
 
 /// A 1 kg-class mass on a spring-damper to the origin, moving along x: x'' = -(k/m) x - (b/m) x'.
 struct Oscillator {
-  double mass = 1.0;          ///< kg
-  double x0 = 1000.0;         ///< initial position, m
-  double v0 = 0.0;            ///< initial velocity, m/s
-  double stiffness = 15.0;    ///< k, N/m
-  double damping = 0.1;       ///< b, N·s/m
-  [[nodiscard]] double omega() const;   ///< undamped angular frequency √(k/m), rad/s
+  double mass = 1.0;                   ///< kg
+  double x0 = 1000.0;                  ///< initial position, m
+  double v0 = 0.0;                     ///< initial velocity, m/s
+  double stiffness = 15.0;             ///< k, N/m
+  double damping = 0.1;                ///< b, N·s/m
+  [[nodiscard]] double omega() const;  ///< undamped angular frequency √(k/m), rad/s
   [[nodiscard]] double gamma() const { return damping / mass; }  ///< b/m, 1/s
   /// Mechanical energy ½ m v² + ½ k x², J.
   [[nodiscard]] double energy(double x, double v) const;
@@ -105,8 +105,8 @@ inline constexpr double undamped_dts[] = {0.1, 0.25};
 /// are formatted as the article prints them: shortest digits for table 1, "%f" (6 decimals)
 /// for table 2.
 struct ConstantForceTables {
-  std::string markdown;           ///< both tables with headings
-  std::string csv_dt1, csv_dt001; ///< t,explicit_euler_x,explicit_euler_v,semi_implicit_x,...
+  std::string markdown;            ///< both tables with headings
+  std::string csv_dt1, csv_dt001;  ///< t,explicit_euler_x,explicit_euler_v,semi_implicit_x,...
 };
 [[nodiscard]] ConstantForceTables constant_force_tables();
 

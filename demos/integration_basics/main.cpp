@@ -5,7 +5,8 @@
 //       writes DIR/*.png (the figures, with axes, legend and a caption of measured numbers),
 //       DIR/constant_force.md and DIR/constant_force_dt*.csv (the article's tables),
 //       DIR/numbers.txt (every measured number, KEY=VALUE) and prints the tables and captions.
-//   integration_basics --window [--live damped|undamped] [--dt S] [--speed X] [--frames N] [--fps F]
+//   integration_basics --window [--live damped|undamped] [--dt S] [--speed X] [--frames N] [--fps
+//   F]
 //       the same comparison live: one trace per integrator grows as the fixed-step loop ticks.
 #include <algorithm>
 #include <chrono>
@@ -116,16 +117,22 @@ struct Live {
 
 Rgba8 color_for(Integrator i) {
   switch (i) {
-    case Integrator::explicit_euler: return plot_palette()[3];
-    case Integrator::semi_implicit_euler: return plot_palette()[1];
-    default: return plot_palette()[2];
+    case Integrator::explicit_euler:
+      return plot_palette()[3];
+    case Integrator::semi_implicit_euler:
+      return plot_palette()[1];
+    default:
+      return plot_palette()[2];
   }
 }
 std::string label_for(Integrator i) {
   switch (i) {
-    case Integrator::explicit_euler: return "explicit Euler";
-    case Integrator::semi_implicit_euler: return "semi-implicit Euler";
-    default: return "RK4";
+    case Integrator::explicit_euler:
+      return "explicit Euler";
+    case Integrator::semi_implicit_euler:
+      return "semi-implicit Euler";
+    default:
+      return "RK4";
   }
 }
 
@@ -146,24 +153,34 @@ void draw_live(Renderer& r, const Live& live, const FixedStepLoop& loop) {
     xs.y.max = 1.15 * live.system.x0;
   }
   xs.legend = LegendPlacement::outside_right;
-  xs.series.push_back({.label = "exact", .x = live.exact.t, .y = live.exact.x,
-                       .color = plot_palette()[6], .line_width = 1.5f});
+  xs.series.push_back({.label = "exact",
+                       .x = live.exact.t,
+                       .y = live.exact.x,
+                       .color = plot_palette()[6],
+                       .line_width = 1.5f});
   PlotSpec es;
   es.x = {.label = "t (s)", .min = 0.0, .max = live.duration};
   es.y = {.label = "E / E0", .log = live.system.damping > 0};
   es.legend = LegendPlacement::outside_right;
   std::vector<double> exact_e(live.exact.energy.size());
   for (std::size_t i = 0; i < exact_e.size(); ++i) exact_e[i] = live.exact.energy[i] / e0;
-  es.series.push_back({.label = "exact", .x = live.exact.t, .y = exact_e,
-                       .color = plot_palette()[6], .line_width = 1.5f});
+  es.series.push_back({.label = "exact",
+                       .x = live.exact.t,
+                       .y = exact_e,
+                       .color = plot_palette()[6],
+                       .line_width = 1.5f});
   std::string numbers;
   for (const OscillatorRun& run : live.runs) {
     const Trace& tr = run.trace();
-    xs.series.push_back({.label = label_for(run.integrator()), .x = tr.t, .y = tr.x,
+    xs.series.push_back({.label = label_for(run.integrator()),
+                         .x = tr.t,
+                         .y = tr.x,
                          .color = color_for(run.integrator())});
     std::vector<double> e(tr.energy.size());
     for (std::size_t i = 0; i < e.size(); ++i) e[i] = tr.energy[i] / e0;
-    es.series.push_back({.label = label_for(run.integrator()), .x = tr.t, .y = e,
+    es.series.push_back({.label = label_for(run.integrator()),
+                         .x = tr.t,
+                         .y = e,
                          .color = color_for(run.integrator())});
     numbers += fmt::format("{}{} {:.4f}", numbers.empty() ? "" : ", ", label_for(run.integrator()),
                            e.back());
@@ -227,14 +244,15 @@ int run_window(const Options& o) {
       live.restart();
       loop.reset();
     }
-    const double seconds = virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
+    const double seconds =
+        virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
     if (frame > 0) loop.advance(seconds, TickInput{}, [&](const TickInput&) { live.tick(); });
     draw_live(renderer, live, loop);
     window->present(renderer.pixels());
     if (!virtual_clock) std::this_thread::sleep_until(start + frame_budget);
   }
-  fmt::print("window: driver={} t={:.2f} s ticks={}\n", window->driver(),
-             live.runs.front().time(), live.runs.front().ticks());
+  fmt::print("window: driver={} t={:.2f} s ticks={}\n", window->driver(), live.runs.front().time(),
+             live.runs.front().ticks());
   for (const OscillatorRun& run : live.runs) {
     const Trace& tr = run.trace();
     fmt::print("  {}: x={:.6f} m E/E0={:.6f}\n", label_for(run.integrator()), tr.x.back(),
@@ -258,7 +276,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"f32", "f64"}))
       ->capture_default_str();
   app.add_flag("--window", o.window, "show the comparison live in an SDL window instead");
-  app.add_option("--live", o.live, "system shown live: damped (article, dt 0.01) or undamped (dt 0.1)")
+  app.add_option("--live", o.live,
+                 "system shown live: damped (article, dt 0.01) or undamped (dt 0.1)")
       ->check(CLI::IsMember({"damped", "undamped"}))
       ->capture_default_str();
   app.add_option("--dt", o.dt, "live: physics tick (s)")->check(CLI::Range(1e-4, 1.0));
@@ -267,7 +286,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--frames", o.frames, "live: quit after N frames (0 = run until Esc)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--fps", o.fps, "live: virtual clock of F frames per second instead of the real clock")
+  app.add_option("--fps", o.fps,
+                 "live: virtual clock of F frames per second instead of the real clock")
       ->check(CLI::Range(1.0, 1000.0));
   CLI11_PARSE(app, argc, argv);
   try {
