@@ -73,11 +73,13 @@ TEST(NiceTicks, RejectsBadRanges) {
   EXPECT_THROW((void)nice_ticks(0, 10, true), std::invalid_argument);
   EXPECT_THROW((void)nice_ticks(-1, 10, true), std::invalid_argument);
   EXPECT_THROW((void)nice_ticks(0, 10, false, 1), std::invalid_argument);
+  EXPECT_THROW((void)nice_ticks(-1e308, 1e308, false), std::invalid_argument);  // span overflows
 }
 
 TEST(TickLabels, ShortestCommonDecimalsAndTidyExponents) {
   using S = std::vector<std::string>;
-  EXPECT_EQ(tick_labels(Values{0, 0.2, 0.4, 0.6, 0.8, 1}), (S{"0", "0.2", "0.4", "0.6", "0.8", "1.0"}));
+  EXPECT_EQ(tick_labels(Values{0, 0.2, 0.4, 0.6, 0.8, 1}),
+            (S{"0", "0.2", "0.4", "0.6", "0.8", "1.0"}));
   EXPECT_EQ(tick_labels(Values{0.1, 0.15, 0.2}), (S{"0.10", "0.15", "0.20"}));
   EXPECT_EQ(tick_labels(Values{-1000, -500, 0, 500, 1000}),
             (S{"-1000", "-500", "0", "500", "1000"}));
@@ -178,7 +180,9 @@ bool near(Pixel p, Rgba8 c, int tol) {
 // Pure red and pure magenta appear nowhere in the plot's own chrome (greys, white, palette).
 constexpr Rgba8 red{255, 0, 0, 255};
 constexpr Rgba8 magenta{255, 0, 255, 255};
-bool reddish(Pixel p) { return p.r > 150 && p.g < 110 && p.b < 110; }
+bool reddish(Pixel p) {
+  return p.r > 150 && p.g < 110 && p.b < 110;
+}
 
 PlotSpec unit_square() {
   PlotSpec s;
@@ -231,8 +235,12 @@ TEST(DrawPlot, ALineLandsOnItsMappedPixelsAndNowhereElse) {
 TEST(DrawPlot, DataBeyondFixedRangesIsCutAtTheAxes) {
   Renderer r(400, 300);
   PlotSpec s = unit_square();
-  s.series.push_back({.x = {-50, 60}, .y = {-40, 70}, .color = red, .marker = Marker::square,
-                      .line_width = 4, .marker_size = 6});
+  s.series.push_back({.x = {-50, 60},
+                      .y = {-40, 70},
+                      .color = red,
+                      .marker = Marker::square,
+                      .line_width = 4,
+                      .marker_size = 6});
   s.series.push_back({.x = {-5, 15}, .y = {5, 5}, .color = red, .line_width = 4});
   const PlotLayout L = draw_plot(r, s);
   int inside = 0, outside = 0;
@@ -321,8 +329,10 @@ TEST(DrawPlot, NonFiniteAndNonPositiveLogPointsAreSkippedAndBreakTheLine) {
   PlotSpec g;
   g.x.log = g.y.log = true;
   g.legend = LegendPlacement::none;
-  g.series.push_back({.x = {1, 10, 0, 100, -5, 1000}, .y = {1, 10, 5, 100, 7, -1},
-                      .color = red, .marker = Marker::circle});
+  g.series.push_back({.x = {1, 10, 0, 100, -5, 1000},
+                      .y = {1, 10, 5, 100, 7, -1},
+                      .color = red,
+                      .marker = Marker::circle});
   const PlotLayout G = draw_plot(r, g);
   EXPECT_GT(G.x.min, 0);
   EXPECT_LT(G.x.max, 200);  // 1000 has y = -1: not shown, not counted
@@ -358,8 +368,8 @@ TEST(DrawPlot, TitleAxisLabelsTicksAndCaptionAreDrawnOutsideTheArea) {
       for (int x = int(x0); x < int(x1); ++x) n += at(r, x, y).r < 100;
     return n;
   };
-  EXPECT_GT(dark_in(0, 0, 640, L.area.y0 - 2), 30);            // title
-  EXPECT_GT(dark_in(0, L.area.y0, L.area.x0 - 2, L.area.y1), 30);  // y ticks and label
+  EXPECT_GT(dark_in(0, 0, 640, L.area.y0 - 2), 30);                  // title
+  EXPECT_GT(dark_in(0, L.area.y0, L.area.x0 - 2, L.area.y1), 30);    // y ticks and label
   EXPECT_GT(dark_in(L.area.x0, L.area.y1 + 2, L.area.x1, 400), 30);  // x ticks, label, caption
   ASSERT_EQ(L.caption_lines.size(), 1u);
   ASSERT_EQ(L.x_tick_labels.size(), L.x_ticks.major.size());

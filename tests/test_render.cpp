@@ -135,6 +135,21 @@ TEST(Canvas, PrimitivesLandOnTheirPixelsAndClipIsExact) {
   EXPECT_TRUE(near(at(r, 5, 5), blue, 0));
 }
 
+TEST(Canvas, TextOutsidePrintableAsciiIsDrawnAsQuestionMarks) {
+  // stb_easy_font has glyphs for ' '..'~' only; "ω·s" (UTF-8) must not read outside its table
+  // (ASan would report it) and counts as "??s".
+  EXPECT_FLOAT_EQ(Renderer::text_width("\xcf\x89\xc2\xb7s", 2.0f),
+                  Renderer::text_width("??s", 2.0f));
+  EXPECT_FLOAT_EQ(Renderer::text_width("a\tb\x7f", 1.0f), Renderer::text_width("a?b?", 1.0f));
+  Renderer r(64, 32);
+  r.begin(Rgba8{0, 0, 0, 255});
+  r.text(2, 2, "\xcf\x89\xc2\xb7s\x01", 2.0f, Rgba8{255, 255, 255, 255});
+  r.finish();
+  int ink = 0;
+  for (std::size_t i = 0; i < r.pixels().size(); i += 4) ink += r.pixels()[i] > 128;
+  EXPECT_GT(ink, 10);
+}
+
 TEST(Canvas, VerticalTextReadsUpwardsFromItsAnchor) {
   // "0000" at scale 2 is 4 * 6 * 2 = 48 px long; drawn vertically at (20, 70) its ink lies in
   // x in [20, 20 + 9*2) and y in (70 - 48, 70].

@@ -36,9 +36,13 @@ constexpr Rgba8 palette[] = {
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 // 10^e as the double nearest the decimal value (exact for |e| <= 22).
-double pow10(int e) { return e >= 0 ? std::pow(10.0, e) : 1.0 / std::pow(10.0, -e); }
+double pow10(int e) {
+  return e >= 0 ? std::pow(10.0, e) : 1.0 / std::pow(10.0, -e);
+}
 // n·10^e rounded once.
-double scaled(double n, int e) { return e >= 0 ? n * std::pow(10.0, e) : n / std::pow(10.0, -e); }
+double scaled(double n, int e) {
+  return e >= 0 ? n * std::pow(10.0, e) : n / std::pow(10.0, -e);
+}
 
 Ticks linear_ticks(double min, double max, int max_major) {
   const double span = max - min;
@@ -68,7 +72,8 @@ Ticks linear_ticks(double min, double max, int max_major) {
 
 Ticks log_ticks(double min, double max, int max_major) {
   const double lo = std::log10(min), hi = std::log10(max);
-  const int d0 = static_cast<int>(std::ceil(lo - 1e-9)), d1 = static_cast<int>(std::floor(hi + 1e-9));
+  const int d0 = static_cast<int>(std::ceil(lo - 1e-9)),
+            d1 = static_cast<int>(std::floor(hi + 1e-9));
   const auto inside = [&](double v) { return v >= min * (1 - 1e-9) && v <= max * (1 + 1e-9); };
   Ticks t;
   if (d1 - d0 + 1 >= 2) {
@@ -81,8 +86,10 @@ Ticks log_ticks(double min, double max, int max_major) {
       if (count <= max_major) break;
     }
     for (int k = d0; k <= d1; ++k) {
-      if (k % p == 0) t.major.push_back(pow10(k));
-      else t.minor.push_back(pow10(k));
+      if (k % p == 0)
+        t.major.push_back(pow10(k));
+      else
+        t.minor.push_back(pow10(k));
     }
     if (p == 1) {
       for (int k = d0 - 1; k <= d1; ++k)
@@ -136,8 +143,10 @@ bool clip_segment(double& x0, double& y0, double& x1, double& y1, const PixelBox
       continue;
     }
     const double r = q[i] / p[i];
-    if (p[i] < 0) t0 = std::max(t0, r);
-    else t1 = std::min(t1, r);
+    if (p[i] < 0)
+      t0 = std::max(t0, r);
+    else
+      t1 = std::min(t1, r);
     if (t0 > t1) return false;
   }
   const double ax = x0 + t0 * dx, ay = y0 + t0 * dy;
@@ -191,8 +200,8 @@ std::vector<LegendEntry> legend_entries(const PlotSpec& spec) {
   for (std::size_t i = 0; i < spec.series.size(); ++i) {
     const PlotSeries& s = spec.series[i];
     if (!s.label.empty())
-      out.push_back({s.label, color_of(spec, i), s.lines, s.dashed, s.marker, s.line_width,
-                     s.marker_size});
+      out.push_back(
+          {s.label, color_of(spec, i), s.lines, s.dashed, s.marker, s.line_width, s.marker_size});
   }
   for (const ReferenceLine& r : spec.references) {
     if (!r.label.empty())
@@ -232,6 +241,9 @@ Ticks nice_ticks(double min, double max, bool log, int max_major) {
     throw std::invalid_argument(fmt::format("nice_ticks: min {} is not below max {}", min, max));
   if (max_major < 2)
     throw std::invalid_argument(fmt::format("nice_ticks: max_major {} is below 2", max_major));
+  if (!std::isfinite(max - min))
+    throw std::invalid_argument(
+        fmt::format("nice_ticks: range [{}, {}] is too wide (its span overflows)", min, max));
   if (log && min <= 0)
     throw std::invalid_argument(
         fmt::format("nice_ticks: a log axis needs min > 0, got min = {}", min));
@@ -246,8 +258,7 @@ std::vector<std::string> tick_labels(std::span<const double> values, bool log) {
     for (std::size_t i = 0; i < values.size(); ++i) {
       const double v = values[i];
       const double a = std::abs(v);
-      out[i] = a >= 1e-3 && a < 1e5 ? fmt::format("{}", v)
-                                    : tidy_exponent(fmt::format("{:e}", v));
+      out[i] = a >= 1e-3 && a < 1e5 ? fmt::format("{}", v) : tidy_exponent(fmt::format("{:e}", v));
       if (a < 1e-3 || a >= 1e5) {
         // "{:e}" prints six decimals; keep the fewest that still read back exactly.
         for (int d = 0; d <= 16; ++d) {
@@ -308,7 +319,9 @@ float plot_text_scale(int width, int height) {
   return static_cast<float>(std::max(1.0, std::round(std::min(width / 640.0, height / 360.0))));
 }
 
-std::span<const Rgba8> plot_palette() { return palette; }
+std::span<const Rgba8> plot_palette() {
+  return palette;
+}
 
 // --- layout -------------------------------------------------------------------------------
 
@@ -324,17 +337,19 @@ void validate_axis(const char* which, const PlotAxis& a) {
     throw std::invalid_argument(
         fmt::format("plot: {}: min {} is not below max {}", name, *a.min, *a.max));
   if (a.log && a.min && *a.min <= 0)
-    throw std::invalid_argument(fmt::format(
-        "plot: {} is logarithmic but min = {} (must be > 0)", name, *a.min));
+    throw std::invalid_argument(
+        fmt::format("plot: {} is logarithmic but min = {} (must be > 0)", name, *a.min));
   if (a.log && a.max && *a.max <= 0)
-    throw std::invalid_argument(fmt::format(
-        "plot: {} is logarithmic but max = {} (must be > 0)", name, *a.max));
+    throw std::invalid_argument(
+        fmt::format("plot: {} is logarithmic but max = {} (must be > 0)", name, *a.max));
   if (!std::isfinite(a.margin) || a.margin < 0)
     throw std::invalid_argument(
         fmt::format("plot: {}: margin {} is not finite and >= 0", name, a.margin));
 }
 
-bool usable(double v, bool log) { return std::isfinite(v) && (!log || v > 0); }
+bool usable(double v, bool log) {
+  return std::isfinite(v) && (!log || v > 0);
+}
 
 // Resolves an axis range from the values the automatic ends should cover.
 Range resolve(const PlotAxis& a, double lo, double hi, bool any) {
@@ -361,8 +376,10 @@ Range resolve(const PlotAxis& a, double lo, double hi, bool any) {
   if (a.min) u0 = fwd(*a.min);
   if (a.max) u1 = fwd(*a.max);
   if (!(u0 < u1)) {  // one end given and the data lies wholly beyond it
-    if (a.min) u1 = u0 + 1.0;
-    else u0 = u1 - 1.0;
+    if (a.min)
+      u1 = u0 + 1.0;
+    else
+      u0 = u1 - 1.0;
   }
   Range r{back(u0), back(u1)};
   if (a.min) r.min = *a.min;
@@ -430,11 +447,12 @@ void fit_ticks(const PlotAxis& a, Range r, double length, bool horizontal, const
     AxisMap map{r.min, r.max, 0.0, length, a.log};
     bool fits = true;
     for (std::size_t i = 1; i < ticks.major.size() && fits; ++i) {
-      const double spacing = std::abs(map.to_pixel(ticks.major[i]) - map.to_pixel(ticks.major[i - 1]));
-      const double need =
-          horizontal ? 0.5 * (Renderer::text_width(labels[i], m.s) +
-                              Renderer::text_width(labels[i - 1], m.s)) + 3 * m.gap
-                     : Renderer::text_height(m.s) + 2 * m.gap;
+      const double spacing =
+          std::abs(map.to_pixel(ticks.major[i]) - map.to_pixel(ticks.major[i - 1]));
+      const double need = horizontal ? 0.5 * (Renderer::text_width(labels[i], m.s) +
+                                              Renderer::text_width(labels[i - 1], m.s)) +
+                                           3 * m.gap
+                                     : Renderer::text_height(m.s) + 2 * m.gap;
       fits = spacing >= need;
     }
     if (fits) return;
@@ -447,8 +465,8 @@ double widest(const std::vector<std::string>& labels, float scale) {
   return w;
 }
 
-PlotLayout layout_once(const PlotSpec& spec, PixelBox frame, const Metrics& m, Range xr,
-                       Range yr, double legend_width) {
+PlotLayout layout_once(const PlotSpec& spec, PixelBox frame, const Metrics& m, Range xr, Range yr,
+                       double legend_width) {
   PlotLayout L;
   L.frame = frame;
   L.text_scale = m.s;
@@ -456,19 +474,18 @@ PlotLayout layout_once(const PlotSpec& spec, PixelBox frame, const Metrics& m, R
   for (const std::string& c : spec.caption)
     for (std::string& l : wrap(c, frame.width() - 2 * m.pad, m.s)) L.caption_lines.push_back(l);
 
-  const double top = frame.y0 + m.pad +
-                     (spec.title.empty() ? 0.0 : Renderer::text_height(m.title_scale) + m.line * 0.75);
+  const double top =
+      frame.y0 + m.pad +
+      (spec.title.empty() ? 0.0 : Renderer::text_height(m.title_scale) + m.line * 0.75);
   const double bottom = frame.y1 - m.pad - m.line * double(L.caption_lines.size()) -
                         (L.caption_lines.empty() ? 0.0 : m.gap) -
-                        (spec.x.label.empty() ? 0.0 : text_h + 2 * m.gap) - text_h - m.gap -
-                        m.tick;
+                        (spec.x.label.empty() ? 0.0 : text_h + 2 * m.gap) - text_h - m.gap - m.tick;
   const double y_length = bottom - top;
   if (y_length > 0) fit_ticks(spec.y, yr, y_length, false, m, L.y_ticks, L.y_tick_labels);
   const double left = frame.x0 + m.pad + (spec.y.label.empty() ? 0.0 : text_h + 2 * m.gap) +
                       widest(L.y_tick_labels, m.s) + m.gap + m.tick;
   // Half of the last x label may hang beyond the area's right edge.
-  const double right = frame.x1 - m.pad - legend_width -
-                       0.5 * Renderer::text_width("0000000", m.s);
+  const double right = frame.x1 - m.pad - legend_width - 0.5 * Renderer::text_width("0000000", m.s);
   const double x_length = right - left;
   if (x_length < 8 * m.s || y_length < 8 * m.s) {
     throw std::invalid_argument(fmt::format(
@@ -537,25 +554,24 @@ PlotLayout layout_plot(const PlotSpec& spec, PixelBox frame) {
     const PlotSeries& s = spec.series[i];
     const std::string name = s.label.empty() ? fmt::format("#{}", i) : fmt::format("'{}'", s.label);
     if (s.x.size() != s.y.size())
-      throw std::invalid_argument(fmt::format("plot: series {}: x has {} values but y has {}",
-                                              name, s.x.size(), s.y.size()));
+      throw std::invalid_argument(fmt::format("plot: series {}: x has {} values but y has {}", name,
+                                              s.x.size(), s.y.size()));
     if (!(s.line_width > 0) || !(s.marker_size > 0) || !std::isfinite(s.line_width) ||
         !std::isfinite(s.marker_size))
-      throw std::invalid_argument(fmt::format(
-          "plot: series {}: line_width {} and marker_size {} must be finite and > 0", name,
-          s.line_width, s.marker_size));
+      throw std::invalid_argument(
+          fmt::format("plot: series {}: line_width {} and marker_size {} must be finite and > 0",
+                      name, s.line_width, s.marker_size));
   }
   for (const ReferenceLine& r : spec.references)
     if (!std::isfinite(r.value))
       throw std::invalid_argument(
           fmt::format("plot: reference line '{}' has a non-finite value {}", r.label, r.value));
   if (!(spec.text_scale >= 0) || !std::isfinite(spec.text_scale))
-    throw std::invalid_argument(fmt::format("plot: text_scale {} is not finite and >= 0",
-                                            spec.text_scale));
+    throw std::invalid_argument(
+        fmt::format("plot: text_scale {} is not finite and >= 0", spec.text_scale));
 
-  const Metrics m(spec.text_scale > 0
-                      ? spec.text_scale
-                      : plot_text_scale(int(frame.width()), int(frame.height())));
+  const Metrics m(spec.text_scale > 0 ? spec.text_scale
+                                      : plot_text_scale(int(frame.width()), int(frame.height())));
   const Range xr = x_range(spec);
   const Range yr = y_range(spec, xr);
   const std::vector<LegendEntry> entries = legend_entries(spec);
@@ -568,8 +584,8 @@ PlotLayout layout_plot(const PlotSpec& spec, PixelBox frame) {
     for (const LegendPlacement p : {LegendPlacement::top_right, LegendPlacement::top_left,
                                     LegendPlacement::bottom_right, LegendPlacement::bottom_left}) {
       const PixelBox b = corner_box(p, L, size, m);
-      const bool fits = b.x0 >= L.area.x0 && b.x1 <= L.area.x1 && b.y0 >= L.area.y0 &&
-                        b.y1 <= L.area.y1;
+      const bool fits =
+          b.x0 >= L.area.x0 && b.x1 <= L.area.x1 && b.y0 >= L.area.y0 && b.y1 <= L.area.y1;
       if (fits && !touches(spec, L, b)) {
         want = p;
         break;
@@ -641,8 +657,7 @@ void marker(Renderer& r, Marker k, double x, double y, float size, Rgba8 c) {
 }
 
 Renderer::ClipRect pixels_of(const PixelBox& b) {
-  return {int(std::floor(b.x0)), int(std::floor(b.y0)), int(std::ceil(b.x1)),
-          int(std::ceil(b.y1))};
+  return {int(std::floor(b.x0)), int(std::floor(b.y0)), int(std::ceil(b.x1)), int(std::ceil(b.y1))};
 }
 
 }  // namespace
@@ -677,8 +692,10 @@ PlotLayout add_plot(Renderer& r, const PlotSpec& spec, PixelBox frame) {
   r.set_clip(pixels_of(a));
   for (const ReferenceLine& ref : spec.references) {
     double x0 = a.x0, x1 = a.x1, y0 = a.y0, y1 = a.y1;
-    if (ref.orientation == ReferenceLine::Orientation::horizontal) y0 = y1 = L.y.to_pixel(ref.value);
-    else x0 = x1 = L.x.to_pixel(ref.value);
+    if (ref.orientation == ReferenceLine::Orientation::horizontal)
+      y0 = y1 = L.y.to_pixel(ref.value);
+    else
+      x0 = x1 = L.x.to_pixel(ref.value);
     if (!std::isfinite(x0 + y0)) continue;  // e.g. <= 0 on a log axis
     double phase = 0;
     if (clip_segment(x0, y0, x1, y1, a))
@@ -779,7 +796,8 @@ PlotLayout add_plot(Renderer& r, const PlotSpec& spec, PixelBox frame) {
         stroke(r, x0, mid, x1, mid, std::max(e.line_width, 2.0f), e.color,
                e.dashed ? dash * 0.6 : 0, gap * 0.6, phase);
       }
-      if (e.marker != Marker::none) marker(r, e.marker, (x0 + x1) * 0.5, mid, e.marker_size, e.color);
+      if (e.marker != Marker::none)
+        marker(r, e.marker, (x0 + x1) * 0.5, mid, e.marker_size, e.color);
       r.text(float(std::round(x1 + 2 * m.gap)), float(std::round(y)), e.label, s, ink);
       y += m.line;
     }

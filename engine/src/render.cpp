@@ -83,6 +83,20 @@ GLuint compile(GLenum type, const char* source) {
   return s;
 }
 
+// stb_easy_font indexes its glyph table with (char - 32) and has glyphs for ' '..'~' only: any
+// other byte would read outside the table. Each UTF-8 sequence (or other byte) outside that
+// range becomes one '?'; '\n' is kept (a new line).
+std::string printable(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if ((c >= 32 && c <= 126) || c == '\n') out.push_back(ch);
+    else if ((c & 0xC0) != 0x80) out.push_back('?');  // UTF-8 continuation bytes are dropped
+  }
+  return out;
+}
+
 }  // namespace
 
 struct Renderer::Gl {
@@ -217,8 +231,8 @@ void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to
   // stb_easy_font emits quads of 4 vertices {x, y, z, rgba8} (16 bytes each) in font units,
   // at most ~270 bytes per character on average (its documentation); give it room for long
   // strings rather than letting it truncate them.
-  font_scratch_.resize(std::max(font_scratch_.size(), s.size() * 1024));
-  std::string copy = s;
+  std::string copy = printable(s);
+  font_scratch_.resize(std::max(font_scratch_.size(), copy.size() * 1024));
   unsigned char rgba[4] = {c.r, c.g, c.b, c.a};
   const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, font_scratch_.data(),
                                         static_cast<int>(font_scratch_.size()));
@@ -247,7 +261,7 @@ void Renderer::text_vertical(float x, float y, const std::string& s, float scale
 }
 
 float Renderer::text_width(const std::string& s, float scale) {
-  std::string copy = s;
+  std::string copy = printable(s);
   return float(stb_easy_font_width(copy.data())) * scale;
 }
 

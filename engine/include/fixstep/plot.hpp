@@ -27,10 +27,10 @@ enum class Marker { none, circle, square, diamond, triangle };
 /// break the polyline there (no segment is drawn across them). Segments and markers are cut
 /// exactly at the plot area's border.
 struct PlotSeries {
-  std::string label{};         ///< legend text; empty: the series is not in the legend
+  std::string label{};           ///< legend text; empty: the series is not in the legend
   std::vector<double> x{}, y{};  ///< data, equal lengths (else std::invalid_argument)
   std::optional<Rgba8> color{};  ///< default: plot_palette()[series index % palette size]
-  bool lines = true;           ///< join consecutive points
+  bool lines = true;             ///< join consecutive points
   Marker marker = Marker::none;
   float line_width = 2.0f;   ///< px, > 0
   float marker_size = 4.0f;  ///< marker radius (half the side of a square), px, > 0
@@ -41,7 +41,7 @@ struct PlotSeries {
 struct ReferenceLine {
   enum class Orientation { horizontal, vertical };
   Orientation orientation = Orientation::horizontal;
-  double value = 0.0;  ///< in the data units of the y (horizontal) or x (vertical) axis
+  double value = 0.0;   ///< in the data units of the y (horizontal) or x (vertical) axis
   std::string label{};  ///< legend text; empty: not in the legend
   Rgba8 color{110, 110, 110, 255};
   bool dashed = true;
@@ -50,8 +50,8 @@ struct ReferenceLine {
 
 /// One axis. Unset ends are chosen from the data (automatic range, see layout_plot).
 struct PlotAxis {
-  std::string label{};  ///< e.g. "t (s)"; may be empty
-  bool log = false;   ///< log10 scale: every value shown must be > 0
+  std::string label{};                 ///< e.g. "t (s)"; may be empty
+  bool log = false;                    ///< log10 scale: every value shown must be > 0
   std::optional<double> min{}, max{};  ///< fixed ends in data units; finite, min < max
   /// Fraction of the data's span (log axes: of its decades) added beyond each automatic end.
   double margin = 0.05;
@@ -101,8 +101,8 @@ struct Ticks {
 /// otherwise at the unlabelled decades. When fewer than two decades fall inside the range, the
 /// majors are 1, 2 and 5·10^k (minors the other digits), and when even those give fewer than
 /// two, the linear rule is used.
-/// Throws std::invalid_argument when min or max is not finite, min >= max, max_major < 2, or
-/// (log) min <= 0.
+/// Throws std::invalid_argument when min or max is not finite, min >= max, max - min overflows,
+/// max_major < 2, or (log) min <= 0.
 [[nodiscard]] Ticks nice_ticks(double min, double max, bool log, int max_major = 8);
 
 /// Labels for major tick values, one per value.
@@ -169,7 +169,8 @@ struct PlotLayout {
 /// Throws std::invalid_argument naming the axis or series for: a given min or max that is not
 /// finite, min >= max, a log axis with a given min or max <= 0, a negative or non-finite
 /// margin, a series whose x and y lengths differ or whose line width or marker size is not
-/// > 0, a non-finite reference value, and a frame too small to leave a plot area.
+/// > 0, a non-finite reference value, a range whose span overflows a double (data from -1e308
+/// to 1e308), and a frame too small to leave a plot area.
 [[nodiscard]] PlotLayout layout_plot(const PlotSpec& spec, PixelBox frame);
 
 /// Records the chart into the picture `renderer` is composing (between Renderer::begin() and

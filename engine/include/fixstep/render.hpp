@@ -100,7 +100,8 @@ class Renderer {
   void line(float x0, float y0, float x1, float y1, float width, Rgba8 c);
   /// An anti-aliased filled disc of radius r px centred on (cx, cy).
   void disc(float cx, float cy, float r, Rgba8 c);
-  /// Text in stb_easy_font's bitmap font (ASCII; '\n' starts a new line), `scale` px per font
+  /// Text in stb_easy_font's bitmap font (printable ASCII: any other character, e.g. a UTF-8
+  /// "ω", is drawn as one '?'; '\n' starts a new line), `scale` px per font
   /// unit, with the top-left corner of the first glyph cell at (x, y). A line of capitals is
   /// about 7·scale px tall; lines are 12·scale px apart.
   void text(float x, float y, const std::string& s, float scale, Rgba8 c);
