@@ -29,6 +29,7 @@ mkdir -p "$out"
 
 "$bin/bench_throughput" --report="$out/throughput.md" > "$out/throughput.log"
 "$bin/work_precision" --out "$out" > "$out/work_precision.log"
+"$bin/integration_basics" --out "$out/article" > "$out/article.log"
 
 splice() {  # splice NAME FILE: replace the text between the NAME markers with FILE
   local doc=docs/PERFORMANCE.md
@@ -41,4 +42,5 @@ splice() {  # splice NAME FILE: replace the text between the NAME markers with F
 splice machine "$out/machine.md"
 splice throughput "$out/throughput.md"
 splice work_precision "$out/work_precision.md"
+splice constant_force "$out/article/constant_force.md"
 echo "reproduce: docs/PERFORMANCE.md and $out/ regenerated"
