@@ -1,6 +1,7 @@
 // PNG capture and atomic files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -171,6 +172,98 @@ TEST(Capture, EncodersOnSeveralThreadsGiveTheSameBytes) {
   }
   for (auto& t : threads) t.join();
   EXPECT_EQ(mismatches, std::vector<int>(2, 0));
+}
+
+/// The names in `dir`, sorted.
+std::vector<std::string> names_in(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    names.push_back(e.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(FrameWriter, WritesEveryFrameOnceInOrderWithTheEncodersBytes) {
+  const auto dir = temp_dir("writer");
+  const int w = 96, h = 54, frames = 9;
+  std::vector<std::string> expected_names;
+  {
+    FrameWriter writer(dir, w, h, PngOptions{.level = 3}, 2);
+    std::vector<std::uint8_t> pixels;
+    for (int f = 0; f < frames; ++f) {
+      pixels = test_picture(w, h, static_cast<unsigned>(f));
+      EXPECT_EQ(writer.submit(pixels), frame_path(dir, static_cast<std::uint64_t>(f)));
+      // submit() copied the pixels: scribbling over them now must not change frame f
+      std::fill(pixels.begin(), pixels.end(), std::uint8_t{0xAB});
+      expected_names.push_back(frame_path(dir, static_cast<std::uint64_t>(f)).filename());
+    }
+    EXPECT_EQ(writer.frames_submitted(), static_cast<std::uint64_t>(frames));
+    writer.finish();
+  }
+  EXPECT_EQ(names_in(dir), expected_names);  // each exactly once, nothing else (no temporaries)
+  PngEncoder reference(PngOptions{.level = 3});
+  for (int f = 0; f < frames; ++f) {
+    const auto picture = test_picture(w, h, static_cast<unsigned>(f));
+    const auto bytes = read_all(frame_path(dir, static_cast<std::uint64_t>(f)));
+    EXPECT_EQ(decode(bytes, w, h), picture) << "frame " << f;
+    const auto png = reference.encode(w, h, picture);
+    EXPECT_TRUE(std::equal(png.begin(), png.end(), bytes.begin(), bytes.end())) << "frame " << f;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(FrameWriter, DestructorWritesWhatWasSubmitted) {
+  const auto dir = temp_dir("writer_dtor");
+  {
+    FrameWriter writer(dir, 40, 30, {}, 3);
+    for (unsigned f = 0; f < 5; ++f) writer.submit(test_picture(40, 30, f));
+  }  // no finish(): the destructor still drains the queue
+  EXPECT_EQ(names_in(dir).size(), 5u);
+  EXPECT_EQ(decode(read_all(frame_path(dir, 4)), 40, 30), test_picture(40, 30, 4));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(FrameWriter, WorkerErrorReachesTheCallerNamingTheFileAndKeepsEarlierFrames) {
+  const auto dir = temp_dir("writer_fail");
+  // A directory where frame 3 must go: the worker's rename onto it fails (EISDIR), even as
+  // root (a read-only directory would not stop root).
+  std::filesystem::create_directories(frame_path(dir, 3) / "occupied");
+  const int w = 64, h = 36;
+  FrameWriter writer(dir, w, h, {}, 2);
+  std::string message;
+  int submitted = 0;
+  try {
+    for (; submitted < 12; ++submitted) writer.submit(test_picture(w, h, 7));
+    writer.finish();
+  } catch (const CaptureError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find(frame_path(dir, 3).string()), std::string::npos) << message;
+  EXPECT_NE(message.find("Is a directory"), std::string::npos) << message;
+  EXPECT_GE(submitted, 3);  // frames 0..2 were accepted before the failure could be seen
+  for (std::uint64_t f = 0; f < 3; ++f) {
+    EXPECT_EQ(decode(read_all(frame_path(dir, f)), w, h), test_picture(w, h, 7)) << f;
+  }
+  // Nothing after the failed frame, no temporaries: frames 0..2 and the blocking directory.
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"frame_000000.png", "frame_000001.png",
+                                                     "frame_000002.png", "frame_000003.png"}));
+  // The failure sticks: later calls report it too.
+  EXPECT_THROW(writer.submit(test_picture(w, h, 7)), CaptureError);
+  EXPECT_THROW(writer.finish(), CaptureError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(FrameWriter, RefusesBadArguments) {
+  const auto dir = temp_dir("writer_args");
+  EXPECT_THROW(FrameWriter(dir, 8, 8, PngOptions{.level = 13}), std::invalid_argument);
+  EXPECT_THROW(FrameWriter(dir, 0, 8), std::invalid_argument);
+  EXPECT_THROW(FrameWriter(dir, 8, 8, {}, 0), std::invalid_argument);
+  FrameWriter writer(dir, 8, 8);
+  EXPECT_THROW(writer.submit(std::vector<std::uint8_t>(8 * 8 * 4 - 1)), std::invalid_argument);
+  writer.finish();
+  EXPECT_TRUE(names_in(dir).empty());
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Capture, FailedWriteLeavesNoFileAndSaysWhy) {

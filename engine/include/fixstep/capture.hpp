@@ -1,14 +1,18 @@
 // Writing frames to disk: PNG via stb_image_write (deflate by libdeflate), atomically.
 #pragma once
 
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 namespace fixstep {
@@ -117,6 +121,69 @@ void write_png(const std::filesystem::path& file, int width, int height,
 /// DIR/frame_NNNNNN.png (six digits, zero-padded).
 [[nodiscard]] std::filesystem::path frame_path(const std::filesystem::path& dir,
                                                std::uint64_t frame);
+
+/// Writes a sequence of frames as DIR/frame_000000.png, frame_000001.png, ... (frame_path), in
+/// submission order, each exactly once, encoding and writing them on one worker thread while
+/// the caller renders the next frame. Every file is written atomically (write_file_atomic) with
+/// a PngEncoder at `options`, so the files are byte-identical to PngEncoder::write's.
+///
+/// Pipeline: submit() copies the pixels into one of `in_flight` buffers allocated up front
+/// (in_flight * width * height * 4 bytes; no allocation per frame) and returns at once; it
+/// blocks only while all `in_flight` buffers still wait for the worker.
+///
+/// Errors: the first frame the worker cannot write (unwritable directory, full disk, ...)
+/// stops the worker; that frame and every later one are not written, frames before it stay
+/// on disk, and the next submit() or finish() rethrows its CaptureError (naming the file).
+///
+/// Thread safety: call submit() and finish() from one thread (the producer).
+class FrameWriter {
+ public:
+  /// Starts the worker. `dir` must exist (see prepare_output_dir). Throws std::invalid_argument
+  /// for a bad options.level (as PngEncoder), a size below 1x1 or in_flight < 1.
+  FrameWriter(std::filesystem::path dir, int width, int height, PngOptions options = {},
+              int in_flight = 2);
+  /// Waits until the worker has written every submitted frame (or failed), then stops it.
+  /// Errors are not thrown from here: call finish() to see them.
+  ~FrameWriter();
+  FrameWriter(const FrameWriter&) = delete;
+  FrameWriter& operator=(const FrameWriter&) = delete;
+
+  /// Queues `rgba` (height rows of width*4 bytes, RGBA8, top row first; copied before this
+  /// returns) as the next frame and returns the path it will be written to. Throws
+  /// std::invalid_argument if the size does not match, or the worker's CaptureError if a
+  /// frame has failed.
+  std::filesystem::path submit(std::span<const std::uint8_t> rgba);
+  /// Blocks until every submitted frame is on disk. Throws the worker's CaptureError if one
+  /// failed. More frames may be submitted afterwards.
+  void finish();
+
+  /// Frames submitted so far (the next frame's number).
+  [[nodiscard]] std::uint64_t frames_submitted() const { return submitted_; }
+  [[nodiscard]] const std::filesystem::path& directory() const { return dir_; }
+
+ private:
+  void work();
+  void rethrow_if_failed() const;  // caller holds mutex_
+
+  std::filesystem::path dir_;
+  int width_, height_;
+  std::size_t frame_bytes_;
+  PngEncoder encoder_;                           // used by the worker only
+  std::vector<std::vector<std::uint8_t>> slots_;  // ring of in_flight frame buffers
+  std::vector<std::uint64_t> slot_frame_;         // frame number held by each slot
+  std::uint64_t submitted_ = 0;                   // producer only
+
+  // Shared with the worker, guarded by mutex_.
+  mutable std::mutex mutex_;
+  std::condition_variable queued_;    // worker waits: a frame was queued, or stop
+  std::condition_variable released_;  // producer waits: a slot was freed, or the worker failed
+  std::size_t head_ = 0;              // oldest queued slot (the one being written)
+  std::size_t count_ = 0;             // queued slots, including the one being written
+  bool stop_ = false;
+  std::exception_ptr error_;
+
+  std::thread worker_;  // last: starts after everything above is initialised
+};
 
 /// Creates `dir` (and parents) if needed and checks it is a writable directory.
 /// Throws CaptureError naming the directory and the reason.
