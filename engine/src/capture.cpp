@@ -59,7 +59,7 @@ std::string reason(int err) { return std::strerror(err); }
 // PNG row filter for every row. stb's default (-1) tries all five filters on each row and
 // keeps the one with the smallest sum of absolute values: 5x the filtering work. On fixstep's
 // frames (flat backgrounds, anti-aliased shapes) filter 0 "None" with libdeflate level 1 is
-// 3.7x faster than that choice and its files are within 0.5 % of the same size; Sub, Up,
+// 3.3x faster than that choice and its files are within 0.5 % of the same size; Sub, Up,
 // Average and Paeth are all slower, and Sub and Average also larger (docs/perf/capture.md).
 constexpr int png_filter_none = 0;
 
