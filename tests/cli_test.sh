@@ -95,6 +95,40 @@ expect "unwritable --out is named" "/proc/fixstep_frames" "$work/unwritable.out"
 "$fixstep" run "$scenes/default.toml" --steps 1 --csv /proc/nope/out.csv >"$work/csv_bad.out" 2>&1
 [ $? -ne 0 ] && ok "unwritable --csv exits non-zero" || fail "unwritable --csv"
 
+# --png-level: 0..12; anything else exits non-zero naming the flag, the range and the value
+for level in 13 -1 abc 2.5 99999999999; do
+  "$fixstep" render "$scenes/default.toml" --out "$work/lvl" --frames 1 --size 64x64 --png-level "$level" \
+    >"$work/level.out" 2>&1
+  [ $? -ne 0 ] && ok "rejects --png-level $level" || fail "accepted --png-level $level"
+  expect "--png-level $level: message names flag, range and value" \
+    "^--png-level: (.*0\.\.12.*'?$level|.*level $level .*0\.\.12)" "$work/level.out"
+done
+[ ! -e "$work/lvl" ] && ok "a rejected --png-level writes nothing" || fail "--png-level wrote $work/lvl"
+for level in 0 12; do
+  "$fixstep" render "$scenes/default.toml" --out "$work/lvl$level" --frames 3 --size 64x64 --png-level "$level" \
+    >"$work/level$level.out" 2>&1
+  [ $? -eq 0 ] && [ "$(ls "$work/lvl$level" | wc -l)" -eq 3 ] && ok "--png-level $level renders" \
+    || { fail "--png-level $level"; cat "$work/level$level.out"; }
+done
+# same pixels whatever the level: level 0 stores them, so its files are the largest
+[ "$(stat -c %s "$work/lvl0/frame_000002.png")" -gt "$(stat -c %s "$work/lvl12/frame_000002.png")" ] \
+  && ok "--png-level reaches the encoder (level 0 files are larger than level 12)" || fail "level sizes"
+
+# a frame the encoder thread cannot write: render fails naming it and keeps the frames before
+mkdir -p "$work/blocked/frame_000005.png"
+"$fixstep" render "$scenes/default.toml" --out "$work/blocked" --frames 12 --size 64x64 >"$work/blocked.out" 2>&1
+[ $? -ne 0 ] && ok "render exits non-zero when a frame cannot be written" || fail "blocked frame exit code"
+expect "the unwritable frame is named" "error: cannot write .*/blocked/frame_000005\.png: Is a directory" \
+  "$work/blocked.out"
+[ "$(ls -A "$work/blocked" | tr '\n' ' ')" = "frame_000000.png frame_000001.png frame_000002.png frame_000003.png frame_000004.png frame_000005.png " ] \
+  && ok "frames 0-4 kept, nothing after the failure, no temporaries" || { fail "blocked dir contents"; ls -A "$work/blocked"; }
+# the same for the last frame, whose failure can only show when render waits for the writer
+mkdir -p "$work/blocked_last/frame_000005.png"
+"$fixstep" render "$scenes/default.toml" --out "$work/blocked_last" --frames 6 --size 64x64 >"$work/blocked_last.out" 2>&1
+[ $? -ne 0 ] && ok "render exits non-zero when the last frame cannot be written" || fail "blocked last frame exit code"
+expect "the unwritable last frame is named" "error: cannot write .*/blocked_last/frame_000005\.png: Is a directory" \
+  "$work/blocked_last.out"
+
 # --- view --------------------------------------------------------------------------------
 env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$fixstep" view "$scenes/default.toml" --frames 1 >"$work/nodisp.out" 2>&1
 [ $? -ne 0 ] && ok "view without a display exits non-zero" || fail "view without display"

@@ -1,8 +1,11 @@
 #include "commands.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include <fixstep/capture.hpp>
@@ -31,6 +34,17 @@ std::string frame_size_validator(const std::string& value) {
                        max_frame_size, value);
   }
   return {};
+}
+
+std::string png_level_validator(const std::string& value) {
+  char* end = nullptr;
+  errno = 0;
+  const long level = std::strtol(value.c_str(), &end, 10);
+  if (end == value.c_str() || *end != '\0' || errno == ERANGE || level < INT_MIN ||
+      level > INT_MAX) {
+    return fmt::format("must be an integer {}..{}, got '{}'", min_png_level, max_png_level, value);
+  }
+  return png_level_error(static_cast<int>(level));
 }
 
 std::pair<int, int> parse_frame_size(const std::string& value) {
@@ -155,11 +169,14 @@ int render_command(const RenderOptions& o) {
   Session session(scene, width, height);
   const VirtualClock clock(o.fps);
   const auto frames = static_cast<std::uint64_t>(o.frames);
+  // Frame f is encoded and written on the writer's thread while frame f + 1 renders here.
+  FrameWriter writer(o.out, width, height, PngOptions{.level = o.png_level});
   for (std::uint64_t f = 0; f < frames; ++f) {
     if (f > 0) session.advance(clock.frame_seconds());
     session.draw();
-    write_png(frame_path(o.out, f), width, height, session.renderer().pixels());
+    writer.submit(session.renderer().pixels());
   }
+  writer.finish();  // every frame on disk, or the first failure's CaptureError
   fmt::print("{} renderer=\"{}\"\n", describe(scene), session.renderer().gl_renderer());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
   fmt::print("frames={} fps={} size={}x{}: {} ... {}\n", frames, o.fps, width, height,

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include <fixstep/capture.hpp>
 #include <fixstep/scene.hpp>
 
 namespace fixstep::cli {
@@ -32,6 +33,7 @@ struct RenderOptions {
   std::int64_t frames = 120;
   double fps = 60.0;
   std::string size = "1280x720";
+  int png_level = default_png_level;  ///< see PngOptions::level
 };
 
 struct ViewOptions {
@@ -45,6 +47,8 @@ struct ViewOptions {
 std::string positive_finite(const std::string& value);
 /// CLI11 validator text: "" when value is WxH within the renderer's limits.
 std::string frame_size_validator(const std::string& value);
+/// CLI11 validator text: "" when value is an integer PNG level in [min_png_level, max_png_level].
+std::string png_level_validator(const std::string& value);
 /// Parses "WxH" (validated by frame_size_validator).
 std::pair<int, int> parse_frame_size(const std::string& value);
 

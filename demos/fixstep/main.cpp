@@ -1,6 +1,7 @@
 // fixstep: run, capture and view fixed-timestep scenes.
 //   fixstep run SCENE (--steps N | --duration S) [--csv FILE] [--every K] [overrides]
-//   fixstep render SCENE --out DIR [--frames N] [--fps F] [--size WxH] [overrides]
+//   fixstep render SCENE --out DIR [--frames N] [--fps F] [--size WxH] [--png-level L]
+//                  [overrides]
 //   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [overrides]
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -62,6 +63,12 @@ int main(int argc, char** argv) {
       ->check(positive_finite);
   render_cmd->add_option("--size", render.size, "frame size in pixels, WxH")
       ->check(frame_size_validator);
+  render_cmd
+      ->add_option("--png-level", render.png_level,
+                   fmt::format("PNG deflate level {}..{} (libdeflate): 0 = uncompressed, "
+                               "1 = fastest (default), 12 = smallest and slowest",
+                               fixstep::min_png_level, fixstep::max_png_level))
+      ->check(png_level_validator);
 
   ViewOptions view;
   CLI::App* view_cmd = app.add_subcommand("view", "open an SDL2 window showing the scene live");

@@ -1,22 +1,79 @@
 #include "fixstep/capture.hpp"
 
+#include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <libdeflate.h>
 
+namespace {
+
+// The compressor of the PngEncoder encoding on this thread, set for the duration of one
+// stbi_write_png_to_func call (stb's compress hook has no context argument).
+thread_local libdeflate_compressor* current_compressor = nullptr;
+
+// stb_image_write's STBIW_ZLIB_COMPRESS hook: a zlib stream (2-byte header, deflate data,
+// Adler-32) of data[0, data_len). stb frees the result with STBIW_FREE (free), so it is
+// malloc'd. `quality` is stb's global stbi_write_png_compression_level, ignored: the level is
+// the compressor's. Returns nullptr on failure, which stb reports as an encoding failure.
+unsigned char* zlib_compress_hook(unsigned char* data, int data_len, int* out_len,
+                                  int /*quality*/) {
+  libdeflate_compressor* c = current_compressor;
+  if (c == nullptr || data_len < 0) return nullptr;
+  const std::size_t in = static_cast<std::size_t>(data_len);
+  const std::size_t bound = libdeflate_zlib_compress_bound(c, in);
+  auto* out = static_cast<unsigned char*>(std::malloc(bound));
+  if (out == nullptr) return nullptr;
+  const std::size_t n = libdeflate_zlib_compress(c, data, in, out, bound);
+  if (n == 0 || n > static_cast<std::size_t>(INT_MAX)) {  // 0: did not fit (cannot happen)
+    std::free(out);
+    return nullptr;
+  }
+  *out_len = static_cast<int>(n);
+  return out;
+}
+
+}  // namespace
+
+// stb_image_write with its private copy of every function and global (STB_IMAGE_WRITE_STATIC):
+// nothing outside this file can change stbi_write_force_png_filter under a running encoder.
 #define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
 #define STBI_WRITE_NO_STDIO  // we do the file I/O ourselves, atomically
+#define STBIW_ZLIB_COMPRESS zlib_compress_hook
 #include <stb/stb_image_write.h>
 
 namespace fixstep {
 
 namespace {
+
 std::string reason(int err) { return std::strerror(err); }
+
+// PNG row filter for every row. stb's default (-1) tries all five filters on each row and
+// keeps the one with the smallest sum of absolute values: 5x the filtering work. On fixstep's
+// frames (flat backgrounds, anti-aliased shapes) filter 0 "None" with libdeflate level 1 is
+// 3.3x faster than that choice and its files are within 0.5 % of the same size; Sub, Up,
+// Average and Paeth are all slower, and Sub and Average also larger (docs/perf/capture.md).
+constexpr int png_filter_none = 0;
+
+// Sets the stb_image_write globals once per process, before the first encoder exists (a
+// function-local static: initialised exactly once even when threads race here). They are
+// only read afterwards, so concurrent encoders on several threads see one constant value.
+void configure_stb_once() {
+  static const bool configured = [] {
+    stbi_write_force_png_filter = png_filter_none;
+    return true;
+  }();
+  (void)configured;
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(std::filesystem::path file) : file_(std::move(file)) {
@@ -80,28 +137,163 @@ void write_file_atomic(const std::filesystem::path& file, std::string_view text)
                                     text.size()));
 }
 
-void write_png(const std::filesystem::path& file, int width, int height,
-               std::span<const std::uint8_t> rgba) {
+std::string png_level_error(int level) {
+  if (level >= min_png_level && level <= max_png_level) return {};
+  return fmt::format(
+      "PNG level {} is outside {}..{} (libdeflate levels: 0 = no compression, 1 = fastest, "
+      "12 = smallest)",
+      level, min_png_level, max_png_level);
+}
+
+struct PngEncoder::Compressor {
+  libdeflate_compressor* c;
+  explicit Compressor(int level) : c(libdeflate_alloc_compressor(level)) {
+    if (c == nullptr) throw std::bad_alloc();
+  }
+  ~Compressor() { libdeflate_free_compressor(c); }
+  Compressor(const Compressor&) = delete;
+  Compressor& operator=(const Compressor&) = delete;
+};
+
+PngEncoder::PngEncoder(PngOptions options) : options_(options) {
+  if (const std::string error = png_level_error(options.level); !error.empty()) {
+    throw std::invalid_argument(error);
+  }
+  configure_stb_once();
+  compressor_ = std::make_unique<Compressor>(options.level);
+}
+
+PngEncoder::~PngEncoder() = default;
+PngEncoder::PngEncoder(PngEncoder&& other) noexcept = default;
+PngEncoder& PngEncoder::operator=(PngEncoder&& other) noexcept = default;
+
+std::span<const std::uint8_t> PngEncoder::encode(int width, int height,
+                                                 std::span<const std::uint8_t> rgba,
+                                                 std::string_view name) {
   if (width <= 0 || height <= 0 ||
       rgba.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4) {
-    throw CaptureError(fmt::format("cannot write {}: image is {}x{} but has {} bytes",
-                                   file.string(), width, height, rgba.size()));
+    throw CaptureError(fmt::format("cannot write {}: image is {}x{} but has {} bytes", name,
+                                   width, height, rgba.size()));
   }
-  std::vector<std::uint8_t> png;
-  png.reserve(rgba.size() / 4);
+  if (!compressor_) {
+    throw CaptureError(fmt::format("cannot write {}: PNG encoder was moved from", name));
+  }
+  png_.clear();
   auto append = [](void* context, void* data, int size) {
     auto* out = static_cast<std::vector<std::uint8_t>*>(context);
     const auto* p = static_cast<const std::uint8_t*>(data);
     out->insert(out->end(), p, p + size);
   };
-  if (!stbi_write_png_to_func(append, &png, width, height, 4, rgba.data(), width * 4)) {
-    throw CaptureError(fmt::format("cannot write {}: PNG encoding failed", file.string()));
-  }
-  write_file_atomic(file, png);
+  struct Bind {  // current_compressor = ours for this call only, even if `append` throws
+    explicit Bind(libdeflate_compressor* c) { current_compressor = c; }
+    ~Bind() { current_compressor = nullptr; }
+    Bind(const Bind&) = delete;
+    Bind& operator=(const Bind&) = delete;
+  } bind(compressor_->c);
+  const int ok = stbi_write_png_to_func(append, &png_, width, height, 4, rgba.data(), width * 4);
+  if (!ok) throw CaptureError(fmt::format("cannot write {}: PNG encoding failed", name));
+  return png_;
+}
+
+void PngEncoder::write(const std::filesystem::path& file, int width, int height,
+                       std::span<const std::uint8_t> rgba) {
+  write_file_atomic(file, encode(width, height, rgba, file.string()));
+}
+
+void write_png(const std::filesystem::path& file, int width, int height,
+               std::span<const std::uint8_t> rgba, PngOptions options) {
+  PngEncoder(options).write(file, width, height, rgba);
 }
 
 std::filesystem::path frame_path(const std::filesystem::path& dir, std::uint64_t frame) {
   return dir / fmt::format("frame_{:06}.png", frame);
+}
+
+FrameWriter::FrameWriter(std::filesystem::path dir, int width, int height, PngOptions options,
+                         int in_flight)
+    : dir_(std::move(dir)), width_(width), height_(height), encoder_(options) {
+  if (width < 1 || height < 1) {
+    throw std::invalid_argument(fmt::format("FrameWriter: frame size {}x{} is below 1x1", width,
+                                            height));
+  }
+  if (in_flight < 1) {
+    throw std::invalid_argument(fmt::format("FrameWriter: in_flight is {}, must be >= 1",
+                                            in_flight));
+  }
+  frame_bytes_ = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;
+  slots_.assign(static_cast<std::size_t>(in_flight), std::vector<std::uint8_t>(frame_bytes_));
+  slot_frame_.assign(slots_.size(), 0);
+  worker_ = std::thread([this] { work(); });
+}
+
+FrameWriter::~FrameWriter() {
+  {
+    const std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  queued_.notify_one();
+  worker_.join();
+}
+
+void FrameWriter::rethrow_if_failed() const {
+  if (error_) std::rethrow_exception(error_);
+}
+
+std::filesystem::path FrameWriter::submit(std::span<const std::uint8_t> rgba) {
+  if (rgba.size() != frame_bytes_) {
+    throw std::invalid_argument(fmt::format("FrameWriter: frame {} has {} bytes, {}x{} RGBA8 is {}",
+                                            submitted_, rgba.size(), width_, height_,
+                                            frame_bytes_));
+  }
+  std::size_t slot = 0;
+  {
+    std::unique_lock lock(mutex_);
+    released_.wait(lock, [&] { return count_ < slots_.size() || error_; });
+    rethrow_if_failed();
+    slot = (head_ + count_) % slots_.size();
+  }
+  // The slot is outside [head_, head_ + count_): the worker does not touch it until count_
+  // grows below, and only this (the one producer) thread changes what lies past count_.
+  std::copy(rgba.begin(), rgba.end(), slots_[slot].begin());
+  const std::uint64_t frame = submitted_++;
+  slot_frame_[slot] = frame;
+  {
+    const std::lock_guard lock(mutex_);
+    ++count_;
+  }
+  queued_.notify_one();
+  return frame_path(dir_, frame);
+}
+
+void FrameWriter::finish() {
+  std::unique_lock lock(mutex_);
+  released_.wait(lock, [&] { return count_ == 0 || error_; });
+  rethrow_if_failed();
+}
+
+void FrameWriter::work() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    queued_.wait(lock, [&] { return count_ > 0 || stop_; });
+    if (count_ == 0) return;  // stopping, and everything submitted is written
+    const std::size_t slot = head_;
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+      encoder_.write(frame_path(dir_, slot_frame_[slot]), width_, height_, slots_[slot]);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (error) {  // stop: the frames queued after the failed one are never written
+      error_ = error;
+      released_.notify_all();
+      return;
+    }
+    head_ = (head_ + 1) % slots_.size();
+    --count_;
+    released_.notify_all();
+  }
 }
 
 void prepare_output_dir(const std::filesystem::path& dir) {

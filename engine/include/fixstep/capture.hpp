@@ -1,13 +1,19 @@
-// Writing frames to disk: PNG via stb_image_write, atomically.
+// Writing frames to disk: PNG via stb_image_write (deflate by libdeflate), atomically.
 #pragma once
 
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
-#include <string>
+#include <exception>
 #include <filesystem>
+#include <memory>
+#include <mutex>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <string_view>
+#include <thread>
+#include <vector>
 
 namespace fixstep {
 
@@ -46,14 +52,138 @@ class AtomicFile {
 void write_file_atomic(const std::filesystem::path& file, std::span<const std::uint8_t> bytes);
 void write_file_atomic(const std::filesystem::path& file, std::string_view text);
 
+/// Compression levels of PngOptions::level: libdeflate's scale (libdeflate.h,
+/// libdeflate_alloc_compressor): 0 stores the pixels uncompressed (a valid PNG about as large
+/// as the raw image), 1 is the fastest that compresses, 6 is zlib's usual default, 12 the
+/// smallest and slowest. See docs/perf/capture.md for measured speed and size per level.
+inline constexpr int min_png_level = 0;
+inline constexpr int max_png_level = 12;
+/// 1: on fixstep's frames (flat colours, anti-aliased shapes) it is the fastest level and its
+/// files are already smaller than stb_image_write's own deflate makes them.
+inline constexpr int default_png_level = 1;
+
+/// How PNGs are encoded. Every level writes a standard 8-bit RGBA PNG that decodes to exactly
+/// the input pixels; the level only trades encoding time against file size.
+struct PngOptions {
+  int level = default_png_level;  ///< [min_png_level, max_png_level]
+};
+
+/// "PNG level L is outside MIN..MAX (...)" when `level` is out of range, else "".
+[[nodiscard]] std::string png_level_error(int level);
+
+/// A reusable PNG encoder: stb_image_write builds the PNG (rows filtered with PNG filter 0,
+/// "None", on every row) and libdeflate compresses it (through stb's STBIW_ZLIB_COMPRESS hook)
+/// at options.level. It owns one libdeflate compressor and its output buffer, so encoding a
+/// sequence allocates no new buffers of its own after the first frame (stb_image_write still
+/// mallocs its scratch rows per image).
+///
+/// Thread safety: one encoder must not be used by two threads at once; separate encoders may
+/// encode concurrently on separate threads (no shared mutable state: the stb_image_write
+/// globals are private to capture.cpp and set once, and the compressor is passed per thread).
+class PngEncoder {
+ public:
+  /// Throws std::invalid_argument naming the level and the range if options.level is outside
+  /// [min_png_level, max_png_level]; std::bad_alloc if libdeflate cannot allocate.
+  explicit PngEncoder(PngOptions options = {});
+  ~PngEncoder();
+  PngEncoder(PngEncoder&& other) noexcept;
+  PngEncoder& operator=(PngEncoder&& other) noexcept;
+  PngEncoder(const PngEncoder&) = delete;
+  PngEncoder& operator=(const PngEncoder&) = delete;
+
+  [[nodiscard]] const PngOptions& options() const { return options_; }
+
+  /// Encodes an RGBA8 image: `rgba` is height rows of width*4 bytes (R, G, B, A), top row
+  /// first, width and height >= 1. Returns the PNG file's bytes, valid until the next call on
+  /// this encoder. Throws CaptureError (naming `name`, e.g. the file it is meant for) if the
+  /// size does not match or encoding fails.
+  [[nodiscard]] std::span<const std::uint8_t> encode(int width, int height,
+                                                     std::span<const std::uint8_t> rgba,
+                                                     std::string_view name = "image");
+  /// encode() and write_file_atomic(file, ...). Throws CaptureError naming `file`.
+  void write(const std::filesystem::path& file, int width, int height,
+             std::span<const std::uint8_t> rgba);
+
+ private:
+  struct Compressor;
+  PngOptions options_;
+  std::unique_ptr<Compressor> compressor_;
+  std::vector<std::uint8_t> png_;
+};
+
 /// Encodes an RGBA8 image (height rows of width*4 bytes, top row first) as PNG with
-/// stb_image_write and writes it with write_file_atomic. Throws CaptureError.
+/// stb_image_write and libdeflate (see PngEncoder) and writes it with write_file_atomic.
+/// Throws CaptureError naming `file`, or std::invalid_argument for a bad options.level. For a
+/// sequence of frames, reuse a PngEncoder or use FrameWriter (this builds a new compressor).
 void write_png(const std::filesystem::path& file, int width, int height,
-               std::span<const std::uint8_t> rgba);
+               std::span<const std::uint8_t> rgba, PngOptions options = {});
 
 /// DIR/frame_NNNNNN.png (six digits, zero-padded).
 [[nodiscard]] std::filesystem::path frame_path(const std::filesystem::path& dir,
                                                std::uint64_t frame);
+
+/// Writes a sequence of frames as DIR/frame_000000.png, frame_000001.png, ... (frame_path), in
+/// submission order, each exactly once, encoding and writing them on one worker thread while
+/// the caller renders the next frame. Every file is written atomically (write_file_atomic) with
+/// a PngEncoder at `options`, so the files are byte-identical to PngEncoder::write's.
+///
+/// Pipeline: submit() copies the pixels into one of `in_flight` buffers allocated up front
+/// (in_flight * width * height * 4 bytes; no allocation per frame) and returns at once; it
+/// blocks only while all `in_flight` buffers still wait for the worker.
+///
+/// Errors: the first frame the worker cannot write (unwritable directory, full disk, ...)
+/// stops the worker; that frame and every later one are not written, frames before it stay
+/// on disk, and the next submit() or finish() rethrows its CaptureError (naming the file).
+///
+/// Thread safety: call submit() and finish() from one thread (the producer).
+class FrameWriter {
+ public:
+  /// Starts the worker. `dir` must exist (see prepare_output_dir). Throws std::invalid_argument
+  /// for a bad options.level (as PngEncoder), a size below 1x1 or in_flight < 1.
+  FrameWriter(std::filesystem::path dir, int width, int height, PngOptions options = {},
+              int in_flight = 2);
+  /// Waits until the worker has written every submitted frame (or failed), then stops it.
+  /// Errors are not thrown from here: call finish() to see them.
+  ~FrameWriter();
+  FrameWriter(const FrameWriter&) = delete;
+  FrameWriter& operator=(const FrameWriter&) = delete;
+
+  /// Queues `rgba` (height rows of width*4 bytes, RGBA8, top row first; copied before this
+  /// returns) as the next frame and returns the path it will be written to. Throws
+  /// std::invalid_argument if the size does not match, or the worker's CaptureError if a
+  /// frame has failed.
+  std::filesystem::path submit(std::span<const std::uint8_t> rgba);
+  /// Blocks until every submitted frame is on disk. Throws the worker's CaptureError if one
+  /// failed. More frames may be submitted afterwards.
+  void finish();
+
+  /// Frames submitted so far (the next frame's number).
+  [[nodiscard]] std::uint64_t frames_submitted() const { return submitted_; }
+  [[nodiscard]] const std::filesystem::path& directory() const { return dir_; }
+
+ private:
+  void work();
+  void rethrow_if_failed() const;  // caller holds mutex_
+
+  std::filesystem::path dir_;
+  int width_, height_;
+  std::size_t frame_bytes_ = 0;
+  PngEncoder encoder_;                           // used by the worker only
+  std::vector<std::vector<std::uint8_t>> slots_;  // ring of in_flight frame buffers
+  std::vector<std::uint64_t> slot_frame_;         // frame number held by each slot
+  std::uint64_t submitted_ = 0;                   // producer only
+
+  // Shared with the worker, guarded by mutex_.
+  mutable std::mutex mutex_;
+  std::condition_variable queued_;    // worker waits: a frame was queued, or stop
+  std::condition_variable released_;  // producer waits: a slot was freed, or the worker failed
+  std::size_t head_ = 0;              // oldest queued slot (the one being written)
+  std::size_t count_ = 0;             // queued slots, including the one being written
+  bool stop_ = false;
+  std::exception_ptr error_;
+
+  std::thread worker_;  // last: starts after everything above is initialised
+};
 
 /// Creates `dir` (and parents) if needed and checks it is a writable directory.
 /// Throws CaptureError naming the directory and the reason.

@@ -1,0 +1,285 @@
+// Headless capture throughput: how many 1280x720 frames per second `fixstep render` turns into
+// PNG files, against drawing alone and against stb_image_write's own deflate. Side by side in
+// one run, on the same frames:
+//   render_only  advance + draw, nothing encoded (the ceiling capture can reach)
+//   naive_stb    + stb_image_write with its built-in deflate and its default filter choice
+//                  (all five PNG filters tried per row), synchronous: fixstep before libdeflate
+//   fast_sync    + PngEncoder (stb_image_write + libdeflate level 1, filter None), synchronous
+//   shipped      + FrameWriter (the same encoder on a worker thread, 2 frames in flight):
+//                  exactly what `fixstep render` does
+// Each measurement is a clip of 60 frames (one second at 60 fps) written as PNG files into a
+// temporary directory, after 45 untimed frames so that every body's trail is full; five
+// repetitions, interleaved at random with the other benchmarks', medians reported. Scenes:
+// 1000 spring-damper and projectile bodies built in code (many_bodies below), and
+// assets/scenes/default.toml (6 bodies). Then one frame of the 1000-body scene is encoded at
+// every level, for the size/speed table. The last lines print the medians and the issue's
+// targets: shipped >= 60 frames/s and shipped >= 2.5x naive_stb at 1000 bodies.
+//   build/ci/bin/bench_capture              (about 6 minutes on 2 cores)
+//   build/ci/bin/bench_capture --benchmark_filter=encode    (the level table only)
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "fixstep/capture.hpp"
+#include "fixstep/loop.hpp"
+#include "fixstep/scene.hpp"
+#include "fixstep/session.hpp"
+
+// The naive baseline: stb_image_write exactly as fixstep used it before libdeflate (built-in
+// deflate at stb's default level 8, default filter choice). This copy is private to this file
+// (STB_IMAGE_WRITE_STATIC) and its globals are left at stb's defaults.
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#define STBI_WRITE_NO_STDIO
+#include <stb/stb_image_write.h>
+
+namespace {
+
+using namespace fixstep;
+
+constexpr int width = 1280, height = 720;
+constexpr int warm_frames = 45;  // Renderer::trail_frames: trails are full from here on
+constexpr int clip_frames = 60;
+
+/// 1000 bodies on a 40 x 25 grid filling a 160 m x 90 m view: two in three hang on
+/// spring-dampers (k = 5..15 N/m, released 1.5 m from their anchors, so they circle and
+/// swing), one in three is a projectile thrown up at 25..33 m/s under gravity with a little
+/// drag (they rise through the grid for the whole measured second). Deterministic.
+Scene many_bodies(int n) {
+  Scene s;
+  s.file = fmt::format("many_bodies({})", n);
+  s.world.dt = 0.01;
+  s.precision = Precision::f64;
+  s.view.center = Vec2{0.0, 0.0};
+  s.view.width = 160.0;
+  constexpr int cols = 40;
+  for (int i = 0; i < n; ++i) {
+    BodyDef b;
+    b.name = fmt::format("b{}", i);
+    const double gx = -78.0 + 4.0 * (i % cols), gy = -40.0 + 3.3 * (i / cols);
+    const double hue = double(i) / n;
+    b.appearance = Appearance{
+        .radius = 0.6 + 0.1 * ((i * 7) % 5),
+        .color = {static_cast<std::uint8_t>(60 + 190 * hue),
+                  static_cast<std::uint8_t>(120 + 100 * std::sin(7.0 * hue)),
+                  static_cast<std::uint8_t>(240 - 180 * hue), 255}};
+    if (i % 3 != 2) {
+      b.body = Body{.mass = 1.0,
+                    .position = {gx + 1.5 * std::cos(i), gy + 1.5 * std::sin(i)},
+                    .velocity = {0.0, 0.0}};
+      b.spring = SpringDamper{.anchor = {gx, gy}, .stiffness = 5.0 + (i % 11),
+                              .damping = 0.05 * (i % 4)};
+    } else {
+      b.body = Body{.mass = 1.0, .position = {gx, -45.0},
+                    .velocity = {2.0 * std::sin(i), 25.0 + (i % 9)}};
+      b.gravity = Gravity{};
+      b.drag = LinearDrag{.coefficient = 0.02 * (i % 5)};
+    }
+    s.bodies.push_back(b);
+  }
+  return s;
+}
+
+Scene scene_named(const std::string& name) {
+  if (name == "default") return load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml");
+  return many_bodies(1000);
+}
+
+/// The PNG of the naive baseline, as fixstep's write_png made it before libdeflate.
+std::vector<std::uint8_t> naive_png(std::span<const std::uint8_t> rgba) {
+  std::vector<std::uint8_t> png;
+  png.reserve(rgba.size() / 4);
+  auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    out->insert(out->end(), p, p + size);
+  };
+  if (!stbi_write_png_to_func(append, &png, width, height, 4, rgba.data(), width * 4)) {
+    throw CaptureError("naive stb_image_write encoding failed");
+  }
+  return png;
+}
+
+std::filesystem::path out_dir(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() /
+             fmt::format("fixstep_bench_capture_{}", ::getpid()) / name;
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::uintmax_t bytes_in(const std::filesystem::path& dir) {
+  std::uintmax_t total = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) total += e.file_size();
+  return total;
+}
+
+enum class Mode { render_only, naive_stb, fast_sync, shipped };
+
+void capture(benchmark::State& state, const std::string& scene_name, Mode mode) {
+  Session session(scene_named(scene_name), width, height);
+  const VirtualClock clock(60.0);
+  for (int f = 0; f < warm_frames; ++f) {  // untimed: fill the trails
+    if (f > 0) session.advance(clock.frame_seconds());
+    session.draw();
+  }
+  const auto dir = out_dir(fmt::format("{}_{}", scene_name, static_cast<int>(mode)));
+  PngEncoder encoder;
+  for (auto _ : state) {
+    std::optional<FrameWriter> writer;
+    if (mode == Mode::shipped) writer.emplace(dir, width, height);
+    for (int f = 0; f < clip_frames; ++f) {
+      session.advance(clock.frame_seconds());
+      session.draw();
+      const auto pixels = session.renderer().pixels();
+      switch (mode) {
+        case Mode::render_only:
+          benchmark::DoNotOptimize(pixels.data());
+          benchmark::ClobberMemory();
+          break;
+        case Mode::naive_stb:
+          write_file_atomic(frame_path(dir, static_cast<std::uint64_t>(f)), naive_png(pixels));
+          break;
+        case Mode::fast_sync:
+          encoder.write(frame_path(dir, static_cast<std::uint64_t>(f)), width, height, pixels);
+          break;
+        case Mode::shipped:
+          writer->submit(pixels);
+          break;
+      }
+    }
+    if (writer) writer->finish();  // timed: the clip is done when its last file is
+  }
+  const double frames = double(state.iterations()) * clip_frames;
+  state.counters["frames_per_s"] = benchmark::Counter(frames, benchmark::Counter::kIsRate);
+  if (mode != Mode::render_only) {
+    state.counters["KiB_per_frame"] = double(bytes_in(dir)) / clip_frames / 1024.0;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+/// One frame of the 1000-body scene (frame 105: trails full), for the encoder table.
+const std::vector<std::uint8_t>& sample_frame() {
+  static const std::vector<std::uint8_t> frame = [] {
+    Session session(many_bodies(1000), width, height);
+    const VirtualClock clock(60.0);
+    for (int f = 0; f <= warm_frames + clip_frames; ++f) {
+      if (f > 0) session.advance(clock.frame_seconds());
+      session.draw();
+    }
+    const auto p = session.renderer().pixels();
+    return std::vector<std::uint8_t>(p.begin(), p.end());
+  }();
+  return frame;
+}
+
+void encode(benchmark::State& state, int level) {  // level < 0: the naive stb baseline
+  const auto& frame = sample_frame();
+  std::size_t bytes = 0;
+  if (level < 0) {
+    for (auto _ : state) bytes = naive_png(frame).size();
+  } else {
+    PngEncoder encoder(PngOptions{.level = level});
+    for (auto _ : state) bytes = encoder.encode(width, height, frame).size();
+  }
+  state.counters["KiB"] = double(bytes) / 1024.0;
+}
+
+/// Prints as the console reporter does and keeps every median's counters by benchmark name.
+class MedianKeeper : public benchmark::ConsoleReporter {
+ public:
+  MedianKeeper() : ConsoleReporter(::isatty(STDOUT_FILENO) ? OO_Defaults : OO_Tabular) {}
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& r : runs) {
+      if (r.run_type == Run::RT_Aggregate && r.aggregate_name == "median") {
+        for (const auto& [key, counter] : r.counters) {
+          medians[r.run_name.function_name][key] = counter.value;
+        }
+      }
+    }
+  }
+  std::map<std::string, std::map<std::string, double>> medians;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const char* modes[] = {"render_only", "naive_stb", "fast_sync", "shipped"};
+  for (const std::string scene : {"many_bodies_1000", "default"}) {
+    for (int m = 0; m < 4; ++m) {
+      benchmark::RegisterBenchmark(fmt::format("capture/{}/{}", scene, modes[m]).c_str(), capture,
+                                   scene, static_cast<Mode>(m))
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime()  // the encoding of `shipped` runs on another thread
+          ->Iterations(1)  // one 60-frame clip per repetition
+          ->Repetitions(5)
+          ->ReportAggregatesOnly(true);
+    }
+  }
+  benchmark::RegisterBenchmark("encode/naive_stb", encode, -1)
+      ->Unit(benchmark::kMillisecond)
+      ->Repetitions(3)
+      ->ReportAggregatesOnly(true);
+  for (int level : {0, 1, 2, 3, 6, 9, 12}) {
+    benchmark::RegisterBenchmark(fmt::format("encode/level:{}", level).c_str(), encode, level)
+        ->Unit(benchmark::kMillisecond)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(true);
+  }
+  // Interleave the repetitions of all benchmarks in random order (unless told otherwise), so
+  // that load from other processes on a shared machine falls on every mode alike and the
+  // ratios stay comparable.
+  std::vector<char*> args(argv, argv + argc);
+  std::string interleave = "--benchmark_enable_random_interleaving=true";
+  if (std::none_of(args.begin(), args.end(), [](const char* a) {
+        return std::string_view(a).starts_with("--benchmark_enable_random_interleaving");
+      })) {
+    args.push_back(interleave.data());
+  }
+  argc = static_cast<int>(args.size());
+  args.push_back(nullptr);
+  argv = args.data();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  MedianKeeper reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+
+  // The targets, from the medians of this run.
+  for (const std::string scene : {"many_bodies_1000", "default"}) {
+    auto fps = [&](const char* mode) {
+      const auto it = reporter.medians.find(fmt::format("capture/{}/{}", scene, mode));
+      return it == reporter.medians.end() ? 0.0 : it->second["frames_per_s"];
+    };
+    const double render = fps("render_only"), naive = fps("naive_stb"), fast = fps("fast_sync"),
+                 shipped = fps("shipped");
+    if (shipped <= 0.0 || naive <= 0.0) continue;
+    std::printf(
+        "\n%s, %dx%d, medians in frames/s: render_only %.1f, naive_stb %.1f, fast_sync %.1f, "
+        "shipped %.1f\n  shipped/naive_stb = %.2fx, shipped/render_only = %.0f%%\n",
+        scene.c_str(), width, height, render, naive, fast, shipped, shipped / naive,
+        render > 0 ? 100.0 * shipped / render : 0.0);
+    if (scene == "many_bodies_1000") {
+      std::printf("  target shipped >= 60 frames/s: %s (%.1f)\n",
+                  shipped >= 60.0 ? "met" : "MISSED", shipped);
+      std::printf("  target shipped >= 2.5x naive_stb: %s (%.2fx)\n",
+                  shipped / naive >= 2.5 ? "met" : "MISSED", shipped / naive);
+    }
+  }
+  std::filesystem::remove_all(std::filesystem::temp_directory_path() /
+                              fmt::format("fixstep_bench_capture_{}", ::getpid()));
+  return 0;
+}
