@@ -30,8 +30,9 @@ mkdir -p "$out"
 "$bin/bench_throughput" --report="$out/throughput.md" > "$out/throughput.log"
 "$bin/work_precision" --out "$out" > "$out/work_precision.log"
 "$bin/integration_basics" --out "$out/article" > "$out/article.log"
-# Capture speed (render-only vs naive stb vs shipped); docs/perf/capture.md quotes its medians.
-"$bin/bench_capture" > "$out/capture.log"
+# Capture speed (render-only vs naive stb vs shipped, 4-6 min; SKIP_CAPTURE=1 skips it);
+# docs/perf/capture.md quotes its medians.
+[ -n "${SKIP_CAPTURE:-}" ] || "$bin/bench_capture" > "$out/capture.log"
 
 splice() {  # splice NAME FILE: replace the text between the NAME markers with FILE
   local doc=docs/PERFORMANCE.md
