@@ -17,6 +17,7 @@
 //   build/bench/bin/bench_throughput --report=docs/perf/throughput.md
 //   build/bench/bin/bench_throughput --quick       (N <= 10^4, one repetition: a smoke run)
 //   build/bench/bin/bench_throughput --verify-only (the equality checks alone; run by ctest)
+//   build/bench/bin/bench_throughput --simd=baseline (time the SSE2 sweeps; default: widest)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -34,6 +35,7 @@
 #include <fmt/format.h>
 
 #include "fixstep/capture.hpp"
+#include "fixstep/simd.hpp"
 #include "fixstep/world.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -156,14 +158,17 @@ struct RawBodies {
 
 /// One tick of `integrator` over every body of a spring-damper (Spring) or projectile scene,
 /// written as one plain loop per integrator. The arrays are restrict-qualified parameters (no
-/// overlap), so the compiler may vectorize each loop.
+/// overlap), so the compiler may vectorize each loop. Like the engine's sweeps, it is compiled
+/// once per SimdLevel (raw_step picks the engine's level), so both sides use the same ISA.
+#define RAW_LOOP_PARAMS                                                                         \
+  Integrator integrator, std::size_t n, Real *__restrict x, Real *__restrict y,                 \
+      Real *__restrict vx, Real *__restrict vy, const Real *__restrict k,                       \
+      const Real *__restrict ax0, const Real *__restrict ay0, const Real *__restrict g,         \
+      const Real *__restrict cx, const Real *__restrict cy, const Real *__restrict d_half,      \
+      const Real *__restrict d_h1, const Real *__restrict d_h0
+#define RAW_LOOP_ARGS integrator, n, x, y, vx, vy, k, ax0, ay0, g, cx, cy, d_half, d_h1, d_h0
 template <bool Spring, class Real>
-void raw_loop(Integrator integrator, std::size_t n, Real* __restrict x, Real* __restrict y,
-              Real* __restrict vx, Real* __restrict vy, const Real* __restrict k,
-              const Real* __restrict ax0, const Real* __restrict ay0,
-              const Real* __restrict g, const Real* __restrict cx, const Real* __restrict cy,
-              const Real* __restrict d_half, const Real* __restrict d_h1,
-              const Real* __restrict d_h0) {
+[[gnu::always_inline]] inline void raw_loop(RAW_LOOP_PARAMS) {
   const Real h = Real(dt), half = h * Real(0.5);
   switch (integrator) {
     case Integrator::semi_implicit_euler:
@@ -273,8 +278,28 @@ void raw_loop(Integrator integrator, std::size_t n, Real* __restrict x, Real* __
 }
 
 template <bool Spring, class Real>
+void raw_loop_baseline(RAW_LOOP_PARAMS) { raw_loop<Spring>(RAW_LOOP_ARGS); }
+#if FIXSTEP_HAS_SIMD_CLONES
+template <bool Spring, class Real>
+FIXSTEP_TARGET_AVX2 void raw_loop_avx2(RAW_LOOP_PARAMS) { raw_loop<Spring>(RAW_LOOP_ARGS); }
+template <bool Spring, class Real>
+FIXSTEP_TARGET_AVX512 void raw_loop_avx512(RAW_LOOP_PARAMS) { raw_loop<Spring>(RAW_LOOP_ARGS); }
+#endif
+template <bool Spring, class Real>
+void raw_loop_at(SimdLevel level, RAW_LOOP_PARAMS) {
+#if FIXSTEP_HAS_SIMD_CLONES
+  if (level == SimdLevel::avx512) return raw_loop_avx512<Spring>(RAW_LOOP_ARGS);
+  if (level == SimdLevel::avx2) return raw_loop_avx2<Spring>(RAW_LOOP_ARGS);
+#endif
+  (void)level;
+  raw_loop_baseline<Spring>(RAW_LOOP_ARGS);
+}
+#undef RAW_LOOP_PARAMS
+#undef RAW_LOOP_ARGS
+
+template <bool Spring, class Real>
 void raw_step(RawBodies<Real>& r, Integrator i) {
-  raw_loop<Spring>(i, r.x.size(), r.x.data(), r.y.data(), r.vx.data(), r.vy.data(), r.k.data(),
+  raw_loop_at<Spring>(simd_level(), i, r.x.size(), r.x.data(), r.y.data(), r.vx.data(), r.vy.data(), r.k.data(),
                    r.ax0.data(), r.ay0.data(), r.gamma.data(), r.cx.data(), r.cy.data(),
                    r.decay_half.data(), r.decay_h1.data(), r.decay_h0.data());
 }
@@ -384,7 +409,9 @@ OdeState ode_state(const RawBodies<double>& r) {
 }
 
 /// The undamped spring scene for odeint's symplectic_euler: q = (x, y), p = (vx, vy) (unit
-/// "mass" in odeint's sense: q' = p). Its momentum function is dp/dt = a_c(q).
+/// "mass" in odeint's sense: q' = p). Its momentum function is dp/dt = a_c(q). Passed alone,
+/// it is odeint's SimpleSymplecticSystem: odeint then adds dt·p to q itself, with no
+/// coordinate function and no copy (its fastest form for this system).
 struct UndampedMomentum {
   const RawBodies<double>* r;
   void operator()(const OdeState& q, OdeState& dpdt) const {
@@ -394,9 +421,6 @@ struct UndampedMomentum {
       dpdt[n + j] = -r->k[j] * (q[n + j] - r->ay0[j]);
     }
   }
-};
-struct UnitCoordinate {
-  void operator()(const OdeState& p, OdeState& dqdt) const { dqdt = p; }
 };
 
 // --- checks before timing: every contender gives the engine's answers ---------------------
@@ -409,25 +433,37 @@ void check(bool ok, const std::string& what) {
   }
 }
 
+/// The engine and the raw loop, each at `level`, against the raw loop at the baseline level:
+/// every SIMD level must give the same bits, and the raw loop the engine's bits.
 template <class Real>
-void verify_raw(SceneKind s, Integrator i) {
-  constexpr std::size_t n = 1000;
+void verify_raw(SceneKind s, Integrator i, SimdLevel level) {
+  constexpr std::size_t n = 1001;  // odd: the vector loops' scalar remainders run too
   constexpr int ticks = 200;
-  auto w = make_world<Real>(s, n, i);
-  RawBodies<Real> r(s, n);
-  {
+  auto raw_at = [&](SimdLevel l) {
+    set_simd_level(l);
+    RawBodies<Real> r(s, n);
     const FlushDenormals ftz;
     for (int t = 0; t < ticks; ++t) raw_step(s, r, i);
-  }
+    return r;
+  };
+  const RawBodies<Real> reference = raw_at(SimdLevel::baseline);
+  const RawBodies<Real> raw = raw_at(level);
+  auto w = make_world<Real>(s, n, i);
   for (int t = 0; t < ticks; ++t) w->step();
-  std::size_t differ = 0;
+  std::size_t engine_differ = 0, raw_differ = 0;
   for (std::size_t j = 0; j < n; ++j) {
-    differ += !(w->x()[j] == r.x[j] && w->y()[j] == r.y[j] && w->vx()[j] == r.vx[j] &&
-                w->vy()[j] == r.vy[j]);
+    engine_differ += !(w->x()[j] == reference.x[j] && w->y()[j] == reference.y[j] &&
+                       w->vx()[j] == reference.vx[j] && w->vy()[j] == reference.vy[j]);
+    raw_differ += !(raw.x[j] == reference.x[j] && raw.y[j] == reference.y[j] &&
+                    raw.vx[j] == reference.vx[j] && raw.vy[j] == reference.vy[j]);
   }
-  check(differ == 0, fmt::format("raw/{}/f{}/{}: {} of {} bodies differ from the engine after {} "
-                                 "ticks (the loops must do the same arithmetic)",
-                                 scene_name(s), 8 * sizeof(Real), integrator_name(i), differ, n, ticks));
+  const auto what = fmt::format("{}/f{}/{} at SIMD level {}", scene_name(s), 8 * sizeof(Real),
+                                integrator_name(i), simd_level_name(level));
+  check(engine_differ == 0, fmt::format("engine {}: {} of {} bodies differ from the baseline raw "
+                                        "loop after {} ticks (the loops must do the same "
+                                        "arithmetic)", what, engine_differ, n, ticks));
+  check(raw_differ == 0, fmt::format("raw {}: {} of {} bodies differ from the baseline raw loop "
+                                     "after {} ticks", what, raw_differ, n, ticks));
 }
 
 void verify_odeint() {
@@ -459,8 +495,7 @@ void verify_odeint() {
     }
     odeint::symplectic_euler<OdeState> euler;
     for (int t = 0; t < ticks; ++t) {
-      euler.do_step(std::make_pair(UnitCoordinate{}, UndampedMomentum{&r}),
-                    std::make_pair(std::ref(q), std::ref(p)), t * dt, dt);
+      euler.do_step(UndampedMomentum{&r}, std::make_pair(std::ref(q), std::ref(p)), t * dt, dt);
       w->step();
     }
     double worst = 0.0;
@@ -517,16 +552,44 @@ void bm_raw(benchmark::State& st, SceneKind s, Integrator i) {
   set_rates(st, n, raw_bytes(s, i, sizeof(Real)));
 }
 
+/// STREAM's triad, a = b + s·c, compiled per SimdLevel like the sweeps.
+template <class Real>
+[[gnu::always_inline]] inline void triad_loop(std::size_t n, Real* __restrict a,
+                                              const Real* __restrict b,
+                                              const Real* __restrict c, Real s) {
+  for (std::size_t j = 0; j < n; ++j) a[j] = b[j] + s * c[j];
+}
+template <class Real>
+void triad_baseline(std::size_t n, Real* a, const Real* b, const Real* c, Real s) {
+  triad_loop(n, a, b, c, s);
+}
+#if FIXSTEP_HAS_SIMD_CLONES
+template <class Real>
+FIXSTEP_TARGET_AVX2 void triad_avx2(std::size_t n, Real* a, const Real* b, const Real* c, Real s) {
+  triad_loop(n, a, b, c, s);
+}
+template <class Real>
+FIXSTEP_TARGET_AVX512 void triad_avx512(std::size_t n, Real* a, const Real* b, const Real* c,
+                                        Real s) {
+  triad_loop(n, a, b, c, s);
+}
+#endif
+template <class Real>
+void triad(std::size_t n, Real* a, const Real* b, const Real* c, Real s) {
+#if FIXSTEP_HAS_SIMD_CLONES
+  if (simd_level() == SimdLevel::avx512) return triad_avx512(n, a, b, c, s);
+  if (simd_level() == SimdLevel::avx2) return triad_avx2(n, a, b, c, s);
+#endif
+  triad_baseline(n, a, b, c, s);
+}
+
 template <class Real>
 void bm_triad(benchmark::State& st) {
   const auto n = static_cast<std::size_t>(st.range(0));
   std::vector<Real> a(n, Real(0)), b(n, Real(1)), c(n, Real(2));
   const Real scalar = Real(3);
   for (auto _ : st) {
-    Real* __restrict pa = a.data();
-    const Real* __restrict pb = b.data();
-    const Real* __restrict pc = c.data();
-    for (std::size_t j = 0; j < n; ++j) pa[j] = pb[j] + scalar * pc[j];
+    triad(n, a.data(), b.data(), c.data(), scalar);
     benchmark::ClobberMemory();
   }
   benchmark::DoNotOptimize(a.data());
@@ -572,8 +635,7 @@ void bm_odeint_symplectic_euler(benchmark::State& st) {
   odeint::symplectic_euler<OdeState> euler;
   double t = 0.0;
   for (auto _ : st) {
-    euler.do_step(std::make_pair(UnitCoordinate{}, UndampedMomentum{&r}),
-                  std::make_pair(std::ref(q), std::ref(p)), t, dt);
+    euler.do_step(UndampedMomentum{&r}, std::make_pair(std::ref(q), std::ref(p)), t, dt);
     t += dt;
     benchmark::ClobberMemory();
   }
@@ -610,6 +672,7 @@ void bm_aging(benchmark::State& st) {
 struct Options {
   bool quick = false, verify_only = false;
   std::optional<std::string> report;
+  SimdLevel simd = simd_level();  ///< --simd=baseline|avx2|avx512: the level timed
 };
 
 std::vector<std::int64_t> sizes(const Options& o) {
@@ -724,6 +787,9 @@ std::string report(const Collector& c, const Options& o) {
   auto line = [&out](const std::string& s) { out += s + "\n"; };
   const auto ns = sizes(o);
   const char* precs[] = {"f32", "f64"};
+  line(fmt::format("Engine sweeps, raw loops and triad compiled for SIMD level **{}** "
+                   "(fixstep/simd.hpp; chosen at run time, `--simd=` to force one).",
+                   simd_level_name(o.simd)));
 
   for (SceneKind s : {SceneKind::spring, SceneKind::projectile}) {
     line(fmt::format("\n#### {} scene: ns per body-step (engine), median of repetitions\n",
@@ -891,15 +957,34 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[a], "--quick") == 0) o.quick = true;
     else if (std::strcmp(argv[a], "--verify-only") == 0) o.verify_only = true;
     else if (std::strncmp(argv[a], "--report=", 9) == 0) o.report = argv[a] + 9;
-    else args.push_back(argv[a]);
+    else if (std::strncmp(argv[a], "--simd=", 7) == 0) {
+      const std::string_view want = argv[a] + 7;
+      bool known = false;
+      for (SimdLevel l : {SimdLevel::baseline, SimdLevel::avx2, SimdLevel::avx512}) {
+        if (want == simd_level_name(l)) o.simd = l, known = true;
+      }
+      if (!known || !simd_supported(o.simd)) {
+        std::fprintf(stderr, "bench_throughput: --simd=%s: not one of baseline, avx2, avx512 "
+                     "supported here\n", argv[a] + 7);
+        return 2;
+      }
+    } else args.push_back(argv[a]);
   }
-  for (SceneKind s : {SceneKind::spring, SceneKind::projectile}) {
-    for (Integrator i : all_integrators) verify_raw<float>(s, i), verify_raw<double>(s, i);
+  std::string levels;
+  for (SimdLevel l : {SimdLevel::baseline, SimdLevel::avx2, SimdLevel::avx512}) {
+    if (!simd_supported(l)) continue;
+    levels += (levels.empty() ? "" : ", ") + std::string(simd_level_name(l));
+    for (SceneKind s : {SceneKind::spring, SceneKind::projectile}) {
+      for (Integrator i : all_integrators) verify_raw<float>(s, i, l), verify_raw<double>(s, i, l);
+    }
   }
+  set_simd_level(o.simd);
   verify_odeint();
   if (check_failures > 0) return 1;
-  std::puts("checks: the raw loops reproduce the engine bit for bit (12 integrator x precision "
-            "cases per scene); Boost.Odeint agrees to 1e-11");
+  std::printf("checks: at every SIMD level this CPU runs (%s), the engine and the raw loops "
+              "reproduce the baseline raw loop bit for bit (12 integrator x precision cases per "
+              "scene); Boost.Odeint agrees to 1e-11. Timing at level %s.\n",
+              levels.c_str(), std::string(simd_level_name(o.simd)).c_str());
   if (o.verify_only) return 0;
 
   int bargc = static_cast<int>(args.size());

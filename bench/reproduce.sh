@@ -23,7 +23,7 @@ mkdir -p "$out"
   echo "| caches | $(lscpu | sed -n 's/^L\([123][a-z]*\) cache: *\(.*\)/L\1 \2/p' | paste -sd ',' | sed 's/,/, /g') |"
   echo "| memory | $(free -g | awk '/^Mem:/ {print $2 " GiB"}') |"
   echo "| compiler | $(c++ --version | head -1) |"
-  echo "| build | CMake preset \`bench\` (Release, -O3 on the sweep, -ffp-contract=off, baseline x86-64 ISA) |"
+  echo "| build | CMake preset \`bench\` (Release, -O3 on the sweep, -ffp-contract=off; sweeps at SIMD level $(build/bench/bin/bench_throughput --verify-only | sed -n 's/.*Timing at level \([a-z0-9]*\).*/\1/p')) |"
   echo "| date | $(date -u +%Y-%m-%d) |"
 } > "$out/machine.md"
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "fixstep/simd.hpp"
 #include "fixstep/world.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -99,14 +100,19 @@ struct BodyField {
 /// Runs step(x, y, vx, vy, field) on every body: one pass, each body's state loaded and stored
 /// once, each declared coefficient read once. The restrict-qualified parameters promise the
 /// compiler that the arrays do not overlap, so it can vectorize the loop (see the -O3 note in
-/// engine/CMakeLists.txt). Pointers of parts the Field leaves out may be null.
+/// engine/CMakeLists.txt). Pointers of parts the Field leaves out may be null. Inlined into
+/// one function per SimdLevel (below), which the compiler vectorizes for that level.
+#define FIXSTEP_SWEEP_PARAMS                                                                   \
+  std::size_t n, Real *__restrict x, Real *__restrict y, Real *__restrict vx,                  \
+      Real *__restrict vy, const Real *__restrict k, const Real *__restrict anchor_x,          \
+      const Real *__restrict anchor_y, const Real *__restrict rest,                            \
+      const Real *__restrict gamma, const Real *__restrict cx, const Real *__restrict cy,      \
+      const Real *__restrict decay0, const Real *__restrict decay1, const Real push[2], Step step
+#define FIXSTEP_SWEEP_ARGS \
+  n, x, y, vx, vy, k, anchor_x, anchor_y, rest, gamma, cx, cy, decay0, decay1, push, step
+
 template <class Field, class Real, class Step>
-void sweep(std::size_t n, Real* __restrict x, Real* __restrict y, Real* __restrict vx,
-           Real* __restrict vy, const Real* __restrict k, const Real* __restrict anchor_x,
-           const Real* __restrict anchor_y, const Real* __restrict rest,
-           const Real* __restrict gamma, const Real* __restrict cx, const Real* __restrict cy,
-           const Real* __restrict decay0, const Real* __restrict decay1, const Real push[2],
-           Step step) {
+[[gnu::always_inline]] inline void sweep_loop(FIXSTEP_SWEEP_PARAMS) {
   const Real push_x = push[0], push_y = push[1];
   for (std::size_t j = 0; j < n; ++j) {
     Field f;
@@ -123,6 +129,37 @@ void sweep(std::size_t n, Real* __restrict x, Real* __restrict y, Real* __restri
     x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
   }
 }
+
+// The same loop compiled for each SimdLevel (fixstep/simd.hpp). These templates have internal
+// linkage (anonymous namespace) and inline everything they call that is marked always_inline,
+// so no code compiled for a wider ISA can be picked by the linker for a baseline caller.
+template <class Field, class Real, class Step>
+void sweep_baseline(FIXSTEP_SWEEP_PARAMS) {
+  sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+}
+#if FIXSTEP_HAS_SIMD_CLONES
+template <class Field, class Real, class Step>
+FIXSTEP_TARGET_AVX2 void sweep_avx2(FIXSTEP_SWEEP_PARAMS) {
+  sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+}
+template <class Field, class Real, class Step>
+FIXSTEP_TARGET_AVX512 void sweep_avx512(FIXSTEP_SWEEP_PARAMS) {
+  sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+}
+#endif
+
+/// The sweep at the level in use (simd_level(); chosen once per tick, not per body).
+template <class Field, class Real, class Step>
+void sweep(SimdLevel level, FIXSTEP_SWEEP_PARAMS) {
+#if FIXSTEP_HAS_SIMD_CLONES
+  if (level == SimdLevel::avx512) return sweep_avx512<Field>(FIXSTEP_SWEEP_ARGS);
+  if (level == SimdLevel::avx2) return sweep_avx2<Field>(FIXSTEP_SWEEP_ARGS);
+#endif
+  (void)level;
+  sweep_baseline<Field>(FIXSTEP_SWEEP_ARGS);
+}
+#undef FIXSTEP_SWEEP_PARAMS
+#undef FIXSTEP_SWEEP_ARGS
 
 /// Calls visit(field) with a default BodyField whose compile-time parts match the world's
 /// flags: 3 spring shapes x damped or not x constant acceleration or not.
@@ -281,8 +318,9 @@ void World<Real>::step(const TickInput& input) {
   const std::size_t n = x_.size();
   const bool accel = c.accel || push[0] != Real(0) || push[1] != Real(0);
   // Every sweep gets the same arrays; each Field reads only its own.
+  const SimdLevel level = simd_level();
   auto run = [&](auto field, const Real* decay0, const Real* decay1, auto body_step) {
-    sweep<decltype(field)>(n, x_.data(), y_.data(), vx_.data(), vy_.data(), c.stiffness.data(),
+    sweep<decltype(field)>(level, n, x_.data(), y_.data(), vx_.data(), vy_.data(), c.stiffness.data(),
                            c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), c.gamma.data(),
                            c.accel_x.data(), c.accel_y.data(), decay0, decay1, push, body_step);
   };
