@@ -6,6 +6,7 @@
 
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
+#include "fixstep/window.hpp"  // apply_loop_keys (inline; no SDL needed)
 
 namespace fixstep {
 namespace {
@@ -71,6 +72,29 @@ TEST(Loop, PauseSingleStepAndTimeScale) {
   for (int f = 0; f < 60; ++f) ticks += loop.advance(1.0 / 60, {}, [](const TickInput&) {}).ticks;
   EXPECT_NEAR(ticks, 50, 1);  // half speed: 0.5 s of simulated time
   EXPECT_THROW(loop.set_time_scale(-1), std::invalid_argument);
+}
+
+TEST(Loop, WindowKeysPauseStepAndScaleTimeWithinLimits) {
+  FixedStepLoop loop(LoopSettings{.dt = dt});
+  auto run_frame = [&] { return loop.advance(1.0 / 60, {}, [](const TickInput&) {}).ticks; };
+  apply_loop_keys(WindowEvents{.toggle_pause = true}, loop);
+  EXPECT_TRUE(loop.paused());
+  EXPECT_EQ(run_frame(), 0);
+  apply_loop_keys(WindowEvents{.single_step = true}, loop);
+  EXPECT_EQ(run_frame(), 1);
+  EXPECT_EQ(run_frame(), 0);
+  apply_loop_keys(WindowEvents{.toggle_pause = true}, loop);
+  EXPECT_FALSE(loop.paused());
+  apply_loop_keys(WindowEvents{.time_scale_steps = 3}, loop);
+  EXPECT_EQ(loop.time_scale(), 8.0);
+  apply_loop_keys(WindowEvents{.time_scale_steps = 3}, loop);
+  EXPECT_EQ(loop.time_scale(), 16.0);  // the default limit
+  apply_loop_keys(WindowEvents{.time_scale_steps = 3}, loop, 64.0);
+  EXPECT_EQ(loop.time_scale(), 64.0);
+  apply_loop_keys(WindowEvents{.time_scale_steps = -20}, loop);
+  EXPECT_EQ(loop.time_scale(), 1.0 / 16);
+  apply_loop_keys(WindowEvents{.single_step = true}, loop);  // '.' while running pauses too
+  EXPECT_TRUE(loop.paused());
 }
 
 TEST(Loop, EachTickReceivesTheFramesInputWithItsOwnIndex) {

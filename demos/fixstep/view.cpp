@@ -30,16 +30,7 @@ int view_command(const ViewOptions& o) {
     const auto frame_start = std::chrono::steady_clock::now();
     const WindowEvents ev = window.poll();
     if (ev.quit) break;
-    FixedStepLoop& loop = session.loop();
-    if (ev.toggle_pause) loop.set_paused(!loop.paused());
-    if (ev.single_step) {
-      loop.set_paused(true);
-      loop.request_single_step();
-    }
-    if (ev.time_scale_steps != 0) {
-      loop.set_time_scale(
-          std::clamp(loop.time_scale() * std::pow(2.0, ev.time_scale_steps), 1.0 / 16, 16.0));
-    }
+    apply_loop_keys(ev, session.loop());
     if (ev.restart) session.restart();
 
     const double seconds = virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();

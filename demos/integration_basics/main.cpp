@@ -231,15 +231,7 @@ int run_window(const Options& o) {
     const auto start = std::chrono::steady_clock::now();
     const WindowEvents ev = window->poll();
     if (ev.quit) break;
-    if (ev.toggle_pause) loop.set_paused(!loop.paused());
-    if (ev.single_step) {
-      loop.set_paused(true);
-      loop.request_single_step();
-    }
-    if (ev.time_scale_steps != 0) {
-      loop.set_time_scale(
-          std::clamp(loop.time_scale() * std::pow(2.0, ev.time_scale_steps), 1.0 / 16, 64.0));
-    }
+    apply_loop_keys(ev, loop, 64.0);  // up to 64x: the article's runs last 90 s
     if (ev.restart) {
       live.restart();
       loop.reset();

@@ -2,11 +2,14 @@
 // Separate library target (fixstep::window) so headless users do not link SDL2.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
 #include <string>
 
+#include "fixstep/loop.hpp"
 #include "fixstep/types.hpp"
 
 namespace fixstep {
@@ -26,6 +29,23 @@ struct WindowEvents {
   bool restart = false;       ///< 'r'
   Vec2 push_direction{};      ///< arrow keys held: components in {-1, 0, 1}
 };
+
+/// Applies the loop keys of `ev` to `loop`, the same in every fixstep window: space toggles
+/// pause; '.' pauses and runs exactly one tick on the next advance(); each '+' doubles and each
+/// '-' halves the time scale, kept within [1/16, max_time_scale]. Quit, restart and the arrow
+/// keys are left to the caller (what they reset or push differs per program).
+inline void apply_loop_keys(const WindowEvents& ev, FixedStepLoop& loop,
+                            double max_time_scale = 16.0) {
+  if (ev.toggle_pause) loop.set_paused(!loop.paused());
+  if (ev.single_step) {
+    loop.set_paused(true);
+    loop.request_single_step();
+  }
+  if (ev.time_scale_steps != 0) {
+    loop.set_time_scale(std::clamp(loop.time_scale() * std::pow(2.0, ev.time_scale_steps),
+                                   1.0 / 16.0, max_time_scale));
+  }
+}
 
 class Window {
  public:
