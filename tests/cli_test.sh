@@ -52,6 +52,37 @@ expect "guard names body, line, bound and substeps" \
 [ $? -eq 0 ] && ok "--allow-unstable runs" || fail "--allow-unstable"
 expect "--allow-unstable still warns" "warning: .*unstable.*\(allowed\)" "$work/guard3.out"
 
+# --- the runtime guard: a diverging run stops, names body, tick and cause, keeps its output --
+cat >"$work/blow.toml" <<'TOML'
+[world]
+dt = 0.1
+allow_unstable = true
+
+[[body]]
+name = "calm"
+mass = 1.0
+position = [1.0, 0.0]
+spring = { anchor = [0.0, 0.0], stiffness = 1.0 }
+
+[[body]]
+name = "stiff"
+mass = 1.0
+position = [1.0, 0.0]
+spring = { anchor = [0.0, 0.0], stiffness = 900.0 }
+TOML
+"$fixstep" run "$work/blow.toml" --steps 1000 --csv "$work/blow.csv" >"$work/blow.out" 2>&1
+[ $? -eq 3 ] && ok "a diverging run exits 3" || fail "diverging run exit code"
+expect "the guard names file, line, body, tick, value and cause" \
+  'error: .*blow\.toml:11: body\[1\] "stiff": state left the finite range at tick 14 \(t = 1\.4 s\): vx = 6\.7755[0-9]*e\+12 m/s.*Likely cause: .*ω·h = 3 exceeds the stability bound 2.*substeps = 2' \
+  "$work/blow.out"
+[ "$(tail -1 "$work/blow.csv" | cut -d, -f1)" = 14 ] && ok "the csv keeps every row up to the diverging tick" \
+  || fail "blow.csv last tick: $(tail -1 "$work/blow.csv" | cut -d, -f1)"
+"$fixstep" render "$work/blow.toml" --out "$work/blow_frames" --frames 600 --size 160x90 >"$work/blow_r.out" 2>&1
+[ $? -eq 3 ] && ok "a diverging render exits 3" || fail "diverging render exit code"
+n=$(ls "$work/blow_frames" | grep -c '^frame_[0-9]\{6\}\.png$')
+[ "$n" -eq 85 ] && ok "render keeps the 85 frames up to the divergence (tick 14 at 60 fps, dt 0.1 s)" \
+  || fail "render wrote $n frames before stopping"
+
 # --- render, and the same physics whatever the path --------------------------------------
 "$fixstep" render "$scenes/default.toml" --out "$work/frames" --frames 30 --size 320x180 >"$work/render.out" 2>&1
 [ $? -eq 0 ] && ok "render exits 0" || { fail "render exits 0"; cat "$work/render.out"; }

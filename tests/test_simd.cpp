@@ -116,6 +116,35 @@ TEST(Simd, EveryLevelMatchesBaselineBitForBitF32) {
   expect_levels_identical<float>();
 }
 
+TEST(Simd, TheRuntimeGuardFiresAtTheSameTickAtEveryLevel) {
+  const LevelGuard guard;
+  // 1003 bodies, one of them (index 500, mid-vector) on a spring beyond semi-implicit Euler's
+  // bound: every level must report it at the baseline's tick.
+  auto fault_at = [](SimdLevel level) {
+    set_simd_level(level);
+    World<double> w(WorldSettings{.dt = 0.1});
+    for (int j = 0; j < 1003; ++j) {
+      BodyDef d;
+      d.body.position = {1.0, 0.0};
+      d.spring = SpringDamper{.stiffness = j == 500 ? 900.0 : 1.0};
+      w.create_body(d);
+    }
+    for (int t = 0; t < 100 && !w.fault(); ++t) w.step();
+    return w.fault();
+  };
+  const auto reference = fault_at(SimdLevel::baseline);
+  ASSERT_TRUE(reference.has_value());
+  EXPECT_EQ(reference->index, 500u);
+  for (SimdLevel level : levels) {
+    if (!simd_supported(level)) continue;
+    const auto f = fault_at(level);
+    ASSERT_TRUE(f.has_value()) << simd_level_name(level);
+    EXPECT_EQ(f->index, reference->index) << simd_level_name(level);
+    EXPECT_EQ(f->tick, reference->tick) << simd_level_name(level);
+    EXPECT_EQ(f->field, reference->field) << simd_level_name(level);
+  }
+}
+
 TEST(Simd, BaselineIsAlwaysSupportedAndLevelsCanBeChosen) {
   const LevelGuard guard;
   EXPECT_TRUE(simd_supported(SimdLevel::baseline));

@@ -3,10 +3,12 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
 #include "fixstep/scene.hpp"
+#include "fixstep/stability.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -148,6 +150,109 @@ TEST(World, KeepPreviousStoresTheLastTick) {
   w.step();
   EXPECT_DOUBLE_EQ(w.previous_x()[0], 1.0);
   EXPECT_DOUBLE_EQ(w.x()[0], 2.0);
+}
+
+// --- the runtime guard (World::fault) ------------------------------------------------------
+
+/// Semi-implicit Euler on x'' = -ω² x with ω·h = 3 (beyond its bound 2): |state| grows by the
+/// spectral radius ((ω h)² - 2 + ω h √((ω h)² - 4)) / 2 = 6.854 per tick.
+template <class Real>
+void expect_guard_names_first_tick_out_of_range() {
+  World<Real> w(WorldSettings{.dt = 0.1});
+  BodyDef calm = at(1, 0);
+  calm.name = "calm";
+  calm.spring = SpringDamper{.stiffness = 1.0};
+  BodyDef stiff = at(1, 0);
+  stiff.name = "stiff";
+  stiff.spring = SpringDamper{.stiffness = 900.0};  // ω = 30 rad/s
+  w.create_body(calm);
+  w.create_body(stiff);
+  // Independent reference: the same recurrence in double, and the first tick whose x or v
+  // exceeds max_state_magnitude.
+  double x = 1, v = 0;
+  std::uint64_t expected_tick = 0;
+  std::string expected_field;
+  for (std::uint64_t t = 1; expected_tick == 0; ++t) {
+    v += -900.0 * x * 0.1;
+    x += v * 0.1;
+    if (std::abs(x) > max_state_magnitude) expected_tick = t, expected_field = "x";
+    else if (std::abs(v) > max_state_magnitude) expected_tick = t, expected_field = "vx";
+  }
+  for (std::uint64_t t = 1; t < expected_tick; ++t) {
+    w.step();
+    ASSERT_FALSE(w.fault().has_value()) << "tick " << t;
+  }
+  w.step();
+  ASSERT_TRUE(w.fault().has_value());
+  const StateFault& f = *w.fault();
+  EXPECT_EQ(f.index, 1u);
+  EXPECT_EQ(f.name, "stiff");
+  EXPECT_EQ(f.tick, expected_tick);
+  EXPECT_DOUBLE_EQ(f.time, 0.1 * double(expected_tick));
+  EXPECT_EQ(f.field, expected_field);
+  EXPECT_GT(std::abs(f.value), max_state_magnitude);
+  // The first fault is kept while stepping goes on.
+  w.step();
+  EXPECT_EQ(w.fault()->tick, expected_tick);
+}
+
+TEST(Guard, NamesTheBodyFieldAndFirstTickOutOfRangeF64) {
+  expect_guard_names_first_tick_out_of_range<double>();
+}
+TEST(Guard, NamesTheBodyFieldAndFirstTickOutOfRangeF32) {
+  expect_guard_names_first_tick_out_of_range<float>();
+}
+
+TEST(Guard, CatchesAHugeStartAndStaysQuietOnLongBoundedRuns) {
+  World<double> w(WorldSettings{.dt = 0.01});
+  BodyDef far = at(2e12, 0);  // finite, accepted at creation, absurd for a game
+  far.name = "far";
+  BodyDef near = at(max_state_magnitude * 0.5, 0);
+  near.body.velocity = {1.0, 0.0};
+  w.create_body(near);
+  w.create_body(far);
+  w.step();
+  ASSERT_TRUE(w.fault().has_value());
+  EXPECT_EQ(w.fault()->name, "far");
+  EXPECT_EQ(w.fault()->field, "x");
+  EXPECT_EQ(w.fault()->tick, 1u);
+
+  World<double> bounded(WorldSettings{.dt = 1.0 / 60.0});
+  BodyDef spring = at(1000, 0);  // the article's spring, x0 = 1000 m
+  spring.spring = SpringDamper{.stiffness = 15.0, .damping = 0.1};
+  bounded.create_body(spring);
+  for (int t = 0; t < 100000; ++t) bounded.step();
+  EXPECT_FALSE(bounded.fault().has_value());
+}
+
+TEST(Guard, ExplainsTheCauseWithTheStabilityBound) {
+  Scene scene = parse_scene(R"(
+[world]
+dt = 0.1
+allow_unstable = true
+[[body]]
+name = "stiff"
+mass = 1.0
+position = [1.0, 0.0]
+spring = { anchor = [0.0, 0.0], stiffness = 900.0 }
+[[body]]
+name = "thrown"
+mass = 1.0
+position = [0.0, 0.0]
+gravity = [0.0, -9.81]
+)", "blow.toml");
+  StateFault f{.index = 0, .name = "stiff", .tick = 14, .time = 1.4, .field = "vx", .value = 7e12};
+  const std::string m = explain_fault(scene, f);
+  EXPECT_NE(m.find("blow.toml:5: body[0] \"stiff\""), std::string::npos) << m;
+  EXPECT_NE(m.find("at tick 14"), std::string::npos) << m;
+  EXPECT_NE(m.find("vx = 7e+12 m/s"), std::string::npos) << m;
+  EXPECT_NE(m.find("Likely cause"), std::string::npos) << m;
+  EXPECT_NE(m.find("ω·h = 3 exceeds the stability bound 2"), std::string::npos) << m;
+  EXPECT_NE(m.find("substeps = 2"), std::string::npos) << m;
+  f.index = 1, f.name = "thrown", f.field = "y";
+  const std::string g = explain_fault(scene, f);
+  EXPECT_NE(g.find("within semi_implicit_euler's stability bound"), std::string::npos) << g;
+  EXPECT_NE(g.find("gravity"), std::string::npos) << g;
 }
 
 }  // namespace

@@ -148,13 +148,20 @@ int run_command(const RunOptions& o) {
   }
   for (std::uint64_t i = 1; i <= ticks; ++i) {
     sim.step();
-    if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks)) {
+    const bool diverged = sim.fault().has_value();  // the runtime guard (World::fault)
+    if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks || diverged)) {
       append_rows(*csv, scene, sim, has_exact, energies, buffer);
     }
+    if (diverged) break;
   }
-  if (csv) csv->commit();
+  if (csv) csv->commit();  // the rows up to and including the tick that diverged
   fmt::print("{}\n", describe(scene));
   fmt::print("{}\n", summary_line(sim, e0));
+  if (sim.fault()) {
+    if (o.csv) fmt::print("csv={}\n", *o.csv);
+    std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *sim.fault()).c_str());
+    return exit_diverged;
+  }
   if (const auto error = exact_error(scene, sim)) {
     fmt::print("exact_error={:.6e} m (largest position error against the exact solution)\n", *error);
   }
@@ -171,12 +178,22 @@ int render_command(const RenderOptions& o) {
   const auto frames = static_cast<std::uint64_t>(o.frames);
   // Frame f is encoded and written on the writer's thread while frame f + 1 renders here.
   FrameWriter writer(o.out, width, height, PngOptions{.level = o.png_level});
+  std::uint64_t written = 0;
   for (std::uint64_t f = 0; f < frames; ++f) {
     if (f > 0) session.advance(clock.frame_seconds());
-    session.draw();
+    session.draw();  // after a divergence: the last state, with the guard's message in the HUD
     writer.submit(session.renderer().pixels());
+    ++written;
+    if (session.simulation().fault()) break;
   }
   writer.finish();  // every frame on disk, or the first failure's CaptureError
+  if (const auto& fault = session.simulation().fault()) {
+    fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
+    fmt::print("frames={} (stopped early) size={}x{}: {} ... {}\n", written, width, height,
+               frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
+    std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
+    return exit_diverged;
+  }
   fmt::print("{} renderer=\"{}\"\n", describe(scene), session.renderer().gl_renderer());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
   fmt::print("frames={} fps={} size={}x{}: {} ... {}\n", frames, o.fps, width, height,

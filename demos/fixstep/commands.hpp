@@ -10,6 +10,10 @@
 
 namespace fixstep::cli {
 
+/// Exit status when the runtime guard stopped the simulation (a body's state left the finite
+/// range; World::fault). 1 is any other error, 2 a command-line error.
+inline constexpr int exit_diverged = 3;
+
 struct SceneOptions {
   std::string scene;
   std::optional<std::string> integrator;

@@ -1,9 +1,11 @@
 // `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock.
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <thread>
 
 #include <fixstep/session.hpp>
+#include <fixstep/stability.hpp>
 #include <fixstep/window.hpp>
 #include <fmt/format.h>
 
@@ -36,14 +38,19 @@ int view_command(const ViewOptions& o) {
     const double seconds = virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
     TickInput input;
     input.push = {ev.push_direction.x * push, ev.push_direction.y * push};
+    const bool was_faulted = session.simulation().fault().has_value();
     if (frame > 0) session.advance(seconds, input);
+    if (const auto& fault = session.simulation().fault(); fault && !was_faulted) {
+      // Session paused the loop; the HUD shows the message too ('r' restarts).
+      std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
+    }
     session.draw();
     window.present(session.renderer().pixels());
     if (!virtual_clock) std::this_thread::sleep_until(frame_start + frame_budget);
   }
   fmt::print("{} driver={}\n", describe(scene), window.driver());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-  return 0;
+  return session.simulation().fault() ? exit_diverged : 0;
 }
 
 }  // namespace fixstep::cli

@@ -3,8 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
+
+#include "fixstep/stability.hpp"
 
 namespace fixstep {
 
@@ -34,6 +39,20 @@ Camera fit_camera(const Scene& scene, int width, int height) {
   return c;
 }
 
+namespace {
+std::vector<std::string_view> split_words(std::string_view s) {
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const std::size_t j = s.find(' ', i);
+    const std::size_t end = j == std::string_view::npos ? s.size() : j;
+    if (end > i) words.push_back(s.substr(i, end - i));
+    i = end + 1;
+  }
+  return words;
+}
+}  // namespace
+
 std::string hex_hash(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
 
 std::string summary_line(const Simulation& sim, double initial_energy) {
@@ -56,7 +75,13 @@ Session::Session(Scene scene, int width, int height)
 }
 
 FrameResult Session::advance(double frame_seconds, const TickInput& input) {
-  return loop_.advance(frame_seconds, input, [&](const TickInput& in) { sim_->step(in); });
+  // After the runtime guard fires, no further tick runs and the loop pauses: the state stays
+  // at the tick that diverged, and draw() shows why.
+  const FrameResult r = loop_.advance(frame_seconds, input, [&](const TickInput& in) {
+    if (!sim_->fault()) sim_->step(in);
+  });
+  if (sim_->fault()) loop_.set_paused(true);
+  return r;
 }
 
 void Session::restart() {
@@ -80,10 +105,29 @@ void Session::draw() {
   hud_.push_back(fmt::format("{} ({})", integrator_name(sim_->settings().integrator),
                              precision_name(sim_->precision())));
   if (initial_energy_ != 0.0) {
-    hud_.push_back(fmt::format("energy {:.6g} J   drift {:+.4f} %", e,
+    hud_.push_back(fmt::format("energy {:.6g} J   drift {:+.4g} %", e,
                                100.0 * (e - initial_energy_) / std::abs(initial_energy_)));
   } else {
     hud_.push_back(fmt::format("energy {:.6g} J   drift {:+.4g} J", e, e - initial_energy_));
+  }
+  if (const auto& fault = sim_->fault()) {
+    // The guard's message, wrapped at about 100 characters per HUD line.
+    hud_.push_back("STOPPED: the state left the finite range");
+    // The bitmap font is ASCII only: spell the Greek letters out.
+    std::string message = explain_fault(scene_, *fault);
+    for (const auto& [from, to] : {std::pair<std::string_view, std::string_view>{"ω", "omega"},
+                                   {"γ", "gamma"}, {"·", "*"}}) {
+      for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at)) {
+        message.replace(at, from.size(), to);
+      }
+    }
+    std::string line;
+    for (const std::string_view word : split_words(message)) {
+      if (!line.empty() && line.size() + word.size() + 1 > 100) hud_.push_back(std::move(line)), line.clear();
+      if (!line.empty()) line += ' ';
+      line += word;
+    }
+    if (!line.empty()) hud_.push_back(std::move(line));
   }
   if (show_controls_) {
     hud_.push_back(fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));

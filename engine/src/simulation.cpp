@@ -21,6 +21,9 @@ void Simulation::step(const TickInput& input) {
 void Simulation::set_keep_previous(bool keep) {
   visit([&](auto& w) { w.set_keep_previous(keep); });
 }
+const std::optional<StateFault>& Simulation::fault() const {
+  return visit([](const auto& w) -> const std::optional<StateFault>& { return w.fault(); });
+}
 std::uint64_t Simulation::tick() const {
   return visit([](const auto& w) { return w.tick(); });
 }

@@ -152,3 +152,40 @@ std::vector<std::string> enforce_stability(const Scene& scene) {
 }
 
 }  // namespace fixstep
+
+namespace fixstep {
+
+std::string explain_fault(const Scene& scene, const StateFault& f) {
+  const std::size_t i = f.index;
+  const bool from_scene = i < scene.bodies.size();
+  const std::size_t line = i < scene.body_lines.size() ? scene.body_lines[i] : 0;
+  const bool position = f.field == "x" || f.field == "y";
+  std::string head = fmt::format(
+      "{}{}: body[{}] \"{}\": state left the finite range at tick {} (t = {:g} s): {} = {:g} {} "
+      "(allowed |value| <= {:g})",
+      scene.file, line ? fmt::format(":{}", line) : std::string(), i, f.name, f.tick, f.time,
+      f.field, f.value, position ? "m" : "m/s", max_state_magnitude);
+  if (!from_scene) return head + ".";
+  std::string cause;
+  for (const BodyStability& r : check_stability(scene)) {
+    if (r.body != i || r.verdict != Stability::unstable) continue;
+    cause = r.message;
+    // The guard's advice ends with "or set allow_unstable = true": not a cure at run time.
+    const std::string_view tail = ", or set allow_unstable = true";
+    if (cause.size() >= tail.size() && cause.compare(cause.size() - tail.size(), tail.size(), tail) == 0) {
+      cause.resize(cause.size() - tail.size());
+    }
+  }
+  if (cause.empty()) {
+    const BodyDef& d = scene.bodies[i];
+    cause = fmt::format(
+        "the body's spring and damping are within {}'s stability bound at h = {:g} s, so the "
+        "motion itself grew: check its forces ({}) and its starting values",
+        integrator_name(scene.world.integrator), scene.world.dt / scene.world.substeps,
+        d.gravity || d.constant_force ? "gravity or a constant force accelerates it for the whole run"
+                                      : "a push from the arrow keys, or extreme mass, stiffness or velocity");
+  }
+  return fmt::format("{}. Likely cause: {}", head, cause);
+}
+
+}  // namespace fixstep

@@ -111,9 +111,15 @@ struct BodyField {
 #define FIXSTEP_SWEEP_ARGS \
   n, x, y, vx, vy, k, anchor_x, anchor_y, rest, gamma, cx, cy, decay0, decay1, push, step
 
+/// Returns true if some body's new state is out of range (NaN, ±inf or beyond
+/// max_state_magnitude): the runtime guard, an OR of compares on values still in registers.
 template <class Field, class Real, class Step>
-[[gnu::always_inline]] inline void sweep_loop(FIXSTEP_SWEEP_PARAMS) {
+[[gnu::always_inline]] inline bool sweep_loop(FIXSTEP_SWEEP_PARAMS) {
   const Real push_x = push[0], push_y = push[1];
+  const Real limit = static_cast<Real>(max_state_magnitude);
+  // A conditional reduction in Real (GCC vectorizes this select at every level; an integer
+  // OR of the compares is not vectorized for doubles on SSE2).
+  Real out_of_range = 0;
   for (std::size_t j = 0; j < n; ++j) {
     Field f;
     if constexpr (Field::shape != SpringShape::none) {
@@ -127,36 +133,42 @@ template <class Field, class Real, class Step>
     Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j];
     step(X, Y, VX, VY, f);
     x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
+    // !(|v| <= limit) is true for NaN too (every comparison with NaN is false).
+    const bool in_range = (std::abs(X) <= limit) & (std::abs(Y) <= limit) &
+                          (std::abs(VX) <= limit) & (std::abs(VY) <= limit);
+    out_of_range = in_range ? out_of_range : Real(1);
   }
+  return out_of_range != Real(0);
 }
 
 // The same loop compiled for each SimdLevel (fixstep/simd.hpp). These templates have internal
 // linkage (anonymous namespace) and inline everything they call that is marked always_inline,
 // so no code compiled for a wider ISA can be picked by the linker for a baseline caller.
 template <class Field, class Real, class Step>
-void sweep_baseline(FIXSTEP_SWEEP_PARAMS) {
-  sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+[[gnu::noinline]] bool sweep_baseline(FIXSTEP_SWEEP_PARAMS) {
+  return sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
 }
 #if FIXSTEP_HAS_SIMD_CLONES
 template <class Field, class Real, class Step>
-FIXSTEP_TARGET_AVX2 void sweep_avx2(FIXSTEP_SWEEP_PARAMS) {
-  sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+FIXSTEP_TARGET_AVX2 bool sweep_avx2(FIXSTEP_SWEEP_PARAMS) {
+  return sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
 }
 template <class Field, class Real, class Step>
-FIXSTEP_TARGET_AVX512 void sweep_avx512(FIXSTEP_SWEEP_PARAMS) {
-  sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+FIXSTEP_TARGET_AVX512 bool sweep_avx512(FIXSTEP_SWEEP_PARAMS) {
+  return sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
 }
 #endif
 
-/// The sweep at the level in use (simd_level(); chosen once per tick, not per body).
+/// The sweep at the level in use (simd_level(); chosen once per tick, not per body). Returns
+/// true if some body's state went out of range.
 template <class Field, class Real, class Step>
-void sweep(SimdLevel level, FIXSTEP_SWEEP_PARAMS) {
+bool sweep(SimdLevel level, FIXSTEP_SWEEP_PARAMS) {
 #if FIXSTEP_HAS_SIMD_CLONES
   if (level == SimdLevel::avx512) return sweep_avx512<Field>(FIXSTEP_SWEEP_ARGS);
   if (level == SimdLevel::avx2) return sweep_avx2<Field>(FIXSTEP_SWEEP_ARGS);
 #endif
   (void)level;
-  sweep_baseline<Field>(FIXSTEP_SWEEP_ARGS);
+  return sweep_baseline<Field>(FIXSTEP_SWEEP_ARGS);
 }
 #undef FIXSTEP_SWEEP_PARAMS
 #undef FIXSTEP_SWEEP_ARGS
@@ -319,8 +331,9 @@ void World<Real>::step(const TickInput& input) {
   const bool accel = c.accel || push[0] != Real(0) || push[1] != Real(0);
   // Every sweep gets the same arrays; each Field reads only its own.
   const SimdLevel level = simd_level();
+  bool out_of_range = false;
   auto run = [&](auto field, const Real* decay0, const Real* decay1, auto body_step) {
-    sweep<decltype(field)>(level, n, x_.data(), y_.data(), vx_.data(), vy_.data(), c.stiffness.data(),
+    out_of_range |= sweep<decltype(field)>(level, n, x_.data(), y_.data(), vx_.data(), vy_.data(), c.stiffness.data(),
                            c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), c.gamma.data(),
                            c.accel_x.data(), c.accel_y.data(), decay0, decay1, push, body_step);
   };
@@ -407,6 +420,24 @@ void World<Real>::step(const TickInput& input) {
     }
   }
   ++tick_;
+  if (out_of_range && !fault_) record_fault();
+}
+
+// Cold path: find the first body (dense order) and component out of range after this tick.
+template <class Real>
+void World<Real>::record_fault() {
+  const std::span<const Real> fields[] = {x_, y_, vx_, vy_};
+  const char* names[] = {"x", "y", "vx", "vy"};
+  for (std::size_t j = 0; j < x_.size(); ++j) {
+    for (int f = 0; f < 4; ++f) {
+      const double v = static_cast<double>(fields[f][j]);
+      if (!(std::abs(v) <= max_state_magnitude)) {
+        fault_ = StateFault{.index = j, .name = names_[j], .tick = tick_, .time = time(),
+                            .field = names[f], .value = v};
+        return;
+      }
+    }
+  }
 }
 
 // world.hpp declares `extern template class World<Real>`, so every member defined in this
@@ -415,6 +446,7 @@ void World<Real>::step(const TickInput& input) {
   template void World<Real>::step(const TickInput&);                                            \
   template void World<Real>::accelerations(std::span<Real>, std::span<Real>, const TickInput&); \
   template std::size_t World<Real>::bytes_per_body_step();                                      \
+  template void World<Real>::record_fault();                                                    \
   template const Real* World<Real>::damping_decay(double);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

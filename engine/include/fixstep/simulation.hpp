@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <variant>
 #include <vector>
@@ -42,6 +43,9 @@ class Simulation {
   void step(const TickInput& input = {});
   void set_keep_previous(bool keep);
 
+  /// The runtime guard's finding: the first body whose state left the finite range (see
+  /// World::fault()), or nullopt.
+  [[nodiscard]] const std::optional<StateFault>& fault() const;
   [[nodiscard]] std::uint64_t tick() const;
   [[nodiscard]] double time() const;                 ///< s
   [[nodiscard]] const WorldSettings& settings() const;

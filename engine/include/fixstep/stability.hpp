@@ -47,6 +47,19 @@ struct BodyStability {
 /// Checks every body with a spring or damping at the scene's dt, integrator and substeps.
 [[nodiscard]] std::vector<BodyStability> check_stability(const Scene& scene);
 
+struct StateFault;
+
+/// The runtime guard's message for `fault` in a simulation built from `scene` (bodies in scene
+/// order), one line:
+///   "FILE:LINE: body[i] \"name\": state left the finite range at tick N (t = T s): vx = inf
+///    m/s (allowed |value| <= 1e12). Likely cause: ..."
+/// The likely cause comes from the stability guard for that body at the scene's dt, integrator
+/// and substeps: ω·h beyond the integrator's bound (with the substep count that would be
+/// stable), explicit Euler on an undamped spring (unstable at every step), or, when the body's
+/// step is stable, a force that drives the motion (gravity, a constant force, a push) or
+/// extreme starting values.
+[[nodiscard]] std::string explain_fault(const Scene& scene, const StateFault& fault);
+
 /// Applies the guard at scene load: throws SceneError (file, the body's line, key "body[i]")
 /// for the first unstable body unless the scene sets allow_unstable = true, in which case the
 /// error becomes a warning. Returns the warnings (near-limit bodies, allowed instabilities).

@@ -56,6 +56,21 @@ struct EnergyReport {
   [[nodiscard]] double total() const { return kinetic + spring + gravity + constant_force; }
 };
 
+/// Largest magnitude a body's x, y (m) or vx, vy (m/s) may reach. Beyond it, or at NaN or
+/// infinity, World::step records a StateFault: 10¹² m is about 7 astronomical units, far outside
+/// any scene a game steps, and still 26 orders of magnitude below float's overflow.
+inline constexpr double max_state_magnitude = 1e12;
+
+/// The first body whose state left the finite range |value| <= max_state_magnitude.
+struct StateFault {
+  std::size_t index = 0;    ///< dense body index (creation order while nothing is destroyed)
+  std::string name;         ///< the body's name
+  std::uint64_t tick = 0;   ///< the tick that produced the value (World::tick() after it)
+  double time = 0.0;        ///< simulated time after that tick, s
+  std::string field;        ///< "x", "y" (m) or "vx", "vy" (m/s)
+  double value = 0.0;       ///< the offending value (NaN, ±inf or |value| > the limit)
+};
+
 namespace detail {
 
 /// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
@@ -140,6 +155,12 @@ class World {
   /// x and y copied to previous_x()/previous_y() when set_keep_previous is on. Rebuilds the
   /// force field first if components changed.
   [[nodiscard]] std::size_t bytes_per_body_step();
+  /// The runtime guard: the first body whose state left the finite range in a step (NaN,
+  /// infinity or a magnitude beyond max_state_magnitude), or nullopt. Checked inside the fused
+  /// pass on values already in registers (a compare per component; no extra memory traffic).
+  /// step() keeps stepping after a fault; callers stop (fixstep run/render exit non-zero, the
+  /// window pauses) and explain it with explain_fault() (stability.hpp).
+  [[nodiscard]] const std::optional<StateFault>& fault() const { return fault_; }
   /// Number of ticks taken since creation.
   [[nodiscard]] std::uint64_t tick() const { return tick_; }
   /// Simulated time tick()·dt, s.
@@ -190,6 +211,7 @@ class World {
   [[nodiscard]] std::string describe(Entity e) const;
   void require(Entity e) const;
   void rebuild_terms();
+  void record_fault();
   template <class Add>
   void for_each_energy(Add&& add) const;
 
@@ -197,6 +219,7 @@ class World {
   std::uint64_t tick_ = 0;
   bool keep_previous_ = false;
   bool terms_dirty_ = true;
+  std::optional<StateFault> fault_;
 
   // entity slots
   std::vector<std::uint32_t> generations_;
