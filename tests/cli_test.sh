@@ -160,6 +160,29 @@ mkdir -p "$work/blocked_last/frame_000005.png"
 expect "the unwritable last frame is named" "error: cannot write .*/blocked_last/frame_000005\.png: Is a directory" \
   "$work/blocked_last.out"
 
+# --- SIGINT / SIGTERM: stop after the current frame, keep every frame complete -------------
+for sig in INT TERM; do
+  "$fixstep" render "$scenes/default.toml" --out "$work/sig_$sig" --frames 1000000 --size 160x90 \
+    >"$work/sig_$sig.out" 2>&1 &
+  pid=$!
+  for _ in $(seq 200); do [ -e "$work/sig_$sig/frame_000002.png" ] && break; sleep 0.1; done
+  kill -s "$sig" "$pid"
+  wait "$pid"
+  code=$?
+  want=$([ "$sig" = INT ] && echo 130 || echo 143)
+  [ "$code" -eq "$want" ] && ok "SIG$sig stops render with exit $want" || fail "SIG$sig exit $code"
+  expect "SIG$sig is reported" "stopped by SIG$sig after [0-9]+ frames" "$work/sig_$sig.out"
+  stray=$(ls -A "$work/sig_$sig" | grep -vc '^frame_[0-9]\{6\}\.png$')
+  broken=0
+  for f in "$work/sig_$sig"/frame_*.png; do
+    [ "$(tail -c 8 "$f" | head -c 4)" = IEND ] || broken=$((broken + 1))
+  done
+  n=$(ls "$work/sig_$sig" | wc -l)
+  [ "$stray" -eq 0 ] && [ "$broken" -eq 0 ] && [ "$n" -ge 3 ] \
+    && ok "after SIG$sig: $n complete frames, no temporary files" \
+    || fail "after SIG$sig: $n frames, $broken truncated, $stray stray files"
+done
+
 # --- view --------------------------------------------------------------------------------
 env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$fixstep" view "$scenes/default.toml" --frames 1 >"$work/nodisp.out" 2>&1
 [ $? -ne 0 ] && ok "view without a display exits non-zero" || fail "view without display"

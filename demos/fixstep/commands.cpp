@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +16,38 @@
 #include <fmt/format.h>
 
 namespace fixstep::cli {
+
+namespace {
+
+// SIGINT / SIGTERM during run or render: the handler only records the signal; the command
+// finishes the tick or frame in progress, writes out everything produced so far (the CSV,
+// every queued frame) and exits 128 + the signal number, as a shell reports a signal death.
+volatile std::sig_atomic_t stop_signal = 0;
+extern "C" void request_stop(int signal) { stop_signal = signal; }
+
+/// Installs request_stop for SIGINT and SIGTERM for the lifetime of the object.
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    stop_signal = 0;
+    previous_int_ = std::signal(SIGINT, request_stop);
+    previous_term_ = std::signal(SIGTERM, request_stop);
+  }
+  ~StopOnSignal() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+  [[nodiscard]] static int requested() { return stop_signal; }
+  [[nodiscard]] static const char* name() { return stop_signal == SIGINT ? "SIGINT" : "SIGTERM"; }
+
+ private:
+  void (*previous_int_)(int) = SIG_DFL;
+  void (*previous_term_)(int) = SIG_DFL;
+};
+
+}  // namespace
 
 std::string positive_finite(const std::string& value) {
   char* end = nullptr;
@@ -146,17 +179,25 @@ int run_command(const RunOptions& o) {
                           : "tick,t,body,x,y,vx,vy,energy\n");
     append_rows(*csv, scene, sim, has_exact, energies, buffer);
   }
+  const StopOnSignal signals;
   for (std::uint64_t i = 1; i <= ticks; ++i) {
     sim.step();
     const bool diverged = sim.fault().has_value();  // the runtime guard (World::fault)
-    if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks || diverged)) {
+    const bool stop = StopOnSignal::requested() != 0;
+    if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks || diverged || stop)) {
       append_rows(*csv, scene, sim, has_exact, energies, buffer);
     }
-    if (diverged) break;
+    if (diverged || stop) break;
   }
-  if (csv) csv->commit();  // the rows up to and including the tick that diverged
+  if (csv) csv->commit();  // the rows up to and including the last tick run
   fmt::print("{}\n", describe(scene));
   fmt::print("{}\n", summary_line(sim, e0));
+  if (const int sig = StopOnSignal::requested()) {
+    if (o.csv) fmt::print("csv={}\n", *o.csv);
+    std::fprintf(stderr, "fixstep: stopped by %s after tick %llu; output written\n",
+                 StopOnSignal::name(), static_cast<unsigned long long>(sim.tick()));
+    return 128 + sig;
+  }
   if (sim.fault()) {
     if (o.csv) fmt::print("csv={}\n", *o.csv);
     std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *sim.fault()).c_str());
@@ -179,7 +220,8 @@ int render_command(const RenderOptions& o) {
   // Frame f is encoded and written on the writer's thread while frame f + 1 renders here.
   FrameWriter writer(o.out, width, height, PngOptions{.level = o.png_level});
   std::uint64_t written = 0;
-  for (std::uint64_t f = 0; f < frames; ++f) {
+  const StopOnSignal signals;
+  for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
     if (f > 0) session.advance(clock.frame_seconds());
     session.draw();  // after a divergence: the last state, with the guard's message in the HUD
     writer.submit(session.renderer().pixels());
@@ -187,6 +229,16 @@ int render_command(const RenderOptions& o) {
     if (session.simulation().fault()) break;
   }
   writer.finish();  // every frame on disk, or the first failure's CaptureError
+  if (const int sig = StopOnSignal::requested()) {
+    fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
+    if (written > 0) {
+      fmt::print("frames={} (stopped) size={}x{}: {} ... {}\n", written, width, height,
+                 frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
+    }
+    std::fprintf(stderr, "fixstep: stopped by %s after %llu frames; every frame written is complete\n",
+                 StopOnSignal::name(), static_cast<unsigned long long>(written));
+    return 128 + sig;
+  }
   if (const auto& fault = session.simulation().fault()) {
     fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
     fmt::print("frames={} (stopped early) size={}x{}: {} ... {}\n", written, width, height,
