@@ -126,6 +126,17 @@ expect "unwritable --out is named" "/proc/fixstep_frames" "$work/unwritable.out"
 "$fixstep" run "$scenes/default.toml" --steps 1 --csv /proc/nope/out.csv >"$work/csv_bad.out" 2>&1
 [ $? -ne 0 ] && ok "unwritable --csv exits non-zero" || fail "unwritable --csv"
 
+# command-line values get the scene's rules, and misspelt options a suggestion
+"$fixstep" run "$scenes/default.toml" --steps 10 --dt 5 >"$work/dt5.out" 2>&1
+[ $? -ne 0 ] && ok "--dt 5 exits non-zero" || fail "--dt 5 exit code"
+expect "--dt names the allowed range" "--dt: must be a step length > 0 and <= 1 s" "$work/dt5.out"
+"$fixstep" run "$scenes/default.toml" --steps 10 --intgrator rk4 >"$work/typo.out" 2>&1
+[ $? -ne 0 ] && ok "a misspelt option exits non-zero" || fail "misspelt option exit code"
+expect "a misspelt option gets a suggestion" "unknown option --intgrator: did you mean --integrator\?" "$work/typo.out"
+"$fixstep" run "$scenes/default.toml" --duration 1e300 >"$work/dur.out" 2>&1
+[ $? -ne 0 ] && ok "an absurd --duration exits non-zero" || fail "--duration 1e300 exit code"
+expect "an absurd --duration says why" "--duration 1e\+300 s at dt = 0.01 s is 1e\+302 ticks" "$work/dur.out"
+
 # --png-level: 0..12; anything else exits non-zero naming the flag, the range and the value
 for level in 13 -1 abc 2.5 99999999999; do
   "$fixstep" render "$scenes/default.toml" --out "$work/lvl" --frames 1 --size 64x64 --png-level "$level" \

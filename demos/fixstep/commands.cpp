@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <vector>
 
 #include <fixstep/capture.hpp>
@@ -54,6 +55,15 @@ std::string positive_finite(const std::string& value) {
   const double v = std::strtod(value.c_str(), &end);
   if (end == value.c_str() || *end != '\0' || !std::isfinite(v) || v <= 0.0) {
     return fmt::format("must be a finite number > 0, got '{}'", value);
+  }
+  return {};
+}
+
+std::string dt_validator(const std::string& value) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (end == value.c_str() || *end != '\0' || !std::isfinite(v) || v <= 0.0 || v > 1.0) {
+    return fmt::format("must be a step length > 0 and <= 1 s (as [world] dt), got '{}'", value);
   }
   return {};
 }
@@ -114,6 +124,11 @@ namespace {
 /// round-off (10 s / 0.01 s = 1000, not 1001), otherwise rounded up.
 std::uint64_t ticks_for(double duration, double dt) {
   const double n = duration / dt;
+  if (!(n <= double(max_ticks))) {
+    throw std::invalid_argument(fmt::format(
+        "--duration {:g} s at dt = {:g} s is {:.3g} ticks; a run may take at most {:g}", duration,
+        dt, n, double(max_ticks)));
+  }
   const double nearest = std::round(n);
   return static_cast<std::uint64_t>(std::abs(n - nearest) <= 1e-9 * std::max(1.0, n)
                                         ? nearest

@@ -47,6 +47,11 @@ struct ViewOptions {
   std::optional<double> fps;
 };
 
+/// Largest --steps, --every and view --frames: 10^12 ticks (over 500 years at 60 Hz).
+inline constexpr std::int64_t max_ticks = 1'000'000'000'000;
+
+/// CLI11 validator text: "" when value is a step length dt in (0, 1] s, the scene rule.
+std::string dt_validator(const std::string& value);
 /// CLI11 validator text: "" when value is a finite number > 0.
 std::string positive_finite(const std::string& value);
 /// CLI11 validator text: "" when value is WxH within the renderer's limits.

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <fmt/format.h>
 
+#include <fixstep/suggest.hpp>
+
 #include "commands.hpp"
 
 namespace {
@@ -20,8 +22,8 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o) {
   for (auto i : fixstep::all_integrators) names.emplace_back(fixstep::integrator_name(i));
   cmd->add_option("--integrator", o.integrator, "override [world] integrator")
       ->check(CLI::IsMember(names));
-  cmd->add_option("--dt", o.dt, "override [world] dt, the fixed physics step (s)")
-      ->check(fixstep::cli::positive_finite);
+  cmd->add_option("--dt", o.dt, "override [world] dt, the fixed physics step (s), 0 < dt <= 1")
+      ->check(fixstep::cli::dt_validator);
   cmd->add_option("--precision", o.precision, "override [world] precision")
       ->check(CLI::IsMember({"f32", "f64"}));
   cmd->add_option("--substeps", o.substeps, "override [world] substeps (integration steps per tick)")
@@ -42,14 +44,14 @@ int main(int argc, char** argv) {
   CLI::App* run_cmd = app.add_subcommand("run", "simulate without rendering; print a summary");
   add_scene_options(run_cmd, run.scene);
   auto* steps = run_cmd->add_option("--steps", run.steps, "number of ticks to simulate")
-                    ->check(CLI::NonNegativeNumber);
+                    ->check(CLI::Range(std::int64_t{0}, max_ticks));
   auto* duration = run_cmd->add_option("--duration", run.duration, "simulated time (s)")
                        ->check(positive_finite);
   steps->excludes(duration);
   run_cmd->add_option("--csv", run.csv,
                       "write tick,t,body,x,y,vx,vy,energy rows here (atomically)");
   run_cmd->add_option("--every", run.every, "record every K-th tick in the CSV (tick 0 always)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(std::int64_t{1}, max_ticks));
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -76,11 +78,33 @@ int main(int argc, char** argv) {
   view_cmd->add_option("--size", view.size, "window size in pixels, WxH")
       ->check(frame_size_validator);
   view_cmd->add_option("--frames", view.frames, "quit after N frames (0 = run until Esc)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(std::int64_t{0}, max_ticks));
   view_cmd->add_option("--fps", view.fps,
                        "use a virtual clock of F frames per second instead of the real clock");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ExtrasError& e) {
+    // Unknown options: name each, with the closest option of its subcommand.
+    const int code = app.exit(e);
+    for (const CLI::App* sub : app.get_subcommands()) {
+      std::vector<std::string> known;
+      for (const CLI::Option* opt : sub->get_options()) {
+        for (const std::string& name : opt->get_lnames()) known.push_back("--" + name);
+      }
+      for (const std::string& arg : sub->remaining()) {
+        if (arg.rfind("--", 0) != 0) continue;
+        const std::string flag = arg.substr(0, arg.find('='));
+        if (const auto best = fixstep::closest(flag, known)) {
+          std::fprintf(stderr, "fixstep %s: unknown option %s: did you mean %s?\n",
+                       sub->get_name().c_str(), flag.c_str(), best->c_str());
+        }
+      }
+    }
+    return code;
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
 
   try {
     if (run_cmd->parsed()) {
