@@ -199,6 +199,18 @@ env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$fixstep" view "$scenes/de
 [ $? -ne 0 ] && ok "view without a display exits non-zero" || fail "view without display"
 expect "view without a display points at render" "no display.*fixstep render" "$work/nodisp.out"
 
+# a DISPLAY that leads nowhere: SDL would fall back to a driver that shows nothing
+env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY=:97 "$fixstep" view "$scenes/default.toml" --frames 1 >"$work/baddisp.out" 2>&1
+[ $? -ne 0 ] && ok "view with an unreachable DISPLAY exits non-zero" || fail "view with DISPLAY=:97"
+expect "view names the unreachable display" "no display: could not connect to DISPLAY=:97" "$work/baddisp.out"
+env -u DISPLAY -u WAYLAND_DISPLAY SDL_VIDEODRIVER=nonexistent "$fixstep" view "$scenes/default.toml" --frames 1 >"$work/sdlfail.out" 2>&1
+[ $? -ne 0 ] && ok "view exits non-zero when SDL cannot initialise" || fail "SDL init failure exit"
+expect "SDL's reason is shown" "SDL could not initialise video \(nonexistent not available\)" "$work/sdlfail.out"
+# OSMesa unable to give a GL 3.3 core context
+MESA_GL_VERSION_OVERRIDE=2.1 "$fixstep" render "$scenes/default.toml" --out "$work/gl21" --frames 2 --size 64x64 >"$work/gl21.out" 2>&1
+[ $? -ne 0 ] && ok "render exits non-zero without a GL 3.3 context" || fail "GL 2.1 exit code"
+expect "the context failure is explained" "OSMesaCreateContextAttribs failed to create an OpenGL 3.3 core context" "$work/gl21.out"
+
 if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1024x768x24" "$fixstep" view "$scenes/default.toml" --frames 30 --fps 60 \
     --size 320x180 >"$work/view.out" 2>&1

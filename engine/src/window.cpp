@@ -1,6 +1,7 @@
 #include "fixstep/window.hpp"
 
 #include <cstdlib>
+#include <string>
 
 #include <SDL.h>
 #include <fmt/format.h>
@@ -55,6 +56,23 @@ Window::Window(const std::string& title, int width, int height) : impl_(new Impl
     throw WindowError(fmt::format(
         "SDL could not initialise video ({}). Without a display, use: fixstep render SCENE --out DIR",
         why));
+  }
+  // SDL 2.26 falls back to its "offscreen" (or "dummy") driver when it cannot reach the
+  // display named by DISPLAY / WAYLAND_DISPLAY: the window would exist but never be seen. Only
+  // accept those drivers when SDL_VIDEODRIVER asks for them by name.
+  const std::string driver = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
+  const char* requested = std::getenv("SDL_VIDEODRIVER");
+  if ((driver == "offscreen" || driver == "dummy") && !(requested && driver == requested)) {
+    SDL_Quit();
+    delete impl_;
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    throw WindowError(fmt::format(
+        "no display: could not connect to {} (SDL fell back to its '{}' driver, which shows "
+        "nothing). Start an X server or use: fixstep render SCENE --out DIR",
+        display && *display ? fmt::format("DISPLAY={}", display)
+                            : fmt::format("WAYLAND_DISPLAY={}", wayland ? wayland : ""),
+        driver));
   }
   impl_->width = width;
   impl_->height = height;
