@@ -101,9 +101,10 @@ int main(int argc, char** argv) {
         }
       }
     }
-    return code;
+    return code == 0 ? 0 : 2;
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the message (or the help, status 0); every command-line error exits 2.
+    return app.exit(e) == 0 ? 0 : 2;
   }
 
   try {

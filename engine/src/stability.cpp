@@ -97,6 +97,18 @@ std::vector<BodyStability> check_stability(const Scene& scene) {
     r.gamma = ((def.spring ? def.spring->damping : 0.0) + (def.drag ? def.drag->coefficient : 0.0)) / m;
     if (r.omega == 0.0 && r.gamma == 0.0) continue;
     r.h = dt / substeps;
+    if (!std::isfinite(r.omega * r.omega) || !std::isfinite(r.gamma)) {
+      // k/m or (b + c)/m overflows a double: no step of any integrator can follow it.
+      r.verdict = Stability::unstable;
+      r.radius = std::numeric_limits<double>::infinity();
+      r.message = fmt::format(
+          "body '{}' has k/m = {:g} 1/s² and (b + c)/m = {:g} 1/s (mass {:g} kg): beyond the "
+          "range of a double, so no integrator and no step can follow it. Use a larger mass or "
+          "a smaller stiffness, damping or drag",
+          def.name, (def.spring ? def.spring->stiffness : 0.0) / m, r.gamma, m);
+      out.push_back(std::move(r));
+      continue;
+    }
     r.max_step = max_stable_step(integrator, r.omega, r.gamma);
     r.radius = amplification(integrator, r.omega, r.gamma, r.h);
     const bool spring = r.omega > 0.0;
