@@ -170,3 +170,24 @@ TEST(Scene, MissingFileAndDirectory) {
 
 }  // namespace
 }  // namespace fixstep
+
+// Found by tests/fuzz: `substeps` was converted to int64 before its type was checked, undefined
+// behaviour for a float beyond the int64 range (clang UBSan: "1e+30 is outside the range of
+// representable values of type 'long'"). Any float is now refused by type, never converted.
+TEST(Scene, FloatSubstepsAreRefusedByTypeWithoutConversion) {
+  for (const char* value : {"1e30", "-1e30", "1e300", "2.0", "nan"}) {
+    SCOPED_TRACE(value);
+    try {
+      (void)fixstep::parse_scene(std::string("[world]\ndt = 1\nsubsteps = ") + value +
+                                     "\n[[body]]\nmass = 1\nposition = [0, 0]\n",
+                                 "substeps.toml");
+      FAIL() << "accepted";
+    } catch (const fixstep::SceneError& e) {
+      EXPECT_EQ(e.key(), "world.substeps");
+      EXPECT_EQ(e.line(), 3u);
+      EXPECT_NE(std::string(e.what()).find("expected an integer, found a float"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}

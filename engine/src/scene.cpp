@@ -307,13 +307,17 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   }
 
   if (const toml::node* n = world->get("substeps")) {
-    const auto v = n->value<std::int64_t>();
-    if (!n->is_integer() || *v < 1 || *v > 1000000) {
+    // Type first: value<std::int64_t>() of a float node converts it, which is undefined
+    // behaviour for floats beyond the int64 range (substeps = 1e30; found by fuzzing).
+    if (!n->is_integer()) {
       r.fail(n->source(), "world.substeps",
-             n->is_integer() ? fmt::format("must be 1 .. 1000000 (got {})", *v)
-                             : fmt::format("expected an integer, found {}", type_name(*n)));
+             fmt::format("expected an integer, found {}", type_name(*n)));
     }
-    scene.world.substeps = static_cast<int>(*v);
+    const std::int64_t v = n->as_integer()->get();
+    if (v < 1 || v > 1000000) {
+      r.fail(n->source(), "world.substeps", fmt::format("must be 1 .. 1000000 (got {})", v));
+    }
+    scene.world.substeps = static_cast<int>(v);
   }
   if (const toml::node* n = world->get("allow_unstable")) {
     if (!n->is_boolean()) {

@@ -1,0 +1,96 @@
+// Replays the fuzz seed corpus and every minimized finding through the fuzz target's check
+// (scene_check.cpp), in the ordinary builds (gcc, and gcc ASan + UBSan in the asan preset).
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "scene_check.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using fixstep::fuzz::Verdict;
+
+std::vector<fs::path> files_in(const fs::path& dir) {
+  std::vector<fs::path> out;
+  if (!fs::is_directory(dir)) return out;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (entry.is_regular_file() && entry.path().filename() != "README.md") {
+      out.push_back(entry.path());
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string read_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Every file in `dir` runs without a finding; returns how many files there were.
+std::size_t replay(const fs::path& dir) {
+  std::size_t n = 0;
+  for (const fs::path& file : files_in(dir)) {
+    SCOPED_TRACE(file.string());
+    const auto out = fixstep::fuzz::check_scene_text(read_bytes(file));
+    EXPECT_NE(out.verdict, Verdict::finding) << out.detail;
+    EXPECT_NE(out.verdict, Verdict::rejected_by_world)
+        << "the loader let through a value World refuses: " << out.detail;
+    ++n;
+  }
+  return n;
+}
+
+const fs::path source_dir = FIXSTEP_SOURCE_DIR;
+
+TEST(FuzzScene, ShippedScenesAreAcceptedAndStayFinite) {
+  const auto files = files_in(source_dir / "assets/scenes");
+  ASSERT_FALSE(files.empty());
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.string());
+    const auto out = fixstep::fuzz::check_scene_text(read_bytes(file));
+    EXPECT_EQ(out.verdict, Verdict::accepted) << out.detail;
+  }
+}
+
+TEST(FuzzScene, SeedCorpusHasNoFinding) {
+  EXPECT_GT(replay(source_dir / "tests/fuzz/corpus"), 0u);
+}
+
+TEST(FuzzScene, MinimizedFindingsStayFixed) { replay(source_dir / "tests/fuzz/regressions"); }
+
+TEST(FuzzScene, CleanRejectionsAreSceneErrors) {
+  EXPECT_EQ(fixstep::fuzz::check_scene_text("").verdict, Verdict::rejected);
+  EXPECT_EQ(fixstep::fuzz::check_scene_text(std::string("[world]\0", 8)).verdict,
+            Verdict::rejected);
+  EXPECT_EQ(fixstep::fuzz::check_scene_text("[world]\ndt = 0.01\n[[body]]\nmass = 0\n"
+                                            "position = [0, 0]\n")
+                .verdict,
+            Verdict::rejected);
+}
+
+TEST(FuzzScene, OverflowOutsideTheBoundedRangeIsTolerated) {
+  // The scene format admits any finite number: x = 1e308 + 1e308 * 1 s overflows on tick 1.
+  const auto out = fixstep::fuzz::check_scene_text(
+      "[world]\ndt = 1\n[[body]]\nname = \"far\"\nmass = 1\nposition = [1e308, 0]\n"
+      "velocity = [1e308, 0]\n");
+  EXPECT_EQ(out.verdict, Verdict::overflowed);
+  EXPECT_NE(out.detail.find("body[0] \"far\""), std::string::npos) << out.detail;
+}
+
+TEST(FuzzScene, UnstableOnPurposeIsTolerated) {
+  // Explicit Euler on an undamped spring multiplies the amplitude by sqrt(1 + (w h)^2) ~ 1e8
+  // per step here: past 1e308 within 60 ticks.
+  const auto out = fixstep::fuzz::check_scene_text(
+      "[world]\ndt = 1\nintegrator = \"explicit_euler\"\nallow_unstable = true\n"
+      "[[body]]\nmass = 1\nposition = [1, 0]\nspring = { stiffness = 1e16 }\n");
+  EXPECT_EQ(out.verdict, Verdict::overflowed) << out.detail;
+}
+
+}  // namespace

@@ -1,0 +1,112 @@
+#include "scene_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <optional>
+#include <stdexcept>
+#include <typeinfo>
+
+#include <cxxabi.h>
+#include <fmt/format.h>
+
+#include "fixstep/scene.hpp"
+#include "fixstep/simulation.hpp"
+
+namespace fixstep::fuzz {
+namespace {
+
+std::string type_name(const std::exception& e) {
+  int status = 0;
+  char* name = abi::__cxa_demangle(typeid(e).name(), nullptr, nullptr, &status);
+  std::string out = status == 0 && name ? name : typeid(e).name();
+  std::free(name);
+  return out;
+}
+
+Outcome unexpected(std::string_view where, const std::exception& e) {
+  return {Verdict::finding,
+          fmt::format("{} threw {} (not fixstep::SceneError): {}", where, type_name(e), e.what())};
+}
+
+Outcome unexpected(std::string_view where) {
+  return {Verdict::finding, fmt::format("{} threw a non-std::exception", where)};
+}
+
+bool finite(const Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+bool small(double v) { return std::abs(v) <= bounded_max; }
+bool small(const Vec2& v) { return small(v.x) && small(v.y); }
+
+/// See bounded_max: a scene whose non-finite states are findings.
+bool bounded_scene(const Scene& scene) {
+  if (scene.allow_unstable) return false;
+  return std::all_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyDef& d) {
+    const bool spring_ok = !d.spring || (small(d.spring->anchor) && small(d.spring->stiffness) &&
+                                         small(d.spring->damping) && small(d.spring->rest_length));
+    return d.body.mass >= bounded_min_mass && small(d.body.mass) && small(d.body.position) &&
+           small(d.body.velocity) && spring_ok &&
+           (!d.constant_force || small(d.constant_force->force)) &&
+           (!d.gravity || small(d.gravity->acceleration)) &&
+           (!d.drag || small(d.drag->coefficient));
+  });
+}
+
+}  // namespace
+
+Outcome check_scene_text(std::string_view text) {
+  Scene scene;
+  try {
+    scene = parse_scene(text, "fuzz.toml");
+  } catch (const SceneError& e) {
+    return {Verdict::rejected, e.what()};
+  } catch (const std::exception& e) {
+    return unexpected("parse_scene", e);
+  } catch (...) {
+    return unexpected("parse_scene");
+  }
+
+  std::optional<Simulation> sim;
+  try {
+    sim.emplace(make_simulation(scene));
+  } catch (const SceneError& e) {
+    return {Verdict::rejected, e.what()};
+  } catch (const std::invalid_argument& e) {
+    return {Verdict::rejected_by_world, e.what()};
+  } catch (const std::exception& e) {
+    return unexpected("make_simulation", e);
+  } catch (...) {
+    return unexpected("make_simulation");
+  }
+
+  const std::uint64_t per_tick =
+      static_cast<std::uint64_t>(std::max(scene.world.substeps, 1)) *
+      std::max<std::uint64_t>(sim->body_count(), 1);
+  const int ticks =
+      static_cast<int>(std::clamp<std::uint64_t>(max_body_substeps / per_tick, 1, max_ticks));
+  try {
+    for (int tick = 1; tick <= ticks; ++tick) {
+      sim->step();
+      for (std::size_t i = 0; i < sim->body_count(); ++i) {
+        const Body b = sim->body_at(i);
+        if (!finite(b.position) || !finite(b.velocity)) {
+          return {bounded_scene(scene) ? Verdict::finding : Verdict::overflowed,
+                  fmt::format("non-finite state at tick {} (dt {} s, {}, {}, substeps {}): "
+                              "body[{}] \"{}\" position ({}, {}) velocity ({}, {})",
+                              tick, scene.world.dt, integrator_name(scene.world.integrator),
+                              scene.precision == Precision::f32 ? "f32" : "f64",
+                              scene.world.substeps, i, sim->name(i), b.position.x, b.position.y,
+                              b.velocity.x, b.velocity.y)};
+        }
+      }
+    }
+  } catch (const std::exception& e) {
+    return unexpected("Simulation::step", e);
+  } catch (...) {
+    return unexpected("Simulation::step");
+  }
+  return {Verdict::accepted, {}};
+}
+
+}  // namespace fixstep::fuzz

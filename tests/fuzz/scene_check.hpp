@@ -1,0 +1,48 @@
+// The scene-loader fuzz check of one input, shared by the libFuzzer target (fuzz_scene.cpp,
+// clang only) and the GoogleTest replay of the corpus and regressions (fuzz_regressions.cpp).
+// See docs/ROBUSTNESS.md, "Fuzzing".
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace fixstep::fuzz {
+
+enum class Verdict {
+  accepted,           ///< loaded, built and stepped with every state finite
+  rejected,           ///< parse_scene or make_simulation threw SceneError: a clean rejection
+  rejected_by_world,  ///< make_simulation threw std::invalid_argument (documented, but the
+                      ///< loader is meant to catch these first; fatal with FIXSTEP_FUZZ_STRICT=1)
+  overflowed,         ///< a state became non-finite in a scene outside the checked range
+                      ///< (see bounded_scene): tolerated (fatal with FIXSTEP_FUZZ_STRICT=1)
+  finding,            ///< another exception type escaped, or a state of a bounded scene
+                      ///< became non-finite
+};
+
+struct Outcome {
+  Verdict verdict = Verdict::accepted;
+  std::string detail;  ///< the exception's message or the non-finite body; empty if accepted
+};
+
+/// Ticks stepped for an accepted scene.
+inline constexpr int max_ticks = 60;
+/// Bound on the work of one input, in body-substeps (bodies x substeps x ticks): a scene may ask
+/// for up to 10^6 substeps per tick, so a heavy scene steps fewer ticks (at least one).
+inline constexpr std::uint64_t max_body_substeps = 4'000'000;
+
+/// Magnitudes inside which a non-finite state is a bug rather than arithmetic overflow: with
+/// every number of a scene at most 1e9 in magnitude, every mass at least 1e-9 kg, dt <= 1 s and
+/// the stability guard on, 60 s of forcing moves a body less than 1e9 + 1e9 * 60 + 1e18 * 60^2
+/// ~ 4e21 m, far inside float range. The scene format itself admits any finite number
+/// (position = [1e308, 0] with velocity = [1e308, 0] overflows on the first tick), and
+/// allow_unstable = true asks for blow-ups.
+inline constexpr double bounded_max = 1e9;
+inline constexpr double bounded_min_mass = 1e-9;
+
+/// parse_scene(text, "fuzz.toml"), make_simulation, then up to max_ticks ticks checking every
+/// body's position and velocity after each tick. Crashes and sanitizer reports are left to
+/// the caller's process.
+[[nodiscard]] Outcome check_scene_text(std::string_view text);
+
+}  // namespace fixstep::fuzz
