@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "fixstep/stability.hpp"
+#include "fixstep/suggest.hpp"
 
 namespace fixstep {
 
@@ -27,21 +28,6 @@ SceneError::SceneError(std::string file, std::size_t line, std::size_t column, s
       key_(std::move(key)) {}
 
 namespace {
-
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
 
 std::string_view type_name(const toml::node& n) {
   switch (n.type()) {
@@ -86,18 +72,14 @@ class Reader {
     for (auto&& [key, node] : table) {
       const std::string_view k = key.str();
       if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
-      std::string_view best;
-      std::size_t best_d = 3;  // suggest only within two edits
-      for (std::string_view a : allowed) {
-        const std::size_t d = edit_distance(k, a);
-        if (d < best_d) best_d = d, best = a;
-      }
+      const std::vector<std::string> candidates(allowed.begin(), allowed.end());
+      const std::optional<std::string> best = closest(k, candidates);  // within two edits
       const auto& at = key.source().begin;
       const std::string full = path.empty() ? std::string(k) : path + "." + std::string(k);
       warnings_.push_back({at.line, at.column, fmt::format("{}:{}:{}: {}: unknown key ignored{}", file_, at.line,
                                       at.column, full,
-                                      best.empty() ? std::string()
-                                                   : fmt::format(" (did you mean `{}`?)", best))});
+                                      best ? fmt::format(" (did you mean `{}`?)", *best)
+                                           : std::string())});
     }
   }
 
