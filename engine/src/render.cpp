@@ -38,12 +38,14 @@ layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
 layout(location = 1) in vec2 a_uv;     // shape coordinates (discs, lines)
 layout(location = 2) in vec4 a_color;
 layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line
-uniform vec2 u_size;
+uniform vec2 u_size;    // pixels, the frame
+uniform float u_margin; // pixels of viewport beyond each edge of the frame (see finish())
 out vec2 v_uv;
 out vec4 v_color;
 out float v_kind;
 void main() {
-  gl_Position = vec4(a_pos.x / u_size.x * 2.0 - 1.0, 1.0 - a_pos.y / u_size.y * 2.0, 0.0, 1.0);
+  vec2 p = (a_pos + u_margin) / (u_size + 2.0 * u_margin);
+  gl_Position = vec4(p.x * 2.0 - 1.0, 1.0 - p.y * 2.0, 0.0, 1.0);
   v_uv = a_uv;
   v_color = a_color;
   v_kind = a_kind;
@@ -102,7 +104,8 @@ std::string printable(const std::string& s) {
 struct Renderer::Gl {
   OSMesaContext context = nullptr;
   GLuint program = 0, vao = 0, vbo = 0;
-  GLint size_uniform = -1;
+  GLint size_uniform = -1, margin_uniform = -1;
+  int margin = 0;  // px, see finish()
 };
 
 Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(new Gl) {
@@ -149,6 +152,12 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
   glGetProgramiv(gl_->program, GL_LINK_STATUS, &linked);
   if (!linked) throw RenderError("render: shader program failed to link");
   gl_->size_uniform = glGetUniformLocation(gl_->program, "u_size");
+  gl_->margin_uniform = glGetUniformLocation(gl_->program, "u_margin");
+  GLint max_dims[2] = {0, 0};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_dims);
+  gl_->margin = std::clamp((std::min(max_dims[0] - width, max_dims[1] - height)) / 2, 0, 256);
+  // (llvmpipe reports 16384 x 16384, viewport bounds -32768..32767: the full 256 px even at
+  // max_frame_size.)
 
   glGenVertexArrays(1, &gl_->vao);
   glGenBuffers(1, &gl_->vbo);
@@ -407,7 +416,15 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
 
 void Renderer::finish() {
   make_current();
-  glViewport(0, 0, width_, height_);
+  // The viewport reaches gl_->margin px beyond every edge of the frame (the vertex shader maps
+  // pixel coordinates into it, so pixels land where they did with a frame-sized viewport;
+  // whatever falls outside the frame is simply not rasterised). Without the margin, any vertex
+  // just outside the frame (a disc or trail at the edge) sends the whole chunk of up to 4096
+  // vertices it belongs to through Mesa's clipping pipeline, whose vbuf stage re-marks every
+  // vertex of the chunk on each small flush: that was a third of the drawing thread's time with
+  // 1000 bodies (measured with perf; docs/perf/capture.md). Vertices farther than the margin
+  // out still take the clipping path, correctly.
+  glViewport(-gl_->margin, -gl_->margin, width_ + 2 * gl_->margin, height_ + 2 * gl_->margin);
   glDisable(GL_SCISSOR_TEST);
   glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
@@ -416,6 +433,7 @@ void Renderer::finish() {
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glUseProgram(gl_->program);
   glUniform2f(gl_->size_uniform, float(width_), float(height_));
+  glUniform1f(gl_->margin_uniform, float(gl_->margin));
   glBindVertexArray(gl_->vao);
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(Vertex)),
