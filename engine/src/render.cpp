@@ -103,9 +103,12 @@ std::string printable(const std::string& s) {
 
 struct Renderer::Gl {
   OSMesaContext context = nullptr;
-  GLuint program = 0, vao = 0, vbo = 0;
+  GLuint program = 0, vao = 0, vbo = 0, ibo = 0;
   GLint size_uniform = -1, margin_uniform = -1;
   int margin = 0;  // px, see finish()
+  // Bytes allocated for vbo and ibo: they grow (glBufferData) only when a frame needs more and
+  // are otherwise refilled in place (glBufferSubData), so a steady scene allocates nothing.
+  std::size_t vbo_bytes = 0, ibo_bytes = 0;
 };
 
 Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(new Gl) {
@@ -161,8 +164,10 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
 
   glGenVertexArrays(1, &gl_->vao);
   glGenBuffers(1, &gl_->vbo);
+  glGenBuffers(1, &gl_->ibo);
   glBindVertexArray(gl_->vao);
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo);  // part of the VAO's state
   const auto stride = static_cast<GLsizei>(sizeof(Vertex));
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride,
                         reinterpret_cast<void*>(offsetof(Vertex, x)));
@@ -179,6 +184,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
 Renderer::~Renderer() {
   if (gl_ && gl_->context) {
     make_current();
+    glDeleteBuffers(1, &gl_->ibo);
     glDeleteBuffers(1, &gl_->vbo);
     glDeleteVertexArrays(1, &gl_->vao);
     glDeleteProgram(gl_->program);
@@ -203,10 +209,9 @@ std::array<double, 2> Renderer::to_pixel(double x, double y) const {
 }
 
 void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind) {
-  static constexpr int order[6] = {0, 1, 2, 0, 2, 3};
-  for (int i : order) {
-    vertices_.push_back({p[i][0], p[i][1], uv[i][0], uv[i][1], c.r, c.g, c.b, c.a, kind});
-  }
+  const auto base = static_cast<std::uint32_t>(vertices_.size());
+  for (int i = 0; i < 4; ++i) vertex(p[i][0], p[i][1], uv[i][0], uv[i][1], c, kind);
+  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) indices_.push_back(base + i);
 }
 
 void Renderer::rect(float x0, float y0, float x1, float y1, Rgba8 c) {
@@ -232,7 +237,57 @@ void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
 
 void Renderer::triangle(float x0, float y0, float x1, float y1, float x2, float y2, Rgba8 c) {
   const float p[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};
-  for (const auto& v : p) vertices_.push_back({v[0], v[1], 0.0f, 0.0f, c.r, c.g, c.b, c.a, 0.0f});
+  const auto base = static_cast<std::uint32_t>(vertices_.size());
+  for (const auto& v : p) vertex(v[0], v[1], 0.0f, 0.0f, c, 0.0f);
+  for (std::uint32_t i = 0; i < 3; ++i) indices_.push_back(base + i);
+}
+
+void Renderer::polyline(std::span<const PolylinePoint> points, float width) {
+  // The strip is a sequence of vertex pairs: left = point + normal * pad, right = point -
+  // normal * pad, shape coordinate v = +e / -e, as in line() (pad includes its extra pixel for
+  // the anti-aliased edge). A pair emitted with `join` is connected to the pair before it by
+  // two triangles.
+  const float h = 0.5f * width, pad = h + 1.0f, e = pad / h;
+  constexpr float min_step = 1e-3f;  // px, as line()
+  // cos of the sharpest turn still mitred: 90°, where the mitre is sqrt(2) * pad long.
+  constexpr float mitre_limit = 0.0f;
+  auto pair = [&](const PolylinePoint& p, float nx, float ny, bool join) {
+    const auto base = static_cast<std::uint32_t>(vertices_.size());
+    vertex(p.x + nx, p.y + ny, 0.0f, e, p.c, 2.0f);
+    vertex(p.x - nx, p.y - ny, 0.0f, -e, p.c, 2.0f);
+    if (join) {
+      for (std::uint32_t i : {0u, 1u, 3u, 0u, 3u, 2u}) indices_.push_back(base - 2 + i);
+    }
+  };
+  if (points.empty()) return;
+  // `prev`: the last distinct point; (dx, dy): unit direction of the segment ending there.
+  const PolylinePoint* prev = &points[0];
+  float dx = 0, dy = 0;
+  bool started = false;  // the first segment (and the pair at its start) has been emitted
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const PolylinePoint& p = points[i];
+    const float sx = p.x - prev->x, sy = p.y - prev->y;
+    const float len = std::sqrt(sx * sx + sy * sy);
+    if (len < min_step) continue;
+    const float ux = sx / len, uy = sy / len;
+    if (!started) {
+      pair(*prev, -uy * pad, ux * pad, false);
+      started = true;
+    } else if (dx * ux + dy * uy >= mitre_limit) {  // mitre: one pair on the bisector
+      float mx = dx + ux, my = dy + uy;
+      const float ml = std::sqrt(mx * mx + my * my);
+      mx /= ml, my /= ml;
+      // Offset pad / cos(half the turn) along the bisector's normal: pad from both segments.
+      const float scale = pad / (mx * ux + my * uy);
+      pair(*prev, -my * scale, mx * scale, true);
+    } else {  // too sharp: end this strip flat and start the next one flat
+      pair(*prev, -dy * pad, dx * pad, true);
+      pair(*prev, -uy * pad, ux * pad, false);
+    }
+    dx = ux, dy = uy;
+    prev = &p;
+  }
+  if (started) pair(*prev, -dy * pad, dx * pad, true);
 }
 
 template <class Transform>
@@ -277,16 +332,17 @@ float Renderer::text_width(const std::string& s, float scale) {
 void Renderer::begin(Rgba8 background) {
   make_current();
   vertices_.clear();
+  indices_.clear();
   batches_.assign(1, Batch{});
   background_ = background;
 }
 
 void Renderer::set_clip(std::optional<ClipRect> clip) {
   if (batches_.empty()) batches_.push_back(Batch{});
-  if (batches_.back().first == vertices_.size()) {
+  if (batches_.back().first == indices_.size()) {
     batches_.back().clip = clip;  // nothing drawn under the previous clip yet
   } else {
-    batches_.push_back(Batch{vertices_.size(), clip});
+    batches_.push_back(Batch{indices_.size(), clip});
   }
 }
 
@@ -414,6 +470,20 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
   finish();
 }
 
+namespace {
+
+// Fills the buffer bound to `target` with `bytes` bytes of `data`, growing its store (to at
+// least twice its old size) only when they do not fit. `capacity` is the store's size.
+void upload(GLenum target, std::size_t& capacity, const void* data, std::size_t bytes) {
+  if (bytes > capacity) {
+    capacity = std::max(bytes, 2 * capacity);
+    glBufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_DYNAMIC_DRAW);
+  }
+  if (bytes > 0) glBufferSubData(target, 0, static_cast<GLsizeiptr>(bytes), data);
+}
+
+}  // namespace
+
 void Renderer::finish() {
   make_current();
   // The viewport reaches gl_->margin px beyond every edge of the frame (the vertex shader maps
@@ -436,11 +506,12 @@ void Renderer::finish() {
   glUniform1f(gl_->margin_uniform, float(gl_->margin));
   glBindVertexArray(gl_->vao);
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(Vertex)),
-               vertices_.data(), GL_STREAM_DRAW);
+  upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), vertices_.size() * sizeof(Vertex));
+  upload(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo_bytes, indices_.data(),
+         indices_.size() * sizeof(std::uint32_t));
   for (std::size_t b = 0; b < batches_.size(); ++b) {
     const std::size_t first = batches_[b].first;
-    const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : vertices_.size();
+    const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : indices_.size();
     if (end == first) continue;
     if (const auto& c = batches_[b].clip) {
       // GL's scissor box has its origin at the bottom-left; pixels() rows run top down.
@@ -451,7 +522,8 @@ void Renderer::finish() {
     } else {
       glDisable(GL_SCISSOR_TEST);
     }
-    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(end - first));
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   }
   glDisable(GL_SCISSOR_TEST);
   glFinish();
