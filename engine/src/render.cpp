@@ -407,16 +407,32 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     return s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
   };
 
-  // Trails: oldest sample transparent, newest 60 % opaque.
-  for (std::size_t j = 0; j < n; ++j) {
-    Rgba8 c = color_of(j);
-    for (int k = 1; k < trail_count_; ++k) {
-      const int a = (trail_head_ - trail_count_ + k - 1 + 2 * trail_frames) % trail_frames;
-      const int b = (a + 1) % trail_frames;
-      c.a = static_cast<std::uint8_t>(150 * k / trail_count_);
-      line(trail_x_[j * trail_frames + a], trail_y_[j * trail_frames + a],
-           trail_x_[j * trail_frames + b], trail_y_[j * trail_frames + b], 2.0f, c);
+  // Trails: one polyline per body through its samples, fading from transparent (oldest) to
+  // 60 % opaque (newest): sample k of count (0 = oldest) has alpha 150 (k + 0.5) / count, so
+  // each segment has on average the alpha it had when every segment was a line() of alpha
+  // 150 k / count. Walking from the newest sample back, a sample closer than
+  // trail_min_step_px to the last one kept is skipped (the oldest is always kept): a slow
+  // body's trail is then a few segments of a few pixels instead of 44 sub-pixel ones, and a
+  // curve of radius R px departs from its samples by at most trail_min_step_px² / (8 R) px
+  // (0.2 px at R = 6 px).
+  constexpr float trail_min_step_px = 3.0f;
+  for (std::size_t j = 0; j < n && trail_count_ > 1; ++j) {
+    const Rgba8 c = color_of(j);
+    const float* tx = &trail_x_[j * trail_frames];
+    const float* ty = &trail_y_[j * trail_frames];
+    polyline_scratch_.clear();
+    for (int k = trail_count_ - 1; k >= 0; --k) {  // newest first
+      const int at = (trail_head_ - trail_count_ + k + trail_frames) % trail_frames;
+      if (k > 0 && k < trail_count_ - 1) {
+        const PolylinePoint& last = polyline_scratch_.back();
+        const float dx = tx[at] - last.x, dy = ty[at] - last.y;
+        if (dx * dx + dy * dy < trail_min_step_px * trail_min_step_px) continue;
+      }
+      Rgba8 ck = c;
+      ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * trail_count_));
+      polyline_scratch_.push_back({tx[at], ty[at], ck});
     }
+    polyline(polyline_scratch_, 2.0f);
   }
 
   // Springs: a zigzag of 12 coils from the anchor to the body, with straight leads.
