@@ -396,6 +396,50 @@ void Renderer::record_trails(const Snapshot& s) {
   trail_count_ = std::min(trail_count_ + 1, trail_frames);
 }
 
+namespace {
+
+// Trail samples may be left up to this far from the drawn polyline, px (see draw()).
+constexpr float trail_tolerance_px = 0.2f;
+
+// Squared distance from (px, py) to the segment from a to b, px².
+float distance2_to_segment(float px, float py, const Renderer::PolylinePoint& a,
+                           const Renderer::PolylinePoint& b) {
+  const float ux = b.x - a.x, uy = b.y - a.y, wx = px - a.x, wy = py - a.y;
+  const float len2 = ux * ux + uy * uy;
+  const float t = len2 > 0.0f ? std::clamp((wx * ux + wy * uy) / len2, 0.0f, 1.0f) : 0.0f;
+  const float dx = wx - t * ux, dy = wy - t * uy;
+  return dx * dx + dy * dy;
+}
+
+// Drops points of `points` (in place, order kept) greedily: from each kept point, the next one
+// kept is the farthest along that leaves every point in between within `tolerance` px of the
+// segment joining the two, and at most max_run points on. The first and last points are
+// always kept. O(n * max_run) distance computations.
+void simplify_polyline(std::vector<Renderer::PolylinePoint>& points, float tolerance) {
+  const std::size_t n = points.size();
+  if (n < 3) return;
+  const float tol2 = tolerance * tolerance;
+  constexpr std::size_t max_run = 12;
+  std::size_t kept = 1, anchor = 0;  // points[0] stays where it is
+  while (anchor + 1 < n) {
+    std::size_t end = anchor + 1;
+    while (end + 1 < n && end - anchor < max_run) {
+      bool fits = true;
+      for (std::size_t i = anchor + 1; i <= end && fits; ++i) {
+        fits = distance2_to_segment(points[i].x, points[i].y, points[anchor], points[end + 1]) <=
+               tol2;
+      }
+      if (!fits) break;
+      ++end;
+    }
+    points[kept++] = points[end];
+    anchor = end;
+  }
+  points.resize(kept);
+}
+
+}  // namespace
+
 void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
   begin(background);
   record_trails(s);
@@ -410,28 +454,22 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
   // Trails: one polyline per body through its samples, fading from transparent (oldest) to
   // 60 % opaque (newest): sample k of count (0 = oldest) has alpha 150 (k + 0.5) / count, so
   // each segment has on average the alpha it had when every segment was a line() of alpha
-  // 150 k / count. Walking from the newest sample back, a sample closer than
-  // trail_min_step_px to the last one kept is skipped (the oldest is always kept): a slow
-  // body's trail is then a few segments of a few pixels instead of 44 sub-pixel ones, and a
-  // curve of radius R px departs from its samples by at most trail_min_step_px² / (8 R) px
-  // (0.2 px at R = 6 px).
-  constexpr float trail_min_step_px = 3.0f;
+  // 150 k / count. Samples are then dropped where the polyline can skip them without leaving
+  // any of them more than trail_tolerance_px away (simplify_polyline): a trail of 44 sub-pixel
+  // segments becomes a few segments of a few pixels, and a projectile's gentle parabola a few
+  // long ones.
   for (std::size_t j = 0; j < n && trail_count_ > 1; ++j) {
     const Rgba8 c = color_of(j);
     const float* tx = &trail_x_[j * trail_frames];
     const float* ty = &trail_y_[j * trail_frames];
     polyline_scratch_.clear();
-    for (int k = trail_count_ - 1; k >= 0; --k) {  // newest first
+    for (int k = 0; k < trail_count_; ++k) {  // oldest first
       const int at = (trail_head_ - trail_count_ + k + trail_frames) % trail_frames;
-      if (k > 0 && k < trail_count_ - 1) {
-        const PolylinePoint& last = polyline_scratch_.back();
-        const float dx = tx[at] - last.x, dy = ty[at] - last.y;
-        if (dx * dx + dy * dy < trail_min_step_px * trail_min_step_px) continue;
-      }
       Rgba8 ck = c;
       ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * trail_count_));
       polyline_scratch_.push_back({tx[at], ty[at], ck});
     }
+    simplify_polyline(polyline_scratch_, trail_tolerance_px);
     polyline(polyline_scratch_, 2.0f);
   }
 
