@@ -37,7 +37,7 @@ constexpr const char* vertex_shader = R"(#version 330 core
 layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
 layout(location = 1) in vec2 a_uv;     // shape coordinates (discs, lines)
 layout(location = 2) in vec4 a_color;
-layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line
+layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line; see below
 uniform vec2 u_size;    // pixels, the frame
 uniform float u_margin; // pixels of viewport beyond each edge of the frame (see finish())
 out vec2 v_uv;
@@ -67,6 +67,27 @@ void main() {
     a *= clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
   }
   frag = vec4(v_color.rgb, a);
+}
+)";
+
+// Outlined discs (Renderer::disc with an outline) in one pass, their own program: v_uv is 1 at
+// the outer edge, v_kind is the fill's radius in the same units, u_ring the outline's colour.
+// The fill is composited over the outline in the shader, so the result is that of drawing the
+// outline disc and then the fill disc "over" it: alpha a = af + (1 - af) ao and colour
+// (f af + o (1 - af) ao) / a, blended over the frame with GL's straight-alpha "over".
+constexpr const char* ring_fragment_shader = R"(#version 330 core
+in vec2 v_uv;
+in vec4 v_color;
+in float v_kind;
+uniform vec4 u_ring;
+out vec4 frag;
+void main() {
+  float d = length(v_uv);
+  float w = max(fwidth(d), 1e-6);
+  float ao = u_ring.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  float af = v_color.a * clamp((v_kind - d) / w + 0.5, 0.0, 1.0);
+  float a = af + (1.0 - af) * ao;
+  frag = vec4((v_color.rgb * af + u_ring.rgb * ((1.0 - af) * ao)) / max(a, 1e-6), a);
 }
 )";
 
@@ -103,8 +124,12 @@ std::string printable(const std::string& s) {
 
 struct Renderer::Gl {
   OSMesaContext context = nullptr;
-  GLuint program = 0, vao = 0, vbo = 0, ibo = 0;
-  GLint size_uniform = -1, margin_uniform = -1;
+  struct Program {
+    GLuint id = 0;
+    GLint size = -1, margin = -1, ring = -1;  // uniform locations (ring: outlined discs only)
+  };
+  Program programs[2];  // [Renderer::shapes], [Renderer::outlined_discs]
+  GLuint vao = 0, vbo = 0, ibo = 0;
   int margin = 0;  // px, see finish()
   // Bytes allocated for vbo and ibo: they grow (glBufferData) only when a frame needs more and
   // are otherwise refilled in place (glBufferSubData), so a steady scene allocates nothing.
@@ -144,18 +169,26 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
   gl_renderer_ = renderer;
 
   const GLuint vs = compile(GL_VERTEX_SHADER, vertex_shader);
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_shader);
-  gl_->program = glCreateProgram();
-  glAttachShader(gl_->program, vs);
-  glAttachShader(gl_->program, fs);
-  glLinkProgram(gl_->program);
+  const char* fragment_sources[2] = {fragment_shader, ring_fragment_shader};
+  for (int i = 0; i < 2; ++i) {
+    Gl::Program& p = gl_->programs[i];
+    const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_sources[i]);
+    p.id = glCreateProgram();
+    glAttachShader(p.id, vs);
+    glAttachShader(p.id, fs);
+    glLinkProgram(p.id);
+    glDeleteShader(fs);
+    GLint linked = 0;
+    glGetProgramiv(p.id, GL_LINK_STATUS, &linked);
+    if (!linked) {
+      glDeleteShader(vs);
+      throw RenderError("render: shader program failed to link");
+    }
+    p.size = glGetUniformLocation(p.id, "u_size");
+    p.margin = glGetUniformLocation(p.id, "u_margin");
+    p.ring = glGetUniformLocation(p.id, "u_ring");
+  }
   glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint linked = 0;
-  glGetProgramiv(gl_->program, GL_LINK_STATUS, &linked);
-  if (!linked) throw RenderError("render: shader program failed to link");
-  gl_->size_uniform = glGetUniformLocation(gl_->program, "u_size");
-  gl_->margin_uniform = glGetUniformLocation(gl_->program, "u_margin");
   GLint max_dims[2] = {0, 0};
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_dims);
   gl_->margin = std::clamp((std::min(max_dims[0] - width, max_dims[1] - height)) / 2, 0, 256);
@@ -187,7 +220,7 @@ Renderer::~Renderer() {
     glDeleteBuffers(1, &gl_->ibo);
     glDeleteBuffers(1, &gl_->vbo);
     glDeleteVertexArrays(1, &gl_->vao);
-    glDeleteProgram(gl_->program);
+    for (const Gl::Program& p : gl_->programs) glDeleteProgram(p.id);
     OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);  // unbind before destroying
     OSMesaDestroyContext(gl_->context);
   }
@@ -215,6 +248,7 @@ void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, fl
 }
 
 void Renderer::rect(float x0, float y0, float x1, float y1, Rgba8 c) {
+  use(shapes, {});
   quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
 }
 
@@ -222,6 +256,7 @@ void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c
   const float dx = x1 - x0, dy = y1 - y0;
   const float len = std::sqrt(dx * dx + dy * dy);
   if (len < 1e-3f) return;
+  use(shapes, {});
   const float h = 0.5f * width, pad = h + 1.0f;  // one extra pixel for the anti-aliased edge
   const float nx = -dy / len * pad, ny = dx / len * pad;
   const float e = pad / h;
@@ -230,12 +265,38 @@ void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c
 }
 
 void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
+  use(shapes, {});
   const float pad = r + 1.0f, e = pad / r;
   quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
        {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, 1.0f);
 }
 
+void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width,
+                    Rgba8 outline_c) {
+  if (!(outline_width > 0.0f)) {
+    disc(cx, cy, r, c);
+    return;
+  }
+  use(outlined_discs, outline_c);
+  const float outer = r + outline_width, pad = outer + 1.0f, e = pad / outer;
+  quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
+       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, r / outer);
+}
+
+void Renderer::use(int program, Rgba8 ring) {
+  if (batches_.empty()) batches_.push_back(Batch{});  // primitives before the first begin()
+  Batch& b = batches_.back();
+  if (b.program == program && (program == shapes || b.ring == ring)) return;
+  if (b.first == indices_.size()) {  // nothing recorded in this batch yet
+    b.program = program;
+    b.ring = ring;
+  } else {
+    batches_.push_back(Batch{indices_.size(), b.clip, program, ring});
+  }
+}
+
 void Renderer::triangle(float x0, float y0, float x1, float y1, float x2, float y2, Rgba8 c) {
+  use(shapes, {});
   const float p[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};
   const auto base = static_cast<std::uint32_t>(vertices_.size());
   for (const auto& v : p) vertex(v[0], v[1], 0.0f, 0.0f, c, 0.0f);
@@ -247,6 +308,7 @@ void Renderer::polyline(std::span<const PolylinePoint> points, float width) {
   // normal * pad, shape coordinate v = +e / -e, as in line() (pad includes its extra pixel for
   // the anti-aliased edge). A pair emitted with `join` is connected to the pair before it by
   // two triangles.
+  use(shapes, {});
   const float h = 0.5f * width, pad = h + 1.0f, e = pad / h;
   constexpr float min_step = 1e-3f;  // px, as line()
   // cos of the sharpest turn still mitred: 90°, where the mitre is sqrt(2) * pad long.
@@ -301,6 +363,7 @@ void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to
   const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, font_scratch_.data(),
                                         static_cast<int>(font_scratch_.size()));
   const char* base = font_scratch_.data();
+  use(shapes, {});
   for (int q = 0; q < quads; ++q) {
     float p[4][2];
     for (int k = 0; k < 4; ++k) {
@@ -342,7 +405,7 @@ void Renderer::set_clip(std::optional<ClipRect> clip) {
   if (batches_.back().first == indices_.size()) {
     batches_.back().clip = clip;  // nothing drawn under the previous clip yet
   } else {
-    batches_.push_back(Batch{indices_.size(), clip});
+    batches_.push_back(Batch{indices_.size(), clip, batches_.back().program, batches_.back().ring});
   }
 }
 
@@ -504,8 +567,7 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     const float r = s.radius[j] > 0.0f
                         ? std::max(float(s.radius[j] * scale), min_radius_px)
                         : default_radius_px;
-    disc(float(p[0]), float(p[1]), r + 1.5f, outline);
-    disc(float(p[0]), float(p[1]), r, color_of(j));
+    disc(float(p[0]), float(p[1]), r, color_of(j), 1.5f, outline);
   }
 
   // HUD: text lines on a translucent panel, top left.
@@ -555,9 +617,12 @@ void Renderer::finish() {
   glEnable(GL_BLEND);
   // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  glUseProgram(gl_->program);
-  glUniform2f(gl_->size_uniform, float(width_), float(height_));
-  glUniform1f(gl_->margin_uniform, float(gl_->margin));
+  for (const Gl::Program& p : gl_->programs) {
+    glUseProgram(p.id);
+    glUniform2f(p.size, float(width_), float(height_));
+    glUniform1f(p.margin, float(gl_->margin));
+  }
+  int program = -1;
   glBindVertexArray(gl_->vao);
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
   upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), vertices_.size() * sizeof(Vertex));
@@ -567,6 +632,15 @@ void Renderer::finish() {
     const std::size_t first = batches_[b].first;
     const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : indices_.size();
     if (end == first) continue;
+    if (batches_[b].program != program) {
+      program = batches_[b].program;
+      glUseProgram(gl_->programs[program].id);
+    }
+    if (program == outlined_discs) {
+      const Rgba8 r = batches_[b].ring;
+      glUniform4f(gl_->programs[program].ring, r.r / 255.0f, r.g / 255.0f, r.b / 255.0f,
+                  r.a / 255.0f);
+    }
     if (const auto& c = batches_[b].clip) {
       // GL's scissor box has its origin at the bottom-left; pixels() rows run top down.
       const int x0 = std::clamp(c->x0, 0, width_), x1 = std::clamp(c->x1, x0, width_);

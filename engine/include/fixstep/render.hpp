@@ -113,6 +113,11 @@ class Renderer {
   void polyline(std::span<const PolylinePoint> points, float width);
   /// An anti-aliased filled disc of radius r px centred on (cx, cy).
   void disc(float cx, float cy, float r, Rgba8 c);
+  /// The same disc inside an outline ring `outline_width` px wide of colour `outline_c` (outer
+  /// radius r + outline_width px): the picture of disc(cx, cy, r + outline_width, outline_c)
+  /// followed by disc(cx, cy, r, c), drawn in one pass over the pixels instead of two.
+  /// outline_width <= 0 draws the plain disc.
+  void disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c);
   /// Text in stb_easy_font's bitmap font (printable ASCII: any other character, e.g. a UTF-8
   /// "ω", is drawn as one '?'; '\n' starts a new line), `scale` px per font
   /// unit, with the top-left corner of the first glyph cell at (x, y). A line of capitals is
@@ -133,6 +138,12 @@ class Renderer {
     std::uint8_t r, g, b, a;
     float kind;
   };
+  // Fragment programs; each batch uses one.
+  static constexpr int shapes = 0;          // solids, discs, lines, polylines, text
+  static constexpr int outlined_discs = 1;  // disc() with an outline
+  /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
+  /// outlined_discs, outline colour `ring`), starting a new batch if needed.
+  void use(int program, Rgba8 ring);
   void make_current();
   void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind);
   void vertex(float x, float y, float u, float v, Rgba8 c, float kind) {
@@ -155,6 +166,8 @@ class Renderer {
   struct Batch {
     std::size_t first = 0;
     std::optional<ClipRect> clip;
+    int program = shapes;
+    Rgba8 ring{};  // outline colour of outlined_discs
   };
   std::vector<Batch> batches_;
   Rgba8 background_{};
