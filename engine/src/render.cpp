@@ -552,18 +552,20 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     if (len < 24.0f) {
       line(ax, ay, bx, by, 2.0f, spring_color);
     } else {
+      // One polyline: anchor, start of the coils, 2 * coils corners, the body.
       constexpr int coils = 12;
       const float nx = -dy / len * 7.0f, ny = dx / len * 7.0f;
-      float px = ax + dx * 0.1f, py = ay + dy * 0.1f;
-      line(ax, ay, px, py, 2.0f, spring_color);
+      polyline_scratch_.clear();
+      polyline_scratch_.push_back({ax, ay, spring_color});
+      polyline_scratch_.push_back({ax + dx * 0.1f, ay + dy * 0.1f, spring_color});
       for (int k = 1; k <= 2 * coils; ++k) {
         const float f = 0.1f + 0.8f * float(k) / (2 * coils);
         const float side = k == 2 * coils ? 0.0f : (k % 2 ? 1.0f : -1.0f);
-        const float qx = ax + dx * f + nx * side, qy = ay + dy * f + ny * side;
-        line(px, py, qx, qy, 2.0f, spring_color);
-        px = qx, py = qy;
+        polyline_scratch_.push_back({ax + dx * f + nx * side, ay + dy * f + ny * side,
+                                     spring_color});
       }
-      line(px, py, bx, by, 2.0f, spring_color);
+      polyline_scratch_.push_back({bx, by, spring_color});
+      polyline(polyline_scratch_, 2.0f);
     }
     rect(ax - 5, ay - 5, ax + 5, ay + 5, anchor_color);
   }
