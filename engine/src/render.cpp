@@ -471,16 +471,6 @@ namespace {
 // Trail samples may be left up to this far from the drawn polyline, px (see draw()).
 constexpr float trail_tolerance_px = 0.2f;
 
-// Squared distance from (px, py) to the segment from a to b, px².
-float distance2_to_segment(float px, float py, const Renderer::PolylinePoint& a,
-                           const Renderer::PolylinePoint& b) {
-  const float ux = b.x - a.x, uy = b.y - a.y, wx = px - a.x, wy = py - a.y;
-  const float len2 = ux * ux + uy * uy;
-  const float t = len2 > 0.0f ? std::clamp((wx * ux + wy * uy) / len2, 0.0f, 1.0f) : 0.0f;
-  const float dx = wx - t * ux, dy = wy - t * uy;
-  return dx * dx + dy * dy;
-}
-
 // Drops points of `points` (in place, order kept) greedily: from each kept point, the next one
 // kept is the farthest along that leaves every point in between within `tolerance` px of the
 // segment joining the two, and at most max_run points on. The first and last points are
@@ -490,18 +480,24 @@ void simplify_polyline(std::vector<Renderer::PolylinePoint>& points, float toler
   if (n < 3) return;
   const float tol2 = tolerance * tolerance;
   constexpr std::size_t max_run = 12;
+  // Is every point strictly between points[from] and points[to] within tolerance of the segment
+  // joining them?
+  auto fits = [&](std::size_t from, std::size_t to) {
+    const Renderer::PolylinePoint &a = points[from], &b = points[to];
+    const float ux = b.x - a.x, uy = b.y - a.y, len2 = ux * ux + uy * uy;
+    const float inv_len2 = len2 > 0.0f ? 1.0f / len2 : 0.0f;
+    for (std::size_t i = from + 1; i < to; ++i) {
+      const float wx = points[i].x - a.x, wy = points[i].y - a.y;
+      const float t = std::clamp((wx * ux + wy * uy) * inv_len2, 0.0f, 1.0f);
+      const float dx = wx - t * ux, dy = wy - t * uy;
+      if (dx * dx + dy * dy > tol2) return false;
+    }
+    return true;
+  };
   std::size_t kept = 1, anchor = 0;  // points[0] stays where it is
   while (anchor + 1 < n) {
     std::size_t end = anchor + 1;
-    while (end + 1 < n && end - anchor < max_run) {
-      bool fits = true;
-      for (std::size_t i = anchor + 1; i <= end && fits; ++i) {
-        fits = distance2_to_segment(points[i].x, points[i].y, points[anchor], points[end + 1]) <=
-               tol2;
-      }
-      if (!fits) break;
-      ++end;
-    }
+    while (end + 1 < n && end - anchor < max_run && fits(anchor, end + 1)) ++end;
     points[kept++] = points[end];
     anchor = end;
   }
