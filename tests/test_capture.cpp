@@ -7,6 +7,7 @@
 #include <fstream>
 #include <latch>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -102,6 +103,44 @@ TEST(Capture, EveryLevelRoundTripsExactly) {
   // The level reaches libdeflate: level 0 stores (larger than the raw pixels), 12 compresses.
   EXPECT_GT(sizes.front(), picture.size());
   EXPECT_LT(sizes.back(), sizes.front() / 2);
+}
+
+/// CRC-32 as the PNG specification defines it (polynomial 0xEDB88320, reflected, initial and
+/// final value 0xFFFFFFFF), bit by bit: an independent reference for the encoder's chunk CRCs.
+std::uint32_t reference_crc32(const std::uint8_t* p, std::size_t n) {
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < n; ++i) {
+    crc ^= p[i];
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return crc ^ 0xFFFFFFFFu;
+}
+
+TEST(Capture, EveryChunkCarriesTheStandardCrc32) {
+  // stb_image does not check CRCs when decoding, so a wrong CRC hook would pass the round
+  // trips above; stricter readers (libpng) reject such files.
+  const int w = 203, h = 97;
+  const auto picture = test_picture(w, h, 3);
+  for (int level : {0, 1, 6}) {
+    PngEncoder encoder(PngOptions{.level = level});
+    const auto png = encoder.encode(w, h, picture);
+    std::vector<std::string> types;
+    std::size_t i = 8;
+    while (i + 12 <= png.size()) {
+      const std::size_t len = (std::size_t{png[i]} << 24) | (std::size_t{png[i + 1]} << 16) |
+                              (std::size_t{png[i + 2]} << 8) | png[i + 3];
+      ASSERT_LE(i + 12 + len, png.size()) << "level " << level;
+      const std::uint8_t* c = &png[i + 8 + len];
+      const std::uint32_t stored = (std::uint32_t{c[0]} << 24) | (std::uint32_t{c[1]} << 16) |
+                                   (std::uint32_t{c[2]} << 8) | c[3];
+      types.emplace_back(reinterpret_cast<const char*>(&png[i + 4]), 4);
+      EXPECT_EQ(stored, reference_crc32(&png[i + 4], len + 4))
+          << "level " << level << ", chunk " << types.back();
+      i += 12 + len;
+    }
+    EXPECT_EQ(i, png.size()) << "level " << level;
+    EXPECT_EQ(types, (std::vector<std::string>{"IHDR", "IDAT", "IEND"})) << "level " << level;
+  }
 }
 
 TEST(Capture, EncoderIsReusableAcrossImagesAndSizes) {

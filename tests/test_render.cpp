@@ -1,6 +1,7 @@
 // Headless rendering through OSMesa: sizes, the world-to-pixel mapping, and what is drawn.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "fixstep/render.hpp"
@@ -133,6 +134,95 @@ TEST(Canvas, PrimitivesLandOnTheirPixelsAndClipIsExact) {
   EXPECT_TRUE(near(at(r, 38, 72), blue, 0));      // beyond its hypotenuse
   EXPECT_TRUE(near(at(r, 80, 60), red, 0));       // the unclipped rectangle
   EXPECT_TRUE(near(at(r, 5, 5), blue, 0));
+}
+
+/// Largest difference of any colour channel between two frames of the same size.
+int max_difference(const Renderer& a, const Renderer& b) {
+  int worst = 0;
+  for (std::size_t i = 0; i < a.pixels().size(); ++i) {
+    worst = std::max(worst, std::abs(int(a.pixels()[i]) - int(b.pixels()[i])));
+  }
+  return worst;
+}
+
+TEST(Canvas, PolylineDrawsWhatItsSegmentsDrawWhereTheyMeetStraight) {
+  // Collinear points (and a repeated one, which is skipped) give the pixels of one line().
+  const Rgba8 bg{10, 20, 30, 255}, red{255, 0, 0, 255};
+  Renderer one(120, 60), strip(120, 60);
+  one.begin(bg);
+  one.line(10, 30.5f, 110, 30.5f, 3.0f, red);
+  one.finish();
+  const Renderer::PolylinePoint pts[] = {
+      {10, 30.5f, red}, {40, 30.5f, red}, {40, 30.5f, red}, {75, 30.5f, red}, {110, 30.5f, red}};
+  strip.begin(bg);
+  strip.polyline(pts, 3.0f);
+  strip.finish();
+  EXPECT_LE(max_difference(one, strip), 1);
+}
+
+TEST(Canvas, PolylineInterpolatesColourAndJoinsCorners) {
+  // Red at the left end to blue at the right end of a horizontal run, then a right-angle turn
+  // downwards (mitred: its outer corner is filled) and a reversal back up (a flat join).
+  const Rgba8 bg{0, 0, 0, 255}, red{255, 0, 0, 255}, blue{0, 0, 255, 255};
+  Renderer r(120, 80);
+  r.begin(bg);
+  const Renderer::PolylinePoint pts[] = {
+      {10, 20.5f, red}, {100.5f, 20.5f, blue}, {100.5f, 70, blue}, {100.5f, 40, blue}};
+  r.polyline(pts, 4.0f);
+  r.finish();
+  EXPECT_TRUE(near(at(r, 12, 20), red, 12));
+  EXPECT_TRUE(near(at(r, 98, 20), blue, 12));
+  const Pixel mid = at(r, 55, 20);  // halfway: as much red as blue
+  EXPECT_NEAR(mid.r, 128, 10);
+  EXPECT_NEAR(mid.b, 128, 10);
+  EXPECT_TRUE(near(at(r, 101, 19), blue, 2));  // the outer corner of the turn is covered
+  EXPECT_TRUE(near(at(r, 100, 60), blue, 2));  // the vertical leg
+  EXPECT_TRUE(near(at(r, 100, 74), bg, 0));    // the flat end of the reversal: no spike
+  EXPECT_TRUE(near(at(r, 55, 30), bg, 0));
+  EXPECT_TRUE(near(at(r, 110, 45), bg, 0));
+  // Fewer than two distinct points draw nothing.
+  Renderer empty(32, 32);
+  empty.begin(bg);
+  const Renderer::PolylinePoint one_point[] = {{16, 16, red}, {16, 16, red}};
+  empty.polyline(one_point, 4.0f);
+  empty.polyline({}, 4.0f);
+  empty.finish();
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) ASSERT_TRUE(near(at(empty, x, y), bg, 0)) << x << "," << y;
+}
+
+TEST(Canvas, OutlinedDiscIsTheOutlineDiscThenTheFillDisc) {
+  // Opaque and translucent fills and outlines, overlapping each other and a line: one pass
+  // gives the pixels of the two discs drawn one after the other (8-bit rounding aside).
+  const Rgba8 bg{18, 21, 28, 255}, line_c{200, 200, 60, 255};
+  const struct {
+    Rgba8 fill, ring;
+    float r, w;
+  } cases[] = {{{230, 87, 46, 255}, {8, 10, 14, 255}, 9.0f, 1.5f},
+               {{76, 175, 240, 120}, {250, 250, 250, 200}, 6.3f, 2.0f},
+               {{120, 210, 110, 255}, {8, 10, 14, 90}, 3.0f, 1.5f}};
+  Renderer two(96, 48), one(96, 48);
+  for (Renderer* r : {&two, &one}) {
+    r->begin(bg);
+    r->line(0, 24.5f, 96, 24.5f, 6.0f, line_c);
+    r->set_clip(Renderer::ClipRect{0, 0, 90, 48});  // programs switch under a clip too
+    float x = 16.0f;
+    for (const auto& c : cases) {
+      if (r == &two) {
+        r->disc(x, 24.0f, c.r + c.w, c.ring);
+        r->disc(x, 24.0f, c.r, c.fill);
+      } else {
+        r->disc(x, 24.0f, c.r, c.fill, c.w, c.ring);
+      }
+      x += 14.0f;
+    }
+    r->set_clip(std::nullopt);
+    r->rect(80, 0, 96, 10, line_c);  // and back to the shapes program
+    r->finish();
+  }
+  EXPECT_LE(max_difference(two, one), 2);
+  EXPECT_TRUE(near(at(one, 16, 24), cases[0].fill, 1));
+  EXPECT_TRUE(near(at(one, 88, 5), line_c, 0));
 }
 
 TEST(Canvas, TextOutsidePrintableAsciiIsDrawnAsQuestionMarks) {

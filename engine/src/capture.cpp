@@ -40,6 +40,14 @@ unsigned char* zlib_compress_hook(unsigned char* data, int data_len, int* out_le
   return out;
 }
 
+// stb_image_write's STBIW_CRC32 hook: the CRC-32 of each PNG chunk (PNG's CRC is the standard
+// CRC-32, the one libdeflate_crc32 computes when started from 0, per libdeflate.h). stb's own is
+// a byte-at-a-time table loop over the whole IDAT chunk; libdeflate's is vectorised
+// (PCLMULQDQ where the CPU has it).
+unsigned int png_crc32(const unsigned char* buffer, int len) {
+  return libdeflate_crc32(0, buffer, len > 0 ? static_cast<std::size_t>(len) : 0);
+}
+
 }  // namespace
 
 // stb_image_write with its private copy of every function and global (STB_IMAGE_WRITE_STATIC):
@@ -48,6 +56,7 @@ unsigned char* zlib_compress_hook(unsigned char* data, int data_len, int* out_le
 #define STB_IMAGE_WRITE_STATIC
 #define STBI_WRITE_NO_STDIO  // we do the file I/O ourselves, atomically
 #define STBIW_ZLIB_COMPRESS zlib_compress_hook
+#define STBIW_CRC32(buffer, len) png_crc32(buffer, len)
 #include <stb/stb_image_write.h>
 
 namespace fixstep {

@@ -31,19 +31,28 @@ constexpr Rgba8 palette[] = {{230, 87, 46, 255},  {76, 175, 240, 255}, {250, 200
                              {120, 210, 110, 255}, {200, 120, 230, 255}, {240, 140, 170, 255},
                              {90, 220, 200, 255},  {240, 240, 240, 255}};
 constexpr float default_radius_px = 9.0f;
+// How far quads reach beyond the edge of a line or disc, px. The fragment shader's coverage
+// (1 - d) / fwidth(d) + 0.5 reaches 0 at half a fwidth beyond the edge: 0.5 px across an
+// axis-aligned edge, at most sqrt(2) / 2 = 0.707 px across a diagonal one (fwidth is
+// |d/dx| + |d/dy|). Fragments farther out blend with alpha 0, so 0.75 px draws the picture a
+// whole pixel of padding drew (checked on 1000-body frames: all but one pixel within 1 level)
+// with fewer fragments.
+constexpr float aa_pad_px = 0.75f;
 constexpr float min_radius_px = 3.0f;
 
 constexpr const char* vertex_shader = R"(#version 330 core
 layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
 layout(location = 1) in vec2 a_uv;     // shape coordinates (discs, lines)
 layout(location = 2) in vec4 a_color;
-layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line
-uniform vec2 u_size;
+layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line; see below
+uniform vec2 u_size;    // pixels, the frame
+uniform float u_margin; // pixels of viewport beyond each edge of the frame (see finish())
 out vec2 v_uv;
 out vec4 v_color;
 out float v_kind;
 void main() {
-  gl_Position = vec4(a_pos.x / u_size.x * 2.0 - 1.0, 1.0 - a_pos.y / u_size.y * 2.0, 0.0, 1.0);
+  vec2 p = (a_pos + u_margin) / (u_size + 2.0 * u_margin);
+  gl_Position = vec4(p.x * 2.0 - 1.0, 1.0 - p.y * 2.0, 0.0, 1.0);
   v_uv = a_uv;
   v_color = a_color;
   v_kind = a_kind;
@@ -65,6 +74,27 @@ void main() {
     a *= clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
   }
   frag = vec4(v_color.rgb, a);
+}
+)";
+
+// Outlined discs (Renderer::disc with an outline) in one pass, their own program: v_uv is 1 at
+// the outer edge, v_kind is the fill's radius in the same units, u_ring the outline's colour.
+// The fill is composited over the outline in the shader, so the result is that of drawing the
+// outline disc and then the fill disc "over" it: alpha a = af + (1 - af) ao and colour
+// (f af + o (1 - af) ao) / a, blended over the frame with GL's straight-alpha "over".
+constexpr const char* ring_fragment_shader = R"(#version 330 core
+in vec2 v_uv;
+in vec4 v_color;
+in float v_kind;
+uniform vec4 u_ring;
+out vec4 frag;
+void main() {
+  float d = length(v_uv);
+  float w = max(fwidth(d), 1e-6);
+  float ao = u_ring.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  float af = v_color.a * clamp((v_kind - d) / w + 0.5, 0.0, 1.0);
+  float a = af + (1.0 - af) * ao;
+  frag = vec4((v_color.rgb * af + u_ring.rgb * ((1.0 - af) * ao)) / max(a, 1e-6), a);
 }
 )";
 
@@ -101,8 +131,16 @@ std::string printable(const std::string& s) {
 
 struct Renderer::Gl {
   OSMesaContext context = nullptr;
-  GLuint program = 0, vao = 0, vbo = 0;
-  GLint size_uniform = -1;
+  struct Program {
+    GLuint id = 0;
+    GLint size = -1, margin = -1, ring = -1;  // uniform locations (ring: outlined discs only)
+  };
+  Program programs[2];  // [Renderer::shapes], [Renderer::outlined_discs]
+  GLuint vao = 0, vbo = 0, ibo = 0;
+  int margin = 0;  // px, see finish()
+  // Bytes allocated for vbo and ibo: they grow (glBufferData) only when a frame needs more and
+  // are otherwise refilled in place (glBufferSubData), so a steady scene allocates nothing.
+  std::size_t vbo_bytes = 0, ibo_bytes = 0;
 };
 
 Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(new Gl) {
@@ -138,22 +176,38 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
   gl_renderer_ = renderer;
 
   const GLuint vs = compile(GL_VERTEX_SHADER, vertex_shader);
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_shader);
-  gl_->program = glCreateProgram();
-  glAttachShader(gl_->program, vs);
-  glAttachShader(gl_->program, fs);
-  glLinkProgram(gl_->program);
+  const char* fragment_sources[2] = {fragment_shader, ring_fragment_shader};
+  for (int i = 0; i < 2; ++i) {
+    Gl::Program& p = gl_->programs[i];
+    const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_sources[i]);
+    p.id = glCreateProgram();
+    glAttachShader(p.id, vs);
+    glAttachShader(p.id, fs);
+    glLinkProgram(p.id);
+    glDeleteShader(fs);
+    GLint linked = 0;
+    glGetProgramiv(p.id, GL_LINK_STATUS, &linked);
+    if (!linked) {
+      glDeleteShader(vs);
+      throw RenderError("render: shader program failed to link");
+    }
+    p.size = glGetUniformLocation(p.id, "u_size");
+    p.margin = glGetUniformLocation(p.id, "u_margin");
+    p.ring = glGetUniformLocation(p.id, "u_ring");
+  }
   glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint linked = 0;
-  glGetProgramiv(gl_->program, GL_LINK_STATUS, &linked);
-  if (!linked) throw RenderError("render: shader program failed to link");
-  gl_->size_uniform = glGetUniformLocation(gl_->program, "u_size");
+  GLint max_dims[2] = {0, 0};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_dims);
+  gl_->margin = std::clamp((std::min(max_dims[0] - width, max_dims[1] - height)) / 2, 0, 256);
+  // (llvmpipe reports 16384 x 16384, viewport bounds -32768..32767: the full 256 px even at
+  // max_frame_size.)
 
   glGenVertexArrays(1, &gl_->vao);
   glGenBuffers(1, &gl_->vbo);
+  glGenBuffers(1, &gl_->ibo);
   glBindVertexArray(gl_->vao);
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo);  // part of the VAO's state
   const auto stride = static_cast<GLsizei>(sizeof(Vertex));
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride,
                         reinterpret_cast<void*>(offsetof(Vertex, x)));
@@ -170,9 +224,10 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
 Renderer::~Renderer() {
   if (gl_ && gl_->context) {
     make_current();
+    glDeleteBuffers(1, &gl_->ibo);
     glDeleteBuffers(1, &gl_->vbo);
     glDeleteVertexArrays(1, &gl_->vao);
-    glDeleteProgram(gl_->program);
+    for (const Gl::Program& p : gl_->programs) glDeleteProgram(p.id);
     OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);  // unbind before destroying
     OSMesaDestroyContext(gl_->context);
   }
@@ -194,13 +249,13 @@ std::array<double, 2> Renderer::to_pixel(double x, double y) const {
 }
 
 void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind) {
-  static constexpr int order[6] = {0, 1, 2, 0, 2, 3};
-  for (int i : order) {
-    vertices_.push_back({p[i][0], p[i][1], uv[i][0], uv[i][1], c.r, c.g, c.b, c.a, kind});
-  }
+  const auto base = static_cast<std::uint32_t>(vertices_.size());
+  for (int i = 0; i < 4; ++i) vertex(p[i][0], p[i][1], uv[i][0], uv[i][1], c, kind);
+  for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) indices_.push_back(base + i);
 }
 
 void Renderer::rect(float x0, float y0, float x1, float y1, Rgba8 c) {
+  use(shapes, {});
   quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
 }
 
@@ -208,7 +263,8 @@ void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c
   const float dx = x1 - x0, dy = y1 - y0;
   const float len = std::sqrt(dx * dx + dy * dy);
   if (len < 1e-3f) return;
-  const float h = 0.5f * width, pad = h + 1.0f;  // one extra pixel for the anti-aliased edge
+  use(shapes, {});
+  const float h = 0.5f * width, pad = h + aa_pad_px;  // room for the anti-aliased edge
   const float nx = -dy / len * pad, ny = dx / len * pad;
   const float e = pad / h;
   quad({{x0 + nx, y0 + ny}, {x1 + nx, y1 + ny}, {x1 - nx, y1 - ny}, {x0 - nx, y0 - ny}},
@@ -216,14 +272,91 @@ void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c
 }
 
 void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
-  const float pad = r + 1.0f, e = pad / r;
+  use(shapes, {});
+  const float pad = r + aa_pad_px, e = pad / r;
   quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
        {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, 1.0f);
 }
 
+void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width,
+                    Rgba8 outline_c) {
+  if (!(outline_width > 0.0f)) {
+    disc(cx, cy, r, c);
+    return;
+  }
+  use(outlined_discs, outline_c);
+  const float outer = r + outline_width, pad = outer + aa_pad_px, e = pad / outer;
+  quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
+       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, r / outer);
+}
+
+void Renderer::use(int program, Rgba8 ring) {
+  if (batches_.empty()) batches_.push_back(Batch{});  // primitives before the first begin()
+  Batch& b = batches_.back();
+  if (b.program == program && (program == shapes || b.ring == ring)) return;
+  if (b.first == indices_.size()) {  // nothing recorded in this batch yet
+    b.program = program;
+    b.ring = ring;
+  } else {
+    batches_.push_back(Batch{indices_.size(), b.clip, program, ring});
+  }
+}
+
 void Renderer::triangle(float x0, float y0, float x1, float y1, float x2, float y2, Rgba8 c) {
+  use(shapes, {});
   const float p[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};
-  for (const auto& v : p) vertices_.push_back({v[0], v[1], 0.0f, 0.0f, c.r, c.g, c.b, c.a, 0.0f});
+  const auto base = static_cast<std::uint32_t>(vertices_.size());
+  for (const auto& v : p) vertex(v[0], v[1], 0.0f, 0.0f, c, 0.0f);
+  for (std::uint32_t i = 0; i < 3; ++i) indices_.push_back(base + i);
+}
+
+void Renderer::polyline(std::span<const PolylinePoint> points, float width) {
+  // The strip is a sequence of vertex pairs: left = point + normal * pad, right = point -
+  // normal * pad, shape coordinate v = +e / -e, as in line() (pad includes aa_pad_px for the
+  // anti-aliased edge). A pair emitted with `join` is connected to the pair before it by
+  // two triangles.
+  use(shapes, {});
+  const float h = 0.5f * width, pad = h + aa_pad_px, e = pad / h;
+  constexpr float min_step = 1e-3f;  // px, as line()
+  // cos of the sharpest turn still mitred: 90°, where the mitre is sqrt(2) * pad long.
+  constexpr float mitre_limit = 0.0f;
+  auto pair = [&](const PolylinePoint& p, float nx, float ny, bool join) {
+    const auto base = static_cast<std::uint32_t>(vertices_.size());
+    vertex(p.x + nx, p.y + ny, 0.0f, e, p.c, 2.0f);
+    vertex(p.x - nx, p.y - ny, 0.0f, -e, p.c, 2.0f);
+    if (join) {
+      for (std::uint32_t i : {0u, 1u, 3u, 0u, 3u, 2u}) indices_.push_back(base - 2 + i);
+    }
+  };
+  if (points.empty()) return;
+  // `prev`: the last distinct point; (dx, dy): unit direction of the segment ending there.
+  const PolylinePoint* prev = &points[0];
+  float dx = 0, dy = 0;
+  bool started = false;  // the first segment (and the pair at its start) has been emitted
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const PolylinePoint& p = points[i];
+    const float sx = p.x - prev->x, sy = p.y - prev->y;
+    const float len = std::sqrt(sx * sx + sy * sy);
+    if (len < min_step) continue;
+    const float ux = sx / len, uy = sy / len;
+    if (!started) {
+      pair(*prev, -uy * pad, ux * pad, false);
+      started = true;
+    } else if (dx * ux + dy * uy >= mitre_limit) {  // mitre: one pair on the bisector
+      float mx = dx + ux, my = dy + uy;
+      const float ml = std::sqrt(mx * mx + my * my);
+      mx /= ml, my /= ml;
+      // Offset pad / cos(half the turn) along the bisector's normal: pad from both segments.
+      const float scale = pad / (mx * ux + my * uy);
+      pair(*prev, -my * scale, mx * scale, true);
+    } else {  // too sharp: end this strip flat and start the next one flat
+      pair(*prev, -dy * pad, dx * pad, true);
+      pair(*prev, -uy * pad, ux * pad, false);
+    }
+    dx = ux, dy = uy;
+    prev = &p;
+  }
+  if (started) pair(*prev, -dy * pad, dx * pad, true);
 }
 
 template <class Transform>
@@ -237,6 +370,7 @@ void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to
   const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, font_scratch_.data(),
                                         static_cast<int>(font_scratch_.size()));
   const char* base = font_scratch_.data();
+  use(shapes, {});
   for (int q = 0; q < quads; ++q) {
     float p[4][2];
     for (int k = 0; k < 4; ++k) {
@@ -268,16 +402,17 @@ float Renderer::text_width(const std::string& s, float scale) {
 void Renderer::begin(Rgba8 background) {
   make_current();
   vertices_.clear();
+  indices_.clear();
   batches_.assign(1, Batch{});
   background_ = background;
 }
 
 void Renderer::set_clip(std::optional<ClipRect> clip) {
   if (batches_.empty()) batches_.push_back(Batch{});
-  if (batches_.back().first == vertices_.size()) {
+  if (batches_.back().first == indices_.size()) {
     batches_.back().clip = clip;  // nothing drawn under the previous clip yet
   } else {
-    batches_.push_back(Batch{vertices_.size(), clip});
+    batches_.push_back(Batch{indices_.size(), clip, batches_.back().program, batches_.back().ring});
   }
 }
 
@@ -331,6 +466,46 @@ void Renderer::record_trails(const Snapshot& s) {
   trail_count_ = std::min(trail_count_ + 1, trail_frames);
 }
 
+namespace {
+
+// Trail samples may be left up to this far from the drawn polyline, px (see draw()).
+constexpr float trail_tolerance_px = 0.2f;
+
+// Drops points of `points` (in place, order kept) greedily: from each kept point, the next one
+// kept is the farthest along that leaves every point in between within `tolerance` px of the
+// segment joining the two, and at most max_run points on. The first and last points are
+// always kept. O(n * max_run) distance computations.
+void simplify_polyline(std::vector<Renderer::PolylinePoint>& points, float tolerance) {
+  const std::size_t n = points.size();
+  if (n < 3) return;
+  const float tol2 = tolerance * tolerance;
+  constexpr std::size_t max_run = 12;
+  // Is every point strictly between points[from] and points[to] within tolerance of the segment
+  // joining them?
+  auto fits = [&](std::size_t from, std::size_t to) {
+    const Renderer::PolylinePoint &a = points[from], &b = points[to];
+    const float ux = b.x - a.x, uy = b.y - a.y, len2 = ux * ux + uy * uy;
+    const float inv_len2 = len2 > 0.0f ? 1.0f / len2 : 0.0f;
+    for (std::size_t i = from + 1; i < to; ++i) {
+      const float wx = points[i].x - a.x, wy = points[i].y - a.y;
+      const float t = std::clamp((wx * ux + wy * uy) * inv_len2, 0.0f, 1.0f);
+      const float dx = wx - t * ux, dy = wy - t * uy;
+      if (dx * dx + dy * dy > tol2) return false;
+    }
+    return true;
+  };
+  std::size_t kept = 1, anchor = 0;  // points[0] stays where it is
+  while (anchor + 1 < n) {
+    std::size_t end = anchor + 1;
+    while (end + 1 < n && end - anchor < max_run && fits(anchor, end + 1)) ++end;
+    points[kept++] = points[end];
+    anchor = end;
+  }
+  points.resize(kept);
+}
+
+}  // namespace
+
 void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
   begin(background);
   record_trails(s);
@@ -342,16 +517,26 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     return s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
   };
 
-  // Trails: oldest sample transparent, newest 60 % opaque.
-  for (std::size_t j = 0; j < n; ++j) {
-    Rgba8 c = color_of(j);
-    for (int k = 1; k < trail_count_; ++k) {
-      const int a = (trail_head_ - trail_count_ + k - 1 + 2 * trail_frames) % trail_frames;
-      const int b = (a + 1) % trail_frames;
-      c.a = static_cast<std::uint8_t>(150 * k / trail_count_);
-      line(trail_x_[j * trail_frames + a], trail_y_[j * trail_frames + a],
-           trail_x_[j * trail_frames + b], trail_y_[j * trail_frames + b], 2.0f, c);
+  // Trails: one polyline per body through its samples, fading from transparent (oldest) to
+  // 60 % opaque (newest): sample k of count (0 = oldest) has alpha 150 (k + 0.5) / count, so
+  // each segment has on average the alpha it had when every segment was a line() of alpha
+  // 150 k / count. Samples are then dropped where the polyline can skip them without leaving
+  // any of them more than trail_tolerance_px away (simplify_polyline): a trail of 44 sub-pixel
+  // segments becomes a few segments of a few pixels, and a projectile's gentle parabola a few
+  // long ones.
+  for (std::size_t j = 0; j < n && trail_count_ > 1; ++j) {
+    const Rgba8 c = color_of(j);
+    const float* tx = &trail_x_[j * trail_frames];
+    const float* ty = &trail_y_[j * trail_frames];
+    polyline_scratch_.clear();
+    for (int k = 0; k < trail_count_; ++k) {  // oldest first
+      const int at = (trail_head_ - trail_count_ + k + trail_frames) % trail_frames;
+      Rgba8 ck = c;
+      ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * trail_count_));
+      polyline_scratch_.push_back({tx[at], ty[at], ck});
     }
+    simplify_polyline(polyline_scratch_, trail_tolerance_px);
+    polyline(polyline_scratch_, 2.0f);
   }
 
   // Springs: a zigzag of 12 coils from the anchor to the body, with straight leads.
@@ -363,18 +548,20 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     if (len < 24.0f) {
       line(ax, ay, bx, by, 2.0f, spring_color);
     } else {
+      // One polyline: anchor, start of the coils, 2 * coils corners, the body.
       constexpr int coils = 12;
       const float nx = -dy / len * 7.0f, ny = dx / len * 7.0f;
-      float px = ax + dx * 0.1f, py = ay + dy * 0.1f;
-      line(ax, ay, px, py, 2.0f, spring_color);
+      polyline_scratch_.clear();
+      polyline_scratch_.push_back({ax, ay, spring_color});
+      polyline_scratch_.push_back({ax + dx * 0.1f, ay + dy * 0.1f, spring_color});
       for (int k = 1; k <= 2 * coils; ++k) {
         const float f = 0.1f + 0.8f * float(k) / (2 * coils);
         const float side = k == 2 * coils ? 0.0f : (k % 2 ? 1.0f : -1.0f);
-        const float qx = ax + dx * f + nx * side, qy = ay + dy * f + ny * side;
-        line(px, py, qx, qy, 2.0f, spring_color);
-        px = qx, py = qy;
+        polyline_scratch_.push_back({ax + dx * f + nx * side, ay + dy * f + ny * side,
+                                     spring_color});
       }
-      line(px, py, bx, by, 2.0f, spring_color);
+      polyline_scratch_.push_back({bx, by, spring_color});
+      polyline(polyline_scratch_, 2.0f);
     }
     rect(ax - 5, ay - 5, ax + 5, ay + 5, anchor_color);
   }
@@ -385,8 +572,7 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     const float r = s.radius[j] > 0.0f
                         ? std::max(float(s.radius[j] * scale), min_radius_px)
                         : default_radius_px;
-    disc(float(p[0]), float(p[1]), r + 1.5f, outline);
-    disc(float(p[0]), float(p[1]), r, color_of(j));
+    disc(float(p[0]), float(p[1]), r, color_of(j), 1.5f, outline);
   }
 
   // HUD: text lines on a translucent panel, top left.
@@ -405,25 +591,61 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
   finish();
 }
 
+namespace {
+
+// Fills the buffer bound to `target` with `bytes` bytes of `data`, growing its store (to at
+// least twice its old size) only when they do not fit. `capacity` is the store's size.
+void upload(GLenum target, std::size_t& capacity, const void* data, std::size_t bytes) {
+  if (bytes > capacity) {
+    capacity = std::max(bytes, 2 * capacity);
+    glBufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_DYNAMIC_DRAW);
+  }
+  if (bytes > 0) glBufferSubData(target, 0, static_cast<GLsizeiptr>(bytes), data);
+}
+
+}  // namespace
+
 void Renderer::finish() {
   make_current();
-  glViewport(0, 0, width_, height_);
+  // The viewport reaches gl_->margin px beyond every edge of the frame (the vertex shader maps
+  // pixel coordinates into it, so pixels land where they did with a frame-sized viewport;
+  // whatever falls outside the frame is simply not rasterised). Without the margin, any vertex
+  // just outside the frame (a disc or trail at the edge) sends the whole chunk of up to 4096
+  // vertices it belongs to through Mesa's clipping pipeline, whose vbuf stage re-marks every
+  // vertex of the chunk on each small flush: that was a third of the drawing thread's time with
+  // 1000 bodies (measured with perf; docs/perf/capture.md). Vertices farther than the margin
+  // out still take the clipping path, correctly.
+  glViewport(-gl_->margin, -gl_->margin, width_ + 2 * gl_->margin, height_ + 2 * gl_->margin);
   glDisable(GL_SCISSOR_TEST);
   glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
   // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  glUseProgram(gl_->program);
-  glUniform2f(gl_->size_uniform, float(width_), float(height_));
+  for (const Gl::Program& p : gl_->programs) {
+    glUseProgram(p.id);
+    glUniform2f(p.size, float(width_), float(height_));
+    glUniform1f(p.margin, float(gl_->margin));
+  }
+  int program = -1;
   glBindVertexArray(gl_->vao);
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices_.size() * sizeof(Vertex)),
-               vertices_.data(), GL_STREAM_DRAW);
+  upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), vertices_.size() * sizeof(Vertex));
+  upload(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo_bytes, indices_.data(),
+         indices_.size() * sizeof(std::uint32_t));
   for (std::size_t b = 0; b < batches_.size(); ++b) {
     const std::size_t first = batches_[b].first;
-    const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : vertices_.size();
+    const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : indices_.size();
     if (end == first) continue;
+    if (batches_[b].program != program) {
+      program = batches_[b].program;
+      glUseProgram(gl_->programs[program].id);
+    }
+    if (program == outlined_discs) {
+      const Rgba8 r = batches_[b].ring;
+      glUniform4f(gl_->programs[program].ring, r.r / 255.0f, r.g / 255.0f, r.b / 255.0f,
+                  r.a / 255.0f);
+    }
     if (const auto& c = batches_[b].clip) {
       // GL's scissor box has its origin at the bottom-left; pixels() rows run top down.
       const int x0 = std::clamp(c->x0, 0, width_), x1 = std::clamp(c->x1, x0, width_);
@@ -433,7 +655,8 @@ void Renderer::finish() {
     } else {
       glDisable(GL_SCISSOR_TEST);
     }
-    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first), static_cast<GLsizei>(end - first));
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   }
   glDisable(GL_SCISSOR_TEST);
   glFinish();

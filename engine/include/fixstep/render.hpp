@@ -98,8 +98,26 @@ class Renderer {
   /// An anti-aliased straight line of `width` px from (x0, y0) to (x1, y1) with flat ends
   /// (no caps); lines shorter than 1e-3 px are skipped.
   void line(float x0, float y0, float x1, float y1, float width, Rgba8 c);
+  /// One point of a polyline: position in px and its colour (straight alpha).
+  struct PolylinePoint {
+    float x = 0, y = 0;
+    Rgba8 c{};
+  };
+  /// An anti-aliased polyline of `width` px through `points` in order, drawn as one strip of
+  /// shared vertices: joins turning by up to 90° are mitred (no gap, no double blending),
+  /// sharper ones end one strip and start the next with flat ends, exactly like two line()s;
+  /// the two ends are flat. Colours (alpha included) are interpolated linearly along each
+  /// segment. Points closer than 1e-3 px to the previous one are skipped; fewer than two
+  /// distinct points draw nothing. Cheaper than one line() per segment: 2 vertices per point
+  /// instead of 4 per segment.
+  void polyline(std::span<const PolylinePoint> points, float width);
   /// An anti-aliased filled disc of radius r px centred on (cx, cy).
   void disc(float cx, float cy, float r, Rgba8 c);
+  /// The same disc inside an outline ring `outline_width` px wide of colour `outline_c` (outer
+  /// radius r + outline_width px): the picture of disc(cx, cy, r + outline_width, outline_c)
+  /// followed by disc(cx, cy, r, c), drawn in one pass over the pixels instead of two.
+  /// outline_width <= 0 draws the plain disc.
+  void disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c);
   /// Text in stb_easy_font's bitmap font (printable ASCII: any other character, e.g. a UTF-8
   /// "ω", is drawn as one '?'; '\n' starts a new line), `scale` px per font
   /// unit, with the top-left corner of the first glyph cell at (x, y). A line of capitals is
@@ -120,8 +138,17 @@ class Renderer {
     std::uint8_t r, g, b, a;
     float kind;
   };
+  // Fragment programs; each batch uses one.
+  static constexpr int shapes = 0;          // solids, discs, lines, polylines, text
+  static constexpr int outlined_discs = 1;  // disc() with an outline
+  /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
+  /// outlined_discs, outline colour `ring`), starting a new batch if needed.
+  void use(int program, Rgba8 ring);
   void make_current();
   void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind);
+  void vertex(float x, float y, float u, float v, Rgba8 c, float kind) {
+    vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, kind});
+  }
   template <class Transform>
   void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
   void grid();
@@ -134,14 +161,18 @@ class Renderer {
   std::string gl_renderer_;
   Camera camera_;
   std::vector<Vertex> vertices_;
-  // Draw batches: vertices [first, next batch's first) share one clip rectangle.
+  std::vector<std::uint32_t> indices_;  // triangles, 3 indices into vertices_ each
+  // Draw batches: indices [first, next batch's first) share one clip rectangle.
   struct Batch {
     std::size_t first = 0;
     std::optional<ClipRect> clip;
+    int program = shapes;
+    Rgba8 ring{};  // outline colour of outlined_discs
   };
   std::vector<Batch> batches_;
   Rgba8 background_{};
   std::vector<char> font_scratch_;
+  std::vector<PolylinePoint> polyline_scratch_;  // one trail or spring, reused every frame
   // trails: ring buffers of trail_frames samples per body, pixel coordinates
   std::vector<float> trail_x_, trail_y_;
   std::size_t trail_bodies_ = 0;
