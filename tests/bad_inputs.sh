@@ -195,3 +195,6 @@ case_ "--out not writable (/proc)" "" render good.toml --out /proc/fixstep_frame
 case_ "--csv not writable (/proc)" "" run good.toml --steps 10 --csv /proc/fixstep.csv
 # --- environment ---
 case_ "view without a display" "" view good.toml --frames 1
+export GALLIUM_DRIVER=foo
+case_ "GALLIUM_DRIVER=foo (Mesa would crash)" "" render good.toml --out frames --frames 1
+unset GALLIUM_DRIVER

@@ -211,6 +211,10 @@ MESA_GL_VERSION_OVERRIDE=2.1 "$fixstep" render "$scenes/default.toml" --out "$wo
 [ $? -ne 0 ] && ok "render exits non-zero without a GL 3.3 context" || fail "GL 2.1 exit code"
 expect "the context failure is explained" "OSMesaCreateContextAttribs failed to create an OpenGL 3.3 core context" "$work/gl21.out"
 
+GALLIUM_DRIVER=foo "$fixstep" render "$scenes/default.toml" --out "$work/gd" --frames 2 --size 64x64 >"$work/gd.out" 2>&1
+[ $? -eq 1 ] && ok "render refuses an unusable GALLIUM_DRIVER (Mesa would crash)" || fail "GALLIUM_DRIVER=foo exit code"
+expect "the driver is named" "GALLIUM_DRIVER=foo is not a driver OSMesa can use" "$work/gd.out"
+
 if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 1024x768x24" "$fixstep" view "$scenes/default.toml" --frames 30 --fps 60 \
     --size 320x180 >"$work/view.out" 2>&1

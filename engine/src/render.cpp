@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -158,6 +159,18 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
                          OSMESA_CONTEXT_MAJOR_VERSION, 3,
                          OSMESA_CONTEXT_MINOR_VERSION, 3,
                          0};
+  // Mesa 22's OSMesa dereferences a null screen when GALLIUM_DRIVER names a driver it cannot
+  // load (seen: GALLIUM_DRIVER=foo crashes inside OSMesaCreateContextAttribs). OSMesa runs on
+  // the software rasterisers only, so refuse any other name before calling it.
+  if (const char* driver = std::getenv("GALLIUM_DRIVER"); driver && *driver) {
+    const std::string d = driver;
+    if (d != "llvmpipe" && d != "softpipe") {
+      throw RenderError(fmt::format(
+          "render: GALLIUM_DRIVER={} is not a driver OSMesa can use (llvmpipe or softpipe); "
+          "unset it or choose one of those",
+          d));
+    }
+  }
   gl_->context = OSMesaCreateContextAttribs(attribs, nullptr);
   if (!gl_->context) {
     throw RenderError(

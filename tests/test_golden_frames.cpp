@@ -1,0 +1,169 @@
+// Golden frames: frames of every shipped scene at fixed ticks, compared with the reference PNGs
+// in tests/golden/frames/ within a stated tolerance.
+//
+// Tolerance: a pixel matches when each of R, G, B differs by at most 24 (of 255), and a frame
+// matches when at most 0.2 % of its pixels do not. llvmpipe may round a blended edge pixel
+// differently on another CPU or Mesa build; a moved body, a missing spring or a changed colour
+// changes hundreds to thousands of pixels by far more.
+//
+// On a mismatch the test writes, beside the build's test binary in golden_failures/, the frame
+// it drew (NAME.actual.png) and a diff image (NAME.diff.png: black where pixels match, the
+// absolute difference amplified 4x elsewhere, red where a pixel is beyond the tolerance).
+//
+// To change the pictures on purpose, regenerate the references and commit them:
+//   FIXSTEP_REFRESH_GOLDEN=1 build/ci/bin/test_golden_frames
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
+
+#include "fixstep/capture.hpp"
+#include "fixstep/loop.hpp"
+#include "fixstep/scene.hpp"
+#include "fixstep/session.hpp"
+
+namespace fixstep {
+namespace {
+
+constexpr int width = 640, height = 360;
+constexpr int channel_tolerance = 24;
+constexpr double pixel_fraction_tolerance = 0.002;
+constexpr std::uint64_t golden_frame_numbers[] = {0, 30, 90};  // at 60 frames/s
+
+const std::filesystem::path scenes_dir = FIXSTEP_SOURCE_DIR "/assets/scenes";
+const std::filesystem::path golden_dir = FIXSTEP_SOURCE_DIR "/tests/golden/frames";
+
+bool refreshing() {
+  const char* v = std::getenv("FIXSTEP_REFRESH_GOLDEN");
+  return v && *v == '1';
+}
+
+/// The frames `fixstep render SCENE --size 640x360` writes as frame_NNNNNN.png for the golden
+/// frame numbers (the same Session, virtual clock and drawing).
+std::vector<std::vector<std::uint8_t>> render(const Scene& scene) {
+  Session session(scene, width, height);
+  const VirtualClock clock(60.0);
+  std::vector<std::vector<std::uint8_t>> frames;
+  for (std::uint64_t f = 0; f <= golden_frame_numbers[std::size(golden_frame_numbers) - 1]; ++f) {
+    if (f > 0) session.advance(clock.frame_seconds());
+    session.draw();
+    if (std::find(std::begin(golden_frame_numbers), std::end(golden_frame_numbers), f) !=
+        std::end(golden_frame_numbers)) {
+      const auto p = session.renderer().pixels();
+      frames.emplace_back(p.begin(), p.end());
+    }
+  }
+  return frames;
+}
+
+std::vector<std::uint8_t> read_png(const std::filesystem::path& file) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* data = stbi_load(file.string().c_str(), &w, &h, &n, 4);
+  if (!data) return {};
+  std::vector<std::uint8_t> out;
+  if (w == width && h == height) out.assign(data, data + std::size_t(w) * h * 4);
+  stbi_image_free(data);
+  return out;
+}
+
+struct Comparison {
+  std::size_t beyond = 0;  ///< pixels with a channel beyond channel_tolerance
+  int worst = 0;           ///< largest channel difference
+  std::vector<std::uint8_t> diff;
+};
+
+Comparison compare(const std::vector<std::uint8_t>& actual,
+                   const std::vector<std::uint8_t>& golden) {
+  Comparison c;
+  c.diff.assign(actual.size(), 0);
+  for (std::size_t p = 0; p < actual.size(); p += 4) {
+    int d = 0;
+    for (int ch = 0; ch < 3; ++ch) {
+      const int e = std::abs(int(actual[p + ch]) - int(golden[p + ch]));
+      d = std::max(d, e);
+      c.diff[p + ch] = static_cast<std::uint8_t>(std::min(255, 4 * e));
+    }
+    c.worst = std::max(c.worst, d);
+    if (d > channel_tolerance) {
+      ++c.beyond;
+      c.diff[p] = 255, c.diff[p + 1] = 0, c.diff[p + 2] = 0;
+    }
+    c.diff[p + 3] = 255;
+  }
+  return c;
+}
+
+bool matches(const Comparison& c) {
+  return double(c.beyond) <= pixel_fraction_tolerance * width * height;
+}
+
+std::vector<std::string> shipped_scenes() {
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(scenes_dir)) {
+    if (e.path().extension() == ".toml") files.push_back(e.path().stem().string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(GoldenFrames, EveryShippedSceneMatchesItsReferenceFrames) {
+  const auto failures = std::filesystem::current_path() / "golden_failures";
+  std::size_t compared = 0;
+  for (const std::string& name : shipped_scenes()) {
+    const auto frames = render(load_scene(scenes_dir / (name + ".toml")));
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      const std::string stem = fmt::format("{}_frame_{:06}", name, golden_frame_numbers[i]);
+      const auto reference = golden_dir / (stem + ".png");
+      if (refreshing()) {
+        write_png(reference, width, height, frames[i]);
+        continue;
+      }
+      const auto golden = read_png(reference);
+      ASSERT_FALSE(golden.empty()) << reference << " is missing or not a " << width << "x" << height
+                                   << " PNG; see the refresh command in this file";
+      const Comparison c = compare(frames[i], golden);
+      ++compared;
+      if (!matches(c)) {
+        std::filesystem::create_directories(failures);
+        write_png(failures / (stem + ".actual.png"), width, height, frames[i]);
+        write_png(failures / (stem + ".diff.png"), width, height, c.diff);
+        ADD_FAILURE() << stem << ": " << c.beyond << " pixels differ by more than "
+                      << channel_tolerance << " (largest difference " << c.worst << "); allowed "
+                      << pixel_fraction_tolerance * width * height << ". See "
+                      << (failures / (stem + ".diff.png")) << " and .actual.png";
+      }
+    }
+  }
+  if (refreshing()) GTEST_SKIP() << "rewrote the reference frames in " << golden_dir;
+  EXPECT_EQ(compared, shipped_scenes().size() * std::size(golden_frame_numbers));
+}
+
+TEST(GoldenFrames, OneFlippedBitOfPhysicsFailsTheComparison) {
+  // The tolerance must not hide a change in the physics: flip one bit of the first spring's
+  // stiffness (mantissa bit 50: k = 15 N/m becomes 11.25 N/m) and frame 90 no longer matches.
+  if (refreshing()) GTEST_SKIP();
+  Scene scene = load_scene(scenes_dir / "default.toml");
+  auto& k = scene.bodies[0].spring->stiffness;
+  k = std::bit_cast<double>(std::bit_cast<std::uint64_t>(k) ^ (std::uint64_t{1} << 50));
+  ASSERT_NE(k, 15.0);
+  const auto frames = render(scene);
+  const auto golden = read_png(golden_dir / "default_frame_000090.png");
+  ASSERT_FALSE(golden.empty());
+  const Comparison c = compare(frames.back(), golden);
+  EXPECT_FALSE(matches(c)) << c.beyond << " pixels beyond the tolerance";
+  // And the unchanged scene, drawn twice, is identical to the pixel.
+  const auto a = render(load_scene(scenes_dir / "default.toml"));
+  const auto b = render(load_scene(scenes_dir / "default.toml"));
+  EXPECT_EQ(a, b);
+}
+
+}  // namespace
+}  // namespace fixstep
