@@ -194,6 +194,21 @@ for sig in INT TERM; do
     || fail "after SIG$sig: $n frames, $broken truncated, $stray stray files"
 done
 
+# a hard kill (SIGKILL, no cleanup at all): no partial file may stand under a final name
+"$fixstep" render "$scenes/default.toml" --out "$work/sig_KILL" --frames 1000000 --size 160x90 \
+  >"$work/sig_KILL.out" 2>&1 &
+pid=$!
+for _ in $(seq 200); do [ -e "$work/sig_KILL/frame_000002.png" ] && break; sleep 0.1; done
+kill -s KILL "$pid"
+wait "$pid" 2>/dev/null
+broken=0
+for f in "$work/sig_KILL"/frame_*.png; do
+  [ "$(tail -c 8 "$f" | head -c 4)" = IEND ] || broken=$((broken + 1))
+done
+n=$(ls "$work/sig_KILL" | grep -c '^frame_[0-9]\{6\}\.png$')
+[ "$broken" -eq 0 ] && [ "$n" -ge 3 ] && ok "after SIGKILL: all $n frames under final names are complete" \
+  || fail "after SIGKILL: $broken of $n final-named frames truncated"
+
 # --- view --------------------------------------------------------------------------------
 env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$fixstep" view "$scenes/default.toml" --frames 1 >"$work/nodisp.out" 2>&1
 [ $? -ne 0 ] && ok "view without a display exits non-zero" || fail "view without display"
@@ -221,6 +236,13 @@ if command -v xvfb-run >/dev/null; then
   [ $? -eq 0 ] && ok "view runs under Xvfb" || { fail "view under Xvfb"; cat "$work/view.out"; }
   [ "$(hash_of "$work/view.out")" = "$(hash_of "$work/render.out")" ] \
     && ok "window and headless reach the same state after 30 frames" || fail "view vs render hash"
+  # the runtime guard in the window: it pauses, says why, and view exits 3
+  xvfb-run -a -s "-screen 0 1024x768x24" "$fixstep" view "$work/blow.toml" --frames 120 --fps 60 \
+    --size 320x180 >"$work/view_blow.out" 2>&1
+  [ $? -eq 3 ] && ok "view exits 3 after the guard stopped the simulation" || fail "view guard exit"
+  expect "view reports the guard's message once" "error: .*body\[1\] \"stiff\": state left the finite range at tick 14" \
+    "$work/view_blow.out"
+  expect "view stays at the diverging tick (paused)" "ticks=14 " "$work/view_blow.out"
 else
   echo "skip - xvfb-run not installed (bash .ci/install-deps installs it)"
 fi
