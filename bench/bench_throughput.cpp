@@ -146,8 +146,7 @@ struct RawBodies {
     }
     // Damping-flow factors e^{-γτ} for Verlet (τ = h/2) and Forest–Ruth (τ = w1·h/2, w0·h/2).
     const Real h = Real(dt);
-    const double cbrt2 = std::cbrt(2.0), w1 = 1.0 / (2.0 - cbrt2), w0 = -cbrt2 / (2.0 - cbrt2);
-    const Real h1 = Real(w1 * double(h)), h0 = Real(w0 * double(h));
+    const Real h1 = Real(forest_ruth_w1 * double(h)), h0 = Real(forest_ruth_w0 * double(h));
     for (Real gj : gamma) {
       decay_half.push_back(Real(std::exp(-double(gj) * (0.5 * double(h)))));
       decay_h1.push_back(Real(std::exp(-double(gj) * (0.5 * double(h1)))));
@@ -208,9 +207,8 @@ template <bool Spring, class Real>
       }
       break;
     case Integrator::forest_ruth: {
-      const double cbrt2 = std::cbrt(2.0);
-      const Real h1 = Real(1.0 / (2.0 - cbrt2) * double(h));
-      const Real h0 = Real(-cbrt2 / (2.0 - cbrt2) * double(h));
+      const Real h1 = Real(forest_ruth_w1 * double(h));
+      const Real h0 = Real(forest_ruth_w0 * double(h));
       for (std::size_t j = 0; j < n; ++j) {
         const Real kj = Spring ? k[j] : Real(0), axj = Spring ? ax0[j] : Real(0);
         const Real ayj = Spring ? ay0[j] : Real(0);

@@ -239,7 +239,9 @@ if command -v xvfb-run >/dev/null; then
   # the runtime guard in the window: it pauses, says why, and view exits 3
   xvfb-run -a -s "-screen 0 1024x768x24" "$fixstep" view "$work/blow.toml" --frames 120 --fps 60 \
     --size 320x180 >"$work/view_blow.out" 2>&1
-  [ $? -eq 3 ] && ok "view exits 3 after the guard stopped the simulation" || fail "view guard exit"
+  code=$?
+  [ "$code" -eq 3 ] && ok "view exits 3 after the guard stopped the simulation" \
+    || { fail "view guard exit $code"; cat "$work/view_blow.out"; }
   expect "view reports the guard's message once" "error: .*body\[1\] \"stiff\": state left the finite range at tick 14" \
     "$work/view_blow.out"
   expect "view stays at the diverging tick (paused)" "ticks=14 " "$work/view_blow.out"

@@ -42,10 +42,6 @@ class FlushDenormals {
   unsigned saved_ = 0;
 };
 
-// Yoshida's triple-jump weights (Phys. Lett. A 150, 262 (1990)), as in Forest & Ruth (1990).
-const double cbrt2 = std::cbrt(2.0);
-const double fr_w1 = 1.0 / (2.0 - cbrt2);
-const double fr_w0 = -cbrt2 / (2.0 - cbrt2);
 
 }  // namespace
 
@@ -134,8 +130,9 @@ template <class Field, class Real, class Step>
     step(X, Y, VX, VY, f);
     x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
     // !(|v| <= limit) is true for NaN too (every comparison with NaN is false).
-    const bool in_range = (std::abs(X) <= limit) & (std::abs(Y) <= limit) &
-                          (std::abs(VX) <= limit) & (std::abs(VY) <= limit);
+    // int & int, not &&: no branch in the loop body (it would stop the vectorizer).
+    const bool in_range = (int(std::abs(X) <= limit) & int(std::abs(Y) <= limit) &
+                           int(std::abs(VX) <= limit) & int(std::abs(VY) <= limit)) != 0;
     out_of_range = in_range ? out_of_range : Real(1);
   }
   return out_of_range != Real(0);
@@ -370,8 +367,8 @@ void World<Real>::step(const TickInput& input) {
         break;
       }
       case Integrator::forest_ruth: {
-        const Real h1 = static_cast<Real>(fr_w1 * double(h));
-        const Real h0 = static_cast<Real>(fr_w0 * double(h));
+        const Real h1 = static_cast<Real>(forest_ruth_w1 * double(h));
+        const Real h0 = static_cast<Real>(forest_ruth_w0 * double(h));
         const Real* d1 = c.damping ? damping_decay(0.5 * double(h1)) : nullptr;
         const Real* d0 = c.damping ? damping_decay(0.5 * double(h0)) : nullptr;
         with_field<Real, 2>(shape, c.damping, accel, [&](auto field) {
