@@ -1,5 +1,4 @@
 // `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock.
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <thread>

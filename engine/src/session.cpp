@@ -51,6 +51,26 @@ std::vector<std::string_view> split_words(std::string_view s) {
   }
   return words;
 }
+/// The HUD lines for the runtime guard's message: a heading, then the message wrapped at about
+/// 100 characters, with the Greek letters spelled out (the bitmap font is ASCII only).
+std::vector<std::string> fault_hud_lines(std::string message) {
+  for (const auto& [from, to] : {std::pair<std::string_view, std::string_view>{"ω", "omega"},
+                                 {"γ", "gamma"}, {"·", "*"}}) {
+    for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at)) {
+      message.replace(at, from.size(), to);
+    }
+  }
+  std::vector<std::string> lines{"STOPPED: the state left the finite range"};
+  std::string line;
+  for (const std::string_view word : split_words(message)) {
+    if (!line.empty() && line.size() + word.size() + 1 > 100) lines.push_back(std::move(line)), line.clear();
+    if (!line.empty()) line += ' ';
+    line += word;
+  }
+  if (!line.empty()) lines.push_back(std::move(line));
+  return lines;
+}
+
 }  // namespace
 
 std::string hex_hash(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
@@ -87,6 +107,7 @@ FrameResult Session::advance(double frame_seconds, const TickInput& input) {
 void Session::restart() {
   sim_ = std::make_unique<Simulation>(make_simulation(scene_));
   sim_->set_keep_previous(true);
+  fault_lines_.clear();
   loop_.reset();
   renderer_.clear_trails();
 }
@@ -111,23 +132,10 @@ void Session::draw() {
     hud_.push_back(fmt::format("energy {:.6g} J   drift {:+.4g} J", e, e - initial_energy_));
   }
   if (const auto& fault = sim_->fault()) {
-    // The guard's message, wrapped at about 100 characters per HUD line.
-    hud_.push_back("STOPPED: the state left the finite range");
-    // The bitmap font is ASCII only: spell the Greek letters out.
-    std::string message = explain_fault(scene_, *fault);
-    for (const auto& [from, to] : {std::pair<std::string_view, std::string_view>{"ω", "omega"},
-                                   {"γ", "gamma"}, {"·", "*"}}) {
-      for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at)) {
-        message.replace(at, from.size(), to);
-      }
-    }
-    std::string line;
-    for (const std::string_view word : split_words(message)) {
-      if (!line.empty() && line.size() + word.size() + 1 > 100) hud_.push_back(std::move(line)), line.clear();
-      if (!line.empty()) line += ' ';
-      line += word;
-    }
-    if (!line.empty()) hud_.push_back(std::move(line));
+    // Built once: the guard's message (which runs the stability analysis) does not change
+    // while the simulation stays stopped.
+    if (fault_lines_.empty()) fault_lines_ = fault_hud_lines(explain_fault(scene_, *fault));
+    hud_.insert(hud_.end(), fault_lines_.begin(), fault_lines_.end());
   }
   if (show_controls_) {
     hud_.push_back(fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));

@@ -53,6 +53,7 @@ class Session {
   Renderer renderer_;
   Snapshot snapshot_;
   std::vector<std::string> hud_;
+  std::vector<std::string> fault_lines_;  ///< the runtime guard's message for the HUD, once built
   double initial_energy_ = 0.0;
   bool show_controls_ = false;
 };
