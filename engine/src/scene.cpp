@@ -246,6 +246,7 @@ void check_f32(const Reader& r, const toml::node& node, const std::string& path)
 Scene parse_scene(std::string_view text, const std::string& source_name) {
   Scene scene;
   scene.file = source_name;
+  scene.world.track_dissipation = true;
   Reader r(scene.file);
 
   if (text.size() > max_scene_bytes) {
@@ -368,7 +369,12 @@ Scene load_scene(const std::filesystem::path& file) {
 Simulation make_simulation(const Scene& scene) {
   (void)enforce_stability(scene);  // throws for unstable bodies; callers print the warnings
   Simulation sim(scene.precision, scene.world);
-  for (const BodyDef& def : scene.bodies) sim.create_body(def);
+  std::vector<Entity> bodies;
+  bodies.reserve(scene.bodies.size());
+  for (const BodyDef& def : scene.bodies) bodies.push_back(sim.create_body(def));
+  for (const BodyLink& l : scene.links) {
+    sim.create_link(LinkDef{bodies.at(l.body_a), bodies.at(l.body_b), l.spring});
+  }
   return sim;
 }
 

@@ -15,6 +15,15 @@ Simulation::Simulation(Precision precision, const WorldSettings& settings)
 Entity Simulation::create_body(const BodyDef& def) {
   return visit([&](auto& w) { return w.create_body(def); });
 }
+Link Simulation::create_link(const LinkDef& def) {
+  return visit([&](auto& w) { return w.create_link(def); });
+}
+std::size_t Simulation::link_count() const {
+  return visit([](const auto& w) { return w.link_count(); });
+}
+double Simulation::dissipated_energy() const {
+  return visit([](const auto& w) { return w.dissipated_energy(); });
+}
 void Simulation::step(const TickInput& input) {
   visit([&](auto& w) { w.step(input); });
 }
@@ -74,6 +83,11 @@ void Simulation::snapshot(double alpha, Snapshot& out) const {
         out.springs.push_back({static_cast<float>(s->anchor.x), static_cast<float>(s->anchor.y),
                                static_cast<std::uint32_t>(j)});
       }
+    }
+    out.links.resize(w.link_count());
+    for (std::size_t i = 0; i < w.link_count(); ++i) {
+      const auto [a, b] = w.link_bodies(i);
+      out.links[i] = {static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)};
     }
   });
 }

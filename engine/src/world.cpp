@@ -165,6 +165,7 @@ Entity World<Real>::create_body(const BodyDef& def) {
   prev_x_.push_back(x_.back());
   prev_y_.push_back(y_.back());
   names_.push_back(def.name);
+  dissipated_body_.push_back(Real(0));
 
   if (def.spring) set(e, *def.spring);
   if (def.constant_force) set(e, *def.constant_force);
@@ -178,16 +179,114 @@ Entity World<Real>::create_body(const BodyDef& def) {
 template <class Real>
 void World<Real>::destroy(Entity e) {
   require(e);
+  // Links attached to e go first (Box2D destroys a body's joints with it).
+  for (std::size_t i = link_defs_.size(); i-- > 0;) {
+    if (link_defs_[i].body_a == e || link_defs_[i].body_b == e) destroy_link(link_at(i));
+  }
   remove<SpringDamper>(e);
   remove<ConstantForce>(e);
   remove<Gravity>(e);
   remove<LinearDrag>(e);
   remove<Appearance>(e);
   const std::size_t i = bodies_.erase(e);
-  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, names_);
+  dissipated_gone_ += mass_[i] * double(dissipated_body_[i]);  // stays in the account
+  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, names_, dissipated_body_);
   ++generations_[e.slot()];
   free_slots_.push_back(e.slot());
   terms_dirty_ = true;
+}
+
+template <class Real>
+void World<Real>::validate_link(const LinkDef& def, const std::string& who) const {
+  for (const Entity e : {def.body_a, def.body_b}) {
+    if (!bodies_.contains(e)) {
+      throw std::invalid_argument(fmt::format("{}: body {}:{} is null or was destroyed", who,
+                                              e.index1, e.generation));
+    }
+  }
+  if (def.body_a == def.body_b) {
+    throw std::invalid_argument(
+        fmt::format("{}: both ends are {} (a link needs two different bodies)", who,
+                    describe(def.body_a)));
+  }
+  const LinkSpring& s = def.spring;
+  check_value<Real>(s.stiffness, s.stiffness >= 0.0, who, "stiffness", "finite and >= 0 N/m");
+  check_value<Real>(s.damping, s.damping >= 0.0, who, "damping", "finite and >= 0 N*s/m");
+  check_value<Real>(s.rest_length, s.rest_length >= 0.0, who, "rest_length",
+                    "finite and >= 0 m");
+  if (s.rest_length > 0.0) {
+    const std::size_t a = bodies_.index(def.body_a), b = bodies_.index(def.body_b);
+    if (x_[a] == x_[b] && y_[a] == y_[b]) {
+      throw std::invalid_argument(fmt::format(
+          "{}: {} and {} are at the same point, so the direction of a link with rest length "
+          "{:g} m is undefined; move one of them or use rest_length = 0",
+          who, describe(def.body_a), describe(def.body_b), s.rest_length));
+    }
+  }
+}
+
+template <class Real>
+Link World<Real>::create_link(const LinkDef& def) {
+  validate_link(def, "link");
+  Entity key;
+  if (!link_free_slots_.empty()) {
+    const std::uint32_t slot = link_free_slots_.back();
+    link_free_slots_.pop_back();
+    key = Entity{slot + 1, link_generations_[slot]};
+  } else {
+    link_generations_.push_back(1);
+    key = Entity{static_cast<std::uint32_t>(link_generations_.size()), 1};
+  }
+  links_.insert(key);
+  link_defs_.push_back(def);
+  dissipated_link_.push_back(Real(0));
+  terms_dirty_ = true;
+  return Link{key.index1, key.generation};
+}
+
+template <class Real>
+bool World<Real>::contains(Link link) const {
+  return links_.contains(Entity{link.index1, link.generation});
+}
+
+template <class Real>
+void World<Real>::destroy_link(Link link) {
+  const Entity key{link.index1, link.generation};
+  if (!links_.contains(key)) {
+    throw std::invalid_argument(
+        fmt::format("link {}:{} is null or was destroyed", link.index1, link.generation));
+  }
+  const std::size_t i = links_.erase(key);
+  dissipated_gone_ += double(dissipated_link_[i]);  // stays in the account
+  swap_pop(i, link_defs_, dissipated_link_);
+  ++link_generations_[key.slot()];
+  link_free_slots_.push_back(key.slot());
+  terms_dirty_ = true;
+}
+
+template <class Real>
+LinkDef World<Real>::link(Link link) const {
+  const Entity key{link.index1, link.generation};
+  if (!links_.contains(key)) {
+    throw std::invalid_argument(
+        fmt::format("link {}:{} is null or was destroyed", link.index1, link.generation));
+  }
+  return link_defs_[links_.index(key)];
+}
+
+template <class Real>
+std::pair<std::size_t, std::size_t> World<Real>::link_bodies(std::size_t i) const {
+  return {bodies_.index(link_defs_[i].body_a), bodies_.index(link_defs_[i].body_b)};
+}
+
+template <class Real>
+double World<Real>::dissipated_energy() const {
+  double total = dissipated_gone_;
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    total += mass_[j] * double(dissipated_body_[j]);
+  }
+  for (const Real e : dissipated_link_) total += double(e);
+  return total;
 }
 
 template <class Real>
@@ -273,6 +372,7 @@ void World<Real>::rebuild_terms() {
   c.accel = false;
   for (std::size_t j = 0; j < n; ++j) c.accel = c.accel || c.accel_x[j] != 0 || c.accel_y[j] != 0;
   flows_.clear();
+  rebuild_network();
   terms_dirty_ = false;
 }
 
@@ -283,6 +383,7 @@ unsigned World<Real>::active_terms() const {
   if (!constant_forces_.data.empty()) bits |= term_constant_force;
   if (!gravities_.data.empty()) bits |= term_gravity;
   if (!drags_.data.empty()) bits |= term_drag;
+  if (!link_defs_.empty()) bits |= term_link;
   return bits;
 }
 
@@ -303,6 +404,15 @@ void World<Real>::for_each_energy(Add&& add) const {
     const double stretch = std::sqrt(d2) - s.rest_length;
     add(j, &EnergyReport::spring,
         0.5 * s.stiffness * (s.rest_length == 0.0 ? d2 : stretch * stretch));
+  }
+  for (const LinkDef& l : link_defs_) {
+    const std::size_t a = bodies_.index(l.body_a), b = bodies_.index(l.body_b);
+    const double dx = double(x_[a]) - double(x_[b]), dy = double(y_[a]) - double(y_[b]);
+    const double d2 = dx * dx + dy * dy;
+    const double stretch = std::sqrt(d2) - l.spring.rest_length;
+    const double e = 0.5 * l.spring.stiffness * (l.spring.rest_length == 0.0 ? d2 : stretch * stretch);
+    add(a, &EnergyReport::spring, 0.5 * e);
+    add(b, &EnergyReport::spring, 0.5 * e);
   }
   for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
     const Vec2 g = gravities_.data[i].acceleration;

@@ -2,9 +2,11 @@
 // declares; see world.hpp.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
+#include "fixstep/entity.hpp"
 #include "fixstep/types.hpp"
 
 namespace fixstep {
@@ -50,6 +52,48 @@ struct Appearance {
   double radius = 0.5;  ///< m, finite and > 0
   Rgba8 color{230, 87, 46, 255};
 };
+
+/// A spring-damper between two bodies (a link): a rope segment, a cloth edge, a suspension.
+///
+/// Force on body a (body b gets the opposite), with d = x_a - x_b and u = v_a - v_b:
+///   L = 0:  F = -k d - b u                                  (linear, each axis independent)
+///   L > 0:  F = -k (|d| - L) d/|d| - b (u·d̂) d̂,  d̂ = d/|d|    (damping along the spring only)
+/// The parameters of a link, shared by the World API (LinkDef) and by index-based lists
+/// (BodyLink: scene files, the stability guard, the exact solutions).
+struct LinkSpring {
+  double stiffness = 0.0;    ///< k, N/m, finite and >= 0
+  double damping = 0.0;      ///< b, N*s/m, finite and >= 0, on the relative velocity
+  double rest_length = 0.0;  ///< L, m, finite and >= 0
+};
+
+/// What World::create_link needs, in the spirit of Box2D's b2DistanceJointDef: two live,
+/// distinct bodies and the spring between them.
+struct LinkDef {
+  Entity body_a;  ///< must be a live body of the world
+  Entity body_b;  ///< must be a live body of the world, != body_a
+  LinkSpring spring{};
+};
+
+/// A link between bodies given by their index in a body list (Scene::bodies, or any list
+/// handed to the stability guard and the exact solutions before a world exists).
+struct BodyLink {
+  std::size_t body_a = 0;  ///< index into the body list
+  std::size_t body_b = 0;  ///< index into the body list, != body_a
+  LinkSpring spring{};
+};
+
+/// Spring stiffness (N/m) and damping (N*s/m) from the parameterization game programmers use:
+/// natural frequency f (Hz) and damping ratio ζ of the spring acting on `mass` (kg):
+///   ω = 2π f,  k = m ω²,  b = 2 m ζ ω.
+/// For an anchored spring `mass` is the body's mass; for a link it is the pair's reduced mass
+/// (reduced_mass()). Box2D v3 (b2DistanceJointDef hertz / dampingRatio) and Avian parameterize
+/// springs the same way. Throws std::invalid_argument naming the parameter when frequency or
+/// mass is not finite and > 0, or damping_ratio is not finite and >= 0.
+[[nodiscard]] LinkSpring spring_from_frequency(double frequency_hz, double damping_ratio,
+                                               double mass);
+/// Reduced mass μ = m_a m_b / (m_a + m_b), kg, of two bodies (each finite and > 0 kg, else
+/// std::invalid_argument): the mass a link between them oscillates with.
+[[nodiscard]] double reduced_mass(double mass_a, double mass_b);
 
 /// Everything needed to create one body entity, in the spirit of Box2D's b2BodyDef: fill in
 /// what the body has; components left empty are not stored and cost nothing when stepping.

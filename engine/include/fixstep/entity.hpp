@@ -20,4 +20,16 @@ struct Entity {
 /// The null entity (all zeros).
 inline constexpr Entity null_entity{};
 
+/// A handle to a link (a spring-damper between two bodies) in a World: slot index plus one
+/// and generation, like Entity; zero is the null link. Destroying either body destroys the
+/// link, and the handle becomes stale.
+struct Link {
+  std::uint32_t index1 = 0;
+  std::uint32_t generation = 0;
+
+  [[nodiscard]] constexpr bool is_null() const { return index1 == 0; }
+  [[nodiscard]] constexpr std::uint32_t slot() const { return index1 - 1; }
+  friend constexpr bool operator==(const Link&, const Link&) = default;
+};
+
 }  // namespace fixstep

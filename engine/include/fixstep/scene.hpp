@@ -39,7 +39,8 @@ struct SceneView {
   std::optional<double> width;  ///< visible width, m; default: fits bodies and spring ranges
 };
 
-/// A parsed, validated scene.
+/// A parsed, validated scene. Its world settings keep the dissipation account
+/// (WorldSettings::track_dissipation), so a scene's summaries and HUD show the energy balance.
 struct Scene {
   std::string file;                ///< where it came from (for messages)
   WorldSettings world;             ///< [world] dt (s) and integrator
@@ -47,6 +48,8 @@ struct Scene {
   SceneView view;
   std::vector<BodyDef> bodies;     ///< in file order, names unique
   std::vector<std::size_t> body_lines;  ///< line of each [[body]] table (0 if not from a file)
+  std::vector<BodyLink> links;     ///< springs between bodies ([[spring]]), by body index
+  std::vector<std::size_t> link_lines;  ///< line of each link's table (0 if not from a file)
   /// [world] allow_unstable: the stability guard warns instead of refusing (for demos that
   /// show blow-ups on purpose).
   bool allow_unstable = false;

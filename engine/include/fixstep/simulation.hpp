@@ -21,6 +21,11 @@ struct Snapshot {
   std::vector<float> radius;    ///< m; 0 = no Appearance (drawn at a default size)
   std::vector<Rgba8> color;     ///< colour; alpha 0 = no Appearance (palette colour)
   std::vector<SpringLine> springs;
+  /// Links (springs between bodies), as pairs of indices into x / y.
+  struct LinkLine {
+    std::uint32_t a = 0, b = 0;
+  };
+  std::vector<LinkLine> links;
 };
 
 /// A World<float> or World<double> behind one interface.
@@ -40,6 +45,8 @@ class Simulation {
   // errors are those documented in world.hpp (create_body throws std::invalid_argument naming
   // the body and field; step never throws and allocates nothing once warmed up).
   Entity create_body(const BodyDef& def);
+  Link create_link(const LinkDef& def);
+  [[nodiscard]] std::size_t link_count() const;
   void step(const TickInput& input = {});
   void set_keep_previous(bool keep);
 
@@ -52,6 +59,8 @@ class Simulation {
   [[nodiscard]] std::size_t body_count() const;
   [[nodiscard]] const std::string& name(std::size_t index) const;
   [[nodiscard]] EnergyReport energy() const;         ///< J
+  /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
+  [[nodiscard]] double dissipated_energy() const;
   [[nodiscard]] std::uint64_t state_hash() const;
   /// Position and velocity of body `index` in double (m, m/s).
   [[nodiscard]] Body body_at(std::size_t index) const;

@@ -12,10 +12,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "fixstep/components.hpp"
@@ -36,7 +38,21 @@ struct WorldSettings {
   /// and x86 then computes 24-145x slower; with this on, long damped runs cost the same as
   /// fresh ones. The results change only in values below 1.2e-38 (f32) / 2.2e-308 (f64).
   bool flush_denormals = true;
+  /// Keep account of the energy dissipated by damping and drag (dissipated_energy()), so that
+  /// the energy balance E + E_dissipated - E0 measures the integrator alone. Off by default:
+  /// a world without links then steps in today's fused pass; with it on (fixstep's CLI and
+  /// sessions) a damped world steps in the multi-pass path, which computes the same states
+  /// bit for bit and adds each tick's dissipation (see World::dissipated_energy).
+  bool track_dissipation = false;
+  /// Threads a tick of a world with links may use: 1, 2, or 0 = automatic (2 when the
+  /// machine has a second core and the world has at least parallel_min_bodies bodies). The
+  /// states are bit-identical for every thread count: each body gathers its link forces in
+  /// a fixed order, and no float is ever added atomically.
+  int threads = 0;
 };
+
+/// Bodies from which an automatic (threads = 0) world with links steps on two threads.
+inline constexpr std::size_t parallel_min_bodies = 16384;
 
 /// Bits of World::active_terms(): which force terms run each tick.
 enum ForceTermBits : unsigned {
@@ -44,13 +60,15 @@ enum ForceTermBits : unsigned {
   term_constant_force = 1u << 1,
   term_gravity = 1u << 2,
   term_drag = 1u << 3,
+  term_link = 1u << 4,  ///< springs between bodies: the gather over the link list runs
 };
 
-/// Mechanical energy, J. Potentials: spring ½k(|x-anchor|-L)², gravity -m g·x, constant force
-/// -F·x (both zero at the origin). Damping and drag are dissipative and have no potential.
+/// Mechanical energy, J. Potentials: spring ½k(|x-anchor|-L)² (anchored) and ½k(|x_a-x_b|-L)²
+/// (links), gravity -m g·x, constant force -F·x (both zero at the origin). Damping and drag
+/// are dissipative and have no potential: see World::dissipated_energy().
 struct EnergyReport {
   double kinetic = 0.0;         ///< ½ m |v|², J
-  double spring = 0.0;          ///< J
+  double spring = 0.0;          ///< anchored springs and links, J
   double gravity = 0.0;         ///< J
   double constant_force = 0.0;  ///< J
   [[nodiscard]] double total() const { return kinetic + spring + gravity + constant_force; }
@@ -72,6 +90,19 @@ struct StateFault {
 };
 
 namespace detail {
+
+/// The second thread of a world with links (world_coupled.cpp).
+class Workers;
+struct WorkersDeleter {
+  void operator()(Workers* w) const;
+};
+/// Implicit Euler's sparse solver for a world with links (world_implicit.cpp, Eigen).
+template <class Real>
+class ImplicitSolver;
+template <class Real>
+struct ImplicitSolverDeleter {
+  void operator()(ImplicitSolver<Real>* s) const;
+};
 
 /// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
 struct SparseSet {
@@ -117,12 +148,32 @@ class World {
   Entity create_body(const BodyDef& def);
   /// Reserves room for `bodies` bodies (avoids regrowth when creating many).
   void reserve(std::size_t bodies);
-  /// Destroys the entity and all its components; its handle (and copies) become stale.
+  /// Destroys the entity, all its components and every link attached to it; its handle (and
+  /// copies, and the links' handles) become stale.
   void destroy(Entity e);
   [[nodiscard]] bool contains(Entity e) const { return bodies_.contains(e); }
   [[nodiscard]] std::size_t body_count() const { return bodies_.dense.size(); }
   /// Dense index of e's body (the index into x(), y(), ...); throws if e is stale.
   [[nodiscard]] std::size_t index_of(Entity e) const;
+
+  // --- links: spring-dampers between bodies (cold path; see LinkSpring for the force) ------
+  /// Creates a link. Throws std::invalid_argument when a body is null or stale, both ends are
+  /// the same body, a parameter is non-finite (also after narrowing to Real) or negative, or
+  /// a rest-length link's bodies are at the same point (its direction is undefined).
+  Link create_link(const LinkDef& def);
+  /// Destroys a link; throws std::invalid_argument if the handle is null or stale.
+  void destroy_link(Link link);
+  [[nodiscard]] bool contains(Link link) const;
+  [[nodiscard]] std::size_t link_count() const { return links_.dense.size(); }
+  /// The definition of a live link; throws std::invalid_argument if it is null or stale.
+  [[nodiscard]] LinkDef link(Link link) const;
+  /// The handle of the link at dense index i < link_count() (creation order while no link is
+  /// destroyed).
+  [[nodiscard]] Link link_at(std::size_t i) const {
+    return Link{links_.dense[i].index1, links_.dense[i].generation};
+  }
+  /// Dense body indices of both ends of the link at dense index i (for drawing).
+  [[nodiscard]] std::pair<std::size_t, std::size_t> link_bodies(std::size_t i) const;
 
   // --- components (cold path; each change rebuilds the force-term lists before next step) --
   /// Adds or replaces component C on e. C is one of SpringDamper, ConstantForce, Gravity,
@@ -144,10 +195,14 @@ class World {
   // --- stepping ---------------------------------------------------------------------------
   /// Advances every body by one tick of settings().dt with the chosen integrator.
   ///
-  /// One fused pass over the bodies: fixstep's forces never couple bodies, so each body's
-  /// whole tick (every substep, every stage) runs in registers and its state is loaded and
-  /// stored once. The pass reads only the coefficient arrays of force parts some body
-  /// declares; bytes_per_body_step() gives the resulting memory traffic.
+  /// Without links (and without track_dissipation), one fused pass over the bodies: each
+  /// body's whole tick (every substep, every stage) runs in registers and its state is loaded
+  /// and stored once. The pass reads only the coefficient arrays of force parts some body
+  /// declares; bytes_per_body_step() gives the resulting memory traffic. With links, each
+  /// force evaluation is a pass over the links (their forces) and a pass over the bodies
+  /// (each gathers its links' forces in a fixed order), on one or two threads (see
+  /// WorldSettings::threads); implicit Euler solves the linear system of the whole network
+  /// (world_implicit.cpp). Both paths give bit-identical states where both apply.
   void step(const TickInput& input = {});
   /// Bytes one tick moves between memory and the core per body (STREAM's convention: each
   /// array element read or written counts once, write-allocate traffic is not counted):
@@ -175,6 +230,8 @@ class World {
   void accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input = {});
   /// Which force terms some body declares (bits of ForceTermBits).
   [[nodiscard]] unsigned active_terms() const;
+  /// Threads the last step used (1 or 2).
+  [[nodiscard]] int threads_used() const { return threads_used_; }
 
   // --- state (dense body order) -----------------------------------------------------------
   [[nodiscard]] std::span<const Real> x() const { return x_; }
@@ -189,8 +246,16 @@ class World {
   // --- measurements -----------------------------------------------------------------------
   /// Total mechanical energy by kind, J (see EnergyReport for the potentials).
   [[nodiscard]] EnergyReport energy() const;
-  /// Mechanical energy of each body, J; out must hold body_count() values.
+  /// Mechanical energy of each body, J; out must hold body_count() values. A link's potential
+  /// is split equally between its two bodies.
   void body_energies(std::span<double> out) const;
+  /// Energy taken out by damping (anchored springs and links) and drag since creation, J,
+  /// when settings().track_dissipation is on (0 otherwise). Each integrator integrates the
+  /// dissipated power Σ b|u|² + c|v|² with its own stages (Euler methods: one rectangle per
+  /// step; RK4: its weights 1/6, 1/3, 1/3, 1/6; implicit Euler: the end of the step), or
+  /// takes the kinetic energy its damping flow removes (velocity Verlet, Forest–Ruth), so
+  /// the energy balance (E + E_dissipated - E0)/|E0| shrinks at the integrator's order.
+  [[nodiscard]] double dissipated_energy() const;
   /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
   /// equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
@@ -224,6 +289,8 @@ class World {
   // entity slots
   std::vector<std::uint32_t> generations_;
   std::vector<std::uint32_t> free_slots_;
+  std::vector<std::uint32_t> link_generations_;
+  std::vector<std::uint32_t> link_free_slots_;
 
   // bodies: SoA in dense order
   detail::SparseSet bodies_;
@@ -237,6 +304,14 @@ class World {
   detail::Store<Gravity> gravities_;
   detail::Store<LinearDrag> drags_;
   detail::Store<Appearance> appearances_;
+  // links (authoritative, double), dense; keyed by Link handles stored as Entity-shaped keys
+  detail::SparseSet links_;
+  std::vector<LinkDef> link_defs_;
+  // dissipated energy per unit mass per body (J/kg) and per link (J), when tracked
+  std::vector<Real> dissipated_body_;
+  std::vector<Real> dissipated_link_;
+  double dissipated_gone_ = 0.0;  ///< J, of destroyed bodies and links
+  int threads_used_ = 1;
 
   // The force field per body, in dense order, rebuilt from the components when terms_dirty_:
   //   a(x, v) = -K s(d) - γ v + c + push,   d = x - anchor,
@@ -258,6 +333,31 @@ class World {
     std::vector<Real> decay;
   };
   std::vector<DampingFlow> flows_;
+
+  // The link network, rebuilt with the coefficients: both ends (dense body indices) and the
+  // spring of each link in Real, 1/m per body, and each body's incident links in CSR form
+  // (incident[offset[j] .. offset[j+1]) = 2·link + (0 if the body is end a, 1 if end b)), in
+  // link order, so every body sums its link forces in the same order on any thread.
+  struct Network {
+    std::vector<std::uint32_t> a, b;
+    std::vector<Real> k, damping, rest, inv_mass;
+    std::vector<std::uint32_t> offset, incident;
+    bool rest_length = false;  ///< some link has L > 0
+    bool damped = false;       ///< some link has b > 0
+  } net_;
+  // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
+  // states and accumulators (see world_coupled.cpp).
+  std::vector<Real> fx_, fy_, s_[4], d_[4], power_body_, power_link_;
+  std::unique_ptr<detail::Workers, detail::WorkersDeleter> workers_;
+  std::unique_ptr<detail::ImplicitSolver<Real>, detail::ImplicitSolverDeleter<Real>> implicit_;
+  // (world_coupled.cpp)
+  void step_multipass(const TickInput& input);
+  template <class Pass>
+  void parallel(std::size_t n, Pass&& pass);
+  void rebuild_network();
+  void validate_link(const LinkDef& def, const std::string& who) const;
+  // (world_implicit.cpp)
+  bool step_implicit_network(Real h, const Real push[2]);
 };
 
 // --- component access (templates, so defined here) ---------------------------------------

@@ -1,0 +1,570 @@
+// The multi-pass path of World::step: worlds with links (spring-dampers between bodies) and
+// worlds that keep the dissipation account (WorldSettings::track_dissipation).
+//
+// A force evaluation of a linked world is two passes: one over the links (each link's force
+// on its end a, from both ends' states) and one over the bodies (each body's own field, see
+// body_field.hpp, plus the forces of its links gathered in link order through the CSR lists
+// of World::Network). Every value is written by exactly one pass element and no sum ever
+// crosses a thread, so one and two threads give the same bits. Multi-stage methods run the
+// pair once per stage, with stage states in scratch arrays sized at rebuild, never per tick.
+//
+// Link damping couples the bodies' velocities, so the damping flow D(τ) of the Strang-split
+// methods (velocity Verlet, Forest–Ruth; see integrators.hpp) is no longer a per-body factor:
+// it is v(τ) = exp(-τC) v with C the damping matrix (per-body γ on the diagonal, the links'
+// b/m coupling the ends). fixstep applies exp(-τC) as its fourth-order Taylor polynomial,
+// w = v; w = v - (τ/k) C w for k = 4, 3, 2, 1 (Horner), whose local error O(τ⁵) keeps Verlet at
+// order 2 and the triple jump at order 4 (Hairer, Lubich & Wanner, Geometric Numerical
+// Integration, §III.3 and §II.4: a composition keeps its order when each factor is
+// approximated beyond it). It is stable for τ·λ_max(C) <= 2.78, RK4's real-axis bound; the
+// network stability guard checks it. Without link damping D stays the exact per-body factor.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+#include <type_traits>
+
+#include "body_field.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+
+namespace detail {
+
+/// One worker thread that runs a job while the calling thread runs its own share: a spin on
+/// an atomic generation counter for the short waits between passes, a futex wait
+/// (std::atomic::wait) for the long ones between ticks, so an idle world costs no CPU.
+class Workers {
+ public:
+  Workers() : thread_([this] { loop(); }) {}
+  ~Workers() {
+    stop_.store(true, std::memory_order_relaxed);
+    start_.fetch_add(1, std::memory_order_release);
+    start_.notify_one();
+    thread_.join();
+  }
+  Workers(const Workers&) = delete;
+  Workers& operator=(const Workers&) = delete;
+
+  /// Starts job(ctx) on the worker; wait() returns when it has finished.
+  void submit(void (*job)(void*), void* ctx) {
+    job_ = job, ctx_ = ctx;
+    const unsigned gen = start_.fetch_add(1, std::memory_order_release) + 1;
+    pending_ = gen;
+    start_.notify_one();
+  }
+  void wait() {
+    for (int i = 0; i < spin_limit && done_.load(std::memory_order_acquire) != pending_; ++i) {
+      pause();
+    }
+    for (unsigned d; (d = done_.load(std::memory_order_acquire)) != pending_;) {
+      done_.wait(d, std::memory_order_acquire);
+    }
+  }
+
+ private:
+  static constexpr int spin_limit = 1 << 16;
+  static void pause() {
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+  void loop() {
+    unsigned seen = 0;
+    for (;;) {
+      unsigned s = start_.load(std::memory_order_acquire);
+      for (int i = 0; i < spin_limit && s == seen; ++i) {
+        pause();
+        s = start_.load(std::memory_order_acquire);
+      }
+      while (s == seen) {
+        start_.wait(seen, std::memory_order_acquire);
+        s = start_.load(std::memory_order_acquire);
+      }
+      seen = s;
+      if (stop_.load(std::memory_order_relaxed)) return;
+      job_(ctx_);
+      done_.store(s, std::memory_order_release);
+      done_.notify_one();
+    }
+  }
+
+  void (*job_)(void*) = nullptr;
+  void* ctx_ = nullptr;
+  unsigned pending_ = 0;
+  std::atomic<unsigned> start_{0}, done_{0};
+  std::atomic<bool> stop_{false};
+  std::thread thread_;  // last: starts after every other member is initialised
+};
+
+void WorkersDeleter::operator()(Workers* w) const {
+  delete w;
+}
+
+}  // namespace detail
+
+namespace {
+
+/// Smallest range worth handing to the second thread.
+constexpr std::size_t min_parallel_range = 4096;
+
+}  // namespace
+
+template <class Real>
+template <class Pass>
+void World<Real>::parallel(std::size_t n, Pass&& pass) {
+  if (threads_used_ < 2 || n < min_parallel_range) {
+    pass(std::size_t{0}, n);
+    return;
+  }
+  const std::size_t mid = n / 2;
+  struct Context {
+    std::remove_reference_t<Pass>* pass;
+    std::size_t begin, end;
+  } ctx{&pass, mid, n};
+  workers_->submit(
+      [](void* p) {
+        auto* c = static_cast<Context*>(p);
+        (*c->pass)(c->begin, c->end);
+      },
+      &ctx);
+  pass(std::size_t{0}, mid);
+  workers_->wait();
+}
+
+template <class Real>
+void World<Real>::rebuild_network() {
+  Network& net = net_;
+  const std::size_t n = body_count(), m = link_defs_.size();
+  net.a.resize(m), net.b.resize(m);
+  net.k.resize(m), net.damping.resize(m), net.rest.resize(m);
+  net.inv_mass.resize(n);
+  for (std::size_t j = 0; j < n; ++j) net.inv_mass[j] = static_cast<Real>(1.0 / mass_[j]);
+  net.offset.assign(n + 1, 0);
+  net.rest_length = net.damped = false;
+  for (std::size_t l = 0; l < m; ++l) {
+    const LinkDef& d = link_defs_[l];
+    net.a[l] = static_cast<std::uint32_t>(bodies_.index(d.body_a));
+    net.b[l] = static_cast<std::uint32_t>(bodies_.index(d.body_b));
+    net.k[l] = static_cast<Real>(d.spring.stiffness);
+    net.damping[l] = static_cast<Real>(d.spring.damping);
+    net.rest[l] = static_cast<Real>(d.spring.rest_length);
+    net.rest_length = net.rest_length || net.rest[l] != Real(0);
+    net.damped = net.damped || net.damping[l] != Real(0);
+    ++net.offset[net.a[l] + 1], ++net.offset[net.b[l] + 1];
+  }
+  for (std::size_t j = 0; j < n; ++j) net.offset[j + 1] += net.offset[j];
+  net.incident.resize(2 * m);
+  std::vector<std::uint32_t> fill(net.offset.begin(), net.offset.end() - 1);
+  for (std::size_t l = 0; l < m; ++l) {  // link order within each body's list
+    net.incident[fill[net.a[l]]++] = static_cast<std::uint32_t>(2 * l);
+    net.incident[fill[net.b[l]]++] = static_cast<std::uint32_t>(2 * l + 1);
+  }
+  fx_.assign(m, Real(0)), fy_.assign(m, Real(0)), power_link_.assign(m, Real(0));
+  for (auto& v : s_) v.assign(n, Real(0));
+  for (auto& v : d_) v.assign(n, Real(0));
+  power_body_.assign(n, Real(0));
+  implicit_.reset();  // its matrix pattern changed
+}
+
+namespace {
+
+/// Views of a state (x, y, vx, vy) the link pass reads.
+template <class Real>
+struct StateView {
+  const Real *x, *y, *vx, *vy;
+};
+
+/// Link forces on end a (end b gets the opposite), N, at state s, for links [l0, l1): with
+/// Spring the spring, with Damped the damper (see LinkSpring). With track, adds weight · the
+/// link's damping power b|u|² (b(u·d̂)² with rest length), W, to power[l].
+template <bool Spring, bool Damped, class Real, class Net>
+void link_forces(const Net& net, StateView<Real> s, std::size_t l0, std::size_t l1, Real* fx,
+                 Real* fy, bool track, Real weight, Real* power) {
+  for (std::size_t l = l0; l < l1; ++l) {
+    const std::uint32_t a = net.a[l], b = net.b[l];
+    const Real dx = s.x[a] - s.x[b], dy = s.y[a] - s.y[b];
+    const Real rest = net.rest[l];
+    Real fxl(0), fyl(0), nx(0), ny(0);
+    const bool along = rest != Real(0);  // L > 0: spring and damper act along d̂ only
+    if (along) {
+      const Real len = std::sqrt(dx * dx + dy * dy);
+      if (len > Real(0)) nx = dx / len, ny = dy / len;  // else no direction, no force
+      if constexpr (Spring) {
+        const Real t = len > Real(0) ? net.k[l] * (len - rest) : Real(0);
+        fxl = -t * nx, fyl = -t * ny;
+      }
+    } else if constexpr (Spring) {
+      fxl = -net.k[l] * dx, fyl = -net.k[l] * dy;
+    }
+    if constexpr (Damped) {
+      const Real c = net.damping[l];
+      const Real ux = s.vx[a] - s.vx[b], uy = s.vy[a] - s.vy[b];
+      if (!along) {
+        fxl -= c * ux, fyl -= c * uy;
+        if (track) power[l] += weight * (c * (ux * ux + uy * uy));
+      } else {
+        const Real un = ux * nx + uy * ny;
+        fxl -= c * un * nx, fyl -= c * un * ny;
+        if (track) power[l] += weight * (c * un * un);
+      }
+    }
+    fx[l] = fxl, fy[l] = fyl;
+  }
+}
+
+/// Body j's link forces, gathered in link order, times 1/m: m/s².
+template <class Real, class Net>
+[[gnu::always_inline]] inline void gather(const Net& net, const Real* fx, const Real* fy,
+                                          std::size_t j, Real& gx, Real& gy) {
+  Real sx(0), sy(0);
+  for (std::uint32_t e = net.offset[j]; e < net.offset[j + 1]; ++e) {
+    const std::uint32_t code = net.incident[e];
+    const std::uint32_t l = code >> 1;
+    if (code & 1u)
+      sx -= fx[l], sy -= fy[l];
+    else
+      sx += fx[l], sy += fy[l];
+  }
+  gx = net.inv_mass[j] * sx, gy = net.inv_mass[j] * sy;
+}
+
+template <class Real>
+[[gnu::always_inline]] inline bool out_of_range(Real x, Real y, Real vx, Real vy) {
+  const Real limit = static_cast<Real>(max_state_magnitude);
+  return !(std::abs(x) <= limit && std::abs(y) <= limit && std::abs(vx) <= limit &&
+           std::abs(vy) <= limit);
+}
+
+/// A body's field, loaded exactly as the fused sweep loads it (world_step.cpp).
+template <class Field, class Real, class Coeff>
+[[gnu::always_inline]] inline Field load_field(const Coeff& c, std::size_t j, const Real* d0,
+                                               const Real* d1, const Real push[2]) {
+  Field f;
+  if constexpr (Field::shape != SpringShape::none) {
+    f.k = c.stiffness[j], f.anchor_x = c.anchor_x[j], f.anchor_y = c.anchor_y[j];
+  }
+  if constexpr (Field::shape == SpringShape::rest_length) f.rest = c.rest[j];
+  if constexpr (Field::damped && Field::decays == 0) f.gamma = c.gamma[j];
+  if constexpr (Field::damped && Field::decays >= 1) f.decay[0] = d0[j];
+  if constexpr (Field::damped && Field::decays >= 2) f.decay[1] = d1[j];
+  if constexpr (Field::accel) f.cx = c.accel_x[j] + push[0], f.cy = c.accel_y[j] + push[1];
+  return f;
+}
+
+/// The state and scratch one tick of the multi-pass path works on (World's arrays, by
+/// pointer), and each integrator's passes. Par is World::parallel, bound to the world.
+template <class Real, class Net, class Coeff, class Par>
+struct Passes {
+  const Net& net;
+  const Coeff& c;
+  Par par;
+  std::size_t n, m;
+  Real *x, *y, *vx, *vy, *fx, *fy;
+  Real* s[4];  ///< stage state (RK4) or the damping flow's w (s[2], s[3])
+  Real* d[4];  ///< RK4's k1 + 2 k2 + 2 k3
+  Real *power_body, *power_link, *diss_body, *diss_link;
+  bool track;
+  const Real* push;
+  SpringShape shape;
+  bool accel;
+  std::atomic<bool>& bad;
+
+  void flag(bool out) {
+    if (out) bad.store(true, std::memory_order_relaxed);
+  }
+  template <bool Spring, bool Damped>
+  void links(StateView<Real> st, Real weight) {
+    const bool t = track && Damped;
+    par(m, [&](std::size_t l0, std::size_t l1) {
+      link_forces<Spring, Damped>(net, st, l0, l1, fx, fy, t, weight, power_link);
+    });
+  }
+  void forces(StateView<Real> st, Real weight) {
+    if (net.damped)
+      links<true, true>(st, weight);
+    else
+      links<true, false>(st, weight);
+  }
+  /// The links' integrated power, W·s, into their account, times the method's weight.
+  void settle_links(Real scale) {
+    if (!track || !net.damped) return;
+    for (std::size_t l = 0; l < m; ++l) diss_link[l] += scale * power_link[l], power_link[l] = 0;
+  }
+  template <int Decays, class Visit>
+  void bodies(bool damped, const Real* d0, const Real* d1, Visit&& visit) {
+    with_field<Real, Decays>(shape, damped, accel, [&](auto field) {
+      using Field = decltype(field);
+      par(n, [&](std::size_t j0, std::size_t j1) {
+        bool out = false;
+        for (std::size_t j = j0; j < j1; ++j) {
+          out = visit(load_field<Field>(c, j, d0, d1, push), j) || out;
+        }
+        flag(out);
+      });
+    });
+  }
+
+  /// Semi-implicit (velocity first) or explicit Euler, one step of h.
+  template <bool Explicit>
+  void euler(Real h) {
+    forces({x, y, vx, vy}, Real(1));
+    bodies<0>(c.damping, nullptr, nullptr, [&](const auto& f, std::size_t j) {
+      Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j], ax, ay, gx, gy;
+      f.full(X, Y, VX, VY, ax, ay);
+      if constexpr (std::decay_t<decltype(f)>::damped) {
+        if (track) diss_body[j] += h * damping_power(f, VX, VY);
+      }
+      gather(net, fx, fy, j, gx, gy);
+      ax += gx, ay += gy;
+      if constexpr (Explicit) {
+        X += VX * h, Y += VY * h;
+        VX += ax * h, VY += ay * h;
+      } else {
+        VX += ax * h, VY += ay * h;
+        X += VX * h, Y += VY * h;
+      }
+      x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
+      return out_of_range(X, Y, VX, VY);
+    });
+    settle_links(h);
+  }
+
+  /// Classical RK4 (integrators.hpp), one step of h: four link passes and four body passes.
+  void rk4(Real h) {
+    const Real half = h * Real(0.5), sixth = h / Real(6);
+    // Stage i at state st: a = field + links; then `next` writes the next stage.
+    auto stage = [&](StateView<Real> st, Real weight, auto next) {
+      forces(st, weight);
+      bodies<0>(c.damping, nullptr, nullptr, [&](const auto& f, std::size_t j) {
+        Real ax, ay, gx, gy;
+        const Real SX = st.x[j], SY = st.y[j], SVX = st.vx[j], SVY = st.vy[j];
+        f.full(SX, SY, SVX, SVY, ax, ay);
+        if constexpr (std::decay_t<decltype(f)>::damped) {
+          if (track) power_body[j] += weight * damping_power(f, SVX, SVY);
+        }
+        gather(net, fx, fy, j, gx, gy);
+        ax += gx, ay += gy;
+        return next(j, SVX, SVY, ax, ay);
+      });
+    };
+    const StateView<Real> stage_state{s[0], s[1], s[2], s[3]};
+    if (track) std::fill(power_body, power_body + n, Real(0));
+    stage({x, y, vx, vy}, Real(1), [&](std::size_t j, Real SVX, Real SVY, Real ax, Real ay) {
+      d[0][j] = SVX, d[1][j] = SVY, d[2][j] = ax, d[3][j] = ay;  // k1
+      s[0][j] = x[j] + half * SVX, s[1][j] = y[j] + half * SVY;
+      s[2][j] = vx[j] + half * ax, s[3][j] = vy[j] + half * ay;
+      return false;
+    });
+    for (const Real to : {half, h}) {  // k2 (next stage at y + h k2/2), k3 (at y + h k3)
+      stage(stage_state, Real(2), [&](std::size_t j, Real SVX, Real SVY, Real ax, Real ay) {
+        d[0][j] += Real(2) * SVX, d[1][j] += Real(2) * SVY;
+        d[2][j] += Real(2) * ax, d[3][j] += Real(2) * ay;
+        s[0][j] = x[j] + to * SVX, s[1][j] = y[j] + to * SVY;
+        s[2][j] = vx[j] + to * ax, s[3][j] = vy[j] + to * ay;
+        return false;
+      });
+    }
+    stage(stage_state, Real(1), [&](std::size_t j, Real SVX, Real SVY, Real ax, Real ay) {
+      const Real X = x[j] + sixth * (d[0][j] + SVX), Y = y[j] + sixth * (d[1][j] + SVY);
+      const Real VX = vx[j] + sixth * (d[2][j] + ax), VY = vy[j] + sixth * (d[3][j] + ay);
+      x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
+      if (track) diss_body[j] += sixth * power_body[j];
+      return out_of_range(X, Y, VX, VY);
+    });
+    settle_links(sixth);
+  }
+
+  /// The damping flow D(τ) with link damping: w = v, then w = v - (τ/k) C w for k = 4..1
+  /// (see the file comment), then v = w; the kinetic energy it removes is dissipated.
+  void damping_flow(Real tau) {
+    Real *wx = s[2], *wy = s[3];
+    par(n, [&](std::size_t j0, std::size_t j1) {
+      std::copy(vx + j0, vx + j1, wx + j0), std::copy(vy + j0, vy + j1, wy + j0);
+    });
+    for (int k = 4; k >= 1; --k) {
+      links<false, true>({x, y, wx, wy}, Real(0));
+      const Real step = tau / Real(k);
+      const bool last = k == 1;
+      par(n, [&](std::size_t j0, std::size_t j1) {
+        for (std::size_t j = j0; j < j1; ++j) {
+          Real gx, gy;
+          gather(net, fx, fy, j, gx, gy);  // -(link part of C w), m/s²
+          const Real g = c.gamma[j];
+          const Real WX = vx[j] - step * (g * wx[j] - gx), WY = vy[j] - step * (g * wy[j] - gy);
+          if (!last) {
+            wx[j] = WX, wy[j] = WY;
+          } else {
+            if (track) {
+              diss_body[j] += Real(0.5) * ((vx[j] * vx[j] + vy[j] * vy[j]) - (WX * WX + WY * WY));
+            }
+            vx[j] = WX, vy[j] = WY;
+          }
+        }
+      });
+    }
+  }
+
+  /// One Strang-split Verlet step of size hh (integrators.hpp): D(hh/2), kick, drift, kick,
+  /// D(hh/2). decay: the exact per-body factors e^{-γ hh/2} when no link is damped.
+  void strang(Real hh, const Real* decay) {
+    const Real half = hh * Real(0.5);
+    const bool link_damped = net.damped;
+    const bool body_damped = c.damping && !link_damped;
+    if (link_damped) damping_flow(half);
+    links<true, false>({x, y, vx, vy}, Real(0));
+    bodies<1>(body_damped, decay, nullptr, [&](const auto& f, std::size_t j) {
+      Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j], ax, ay, gx, gy;
+      if constexpr (std::decay_t<decltype(f)>::damped) {
+        if (track) diss_body[j] += Real(0.5) * (VX * VX + VY * VY);
+        VX *= f.decay[0], VY *= f.decay[0];
+        if (track) diss_body[j] -= Real(0.5) * (VX * VX + VY * VY);
+      }
+      f.conservative(X, Y, ax, ay);
+      gather(net, fx, fy, j, gx, gy);
+      ax += gx, ay += gy;
+      VX += ax * half, VY += ay * half;  // kick hh/2
+      X += VX * hh, Y += VY * hh;        // drift hh
+      x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
+      return false;
+    });
+    links<true, false>({x, y, vx, vy}, Real(0));
+    bodies<1>(body_damped, decay, nullptr, [&](const auto& f, std::size_t j) {
+      Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j], ax, ay, gx, gy;
+      f.conservative(X, Y, ax, ay);
+      gather(net, fx, fy, j, gx, gy);
+      ax += gx, ay += gy;
+      VX += ax * half, VY += ay * half;  // kick hh/2
+      if constexpr (std::decay_t<decltype(f)>::damped) {
+        if (track) diss_body[j] += Real(0.5) * (VX * VX + VY * VY);
+        VX *= f.decay[0], VY *= f.decay[0];
+        if (track) diss_body[j] -= Real(0.5) * (VX * VX + VY * VY);
+      }
+      vx[j] = VX, vy[j] = VY;
+      return out_of_range(X, Y, VX, VY);
+    });
+    if (link_damped) damping_flow(half);
+  }
+};
+
+}  // namespace
+
+template <class Real>
+void World<Real>::step_multipass(const TickInput& input) {
+  const std::size_t n = x_.size(), m = net_.a.size();
+  const int want = settings_.threads;
+  const bool second_core = std::thread::hardware_concurrency() >= 2;
+  threads_used_ = want == 1 ? 1 : want >= 2 ? 2 : (second_core && n >= parallel_min_bodies) ? 2 : 1;
+  if (threads_used_ == 2 && !workers_) workers_.reset(new detail::Workers());
+  const Real push[2] = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)};
+  const Real h = static_cast<Real>(settings_.dt / settings_.substeps);
+  const StepSizes<Real> sizes{h, static_cast<Real>(forest_ruth_w1 * double(h)),
+                              static_cast<Real>(forest_ruth_w0 * double(h))};
+  const Coefficients& c = coeff_;
+  const SpringShape shape = !c.spring       ? SpringShape::none
+                            : c.rest_length ? SpringShape::rest_length
+                                            : SpringShape::linear;
+  const bool accel = c.accel || push[0] != Real(0) || push[1] != Real(0);
+  const Integrator method = settings_.integrator;
+  std::atomic<bool> bad{false};
+  auto par = [this](std::size_t count, auto&& pass) { parallel(count, pass); };
+  Passes<Real, Network, Coefficients, decltype(par)> p{
+      net_,
+      c,
+      par,
+      n,
+      m,
+      x_.data(),
+      y_.data(),
+      vx_.data(),
+      vy_.data(),
+      fx_.data(),
+      fy_.data(),
+      {s_[0].data(), s_[1].data(), s_[2].data(), s_[3].data()},
+      {d_[0].data(), d_[1].data(), d_[2].data(), d_[3].data()},
+      power_body_.data(),
+      power_link_.data(),
+      dissipated_body_.data(),
+      dissipated_link_.data(),
+      settings_.track_dissipation,
+      push,
+      shape,
+      accel,
+      bad};
+  // Exact per-body damping factors, as the fused sweep uses them.
+  const bool per_body_decay = c.damping && (m == 0 || !net_.damped);
+  const Real* decay_h = per_body_decay && method == Integrator::velocity_verlet
+                            ? damping_decay(0.5 * double(h))
+                            : nullptr;
+  const bool fr = per_body_decay && method == Integrator::forest_ruth;
+  const Real* decay_h1 = fr ? damping_decay(0.5 * double(sizes.h1)) : nullptr;
+  const Real* decay_h0 = fr ? damping_decay(0.5 * double(sizes.h0)) : nullptr;
+
+  for (int sub = 0; sub < settings_.substeps; ++sub) {
+    if (m == 0) {
+      // No links: each body's fused step, as in the sweep, with the dissipation account.
+      auto fused = [&]<Integrator I, int Decays>(const Real* d0, const Real* d1) {
+        Real* diss = dissipated_body_.data();
+        p.template bodies<Decays>(c.damping, d0, d1, [&](const auto& f, std::size_t j) {
+          Real X = x_[j], Y = y_[j], VX = vx_[j], VY = vy_[j];
+          body_step<I, true>(X, Y, VX, VY, f, sizes, diss[j]);
+          x_[j] = X, y_[j] = Y, vx_[j] = VX, vy_[j] = VY;
+          return out_of_range(X, Y, VX, VY);
+        });
+      };
+      switch (method) {
+        case Integrator::semi_implicit_euler:
+          fused.template operator()<Integrator::semi_implicit_euler, 0>(nullptr, nullptr);
+          break;
+        case Integrator::explicit_euler:
+          fused.template operator()<Integrator::explicit_euler, 0>(nullptr, nullptr);
+          break;
+        case Integrator::velocity_verlet:
+          fused.template operator()<Integrator::velocity_verlet, 1>(decay_h, nullptr);
+          break;
+        case Integrator::forest_ruth:
+          fused.template operator()<Integrator::forest_ruth, 2>(decay_h1, decay_h0);
+          break;
+        case Integrator::rk4:
+          fused.template operator()<Integrator::rk4, 0>(nullptr, nullptr);
+          break;
+        case Integrator::implicit_euler:
+          fused.template operator()<Integrator::implicit_euler, 0>(nullptr, nullptr);
+          break;
+      }
+      continue;
+    }
+    switch (method) {
+      case Integrator::semi_implicit_euler:
+        p.template euler<false>(h);
+        break;
+      case Integrator::explicit_euler:
+        p.template euler<true>(h);
+        break;
+      case Integrator::rk4:
+        p.rk4(h);
+        break;
+      case Integrator::velocity_verlet:
+        p.strang(h, decay_h);
+        break;
+      case Integrator::forest_ruth:
+        p.strang(sizes.h1, decay_h1);
+        p.strang(sizes.h0, decay_h0);
+        p.strang(sizes.h1, decay_h1);
+        break;
+      case Integrator::implicit_euler:
+        if (step_implicit_network(h, push)) bad.store(true, std::memory_order_relaxed);
+        break;
+    }
+  }
+  ++tick_;
+  if (bad.load(std::memory_order_relaxed) && !fault_) record_fault();
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                              \
+  template void World<Real>::step_multipass(const TickInput&); \
+  template void World<Real>::rebuild_network();
+FIXSTEP_INSTANTIATE(float)
+FIXSTEP_INSTANTIATE(double)
+#undef FIXSTEP_INSTANTIATE
+
+}  // namespace fixstep

@@ -1,0 +1,306 @@
+// Implicit (backward) Euler for a world with links: the whole network's equations solved each
+// step with Eigen's sparse solvers.
+//
+// With r = x_{n+1} and v_{n+1} = (r - x)/h the step is G(r) = M (r - x - h v) - h² F(r, (r-x)/h)
+// = 0 (Hairer & Wanner, Solving ODEs II, §IV.3; Baraff & Witkin, "Large steps in cloth
+// simulation", SIGGRAPH 1998). Its Jacobian is J = M + h C + h² K with K = -∂F/∂x the tangent
+// stiffness and C = -∂F/∂v the damping matrix.
+//  * Linear forces (every spring with rest length 0): F is affine, K and C are constant and
+//    equal for both axes, and G is solved exactly in velocities,
+//      (M + h C + h² K) v_{n+1} = M v_n + h F(x_n, 0),
+//    with one LDLᵀ factorisation per step size reused every tick (n×n, symmetric positive
+//    definite), two right-hand sides (x and y).
+//  * Rest-length springs: Newton's method on G over both axes (2n unknowns), each spring's
+//    tangent stiffness k[(1 - L/ℓ) I + (L/ℓ) n̂n̂ᵀ] and damper b n̂n̂ᵀ (the dependence of n̂ in
+//    the damper on r is left out of J: the iteration still converges to G = 0, a little more
+//    slowly); a sparse LU per iteration, since J can be indefinite under compression.
+// The solve runs in double for f32 worlds too; the state is rounded to the world's precision.
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <cmath>
+#include <limits>
+
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+
+namespace detail {
+
+template <class Real>
+class ImplicitSolver {
+ public:
+  /// The network in double, SI units (filled by World::step_implicit_network).
+  struct Spring {
+    std::uint32_t a = 0, b = 0;  ///< bodies (b unused for anchored springs)
+    double k = 0, damping = 0, rest = 0, anchor_x = 0, anchor_y = 0;  ///< damping: links only
+    bool anchored = false;
+    std::size_t link = 0;  ///< dense link index (links only)
+  };
+  std::vector<double> mass, drag, cx, cy;  ///< kg; b + c of per-body dampers, N·s/m; m/s²
+  std::vector<Spring> springs;
+  bool linear = true;
+
+  /// One step of h (s). Returns true if the new state is out of range.
+  bool step(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2], bool track,
+            Real* diss_body, Real* diss_link);
+
+ private:
+  using Sparse = Eigen::SparseMatrix<double>;
+  void build_linear(double h);
+  bool step_linear(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2]);
+  bool step_newton(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2]);
+  void account(const Real* x, const Real* y, const Real* vx, const Real* vy, double h,
+               Real* diss_body, Real* diss_link);
+
+  double factor_h_ = -1.0;
+  Eigen::SimplicialLDLT<Sparse> ldlt_;
+  Eigen::SparseLU<Sparse> lu_;
+  bool lu_analyzed_ = false;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  Sparse jacobian_;
+  Eigen::VectorXd rhs_x_, rhs_y_, sol_x_, sol_y_, r_, g_, delta_;
+};
+
+template <class Real>
+void ImplicitSolverDeleter<Real>::operator()(ImplicitSolver<Real>* s) const {
+  delete s;
+}
+
+template <class Real>
+void ImplicitSolver<Real>::build_linear(double h) {
+  const std::size_t n = mass.size();
+  triplets_.clear();
+  for (std::size_t j = 0; j < n; ++j) {
+    triplets_.emplace_back(j, j, mass[j] + h * drag[j]);
+  }
+  for (const Spring& s : springs) {
+    const double kk = h * h * s.k, cc = h * s.damping;
+    triplets_.emplace_back(s.a, s.a, kk + cc);
+    if (s.anchored) continue;
+    triplets_.emplace_back(s.b, s.b, kk + cc);
+    triplets_.emplace_back(s.a, s.b, -(kk + cc));
+    triplets_.emplace_back(s.b, s.a, -(kk + cc));
+  }
+  Sparse a(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  a.setFromTriplets(triplets_.begin(), triplets_.end());
+  ldlt_.compute(a);
+  factor_h_ = h;
+  rhs_x_.resize(n), rhs_y_.resize(n), sol_x_.resize(n), sol_y_.resize(n);
+}
+
+template <class Real>
+bool ImplicitSolver<Real>::step_linear(Real* x, Real* y, Real* vx, Real* vy, double h,
+                                       const Real push[2]) {
+  if (h != factor_h_) build_linear(h);
+  const std::size_t n = mass.size();
+  // rhs = M v + h F(x, 0): the forces at the old positions with zero velocity.
+  for (std::size_t j = 0; j < n; ++j) {
+    const double ax = cx[j] + double(push[0]), ay = cy[j] + double(push[1]);
+    rhs_x_[j] = mass[j] * (double(vx[j]) + h * ax);
+    rhs_y_[j] = mass[j] * (double(vy[j]) + h * ay);
+  }
+  for (const Spring& s : springs) {
+    const double bx = s.anchored ? s.anchor_x : double(x[s.b]);
+    const double by = s.anchored ? s.anchor_y : double(y[s.b]);
+    const double fx = -s.k * (double(x[s.a]) - bx), fy = -s.k * (double(y[s.a]) - by);
+    rhs_x_[s.a] += h * fx, rhs_y_[s.a] += h * fy;
+    if (!s.anchored) rhs_x_[s.b] -= h * fx, rhs_y_[s.b] -= h * fy;
+  }
+  sol_x_ = ldlt_.solve(rhs_x_);
+  sol_y_ = ldlt_.solve(rhs_y_);
+  const Real hr = static_cast<Real>(h);
+  bool out = false;
+  const double limit = max_state_magnitude;
+  for (std::size_t j = 0; j < n; ++j) {
+    vx[j] = static_cast<Real>(sol_x_[j]), vy[j] = static_cast<Real>(sol_y_[j]);
+    x[j] += hr * vx[j], y[j] += hr * vy[j];
+    out = out || !(std::abs(double(x[j])) <= limit && std::abs(double(y[j])) <= limit &&
+                   std::abs(double(vx[j])) <= limit && std::abs(double(vy[j])) <= limit);
+  }
+  return out;
+}
+
+template <class Real>
+bool ImplicitSolver<Real>::step_newton(Real* x, Real* y, Real* vx, Real* vy, double h,
+                                       const Real push[2]) {
+  const std::size_t n = mass.size();
+  const auto N = static_cast<Eigen::Index>(2 * n);
+  r_.resize(N), g_.resize(N), delta_.resize(N);
+  for (std::size_t j = 0; j < n; ++j) {  // start from an explicit drift
+    r_[2 * j] = double(x[j]) + h * double(vx[j]);
+    r_[2 * j + 1] = double(y[j]) + h * double(vy[j]);
+  }
+  auto add = [&](std::size_t i, std::size_t k, double v) {
+    triplets_.emplace_back(static_cast<int>(i), static_cast<int>(k), v);
+  };
+  // 2×2 block B (symmetric: b00, b01, b11) at rows/columns of bodies p and q, sign s.
+  auto block = [&](std::size_t p, std::size_t q, double s, double b00, double b01, double b11) {
+    add(2 * p, 2 * q, s * b00), add(2 * p, 2 * q + 1, s * b01);
+    add(2 * p + 1, 2 * q, s * b01), add(2 * p + 1, 2 * q + 1, s * b11);
+  };
+  for (int it = 0; it < 50; ++it) {
+    triplets_.clear();
+    // G = M (r - x - h v) - h² F(r, (r - x)/h),  J = M + h C + h² K.
+    for (std::size_t j = 0; j < n; ++j) {
+      const double ux = (r_[2 * j] - double(x[j])) / h, uy = (r_[2 * j + 1] - double(y[j])) / h;
+      const double fx = mass[j] * (cx[j] + double(push[0])) - drag[j] * ux;
+      const double fy = mass[j] * (cy[j] + double(push[1])) - drag[j] * uy;
+      g_[2 * j] = mass[j] * (r_[2 * j] - double(x[j]) - h * double(vx[j])) - h * h * fx;
+      g_[2 * j + 1] = mass[j] * (r_[2 * j + 1] - double(y[j]) - h * double(vy[j])) - h * h * fy;
+      block(j, j, 1.0, mass[j] + h * drag[j], 0.0, mass[j] + h * drag[j]);
+    }
+    for (const Spring& s : springs) {
+      const std::size_t a = s.a, b = s.b;
+      const double rbx = s.anchored ? s.anchor_x : r_[2 * b];
+      const double rby = s.anchored ? s.anchor_y : r_[2 * b + 1];
+      const double dx = r_[2 * a] - rbx, dy = r_[2 * a + 1] - rby;
+      const double ubx = s.anchored ? 0.0 : (r_[2 * b] - double(x[b])) / h;
+      const double uby = s.anchored ? 0.0 : (r_[2 * b + 1] - double(y[b])) / h;
+      const double ux = (r_[2 * a] - double(x[a])) / h - ubx;
+      const double uy = (r_[2 * a + 1] - double(y[a])) / h - uby;
+      double fx, fy, k00, k01, k11, c00, c01, c11;
+      const double len = std::sqrt(dx * dx + dy * dy);
+      if (s.rest == 0.0 || !(len > 0.0)) {
+        fx = -s.k * dx - s.damping * ux, fy = -s.k * dy - s.damping * uy;
+        k00 = k11 = s.k, k01 = 0.0;
+        c00 = c11 = s.damping, c01 = 0.0;
+        if (s.rest != 0.0) fx = fy = 0.0, k00 = k11 = c00 = c11 = 0.0;  // no direction
+      } else {
+        const double nx = dx / len, ny = dy / len, q = s.rest / len;
+        const double un = ux * nx + uy * ny;
+        fx = -s.k * (len - s.rest) * nx - s.damping * un * nx;
+        fy = -s.k * (len - s.rest) * ny - s.damping * un * ny;
+        k00 = s.k * ((1.0 - q) + q * nx * nx), k01 = s.k * q * nx * ny;
+        k11 = s.k * ((1.0 - q) + q * ny * ny);
+        c00 = s.damping * nx * nx, c01 = s.damping * nx * ny, c11 = s.damping * ny * ny;
+      }
+      g_[2 * a] -= h * h * fx, g_[2 * a + 1] -= h * h * fy;
+      const double j00 = h * h * k00 + h * c00, j01 = h * h * k01 + h * c01;
+      const double j11 = h * h * k11 + h * c11;
+      block(a, a, 1.0, j00, j01, j11);
+      if (s.anchored) continue;
+      g_[2 * b] += h * h * fx, g_[2 * b + 1] += h * h * fy;
+      block(b, b, 1.0, j00, j01, j11);
+      block(a, b, -1.0, j00, j01, j11);
+      block(b, a, -1.0, j00, j01, j11);
+    }
+    jacobian_.resize(N, N);
+    jacobian_.setFromTriplets(triplets_.begin(), triplets_.end());
+    if (!lu_analyzed_) lu_.analyzePattern(jacobian_), lu_analyzed_ = true;
+    lu_.factorize(jacobian_);
+    if (lu_.info() != Eigen::Success) break;
+    delta_ = lu_.solve(g_);
+    r_ -= delta_;
+    const double scale = r_.cwiseAbs().maxCoeff() + 1.0;
+    if (!(delta_.cwiseAbs().maxCoeff() > 4.0 * std::numeric_limits<double>::epsilon() * scale)) {
+      break;
+    }
+  }
+  bool out = false;
+  const double limit = max_state_magnitude;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double nvx = (r_[2 * j] - double(x[j])) / h, nvy = (r_[2 * j + 1] - double(y[j])) / h;
+    x[j] = static_cast<Real>(r_[2 * j]), y[j] = static_cast<Real>(r_[2 * j + 1]);
+    vx[j] = static_cast<Real>(nvx), vy[j] = static_cast<Real>(nvy);
+    out = out || !(std::abs(r_[2 * j]) <= limit && std::abs(r_[2 * j + 1]) <= limit &&
+                   std::abs(nvx) <= limit && std::abs(nvy) <= limit);
+  }
+  return out;
+}
+
+template <class Real>
+void ImplicitSolver<Real>::account(const Real* x, const Real* y, const Real* vx, const Real* vy,
+                                   double h, Real* diss_body, Real* diss_link) {
+  // Backward Euler's rectangle: h · the damping power at the end of the step. Anchored
+  // dampers act on the full velocity and are in drag[] (per unit mass: J/kg).
+  for (std::size_t j = 0; j < mass.size(); ++j) {
+    const double v2 = double(vx[j]) * double(vx[j]) + double(vy[j]) * double(vy[j]);
+    diss_body[j] += static_cast<Real>(h * drag[j] * v2 / mass[j]);
+  }
+  for (const Spring& s : springs) {
+    if (s.anchored || s.damping == 0.0) continue;
+    const double ux = double(vx[s.a]) - double(vx[s.b]), uy = double(vy[s.a]) - double(vy[s.b]);
+    double p = ux * ux + uy * uy;
+    if (s.rest != 0.0) {
+      const double dx = double(x[s.a]) - double(x[s.b]), dy = double(y[s.a]) - double(y[s.b]);
+      const double len = std::sqrt(dx * dx + dy * dy);
+      const double un = len > 0.0 ? (ux * dx + uy * dy) / len : 0.0;
+      p = un * un;
+    }
+    diss_link[s.link] += static_cast<Real>(h * s.damping * p);
+  }
+}
+
+template <class Real>
+bool ImplicitSolver<Real>::step(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2],
+                                bool track, Real* diss_body, Real* diss_link) {
+  const bool out = linear ? step_linear(x, y, vx, vy, h, push) : step_newton(x, y, vx, vy, h, push);
+  if (track) account(x, y, vx, vy, h, diss_body, diss_link);
+  return out;
+}
+
+}  // namespace detail
+
+template <class Real>
+bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
+  if (!implicit_) {
+    // The network in double from the authoritative components (rebuilt after any change).
+    implicit_.reset(new detail::ImplicitSolver<Real>());
+    detail::ImplicitSolver<Real>& s = *implicit_;
+    const std::size_t n = body_count();
+    s.mass = mass_;
+    s.drag.assign(n, 0.0), s.cx.assign(n, 0.0), s.cy.assign(n, 0.0);
+    s.linear = true;
+    for (std::size_t i = 0; i < springs_.data.size(); ++i) {
+      const SpringDamper& sd = springs_.data[i];
+      const std::size_t j = bodies_.index(springs_.set.dense[i]);
+      s.drag[j] += sd.damping;
+      s.springs.push_back({.a = static_cast<std::uint32_t>(j),
+                           .b = 0,
+                           .k = sd.stiffness,
+                           .damping = 0.0,
+                           .rest = sd.rest_length,
+                           .anchor_x = sd.anchor.x,
+                           .anchor_y = sd.anchor.y,
+                           .anchored = true,
+                           .link = 0});
+      s.linear = s.linear && sd.rest_length == 0.0;
+    }
+    for (std::size_t i = 0; i < drags_.data.size(); ++i) {
+      s.drag[bodies_.index(drags_.set.dense[i])] += drags_.data[i].coefficient;
+    }
+    for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
+      const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
+      s.cx[j] += constant_forces_.data[i].force.x / mass_[j];
+      s.cy[j] += constant_forces_.data[i].force.y / mass_[j];
+    }
+    for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
+      const std::size_t j = bodies_.index(gravities_.set.dense[i]);
+      s.cx[j] += gravities_.data[i].acceleration.x, s.cy[j] += gravities_.data[i].acceleration.y;
+    }
+    for (std::size_t l = 0; l < link_defs_.size(); ++l) {
+      const LinkSpring& ls = link_defs_[l].spring;
+      s.springs.push_back({.a = net_.a[l],
+                           .b = net_.b[l],
+                           .k = ls.stiffness,
+                           .damping = ls.damping,
+                           .rest = ls.rest_length,
+                           .anchor_x = 0.0,
+                           .anchor_y = 0.0,
+                           .anchored = false,
+                           .link = l});
+      s.linear = s.linear && ls.rest_length == 0.0;
+    }
+  }
+  return implicit_->step(x_.data(), y_.data(), vx_.data(), vy_.data(), double(h), push,
+                         settings_.track_dissipation, dissipated_body_.data(),
+                         dissipated_link_.data());
+}
+
+template bool World<float>::step_implicit_network(float, const float[2]);
+template bool World<double>::step_implicit_network(double, const double[2]);
+template struct detail::ImplicitSolverDeleter<float>;
+template struct detail::ImplicitSolverDeleter<double>;
+
+}  // namespace fixstep
