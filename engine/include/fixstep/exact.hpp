@@ -2,7 +2,10 @@
 // benchmarks and `fixstep run` measure integrators against.
 #pragma once
 
+#include <memory>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include "fixstep/components.hpp"
 
@@ -56,5 +59,37 @@ enum class Regime {
 /// that is not finite and > 0, a negative or non-finite stiffness, damping, rest length or
 /// drag coefficient, and (as linear() does) for a non-finite t or non-finite inputs to an axis.
 [[nodiscard]] std::optional<Body> solve(const BodyDef& def, double t);
+
+/// The exact solution of a linear network: bodies whose springs (anchored and links) all have
+/// rest length 0 and whose damping is proportional, C = αK + βM (every damper's b = α k of
+/// its spring, every drag c = β m; zero damping is the case α = β = 0), under constant forces
+/// and gravity. M x'' = -K x - C x' + f decouples into modes: with K φ = ω² M φ (φᵀMφ = 1),
+/// each modal coordinate q = φᵀ M x obeys q'' = -ω² q - (α ω² + β) q' + φᵀ(f + anchor terms),
+/// solved by linear() (Géradin & Rixen, Mechanical Vibrations, 3rd ed., §2.5 and §2.8,
+/// proportional damping). Dense generalized eigen-decomposition (Eigen): O(n³) once, O(n²)
+/// per state(); meant for references up to about a thousand bodies.
+class LinearNetwork {
+ public:
+  /// The network of `bodies` and `links` (indices into bodies), or std::nullopt when it is
+  /// not linear with proportional damping (a rest length > 0, or damping not of the form
+  /// αK + βM to a relative 1e-9). Throws std::invalid_argument for a link index out of range
+  /// or invalid body parameters (as solve()).
+  [[nodiscard]] static std::optional<LinearNetwork> make(std::span<const BodyDef> bodies,
+                                                         std::span<const BodyLink> links);
+  /// Every body's exact position (m) and velocity (m/s) at time t (s), in body order; out
+  /// must hold bodies.size() entries (throws std::invalid_argument otherwise or for a
+  /// non-finite t). Masses are copied from the definitions.
+  void state(double t, std::span<Body> out) const;
+  [[nodiscard]] std::size_t size() const;
+
+  LinearNetwork(LinearNetwork&&) noexcept;
+  LinearNetwork& operator=(LinearNetwork&&) noexcept;
+  ~LinearNetwork();
+
+ private:
+  struct Modes;
+  explicit LinearNetwork(std::unique_ptr<Modes> modes);
+  std::unique_ptr<Modes> modes_;
+};
 
 }  // namespace fixstep::exact
