@@ -62,7 +62,7 @@ class Workers {
   }
 
  private:
-  static constexpr int spin_limit = 1 << 16;
+  static constexpr int spin_limit = 1 << 11;  // about 10-50 µs of pause instructions
   static void pause() {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_ia32_pause();
@@ -452,7 +452,7 @@ template <class Real>
 void World<Real>::step_multipass(const TickInput& input) {
   const std::size_t n = x_.size(), m = net_.a.size();
   const int want = settings_.threads;
-  const bool second_core = std::thread::hardware_concurrency() >= 2;
+  static const bool second_core = std::thread::hardware_concurrency() >= 2;  // a syscall: once
   threads_used_ = want == 1 ? 1 : want >= 2 ? 2 : (second_core && n >= parallel_min_bodies) ? 2 : 1;
   if (threads_used_ == 2 && !workers_) workers_.reset(new detail::Workers());
   const Real push[2] = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)};

@@ -109,6 +109,23 @@ void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const Ti
     f.cy = c.accel_y[j] + static_cast<Real>(input.push.y);
     f.full(x_[j], y_[j], vx_[j], vy_[j], ax[j], ay[j]);
   }
+  // Links (cold path, for tests and tools; the step's passes are in world_coupled.cpp).
+  for (const LinkDef& l : link_defs_) {
+    const std::size_t a = bodies_.index(l.body_a), b = bodies_.index(l.body_b);
+    const double dx = double(x_[a]) - double(x_[b]), dy = double(y_[a]) - double(y_[b]);
+    const double ux = double(vx_[a]) - double(vx_[b]), uy = double(vy_[a]) - double(vy_[b]);
+    const LinkSpring& s = l.spring;
+    double fx = -s.stiffness * dx - s.damping * ux, fy = -s.stiffness * dy - s.damping * uy;
+    if (s.rest_length != 0.0) {
+      const double len = std::sqrt(dx * dx + dy * dy);
+      const double nx = len > 0.0 ? dx / len : 0.0, ny = len > 0.0 ? dy / len : 0.0;
+      const double t = len > 0.0 ? s.stiffness * (len - s.rest_length) : 0.0;
+      const double un = ux * nx + uy * ny;
+      fx = -t * nx - s.damping * un * nx, fy = -t * ny - s.damping * un * ny;
+    }
+    ax[a] += static_cast<Real>(fx / mass_[a]), ay[a] += static_cast<Real>(fy / mass_[a]);
+    ax[b] -= static_cast<Real>(fx / mass_[b]), ay[b] -= static_cast<Real>(fy / mass_[b]);
+  }
 }
 
 // The damping-flow factors e^{-γτ} of every body (1 where γ = 0), computed in double once per

@@ -226,7 +226,8 @@ class World {
   /// interpolate between the last two ticks. Off by default (costs a copy per tick).
   void set_keep_previous(bool keep);
 
-  /// Accelerations a(x, v) at the current state, m/s²; ax and ay must hold body_count().
+  /// Accelerations a(x, v) at the current state, m/s², links included; ax and ay must hold
+  /// body_count() (else std::invalid_argument).
   void accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input = {});
   /// Which force terms some body declares (bits of ForceTermBits).
   [[nodiscard]] unsigned active_terms() const;
