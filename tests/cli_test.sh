@@ -25,11 +25,11 @@ expect "run summary has ticks and a 16-digit hash" '^ticks=1000 t=10\.000000 sta
   && ok "--duration 10 equals --steps 1000 at dt 0.01" || fail "--duration 10 equals --steps 1000"
 
 "$fixstep" run "$scenes/projectile.toml" --steps 100 --every 10 --csv "$work/p.csv" >"$work/csv.out" 2>&1
-head -1 "$work/p.csv" | grep -q '^tick,t,body,x,y,vx,vy,energy,x_exact,y_exact,error$' \
+head -1 "$work/p.csv" | grep -q '^tick,t,body,x,y,vx,vy,energy,world_energy,world_dissipated,balance,x_exact,y_exact,error$' \
   && ok "csv header (with the exact solution's columns)" || fail "csv header"
 expect "run reports the error against the exact solution" '^exact_error=[0-9.e+-]+ m' "$work/csv.out"
 # the vacuum body's semi-implicit error at t = 1 s is g t dt / 2 = 0.04905 m (see below)
-awk -F, '$1 == 100 && $3 == "vacuum" { ok = ($11 - 0.04905 < 1e-9 && 0.04905 - $11 < 1e-9) } END { exit !ok }' \
+awk -F, '$1 == 100 && $3 == "vacuum" { ok = ($14 - 0.04905 < 1e-9 && 0.04905 - $14 < 1e-9) } END { exit !ok }' \
   "$work/p.csv" && ok "csv error column: vacuum at t = 1 s is off by g t dt / 2" || fail "csv error column"
 rows=$(($(wc -l <"$work/p.csv") - 1))
 [ "$rows" -eq 55 ] && ok "csv has 5 bodies x 11 recorded ticks" || fail "csv rows: $rows, want 55"

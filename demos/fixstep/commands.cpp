@@ -150,18 +150,21 @@ std::optional<double> exact_error(const Scene& scene, const Simulation& sim) {
 }
 
 void append_rows(AtomicFile& csv, const Scene& scene, const Simulation& sim, bool with_exact,
-                 std::vector<double>& energies, std::string& buffer) {
+                 double e0, std::vector<double>& energies, std::string& buffer) {
   sim.visit([&](const auto& w) {
     energies.resize(w.body_count());
     w.body_energies(energies);
   });
   buffer.clear();
   auto out = std::back_inserter(buffer);
+  const double world_energy = sim.energy().total(), dissipated = sim.dissipated_energy();
+  const double balance = energy_balance(sim, e0);
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
     const Body b = sim.body_at(j);
     // {} prints the shortest text that reads back as the same double: exact, no lost bits.
-    fmt::format_to(out, "{},{},{},{},{},{},{},{}", sim.tick(), sim.time(), sim.name(j),
-                   b.position.x, b.position.y, b.velocity.x, b.velocity.y, energies[j]);
+    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{}", sim.tick(), sim.time(), sim.name(j),
+                   b.position.x, b.position.y, b.velocity.x, b.velocity.y, energies[j],
+                   world_energy, dissipated, balance);
     if (with_exact) {
       if (const auto exact = exact::solve(scene.bodies[j], sim.time())) {
         fmt::format_to(out, ",{},{},{}", exact->position.x, exact->position.y,
@@ -177,6 +180,9 @@ void append_rows(AtomicFile& csv, const Scene& scene, const Simulation& sim, boo
 
 }  // namespace
 
+const std::string csv_header =
+    "tick,t,body,x,y,vx,vy,energy,world_energy,world_dissipated,balance";
+
 int run_command(const RunOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   Simulation sim = make_simulation(scene);
@@ -190,9 +196,8 @@ int run_command(const RunOptions& o) {
   const bool has_exact = exact_error(scene, sim).has_value();
   if (o.csv) {
     csv.emplace(*o.csv);
-    csv->append(has_exact ? "tick,t,body,x,y,vx,vy,energy,x_exact,y_exact,error\n"
-                          : "tick,t,body,x,y,vx,vy,energy\n");
-    append_rows(*csv, scene, sim, has_exact, energies, buffer);
+    csv->append(has_exact ? csv_header + ",x_exact,y_exact,error\n" : csv_header + "\n");
+    append_rows(*csv, scene, sim, has_exact, e0, energies, buffer);
   }
   const StopOnSignal signals;
   for (std::uint64_t i = 1; i <= ticks; ++i) {
@@ -200,7 +205,7 @@ int run_command(const RunOptions& o) {
     const bool diverged = sim.fault().has_value();  // the runtime guard (World::fault)
     const bool stop = StopOnSignal::requested() != 0;
     if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks || diverged || stop)) {
-      append_rows(*csv, scene, sim, has_exact, energies, buffer);
+      append_rows(*csv, scene, sim, has_exact, e0, energies, buffer);
     }
     if (diverged || stop) break;
   }

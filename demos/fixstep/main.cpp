@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
                        ->check(positive_finite);
   steps->excludes(duration);
   run_cmd->add_option("--csv", run.csv,
-                      "write tick,t,body,x,y,vx,vy,energy rows here (atomically)");
+                      "write tick,t,body,x,y,vx,vy,energy,... rows here (atomically; see README)");
   run_cmd->add_option("--every", run.every, "record every K-th tick in the CSV (tick 0 always)")
       ->check(CLI::Range(std::int64_t{1}, max_ticks));
 

@@ -75,13 +75,16 @@ std::vector<std::string> fault_hud_lines(std::string message) {
 
 std::string hex_hash(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
 
+double energy_balance(const Simulation& sim, double initial_energy) {
+  const double residual = sim.energy().total() + sim.dissipated_energy() - initial_energy;
+  return initial_energy != 0.0 ? residual / std::abs(initial_energy) : residual;
+}
+
 std::string summary_line(const Simulation& sim, double initial_energy) {
-  const double e = sim.energy().total();
-  const std::string drift = initial_energy != 0.0
-                                ? fmt::format("{:.6e}", (e - initial_energy) / std::abs(initial_energy))
-                                : fmt::format("{:.6e}J", e - initial_energy);
-  return fmt::format("ticks={} t={:.6f} state_hash={} energy={:.9e} drift={}", sim.tick(),
-                     sim.time(), hex_hash(sim.state_hash()), e, drift);
+  const double balance = energy_balance(sim, initial_energy);
+  return fmt::format("ticks={} t={:.6f} state_hash={} energy={:.9e} dissipated={:.9e} balance={:.6e}{}",
+                     sim.tick(), sim.time(), hex_hash(sim.state_hash()), sim.energy().total(),
+                     sim.dissipated_energy(), balance, initial_energy != 0.0 ? "" : "J");
 }
 
 Session::Session(Scene scene, int width, int height)
@@ -125,12 +128,11 @@ void Session::draw() {
                              substeps > 1 ? fmt::format(" ({} substeps)", substeps) : ""));
   hud_.push_back(fmt::format("{} ({})", integrator_name(sim_->settings().integrator),
                              precision_name(sim_->precision())));
-  if (initial_energy_ != 0.0) {
-    hud_.push_back(fmt::format("energy {:.6g} J   drift {:+.4g} %", e,
-                               100.0 * (e - initial_energy_) / std::abs(initial_energy_)));
-  } else {
-    hud_.push_back(fmt::format("energy {:.6g} J   drift {:+.4g} J", e, e - initial_energy_));
-  }
+  const double balance = energy_balance(*sim_, initial_energy_);
+  hud_.push_back(fmt::format("energy {:.6g} J   dissipated {:.6g} J   balance {:+.3g}{}", e,
+                             sim_->dissipated_energy(),
+                             initial_energy_ != 0.0 ? 100.0 * balance : balance,
+                             initial_energy_ != 0.0 ? " %" : " J"));
   if (const auto& fault = sim_->fault()) {
     // Built once: the guard's message (which runs the stability analysis) does not change
     // while the simulation stays stopped.

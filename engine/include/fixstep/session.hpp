@@ -18,8 +18,15 @@ namespace fixstep {
 /// `width` and `height` are the frame size in pixels (for the aspect ratio).
 [[nodiscard]] Camera fit_camera(const Scene& scene, int width, int height);
 
-/// "ticks=N t=T state_hash=HHHHHHHHHHHHHHHH energy=E drift=D": the summary `run` and `render`
-/// print. energy in J; drift = (E - E0)/|E0| relative to initial_energy (absolute J if E0 = 0).
+/// The energy balance error (E + E_dissipated - E0)/|E0| (dimensionless; in J when E0 = 0):
+/// what the integrator alone adds or loses, with the energy damping and drag took out
+/// (Simulation::dissipated_energy, kept when WorldSettings::track_dissipation is on, as for
+/// every scene) put back. initial_energy = E0 in J.
+[[nodiscard]] double energy_balance(const Simulation& sim, double initial_energy);
+
+/// "ticks=N t=T state_hash=HHHHHHHHHHHHHHHH energy=E dissipated=D balance=B": the summary
+/// `run` and `render` print. energy and dissipated in J; balance = energy_balance() (suffixed
+/// "J" when E0 = 0).
 [[nodiscard]] std::string summary_line(const Simulation& sim, double initial_energy);
 
 /// 16 lowercase hex digits.
