@@ -266,6 +266,8 @@ void register_all(const Options& o) {
 /// without the aggregate suffix: "<scene>/<stepper>/<N>".
 class Collector : public benchmark::ConsoleReporter {
  public:
+  // Colours only on a terminal: reproduce.sh keeps the console output as docs/perf/coupled.log.
+  Collector() : ConsoleReporter(isatty(fileno(stdout)) ? OO_ColorTabular : OO_Tabular) {}
   std::map<std::string, Timing> timings;
   int repetitions = 1;
   void ReportRuns(const std::vector<Run>& runs) override {

@@ -136,7 +136,7 @@ std::string report_markdown(const Results& r) {
       "\n#### Speed ratios, measured side by side in this run (time of the other / time of "
       "fixstep)\n");
   line("| scene | ratio |" + head.substr(head.find('|', 1) + 1));
-  line("|---|" + rule);
+  line("|---" + rule);
   struct RatioRow {
     const char* what;
     const char* slow;
