@@ -1,12 +1,18 @@
 #!/usr/bin/env bash
 # Regenerates every table and figure of docs/PERFORMANCE.md on this machine, in one command:
 #   bash bench/reproduce.sh            (about 10 minutes on 2 cores)
+#   bash bench/reproduce.sh coupled    (only section 6, coupled systems against peers: ~3 min)
 # Builds the optimised benchmark tree (build/bench), runs each study into docs/perf/, and
 # splices the generated markdown into docs/PERFORMANCE.md between its
 # "<!-- BEGIN name -->" / "<!-- END name -->" markers. Run on an otherwise idle machine:
 # timings are medians, but other load still shifts them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+only="${1:-}"
+case "$only" in
+  "" | coupled) ;;
+  *) echo "usage: bash bench/reproduce.sh [coupled]" >&2; exit 2 ;;
+esac
 bash .ci/install-deps
 cmake --workflow --preset bench
 
@@ -14,25 +20,37 @@ out=docs/perf
 bin=build/bench/bin
 mkdir -p "$out"
 
-# The machine the numbers come from.
-{
-  echo "| | |"
-  echo "|---|---|"
-  echo "| CPU | $(lscpu | sed -n 's/^Model name: *//p' | head -1) |"
-  echo "| cores | $(nproc) |"
-  echo "| caches | $(lscpu | sed -n 's/^L\([123][a-z]*\) cache: *\(.*\)/L\1 \2/p' | paste -sd ',' | sed 's/,/, /g') |"
-  echo "| memory | $(free -g | awk '/^Mem:/ {print $2 " GiB"}') |"
-  echo "| compiler | $(c++ --version | head -1) |"
-  echo "| build | CMake preset \`bench\` (Release, -O3 on the sweep, -ffp-contract=off; sweeps at SIMD level $(build/bench/bin/bench_throughput --verify-only | sed -n 's/.*Timing at level \([a-z0-9]*\).*/\1/p')) |"
-  echo "| date | $(date -u +%Y-%m-%d) |"
-} > "$out/machine.md"
+# The machine the numbers come from (the full run's table).
+if [ -z "$only" ]; then
+  {
+    echo "| | |"
+    echo "|---|---|"
+    echo "| CPU | $(lscpu | sed -n 's/^Model name: *//p' | head -1) |"
+    echo "| cores | $(nproc) |"
+    echo "| caches | $(lscpu | sed -n 's/^L\([123][a-z]*\) cache: *\(.*\)/L\1 \2/p' | paste -sd ',' | sed 's/,/, /g') |"
+    echo "| memory | $(free -g | awk '/^Mem:/ {print $2 " GiB"}') |"
+    echo "| compiler | $(c++ --version | head -1) |"
+    echo "| build | CMake preset \`bench\` (Release, -O3 on the sweep, -ffp-contract=off; sweeps at SIMD level $(build/bench/bin/bench_throughput --verify-only | sed -n 's/.*Timing at level \([a-z0-9]*\).*/\1/p')) |"
+    echo "| date | $(date -u +%Y-%m-%d) |"
+  } > "$out/machine.md"
+fi
 
-"$bin/bench_throughput" --report="$out/throughput.md" > "$out/throughput.log"
-"$bin/work_precision" --out "$out" > "$out/work_precision.log"
-"$bin/integration_basics" --out "$out/article" > "$out/article.log"
-# Capture speed (render-only vs naive stb vs shipped, 4-6 min; SKIP_CAPTURE=1 skips it);
-# docs/perf/capture.md quotes its medians.
-[ -n "${SKIP_CAPTURE:-}" ] || "$bin/bench_capture" > "$out/capture.log"
+if [ -z "$only" ]; then
+  "$bin/bench_throughput" --report="$out/throughput.md" > "$out/throughput.log"
+  "$bin/work_precision" --out "$out" > "$out/work_precision.log"
+  "$bin/integration_basics" --out "$out/article" > "$out/article.log"
+  # Capture speed (render-only vs naive stb vs shipped, 4-6 min; SKIP_CAPTURE=1 skips it);
+  # docs/perf/capture.md quotes its medians.
+  [ -n "${SKIP_CAPTURE:-}" ] || "$bin/bench_capture" > "$out/capture.log"
+fi
+# Coupled systems against the edge-list loop, Chipmunk2D and Box2D: tables, targets and the
+# work-precision plot, headed by the machine and date they come from (section 6 can be
+# regenerated alone, so it says where its numbers were measured).
+"$bin/bench_coupled" --report "$out" > "$out/coupled.log"
+{
+  echo "Measured on $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores, $(date -u +%Y-%m-%d), by \`bash bench/reproduce.sh${only:+ $only}\`."
+  cat "$out/coupled.md"
+} > "$out/coupled.section.md"
 
 splice() {  # splice NAME FILE: replace the text between the NAME markers with FILE
   local doc=docs/PERFORMANCE.md
@@ -42,8 +60,11 @@ splice() {  # splice NAME FILE: replace the text between the NAME markers with F
     !skip { print }' "$doc" > "$doc.tmp"
   mv "$doc.tmp" "$doc"
 }
-splice machine "$out/machine.md"
-splice throughput "$out/throughput.md"
-splice work_precision "$out/work_precision.md"
-splice constant_force "$out/article/constant_force.md"
+if [ -z "$only" ]; then
+  splice machine "$out/machine.md"
+  splice throughput "$out/throughput.md"
+  splice work_precision "$out/work_precision.md"
+  splice constant_force "$out/article/constant_force.md"
+fi
+splice coupled "$out/coupled.section.md"
 echo "reproduce: docs/PERFORMANCE.md and $out/ regenerated"

@@ -1,0 +1,67 @@
+// The reference solution bench_coupled measures errors against. With
+// FIXSTEP_BENCH_EXACT_NETWORK (set by bench/CMakeLists.txt when the engine defines
+// exact::LinearNetwork::make) it is the exact modal solution of the linear network; without
+// it, fixstep's RK4 at a step 256 times finer than the game's tick (ω_max h = 40 rad/s ·
+// 6.5e-5 s = 0.0026), which agrees with RK4 at twice that step to 1.4e-13 m on the chain of
+// 100 (--verify-only checks it).
+#include <cmath>
+#include <stdexcept>
+
+#include "coupled.hpp"
+#include "fixstep/world.hpp"
+
+#if FIXSTEP_BENCH_EXACT_NETWORK
+#include "fixstep/exact.hpp"
+#endif
+
+namespace coupled {
+
+Reference rk4_reference(const Scene& s, std::span<const double> times, int substeps) {
+  constexpr double tick = 1.0 / 60.0;
+  auto w = make_world<double>(
+      s, {.dt = tick, .integrator = fixstep::Integrator::rk4, .substeps = substeps, .threads = 1});
+  Reference r{.method = "fixstep RK4 at h = 1/60 s / " + std::to_string(substeps)};
+  for (const double t : times) {
+    const auto ticks = static_cast<std::uint64_t>(std::llround(t / tick));
+    if (std::abs(double(ticks) * tick - t) > 1e-9) {
+      throw std::invalid_argument("rk4_reference: times must be multiples of 1/60 s");
+    }
+    while (w->tick() < ticks) w->step();
+    std::vector<fixstep::Body> out;
+    for (std::size_t j = 0; j < w->body_count(); ++j) {
+      out.push_back({s.bodies[j].body.mass, {w->x()[j], w->y()[j]}, {w->vx()[j], w->vy()[j]}});
+    }
+    r.states.push_back(std::move(out));
+  }
+  return r;
+}
+
+#if FIXSTEP_BENCH_EXACT_NETWORK
+bool reference_is_exact() {
+  return true;
+}
+
+Reference reference(const Scene& s, std::span<const double> times) {
+  auto net = fixstep::exact::LinearNetwork::make(s.bodies, s.links);
+  if (!net)
+    throw std::invalid_argument(
+        "reference: the scene is not a proportionally damped linear network");
+  Reference r{.method = "exact::LinearNetwork (modal solution)"};
+  for (const double t : times) {
+    std::vector<fixstep::Body> out(s.bodies.size());
+    net->state(t, out);
+    r.states.push_back(std::move(out));
+  }
+  return r;
+}
+#else
+bool reference_is_exact() {
+  return false;
+}
+
+Reference reference(const Scene& s, std::span<const double> times) {
+  return rk4_reference(s, times, 256);
+}
+#endif
+
+}  // namespace coupled
