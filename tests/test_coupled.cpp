@@ -256,6 +256,47 @@ TEST(Links, ImplicitNetworkSolveMatchesTheAnchoredSpring) {
   }
 }
 
+/// Largest position error (m) over the bodies of a damped 6-body chain under gravity after
+/// 2 s at step h, against exact::LinearNetwork.
+double chain_error(Integrator method, double h) {
+  Chain c = make_chain(6, 30.0, 0.02);
+  for (BodyDef& d : c.bodies) d.gravity = Gravity{};
+  const auto exact = exact::LinearNetwork::make(c.bodies, c.links);
+  EXPECT_TRUE(exact.has_value());
+  auto w = build<double>(c, WorldSettings{.dt = h, .integrator = method});
+  const auto ticks = static_cast<int>(std::lround(2.0 / h));
+  for (int t = 0; t < ticks; ++t) w->step();
+  std::vector<Body> truth(c.bodies.size());
+  exact->state(w->time(), truth);
+  double worst = 0;
+  for (std::size_t j = 0; j < truth.size(); ++j) {
+    worst = std::max(worst, std::hypot(w->x()[j] - truth[j].position.x,
+                                       w->y()[j] - truth[j].position.y));
+  }
+  return worst;
+}
+
+// Each integrator keeps its order on a coupled, damped system (links with damping
+// proportional to stiffness, so the chain has an exact modal solution).
+TEST(Links, EveryIntegratorReachesItsOrderOnADampedChain) {
+  struct Case {
+    Integrator method;
+    double h, order;
+  };
+  for (const Case& c : {Case{Integrator::semi_implicit_euler, 1.0 / 200, 1.0},
+                        Case{Integrator::explicit_euler, 1.0 / 400, 1.0},
+                        Case{Integrator::velocity_verlet, 1.0 / 100, 2.0},
+                        Case{Integrator::rk4, 1.0 / 50, 4.0},
+                        Case{Integrator::implicit_euler, 1.0 / 400, 1.0},
+                        Case{Integrator::forest_ruth, 1.0 / 50, 4.0}}) {
+    const double coarse = chain_error(c.method, c.h), fine = chain_error(c.method, c.h / 2);
+    const double observed = std::log2(coarse / fine);
+    EXPECT_NEAR(observed, c.order, 0.15)
+        << integrator_name(c.method) << ": " << coarse << " -> " << fine << " m";
+    RecordProperty(std::string(integrator_name(c.method)), std::to_string(observed));
+  }
+}
+
 /// (E + E_dissipated - E0)/|E0| after t_end of a damped chain at step h.
 double balance_error(Integrator method, double h, double t_end) {
   const Chain c = make_chain(6, 30.0, 0.02);

@@ -135,22 +135,52 @@ std::uint64_t ticks_for(double duration, double dt) {
                                         : std::ceil(n));
 }
 
+/// The exact solution of a scene where one exists: per body (exact::solve) when the scene has
+/// no links, for the whole network (exact::LinearNetwork) when it has and they are linear
+/// with proportional damping.
+class ExactReference {
+ public:
+  explicit ExactReference(const Scene& scene) : scene_(scene) {
+    if (!scene.links.empty()) network_ = exact::LinearNetwork::make(scene.bodies, scene.links);
+  }
+  /// Fills out[j] with body j's exact state at t (s), or nullopt where there is none.
+  void at(double t, std::vector<std::optional<Body>>& out) const {
+    out.assign(scene_.bodies.size(), std::nullopt);
+    if (network_) {
+      states_.resize(scene_.bodies.size());
+      network_->state(t, states_);
+      for (std::size_t j = 0; j < states_.size(); ++j) out[j] = states_[j];
+    } else if (scene_.links.empty()) {
+      for (std::size_t j = 0; j < out.size(); ++j) out[j] = exact::solve(scene_.bodies[j], t);
+    }
+  }
+
+ private:
+  const Scene& scene_;
+  std::optional<exact::LinearNetwork> network_;
+  mutable std::vector<Body> states_;
+};
+
 /// Largest position error (m) against the exact solution over the bodies that have one;
-/// nullopt when none has (rest-length springs).
-std::optional<double> exact_error(const Scene& scene, const Simulation& sim) {
+/// nullopt when none has (rest-length springs, non-proportional damping of links).
+std::optional<double> exact_error(const ExactReference& reference, const Simulation& sim) {
+  std::vector<std::optional<Body>> exact;
+  reference.at(sim.time(), exact);
   std::optional<double> worst;
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
-    if (const auto exact = exact::solve(scene.bodies[j], sim.time())) {
+    if (exact[j]) {
       const Body b = sim.body_at(j);
-      const double e = std::hypot(b.position.x - exact->position.x, b.position.y - exact->position.y);
+      const double e = std::hypot(b.position.x - exact[j]->position.x, b.position.y - exact[j]->position.y);
       worst = std::max(worst.value_or(0.0), e);
     }
   }
   return worst;
 }
 
-void append_rows(AtomicFile& csv, const Scene& scene, const Simulation& sim, bool with_exact,
-                 double e0, std::vector<double>& energies, std::string& buffer) {
+void append_rows(AtomicFile& csv, const ExactReference& reference, const Simulation& sim,
+                 bool with_exact, double e0, std::vector<double>& energies, std::string& buffer) {
+  std::vector<std::optional<Body>> exact;
+  if (with_exact) reference.at(sim.time(), exact);
   sim.visit([&](const auto& w) {
     energies.resize(w.body_count());
     w.body_energies(energies);
@@ -166,9 +196,9 @@ void append_rows(AtomicFile& csv, const Scene& scene, const Simulation& sim, boo
                    b.position.x, b.position.y, b.velocity.x, b.velocity.y, energies[j],
                    world_energy, dissipated, balance);
     if (with_exact) {
-      if (const auto exact = exact::solve(scene.bodies[j], sim.time())) {
-        fmt::format_to(out, ",{},{},{}", exact->position.x, exact->position.y,
-                       std::hypot(b.position.x - exact->position.x, b.position.y - exact->position.y));
+      if (const auto& e = exact[j]) {
+        fmt::format_to(out, ",{},{},{}", e->position.x, e->position.y,
+                       std::hypot(b.position.x - e->position.x, b.position.y - e->position.y));
       } else {
         fmt::format_to(out, ",,,");  // no closed form for this body (rest-length spring)
       }
@@ -193,11 +223,12 @@ int run_command(const RunOptions& o) {
   std::optional<AtomicFile> csv;
   std::vector<double> energies;
   std::string buffer;
-  const bool has_exact = exact_error(scene, sim).has_value();
+  const ExactReference reference(scene);
+  const bool has_exact = exact_error(reference, sim).has_value();
   if (o.csv) {
     csv.emplace(*o.csv);
     csv->append(has_exact ? csv_header + ",x_exact,y_exact,error\n" : csv_header + "\n");
-    append_rows(*csv, scene, sim, has_exact, e0, energies, buffer);
+    append_rows(*csv, reference, sim, has_exact, e0, energies, buffer);
   }
   const StopOnSignal signals;
   for (std::uint64_t i = 1; i <= ticks; ++i) {
@@ -205,7 +236,7 @@ int run_command(const RunOptions& o) {
     const bool diverged = sim.fault().has_value();  // the runtime guard (World::fault)
     const bool stop = StopOnSignal::requested() != 0;
     if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks || diverged || stop)) {
-      append_rows(*csv, scene, sim, has_exact, e0, energies, buffer);
+      append_rows(*csv, reference, sim, has_exact, e0, energies, buffer);
     }
     if (diverged || stop) break;
   }
@@ -223,7 +254,7 @@ int run_command(const RunOptions& o) {
     std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *sim.fault()).c_str());
     return exit_diverged;
   }
-  if (const auto error = exact_error(scene, sim)) {
+  if (const auto error = exact_error(reference, sim)) {
     fmt::print("exact_error={:.6e} m (largest position error against the exact solution)\n", *error);
   }
   if (o.csv) fmt::print("csv={}\n", *o.csv);
