@@ -1,29 +1,29 @@
 #include "fixstep/stability.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <map>
 #include <mutex>
 #include <tuple>
 
-#include <fmt/format.h>
-
 #include "fixstep/scene.hpp"
 #include "fixstep/world.hpp"
+#include "stability_internal.hpp"
 
 namespace fixstep {
 
 namespace {
-// ρ <= 1 + tolerance counts as bounded. The round-off in ρ is ~1e-16; the smallest growth the
-// scan must see is explicit Euler's 1 + s²/2 at its first point s = 1e-4, i.e. 5e-9.
-constexpr double tolerance = 1e-14;
-constexpr double scan_from = 1e-4, scan_to = 1e6;  // dimensionless steps s = ω h (or γ h)
-constexpr double margin = 0.9;       // warn above 90 % of the largest stable step
+constexpr double tolerance = detail::stability_tolerance;
+constexpr double margin = detail::stability_margin;
+using detail::scan_from;
+using detail::scan_to;
 }  // namespace
 
 double amplification(Integrator integrator, double omega, double gamma, double h) {
-  World<double> w(WorldSettings{.dt = h, .integrator = integrator, .substeps = 1,
-                                .flush_denormals = false});
+  World<double> w(
+      WorldSettings{.dt = h, .integrator = integrator, .substeps = 1, .flush_denormals = false});
   auto unit = [&](Vec2 position, Vec2 velocity) {
     BodyDef d;
     d.body = Body{.mass = 1.0, .position = position, .velocity = velocity};
@@ -94,7 +94,8 @@ std::vector<BodyStability> check_stability(const Scene& scene) {
     r.body = i;
     const double m = def.body.mass;
     r.omega = def.spring ? std::sqrt(def.spring->stiffness / m) : 0.0;
-    r.gamma = ((def.spring ? def.spring->damping : 0.0) + (def.drag ? def.drag->coefficient : 0.0)) / m;
+    r.gamma =
+        ((def.spring ? def.spring->damping : 0.0) + (def.drag ? def.drag->coefficient : 0.0)) / m;
     if (r.omega == 0.0 && r.gamma == 0.0) continue;
     r.h = dt / substeps;
     if (!std::isfinite(r.omega * r.omega) || !std::isfinite(r.gamma)) {
@@ -138,9 +139,9 @@ std::vector<BodyStability> check_stability(const Scene& scene) {
       }
     } else if (r.h > margin * r.max_step) {
       r.verdict = Stability::near_limit;
-      r.message = fmt::format(
-          "{} is within 10 % of {}'s stability bound: {} = {:.4g}, bound {:.4g}", who, method,
-          what, rate * r.h, rate * r.max_step);
+      r.message =
+          fmt::format("{} is within 10 % of {}'s stability bound: {} = {:.4g}, bound {:.4g}", who,
+                      method, what, rate * r.h, rate * r.max_step);
     }
     out.push_back(std::move(r));
   }
@@ -149,15 +150,33 @@ std::vector<BodyStability> check_stability(const Scene& scene) {
 
 std::vector<std::string> enforce_stability(const Scene& scene) {
   std::vector<std::string> warnings;
-  for (const BodyStability& r : check_stability(scene)) {
-    const std::size_t line = r.body < scene.body_lines.size() ? scene.body_lines[r.body] : 0;
-    const std::string key = fmt::format("body[{}]", r.body);
-    if (r.verdict == Stability::unstable && !scene.allow_unstable) {
-      throw SceneError(scene.file, line, 0, key, r.message);
+  auto apply = [&](Stability verdict, std::size_t line, const std::string& key,
+                   const std::string& message) {
+    if (verdict == Stability::unstable && !scene.allow_unstable) {
+      throw SceneError(scene.file, line, 0, key, message);
     }
-    if (r.verdict != Stability::stable) {
-      warnings.push_back(fmt::format("{}:{}: {}: {}{}", scene.file, line, key, r.message,
-                                     r.verdict == Stability::unstable ? " (allowed)" : ""));
+    if (verdict != Stability::stable) {
+      warnings.push_back(fmt::format("{}:{}: {}: {}{}", scene.file, line, key, message,
+                                     verdict == Stability::unstable ? " (allowed)" : ""));
+    }
+  };
+  // Bodies that links join are judged as a network below, not on their own.
+  const std::vector<bool> linked = detail::linked_bodies(scene);
+  for (const BodyStability& r : check_stability(scene)) {
+    if (linked[r.body]) continue;
+    const std::size_t line = r.body < scene.body_lines.size() ? scene.body_lines[r.body] : 0;
+    apply(r.verdict, line, fmt::format("body[{}]", r.body), r.message);
+  }
+  if (const std::optional<NetworkStability> net = check_scene_network(scene)) {
+    const std::optional<std::size_t> link =
+        net->damping_bound ? net->strongest_damper : net->stiffest_link;
+    if (link) {
+      const std::size_t line = *link < scene.link_lines.size() ? scene.link_lines[*link] : 0;
+      apply(net->verdict, line, fmt::format("spring[{}]", *link), net->message);
+    } else {
+      const std::size_t i = net->fastest_body;
+      const std::size_t line = i < scene.body_lines.size() ? scene.body_lines[i] : 0;
+      apply(net->verdict, line, fmt::format("body[{}]", i), net->message);
     }
   }
   return warnings;
@@ -178,15 +197,32 @@ std::string explain_fault(const Scene& scene, const StateFault& f) {
       scene.file, line ? fmt::format(":{}", line) : std::string(), i, f.name, f.tick, f.time,
       f.field, f.value, position ? "m" : "m/s", max_state_magnitude);
   if (!from_scene) return head + ".";
+  // The guard's advice ends with "or set allow_unstable = true": not a cure at run time.
+  auto without_allow = [](std::string message) {
+    const std::string_view tail = ", or set allow_unstable = true";
+    if (message.size() >= tail.size() &&
+        message.compare(message.size() - tail.size(), tail.size(), tail) == 0) {
+      message.resize(message.size() - tail.size());
+    }
+    return message;
+  };
   std::string cause;
+  if (detail::linked_bodies(scene)[i]) {
+    const NetworkStability net = *check_scene_network(scene);
+    if (net.verdict == Stability::unstable)
+      return fmt::format("{}. Likely cause: {}", head, without_allow(net.message));
+    return fmt::format(
+        "{}. Likely cause: the body is in a network of {} bodies and {} springs within {}'s "
+        "stability bound at h = {:g} s (ω_max·h = {:.4g}, largest stable step {:g} s), so the "
+        "motion itself grew: check the forces (gravity, constant forces, pushes from the arrow "
+        "keys), rest-length springs stretched far from their starting lengths, and the "
+        "starting values",
+        head, net.bodies, net.springs, integrator_name(scene.world.integrator), net.h,
+        net.omega_max * net.h, net.max_step);
+  }
   for (const BodyStability& r : check_stability(scene)) {
     if (r.body != i || r.verdict != Stability::unstable) continue;
-    cause = r.message;
-    // The guard's advice ends with "or set allow_unstable = true": not a cure at run time.
-    const std::string_view tail = ", or set allow_unstable = true";
-    if (cause.size() >= tail.size() && cause.compare(cause.size() - tail.size(), tail.size(), tail) == 0) {
-      cause.resize(cause.size() - tail.size());
-    }
+    cause = without_allow(r.message);
   }
   if (cause.empty()) {
     const BodyDef& d = scene.bodies[i];
@@ -194,8 +230,9 @@ std::string explain_fault(const Scene& scene, const StateFault& f) {
         "the body's spring and damping are within {}'s stability bound at h = {:g} s, so the "
         "motion itself grew: check its forces ({}) and its starting values",
         integrator_name(scene.world.integrator), scene.world.dt / scene.world.substeps,
-        d.gravity || d.constant_force ? "gravity or a constant force accelerates it for the whole run"
-                                      : "a push from the arrow keys, or extreme mass, stiffness or velocity");
+        d.gravity || d.constant_force
+            ? "gravity or a constant force accelerates it for the whole run"
+            : "a push from the arrow keys, or extreme mass, stiffness or velocity");
   }
   return fmt::format("{}. Likely cause: {}", head, cause);
 }

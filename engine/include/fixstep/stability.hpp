@@ -5,11 +5,19 @@
 // maps (x, v) linearly: (x, v)_{n+1} = M (x, v)_n. The step is stable when the spectral radius
 // ρ(M) <= 1 (Hairer & Wanner, Solving ODEs II, §IV.2). M is measured by running the real
 // integrator, so the guard is exact for every method, damping and substep count.
+//
+// Bodies joined by links are judged as a network (check_network_stability): the test system
+// is then the network's fastest mode, found by power iteration, and the damping flow the
+// Strang-split methods apply with damped links (world_coupled.cpp) is part of the step.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "fixstep/components.hpp"
 #include "fixstep/integrators.hpp"
 
 namespace fixstep {
@@ -33,19 +41,96 @@ enum class Stability {
 
 /// The guard's finding for one body of a scene.
 struct BodyStability {
-  std::size_t body = 0;     ///< index into Scene::bodies
-  double omega = 0.0;       ///< rad/s
-  double gamma = 0.0;       ///< 1/s
-  double h = 0.0;           ///< step = dt / substeps, s
-  double max_step = 0.0;    ///< largest stable step, s (inf: none needed)
-  double radius = 0.0;      ///< spectral radius at h
-  int min_substeps = 0;     ///< smallest stable substep count for the scene's dt; 0 = none
+  std::size_t body = 0;   ///< index into Scene::bodies
+  double omega = 0.0;     ///< rad/s
+  double gamma = 0.0;     ///< 1/s
+  double h = 0.0;         ///< step = dt / substeps, s
+  double max_step = 0.0;  ///< largest stable step, s (inf: none needed)
+  double radius = 0.0;    ///< spectral radius at h
+  int min_substeps = 0;   ///< smallest stable substep count for the scene's dt; 0 = none
   Stability verdict = Stability::stable;
-  std::string message;      ///< empty when stable
+  std::string message;  ///< empty when stable
 };
 
-/// Checks every body with a spring or damping at the scene's dt, integrator and substeps.
+/// Checks every body with a spring or damping at the scene's dt, integrator and substeps, each
+/// on its own (links are ignored here: enforce_stability judges linked bodies as a network).
 [[nodiscard]] std::vector<BodyStability> check_stability(const Scene& scene);
+
+/// Spectral radius of one step of size h (s) of `integrator` on the mode q'' = -ω² q - γ q'
+/// of a network (omega rad/s, gamma 1/s, both >= 0) as World steps it. With damped_links,
+/// velocity Verlet and Forest–Ruth apply the damping flow exp(-τγ) as its fourth-order Taylor
+/// polynomial (world_coupled.cpp), which is measured here by stepping two unit masses joined by
+/// a link of k = ω²/2, b = γ/2 (their separation obeys the mode's equation). Otherwise, and for
+/// every other integrator, the step is the one amplification() measures, and so is the result.
+/// The polynomial contracts each factor only for τγ <= 2.785; composed as Verlet applies it
+/// (twice τ = h/2) a pure damping mode stays bounded for γh <= 5.571, as Forest–Ruth applies it
+/// (τ = w1 h/2 four times, w0 h/2 twice: w0 < 0 runs the flow backwards) only for
+/// γh <= 2.857, tighter than either weight's own factor bound.
+[[nodiscard]] double network_amplification(Integrator integrator, double omega, double gamma,
+                                           double h, bool damped_links);
+
+/// The guard's finding for a network of bodies joined by links.
+struct NetworkStability {
+  std::size_t bodies = 0;   ///< bodies in the network
+  std::size_t springs = 0;  ///< links in the network
+  /// Largest angular frequency, rad/s: sqrt of the top eigenvalue of M^-½ K M^-½ (2n×2n, K the
+  /// stiffness at the initial positions), a Rayleigh quotient of power iteration, so a lower
+  /// bound; omega_error estimates how far below.
+  double omega_max = 0.0;
+  /// Estimated relative shortfall, true ω_max / omega_max - 1, from the rise of the Rayleigh
+  /// quotient over the second half of the iterations: ~5e-4 at the stop. An estimate, not a
+  /// bound: the true shortfall was up to 3 times it on chains (see stability_network.cpp).
+  double omega_error = 0.0;
+  int iterations = 0;          ///< power iterations used for omega_max
+  double gamma = 0.0;          ///< damping rate of the top mode, φᵀ M^-½ C M^-½ φ, 1/s
+  double damping_rate = 0.0;   ///< λ_max(M⁻¹C), 1/s (power iteration as for omega_max)
+  double h = 0.0;              ///< step = dt / substeps, s
+  double max_step = 0.0;       ///< largest stable step for both test modes, s (inf: none needed)
+  double radius = 0.0;         ///< largest spectral radius of the two test modes at h
+  bool damping_bound = false;  ///< the damping mode (0, damping_rate), not the top mode, binds
+  int min_substeps = 0;        ///< smallest stable substep count for dt; 0 = none
+  /// The link with the largest k/μ (μ the reduced mass of its ends), index into the links;
+  /// nullopt when no link has k > 0.
+  std::optional<std::size_t> stiffest_link;
+  /// The link with the largest b/μ; nullopt when no link has b > 0.
+  std::optional<std::size_t> strongest_damper;
+  std::size_t fastest_body = 0;  ///< largest displacement |M^-½ φ| in the top mode (body index)
+  Stability verdict = Stability::stable;
+  std::string message;  ///< empty when stable
+};
+
+/// The stability guard for bodies joined by links, at the step h = dt / substeps (s) of
+/// `integrator`. Two test modes are judged with network_amplification():
+///  * the fastest mode (omega_max, gamma): omega_max² is the top eigenvalue of the symmetric
+///    M^-½ K M^-½, with M = diag(m) (kg) and K (N/m, 2n×2n) the stiffness of the anchored
+///    springs and links, tangent at the initial positions for rest length L > 0:
+///    k [(1 - L/ℓ) I + (L/ℓ) d̂d̂ᵀ] at length ℓ, the transverse part clamped at 0 when the
+///    spring is compressed (ℓ < L: buckling is the physics, not the integrator) and k I at
+///    ℓ = 0; gamma is the Rayleigh quotient of M^-½ C M^-½ on that mode, C (N·s/m) holding the
+///    anchored dampers and drag (on the full velocity) and the link dampers (b I, or b d̂d̂ᵀ
+///    with L > 0);
+///  * the damping mode (0, λ_max(M⁻¹C)), which binds for velocity Verlet and Forest–Ruth with
+///    damped links (the Taylor damping flow) and for explicit methods on heavy damping.
+/// Both are exact for proportional damping (C = αK + βM: the modes decouple, Géradin & Rixen
+/// §2.8) and estimates otherwise. Eigenvalues come from power iteration with the Rayleigh
+/// quotient (Golub & Van Loan, Matrix Computations, 4th ed., §8.2.1), stopped when the
+/// quotient rose by less than 1e-3 of itself over the second half of the iterations (see
+/// stability_network.cpp); O(links + bodies) per iteration, a few hundred iterations on
+/// chains of 1000 bodies.
+/// Verdict: unstable when a radius exceeds 1, near_limit when h > 0.9 max_step. The message,
+/// like check_stability's, names ω_max·h (or λ_max(M⁻¹C)·h) and its bound, the smallest
+/// stable substep count, the stiffest link (or strongest damper) with its two bodies, and
+/// the fastest body. Throws std::invalid_argument for a link index out of range or with both
+/// ends on one body, a mass not finite and > 0, dt not finite and > 0, or substeps < 1.
+[[nodiscard]] NetworkStability check_network_stability(std::span<const BodyDef> bodies,
+                                                       std::span<const BodyLink> links,
+                                                       Integrator integrator, double dt,
+                                                       int substeps);
+
+/// check_network_stability for the bodies of `scene` that some link joins (all its links,
+/// scene.links' indices; fastest_body is an index into scene.bodies), at the scene's dt,
+/// integrator and substeps; std::nullopt when the scene has no links.
+[[nodiscard]] std::optional<NetworkStability> check_scene_network(const Scene& scene);
 
 struct StateFault;
 
@@ -54,15 +139,18 @@ struct StateFault;
 ///   "FILE:LINE: body[i] \"name\": state left the finite range at tick N (t = T s): vx = inf
 ///    m/s (allowed |value| <= 1e12). Likely cause: ..."
 /// The likely cause comes from the stability guard for that body at the scene's dt, integrator
-/// and substeps: ω·h beyond the integrator's bound (with the substep count that would be
-/// stable), explicit Euler on an undamped spring (unstable at every step), or, when the body's
-/// step is stable, a force that drives the motion (gravity, a constant force, a push) or
-/// extreme starting values.
+/// and substeps (for a body that a link joins, the network's finding, check_scene_network): ω·h
+/// beyond the integrator's bound (with the substep count that would be stable), explicit Euler on
+/// an undamped spring (unstable at every step), or, when the body's step is stable, a force that
+/// drives the motion (gravity, a constant force, a push) or extreme starting values.
 [[nodiscard]] std::string explain_fault(const Scene& scene, const StateFault& fault);
 
 /// Applies the guard at scene load: throws SceneError (file, the body's line, key "body[i]")
 /// for the first unstable body unless the scene sets allow_unstable = true, in which case the
-/// error becomes a warning. Returns the warnings (near-limit bodies, allowed instabilities).
+/// error becomes a warning. Bodies that links join are judged by check_scene_network instead,
+/// after the others: its error names the stiffest link's line and key "spring[i]" (the
+/// strongest damper's when the damping flow binds; the fastest body's "body[i]" without
+/// either). Returns the warnings (near-limit bodies and networks, allowed instabilities).
 std::vector<std::string> enforce_stability(const Scene& scene);
 
 }  // namespace fixstep

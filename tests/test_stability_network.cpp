@@ -1,0 +1,289 @@
+// The network stability guard: ω_max by power iteration against closed forms, its predicted
+// largest stable step against the step at which a linked World really diverges (chains of
+// 2 to 1000 bodies, equal and 1:1000 masses, damped links with the Taylor damping flow), and
+// the guard at scene load and in explain_fault.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "fixstep/scene.hpp"
+#include "fixstep/stability.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+namespace {
+
+enum class Masses { equal, alternating, graded };  // 1:1, 1:1000 alternating, 1 .. 1000 graded
+
+const char* masses_name(Masses m) {
+  return m == Masses::equal         ? "1:1"
+         : m == Masses::alternating ? "1:1000 alternating"
+                                    : "1..1000 graded";
+}
+
+/// A chain of n bodies with rest length 0: body 0 anchored at the origin by k, body i linked
+/// to body i + 1 by k (and b). Started in the alternating displacement x_i = (-1)^i m, which
+/// excites the top mode (the fastest mode of a chain alternates from body to body).
+struct Chain {
+  std::vector<BodyDef> bodies;
+  std::vector<BodyLink> links;
+};
+
+Chain chain(std::size_t n, Masses masses, double k = 1.0, double b = 0.0) {
+  Chain c;
+  for (std::size_t i = 0; i < n; ++i) {
+    BodyDef d;
+    d.name = fmt::format("c{}", i);
+    const double u = n > 1 ? double(i) / double(n - 1) : 0.0;
+    d.body.mass = masses == Masses::equal         ? 1.0
+                  : masses == Masses::alternating ? (i % 2 ? 1000.0 : 1.0)
+                                                  : std::pow(1000.0, u);
+    d.body.position = {i % 2 ? -1.0 : 1.0, 0.0};
+    if (i == 0) d.spring = SpringDamper{.anchor = {}, .stiffness = k, .damping = b};
+    c.bodies.push_back(d);
+    if (i > 0) c.links.push_back({i - 1, i, LinkSpring{k, b, 0.0}});
+  }
+  return c;
+}
+
+/// Steps the chain in a World<double> at step h for up to `ticks` ticks; returns the largest
+/// |x| seen over start |x| = 1 m, stopping early once it passes `stop`.
+double growth(const Chain& c, Integrator integrator, double h, int ticks, double stop) {
+  World<double> w(WorldSettings{.dt = h, .integrator = integrator, .threads = 1});
+  std::vector<Entity> e;
+  for (const BodyDef& d : c.bodies) e.push_back(w.create_body(d));
+  for (const BodyLink& l : c.links) w.create_link(LinkDef{e[l.body_a], e[l.body_b], l.spring});
+  double largest = 1.0;
+  for (int t = 0; t < ticks && largest <= stop; ++t) {
+    w.step();
+    for (double x : w.x()) largest = std::max(largest, std::abs(x));
+  }
+  return largest;
+}
+
+TEST(NetworkOmega, PowerIterationMatchesTheUniformChainWithinThreePermille) {
+  // Anchored uniform chain: K = k T, T tridiagonal (2, -1) with 1 in the free end's corner;
+  // eigenvalues 4 sin²((2j - 1)π / (2(2n + 1))), j = 1..n. The top ones cluster (gap ~ 1/n²),
+  // yet the Rayleigh quotient converges in value (the guard needs ω_max to 1 %; the stopping
+  // rule aims at 5e-4 and its estimate may be up to 3 times short).
+  for (std::size_t n : {1u, 2u, 10u, 100u, 1000u}) {
+    const Chain c = chain(n, Masses::equal, 4.0);
+    const NetworkStability r =
+        check_network_stability(c.bodies, c.links, Integrator::semi_implicit_euler, 0.01, 1);
+    const double exact = 2.0 * 2.0 * std::sin((2.0 * n - 1.0) * std::numbers::pi / (4.0 * n + 2.0));
+    SCOPED_TRACE(fmt::format("n = {}: {} iterations, estimated shortfall {:.2g}", n, r.iterations,
+                             r.omega_error));
+    EXPECT_LE(r.omega_max, exact * (1 + 1e-12));  // a Rayleigh quotient: never above
+    EXPECT_GT(r.omega_max, exact * (1 - 3e-3));
+    EXPECT_LE(exact / r.omega_max - 1.0, 3.0 * r.omega_error + 1e-12);
+    EXPECT_LE(r.iterations, 1000);
+    EXPECT_EQ(r.bodies, n);
+    EXPECT_EQ(r.springs, n - 1);
+  }
+}
+
+TEST(NetworkOmega, RestLengthSpringIsStiffestAlongItself) {
+  // One body on an anchored spring with L > 0, stretched or compressed: the tangent stiffness
+  // has k along the spring and k(1 - L/ℓ) (clamped at 0) across, so ω_max = sqrt(k/m) as the
+  // per-body guard has it.
+  for (double len : {0.5, 3.0}) {
+    BodyDef d;
+    d.body = Body{.mass = 2.0, .position = {0.6 * len, 0.8 * len}};
+    d.spring = SpringDamper{.anchor = {}, .stiffness = 50.0, .damping = 0.0, .rest_length = 1.0};
+    const NetworkStability r =
+        check_network_stability(std::span(&d, 1), {}, Integrator::rk4, 0.01, 1);
+    EXPECT_NEAR(r.omega_max, 5.0, 5.0 * 1e-6) << len;
+  }
+}
+
+TEST(NetworkOmega, StiffnessPerMassBeyondADoubleIsUnstableNotNaN) {
+  Chain c = chain(3, Masses::equal);
+  c.bodies[1].body.mass = 1e-300;
+  c.links[1].spring.stiffness = 1e300;  // k/m = 1e600 1/s²
+  for (Integrator integrator : all_integrators) {
+    const NetworkStability r = check_network_stability(c.bodies, c.links, integrator, 0.01, 1);
+    EXPECT_EQ(r.verdict, Stability::unstable);
+    EXPECT_NE(r.message.find("beyond the range of a double"), std::string::npos) << r.message;
+  }
+}
+
+struct DivergenceCase {
+  std::size_t n;
+  Masses masses;
+  Integrator integrator;
+  double b;  // link and anchor damping, N*s/m
+};
+
+/// The guard's largest stable step h* must bracket the divergence of the real World: bounded
+/// (max |x| < 20 start over 2000 ticks) at 0.97 h*, growing past 1e3 start within 3000 ticks
+/// at 1.03 h*. So h* is within 3 % of the measured threshold.
+void expect_bracketed(const DivergenceCase& c) {
+  const Chain ch = chain(c.n, c.masses, 1.0, c.b);
+  const NetworkStability r = check_network_stability(ch.bodies, ch.links, c.integrator, 1.0, 1);
+  SCOPED_TRACE(
+      fmt::format("{} bodies, masses {}, {}, b = {}: h* = {:.6g} s ({}, ω_max = {:.6g}, "
+                  "λ_max(M⁻¹C) = {:.6g})",
+                  c.n, masses_name(c.masses), integrator_name(c.integrator), c.b, r.max_step,
+                  r.damping_bound ? "damping mode" : "top mode", r.omega_max, r.damping_rate));
+  ASSERT_TRUE(std::isfinite(r.max_step) && r.max_step > 0.0);
+  EXPECT_LT(growth(ch, c.integrator, 0.97 * r.max_step, 2000, 1e6), 20.0);
+  EXPECT_GT(growth(ch, c.integrator, 1.03 * r.max_step, 3000, 1e3), 1e3);
+}
+
+TEST(NetworkGuard, PredictedStepBracketsTheDivergenceOfUndampedChains) {
+  for (Integrator integrator : {Integrator::semi_implicit_euler, Integrator::rk4}) {
+    for (Masses masses : {Masses::equal, Masses::alternating, Masses::graded}) {
+      for (std::size_t n : {2u, 10u, 100u, 1000u}) {
+        expect_bracketed({n, masses, integrator, 0.0});
+      }
+    }
+  }
+}
+
+TEST(NetworkGuard, PredictedStepBracketsTheDivergenceOfDampedChains) {
+  // b = 5 N*s/m on k = 1 N/m: λ_max(M⁻¹C) ≈ 20 1/s against ω_max ≈ 2 rad/s, so the damping
+  // binds: Verlet's Taylor damping flow at γh = 5.571, Forest–Ruth's at 2.857, symplectic
+  // Euler's explicit damping near γh = 2 and RK4's near 2.785. Lightly damped (b = 0.05), the
+  // top mode binds instead, Verlet and Forest–Ruth included.
+  for (Integrator integrator : {Integrator::semi_implicit_euler, Integrator::rk4,
+                                Integrator::velocity_verlet, Integrator::forest_ruth}) {
+    for (double b : {5.0, 0.05}) {
+      for (std::size_t n : {2u, 100u}) expect_bracketed({n, Masses::equal, integrator, b});
+      expect_bracketed({10, Masses::alternating, integrator, b});
+    }
+  }
+}
+
+TEST(NetworkGuard, NonProportionalDampingBindsThroughTheDampingMode) {
+  // An undamped uniform chain of 10 (ω_max ≈ 2 rad/s) with an 11th body hung from its end by
+  // a soft dashpot (k = 0.01 N/m, b = 5 N*s/m): the fastest mode is hardly damped, but the
+  // dashpot's own mode decays at λ_max(M⁻¹C) ≈ 10 1/s. Not proportional, so no mode carries
+  // both; the guard's damping mode (0, λ_max) must find the bound.
+  for (Integrator integrator : {Integrator::semi_implicit_euler, Integrator::rk4,
+                                Integrator::velocity_verlet, Integrator::forest_ruth}) {
+    Chain c = chain(10, Masses::equal);
+    BodyDef tail;
+    tail.name = "tail";
+    tail.body.position = {1.0, 0.0};
+    c.bodies.push_back(tail);
+    c.links.push_back({9, 10, LinkSpring{0.01, 5.0, 0.0}});
+    const NetworkStability r = check_network_stability(c.bodies, c.links, integrator, 1.0, 1);
+    SCOPED_TRACE(fmt::format("{}: h* = {:.6g} s, λ_max(M⁻¹C) = {:.6g}", integrator_name(integrator),
+                             r.max_step, r.damping_rate));
+    EXPECT_TRUE(r.damping_bound);
+    EXPECT_EQ(r.strongest_damper, std::optional<std::size_t>(9));
+    EXPECT_LT(growth(c, integrator, 0.97 * r.max_step, 2000, 1e6), 20.0);
+    EXPECT_GT(growth(c, integrator, 1.03 * r.max_step, 3000, 1e3), 1e3);
+  }
+}
+
+// --- at scene load and in explain_fault ---------------------------------------------------------
+
+/// Three bodies: 'top' anchored by k = 100 N/m, linked to 'mid' by k = 100 and 'mid' to 'tip'
+/// by k = 400 (the stiffest, spring[1]); unit masses, and an unlinked, stable 'solo'.
+Scene network_scene(double dt, int substeps, bool allow = false) {
+  Scene s;
+  s.file = "chain.toml";
+  s.world.dt = dt;
+  s.world.substeps = substeps;
+  s.world.integrator = Integrator::semi_implicit_euler;
+  s.allow_unstable = allow;
+  for (const char* name : {"top", "mid", "tip", "solo"}) {
+    BodyDef d;
+    d.name = name;
+    d.body.position = {1.0, 0.0};
+    s.bodies.push_back(d);
+    s.body_lines.push_back(4 * s.bodies.size());
+  }
+  s.bodies[0].spring = SpringDamper{.anchor = {}, .stiffness = 100.0};
+  s.bodies[3].spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
+  s.links = {{0, 1, LinkSpring{100.0, 0.0, 0.0}}, {1, 2, LinkSpring{400.0, 0.0, 0.0}}};
+  s.link_lines = {30, 34};
+  return s;
+}
+
+TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
+  // Each body alone is stable at dt = 0.1 s ('top': ω·h = 10·0.1 = 1), but the network's top
+  // mode is three times faster (ω_max = 29.35 rad/s, mostly 'mid' against 'tip'): the guard
+  // judges the linked bodies together.
+  const Scene scene = network_scene(0.1, 1);
+  for (const BodyStability& b : check_stability(scene)) EXPECT_EQ(b.verdict, Stability::stable);
+  const NetworkStability net = *check_scene_network(scene);
+  ASSERT_EQ(net.verdict, Stability::unstable);
+  EXPECT_EQ(net.bodies, 3u);  // 'solo' is not part of it
+  EXPECT_EQ(net.stiffest_link, std::optional<std::size_t>(1));
+  EXPECT_EQ(net.fastest_body, 1u);  // 'mid' swings hardest in the top mode
+  EXPECT_NEAR(net.omega_max, 29.3543, 0.01);
+  try {
+    (void)make_simulation(scene);
+    FAIL() << "unstable network accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.line(), 34u) << what;
+    EXPECT_EQ(e.key(), "spring[1]") << what;
+    for (const std::string& part :
+         {std::string("network of 3 bodies and 2 springs is unstable with semi_implicit_euler"),
+          fmt::format("ω_max·h = {:.4g} exceeds the stability bound {:.4g}", net.omega_max * 0.1,
+                      net.omega_max * net.max_step),
+          std::string("stiffest spring[1] 'mid'–'tip', k = 400 N/m"),
+          std::string("fastest body 'mid'"),
+          fmt::format("Use substeps = {} in [world]", net.min_substeps)}) {
+      EXPECT_NE(what.find(part), std::string::npos) << part << "\nin: " << what;
+    }
+  }
+  // The bound is 2 (symplectic Euler, undamped) and the advice is the smallest that works.
+  EXPECT_NEAR(net.omega_max * net.max_step, 2.0, 1e-6);
+  EXPECT_EQ(net.min_substeps, 2);  // ω_max·dt = 2.94
+  const Scene fixed = network_scene(0.1, net.min_substeps);
+  EXPECT_TRUE(enforce_stability(fixed).empty());
+  Simulation sim = make_simulation(fixed);
+  for (int i = 0; i < 5000; ++i) sim.step();
+  EXPECT_FALSE(sim.fault().has_value());
+}
+
+TEST(NetworkGuard, NearLimitWarnsAllowUnstableWarnsUnlinkedBodiesStayPerBody) {
+  const NetworkStability net = *check_scene_network(network_scene(0.1, 1));
+  // 95 % of the largest stable step: stable, but within 10 %.
+  const std::vector<std::string> near = enforce_stability(network_scene(0.95 * net.max_step, 1));
+  ASSERT_EQ(near.size(), 1u);
+  EXPECT_NE(
+      near[0].find("chain.toml:34: spring[1]: network of 3 bodies and 2 springs is within 10 %"),
+      std::string::npos)
+      << near[0];
+  const std::vector<std::string> allowed = enforce_stability(network_scene(0.1, 1, true));
+  ASSERT_EQ(allowed.size(), 1u);
+  EXPECT_NE(allowed[0].find("(allowed)"), std::string::npos) << allowed[0];
+  // An unlinked body is still judged on its own, with its own line and key.
+  Scene solo = network_scene(0.1, 4);
+  solo.bodies[3].spring->stiffness = 4e3;  // ω·h = 63 · 0.025 = 1.6: fine; at 1e5, 7.9: not
+  EXPECT_TRUE(enforce_stability(solo).empty());
+  solo.bodies[3].spring->stiffness = 1e5;
+  try {
+    (void)enforce_stability(solo);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key(), "body[3]") << e.what();
+    EXPECT_NE(std::string(e.what()).find("body 'solo'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(NetworkGuard, ExplainFaultUsesTheNetworkFinding) {
+  const Scene scene = network_scene(0.1, 1, true);
+  Simulation sim = make_simulation(scene);
+  for (int i = 0; i < 2000 && !sim.fault(); ++i) sim.step();
+  ASSERT_TRUE(sim.fault().has_value());
+  const std::string m = explain_fault(scene, *sim.fault());
+  EXPECT_NE(m.find("Likely cause: network of 3 bodies and 2 springs is unstable"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("ω_max·h"), std::string::npos) << m;
+  EXPECT_EQ(m.find("allow_unstable"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace fixstep
