@@ -156,12 +156,12 @@ void verify_bits(SceneKind kind, std::size_t n_asked, int ticks, bool two_thread
 }
 
 /// The reference against a second computation of it: exact::LinearNetwork against RK4 at
-/// h = 1/60 s / 256 when the exact solution exists; RK4 at two step sizes otherwise.
+/// h = 1/60 s / 256.
 void verify_reference() {
   const Scene s = make_chain(100);
   const auto times = sample_times();
   const Reference ref = reference(s, times);
-  const Reference other = rk4_reference(s, times, reference_is_exact() ? 256 : 128);
+  const Reference other = rk4_reference(s, times, 256);
   double worst = 0.0;
   for (std::size_t k = 0; k < times.size(); ++k) {
     for (std::size_t j = 0; j < s.bodies.size(); ++j) {
@@ -170,7 +170,7 @@ void verify_reference() {
                                      ref.states[k][j].position.y - other.states[k][j].position.y));
     }
   }
-  const double tol = reference_is_exact() ? 1e-9 : 1e-10;
+  const double tol = 1e-9;
   check(worst <= tol, fmt::format("reference ({}) vs {}: {:.2e} m > {:.0e} m", ref.method,
                                   other.method, worst, tol));
   std::printf("checks: reference %s; against %s: %.2e m (<= %.0e m)\n", ref.method.c_str(),

@@ -115,11 +115,8 @@ struct Reference {
   std::vector<std::vector<fixstep::Body>> states{};
 };
 [[nodiscard]] Reference reference(const Scene& s, std::span<const double> times);
-/// The same from fixstep's RK4 at h = 1/60 s / substeps (the stand-in before exact::
-/// LinearNetwork existed, and the cross-check of it).
+/// The same from fixstep's RK4 at h = 1/60 s / substeps (the independent cross-check).
 [[nodiscard]] Reference rk4_reference(const Scene& s, std::span<const double> times, int substeps);
-/// True when reference() is exact::LinearNetwork (see bench/CMakeLists.txt).
-[[nodiscard]] bool reference_is_exact();
 
 // --- results and the report (coupled_report.cpp) ------------------------------------------
 

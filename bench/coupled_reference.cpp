@@ -1,18 +1,13 @@
-// The reference solution bench_coupled measures errors against. With
-// FIXSTEP_BENCH_EXACT_NETWORK (set by bench/CMakeLists.txt when the engine defines
-// exact::LinearNetwork::make) it is the exact modal solution of the linear network; without
-// it, fixstep's RK4 at a step 256 times finer than the game's tick (ω_max h = 40 rad/s ·
-// 6.5e-5 s = 0.0026), which agrees with RK4 at twice that step to 1.4e-13 m on the chain of
-// 100 (--verify-only checks it).
+// The reference solution bench_coupled measures errors against: the exact modal solution of
+// the linear network (exact::LinearNetwork). --verify-only checks it against an independent
+// computation, fixstep's RK4 at a step 256 times finer than the game's tick (ω_max h =
+// 40 rad/s · 6.5e-5 s = 0.0026).
 #include <cmath>
 #include <stdexcept>
 
 #include "coupled.hpp"
-#include "fixstep/world.hpp"
-
-#if FIXSTEP_BENCH_EXACT_NETWORK
 #include "fixstep/exact.hpp"
-#endif
+#include "fixstep/world.hpp"
 
 namespace coupled {
 
@@ -36,11 +31,6 @@ Reference rk4_reference(const Scene& s, std::span<const double> times, int subst
   return r;
 }
 
-#if FIXSTEP_BENCH_EXACT_NETWORK
-bool reference_is_exact() {
-  return true;
-}
-
 Reference reference(const Scene& s, std::span<const double> times) {
   auto net = fixstep::exact::LinearNetwork::make(s.bodies, s.links);
   if (!net)
@@ -54,14 +44,5 @@ Reference reference(const Scene& s, std::span<const double> times) {
   }
   return r;
 }
-#else
-bool reference_is_exact() {
-  return false;
-}
-
-Reference reference(const Scene& s, std::span<const double> times) {
-  return rk4_reference(s, times, 256);
-}
-#endif
 
 }  // namespace coupled

@@ -1,20 +1,20 @@
 #include "commands.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <climits>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <stdexcept>
-#include <vector>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
-#include <fmt/format.h>
+#include <stdexcept>
+#include <vector>
 
 namespace fixstep::cli {
 
@@ -24,7 +24,9 @@ namespace {
 // finishes the tick or frame in progress, writes out everything produced so far (the CSV,
 // every queued frame) and exits 128 + the signal number, as a shell reports a signal death.
 volatile std::sig_atomic_t stop_signal = 0;
-extern "C" void request_stop(int signal) { stop_signal = signal; }
+extern "C" void request_stop(int signal) {
+  stop_signal = signal;
+}
 
 /// Installs request_stop for SIGINT and SIGTERM for the lifetime of the object.
 class StopOnSignal {
@@ -111,11 +113,10 @@ Scene load_with_overrides(const SceneOptions& o) {
 }
 
 std::string describe(const Scene& scene) {
-  return fmt::format("scene={} integrator={} precision={} dt={}{}", scene.file,
-                     integrator_name(scene.world.integrator), precision_name(scene.precision),
-                     scene.world.dt,
-                     scene.world.substeps > 1 ? fmt::format(" substeps={}", scene.world.substeps)
-                                              : std::string());
+  return fmt::format(
+      "scene={} integrator={} precision={} dt={}{}", scene.file,
+      integrator_name(scene.world.integrator), precision_name(scene.precision), scene.world.dt,
+      scene.world.substeps > 1 ? fmt::format(" substeps={}", scene.world.substeps) : std::string());
 }
 
 namespace {
@@ -125,14 +126,13 @@ namespace {
 std::uint64_t ticks_for(double duration, double dt) {
   const double n = duration / dt;
   if (!(n <= double(max_ticks))) {
-    throw std::invalid_argument(fmt::format(
-        "--duration {:g} s at dt = {:g} s is {:.3g} ticks; a run may take at most {:g}", duration,
-        dt, n, double(max_ticks)));
+    throw std::invalid_argument(
+        fmt::format("--duration {:g} s at dt = {:g} s is {:.3g} ticks; a run may take at most {:g}",
+                    duration, dt, n, double(max_ticks)));
   }
   const double nearest = std::round(n);
-  return static_cast<std::uint64_t>(std::abs(n - nearest) <= 1e-9 * std::max(1.0, n)
-                                        ? nearest
-                                        : std::ceil(n));
+  return static_cast<std::uint64_t>(
+      std::abs(n - nearest) <= 1e-9 * std::max(1.0, n) ? nearest : std::ceil(n));
 }
 
 /// The exact solution of a scene where one exists: per body (exact::solve) when the scene has
@@ -170,7 +170,8 @@ std::optional<double> exact_error(const ExactReference& reference, const Simulat
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
     if (exact[j]) {
       const Body b = sim.body_at(j);
-      const double e = std::hypot(b.position.x - exact[j]->position.x, b.position.y - exact[j]->position.y);
+      const double e =
+          std::hypot(b.position.x - exact[j]->position.x, b.position.y - exact[j]->position.y);
       worst = std::max(worst.value_or(0.0), e);
     }
   }
@@ -210,8 +211,7 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Simulat
 
 }  // namespace
 
-const std::string csv_header =
-    "tick,t,body,x,y,vx,vy,energy,world_energy,world_dissipated,balance";
+const std::string csv_header = "tick,t,body,x,y,vx,vy,energy,world_energy,world_dissipated,balance";
 
 int run_command(const RunOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
@@ -255,7 +255,8 @@ int run_command(const RunOptions& o) {
     return exit_diverged;
   }
   if (const auto error = exact_error(reference, sim)) {
-    fmt::print("exact_error={:.6e} m (largest position error against the exact solution)\n", *error);
+    fmt::print("exact_error={:.6e} m (largest position error against the exact solution)\n",
+               *error);
   }
   if (o.csv) fmt::print("csv={}\n", *o.csv);
   return 0;
@@ -286,7 +287,8 @@ int render_command(const RenderOptions& o) {
       fmt::print("frames={} (stopped) size={}x{}: {} ... {}\n", written, width, height,
                  frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
     }
-    std::fprintf(stderr, "fixstep: stopped by %s after %llu frames; every frame written is complete\n",
+    std::fprintf(stderr,
+                 "fixstep: stopped by %s after %llu frames; every frame written is complete\n",
                  StopOnSignal::name(), static_cast<unsigned long long>(written));
     return 128 + sig;
   }

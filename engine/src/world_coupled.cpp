@@ -15,8 +15,11 @@
 // w = v; w = v - (τ/k) C w for k = 4, 3, 2, 1 (Horner), whose local error O(τ⁵) keeps Verlet at
 // order 2 and the triple jump at order 4 (Hairer, Lubich & Wanner, Geometric Numerical
 // Integration, §III.3 and §II.4: a composition keeps its order when each factor is
-// approximated beyond it). It is stable for τ·λ_max(C) <= 2.78, RK4's real-axis bound; the
-// network stability guard checks it. Without link damping D stays the exact per-body factor.
+// approximated beyond it). One factor is stable for τ·λ_max(C) <= 2.785 (RK4's real-axis
+// bound), but the factors of a step combine: a pure damping mode stays bounded for
+// h·λ <= 5.571 under Verlet and only h·λ <= 2.857 under Forest–Ruth. The network stability
+// guard (stability_network.cpp) measures the real step, so it applies the combined bounds.
+// Without link damping D stays the exact per-body factor.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
