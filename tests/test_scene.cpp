@@ -44,7 +44,8 @@ TEST(Scene, TheDocumentedSchemaLoads) {
 }
 
 TEST(Scene, ShippedScenesLoadCleanly) {
-  for (const char* name : {"default", "spring_damper", "projectile"}) {
+  for (const char* name :
+       {"default", "spring_damper", "projectile", "rope", "soft_body", "cloth", "chain"}) {
     const Scene s = load_scene(std::string(FIXSTEP_SOURCE_DIR "/assets/scenes/") + name + ".toml");
     EXPECT_FALSE(s.bodies.empty()) << name;
     EXPECT_TRUE(s.warnings.empty()) << name << ": " << (s.warnings.empty() ? "" : s.warnings[0]);
