@@ -52,6 +52,24 @@ TEST(Scene, ShippedScenesLoadCleanly) {
   }
 }
 
+TEST(Scene, ChainSceneIsLinearWithDampingProportionalToStiffness) {
+  // chain.toml promises an exact solution (exact::LinearNetwork): every spring, the anchored
+  // one included, has rest length 0 and b = α k with one α, and no body has drag.
+  const Scene s = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/chain.toml");
+  ASSERT_GE(s.bodies.size(), 5u);
+  ASSERT_EQ(s.links.size(), s.bodies.size() - 1);
+  ASSERT_TRUE(s.bodies[0].spring.has_value());
+  const double alpha = s.bodies[0].spring->damping / s.bodies[0].spring->stiffness;
+  EXPECT_GT(alpha, 0.0);
+  EXPECT_EQ(s.bodies[0].spring->rest_length, 0.0);
+  for (const BodyDef& b : s.bodies) EXPECT_FALSE(b.drag.has_value()) << b.name;
+  for (const BodyLink& l : s.links) {
+    EXPECT_EQ(l.spring.rest_length, 0.0);
+    EXPECT_NEAR(l.spring.damping / l.spring.stiffness, alpha, 1e-12 * alpha);
+    EXPECT_EQ(l.body_b, l.body_a + 1);  // a linear chain in body order
+  }
+}
+
 TEST(Scene, OptionalPartsAndDefaults) {
   const Scene s = parse_scene(R"([world]
 dt = 0.02
