@@ -42,6 +42,10 @@ bool small(const Vec2& v) { return small(v.x) && small(v.y); }
 /// See bounded_max: a scene whose non-finite states are findings.
 bool bounded_scene(const Scene& scene) {
   if (scene.allow_unstable) return false;
+  const bool links_ok = std::all_of(scene.links.begin(), scene.links.end(), [](const BodyLink& l) {
+    return small(l.spring.stiffness) && small(l.spring.damping) && small(l.spring.rest_length);
+  });
+  if (!links_ok) return false;
   return std::all_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyDef& d) {
     const bool spring_ok = !d.spring || (small(d.spring->anchor) && small(d.spring->stiffness) &&
                                          small(d.spring->damping) && small(d.spring->rest_length));
