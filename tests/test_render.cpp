@@ -116,8 +116,8 @@ TEST(Render, LinksAreZigzagsWhenFewAndThinLinesWhenMany) {
   const auto few = draw(Renderer::max_zigzag_links);
   EXPECT_GT(grey(*few, 103, 108) + grey(*few, 93, 98), 40);  // the coils, off the line
   const auto many = draw(Renderer::max_zigzag_links + 1);
-  EXPECT_GT(grey(*many, 99, 101), 150);                          // the line itself
-  EXPECT_EQ(grey(*many, 103, 108) + grey(*many, 93, 98), 0);     // nothing off it
+  EXPECT_GT(grey(*many, 99, 101), 150);                       // the line itself
+  EXPECT_EQ(grey(*many, 103, 108) + grey(*many, 93, 98), 0);  // nothing off it
   const auto none = draw(0);
   EXPECT_EQ(grey(*none, 93, 108), 0);
 }
