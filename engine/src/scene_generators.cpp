@@ -87,8 +87,9 @@ class Generator {
     return parse_spring_spec(r_, *s, key(k), with_rest_length);
   }
 
-  /// Appends a body at `position`, which comes from the keys at `from` (start/origin and
-  /// spacing): it must be representable, and its name unused.
+  /// Appends a body named `body_name` at `position` (start or origin plus a multiple of the
+  /// spacing, so a position beyond the scene's precision is the spacing's fault). The name must
+  /// be unused.
   void add_body(BodyDef def, std::string body_name, Vec2 position) {
     if (!representable(position.x, scene_.precision) ||
         !representable(position.y, scene_.precision)) {
