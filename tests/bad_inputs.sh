@@ -168,6 +168,194 @@ case_ "extreme but finite values (k = 1e300 N/m, m = 1e-300 kg)" "$ok_world"'
 mass = 1e-300
 position = [1.0, 0.0]
 spring = { anchor = [0.0, 0.0], stiffness = 1e300 }'
+# --- springs between bodies, the frequency form, generators ---
+two_bodies="$ok_world"'
+[[body]]
+name = "a"
+mass = 1.0
+position = [0.0, 0.0]
+[[body]]
+name = "b"
+mass = 2.0
+position = [1.0, 0.0]
+[[spring]]'
+chain_head="$ok_world
+[[chain]]
+count = 3
+start = [0.0, 0.0]
+spacing = [1.0, 0.0]
+body = { mass = 1.0 }"
+grid_head="$ok_world
+[[grid]]
+columns = 3
+rows = 2
+origin = [0.0, 0.0]
+spacing = [1.0, -1.0]
+body = { mass = 1.0 }
+link = { stiffness = 1.0 }"
+case_ "[[spring]] naming an unknown body" "$two_bodies"'
+bodies = ["a", "bb"]
+stiffness = 1.0'
+case_ "[[spring]] joining a body to itself" "$two_bodies"'
+bodies = ["a", "a"]
+stiffness = 1.0'
+case_ "[[spring]] bodies: three names" "$two_bodies"'
+bodies = ["a", "b", "a"]
+stiffness = 1.0'
+case_ "[[spring]] bodies: a string" "$two_bodies"'
+bodies = "a"
+stiffness = 1.0'
+case_ "[[spring]] body name not a string" "$two_bodies"'
+bodies = ["a", 1]
+stiffness = 1.0'
+case_ "[[spring]] without bodies" "$two_bodies
+stiffness = 1.0"
+case_ "[[spring]] without stiffness or frequency" "$two_bodies"'
+bodies = ["a", "b"]
+damping = 1.0'
+case_ "spring given as stiffness and frequency" "$two_bodies"'
+bodies = ["a", "b"]
+stiffness = 1.0
+frequency = 2.0'
+case_ "spring given as damping and damping_ratio" "$two_bodies"'
+bodies = ["a", "b"]
+damping_ratio = 0.1
+damping = 1.0'
+case_ "damping_ratio without frequency" "$two_bodies"'
+bodies = ["a", "b"]
+damping_ratio = 0.1'
+case_ "frequency = 0" "$two_bodies"'
+bodies = ["a", "b"]
+frequency = 0.0'
+case_ "negative damping_ratio" "$two_bodies"'
+bodies = ["a", "b"]
+frequency = 1.0
+damping_ratio = -0.5'
+case_ "frequency = nan" "$two_bodies"'
+bodies = ["a", "b"]
+frequency = nan'
+case_ "negative link stiffness" "$two_bodies"'
+bodies = ["a", "b"]
+stiffness = -1.0'
+case_ "link damping = inf" "$two_bodies"'
+bodies = ["a", "b"]
+stiffness = 1.0
+damping = inf'
+case_ "negative link rest length" "$two_bodies"'
+bodies = ["a", "b"]
+stiffness = 1.0
+rest_length = -1.0'
+case_ "rest-length spring between bodies at one point" "$ok_world"'
+[[body]]
+name = "a"
+mass = 1.0
+position = [1.0, 2.0]
+[[body]]
+name = "b"
+mass = 1.0
+position = [1.0, 2.0]
+[[spring]]
+bodies = ["a", "b"]
+stiffness = 1.0
+rest_length = 0.5'
+case_ "frequency overflowing a double (k = inf)" "$two_bodies"'
+bodies = ["a", "b"]
+frequency = 1e200'
+case_ "frequency overflowing f32" "$ok_world"'
+precision = "f32"
+[[body]]
+mass = 1.0
+position = [0.0, 0.0]
+spring = { frequency = 1e19 }'
+case_ "anchored spring in both forms" "$ok_world
+$body
+spring = { stiffness = 1.0, damping_ratio = 0.2 }"
+case_ "[[spring]] not an array of tables" "spring = 1
+$ok_world
+$body"
+case_ "springs but no bodies" "$ok_world"'
+[[spring]]
+bodies = ["a", "b"]
+stiffness = 1.0'
+case_ "[[chain]] without count" "$ok_world
+[[chain]]
+start = [0.0, 0.0]"
+case_ "chain count not an integer" "$ok_world
+[[chain]]
+count = 4.0"
+case_ "chain count = 0" "$ok_world
+[[chain]]
+count = 0"
+case_ "chain beyond 10^6 bodies" "$ok_world
+$body
+[[chain]]
+count = 1000000"
+case_ "grid beyond 10^6 bodies" "$ok_world
+[[grid]]
+columns = 1001
+rows = 1000"
+case_ "chain without a body template" "$ok_world
+[[chain]]
+count = 3
+start = [0.0, 0.0]
+spacing = [1.0, 0.0]"
+case_ "chain template without mass" "$ok_world
+[[chain]]
+count = 3
+start = [0.0, 0.0]
+spacing = [1.0, 0.0]
+body = { radius = 1.0 }"
+case_ "chain without link" "$chain_head"
+case_ "chain link in both forms" "$chain_head
+link = { frequency = 1.0, stiffness = 2.0 }"
+case_ "chain pin out of range" "$chain_head
+link = { stiffness = 1.0 }
+pin = [0, 3]
+pin_spring = { stiffness = 1.0 }"
+case_ "chain pin without pin_spring" "$chain_head
+link = { stiffness = 1.0 }
+pin = [0]"
+case_ "chain rest length with zero spacing" "$ok_world
+[[chain]]
+count = 3
+start = [0.0, 0.0]
+spacing = [0.0, 0.0]
+body = { mass = 1.0 }
+link = { stiffness = 1.0, rest_length = 1.0 }"
+case_ "chain spacing overflowing a double" "$ok_world
+[[chain]]
+count = 3
+start = [0.0, 0.0]
+spacing = [1e308, 0.0]
+body = { mass = 1.0 }
+link = { stiffness = 1.0 }"
+case_ "generated body name already taken" "$ok_world"'
+[[body]]
+name = "rope[1]"
+mass = 1.0
+position = [0.0, 0.0]
+[[chain]]
+name = "rope"
+count = 3
+start = [0.0, 0.0]
+spacing = [1.0, 0.0]
+body = { mass = 1.0 }
+link = { stiffness = 1.0 }'
+case_ "grid pin not [column, row]" "$grid_head
+pin = [[0, 0], [1]]
+pin_spring = { stiffness = 1.0 }"
+case_ "grid pin row out of range" "$grid_head
+pin = [[2, 2]]
+pin_spring = { stiffness = 1.0 }"
+case_ "[[spring]] to a generated body out of range" "$grid_head"'
+[[spring]]
+bodies = ["grid0[0,0]", "grid0[3,0]"]
+stiffness = 1.0'
+case_ "misspelt key in [[grid]] (a warning; the run goes on)" "$grid_head
+sheer = { stiffness = 1.0 }"
+case_ "pin_spring without pin (a warning; the run goes on)" "$chain_head
+link = { stiffness = 1.0 }
+pin_spring = { stiffness = 1.0 }"
 # --- command line ---
 printf '%s\n%s\n' "$ok_world" "$body" > good.toml
 case_ "--dt 5" "" run good.toml --steps 10 --dt 5

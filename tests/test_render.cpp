@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 
 #include "fixstep/render.hpp"
 #include "fixstep/session.hpp"
@@ -88,6 +89,65 @@ TEST(Render, HudTextAndSpringAreDrawn) {
   for (int y = 90; y < 110; ++y)
     for (int x = 150; x < 250; ++x) spring += at(r, x, y).b > 150 && at(r, x, y).r > 120;
   EXPECT_GT(spring, 50);
+}
+
+TEST(Render, LinksAreZigzagsWhenFewAndThinLinesWhenMany) {
+  // Two bodies 10 m apart on a 400 px frame 20 m wide: pixels (100, 100) and (300, 100).
+  // The zigzag's coils reach 7 px either side of the line between them; a thin line 1.25 px
+  // wide reaches less than 2 px.
+  auto draw = [](std::size_t links) {
+    auto r = std::make_unique<Renderer>(400, 200);
+    r->set_camera(Camera{.center = {0, 0}, .width = 20.0});
+    Snapshot s;
+    s.x = {-5.0f, 5.0f};
+    s.y = {0.0f, 0.0f};
+    s.radius = {0.0f, 0.0f};
+    s.color = {Rgba8{0, 0, 0, 0}, Rgba8{0, 0, 0, 0}};
+    s.links.assign(links, Snapshot::LinkLine{0, 1});
+    r->draw(s, {});
+    return r;
+  };
+  auto grey = [](const Renderer& r, int y0, int y1) {
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = 150; x < 250; ++x) n += at(r, x, y).b > 150 && at(r, x, y).r > 120;
+    return n;
+  };
+  const auto few = draw(Renderer::max_zigzag_links);
+  EXPECT_GT(grey(*few, 103, 108) + grey(*few, 93, 98), 40);  // the coils, off the line
+  const auto many = draw(Renderer::max_zigzag_links + 1);
+  EXPECT_GT(grey(*many, 99, 101), 150);                       // the line itself
+  EXPECT_EQ(grey(*many, 103, 108) + grey(*many, 93, 98), 0);  // nothing off it
+  const auto none = draw(0);
+  EXPECT_EQ(grey(*none, 93, 108), 0);
+}
+
+TEST(Render, CameraFitIncludesGeneratedBodiesAndTheSwingOfARopePinnedAtOneEnd) {
+  // A rope of 11 bodies from (0, 0) to (10, 0), pinned at (0, 0): it can swing through the
+  // circle of radius 10 m round the pin, so the fit covers x in [-10, 10] and y in [-10, 10].
+  const Scene rope = parse_scene(R"([world]
+dt = 0.01
+[[chain]]
+count = 11
+start = [0, 0]
+spacing = [1, 0]
+body = { mass = 1 }
+link = { stiffness = 100 }
+pin = [0]
+pin_spring = { stiffness = 1000 }
+)",
+                                 "rope.toml");
+  const Camera c = fit_camera(rope, 1600, 900);
+  EXPECT_NEAR(c.center.x, 0.0, 1e-9);
+  EXPECT_NEAR(c.center.y, 0.0, 1e-9);
+  EXPECT_NEAR(c.width, 20.0 * (16.0 / 9.0) * 1.15, 1e-9);  // the 20 m height sets the width
+  // Pinned at both ends, the rope keeps to its bodies' box: x in [0, 10].
+  Scene both = rope;
+  both.bodies[10].spring = both.bodies[0].spring;
+  both.bodies[10].spring->anchor = both.bodies[10].body.position;
+  const Camera b = fit_camera(both, 1600, 900);
+  EXPECT_NEAR(b.center.x, 5.0, 1e-9);
+  EXPECT_NEAR(b.width, 10.0 * 1.15, 1e-9);
 }
 
 TEST(Render, RejectsImpossibleSizes) {

@@ -24,6 +24,7 @@ constexpr Rgba8 background{18, 21, 28, 255};
 constexpr Rgba8 grid_minor{32, 37, 48, 255};
 constexpr Rgba8 grid_axis{62, 70, 90, 255};
 constexpr Rgba8 spring_color{170, 180, 200, 255};
+constexpr Rgba8 link_color{170, 180, 200, 200};
 constexpr Rgba8 anchor_color{120, 130, 150, 255};
 constexpr Rgba8 outline{8, 10, 14, 255};
 constexpr Rgba8 text_color{235, 238, 245, 255};
@@ -537,7 +538,10 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
   // any of them more than trail_tolerance_px away (simplify_polyline): a trail of 44 sub-pixel
   // segments becomes a few segments of a few pixels, and a projectile's gentle parabola a few
   // long ones.
-  for (std::size_t j = 0; j < n && trail_count_ > 1; ++j) {
+  // A scene with many links (a cloth, a soft body) draws no trails: hundreds of them would
+  // hide the structure the links draw.
+  const bool few_links = s.links.size() <= max_zigzag_links;
+  for (std::size_t j = 0; j < n && trail_count_ > 1 && few_links; ++j) {
     const Rgba8 c = color_of(j);
     const float* tx = &trail_x_[j * trail_frames];
     const float* ty = &trail_y_[j * trail_frames];
@@ -552,30 +556,45 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     polyline(polyline_scratch_, 2.0f);
   }
 
-  // Springs: a zigzag of 12 coils from the anchor to the body, with straight leads.
-  for (const Snapshot::SpringLine& sp : s.springs) {
-    const auto a = to_pixel(sp.anchor_x, sp.anchor_y);
-    const auto b = to_pixel(s.x[sp.body], s.y[sp.body]);
-    const float ax = float(a[0]), ay = float(a[1]), bx = float(b[0]), by = float(b[1]);
+  // Springs: a zigzag of 12 coils from (ax, ay) to (bx, by), with straight leads.
+  auto zigzag = [&](float ax, float ay, float bx, float by) {
     const float dx = bx - ax, dy = by - ay, len = std::sqrt(dx * dx + dy * dy);
     if (len < 24.0f) {
       line(ax, ay, bx, by, 2.0f, spring_color);
-    } else {
-      // One polyline: anchor, start of the coils, 2 * coils corners, the body.
-      constexpr int coils = 12;
-      const float nx = -dy / len * 7.0f, ny = dx / len * 7.0f;
-      polyline_scratch_.clear();
-      polyline_scratch_.push_back({ax, ay, spring_color});
-      polyline_scratch_.push_back({ax + dx * 0.1f, ay + dy * 0.1f, spring_color});
-      for (int k = 1; k <= 2 * coils; ++k) {
-        const float f = 0.1f + 0.8f * float(k) / (2 * coils);
-        const float side = k == 2 * coils ? 0.0f : (k % 2 ? 1.0f : -1.0f);
-        polyline_scratch_.push_back({ax + dx * f + nx * side, ay + dy * f + ny * side,
-                                     spring_color});
-      }
-      polyline_scratch_.push_back({bx, by, spring_color});
-      polyline(polyline_scratch_, 2.0f);
+      return;
     }
+    // One polyline: anchor, start of the coils, 2 * coils corners, the body.
+    constexpr int coils = 12;
+    const float nx = -dy / len * 7.0f, ny = dx / len * 7.0f;
+    polyline_scratch_.clear();
+    polyline_scratch_.push_back({ax, ay, spring_color});
+    polyline_scratch_.push_back({ax + dx * 0.1f, ay + dy * 0.1f, spring_color});
+    for (int k = 1; k <= 2 * coils; ++k) {
+      const float f = 0.1f + 0.8f * float(k) / (2 * coils);
+      const float side = k == 2 * coils ? 0.0f : (k % 2 ? 1.0f : -1.0f);
+      polyline_scratch_.push_back({ax + dx * f + nx * side, ay + dy * f + ny * side, spring_color});
+    }
+    polyline_scratch_.push_back({bx, by, spring_color});
+    polyline(polyline_scratch_, 2.0f);
+  };
+
+  // Links (springs between bodies): zigzags like the anchored springs when there are few,
+  // thin straight lines when there are many (a cloth's zigzags would merge into felt).
+  for (const Snapshot::LinkLine& l : s.links) {
+    const auto a = to_pixel(s.x[l.a], s.y[l.a]);
+    const auto b = to_pixel(s.x[l.b], s.y[l.b]);
+    if (few_links) {
+      zigzag(float(a[0]), float(a[1]), float(b[0]), float(b[1]));
+    } else {
+      line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 1.25f, link_color);
+    }
+  }
+
+  for (const Snapshot::SpringLine& sp : s.springs) {
+    const auto a = to_pixel(sp.anchor_x, sp.anchor_y);
+    const auto b = to_pixel(s.x[sp.body], s.y[sp.body]);
+    const float ax = float(a[0]), ay = float(a[1]);
+    zigzag(ax, ay, float(b[0]), float(b[1]));
     rect(ax - 5, ay - 5, ax + 5, ay + 5, anchor_color);
   }
 

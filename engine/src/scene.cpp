@@ -3,16 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <initializer_list>
 #include <iterator>
 #include <limits>
-#include <set>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "fixstep/stability.hpp"
-#include "fixstep/suggest.hpp"
+#include "scene_reader.hpp"
 
 namespace fixstep {
 
@@ -27,138 +25,9 @@ SceneError::SceneError(std::string file, std::size_t line, std::size_t column, s
       column_(column),
       key_(std::move(key)) {}
 
+namespace scene_detail {
+
 namespace {
-
-std::string_view type_name(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    default: return "a date/time";
-  }
-}
-
-/// Walks a parsed document, turning every problem into a SceneError with its position.
-class Reader {
- public:
-  struct Warning {
-    std::size_t line, column;
-    std::string text;
-  };
-
-  explicit Reader(const std::string& file) : file_(file) {}
-
-  /// The warnings in file order.
-  std::vector<std::string> take_warnings() {
-    std::stable_sort(warnings_.begin(), warnings_.end(), [](const Warning& a, const Warning& b) {
-      return a.line != b.line ? a.line < b.line : a.column < b.column;
-    });
-    std::vector<std::string> out;
-    for (Warning& w : warnings_) out.push_back(std::move(w.text));
-    return out;
-  }
-
-  [[noreturn]] void fail(const toml::source_region& where, const std::string& key,
-                         const std::string& message) const {
-    throw SceneError(file_, where.begin.line, where.begin.column, key, message);
-  }
-
-  /// Warns about keys of `table` not in `allowed`, suggesting the closest allowed key.
-  void check_keys(const toml::table& table, const std::string& path,
-                  std::initializer_list<std::string_view> allowed) {
-    for (auto&& [key, node] : table) {
-      const std::string_view k = key.str();
-      if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
-      const std::vector<std::string> candidates(allowed.begin(), allowed.end());
-      const std::optional<std::string> best = closest(k, candidates);  // within two edits
-      const auto& at = key.source().begin;
-      const std::string full = path.empty() ? std::string(k) : path + "." + std::string(k);
-      warnings_.push_back({at.line, at.column, fmt::format("{}:{}:{}: {}: unknown key ignored{}", file_, at.line,
-                                      at.column, full,
-                                      best ? fmt::format(" (did you mean `{}`?)", *best)
-                                           : std::string())});
-    }
-  }
-
-  /// A finite number (integer or float) at table[key]; nullopt when absent.
-  std::optional<double> number(const toml::table& t, std::string_view key,
-                               const std::string& path) const {
-    const toml::node* n = t.get(key);
-    if (!n) return std::nullopt;
-    return number_node(*n, path);
-  }
-
-  double number_node(const toml::node& n, const std::string& path) const {
-    if (!n.is_number()) {
-      fail(n.source(), path, fmt::format("expected a number, found {}", type_name(n)));
-    }
-    const double v = *n.value<double>();
-    if (!std::isfinite(v)) fail(n.source(), path, fmt::format("must be finite (got {})", v));
-    return v;
-  }
-
-  double required_number(const toml::table& t, const toml::source_region& table_at,
-                         std::string_view key, const std::string& path) const {
-    auto v = number(t, key, path);
-    if (!v) fail(table_at, path, "missing (required)");
-    return *v;
-  }
-
-  std::optional<Vec2> vec2(const toml::table& t, std::string_view key,
-                           const std::string& path) const {
-    const toml::node* n = t.get(key);
-    if (!n) return std::nullopt;
-    const toml::array* a = n->as_array();
-    if (!a || a->size() != 2) {
-      fail(n->source(), path,
-           a ? fmt::format("expected [x, y] (2 numbers), found {} elements", a->size())
-             : fmt::format("expected [x, y], found {}", type_name(*n)));
-    }
-    return Vec2{number_node(*a->get(0), path + "[0]"), number_node(*a->get(1), path + "[1]")};
-  }
-
-  std::optional<std::string> string(const toml::table& t, std::string_view key,
-                                    const std::string& path) const {
-    const toml::node* n = t.get(key);
-    if (!n) return std::nullopt;
-    if (!n->is_string()) {
-      fail(n->source(), path, fmt::format("expected a string, found {}", type_name(*n)));
-    }
-    return std::string(n->as_string()->get());
-  }
-
-  const toml::table* table(const toml::table& t, std::string_view key,
-                           const std::string& path) const {
-    const toml::node* n = t.get(key);
-    if (!n) return nullptr;
-    if (!n->is_table()) {
-      fail(n->source(), path, fmt::format("expected a table, found {}", type_name(*n)));
-    }
-    return n->as_table();
-  }
-
-  /// v must satisfy ok, else "must be <allowed> (got v)" at t[key].
-  void require(bool ok, const toml::table& t, std::string_view key, const std::string& path,
-               std::string_view allowed, double v) const {
-    if (!ok) fail(t.get(key)->source(), path, fmt::format("must be {} (got {})", allowed, v));
-  }
-
-  /// Narrowing to f32 must keep the value finite.
-  void require_f32(double v, const toml::node* n, const std::string& path) const {
-    if (std::abs(v) > double(std::numeric_limits<float>::max())) {
-      fail(n->source(), path,
-           fmt::format("{} overflows precision = \"f32\" (largest float is {:g})", v,
-                       double(std::numeric_limits<float>::max())));
-    }
-  }
-
- private:
-  const std::string& file_;
-  std::vector<Warning> warnings_;
-};
 
 Rgba8 parse_color(const Reader& r, const toml::table& t, const std::string& path) {
   const toml::node* n = t.get("color");
@@ -180,51 +49,30 @@ Rgba8 parse_color(const Reader& r, const toml::table& t, const std::string& path
   return Rgba8{byte(1), byte(3), byte(5), s.size() == 9 ? byte(7) : std::uint8_t{255}};
 }
 
-BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path) {
+BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Precision precision) {
   r.check_keys(t, path,
                {"name", "mass", "position", "velocity", "spring", "force", "gravity", "drag",
                 "radius", "color"});
   BodyDef def;
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
-  def.body.mass = r.required_number(t, t.source(), "mass", path + ".mass");
-  r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
+  parse_body_parts(r, t, path, def);
   auto position = r.vec2(t, "position", path + ".position");
   if (!position) r.fail(t.source(), path + ".position", "missing (required)");
   def.body.position = *position;
-  if (auto v = r.vec2(t, "velocity", path + ".velocity")) def.body.velocity = *v;
 
   if (const toml::table* s = r.table(t, "spring", path + ".spring")) {
     const std::string sp = path + ".spring";
-    r.check_keys(*s, sp, {"anchor", "stiffness", "damping", "rest_length"});
+    r.check_keys(*s, sp,
+                 {"anchor", "stiffness", "damping", "rest_length", "frequency", "damping_ratio"});
     SpringDamper spring;
     if (auto a = r.vec2(*s, "anchor", sp + ".anchor")) spring.anchor = *a;
-    spring.stiffness = r.required_number(*s, s->source(), "stiffness", sp + ".stiffness");
-    r.require(spring.stiffness >= 0.0, *s, "stiffness", sp + ".stiffness", ">= 0 N/m",
-              spring.stiffness);
-    if (auto b = r.number(*s, "damping", sp + ".damping")) {
-      r.require(*b >= 0.0, *s, "damping", sp + ".damping", ">= 0 N*s/m", *b);
-      spring.damping = *b;
-    }
-    if (auto l = r.number(*s, "rest_length", sp + ".rest_length")) {
-      r.require(*l >= 0.0, *s, "rest_length", sp + ".rest_length", ">= 0 m", *l);
-      spring.rest_length = *l;
-    }
+    const SpringSpec spec = parse_spring_spec(r, *s, sp, true);
+    // The frequency form acts on the body's own mass: k = m (2πf)², b = 2 m ζ (2πf).
+    const LinkSpring k = resolve_spring(r, spec, def.body.mass, 0.0, precision);
+    spring.stiffness = k.stiffness;
+    spring.damping = k.damping;
+    spring.rest_length = k.rest_length;
     def.spring = spring;
-  }
-  if (auto f = r.vec2(t, "force", path + ".force")) def.constant_force = ConstantForce{*f};
-  if (auto g = r.vec2(t, "gravity", path + ".gravity")) def.gravity = Gravity{*g};
-  if (auto c = r.number(t, "drag", path + ".drag")) {
-    r.require(*c >= 0.0, t, "drag", path + ".drag", ">= 0 N*s/m", *c);
-    def.drag = LinearDrag{*c};
-  }
-  if (t.get("radius") || t.get("color")) {
-    Appearance ap;
-    if (auto rad = r.number(t, "radius", path + ".radius")) {
-      r.require(*rad > 0.0, t, "radius", path + ".radius", "> 0 m", *rad);
-      ap.radius = *rad;
-    }
-    if (t.get("color")) ap.color = parse_color(r, t, path + ".color");
-    def.appearance = ap;
   }
   return def;
 }
@@ -243,7 +91,32 @@ void check_f32(const Reader& r, const toml::node& node, const std::string& path)
 
 }  // namespace
 
+void parse_body_parts(const Reader& r, const toml::table& t, const std::string& path,
+                      BodyDef& def) {
+  def.body.mass = r.required_number(t, t.source(), "mass", path + ".mass");
+  r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
+  if (auto v = r.vec2(t, "velocity", path + ".velocity")) def.body.velocity = *v;
+  if (auto f = r.vec2(t, "force", path + ".force")) def.constant_force = ConstantForce{*f};
+  if (auto g = r.vec2(t, "gravity", path + ".gravity")) def.gravity = Gravity{*g};
+  if (auto c = r.number(t, "drag", path + ".drag")) {
+    r.require(*c >= 0.0, t, "drag", path + ".drag", ">= 0 N*s/m", *c);
+    def.drag = LinearDrag{*c};
+  }
+  if (t.get("radius") || t.get("color")) {
+    Appearance ap;
+    if (auto rad = r.number(t, "radius", path + ".radius")) {
+      r.require(*rad > 0.0, t, "radius", path + ".radius", "> 0 m", *rad);
+      ap.radius = *rad;
+    }
+    if (t.get("color")) ap.color = parse_color(r, t, path + ".color");
+    def.appearance = ap;
+  }
+}
+
+}  // namespace scene_detail
+
 Scene parse_scene(std::string_view text, const std::string& source_name) {
+  using namespace scene_detail;
   Scene scene;
   scene.file = source_name;
   scene.world.track_dissipation = true;
@@ -264,7 +137,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     throw SceneError(source_name, e.source().begin.line, e.source().begin.column, "",
                      fmt::format("TOML syntax error: {}", e.description()));
   }
-  r.check_keys(doc, "", {"world", "view", "body"});
+  r.check_keys(doc, "", {"world", "view", "body", "spring", "chain", "grid"});
 
   const toml::table* world = r.table(doc, "world", "world");
   if (!world) throw SceneError(source_name, 1, 1, "world", "missing [world] table (required)");
@@ -290,17 +163,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   }
 
   if (const toml::node* n = world->get("substeps")) {
-    // Type first: value<std::int64_t>() of a float node converts it, which is undefined
-    // behaviour for floats beyond the int64 range (substeps = 1e30; found by fuzzing).
-    if (!n->is_integer()) {
-      r.fail(n->source(), "world.substeps",
-             fmt::format("expected an integer, found {}", type_name(*n)));
-    }
-    const std::int64_t v = n->as_integer()->get();
-    if (v < 1 || v > 1000000) {
-      r.fail(n->source(), "world.substeps", fmt::format("must be 1 .. 1000000 (got {})", v));
-    }
-    scene.world.substeps = static_cast<int>(v);
+    scene.world.substeps = static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
   }
   if (const toml::node* n = world->get("allow_unstable")) {
     if (!n->is_boolean()) {
@@ -309,6 +172,9 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     }
     scene.allow_unstable = n->as_boolean()->get();
   }
+
+  // Every number first, so that a generated position beyond float range is the spacing's fault.
+  if (scene.precision == Precision::f32) check_f32(r, doc, "");
 
   if (const toml::table* view = r.table(doc, "view", "view")) {
     r.check_keys(*view, "view", {"center", "width"});
@@ -319,27 +185,30 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     }
   }
 
-  const toml::node* bodies = doc.get("body");
-  if (!bodies) throw SceneError(source_name, 1, 1, "body", "no [[body]] tables: a scene needs at least one body");
-  const toml::array* list = bodies->as_array();
-  if (!list || !list->is_array_of_tables()) {
-    r.fail(bodies->source(), "body", "expected [[body]] tables");
-  }
-  std::set<std::string> names;
-  for (std::size_t i = 0; i < list->size(); ++i) {
-    const toml::table& t = *list->get(i)->as_table();
-    const std::string path = fmt::format("body[{}]", i);
-    BodyDef def = parse_body(r, t, path);
-    if (def.name.empty()) def.name = fmt::format("body{}", i);
-    if (!names.insert(def.name).second) {
-      const toml::node* n = t.get("name");
-      r.fail(n ? n->source() : t.source(), path + ".name",
-             fmt::format("duplicate body name \"{}\" (names must be unique)", def.name));
+  // Bodies: [[body]] tables, then the generators' bodies; links: the generators', then
+  // [[spring]] tables (which may name any body).
+  BodyNames names;
+  if (const toml::array* list = r.tables(doc, "body")) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table& t = *list->get(i)->as_table();
+      const std::string path = fmt::format("body[{}]", i);
+      BodyDef def = parse_body(r, t, path, scene.precision);
+      if (def.name.empty()) def.name = fmt::format("body{}", i);
+      if (!names.index.emplace(def.name, scene.bodies.size()).second) {
+        const toml::node* n = t.get("name");
+        r.fail(n ? n->source() : t.source(), path + ".name",
+               fmt::format("duplicate body name \"{}\" (names must be unique)", def.name));
+      }
+      scene.bodies.push_back(std::move(def));
+      scene.body_lines.push_back(t.source().begin.line);
     }
-    scene.bodies.push_back(std::move(def));
-    scene.body_lines.push_back(t.source().begin.line);
   }
-  if (scene.precision == Precision::f32) check_f32(r, doc, "");
+  parse_generators(r, doc, scene, names);
+  if (scene.bodies.empty()) {
+    throw SceneError(source_name, 1, 1, "body",
+                     "no [[body]], [[chain]] or [[grid]] tables: a scene needs at least one body");
+  }
+  parse_springs(r, doc, scene, names);
   scene.warnings = r.take_warnings();
   return scene;
 }

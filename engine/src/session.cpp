@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -28,6 +29,36 @@ Camera fit_camera(const Scene& scene, int width, int height) {
       const double speed = std::hypot(b.body.velocity.x, b.body.velocity.y);
       const double reach = std::hypot(dx, dy) + s.rest_length + (omega > 0 ? speed / omega : 0);
       include(s.anchor.x, s.anchor.y, reach);
+    }
+  }
+  // Bodies held at one anchor through links (a rope pinned at one end) may swing all the way
+  // round it: include the circle through the farthest body of each such group. Groups held at
+  // two or more anchors (a cloth) keep to their bodies' box.
+  if (!scene.links.empty()) {
+    const std::size_t n = scene.bodies.size();
+    std::vector<std::size_t> group(n);
+    std::iota(group.begin(), group.end(), std::size_t{0});
+    auto root = [&](std::size_t i) {
+      while (group[i] != i) i = group[i] = group[group[i]];
+      return i;
+    };
+    for (const BodyLink& l : scene.links) group[root(l.body_a)] = root(l.body_b);
+    std::vector<std::size_t> anchors(n, 0), held_by(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (scene.bodies[i].spring) ++anchors[root(i)], held_by[root(i)] = i;
+    }
+    std::vector<double> reach(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t g = root(i);
+      if (anchors[g] != 1) continue;
+      const Vec2 a = scene.bodies[held_by[g]].spring->anchor, p = scene.bodies[i].body.position;
+      reach[g] = std::max(reach[g], std::hypot(p.x - a.x, p.y - a.y));
+    }
+    for (std::size_t g = 0; g < n; ++g) {
+      if (anchors[g] == 1 && group[g] == g) {
+        const Vec2 a = scene.bodies[held_by[g]].spring->anchor;
+        include(a.x, a.y, reach[g]);
+      }
     }
   }
   const double aspect = double(width) / double(height);

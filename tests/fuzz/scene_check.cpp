@@ -42,6 +42,11 @@ bool small(const Vec2& v) { return small(v.x) && small(v.y); }
 /// See bounded_max: a scene whose non-finite states are findings.
 bool bounded_scene(const Scene& scene) {
   if (scene.allow_unstable) return false;
+  if (!scene.links.empty() && !guard_covers_links) return false;
+  const bool links_ok = std::all_of(scene.links.begin(), scene.links.end(), [](const BodyLink& l) {
+    return small(l.spring.stiffness) && small(l.spring.damping) && small(l.spring.rest_length);
+  });
+  if (!links_ok) return false;
   return std::all_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyDef& d) {
     const bool spring_ok = !d.spring || (small(d.spring->anchor) && small(d.spring->stiffness) &&
                                          small(d.spring->damping) && small(d.spring->rest_length));
@@ -67,6 +72,15 @@ Outcome check_scene_text(std::string_view text) {
     return unexpected("parse_scene");
   }
 
+  // The work of one tick (see max_body_substeps); beyond the budget, the scene is only loaded.
+  const std::uint64_t size = scene.bodies.size() + scene.links.size();
+  const bool implicit_network =
+      scene.world.integrator == Integrator::implicit_euler && !scene.links.empty();
+  const std::uint64_t per_tick = static_cast<std::uint64_t>(std::max(scene.world.substeps, 1)) *
+                                 std::max<std::uint64_t>(size, 1) *
+                                 (implicit_network ? scene.bodies.size() : 1);
+  if (size > max_built_size || per_tick > max_body_substeps) return {Verdict::accepted, {}};
+
   std::optional<Simulation> sim;
   try {
     sim.emplace(make_simulation(scene));
@@ -80,9 +94,6 @@ Outcome check_scene_text(std::string_view text) {
     return unexpected("make_simulation");
   }
 
-  const std::uint64_t per_tick =
-      static_cast<std::uint64_t>(std::max(scene.world.substeps, 1)) *
-      std::max<std::uint64_t>(sim->body_count(), 1);
   const int ticks =
       static_cast<int>(std::clamp<std::uint64_t>(max_body_substeps / per_tick, 1, max_ticks));
   try {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -58,10 +59,14 @@ class Renderer {
   /// of world point (x, y) in m under the current camera.
   [[nodiscard]] std::array<double, 2> to_pixel(double x, double y) const;
 
-  /// Draws grid, trails, springs, bodies and the HUD text lines into pixels(). Each call also
-  /// appends the bodies' positions to their trails (one sample per frame). Implemented with
-  /// the canvas calls below: begin(), primitives, finish().
+  /// Draws grid, trails, links, springs, bodies and the HUD text lines into pixels(). With at
+  /// most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
+  /// cloth) they are thin straight lines and no trails are drawn. Each call also appends the
+  /// bodies' positions to their trails (one sample per frame). Implemented with the canvas
+  /// calls below: begin(), primitives, finish().
   void draw(const Snapshot& snapshot, std::span<const std::string> hud_lines);
+  /// Most links drawn as zigzags, with trails (see draw()).
+  static constexpr std::size_t max_zigzag_links = 40;
   /// Forgets the trails (after a restart or a jump).
   void clear_trails();
   /// Number of frames a trail spans.

@@ -46,9 +46,15 @@ struct Scene {
   WorldSettings world;             ///< [world] dt (s) and integrator
   Precision precision = Precision::f64;
   SceneView view;
-  std::vector<BodyDef> bodies;     ///< in file order, names unique
-  std::vector<std::size_t> body_lines;  ///< line of each [[body]] table (0 if not from a file)
-  std::vector<BodyLink> links;     ///< springs between bodies ([[spring]]), by body index
+  /// [[body]] tables in file order, then the bodies of [[chain]] and [[grid]] tables (in file
+  /// order, each in its own order); names unique.
+  std::vector<BodyDef> bodies;
+  /// Line of each body's table: its [[body]], or the generator that made it (0 if not from a
+  /// file).
+  std::vector<std::size_t> body_lines;
+  /// Springs between bodies, by body index: those of [[chain]] and [[grid]] tables, then the
+  /// [[spring]] tables.
+  std::vector<BodyLink> links;
   std::vector<std::size_t> link_lines;  ///< line of each link's table (0 if not from a file)
   /// [world] allow_unstable: the stability guard warns instead of refusing (for demos that
   /// show blow-ups on purpose).
@@ -58,11 +64,18 @@ struct Scene {
 
 /// Largest scene file accepted, bytes.
 inline constexpr std::size_t max_scene_bytes = 4u << 20;
+/// Most bodies a scene may have, [[body]] tables and generated bodies together.
+inline constexpr std::size_t max_scene_bodies = 1'000'000;
+/// Most links (springs between bodies) a scene may have.
+inline constexpr std::size_t max_scene_links = 4'000'000;
 
 /// Reads and validates a scene file. Throws SceneError (file, line, column, key) for syntax
 /// errors, missing or mistyped keys, vectors that are not [x, y], non-finite numbers, values out
 /// of range (mass <= 0, negative stiffness/damping/drag, dt <= 0), unknown integrator or
-/// precision, duplicate body names, and unreadable, binary or oversized files.
+/// precision, duplicate body names, springs given both as stiffness/damping and as
+/// frequency/damping_ratio, [[spring]] tables naming an unknown body or one body twice, a
+/// rest-length spring between bodies that start at the same point, generators beyond
+/// max_scene_bodies / max_scene_links, and unreadable, binary or oversized files.
 [[nodiscard]] Scene load_scene(const std::filesystem::path& file);
 /// As load_scene, from text; `source_name` is used in messages.
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);

@@ -13,8 +13,10 @@
 
 namespace fixstep {
 
-/// The camera a scene asks for: its [view] table, otherwise a fit of the bodies' positions,
-/// their anchors and each spring's reach (|x0 - anchor| + |v0|/ω) with a 15 % margin.
+/// The camera a scene asks for: its [view] table, otherwise a fit of every body's position
+/// ([[body]] and generated), their anchors, each spring's reach (|x0 - anchor| + |v0|/ω) and,
+/// for bodies held at a single anchor through links (a rope pinned at one end), the circle
+/// round that anchor through the farthest of them, with a 15 % margin.
 /// `width` and `height` are the frame size in pixels (for the aspect ratio).
 [[nodiscard]] Camera fit_camera(const Scene& scene, int width, int height);
 

@@ -1,0 +1,316 @@
+// Scene files, part three: the generators of ropes and cloth ([[chain]], [[grid]]). See README
+// "Scene format".
+#include <cmath>
+#include <cstdint>
+
+#include "scene_reader.hpp"
+
+namespace fixstep::scene_detail {
+
+namespace {
+
+/// The bodies and links one generator table adds to the scene.
+class Generator {
+ public:
+  Generator(Reader& r, Scene& scene, BodyNames& names, const toml::table& t, std::string path)
+      : r_(r), scene_(scene), names_(names), t_(t), path_(std::move(path)) {}
+
+  [[nodiscard]] const std::string& path() const { return path_; }
+  [[nodiscard]] std::string key(std::string_view k) const { return path_ + "." + std::string(k); }
+
+  /// A required key's node, else "missing (required)" at the table.
+  const toml::node& required(std::string_view k, std::string_view what = {}) const {
+    const toml::node* n = t_.get(k);
+    if (!n) {
+      r_.fail(t_.source(), key(k),
+              what.empty() ? "missing (required)" : fmt::format("missing (required): {}", what));
+    }
+    return *n;
+  }
+
+  /// The generator's name prefix (default `fallback`): bodies are named prefix[...].
+  std::string name(const std::string& fallback) {
+    std::string name = r_.string(t_, "name", key("name")).value_or(fallback);
+    if (name.empty()) r_.fail(t_.get("name")->source(), key("name"), "must not be empty");
+    name_node_ = t_.get("name");
+    return name;
+  }
+
+  /// Refuses a generator that would take the scene beyond max_scene_bodies.
+  void reserve_bodies(std::uint64_t count, const toml::node& at, const std::string& at_key) {
+    if (scene_.bodies.size() + count > max_scene_bodies) {
+      r_.fail(at.source(), at_key,
+              fmt::format("the scene would have {} bodies; at most {} are allowed",
+                          scene_.bodies.size() + count, max_scene_bodies));
+    }
+    scene_.bodies.reserve(scene_.bodies.size() + count);
+    scene_.body_lines.reserve(scene_.bodies.size() + count);
+    names_.index.reserve(names_.index.size() + count);
+  }
+
+  /// Refuses links that would take the scene beyond max_scene_links.
+  void reserve_links(std::uint64_t count, const toml::node& at, const std::string& at_key) {
+    if (scene_.links.size() + count > max_scene_links) {
+      r_.fail(at.source(), at_key,
+              fmt::format("the scene would have {} links; at most {} are allowed",
+                          scene_.links.size() + count, max_scene_links));
+    }
+    scene_.links.reserve(scene_.links.size() + count);
+    scene_.link_lines.reserve(scene_.links.size() + count);
+  }
+
+  /// The body template `body = { mass = ..., ... }`.
+  BodyDef body_template() {
+    const toml::table* b = r_.table(t_, "body", key("body"));
+    if (!b) {
+      r_.fail(t_.source(), key("body"),
+              "missing (required): the bodies' template, e.g. { mass = 0.1 }");
+    }
+    r_.check_keys(*b, key("body"),
+                  {"mass", "velocity", "force", "gravity", "drag", "radius", "color"});
+    BodyDef def;
+    parse_body_parts(r_, *b, key("body"), def);
+    return def;
+  }
+
+  /// A spring table (stiffness/damping or frequency/damping_ratio, and rest_length if
+  /// with_rest_length), or nullopt when absent.
+  std::optional<SpringSpec> spring(std::string_view k, bool with_rest_length) {
+    const toml::table* s = r_.table(t_, k, key(k));
+    if (!s) return std::nullopt;
+    if (with_rest_length) {
+      r_.check_keys(*s, key(k),
+                    {"stiffness", "damping", "rest_length", "frequency", "damping_ratio"});
+    } else {
+      r_.check_keys(*s, key(k), {"stiffness", "damping", "frequency", "damping_ratio"});
+    }
+    return parse_spring_spec(r_, *s, key(k), with_rest_length);
+  }
+
+  /// Appends a body named `body_name` at `position` (start or origin plus a multiple of the
+  /// spacing, so a position beyond the scene's precision is the spacing's fault). The name must
+  /// be unused.
+  void add_body(BodyDef def, std::string body_name, Vec2 position) {
+    if (!representable(position.x, scene_.precision) ||
+        !representable(position.y, scene_.precision)) {
+      const toml::node& at = required("spacing");
+      r_.fail(at.source(), key("spacing"),
+              fmt::format("body {} would be at ({:g}, {:g}) m, beyond the range of {}", body_name,
+                          position.x, position.y, precision_text(scene_.precision)));
+    }
+    def.name = std::move(body_name);
+    def.body.position = position;
+    const auto [it, inserted] = names_.index.emplace(def.name, scene_.bodies.size());
+    if (!inserted) {
+      r_.fail(name_node_ ? name_node_->source() : t_.source(), key("name"),
+              fmt::format("body name \"{}\" is already taken by the body of line {} (names must "
+                          "be unique)",
+                          def.name, scene_.body_lines[it->second]));
+    }
+    scene_.bodies.push_back(std::move(def));
+    scene_.body_lines.push_back(t_.source().begin.line);
+  }
+
+  /// Appends a link between bodies a and b (scene indices) with `spring`, whose rest length is
+  /// the bodies' starting distance unless `spec` gives one.
+  void add_link(std::size_t a, std::size_t b, LinkSpring spring, const SpringSpec& spec) {
+    const Vec2 pa = scene_.bodies[a].body.position, pb = scene_.bodies[b].body.position;
+    if (!spec.rest_length) spring.rest_length = std::hypot(pb.x - pa.x, pb.y - pa.y);
+    if (!representable(spring.rest_length, scene_.precision)) {
+      r_.fail(required("spacing").source(), key("spacing"),
+              fmt::format("bodies {} and {} start {:g} m apart, beyond the range of {}",
+                          scene_.bodies[a].name, scene_.bodies[b].name, spring.rest_length,
+                          precision_text(scene_.precision)));
+    }
+    if (spring.rest_length > 0.0 && same_point(pa, pb, scene_.precision)) {
+      r_.fail(
+          required("spacing").source(), key("spacing"),
+          fmt::format("bodies {} and {} start at the same point, so the direction of a link "
+                      "with rest length {:g} m ({}) is undefined; use a spacing that "
+                      "separates them or leave rest_length out",
+                      scene_.bodies[a].name, scene_.bodies[b].name, spring.rest_length, spec.path));
+    }
+    scene_.links.push_back(BodyLink{a, b, spring});
+    scene_.link_lines.push_back(t_.source().begin.line);
+  }
+
+  /// Pins body i at its starting position with an anchored spring (rest length 0).
+  void pin(std::size_t i, const SpringSpec& spec) {
+    BodyDef& def = scene_.bodies[i];
+    const LinkSpring k = resolve_spring(r_, spec, def.body.mass, 0.0, scene_.precision);
+    def.spring = SpringDamper{.anchor = def.body.position,
+                              .stiffness = k.stiffness,
+                              .damping = k.damping,
+                              .rest_length = 0.0};
+  }
+
+  /// `pin` (an array) and `pin_spring`; each element of `pin` goes through `index`, which
+  /// returns the body's scene index. pin without pin_spring is an error, pin_spring without
+  /// pin a warning.
+  template <class Index>
+  void pins(Index&& index) {
+    const std::optional<SpringSpec> spec = spring("pin_spring", false);
+    const toml::node* n = t_.get("pin");
+    if (!n) {
+      if (spec) r_.warn(t_.get("pin_spring")->source(), key("pin_spring"), "ignored: no pin");
+      return;
+    }
+    const toml::array* list = n->as_array();
+    if (!list) {
+      r_.fail(n->source(), key("pin"), fmt::format("expected an array, found {}", type_name(*n)));
+    }
+    if (!spec && !list->empty()) {
+      r_.fail(n->source(), key("pin"),
+              "needs pin_spring = { stiffness = ... } (N/m) or { frequency = ... } (Hz): the "
+              "anchored spring holding each pinned body");
+    }
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      pin(index(*list->get(k), fmt::format("{}[{}]", key("pin"), k)), *spec);
+    }
+  }
+
+  /// Records what the generator made, for the hints of unknown body names.
+  void describe(std::string prefix, std::string text) {
+    names_.generators.emplace_back(std::move(prefix), std::move(text));
+  }
+
+ private:
+  Reader& r_;
+  Scene& scene_;
+  BodyNames& names_;
+  const toml::table& t_;
+  std::string path_;
+  const toml::node* name_node_ = nullptr;
+};
+
+/// The link spring of a generator's equal bodies of mass m: the frequency form acts on the
+/// pair's reduced mass m/2.
+LinkSpring pair_spring(const Reader& r, const SpringSpec& spec, double m, Precision p) {
+  return resolve_spring(r, spec, reduced_mass(m, m), 0.0, p);
+}
+
+void parse_chain(Reader& r, const toml::table& t, std::size_t c, Scene& scene, BodyNames& names) {
+  Generator g(r, scene, names, t, fmt::format("chain[{}]", c));
+  r.check_keys(t, g.path(),
+               {"name", "count", "start", "spacing", "body", "link", "pin", "pin_spring"});
+  const std::string name = g.name(fmt::format("chain{}", c));
+  const toml::node& count_node = g.required("count");
+  const auto count = static_cast<std::size_t>(
+      r.integer_node(count_node, g.key("count"), 1, std::int64_t{max_scene_bodies}));
+  g.reserve_bodies(count, count_node, g.key("count"));
+  const Vec2 start = r.vec2_node(g.required("start"), g.key("start"));
+  const Vec2 spacing = r.vec2_node(g.required("spacing"), g.key("spacing"));
+  const BodyDef body = g.body_template();
+  const std::optional<SpringSpec> link = g.spring("link", true);
+  if (!link) {
+    r.fail(t.source(), g.key("link"),
+           "missing (required): the spring between consecutive bodies, e.g. { stiffness = 100 }");
+  }
+
+  const std::size_t first = scene.bodies.size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const double s = static_cast<double>(i);
+    g.add_body(body, fmt::format("{}[{}]", name, i),
+               Vec2{start.x + s * spacing.x, start.y + s * spacing.y});
+  }
+  g.reserve_links(count - 1, *t.get("link"), g.key("link"));
+  const LinkSpring spring = pair_spring(r, *link, body.body.mass, scene.precision);
+  for (std::size_t i = 0; i + 1 < count; ++i) g.add_link(first + i, first + i + 1, spring, *link);
+  g.pins([&](const toml::node& n, const std::string& key) {
+    return first + static_cast<std::size_t>(
+                       r.integer_node(n, key, 0, static_cast<std::int64_t>(count) - 1));
+  });
+  g.describe(name, fmt::format("{} makes {}[0] .. {}[{}]", g.path(), name, name, count - 1));
+}
+
+void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, BodyNames& names) {
+  Generator g(r, scene, names, t, fmt::format("grid[{}]", c));
+  r.check_keys(t, g.path(),
+               {"name", "columns", "rows", "origin", "spacing", "body", "link", "shear", "bend",
+                "pin", "pin_spring"});
+  const std::string name = g.name(fmt::format("grid{}", c));
+  const std::int64_t limit = max_scene_bodies;
+  const toml::node& columns_node = g.required("columns");
+  const auto columns =
+      static_cast<std::size_t>(r.integer_node(columns_node, g.key("columns"), 1, limit));
+  const toml::node& rows_node = g.required("rows");
+  const auto rows = static_cast<std::size_t>(r.integer_node(rows_node, g.key("rows"), 1, limit));
+  g.reserve_bodies(std::uint64_t{columns} * rows, rows_node, g.key("rows"));
+  const Vec2 origin = r.vec2_node(g.required("origin"), g.key("origin"));
+  const Vec2 spacing = r.vec2_node(g.required("spacing"), g.key("spacing"));
+  const BodyDef body = g.body_template();
+  const std::optional<SpringSpec> link = g.spring("link", true);
+  if (!link) {
+    r.fail(t.source(), g.key("link"),
+           "missing (required): the structural springs between neighbours in a row or column, "
+           "e.g. { stiffness = 100 }");
+  }
+  const std::optional<SpringSpec> shear = g.spring("shear", true);
+  const std::optional<SpringSpec> bend = g.spring("bend", true);
+
+  const std::size_t first = scene.bodies.size();
+  auto at = [&](std::size_t i, std::size_t j) { return first + j * columns + i; };
+  for (std::size_t j = 0; j < rows; ++j) {
+    for (std::size_t i = 0; i < columns; ++i) {
+      g.add_body(body, fmt::format("{}[{},{}]", name, i, j),
+                 Vec2{origin.x + double(i) * spacing.x, origin.y + double(j) * spacing.y});
+    }
+  }
+  // Links in order: structural (row then column neighbours, row by row), shear (both
+  // diagonals of each cell), bend (neighbours two apart).
+  auto pairs = [](std::size_t n, std::size_t gap) { return n > gap ? n - gap : 0; };
+  const std::uint64_t structural = pairs(columns, 1) * rows + columns * pairs(rows, 1);
+  const std::uint64_t diagonal = shear ? 2 * pairs(columns, 1) * pairs(rows, 1) : 0;
+  const std::uint64_t two_apart = bend ? pairs(columns, 2) * rows + columns * pairs(rows, 2) : 0;
+  g.reserve_links(structural + diagonal + two_apart, *t.get("link"), g.key("link"));
+  const double m = body.body.mass;
+  auto connect = [&](const SpringSpec& spec, std::size_t gap, bool diagonals) {
+    const LinkSpring spring = pair_spring(r, spec, m, scene.precision);
+    for (std::size_t j = 0; j < rows; ++j) {
+      for (std::size_t i = 0; i < columns; ++i) {
+        if (diagonals) {
+          if (i + 1 < columns && j + 1 < rows) {
+            g.add_link(at(i, j), at(i + 1, j + 1), spring, spec);
+            g.add_link(at(i + 1, j), at(i, j + 1), spring, spec);
+          }
+          continue;
+        }
+        if (i + gap < columns) g.add_link(at(i, j), at(i + gap, j), spring, spec);
+        if (j + gap < rows) g.add_link(at(i, j), at(i, j + gap), spring, spec);
+      }
+    }
+  };
+  connect(*link, 1, false);
+  if (shear) connect(*shear, 1, true);
+  if (bend) connect(*bend, 2, false);
+  g.pins([&](const toml::node& n, const std::string& key) {
+    const toml::array* ij = n.as_array();
+    if (!ij || ij->size() != 2) {
+      r.fail(n.source(), key,
+             ij ? fmt::format("expected [column, row] (2 integers), found {} elements", ij->size())
+                : fmt::format("expected [column, row], found {}", type_name(n)));
+    }
+    const auto i = r.integer_node(*ij->get(0), key + "[0]", 0, std::int64_t(columns) - 1);
+    const auto j = r.integer_node(*ij->get(1), key + "[1]", 0, std::int64_t(rows) - 1);
+    return at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+  });
+  g.describe(name, fmt::format("{} makes {}[0,0] .. {}[{},{}] ([column,row])", g.path(), name, name,
+                               columns - 1, rows - 1));
+}
+
+}  // namespace
+
+void parse_generators(Reader& r, const toml::table& doc, Scene& scene, BodyNames& names) {
+  if (const toml::array* list = r.tables(doc, "chain")) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      parse_chain(r, *list->get(i)->as_table(), i, scene, names);
+    }
+  }
+  if (const toml::array* list = r.tables(doc, "grid")) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      parse_grid(r, *list->get(i)->as_table(), i, scene, names);
+    }
+  }
+}
+
+}  // namespace fixstep::scene_detail

@@ -1,0 +1,157 @@
+// Scene files, part two: springs between bodies ([[spring]]) and the frequency form of
+// springs. See README "Scene format".
+#include <algorithm>
+#include <stdexcept>
+
+#include "scene_reader.hpp"
+
+namespace fixstep::scene_detail {
+
+namespace {
+
+/// The index of the body named by element e of a [[spring]]'s bodies, else a located error
+/// with the closest name.
+std::size_t find_body(const Reader& r, const toml::node& e, const std::string& key,
+                      const BodyNames& names) {
+  if (!e.is_string()) {
+    r.fail(e.source(), key, fmt::format("expected a body name (a string), found {}", type_name(e)));
+  }
+  const std::string name(e.as_string()->get());
+  if (const auto it = names.index.find(name); it != names.index.end()) return it->second;
+  std::vector<std::string> candidates;
+  candidates.reserve(names.index.size());
+  for (const auto& [n, i] : names.index) candidates.push_back(n);
+  std::sort(candidates.begin(), candidates.end());  // ties: the first in name order
+  std::string hint;
+  if (const auto best = closest(name, candidates))
+    hint = fmt::format("did you mean \"{}\"?", *best);
+  for (const auto& [prefix, text] : names.generators) {
+    if (name.rfind(prefix + "[", 0) == 0) hint += (hint.empty() ? "" : " ") + text;
+  }
+  r.fail(e.source(), key,
+         fmt::format("no body named \"{}\"{}", name, hint.empty() ? "" : " (" + hint + ")"));
+}
+
+}  // namespace
+
+SpringSpec parse_spring_spec(const Reader& r, const toml::table& t, const std::string& path,
+                             bool with_rest_length) {
+  SpringSpec s;
+  s.path = path;
+  const toml::node* k = t.get("stiffness");
+  const toml::node* b = t.get("damping");
+  const toml::node* f = t.get("frequency");
+  const toml::node* z = t.get("damping_ratio");
+  if ((k || b) && (f || z)) {
+    const std::string direct = k ? "stiffness" : "damping",
+                      modal = f ? "frequency" : "damping_ratio";
+    r.fail((f ? f : z)->source(), path + "." + modal,
+           fmt::format("`{}` and `{}` both given: a spring takes stiffness and damping (N/m, "
+                       "N*s/m) or frequency and damping_ratio (Hz, dimensionless), not both",
+                       direct, modal));
+  }
+  if (f || z) {
+    s.by_frequency = true;
+    if (!f) r.fail(t.source(), path + ".frequency", "missing (required with damping_ratio)");
+    s.frequency_node = f;
+    s.frequency = r.number_node(*f, path + ".frequency");
+    r.require(s.frequency > 0.0, t, "frequency", path + ".frequency", "> 0 Hz", s.frequency);
+    if (z) {
+      s.damping_ratio = r.number_node(*z, path + ".damping_ratio");
+      r.require(s.damping_ratio >= 0.0, t, "damping_ratio", path + ".damping_ratio", ">= 0",
+                s.damping_ratio);
+    }
+  } else {
+    if (!k) {
+      r.fail(t.source(), path + ".stiffness",
+             "missing (required): give stiffness (N/m) or frequency (Hz)");
+    }
+    s.stiffness = r.number_node(*k, path + ".stiffness");
+    r.require(s.stiffness >= 0.0, t, "stiffness", path + ".stiffness", ">= 0 N/m", s.stiffness);
+    if (b) {
+      s.damping = r.number_node(*b, path + ".damping");
+      r.require(s.damping >= 0.0, t, "damping", path + ".damping", ">= 0 N*s/m", s.damping);
+    }
+  }
+  if (with_rest_length) {
+    if (auto l = r.number(t, "rest_length", path + ".rest_length")) {
+      r.require(*l >= 0.0, t, "rest_length", path + ".rest_length", ">= 0 m", *l);
+      s.rest_length = *l;
+    }
+  }
+  return s;
+}
+
+LinkSpring resolve_spring(const Reader& r, const SpringSpec& spec, double mass, double rest,
+                          Precision precision) {
+  LinkSpring out{spec.stiffness, spec.damping, spec.rest_length.value_or(rest)};
+  if (!spec.by_frequency) return out;
+  const std::string key = spec.path + ".frequency";
+  try {
+    const LinkSpring k = spring_from_frequency(spec.frequency, spec.damping_ratio, mass);
+    out.stiffness = k.stiffness;
+    out.damping = k.damping;
+  } catch (const std::invalid_argument& e) {
+    r.fail(spec.frequency_node->source(), key,
+           fmt::format("cannot be converted with mass {:g} kg: {}", mass, e.what()));
+  }
+  if (!representable(out.stiffness, precision) || !representable(out.damping, precision)) {
+    r.fail(spec.frequency_node->source(), key,
+           fmt::format("gives k = m (2πf)² = {:g} N/m and b = 2 m ζ (2πf) = {:g} N*s/m with "
+                       "m = {:g} kg, beyond the range of {}",
+                       out.stiffness, out.damping, mass, precision_text(precision)));
+  }
+  return out;
+}
+
+void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names) {
+  const toml::array* list = r.tables(doc, "spring");
+  if (!list) return;
+  if (scene.links.size() + list->size() > max_scene_links) {
+    r.fail(doc.get("spring")->source(), "spring",
+           fmt::format("the scene would have {} links; at most {} are allowed",
+                       scene.links.size() + list->size(), max_scene_links));
+  }
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::table& t = *list->get(i)->as_table();
+    const std::string path = fmt::format("spring[{}]", i);
+    r.check_keys(t, path,
+                 {"bodies", "stiffness", "damping", "rest_length", "frequency", "damping_ratio"});
+    const toml::node* n = t.get("bodies");
+    if (!n) {
+      r.fail(t.source(), path + ".bodies",
+             "missing (required): the names of the two bodies, e.g. [\"a\", \"b\"]");
+    }
+    const toml::array* pair = n->as_array();
+    if (!pair || pair->size() != 2) {
+      r.fail(n->source(), path + ".bodies",
+             pair ? fmt::format("expected [\"a\", \"b\"] (2 body names), found {} elements",
+                                pair->size())
+                  : fmt::format("expected [\"a\", \"b\"] (2 body names), found {}", type_name(*n)));
+    }
+    const std::size_t a = find_body(r, *pair->get(0), path + ".bodies[0]", names);
+    const std::size_t b = find_body(r, *pair->get(1), path + ".bodies[1]", names);
+    const BodyDef &da = scene.bodies[a], &db = scene.bodies[b];
+    if (a == b) {
+      r.fail(pair->get(1)->source(), path + ".bodies[1]",
+             fmt::format("\"{}\" twice: a spring joins two different bodies", da.name));
+    }
+    const SpringSpec spec = parse_spring_spec(r, t, path, true);
+    // The frequency form acts on the pair's reduced mass m_a m_b / (m_a + m_b).
+    const LinkSpring spring =
+        resolve_spring(r, spec, reduced_mass(da.body.mass, db.body.mass), 0.0, scene.precision);
+    if (spring.rest_length > 0.0 &&
+        same_point(da.body.position, db.body.position, scene.precision)) {
+      r.fail(t.get("rest_length")->source(), path + ".rest_length",
+             fmt::format("\"{}\" and \"{}\" both start at ({:g}, {:g}) m, so the direction of a "
+                         "spring with rest length {:g} m is undefined; move one of them or use "
+                         "rest_length = 0",
+                         da.name, db.name, da.body.position.x, da.body.position.y,
+                         spring.rest_length));
+    }
+    scene.links.push_back(BodyLink{a, b, spring});
+    scene.link_lines.push_back(t.source().begin.line);
+  }
+}
+
+}  // namespace fixstep::scene_detail

@@ -1,0 +1,261 @@
+// The scene loader's internals, shared by scene.cpp ([world], [view], [[body]]) and
+// scene_links.cpp ([[spring]], [[chain]], [[grid]]): the Reader that turns every problem into a
+// SceneError with file:line:column and key path, and the parsers both files use. Internal to
+// the engine: not installed.
+#pragma once
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "fixstep/scene.hpp"
+#include "fixstep/suggest.hpp"
+
+namespace fixstep::scene_detail {
+
+inline std::string_view type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    default:
+      return "a date/time";
+  }
+}
+
+/// Walks a parsed document, turning every problem into a SceneError with its position.
+class Reader {
+ public:
+  struct Warning {
+    std::size_t line, column;
+    std::string text;
+  };
+
+  explicit Reader(const std::string& file) : file_(file) {}
+
+  [[nodiscard]] const std::string& file() const { return file_; }
+
+  /// The warnings in file order.
+  std::vector<std::string> take_warnings() {
+    std::stable_sort(warnings_.begin(), warnings_.end(), [](const Warning& a, const Warning& b) {
+      return a.line != b.line ? a.line < b.line : a.column < b.column;
+    });
+    std::vector<std::string> out;
+    for (Warning& w : warnings_) out.push_back(std::move(w.text));
+    return out;
+  }
+
+  [[noreturn]] void fail(const toml::source_region& where, const std::string& key,
+                         const std::string& message) const {
+    throw SceneError(file_, where.begin.line, where.begin.column, key, message);
+  }
+
+  /// A warning "FILE:LINE:COLUMN: KEY: MESSAGE" at `where`.
+  void warn(const toml::source_region& where, const std::string& key, const std::string& message) {
+    const auto& at = where.begin;
+    warnings_.push_back({at.line, at.column,
+                         fmt::format("{}:{}:{}: {}: {}", file_, at.line, at.column, key, message)});
+  }
+
+  /// Warns about keys of `table` not in `allowed`, suggesting the closest allowed key.
+  void check_keys(const toml::table& table, const std::string& path,
+                  std::initializer_list<std::string_view> allowed) {
+    for (auto&& [key, node] : table) {
+      const std::string_view k = key.str();
+      if (std::find(allowed.begin(), allowed.end(), k) != allowed.end()) continue;
+      const std::vector<std::string> candidates(allowed.begin(), allowed.end());
+      const std::optional<std::string> best = closest(k, candidates);  // within two edits
+      const std::string full = path.empty() ? std::string(k) : path + "." + std::string(k);
+      warn(key.source(), full,
+           fmt::format("unknown key ignored{}",
+                       best ? fmt::format(" (did you mean `{}`?)", *best) : std::string()));
+    }
+  }
+
+  /// A finite number (integer or float) at table[key]; nullopt when absent.
+  std::optional<double> number(const toml::table& t, std::string_view key,
+                               const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    return number_node(*n, path);
+  }
+
+  double number_node(const toml::node& n, const std::string& path) const {
+    if (!n.is_number()) {
+      fail(n.source(), path, fmt::format("expected a number, found {}", type_name(n)));
+    }
+    const double v = *n.value<double>();
+    if (!std::isfinite(v)) fail(n.source(), path, fmt::format("must be finite (got {})", v));
+    return v;
+  }
+
+  double required_number(const toml::table& t, const toml::source_region& table_at,
+                         std::string_view key, const std::string& path) const {
+    auto v = number(t, key, path);
+    if (!v) fail(table_at, path, "missing (required)");
+    return *v;
+  }
+
+  /// An integer in [lo, hi] at node n. The type is checked first: value<std::int64_t>() of a
+  /// float node converts it, which is undefined behaviour for floats beyond the int64 range
+  /// (substeps = 1e30; found by fuzzing).
+  std::int64_t integer_node(const toml::node& n, const std::string& path, std::int64_t lo,
+                            std::int64_t hi) const {
+    if (!n.is_integer()) {
+      fail(n.source(), path, fmt::format("expected an integer, found {}", type_name(n)));
+    }
+    const std::int64_t v = n.as_integer()->get();
+    if (v < lo || v > hi)
+      fail(n.source(), path, fmt::format("must be {} .. {} (got {})", lo, hi, v));
+    return v;
+  }
+
+  Vec2 vec2_node(const toml::node& n, const std::string& path) const {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 2) {
+      fail(n.source(), path,
+           a ? fmt::format("expected [x, y] (2 numbers), found {} elements", a->size())
+             : fmt::format("expected [x, y], found {}", type_name(n)));
+    }
+    return Vec2{number_node(*a->get(0), path + "[0]"), number_node(*a->get(1), path + "[1]")};
+  }
+
+  std::optional<Vec2> vec2(const toml::table& t, std::string_view key,
+                           const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    return vec2_node(*n, path);
+  }
+
+  std::optional<std::string> string(const toml::table& t, std::string_view key,
+                                    const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    if (!n->is_string()) {
+      fail(n->source(), path, fmt::format("expected a string, found {}", type_name(*n)));
+    }
+    return std::string(n->as_string()->get());
+  }
+
+  const toml::table* table(const toml::table& t, std::string_view key,
+                           const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) {
+      fail(n->source(), path, fmt::format("expected a table, found {}", type_name(*n)));
+    }
+    return n->as_table();
+  }
+
+  /// The [[key]] tables of the document, or nullptr when there are none.
+  const toml::array* tables(const toml::table& doc, std::string_view key) const {
+    const toml::node* n = doc.get(key);
+    if (!n) return nullptr;
+    const toml::array* list = n->as_array();
+    if (!list || !list->is_array_of_tables()) {
+      fail(n->source(), std::string(key), fmt::format("expected [[{}]] tables", key));
+    }
+    return list;
+  }
+
+  /// v must satisfy ok, else "must be <allowed> (got v)" at t[key].
+  void require(bool ok, const toml::table& t, std::string_view key, const std::string& path,
+               std::string_view allowed, double v) const {
+    if (!ok) fail(t.get(key)->source(), path, fmt::format("must be {} (got {})", allowed, v));
+  }
+
+  /// Narrowing to f32 must keep the value finite.
+  void require_f32(double v, const toml::node* n, const std::string& path) const {
+    if (std::abs(v) > double(std::numeric_limits<float>::max())) {
+      fail(n->source(), path,
+           fmt::format("{} overflows precision = \"f32\" (largest float is {:g})", v,
+                       double(std::numeric_limits<float>::max())));
+    }
+  }
+
+ private:
+  const std::string& file_;
+  std::vector<Warning> warnings_;
+};
+
+/// Fits the scene's precision: finite, and within float range for f32.
+inline bool representable(double v, Precision p) {
+  return std::isfinite(v) &&
+         (p == Precision::f64 || std::abs(v) <= double(std::numeric_limits<float>::max()));
+}
+
+/// "a double" or "a float", for messages.
+inline std::string_view precision_text(Precision p) {
+  return p == Precision::f32 ? "a float" : "a double";
+}
+
+/// a and b are the same point in the scene's precision (the world compares them there).
+inline bool same_point(Vec2 a, Vec2 b, Precision p) {
+  if (p == Precision::f32) {
+    return static_cast<float>(a.x) == static_cast<float>(b.x) &&
+           static_cast<float>(a.y) == static_cast<float>(b.y);
+  }
+  return a.x == b.x && a.y == b.y;
+}
+
+/// Reads mass (required), velocity, force, gravity, drag, radius and color of t into def.
+void parse_body_parts(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+
+/// The parameters of a spring table before the masses it acts on are known: stiffness k (N/m)
+/// and damping b (N*s/m), or frequency f (Hz) and damping ratio ζ, converted with
+/// spring_from_frequency for a mass (the body's, or a pair's reduced mass).
+struct SpringSpec {
+  bool by_frequency = false;
+  double stiffness = 0.0, damping = 0.0;        ///< N/m, N*s/m
+  double frequency = 0.0, damping_ratio = 0.0;  ///< Hz, dimensionless
+  std::optional<double> rest_length;            ///< m; nullopt: the table's default
+  const toml::node* frequency_node = nullptr;   ///< where conversion errors point
+  std::string path;                             ///< e.g. "spring[2]"
+};
+
+/// The spring keys of t (stiffness, damping, frequency, damping_ratio; rest_length when
+/// with_rest_length), without checking for unknown keys. Errors: both forms given (naming both
+/// keys), neither stiffness nor frequency, negative or non-finite values, frequency <= 0.
+SpringSpec parse_spring_spec(const Reader& r, const toml::table& t, const std::string& path,
+                             bool with_rest_length);
+
+/// The spring of spec acting on `mass` (kg), its rest length `rest` (m). Errors (at the
+/// frequency key): a conversion that overflows a double, or a float with precision f32.
+LinkSpring resolve_spring(const Reader& r, const SpringSpec& spec, double mass, double rest,
+                          Precision precision);
+
+/// Body names of a scene so far, with their indices, and what generated them (for messages).
+struct BodyNames {
+  std::unordered_map<std::string, std::size_t> index;
+  /// Generators so far: "chain \"rope\" has rope[0] .. rope[39]", by name prefix.
+  std::vector<std::pair<std::string, std::string>> generators;
+};
+
+/// [[chain]] and [[grid]] tables: appends their bodies and links to the scene
+/// (scene_generators.cpp).
+void parse_generators(Reader& r, const toml::table& doc, Scene& scene, BodyNames& names);
+/// [[spring]] tables: appends their links to the scene, after every body is known
+/// (scene_links.cpp).
+void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names);
+
+}  // namespace fixstep::scene_detail
