@@ -469,7 +469,7 @@ void World<Real>::step_multipass(const TickInput& input) {
   const bool accel = c.accel || push[0] != Real(0) || push[1] != Real(0);
   const Integrator method = settings_.integrator;
   std::atomic<bool> bad{false};
-  auto par = [this](std::size_t count, auto&& pass) { parallel(count, pass); };
+  auto par = [this](std::size_t count, auto&& pass) { this->parallel(count, pass); };
   Passes<Real, Network, Coefficients, decltype(par)> p{
       net_,
       c,

@@ -109,19 +109,14 @@ TEST(FuzzScene, GeneratedScenesBeyondTheBudgetAreOnlyLoaded) {
   EXPECT_EQ(out.verdict, Verdict::accepted) << out.detail;
 }
 
-TEST(FuzzScene, UnstableLinksAreOverflowUntilTheGuardCoversLinks) {
+TEST(FuzzScene, UnstableLinksAreRefusedByTheNetworkGuard) {
   // The fuzzer's first finding once links existed: soft_body.toml with dt = 0.8025 s, its
   // 5 Hz links stepped far beyond ω·h = 2. Here a chain of 500 Hz zero-length links at
-  // dt = 0.8 s (ω·h ≈ 3500: the state grows about 10^7-fold per tick). The load-time guard does
-  // not look at links yet, so this diverges; the runtime guard reports it, and the check counts
-  // it as overflow (guard_covers_links).
+  // dt = 0.8 s (ω·h ≈ 3500): the network stability guard refuses it at load.
   const auto out = fixstep::fuzz::check_scene_text(
       "[world]\ndt = 0.8\n[[chain]]\ncount = 3\nstart = [0, 0]\nspacing = [1, 0]\n"
       "body = { mass = 1 }\nlink = { frequency = 500.0, rest_length = 0 }\n");
-  EXPECT_NE(out.verdict, Verdict::finding) << out.detail;
-  if constexpr (!fixstep::fuzz::guard_covers_links) {
-    EXPECT_EQ(out.verdict, Verdict::overflowed) << out.detail;
-  }
+  EXPECT_EQ(out.verdict, Verdict::rejected) << out.detail;
 }
 
 }  // namespace

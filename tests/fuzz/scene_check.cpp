@@ -42,7 +42,6 @@ bool small(const Vec2& v) { return small(v.x) && small(v.y); }
 /// See bounded_max: a scene whose non-finite states are findings.
 bool bounded_scene(const Scene& scene) {
   if (scene.allow_unstable) return false;
-  if (!scene.links.empty() && !guard_covers_links) return false;
   const bool links_ok = std::all_of(scene.links.begin(), scene.links.end(), [](const BodyLink& l) {
     return small(l.spring.stiffness) && small(l.spring.damping) && small(l.spring.rest_length);
   });

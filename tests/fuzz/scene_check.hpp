@@ -39,12 +39,6 @@ inline constexpr std::uint64_t max_body_substeps = 4'000'000;
 /// max_body_substeps.
 inline constexpr std::uint64_t max_built_size = 200'000;
 
-/// Whether the load-time stability guard (stability.hpp) covers links. Until it does (issue
-/// #10: the guard for networks is in progress), a scene with links passes the guard however
-/// stiff its links are, so its non-finite states count as overflow rather than findings, as
-/// long as the runtime guard reports them (World::fault). Set to true when check_stability
-/// covers link networks.
-inline constexpr bool guard_covers_links = false;
 
 /// Magnitudes inside which a non-finite state is a bug rather than arithmetic overflow: with
 /// every number of a scene at most 1e9 in magnitude, every mass at least 1e-9 kg, dt <= 1 s and
