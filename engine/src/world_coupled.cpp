@@ -177,41 +177,64 @@ struct StateView {
   const Real *x, *y, *vx, *vy;
 };
 
-/// Link forces on end a (end b gets the opposite), N, at state s, for links [l0, l1): with
-/// Spring the spring, with Damped the damper (see LinkSpring). With track, adds weight · the
-/// link's damping power b|u|² (b(u·d̂)² with rest length), W, to power[l].
+/// The force of link l on its end a (end b gets the opposite), N, at state s: with Spring
+/// the spring, with Damped the damper (see LinkSpring). With track, adds weight · the link's
+/// damping power b|u|² (b(u·d̂)² with rest length), W, to power[l].
+template <bool Spring, bool Damped, class Real, class Net>
+[[gnu::always_inline]] inline void link_force(const Net& net, StateView<Real> s, std::size_t l,
+                                              bool track, Real weight, Real* power, Real& fx,
+                                              Real& fy) {
+  const std::uint32_t a = net.a[l], b = net.b[l];
+  const Real dx = s.x[a] - s.x[b], dy = s.y[a] - s.y[b];
+  const Real rest = net.rest[l];
+  Real fxl(0), fyl(0), nx(0), ny(0);
+  const bool along = rest != Real(0);  // L > 0: spring and damper act along d̂ only
+  if (along) {
+    const Real len = std::sqrt(dx * dx + dy * dy);
+    if (len > Real(0)) nx = dx / len, ny = dy / len;  // else no direction, no force
+    if constexpr (Spring) {
+      const Real t = len > Real(0) ? net.k[l] * (len - rest) : Real(0);
+      fxl = -t * nx, fyl = -t * ny;
+    }
+  } else if constexpr (Spring) {
+    fxl = -net.k[l] * dx, fyl = -net.k[l] * dy;
+  }
+  if constexpr (Damped) {
+    const Real c = net.damping[l];
+    const Real ux = s.vx[a] - s.vx[b], uy = s.vy[a] - s.vy[b];
+    if (!along) {
+      fxl -= c * ux, fyl -= c * uy;
+      if (track) power[l] += weight * (c * (ux * ux + uy * uy));
+    } else {
+      const Real un = ux * nx + uy * ny;
+      fxl -= c * un * nx, fyl -= c * un * ny;
+      if (track) power[l] += weight * (c * un * un);
+    }
+  }
+  fx = fxl, fy = fyl;
+}
+
+/// link_force for links [l0, l1) into fx[l], fy[l].
 template <bool Spring, bool Damped, class Real, class Net>
 void link_forces(const Net& net, StateView<Real> s, std::size_t l0, std::size_t l1, Real* fx,
                  Real* fy, bool track, Real weight, Real* power) {
   for (std::size_t l = l0; l < l1; ++l) {
+    link_force<Spring, Damped>(net, s, l, track, weight, power, fx[l], fy[l]);
+  }
+}
+
+/// Every link's force added to its ends' sums (acc, N; zeroed by the caller), in link order:
+/// for each body the same additions in the same order as the CSR gather, so the same bits;
+/// one thread only (two links share a body).
+template <bool Spring, bool Damped, class Real, class Net>
+void link_scatter(const Net& net, StateView<Real> s, std::size_t l0, std::size_t l1, Real* accx,
+                  Real* accy, bool track, Real weight, Real* power) {
+  for (std::size_t l = l0; l < l1; ++l) {
+    Real fx, fy;
+    link_force<Spring, Damped>(net, s, l, track, weight, power, fx, fy);
     const std::uint32_t a = net.a[l], b = net.b[l];
-    const Real dx = s.x[a] - s.x[b], dy = s.y[a] - s.y[b];
-    const Real rest = net.rest[l];
-    Real fxl(0), fyl(0), nx(0), ny(0);
-    const bool along = rest != Real(0);  // L > 0: spring and damper act along d̂ only
-    if (along) {
-      const Real len = std::sqrt(dx * dx + dy * dy);
-      if (len > Real(0)) nx = dx / len, ny = dy / len;  // else no direction, no force
-      if constexpr (Spring) {
-        const Real t = len > Real(0) ? net.k[l] * (len - rest) : Real(0);
-        fxl = -t * nx, fyl = -t * ny;
-      }
-    } else if constexpr (Spring) {
-      fxl = -net.k[l] * dx, fyl = -net.k[l] * dy;
-    }
-    if constexpr (Damped) {
-      const Real c = net.damping[l];
-      const Real ux = s.vx[a] - s.vx[b], uy = s.vy[a] - s.vy[b];
-      if (!along) {
-        fxl -= c * ux, fyl -= c * uy;
-        if (track) power[l] += weight * (c * (ux * ux + uy * uy));
-      } else {
-        const Real un = ux * nx + uy * ny;
-        fxl -= c * un * nx, fyl -= c * un * ny;
-        if (track) power[l] += weight * (c * un * un);
-      }
-    }
-    fx[l] = fxl, fy[l] = fyl;
+    accx[a] += fx, accy[a] += fy;
+    accx[b] -= fx, accy[b] -= fy;
   }
 }
 
@@ -254,6 +277,48 @@ template <class Field, class Real, class Coeff>
   return f;
 }
 
+/// The body pass of semi-implicit (or, with Explicit, explicit) Euler on a linked world:
+/// a = field + (1/m)·acc, then the update, for bodies [j0, j1). A plain loop over restrict
+/// pointers with a branch-free range check (as the fused sweep), so the compiler vectorizes
+/// it. Returns true if some new state is out of range.
+template <class Field, bool Explicit, bool Track, class Real>
+bool euler_bodies(std::size_t j0, std::size_t j1, Real* __restrict x, Real* __restrict y,
+                  Real* __restrict vx, Real* __restrict vy, Real* __restrict diss,
+                  const Real* __restrict accx, const Real* __restrict accy,
+                  const Real* __restrict inv_m, const Real* __restrict k,
+                  const Real* __restrict anchor_x, const Real* __restrict anchor_y,
+                  const Real* __restrict rest, const Real* __restrict gamma,
+                  const Real* __restrict cx, const Real* __restrict cy, Real push_x, Real push_y,
+                  Real h) {
+  const Real limit = static_cast<Real>(max_state_magnitude);
+  Real out = 0;
+  for (std::size_t j = j0; j < j1; ++j) {
+    Field f;
+    if constexpr (Field::shape != SpringShape::none) {
+      f.k = k[j], f.anchor_x = anchor_x[j], f.anchor_y = anchor_y[j];
+    }
+    if constexpr (Field::shape == SpringShape::rest_length) f.rest = rest[j];
+    if constexpr (Field::damped) f.gamma = gamma[j];
+    if constexpr (Field::accel) f.cx = cx[j] + push_x, f.cy = cy[j] + push_y;
+    Real px = x[j], py = y[j], pvx = vx[j], pvy = vy[j], ax, ay;
+    f.full(px, py, pvx, pvy, ax, ay);
+    if constexpr (Track && Field::damped) diss[j] += h * damping_power(f, pvx, pvy);
+    ax += inv_m[j] * accx[j], ay += inv_m[j] * accy[j];
+    if constexpr (Explicit) {
+      px += pvx * h, py += pvy * h;
+      pvx += ax * h, pvy += ay * h;
+    } else {
+      pvx += ax * h, pvy += ay * h;
+      px += pvx * h, py += pvy * h;
+    }
+    x[j] = px, y[j] = py, vx[j] = pvx, vy[j] = pvy;
+    const bool in_range = (int(std::abs(px) <= limit) & int(std::abs(py) <= limit) &
+                           int(std::abs(pvx) <= limit) & int(std::abs(pvy) <= limit)) != 0;
+    out = in_range ? out : Real(1);
+  }
+  return out != Real(0);
+}
+
 /// The state and scratch one tick of the multi-pass path works on (World's arrays, by
 /// pointer), and each integrator's passes. Par is World::parallel, bound to the world.
 template <class Real, class Net, class Coeff, class Par>
@@ -267,6 +332,7 @@ struct Passes {
   Real* d[4];  ///< RK4's k1 + 2 k2 + 2 k3
   Real *power_body, *power_link, *diss_body, *diss_link;
   bool track;
+  bool serial;  ///< one thread: link sums by scatter
   const Real* push;
   SpringShape shape;
   bool accel;
@@ -307,27 +373,52 @@ struct Passes {
     });
   }
 
-  /// Semi-implicit (velocity first) or explicit Euler, one step of h.
+  /// Each body's sum of link forces (N) at state st into accx, accy: on one thread a scatter
+  /// over the links; on two, a pass over the links and a gather per body (the same bits).
+  /// Each body's sum of link forces (N) at state st into accx, accy: on one thread a scatter
+  /// over the links in link order; on two, a pass over the links and a gather per body in
+  /// link order (each body's additions are the same, in the same order: the same bits).
+  void accumulate(StateView<Real> st, Real weight, Real* accx, Real* accy) {
+    if (serial) {
+      std::fill(accx, accx + n, Real(0)), std::fill(accy, accy + n, Real(0));
+      const bool t = track && net.damped;
+      if (net.damped) link_scatter<true, true>(net, st, 0, m, accx, accy, t, weight, power_link);
+      else link_scatter<true, false>(net, st, 0, m, accx, accy, false, weight, power_link);
+      return;
+    }
+    forces(st, weight);
+    par(n, [&](std::size_t j0, std::size_t j1) {
+      for (std::size_t j = j0; j < j1; ++j) {
+        Real sx(0), sy(0);
+        for (std::uint32_t e = net.offset[j]; e < net.offset[j + 1]; ++e) {
+          const std::uint32_t code = net.incident[e];
+          const std::uint32_t l = code >> 1;
+          if (code & 1u) sx -= fx[l], sy -= fy[l];
+          else sx += fx[l], sy += fy[l];
+        }
+        accx[j] = sx, accy[j] = sy;
+      }
+    });
+  }
+
+  /// Semi-implicit (velocity first) or explicit Euler, one step of h: the links' sums, then
+  /// one straight pass over the bodies (SoA, restrict, branch-free range check: the compiler
+  /// vectorizes it like the fused sweep).
   template <bool Explicit>
   void euler(Real h) {
-    forces({x, y, vx, vy}, Real(1));
-    bodies<0>(c.damping, nullptr, nullptr, [&](const auto& f, std::size_t j) {
-      Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j], ax, ay, gx, gy;
-      f.full(X, Y, VX, VY, ax, ay);
-      if constexpr (std::decay_t<decltype(f)>::damped) {
-        if (track) diss_body[j] += h * damping_power(f, VX, VY);
-      }
-      gather(net, fx, fy, j, gx, gy);
-      ax += gx, ay += gy;
-      if constexpr (Explicit) {
-        X += VX * h, Y += VY * h;
-        VX += ax * h, VY += ay * h;
-      } else {
-        VX += ax * h, VY += ay * h;
-        X += VX * h, Y += VY * h;
-      }
-      x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
-      return out_of_range(X, Y, VX, VY);
+    Real *accx = d[0], *accy = d[1];
+    accumulate({x, y, vx, vy}, Real(1), accx, accy);
+    with_field<Real, 0>(shape, c.damping, accel, [&](auto field) {
+      using Field = decltype(field);
+      par(n, [&](std::size_t j0, std::size_t j1) {
+        auto run = [&]<bool Track>() {
+          return euler_bodies<Field, Explicit, Track>(
+              j0, j1, x, y, vx, vy, diss_body, accx, accy, net.inv_mass.data(),
+              c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(), c.rest.data(),
+              c.gamma.data(), c.accel_x.data(), c.accel_y.data(), push[0], push[1], h);
+        };
+        flag(track ? run.template operator()<true>() : run.template operator()<false>());
+      });
     });
     settle_links(h);
   }
@@ -489,6 +580,7 @@ void World<Real>::step_multipass(const TickInput& input) {
       dissipated_body_.data(),
       dissipated_link_.data(),
       settings_.track_dissipation,
+      threads_used_ < 2,
       push,
       shape,
       accel,
