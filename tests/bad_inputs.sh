@@ -199,6 +199,13 @@ stiffness = 1.0'
 case_ "[[spring]] joining a body to itself" "$two_bodies"'
 bodies = ["a", "a"]
 stiffness = 1.0'
+case_ "[[spring]] network unstable at dt (ω_max·h beyond the bound)" "$two_bodies"'
+bodies = ["a", "b"]
+stiffness = 100000.0'
+case_ "[[chain]] network unstable at dt (a stiff rope)" "$chain_head
+link = { frequency = 50.0 }
+pin = [0]
+pin_spring = { frequency = 50.0 }"
 case_ "[[spring]] bodies: three names" "$two_bodies"'
 bodies = ["a", "b", "a"]
 stiffness = 1.0'

@@ -204,6 +204,7 @@ Scene network_scene(double dt, int substeps, bool allow = false) {
   s.bodies[3].spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
   s.links = {{0, 1, LinkSpring{100.0, 0.0, 0.0}}, {1, 2, LinkSpring{400.0, 0.0, 0.0}}};
   s.link_lines = {30, 34};
+  s.link_keys = {"spring[0]", "spring[1]"};
   return s;
 }
 
@@ -230,7 +231,7 @@ TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
          {std::string("network of 3 bodies and 2 springs is unstable with semi_implicit_euler"),
           fmt::format("ω_max·h = {:.4g} exceeds the stability bound {:.4g}", net.omega_max * 0.1,
                       net.omega_max * net.max_step),
-          std::string("stiffest spring[1] 'mid'–'tip', k = 400 N/m"),
+          std::string("stiffest link 'mid'–'tip', k = 400 N/m"),
           std::string("fastest body 'mid'"),
           fmt::format("Use substeps = {} in [world]", net.min_substeps)}) {
       EXPECT_NE(what.find(part), std::string::npos) << part << "\nin: " << what;

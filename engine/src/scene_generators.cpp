@@ -132,6 +132,7 @@ class Generator {
     }
     scene_.links.push_back(BodyLink{a, b, spring});
     scene_.link_lines.push_back(t_.source().begin.line);
+    scene_.link_keys.push_back(spec.path);
   }
 
   /// Pins body i at its starting position with an anchored spring (rest length 0).

@@ -151,6 +151,7 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
     }
     scene.links.push_back(BodyLink{a, b, spring});
     scene.link_lines.push_back(t.source().begin.line);
+    scene.link_keys.push_back(path);
   }
 }
 

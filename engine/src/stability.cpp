@@ -172,7 +172,9 @@ std::vector<std::string> enforce_stability(const Scene& scene) {
         net->damping_bound ? net->strongest_damper : net->stiffest_link;
     if (link) {
       const std::size_t line = *link < scene.link_lines.size() ? scene.link_lines[*link] : 0;
-      apply(net->verdict, line, fmt::format("spring[{}]", *link), net->message);
+      const bool named = *link < scene.link_keys.size() && !scene.link_keys[*link].empty();
+      apply(net->verdict, line, named ? scene.link_keys[*link] : fmt::format("link[{}]", *link),
+            net->message);
     } else {
       const std::size_t i = net->fastest_body;
       const std::size_t line = i < scene.body_lines.size() ? scene.body_lines[i] : 0;

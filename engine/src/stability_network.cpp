@@ -339,8 +339,8 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
   const std::optional<std::size_t> link = r.damping_bound ? r.strongest_damper : r.stiffest_link;
   if (link) {
     const BodyLink& l = links[*link];
-    naming = fmt::format("{} spring[{}] '{}'–'{}', {} = {:g} {}, ",
-                         r.damping_bound ? "strongest damper" : "stiffest", *link,
+    naming = fmt::format("{} link '{}'–'{}', {} = {:g} {}, ",
+                         r.damping_bound ? "strongest damper:" : "stiffest",
                          bodies[l.body_a].name, bodies[l.body_b].name, r.damping_bound ? "b" : "k",
                          r.damping_bound ? l.spring.damping : l.spring.stiffness,
                          r.damping_bound ? "N·s/m" : "N/m");

@@ -382,8 +382,10 @@ struct Passes {
     if (serial) {
       std::fill(accx, accx + n, Real(0)), std::fill(accy, accy + n, Real(0));
       const bool t = track && net.damped;
-      if (net.damped) link_scatter<true, true>(net, st, 0, m, accx, accy, t, weight, power_link);
-      else link_scatter<true, false>(net, st, 0, m, accx, accy, false, weight, power_link);
+      if (net.damped)
+        link_scatter<true, true>(net, st, 0, m, accx, accy, t, weight, power_link);
+      else
+        link_scatter<true, false>(net, st, 0, m, accx, accy, false, weight, power_link);
       return;
     }
     forces(st, weight);
@@ -393,8 +395,10 @@ struct Passes {
         for (std::uint32_t e = net.offset[j]; e < net.offset[j + 1]; ++e) {
           const std::uint32_t code = net.incident[e];
           const std::uint32_t l = code >> 1;
-          if (code & 1u) sx -= fx[l], sy -= fy[l];
-          else sx += fx[l], sy += fy[l];
+          if (code & 1u)
+            sx -= fx[l], sy -= fy[l];
+          else
+            sx += fx[l], sy += fy[l];
         }
         accx[j] = sx, accy[j] = sy;
       }
@@ -413,9 +417,9 @@ struct Passes {
       par(n, [&](std::size_t j0, std::size_t j1) {
         auto run = [&]<bool Track>() {
           return euler_bodies<Field, Explicit, Track>(
-              j0, j1, x, y, vx, vy, diss_body, accx, accy, net.inv_mass.data(),
-              c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(), c.rest.data(),
-              c.gamma.data(), c.accel_x.data(), c.accel_y.data(), push[0], push[1], h);
+              j0, j1, x, y, vx, vy, diss_body, accx, accy, net.inv_mass.data(), c.stiffness.data(),
+              c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), c.gamma.data(), c.accel_x.data(),
+              c.accel_y.data(), push[0], push[1], h);
         };
         flag(track ? run.template operator()<true>() : run.template operator()<false>());
       });

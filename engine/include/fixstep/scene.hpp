@@ -56,6 +56,9 @@ struct Scene {
   /// [[spring]] tables.
   std::vector<BodyLink> links;
   std::vector<std::size_t> link_lines;  ///< line of each link's table (0 if not from a file)
+  /// Where each link was declared, for messages: "spring[3]" for a [[spring]] table,
+  /// "chain[0].link", "grid[1].shear", ... for generated links (empty if not from a file).
+  std::vector<std::string> link_keys;
   /// [world] allow_unstable: the stability guard warns instead of refusing (for demos that
   /// show blow-ups on purpose).
   bool allow_unstable = false;
