@@ -34,6 +34,7 @@
 #include <boost/numeric/odeint.hpp>
 #include <fmt/format.h>
 
+#include "flush_denormals.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/world.hpp"
@@ -308,26 +309,7 @@ void raw_step(SceneKind s, RawBodies<Real>& r, Integrator i) {
   else raw_step<true>(r, i);
 }
 
-/// Sets x86 flush-to-zero and denormals-are-zero for its scope, as World::step does.
-class FlushDenormals {
- public:
-  FlushDenormals() {
-#if defined(__x86_64__) || defined(__i386__)
-    saved_ = _mm_getcsr();
-    _mm_setcsr(saved_ | 0x8040u);
-#endif
-  }
-  ~FlushDenormals() {
-#if defined(__x86_64__) || defined(__i386__)
-    _mm_setcsr(saved_);
-#endif
-  }
-  FlushDenormals(const FlushDenormals&) = delete;
-  FlushDenormals& operator=(const FlushDenormals&) = delete;
-
- private:
-  unsigned saved_ = 0;
-};
+using fixstep::bench::FlushDenormals;
 
 // --- the naive baseline: array of heap objects, a virtual call per body -------------------
 

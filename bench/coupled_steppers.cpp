@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "flush_denormals.hpp"
 #include "coupled.hpp"
 #include "fixstep/world.hpp"
 
@@ -23,26 +24,7 @@ using fixstep::World;
 
 namespace {
 
-/// Sets x86 flush-to-zero and denormals-are-zero for its scope, as World::step does.
-class FlushDenormals {
- public:
-  FlushDenormals() {
-#if defined(__x86_64__) || defined(__i386__)
-    saved_ = _mm_getcsr();
-    _mm_setcsr(saved_ | 0x8040u);
-#endif
-  }
-  ~FlushDenormals() {
-#if defined(__x86_64__) || defined(__i386__)
-    _mm_setcsr(saved_);
-#endif
-  }
-  FlushDenormals(const FlushDenormals&) = delete;
-  FlushDenormals& operator=(const FlushDenormals&) = delete;
-
- private:
-  unsigned saved_ = 0;
-};
+using fixstep::bench::FlushDenormals;
 
 // --- fixstep ---------------------------------------------------------------------------
 

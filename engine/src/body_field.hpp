@@ -213,6 +213,34 @@ struct StepSizes {
   Real h{}, h1{}, h0{};
 };
 
+/// Calls step.template operator()<I, Decays>(decay0, decay1) for `method`, with the damping-flow
+/// factors it needs: Verlet one array (e^{-γh/2}), Forest–Ruth two (e^{-γ w1 h/2},
+/// e^{-γ w0 h/2}), the others none. One switch for the fused sweep and the multi-pass path.
+template <class Real, class Step>
+void dispatch(Integrator method, const Real* verlet_decay, const Real* fr_decay1,
+              const Real* fr_decay0, Step&& step) {
+  switch (method) {
+    case Integrator::semi_implicit_euler:
+      step.template operator()<Integrator::semi_implicit_euler, 0>(nullptr, nullptr);
+      break;
+    case Integrator::explicit_euler:
+      step.template operator()<Integrator::explicit_euler, 0>(nullptr, nullptr);
+      break;
+    case Integrator::velocity_verlet:
+      step.template operator()<Integrator::velocity_verlet, 1>(verlet_decay, nullptr);
+      break;
+    case Integrator::forest_ruth:
+      step.template operator()<Integrator::forest_ruth, 2>(fr_decay1, fr_decay0);
+      break;
+    case Integrator::rk4:
+      step.template operator()<Integrator::rk4, 0>(nullptr, nullptr);
+      break;
+    case Integrator::implicit_euler:
+      step.template operator()<Integrator::implicit_euler, 0>(nullptr, nullptr);
+      break;
+  }
+}
+
 /// One step of integrator I (see integrators.hpp) of one body. Track: adds the energy per unit
 /// mass (J/kg) its damping and drag dissipate in the step, integrated as the method integrates
 /// (see World::dissipated_energy), to diss; with Track off diss is never touched.

@@ -610,26 +610,7 @@ void World<Real>::step_multipass(const TickInput& input) {
           return out_of_range(X, Y, VX, VY);
         });
       };
-      switch (method) {
-        case Integrator::semi_implicit_euler:
-          fused.template operator()<Integrator::semi_implicit_euler, 0>(nullptr, nullptr);
-          break;
-        case Integrator::explicit_euler:
-          fused.template operator()<Integrator::explicit_euler, 0>(nullptr, nullptr);
-          break;
-        case Integrator::velocity_verlet:
-          fused.template operator()<Integrator::velocity_verlet, 1>(decay_h, nullptr);
-          break;
-        case Integrator::forest_ruth:
-          fused.template operator()<Integrator::forest_ruth, 2>(decay_h1, decay_h0);
-          break;
-        case Integrator::rk4:
-          fused.template operator()<Integrator::rk4, 0>(nullptr, nullptr);
-          break;
-        case Integrator::implicit_euler:
-          fused.template operator()<Integrator::implicit_euler, 0>(nullptr, nullptr);
-          break;
-      }
+      dispatch(method, decay_h, decay_h1, decay_h0, fused);
       continue;
     }
     switch (method) {

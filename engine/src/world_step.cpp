@@ -20,12 +20,12 @@ namespace {
 /// compiler that the arrays do not overlap, so it can vectorize the loop (see the -O3 note in
 /// engine/CMakeLists.txt). Pointers of parts the Field leaves out may be null. Inlined into
 /// one function per SimdLevel (below), which the compiler vectorizes for that level.
-#define FIXSTEP_SWEEP_PARAMS                                                                   \
-  std::size_t n, Real *__restrict x, Real *__restrict y, Real *__restrict vx,                  \
-      Real *__restrict vy, const Real *__restrict k, const Real *__restrict anchor_x,          \
-      const Real *__restrict anchor_y, const Real *__restrict rest,                            \
-      const Real *__restrict gamma, const Real *__restrict cx, const Real *__restrict cy,      \
-      const Real *__restrict decay0, const Real *__restrict decay1, const Real push[2], Step step
+#define FIXSTEP_SWEEP_PARAMS                                                                       \
+  std::size_t n, Real *__restrict x, Real *__restrict y, Real *__restrict vx, Real *__restrict vy, \
+      const Real *__restrict k, const Real *__restrict anchor_x, const Real *__restrict anchor_y,  \
+      const Real *__restrict rest, const Real *__restrict gamma, const Real *__restrict cx,        \
+      const Real *__restrict cy, const Real *__restrict decay0, const Real *__restrict decay1,     \
+      const Real push[2], Step step
 #define FIXSTEP_SWEEP_ARGS \
   n, x, y, vx, vy, k, anchor_x, anchor_y, rest, gamma, cx, cy, decay0, decay1, push, step
 
@@ -177,7 +177,7 @@ void World<Real>::step(const TickInput& input) {
   const Real push[2] = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)};
   const Real h = static_cast<Real>(settings_.dt / settings_.substeps);
   const Coefficients& c = coeff_;
-  const SpringShape shape = !c.spring        ? SpringShape::none
+  const SpringShape shape = !c.spring       ? SpringShape::none
                             : c.rest_length ? SpringShape::rest_length
                                             : SpringShape::linear;
   const std::size_t n = x_.size();
@@ -186,9 +186,10 @@ void World<Real>::step(const TickInput& input) {
   const SimdLevel level = simd_level();
   bool out_of_range = false;
   auto run = [&](auto field, const Real* decay0, const Real* decay1, auto step_fn) {
-    out_of_range |= sweep<decltype(field)>(level, n, x_.data(), y_.data(), vx_.data(), vy_.data(), c.stiffness.data(),
-                           c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), c.gamma.data(),
-                           c.accel_x.data(), c.accel_y.data(), decay0, decay1, push, step_fn);
+    out_of_range |= sweep<decltype(field)>(level, n, x_.data(), y_.data(), vx_.data(), vy_.data(),
+                                           c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(),
+                                           c.rest.data(), c.gamma.data(), c.accel_x.data(),
+                                           c.accel_y.data(), decay0, decay1, push, step_fn);
   };
 
   StepSizes<Real> sizes{h, static_cast<Real>(forest_ruth_w1 * double(h)),
@@ -197,37 +198,18 @@ void World<Real>::step(const TickInput& input) {
   // dissipation account; see step_multipass).
   auto integrate = [&]<Integrator I, int Decays>(const Real* decay0, const Real* decay1) {
     with_field<Real, Decays>(shape, c.damping, accel, [&](auto field) {
-      run(field, decay0, decay1,
-          [sizes](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
-            Real unused = 0;
-            body_step<I, false>(x, y, vx, vy, f, sizes, unused);
-          });
+      run(field, decay0, decay1, [sizes](Real& x, Real& y, Real& vx, Real& vy, const auto& f) {
+        Real unused = 0;
+        body_step<I, false>(x, y, vx, vy, f, sizes, unused);
+      });
     });
   };
   for (int s = 0; s < settings_.substeps; ++s) {
-    switch (settings_.integrator) {
-      case Integrator::semi_implicit_euler:
-        integrate.template operator()<Integrator::semi_implicit_euler, 0>(nullptr, nullptr);
-        break;
-      case Integrator::explicit_euler:
-        integrate.template operator()<Integrator::explicit_euler, 0>(nullptr, nullptr);
-        break;
-      case Integrator::velocity_verlet:
-        integrate.template operator()<Integrator::velocity_verlet, 1>(
-            c.damping ? damping_decay(0.5 * double(h)) : nullptr, nullptr);
-        break;
-      case Integrator::forest_ruth:
-        integrate.template operator()<Integrator::forest_ruth, 2>(
-            c.damping ? damping_decay(0.5 * double(sizes.h1)) : nullptr,
-            c.damping ? damping_decay(0.5 * double(sizes.h0)) : nullptr);
-        break;
-      case Integrator::rk4:
-        integrate.template operator()<Integrator::rk4, 0>(nullptr, nullptr);
-        break;
-      case Integrator::implicit_euler:
-        integrate.template operator()<Integrator::implicit_euler, 0>(nullptr, nullptr);
-        break;
-    }
+    const bool verlet = settings_.integrator == Integrator::velocity_verlet;
+    const bool fr = settings_.integrator == Integrator::forest_ruth;
+    dispatch(settings_.integrator, c.damping && verlet ? damping_decay(0.5 * double(h)) : nullptr,
+             c.damping && fr ? damping_decay(0.5 * double(sizes.h1)) : nullptr,
+             c.damping && fr ? damping_decay(0.5 * double(sizes.h0)) : nullptr, integrate);
   }
   ++tick_;
   if (out_of_range && !fault_) record_fault();
@@ -242,8 +224,12 @@ void World<Real>::record_fault() {
     for (int f = 0; f < 4; ++f) {
       const double v = static_cast<double>(fields[f][j]);
       if (!(std::abs(v) <= max_state_magnitude)) {
-        fault_ = StateFault{.index = j, .name = names_[j], .tick = tick_, .time = time(),
-                            .field = names[f], .value = v};
+        fault_ = StateFault{.index = j,
+                            .name = names_[j],
+                            .tick = tick_,
+                            .time = time(),
+                            .field = names[f],
+                            .value = v};
         return;
       }
     }
