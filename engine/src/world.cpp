@@ -1,11 +1,11 @@
 #include "fixstep/world.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 namespace fixstep {
 
@@ -45,8 +45,7 @@ template <class Real>
 void check_value(double v, bool ok_range, const std::string& who, const char* field,
                  const char* allowed) {
   if (!representable<Real>(v) || !ok_range) {
-    throw std::invalid_argument(
-        fmt::format("{}: {} must be {} (got {})", who, field, allowed, v));
+    throw std::invalid_argument(fmt::format("{}: {} must be {} (got {})", who, field, allowed, v));
   }
 }
 
@@ -67,12 +66,12 @@ void swap_pop(std::size_t i, Vs&... vs) {
 template <class Real>
 World<Real>::World(const WorldSettings& settings) : settings_(settings) {
   if (!representable<Real>(settings.dt) || settings.dt <= 0.0) {
-    throw std::invalid_argument(fmt::format("world: dt must be finite and > 0 s (got {})",
-                                            settings.dt));
+    throw std::invalid_argument(
+        fmt::format("world: dt must be finite and > 0 s (got {})", settings.dt));
   }
   if (settings.substeps < 1) {
-    throw std::invalid_argument(fmt::format("world: substeps must be >= 1 (got {})",
-                                            settings.substeps));
+    throw std::invalid_argument(
+        fmt::format("world: substeps must be >= 1 (got {})", settings.substeps));
   }
 }
 
@@ -88,8 +87,8 @@ std::string World<Real>::describe(Entity e) const {
 template <class Real>
 void World<Real>::require(Entity e) const {
   if (!bodies_.contains(e)) {
-    throw std::invalid_argument(fmt::format(
-        "entity {}:{} is null or was destroyed", e.index1, e.generation));
+    throw std::invalid_argument(
+        fmt::format("entity {}:{} is null or was destroyed", e.index1, e.generation));
   }
 }
 
@@ -111,8 +110,7 @@ void World<Real>::validate_component(const SpringDamper& c, const std::string& w
   check_vec<Real>(c.anchor, who, "spring.anchor");
   check_value<Real>(c.stiffness, c.stiffness >= 0.0, who, "spring.stiffness",
                     "finite and >= 0 N/m");
-  check_value<Real>(c.damping, c.damping >= 0.0, who, "spring.damping",
-                    "finite and >= 0 N*s/m");
+  check_value<Real>(c.damping, c.damping >= 0.0, who, "spring.damping", "finite and >= 0 N*s/m");
   check_value<Real>(c.rest_length, c.rest_length >= 0.0, who, "spring.rest_length",
                     "finite and >= 0 m");
 }
@@ -200,19 +198,20 @@ template <class Real>
 void World<Real>::validate_link(const LinkDef& def, const std::string& who) const {
   for (const Entity e : {def.body_a, def.body_b}) {
     if (!bodies_.contains(e)) {
-      throw std::invalid_argument(fmt::format("{}: body {}:{} is null or was destroyed", who,
-                                              e.index1, e.generation));
+      throw std::invalid_argument(
+          fmt::format("{}: body {}:{} is null or was destroyed", who, e.index1, e.generation));
     }
   }
   if (def.body_a == def.body_b) {
-    throw std::invalid_argument(
-        fmt::format("{}: both ends are {} (a link needs two different bodies)", who,
-                    describe(def.body_a)));
+    throw std::invalid_argument(fmt::format(
+        "{}: both ends are {} (a link needs two different bodies)", who, describe(def.body_a)));
   }
   const LinkSpring& s = def.spring;
-  check_value<Real>(s.stiffness, s.stiffness >= 0.0, who, "stiffness", "finite and >= 0 N/m");
-  check_value<Real>(s.damping, s.damping >= 0.0, who, "damping", "finite and >= 0 N*s/m");
-  check_value<Real>(s.rest_length, s.rest_length >= 0.0, who, "rest_length",
+  // isfinite first: an ordered comparison with NaN raises FE_INVALID (trapped in Debug tests).
+  auto nonnegative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  check_value<Real>(s.stiffness, nonnegative(s.stiffness), who, "stiffness", "finite and >= 0 N/m");
+  check_value<Real>(s.damping, nonnegative(s.damping), who, "damping", "finite and >= 0 N*s/m");
+  check_value<Real>(s.rest_length, nonnegative(s.rest_length), who, "rest_length",
                     "finite and >= 0 m");
   if (s.rest_length > 0.0) {
     const std::size_t a = bodies_.index(def.body_a), b = bodies_.index(def.body_b);
@@ -410,7 +409,8 @@ void World<Real>::for_each_energy(Add&& add) const {
     const double dx = double(x_[a]) - double(x_[b]), dy = double(y_[a]) - double(y_[b]);
     const double d2 = dx * dx + dy * dy;
     const double stretch = std::sqrt(d2) - l.spring.rest_length;
-    const double e = 0.5 * l.spring.stiffness * (l.spring.rest_length == 0.0 ? d2 : stretch * stretch);
+    const double e =
+        0.5 * l.spring.stiffness * (l.spring.rest_length == 0.0 ? d2 : stretch * stretch);
     add(a, &EnergyReport::spring, 0.5 * e);
     add(b, &EnergyReport::spring, 0.5 * e);
   }
@@ -428,7 +428,8 @@ void World<Real>::for_each_energy(Add&& add) const {
 
 template <class Real>
 void World<Real>::body_energies(std::span<double> out) const {
-  if (out.size() < body_count()) throw std::invalid_argument("World::body_energies: span too short");
+  if (out.size() < body_count())
+    throw std::invalid_argument("World::body_energies: span too short");
   std::fill_n(out.begin(), body_count(), 0.0);
   for_each_energy([&](std::size_t j, double EnergyReport::*, double joules) { out[j] += joules; });
 }
@@ -436,7 +437,8 @@ void World<Real>::body_energies(std::span<double> out) const {
 template <class Real>
 EnergyReport World<Real>::energy() const {
   EnergyReport e;
-  for_each_energy([&](std::size_t, double EnergyReport::*kind, double joules) { e.*kind += joules; });
+  for_each_energy(
+      [&](std::size_t, double EnergyReport::*kind, double joules) { e.*kind += joules; });
   return e;
 }
 
