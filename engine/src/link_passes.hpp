@@ -85,11 +85,11 @@ void link_scatter(const Net& net, StateView<Real> s, std::size_t l0, std::size_t
   }
 }
 
-/// Body j's link forces, gathered in link order, times 1/m: m/s².
+/// Body j's link forces summed in link order (the CSR list), N.
 template <class Real, class Net>
-[[gnu::always_inline]] inline void gather(const Net& net, const Real* fx, const Real* fy,
-                                          std::size_t j, Real& gx, Real& gy) {
-  Real sx(0), sy(0);
+[[gnu::always_inline]] inline void link_sum(const Net& net, const Real* fx, const Real* fy,
+                                            std::size_t j, Real& sx, Real& sy) {
+  sx = Real(0), sy = Real(0);
   for (std::uint32_t e = net.offset[j]; e < net.offset[j + 1]; ++e) {
     const std::uint32_t code = net.incident[e];
     const std::uint32_t l = code >> 1;
@@ -98,6 +98,14 @@ template <class Real, class Net>
     else
       sx += fx[l], sy += fy[l];
   }
+}
+
+/// Body j's link forces, gathered in link order, times 1/m: m/s².
+template <class Real, class Net>
+[[gnu::always_inline]] inline void gather(const Net& net, const Real* fx, const Real* fy,
+                                          std::size_t j, Real& gx, Real& gy) {
+  Real sx, sy;
+  link_sum(net, fx, fy, j, sx, sy);
   gx = net.inv_mass[j] * sx, gy = net.inv_mass[j] * sy;
 }
 
@@ -237,18 +245,7 @@ struct Passes {
     }
     forces(st, weight);
     par(n, [&](std::size_t j0, std::size_t j1) {
-      for (std::size_t j = j0; j < j1; ++j) {
-        Real sx(0), sy(0);
-        for (std::uint32_t e = net.offset[j]; e < net.offset[j + 1]; ++e) {
-          const std::uint32_t code = net.incident[e];
-          const std::uint32_t l = code >> 1;
-          if (code & 1u)
-            sx -= fx[l], sy -= fy[l];
-          else
-            sx += fx[l], sy += fy[l];
-        }
-        accx[j] = sx, accy[j] = sy;
-      }
+      for (std::size_t j = j0; j < j1; ++j) link_sum(net, fx, fy, j, accx[j], accy[j]);
     });
   }
 
