@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <cmath>
+#include <initializer_list>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -257,6 +258,22 @@ TEST(Links, ImplicitNetworkSolveMatchesTheAnchoredSpring) {
   }
 }
 
+/// An integrator, a step h (s) and its theoretical order, for the order tests.
+struct OrderCase {
+  Integrator method;
+  double h, order;
+};
+
+/// Expects log2(error(h) / error(h/2)) within 0.15 of each case's order; error(method, h) in m.
+template <class Error>
+void expect_orders(std::initializer_list<OrderCase> cases, Error&& error, const char* what) {
+  for (const OrderCase& c : cases) {
+    const double coarse = error(c.method, c.h), fine = error(c.method, c.h / 2);
+    EXPECT_NEAR(std::log2(coarse / fine), c.order, 0.15)
+        << integrator_name(c.method) << " (" << what << "): " << coarse << " -> " << fine << " m";
+  }
+}
+
 /// Largest position error (m) over the bodies of a damped 6-body chain under gravity after
 /// 2 s at step h, against exact::LinearNetwork.
 double chain_error(Integrator method, double h, double alpha = 0.02) {
@@ -280,31 +297,19 @@ double chain_error(Integrator method, double h, double alpha = 0.02) {
 // Each integrator keeps its order on a coupled, damped system (links with damping
 // proportional to stiffness, so the chain has an exact modal solution).
 TEST(Links, EveryIntegratorReachesItsOrderOnADampedChain) {
-  struct Case {
-    Integrator method;
-    double h, order;
-  };
-  for (const Case& c :
-       {Case{Integrator::semi_implicit_euler, 1.0 / 200, 1.0},
-        Case{Integrator::explicit_euler, 1.0 / 400, 1.0},
-        Case{Integrator::velocity_verlet, 1.0 / 100, 2.0}, Case{Integrator::rk4, 1.0 / 50, 4.0},
-        Case{Integrator::implicit_euler, 1.0 / 400, 1.0},
-        Case{Integrator::forest_ruth, 1.0 / 50, 4.0}}) {
-    const double coarse = chain_error(c.method, c.h), fine = chain_error(c.method, c.h / 2);
-    const double observed = std::log2(coarse / fine);
-    EXPECT_NEAR(observed, c.order, 0.15)
-        << integrator_name(c.method) << ": " << coarse << " -> " << fine << " m";
-    RecordProperty(std::string(integrator_name(c.method)), std::to_string(observed));
-  }
+  expect_orders(
+      {{Integrator::semi_implicit_euler, 1.0 / 200, 1.0},
+       {Integrator::explicit_euler, 1.0 / 400, 1.0},
+       {Integrator::velocity_verlet, 1.0 / 100, 2.0},
+       {Integrator::rk4, 1.0 / 50, 4.0},
+       {Integrator::implicit_euler, 1.0 / 400, 1.0},
+       {Integrator::forest_ruth, 1.0 / 50, 4.0}},
+      [](Integrator m, double h) { return chain_error(m, h); }, "damped chain");
   // Heavily damped links (ζ of the fastest mode about 0.8): the damping flow's Taylor
   // polynomial must be of fourth order for the split methods to keep theirs.
-  for (const Case& c : {Case{Integrator::velocity_verlet, 1.0 / 100, 2.0},
-                        Case{Integrator::forest_ruth, 1.0 / 50, 4.0}}) {
-    const double coarse = chain_error(c.method, c.h, 0.15);
-    const double fine = chain_error(c.method, c.h / 2, 0.15);
-    EXPECT_NEAR(std::log2(coarse / fine), c.order, 0.15)
-        << integrator_name(c.method) << " (heavy damping): " << coarse << " -> " << fine << " m";
-  }
+  expect_orders(
+      {{Integrator::velocity_verlet, 1.0 / 100, 2.0}, {Integrator::forest_ruth, 1.0 / 50, 4.0}},
+      [](Integrator m, double h) { return chain_error(m, h, 0.15); }, "heavy damping");
 }
 
 /// A rest-length network (nonlinear: no exact solution): 5 bodies under gravity, body 0 on an
@@ -384,20 +389,13 @@ TEST(Links, EveryIntegratorReachesItsOrderOnARestLengthNetwork) {
     }
     return worst;
   };
-  struct Case {
-    Integrator method;
-    double h, order;
-  };
-  for (const Case& k :
-       {Case{Integrator::semi_implicit_euler, 1.0 / 400, 1.0},
-        Case{Integrator::explicit_euler, 1.0 / 1600, 1.0},
-        Case{Integrator::velocity_verlet, 1.0 / 200, 2.0}, Case{Integrator::rk4, 1.0 / 100, 4.0},
-        Case{Integrator::implicit_euler, 1.0 / 400, 1.0},
-        Case{Integrator::forest_ruth, 1.0 / 100, 4.0}}) {
-    const double coarse = error(k.method, k.h), fine = error(k.method, k.h / 2);
-    EXPECT_NEAR(std::log2(coarse / fine), k.order, 0.15)
-        << integrator_name(k.method) << ": " << coarse << " -> " << fine << " m";
-  }
+  expect_orders({{Integrator::semi_implicit_euler, 1.0 / 400, 1.0},
+                 {Integrator::explicit_euler, 1.0 / 1600, 1.0},
+                 {Integrator::velocity_verlet, 1.0 / 200, 2.0},
+                 {Integrator::rk4, 1.0 / 100, 4.0},
+                 {Integrator::implicit_euler, 1.0 / 400, 1.0},
+                 {Integrator::forest_ruth, 1.0 / 100, 4.0}},
+                error, "rest-length network");
 }
 
 /// (E + E_dissipated - E0)/|E0| after t_end of a damped chain at step h.
