@@ -35,6 +35,7 @@
 #include "coupled.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/world.hpp"
+#include "median_run.hpp"
 
 using namespace fixstep;
 using namespace coupled;
@@ -273,10 +274,7 @@ class Collector : public benchmark::ConsoleReporter {
   void ReportRuns(const std::vector<Run>& runs) override {
     ConsoleReporter::ReportRuns(runs);
     for (const Run& r : runs) {
-      if (r.error_occurred) continue;
-      const bool aggregate = r.run_type == Run::RT_Aggregate;
-      if (aggregate && r.aggregate_name != "median") continue;
-      if (!aggregate && r.repetitions > 1) continue;
+      if (!fixstep::bench::median_or_single(r)) continue;
       repetitions = std::max(repetitions, int(r.repetitions));
       const double ns =
           r.GetAdjustedRealTime() * (r.time_unit == benchmark::kMicrosecond ? 1e3 : 1.0);

@@ -34,6 +34,7 @@
 #include <boost/numeric/odeint.hpp>
 #include <fmt/format.h>
 
+#include "median_run.hpp"
 #include "flush_denormals.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/simd.hpp"
@@ -753,10 +754,7 @@ class Collector : public benchmark::ConsoleReporter {
   void ReportRuns(const std::vector<Run>& runs) override {
     ConsoleReporter::ReportRuns(runs);
     for (const Run& r : runs) {
-      if (r.error_occurred) continue;
-      const bool aggregate = r.run_type == Run::RT_Aggregate;
-      if (aggregate && r.aggregate_name != "median") continue;
-      if (!aggregate && r.repetitions > 1) continue;
+      if (!fixstep::bench::median_or_single(r)) continue;
       Result res;
       res.ns = r.GetAdjustedRealTime() * (r.time_unit == benchmark::kMillisecond ? 1e6 : 1.0);
       if (auto it = r.counters.find("N"); it != r.counters.end()) res.n = it->second.value;
