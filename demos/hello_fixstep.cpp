@@ -48,14 +48,14 @@ int main(int argc, char** argv) {
     //    whole ticks of dt; each frame draws the state interpolated by alpha.
     FixedStepLoop loop(LoopSettings{.dt = settings.dt});
     const VirtualClock clock(60.0);
-    Snapshot snapshot;
+    RenderFrame drawn;
     for (int frame = 0; frame < 90; ++frame) {
       if (frame > 0) loop.advance(clock.frame_seconds(), {}, [&](const TickInput& in) { sim.step(in); });
-      sim.snapshot(loop.alpha(), snapshot);
+      sim.fill_render_frame(loop.alpha(), drawn);
       const std::vector<std::string> hud = {
           fmt::format("hello_fixstep   tick {}   t = {:.2f} s", sim.tick(), sim.time()),
           fmt::format("energy {:.3f} J", sim.energy().total())};
-      renderer.draw(snapshot, hud);
+      renderer.draw(drawn, hud);
       write_png(frame_path(out, frame), renderer.width(), renderer.height(), renderer.pixels());
     }
     fmt::print("wrote 90 frames to {}/ (ticks={}, t={:.2f} s)\n", out, sim.tick(), sim.time());

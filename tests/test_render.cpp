@@ -25,7 +25,7 @@ bool near(Pixel p, Rgba8 c, int tol) {
 TEST(Render, FrameHasTheRequestedSizeAndIsOpaque) {
   Renderer r(320, 200);
   EXPECT_FALSE(r.gl_renderer().empty());
-  Snapshot empty;
+  RenderFrame empty;
   r.draw(empty, {});
   ASSERT_EQ(r.pixels().size(), 320u * 200u * 4u);
   for (std::size_t i = 3; i < r.pixels().size(); i += 4) ASSERT_EQ(r.pixels()[i], 255);
@@ -42,8 +42,8 @@ TEST(Render, BodyIsDrawnWhereItsPositionMaps) {
   d.body.position = {2.0, 1.0};
   d.appearance = Appearance{.radius = 0.5, .color = {255, 0, 0, 255}};
   sim.create_body(d);
-  Snapshot s;
-  sim.snapshot(0.0, s);
+  RenderFrame s;
+  sim.fill_render_frame(0.0, s);
   r.draw(s, {});
   const auto p = r.to_pixel(2.0, 1.0);
   EXPECT_DOUBLE_EQ(p[0], 224.0);
@@ -63,15 +63,15 @@ TEST(Render, InterpolatesBetweenTicksWithAlpha) {
   sim.create_body(d);
   sim.set_keep_previous(true);
   sim.step();  // x: 0 -> 4
-  Snapshot s;
-  sim.snapshot(0.25, s);
+  RenderFrame s;
+  sim.fill_render_frame(0.25, s);
   EXPECT_FLOAT_EQ(s.x[0], 1.0f);
 }
 
 TEST(Render, HudTextAndSpringAreDrawn) {
   Renderer r(400, 200);
   r.set_camera(Camera{.center = {0, 0}, .width = 20.0});
-  Snapshot s;
+  RenderFrame s;
   s.x = {5.0f};
   s.y = {0.0f};
   s.radius = {0.0f};
@@ -98,12 +98,12 @@ TEST(Render, LinksAreZigzagsWhenFewAndThinLinesWhenMany) {
   auto draw = [](std::size_t links) {
     auto r = std::make_unique<Renderer>(400, 200);
     r->set_camera(Camera{.center = {0, 0}, .width = 20.0});
-    Snapshot s;
+    RenderFrame s;
     s.x = {-5.0f, 5.0f};
     s.y = {0.0f, 0.0f};
     s.radius = {0.0f, 0.0f};
     s.color = {Rgba8{0, 0, 0, 0}, Rgba8{0, 0, 0, 0}};
-    s.links.assign(links, Snapshot::LinkLine{0, 1});
+    s.links.assign(links, RenderFrame::LinkLine{0, 1});
     r->draw(s, {});
     return r;
   };

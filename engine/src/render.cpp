@@ -463,7 +463,7 @@ void Renderer::clear_trails() {
   trail_head_ = 0;
 }
 
-void Renderer::record_trails(const Snapshot& s) {
+void Renderer::record_trails(const RenderFrame& s) {
   const std::size_t n = s.x.size();
   if (n != trail_bodies_) {
     trail_bodies_ = n;
@@ -520,7 +520,7 @@ void simplify_polyline(std::vector<Renderer::PolylinePoint>& points, float toler
 
 }  // namespace
 
-void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
+void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines) {
   begin(background);
   record_trails(s);
   grid();
@@ -580,7 +580,7 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
 
   // Links (springs between bodies): zigzags like the anchored springs when there are few,
   // thin straight lines when there are many (a cloth's zigzags would merge into felt).
-  for (const Snapshot::LinkLine& l : s.links) {
+  for (const RenderFrame::LinkLine& l : s.links) {
     const auto a = to_pixel(s.x[l.a], s.y[l.a]);
     const auto b = to_pixel(s.x[l.b], s.y[l.b]);
     if (few_links) {
@@ -590,7 +590,7 @@ void Renderer::draw(const Snapshot& s, std::span<const std::string> hud_lines) {
     }
   }
 
-  for (const Snapshot::SpringLine& sp : s.springs) {
+  for (const RenderFrame::SpringLine& sp : s.springs) {
     const auto a = to_pixel(sp.anchor_x, sp.anchor_y);
     const auto b = to_pixel(s.x[sp.body], s.y[sp.body]);
     const float ax = float(a[0]), ay = float(a[1]);

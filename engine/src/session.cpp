@@ -147,7 +147,7 @@ void Session::restart() {
 }
 
 void Session::draw() {
-  sim_->snapshot(loop_.alpha(), snapshot_);
+  sim_->fill_render_frame(loop_.alpha(), frame_);
   const double e = sim_->energy().total();
   const std::string file = std::filesystem::path(scene_.file).filename().string();
   hud_.clear();
@@ -174,7 +174,7 @@ void Session::draw() {
     hud_.push_back(fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
     hud_.push_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
   }
-  renderer_.draw(snapshot_, hud_);
+  renderer_.draw(frame_, hud_);
 }
 
 }  // namespace fixstep

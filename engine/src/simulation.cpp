@@ -58,7 +58,7 @@ Body Simulation::body_at(std::size_t i) const {
   return visit([&](const auto& w) { return w.body(w.entities()[i]); });
 }
 
-void Simulation::snapshot(double alpha, Snapshot& out) const {
+void Simulation::fill_render_frame(double alpha, RenderFrame& out) const {
   visit([&](const auto& w) {
     const std::size_t n = w.body_count();
     out.x.resize(n);

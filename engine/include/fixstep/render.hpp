@@ -34,7 +34,7 @@ struct Camera {
 inline constexpr int min_frame_size = 16;
 inline constexpr int max_frame_size = 8192;
 
-/// Draws Snapshots with OSMesa (Mesa's software GL, core profile 3.3+).
+/// Draws RenderFrames with OSMesa (Mesa's software GL, core profile 3.3+).
 ///
 /// Shapes: pixels() is height rows of width RGBA8 pixels (4 bytes each, straight alpha,
 /// alpha = 255 everywhere), the TOP row first — ready for PNG and SDL textures.
@@ -64,7 +64,7 @@ class Renderer {
   /// cloth) they are thin straight lines and no trails are drawn. Each call also appends the
   /// bodies' positions to their trails (one sample per frame). Implemented with the canvas
   /// calls below: begin(), primitives, finish().
-  void draw(const Snapshot& snapshot, std::span<const std::string> hud_lines);
+  void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
   /// Most links drawn as zigzags, with trails (see draw()).
   static constexpr std::size_t max_zigzag_links = 40;
   /// Forgets the trails (after a restart or a jump).
@@ -157,7 +157,7 @@ class Renderer {
   template <class Transform>
   void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
   void grid();
-  void record_trails(const Snapshot& s);
+  void record_trails(const RenderFrame& s);
 
   int width_, height_;
   std::vector<std::uint8_t> pixels_;

@@ -60,7 +60,7 @@ class Session {
   std::unique_ptr<Simulation> sim_;
   FixedStepLoop loop_;
   Renderer renderer_;
-  Snapshot snapshot_;
+  RenderFrame frame_;
   std::vector<std::string> hud_;
   std::vector<std::string> fault_lines_;  ///< the runtime guard's message for the HUD, once built
   double initial_energy_ = 0.0;

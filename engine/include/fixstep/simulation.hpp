@@ -11,8 +11,10 @@
 
 namespace fixstep {
 
-/// What the renderer needs of one moment of the world, in float (pixels need no more).
-struct Snapshot {
+/// What the renderer needs of one moment of the world, in float (pixels need no more): the
+/// positions interpolated between the last two ticks, appearances and lines. Drawing data only,
+/// not a restorable state (a snapshot, in game-physics terms, is one).
+struct RenderFrame {
   struct SpringLine {
     float anchor_x = 0, anchor_y = 0;  ///< m
     std::uint32_t body = 0;            ///< index into x / y
@@ -68,7 +70,7 @@ class Simulation {
   /// Fills out with positions lerp(previous, current, alpha) (alpha in [0, 1]; needs
   /// set_keep_previous(true) to differ from the current state) and appearances. Reuses out's
   /// storage: no allocation once it has grown to the body count.
-  void snapshot(double alpha, Snapshot& out) const;
+  void fill_render_frame(double alpha, RenderFrame& out) const;
 
  private:
   std::variant<World<float>, World<double>> world_;
