@@ -37,6 +37,7 @@
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
+#include "../tests/scene_session.hpp"
 
 // The naive baseline: stb_image_write exactly as fixstep used it before libdeflate (built-in
 // deflate at stb's default level 8, default filter choice). This copy is private to this file
@@ -129,7 +130,7 @@ std::uintmax_t bytes_in(const std::filesystem::path& dir) {
 enum class Mode { render_only, naive_stb, fast_sync, shipped };
 
 void capture(benchmark::State& state, const std::string& scene_name, Mode mode) {
-  Session session(scene_named(scene_name), width, height);
+  Session session = testing::scene_session(scene_named(scene_name), width, height);
   const VirtualClock clock(60.0);
   for (int f = 0; f < warm_frames; ++f) {  // untimed: fill the trails
     if (f > 0) session.advance(clock.frame_seconds());
@@ -173,7 +174,7 @@ void capture(benchmark::State& state, const std::string& scene_name, Mode mode) 
 /// One frame of the 1000-body scene (frame 105: trails full), for the encoder table.
 const std::vector<std::uint8_t>& sample_frame() {
   static const std::vector<std::uint8_t> frame = [] {
-    Session session(many_bodies(1000), width, height);
+    Session session = testing::scene_session(many_bodies(1000), width, height);
     const VirtualClock clock(60.0);
     for (int f = 0; f <= warm_frames + clip_frames; ++f) {
       if (f > 0) session.advance(clock.frame_seconds());

@@ -26,6 +26,7 @@
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
+#include "scene_session.hpp"
 #include "fixstep/simd.hpp"
 
 namespace fixstep {
@@ -181,7 +182,7 @@ TEST(Determinism, HeadlessSessionReachesTheSameState) {
   for (const char* file : {"default.toml", "projectile.toml", "spring_damper.toml"}) {
     const Case c{file, load_scene(scenes_dir / file).world.integrator,
                  load_scene(scenes_dir / file).precision};
-    Session session(scene_for(c), 64, 64);
+    Session session = testing::scene_session(scene_for(c), 64, 64);
     const VirtualClock clock(60.0);
     std::uint64_t frames = 0;
     while (session.simulation().tick() < 120) {

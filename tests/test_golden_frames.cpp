@@ -29,6 +29,7 @@
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
+#include "scene_session.hpp"
 
 namespace fixstep {
 namespace {
@@ -49,7 +50,7 @@ bool refreshing() {
 /// The frames `fixstep render SCENE --size 640x360` writes as frame_NNNNNN.png for the golden
 /// frame numbers (the same Session, virtual clock and drawing).
 std::vector<std::vector<std::uint8_t>> render(const Scene& scene) {
-  Session session(scene, width, height);
+  Session session = testing::scene_session(scene, width, height);
   const VirtualClock clock(60.0);
   std::vector<std::vector<std::uint8_t>> frames;
   for (std::uint64_t f = 0; f <= golden_frame_numbers[std::size(golden_frame_numbers) - 1]; ++f) {

@@ -7,6 +7,7 @@
 
 #include "fixstep/render.hpp"
 #include "fixstep/session.hpp"
+#include "scene_session.hpp"
 
 namespace fixstep {
 namespace {
@@ -137,7 +138,7 @@ pin = [0]
 pin_spring = { stiffness = 1000 }
 )",
                                  "rope.toml");
-  const Camera c = fit_camera(rope, 1600, 900);
+  const Camera c = fit_camera(world_def(rope), 1600, 900);
   EXPECT_NEAR(c.center.x, 0.0, 1e-9);
   EXPECT_NEAR(c.center.y, 0.0, 1e-9);
   EXPECT_NEAR(c.width, 20.0 * (16.0 / 9.0) * 1.15, 1e-9);  // the 20 m height sets the width
@@ -145,7 +146,7 @@ pin_spring = { stiffness = 1000 }
   Scene both = rope;
   both.bodies[10].spring = both.bodies[0].spring;
   both.bodies[10].spring->anchor = both.bodies[10].body.position;
-  const Camera b = fit_camera(both, 1600, 900);
+  const Camera b = fit_camera(world_def(both), 1600, 900);
   EXPECT_NEAR(b.center.x, 5.0, 1e-9);
   EXPECT_NEAR(b.width, 10.0 * 1.15, 1e-9);
 }
@@ -158,7 +159,8 @@ TEST(Render, RejectsImpossibleSizes) {
 TEST(Render, SessionFramesAreReproducible) {
   // Two sessions of the same scene produce the same pixels frame for frame (virtual clock).
   const Scene scene = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml");
-  Session a(scene, 160, 90), b(scene, 160, 90);
+  Session a = testing::scene_session(scene, 160, 90);
+  Session b = testing::scene_session(scene, 160, 90);
   for (int f = 0; f < 5; ++f) {
     a.advance(1.0 / 60);
     b.advance(1.0 / 60);

@@ -9,7 +9,7 @@
 
 #include "fixstep/exact.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/scene_stability.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "fixstep/scene.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/scene_stability.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
+#include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
 #include <stdexcept>
@@ -262,11 +263,20 @@ int run_command(const RunOptions& o) {
   return 0;
 }
 
+Session open_session(const Scene& scene, int width, int height) {
+  return Session(world_def(scene),
+                 SessionSettings{.width = width,
+                                 .height = height,
+                                 .title = std::filesystem::path(scene.file).filename().string(),
+                                 .view_center = scene.view.center,
+                                 .view_width = scene.view.width});
+}
+
 int render_command(const RenderOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   prepare_output_dir(o.out);
-  Session session(scene, width, height);
+  Session session = open_session(scene, width, height);
   const VirtualClock clock(o.fps);
   const auto frames = static_cast<std::uint64_t>(o.frames);
   // Frame f is encoded and written on the writer's thread while frame f + 1 renders here.

@@ -7,6 +7,7 @@
 
 #include <fixstep/capture.hpp>
 #include <fixstep/scene.hpp>
+#include <fixstep/session.hpp>
 
 namespace fixstep::cli {
 
@@ -68,6 +69,9 @@ std::string describe(const Scene& scene);
 /// Loads the scene, applies the overrides, runs the stability guard (throws SceneError for an
 /// unstable body) and prints the warnings of both to stderr.
 Scene load_with_overrides(const SceneOptions& options);
+
+/// The frame pipeline for a scene: its world, its [view] and its file name in the HUD.
+[[nodiscard]] Session open_session(const Scene& scene, int width, int height);
 
 int run_command(const RunOptions& options);
 int render_command(const RenderOptions& options);

@@ -4,7 +4,7 @@
 #include <thread>
 
 #include <fixstep/session.hpp>
-#include <fixstep/stability.hpp>
+#include <fixstep/scene_stability.hpp>
 #include <fixstep/window.hpp>
 #include <fmt/format.h>
 
@@ -17,7 +17,7 @@ int view_command(const ViewOptions& o) {
   const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.
   Window window(fmt::format("fixstep - {}", scene.file), width, height);
-  Session session(scene, width, height);
+  Session session = open_session(scene, width, height);
   session.set_show_controls(true);
 
   // Arrow keys push every body at half a view-width per s² (visible at any scene scale).

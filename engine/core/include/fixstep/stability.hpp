@@ -19,10 +19,9 @@
 
 #include "fixstep/components.hpp"
 #include "fixstep/integrators.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
-
-struct Scene;
 
 /// Spectral radius of one step of size h (s) of `integrator` on x'' = -ω² x - γ x', with
 /// omega in rad/s and gamma in 1/s (both >= 0). Dimensionless; > 1 means growth per step.
@@ -39,22 +38,28 @@ enum class Stability {
   unstable,    ///< ρ > 1: refused unless allow_unstable
 };
 
-/// The guard's finding for one body of a scene.
+/// The guard's finding for one body.
 struct BodyStability {
-  std::size_t body = 0;   ///< index into Scene::bodies
+  std::size_t body = 0;   ///< index into the bodies checked
   double omega = 0.0;     ///< rad/s
   double gamma = 0.0;     ///< 1/s
   double h = 0.0;         ///< step = dt / substeps, s
   double max_step = 0.0;  ///< largest stable step, s (inf: none needed)
   double radius = 0.0;    ///< spectral radius at h
-  int min_substeps = 0;   ///< smallest stable substep count for the scene's dt; 0 = none
+  int min_substeps = 0;   ///< smallest stable substep count for dt; 0 = none
   Stability verdict = Stability::stable;
-  std::string message;  ///< empty when stable
+  /// Empty when stable; otherwise the finding, e.g. "body 'bob' is unstable with rk4 at dt =
+  /// 0.1 s and substeps = 1: ω·h = 3.162 exceeds the stability bound 2.785 (...)". States the
+  /// fault only: what to change (min_substeps, max_step) is the caller's to word.
+  std::string message;
 };
 
-/// Checks every body with a spring or damping at the scene's dt, integrator and substeps, each
-/// on its own (links are ignored here: enforce_stability judges linked bodies as a network).
-[[nodiscard]] std::vector<BodyStability> check_stability(const Scene& scene);
+/// Checks every body with a spring or damping at step dt / substeps (dt in s, substeps >= 1) of
+/// `integrator`, each on its own (links are ignored here: check_linked_stability judges the
+/// bodies links join as a network). Returns one finding per such body, in order.
+[[nodiscard]] std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies,
+                                                         Integrator integrator, double dt,
+                                                         int substeps);
 
 /// Spectral radius of one step of size h (s) of `integrator` on the mode q'' = -ω² q - γ q'
 /// of a network (omega rad/s, gamma 1/s, both >= 0) as World steps it. With damped_links,
@@ -127,30 +132,29 @@ struct NetworkStability {
                                                        Integrator integrator, double dt,
                                                        int substeps);
 
-/// check_network_stability for the bodies of `scene` that some link joins (all its links,
-/// scene.links' indices; fastest_body is an index into scene.bodies), at the scene's dt,
-/// integrator and substeps; std::nullopt when the scene has no links.
-[[nodiscard]] std::optional<NetworkStability> check_scene_network(const Scene& scene);
+/// Which of `body_count` bodies some link joins. Throws std::invalid_argument for a link whose
+/// body index is out of range.
+[[nodiscard]] std::vector<bool> linked_bodies(std::size_t body_count,
+                                              std::span<const BodyLink> links);
 
-struct StateFault;
+/// check_network_stability for the bodies some link joins (links by index into `bodies`, as
+/// World::create_link takes them; fastest_body is an index into `bodies`); std::nullopt when
+/// there are no links. Throws as check_network_stability and linked_bodies.
+[[nodiscard]] std::optional<NetworkStability> check_linked_stability(
+    std::span<const BodyDef> bodies, std::span<const BodyLink> links, Integrator integrator,
+    double dt, int substeps);
 
-/// The runtime guard's message for `fault` in a simulation built from `scene` (bodies in scene
-/// order), one line:
-///   "FILE:LINE: body[i] \"name\": state left the finite range at tick N (t = T s): vx = inf
-///    m/s (allowed |value| <= 1e12). Likely cause: ..."
-/// The likely cause comes from the stability guard for that body at the scene's dt, integrator
-/// and substeps (for a body that a link joins, the network's finding, check_scene_network): ω·h
-/// beyond the integrator's bound (with the substep count that would be stable), explicit Euler on
-/// an undamped spring (unstable at every step), or, when the body's step is stable, a force that
-/// drives the motion (gravity, a constant force, a push) or extreme starting values.
-[[nodiscard]] std::string explain_fault(const Scene& scene, const StateFault& fault);
-
-/// Applies the guard at scene load: throws SceneError (file, the body's line, key "body[i]")
-/// for the first unstable body unless the scene sets allow_unstable = true, in which case the
-/// error becomes a warning. Bodies that links join are judged by check_scene_network instead,
-/// after the others: its error names the stiffest link's line and key "spring[i]" (the
-/// strongest damper's when the damping flow binds; the fastest body's "body[i]" without
-/// either). Returns the warnings (near-limit bodies and networks, allowed instabilities).
-std::vector<std::string> enforce_stability(const Scene& scene);
+/// The runtime guard's message for `fault` (World::fault()) in a world built from `bodies` and
+/// `links` (in creation order) with `settings`, one line:
+///   "body[i] \"name\": state left the finite range at tick N (t = T s): vx = inf m/s
+///    (allowed |value| <= 1e12). Likely cause: ..."
+/// The likely cause comes from the stability guard for that body at settings' dt, integrator
+/// and substeps (for a body that a link joins, the network's finding, check_linked_stability):
+/// ω·h beyond the integrator's bound (with "stable from substeps = N (dt <= H s)"), explicit
+/// Euler on an undamped spring (unstable at every step), or, when the body's step is stable, a
+/// force that drives the motion (gravity, a constant force, a push) or extreme starting values.
+[[nodiscard]] std::string explain_fault(std::span<const BodyDef> bodies,
+                                        std::span<const BodyLink> links,
+                                        const WorldSettings& settings, const StateFault& fault);
 
 }  // namespace fixstep

@@ -25,7 +25,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "fixstep/scene.hpp"
 #include "fixstep/stability.hpp"
 #include "fixstep/world.hpp"
 #include "stability_internal.hpp"
@@ -298,7 +297,7 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
     r.radius = infinity;
     r.message = fmt::format(
         "{} has stiffness or damping per mass beyond the range of a double, so no integrator "
-        "and no step can follow it. Use larger masses or smaller stiffnesses, dampings or drags",
+        "and no step can follow it",
         network);
     return r;
   }
@@ -358,15 +357,13 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
       r.message = fmt::format(
           "{} is unstable with {} at dt = {:g} s and substeps = {}: {} = {:.4g} exceeds the {} "
           "{:.4g} ({}; ω_max = {:.4g} rad/s, γ = {:.4g} 1/s, λ_max(M⁻¹C) = {:.4g} 1/s; growth "
-          "{:.6g}x per step). Use substeps = {} in [world] (or dt <= {:.4g} s), or set "
-          "allow_unstable = true",
+          "{:.6g}x per step)",
           network, method, dt, substeps, what, rate * r.h, bound_name, rate * b.max_step, naming,
-          r.omega_max, r.gamma, r.damping_rate, r.radius, r.min_substeps, r.max_step * substeps);
+          r.omega_max, r.gamma, r.damping_rate, r.radius);
     } else {
       r.message = fmt::format(
           "{} is unstable with {} at every dt: its energy grows each step ({} = {:.4g}, growth "
-          "{:.6g}x per step; {}). Choose semi_implicit_euler, velocity_verlet, rk4, "
-          "implicit_euler or forest_ruth, or set allow_unstable = true",
+          "{:.6g}x per step; {})",
           network, method, what, rate * r.h, r.radius, naming);
     }
   } else if (r.h > stability_margin * r.max_step) {
@@ -377,38 +374,37 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
   return r;
 }
 
-namespace detail {
-
-std::vector<bool> linked_bodies(const Scene& scene) {
-  std::vector<bool> linked(scene.bodies.size(), false);
-  for (std::size_t l = 0; l < scene.links.size(); ++l) {
-    const BodyLink& link = scene.links[l];
-    if (link.body_a >= linked.size() || link.body_b >= linked.size()) {
-      throw std::invalid_argument(
-          fmt::format("{}: spring[{}]: body index out of range", scene.file, l));
+std::vector<bool> linked_bodies(std::size_t body_count, std::span<const BodyLink> links) {
+  std::vector<bool> linked(body_count, false);
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const BodyLink& link = links[l];
+    if (link.body_a >= body_count || link.body_b >= body_count) {
+      throw std::invalid_argument(fmt::format(
+          "link[{}]: body index out of range ({} and {} of {} bodies)", l, link.body_a,
+          link.body_b, body_count));
     }
     linked[link.body_a] = linked[link.body_b] = true;
   }
   return linked;
 }
 
-}  // namespace detail
-
-std::optional<NetworkStability> check_scene_network(const Scene& scene) {
-  if (scene.links.empty()) return std::nullopt;
-  const std::vector<bool> linked = detail::linked_bodies(scene);
-  std::vector<std::size_t> index(scene.bodies.size()), order;
+std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> all_bodies,
+                                                       std::span<const BodyLink> all_links,
+                                                       Integrator integrator, double dt,
+                                                       int substeps) {
+  if (all_links.empty()) return std::nullopt;
+  const std::vector<bool> linked = linked_bodies(all_bodies.size(), all_links);
+  std::vector<std::size_t> index(all_bodies.size()), order;
   std::vector<BodyDef> bodies;
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+  for (std::size_t i = 0; i < all_bodies.size(); ++i) {
     if (!linked[i]) continue;
     index[i] = bodies.size();
     order.push_back(i);
-    bodies.push_back(scene.bodies[i]);
+    bodies.push_back(all_bodies[i]);
   }
-  std::vector<BodyLink> links = scene.links;
+  std::vector<BodyLink> links(all_links.begin(), all_links.end());
   for (BodyLink& l : links) l.body_a = index[l.body_a], l.body_b = index[l.body_b];
-  NetworkStability r = check_network_stability(bodies, links, scene.world.integrator,
-                                               scene.world.dt, scene.world.substeps);
+  NetworkStability r = check_network_stability(bodies, links, integrator, dt, substeps);
   r.fastest_body = order[r.fastest_body];
   return r;
 }

@@ -8,7 +8,6 @@
 #include <mutex>
 #include <tuple>
 
-#include "fixstep/scene.hpp"
 #include "fixstep/world.hpp"
 #include "stability_internal.hpp"
 
@@ -82,14 +81,12 @@ double max_stable_step(Integrator integrator, double omega, double gamma) {
   return result;
 }
 
-std::vector<BodyStability> check_stability(const Scene& scene) {
+std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Integrator integrator,
+                                           double dt, int substeps) {
   std::vector<BodyStability> out;
-  const Integrator integrator = scene.world.integrator;
   const std::string_view method = integrator_name(integrator);
-  const double dt = scene.world.dt;
-  const int substeps = scene.world.substeps;
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const BodyDef& def = scene.bodies[i];
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodyDef& def = bodies[i];
     BodyStability r;
     r.body = i;
     const double m = def.body.mass;
@@ -104,8 +101,7 @@ std::vector<BodyStability> check_stability(const Scene& scene) {
       r.radius = std::numeric_limits<double>::infinity();
       r.message = fmt::format(
           "body '{}' has k/m = {:g} 1/s² and (b + c)/m = {:g} 1/s (mass {:g} kg): beyond the "
-          "range of a double, so no integrator and no step can follow it. Use a larger mass or "
-          "a smaller stiffness, damping or drag",
+          "range of a double, so no integrator and no step can follow it",
           def.name, (def.spring ? def.spring->stiffness : 0.0) / m, r.gamma, m);
       out.push_back(std::move(r));
       continue;
@@ -126,15 +122,13 @@ std::vector<BodyStability> check_stability(const Scene& scene) {
         }
         r.message = fmt::format(
             "{} is unstable with {} at dt = {:g} s and substeps = {}: {} = {:.4g} exceeds the "
-            "stability bound {:.4g} (ω = {:.4g} rad/s, γ = {:.4g} 1/s; growth {:.6g}x per step). "
-            "Use substeps = {} in [world] (or dt <= {:.4g} s), or set allow_unstable = true",
+            "stability bound {:.4g} (ω = {:.4g} rad/s, γ = {:.4g} 1/s; growth {:.6g}x per step)",
             who, method, dt, substeps, what, rate * r.h, rate * r.max_step, r.omega, r.gamma,
-            r.radius, r.min_substeps, r.max_step * substeps);
+            r.radius);
       } else {
         r.message = fmt::format(
             "{} is unstable with {} at every dt: its energy grows each step ({} = {:.4g}, growth "
-            "{:.6g}x per step). Choose semi_implicit_euler, velocity_verlet, rk4, "
-            "implicit_euler or forest_ruth, or set allow_unstable = true",
+            "{:.6g}x per step)",
             who, method, what, rate * r.h, r.radius);
       }
     } else if (r.h > margin * r.max_step) {
@@ -148,95 +142,58 @@ std::vector<BodyStability> check_stability(const Scene& scene) {
   return out;
 }
 
-std::vector<std::string> enforce_stability(const Scene& scene) {
-  std::vector<std::string> warnings;
-  auto apply = [&](Stability verdict, std::size_t line, const std::string& key,
-                   const std::string& message) {
-    if (verdict == Stability::unstable && !scene.allow_unstable) {
-      throw SceneError(scene.file, line, 0, key, message);
-    }
-    if (verdict != Stability::stable) {
-      warnings.push_back(fmt::format("{}:{}: {}: {}{}", scene.file, line, key, message,
-                                     verdict == Stability::unstable ? " (allowed)" : ""));
-    }
-  };
-  // Bodies that links join are judged as a network below, not on their own.
-  const std::vector<bool> linked = detail::linked_bodies(scene);
-  for (const BodyStability& r : check_stability(scene)) {
-    if (linked[r.body]) continue;
-    const std::size_t line = r.body < scene.body_lines.size() ? scene.body_lines[r.body] : 0;
-    apply(r.verdict, line, fmt::format("body[{}]", r.body), r.message);
-  }
-  if (const std::optional<NetworkStability> net = check_scene_network(scene)) {
-    const std::optional<std::size_t> link =
-        net->damping_bound ? net->strongest_damper : net->stiffest_link;
-    if (link) {
-      const std::size_t line = *link < scene.link_lines.size() ? scene.link_lines[*link] : 0;
-      const bool named = *link < scene.link_keys.size() && !scene.link_keys[*link].empty();
-      apply(net->verdict, line, named ? scene.link_keys[*link] : fmt::format("link[{}]", *link),
-            net->message);
-    } else {
-      const std::size_t i = net->fastest_body;
-      const std::size_t line = i < scene.body_lines.size() ? scene.body_lines[i] : 0;
-      apply(net->verdict, line, fmt::format("body[{}]", i), net->message);
-    }
-  }
-  return warnings;
-}
-
 }  // namespace fixstep
 
 namespace fixstep {
 
-std::string explain_fault(const Scene& scene, const StateFault& f) {
+namespace {
+/// "; stable from substeps = N (dt <= H s)" when a substep count fixes the step, else "".
+std::string remedy(int min_substeps, double max_step, int substeps) {
+  if (min_substeps <= 0) return {};
+  return fmt::format("; stable from substeps = {} (dt <= {:.4g} s)", min_substeps,
+                     max_step * substeps);
+}
+}  // namespace
+
+std::string explain_fault(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+                          const WorldSettings& settings, const StateFault& f) {
   const std::size_t i = f.index;
-  const bool from_scene = i < scene.bodies.size();
-  const std::size_t line = i < scene.body_lines.size() ? scene.body_lines[i] : 0;
   const bool position = f.field == "x" || f.field == "y";
-  std::string head = fmt::format(
-      "{}{}: body[{}] \"{}\": state left the finite range at tick {} (t = {:g} s): {} = {:g} {} "
+  const std::string head = fmt::format(
+      "body[{}] \"{}\": state left the finite range at tick {} (t = {:g} s): {} = {:g} {} "
       "(allowed |value| <= {:g})",
-      scene.file, line ? fmt::format(":{}", line) : std::string(), i, f.name, f.tick, f.time,
-      f.field, f.value, position ? "m" : "m/s", max_state_magnitude);
-  if (!from_scene) return head + ".";
-  // The guard's advice ends with "or set allow_unstable = true": not a cure at run time.
-  auto without_allow = [](std::string message) {
-    const std::string_view tail = ", or set allow_unstable = true";
-    if (message.size() >= tail.size() &&
-        message.compare(message.size() - tail.size(), tail.size(), tail) == 0) {
-      message.resize(message.size() - tail.size());
+      i, f.name, f.tick, f.time, f.field, f.value, position ? "m" : "m/s", max_state_magnitude);
+  if (i >= bodies.size()) return head + ".";
+  const std::string_view method = integrator_name(settings.integrator);
+  const double dt = settings.dt;
+  const int substeps = settings.substeps;
+  if (linked_bodies(bodies.size(), links)[i]) {
+    const NetworkStability net =
+        *check_linked_stability(bodies, links, settings.integrator, dt, substeps);
+    if (net.verdict == Stability::unstable) {
+      return fmt::format("{}. Likely cause: {}{}", head, net.message,
+                         remedy(net.min_substeps, net.max_step, substeps));
     }
-    return message;
-  };
-  std::string cause;
-  if (detail::linked_bodies(scene)[i]) {
-    const NetworkStability net = *check_scene_network(scene);
-    if (net.verdict == Stability::unstable)
-      return fmt::format("{}. Likely cause: {}", head, without_allow(net.message));
     return fmt::format(
         "{}. Likely cause: the body is in a network of {} bodies and {} springs within {}'s "
         "stability bound at h = {:g} s (ω_max·h = {:.4g}, largest stable step {:g} s), so the "
-        "motion itself grew: check the forces (gravity, constant forces, pushes from the arrow "
-        "keys), rest-length springs stretched far from their starting lengths, and the "
-        "starting values",
-        head, net.bodies, net.springs, integrator_name(scene.world.integrator), net.h,
-        net.omega_max * net.h, net.max_step);
+        "motion itself grew: check the forces (gravity, constant forces, pushes), rest-length "
+        "springs stretched far from their starting lengths, and the starting values",
+        head, net.bodies, net.springs, method, net.h, net.omega_max * net.h, net.max_step);
   }
-  for (const BodyStability& r : check_stability(scene)) {
-    if (r.body != i || r.verdict != Stability::unstable) continue;
-    cause = without_allow(r.message);
+  const std::vector<BodyStability> own = check_stability(bodies.subspan(i, 1), settings.integrator, dt, substeps);
+  if (!own.empty() && own.front().verdict == Stability::unstable) {
+    const BodyStability& r = own.front();
+    return fmt::format("{}. Likely cause: {}{}", head, r.message,
+                       remedy(r.min_substeps, r.max_step, substeps));
   }
-  if (cause.empty()) {
-    const BodyDef& d = scene.bodies[i];
-    cause = fmt::format(
-        "the body's spring and damping are within {}'s stability bound at h = {:g} s, so the "
-        "motion itself grew: check its forces ({}) and its starting values",
-        integrator_name(scene.world.integrator), scene.world.dt / scene.world.substeps,
-        d.gravity || d.constant_force
-            ? "gravity or a constant force accelerates it for the whole run"
-            : "a push from the arrow keys, or extreme mass, stiffness or velocity");
-  }
-  return fmt::format("{}. Likely cause: {}", head, cause);
+  const BodyDef& d = bodies[i];
+  return fmt::format(
+      "{}. Likely cause: the body's spring and damping are within {}'s stability bound at h = "
+      "{:g} s, so the motion itself grew: check its forces ({}) and its starting values",
+      head, method, dt / substeps,
+      d.gravity || d.constant_force ? "gravity or a constant force accelerates it for the whole run"
+                                    : "a push, or extreme mass, stiffness or velocity");
 }
 
 }  // namespace fixstep

@@ -14,13 +14,13 @@
 
 namespace fixstep {
 
-Camera fit_camera(const Scene& scene, int width, int height) {
+Camera fit_camera(const WorldDef& def, int width, int height) {
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   auto include = [&](double x, double y, double r) {
     x0 = std::min(x0, x - r), x1 = std::max(x1, x + r);
     y0 = std::min(y0, y - r), y1 = std::max(y1, y + r);
   };
-  for (const BodyDef& b : scene.bodies) {
+  for (const BodyDef& b : def.bodies) {
     include(b.body.position.x, b.body.position.y, b.appearance ? b.appearance->radius : 0.0);
     if (b.spring) {
       const auto& s = *b.spring;
@@ -34,29 +34,29 @@ Camera fit_camera(const Scene& scene, int width, int height) {
   // Bodies held at one anchor through links (a rope pinned at one end) may swing all the way
   // round it: include the circle through the farthest body of each such group. Groups held at
   // two or more anchors (a cloth) keep to their bodies' box.
-  if (!scene.links.empty()) {
-    const std::size_t n = scene.bodies.size();
+  if (!def.links.empty()) {
+    const std::size_t n = def.bodies.size();
     std::vector<std::size_t> group(n);
     std::iota(group.begin(), group.end(), std::size_t{0});
     auto root = [&](std::size_t i) {
       while (group[i] != i) i = group[i] = group[group[i]];
       return i;
     };
-    for (const BodyLink& l : scene.links) group[root(l.body_a)] = root(l.body_b);
+    for (const BodyLink& l : def.links) group[root(l.body_a)] = root(l.body_b);
     std::vector<std::size_t> anchors(n, 0), held_by(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
-      if (scene.bodies[i].spring) ++anchors[root(i)], held_by[root(i)] = i;
+      if (def.bodies[i].spring) ++anchors[root(i)], held_by[root(i)] = i;
     }
     std::vector<double> reach(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t g = root(i);
       if (anchors[g] != 1) continue;
-      const Vec2 a = scene.bodies[held_by[g]].spring->anchor, p = scene.bodies[i].body.position;
+      const Vec2 a = def.bodies[held_by[g]].spring->anchor, p = def.bodies[i].body.position;
       reach[g] = std::max(reach[g], std::hypot(p.x - a.x, p.y - a.y));
     }
     for (std::size_t g = 0; g < n; ++g) {
       if (anchors[g] == 1 && group[g] == g) {
-        const Vec2 a = scene.bodies[held_by[g]].spring->anchor;
+        const Vec2 a = def.bodies[held_by[g]].spring->anchor;
         include(a.x, a.y, reach[g]);
       }
     }
@@ -65,8 +65,6 @@ Camera fit_camera(const Scene& scene, int width, int height) {
   Camera c;
   c.center = {0.5 * (x0 + x1), 0.5 * (y0 + y1)};
   c.width = std::max({(x1 - x0), (y1 - y0) * aspect, 1.0}) * 1.15;
-  if (scene.view.center) c.center = *scene.view.center;
-  if (scene.view.width) c.width = *scene.view.width;
   return c;
 }
 
@@ -118,14 +116,18 @@ std::string summary_line(const Simulation& sim, double initial_energy) {
                      sim.dissipated_energy(), balance, initial_energy != 0.0 ? "" : "J");
 }
 
-Session::Session(Scene scene, int width, int height)
-    : scene_(std::move(scene)),
-      sim_(std::make_unique<Simulation>(make_simulation(scene_))),
-      loop_(LoopSettings{.dt = scene_.world.dt}),
-      renderer_(width, height) {
+Session::Session(WorldDef def, const SessionSettings& settings)
+    : def_(std::move(def)),
+      title_(settings.title),
+      sim_(std::make_unique<Simulation>(make_simulation(def_))),
+      loop_(LoopSettings{.dt = def_.settings.dt}),
+      renderer_(settings.width, settings.height) {
   sim_->set_keep_previous(true);
   initial_energy_ = sim_->energy().total();
-  renderer_.set_camera(fit_camera(scene_, width, height));
+  Camera camera = fit_camera(def_, settings.width, settings.height);
+  if (settings.view_center) camera.center = *settings.view_center;
+  if (settings.view_width) camera.width = *settings.view_width;
+  renderer_.set_camera(camera);
 }
 
 FrameResult Session::advance(double frame_seconds, const TickInput& input) {
@@ -139,7 +141,7 @@ FrameResult Session::advance(double frame_seconds, const TickInput& input) {
 }
 
 void Session::restart() {
-  sim_ = std::make_unique<Simulation>(make_simulation(scene_));
+  sim_ = std::make_unique<Simulation>(make_simulation(def_));
   sim_->set_keep_previous(true);
   fault_lines_.clear();
   loop_.reset();
@@ -149,10 +151,10 @@ void Session::restart() {
 void Session::draw() {
   sim_->fill_render_frame(loop_.alpha(), frame_);
   const double e = sim_->energy().total();
-  const std::string file = std::filesystem::path(scene_.file).filename().string();
   hud_.clear();
   const std::size_t n = sim_->body_count();
-  hud_.push_back(fmt::format("fixstep  {}  ({} bod{})", file, n, n == 1 ? "y" : "ies"));
+  hud_.push_back(fmt::format("fixstep  {}{}({} bod{})", title_, title_.empty() ? "" : "  ", n,
+                             n == 1 ? "y" : "ies"));
   const int substeps = sim_->settings().substeps;
   hud_.push_back(fmt::format("tick {}   t = {:.3f} s   dt = {:g} s{}", sim_->tick(), sim_->time(),
                              sim_->settings().dt,
@@ -167,7 +169,8 @@ void Session::draw() {
   if (const auto& fault = sim_->fault()) {
     // Built once: the guard's message (which runs the stability analysis) does not change
     // while the simulation stays stopped.
-    if (fault_lines_.empty()) fault_lines_ = fault_hud_lines(explain_fault(scene_, *fault));
+    if (fault_lines_.empty()) fault_lines_ = fault_hud_lines(
+          explain_fault(def_.bodies, def_.links, def_.settings, *fault));
     hud_.insert(hud_.end(), fault_lines_.begin(), fault_lines_.end());
   }
   if (show_controls_) {

@@ -83,7 +83,11 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// As load_scene, from text; `source_name` is used in messages.
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);
 
-/// Builds the world a scene describes, after the stability guard (see stability.hpp): throws
+/// The scene's world as a WorldDef (precision, settings, bodies, links, allow_unstable),
+/// copied: what Session and make_simulation(const WorldDef&) take.
+[[nodiscard]] WorldDef world_def(const Scene& scene);
+
+/// Builds the world a scene describes, after the stability guard (enforce_stability, scene_stability.hpp): throws
 /// SceneError naming the body, ω·h, the bound and the smallest stable substep count when a body
 /// is unstable and the scene does not allow it. Throws std::invalid_argument if a value is not
 /// representable in the scene's precision (the loader checks this first).

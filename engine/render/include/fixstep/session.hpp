@@ -1,24 +1,32 @@
-// A scene being played: simulation + fixed-step loop + renderer, the one frame pipeline shared
-// by headless capture (`fixstep render`) and the window (`fixstep view`).
+// A world being played: simulation + fixed-step loop + renderer, the one frame pipeline shared
+// by headless capture (`fixstep render`), the window (`fixstep view`) and programs that build
+// their world in code (examples/, demos/hello_fixstep.cpp).
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "fixstep/loop.hpp"
 #include "fixstep/render.hpp"
-#include "fixstep/scene.hpp"
 #include "fixstep/simulation.hpp"
 
 namespace fixstep {
 
-/// The camera a scene asks for: its [view] table, otherwise a fit of every body's position
-/// ([[body]] and generated), their anchors, each spring's reach (|x0 - anchor| + |v0|/ω) and,
-/// for bodies held at a single anchor through links (a rope pinned at one end), the circle
-/// round that anchor through the farthest of them, with a 15 % margin.
-/// `width` and `height` are the frame size in pixels (for the aspect ratio).
-[[nodiscard]] Camera fit_camera(const Scene& scene, int width, int height);
+/// A camera that shows a world's whole motion: a fit of every body's position, their anchors,
+/// each spring's reach (|x0 - anchor| + |v0|/ω) and, for bodies held at a single anchor through
+/// links (a rope pinned at one end), the circle round that anchor through the farthest of them,
+/// with a 15 % margin. `width` and `height` are the frame size in pixels (for the aspect ratio).
+[[nodiscard]] Camera fit_camera(const WorldDef& def, int width, int height);
+
+/// How a Session shows its world.
+struct SessionSettings {
+  int width = 1280, height = 720;  ///< frame size, pixels (see Renderer)
+  std::string title;               ///< named in the HUD's first line (e.g. the scene file)
+  std::optional<Vec2> view_center;  ///< m; default: fit_camera's
+  std::optional<double> view_width;  ///< visible width, m; default: fit_camera's
+};
 
 /// The energy balance error (E + E_dissipated - E0)/|E0| (dimensionless; in J when E0 = 0):
 /// what the integrator alone adds or loses, with the energy damping and drag took out
@@ -36,27 +44,30 @@ namespace fixstep {
 
 class Session {
  public:
-  /// Builds the world, loop and renderer. Throws RenderError / std::invalid_argument.
-  Session(Scene scene, int width, int height);
+  /// Builds the world (make_simulation(def): the stability guard applies), the loop (ticks of
+  /// def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid or unstable
+  /// def (see make_simulation), RenderError when rendering cannot start.
+  Session(WorldDef def, const SessionSettings& settings);
 
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets
   /// `input` (see TickInput).
   FrameResult advance(double frame_seconds, const TickInput& input = {});
   /// Renders the state interpolated by the loop's alpha, with the HUD, into renderer().pixels().
   void draw();
-  /// Back to the scene's initial state (tick 0), trails cleared; pause and time scale are kept.
+  /// Back to the initial state (tick 0), trails cleared; pause and time scale are kept.
   void restart();
   /// Shows the window's key help in the HUD.
   void set_show_controls(bool show) { show_controls_ = show; }
 
-  [[nodiscard]] const Scene& scene() const { return scene_; }
+  [[nodiscard]] const WorldDef& definition() const { return def_; }
   [[nodiscard]] const Simulation& simulation() const { return *sim_; }
   [[nodiscard]] FixedStepLoop& loop() { return loop_; }
   [[nodiscard]] const Renderer& renderer() const { return renderer_; }
   [[nodiscard]] double initial_energy() const { return initial_energy_; }
 
  private:
-  Scene scene_;
+  WorldDef def_;
+  std::string title_;
   std::unique_ptr<Simulation> sim_;
   FixedStepLoop loop_;
   Renderer renderer_;

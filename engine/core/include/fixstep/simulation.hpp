@@ -1,4 +1,5 @@
-// A World whose precision is chosen at run time (from a scene file or a flag).
+// A World whose precision is chosen at run time, and WorldDef: everything a world is built
+// from, whether written in code or read from a scene file.
 #pragma once
 
 #include <cstdint>
@@ -75,5 +76,27 @@ class Simulation {
  private:
   std::variant<World<float>, World<double>> world_;
 };
+
+/// Everything a world is built from: what a scene file describes (see scene.hpp), or what a
+/// program writes in code. The one definition the frame pipeline (Session, render library)
+/// and the command line start from.
+struct WorldDef {
+  Precision precision = Precision::f64;
+  WorldSettings settings;       ///< dt (s), integrator, substeps, ... (see WorldSettings)
+  std::vector<BodyDef> bodies;  ///< in creation order: body i gets dense index i
+  std::vector<BodyLink> links;  ///< springs between bodies, by index into bodies
+  /// The stability guard (stability.hpp) reports instead of refusing: for demos that show a
+  /// blow-up on purpose.
+  bool allow_unstable = false;
+};
+
+/// Builds the world `def` describes: a Simulation with def.precision and def.settings, then
+/// the bodies in order and the links. First applies the stability guard (check_stability for
+/// bodies no link joins, check_linked_stability for the rest) at def.settings' dt, integrator
+/// and substeps: unless def.allow_unstable, an unstable body or network throws
+/// std::invalid_argument with the guard's finding and the smallest stable substep count.
+/// Also throws std::invalid_argument for invalid settings, bodies or links (as World does:
+/// the message names the body and field) and for a link index out of range.
+[[nodiscard]] Simulation make_simulation(const WorldDef& def);
 
 }  // namespace fixstep

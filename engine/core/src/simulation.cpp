@@ -1,5 +1,11 @@
 #include "fixstep/simulation.hpp"
 
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "fixstep/stability.hpp"
+
 namespace fixstep {
 
 namespace {
@@ -90,6 +96,47 @@ void Simulation::fill_render_frame(double alpha, RenderFrame& out) const {
       out.links[i] = {static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)};
     }
   });
+}
+
+namespace {
+/// Throws std::invalid_argument with the stability guard's first finding of an unstable body
+/// or network in `def`.
+void refuse_unstable(const WorldDef& def) {
+  const WorldSettings& s = def.settings;
+  auto refuse = [&](const std::string& message, int min_substeps, double max_step) {
+    throw std::invalid_argument(
+        min_substeps > 0 ? fmt::format("{}; stable from substeps = {} (dt <= {:.4g} s)", message,
+                                       min_substeps, max_step * s.substeps)
+                         : message);
+  };
+  const std::vector<bool> linked = linked_bodies(def.bodies.size(), def.links);
+  for (const BodyStability& r : check_stability(def.bodies, s.integrator, s.dt, s.substeps)) {
+    if (!linked[r.body] && r.verdict == Stability::unstable) {
+      refuse(r.message, r.min_substeps, r.max_step);
+    }
+  }
+  const auto net = check_linked_stability(def.bodies, def.links, s.integrator, s.dt, s.substeps);
+  if (net && net->verdict == Stability::unstable) {
+    refuse(net->message, net->min_substeps, net->max_step);
+  }
+}
+}  // namespace
+
+Simulation make_simulation(const WorldDef& def) {
+  // Built first so invalid settings, bodies and links are reported by World, then judged.
+  Simulation sim(def.precision, def.settings);
+  std::vector<Entity> bodies;
+  bodies.reserve(def.bodies.size());
+  for (const BodyDef& body : def.bodies) bodies.push_back(sim.create_body(body));
+  for (const BodyLink& l : def.links) {
+    if (l.body_a >= bodies.size() || l.body_b >= bodies.size()) {
+      throw std::invalid_argument(fmt::format("link: body index out of range ({} and {} of {})",
+                                              l.body_a, l.body_b, bodies.size()));
+    }
+    sim.create_link(LinkDef{bodies[l.body_a], bodies[l.body_b], l.spring});
+  }
+  if (!def.allow_unstable) refuse_unstable(def);
+  return sim;
 }
 
 }  // namespace fixstep

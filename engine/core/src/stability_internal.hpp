@@ -4,10 +4,6 @@
 
 #include <vector>
 
-namespace fixstep {
-struct Scene;
-}
-
 namespace fixstep::detail {
 
 // ρ <= 1 + tolerance counts as bounded. The round-off in ρ is ~1e-16; the smallest growth the
@@ -15,9 +11,5 @@ namespace fixstep::detail {
 inline constexpr double stability_tolerance = 1e-14;
 inline constexpr double scan_from = 1e-4, scan_to = 1e6;  // dimensionless steps s = ω h (or γ h)
 inline constexpr double stability_margin = 0.9;  // warn above 90 % of the largest stable step
-
-/// Which of scene.bodies some link joins (stability_network.cpp). Throws std::invalid_argument
-/// for a link whose body index is out of range.
-std::vector<bool> linked_bodies(const Scene& scene);
 
 }  // namespace fixstep::detail

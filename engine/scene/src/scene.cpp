@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
-#include "fixstep/stability.hpp"
+#include "fixstep/scene_stability.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep {
@@ -235,16 +235,19 @@ Scene load_scene(const std::filesystem::path& file) {
   return parse_scene(text, name);
 }
 
+WorldDef world_def(const Scene& scene) {
+  return WorldDef{.precision = scene.precision,
+                  .settings = scene.world,
+                  .bodies = scene.bodies,
+                  .links = scene.links,
+                  .allow_unstable = scene.allow_unstable};
+}
+
 Simulation make_simulation(const Scene& scene) {
   (void)enforce_stability(scene);  // throws for unstable bodies; callers print the warnings
-  Simulation sim(scene.precision, scene.world);
-  std::vector<Entity> bodies;
-  bodies.reserve(scene.bodies.size());
-  for (const BodyDef& def : scene.bodies) bodies.push_back(sim.create_body(def));
-  for (const BodyLink& l : scene.links) {
-    sim.create_link(LinkDef{bodies.at(l.body_a), bodies.at(l.body_b), l.spring});
-  }
-  return sim;
+  WorldDef def = world_def(scene);
+  def.allow_unstable = true;  // judged just above, with the scene's lines
+  return make_simulation(def);
 }
 
 }  // namespace fixstep

@@ -1,0 +1,90 @@
+#include "fixstep/scene_stability.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace fixstep {
+
+std::vector<BodyStability> check_stability(const Scene& scene) {
+  return check_stability(scene.bodies, scene.world.integrator, scene.world.dt,
+                         scene.world.substeps);
+}
+
+std::optional<NetworkStability> check_scene_network(const Scene& scene) {
+  return check_linked_stability(scene.bodies, scene.links, scene.world.integrator,
+                                scene.world.dt, scene.world.substeps);
+}
+
+namespace {
+
+/// An unstable finding with what to change in the scene file: the substep count (or dt) that
+/// is stable, another integrator when no step is, other masses and stiffnesses when the
+/// rates overflow a double (radius infinite).
+std::string with_advice(const std::string& message, int min_substeps, double max_step,
+                        double radius, int substeps) {
+  if (!std::isfinite(radius)) {
+    return message + ". Use larger masses or smaller stiffnesses, dampings or drags";
+  }
+  if (min_substeps > 0) {
+    return fmt::format("{}. Use substeps = {} in [world] (or dt <= {:.4g} s), or set "
+                       "allow_unstable = true",
+                       message, min_substeps, max_step * substeps);
+  }
+  return message +
+         ". Choose semi_implicit_euler, velocity_verlet, rk4, implicit_euler or forest_ruth, or "
+         "set allow_unstable = true";
+}
+
+}  // namespace
+
+std::vector<std::string> enforce_stability(const Scene& scene) {
+  std::vector<std::string> warnings;
+  const int substeps = scene.world.substeps;
+  auto apply = [&](Stability verdict, std::size_t line, const std::string& key,
+                   const std::string& message, const std::string& advised) {
+    if (verdict == Stability::unstable && !scene.allow_unstable) {
+      throw SceneError(scene.file, line, 0, key, advised);
+    }
+    if (verdict != Stability::stable) {
+      const bool allowed = verdict == Stability::unstable;
+      warnings.push_back(fmt::format("{}:{}: {}: {}{}", scene.file, line, key,
+                                     allowed ? advised : message, allowed ? " (allowed)" : ""));
+    }
+  };
+  auto body_line = [&](std::size_t i) {
+    return i < scene.body_lines.size() ? scene.body_lines[i] : std::size_t{0};
+  };
+  // Bodies that links join are judged as a network below, not on their own.
+  const std::vector<bool> linked = linked_bodies(scene.bodies.size(), scene.links);
+  for (const BodyStability& r : check_stability(scene)) {
+    if (linked[r.body]) continue;
+    apply(r.verdict, body_line(r.body), fmt::format("body[{}]", r.body), r.message,
+          with_advice(r.message, r.min_substeps, r.max_step, r.radius, substeps));
+  }
+  if (const std::optional<NetworkStability> net = check_scene_network(scene)) {
+    const std::string advised =
+        with_advice(net->message, net->min_substeps, net->max_step, net->radius, substeps);
+    const std::optional<std::size_t> link =
+        net->damping_bound ? net->strongest_damper : net->stiffest_link;
+    if (link) {
+      const std::size_t line = *link < scene.link_lines.size() ? scene.link_lines[*link] : 0;
+      const bool named = *link < scene.link_keys.size() && !scene.link_keys[*link].empty();
+      apply(net->verdict, line, named ? scene.link_keys[*link] : fmt::format("link[{}]", *link),
+            net->message, advised);
+    } else {
+      const std::size_t i = net->fastest_body;
+      apply(net->verdict, body_line(i), fmt::format("body[{}]", i), net->message, advised);
+    }
+  }
+  return warnings;
+}
+
+std::string explain_fault(const Scene& scene, const StateFault& fault) {
+  const std::size_t i = fault.index;
+  const std::size_t line = i < scene.body_lines.size() ? scene.body_lines[i] : 0;
+  return fmt::format("{}{}: {}", scene.file, line ? fmt::format(":{}", line) : std::string(),
+                     explain_fault(scene.bodies, scene.links, scene.world, fault));
+}
+
+}  // namespace fixstep

@@ -1,0 +1,21 @@
+// Session for a loaded scene, as `fixstep render` opens it (demos/fixstep/commands.cpp,
+// open_session): its world, its [view] and its file name in the HUD. For tests and benchmarks.
+#pragma once
+
+#include <filesystem>
+
+#include "fixstep/scene.hpp"
+#include "fixstep/session.hpp"
+
+namespace fixstep::testing {
+
+inline Session scene_session(const Scene& scene, int width, int height) {
+  return Session(world_def(scene),
+                 SessionSettings{.width = width,
+                                 .height = height,
+                                 .title = std::filesystem::path(scene.file).filename().string(),
+                                 .view_center = scene.view.center,
+                                 .view_width = scene.view.width});
+}
+
+}  // namespace fixstep::testing
