@@ -192,7 +192,7 @@ void encode(benchmark::State& state, int level) {  // level < 0: the naive stb b
   if (level < 0) {
     for (auto _ : state) bytes = naive_png(frame).size();
   } else {
-    PngEncoder encoder(PngOptions{.level = level});
+    PngEncoder encoder(PngSettings{.level = level});
     for (auto _ : state) bytes = encoder.encode(width, height, frame).size();
   }
   state.counters["KiB"] = double(bytes) / 1024.0;

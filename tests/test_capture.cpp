@@ -91,7 +91,7 @@ TEST(Capture, EveryLevelRoundTripsExactly) {
   const auto picture = test_picture(w, h, 1);
   std::vector<std::size_t> sizes;
   for (int level : {0, 1, 2, 6, 9, 12}) {
-    PngEncoder encoder(PngOptions{.level = level});
+    PngEncoder encoder(PngSettings{.level = level});
     EXPECT_EQ(encoder.options().level, level);
     const auto png = encoder.encode(w, h, picture);
     static constexpr std::uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -122,7 +122,7 @@ TEST(Capture, EveryChunkCarriesTheStandardCrc32) {
   const int w = 203, h = 97;
   const auto picture = test_picture(w, h, 3);
   for (int level : {0, 1, 6}) {
-    PngEncoder encoder(PngOptions{.level = level});
+    PngEncoder encoder(PngSettings{.level = level});
     const auto png = encoder.encode(w, h, picture);
     std::vector<std::string> types;
     std::size_t i = 8;
@@ -154,7 +154,7 @@ TEST(Capture, EncoderIsReusableAcrossImagesAndSizes) {
   const auto dir = temp_dir("encoder");
   const auto picture = test_picture(64, 48, 9);
   encoder.write(dir / "a.png", 64, 48, picture);
-  write_png(dir / "b.png", 64, 48, picture, PngOptions{.level = 6});
+  write_png(dir / "b.png", 64, 48, picture, PngSettings{.level = 6});
   EXPECT_EQ(decode(read_all(dir / "a.png"), 64, 48), picture);
   EXPECT_EQ(decode(read_all(dir / "b.png"), 64, 48), picture);
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 2);
@@ -164,7 +164,7 @@ TEST(Capture, EncoderIsReusableAcrossImagesAndSizes) {
 TEST(Capture, LevelOutOfRangeIsRefusedWithTheRange) {
   for (int level : {-1, 13, 1000}) {
     try {
-      PngEncoder encoder(PngOptions{.level = level});
+      PngEncoder encoder(PngSettings{.level = level});
       FAIL() << "level " << level << " accepted";
     } catch (const std::invalid_argument& e) {
       const std::string what = e.what();
@@ -176,7 +176,7 @@ TEST(Capture, LevelOutOfRangeIsRefusedWithTheRange) {
   EXPECT_EQ(png_level_error(0), "");
   EXPECT_EQ(png_level_error(12), "");
   const auto dir = temp_dir("badlevel");
-  EXPECT_THROW(write_png(dir / "x.png", 2, 2, std::vector<std::uint8_t>(16), PngOptions{.level = 13}),
+  EXPECT_THROW(write_png(dir / "x.png", 2, 2, std::vector<std::uint8_t>(16), PngSettings{.level = 13}),
                std::invalid_argument);
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
   std::filesystem::remove_all(dir);
@@ -189,7 +189,7 @@ TEST(Capture, EncodersOnSeveralThreadsGiveTheSameBytes) {
   const auto picture = test_picture(w, h, 3);
   std::vector<std::vector<std::uint8_t>> expected;
   for (int level : {1, 9}) {
-    PngEncoder e(PngOptions{.level = level});
+    PngEncoder e(PngSettings{.level = level});
     const auto png = e.encode(w, h, picture);
     expected.emplace_back(png.begin(), png.end());
   }
@@ -199,7 +199,7 @@ TEST(Capture, EncodersOnSeveralThreadsGiveTheSameBytes) {
   std::latch start(2);  // both threads encode at the same time
   for (int t = 0; t < 2; ++t) {
     threads.emplace_back([&, t] {
-      PngEncoder e(PngOptions{.level = t == 0 ? 1 : 9});
+      PngEncoder e(PngSettings{.level = t == 0 ? 1 : 9});
       start.arrive_and_wait();
       for (int i = 0; i < 30; ++i) {
         const auto png = e.encode(w, h, picture);
@@ -228,7 +228,7 @@ TEST(FrameWriter, WritesEveryFrameOnceInOrderWithTheEncodersBytes) {
   const int w = 96, h = 54, frames = 9;
   std::vector<std::string> expected_names;
   {
-    FrameWriter writer(dir, w, h, PngOptions{.level = 3}, 2);
+    FrameWriter writer(dir, w, h, PngSettings{.level = 3}, 2);
     std::vector<std::uint8_t> pixels;
     for (int f = 0; f < frames; ++f) {
       pixels = test_picture(w, h, static_cast<unsigned>(f));
@@ -241,7 +241,7 @@ TEST(FrameWriter, WritesEveryFrameOnceInOrderWithTheEncodersBytes) {
     writer.finish();
   }
   EXPECT_EQ(names_in(dir), expected_names);  // each exactly once, nothing else (no temporaries)
-  PngEncoder reference(PngOptions{.level = 3});
+  PngEncoder reference(PngSettings{.level = 3});
   for (int f = 0; f < frames; ++f) {
     const auto picture = test_picture(w, h, static_cast<unsigned>(f));
     const auto bytes = read_all(frame_path(dir, static_cast<std::uint64_t>(f)));
@@ -295,7 +295,7 @@ TEST(FrameWriter, WorkerErrorReachesTheCallerNamingTheFileAndKeepsEarlierFrames)
 
 TEST(FrameWriter, RefusesBadArguments) {
   const auto dir = temp_dir("writer_args");
-  EXPECT_THROW(FrameWriter(dir, 8, 8, PngOptions{.level = 13}), std::invalid_argument);
+  EXPECT_THROW(FrameWriter(dir, 8, 8, PngSettings{.level = 13}), std::invalid_argument);
   EXPECT_THROW(FrameWriter(dir, 0, 8), std::invalid_argument);
   EXPECT_THROW(FrameWriter(dir, 8, 8, {}, 0), std::invalid_argument);
   FrameWriter writer(dir, 8, 8);

@@ -280,7 +280,7 @@ int render_command(const RenderOptions& o) {
   const VirtualClock clock(o.fps);
   const auto frames = static_cast<std::uint64_t>(o.frames);
   // Frame f is encoded and written on the writer's thread while frame f + 1 renders here.
-  FrameWriter writer(o.out, width, height, PngOptions{.level = o.png_level});
+  FrameWriter writer(o.out, width, height, PngSettings{.level = o.png_level});
   std::uint64_t written = 0;
   const StopOnSignal signals;
   for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {

@@ -38,7 +38,7 @@ struct RenderOptions {
   std::int64_t frames = 120;
   double fps = 60.0;
   std::string size = "1280x720";
-  int png_level = default_png_level;  ///< see PngOptions::level
+  int png_level = default_png_level;  ///< see PngSettings::level
 };
 
 struct ViewOptions {

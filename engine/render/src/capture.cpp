@@ -164,7 +164,7 @@ struct PngEncoder::Compressor {
   Compressor& operator=(const Compressor&) = delete;
 };
 
-PngEncoder::PngEncoder(PngOptions options) : options_(options) {
+PngEncoder::PngEncoder(PngSettings options) : options_(options) {
   if (const std::string error = png_level_error(options.level); !error.empty()) {
     throw std::invalid_argument(error);
   }
@@ -210,7 +210,7 @@ void PngEncoder::write(const std::filesystem::path& file, int width, int height,
 }
 
 void write_png(const std::filesystem::path& file, int width, int height,
-               std::span<const std::uint8_t> rgba, PngOptions options) {
+               std::span<const std::uint8_t> rgba, PngSettings options) {
   PngEncoder(options).write(file, width, height, rgba);
 }
 
@@ -218,7 +218,7 @@ std::filesystem::path frame_path(const std::filesystem::path& dir, std::uint64_t
   return dir / fmt::format("frame_{:06}.png", frame);
 }
 
-FrameWriter::FrameWriter(std::filesystem::path dir, int width, int height, PngOptions options,
+FrameWriter::FrameWriter(std::filesystem::path dir, int width, int height, PngSettings options,
                          int in_flight)
     : dir_(std::move(dir)), width_(width), height_(height), encoder_(options) {
   if (width < 1 || height < 1) {

@@ -52,7 +52,7 @@ class AtomicFile {
 void write_file_atomic(const std::filesystem::path& file, std::span<const std::uint8_t> bytes);
 void write_file_atomic(const std::filesystem::path& file, std::string_view text);
 
-/// Compression levels of PngOptions::level: libdeflate's scale (libdeflate.h,
+/// Compression levels of PngSettings::level: libdeflate's scale (libdeflate.h,
 /// libdeflate_alloc_compressor): 0 stores the pixels uncompressed (a valid PNG about as large
 /// as the raw image), 1 is the fastest that compresses, 6 is zlib's usual default, 12 the
 /// smallest and slowest. See docs/perf/capture.md for measured speed and size per level.
@@ -64,7 +64,7 @@ inline constexpr int default_png_level = 1;
 
 /// How PNGs are encoded. Every level writes a standard 8-bit RGBA PNG that decodes to exactly
 /// the input pixels; the level only trades encoding time against file size.
-struct PngOptions {
+struct PngSettings {
   int level = default_png_level;  ///< [min_png_level, max_png_level]
 };
 
@@ -84,14 +84,14 @@ class PngEncoder {
  public:
   /// Throws std::invalid_argument naming the level and the range if options.level is outside
   /// [min_png_level, max_png_level]; std::bad_alloc if libdeflate cannot allocate.
-  explicit PngEncoder(PngOptions options = {});
+  explicit PngEncoder(PngSettings options = {});
   ~PngEncoder();
   PngEncoder(PngEncoder&& other) noexcept;
   PngEncoder& operator=(PngEncoder&& other) noexcept;
   PngEncoder(const PngEncoder&) = delete;
   PngEncoder& operator=(const PngEncoder&) = delete;
 
-  [[nodiscard]] const PngOptions& options() const { return options_; }
+  [[nodiscard]] const PngSettings& options() const { return options_; }
 
   /// Encodes an RGBA8 image: `rgba` is height rows of width*4 bytes (R, G, B, A), top row
   /// first, width and height >= 1. Returns the PNG file's bytes, valid until the next call on
@@ -106,7 +106,7 @@ class PngEncoder {
 
  private:
   struct Compressor;
-  PngOptions options_;
+  PngSettings options_;
   std::unique_ptr<Compressor> compressor_;
   std::vector<std::uint8_t> png_;
 };
@@ -116,7 +116,7 @@ class PngEncoder {
 /// Throws CaptureError naming `file`, or std::invalid_argument for a bad options.level. For a
 /// sequence of frames, reuse a PngEncoder or use FrameWriter (this builds a new compressor).
 void write_png(const std::filesystem::path& file, int width, int height,
-               std::span<const std::uint8_t> rgba, PngOptions options = {});
+               std::span<const std::uint8_t> rgba, PngSettings options = {});
 
 /// DIR/frame_NNNNNN.png (six digits, zero-padded).
 [[nodiscard]] std::filesystem::path frame_path(const std::filesystem::path& dir,
@@ -140,7 +140,7 @@ class FrameWriter {
  public:
   /// Starts the worker. `dir` must exist (see prepare_output_dir). Throws std::invalid_argument
   /// for a bad options.level (as PngEncoder), a size below 1x1 or in_flight < 1.
-  FrameWriter(std::filesystem::path dir, int width, int height, PngOptions options = {},
+  FrameWriter(std::filesystem::path dir, int width, int height, PngSettings options = {},
               int in_flight = 2);
   /// Waits until the worker has written every submitted frame (or failed), then stops it.
   /// Errors are not thrown from here: call finish() to see them.
