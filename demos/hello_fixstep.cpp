@@ -1,25 +1,22 @@
-// hello_fixstep: the smallest complete fixstep program — a world built in code (no scene
-// file), stepped at a fixed dt by the accumulator loop, captured headless as PNG frames.
-// Start a prototype by copying this file.
+// hello_fixstep: the smallest complete fixstep program. A world built in code (no scene file)
+// goes through the same frame pipeline as `fixstep render`: a fixed-step accumulator loop,
+// interpolation, the OSMesa renderer and PNG capture. Start a prototype by copying this file.
 //
 //   build/release/bin/hello_fixstep [OUT_DIR]     (default: hello_frames)
 #include <cstdio>
+#include <exception>
 #include <string>
-#include <vector>
 
 #include <fixstep/capture.hpp>
-#include <fixstep/loop.hpp>
-#include <fixstep/render.hpp>
-#include <fixstep/simulation.hpp>
-#include <fmt/format.h>
+#include <fixstep/session.hpp>
 
 int main(int argc, char** argv) {
   using namespace fixstep;
   const std::string out = argc > 1 ? argv[1] : "hello_frames";
   try {
     // 1. A world stepped at dt = 1/100 s with semi-implicit Euler, in double precision.
-    const WorldSettings settings{.dt = 0.01, .integrator = Integrator::semi_implicit_euler};
-    Simulation sim(Precision::f64, settings);
+    WorldDef world;
+    world.settings = {.dt = 0.01, .integrator = Integrator::semi_implicit_euler};
 
     // 2. A 1 kg bob on a spring (k = 15 N/m, b = 0.1 N*s/m) anchored at the origin...
     BodyDef bob;
@@ -27,7 +24,7 @@ int main(int argc, char** argv) {
     bob.body = Body{.mass = 1.0, .position = {8.0, 0.0}, .velocity = {0.0, 0.0}};
     bob.spring = SpringDamper{.anchor = {0.0, 0.0}, .stiffness = 15.0, .damping = 0.1};
     bob.appearance = Appearance{.radius = 0.6, .color = {230, 87, 46, 255}};
-    sim.create_body(bob);
+    world.bodies.push_back(bob);
 
     // ...and a ball thrown at 12 m/s, 60 degrees up, under gravity with a little drag.
     BodyDef ball;
@@ -36,29 +33,28 @@ int main(int argc, char** argv) {
     ball.gravity = Gravity{.acceleration = {0.0, -9.81}};
     ball.drag = LinearDrag{.coefficient = 0.05};
     ball.appearance = Appearance{.radius = 0.4, .color = {76, 175, 240, 255}};
-    sim.create_body(ball);
-    sim.set_keep_previous(true);  // keep the last tick's positions for interpolation
+    world.bodies.push_back(ball);
 
-    // 3. The renderer (OSMesa) and a camera 32 m wide centred on the origin.
-    Renderer renderer(640, 360);
-    renderer.set_camera(Camera{.center = {0.0, 0.0}, .width = 32.0});
+    // 3. The frame pipeline: 640x360 frames of a view 32 m wide centred on the origin.
+    Session session(world, SessionSettings{.width = 640,
+                                           .height = 360,
+                                           .title = "hello_fixstep",
+                                           .view_center = Vec2{0.0, 0.0},
+                                           .view_width = 32.0});
     prepare_output_dir(out);
+    FrameWriter writer(out, 640, 360);  // encodes PNGs on a worker thread
 
-    // 4. "Fix Your Timestep!": frames of exactly 1/60 s feed the accumulator, which runs
-    //    whole ticks of dt; each frame draws the state interpolated by alpha.
-    FixedStepLoop loop(LoopSettings{.dt = settings.dt});
+    // 4. "Fix Your Timestep!": frames of exactly 1/60 s feed the accumulator, which runs whole
+    //    ticks of dt; each frame draws the state interpolated by alpha.
     const VirtualClock clock(60.0);
-    RenderFrame drawn;
     for (int frame = 0; frame < 90; ++frame) {
-      if (frame > 0) loop.advance(clock.frame_seconds(), {}, [&](const TickInput& in) { sim.step(in); });
-      sim.fill_render_frame(loop.alpha(), drawn);
-      const std::vector<std::string> hud = {
-          fmt::format("hello_fixstep   tick {}   t = {:.2f} s", sim.tick(), sim.time()),
-          fmt::format("energy {:.3f} J", sim.energy().total())};
-      renderer.draw(drawn, hud);
-      write_png(frame_path(out, frame), renderer.width(), renderer.height(), renderer.pixels());
+      if (frame > 0) session.advance(clock.frame_seconds());
+      session.draw();
+      writer.submit(session.renderer().pixels());
     }
-    fmt::print("wrote 90 frames to {}/ (ticks={}, t={:.2f} s)\n", out, sim.tick(), sim.time());
+    writer.finish();
+    std::printf("wrote 90 frames to %s/ (%s)\n", out.c_str(),
+                summary_line(session.simulation(), session.initial_energy()).c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hello_fixstep: %s\n", e.what());
     return 1;

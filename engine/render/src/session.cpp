@@ -100,6 +100,12 @@ std::vector<std::string> fault_hud_lines(std::string message) {
   return lines;
 }
 
+/// The HUD and summaries show the energy balance, so the dissipation account is kept.
+const WorldDef& tracked(WorldDef& def) {
+  def.settings.track_dissipation = true;
+  return def;
+}
+
 }  // namespace
 
 std::string hex_hash(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
@@ -119,7 +125,7 @@ std::string summary_line(const Simulation& sim, double initial_energy) {
 Session::Session(WorldDef def, const SessionSettings& settings)
     : def_(std::move(def)),
       title_(settings.title),
-      sim_(std::make_unique<Simulation>(make_simulation(def_))),
+      sim_(std::make_unique<Simulation>(make_simulation(tracked(def_)))),
       loop_(LoopSettings{.dt = def_.settings.dt}),
       renderer_(settings.width, settings.height) {
   sim_->set_keep_previous(true);

@@ -44,8 +44,9 @@ struct SessionSettings {
 
 class Session {
  public:
-  /// Builds the world (make_simulation(def): the stability guard applies), the loop (ticks of
-  /// def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid or unstable
+  /// Builds the world (make_simulation(def): the stability guard applies; with
+  /// WorldSettings::track_dissipation turned on, since the HUD shows the energy balance), the
+  /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid or unstable
   /// def (see make_simulation), RenderError when rendering cannot start.
   Session(WorldDef def, const SessionSettings& settings);
 
