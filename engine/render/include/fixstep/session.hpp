@@ -23,9 +23,9 @@ namespace fixstep {
 /// How a Session shows its world.
 struct SessionSettings {
   int width = 1280, height = 720;  ///< frame size, pixels (see Renderer)
-  std::string title;               ///< named in the HUD's first line (e.g. the scene file)
-  std::optional<Vec2> view_center;  ///< m; default: fit_camera's
-  std::optional<double> view_width;  ///< visible width, m; default: fit_camera's
+  std::string title{};              ///< named in the HUD's first line (e.g. the scene file)
+  std::optional<Vec2> view_center{};   ///< m; default: fit_camera's
+  std::optional<double> view_width{};  ///< visible width, m; default: fit_camera's
 };
 
 /// The energy balance error (E + E_dissipated - E0)/|E0| (dimensionless; in J when E0 = 0):
