@@ -1,4 +1,4 @@
-// Links (spring-dampers between bodies) and the multi-pass step (engine/src/world_coupled.cpp,
+// Links (spring-dampers between bodies) and the multi-pass step (engine/core/src/world_coupled.cpp,
 // world_implicit.cpp): the API and its errors, the force against its definition, momentum,
 // bit-identity (tracked vs fused pass, one vs two threads, SIMD levels), the energy balance
 // and its order, and each integrator's order on a damped chain against its exact solution.

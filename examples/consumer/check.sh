@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Builds examples/consumer the two ways a project uses fixstep and checks both (run by .ci/run):
+#  1. installed: `cmake --install BUILD_DIR` into a temporary prefix, then find_package;
+#  2. as a subproject: add_subdirectory of this source tree, which must define no test,
+#     benchmark or demo target.
+# Each consumer must print the state hash `fixstep run` prints for the same world, and link
+# neither OSMesa nor SDL2 (ldd).
+# Usage: bash examples/consumer/check.sh BUILD_DIR   (a configured and built fixstep tree)
+set -euo pipefail
+src=$(cd "$(dirname "$0")/../.." && pwd)
+build=$(cd "${1:?usage: check.sh BUILD_DIR}" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "consumer: FAIL: $*" >&2; exit 1; }
+
+expected=$("$build/bin/fixstep" run "$src/assets/scenes/default.toml" --steps 1000 |
+           grep -o 'state_hash=[0-9a-f]*')
+echo "consumer: fixstep run default.toml --steps 1000: $expected"
+
+check_program() {  # check_program HOW BINARY
+  local how=$1 program=$2 got
+  got=$("$program" | grep -o 'state_hash=[0-9a-f]*')
+  [[ $got == "$expected" ]] || fail "$how consumer printed $got, fixstep run $expected"
+  if ldd "$program" | grep -Ei 'osmesa|sdl2'; then fail "$how consumer links OSMesa or SDL2"; fi
+  echo "consumer: $how: $got, links neither OSMesa nor SDL2"
+}
+
+# 1. Installed package + find_package(fixstep 0.2 REQUIRED COMPONENTS core).
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+cmake -S "$src/examples/consumer" -B "$work/installed" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/installed" >/dev/null
+check_program installed "$work/installed/consumer"
+
+# 2. add_subdirectory: only libraries; the program builds core alone.
+cmake -S "$src/examples/consumer" -B "$work/subproject" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DFIXSTEP_SOURCE_DIR="$src" >/dev/null
+if ninja -C "$work/subproject" -t targets all |
+   grep -E '(^|/)(test_[a-z_]*|bench_[a-z_]*|hello_fixstep|integration_basics|work_precision|fuzz_[a-z_]*|fixstep|[0-9][0-9]_[a-z_]*|fixstep_chart):'; then
+  fail "add_subdirectory defines test, benchmark or demo targets (above)"
+fi
+cmake --build "$work/subproject" >/dev/null
+check_program subproject "$work/subproject/consumer"
+echo "consumer: OK (installed and add_subdirectory)"
