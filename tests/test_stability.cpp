@@ -179,6 +179,38 @@ TEST(Guard, RefusesWithTheSmallestStableSubstepCountWhichThenRuns) {
   EXPECT_TRUE(std::isfinite(sim.body_at(0).position.x));
 }
 
+TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
+  // The same stiff body as above (ω·dt = 5 with symplectic Euler) as a WorldDef: the core's
+  // make_simulation refuses it, states the fault and the smallest stable substep count, and
+  // says nothing of scene files (no "[world]", no "allow_unstable").
+  WorldDef def;
+  def.settings = {.dt = 0.25, .integrator = Integrator::semi_implicit_euler};
+  BodyDef bob;
+  bob.name = "bob";
+  bob.body.position = {1.0, 0.0};
+  bob.spring = SpringDamper{.anchor = {}, .stiffness = 400.0};
+  def.bodies.push_back(bob);
+  try {
+    (void)make_simulation(def);
+    FAIL() << "unstable world accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("body 'bob' is unstable"), std::string::npos) << what;
+    EXPECT_NE(what.find("ω·h = 5 "), std::string::npos) << what;
+    EXPECT_NE(what.find("stable from substeps = 3"), std::string::npos) << what;
+    EXPECT_EQ(what.find("[world]"), std::string::npos) << what;
+    EXPECT_EQ(what.find("allow_unstable"), std::string::npos) << what;
+  }
+  def.settings.substeps = 3;
+  EXPECT_EQ(make_simulation(def).body_count(), 1u);
+  def.settings.substeps = 1;
+  def.allow_unstable = true;
+  EXPECT_EQ(make_simulation(def).body_count(), 1u);
+  // A link to a body that does not exist is refused by index, before any guard runs.
+  def.links.push_back(BodyLink{.body_a = 0, .body_b = 1, .spring = {.stiffness = 1.0}});
+  EXPECT_THROW((void)make_simulation(def), std::invalid_argument);
+}
+
 TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
   const Scene allowed = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler", 1, true), "a.toml");
   const auto warnings = enforce_stability(allowed);
