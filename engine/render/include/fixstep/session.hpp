@@ -48,7 +48,7 @@ class Session {
   /// WorldSettings::track_dissipation turned on, since the HUD shows the energy balance), the
   /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid or unstable
   /// def (see make_simulation), RenderError when rendering cannot start.
-  Session(WorldDef def, const SessionSettings& settings);
+  Session(WorldDef def, const SessionSettings& settings = {});
 
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets
   /// `input` (see TickInput).
