@@ -1,12 +1,12 @@
 // `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock.
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cstdio>
-#include <thread>
-
-#include <fixstep/session.hpp>
 #include <fixstep/scene_stability.hpp>
+#include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
-#include <fmt/format.h>
+#include <thread>
 
 #include "commands.hpp"
 
@@ -34,7 +34,8 @@ int view_command(const ViewOptions& o) {
     apply_loop_keys(ev, session.loop());
     if (ev.restart) session.restart();
 
-    const double seconds = virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
+    const double seconds =
+        virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
     TickInput input;
     input.push = {ev.push_direction.x * push, ev.push_direction.y * push};
     const bool was_faulted = session.simulation().fault().has_value();

@@ -1,12 +1,12 @@
 #include "fixstep/render.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
-
-#include <fmt/format.h>
 
 // GL entry points are resolved against libOSMesa, which exports every GL function (checked:
 // `nm -D libOSMesa.so | grep glCreateShader`). The engine links OSMesa and never libGL: with
@@ -29,7 +29,7 @@ constexpr Rgba8 anchor_color{120, 130, 150, 255};
 constexpr Rgba8 outline{8, 10, 14, 255};
 constexpr Rgba8 text_color{235, 238, 245, 255};
 constexpr Rgba8 panel{0, 0, 0, 150};
-constexpr Rgba8 palette[] = {{230, 87, 46, 255},  {76, 175, 240, 255}, {250, 200, 60, 255},
+constexpr Rgba8 palette[] = {{230, 87, 46, 255},   {76, 175, 240, 255},  {250, 200, 60, 255},
                              {120, 210, 110, 255}, {200, 120, 230, 255}, {240, 140, 170, 255},
                              {90, 220, 200, 255},  {240, 240, 240, 255}};
 constexpr float default_radius_px = 9.0f;
@@ -123,8 +123,10 @@ std::string printable(const std::string& s) {
   out.reserve(s.size());
   for (const char ch : s) {
     const auto c = static_cast<unsigned char>(ch);
-    if ((c >= 32 && c <= 126) || c == '\n') out.push_back(ch);
-    else if ((c & 0xC0) != 0x80) out.push_back('?');  // UTF-8 continuation bytes are dropped
+    if ((c >= 32 && c <= 126) || c == '\n')
+      out.push_back(ch);
+    else if ((c & 0xC0) != 0x80)
+      out.push_back('?');  // UTF-8 continuation bytes are dropped
   }
   return out;
 }
@@ -152,6 +154,8 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
                                   height, min_frame_size, max_frame_size));
   }
   pixels_.assign(static_cast<std::size_t>(width) * height * 4, 0);
+  // Attributes as key, value pairs, one pair a line.
+  // clang-format off
   const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
                          OSMESA_DEPTH_BITS, 0,
                          OSMESA_STENCIL_BITS, 0,
@@ -160,6 +164,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
                          OSMESA_CONTEXT_MAJOR_VERSION, 3,
                          OSMESA_CONTEXT_MINOR_VERSION, 3,
                          0};
+  // clang-format on
   // Mesa 22's OSMesa dereferences a null screen when GALLIUM_DRIVER names a driver it cannot
   // load (seen: GALLIUM_DRIVER=foo crashes inside OSMesaCreateContextAttribs). OSMesa runs on
   // the software rasterisers only, so refuse any other name before calling it.
@@ -292,8 +297,7 @@ void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
        {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, 1.0f);
 }
 
-void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width,
-                    Rgba8 outline_c) {
+void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c) {
   if (!(outline_width > 0.0f)) {
     disc(cx, cy, r, c);
     return;
@@ -601,9 +605,8 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
   // Bodies: an outlined disc of the body's radius (at least min_radius_px).
   for (std::size_t j = 0; j < n; ++j) {
     const auto p = to_pixel(s.x[j], s.y[j]);
-    const float r = s.radius[j] > 0.0f
-                        ? std::max(float(s.radius[j] * scale), min_radius_px)
-                        : default_radius_px;
+    const float r = s.radius[j] > 0.0f ? std::max(float(s.radius[j] * scale), min_radius_px)
+                                       : default_radius_px;
     disc(float(p[0]), float(p[1]), r, color_of(j), 1.5f, outline);
   }
 

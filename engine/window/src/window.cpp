@@ -1,10 +1,10 @@
 #include "fixstep/window.hpp"
 
-#include <cstdlib>
-#include <string>
-
 #include <SDL.h>
 #include <fmt/format.h>
+
+#include <cstdlib>
+#include <string>
 
 namespace fixstep {
 
@@ -53,9 +53,10 @@ Window::Window(const std::string& title, int width, int height) : impl_(new Impl
     const std::string why = SDL_GetError();
     SDL_Quit();
     delete impl_;
-    throw WindowError(fmt::format(
-        "SDL could not initialise video ({}). Without a display, use: fixstep render SCENE --out DIR",
-        why));
+    throw WindowError(
+        fmt::format("SDL could not initialise video ({}). Without a display, use: fixstep render "
+                    "SCENE --out DIR",
+                    why));
   }
   // SDL 2.26 falls back to its "offscreen" (or "dummy") driver when it cannot reach the
   // display named by DISPLAY / WAYLAND_DISPLAY: the window would exist but never be seen. Only
@@ -92,7 +93,9 @@ Window::Window(const std::string& title, int width, int height) : impl_(new Impl
   }
 }
 
-Window::~Window() { release(impl_); }
+Window::~Window() {
+  release(impl_);
+}
 
 std::string Window::driver() const {
   const char* d = SDL_GetCurrentVideoDriver();
@@ -106,16 +109,29 @@ WindowEvents Window::poll() {
     if (e.type == SDL_QUIT) ev.quit = true;
     if (e.type != SDL_KEYDOWN) continue;
     switch (e.key.keysym.sym) {
-      case SDLK_ESCAPE: ev.quit = true; break;
-      case SDLK_SPACE: ev.toggle_pause = true; break;
-      case SDLK_PERIOD: ev.single_step = true; break;
+      case SDLK_ESCAPE:
+        ev.quit = true;
+        break;
+      case SDLK_SPACE:
+        ev.toggle_pause = true;
+        break;
+      case SDLK_PERIOD:
+        ev.single_step = true;
+        break;
       case SDLK_PLUS:
       case SDLK_EQUALS:
-      case SDLK_KP_PLUS: ++ev.time_scale_steps; break;
+      case SDLK_KP_PLUS:
+        ++ev.time_scale_steps;
+        break;
       case SDLK_MINUS:
-      case SDLK_KP_MINUS: --ev.time_scale_steps; break;
-      case SDLK_r: ev.restart = true; break;
-      default: break;
+      case SDLK_KP_MINUS:
+        --ev.time_scale_steps;
+        break;
+      case SDLK_r:
+        ev.restart = true;
+        break;
+      default:
+        break;
     }
   }
   const Uint8* keys = SDL_GetKeyboardState(nullptr);
