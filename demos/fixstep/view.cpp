@@ -6,17 +6,36 @@
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
+#include <string>
+#include <string_view>
 #include <thread>
 
 #include "commands.hpp"
 
 namespace fixstep::cli {
 
+namespace {
+
+// The window, or a WindowError whose message (the library's: the fault only) ends with the
+// advice of this program: frames can be captured without a display.
+Window open_window(const std::string& title, int width, int height) {
+  try {
+    return Window(title, width, height);
+  } catch (const WindowError& e) {
+    const std::string_view fault = e.what();
+    throw WindowError(
+        fmt::format("{}{} Capture frames headless instead: fixstep render SCENE --out DIR", fault,
+                    fault.ends_with('.') ? "" : "."));
+  }
+}
+
+}  // namespace
+
 int view_command(const ViewOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.
-  Window window(fmt::format("fixstep - {}", scene.file), width, height);
+  Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height);
   Session session = open_session(scene, width, height);
   session.set_show_controls(true);
 

@@ -53,10 +53,7 @@ SdlVideo::SdlVideo() {
   if (SDL_Init(SDL_INIT_VIDEO) != 0) {
     const std::string why = SDL_GetError();
     SDL_Quit();  // whatever SDL_Init set up before it failed
-    throw WindowError(
-        fmt::format("SDL could not initialise video ({}). Without a display, use: fixstep render "
-                    "SCENE --out DIR",
-                    why));
+    throw WindowError(fmt::format("SDL could not initialise video ({})", why));
   }
   active_ = true;
 }
@@ -80,7 +77,7 @@ void check_driver_shows_windows() {
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     throw WindowError(fmt::format(
         "no display: could not connect to {} (SDL fell back to its '{}' driver, which shows "
-        "nothing). Start an X server or use: fixstep render SCENE --out DIR",
+        "nothing)",
         display && *display ? fmt::format("DISPLAY={}", display)
                             : fmt::format("WAYLAND_DISPLAY={}", wayland ? wayland : ""),
         driver));
@@ -90,9 +87,7 @@ void check_driver_shows_windows() {
 // SDL's video, on a driver that shows windows. Throws WindowError.
 SdlVideo open_video() {
   if (!has_display()) {
-    throw WindowError(
-        "no display: DISPLAY and WAYLAND_DISPLAY are not set, so no window can open. "
-        "Capture frames headless instead: fixstep render SCENE --out DIR");
+    throw WindowError("no display: DISPLAY and WAYLAND_DISPLAY are not set, so no window can open");
   }
   SdlVideo video;
   check_driver_shows_windows();  // throws: `video` quits SDL on the way out

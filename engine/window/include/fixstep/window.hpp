@@ -50,11 +50,12 @@ inline void apply_loop_keys(const WindowEvents& ev, FixedStepLoop& loop,
 
 class Window {
  public:
-  /// Opens a width x height window (pixels) with SDL's software renderer. Throws WindowError
-  /// when there is no display (neither DISPLAY nor WAYLAND_DISPLAY set and no SDL_VIDEODRIVER
-  /// chosen, or SDL fell back to a driver that shows nothing), SDL cannot initialise video, or
-  /// creating the window, its renderer or its streaming texture fails; whatever was acquired
-  /// before the failure is released first.
+  /// Opens a width x height window (pixels) with SDL's software renderer. Throws WindowError,
+  /// its message stating the fault only (no advice: that is the program's to give), when there
+  /// is no display (neither DISPLAY nor WAYLAND_DISPLAY set and no SDL_VIDEODRIVER chosen, or
+  /// SDL fell back to a driver that shows nothing), SDL cannot initialise video, or creating the
+  /// window, its renderer or its streaming texture fails; whatever was acquired before the
+  /// failure is released first.
   Window(const std::string& title, int width, int height);
   /// Destroys the texture, renderer and window, then quits SDL. Never throws.
   ~Window();
