@@ -1,22 +1,41 @@
 // `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock.
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cstdio>
-#include <thread>
-
-#include <fixstep/session.hpp>
 #include <fixstep/scene_stability.hpp>
+#include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
-#include <fmt/format.h>
+#include <string>
+#include <string_view>
+#include <thread>
 
 #include "commands.hpp"
 
 namespace fixstep::cli {
 
+namespace {
+
+// The window, or a WindowError whose message (the library's: the fault only) ends with the
+// advice of this program: frames can be captured without a display.
+Window open_window(const std::string& title, int width, int height) {
+  try {
+    return Window(title, width, height);
+  } catch (const WindowError& e) {
+    const std::string_view fault = e.what();
+    throw WindowError(
+        fmt::format("{}{} Capture frames headless instead: fixstep render SCENE --out DIR", fault,
+                    fault.ends_with('.') ? "" : "."));
+  }
+}
+
+}  // namespace
+
 int view_command(const ViewOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.
-  Window window(fmt::format("fixstep - {}", scene.file), width, height);
+  Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height);
   Session session = open_session(scene, width, height);
   session.set_show_controls(true);
 
@@ -34,7 +53,8 @@ int view_command(const ViewOptions& o) {
     apply_loop_keys(ev, session.loop());
     if (ev.restart) session.restart();
 
-    const double seconds = virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
+    const double seconds =
+        virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
     TickInput input;
     input.push = {ev.push_direction.x * push, ev.push_direction.y * push};
     const bool was_faulted = session.simulation().fault().has_value();

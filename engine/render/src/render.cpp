@@ -1,20 +1,16 @@
 #include "fixstep/render.hpp"
 
+#include <fmt/format.h>
+#include <stb/stb_easy_font.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
 
-#include <fmt/format.h>
-
-// GL entry points are resolved against libOSMesa, which exports every GL function (checked:
-// `nm -D libOSMesa.so | grep glCreateShader`). The engine links OSMesa and never libGL: with
-// -lGL first, the same symbols would bind to libGL's dispatch, which has no current context in
-// an OSMesa program, and every call would silently do nothing (black frames).
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/osmesa.h>
-#include <stb/stb_easy_font.h>
+#include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_objects.hpp
+#include "gl_shaders.hpp"
 
 namespace fixstep {
 
@@ -29,7 +25,7 @@ constexpr Rgba8 anchor_color{120, 130, 150, 255};
 constexpr Rgba8 outline{8, 10, 14, 255};
 constexpr Rgba8 text_color{235, 238, 245, 255};
 constexpr Rgba8 panel{0, 0, 0, 150};
-constexpr Rgba8 palette[] = {{230, 87, 46, 255},  {76, 175, 240, 255}, {250, 200, 60, 255},
+constexpr Rgba8 palette[] = {{230, 87, 46, 255},   {76, 175, 240, 255},  {250, 200, 60, 255},
                              {120, 210, 110, 255}, {200, 120, 230, 255}, {240, 140, 170, 255},
                              {90, 220, 200, 255},  {240, 240, 240, 255}};
 constexpr float default_radius_px = 9.0f;
@@ -100,20 +96,8 @@ void main() {
 }
 )";
 
-GLuint compile(GLenum type, const char* source) {
-  GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    glDeleteShader(s);
-    throw RenderError(fmt::format("render: shader compilation failed: {}", log));
-  }
-  return s;
-}
+// The programs, in the order of Renderer::shapes and Renderer::outlined_discs.
+constexpr gl::ShaderSources shader_sources{vertex_shader, {fragment_shader, ring_fragment_shader}};
 
 // stb_easy_font indexes its glyph table with (char - 32) and has glyphs for ' '..'~' only: any
 // other byte would read outside the table. Each UTF-8 sequence (or other byte) outside that
@@ -123,35 +107,46 @@ std::string printable(const std::string& s) {
   out.reserve(s.size());
   for (const char ch : s) {
     const auto c = static_cast<unsigned char>(ch);
-    if ((c >= 32 && c <= 126) || c == '\n') out.push_back(ch);
-    else if ((c & 0xC0) != 0x80) out.push_back('?');  // UTF-8 continuation bytes are dropped
+    if ((c >= 32 && c <= 126) || c == '\n')
+      out.push_back(ch);
+    else if ((c & 0xC0) != 0x80)
+      out.push_back('?');  // UTF-8 continuation bytes are dropped
   }
   return out;
 }
 
 }  // namespace
 
-struct Renderer::Gl {
-  OSMesaContext context = nullptr;
-  struct Program {
-    GLuint id = 0;
-    GLint size = -1, margin = -1, ring = -1;  // uniform locations (ring: outlined discs only)
-  };
-  Program programs[2];  // [Renderer::shapes], [Renderer::outlined_discs]
-  GLuint vao = 0, vbo = 0, ibo = 0;
-  int margin = 0;  // px, see finish()
-  // Bytes allocated for vbo and ibo: they grow (glBufferData) only when a frame needs more and
-  // are otherwise refilled in place (glBufferSubData), so a steady scene allocates nothing.
-  std::size_t vbo_bytes = 0, ibo_bytes = 0;
-};
+namespace gl {
 
-Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(new Gl) {
-  if (width < min_frame_size || height < min_frame_size || width > max_frame_size ||
-      height > max_frame_size) {
-    throw RenderError(fmt::format("render: frame size {}x{} is outside {}..{} pixels", width,
-                                  height, min_frame_size, max_frame_size));
+namespace {
+
+// `log` without the line break Mesa ends its info logs with.
+std::string trimmed(const char* log) {
+  std::string s = log;
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+  return s;
+}
+
+// Mesa 22's OSMesa dereferences a null screen when GALLIUM_DRIVER names a driver it cannot
+// load (seen: GALLIUM_DRIVER=foo crashes inside OSMesaCreateContextAttribs). OSMesa runs on
+// the software rasterisers only, so refuse any other name before calling it.
+void check_gallium_driver() {
+  const char* driver = std::getenv("GALLIUM_DRIVER");
+  if (!driver || !*driver) return;
+  const std::string d = driver;
+  if (d != "llvmpipe" && d != "softpipe") {
+    throw RenderError(fmt::format(
+        "render: GALLIUM_DRIVER={} is not a driver OSMesa can use (llvmpipe or softpipe); "
+        "unset it or choose one of those",
+        d));
   }
-  pixels_.assign(static_cast<std::size_t>(width) * height * 4, 0);
+}
+
+Context create_context() {
+  check_gallium_driver();
+  // Attributes as key, value pairs, one pair a line.
+  // clang-format off
   const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
                          OSMESA_DEPTH_BITS, 0,
                          OSMESA_STENCIL_BITS, 0,
@@ -160,68 +155,146 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
                          OSMESA_CONTEXT_MAJOR_VERSION, 3,
                          OSMESA_CONTEXT_MINOR_VERSION, 3,
                          0};
-  // Mesa 22's OSMesa dereferences a null screen when GALLIUM_DRIVER names a driver it cannot
-  // load (seen: GALLIUM_DRIVER=foo crashes inside OSMesaCreateContextAttribs). OSMesa runs on
-  // the software rasterisers only, so refuse any other name before calling it.
-  if (const char* driver = std::getenv("GALLIUM_DRIVER"); driver && *driver) {
-    const std::string d = driver;
-    if (d != "llvmpipe" && d != "softpipe") {
-      throw RenderError(fmt::format(
-          "render: GALLIUM_DRIVER={} is not a driver OSMesa can use (llvmpipe or softpipe); "
-          "unset it or choose one of those",
-          d));
-    }
-  }
-  gl_->context = OSMesaCreateContextAttribs(attribs, nullptr);
-  if (!gl_->context) {
+  // clang-format on
+  Context context(OSMesaCreateContextAttribs(attribs, nullptr));
+  if (!context.get()) {
     throw RenderError(
         "render: OSMesaCreateContextAttribs failed to create an OpenGL 3.3 core context "
         "(is libosmesa6 from Mesa >= 17 installed?)");
   }
-  make_current();
-  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  if (!renderer) {
-    OSMesaDestroyContext(gl_->context);
-    gl_->context = nullptr;
+  return context;
+}
+
+// GL_RENDERER of the current context.
+std::string query_renderer_name() {
+  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (!name) {
     throw RenderError(
         "render: GL_RENDERER is null: GL calls are not reaching OSMesa. Link libOSMesa only; a "
         "libGL linked before it captures every gl* call and frames come out black.");
   }
-  gl_renderer_ = renderer;
+  return name;
+}
 
-  const GLuint vs = compile(GL_VERTEX_SHADER, vertex_shader);
-  const char* fragment_sources[2] = {fragment_shader, ring_fragment_shader};
-  for (int i = 0; i < 2; ++i) {
-    Gl::Program& p = gl_->programs[i];
-    const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_sources[i]);
-    p.id = glCreateProgram();
-    glAttachShader(p.id, vs);
-    glAttachShader(p.id, fs);
-    glLinkProgram(p.id);
-    glDeleteShader(fs);
-    GLint linked = 0;
-    glGetProgramiv(p.id, GL_LINK_STATUS, &linked);
-    if (!linked) {
-      glDeleteShader(vs);
-      throw RenderError("render: shader program failed to link");
-    }
-    p.size = glGetUniformLocation(p.id, "u_size");
-    p.margin = glGetUniformLocation(p.id, "u_margin");
-    p.ring = glGetUniformLocation(p.id, "u_ring");
+std::array<Pipeline::LinkedProgram, 2> link_programs(const ShaderSources& sources) {
+  const Shader vertex = compile_shader(GL_VERTEX_SHADER, sources.vertex);
+  std::array<Pipeline::LinkedProgram, 2> programs;
+  for (std::size_t i = 0; i < programs.size(); ++i) {
+    const Shader fragment = compile_shader(GL_FRAGMENT_SHADER, sources.fragments[i]);
+    Pipeline::LinkedProgram& p = programs[i];
+    p.program = link_program(vertex, fragment);
+    p.size = glGetUniformLocation(p.program.get(), "u_size");
+    p.margin = glGetUniformLocation(p.program.get(), "u_margin");
+    p.ring = glGetUniformLocation(p.program.get(), "u_ring");
   }
-  glDeleteShader(vs);
+  return programs;
+}
+
+VertexArray create_vertex_array() {
+  GLuint name = 0;
+  glGenVertexArrays(1, &name);
+  return VertexArray(name);
+}
+
+Buffer create_buffer() {
+  GLuint name = 0;
+  glGenBuffers(1, &name);
+  return Buffer(name);
+}
+
+// px of viewport beyond each edge of a width x height frame (see Renderer::finish()).
+int viewport_margin(int width, int height) {
   GLint max_dims[2] = {0, 0};
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_dims);
-  gl_->margin = std::clamp((std::min(max_dims[0] - width, max_dims[1] - height)) / 2, 0, 256);
   // (llvmpipe reports 16384 x 16384, viewport bounds -32768..32767: the full 256 px even at
   // max_frame_size.)
+  return std::clamp((std::min(max_dims[0] - width, max_dims[1] - height)) / 2, 0, 256);
+}
 
-  glGenVertexArrays(1, &gl_->vao);
-  glGenBuffers(1, &gl_->vbo);
-  glGenBuffers(1, &gl_->ibo);
-  glBindVertexArray(gl_->vao);
-  glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo);  // part of the VAO's state
+}  // namespace
+
+Shader compile_shader(GLenum type, const char* source) {
+  Shader shader(glCreateShader(type));
+  glShaderSource(shader.get(), 1, &source, nullptr);
+  glCompileShader(shader.get());
+  GLint ok = 0;
+  glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader.get(), sizeof log, nullptr, log);
+    throw RenderError(fmt::format("render: shader compilation failed: {}", trimmed(log)));
+  }
+  return shader;
+}
+
+Program link_program(const Shader& vertex, const Shader& fragment) {
+  Program program(glCreateProgram());
+  glAttachShader(program.get(), vertex.get());
+  glAttachShader(program.get(), fragment.get());
+  glLinkProgram(program.get());
+  GLint linked = 0;
+  glGetProgramiv(program.get(), GL_LINK_STATUS, &linked);
+  if (!linked) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program.get(), sizeof log, nullptr, log);
+    throw RenderError(fmt::format("render: shader program failed to link: {}", trimmed(log)));
+  }
+  return program;
+}
+
+Pipeline::Pipeline(int width, int height, std::uint8_t* pixels, const ShaderSources& sources)
+    : width(width), height(height), pixels(pixels) {
+  // Each step below either leaves its resource in a member or throws; members already filled
+  // release theirs on the way out, the context last.
+  context = create_context();
+  make_current();
+  renderer_name = query_renderer_name();
+  programs = link_programs(sources);
+  vao = create_vertex_array();
+  vbo = create_buffer();
+  ibo = create_buffer();
+  margin = viewport_margin(width, height);
+}
+
+Pipeline::~Pipeline() {
+  // GL deletes names in the context current on this thread, by now perhaps another renderer's.
+  // Should binding ours fail (it succeeded with the same arguments before), its names are left
+  // to OSMesaDestroyContext, which frees every object of the context.
+  if (OSMesaMakeCurrent(context.get(), pixels, GL_UNSIGNED_BYTE, width, height)) return;
+  for (LinkedProgram& p : programs) p.program.abandon();
+  vao.abandon();
+  vbo.abandon();
+  ibo.abandon();
+}
+
+void Pipeline::make_current() const {
+  // Several renderers may live in one process (tests): bind ours before drawing. Y_UP = 0
+  // makes row 0 of the buffer the top of the image.
+  if (!OSMesaMakeCurrent(context.get(), pixels, GL_UNSIGNED_BYTE, width, height)) {
+    throw RenderError("render: OSMesaMakeCurrent failed");
+  }
+  OSMesaPixelStore(OSMESA_Y_UP, 0);
+}
+
+}  // namespace gl
+
+struct Renderer::Gl : gl::Pipeline {
+  using Pipeline::Pipeline;
+};
+
+Renderer::Renderer(int width, int height) : width_(width), height_(height) {
+  if (width < min_frame_size || height < min_frame_size || width > max_frame_size ||
+      height > max_frame_size) {
+    throw RenderError(fmt::format("render: frame size {}x{} is outside {}..{} pixels", width,
+                                  height, min_frame_size, max_frame_size));
+  }
+  pixels_.assign(static_cast<std::size_t>(width) * height * 4, 0);
+  gl_ = std::make_unique<Gl>(width, height, pixels_.data(), shader_sources);
+  gl_renderer_ = gl_->renderer_name;
+
+  glBindVertexArray(gl_->vao.get());
+  glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo.get());  // part of the VAO's state
   const auto stride = static_cast<GLsizei>(sizeof(Vertex));
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride,
                         reinterpret_cast<void*>(offsetof(Vertex, x)));
@@ -235,26 +308,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height), gl_(
   font_scratch_.resize(64 * 1024);
 }
 
-Renderer::~Renderer() {
-  if (gl_ && gl_->context) {
-    make_current();
-    glDeleteBuffers(1, &gl_->ibo);
-    glDeleteBuffers(1, &gl_->vbo);
-    glDeleteVertexArrays(1, &gl_->vao);
-    for (const Gl::Program& p : gl_->programs) glDeleteProgram(p.id);
-    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);  // unbind before destroying
-    OSMesaDestroyContext(gl_->context);
-  }
-}
-
-void Renderer::make_current() {
-  // Several renderers may live in one process (tests): bind ours before drawing. Y_UP = 0
-  // makes row 0 of the buffer the top of the image.
-  if (!OSMesaMakeCurrent(gl_->context, pixels_.data(), GL_UNSIGNED_BYTE, width_, height_)) {
-    throw RenderError("render: OSMesaMakeCurrent failed");
-  }
-  OSMesaPixelStore(OSMESA_Y_UP, 0);
-}
+Renderer::~Renderer() = default;
 
 std::array<double, 2> Renderer::to_pixel(double x, double y) const {
   const double scale = width_ / camera_.width;  // px per m
@@ -292,8 +346,7 @@ void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
        {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, 1.0f);
 }
 
-void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width,
-                    Rgba8 outline_c) {
+void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c) {
   if (!(outline_width > 0.0f)) {
     disc(cx, cy, r, c);
     return;
@@ -414,7 +467,7 @@ float Renderer::text_width(const std::string& s, float scale) {
 }
 
 void Renderer::begin(Rgba8 background) {
-  make_current();
+  gl_->make_current();
   vertices_.clear();
   indices_.clear();
   batches_.assign(1, Batch{});
@@ -601,9 +654,8 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
   // Bodies: an outlined disc of the body's radius (at least min_radius_px).
   for (std::size_t j = 0; j < n; ++j) {
     const auto p = to_pixel(s.x[j], s.y[j]);
-    const float r = s.radius[j] > 0.0f
-                        ? std::max(float(s.radius[j] * scale), min_radius_px)
-                        : default_radius_px;
+    const float r = s.radius[j] > 0.0f ? std::max(float(s.radius[j] * scale), min_radius_px)
+                                       : default_radius_px;
     disc(float(p[0]), float(p[1]), r, color_of(j), 1.5f, outline);
   }
 
@@ -638,7 +690,7 @@ void upload(GLenum target, std::size_t& capacity, const void* data, std::size_t 
 }  // namespace
 
 void Renderer::finish() {
-  make_current();
+  gl_->make_current();
   // The viewport reaches gl_->margin px beyond every edge of the frame (the vertex shader maps
   // pixel coordinates into it, so pixels land where they did with a frame-sized viewport;
   // whatever falls outside the frame is simply not rasterised). Without the margin, any vertex
@@ -654,14 +706,14 @@ void Renderer::finish() {
   glEnable(GL_BLEND);
   // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  for (const Gl::Program& p : gl_->programs) {
-    glUseProgram(p.id);
+  for (const gl::Pipeline::LinkedProgram& p : gl_->programs) {
+    glUseProgram(p.program.get());
     glUniform2f(p.size, float(width_), float(height_));
     glUniform1f(p.margin, float(gl_->margin));
   }
   int program = -1;
-  glBindVertexArray(gl_->vao);
-  glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo);
+  glBindVertexArray(gl_->vao.get());
+  glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
   upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), vertices_.size() * sizeof(Vertex));
   upload(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo_bytes, indices_.data(),
          indices_.size() * sizeof(std::uint32_t));
@@ -671,7 +723,7 @@ void Renderer::finish() {
     if (end == first) continue;
     if (batches_[b].program != program) {
       program = batches_[b].program;
-      glUseProgram(gl_->programs[program].id);
+      glUseProgram(gl_->programs[program].program.get());
     }
     if (program == outlined_discs) {
       const Rgba8 r = batches_[b].ring;

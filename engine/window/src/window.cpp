@@ -1,47 +1,48 @@
 #include "fixstep/window.hpp"
 
-#include <cstdlib>
-#include <string>
-
 #include <SDL.h>
 #include <fmt/format.h>
 
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <utility>
+
 namespace fixstep {
 
-struct Window::Impl {
-  SDL_Window* window = nullptr;
-  SDL_Renderer* renderer = nullptr;
-  SDL_Texture* texture = nullptr;
-  int width = 0, height = 0;
+namespace {
+
+// Owning handles for SDL's objects: each destructor only releases (noexcept).
+
+/// SDL's video subsystem, initialised (with fixstep's hints) for the handle's lifetime.
+class SdlVideo {
+ public:
+  /// SDL_Init(SDL_INIT_VIDEO). Throws WindowError "SDL could not initialise video (WHY)".
+  SdlVideo();
+  ~SdlVideo() {
+    if (active_) SDL_Quit();
+  }
+  SdlVideo(SdlVideo&& other) noexcept : active_(std::exchange(other.active_, false)) {}
+  SdlVideo& operator=(SdlVideo&&) = delete;
+
+ private:
+  bool active_ = false;
 };
 
-namespace {
-void release(Window::Impl*& impl) {
-  if (!impl) return;
-  if (impl->texture) SDL_DestroyTexture(impl->texture);
-  if (impl->renderer) SDL_DestroyRenderer(impl->renderer);
-  if (impl->window) SDL_DestroyWindow(impl->window);
-  SDL_Quit();
-  delete impl;
-  impl = nullptr;
-}
+struct DestroyWindow {
+  void operator()(SDL_Window* w) const noexcept { SDL_DestroyWindow(w); }
+};
+struct DestroyRenderer {
+  void operator()(SDL_Renderer* r) const noexcept { SDL_DestroyRenderer(r); }
+};
+struct DestroyTexture {
+  void operator()(SDL_Texture* t) const noexcept { SDL_DestroyTexture(t); }
+};
+using SdlWindow = std::unique_ptr<SDL_Window, DestroyWindow>;
+using SdlRenderer = std::unique_ptr<SDL_Renderer, DestroyRenderer>;
+using SdlTexture = std::unique_ptr<SDL_Texture, DestroyTexture>;
 
-bool has_display() {
-  auto set = [](const char* name) {
-    const char* v = std::getenv(name);
-    return v && *v;
-  };
-  return set("DISPLAY") || set("WAYLAND_DISPLAY") || set("SDL_VIDEODRIVER");
-}
-}  // namespace
-
-Window::Window(const std::string& title, int width, int height) : impl_(new Impl) {
-  if (!has_display()) {
-    delete impl_;
-    throw WindowError(
-        "no display: DISPLAY and WAYLAND_DISPLAY are not set, so no window can open. "
-        "Capture frames headless instead: fixstep render SCENE --out DIR");
-  }
+SdlVideo::SdlVideo() {
   // SDL's own software renderer: it copies our pixels to the window surface. A GL-based SDL
   // renderer would load libGL next to libOSMesa, and both export the same gl* symbols.
   SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
@@ -51,48 +52,102 @@ Window::Window(const std::string& title, int width, int height) : impl_(new Impl
   SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
   if (SDL_Init(SDL_INIT_VIDEO) != 0) {
     const std::string why = SDL_GetError();
-    SDL_Quit();
-    delete impl_;
-    throw WindowError(fmt::format(
-        "SDL could not initialise video ({}). Without a display, use: fixstep render SCENE --out DIR",
-        why));
+    SDL_Quit();  // whatever SDL_Init set up before it failed
+    throw WindowError(fmt::format("SDL could not initialise video ({})", why));
   }
-  // SDL 2.26 falls back to its "offscreen" (or "dummy") driver when it cannot reach the
-  // display named by DISPLAY / WAYLAND_DISPLAY: the window would exist but never be seen. Only
-  // accept those drivers when SDL_VIDEODRIVER asks for them by name.
+  active_ = true;
+}
+
+bool has_display() {
+  auto set = [](const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v;
+  };
+  return set("DISPLAY") || set("WAYLAND_DISPLAY") || set("SDL_VIDEODRIVER");
+}
+
+// SDL 2.26 falls back to its "offscreen" (or "dummy") driver when it cannot reach the display
+// named by DISPLAY / WAYLAND_DISPLAY: the window would exist but never be seen. Only accept
+// those drivers when SDL_VIDEODRIVER asks for them by name.
+void check_driver_shows_windows() {
   const std::string driver = SDL_GetCurrentVideoDriver() ? SDL_GetCurrentVideoDriver() : "";
   const char* requested = std::getenv("SDL_VIDEODRIVER");
   if ((driver == "offscreen" || driver == "dummy") && !(requested && driver == requested)) {
-    SDL_Quit();
-    delete impl_;
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     throw WindowError(fmt::format(
         "no display: could not connect to {} (SDL fell back to its '{}' driver, which shows "
-        "nothing). Start an X server or use: fixstep render SCENE --out DIR",
+        "nothing)",
         display && *display ? fmt::format("DISPLAY={}", display)
                             : fmt::format("WAYLAND_DISPLAY={}", wayland ? wayland : ""),
         driver));
   }
-  impl_->width = width;
-  impl_->height = height;
-  impl_->window = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
-                                   width, height, 0);
-  if (impl_->window) {
-    impl_->renderer = SDL_CreateRenderer(impl_->window, -1, SDL_RENDERER_SOFTWARE);
-  }
-  if (impl_->renderer) {
-    impl_->texture = SDL_CreateTexture(impl_->renderer, SDL_PIXELFORMAT_ABGR8888,
-                                       SDL_TEXTUREACCESS_STREAMING, width, height);
-  }
-  if (!impl_->texture) {
-    const std::string why = SDL_GetError();
-    release(impl_);
-    throw WindowError(fmt::format("SDL could not create a {}x{} window: {}", width, height, why));
-  }
 }
 
-Window::~Window() { release(impl_); }
+// SDL's video, on a driver that shows windows. Throws WindowError.
+SdlVideo open_video() {
+  if (!has_display()) {
+    throw WindowError("no display: DISPLAY and WAYLAND_DISPLAY are not set, so no window can open");
+  }
+  SdlVideo video;
+  check_driver_shows_windows();  // throws: `video` quits SDL on the way out
+  return video;
+}
+
+SdlWindow create_window(const std::string& title, int width, int height) {
+  SdlWindow window(SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
+                                    width, height, 0));
+  if (!window) {
+    throw WindowError(
+        fmt::format("SDL could not create a {}x{} window: {}", width, height, SDL_GetError()));
+  }
+  return window;
+}
+
+SdlRenderer create_renderer(SDL_Window& window) {
+  SdlRenderer renderer(SDL_CreateRenderer(&window, -1, SDL_RENDERER_SOFTWARE));
+  if (!renderer) {
+    throw WindowError(
+        fmt::format("SDL could not create a software renderer for the window: {}", SDL_GetError()));
+  }
+  return renderer;
+}
+
+// ABGR8888 is R,G,B,A byte order in memory on little-endian machines: the renderer's layout.
+SdlTexture create_texture(SDL_Renderer& renderer, int width, int height) {
+  SdlTexture texture(SDL_CreateTexture(&renderer, SDL_PIXELFORMAT_ABGR8888,
+                                       SDL_TEXTUREACCESS_STREAMING, width, height));
+  if (!texture) {
+    throw WindowError(fmt::format("SDL could not create a {}x{} texture for the window: {}", width,
+                                  height, SDL_GetError()));
+  }
+  return texture;
+}
+
+}  // namespace
+
+// Members in acquisition order: if a step throws, the ones built so far are released in
+// reverse (the texture before its renderer, the renderer before its window, SDL_Quit last).
+struct Window::Impl {
+  Impl(const std::string& title, int width, int height)
+      : video(open_video()),
+        window(create_window(title, width, height)),
+        renderer(create_renderer(*window)),
+        texture(create_texture(*renderer, width, height)),
+        width(width),
+        height(height) {}
+
+  SdlVideo video;
+  SdlWindow window;
+  SdlRenderer renderer;
+  SdlTexture texture;
+  int width, height;
+};
+
+Window::Window(const std::string& title, int width, int height)
+    : impl_(std::make_unique<Impl>(title, width, height)) {}
+
+Window::~Window() = default;
 
 std::string Window::driver() const {
   const char* d = SDL_GetCurrentVideoDriver();
@@ -106,16 +161,29 @@ WindowEvents Window::poll() {
     if (e.type == SDL_QUIT) ev.quit = true;
     if (e.type != SDL_KEYDOWN) continue;
     switch (e.key.keysym.sym) {
-      case SDLK_ESCAPE: ev.quit = true; break;
-      case SDLK_SPACE: ev.toggle_pause = true; break;
-      case SDLK_PERIOD: ev.single_step = true; break;
+      case SDLK_ESCAPE:
+        ev.quit = true;
+        break;
+      case SDLK_SPACE:
+        ev.toggle_pause = true;
+        break;
+      case SDLK_PERIOD:
+        ev.single_step = true;
+        break;
       case SDLK_PLUS:
       case SDLK_EQUALS:
-      case SDLK_KP_PLUS: ++ev.time_scale_steps; break;
+      case SDLK_KP_PLUS:
+        ++ev.time_scale_steps;
+        break;
       case SDLK_MINUS:
-      case SDLK_KP_MINUS: --ev.time_scale_steps; break;
-      case SDLK_r: ev.restart = true; break;
-      default: break;
+      case SDLK_KP_MINUS:
+        --ev.time_scale_steps;
+        break;
+      case SDLK_r:
+        ev.restart = true;
+        break;
+      default:
+        break;
     }
   }
   const Uint8* keys = SDL_GetKeyboardState(nullptr);
@@ -128,11 +196,10 @@ void Window::present(std::span<const std::uint8_t> rgba) {
   if (rgba.size() != static_cast<std::size_t>(impl_->width) * impl_->height * 4) {
     throw WindowError("window: frame size does not match the window");
   }
-  // ABGR8888 is R,G,B,A byte order in memory on little-endian machines: the renderer's layout.
-  SDL_UpdateTexture(impl_->texture, nullptr, rgba.data(), impl_->width * 4);
-  SDL_RenderClear(impl_->renderer);
-  SDL_RenderCopy(impl_->renderer, impl_->texture, nullptr, nullptr);
-  SDL_RenderPresent(impl_->renderer);
+  SDL_UpdateTexture(impl_->texture.get(), nullptr, rgba.data(), impl_->width * 4);
+  SDL_RenderClear(impl_->renderer.get());
+  SDL_RenderCopy(impl_->renderer.get(), impl_->texture.get(), nullptr, nullptr);
+  SDL_RenderPresent(impl_->renderer.get());
 }
 
 }  // namespace fixstep

@@ -40,10 +40,14 @@ inline constexpr int max_frame_size = 8192;
 /// alpha = 255 everywhere), the TOP row first — ready for PNG and SDL textures.
 class Renderer {
  public:
-  /// Creates the OSMesa context. Throws RenderError if the size is outside
-  /// [min_frame_size, max_frame_size], if OSMesa cannot create a core-profile context, or if
-  /// GL calls do not reach OSMesa (GL_RENDERER is null, e.g. when libGL was linked first).
+  /// Creates the OSMesa context, its shader programs and vertex buffers for width x height
+  /// pixels. Throws RenderError if the size is outside [min_frame_size, max_frame_size], if
+  /// GALLIUM_DRIVER names a driver OSMesa cannot use, if OSMesa cannot create a core-profile
+  /// context or make it current, if GL calls do not reach OSMesa (GL_RENDERER is null, e.g.
+  /// when libGL was linked first) or if a shader fails to compile or link; whatever was
+  /// acquired before the failure is released first.
   Renderer(int width, int height);
+  /// Releases the GL objects, then the context. Never throws.
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -149,7 +153,6 @@ class Renderer {
   /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
   /// outlined_discs, outline colour `ring`), starting a new batch if needed.
   void use(int program, Rgba8 ring);
-  void make_current();
   void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind);
   void vertex(float x, float y, float u, float v, Rgba8 c, float kind) {
     vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, kind});
@@ -161,8 +164,8 @@ class Renderer {
 
   int width_, height_;
   std::vector<std::uint8_t> pixels_;
-  struct Gl;
-  std::unique_ptr<Gl> gl_;
+  struct Gl;                // the OSMesa context and GL objects drawing into pixels_
+  std::unique_ptr<Gl> gl_;  // after pixels_: released before them
   std::string gl_renderer_;
   Camera camera_;
   std::vector<Vertex> vertices_;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -49,9 +50,14 @@ inline void apply_loop_keys(const WindowEvents& ev, FixedStepLoop& loop,
 
 class Window {
  public:
-  /// Opens a width x height window (pixels). Throws WindowError when there is no display
-  /// (neither DISPLAY nor WAYLAND_DISPLAY set and no SDL_VIDEODRIVER chosen) or SDL fails.
+  /// Opens a width x height window (pixels) with SDL's software renderer. Throws WindowError,
+  /// its message stating the fault only (no advice: that is the program's to give), when there
+  /// is no display (neither DISPLAY nor WAYLAND_DISPLAY set and no SDL_VIDEODRIVER chosen, or
+  /// SDL fell back to a driver that shows nothing), SDL cannot initialise video, or creating the
+  /// window, its renderer or its streaming texture fails; whatever was acquired before the
+  /// failure is released first.
   Window(const std::string& title, int width, int height);
+  /// Destroys the texture, renderer and window, then quits SDL. Never throws.
   ~Window();
   Window(const Window&) = delete;
   Window& operator=(const Window&) = delete;
@@ -64,10 +70,9 @@ class Window {
   /// SDL's name for the video driver in use (e.g. "x11").
   [[nodiscard]] std::string driver() const;
 
-  struct Impl;
-
  private:
-  Impl* impl_;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace fixstep

@@ -1,0 +1,80 @@
+// Owning handles for what a Renderer holds in OSMesa and GL: the context and the names of its
+// shaders, programs, vertex arrays and buffers. Internal to fixstep::render (not installed).
+//
+// GL entry points are resolved against libOSMesa, which exports every GL function (checked:
+// `nm -D libOSMesa.so | grep glCreateShader`). The engine links OSMesa and never libGL: with
+// -lGL first, the same symbols would bind to libGL's dispatch, which has no current context in
+// an OSMesa program, and every call would silently do nothing (black frames).
+#pragma once
+
+#include <utility>
+
+#ifndef GL_GLEXT_PROTOTYPES
+#define GL_GLEXT_PROTOTYPES 1
+#endif
+#include <GL/osmesa.h>
+
+namespace fixstep::gl {
+
+/// Owns one resource `value` (the null value T{} owns nothing) and hands it to Release{} on
+/// destruction. Movable, not copyable; the destructor is noexcept and only releases.
+template <class T, class Release>
+class Owned {
+ public:
+  static_assert(noexcept(Release{}(T{})), "a release must not throw");
+
+  Owned() = default;
+  explicit Owned(T value) noexcept : value_(value) {}
+  ~Owned() { reset(); }
+  Owned(Owned&& other) noexcept : value_(std::exchange(other.value_, T{})) {}
+  Owned& operator=(Owned&& other) noexcept {
+    if (this != &other) {
+      reset();
+      value_ = std::exchange(other.value_, T{});
+    }
+    return *this;
+  }
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+
+  [[nodiscard]] T get() const noexcept { return value_; }
+  /// Gives up ownership without releasing (the resource is freed by someone else).
+  void abandon() noexcept { value_ = T{}; }
+
+ private:
+  void reset() noexcept {
+    if (value_ != T{}) Release{}(std::exchange(value_, T{}));
+  }
+  T value_{};
+};
+
+/// Unbinds the context if it is current on this thread, then destroys it (which also frees
+/// every GL object left in it).
+struct DestroyContext {
+  void operator()(OSMesaContext context) const noexcept {
+    if (OSMesaGetCurrentContext() == context) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+    OSMesaDestroyContext(context);
+  }
+};
+// GL names are deleted in the context current on this thread: the one that created them must
+// be current when they are released (see Pipeline::~Pipeline).
+struct DeleteShader {
+  void operator()(GLuint name) const noexcept { glDeleteShader(name); }
+};
+struct DeleteProgram {
+  void operator()(GLuint name) const noexcept { glDeleteProgram(name); }
+};
+struct DeleteVertexArray {
+  void operator()(GLuint name) const noexcept { glDeleteVertexArrays(1, &name); }
+};
+struct DeleteBuffer {
+  void operator()(GLuint name) const noexcept { glDeleteBuffers(1, &name); }
+};
+
+using Context = Owned<OSMesaContext, DestroyContext>;
+using Shader = Owned<GLuint, DeleteShader>;
+using Program = Owned<GLuint, DeleteProgram>;
+using VertexArray = Owned<GLuint, DeleteVertexArray>;
+using Buffer = Owned<GLuint, DeleteBuffer>;
+
+}  // namespace fixstep::gl

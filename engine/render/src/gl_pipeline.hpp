@@ -1,0 +1,67 @@
+// Every OSMesa and GL resource of a Renderer, owned through the handles of gl_objects.hpp.
+// Internal to fixstep::render (not installed); tests/test_resources.cpp builds it from broken
+// shader sources and a missing pixel buffer to provoke each failure of its construction.
+// Defined in render.cpp.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "gl_objects.hpp"
+
+namespace fixstep::gl {
+
+/// GLSL sources of the renderer's programs: one vertex shader, shared by the programs, and one
+/// fragment shader per program.
+struct ShaderSources {
+  const char* vertex = nullptr;
+  std::array<const char*, 2> fragments{};
+};
+
+/// The OSMesa context of one frame buffer and the GL objects drawn with it. The members are
+/// declared in the order the constructor acquires them and so are released in reverse: if the
+/// constructor throws, the members built so far release what they hold (the GL names while the
+/// context is still current, then the context).
+struct Pipeline {
+  /// A linked program and its uniform locations (-1 where the program has no such uniform).
+  struct LinkedProgram {
+    Program program;
+    GLint size = -1, margin = -1, ring = -1;  // u_size, u_margin, u_ring
+  };
+
+  /// Creates an OpenGL 3.3 core context drawing into `pixels` (width x height RGBA8 pixels, top
+  /// row first; the caller keeps them alive and in place while the Pipeline lives), makes it
+  /// current, builds programs[i] from sources.vertex and sources.fragments[i], and creates the
+  /// vertex array and its two buffers. Throws RenderError, having released whatever it
+  /// acquired, when: GALLIUM_DRIVER names a driver other than llvmpipe or softpipe (Mesa 22
+  /// would crash on it); OSMesaCreateContextAttribs fails; OSMesaMakeCurrent fails (e.g. no
+  /// pixels); GL_RENDERER is null (GL calls do not reach OSMesa); a shader fails to compile or
+  /// a program to link.
+  Pipeline(int width, int height, std::uint8_t* pixels, const ShaderSources& sources);
+  /// Makes the context current (so the GL names are deleted in it), then releases everything.
+  ~Pipeline();
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+
+  /// Makes the context current on this thread, drawing into the pixels, row 0 at the top.
+  /// Throws RenderError "render: OSMesaMakeCurrent failed".
+  void make_current() const;
+
+  int width, height;
+  std::uint8_t* pixels;
+  // --- resources, in acquisition order ---
+  Context context;
+  std::array<LinkedProgram, 2> programs;
+  VertexArray vao;
+  Buffer vbo, ibo;  // vertices; triangles (3 indices each), part of vao's state
+  // --- state ---
+  std::string renderer_name;  // GL_RENDERER
+  int margin = 0;             // px of viewport beyond each edge of the frame (Renderer::finish)
+  // Bytes allocated for vbo and ibo: they grow (glBufferData) only when a frame needs more and
+  // are otherwise refilled in place (glBufferSubData), so a steady scene allocates nothing.
+  std::size_t vbo_bytes = 0, ibo_bytes = 0;
+};
+
+}  // namespace fixstep::gl
