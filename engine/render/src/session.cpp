@@ -175,7 +175,7 @@ void Session::draw() {
   }
   if (show_controls_) {
     hud_.push_back(fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
-    hud_.push_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
+    hud_.emplace_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
   }
   renderer_.draw(frame_, hud_);
 }
