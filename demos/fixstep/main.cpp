@@ -34,7 +34,9 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// The whole of main is one try block: an exception from any step (CLI11's setup included)
+// becomes "fixstep: error: ..." and exit status 1, never std::terminate.
+int main(int argc, char** argv) try {
   using namespace fixstep::cli;
   CLI::App app{"fixstep: fixed-timestep integration of spring-damper and projectile scenes, "
                "rendered headless with OSMesa or shown in an SDL2 window."};
@@ -107,18 +109,16 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
-  try {
-    if (run_cmd->parsed()) {
-      if (!steps->count() && !duration->count()) {
-        std::fputs("fixstep run: give --steps N or --duration S\n", stderr);
-        return 2;
-      }
-      return run_command(run);
+  if (run_cmd->parsed()) {
+    if (!steps->count() && !duration->count()) {
+      std::fputs("fixstep run: give --steps N or --duration S\n", stderr);
+      return 2;
     }
-    if (render_cmd->parsed()) return render_command(render);
-    return view_command(view);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "fixstep: error: %s\n", e.what());
-    return 1;
+    return run_command(run);
   }
+  if (render_cmd->parsed()) return render_command(render);
+  return view_command(view);
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "fixstep: error: %s\n", e.what());
+  return 1;
 }
