@@ -1,5 +1,7 @@
 #include "fixstep/plot.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -7,8 +9,6 @@
 #include <stdexcept>
 #include <string_view>
 #include <utility>
-
-#include <fmt/format.h>
 
 namespace fixstep {
 
