@@ -28,8 +28,12 @@ fi
 jobs=${TIDY_JOBS:-2}
 
 # The translation units: CMake writes one `"file": "/abs/path"` line per entry.
-mapfile -t files < <(sed -n 's/^ *"file": "\(.*\)",\{0,1\}$/\1/p' "$db" |
-  grep -E "^$root/(engine|chart|demos|examples)/" | sort -u)
+files=()
+while IFS= read -r f; do
+  case "$f" in
+    "$root"/engine/* | "$root"/chart/* | "$root"/demos/* | "$root"/examples/*) files+=("$f") ;;
+  esac
+done < <(sed -n 's/^ *"file": "\(.*\)",\{0,1\}$/\1/p' "$db" | sort -u)
 if [ ${#files[@]} -eq 0 ]; then
   echo "tidy: no engine/, chart/, demos/ or examples/ sources in $db" >&2
   exit 2
