@@ -1,5 +1,7 @@
 #include "fixstep/plot.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -7,8 +9,6 @@
 #include <stdexcept>
 #include <string_view>
 #include <utility>
-
-#include <fmt/format.h>
 
 namespace fixstep {
 
@@ -663,7 +663,7 @@ Renderer::ClipRect pixels_of(const PixelBox& b) {
 }  // namespace
 
 PlotLayout add_plot(Renderer& r, const PlotSpec& spec, PixelBox frame) {
-  const PlotLayout L = layout_plot(spec, frame);
+  PlotLayout L = layout_plot(spec, frame);
   const Metrics m(L.text_scale);
   const PixelBox& a = L.area;
   const float s = m.s;
@@ -808,7 +808,7 @@ PlotLayout add_plot(Renderer& r, const PlotSpec& spec, PixelBox frame) {
 
 PlotLayout draw_plot(Renderer& r, const PlotSpec& spec) {
   r.begin(paper);
-  const PlotLayout L = add_plot(r, spec, PixelBox{0, 0, double(r.width()), double(r.height())});
+  PlotLayout L = add_plot(r, spec, PixelBox{0, 0, double(r.width()), double(r.height())});
   r.finish();
   return L;
 }

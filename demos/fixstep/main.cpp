@@ -3,11 +3,11 @@
 //   fixstep render SCENE --out DIR [--frames N] [--fps F] [--size WxH] [--png-level L]
 //                  [overrides]
 //   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [overrides]
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
-#include <fmt/format.h>
-
 #include <fixstep/suggest.hpp>
 
 #include "commands.hpp"
@@ -26,7 +26,8 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o) {
       ->check(fixstep::cli::dt_validator);
   cmd->add_option("--precision", o.precision, "override [world] precision")
       ->check(CLI::IsMember({"f32", "f64"}));
-  cmd->add_option("--substeps", o.substeps, "override [world] substeps (integration steps per tick)")
+  cmd->add_option("--substeps", o.substeps,
+                  "override [world] substeps (integration steps per tick)")
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--allow-unstable", o.allow_unstable,
                 "run even when the stability guard finds an unstable body (warns instead)");
@@ -34,10 +35,13 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// The whole of main is one try block: an exception from any step (CLI11's setup included)
+// becomes "fixstep: error: ..." and exit status 1, never std::terminate.
+int main(int argc, char** argv) try {
   using namespace fixstep::cli;
-  CLI::App app{"fixstep: fixed-timestep integration of spring-damper and projectile scenes, "
-               "rendered headless with OSMesa or shown in an SDL2 window."};
+  CLI::App app{
+      "fixstep: fixed-timestep integration of spring-damper and projectile scenes, "
+      "rendered headless with OSMesa or shown in an SDL2 window."};
   app.require_subcommand(1);
 
   RunOptions run;
@@ -45,8 +49,8 @@ int main(int argc, char** argv) {
   add_scene_options(run_cmd, run.scene);
   auto* steps = run_cmd->add_option("--steps", run.steps, "number of ticks to simulate")
                     ->check(CLI::Range(std::int64_t{0}, max_ticks));
-  auto* duration = run_cmd->add_option("--duration", run.duration, "simulated time (s)")
-                       ->check(positive_finite);
+  auto* duration =
+      run_cmd->add_option("--duration", run.duration, "simulated time (s)")->check(positive_finite);
   steps->excludes(duration);
   run_cmd->add_option("--csv", run.csv,
                       "write tick,t,body,x,y,vx,vy,energy,... rows here (atomically; see README)");
@@ -57,12 +61,10 @@ int main(int argc, char** argv) {
   CLI::App* render_cmd =
       app.add_subcommand("render", "capture frames headless (OSMesa) as DIR/frame_NNNNNN.png");
   add_scene_options(render_cmd, render.scene);
-  render_cmd->add_option("--out", render.out, "output directory (created if missing)")
-      ->required();
+  render_cmd->add_option("--out", render.out, "output directory (created if missing)")->required();
   render_cmd->add_option("--frames", render.frames, "number of frames (frame 0 is t = 0)")
       ->check(CLI::Range(1, 1000000));
-  render_cmd->add_option("--fps", render.fps, "virtual frames per second")
-      ->check(positive_finite);
+  render_cmd->add_option("--fps", render.fps, "virtual frames per second")->check(positive_finite);
   render_cmd->add_option("--size", render.size, "frame size in pixels, WxH")
       ->check(frame_size_validator);
   render_cmd
@@ -107,18 +109,16 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
-  try {
-    if (run_cmd->parsed()) {
-      if (!steps->count() && !duration->count()) {
-        std::fputs("fixstep run: give --steps N or --duration S\n", stderr);
-        return 2;
-      }
-      return run_command(run);
+  if (run_cmd->parsed()) {
+    if (!steps->count() && !duration->count()) {
+      std::fputs("fixstep run: give --steps N or --duration S\n", stderr);
+      return 2;
     }
-    if (render_cmd->parsed()) return render_command(render);
-    return view_command(view);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "fixstep: error: %s\n", e.what());
-    return 1;
+    return run_command(run);
   }
+  if (render_cmd->parsed()) return render_command(render);
+  return view_command(view);
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "fixstep: error: %s\n", e.what());
+  return 1;
 }

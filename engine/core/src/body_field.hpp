@@ -5,6 +5,7 @@
 // (tests/test_coupled.cpp checks it). Internal to the engine: not installed.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -60,7 +61,7 @@ struct BodyField {
   static constexpr bool accel = Accel;
   static constexpr int decays = Decays;
   Real k{}, anchor_x{}, anchor_y{}, rest{}, gamma{}, cx{}, cy{};  ///< c includes the push
-  Real decay[Decays > 0 ? Decays : 1]{};
+  Real decay[std::max(Decays, 1)]{};  ///< never empty: C++ has no zero-length arrays
 
   /// a_c(x): the conservative part (spring, constant force, gravity, push), m/s². The push
   /// is folded into c when the sweep loads it (Accel is on whenever the push is non-zero).

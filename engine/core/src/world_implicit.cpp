@@ -93,9 +93,10 @@ template <class Real>
 bool ImplicitSolver<Real>::step_linear(Real* x, Real* y, Real* vx, Real* vy, double h,
                                        const Real push[2]) {
   if (h != factor_h_) build_linear(h);
-  const std::size_t n = mass.size();
+  // Eigen's vectors are indexed by Eigen::Index (signed).
+  const auto n = static_cast<Eigen::Index>(mass.size());
   // rhs = M v + h F(x, 0): the forces at the old positions with zero velocity.
-  for (std::size_t j = 0; j < n; ++j) {
+  for (Eigen::Index j = 0; j < n; ++j) {
     const double ax = cx[j] + double(push[0]), ay = cy[j] + double(push[1]);
     rhs_x_[j] = mass[j] * (double(vx[j]) + h * ax);
     rhs_y_[j] = mass[j] * (double(vy[j]) + h * ay);
@@ -112,7 +113,7 @@ bool ImplicitSolver<Real>::step_linear(Real* x, Real* y, Real* vx, Real* vy, dou
   const Real hr = static_cast<Real>(h);
   bool out = false;
   const double limit = max_state_magnitude;
-  for (std::size_t j = 0; j < n; ++j) {
+  for (Eigen::Index j = 0; j < n; ++j) {
     vx[j] = static_cast<Real>(sol_x_[j]), vy[j] = static_cast<Real>(sol_y_[j]);
     x[j] += hr * vx[j], y[j] += hr * vy[j];
     out = out || !(std::abs(double(x[j])) <= limit && std::abs(double(y[j])) <= limit &&
@@ -124,25 +125,26 @@ bool ImplicitSolver<Real>::step_linear(Real* x, Real* y, Real* vx, Real* vy, dou
 template <class Real>
 bool ImplicitSolver<Real>::step_newton(Real* x, Real* y, Real* vx, Real* vy, double h,
                                        const Real push[2]) {
-  const std::size_t n = mass.size();
-  const auto N = static_cast<Eigen::Index>(2 * n);
+  // Eigen's vectors are indexed by Eigen::Index (signed).
+  const auto n = static_cast<Eigen::Index>(mass.size());
+  const Eigen::Index N = 2 * n;
   r_.resize(N), g_.resize(N), delta_.resize(N);
-  for (std::size_t j = 0; j < n; ++j) {  // start from an explicit drift
+  for (Eigen::Index j = 0; j < n; ++j) {  // start from an explicit drift
     r_[2 * j] = double(x[j]) + h * double(vx[j]);
     r_[2 * j + 1] = double(y[j]) + h * double(vy[j]);
   }
-  auto add = [&](std::size_t i, std::size_t k, double v) {
+  auto add = [&](Eigen::Index i, Eigen::Index k, double v) {
     triplets_.emplace_back(static_cast<int>(i), static_cast<int>(k), v);
   };
   // 2×2 block B (symmetric: b00, b01, b11) at rows/columns of bodies p and q, sign s.
-  auto block = [&](std::size_t p, std::size_t q, double s, double b00, double b01, double b11) {
+  auto block = [&](Eigen::Index p, Eigen::Index q, double s, double b00, double b01, double b11) {
     add(2 * p, 2 * q, s * b00), add(2 * p, 2 * q + 1, s * b01);
     add(2 * p + 1, 2 * q, s * b01), add(2 * p + 1, 2 * q + 1, s * b11);
   };
   for (int it = 0; it < 50; ++it) {
     triplets_.clear();
     // G = M (r - x - h v) - h² F(r, (r - x)/h),  J = M + h C + h² K.
-    for (std::size_t j = 0; j < n; ++j) {
+    for (Eigen::Index j = 0; j < n; ++j) {
       const double ux = (r_[2 * j] - double(x[j])) / h, uy = (r_[2 * j + 1] - double(y[j])) / h;
       const double fx = mass[j] * (cx[j] + double(push[0])) - drag[j] * ux;
       const double fy = mass[j] * (cy[j] + double(push[1])) - drag[j] * uy;
@@ -151,7 +153,7 @@ bool ImplicitSolver<Real>::step_newton(Real* x, Real* y, Real* vx, Real* vy, dou
       block(j, j, 1.0, mass[j] + h * drag[j], 0.0, mass[j] + h * drag[j]);
     }
     for (const Spring& s : springs) {
-      const std::size_t a = s.a, b = s.b;
+      const Eigen::Index a = s.a, b = s.b;
       const double rbx = s.anchored ? s.anchor_x : r_[2 * b];
       const double rby = s.anchored ? s.anchor_y : r_[2 * b + 1];
       const double dx = r_[2 * a] - rbx, dy = r_[2 * a + 1] - rby;
@@ -199,7 +201,7 @@ bool ImplicitSolver<Real>::step_newton(Real* x, Real* y, Real* vx, Real* vy, dou
   }
   bool out = false;
   const double limit = max_state_magnitude;
-  for (std::size_t j = 0; j < n; ++j) {
+  for (Eigen::Index j = 0; j < n; ++j) {
     const double nvx = (r_[2 * j] - double(x[j])) / h, nvy = (r_[2 * j + 1] - double(y[j])) / h;
     x[j] = static_cast<Real>(r_[2 * j]), y[j] = static_cast<Real>(r_[2 * j + 1]);
     vx[j] = static_cast<Real>(nvx), vy[j] = static_cast<Real>(nvy);

@@ -1,5 +1,7 @@
 #include "fixstep/session.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,8 +9,6 @@
 #include <string_view>
 #include <utility>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "fixstep/stability.hpp"
 
@@ -83,16 +83,18 @@ std::vector<std::string_view> split_words(std::string_view s) {
 /// The HUD lines for the runtime guard's message: a heading, then the message wrapped at about
 /// 100 characters, with the Greek letters spelled out (the bitmap font is ASCII only).
 std::vector<std::string> fault_hud_lines(std::string message) {
-  for (const auto& [from, to] : {std::pair<std::string_view, std::string_view>{"ω", "omega"},
-                                 {"γ", "gamma"}, {"·", "*"}}) {
-    for (std::size_t at = message.find(from); at != std::string::npos; at = message.find(from, at)) {
+  for (const auto& [from, to] :
+       {std::pair<std::string_view, std::string_view>{"ω", "omega"}, {"γ", "gamma"}, {"·", "*"}}) {
+    for (std::size_t at = message.find(from); at != std::string::npos;
+         at = message.find(from, at)) {
       message.replace(at, from.size(), to);
     }
   }
   std::vector<std::string> lines{"STOPPED: the state left the finite range"};
   std::string line;
   for (const std::string_view word : split_words(message)) {
-    if (!line.empty() && line.size() + word.size() + 1 > 100) lines.push_back(std::move(line)), line.clear();
+    if (!line.empty() && line.size() + word.size() + 1 > 100)
+      lines.push_back(std::move(line)), line.clear();
     if (!line.empty()) line += ' ';
     line += word;
   }
@@ -108,7 +110,9 @@ const WorldDef& tracked(WorldDef& def) {
 
 }  // namespace
 
-std::string hex_hash(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
+std::string hex_hash(std::uint64_t hash) {
+  return fmt::format("{:016x}", hash);
+}
 
 double energy_balance(const Simulation& sim, double initial_energy) {
   const double residual = sim.energy().total() + sim.dissipated_energy() - initial_energy;
@@ -117,9 +121,10 @@ double energy_balance(const Simulation& sim, double initial_energy) {
 
 std::string summary_line(const Simulation& sim, double initial_energy) {
   const double balance = energy_balance(sim, initial_energy);
-  return fmt::format("ticks={} t={:.6f} state_hash={} energy={:.9e} dissipated={:.9e} balance={:.6e}{}",
-                     sim.tick(), sim.time(), hex_hash(sim.state_hash()), sim.energy().total(),
-                     sim.dissipated_energy(), balance, initial_energy != 0.0 ? "" : "J");
+  return fmt::format(
+      "ticks={} t={:.6f} state_hash={} energy={:.9e} dissipated={:.9e} balance={:.6e}{}",
+      sim.tick(), sim.time(), hex_hash(sim.state_hash()), sim.energy().total(),
+      sim.dissipated_energy(), balance, initial_energy != 0.0 ? "" : "J");
 }
 
 Session::Session(WorldDef def, const SessionSettings& settings)
@@ -168,20 +173,20 @@ void Session::draw() {
   hud_.push_back(fmt::format("{} ({})", integrator_name(sim_->settings().integrator),
                              precision_name(sim_->precision())));
   const double balance = energy_balance(*sim_, initial_energy_);
-  hud_.push_back(fmt::format("energy {:.6g} J   dissipated {:.6g} J   balance {:+.3g}{}", e,
-                             sim_->dissipated_energy(),
-                             initial_energy_ != 0.0 ? 100.0 * balance : balance,
-                             initial_energy_ != 0.0 ? " %" : " J"));
+  hud_.push_back(fmt::format(
+      "energy {:.6g} J   dissipated {:.6g} J   balance {:+.3g}{}", e, sim_->dissipated_energy(),
+      initial_energy_ != 0.0 ? 100.0 * balance : balance, initial_energy_ != 0.0 ? " %" : " J"));
   if (const auto& fault = sim_->fault()) {
     // Built once: the guard's message (which runs the stability analysis) does not change
     // while the simulation stays stopped.
-    if (fault_lines_.empty()) fault_lines_ = fault_hud_lines(
-          explain_fault(def_.bodies, def_.links, def_.settings, *fault));
+    if (fault_lines_.empty())
+      fault_lines_ = fault_hud_lines(explain_fault(def_.bodies, def_.links, def_.settings, *fault));
     hud_.insert(hud_.end(), fault_lines_.begin(), fault_lines_.end());
   }
   if (show_controls_) {
-    hud_.push_back(fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
-    hud_.push_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
+    hud_.push_back(
+        fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
+    hud_.emplace_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
   }
   renderer_.draw(frame_, hud_);
 }

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# tools/tidy.sh BUILD_DIR: clang-tidy 14 with the root .clang-tidy over the sources of engine/,
+# chart/, demos/ and examples/ compiled in BUILD_DIR/compile_commands.json (not tests/ or bench/:
+# GoogleTest and Benchmark macros). Prints every finding once and exits non-zero on any.
+#
+#   cmake --preset ci-clang && tools/tidy.sh build/ci-clang
+#
+# Any CMake build directory of the project works (the GCC presets' flags parse too); clang's are
+# the safest. Environment: CLANG_TIDY (default clang-tidy-14), TIDY_JOBS (default 2).
+set -euo pipefail
+
+if [ $# -ne 1 ]; then
+  echo "usage: tools/tidy.sh BUILD_DIR" >&2
+  exit 2
+fi
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=$(cd "$1" && pwd)
+db="$build/compile_commands.json"
+if [ ! -f "$db" ]; then
+  echo "tidy: no $db: configure first (cmake --preset ci-clang)" >&2
+  exit 2
+fi
+tidy=${CLANG_TIDY:-clang-tidy-14}
+if ! command -v "$tidy" >/dev/null; then
+  echo "tidy: $tidy not found (Debian: apt-get install clang-tidy)" >&2
+  exit 2
+fi
+jobs=${TIDY_JOBS:-2}
+
+# The translation units: CMake writes one `"file": "/abs/path"` line per entry.
+files=()
+while IFS= read -r f; do
+  case "$f" in
+    "$root"/engine/* | "$root"/chart/* | "$root"/demos/* | "$root"/examples/*) files+=("$f") ;;
+  esac
+done < <(sed -n 's/^ *"file": "\(.*\)",\{0,1\}$/\1/p' "$db" | sort -u)
+if [ ${#files[@]} -eq 0 ]; then
+  echo "tidy: no engine/, chart/, demos/ or examples/ sources in $db" >&2
+  exit 2
+fi
+
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+start=$SECONDS
+# One clang-tidy per file, $jobs at a time; each writes its own log (no interleaving) and
+# leaves a .fail marker when it exits non-zero (a finding or a compile error).
+export tidy build out
+printf '%s\0' "${files[@]}" | xargs -0 -n1 -P"$jobs" bash -c '
+  log="$out/$(echo "$1" | tr / _).log"
+  "$tidy" -p "$build" --quiet "$1" >"$log" 2>&1 || touch "$log.fail"
+' tidy || true
+
+# A header's findings come once per file including it: keep each diagnostic (its line, the
+# source excerpt and its notes) once, and drop clang's "N warnings generated." lines.
+awk '
+  FNR == 1 { keep = 1 }
+  /^[0-9]+ (warning|error)s? (and [0-9]+ (warning|error)s? )?generated\.$/ { next }
+  /^\/.*: (warning|error): / { keep = !seen[$0]++ }
+  keep { print }
+' "$out"/*.log >"$out/all.txt"
+failed=$(find "$out" -name '*.fail' | wc -l)
+cat "$out/all.txt"
+findings=$(grep -E '^/.*: (warning|error): ' "$out/all.txt" || true)
+if [ -n "$findings" ]; then
+  echo
+  echo "tidy: $(echo "$findings" | wc -l) findings:"
+  echo "$findings" | sed "s|^$root/||" | sort
+  echo
+  echo "tidy: by check:"
+  echo "$findings" | sed -E 's/.*\[([^],]+)(,-warnings-as-errors)?\]$/\1/' | sort | uniq -c |
+    sort -rn
+fi
+echo "tidy: ${#files[@]} files, $failed failed, $((SECONDS - start)) s ($jobs jobs)"
+[ "$failed" -eq 0 ]
