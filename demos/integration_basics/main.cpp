@@ -255,7 +255,8 @@ int run_window(const Options& o) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// One function-try-block: an exception from the CLI11 setup is reported like any other error.
+int main(int argc, char** argv) try {
   CLI::App app{
       "integration_basics: the figures and constant-force tables of Glenn Fiedler's "
       "'Integration Basics', computed with fixstep's World and integrators, plotted with "
@@ -282,10 +283,8 @@ int main(int argc, char** argv) {
                  "live: virtual clock of F frames per second instead of the real clock")
       ->check(CLI::Range(1.0, 1000.0));
   CLI11_PARSE(app, argc, argv);
-  try {
-    return o.window ? run_window(o) : write_figures(o);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "integration_basics: error: %s\n", e.what());
-    return 1;
-  }
+  return o.window ? run_window(o) : write_figures(o);
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "integration_basics: error: %s\n", e.what());
+  return 1;
 }

@@ -305,7 +305,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
   glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride,
                         reinterpret_cast<void*>(offsetof(Vertex, kind)));
   for (GLuint i = 0; i < 4; ++i) glEnableVertexAttribArray(i);
-  font_scratch_.resize(64 * 1024);
+  font_scratch_.resize(std::size_t{64} * 1024);
 }
 
 Renderer::~Renderer() = default;
@@ -442,7 +442,7 @@ void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to
     float p[4][2];
     for (int k = 0; k < 4; ++k) {
       float v[2];
-      std::memcpy(v, base + (q * 4 + k) * 16, sizeof v);
+      std::memcpy(v, base + static_cast<std::ptrdiff_t>(q * 4 + k) * 16, sizeof v);
       const std::array<float, 2> px = to_pixel(v[0] * scale, v[1] * scale);
       p[k][0] = px[0];
       p[k][1] = px[1];
