@@ -17,6 +17,8 @@
 //   build/ci/bin/bench_capture              (about 6 minutes on 2 cores)
 //   build/ci/bin/bench_capture --benchmark_filter=encode    (the level table only)
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,15 +31,11 @@
 #include <string_view>
 #include <vector>
 
-#include <unistd.h>
-
-#include <fmt/format.h>
-
+#include "../tests/scene_session.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
-#include "../tests/scene_session.hpp"
 
 // The naive baseline: stb_image_write exactly as fixstep used it before libdeflate (built-in
 // deflate at stb's default level 8, default filter choice). This copy is private to this file
@@ -72,20 +70,19 @@ Scene many_bodies(int n) {
     b.name = fmt::format("b{}", i);
     const double gx = -78.0 + 4.0 * (i % cols), gy = -40.0 + 3.3 * (i / cols);
     const double hue = double(i) / n;
-    b.appearance = Appearance{
-        .radius = 0.6 + 0.1 * ((i * 7) % 5),
-        .color = {static_cast<std::uint8_t>(60 + 190 * hue),
-                  static_cast<std::uint8_t>(120 + 100 * std::sin(7.0 * hue)),
-                  static_cast<std::uint8_t>(240 - 180 * hue), 255}};
+    b.appearance = Appearance{.radius = 0.6 + 0.1 * ((i * 7) % 5),
+                              .color = {static_cast<std::uint8_t>(60 + 190 * hue),
+                                        static_cast<std::uint8_t>(120 + 100 * std::sin(7.0 * hue)),
+                                        static_cast<std::uint8_t>(240 - 180 * hue), 255}};
     if (i % 3 != 2) {
       b.body = Body{.mass = 1.0,
                     .position = {gx + 1.5 * std::cos(i), gy + 1.5 * std::sin(i)},
                     .velocity = {0.0, 0.0}};
-      b.spring = SpringDamper{.anchor = {gx, gy}, .stiffness = 5.0 + (i % 11),
-                              .damping = 0.05 * (i % 4)};
+      b.spring =
+          SpringDamper{.anchor = {gx, gy}, .stiffness = 5.0 + (i % 11), .damping = 0.05 * (i % 4)};
     } else {
-      b.body = Body{.mass = 1.0, .position = {gx, -45.0},
-                    .velocity = {2.0 * std::sin(i), 25.0 + (i % 9)}};
+      b.body = Body{
+          .mass = 1.0, .position = {gx, -45.0}, .velocity = {2.0 * std::sin(i), 25.0 + (i % 9)}};
       b.gravity = Gravity{};
       b.drag = LinearDrag{.coefficient = 0.02 * (i % 5)};
     }

@@ -19,8 +19,10 @@
 //   build/bench/bin/bench_throughput --verify-only (the equality checks alone; run by ctest)
 //   build/bench/bin/bench_throughput --simd=baseline (time the SSE2 sweeps; default: widest)
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <algorithm>
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -31,14 +33,11 @@
 #include <string>
 #include <vector>
 
-#include <boost/numeric/odeint.hpp>
-#include <fmt/format.h>
-
-#include "median_run.hpp"
-#include "flush_denormals.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/world.hpp"
+#include "flush_denormals.hpp"
+#include "median_run.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>
@@ -74,9 +73,10 @@ BodyDef body_def(SceneKind s, std::size_t j) {
   const Vec2 anchor{0.5 * double(j % 101), 0.5 * double(j % 53)};
   d.body.position = {anchor.x + 1.0 + 0.1 * double(j % 11), anchor.y - 0.5 + 0.1 * double(j % 13)};
   d.body.velocity = {0.1 * double(j % 5), -0.2};
-  d.spring = SpringDamper{.anchor = anchor,
-                          .stiffness = 1.0 + 0.5 * double(j % 7),
-                          .damping = s == SceneKind::undamped_spring ? 0.0 : 0.5 + 0.1 * double(j % 3)};
+  d.spring =
+      SpringDamper{.anchor = anchor,
+                   .stiffness = 1.0 + 0.5 * double(j % 7),
+                   .damping = s == SceneKind::undamped_spring ? 0.0 : 0.5 + 0.1 * double(j % 3)};
   return d;
 }
 
@@ -142,7 +142,8 @@ struct RawBodies {
         ax = d.spring->anchor.x, ay = d.spring->anchor.y;
       }
       if (d.drag) g += d.drag->coefficient / m;
-      if (d.gravity) accel = true, cxx += d.gravity->acceleration.x, cyy += d.gravity->acceleration.y;
+      if (d.gravity)
+        accel = true, cxx += d.gravity->acceleration.x, cyy += d.gravity->acceleration.y;
       k.push_back(Real(kk)), ax0.push_back(Real(ax)), ay0.push_back(Real(ay));
       gamma.push_back(Real(g)), cx.push_back(Real(cxx)), cy.push_back(Real(cyy));
     }
@@ -161,11 +162,11 @@ struct RawBodies {
 /// written as one plain loop per integrator. The arrays are restrict-qualified parameters (no
 /// overlap), so the compiler may vectorize each loop. Like the engine's sweeps, it is compiled
 /// once per SimdLevel (raw_step picks the engine's level), so both sides use the same ISA.
-#define RAW_LOOP_PARAMS                                                                         \
-  Integrator integrator, std::size_t n, Real *__restrict x, Real *__restrict y,                 \
-      Real *__restrict vx, Real *__restrict vy, const Real *__restrict k,                       \
-      const Real *__restrict ax0, const Real *__restrict ay0, const Real *__restrict g,         \
-      const Real *__restrict cx, const Real *__restrict cy, const Real *__restrict d_half,      \
+#define RAW_LOOP_PARAMS                                                                    \
+  Integrator integrator, std::size_t n, Real *__restrict x, Real *__restrict y,            \
+      Real *__restrict vx, Real *__restrict vy, const Real *__restrict k,                  \
+      const Real *__restrict ax0, const Real *__restrict ay0, const Real *__restrict g,    \
+      const Real *__restrict cx, const Real *__restrict cy, const Real *__restrict d_half, \
       const Real *__restrict d_h1, const Real *__restrict d_h0
 #define RAW_LOOP_ARGS integrator, n, x, y, vx, vy, k, ax0, ay0, g, cx, cy, d_half, d_h1, d_h0
 template <bool Spring, class Real>
@@ -175,8 +176,10 @@ template <bool Spring, class Real>
     case Integrator::semi_implicit_euler:
       for (std::size_t j = 0; j < n; ++j) {
         Real ax, ay;
-        if constexpr (Spring) ax = -k[j] * (x[j] - ax0[j]), ay = -k[j] * (y[j] - ay0[j]);
-        else ax = cx[j], ay = cy[j];
+        if constexpr (Spring)
+          ax = -k[j] * (x[j] - ax0[j]), ay = -k[j] * (y[j] - ay0[j]);
+        else
+          ax = cx[j], ay = cy[j];
         ax -= g[j] * vx[j], ay -= g[j] * vy[j];
         vx[j] += ax * h, vy[j] += ay * h;
         x[j] += vx[j] * h, y[j] += vy[j] * h;
@@ -185,8 +188,10 @@ template <bool Spring, class Real>
     case Integrator::explicit_euler:
       for (std::size_t j = 0; j < n; ++j) {
         Real ax, ay;
-        if constexpr (Spring) ax = -k[j] * (x[j] - ax0[j]), ay = -k[j] * (y[j] - ay0[j]);
-        else ax = cx[j], ay = cy[j];
+        if constexpr (Spring)
+          ax = -k[j] * (x[j] - ax0[j]), ay = -k[j] * (y[j] - ay0[j]);
+        else
+          ax = cx[j], ay = cy[j];
         ax -= g[j] * vx[j], ay -= g[j] * vy[j];
         x[j] += vx[j] * h, y[j] += vy[j] * h;
         vx[j] += ax * h, vy[j] += ay * h;
@@ -198,12 +203,16 @@ template <bool Spring, class Real>
         const Real ayj = Spring ? ay0[j] : Real(0);
         const Real cxj = Spring ? Real(0) : cx[j], cyj = Spring ? Real(0) : cy[j], d = d_half[j];
         Real px = x[j], py = y[j], ux = vx[j] * d, uy = vy[j] * d, ax, ay;
-        if constexpr (Spring) ax = -kj * (px - axj), ay = -kj * (py - ayj);
-        else ax = cxj, ay = cyj;
+        if constexpr (Spring)
+          ax = -kj * (px - axj), ay = -kj * (py - ayj);
+        else
+          ax = cxj, ay = cyj;
         ux += ax * half, uy += ay * half;
         px += ux * h, py += uy * h;
-        if constexpr (Spring) ax = -kj * (px - axj), ay = -kj * (py - ayj);
-        else ax = cxj, ay = cyj;
+        if constexpr (Spring)
+          ax = -kj * (px - axj), ay = -kj * (py - ayj);
+        else
+          ax = cxj, ay = cyj;
         ux += ax * half, uy += ay * half;
         x[j] = px, y[j] = py, vx[j] = ux * d, vy[j] = uy * d;
       }
@@ -220,12 +229,16 @@ template <bool Spring, class Real>
         const Real hs[3] = {h1, h0, h1}, ds[3] = {d1, d0, d1};
         for (int stage = 0; stage < 3; ++stage) {  // Verlet steps of h1, h0, h1
           ux *= ds[stage], uy *= ds[stage];
-          if constexpr (Spring) ax = -kj * (px - axj), ay = -kj * (py - ayj);
-          else ax = cxj, ay = cyj;
+          if constexpr (Spring)
+            ax = -kj * (px - axj), ay = -kj * (py - ayj);
+          else
+            ax = cxj, ay = cyj;
           ux += ax * (hs[stage] * Real(0.5)), uy += ay * (hs[stage] * Real(0.5));
           px += ux * hs[stage], py += uy * hs[stage];
-          if constexpr (Spring) ax = -kj * (px - axj), ay = -kj * (py - ayj);
-          else ax = cxj, ay = cyj;
+          if constexpr (Spring)
+            ax = -kj * (px - axj), ay = -kj * (py - ayj);
+          else
+            ax = cxj, ay = cyj;
           ux += ax * (hs[stage] * Real(0.5)), uy += ay * (hs[stage] * Real(0.5));
           ux *= ds[stage], uy *= ds[stage];
         }
@@ -240,8 +253,10 @@ template <bool Spring, class Real>
         const Real cxj = Spring ? Real(0) : cx[j], cyj = Spring ? Real(0) : cy[j], gj = g[j];
         const Real px = x[j], py = y[j], ux = vx[j], uy = vy[j];
         auto a = [&](Real qx, Real qy, Real wx, Real wy, Real& ax, Real& ay) {
-          if constexpr (Spring) ax = -kj * (qx - axj), ay = -kj * (qy - ayj);
-          else ax = cxj, ay = cyj;
+          if constexpr (Spring)
+            ax = -kj * (qx - axj), ay = -kj * (qy - ayj);
+          else
+            ax = cxj, ay = cyj;
           ax -= gj * wx, ay -= gj * wy;
         };
         Real k1x, k1y, k2x, k2y, k3x, k3y, k4x, k4y;
@@ -278,12 +293,18 @@ template <bool Spring, class Real>
 }
 
 template <bool Spring, class Real>
-void raw_loop_baseline(RAW_LOOP_PARAMS) { raw_loop<Spring>(RAW_LOOP_ARGS); }
+void raw_loop_baseline(RAW_LOOP_PARAMS) {
+  raw_loop<Spring>(RAW_LOOP_ARGS);
+}
 #if FIXSTEP_HAS_SIMD_CLONES
 template <bool Spring, class Real>
-FIXSTEP_TARGET_AVX2 void raw_loop_avx2(RAW_LOOP_PARAMS) { raw_loop<Spring>(RAW_LOOP_ARGS); }
+FIXSTEP_TARGET_AVX2 void raw_loop_avx2(RAW_LOOP_PARAMS) {
+  raw_loop<Spring>(RAW_LOOP_ARGS);
+}
 template <bool Spring, class Real>
-FIXSTEP_TARGET_AVX512 void raw_loop_avx512(RAW_LOOP_PARAMS) { raw_loop<Spring>(RAW_LOOP_ARGS); }
+FIXSTEP_TARGET_AVX512 void raw_loop_avx512(RAW_LOOP_PARAMS) {
+  raw_loop<Spring>(RAW_LOOP_ARGS);
+}
 #endif
 template <bool Spring, class Real>
 void raw_loop_at(SimdLevel level, RAW_LOOP_PARAMS) {
@@ -299,15 +320,17 @@ void raw_loop_at(SimdLevel level, RAW_LOOP_PARAMS) {
 
 template <bool Spring, class Real>
 void raw_step(RawBodies<Real>& r, Integrator i) {
-  raw_loop_at<Spring>(simd_level(), i, r.x.size(), r.x.data(), r.y.data(), r.vx.data(), r.vy.data(), r.k.data(),
-                   r.ax0.data(), r.ay0.data(), r.gamma.data(), r.cx.data(), r.cy.data(),
-                   r.decay_half.data(), r.decay_h1.data(), r.decay_h0.data());
+  raw_loop_at<Spring>(simd_level(), i, r.x.size(), r.x.data(), r.y.data(), r.vx.data(), r.vy.data(),
+                      r.k.data(), r.ax0.data(), r.ay0.data(), r.gamma.data(), r.cx.data(),
+                      r.cy.data(), r.decay_half.data(), r.decay_h1.data(), r.decay_h0.data());
 }
 
 template <class Real>
 void raw_step(SceneKind s, RawBodies<Real>& r, Integrator i) {
-  if (s == SceneKind::projectile) raw_step<false>(r, i);
-  else raw_step<true>(r, i);
+  if (s == SceneKind::projectile)
+    raw_step<false>(r, i);
+  else
+    raw_step<true>(r, i);
 }
 
 using fixstep::bench::FlushDenormals;
@@ -442,9 +465,11 @@ void verify_raw(SceneKind s, Integrator i, SimdLevel level) {
                                 integrator_name(i), simd_level_name(level));
   check(engine_differ == 0, fmt::format("engine {}: {} of {} bodies differ from the baseline raw "
                                         "loop after {} ticks (the loops must do the same "
-                                        "arithmetic)", what, engine_differ, n, ticks));
+                                        "arithmetic)",
+                                        what, engine_differ, n, ticks));
   check(raw_differ == 0, fmt::format("raw {}: {} of {} bodies differ from the baseline raw loop "
-                                     "after {} ticks", what, raw_differ, n, ticks));
+                                     "after {} ticks",
+                                     what, raw_differ, n, ticks));
 }
 
 void verify_odeint() {
@@ -462,7 +487,8 @@ void verify_odeint() {
                         std::abs(s[2 * n + j] - w->vx()[j]), std::abs(s[3 * n + j] - w->vy()[j])});
     }
     check(worst <= 1e-11, fmt::format("odeint runge_kutta4 vs engine rk4: max |difference| "
-                                      "{:.3e} > 1e-11 (m, m/s)", worst));
+                                      "{:.3e} > 1e-11 (m, m/s)",
+                                      worst));
   }
   {  // symplectic_euler (position first) vs the engine's semi-implicit Euler (velocity first):
      // started from (x0, v0 + a(x0) dt), odeint's (q_n, p_n) is the engine's (x_n, v_{n+1}).
@@ -484,7 +510,8 @@ void verify_odeint() {
       worst = std::max({worst, std::abs(q[j] - w->x()[j]), std::abs(q[n + j] - w->y()[j])});
     }
     check(worst <= 1e-11, fmt::format("odeint symplectic_euler vs engine semi-implicit Euler: "
-                                      "max |position difference| {:.3e} > 1e-11 m", worst));
+                                      "max |position difference| {:.3e} > 1e-11 m",
+                                      worst));
   }
 }
 
@@ -515,7 +542,7 @@ void bm_engine(benchmark::State& st, SceneKind s, Integrator i) {
 /// counts them).
 std::size_t raw_bytes(SceneKind s, Integrator i, std::size_t real) {
   std::size_t arrays = 8;
-  arrays += s == SceneKind::projectile ? 2 : 3;  // c | K, anchor
+  arrays += s == SceneKind::projectile ? 2 : 3;    // c | K, anchor
   arrays += i == Integrator::forest_ruth ? 2 : 1;  // γ or the damping-flow factors
   return arrays * real;
 }
@@ -536,8 +563,8 @@ void bm_raw(benchmark::State& st, SceneKind s, Integrator i) {
 /// STREAM's triad, a = b + s·c, compiled per SimdLevel like the sweeps.
 template <class Real>
 [[gnu::always_inline]] inline void triad_loop(std::size_t n, Real* __restrict a,
-                                              const Real* __restrict b,
-                                              const Real* __restrict c, Real s) {
+                                              const Real* __restrict b, const Real* __restrict c,
+                                              Real s) {
   for (std::size_t j = 0; j < n; ++j) a[j] = b[j] + s * c[j];
 }
 template <class Real>
@@ -612,7 +639,8 @@ void bm_odeint_symplectic_euler(benchmark::State& st) {
   const auto n = static_cast<std::size_t>(st.range(0));
   RawBodies<double> r(SceneKind::undamped_spring, n);
   OdeState q(2 * n), p(2 * n);
-  for (std::size_t j = 0; j < n; ++j) q[j] = r.x[j], q[n + j] = r.y[j], p[j] = r.vx[j], p[n + j] = r.vy[j];
+  for (std::size_t j = 0; j < n; ++j)
+    q[j] = r.x[j], q[n + j] = r.y[j], p[j] = r.vx[j], p[n + j] = r.vy[j];
   odeint::symplectic_euler<OdeState> euler;
   double t = 0.0;
   for (auto _ : st) {
@@ -690,23 +718,30 @@ void register_all(const Options& o) {
         const bool f64 = prec[1] == '6';
         for (Integrator i : all_integrators) {
           const auto name = fmt::format("{}/{}/{}", scene_name(s), prec, integrator_name(i));
-          tune(benchmark::RegisterBenchmark(("engine/" + name).c_str(), [=](benchmark::State& st) {
-                 f64 ? bm_engine<double>(st, s, i) : bm_engine<float>(st, s, i);
-               }), n);
-          tune(benchmark::RegisterBenchmark(("raw/" + name).c_str(), [=](benchmark::State& st) {
-                 f64 ? bm_raw<double>(st, s, i) : bm_raw<float>(st, s, i);
-               }), n);
+          tune(benchmark::RegisterBenchmark(("engine/" + name).c_str(),
+                                            [=](benchmark::State& st) {
+                                              f64 ? bm_engine<double>(st, s, i)
+                                                  : bm_engine<float>(st, s, i);
+                                            }),
+               n);
+          tune(benchmark::RegisterBenchmark(("raw/" + name).c_str(),
+                                            [=](benchmark::State& st) {
+                                              f64 ? bm_raw<double>(st, s, i)
+                                                  : bm_raw<float>(st, s, i);
+                                            }),
+               n);
         }
         tune(benchmark::RegisterBenchmark(
                  fmt::format("aos_virtual/{}/{}/semi_implicit_euler", scene_name(s), prec).c_str(),
                  [=](benchmark::State& st) {
                    f64 ? bm_aos_virtual<double>(st, s) : bm_aos_virtual<float>(st, s);
-                 }), n);
+                 }),
+             n);
         if (s == SceneKind::spring) {
-          tune(benchmark::RegisterBenchmark(fmt::format("triad/{}", prec).c_str(),
-                                            [=](benchmark::State& st) {
-                                              f64 ? bm_triad<double>(st) : bm_triad<float>(st);
-                                            }), n);
+          tune(benchmark::RegisterBenchmark(
+                   fmt::format("triad/{}", prec).c_str(),
+                   [=](benchmark::State& st) { f64 ? bm_triad<double>(st) : bm_triad<float>(st); }),
+               n);
         }
       }
     }
@@ -717,9 +752,11 @@ void register_all(const Options& o) {
                                     [](benchmark::State& st) {
                                       bm_engine<double>(st, SceneKind::undamped_spring,
                                                         Integrator::semi_implicit_euler);
-                                    }), peer_n);
+                                    }),
+       peer_n);
   tune(benchmark::RegisterBenchmark("odeint/undamped/f64/symplectic_euler",
-                                    bm_odeint_symplectic_euler), peer_n);
+                                    bm_odeint_symplectic_euler),
+       peer_n);
   if (!o.quick) {
     // Without the flush, ageing runs at subnormal speed (tens of ns per body-step): only the
     // flushed scene is aged the full 10^6 ticks; bench_float_hygiene shows the unflushed case.
@@ -743,8 +780,8 @@ void register_all(const Options& o) {
 class Collector : public benchmark::ConsoleReporter {
  public:
   struct Result {
-    double ns = 0.0;  ///< real time per iteration, ns (median over repetitions)
-    double n = 0.0;   ///< bodies
+    double ns = 0.0;     ///< real time per iteration, ns (median over repetitions)
+    double n = 0.0;      ///< bodies
     double bytes = 0.0;  ///< bytes per body-step
     [[nodiscard]] double ns_per_body_step() const { return ns / n; }
     [[nodiscard]] double bandwidth() const { return bytes / ns_per_body_step(); }  ///< GB/s
@@ -771,8 +808,9 @@ class Collector : public benchmark::ConsoleReporter {
 };
 
 std::string si(double v) {
-  if (v >= 1e6) return fmt::format("{:g}·10^{}", v / std::pow(10.0, std::floor(std::log10(v))),
-                                   int(std::floor(std::log10(v))));
+  if (v >= 1e6)
+    return fmt::format("{:g}·10^{}", v / std::pow(10.0, std::floor(std::log10(v))),
+                       int(std::floor(std::log10(v))));
   return fmt::format("{}", v);
 }
 
@@ -781,9 +819,10 @@ std::string report(const Collector& c, const Options& o) {
   auto line = [&out](const std::string& s) { out += s + "\n"; };
   const auto ns = sizes(o);
   const char* precs[] = {"f32", "f64"};
-  line(fmt::format("Engine sweeps, raw loops and triad compiled for SIMD level **{}** "
-                   "(fixstep/simd.hpp; chosen at run time, `--simd=` to force one).",
-                   simd_level_name(o.simd)));
+  line(
+      fmt::format("Engine sweeps, raw loops and triad compiled for SIMD level **{}** "
+                  "(fixstep/simd.hpp; chosen at run time, `--simd=` to force one).",
+                  simd_level_name(o.simd)));
 
   for (SceneKind s : {SceneKind::spring, SceneKind::projectile}) {
     line(fmt::format("\n#### {} scene: ns per body-step (engine), median of repetitions\n",
@@ -795,14 +834,17 @@ std::string report(const Collector& c, const Options& o) {
       for (const char* p : precs) {
         std::string row = fmt::format("| `{}` | {} |", integrator_name(i), p);
         for (auto n : ns) {
-          const auto* r = c.find(fmt::format("engine/{}/{}/{}/{}", scene_name(s), p, integrator_name(i), n));
+          const auto* r =
+              c.find(fmt::format("engine/{}/{}/{}/{}", scene_name(s), p, integrator_name(i), n));
           row += r ? fmt::format(" {:.3g} |", r->ns_per_body_step()) : " – |";
         }
         line(row);
       }
     }
-    line(fmt::format("\n#### {} scene: engine speed as a fraction of the raw fused loop "
-                     "(raw time / engine time)\n", scene_name(s)));
+    line(
+        fmt::format("\n#### {} scene: engine speed as a fraction of the raw fused loop "
+                    "(raw time / engine time)\n",
+                    scene_name(s)));
     line(head), line(rule);
     for (Integrator i : all_integrators) {
       for (const char* p : precs) {
@@ -815,14 +857,19 @@ std::string report(const Collector& c, const Options& o) {
         line(row);
       }
     }
-    line(fmt::format("\n#### {} scene: the naive array of objects with a virtual step() "
-                     "(semi-implicit Euler), ns per body-step and engine speed-up\n", scene_name(s)));
+    line(
+        fmt::format("\n#### {} scene: the naive array of objects with a virtual step() "
+                    "(semi-implicit Euler), ns per body-step and engine speed-up\n",
+                    scene_name(s)));
     line(head), line(rule);
     for (const char* p : precs) {
-      std::string row = fmt::format("| naive AoS + virtual | {} |", p), row2 = fmt::format("| speed-up of the engine | {} |", p);
+      std::string row = fmt::format("| naive AoS + virtual | {} |", p),
+                  row2 = fmt::format("| speed-up of the engine | {} |", p);
       for (auto n : ns) {
-        const auto* a = c.find(fmt::format("aos_virtual/{}/{}/semi_implicit_euler/{}", scene_name(s), p, n));
-        const auto* e = c.find(fmt::format("engine/{}/{}/semi_implicit_euler/{}", scene_name(s), p, n));
+        const auto* a =
+            c.find(fmt::format("aos_virtual/{}/{}/semi_implicit_euler/{}", scene_name(s), p, n));
+        const auto* e =
+            c.find(fmt::format("engine/{}/{}/semi_implicit_euler/{}", scene_name(s), p, n));
         row += a ? fmt::format(" {:.3g} |", a->ns_per_body_step()) : " – |";
         row2 += a && e ? fmt::format(" {:.1f}x |", a->ns / e->ns) : " – |";
       }
@@ -834,13 +881,16 @@ std::string report(const Collector& c, const Options& o) {
   line("Bytes count every array element read or written once (STREAM's convention; the triad's");
   line("write-allocate traffic is not counted, as in STREAM). Triad = a[i] = b[i] + s·c[i] at the");
   line("same N, same precision.\n");
-  line("| scene | integrator | precision | bytes/body-step | N | engine GB/s | triad GB/s | fraction |");
+  line(
+      "| scene | integrator | precision | bytes/body-step | N | engine GB/s | triad GB/s | "
+      "fraction |");
   line("|---|---|---|---|---|---|---|---|");
   const std::int64_t big = ns.back();
   for (SceneKind s : {SceneKind::spring, SceneKind::projectile}) {
     for (Integrator i : all_integrators) {
       for (const char* p : precs) {
-        const auto* e = c.find(fmt::format("engine/{}/{}/{}/{}", scene_name(s), p, integrator_name(i), big));
+        const auto* e =
+            c.find(fmt::format("engine/{}/{}/{}/{}", scene_name(s), p, integrator_name(i), big));
         const auto* t = c.find(fmt::format("triad/{}/{}", p, big));
         if (!e || !t) continue;
         line(fmt::format("| {} | `{}` | {} | {} | {} | {:.1f} | {:.1f} | {:.2f} |", scene_name(s),
@@ -851,8 +901,11 @@ std::string report(const Collector& c, const Options& o) {
   }
 
   const std::int64_t peer_n = o.quick ? 10'000 : 100'000;
-  line(fmt::format("\n#### Against Boost.Odeint (f64, N = {}, same answers checked first)\n", si(double(peer_n))));
-  line("| system | Boost.Odeint | ns per body-step | fixstep | ns per body-step | fixstep speed-up |");
+  line(fmt::format("\n#### Against Boost.Odeint (f64, N = {}, same answers checked first)\n",
+                   si(double(peer_n))));
+  line(
+      "| system | Boost.Odeint | ns per body-step | fixstep | ns per body-step | fixstep speed-up "
+      "|");
   line("|---|---|---|---|---|---|");
   auto peer = [&](const char* system, const char* ode, const std::string& ode_key, const char* ours,
                   const std::string& our_key) {
@@ -861,10 +914,11 @@ std::string report(const Collector& c, const Options& o) {
     line(fmt::format("| {} | `{}` | {:.3g} | `{}` | {:.3g} | {:.1f}x |", system, ode,
                      a->ns_per_body_step(), ours, b->ns_per_body_step(), a->ns / b->ns));
   };
-  peer("undamped springs", "symplectic_euler", fmt::format("odeint/undamped/f64/symplectic_euler/{}", peer_n),
-       "semi_implicit_euler", fmt::format("engine/undamped/f64/semi_implicit_euler/{}", peer_n));
-  peer("damped springs", "runge_kutta4", fmt::format("odeint/spring/f64/runge_kutta4/{}", peer_n), "rk4",
-       fmt::format("engine/spring/f64/rk4/{}", peer_n));
+  peer("undamped springs", "symplectic_euler",
+       fmt::format("odeint/undamped/f64/symplectic_euler/{}", peer_n), "semi_implicit_euler",
+       fmt::format("engine/undamped/f64/semi_implicit_euler/{}", peer_n));
+  peer("damped springs", "runge_kutta4", fmt::format("odeint/spring/f64/runge_kutta4/{}", peer_n),
+       "rk4", fmt::format("engine/spring/f64/rk4/{}", peer_n));
 
   if (!o.quick) {
     line("\n#### A damped f32 scene over time (1000 bodies, ζ = 1): 10^4 ticks timed\n");
@@ -884,7 +938,9 @@ std::string report(const Collector& c, const Options& o) {
   line("| target | measured | met |");
   line("|---|---|---|");
   auto target = [&](const std::string& what, double v, double goal, const std::string& fmtd) {
-    line(fmt::format("| {} | {} | {} |", what, fmtd, v >= goal ? "yes" : fmt::format("**no** ({:.0f} % short)", 100.0 * (goal - v) / goal)));
+    line(fmt::format(
+        "| {} | {} | {} |", what, fmtd,
+        v >= goal ? "yes" : fmt::format("**no** ({:.0f} % short)", 100.0 * (goal - v) / goal)));
   };
   {
     std::vector<double> ratios;
@@ -907,9 +963,10 @@ std::string report(const Collector& c, const Options& o) {
     if (!ratios.empty()) {
       std::sort(ratios.begin(), ratios.end());
       const double median = ratios[ratios.size() / 2];
-      target("engine ≥ 80 % of the raw fused loop, N = 4096 … 10^6 (median over scenes, "
-             "integrators, precisions, N)", median, 0.8,
-             fmt::format("{:.2f} (lowest {:.2f}: {})", median, worst, worst_key));
+      target(
+          "engine ≥ 80 % of the raw fused loop, N = 4096 … 10^6 (median over scenes, "
+          "integrators, precisions, N)",
+          median, 0.8, fmt::format("{:.2f} (lowest {:.2f}: {})", median, worst, worst_key));
       target("… and the lowest single case", worst, 0.8, fmt::format("{:.2f}", worst));
     }
   }
@@ -917,26 +974,33 @@ std::string report(const Collector& c, const Options& o) {
     const auto* e = c.find(fmt::format("engine/spring/{}/semi_implicit_euler/{}", p, big));
     const auto* t = c.find(fmt::format("triad/{}/{}", p, big));
     if (e && t) {
-      target(fmt::format("engine ≥ 80 % of triad bandwidth at N = {} (spring, semi-implicit, {})", si(double(big)), p),
+      target(fmt::format("engine ≥ 80 % of triad bandwidth at N = {} (spring, semi-implicit, {})",
+                         si(double(big)), p),
              e->bandwidth() / t->bandwidth(), 0.8,
-             fmt::format("{:.2f} ({:.1f} of {:.1f} GB/s)", e->bandwidth() / t->bandwidth(), e->bandwidth(), t->bandwidth()));
+             fmt::format("{:.2f} ({:.1f} of {:.1f} GB/s)", e->bandwidth() / t->bandwidth(),
+                         e->bandwidth(), t->bandwidth()));
     }
   }
   {
     const auto* a = c.find(fmt::format("odeint/undamped/f64/symplectic_euler/{}", peer_n));
     const auto* b = c.find(fmt::format("engine/undamped/f64/semi_implicit_euler/{}", peer_n));
-    if (a && b) target("semi-implicit Euler ≥ 3x Boost.Odeint symplectic_euler", a->ns / b->ns, 3.0, fmt::format("{:.1f}x", a->ns / b->ns));
+    if (a && b)
+      target("semi-implicit Euler ≥ 3x Boost.Odeint symplectic_euler", a->ns / b->ns, 3.0,
+             fmt::format("{:.1f}x", a->ns / b->ns));
     const auto* c4 = c.find(fmt::format("odeint/spring/f64/runge_kutta4/{}", peer_n));
     const auto* e4 = c.find(fmt::format("engine/spring/f64/rk4/{}", peer_n));
-    if (c4 && e4) target("RK4 ≥ 10x Boost.Odeint runge_kutta4", c4->ns / e4->ns, 10.0, fmt::format("{:.1f}x", c4->ns / e4->ns));
+    if (c4 && e4)
+      target("RK4 ≥ 10x Boost.Odeint runge_kutta4", c4->ns / e4->ns, 10.0,
+             fmt::format("{:.1f}x", c4->ns / e4->ns));
   }
   if (!o.quick) {
     const auto* fresh = c.find("aging/f32/flush:1/from/0/1");
     const auto* aged = c.find("aging/f32/flush:1/from/1000000/1");
     if (fresh && aged) {
       const double r = aged->ns / fresh->ns;
-      line(fmt::format("| damped f32 after 10^6 ticks within 1.2x of its first 10^4 | {:.2f}x | {} |", r,
-                       r <= 1.2 ? "yes" : "**no**"));
+      line(fmt::format(
+          "| damped f32 after 10^6 ticks within 1.2x of its first 10^4 | {:.2f}x | {} |", r,
+          r <= 1.2 ? "yes" : "**no**"));
     }
   }
   return out;
@@ -948,9 +1012,12 @@ int main(int argc, char** argv) {
   Options o;
   std::vector<char*> args;
   for (int a = 0; a < argc; ++a) {
-    if (std::strcmp(argv[a], "--quick") == 0) o.quick = true;
-    else if (std::strcmp(argv[a], "--verify-only") == 0) o.verify_only = true;
-    else if (std::strncmp(argv[a], "--report=", 9) == 0) o.report = argv[a] + 9;
+    if (std::strcmp(argv[a], "--quick") == 0)
+      o.quick = true;
+    else if (std::strcmp(argv[a], "--verify-only") == 0)
+      o.verify_only = true;
+    else if (std::strncmp(argv[a], "--report=", 9) == 0)
+      o.report = argv[a] + 9;
     else if (std::strncmp(argv[a], "--simd=", 7) == 0) {
       const std::string_view want = argv[a] + 7;
       bool known = false;
@@ -958,11 +1025,14 @@ int main(int argc, char** argv) {
         if (want == simd_level_name(l)) o.simd = l, known = true;
       }
       if (!known || !simd_supported(o.simd)) {
-        std::fprintf(stderr, "bench_throughput: --simd=%s: not one of baseline, avx2, avx512 "
-                     "supported here\n", argv[a] + 7);
+        std::fprintf(stderr,
+                     "bench_throughput: --simd=%s: not one of baseline, avx2, avx512 "
+                     "supported here\n",
+                     argv[a] + 7);
         return 2;
       }
-    } else args.push_back(argv[a]);
+    } else
+      args.push_back(argv[a]);
   }
   std::string levels;
   for (SimdLevel l : {SimdLevel::baseline, SimdLevel::avx2, SimdLevel::avx512}) {
@@ -975,10 +1045,11 @@ int main(int argc, char** argv) {
   set_simd_level(o.simd);
   verify_odeint();
   if (check_failures > 0) return 1;
-  std::printf("checks: at every SIMD level this CPU runs (%s), the engine and the raw loops "
-              "reproduce the baseline raw loop bit for bit (12 integrator x precision cases per "
-              "scene); Boost.Odeint agrees to 1e-11. Timing at level %s.\n",
-              levels.c_str(), std::string(simd_level_name(o.simd)).c_str());
+  std::printf(
+      "checks: at every SIMD level this CPU runs (%s), the engine and the raw loops "
+      "reproduce the baseline raw loop bit for bit (12 integrator x precision cases per "
+      "scene); Boost.Odeint agrees to 1e-11. Timing at level %s.\n",
+      levels.c_str(), std::string(simd_level_name(o.simd)).c_str());
   if (o.verify_only) return 0;
 
   int bargc = static_cast<int>(args.size());

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "flush_denormals.hpp"
 #include "coupled.hpp"
 #include "fixstep/world.hpp"
+#include "flush_denormals.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>

@@ -3,11 +3,11 @@
 //      behaviour on the undamped oscillator and measured convergence on a damped one;
 //   2. the position error of f32 against f64 far from the origin.
 //   build/release/bin/integrator_report
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "fixstep/exact.hpp"
 #include "fixstep/stability.hpp"
@@ -49,7 +49,8 @@ std::string energy_behaviour(Integrator i) {
   if (!std::isfinite(last) || last > first * (1 + 1e-4)) {
     return fmt::format("growing: E/E0 = {:.3g} after 10^5 ticks", last);
   }
-  if (last < first * (1 - 1e-4)) return fmt::format("decaying: E/E0 = {:.4g} after 10^5 ticks", last);
+  if (last < first * (1 - 1e-4))
+    return fmt::format("decaying: E/E0 = {:.4g} after 10^5 ticks", last);
   return fmt::format("bounded: E/E0 within 1 ± {:.2g}, no trend", worst);
 }
 
@@ -82,13 +83,16 @@ Body run_far(const BodyDef& def, double dt, int ticks) {
 }  // namespace
 
 int main() {
-  std::puts("| integrator | order | stable for ω·h < | force evaluations per tick "
-            "| energy on the undamped oscillator, ω·dt = 0.1 | error at t = 2 s, dt = 0.01 "
-            "(damped) | observed order |");
+  std::puts(
+      "| integrator | order | stable for ω·h < | force evaluations per tick "
+      "| energy on the undamped oscillator, ω·dt = 0.1 | error at t = 2 s, dt = 0.01 "
+      "(damped) | observed order |");
   std::puts("|---|---|---|---|---|---|---|");
   for (Integrator i : all_integrators) {
     const double bound = max_stable_step(i, 1.0, 0.0);
-    const std::string b = std::isinf(bound) ? "∞ (A-stable)" : bound == 0 ? "never (0)" : fmt::format("{:.4f}", bound);
+    const std::string b = std::isinf(bound) ? "∞ (A-stable)"
+                          : bound == 0      ? "never (0)"
+                                            : fmt::format("{:.4f}", bound);
     const auto [err, order] = convergence(i);
     fmt::print("| `{}` | {} | {} | {} | {} | {:.2e} m | {:.3f} |\n", integrator_name(i),
                integrator_order(i), b, evaluations(i), energy_behaviour(i), err, order);

@@ -17,6 +17,8 @@
 // and the program exits 1 when one misses.
 //
 //   build/bench/bin/work_precision --out docs/perf
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,8 +26,6 @@
 #include <cstring>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "fixstep/capture.hpp"
 #include "fixstep/exact.hpp"
@@ -55,7 +55,8 @@ std::vector<System> systems() {
   projectile.body.constant_force = ConstantForce{{2.0, 0.0}};
   projectile.body.drag = LinearDrag{0.2};
 
-  System undamped{"undamped", "Undamped spring, circular orbit (k = 4 N/m, m = 1 kg), 100 s", {}, 100.0};
+  System undamped{
+      "undamped", "Undamped spring, circular orbit (k = 4 N/m, m = 1 kg), 100 s", {}, 100.0};
   undamped.body.body.position = {1.0, 0.0};
   undamped.body.body.velocity = {0.0, 2.0};
   undamped.body.spring = SpringDamper{.anchor = {}, .stiffness = 4.0, .damping = 0.0};
@@ -70,8 +71,11 @@ double energy(const BodyDef& def, const Body& b) {
     const double dx = b.position.x - def.spring->anchor.x, dy = b.position.y - def.spring->anchor.y;
     e += 0.5 * def.spring->stiffness * (dx * dx + dy * dy);
   }
-  if (def.gravity) e -= b.mass * (def.gravity->acceleration.x * b.position.x + def.gravity->acceleration.y * b.position.y);
-  if (def.constant_force) e -= def.constant_force->force.x * b.position.x + def.constant_force->force.y * b.position.y;
+  if (def.gravity)
+    e -= b.mass *
+         (def.gravity->acceleration.x * b.position.x + def.gravity->acceleration.y * b.position.y);
+  if (def.constant_force)
+    e -= def.constant_force->force.x * b.position.x + def.constant_force->force.y * b.position.y;
   return e;
 }
 
@@ -93,14 +97,15 @@ struct Point {
   Integrator integrator;
   Level level;
   double err_end = 0, err_max = 0, energy_err_max = 0;  ///< m, m, relative
-  double scale = 0;         ///< size of the motion: largest |x_exact - x0| over the run, m
-  double evals_per_s = 0;   ///< force evaluations per body per simulated second
-  double ns_per_s = 0;      ///< measured ns per body per simulated second
+  double scale = 0;        ///< size of the motion: largest |x_exact - x0| over the run, m
+  double evals_per_s = 0;  ///< force evaluations per body per simulated second
+  double ns_per_s = 0;     ///< measured ns per body per simulated second
 };
 
 /// Steps one body for the system's duration and measures its errors; false if it blew up.
 bool measure(const System& sys, Integrator integrator, Level level, Point& p) {
-  World<double> w(WorldSettings{.dt = level.dt, .integrator = integrator, .substeps = level.substeps});
+  World<double> w(
+      WorldSettings{.dt = level.dt, .integrator = integrator, .substeps = level.substeps});
   const Entity e = w.create_body(sys.body);
   const auto ticks = static_cast<std::uint64_t>(std::llround(sys.duration / level.dt));
   const double e0 = energy(sys.body, w.body(e));
@@ -108,12 +113,15 @@ bool measure(const System& sys, Integrator integrator, Level level, Point& p) {
     w.step();
     const Body b = w.body(e);
     const Body x = *exact::solve(sys.body, w.time());
-    if (!std::isfinite(b.position.x) || !std::isfinite(b.position.y) || std::abs(b.position.x) > 1e12) return false;
+    if (!std::isfinite(b.position.x) || !std::isfinite(b.position.y) ||
+        std::abs(b.position.x) > 1e12)
+      return false;
     const double err = std::hypot(b.position.x - x.position.x, b.position.y - x.position.y);
     p.scale = std::max(p.scale, std::hypot(x.position.x - sys.body.body.position.x,
                                            x.position.y - sys.body.body.position.y));
     p.err_max = std::max(p.err_max, err);
-    p.energy_err_max = std::max(p.energy_err_max, std::abs(energy(sys.body, b) - energy(sys.body, x)) / std::abs(e0));
+    p.energy_err_max = std::max(p.energy_err_max,
+                                std::abs(energy(sys.body, b) - energy(sys.body, x)) / std::abs(e0));
     if (t == ticks) p.err_end = err;
   }
   return true;
@@ -138,7 +146,8 @@ double ns_per_body_step(const System& sys, Integrator integrator) {
   for (int r = 0; r < 7; ++r) {
     const auto t0 = clock::now();
     for (int i = 0; i < steps; ++i) w.step();
-    runs.push_back(std::chrono::duration<double, std::nano>(clock::now() - t0).count() / (double(steps) * n));
+    runs.push_back(std::chrono::duration<double, std::nano>(clock::now() - t0).count() /
+                   (double(steps) * n));
   }
   std::sort(runs.begin(), runs.end());
   return runs[runs.size() / 2];
@@ -148,12 +157,13 @@ double ns_per_body_step(const System& sys, Integrator integrator) {
 /// Taken in order of decreasing h, up to the smallest error (beyond it rounding, which grows
 /// with the number of steps, outweighs the truncation error), keeping points with
 /// h <= 0.1 s (ω·h <= 0.2 for the springs), error below 1 % of the motion's size (larger
-/// errors are pre-asymptotic or saturated: a phase error cannot exceed the orbit) and above 100x the smallest
-/// error (the round-off floor). NaN with fewer than 3 such points.
+/// errors are pre-asymptotic or saturated: a phase error cannot exceed the orbit) and above 100x
+/// the smallest error (the round-off floor). NaN with fewer than 3 such points.
 double order_slope(std::vector<Point> pts, double Point::*err) {
-  std::sort(pts.begin(), pts.end(), [](const Point& a, const Point& b) { return a.level.h() > b.level.h(); });
-  const auto min_it = std::min_element(pts.begin(), pts.end(),
-                                       [err](const Point& a, const Point& b) { return a.*err < b.*err; });
+  std::sort(pts.begin(), pts.end(),
+            [](const Point& a, const Point& b) { return a.level.h() > b.level.h(); });
+  const auto min_it = std::min_element(
+      pts.begin(), pts.end(), [err](const Point& a, const Point& b) { return a.*err < b.*err; });
   if (min_it == pts.end()) return std::nan("");
   // A minimum at the finest step is no floor: the sweep never reached round-off.
   const bool reached_floor = min_it + 1 != pts.end();
@@ -179,17 +189,24 @@ std::string level_text(Level l) {
                          : std::abs(l.dt - 1.0 / 30) < 1e-12 ? "1/30"
                          : std::abs(l.dt - 1.0 / 15) < 1e-12 ? "1/15"
                                                              : fmt::format("{}", l.dt);
-  return l.substeps > 1 ? fmt::format("dt = {} s, {} substeps", dt, l.substeps) : fmt::format("dt = {} s", dt);
+  return l.substeps > 1 ? fmt::format("dt = {} s, {} substeps", dt, l.substeps)
+                        : fmt::format("dt = {} s", dt);
 }
 
 Marker marker_for(Integrator i) {
   switch (i) {
-    case Integrator::semi_implicit_euler: return Marker::circle;
-    case Integrator::explicit_euler: return Marker::square;
-    case Integrator::velocity_verlet: return Marker::diamond;
-    case Integrator::rk4: return Marker::triangle;
-    case Integrator::implicit_euler: return Marker::square;
-    case Integrator::forest_ruth: return Marker::circle;
+    case Integrator::semi_implicit_euler:
+      return Marker::circle;
+    case Integrator::explicit_euler:
+      return Marker::square;
+    case Integrator::velocity_verlet:
+      return Marker::diamond;
+    case Integrator::rk4:
+      return Marker::triangle;
+    case Integrator::implicit_euler:
+      return Marker::square;
+    case Integrator::forest_ruth:
+      return Marker::circle;
   }
   return Marker::circle;
 }
@@ -202,17 +219,22 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[a], "--out") == 0 && a + 1 < argc) {
       out = argv[++a];
     } else {
-      std::fprintf(stderr, "usage: work_precision [--out DIR]   (unknown argument '%s')\n", argv[a]);
+      std::fprintf(stderr, "usage: work_precision [--out DIR]   (unknown argument '%s')\n",
+                   argv[a]);
       return 2;
     }
   }
   try {
     prepare_output_dir(out);
     std::vector<Point> all;
-    std::string md, csv = "system,integrator,dt,substeps,h,err_end_m,err_max_m,energy_err_max,evals_per_body_s,ns_per_body_s\n";
+    std::string md, csv =
+                        "system,integrator,dt,substeps,h,err_end_m,err_max_m,energy_err_max,evals_"
+                        "per_body_s,ns_per_body_s\n";
     int misses = 0;
     Renderer renderer(1280, 800);
-    md += "| system | integrator | theoretical order | measured slope (max position error) | within ±0.2 |\n";
+    md +=
+        "| system | integrator | theoretical order | measured slope (max position error) | within "
+        "±0.2 |\n";
     md += "|---|---|---|---|---|\n";
     std::string cheapest;
     for (const System& sys : systems()) {
@@ -234,16 +256,18 @@ int main(int argc, char** argv) {
           p.evals_per_s = integrator_evaluations(i) * steps_per_s;
           p.ns_per_s = ns * steps_per_s;
           pts.push_back(p);
-          csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", sys.name, integrator_name(i), l.dt, l.substeps,
-                             l.h(), p.err_end, p.err_max, p.energy_err_max, p.evals_per_s, p.ns_per_s);
+          csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", sys.name, integrator_name(i), l.dt,
+                             l.substeps, l.h(), p.err_end, p.err_max, p.energy_err_max,
+                             p.evals_per_s, p.ns_per_s);
         }
         const double slope = order_slope(pts, &Point::err_max);
         const int order = integrator_order(i);
         const bool ok = std::isfinite(slope) && std::abs(slope - order) <= 0.2;
         if (!ok) ++misses;
-        md += fmt::format("| {} | `{}` | {} | {:.2f} | {} |\n", sys.name, integrator_name(i), order, slope,
-                          ok ? "yes" : "**no**");
-        caption.push_back(fmt::format("{}: slope {:.2f} (order {})", integrator_name(i), slope, order));
+        md += fmt::format("| {} | `{}` | {} | {:.2f} | {} |\n", sys.name, integrator_name(i), order,
+                          slope, ok ? "yes" : "**no**");
+        caption.push_back(
+            fmt::format("{}: slope {:.2f} (order {})", integrator_name(i), slope, order));
         PlotSeries s{.label = std::string(integrator_name(i)), .marker = marker_for(i)};
         PlotSeries se = s;
         for (const Point& p : pts) {
@@ -260,33 +284,42 @@ int main(int argc, char** argv) {
         for (const Point& p : sys_points) {
           if (p.err_max <= target && (!best || p.ns_per_s < best->ns_per_s)) best = &p;
         }
-        cheapest += best ? fmt::format("| {} | {:.0e} m | `{}` | {} | {:.3g} | {:.3g} | {:.2e} m |\n", sys.name, target,
-                                       integrator_name(best->integrator), level_text(best->level), best->ns_per_s,
-                                       best->evals_per_s, best->err_max)
-                         : fmt::format("| {} | {:.0e} m | none reached it | | | | |\n", sys.name, target);
+        cheapest +=
+            best ? fmt::format("| {} | {:.0e} m | `{}` | {} | {:.3g} | {:.3g} | {:.2e} m |\n",
+                               sys.name, target, integrator_name(best->integrator),
+                               level_text(best->level), best->ns_per_s, best->evals_per_s,
+                               best->err_max)
+                 : fmt::format("| {} | {:.0e} m | none reached it | | | | |\n", sys.name, target);
       }
       std::string line;
       for (const std::string& c : caption) line += (line.empty() ? "" : "; ") + c;
-      plot.caption = {"Slopes of log(error) vs log(cost) over the asymptotic points (h <= 0.1 s, error < 1 % of the motion, above 100x the round-off floor): " + line,
-                      "Dashed: target errors 1e-2, 1e-4, 1e-6 m. Points left out: unstable step sizes."};
-      energy_plot.caption = {"Energy error relative to the initial energy, same runs as the position plot."};
+      plot.caption = {
+          "Slopes of log(error) vs log(cost) over the asymptotic points (h <= 0.1 s, error < 1 % "
+          "of the motion, above 100x the round-off floor): " +
+              line,
+          "Dashed: target errors 1e-2, 1e-4, 1e-6 m. Points left out: unstable step sizes."};
+      energy_plot.caption = {
+          "Energy error relative to the initial energy, same runs as the position plot."};
       draw_plot(renderer, plot);
-      write_png(fmt::format("{}/work_precision_{}.png", out, sys.name), renderer.width(), renderer.height(),
-                renderer.pixels());
+      write_png(fmt::format("{}/work_precision_{}.png", out, sys.name), renderer.width(),
+                renderer.height(), renderer.pixels());
       draw_plot(renderer, energy_plot);
       write_png(fmt::format("{}/work_precision_{}_energy.png", out, sys.name), renderer.width(),
                 renderer.height(), renderer.pixels());
       all.insert(all.end(), sys_points.begin(), sys_points.end());
     }
-    md += "\nCheapest configuration (by measured time) whose maximum position error over the run is "
-          "at most the target:\n\n";
-    md += "| system | target error | integrator | step | ns per body per simulated s | force evaluations per body per simulated s | error reached |\n";
+    md +=
+        "\nCheapest configuration (by measured time) whose maximum position error over the run is "
+        "at most the target:\n\n";
+    md +=
+        "| system | target error | integrator | step | ns per body per simulated s | force "
+        "evaluations per body per simulated s | error reached |\n";
     md += "|---|---|---|---|---|---|---|\n" + cheapest;
     write_file_atomic(out + "/work_precision.csv", csv);
     write_file_atomic(out + "/work_precision.md", md);
     std::fputs(md.c_str(), stdout);
-    std::printf("wrote %s/work_precision.{csv,md} and %s/work_precision_*.png (%zu points)\n", out.c_str(),
-                out.c_str(), all.size());
+    std::printf("wrote %s/work_precision.{csv,md} and %s/work_precision_*.png (%zu points)\n",
+                out.c_str(), out.c_str(), all.size());
     if (misses > 0) {
       std::fprintf(stderr, "work_precision: %d slope(s) outside theoretical order ± 0.2\n", misses);
       return 1;

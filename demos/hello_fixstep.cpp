@@ -5,10 +5,9 @@
 //   build/release/bin/hello_fixstep [OUT_DIR]     (default: hello_frames)
 #include <cstdio>
 #include <exception>
-#include <string>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/session.hpp>
+#include <string>
 
 int main(int argc, char** argv) {
   using namespace fixstep;

@@ -5,10 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <string>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/session.hpp>
+#include <string>
 
 int main(int argc, char** argv) {
   using namespace fixstep;

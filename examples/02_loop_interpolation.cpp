@@ -7,13 +7,12 @@
 //   02_loop_interpolation [OUT.png]
 #include <cstdio>
 #include <exception>
-#include <string>
-#include <vector>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/loop.hpp>
 #include <fixstep/render.hpp>
 #include <fixstep/simulation.hpp>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -55,7 +54,8 @@ int main(int argc, char** argv) {
     RenderFrame drawn;
     std::vector<float> held, smooth;  // the bob's drawn x in each frame
     for (int frame = 0; frame < frames; ++frame) {
-      if (frame > 0) loop.advance(clock.frame_seconds(), {}, [&](const TickInput& in) { sim.step(in); });
+      if (frame > 0)
+        loop.advance(clock.frame_seconds(), {}, [&](const TickInput& in) { sim.step(in); });
       sim.fill_render_frame(1.0, drawn);  // alpha = 1: the current tick, as is
       held.push_back(drawn.x[0]);
       sim.fill_render_frame(loop.alpha(), drawn);  // between the last two ticks
@@ -64,8 +64,10 @@ int main(int argc, char** argv) {
 
     Renderer r(width, height);
     r.begin({18, 22, 30, 255});
-    panel(r, held, 16.0f, 215.0f, "no interpolation: each tick held for 6 frames", {230, 87, 46, 255});
-    panel(r, smooth, 231.0f, 215.0f, "interpolated by alpha = accumulator / dt", {90, 220, 200, 255});
+    panel(r, held, 16.0f, 215.0f, "no interpolation: each tick held for 6 frames",
+          {230, 87, 46, 255});
+    panel(r, smooth, 231.0f, 215.0f, "interpolated by alpha = accumulator / dt",
+          {90, 220, 200, 255});
     r.text(24.0f, height - 20.0f, "x of a 1 Hz spring, drawn each frame (60 frames/s, 10 ticks/s)",
            1.5f, {150, 160, 175, 255});
     r.finish();

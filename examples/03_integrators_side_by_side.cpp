@@ -8,13 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <string>
-#include <vector>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
 #include <fixstep/render.hpp>
 #include <fixstep/world.hpp>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -35,7 +34,7 @@ void strip(fixstep::Renderer& r, float top, float h, const std::vector<double>& 
     mine.push_back(point(i, x[i], color));
   }
   r.set_clip(fixstep::Renderer::ClipRect{static_cast<int>(left), static_cast<int>(top),
-                                          static_cast<int>(right), static_cast<int>(top + h)});
+                                         static_cast<int>(right), static_cast<int>(top + h)});
   r.line(left, mid, right, mid, 1.0f, {55, 62, 75, 255});
   r.polyline(grey, 3.0f);
   r.polyline(mine, 2.0f);
@@ -48,7 +47,7 @@ void strip(fixstep::Renderer& r, float top, float h, const std::vector<double>& 
 int main(int argc, char** argv) {
   using namespace fixstep;
   const std::string png = argc > 1 ? argv[1] : "03_integrators_side_by_side.png";
-  const Rgba8 colors[] = {{230, 87, 46, 255},  {250, 200, 60, 255}, {90, 220, 200, 255},
+  const Rgba8 colors[] = {{230, 87, 46, 255},  {250, 200, 60, 255},  {90, 220, 200, 255},
                           {76, 175, 240, 255}, {200, 120, 230, 255}, {150, 230, 90, 255}};
   try {
     BodyDef bob;

@@ -8,13 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <string>
-#include <vector>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
 #include <fixstep/render.hpp>
 #include <fixstep/simulation.hpp>
+#include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
   using namespace fixstep;
@@ -24,7 +23,8 @@ int main(int argc, char** argv) {
   try {
     std::vector<BodyDef> throws(2);
     for (BodyDef& d : throws) {
-      d.body = Body{.mass = 1.0, .position = {-16.0, -6.0},
+      d.body = Body{.mass = 1.0,
+                    .position = {-16.0, -6.0},
                     .velocity = {20.0 * std::cos(0.96), 20.0 * std::sin(0.96)}};
       d.gravity = Gravity{.acceleration = {0.0, -9.81}};  // m/s²
     }
@@ -64,8 +64,9 @@ int main(int argc, char** argv) {
       std::snprintf(label, sizeof label, "%s: largest error %.2f m", names[i], worst[i]);
       r.text(20.0f, 20.0f + 28.0f * i, label, 2.0f, colors[i]);
     }
-    r.text(20.0f, height - 30.0f, "lines: exact paths   dots: ticks of semi-implicit Euler, dt = 1/20 s",
-           1.5f, {150, 160, 175, 255});
+    r.text(20.0f, height - 30.0f,
+           "lines: exact paths   dots: ticks of semi-implicit Euler, dt = 1/20 s", 1.5f,
+           {150, 160, 175, 255});
     r.finish();
     write_png(png, width, height, r.pixels());
     std::printf("largest error: vacuum %.4f m, drag %.4f m; wrote %s\n", worst[0], worst[1],

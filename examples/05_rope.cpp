@@ -5,10 +5,9 @@
 //   05_rope [OUT.png]
 #include <cstdio>
 #include <exception>
-#include <string>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/session.hpp>
+#include <string>
 
 int main(int argc, char** argv) {
   using namespace fixstep;
@@ -33,9 +32,10 @@ int main(int argc, char** argv) {
     // Each link: k = 500 N/m, b = 0.5 N·s/m, rest length = the spacing, so the rope stretches
     // only under load. Stable for semi-implicit Euler at this dt: the guard checks the network.
     for (std::size_t i = 0; i + 1 < count; ++i) {
-      world.links.push_back(BodyLink{.body_a = i, .body_b = i + 1,
-                                     .spring = {.stiffness = 500.0, .damping = 0.5,
-                                                .rest_length = spacing}});
+      world.links.push_back(
+          BodyLink{.body_a = i,
+                   .body_b = i + 1,
+                   .spring = {.stiffness = 500.0, .damping = 0.5, .rest_length = spacing}});
     }
 
     Session session(world, SessionSettings{.width = 640,

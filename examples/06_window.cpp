@@ -8,13 +8,12 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
-#include <optional>
-#include <string>
-#include <thread>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
+#include <optional>
+#include <string>
+#include <thread>
 
 int main(int argc, char** argv) {
   using namespace fixstep;

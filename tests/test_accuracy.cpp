@@ -3,12 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <numbers>
 #include <utility>
 #include <vector>
-
-#include <boost/numeric/odeint.hpp>
 
 #include "fixstep/exact.hpp"
 #include "fixstep/world.hpp"
@@ -54,8 +53,9 @@ TEST_P(Convergence, ObservedOrderMatchesTheoryOnDampedAndDraggedSystems) {
     const double fine = error_at_end(integrator, def, 0.01);
     const double order = std::log2(coarse / fine);
     EXPECT_NEAR(order, integrator_order(integrator), 0.15)
-        << integrator_name(integrator) << (def.spring ? " on the damped oscillator" : " on the dragged projectile")
-        << ": errors " << coarse << " -> " << fine;
+        << integrator_name(integrator)
+        << (def.spring ? " on the damped oscillator" : " on the dragged projectile") << ": errors "
+        << coarse << " -> " << fine;
   }
 }
 

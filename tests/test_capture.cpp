@@ -20,8 +20,8 @@ namespace fixstep {
 namespace {
 
 std::filesystem::path temp_dir(const char* name) {
-  auto d = std::filesystem::temp_directory_path() / ("fixstep_test_" + std::string(name) + "_" +
-                                                      std::to_string(::getpid()));
+  auto d = std::filesystem::temp_directory_path() /
+           ("fixstep_test_" + std::string(name) + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;
@@ -57,7 +57,8 @@ std::vector<std::uint8_t> test_picture(int w, int h, unsigned seed) {
     for (int x = 0; x < w; ++x) {
       std::uint8_t* q = &p[(static_cast<std::size_t>(y) * w + x) * 4];
       q[0] = 20, q[1] = 24, q[2] = 32, q[3] = 255;
-      if (y < h / 4) q[0] = static_cast<std::uint8_t>(255 * x / w), q[1] = static_cast<std::uint8_t>(y);
+      if (y < h / 4)
+        q[0] = static_cast<std::uint8_t>(255 * x / w), q[1] = static_cast<std::uint8_t>(y);
       if ((x / 9 + y / 7) % 5 == 0) q[1] = 200, q[2] = 90;
       if (y > h / 2 && y < h / 2 + 6) {
         for (int c = 0; c < 4; ++c) q[c] = static_cast<std::uint8_t>(rng());
@@ -70,8 +71,8 @@ std::vector<std::uint8_t> test_picture(int w, int h, unsigned seed) {
 /// Decodes PNG bytes with stb_image (RGBA); empty if they are not a PNG of w x h.
 std::vector<std::uint8_t> decode(std::span<const std::uint8_t> png, int w, int h) {
   int rw = 0, rh = 0, channels = 0;
-  stbi_uc* back = stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &rw, &rh,
-                                        &channels, 4);
+  stbi_uc* back =
+      stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &rw, &rh, &channels, 4);
   if (!back || rw != w || rh != h) {
     stbi_image_free(back);
     return {};
@@ -176,8 +177,9 @@ TEST(Capture, LevelOutOfRangeIsRefusedWithTheRange) {
   EXPECT_EQ(png_level_error(0), "");
   EXPECT_EQ(png_level_error(12), "");
   const auto dir = temp_dir("badlevel");
-  EXPECT_THROW(write_png(dir / "x.png", 2, 2, std::vector<std::uint8_t>(16), PngSettings{.level = 13}),
-               std::invalid_argument);
+  EXPECT_THROW(
+      write_png(dir / "x.png", 2, 2, std::vector<std::uint8_t>(16), PngSettings{.level = 13}),
+      std::invalid_argument);
   EXPECT_FALSE(std::filesystem::exists(dir / "x.png"));
   std::filesystem::remove_all(dir);
 }

@@ -26,8 +26,8 @@
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
-#include "scene_session.hpp"
 #include "fixstep/simd.hpp"
+#include "scene_session.hpp"
 
 namespace fixstep {
 namespace {

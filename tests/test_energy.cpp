@@ -32,10 +32,10 @@ TEST(EnergyMeasure, PotentialsAndKineticAreExact) {
   rest.spring = SpringDamper{.anchor = {}, .stiffness = 2.0, .damping = 0.0, .rest_length = 4.0};
   w.create_body(rest);
   const EnergyReport e = w.energy();
-  EXPECT_DOUBLE_EQ(e.kinetic, 0.5 * 2.0 * 5.0);                     // ½ m |v|²
+  EXPECT_DOUBLE_EQ(e.kinetic, 0.5 * 2.0 * 5.0);                            // ½ m |v|²
   EXPECT_DOUBLE_EQ(e.spring, 0.5 * 5.0 * (9.0 + 9.0) + 0.5 * 2.0 * 36.0);  // ½ k d²
-  EXPECT_DOUBLE_EQ(e.gravity, -2.0 * (-9.81 * 4.0));                // -m g·x
-  EXPECT_DOUBLE_EQ(e.constant_force, -(2.0 * 3.0 + 1.0 * 4.0));     // -F·x
+  EXPECT_DOUBLE_EQ(e.gravity, -2.0 * (-9.81 * 4.0));                       // -m g·x
+  EXPECT_DOUBLE_EQ(e.constant_force, -(2.0 * 3.0 + 1.0 * 4.0));            // -F·x
   std::vector<double> per(2);
   w.body_energies(per);
   EXPECT_DOUBLE_EQ(per[0] + per[1], e.total());
@@ -69,7 +69,7 @@ TEST(EnergyDrift, SemiImplicitEulerBoundedOverAMillionTicks) {
     if (i > n - window) last_mean += e / window;
   }
   EXPECT_LE(worst, omega * dt / (1 - omega * dt / 2));
-  EXPECT_GT(worst, 0.04);  // the bound is nearly reached: the oscillation is real
+  EXPECT_GT(worst, 0.04);            // the bound is nearly reached: the oscillation is real
   EXPECT_LT(worst_modified, 1e-10);  // round-off only
   EXPECT_NEAR(last_mean / first_mean, 1.0, 1e-3);
 }
@@ -120,9 +120,9 @@ TEST(EnergyDrift, ExplicitEulerGainsEnergyOnTheArticleSpring) {
   const double e0 = w.energy().total();
   for (int i = 0; i < 10'000; ++i) w.step();
   // Per tick, explicit Euler changes the energy by E' - E = ω²dt² E - (b/m) v² dt + O(b dt²);
-  // averaged over a period <v²> = E for m = 1 (kinetic is half the energy), so the relative change is
-  // ω²dt² - (b/m) dt = 0.0015 - 0.001 = +0.0005 per tick: e^{5} after 10^4 ticks.
-  // Asserting at least e^{4} leaves room for the O(dt²) terms.
+  // averaged over a period <v²> = E for m = 1 (kinetic is half the energy), so the relative change
+  // is ω²dt² - (b/m) dt = 0.0015 - 0.001 = +0.0005 per tick: e^{5} after 10^4 ticks. Asserting at
+  // least e^{4} leaves room for the O(dt²) terms.
   EXPECT_GT(w.energy().total(), e0 * std::exp(4.0));
 }
 

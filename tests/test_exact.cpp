@@ -1,10 +1,12 @@
 // The exact reference solutions: initial conditions, the ODE itself (finite differences),
 // continuity across critical damping, closed forms, an independent numerical reference
 // (Boost.Odeint's Dormand–Prince 5(4)), the BodyDef front end and argument checking.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -13,9 +15,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <boost/numeric/odeint.hpp>
-#include <fmt/format.h>
 
 #include "fixstep/exact.hpp"
 

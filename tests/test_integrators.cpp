@@ -1,10 +1,9 @@
 // The integrators against the tables of Fiedler's "Integration Basics" and exact solutions.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "fixstep/exact.hpp"
 #include "fixstep/world.hpp"

@@ -133,7 +133,8 @@ TEST(Loop, StateAfterNTicksIsBitIdenticalAtAnyFrameRate) {
 
 TEST(Loop, RejectsBadSettings) {
   EXPECT_THROW(FixedStepLoop(LoopSettings{.dt = 0}), std::invalid_argument);
-  EXPECT_THROW(FixedStepLoop(LoopSettings{.dt = 0.01, .max_frame_time = -1}), std::invalid_argument);
+  EXPECT_THROW(FixedStepLoop(LoopSettings{.dt = 0.01, .max_frame_time = -1}),
+               std::invalid_argument);
   EXPECT_THROW(VirtualClock(0), std::invalid_argument);
 }
 

@@ -51,7 +51,7 @@ TEST(Render, BodyIsDrawnWhereItsPositionMaps) {
   EXPECT_DOUBLE_EQ(p[1], 68.0);
   const Rgba8 red{255, 0, 0, 255};
   EXPECT_TRUE(near(at(r, 224, 68), red, 2));
-  EXPECT_TRUE(near(at(r, 224 + 12, 68), red, 2));   // inside the 16 px radius
+  EXPECT_TRUE(near(at(r, 224 + 12, 68), red, 2));    // inside the 16 px radius
   EXPECT_FALSE(near(at(r, 224 + 22, 68), red, 60));  // outside radius + outline
   EXPECT_FALSE(near(at(r, 224, 132), red, 60));      // y is not flipped
   EXPECT_FALSE(near(at(r, 96, 132), red, 60));
@@ -171,7 +171,6 @@ TEST(Render, SessionFramesAreReproducible) {
                          b.renderer().pixels().begin()));
 }
 
-
 TEST(Canvas, PrimitivesLandOnTheirPixelsAndClipIsExact) {
   // 100 x 80 frame on a blue background: a red 4 px horizontal line along y = 20.5 from x = 10
   // to 90 under a clip of x in [30, 60), y in [10, 40): red exactly on columns 30..59; a second
@@ -190,11 +189,11 @@ TEST(Canvas, PrimitivesLandOnTheirPixelsAndClipIsExact) {
   EXPECT_TRUE(near(at(r, 59, 20), red, 2));
   EXPECT_TRUE(near(at(r, 29, 20), blue, 0));
   EXPECT_TRUE(near(at(r, 60, 20), blue, 0));
-  EXPECT_TRUE(near(at(r, 45, 10), blue, 0));      // off the line
-  EXPECT_TRUE(near(at(r, 45, 60), blue, 0));      // the clipped-away line
-  EXPECT_TRUE(near(at(r, 15, 55), green, 0));     // inside the triangle
-  EXPECT_TRUE(near(at(r, 38, 72), blue, 0));      // beyond its hypotenuse
-  EXPECT_TRUE(near(at(r, 80, 60), red, 0));       // the unclipped rectangle
+  EXPECT_TRUE(near(at(r, 45, 10), blue, 0));   // off the line
+  EXPECT_TRUE(near(at(r, 45, 60), blue, 0));   // the clipped-away line
+  EXPECT_TRUE(near(at(r, 15, 55), green, 0));  // inside the triangle
+  EXPECT_TRUE(near(at(r, 38, 72), blue, 0));   // beyond its hypotenuse
+  EXPECT_TRUE(near(at(r, 80, 60), red, 0));    // the unclipped rectangle
   EXPECT_TRUE(near(at(r, 5, 5), blue, 0));
 }
 

@@ -1,11 +1,10 @@
 // Stability at the edges of each integrator, the guard at scene load, parameter extremes, and
 // float hygiene.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "fixstep/exact.hpp"
 #include "fixstep/scene.hpp"
@@ -212,7 +211,8 @@ TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
 }
 
 TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
-  const Scene allowed = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler", 1, true), "a.toml");
+  const Scene allowed =
+      parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler", 1, true), "a.toml");
   const auto warnings = enforce_stability(allowed);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("(allowed)"), std::string::npos) << warnings[0];
@@ -243,7 +243,8 @@ TEST(Guard, ParameterExtremesRunBoundedOrAreRefusedNeverNaN) {
       for (double dt : {1e-6, 1e-3, 0.1})
         for (Integrator integrator : all_integrators) {
           const std::string name(integrator_name(integrator));
-          const Scene scene = parse_scene(scene_text(k, m, dt, name.c_str(), 1, false, 0.0), "x.toml");
+          const Scene scene =
+              parse_scene(scene_text(k, m, dt, name.c_str(), 1, false, 0.0), "x.toml");
           std::optional<Simulation> sim;
           try {
             sim.emplace(make_simulation(scene));

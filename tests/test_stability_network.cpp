@@ -231,8 +231,7 @@ TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
          {std::string("network of 3 bodies and 2 springs is unstable with semi_implicit_euler"),
           fmt::format("ω_max·h = {:.4g} exceeds the stability bound {:.4g}", net.omega_max * 0.1,
                       net.omega_max * net.max_step),
-          std::string("stiffest link 'mid'–'tip', k = 400 N/m"),
-          std::string("fastest body 'mid'"),
+          std::string("stiffest link 'mid'–'tip', k = 400 N/m"), std::string("fastest body 'mid'"),
           fmt::format("Use substeps = {} in [world]", net.min_substeps)}) {
       EXPECT_NE(what.find(part), std::string::npos) << part << "\nin: " << what;
     }

@@ -3,8 +3,8 @@
 
 #include <cmath>
 #include <limits>
-#include <string>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "fixstep/scene.hpp"
@@ -175,8 +175,10 @@ void expect_guard_names_first_tick_out_of_range() {
   for (std::uint64_t t = 1; expected_tick == 0; ++t) {
     v += -900.0 * x * 0.1;
     x += v * 0.1;
-    if (std::abs(x) > max_state_magnitude) expected_tick = t, expected_field = "x";
-    else if (std::abs(v) > max_state_magnitude) expected_tick = t, expected_field = "vx";
+    if (std::abs(x) > max_state_magnitude)
+      expected_tick = t, expected_field = "x";
+    else if (std::abs(v) > max_state_magnitude)
+      expected_tick = t, expected_field = "vx";
   }
   for (std::uint64_t t = 1; t < expected_tick; ++t) {
     w.step();
@@ -240,7 +242,8 @@ name = "thrown"
 mass = 1.0
 position = [0.0, 0.0]
 gravity = [0.0, -9.81]
-)", "blow.toml");
+)",
+                            "blow.toml");
   StateFault f{.index = 0, .name = "stiff", .tick = 14, .time = 1.4, .field = "vx", .value = 7e12};
   const std::string m = explain_fault(scene, f);
   EXPECT_NE(m.find("blow.toml:5: body[0] \"stiff\""), std::string::npos) << m;

@@ -2,12 +2,11 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
-#include <string>
-
 #include <fixstep/capture.hpp>
 #include <fixstep/scene.hpp>
 #include <fixstep/session.hpp>
+#include <optional>
+#include <string>
 
 namespace fixstep::cli {
 
@@ -18,7 +17,7 @@ inline constexpr int exit_diverged = 3;
 struct SceneOptions {
   std::string scene;
   std::optional<std::string> integrator;
-  std::optional<double> dt;         ///< s
+  std::optional<double> dt;  ///< s
   std::optional<std::string> precision;
   std::optional<int> substeps;
   bool allow_unstable = false;

@@ -1,12 +1,12 @@
 #include "figures.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <fixstep/exact.hpp>
 #include <numbers>
 #include <stdexcept>
-
-#include <fixstep/exact.hpp>
-#include <fmt/format.h>
 
 namespace fixstep::demo {
 

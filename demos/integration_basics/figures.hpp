@@ -4,12 +4,11 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-#include <vector>
-
 #include <fixstep/integrators.hpp>
 #include <fixstep/plot.hpp>
 #include <fixstep/simulation.hpp>
+#include <string>
+#include <vector>
 
 namespace fixstep::demo {
 

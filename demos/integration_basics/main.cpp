@@ -8,20 +8,20 @@
 //   integration_basics --window [--live damped|undamped] [--dt S] [--speed X] [--frames N] [--fps
 //   F]
 //       the same comparison live: one trace per integrator grows as the fixed-step loop ticks.
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
-#include <string>
-#include <thread>
-
-#include <CLI/CLI.hpp>
 #include <fixstep/capture.hpp>
 #include <fixstep/loop.hpp>
 #include <fixstep/window.hpp>
-#include <fmt/format.h>
+#include <optional>
+#include <string>
+#include <thread>
 
 #include "figures.hpp"
 

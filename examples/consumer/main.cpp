@@ -3,7 +3,6 @@
 // --steps 1000` (checked in .ci/run), so a world written in code is the scene's world.
 #include <cstdio>
 #include <exception>
-
 #include <fixstep/simulation.hpp>
 
 namespace {
@@ -22,7 +21,7 @@ fixstep::BodyDef thrown(const char* name, double mass, fixstep::Vec2 velocity, d
   fixstep::BodyDef d;
   d.name = name;
   d.body = {.mass = mass, .position = {-38.0, -14.0}, .velocity = velocity};
-  d.gravity = fixstep::Gravity{{0.0, -9.81}};  // m/s²
+  d.gravity = fixstep::Gravity{{0.0, -9.81}};          // m/s²
   if (drag > 0.0) d.drag = fixstep::LinearDrag{drag};  // N·s/m
   return d;
 }

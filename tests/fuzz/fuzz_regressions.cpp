@@ -1,13 +1,13 @@
 // Replays the fuzz seed corpus and every minimized finding through the fuzz target's check
 // (scene_check.cpp), in the ordinary builds (gcc, and gcc ASan + UBSan in the asan preset).
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "scene_check.hpp"
 
@@ -63,7 +63,9 @@ TEST(FuzzScene, SeedCorpusHasNoFinding) {
   EXPECT_GT(replay(source_dir / "tests/fuzz/corpus"), 0u);
 }
 
-TEST(FuzzScene, MinimizedFindingsStayFixed) { replay(source_dir / "tests/fuzz/regressions"); }
+TEST(FuzzScene, MinimizedFindingsStayFixed) {
+  replay(source_dir / "tests/fuzz/regressions");
+}
 
 TEST(FuzzScene, CleanRejectionsAreSceneErrors) {
   EXPECT_EQ(fixstep::fuzz::check_scene_text("").verdict, Verdict::rejected);

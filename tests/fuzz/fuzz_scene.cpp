@@ -24,9 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   const fixstep::fuzz::Outcome out = fixstep::fuzz::check_scene_text(text);
   using fixstep::fuzz::Verdict;
-  if (out.verdict == Verdict::finding ||
-      (strict && (out.verdict == Verdict::rejected_by_world ||
-                  out.verdict == Verdict::overflowed))) {
+  if (out.verdict == Verdict::finding || (strict && (out.verdict == Verdict::rejected_by_world ||
+                                                     out.verdict == Verdict::overflowed))) {
     std::fprintf(stderr, "fuzz_scene: FINDING: %s\n", out.detail.c_str());
     std::abort();
   }

@@ -1,5 +1,8 @@
 #include "scene_check.hpp"
 
+#include <cxxabi.h>
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -7,9 +10,6 @@
 #include <optional>
 #include <stdexcept>
 #include <typeinfo>
-
-#include <cxxabi.h>
-#include <fmt/format.h>
 
 #include "fixstep/scene.hpp"
 #include "fixstep/simulation.hpp"
@@ -34,10 +34,16 @@ Outcome unexpected(std::string_view where) {
   return {Verdict::finding, fmt::format("{} threw a non-std::exception", where)};
 }
 
-bool finite(const Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool finite(const Vec2& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y);
+}
 
-bool small(double v) { return std::abs(v) <= bounded_max; }
-bool small(const Vec2& v) { return small(v.x) && small(v.y); }
+bool small(double v) {
+  return std::abs(v) <= bounded_max;
+}
+bool small(const Vec2& v) {
+  return small(v.x) && small(v.y);
+}
 
 /// See bounded_max: a scene whose non-finite states are findings.
 bool bounded_scene(const Scene& scene) {
@@ -104,14 +110,14 @@ Outcome check_scene_text(std::string_view text) {
           // Whatever the scene, the runtime guard must have caught it (World::fault), on this
           // tick or before: a NaN or infinity it missed would spread silently.
           const bool caught = sim->fault().has_value() && sim->fault()->tick <= sim->tick();
-          return {bounded_scene(scene) || !caught ? Verdict::finding : Verdict::overflowed,
-                  fmt::format("non-finite state at tick {} (dt {} s, {}, {}, substeps {}): "
-                              "body[{}] \"{}\" position ({}, {}) velocity ({}, {}){}",
-                              tick, scene.world.dt, integrator_name(scene.world.integrator),
-                              scene.precision == Precision::f32 ? "f32" : "f64",
-                              scene.world.substeps, i, sim->name(i), b.position.x, b.position.y,
-                              b.velocity.x, b.velocity.y,
-                              caught ? "" : "; the runtime guard did not report it")};
+          return {
+              bounded_scene(scene) || !caught ? Verdict::finding : Verdict::overflowed,
+              fmt::format("non-finite state at tick {} (dt {} s, {}, {}, substeps {}): "
+                          "body[{}] \"{}\" position ({}, {}) velocity ({}, {}){}",
+                          tick, scene.world.dt, integrator_name(scene.world.integrator),
+                          scene.precision == Precision::f32 ? "f32" : "f64", scene.world.substeps,
+                          i, sim->name(i), b.position.x, b.position.y, b.velocity.x, b.velocity.y,
+                          caught ? "" : "; the runtime guard did not report it")};
         }
       }
     }

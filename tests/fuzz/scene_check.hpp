@@ -39,7 +39,6 @@ inline constexpr std::uint64_t max_body_substeps = 4'000'000;
 /// max_body_substeps.
 inline constexpr std::uint64_t max_built_size = 200'000;
 
-
 /// Magnitudes inside which a non-finite state is a bug rather than arithmetic overflow: with
 /// every number of a scene at most 1e9 in magnitude, every mass at least 1e-9 kg, dt <= 1 s and
 /// the stability guard on, 60 s of forcing moves a body less than 1e9 + 1e9 * 60 + 1e18 * 60^2

@@ -3,10 +3,10 @@
 // (damped oscillations) and Taylor, Classical Mechanics, §2.2–2.3 (linear air resistance).
 #include "fixstep/exact.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 namespace fixstep::exact {
 namespace {

@@ -4,12 +4,18 @@ namespace fixstep {
 
 std::string_view integrator_name(Integrator integrator) {
   switch (integrator) {
-    case Integrator::semi_implicit_euler: return "semi_implicit_euler";
-    case Integrator::explicit_euler: return "explicit_euler";
-    case Integrator::velocity_verlet: return "velocity_verlet";
-    case Integrator::rk4: return "rk4";
-    case Integrator::implicit_euler: return "implicit_euler";
-    case Integrator::forest_ruth: return "forest_ruth";
+    case Integrator::semi_implicit_euler:
+      return "semi_implicit_euler";
+    case Integrator::explicit_euler:
+      return "explicit_euler";
+    case Integrator::velocity_verlet:
+      return "velocity_verlet";
+    case Integrator::rk4:
+      return "rk4";
+    case Integrator::implicit_euler:
+      return "implicit_euler";
+    case Integrator::forest_ruth:
+      return "forest_ruth";
   }
   return "unknown";
 }
@@ -28,19 +34,26 @@ std::string_view integrator_names() {
 
 int integrator_order(Integrator integrator) {
   switch (integrator) {
-    case Integrator::velocity_verlet: return 2;
+    case Integrator::velocity_verlet:
+      return 2;
     case Integrator::rk4:
-    case Integrator::forest_ruth: return 4;
-    default: return 1;
+    case Integrator::forest_ruth:
+      return 4;
+    default:
+      return 1;
   }
 }
 
 int integrator_evaluations(Integrator integrator) {
   switch (integrator) {
-    case Integrator::velocity_verlet: return 2;
-    case Integrator::rk4: return 4;
-    case Integrator::forest_ruth: return 6;
-    default: return 1;
+    case Integrator::velocity_verlet:
+      return 2;
+    case Integrator::rk4:
+      return 4;
+    case Integrator::forest_ruth:
+      return 6;
+    default:
+      return 1;
   }
 }
 

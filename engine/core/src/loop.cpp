@@ -1,16 +1,16 @@
 #include "fixstep/loop.hpp"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 
 namespace fixstep {
 
 FixedStepLoop::FixedStepLoop(const LoopSettings& settings)
     : settings_(settings), due_(settings.dt * (1.0 - 1e-9)) {
   if (!std::isfinite(settings.dt) || settings.dt <= 0.0) {
-    throw std::invalid_argument(fmt::format("loop: dt must be finite and > 0 s (got {})",
-                                            settings.dt));
+    throw std::invalid_argument(
+        fmt::format("loop: dt must be finite and > 0 s (got {})", settings.dt));
   }
   if (!std::isfinite(settings.max_frame_time) || settings.max_frame_time <= 0.0) {
     throw std::invalid_argument(fmt::format(
@@ -19,16 +19,16 @@ FixedStepLoop::FixedStepLoop(const LoopSettings& settings)
   if (settings.max_ticks_per_frame < 0) {
     throw std::invalid_argument("loop: max_ticks_per_frame must be >= 0 (0 = derived)");
   }
-  tick_cap_ = settings.max_ticks_per_frame > 0
-                  ? settings.max_ticks_per_frame
-                  : static_cast<int>(std::min(std::ceil(settings.max_frame_time / settings.dt),
-                                              1e6)) + 1;
+  tick_cap_ =
+      settings.max_ticks_per_frame > 0
+          ? settings.max_ticks_per_frame
+          : static_cast<int>(std::min(std::ceil(settings.max_frame_time / settings.dt), 1e6)) + 1;
 }
 
 void FixedStepLoop::set_time_scale(double scale) {
   if (!std::isfinite(scale) || scale < 0.0) {
-    throw std::invalid_argument(fmt::format("loop: time scale must be finite and >= 0 (got {})",
-                                            scale));
+    throw std::invalid_argument(
+        fmt::format("loop: time scale must be finite and >= 0 (got {})", scale));
   }
   time_scale_ = scale;
 }

@@ -104,10 +104,10 @@ namespace {
 void refuse_unstable(const WorldDef& def) {
   const WorldSettings& s = def.settings;
   auto refuse = [&](const std::string& message, int min_substeps, double max_step) {
-    throw std::invalid_argument(
-        min_substeps > 0 ? fmt::format("{}; stable from substeps = {} (dt <= {:.4g} s)", message,
-                                       min_substeps, max_step * s.substeps)
-                         : message);
+    throw std::invalid_argument(min_substeps > 0
+                                    ? fmt::format("{}; stable from substeps = {} (dt <= {:.4g} s)",
+                                                  message, min_substeps, max_step * s.substeps)
+                                    : message);
   };
   const std::vector<bool> linked = linked_bodies(def.bodies.size(), def.links);
   for (const BodyStability& r : check_stability(def.bodies, s.integrator, s.dt, s.substeps)) {

@@ -181,7 +181,8 @@ std::string explain_fault(std::span<const BodyDef> bodies, std::span<const BodyL
         "springs stretched far from their starting lengths, and the starting values",
         head, net.bodies, net.springs, method, net.h, net.omega_max * net.h, net.max_step);
   }
-  const std::vector<BodyStability> own = check_stability(bodies.subspan(i, 1), settings.integrator, dt, substeps);
+  const std::vector<BodyStability> own =
+      check_stability(bodies.subspan(i, 1), settings.integrator, dt, substeps);
   if (!own.empty() && own.front().verdict == Stability::unstable) {
     const BodyStability& r = own.front();
     return fmt::format("{}. Likely cause: {}{}", head, r.message,

@@ -338,11 +338,10 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
   const std::optional<std::size_t> link = r.damping_bound ? r.strongest_damper : r.stiffest_link;
   if (link) {
     const BodyLink& l = links[*link];
-    naming = fmt::format("{} link '{}'–'{}', {} = {:g} {}, ",
-                         r.damping_bound ? "strongest damper:" : "stiffest",
-                         bodies[l.body_a].name, bodies[l.body_b].name, r.damping_bound ? "b" : "k",
-                         r.damping_bound ? l.spring.damping : l.spring.stiffness,
-                         r.damping_bound ? "N·s/m" : "N/m");
+    naming = fmt::format(
+        "{} link '{}'–'{}', {} = {:g} {}, ", r.damping_bound ? "strongest damper:" : "stiffest",
+        bodies[l.body_a].name, bodies[l.body_b].name, r.damping_bound ? "b" : "k",
+        r.damping_bound ? l.spring.damping : l.spring.stiffness, r.damping_bound ? "N·s/m" : "N/m");
   }
   naming += fmt::format("fastest body '{}'", bodies[r.fastest_body].name);
   auto unstable = [&](double h) {
@@ -379,9 +378,9 @@ std::vector<bool> linked_bodies(std::size_t body_count, std::span<const BodyLink
   for (std::size_t l = 0; l < links.size(); ++l) {
     const BodyLink& link = links[l];
     if (link.body_a >= body_count || link.body_b >= body_count) {
-      throw std::invalid_argument(fmt::format(
-          "link[{}]: body index out of range ({} and {} of {} bodies)", l, link.body_a,
-          link.body_b, body_count));
+      throw std::invalid_argument(
+          fmt::format("link[{}]: body index out of range ({} and {} of {} bodies)", l, link.body_a,
+                      link.body_b, body_count));
     }
     linked[link.body_a] = linked[link.body_b] = true;
   }

@@ -1,5 +1,9 @@
 #include "fixstep/capture.hpp"
 
+#include <fmt/format.h>
+#include <libdeflate.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <climits>
@@ -7,11 +11,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <vector>
-
-#include <unistd.h>
-
-#include <fmt/format.h>
-#include <libdeflate.h>
 
 namespace {
 
@@ -63,7 +62,9 @@ namespace fixstep {
 
 namespace {
 
-std::string reason(int err) { return std::strerror(err); }
+std::string reason(int err) {
+  return std::strerror(err);
+}
 
 // PNG row filter for every row. stb's default (-1) tries all five filters on each row and
 // keeps the one with the smallest sum of absolute values: 5x the filtering work. On fixstep's
@@ -142,8 +143,8 @@ void write_file_atomic(const std::filesystem::path& file, std::span<const std::u
 }
 
 void write_file_atomic(const std::filesystem::path& file, std::string_view text) {
-  write_file_atomic(file, std::span(reinterpret_cast<const std::uint8_t*>(text.data()),
-                                    text.size()));
+  write_file_atomic(file,
+                    std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
 std::string png_level_error(int level) {
@@ -181,8 +182,8 @@ std::span<const std::uint8_t> PngEncoder::encode(int width, int height,
                                                  std::string_view name) {
   if (width <= 0 || height <= 0 ||
       rgba.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4) {
-    throw CaptureError(fmt::format("cannot write {}: image is {}x{} but has {} bytes", name,
-                                   width, height, rgba.size()));
+    throw CaptureError(fmt::format("cannot write {}: image is {}x{} but has {} bytes", name, width,
+                                   height, rgba.size()));
   }
   if (!compressor_) {
     throw CaptureError(fmt::format("cannot write {}: PNG encoder was moved from", name));
@@ -222,12 +223,12 @@ FrameWriter::FrameWriter(std::filesystem::path dir, int width, int height, PngSe
                          int in_flight)
     : dir_(std::move(dir)), width_(width), height_(height), encoder_(options) {
   if (width < 1 || height < 1) {
-    throw std::invalid_argument(fmt::format("FrameWriter: frame size {}x{} is below 1x1", width,
-                                            height));
+    throw std::invalid_argument(
+        fmt::format("FrameWriter: frame size {}x{} is below 1x1", width, height));
   }
   if (in_flight < 1) {
-    throw std::invalid_argument(fmt::format("FrameWriter: in_flight is {}, must be >= 1",
-                                            in_flight));
+    throw std::invalid_argument(
+        fmt::format("FrameWriter: in_flight is {}, must be >= 1", in_flight));
   }
   frame_bytes_ = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;
   slots_.assign(static_cast<std::size_t>(in_flight), std::vector<std::uint8_t>(frame_bytes_));
@@ -309,15 +310,15 @@ void prepare_output_dir(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) {
-    throw CaptureError(fmt::format("cannot create output directory {}: {}", dir.string(),
-                                   ec.message()));
+    throw CaptureError(
+        fmt::format("cannot create output directory {}: {}", dir.string(), ec.message()));
   }
   if (!std::filesystem::is_directory(dir, ec)) {
     throw CaptureError(fmt::format("output path {} exists and is not a directory", dir.string()));
   }
   if (::access(dir.c_str(), W_OK) != 0) {
-    throw CaptureError(fmt::format("output directory {} is not writable: {}", dir.string(),
-                                   reason(errno)));
+    throw CaptureError(
+        fmt::format("output directory {} is not writable: {}", dir.string(), reason(errno)));
   }
 }
 

@@ -1,13 +1,13 @@
 #include "fixstep/scene.hpp"
 
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
 #include <limits>
-
-#include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include "fixstep/scene_stability.hpp"
 #include "scene_reader.hpp"
@@ -41,7 +41,8 @@ Rgba8 parse_color(const Reader& r, const toml::table& t, const std::string& path
   const bool shape_ok = (s.size() == 7 || s.size() == 9) && s[0] == '#' &&
                         std::all_of(s.begin() + 1, s.end(), [&](char c) { return hex(c) >= 0; });
   if (!shape_ok) {
-    r.fail(n->source(), path, fmt::format("expected \"#rrggbb\" or \"#rrggbbaa\", found \"{}\"", s));
+    r.fail(n->source(), path,
+           fmt::format("expected \"#rrggbb\" or \"#rrggbbaa\", found \"{}\"", s));
   }
   auto byte = [&](std::size_t i) {
     return static_cast<std::uint8_t>(hex(s[i]) * 16 + hex(s[i + 1]));
@@ -80,9 +81,11 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
 /// Every number of an f32 scene must stay finite as a float.
 void check_f32(const Reader& r, const toml::node& node, const std::string& path) {
   if (const toml::table* t = node.as_table()) {
-    for (auto&& [k, v] : *t) check_f32(r, v, path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
+    for (auto&& [k, v] : *t)
+      check_f32(r, v, path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
   } else if (const toml::array* a = node.as_array()) {
-    for (std::size_t i = 0; i < a->size(); ++i) check_f32(r, *a->get(i), fmt::format("{}[{}]", path, i));
+    for (std::size_t i = 0; i < a->size(); ++i)
+      check_f32(r, *a->get(i), fmt::format("{}[{}]", path, i));
   } else if (node.is_number()) {
     const double v = *node.value<double>();
     if (std::isfinite(v)) r.require_f32(v, &node, path);
@@ -226,9 +229,9 @@ Scene load_scene(const std::filesystem::path& file) {
   while (in.read(buf, sizeof buf) || in.gcount() > 0) {
     text.append(buf, static_cast<std::size_t>(in.gcount()));
     if (text.size() > max_scene_bytes) {
-      throw SceneError(name, 0, 0, "",
-                       fmt::format("file is larger than the {} bytes a scene may have",
-                                   max_scene_bytes));
+      throw SceneError(
+          name, 0, 0, "",
+          fmt::format("file is larger than the {} bytes a scene may have", max_scene_bytes));
     }
   }
   if (in.bad()) throw SceneError(name, 0, 0, "", "read error");

@@ -12,8 +12,8 @@ std::vector<BodyStability> check_stability(const Scene& scene) {
 }
 
 std::optional<NetworkStability> check_scene_network(const Scene& scene) {
-  return check_linked_stability(scene.bodies, scene.links, scene.world.integrator,
-                                scene.world.dt, scene.world.substeps);
+  return check_linked_stability(scene.bodies, scene.links, scene.world.integrator, scene.world.dt,
+                                scene.world.substeps);
 }
 
 namespace {
@@ -27,9 +27,10 @@ std::string with_advice(const std::string& message, int min_substeps, double max
     return message + ". Use larger masses or smaller stiffnesses, dampings or drags";
   }
   if (min_substeps > 0) {
-    return fmt::format("{}. Use substeps = {} in [world] (or dt <= {:.4g} s), or set "
-                       "allow_unstable = true",
-                       message, min_substeps, max_step * substeps);
+    return fmt::format(
+        "{}. Use substeps = {} in [world] (or dt <= {:.4g} s), or set "
+        "allow_unstable = true",
+        message, min_substeps, max_step * substeps);
   }
   return message +
          ". Choose semi_implicit_euler, velocity_verlet, rk4, implicit_euler or forest_ruth, or "

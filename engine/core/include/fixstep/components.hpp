@@ -13,9 +13,9 @@ namespace fixstep {
 
 /// The rigid point body every other component acts on.
 struct Body {
-  double mass = 1.0;   ///< kg, finite and > 0
-  Vec2 position{};     ///< m
-  Vec2 velocity{};     ///< m/s
+  double mass = 1.0;  ///< kg, finite and > 0
+  Vec2 position{};    ///< m
+  Vec2 velocity{};    ///< m/s
 };
 
 /// A spring-damper from the body to a fixed anchor point.

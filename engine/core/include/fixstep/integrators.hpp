@@ -37,7 +37,8 @@ enum class Integrator {
   /// Order 2 (also with damping and drag); symplectic when γ = 0; 1 new evaluation per step
   /// when the last kick's acceleration is stored for the next step (FSAL) — fixstep instead
   /// re-evaluates a_c(x) in registers (2 per step), which is cheaper than storing and reloading
-  /// two arrays per body; stable for ω·h < 2. Sources: Swope, Andersen, Berens & Wilson, J. Chem. Phys. 76, 637 (1982);
+  /// two arrays per body; stable for ω·h < 2. Sources: Swope, Andersen, Berens & Wilson, J. Chem.
+  /// Phys. 76, 637 (1982);
   /// Strang, SIAM J. Numer. Anal. 5, 506 (1968) for the splitting.
   velocity_verlet,
   /// Classical fourth-order Runge–Kutta on the full a(x, v):
@@ -80,8 +81,9 @@ inline constexpr double forest_ruth_w0 = -forest_ruth_cbrt2 / (2.0 - forest_ruth
 
 /// Every integrator, in the order they are listed in help texts.
 inline constexpr Integrator all_integrators[] = {
-    Integrator::semi_implicit_euler, Integrator::explicit_euler, Integrator::velocity_verlet,
-    Integrator::rk4,                 Integrator::implicit_euler, Integrator::forest_ruth};
+    Integrator::semi_implicit_euler, Integrator::explicit_euler,
+    Integrator::velocity_verlet,     Integrator::rk4,
+    Integrator::implicit_euler,      Integrator::forest_ruth};
 
 /// The scene-file / CLI name of an integrator, e.g. "semi_implicit_euler".
 [[nodiscard]] std::string_view integrator_name(Integrator integrator);

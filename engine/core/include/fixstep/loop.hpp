@@ -23,10 +23,10 @@ struct LoopSettings {
 
 /// What one frame of the loop did.
 struct FrameResult {
-  int ticks = 0;               ///< physics ticks run this frame
-  double alpha = 0.0;          ///< interpolation weight of the current state, in [0, 1)
-  double clamped_time = 0.0;   ///< frame time discarded by the clamp, s
-  double dropped_time = 0.0;   ///< accumulated time discarded because the tick cap was hit, s
+  int ticks = 0;              ///< physics ticks run this frame
+  double alpha = 0.0;         ///< interpolation weight of the current state, in [0, 1)
+  double clamped_time = 0.0;  ///< frame time discarded by the clamp, s
+  double dropped_time = 0.0;  ///< accumulated time discarded because the tick cap was hit, s
 };
 
 /// Drives physics ticks from frame times. Pure: it owns no clock and no world; advance() is

@@ -20,9 +20,9 @@ struct RenderFrame {
     float anchor_x = 0, anchor_y = 0;  ///< m
     std::uint32_t body = 0;            ///< index into x / y
   };
-  std::vector<float> x, y;      ///< body positions, m (interpolated when taken with alpha)
-  std::vector<float> radius;    ///< m; 0 = no Appearance (drawn at a default size)
-  std::vector<Rgba8> color;     ///< colour; alpha 0 = no Appearance (palette colour)
+  std::vector<float> x, y;    ///< body positions, m (interpolated when taken with alpha)
+  std::vector<float> radius;  ///< m; 0 = no Appearance (drawn at a default size)
+  std::vector<Rgba8> color;   ///< colour; alpha 0 = no Appearance (palette colour)
   std::vector<SpringLine> springs;
   /// Links (springs between bodies), as pairs of indices into x / y.
   struct LinkLine {
@@ -37,12 +37,18 @@ class Simulation {
   /// Throws std::invalid_argument on invalid settings (see World).
   Simulation(Precision precision, const WorldSettings& settings);
 
-  [[nodiscard]] Precision precision() const { return world_.index() == 0 ? Precision::f32 : Precision::f64; }
+  [[nodiscard]] Precision precision() const {
+    return world_.index() == 0 ? Precision::f32 : Precision::f64;
+  }
   /// Calls f(World<float>&) or f(World<double>&).
   template <class F>
-  decltype(auto) visit(F&& f) { return std::visit(std::forward<F>(f), world_); }
+  decltype(auto) visit(F&& f) {
+    return std::visit(std::forward<F>(f), world_);
+  }
   template <class F>
-  decltype(auto) visit(F&& f) const { return std::visit(std::forward<F>(f), world_); }
+  decltype(auto) visit(F&& f) const {
+    return std::visit(std::forward<F>(f), world_);
+  }
 
   // The members below forward to the World<float> or World<double> inside: units, shapes and
   // errors are those documented in world.hpp (create_body throws std::invalid_argument naming
@@ -57,11 +63,11 @@ class Simulation {
   /// World::fault()), or nullopt.
   [[nodiscard]] const std::optional<StateFault>& fault() const;
   [[nodiscard]] std::uint64_t tick() const;
-  [[nodiscard]] double time() const;                 ///< s
+  [[nodiscard]] double time() const;  ///< s
   [[nodiscard]] const WorldSettings& settings() const;
   [[nodiscard]] std::size_t body_count() const;
   [[nodiscard]] const std::string& name(std::size_t index) const;
-  [[nodiscard]] EnergyReport energy() const;         ///< J
+  [[nodiscard]] EnergyReport energy() const;  ///< J
   /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
   [[nodiscard]] double dissipated_energy() const;
   [[nodiscard]] std::uint64_t state_hash() const;

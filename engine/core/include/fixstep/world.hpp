@@ -81,12 +81,12 @@ inline constexpr double max_state_magnitude = 1e12;
 
 /// The first body whose state left the finite range |value| <= max_state_magnitude.
 struct StateFault {
-  std::size_t index = 0;    ///< dense body index (creation order while nothing is destroyed)
-  std::string name;         ///< the body's name
-  std::uint64_t tick = 0;   ///< the tick that produced the value (World::tick() after it)
-  double time = 0.0;        ///< simulated time after that tick, s
-  std::string field;        ///< "x", "y" (m) or "vx", "vy" (m/s)
-  double value = 0.0;       ///< the offending value (NaN, ±inf or |value| > the limit)
+  std::size_t index = 0;   ///< dense body index (creation order while nothing is destroyed)
+  std::string name;        ///< the body's name
+  std::uint64_t tick = 0;  ///< the tick that produced the value (World::tick() after it)
+  double time = 0.0;       ///< simulated time after that tick, s
+  std::string field;       ///< "x", "y" (m) or "vx", "vy" (m/s)
+  double value = 0.0;      ///< the offending value (NaN, ±inf or |value| > the limit)
 };
 
 namespace detail {
@@ -322,7 +322,7 @@ class World {
   // never reads γ.
   struct Coefficients {
     std::vector<Real> stiffness, anchor_x, anchor_y, rest, gamma, accel_x, accel_y;
-    bool spring = false;  ///< some body has a spring (stiffness, anchor_x, anchor_y are read)
+    bool spring = false;       ///< some body has a spring (stiffness, anchor_x, anchor_y are read)
     bool rest_length = false;  ///< some spring has L > 0 (rest is read; |d| needs a sqrt)
     bool damping = false;      ///< some body has γ > 0 (gamma or the damping-flow decay)
     bool accel = false;        ///< some body has c != 0 (accel_x, accel_y are read)
@@ -366,10 +366,14 @@ class World {
 template <class Real>
 template <class C>
 detail::Store<C>& World<Real>::store() {
-  if constexpr (std::is_same_v<C, SpringDamper>) return springs_;
-  else if constexpr (std::is_same_v<C, ConstantForce>) return constant_forces_;
-  else if constexpr (std::is_same_v<C, Gravity>) return gravities_;
-  else if constexpr (std::is_same_v<C, LinearDrag>) return drags_;
+  if constexpr (std::is_same_v<C, SpringDamper>)
+    return springs_;
+  else if constexpr (std::is_same_v<C, ConstantForce>)
+    return constant_forces_;
+  else if constexpr (std::is_same_v<C, Gravity>)
+    return gravities_;
+  else if constexpr (std::is_same_v<C, LinearDrag>)
+    return drags_;
   else {
     static_assert(std::is_same_v<C, Appearance>, "not a fixstep component");
     return appearances_;

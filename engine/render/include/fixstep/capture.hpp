@@ -168,7 +168,7 @@ class FrameWriter {
   std::filesystem::path dir_;
   int width_, height_;
   std::size_t frame_bytes_ = 0;
-  PngEncoder encoder_;                           // used by the worker only
+  PngEncoder encoder_;                            // used by the worker only
   std::vector<std::vector<std::uint8_t>> slots_;  // ring of in_flight frame buffers
   std::vector<std::uint64_t> slot_frame_;         // frame number held by each slot
   std::uint64_t submitted_ = 0;                   // producer only

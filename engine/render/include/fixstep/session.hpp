@@ -22,8 +22,8 @@ namespace fixstep {
 
 /// How a Session shows its world.
 struct SessionSettings {
-  int width = 1280, height = 720;  ///< frame size, pixels (see Renderer)
-  std::string title{};              ///< named in the HUD's first line (e.g. the scene file)
+  int width = 1280, height = 720;      ///< frame size, pixels (see Renderer)
+  std::string title{};                 ///< named in the HUD's first line (e.g. the scene file)
   std::optional<Vec2> view_center{};   ///< m; default: fit_camera's
   std::optional<double> view_width{};  ///< visible width, m; default: fit_camera's
 };
@@ -46,8 +46,8 @@ class Session {
  public:
   /// Builds the world (make_simulation(def): the stability guard applies; with
   /// WorldSettings::track_dissipation turned on, since the HUD shows the energy balance), the
-  /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid or unstable
-  /// def (see make_simulation), RenderError when rendering cannot start.
+  /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid
+  /// or unstable def (see make_simulation), RenderError when rendering cannot start.
   Session(WorldDef def, const SessionSettings& settings = {});
 
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets

@@ -23,8 +23,8 @@ class SceneError : public std::runtime_error {
   SceneError(std::string file, std::size_t line, std::size_t column, std::string key,
              const std::string& message);
   [[nodiscard]] const std::string& file() const { return file_; }
-  [[nodiscard]] std::size_t line() const { return line_; }      ///< 1-based; 0 = unknown
-  [[nodiscard]] std::size_t column() const { return column_; }  ///< 1-based; 0 = unknown
+  [[nodiscard]] std::size_t line() const { return line_; }       ///< 1-based; 0 = unknown
+  [[nodiscard]] std::size_t column() const { return column_; }   ///< 1-based; 0 = unknown
   [[nodiscard]] const std::string& key() const { return key_; }  ///< e.g. "world.dt"
 
  private:
@@ -42,8 +42,8 @@ struct SceneView {
 /// A parsed, validated scene. Its world settings keep the dissipation account
 /// (WorldSettings::track_dissipation), so a scene's summaries and HUD show the energy balance.
 struct Scene {
-  std::string file;                ///< where it came from (for messages)
-  WorldSettings world;             ///< [world] dt (s) and integrator
+  std::string file;     ///< where it came from (for messages)
+  WorldSettings world;  ///< [world] dt (s) and integrator
   Precision precision = Precision::f64;
   SceneView view;
   /// [[body]] tables in file order, then the bodies of [[chain]] and [[grid]] tables (in file
@@ -87,10 +87,11 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// copied: what Session and make_simulation(const WorldDef&) take.
 [[nodiscard]] WorldDef world_def(const Scene& scene);
 
-/// Builds the world a scene describes, after the stability guard (enforce_stability, scene_stability.hpp): throws
-/// SceneError naming the body, ω·h, the bound and the smallest stable substep count when a body
-/// is unstable and the scene does not allow it. Throws std::invalid_argument if a value is not
-/// representable in the scene's precision (the loader checks this first).
+/// Builds the world a scene describes, after the stability guard (enforce_stability,
+/// scene_stability.hpp): throws SceneError naming the body, ω·h, the bound and the smallest stable
+/// substep count when a body is unstable and the scene does not allow it. Throws
+/// std::invalid_argument if a value is not representable in the scene's precision (the loader
+/// checks this first).
 [[nodiscard]] Simulation make_simulation(const Scene& scene);
 
 }  // namespace fixstep
