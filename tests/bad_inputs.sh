@@ -56,6 +56,12 @@ case_ "no [world] table" "$body"
 case_ "[world] without dt" '[world]
 integrator = "rk4"
 '"$body"
+case_ "a required key misspelt (stifness)" "$ok_world
+$body
+spring = { anchor = [0.0, 0.0], stifness = 15.0 }"
+case_ "the [world] table misspelt ([wrld])" "[wrld]
+dt = 0.01
+$body"
 case_ "dt = 0" "[world]
 dt = 0
 $body"

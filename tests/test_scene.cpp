@@ -276,6 +276,20 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"grid beyond the body limit",
             "[world]\ndt = 0.01\n[[grid]]\ncolumns = 1001\nrows = 1000\n", 5, "grid[0].rows",
             "the scene would have 1001000 bodies; at most 1000000 are allowed"},
+        // A required key missing beside a misspelling of it: the error is at the misspelling
+        // and names both (issue #13).
+        Bad{"misspelt required stiffness",
+            "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0]\n"
+            "spring = { anchor = [0, 0], stifness = 15 }\n",
+            6, "body[0].spring.stiffness",
+            "missing (required): give stiffness (N/m) or frequency (Hz); found `stifness` — "
+            "did you mean `stiffness`?"},
+        Bad{"misspelt required mass", "[world]\ndt = 0.01\n[[body]]\nmas = 1\nposition = [0, 0]\n",
+            4, "body[0].mass", "missing (required); found `mas` — did you mean `mass`?"},
+        Bad{"misspelt [world]", "[wrld]\ndt = 0.01\n", 1, "world",
+            "missing [world] table (required); found `wrld` — did you mean `world`?"},
+        Bad{"missing mass, nothing like it", "[world]\ndt = 0.01\n[[body]]\nposition = [0, 0]\n",
+            3, "body[0].mass", "missing (required)"},
         Bad{"chain without body template", chain("count = 3\nstart = [0, 0]\nspacing = [1, 0]\n"),
             3, "chain[0].body", "missing (required): the bodies' template"},
         Bad{"chain template without mass",

@@ -58,7 +58,7 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
   auto position = r.vec2(t, "position", path + ".position");
-  if (!position) r.fail(t.source(), path + ".position", "missing (required)");
+  if (!position) r.fail_missing(t, path, {"position"}, "missing (required)");
   def.body.position = *position;
 
   if (const toml::table* s = r.table(t, "spring", path + ".spring")) {
@@ -96,7 +96,7 @@ void check_f32(const Reader& r, const toml::node& node, const std::string& path)
 
 void parse_body_parts(const Reader& r, const toml::table& t, const std::string& path,
                       BodyDef& def) {
-  def.body.mass = r.required_number(t, t.source(), "mass", path + ".mass");
+  def.body.mass = r.required_number(t, path, "mass");
   r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
   if (auto v = r.vec2(t, "velocity", path + ".velocity")) def.body.velocity = *v;
   if (auto f = r.vec2(t, "force", path + ".force")) def.constant_force = ConstantForce{*f};
@@ -143,9 +143,9 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   r.check_keys(doc, "", {"world", "view", "body", "spring", "chain", "grid"});
 
   const toml::table* world = r.table(doc, "world", "world");
-  if (!world) throw SceneError(source_name, 1, 1, "world", "missing [world] table (required)");
+  if (!world) r.fail_missing(doc, "", {"world"}, "missing [world] table (required)");
   r.check_keys(*world, "world", {"dt", "integrator", "precision", "substeps", "allow_unstable"});
-  scene.world.dt = r.required_number(*world, world->source(), "dt", "world.dt");
+  scene.world.dt = r.required_number(*world, "world", "dt");
   r.require(scene.world.dt > 0.0 && scene.world.dt <= 1.0, *world, "dt", "world.dt",
             "> 0 and <= 1 s", scene.world.dt);
   if (auto name = r.string(*world, "integrator", "world.integrator")) {

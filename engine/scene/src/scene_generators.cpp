@@ -22,8 +22,9 @@ class Generator {
   const toml::node& required(std::string_view k, std::string_view what = {}) const {
     const toml::node* n = t_.get(k);
     if (!n) {
-      r_.fail(t_.source(), key(k),
-              what.empty() ? "missing (required)" : fmt::format("missing (required): {}", what));
+      r_.fail_missing(t_, path_, {k},
+                      what.empty() ? "missing (required)"
+                                   : fmt::format("missing (required): {}", what));
     }
     return *n;
   }
@@ -63,8 +64,8 @@ class Generator {
   BodyDef body_template() {
     const toml::table* b = r_.table(t_, "body", key("body"));
     if (!b) {
-      r_.fail(t_.source(), key("body"),
-              "missing (required): the bodies' template, e.g. { mass = 0.1 }");
+      r_.fail_missing(t_, path_, {"body"},
+                      "missing (required): the bodies' template, e.g. { mass = 0.1 }");
     }
     r_.check_keys(*b, key("body"),
                   {"mass", "velocity", "force", "gravity", "drag", "radius", "color"});
@@ -204,8 +205,9 @@ void parse_chain(Reader& r, const toml::table& t, std::size_t c, Scene& scene, B
   const BodyDef body = g.body_template();
   const std::optional<SpringSpec> link = g.spring("link", true);
   if (!link) {
-    r.fail(t.source(), g.key("link"),
-           "missing (required): the spring between consecutive bodies, e.g. { stiffness = 100 }");
+    r.fail_missing(
+        t, g.path(), {"link"},
+        "missing (required): the spring between consecutive bodies, e.g. { stiffness = 100 }");
   }
 
   const std::size_t first = scene.bodies.size();
@@ -242,9 +244,9 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
   const BodyDef body = g.body_template();
   const std::optional<SpringSpec> link = g.spring("link", true);
   if (!link) {
-    r.fail(t.source(), g.key("link"),
-           "missing (required): the structural springs between neighbours in a row or column, "
-           "e.g. { stiffness = 100 }");
+    r.fail_missing(t, g.path(), {"link"},
+                   "missing (required): the structural springs between neighbours in a row or "
+                   "column, e.g. { stiffness = 100 }");
   }
   const std::optional<SpringSpec> shear = g.spring("shear", true);
   const std::optional<SpringSpec> bend = g.spring("bend", true);

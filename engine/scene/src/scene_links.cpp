@@ -52,7 +52,7 @@ SpringSpec parse_spring_spec(const Reader& r, const toml::table& t, const std::s
   }
   if (f || z) {
     s.by_frequency = true;
-    if (!f) r.fail(t.source(), path + ".frequency", "missing (required with damping_ratio)");
+    if (!f) r.fail_missing(t, path, {"frequency"}, "missing (required with damping_ratio)");
     s.frequency_node = f;
     s.frequency = r.number_node(*f, path + ".frequency");
     r.require(s.frequency > 0.0, t, "frequency", path + ".frequency", "> 0 Hz", s.frequency);
@@ -63,8 +63,8 @@ SpringSpec parse_spring_spec(const Reader& r, const toml::table& t, const std::s
     }
   } else {
     if (!k) {
-      r.fail(t.source(), path + ".stiffness",
-             "missing (required): give stiffness (N/m) or frequency (Hz)");
+      r.fail_missing(t, path, {"stiffness", "frequency"},
+                     "missing (required): give stiffness (N/m) or frequency (Hz)");
     }
     s.stiffness = r.number_node(*k, path + ".stiffness");
     r.require(s.stiffness >= 0.0, t, "stiffness", path + ".stiffness", ">= 0 N/m", s.stiffness);
@@ -119,8 +119,8 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
                  {"bodies", "stiffness", "damping", "rest_length", "frequency", "damping_ratio"});
     const toml::node* n = t.get("bodies");
     if (!n) {
-      r.fail(t.source(), path + ".bodies",
-             "missing (required): the names of the two bodies, e.g. [\"a\", \"b\"]");
+      r.fail_missing(t, path, {"bodies"},
+                     "missing (required): the names of the two bodies, e.g. [\"a\", \"b\"]");
     }
     const toml::array* pair = n->as_array();
     if (!pair || pair->size() != 2) {

@@ -92,6 +92,29 @@ class Reader {
     }
   }
 
+  /// Fails for a required key of `table` (at `table_path`) that is absent: `message` (e.g.
+  /// "missing (required)") under the key path table_path.keys[0]. When the table holds another
+  /// key within two edits of one of `keys` (a misspelling: the loader ignores it with a
+  /// warning), the error is placed at that key and names both: "stiffness: missing
+  /// (required); found `stifness` — did you mean `stiffness`?".
+  [[noreturn]] void fail_missing(const toml::table& table, const std::string& table_path,
+                                 std::initializer_list<std::string_view> keys,
+                                 const std::string& message) const {
+    auto full = [&](std::string_view k) {
+      return table_path.empty() ? std::string(k) : table_path + "." + std::string(k);
+    };
+    for (auto&& [name, node] : table) {
+      for (const std::string_view k : keys) {
+        const std::string_view found = name.str();
+        if (found != k && edit_distance(found, k) <= 2) {
+          fail(name.source(), full(k),
+               fmt::format("{}; found `{}` — did you mean `{}`?", message, found, k));
+        }
+      }
+    }
+    fail(table.source(), full(*keys.begin()), message);
+  }
+
   /// A finite number (integer or float) at table[key]; nullopt when absent.
   std::optional<double> number(const toml::table& t, std::string_view key,
                                const std::string& path) const {
@@ -109,10 +132,12 @@ class Reader {
     return v;
   }
 
-  double required_number(const toml::table& t, const toml::source_region& table_at,
-                         std::string_view key, const std::string& path) const {
-    auto v = number(t, key, path);
-    if (!v) fail(table_at, path, "missing (required)");
+  /// The number at t[key], t being the table at `table_path` (e.g. "body[0]"); fail_missing
+  /// when absent.
+  double required_number(const toml::table& t, const std::string& table_path,
+                         std::string_view key) const {
+    auto v = number(t, key, table_path + "." + std::string(key));
+    if (!v) fail_missing(t, table_path, {key}, "missing (required)");
     return *v;
   }
 
