@@ -1,0 +1,227 @@
+// Renderer::draw: a RenderFrame as the scene view — grid and scale bar, trails, links, springs,
+// bodies and the HUD — drawn with the canvas primitives of render.cpp.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "fixstep/render.hpp"
+
+namespace fixstep {
+
+namespace {
+
+// The scene view's colours and sizes.
+constexpr Rgba8 background{18, 21, 28, 255};
+constexpr Rgba8 grid_minor{32, 37, 48, 255};
+constexpr Rgba8 grid_axis{62, 70, 90, 255};
+constexpr Rgba8 spring_color{170, 180, 200, 255};
+constexpr Rgba8 link_color{170, 180, 200, 200};
+constexpr Rgba8 anchor_color{120, 130, 150, 255};
+constexpr Rgba8 outline{8, 10, 14, 255};
+constexpr Rgba8 text_color{235, 238, 245, 255};
+constexpr Rgba8 panel{0, 0, 0, 150};
+constexpr Rgba8 palette[] = {{230, 87, 46, 255},   {76, 175, 240, 255},  {250, 200, 60, 255},
+                             {120, 210, 110, 255}, {200, 120, 230, 255}, {240, 140, 170, 255},
+                             {90, 220, 200, 255},  {240, 240, 240, 255}};
+constexpr float default_radius_px = 9.0f;
+constexpr float min_radius_px = 3.0f;
+
+}  // namespace
+
+void Renderer::grid() {
+  // Grid spacing: the power of ten that gives 4..40 lines across the view.
+  const double step = std::pow(10.0, std::floor(std::log10(camera_.width / 4.0)));
+  const double half_w = camera_.width * 0.5, half_h = half_w * height_ / width_;
+  const double scale = width_ / camera_.width;
+  for (double gx = std::ceil((camera_.center.x - half_w) / step) * step;
+       gx <= camera_.center.x + half_w; gx += step) {
+    const float px = static_cast<float>(to_pixel(gx, 0)[0]);
+    const bool axis = std::abs(gx) < step * 1e-6;
+    line(px, 0, px, float(height_), axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
+  }
+  for (double gy = std::ceil((camera_.center.y - half_h) / step) * step;
+       gy <= camera_.center.y + half_h; gy += step) {
+    const float py = static_cast<float>(to_pixel(0, gy)[1]);
+    const bool axis = std::abs(gy) < step * 1e-6;
+    line(0, py, float(width_), py, axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
+  }
+  // Scale bar, bottom right: one grid step.
+  const float bar = static_cast<float>(step * scale);
+  const float x1 = width_ - 20.0f, x0 = x1 - bar, y = height_ - 20.0f;
+  line(x0, y, x1, y, 3.0f, text_color);
+  line(x0, y - 5, x0, y + 5, 2.0f, text_color);
+  line(x1, y - 5, x1, y + 5, 2.0f, text_color);
+  const std::string label = fmt::format("{:g} m", step);
+  const float label_w = text_width(label, 2.0f);
+  text(x1 - label_w, y - 24, label, 2.0f, text_color);  // right-aligned: never off the frame
+}
+
+void Renderer::clear_trails() {
+  trail_count_ = 0;
+  trail_head_ = 0;
+}
+
+void Renderer::record_trails(const RenderFrame& s) {
+  const std::size_t n = s.x.size();
+  if (n != trail_bodies_) {
+    trail_bodies_ = n;
+    trail_x_.assign(n * trail_frames, 0.0f);
+    trail_y_.assign(n * trail_frames, 0.0f);
+    clear_trails();
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto p = to_pixel(s.x[j], s.y[j]);
+    trail_x_[j * trail_frames + trail_head_] = static_cast<float>(p[0]);
+    trail_y_[j * trail_frames + trail_head_] = static_cast<float>(p[1]);
+  }
+  trail_head_ = (trail_head_ + 1) % trail_frames;
+  trail_count_ = std::min(trail_count_ + 1, trail_frames);
+}
+
+namespace {
+
+// Trail samples may be left up to this far from the drawn polyline, px (see draw()).
+constexpr float trail_tolerance_px = 0.2f;
+
+// Drops points of `points` (in place, order kept) greedily: from each kept point, the next one
+// kept is the farthest along that leaves every point in between within `tolerance` px of the
+// segment joining the two, and at most max_run points on. The first and last points are
+// always kept. O(n * max_run) distance computations.
+void simplify_polyline(std::vector<Renderer::PolylinePoint>& points, float tolerance) {
+  const std::size_t n = points.size();
+  if (n < 3) return;
+  const float tol2 = tolerance * tolerance;
+  constexpr std::size_t max_run = 12;
+  // Is every point strictly between points[from] and points[to] within tolerance of the segment
+  // joining them?
+  auto fits = [&](std::size_t from, std::size_t to) {
+    const Renderer::PolylinePoint &a = points[from], &b = points[to];
+    const float ux = b.x - a.x, uy = b.y - a.y, len2 = ux * ux + uy * uy;
+    const float inv_len2 = len2 > 0.0f ? 1.0f / len2 : 0.0f;
+    for (std::size_t i = from + 1; i < to; ++i) {
+      const float wx = points[i].x - a.x, wy = points[i].y - a.y;
+      const float t = std::clamp((wx * ux + wy * uy) * inv_len2, 0.0f, 1.0f);
+      const float dx = wx - t * ux, dy = wy - t * uy;
+      if (dx * dx + dy * dy > tol2) return false;
+    }
+    return true;
+  };
+  std::size_t kept = 1, anchor = 0;  // points[0] stays where it is
+  while (anchor + 1 < n) {
+    std::size_t end = anchor + 1;
+    while (end + 1 < n && end - anchor < max_run && fits(anchor, end + 1)) ++end;
+    points[kept++] = points[end];
+    anchor = end;
+  }
+  points.resize(kept);
+}
+
+}  // namespace
+
+void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines) {
+  begin(background);
+  record_trails(s);
+  grid();
+
+  const std::size_t n = s.x.size();
+  const double scale = width_ / camera_.width;
+  auto color_of = [&](std::size_t j) {
+    return s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
+  };
+
+  // Trails: one polyline per body through its samples, fading from transparent (oldest) to
+  // 60 % opaque (newest): sample k of count (0 = oldest) has alpha 150 (k + 0.5) / count, so
+  // each segment has on average the alpha it had when every segment was a line() of alpha
+  // 150 k / count. Samples are then dropped where the polyline can skip them without leaving
+  // any of them more than trail_tolerance_px away (simplify_polyline): a trail of 44 sub-pixel
+  // segments becomes a few segments of a few pixels, and a projectile's gentle parabola a few
+  // long ones.
+  // A scene with many links (a cloth, a soft body) draws no trails: hundreds of them would
+  // hide the structure the links draw.
+  const bool few_links = s.links.size() <= max_zigzag_links;
+  for (std::size_t j = 0; j < n && trail_count_ > 1 && few_links; ++j) {
+    const Rgba8 c = color_of(j);
+    const float* tx = &trail_x_[j * trail_frames];
+    const float* ty = &trail_y_[j * trail_frames];
+    polyline_scratch_.clear();
+    for (int k = 0; k < trail_count_; ++k) {  // oldest first
+      const int at = (trail_head_ - trail_count_ + k + trail_frames) % trail_frames;
+      Rgba8 ck = c;
+      ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * trail_count_));
+      polyline_scratch_.push_back({tx[at], ty[at], ck});
+    }
+    simplify_polyline(polyline_scratch_, trail_tolerance_px);
+    polyline(polyline_scratch_, 2.0f);
+  }
+
+  // Springs: a zigzag of 12 coils from (ax, ay) to (bx, by), with straight leads.
+  auto zigzag = [&](float ax, float ay, float bx, float by) {
+    const float dx = bx - ax, dy = by - ay, len = std::sqrt(dx * dx + dy * dy);
+    if (len < 24.0f) {
+      line(ax, ay, bx, by, 2.0f, spring_color);
+      return;
+    }
+    // One polyline: anchor, start of the coils, 2 * coils corners, the body.
+    constexpr int coils = 12;
+    const float nx = -dy / len * 7.0f, ny = dx / len * 7.0f;
+    polyline_scratch_.clear();
+    polyline_scratch_.push_back({ax, ay, spring_color});
+    polyline_scratch_.push_back({ax + dx * 0.1f, ay + dy * 0.1f, spring_color});
+    for (int k = 1; k <= 2 * coils; ++k) {
+      const float f = 0.1f + 0.8f * float(k) / (2 * coils);
+      const float side = k == 2 * coils ? 0.0f : (k % 2 ? 1.0f : -1.0f);
+      polyline_scratch_.push_back({ax + dx * f + nx * side, ay + dy * f + ny * side, spring_color});
+    }
+    polyline_scratch_.push_back({bx, by, spring_color});
+    polyline(polyline_scratch_, 2.0f);
+  };
+
+  // Links (springs between bodies): zigzags like the anchored springs when there are few,
+  // thin straight lines when there are many (a cloth's zigzags would merge into felt).
+  for (const RenderFrame::LinkLine& l : s.links) {
+    const auto a = to_pixel(s.x[l.a], s.y[l.a]);
+    const auto b = to_pixel(s.x[l.b], s.y[l.b]);
+    if (few_links) {
+      zigzag(float(a[0]), float(a[1]), float(b[0]), float(b[1]));
+    } else {
+      line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 1.25f, link_color);
+    }
+  }
+
+  for (const RenderFrame::SpringLine& sp : s.springs) {
+    const auto a = to_pixel(sp.anchor_x, sp.anchor_y);
+    const auto b = to_pixel(s.x[sp.body], s.y[sp.body]);
+    const float ax = float(a[0]), ay = float(a[1]);
+    zigzag(ax, ay, float(b[0]), float(b[1]));
+    rect(ax - 5, ay - 5, ax + 5, ay + 5, anchor_color);
+  }
+
+  // Bodies: an outlined disc of the body's radius (at least min_radius_px).
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto p = to_pixel(s.x[j], s.y[j]);
+    const float r = s.radius[j] > 0.0f ? std::max(float(s.radius[j] * scale), min_radius_px)
+                                       : default_radius_px;
+    disc(float(p[0]), float(p[1]), r, color_of(j), 1.5f, outline);
+  }
+
+  // HUD: text lines on a translucent panel, top left.
+  if (!hud_lines.empty()) {
+    constexpr float scale_text = 2.0f, line_h = 22.0f, margin = 10.0f;
+    float widest = 0;
+    for (const std::string& l : hud_lines) widest = std::max(widest, text_width(l, scale_text));
+    rect(margin, margin, margin + widest + 16, margin + 10 + line_h * hud_lines.size(), panel);
+    float y = margin + 8;
+    for (const std::string& l : hud_lines) {
+      text(margin + 8, y, l, scale_text, text_color);
+      y += line_h;
+    }
+  }
+
+  finish();
+}
+
+}  // namespace fixstep
