@@ -72,7 +72,19 @@ n=$(ls "$work/blow_frames" | grep -c '^frame_[0-9]\{6\}\.png$')
 [ $? -eq 0 ] && ok "render exits 0" || { fail "render exits 0"; cat "$work/render.out"; }
 n=$(ls "$work/frames" | grep -c '^frame_[0-9]\{6\}\.png$')
 [ "$n" -eq 30 ] && ok "render wrote 30 frames" || fail "render wrote $n frames"
-[ "$(ls -A "$work/frames" | wc -l)" -eq 30 ] && ok "no temporary files left" || fail "stray files in frames/"
+[ "$(ls -A "$work/frames" | wc -l)" -eq 31 ] && ok "no temporary files left (30 frames and frames.csv)" \
+  || fail "stray files in frames/"
+# frames.csv: a header and a row per frame; its last hash is the summary's, its first row is
+# frame 0 at tick 0 with alpha 0.
+[ "$(wc -l <"$work/frames/frames.csv")" -eq 31 ] && ok "frames.csv has a row per frame" \
+  || fail "frames.csv rows: $(wc -l <"$work/frames/frames.csv")"
+[ "$(head -1 "$work/frames/frames.csv")" = "frame,tick,t,alpha,state_hash,energy,balance" ] \
+  && ok "frames.csv header" || fail "frames.csv header: $(head -1 "$work/frames/frames.csv")"
+[ "$(sed -n 2p "$work/frames/frames.csv" | cut -d, -f1-4)" = "0,0,0.000000,0.000000" ] \
+  && ok "frames.csv starts at frame 0, tick 0" || fail "frames.csv row 0: $(sed -n 2p "$work/frames/frames.csv")"
+[ "state_hash=$(tail -1 "$work/frames/frames.csv" | cut -d, -f5)" = "$(hash_of "$work/render.out")" ] \
+  && ok "frames.csv's last hash is the summary's" || fail "frames.csv last hash vs summary"
+expect "render says where the manifest is" "manifest=.*frames/frames\.csv" "$work/render.out"
 expect "render says where the frames are" "frames=30 .*frame_000000\.png \.\.\. .*frame_000029\.png" "$work/render.out"
 ticks=$(grep -Eo '^ticks=[0-9]+' "$work/render.out" | cut -d= -f2)
 "$fixstep" run "$scenes/default.toml" --steps "$ticks" >"$work/run_same.out" 2>&1
@@ -133,7 +145,7 @@ done
 for level in 0 12; do
   "$fixstep" render "$scenes/default.toml" --out "$work/lvl$level" --frames 3 --size 64x64 --png-level "$level" \
     >"$work/level$level.out" 2>&1
-  [ $? -eq 0 ] && [ "$(ls "$work/lvl$level" | wc -l)" -eq 3 ] && ok "--png-level $level renders" \
+  [ $? -eq 0 ] && [ "$(ls "$work/lvl$level" | grep -c '\.png$')" -eq 3 ] && ok "--png-level $level renders" \
     || { fail "--png-level $level"; cat "$work/level$level.out"; }
 done
 # same pixels whatever the level: level 0 stores them, so its files are the largest
@@ -167,12 +179,15 @@ for sig in INT TERM; do
   want=$([ "$sig" = INT ] && echo 130 || echo 143)
   [ "$code" -eq "$want" ] && ok "SIG$sig stops render with exit $want" || fail "SIG$sig exit $code"
   expect "SIG$sig is reported" "stopped by SIG$sig after [0-9]+ frames" "$work/sig_$sig.out"
-  stray=$(ls -A "$work/sig_$sig" | grep -vc '^frame_[0-9]\{6\}\.png$')
+  stray=$(ls -A "$work/sig_$sig" | grep -v '^frames\.csv$' | grep -vc '^frame_[0-9]\{6\}\.png$')
   broken=0
   for f in "$work/sig_$sig"/frame_*.png; do
     [ "$(tail -c 8 "$f" | head -c 4)" = IEND ] || broken=$((broken + 1))
   done
-  n=$(ls "$work/sig_$sig" | wc -l)
+  n=$(ls "$work/sig_$sig" | grep -c '\.png$')
+  rows=$(($(wc -l <"$work/sig_$sig/frames.csv") - 1))
+  [ "$rows" -eq "$n" ] && ok "after SIG$sig frames.csv lists the $n frames written" \
+    || fail "after SIG$sig frames.csv has $rows rows for $n frames"
   [ "$stray" -eq 0 ] && [ "$broken" -eq 0 ] && [ "$n" -ge 3 ] \
     && ok "after SIG$sig: $n complete frames, no temporary files" \
     || fail "after SIG$sig: $n frames, $broken truncated, $stray stray files"

@@ -12,6 +12,7 @@
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
 #include <fixstep/scene_stability.hpp>
+#include <fixstep/manifest.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
 #include <stdexcept>
@@ -281,22 +282,26 @@ int render_command(const RenderOptions& o) {
   const auto frames = static_cast<std::uint64_t>(o.frames);
   // Frame f is encoded and written on the writer's thread while frame f + 1 renders here.
   FrameWriter writer(o.out, width, height, PngSettings{.level = o.png_level});
+  FrameManifest manifest(o.out);  // frames.csv: a row per frame written
   std::uint64_t written = 0;
   const StopOnSignal signals;
   for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
     if (f > 0) session.advance(clock.frame_seconds());
     session.draw();  // after a divergence: the last state, with the guard's message in the HUD
     writer.submit(session.renderer().pixels());
+    manifest.add(f, session);
     ++written;
     if (session.simulation().fault()) break;
   }
   writer.finish();  // every frame on disk, or the first failure's CaptureError
+  manifest.commit();
   if (const int sig = StopOnSignal::requested()) {
     fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
     if (written > 0) {
       fmt::print("frames={} (stopped) size={}x{}: {} ... {}\n", written, width, height,
                  frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
     }
+    fmt::print("manifest={}\n", manifest.file().string());
     std::fprintf(stderr,
                  "fixstep: stopped by %s after %llu frames; every frame written is complete\n",
                  StopOnSignal::name(), static_cast<unsigned long long>(written));
@@ -306,6 +311,7 @@ int render_command(const RenderOptions& o) {
     fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
     fmt::print("frames={} (stopped early) size={}x{}: {} ... {}\n", written, width, height,
                frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
+    fmt::print("manifest={}\n", manifest.file().string());
     std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
     return exit_diverged;
   }
@@ -313,6 +319,7 @@ int render_command(const RenderOptions& o) {
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
   fmt::print("frames={} fps={} size={}x{}: {} ... {}\n", frames, o.fps, width, height,
              frame_path(o.out, 0).string(), frame_path(o.out, frames - 1).string());
+  fmt::print("manifest={}\n", manifest.file().string());
   return 0;
 }
 

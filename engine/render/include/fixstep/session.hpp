@@ -63,6 +63,8 @@ class Session {
   [[nodiscard]] const WorldDef& definition() const { return def_; }
   [[nodiscard]] const Simulation& simulation() const { return *sim_; }
   [[nodiscard]] FixedStepLoop& loop() { return loop_; }
+  /// The loop's interpolation weight: draw() shows lerp(previous tick, current tick, alpha).
+  [[nodiscard]] double alpha() const { return loop_.alpha(); }
   [[nodiscard]] const Renderer& renderer() const { return renderer_; }
   [[nodiscard]] double initial_energy() const { return initial_energy_; }
 

@@ -1,0 +1,43 @@
+// frames.csv: the manifest written beside a capture, one row per frame, so a CI job can diff a
+// run against an earlier one without decoding an image.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "fixstep/capture.hpp"
+#include "fixstep/session.hpp"
+
+namespace fixstep {
+
+/// frames.csv, written as the frames are (into an AtomicFile: complete under its name after
+/// commit(), absent before). Columns (header line first):
+///   frame       frame index (the PNG frame_NNNNNN.png)
+///   tick        ticks taken when the frame was drawn
+///   t           simulated time tick·dt, s (%.6f)
+///   alpha       the loop's interpolation weight the frame was drawn at, in [0, 1) (%.6f)
+///   state_hash  Simulation::state_hash(), 16 hex digits (what `run`/`render` summaries print)
+///   energy      total energy, J (%.9e)
+///   balance     energy_balance() (%.6e; in J when the initial energy is 0)
+class FrameManifest {
+ public:
+  /// The manifest of a capture into `dir` (which must exist: prepare_output_dir), named
+  /// dir/frames.csv once commit()ted. Throws CaptureError when the file cannot be created.
+  explicit FrameManifest(const std::filesystem::path& dir);
+
+  /// Appends the row of frame `frame`, drawn by `session` in its current state. Throws
+  /// CaptureError on a write error. No allocation once the row buffer has grown.
+  void add(std::uint64_t frame, const Session& session);
+  /// Puts frames.csv under its name, complete. Throws CaptureError when it cannot.
+  void commit();
+
+  [[nodiscard]] const std::filesystem::path& file() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  AtomicFile out_;
+  std::string row_;
+};
+
+}  // namespace fixstep
