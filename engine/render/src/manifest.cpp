@@ -20,6 +20,8 @@ void FrameManifest::add(std::uint64_t frame, const Session& session) {
   out_.append(std::string_view(row_));
 }
 
-void FrameManifest::commit() { out_.commit(); }
+void FrameManifest::commit() {
+  out_.commit();
+}
 
 }  // namespace fixstep

@@ -105,7 +105,6 @@ std::string printable(const std::string& s) {
 
 }  // namespace
 
-
 struct Renderer::Gl : gl::Pipeline {
   using Pipeline::Pipeline;
 };
@@ -310,7 +309,6 @@ void Renderer::set_clip(std::optional<ClipRect> clip) {
     batches_.push_back(Batch{indices_.size(), clip, batches_.back().program, batches_.back().ring});
   }
 }
-
 
 namespace {
 

@@ -22,9 +22,9 @@ class Generator {
   const toml::node& required(std::string_view k, std::string_view what = {}) const {
     const toml::node* n = t_.get(k);
     if (!n) {
-      r_.fail_missing(t_, path_, {k},
-                      what.empty() ? "missing (required)"
-                                   : fmt::format("missing (required): {}", what));
+      r_.fail_missing(
+          t_, path_, {k},
+          what.empty() ? "missing (required)" : fmt::format("missing (required): {}", what));
     }
     return *n;
   }
