@@ -85,6 +85,29 @@ n=$(ls "$work/frames" | grep -c '^frame_[0-9]\{6\}\.png$')
 [ "state_hash=$(tail -1 "$work/frames/frames.csv" | cut -d, -f5)" = "$(hash_of "$work/render.out")" ] \
   && ok "frames.csv's last hash is the summary's" || fail "frames.csv last hash vs summary"
 expect "render says where the manifest is" "manifest=.*frames/frames\.csv" "$work/render.out"
+# --- progress on a terminal only, and --quiet ---------------------------------------------
+grep -q 'frames/s' "$work/render.out" && fail "progress printed when not on a terminal" \
+  || ok "no progress line when standard error is not a terminal"
+if command -v script >/dev/null; then  # util-linux `script` gives the command a terminal
+  script -qec "'$fixstep' render '$scenes/default.toml' --out '$work/tty' --frames 20 --size 64x64" \
+    /dev/null >"$work/tty.out" 2>&1
+  grep -q $'\rrender: frame 20/20 (100 %)' "$work/tty.out" \
+    && ok "render shows its progress on a terminal, one line rewritten in place" \
+    || { fail "no progress line on a terminal"; cat -v "$work/tty.out"; }
+  script -qec "'$fixstep' render '$scenes/default.toml' --out '$work/ttyq' --frames 20 --size 64x64 --quiet" \
+    /dev/null >"$work/ttyq.out" 2>&1
+  [ ! -s "$work/ttyq.out" ] && [ -s "$work/ttyq/frames.csv" ] \
+    && ok "--quiet on a terminal: no progress, no summary, the frames still written" \
+    || { fail "--quiet printed something"; cat -v "$work/ttyq.out"; }
+fi
+"$fixstep" run "$scenes/default.toml" --steps 100 --quiet >"$work/quiet.out" 2>"$work/quiet.err"
+[ $? -eq 0 ] && [ ! -s "$work/quiet.out" ] && [ ! -s "$work/quiet.err" ] \
+  && ok "run --quiet prints nothing and exits 0" || fail "run --quiet output"
+"$fixstep" run "$work/blow.toml" --steps 100 --quiet >"$work/quiet_blow.out" 2>&1
+[ $? -eq 3 ] && grep -q "^fixstep: error: .*state left the finite range" "$work/quiet_blow.out" \
+  && ! grep -q "^warning\|^ticks=" "$work/quiet_blow.out" \
+  && ok "run --quiet still reports the error (and only the error), exit 3" \
+  || { fail "run --quiet error"; cat "$work/quiet_blow.out"; }
 expect "render says where the frames are" "frames=30 .*frame_000000\.png \.\.\. .*frame_000029\.png" "$work/render.out"
 ticks=$(grep -Eo '^ticks=[0-9]+' "$work/render.out" | cut -d= -f2)
 "$fixstep" run "$scenes/default.toml" --steps "$ticks" >"$work/run_same.out" 2>&1

@@ -11,12 +11,14 @@
 #include <cstdlib>
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
-#include <fixstep/scene_stability.hpp>
 #include <fixstep/manifest.hpp>
+#include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
 #include <stdexcept>
 #include <vector>
+
+#include "progress.hpp"
 
 namespace fixstep::cli {
 
@@ -107,9 +109,10 @@ Scene load_with_overrides(const SceneOptions& o) {
   if (o.precision) scene.precision = *parse_precision(*o.precision);
   if (o.substeps) scene.world.substeps = *o.substeps;
   if (o.allow_unstable) scene.allow_unstable = true;
-  for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  for (const std::string& w : enforce_stability(scene)) {
-    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const std::vector<std::string> guard = enforce_stability(scene);  // throws when unstable
+  if (!o.quiet) {
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const std::string& w : guard) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   return scene;
 }
@@ -233,15 +236,18 @@ int run_command(const RunOptions& o) {
     append_rows(*csv, reference, sim, has_exact, e0, energies, buffer);
   }
   const StopOnSignal signals;
+  Progress progress("run", "tick", ticks, !o.scene.quiet);
   for (std::uint64_t i = 1; i <= ticks; ++i) {
     sim.step();
-    const bool diverged = sim.fault().has_value();  // the runtime guard (World::fault)
+    if (i % 1024 == 0 || i == ticks) progress.update(i);  // a clock read per 1024 ticks
+    const bool diverged = sim.fault().has_value();        // the runtime guard (World::fault)
     const bool stop = StopOnSignal::requested() != 0;
     if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks || diverged || stop)) {
       append_rows(*csv, reference, sim, has_exact, e0, energies, buffer);
     }
     if (diverged || stop) break;
   }
+  progress.finish();
   if (csv) csv->commit();  // the rows up to and including the last tick run
   fmt::print("{}\n", describe(scene));
   fmt::print("{}\n", summary_line(sim, e0));
@@ -285,16 +291,19 @@ int render_command(const RenderOptions& o) {
   FrameManifest manifest(o.out);  // frames.csv: a row per frame written
   std::uint64_t written = 0;
   const StopOnSignal signals;
+  Progress progress("render", "frame", frames, !o.scene.quiet);
   for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
     if (f > 0) session.advance(clock.frame_seconds());
     session.draw();  // after a divergence: the last state, with the guard's message in the HUD
     writer.submit(session.renderer().pixels());
     manifest.add(f, session);
     ++written;
+    progress.update(written);
     if (session.simulation().fault()) break;
   }
   writer.finish();  // every frame on disk, or the first failure's CaptureError
   manifest.commit();
+  progress.finish();
   if (const int sig = StopOnSignal::requested()) {
     fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
     if (written > 0) {

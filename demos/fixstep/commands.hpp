@@ -21,6 +21,7 @@ struct SceneOptions {
   std::optional<std::string> precision;
   std::optional<int> substeps;
   bool allow_unstable = false;
+  bool quiet = false;  ///< --quiet: errors only (no summary, warnings or progress)
 };
 
 struct RunOptions {

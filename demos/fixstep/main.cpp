@@ -31,6 +31,8 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o) {
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--allow-unstable", o.allow_unstable,
                 "run even when the stability guard finds an unstable body (warns instead)");
+  cmd->add_flag("-q,--quiet", o.quiet,
+                "print errors only: no summary, warnings or progress (standard output is empty)");
 }
 
 }  // namespace
@@ -109,6 +111,13 @@ int main(int argc, char** argv) try {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
+  // --quiet: the summaries and paths go to standard output, which is emptied wholesale;
+  // errors go to standard error (warnings and progress are skipped where they are made).
+  if ((run.scene.quiet || render.scene.quiet || view.scene.quiet) &&
+      std::freopen("/dev/null", "w", stdout) == nullptr) {
+    std::fputs("fixstep: error: --quiet: cannot open /dev/null for standard output\n", stderr);
+    return 1;
+  }
   if (run_cmd->parsed()) {
     if (!steps->count() && !duration->count()) {
       std::fputs("fixstep run: give --steps N or --duration S\n", stderr);

@@ -1,0 +1,51 @@
+#include "progress.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <utility>
+
+namespace fixstep::cli {
+
+namespace {
+constexpr auto redraw_every = std::chrono::milliseconds(100);
+}  // namespace
+
+Progress::Progress(std::string what, std::string unit, std::uint64_t total, bool enabled)
+    : what_(std::move(what)),
+      unit_(std::move(unit)),
+      total_(total),
+      shown_(enabled && total > 0 && isatty(fileno(stderr)) == 1),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
+
+Progress::~Progress() {
+  finish();
+}
+
+void Progress::update(std::uint64_t done) {
+  if (!shown_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_ < redraw_every && done < total_) return;
+  last_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
+  const double left = rate > 0.0 ? static_cast<double>(total_ - done) / rate : 0.0;
+  // "\r" back to the line's start, "\x1b[K" erases what an earlier, longer line left.
+  std::fputs(fmt::format("\r{}: {} {}/{} ({} %)  {:.1f} {}s/s  {:.1f} s left\x1b[K", what_, unit_,
+                         done, total_, done * 100 / total_, rate, unit_, left)
+                 .c_str(),
+             stderr);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void Progress::finish() {
+  if (!drawn_) return;
+  std::fputs("\r\x1b[K", stderr);
+  std::fflush(stderr);
+  drawn_ = false;
+}
+
+}  // namespace fixstep::cli
