@@ -1,6 +1,7 @@
 // The consumer: assets/scenes/default.toml's world built in code with fixstep::core alone,
-// stepped 1000 ticks. It prints the same state_hash as `fixstep run assets/scenes/default.toml
-// --steps 1000` (checked in .ci/run), so a world written in code is the scene's world.
+// stepped 1000 ticks. It prints the summary line `fixstep run assets/scenes/default.toml
+// --steps 1000` prints, digit for digit (state hash, energy, dissipated energy, balance;
+// checked by check.sh in .ci/run): a world written in code is the scene's world.
 #include <cstdio>
 #include <exception>
 #include <fixstep/simulation.hpp>
@@ -46,10 +47,9 @@ int main() {
         thrown("cannonball", 5.0, {22, 14}, 0.2),
     };
     Simulation sim = make_simulation(def);
+    const double e0 = sim.energy().total();  // J
     for (int tick = 0; tick < 1000; ++tick) sim.step();
-    std::printf("ticks=%llu t=%.6f state_hash=%016llx\n",
-                static_cast<unsigned long long>(sim.tick()), sim.time(),
-                static_cast<unsigned long long>(sim.state_hash()));
+    std::printf("%s\n", summary_line(sim, e0).c_str());  // the line `fixstep run` ends with
   } catch (const std::exception& e) {
     std::fprintf(stderr, "consumer: %s\n", e.what());
     return 1;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -104,5 +105,19 @@ struct WorldDef {
 /// Also throws std::invalid_argument for invalid settings, bodies or links (as World does:
 /// the message names the body and field) and for a link index out of range.
 [[nodiscard]] Simulation make_simulation(const WorldDef& def);
+
+/// The energy balance error (E + E_dissipated - E0)/|E0| (dimensionless; in J when E0 = 0):
+/// what the integrator alone adds or loses, with the energy damping and drag took out
+/// (Simulation::dissipated_energy, kept when WorldSettings::track_dissipation is on, as for
+/// every scene) put back. initial_energy = E0 in J.
+[[nodiscard]] double energy_balance(const Simulation& sim, double initial_energy);
+
+/// "ticks=N t=T state_hash=HHHHHHHHHHHHHHHH energy=E dissipated=D balance=B": the summary
+/// `run` and `render` print. energy and dissipated in J; balance = energy_balance() (suffixed
+/// "J" when E0 = 0).
+[[nodiscard]] std::string summary_line(const Simulation& sim, double initial_energy);
+
+/// 16 lowercase hex digits.
+[[nodiscard]] std::string hex_hash(std::uint64_t hash);
 
 }  // namespace fixstep

@@ -28,27 +28,13 @@ struct SessionSettings {
   std::optional<double> view_width{};  ///< visible width, m; default: fit_camera's
 };
 
-/// The energy balance error (E + E_dissipated - E0)/|E0| (dimensionless; in J when E0 = 0):
-/// what the integrator alone adds or loses, with the energy damping and drag took out
-/// (Simulation::dissipated_energy, kept when WorldSettings::track_dissipation is on, as for
-/// every scene) put back. initial_energy = E0 in J.
-[[nodiscard]] double energy_balance(const Simulation& sim, double initial_energy);
-
-/// "ticks=N t=T state_hash=HHHHHHHHHHHHHHHH energy=E dissipated=D balance=B": the summary
-/// `run` and `render` print. energy and dissipated in J; balance = energy_balance() (suffixed
-/// "J" when E0 = 0).
-[[nodiscard]] std::string summary_line(const Simulation& sim, double initial_energy);
-
-/// 16 lowercase hex digits.
-[[nodiscard]] std::string hex_hash(std::uint64_t hash);
-
 class Session {
  public:
   /// Builds the world (make_simulation(def): the stability guard applies; with
   /// WorldSettings::track_dissipation turned on, since the HUD shows the energy balance), the
   /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid
   /// or unstable def (see make_simulation), RenderError when rendering cannot start.
-  Session(WorldDef def, const SessionSettings& settings = {});
+  explicit Session(WorldDef def, const SessionSettings& settings = {});
 
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets
   /// `input` (see TickInput).
