@@ -33,6 +33,16 @@ void FixedStepLoop::set_time_scale(double scale) {
   time_scale_ = scale;
 }
 
+void FixedStepLoop::restore(const State& state) {
+  if (!(state.accumulator >= 0.0 && state.accumulator < settings_.dt)) {
+    throw std::invalid_argument(
+        fmt::format("loop: a restored accumulator must be in [0, dt = {} s) (got {})", settings_.dt,
+                    state.accumulator));
+  }
+  accumulator_ = state.accumulator;
+  ticks_ = state.ticks;
+}
+
 VirtualClock::VirtualClock(double fps) : fps_(fps) {
   if (!std::isfinite(fps) || fps <= 0.0) {
     throw std::invalid_argument(fmt::format("clock: fps must be finite and > 0 (got {})", fps));

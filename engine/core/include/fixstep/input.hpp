@@ -1,5 +1,6 @@
-// The input a tick receives: sampled once per frame and handed to every tick of that frame,
-// so a run can be recorded as (tick, input) pairs and replayed bit for bit.
+// The input a tick receives, and the sampler that turns a stream of window events into exactly
+// one TickInput per tick, so a run can be recorded as (tick, input) pairs and replayed bit for
+// bit.
 #pragma once
 
 #include <cstdint>
@@ -8,13 +9,80 @@
 
 namespace fixstep {
 
+/// Bits of TickInput::held, pressed and released. fixstep's window maps the arrow keys, Enter
+/// and the mouse buttons to them; what they mean is the program's (fixstep view pushes with
+/// the arrows and drags with the primary pointer button).
+enum InputButton : std::uint32_t {
+  button_left = 1u << 0,
+  button_right = 1u << 1,
+  button_up = 1u << 2,
+  button_down = 1u << 3,
+  button_action = 1u << 4,           ///< Enter
+  button_pointer_primary = 1u << 8,  ///< left mouse button
+  button_pointer_secondary = 1u << 9,
+};
+/// Every bit a TickInput may carry (a recording with others is refused).
+inline constexpr std::uint32_t all_buttons = 0x31fu;
+
+/// TickInput::drag_body when nothing is dragged.
+inline constexpr std::uint32_t no_body = 0xffffffffu;
+
+/// The drag spring: the one of Box2D's samples (their mouse joint: 5 Hz, damping ratio 0.7),
+/// per unit mass, so light and heavy bodies follow the pointer alike. World::step applies it to
+/// the dragged body's velocity with implicit Euler (stable at any dt; see World::step).
+inline constexpr double drag_frequency = 5.0;      ///< Hz
+inline constexpr double drag_damping_ratio = 0.7;  ///< ζ
+
 struct TickInput {
   std::uint64_t tick = 0;  ///< index of the tick this input is for (0 = the first tick)
   /// An extra acceleration applied to every body during this tick (m/s², like gravity, so it
-  /// moves light and heavy bodies alike); (0, 0) costs nothing. The window maps the arrow keys
-  /// to it.
+  /// moves light and heavy bodies alike); (0, 0) costs nothing. fixstep view maps the arrow
+  /// keys to it.
   Vec2 push{};
+  std::uint32_t held = 0;      ///< InputButton bits down during this tick
+  std::uint32_t pressed = 0;   ///< bits that went down since the previous tick's sample
+  std::uint32_t released = 0;  ///< bits that went up since the previous tick's sample
+  Vec2 pointer{};              ///< pointer position in world coordinates, m
+  /// Dense index of the body the pointer drags (a spring from `pointer` to it; see
+  /// drag_frequency), or no_body. An index >= the body count drags nothing.
+  std::uint32_t drag_body = no_body;
   friend constexpr bool operator==(const TickInput&, const TickInput&) = default;
+};
+
+/// Collects input events as they happen and hands each tick its TickInput (sample()). A press
+/// or release between two samples is reported by exactly one tick, the next one sampled,
+/// however many ticks a frame runs: with 0 ticks it waits for the next frame's first tick, with
+/// many only the first sees it. Several presses of one button between two ticks read as one
+/// (pressed is a set of bits, not a count); a press and release between two ticks sets both
+/// bits with the button not held, so a tap is never lost. Pointer, push and drag body are
+/// levels: every tick sees their latest value.
+class InputSampler {
+ public:
+  void press(std::uint32_t buttons) {
+    pressed_ |= buttons & ~held_;
+    held_ |= buttons;
+  }
+  void release(std::uint32_t buttons) {
+    released_ |= buttons & held_;
+    held_ &= ~buttons;
+  }
+  void set_pointer(Vec2 position) { pointer_ = position; }    ///< m, world coordinates
+  void set_push(Vec2 acceleration) { push_ = acceleration; }  ///< m/s²
+  void set_drag_body(std::uint32_t body) { drag_body_ = body; }
+  [[nodiscard]] std::uint32_t held() const { return held_; }
+  [[nodiscard]] std::uint32_t drag_body() const { return drag_body_; }
+
+  /// The input of tick `tick`; clears the pending presses and releases.
+  TickInput sample(std::uint64_t tick) {
+    const TickInput in{tick, push_, held_, pressed_, released_, pointer_, drag_body_};
+    pressed_ = released_ = 0;
+    return in;
+  }
+
+ private:
+  std::uint32_t held_ = 0, pressed_ = 0, released_ = 0;
+  Vec2 pointer_{}, push_{};
+  std::uint32_t drag_body_ = no_body;
 };
 
 }  // namespace fixstep

@@ -42,6 +42,20 @@ class FixedStepLoop {
   /// While paused nothing accumulates; a requested single step runs exactly one tick.
   template <class TickFn>
   FrameResult advance(double frame_seconds, TickInput input, TickFn&& tick);
+  /// As above, but each tick gets its own input: sampler.sample(tick index), so a press or
+  /// release collected between two ticks reaches exactly one tick (see InputSampler).
+  template <class TickFn>
+  FrameResult advance(double frame_seconds, InputSampler& sampler, TickFn&& tick);
+
+  /// The loop's restorable state (part of a snapshot): the accumulator and the tick count.
+  struct State {
+    double accumulator = 0.0;  ///< s
+    std::uint64_t ticks = 0;
+    friend constexpr bool operator==(const State&, const State&) = default;
+  };
+  [[nodiscard]] State state() const { return {accumulator_, ticks_}; }
+  /// Restores a state(); throws std::invalid_argument unless 0 <= accumulator < dt (finite).
+  void restore(const State& state);
 
   void set_paused(bool paused) { paused_ = paused; }
   [[nodiscard]] bool paused() const { return paused_; }
@@ -62,6 +76,10 @@ class FixedStepLoop {
   }
 
  private:
+  /// The accumulator loop; calls tick_at(tick index) for each tick it runs.
+  template <class TickAt>
+  FrameResult advance_with(double frame_seconds, TickAt&& tick_at);
+
   LoopSettings settings_;
   int tick_cap_;
   /// A tick is due once the accumulator reaches dt less a relative 1e-9: 0.25 s of frames
@@ -77,12 +95,27 @@ class FixedStepLoop {
 
 template <class TickFn>
 FrameResult FixedStepLoop::advance(double frame_seconds, TickInput input, TickFn&& tick) {
+  return advance_with(frame_seconds, [&](std::uint64_t t) {
+    input.tick = t;
+    tick(static_cast<const TickInput&>(input));
+  });
+}
+
+template <class TickFn>
+FrameResult FixedStepLoop::advance(double frame_seconds, InputSampler& sampler, TickFn&& tick) {
+  return advance_with(frame_seconds, [&](std::uint64_t t) {
+    const TickInput input = sampler.sample(t);
+    tick(input);
+  });
+}
+
+template <class TickAt>
+FrameResult FixedStepLoop::advance_with(double frame_seconds, TickAt&& tick_at) {
   FrameResult r;
   if (!(frame_seconds >= 0.0)) frame_seconds = 0.0;  // NaN or a clock going backwards
   if (paused_) {
     if (single_step_) {
-      input.tick = ticks_++;
-      tick(static_cast<const TickInput&>(input));
+      tick_at(ticks_++);
       r.ticks = 1;
     }
     single_step_ = false;
@@ -103,8 +136,7 @@ FrameResult FixedStepLoop::advance(double frame_seconds, TickInput input, TickFn
       accumulator_ = keep;
       break;
     }
-    input.tick = ticks_++;
-    tick(static_cast<const TickInput&>(input));
+    tick_at(ticks_++);
     accumulator_ = std::max(accumulator_ - settings_.dt, 0.0);
     ++r.ticks;
   }
