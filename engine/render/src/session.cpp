@@ -127,11 +127,32 @@ Session::Session(WorldDef def, const SessionSettings& settings)
 FrameResult Session::advance(double frame_seconds, const TickInput& input) {
   // After the runtime guard fires, no further tick runs and the loop pauses: the state stays
   // at the tick that diverged, and draw() shows why.
-  const FrameResult r = loop_.advance(frame_seconds, input, [&](const TickInput& in) {
-    if (!sim_->fault()) sim_->step(in);
+  return advance_with(frame_seconds, [&](std::uint64_t t, Simulation& sim) {
+    TickInput in = input;
+    in.tick = t;
+    sim.step(in);
   });
+}
+
+FrameResult Session::advance(double frame_seconds, InputSampler& sampler) {
+  return advance_with(frame_seconds,
+                      [&](std::uint64_t t, Simulation& sim) { sim.step(sampler.sample(t)); });
+}
+
+void Session::pause_on_fault() {
   if (sim_->fault()) loop_.set_paused(true);
-  return r;
+}
+
+void Session::save(Snapshot& out) const {
+  sim_->save(out.world);
+  out.loop = loop_.state();
+}
+
+void Session::restore(const Snapshot& snapshot) {
+  sim_->restore(snapshot.world);
+  loop_.restore(snapshot.loop);
+  fault_lines_.clear();
+  renderer_.clear_trails();
 }
 
 void Session::restart() {

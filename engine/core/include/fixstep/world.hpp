@@ -104,6 +104,24 @@ struct ImplicitSolverDeleter {
   void operator()(ImplicitSolver<Real>* s) const;
 };
 
+/// Owns a cache that a copy of its owner does not share: a copy starts empty (the owner
+/// rebuilds the cache on demand) and copying into an owner drops its cache; moving moves it.
+/// For parts that hold no state a tick's result depends on: the worker thread and the implicit
+/// solver's factorisation, so a World can be copied (a snapshot) and stays bit-exact.
+template <class T, class Deleter>
+class CachePtr : public std::unique_ptr<T, Deleter> {
+ public:
+  CachePtr() = default;
+  CachePtr(const CachePtr& /*other*/) noexcept : std::unique_ptr<T, Deleter>() {}
+  CachePtr& operator=(const CachePtr& other) noexcept {
+    if (this != &other) this->reset();
+    return *this;
+  }
+  CachePtr(CachePtr&&) noexcept = default;
+  CachePtr& operator=(CachePtr&&) noexcept = default;
+  ~CachePtr() = default;
+};
+
 /// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
 struct SparseSet {
   std::vector<std::uint32_t> sparse;  ///< slot -> dense index + 1; 0 = absent
@@ -129,6 +147,10 @@ struct Store {
 }  // namespace detail
 
 /// A world of point bodies stepped at a fixed dt in precision Real (float or double).
+///
+/// Copies are complete, independent states (a snapshot): bodies, components, links, tick,
+/// energy accounts and the runtime guard's fault; a copy steps to the same bits as the
+/// original. Copy-assigning between worlds of equal size reuses storage (no allocation).
 ///
 /// Errors: creation and setters throw std::invalid_argument naming the body and field when a
 /// value is non-finite (also after narrowing to Real) or out of range; using a stale or null
@@ -349,8 +371,8 @@ class World {
   // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
   // states and accumulators (see world_coupled.cpp).
   std::vector<Real> fx_, fy_, s_[4], d_[4], power_body_, power_link_;
-  std::unique_ptr<detail::Workers, detail::WorkersDeleter> workers_;
-  std::unique_ptr<detail::ImplicitSolver<Real>, detail::ImplicitSolverDeleter<Real>> implicit_;
+  detail::CachePtr<detail::Workers, detail::WorkersDeleter> workers_;
+  detail::CachePtr<detail::ImplicitSolver<Real>, detail::ImplicitSolverDeleter<Real>> implicit_;
   // (world_coupled.cpp)
   void step_multipass(const TickInput& input);
   template <class Pass>
