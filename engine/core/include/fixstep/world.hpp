@@ -225,6 +225,11 @@ class World {
   /// (each gathers its links' forces in a fixed order), on one or two threads (see
   /// WorldSettings::threads); implicit Euler solves the linear system of the whole network
   /// (world_implicit.cpp). Both paths give bit-identical states where both apply.
+  ///
+  /// When input.drag_body names a body, the pointer's drag spring (input.hpp: drag_frequency,
+  /// drag_damping_ratio) first changes that body's velocity, implicitly over the tick; its
+  /// work is not in the energy account (an external force, like push). A non-finite pointer
+  /// leaves the velocity as it was.
   void step(const TickInput& input = {});
   /// Bytes one tick moves between memory and the core per body (STREAM's convention: each
   /// array element read or written counts once, write-allocate traffic is not counted):
@@ -290,6 +295,7 @@ class World {
   const detail::Store<C>& store() const;
   void validate(const Body& body, const std::string& who) const;
   // stepping (world_step.cpp)
+  void apply_drag(const TickInput& input);
   const Real* damping_decay(double tau);
   static void validate_component(const SpringDamper& c, const std::string& who);
   static void validate_component(const ConstantForce& c, const std::string& who);
