@@ -192,6 +192,7 @@ void Session::draw() {
         fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
     hud_.emplace_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
   }
+  hud_.insert(hud_.end(), status_lines_.begin(), status_lines_.end());
   renderer_.draw(frame_, hud_);
 }
 

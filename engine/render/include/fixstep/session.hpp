@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fixstep/loop.hpp"
@@ -66,6 +67,9 @@ class Session {
   void restart();
   /// Shows the window's key help in the HUD.
   void set_show_controls(bool show) { show_controls_ = show; }
+  /// Extra HUD lines drawn below the engine's (a game's score, a hint), until replaced; an
+  /// empty list shows none. The bitmap font is ASCII only.
+  void set_status_lines(std::vector<std::string> lines) { status_lines_ = std::move(lines); }
 
   [[nodiscard]] const WorldDef& definition() const { return def_; }
   [[nodiscard]] const Simulation& simulation() const { return *sim_; }
@@ -91,6 +95,7 @@ class Session {
   std::vector<std::string> fault_lines_;  ///< the runtime guard's message for the HUD, once built
   double initial_energy_ = 0.0;
   bool show_controls_ = false;
+  std::vector<std::string> status_lines_;  ///< set_status_lines()
 };
 
 template <class TickFn>

@@ -1,0 +1,226 @@
+// slingshot: the level and the rules (see game.hpp).
+#include "game.hpp"
+
+#include <cmath>
+#include <fixstep/components.hpp>
+#include <fixstep/world.hpp>
+#include <string>
+
+namespace slingshot {
+
+using fixstep::Body;
+using fixstep::SpringDamper;
+using fixstep::TickInput;
+using fixstep::Vec2;
+
+namespace {
+
+constexpr double gravity = 9.81;  // m/s²
+constexpr double pi = 3.14159265358979323846;
+constexpr fixstep::Rgba8 ball_color{230, 70, 60, 255};
+constexpr fixstep::Rgba8 target_color{250, 200, 60, 255};
+constexpr fixstep::Rgba8 knocked_color{120, 120, 130, 255};
+
+// When a flight ends: the ball has moved slower than still_speed for still_limit ticks, left
+// the level's box, or flown for flight_limit ticks (a ball rolling for ever).
+constexpr double still_speed = 0.2;      // m/s
+constexpr int still_limit = 60;          // ticks (0.5 s)
+constexpr int flight_limit = 8 * 120;    // ticks (8 s)
+constexpr double level_half_width = 24;  // m
+constexpr double level_bottom = -3;      // m
+
+// The targets: where each rope hangs from and its length, m.
+struct Rope {
+  Vec2 hook;
+  double length;
+};
+constexpr Rope ropes[target_count] = {{{4, 11}, 4}, {{8, 11}, 6.5}, {{12, 11}, 3}, {{16, 11}, 7}};
+
+// The band: a spring of rest length 0 from the anchor, band_frequency Hz on the ball's mass,
+// lightly damped so a loaded ball settles.
+SpringDamper band() {
+  const fixstep::LinkSpring s = fixstep::spring_from_frequency(band_frequency, 0.1, ball_mass);
+  return SpringDamper{.anchor = anchor, .stiffness = s.stiffness, .damping = s.damping};
+}
+
+double dot(Vec2 a, Vec2 b) {
+  return a.x * b.x + a.y * b.y;
+}
+Vec2 sub(Vec2 a, Vec2 b) {
+  return {a.x - b.x, a.y - b.y};
+}
+
+// Changes the world through the World<float|double> inside the Simulation: the public API for
+// components (set/remove) and body state (set_body) by entity.
+template <class F>
+void edit_body(fixstep::Simulation& sim, std::uint32_t index, F&& f) {
+  sim.visit([&](auto& world) { f(world, world.entities()[index]); });
+}
+
+// The ball touches target i (discs overlapping and closing in): an impulse along the line of
+// centres with restitution hit_restitution, as between two free discs. Returns whether it hit.
+bool collide(fixstep::Simulation& sim, std::uint32_t target) {
+  Body b = sim.body_at(ball), t = sim.body_at(target);
+  const Vec2 d = sub(b.position, t.position);
+  const double distance = std::hypot(d.x, d.y);
+  if (distance >= ball_radius + target_radius || distance == 0.0) return false;
+  const Vec2 n{d.x / distance, d.y / distance};  // from the target to the ball
+  const double closing = dot(sub(b.velocity, t.velocity), n);
+  if (closing >= 0.0) return false;  // already separating
+  const double j = -(1.0 + hit_restitution) * closing / (1.0 / b.mass + 1.0 / t.mass);
+  b.velocity = {b.velocity.x + j / b.mass * n.x, b.velocity.y + j / b.mass * n.y};
+  t.velocity = {t.velocity.x - j / t.mass * n.x, t.velocity.y - j / t.mass * n.y};
+  edit_body(sim, ball, [&](auto& w, fixstep::Entity e) { w.set_body(e, b); });
+  edit_body(sim, target, [&](auto& w, fixstep::Entity e) { w.set_body(e, t); });
+  return true;
+}
+
+// Puts the ball back on the band, at rest, for the next shot.
+void reload(fixstep::Simulation& sim) {
+  edit_body(sim, ball, [](auto& w, fixstep::Entity e) {
+    w.set_body(e, Body{.mass = ball_mass, .position = ball_rest_position(), .velocity = {}});
+    w.set(e, band());
+  });
+}
+
+}  // namespace
+
+Vec2 ball_rest_position() {
+  const double omega = 2.0 * pi * band_frequency;
+  return {anchor.x, anchor.y - gravity / (omega * omega)};  // where band and gravity balance
+}
+
+fixstep::WorldDef make_level() {
+  fixstep::WorldDef def;
+  def.settings = {.dt = dt, .integrator = fixstep::Integrator::semi_implicit_euler};
+
+  fixstep::BodyDef ball_def;
+  ball_def.name = "ball";
+  ball_def.body = Body{.mass = ball_mass, .position = ball_rest_position()};
+  ball_def.spring = band();
+  ball_def.gravity = fixstep::Gravity{{0.0, -gravity}};
+  ball_def.appearance = fixstep::Appearance{.radius = ball_radius, .color = ball_color};
+  def.bodies.push_back(ball_def);
+
+  for (int i = 0; i < target_count; ++i) {
+    // A rope: an anchored spring with a rest length, stiff enough (4 Hz) to hang nearly
+    // straight and damped (ζ = 0.2) so a swing dies down.
+    const fixstep::LinkSpring rope = fixstep::spring_from_frequency(4.0, 0.2, target_mass);
+    fixstep::BodyDef t;
+    t.name = "target" + std::to_string(i);
+    t.body =
+        Body{.mass = target_mass, .position = {ropes[i].hook.x, ropes[i].hook.y - ropes[i].length}};
+    t.spring = SpringDamper{.anchor = ropes[i].hook,
+                            .stiffness = rope.stiffness,
+                            .damping = rope.damping,
+                            .rest_length = ropes[i].length};
+    t.gravity = fixstep::Gravity{{0.0, -gravity}};
+    t.appearance = fixstep::Appearance{.radius = target_radius, .color = target_color};
+    def.bodies.push_back(t);
+  }
+  return def;
+}
+
+void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput& input,
+                   const fixstep::Simulation& sim) {
+  drag.apply(input, sim);  // picks on press, drops on release
+  if (game.phase != Phase::loaded || input.drag_body != ball) {
+    input.drag_body = fixstep::no_body;  // targets are not for dragging
+    return;
+  }
+  // The band stretches max_pull at most: hold the pointer the ball follows within reach.
+  const Vec2 d = sub(input.pointer, anchor);
+  const double length = std::hypot(d.x, d.y);
+  if (length > max_pull) {
+    input.pointer = {anchor.x + d.x * max_pull / length, anchor.y + d.y * max_pull / length};
+  }
+}
+
+void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& sim) {
+  const Body b = sim.body_at(ball);
+  switch (game.phase) {
+    case Phase::loaded: {
+      const bool dragging = input.drag_body == ball;
+      if (game.dragging && !dragging) {  // let go this tick
+        const Vec2 pull = sub(b.position, anchor);
+        if (std::hypot(pull.x, pull.y) >= min_pull) {
+          game.phase = Phase::pulled;
+          game.release_point = b.position;
+          --game.shots_left;
+        }
+      }
+      game.dragging = dragging;
+      break;
+    }
+    case Phase::pulled:
+      // The band throws the ball; once it passes the anchor the band is cut and it flies.
+      if (dot(sub(b.position, anchor), sub(anchor, game.release_point)) >= 0.0) {
+        edit_body(sim, ball,
+                  [](auto& w, fixstep::Entity e) { w.template remove<SpringDamper>(e); });
+        game.phase = Phase::flying;
+        game.flight_ticks = game.still_ticks = 0;
+      }
+      break;
+    case Phase::flying: {
+      for (int i = 0; i < target_count; ++i) {
+        const std::uint32_t target = first_target + static_cast<std::uint32_t>(i);
+        if (!collide(sim, target) || (game.knocked & (1u << i)) != 0) continue;
+        // The first hit knocks the target off its rope, and scores.
+        game.knocked |= 1u << i;
+        ++game.score;
+        edit_body(sim, target, [](auto& w, fixstep::Entity e) {
+          w.template remove<SpringDamper>(e);
+          w.set(e, fixstep::Appearance{.radius = target_radius, .color = knocked_color});
+        });
+      }
+      const Body now = sim.body_at(ball);
+      ++game.flight_ticks;
+      game.still_ticks =
+          std::hypot(now.velocity.x, now.velocity.y) < still_speed ? game.still_ticks + 1 : 0;
+      const bool left =
+          std::abs(now.position.x) > level_half_width || now.position.y < level_bottom;
+      if (!left && game.still_ticks < still_limit && game.flight_ticks < flight_limit) break;
+      const bool all_down = game.knocked == (1u << target_count) - 1;
+      if (game.shots_left > 0 && !all_down) {
+        reload(sim);
+        game.phase = Phase::loaded;
+        game.dragging = false;
+      } else {
+        game.phase = Phase::over;
+      }
+      break;
+    }
+    case Phase::over:
+      break;
+  }
+}
+
+std::vector<std::string> status_lines(const GameState& game) {
+  std::vector<std::string> lines{"score " + std::to_string(game.score) + "/" +
+                                 std::to_string(target_count) + "   balls left " +
+                                 std::to_string(game.shots_left)};
+  switch (game.phase) {
+    case Phase::loaded:
+      lines.emplace_back("drag the red ball back with the mouse and let go");
+      break;
+    case Phase::pulled:
+    case Phase::flying:
+      lines.emplace_back("...");
+      break;
+    case Phase::over:
+      lines.emplace_back("GAME OVER: " + std::to_string(game.score) + " of " +
+                         std::to_string(target_count) + " down   (r plays again, esc quits)");
+      break;
+  }
+  return lines;
+}
+
+std::string describe(const GameState& game) {
+  static constexpr const char* phases[] = {"loaded", "pulled", "flying", "over"};
+  std::string knocked;
+  for (int i = 0; i < target_count; ++i) knocked += (game.knocked & (1u << i)) ? '1' : '0';
+  return "score=" + std::to_string(game.score) + " shots_left=" + std::to_string(game.shots_left) +
+         " knocked=" + knocked + " phase=" + phases[static_cast<int>(game.phase)];
+}
+
+}  // namespace slingshot
