@@ -10,6 +10,7 @@
 
 #include "fixstep/loop.hpp"
 #include "fixstep/pointer_drag.hpp"
+#include "fixstep/rewind.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/sync_test.hpp"
@@ -213,6 +214,35 @@ TEST(Snapshot, SessionSnapshotsKeepTheLoopsAccumulatorAndTick) {
   for (int f = 0; f < 20; ++f) session.advance(0.013);
   EXPECT_EQ(session.simulation().state_hash(), hash);
   EXPECT_THROW(session.loop().restore({.accumulator = 1.0, .ticks = 0}), std::invalid_argument);
+}
+
+TEST(Rewind, StepsBackOneTickAtATimeThroughTheLastCapacityTicks) {
+  Simulation sim = make_simulation(load_scene(scenes_dir / "default.toml"));
+  RewindBuffer rewind(5);
+  std::vector<std::uint64_t> hashes;
+  rewind.push(sim);
+  hashes.push_back(sim.state_hash());
+  for (int t = 0; t < 8; ++t) {
+    sim.step();
+    rewind.push(sim);
+    hashes.push_back(sim.state_hash());
+  }
+  EXPECT_EQ(rewind.size(), 5u);  // ticks 4..8
+  EXPECT_EQ(rewind.oldest_tick(), 4u);
+  for (std::uint64_t back = 7; back >= 4; --back) {
+    const WorldSnapshot* past = rewind.step_back();
+    ASSERT_NE(past, nullptr);
+    sim.restore(*past);
+    EXPECT_EQ(sim.tick(), back);
+    EXPECT_EQ(sim.state_hash(), hashes[back]);
+  }
+  EXPECT_EQ(rewind.step_back(), nullptr);  // tick 4 is the oldest kept
+  // Resuming from tick 4 replaces the future that was rewound.
+  sim.step();
+  rewind.push(sim);
+  EXPECT_EQ(rewind.size(), 2u);
+  EXPECT_EQ(sim.state_hash(), hashes[5]);
+  EXPECT_THROW(RewindBuffer(0), std::invalid_argument);
 }
 
 // --- pick and drag ------------------------------------------------------------------------

@@ -148,6 +148,13 @@ void Session::save(Snapshot& out) const {
   out.loop = loop_.state();
 }
 
+void Session::restore(const WorldSnapshot& world) {
+  sim_->restore(world);
+  loop_.restore({0.0, world.tick()});
+  fault_lines_.clear();
+  renderer_.clear_trails();
+}
+
 void Session::restore(const Snapshot& snapshot) {
   sim_->restore(snapshot.world);
   loop_.restore(snapshot.loop);
@@ -190,7 +197,9 @@ void Session::draw() {
   if (show_controls_) {
     hud_.push_back(
         fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
-    hud_.emplace_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
+    hud_.emplace_back(
+        "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind  esc "
+        "quit");
   }
   hud_.insert(hud_.end(), status_lines_.begin(), status_lines_.end());
   renderer_.draw(frame_, hud_);

@@ -61,6 +61,10 @@ class Session {
   /// Restores a state saved from this session; trails are cleared. Throws
   /// std::invalid_argument for an empty snapshot.
   void restore(const Snapshot& snapshot);
+  /// Restores only the world (e.g. from a RewindBuffer): the loop continues from the
+  /// snapshot's tick with an empty accumulator; trails are cleared. Throws
+  /// std::invalid_argument for an empty snapshot.
+  void restore(const WorldSnapshot& world);
   /// Renders the state interpolated by the loop's alpha, with the HUD, into renderer().pixels().
   void draw();
   /// Back to the initial state (tick 0), trails cleared; pause and time scale are kept.
