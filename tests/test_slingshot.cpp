@@ -90,7 +90,7 @@ const Vec2 hitting_pull{-14.4, 1.2};
 
 TEST(Slingshot, LevelBuildsAndRestsLoaded) {
   fixstep::Simulation sim = fixstep::make_simulation(make_level());
-  ASSERT_EQ(sim.body_count(), std::size_t(1 + target_count));
+  ASSERT_EQ(sim.body_count(), std::size_t(1 + target_count + 3));  // ball, targets, post
   GameState game;
   for (int t = 0; t < 240; ++t) play_tick(game, TickInput{std::uint64_t(t)}, sim);
   // Nobody touched it: the ball still sits on its band where band and gravity balance.

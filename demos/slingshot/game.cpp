@@ -22,7 +22,8 @@ constexpr fixstep::Rgba8 target_color{250, 200, 60, 255};
 constexpr fixstep::Rgba8 knocked_color{120, 120, 130, 255};
 
 // When a flight ends: the ball has moved slower than still_speed for still_limit ticks, left
-// the level's box, or flown for flight_limit ticks (a ball rolling for ever).
+// the level's box (the walls keep it in; this is a safety net), or flown for flight_limit
+// ticks (a ball sliding for ever).
 constexpr double still_speed = 0.2;      // m/s
 constexpr int still_limit = 60;          // ticks (0.5 s)
 constexpr int flight_limit = 8 * 120;    // ticks (8 s)
@@ -100,6 +101,7 @@ fixstep::WorldDef make_level() {
   ball_def.spring = band();
   ball_def.gravity = fixstep::Gravity{{0.0, -gravity}};
   ball_def.appearance = fixstep::Appearance{.radius = ball_radius, .color = ball_color};
+  ball_def.collider = fixstep::Collider{ball_radius};  // bounces on the ground and walls
   def.bodies.push_back(ball_def);
 
   for (int i = 0; i < target_count; ++i) {
@@ -116,8 +118,25 @@ fixstep::WorldDef make_level() {
                             .rest_length = ropes[i].length};
     t.gravity = fixstep::Gravity{{0.0, -gravity}};
     t.appearance = fixstep::Appearance{.radius = target_radius, .color = target_color};
+    t.collider = fixstep::Collider{target_radius};
     def.bodies.push_back(t);
   }
+
+  // The slingshot's post under the fork: three discs with no forces (they stay where they
+  // are) and no collider (drawing only).
+  for (int i = 0; i < 3; ++i) {
+    fixstep::BodyDef post;
+    post.name = "post" + std::to_string(i);
+    post.body = Body{.mass = 1.0, .position = {anchor.x, 0.5 + 0.7 * i}};
+    post.appearance = fixstep::Appearance{.radius = 0.3, .color = {150, 105, 60, 255}};
+    def.bodies.push_back(post);
+  }
+
+  // The ground (y >= 0) and two walls (|x| <= 22 m): half-planes the bodies'
+  // colliders bounce on (restitution e) and slide along (friction μ).
+  def.planes.push_back({.normal = {0, 1}, .offset = 0, .restitution = 0.4, .friction = 0.5});
+  def.planes.push_back({.normal = {1, 0}, .offset = -22, .restitution = 0.5, .friction = 0.2});
+  def.planes.push_back({.normal = {-1, 0}, .offset = -22, .restitution = 0.5, .friction = 0.2});
   return def;
 }
 
@@ -205,7 +224,7 @@ std::vector<std::string> status_lines(const GameState& game) {
       break;
     case Phase::pulled:
     case Phase::flying:
-      lines.emplace_back("...");
+      lines.emplace_back("the ball flies");
       break;
     case Phase::over:
       lines.emplace_back("GAME OVER: " + std::to_string(game.score) + " of " +

@@ -32,10 +32,11 @@ inline constexpr double hit_restitution = 0.8;    ///< ball-target bounce (0..1)
 inline constexpr int shots_per_game = 3;          ///< balls the player gets
 inline constexpr std::uint32_t ball = 0;          ///< body index of the ball
 inline constexpr std::uint32_t first_target = 1;  ///< targets are bodies 1..target_count
-inline constexpr int target_count = 4;
+inline constexpr int target_count = 4;            ///< then come the post's bodies
 
 /// The level: the ball resting on its band at `anchor`, four targets hanging from ropes
-/// (anchored springs with a rest length), gravity on everything.
+/// (anchored springs with a rest length), gravity on both, a post under the fork (drawing
+/// only), the ground and two walls (planes) that the colliders of ball and targets bounce on.
 [[nodiscard]] fixstep::WorldDef make_level();
 /// Where the ball rests on its band (the anchor, sagged by gravity), m.
 [[nodiscard]] fixstep::Vec2 ball_rest_position();

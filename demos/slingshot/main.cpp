@@ -1,0 +1,192 @@
+// slingshot: play the game in a window, record a session, or replay one headless.
+//
+//   slingshot [--record FILE] [--frames N]      play (mouse: drag the ball; r restart; esc quit)
+//   slingshot --replay FILE [--out DIR [--every K]] [--last-frame PNG]
+//
+// Every tick of play runs the same four steps, live or replayed:
+//   input  = the mouse, sampled for this tick (InputSampler), or the recording's input
+//   prepare_input: the pointer may drag only the loaded ball (live only: the recording holds
+//                  the prepared input, drag_body included)
+//   step   = sim.step(input): physics, with the pointer's drag spring
+//   rules  = after_tick(): cut the band, knock targets off, score, reload
+// so a replay of the recorded inputs reproduces the game, and its state hashes, bit for bit.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fixstep/capture.hpp>
+#include <fixstep/pointer_drag.hpp>
+#include <fixstep/recording.hpp>
+#include <fixstep/session.hpp>
+#include <fixstep/window.hpp>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "game.hpp"
+
+namespace {
+
+using namespace fixstep;
+
+constexpr int width = 1280, height = 720;  // pixels
+constexpr const char* scene_name = "demos/slingshot (built in code)";
+
+// The camera: the whole level, ground near the bottom, 46 m wide (walls at the edges).
+SessionSettings view() {
+  return {.width = width,
+          .height = height,
+          .title = "slingshot",
+          .view_center = Vec2{0.0, 9.0},
+          .view_width = 46.0};
+}
+
+// Plays in a window on the real clock; records to `record_file` when it is not empty.
+int play(const std::string& record_file, std::int64_t frames) {
+  Window window("fixstep - slingshot", width, height);
+  Session session(slingshot::make_level(), view());
+  slingshot::GameState game;
+  InputSampler sampler;
+  PointerDrag drag(0.3);  // m: a small ball is easy to grab
+  std::optional<Recorder> recorder;
+  if (!record_file.empty()) recorder.emplace(session.definition(), scene_name, 30);
+
+  RealClock clock;
+  WindowEvents ev;
+  for (std::int64_t frame = 0; frames == 0 || frame < frames; ++frame) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    window.poll(ev);
+    if (ev.quit) break;
+    apply_loop_keys(ev, session.loop());
+    feed(ev, sampler, session.renderer().camera(), width, height);
+    if (ev.restart) {  // a new game (and a new recording)
+      session.restart();
+      game = {};
+      drag.reset();
+      if (recorder) recorder.emplace(session.definition(), scene_name, 30);
+    }
+    session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& sim) {
+      TickInput in = sampler.sample(t);
+      slingshot::prepare_input(game, drag, in, sim);
+      slingshot::play_tick(game, in, sim);
+      if (recorder) recorder->record(in, sim);
+    });
+    session.set_status_lines(slingshot::status_lines(game));
+    session.draw();
+    window.present(session.renderer().pixels());
+    std::this_thread::sleep_until(frame_start + std::chrono::microseconds(16667));
+  }
+  const Simulation& sim = session.simulation();
+  std::printf("%s\n%s\n", summary_line(sim, session.initial_energy()).c_str(),
+              slingshot::describe(game).c_str());
+  if (recorder) {
+    write_recording(record_file, recorder->finish(sim));
+    std::printf("recorded %llu ticks to %s\n", static_cast<unsigned long long>(sim.tick()),
+                record_file.c_str());
+  }
+  return 0;
+}
+
+// Replays a recording headless at 60 frames/s of virtual time, checking every stored hash;
+// writes every `every`-th frame (and the last) into out_dir, the last frame to last_frame.
+int replay_file(const std::string& file, const std::string& out_dir, int every,
+                const std::string& last_frame) {
+  const Recording rec = read_recording(file);
+  Session session(slingshot::make_level(), view());
+  if (definition_hash(session.definition()) != rec.definition_hash) {
+    std::fprintf(stderr, "slingshot: error: %s was recorded on another level (hash %s, not %s)\n",
+                 file.c_str(), hex_hash(rec.definition_hash).c_str(),
+                 hex_hash(definition_hash(session.definition())).c_str());
+    return 5;
+  }
+  std::optional<FrameWriter> writer;
+  if (!out_dir.empty()) {
+    prepare_output_dir(out_dir);
+    writer.emplace(out_dir, width, height);
+  }
+  slingshot::GameState game;
+  std::size_t next_hash = 0;  // rec.hashes[next_hash] is the next stored hash to check
+  std::uint64_t verified = 0;
+  std::optional<std::uint64_t> diverged;  // the first tick whose hash differs
+  auto check = [&](const Simulation& sim) {
+    while (next_hash < rec.hashes.size() && rec.hashes[next_hash].first <= sim.tick()) {
+      const auto [tick, hash] = rec.hashes[next_hash++];
+      if (tick != sim.tick()) continue;
+      if (hash == sim.state_hash()) {
+        ++verified;
+      } else if (!diverged) {
+        diverged = tick;
+      }
+    }
+  };
+
+  const VirtualClock clock(60.0);
+  for (std::int64_t frame = 0;; ++frame) {
+    if (frame > 0) {
+      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& sim) {
+        if (t >= rec.ticks || diverged) return;  // the end, or no point going on
+        slingshot::play_tick(game, rec.input_at(t), sim);
+        check(sim);
+      });
+    }
+    const std::uint64_t tick = session.simulation().tick();
+    const bool last = tick >= rec.ticks || diverged;
+    const bool write = writer && (frame % every == 0 || last);
+    // Trails grow by one sample per frame drawn: the trail_frames frames before each frame
+    // written are drawn too, so its trails look as they do in the window.
+    const double frames_left = double(rec.ticks - std::min(tick, rec.ticks)) * slingshot::dt * 60;
+    const bool warm_up = (writer && every - frame % every <= Renderer::trail_frames) ||
+                         (!last_frame.empty() && frames_left <= Renderer::trail_frames + 1);
+    if (write || warm_up || (last && !last_frame.empty())) {
+      session.set_status_lines(slingshot::status_lines(game));
+      session.draw();
+    }
+    if (write) writer->submit(session.renderer().pixels());
+    if (last) break;
+  }
+  const Simulation& sim = session.simulation();
+  if (!diverged && sim.state_hash() == rec.final_hash) ++verified;
+  if (!diverged && sim.state_hash() != rec.final_hash) diverged = sim.tick();
+  if (!last_frame.empty()) write_png(last_frame, width, height, session.renderer().pixels());
+  if (writer) writer->finish();
+  std::printf("%s\n%s\nverified=%llu\n", summary_line(sim, session.initial_energy()).c_str(),
+              slingshot::describe(game).c_str(), static_cast<unsigned long long>(verified));
+  if (diverged) {
+    std::fprintf(stderr, "slingshot: error: %s diverged at tick %llu\n", file.c_str(),
+                 static_cast<unsigned long long>(*diverged));
+    return 4;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app("slingshot: drag the red ball back, let go, knock the targets off their ropes");
+  std::string record, replay, out_dir, last_frame;
+  std::int64_t frames = 0;
+  int every = 1;
+  auto* record_opt = app.add_option("--record", record, "play and record the session into FILE");
+  app.add_option("--frames", frames, "quit the window after N frames")
+      ->check(CLI::NonNegativeNumber);
+  auto* replay_opt =
+      app.add_option("--replay", replay, "replay FILE headless, checking its hashes");
+  app.add_option("--out", out_dir, "with --replay: write frames as PNG into DIR")
+      ->needs(replay_opt);
+  app.add_option("--every", every, "with --out: every K-th frame (and the last)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--last-frame", last_frame, "with --replay: write the last frame as PNG")
+      ->needs(replay_opt);
+  replay_opt->excludes(record_opt);
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (!replay.empty()) return replay_file(replay, out_dir, every, last_frame);
+    return play(record, frames);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "slingshot: error: %s\n", e.what());
+    return 1;
+  }
+}
