@@ -165,24 +165,24 @@ int replay_file(const std::string& file, const std::string& out_dir, int every,
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app("slingshot: drag the red ball back, let go, knock the targets off their ropes");
-  std::string record, replay, out_dir, last_frame;
-  std::int64_t frames = 0;
-  int every = 1;
-  auto* record_opt = app.add_option("--record", record, "play and record the session into FILE");
-  app.add_option("--frames", frames, "quit the window after N frames")
-      ->check(CLI::NonNegativeNumber);
-  auto* replay_opt =
-      app.add_option("--replay", replay, "replay FILE headless, checking its hashes");
-  app.add_option("--out", out_dir, "with --replay: write frames as PNG into DIR")
-      ->needs(replay_opt);
-  app.add_option("--every", every, "with --out: every K-th frame (and the last)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--last-frame", last_frame, "with --replay: write the last frame as PNG")
-      ->needs(replay_opt);
-  replay_opt->excludes(record_opt);
-  CLI11_PARSE(app, argc, argv);
   try {
+    CLI::App app("slingshot: drag the red ball back, let go, knock the targets off their ropes");
+    std::string record, replay, out_dir, last_frame;
+    std::int64_t frames = 0;
+    int every = 1;
+    auto* record_opt = app.add_option("--record", record, "play and record the session into FILE");
+    app.add_option("--frames", frames, "quit the window after N frames")
+        ->check(CLI::NonNegativeNumber);
+    auto* replay_opt =
+        app.add_option("--replay", replay, "replay FILE headless, checking its hashes");
+    app.add_option("--out", out_dir, "with --replay: write frames as PNG into DIR")
+        ->needs(replay_opt);
+    app.add_option("--every", every, "with --out: every K-th frame (and the last)")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--last-frame", last_frame, "with --replay: write the last frame as PNG")
+        ->needs(replay_opt);
+    replay_opt->excludes(record_opt);
+    CLI11_PARSE(app, argc, argv);
     if (!replay.empty()) return replay_file(replay, out_dir, every, last_frame);
     return play(record, frames);
   } catch (const std::exception& e) {
