@@ -94,6 +94,7 @@ int view_command(const ViewOptions& o) {
       // Session paused the loop; the HUD shows the message too ('r' restarts).
       std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
     }
+    session.show_drag(sampler.pointer(), drag.body());
     session.draw();
     window.present(session.renderer().pixels());
     if (!o.fps) std::this_thread::sleep_until(frame_start + frame_budget);

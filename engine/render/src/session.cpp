@@ -172,6 +172,10 @@ void Session::restart() {
 
 void Session::draw() {
   sim_->fill_render_frame(loop_.alpha(), frame_);
+  if (drag_body_ < frame_.x.size()) {
+    frame_.springs.push_back(
+        {static_cast<float>(drag_pointer_.x), static_cast<float>(drag_pointer_.y), drag_body_});
+  }
   const double e = sim_->energy().total();
   hud_.clear();
   const std::size_t n = sim_->body_count();
