@@ -175,6 +175,10 @@ TEST(Recording, DefinitionHashCoversWhatChangesStatesOnly) {
   EXPECT_TRUE(changed([](WorldDef& d) { d.precision = Precision::f32; }));
   EXPECT_TRUE(changed([](WorldDef& d) { d.bodies[2].body.velocity.y = -0.0; }));
   EXPECT_TRUE(changed([](WorldDef& d) { d.bodies[1].drag.reset(); }));
+  EXPECT_TRUE(changed([](WorldDef& d) { d.bodies[1].drag->coefficient = 0.06; }));
+  EXPECT_TRUE(changed([](WorldDef& d) { d.bodies[0].spring->anchor.y = 1e-300; }));
+  EXPECT_TRUE(changed([](WorldDef& d) { d.bodies[1].gravity->acceleration.x = 0.5; }));
+  EXPECT_TRUE(changed([](WorldDef& d) { d.settings.flush_denormals = false; }));
   EXPECT_TRUE(changed([](WorldDef& d) { d.bodies[2].constant_force = ConstantForce{}; }));
   EXPECT_TRUE(changed([](WorldDef& d) { d.links[0].spring.rest_length = 1.5; }));
   EXPECT_TRUE(changed([](WorldDef& d) { std::swap(d.bodies[0], d.bodies[2]); }));
