@@ -46,6 +46,7 @@ std::uint32_t button_list(const Reader& r, const toml::table& t, std::string_vie
                                     [&](const auto& b) { return b.first == name; });
     if (found == buttons.end()) {
       std::vector<std::string> names;
+      names.reserve(buttons.size());
       for (const auto& b : buttons) names.emplace_back(b.first);
       const auto best = closest(name, names);
       r.fail(e.source(), at,
@@ -72,6 +73,7 @@ std::uint32_t drag_target(const Reader& r, const toml::node& n, const std::strin
     if (bodies[i].name == name) return static_cast<std::uint32_t>(i);
   }
   std::vector<std::string> names;
+  names.reserve(bodies.size());
   for (const BodyDef& b : bodies) names.push_back(b.name);
   const auto best = closest(name, names);
   r.fail(n.source(), path,
