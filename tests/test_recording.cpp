@@ -258,6 +258,11 @@ TEST(Recording, ForeignVersionAndCorruptFilesAreEachTheirKind) {
     EXPECT_EQ(parse_kind(replaced(text, from, to)), K::corrupt) << to;
   }
   EXPECT_EQ(parse_kind(text + "tick 70 push=0,0\n"), K::corrupt);  // text after `end`
+  // A control character in the scene path (fuzz_recording's first finding: it read, then
+  // could not be written back).
+  EXPECT_EQ(parse_kind(replaced(text, "scenes/small", std::string("scenes\0small", 12))),
+            K::corrupt);
+  EXPECT_EQ(parse_kind(replaced(text, "scenes/small", "scenes\tsmall")), K::corrupt);
   const std::string message = parse_message(replaced(text, "held=2 ", "held=400 "));
   EXPECT_NE(message.find("x.rec:11: held: bits 400 are not buttons"), std::string::npos) << message;
 }

@@ -172,6 +172,11 @@ void read_header(Lines& in, Recording& rec) {
       in.fail(Kind::corrupt, "scene", "expected `scene PATH`");
     }
     rec.scene = std::string(line->substr(6));
+    for (const char c : rec.scene) {  // a NUL in the path: found by fuzz_recording
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+        in.fail(Kind::corrupt, "scene", "the path holds a control character");
+      }
+    }
   }
   rec.definition_hash = hash16(in, header_line(in, "definition"), "definition");
   const std::string_view integrator = header_line(in, "integrator");
