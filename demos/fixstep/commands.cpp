@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
+#include <fixstep/input_script.hpp>
 #include <fixstep/manifest.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
@@ -235,10 +236,23 @@ int run_command(const RunOptions& o) {
     csv->append(has_exact ? csv_header + ",x_exact,y_exact,error\n" : csv_header + "\n");
     append_rows(*csv, reference, sim, has_exact, e0, energies, buffer);
   }
+  std::optional<InputScript> script;
+  std::optional<ScriptPlayer> player;
+  if (o.input) {
+    script = load_input_script(*o.input, scene.bodies);
+    for (const std::string& w : script->warnings) {
+      if (!o.scene.quiet) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    }
+    player.emplace(*script);
+  }
+  std::optional<Recorder> recorder;
+  if (o.record) recorder.emplace(world_def(scene), o.scene.scene, o.hash_every);
   const StopOnSignal signals;
   Progress progress("run", "tick", ticks, !o.scene.quiet);
   for (std::uint64_t i = 1; i <= ticks; ++i) {
-    sim.step();
+    const TickInput in = player ? player->next() : TickInput{.tick = i - 1};
+    sim.step(in);
+    if (recorder) recorder->record(in, sim);
     if (i % 1024 == 0 || i == ticks) progress.update(i);  // a clock read per 1024 ticks
     const bool diverged = sim.fault().has_value();        // the runtime guard (World::fault)
     const bool stop = StopOnSignal::requested() != 0;
@@ -249,8 +263,10 @@ int run_command(const RunOptions& o) {
   }
   progress.finish();
   if (csv) csv->commit();  // the rows up to and including the last tick run
+  if (recorder) write_recording(*o.record, recorder->finish(sim));  // the ticks run
   fmt::print("{}\n", describe(scene));
   fmt::print("{}\n", summary_line(sim, e0));
+  if (o.record) fmt::print("recording={}\n", *o.record);
   if (const int sig = StopOnSignal::requested()) {
     if (o.csv) fmt::print("csv={}\n", *o.csv);
     std::fprintf(stderr, "fixstep: stopped by %s after tick %llu; output written\n",
@@ -280,7 +296,10 @@ Session open_session(const Scene& scene, int width, int height) {
 }
 
 int render_command(const RenderOptions& o) {
-  const Scene scene = load_with_overrides(o.scene);
+  std::optional<Recording> rec;
+  if (o.replay) rec = read_recording(*o.replay);
+  const Scene scene =
+      rec ? scene_for_recording(o.scene.scene, *rec, o.scene.quiet) : load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   prepare_output_dir(o.out);
   Session session = open_session(scene, width, height);
@@ -293,7 +312,12 @@ int render_command(const RenderOptions& o) {
   const StopOnSignal signals;
   Progress progress("render", "frame", frames, !o.scene.quiet);
   for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
-    if (f > 0) session.advance(clock.frame_seconds());
+    if (f > 0 && rec) {  // the recorded input of each tick; none past the recording's end
+      session.advance_with(clock.frame_seconds(),
+                           [&](std::uint64_t t, Simulation& sim) { sim.step(rec->input_at(t)); });
+    } else if (f > 0) {
+      session.advance(clock.frame_seconds());
+    }
     session.draw();  // after a divergence: the last state, with the guard's message in the HUD
     writer.submit(session.renderer().pixels());
     manifest.add(f, session);
