@@ -22,6 +22,8 @@ inline constexpr int exit_bad_recording = 5;
 inline constexpr int exit_scene_mismatch = 6;
 /// A recording of a format version this build cannot read.
 inline constexpr int exit_unsupported_version = 7;
+/// Exit status when `run --sync-test K` found a re-simulated tick whose state differs.
+inline constexpr int exit_sync_test_failed = 8;
 
 struct SceneOptions {
   std::string scene;
@@ -41,7 +43,8 @@ struct RunOptions {
   std::int64_t every = 1;
   std::optional<std::string> input;   ///< --input SCRIPT: scripted input (input_script.hpp)
   std::optional<std::string> record;  ///< --record FILE: write a recording of the run
-  std::uint64_t hash_every = 60;      ///< --hash-every K: ticks between stored state hashes
+  std::uint64_t hash_every = 1;       ///< --hash-every K: ticks between stored state hashes
+  std::optional<int> sync_test;       ///< --sync-test K: roll back K ticks every tick (SyncTest)
 };
 
 struct RenderOptions {
@@ -62,7 +65,7 @@ struct ViewOptions {
   std::int64_t frames = 0;
   std::optional<double> fps;
   std::optional<std::string> record;  ///< --record FILE: write a recording of the session
-  std::uint64_t hash_every = 60;      ///< --hash-every K: ticks between stored state hashes
+  std::uint64_t hash_every = 1;       ///< --hash-every K: ticks between stored state hashes
 };
 
 struct ReplayOptions {

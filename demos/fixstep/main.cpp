@@ -1,5 +1,6 @@
 // fixstep: run, capture and view fixed-timestep scenes.
-//   fixstep run SCENE (--steps N | --duration S) [--csv FILE] [--every K] [overrides]
+//   fixstep run SCENE (--steps N | --duration S) [--csv FILE] [--every K] [--input SCRIPT]
+//               [--record FILE] [--sync-test K] [overrides]
 //   fixstep render SCENE --out DIR [--frames N] [--fps F] [--size WxH] [--png-level L]
 //                  [overrides]
 //   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [overrides]
@@ -42,7 +43,8 @@ void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
   auto* rec = cmd->add_option("--record", record,
                               "write a recording (inputs and state hashes) here, atomically");
   cmd->add_option("--hash-every", hash_every,
-                  "store the state hash every K ticks in the recording (default 60)")
+                  "store the state hash every K ticks in the recording (default 1: replay names "
+                  "the exact first tick that differs)")
       ->check(CLI::Range(std::uint64_t{1}, fixstep::max_recording_ticks))
       ->needs(rec);
 }
@@ -73,6 +75,11 @@ int main(int argc, char** argv) try {
   run_cmd->add_option("--input", run.input,
                       "scripted input: a TOML file of [[at]] tables (see README, Input scripts)");
   add_record_options(run_cmd, run.record, run.hash_every);
+  run_cmd
+      ->add_option("--sync-test", run.sync_test,
+                   "every tick, roll back K ticks, re-simulate them and compare the states "
+                   "(GGRS's sync test); exit 8 at the first difference")
+      ->check(CLI::Range(1, 10000));
 
   RenderOptions render;
   CLI::App* render_cmd =
