@@ -84,13 +84,17 @@ struct Motion {
 };
 
 /// Smallest s in [0, horizon] with gap(s) = g0 + b s + ½ c s² = 0 while approaching, or
-/// infinity. g0 <= tol counts as touching: an event at s = 0 if the body moves or accelerates
-/// into the plane (b < -vtol, or |b| <= vtol and c < 0). The roots use the cancellation-free
+/// infinity. g0 <= tol counts as touching (g0 = 0): an event at s = 0 if the body moves or
+/// accelerates into the plane (b < -vtol, or b <= vtol and c < 0), else at s = -2b/c when it
+/// leaves and falls back (c < 0). The roots use the cancellation-free
 /// form q = -½ (b + sgn(b) √(b² - 2 c g0)), s = g0/q and 2q/c (Numerical Recipes §5.6), which
 /// also covers c = 0.
 double first_impact(double g0, double b, double c, double horizon, double tol, double vtol) {
   constexpr double none = std::numeric_limits<double>::infinity();
-  if (g0 <= tol) return (b < -vtol || (std::abs(b) <= vtol && c < 0.0)) ? 0.0 : none;
+  if (g0 <= tol) {
+    if (b < -vtol || (b <= vtol && c < 0.0)) return 0.0;
+    return c < 0.0 && -2.0 * b / c <= horizon ? -2.0 * b / c : none;
+  }
   const double disc = b * b - 2.0 * c * g0;
   if (disc < 0.0) return none;
   const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
@@ -117,10 +121,20 @@ void impact(Motion& m, const PlaneDef& p, double r, double dt) {
   const double cut = std::min(speed, p.friction * (1.0 + e) * -vn);
   const V2 vt_after = speed > 0.0 ? ((speed - cut) / speed) * vt : vt;
   const V2 v_after = vt_after + (-e * vn) * n;
-  m.lost += 0.5 * (dot(m.v, m.v) - dot(v_after, v_after));
+  if (!rests) {
+    m.lost += 0.5 * (dot(m.v, m.v) - dot(v_after, v_after));  // on the trajectory
+    m.v = v_after;
+    return;
+  }
+  // At rest the integrator's velocity has no normal part either. The energy lost is the
+  // integrator's kinetic energy before and after: semi-implicit Euler's trajectory velocity
+  // leads by a dt/2 into the plane each tick it rests, which no physics dissipates.
+  const V2 before = m.v - m.offset;
+  m.offset = m.offset - dot(n, m.offset) * n;
+  const V2 after = v_after - m.offset;
+  m.lost += 0.5 * (dot(before, before) - dot(after, after));
   m.v = v_after;
-  if (rests) m.offset = m.offset - dot(n, m.offset) * n;  // at rest: no normal velocity
-  if (!rests || an >= 0.0) return;
+  if (an >= 0.0) return;
   // Resting: the normal force cancels a_n; sliding friction μ|a_n| acts over the rest T.
   const double T = dt - m.t;
   if (T <= 0.0) return;
@@ -220,7 +234,8 @@ void World<Real>::resolve_contacts() {
     }
     for (int i = 0; i < max_impacts; ++i) {
       const double horizon = dt - m.t;
-      const double vtol = rel * (norm(m.v) + norm(m.a) * dt);
+      // Rounding of the offset (x1 - x0)/dt is up to about eps |x|/dt.
+      const double vtol = rel * (norm(m.v) + norm(m.a) * dt + norm(m.x) / dt);
       double first = std::numeric_limits<double>::infinity();
       const PlaneDef* hit = nullptr;
       for (const PlaneDef& p : planes_) {
