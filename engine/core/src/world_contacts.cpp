@@ -116,9 +116,12 @@ void impact(Motion& m, const PlaneDef& p, double r, double dt) {
   const V2 vt = m.v - dot(n, m.v) * n;
   const bool rests = p.restitution * -vn <= std::max(-an, 0.0) * dt;
   const double e = rests ? 0.0 : p.restitution;
-  // Coulomb over the normal impulse (1 + e)|v_n| (per unit mass).
+  // Coulomb over the normal impulse (1 + e)|v_n| (per unit mass): of the trajectory at a
+  // bounce; at rest of the integrator's own velocity (semi-implicit Euler's trajectory leads
+  // it by a dt/2 into the plane, which no impulse stops).
+  const double vn_stopped = rests ? std::min(dot(n, m.v - m.offset), 0.0) : vn;
   const double speed = norm(vt);
-  const double cut = std::min(speed, p.friction * (1.0 + e) * -vn);
+  const double cut = std::min(speed, p.friction * (1.0 + e) * -vn_stopped);
   const V2 vt_after = speed > 0.0 ? ((speed - cut) / speed) * vt : vt;
   const V2 v_after = vt_after + (-e * vn) * n;
   if (!rests) {
