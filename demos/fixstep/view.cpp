@@ -1,8 +1,12 @@
 // `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <fixstep/pointer_drag.hpp>
+#include <fixstep/rewind.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
@@ -31,6 +35,19 @@ Window open_window(const std::string& title, int width, int height) {
 
 }  // namespace
 
+/// Rewind keeps this much of the past, s of simulated time (one state per tick).
+constexpr double rewind_seconds = 10.0;
+
+/// Push acceleration (m/s²) of the held arrow buttons: half a view-width per s² (visible at any
+/// scene scale).
+Vec2 push_of(std::uint32_t held, double view_width) {
+  const double a = 0.5 * view_width;
+  auto axis = [&](std::uint32_t plus, std::uint32_t minus) {
+    return (held & plus ? a : 0.0) - (held & minus ? a : 0.0);
+  };
+  return {axis(button_right, button_left), axis(button_up, button_down)};
+}
+
 int view_command(const ViewOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
@@ -39,33 +56,48 @@ int view_command(const ViewOptions& o) {
   Session session = open_session(scene, width, height);
   session.set_show_controls(true);
 
-  // Arrow keys push every body at half a view-width per s² (visible at any scene scale).
-  const double push = 0.5 * session.renderer().camera().width;
+  const Camera camera = session.renderer().camera();
+  InputSampler sampler;                                   // window events -> one input per tick
+  PointerDrag drag(10.0 * camera.width / double(width));  // picks within 10 pixels
+  RewindBuffer rewind(static_cast<std::size_t>(
+      std::max(1.0, std::ceil(rewind_seconds / session.simulation().settings().dt))));
+  rewind.push(session.simulation());
   RealClock real_clock;
-  const std::optional<VirtualClock> virtual_clock =
-      o.fps ? std::optional<VirtualClock>(VirtualClock(*o.fps)) : std::nullopt;
+  // --fps: a virtual clock (validated by VirtualClock), else the real one.
+  const double virtual_frame = o.fps ? VirtualClock(*o.fps).frame_seconds() : 0.0;
   constexpr auto frame_budget = std::chrono::microseconds(16667);  // ~60 Hz presentation
 
+  WindowEvents ev;
   for (std::int64_t frame = 0; o.frames == 0 || frame < o.frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
-    const WindowEvents ev = window.poll();
+    window.poll(ev);
     if (ev.quit) break;
     apply_loop_keys(ev, session.loop());
-    if (ev.restart) session.restart();
+    if (ev.restart) session.restart(), rewind.clear(), rewind.push(session.simulation());
+    feed(ev, sampler, camera, width, height);
+    sampler.set_push(push_of(sampler.held(), camera.width));
 
-    const double seconds =
-        virtual_clock ? virtual_clock->frame_seconds() : real_clock.frame_seconds();
-    TickInput input;
-    input.push = {ev.push_direction.x * push, ev.push_direction.y * push};
+    const double seconds = o.fps ? virtual_frame : real_clock.frame_seconds();
     const bool was_faulted = session.simulation().fault().has_value();
-    if (frame > 0) session.advance(seconds, input);
+    if (ev.rewind) {
+      // One tick back per frame while Backspace is held; ticks resume from there.
+      if (const WorldSnapshot* past = rewind.step_back()) session.restore(*past);
+    } else if (frame > 0) {
+      session.advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
+        TickInput input = sampler.sample(tick);
+        drag.apply(input, sim);
+        sim.step(input);
+        rewind.push(sim);
+      });
+    }
     if (const auto& fault = session.simulation().fault(); fault && !was_faulted) {
       // Session paused the loop; the HUD shows the message too ('r' restarts).
       std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
     }
+    session.show_drag(sampler.pointer(), drag.body());
     session.draw();
     window.present(session.renderer().pixels());
-    if (!virtual_clock) std::this_thread::sleep_until(frame_start + frame_budget);
+    if (!o.fps) std::this_thread::sleep_until(frame_start + frame_budget);
   }
   fmt::print("{} driver={}\n", describe(scene), window.driver());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));

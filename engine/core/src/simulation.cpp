@@ -106,6 +106,24 @@ void Simulation::fill_render_frame(double alpha, RenderFrame& out) const {
   });
 }
 
+std::uint64_t WorldSnapshot::tick() const {
+  if (!world_) return 0;
+  return std::visit([](const auto& w) { return w.tick(); }, *world_);
+}
+
+void Simulation::save(WorldSnapshot& out) const {
+  if (out.world_ && out.world_->index() == world_.index()) {
+    *out.world_ = world_;  // World's copy-assignment: vectors keep their storage
+  } else {
+    out.world_.emplace(world_);
+  }
+}
+
+void Simulation::restore(const WorldSnapshot& snapshot) {
+  if (!snapshot.world_) throw std::invalid_argument("snapshot: empty (nothing was saved into it)");
+  world_ = *snapshot.world_;
+}
+
 namespace {
 /// Throws std::invalid_argument with the stability guard's first finding of an unstable body
 /// or network in `def`.

@@ -162,9 +162,26 @@ std::size_t World<Real>::bytes_per_body_step() {
 }
 
 template <class Real>
+void World<Real>::apply_drag(const TickInput& input) {
+  // The drag spring a = -ω²(x - p) - 2ζω v per unit mass, taken implicitly over the tick
+  // (v1 = v0 + h a(x0 + h v1, v1)), so it is stable at any dt and any integrator:
+  //   v1 = (v0 - h ω² (x0 - p)) / (1 + 2ζω h + ω² h²).
+  // The integrator then steps the body with v1 and its own forces (first-order splitting).
+  constexpr double two_pi = 6.283185307179586;
+  const double w = two_pi * drag_frequency, h = settings_.dt;
+  const double denominator = 1.0 + 2.0 * drag_damping_ratio * w * h + w * w * h * h;
+  const std::size_t j = input.drag_body;
+  const double vx = (double(vx_[j]) - h * w * w * (double(x_[j]) - input.pointer.x)) / denominator;
+  const double vy = (double(vy_[j]) - h * w * w * (double(y_[j]) - input.pointer.y)) / denominator;
+  if (std::isfinite(vx) && std::isfinite(vy))
+    vx_[j] = static_cast<Real>(vx), vy_[j] = static_cast<Real>(vy);
+}
+
+template <class Real>
 void World<Real>::step(const TickInput& input) {
   const FlushDenormals ftz(settings_.flush_denormals);
   if (terms_dirty_) rebuild_terms();
+  if (input.drag_body < x_.size()) apply_drag(input);
   if (keep_previous_) {
     std::copy(x_.begin(), x_.end(), prev_x_.begin());
     std::copy(y_.begin(), y_.end(), prev_y_.begin());
@@ -251,6 +268,7 @@ void World<Real>::record_fault() {
 #define FIXSTEP_INSTANTIATE(Real)                                                               \
   template void World<Real>::step(const TickInput&);                                            \
   template void World<Real>::integrate(const TickInput&);                                       \
+  template void World<Real>::apply_drag(const TickInput&);                                      \
   template void World<Real>::accelerations(std::span<Real>, std::span<Real>, const TickInput&); \
   template std::size_t World<Real>::bytes_per_body_step();                                      \
   template void World<Real>::record_fault();                                                    \

@@ -16,6 +16,12 @@
 
 namespace fixstep {
 
+Vec2 screen_to_world(const Camera& camera, double px, double py, int width, int height) {
+  const double scale = camera.width / double(width);  // m per pixel, both axes
+  return {camera.center.x + (px - 0.5 * double(width)) * scale,
+          camera.center.y - (py - 0.5 * double(height)) * scale};
+}
+
 namespace {
 
 // How far quads reach beyond the edge of a line or disc, px. The fragment shader's coverage

@@ -157,11 +157,39 @@ Session::Session(WorldDef def, const SessionSettings& settings)
 FrameResult Session::advance(double frame_seconds, const TickInput& input) {
   // After the runtime guard fires, no further tick runs and the loop pauses: the state stays
   // at the tick that diverged, and draw() shows why.
-  const FrameResult r = loop_.advance(frame_seconds, input, [&](const TickInput& in) {
-    if (!sim_->fault()) sim_->step(in);
+  return advance_with(frame_seconds, [&](std::uint64_t t, Simulation& sim) {
+    TickInput in = input;
+    in.tick = t;
+    sim.step(in);
   });
+}
+
+FrameResult Session::advance(double frame_seconds, InputSampler& sampler) {
+  return advance_with(frame_seconds,
+                      [&](std::uint64_t t, Simulation& sim) { sim.step(sampler.sample(t)); });
+}
+
+void Session::pause_on_fault() {
   if (sim_->fault()) loop_.set_paused(true);
-  return r;
+}
+
+void Session::save(Snapshot& out) const {
+  sim_->save(out.world);
+  out.loop = loop_.state();
+}
+
+void Session::restore(const WorldSnapshot& world) {
+  sim_->restore(world);
+  loop_.restore({0.0, world.tick()});
+  fault_lines_.clear();
+  renderer_.clear_trails();
+}
+
+void Session::restore(const Snapshot& snapshot) {
+  sim_->restore(snapshot.world);
+  loop_.restore(snapshot.loop);
+  fault_lines_.clear();
+  renderer_.clear_trails();
 }
 
 void Session::restart() {
@@ -174,6 +202,10 @@ void Session::restart() {
 
 void Session::draw() {
   sim_->fill_render_frame(loop_.alpha(), frame_);
+  if (drag_body_ < frame_.x.size()) {
+    frame_.springs.push_back(
+        {static_cast<float>(drag_pointer_.x), static_cast<float>(drag_pointer_.y), drag_body_});
+  }
   const double e = sim_->energy().total();
   hud_.clear();
   const std::size_t n = sim_->body_count();
@@ -199,7 +231,9 @@ void Session::draw() {
   if (show_controls_) {
     hud_.push_back(
         fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
-    hud_.emplace_back("space pause  . step  +/- speed  r restart  arrows push  esc quit");
+    hud_.emplace_back(
+        "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind  esc "
+        "quit");
   }
   renderer_.draw(frame_, hud_);
 }

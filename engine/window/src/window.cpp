@@ -154,33 +154,100 @@ std::string Window::driver() const {
   return d ? d : "none";
 }
 
+namespace {
+
+/// The InputButton bit of a key, or 0.
+std::uint32_t key_button(SDL_Keycode key) {
+  switch (key) {
+    case SDLK_LEFT:
+      return button_left;
+    case SDLK_RIGHT:
+      return button_right;
+    case SDLK_UP:
+      return button_up;
+    case SDLK_DOWN:
+      return button_down;
+    case SDLK_RETURN:
+    case SDLK_KP_ENTER:
+      return button_action;
+    default:
+      return 0;
+  }
+}
+
+std::uint32_t mouse_button(Uint8 button) {
+  if (button == SDL_BUTTON_LEFT) return button_pointer_primary;
+  if (button == SDL_BUTTON_RIGHT) return button_pointer_secondary;
+  return 0;
+}
+
+/// The window's own keys (pause, step, speed, restart, quit).
+void window_key(SDL_Keycode key, WindowEvents& ev) {
+  switch (key) {
+    case SDLK_ESCAPE:
+      ev.quit = true;
+      break;
+    case SDLK_SPACE:
+      ev.toggle_pause = true;
+      break;
+    case SDLK_PERIOD:
+      ev.single_step = true;
+      break;
+    case SDLK_PLUS:
+    case SDLK_EQUALS:
+    case SDLK_KP_PLUS:
+      ++ev.time_scale_steps;
+      break;
+    case SDLK_MINUS:
+    case SDLK_KP_MINUS:
+      --ev.time_scale_steps;
+      break;
+    case SDLK_r:
+      ev.restart = true;
+      break;
+    default:
+      break;
+  }
+}
+
+void add_edge(WindowEvents& ev, bool press, std::uint32_t buttons) {
+  if (buttons != 0) ev.edges.push_back({press, buttons});
+}
+
+}  // namespace
+
 WindowEvents Window::poll() {
   WindowEvents ev;
+  poll(ev);
+  return ev;
+}
+
+void Window::poll(WindowEvents& ev) {
+  ev.quit = ev.toggle_pause = ev.single_step = ev.restart = false;
+  ev.time_scale_steps = 0;
+  ev.edges.clear();
   SDL_Event e;
   while (SDL_PollEvent(&e)) {
-    if (e.type == SDL_QUIT) ev.quit = true;
-    if (e.type != SDL_KEYDOWN) continue;
-    switch (e.key.keysym.sym) {
-      case SDLK_ESCAPE:
+    switch (e.type) {
+      case SDL_QUIT:
         ev.quit = true;
         break;
-      case SDLK_SPACE:
-        ev.toggle_pause = true;
+      case SDL_KEYDOWN:
+        if (!e.key.repeat) add_edge(ev, true, key_button(e.key.keysym.sym));
+        window_key(e.key.keysym.sym, ev);
         break;
-      case SDLK_PERIOD:
-        ev.single_step = true;
+      case SDL_KEYUP:
+        add_edge(ev, false, key_button(e.key.keysym.sym));
         break;
-      case SDLK_PLUS:
-      case SDLK_EQUALS:
-      case SDLK_KP_PLUS:
-        ++ev.time_scale_steps;
+      case SDL_MOUSEBUTTONDOWN:
+      case SDL_MOUSEBUTTONUP:
+        add_edge(ev, e.type == SDL_MOUSEBUTTONDOWN, mouse_button(e.button.button));
+        ev.pointer_seen = true;
+        ev.pointer_x = e.button.x + 0.5, ev.pointer_y = e.button.y + 0.5;
         break;
-      case SDLK_MINUS:
-      case SDLK_KP_MINUS:
-        --ev.time_scale_steps;
-        break;
-      case SDLK_r:
-        ev.restart = true;
+      case SDL_MOUSEMOTION:
+        ev.pointer_seen = true;
+        ev.pointer_x = e.motion.x + 0.5, ev.pointer_y = e.motion.y + 0.5;
         break;
       default:
         break;
@@ -189,7 +256,17 @@ WindowEvents Window::poll() {
   const Uint8* keys = SDL_GetKeyboardState(nullptr);
   ev.push_direction.x = double(keys[SDL_SCANCODE_RIGHT]) - double(keys[SDL_SCANCODE_LEFT]);
   ev.push_direction.y = double(keys[SDL_SCANCODE_UP]) - double(keys[SDL_SCANCODE_DOWN]);
-  return ev;
+  ev.rewind = keys[SDL_SCANCODE_BACKSPACE] != 0;
+}
+
+void feed(const WindowEvents& ev, InputSampler& sampler, const Camera& camera, int width,
+          int height) {
+  for (const WindowEvents::ButtonEdge& edge : ev.edges) {
+    edge.press ? sampler.press(edge.buttons) : sampler.release(edge.buttons);
+  }
+  if (ev.pointer_seen) {
+    sampler.set_pointer(screen_to_world(camera, ev.pointer_x, ev.pointer_y, width, height));
+  }
 }
 
 void Window::present(std::span<const std::uint8_t> rgba) {

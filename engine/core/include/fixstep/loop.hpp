@@ -47,6 +47,11 @@ class FixedStepLoop {
   template <class TickFn>
   FrameResult advance(double frame_seconds, InputSampler& sampler, TickFn&& tick);
 
+  /// The accumulator loop itself: calls tick_at(tick index) once per tick it runs, leaving the
+  /// input of each tick to the caller (a sampler, a recording, a script).
+  template <class TickAt>
+  FrameResult advance_with(double frame_seconds, TickAt&& tick_at);
+
   /// The loop's restorable state (part of a snapshot): the accumulator and the tick count.
   struct State {
     double accumulator = 0.0;  ///< s
@@ -76,10 +81,6 @@ class FixedStepLoop {
   }
 
  private:
-  /// The accumulator loop; calls tick_at(tick index) for each tick it runs.
-  template <class TickAt>
-  FrameResult advance_with(double frame_seconds, TickAt&& tick_at);
-
   LoopSettings settings_;
   int tick_cap_;
   /// A tick is due once the accumulator reaches dt less a relative 1e-9: 0.25 s of frames

@@ -34,6 +34,21 @@ struct RenderFrame {
   std::vector<PlaneDef> planes;
 };
 
+/// A restorable state of a Simulation (what game physics calls a snapshot): a complete copy of
+/// its world, taken by Simulation::save and put back by Simulation::restore, bit for bit.
+/// Memory: about the world's own (every per-body and per-link array).
+class WorldSnapshot {
+ public:
+  /// True until something is saved into it.
+  [[nodiscard]] bool empty() const { return !world_; }
+  /// The tick of the saved state; 0 when empty.
+  [[nodiscard]] std::uint64_t tick() const;
+
+ private:
+  friend class Simulation;
+  std::optional<std::variant<World<float>, World<double>>> world_;
+};
+
 /// A World<float> or World<double> behind one interface.
 class Simulation {
  public:
@@ -84,6 +99,14 @@ class Simulation {
   /// set_keep_previous(true) to differ from the current state) and appearances. Reuses out's
   /// storage: no allocation once it has grown to the body count.
   void fill_render_frame(double alpha, RenderFrame& out) const;
+
+  /// Saves the complete state into `out`, reusing its storage: no allocation once `out` holds
+  /// a state of the same shape (same bodies, links and components).
+  void save(WorldSnapshot& out) const;
+  /// Puts back a saved state: every later step gives the same bits as after the save. The
+  /// snapshot may come from another Simulation (it replaces this one's world, precision
+  /// included). Throws std::invalid_argument for an empty snapshot.
+  void restore(const WorldSnapshot& snapshot);
 
  private:
   std::variant<World<float>, World<double>> world_;

@@ -104,6 +104,24 @@ struct ImplicitSolverDeleter {
   void operator()(ImplicitSolver<Real>* s) const;
 };
 
+/// Owns a cache that a copy of its owner does not share: a copy starts empty (the owner
+/// rebuilds the cache on demand) and copying into an owner drops its cache; moving moves it.
+/// For parts that hold no state a tick's result depends on: the worker thread and the implicit
+/// solver's factorisation, so a World can be copied (a snapshot) and stays bit-exact.
+template <class T, class Deleter>
+class CachePtr : public std::unique_ptr<T, Deleter> {
+ public:
+  CachePtr() = default;
+  CachePtr(const CachePtr& /*other*/) noexcept : std::unique_ptr<T, Deleter>() {}
+  CachePtr& operator=(const CachePtr& other) noexcept {
+    if (this != &other) this->reset();
+    return *this;
+  }
+  CachePtr(CachePtr&&) noexcept = default;
+  CachePtr& operator=(CachePtr&&) noexcept = default;
+  ~CachePtr() = default;
+};
+
 /// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
 struct SparseSet {
   std::vector<std::uint32_t> sparse;  ///< slot -> dense index + 1; 0 = absent
@@ -129,6 +147,10 @@ struct Store {
 }  // namespace detail
 
 /// A world of point bodies stepped at a fixed dt in precision Real (float or double).
+///
+/// Copies are complete, independent states (a snapshot): bodies, components, links, tick,
+/// energy accounts and the runtime guard's fault; a copy steps to the same bits as the
+/// original. Copy-assigning between worlds of equal size reuses storage (no allocation).
 ///
 /// Errors: creation and setters throw std::invalid_argument naming the body and field when a
 /// value is non-finite (also after narrowing to Real) or out of range; using a stale or null
@@ -212,6 +234,11 @@ class World {
   /// (each gathers its links' forces in a fixed order), on one or two threads (see
   /// WorldSettings::threads); implicit Euler solves the linear system of the whole network
   /// (world_implicit.cpp). Both paths give bit-identical states where both apply.
+  ///
+  /// When input.drag_body names a body, the pointer's drag spring (input.hpp: drag_frequency,
+  /// drag_damping_ratio) first changes that body's velocity, implicitly over the tick; its
+  /// work is not in the energy account (an external force, like push). A non-finite pointer
+  /// leaves the velocity as it was.
   void step(const TickInput& input = {});
   /// Bytes one tick moves between memory and the core per body (STREAM's convention: each
   /// array element read or written counts once, write-allocate traffic is not counted):
@@ -277,6 +304,7 @@ class World {
   const detail::Store<C>& store() const;
   void validate(const Body& body, const std::string& who) const;
   // stepping (world_step.cpp)
+  void apply_drag(const TickInput& input);
   const Real* damping_decay(double tau);
   static void validate_component(const SpringDamper& c, const std::string& who);
   static void validate_component(const ConstantForce& c, const std::string& who);
@@ -359,8 +387,8 @@ class World {
   // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
   // states and accumulators (see world_coupled.cpp).
   std::vector<Real> fx_, fy_, s_[4], d_[4], power_body_, power_link_;
-  std::unique_ptr<detail::Workers, detail::WorkersDeleter> workers_;
-  std::unique_ptr<detail::ImplicitSolver<Real>, detail::ImplicitSolverDeleter<Real>> implicit_;
+  detail::CachePtr<detail::Workers, detail::WorkersDeleter> workers_;
+  detail::CachePtr<detail::ImplicitSolver<Real>, detail::ImplicitSolverDeleter<Real>> implicit_;
   // (world_coupled.cpp)
   void step_multipass(const TickInput& input);
   template <class Pass>

@@ -30,6 +30,13 @@ struct Camera {
   double width = 10.0;  ///< m, > 0
 };
 
+/// The world point (m) under pixel (px, py) of a width x height frame shown through `camera`
+/// (px to the right and py down from the top-left corner, as SDL reports the mouse; pixel
+/// centres at +0.5). The inverse of the renderer's projection: the view is camera.width wide
+/// and camera.width * height / width tall, centred on camera.center, y up.
+[[nodiscard]] Vec2 screen_to_world(const Camera& camera, double px, double py, int width,
+                                   int height);
+
 /// Frame sizes accepted by Renderer, pixels (OSMesa's own limit is larger).
 inline constexpr int min_frame_size = 16;
 inline constexpr int max_frame_size = 8192;

@@ -39,15 +39,45 @@ class Session {
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets
   /// `input` (see TickInput).
   FrameResult advance(double frame_seconds, const TickInput& input = {});
+  /// One frame whose ticks the caller runs: tick(tick index, Simulation&) is called once per
+  /// tick the loop runs and must step the simulation once (sim.step(input) with that tick's
+  /// input: from an InputSampler, a recording, a script); it may also change the world between
+  /// ticks (a game's rules). No tick runs once the runtime guard has fired.
+  template <class TickFn>
+  FrameResult advance_with(double frame_seconds, TickFn&& tick);
+  /// One frame whose ticks take their inputs from `sampler` (each press or release reaches
+  /// exactly one tick; see InputSampler).
+  FrameResult advance(double frame_seconds, InputSampler& sampler);
+
+  /// A restorable state of the session: the world's complete state and the loop's (tick,
+  /// accumulator). Pause, time scale, camera and HUD are not part of it.
+  struct Snapshot {
+    WorldSnapshot world;
+    FixedStepLoop::State loop;
+  };
+  /// Saves into `out`, reusing its storage (no allocation once it holds a state of this world).
+  void save(Snapshot& out) const;
+  /// Restores a state saved from this session; trails are cleared. Throws
+  /// std::invalid_argument for an empty snapshot.
+  void restore(const Snapshot& snapshot);
+  /// Restores only the world (e.g. from a RewindBuffer): the loop continues from the
+  /// snapshot's tick with an empty accumulator; trails are cleared. Throws
+  /// std::invalid_argument for an empty snapshot.
+  void restore(const WorldSnapshot& world);
   /// Renders the state interpolated by the loop's alpha, with the HUD, into renderer().pixels().
   void draw();
   /// Back to the initial state (tick 0), trails cleared; pause and time scale are kept.
   void restart();
+  /// Draws the pointer's drag spring (from `pointer`, m, to body `body`) in the next draw()s,
+  /// as the springs are drawn; no_body hides it.
+  void show_drag(Vec2 pointer, std::uint32_t body) { drag_pointer_ = pointer, drag_body_ = body; }
   /// Shows the window's key help in the HUD.
   void set_show_controls(bool show) { show_controls_ = show; }
 
   [[nodiscard]] const WorldDef& definition() const { return def_; }
   [[nodiscard]] const Simulation& simulation() const { return *sim_; }
+  /// The simulation, for programs that change the world between ticks (a game's rules).
+  [[nodiscard]] Simulation& simulation() { return *sim_; }
   [[nodiscard]] FixedStepLoop& loop() { return loop_; }
   /// The loop's interpolation weight: draw() shows lerp(previous tick, current tick, alpha).
   [[nodiscard]] double alpha() const { return loop_.alpha(); }
@@ -55,6 +85,9 @@ class Session {
   [[nodiscard]] double initial_energy() const { return initial_energy_; }
 
  private:
+  /// Pauses the loop once the runtime guard has fired.
+  void pause_on_fault();
+
   WorldDef def_;
   std::string title_;
   std::unique_ptr<Simulation> sim_;
@@ -65,6 +98,17 @@ class Session {
   std::vector<std::string> fault_lines_;  ///< the runtime guard's message for the HUD, once built
   double initial_energy_ = 0.0;
   bool show_controls_ = false;
+  Vec2 drag_pointer_{};
+  std::uint32_t drag_body_ = no_body;
 };
+
+template <class TickFn>
+FrameResult Session::advance_with(double frame_seconds, TickFn&& tick) {
+  const FrameResult r = loop_.advance_with(frame_seconds, [&](std::uint64_t t) {
+    if (!sim_->fault()) tick(t, *sim_);
+  });
+  pause_on_fault();
+  return r;
+}
 
 }  // namespace fixstep

@@ -9,8 +9,11 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "fixstep/input.hpp"
 #include "fixstep/loop.hpp"
+#include "fixstep/render.hpp"
 #include "fixstep/types.hpp"
 
 namespace fixstep {
@@ -28,8 +31,23 @@ struct WindowEvents {
   bool single_step = false;   ///< '.'
   int time_scale_steps = 0;   ///< '+' = +1, '-' = -1 (each press)
   bool restart = false;       ///< 'r'
-  Vec2 push_direction{};      ///< arrow keys held: components in {-1, 0, 1}
+  bool rewind = false;    ///< Backspace held: step time backwards (programs that keep snapshots)
+  Vec2 push_direction{};  ///< arrow keys held: components in {-1, 0, 1}
+  /// A press or release of tick-input buttons (InputButton bits: arrows, Enter, mouse
+  /// buttons), in the order they happened.
+  struct ButtonEdge {
+    bool press = false;
+    std::uint32_t buttons = 0;
+  };
+  std::vector<ButtonEdge> edges;
+  bool pointer_seen = false;                ///< the pointer is over the window (pointer is valid)
+  double pointer_x = 0.0, pointer_y = 0.0;  ///< pixels from the top-left corner
 };
+
+/// Hands the tick-input part of `ev` to `sampler`: every button edge in order, and the pointer
+/// converted to world metres through `camera` for a width x height frame (screen_to_world).
+void feed(const WindowEvents& ev, InputSampler& sampler, const Camera& camera, int width,
+          int height);
 
 /// Applies the loop keys of `ev` to `loop`, the same in every fixstep window: space toggles
 /// pause; '.' pauses and runs exactly one tick on the next advance(); each '+' doubles and each
@@ -64,6 +82,9 @@ class Window {
 
   /// Drains SDL's event queue.
   WindowEvents poll();
+  /// Drains SDL's event queue into `ev`, reusing its storage (no allocation once its edge list
+  /// has grown).
+  void poll(WindowEvents& ev);
   /// Shows an RGBA8 frame (height rows of width*4 bytes, top row first), unscaled when the
   /// window has the frame's size. Throws WindowError if the frame has the wrong size.
   void present(std::span<const std::uint8_t> rgba);

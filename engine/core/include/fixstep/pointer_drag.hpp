@@ -1,0 +1,36 @@
+// Pick and drag with the pointer, as a rule on tick inputs (the mouse joint of Box2D's
+// samples): which body the pointer holds is decided at a tick, from that tick's state, and
+// written into the tick's input, so a recording carries it and a replay needs no picking.
+#pragma once
+
+#include <cstdint>
+
+#include "fixstep/input.hpp"
+#include "fixstep/simulation.hpp"
+
+namespace fixstep {
+
+/// Dense index of the body nearest to `point` (m) whose distance is within its reach: its
+/// Appearance radius, or `tolerance` (m) if that is larger; no_body if none. O(bodies).
+[[nodiscard]] std::uint32_t pick_body(const Simulation& sim, Vec2 point, double tolerance);
+
+/// Applies the pick-and-drag rule to the inputs of successive ticks: a tick whose input
+/// presses button_pointer_primary (with the button still held) picks the body under the
+/// pointer (pick_body); that body stays dragged until a tick releases the button. The drag is
+/// written into TickInput::drag_body; World::step pulls the body towards TickInput::pointer.
+class PointerDrag {
+ public:
+  /// tolerance: the pick reach of bodies smaller than it, m (e.g. a few pixels in metres);
+  /// finite and >= 0, else std::invalid_argument.
+  explicit PointerDrag(double tolerance);
+  /// Updates the drag from `input`'s presses and releases and sets input.drag_body.
+  void apply(TickInput& input, const Simulation& sim);
+  [[nodiscard]] std::uint32_t body() const { return body_; }  ///< dragged body, or no_body
+  void reset() { body_ = no_body; }
+
+ private:
+  double tolerance_;
+  std::uint32_t body_ = no_body;
+};
+
+}  // namespace fixstep

@@ -1,0 +1,44 @@
+#include "fixstep/pointer_drag.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace fixstep {
+
+std::uint32_t pick_body(const Simulation& sim, Vec2 point, double tolerance) {
+  std::uint32_t best = no_body;
+  double best_distance = 0.0;
+  sim.visit([&](const auto& w) {
+    for (std::size_t j = 0; j < w.body_count(); ++j) {
+      const double d = std::hypot(double(w.x()[j]) - point.x, double(w.y()[j]) - point.y);
+      const Appearance* a = w.template get<Appearance>(w.entities()[j]);
+      const double reach = std::max(a ? a->radius : 0.0, tolerance);
+      if (d <= reach && (best == no_body || d < best_distance)) {
+        best = static_cast<std::uint32_t>(j);
+        best_distance = d;
+      }
+    }
+  });
+  return best;
+}
+
+PointerDrag::PointerDrag(double tolerance) : tolerance_(tolerance) {
+  if (!std::isfinite(tolerance) || tolerance < 0.0) {
+    throw std::invalid_argument(
+        fmt::format("pointer drag: tolerance must be finite and >= 0 m (got {})", tolerance));
+  }
+}
+
+void PointerDrag::apply(TickInput& input, const Simulation& sim) {
+  const bool held = (input.held & button_pointer_primary) != 0;
+  if ((input.pressed & button_pointer_primary) && held) {
+    body_ = pick_body(sim, input.pointer, tolerance_);
+  } else if (!held) {
+    body_ = no_body;
+  }
+  input.drag_body = body_;
+}
+
+}  // namespace fixstep

@@ -1,0 +1,57 @@
+#include "fixstep/sync_test.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <stdexcept>
+
+namespace fixstep {
+
+SyncTest::SyncTest(Simulation& sim, int rollback_ticks)
+    : sim_(sim),
+      rollback_(static_cast<std::uint64_t>(std::max(rollback_ticks, 1))),
+      first_tick_(sim.tick()) {
+  if (rollback_ticks < 1) {
+    throw std::invalid_argument(
+        fmt::format("sync test: rollback must be >= 1 tick (got {})", rollback_ticks));
+  }
+  slots_.resize(rollback_ + 1);
+  remember(first_tick_);
+}
+
+void SyncTest::remember(std::uint64_t tick) {
+  Slot& s = slot(tick);
+  sim_.save(s.state);
+  s.hash = sim_.state_hash();
+  s.dissipated = sim_.dissipated_energy();
+}
+
+bool SyncTest::check(std::uint64_t tick) {
+  const Slot& s = slot(tick);
+  const std::uint64_t hash = sim_.state_hash();
+  const bool same_dissipated = std::bit_cast<std::uint64_t>(sim_.dissipated_energy()) ==
+                               std::bit_cast<std::uint64_t>(s.dissipated);
+  if (hash == s.hash && same_dissipated) return true;
+  mismatch_ = Mismatch{tick, s.hash, hash, hash == s.hash};
+  return false;
+}
+
+bool SyncTest::step(const TickInput& input) {
+  const std::uint64_t t = sim_.tick();
+  slot(t).input = input;
+  sim_.step(input);
+  if (mismatch_) return false;
+  remember(t + 1);
+  const std::uint64_t back = std::min(rollback_, t + 1 - first_tick_);
+  sim_.restore(slot(t + 1 - back).state);
+  for (std::uint64_t k = t + 1 - back; k <= t; ++k) {
+    sim_.step(slot(k).input);
+    ++resimulated_;
+    if (!check(k + 1)) return false;
+    sim_.save(slot(k + 1).state);
+  }
+  return true;
+}
+
+}  // namespace fixstep
