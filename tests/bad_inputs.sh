@@ -293,6 +293,34 @@ case_ "springs but no bodies" "$ok_world"'
 [[spring]]
 bodies = ["a", "b"]
 stiffness = 1.0'
+case_ "[[plane]] with a zero normal" "$ok_world
+$body
+[[plane]]
+normal = [0.0, 0.0]"
+case_ "[[plane]] without a normal" "$ok_world
+$body
+[[plane]]
+offset = 1.0"
+case_ "[[plane]] restitution outside [0, 1]" "$ok_world
+$body
+[[plane]]
+normal = [0.0, 1.0]
+restitution = 1.5"
+case_ "[[plane]] negative friction" "$ok_world
+$body
+[[plane]]
+normal = [0.0, 1.0]
+friction = -0.2"
+case_ "[[plane]] normal = nan" "$ok_world
+$body
+[[plane]]
+normal = [nan, 1.0]"
+case_ "[[plane]] offset and point both given" "$ok_world
+$body
+[[plane]]
+normal = [0.0, 1.0]
+offset = 0.0
+point = [0.0, 0.0]"
 case_ "[[chain]] without count" "$ok_world
 [[chain]]
 start = [0.0, 0.0]"

@@ -144,11 +144,16 @@ std::uint64_t ticks_for(double duration, double dt) {
 
 /// The exact solution of a scene where one exists: per body (exact::solve) when the scene has
 /// no links, for the whole network (exact::LinearNetwork) when it has and they are linear
-/// with proportional damping.
+/// with proportional damping. Bodies that bounce on the scene's planes have none (the exact
+/// solutions know no contacts), nor has a network holding one.
 class ExactReference {
  public:
   explicit ExactReference(const Scene& scene) : scene_(scene) {
-    if (!scene.links.empty()) network_ = exact::LinearNetwork::make(scene.bodies, scene.links);
+    const bool bounces = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                     [&](const BodyDef& b) { return bouncing(b); });
+    if (!scene.links.empty() && !bounces) {
+      network_ = exact::LinearNetwork::make(scene.bodies, scene.links);
+    }
   }
   /// Fills out[j] with body j's exact state at t (s), or nullopt where there is none.
   void at(double t, std::vector<std::optional<Body>>& out) const {
@@ -158,11 +163,17 @@ class ExactReference {
       network_->state(t, states_);
       for (std::size_t j = 0; j < states_.size(); ++j) out[j] = states_[j];
     } else if (scene_.links.empty()) {
-      for (std::size_t j = 0; j < out.size(); ++j) out[j] = exact::solve(scene_.bodies[j], t);
+      for (std::size_t j = 0; j < out.size(); ++j) {
+        if (!bouncing(scene_.bodies[j])) out[j] = exact::solve(scene_.bodies[j], t);
+      }
     }
   }
 
  private:
+  [[nodiscard]] bool bouncing(const BodyDef& b) const {
+    return b.collider && !scene_.planes.empty();
+  }
+
   const Scene& scene_;
   std::optional<exact::LinearNetwork> network_;
   mutable std::vector<Body> states_;

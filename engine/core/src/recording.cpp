@@ -54,7 +54,7 @@ void hash_body(Fnv1a& h, const BodyDef& b) {
   h.add_optional(b.constant_force, [&](const ConstantForce& f) { h.add(f.force); });
   h.add_optional(b.gravity, [&](const Gravity& g) { h.add(g.acceleration); });
   h.add_optional(b.drag, [&](const LinearDrag& d) { h.add(d.coefficient); });
-  // MERGE: BodyDef's Collider component (another branch) goes here, present flag then fields.
+  h.add_optional(b.collider, [&](const Collider& c) { h.add(c.radius); });
 }
 
 }  // namespace
@@ -71,7 +71,10 @@ std::uint64_t definition_hash(const WorldDef& def) {
     h.add(l.body_a), h.add(l.body_b);
     h.add(l.spring.stiffness), h.add(l.spring.damping), h.add(l.spring.rest_length);
   }
-  // MERGE: WorldDef::planes (another branch) go here: their count, then each plane's fields.
+  h.add(def.planes.size());
+  for (const PlaneDef& p : def.planes) {
+    h.add(p.normal), h.add(p.offset), h.add(p.restitution), h.add(p.friction);
+  }
   return h.value();
 }
 

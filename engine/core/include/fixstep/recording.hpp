@@ -30,8 +30,9 @@ inline constexpr std::size_t max_recording_bytes = 256u << 20;
 
 /// FNV-1a (64-bit) over the exact bits of everything in `def` that changes the simulated
 /// states: precision, dt, integrator, substeps, flush_denormals, and for every body in order
-/// its mass, position, velocity and components (spring, constant force, gravity, drag: present
-/// or not, and each field), then every link (indices and spring). Left out, because they change
+/// its mass, position, velocity and components (spring, constant force, gravity, drag,
+/// collider: present or not, and each field), then every link (indices and spring) and every
+/// plane (normal, offset, restitution, friction). Left out, because they change
 /// no state: body names and appearances (drawing only), track_dissipation and threads (the
 /// states are bit-identical either way) and allow_unstable. Two definitions with the same hash
 /// step to the same states from the same inputs.
