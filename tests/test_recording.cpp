@@ -182,6 +182,18 @@ TEST(Recording, DefinitionHashCoversWhatChangesStatesOnly) {
   EXPECT_TRUE(changed([](WorldDef& d) { d.bodies[2].constant_force = ConstantForce{}; }));
   EXPECT_TRUE(changed([](WorldDef& d) { d.links[0].spring.rest_length = 1.5; }));
   EXPECT_TRUE(changed([](WorldDef& d) { std::swap(d.bodies[0], d.bodies[2]); }));
+  EXPECT_TRUE(changed([](WorldDef& d) { d.bodies[1].collider = Collider{.radius = 0.25}; }));
+  EXPECT_TRUE(changed([](WorldDef& d) { d.planes.push_back(PlaneDef{}); }));
+  WorldDef with_plane = def;
+  with_plane.planes.push_back(PlaneDef{.normal = {0, 1}, .offset = -5.0, .restitution = 0.5});
+  const std::uint64_t hp = definition_hash(with_plane);
+  for (auto edit :
+       {+[](PlaneDef& p) { p.normal.x = 0.25; }, +[](PlaneDef& p) { p.offset = -4.0; },
+        +[](PlaneDef& p) { p.restitution = 0.75; }, +[](PlaneDef& p) { p.friction = 0.1; }}) {
+    WorldDef d = with_plane;
+    edit(d.planes[0]);
+    EXPECT_NE(definition_hash(d), hp);
+  }
 }
 
 TEST(Recording, RecorderFollowsTheTimelineKeptAfterARewind) {
