@@ -271,6 +271,111 @@ else
   echo "skip - xvfb-run not installed (bash .ci/install-deps installs it)"
 fi
 
+# --- the window, recorded: real mouse drags (xdotool) under Xvfb, then replayed headless -----
+cat >"$work/dragme.toml" <<'EOF_SCENE'
+[world]
+dt = 0.01
+[view]
+center = [0.0, 0.0]
+width = 20.0
+[[body]]
+name = "ball"
+mass = 1.0
+position = [0.0, 0.0]
+spring = { anchor = [0.0, 0.0], stiffness = 8.0 }
+radius = 0.5
+EOF_SCENE
+if command -v xvfb-run >/dev/null && command -v xdotool >/dev/null; then
+  # The ball rests at the centre of the 320x180 window (pixel 160,90); the left button picks it
+  # there, drags it up and right, lets go, then drags it again. Real clock, about 4 s.
+  xvfb-run -a -s "-screen 0 1024x768x24" bash -c '
+    "$1" view "$2" --size 320x180 --frames 240 --record "$3" >"$4" 2>&1 &
+    view=$!
+    for _ in $(seq 100); do
+      wid=$(xdotool search --name "fixstep - " 2>/dev/null | head -1); [ -n "$wid" ] && break; sleep 0.05
+    done
+    sleep 0.3
+    xdotool mousemove --window "$wid" 160 90 mousedown 1; sleep 0.4
+    xdotool mousemove --window "$wid" 260 40; sleep 0.4; xdotool mouseup 1; sleep 0.3
+    xdotool mousemove --window "$wid" 160 90 mousedown 1; sleep 0.2
+    xdotool mousemove --window "$wid" 60 140; sleep 0.3; xdotool mouseup 1
+    wait "$view"' _ "$fixstep" "$work/dragme.toml" "$work/drag.rec" "$work/drag_view.out"
+  [ $? -eq 0 ] && ok "view --record under Xvfb exits 0" || { fail "view --record"; cat "$work/drag_view.out"; }
+  grep -q ' drag=0$' "$work/drag.rec" && ok "the recording holds the mouse drag of body 0" \
+    || fail "no drag in the window's recording"
+  "$fixstep" replay "$work/drag.rec" >"$work/drag_replay.out" 2>&1
+  [ $? -eq 0 ] && ok "the window's recording replays headless with every hash verified" \
+    || { fail "replay of the window's recording"; cat "$work/drag_replay.out"; }
+  [ "$(hash_of "$work/drag_replay.out")" = "$(hash_of "$work/drag_view.out")" ] \
+    && ok "the replay ends at the window's final state" || fail "window vs replay hash"
+else
+  echo "skip - xvfb-run or xdotool not installed (bash .ci/install-deps installs them)"
+fi
+
+# --- the sync test: rollbacks of K ticks every tick, on a scripted run --------------------
+"$fixstep" run "$scenes/default.toml" --steps 200 --input "$src/assets/inputs/default_push.toml" \
+  --sync-test 8 >"$work/sync.out" 2>&1
+[ $? -eq 0 ] && ok "run --sync-test 8 exits 0" || { fail "sync test"; cat "$work/sync.out"; }
+expect "the sync test says what it checked" '^sync_test: rolled back 8 ticks at every tick, 1572 ticks re-simulated, every state equal$' "$work/sync.out"
+"$fixstep" run "$scenes/default.toml" --steps 200 --input "$src/assets/inputs/default_push.toml" >"$work/nosync.out" 2>&1
+[ "$(hash_of "$work/sync.out")" = "$(hash_of "$work/nosync.out")" ] \
+  && ok "the sync test ends at the plain run's state" || fail "sync vs plain hash"
+grep -q exact_error "$work/sync.out" && fail "exact_error printed for a scripted run" \
+  || ok "no exact error for a run with scripted input (the exact solutions are of the scene alone)"
+
+# --- record and replay (issue #12, point 3) -----------------------------------------------
+# A scripted session recorded with a hash every tick, replayed from another directory (the
+# scene path is found beside the recording), a flipped input bit, and every bad recording.
+mkdir -p "$work/rec/scenes" "$work/elsewhere"
+cp "$scenes/default.toml" "$work/rec/scenes/default.toml"
+(cd "$work/rec" && "$fixstep" run scenes/default.toml --steps 300 --input "$src/assets/inputs/default_push.toml" \
+  --record session.rec --hash-every 1 >"$work/rec_run.out" 2>&1)
+[ $? -eq 0 ] && ok "run --input --record exits 0" || { fail "run --input --record"; cat "$work/rec_run.out"; }
+expect "run says where the recording is" '^recording=session\.rec$' "$work/rec_run.out"
+head -1 "$work/rec/session.rec" | grep -qx 'fixstep-recording 1' && ok "the recording starts with its magic and version" \
+  || fail "recording magic"
+"$fixstep" run "$scenes/default.toml" --steps 300 >"$work/rec_plain.out" 2>&1
+h_rec=$(hash_of "$work/rec_run.out")
+[ -n "$h_rec" ] && [ "$h_rec" != "$(hash_of "$work/rec_plain.out")" ] && ok "the scripted pushes change the state" \
+  || fail "the script changed nothing"
+(cd "$work/elsewhere" && "$fixstep" replay ../rec/session.rec >"$work/replay.out" 2>&1)
+[ $? -eq 0 ] && ok "replay verifies (exit 0)" || { fail "replay exit"; cat "$work/replay.out"; }
+expect "replay verified every tick's hash and the end" '^verified 301 hashes, ticks=300 state_hash=' "$work/replay.out"
+[ -n "$h_rec" ] && [ "$(hash_of "$work/replay.out")" = "$h_rec" ] && ok "replay ends at the run's state" \
+  || fail "replay final hash"
+# one bit of the push at tick 60 flipped (15 -> 7.5: 0x402e... -> 0x401e...): the state after 61 ticks differs
+sed 's/^tick 60 push=0,15 /tick 60 push=0,7.5 /' "$work/rec/session.rec" >"$work/rec/flipped.rec"
+cmp -s "$work/rec/session.rec" "$work/rec/flipped.rec" && fail "flipped.rec unchanged"
+"$fixstep" replay "$work/rec/flipped.rec" >"$work/flip.out" 2>&1
+[ $? -eq 4 ] && ok "a flipped input bit: replay exits 4" || { fail "flipped exit"; cat "$work/flip.out"; }
+expect "replay names the first diverging tick" 'replay diverged at tick 61: state_hash [0-9a-f]{16} recorded, [0-9a-f]{16} replayed \(the states matched at tick 60\)' "$work/flip.out"
+head -c 2000 "$work/rec/session.rec" >"$work/rec/cut.rec"
+"$fixstep" replay "$work/rec/cut.rec" >"$work/cut.out" 2>&1
+[ $? -eq 5 ] && ok "a truncated recording exits 5" || fail "truncated exit"
+expect "truncation is named with the line" 'cut\.rec:[0-9]+: .*cut short' "$work/cut.out"
+"$fixstep" replay "$scenes/default.toml" >"$work/foreign.out" 2>&1
+[ $? -eq 5 ] && ok "a foreign file exits 5" || fail "foreign exit"
+expect "a foreign file is named as such" 'default\.toml:1: not a fixstep recording' "$work/foreign.out"
+sed '1s/.*/fixstep-recording 9/' "$work/rec/session.rec" >"$work/rec/v9.rec"
+"$fixstep" replay "$work/rec/v9.rec" >"$work/v9.out" 2>&1
+[ $? -eq 7 ] && ok "an unsupported version exits 7" || fail "version exit"
+sed 's/^tick 60 push=0,15 held=4 /tick 60 push=0,15 held=4000 /' "$work/rec/session.rec" >"$work/rec/bits.rec"
+"$fixstep" replay "$work/rec/bits.rec" >"$work/bits.out" 2>&1
+[ $? -eq 5 ] && ok "a corrupt recording exits 5" || fail "corrupt exit"
+expect "the corrupt field is named" 'bits\.rec:[0-9]+: held: bits 4000 are not buttons' "$work/bits.out"
+sed 's/^mass = 1.0 /mass = 1.5 /' "$work/rec/scenes/default.toml" >"$work/rec/changed.toml"
+"$fixstep" replay "$work/rec/session.rec" --scene "$work/rec/changed.toml" >"$work/mismatch.out" 2>&1
+[ $? -eq 6 ] && ok "a scene that changed exits 6" || { fail "mismatch exit"; cat "$work/mismatch.out"; }
+expect "the mismatch names both hashes" 'no longer matches the recording .*definition hash [0-9a-f]{16}, recorded [0-9a-f]{16}' "$work/mismatch.out"
+# render --replay: the frames follow the recorded ticks; every frames.csv hash is the recording's
+"$fixstep" render "$work/rec/scenes/default.toml" --replay "$work/rec/session.rec" --out "$work/rec_frames" \
+  --frames 200 --size 160x90 >"$work/rec_render.out" 2>&1
+[ $? -eq 0 ] && ok "render --replay exits 0" || { fail "render --replay"; cat "$work/rec_render.out"; }
+awk 'NR == FNR { if ($1 == "hash") h[$2] = $3; next }
+     FNR > 1 { split($0, f, ","); if (f[2] > 0 && f[2] <= 300) { n++; if (h[f[2]] != f[5]) bad++ } }
+     END { exit !(n > 100 && bad == 0) }' "$work/rec/session.rec" FS=, "$work/rec_frames/frames.csv" \
+  && ok "render --replay: every frame's state_hash is the recording's at its tick" || fail "render --replay hashes"
+
 # --- the demo ----------------------------------------------------------------------------
 (cd "$work" && "$hello" demo_frames >"$work/hello.out" 2>&1)
 [ "$(ls "$work/demo_frames" | wc -l)" -eq 90 ] && ok "hello_fixstep writes 90 frames" || fail "hello_fixstep"

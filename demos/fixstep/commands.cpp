@@ -11,10 +11,12 @@
 #include <cstdlib>
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
+#include <fixstep/input_script.hpp>
 #include <fixstep/manifest.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
+#include <fixstep/sync_test.hpp>
 #include <stdexcept>
 #include <vector>
 
@@ -142,11 +144,16 @@ std::uint64_t ticks_for(double duration, double dt) {
 
 /// The exact solution of a scene where one exists: per body (exact::solve) when the scene has
 /// no links, for the whole network (exact::LinearNetwork) when it has and they are linear
-/// with proportional damping.
+/// with proportional damping. Bodies that bounce on the scene's planes have none (the exact
+/// solutions know no contacts), nor has a network holding one.
 class ExactReference {
  public:
   explicit ExactReference(const Scene& scene) : scene_(scene) {
-    if (!scene.links.empty()) network_ = exact::LinearNetwork::make(scene.bodies, scene.links);
+    const bool bounces = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                     [&](const BodyDef& b) { return bouncing(b); });
+    if (!scene.links.empty() && !bounces) {
+      network_ = exact::LinearNetwork::make(scene.bodies, scene.links);
+    }
   }
   /// Fills out[j] with body j's exact state at t (s), or nullopt where there is none.
   void at(double t, std::vector<std::optional<Body>>& out) const {
@@ -156,11 +163,17 @@ class ExactReference {
       network_->state(t, states_);
       for (std::size_t j = 0; j < states_.size(); ++j) out[j] = states_[j];
     } else if (scene_.links.empty()) {
-      for (std::size_t j = 0; j < out.size(); ++j) out[j] = exact::solve(scene_.bodies[j], t);
+      for (std::size_t j = 0; j < out.size(); ++j) {
+        if (!bouncing(scene_.bodies[j])) out[j] = exact::solve(scene_.bodies[j], t);
+      }
     }
   }
 
  private:
+  [[nodiscard]] bool bouncing(const BodyDef& b) const {
+    return b.collider && !scene_.planes.empty();
+  }
+
   const Scene& scene_;
   std::optional<exact::LinearNetwork> network_;
   mutable std::vector<Body> states_;
@@ -218,6 +231,23 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Simulat
 
 const std::string csv_header = "tick,t,body,x,y,vx,vy,energy,world_energy,world_dissipated,balance";
 
+namespace {
+/// The message and exit status of a failed sync test.
+int sync_test_failed(const SyncTest& sync, int rollback) {
+  const SyncTest::Mismatch& m = *sync.mismatch();
+  std::fprintf(stderr,
+               "fixstep: error: sync test failed at tick %llu: after a rollback of %d ticks the "
+               "re-simulation gave %s %s, the first run %s. Some state is missing from the "
+               "snapshot, or a step depends on something besides the state and the input.\n",
+               static_cast<unsigned long long>(m.tick), rollback,
+               m.dissipated_differs ? "the same state_hash but a different dissipated energy, "
+                                      "state_hash"
+                                    : "state_hash",
+               hex_hash(m.actual).c_str(), hex_hash(m.expected).c_str());
+  return exit_sync_test_failed;
+}
+}  // namespace
+
 int run_command(const RunOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   Simulation sim = make_simulation(scene);
@@ -229,16 +259,37 @@ int run_command(const RunOptions& o) {
   std::vector<double> energies;
   std::string buffer;
   const ExactReference reference(scene);
-  const bool has_exact = exact_error(reference, sim).has_value();
+  // The exact solutions are of the scene alone: with scripted input (pushes, drags) they do not
+  // apply.
+  const bool has_exact = !o.input && exact_error(reference, sim).has_value();
   if (o.csv) {
     csv.emplace(*o.csv);
     csv->append(has_exact ? csv_header + ",x_exact,y_exact,error\n" : csv_header + "\n");
     append_rows(*csv, reference, sim, has_exact, e0, energies, buffer);
   }
+  std::optional<InputScript> script;
+  std::optional<ScriptPlayer> player;
+  if (o.input) {
+    script = load_input_script(*o.input, scene.bodies);
+    for (const std::string& w : script->warnings) {
+      if (!o.scene.quiet) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    }
+    player.emplace(*script);
+  }
+  std::optional<Recorder> recorder;
+  if (o.record) recorder.emplace(world_def(scene), o.scene.scene, o.hash_every);
+  std::optional<SyncTest> sync;
+  if (o.sync_test) sync.emplace(sim, *o.sync_test);
   const StopOnSignal signals;
   Progress progress("run", "tick", ticks, !o.scene.quiet);
   for (std::uint64_t i = 1; i <= ticks; ++i) {
-    sim.step();
+    const TickInput in = player ? player->next() : TickInput{.tick = i - 1};
+    if (sync) {
+      if (!sync->step(in)) return sync_test_failed(*sync, *o.sync_test);
+    } else {
+      sim.step(in);
+    }
+    if (recorder) recorder->record(in, sim);
     if (i % 1024 == 0 || i == ticks) progress.update(i);  // a clock read per 1024 ticks
     const bool diverged = sim.fault().has_value();        // the runtime guard (World::fault)
     const bool stop = StopOnSignal::requested() != 0;
@@ -249,8 +300,16 @@ int run_command(const RunOptions& o) {
   }
   progress.finish();
   if (csv) csv->commit();  // the rows up to and including the last tick run
+  if (recorder) write_recording(*o.record, recorder->finish(sim));  // the ticks run
   fmt::print("{}\n", describe(scene));
   fmt::print("{}\n", summary_line(sim, e0));
+  if (o.record) fmt::print("recording={}\n", *o.record);
+  if (sync) {
+    fmt::print(
+        "sync_test: rolled back {} ticks at every tick, {} ticks re-simulated, every state "
+        "equal\n",
+        *o.sync_test, sync->resimulated());
+  }
   if (const int sig = StopOnSignal::requested()) {
     if (o.csv) fmt::print("csv={}\n", *o.csv);
     std::fprintf(stderr, "fixstep: stopped by %s after tick %llu; output written\n",
@@ -262,7 +321,7 @@ int run_command(const RunOptions& o) {
     std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *sim.fault()).c_str());
     return exit_diverged;
   }
-  if (const auto error = exact_error(reference, sim)) {
+  if (const auto error = has_exact ? exact_error(reference, sim) : std::nullopt) {
     fmt::print("exact_error={:.6e} m (largest position error against the exact solution)\n",
                *error);
   }
@@ -280,7 +339,10 @@ Session open_session(const Scene& scene, int width, int height) {
 }
 
 int render_command(const RenderOptions& o) {
-  const Scene scene = load_with_overrides(o.scene);
+  std::optional<Recording> rec;
+  if (o.replay) rec = read_recording(*o.replay);
+  const Scene scene =
+      rec ? scene_for_recording(o.scene.scene, *rec, o.scene.quiet) : load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   prepare_output_dir(o.out);
   Session session = open_session(scene, width, height);
@@ -293,7 +355,12 @@ int render_command(const RenderOptions& o) {
   const StopOnSignal signals;
   Progress progress("render", "frame", frames, !o.scene.quiet);
   for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
-    if (f > 0) session.advance(clock.frame_seconds());
+    if (f > 0 && rec) {  // the recorded input of each tick; none past the recording's end
+      session.advance_with(clock.frame_seconds(),
+                           [&](std::uint64_t t, Simulation& sim) { sim.step(rec->input_at(t)); });
+    } else if (f > 0) {
+      session.advance(clock.frame_seconds());
+    }
     session.draw();  // after a divergence: the last state, with the guard's message in the HUD
     writer.submit(session.renderer().pixels());
     manifest.add(f, session);

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <fixstep/capture.hpp>
+#include <fixstep/recording.hpp>
 #include <fixstep/scene.hpp>
 #include <fixstep/session.hpp>
 #include <optional>
@@ -13,6 +14,16 @@ namespace fixstep::cli {
 /// Exit status when the runtime guard stopped the simulation (a body's state left the finite
 /// range; World::fault). 1 is any other error, 2 a command-line error.
 inline constexpr int exit_diverged = 3;
+/// `replay`: a stored state hash differs from the replayed state's.
+inline constexpr int exit_replay_diverged = 4;
+/// A recording that cannot be read: unreadable, truncated, corrupt or not a recording.
+inline constexpr int exit_bad_recording = 5;
+/// The scene no longer matches the recording (its definition hash differs).
+inline constexpr int exit_scene_mismatch = 6;
+/// A recording of a format version this build cannot read.
+inline constexpr int exit_unsupported_version = 7;
+/// Exit status when `run --sync-test K` found a re-simulated tick whose state differs.
+inline constexpr int exit_sync_test_failed = 8;
 
 struct SceneOptions {
   std::string scene;
@@ -30,6 +41,10 @@ struct RunOptions {
   std::optional<double> duration;  ///< s
   std::optional<std::string> csv;
   std::int64_t every = 1;
+  std::optional<std::string> input;   ///< --input SCRIPT: scripted input (input_script.hpp)
+  std::optional<std::string> record;  ///< --record FILE: write a recording of the run
+  std::uint64_t hash_every = 1;       ///< --hash-every K: ticks between stored state hashes
+  std::optional<int> sync_test;       ///< --sync-test K: roll back K ticks every tick (SyncTest)
 };
 
 struct RenderOptions {
@@ -39,6 +54,9 @@ struct RenderOptions {
   double fps = 60.0;
   std::string size = "1280x720";
   int png_level = default_png_level;  ///< see PngSettings::level
+  /// --replay FILE: every tick takes the recording's input (none past its end); the
+  /// recording's settings replace the scene's, whose definition hash must match.
+  std::optional<std::string> replay;
 };
 
 struct ViewOptions {
@@ -46,6 +64,16 @@ struct ViewOptions {
   std::string size = "1280x720";
   std::int64_t frames = 0;
   std::optional<double> fps;
+  std::optional<std::string> record;  ///< --record FILE: write a recording of the session
+  std::uint64_t hash_every = 1;       ///< --hash-every K: ticks between stored state hashes
+};
+
+struct ReplayOptions {
+  std::string recording;
+  /// --scene SCENE; default: the recording's, relative to the current directory, then to the
+  /// recording's directory.
+  std::optional<std::string> scene;
+  bool quiet = false;
 };
 
 /// Largest --steps, --every and view --frames: 10^12 ticks (over 500 years at 60 Hz).
@@ -76,5 +104,17 @@ Scene load_with_overrides(const SceneOptions& options);
 int run_command(const RunOptions& options);
 int render_command(const RenderOptions& options);
 int view_command(const ViewOptions& options);
+int replay_command(const ReplayOptions& options);
+
+/// The exit status for a recording error: exit_bad_recording, exit_scene_mismatch or
+/// exit_unsupported_version.
+[[nodiscard]] int exit_code(const RecordingError& error);
+
+/// Loads `scene_file` for replaying `rec` (warnings printed unless quiet): the recording's
+/// precision, dt, integrator and substeps replace the scene's, the stability guard is off (the
+/// recorded run ran), and the scene's definition hash must be the recording's (else
+/// RecordingError scene_mismatch).
+[[nodiscard]] Scene scene_for_recording(const std::string& scene_file, const Recording& rec,
+                                        bool quiet);
 
 }  // namespace fixstep::cli

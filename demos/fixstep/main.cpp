@@ -1,8 +1,10 @@
 // fixstep: run, capture and view fixed-timestep scenes.
-//   fixstep run SCENE (--steps N | --duration S) [--csv FILE] [--every K] [overrides]
+//   fixstep run SCENE (--steps N | --duration S) [--csv FILE] [--every K] [--input SCRIPT]
+//               [--record FILE] [--sync-test K] [overrides]
 //   fixstep render SCENE --out DIR [--frames N] [--fps F] [--size WxH] [--png-level L]
 //                  [overrides]
-//   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [overrides]
+//   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [overrides]
+//   fixstep replay FILE [--scene SCENE]
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -35,6 +37,18 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o) {
                 "print errors only: no summary, warnings or progress (standard output is empty)");
 }
 
+/// --record FILE and --hash-every K (which needs --record).
+void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
+                        std::uint64_t& hash_every) {
+  auto* rec = cmd->add_option("--record", record,
+                              "write a recording (inputs and state hashes) here, atomically");
+  cmd->add_option("--hash-every", hash_every,
+                  "store the state hash every K ticks in the recording (default 1: replay names "
+                  "the exact first tick that differs)")
+      ->check(CLI::Range(std::uint64_t{1}, fixstep::max_recording_ticks))
+      ->needs(rec);
+}
+
 }  // namespace
 
 // The whole of main is one try block: an exception from any step (CLI11's setup included)
@@ -58,6 +72,14 @@ int main(int argc, char** argv) try {
                       "write tick,t,body,x,y,vx,vy,energy,... rows here (atomically; see README)");
   run_cmd->add_option("--every", run.every, "record every K-th tick in the CSV (tick 0 always)")
       ->check(CLI::Range(std::int64_t{1}, max_ticks));
+  run_cmd->add_option("--input", run.input,
+                      "scripted input: a TOML file of [[at]] tables (see README, Input scripts)");
+  add_record_options(run_cmd, run.record, run.hash_every);
+  run_cmd
+      ->add_option("--sync-test", run.sync_test,
+                   "every tick, roll back K ticks, re-simulate them and compare the states "
+                   "(GGRS's sync test); exit 8 at the first difference")
+      ->check(CLI::Range(1, 10000));
 
   RenderOptions render;
   CLI::App* render_cmd =
@@ -75,6 +97,8 @@ int main(int argc, char** argv) try {
                                "1 = fastest (default), 12 = smallest and slowest",
                                fixstep::min_png_level, fixstep::max_png_level))
       ->check(png_level_validator);
+  render_cmd->add_option("--replay", render.replay,
+                         "drive the ticks with this recording's inputs (its settings apply)");
 
   ViewOptions view;
   CLI::App* view_cmd = app.add_subcommand("view", "open an SDL2 window showing the scene live");
@@ -85,6 +109,17 @@ int main(int argc, char** argv) try {
       ->check(CLI::Range(std::int64_t{0}, max_ticks));
   view_cmd->add_option("--fps", view.fps,
                        "use a virtual clock of F frames per second instead of the real clock");
+  add_record_options(view_cmd, view.record, view.hash_every);
+
+  ReplayOptions replay;
+  CLI::App* replay_cmd = app.add_subcommand(
+      "replay", "re-simulate a recording headless and verify every stored state hash");
+  replay_cmd->add_option("recording", replay.recording, "recording file (fixstep run --record)")
+      ->required();
+  replay_cmd->add_option("--scene", replay.scene,
+                         "scene file (default: the recording's, relative to the current "
+                         "directory, then to the recording's)");
+  replay_cmd->add_flag("-q,--quiet", replay.quiet, "print errors only");
 
   try {
     app.parse(argc, argv);
@@ -113,7 +148,7 @@ int main(int argc, char** argv) try {
 
   // --quiet: the summaries and paths go to standard output, which is emptied wholesale;
   // errors go to standard error (warnings and progress are skipped where they are made).
-  if ((run.scene.quiet || render.scene.quiet || view.scene.quiet) &&
+  if ((run.scene.quiet || render.scene.quiet || view.scene.quiet || replay.quiet) &&
       std::freopen("/dev/null", "w", stdout) == nullptr) {
     std::fputs("fixstep: error: --quiet: cannot open /dev/null for standard output\n", stderr);
     return 1;
@@ -126,7 +161,11 @@ int main(int argc, char** argv) try {
     return run_command(run);
   }
   if (render_cmd->parsed()) return render_command(render);
+  if (replay_cmd->parsed()) return replay_command(replay);
   return view_command(view);
+} catch (const fixstep::RecordingError& e) {
+  std::fprintf(stderr, "fixstep: error: %s\n", e.what());
+  return fixstep::cli::exit_code(e);
 } catch (const std::exception& e) {
   std::fprintf(stderr, "fixstep: error: %s\n", e.what());
   return 1;

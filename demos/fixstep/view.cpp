@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fixstep/pointer_drag.hpp>
+#include <fixstep/recording.hpp>
 #include <fixstep/rewind.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
@@ -62,6 +63,10 @@ int view_command(const ViewOptions& o) {
   RewindBuffer rewind(static_cast<std::size_t>(
       std::max(1.0, std::ceil(rewind_seconds / session.simulation().settings().dt))));
   rewind.push(session.simulation());
+  // --record: every tick's input and state hash, following the kept timeline through rewinds
+  // and restarts.
+  std::optional<Recorder> recorder;
+  if (o.record) recorder.emplace(session.definition(), o.scene.scene, o.hash_every);
   RealClock real_clock;
   // --fps: a virtual clock (validated by VirtualClock), else the real one.
   const double virtual_frame = o.fps ? VirtualClock(*o.fps).frame_seconds() : 0.0;
@@ -73,7 +78,10 @@ int view_command(const ViewOptions& o) {
     window.poll(ev);
     if (ev.quit) break;
     apply_loop_keys(ev, session.loop());
-    if (ev.restart) session.restart(), rewind.clear(), rewind.push(session.simulation());
+    if (ev.restart) {
+      session.restart(), rewind.clear(), rewind.push(session.simulation());
+      if (recorder) recorder->truncate(0);
+    }
     feed(ev, sampler, camera, width, height);
     sampler.set_push(push_of(sampler.held(), camera.width));
 
@@ -81,25 +89,34 @@ int view_command(const ViewOptions& o) {
     const bool was_faulted = session.simulation().fault().has_value();
     if (ev.rewind) {
       // One tick back per frame while Backspace is held; ticks resume from there.
-      if (const WorldSnapshot* past = rewind.step_back()) session.restore(*past);
+      if (const WorldSnapshot* past = rewind.step_back()) {
+        session.restore(*past);
+        if (recorder) recorder->truncate(past->tick());
+      }
     } else if (frame > 0) {
       session.advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
         TickInput input = sampler.sample(tick);
         drag.apply(input, sim);
         sim.step(input);
         rewind.push(sim);
+        if (recorder) recorder->record(input, sim);
       });
     }
     if (const auto& fault = session.simulation().fault(); fault && !was_faulted) {
       // Session paused the loop; the HUD shows the message too ('r' restarts).
       std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
     }
+    session.show_drag(sampler.pointer(), drag.body());
     session.draw();
     window.present(session.renderer().pixels());
     if (!o.fps) std::this_thread::sleep_until(frame_start + frame_budget);
   }
   fmt::print("{} driver={}\n", describe(scene), window.driver());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
+  if (recorder) {
+    write_recording(*o.record, recorder->finish(session.simulation()));
+    fmt::print("recording={}\n", *o.record);
+  }
   return session.simulation().fault() ? exit_diverged : 0;
 }
 

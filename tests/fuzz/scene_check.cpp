@@ -52,6 +52,9 @@ bool bounded_scene(const Scene& scene) {
     return small(l.spring.stiffness) && small(l.spring.damping) && small(l.spring.rest_length);
   });
   if (!links_ok) return false;
+  const bool planes_ok = std::all_of(scene.planes.begin(), scene.planes.end(),
+                                     [](const PlaneDef& p) { return small(p.offset); });
+  if (!planes_ok) return false;
   return std::all_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyDef& d) {
     const bool spring_ok = !d.spring || (small(d.spring->anchor) && small(d.spring->stiffness) &&
                                          small(d.spring->damping) && small(d.spring->rest_length));
@@ -59,7 +62,7 @@ bool bounded_scene(const Scene& scene) {
            small(d.body.velocity) && spring_ok &&
            (!d.constant_force || small(d.constant_force->force)) &&
            (!d.gravity || small(d.gravity->acceleration)) &&
-           (!d.drag || small(d.drag->coefficient));
+           (!d.drag || small(d.drag->coefficient)) && (!d.collider || small(d.collider->radius));
   });
 }
 

@@ -28,6 +28,12 @@ Link Simulation::create_link(const LinkDef& def) {
 std::size_t Simulation::link_count() const {
   return visit([](const auto& w) { return w.link_count(); });
 }
+std::size_t Simulation::add_plane(const PlaneDef& def) {
+  return visit([&](auto& w) { return w.add_plane(def); });
+}
+std::span<const PlaneDef> Simulation::planes() const {
+  return visit([](const auto& w) { return w.planes(); });
+}
 double Simulation::dissipated_energy() const {
   return visit([](const auto& w) { return w.dissipated_energy(); });
 }
@@ -96,6 +102,7 @@ void Simulation::fill_render_frame(double alpha, RenderFrame& out) const {
       const auto [a, b] = w.link_bodies(i);
       out.links[i] = {static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)};
     }
+    out.planes.assign(w.planes().begin(), w.planes().end());
   });
 }
 
@@ -154,6 +161,7 @@ Simulation make_simulation(const WorldDef& def) {
     }
     sim.create_link(LinkDef{bodies[l.body_a], bodies[l.body_b], l.spring});
   }
+  for (const PlaneDef& p : def.planes) sim.add_plane(p);
   if (!def.allow_unstable) refuse_unstable(def);
   return sim;
 }

@@ -136,6 +136,11 @@ void World<Real>::validate_component(const Appearance& c, const std::string& who
 }
 
 template <class Real>
+void World<Real>::validate_component(const Collider& c, const std::string& who) {
+  check_value<Real>(c.radius, c.radius > 0.0, who, "collider.radius", "finite and > 0 m");
+}
+
+template <class Real>
 Entity World<Real>::create_body(const BodyDef& def) {
   const std::string who = def.name.empty() ? std::string("body") : "body '" + def.name + "'";
   validate(def.body, who);
@@ -144,6 +149,7 @@ Entity World<Real>::create_body(const BodyDef& def) {
   if (def.gravity) validate_component(*def.gravity, who);
   if (def.drag) validate_component(*def.drag, who);
   if (def.appearance) validate_component(*def.appearance, who);
+  if (def.collider) validate_component(*def.collider, who);
 
   Entity e;
   if (!free_slots_.empty()) {
@@ -170,6 +176,7 @@ Entity World<Real>::create_body(const BodyDef& def) {
   if (def.gravity) set(e, *def.gravity);
   if (def.drag) set(e, *def.drag);
   if (def.appearance) set(e, *def.appearance);
+  if (def.collider) set(e, *def.collider);
   terms_dirty_ = true;
   return e;
 }
@@ -186,6 +193,7 @@ void World<Real>::destroy(Entity e) {
   remove<Gravity>(e);
   remove<LinearDrag>(e);
   remove<Appearance>(e);
+  remove<Collider>(e);
   const std::size_t i = bodies_.erase(e);
   dissipated_gone_ += mass_[i] * double(dissipated_body_[i]);  // stays in the account
   swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, names_, dissipated_body_);
@@ -372,6 +380,7 @@ void World<Real>::rebuild_terms() {
   for (std::size_t j = 0; j < n; ++j) c.accel = c.accel || c.accel_x[j] != 0 || c.accel_y[j] != 0;
   flows_.clear();
   rebuild_network();
+  rebuild_contacts();
   terms_dirty_ = false;
 }
 

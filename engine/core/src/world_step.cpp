@@ -186,6 +186,16 @@ void World<Real>::step(const TickInput& input) {
     std::copy(x_.begin(), x_.end(), prev_x_.begin());
     std::copy(y_.begin(), y_.end(), prev_y_.begin());
   }
+  // Contacts with planes (world_contacts.cpp): only when the world has planes and colliders,
+  // one branch per tick otherwise.
+  const bool contacts = contact_.active;
+  if (contacts) save_contact_start();
+  integrate(input);
+  if (contacts) resolve_contacts();
+}
+
+template <class Real>
+void World<Real>::integrate(const TickInput& input) {
   if (!net_.a.empty() || settings_.track_dissipation) {
     step_multipass(input);  // links or the dissipation account: world_coupled.cpp
     return;
@@ -257,6 +267,7 @@ void World<Real>::record_fault() {
 // file is instantiated here explicitly.
 #define FIXSTEP_INSTANTIATE(Real)                                                               \
   template void World<Real>::step(const TickInput&);                                            \
+  template void World<Real>::integrate(const TickInput&);                                       \
   template void World<Real>::apply_drag(const TickInput&);                                      \
   template void World<Real>::accelerations(std::span<Real>, std::span<Real>, const TickInput&); \
   template std::size_t World<Real>::bytes_per_body_step();                                      \

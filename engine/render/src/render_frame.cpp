@@ -27,8 +27,49 @@ constexpr Rgba8 panel{0, 0, 0, 150};
 constexpr Rgba8 palette[] = {{230, 87, 46, 255},   {76, 175, 240, 255},  {250, 200, 60, 255},
                              {120, 210, 110, 255}, {200, 120, 230, 255}, {240, 140, 170, 255},
                              {90, 220, 200, 255},  {240, 240, 240, 255}};
+constexpr Rgba8 plane_solid{120, 132, 160, 60};
+constexpr Rgba8 plane_line{150, 162, 190, 255};
 constexpr float default_radius_px = 9.0f;
 constexpr float min_radius_px = 3.0f;
+
+/// Draws each plane n·x >= offset as a line across the view, its solid side n·x < offset
+/// lightly shaded: the view rectangle (world coordinates) is cut by the plane (one step of
+/// Sutherland–Hodgman polygon clipping) and the solid part drawn as a triangle fan.
+void draw_planes(Renderer& canvas, std::span<const PlaneDef> planes) {
+  const Camera& cam = canvas.camera();
+  const double hw = 0.5 * cam.width, hh = hw * canvas.height() / canvas.width();
+  const double cx = cam.center.x, cy = cam.center.y;
+  const Vec2 view[4] = {
+      {cx - hw, cy - hh}, {cx + hw, cy - hh}, {cx + hw, cy + hh}, {cx - hw, cy + hh}};
+  for (const PlaneDef& p : planes) {
+    auto depth = [&](Vec2 v) { return p.offset - (p.normal.x * v.x + p.normal.y * v.y); };
+    Vec2 solid[5], edge[2];
+    int count = 0, edges = 0;
+    for (int i = 0; i < 4; ++i) {
+      const Vec2 a = view[i], b = view[(i + 1) % 4];
+      const double da = depth(a), db = depth(b);
+      if (da >= 0.0) solid[count++] = a;
+      if ((da >= 0.0) != (db >= 0.0)) {
+        const double t = da / (da - db);
+        const Vec2 cut{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+        solid[count++] = cut;
+        if (edges < 2) edge[edges++] = cut;
+      }
+    }
+    auto px = [&](Vec2 v) {
+      const auto q = canvas.to_pixel(v.x, v.y);
+      return std::array<float, 2>{float(q[0]), float(q[1])};
+    };
+    for (int i = 1; i + 1 < count; ++i) {
+      const auto a = px(solid[0]), b = px(solid[i]), c = px(solid[i + 1]);
+      canvas.triangle(a[0], a[1], b[0], b[1], c[0], c[1], plane_solid);
+    }
+    if (edges == 2) {
+      const auto a = px(edge[0]), b = px(edge[1]);
+      canvas.line(a[0], a[1], b[0], b[1], 2.5f, plane_line);
+    }
+  }
+}
 
 }  // namespace
 
@@ -126,6 +167,7 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
   begin(background);
   record_trails(s);
   grid();
+  draw_planes(*this, s.planes);
 
   const std::size_t n = s.x.size();
   const double scale = width_ / camera_.width;

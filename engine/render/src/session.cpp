@@ -14,6 +14,35 @@
 
 namespace fixstep {
 
+namespace {
+/// With planes, bodies bounce: a collider body under gravity g rises at most |v|²/(2|g|)
+/// above its start along -g (its kinetic energy all turned into height; restitution <= 1 never
+/// adds energy), so that point is included; then the point of each plane nearest the box's
+/// centre, so the ground and walls the bodies bounce between are in view.
+template <class Include>
+void include_bounces(const WorldDef& def, Include&& include, double& x0, double& x1, double& y0,
+                     double& y1) {
+  for (const BodyDef& b : def.bodies) {
+    if (!b.collider || !b.gravity) continue;
+    const Vec2 g = b.gravity->acceleration;
+    const double gn = std::hypot(g.x, g.y);
+    if (!(gn > 0.0)) continue;
+    const Vec2 v = b.body.velocity, p = b.body.position;
+    const double rise = (v.x * v.x + v.y * v.y) / (2.0 * gn);
+    include(p.x - g.x / gn * rise, p.y - g.y / gn * rise, b.collider->radius);
+  }
+  if (!(x0 <= x1)) return;  // no bodies
+  const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+  for (const PlaneDef& p : def.planes) {
+    const double len = std::hypot(p.normal.x, p.normal.y);
+    if (!(len > 0.0)) continue;
+    const double nx = p.normal.x / len, ny = p.normal.y / len;
+    const double gap = nx * cx + ny * cy - p.offset;
+    include(cx - gap * nx, cy - gap * ny, 0.0);
+  }
+}
+}  // namespace
+
 Camera fit_camera(const WorldDef& def, int width, int height) {
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   auto include = [&](double x, double y, double r) {
@@ -61,6 +90,7 @@ Camera fit_camera(const WorldDef& def, int width, int height) {
       }
     }
   }
+  if (!def.planes.empty()) include_bounces(def, include, x0, x1, y0, y1);
   const double aspect = double(width) / double(height);
   Camera c;
   c.center = {0.5 * (x0 + x1), 0.5 * (y0 + y1)};
@@ -172,6 +202,10 @@ void Session::restart() {
 
 void Session::draw() {
   sim_->fill_render_frame(loop_.alpha(), frame_);
+  if (drag_body_ < frame_.x.size()) {
+    frame_.springs.push_back(
+        {static_cast<float>(drag_pointer_.x), static_cast<float>(drag_pointer_.y), drag_body_});
+  }
   const double e = sim_->energy().total();
   hud_.clear();
   const std::size_t n = sim_->body_count();

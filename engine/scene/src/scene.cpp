@@ -110,6 +110,7 @@ void parse_body_parts(const Reader& r, const toml::table& t, const std::string& 
     if (auto rad = r.number(t, "radius", path + ".radius")) {
       r.require(*rad > 0.0, t, "radius", path + ".radius", "> 0 m", *rad);
       ap.radius = *rad;
+      def.collider = Collider{*rad};  // the disc planes collide with
     }
     if (t.get("color")) ap.color = parse_color(r, t, path + ".color");
     def.appearance = ap;
@@ -140,7 +141,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     throw SceneError(source_name, e.source().begin.line, e.source().begin.column, "",
                      fmt::format("TOML syntax error: {}", e.description()));
   }
-  r.check_keys(doc, "", {"world", "view", "body", "spring", "chain", "grid"});
+  r.check_keys(doc, "", {"world", "view", "body", "spring", "chain", "grid", "plane"});
 
   const toml::table* world = r.table(doc, "world", "world");
   if (!world) r.fail_missing(doc, "", {"world"}, "missing [world] table (required)");
@@ -212,6 +213,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
                      "no [[body]], [[chain]] or [[grid]] tables: a scene needs at least one body");
   }
   parse_springs(r, doc, scene, names);
+  parse_planes(r, doc, scene);
   scene.warnings = r.take_warnings();
   return scene;
 }
@@ -243,6 +245,7 @@ WorldDef world_def(const Scene& scene) {
                   .settings = scene.world,
                   .bodies = scene.bodies,
                   .links = scene.links,
+                  .planes = scene.planes,
                   .allow_unstable = scene.allow_unstable};
 }
 

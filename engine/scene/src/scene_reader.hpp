@@ -279,6 +279,9 @@ struct BodyNames {
 /// [[chain]] and [[grid]] tables: appends their bodies and links to the scene
 /// (scene_generators.cpp).
 void parse_generators(Reader& r, const toml::table& doc, Scene& scene, BodyNames& names);
+/// [[plane]] tables: appends their planes (normals normalised) and lines to the scene
+/// (scene_planes.cpp).
+void parse_planes(Reader& r, const toml::table& doc, Scene& scene);
 /// [[spring]] tables: appends their links to the scene, after every body is known
 /// (scene_links.cpp).
 void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names);

@@ -53,6 +53,28 @@ struct Appearance {
   Rgba8 color{230, 87, 46, 255};
 };
 
+/// A disc the body occupies for contacts with static half-planes (PlaneDef). Bodies without
+/// one pass through planes; colliders cost nothing in a world without planes.
+struct Collider {
+  double radius = 0.5;  ///< m, finite and > 0
+};
+
+/// A static half-plane n·x >= offset of free space (ground, wall), which bodies with a
+/// Collider of radius r stay in: their centres keep n·x >= offset + r.
+///
+/// A contact is resolved at its time of impact inside the tick (world_contacts.cpp): the
+/// normal velocity v_n (< 0, approaching) becomes -e v_n (Newton's restitution law), and the
+/// tangential velocity v_t loses min(|v_t|, μ (1 + e) |v_n|) (Coulomb friction applied as an
+/// impulse: the normal impulse is m (1 + e) |v_n|). A body that would bounce back by less than
+/// one tick of its normal acceleration comes to rest on the plane and slides along it, with
+/// Coulomb friction μ |a_n| (sliding friction force μ N).
+struct PlaneDef {
+  Vec2 normal{0.0, 1.0};     ///< n, points into free space; finite, != 0 (normalised by World)
+  double offset = 0.0;       ///< m, finite: the plane is n·x = offset (n normalised)
+  double restitution = 0.0;  ///< e, finite, in [0, 1]
+  double friction = 0.0;     ///< μ, finite and >= 0
+};
+
 /// A spring-damper between two bodies (a link): a rope segment, a cloth edge, a suspension.
 ///
 /// Force on body a (body b gets the opposite), with d = x_a - x_b and u = v_a - v_b:
@@ -105,6 +127,7 @@ struct BodyDef {
   std::optional<Gravity> gravity;
   std::optional<LinearDrag> drag;
   std::optional<Appearance> appearance;
+  std::optional<Collider> collider;  ///< contacts with the world's planes (World::add_plane)
 };
 
 }  // namespace fixstep

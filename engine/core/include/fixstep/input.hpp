@@ -71,6 +71,7 @@ class InputSampler {
   void set_drag_body(std::uint32_t body) { drag_body_ = body; }
   [[nodiscard]] std::uint32_t held() const { return held_; }
   [[nodiscard]] std::uint32_t drag_body() const { return drag_body_; }
+  [[nodiscard]] Vec2 pointer() const { return pointer_; }  ///< m
 
   /// The input of tick `tick`; clears the pending presses and releases.
   TickInput sample(std::uint64_t tick) {

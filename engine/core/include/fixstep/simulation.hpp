@@ -30,6 +30,8 @@ struct RenderFrame {
     std::uint32_t a = 0, b = 0;
   };
   std::vector<LinkLine> links;
+  /// Static half-planes n·x >= offset (normals normalised), drawn as ground and walls.
+  std::vector<PlaneDef> planes;
 };
 
 /// A restorable state of a Simulation (what game physics calls a snapshot): a complete copy of
@@ -72,6 +74,9 @@ class Simulation {
   Entity create_body(const BodyDef& def);
   Link create_link(const LinkDef& def);
   [[nodiscard]] std::size_t link_count() const;
+  /// A static half-plane bodies with a Collider collide with (World::add_plane).
+  std::size_t add_plane(const PlaneDef& def);
+  [[nodiscard]] std::span<const PlaneDef> planes() const;
   void step(const TickInput& input = {});
   void set_keep_previous(bool keep);
 
@@ -112,21 +117,23 @@ class Simulation {
 /// and the command line start from.
 struct WorldDef {
   Precision precision = Precision::f64;
-  WorldSettings settings;       ///< dt (s), integrator, substeps, ... (see WorldSettings)
-  std::vector<BodyDef> bodies;  ///< in creation order: body i gets dense index i
-  std::vector<BodyLink> links;  ///< springs between bodies, by index into bodies
+  WorldSettings settings;        ///< dt (s), integrator, substeps, ... (see WorldSettings)
+  std::vector<BodyDef> bodies;   ///< in creation order: body i gets dense index i
+  std::vector<BodyLink> links;   ///< springs between bodies, by index into bodies
+  std::vector<PlaneDef> planes;  ///< static half-planes (ground, walls) colliders stay out of
   /// The stability guard (stability.hpp) reports instead of refusing: for demos that show a
   /// blow-up on purpose.
   bool allow_unstable = false;
 };
 
 /// Builds the world `def` describes: a Simulation with def.precision and def.settings, then
-/// the bodies in order and the links. First applies the stability guard (check_stability for
-/// bodies no link joins, check_linked_stability for the rest) at def.settings' dt, integrator
-/// and substeps: unless def.allow_unstable, an unstable body or network throws
+/// the bodies in order, the links and the planes. First applies the stability guard
+/// (check_stability for bodies no link joins, check_linked_stability for the rest) at def.settings'
+/// dt, integrator and substeps: unless def.allow_unstable, an unstable body or network throws
 /// std::invalid_argument with the guard's finding and the smallest stable substep count.
 /// Also throws std::invalid_argument for invalid settings, bodies or links (as World does:
-/// the message names the body and field) and for a link index out of range.
+/// the message names the body and field; for a plane, plane[i] and the field) and for a link
+/// index out of range.
 [[nodiscard]] Simulation make_simulation(const WorldDef& def);
 
 /// The energy balance error (E + E_dissipated - E0)/|E0| (dimensionless; in J when E0 = 0):

@@ -199,7 +199,7 @@ class World {
 
   // --- components (cold path; each change rebuilds the force-term lists before next step) --
   /// Adds or replaces component C on e. C is one of SpringDamper, ConstantForce, Gravity,
-  /// LinearDrag, Appearance.
+  /// LinearDrag, Appearance, Collider.
   template <class C>
   void set(Entity e, const C& component);
   /// Removes component C from e (no-op if absent).
@@ -213,6 +213,15 @@ class World {
   [[nodiscard]] Body body(Entity e) const;
   /// Overwrites mass, position and velocity of e (validated like create_body).
   void set_body(Entity e, const Body& body);
+
+  // --- planes: static half-planes bodies with a Collider collide with (world_contacts.cpp) --
+  /// Adds the half-plane n·x >= offset of free space with n = def.normal/|def.normal|; returns
+  /// its index into planes(). Throws std::invalid_argument naming the field when the normal is
+  /// zero or not finite, or offset, restitution (in [0, 1]) or friction (>= 0) is out of range
+  /// or not finite. Planes cannot be removed.
+  std::size_t add_plane(const PlaneDef& def);
+  /// The planes in order of creation, normals normalised.
+  [[nodiscard]] std::span<const PlaneDef> planes() const { return planes_; }
 
   // --- stepping ---------------------------------------------------------------------------
   /// Advances every body by one tick of settings().dt with the chosen integrator.
@@ -302,6 +311,7 @@ class World {
   static void validate_component(const Gravity& c, const std::string& who);
   static void validate_component(const LinearDrag& c, const std::string& who);
   static void validate_component(const Appearance& c, const std::string& who);
+  static void validate_component(const Collider& c, const std::string& who);
   [[nodiscard]] std::string describe(Entity e) const;
   void require(Entity e) const;
   void rebuild_terms();
@@ -387,6 +397,23 @@ class World {
   void validate_link(const LinkDef& def, const std::string& who) const;
   // (world_implicit.cpp)
   bool step_implicit_network(Real h, const Real push[2]);
+  void integrate(const TickInput& input);  // one tick of the integrator (world_step.cpp)
+
+  // Contacts with static half-planes (world_contacts.cpp). The scratch holds, for each body
+  // with a Collider, its dense index, radius and start-of-tick state (SoA), sized in
+  // rebuild_terms(), so a tick allocates nothing. Inactive (no planes or no colliders): step()
+  // runs none of it.
+  detail::Store<Collider> colliders_;
+  std::vector<PlaneDef> planes_;
+  struct ContactScratch {
+    std::vector<std::uint32_t> body;
+    std::vector<double> radius;
+    std::vector<Real> x0, y0, vx0, vy0;
+    bool active = false;
+  } contact_;
+  void rebuild_contacts();
+  void save_contact_start();
+  void resolve_contacts();
 };
 
 // --- component access (templates, so defined here) ---------------------------------------
@@ -402,6 +429,8 @@ detail::Store<C>& World<Real>::store() {
     return gravities_;
   else if constexpr (std::is_same_v<C, LinearDrag>)
     return drags_;
+  else if constexpr (std::is_same_v<C, Collider>)
+    return colliders_;
   else {
     static_assert(std::is_same_v<C, Appearance>, "not a fixstep component");
     return appearances_;

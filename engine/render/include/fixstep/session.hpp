@@ -69,6 +69,9 @@ class Session {
   void draw();
   /// Back to the initial state (tick 0), trails cleared; pause and time scale are kept.
   void restart();
+  /// Draws the pointer's drag spring (from `pointer`, m, to body `body`) in the next draw()s,
+  /// as the springs are drawn; no_body hides it.
+  void show_drag(Vec2 pointer, std::uint32_t body) { drag_pointer_ = pointer, drag_body_ = body; }
   /// Shows the window's key help in the HUD.
   void set_show_controls(bool show) { show_controls_ = show; }
   /// Extra HUD lines drawn below the engine's (a game's score, a hint), until replaced; an
@@ -99,6 +102,8 @@ class Session {
   std::vector<std::string> fault_lines_;  ///< the runtime guard's message for the HUD, once built
   double initial_energy_ = 0.0;
   bool show_controls_ = false;
+  Vec2 drag_pointer_{};
+  std::uint32_t drag_body_ = no_body;
   std::vector<std::string> status_lines_;  ///< set_status_lines()
 };
 

@@ -59,6 +59,10 @@ struct Scene {
   /// Where each link was declared, for messages: "spring[3]" for a [[spring]] table,
   /// "chain[0].link", "grid[1].shear", ... for generated links (empty if not from a file).
   std::vector<std::string> link_keys;
+  /// [[plane]] tables in file order: static half-planes (normals normalised) that bodies with
+  /// a radius (a Collider) bounce on.
+  std::vector<PlaneDef> planes;
+  std::vector<std::size_t> plane_lines;  ///< line of each [[plane]] table
   /// [world] allow_unstable: the stability guard warns instead of refusing (for demos that
   /// show blow-ups on purpose).
   bool allow_unstable = false;
@@ -77,13 +81,14 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// of range (mass <= 0, negative stiffness/damping/drag, dt <= 0), unknown integrator or
 /// precision, duplicate body names, springs given both as stiffness/damping and as
 /// frequency/damping_ratio, [[spring]] tables naming an unknown body or one body twice, a
-/// rest-length spring between bodies that start at the same point, generators beyond
+/// rest-length spring between bodies that start at the same point, [[plane]] tables with a
+/// zero normal, restitution outside [0, 1] or negative friction, generators beyond
 /// max_scene_bodies / max_scene_links, and unreadable, binary or oversized files.
 [[nodiscard]] Scene load_scene(const std::filesystem::path& file);
 /// As load_scene, from text; `source_name` is used in messages.
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);
 
-/// The scene's world as a WorldDef (precision, settings, bodies, links, allow_unstable),
+/// The scene's world as a WorldDef (precision, settings, bodies, links, planes, allow_unstable),
 /// copied: what Session and make_simulation(const WorldDef&) take.
 [[nodiscard]] WorldDef world_def(const Scene& scene);
 

@@ -39,7 +39,7 @@ struct WindowEvents {
     bool press = false;
     std::uint32_t buttons = 0;
   };
-  std::vector<ButtonEdge> edges;
+  std::vector<ButtonEdge> edges{};
   bool pointer_seen = false;                ///< the pointer is over the window (pointer is valid)
   double pointer_x = 0.0, pointer_y = 0.0;  ///< pixels from the top-left corner
 };

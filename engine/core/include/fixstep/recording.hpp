@@ -1,0 +1,171 @@
+// Recordings: every tick's input of a session plus state hashes along the way, written as a
+// line-oriented text file and replayed headless to verify, bit for bit, that the engine still
+// computes the same states (issue #12, point 3). Format: README, "Recordings".
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "fixstep/input.hpp"
+#include "fixstep/integrators.hpp"
+#include "fixstep/simulation.hpp"
+
+namespace fixstep {
+
+/// The format version this build writes and the newest it reads.
+inline constexpr int recording_version = 1;
+/// The first word of every recording (the first line is "fixstep-recording VERSION").
+inline constexpr std::string_view recording_magic = "fixstep-recording";
+/// Most ticks a recording may hold (about 190 days at 60 Hz).
+inline constexpr std::uint64_t max_recording_ticks = 1'000'000'000;
+/// Largest recording file read, bytes.
+inline constexpr std::size_t max_recording_bytes = 256u << 20;
+
+/// FNV-1a (64-bit) over the exact bits of everything in `def` that changes the simulated
+/// states: precision, dt, integrator, substeps, flush_denormals, and for every body in order
+/// its mass, position, velocity and components (spring, constant force, gravity, drag,
+/// collider: present or not, and each field), then every link (indices and spring) and every
+/// plane (normal, offset, restitution, friction). Left out, because they change
+/// no state: body names and appearances (drawing only), track_dissipation and threads (the
+/// states are bit-identical either way) and allow_unstable. Two definitions with the same hash
+/// step to the same states from the same inputs.
+[[nodiscard]] std::uint64_t definition_hash(const WorldDef& def);
+
+/// The settings a recording was made with (a replay applies them to the scene it loads).
+struct RecordedSettings {
+  Integrator integrator = Integrator::semi_implicit_euler;
+  Precision precision = Precision::f64;
+  double dt = 0.01;  ///< s, > 0 and <= 1
+  int substeps = 1;  ///< 1 .. 1 000 000
+  friend bool operator==(const RecordedSettings&, const RecordedSettings&) = default;
+};
+
+/// A recorded session: the world it ran (by definition hash and settings), every tick's input
+/// and the state hashes to verify.
+///
+/// Deviation from "one input per tick": `inputs` is run-length encoded, as the file is, so a
+/// recording's memory grows with the number of input changes, not with its length (a file of
+/// a few lines may name 10^9 ticks). inputs[k] is the input of every tick from inputs[k].tick
+/// until the next entry's tick (its `tick` field then reads as that tick: see input_at()).
+struct Recording {
+  int version = recording_version;
+  std::string scene;  ///< the scene file's path as given on the command line
+  std::uint64_t definition_hash = 0;
+  RecordedSettings settings;
+  std::uint64_t hash_every = 60;  ///< ticks between stored hashes, >= 1
+  /// Run-length input changes, ticks strictly increasing; inputs[0].tick == 0 when ticks > 0.
+  std::vector<TickInput> inputs;
+  /// (tick, state hash after that many ticks), ticks strictly increasing, each in 1 .. ticks.
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> hashes;
+  std::uint64_t ticks = 0;  ///< ticks recorded, <= max_recording_ticks
+  std::uint64_t final_hash = 0;
+
+  /// The input of tick `tick` (< ticks; an empty TickInput{tick} otherwise), with its tick
+  /// field set to `tick`. O(log changes).
+  [[nodiscard]] TickInput input_at(std::uint64_t tick) const;
+  friend bool operator==(const Recording&, const Recording&) = default;
+};
+
+/// A recording that cannot be used. what() reads "FILE:LINE: FIELD: MESSAGE" (line and field
+/// left out when they do not apply).
+class RecordingError : public std::runtime_error {
+ public:
+  enum class Kind {
+    unreadable,           ///< the file cannot be opened or read (missing, a directory)
+    foreign,              ///< not a recording: the first line is not "fixstep-recording N"
+    unsupported_version,  ///< a recording of a version newer than recording_version
+    truncated,            ///< the file ends before its `end` line (a session cut short)
+    corrupt,              ///< a malformed line or field, a value out of range, an absurd size
+    scene_mismatch,       ///< the world to replay is not the one recorded (definition hash)
+  };
+  RecordingError(Kind kind, const std::string& file, std::size_t line, std::string_view field,
+                 std::string_view message);
+  [[nodiscard]] Kind kind() const { return kind_; }
+  [[nodiscard]] std::size_t line() const { return line_; }  ///< 1-based; 0 = not a line's fault
+
+ private:
+  Kind kind_;
+  std::size_t line_;
+};
+
+/// "unreadable", "foreign", ... for messages and tests.
+[[nodiscard]] std::string_view recording_error_name(RecordingError::Kind kind);
+
+/// Records a live session tick by tick. Memory grows with input changes and stored hashes
+/// only: record() allocates only when the input changes or a hash is due (amortised).
+class Recorder {
+ public:
+  /// Starts an empty recording of the world `def` (its definition hash and settings), named
+  /// `scene` in the file, storing the state hash every `hash_every` ticks (>= 1, else
+  /// std::invalid_argument).
+  Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every);
+
+  /// Appends one tick: `input` is what the tick was stepped with (its tick field is ignored),
+  /// `after_the_tick` the simulation right after sim.step(input). Throws std::invalid_argument
+  /// when after_the_tick.tick() is not ticks() + 1 (a tick skipped or a rewind without
+  /// truncate()).
+  void record(const TickInput& input, const Simulation& after_the_tick);
+  /// Keeps the first `ticks` ticks only (<= ticks(), else std::invalid_argument): after a
+  /// rewind to tick `ticks` the recording follows the timeline that was kept.
+  void truncate(std::uint64_t ticks);
+  /// The recording so far, ended at `sim`'s state (whose tick() must be ticks(), else
+  /// std::invalid_argument). The recorder is left empty.
+  [[nodiscard]] Recording finish(const Simulation& sim);
+
+  [[nodiscard]] std::uint64_t ticks() const { return rec_.ticks; }
+
+ private:
+  Recording rec_;
+};
+
+/// The recording as text (the file format; README "Recordings"). Throws std::invalid_argument
+/// for a scene path holding a control character (it would break its line).
+[[nodiscard]] std::string format_recording(const Recording& rec);
+/// Parses the text of a recording; `source_name` is used in messages. Throws RecordingError:
+/// foreign, unsupported_version, truncated (no `end` line, or a last line without its newline)
+/// or corrupt (a malformed line, a button bit outside all_buttons, a non-finite number, ticks
+/// out of order, a hash beyond the end, more than max_recording_ticks or
+/// max_recording_bytes), naming the line and field.
+[[nodiscard]] Recording parse_recording(std::string_view text, const std::string& source_name);
+/// Writes format_recording(rec) to `file` atomically (a temporary file beside it, then a
+/// rename): `file` is never left partial. Throws std::runtime_error naming the file and the
+/// system's reason when it cannot.
+void write_recording(const std::filesystem::path& file, const Recording& rec);
+/// Reads a recording file: RecordingError unreadable (cannot open, a directory, read error),
+/// else as parse_recording.
+[[nodiscard]] Recording read_recording(const std::filesystem::path& file);
+
+/// What a replay found.
+struct ReplayReport {
+  std::uint64_t ticks = 0;       ///< ticks replayed (the recording's, or up to the mismatch)
+  std::uint64_t verified = 0;    ///< stored hashes that matched, the final one included
+  std::uint64_t final_hash = 0;  ///< state hash where the replay stopped
+  struct Mismatch {
+    std::uint64_t tick = 0;                  ///< first stored hash tick whose state differs
+    std::uint64_t last_match = 0;            ///< the last tick whose hash matched (0: the start)
+    std::uint64_t expected = 0, actual = 0;  ///< state hashes
+  };
+  std::optional<Mismatch> mismatch;  ///< nullopt: every hash matched
+  [[nodiscard]] bool ok() const { return !mismatch; }
+};
+
+/// Steps `sim` (at tick 0) through every recorded input and compares each stored hash and the
+/// final one; stops at the first that differs. The state first differs in the ticks
+/// (last_match, tick]; with hash_every = 1, at exactly `tick`. Throws std::invalid_argument
+/// when sim is not at tick 0.
+[[nodiscard]] ReplayReport replay(Simulation& sim, const Recording& rec);
+/// Builds def's world (make_simulation) and replays `rec` on it. Throws RecordingError
+/// scene_mismatch naming both hashes when definition_hash(def) is not the recording's (apply
+/// rec.settings to the scene first: apply_settings).
+[[nodiscard]] ReplayReport replay(const WorldDef& def, const Recording& rec);
+/// def with the recording's precision, dt, integrator and substeps.
+void apply_settings(WorldDef& def, const RecordedSettings& settings);
+
+}  // namespace fixstep

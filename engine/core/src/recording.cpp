@@ -1,0 +1,258 @@
+// Recordings in memory: the definition hash, the Recorder, replay and the atomic write. The
+// text format (format_recording, parse_recording) is in recording_format.cpp.
+#include "fixstep/recording.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <type_traits>
+
+namespace fixstep {
+
+namespace {
+
+/// FNV-1a, 64-bit (Fowler, Noll, Vo), fed the bytes of plain values.
+class Fnv1a {
+ public:
+  template <class T>
+  void add(T value) {
+    static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
+    if constexpr (std::is_same_v<T, double>) {
+      add_bits(std::bit_cast<std::uint64_t>(value));
+    } else {
+      add_bits(static_cast<std::uint64_t>(value));
+    }
+  }
+  void add(Vec2 v) { add(v.x), add(v.y); }
+  template <class T, class F>
+  void add_optional(const std::optional<T>& o, F&& fields) {
+    add(o.has_value());
+    if (o) fields(*o);
+  }
+  [[nodiscard]] std::uint64_t value() const { return hash_; }
+
+ private:
+  void add_bits(std::uint64_t bits) {
+    for (int i = 0; i < 8; ++i) {
+      hash_ ^= (bits >> (8 * i)) & 0xffu;
+      hash_ *= 1099511628211ull;
+    }
+  }
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+void hash_body(Fnv1a& h, const BodyDef& b) {
+  h.add(b.body.mass), h.add(b.body.position), h.add(b.body.velocity);
+  h.add_optional(b.spring, [&](const SpringDamper& s) {
+    h.add(s.anchor), h.add(s.stiffness), h.add(s.damping), h.add(s.rest_length);
+  });
+  h.add_optional(b.constant_force, [&](const ConstantForce& f) { h.add(f.force); });
+  h.add_optional(b.gravity, [&](const Gravity& g) { h.add(g.acceleration); });
+  h.add_optional(b.drag, [&](const LinearDrag& d) { h.add(d.coefficient); });
+  h.add_optional(b.collider, [&](const Collider& c) { h.add(c.radius); });
+}
+
+}  // namespace
+
+std::uint64_t definition_hash(const WorldDef& def) {
+  Fnv1a h;
+  h.add(def.precision);
+  h.add(def.settings.dt), h.add(def.settings.integrator), h.add(def.settings.substeps);
+  h.add(def.settings.flush_denormals);
+  h.add(def.bodies.size());
+  for (const BodyDef& b : def.bodies) hash_body(h, b);
+  h.add(def.links.size());
+  for (const BodyLink& l : def.links) {
+    h.add(l.body_a), h.add(l.body_b);
+    h.add(l.spring.stiffness), h.add(l.spring.damping), h.add(l.spring.rest_length);
+  }
+  h.add(def.planes.size());
+  for (const PlaneDef& p : def.planes) {
+    h.add(p.normal), h.add(p.offset), h.add(p.restitution), h.add(p.friction);
+  }
+  return h.value();
+}
+
+TickInput Recording::input_at(std::uint64_t tick) const {
+  TickInput in{};
+  if (tick < ticks) {
+    const auto after =
+        std::upper_bound(inputs.begin(), inputs.end(), tick,
+                         [](std::uint64_t t, const TickInput& change) { return t < change.tick; });
+    if (after != inputs.begin()) in = *(after - 1);
+  }
+  in.tick = tick;
+  return in;
+}
+
+std::string_view recording_error_name(RecordingError::Kind kind) {
+  switch (kind) {
+    case RecordingError::Kind::unreadable:
+      return "unreadable";
+    case RecordingError::Kind::foreign:
+      return "foreign";
+    case RecordingError::Kind::unsupported_version:
+      return "unsupported_version";
+    case RecordingError::Kind::truncated:
+      return "truncated";
+    case RecordingError::Kind::corrupt:
+      return "corrupt";
+    case RecordingError::Kind::scene_mismatch:
+      return "scene_mismatch";
+  }
+  return "unknown";
+}
+
+namespace {
+std::string error_text(const std::string& file, std::size_t line, std::string_view field,
+                       std::string_view message) {
+  std::string where = file;
+  if (line > 0) where += fmt::format(":{}", line);
+  if (!field.empty()) where += fmt::format(": {}", field);
+  return fmt::format("{}: {}", where, message);
+}
+}  // namespace
+
+RecordingError::RecordingError(Kind kind, const std::string& file, std::size_t line,
+                               std::string_view field, std::string_view message)
+    : std::runtime_error(error_text(file, line, field, message)), kind_(kind), line_(line) {}
+
+Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every) {
+  if (hash_every == 0) throw std::invalid_argument("Recorder: hash_every must be >= 1");
+  rec_.scene = std::move(scene);
+  rec_.definition_hash = definition_hash(def);
+  rec_.settings = {def.settings.integrator, def.precision, def.settings.dt, def.settings.substeps};
+  rec_.hash_every = hash_every;
+}
+
+void Recorder::record(const TickInput& input, const Simulation& after_the_tick) {
+  const std::uint64_t tick = rec_.ticks;
+  if (after_the_tick.tick() != tick + 1) {
+    throw std::invalid_argument(fmt::format(
+        "Recorder::record: the simulation is at tick {}, the recording expects tick {} (after "
+        "a rewind, call truncate first)",
+        after_the_tick.tick(), tick + 1));
+  }
+  TickInput in = input;
+  in.tick = tick;
+  const bool same = !rec_.inputs.empty() && [&] {
+    TickInput last = rec_.inputs.back();
+    last.tick = tick;
+    return last == in;
+  }();
+  if (!same) rec_.inputs.push_back(in);
+  rec_.ticks = tick + 1;
+  if (rec_.ticks % rec_.hash_every == 0) {
+    rec_.hashes.emplace_back(rec_.ticks, after_the_tick.state_hash());
+  }
+}
+
+void Recorder::truncate(std::uint64_t ticks) {
+  if (ticks > rec_.ticks) {
+    throw std::invalid_argument(
+        fmt::format("Recorder::truncate: {} ticks requested, only {} recorded", ticks, rec_.ticks));
+  }
+  std::erase_if(rec_.inputs, [&](const TickInput& in) { return in.tick >= ticks; });
+  std::erase_if(rec_.hashes, [&](const auto& h) { return h.first > ticks; });
+  rec_.ticks = ticks;
+}
+
+Recording Recorder::finish(const Simulation& sim) {
+  if (sim.tick() != rec_.ticks) {
+    throw std::invalid_argument(
+        fmt::format("Recorder::finish: the simulation is at tick {}, the recording has {} ticks",
+                    sim.tick(), rec_.ticks));
+  }
+  rec_.final_hash = sim.state_hash();
+  Recording out = std::move(rec_);
+  rec_ = Recording{};
+  rec_.scene = out.scene;
+  rec_.definition_hash = out.definition_hash;
+  rec_.settings = out.settings;
+  rec_.hash_every = out.hash_every;
+  return out;
+}
+
+ReplayReport replay(Simulation& sim, const Recording& rec) {
+  if (sim.tick() != 0) {
+    throw std::invalid_argument(
+        fmt::format("replay: the simulation is at tick {}, not at its start", sim.tick()));
+  }
+  ReplayReport report;
+  std::size_t next_change = 0, next_hash = 0;
+  TickInput in{};
+  auto mismatch = [&](std::uint64_t tick, std::uint64_t expected) {
+    report.mismatch = ReplayReport::Mismatch{
+        tick, next_hash > 0 ? rec.hashes[next_hash - 1].first : 0, expected, sim.state_hash()};
+  };
+  for (std::uint64_t t = 0; t < rec.ticks; ++t) {
+    if (next_change < rec.inputs.size() && rec.inputs[next_change].tick == t) {
+      in = rec.inputs[next_change++];
+    }
+    in.tick = t;
+    sim.step(in);
+    report.ticks = t + 1;
+    if (next_hash < rec.hashes.size() && rec.hashes[next_hash].first == t + 1) {
+      if (sim.state_hash() != rec.hashes[next_hash].second) {
+        mismatch(t + 1, rec.hashes[next_hash].second);
+        break;
+      }
+      ++report.verified, ++next_hash;
+    }
+  }
+  if (!report.mismatch) {
+    if (sim.state_hash() == rec.final_hash) {
+      ++report.verified;
+    } else {
+      mismatch(rec.ticks, rec.final_hash);
+    }
+  }
+  report.final_hash = sim.state_hash();
+  return report;
+}
+
+void apply_settings(WorldDef& def, const RecordedSettings& settings) {
+  def.precision = settings.precision;
+  def.settings.dt = settings.dt;
+  def.settings.integrator = settings.integrator;
+  def.settings.substeps = settings.substeps;
+}
+
+ReplayReport replay(const WorldDef& def, const Recording& rec) {
+  const std::uint64_t actual = definition_hash(def);
+  if (actual != rec.definition_hash) {
+    throw RecordingError(
+        RecordingError::Kind::scene_mismatch, rec.scene, 0, "definition",
+        fmt::format("the scene no longer matches the recording: its definition hash is {}, the "
+                    "recording's {} (bodies, components, links or settings changed)",
+                    hex_hash(actual), hex_hash(rec.definition_hash)));
+  }
+  Simulation sim = make_simulation(def);
+  return replay(sim, rec);
+}
+
+void write_recording(const std::filesystem::path& file, const Recording& rec) {
+  const std::string text = format_recording(rec);
+  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
+  const std::string tmp =
+      (dir / fmt::format(".{}.tmp.{}", file.filename().string(), ::getpid())).string();
+  auto fail = [&](int err) {
+    ::unlink(tmp.c_str());
+    throw std::runtime_error(fmt::format("cannot write {}: {}", file.string(), std::strerror(err)));
+  };
+  std::FILE* out = std::fopen(tmp.c_str(), "wbe");
+  if (!out) fail(errno);
+  errno = 0;
+  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size() &&
+                       std::fflush(out) == 0 && !std::ferror(out);
+  const int write_err = errno ? errno : EIO;
+  if (std::fclose(out) != 0 || !written) fail(written ? (errno ? errno : EIO) : write_err);
+  if (::rename(tmp.c_str(), file.c_str()) != 0) fail(errno);
+}
+
+}  // namespace fixstep

@@ -1,0 +1,345 @@
+// The recording file format: line-oriented text, written by format_recording and read by
+// parse_recording / read_recording. One line each:
+//   fixstep-recording 1
+//   scene PATH                 definition HASH          integrator NAME     precision f32|f64
+//   dt SECONDS                 substeps N               hash_every K
+//   tick N push=AX,AY held=HEX pressed=HEX released=HEX pointer=X,Y drag=INDEX|none
+//   hash N HASH                (state hash after N ticks)
+//   end TICKS HASH             (the last line; its absence means the file is truncated)
+// A tick line is written only when the input differs from the previous tick's; numbers are
+// the shortest text that reads back as the same double (fmt {} / std::from_chars).
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <system_error>
+
+#include "fixstep/recording.hpp"
+
+namespace fixstep {
+
+namespace {
+
+using Kind = RecordingError::Kind;
+
+/// Lines of `text` with their 1-based numbers; a last line without its newline is reported.
+class Lines {
+ public:
+  Lines(std::string_view text, const std::string& file) : text_(text), file_(file) {}
+  /// The next line, or nullopt at the end of the text. Throws truncated for a last line
+  /// without its newline.
+  std::optional<std::string_view> next() {
+    if (pos_ >= text_.size()) return std::nullopt;
+    const std::size_t end = text_.find('\n', pos_);
+    ++line_;
+    if (end == std::string_view::npos) {
+      fail(Kind::truncated, "", "the last line ends without a newline (the file was cut short)");
+    }
+    const std::string_view line = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    return line;
+  }
+  [[noreturn]] void fail(Kind kind, std::string_view field, std::string_view message) const {
+    throw RecordingError(kind, file_, line_, field, message);
+  }
+  [[nodiscard]] std::size_t line() const { return line_; }
+
+ private:
+  std::string_view text_;
+  const std::string& file_;
+  std::size_t pos_ = 0, line_ = 0;
+};
+
+/// Splits at single spaces.
+std::vector<std::string_view> words(std::string_view line) {
+  std::vector<std::string_view> out;
+  std::size_t i = 0;
+  while (true) {
+    const std::size_t j = line.find(' ', i);
+    out.push_back(line.substr(i, j == std::string_view::npos ? std::string_view::npos : j - i));
+    if (j == std::string_view::npos) return out;
+    i = j + 1;
+  }
+}
+
+std::string shown(std::string_view s) {
+  return s.size() > 40 ? fmt::format("\"{}...\"", s.substr(0, 40)) : fmt::format("\"{}\"", s);
+}
+
+template <class T>
+T integer(const Lines& in, std::string_view text, std::string_view field, int base, T max) {
+  T v{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v, base);
+  if (ec != std::errc{} || end != text.data() + text.size() || text.empty() || v > max) {
+    in.fail(Kind::corrupt, field,
+            fmt::format("expected {} <= {}, found {}",
+                        base == 16 ? "a hexadecimal integer" : "an integer", max, shown(text)));
+  }
+  return v;
+}
+
+std::uint64_t hash16(const Lines& in, std::string_view text, std::string_view field) {
+  if (text.size() != 16) {
+    in.fail(Kind::corrupt, field, fmt::format("expected 16 hex digits, found {}", shown(text)));
+  }
+  return integer<std::uint64_t>(in, text, field, 16, std::numeric_limits<std::uint64_t>::max());
+}
+
+double real(const Lines& in, std::string_view text, std::string_view field) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc{} || end != text.data() + text.size() || text.empty()) {
+    in.fail(Kind::corrupt, field, fmt::format("expected a number, found {}", shown(text)));
+  }
+  if (!std::isfinite(v)) in.fail(Kind::corrupt, field, fmt::format("must be finite (got {})", v));
+  return v;
+}
+
+Vec2 vec2(const Lines& in, std::string_view text, std::string_view field) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string_view::npos) {
+    in.fail(Kind::corrupt, field, fmt::format("expected X,Y, found {}", shown(text)));
+  }
+  return {real(in, text.substr(0, comma), field), real(in, text.substr(comma + 1), field)};
+}
+
+std::uint32_t buttons(const Lines& in, std::string_view text, std::string_view field) {
+  const auto v = integer<std::uint32_t>(in, text, field, 16, 0xffffffffu);
+  if ((v & ~all_buttons) != 0) {
+    in.fail(Kind::corrupt, field,
+            fmt::format("bits {:x} are not buttons (all_buttons = {:x})", v & ~all_buttons,
+                        all_buttons));
+  }
+  return v;
+}
+
+/// `KEY=VALUE` with the expected key; returns VALUE.
+std::string_view keyed(const Lines& in, std::string_view word, std::string_view key) {
+  if (word.size() <= key.size() || word.substr(0, key.size()) != key || word[key.size()] != '=') {
+    in.fail(Kind::corrupt, key, fmt::format("expected {}=..., found {}", key, shown(word)));
+  }
+  return word.substr(key.size() + 1);
+}
+
+/// The words of a line "KEY ...", checked for the key and the word count.
+std::vector<std::string_view> fields(const Lines& in, std::string_view line, std::string_view key,
+                                     std::size_t count) {
+  std::vector<std::string_view> w = words(line);
+  if (w[0] != key) {
+    in.fail(Kind::corrupt, key, fmt::format("expected the `{}` line, found {}", key, shown(line)));
+  }
+  if (w.size() != count) {
+    in.fail(Kind::corrupt, key,
+            fmt::format("expected {} words separated by single spaces, found {}", count, w.size()));
+  }
+  return w;
+}
+
+std::string_view header_line(Lines& in, std::string_view key) {
+  const auto line = in.next();
+  if (!line) in.fail(Kind::truncated, key, "the file ends inside the header");
+  return fields(in, *line, key, 2)[1];
+}
+
+void read_version(Lines& in, Recording& rec) {
+  const auto line = in.next();
+  if (!line) in.fail(Kind::truncated, "", "empty file");
+  const std::vector<std::string_view> w = words(*line);
+  if (w[0] != recording_magic) {
+    in.fail(Kind::foreign, "",
+            fmt::format("not a fixstep recording (the first line should start with `{}`)",
+                        recording_magic));
+  }
+  if (w.size() != 2) in.fail(Kind::corrupt, "version", "expected `fixstep-recording VERSION`");
+  const int version = integer<int>(in, w[1], "version", 10, std::numeric_limits<int>::max());
+  if (version < 1) in.fail(Kind::corrupt, "version", "must be >= 1");
+  if (version > recording_version) {
+    in.fail(Kind::unsupported_version, "version",
+            fmt::format("recording format version {}; this build reads version {} and older",
+                        version, recording_version));
+  }
+  rec.version = version;
+}
+
+void read_header(Lines& in, Recording& rec) {
+  read_version(in, rec);
+  {
+    const auto line = in.next();
+    if (!line) in.fail(Kind::truncated, "scene", "the file ends inside the header");
+    if (line->substr(0, 6) != "scene " || line->size() == 6) {
+      in.fail(Kind::corrupt, "scene", "expected `scene PATH`");
+    }
+    rec.scene = std::string(line->substr(6));
+    for (const char c : rec.scene) {  // a NUL in the path: found by fuzz_recording
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+        in.fail(Kind::corrupt, "scene", "the path holds a control character");
+      }
+    }
+  }
+  rec.definition_hash = hash16(in, header_line(in, "definition"), "definition");
+  const std::string_view integrator = header_line(in, "integrator");
+  const auto i = parse_integrator(integrator);
+  if (!i) in.fail(Kind::corrupt, "integrator", fmt::format("unknown {}", shown(integrator)));
+  rec.settings.integrator = *i;
+  const std::string_view precision = header_line(in, "precision");
+  const auto p = parse_precision(precision);
+  if (!p) in.fail(Kind::corrupt, "precision", fmt::format("unknown {}", shown(precision)));
+  rec.settings.precision = *p;
+  rec.settings.dt = real(in, header_line(in, "dt"), "dt");
+  if (!(rec.settings.dt > 0.0 && rec.settings.dt <= 1.0)) {
+    in.fail(Kind::corrupt, "dt", fmt::format("must be > 0 and <= 1 s (got {})", rec.settings.dt));
+  }
+  rec.settings.substeps = integer<int>(in, header_line(in, "substeps"), "substeps", 10, 1000000);
+  if (rec.settings.substeps < 1) in.fail(Kind::corrupt, "substeps", "must be >= 1");
+  rec.hash_every = integer<std::uint64_t>(in, header_line(in, "hash_every"), "hash_every", 10,
+                                          max_recording_ticks);
+  if (rec.hash_every < 1) in.fail(Kind::corrupt, "hash_every", "must be >= 1");
+}
+
+TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec) {
+  const std::vector<std::string_view> w = fields(in, line, "tick", 8);
+  TickInput t;
+  t.tick = integer<std::uint64_t>(in, w[1], "tick", 10, max_recording_ticks - 1);
+  if (rec.inputs.empty() ? t.tick != 0 : t.tick <= rec.inputs.back().tick) {
+    in.fail(Kind::corrupt, "tick",
+            rec.inputs.empty()
+                ? fmt::format("the first tick line must be tick 0 (got {})", t.tick)
+                : fmt::format("ticks out of order: {} after {}", t.tick, rec.inputs.back().tick));
+  }
+  t.push = vec2(in, keyed(in, w[2], "push"), "push");
+  t.held = buttons(in, keyed(in, w[3], "held"), "held");
+  t.pressed = buttons(in, keyed(in, w[4], "pressed"), "pressed");
+  t.released = buttons(in, keyed(in, w[5], "released"), "released");
+  t.pointer = vec2(in, keyed(in, w[6], "pointer"), "pointer");
+  const std::string_view drag = keyed(in, w[7], "drag");
+  t.drag_body = drag == "none" ? no_body : integer<std::uint32_t>(in, drag, "drag", 10, no_body);
+  return t;
+}
+
+void hash_line(const Lines& in, std::string_view line, Recording& rec) {
+  const std::vector<std::string_view> w = fields(in, line, "hash", 3);
+  const auto tick = integer<std::uint64_t>(in, w[1], "hash", 10, max_recording_ticks);
+  if (tick == 0 || (!rec.hashes.empty() && tick <= rec.hashes.back().first)) {
+    in.fail(Kind::corrupt, "hash",
+            tick == 0
+                ? std::string("tick must be >= 1")
+                : fmt::format("ticks out of order: {} after {}", tick, rec.hashes.back().first));
+  }
+  rec.hashes.emplace_back(tick, hash16(in, w[2], "hash"));
+}
+
+void end_line(const Lines& in, std::string_view line, Recording& rec) {
+  const std::vector<std::string_view> w = fields(in, line, "end", 3);
+  rec.ticks = integer<std::uint64_t>(in, w[1], "end", 10, max_recording_ticks);
+  rec.final_hash = hash16(in, w[2], "end");
+  if (!rec.inputs.empty() && rec.inputs.back().tick >= rec.ticks) {
+    in.fail(Kind::corrupt, "end",
+            fmt::format("a tick line for tick {} is beyond the end ({} ticks)",
+                        rec.inputs.back().tick, rec.ticks));
+  }
+  if (rec.ticks > 0 && rec.inputs.empty()) {
+    in.fail(Kind::corrupt, "end", fmt::format("{} ticks but no tick lines", rec.ticks));
+  }
+  if (!rec.hashes.empty() && rec.hashes.back().first > rec.ticks) {
+    in.fail(Kind::corrupt, "end",
+            fmt::format("a hash for tick {} is beyond the end ({} ticks)", rec.hashes.back().first,
+                        rec.ticks));
+  }
+}
+
+void format_input(std::string& out, const TickInput& t) {
+  fmt::format_to(
+      std::back_inserter(out),
+      "tick {} push={},{} held={:x} pressed={:x} released={:x} pointer={},{} drag=", t.tick,
+      t.push.x, t.push.y, t.held, t.pressed, t.released, t.pointer.x, t.pointer.y);
+  if (t.drag_body == no_body) {
+    out += "none\n";
+  } else {
+    fmt::format_to(std::back_inserter(out), "{}\n", t.drag_body);
+  }
+}
+
+}  // namespace
+
+std::string format_recording(const Recording& rec) {
+  for (const char c : rec.scene) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      throw std::invalid_argument("format_recording: the scene path holds a control character");
+    }
+  }
+  std::string out = fmt::format(
+      "{} {}\nscene {}\ndefinition {}\nintegrator {}\nprecision {}\ndt {}\nsubsteps {}\n"
+      "hash_every {}\n",
+      recording_magic, rec.version, rec.scene, hex_hash(rec.definition_hash),
+      integrator_name(rec.settings.integrator), precision_name(rec.settings.precision),
+      rec.settings.dt, rec.settings.substeps, rec.hash_every);
+  std::size_t h = 0;
+  auto hashes_until = [&](std::uint64_t tick) {
+    for (; h < rec.hashes.size() && rec.hashes[h].first <= tick; ++h) {
+      fmt::format_to(std::back_inserter(out), "hash {} {}\n", rec.hashes[h].first,
+                     hex_hash(rec.hashes[h].second));
+    }
+  };
+  for (const TickInput& t : rec.inputs) {
+    hashes_until(t.tick);
+    format_input(out, t);
+  }
+  hashes_until(std::numeric_limits<std::uint64_t>::max());
+  fmt::format_to(std::back_inserter(out), "end {} {}\n", rec.ticks, hex_hash(rec.final_hash));
+  return out;
+}
+
+Recording parse_recording(std::string_view text, const std::string& source_name) {
+  if (text.size() > max_recording_bytes) {
+    throw RecordingError(Kind::corrupt, source_name, 0, "",
+                         fmt::format("{} bytes; recordings are limited to {} bytes", text.size(),
+                                     max_recording_bytes));
+  }
+  Lines in(text, source_name);
+  Recording rec;
+  read_header(in, rec);
+  while (const auto line = in.next()) {
+    if (line->starts_with("tick ")) {
+      rec.inputs.push_back(tick_line(in, *line, rec));
+    } else if (line->starts_with("hash ")) {
+      hash_line(in, *line, rec);
+    } else if (line->starts_with("end ")) {
+      end_line(in, *line, rec);
+      if (in.next()) in.fail(Kind::corrupt, "", "text after the `end` line");
+      return rec;
+    } else {
+      in.fail(Kind::corrupt, "",
+              fmt::format("expected a `tick`, `hash` or `end` line, found {}", shown(*line)));
+    }
+  }
+  in.fail(Kind::truncated, "end",
+          "no `end` line: the recording was cut short (the session did not finish writing it)");
+}
+
+Recording read_recording(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) {
+    throw RecordingError(Kind::unreadable, name, 0, "", "is a directory, not a recording");
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    throw RecordingError(Kind::unreadable, name, 0, "", "cannot open (does it exist?)");
+  }
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_recording_bytes) {
+      throw RecordingError(
+          Kind::corrupt, name, 0, "",
+          fmt::format("larger than the {} bytes a recording may have", max_recording_bytes));
+    }
+  }
+  if (in.bad()) throw RecordingError(Kind::unreadable, name, 0, "", "read error");
+  return parse_recording(text, name);
+}
+
+}  // namespace fixstep

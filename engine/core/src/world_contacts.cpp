@@ -1,0 +1,290 @@
+// Contacts of disc colliders (Collider) with static half-planes (PlaneDef), resolved at their
+// time of impact inside the tick.
+//
+// The model. A tick first integrates every body as if no plane existed (world_step.cpp). For
+// each collider body, its start state (x0, v0) and end state (x1, v1) then define a motion of
+// constant acceleration a = (v1 - v0)/dt through both end positions:
+//   x(s) = x0 + u s + ½ a s²,  u(s) = u + a s,  u = v0 + δ,  δ = (x1 - x0)/dt - (v0 + v1)/2,
+// for 0 <= s <= dt, and the integrator's velocity is the model's minus the offset δ. For
+// gravity and constant forces a is exact for every integrator, and δ = 0 for those exact on
+// constant forces (velocity Verlet, RK4, Forest–Ruth). Semi-implicit Euler moves along an exact
+// parabola whose velocity leads its own by δ = a dt/2 (x1 = x0 + v1 dt): reflecting the
+// parabola's velocity keeps its energy, whereas reflecting v0 + a s (δ = 0, the model through
+// (x0, v0) alone) loses |v_n| |a_n| dt per bounce, 29 % of a 5 m drop's energy in 10 bounces
+// at 60 Hz (measured). The gap to
+// plane (n, offset) is g(s) = n·x(s) - offset - r, a quadratic in s; the first root in the tick
+// where the body approaches is its time of impact. There the normal velocity v_n < 0 becomes
+// -e v_n (Newton's law of restitution) and the tangential velocity v_t loses
+// min(|v_t|, μ (1 + e) |v_n|) (Coulomb friction over the impulse; Mirtich & Canny, "Impulse-
+// based simulation of rigid bodies", 1995), and the motion continues with the same a until
+// the next impact or the end of the tick (at most max_impacts per body and tick: the corner of
+// a wall and the ground takes two). A tick without an impact keeps the integrator's end state
+// bit for bit.
+//
+// Resting. A body whose bounce e |v_n| is at most one tick of its normal acceleration |a_n| dt
+// would hit again within about a tick (a ball with e < 1 bounces infinitely often in finite
+// time): it comes to rest on the plane instead. Its normal velocity is dropped, it is placed
+// on n·x = offset + r, and for the rest of the tick its normal acceleration is cancelled (the
+// normal force N = m |a_n|) and its tangential motion feels Coulomb friction μ |a_n| against
+// its velocity: over the remaining time T, the tangential velocity without friction
+// v_t + a_t T loses min(|v_t + a_t T|, μ |a_n| T), and the body moves with the constant
+// acceleration that gives that end velocity. A body on a slope with μ >= tan θ stays put.
+//
+// Energy. With track_dissipation, the kinetic energy each impact and each push-out removes,
+// and the work of friction while resting, are added to dissipated_energy(), so the balance
+// E + E_dissipated - E0 stays the integrator's error.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+
+namespace {
+
+/// Impacts resolved per body and tick; further ones wait for the next tick.
+constexpr int max_impacts = 8;
+
+struct V2 {
+  double x = 0, y = 0;
+};
+inline V2 operator+(V2 a, V2 b) {
+  return {a.x + b.x, a.y + b.y};
+}
+inline V2 operator-(V2 a, V2 b) {
+  return {a.x - b.x, a.y - b.y};
+}
+inline V2 operator*(double s, V2 a) {
+  return {s * a.x, s * a.y};
+}
+inline double dot(V2 a, V2 b) {
+  return a.x * b.x + a.y * b.y;
+}
+inline double norm(V2 a) {
+  return std::sqrt(dot(a, a));
+}
+
+/// A collider body's motion in the tick: position x and model velocity v at local time t,
+/// constant acceleration a, and the integrator's velocity offset (v - offset).
+struct Motion {
+  V2 x, v, a, offset;
+  double t = 0;     ///< s since the tick's start
+  double lost = 0;  ///< kinetic energy removed so far, J/kg
+
+  void advance(double s) {
+    x = x + s * v + (0.5 * s * s) * a;
+    v = v + s * a;
+    t += s;
+  }
+};
+
+/// Smallest s in [0, horizon] with gap(s) = g0 + b s + ½ c s² = 0 while approaching, or
+/// infinity. g0 <= tol counts as touching (g0 = 0): an event at s = 0 if the body moves or
+/// accelerates into the plane (b < -vtol, or b <= vtol and c < 0), else at s = -2b/c when it
+/// leaves and falls back (c < 0). The roots use the cancellation-free
+/// form q = -½ (b + sgn(b) √(b² - 2 c g0)), s = g0/q and 2q/c (Numerical Recipes §5.6), which
+/// also covers c = 0.
+double first_impact(double g0, double b, double c, double horizon, double tol, double vtol) {
+  constexpr double none = std::numeric_limits<double>::infinity();
+  if (g0 <= tol) {
+    if (b < -vtol || (b <= vtol && c < 0.0)) return 0.0;
+    return c < 0.0 && -2.0 * b / c <= horizon ? -2.0 * b / c : none;
+  }
+  const double disc = b * b - 2.0 * c * g0;
+  if (disc < 0.0) return none;
+  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  double s = none;
+  for (const double root : {q != 0.0 ? g0 / q : none, c != 0.0 ? 2.0 * q / c : none}) {
+    if (root >= 0.0 && root <= horizon && b + c * root <= 0.0) s = std::min(s, root);
+  }
+  return s;
+}
+
+/// Resolves an impact of m with plane p (normal n) at m's current state; r = the radius, dt =
+/// the tick. Places the body on the plane; updates its velocity, its acceleration when it comes
+/// to rest, and the energy lost.
+void impact(Motion& m, const PlaneDef& p, double r, double dt) {
+  const V2 n{p.normal.x, p.normal.y};
+  m.x = m.x + (p.offset + r - dot(n, m.x)) * n;  // exactly on the plane (in double)
+  const double vn = std::min(dot(n, m.v), 0.0);
+  const double an = dot(n, m.a);
+  const V2 vt = m.v - dot(n, m.v) * n;
+  const bool rests = p.restitution * -vn <= std::max(-an, 0.0) * dt;
+  const double e = rests ? 0.0 : p.restitution;
+  // Coulomb over the normal impulse (1 + e)|v_n| (per unit mass): of the trajectory at a
+  // bounce; at rest of the integrator's own velocity (semi-implicit Euler's trajectory leads
+  // it by a dt/2 into the plane, which no impulse stops).
+  const double vn_stopped = rests ? std::min(dot(n, m.v - m.offset), 0.0) : vn;
+  const double speed = norm(vt);
+  const double cut = std::min(speed, p.friction * (1.0 + e) * -vn_stopped);
+  const V2 vt_after = speed > 0.0 ? ((speed - cut) / speed) * vt : vt;
+  const V2 v_after = vt_after + (-e * vn) * n;
+  if (!rests) {
+    m.lost += 0.5 * (dot(m.v, m.v) - dot(v_after, v_after));  // on the trajectory
+    m.v = v_after;
+    return;
+  }
+  // At rest the integrator's velocity has no normal part either. The energy lost is the
+  // integrator's kinetic energy before and after: semi-implicit Euler's trajectory velocity
+  // leads by a dt/2 into the plane each tick it rests, which no physics dissipates.
+  const V2 before = m.v - m.offset;
+  m.offset = m.offset - dot(n, m.offset) * n;
+  const V2 after = v_after - m.offset;
+  m.lost += 0.5 * (dot(before, before) - dot(after, after));
+  m.v = v_after;
+  if (an >= 0.0) return;
+  // Resting: the normal force cancels a_n; sliding friction μ|a_n| acts over the rest T.
+  const double T = dt - m.t;
+  if (T <= 0.0) return;
+  const V2 at = m.a - an * n;
+  const V2 free_end = m.v + T * at;
+  const double free_speed = norm(free_end);
+  const double slow = std::min(free_speed, p.friction * -an * T);
+  const V2 end = free_speed > 0.0 ? ((free_speed - slow) / free_speed) * free_end : free_end;
+  const V2 a_new = (1.0 / T) * (end - m.v);
+  // Work of friction over T (its acceleration a_new - at is constant, v is linear in time).
+  m.lost -= dot(a_new - at, 0.5 * T * (m.v + end));
+  m.a = a_new;
+}
+
+}  // namespace
+
+template <class Real>
+std::size_t World<Real>::add_plane(const PlaneDef& def) {
+  const std::string who = fmt::format("plane[{}]", planes_.size());
+  auto check = [&](double v, bool ok, const char* field, const char* allowed) {
+    if (!std::isfinite(v) || !std::isfinite(static_cast<Real>(v)) || !ok) {
+      throw std::invalid_argument(
+          fmt::format("{}: {} must be {} (got {})", who, field, allowed, v));
+    }
+  };
+  check(def.normal.x, true, "normal", "finite");
+  check(def.normal.y, true, "normal", "finite");
+  const double len = std::hypot(def.normal.x, def.normal.y);
+  if (!(len > 0.0) || !std::isfinite(len)) {
+    throw std::invalid_argument(fmt::format("{}: normal must be a non-zero vector (got [{}, {}])",
+                                            who, def.normal.x, def.normal.y));
+  }
+  check(def.offset, true, "offset", "finite (m)");
+  const double e = def.restitution, mu = def.friction;
+  check(e, std::isfinite(e) && e >= 0.0 && e <= 1.0, "restitution", "in [0, 1]");
+  check(mu, std::isfinite(mu) && mu >= 0.0, "friction", "finite and >= 0");
+  PlaneDef p = def;
+  p.normal = Vec2{def.normal.x / len, def.normal.y / len};
+  planes_.push_back(p);
+  terms_dirty_ = true;
+  return planes_.size() - 1;
+}
+
+template <class Real>
+void World<Real>::rebuild_contacts() {
+  ContactScratch& c = contact_;
+  const std::size_t n = colliders_.data.size();
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  auto body_of = [&](std::uint32_t i) { return bodies_.index(colliders_.set.dense[i]); };
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return body_of(a) < body_of(b); });
+  c.body.resize(n);
+  c.radius.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    c.body[k] = static_cast<std::uint32_t>(body_of(order[k]));
+    c.radius[k] = colliders_.data[order[k]].radius;
+  }
+  for (auto* v : {&c.x0, &c.y0, &c.vx0, &c.vy0}) v->resize(n);
+  c.active = !planes_.empty() && n > 0;
+}
+
+template <class Real>
+void World<Real>::save_contact_start() {
+  ContactScratch& c = contact_;
+  for (std::size_t k = 0; k < c.body.size(); ++k) {
+    const std::uint32_t j = c.body[k];
+    c.x0[k] = x_[j], c.y0[k] = y_[j], c.vx0[k] = vx_[j], c.vy0[k] = vy_[j];
+  }
+}
+
+template <class Real>
+void World<Real>::resolve_contacts() {
+  const ContactScratch& c = contact_;
+  const double dt = settings_.dt;
+  const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
+  bool out_of_range = false;
+  for (std::size_t k = 0; k < c.body.size(); ++k) {
+    const std::uint32_t j = c.body[k];
+    const double r = c.radius[k];
+    const V2 v0{double(c.vx0[k]), double(c.vy0[k])};
+    const V2 v1{double(vx_[j]), double(vy_[j])};
+    const V2 x0{double(c.x0[k]), double(c.y0[k])}, x1{double(x_[j]), double(y_[j])};
+    const V2 offset = (1.0 / dt) * (x1 - x0) - 0.5 * (v0 + v1);
+    Motion m{x0, v0 + offset, (1.0 / dt) * (v1 - v0), offset};
+    bool touched = false;
+    // A body that starts inside a plane is pushed out; its approaching velocity is dropped.
+    for (const PlaneDef& p : planes_) {
+      const V2 n{p.normal.x, p.normal.y};
+      const double g0 = dot(n, m.x) - p.offset - r;
+      if (g0 >= -rel * (std::abs(dot(n, m.x)) + std::abs(p.offset) + r)) continue;
+      m.x = m.x + -g0 * n;
+      const double vn = std::min(dot(n, m.v), 0.0);
+      m.lost += 0.5 * vn * vn;
+      m.v = m.v - vn * n;
+      touched = true;
+    }
+    for (int i = 0; i < max_impacts; ++i) {
+      const double horizon = dt - m.t;
+      // Rounding of the offset (x1 - x0)/dt is up to about eps |x|/dt.
+      const double vtol = rel * (norm(m.v) + norm(m.a) * dt + norm(m.x) / dt);
+      double first = std::numeric_limits<double>::infinity();
+      const PlaneDef* hit = nullptr;
+      for (const PlaneDef& p : planes_) {
+        const V2 n{p.normal.x, p.normal.y};
+        const double nx = dot(n, m.x);
+        const double g0 = nx - p.offset - r;
+        const double tol = rel * (std::abs(nx) + std::abs(p.offset) + r);
+        const double s = first_impact(g0, dot(n, m.v), dot(n, m.a), horizon, tol, vtol);
+        if (s < first) first = s, hit = &p;
+      }
+      if (!hit) break;
+      m.advance(first);
+      impact(m, *hit, r, dt);
+      touched = true;
+    }
+    if (!touched) {
+      // The model found no impact; rounding may still leave the end state a hair inside: an
+      // impact at the end of the tick.
+      for (const PlaneDef& p : planes_) {
+        const V2 n{p.normal.x, p.normal.y};
+        if (dot(n, x1) - p.offset - r >= 0.0) continue;
+        if (!touched) m = Motion{x1, v1 + offset, m.a, offset, dt, 0.0};
+        impact(m, p, r, dt);
+        touched = true;
+      }
+      if (!touched) continue;
+    }
+    m.advance(dt - m.t);
+    x_[j] = static_cast<Real>(m.x.x), y_[j] = static_cast<Real>(m.x.y);
+    vx_[j] = static_cast<Real>(m.v.x - m.offset.x), vy_[j] = static_cast<Real>(m.v.y - m.offset.y);
+    if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(m.lost);
+    // The runtime guard, as in the sweep: a push-out beyond the range is a fault too.
+    for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {
+      out_of_range = out_of_range || !(std::abs(double(value)) <= max_state_magnitude);
+    }
+  }
+  if (out_of_range && !fault_) record_fault();
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                               \
+  template std::size_t World<Real>::add_plane(const PlaneDef&); \
+  template void World<Real>::rebuild_contacts();                \
+  template void World<Real>::save_contact_start();              \
+  template void World<Real>::resolve_contacts();
+FIXSTEP_INSTANTIATE(float)
+FIXSTEP_INSTANTIATE(double)
+#undef FIXSTEP_INSTANTIATE
+
+}  // namespace fixstep

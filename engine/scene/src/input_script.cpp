@@ -1,0 +1,187 @@
+// Input scripts: [[at]] tables of a TOML file read with the scene loader's Reader (FILE:LINE:
+// COLUMN: KEY errors, unknown keys warned about with a suggestion).
+#include "fixstep/input_script.hpp"
+
+#include <array>
+#include <fstream>
+
+#include "fixstep/recording.hpp"
+#include "scene_reader.hpp"
+
+namespace fixstep {
+
+namespace {
+
+using scene_detail::Reader;
+using scene_detail::type_name;
+
+constexpr std::array<std::pair<std::string_view, std::uint32_t>, 7> buttons{{
+    {"left", button_left},
+    {"right", button_right},
+    {"up", button_up},
+    {"down", button_down},
+    {"action", button_action},
+    {"pointer_primary", button_pointer_primary},
+    {"pointer_secondary", button_pointer_secondary},
+}};
+
+/// `press` / `release`: an array of button names, as InputButton bits.
+std::uint32_t button_list(const Reader& r, const toml::table& t, std::string_view key,
+                          const std::string& path) {
+  const toml::node* n = t.get(key);
+  if (!n) return 0;
+  const toml::array* a = n->as_array();
+  if (!a)
+    r.fail(n->source(), path,
+           fmt::format("expected an array of button names, found {}", type_name(*n)));
+  std::uint32_t bits = 0;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    const std::string at = fmt::format("{}[{}]", path, i);
+    if (!e.is_string()) {
+      r.fail(e.source(), at, fmt::format("expected a button name, found {}", type_name(e)));
+    }
+    const std::string_view name = e.as_string()->get();
+    const auto found = std::find_if(buttons.begin(), buttons.end(),
+                                    [&](const auto& b) { return b.first == name; });
+    if (found == buttons.end()) {
+      std::vector<std::string> names;
+      names.reserve(buttons.size());
+      for (const auto& b : buttons) names.emplace_back(b.first);
+      const auto best = closest(name, names);
+      r.fail(e.source(), at,
+             fmt::format("unknown button \"{}\"{} (valid: left, right, up, down, action, "
+                         "pointer_primary, pointer_secondary)",
+                         name, best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
+    }
+    bits |= found->second;
+  }
+  return bits;
+}
+
+/// `drag`: a body name (its dense index) or false (no body).
+std::uint32_t drag_target(const Reader& r, const toml::node& n, const std::string& path,
+                          std::span<const BodyDef> bodies) {
+  if (n.is_boolean() && !n.as_boolean()->get()) return no_body;
+  if (!n.is_string()) {
+    r.fail(n.source(), path,
+           fmt::format("expected a body name or false, found {}",
+                       n.is_boolean() ? std::string_view("true") : type_name(n)));
+  }
+  const std::string_view name = n.as_string()->get();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].name == name) return static_cast<std::uint32_t>(i);
+  }
+  std::vector<std::string> names;
+  names.reserve(bodies.size());
+  for (const BodyDef& b : bodies) names.push_back(b.name);
+  const auto best = closest(name, names);
+  r.fail(n.source(), path,
+         fmt::format("no body named \"{}\"{}", name,
+                     best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
+}
+
+ScriptEvent parse_event(Reader& r, const toml::table& t, std::size_t index,
+                        std::span<const BodyDef> bodies) {
+  const std::string path = fmt::format("at[{}]", index);
+  r.check_keys(t, path, {"tick", "press", "release", "pointer", "push", "drag"});
+  ScriptEvent e;
+  e.line = t.source().begin.line;
+  const toml::node* tick = t.get("tick");
+  if (!tick) r.fail_missing(t, path, {"tick"}, "missing (required)");
+  e.tick = static_cast<std::uint64_t>(
+      r.integer_node(*tick, path + ".tick", 0, static_cast<std::int64_t>(max_recording_ticks - 1)));
+  e.press = button_list(r, t, "press", path + ".press");
+  e.release = button_list(r, t, "release", path + ".release");
+  e.pointer = r.vec2(t, "pointer", path + ".pointer");
+  e.push = r.vec2(t, "push", path + ".push");
+  if (const toml::node* d = t.get("drag")) e.drag = drag_target(r, *d, path + ".drag", bodies);
+  return e;
+}
+
+}  // namespace
+
+std::span<const std::pair<std::string_view, std::uint32_t>> button_names() {
+  return buttons;
+}
+
+InputScript parse_input_script(std::string_view text, const std::string& source_name,
+                               std::span<const BodyDef> bodies) {
+  InputScript script;
+  script.file = source_name;
+  Reader r(script.file);
+  if (text.size() > max_script_bytes) {
+    throw SceneError(source_name, 0, 0, "",
+                     fmt::format("file is {} bytes; input scripts are limited to {} bytes",
+                                 text.size(), max_script_bytes));
+  }
+  if (text.find('\0') != std::string_view::npos) {
+    throw SceneError(source_name, 0, 0, "", "binary data (NUL byte): not a TOML input script");
+  }
+  toml::table doc;
+  try {
+    doc = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(source_name, e.source().begin.line, e.source().begin.column, "",
+                     fmt::format("TOML syntax error: {}", e.description()));
+  }
+  r.check_keys(doc, "", {"at"});
+  if (const toml::array* list = r.tables(doc, "at")) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table& t = *list->get(i)->as_table();
+      ScriptEvent e = parse_event(r, t, i, bodies);
+      if (!script.events.empty() && e.tick <= script.events.back().tick) {
+        r.fail(t.get("tick")->source(), fmt::format("at[{}].tick", i),
+               fmt::format("ticks must increase from one [[at]] to the next ({} after {})", e.tick,
+                           script.events.back().tick));
+      }
+      script.events.push_back(e);
+    }
+  }
+  script.warnings = r.take_warnings();
+  return script;
+}
+
+InputScript load_input_script(const std::filesystem::path& file, std::span<const BodyDef> bodies) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) {
+    throw SceneError(name, 0, 0, "", "is a directory, not an input script");
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(name, 0, 0, "", "cannot open input script (does it exist?)");
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_script_bytes) {
+      throw SceneError(name, 0, 0, "",
+                       fmt::format("file is larger than the {} bytes an input script may have",
+                                   max_script_bytes));
+    }
+  }
+  if (in.bad()) throw SceneError(name, 0, 0, "", "read error");
+  return parse_input_script(text, name, bodies);
+}
+
+TickInput ScriptPlayer::next() {
+  if (event_ < script_.events.size() && script_.events[event_].tick == tick_) {
+    const ScriptEvent& e = script_.events[event_++];
+    if (e.press) sampler_.press(e.press);
+    if (e.release) sampler_.release(e.release);
+    if (e.pointer) sampler_.set_pointer(*e.pointer);
+    if (e.push) sampler_.set_push(*e.push);
+    if (e.drag) sampler_.set_drag_body(*e.drag);
+  }
+  return sampler_.sample(tick_++);
+}
+
+std::vector<TickInput> script_inputs(const InputScript& script, std::uint64_t ticks) {
+  ScriptPlayer player(script);
+  std::vector<TickInput> out;
+  out.reserve(ticks);
+  for (std::uint64_t t = 0; t < ticks; ++t) out.push_back(player.next());
+  return out;
+}
+
+}  // namespace fixstep
