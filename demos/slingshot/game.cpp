@@ -224,7 +224,7 @@ std::vector<std::string> status_lines(const GameState& game) {
       break;
     case Phase::pulled:
     case Phase::flying:
-      lines.emplace_back("the ball flies");
+      lines.emplace_back("ball in play");
       break;
     case Phase::over:
       lines.emplace_back("GAME OVER: " + std::to_string(game.score) + " of " +

@@ -59,6 +59,7 @@ int play(const std::string& record_file, std::int64_t frames) {
 
   RealClock clock;
   WindowEvents ev;
+  TickInput last;  // the input of the last tick run (drawn: the drag)
   for (std::int64_t frame = 0; frames == 0 || frame < frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
     window.poll(ev);
@@ -76,7 +77,9 @@ int play(const std::string& record_file, std::int64_t frames) {
       slingshot::prepare_input(game, drag, in, sim);
       slingshot::play_tick(game, in, sim);
       if (recorder) recorder->record(in, sim);
+      last = in;
     });
+    session.show_drag(last.pointer, last.drag_body);  // the pointer's spring to the ball
     session.set_status_lines(slingshot::status_lines(game));
     session.draw();
     window.present(session.renderer().pixels());
@@ -127,28 +130,31 @@ int replay_file(const std::string& file, const std::string& out_dir, int every,
   };
 
   const VirtualClock clock(60.0);
+  TickInput last;
   for (std::int64_t frame = 0;; ++frame) {
     if (frame > 0) {
       session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& sim) {
         if (t >= rec.ticks || diverged) return;  // the end, or no point going on
-        slingshot::play_tick(game, rec.input_at(t), sim);
+        last = rec.input_at(t);
+        slingshot::play_tick(game, last, sim);
         check(sim);
       });
     }
     const std::uint64_t tick = session.simulation().tick();
-    const bool last = tick >= rec.ticks || diverged;
-    const bool write = writer && (frame % every == 0 || last);
+    const bool end = tick >= rec.ticks || diverged;
+    const bool write = writer && (frame % every == 0 || end);
     // Trails grow by one sample per frame drawn: the trail_frames frames before each frame
     // written are drawn too, so its trails look as they do in the window.
     const double frames_left = double(rec.ticks - std::min(tick, rec.ticks)) * slingshot::dt * 60;
     const bool warm_up = (writer && every - frame % every <= Renderer::trail_frames) ||
                          (!last_frame.empty() && frames_left <= Renderer::trail_frames + 1);
-    if (write || warm_up || (last && !last_frame.empty())) {
+    if (write || warm_up || (end && !last_frame.empty())) {
+      session.show_drag(last.pointer, last.drag_body);
       session.set_status_lines(slingshot::status_lines(game));
       session.draw();
     }
     if (write) writer->submit(session.renderer().pixels());
-    if (last) break;
+    if (end) break;
   }
   const Simulation& sim = session.simulation();
   if (!diverged && sim.state_hash() == rec.final_hash) ++verified;
@@ -158,8 +164,10 @@ int replay_file(const std::string& file, const std::string& out_dir, int every,
   std::printf("%s\n%s\nverified=%llu\n", summary_line(sim, session.initial_energy()).c_str(),
               slingshot::describe(game).c_str(), static_cast<unsigned long long>(verified));
   if (diverged) {
-    std::fprintf(stderr, "slingshot: error: %s diverged at tick %llu\n", file.c_str(),
-                 static_cast<unsigned long long>(*diverged));
+    std::fprintf(stderr,
+                 "slingshot: error: %s diverged at tick %llu: the state after that many ticks "
+                 "is not the recorded one\n",
+                 file.c_str(), static_cast<unsigned long long>(*diverged));
     return 4;
   }
   return 0;
