@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fixstep/components.hpp>
 #include <fixstep/world.hpp>
+#include <numbers>
 #include <string>
 
 namespace slingshot {
@@ -16,7 +17,6 @@ using fixstep::Vec2;
 namespace {
 
 constexpr double gravity = 9.81;  // m/s²
-constexpr double pi = 3.14159265358979323846;
 constexpr fixstep::Rgba8 ball_color{230, 70, 60, 255};
 constexpr fixstep::Rgba8 target_color{250, 200, 60, 255};
 constexpr fixstep::Rgba8 knocked_color{120, 120, 130, 255};
@@ -87,7 +87,7 @@ void reload(fixstep::Simulation& sim) {
 }  // namespace
 
 Vec2 ball_rest_position() {
-  const double omega = 2.0 * pi * band_frequency;
+  const double omega = 2.0 * std::numbers::pi * band_frequency;
   return {anchor.x, anchor.y - gravity / (omega * omega)};  // where band and gravity balance
 }
 
