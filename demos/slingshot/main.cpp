@@ -196,6 +196,10 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     if (!replay.empty()) return replay_file(replay, out_dir, every, last_frame);
     return play(record, frames);
+  } catch (const WindowError& e) {
+    std::fprintf(stderr, "slingshot: error: %s. Replay a game headless instead: --replay FILE\n",
+                 e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "slingshot: error: %s\n", e.what());
     return 1;
