@@ -70,6 +70,7 @@ int play(const std::string& record_file, std::int64_t frames) {
       session.restart();
       game = {};
       drag.reset();
+      last = {};
       if (recorder) recorder.emplace(session.definition(), scene_name, hash_every);
     }
     session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& sim) {
