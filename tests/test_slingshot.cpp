@@ -197,16 +197,4 @@ TEST(Slingshot, ScriptedGameIsDeterministicAndReplays) {
   EXPECT_NE(replay(changed).hash, a.hash);
 }
 
-// Prints the score of a grid of pulls (run with --gtest_also_run_disabled_tests to tune).
-TEST(Slingshot, DISABLED_PullGrid) {
-  for (double dx = -3.0; dx <= -1.0; dx += 0.2) {
-    for (double dy = -2.4; dy <= 0.4; dy += 0.2) {
-      const Vec2 pull{anchor.x + dx, anchor.y + dy};
-      const Played p = play({pull}, 1200);
-      if (p.game.score > 0)
-        std::printf("pull (%.1f, %.1f): %s\n", pull.x, pull.y, describe(p.game).c_str());
-    }
-  }
-}
-
 }  // namespace

@@ -10,6 +10,7 @@
 // a force nobody declares costs nothing. active_terms() says which terms are declared.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -386,7 +387,9 @@ class World {
   } net_;
   // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
   // states and accumulators (see world_coupled.cpp).
-  std::vector<Real> fx_, fy_, s_[4], d_[4], power_body_, power_link_;
+  std::vector<Real> fx_, fy_, power_body_, power_link_;
+  // std::array, not T[4]: clang-tidy 14 flags the loop variable clang makes to copy a C array.
+  std::array<std::vector<Real>, 4> s_, d_;
   detail::CachePtr<detail::Workers, detail::WorkersDeleter> workers_;
   detail::CachePtr<detail::ImplicitSolver<Real>, detail::ImplicitSolverDeleter<Real>> implicit_;
   // (world_coupled.cpp)
