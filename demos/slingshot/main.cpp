@@ -51,6 +51,7 @@ SessionSettings view() {
 int play(const std::string& record_file, std::int64_t frames) {
   Window window("fixstep - slingshot", width, height);
   Session session(slingshot::make_level(), view());
+  session.set_show_energy(false);  // the pull and the hits add energy from outside the world
   slingshot::GameState game;
   InputSampler sampler;
   PointerDrag drag(0.3);  // m: a small ball is easy to grab
@@ -103,6 +104,7 @@ int replay_file(const std::string& file, const std::string& out_dir, int every,
                 const std::string& last_frame) {
   const Recording rec = read_recording(file);
   Session session(slingshot::make_level(), view());
+  session.set_show_energy(false);  // the pull and the hits add energy from outside the world
   if (definition_hash(session.definition()) != rec.definition_hash) {
     std::fprintf(stderr, "slingshot: error: %s was recorded on another level (hash %s, not %s)\n",
                  file.c_str(), hex_hash(rec.definition_hash).c_str(),

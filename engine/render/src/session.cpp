@@ -206,7 +206,6 @@ void Session::draw() {
     frame_.springs.push_back(
         {static_cast<float>(drag_pointer_.x), static_cast<float>(drag_pointer_.y), drag_body_});
   }
-  const double e = sim_->energy().total();
   hud_.clear();
   const std::size_t n = sim_->body_count();
   hud_.push_back(fmt::format("fixstep  {}{}({} bod{})", title_, title_.empty() ? "" : "  ", n,
@@ -217,10 +216,13 @@ void Session::draw() {
                              substeps > 1 ? fmt::format(" ({} substeps)", substeps) : ""));
   hud_.push_back(fmt::format("{} ({})", integrator_name(sim_->settings().integrator),
                              precision_name(sim_->precision())));
-  const double balance = energy_balance(*sim_, initial_energy_);
-  hud_.push_back(fmt::format(
-      "energy {:.6g} J   dissipated {:.6g} J   balance {:+.3g}{}", e, sim_->dissipated_energy(),
-      initial_energy_ != 0.0 ? 100.0 * balance : balance, initial_energy_ != 0.0 ? " %" : " J"));
+  if (show_energy_) {
+    const double balance = energy_balance(*sim_, initial_energy_);
+    hud_.push_back(fmt::format("energy {:.6g} J   dissipated {:.6g} J   balance {:+.3g}{}",
+                               sim_->energy().total(), sim_->dissipated_energy(),
+                               initial_energy_ != 0.0 ? 100.0 * balance : balance,
+                               initial_energy_ != 0.0 ? " %" : " J"));
+  }
   if (const auto& fault = sim_->fault()) {
     // Built once: the guard's message (which runs the stability analysis) does not change
     // while the simulation stays stopped.

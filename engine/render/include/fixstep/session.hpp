@@ -74,6 +74,10 @@ class Session {
   void show_drag(Vec2 pointer, std::uint32_t body) { drag_pointer_ = pointer, drag_body_ = body; }
   /// Shows the window's key help in the HUD.
   void set_show_controls(bool show) { show_controls_ = show; }
+  /// Shows the energy line (E, dissipated, balance) in the HUD: on by default. Programs whose
+  /// rules or pointer add energy from outside the world's account (a game) may hide it, as
+  /// its balance then measures them, not the integrator.
+  void set_show_energy(bool show) { show_energy_ = show; }
   /// Extra HUD lines drawn below the engine's (a game's score, a hint), until replaced; an
   /// empty list shows none. The bitmap font is ASCII only.
   void set_status_lines(std::vector<std::string> lines) { status_lines_ = std::move(lines); }
@@ -102,6 +106,7 @@ class Session {
   std::vector<std::string> fault_lines_;  ///< the runtime guard's message for the HUD, once built
   double initial_energy_ = 0.0;
   bool show_controls_ = false;
+  bool show_energy_ = true;
   Vec2 drag_pointer_{};
   std::uint32_t drag_body_ = no_body;
   std::vector<std::string> status_lines_;  ///< set_status_lines()
