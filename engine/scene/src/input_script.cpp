@@ -3,7 +3,6 @@
 #include "fixstep/input_script.hpp"
 
 #include <array>
-#include <fstream>
 
 #include "fixstep/recording.hpp"
 #include "scene_reader.hpp"
@@ -14,6 +13,7 @@ namespace {
 
 using scene_detail::Reader;
 using scene_detail::type_name;
+const scene_detail::FileKind script_file{"input script", "an", "an input script", "input scripts"};
 
 constexpr std::array<std::pair<std::string_view, std::uint32_t>, 7> buttons{{
     {"left", button_left},
@@ -110,21 +110,8 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
   InputScript script;
   script.file = source_name;
   Reader r(script.file);
-  if (text.size() > max_script_bytes) {
-    throw SceneError(source_name, 0, 0, "",
-                     fmt::format("file is {} bytes; input scripts are limited to {} bytes",
-                                 text.size(), max_script_bytes));
-  }
-  if (text.find('\0') != std::string_view::npos) {
-    throw SceneError(source_name, 0, 0, "", "binary data (NUL byte): not a TOML input script");
-  }
-  toml::table doc;
-  try {
-    doc = toml::parse(text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw SceneError(source_name, e.source().begin.line, e.source().begin.column, "",
-                     fmt::format("TOML syntax error: {}", e.description()));
-  }
+  const toml::table doc =
+      scene_detail::parse_toml(text, source_name, max_script_bytes, script_file);
   r.check_keys(doc, "", {"at"});
   if (const toml::array* list = r.tables(doc, "at")) {
     for (std::size_t i = 0; i < list->size(); ++i) {
@@ -143,25 +130,8 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
 }
 
 InputScript load_input_script(const std::filesystem::path& file, std::span<const BodyDef> bodies) {
-  const std::string name = file.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) {
-    throw SceneError(name, 0, 0, "", "is a directory, not an input script");
-  }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(name, 0, 0, "", "cannot open input script (does it exist?)");
-  std::string text;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    text.append(buf, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_script_bytes) {
-      throw SceneError(name, 0, 0, "",
-                       fmt::format("file is larger than the {} bytes an input script may have",
-                                   max_script_bytes));
-    }
-  }
-  if (in.bad()) throw SceneError(name, 0, 0, "", "read error");
-  return parse_input_script(text, name, bodies);
+  return parse_input_script(scene_detail::read_text_file(file, max_script_bytes, script_file),
+                            file.string(), bodies);
 }
 
 TickInput ScriptPlayer::next() {

@@ -14,6 +14,10 @@
 
 namespace fixstep {
 
+namespace {
+const scene_detail::FileKind scene_file{"scene file", "a", "a scene", "scenes"};
+}  // namespace
+
 SceneError::SceneError(std::string file, std::size_t line, std::size_t column, std::string key,
                        const std::string& message)
     : std::runtime_error(fmt::format("{}{}{}: {}{}{}", file,
@@ -126,21 +130,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   scene.world.track_dissipation = true;
   Reader r(scene.file);
 
-  if (text.size() > max_scene_bytes) {
-    throw SceneError(source_name, 0, 0, "",
-                     fmt::format("file is {} bytes; scenes are limited to {} bytes", text.size(),
-                                 max_scene_bytes));
-  }
-  if (text.find('\0') != std::string_view::npos) {
-    throw SceneError(source_name, 0, 0, "", "binary data (NUL byte): not a TOML scene file");
-  }
-  toml::table doc;
-  try {
-    doc = toml::parse(text, source_name);
-  } catch (const toml::parse_error& e) {
-    throw SceneError(source_name, e.source().begin.line, e.source().begin.column, "",
-                     fmt::format("TOML syntax error: {}", e.description()));
-  }
+  const toml::table doc = scene_detail::parse_toml(text, source_name, max_scene_bytes, scene_file);
   r.check_keys(doc, "", {"world", "view", "body", "spring", "chain", "grid", "plane"});
 
   const toml::table* world = r.table(doc, "world", "world");
@@ -218,26 +208,53 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& file) {
+toml::table scene_detail::parse_toml(std::string_view text, const std::string& source_name,
+                                     std::size_t max_bytes, const FileKind& kind) {
+  if (text.size() > max_bytes) {
+    throw SceneError(source_name, 0, 0, "",
+                     fmt::format("file is {} bytes; {} are limited to {} bytes", text.size(),
+                                 kind.plural, max_bytes));
+  }
+  if (text.find('\0') != std::string_view::npos) {
+    throw SceneError(source_name, 0, 0, "",
+                     fmt::format("binary data (NUL byte): not a TOML {}", kind.noun));
+  }
+  try {
+    return toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(source_name, e.source().begin.line, e.source().begin.column, "",
+                     fmt::format("TOML syntax error: {}", e.description()));
+  }
+}
+
+std::string scene_detail::read_text_file(const std::filesystem::path& file, std::size_t max_bytes,
+                                         const FileKind& kind) {
   const std::string name = file.string();
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec)) {
-    throw SceneError(name, 0, 0, "", "is a directory, not a scene file");
+    throw SceneError(name, 0, 0, "",
+                     fmt::format("is a directory, not {} {}", kind.article, kind.noun));
   }
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(name, 0, 0, "", "cannot open scene file (does it exist?)");
+  if (!in)
+    throw SceneError(name, 0, 0, "", fmt::format("cannot open {} (does it exist?)", kind.noun));
   std::string text;
   char buf[1 << 16];
   while (in.read(buf, sizeof buf) || in.gcount() > 0) {
     text.append(buf, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_scene_bytes) {
+    if (text.size() > max_bytes) {
       throw SceneError(
           name, 0, 0, "",
-          fmt::format("file is larger than the {} bytes a scene may have", max_scene_bytes));
+          fmt::format("file is larger than the {} bytes {} may have", max_bytes, kind.owner));
     }
   }
   if (in.bad()) throw SceneError(name, 0, 0, "", "read error");
-  return parse_scene(text, name);
+  return text;
+}
+
+Scene load_scene(const std::filesystem::path& file) {
+  return parse_scene(scene_detail::read_text_file(file, max_scene_bytes, scene_file),
+                     file.string());
 }
 
 WorldDef world_def(const Scene& scene) {

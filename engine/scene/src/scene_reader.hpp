@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <initializer_list>
 #include <limits>
 #include <optional>
@@ -23,6 +24,23 @@
 #include "fixstep/suggest.hpp"
 
 namespace fixstep::scene_detail {
+
+/// How read_text_file names the kind of file in its messages.
+struct FileKind {
+  std::string_view noun;     ///< "scene file": "cannot open scene file (does it exist?)"
+  std::string_view article;  ///< "a": "is a directory, not a scene file"
+  std::string_view owner;    ///< "a scene": "file is larger than the N bytes a scene may have"
+  std::string_view plural;   ///< "scenes": "file is N bytes; scenes are limited to M bytes"
+};
+
+/// The whole text of `file`, at most max_bytes. Throws SceneError (file only, no line) when it
+/// is a directory, cannot be opened or read, or is larger. Defined in scene.cpp.
+std::string read_text_file(const std::filesystem::path& file, std::size_t max_bytes,
+                           const FileKind& kind);
+/// `text` parsed as TOML. Throws SceneError for more than max_bytes, a NUL byte (binary data)
+/// and TOML syntax errors (with line and column). Defined in scene.cpp.
+toml::table parse_toml(std::string_view text, const std::string& source_name, std::size_t max_bytes,
+                       const FileKind& kind);
 
 inline std::string_view type_name(const toml::node& n) {
   switch (n.type()) {
