@@ -468,6 +468,7 @@ mass = 2.0
 position = [0.0, 0.0]' > changed.toml
 case_ "recording: the scene changed (mass)" "" replay base.rec --scene changed.toml
 case_ "render --replay of a truncated recording" "" render good.toml --replay cut.rec --out frames
+case_ "render without SCENE or --replay" "" render --out frames
 case_ "--hash-every 0" "" run good.toml --steps 10 --record out.rec --hash-every 0
 case_ "--hash-every without --record" "" run good.toml --steps 10 --hash-every 5
 case_ "--record in a missing directory" "" run good.toml --steps 10 --record nodir/out.rec

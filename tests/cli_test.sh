@@ -375,6 +375,15 @@ awk 'NR == FNR { if ($1 == "hash") h[$2] = $3; next }
      FNR > 1 { split($0, f, ","); if (f[2] > 0 && f[2] <= 300) { n++; if (h[f[2]] != f[5]) bad++ } }
      END { exit !(n > 100 && bad == 0) }' "$work/rec/session.rec" FS=, "$work/rec_frames/frames.csv" \
   && ok "render --replay: every frame's state_hash is the recording's at its tick" || fail "render --replay hashes"
+# without SCENE, render --replay draws the recording's own scene (found beside the recording)
+(cd "$work/elsewhere" && "$fixstep" render --replay ../rec/session.rec --out "$work/rec_frames2" \
+  --frames 200 --size 160x90 >"$work/rec_render2.out" 2>&1)
+[ $? -eq 0 ] && ok "render --replay FILE without SCENE exits 0" || { fail "render --replay without scene"; cat "$work/rec_render2.out"; }
+cmp -s "$work/rec_frames/frames.csv" "$work/rec_frames2/frames.csv" \
+  && ok "render --replay without SCENE makes the same frames.csv" || fail "render --replay scene default"
+"$fixstep" render --out "$work/noscene" >"$work/noscene.out" 2>&1
+[ $? -eq 2 ] && ok "render without SCENE or --replay exits 2" || fail "render without scene"
+expect "render without SCENE says what to give" 'give SCENE \(or --replay FILE' "$work/noscene.out"
 
 # --- the demo ----------------------------------------------------------------------------
 (cd "$work" && "$hello" demo_frames >"$work/hello.out" 2>&1)

@@ -342,7 +342,10 @@ int render_command(const RenderOptions& o) {
   std::optional<Recording> rec;
   if (o.replay) rec = read_recording(*o.replay);
   const Scene scene =
-      rec ? scene_for_recording(o.scene.scene, *rec, o.scene.quiet) : load_with_overrides(o.scene);
+      rec ? scene_for_recording(
+                o.scene.scene.empty() ? recorded_scene(*rec, *o.replay) : o.scene.scene, *rec,
+                o.scene.quiet)
+          : load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   prepare_output_dir(o.out);
   Session session = open_session(scene, width, height);

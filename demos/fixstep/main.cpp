@@ -1,7 +1,7 @@
 // fixstep: run, capture and view fixed-timestep scenes.
 //   fixstep run SCENE (--steps N | --duration S) [--csv FILE] [--every K] [--input SCRIPT]
 //               [--record FILE] [--sync-test K] [overrides]
-//   fixstep render SCENE --out DIR [--frames N] [--fps F] [--size WxH] [--png-level L]
+//   fixstep render [SCENE] --out DIR [--frames N] [--fps F] [--size WxH] [--png-level L]
 //                  [overrides]
 //   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [overrides]
 //   fixstep replay FILE [--scene SCENE]
@@ -17,9 +17,12 @@
 namespace {
 
 /// Options every subcommand shares: the scene and overrides of its [world] table.
-void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o) {
-  cmd->add_option("scene", o.scene, "scene file (TOML), e.g. assets/scenes/default.toml")
-      ->required();
+/// SCENE is required unless `scene_optional` (render --replay takes the recording's).
+void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o, bool scene_optional = false) {
+  cmd->add_option("scene", o.scene,
+                  scene_optional ? "scene file (TOML); with --replay, default: the recording's"
+                                 : "scene file (TOML), e.g. assets/scenes/default.toml")
+      ->required(!scene_optional);
   std::vector<std::string> names;
   for (auto i : fixstep::all_integrators) names.emplace_back(fixstep::integrator_name(i));
   cmd->add_option("--integrator", o.integrator, "override [world] integrator")
@@ -84,7 +87,7 @@ int main(int argc, char** argv) try {
   RenderOptions render;
   CLI::App* render_cmd =
       app.add_subcommand("render", "capture frames headless (OSMesa) as DIR/frame_NNNNNN.png");
-  add_scene_options(render_cmd, render.scene);
+  add_scene_options(render_cmd, render.scene, /*scene_optional=*/true);
   render_cmd->add_option("--out", render.out, "output directory (created if missing)")->required();
   render_cmd->add_option("--frames", render.frames, "number of frames (frame 0 is t = 0)")
       ->check(CLI::Range(1, 1000000));
@@ -160,7 +163,13 @@ int main(int argc, char** argv) try {
     }
     return run_command(run);
   }
-  if (render_cmd->parsed()) return render_command(render);
+  if (render_cmd->parsed()) {
+    if (render.scene.scene.empty() && !render.replay) {
+      std::fputs("fixstep render: give SCENE (or --replay FILE, which names its scene)\n", stderr);
+      return 2;
+    }
+    return render_command(render);
+  }
   if (replay_cmd->parsed()) return replay_command(replay);
   return view_command(view);
 } catch (const fixstep::RecordingError& e) {

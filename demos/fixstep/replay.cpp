@@ -41,9 +41,6 @@ Scene scene_for_recording(const std::string& scene_file, const Recording& rec, b
   return scene;
 }
 
-namespace {
-
-/// The recording's scene: as given, else relative to the recording's directory.
 std::string recorded_scene(const Recording& rec, const std::string& recording_file) {
   const std::filesystem::path scene(rec.scene);
   std::error_code ec;
@@ -54,8 +51,6 @@ std::string recorded_scene(const Recording& rec, const std::string& recording_fi
   }
   return rec.scene;
 }
-
-}  // namespace
 
 int replay_command(const ReplayOptions& o) {
   const Recording rec = read_recording(o.recording);
