@@ -58,16 +58,21 @@ struct TickInput {
 /// levels: every tick sees their latest value.
 class InputSampler {
  public:
+  /// Buttons (InputButton bits) went down; a button already held is not pressed again (key
+  /// repeat).
   void press(std::uint32_t buttons) {
     pressed_ |= buttons & ~held_;
     held_ |= buttons;
   }
+  /// Buttons went up; releasing a button that is not held does nothing.
   void release(std::uint32_t buttons) {
     released_ |= buttons & held_;
     held_ &= ~buttons;
   }
   void set_pointer(Vec2 position) { pointer_ = position; }    ///< m, world coordinates
   void set_push(Vec2 acceleration) { push_ = acceleration; }  ///< m/s²
+  /// The body every following tick drags (TickInput::drag_body), or no_body; for programs that
+  /// decide the drag outside the ticks (fixstep's own use PointerDrag at the tick).
   void set_drag_body(std::uint32_t body) { drag_body_ = body; }
   [[nodiscard]] std::uint32_t held() const { return held_; }
   [[nodiscard]] std::uint32_t drag_body() const { return drag_body_; }
