@@ -186,10 +186,8 @@ void Session::restore(const WorldSnapshot& world) {
 }
 
 void Session::restore(const Snapshot& snapshot) {
-  sim_->restore(snapshot.world);
-  loop_.restore(snapshot.loop);
-  fault_lines_.clear();
-  renderer_.clear_trails();
+  restore(snapshot.world);
+  loop_.restore(snapshot.loop);  // the saved accumulator, not an empty one
 }
 
 void Session::restart() {
