@@ -6,13 +6,10 @@
 #include <cerrno>
 #include <climits>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fixstep/capture.hpp>
-#include <fixstep/exact.hpp>
 #include <fixstep/input_script.hpp>
-#include <fixstep/manifest.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
@@ -20,43 +17,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "exact_reference.hpp"
 #include "progress.hpp"
+#include "stop_signal.hpp"
 
 namespace fixstep::cli {
-
-namespace {
-
-// SIGINT / SIGTERM during run or render: the handler only records the signal; the command
-// finishes the tick or frame in progress, writes out everything produced so far (the CSV,
-// every queued frame) and exits 128 + the signal number, as a shell reports a signal death.
-volatile std::sig_atomic_t stop_signal = 0;
-extern "C" void request_stop(int signal) {
-  stop_signal = signal;
-}
-
-/// Installs request_stop for SIGINT and SIGTERM for the lifetime of the object.
-class StopOnSignal {
- public:
-  StopOnSignal() {
-    stop_signal = 0;
-    previous_int_ = std::signal(SIGINT, request_stop);
-    previous_term_ = std::signal(SIGTERM, request_stop);
-  }
-  ~StopOnSignal() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-  StopOnSignal(const StopOnSignal&) = delete;
-  StopOnSignal& operator=(const StopOnSignal&) = delete;
-  [[nodiscard]] static int requested() { return stop_signal; }
-  [[nodiscard]] static const char* name() { return stop_signal == SIGINT ? "SIGINT" : "SIGTERM"; }
-
- private:
-  void (*previous_int_)(int) = SIG_DFL;
-  void (*previous_term_)(int) = SIG_DFL;
-};
-
-}  // namespace
 
 std::string positive_finite(const std::string& value) {
   char* end = nullptr;
@@ -140,60 +105,6 @@ std::uint64_t ticks_for(double duration, double dt) {
   const double nearest = std::round(n);
   return static_cast<std::uint64_t>(
       std::abs(n - nearest) <= 1e-9 * std::max(1.0, n) ? nearest : std::ceil(n));
-}
-
-/// The exact solution of a scene where one exists: per body (exact::solve) when the scene has
-/// no links, for the whole network (exact::LinearNetwork) when it has and they are linear
-/// with proportional damping. Bodies that bounce on the scene's planes have none (the exact
-/// solutions know no contacts), nor has a network holding one.
-class ExactReference {
- public:
-  explicit ExactReference(const Scene& scene) : scene_(scene) {
-    const bool bounces = std::any_of(scene.bodies.begin(), scene.bodies.end(),
-                                     [&](const BodyDef& b) { return bouncing(b); });
-    if (!scene.links.empty() && !bounces) {
-      network_ = exact::LinearNetwork::make(scene.bodies, scene.links);
-    }
-  }
-  /// Fills out[j] with body j's exact state at t (s), or nullopt where there is none.
-  void at(double t, std::vector<std::optional<Body>>& out) const {
-    out.assign(scene_.bodies.size(), std::nullopt);
-    if (network_) {
-      states_.resize(scene_.bodies.size());
-      network_->state(t, states_);
-      for (std::size_t j = 0; j < states_.size(); ++j) out[j] = states_[j];
-    } else if (scene_.links.empty()) {
-      for (std::size_t j = 0; j < out.size(); ++j) {
-        if (!bouncing(scene_.bodies[j])) out[j] = exact::solve(scene_.bodies[j], t);
-      }
-    }
-  }
-
- private:
-  [[nodiscard]] bool bouncing(const BodyDef& b) const {
-    return b.collider && !scene_.planes.empty();
-  }
-
-  const Scene& scene_;
-  std::optional<exact::LinearNetwork> network_;
-  mutable std::vector<Body> states_;
-};
-
-/// Largest position error (m) against the exact solution over the bodies that have one;
-/// nullopt when none has (rest-length springs, non-proportional damping of links).
-std::optional<double> exact_error(const ExactReference& reference, const Simulation& sim) {
-  std::vector<std::optional<Body>> exact;
-  reference.at(sim.time(), exact);
-  std::optional<double> worst;
-  for (std::size_t j = 0; j < sim.body_count(); ++j) {
-    if (exact[j]) {
-      const Body b = sim.body_at(j);
-      const double e =
-          std::hypot(b.position.x - exact[j]->position.x, b.position.y - exact[j]->position.y);
-      worst = std::max(worst.value_or(0.0), e);
-    }
-  }
-  return worst;
 }
 
 void append_rows(AtomicFile& csv, const ExactReference& reference, const Simulation& sim,
@@ -326,79 +237,6 @@ int run_command(const RunOptions& o) {
                *error);
   }
   if (o.csv) fmt::print("csv={}\n", *o.csv);
-  return 0;
-}
-
-Session open_session(const Scene& scene, int width, int height) {
-  return Session(world_def(scene),
-                 SessionSettings{.width = width,
-                                 .height = height,
-                                 .title = std::filesystem::path(scene.file).filename().string(),
-                                 .view_center = scene.view.center,
-                                 .view_width = scene.view.width});
-}
-
-int render_command(const RenderOptions& o) {
-  std::optional<Recording> rec;
-  if (o.replay) rec = read_recording(*o.replay);
-  const Scene scene =
-      rec ? scene_for_recording(
-                o.scene.scene.empty() ? recorded_scene(*rec, *o.replay) : o.scene.scene, *rec,
-                o.scene.quiet)
-          : load_with_overrides(o.scene);
-  const auto [width, height] = parse_frame_size(o.size);
-  prepare_output_dir(o.out);
-  Session session = open_session(scene, width, height);
-  const VirtualClock clock(o.fps);
-  const auto frames = static_cast<std::uint64_t>(o.frames);
-  // Frame f is encoded and written on the writer's thread while frame f + 1 renders here.
-  FrameWriter writer(o.out, width, height, PngSettings{.level = o.png_level});
-  FrameManifest manifest(o.out);  // frames.csv: a row per frame written
-  std::uint64_t written = 0;
-  const StopOnSignal signals;
-  Progress progress("render", "frame", frames, !o.scene.quiet);
-  for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
-    if (f > 0 && rec) {  // the recorded input of each tick; none past the recording's end
-      session.advance_with(clock.frame_seconds(),
-                           [&](std::uint64_t t, Simulation& sim) { sim.step(rec->input_at(t)); });
-    } else if (f > 0) {
-      session.advance(clock.frame_seconds());
-    }
-    session.draw();  // after a divergence: the last state, with the guard's message in the HUD
-    writer.submit(session.renderer().pixels());
-    manifest.add(f, session);
-    ++written;
-    progress.update(written);
-    if (session.simulation().fault()) break;
-  }
-  writer.finish();  // every frame on disk, or the first failure's CaptureError
-  manifest.commit();
-  progress.finish();
-  if (const int sig = StopOnSignal::requested()) {
-    fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-    if (written > 0) {
-      fmt::print("frames={} (stopped) size={}x{}: {} ... {}\n", written, width, height,
-                 frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
-    }
-    fmt::print("manifest={}\n", manifest.file().string());
-    std::fprintf(stderr,
-                 "fixstep: stopped by %s after %llu frames; every frame written is complete\n",
-                 StopOnSignal::name(), static_cast<unsigned long long>(written));
-    return 128 + sig;
-  }
-  if (const auto& fault = session.simulation().fault()) {
-    fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-    fmt::print("frames={} (stopped early) size={}x{}: {} ... {}\n", written, width, height,
-               frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
-    fmt::print("manifest={}\n", manifest.file().string());
-    std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
-    return exit_diverged;
-  }
-  fmt::print("{} renderer=\"{}\"\n", describe(scene), session.renderer().gl_renderer());
-  fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-  fmt::print("frames={} fps={} size={}x{}: {} ... {}\n", frames, o.fps, width, height,
-             frame_path(o.out, 0).string(), frame_path(o.out, frames - 1).string());
-  fmt::print("manifest={}\n", manifest.file().string());
   return 0;
 }
 
