@@ -205,6 +205,20 @@ void Session::draw() {
         {static_cast<float>(drag_pointer_.x), static_cast<float>(drag_pointer_.y), drag_body_});
   }
   hud_.clear();
+  if (show_engine_hud_) engine_hud_lines();
+  if (const auto& fault = sim_->fault()) {
+    // Built once: the guard's message (which runs the stability analysis) does not change
+    // while the simulation stays stopped.
+    if (fault_lines_.empty())
+      fault_lines_ = fault_hud_lines(explain_fault(def_.bodies, def_.links, def_.settings, *fault));
+    hud_.insert(hud_.end(), fault_lines_.begin(), fault_lines_.end());
+  }
+  if (show_controls_ && show_engine_hud_) control_hud_lines();
+  hud_.insert(hud_.end(), status_lines_.begin(), status_lines_.end());
+  renderer_.draw(frame_, hud_);
+}
+
+void Session::engine_hud_lines() {
   const std::size_t n = sim_->body_count();
   hud_.push_back(fmt::format("fixstep  {}{}({} bod{})", title_, title_.empty() ? "" : "  ", n,
                              n == 1 ? "y" : "ies"));
@@ -221,22 +235,14 @@ void Session::draw() {
                                initial_energy_ != 0.0 ? 100.0 * balance : balance,
                                initial_energy_ != 0.0 ? " %" : " J"));
   }
-  if (const auto& fault = sim_->fault()) {
-    // Built once: the guard's message (which runs the stability analysis) does not change
-    // while the simulation stays stopped.
-    if (fault_lines_.empty())
-      fault_lines_ = fault_hud_lines(explain_fault(def_.bodies, def_.links, def_.settings, *fault));
-    hud_.insert(hud_.end(), fault_lines_.begin(), fault_lines_.end());
-  }
-  if (show_controls_) {
-    hud_.push_back(
-        fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
-    hud_.emplace_back(
-        "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind  esc "
-        "quit");
-  }
-  hud_.insert(hud_.end(), status_lines_.begin(), status_lines_.end());
-  renderer_.draw(frame_, hud_);
+}
+
+void Session::control_hud_lines() {
+  hud_.push_back(
+      fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
+  hud_.emplace_back(
+      "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind  esc "
+      "quit");
 }
 
 }  // namespace fixstep

@@ -2,6 +2,7 @@
 // run against an earlier one without decoding an image.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -11,9 +12,17 @@
 
 namespace fixstep {
 
+/// Which rows a manifest holds: one per frame, or one per tile of each frame (`fixstep compare`,
+/// whose frames show several sessions side by side; an extra column `tile` after `frame`).
+enum class ManifestLayout { frames, tiles };
+
+/// The manifest beside a video file: "clip.mp4" -> "clip.frames.csv" (same directory).
+[[nodiscard]] std::filesystem::path video_manifest_path(const std::filesystem::path& video);
+
 /// frames.csv, written as the frames are (into an AtomicFile: complete under its name after
 /// commit(), absent before). Columns (header line first):
-///   frame       frame index (the PNG frame_NNNNNN.png)
+///   frame       frame index (the PNG frame_NNNNNN.png, the video's frame)
+///   tile        (ManifestLayout::tiles only) the tile's index, 0-based, row-major
 ///   tick        ticks taken when the frame was drawn
 ///   t           simulated time tick·dt, s (%.6f)
 ///   alpha       the loop's interpolation weight the frame was drawn at, in [0, 1) (%.6f)
@@ -25,10 +34,17 @@ class FrameManifest {
   /// The manifest of a capture into `dir` (which must exist: prepare_output_dir), named
   /// dir/frames.csv once commit()ted. Throws CaptureError when the file cannot be created.
   explicit FrameManifest(const std::filesystem::path& dir);
+  /// The manifest named `file` itself (e.g. video_manifest_path(video)), whose directory must
+  /// exist. Throws CaptureError when the file cannot be created.
+  FrameManifest(std::filesystem::path file, ManifestLayout layout);
 
   /// Appends the row of frame `frame`, drawn by `session` in its current state. Throws
-  /// CaptureError on a write error. No allocation once the row buffer has grown.
+  /// CaptureError on a write error, std::logic_error in a tiles manifest. No allocation once
+  /// the row buffer has grown.
   void add(std::uint64_t frame, const Session& session);
+  /// Appends the row of tile `tile` of frame `frame` (ManifestLayout::tiles; std::logic_error
+  /// in a frames manifest).
+  void add(std::uint64_t frame, std::size_t tile, const Session& session);
   /// Puts frames.csv under its name, complete. Throws CaptureError when it cannot.
   void commit();
 
@@ -37,6 +53,7 @@ class FrameManifest {
  private:
   std::filesystem::path path_;
   AtomicFile out_;
+  ManifestLayout layout_;
   std::string row_;
 };
 

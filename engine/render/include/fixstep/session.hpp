@@ -78,6 +78,10 @@ class Session {
   /// rules or pointer add energy from outside the world's account (a game) may hide it, as
   /// its balance then measures them, not the integrator.
   void set_show_energy(bool show) { show_energy_ = show; }
+  /// Shows the engine's HUD lines (title, tick and time, integrator, energy, controls): on by
+  /// default. Off, the HUD holds only the status lines and, once the runtime guard has fired,
+  /// its message: for programs that lay out a HUD of their own (`fixstep compare`'s tiles).
+  void set_show_engine_hud(bool show) { show_engine_hud_ = show; }
   /// Extra HUD lines drawn below the engine's (a game's score, a hint), until replaced; an
   /// empty list shows none. The bitmap font is ASCII only.
   void set_status_lines(std::vector<std::string> lines) { status_lines_ = std::move(lines); }
@@ -95,6 +99,10 @@ class Session {
  private:
   /// Pauses the loop once the runtime guard has fired.
   void pause_on_fault();
+  /// Appends the engine's HUD lines (title, tick, integrator, energy) to hud_.
+  void engine_hud_lines();
+  /// Appends the loop's state and the window's key help to hud_.
+  void control_hud_lines();
 
   WorldDef def_;
   std::string title_;
@@ -107,6 +115,7 @@ class Session {
   double initial_energy_ = 0.0;
   bool show_controls_ = false;
   bool show_energy_ = true;
+  bool show_engine_hud_ = true;
   Vec2 drag_pointer_{};
   std::uint32_t drag_body_ = no_body;
   std::vector<std::string> status_lines_;  ///< set_status_lines()
