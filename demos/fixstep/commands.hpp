@@ -6,8 +6,10 @@
 #include <fixstep/recording.hpp>
 #include <fixstep/scene.hpp>
 #include <fixstep/session.hpp>
+#include <fixstep/window.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace fixstep::cli {
 
@@ -49,7 +51,8 @@ struct RunOptions {
 
 struct RenderOptions {
   SceneOptions scene;
-  std::string out;
+  std::optional<std::string> out;    ///< --out DIR: PNG frames (the default capture)
+  std::optional<std::string> video;  ///< --video FILE: .mp4 (H.264) or .gif
   std::int64_t frames = 120;
   double fps = 60.0;
   std::string size = "1280x720";
@@ -98,6 +101,13 @@ std::string describe(const Scene& scene);
 /// unstable body) and prints the warnings of both to stderr.
 Scene load_with_overrides(const SceneOptions& options);
 
+/// Opens the window; without a display, the WindowError's message (the library's: the fault
+/// only) ends with the advice to capture headless with the command `headless`.
+[[nodiscard]] Window open_window(const std::string& title, int width, int height,
+                                 std::string_view headless);
+
+/// How a Session shows a scene: its [view] and its file name in the HUD, width x height pixels.
+[[nodiscard]] SessionSettings session_settings(const Scene& scene, int width, int height);
 /// The frame pipeline for a scene: its world, its [view] and its file name in the HUD.
 [[nodiscard]] Session open_session(const Scene& scene, int width, int height);
 

@@ -1,8 +1,10 @@
 // fixstep: run, capture and view fixed-timestep scenes.
 //   fixstep run SCENE (--steps N | --duration S) [--csv FILE] [--every K] [--input SCRIPT]
 //               [--record FILE] [--sync-test K] [overrides]
-//   fixstep render [SCENE] --out DIR [--frames N] [--fps F] [--size WxH] [--png-level L]
-//                  [overrides]
+//   fixstep render [SCENE] (--out DIR | --video FILE.mp4|.gif) [--frames N] [--fps F]
+//                  [--size WxH] [--png-level L] [overrides]
+//   fixstep compare SCENE --with SPEC --with SPEC ... [--out DIR] [--video FILE] [--csv FILE]
+//                   [--frames N] [--fps F] [--size WxH]
 //   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [overrides]
 //   fixstep replay FILE [--scene SCENE]
 #include <fmt/format.h>
@@ -12,7 +14,10 @@
 #include <cstdio>
 #include <fixstep/suggest.hpp>
 
+#include "capture_sink.hpp"
 #include "commands.hpp"
+#include "compare.hpp"
+#include "compare_tiles.hpp"
 
 namespace {
 
@@ -52,6 +57,40 @@ void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
       ->needs(rec);
 }
 
+/// `fixstep compare`'s options.
+void add_compare_options(CLI::App* cmd, fixstep::cli::CompareOptions& o) {
+  using namespace fixstep::cli;
+  cmd->add_option("scene", o.scene, "scene file (TOML), e.g. assets/scenes/spring_damper.toml")
+      ->required();
+  cmd->add_option("--with", o.with,
+                  "a tile: INTEGRATOR[@DT][:substeps=N][:precision=f32|f64], DT in s as a "
+                  "decimal or A/B (e.g. rk4@1/30); give it 2 to 6 times")
+      ->required()
+      ->check(tile_spec_validator);
+  auto* out =
+      cmd->add_option("--out", o.out, "write DIR/frame_NNNNNN.png, frames.csv, compare.csv");
+  auto* video = cmd->add_option("--video", o.video, "write FILE.mp4 (H.264) or FILE.gif");
+  cmd->add_option("--csv", o.csv,
+                  "the summary, a row per tile (default: DIR/compare.csv or FILE.compare.csv)");
+  cmd->add_flag("--window", o.window,
+                "show the tiles in a window (the default without --out/--video)")
+      ->excludes(out)
+      ->excludes(video);
+  cmd->add_option(
+         "--frames", o.frames,
+         "frames to capture (default 240), or to show before quitting (default: until Esc)")
+      ->check(CLI::Range(std::int64_t{1}, max_ticks));
+  cmd->add_option("--fps", o.fps, "virtual frames per second (default 60; the window: real time)")
+      ->check(positive_finite);
+  cmd->add_option("--size", o.size, "the whole frame in pixels, WxH (tiles share it)")
+      ->check(frame_size_validator);
+  cmd->add_option("--png-level", o.png_level, "PNG deflate level, as render --png-level")
+      ->check(png_level_validator);
+  cmd->add_flag("--allow-unstable", o.allow_unstable,
+                "show a tile even when the stability guard finds it unstable (warns instead)");
+  cmd->add_flag("-q,--quiet", o.quiet, "print errors only");
+}
+
 }  // namespace
 
 // The whole of main is one try block: an exception from any step (CLI11's setup included)
@@ -88,7 +127,10 @@ int main(int argc, char** argv) try {
   CLI::App* render_cmd =
       app.add_subcommand("render", "capture frames headless (OSMesa) as DIR/frame_NNNNNN.png");
   add_scene_options(render_cmd, render.scene, /*scene_optional=*/true);
-  render_cmd->add_option("--out", render.out, "output directory (created if missing)")->required();
+  render_cmd->add_option("--out", render.out,
+                         "write DIR/frame_NNNNNN.png and DIR/frames.csv (DIR created if missing)");
+  render_cmd->add_option("--video", render.video,
+                         "write a video: FILE.mp4 (H.264) or FILE.gif, and FILE.frames.csv");
   render_cmd->add_option("--frames", render.frames, "number of frames (frame 0 is t = 0)")
       ->check(CLI::Range(1, 1000000));
   render_cmd->add_option("--fps", render.fps, "virtual frames per second")->check(positive_finite);
@@ -102,6 +144,13 @@ int main(int argc, char** argv) try {
       ->check(png_level_validator);
   render_cmd->add_option("--replay", render.replay,
                          "drive the ticks with this recording's inputs (its settings apply)");
+
+  CompareOptions compare;
+  CLI::App* compare_cmd = app.add_subcommand(
+      "compare",
+      "one scene under 2-6 integrator/dt configurations side by side, each tile with its error, "
+      "energy balance and cost; headless with --out/--video, else in a window");
+  add_compare_options(compare_cmd, compare);
 
   ViewOptions view;
   CLI::App* view_cmd = app.add_subcommand("view", "open an SDL2 window showing the scene live");
@@ -151,7 +200,8 @@ int main(int argc, char** argv) try {
 
   // --quiet: the summaries and paths go to standard output, which is emptied wholesale;
   // errors go to standard error (warnings and progress are skipped where they are made).
-  if ((run.scene.quiet || render.scene.quiet || view.scene.quiet || replay.quiet) &&
+  if ((run.scene.quiet || render.scene.quiet || view.scene.quiet || replay.quiet ||
+       compare.quiet) &&
       std::freopen("/dev/null", "w", stdout) == nullptr) {
     std::fputs("fixstep: error: --quiet: cannot open /dev/null for standard output\n", stderr);
     return 1;
@@ -168,7 +218,26 @@ int main(int argc, char** argv) try {
       std::fputs("fixstep render: give SCENE (or --replay FILE, which names its scene)\n", stderr);
       return 2;
     }
+    if (const std::string e = capture_targets_error(
+            {.out = render.out, .video = render.video, .png_level = render.png_level});
+        !e.empty()) {
+      std::fprintf(stderr, "fixstep render: %s\n", e.c_str());
+      return 2;
+    }
     return render_command(render);
+  }
+  if (compare_cmd->parsed()) {
+    if (compare.with.size() < min_tiles || compare.with.size() > max_tiles) {
+      std::fprintf(stderr, "fixstep compare: give 2 to 6 --with configurations, got %zu\n",
+                   compare.with.size());
+      return 2;
+    }
+    if (const std::string e = capture_targets_error({.out = compare.out, .video = compare.video});
+        (compare.out || compare.video) && !e.empty()) {
+      std::fprintf(stderr, "fixstep compare: %s\n", e.c_str());
+      return 2;
+    }
+    return compare_command(compare);
   }
   if (replay_cmd->parsed()) return replay_command(replay);
   return view_command(view);

@@ -6,19 +6,23 @@
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 
+#include "capture_sink.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
 
 namespace fixstep::cli {
 
+SessionSettings session_settings(const Scene& scene, int width, int height) {
+  return SessionSettings{.width = width,
+                         .height = height,
+                         .title = std::filesystem::path(scene.file).filename().string(),
+                         .view_center = scene.view.center,
+                         .view_width = scene.view.width};
+}
+
 Session open_session(const Scene& scene, int width, int height) {
-  return Session(world_def(scene),
-                 SessionSettings{.width = width,
-                                 .height = height,
-                                 .title = std::filesystem::path(scene.file).filename().string(),
-                                 .view_center = scene.view.center,
-                                 .view_width = scene.view.width});
+  return Session(world_def(scene), session_settings(scene, width, height));
 }
 
 int render_command(const RenderOptions& o) {
@@ -30,13 +34,12 @@ int render_command(const RenderOptions& o) {
                 o.scene.quiet)
           : load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
-  prepare_output_dir(o.out);
+  // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
+  CaptureSink sink({.out = o.out, .video = o.video, .png_level = o.png_level}, width, height, o.fps,
+                   ManifestLayout::frames);
   Session session = open_session(scene, width, height);
   const VirtualClock clock(o.fps);
   const auto frames = static_cast<std::uint64_t>(o.frames);
-  // Frame f is encoded and written on the writer's thread while frame f + 1 renders here.
-  FrameWriter writer(o.out, width, height, PngSettings{.level = o.png_level});
-  FrameManifest manifest(o.out);  // frames.csv: a row per frame written
   std::uint64_t written = 0;
   const StopOnSignal signals;
   Progress progress("render", "frame", frames, !o.scene.quiet);
@@ -48,40 +51,30 @@ int render_command(const RenderOptions& o) {
       session.advance(clock.frame_seconds());
     }
     session.draw();  // after a divergence: the last state, with the guard's message in the HUD
-    writer.submit(session.renderer().pixels());
-    manifest.add(f, session);
-    ++written;
-    progress.update(written);
+    sink.submit(session.renderer().pixels());
+    sink.add_row(f, session);  // frames.csv: a row per frame written
+    progress.update(++written);
     if (session.simulation().fault()) break;
   }
-  writer.finish();  // every frame on disk, or the first failure's CaptureError
-  manifest.commit();
+  sink.finish();  // every frame written, or the first failure's CaptureError
   progress.finish();
-  if (const int sig = StopOnSignal::requested()) {
-    fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-    if (written > 0) {
-      fmt::print("frames={} (stopped) size={}x{}: {} ... {}\n", written, width, height,
-                 frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
-    }
-    fmt::print("manifest={}\n", manifest.file().string());
+  const int sig = StopOnSignal::requested();
+  const auto& fault = session.simulation().fault();
+  if (!sig && !fault) {
+    fmt::print("{} renderer=\"{}\"\n", describe(scene), session.renderer().gl_renderer());
+  }
+  fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
+  sink.print_paths(written, sig ? " (stopped)" : fault ? " (stopped early)" : "");
+  if (sig) {
     std::fprintf(stderr,
                  "fixstep: stopped by %s after %llu frames; every frame written is complete\n",
                  StopOnSignal::name(), static_cast<unsigned long long>(written));
     return 128 + sig;
   }
-  if (const auto& fault = session.simulation().fault()) {
-    fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-    fmt::print("frames={} (stopped early) size={}x{}: {} ... {}\n", written, width, height,
-               frame_path(o.out, 0).string(), frame_path(o.out, written - 1).string());
-    fmt::print("manifest={}\n", manifest.file().string());
+  if (fault) {
     std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
     return exit_diverged;
   }
-  fmt::print("{} renderer=\"{}\"\n", describe(scene), session.renderer().gl_renderer());
-  fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-  fmt::print("frames={} fps={} size={}x{}: {} ... {}\n", frames, o.fps, width, height,
-             frame_path(o.out, 0).string(), frame_path(o.out, frames - 1).string());
-  fmt::print("manifest={}\n", manifest.file().string());
   return 0;
 }
 

@@ -19,22 +19,15 @@
 
 namespace fixstep::cli {
 
-namespace {
-
-// The window, or a WindowError whose message (the library's: the fault only) ends with the
-// advice of this program: frames can be captured without a display.
-Window open_window(const std::string& title, int width, int height) {
+Window open_window(const std::string& title, int width, int height, std::string_view headless) {
   try {
     return Window(title, width, height);
   } catch (const WindowError& e) {
     const std::string_view fault = e.what();
-    throw WindowError(
-        fmt::format("{}{} Capture frames headless instead: fixstep render SCENE --out DIR", fault,
-                    fault.ends_with('.') ? "" : "."));
+    throw WindowError(fmt::format("{}{} Capture frames headless instead: {}", fault,
+                                  fault.ends_with('.') ? "" : ".", headless));
   }
 }
-
-}  // namespace
 
 /// Rewind keeps this much of the past, s of simulated time (one state per tick).
 constexpr double rewind_seconds = 10.0;
@@ -53,7 +46,8 @@ int view_command(const ViewOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.
-  Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height);
+  Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height,
+                              "fixstep render SCENE --out DIR");
   Session session = open_session(scene, width, height);
   session.set_show_controls(true);
 

@@ -1,0 +1,53 @@
+#include "capture_sink.hpp"
+
+#include <fmt/format.h>
+
+namespace fixstep::cli {
+
+std::string capture_targets_error(const CaptureTargets& t) {
+  if (!t.out && !t.video) return "give --out DIR (PNG frames) or --video FILE (.mp4 or .gif)";
+  if (t.video) return fmt::format("--video {}: video output is not built yet", *t.video);
+  return {};
+}
+
+CaptureSink::CaptureSink(const CaptureTargets& targets, int width, int height, double fps,
+                         ManifestLayout layout)
+    : targets_(targets), width_(width), height_(height), fps_(fps) {
+  if (targets_.out) {
+    prepare_output_dir(*targets_.out);
+    png_.emplace(*targets_.out, width, height, PngSettings{.level = targets_.png_level});
+    png_manifest_.emplace(std::filesystem::path(*targets_.out) / "frames.csv", layout);
+  }
+}
+
+void CaptureSink::submit(std::span<const std::uint8_t> rgba) {
+  if (png_) png_->submit(rgba);
+}
+
+void CaptureSink::add_row(std::uint64_t frame, const Session& session) {
+  if (png_manifest_) png_manifest_->add(frame, session);
+  if (video_manifest_) video_manifest_->add(frame, session);
+}
+
+void CaptureSink::add_row(std::uint64_t frame, std::size_t tile, const Session& session) {
+  if (png_manifest_) png_manifest_->add(frame, tile, session);
+  if (video_manifest_) video_manifest_->add(frame, tile, session);
+}
+
+void CaptureSink::finish() {
+  if (png_) png_->finish();  // every frame on disk, or the first failure's CaptureError
+  if (png_manifest_) png_manifest_->commit();
+  if (video_manifest_) video_manifest_->commit();
+}
+
+void CaptureSink::print_paths(std::uint64_t frames, const std::string& note) const {
+  if (png_ && frames > 0) {
+    fmt::print("frames={}{} fps={} size={}x{}: {} ... {}\n", frames, note, fps_, width_, height_,
+               frame_path(*targets_.out, 0).string(),
+               frame_path(*targets_.out, frames - 1).string());
+  }
+  if (png_manifest_) fmt::print("manifest={}\n", png_manifest_->file().string());
+  if (video_manifest_) fmt::print("manifest={}\n", video_manifest_->file().string());
+}
+
+}  // namespace fixstep::cli

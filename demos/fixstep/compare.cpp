@@ -1,0 +1,181 @@
+// `fixstep compare`: the command — tiles captured headless (PNG, video) or shown in the window,
+// and the summary: a line and a CSV row per tile.
+#include "compare.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fixstep/capture.hpp>
+#include <fixstep/scene_stability.hpp>
+#include <fixstep/window.hpp>
+#include <thread>
+#include <vector>
+
+#include "capture_sink.hpp"
+#include "comparison.hpp"
+#include "progress.hpp"
+#include "stop_signal.hpp"
+
+namespace fixstep::cli {
+
+namespace {
+
+constexpr Rgba8 gap_color{78, 84, 98, 255};  // lines between the tiles
+
+std::vector<std::uint8_t> blank_frame(int width, int height) {
+  std::vector<std::uint8_t> frame(static_cast<std::size_t>(width) * height * 4);
+  for (std::size_t i = 0; i < frame.size(); i += 4) {
+    frame[i] = gap_color.r, frame[i + 1] = gap_color.g, frame[i + 2] = gap_color.b;
+    frame[i + 3] = 255;
+  }
+  return frame;
+}
+
+/// The summary CSV's path: --csv, else DIR/compare.csv beside the PNGs, else NAME.compare.csv
+/// beside the video NAME.EXT; none for a window without --csv.
+std::optional<std::filesystem::path> summary_path(const CompareOptions& o) {
+  if (o.csv) return std::filesystem::path(*o.csv);
+  if (o.out) return std::filesystem::path(*o.out) / "compare.csv";
+  if (o.video) return std::filesystem::path(*o.video).replace_extension(".compare.csv");
+  return std::nullopt;
+}
+
+/// The `fixstep run` command line that steps tile i's configuration to the same tick.
+std::string same_as_run(const std::string& scene_file, const Tile& t) {
+  const Simulation& sim = t.session->simulation();
+  return fmt::format(
+      "fixstep run {} --integrator {} --dt {} --substeps {} --precision {} --steps {}", scene_file,
+      integrator_name(sim.settings().integrator), sim.settings().dt, sim.settings().substeps,
+      precision_name(sim.precision()), sim.tick());
+}
+
+/// A line per tile on standard output and, when `csv` is set, a CSV row per tile.
+void summarise(const CompareOptions& o, const Comparison& c,
+               const std::optional<std::filesystem::path>& csv) {
+  std::string rows =
+      "tile,with,integrator,dt,substeps,precision,ticks,t,state_hash,error_m,error_against,"
+      "error_t,max_error_m,balance,cost_s_per_simulated_s,in_loop_s_per_simulated_s\n";
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Tile& t = c.tile(i);
+    const Simulation& sim = t.session->simulation();
+    const double balance = energy_balance(sim, t.session->initial_energy());
+    const double in_loop = sim.time() > 0.0 ? t.wall_seconds / sim.time() : 0.0;
+    const std::string error = t.error ? fmt::format("{:.6e}", *t.error) : "";
+    const std::string against = t.error ? c.error_against(i) : "";
+    fmt::print(
+        "tile={} with={} ticks={} t={:.6f} state_hash={} error={}{} balance={:.6e} "
+        "cost={:.3e} s per simulated s\n",
+        i + 1, t.spec.text, sim.tick(), sim.time(), hex_hash(sim.state_hash()),
+        error.empty() ? (c.has_exact() || i != c.reference() ? "none" : "reference")
+                      : error + " m against " + against,
+        t.error && !c.has_exact() ? fmt::format(" at t={:.6f}", t.error_time) : "", balance,
+        t.cost);
+    fmt::print("  same state: {}\n", same_as_run(o.scene, t));
+    rows += fmt::format(
+        "{},{},{},{},{},{},{},{:.6f},{},{},{},{},{},{:.6e},{:.6e},{:.6e}\n", i + 1, t.spec.text,
+        integrator_name(sim.settings().integrator), sim.settings().dt, sim.settings().substeps,
+        precision_name(sim.precision()), sim.tick(), sim.time(), hex_hash(sim.state_hash()), error,
+        against, t.error ? fmt::format("{:.6f}", t.error_time) : "",
+        t.error ? fmt::format("{:.6e}", t.max_error) : "", balance, t.cost, in_loop);
+  }
+  if (csv) {
+    write_file_atomic(*csv, rows);
+    fmt::print("csv={}\n", csv->string());
+  }
+}
+
+/// Reports every tile the runtime guard stopped; exit_diverged if there is one, else 0.
+int report_faults(const Comparison& c) {
+  int status = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const Tile& t = c.tile(i);
+    if (const auto& fault = t.session->simulation().fault()) {
+      std::fprintf(stderr, "fixstep: error: tile %zu (--with '%s'): %s\n", i + 1,
+                   t.spec.text.c_str(), explain_fault(t.scene, *fault).c_str());
+      status = exit_diverged;
+    }
+  }
+  return status;
+}
+
+int capture(const CompareOptions& o, Comparison& c, int width, int height) {
+  const double fps = o.fps.value_or(60.0);
+  const VirtualClock clock(fps);
+  const auto frames = static_cast<std::uint64_t>(o.frames.value_or(default_compare_frames));
+  CaptureSink sink({.out = o.out, .video = o.video, .png_level = o.png_level}, width, height, fps,
+                   ManifestLayout::tiles);
+  std::vector<std::uint8_t> frame = blank_frame(width, height);
+  const StopOnSignal signals;
+  Progress progress("compare", "frame", frames, !o.quiet);
+  std::uint64_t written = 0;
+  for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
+    if (f > 0) c.advance(clock.frame_seconds());
+    c.draw(frame, width);
+    sink.submit(frame);
+    for (std::size_t i = 0; i < c.size(); ++i) sink.add_row(f, i + 1, *c.tile(i).session);
+    progress.update(++written);
+  }
+  sink.finish();
+  progress.finish();
+  fmt::print("scene={} tiles={} fps={} size={}x{}\n", o.scene, c.size(), fps, width, height);
+  sink.print_paths(written, StopOnSignal::requested() ? " (stopped)" : "");
+  summarise(o, c, summary_path(o));
+  if (const int sig = StopOnSignal::requested()) {
+    std::fprintf(stderr,
+                 "fixstep: stopped by %s after %llu frames; every frame written is complete\n",
+                 StopOnSignal::name(), static_cast<unsigned long long>(written));
+    return 128 + sig;
+  }
+  return report_faults(c);
+}
+
+int show(const CompareOptions& o, Comparison& c, int width, int height) {
+  Window window = open_window(fmt::format("fixstep compare - {}", o.scene), width, height,
+                              "fixstep compare SCENE --with ... --out DIR");
+  std::vector<std::uint8_t> frame = blank_frame(width, height);
+  RealClock real_clock;
+  const double virtual_frame = o.fps ? VirtualClock(*o.fps).frame_seconds() : 0.0;
+  constexpr auto frame_budget = std::chrono::microseconds(16667);  // ~60 Hz presentation
+  WindowEvents ev;
+  const std::int64_t frames = o.frames.value_or(0);
+  for (std::int64_t f = 0; frames == 0 || f < frames; ++f) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    window.poll(ev);
+    if (ev.quit) break;
+    for (std::size_t i = 0; i < c.size(); ++i) apply_loop_keys(ev, c.tile(i).session->loop());
+    if (ev.restart) c.restart();
+    const double seconds = o.fps ? virtual_frame : real_clock.frame_seconds();
+    if (f > 0) c.advance(seconds);
+    c.draw(frame, width);
+    window.present(frame);
+    if (!o.fps) std::this_thread::sleep_until(frame_start + frame_budget);
+  }
+  fmt::print("scene={} tiles={} driver={}\n", o.scene, c.size(), window.driver());
+  summarise(o, c, summary_path(o));
+  return report_faults(c);
+}
+
+}  // namespace
+
+int compare_command(const CompareOptions& o) {
+  if (o.with.size() < min_tiles || o.with.size() > max_tiles) {
+    throw std::invalid_argument(fmt::format("compare takes {} to {} --with configurations, got {}",
+                                            min_tiles, max_tiles, o.with.size()));
+  }
+  Scene base = load_scene(o.scene);
+  if (o.allow_unstable) base.allow_unstable = true;
+  if (!o.quiet) {
+    for (const std::string& w : base.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
+  std::vector<TileSpec> specs;
+  for (const std::string& w : o.with) specs.push_back(parse_tile_spec(w));
+  const auto [width, height] = parse_frame_size(o.size);
+  const TileGrid grid = tile_grid(static_cast<int>(specs.size()), width, height);
+  const bool headless = o.out || o.video;
+  Comparison comparison(base, specs, grid, o.quiet);
+  return headless ? capture(o, comparison, width, height) : show(o, comparison, width, height);
+}
+
+}  // namespace fixstep::cli

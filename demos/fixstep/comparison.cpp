@@ -1,0 +1,179 @@
+// Comparison: the tiles of `fixstep compare`, each stepping its own world from the same scene on
+// the same clock, and what each HUD shows of its cost and how far it strays.
+#include "comparison.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fixstep/scene_stability.hpp>
+#include <fixstep/session.hpp>
+#include <memory>
+#include <stdexcept>
+
+#include "commands.hpp"
+#include "compare_tiles.hpp"
+#include "exact_reference.hpp"
+#include "step_cost.hpp"
+
+namespace fixstep::cli {
+
+Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const TileGrid& grid,
+                       bool quiet)
+    : base_(base), exact_(base_), grid_(grid) {
+  std::vector<Scene> scenes;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    scenes.push_back(tile_scene(base_, specs[i]));
+    std::vector<std::string> warnings;
+    try {
+      warnings = enforce_stability(scenes.back());  // throws when unstable
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(
+          fmt::format("--with '{}': {} (or pass --allow-unstable to watch it diverge)",
+                      specs[i].text, e.what()));
+    }
+    for (const std::string& w : warnings) {
+      if (!quiet)
+        std::fprintf(stderr, "warning: --with '%s': %s\n", specs[i].text.c_str(), w.c_str());
+    }
+  }
+  reference_ = most_accurate(scenes);
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    auto tile = std::make_unique<Tile>();
+    tile->spec = specs[i];
+    tile->scene = std::move(scenes[i]);
+    tile->label = tile_label(tile->spec, tile->scene);
+    tile->session = std::make_unique<Session>(world_def(tile->scene), tile_settings(tile->scene));
+    tile->session->set_show_engine_hud(false);
+    tile->cost = step_cost(tile->session->definition());
+    tiles_.push_back(std::move(tile));
+  }
+  {
+    const Simulation& sim0 = tiles_.front()->session->simulation();
+    has_exact_ = exact_error(exact_, sim0).has_value();
+  }
+  restart();
+}
+
+SessionSettings Comparison::tile_settings(const Scene& scene) const {
+  // The tile's HUD covers its top band: the scene is fitted into the part below it.
+  const int w = grid_.tile_width, h = grid_.tile_height;
+  const int band = std::min(hud_band, h / 2);
+  SessionSettings s = session_settings(scene, w, h);
+  const Camera fit = fit_camera(world_def(scene), w, h - band);
+  const double width = scene.view.width ? *scene.view.width * h / (h - band) : fit.width;
+  const Vec2 center = scene.view.center.value_or(fit.center);
+  s.view_width = width;
+  s.view_center = Vec2{center.x, center.y + 0.5 * band * width / w};  // m: y up, band at the top
+  return s;
+}
+
+void Comparison::restart() {
+  for (std::size_t i = 0; i < tiles_.size(); ++i) {
+    Tile& t = *tiles_[i];
+    t.session->restart();
+    t.wall_seconds = 0.0;
+    t.error.reset();
+    t.error_time = 0.0;
+    t.max_error = 0.0;
+    t.shadow.reset();
+    if (!has_exact_ && i != reference_) {
+      WorldDef def = world_def(tiles_[reference_]->scene);
+      def.allow_unstable = true;  // its tile passed the guard (or was allowed past it)
+      t.shadow = std::make_unique<Simulation>(make_simulation(def));
+    }
+    measure(i);
+  }
+}
+
+void Comparison::advance(double seconds) {
+  for (std::size_t i = 0; i < tiles_.size(); ++i) {
+    Tile& t = *tiles_[i];
+    const auto start = std::chrono::steady_clock::now();
+    t.session->advance(seconds);
+    t.wall_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    measure(i);
+  }
+}
+
+void Comparison::measure(std::size_t i) {
+  Tile& t = *tiles_[i];
+  const Simulation& sim = t.session->simulation();
+  if (sim.fault()) return;  // the last measurement stands; the HUD shows the guard's message
+  std::optional<double> e;
+  if (has_exact_) {
+    e = exact_error(exact_, sim);
+  } else if (t.shadow) {
+    e = against_shadow(sim, *t.shadow);
+  }
+  if (!e) return;
+  t.error = e;
+  t.error_time = sim.time();
+  t.max_error = std::max(t.max_error, *e);
+}
+
+std::optional<double> Comparison::against_shadow(const Simulation& sim, Simulation& shadow) {
+  // The reference configuration, stepped up to this tile's time: it lands on it when the time is
+  // on both tiles' grids of ticks (every 1/15 s for steps of 1/60, 1/30 and 1/15 s).
+  const double t = sim.time(), tolerance = 1e-9 * std::max(1.0, t);
+  const double dt = shadow.settings().dt;
+  while (!shadow.fault() && static_cast<double>(shadow.tick() + 1) * dt <= t + tolerance) {
+    shadow.step();
+  }
+  if (shadow.fault() || std::abs(shadow.time() - t) > tolerance) return std::nullopt;
+  double worst = 0.0;
+  for (std::size_t j = 0; j < sim.body_count(); ++j) {
+    const Body a = sim.body_at(j), b = shadow.body_at(j);
+    worst = std::max(worst, std::hypot(a.position.x - b.position.x, a.position.y - b.position.y));
+  }
+  return worst;
+}
+
+std::string Comparison::error_against(std::size_t i) const {
+  if (has_exact_) return "exact";
+  return i == reference_ ? "" : fmt::format("tile {}", reference_ + 1);
+}
+
+std::vector<std::string> Comparison::hud(std::size_t i) const {
+  const Tile& t = *tiles_[i];
+  const Simulation& sim = t.session->simulation();
+  std::vector<std::string> lines;
+  lines.reserve(hud_lines);
+  lines.push_back(fmt::format("{}  {}", i + 1, t.label));
+  lines.push_back(fmt::format("t = {:.3f} s   tick {}", sim.time(), sim.tick()));
+  if (!has_exact_ && i == reference_) {
+    lines.emplace_back("reference: the most accurate");
+  } else if (t.error) {
+    lines.push_back(has_exact_
+                        ? fmt::format("error {:.3g} m vs exact", *t.error)
+                        : fmt::format("error {:.3g} m vs tile {}", *t.error, reference_ + 1));
+  } else {
+    lines.emplace_back("error: no common tick yet");
+  }
+  const double e0 = t.session->initial_energy();
+  const double balance = energy_balance(sim, e0);
+  lines.push_back(fmt::format("energy balance {:+.3g}{}", e0 != 0.0 ? 100.0 * balance : balance,
+                              e0 != 0.0 ? " %" : " J"));
+  lines.push_back(fmt::format("cost {} per sim s", format_cost(t.cost)));
+  return lines;
+}
+
+void Comparison::draw(std::span<std::uint8_t> frame, int frame_width) {
+  for (std::size_t i = 0; i < tiles_.size(); ++i) {
+    Session& s = *tiles_[i]->session;
+    s.set_status_lines(hud(i));
+    s.draw();
+    blit_tile(s.renderer().pixels(), grid_, i, frame, frame_width);
+  }
+}
+
+bool Comparison::any_fault() const {
+  for (const auto& t : tiles_) {
+    if (t->session->simulation().fault()) return true;
+  }
+  return false;
+}
+
+}  // namespace fixstep::cli
