@@ -37,8 +37,13 @@ double step_cost(const WorldDef& def) {
   WorldSnapshot start;
   sim.save(start);
   const double dt = sim.settings().dt;
-  const auto ticks = static_cast<std::uint64_t>(std::max(1.0, std::ceil(1.0 / dt)));
+  // Batches of one simulated second, or fewer ticks when a tick is slow (a first, warming
+  // tick estimates it), so that a slow world takes a few ticks, not seconds.
   constexpr double min_seconds = 2e-3, slow_sample = 50e-3;
+  const double first = sample(sim, start, 1, 0.0);
+  const double per_second = std::max(1.0, std::ceil(1.0 / dt));
+  const auto ticks = static_cast<std::uint64_t>(
+      std::clamp(std::ceil(min_seconds / std::max(first, 1e-9)), 1.0, per_second));
   std::array<double, 5> samples{};
   std::size_t n = 0;
   for (; n < samples.size(); ++n) {
