@@ -280,14 +280,34 @@ TEST(Recording, ForeignVersionAndCorruptFilesAreEachTheirKind) {
 }
 
 TEST(Recording, MissingFileAndDirectoryAreUnreadable) {
-  for (const char* path : {"/nonexistent/x.rec", "/"}) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"/nonexistent/x.rec",
+       "/nonexistent/x.rec: no such recording: the directory /nonexistent "
+       "does not exist"},
+      {"/", "/: is a directory, not a recording"},
+      {FIXSTEP_SOURCE_DIR "/no_such.rec", FIXSTEP_SOURCE_DIR "/no_such.rec: no such recording"}};
+  for (const auto& [path, message] : cases) {
     try {
       (void)read_recording(path);
       FAIL() << path;
     } catch (const RecordingError& e) {
       EXPECT_EQ(e.kind(), RecordingError::Kind::unreadable) << e.what();
+      EXPECT_EQ(std::string(e.what()), message);
     }
   }
+}
+
+TEST(Recording, AnEmptyFileOrASceneIsNamedForWhatItIs) {
+  EXPECT_EQ(parse_message(""),
+            "x.rec: empty file, not a recording (`fixstep run SCENE --steps N --record FILE` "
+            "writes one)");
+  EXPECT_EQ(parse_message("[world]\ndt = 0.01\n"),
+            "x.rec:1: not a fixstep recording: the first line is \"[world]\", a recording's is "
+            "`fixstep-recording 1` (this looks like a TOML scene: replay takes a recording made "
+            "by `fixstep run SCENE --steps N --record FILE`)");
+  EXPECT_EQ(parse_message("hello\n"),
+            "x.rec:1: not a fixstep recording: the first line is \"hello\", a recording's is "
+            "`fixstep-recording 1`");
 }
 
 TEST(Recording, TheFuzzCorpusIsValid) {
