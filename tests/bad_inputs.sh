@@ -163,6 +163,17 @@ case_ "empty file" ""
 case_ "missing file" "" run missing.toml --steps 10
 mkdir -p adir
 case_ "a directory" "" run adir --steps 10
+case_ "[body] with single brackets" "$ok_world
+[body]
+mass = 1.0
+position = [0.0, 0.0]"
+case_ "a number in quotes (mass = \"1.0\")" "$ok_world"'
+[[body]]
+mass = "1.0"
+position = [0.0, 0.0]'
+case_ "integrator named in part (\"verlet\")" "$ok_world"'
+integrator = "verlet"
+'"$body"
 case_ "spring beyond the integrator's stability bound" "$ok_world"'
 integrator = "explicit_euler"
 [[body]]

@@ -62,7 +62,10 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
   auto position = r.vec2(t, "position", path + ".position");
-  if (!position) r.fail_missing(t, path, {"position"}, "missing (required)");
+  if (!position) {
+    r.fail_missing(t, path, {"position"}, "missing (required)",
+                   "the starting position [x, y] in m, e.g. position = [0.0, 0.0]");
+  }
   def.body.position = *position;
 
   if (const toml::table* s = r.table(t, "spring", path + ".spring")) {
@@ -100,7 +103,7 @@ void check_f32(const Reader& r, const toml::node& node, const std::string& path)
 
 void parse_body_parts(const Reader& r, const toml::table& t, const std::string& path,
                       BodyDef& def) {
-  def.body.mass = r.required_number(t, path, "mass");
+  def.body.mass = r.required_number(t, path, "mass", "the mass in kg, e.g. mass = 1.0");
   r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
   if (auto v = r.vec2(t, "velocity", path + ".velocity")) def.body.velocity = *v;
   if (auto f = r.vec2(t, "force", path + ".force")) def.constant_force = ConstantForce{*f};
@@ -134,16 +137,34 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   r.check_keys(doc, "", {"world", "view", "body", "spring", "chain", "grid", "plane"});
 
   const toml::table* world = r.table(doc, "world", "world");
-  if (!world) r.fail_missing(doc, "", {"world"}, "missing [world] table (required)");
+  if (!world) {
+    r.fail_missing(doc, "", {"world"}, "missing [world] table (required)",
+                   "add [world] with dt, the fixed step in s, e.g. dt = 0.01");
+  }
   r.check_keys(*world, "world", {"dt", "integrator", "precision", "substeps", "allow_unstable"});
-  scene.world.dt = r.required_number(*world, "world", "dt");
+  scene.world.dt = r.required_number(*world, "world", "dt",
+                                     "the fixed physics step in s, e.g. dt = 0.01 (100 ticks/s)");
   r.require(scene.world.dt > 0.0 && scene.world.dt <= 1.0, *world, "dt", "world.dt",
             "> 0 and <= 1 s", scene.world.dt);
   if (auto name = r.string(*world, "integrator", "world.integrator")) {
     auto i = parse_integrator(*name);
     if (!i) {
+      // A name within two edits, else the one valid name holding what was written ("verlet").
+      std::vector<std::string> valid;
+      for (const Integrator v : all_integrators) valid.emplace_back(integrator_name(v));
+      std::optional<std::string> best = closest(*name, valid);
+      if (!best && name->size() >= 2 &&
+          std::count_if(valid.begin(), valid.end(), [&](const std::string& v) {
+            return v.find(*name) != std::string::npos;
+          }) == 1) {
+        best = *std::find_if(valid.begin(), valid.end(), [&](const std::string& v) {
+          return v.find(*name) != std::string::npos;
+        });
+      }
       r.fail(world->get("integrator")->source(), "world.integrator",
-             fmt::format("unknown integrator \"{}\" (valid: {})", *name, integrator_names()));
+             fmt::format("unknown integrator \"{}\"{} (valid: {})", *name,
+                         best ? fmt::format("; did you mean \"{}\"?", *best) : std::string(),
+                         integrator_names()));
     }
     scene.world.integrator = *i;
   }
@@ -162,7 +183,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   if (const toml::node* n = world->get("allow_unstable")) {
     if (!n->is_boolean()) {
       r.fail(n->source(), "world.allow_unstable",
-             fmt::format("expected true or false, found {}", type_name(*n)));
+             fmt::format("expected true or false, found {}", found(*n)));
     }
     scene.allow_unstable = n->as_boolean()->get();
   }
@@ -200,7 +221,8 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   parse_generators(r, doc, scene, names);
   if (scene.bodies.empty()) {
     throw SceneError(source_name, 1, 1, "body",
-                     "no [[body]], [[chain]] or [[grid]] tables: a scene needs at least one body");
+                     "no [[body]], [[chain]] or [[grid]] tables: a scene needs at least one body; "
+                     "add one, e.g. [[body]] with mass = 1.0 and position = [0.0, 0.0]");
   }
   parse_springs(r, doc, scene, names);
   parse_planes(r, doc, scene);
