@@ -128,7 +128,7 @@ expect "bad scene names file:line:col and key" "bad\.toml:4:[0-9]+: body\[0\]\.m
 
 "$fixstep" run "$work/missing.toml" --steps 1 >"$work/missing.out" 2>&1
 [ $? -ne 0 ] && ok "missing scene exits non-zero" || fail "missing scene exit code"
-expect "missing scene is named" "missing\.toml.*cannot open" "$work/missing.out"
+expect "missing scene is named" "missing\.toml: no such scene file" "$work/missing.out"
 
 for args in "--dt -1" "--dt nan" "--integrator rk5" "--precision f16" "--steps -3"; do
   # shellcheck disable=SC2086

@@ -3,6 +3,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <ostream>
 #include <string>
@@ -148,7 +150,9 @@ TEST_P(MalformedScene, ErrorNamesFileLineAndKey) {
 INSTANTIATE_TEST_SUITE_P(
     Scene, MalformedScene,
     ::testing::Values(
-        Bad{"syntax", "[world]\ndt = 0.01\nintegrator = \n", 3, "", "TOML syntax error"},
+        Bad{"syntax", "[world]\ndt = 0.01\nintegrator = \n", 3, "",
+            "TOML syntax error in a `key = value` line: expected a value, found the end of the "
+            "line; give a value after `integrator =`"},
         Bad{"missing world", "[[body]]\nmass = 1\nposition = [0, 0]\n", 1, "world",
             "missing [world] table (required): add [world] with dt, the fixed step in s"},
         Bad{"missing dt",
@@ -206,6 +210,8 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"body not a table", "body = 3\n[world]\ndt = 0.01\n", 1, "body",
             "expected [[body]] tables, found an integer (3)"},
         // --- the slips of a first scene file: the message says what to write instead ---
+        Bad{"empty file", "", 0, "", "the scene file is empty (no tables or keys)"},
+        Bad{"only comments", "# my first scene\n\n", 0, "", "the scene file is empty"},
         Bad{"[body] with single brackets",
             "[world]\ndt = 0.01\n[body]\nmass = 1\nposition = [0, 0]\n", 3, "body",
             "expected [[body]] tables, found a single [body] table; write [[body]] (double "
@@ -213,6 +219,22 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"a number in quotes",
             "[world]\ndt = 0.01\n[[body]]\nmass = \"1.5\"\nposition = [0, 0]\n", 4, "body[0].mass",
             "expected a number, found a string (\"1.5\"); write the number without quotes: 1.5"},
+        Bad{"arithmetic", "[world]\ndt = 1/60\n", 2, "",
+            "TOML syntax error in a number: expected digit, found '/'; TOML has no arithmetic: "
+            "write the number, e.g. dt = 0.016666666666666666"},
+        Bad{"a bare word", "[world]\ndt = 0.01\nintegrator = rk4\n", 3, "",
+            "TOML syntax error in a value: could not determine value type; text must be in "
+            "quotes, e.g. \"rk4\""},
+        Bad{"a vector in parentheses",
+            "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = (0, 0)\n", 5, "",
+            "; write a vector in square brackets, e.g. [0.0, 1.0]"},
+        Bad{"a colour without quotes",
+            "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0]\ncolor = #ff0000\n", 6, "",
+            "; # starts a comment in TOML: put the colour in quotes, e.g. \"#ff0000\""},
+        Bad{"a number without its leading zero", "[world]\ndt = .01\n", 2, "",
+            "; TOML numbers need a digit before the point, e.g. 0.5"},
+        Bad{"a recording given as the scene", "fixstep-recording 1\nscene x.toml\n", 0, "",
+            "is a fixstep recording, not a scene file: replay it with `fixstep replay bad.toml`"},
         Bad{"integrator named in part",
             "[world]\ndt = 0.01\nintegrator = \"verlet\"\n[[body]]\nmass = 1\nposition = [0,0]\n",
             3, "world.integrator",
@@ -592,13 +614,70 @@ stiffness = 1
   for (std::size_t i = 0; i < std::size(expected); ++i) EXPECT_EQ(s.warnings[i], expected[i]);
 }
 
-TEST(Scene, MissingFileAndDirectory) {
-  EXPECT_THROW((void)load_scene("/nonexistent/scene.toml"), SceneError);
+/// The message of the SceneError load_scene(path) throws.
+std::string load_error(const std::filesystem::path& path) {
   try {
-    (void)load_scene(FIXSTEP_SOURCE_DIR "/assets");
-    FAIL();
+    (void)load_scene(path);
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("directory"), std::string::npos);
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+TEST(Scene, MissingFileAndDirectory) {
+  EXPECT_EQ(load_error("/nonexistent/scene.toml"),
+            "/nonexistent/scene.toml: no such scene file: the directory /nonexistent does not "
+            "exist");
+  EXPECT_EQ(load_error(FIXSTEP_SOURCE_DIR "/assets"),
+            FIXSTEP_SOURCE_DIR "/assets: is a directory, not a scene file");
+  // A typo in the name: the closest file beside it. A directory: the scene files in it.
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "fixstep_scenes";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  for (const char* name :
+       {"rope.toml", "scene.toml", "soft_body.toml", "spring.toml", "notes.txt"}) {
+    std::ofstream(dir / name) << "[world]\ndt = 0.01\n";
+  }
+  EXPECT_EQ(load_error(dir / "scen.toml"), (dir / "scen.toml").string() +
+                                               ": no such scene file; did you mean " +
+                                               (dir / "scene.toml").string() + "?");
+  EXPECT_EQ(load_error(dir / "nothing_like_it.toml"),
+            (dir / "nothing_like_it.toml").string() + ": no such scene file");
+  EXPECT_EQ(load_error(dir),
+            dir.string() + ": is a directory, not a scene file; give a file in it: " +
+                (dir / "rope.toml").string() + ", " + (dir / "scene.toml").string() + ", " +
+                (dir / "soft_body.toml").string() + " (and 1 more)");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Scene, SyntaxErrorsAreInPlainWords) {
+  // toml++'s "Error while parsing SCOPE", its escapes and its C++ macro names stay out.
+  std::string deep = "x = ";
+  deep.append(300, '[');
+  for (const std::string& text : {std::string("[world]\x01"
+                                              "dt = 0.01\n"),
+                                  deep, std::string("[world]\ndt = 0.01\nintegrator = \n")}) {
+    try {
+      (void)parse_scene(text, "s.toml");
+      FAIL() << text;
+    } catch (const SceneError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("TOML syntax error"), std::string::npos) << what;
+      for (const char* jargon : {"Error while parsing", "TOML_MAX", "saw '", "\\u", "\\n"}) {
+        EXPECT_EQ(what.find(jargon), std::string::npos) << jargon << " in " << what;
+      }
+    }
+  }
+  try {
+    (void)parse_scene(
+        "[world]\x01"
+        "dt = 0.01\n",
+        "s.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "s.toml:1:8: TOML syntax error in a [table] header: expected a comment or "
+              "whitespace, found the control character U+0001");
   }
 }
 

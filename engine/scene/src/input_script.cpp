@@ -12,8 +12,8 @@ namespace fixstep {
 namespace {
 
 using scene_detail::Reader;
-using scene_detail::type_name;
-const scene_detail::FileKind script_file{"input script", "an", "an input script", "input scripts"};
+const scene_detail::FileKind script_file{"input script", "an", "an input script", "input scripts",
+                                         ".toml"};
 
 constexpr std::array<std::pair<std::string_view, std::uint32_t>, 7> buttons{{
     {"left", button_left},
@@ -117,6 +117,13 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
   Reader r(script.file);
   const toml::table doc =
       scene_detail::parse_toml(text, source_name, max_script_bytes, script_file);
+  if (!doc.get("at") && (doc.get("world") || doc.get("body"))) {
+    // Without this, a scene given as the script would run with no input and two warnings.
+    const toml::node* n = doc.get("world") ? doc.get("world") : doc.get("body");
+    r.fail(n->source(), "",
+           "this is a scene file, not an input script: a script holds [[at]] tables (tick, "
+           "press, release, pointer, push, drag); see README, Input scripts");
+  }
   r.check_keys(doc, "", {"at"});
   if (const toml::array* list = r.tables(doc, "at")) {
     for (std::size_t i = 0; i < list->size(); ++i) {

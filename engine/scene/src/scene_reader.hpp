@@ -28,18 +28,22 @@ namespace fixstep::scene_detail {
 
 /// How read_text_file names the kind of file in its messages.
 struct FileKind {
-  std::string_view noun;     ///< "scene file": "cannot open scene file (does it exist?)"
-  std::string_view article;  ///< "a": "is a directory, not a scene file"
-  std::string_view owner;    ///< "a scene": "file is larger than the N bytes a scene may have"
-  std::string_view plural;   ///< "scenes": "file is N bytes; scenes are limited to M bytes"
+  std::string_view noun;       ///< "scene file": "cannot open scene file (does it exist?)"
+  std::string_view article;    ///< "a": "is a directory, not a scene file"
+  std::string_view owner;      ///< "a scene": "file is larger than the N bytes a scene may have"
+  std::string_view plural;     ///< "scenes": "file is N bytes; scenes are limited to M bytes"
+  std::string_view extension;  ///< ".toml": the files a directory given instead is searched for
 };
 
 /// The whole text of `file`, at most max_bytes. Throws SceneError (file only, no line) when it
-/// is a directory, cannot be opened or read, or is larger. Defined in scene.cpp.
+/// is a directory (naming the files in it with kind.extension), does not exist (suggesting the
+/// closest name in its directory), cannot be opened or read, or is larger. Defined in
+/// scene.cpp.
 std::string read_text_file(const std::filesystem::path& file, std::size_t max_bytes,
                            const FileKind& kind);
-/// `text` parsed as TOML. Throws SceneError for more than max_bytes, a NUL byte (binary data)
-/// and TOML syntax errors (with line and column). Defined in scene.cpp.
+/// `text` parsed as TOML. Throws SceneError for more than max_bytes, a fixstep recording, a NUL
+/// byte (binary data) and TOML syntax errors (with line and column, in plain words, with advice
+/// for common slips). Defined in scene.cpp.
 toml::table parse_toml(std::string_view text, const std::string& source_name, std::size_t max_bytes,
                        const FileKind& kind);
 
