@@ -450,6 +450,9 @@ case_ "--substeps 0" "" run good.toml --steps 10 --substeps 0
 case_ "--size 10x10" "" render good.toml --out frames --size 10x10
 case_ "--png-level 13" "" render good.toml --out frames --png-level 13
 case_ "--fps 0" "" render good.toml --out frames --fps 0
+case_ "--frames -1" "" render good.toml --out frames --frames -1
+case_ "--steps 2.5" "" run good.toml --steps 2.5
+case_ "a misspelt subcommand (rn)" "" rn good.toml --steps 10
 # --- input scripts (run --input) ---
 script_case() {  # DESCRIPTION SCRIPT-TEXT: run good.toml with it as --input
   printf '%s\n' "$2" > script.toml
