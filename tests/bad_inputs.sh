@@ -163,6 +163,41 @@ case_ "empty file" ""
 case_ "missing file" "" run missing.toml --steps 10
 mkdir -p adir
 case_ "a directory" "" run adir --steps 10
+mkdir -p scenes
+printf '%s\n' "$ok_world" "$body" > scenes/one.toml
+cp scenes/one.toml scenes/two.toml
+case_ "a directory of scenes" "" run scenes --steps 10
+case_ "a scene path with a typo" "" run scen.toml --steps 10
+case_ "a scene in a missing directory" "" run nodir/scene.toml --steps 10
+case_ "only comments" "# my first scene
+"
+case_ "[body] with single brackets" "$ok_world
+[body]
+mass = 1.0
+position = [0.0, 0.0]"
+case_ "a number in quotes (mass = \"1.0\")" "$ok_world"'
+[[body]]
+mass = "1.0"
+position = [0.0, 0.0]'
+case_ "arithmetic (dt = 1/60)" "[world]
+dt = 1/60
+$body"
+case_ "a bare word (integrator = rk4)" "$ok_world
+integrator = rk4
+$body"
+case_ "a vector in parentheses" "$ok_world
+[[body]]
+mass = 1.0
+position = (0.0, 0.0)"
+case_ "a colour without quotes" "$ok_world
+$body
+color = #ff0000"
+case_ "a number without its leading zero (dt = .01)" "[world]
+dt = .01
+$body"
+case_ "integrator named in part (\"verlet\")" "$ok_world"'
+integrator = "verlet"
+'"$body"
 case_ "spring beyond the integrator's stability bound" "$ok_world"'
 integrator = "explicit_euler"
 [[body]]
@@ -415,6 +450,9 @@ case_ "--substeps 0" "" run good.toml --steps 10 --substeps 0
 case_ "--size 10x10" "" render good.toml --out frames --size 10x10
 case_ "--png-level 13" "" render good.toml --out frames --png-level 13
 case_ "--fps 0" "" render good.toml --out frames --fps 0
+case_ "--frames -1" "" render good.toml --out frames --frames -1
+case_ "--steps 2.5" "" run good.toml --steps 2.5
+case_ "a misspelt subcommand (rn)" "" rn good.toml --steps 10
 # --- input scripts (run --input) ---
 script_case() {  # DESCRIPTION SCRIPT-TEXT: run good.toml with it as --input
   printf '%s\n' "$2" > script.toml
@@ -439,6 +477,7 @@ script_case "script: misspelt key (a warning; the run goes on)" '[[at]]
 tick = 0
 presss = ["left"]'
 case_ "script: missing file" "" run good.toml --steps 10 --input missing_script.toml
+case_ "script: a scene given instead" "" run good.toml --steps 10 --input good.toml
 # --- recordings (replay, render --replay, run --record) ---
 printf '[[at]]\ntick = 3\npush = [2.0, 0.0]\n[[at]]\ntick = 6\npush = [0.0, 0.0]\n' > push.toml
 "$fixstep" run good.toml --steps 10 --input push.toml --record base.rec --hash-every 1 -q
@@ -451,6 +490,7 @@ case_ "recording: a directory" "" replay adir
 : > empty.rec
 case_ "recording: empty file" "" replay empty.rec
 case_ "recording: a scene file given instead" "" replay good.toml
+case_ "a recording given as the scene" "" run base.rec --steps 10
 head -c 300 base.rec > cut.rec
 case_ "recording: cut short (truncated)" "" replay cut.rec
 rec_case "recording: no end line (truncated)" '/^end /d'
@@ -467,6 +507,8 @@ printf '%s\n%s\n' "$ok_world" '[[body]]
 mass = 2.0
 position = [0.0, 0.0]' > changed.toml
 case_ "recording: the scene changed (mass)" "" replay base.rec --scene changed.toml
+sed 's/^scene good.toml$/scene moved.toml/' base.rec > moved.rec
+case_ "recording: its scene file is gone" "" replay moved.rec
 case_ "render --replay of a truncated recording" "" render good.toml --replay cut.rec --out frames
 case_ "render without SCENE or --replay" "" render --out frames
 case_ "--hash-every 0" "" run good.toml --steps 10 --record out.rec --hash-every 0

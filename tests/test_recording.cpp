@@ -280,14 +280,34 @@ TEST(Recording, ForeignVersionAndCorruptFilesAreEachTheirKind) {
 }
 
 TEST(Recording, MissingFileAndDirectoryAreUnreadable) {
-  for (const char* path : {"/nonexistent/x.rec", "/"}) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"/nonexistent/x.rec",
+       "/nonexistent/x.rec: no such recording: the directory /nonexistent "
+       "does not exist"},
+      {"/", "/: is a directory, not a recording"},
+      {FIXSTEP_SOURCE_DIR "/no_such.rec", FIXSTEP_SOURCE_DIR "/no_such.rec: no such recording"}};
+  for (const auto& [path, message] : cases) {
     try {
       (void)read_recording(path);
       FAIL() << path;
     } catch (const RecordingError& e) {
       EXPECT_EQ(e.kind(), RecordingError::Kind::unreadable) << e.what();
+      EXPECT_EQ(std::string(e.what()), message);
     }
   }
+}
+
+TEST(Recording, AnEmptyFileOrASceneIsNamedForWhatItIs) {
+  EXPECT_EQ(parse_message(""),
+            "x.rec: empty file, not a recording (`fixstep run SCENE --steps N --record FILE` "
+            "writes one)");
+  EXPECT_EQ(parse_message("[world]\ndt = 0.01\n"),
+            "x.rec:1: not a fixstep recording: the first line is \"[world]\", a recording's is "
+            "`fixstep-recording 1` (this looks like a TOML scene: replay takes a recording made "
+            "by `fixstep run SCENE --steps N --record FILE`)");
+  EXPECT_EQ(parse_message("hello\n"),
+            "x.rec:1: not a fixstep recording: the first line is \"hello\", a recording's is "
+            "`fixstep-recording 1`");
 }
 
 TEST(Recording, TheFuzzCorpusIsValid) {
@@ -346,20 +366,28 @@ std::string script_error(const std::string& text) {
 
 TEST(InputScript, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(script_error("[[at]]\ntick = 1\npress = [\"lft\"]\n"),
-            "s.toml:3:10: at[0].press[0]: unknown button \"lft\" (did you mean \"left\"?) (valid: "
+            "s.toml:3:10: at[0].press[0]: unknown button \"lft\"; did you mean \"left\"? (valid: "
             "left, right, up, down, action, pointer_primary, pointer_secondary)");
   EXPECT_EQ(script_error("[[at]]\ntick = 1\ndrag = \"bb\"\n"),
             "s.toml:3:8: at[0].drag: no body named \"bb\" (did you mean \"b\"?)");
   EXPECT_EQ(script_error("[[at]]\ntick = 4\n[[at]]\ntick = 4\n"),
             "s.toml:4:8: at[1].tick: ticks must increase from one [[at]] to the next (4 after 4)");
   EXPECT_EQ(script_error("[[at]]\npush = [1.0, 0.0]\n"),
-            "s.toml:1:1: at[0].tick: missing (required)");
+            "s.toml:1:1: at[0].tick: missing (required): the tick (0, 1, ...) at which this [[at]] "
+            "table's inputs apply, e.g. tick = 0");
   EXPECT_EQ(script_error("[[at]]\ntick = -1\n"),
             "s.toml:2:8: at[0].tick: must be 0 .. 999999999 (got -1)");
   EXPECT_EQ(script_error("[[at]]\ntick = 0\npush = [nan, 0.0]\n"),
             "s.toml:3:9: at[0].push[0]: must be finite (got nan)");
   EXPECT_EQ(script_error("[[at]]\ntick = 0\ndrag = true\n"),
             "s.toml:3:8: at[0].drag: expected a body name or false, found true");
+  // A scene given as the script would run with no input: it is refused, naming what a script
+  // holds.
+  EXPECT_EQ(script_error("[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0]\n"),
+            "s.toml:1:1: this is a scene file, not an input script: a script holds [[at]] tables "
+            "(tick, press, release, pointer, push, drag); see README, Input scripts");
+  EXPECT_EQ(script_error("[[at]]\ntick = 0\npush = 3.0\n"),
+            "s.toml:3:8: at[0].push: expected [x, y], found a float (3.0)");
   const InputScript warned =
       parse_input_script("[[at]]\ntick = 0\npussh = [1.0, 0.0]\n", "s.toml", small_world().bodies);
   ASSERT_EQ(warned.warnings.size(), 1u);

@@ -3,6 +3,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <ostream>
 #include <string>
@@ -148,29 +150,32 @@ TEST_P(MalformedScene, ErrorNamesFileLineAndKey) {
 INSTANTIATE_TEST_SUITE_P(
     Scene, MalformedScene,
     ::testing::Values(
-        Bad{"syntax", "[world]\ndt = 0.01\nintegrator = \n", 3, "", "TOML syntax error"},
+        Bad{"syntax", "[world]\ndt = 0.01\nintegrator = \n", 3, "",
+            "TOML syntax error in a `key = value` line: expected a value, found the end of the "
+            "line; give a value after `integrator =`"},
         Bad{"missing world", "[[body]]\nmass = 1\nposition = [0, 0]\n", 1, "world",
-            "missing [world]"},
+            "missing [world] table (required): add [world] with dt, the fixed step in s"},
         Bad{"missing dt",
             "[world]\nintegrator = \"explicit_euler\"\n[[body]]\nmass = 1\nposition = [0,0]\n", 1,
-            "world.dt", "missing"},
+            "world.dt", "missing (required): the fixed physics step in s, e.g. dt = 0.01"},
         Bad{"dt zero", "[world]\ndt = 0\n[[body]]\nmass = 1\nposition = [0,0]\n", 2, "world.dt",
             "> 0"},
         Bad{"dt nan", "[world]\ndt = nan\n[[body]]\nmass = 1\nposition = [0,0]\n", 2, "world.dt",
             "finite"},
         Bad{"dt string", "[world]\ndt = \"fast\"\n[[body]]\nmass = 1\nposition = [0,0]\n", 2,
-            "world.dt", "expected a number, found a string"},
+            "world.dt", "expected a number, found a string (\"fast\")"},
         Bad{"unknown integrator",
             "[world]\ndt = 0.01\nintegrator = \"verlett\"\n[[body]]\nmass = 1\nposition = [0,0]\n",
             3, "world.integrator", "valid: semi_implicit_euler, explicit_euler"},
         Bad{"unknown precision",
             "[world]\ndt = 0.01\nprecision = \"f16\"\n[[body]]\nmass = 1\nposition = [0,0]\n", 3,
             "world.precision", "valid: f32, f64"},
-        Bad{"no bodies", "[world]\ndt = 0.01\n", 1, "body", "at least one body"},
+        Bad{"no bodies", "[world]\ndt = 0.01\n", 1, "body",
+            "at least one body; add one, e.g. [[body]] with mass = 1.0 and position = [0.0, 0.0]"},
         Bad{"negative mass", "[world]\ndt = 0.01\n[[body]]\nmass = -1\nposition = [0, 0]\n", 4,
             "body[0].mass", "> 0 kg"},
         Bad{"missing position", "[world]\ndt = 0.01\n[[body]]\nmass = 1\n", 3, "body[0].position",
-            "missing"},
+            "missing (required): the starting position [x, y] in m, e.g. position = [0.0, 0.0]"},
         Bad{"vector length", "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0, 0]\n", 5,
             "body[0].position", "2 numbers"},
         Bad{"vector element type",
@@ -199,8 +204,41 @@ INSTANTIATE_TEST_SUITE_P(
             8, "body[1].name", "duplicate"},
         Bad{"f32 overflow",
             "[world]\ndt = 0.01\nprecision = \"f32\"\n[[body]]\nmass = 1\nposition = [1e39, 0]\n",
-            6, "body[0].position[0]", "overflows"},
-        Bad{"body not a table", "body = 3\n[world]\ndt = 0.01\n", 1, "body", "[[body]]"},
+            6, "body[0].position[0]",
+            "1e+39 overflows precision = \"f32\" (largest float 3.40282e+38); use a smaller value, "
+            "or precision = \"f64\" in [world]"},
+        Bad{"body not a table", "body = 3\n[world]\ndt = 0.01\n", 1, "body",
+            "expected [[body]] tables, found an integer (3)"},
+        // --- the slips of a first scene file: the message says what to write instead ---
+        Bad{"empty file", "", 0, "", "the scene file is empty (no tables or keys)"},
+        Bad{"only comments", "# my first scene\n\n", 0, "", "the scene file is empty"},
+        Bad{"[body] with single brackets",
+            "[world]\ndt = 0.01\n[body]\nmass = 1\nposition = [0, 0]\n", 3, "body",
+            "expected [[body]] tables, found a single [body] table; write [[body]] (double "
+            "brackets) above each one"},
+        Bad{"a number in quotes",
+            "[world]\ndt = 0.01\n[[body]]\nmass = \"1.5\"\nposition = [0, 0]\n", 4, "body[0].mass",
+            "expected a number, found a string (\"1.5\"); write the number without quotes: 1.5"},
+        Bad{"arithmetic", "[world]\ndt = 1/60\n", 2, "",
+            "TOML syntax error in a number: expected digit, found '/'; TOML has no arithmetic: "
+            "write the number, e.g. dt = 0.016666666666666666"},
+        Bad{"a bare word", "[world]\ndt = 0.01\nintegrator = rk4\n", 3, "",
+            "TOML syntax error in a value: could not determine value type; text must be in "
+            "quotes, e.g. \"rk4\""},
+        Bad{"a vector in parentheses",
+            "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = (0, 0)\n", 5, "",
+            "; write a vector in square brackets, e.g. [0.0, 1.0]"},
+        Bad{"a colour without quotes",
+            "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0]\ncolor = #ff0000\n", 6, "",
+            "; # starts a comment in TOML: put the colour in quotes, e.g. \"#ff0000\""},
+        Bad{"a number without its leading zero", "[world]\ndt = .01\n", 2, "",
+            "; TOML numbers need a digit before the point, e.g. 0.5"},
+        Bad{"a recording given as the scene", "fixstep-recording 1\nscene x.toml\n", 0, "",
+            "is a fixstep recording, not a scene file: replay it with `fixstep replay bad.toml`"},
+        Bad{"integrator named in part",
+            "[world]\ndt = 0.01\nintegrator = \"verlet\"\n[[body]]\nmass = 1\nposition = [0,0]\n",
+            3, "world.integrator",
+            "unknown integrator \"verlet\"; did you mean \"velocity_verlet\"?"},
         Bad{"binary", std::string("[world]\0dt = 1", 14), 0, "", "binary"},
         // --- springs between bodies, frequency form, generators ---
         Bad{"spring to an unknown body", two_bodies("bodies = [\"a\", \"bb\"]\nstiffness = 1\n"),
@@ -226,7 +264,9 @@ INSTANTIATE_TEST_SUITE_P(
             "spring[0].damping_ratio", "`damping` and `damping_ratio` both given"},
         Bad{"damping_ratio without frequency",
             two_bodies("bodies = [\"a\", \"b\"]\ndamping_ratio = 0.1\n"), 11, "spring[0].frequency",
-            "missing (required with damping_ratio)"},
+            "missing (required with damping_ratio): the natural frequency in Hz that "
+            "damping_ratio ζ goes with, e.g. frequency = 2.0; or give stiffness and damping "
+            "instead"},
         Bad{"frequency zero", two_bodies("bodies = [\"a\", \"b\"]\nfrequency = 0\n"), 13,
             "spring[0].frequency", "> 0 Hz"},
         Bad{"negative damping ratio",
@@ -249,11 +289,12 @@ INSTANTIATE_TEST_SUITE_P(
             14, "spring[0].rest_length", "both start at (1, 2) m"},
         Bad{"frequency overflowing a double",
             two_bodies("bodies = [\"a\", \"b\"]\nfrequency = 1e200\n"), 13, "spring[0].frequency",
-            "beyond the range of a double"},
+            "beyond the range of a double; use a lower frequency"},
         Bad{"frequency overflowing f32",
             "[world]\ndt = 0.01\nprecision = \"f32\"\n[[body]]\nmass = 1\nposition = [0, 0]\n"
             "spring = { frequency = 1e19 }\n",
-            7, "body[0].spring.frequency", "beyond the range of a float"},
+            7, "body[0].spring.frequency",
+            "beyond the range of a float; use a lower frequency or precision = \"f64\" in [world]"},
         Bad{"body spring in both forms",
             "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0]\n"
             "spring = { stiffness = 1, damping_ratio = 0.2 }\n",
@@ -266,7 +307,7 @@ INSTANTIATE_TEST_SUITE_P(
             "no [[body]], [[chain]] or [[grid]] tables"},
         Bad{"chain without count", chain("start = [0, 0]\n"), 3, "chain[0].count", "missing"},
         Bad{"chain count a float", chain("count = 4.0\n"), 4, "chain[0].count",
-            "expected an integer, found a float"},
+            "expected an integer, found a float (4.0); write it without the decimal point: 4"},
         Bad{"chain count zero", chain("count = 0\n"), 4, "chain[0].count", "must be 1 .. 1000000"},
         Bad{"chain beyond the body limit",
             "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0]\n[[chain]]\ncount = "
@@ -305,7 +346,8 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"chain pin out of range",
             chain("count = 3\nstart = [0, 0]\nspacing = [1, 0]\nbody = { mass = 1 }\n"
                   "link = { stiffness = 1 }\npin = [0, 3]\npin_spring = { stiffness = 1 }\n"),
-            9, "chain[0].pin[1]", "must be 0 .. 2 (got 3)"},
+            9, "chain[0].pin[1]",
+            "must be 0 .. 2, the index of one of the chain's 3 bodies (got 3)"},
         Bad{"chain pin without pin_spring",
             chain("count = 3\nstart = [0, 0]\nspacing = [1, 0]\nbody = { mass = 1 }\n"
                   "link = { stiffness = 1 }\npin = [0]\n"),
@@ -325,10 +367,10 @@ INSTANTIATE_TEST_SUITE_P(
             8, "chain[0].name", "\"rope[1]\" is already taken by the body of line 3"},
         Bad{"grid pin not a pair",
             grid_tail(3, 2) + "pin = [[0, 0], [1]]\npin_spring = { stiffness = 1 }\n", 10,
-            "grid[0].pin[1]", "expected [column, row] (2 integers), found 1 elements"},
+            "grid[0].pin[1]", "expected [column, row] (2 integers), found 1 element"},
         Bad{"grid pin row out of range",
             grid_tail(3, 2) + "pin = [[2, 2]]\npin_spring = { stiffness = 1 }\n", 10,
-            "grid[0].pin[0][1]", "must be 0 .. 1 (got 2)"},
+            "grid[0].pin[0][1]", "must be 0 .. 1, one of the grid's 2 rows (got 2)"},
         Bad{"spring to a generated body out of range",
             grid_tail(3, 2) +
                 "[[spring]]\nbodies = [\"grid0[0,0]\", \"grid0[3,0]\"]\nstiffness = 1\n",
@@ -563,7 +605,8 @@ stiffness = 1
       "typo.toml:6:1: chain[0].spacng: unknown key ignored (did you mean `spacing`?)",
       "typo.toml:8:20: chain[0].body.radus: unknown key ignored (did you mean `radius`?)",
       "typo.toml:9:25: chain[0].link.dampng: unknown key ignored (did you mean `damping`?)",
-      "typo.toml:10:14: chain[0].pin_spring: ignored: no pin",
+      "typo.toml:10:14: chain[0].pin_spring: ignored: there is no `pin` list of bodies for it to "
+      "hold (e.g. pin = [0])",
       "typo.toml:17:10: grid[0].link.frequncy: unknown key ignored (did you mean `frequency`?)",
       "typo.toml:18:1: grid[0].sheer: unknown key ignored (did you mean `shear`?)",
       "typo.toml:21:1: spring[0].stifness: unknown key ignored (did you mean `stiffness`?)"};
@@ -571,13 +614,70 @@ stiffness = 1
   for (std::size_t i = 0; i < std::size(expected); ++i) EXPECT_EQ(s.warnings[i], expected[i]);
 }
 
-TEST(Scene, MissingFileAndDirectory) {
-  EXPECT_THROW((void)load_scene("/nonexistent/scene.toml"), SceneError);
+/// The message of the SceneError load_scene(path) throws.
+std::string load_error(const std::filesystem::path& path) {
   try {
-    (void)load_scene(FIXSTEP_SOURCE_DIR "/assets");
-    FAIL();
+    (void)load_scene(path);
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("directory"), std::string::npos);
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+TEST(Scene, MissingFileAndDirectory) {
+  EXPECT_EQ(load_error("/nonexistent/scene.toml"),
+            "/nonexistent/scene.toml: no such scene file: the directory /nonexistent does not "
+            "exist");
+  EXPECT_EQ(load_error(FIXSTEP_SOURCE_DIR "/assets"),
+            FIXSTEP_SOURCE_DIR "/assets: is a directory, not a scene file");
+  // A typo in the name: the closest file beside it. A directory: the scene files in it.
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "fixstep_scenes";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  for (const char* name :
+       {"rope.toml", "scene.toml", "soft_body.toml", "spring.toml", "notes.txt"}) {
+    std::ofstream(dir / name) << "[world]\ndt = 0.01\n";
+  }
+  EXPECT_EQ(load_error(dir / "scen.toml"), (dir / "scen.toml").string() +
+                                               ": no such scene file; did you mean " +
+                                               (dir / "scene.toml").string() + "?");
+  EXPECT_EQ(load_error(dir / "nothing_like_it.toml"),
+            (dir / "nothing_like_it.toml").string() + ": no such scene file");
+  EXPECT_EQ(load_error(dir),
+            dir.string() + ": is a directory, not a scene file; give a file in it: " +
+                (dir / "rope.toml").string() + ", " + (dir / "scene.toml").string() + ", " +
+                (dir / "soft_body.toml").string() + " (and 1 more)");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Scene, SyntaxErrorsAreInPlainWords) {
+  // toml++'s "Error while parsing SCOPE", its escapes and its C++ macro names stay out.
+  std::string deep = "x = ";
+  deep.append(300, '[');
+  for (const std::string& text : {std::string("[world]\x01"
+                                              "dt = 0.01\n"),
+                                  deep, std::string("[world]\ndt = 0.01\nintegrator = \n")}) {
+    try {
+      (void)parse_scene(text, "s.toml");
+      FAIL() << text;
+    } catch (const SceneError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("TOML syntax error"), std::string::npos) << what;
+      for (const char* jargon : {"Error while parsing", "TOML_MAX", "saw '", "\\u", "\\n"}) {
+        EXPECT_EQ(what.find(jargon), std::string::npos) << jargon << " in " << what;
+      }
+    }
+  }
+  try {
+    (void)parse_scene(
+        "[world]\x01"
+        "dt = 0.01\n",
+        "s.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "s.toml:1:8: TOML syntax error in a [table] header: expected a comment or "
+              "whitespace, found the control character U+0001");
   }
 }
 

@@ -178,6 +178,41 @@ TEST(Guard, RefusesWithTheSmallestStableSubstepCountWhichThenRuns) {
   EXPECT_TRUE(std::isfinite(sim.body_at(0).position.x));
 }
 
+TEST(Guard, TheRefusalSaysWhatToDoBeforeTheNumbersThatExplainIt) {
+  // What is wrong and what to do come first, so that they survive a reader (or the table of
+  // docs/BAD_INPUTS.md) that stops after a couple of hundred characters; the rates and the
+  // growth per step follow.
+  const Scene stiff = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler"), "stiff.toml");
+  try {
+    (void)make_simulation(stiff);
+    FAIL() << "unstable scene accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("stiff.toml:7: body[0]: body 'bob' is unstable with semi_implicit_euler "
+                         "at dt = 0.25 s: ω·h = 5 exceeds the stability bound 2; use substeps = 3 "
+                         "in [world] (or dt <= 0.1 s), or set allow_unstable = true — ω = 20 "
+                         "rad/s, growth ",
+                         0),
+              0u)
+        << what;
+    EXPECT_TRUE(what.ends_with("x per step")) << what;
+  }
+  const Scene euler = parse_scene(scene_text(1, 1, 0.01, "explicit_euler"), "e.toml");
+  try {
+    (void)make_simulation(euler);
+    FAIL() << "unstable scene accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("e.toml:7: body[0]: body 'bob' is unstable with explicit_euler at every "
+                         "dt: its energy grows each step; use another integrator: "
+                         "semi_implicit_euler, velocity_verlet, rk4, implicit_euler or "
+                         "forest_ruth, or set allow_unstable = true — ω·h = 0.01, growth ",
+                         0),
+              0u)
+        << what;
+  }
+}
+
 TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
   // The same stiff body as above (ω·dt = 5 with symplectic Euler) as a WorldDef: the core's
   // make_simulation refuses it, states the fault and the smallest stable substep count, and
@@ -215,7 +250,10 @@ TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
       parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler", 1, true), "a.toml");
   const auto warnings = enforce_stability(allowed);
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("(allowed)"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("allowed (allow_unstable), so the run may diverge; substeps = 3 in "
+                             "[world] (or dt <= 0.1 s) would be stable"),
+            std::string::npos)
+      << warnings[0];
   // ω·dt = 1.9: stable but within 10 % of 2
   const Scene near = parse_scene(scene_text(361, 1, 0.1, "semi_implicit_euler"), "n.toml");
   const auto near_warnings = enforce_stability(near);

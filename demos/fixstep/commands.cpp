@@ -99,7 +99,8 @@ std::uint64_t ticks_for(double duration, double dt) {
   const double n = duration / dt;
   if (!(n <= double(max_ticks))) {
     throw std::invalid_argument(
-        fmt::format("--duration {:g} s at dt = {:g} s is {:.3g} ticks; a run may take at most {:g}",
+        fmt::format("--duration {:g} s at dt = {:g} s is {:.3g} ticks; a run may take at most {:g} "
+                    "ticks: give a shorter --duration",
                     duration, dt, n, double(max_ticks)));
   }
   const double nearest = std::round(n);

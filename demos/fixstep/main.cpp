@@ -208,7 +208,8 @@ int main(int argc, char** argv) try {
   }
   if (run_cmd->parsed()) {
     if (!steps->count() && !duration->count()) {
-      std::fputs("fixstep run: give --steps N or --duration S\n", stderr);
+      std::fputs("fixstep run: give --steps N (ticks) or --duration S (simulated seconds)\n",
+                 stderr);
       return 2;
     }
     return run_command(run);

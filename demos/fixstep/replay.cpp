@@ -34,8 +34,9 @@ Scene scene_for_recording(const std::string& scene_file, const Recording& rec, b
   if (actual != rec.definition_hash) {
     throw RecordingError(
         RecordingError::Kind::scene_mismatch, scene_file, 0, "",
-        fmt::format("the scene no longer matches the recording ({}): definition hash {}, "
-                    "recorded {} (its bodies, components or links changed)",
+        fmt::format("the scene no longer matches the recording (made with {}): its bodies, "
+                    "springs or planes changed (definition hash {}, recorded {}); replay with "
+                    "the scene as it was recorded",
                     rec.scene, hex_hash(actual), hex_hash(rec.definition_hash)));
   }
   return scene;
@@ -68,7 +69,8 @@ int replay_command(const ReplayOptions& o) {
             : std::string();
     std::fprintf(stderr,
                  "fixstep: error: replay diverged at tick %llu: state_hash %s recorded, %s "
-                 "replayed (the states matched at tick %llu%s)\n",
+                 "replayed (the states matched at tick %llu%s); the recording was edited, or "
+                 "made by a build that steps differently\n",
                  static_cast<unsigned long long>(m->tick), hex_hash(m->expected).c_str(),
                  hex_hash(m->actual).c_str(), static_cast<unsigned long long>(m->last_match),
                  range.c_str());

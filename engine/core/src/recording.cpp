@@ -228,8 +228,9 @@ ReplayReport replay(const WorldDef& def, const Recording& rec) {
   if (actual != rec.definition_hash) {
     throw RecordingError(
         RecordingError::Kind::scene_mismatch, rec.scene, 0, "definition",
-        fmt::format("the scene no longer matches the recording: its definition hash is {}, the "
-                    "recording's {} (bodies, components, links or settings changed)",
+        fmt::format("the scene no longer matches the recording: its bodies, springs, planes or "
+                    "settings changed (definition hash {}, recorded {}); replay it with the world "
+                    "as it was recorded",
                     hex_hash(actual), hex_hash(rec.definition_hash)));
   }
   Simulation sim = make_simulation(def);
@@ -243,6 +244,11 @@ void write_recording(const std::filesystem::path& file, const Recording& rec) {
       (dir / fmt::format(".{}.tmp.{}", file.filename().string(), ::getpid())).string();
   auto fail = [&](int err) {
     ::unlink(tmp.c_str());
+    std::error_code ec;
+    if (err == ENOENT && !std::filesystem::is_directory(dir, ec)) {
+      throw std::runtime_error(fmt::format("cannot write {}: the directory {} does not exist",
+                                           file.string(), dir.string()));
+    }
     throw std::runtime_error(fmt::format("cannot write {}: {}", file.string(), std::strerror(err)));
   };
   std::FILE* out = std::fopen(tmp.c_str(), "wbe");

@@ -10,8 +10,10 @@
 // the shortest text that reads back as the same double (fmt {} / std::from_chars).
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <system_error>
@@ -109,8 +111,8 @@ std::uint32_t buttons(const Lines& in, std::string_view text, std::string_view f
   const auto v = integer<std::uint32_t>(in, text, field, 16, 0xffffffffu);
   if ((v & ~all_buttons) != 0) {
     in.fail(Kind::corrupt, field,
-            fmt::format("bits {:x} are not buttons (all_buttons = {:x})", v & ~all_buttons,
-                        all_buttons));
+            fmt::format("bits {:x} are not buttons (hexadecimal; the buttons are the bits of {:x})",
+                        v & ~all_buttons, all_buttons));
   }
   return v;
 }
@@ -145,19 +147,29 @@ std::string_view header_line(Lines& in, std::string_view key) {
 
 void read_version(Lines& in, Recording& rec) {
   const auto line = in.next();
-  if (!line) in.fail(Kind::truncated, "", "empty file");
+  if (!line) {
+    in.fail(Kind::truncated, "",
+            "empty file, not a recording (`fixstep run SCENE --steps N --record FILE` writes one)");
+  }
   const std::vector<std::string_view> w = words(*line);
   if (w[0] != recording_magic) {
+    // A scene given instead is the likely slip: TOML starts with a table, a key or a comment.
+    const bool toml = line->starts_with('[') || line->starts_with('#') ||
+                      line->find('=') != std::string_view::npos;
     in.fail(Kind::foreign, "",
-            fmt::format("not a fixstep recording (the first line should start with `{}`)",
-                        recording_magic));
+            fmt::format("not a fixstep recording: the first line is {}, a recording's is `{} {}`{}",
+                        shown(*line), recording_magic, recording_version,
+                        toml ? " (this looks like a TOML scene: replay takes a recording made by "
+                               "`fixstep run SCENE --steps N --record FILE`)"
+                             : ""));
   }
   if (w.size() != 2) in.fail(Kind::corrupt, "version", "expected `fixstep-recording VERSION`");
   const int version = integer<int>(in, w[1], "version", 10, std::numeric_limits<int>::max());
   if (version < 1) in.fail(Kind::corrupt, "version", "must be >= 1");
   if (version > recording_version) {
     in.fail(Kind::unsupported_version, "version",
-            fmt::format("recording format version {}; this build reads version {} and older",
+            fmt::format("recording format version {}; this build reads version {} and older: "
+                        "replay it with the newer fixstep that wrote it",
                         version, recording_version));
   }
   rec.version = version;
@@ -307,7 +319,11 @@ Recording parse_recording(std::string_view text, const std::string& source_name)
       hash_line(in, *line, rec);
     } else if (line->starts_with("end ")) {
       end_line(in, *line, rec);
-      if (in.next()) in.fail(Kind::corrupt, "", "text after the `end` line");
+      if (const auto extra = in.next()) {
+        in.fail(Kind::corrupt, "",
+                fmt::format("text after the `end` line, which must be the last: found {}",
+                            shown(*extra)));
+      }
       return rec;
     } else {
       in.fail(Kind::corrupt, "",
@@ -326,7 +342,18 @@ Recording read_recording(const std::filesystem::path& file) {
   }
   std::ifstream in(file, std::ios::binary);
   if (!in) {
-    throw RecordingError(Kind::unreadable, name, 0, "", "cannot open (does it exist?)");
+    const int err = errno;
+    if (!std::filesystem::exists(file, ec)) {
+      const bool no_dir =
+          file.has_parent_path() && !std::filesystem::is_directory(file.parent_path(), ec);
+      throw RecordingError(Kind::unreadable, name, 0, "",
+                           no_dir
+                               ? fmt::format("no such recording: the directory {} does not exist",
+                                             file.parent_path().string())
+                               : std::string("no such recording"));
+    }
+    throw RecordingError(Kind::unreadable, name, 0, "",
+                         fmt::format("cannot open the recording: {}", std::strerror(err)));
   }
   std::string text;
   char buf[1 << 16];
@@ -338,7 +365,10 @@ Recording read_recording(const std::filesystem::path& file) {
           fmt::format("larger than the {} bytes a recording may have", max_recording_bytes));
     }
   }
-  if (in.bad()) throw RecordingError(Kind::unreadable, name, 0, "", "read error");
+  if (in.bad()) {
+    throw RecordingError(Kind::unreadable, name, 0, "",
+                         fmt::format("read error: {}", std::strerror(errno)));
+  }
   return parse_recording(text, name);
 }
 

@@ -100,8 +100,8 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
       r.verdict = Stability::unstable;
       r.radius = std::numeric_limits<double>::infinity();
       r.message = fmt::format(
-          "body '{}' has k/m = {:g} 1/s² and (b + c)/m = {:g} 1/s (mass {:g} kg): beyond the "
-          "range of a double, so no integrator and no step can follow it",
+          "body '{}' has k/m = {:g} 1/s² and (damping + drag)/m = {:g} 1/s (mass {:g} kg): "
+          "beyond the range of a double, so no integrator and no step can follow it",
           def.name, (def.spring ? def.spring->stiffness : 0.0) / m, r.gamma, m);
       out.push_back(std::move(r));
       continue;
@@ -120,11 +120,16 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
                amplification(integrator, r.omega, r.gamma, dt / r.min_substeps) > 1.0 + tolerance) {
           ++r.min_substeps;
         }
+        // The rates that are not zero, and substeps only when there are several.
+        std::string rates;
+        if (r.omega > 0.0) rates += fmt::format("ω = {:.4g} rad/s, ", r.omega);
+        if (r.gamma > 0.0) rates += fmt::format("γ = {:.4g} 1/s, ", r.gamma);
         r.message = fmt::format(
-            "{} is unstable with {} at dt = {:g} s and substeps = {}: {} = {:.4g} exceeds the "
-            "stability bound {:.4g} (ω = {:.4g} rad/s, γ = {:.4g} 1/s; growth {:.6g}x per step)",
-            who, method, dt, substeps, what, rate * r.h, rate * r.max_step, r.omega, r.gamma,
-            r.radius);
+            "{} is unstable with {} at dt = {:g} s{}: {} = {:.4g} exceeds the stability bound "
+            "{:.4g} ({}growth {:.6g}x per step)",
+            who, method, dt,
+            substeps > 1 ? fmt::format(" and substeps = {}", substeps) : std::string(), what,
+            rate * r.h, rate * r.max_step, rates, r.radius);
       } else {
         r.message = fmt::format(
             "{} is unstable with {} at every dt: its energy grows each step ({} = {:.4g}, growth "
@@ -175,11 +180,12 @@ std::string explain_fault(std::span<const BodyDef> bodies, std::span<const BodyL
                          remedy(net.min_substeps, net.max_step, substeps));
     }
     return fmt::format(
-        "{}. Likely cause: the body is in a network of {} bodies and {} springs within {}'s "
+        "{}. Likely cause: the body is in a network of {} bodies and {} spring{} within {}'s "
         "stability bound at h = {:g} s (ω_max·h = {:.4g}, largest stable step {:g} s), so the "
         "motion itself grew: check the forces (gravity, constant forces, pushes), rest-length "
         "springs stretched far from their starting lengths, and the starting values",
-        head, net.bodies, net.springs, method, net.h, net.omega_max * net.h, net.max_step);
+        head, net.bodies, net.springs, net.springs == 1 ? "" : "s", method, net.h,
+        net.omega_max * net.h, net.max_step);
   }
   const std::vector<BodyStability> own =
       check_stability(bodies.subspan(i, 1), settings.integrator, dt, substeps);

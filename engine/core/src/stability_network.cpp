@@ -271,7 +271,9 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
   damped = damped || damped_links;
 
   const std::string method(integrator_name(integrator));
-  const std::string network = fmt::format("network of {} bodies and {} springs", n, links.size());
+  const std::string network =
+      fmt::format("network of {} bod{} and {} spring{}", n, n == 1 ? "y" : "ies", links.size(),
+                  links.size() == 1 ? "" : "s");
   // Beyond ~1e300 1/s² the iteration itself would overflow (and inf - inf trap in Debug).
   const bool huge =
       std::any_of(per_mass.begin(), per_mass.end(), [](double v) { return !(v <= 1e300 / 4.0); });
@@ -353,12 +355,17 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
     if (r.max_step > 0.0) {
       r.min_substeps = static_cast<int>(std::clamp(std::ceil(dt / r.max_step), 1.0, 1e9));
       while (r.min_substeps < 1000000000 && unstable(dt / r.min_substeps)) ++r.min_substeps;
+      // The rates that are not zero, and substeps only when there are several.
+      std::string rates;
+      if (r.omega_max > 0.0) rates += fmt::format("ω_max = {:.4g} rad/s, ", r.omega_max);
+      if (r.gamma > 0.0) rates += fmt::format("γ = {:.4g} 1/s, ", r.gamma);
+      if (r.damping_rate > 0.0) rates += fmt::format("λ_max(M⁻¹C) = {:.4g} 1/s, ", r.damping_rate);
       r.message = fmt::format(
-          "{} is unstable with {} at dt = {:g} s and substeps = {}: {} = {:.4g} exceeds the {} "
-          "{:.4g} ({}; ω_max = {:.4g} rad/s, γ = {:.4g} 1/s, λ_max(M⁻¹C) = {:.4g} 1/s; growth "
-          "{:.6g}x per step)",
-          network, method, dt, substeps, what, rate * r.h, bound_name, rate * b.max_step, naming,
-          r.omega_max, r.gamma, r.damping_rate, r.radius);
+          "{} is unstable with {} at dt = {:g} s{}: {} = {:.4g} exceeds the {} {:.4g} ({}; "
+          "{}growth {:.6g}x per step)",
+          network, method, dt,
+          substeps > 1 ? fmt::format(" and substeps = {}", substeps) : std::string(), what,
+          rate * r.h, bound_name, rate * b.max_step, naming, rates, r.radius);
     } else {
       r.message = fmt::format(
           "{} is unstable with {} at every dt: its energy grows each step ({} = {:.4g}, growth "

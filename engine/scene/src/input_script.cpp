@@ -12,8 +12,8 @@ namespace fixstep {
 namespace {
 
 using scene_detail::Reader;
-using scene_detail::type_name;
-const scene_detail::FileKind script_file{"input script", "an", "an input script", "input scripts"};
+const scene_detail::FileKind script_file{"input script", "an", "an input script", "input scripts",
+                                         ".toml"};
 
 constexpr std::array<std::pair<std::string_view, std::uint32_t>, 7> buttons{{
     {"left", button_left},
@@ -33,13 +33,15 @@ std::uint32_t button_list(const Reader& r, const toml::table& t, std::string_vie
   const toml::array* a = n->as_array();
   if (!a)
     r.fail(n->source(), path,
-           fmt::format("expected an array of button names, found {}", type_name(*n)));
+           fmt::format("expected an array of button names, e.g. [\"left\"], found {}",
+                       scene_detail::found(*n)));
   std::uint32_t bits = 0;
   for (std::size_t i = 0; i < a->size(); ++i) {
     const toml::node& e = *a->get(i);
     const std::string at = fmt::format("{}[{}]", path, i);
     if (!e.is_string()) {
-      r.fail(e.source(), at, fmt::format("expected a button name, found {}", type_name(e)));
+      r.fail(e.source(), at,
+             fmt::format("expected a button name (a string), found {}", scene_detail::found(e)));
     }
     const std::string_view name = e.as_string()->get();
     const auto found = std::find_if(buttons.begin(), buttons.end(),
@@ -52,7 +54,7 @@ std::uint32_t button_list(const Reader& r, const toml::table& t, std::string_vie
       r.fail(e.source(), at,
              fmt::format("unknown button \"{}\"{} (valid: left, right, up, down, action, "
                          "pointer_primary, pointer_secondary)",
-                         name, best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
+                         name, best ? fmt::format("; did you mean \"{}\"?", *best) : ""));
     }
     bits |= found->second;
   }
@@ -66,7 +68,7 @@ std::uint32_t drag_target(const Reader& r, const toml::node& n, const std::strin
   if (!n.is_string()) {
     r.fail(n.source(), path,
            fmt::format("expected a body name or false, found {}",
-                       n.is_boolean() ? std::string_view("true") : type_name(n)));
+                       n.is_boolean() ? std::string("true") : scene_detail::found(n)));
   }
   const std::string_view name = n.as_string()->get();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -88,7 +90,10 @@ ScriptEvent parse_event(Reader& r, const toml::table& t, std::size_t index,
   ScriptEvent e;
   e.line = t.source().begin.line;
   const toml::node* tick = t.get("tick");
-  if (!tick) r.fail_missing(t, path, {"tick"}, "missing (required)");
+  if (!tick) {
+    r.fail_missing(t, path, {"tick"}, "missing (required)",
+                   "the tick (0, 1, ...) at which this [[at]] table's inputs apply, e.g. tick = 0");
+  }
   e.tick = static_cast<std::uint64_t>(
       r.integer_node(*tick, path + ".tick", 0, static_cast<std::int64_t>(max_recording_ticks - 1)));
   e.press = button_list(r, t, "press", path + ".press");
@@ -112,6 +117,13 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
   Reader r(script.file);
   const toml::table doc =
       scene_detail::parse_toml(text, source_name, max_script_bytes, script_file);
+  if (!doc.get("at") && (doc.get("world") || doc.get("body"))) {
+    // Without this, a scene given as the script would run with no input and two warnings.
+    const toml::node* n = doc.get("world") ? doc.get("world") : doc.get("body");
+    r.fail(n->source(), "",
+           "this is a scene file, not an input script: a script holds [[at]] tables (tick, "
+           "press, release, pointer, push, drag); see README, Input scripts");
+  }
   r.check_keys(doc, "", {"at"});
   if (const toml::array* list = r.tables(doc, "at")) {
     for (std::size_t i = 0; i < list->size(); ++i) {

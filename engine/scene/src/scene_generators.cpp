@@ -18,21 +18,22 @@ class Generator {
   [[nodiscard]] const std::string& path() const { return path_; }
   [[nodiscard]] std::string key(std::string_view k) const { return path_ + "." + std::string(k); }
 
-  /// A required key's node, else "missing (required)" at the table.
+  /// A required key's node, else "missing (required): `what`" at the table.
   const toml::node& required(std::string_view k, std::string_view what = {}) const {
     const toml::node* n = t_.get(k);
-    if (!n) {
-      r_.fail_missing(
-          t_, path_, {k},
-          what.empty() ? "missing (required)" : fmt::format("missing (required): {}", what));
-    }
+    if (!n) r_.fail_missing(t_, path_, {k}, "missing (required)", what);
     return *n;
   }
 
   /// The generator's name prefix (default `fallback`): bodies are named prefix[...].
   std::string name(const std::string& fallback) {
     std::string name = r_.string(t_, "name", key("name")).value_or(fallback);
-    if (name.empty()) r_.fail(t_.get("name")->source(), key("name"), "must not be empty");
+    if (name.empty()) {
+      r_.fail(t_.get("name")->source(), key("name"),
+              fmt::format("must not be empty: it begins the bodies' names; leave it out for the "
+                          "default \"{}\"",
+                          fallback));
+    }
     name_node_ = t_.get("name");
     return name;
   }
@@ -64,8 +65,8 @@ class Generator {
   BodyDef body_template() {
     const toml::table* b = r_.table(t_, "body", key("body"));
     if (!b) {
-      r_.fail_missing(t_, path_, {"body"},
-                      "missing (required): the bodies' template, e.g. { mass = 0.1 }");
+      r_.fail_missing(t_, path_, {"body"}, "missing (required)",
+                      "the bodies' template, e.g. body = { mass = 0.1 }");
     }
     r_.check_keys(*b, key("body"),
                   {"mass", "velocity", "force", "gravity", "drag", "radius", "color"});
@@ -154,12 +155,16 @@ class Generator {
     const std::optional<SpringSpec> spec = spring("pin_spring", false);
     const toml::node* n = t_.get("pin");
     if (!n) {
-      if (spec) r_.warn(t_.get("pin_spring")->source(), key("pin_spring"), "ignored: no pin");
+      if (spec) {
+        r_.warn(t_.get("pin_spring")->source(), key("pin_spring"),
+                "ignored: there is no `pin` list of bodies for it to hold (e.g. pin = [0])");
+      }
       return;
     }
     const toml::array* list = n->as_array();
     if (!list) {
-      r_.fail(n->source(), key("pin"), fmt::format("expected an array, found {}", type_name(*n)));
+      r_.fail(n->source(), key("pin"),
+              fmt::format("expected an array of the bodies to pin, found {}", found(*n)));
     }
     if (!spec && !list->empty()) {
       r_.fail(n->source(), key("pin"),
@@ -196,18 +201,21 @@ void parse_chain(Reader& r, const toml::table& t, std::size_t c, Scene& scene, B
   r.check_keys(t, g.path(),
                {"name", "count", "start", "spacing", "body", "link", "pin", "pin_spring"});
   const std::string name = g.name(fmt::format("chain{}", c));
-  const toml::node& count_node = g.required("count");
+  const toml::node& count_node = g.required("count", "the number of bodies, e.g. count = 10");
   const auto count = static_cast<std::size_t>(
       r.integer_node(count_node, g.key("count"), 1, std::int64_t{max_scene_bodies}));
   g.reserve_bodies(count, count_node, g.key("count"));
-  const Vec2 start = r.vec2_node(g.required("start"), g.key("start"));
-  const Vec2 spacing = r.vec2_node(g.required("spacing"), g.key("spacing"));
+  const Vec2 start = r.vec2_node(
+      g.required("start", "the first body's position [x, y] in m, e.g. start = [0.0, 0.0]"),
+      g.key("start"));
+  const Vec2 spacing = r.vec2_node(
+      g.required("spacing", "the step [x, y] in m from one body to the next, e.g. [0.1, 0.0]"),
+      g.key("spacing"));
   const BodyDef body = g.body_template();
   const std::optional<SpringSpec> link = g.spring("link", true);
   if (!link) {
-    r.fail_missing(
-        t, g.path(), {"link"},
-        "missing (required): the spring between consecutive bodies, e.g. { stiffness = 100 }");
+    r.fail_missing(t, g.path(), {"link"}, "missing (required)",
+                   "the spring between consecutive bodies, e.g. link = { stiffness = 100 }");
   }
 
   const std::size_t first = scene.bodies.size();
@@ -220,8 +228,9 @@ void parse_chain(Reader& r, const toml::table& t, std::size_t c, Scene& scene, B
   const LinkSpring spring = pair_spring(r, *link, body.body.mass, scene.precision);
   for (std::size_t i = 0; i + 1 < count; ++i) g.add_link(first + i, first + i + 1, spring, *link);
   g.pins([&](const toml::node& n, const std::string& key) {
-    return first + static_cast<std::size_t>(
-                       r.integer_node(n, key, 0, static_cast<std::int64_t>(count) - 1));
+    return first + static_cast<std::size_t>(r.integer_node(
+                       n, key, 0, static_cast<std::int64_t>(count) - 1,
+                       fmt::format(", the index of one of the chain's {} bodies", count)));
   });
   g.describe(name, fmt::format("{} makes {}[0] .. {}[{}]", g.path(), name, name, count - 1));
 }
@@ -233,20 +242,27 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
                 "pin", "pin_spring"});
   const std::string name = g.name(fmt::format("grid{}", c));
   const std::int64_t limit = max_scene_bodies;
-  const toml::node& columns_node = g.required("columns");
+  const toml::node& columns_node =
+      g.required("columns", "the number of bodies in a row, e.g. columns = 10");
   const auto columns =
       static_cast<std::size_t>(r.integer_node(columns_node, g.key("columns"), 1, limit));
-  const toml::node& rows_node = g.required("rows");
+  const toml::node& rows_node = g.required("rows", "the number of rows, e.g. rows = 10");
   const auto rows = static_cast<std::size_t>(r.integer_node(rows_node, g.key("rows"), 1, limit));
   g.reserve_bodies(std::uint64_t{columns} * rows, rows_node, g.key("rows"));
-  const Vec2 origin = r.vec2_node(g.required("origin"), g.key("origin"));
-  const Vec2 spacing = r.vec2_node(g.required("spacing"), g.key("spacing"));
+  const Vec2 origin = r.vec2_node(
+      g.required("origin", "the position [x, y] in m of the first body, e.g. [0.0, 0.0]"),
+      g.key("origin"));
+  const Vec2 spacing =
+      r.vec2_node(g.required("spacing",
+                             "the steps [x, y] in m between columns (x) and rows (y), e.g. "
+                             "[0.1, -0.1]"),
+                  g.key("spacing"));
   const BodyDef body = g.body_template();
   const std::optional<SpringSpec> link = g.spring("link", true);
   if (!link) {
-    r.fail_missing(t, g.path(), {"link"},
-                   "missing (required): the structural springs between neighbours in a row or "
-                   "column, e.g. { stiffness = 100 }");
+    r.fail_missing(t, g.path(), {"link"}, "missing (required)",
+                   "the structural springs between neighbours in a row or column, e.g. link = { "
+                   "stiffness = 100 }");
   }
   const std::optional<SpringSpec> shear = g.spring("shear", true);
   const std::optional<SpringSpec> bend = g.spring("bend", true);
@@ -290,11 +306,13 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
     const toml::array* ij = n.as_array();
     if (!ij || ij->size() != 2) {
       r.fail(n.source(), key,
-             ij ? fmt::format("expected [column, row] (2 integers), found {} elements", ij->size())
-                : fmt::format("expected [column, row], found {}", type_name(n)));
+             ij ? fmt::format("expected [column, row] (2 integers), found {}", elements(ij->size()))
+                : fmt::format("expected [column, row], found {}", found(n)));
     }
-    const auto i = r.integer_node(*ij->get(0), key + "[0]", 0, std::int64_t(columns) - 1);
-    const auto j = r.integer_node(*ij->get(1), key + "[1]", 0, std::int64_t(rows) - 1);
+    const auto i = r.integer_node(*ij->get(0), key + "[0]", 0, std::int64_t(columns) - 1,
+                                  fmt::format(", one of the grid's {} columns", columns));
+    const auto j = r.integer_node(*ij->get(1), key + "[1]", 0, std::int64_t(rows) - 1,
+                                  fmt::format(", one of the grid's {} rows", rows));
     return at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
   });
   g.describe(name, fmt::format("{} makes {}[0,0] .. {}[{},{}] ([column,row])", g.path(), name, name,

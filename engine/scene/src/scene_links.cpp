@@ -14,7 +14,7 @@ namespace {
 std::size_t find_body(const Reader& r, const toml::node& e, const std::string& key,
                       const BodyNames& names) {
   if (!e.is_string()) {
-    r.fail(e.source(), key, fmt::format("expected a body name (a string), found {}", type_name(e)));
+    r.fail(e.source(), key, fmt::format("expected a body name (a string), found {}", found(e)));
   }
   const std::string name(e.as_string()->get());
   if (const auto it = names.index.find(name); it != names.index.end()) return it->second;
@@ -52,7 +52,11 @@ SpringSpec parse_spring_spec(const Reader& r, const toml::table& t, const std::s
   }
   if (f || z) {
     s.by_frequency = true;
-    if (!f) r.fail_missing(t, path, {"frequency"}, "missing (required with damping_ratio)");
+    if (!f) {
+      r.fail_missing(t, path, {"frequency"}, "missing (required with damping_ratio)",
+                     "the natural frequency in Hz that damping_ratio ζ goes with, e.g. "
+                     "frequency = 2.0; or give stiffness and damping instead");
+    }
     s.frequency_node = f;
     s.frequency = r.number_node(*f, path + ".frequency");
     r.require(s.frequency > 0.0, t, "frequency", path + ".frequency", "> 0 Hz", s.frequency);
@@ -98,8 +102,9 @@ LinkSpring resolve_spring(const Reader& r, const SpringSpec& spec, double mass, 
   if (!representable(out.stiffness, precision) || !representable(out.damping, precision)) {
     r.fail(spec.frequency_node->source(), key,
            fmt::format("gives k = m (2πf)² = {:g} N/m and b = 2 m ζ (2πf) = {:g} N*s/m with "
-                       "m = {:g} kg, beyond the range of {}",
-                       out.stiffness, out.damping, mass, precision_text(precision)));
+                       "m = {:g} kg, beyond the range of {}; use a lower frequency{}",
+                       out.stiffness, out.damping, mass, precision_text(precision),
+                       precision == Precision::f32 ? " or precision = \"f64\" in [world]" : ""));
   }
   return out;
 }
@@ -119,15 +124,15 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
                  {"bodies", "stiffness", "damping", "rest_length", "frequency", "damping_ratio"});
     const toml::node* n = t.get("bodies");
     if (!n) {
-      r.fail_missing(t, path, {"bodies"},
-                     "missing (required): the names of the two bodies, e.g. [\"a\", \"b\"]");
+      r.fail_missing(t, path, {"bodies"}, "missing (required)",
+                     "the names of the two bodies, e.g. bodies = [\"a\", \"b\"]");
     }
     const toml::array* pair = n->as_array();
     if (!pair || pair->size() != 2) {
       r.fail(n->source(), path + ".bodies",
-             pair ? fmt::format("expected [\"a\", \"b\"] (2 body names), found {} elements",
-                                pair->size())
-                  : fmt::format("expected [\"a\", \"b\"] (2 body names), found {}", type_name(*n)));
+             pair ? fmt::format("expected [\"a\", \"b\"] (2 body names), found {}",
+                                elements(pair->size()))
+                  : fmt::format("expected [\"a\", \"b\"] (2 body names), found {}", found(*n)));
     }
     const std::size_t a = find_body(r, *pair->get(0), path + ".bodies[0]", names);
     const std::size_t b = find_body(r, *pair->get(1), path + ".bodies[1]", names);

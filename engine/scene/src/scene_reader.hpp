@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <initializer_list>
 #include <limits>
@@ -27,18 +28,22 @@ namespace fixstep::scene_detail {
 
 /// How read_text_file names the kind of file in its messages.
 struct FileKind {
-  std::string_view noun;     ///< "scene file": "cannot open scene file (does it exist?)"
-  std::string_view article;  ///< "a": "is a directory, not a scene file"
-  std::string_view owner;    ///< "a scene": "file is larger than the N bytes a scene may have"
-  std::string_view plural;   ///< "scenes": "file is N bytes; scenes are limited to M bytes"
+  std::string_view noun;       ///< "scene file": "cannot open scene file (does it exist?)"
+  std::string_view article;    ///< "a": "is a directory, not a scene file"
+  std::string_view owner;      ///< "a scene": "file is larger than the N bytes a scene may have"
+  std::string_view plural;     ///< "scenes": "file is N bytes; scenes are limited to M bytes"
+  std::string_view extension;  ///< ".toml": the files a directory given instead is searched for
 };
 
 /// The whole text of `file`, at most max_bytes. Throws SceneError (file only, no line) when it
-/// is a directory, cannot be opened or read, or is larger. Defined in scene.cpp.
+/// is a directory (naming the files in it with kind.extension), does not exist (suggesting the
+/// closest name in its directory), cannot be opened or read, or is larger. Defined in
+/// scene.cpp.
 std::string read_text_file(const std::filesystem::path& file, std::size_t max_bytes,
                            const FileKind& kind);
-/// `text` parsed as TOML. Throws SceneError for more than max_bytes, a NUL byte (binary data)
-/// and TOML syntax errors (with line and column). Defined in scene.cpp.
+/// `text` parsed as TOML. Throws SceneError for more than max_bytes, a fixstep recording, a NUL
+/// byte (binary data) and TOML syntax errors (with line and column, in plain words, with advice
+/// for common slips). Defined in scene.cpp.
 toml::table parse_toml(std::string_view text, const std::string& source_name, std::size_t max_bytes,
                        const FileKind& kind);
 
@@ -59,6 +64,36 @@ inline std::string_view type_name(const toml::node& n) {
     default:
       return "a date/time";
   }
+}
+
+/// What a node holds, for "expected ..., found ..." messages: its type, with the value when it
+/// is a scalar: `a string ("fast")`, `a float (4.0)`, `an array of 3 elements`.
+inline std::string found(const toml::node& n) {
+  if (const toml::value<std::string>* s = n.as_string()) {
+    std::string v = s->get().substr(0, 40);
+    for (char& c : v) c = static_cast<unsigned char>(c) < 0x20 ? '?' : c;  // one line
+    return fmt::format("a string (\"{}{}\")", v, s->get().size() > 40 ? "..." : "");
+  }
+  if (const toml::value<std::int64_t>* i = n.as_integer()) {
+    return fmt::format("an integer ({})", i->get());
+  }
+  if (const toml::value<double>* f = n.as_floating_point()) {
+    std::string v = fmt::format("{}", f->get());
+    if (std::isfinite(f->get()) && v.find_first_of(".e") == std::string::npos) v += ".0";
+    return fmt::format("a float ({})", v);
+  }
+  if (const toml::value<bool>* b = n.as_boolean()) return fmt::format("a boolean ({})", b->get());
+  if (const toml::array* a = n.as_array()) {
+    return a->empty()
+               ? std::string("an empty array")
+               : fmt::format("an array of {} element{}", a->size(), a->size() == 1 ? "" : "s");
+  }
+  return std::string(type_name(n));
+}
+
+/// "1 element", "3 elements".
+inline std::string elements(std::size_t n) {
+  return fmt::format("{} element{}", n, n == 1 ? "" : "s");
 }
 
 /// Walks a parsed document, turning every problem into a SceneError with its position.
@@ -111,13 +146,14 @@ class Reader {
   }
 
   /// Fails for a required key of `table` (at `table_path`) that is absent: `message` (e.g.
-  /// "missing (required)") under the key path table_path.keys[0]. When the table holds another
+  /// "missing (required)") under the key path table_path.keys[0], then ": help" (what the key
+  /// holds, e.g. "the mass in kg, e.g. mass = 1.0") when given. When the table holds another
   /// key within two edits of one of `keys` (a misspelling: the loader ignores it with a
-  /// warning), the error is placed at that key and names both: "stiffness: missing
-  /// (required); found `stifness` — did you mean `stiffness`?".
+  /// warning), the error is placed at that key and names both instead of the help:
+  /// "stiffness: missing (required); found `stifness` — did you mean `stiffness`?".
   [[noreturn]] void fail_missing(const toml::table& table, const std::string& table_path,
                                  std::initializer_list<std::string_view> keys,
-                                 const std::string& message) const {
+                                 const std::string& message, std::string_view help = {}) const {
     auto full = [&](std::string_view k) {
       return table_path.empty() ? std::string(k) : table_path + "." + std::string(k);
     };
@@ -130,7 +166,8 @@ class Reader {
         }
       }
     }
-    fail(table.source(), full(*keys.begin()), message);
+    fail(table.source(), full(*keys.begin()),
+         help.empty() ? message : fmt::format("{}: {}", message, help));
   }
 
   /// A finite number (integer or float) at table[key]; nullopt when absent.
@@ -143,7 +180,17 @@ class Reader {
 
   double number_node(const toml::node& n, const std::string& path) const {
     if (!n.is_number()) {
-      fail(n.source(), path, fmt::format("expected a number, found {}", type_name(n)));
+      // A number in quotes ("0.01") is a string in TOML: say so.
+      std::string hint;
+      if (const toml::value<std::string>* s = n.as_string()) {
+        const std::string& text = s->get();
+        char* end = nullptr;
+        (void)std::strtod(text.c_str(), &end);
+        if (!text.empty() && end == text.c_str() + text.size()) {
+          hint = fmt::format("; write the number without quotes: {}", text);
+        }
+      }
+      fail(n.source(), path, fmt::format("expected a number, found {}{}", found(n), hint));
     }
     const double v = *n.value<double>();
     if (!std::isfinite(v)) fail(n.source(), path, fmt::format("must be finite (got {})", v));
@@ -151,25 +198,35 @@ class Reader {
   }
 
   /// The number at t[key], t being the table at `table_path` (e.g. "body[0]"); fail_missing
-  /// when absent.
-  double required_number(const toml::table& t, const std::string& table_path,
-                         std::string_view key) const {
+  /// (with `help`) when absent.
+  double required_number(const toml::table& t, const std::string& table_path, std::string_view key,
+                         std::string_view help = {}) const {
     auto v = number(t, key, table_path + "." + std::string(key));
-    if (!v) fail_missing(t, table_path, {key}, "missing (required)");
+    if (!v) fail_missing(t, table_path, {key}, "missing (required)", help);
     return *v;
   }
 
-  /// An integer in [lo, hi] at node n. The type is checked first: value<std::int64_t>() of a
-  /// float node converts it, which is undefined behaviour for floats beyond the int64 range
-  /// (substeps = 1e30; found by fuzzing).
+  /// An integer in [lo, hi] at node n; `range` (e.g. ", the index of one of the chain's 3
+  /// bodies") follows "must be lo .. hi" in the message. The type is checked first:
+  /// value<std::int64_t>() of a float node converts it, which is undefined behaviour for floats
+  /// beyond the int64 range (substeps = 1e30; found by fuzzing).
   std::int64_t integer_node(const toml::node& n, const std::string& path, std::int64_t lo,
-                            std::int64_t hi) const {
+                            std::int64_t hi, std::string_view range = {}) const {
     if (!n.is_integer()) {
-      fail(n.source(), path, fmt::format("expected an integer, found {}", type_name(n)));
+      // 4.0 is a float in TOML: say how to write the integer.
+      std::string hint;
+      if (const toml::value<double>* f = n.as_floating_point()) {
+        const double v = f->get();
+        if (std::isfinite(v) && v == std::floor(v) && v >= double(lo) && v <= double(hi)) {
+          hint = fmt::format("; write it without the decimal point: {:.0f}", v);
+        }
+      }
+      fail(n.source(), path, fmt::format("expected an integer, found {}{}", found(n), hint));
     }
     const std::int64_t v = n.as_integer()->get();
-    if (v < lo || v > hi)
-      fail(n.source(), path, fmt::format("must be {} .. {} (got {})", lo, hi, v));
+    if (v < lo || v > hi) {
+      fail(n.source(), path, fmt::format("must be {} .. {}{} (got {})", lo, hi, range, v));
+    }
     return v;
   }
 
@@ -177,8 +234,8 @@ class Reader {
     const toml::array* a = n.as_array();
     if (!a || a->size() != 2) {
       fail(n.source(), path,
-           a ? fmt::format("expected [x, y] (2 numbers), found {} elements", a->size())
-             : fmt::format("expected [x, y], found {}", type_name(n)));
+           a ? fmt::format("expected [x, y] (2 numbers), found {}", elements(a->size()))
+             : fmt::format("expected [x, y], found {}", found(n)));
     }
     return Vec2{number_node(*a->get(0), path + "[0]"), number_node(*a->get(1), path + "[1]")};
   }
@@ -195,7 +252,7 @@ class Reader {
     const toml::node* n = t.get(key);
     if (!n) return std::nullopt;
     if (!n->is_string()) {
-      fail(n->source(), path, fmt::format("expected a string, found {}", type_name(*n)));
+      fail(n->source(), path, fmt::format("expected a string, found {}", found(*n)));
     }
     return std::string(n->as_string()->get());
   }
@@ -205,7 +262,7 @@ class Reader {
     const toml::node* n = t.get(key);
     if (!n) return nullptr;
     if (!n->is_table()) {
-      fail(n->source(), path, fmt::format("expected a table, found {}", type_name(*n)));
+      fail(n->source(), path, fmt::format("expected a table, found {}", found(*n)));
     }
     return n->as_table();
   }
@@ -216,7 +273,12 @@ class Reader {
     if (!n) return nullptr;
     const toml::array* list = n->as_array();
     if (!list || !list->is_array_of_tables()) {
-      fail(n->source(), std::string(key), fmt::format("expected [[{}]] tables", key));
+      // [body] (one pair of brackets) is a single table: the commonest slip.
+      fail(n->source(), std::string(key),
+           n->is_table() ? fmt::format("expected [[{0}]] tables, found a single [{0}] table; write "
+                                       "[[{0}]] (double brackets) above each one",
+                                       key)
+                         : fmt::format("expected [[{}]] tables, found {}", key, found(*n)));
     }
     return list;
   }
@@ -231,8 +293,9 @@ class Reader {
   void require_f32(double v, const toml::node* n, const std::string& path) const {
     if (std::abs(v) > double(std::numeric_limits<float>::max())) {
       fail(n->source(), path,
-           fmt::format("{} overflows precision = \"f32\" (largest float is {:g})", v,
-                       double(std::numeric_limits<float>::max())));
+           fmt::format("{:g} overflows precision = \"f32\" (largest float {:g}); use a smaller "
+                       "value, or precision = \"f64\" in [world]",
+                       v, double(std::numeric_limits<float>::max())));
     }
   }
 

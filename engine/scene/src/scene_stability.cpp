@@ -19,22 +19,45 @@ std::optional<NetworkStability> check_scene_network(const Scene& scene) {
 namespace {
 
 /// An unstable finding with what to change in the scene file: the substep count (or dt) that
-/// is stable, another integrator when no step is, other masses and stiffnesses when the
-/// rates overflow a double (radius infinite).
+/// is stable, another integrator when no step is, other masses and stiffnesses when the rates
+/// overflow a double (radius infinite). The advice comes before the numbers that explain the
+/// finding (the message's closing parenthesis: rates and growth), so that the first 200-odd
+/// characters say what is wrong and what to do:
+///   body 'b' is unstable with M at dt = 0.1 s: ω·h = 3 exceeds the stability bound 2; use
+///   substeps = 2 in [world] (or dt <= 0.06667 s), or set allow_unstable = true — ω = 30 rad/s,
+///   growth 6.8541x per step
+/// With `allowed` (allow_unstable is set) the advice says the run goes on and what would make
+/// it stable.
 std::string with_advice(const std::string& message, int min_substeps, double max_step,
-                        double radius, int substeps) {
+                        double radius, int substeps, bool allowed) {
   if (!std::isfinite(radius)) {
-    return message + ". Use larger masses or smaller stiffnesses, dampings or drags";
+    return message + (allowed ? "; allowed (allow_unstable), but the run will diverge at once"
+                              : "; use a larger mass or a smaller stiffness, damping or drag");
   }
-  if (min_substeps > 0) {
-    return fmt::format(
-        "{}. Use substeps = {} in [world] (or dt <= {:.4g} s), or set "
-        "allow_unstable = true",
-        message, min_substeps, max_step * substeps);
+  // The trailing parenthesis of the message, found by balancing from its end.
+  std::string head = message, details;
+  if (!message.empty() && message.back() == ')') {
+    int depth = 0;
+    for (std::size_t i = message.size(); i-- > 0;) {
+      depth += message[i] == ')' ? 1 : message[i] == '(' ? -1 : 0;
+      if (depth == 0) {
+        head = message.substr(0, i > 0 && message[i - 1] == ' ' ? i - 1 : i);
+        details = message.substr(i + 1, message.size() - i - 2);
+        break;
+      }
+    }
   }
-  return message +
-         ". Choose semi_implicit_euler, velocity_verlet, rk4, implicit_euler or forest_ruth, or "
-         "set allow_unstable = true";
+  const std::string fix =
+      min_substeps > 0 ? fmt::format("substeps = {} in [world] (or dt <= {:.4g} s)", min_substeps,
+                                     max_step * substeps)
+                       : std::string(
+                             "another integrator: semi_implicit_euler, velocity_verlet, rk4, "
+                             "implicit_euler or forest_ruth");
+  const std::string advice =
+      allowed
+          ? fmt::format("allowed (allow_unstable), so the run may diverge; {} would be stable", fix)
+          : fmt::format("use {}, or set allow_unstable = true", fix);
+  return fmt::format("{}; {}{}", head, advice, details.empty() ? "" : " — " + details);
 }
 
 }  // namespace
@@ -48,9 +71,8 @@ std::vector<std::string> enforce_stability(const Scene& scene) {
       throw SceneError(scene.file, line, 0, key, advised);
     }
     if (verdict != Stability::stable) {
-      const bool allowed = verdict == Stability::unstable;
-      warnings.push_back(fmt::format("{}:{}: {}: {}{}", scene.file, line, key,
-                                     allowed ? advised : message, allowed ? " (allowed)" : ""));
+      warnings.push_back(fmt::format("{}:{}: {}: {}", scene.file, line, key,
+                                     verdict == Stability::unstable ? advised : message));
     }
   };
   auto body_line = [&](std::size_t i) {
@@ -61,11 +83,12 @@ std::vector<std::string> enforce_stability(const Scene& scene) {
   for (const BodyStability& r : check_stability(scene)) {
     if (linked[r.body]) continue;
     apply(r.verdict, body_line(r.body), fmt::format("body[{}]", r.body), r.message,
-          with_advice(r.message, r.min_substeps, r.max_step, r.radius, substeps));
+          with_advice(r.message, r.min_substeps, r.max_step, r.radius, substeps,
+                      scene.allow_unstable));
   }
   if (const std::optional<NetworkStability> net = check_scene_network(scene)) {
-    const std::string advised =
-        with_advice(net->message, net->min_substeps, net->max_step, net->radius, substeps);
+    const std::string advised = with_advice(net->message, net->min_substeps, net->max_step,
+                                            net->radius, substeps, scene.allow_unstable);
     const std::optional<std::size_t> link =
         net->damping_bound ? net->strongest_damper : net->stiffest_link;
     if (link) {
