@@ -453,6 +453,19 @@ case_ "--fps 0" "" render good.toml --out frames --fps 0
 case_ "--frames -1" "" render good.toml --out frames --frames -1
 case_ "--steps 2.5" "" run good.toml --steps 2.5
 case_ "a misspelt subcommand (rn)" "" rn good.toml --steps 10
+case_ "view --fps 0" "" view good.toml --fps 0
+# --- compare ---
+case_ "compare with one --with" "" compare good.toml --with rk4 --out frames
+case_ "compare with 7 --with" "" compare good.toml --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --out frames
+case_ "compare: an unknown integrator" "" compare good.toml --with rk5 --with rk4 --out frames
+case_ "compare: dt 1/0" "" compare good.toml --with rk4@1/0 --with rk4 --out frames
+case_ "compare: dt 2 s" "" compare good.toml --with rk4@2 --with rk4 --out frames
+case_ "compare: a misspelt option (substep)" "" compare good.toml --with rk4:substep=2 --with rk4 --out frames
+case_ "compare: substeps 0" "" compare good.toml --with rk4:substeps=0 --with rk4 --out frames
+printf '%s\n%s\n%s\n' "$ok_world" "$body" 'spring = { anchor = [1.0, 0.0], stiffness = 1e6 }' > stiff.toml
+case_ "compare: a tile the guard refuses" "" compare stiff.toml --with explicit_euler --with rk4 --out frames
+case_ "compare: --window with --out" "" compare good.toml --with rk4 --with rk4 --window --out frames
+case_ "compare: a frame too small for 6 tiles" "" compare good.toml --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --size 40x40 --out frames
 # --- input scripts (run --input) ---
 script_case() {  # DESCRIPTION SCRIPT-TEXT: run good.toml with it as --input
   printf '%s\n' "$2" > script.toml

@@ -114,7 +114,7 @@ bad "one --with" 2 "2 to 6 --with configurations, got 1" "$scenes/default.toml" 
 bad "an unknown integrator" 2 "unknown integrator 'rk5' \(did you mean rk4\?\)" \
   "$scenes/default.toml" --with rk5 --with rk4 --out "$work/x"
 bad "a bad dt" 2 "dt '1/0' is not a number or a fraction" "$scenes/default.toml" --with rk4@1/0 --with rk4
-bad "an unstable tile" 1 "--with 'explicit_euler@1/60': .*unstable.*--allow-unstable" \
+bad "an unstable tile" 1 "--with 'explicit_euler@1/60' is unstable on this scene: .*--allow-unstable.*substeps = 3" \
   "$scenes/spring_damper.toml" --with explicit_euler@1/60 --with rk4 --out "$work/x"
 bad "--window with --out" 2 "excludes" "$scenes/default.toml" --with rk4 --with rk4 --window --out "$work/x"
 

@@ -17,9 +17,9 @@ namespace {
 
 [[noreturn]] void bad_spec(std::string_view text, const std::string& what) {
   throw std::invalid_argument(fmt::format(
-      "--with '{}': {}; expected INTEGRATOR[@DT][:substeps=N][:precision=f32|f64], e.g. "
-      "rk4@1/30 or implicit_euler@1/15:substeps=2",
-      text, what));
+      "{} in '{}'; expected INTEGRATOR[@DT][:substeps=N][:precision=f32|f64], e.g. rk4@1/30 or "
+      "implicit_euler@1/15:substeps=2",
+      what, text));
 }
 
 /// A whole decimal number of the text, or nullopt (no sign, no spaces, nothing after it).

@@ -31,7 +31,7 @@ struct TileSpec {
   std::optional<Precision> precision;
 };
 
-/// Parses a --with value. Throws std::invalid_argument naming the value, the part that is wrong
+/// Parses a --with value. Throws std::invalid_argument naming the part that is wrong, the value
 /// and the form expected (unknown integrator: the valid names, or the closest one).
 [[nodiscard]] TileSpec parse_tile_spec(std::string_view text);
 /// CLI11 validator text: "" when parse_tile_spec accepts value, else its message.

@@ -29,9 +29,10 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     try {
       warnings = enforce_stability(scenes.back());  // throws when unstable
     } catch (const std::exception& e) {
-      throw std::invalid_argument(
-          fmt::format("--with '{}': {} (or pass --allow-unstable to watch it diverge)",
-                      specs[i].text, e.what()));
+      throw std::invalid_argument(fmt::format(
+          "--with '{}' is unstable on this scene: add the substeps the guard names "
+          "(--with '{}:substeps=N') or pass --allow-unstable to watch it diverge. The guard: {}",
+          specs[i].text, specs[i].text, e.what()));
     }
     for (const std::string& w : warnings) {
       if (!quiet)

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fixstep/suggest.hpp>
@@ -91,6 +92,27 @@ void add_compare_options(CLI::App* cmd, fixstep::cli::CompareOptions& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "print errors only");
 }
 
+/// CLI11 validator text: "" when value is a whole number (digits, an optional sign).
+std::string whole_number_validator(const std::string& value) {
+  const std::size_t start = !value.empty() && (value[0] == '-' || value[0] == '+') ? 1 : 0;
+  const bool digits =
+      value.size() > start && value.find_first_not_of("0123456789", start) == std::string::npos;
+  return digits ? std::string() : fmt::format("must be a whole number of ticks, got '{}'", value);
+}
+
+/// "fixstep: unknown command 'rn': did you mean run?" for a mistyped subcommand, or "".
+std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return {};
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+  if (std::find(names.begin(), names.end(), argv[1]) != names.end()) return {};
+  const auto best = fixstep::closest(argv[1], names);
+  return fmt::format(
+      "fixstep: unknown command '{}'{}; the commands are run, render, compare, "
+      "view and replay (fixstep --help)",
+      argv[1], best ? fmt::format(" (did you mean {}?)", *best) : "");
+}
+
 }  // namespace
 
 // The whole of main is one try block: an exception from any step (CLI11's setup included)
@@ -106,6 +128,7 @@ int main(int argc, char** argv) try {
   CLI::App* run_cmd = app.add_subcommand("run", "simulate without rendering; print a summary");
   add_scene_options(run_cmd, run.scene);
   auto* steps = run_cmd->add_option("--steps", run.steps, "number of ticks to simulate")
+                    ->check(whole_number_validator)
                     ->check(CLI::Range(std::int64_t{0}, max_ticks));
   auto* duration =
       run_cmd->add_option("--duration", run.duration, "simulated time (s)")->check(positive_finite);
@@ -159,8 +182,10 @@ int main(int argc, char** argv) try {
       ->check(frame_size_validator);
   view_cmd->add_option("--frames", view.frames, "quit after N frames (0 = run until Esc)")
       ->check(CLI::Range(std::int64_t{0}, max_ticks));
-  view_cmd->add_option("--fps", view.fps,
-                       "use a virtual clock of F frames per second instead of the real clock");
+  view_cmd
+      ->add_option("--fps", view.fps,
+                   "use a virtual clock of F frames per second instead of the real clock")
+      ->check(positive_finite);
   add_record_options(view_cmd, view.record, view.hash_every);
 
   ReplayOptions replay;
@@ -193,6 +218,12 @@ int main(int argc, char** argv) try {
       }
     }
     return code == 0 ? 0 : 2;
+  } catch (const CLI::RequiredError& e) {
+    if (const std::string typo = unknown_subcommand(app, argc, argv); !typo.empty()) {
+      std::fprintf(stderr, "%s\n", typo.c_str());
+      return 2;
+    }
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const CLI::ParseError& e) {
     // CLI11 prints the message (or the help, status 0); every command-line error exits 2.
     return app.exit(e) == 0 ? 0 : 2;

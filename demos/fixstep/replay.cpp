@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
 #include "commands.hpp"
 
@@ -56,6 +57,13 @@ std::string recorded_scene(const Recording& rec, const std::string& recording_fi
 int replay_command(const ReplayOptions& o) {
   const Recording rec = read_recording(o.recording);
   const std::string scene_file = o.scene ? *o.scene : recorded_scene(rec, o.recording);
+  std::error_code ec;
+  if (!o.scene && !std::filesystem::exists(scene_file, ec)) {
+    throw std::runtime_error(fmt::format(
+        "{}: the recording's scene {} is not there (neither relative to the current directory "
+        "nor beside the recording); give it with --scene FILE",
+        o.recording, rec.scene));
+  }
   const Scene scene = scene_for_recording(scene_file, rec, o.quiet);
   Simulation sim = make_simulation(world_def(scene));
   const ReplayReport report = replay(sim, rec);

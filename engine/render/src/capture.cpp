@@ -91,7 +91,13 @@ AtomicFile::AtomicFile(std::filesystem::path file) : file_(std::move(file)) {
   tmp_ = (dir / fmt::format(".{}.tmp.{}", file_.filename().string(), ::getpid())).string();
   out_ = std::fopen(tmp_.c_str(), "wbe");
   if (!out_) {
-    throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), reason(errno)));
+    const int err = errno;
+    std::error_code ec;
+    if (err == ENOENT && !std::filesystem::exists(dir, ec)) {
+      throw CaptureError(fmt::format("cannot write {}: the directory {} does not exist",
+                                     file_.string(), dir.string()));
+    }
+    throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), reason(err)));
   }
 }
 
@@ -308,6 +314,11 @@ void FrameWriter::work() {
 
 void prepare_output_dir(const std::filesystem::path& dir) {
   std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {
+    throw CaptureError(fmt::format(
+        "output directory {} is a file, not a directory: give a new or existing directory",
+        dir.string()));
+  }
   std::filesystem::create_directories(dir, ec);
   if (ec) {
     throw CaptureError(
