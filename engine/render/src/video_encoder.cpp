@@ -80,6 +80,13 @@ VideoWriter::Encoder::Encoder(const std::filesystem::path& path, const std::file
   open_file(path, options.format);
 }
 
+VideoWriter::Encoder::~Encoder() {
+  // FFmpeg 5.1's GIF muxer holds the last packet back (its delay depends on the next one) and
+  // frees it only in its trailer, so an abandoned GIF would leak it: write the trailer into
+  // the temporary file, which the caller removes. (The MP4 muxer frees all in its deinit.)
+  if (palette_ && header_written_ && !trailer_written_) av_write_trailer(mux_.get());
+}
+
 void VideoWriter::Encoder::open_codec(const Options& options) {
   const AVCodec* codec = find_encoder(options.format, file_);
   stream_ = avformat_new_stream(mux_.get(), nullptr);
@@ -124,6 +131,7 @@ void VideoWriter::Encoder::open_file(const std::filesystem::path& path, VideoFor
   // so a browser plays the video while it downloads.
   if (format == VideoFormat::mp4) opts.set("movflags", "+faststart");
   av::check(avformat_write_header(mux_.get(), opts.get()), file_, "cannot write the header");
+  header_written_ = true;
 }
 
 void VideoWriter::Encoder::encode(std::span<const std::uint8_t> rgba, std::int64_t pts) {
@@ -173,6 +181,7 @@ void VideoWriter::Encoder::finish() {
   }
   send(nullptr);
   if (palette_) set_gif_final_delay();
+  trailer_written_ = true;  // even if it fails: av_write_trailer is not to be called twice
   av::check(av_write_trailer(mux_.get()), file_, "cannot finish the file");
   av::check(avio_closep(&mux_->pb), file_, "cannot close the file");
 }

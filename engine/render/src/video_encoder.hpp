@@ -33,7 +33,7 @@ class VideoWriter::Encoder {
   /// CaptureError naming `file` (missing encoder or filter, unwritable path, refused stream).
   Encoder(const std::filesystem::path& path, const std::filesystem::path& file,
           const Options& options);
-  ~Encoder() = default;
+  ~Encoder();
   Encoder(const Encoder&) = delete;
   Encoder& operator=(const Encoder&) = delete;
 
@@ -55,6 +55,7 @@ class VideoWriter::Encoder {
   std::filesystem::path file_;
   int step_ = 1;
   std::int64_t last_pts_ = -1;  // pts of the last frame sent to the codec, -1: none yet
+  bool header_written_ = false, trailer_written_ = false;
   av::Muxer mux_;               // owns its AVIOContext once the file is open
   AVStream* stream_ = nullptr;  // owned by mux_
   av::Codec codec_;
