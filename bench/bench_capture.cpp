@@ -1,20 +1,27 @@
 // Headless capture throughput: how many 1280x720 frames per second `fixstep render` turns into
-// PNG files, against drawing alone and against stb_image_write's own deflate. Side by side in
-// one run, on the same frames:
+// PNG files or a video, against drawing alone and against stb_image_write's own deflate. Side
+// by side in one run, on the same frames:
 //   render_only  advance + draw, nothing encoded (the ceiling capture can reach)
 //   naive_stb    + stb_image_write with its built-in deflate and its default filter choice
 //                  (all five PNG filters tried per row), synchronous: fixstep before libdeflate
 //   fast_sync    + PngEncoder (stb_image_write + libdeflate level 1, filter None), synchronous
 //   shipped      + FrameWriter (the same encoder on a worker thread, 2 frames in flight):
 //                  exactly what `fixstep render` does
-// Each measurement is a clip of 60 frames (one second at 60 fps) written as PNG files into a
-// temporary directory, after 45 untimed frames so that every body's trail is full; five
+//   mp4          + VideoWriter into clip.mp4 (H.264 at the default VideoSettings on a worker
+//                  thread, 3 frames in flight): what `fixstep render --video x.mp4` does
+//   gif          + VideoWriter into clip.gif (a palette per frame; 60 fps keeps every 2nd)
+// Each measurement is a clip of 60 frames (one second at 60 fps) written as PNG files or one
+// video file into a temporary directory, after 45 untimed frames so that every body's trail
+// is full (the writer is created and finished inside the timed clip, as `render` does); five
 // repetitions, interleaved at random with the other benchmarks', medians reported. Scenes:
 // 1000 spring-damper and projectile bodies built in code (many_bodies below), and
 // assets/scenes/default.toml (6 bodies). Then one frame of the 1000-body scene is encoded at
-// every level, for the size/speed table. The last lines print the medians and the issue's
-// targets: shipped >= 60 frames/s and shipped >= 2.5x naive_stb at 1000 bodies.
-//   build/ci/bin/bench_capture              (about 6 minutes on 2 cores)
+// every level, for the size/speed table. The last lines print the medians and the issues'
+// targets: shipped >= 60 frames/s and shipped >= 2.5x naive_stb at 1000 bodies (PNG), and mp4
+// >= 60 frames/s at 1000 bodies (video). KiB_per_frame is the output's size over the clip's
+// 60 frames (for the GIF too, although it stores 30 of them).
+//   build/ci/bin/bench_capture              (about 8 minutes on 2 cores)
+//   build/ci/bin/bench_capture --benchmark_filter='mp4|gif'   (the video modes only)
 //   build/ci/bin/bench_capture --benchmark_filter=encode    (the level table only)
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
@@ -36,6 +43,7 @@
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
+#include "fixstep/video.hpp"
 
 // The naive baseline: stb_image_write exactly as fixstep used it before libdeflate (built-in
 // deflate at stb's default level 8, default filter choice). This copy is private to this file
@@ -124,7 +132,9 @@ std::uintmax_t bytes_in(const std::filesystem::path& dir) {
   return total;
 }
 
-enum class Mode { render_only, naive_stb, fast_sync, shipped };
+enum class Mode { render_only, naive_stb, fast_sync, shipped, mp4, gif };
+constexpr const char* mode_names[] = {"render_only", "naive_stb", "fast_sync",
+                                      "shipped",     "mp4",       "gif"};
 
 void capture(benchmark::State& state, const std::string& scene_name, Mode mode) {
   Session session = testing::scene_session(scene_named(scene_name), width, height);
@@ -135,9 +145,12 @@ void capture(benchmark::State& state, const std::string& scene_name, Mode mode) 
   }
   const auto dir = out_dir(fmt::format("{}_{}", scene_name, static_cast<int>(mode)));
   PngEncoder encoder;
+  const auto video = dir / (mode == Mode::gif ? "clip.gif" : "clip.mp4");
   for (auto _ : state) {
     std::optional<FrameWriter> writer;
+    std::optional<VideoWriter> video_writer;
     if (mode == Mode::shipped) writer.emplace(dir, width, height);
+    if (mode == Mode::mp4 || mode == Mode::gif) video_writer.emplace(video, width, height, 60.0);
     for (int f = 0; f < clip_frames; ++f) {
       session.advance(clock.frame_seconds());
       session.draw();
@@ -156,9 +169,14 @@ void capture(benchmark::State& state, const std::string& scene_name, Mode mode) 
         case Mode::shipped:
           writer->submit(pixels);
           break;
+        case Mode::mp4:
+        case Mode::gif:
+          video_writer->submit(pixels);
+          break;
       }
     }
-    if (writer) writer->finish();  // timed: the clip is done when its last file is
+    if (writer) writer->finish();              // timed: the clip is done when its last file is
+    if (video_writer) video_writer->finish();  // timed: flush, trailer, rename
   }
   const double frames = double(state.iterations()) * clip_frames;
   state.counters["frames_per_s"] = benchmark::Counter(frames, benchmark::Counter::kIsRate);
@@ -195,6 +213,37 @@ void encode(benchmark::State& state, int level) {  // level < 0: the naive stb b
   state.counters["KiB"] = double(bytes) / 1024.0;
 }
 
+/// The PNG lines of the summary (nothing when those modes did not run).
+void print_png_summary(const std::string& scene, double render, double naive, double fast,
+                       double shipped) {
+  if (shipped <= 0.0 || naive <= 0.0) return;
+  std::printf(
+      "\n%s, %dx%d, medians in frames/s: render_only %.1f, naive_stb %.1f, fast_sync %.1f, "
+      "shipped %.1f\n  shipped/naive_stb = %.2fx, shipped/render_only = %.0f%%\n",
+      scene.c_str(), width, height, render, naive, fast, shipped, shipped / naive,
+      render > 0 ? 100.0 * shipped / render : 0.0);
+  if (scene == "many_bodies_1000") {
+    std::printf("  target shipped >= 60 frames/s: %s (%.1f)\n", shipped >= 60.0 ? "met" : "MISSED",
+                shipped);
+    std::printf("  target shipped >= 2.5x naive_stb: %s (%.2fx)\n",
+                shipped / naive >= 2.5 ? "met" : "MISSED", shipped / naive);
+  }
+}
+
+/// The video lines of the summary (nothing when the video modes did not run).
+void print_video_summary(const std::string& scene, double render, double mp4, double mp4_kib,
+                         double gif, double gif_kib) {
+  if (mp4 <= 0.0 && gif <= 0.0) return;
+  std::printf(
+      "\n%s, %dx%d video, medians: mp4 %.1f frames/s (%.0f%% of render_only), %.1f KiB/frame; "
+      "gif %.1f frames/s, %.1f KiB/frame\n",
+      scene.c_str(), width, height, mp4, render > 0 ? 100.0 * mp4 / render : 0.0, mp4_kib, gif,
+      gif_kib);
+  if (scene == "many_bodies_1000" && mp4 > 0.0) {
+    std::printf("  target mp4 >= 60 frames/s: %s (%.1f)\n", mp4 >= 60.0 ? "met" : "MISSED", mp4);
+  }
+}
+
 /// Prints as the console reporter does and keeps every median's counters by benchmark name.
 class MedianKeeper : public benchmark::ConsoleReporter {
  public:
@@ -215,11 +264,10 @@ class MedianKeeper : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const char* modes[] = {"render_only", "naive_stb", "fast_sync", "shipped"};
   for (const std::string scene : {"many_bodies_1000", "default"}) {
-    for (int m = 0; m < 4; ++m) {
-      benchmark::RegisterBenchmark(fmt::format("capture/{}/{}", scene, modes[m]).c_str(), capture,
-                                   scene, static_cast<Mode>(m))
+    for (int m = 0; m < int(std::size(mode_names)); ++m) {
+      benchmark::RegisterBenchmark(fmt::format("capture/{}/{}", scene, mode_names[m]).c_str(),
+                                   capture, scene, static_cast<Mode>(m))
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime()  // the encoding of `shipped` runs on another thread
           ->Iterations(1)  // one 60-frame clip per repetition
@@ -256,26 +304,17 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
 
-  // The targets, from the medians of this run.
+  // The issues' targets, from the medians of this run.
   for (const std::string scene : {"many_bodies_1000", "default"}) {
-    auto fps = [&](const char* mode) {
+    auto median = [&](const char* mode, const char* counter) {
       const auto it = reporter.medians.find(fmt::format("capture/{}/{}", scene, mode));
-      return it == reporter.medians.end() ? 0.0 : it->second["frames_per_s"];
+      return it == reporter.medians.end() ? 0.0 : it->second[counter];
     };
-    const double render = fps("render_only"), naive = fps("naive_stb"), fast = fps("fast_sync"),
-                 shipped = fps("shipped");
-    if (shipped <= 0.0 || naive <= 0.0) continue;
-    std::printf(
-        "\n%s, %dx%d, medians in frames/s: render_only %.1f, naive_stb %.1f, fast_sync %.1f, "
-        "shipped %.1f\n  shipped/naive_stb = %.2fx, shipped/render_only = %.0f%%\n",
-        scene.c_str(), width, height, render, naive, fast, shipped, shipped / naive,
-        render > 0 ? 100.0 * shipped / render : 0.0);
-    if (scene == "many_bodies_1000") {
-      std::printf("  target shipped >= 60 frames/s: %s (%.1f)\n",
-                  shipped >= 60.0 ? "met" : "MISSED", shipped);
-      std::printf("  target shipped >= 2.5x naive_stb: %s (%.2fx)\n",
-                  shipped / naive >= 2.5 ? "met" : "MISSED", shipped / naive);
-    }
+    auto fps = [&](const char* mode) { return median(mode, "frames_per_s"); };
+    print_png_summary(scene, fps("render_only"), fps("naive_stb"), fps("fast_sync"),
+                      fps("shipped"));
+    print_video_summary(scene, fps("render_only"), fps("mp4"), median("mp4", "KiB_per_frame"),
+                        fps("gif"), median("gif", "KiB_per_frame"));
   }
   std::filesystem::remove_all(std::filesystem::temp_directory_path() /
                               fmt::format("fixstep_bench_capture_{}", ::getpid()));

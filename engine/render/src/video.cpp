@@ -1,0 +1,255 @@
+// VideoWriter: argument checks, the temporary file's fate and the producer/worker pipeline
+// (the encoding itself is video_encoder.cpp).
+#include "fixstep/video.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string_view>
+
+#include "video_encoder.hpp"
+
+namespace fixstep {
+
+std::optional<VideoFormat> video_format_for(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".mp4") return VideoFormat::mp4;
+  if (ext == ".gif") return VideoFormat::gif;
+  return std::nullopt;
+}
+
+namespace {
+
+constexpr std::array<std::string_view, 10> x264_presets = {
+    "ultrafast", "superfast", "veryfast", "faster",   "fast",
+    "medium",    "slow",      "slower",   "veryslow", "placebo"};
+constexpr std::array<std::string_view, 9> x264_tunes = {
+    "", "film", "animation", "grain", "stillimage", "psnr", "ssim", "fastdecode", "zerolatency"};
+constexpr int max_video_threads = 64;
+constexpr int max_gif_side = 65535;  // GIF stores sizes in 16 bits
+constexpr int max_rate_term = 1001000;
+
+[[noreturn]] void refuse(const std::filesystem::path& file, const std::string& what) {
+  throw std::invalid_argument(fmt::format("VideoWriter: {}: {}", file.string(), what));
+}
+
+VideoFormat format_of(const std::filesystem::path& file) {
+  if (const auto format = video_format_for(file)) return *format;
+  refuse(file, fmt::format("unknown video format \"{}\" (use .mp4 for H.264 video or .gif for "
+                           "an animated GIF)",
+                           file.extension().string()));
+}
+
+void check_size(const std::filesystem::path& file, VideoFormat format, int width, int height) {
+  if (format == VideoFormat::gif) {
+    if (width < 1 || height < 1 || width > max_gif_side || height > max_gif_side) {
+      refuse(file, fmt::format("frame size {}x{} is outside 1x1..{}x{} (GIF's limits)", width,
+                               height, max_gif_side, max_gif_side));
+    }
+    return;
+  }
+  if (width < 2 || height < 2) {
+    refuse(file, fmt::format("frame size {}x{} is below 2x2, the smallest H.264 frame in "
+                             "yuv420p",
+                             width, height));
+  }
+  if (width % 2 != 0 || height % 2 != 0) {
+    refuse(file, fmt::format("frame size {}x{} is odd: MP4 (H.264 in yuv420p, the pixel format "
+                             "every player plays) stores colour per 2x2 pixel block and needs "
+                             "an even width and height (e.g. {}x{})",
+                             width, height, width + width % 2, height + height % 2));
+  }
+}
+
+// fps as a fraction: exact for whole numbers, else the closest with terms up to
+// max_rate_term (29.97 -> 30000/1001), accepted when within 1e-6 of fps.
+AVRational rate_of(const std::filesystem::path& file, double fps) {
+  if (!std::isfinite(fps) || fps <= 0.0) {
+    refuse(file, fmt::format("fps {} is not a finite number > 0", fps));
+  }
+  if (fps == std::floor(fps) && fps <= max_rate_term) return AVRational{static_cast<int>(fps), 1};
+  const AVRational r = av_d2q(fps, max_rate_term);
+  if (r.num <= 0 || r.den <= 0 || r.num > max_rate_term || r.den > max_rate_term ||
+      std::abs(av_q2d(r) - fps) > 1e-6 * fps) {
+    refuse(file, fmt::format("fps {} has no fraction with terms up to {} within 1e-6 of it", fps,
+                             max_rate_term));
+  }
+  return r;
+}
+
+// GIF: keep every n-th frame so that at most max_gif_fps frames per second remain.
+int frame_step_of(VideoFormat format, double fps) {
+  if (format != VideoFormat::gif || fps <= max_gif_fps) return 1;
+  return static_cast<int>(std::ceil(fps / max_gif_fps - 1e-9));
+}
+
+// ".NAME.tmp.PID" beside `file`, as AtomicFile names its temporary.
+std::filesystem::path temporary_for(const std::filesystem::path& file) {
+  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
+  return dir / fmt::format(".{}.tmp.{}", file.filename().string(), ::getpid());
+}
+
+void remove_quietly(const std::filesystem::path& file) {
+  std::error_code ec;
+  std::filesystem::remove(file, ec);
+}
+
+}  // namespace
+
+std::string video_settings_error(const VideoSettings& settings) {
+  if (settings.crf < min_video_crf || settings.crf > max_video_crf) {
+    return fmt::format("crf {} is outside {}..{} (libx264's scale: 0 = lossless, 51 = worst)",
+                       settings.crf, min_video_crf, max_video_crf);
+  }
+  if (std::find(x264_presets.begin(), x264_presets.end(), settings.preset) == x264_presets.end()) {
+    return fmt::format("preset \"{}\" is not one of libx264's: {}", settings.preset,
+                       fmt::join(x264_presets, ", "));
+  }
+  if (std::find(x264_tunes.begin(), x264_tunes.end(), settings.tune) == x264_tunes.end()) {
+    return fmt::format("tune \"{}\" is not one of libx264's: \"\" (none), {}", settings.tune,
+                       fmt::join(x264_tunes.begin() + 1, x264_tunes.end(), ", "));
+  }
+  if (settings.threads < 0 || settings.threads > max_video_threads) {
+    return fmt::format("threads {} is outside 0..{} (0: libx264 chooses)", settings.threads,
+                       max_video_threads);
+  }
+  return {};
+}
+
+VideoWriter::VideoWriter(std::filesystem::path file, int width, int height, double fps,
+                         VideoSettings settings, int in_flight)
+    : file_(std::move(file)), format_(format_of(file_)), width_(width), height_(height) {
+  check_size(file_, format_, width, height);
+  const AVRational rate = rate_of(file_, fps);
+  if (const std::string error = video_settings_error(settings); !error.empty()) {
+    refuse(file_, error);
+  }
+  if (in_flight < 1) refuse(file_, fmt::format("in_flight is {}, must be >= 1", in_flight));
+  frame_step_ = frame_step_of(format_, fps);
+  frame_bytes_ = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;
+  slots_.assign(static_cast<std::size_t>(in_flight), std::vector<std::uint8_t>(frame_bytes_));
+  slot_pts_.assign(slots_.size(), 0);
+  tmp_ = temporary_for(file_);
+  try {  // from here on the temporary file may exist: remove it if anything fails
+    encoder_ = std::make_unique<Encoder>(tmp_, file_,
+                                         Encoder::Options{.format = format_,
+                                                          .width = width,
+                                                          .height = height,
+                                                          .rate = rate,
+                                                          .step = frame_step_,
+                                                          .settings = std::move(settings)});
+    worker_ = std::thread([this] { work(); });
+  } catch (...) {
+    encoder_.reset();
+    remove_quietly(tmp_);
+    throw;
+  }
+}
+
+VideoWriter::~VideoWriter() {
+  if (worker_.joinable()) stop_worker();
+  if (!finished_) {
+    encoder_.reset();  // closes the temporary file, without a trailer
+    remove_quietly(tmp_);
+  }
+}
+
+void VideoWriter::stop_worker() {
+  {
+    const std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  queued_.notify_one();
+  worker_.join();
+}
+
+void VideoWriter::rethrow_or_finished() const {
+  if (error_) std::rethrow_exception(error_);
+  throw CaptureError(fmt::format("cannot write {}: the video is already finished", file_.string()));
+}
+
+void VideoWriter::submit(std::span<const std::uint8_t> rgba) {
+  if (rgba.size() != frame_bytes_) {
+    refuse(file_, fmt::format("frame {} has {} bytes, {}x{} RGBA8 is {}", submitted_, rgba.size(),
+                              width_, height_, frame_bytes_));
+  }
+  if (finished_ || !worker_.joinable()) rethrow_or_finished();
+  const std::uint64_t frame = submitted_++;
+  if (frame % static_cast<std::uint64_t>(frame_step_) != 0) return;  // a GIF's thinned frame
+  std::size_t slot = 0;
+  {
+    std::unique_lock lock(mutex_);
+    released_.wait(lock, [&] { return count_ < slots_.size() || error_; });
+    if (error_) std::rethrow_exception(error_);
+    slot = (head_ + count_) % slots_.size();
+  }
+  // The slot is outside [head_, head_ + count_): the worker does not touch it until count_
+  // grows below, and only this (the one producer) thread changes what lies past count_.
+  std::copy(rgba.begin(), rgba.end(), slots_[slot].begin());
+  slot_pts_[slot] = static_cast<std::int64_t>(frame);
+  {
+    const std::lock_guard lock(mutex_);
+    ++count_;
+  }
+  queued_.notify_one();
+}
+
+void VideoWriter::finish() {
+  if (finished_) return;
+  if (!worker_.joinable()) rethrow_or_finished();  // a failed finish() discarded the video
+  {
+    std::unique_lock lock(mutex_);
+    released_.wait(lock, [&] { return count_ == 0 || error_; });
+  }
+  stop_worker();  // from here on the encoder is this thread's
+  try {
+    if (error_) std::rethrow_exception(error_);
+    encoder_->finish();
+    encoder_.reset();
+    if (::rename(tmp_.c_str(), file_.c_str()) != 0) {
+      throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), std::strerror(errno)));
+    }
+  } catch (...) {
+    error_ = std::current_exception();  // later calls report it too
+    encoder_.reset();
+    remove_quietly(tmp_);
+    throw;
+  }
+  finished_ = true;
+}
+
+void VideoWriter::work() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    queued_.wait(lock, [&] { return count_ > 0 || stop_; });
+    if (stop_) return;  // finish() waited for count_ == 0; the destructor drops the rest
+    const std::size_t slot = head_;
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+      encoder_->encode(slots_[slot], slot_pts_[slot]);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    if (error) {  // stop: the frames queued after the failed one are never encoded
+      error_ = error;
+      released_.notify_all();
+      return;
+    }
+    head_ = (head_ + 1) % slots_.size();
+    --count_;
+    released_.notify_all();
+  }
+}
+
+}  // namespace fixstep
