@@ -454,6 +454,12 @@ case_ "--frames -1" "" render good.toml --out frames --frames -1
 case_ "--steps 2.5" "" run good.toml --steps 2.5
 case_ "a misspelt subcommand (rn)" "" rn good.toml --steps 10
 case_ "view --fps 0" "" view good.toml --fps 0
+# --- video ---
+case_ "--video x.avi" "" render good.toml --video clip.avi --frames 2
+case_ "render without --out or --video" "" render good.toml --frames 2
+case_ "--video mp4 of an odd size" "" render good.toml --video clip.mp4 --size 321x180 --frames 2
+case_ "--video in a missing directory" "" render good.toml --video nodir/clip.mp4 --frames 2
+case_ "--video not writable (/proc)" "" render good.toml --video /proc/clip.mp4 --frames 2
 # --- compare ---
 case_ "compare with one --with" "" compare good.toml --with rk4 --out frames
 case_ "compare with 7 --with" "" compare good.toml --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --out frames

@@ -6,7 +6,9 @@ namespace fixstep::cli {
 
 std::string capture_targets_error(const CaptureTargets& t) {
   if (!t.out && !t.video) return "give --out DIR (PNG frames) or --video FILE (.mp4 or .gif)";
-  if (t.video) return fmt::format("--video {}: video output is not built yet", *t.video);
+  if (t.video && !video_format_for(*t.video)) {
+    return fmt::format("--video {}: the file name must end in .mp4 (H.264) or .gif", *t.video);
+  }
   return {};
 }
 
@@ -18,10 +20,15 @@ CaptureSink::CaptureSink(const CaptureTargets& targets, int width, int height, d
     png_.emplace(*targets_.out, width, height, PngSettings{.level = targets_.png_level});
     png_manifest_.emplace(std::filesystem::path(*targets_.out) / "frames.csv", layout);
   }
+  if (targets_.video) {
+    video_.emplace(*targets_.video, width, height, fps);
+    video_manifest_.emplace(video_manifest_path(*targets_.video), layout);
+  }
 }
 
 void CaptureSink::submit(std::span<const std::uint8_t> rgba) {
   if (png_) png_->submit(rgba);
+  if (video_) video_->submit(rgba);
 }
 
 void CaptureSink::add_row(std::uint64_t frame, const Session& session) {
@@ -36,6 +43,7 @@ void CaptureSink::add_row(std::uint64_t frame, std::size_t tile, const Session& 
 
 void CaptureSink::finish() {
   if (png_) png_->finish();  // every frame on disk, or the first failure's CaptureError
+  if (video_) video_->finish();
   if (png_manifest_) png_manifest_->commit();
   if (video_manifest_) video_manifest_->commit();
 }
@@ -45,6 +53,10 @@ void CaptureSink::print_paths(std::uint64_t frames, const std::string& note) con
     fmt::print("frames={}{} fps={} size={}x{}: {} ... {}\n", frames, note, fps_, width_, height_,
                frame_path(*targets_.out, 0).string(),
                frame_path(*targets_.out, frames - 1).string());
+  }
+  if (video_) {
+    fmt::print("video={} frames={}{} fps={} size={}x{}\n", *targets_.video, frames, note, fps_,
+               width_, height_);
   }
   if (png_manifest_) fmt::print("manifest={}\n", png_manifest_->file().string());
   if (video_manifest_) fmt::print("manifest={}\n", video_manifest_->file().string());

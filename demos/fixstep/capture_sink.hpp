@@ -7,6 +7,7 @@
 #include <fixstep/capture.hpp>
 #include <fixstep/manifest.hpp>
 #include <fixstep/session.hpp>
+#include <fixstep/video.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -51,6 +52,7 @@ class CaptureSink {
   int width_, height_;
   double fps_;
   std::optional<FrameWriter> png_;
+  std::optional<VideoWriter> video_;
   std::optional<FrameManifest> png_manifest_, video_manifest_;
 };
 

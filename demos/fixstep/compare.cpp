@@ -33,12 +33,12 @@ std::vector<std::uint8_t> blank_frame(int width, int height) {
   return frame;
 }
 
-/// The summary CSV's path: --csv, else DIR/compare.csv beside the PNGs, else NAME.compare.csv
-/// beside the video NAME.EXT; none for a window without --csv.
+/// The summary CSV's path: --csv, else DIR/compare.csv beside the PNGs, else
+/// NAME.EXT.compare.csv beside the video NAME.EXT; none for a window without --csv.
 std::optional<std::filesystem::path> summary_path(const CompareOptions& o) {
   if (o.csv) return std::filesystem::path(*o.csv);
   if (o.out) return std::filesystem::path(*o.out) / "compare.csv";
-  if (o.video) return std::filesystem::path(*o.video).replace_extension(".compare.csv");
+  if (o.video) return std::filesystem::path(*o.video) += ".compare.csv";
   return std::nullopt;
 }
 

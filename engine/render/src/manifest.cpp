@@ -9,7 +9,7 @@ namespace fixstep {
 
 std::filesystem::path video_manifest_path(const std::filesystem::path& video) {
   std::filesystem::path p = video;
-  return p.replace_extension(".frames.csv");
+  return p += ".frames.csv";
 }
 
 FrameManifest::FrameManifest(const std::filesystem::path& dir)

@@ -16,7 +16,8 @@ namespace fixstep {
 /// whose frames show several sessions side by side; an extra column `tile` after `frame`).
 enum class ManifestLayout { frames, tiles };
 
-/// The manifest beside a video file: "clip.mp4" -> "clip.frames.csv" (same directory).
+/// The manifest beside a video file: "clip.mp4" -> "clip.mp4.frames.csv" (same directory; the
+/// extension kept, so clip.mp4 and clip.gif have a manifest each).
 [[nodiscard]] std::filesystem::path video_manifest_path(const std::filesystem::path& video);
 
 /// frames.csv, written as the frames are (into an AtomicFile: complete under its name after
