@@ -1,16 +1,21 @@
 // Video capture (VideoWriter): MP4 and GIF files read back with FFmpeg's own demuxers and
 // decoders, compared with the pixels the PNG path writes; bad arguments and failures.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -352,6 +357,40 @@ TEST(VideoWriter, DestroyedWithoutFinishLeavesNothing) {
     EXPECT_EQ(names_in(dir).size(), 1U) << "the temporary file, while writing";
   }
   EXPECT_TRUE(names_in(dir).empty());
+  std::filesystem::remove_all(dir);
+}
+
+/// In a child process: files may grow to 64 KiB at most (writes beyond fail with EFBIG), and
+/// a noisy 256x144 MP4 outgrows that within a few frames. Exits 0 when the worker's error
+/// reaches submit() or finish() as a CaptureError naming the file and nothing is left behind.
+[[noreturn]] void write_until_the_disk_is_full(const std::filesystem::path& dir) {
+  std::signal(SIGXFSZ, SIG_IGN);
+  const rlimit limit{64 * 1024, 64 * 1024};
+  setrlimit(RLIMIT_FSIZE, &limit);
+  std::string message;
+  try {
+    VideoWriter writer(dir / "v.mp4", 256, 144, 60.0, VideoSettings{.crf = 0}, 2);
+    std::mt19937 rng(1);
+    Image frame(256 * 144 * 4);
+    for (int f = 0; f < 200; ++f) {
+      for (auto& b : frame) b = static_cast<std::uint8_t>(rng());
+      writer.submit(frame);
+    }
+    writer.finish();
+  } catch (const CaptureError& e) {
+    message = e.what();
+  }
+  const bool named = message.find((dir / "v.mp4").string()) != std::string::npos;
+  std::fprintf(stderr, "message: %s\n", message.c_str());
+  const bool nothing_left = names_in(dir).empty();
+  std::filesystem::remove_all(dir);  // the threadsafe style made this directory in this child
+  std::exit(named && nothing_left ? 0 : 1);
+}
+
+TEST(VideoWriter, WorkerErrorReachesTheCallerAndLeavesNothing) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const auto dir = temp_dir("full");
+  EXPECT_EXIT(write_until_the_disk_is_full(dir), ::testing::ExitedWithCode(0), "File too large");
   std::filesystem::remove_all(dir);
 }
 

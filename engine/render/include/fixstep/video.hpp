@@ -34,15 +34,18 @@ inline constexpr int min_video_crf = 0;
 inline constexpr int max_video_crf = 51;
 
 /// How MP4 files are encoded (GIF has no settings: see VideoWriter for what it does).
-/// The defaults were chosen by measurement on fixstep's frames at 1280x720 (CPU as
-/// instructions per frame under valgrind, which other load does not change): capture must run
-/// beside llvmpipe, which already keeps both cores busy drawing, so the encoder must be cheap.
-///   ultrafast, crf 20:                 29 M instructions, 65 KiB/frame, 32.5 dB (1000 bodies)
-///   ultrafast + animation, crf 18:     28 M instructions, 54 KiB/frame, 32.7 dB   <- defaults
-///   superfast, crf 20:                 54 M instructions, 29 KiB/frame, 30.2 dB
-///   veryfast, crf 20:                  95 M instructions, 21 KiB/frame
-/// (PSNR of the decoded frames against the rendered RGB; default.toml: 46.3 dB, 5 KiB/frame.
-/// The 1000-body scene's PSNR is capped near 36 dB by 4:2:0 colour alone.)
+/// The defaults were chosen by measurement on 60 frames of the 1000-body scene of
+/// bench/bench_capture.cpp at 1280x720: libx264's cost as instructions per frame under
+/// valgrind (callgrind; unlike wall time, not changed by other load), size, and PSNR of the
+/// decoded frames against the rendered RGB. Capture runs beside llvmpipe, which already keeps
+/// both cores busy drawing, so the encoder must be cheap:
+///   ultrafast, crf 20                 29 M instructions, 65 KiB/frame, 32.5 dB
+///   ultrafast, tune animation, crf 18 28 M instructions, 54 KiB/frame, 32.7 dB  <- defaults
+///   ultrafast, tune animation, crf 20 26 M instructions, 45 KiB/frame, 31.9 dB
+///   superfast, crf 20                 54 M instructions, 29 KiB/frame, 31.0 dB
+///   veryfast, crf 20                  95 M instructions, 17 KiB/frame, 30.2 dB
+/// The colour conversion adds 17 M instructions (video_yuv.cpp). 4:2:0 colour alone caps this
+/// scene near 36 dB; default.toml at the defaults: 46.3 dB, 5.5 KiB/frame.
 struct VideoSettings {
   /// libx264 constant rate factor, [min_video_crf, max_video_crf]: lower is better and larger.
   int crf = 18;
@@ -73,14 +76,14 @@ inline constexpr double max_gif_fps = 50.0;
 /// Timing: frame k (0-based, in submission order) has presentation time k / fps exactly: the
 /// stream's time base is 1/fps as a rational (exact for integer fps, else av_d2q's closest
 /// fraction with terms up to 1001000: 30000.0 / 1001 -> 30000/1001, 29.97 -> 2997/100), frame
-/// k has pts k, and every
-/// frame lasts one tick. 120 frames at 60 fps are a 2.000 s video whose stream reports a frame
-/// rate of 60 (avg_frame_rate and r_frame_rate).
+/// k has pts k, and every frame lasts one tick. 120 frames at 60 fps are a 2.000 s video whose
+/// stream reports a frame rate of 60 (avg_frame_rate and r_frame_rate).
 ///
 /// MP4: each frame is converted from RGBA (sRGB, full range) to yuv420p (BT.709 matrix,
 /// limited range, tagged so in the stream) with libswscale and encoded by libx264 at
-/// `settings`; no B-frames at the default preset. The moov atom is moved to the front
-/// (+faststart) so browsers start playing before the download ends.
+/// `settings` (the defaults use B-frames: frames are stored out of order, presented in order).
+/// The moov atom is moved to the front (+faststart) so browsers start playing before the
+/// download ends.
 ///
 /// GIF: each kept frame gets its own palette of 255 colours (libavfilter's palettegen,
 /// stats_mode=single, plus one transparent entry) and each pixel its nearest palette colour
@@ -136,7 +139,8 @@ class VideoWriter {
   void submit(std::span<const std::uint8_t> rgba);
   /// Encodes the frames still queued, flushes the encoder, writes the trailer, closes the
   /// temporary file and renames it onto file(). Throws CaptureError naming file() (then
-  /// nothing is left on disk). Calling it again after success does nothing.
+  /// nothing is left on disk), also when no frame was submitted. Calling it again after
+  /// success does nothing.
   void finish();
 
   /// Frames submitted so far (for GIF, including those thinned out).
