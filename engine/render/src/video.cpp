@@ -39,7 +39,7 @@ constexpr int max_gif_side = 65535;  // GIF stores sizes in 16 bits
 constexpr int max_rate_term = 1001000;
 
 [[noreturn]] void refuse(const std::filesystem::path& file, const std::string& what) {
-  throw std::invalid_argument(fmt::format("VideoWriter: {}: {}", file.string(), what));
+  throw std::invalid_argument(fmt::format("cannot write {}: {}", file.string(), what));
 }
 
 VideoFormat format_of(const std::filesystem::path& file) {

@@ -125,6 +125,12 @@ void VideoWriter::Encoder::open_codec(const Options& options) {
 }
 
 void VideoWriter::Encoder::open_file(const std::filesystem::path& path, VideoFormat format) {
+  const std::filesystem::path dir = file_.has_parent_path() ? file_.parent_path() : ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw CaptureError(fmt::format("cannot write {}: the directory {} does not exist",
+                                   file_.string(), dir.string()));
+  }
   av::check(avio_open(&mux_->pb, path.c_str(), AVIO_FLAG_WRITE), file_, "cannot create the file");
   Dict opts;
   // faststart: after the last frame the muxer rewrites the file with the index (moov) first,
