@@ -4,8 +4,14 @@
 
 #include <fmt/format.h>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <array>
 #include <cstdlib>
+#include <cstring>
+#include <mutex>
 #include <string>
 
 #include "fixstep/render.hpp"
@@ -39,8 +45,42 @@ void check_gallium_driver() {
   }
 }
 
+// True when the environment already sets glibc's malloc trim or mmap threshold (the user's
+// choice wins over keep_freed_heap_memory()).
+bool malloc_thresholds_set_by_user() {
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && (std::strstr(tunables, "malloc.trim_threshold") ||
+                   std::strstr(tunables, "malloc.mmap_threshold"))) {
+    return true;
+  }
+  return std::getenv("MALLOC_TRIM_THRESHOLD_") || std::getenv("MALLOC_MMAP_THRESHOLD_");
+}
+
+// llvmpipe bins every frame into 64 KiB blocks it mallocs while binning and frees once the frame
+// is rasterised (lp_scene.c: all but the first block of a scene). With glibc's defaults the
+// blocks sit at the top of the heap when they are freed, so free() returns them to the kernel
+// (trimming above 128 KiB) and the next frame faults the same pages in again, zero-filled: with
+// 1000 bodies about 380 page faults per frame, a third of the drawing thread's CPU time
+// (docs/perf/capture.md). Raising the trim threshold keeps them; the mmap threshold is set too
+// (setting either fixes the other, which glibc would otherwise raise as large blocks come and
+// go), to glibc's own upper limit for it. Process-wide, once, and only when the environment does
+// not set them.
+void keep_freed_heap_memory() {
+#ifdef __GLIBC__
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (malloc_thresholds_set_by_user()) return;
+    constexpr int mmap_threshold = 32 << 20;  // bytes: glibc's maximum (HEAP_MAX_SIZE / 2)
+    constexpr int trim_threshold = 64 << 20;  // bytes of free heap top kept before trimming
+    mallopt(M_MMAP_THRESHOLD, mmap_threshold);
+    mallopt(M_TRIM_THRESHOLD, trim_threshold);
+  });
+#endif
+}
+
 Context create_context() {
   check_gallium_driver();
+  keep_freed_heap_memory();
   // Attributes as key, value pairs, one pair a line.
   // clang-format off
   const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,

@@ -53,6 +53,11 @@ class Renderer {
   /// context or make it current, if GL calls do not reach OSMesa (GL_RENDERER is null, e.g.
   /// when libGL was linked first) or if a shader fails to compile or link; whatever was
   /// acquired before the failure is released first.
+  ///
+  /// Process-wide: the first Renderer raises glibc's malloc trim and mmap thresholds (mallopt)
+  /// so that the blocks llvmpipe allocates and frees every frame stay in the heap instead of
+  /// being returned to the kernel and faulted in again; not when GLIBC_TUNABLES,
+  /// MALLOC_TRIM_THRESHOLD_ or MALLOC_MMAP_THRESHOLD_ set them (docs/perf/capture.md).
   Renderer(int width, int height);
   /// Releases the GL objects, then the context. Never throws.
   ~Renderer();
