@@ -8,6 +8,7 @@
 #include <malloc.h>
 #endif
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstring>
@@ -147,6 +148,13 @@ int viewport_margin(int width, int height) {
   return std::clamp((std::min(max_dims[0] - width, max_dims[1] - height)) / 2, 0, 256);
 }
 
+// The widest point (px) to draw as a point with a viewport `margin` px beyond the frame.
+float widest_point(int margin) {
+  GLfloat range[2] = {0.0f, 0.0f};
+  glGetFloatv(GL_POINT_SIZE_RANGE, range);  // llvmpipe: 1..255
+  return std::min(range[1], 2.0f * float(margin));
+}
+
 }  // namespace
 
 Shader compile_shader(GLenum type, const char* source) {
@@ -190,6 +198,7 @@ Pipeline::Pipeline(int width, int height, std::uint8_t* pixels, const ShaderSour
   vbo = create_buffer();
   ibo = create_buffer();
   margin = viewport_margin(width, height);
+  max_point_size = widest_point(margin);
 }
 
 Pipeline::~Pipeline() {

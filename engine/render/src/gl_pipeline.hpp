@@ -59,6 +59,9 @@ struct Pipeline {
   // --- state ---
   std::string renderer_name;  // GL_RENDERER
   int margin = 0;             // px of viewport beyond each edge of the frame (Renderer::finish)
+  // The widest point drawn as a point, px: GL's limit, and at most twice the margin (GL drops a
+  // point whose centre is clipped away, so a point must not reach the frame from beyond it).
+  float max_point_size = 0.0f;
   // Bytes allocated for vbo and ibo: they grow (glBufferData) only when a frame needs more and
   // are otherwise refilled in place (glBufferSubData), so a steady scene allocates nothing.
   std::size_t vbo_bytes = 0, ibo_bytes = 0;

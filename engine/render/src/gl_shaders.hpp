@@ -1,9 +1,11 @@
-// Building GLSL programs into owning handles: whatever a failed step created is deleted before
-// it throws. Internal to fixstep::render (not installed); tests/test_resources.cpp compiles
-// broken sources through it. Defined in render.cpp.
+// The renderer's GLSL programs: their sources (what each draws, and how its vertices are laid
+// out) and the builder that compiles them into owning handles (whatever a failed step created is
+// deleted before it throws). Internal to fixstep::render (not installed); tests/test_resources.cpp
+// compiles broken sources through the builder. The builder is defined in gl_pipeline.cpp.
 #pragma once
 
 #include "gl_objects.hpp"
+#include "gl_pipeline.hpp"
 
 namespace fixstep::gl {
 
@@ -15,5 +17,85 @@ namespace fixstep::gl {
 /// Links `vertex` and `fragment` (compiled shaders of the current context) into a program of
 /// that context. Throws RenderError "render: shader program failed to link: LOG".
 [[nodiscard]] Program link_program(const Shader& vertex, const Shader& fragment);
+
+// --- the renderer's programs (Renderer, render.cpp) -------------------------------------------
+// Every vertex is {a_pos, a_uv, a_color, a_kind} (Renderer::Vertex). The shapes program draws
+// triangles, the ring program points (one vertex per disc: a_pos its centre, a_uv = (point size
+// px, shape coordinate at the square's edge)). Varyings are `noperspective` (w is always 1, so this
+// only spares llvmpipe the perspective division) and `flat` where they are constant over a
+// primitive; each fragment shader reads v_color (interpolated: polylines fade along their length)
+// or v_flat_color (constant: the discs), and the linker drops the one it does not read.
+
+/// Shared by both programs: pixel coordinates into the viewport, which reaches u_margin px beyond
+/// every edge of the frame (Renderer::finish()).
+inline constexpr const char* vertex_shader = R"(#version 330 core
+layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
+layout(location = 1) in vec2 a_uv;     // shape coordinates (discs, lines); points: (size px, e)
+layout(location = 2) in vec4 a_color;
+layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line; see below
+uniform vec2 u_size;    // pixels, the frame
+uniform float u_margin; // pixels of viewport beyond each edge of the frame
+noperspective out vec2 v_uv;
+noperspective out vec4 v_color;
+flat out vec4 v_flat_color;
+flat out float v_kind;
+flat out float v_point_scale;
+void main() {
+  vec2 p = (a_pos + u_margin) / (u_size + 2.0 * u_margin);
+  gl_Position = vec4(p.x * 2.0 - 1.0, 1.0 - p.y * 2.0, 0.0, 1.0);
+  gl_PointSize = a_uv.x;  // points only
+  v_uv = a_uv;
+  v_color = a_color;
+  v_flat_color = a_color;
+  v_kind = a_kind;
+  v_point_scale = a_uv.y;  // points only
+}
+)";
+
+/// Solids, lines, polylines, plain discs, text. Discs and lines are anti-aliased analytically:
+/// coverage falls from 1 to 0 over one pixel at the shape's edge (distance 1 in shape
+/// coordinates), measured with fwidth.
+inline constexpr const char* shapes_fragment_shader = R"(#version 330 core
+noperspective in vec2 v_uv;
+noperspective in vec4 v_color;
+flat in float v_kind;
+out vec4 frag;
+void main() {
+  float a = v_color.a;
+  if (v_kind > 0.5) {
+    float d = v_kind < 1.5 ? length(v_uv) : abs(v_uv.y);
+    float w = max(fwidth(d), 1e-6);
+    a *= clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  }
+  frag = vec4(v_color.rgb, a);
+}
+)";
+
+/// Outlined discs (Renderer::disc with an outline) in one pass, drawn as points: a disc is one
+/// vertex and one square primitive, its shape coordinates uv run from -v_point_scale to
+/// +v_point_scale across the square (from gl_PointCoord) and are 1 at the outer edge; v_kind is
+/// the fill's radius in the same units, u_ring the outline's colour. The fill is composited over
+/// the outline in the shader, so the result is that of drawing the outline disc and then the
+/// fill disc "over" it: alpha a = af + (1 - af) ao and colour (f af + o (1 - af) ao) / a,
+/// blended over the frame with GL's straight-alpha "over".
+inline constexpr const char* ring_fragment_shader = R"(#version 330 core
+flat in vec4 v_flat_color;
+flat in float v_kind;
+flat in float v_point_scale;
+uniform vec4 u_ring;
+out vec4 frag;
+void main() {
+  float d = length((gl_PointCoord * 2.0 - 1.0) * v_point_scale);
+  float w = max(fwidth(d), 1e-6);
+  float ao = u_ring.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  float af = v_flat_color.a * clamp((v_kind - d) / w + 0.5, 0.0, 1.0);
+  float a = af + (1.0 - af) * ao;
+  frag = vec4((v_flat_color.rgb * af + u_ring.rgb * ((1.0 - af) * ao)) / max(a, 1e-6), a);
+}
+)";
+
+/// The programs, in the order of Renderer::shapes and Renderer::outlined_discs.
+inline constexpr ShaderSources shader_sources{vertex_shader,
+                                              {shapes_fragment_shader, ring_fragment_shader}};
 
 }  // namespace fixstep::gl

@@ -32,67 +32,6 @@ namespace {
 // with fewer fragments.
 constexpr float aa_pad_px = 0.75f;
 
-constexpr const char* vertex_shader = R"(#version 330 core
-layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
-layout(location = 1) in vec2 a_uv;     // shape coordinates (discs, lines)
-layout(location = 2) in vec4 a_color;
-layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line; see below
-uniform vec2 u_size;    // pixels, the frame
-uniform float u_margin; // pixels of viewport beyond each edge of the frame (see finish())
-out vec2 v_uv;
-out vec4 v_color;
-out float v_kind;
-void main() {
-  vec2 p = (a_pos + u_margin) / (u_size + 2.0 * u_margin);
-  gl_Position = vec4(p.x * 2.0 - 1.0, 1.0 - p.y * 2.0, 0.0, 1.0);
-  v_uv = a_uv;
-  v_color = a_color;
-  v_kind = a_kind;
-}
-)";
-
-// Discs and lines are anti-aliased analytically: coverage falls from 1 to 0 over one pixel at
-// the shape's edge (distance 1 in shape coordinates), measured with fwidth.
-constexpr const char* fragment_shader = R"(#version 330 core
-in vec2 v_uv;
-in vec4 v_color;
-in float v_kind;
-out vec4 frag;
-void main() {
-  float a = v_color.a;
-  if (v_kind > 0.5) {
-    float d = v_kind < 1.5 ? length(v_uv) : abs(v_uv.y);
-    float w = max(fwidth(d), 1e-6);
-    a *= clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
-  }
-  frag = vec4(v_color.rgb, a);
-}
-)";
-
-// Outlined discs (Renderer::disc with an outline) in one pass, their own program: v_uv is 1 at
-// the outer edge, v_kind is the fill's radius in the same units, u_ring the outline's colour.
-// The fill is composited over the outline in the shader, so the result is that of drawing the
-// outline disc and then the fill disc "over" it: alpha a = af + (1 - af) ao and colour
-// (f af + o (1 - af) ao) / a, blended over the frame with GL's straight-alpha "over".
-constexpr const char* ring_fragment_shader = R"(#version 330 core
-in vec2 v_uv;
-in vec4 v_color;
-in float v_kind;
-uniform vec4 u_ring;
-out vec4 frag;
-void main() {
-  float d = length(v_uv);
-  float w = max(fwidth(d), 1e-6);
-  float ao = u_ring.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
-  float af = v_color.a * clamp((v_kind - d) / w + 0.5, 0.0, 1.0);
-  float a = af + (1.0 - af) * ao;
-  frag = vec4((v_color.rgb * af + u_ring.rgb * ((1.0 - af) * ao)) / max(a, 1e-6), a);
-}
-)";
-
-// The programs, in the order of Renderer::shapes and Renderer::outlined_discs.
-constexpr gl::ShaderSources shader_sources{vertex_shader, {fragment_shader, ring_fragment_shader}};
-
 // stb_easy_font indexes its glyph table with (char - 32) and has glyphs for ' '..'~' only: any
 // other byte would read outside the table. Each UTF-8 sequence (or other byte) outside that
 // range becomes one '?'; '\n' is kept (a new line).
@@ -122,7 +61,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
                                   height, min_frame_size, max_frame_size));
   }
   pixels_.assign(static_cast<std::size_t>(width) * height * 4, 0);
-  gl_ = std::make_unique<Gl>(width, height, pixels_.data(), shader_sources);
+  gl_ = std::make_unique<Gl>(width, height, pixels_.data(), gl::shader_sources);
   gl_renderer_ = gl_->renderer_name;
 
   glBindVertexArray(gl_->vao.get());
@@ -184,10 +123,17 @@ void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width, R
     disc(cx, cy, r, c);
     return;
   }
+  const float outer = r + outline_width, pad = outer + aa_pad_px;
+  if (2.0f * pad > gl_->max_point_size) {  // too wide for a point: the two discs it stands for
+    disc(cx, cy, outer, outline_c);
+    disc(cx, cy, r, c);
+    return;
+  }
+  // One vertex, one square primitive: llvmpipe shades each 4x4 pixel block the square touches
+  // once, where the two triangles of a quad both shade the blocks along their shared diagonal.
   use(outlined_discs, outline_c);
-  const float outer = r + outline_width, pad = outer + aa_pad_px, e = pad / outer;
-  quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
-       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, r / outer);
+  indices_.push_back(static_cast<std::uint32_t>(vertices_.size()));
+  vertex(cx, cy, 2.0f * pad, pad / outer, c, r / outer);
 }
 
 void Renderer::use(int program, Rgba8 ring) {
@@ -345,6 +291,7 @@ void Renderer::finish() {
   glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
+  glEnable(GL_PROGRAM_POINT_SIZE);  // outlined discs: the vertex shader sets each point's size
   // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   for (const gl::Pipeline::LinkedProgram& p : gl_->programs) {
@@ -380,7 +327,8 @@ void Renderer::finish() {
     } else {
       glDisable(GL_SCISSOR_TEST);
     }
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
+    glDrawElements(program == outlined_discs ? GL_POINTS : GL_TRIANGLES,
+                   static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   }
   glDisable(GL_SCISSOR_TEST);

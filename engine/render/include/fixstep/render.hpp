@@ -136,8 +136,9 @@ class Renderer {
   void disc(float cx, float cy, float r, Rgba8 c);
   /// The same disc inside an outline ring `outline_width` px wide of colour `outline_c` (outer
   /// radius r + outline_width px): the picture of disc(cx, cy, r + outline_width, outline_c)
-  /// followed by disc(cx, cy, r, c), drawn in one pass over the pixels instead of two.
-  /// outline_width <= 0 draws the plain disc.
+  /// followed by disc(cx, cy, r, c), drawn in one pass over the pixels instead of two, as one
+  /// GL point (the cheapest primitive for llvmpipe); a disc wider than GL's largest point (255 px
+  /// with llvmpipe) is drawn as those two discs. outline_width <= 0 draws the plain disc.
   void disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c);
   /// Text in stb_easy_font's bitmap font (printable ASCII: any other character, e.g. a UTF-8
   /// "ω", is drawn as one '?'; '\n' starts a new line), `scale` px per font
@@ -160,8 +161,8 @@ class Renderer {
     float kind;
   };
   // Fragment programs; each batch uses one.
-  static constexpr int shapes = 0;          // solids, discs, lines, polylines, text
-  static constexpr int outlined_discs = 1;  // disc() with an outline
+  static constexpr int shapes = 0;          // triangles: solids, discs, lines, polylines, text
+  static constexpr int outlined_discs = 1;  // points: disc() with an outline
   /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
   /// outlined_discs, outline colour `ring`), starting a new batch if needed.
   void use(int program, Rgba8 ring);
@@ -181,7 +182,7 @@ class Renderer {
   std::string gl_renderer_;
   Camera camera_;
   std::vector<Vertex> vertices_;
-  std::vector<std::uint32_t> indices_;  // triangles, 3 indices into vertices_ each
+  std::vector<std::uint32_t> indices_;  // triangles (3 indices each) or points (1 each)
   // Draw batches: indices [first, next batch's first) share one clip rectangle.
   struct Batch {
     std::size_t first = 0;
