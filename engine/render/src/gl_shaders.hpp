@@ -19,26 +19,27 @@ namespace fixstep::gl {
 [[nodiscard]] Program link_program(const Shader& vertex, const Shader& fragment);
 
 // --- the renderer's programs (Renderer, render.cpp) -------------------------------------------
-// Every vertex is {a_pos, a_uv, a_color, a_kind} (Renderer::Vertex). The shapes program draws
+// Every vertex is {a_pos, a_uv, a_color, a_fill} (Renderer::Vertex). The shapes program draws
 // triangles, the ring program points (one vertex per disc: a_pos its centre, a_uv = (point size
-// px, shape coordinate at the square's edge)). Varyings are `noperspective` (w is always 1, so this
-// only spares llvmpipe the perspective division) and `flat` where they are constant over a
-// primitive; each fragment shader reads v_color (interpolated: polylines fade along their length)
-// or v_flat_color (constant: the discs), and the linker drops the one it does not read.
+// px, shape coordinate at the square's edge), a_fill the fill's radius). Varyings are
+// `noperspective` (w is always 1, so this only spares llvmpipe the perspective division) and
+// `flat` where they are constant over a primitive; each fragment shader reads v_color
+// (interpolated: polylines fade along their length) or v_flat_color (constant: the discs), and
+// the linker drops what a program does not read.
 
 /// Shared by both programs: pixel coordinates into the viewport, which reaches u_margin px beyond
 /// every edge of the frame (Renderer::finish()).
 inline constexpr const char* vertex_shader = R"(#version 330 core
 layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
-layout(location = 1) in vec2 a_uv;     // shape coordinates (discs, lines); points: (size px, e)
+layout(location = 1) in vec2 a_uv;     // shape coordinates; points: (size px, scale)
 layout(location = 2) in vec4 a_color;
-layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line; see below
+layout(location = 3) in float a_fill;  // points: the fill's radius in shape coordinates
 uniform vec2 u_size;    // pixels, the frame
 uniform float u_margin; // pixels of viewport beyond each edge of the frame
 noperspective out vec2 v_uv;
 noperspective out vec4 v_color;
 flat out vec4 v_flat_color;
-flat out float v_kind;
+flat out float v_fill;
 flat out float v_point_scale;
 void main() {
   vec2 p = (a_pos + u_margin) / (u_size + 2.0 * u_margin);
@@ -47,40 +48,37 @@ void main() {
   v_uv = a_uv;
   v_color = a_color;
   v_flat_color = a_color;
-  v_kind = a_kind;
+  v_fill = a_fill;
   v_point_scale = a_uv.y;  // points only
 }
 )";
 
-/// Solids, lines, polylines, plain discs, text. Discs and lines are anti-aliased analytically:
-/// coverage falls from 1 to 0 over one pixel at the shape's edge (distance 1 in shape
-/// coordinates), measured with fwidth.
+/// Solids, lines, polylines, plain discs, text, in one branch-free shader. Discs and lines are
+/// anti-aliased analytically: coverage falls from 1 to 0 over one pixel at the shape's edge,
+/// where the distance d = |uv| from the centre (a disc's centre, a line's middle: a line has
+/// uv = (0, v)) is 1, measured with fwidth. Solids have uv = 0 everywhere, hence full coverage
+/// (fwidth is 0 and w its floor).
 inline constexpr const char* shapes_fragment_shader = R"(#version 330 core
 noperspective in vec2 v_uv;
 noperspective in vec4 v_color;
-flat in float v_kind;
 out vec4 frag;
 void main() {
-  float a = v_color.a;
-  if (v_kind > 0.5) {
-    float d = v_kind < 1.5 ? length(v_uv) : abs(v_uv.y);
-    float w = max(fwidth(d), 1e-6);
-    a *= clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
-  }
-  frag = vec4(v_color.rgb, a);
+  float d = length(v_uv);
+  float w = max(fwidth(d), 1e-6);
+  frag = vec4(v_color.rgb, v_color.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0));
 }
 )";
 
 /// Outlined discs (Renderer::disc with an outline) in one pass, drawn as points: a disc is one
 /// vertex and one square primitive, its shape coordinates uv run from -v_point_scale to
-/// +v_point_scale across the square (from gl_PointCoord) and are 1 at the outer edge; v_kind is
+/// +v_point_scale across the square (from gl_PointCoord) and are 1 at the outer edge; v_fill is
 /// the fill's radius in the same units, u_ring the outline's colour. The fill is composited over
 /// the outline in the shader, so the result is that of drawing the outline disc and then the
 /// fill disc "over" it: alpha a = af + (1 - af) ao and colour (f af + o (1 - af) ao) / a,
 /// blended over the frame with GL's straight-alpha "over".
 inline constexpr const char* ring_fragment_shader = R"(#version 330 core
 flat in vec4 v_flat_color;
-flat in float v_kind;
+flat in float v_fill;
 flat in float v_point_scale;
 uniform vec4 u_ring;
 out vec4 frag;
@@ -88,7 +86,7 @@ void main() {
   float d = length((gl_PointCoord * 2.0 - 1.0) * v_point_scale);
   float w = max(fwidth(d), 1e-6);
   float ao = u_ring.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
-  float af = v_flat_color.a * clamp((v_kind - d) / w + 0.5, 0.0, 1.0);
+  float af = v_flat_color.a * clamp((v_fill - d) / w + 0.5, 0.0, 1.0);
   float a = af + (1.0 - af) * ao;
   frag = vec4((v_flat_color.rgb * af + u_ring.rgb * ((1.0 - af) * ao)) / max(a, 1e-6), a);
 }

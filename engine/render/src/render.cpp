@@ -75,7 +75,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
   glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride,
                         reinterpret_cast<void*>(offsetof(Vertex, r)));
   glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<void*>(offsetof(Vertex, kind)));
+                        reinterpret_cast<void*>(offsetof(Vertex, fill)));
   for (GLuint i = 0; i < 4; ++i) glEnableVertexAttribArray(i);
   font_scratch_.resize(std::size_t{64} * 1024);
 }
@@ -88,15 +88,15 @@ std::array<double, 2> Renderer::to_pixel(double x, double y) const {
           height_ * 0.5 - (y - camera_.center.y) * scale};
 }
 
-void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind) {
+void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c) {
   const auto base = static_cast<std::uint32_t>(vertices_.size());
-  for (int i = 0; i < 4; ++i) vertex(p[i][0], p[i][1], uv[i][0], uv[i][1], c, kind);
+  for (int i = 0; i < 4; ++i) vertex(p[i][0], p[i][1], uv[i][0], uv[i][1], c);
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) indices_.push_back(base + i);
 }
 
 void Renderer::rect(float x0, float y0, float x1, float y1, Rgba8 c) {
   use(shapes, {});
-  quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
+  quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c);
 }
 
 void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c) {
@@ -108,14 +108,14 @@ void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c
   const float nx = -dy / len * pad, ny = dx / len * pad;
   const float e = pad / h;
   quad({{x0 + nx, y0 + ny}, {x1 + nx, y1 + ny}, {x1 - nx, y1 - ny}, {x0 - nx, y0 - ny}},
-       {{0, e}, {0, e}, {0, -e}, {0, -e}}, c, 2.0f);
+       {{0, e}, {0, e}, {0, -e}, {0, -e}}, c);
 }
 
 void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
   use(shapes, {});
   const float pad = r + aa_pad_px, e = pad / r;
   quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
-       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, 1.0f);
+       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c);
 }
 
 void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c) {
@@ -152,7 +152,7 @@ void Renderer::triangle(float x0, float y0, float x1, float y1, float x2, float 
   use(shapes, {});
   const float p[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};
   const auto base = static_cast<std::uint32_t>(vertices_.size());
-  for (const auto& v : p) vertex(v[0], v[1], 0.0f, 0.0f, c, 0.0f);
+  for (const auto& v : p) vertex(v[0], v[1], 0.0f, 0.0f, c);
   for (std::uint32_t i = 0; i < 3; ++i) indices_.push_back(base + i);
 }
 
@@ -168,8 +168,8 @@ void Renderer::polyline(std::span<const PolylinePoint> points, float width) {
   constexpr float mitre_limit = 0.0f;
   auto pair = [&](const PolylinePoint& p, float nx, float ny, bool join) {
     const auto base = static_cast<std::uint32_t>(vertices_.size());
-    vertex(p.x + nx, p.y + ny, 0.0f, e, p.c, 2.0f);
-    vertex(p.x - nx, p.y - ny, 0.0f, -e, p.c, 2.0f);
+    vertex(p.x + nx, p.y + ny, 0.0f, e, p.c);
+    vertex(p.x - nx, p.y - ny, 0.0f, -e, p.c);
     if (join) {
       for (std::uint32_t i : {0u, 1u, 3u, 0u, 3u, 2u}) indices_.push_back(base - 2 + i);
     }
@@ -226,7 +226,7 @@ void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to
       p[k][0] = px[0];
       p[k][1] = px[1];
     }
-    quad(p, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
+    quad(p, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c);
   }
 }
 

@@ -155,10 +155,12 @@ class Renderer {
   [[nodiscard]] static float text_height(float scale) { return 9.0f * scale; }
 
  private:
+  // A vertex of either program (gl_shaders.hpp): position px, shape coordinates (a point's size
+  // px and scale for outlined discs), colour, and an outlined disc's fill radius (0 elsewhere).
   struct Vertex {
     float x, y, u, v;
     std::uint8_t r, g, b, a;
-    float kind;
+    float fill;
   };
   // Fragment programs; each batch uses one.
   static constexpr int shapes = 0;          // triangles: solids, discs, lines, polylines, text
@@ -166,9 +168,9 @@ class Renderer {
   /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
   /// outlined_discs, outline colour `ring`), starting a new batch if needed.
   void use(int program, Rgba8 ring);
-  void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind);
-  void vertex(float x, float y, float u, float v, Rgba8 c, float kind) {
-    vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, kind});
+  void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c);
+  void vertex(float x, float y, float u, float v, Rgba8 c, float fill = 0.0f) {
+    vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, fill});
   }
   template <class Transform>
   void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
