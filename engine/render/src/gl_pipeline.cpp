@@ -14,6 +14,7 @@
 #include <cstring>
 #include <mutex>
 #include <string>
+#include <utility>
 
 #include "fixstep/render.hpp"
 #include "gl_shaders.hpp"
@@ -122,6 +123,7 @@ std::array<Pipeline::LinkedProgram, 2> link_programs(const ShaderSources& source
     p.program = link_program(vertex, fragment);
     p.size = glGetUniformLocation(p.program.get(), "u_size");
     p.margin = glGetUniformLocation(p.program.get(), "u_margin");
+    p.flip = glGetUniformLocation(p.program.get(), "u_flip");
     p.ring = glGetUniformLocation(p.program.get(), "u_ring");
   }
   return programs;
@@ -201,6 +203,60 @@ Pipeline::Pipeline(int width, int height, std::uint8_t* pixels, const ShaderSour
   max_point_size = widest_point(margin);
 }
 
+namespace {
+
+Texture create_texture(int width, int height) {
+  GLuint name = 0;
+  glGenTextures(1, &name);
+  Texture texture(name);
+  glBindTexture(GL_TEXTURE_2D, name);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return texture;
+}
+
+// A framebuffer drawing into `texture`, left bound to GL_FRAMEBUFFER.
+Framebuffer create_framebuffer(const Texture& texture) {
+  GLuint name = 0;
+  glGenFramebuffers(1, &name);
+  Framebuffer framebuffer(name);
+  glBindFramebuffer(GL_FRAMEBUFFER, name);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.get(), 0);
+  if (const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+      status != GL_FRAMEBUFFER_COMPLETE) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw RenderError(fmt::format("render: backdrop framebuffer incomplete (0x{:x})", status));
+  }
+  return framebuffer;
+}
+
+}  // namespace
+
+void Pipeline::draw_into_backdrop() {
+  if (backdrop_framebuffer.get()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, backdrop_framebuffer.get());
+    return;
+  }
+  Texture texture = create_texture(width, height);
+  backdrop_framebuffer = create_framebuffer(texture);
+  backdrop = std::move(texture);
+}
+
+void Pipeline::draw_into_frame() {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Pipeline::copy_backdrop_to_frame() {
+  // Upside down in GL terms (see draw_into_backdrop), same size and format, no scissor: llvmpipe
+  // copies the rows (a copy of the resource's region), without drawing.
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, backdrop_framebuffer.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBlitFramebuffer(0, 0, width, height, 0, height, width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
 Pipeline::~Pipeline() {
   // GL deletes names in the context current on this thread, by now perhaps another renderer's.
   // Should binding ours fail (it succeeded with the same arguments before), its names are left
@@ -210,6 +266,8 @@ Pipeline::~Pipeline() {
   vao.abandon();
   vbo.abandon();
   ibo.abandon();
+  backdrop.abandon();
+  backdrop_framebuffer.abandon();
 }
 
 void Pipeline::make_current() const {

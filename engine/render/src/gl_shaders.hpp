@@ -36,6 +36,7 @@ layout(location = 2) in vec4 a_color;
 layout(location = 3) in float a_fill;  // points: the fill's radius in shape coordinates
 uniform vec2 u_size;    // pixels, the frame
 uniform float u_margin; // pixels of viewport beyond each edge of the frame
+uniform float u_flip;   // 1, or -1 upside down (drawing into the backdrop: Renderer::finish())
 noperspective out vec2 v_uv;
 noperspective out vec4 v_color;
 flat out vec4 v_flat_color;
@@ -43,7 +44,7 @@ flat out float v_fill;
 flat out float v_point_scale;
 void main() {
   vec2 p = (a_pos + u_margin) / (u_size + 2.0 * u_margin);
-  gl_Position = vec4(p.x * 2.0 - 1.0, 1.0 - p.y * 2.0, 0.0, 1.0);
+  gl_Position = vec4(p.x * 2.0 - 1.0, (1.0 - p.y * 2.0) * u_flip, 0.0, 1.0);
   gl_PointSize = a_uv.x;  // points only
   v_uv = a_uv;
   v_color = a_color;

@@ -251,6 +251,7 @@ void Renderer::begin(Rgba8 background) {
   indices_.clear();
   batches_.assign(1, Batch{});
   background_ = background;
+  backdrop_ = Backdrop::none;
 }
 
 void Renderer::set_clip(std::optional<ClipRect> clip) {
@@ -289,23 +290,50 @@ void Renderer::finish() {
   glViewport(-gl_->margin, -gl_->margin, width_ + 2 * gl_->margin, height_ + 2 * gl_->margin);
   glDisable(GL_SCISSOR_TEST);
   glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
   glEnable(GL_PROGRAM_POINT_SIZE);  // outlined discs: the vertex shader sets each point's size
   // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  for (const gl::Pipeline::LinkedProgram& p : gl_->programs) {
-    glUseProgram(p.program.get());
-    glUniform2f(p.size, float(width_), float(height_));
-    glUniform1f(p.margin, float(gl_->margin));
-  }
-  int program = -1;
+  set_flip(1.0f);
   glBindVertexArray(gl_->vao.get());
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
   upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), vertices_.size() * sizeof(Vertex));
   upload(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo_bytes, indices_.data(),
          indices_.size() * sizeof(std::uint32_t));
-  for (std::size_t b = 0; b < batches_.size(); ++b) {
+  std::size_t first_batch = 0;
+  if (backdrop_ == Backdrop::record) {  // its batches into the backdrop, then copied
+    gl_->draw_into_backdrop();
+    set_flip(-1.0f);  // upside down: see gl::Pipeline::draw_into_backdrop
+    glClear(GL_COLOR_BUFFER_BIT);
+    draw_batches(0, backdrop_batches_);
+    gl_->draw_into_frame();
+    set_flip(1.0f);
+    first_batch = backdrop_batches_;
+  }
+  if (backdrop_ == Backdrop::none) {
+    glClear(GL_COLOR_BUFFER_BIT);
+  } else {
+    gl_->copy_backdrop_to_frame();
+  }
+  draw_batches(first_batch, batches_.size());
+  glFinish();
+  if (const GLenum err = glGetError(); err != GL_NO_ERROR) {
+    throw RenderError(fmt::format("render: GL error 0x{:x} while drawing", err));
+  }
+}
+
+void Renderer::set_flip(float flip) {
+  for (const gl::Pipeline::LinkedProgram& p : gl_->programs) {
+    glUseProgram(p.program.get());
+    glUniform2f(p.size, float(width_), float(height_));
+    glUniform1f(p.margin, float(gl_->margin));
+    glUniform1f(p.flip, flip);
+  }
+}
+
+void Renderer::draw_batches(std::size_t from, std::size_t to) {
+  int program = -1;
+  for (std::size_t b = from; b < to; ++b) {
     const std::size_t first = batches_[b].first;
     const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : indices_.size();
     if (end == first) continue;
@@ -332,10 +360,6 @@ void Renderer::finish() {
                    reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   }
   glDisable(GL_SCISSOR_TEST);
-  glFinish();
-  if (const GLenum err = glGetError(); err != GL_NO_ERROR) {
-    throw RenderError(fmt::format("render: GL error 0x{:x} while drawing", err));
-  }
 }
 
 }  // namespace fixstep

@@ -194,11 +194,43 @@ int simplify_polyline(const float* xs, const float* ys, int n, float tolerance, 
 
 }  // namespace
 
+bool Renderer::reuse_backdrop(std::span<const PlaneDef> planes) {
+  auto same = [](const PlaneDef& a, const PlaneDef& b) {
+    return a.normal.x == b.normal.x && a.normal.y == b.normal.y && a.offset == b.offset;
+  };
+  if (!backdrop_recorded_ || !(backdrop_background_ == background_) ||
+      backdrop_camera_.center.x != camera_.center.x ||
+      backdrop_camera_.center.y != camera_.center.y || backdrop_camera_.width != camera_.width ||
+      !std::equal(planes.begin(), planes.end(), backdrop_planes_.begin(), backdrop_planes_.end(),
+                  same)) {
+    return false;
+  }
+  backdrop_ = Backdrop::reuse;
+  return true;
+}
+
+void Renderer::record_backdrop(std::span<const PlaneDef> planes) {
+  batches_.push_back(Batch{indices_.size(), batches_.back().clip, batches_.back().program,
+                           batches_.back().ring});  // the backdrop ends on a batch boundary
+  backdrop_batches_ = batches_.size() - 1;
+  backdrop_ = Backdrop::record;
+  backdrop_recorded_ = true;
+  backdrop_background_ = background_;
+  backdrop_camera_ = camera_;
+  backdrop_planes_.assign(planes.begin(), planes.end());
+}
+
 void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines) {
   begin(background);
   record_trails(s);
-  grid();
-  draw_planes(*this, s.planes);
+  // The grid and the planes change only with the camera (or the planes): drawn once into the
+  // backdrop, which every later frame starts from (a copy of 3.6 MB at 1280x720 instead of
+  // clearing the frame and drawing the grid's long lines again).
+  if (!reuse_backdrop(s.planes)) {
+    grid();
+    draw_planes(*this, s.planes);
+    record_backdrop(s.planes);
+  }
 
   const std::size_t n = s.x.size();
   const double scale = width_ / camera_.width;

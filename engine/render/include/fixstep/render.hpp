@@ -176,6 +176,16 @@ class Renderer {
   void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
   void grid();
   void record_trails(const RenderFrame& s);
+  /// Sets every program's uniforms for this frame, drawn upside down with flip = -1 (finish()).
+  void set_flip(float flip);
+  /// Draws batches_[from, to) (finish()).
+  void draw_batches(std::size_t from, std::size_t to);
+  /// draw(): whether the backdrop holds this frame's grid and planes (same background, camera
+  /// and planes as when it was recorded); if so, this frame starts from a copy of it.
+  bool reuse_backdrop(std::span<const PlaneDef> planes);
+  /// draw(): what was recorded since begin() (the grid and `planes`) is drawn into the backdrop
+  /// first, and the frame starts from a copy of it.
+  void record_backdrop(std::span<const PlaneDef> planes);
 
   int width_, height_;
   std::vector<std::uint8_t> pixels_;
@@ -194,6 +204,16 @@ class Renderer {
   };
   std::vector<Batch> batches_;
   Rgba8 background_{};
+  // How this frame starts (finish()): cleared to background_; from a copy of the backdrop
+  // (gl::Pipeline), drawn first from batches_[0, backdrop_batches_) (record) or as it is (reuse).
+  enum class Backdrop { none, record, reuse };
+  Backdrop backdrop_ = Backdrop::none;
+  std::size_t backdrop_batches_ = 0;
+  // What the backdrop shows, once recorded: draw()'s grid and planes for these.
+  bool backdrop_recorded_ = false;
+  Rgba8 backdrop_background_{};
+  Camera backdrop_camera_;
+  std::vector<PlaneDef> backdrop_planes_;
   std::vector<char> font_scratch_;
   std::vector<PolylinePoint> polyline_scratch_;  // one trail or spring, reused every frame
   // trails: ring buffers of trail_frames samples per body, pixel coordinates
