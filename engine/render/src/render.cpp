@@ -292,8 +292,9 @@ void Renderer::finish() {
   glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
   glEnable(GL_BLEND);
   glEnable(GL_PROGRAM_POINT_SIZE);  // outlined discs: the vertex shader sets each point's size
-  // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  // Colour blends "over" (the shaders output premultiplied colour); alpha keeps 1, so every pixel
+  // of the PNG is opaque.
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   set_flip(1.0f);
   glBindVertexArray(gl_->vao.get());
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
