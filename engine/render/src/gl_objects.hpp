@@ -1,5 +1,6 @@
 // Owning handles for what a Renderer holds in OSMesa and GL: the context and the names of its
-// shaders, programs, vertex arrays and buffers. Internal to fixstep::render (not installed).
+// shaders, programs, vertex arrays, buffers, textures and framebuffers. Internal to fixstep::render
+// (not installed).
 //
 // GL entry points are resolved against libOSMesa, which exports every GL function (checked:
 // `nm -D libOSMesa.so | grep glCreateShader`). The engine links OSMesa and never libGL: with
@@ -70,11 +71,19 @@ struct DeleteVertexArray {
 struct DeleteBuffer {
   void operator()(GLuint name) const noexcept { glDeleteBuffers(1, &name); }
 };
+struct DeleteTexture {
+  void operator()(GLuint name) const noexcept { glDeleteTextures(1, &name); }
+};
+struct DeleteFramebuffer {
+  void operator()(GLuint name) const noexcept { glDeleteFramebuffers(1, &name); }
+};
 
 using Context = Owned<OSMesaContext, DestroyContext>;
 using Shader = Owned<GLuint, DeleteShader>;
 using Program = Owned<GLuint, DeleteProgram>;
 using VertexArray = Owned<GLuint, DeleteVertexArray>;
 using Buffer = Owned<GLuint, DeleteBuffer>;
+using Texture = Owned<GLuint, DeleteTexture>;
+using Framebuffer = Owned<GLuint, DeleteFramebuffer>;
 
 }  // namespace fixstep::gl

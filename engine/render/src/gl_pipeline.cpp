@@ -4,9 +4,17 @@
 
 #include <fmt/format.h>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
+#include <algorithm>
 #include <array>
 #include <cstdlib>
+#include <cstring>
+#include <mutex>
 #include <string>
+#include <utility>
 
 #include "fixstep/render.hpp"
 #include "gl_shaders.hpp"
@@ -39,8 +47,42 @@ void check_gallium_driver() {
   }
 }
 
+// True when the environment already sets glibc's malloc trim or mmap threshold (the user's
+// choice wins over keep_freed_heap_memory()).
+bool malloc_thresholds_set_by_user() {
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && (std::strstr(tunables, "malloc.trim_threshold") ||
+                   std::strstr(tunables, "malloc.mmap_threshold"))) {
+    return true;
+  }
+  return std::getenv("MALLOC_TRIM_THRESHOLD_") || std::getenv("MALLOC_MMAP_THRESHOLD_");
+}
+
+// llvmpipe bins every frame into 64 KiB blocks it mallocs while binning and frees once the frame
+// is rasterised (lp_scene.c: all but the first block of a scene). With glibc's defaults the
+// blocks sit at the top of the heap when they are freed, so free() returns them to the kernel
+// (trimming above 128 KiB) and the next frame faults the same pages in again, zero-filled: with
+// 1000 bodies about 380 page faults per frame, a third of the drawing thread's CPU time
+// (docs/perf/capture.md). Raising the trim threshold keeps them; the mmap threshold is set too
+// (setting either fixes the other, which glibc would otherwise raise as large blocks come and
+// go), to glibc's own upper limit for it. Process-wide, once, and only when the environment does
+// not set them.
+void keep_freed_heap_memory() {
+#ifdef __GLIBC__
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (malloc_thresholds_set_by_user()) return;
+    constexpr int mmap_threshold = 32 << 20;  // bytes: glibc's maximum (HEAP_MAX_SIZE / 2)
+    constexpr int trim_threshold = 64 << 20;  // bytes of free heap top kept before trimming
+    mallopt(M_MMAP_THRESHOLD, mmap_threshold);
+    mallopt(M_TRIM_THRESHOLD, trim_threshold);
+  });
+#endif
+}
+
 Context create_context() {
   check_gallium_driver();
+  keep_freed_heap_memory();
   // Attributes as key, value pairs, one pair a line.
   // clang-format off
   const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
@@ -81,6 +123,7 @@ std::array<Pipeline::LinkedProgram, 2> link_programs(const ShaderSources& source
     p.program = link_program(vertex, fragment);
     p.size = glGetUniformLocation(p.program.get(), "u_size");
     p.margin = glGetUniformLocation(p.program.get(), "u_margin");
+    p.flip = glGetUniformLocation(p.program.get(), "u_flip");
     p.ring = glGetUniformLocation(p.program.get(), "u_ring");
   }
   return programs;
@@ -105,6 +148,13 @@ int viewport_margin(int width, int height) {
   // (llvmpipe reports 16384 x 16384, viewport bounds -32768..32767: the full 256 px even at
   // max_frame_size.)
   return std::clamp((std::min(max_dims[0] - width, max_dims[1] - height)) / 2, 0, 256);
+}
+
+// The widest point (px) to draw as a point with a viewport `margin` px beyond the frame.
+float widest_point(int margin) {
+  GLfloat range[2] = {0.0f, 0.0f};
+  glGetFloatv(GL_POINT_SIZE_RANGE, range);  // llvmpipe: 1..255
+  return std::min(range[1], 2.0f * float(margin));
 }
 
 }  // namespace
@@ -150,6 +200,61 @@ Pipeline::Pipeline(int width, int height, std::uint8_t* pixels, const ShaderSour
   vbo = create_buffer();
   ibo = create_buffer();
   margin = viewport_margin(width, height);
+  max_point_size = widest_point(margin);
+}
+
+namespace {
+
+Texture create_texture(int width, int height) {
+  GLuint name = 0;
+  glGenTextures(1, &name);
+  Texture texture(name);
+  glBindTexture(GL_TEXTURE_2D, name);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return texture;
+}
+
+// A framebuffer drawing into `texture`, left bound to GL_FRAMEBUFFER.
+Framebuffer create_framebuffer(const Texture& texture) {
+  GLuint name = 0;
+  glGenFramebuffers(1, &name);
+  Framebuffer framebuffer(name);
+  glBindFramebuffer(GL_FRAMEBUFFER, name);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.get(), 0);
+  if (const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+      status != GL_FRAMEBUFFER_COMPLETE) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw RenderError(fmt::format("render: backdrop framebuffer incomplete (0x{:x})", status));
+  }
+  return framebuffer;
+}
+
+}  // namespace
+
+void Pipeline::draw_into_backdrop() {
+  if (backdrop_framebuffer.get()) {
+    glBindFramebuffer(GL_FRAMEBUFFER, backdrop_framebuffer.get());
+    return;
+  }
+  Texture texture = create_texture(width, height);
+  backdrop_framebuffer = create_framebuffer(texture);
+  backdrop = std::move(texture);
+}
+
+void Pipeline::draw_into_frame() {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Pipeline::copy_backdrop_to_frame() {
+  // Upside down in GL terms (see draw_into_backdrop), same size and format, no scissor: llvmpipe
+  // copies the rows (a copy of the resource's region), without drawing.
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, backdrop_framebuffer.get());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBlitFramebuffer(0, 0, width, height, 0, height, width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 Pipeline::~Pipeline() {
@@ -161,6 +266,8 @@ Pipeline::~Pipeline() {
   vao.abandon();
   vbo.abandon();
   ibo.abandon();
+  backdrop.abandon();
+  backdrop_framebuffer.abandon();
 }
 
 void Pipeline::make_current() const {

@@ -28,7 +28,7 @@ struct Pipeline {
   /// A linked program and its uniform locations (-1 where the program has no such uniform).
   struct LinkedProgram {
     Program program;
-    GLint size = -1, margin = -1, ring = -1;  // u_size, u_margin, u_ring
+    GLint size = -1, margin = -1, flip = -1, ring = -1;  // u_size, u_margin, u_flip, u_ring
   };
 
   /// Creates an OpenGL 3.3 core context drawing into `pixels` (width x height RGBA8 pixels, top
@@ -49,6 +49,23 @@ struct Pipeline {
   /// Throws RenderError "render: OSMesaMakeCurrent failed".
   void make_current() const;
 
+  // The backdrop: an offscreen width x height picture that a frame starts from instead of a
+  // clear (Renderer::draw keeps its grid and planes there while the view does not change). It is
+  // drawn upside down (u_flip = -1), so that its rows lie in memory as the frame's do: OSMesa's
+  // framebuffer is a window-system one, whose rows Mesa stores top first (GL's y is flipped on
+  // the way), where a texture's row 0 is GL's bottom row. The copy then flips it back in GL
+  // terms, which for llvmpipe is no flip at all but a plain copy of the rows; drawing the
+  // backdrop the right way up would make the copy a flip, which llvmpipe draws as a textured
+  // quad (and rasterises the backdrop's edges slightly differently).
+  /// Makes the backdrop the framebuffer drawn into, creating it on first use. Throws RenderError
+  /// if GL cannot complete it.
+  void draw_into_backdrop();
+  /// Makes the frame (OSMesa's framebuffer, which finish() reads into the pixels) the one drawn
+  /// into.
+  void draw_into_frame();
+  /// Copies the backdrop over the whole frame.
+  void copy_backdrop_to_frame();
+
   int width, height;
   std::uint8_t* pixels;
   // --- resources, in acquisition order ---
@@ -59,9 +76,15 @@ struct Pipeline {
   // --- state ---
   std::string renderer_name;  // GL_RENDERER
   int margin = 0;             // px of viewport beyond each edge of the frame (Renderer::finish)
+  // The widest point drawn as a point, px: GL's limit, and at most twice the margin (GL drops a
+  // point whose centre is clipped away, so a point must not reach the frame from beyond it).
+  float max_point_size = 0.0f;
   // Bytes allocated for vbo and ibo: they grow (glBufferData) only when a frame needs more and
   // are otherwise refilled in place (glBufferSubData), so a steady scene allocates nothing.
   std::size_t vbo_bytes = 0, ibo_bytes = 0;
+  // --- the backdrop, created by the first draw_into_backdrop() ---
+  Texture backdrop;                  // RGBA8, width x height
+  Framebuffer backdrop_framebuffer;  // its colour attachment: backdrop
 };
 
 }  // namespace fixstep::gl

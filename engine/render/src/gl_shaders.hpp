@@ -1,9 +1,11 @@
-// Building GLSL programs into owning handles: whatever a failed step created is deleted before
-// it throws. Internal to fixstep::render (not installed); tests/test_resources.cpp compiles
-// broken sources through it. Defined in render.cpp.
+// The renderer's GLSL programs: their sources (what each draws, and how its vertices are laid
+// out) and the builder that compiles them into owning handles (whatever a failed step created is
+// deleted before it throws). Internal to fixstep::render (not installed); tests/test_resources.cpp
+// compiles broken sources through the builder. The builder is defined in gl_pipeline.cpp.
 #pragma once
 
 #include "gl_objects.hpp"
+#include "gl_pipeline.hpp"
 
 namespace fixstep::gl {
 
@@ -15,5 +17,87 @@ namespace fixstep::gl {
 /// Links `vertex` and `fragment` (compiled shaders of the current context) into a program of
 /// that context. Throws RenderError "render: shader program failed to link: LOG".
 [[nodiscard]] Program link_program(const Shader& vertex, const Shader& fragment);
+
+// --- the renderer's programs (Renderer, render.cpp) -------------------------------------------
+// Every vertex is {a_pos, a_uv, a_color, a_fill} (Renderer::Vertex). The shapes program draws
+// triangles, the ring program points (one vertex per disc: a_pos its centre, a_uv = (point size
+// px, shape coordinate at the square's edge), a_fill the fill's radius). Varyings are
+// `noperspective` (w is always 1, so this only spares llvmpipe the perspective division) and
+// `flat` where they are constant over a primitive; each fragment shader reads v_color
+// (interpolated: polylines fade along their length) or v_flat_color (constant: the discs), and
+// the linker drops what a program does not read.
+
+/// Shared by both programs: pixel coordinates into the viewport, which reaches u_margin px beyond
+/// every edge of the frame (Renderer::finish()).
+inline constexpr const char* vertex_shader = R"(#version 330 core
+layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
+layout(location = 1) in vec2 a_uv;     // shape coordinates; points: (size px, scale)
+layout(location = 2) in vec4 a_color;
+layout(location = 3) in float a_fill;  // points: the fill's radius in shape coordinates
+uniform vec2 u_size;    // pixels, the frame
+uniform float u_margin; // pixels of viewport beyond each edge of the frame
+uniform float u_flip;   // 1, or -1 upside down (drawing into the backdrop: Renderer::finish())
+noperspective out vec2 v_uv;
+noperspective out vec4 v_color;
+flat out vec4 v_flat_color;
+flat out float v_fill;
+flat out float v_point_scale;
+void main() {
+  vec2 p = (a_pos + u_margin) / (u_size + 2.0 * u_margin);
+  gl_Position = vec4(p.x * 2.0 - 1.0, (1.0 - p.y * 2.0) * u_flip, 0.0, 1.0);
+  gl_PointSize = a_uv.x;  // points only
+  v_uv = a_uv;
+  v_color = a_color;
+  v_flat_color = a_color;
+  v_fill = a_fill;
+  v_point_scale = a_uv.y;  // points only
+}
+)";
+
+/// Solids, lines, polylines, plain discs, text, in one branch-free shader. Discs and lines are
+/// anti-aliased analytically: coverage falls from 1 to 0 over one pixel at the shape's edge,
+/// where the distance d = |uv| from the centre (a disc's centre, a line's middle: a line has
+/// uv = (0, v)) is 1, measured with fwidth. Solids have uv = 0 everywhere, hence full coverage
+/// (fwidth is 0 and w its floor). Both programs output premultiplied colour (rgb * a, a), which
+/// Renderer::finish() blends "over" the frame with (1, 1 - a): the same picture as straight
+/// alpha blended with (a, 1 - a), and one multiplication fewer per pixel for llvmpipe.
+inline constexpr const char* shapes_fragment_shader = R"(#version 330 core
+noperspective in vec2 v_uv;
+noperspective in vec4 v_color;
+out vec4 frag;
+void main() {
+  float d = length(v_uv);
+  float w = max(fwidth(d), 1e-6);
+  float a = v_color.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  frag = vec4(v_color.rgb * a, a);
+}
+)";
+
+/// Outlined discs (Renderer::disc with an outline) in one pass, drawn as points: a disc is one
+/// vertex and one square primitive, its shape coordinates uv run from -v_point_scale to
+/// +v_point_scale across the square (from gl_PointCoord) and are 1 at the outer edge; v_fill is
+/// the fill's radius in the same units, u_ring the outline's colour. The fill is composited over
+/// the outline in the shader, so the result is that of drawing the outline disc and then the
+/// fill disc "over" it: alpha a = af + (1 - af) ao and premultiplied colour
+/// f af + o (1 - af) ao.
+inline constexpr const char* ring_fragment_shader = R"(#version 330 core
+flat in vec4 v_flat_color;
+flat in float v_fill;
+flat in float v_point_scale;
+uniform vec4 u_ring;
+out vec4 frag;
+void main() {
+  float d = length((gl_PointCoord * 2.0 - 1.0) * v_point_scale);
+  float w = max(fwidth(d), 1e-6);
+  float ao = u_ring.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  float af = v_flat_color.a * clamp((v_fill - d) / w + 0.5, 0.0, 1.0);
+  float a = af + (1.0 - af) * ao;
+  frag = vec4(v_flat_color.rgb * af + u_ring.rgb * ((1.0 - af) * ao), a);
+}
+)";
+
+/// The programs, in the order of Renderer::shapes and Renderer::outlined_discs.
+inline constexpr ShaderSources shader_sources{vertex_shader,
+                                              {shapes_fragment_shader, ring_fragment_shader}};
 
 }  // namespace fixstep::gl

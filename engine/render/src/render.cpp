@@ -32,67 +32,6 @@ namespace {
 // with fewer fragments.
 constexpr float aa_pad_px = 0.75f;
 
-constexpr const char* vertex_shader = R"(#version 330 core
-layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
-layout(location = 1) in vec2 a_uv;     // shape coordinates (discs, lines)
-layout(location = 2) in vec4 a_color;
-layout(location = 3) in float a_kind;  // 0 solid, 1 disc, 2 anti-aliased line; see below
-uniform vec2 u_size;    // pixels, the frame
-uniform float u_margin; // pixels of viewport beyond each edge of the frame (see finish())
-out vec2 v_uv;
-out vec4 v_color;
-out float v_kind;
-void main() {
-  vec2 p = (a_pos + u_margin) / (u_size + 2.0 * u_margin);
-  gl_Position = vec4(p.x * 2.0 - 1.0, 1.0 - p.y * 2.0, 0.0, 1.0);
-  v_uv = a_uv;
-  v_color = a_color;
-  v_kind = a_kind;
-}
-)";
-
-// Discs and lines are anti-aliased analytically: coverage falls from 1 to 0 over one pixel at
-// the shape's edge (distance 1 in shape coordinates), measured with fwidth.
-constexpr const char* fragment_shader = R"(#version 330 core
-in vec2 v_uv;
-in vec4 v_color;
-in float v_kind;
-out vec4 frag;
-void main() {
-  float a = v_color.a;
-  if (v_kind > 0.5) {
-    float d = v_kind < 1.5 ? length(v_uv) : abs(v_uv.y);
-    float w = max(fwidth(d), 1e-6);
-    a *= clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
-  }
-  frag = vec4(v_color.rgb, a);
-}
-)";
-
-// Outlined discs (Renderer::disc with an outline) in one pass, their own program: v_uv is 1 at
-// the outer edge, v_kind is the fill's radius in the same units, u_ring the outline's colour.
-// The fill is composited over the outline in the shader, so the result is that of drawing the
-// outline disc and then the fill disc "over" it: alpha a = af + (1 - af) ao and colour
-// (f af + o (1 - af) ao) / a, blended over the frame with GL's straight-alpha "over".
-constexpr const char* ring_fragment_shader = R"(#version 330 core
-in vec2 v_uv;
-in vec4 v_color;
-in float v_kind;
-uniform vec4 u_ring;
-out vec4 frag;
-void main() {
-  float d = length(v_uv);
-  float w = max(fwidth(d), 1e-6);
-  float ao = u_ring.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
-  float af = v_color.a * clamp((v_kind - d) / w + 0.5, 0.0, 1.0);
-  float a = af + (1.0 - af) * ao;
-  frag = vec4((v_color.rgb * af + u_ring.rgb * ((1.0 - af) * ao)) / max(a, 1e-6), a);
-}
-)";
-
-// The programs, in the order of Renderer::shapes and Renderer::outlined_discs.
-constexpr gl::ShaderSources shader_sources{vertex_shader, {fragment_shader, ring_fragment_shader}};
-
 // stb_easy_font indexes its glyph table with (char - 32) and has glyphs for ' '..'~' only: any
 // other byte would read outside the table. Each UTF-8 sequence (or other byte) outside that
 // range becomes one '?'; '\n' is kept (a new line).
@@ -122,7 +61,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
                                   height, min_frame_size, max_frame_size));
   }
   pixels_.assign(static_cast<std::size_t>(width) * height * 4, 0);
-  gl_ = std::make_unique<Gl>(width, height, pixels_.data(), shader_sources);
+  gl_ = std::make_unique<Gl>(width, height, pixels_.data(), gl::shader_sources);
   gl_renderer_ = gl_->renderer_name;
 
   glBindVertexArray(gl_->vao.get());
@@ -136,7 +75,7 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
   glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride,
                         reinterpret_cast<void*>(offsetof(Vertex, r)));
   glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<void*>(offsetof(Vertex, kind)));
+                        reinterpret_cast<void*>(offsetof(Vertex, fill)));
   for (GLuint i = 0; i < 4; ++i) glEnableVertexAttribArray(i);
   font_scratch_.resize(std::size_t{64} * 1024);
 }
@@ -149,15 +88,15 @@ std::array<double, 2> Renderer::to_pixel(double x, double y) const {
           height_ * 0.5 - (y - camera_.center.y) * scale};
 }
 
-void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind) {
+void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c) {
   const auto base = static_cast<std::uint32_t>(vertices_.size());
-  for (int i = 0; i < 4; ++i) vertex(p[i][0], p[i][1], uv[i][0], uv[i][1], c, kind);
+  for (int i = 0; i < 4; ++i) vertex(p[i][0], p[i][1], uv[i][0], uv[i][1], c);
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) indices_.push_back(base + i);
 }
 
 void Renderer::rect(float x0, float y0, float x1, float y1, Rgba8 c) {
   use(shapes, {});
-  quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
+  quad({{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c);
 }
 
 void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c) {
@@ -169,14 +108,14 @@ void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c
   const float nx = -dy / len * pad, ny = dx / len * pad;
   const float e = pad / h;
   quad({{x0 + nx, y0 + ny}, {x1 + nx, y1 + ny}, {x1 - nx, y1 - ny}, {x0 - nx, y0 - ny}},
-       {{0, e}, {0, e}, {0, -e}, {0, -e}}, c, 2.0f);
+       {{0, e}, {0, e}, {0, -e}, {0, -e}}, c);
 }
 
 void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
   use(shapes, {});
   const float pad = r + aa_pad_px, e = pad / r;
   quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
-       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, 1.0f);
+       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c);
 }
 
 void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c) {
@@ -184,10 +123,17 @@ void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width, R
     disc(cx, cy, r, c);
     return;
   }
+  const float outer = r + outline_width, pad = outer + aa_pad_px;
+  if (2.0f * pad > gl_->max_point_size) {  // too wide for a point: the two discs it stands for
+    disc(cx, cy, outer, outline_c);
+    disc(cx, cy, r, c);
+    return;
+  }
+  // One vertex, one square primitive: llvmpipe shades each 4x4 pixel block the square touches
+  // once, where the two triangles of a quad both shade the blocks along their shared diagonal.
   use(outlined_discs, outline_c);
-  const float outer = r + outline_width, pad = outer + aa_pad_px, e = pad / outer;
-  quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
-       {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, r / outer);
+  indices_.push_back(static_cast<std::uint32_t>(vertices_.size()));
+  vertex(cx, cy, 2.0f * pad, pad / outer, c, r / outer);
 }
 
 void Renderer::use(int program, Rgba8 ring) {
@@ -206,7 +152,7 @@ void Renderer::triangle(float x0, float y0, float x1, float y1, float x2, float 
   use(shapes, {});
   const float p[3][2] = {{x0, y0}, {x1, y1}, {x2, y2}};
   const auto base = static_cast<std::uint32_t>(vertices_.size());
-  for (const auto& v : p) vertex(v[0], v[1], 0.0f, 0.0f, c, 0.0f);
+  for (const auto& v : p) vertex(v[0], v[1], 0.0f, 0.0f, c);
   for (std::uint32_t i = 0; i < 3; ++i) indices_.push_back(base + i);
 }
 
@@ -222,8 +168,8 @@ void Renderer::polyline(std::span<const PolylinePoint> points, float width) {
   constexpr float mitre_limit = 0.0f;
   auto pair = [&](const PolylinePoint& p, float nx, float ny, bool join) {
     const auto base = static_cast<std::uint32_t>(vertices_.size());
-    vertex(p.x + nx, p.y + ny, 0.0f, e, p.c, 2.0f);
-    vertex(p.x - nx, p.y - ny, 0.0f, -e, p.c, 2.0f);
+    vertex(p.x + nx, p.y + ny, 0.0f, e, p.c);
+    vertex(p.x - nx, p.y - ny, 0.0f, -e, p.c);
     if (join) {
       for (std::uint32_t i : {0u, 1u, 3u, 0u, 3u, 2u}) indices_.push_back(base - 2 + i);
     }
@@ -280,7 +226,7 @@ void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to
       p[k][0] = px[0];
       p[k][1] = px[1];
     }
-    quad(p, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c, 0.0f);
+    quad(p, {{0, 0}, {0, 0}, {0, 0}, {0, 0}}, c);
   }
 }
 
@@ -305,6 +251,7 @@ void Renderer::begin(Rgba8 background) {
   indices_.clear();
   batches_.assign(1, Batch{});
   background_ = background;
+  backdrop_ = Backdrop::none;
 }
 
 void Renderer::set_clip(std::optional<ClipRect> clip) {
@@ -343,22 +290,51 @@ void Renderer::finish() {
   glViewport(-gl_->margin, -gl_->margin, width_ + 2 * gl_->margin, height_ + 2 * gl_->margin);
   glDisable(GL_SCISSOR_TEST);
   glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
-  // Colour blends "over"; alpha keeps 1 so every pixel of the PNG is opaque.
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  for (const gl::Pipeline::LinkedProgram& p : gl_->programs) {
-    glUseProgram(p.program.get());
-    glUniform2f(p.size, float(width_), float(height_));
-    glUniform1f(p.margin, float(gl_->margin));
-  }
-  int program = -1;
+  glEnable(GL_PROGRAM_POINT_SIZE);  // outlined discs: the vertex shader sets each point's size
+  // Colour blends "over" (the shaders output premultiplied colour); alpha keeps 1, so every pixel
+  // of the PNG is opaque.
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  set_flip(1.0f);
   glBindVertexArray(gl_->vao.get());
   glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
   upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), vertices_.size() * sizeof(Vertex));
   upload(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo_bytes, indices_.data(),
          indices_.size() * sizeof(std::uint32_t));
-  for (std::size_t b = 0; b < batches_.size(); ++b) {
+  std::size_t first_batch = 0;
+  if (backdrop_ == Backdrop::record) {  // its batches into the backdrop, then copied
+    gl_->draw_into_backdrop();
+    set_flip(-1.0f);  // upside down: see gl::Pipeline::draw_into_backdrop
+    glClear(GL_COLOR_BUFFER_BIT);
+    draw_batches(0, backdrop_batches_);
+    gl_->draw_into_frame();
+    set_flip(1.0f);
+    first_batch = backdrop_batches_;
+  }
+  if (backdrop_ == Backdrop::none) {
+    glClear(GL_COLOR_BUFFER_BIT);
+  } else {
+    gl_->copy_backdrop_to_frame();
+  }
+  draw_batches(first_batch, batches_.size());
+  glFinish();
+  if (const GLenum err = glGetError(); err != GL_NO_ERROR) {
+    throw RenderError(fmt::format("render: GL error 0x{:x} while drawing", err));
+  }
+}
+
+void Renderer::set_flip(float flip) {
+  for (const gl::Pipeline::LinkedProgram& p : gl_->programs) {
+    glUseProgram(p.program.get());
+    glUniform2f(p.size, float(width_), float(height_));
+    glUniform1f(p.margin, float(gl_->margin));
+    glUniform1f(p.flip, flip);
+  }
+}
+
+void Renderer::draw_batches(std::size_t from, std::size_t to) {
+  int program = -1;
+  for (std::size_t b = from; b < to; ++b) {
     const std::size_t first = batches_[b].first;
     const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : indices_.size();
     if (end == first) continue;
@@ -380,14 +356,11 @@ void Renderer::finish() {
     } else {
       glDisable(GL_SCISSOR_TEST);
     }
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
+    glDrawElements(program == outlined_discs ? GL_POINTS : GL_TRIANGLES,
+                   static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   }
   glDisable(GL_SCISSOR_TEST);
-  glFinish();
-  if (const GLenum err = glGetError(); err != GL_NO_ERROR) {
-    throw RenderError(fmt::format("render: GL error 0x{:x} while drawing", err));
-  }
 }
 
 }  // namespace fixstep

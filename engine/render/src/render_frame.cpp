@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -128,46 +130,107 @@ namespace {
 // Trail samples may be left up to this far from the drawn polyline, px (see draw()).
 constexpr float trail_tolerance_px = 0.2f;
 
-// Drops points of `points` (in place, order kept) greedily: from each kept point, the next one
-// kept is the farthest along that leaves every point in between within `tolerance` px of the
-// segment joining the two, and at most max_run points on. The first and last points are
-// always kept. O(n * max_run) distance computations.
-void simplify_polyline(std::vector<Renderer::PolylinePoint>& points, float tolerance) {
-  const std::size_t n = points.size();
-  if (n < 3) return;
+// Four floats in one SSE register (GCC and clang vector extensions): each operation below acts on
+// the four lanes exactly as the scalar one would on each.
+using float4 = float __attribute__((vector_size(16)));
+
+// Is any of the four points (xs[0..3], ys[0..3]) farther than sqrt(tol2) px from the segment from
+// (ax, ay) to (ax + ux, ay + uy)? inv_len2 is 1 / (ux² + uy²), or 0 for a zero-length segment.
+bool any_beyond(const float* xs, const float* ys, float ax, float ay, float ux, float uy,
+                float inv_len2, float tol2) {
+  float4 x, y;
+  std::memcpy(&x, xs, sizeof x);
+  std::memcpy(&y, ys, sizeof y);
+  const float4 wx = x - ax, wy = y - ay;
+  float4 t = (wx * ux + wy * uy) * inv_len2;
+  t = t < 0.0f ? 0.0f : t;  // std::clamp(t, 0, 1), lane by lane
+  t = 1.0f < t ? 1.0f : t;
+  const float4 dx = wx - t * ux, dy = wy - t * uy;
+  const auto beyond = dx * dx + dy * dy > tol2;  // lanes of all ones where true
+  return (beyond[0] | beyond[1] | beyond[2] | beyond[3]) != 0;
+}
+
+// Chooses which of the n points (xs[i], ys[i]) a polyline keeps, greedily: from each kept point,
+// the next one kept is the farthest along that leaves every point in between within `tolerance`
+// px of the segment joining the two, and at most max_run points on. The first and last points
+// are always kept. Writes the kept indices, in order, to `kept` (room for n) and returns their
+// number. O(n * max_run) distance computations, on coordinate arrays (the trails' own layout),
+// four at a time.
+int simplify_polyline(const float* xs, const float* ys, int n, float tolerance, int* kept) {
+  if (n < 3) {
+    for (int i = 0; i < n; ++i) kept[i] = i;
+    return n;
+  }
   const float tol2 = tolerance * tolerance;
-  constexpr std::size_t max_run = 12;
-  // Is every point strictly between points[from] and points[to] within tolerance of the segment
-  // joining them?
-  auto fits = [&](std::size_t from, std::size_t to) {
-    const Renderer::PolylinePoint &a = points[from], &b = points[to];
-    const float ux = b.x - a.x, uy = b.y - a.y, len2 = ux * ux + uy * uy;
+  constexpr int max_run = 12;
+  // Is every point strictly between `from` and `to` within tolerance of the segment joining
+  // them?
+  auto fits = [&](int from, int to) {
+    const float ax = xs[from], ay = ys[from];
+    const float ux = xs[to] - ax, uy = ys[to] - ay, len2 = ux * ux + uy * uy;
     const float inv_len2 = len2 > 0.0f ? 1.0f / len2 : 0.0f;
-    for (std::size_t i = from + 1; i < to; ++i) {
-      const float wx = points[i].x - a.x, wy = points[i].y - a.y;
+    int i = from + 1;
+    for (; i + 4 <= to; i += 4) {
+      if (any_beyond(xs + i, ys + i, ax, ay, ux, uy, inv_len2, tol2)) return false;
+    }
+    for (; i < to; ++i) {
+      const float wx = xs[i] - ax, wy = ys[i] - ay;
       const float t = std::clamp((wx * ux + wy * uy) * inv_len2, 0.0f, 1.0f);
       const float dx = wx - t * ux, dy = wy - t * uy;
       if (dx * dx + dy * dy > tol2) return false;
     }
     return true;
   };
-  std::size_t kept = 1, anchor = 0;  // points[0] stays where it is
+  int count = 0, anchor = 0;
+  kept[count++] = 0;
   while (anchor + 1 < n) {
-    std::size_t end = anchor + 1;
+    int end = anchor + 1;
     while (end + 1 < n && end - anchor < max_run && fits(anchor, end + 1)) ++end;
-    points[kept++] = points[end];
+    kept[count++] = end;
     anchor = end;
   }
-  points.resize(kept);
+  return count;
 }
 
 }  // namespace
 
+bool Renderer::reuse_backdrop(std::span<const PlaneDef> planes) {
+  auto same = [](const PlaneDef& a, const PlaneDef& b) {
+    return a.normal.x == b.normal.x && a.normal.y == b.normal.y && a.offset == b.offset;
+  };
+  if (!backdrop_recorded_ || !(backdrop_background_ == background_) ||
+      backdrop_camera_.center.x != camera_.center.x ||
+      backdrop_camera_.center.y != camera_.center.y || backdrop_camera_.width != camera_.width ||
+      !std::equal(planes.begin(), planes.end(), backdrop_planes_.begin(), backdrop_planes_.end(),
+                  same)) {
+    return false;
+  }
+  backdrop_ = Backdrop::reuse;
+  return true;
+}
+
+void Renderer::record_backdrop(std::span<const PlaneDef> planes) {
+  batches_.push_back(Batch{indices_.size(), batches_.back().clip, batches_.back().program,
+                           batches_.back().ring});  // the backdrop ends on a batch boundary
+  backdrop_batches_ = batches_.size() - 1;
+  backdrop_ = Backdrop::record;
+  backdrop_recorded_ = true;
+  backdrop_background_ = background_;
+  backdrop_camera_ = camera_;
+  backdrop_planes_.assign(planes.begin(), planes.end());
+}
+
 void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines) {
   begin(background);
   record_trails(s);
-  grid();
-  draw_planes(*this, s.planes);
+  // The grid and the planes change only with the camera (or the planes): drawn once into the
+  // backdrop, which every later frame starts from (a copy of 3.6 MB at 1280x720 instead of
+  // clearing the frame and drawing the grid's long lines again).
+  if (!reuse_backdrop(s.planes)) {
+    grid();
+    draw_planes(*this, s.planes);
+    record_backdrop(s.planes);
+  }
 
   const std::size_t n = s.x.size();
   const double scale = width_ / camera_.width;
@@ -185,18 +248,29 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
   // A scene with many links (a cloth, a soft body) draws no trails: hundreds of them would
   // hide the structure the links draw.
   const bool few_links = s.links.size() <= max_zigzag_links;
+  // The ring buffers hold trail_count_ samples ending before trail_head_: oldest first, they are
+  // the `older` ones from `oldest` to the end of the buffer, then the rest from its start.
+  const int oldest = (trail_head_ - trail_count_ + trail_frames) % trail_frames;
+  const int older = std::min(trail_count_, trail_frames - oldest);
   for (std::size_t j = 0; j < n && trail_count_ > 1 && few_links; ++j) {
-    const Rgba8 c = color_of(j);
+    std::array<float, trail_frames> xs, ys;  // oldest first
     const float* tx = &trail_x_[j * trail_frames];
     const float* ty = &trail_y_[j * trail_frames];
+    std::copy_n(tx + oldest, older, xs.begin());
+    std::copy_n(tx, trail_count_ - older, xs.begin() + older);
+    std::copy_n(ty + oldest, older, ys.begin());
+    std::copy_n(ty, trail_count_ - older, ys.begin() + older);
+    std::array<int, trail_frames> kept;
+    const int count =
+        simplify_polyline(xs.data(), ys.data(), trail_count_, trail_tolerance_px, kept.data());
+    const Rgba8 c = color_of(j);
     polyline_scratch_.clear();
-    for (int k = 0; k < trail_count_; ++k) {  // oldest first
-      const int at = (trail_head_ - trail_count_ + k + trail_frames) % trail_frames;
+    for (int i = 0; i < count; ++i) {
+      const int k = kept[i];
       Rgba8 ck = c;
       ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * trail_count_));
-      polyline_scratch_.push_back({tx[at], ty[at], ck});
+      polyline_scratch_.push_back({xs[k], ys[k], ck});
     }
-    simplify_polyline(polyline_scratch_, trail_tolerance_px);
     polyline(polyline_scratch_, 2.0f);
   }
 

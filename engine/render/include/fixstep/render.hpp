@@ -53,6 +53,11 @@ class Renderer {
   /// context or make it current, if GL calls do not reach OSMesa (GL_RENDERER is null, e.g.
   /// when libGL was linked first) or if a shader fails to compile or link; whatever was
   /// acquired before the failure is released first.
+  ///
+  /// Process-wide: the first Renderer raises glibc's malloc trim and mmap thresholds (mallopt)
+  /// so that the blocks llvmpipe allocates and frees every frame stay in the heap instead of
+  /// being returned to the kernel and faulted in again; not when GLIBC_TUNABLES,
+  /// MALLOC_TRIM_THRESHOLD_ or MALLOC_MMAP_THRESHOLD_ set them (docs/perf/capture.md).
   Renderer(int width, int height);
   /// Releases the GL objects, then the context. Never throws.
   ~Renderer();
@@ -131,8 +136,9 @@ class Renderer {
   void disc(float cx, float cy, float r, Rgba8 c);
   /// The same disc inside an outline ring `outline_width` px wide of colour `outline_c` (outer
   /// radius r + outline_width px): the picture of disc(cx, cy, r + outline_width, outline_c)
-  /// followed by disc(cx, cy, r, c), drawn in one pass over the pixels instead of two.
-  /// outline_width <= 0 draws the plain disc.
+  /// followed by disc(cx, cy, r, c), drawn in one pass over the pixels instead of two, as one
+  /// GL point (the cheapest primitive for llvmpipe); a disc wider than GL's largest point (255 px
+  /// with llvmpipe) is drawn as those two discs. outline_width <= 0 draws the plain disc.
   void disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c);
   /// Text in stb_easy_font's bitmap font (printable ASCII: any other character, e.g. a UTF-8
   /// "ω", is drawn as one '?'; '\n' starts a new line), `scale` px per font
@@ -149,25 +155,37 @@ class Renderer {
   [[nodiscard]] static float text_height(float scale) { return 9.0f * scale; }
 
  private:
+  // A vertex of either program (gl_shaders.hpp): position px, shape coordinates (a point's size
+  // px and scale for outlined discs), colour, and an outlined disc's fill radius (0 elsewhere).
   struct Vertex {
     float x, y, u, v;
     std::uint8_t r, g, b, a;
-    float kind;
+    float fill;
   };
   // Fragment programs; each batch uses one.
-  static constexpr int shapes = 0;          // solids, discs, lines, polylines, text
-  static constexpr int outlined_discs = 1;  // disc() with an outline
+  static constexpr int shapes = 0;          // triangles: solids, discs, lines, polylines, text
+  static constexpr int outlined_discs = 1;  // points: disc() with an outline
   /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
   /// outlined_discs, outline colour `ring`), starting a new batch if needed.
   void use(int program, Rgba8 ring);
-  void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float kind);
-  void vertex(float x, float y, float u, float v, Rgba8 c, float kind) {
-    vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, kind});
+  void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c);
+  void vertex(float x, float y, float u, float v, Rgba8 c, float fill = 0.0f) {
+    vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, fill});
   }
   template <class Transform>
   void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
   void grid();
   void record_trails(const RenderFrame& s);
+  /// Sets every program's uniforms for this frame, drawn upside down with flip = -1 (finish()).
+  void set_flip(float flip);
+  /// Draws batches_[from, to) (finish()).
+  void draw_batches(std::size_t from, std::size_t to);
+  /// draw(): whether the backdrop holds this frame's grid and planes (same background, camera
+  /// and planes as when it was recorded); if so, this frame starts from a copy of it.
+  bool reuse_backdrop(std::span<const PlaneDef> planes);
+  /// draw(): what was recorded since begin() (the grid and `planes`) is drawn into the backdrop
+  /// first, and the frame starts from a copy of it.
+  void record_backdrop(std::span<const PlaneDef> planes);
 
   int width_, height_;
   std::vector<std::uint8_t> pixels_;
@@ -176,7 +194,7 @@ class Renderer {
   std::string gl_renderer_;
   Camera camera_;
   std::vector<Vertex> vertices_;
-  std::vector<std::uint32_t> indices_;  // triangles, 3 indices into vertices_ each
+  std::vector<std::uint32_t> indices_;  // triangles (3 indices each) or points (1 each)
   // Draw batches: indices [first, next batch's first) share one clip rectangle.
   struct Batch {
     std::size_t first = 0;
@@ -186,6 +204,16 @@ class Renderer {
   };
   std::vector<Batch> batches_;
   Rgba8 background_{};
+  // How this frame starts (finish()): cleared to background_; from a copy of the backdrop
+  // (gl::Pipeline), drawn first from batches_[0, backdrop_batches_) (record) or as it is (reuse).
+  enum class Backdrop { none, record, reuse };
+  Backdrop backdrop_ = Backdrop::none;
+  std::size_t backdrop_batches_ = 0;
+  // What the backdrop shows, once recorded: draw()'s grid and planes for these.
+  bool backdrop_recorded_ = false;
+  Rgba8 backdrop_background_{};
+  Camera backdrop_camera_;
+  std::vector<PlaneDef> backdrop_planes_;
   std::vector<char> font_scratch_;
   std::vector<PolylinePoint> polyline_scratch_;  // one trail or spring, reused every frame
   // trails: ring buffers of trail_frames samples per body, pixel coordinates
