@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 
 #include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_objects.hpp
 #include "gl_shaders.hpp"
@@ -154,6 +155,60 @@ void Renderer::triangle(float x0, float y0, float x1, float y1, float x2, float 
   const auto base = static_cast<std::uint32_t>(vertices_.size());
   for (const auto& v : p) vertex(v[0], v[1], 0.0f, 0.0f, c);
   for (std::uint32_t i = 0; i < 3; ++i) indices_.push_back(base + i);
+}
+
+float Renderer::hidden_under_disc(float outer, float width) {
+  // The outlined disc (outline opaque) covers every pixel within outer - 1 px of its centre with
+  // coverage 1 (the shader's coverage is 1 up to half a fwidth, at most 1 px, inside the edge), so
+  // its colour replaces whatever lies below there. A line ending at the centre can stop `cut` px
+  // short, with a flat end, when its quad's part beyond, reaching `pad` px to either side, lies
+  // within that radius: cut^2 + pad^2 <= (outer - 1)^2.
+  const float opaque = outer - 1.0f, pad = 0.5f * width + aa_pad_px;
+  return opaque > pad ? std::sqrt(opaque * opaque - pad * pad) : 0.0f;
+}
+
+float Renderer::hidden_under_square(float half, float width, float ux, float uy) {
+  // The square (solid, opaque) replaces every pixel whose centre lies strictly inside it. The
+  // quad of a line leaving its centre in direction (ux, uy) (a unit vector) reaches s |ux| +
+  // pad |uy| along x and s |uy| + pad |ux| along y over its first s px; both must stay inside.
+  const float pad = 0.5f * width + aa_pad_px, inside = half - 0.01f;
+  const float ax = std::abs(ux), ay = std::abs(uy);
+  float cut = std::numeric_limits<float>::max();
+  if (ax > 0.0f) cut = std::min(cut, (inside - pad * ay) / ax);
+  if (ay > 0.0f) cut = std::min(cut, (inside - pad * ax) / ay);
+  return std::max(cut, 0.0f);
+}
+
+namespace {
+
+// Moves `moved` towards `fixed` by `cut` px along the segment joining them, its colour
+// interpolated (and rounded to 8 bits); nothing when the segment is not longer than cut + 0.01 px.
+void pull_towards(const Renderer::PolylinePoint& fixed, Renderer::PolylinePoint& moved, float cut) {
+  const float dx = moved.x - fixed.x, dy = moved.y - fixed.y;
+  const float len = std::sqrt(dx * dx + dy * dy);
+  if (!(cut > 0.0f) || !(len > cut + 0.01f)) return;
+  const float f = (len - cut) / len;  // of the way from `fixed` to `moved`
+  auto lerp = [f](std::uint8_t u, std::uint8_t v) {
+    return static_cast<std::uint8_t>(std::lround(float(u) + (float(v) - float(u)) * f));
+  };
+  const Rgba8 a = fixed.c, b = moved.c;
+  moved = {fixed.x + dx * f, fixed.y + dy * f,
+           Rgba8{lerp(a.r, b.r), lerp(a.g, b.g), lerp(a.b, b.b), lerp(a.a, b.a)}};
+}
+
+}  // namespace
+
+void Renderer::shorten(std::span<PolylinePoint> points, float cut_start, float cut_end) {
+  const std::size_t n = points.size();
+  if (n < 2) return;
+  if (n == 2 && cut_start + cut_end > 0.0f) {  // one segment: both ends move along it
+    const PolylinePoint a = points[0], b = points[1];
+    pull_towards(b, points[0], cut_start);
+    pull_towards(a, points[1], cut_end);
+    return;
+  }
+  pull_towards(points[1], points[0], cut_start);
+  pull_towards(points[n - 2], points[n - 1], cut_end);
 }
 
 void Renderer::polyline(std::span<const PolylinePoint> points, float width) {

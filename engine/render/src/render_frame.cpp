@@ -33,6 +33,8 @@ constexpr Rgba8 plane_solid{120, 132, 160, 60};
 constexpr Rgba8 plane_line{150, 162, 190, 255};
 constexpr float default_radius_px = 9.0f;
 constexpr float min_radius_px = 3.0f;
+constexpr float outline_px = 1.5f;      // bodies' outline, beyond their radius
+constexpr float anchor_half_px = 5.0f;  // anchors are squares of twice this side
 
 /// Draws each plane n·x >= offset as a line across the view, its solid side n·x < offset
 /// lightly shaded: the view rectangle (world coordinates) is cut by the plane (one step of
@@ -237,6 +239,16 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
   auto color_of = [&](std::size_t j) {
     return s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
   };
+  // Bodies are outlined discs of the body's radius (at least min_radius_px), drawn last: what
+  // the other shapes draw right below a disc's centre or an anchor is hidden (Renderer::
+  // hidden_under_disc), and they stop short there.
+  auto radius_px = [&](std::size_t j) {
+    return s.radius[j] > 0.0f ? std::max(float(s.radius[j] * scale), min_radius_px)
+                              : default_radius_px;
+  };
+  auto under_body = [&](std::size_t j, float width) {
+    return hidden_under_disc(radius_px(j) + outline_px, width);
+  };
 
   // Trails: one polyline per body through its samples, fading from transparent (oldest) to
   // 60 % opaque (newest): sample k of count (0 = oldest) has alpha 150 (k + 0.5) / count, so
@@ -271,14 +283,19 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
       ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * trail_count_));
       polyline_scratch_.push_back({xs[k], ys[k], ck});
     }
+    shorten(polyline_scratch_, 0.0f, under_body(j, 2.0f));  // its newest end is the body's centre
     polyline(polyline_scratch_, 2.0f);
   }
 
-  // Springs: a zigzag of 12 coils from (ax, ay) to (bx, by), with straight leads.
-  auto zigzag = [&](float ax, float ay, float bx, float by) {
+  // Springs: a zigzag of 12 coils from (ax, ay) to (bx, by), with straight leads; the first
+  // cut_start px and the last cut_end px are hidden by what is drawn over them later.
+  auto zigzag = [&](float ax, float ay, float bx, float by, float cut_start, float cut_end) {
     const float dx = bx - ax, dy = by - ay, len = std::sqrt(dx * dx + dy * dy);
     if (len < 24.0f) {
-      line(ax, ay, bx, by, 2.0f, spring_color);
+      if (cut_start + cut_end + 0.01f >= len) return;  // wholly hidden
+      const float ux = len > 0.0f ? dx / len : 0.0f, uy = len > 0.0f ? dy / len : 0.0f;
+      line(ax + ux * cut_start, ay + uy * cut_start, bx - ux * cut_end, by - uy * cut_end, 2.0f,
+           spring_color);
       return;
     }
     // One polyline: anchor, start of the coils, 2 * coils corners, the body.
@@ -293,6 +310,7 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
       polyline_scratch_.push_back({ax + dx * f + nx * side, ay + dy * f + ny * side, spring_color});
     }
     polyline_scratch_.push_back({bx, by, spring_color});
+    shorten(polyline_scratch_, cut_start, cut_end);
     polyline(polyline_scratch_, 2.0f);
   };
 
@@ -302,26 +320,31 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
     const auto a = to_pixel(s.x[l.a], s.y[l.a]);
     const auto b = to_pixel(s.x[l.b], s.y[l.b]);
     if (few_links) {
-      zigzag(float(a[0]), float(a[1]), float(b[0]), float(b[1]));
+      zigzag(float(a[0]), float(a[1]), float(b[0]), float(b[1]), under_body(l.a, 2.0f),
+             under_body(l.b, 2.0f));
     } else {
       line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 1.25f, link_color);
     }
   }
 
+  // Anchored springs, each with its anchor (a square drawn right over its start).
   for (const RenderFrame::SpringLine& sp : s.springs) {
     const auto a = to_pixel(sp.anchor_x, sp.anchor_y);
     const auto b = to_pixel(s.x[sp.body], s.y[sp.body]);
-    const float ax = float(a[0]), ay = float(a[1]);
-    zigzag(ax, ay, float(b[0]), float(b[1]));
-    rect(ax - 5, ay - 5, ax + 5, ay + 5, anchor_color);
+    const float ax = float(a[0]), ay = float(a[1]), bx = float(b[0]), by = float(b[1]);
+    // The anchor hides the start of the spring's lead, which points at the coils' start: the
+    // body, but for the coils' sideways offset on long springs (first lead: along (b - a)).
+    const float len = std::hypot(bx - ax, by - ay);
+    const float ux = len > 0.0f ? (bx - ax) / len : 0.0f, uy = len > 0.0f ? (by - ay) / len : 0.0f;
+    zigzag(ax, ay, bx, by, hidden_under_square(anchor_half_px, 2.0f, ux, uy),
+           under_body(sp.body, 2.0f));
+    rect(ax - anchor_half_px, ay - anchor_half_px, ax + anchor_half_px, ay + anchor_half_px,
+         anchor_color);
   }
 
-  // Bodies: an outlined disc of the body's radius (at least min_radius_px).
   for (std::size_t j = 0; j < n; ++j) {
     const auto p = to_pixel(s.x[j], s.y[j]);
-    const float r = s.radius[j] > 0.0f ? std::max(float(s.radius[j] * scale), min_radius_px)
-                                       : default_radius_px;
-    disc(float(p[0]), float(p[1]), r, color_of(j), 1.5f, outline);
+    disc(float(p[0]), float(p[1]), radius_px(j), color_of(j), outline_px, outline);
   }
 
   // HUD: text lines on a translucent panel, top left.

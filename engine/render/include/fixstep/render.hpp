@@ -174,6 +174,18 @@ class Renderer {
   }
   template <class Transform>
   void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
+  // Occlusion by what draw() draws later, fully opaque (so what lies below does not matter):
+  /// px by which a line of `width` px ending at the centre of an outlined disc of outer radius
+  /// `outer` px (drawn over it later) can stop short without changing the picture.
+  [[nodiscard]] static float hidden_under_disc(float outer, float width);
+  /// px by which a line of `width` px leaving the centre of an opaque solid square of half-side
+  /// `half` px (drawn over it later) in unit direction (ux, uy) can start late, likewise.
+  [[nodiscard]] static float hidden_under_square(float half, float width, float ux, float uy);
+  /// Moves the first of `points` along the first segment by `cut_start` px and the last back
+  /// along the last segment by `cut_end` px, colours interpolated (and rounded to 8 bits); an
+  /// end whose segment is not longer than its cut + 0.01 px stays. A single segment shorter than
+  /// both cuts together (wholly hidden) is the caller's to skip.
+  static void shorten(std::span<PolylinePoint> points, float cut_start, float cut_end);
   void grid();
   void record_trails(const RenderFrame& s);
   /// Sets every program's uniforms for this frame, drawn upside down with flip = -1 (finish()).
