@@ -605,8 +605,8 @@ stiffness = 1
       "typo.toml:6:1: chain[0].spacng: unknown key ignored (did you mean `spacing`?)",
       "typo.toml:8:20: chain[0].body.radus: unknown key ignored (did you mean `radius`?)",
       "typo.toml:9:25: chain[0].link.dampng: unknown key ignored (did you mean `damping`?)",
-      "typo.toml:10:14: chain[0].pin_spring: ignored: there is no `pin` list of bodies for it to "
-      "hold (e.g. pin = [0])",
+      ("typo.toml:10:14: chain[0].pin_spring: ignored: there is no `pin` list of bodies for it "
+       "to hold (e.g. pin = [0])"),
       "typo.toml:17:10: grid[0].link.frequncy: unknown key ignored (did you mean `frequency`?)",
       "typo.toml:18:1: grid[0].sheer: unknown key ignored (did you mean `shear`?)",
       "typo.toml:21:1: spring[0].stifness: unknown key ignored (did you mean `stiffness`?)"};
