@@ -5,15 +5,7 @@
 set -u
 fixstep=$1 hello=$2 src=$3
 scenes=$src/assets/scenes
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0 passes=0
-
-ok() { passes=$((passes + 1)); echo "ok - $1"; }
-fail() { failures=$((failures + 1)); echo "FAIL - $1"; }
-# expect NAME PATTERN FILE: FILE matches the extended regex PATTERN
-expect() { if grep -Eq -- "$2" "$3"; then ok "$1"; else fail "$1: no /$2/ in:"; cat "$3"; fi; }
-hash_of() { grep -Eo 'state_hash=[0-9a-f]{16}' "$1"; }
+. "$(dirname "$0")/lib.sh"
 
 # --- run ---------------------------------------------------------------------------------
 "$fixstep" run "$scenes/spring_damper.toml" --steps 1000 >"$work/run.out" 2>&1
@@ -82,7 +74,7 @@ n=$(ls "$work/frames" | grep -c '^frame_[0-9]\{6\}\.png$')
   && ok "frames.csv header" || fail "frames.csv header: $(head -1 "$work/frames/frames.csv")"
 [ "$(sed -n 2p "$work/frames/frames.csv" | cut -d, -f1-4)" = "0,0,0.000000,0.000000" ] \
   && ok "frames.csv starts at frame 0, tick 0" || fail "frames.csv row 0: $(sed -n 2p "$work/frames/frames.csv")"
-[ "state_hash=$(tail -1 "$work/frames/frames.csv" | cut -d, -f5)" = "$(hash_of "$work/render.out")" ] \
+[ "$(tail -1 "$work/frames/frames.csv" | cut -d, -f5)" = "$(hash_of "$work/render.out")" ] \
   && ok "frames.csv's last hash is the summary's" || fail "frames.csv last hash vs summary"
 expect "render says where the manifest is" "manifest=.*frames/frames\.csv" "$work/render.out"
 # --- progress on a terminal only, and --quiet ---------------------------------------------
@@ -252,14 +244,14 @@ GALLIUM_DRIVER=foo "$fixstep" render "$scenes/default.toml" --out "$work/gd" --f
 [ $? -eq 1 ] && ok "render refuses an unusable GALLIUM_DRIVER (Mesa would crash)" || fail "GALLIUM_DRIVER=foo exit code"
 expect "the driver is named" "GALLIUM_DRIVER=foo is not a driver OSMesa can use" "$work/gd.out"
 
-if command -v xvfb-run >/dev/null; then
-  xvfb-run -a -s "-screen 0 1024x768x24" "$fixstep" view "$scenes/default.toml" --frames 30 --fps 60 \
+if have_xvfb; then
+  with_xvfb "$fixstep" view "$scenes/default.toml" --frames 30 --fps 60 \
     --size 320x180 >"$work/view.out" 2>&1
   [ $? -eq 0 ] && ok "view runs under Xvfb" || { fail "view under Xvfb"; cat "$work/view.out"; }
   [ "$(hash_of "$work/view.out")" = "$(hash_of "$work/render.out")" ] \
     && ok "window and headless reach the same state after 30 frames" || fail "view vs render hash"
   # the runtime guard in the window: it pauses, says why, and view exits 3
-  xvfb-run -a -s "-screen 0 1024x768x24" "$fixstep" view "$work/blow.toml" --frames 120 --fps 60 \
+  with_xvfb "$fixstep" view "$work/blow.toml" --frames 120 --fps 60 \
     --size 320x180 >"$work/view_blow.out" 2>&1
   code=$?
   [ "$code" -eq 3 ] && ok "view exits 3 after the guard stopped the simulation" \
@@ -268,7 +260,7 @@ if command -v xvfb-run >/dev/null; then
     "$work/view_blow.out"
   expect "view stays at the diverging tick (paused)" "ticks=14 " "$work/view_blow.out"
 else
-  echo "skip - xvfb-run not installed (bash .ci/install-deps installs it)"
+  echo "skip - Xvfb not installed (bash .ci/install-deps installs it)"
 fi
 
 # --- the window, recorded: real mouse drags (xdotool) under Xvfb, then replayed headless -----
@@ -285,10 +277,10 @@ position = [0.0, 0.0]
 spring = { anchor = [0.0, 0.0], stiffness = 8.0 }
 radius = 0.5
 EOF_SCENE
-if command -v xvfb-run >/dev/null && command -v xdotool >/dev/null; then
+if have_xvfb && command -v xdotool >/dev/null; then
   # The ball rests at the centre of the 320x180 window (pixel 160,90); the left button picks it
   # there, drags it up and right, lets go, then drags it again. Real clock, about 4 s.
-  xvfb-run -a -s "-screen 0 1024x768x24" bash -c '
+  with_xvfb bash -c '
     "$1" view "$2" --size 320x180 --frames 240 --record "$3" >"$4" 2>&1 &
     view=$!
     for _ in $(seq 100); do
@@ -309,7 +301,7 @@ if command -v xvfb-run >/dev/null && command -v xdotool >/dev/null; then
   [ "$(hash_of "$work/drag_replay.out")" = "$(hash_of "$work/drag_view.out")" ] \
     && ok "the replay ends at the window's final state" || fail "window vs replay hash"
 else
-  echo "skip - xvfb-run or xdotool not installed (bash .ci/install-deps installs them)"
+  echo "skip - Xvfb or xdotool not installed (bash .ci/install-deps installs them)"
 fi
 
 # --- the sync test: rollbacks of K ticks every tick, on a scripted run --------------------
@@ -389,5 +381,4 @@ expect "render without SCENE says what to give" 'give SCENE \(or --replay FILE' 
 (cd "$work" && "$hello" demo_frames >"$work/hello.out" 2>&1)
 [ "$(ls "$work/demo_frames" | wc -l)" -eq 90 ] && ok "hello_fixstep writes 90 frames" || fail "hello_fixstep"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

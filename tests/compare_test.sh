@@ -6,12 +6,7 @@
 set -u
 fixstep=$1 src=$2
 scenes=$src/assets/scenes
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0 passes=0
-ok() { passes=$((passes + 1)); echo "ok - $1"; }
-fail() { failures=$((failures + 1)); echo "FAIL - $1"; }
-expect() { if grep -Eq -- "$2" "$3"; then ok "$1"; else fail "$1: no /$2/ in:"; cat "$3"; fi; }
+. "$(dirname "$0")/lib.sh"
 field() { grep -Eo "(^| )$1=[^ ]+" | head -1 | cut -d= -f2; }  # field NAME < line
 
 # --- with an exact solution: each tile equals `fixstep run` of its configuration ------------
@@ -86,8 +81,8 @@ fi
   --frames 5 --size 128x64 --quiet >"$work/q.out" 2>&1
 [ $? -eq 0 ] && [ ! -s "$work/q.out" ] && [ -s "$work/q/compare.csv" ] \
   && ok "--quiet prints nothing and still writes compare.csv" || { fail "--quiet"; cat "$work/q.out"; }
-if command -v xvfb-run >/dev/null; then
-  xvfb-run -a -s "-screen 0 1024x768x24" "$fixstep" compare "$scenes/default.toml" --with rk4@1/30 \
+if have_xvfb; then
+  with_xvfb "$fixstep" compare "$scenes/default.toml" --with rk4@1/30 \
     --with semi_implicit_euler --frames 30 --fps 60 --size 640x360 --csv "$work/w.csv" \
     >"$work/w.out" 2>&1
   [ $? -eq 0 ] && grep -q '^tile=2 ' "$work/w.out" && [ "$(wc -l <"$work/w.csv")" -eq 3 ] \
@@ -98,7 +93,7 @@ if command -v xvfb-run >/dev/null; then
   [ "$(cut -d, -f1-9 "$work/w.csv")" = "$(cut -d, -f1-9 "$work/wh/compare.csv")" ] \
     && ok "window and headless reach the same states" || fail "window vs headless"
 else
-  echo "skip - xvfb-run not installed (bash .ci/install-deps installs it)"
+  echo "skip - Xvfb not installed (bash .ci/install-deps installs it)"
 fi
 
 # --- bad input ----------------------------------------------------------------------------
@@ -118,5 +113,4 @@ bad "an unstable tile" 1 "--with 'explicit_euler@1/60' is unstable on this scene
   "$scenes/spring_damper.toml" --with explicit_euler@1/60 --with rk4 --out "$work/x"
 bad "--window with --out" 2 "excludes" "$scenes/default.toml" --with rk4 --with rk4 --window --out "$work/x"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

@@ -6,12 +6,7 @@
 # Each check prints "ok - ..." or "FAIL - ..."; the script exits non-zero if any failed.
 set -u
 demo=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0 passes=0
-ok() { passes=$((passes + 1)); echo "ok - $1"; }
-fail() { failures=$((failures + 1)); echo "FAIL - $1"; }
-expect() { if grep -Fq -- "$2" "$3"; then ok "$1"; else fail "$1: no '$2' in $3"; fi; }
+. "$(dirname "$0")/lib.sh"
 
 out=$work/out
 "$demo" --out "$out" --size 640x360 >"$work/stdout" 2>"$work/stderr"
@@ -40,10 +35,10 @@ ls "$out" | grep -q '\.tmp' && fail "temporary files left behind" || ok "no temp
 grep -qx '10,450,100,550,100,500,100' "$out/constant_force_dt1.csv" \
   && ok "dt = 1 s at t = 10: explicit 450/100, semi-implicit 550/100, exact 500/100" \
   || fail "dt = 1 s table row t = 10"
-expect "markdown table row t = 3 (article: position 30 velocity 30)" "| 3 | 30 | 30 | 60 | 30 | 45 | 30 |" "$work/stdout"
+expect_text "markdown table row t = 3 (article: position 30 velocity 30)" "| 3 | 30 | 30 | 60 | 30 | 45 | 30 |" "$work/stdout"
 # dt = 1/100 s: the article's eleven printed rows, digit for digit.
 while read -r t x v; do
-  expect "article row t=$t: position = $x velocity = $v" "| $t | $x | $v |" "$work/stdout"
+  expect_text "article row t=$t: position = $x velocity = $v" "| $t | $x | $v |" "$work/stdout"
 done <<'EOF'
 9.90 489.552155 98.999062
 9.91 490.542145 99.099060
@@ -104,24 +99,23 @@ for fig in e f; do
     "$(num $fig.semi_implicit_energy_mean_second_half)" "$(num $fig.semi_implicit_energy_mean_first_half)" 2e-3 rel
 done
 # The captions print these same numbers.
-expect "caption states RK4's energy after 90 s at dt = 0.25" \
+expect_text "caption states RK4's energy after 90 s at dt = 0.25" \
   "energy $(awk -v v="$(num f.rk4_energy_ratio)" 'BEGIN { printf "%.4f", v }') E0 (theory |R(i*omega*dt)|^(2n) = $(awk -v v="$(num f.rk4_energy_theory)" 'BEGIN { printf "%.4f", v }'))" \
   "$work/stdout"
 
 # --- the window ---------------------------------------------------------------------------
 env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER "$demo" --window --frames 1 >"$work/nodisp" 2>&1
 [ $? -ne 0 ] && ok "--window without a display exits non-zero" || fail "--window without a display"
-expect "--window without a display says so" "--window needs a display" "$work/nodisp"
-if command -v xvfb-run >/dev/null; then
+expect_text "--window without a display says so" "--window needs a display" "$work/nodisp"
+if have_xvfb; then
   # 30 frames of a 60 fps virtual clock at time scale 4: 29 frames advance 29/60*4 s = 1.93 s,
   # 19 ticks of 0.1 s.
-  xvfb-run -a -s "-screen 0 800x600x24" "$demo" --window --frames 30 --fps 60 --speed 4 \
+  with_xvfb "$demo" --window --frames 30 --fps 60 --speed 4 \
     --size 640x360 >"$work/window" 2>&1
   [ $? -eq 0 ] && ok "--window runs under Xvfb" || { fail "--window under Xvfb"; cat "$work/window"; }
-  expect "the fixed-step loop ran 19 ticks" "t=1.90 s ticks=19" "$work/window"
+  expect_text "the fixed-step loop ran 19 ticks" "t=1.90 s ticks=19" "$work/window"
 else
-  echo "skip - xvfb-run not installed (bash .ci/install-deps installs it)"
+  echo "skip - Xvfb not installed (bash .ci/install-deps installs it)"
 fi
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish

@@ -7,12 +7,7 @@
 set -u
 fixstep=$1 src=$2
 scenes=$src/assets/scenes
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0 passes=0
-ok() { passes=$((passes + 1)); echo "ok - $1"; }
-fail() { failures=$((failures + 1)); echo "FAIL - $1"; }
-hash_of() { grep -Eo 'state_hash=[0-9a-f]{16}' "$1" | head -1 | cut -d= -f2; }
+. "$(dirname "$0")/lib.sh"
 
 for ext in mp4 gif; do
   "$fixstep" render "$scenes/default.toml" --video "$work/d.$ext" --frames 30 --size 320x180 \
@@ -64,5 +59,4 @@ bad "an odd size for H.264" 1 "even" render "$scenes/default.toml" --video "$wor
   && ok "nothing is left of the refused video" || fail "leftovers of odd.mp4: $(ls -a "$work")"
 bad "a video in a missing directory" 1 "nodir" render "$scenes/default.toml" --video "$work/nodir/v.mp4"
 
-echo "$passes passed, $failures failed"
-[ "$failures" -eq 0 ]
+finish
