@@ -69,7 +69,7 @@ void summarise(const CompareOptions& o, const Comparison& c,
         "cost={:.3e} s per simulated s\n",
         i + 1, t.spec.text, sim.tick(), sim.time(), hex_hash(sim.state_hash()),
         error.empty() ? (c.has_exact() || i != c.reference() ? "none" : "reference")
-                      : error + " m against " + against,
+                      : fmt::format("{} m against {}", error, against),
         t.error && !c.has_exact() ? fmt::format(" at t={:.6f}", t.error_time) : "", balance,
         t.cost);
     fmt::print("  same state: {}\n", same_as_run(o.scene, t));
