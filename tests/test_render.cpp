@@ -3,7 +3,11 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <limits>
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "fixstep/render.hpp"
 #include "fixstep/session.hpp"
@@ -90,6 +94,56 @@ TEST(Render, HudTextAndSpringAreDrawn) {
   for (int y = 90; y < 110; ++y)
     for (int x = 150; x < 250; ++x) spring += at(r, x, y).b > 150 && at(r, x, y).r > 120;
   EXPECT_GT(spring, 50);
+}
+
+// What a HUD adds to a frame: the box of the pixels that differ from the same frame drawn
+// without it (the panel, which darkens all beneath it), and the rows of its bright text.
+struct HudBox {
+  int right = -1, bottom = -1, ink_top = 1 << 30, ink_bottom = -1;
+};
+HudBox hud_box(const Renderer& with, const std::vector<std::uint8_t>& without) {
+  HudBox b;
+  for (int y = 0; y < with.height(); ++y)
+    for (int x = 0; x < with.width(); ++x) {
+      const std::size_t i = (static_cast<std::size_t>(y) * with.width() + x) * 4;
+      if (with.pixels()[i] == without[i]) continue;
+      b.right = std::max(b.right, x), b.bottom = std::max(b.bottom, y);
+      if (with.pixels()[i] > 200) b.ink_top = std::min(b.ink_top, y), b.ink_bottom = y;
+    }
+  return b;
+}
+
+TEST(Render, HudTextScaleSizesThePanelAndTheText) {
+  // At the default scale 2 the panel is the one fixstep compare reserved before the scale
+  // existed: 20 px of margins and 22 px a line.
+  EXPECT_FLOAT_EQ(Renderer::hud_height(5, 2.0f), 130.0f);
+  const std::string line = "energy balance -0.000132 %";
+  const std::string hud[] = {line};
+  HudBox box[2];
+  for (int i = 0; i < 2; ++i) {
+    const float scale = i == 0 ? 1.0f : 2.0f;
+    Renderer r(600, 120);
+    r.set_camera(Camera{.center = {0, 0}, .width = 20.0});
+    r.draw(RenderFrame{}, {});
+    const std::vector<std::uint8_t> without(r.pixels().begin(), r.pixels().end());
+    r.set_hud_text_scale(scale);
+    EXPECT_EQ(r.hud_text_scale(), scale);
+    r.draw(RenderFrame{}, hud);
+    box[i] = hud_box(r, without);
+    // The panel's last column and row are the last pixels before hud_width/hud_height.
+    EXPECT_NEAR(box[i].right + 1, Renderer::hud_width(line, scale), 1.0) << scale;
+    EXPECT_NEAR(box[i].bottom + 1, Renderer::hud_height(1, scale), 1.0) << scale;
+  }
+  // Twice the scale, twice the text: the ink's height (7 font px tall) and its panel's width.
+  const int ink1 = box[0].ink_bottom - box[0].ink_top + 1;
+  const int ink2 = box[1].ink_bottom - box[1].ink_top + 1;
+  EXPECT_GE(ink1, 6);
+  EXPECT_NEAR(ink2, 2 * ink1, 2);
+  EXPECT_NEAR(box[1].right - 10, 2 * (box[0].right - 10), 2);
+  Renderer r(64, 64);
+  for (const float bad : {0.5f, 4.5f, std::numeric_limits<float>::quiet_NaN()})
+    EXPECT_THROW(r.set_hud_text_scale(bad), std::invalid_argument) << bad;
+  EXPECT_EQ(r.hud_text_scale(), 2.0f);
 }
 
 TEST(Render, LinksAreZigzagsWhenFewAndThinLinesWhenMany) {

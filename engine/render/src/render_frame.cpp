@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -94,13 +95,16 @@ void Renderer::grid() {
     const bool axis = std::abs(gy) < step * 1e-6;
     line(0, py, float(width_), py, axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
   }
-  // Scale bar, bottom right: one grid step.
-  const float bar = static_cast<float>(step * scale);
+  // Scale bar, bottom right: 1, 2, 5 or 10 grid steps, the first at least 40 px long.
+  double length = step;
+  for (const double m : {2.0, 5.0, 10.0})
+    if (length * scale < 40.0) length = step * m;
+  const float bar = static_cast<float>(length * scale);
   const float x1 = width_ - 20.0f, x0 = x1 - bar, y = height_ - 20.0f;
   line(x0, y, x1, y, 3.0f, text_color);
   line(x0, y - 5, x0, y + 5, 2.0f, text_color);
   line(x1, y - 5, x1, y + 5, 2.0f, text_color);
-  const std::string label = fmt::format("{:g} m", step);
+  const std::string label = fmt::format("{:g} m", length);
   const float label_w = text_width(label, 2.0f);
   text(x1 - label_w, y - 24, label, 2.0f, text_color);  // right-aligned: never off the frame
 }
@@ -347,20 +351,42 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
     disc(float(p[0]), float(p[1]), radius_px(j), color_of(j), outline_px, outline);
   }
 
-  // HUD: text lines on a translucent panel, top left.
-  if (!hud_lines.empty()) {
-    constexpr float scale_text = 2.0f, line_h = 22.0f, margin = 10.0f;
-    float widest = 0;
-    for (const std::string& l : hud_lines) widest = std::max(widest, text_width(l, scale_text));
-    rect(margin, margin, margin + widest + 16, margin + 10 + line_h * hud_lines.size(), panel);
-    float y = margin + 8;
-    for (const std::string& l : hud_lines) {
-      text(margin + 8, y, l, scale_text, text_color);
-      y += line_h;
-    }
-  }
-
+  if (!hud_lines.empty()) hud(hud_lines);
   finish();
+}
+
+// The HUD: text lines on a translucent panel, top left; sizes in font pixels times the scale.
+namespace {
+constexpr float hud_margin = 10.0f;  // px from the frame's corner, at any scale
+constexpr float hud_pad = 4.0f;      // font px round the text
+constexpr float hud_line_h = 11.0f;  // font px between lines
+}  // namespace
+
+void Renderer::set_hud_text_scale(float scale) {
+  if (!(scale >= 1.0f && scale <= 4.0f))
+    throw std::invalid_argument(fmt::format("HUD text scale must be in [1, 4], got {}", scale));
+  hud_text_scale_ = scale;
+}
+
+float Renderer::hud_height(std::size_t lines, float scale) {
+  return hud_margin + (hud_pad + 1.0f + hud_line_h * float(lines)) * scale;
+}
+
+float Renderer::hud_width(const std::string& line, float scale) {
+  return hud_margin + text_width(line, scale) + 2.0f * hud_pad * scale;
+}
+
+void Renderer::hud(std::span<const std::string> lines) {
+  const float scale = hud_text_scale_;
+  float widest = 0;
+  for (const std::string& l : lines) widest = std::max(widest, text_width(l, scale));
+  rect(hud_margin, hud_margin, hud_margin + widest + 2.0f * hud_pad * scale,
+       hud_height(lines.size(), scale), panel);
+  float y = hud_margin + hud_pad * scale;
+  for (const std::string& l : lines) {
+    text(hud_margin + hud_pad * scale, y, l, scale, text_color);
+    y += hud_line_h * scale;
+  }
 }
 
 }  // namespace fixstep

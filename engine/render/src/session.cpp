@@ -152,6 +152,7 @@ Session::Session(WorldDef def, const SessionSettings& settings)
   if (settings.view_center) camera.center = *settings.view_center;
   if (settings.view_width) camera.width = *settings.view_width;
   renderer_.set_camera(camera);
+  renderer_.set_hud_text_scale(settings.hud_text_scale);
 }
 
 FrameResult Session::advance(double frame_seconds, const TickInput& input) {

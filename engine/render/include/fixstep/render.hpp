@@ -81,6 +81,17 @@ class Renderer {
   /// bodies' positions to their trails (one sample per frame). Implemented with the canvas
   /// calls below: begin(), primitives, finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
+  /// Size of draw()'s HUD text, px per font pixel: the font (stb_easy_font) is about 7 font
+  /// pixels tall and HUD lines are 11 apart, so 2 (the default) gives 22 px lines. Narrow
+  /// frames take less (`fixstep compare`'s tiles). Throws std::invalid_argument unless
+  /// `scale` is finite and in [1, 4].
+  void set_hud_text_scale(float scale);
+  [[nodiscard]] float hud_text_scale() const { return hud_text_scale_; }
+  /// Height in px of draw()'s HUD panel holding `lines` lines at scale `scale`, margin included.
+  [[nodiscard]] static float hud_height(std::size_t lines, float scale);
+  /// Width in px of draw()'s HUD panel for `line` (its widest line) at scale `scale`, margin
+  /// included: the HUD fits a frame at least this wide.
+  [[nodiscard]] static float hud_width(const std::string& line, float scale);
   /// Most links drawn as zigzags, with trails (see draw()).
   static constexpr std::size_t max_zigzag_links = 40;
   /// Forgets the trails (after a restart or a jump).
@@ -172,6 +183,8 @@ class Renderer {
   void vertex(float x, float y, float u, float v, Rgba8 c, float fill = 0.0f) {
     vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, fill});
   }
+  /// draw()'s HUD panel and its lines, at hud_text_scale_.
+  void hud(std::span<const std::string> lines);
   template <class Transform>
   void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
   // Occlusion by what draw() draws later, fully opaque (so what lies below does not matter):
@@ -205,6 +218,7 @@ class Renderer {
   std::unique_ptr<Gl> gl_;  // after pixels_: released before them
   std::string gl_renderer_;
   Camera camera_;
+  float hud_text_scale_ = 2.0f;  ///< px per font pixel in draw()'s HUD
   std::vector<Vertex> vertices_;
   std::vector<std::uint32_t> indices_;  // triangles (3 indices each) or points (1 each)
   // Draw batches: indices [first, next batch's first) share one clip rectangle.

@@ -27,6 +27,7 @@ struct SessionSettings {
   std::string title{};                 ///< named in the HUD's first line (e.g. the scene file)
   std::optional<Vec2> view_center{};   ///< m; default: fit_camera's
   std::optional<double> view_width{};  ///< visible width, m; default: fit_camera's
+  float hud_text_scale = 2.0f;         ///< see Renderer::set_hud_text_scale (in [1, 4])
 };
 
 class Session {
