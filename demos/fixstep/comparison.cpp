@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <fixstep/session.hpp>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "commands.hpp"
 #include "compare_tiles.hpp"
@@ -18,6 +20,27 @@
 #include "step_cost.hpp"
 
 namespace fixstep::cli {
+namespace {
+
+// The reference tile's error line: the widest HUD line but the label.
+constexpr const char* reference_line = "reference: the most accurate";
+
+std::string hud_label(std::size_t index, const std::string& label) {
+  return fmt::format("{}  {}", index + 1, label);
+}
+
+// The HUD's text scale for every tile: the largest of 2, 1.75, ... 1 px per font pixel at which
+// the widest label and the reference line fit a tile `width` px wide with 4 px to spare.
+float hud_text_scale(std::span<const std::string> labels, int width) {
+  std::string widest = reference_line;
+  for (const std::string& l : labels)
+    if (Renderer::text_width(l, 1.0f) > Renderer::text_width(widest, 1.0f)) widest = l;
+  float scale = 2.0f;
+  while (scale > 1.0f && Renderer::hud_width(widest, scale) > float(width - 4)) scale -= 0.25f;
+  return scale;
+}
+
+}  // namespace
 
 Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const TileGrid& grid,
                        bool quiet)
@@ -40,11 +63,15 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     }
   }
   reference_ = most_accurate(scenes);
+  std::vector<std::string> labels;
+  for (std::size_t i = 0; i < specs.size(); ++i)
+    labels.push_back(hud_label(i, tile_label(specs[i], scenes[i])));
+  hud_scale_ = hud_text_scale(labels, grid_.tile_width);
   for (std::size_t i = 0; i < specs.size(); ++i) {
     auto tile = std::make_unique<Tile>();
     tile->spec = specs[i];
     tile->scene = std::move(scenes[i]);
-    tile->label = tile_label(tile->spec, tile->scene);
+    tile->label = labels[i];
     tile->session = std::make_unique<Session>(world_def(tile->scene), tile_settings(tile->scene));
     tile->session->set_show_engine_hud(false);
     tile->cost = step_cost(tile->session->definition());
@@ -58,10 +85,12 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
 }
 
 SessionSettings Comparison::tile_settings(const Scene& scene) const {
-  // The tile's HUD covers its top band: the scene is fitted into the part below it.
   const int w = grid_.tile_width, h = grid_.tile_height;
-  const int band = std::min(hud_band, h / 2);
   SessionSettings s = session_settings(scene, w, h);
+  s.hud_text_scale = hud_scale_;
+  // The HUD covers the tile's top band: the scene is fitted into the part below it.
+  const int band =
+      std::min(int(std::ceil(Renderer::hud_height(hud_lines, s.hud_text_scale))), h / 2);
   const Camera fit = fit_camera(world_def(scene), w, h - band);
   const double width = scene.view.width ? *scene.view.width * h / (h - band) : fit.width;
   const Vec2 center = scene.view.center.value_or(fit.center);
@@ -142,10 +171,10 @@ std::vector<std::string> Comparison::hud(std::size_t i) const {
   const Simulation& sim = t.session->simulation();
   std::vector<std::string> lines;
   lines.reserve(hud_lines);
-  lines.push_back(fmt::format("{}  {}", i + 1, t.label));
+  lines.push_back(t.label);
   lines.push_back(fmt::format("t = {:.3f} s   tick {}", sim.time(), sim.tick()));
   if (!has_exact_ && i == reference_) {
-    lines.emplace_back("reference: the most accurate");
+    lines.emplace_back(reference_line);
   } else if (t.error) {
     lines.push_back(has_exact_
                         ? fmt::format("error {:.3g} m vs exact", *t.error)

@@ -22,7 +22,7 @@ namespace fixstep::cli {
 struct Tile {
   TileSpec spec;
   Scene scene;        ///< the base scene with the spec's overrides
-  std::string label;  ///< tile_label()
+  std::string label;  ///< the HUD's first line: the tile's number and tile_label()
   std::unique_ptr<Session> session;
   /// Wall s per simulated s of its ticks measured warm and alone (step_cost), before frame 0.
   double cost = 0.0;
@@ -68,11 +68,10 @@ class Comparison {
   [[nodiscard]] bool any_fault() const;
 
  private:
-  /// Lines of a tile's HUD, and the pixels they cover at the top of the tile (the renderer's
-  /// HUD panel: 20 px of margins and 22 px a line).
+  /// Lines of a tile's HUD.
   static constexpr std::size_t hud_lines = 5;
-  static constexpr int hud_band = 20 + 22 * static_cast<int>(hud_lines);
 
+  /// A tile's view: its HUD text at hud_scale_, the scene fitted below the HUD panel.
   [[nodiscard]] SessionSettings tile_settings(const Scene& scene) const;
   void measure(std::size_t i);
   static std::optional<double> against_shadow(const Simulation& sim, Simulation& shadow);
@@ -83,6 +82,7 @@ class Comparison {
   TileGrid grid_;
   bool has_exact_ = false;
   std::size_t reference_ = 0;
+  float hud_scale_ = 2.0f;  ///< every tile's HUD text scale (Renderer::set_hud_text_scale)
   std::vector<std::unique_ptr<Tile>> tiles_;
 };
 
