@@ -225,9 +225,10 @@ std::filesystem::path frame_path(const std::filesystem::path& dir, std::uint64_t
   return dir / fmt::format("frame_{:06}.png", frame);
 }
 
-FrameWriter::FrameWriter(std::filesystem::path dir, int width, int height, PngSettings options,
-                         int in_flight)
-    : dir_(std::move(dir)), width_(width), height_(height), encoder_(options) {
+namespace {
+
+// Bytes of a width x height RGBA8 frame, after FrameWriter's checks of its arguments.
+std::size_t checked_frame_bytes(int width, int height, int in_flight) {
   if (width < 1 || height < 1) {
     throw std::invalid_argument(
         fmt::format("FrameWriter: frame size {}x{} is below 1x1", width, height));
@@ -236,80 +237,37 @@ FrameWriter::FrameWriter(std::filesystem::path dir, int width, int height, PngSe
     throw std::invalid_argument(
         fmt::format("FrameWriter: in_flight is {}, must be >= 1", in_flight));
   }
-  frame_bytes_ = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;
-  slots_.assign(static_cast<std::size_t>(in_flight), std::vector<std::uint8_t>(frame_bytes_));
-  slot_frame_.assign(slots_.size(), 0);
-  worker_ = std::thread([this] { work(); });
+  return static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;
 }
 
-FrameWriter::~FrameWriter() {
-  {
-    const std::lock_guard lock(mutex_);
-    stop_ = true;
-  }
-  queued_.notify_one();
-  worker_.join();
-}
+}  // namespace
 
-void FrameWriter::rethrow_if_failed() const {
-  if (error_) std::rethrow_exception(error_);
-}
+FrameWriter::FrameWriter(std::filesystem::path dir, int width, int height, PngSettings options,
+                         int in_flight)
+    : dir_(std::move(dir)),
+      width_(width),
+      height_(height),
+      encoder_(options),
+      pipeline_(
+          checked_frame_bytes(width, height, in_flight), static_cast<std::size_t>(in_flight),
+          [this](std::span<const std::uint8_t> rgba, std::uint64_t frame) {
+            encoder_.write(frame_path(dir_, frame), width_, height_, rgba);
+          },
+          FramePipeline::Pending::consume) {}
 
 std::filesystem::path FrameWriter::submit(std::span<const std::uint8_t> rgba) {
-  if (rgba.size() != frame_bytes_) {
+  const std::size_t bytes =
+      static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4;
+  if (rgba.size() != bytes) {
     throw std::invalid_argument(fmt::format("FrameWriter: frame {} has {} bytes, {}x{} RGBA8 is {}",
-                                            submitted_, rgba.size(), width_, height_,
-                                            frame_bytes_));
+                                            submitted_, rgba.size(), width_, height_, bytes));
   }
-  std::size_t slot = 0;
-  {
-    std::unique_lock lock(mutex_);
-    released_.wait(lock, [&] { return count_ < slots_.size() || error_; });
-    rethrow_if_failed();
-    slot = (head_ + count_) % slots_.size();
-  }
-  // The slot is outside [head_, head_ + count_): the worker does not touch it until count_
-  // grows below, and only this (the one producer) thread changes what lies past count_.
-  std::copy(rgba.begin(), rgba.end(), slots_[slot].begin());
-  const std::uint64_t frame = submitted_++;
-  slot_frame_[slot] = frame;
-  {
-    const std::lock_guard lock(mutex_);
-    ++count_;
-  }
-  queued_.notify_one();
-  return frame_path(dir_, frame);
+  pipeline_.submit(rgba, submitted_);
+  return frame_path(dir_, submitted_++);
 }
 
 void FrameWriter::finish() {
-  std::unique_lock lock(mutex_);
-  released_.wait(lock, [&] { return count_ == 0 || error_; });
-  rethrow_if_failed();
-}
-
-void FrameWriter::work() {
-  std::unique_lock lock(mutex_);
-  for (;;) {
-    queued_.wait(lock, [&] { return count_ > 0 || stop_; });
-    if (count_ == 0) return;  // stopping, and everything submitted is written
-    const std::size_t slot = head_;
-    lock.unlock();
-    std::exception_ptr error;
-    try {
-      encoder_.write(frame_path(dir_, slot_frame_[slot]), width_, height_, slots_[slot]);
-    } catch (...) {
-      error = std::current_exception();
-    }
-    lock.lock();
-    if (error) {  // stop: the frames queued after the failed one are never written
-      error_ = error;
-      released_.notify_all();
-      return;
-    }
-    head_ = (head_ + 1) % slots_.size();
-    --count_;
-    released_.notify_all();
-  }
+  pipeline_.drain();
 }
 
 void prepare_output_dir(const std::filesystem::path& dir) {

@@ -1,19 +1,18 @@
 // Writing frames to disk: PNG via stb_image_write (deflate by libdeflate), atomically.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <thread>
 #include <vector>
+
+#include "fixstep/frame_pipeline.hpp"
 
 namespace fixstep {
 
@@ -144,7 +143,7 @@ class FrameWriter {
               int in_flight = 2);
   /// Waits until the worker has written every submitted frame (or failed), then stops it.
   /// Errors are not thrown from here: call finish() to see them.
-  ~FrameWriter();
+  ~FrameWriter() = default;
   FrameWriter(const FrameWriter&) = delete;
   FrameWriter& operator=(const FrameWriter&) = delete;
 
@@ -162,27 +161,11 @@ class FrameWriter {
   [[nodiscard]] const std::filesystem::path& directory() const { return dir_; }
 
  private:
-  void work();
-  void rethrow_if_failed() const;  // caller holds mutex_
-
   std::filesystem::path dir_;
   int width_, height_;
-  std::size_t frame_bytes_ = 0;
-  PngEncoder encoder_;                            // used by the worker only
-  std::vector<std::vector<std::uint8_t>> slots_;  // ring of in_flight frame buffers
-  std::vector<std::uint64_t> slot_frame_;         // frame number held by each slot
-  std::uint64_t submitted_ = 0;                   // producer only
-
-  // Shared with the worker, guarded by mutex_.
-  mutable std::mutex mutex_;
-  std::condition_variable queued_;    // worker waits: a frame was queued, or stop
-  std::condition_variable released_;  // producer waits: a slot was freed, or the worker failed
-  std::size_t head_ = 0;              // oldest queued slot (the one being written)
-  std::size_t count_ = 0;             // queued slots, including the one being written
-  bool stop_ = false;
-  std::exception_ptr error_;
-
-  std::thread worker_;  // last: starts after everything above is initialised
+  PngEncoder encoder_;           // used by the worker only
+  std::uint64_t submitted_ = 0;  // producer only
+  FramePipeline pipeline_;       // last: its worker starts once everything above is ready
 };
 
 /// Creates `dir` (and parents) if needed and checks it is a writable directory.
