@@ -136,8 +136,6 @@ VideoWriter::VideoWriter(std::filesystem::path file, int width, int height, doub
   if (in_flight < 1) refuse(file_, fmt::format("in_flight is {}, must be >= 1", in_flight));
   frame_step_ = frame_step_of(format_, fps);
   frame_bytes_ = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;
-  slots_.assign(static_cast<std::size_t>(in_flight), std::vector<std::uint8_t>(frame_bytes_));
-  slot_pts_.assign(slots_.size(), 0);
   tmp_ = temporary_for(file_);
   try {  // from here on the temporary file may exist: remove it if anything fails
     encoder_ = std::make_unique<Encoder>(tmp_, file_,
@@ -147,7 +145,12 @@ VideoWriter::VideoWriter(std::filesystem::path file, int width, int height, doub
                                                           .rate = rate,
                                                           .step = frame_step_,
                                                           .settings = std::move(settings)});
-    worker_ = std::thread([this] { work(); });
+    pipeline_ = std::make_unique<FramePipeline>(
+        frame_bytes_, static_cast<std::size_t>(in_flight),
+        [this](std::span<const std::uint8_t> rgba, std::uint64_t pts) {
+          encoder_->encode(rgba, static_cast<std::int64_t>(pts));
+        },
+        FramePipeline::Pending::drop);
   } catch (...) {
     encoder_.reset();
     remove_quietly(tmp_);
@@ -156,24 +159,23 @@ VideoWriter::VideoWriter(std::filesystem::path file, int width, int height, doub
 }
 
 VideoWriter::~VideoWriter() {
-  if (worker_.joinable()) stop_worker();
+  halt();  // frames still queued are dropped: the video is abandoned unless finished
   if (!finished_) {
     encoder_.reset();  // closes the temporary file, without a trailer
     remove_quietly(tmp_);
   }
 }
 
-void VideoWriter::stop_worker() {
-  {
-    const std::lock_guard lock(mutex_);
-    stop_ = true;
+void VideoWriter::halt() noexcept {
+  try {
+    if (pipeline_) pipeline_->stop(FramePipeline::Pending::drop);
+  } catch (...) {  // NOLINT(bugprone-empty-catch): submit() or finish() reported it already
   }
-  queued_.notify_one();
-  worker_.join();
 }
 
 void VideoWriter::rethrow_or_finished() const {
   if (error_) std::rethrow_exception(error_);
+  if (const std::exception_ptr e = pipeline_->error()) std::rethrow_exception(e);
   throw CaptureError(fmt::format("cannot write {}: the video is already finished", file_.string()));
 }
 
@@ -182,37 +184,18 @@ void VideoWriter::submit(std::span<const std::uint8_t> rgba) {
     refuse(file_, fmt::format("frame {} has {} bytes, {}x{} RGBA8 is {}", submitted_, rgba.size(),
                               width_, height_, frame_bytes_));
   }
-  if (finished_ || !worker_.joinable()) rethrow_or_finished();
+  if (finished_ || !pipeline_->running()) rethrow_or_finished();
   const std::uint64_t frame = submitted_++;
   if (frame % static_cast<std::uint64_t>(frame_step_) != 0) return;  // a GIF's thinned frame
-  std::size_t slot = 0;
-  {
-    std::unique_lock lock(mutex_);
-    released_.wait(lock, [&] { return count_ < slots_.size() || error_; });
-    if (error_) std::rethrow_exception(error_);
-    slot = (head_ + count_) % slots_.size();
-  }
-  // The slot is outside [head_, head_ + count_): the worker does not touch it until count_
-  // grows below, and only this (the one producer) thread changes what lies past count_.
-  std::copy(rgba.begin(), rgba.end(), slots_[slot].begin());
-  slot_pts_[slot] = static_cast<std::int64_t>(frame);
-  {
-    const std::lock_guard lock(mutex_);
-    ++count_;
-  }
-  queued_.notify_one();
+  pipeline_->submit(rgba, frame);
 }
 
 void VideoWriter::finish() {
   if (finished_) return;
-  if (!worker_.joinable()) rethrow_or_finished();  // a failed finish() discarded the video
-  {
-    std::unique_lock lock(mutex_);
-    released_.wait(lock, [&] { return count_ == 0 || error_; });
-  }
-  stop_worker();  // from here on the encoder is this thread's
+  if (!pipeline_->running()) rethrow_or_finished();  // a failed finish() discarded the video
   try {
-    if (error_) std::rethrow_exception(error_);
+    pipeline_->drain();                             // throws the encoder's error, if any
+    pipeline_->stop(FramePipeline::Pending::drop);  // nothing is queued: the encoder is ours
     encoder_->finish();
     encoder_.reset();
     if (::rename(tmp_.c_str(), file_.c_str()) != 0) {
@@ -220,36 +203,12 @@ void VideoWriter::finish() {
     }
   } catch (...) {
     error_ = std::current_exception();  // later calls report it too
+    halt();
     encoder_.reset();
     remove_quietly(tmp_);
     throw;
   }
   finished_ = true;
-}
-
-void VideoWriter::work() {
-  std::unique_lock lock(mutex_);
-  for (;;) {
-    queued_.wait(lock, [&] { return count_ > 0 || stop_; });
-    if (stop_) return;  // finish() waited for count_ == 0; the destructor drops the rest
-    const std::size_t slot = head_;
-    lock.unlock();
-    std::exception_ptr error;
-    try {
-      encoder_->encode(slots_[slot], slot_pts_[slot]);
-    } catch (...) {
-      error = std::current_exception();
-    }
-    lock.lock();
-    if (error) {  // stop: the frames queued after the failed one are never encoded
-      error_ = error;
-      released_.notify_all();
-      return;
-    }
-    head_ = (head_ + 1) % slots_.size();
-    --count_;
-    released_.notify_all();
-  }
 }
 
 }  // namespace fixstep

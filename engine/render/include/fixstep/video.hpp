@@ -2,19 +2,17 @@
 // libraries (libavcodec, libavformat, libswscale, libavfilter), atomically.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "fixstep/capture.hpp"
+#include "fixstep/frame_pipeline.hpp"
 
 namespace fixstep {
 
@@ -152,8 +150,7 @@ class VideoWriter {
 
  private:
   class Encoder;
-  void work();
-  void stop_worker();
+  void halt() noexcept;                           // stops the pipeline, dropping its error
   [[noreturn]] void rethrow_or_finished() const;  // after finish(): its error, or "finished"
 
   std::filesystem::path file_;
@@ -162,22 +159,11 @@ class VideoWriter {
   int width_, height_;
   int frame_step_ = 1;
   std::size_t frame_bytes_ = 0;
-  std::unique_ptr<Encoder> encoder_;              // used by the worker only until it stops
-  std::vector<std::vector<std::uint8_t>> slots_;  // ring of in_flight frame buffers
-  std::vector<std::int64_t> slot_pts_;            // pts of the frame held by each slot
-  std::uint64_t submitted_ = 0;                   // producer only
-  bool finished_ = false;                         // producer only
-
-  // Shared with the worker, guarded by mutex_.
-  mutable std::mutex mutex_;
-  std::condition_variable queued_;    // worker waits: a frame was queued, or stop
-  std::condition_variable released_;  // producer waits: a slot was freed, or the worker failed
-  std::size_t head_ = 0;              // oldest queued slot (the one being encoded)
-  std::size_t count_ = 0;             // queued slots, including the one being encoded
-  bool stop_ = false;
-  std::exception_ptr error_;
-
-  std::thread worker_;  // last: starts after everything above is initialised
+  std::unique_ptr<Encoder> encoder_;         // used by the pipeline's worker until it stops
+  std::uint64_t submitted_ = 0;              // producer only
+  bool finished_ = false;                    // producer only
+  std::exception_ptr error_;                 // finish()'s failure, reported by later calls
+  std::unique_ptr<FramePipeline> pipeline_;  // feeds encoder_; stopped before it is reset
 };
 
 }  // namespace fixstep
