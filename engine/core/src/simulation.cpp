@@ -67,6 +67,9 @@ EnergyReport Simulation::energy() const {
 std::uint64_t Simulation::state_hash() const {
   return visit([](const auto& w) { return w.state_hash(); });
 }
+std::size_t Simulation::snapshot_bytes() const {
+  return visit([](const auto& w) { return w.snapshot_bytes(); });
+}
 Body Simulation::body_at(std::size_t i) const {
   return visit([&](const auto& w) { return w.body(w.entities()[i]); });
 }

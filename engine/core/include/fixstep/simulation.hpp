@@ -92,6 +92,8 @@ class Simulation {
   /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
   [[nodiscard]] double dissipated_energy() const;
   [[nodiscard]] std::uint64_t state_hash() const;
+  /// Bytes a WorldSnapshot of this simulation holds (World::snapshot_bytes()).
+  [[nodiscard]] std::size_t snapshot_bytes() const;
   /// Position and velocity of body `index` in double (m, m/s).
   [[nodiscard]] Body body_at(std::size_t index) const;
 

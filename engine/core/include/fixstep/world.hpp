@@ -297,6 +297,11 @@ class World {
   /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
   /// equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
+  /// Bytes of heap memory a copy of this world (a WorldSnapshot) holds: every array's elements
+  /// and the body names' characters (not the worker threads or the implicit solver's cache,
+  /// which a copy does not take). For budgeting many copies (RewindBuffer); about 0.5 kB per
+  /// body of a cloth-like grid with its links.
+  [[nodiscard]] std::size_t snapshot_bytes() const;
 
  private:
   template <class C>

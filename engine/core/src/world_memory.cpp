@@ -1,0 +1,55 @@
+// World::snapshot_bytes: what a copy of a world costs in heap memory.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+namespace {
+
+// A copy of a vector allocates its size, not its capacity.
+template <class T>
+std::size_t bytes_of(const std::vector<T>& v) {
+  return v.size() * sizeof(T);
+}
+std::size_t bytes_of(const std::vector<std::string>& names) {
+  const std::size_t in_place = std::string().capacity();  // the short-string buffer
+  std::size_t n = names.size() * sizeof(std::string);
+  for (const std::string& s : names) n += s.size() > in_place ? s.size() + 1 : 0;
+  return n;
+}
+std::size_t bytes_of(const detail::SparseSet& s) {
+  return bytes_of(s.sparse) + bytes_of(s.dense);
+}
+template <class C>
+std::size_t bytes_of(const detail::Store<C>& s) {
+  return bytes_of(s.set) + bytes_of(s.data);
+}
+template <class... Parts>
+std::size_t sum(const Parts&... parts) {
+  return (bytes_of(parts) + ...);
+}
+
+}  // namespace
+
+template <class Real>
+std::size_t World<Real>::snapshot_bytes() const {
+  std::size_t n = sum(generations_, free_slots_, link_generations_, link_free_slots_, bodies_, x_,
+                      y_, vx_, vy_, prev_x_, prev_y_, mass_, names_);
+  n += sum(springs_, constant_forces_, gravities_, drags_, appearances_, colliders_, links_,
+           link_defs_, dissipated_body_, dissipated_link_, planes_);
+  n += sum(coeff_.stiffness, coeff_.anchor_x, coeff_.anchor_y, coeff_.rest, coeff_.gamma,
+           coeff_.accel_x, coeff_.accel_y, flows_);
+  for (const DampingFlow& f : flows_) n += bytes_of(f.decay);
+  n += sum(net_.a, net_.b, net_.k, net_.damping, net_.rest, net_.inv_mass, net_.offset,
+           net_.incident, fx_, fy_, power_body_, power_link_);
+  for (std::size_t i = 0; i < s_.size(); ++i) n += bytes_of(s_[i]) + bytes_of(d_[i]);
+  n += sum(contact_.body, contact_.radius, contact_.x0, contact_.y0, contact_.vx0, contact_.vy0);
+  return n;
+}
+
+template std::size_t World<float>::snapshot_bytes() const;
+template std::size_t World<double>::snapshot_bytes() const;
+
+}  // namespace fixstep
