@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -14,6 +15,10 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/sync_test.hpp"
+
+// count_new.cpp: this program's operator new, counting the bytes asked for while counting.
+extern std::atomic<bool> counting;
+extern std::atomic<std::size_t> counted_bytes;
 
 namespace fixstep {
 namespace {
@@ -243,6 +248,39 @@ TEST(Rewind, StepsBackOneTickAtATimeThroughTheLastCapacityTicks) {
   EXPECT_EQ(rewind.size(), 2u);
   EXPECT_EQ(sim.state_hash(), hashes[5]);
   EXPECT_THROW(RewindBuffer(0), std::invalid_argument);
+}
+
+TEST(Rewind, CapacitySpansTheSecondsWithinTheMemoryBudget) {
+  constexpr std::size_t MiB = std::size_t{1} << 20;
+  EXPECT_EQ(rewind_capacity(10.0, 1.0 / 60.0, 1000, 512 * MiB), 600u);  // 10 s of 1/60 s ticks
+  EXPECT_EQ(rewind_capacity(10.0, 0.1, 1000, 512 * MiB), 100u);
+  EXPECT_EQ(rewind_capacity(10.0, 1.0 / 60.0, 48 * MiB, 512 * MiB), 10u);  // 90 000 bodies
+  EXPECT_EQ(rewind_capacity(10.0, 1.0 / 60.0, 600 * MiB, 512 * MiB), 1u);  // always one state
+  EXPECT_EQ(rewind_capacity(10.0, 1e-300, 1, 512 * MiB), 512 * MiB);       // no overflow
+  EXPECT_EQ(rewind_capacity(0.0, 0.01, 1000, 512 * MiB), 1u);
+  for (const double dt : {0.0, -0.01, std::nan("")})
+    EXPECT_THROW((void)rewind_capacity(10.0, dt, 1000, MiB), std::invalid_argument) << dt;
+  EXPECT_THROW((void)rewind_capacity(-1.0, 0.01, 1000, MiB), std::invalid_argument);
+}
+
+TEST(Snapshot, SnapshotBytesIsWhatACopyAllocates) {
+  // The reference: the bytes operator new is asked for (counted below) while a snapshot is
+  // taken into an empty WorldSnapshot.
+  for (const char* file : {"cloth.toml", "default.toml", "bounce.toml", "chain.toml"}) {
+    for (const Precision p : {Precision::f32, Precision::f64}) {
+      Scene scene = load_scene(scenes_dir / file);
+      scene.precision = p;
+      Simulation sim = make_simulation(scene);
+      sim.step();  // the force terms and scratch arrays are built at the first tick
+      WorldSnapshot snap;
+      counted_bytes = 0;
+      counting = true;
+      sim.save(snap);
+      counting = false;
+      EXPECT_EQ(counted_bytes.load(), sim.snapshot_bytes()) << file;
+      EXPECT_GT(sim.snapshot_bytes(), sim.body_count() * 4 * (p == Precision::f32 ? 4 : 8));
+    }
+  }
 }
 
 // --- pick and drag ------------------------------------------------------------------------

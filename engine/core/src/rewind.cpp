@@ -1,8 +1,25 @@
 #include "fixstep/rewind.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace fixstep {
+
+std::size_t rewind_capacity(double seconds, double dt, std::size_t state_bytes,
+                            std::size_t max_bytes) {
+  if (!(std::isfinite(seconds) && seconds >= 0.0 && std::isfinite(dt) && dt > 0.0)) {
+    throw std::invalid_argument(fmt::format(
+        "rewind capacity: {} s of ticks of {} s (need seconds >= 0, dt > 0)", seconds, dt));
+  }
+  // A span of more ticks than any buffer could hold is capped by the memory anyway.
+  const double ticks = std::min(std::ceil(seconds / dt), 1e15);
+  std::size_t capacity = static_cast<std::size_t>(ticks);
+  if (state_bytes > 0) capacity = std::min(capacity, max_bytes / state_bytes);
+  return std::max<std::size_t>(capacity, 1);
+}
 
 RewindBuffer::RewindBuffer(std::size_t capacity) {
   if (capacity == 0) throw std::invalid_argument("rewind buffer: capacity must be >= 1 tick");

@@ -10,6 +10,13 @@
 
 namespace fixstep {
 
+/// How many ticks a RewindBuffer should keep to span `seconds` (s) of ticks of `dt` (s) within
+/// `max_bytes` of states of `state_bytes` each (Simulation::snapshot_bytes()): the smaller of
+/// ceil(seconds / dt) and max_bytes / state_bytes, and at least 1. Throws
+/// std::invalid_argument unless seconds >= 0 and dt > 0 are finite.
+[[nodiscard]] std::size_t rewind_capacity(double seconds, double dt, std::size_t state_bytes,
+                                          std::size_t max_bytes);
+
 class RewindBuffer {
  public:
   /// Keeps the states of the last `capacity` ticks (>= 1, else std::invalid_argument).
