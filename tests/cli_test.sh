@@ -259,6 +259,26 @@ if have_xvfb; then
   expect "view reports the guard's message once" "error: .*body\[1\] \"stiff\": state left the finite range at tick 14" \
     "$work/view_blow.out"
   expect "view stays at the diverging tick (paused)" "ticks=14 " "$work/view_blow.out"
+  # Rewind keeps 10 s of states within 512 MiB: a 200 x 200 grid (20 MiB a state) keeps less.
+  grep -q "note: rewind" "$work/view.out" && fail "a small scene's rewind is capped" \
+    || ok "a small scene keeps 10 s of rewind (no note)"
+  cat >"$work/big.toml" <<'EOF_SCENE'
+[world]
+dt = 0.01
+[[grid]]
+name = "g"
+columns = 200
+rows = 200
+origin = [0.0, 0.0]
+spacing = [0.25, -0.25]
+body = { mass = 0.01, gravity = [0.0, -9.81] }
+link = { frequency = 2.0, damping_ratio = 0.2 }
+EOF_SCENE
+  with_xvfb "$fixstep" view "$work/big.toml" --frames 2 --fps 60 --size 320x180 >"$work/view_big.out" 2>&1
+  [ $? -eq 0 ] && ok "view of 40 000 linked bodies runs" || { fail "view of a big grid"; cat "$work/view_big.out"; }
+  expect "a big world's rewind is capped at 512 MiB, and said so" \
+    "note: rewind keeps the last 0\.[0-9]+ s \([0-9]+ ticks\), not 10 s: a state of this world takes [0-9.]+ MiB and rewind at most 512 MiB" \
+    "$work/view_big.out"
 else
   echo "skip - Xvfb not installed (bash .ci/install-deps installs it)"
 fi

@@ -29,8 +29,31 @@ Window open_window(const std::string& title, int width, int height, std::string_
   }
 }
 
-/// Rewind keeps this much of the past, s of simulated time (one state per tick).
+/// Rewind keeps this much of the past, s of simulated time (one state per tick), in at most
+/// rewind_max_bytes of states: a 300 x 300 grid of bodies and links holds about 48 MB a state,
+/// so 10 s at 60 Hz would take 29 GB.
 constexpr double rewind_seconds = 10.0;
+constexpr std::size_t rewind_max_bytes = std::size_t{512} << 20;
+
+/// A RewindBuffer of rewind_seconds of `sim`'s ticks, or less if they exceed rewind_max_bytes
+/// (said on standard error, with what it keeps).
+RewindBuffer make_rewind(const Simulation& sim) {
+  const double dt = sim.settings().dt;
+  // A tick builds the force terms and scratch arrays that every later state holds too: measure
+  // a copy stepped once (the scratch of a 90 000-body grid doubles its state).
+  Simulation probe = sim;
+  probe.step();
+  const std::size_t bytes = std::max(sim.snapshot_bytes(), probe.snapshot_bytes());
+  const std::size_t capacity = rewind_capacity(rewind_seconds, dt, bytes, rewind_max_bytes);
+  if (static_cast<double>(capacity) < std::ceil(rewind_seconds / dt)) {
+    std::fprintf(stderr,
+                 "note: rewind keeps the last %.3g s (%zu ticks), not %g s: a state of this world "
+                 "takes %.1f MiB and rewind at most %zu MiB\n",
+                 static_cast<double>(capacity) * dt, capacity, rewind_seconds,
+                 static_cast<double>(bytes) / (1 << 20), rewind_max_bytes >> 20);
+  }
+  return RewindBuffer(capacity);
+}
 
 /// Push acceleration (m/s²) of the held arrow buttons: half a view-width per s² (visible at any
 /// scene scale).
@@ -54,8 +77,7 @@ int view_command(const ViewOptions& o) {
   const Camera camera = session.renderer().camera();
   InputSampler sampler;                                   // window events -> one input per tick
   PointerDrag drag(10.0 * camera.width / double(width));  // picks within 10 pixels
-  RewindBuffer rewind(static_cast<std::size_t>(
-      std::max(1.0, std::ceil(rewind_seconds / session.simulation().settings().dt))));
+  RewindBuffer rewind = make_rewind(session.simulation());
   rewind.push(session.simulation());
   // --record: every tick's input and state hash, following the kept timeline through rewinds
   // and restarts.
