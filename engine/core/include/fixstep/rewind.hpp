@@ -20,9 +20,9 @@ namespace fixstep {
 class RewindBuffer {
  public:
   /// Keeps the states of the last `capacity` ticks (>= 1, else std::invalid_argument).
-  /// Memory: capacity snapshots of the world (each about the world's own size); slots are
-  /// allocated when first filled and reused after that, so push() allocates nothing once the
-  /// ring has gone round.
+  /// Memory: capacity snapshots of the world (each Simulation::snapshot_bytes(); choose the
+  /// capacity with rewind_capacity() to stay within a budget); slots are allocated when first
+  /// filled and reused after that, so push() allocates nothing once the ring has gone round.
   explicit RewindBuffer(std::size_t capacity);
 
   /// Saves sim's current state as the newest; the oldest is dropped when the ring is full.
