@@ -26,6 +26,18 @@ LinkSpring spring_from_frequency(double frequency_hz, double damping_ratio, doub
                     .rest_length = 0.0};
 }
 
+const char* body_type_name(BodyType type) {
+  switch (type) {
+    case BodyType::static_body:
+      return "static";
+    case BodyType::kinematic:
+      return "kinematic";
+    case BodyType::dynamic:
+      break;
+  }
+  return "dynamic";
+}
+
 double reduced_mass(double mass_a, double mass_b) {
   require(std::isfinite(mass_a) && mass_a > 0.0, "mass_a", "finite and > 0 kg", mass_a);
   require(std::isfinite(mass_b) && mass_b > 0.0, "mass_b", "finite and > 0 kg", mass_b);

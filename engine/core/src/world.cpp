@@ -162,6 +162,7 @@ Entity World<Real>::create_body(const BodyDef& def) {
   }
   bodies_.insert(e);
   mass_.push_back(def.body.mass);
+  types_.push_back(def.type);
   x_.push_back(static_cast<Real>(def.body.position.x));
   y_.push_back(static_cast<Real>(def.body.position.y));
   vx_.push_back(static_cast<Real>(def.body.velocity.x));
@@ -196,7 +197,7 @@ void World<Real>::destroy(Entity e) {
   remove<Collider>(e);
   const std::size_t i = bodies_.erase(e);
   dissipated_gone_ += mass_[i] * double(dissipated_body_[i]);  // stays in the account
-  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, names_, dissipated_body_);
+  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, types_, names_, dissipated_body_);
   ++generations_[e.slot()];
   free_slots_.push_back(e.slot());
   terms_dirty_ = true;
@@ -328,6 +329,7 @@ void World<Real>::reserve(std::size_t bodies) {
   generations_.reserve(bodies);
   for (auto* v : {&x_, &y_, &vx_, &vy_, &prev_x_, &prev_y_}) v->reserve(bodies);
   mass_.reserve(bodies);
+  types_.reserve(bodies);
   names_.reserve(bodies);
 }
 

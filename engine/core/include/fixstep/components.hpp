@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -10,6 +11,19 @@
 #include "fixstep/types.hpp"
 
 namespace fixstep {
+
+/// How a body moves (Box2D's b2BodyType).
+///   dynamic:   moved by its forces, links, contacts and input; has a finite mass.
+///   static_body: never moves (velocity zero); no mass (one given is ignored).
+///   kinematic: moves at its velocity, set by a program or per tick by input
+///              (TickInput::velocities), and is moved by no force, link or contact; it pushes
+///              dynamic bodies as an infinite mass would. No mass (one given is ignored).
+/// Links and planes treat static and kinematic bodies as immovable ends; the energy account
+/// leaves them out and counts the work a kinematic body does on others as external.
+enum class BodyType : std::uint8_t { dynamic = 0, static_body = 1, kinematic = 2 };
+
+/// "dynamic", "static" or "kinematic" (the scene file's spelling).
+[[nodiscard]] const char* body_type_name(BodyType type);
 
 /// The rigid point body every other component acts on.
 struct Body {
@@ -53,10 +67,26 @@ struct Appearance {
   Rgba8 color{230, 87, 46, 255};
 };
 
-/// A disc the body occupies for contacts with static half-planes (PlaneDef). Bodies without
-/// one pass through planes; colliders cost nothing in a world without planes.
+/// A disc the body occupies: for contacts with static half-planes (PlaneDef) and, in a world
+/// with body contacts on (WorldSettings::contacts), with the other discs. Bodies without one
+/// pass through planes and discs; colliders cost nothing in a world without planes or contacts.
 struct Collider {
   double radius = 0.5;  ///< m, finite and > 0
+  /// e of this body in disc-disc contacts, in [0, 1]; unset: ContactSettings::restitution.
+  /// A pair uses the larger of its two (Box2D's rule: a bouncy ball bounces off anything).
+  std::optional<double> restitution = std::nullopt;
+  /// Coulomb μ of this body in disc-disc contacts, >= 0; unset: ContactSettings::friction.
+  /// A pair uses √(μ_a μ_b) (Box2D's b2MixFriction: either surface frictionless, no friction).
+  std::optional<double> friction = std::nullopt;
+  /// false: the disc takes part in no disc-disc contact (it still meets planes).
+  bool collide = true;
+};
+
+/// Body-vs-body contacts of discs (Collider), on when WorldSettings::contacts is set. Bodies
+/// joined by a link never collide with each other (Box2D's collideConnected = false).
+struct ContactSettings {
+  double restitution = 0.0;  ///< e in [0, 1], every pair's default
+  double friction = 0.0;     ///< Coulomb μ >= 0, every pair's default
 };
 
 /// A static half-plane n·x >= offset of free space (ground, wall), which bodies with a
@@ -120,7 +150,8 @@ struct BodyLink {
 /// Everything needed to create one body entity, in the spirit of Box2D's b2BodyDef: fill in
 /// what the body has; components left empty are not stored and cost nothing when stepping.
 struct BodyDef {
-  std::string name;  ///< shown in CSV output and messages; may be empty
+  std::string name;                   ///< shown in CSV output and messages; may be empty
+  BodyType type = BodyType::dynamic;  ///< static and kinematic bodies ignore body.mass
   Body body{};
   std::optional<SpringDamper> spring;
   std::optional<ConstantForce> constant_force;

@@ -50,6 +50,9 @@ struct WorldSettings {
   /// states are bit-identical for every thread count: each body gathers its link forces in
   /// a fixed order, and no float is ever added atomically.
   int threads = 0;
+  /// Body-vs-body contacts of discs (world_discs.cpp); unset (the default): none are computed
+  /// and the world pays nothing for them. Contacts with planes need no setting.
+  std::optional<ContactSettings> contacts = std::nullopt;
 };
 
 /// Bodies from which an automatic (threads = 0) world with links steps on two threads.
@@ -73,6 +76,14 @@ struct EnergyReport {
   double gravity = 0.0;         ///< J
   double constant_force = 0.0;  ///< J
   [[nodiscard]] double total() const { return kinetic + spring + gravity + constant_force; }
+};
+
+/// What the disc-disc contacts did in one tick (World::contact_stats()).
+struct ContactStats {
+  std::size_t candidate_pairs = 0;  ///< pairs of discs whose swept boxes overlap (broadphase)
+  std::size_t impacts = 0;          ///< impacts resolved at their time within the tick
+  std::size_t touching = 0;         ///< pairs in contact at the end of the tick (resting solver)
+  double max_overlap = 0.0;         ///< deepest overlap r_a + r_b - |x_a - x_b| left, m (>= 0)
 };
 
 /// Largest magnitude a body's x, y (m) or vx, vy (m/s) may reach. Beyond it, or at NaN or
@@ -210,6 +221,11 @@ class World {
   template <class C>
   [[nodiscard]] const C* get(Entity e) const;
 
+  /// The type of e's body (dynamic, static or kinematic); throws if e is stale.
+  [[nodiscard]] BodyType type(Entity e) const { return types_[index_of(e)]; }
+  /// The type of the body at dense index i < body_count().
+  [[nodiscard]] BodyType type_at(std::size_t i) const { return types_[i]; }
+
   /// Body state of e converted to double.
   [[nodiscard]] Body body(Entity e) const;
   /// Overwrites mass, position and velocity of e (validated like create_body).
@@ -294,6 +310,13 @@ class World {
   /// takes the kinetic energy its damping flow removes (velocity Verlet, Forest–Ruth), so
   /// the energy balance (E + E_dissipated - E0)/|E0| shrinks at the integrator's order.
   [[nodiscard]] double dissipated_energy() const;
+  /// Work done on the dynamic bodies from outside the world's energy account, J: by kinematic
+  /// bodies through contacts (their impulses' work on the bodies they push) since creation.
+  /// The energy balance is E + E_dissipated - W_external - E0 (energy_balance()).
+  [[nodiscard]] double external_work() const { return external_work_; }
+  /// Disc-disc contacts of the last tick (WorldSettings::contacts): what the broadphase and the
+  /// solver did. Zero without contacts.
+  [[nodiscard]] const ContactStats& contact_stats() const { return contact_stats_; }
   /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
   /// equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
@@ -341,7 +364,10 @@ class World {
   detail::SparseSet bodies_;
   std::vector<Real> x_, y_, vx_, vy_, prev_x_, prev_y_;
   std::vector<double> mass_;
+  std::vector<BodyType> types_;
   std::vector<std::string> names_;
+  double external_work_ = 0.0;  ///< J (external_work())
+  ContactStats contact_stats_;
 
   // components (authoritative, double)
   detail::Store<SpringDamper> springs_;
