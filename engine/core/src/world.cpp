@@ -343,23 +343,28 @@ void World<Real>::rebuild_terms() {
   std::vector<Field> f(n);
   for (std::size_t i = 0; i < springs_.data.size(); ++i) {
     const SpringDamper& s = springs_.data[i];
-    Field& fj = f[bodies_.index(springs_.set.dense[i])];
-    const double m = mass_[bodies_.index(springs_.set.dense[i])];
+    const std::size_t j = bodies_.index(springs_.set.dense[i]);
+    if (types_[j] != BodyType::dynamic) continue;  // moved by nothing but its velocity
+    Field& fj = f[j];
+    const double m = mass_[j];
     fj.stiffness = s.stiffness / m;
     fj.gamma += s.damping / m;
     fj.anchor_x = s.anchor.x, fj.anchor_y = s.anchor.y, fj.rest = s.rest_length;
   }
   for (std::size_t i = 0; i < drags_.data.size(); ++i) {
     const std::size_t j = bodies_.index(drags_.set.dense[i]);
+    if (types_[j] != BodyType::dynamic) continue;
     f[j].gamma += drags_.data[i].coefficient / mass_[j];
   }
   for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
     const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
+    if (types_[j] != BodyType::dynamic) continue;
     f[j].cx += constant_forces_.data[i].force.x / mass_[j];
     f[j].cy += constant_forces_.data[i].force.y / mass_[j];
   }
   for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
     const std::size_t j = bodies_.index(gravities_.set.dense[i]);
+    if (types_[j] != BodyType::dynamic) continue;
     f[j].cx += gravities_.data[i].acceleration.x;
     f[j].cy += gravities_.data[i].acceleration.y;
   }
@@ -383,6 +388,7 @@ void World<Real>::rebuild_terms() {
   flows_.clear();
   rebuild_network();
   rebuild_contacts();
+  rebuild_discs();
   terms_dirty_ = false;
 }
 
@@ -402,13 +408,17 @@ unsigned World<Real>::active_terms() const {
 template <class Real>
 template <class Add>
 void World<Real>::for_each_energy(Add&& add) const {
+  // Static and kinematic bodies are outside the account (their motion is imposed).
+  auto dynamic = [this](std::size_t j) { return types_[j] == BodyType::dynamic; };
   for (std::size_t j = 0; j < body_count(); ++j) {
+    if (!dynamic(j)) continue;
     const double vx = vx_[j], vy = vy_[j];
     add(j, &EnergyReport::kinetic, 0.5 * mass_[j] * (vx * vx + vy * vy));
   }
   for (std::size_t i = 0; i < springs_.data.size(); ++i) {
     const SpringDamper& s = springs_.data[i];
     const std::size_t j = bodies_.index(springs_.set.dense[i]);
+    if (!dynamic(j)) continue;
     const double dx = double(x_[j]) - s.anchor.x, dy = double(y_[j]) - s.anchor.y;
     const double d2 = dx * dx + dy * dy;
     const double stretch = std::sqrt(d2) - s.rest_length;
@@ -428,11 +438,13 @@ void World<Real>::for_each_energy(Add&& add) const {
   for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
     const Vec2 g = gravities_.data[i].acceleration;
     const std::size_t j = bodies_.index(gravities_.set.dense[i]);
+    if (!dynamic(j)) continue;
     add(j, &EnergyReport::gravity, -mass_[j] * (g.x * double(x_[j]) + g.y * double(y_[j])));
   }
   for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
     const Vec2 f = constant_forces_.data[i].force;
     const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
+    if (!dynamic(j)) continue;
     add(j, &EnergyReport::constant_force, -(f.x * double(x_[j]) + f.y * double(y_[j])));
   }
 }

@@ -185,19 +185,24 @@ template <class Real>
 void World<Real>::rebuild_contacts() {
   ContactScratch& c = contact_;
   const std::size_t n = colliders_.data.size();
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
+  std::vector<std::uint32_t> order;  // dynamic colliders: planes do not move the others
+  auto dynamic = [&](std::uint32_t i) {
+    return types_[bodies_.index(colliders_.set.dense[i])] == BodyType::dynamic;
+  };
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (dynamic(i)) order.push_back(i);
+  }
   auto body_of = [&](std::uint32_t i) { return bodies_.index(colliders_.set.dense[i]); };
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return body_of(a) < body_of(b); });
-  c.body.resize(n);
-  c.radius.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
+  c.body.resize(order.size());
+  c.radius.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
     c.body[k] = static_cast<std::uint32_t>(body_of(order[k]));
     c.radius[k] = colliders_.data[order[k]].radius;
   }
-  for (auto* v : {&c.x0, &c.y0, &c.vx0, &c.vy0}) v->resize(n);
-  c.active = !planes_.empty() && n > 0;
+  for (auto* v : {&c.x0, &c.y0, &c.vx0, &c.vy0}) v->resize(order.size());
+  c.active = !planes_.empty() && !order.empty();
 }
 
 template <class Real>

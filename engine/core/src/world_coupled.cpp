@@ -77,7 +77,10 @@ void World<Real>::rebuild_network() {
   net.a.resize(m), net.b.resize(m);
   net.k.resize(m), net.damping.resize(m), net.rest.resize(m);
   net.inv_mass.resize(n);
-  for (std::size_t j = 0; j < n; ++j) net.inv_mass[j] = static_cast<Real>(1.0 / mass_[j]);
+  for (std::size_t j = 0; j < n; ++j) {
+    // Static and kinematic ends are immovable: links do not accelerate them.
+    net.inv_mass[j] = types_[j] == BodyType::dynamic ? static_cast<Real>(1.0 / mass_[j]) : Real(0);
+  }
   net.offset.assign(n + 1, 0);
   net.rest_length = net.damped = false;
   for (std::size_t l = 0; l < m; ++l) {

@@ -257,6 +257,7 @@ bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
     for (std::size_t i = 0; i < springs_.data.size(); ++i) {
       const SpringDamper& sd = springs_.data[i];
       const std::size_t j = bodies_.index(springs_.set.dense[i]);
+      if (types_[j] != BodyType::dynamic) continue;
       s.drag[j] += sd.damping;
       s.springs.push_back({.a = static_cast<std::uint32_t>(j),
                            .b = 0,
@@ -280,6 +281,13 @@ bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
     for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
       const std::size_t j = bodies_.index(gravities_.set.dense[i]);
       s.cx[j] += gravities_.data[i].acceleration.x, s.cy[j] += gravities_.data[i].acceleration.y;
+    }
+    // Static and kinematic bodies: no forces of their own, and a mass so large (10^30 kg) that
+    // links move them by nothing a double resolves; after the tick they are put where their
+    // velocity takes them (restore_immovable).
+    for (std::size_t j = 0; j < n; ++j) {
+      if (types_[j] == BodyType::dynamic) continue;
+      s.mass[j] = 1e30, s.drag[j] = 0.0, s.cx[j] = 0.0, s.cy[j] = 0.0;
     }
     for (std::size_t l = 0; l < link_defs_.size(); ++l) {
       const LinkSpring& ls = link_defs_[l].spring;

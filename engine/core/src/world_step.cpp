@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "body_field.hpp"
+#include "disc_contacts.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/world.hpp"
 
@@ -181,17 +182,25 @@ template <class Real>
 void World<Real>::step(const TickInput& input) {
   const FlushDenormals ftz(settings_.flush_denormals);
   if (terms_dirty_) rebuild_terms();
-  if (input.drag_body < x_.size()) apply_drag(input);
+  if (input.drag_body < x_.size() && types_[input.drag_body] == BodyType::dynamic) {
+    apply_drag(input);
+  }
   if (keep_previous_) {
     std::copy(x_.begin(), x_.end(), prev_x_.begin());
     std::copy(y_.begin(), y_.end(), prev_y_.begin());
   }
-  // Contacts with planes (world_contacts.cpp): only when the world has planes and colliders,
-  // one branch per tick otherwise.
+  // Contacts with planes (world_contacts.cpp): only when the world has planes and colliders;
+  // static and kinematic bodies and disc-disc contacts (world_discs.cpp): only when declared.
+  // One branch each per tick otherwise.
   const bool contacts = contact_.active;
+  const bool immovable = !immovable_.body.empty();
+  const bool discs = discs_ && discs_->active();
   if (contacts) save_contact_start();
+  if (immovable || discs) save_tick_start();
   integrate(input);
+  if (immovable) restore_immovable();
   if (contacts) resolve_contacts();
+  if (discs) resolve_discs();
 }
 
 template <class Real>

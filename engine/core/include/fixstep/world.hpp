@@ -115,6 +115,42 @@ template <class Real>
 struct ImplicitSolverDeleter {
   void operator()(ImplicitSolver<Real>* s) const;
 };
+/// Disc-disc contacts of a world with WorldSettings::contacts (disc_contacts.hpp).
+template <class Real>
+class DiscContacts;
+/// Deep-copying owner of a T defined elsewhere (its copy, assignment and deletion are
+/// instantiated where T is complete): a copy of the World copies the disc contacts' state,
+/// warm-start impulses included, so a snapshot steps on to the same bits.
+template <class T>
+class ClonePtr {
+ public:
+  ClonePtr() = default;
+  ClonePtr(const ClonePtr& other) : p_(other.p_ ? clone(*other.p_) : nullptr) {}
+  ClonePtr& operator=(const ClonePtr& other) {
+    if (this != &other) assign(p_, other.p_);
+    return *this;
+  }
+  ClonePtr(ClonePtr&& other) noexcept : p_(other.p_) { other.p_ = nullptr; }
+  ClonePtr& operator=(ClonePtr&& other) noexcept {
+    std::swap(p_, other.p_);
+    return *this;
+  }
+  ~ClonePtr() { destroy(p_); }
+  [[nodiscard]] T* get() const { return p_; }
+  T* operator->() const { return p_; }
+  T& operator*() const { return *p_; }
+  explicit operator bool() const { return p_ != nullptr; }
+  void reset(T* p = nullptr) {
+    destroy(p_);
+    p_ = p;
+  }
+
+ private:
+  static T* clone(const T& t);
+  static void assign(T*& to, const T* from);  ///< reuses *to's storage when both exist
+  static void destroy(T* t);
+  T* p_ = nullptr;
+};
 
 /// Owns a cache that a copy of its owner does not share: a copy starts empty (the owner
 /// rebuilds the cache on demand) and copying into an owner drops its cache; moving moves it.
@@ -448,6 +484,20 @@ class World {
   void rebuild_contacts();
   void save_contact_start();
   void resolve_contacts();
+
+  // Static and kinematic bodies (dense indices) and their start-of-tick states: after the
+  // integrator, a static body is put back and a kinematic one moved on at its velocity, so
+  // nothing (forces, links, push) moves them otherwise. Empty in a world of dynamic bodies.
+  struct Immovable {
+    std::vector<std::uint32_t> body;
+    std::vector<Real> x0, y0, vx0, vy0;
+  } immovable_;
+  // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.
+  detail::ClonePtr<detail::DiscContacts<Real>> discs_;
+  void rebuild_discs();
+  void save_tick_start();
+  void restore_immovable();
+  void resolve_discs();
 };
 
 // --- component access (templates, so defined here) ---------------------------------------

@@ -1,0 +1,156 @@
+// Body-vs-body contacts of discs (WorldSettings::contacts): the state and scratch a World keeps
+// for them, and the two phases of a tick. Internal to the engine: not installed.
+//
+// A tick first integrates every body as if no disc touched another (world_step.cpp) and
+// resolves contacts with planes (world_contacts.cpp). Then, for the discs:
+//  1. Impacts at their time (disc_events.cpp). Each disc's start state (x0, v0) and end state
+//     (x1, v1) define a motion of constant acceleration a = (v1 - v0)/dt through both end
+//     positions, as for planes: x(s) = x0 + u s + ½ a s², u = v0 + δ, with the integrator's
+//     velocity the model's minus δ = (x1 - x0)/dt - (v0 + v1)/2 (exact for free flight and
+//     gravity). A broadphase pairs the discs whose boxes swept over the tick overlap; each
+//     pair's first contact is the first root of the quartic |d(s)|² - (r_a + r_b)² while
+//     approaching (disc_toi.hpp). Impacts are resolved in time order (ties by pair order) with
+//     Newton's restitution and a Coulomb-limited friction impulse on the linear velocities,
+//     and the pairs of the two discs are predicted again from that time on; at most
+//     max_impacts per disc and tick. An impact that would bounce back by less than one tick
+//     of the pair's relative normal acceleration (e |v_n| <= |c_n| dt) is left to phase 2.
+//  2. Resting contact (disc_rest.cpp). Pairs touching at the end of the tick, and discs on
+//     planes, are solved together by sequential impulses (Gauss–Seidel, warm-started from the
+//     last tick's impulses) so that no pair approaches; each impulse acts as a constant
+//     contact force over the tick, so it moves the positions by κ dt Δv, κ being how far the
+//     integrator moves a body under a constant force per unit of velocity it gives (½ for
+//     velocity Verlet, RK4 and Forest–Ruth; (n+1)/2n for semi-implicit and implicit Euler at
+//     n substeps; (n-1)/2n for explicit Euler). A stack at rest is then held exactly by the
+//     integrator's own step. An overlap left beyond the slop is pushed out along the normal
+//     (positions only, split by inverse mass, at most max_push_out of the radius a tick).
+// Static discs never move; kinematic discs move at their velocity; both act as infinite mass.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "disc_broadphase_stub.hpp"
+#include "fixstep/components.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep::detail {
+
+/// One disc of the contact set, in the World's dense body order at rebuild time.
+struct Disc {
+  std::uint32_t body = 0;           ///< dense body index
+  double radius = 0;                ///< m
+  double restitution = 0;           ///< e in [0, 1]
+  double friction = 0;              ///< μ >= 0
+  double inv_mass = 0;              ///< 1/kg; 0 for static and kinematic discs
+  std::uint8_t dynamic = 0;         ///< 1 for dynamic discs
+  double accel_x = 0, accel_y = 0;  ///< constant acceleration (gravity + F/m), m/s² (energy)
+};
+
+/// A disc's motion within the tick: position X and model velocity U at time t, acceleration a.
+struct DiscMotion {
+  double t = 0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;  // d: offset δ
+  [[nodiscard]] double px(double s) const {
+    return x + ux * (s - t) + 0.5 * ax * (s - t) * (s - t);
+  }
+  [[nodiscard]] double py(double s) const {
+    return y + uy * (s - t) + 0.5 * ay * (s - t) * (s - t);
+  }
+};
+
+/// An impact waiting in the event queue: time, pair index and the two discs' versions.
+struct DiscEvent {
+  double time = 0;
+  std::uint32_t pair = 0, stamp_a = 0, stamp_b = 0;
+};
+
+/// A contact of the resting solver: disc a against disc b, or against plane p (b = npos).
+struct RestContact {
+  std::uint64_t key = 0;  ///< a << 32 | b (b = disc count + plane index for planes)
+  std::uint32_t a = 0, b = 0;
+  double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
+};
+
+/// Last tick's resting impulses, for warm starting (part of a snapshot).
+struct WarmImpulse {
+  std::uint64_t key = 0;
+  double lambda_n = 0, lambda_t = 0;
+};
+
+template <class Real>
+class DiscContacts {
+ public:
+  /// Replaces the disc set (after a structural change); `linked` holds the keys a << 32 | b
+  /// (a < b, disc indices) of linked pairs, sorted. Forgets the warm-start impulses.
+  void rebuild(std::vector<Disc> discs, std::vector<std::uint64_t> linked,
+               const ContactSettings& settings);
+  [[nodiscard]] bool active() const { return !discs_.empty(); }
+  [[nodiscard]] std::span<const Disc> discs() const { return discs_; }
+  /// Per-tick constant accelerations of the discs' bodies (energy account), m/s².
+  void set_accelerations(std::span<const Real> ax, std::span<const Real> ay);
+
+  /// Saves the start-of-tick states of the discs.
+  void save_start(const Real* x, const Real* y, const Real* vx, const Real* vy);
+
+  struct Tick {
+    Real *x, *y, *vx, *vy;  ///< the world's state arrays (dense body order)
+    std::span<const PlaneDef> planes;
+    double dt = 0, kappa = 0.5;  ///< s; κ (see above)
+    int threads = 1;
+  };
+  /// Resolves the tick's contacts in place. Returns per-disc energy bookkeeping through
+  /// lost() (J/kg, dynamic discs) and external() (J); fills stats.
+  void resolve(const Tick& tick, ContactStats& stats);
+  /// Energy the last resolve() took from each disc, J/kg (index: disc).
+  [[nodiscard]] std::span<const double> lost() const { return lost_; }
+  /// Work of kinematic discs on each disc in the last resolve(), J.
+  [[nodiscard]] std::span<const double> external() const { return external_; }
+  /// Heap bytes a copy holds (World::snapshot_bytes).
+  [[nodiscard]] std::size_t bytes() const;
+
+  /// Impacts resolved per disc and tick (phase 1); more wait for the resting solver.
+  static constexpr int max_impacts = 8;
+  /// Gauss–Seidel sweeps of the resting solver (velocities, then positions).
+  static constexpr int velocity_iterations = 20, position_iterations = 10;
+  /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
+  static constexpr double slop = 0.005;
+  /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
+  static constexpr double max_push_out = 0.2;
+
+ private:
+  // phase 1 (disc_events.cpp)
+  void build_motions(const Tick& tick);
+  bool find_candidates(const Tick& tick, ContactStats& stats);
+  void run_events(const Tick& tick, ContactStats& stats);
+  void predict(std::uint32_t pair, double now, double dt);
+  void impact(std::uint32_t pair, double now, double dt);
+  // phase 2 (disc_rest.cpp)
+  void gather_contacts(const Tick& tick);
+  void warm_start(const Tick& tick);
+  void solve_velocities(const Tick& tick);
+  void push_out(const Tick& tick, ContactStats& stats);
+  void keep_impulses();
+  void apply(const RestContact& c, double jx, double jy, double kdt);
+  void finish(const Tick& tick);
+
+  std::vector<Disc> discs_;
+  std::vector<std::uint64_t> linked_;
+  ContactSettings settings_;
+  double min_radius_ = 0;
+  // per tick (sized once; no allocation once warm)
+  std::vector<Real> x0_, y0_, vx0_, vy0_;
+  std::vector<DiscMotion> motion_;
+  std::vector<SweptBox> boxes_;
+  std::vector<std::uint8_t> dynamic_;
+  std::vector<DiscPair> pairs_;
+  std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
+  std::vector<std::uint8_t> changed_;
+  std::vector<DiscEvent> heap_;
+  std::vector<RestContact> contacts_;
+  std::vector<WarmImpulse> warm_;
+  std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
+  std::vector<double> lost_, external_, e_start_;
+  DiscBroadphase broadphase_;
+};
+
+}  // namespace fixstep::detail

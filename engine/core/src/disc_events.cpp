@@ -1,0 +1,286 @@
+// Disc contacts, phase 1: the discs' motions in the tick, the broadphase, and impacts resolved
+// at their time of impact in time order (see disc_contacts.hpp for the model).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "disc_contacts.hpp"
+#include "disc_toi.hpp"
+
+namespace fixstep::detail {
+
+namespace {
+
+constexpr double eps = std::numeric_limits<double>::epsilon();
+
+/// |(x, y)| by the correctly rounded sqrt (std::hypot differs between libms).
+double length(double x, double y) {
+  return std::sqrt(x * x + y * y);
+}
+
+/// Earlier event first; ties by pair index (a fixed order, so runs agree bit for bit).
+bool later(const DiscEvent& l, const DiscEvent& r) {
+  return l.time > r.time || (l.time == r.time && l.pair > r.pair);
+}
+
+/// The range of a + u s + ½ c s² over s in [0, h], widened by `pad`.
+void extent(double a, double u, double c, double h, double pad, double& lo, double& hi) {
+  const double end = a + h * (u + 0.5 * c * h);
+  lo = std::min(a, end), hi = std::max(a, end);
+  if (c != 0.0) {
+    const double s = -u / c;
+    if (s > 0.0 && s < h) {
+      const double turn = a + s * (u + 0.5 * c * s);
+      lo = std::min(lo, turn), hi = std::max(hi, turn);
+    }
+  }
+  lo -= pad, hi += pad;
+}
+
+}  // namespace
+
+template <class Real>
+void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint64_t> linked,
+                                 const ContactSettings& settings) {
+  discs_ = std::move(discs);
+  linked_ = std::move(linked);
+  settings_ = settings;
+  const std::size_t n = discs_.size();
+  min_radius_ = std::numeric_limits<double>::infinity();
+  for (const Disc& d : discs_) min_radius_ = std::min(min_radius_, d.radius);
+  for (auto* v : {&x0_, &y0_, &vx0_, &vy0_}) v->assign(n, Real(0));
+  for (auto* v : {&ex_, &ey_, &evx_, &evy_, &lost_, &external_, &e_start_}) v->assign(n, 0.0);
+  motion_.assign(n, DiscMotion{});
+  boxes_.assign(n, SweptBox{});
+  dynamic_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) dynamic_[k] = discs_[k].dynamic;
+  offset_.assign(n + 1, 0);
+  stamp_.assign(n, 0);
+  impacts_.assign(n, 0);
+  changed_.assign(n, 0);
+  warm_.clear();
+}
+
+template <class Real>
+void DiscContacts<Real>::set_accelerations(std::span<const Real> ax, std::span<const Real> ay) {
+  for (Disc& d : discs_) d.accel_x = double(ax[d.body]), d.accel_y = double(ay[d.body]);
+}
+
+template <class Real>
+void DiscContacts<Real>::save_start(const Real* x, const Real* y, const Real* vx, const Real* vy) {
+  for (std::size_t k = 0; k < discs_.size(); ++k) {
+    const std::uint32_t j = discs_[k].body;
+    x0_[k] = x[j], y0_[k] = y[j], vx0_[k] = vx[j], vy0_[k] = vy[j];
+  }
+}
+
+template <class Real>
+void DiscContacts<Real>::build_motions(const Tick& tick) {
+  const double dt = tick.dt;
+  for (std::size_t k = 0; k < discs_.size(); ++k) {
+    const Disc& d = discs_[k];
+    const std::uint32_t j = d.body;
+    const double x1 = tick.x[j], y1 = tick.y[j], v1x = tick.vx[j], v1y = tick.vy[j];
+    const double x0 = x0_[k], y0 = y0_[k], v0x = vx0_[k], v0y = vy0_[k];
+    ex_[k] = x1, ey_[k] = y1, evx_[k] = v1x, evy_[k] = v1y;
+    e_start_[k] = 0.5 * (v1x * v1x + v1y * v1y) - (d.accel_x * x1 + d.accel_y * y1);
+    DiscMotion& m = motion_[k];
+    m.dx = (x1 - x0) / dt - 0.5 * (v0x + v1x), m.dy = (y1 - y0) / dt - 0.5 * (v0y + v1y);
+    m.t = 0, m.x = x0, m.y = y0, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
+    m.ax = (v1x - v0x) / dt, m.ay = (v1y - v0y) / dt;
+    const double pad = d.radius * (1.0 + 2.0 * slop);
+    SweptBox& b = boxes_[k];
+    extent(m.x, m.ux, m.ax, dt, pad, b.min_x, b.max_x);
+    extent(m.y, m.uy, m.ay, dt, pad, b.min_y, b.max_y);
+    stamp_[k] = 0, impacts_[k] = 0, changed_[k] = 0;
+    lost_[k] = 0, external_[k] = 0;
+  }
+}
+
+template <class Real>
+bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) {
+  const std::size_t n = discs_.size();
+  const std::size_t cap = 64 * n + 1024;
+  if (!broadphase_.find_pairs(boxes_, dynamic_, cap, pairs_, tick.threads)) {
+    stats.candidate_pairs = cap;
+    pairs_.clear();
+    return false;
+  }
+  // Linked pairs never collide (Box2D's collideConnected = false).
+  if (!linked_.empty()) {
+    std::erase_if(pairs_, [&](DiscPair p) {
+      const std::uint64_t key = (std::uint64_t(p.a) << 32) | p.b;
+      return std::binary_search(linked_.begin(), linked_.end(), key);
+    });
+  }
+  stats.candidate_pairs = pairs_.size();
+  // Each disc's pairs (CSR, in pair order).
+  std::fill(offset_.begin(), offset_.end(), 0u);
+  for (const DiscPair& p : pairs_) ++offset_[p.a + 1], ++offset_[p.b + 1];
+  for (std::size_t k = 0; k < n; ++k) offset_[k + 1] += offset_[k];
+  incident_.resize(2 * pairs_.size());
+  for (std::size_t k = 0; k < n; ++k) stamp_[k] = offset_[k];  // fill cursors (reset below)
+  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+    incident_[stamp_[pairs_[i].a]++] = i;
+    incident_[stamp_[pairs_[i].b]++] = i;
+  }
+  std::fill(stamp_.begin(), stamp_.end(), 0u);
+  return true;
+}
+
+template <class Real>
+void DiscContacts<Real>::predict(std::uint32_t pair, double now, double dt) {
+  const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
+  if (impacts_[a] >= max_impacts || impacts_[b] >= max_impacts) return;
+  const DiscMotion &ma = motion_[a], &mb = motion_[b];
+  RelativeMotion r;
+  r.px = ma.px(now) - mb.px(now), r.py = ma.py(now) - mb.py(now);
+  r.wx = ma.ux + ma.ax * (now - ma.t) - mb.ux - mb.ax * (now - mb.t);
+  r.wy = ma.uy + ma.ay * (now - ma.t) - mb.uy - mb.ay * (now - mb.t);
+  r.cx = ma.ax - mb.ax, r.cy = ma.ay - mb.ay;
+  r.radius = discs_[a].radius + discs_[b].radius;
+  const double dist = length(r.px, r.py);
+  const double scale = std::abs(ma.px(now)) + std::abs(ma.py(now)) + r.radius + dist;
+  // Approaching faster than one tick of relative acceleration: an impact (else resting).
+  auto impact_speed = [&](double s, double rest) {
+    const double dx = r.px + s * (r.wx + 0.5 * s * r.cx), dy = r.py + s * (r.wy + 0.5 * s * r.cy);
+    const double len = length(dx, dy);
+    if (!(len > 0.0)) return false;
+    const double nx = dx / len, ny = dy / len;
+    const double vn = (r.wx + s * r.cx) * nx + (r.wy + s * r.cy) * ny;
+    const double cn = r.cx * nx + r.cy * ny;
+    const double vtol = 64.0 * eps * (scale / dt + length(r.wx, r.wy));
+    return -vn > std::abs(cn) * dt + rest + vtol;
+  };
+  double when = std::numeric_limits<double>::infinity();
+  if (dist - r.radius <= 16.0 * eps * scale) {
+    // Already in contact: closing slower than the slop in a tick is resting (phase 2).
+    const double rest = slop * std::min(discs_[a].radius, discs_[b].radius) / dt;
+    if (impact_speed(0.0, rest)) when = now;
+  } else {
+    const double h = dt - now;
+    const double s = first_contact(r, h);
+    if (s <= h && impact_speed(s, 0.0)) {
+      when = now + s;
+    } else if (!(s <= h)) {
+      // Rounding may leave a pair that meets at the very end of the tick a hair apart: an
+      // impact at the end of the tick.
+      const double ex = r.px + h * (r.wx + 0.5 * h * r.cx), ey = r.py + h * (r.wy + 0.5 * h * r.cy);
+      if (length(ex, ey) - r.radius <= 16.0 * eps * scale && impact_speed(h, 0.0)) when = dt;
+    }
+  }
+  if (when > dt) return;
+  heap_.push_back(DiscEvent{when, pair, stamp_[a], stamp_[b]});
+  std::push_heap(heap_.begin(), heap_.end(), later);
+}
+
+template <class Real>
+void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
+  const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
+  DiscMotion &ma = motion_[a], &mb = motion_[b];
+  for (DiscMotion* m : {&ma, &mb}) {
+    const double s = now - m->t;
+    m->x += s * (m->ux + 0.5 * s * m->ax), m->y += s * (m->uy + 0.5 * s * m->ay);
+    m->ux += s * m->ax, m->uy += s * m->ay, m->t = now;
+  }
+  const double len = length(ma.x - mb.x, ma.y - mb.y);
+  const double nx = len > 0.0 ? (ma.x - mb.x) / len : 0.0,
+               ny = len > 0.0 ? (ma.y - mb.y) / len : 1.0;
+  const double wx = ma.ux - mb.ux, wy = ma.uy - mb.uy;
+  const double vn = std::min(wx * nx + wy * ny, 0.0);
+  const double cn = (ma.ax - mb.ax) * nx + (ma.ay - mb.ay) * ny;
+  const Disc &da = discs_[a], &db = discs_[b];
+  double e = std::max(da.restitution, db.restitution);
+  if (e * -vn <= std::max(-cn, 0.0) * dt) e = 0.0;  // it would hit again within the tick: rest
+  const double mass = 1.0 / (da.inv_mass + db.inv_mass);
+  const double jn = -(1.0 + e) * vn * mass;
+  // Coulomb over the normal impulse: the tangential relative velocity loses at most μ jn/m.
+  const double tx = wx - (wx * nx + wy * ny) * nx, ty = wy - (wx * nx + wy * ny) * ny;
+  const double speed = length(tx, ty);
+  const double mu = std::sqrt(da.friction * db.friction);
+  const double jt = std::min(speed * mass, mu * jn);
+  const double jx = jn * nx - (speed > 0.0 ? jt * tx / speed : 0.0);
+  const double jy = jn * ny - (speed > 0.0 ? jt * ty / speed : 0.0);
+  // The work of a kinematic disc's impulse is external (J·V over the impulse).
+  if (!da.dynamic) external_[b] -= jx * ma.ux + jy * ma.uy;
+  if (!db.dynamic) external_[a] += jx * mb.ux + jy * mb.uy;
+  ma.ux += da.inv_mass * jx, ma.uy += da.inv_mass * jy;
+  mb.ux -= db.inv_mass * jx, mb.uy -= db.inv_mass * jy;
+  for (const std::uint32_t k : {a, b}) {
+    if (!discs_[k].dynamic) continue;
+    ++stamp_[k], ++impacts_[k], changed_[k] = 1;
+  }
+}
+
+template <class Real>
+void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
+  const double dt = tick.dt;
+  heap_.clear();
+  for (std::uint32_t i = 0; i < pairs_.size(); ++i) predict(i, 0.0, dt);
+  while (!heap_.empty()) {
+    std::pop_heap(heap_.begin(), heap_.end(), later);
+    const DiscEvent ev = heap_.back();
+    heap_.pop_back();
+    const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
+    if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
+    impact(ev.pair, ev.time, dt);
+    ++stats.impacts;
+    for (const std::uint32_t k : {a, b}) {
+      if (!discs_[k].dynamic) continue;
+      for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i)
+        predict(incident_[i], ev.time, dt);
+    }
+  }
+  // The end of the tick on each disc's last motion; the integrator's velocity is the model's
+  // minus the offset δ.
+  for (std::size_t k = 0; k < discs_.size(); ++k) {
+    if (!changed_[k]) continue;
+    const DiscMotion& m = motion_[k];
+    const double s = dt - m.t;
+    ex_[k] = m.px(dt), ey_[k] = m.py(dt);
+    evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
+  }
+}
+
+template <class Real>
+void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats) {
+  stats = ContactStats{};
+  build_motions(tick);
+  if (!find_candidates(tick, stats)) return;
+  run_events(tick, stats);
+  gather_contacts(tick);
+  warm_start(tick);
+  solve_velocities(tick);
+  push_out(tick, stats);
+  keep_impulses();
+  finish(tick);
+}
+
+template <class Real>
+std::size_t DiscContacts<Real>::bytes() const {
+  auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
+  return b(discs_) + b(linked_) + b(x0_) + b(y0_) + b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) +
+         b(dynamic_) + b(pairs_) + b(offset_) + b(incident_) + b(stamp_) + b(impacts_) +
+         b(changed_) + b(heap_) + b(contacts_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) +
+         b(lost_) + b(external_) + b(e_start_);
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                                          \
+  template void DiscContacts<Real>::rebuild(std::vector<Disc>, std::vector<std::uint64_t>, \
+                                            const ContactSettings&);                       \
+  template void DiscContacts<Real>::set_accelerations(std::span<const Real>,               \
+                                                      std::span<const Real>);              \
+  template void DiscContacts<Real>::save_start(const Real*, const Real*, const Real*,      \
+                                               const Real*);                               \
+  template void DiscContacts<Real>::build_motions(const Tick&);                            \
+  template bool DiscContacts<Real>::find_candidates(const Tick&, ContactStats&);           \
+  template void DiscContacts<Real>::predict(std::uint32_t, double, double);                \
+  template void DiscContacts<Real>::impact(std::uint32_t, double, double);                 \
+  template void DiscContacts<Real>::run_events(const Tick&, ContactStats&);                \
+  template void DiscContacts<Real>::resolve(const Tick&, ContactStats&);                   \
+  template std::size_t DiscContacts<Real>::bytes() const;
+FIXSTEP_INSTANTIATE(float)
+FIXSTEP_INSTANTIATE(double)
+#undef FIXSTEP_INSTANTIATE
+
+}  // namespace fixstep::detail

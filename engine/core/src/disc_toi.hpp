@@ -1,0 +1,115 @@
+// The time of impact of two discs whose centres move on parabolas (constant accelerations):
+// the first root, while approaching, of the quartic |d(τ)|² - R² in a time window. Internal
+// to the engine (world_discs.cpp): not installed.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace fixstep::detail {
+
+/// The relative motion of two discs over a window [0, horizon] s: centre offset
+/// d(τ) = p + w τ + ½ c τ² (m; p = x_a - x_b, w = v_a - v_b, c = a_a - a_b at the window's
+/// start) and the sum of the radii R (m).
+struct RelativeMotion {
+  double px = 0, py = 0, wx = 0, wy = 0, cx = 0, cy = 0, radius = 0;
+};
+
+/// f(τ) = |d(τ)|² - R² = k0 + k1 τ + k2 τ² + k3 τ³ + k4 τ⁴, m².
+struct Quartic {
+  std::array<double, 5> k{};
+  [[nodiscard]] double operator()(double t) const {
+    return k[0] + t * (k[1] + t * (k[2] + t * (k[3] + t * k[4])));
+  }
+  [[nodiscard]] double slope(double t) const {
+    return k[1] + t * (2.0 * k[2] + t * (3.0 * k[3] + t * 4.0 * k[4]));
+  }
+};
+
+[[nodiscard]] inline Quartic gap_quartic(const RelativeMotion& m) {
+  const double qx = 0.5 * m.cx, qy = 0.5 * m.cy;
+  Quartic f;
+  f.k[0] = m.px * m.px + m.py * m.py - m.radius * m.radius;
+  f.k[1] = 2.0 * (m.px * m.wx + m.py * m.wy);
+  f.k[2] = m.wx * m.wx + m.wy * m.wy + 2.0 * (m.px * qx + m.py * qy);
+  f.k[3] = 2.0 * (m.wx * qx + m.wy * qy);
+  f.k[4] = qx * qx + qy * qy;
+  return f;
+}
+
+/// The real roots of a + b t + c t² in (lo, hi), ascending, into out; returns their count.
+/// Cancellation-free form (Numerical Recipes §5.6).
+inline int quadratic_roots(double a, double b, double c, double lo, double hi, double* out) {
+  int n = 0;
+  auto keep = [&](double t) {
+    if (t > lo && t < hi) out[n++] = t;
+  };
+  if (c == 0.0) {
+    if (b != 0.0) keep(-a / b);
+    return n;
+  }
+  const double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0) return 0;
+  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  const double r1 = q != 0.0 ? a / q : 0.0, r2 = q / c;
+  keep(std::min(r1, r2));
+  if (r1 != r2) keep(std::max(r1, r2));
+  return n;
+}
+
+/// The root of f in [lo, hi] where f(lo) > 0 >= f(hi) (f continuous), by bisection to the
+/// last bit: deterministic, and exact to a double's resolution of the window.
+template <class F>
+double bisect_down(const F& f, double lo, double hi) {
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    (f(mid) > 0.0 ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+/// The stationary points of f (roots of f', a cubic) in (0, horizon), ascending; returns
+/// their count. The cubic's own stationary points (roots of f'', a quadratic) split the window
+/// into intervals where f' is monotone, and each sign change is bisected.
+inline int quartic_stationary(const Quartic& f, double horizon, double* out) {
+  const auto d1 = [&f](double t) { return f.slope(t); };
+  double cuts[4] = {0.0};
+  const int nc = quadratic_roots(2.0 * f.k[2], 6.0 * f.k[3], 12.0 * f.k[4], 0.0, horizon, cuts + 1);
+  cuts[nc + 1] = horizon;
+  int n = 0;
+  for (int i = 0; i <= nc; ++i) {
+    const double lo = cuts[i], hi = cuts[i + 1];
+    const double flo = d1(lo), fhi = d1(hi);
+    if ((flo > 0.0) == (fhi > 0.0) || flo == 0.0) continue;
+    const double root =
+        flo > 0.0 ? bisect_down(d1, lo, hi) : bisect_down([&](double t) { return -d1(t); }, lo, hi);
+    if (root > 0.0 && root < horizon) out[n++] = root;
+  }
+  return n;
+}
+
+/// The first τ in [0, horizon] at which two separated discs (f(0) > 0) come into contact
+/// (f falls through 0), or infinity. Exact to the last bit of τ: the window is split at the
+/// stationary points of f, and the first interval where f changes sign is bisected.
+inline double first_contact(const RelativeMotion& m, double horizon) {
+  constexpr double none = std::numeric_limits<double>::infinity();
+  const Quartic f = gap_quartic(m);
+  if (!(f.k[0] > 0.0)) return none;
+  // Cheap rejection: the centres cannot close the gap within the window.
+  const double gap = std::sqrt(m.px * m.px + m.py * m.py) - m.radius;
+  const double reach = horizon * (std::sqrt(m.wx * m.wx + m.wy * m.wy) +
+                                  0.5 * horizon * std::sqrt(m.cx * m.cx + m.cy * m.cy));
+  if (gap > reach * (1.0 + 1e-12) + 1e-300) return none;
+  double cuts[5] = {0.0};
+  const int nc = quartic_stationary(f, horizon, cuts + 1);
+  cuts[nc + 1] = horizon;
+  for (int i = 0; i <= nc; ++i) {
+    if (f(cuts[i + 1]) <= 0.0) return bisect_down(f, cuts[i], cuts[i + 1]);
+  }
+  return none;
+}
+
+}  // namespace fixstep::detail

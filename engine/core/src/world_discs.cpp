@@ -1,0 +1,168 @@
+// The World's side of body types and disc-disc contacts: which bodies are discs, the
+// static and kinematic bodies' motion, and the energy account of contacts (the contact model
+// itself is in disc_contacts.hpp, disc_events.cpp and disc_rest.cpp).
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+
+#include "disc_contacts.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+
+namespace detail {
+template <class T>
+T* ClonePtr<T>::clone(const T& t) {
+  return new T(t);
+}
+template <class T>
+void ClonePtr<T>::assign(T*& to, const T* from) {
+  if (!from) {
+    delete to;
+    to = nullptr;
+  } else if (to) {
+    *to = *from;
+  } else {
+    to = new T(*from);
+  }
+}
+template <class T>
+void ClonePtr<T>::destroy(T* t) {
+  delete t;
+}
+template class ClonePtr<DiscContacts<float>>;
+template class ClonePtr<DiscContacts<double>>;
+}  // namespace detail
+
+namespace {
+
+/// How far an integrator moves a body under a constant force, per unit of the velocity that
+/// force gives it over one tick, in units of dt: x1 - x0 = κ dt Δv. With n substeps of h =
+/// dt/n, semi-implicit (and implicit) Euler move F/m h² n(n+1)/2 = F/m dt² (n+1)/2n, explicit
+/// Euler (n-1)/2n, and the methods exact for constant forces ½.
+double kappa(Integrator integrator, int substeps) {
+  const double n = substeps;
+  switch (integrator) {
+    case Integrator::semi_implicit_euler:
+    case Integrator::implicit_euler:
+      return (n + 1.0) / (2.0 * n);
+    case Integrator::explicit_euler:
+      return (n - 1.0) / (2.0 * n);
+    default:
+      return 0.5;
+  }
+}
+
+}  // namespace
+
+template <class Real>
+void World<Real>::rebuild_discs() {
+  immovable_.body.clear();
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    if (types_[j] != BodyType::dynamic) immovable_.body.push_back(static_cast<std::uint32_t>(j));
+  }
+  for (auto* v : {&immovable_.x0, &immovable_.y0, &immovable_.vx0, &immovable_.vy0}) {
+    v->resize(immovable_.body.size());
+  }
+  if (!settings_.contacts) {
+    discs_.reset();
+    return;
+  }
+  const ContactSettings& cs = *settings_.contacts;
+  std::vector<std::uint32_t> order;  // colliders that collide, in dense body order
+  for (std::uint32_t i = 0; i < colliders_.data.size(); ++i) {
+    if (colliders_.data[i].collide) order.push_back(i);
+  }
+  auto body_of = [&](std::uint32_t i) { return bodies_.index(colliders_.set.dense[i]); };
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return body_of(a) < body_of(b); });
+  std::vector<detail::Disc> discs(order.size());
+  std::vector<std::int64_t> disc_of(body_count(), -1);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Collider& c = colliders_.data[order[k]];
+    const std::size_t j = body_of(order[k]);
+    detail::Disc& d = discs[k];
+    d.body = static_cast<std::uint32_t>(j);
+    d.radius = c.radius;
+    d.restitution = c.restitution.value_or(cs.restitution);
+    d.friction = c.friction.value_or(cs.friction);
+    d.dynamic = types_[j] == BodyType::dynamic ? 1 : 0;
+    d.inv_mass = d.dynamic ? 1.0 / mass_[j] : 0.0;
+    disc_of[j] = static_cast<std::int64_t>(k);
+  }
+  std::vector<std::uint64_t> linked;
+  for (const LinkDef& l : link_defs_) {
+    const std::int64_t a = disc_of[bodies_.index(l.body_a)], b = disc_of[bodies_.index(l.body_b)];
+    if (a < 0 || b < 0) continue;
+    linked.push_back((std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b)));
+  }
+  std::sort(linked.begin(), linked.end());
+  linked.erase(std::unique(linked.begin(), linked.end()), linked.end());
+  if (!discs_) discs_.reset(new detail::DiscContacts<Real>());
+  discs_->rebuild(std::move(discs), std::move(linked), cs);
+  discs_->set_accelerations(coeff_.accel_x, coeff_.accel_y);
+}
+
+template <class Real>
+void World<Real>::save_tick_start() {
+  Immovable& m = immovable_;
+  for (std::size_t i = 0; i < m.body.size(); ++i) {
+    const std::uint32_t j = m.body[i];
+    m.x0[i] = x_[j], m.y0[i] = y_[j], m.vx0[i] = vx_[j], m.vy0[i] = vy_[j];
+  }
+  if (discs_ && discs_->active()) discs_->save_start(x_.data(), y_.data(), vx_.data(), vy_.data());
+}
+
+template <class Real>
+void World<Real>::restore_immovable() {
+  const Immovable& m = immovable_;
+  const Real dt = static_cast<Real>(settings_.dt);
+  for (std::size_t i = 0; i < m.body.size(); ++i) {
+    const std::uint32_t j = m.body[i];
+    if (types_[j] == BodyType::static_body) {
+      x_[j] = m.x0[i], y_[j] = m.y0[i], vx_[j] = Real(0), vy_[j] = Real(0);
+    } else {  // kinematic: on at its velocity
+      x_[j] = m.x0[i] + m.vx0[i] * dt, y_[j] = m.y0[i] + m.vy0[i] * dt;
+      vx_[j] = m.vx0[i], vy_[j] = m.vy0[i];
+    }
+  }
+}
+
+template <class Real>
+void World<Real>::resolve_discs() {
+  detail::DiscContacts<Real>& dc = *discs_;
+  typename detail::DiscContacts<Real>::Tick t{x_.data(),
+                                              y_.data(),
+                                              vx_.data(),
+                                              vy_.data(),
+                                              planes_,
+                                              settings_.dt,
+                                              kappa(settings_.integrator, settings_.substeps),
+                                              1};
+  dc.resolve(t, contact_stats_);
+  const auto discs = dc.discs();
+  const auto lost = dc.lost();
+  const auto external = dc.external();
+  bool out_of_range = false;
+  for (std::size_t k = 0; k < discs.size(); ++k) {
+    if (!discs[k].dynamic || (lost[k] == 0.0 && external[k] == 0.0)) continue;
+    const std::uint32_t j = discs[k].body;
+    if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(lost[k]);
+    external_work_ += external[k];
+    for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {
+      out_of_range = out_of_range || !(std::abs(double(value)) <= max_state_magnitude);
+    }
+  }
+  if (out_of_range && !fault_) record_fault();
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                 \
+  template void World<Real>::rebuild_discs();     \
+  template void World<Real>::save_tick_start();   \
+  template void World<Real>::restore_immovable(); \
+  template void World<Real>::resolve_discs();
+FIXSTEP_INSTANTIATE(float)
+FIXSTEP_INSTANTIATE(double)
+#undef FIXSTEP_INSTANTIATE
+
+}  // namespace fixstep

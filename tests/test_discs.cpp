@@ -1,0 +1,341 @@
+// Disc-disc contacts (WorldSettings::contacts; disc_contacts.hpp) and body types: impacts at
+// their time within the tick against the closed form, the energy account, Newton's cradle, an
+// elastic gas, tunnelling, piles and stacks at rest, static and kinematic bodies.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+namespace {
+
+constexpr Integrator all_integrators[] = {
+    Integrator::explicit_euler,  Integrator::semi_implicit_euler,
+    Integrator::velocity_verlet, Integrator::rk4,
+    Integrator::implicit_euler,  Integrator::forest_ruth};
+
+WorldSettings contact_settings(double dt, double e, double mu, Integrator integrator,
+                               bool track = false) {
+  WorldSettings s{.dt = dt, .integrator = integrator, .track_dissipation = track};
+  s.contacts = ContactSettings{.restitution = e, .friction = mu};
+  return s;
+}
+
+BodyDef disc(double mass, Vec2 x, Vec2 v, double radius, BodyType type = BodyType::dynamic) {
+  BodyDef b;
+  b.type = type;
+  b.body = Body{.mass = mass, .position = x, .velocity = v};
+  b.collider = Collider{.radius = radius};
+  return b;
+}
+
+/// Two free discs (no forces) in closed form: the contact time t* solving |p + w t| = R, the
+/// impulse of Newton's law with restitution e and Coulomb friction μ on linear velocities,
+/// then straight lines to `end`. Returns the states at `end` (m, m/s).
+struct Free {
+  double m, x, y, vx, vy;
+};
+std::pair<Free, Free> closed_form(Free a, Free b, double radius_sum, double e, double mu,
+                                  double end) {
+  const double px = a.x - b.x, py = a.y - b.y, wx = a.vx - b.vx, wy = a.vy - b.vy;
+  const double A = wx * wx + wy * wy, B = 2 * (px * wx + py * wy),
+               C = px * px + py * py - radius_sum * radius_sum;
+  const double t = (-B - std::sqrt(B * B - 4 * A * C)) / (2 * A);
+  auto at = [](Free f, double s) { return Free{f.m, f.x + f.vx * s, f.y + f.vy * s, f.vx, f.vy}; };
+  a = at(a, t), b = at(b, t);
+  const double len = std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y));
+  const double nx = (a.x - b.x) / len, ny = (a.y - b.y) / len;
+  const double vn = wx * nx + wy * ny;
+  const double mass = a.m * b.m / (a.m + b.m);
+  const double jn = -(1 + e) * vn * mass;
+  const double tx = wx - vn * nx, ty = wy - vn * ny, speed = std::sqrt(tx * tx + ty * ty);
+  const double jt = std::min(speed * mass, mu * jn);
+  const double jx = jn * nx - (speed > 0 ? jt * tx / speed : 0),
+               jy = jn * ny - (speed > 0 ? jt * ty / speed : 0);
+  a.vx += jx / a.m, a.vy += jy / a.m, b.vx -= jx / b.m, b.vy -= jy / b.m;
+  return {at(a, end - t), at(b, end - t)};
+}
+
+TEST(Discs, ImpactMidTickMatchesTheClosedForm) {
+  const double dt = 0.1;
+  struct Case {
+    Free a, b;
+    double ra, rb;
+  };
+  const Case cases[] = {
+      {{1.0, 0.0, 0.0, 3.0, 0.0}, {1.0, 1.2, 0.0, -1.0, 0.0}, 0.25, 0.25},     // head-on
+      {{1.0, 0.0, 0.0, 4.0, 0.5}, {3.0, 1.0, 0.3, -1.0, 0.0}, 0.3, 0.2},       // oblique, 1:3
+      {{0.5, -0.2, 0.1, 5.0, -1.0}, {2.0, 0.9, -0.05, 0.0, 0.0}, 0.2, 0.35}};  // oblique at rest
+  for (const Integrator integrator : all_integrators) {
+    for (const double e : {0.0, 0.5, 1.0}) {
+      for (const double mu : {0.0, 0.4}) {
+        for (const Case& c : cases) {
+          World<double> w(contact_settings(dt, e, mu, integrator));
+          w.create_body(disc(c.a.m, {c.a.x, c.a.y}, {c.a.vx, c.a.vy}, c.ra));
+          w.create_body(disc(c.b.m, {c.b.x, c.b.y}, {c.b.vx, c.b.vy}, c.rb));
+          for (int i = 0; i < 3; ++i) w.step();
+          const auto [a, b] = closed_form(c.a, c.b, c.ra + c.rb, e, mu, 3 * dt);
+          const double tol = 1e-9;
+          EXPECT_NEAR(w.x()[0], a.x, tol) << int(integrator) << " e=" << e << " mu=" << mu;
+          EXPECT_NEAR(w.y()[0], a.y, tol);
+          EXPECT_NEAR(w.vx()[0], a.vx, tol);
+          EXPECT_NEAR(w.vy()[0], a.vy, tol);
+          EXPECT_NEAR(w.x()[1], b.x, tol);
+          EXPECT_NEAR(w.y()[1], b.y, tol);
+          EXPECT_NEAR(w.vx()[1], b.vx, tol);
+          EXPECT_NEAR(w.vy()[1], b.vy, tol);
+          EXPECT_EQ(w.contact_stats().max_overlap <= 1e-12, true);
+        }
+      }
+    }
+  }
+}
+
+TEST(Discs, EnergyLostIsWhatDissipatedGains) {
+  for (const double e : {0.0, 0.5, 0.9}) {
+    for (const double mu : {0.0, 0.3}) {
+      World<double> w(contact_settings(0.05, e, mu, Integrator::semi_implicit_euler, true));
+      w.create_body(disc(1.0, {0.0, 0.0}, {4.0, 1.0}, 0.3));
+      w.create_body(disc(2.0, {1.0, 0.2}, {-1.0, 0.0}, 0.3));
+      const double e0 = w.energy().total();
+      for (int i = 0; i < 10; ++i) w.step();
+      const double lost = e0 - w.energy().total();
+      if (e < 1.0) {
+        EXPECT_GT(lost, 0.01);
+      }
+      EXPECT_NEAR(w.dissipated_energy(), lost, 1e-12 * e0) << "e=" << e << " mu=" << mu;
+    }
+  }
+}
+
+TEST(Discs, NewtonsCradlePassesTheVelocityToTheLast) {
+  for (const Integrator integrator : all_integrators) {
+    World<double> w(contact_settings(1.0 / 60.0, 1.0, 0.0, integrator));
+    const double r = 0.1;
+    w.create_body(disc(1.0, {-0.5, 0.0}, {2.0, 0.0}, r));  // the striker
+    for (int i = 1; i < 5; ++i) w.create_body(disc(1.0, {2 * r * i, 0.0}, {}, r));
+    for (int i = 0; i < 30; ++i) w.step();
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(w.vx()[i], 0.0, 1e-12) << "disc " << i;
+    EXPECT_NEAR(w.vx()[4], 2.0, 1e-12);
+    // The striker stopped touching the second disc, where it met it.
+    EXPECT_NEAR(w.x()[0], 0.0, 1e-12);
+  }
+}
+
+TEST(Discs, ElasticGasConservesMomentumAndEnergy) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  World<double> w(contact_settings(1.0 / 60.0, 1.0, 0.0, Integrator::semi_implicit_euler));
+  const int side = 20;  // 400 discs of radius 0.1 on a 0.5 m lattice, random velocities
+  for (int i = 0; i < side; ++i) {
+    for (int j = 0; j < side; ++j) {
+      const double m = 1.0 + 0.5 * (u(rng) + 1.0);
+      w.create_body(disc(m, {0.5 * i, 0.5 * j}, {2.0 * u(rng), 2.0 * u(rng)}, 0.1));
+    }
+  }
+  auto momentum = [&] {
+    double px = 0, py = 0;
+    for (std::size_t k = 0; k < w.body_count(); ++k) {
+      const Body b = w.body(w.entities()[k]);
+      px += b.mass * b.velocity.x, py += b.mass * b.velocity.y;
+    }
+    return std::pair{px, py};
+  };
+  const auto [px0, py0] = momentum();
+  const double e0 = w.energy().kinetic;
+  std::size_t impacts = 0;
+  for (int i = 0; i < 300; ++i) {
+    w.step();
+    impacts += w.contact_stats().impacts;
+  }
+  const auto [px, py] = momentum();
+  EXPECT_GT(impacts, 200u);
+  EXPECT_NEAR(px, px0, 1e-11);
+  EXPECT_NEAR(py, py0, 1e-11);
+  EXPECT_NEAR(w.energy().kinetic, e0, 1e-11 * e0);
+}
+
+TEST(Discs, AFastDiscBouncesOffASmallStaticDisc) {
+  for (const Integrator integrator : all_integrators) {
+    World<double> w(contact_settings(1.0 / 60.0, 1.0, 0.0, integrator));
+    // 10 m per tick towards a peg of radius 0.05 m 25 m away.
+    w.create_body(disc(1.0, {-25.0, 0.0}, {600.0, 0.0}, 0.1));
+    w.create_body(disc(1.0, {0.0, 0.0}, {}, 0.05, BodyType::static_body));
+    for (int i = 0; i < 6; ++i) w.step();
+    EXPECT_LT(w.x()[0], -0.15) << int(integrator);
+    EXPECT_NEAR(w.vx()[0], -600.0, 1e-9);
+    EXPECT_EQ(w.x()[1], 0.0);
+    EXPECT_EQ(w.vx()[1], 0.0);
+  }
+}
+
+/// Discs of radius r in a box [-half, half] (ground at 0, walls) under gravity: a grid of
+/// `columns` × `rows` above the ground, jittered.
+World<double> pour(int columns, int rows, double r, double half, Integrator integrator,
+                   double e = 0.0) {
+  World<double> w(contact_settings(1.0 / 60.0, e, 0.3, integrator));
+  w.add_plane(PlaneDef{.normal = {0, 1}, .offset = 0.0, .restitution = 0.0, .friction = 0.3});
+  w.add_plane(PlaneDef{.normal = {1, 0}, .offset = -half, .restitution = 0.0, .friction = 0.3});
+  w.add_plane(PlaneDef{.normal = {-1, 0}, .offset = -half, .restitution = 0.0, .friction = 0.3});
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.2 * r, 0.2 * r);
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < columns; ++j) {
+      BodyDef b =
+          disc(1.0, {-half + 1.5 * r + 2.4 * r * j + jitter(rng), 2 * r + 2.4 * r * i}, {}, r);
+      b.gravity = Gravity{};
+      w.create_body(b);
+    }
+  }
+  return w;
+}
+
+TEST(Discs, APileSettlesWithoutSinking) {
+  const double r = 0.05;
+  World<double> w = pour(23, 22, r, 1.5, Integrator::semi_implicit_euler);
+  ASSERT_GE(w.body_count(), 500u);
+  double kinetic_mid = 0;
+  for (int i = 0; i < 900; ++i) {
+    w.step();
+    if (i == 300) kinetic_mid = w.energy().kinetic;
+  }
+  EXPECT_LT(w.contact_stats().max_overlap, 0.01 * r);
+  EXPECT_LT(w.energy().kinetic, 1e-3 * kinetic_mid);
+  EXPECT_LT(w.energy().kinetic / double(w.body_count()), 1e-4);  // J per 1 kg disc: at rest
+  for (std::size_t k = 0; k < w.body_count(); ++k) {
+    EXPECT_GE(w.y()[k], r * (1 - 0.01)) << k;
+    EXPECT_LE(std::abs(w.x()[k]), 1.5 - r * (1 - 0.01)) << k;
+  }
+}
+
+TEST(Discs, AStackOfTenStandsInATube) {
+  for (const Integrator integrator : all_integrators) {
+    const double r = 0.1;
+    WorldSettings s = contact_settings(1.0 / 60.0, 0.0, 0.0, integrator);
+    World<double> w(s);
+    w.add_plane(PlaneDef{.normal = {0, 1}});
+    w.add_plane(PlaneDef{.normal = {1, 0}, .offset = -r * 1.01});
+    w.add_plane(PlaneDef{.normal = {-1, 0}, .offset = -r * 1.01});
+    for (int i = 0; i < 10; ++i) {
+      BodyDef b = disc(1.0, {0.0, r + 2 * r * i}, {}, r);
+      b.gravity = Gravity{};
+      w.create_body(b);
+    }
+    for (int i = 0; i < 300; ++i) w.step();
+    const std::vector<double> at_300(w.y().begin(), w.y().end());
+    for (int i = 0; i < 300; ++i) w.step();
+    // Each contact rests at the slop (0.5 % of the radius), none deeper, nothing creeps.
+    EXPECT_NEAR(w.y()[0], r, 1e-12) << int(integrator);
+    for (int i = 0; i < 10; ++i) {
+      if (i > 0) {
+        const double overlap = 2 * r - (w.y()[i] - w.y()[i - 1]);
+        EXPECT_LE(overlap, 0.01 * r) << int(integrator) << " disc " << i;
+      }
+      EXPECT_NEAR(w.y()[i], at_300[i], 1e-9 * r) << int(integrator) << " disc " << i;
+      EXPECT_NEAR(w.vy()[i], 0.0, 1e-9) << int(integrator) << " disc " << i;
+      EXPECT_NEAR(w.x()[i], 0.0, 1e-12);
+    }
+  }
+}
+
+TEST(Discs, LinkedDiscsDoNotCollideAndCollideFalseOptsOut) {
+  World<double> w(contact_settings(0.01, 1.0, 0.0, Integrator::semi_implicit_euler));
+  const Entity a = w.create_body(disc(1.0, {0.0, 0.0}, {1.0, 0.0}, 0.3));
+  const Entity b = w.create_body(disc(1.0, {0.5, 0.0}, {}, 0.3));  // overlapping, linked
+  w.create_link(LinkDef{a, b, LinkSpring{.stiffness = 0.0}});
+  BodyDef ghost = disc(1.0, {-1.0, 0.0}, {2.0, 0.0}, 0.3);
+  ghost.collider->collide = false;
+  w.create_body(ghost);
+  for (int i = 0; i < 20; ++i) w.step();
+  EXPECT_NEAR(w.vx()[0], 1.0, 1e-12);
+  EXPECT_NEAR(w.vx()[1], 0.0, 1e-12);
+  EXPECT_NEAR(w.vx()[2], 2.0, 1e-12);
+}
+
+TEST(BodyTypes, StaticNeverMovesAndKinematicKeepsItsVelocity) {
+  for (const Integrator integrator : all_integrators) {
+    World<double> w(WorldSettings{.dt = 0.01, .integrator = integrator});
+    BodyDef s = disc(1.0, {1.0, 2.0}, {}, 0.1, BodyType::static_body);
+    s.gravity = Gravity{};
+    const Entity st = w.create_body(s);
+    BodyDef k = disc(1.0, {0.0, 0.0}, {1.5, -0.5}, 0.1, BodyType::kinematic);
+    k.gravity = Gravity{};
+    const Entity kin = w.create_body(k);
+    BodyDef d = disc(2.0, {0.0, 1.0}, {}, 0.1);
+    const Entity dyn = w.create_body(d);
+    w.create_link(LinkDef{dyn, st, LinkSpring{.stiffness = 50.0, .damping = 1.0}});
+    w.create_link(LinkDef{dyn, kin, LinkSpring{.stiffness = 20.0}});
+    TickInput in;
+    in.push = {3.0, 4.0};
+    for (int i = 0; i < 100; ++i) w.step(in);
+    EXPECT_EQ(w.body(st).position.x, 1.0) << int(integrator);
+    EXPECT_EQ(w.body(st).position.y, 2.0);
+    EXPECT_EQ(w.body(st).velocity.x, 0.0);
+    EXPECT_NEAR(w.body(kin).position.x, 1.5, 1e-12);
+    EXPECT_NEAR(w.body(kin).position.y, -0.5, 1e-12);
+    EXPECT_EQ(w.body(kin).velocity.x, 1.5);
+    EXPECT_NE(w.body(dyn).position.x, 0.0);
+  }
+}
+
+TEST(BodyTypes, ALinkToAStaticBodyIsAnAnchoredSpring) {
+  for (const Integrator integrator : all_integrators) {
+    World<double> linked(WorldSettings{.dt = 0.01, .integrator = integrator});
+    World<double> anchored(WorldSettings{.dt = 0.01, .integrator = integrator});
+    BodyDef bob = disc(2.0, {1.0, 0.5}, {0.0, 1.0}, 0.1);
+    bob.gravity = Gravity{};
+    const Entity a = linked.create_body(bob);
+    const Entity pin = linked.create_body(disc(1e-6, {0.0, 0.0}, {}, 0.1, BodyType::static_body));
+    linked.create_link(LinkDef{a, pin, LinkSpring{.stiffness = 30.0, .damping = 0.5}});
+    bob.spring = SpringDamper{.anchor = {0.0, 0.0}, .stiffness = 30.0, .damping = 0.5};
+    anchored.create_body(bob);
+    for (int i = 0; i < 200; ++i) linked.step(), anchored.step();
+    EXPECT_NEAR(linked.x()[0], anchored.x()[0], 1e-9) << int(integrator);
+    EXPECT_NEAR(linked.y()[0], anchored.y()[0], 1e-9);
+    EXPECT_NEAR(linked.vy()[0], anchored.vy()[0], 1e-9);
+  }
+}
+
+TEST(BodyTypes, AKinematicPaddlePushesAndItsWorkIsExternal) {
+  World<double> w(contact_settings(0.01, 1.0, 0.0, Integrator::velocity_verlet, true));
+  w.create_body(disc(1.0, {0.0, 0.0}, {2.0, 0.0}, 0.1, BodyType::kinematic));
+  w.create_body(disc(1.0, {0.5, 0.0}, {}, 0.1));
+  for (int i = 0; i < 30; ++i) w.step();
+  // e = 1 off an infinite mass moving at 2 m/s: the ball leaves at 4 m/s, gaining 8 J, all of
+  // it the paddle's work; nothing dissipated.
+  EXPECT_NEAR(w.vx()[1], 4.0, 1e-12);
+  EXPECT_NEAR(w.external_work(), 8.0, 1e-9);
+  EXPECT_NEAR(w.dissipated_energy(), 0.0, 1e-9);
+  EXPECT_NEAR(w.energy().total(), 8.0, 1e-9);
+}
+
+TEST(Discs, SnapshotsCarryTheContactState) {
+  World<double> w = pour(10, 10, 0.05, 0.4, Integrator::semi_implicit_euler, 0.3);
+  for (int i = 0; i < 100; ++i) w.step();
+  World<double> copy = w;
+  for (int i = 0; i < 100; ++i) w.step(), copy.step();
+  EXPECT_EQ(w.state_hash(), copy.state_hash());
+  World<double> fresh = pour(10, 10, 0.05, 0.4, Integrator::semi_implicit_euler, 0.3);
+  fresh = copy;  // assignment reuses storage
+  for (int i = 0; i < 50; ++i) w.step(), fresh.step();
+  EXPECT_EQ(w.state_hash(), fresh.state_hash());
+}
+
+TEST(Discs, NothingChangesWithoutTheContactsTable) {
+  World<double> on = pour(5, 5, 0.05, 0.3, Integrator::rk4);
+  WorldSettings off_settings = on.settings();
+  off_settings.contacts.reset();
+  World<double> off(off_settings);
+  EXPECT_FALSE(off.settings().contacts.has_value());
+  for (int i = 0; i < 10; ++i) on.step();
+  EXPECT_GT(on.contact_stats().candidate_pairs, 0u);
+  EXPECT_EQ(off.contact_stats().candidate_pairs, 0u);
+}
+
+}  // namespace
+}  // namespace fixstep
