@@ -339,3 +339,47 @@ TEST(Discs, NothingChangesWithoutTheContactsTable) {
 
 }  // namespace
 }  // namespace fixstep
+
+namespace fixstep {
+namespace {
+
+/// Largest error (s) of the first `count` impact times of a ball dropped from h above a static
+/// disc with e = 1, against t_k = (2k + 1) √(2h/g) (World::impacts() gives each time).
+double impact_time_error(Integrator integrator, double dt, double h, int count) {
+  World<double> w(contact_settings(dt, 1.0, 0.0, integrator));
+  BodyDef ball = disc(1.0, {0.0, 0.5 + 0.25 + h}, {}, 0.25);
+  ball.gravity = Gravity{{0.0, -9.81}};
+  w.create_body(ball);
+  w.create_body(disc(1.0, {0.0, 0.0}, {}, 0.5, BodyType::static_body));
+  const double fall = std::sqrt(2.0 * h / 9.81);
+  double worst = 0.0;
+  int k = 0;
+  while (k < count && w.time() < 2.0 * count * fall + 1.0) {
+    const double start = w.time();
+    w.step();
+    for (const Impact& i : w.impacts()) {
+      worst = std::max(worst, std::abs(start + i.time - (2 * k + 1) * fall));
+      ++k;
+    }
+  }
+  EXPECT_EQ(k, count);
+  return worst;
+}
+
+TEST(Discs, ImpactTimesConvergeAtTheIntegratorsOrder) {
+  for (const Integrator integrator :
+       {Integrator::explicit_euler, Integrator::semi_implicit_euler}) {
+    const double coarse = impact_time_error(integrator, 1.0 / 60.0, 2.0, 5);
+    const double fine = impact_time_error(integrator, 1.0 / 240.0, 2.0, 5);
+    const double order = std::log(coarse / fine) / std::log(4.0);
+    EXPECT_NEAR(order, 1.0, 0.15) << int(integrator) << " " << coarse << " " << fine;
+  }
+  // Exact under gravity: the tick's motion is the true parabola.
+  for (const Integrator integrator :
+       {Integrator::velocity_verlet, Integrator::rk4, Integrator::forest_ruth}) {
+    EXPECT_LT(impact_time_error(integrator, 1.0 / 60.0, 2.0, 5), 1e-11) << int(integrator);
+  }
+}
+
+}  // namespace
+}  // namespace fixstep

@@ -105,6 +105,8 @@ class DiscContacts {
   [[nodiscard]] std::span<const double> lost() const { return lost_; }
   /// Work of kinematic discs on each disc in the last resolve(), J.
   [[nodiscard]] std::span<const double> external() const { return external_; }
+  /// The impacts of the last resolve(), in order.
+  [[nodiscard]] std::span<const Impact> impacts() const { return impact_log_; }
   /// Heap bytes a copy holds (World::snapshot_bytes).
   [[nodiscard]] std::size_t bytes() const;
 
@@ -146,6 +148,7 @@ class DiscContacts {
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
   std::vector<DiscEvent> heap_;
+  std::vector<Impact> impact_log_;
   std::vector<RestContact> contacts_;
   std::vector<WarmImpulse> warm_;
   std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s

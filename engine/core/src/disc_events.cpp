@@ -194,6 +194,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   if (e * -vn <= std::max(-cn, 0.0) * dt) e = 0.0;  // it would hit again within the tick: rest
   const double mass = 1.0 / (da.inv_mass + db.inv_mass);
   const double jn = -(1.0 + e) * vn * mass;
+  impact_log_.push_back(Impact{da.body, db.body, now, -vn});
   // Coulomb over the normal impulse: the tangential relative velocity loses at most μ jn/m.
   const double tx = wx - (wx * nx + wy * ny) * nx, ty = wy - (wx * nx + wy * ny) * ny;
   const double speed = length(tx, ty);
@@ -216,6 +217,7 @@ template <class Real>
 void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
   heap_.clear();
+  impact_log_.clear();
   for (std::uint32_t i = 0; i < pairs_.size(); ++i) predict(i, 0.0, dt);
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
@@ -245,6 +247,7 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
 template <class Real>
 void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats) {
   stats = ContactStats{};
+  impact_log_.clear();
   build_motions(tick);
   if (!find_candidates(tick, stats)) return;
   run_events(tick, stats);
@@ -261,8 +264,8 @@ std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(x0_) + b(y0_) + b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) +
          b(dynamic_) + b(pairs_) + b(offset_) + b(incident_) + b(stamp_) + b(impacts_) +
-         b(changed_) + b(heap_) + b(contacts_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) +
-         b(lost_) + b(external_) + b(e_start_);
+         b(changed_) + b(heap_) + b(impact_log_) + b(contacts_) + b(warm_) + b(ex_) + b(ey_) +
+         b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                          \

@@ -54,7 +54,17 @@ void hash_body(Fnv1a& h, const BodyDef& b) {
   h.add_optional(b.constant_force, [&](const ConstantForce& f) { h.add(f.force); });
   h.add_optional(b.gravity, [&](const Gravity& g) { h.add(g.acceleration); });
   h.add_optional(b.drag, [&](const LinearDrag& d) { h.add(d.coefficient); });
-  h.add_optional(b.collider, [&](const Collider& c) { h.add(c.radius); });
+  h.add_optional(b.collider, [&](const Collider& c) {
+    h.add(c.radius);
+    // What body contacts added (#19) enters only when set, so older definitions keep their
+    // hashes and recordings.
+    if (c.restitution || c.friction || !c.collide) {
+      h.add_optional(c.restitution, [&](double e) { h.add(e); });
+      h.add_optional(c.friction, [&](double mu) { h.add(mu); });
+      h.add(c.collide);
+    }
+  });
+  if (b.type != BodyType::dynamic) h.add(b.type);
 }
 
 }  // namespace
@@ -74,6 +84,9 @@ std::uint64_t definition_hash(const WorldDef& def) {
   h.add(def.planes.size());
   for (const PlaneDef& p : def.planes) {
     h.add(p.normal), h.add(p.offset), h.add(p.restitution), h.add(p.friction);
+  }
+  if (def.settings.contacts) {  // absent: the hash of a world from before contacts
+    h.add(def.settings.contacts->restitution), h.add(def.settings.contacts->friction);
   }
   return h.value();
 }

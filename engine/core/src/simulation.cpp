@@ -37,6 +37,18 @@ std::span<const PlaneDef> Simulation::planes() const {
 double Simulation::dissipated_energy() const {
   return visit([](const auto& w) { return w.dissipated_energy(); });
 }
+double Simulation::external_work() const {
+  return visit([](const auto& w) { return w.external_work(); });
+}
+const ContactStats& Simulation::contact_stats() const {
+  return visit([](const auto& w) -> const ContactStats& { return w.contact_stats(); });
+}
+std::span<const Impact> Simulation::impacts() const {
+  return visit([](const auto& w) { return w.impacts(); });
+}
+BodyType Simulation::type_at(std::size_t index) const {
+  return visit([&](const auto& w) { return w.type_at(index); });
+}
 void Simulation::step(const TickInput& input) {
   visit([&](auto& w) { w.step(input); });
 }
@@ -174,7 +186,8 @@ std::string hex_hash(std::uint64_t hash) {
 }
 
 double energy_balance(const Simulation& sim, double initial_energy) {
-  const double residual = sim.energy().total() + sim.dissipated_energy() - initial_energy;
+  const double residual =
+      sim.energy().total() + sim.dissipated_energy() - sim.external_work() - initial_energy;
   return initial_energy != 0.0 ? residual / std::abs(initial_energy) : residual;
 }
 

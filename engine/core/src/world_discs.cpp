@@ -156,10 +156,17 @@ void World<Real>::resolve_discs() {
   if (out_of_range && !fault_) record_fault();
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                 \
-  template void World<Real>::rebuild_discs();     \
-  template void World<Real>::save_tick_start();   \
-  template void World<Real>::restore_immovable(); \
+template <class Real>
+std::span<const Impact> World<Real>::impacts() const {
+  if (!discs_) return {};
+  return discs_->impacts();
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                \
+  template std::span<const Impact> World<Real>::impacts() const; \
+  template void World<Real>::rebuild_discs();                    \
+  template void World<Real>::save_tick_start();                  \
+  template void World<Real>::restore_immovable();                \
   template void World<Real>::resolve_discs();
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

@@ -91,6 +91,14 @@ class Simulation {
   [[nodiscard]] EnergyReport energy() const;  ///< J
   /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
   [[nodiscard]] double dissipated_energy() const;
+  /// Work of kinematic bodies on the others through contacts, J (World::external_work()).
+  [[nodiscard]] double external_work() const;
+  /// What the disc-disc contacts did in the last tick (World::contact_stats()).
+  [[nodiscard]] const ContactStats& contact_stats() const;
+  /// The disc-disc impacts of the last tick (World::impacts()).
+  [[nodiscard]] std::span<const Impact> impacts() const;
+  /// The type of the body at dense index `index` (dynamic, static or kinematic).
+  [[nodiscard]] BodyType type_at(std::size_t index) const;
   [[nodiscard]] std::uint64_t state_hash() const;
   /// Bytes a WorldSnapshot of this simulation holds (World::snapshot_bytes()).
   [[nodiscard]] std::size_t snapshot_bytes() const;
@@ -138,10 +146,11 @@ struct WorldDef {
 /// index out of range.
 [[nodiscard]] Simulation make_simulation(const WorldDef& def);
 
-/// The energy balance error (E + E_dissipated - E0)/|E0| (dimensionless; in J when E0 = 0):
-/// what the integrator alone adds or loses, with the energy damping and drag took out
-/// (Simulation::dissipated_energy, kept when WorldSettings::track_dissipation is on, as for
-/// every scene) put back. initial_energy = E0 in J.
+/// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J
+/// when E0 = 0): what the integrator alone adds or loses, with the energy damping, drag and
+/// contacts took out (Simulation::dissipated_energy, kept when WorldSettings::track_dissipation
+/// is on, as for every scene) put back and the work kinematic bodies did
+/// (Simulation::external_work) taken off. initial_energy = E0 in J.
 [[nodiscard]] double energy_balance(const Simulation& sim, double initial_energy);
 
 /// "ticks=N t=T state_hash=HHHHHHHHHHHHHHHH energy=E dissipated=D balance=B": the summary

@@ -86,6 +86,13 @@ struct ContactStats {
   double max_overlap = 0.0;         ///< deepest overlap r_a + r_b - |x_a - x_b| left, m (>= 0)
 };
 
+/// A disc-disc impact resolved at its time within the last tick (World::impacts()).
+struct Impact {
+  std::uint32_t body_a = 0, body_b = 0;  ///< dense body indices, body_a < body_b
+  double time = 0.0;                     ///< s after the tick's start
+  double normal_speed = 0.0;             ///< closing speed along the line of centres, m/s (> 0)
+};
+
 /// Largest magnitude a body's x, y (m) or vx, vy (m/s) may reach. Beyond it, or at NaN or
 /// infinity, World::step records a StateFault: 10¹² m is about 7 astronomical units, far outside
 /// any scene a game steps, and still 26 orders of magnitude below float's overflow.
@@ -353,6 +360,9 @@ class World {
   /// Disc-disc contacts of the last tick (WorldSettings::contacts): what the broadphase and the
   /// solver did. Zero without contacts.
   [[nodiscard]] const ContactStats& contact_stats() const { return contact_stats_; }
+  /// The disc-disc impacts of the last tick in the order they were resolved (empty without
+  /// contacts): what a game's rules read to score a hit. Valid until the next step.
+  [[nodiscard]] std::span<const Impact> impacts() const;
   /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
   /// equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
