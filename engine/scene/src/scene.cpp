@@ -60,8 +60,8 @@ Rgba8 parse_color(const Reader& r, const toml::table& t, const std::string& path
 
 BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Precision precision) {
   r.check_keys(t, path,
-               {"name", "mass", "position", "velocity", "spring", "force", "gravity", "drag",
-                "radius", "color"});
+               {"name", "type", "mass", "position", "velocity", "spring", "force", "gravity",
+                "drag", "radius", "color", "collide", "restitution", "friction"});
   BodyDef def;
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
@@ -86,6 +86,7 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
     spring.rest_length = k.rest_length;
     def.spring = spring;
   }
+  drop_moving_parts(r, t, path, def);
   return def;
 }
 
@@ -105,10 +106,9 @@ void check_f32(const Reader& r, const toml::node& node, const std::string& path)
 
 }  // namespace
 
-void parse_body_parts(const Reader& r, const toml::table& t, const std::string& path,
-                      BodyDef& def) {
-  def.body.mass = r.required_number(t, path, "mass", "the mass in kg, e.g. mass = 1.0");
-  r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
+void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {
+  def.type = parse_body_type(r, t, path);
+  parse_body_mass(r, t, path, def);
   if (auto v = r.vec2(t, "velocity", path + ".velocity")) def.body.velocity = *v;
   if (auto f = r.vec2(t, "force", path + ".force")) def.constant_force = ConstantForce{*f};
   if (auto g = r.vec2(t, "gravity", path + ".gravity")) def.gravity = Gravity{*g};
@@ -121,11 +121,12 @@ void parse_body_parts(const Reader& r, const toml::table& t, const std::string& 
     if (auto rad = r.number(t, "radius", path + ".radius")) {
       r.require(*rad > 0.0, t, "radius", path + ".radius", "> 0 m", *rad);
       ap.radius = *rad;
-      def.collider = Collider{*rad};  // the disc planes collide with
+      def.collider = Collider{.radius = *rad};  // a disc, for planes and [contacts]
     }
     if (t.get("color")) ap.color = parse_color(r, t, path + ".color");
     def.appearance = ap;
   }
+  parse_disc_keys(r, t, path, def);
 }
 
 }  // namespace scene_detail
@@ -143,7 +144,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
                      "the scene file is empty (no tables or keys): a scene needs a [world] table "
                      "with dt and at least one [[body]]; see README, Scene format");
   }
-  r.check_keys(doc, "", {"world", "view", "body", "spring", "chain", "grid", "plane"});
+  r.check_keys(doc, "", {"world", "view", "contacts", "body", "spring", "chain", "grid", "plane"});
 
   const toml::table* world = r.table(doc, "world", "world");
   if (!world) {
@@ -235,6 +236,8 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   }
   parse_springs(r, doc, scene, names);
   parse_planes(r, doc, scene);
+  parse_contacts(r, doc, scene);
+  check_start_overlap(scene, names);
   scene.warnings = r.take_warnings();
   return scene;
 }
