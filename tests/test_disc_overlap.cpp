@@ -272,7 +272,7 @@ body = { mass = 1, radius = 0.1 }
 }
 
 TEST(SceneOverlap, APileOfDiscsAtOnePointIsRefusedInBoundedTime) {
-  // 2·10^5 discs here (the million of docs/BAD_INPUTS.md, made by `fixstep run`, take 1.5 s).
+  // 2·10^5 discs here (the million of docs/BAD_INPUTS.md, made by `fixstep run`, take 2.1-2.4 s).
   const auto t0 = std::chrono::steady_clock::now();
   try {
     (void)parse_scene(R"([world]
