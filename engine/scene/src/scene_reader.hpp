@@ -38,12 +38,12 @@ struct FileKind {
 /// The whole text of `file`, at most max_bytes. Throws SceneError (file only, no line) when it
 /// is a directory (naming the files in it with kind.extension), does not exist (suggesting the
 /// closest name in its directory), cannot be opened or read, or is larger. Defined in
-/// scene.cpp.
+/// scene_text.cpp.
 std::string read_text_file(const std::filesystem::path& file, std::size_t max_bytes,
                            const FileKind& kind);
 /// `text` parsed as TOML. Throws SceneError for more than max_bytes, a fixstep recording, a NUL
 /// byte (binary data) and TOML syntax errors (with line and column, in plain words, with advice
-/// for common slips). Defined in scene.cpp.
+/// for common slips). Defined in scene_text.cpp.
 toml::table parse_toml(std::string_view text, const std::string& source_name, std::size_t max_bytes,
                        const FileKind& kind);
 
