@@ -336,9 +336,6 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"chain template without mass",
             chain("count = 3\nstart = [0, 0]\nspacing = [1, 0]\nbody = { radius = 1 }\n"), 7,
             "chain[0].body.mass", "missing"},
-        Bad{"chain without link",
-            chain("count = 3\nstart = [0, 0]\nspacing = [1, 0]\nbody = { mass = 1 }\n"), 3,
-            "chain[0].link", "missing (required)"},
         Bad{"chain link in both forms",
             chain("count = 3\nstart = [0, 0]\nspacing = [1, 0]\nbody = { mass = 1 }\n"
                   "link = { frequency = 1, stiffness = 2 }\n"),

@@ -182,6 +182,85 @@ TEST(NetworkGuard, NonProportionalDampingBindsThroughTheDampingMode) {
   }
 }
 
+// --- static and kinematic bodies: immovable anchors -------------------------------------------
+
+/// A 1 kg body linked by k (N/m, rest length 0) to a 1e-6 kg body of type `type`, anchored
+/// by nothing else.
+Chain anchored_pair(BodyType type, double k) {
+  Chain c;
+  BodyDef bob, anchor;
+  bob.name = "bob";
+  bob.body = Body{.mass = 1.0, .position = {1.0, 0.0}};
+  anchor.name = "hook";
+  anchor.type = type;
+  anchor.body.mass = 1e-6;  // ignored unless dynamic
+  c.bodies = {bob, anchor};
+  c.links = {{0, 1, LinkSpring{k, 0.0, 0.0}}};
+  return c;
+}
+
+TEST(NetworkAnchors, ALinkToAStaticOrKinematicBodyIsJudgedWithTheDynamicMassAlone) {
+  // k = 100 N/m on 1 kg: ω = 10 rad/s, ω·h = 1 at h = 0.1 s, within symplectic Euler's 2. Were
+  // the 1e-6 kg end free, the pair's ω = sqrt(k/μ) ≈ 1e4 rad/s would be refused.
+  for (const BodyType type : {BodyType::static_body, BodyType::kinematic}) {
+    const Chain c = anchored_pair(type, 100.0);
+    const NetworkStability r =
+        check_network_stability(c.bodies, c.links, Integrator::semi_implicit_euler, 0.1, 1);
+    EXPECT_NEAR(r.omega_max, 10.0, 1e-9) << body_type_name(type);
+    EXPECT_EQ(r.verdict, Stability::stable) << r.message;
+    EXPECT_EQ(r.fastest_body, 0u);  // the anchor never moves
+    EXPECT_EQ(r.stiffest_link, std::optional<std::size_t>(0));
+  }
+  const Chain free = anchored_pair(BodyType::dynamic, 100.0);
+  EXPECT_EQ(
+      check_network_stability(free.bodies, free.links, Integrator::semi_implicit_euler, 0.1, 1)
+          .verdict,
+      Stability::unstable);
+  // Its mass need not be valid: it is not used.
+  Chain zero = anchored_pair(BodyType::static_body, 100.0);
+  zero.bodies[1].body.mass = 0.0;
+  EXPECT_NO_THROW((void)check_network_stability(zero.bodies, zero.links,
+                                                Integrator::semi_implicit_euler, 0.1, 1));
+}
+
+TEST(NetworkAnchors, StiffestLinkWeighsAnAnchoredLinkByTheDynamicMass) {
+  // 'a' (1 kg) linked to the static 'hook' by k = 100 (k/m = 100) and to 'b' (1 kg) by k = 60
+  // (k/μ = 120): the stiffest is a–b. With the hook's 1e-6 kg counted, hook–a would be.
+  Chain c = anchored_pair(BodyType::static_body, 100.0);
+  c.bodies[0].name = "a";
+  BodyDef b;
+  b.name = "b";
+  b.body = Body{.mass = 1.0, .position = {2.0, 0.0}};
+  c.bodies.push_back(b);
+  c.links.push_back({0, 2, LinkSpring{60.0, 0.0, 0.0}});
+  const NetworkStability r =
+      check_network_stability(c.bodies, c.links, Integrator::semi_implicit_euler, 0.01, 1);
+  EXPECT_EQ(r.stiffest_link, std::optional<std::size_t>(1));
+  // ω_max of [[160, -60], [-60, 60]] (anchored a, free b): 110 + sqrt(50² + 60²).
+  EXPECT_NEAR(r.omega_max * r.omega_max, 110.0 + std::hypot(50.0, 60.0), 0.2);
+}
+
+TEST(NetworkAnchors, LinksBetweenTwoAnchorsAndAnchorsOwnSpringsDoNothing) {
+  // A stable 1 kg body on k = 100, plus two static bodies joined by k = 1e12 and a static body
+  // with a 1e12 N/m spring and 1e-9 kg: neither counts, per body or in the network.
+  Chain c = anchored_pair(BodyType::static_body, 100.0);
+  BodyDef s1, s2;
+  s1.type = s2.type = BodyType::static_body;
+  s1.name = "s1", s2.name = "s2";
+  s1.body.mass = s2.body.mass = 1e-9;
+  s2.body.position = {1.0, 0.0};
+  s1.spring = SpringDamper{.anchor = {}, .stiffness = 1e12, .damping = 1e6};
+  c.bodies.push_back(s1);
+  c.bodies.push_back(s2);
+  c.links.push_back({2, 3, LinkSpring{1e12, 1e6, 0.0}});
+  const NetworkStability r =
+      check_network_stability(c.bodies, c.links, Integrator::semi_implicit_euler, 0.1, 1);
+  EXPECT_NEAR(r.omega_max, 10.0, 1e-9);
+  EXPECT_EQ(r.damping_rate, 0.0);
+  EXPECT_EQ(r.verdict, Stability::stable) << r.message;
+  EXPECT_TRUE(check_stability(c.bodies, Integrator::semi_implicit_euler, 0.1, 1).empty());
+}
+
 // --- at scene load and in explain_fault ---------------------------------------------------------
 
 /// Three bodies: 'top' anchored by k = 100 N/m, linked to 'mid' by k = 100 and 'mid' to 'tip'

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <stdexcept>
 #include <tuple>
 
 #include "fixstep/world.hpp"
@@ -87,6 +88,7 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
   const std::string_view method = integrator_name(integrator);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const BodyDef& def = bodies[i];
+    if (def.type != BodyType::dynamic) continue;  // not integrated: nothing to judge
     BodyStability r;
     r.body = i;
     const double m = def.body.mass;
@@ -150,6 +152,41 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
 }  // namespace fixstep
 
 namespace fixstep {
+
+std::vector<bool> linked_bodies(std::size_t body_count, std::span<const BodyLink> links) {
+  std::vector<bool> linked(body_count, false);
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const BodyLink& link = links[l];
+    if (link.body_a >= body_count || link.body_b >= body_count) {
+      throw std::invalid_argument(
+          fmt::format("link[{}]: body index out of range ({} and {} of {} bodies)", l, link.body_a,
+                      link.body_b, body_count));
+    }
+    linked[link.body_a] = linked[link.body_b] = true;
+  }
+  return linked;
+}
+
+std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> all_bodies,
+                                                       std::span<const BodyLink> all_links,
+                                                       Integrator integrator, double dt,
+                                                       int substeps) {
+  if (all_links.empty()) return std::nullopt;
+  const std::vector<bool> linked = linked_bodies(all_bodies.size(), all_links);
+  std::vector<std::size_t> index(all_bodies.size()), order;
+  std::vector<BodyDef> bodies;
+  for (std::size_t i = 0; i < all_bodies.size(); ++i) {
+    if (!linked[i]) continue;
+    index[i] = bodies.size();
+    order.push_back(i);
+    bodies.push_back(all_bodies[i]);
+  }
+  std::vector<BodyLink> links(all_links.begin(), all_links.end());
+  for (BodyLink& l : links) l.body_a = index[l.body_a], l.body_b = index[l.body_b];
+  NetworkStability r = check_network_stability(bodies, links, integrator, dt, substeps);
+  r.fastest_body = order[r.fastest_body];
+  return r;
+}
 
 namespace {
 /// "; stable from substeps = N (dt <= H s)" when a substep count fixes the step, else "".

@@ -227,6 +227,12 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
   std::vector<double> per_mass;
   for (std::size_t i = 0; i < n; ++i) {
     const BodyDef& d = bodies[i];
+    if (d.type != BodyType::dynamic) {  // an immovable anchor: 1/m = 0, nothing of its own
+      k_op.scale.push_back(0.0);
+      k_op.body.emplace_back();
+      c_op.body.emplace_back();
+      continue;
+    }
     if (!(std::isfinite(d.body.mass) && d.body.mass > 0.0)) {
       throw std::invalid_argument(
           fmt::format("network stability: body[{}] '{}': mass must be finite and > 0 (got {})", i,
@@ -259,10 +265,16 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
     const LinkSpring& s = link.spring;
     k_op.link.push_back(stiffness_block(s.stiffness, s.rest_length, d));
     c_op.link.push_back(link_damping_block(s.damping, s.rest_length, d));
+    // The masses that move: a static or kinematic end is an anchor (infinite mass), so the
+    // link acts on the other end's mass alone; between two anchors it moves nothing.
+    const bool move_a = bodies[link.body_a].type == BodyType::dynamic,
+               move_b = bodies[link.body_b].type == BodyType::dynamic;
+    if (!move_a && !move_b) continue;
     damped_links = damped_links || s.damping > 0.0;
-    per_mass.push_back(s.stiffness / std::min(a.mass, b.mass));
-    per_mass.push_back(s.damping / std::min(a.mass, b.mass));
-    const double mu = reduced_mass(a.mass, b.mass);
+    const double lighter = !move_a ? b.mass : !move_b ? a.mass : std::min(a.mass, b.mass);
+    per_mass.push_back(s.stiffness / lighter);
+    per_mass.push_back(s.damping / lighter);
+    const double mu = move_a && move_b ? reduced_mass(a.mass, b.mass) : lighter;
     if (s.stiffness > 0.0 && s.stiffness / mu > stiffest)
       stiffest = s.stiffness / mu, r.stiffest_link = l;
     if (s.damping > 0.0 && s.damping / mu > strongest)
@@ -377,41 +389,6 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
     r.message = fmt::format("{} is within 10 % of {}'s {}: {} = {:.4g}, bound {:.4g} ({})", network,
                             method, bound_name, what, rate * r.h, rate * b.max_step, naming);
   }
-  return r;
-}
-
-std::vector<bool> linked_bodies(std::size_t body_count, std::span<const BodyLink> links) {
-  std::vector<bool> linked(body_count, false);
-  for (std::size_t l = 0; l < links.size(); ++l) {
-    const BodyLink& link = links[l];
-    if (link.body_a >= body_count || link.body_b >= body_count) {
-      throw std::invalid_argument(
-          fmt::format("link[{}]: body index out of range ({} and {} of {} bodies)", l, link.body_a,
-                      link.body_b, body_count));
-    }
-    linked[link.body_a] = linked[link.body_b] = true;
-  }
-  return linked;
-}
-
-std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> all_bodies,
-                                                       std::span<const BodyLink> all_links,
-                                                       Integrator integrator, double dt,
-                                                       int substeps) {
-  if (all_links.empty()) return std::nullopt;
-  const std::vector<bool> linked = linked_bodies(all_bodies.size(), all_links);
-  std::vector<std::size_t> index(all_bodies.size()), order;
-  std::vector<BodyDef> bodies;
-  for (std::size_t i = 0; i < all_bodies.size(); ++i) {
-    if (!linked[i]) continue;
-    index[i] = bodies.size();
-    order.push_back(i);
-    bodies.push_back(all_bodies[i]);
-  }
-  std::vector<BodyLink> links(all_links.begin(), all_links.end());
-  for (BodyLink& l : links) l.body_a = index[l.body_a], l.body_b = index[l.body_b];
-  NetworkStability r = check_network_stability(bodies, links, integrator, dt, substeps);
-  r.fastest_body = order[r.fastest_body];
   return r;
 }
 

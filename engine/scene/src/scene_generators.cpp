@@ -69,10 +69,28 @@ class Generator {
                       "the bodies' template, e.g. body = { mass = 0.1 }");
     }
     r_.check_keys(*b, key("body"),
-                  {"mass", "velocity", "force", "gravity", "drag", "radius", "color"});
+                  {"type", "mass", "velocity", "force", "gravity", "drag", "radius", "color",
+                   "collide", "restitution", "friction"});
     BodyDef def;
     parse_body_parts(r_, *b, key("body"), def);
+    drop_moving_parts(r_, *b, key("body"), def);
     return def;
+  }
+
+  /// For generated static or kinematic bodies: warns that the spring tables `keys` given are
+  /// ignored (a link between two such bodies, or a pin on one, moves nothing) and returns
+  /// true, so that the generator makes no links and no pins.
+  bool ignore_springs(const BodyDef& body, std::initializer_list<std::string_view> keys) {
+    if (body.type == BodyType::dynamic) return false;
+    for (const std::string_view k : keys) {
+      if (const toml::node* n = t_.get(k)) {
+        r_.warn(n->source(), key(k),
+                fmt::format("ignored: the bodies are {} (body.type), and a spring between two "
+                            "{} bodies or pinning one moves nothing",
+                            body_type_name(body.type), body_type_name(body.type)));
+      }
+    }
+    return true;
   }
 
   /// A spring table (stiffness/damping or frequency/damping_ratio, and rest_length if
@@ -176,9 +194,11 @@ class Generator {
     }
   }
 
-  /// Records what the generator made, for the hints of unknown body names.
-  void describe(std::string prefix, std::string text) {
+  /// Records what the generator made, for the hints of unknown body names, and where its
+  /// bodies begin (scene index `first`), for the keys of messages about them.
+  void describe(std::size_t first, std::string prefix, std::string text) {
     names_.generators.emplace_back(std::move(prefix), std::move(text));
+    names_.generated.emplace_back(first, path_);
   }
 
  private:
@@ -212,27 +232,27 @@ void parse_chain(Reader& r, const toml::table& t, std::size_t c, Scene& scene, B
       g.required("spacing", "the step [x, y] in m from one body to the next, e.g. [0.1, 0.0]"),
       g.key("spacing"));
   const BodyDef body = g.body_template();
-  const std::optional<SpringSpec> link = g.spring("link", true);
-  if (!link) {
-    r.fail_missing(t, g.path(), {"link"}, "missing (required)",
-                   "the spring between consecutive bodies, e.g. link = { stiffness = 100 }");
-  }
-
   const std::size_t first = scene.bodies.size();
   for (std::size_t i = 0; i < count; ++i) {
     const double s = static_cast<double>(i);
     g.add_body(body, fmt::format("{}[{}]", name, i),
                Vec2{start.x + s * spacing.x, start.y + s * spacing.y});
   }
-  g.reserve_links(count - 1, *t.get("link"), g.key("link"));
-  const LinkSpring spring = pair_spring(r, *link, body.body.mass, scene.precision);
-  for (std::size_t i = 0; i + 1 < count; ++i) g.add_link(first + i, first + i + 1, spring, *link);
+  g.describe(first, name, fmt::format("{} makes {}[0] .. {}[{}]", g.path(), name, name, count - 1));
+  if (g.ignore_springs(body, {"link", "pin", "pin_spring"})) return;
+  // Without `link` the bodies are not linked: a row of discs.
+  if (const std::optional<SpringSpec> link = g.spring("link", true)) {
+    g.reserve_links(count - 1, *t.get("link"), g.key("link"));
+    const LinkSpring spring = pair_spring(r, *link, body.body.mass, scene.precision);
+    for (std::size_t i = 0; i + 1 < count; ++i) {
+      g.add_link(first + i, first + i + 1, spring, *link);
+    }
+  }
   g.pins([&](const toml::node& n, const std::string& key) {
     return first + static_cast<std::size_t>(r.integer_node(
                        n, key, 0, static_cast<std::int64_t>(count) - 1,
                        fmt::format(", the index of one of the chain's {} bodies", count)));
   });
-  g.describe(name, fmt::format("{} makes {}[0] .. {}[{}]", g.path(), name, name, count - 1));
 }
 
 void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, BodyNames& names) {
@@ -258,15 +278,6 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
                              "[0.1, -0.1]"),
                   g.key("spacing"));
   const BodyDef body = g.body_template();
-  const std::optional<SpringSpec> link = g.spring("link", true);
-  if (!link) {
-    r.fail_missing(t, g.path(), {"link"}, "missing (required)",
-                   "the structural springs between neighbours in a row or column, e.g. link = { "
-                   "stiffness = 100 }");
-  }
-  const std::optional<SpringSpec> shear = g.spring("shear", true);
-  const std::optional<SpringSpec> bend = g.spring("bend", true);
-
   const std::size_t first = scene.bodies.size();
   auto at = [&](std::size_t i, std::size_t j) { return first + j * columns + i; };
   for (std::size_t j = 0; j < rows; ++j) {
@@ -275,13 +286,24 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
                  Vec2{origin.x + double(i) * spacing.x, origin.y + double(j) * spacing.y});
     }
   }
+  g.describe(first, name,
+             fmt::format("{} makes {}[0,0] .. {}[{},{}] ([column,row])", g.path(), name, name,
+                         columns - 1, rows - 1));
+  if (g.ignore_springs(body, {"link", "shear", "bend", "pin", "pin_spring"})) return;
+  // Each spring table is optional: without any, the bodies are not linked (a box of discs).
+  const std::optional<SpringSpec> link = g.spring("link", true);
+  const std::optional<SpringSpec> shear = g.spring("shear", true);
+  const std::optional<SpringSpec> bend = g.spring("bend", true);
   // Links in order: structural (row then column neighbours, row by row), shear (both
   // diagonals of each cell), bend (neighbours two apart).
   auto pairs = [](std::size_t n, std::size_t gap) { return n > gap ? n - gap : 0; };
-  const std::uint64_t structural = pairs(columns, 1) * rows + columns * pairs(rows, 1);
+  const std::uint64_t structural = link ? pairs(columns, 1) * rows + columns * pairs(rows, 1) : 0;
   const std::uint64_t diagonal = shear ? 2 * pairs(columns, 1) * pairs(rows, 1) : 0;
   const std::uint64_t two_apart = bend ? pairs(columns, 2) * rows + columns * pairs(rows, 2) : 0;
-  g.reserve_links(structural + diagonal + two_apart, *t.get("link"), g.key("link"));
+  const std::string_view first_key = link ? "link" : shear ? "shear" : "bend";
+  if (link || shear || bend) {
+    g.reserve_links(structural + diagonal + two_apart, *t.get(first_key), g.key(first_key));
+  }
   const double m = body.body.mass;
   auto connect = [&](const SpringSpec& spec, std::size_t gap, bool diagonals) {
     const LinkSpring spring = pair_spring(r, spec, m, scene.precision);
@@ -299,7 +321,7 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
       }
     }
   };
-  connect(*link, 1, false);
+  if (link) connect(*link, 1, false);
   if (shear) connect(*shear, 1, true);
   if (bend) connect(*bend, 2, false);
   g.pins([&](const toml::node& n, const std::string& key) {
@@ -315,8 +337,6 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
                                   fmt::format(", one of the grid's {} rows", rows));
     return at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
   });
-  g.describe(name, fmt::format("{} makes {}[0,0] .. {}[{},{}] ([column,row])", g.path(), name, name,
-                               columns - 1, rows - 1));
 }
 
 }  // namespace

@@ -142,9 +142,18 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
              fmt::format("\"{}\" twice: a spring joins two different bodies", da.name));
     }
     const SpringSpec spec = parse_spring_spec(r, t, path, true);
-    // The frequency form acts on the pair's reduced mass m_a m_b / (m_a + m_b).
-    const LinkSpring spring =
-        resolve_spring(r, spec, reduced_mass(da.body.mass, db.body.mass), 0.0, scene.precision);
+    // The frequency form acts on the pair's reduced mass m_a m_b / (m_a + m_b), on the dynamic
+    // body's mass alone when the other end is static or kinematic (an immovable anchor).
+    const bool move_a = da.type == BodyType::dynamic, move_b = db.type == BodyType::dynamic;
+    if (!move_a && !move_b) {
+      r.warn(n->source(), path + ".bodies",
+             fmt::format("does nothing: \"{}\" ({}) and \"{}\" ({}) are both immovable", da.name,
+                         body_type_name(da.type), db.name, body_type_name(db.type)));
+    }
+    const double mass = move_a && move_b ? reduced_mass(da.body.mass, db.body.mass)
+                        : move_a         ? da.body.mass
+                                         : db.body.mass;
+    const LinkSpring spring = resolve_spring(r, spec, mass, 0.0, scene.precision);
     if (spring.rest_length > 0.0 &&
         same_point(da.body.position, db.body.position, scene.precision)) {
       r.fail(t.get("rest_length")->source(), path + ".rest_length",

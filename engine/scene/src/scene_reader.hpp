@@ -38,12 +38,12 @@ struct FileKind {
 /// The whole text of `file`, at most max_bytes. Throws SceneError (file only, no line) when it
 /// is a directory (naming the files in it with kind.extension), does not exist (suggesting the
 /// closest name in its directory), cannot be opened or read, or is larger. Defined in
-/// scene.cpp.
+/// scene_text.cpp.
 std::string read_text_file(const std::filesystem::path& file, std::size_t max_bytes,
                            const FileKind& kind);
 /// `text` parsed as TOML. Throws SceneError for more than max_bytes, a fixstep recording, a NUL
 /// byte (binary data) and TOML syntax errors (with line and column, in plain words, with advice
-/// for common slips). Defined in scene.cpp.
+/// for common slips). Defined in scene_text.cpp.
 toml::table parse_toml(std::string_view text, const std::string& source_name, std::size_t max_bytes,
                        const FileKind& kind);
 
@@ -324,8 +324,26 @@ inline bool same_point(Vec2 a, Vec2 b, Precision p) {
   return a.x == b.x && a.y == b.y;
 }
 
-/// Reads mass (required), velocity, force, gravity, drag, radius and color of t into def.
-void parse_body_parts(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// Reads type, mass (required for a dynamic body), velocity, force, gravity, drag, radius,
+/// color and the disc keys (collide, restitution, friction) of t into def.
+void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+
+// --- bodies that touch (scene_contacts.cpp) ---
+/// t.type ("dynamic", the default, "static" or "kinematic"); an unknown name is an error with
+/// the closest valid one.
+BodyType parse_body_type(const Reader& r, const toml::table& t, const std::string& path);
+/// t.mass into def: required and > 0 kg for a dynamic body; ignored with a warning for a
+/// static or kinematic one (which keeps the default).
+void parse_body_mass(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// collide (boolean), restitution (in [0, 1]) and friction (>= 0) of t into def.collider;
+/// each is an error without a radius (def.collider unset).
+void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// For a static or kinematic def: drops spring, gravity, force and drag with a warning at
+/// their keys in t (they would move it), and a static body's non-zero velocity.
+void drop_moving_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// The [contacts] table into scene.world.contacts (restitution in [0, 1], friction >= 0, both
+/// default 0), warning when no body is a disc. After the bodies.
+void parse_contacts(Reader& r, const toml::table& doc, Scene& scene);
 
 /// The parameters of a spring table before the masses it acts on are known: stiffness k (N/m)
 /// and damping b (N*s/m), or frequency f (Hz) and damping ratio ζ, converted with
@@ -355,7 +373,14 @@ struct BodyNames {
   std::unordered_map<std::string, std::size_t> index;
   /// Generators so far: "chain \"rope\" has rope[0] .. rope[39]", by name prefix.
   std::vector<std::pair<std::string, std::string>> generators;
+  /// Generators so far: the index of their first body and their table ("grid[0]"), in order.
+  std::vector<std::pair<std::size_t, std::string>> generated;
 };
+
+/// With [contacts] on, a SceneError at the later of two discs that overlap where they start
+/// (first_disc_overlap), naming both, their lines and the overlap in m; the key is that body's
+/// [[body]] table or its generator's. After the links (linked bodies may overlap).
+void check_start_overlap(const Scene& scene, const BodyNames& names);
 
 /// [[chain]] and [[grid]] tables: appends their bodies and links to the scene
 /// (scene_generators.cpp).

@@ -54,9 +54,11 @@ struct BodyStability {
   std::string message;
 };
 
-/// Checks every body with a spring or damping at step dt / substeps (dt in s, substeps >= 1) of
-/// `integrator`, each on its own (links are ignored here: check_linked_stability judges the
-/// bodies links join as a network). Returns one finding per such body, in order.
+/// Checks every dynamic body with a spring or damping at step dt / substeps (dt in s,
+/// substeps >= 1) of `integrator`, each on its own (links are ignored here:
+/// check_linked_stability judges the bodies links join as a network). Static and kinematic
+/// bodies (BodyDef::type) are not integrated and are skipped, whatever their components.
+/// Returns one finding per judged body, in order.
 [[nodiscard]] std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies,
                                                          Integrator integrator, double dt,
                                                          int substeps);
@@ -94,7 +96,8 @@ struct NetworkStability {
   double radius = 0.0;         ///< largest spectral radius of the two test modes at h
   bool damping_bound = false;  ///< the damping mode (0, damping_rate), not the top mode, binds
   int min_substeps = 0;        ///< smallest stable substep count for dt; 0 = none
-  /// The link with the largest k/μ (μ the reduced mass of its ends), index into the links;
+  /// The link with the largest k/μ (μ the reduced mass of its ends; the dynamic end's mass when
+  /// the other is static or kinematic), index into the links;
   /// nullopt when no link has k > 0.
   std::optional<std::size_t> stiffest_link;
   /// The link with the largest b/μ; nullopt when no link has b > 0.
@@ -116,6 +119,10 @@ struct NetworkStability {
 ///    with L > 0);
 ///  * the damping mode (0, λ_max(M⁻¹C)), which binds for velocity Verlet and Forest–Ruth with
 ///    damped links (the Taylor damping flow) and for explicit methods on heavy damping.
+/// Static and kinematic bodies (BodyDef::type) are immovable anchors: their 1/m is 0 (their
+/// mass is ignored, need not be valid, and their own springs and drag are left out), so a link
+/// from a dynamic body of mass m to one acts on m alone, as an anchored spring would (its
+/// k/μ, for stiffest_link, is k/m), and a link between two of them does nothing.
 /// Both are exact for proportional damping (C = αK + βM: the modes decouple, Géradin & Rixen
 /// §2.8) and estimates otherwise. Eigenvalues come from power iteration with the Rayleigh
 /// quotient (Golub & Van Loan, Matrix Computations, 4th ed., §8.2.1), stopped when the
@@ -126,7 +133,8 @@ struct NetworkStability {
 /// like check_stability's, names ω_max·h (or λ_max(M⁻¹C)·h) and its bound, the smallest
 /// stable substep count, the stiffest link (or strongest damper) with its two bodies, and
 /// the fastest body. Throws std::invalid_argument for a link index out of range or with both
-/// ends on one body, a mass not finite and > 0, dt not finite and > 0, or substeps < 1.
+/// ends on one body, a dynamic body's mass not finite and > 0, dt not finite and > 0, or
+/// substeps < 1.
 [[nodiscard]] NetworkStability check_network_stability(std::span<const BodyDef> bodies,
                                                        std::span<const BodyLink> links,
                                                        Integrator integrator, double dt,

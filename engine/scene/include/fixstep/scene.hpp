@@ -43,7 +43,7 @@ struct SceneView {
 /// (WorldSettings::track_dissipation), so a scene's summaries and HUD show the energy balance.
 struct Scene {
   std::string file;     ///< where it came from (for messages)
-  WorldSettings world;  ///< [world] dt (s) and integrator
+  WorldSettings world;  ///< [world] dt (s) and integrator; [contacts] (world.contacts)
   Precision precision = Precision::f64;
   SceneView view;
   /// [[body]] tables in file order, then the bodies of [[chain]] and [[grid]] tables (in file
@@ -82,8 +82,14 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// precision, duplicate body names, springs given both as stiffness/damping and as
 /// frequency/damping_ratio, [[spring]] tables naming an unknown body or one body twice, a
 /// rest-length spring between bodies that start at the same point, [[plane]] tables with a
-/// zero normal, restitution outside [0, 1] or negative friction, generators beyond
-/// max_scene_bodies / max_scene_links, and unreadable, binary or oversized files.
+/// zero normal, restitution outside [0, 1] or negative friction (in [[plane]], [contacts] and
+/// bodies), an unknown body type (with the closest valid one), collide/restitution/friction on
+/// a body without radius, discs overlapping where they start when [contacts] is on (naming
+/// both and the overlap in m; first_disc_overlap), generators beyond max_scene_bodies /
+/// max_scene_links, and unreadable, binary or oversized files. Warns (Scene::warnings) about
+/// unknown keys, a mass, spring, gravity, force or drag given to a static or kinematic body
+/// (dropped), a static body's velocity (set to zero), springs between two such bodies, and
+/// [contacts] in a scene without discs.
 [[nodiscard]] Scene load_scene(const std::filesystem::path& file);
 /// As load_scene, from text; `source_name` is used in messages.
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);

@@ -1,0 +1,156 @@
+// Scene files, part four: bodies that touch. The [contacts] table, a body's type (dynamic,
+// static, kinematic) and its disc keys (collide, restitution, friction), and the discs that
+// overlap where they start. See README "Scene format".
+#include <array>
+#include <cmath>
+
+#include "fixstep/disc_overlap.hpp"
+#include "scene_reader.hpp"
+
+namespace fixstep::scene_detail {
+
+namespace {
+
+/// Why a static or kinematic body ignores what would move it, for warnings.
+std::string_view never_moves(BodyType type) {
+  return type == BodyType::static_body ? "a static body never moves"
+                                       : "a kinematic body moves only at its velocity";
+}
+
+/// The coefficients shared by [contacts] and a body: restitution e in [0, 1] and friction
+/// μ >= 0, nullopt when absent.
+std::optional<double> restitution(const Reader& r, const toml::table& t, const std::string& path) {
+  const std::string key = path.empty() ? "restitution" : path + ".restitution";
+  const std::optional<double> e = r.number(t, "restitution", key);
+  if (e) r.require(*e >= 0.0 && *e <= 1.0, t, "restitution", key, "in [0, 1]", *e);
+  return e;
+}
+
+std::optional<double> friction(const Reader& r, const toml::table& t, const std::string& path) {
+  const std::string key = path.empty() ? "friction" : path + ".friction";
+  const std::optional<double> mu = r.number(t, "friction", key);
+  if (mu) r.require(*mu >= 0.0, t, "friction", key, ">= 0", *mu);
+  return mu;
+}
+
+}  // namespace
+
+BodyType parse_body_type(const Reader& r, const toml::table& t, const std::string& path) {
+  const std::optional<std::string> name = r.string(t, "type", path + ".type");
+  if (!name) return BodyType::dynamic;
+  constexpr std::array types{BodyType::dynamic, BodyType::static_body, BodyType::kinematic};
+  std::vector<std::string> valid;
+  for (const BodyType type : types) {
+    if (*name == body_type_name(type)) return type;
+    valid.emplace_back(body_type_name(type));
+  }
+  const std::optional<std::string> best = closest(*name, valid);
+  r.fail(t.get("type")->source(), path + ".type",
+         fmt::format("unknown body type \"{}\"{} (valid: dynamic, static, kinematic)", *name,
+                     best ? fmt::format("; did you mean \"{}\"?", *best) : std::string()));
+}
+
+void parse_body_mass(Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {
+  if (def.type == BodyType::dynamic) {
+    def.body.mass = r.required_number(t, path, "mass", "the mass in kg, e.g. mass = 1.0");
+    r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
+    return;
+  }
+  if (r.number(t, "mass", path + ".mass")) {
+    r.warn(t.get("mass")->source(), path + ".mass",
+           fmt::format("ignored: a {} body has no mass ({}; it pushes others as an infinite "
+                       "mass would)",
+                       body_type_name(def.type), never_moves(def.type)));
+  }
+}
+
+void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {
+  for (const std::string_view k : {"collide", "restitution", "friction"}) {
+    if (t.get(k) && !def.collider) {
+      r.fail(t.get(k)->source(), path + "." + std::string(k),
+             "needs a radius: only a disc (a body with a radius) takes part in contacts; add "
+             "radius = ... (m)");
+    }
+  }
+  if (!def.collider) return;
+  if (const toml::node* n = t.get("collide")) {
+    if (!n->is_boolean()) {
+      r.fail(n->source(), path + ".collide",
+             fmt::format("expected true or false, found {}", found(*n)));
+    }
+    def.collider->collide = n->as_boolean()->get();
+  }
+  def.collider->restitution = restitution(r, t, path);
+  def.collider->friction = friction(r, t, path);
+}
+
+void drop_moving_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {
+  if (def.type == BodyType::dynamic) return;
+  auto drop = [&](std::string_view key, bool present, const auto& reset) {
+    if (!present) return;
+    r.warn(t.get(key)->source(), path + "." + std::string(key),
+           fmt::format("ignored: {}", never_moves(def.type)));
+    reset();
+  };
+  drop("spring", def.spring.has_value(), [&] { def.spring.reset(); });
+  drop("gravity", def.gravity.has_value(), [&] { def.gravity.reset(); });
+  drop("force", def.constant_force.has_value(), [&] { def.constant_force.reset(); });
+  drop("drag", def.drag.has_value(), [&] { def.drag.reset(); });
+  const Vec2 v = def.body.velocity;
+  if (def.type == BodyType::static_body && (v.x != 0.0 || v.y != 0.0)) {
+    r.warn(t.get("velocity")->source(), path + ".velocity",
+           fmt::format("set to [0, 0]: a static body never moves (got [{:g}, {:g}] m/s; "
+                       "type = \"kinematic\" moves at its velocity)",
+                       v.x, v.y));
+    def.body.velocity = Vec2{};
+  }
+}
+
+void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
+  const toml::table* t = r.table(doc, "contacts", "contacts");
+  if (!t) return;
+  r.check_keys(*t, "contacts", {"restitution", "friction"});
+  ContactSettings contacts;
+  contacts.restitution = restitution(r, *t, "contacts").value_or(0.0);
+  contacts.friction = friction(r, *t, "contacts").value_or(0.0);
+  scene.world.contacts = contacts;
+  const bool discs = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+                                 [](const BodyDef& b) { return b.collider.has_value(); });
+  if (!discs) {
+    r.warn(t->source(), "contacts",
+           "no body has a radius, so there are no discs to collide: give bodies a radius (m) "
+           "in [[body]] or a generator's body template");
+  }
+}
+
+void check_start_overlap(const Scene& scene, const BodyNames& names) {
+  if (!scene.world.contacts) return;
+  std::optional<std::pair<std::size_t, std::size_t>> pair;
+  try {
+    pair = first_disc_overlap(scene.bodies, scene.links);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(scene.file, 0, 0, "contacts", e.what());  // the loader checks first
+  }
+  if (!pair) return;
+  const auto [a, b] = *pair;
+  const std::size_t la = scene.body_lines[a], lb = scene.body_lines[b];
+  const std::size_t later = lb >= la ? b : a;
+  // The key of the later body: body[i] for a [[body]] table, else its generator's table.
+  std::string key = fmt::format("body[{}]", later);
+  for (const auto& [first, path] : names.generated) {
+    if (later >= first) key = path;
+  }
+  const BodyDef &da = scene.bodies[a], &db = scene.bodies[b];
+  const double reach = da.collider->radius + db.collider->radius;
+  const double apart = reach - disc_overlap_depth(da, db);
+  throw SceneError(
+      scene.file, scene.body_lines[later], 0, key,
+      fmt::format("discs \"{}\" (line {}) and \"{}\" (line {}) overlap by {:.6g} m where they "
+                  "start (centres {:.6g} m apart, radii {:g} + {:g} m), and [contacts] would "
+                  "push them apart at once; move them apart, set collide = false on one, or "
+                  "join them by a [[spring]] (linked bodies never collide)",
+                  da.name, la, db.name, lb, reach - apart, apart, da.collider->radius,
+                  db.collider->radius));
+}
+
+}  // namespace fixstep::scene_detail

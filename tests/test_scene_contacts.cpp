@@ -1,0 +1,307 @@
+// Scene files, bodies that touch: [contacts], body types, the disc keys, the generators' discs,
+// and the discs that overlap where they start (the loader's definitions, not the motion).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fixstep/disc_overlap.hpp"
+#include "fixstep/scene.hpp"
+#include "fixstep/scene_stability.hpp"
+
+namespace fixstep {
+namespace {
+
+/// [world] (lines 1-2), then `rest` from line 3.
+std::string scene(std::string_view rest) {
+  return "[world]\ndt = 0.01\n" + std::string(rest);
+}
+
+/// The SceneError parse_scene throws for text; fails the test when it loads.
+SceneError error_of(const std::string& text) {
+  try {
+    (void)parse_scene(text, "c.toml");
+  } catch (const SceneError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "accepted:\n" << text;
+  return SceneError("", 0, 0, "", "");
+}
+
+void expect_error(const std::string& text, std::size_t line, std::string_view key,
+                  std::string_view message) {
+  const SceneError e = error_of(text);
+  EXPECT_EQ(e.line(), line) << e.what();
+  EXPECT_EQ(e.key(), key) << e.what();
+  EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+}
+
+/// The warning of s that contains `part` (and "c.toml:LINE:"); fails when there is none.
+std::string warning(const Scene& s, std::size_t line, std::string_view part) {
+  for (const std::string& w : s.warnings) {
+    if (w.find(part) != std::string::npos &&
+        w.rfind("c.toml:" + std::to_string(line) + ":", 0) == 0) {
+      return w;
+    }
+  }
+  std::string all;
+  for (const std::string& w : s.warnings) all += "\n  " + w;
+  ADD_FAILURE() << "no warning at line " << line << " with \"" << part << "\" in:" << all;
+  return {};
+}
+
+TEST(SceneContacts, ContactsTableFillsTheWorldSettings) {
+  const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
+  const Scene on =
+      parse_scene(scene("[contacts]\nrestitution = 0.5\nfriction = 0.3\n" + disc), "c.toml");
+  ASSERT_TRUE(on.world.contacts.has_value());
+  EXPECT_EQ(on.world.contacts->restitution, 0.5);
+  EXPECT_EQ(on.world.contacts->friction, 0.3);
+  EXPECT_TRUE(on.warnings.empty()) << on.warnings[0];
+  EXPECT_TRUE(world_def(on).settings.contacts.has_value());  // what Session and the CLI build
+  const Scene defaults = parse_scene(scene("[contacts]\n" + disc), "c.toml");
+  ASSERT_TRUE(defaults.world.contacts.has_value());
+  EXPECT_EQ(defaults.world.contacts->restitution, 0.0);
+  EXPECT_EQ(defaults.world.contacts->friction, 0.0);
+  EXPECT_FALSE(parse_scene(scene(disc), "c.toml").world.contacts.has_value());
+}
+
+TEST(SceneContacts, BodyTypesAndDiscKeysFillBodyDefAndCollider) {
+  const Scene s = parse_scene(scene(R"([contacts]
+[[body]]
+name = "ball"
+mass = 2
+position = [0, 5]
+radius = 0.5
+restitution = 0.9
+friction = 0.1
+[[body]]
+name = "peg"
+type = "static"
+position = [0, 0]
+radius = 0.2
+collide = false
+[[body]]
+name = "paddle"
+type = "kinematic"
+position = [3, 0]
+velocity = [1, 0]
+radius = 1
+[[body]]
+name = "plain"
+type = "dynamic"
+mass = 1
+position = [9, 9]
+radius = 0.5
+)"),
+                              "c.toml");
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+  ASSERT_EQ(s.bodies.size(), 4u);
+  const BodyDef &ball = s.bodies[0], &peg = s.bodies[1], &paddle = s.bodies[2];
+  EXPECT_EQ(ball.type, BodyType::dynamic);
+  EXPECT_EQ(ball.collider->radius, 0.5);
+  EXPECT_EQ(ball.collider->restitution, std::optional<double>(0.9));
+  EXPECT_EQ(ball.collider->friction, std::optional<double>(0.1));
+  EXPECT_TRUE(ball.collider->collide);
+  EXPECT_EQ(peg.type, BodyType::static_body);
+  EXPECT_FALSE(peg.collider->collide);
+  EXPECT_FALSE(peg.collider->restitution || peg.collider->friction);  // the [contacts] default
+  EXPECT_EQ(paddle.type, BodyType::kinematic);
+  EXPECT_EQ(paddle.body.velocity, (Vec2{1.0, 0.0}));  // a kinematic body keeps its velocity
+  EXPECT_EQ(s.bodies[3].type, BodyType::dynamic);
+}
+
+TEST(SceneContacts, StaticAndKinematicBodiesDropWhatWouldMoveThemWithAWarning) {
+  const Scene s = parse_scene(scene(R"([[body]]
+name = "wall"
+type = "static"
+mass = 5
+position = [0, 0]
+velocity = [1, 2]
+spring = { anchor = [0, 0], stiffness = 10 }
+gravity = [0, -9.81]
+force = [1, 0]
+drag = 0.5
+[[body]]
+name = "lift"
+type = "kinematic"
+mass = 3
+position = [1, 0]
+velocity = [0, 1]
+gravity = [0, -9.81]
+spring = { frequency = 2 }
+)"),
+                              "c.toml");
+  const BodyDef &wall = s.bodies[0], &lift = s.bodies[1];
+  EXPECT_FALSE(wall.spring || wall.gravity || wall.constant_force || wall.drag);
+  EXPECT_EQ(wall.body.velocity, (Vec2{}));
+  EXPECT_EQ(wall.body.mass, 1.0);  // the default: the mass given is ignored
+  EXPECT_FALSE(lift.spring || lift.gravity);
+  EXPECT_EQ(lift.body.velocity, (Vec2{0.0, 1.0}));
+  EXPECT_EQ(s.warnings.size(), 9u);
+  warning(s, 6, "body[0].mass: ignored: a static body has no mass (a static body never moves");
+  warning(s, 8, "body[0].velocity: set to [0, 0]: a static body never moves (got [1, 2] m/s");
+  warning(s, 9, "body[0].spring: ignored: a static body never moves");
+  warning(s, 10, "body[0].gravity: ignored: a static body never moves");
+  warning(s, 11, "body[0].force: ignored");
+  warning(s, 12, "body[0].drag: ignored");
+  warning(s, 16,
+          "body[1].mass: ignored: a kinematic body has no mass (a kinematic body moves "
+          "only at its velocity");
+  warning(s, 19, "body[1].gravity: ignored: a kinematic body moves only at its velocity");
+  warning(s, 20, "body[1].spring: ignored");
+}
+
+TEST(SceneContacts, ContactsWithoutDiscsAndSpringsBetweenAnchorsWarn) {
+  const Scene s = parse_scene(scene(R"([contacts]
+restitution = 0.5
+[[body]]
+name = "a"
+type = "static"
+position = [0, 0]
+[[body]]
+name = "b"
+type = "kinematic"
+position = [1, 0]
+[[spring]]
+bodies = ["a", "b"]
+stiffness = 1
+)"),
+                              "c.toml");
+  ASSERT_EQ(s.warnings.size(), 2u);
+  warning(s, 3, "contacts: no body has a radius, so there are no discs to collide");
+  warning(s, 14,
+          "spring[0].bodies: does nothing: \"a\" (static) and \"b\" (kinematic) are both "
+          "immovable");
+  EXPECT_TRUE(s.world.contacts.has_value());  // still on: code may add discs
+}
+
+TEST(SceneContacts, FrequencyFormOfALinkToAnAnchorUsesTheDynamicMassAlone) {
+  const Scene s = parse_scene(scene(R"([[body]]
+name = "hook"
+type = "static"
+position = [0, 0]
+[[body]]
+name = "bob"
+mass = 2
+position = [0, -1]
+[[spring]]
+bodies = ["hook", "bob"]
+frequency = 1.5
+)"),
+                              "c.toml");
+  const double w = 2.0 * std::numbers::pi * 1.5;
+  ASSERT_EQ(s.links.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.links[0].spring.stiffness, 2.0 * w * w);  // not the reduced mass 2/3
+}
+
+TEST(SceneContacts, TheStabilityGuardTakesAStaticEndAsAnAnchor) {
+  // bob (1 kg) on k = 225 N/m to a static hook: ω·h = 15 · 0.1 = 1.5 < 2 (symplectic Euler).
+  // Were the hook a free 1 kg body, ω = sqrt(k/μ) = 21.2 rad/s and ω·h = 2.12: refused.
+  const std::string text = R"([world]
+dt = 0.1
+[[body]]
+name = "hook"
+type = "static"
+position = [0, 0]
+[[body]]
+name = "bob"
+mass = 1
+position = [0, -1]
+[[spring]]
+bodies = ["hook", "bob"]
+stiffness = 225
+)";
+  EXPECT_TRUE(enforce_stability(parse_scene(text, "c.toml")).empty());
+  std::string free = text;
+  free.replace(free.find("type = \"static\""), 15, "mass = 1");
+  EXPECT_THROW((void)enforce_stability(parse_scene(free, "c.toml")), SceneError) << free;
+}
+
+struct BadKey {
+  const char* what;
+  std::string text;
+  std::size_t line;
+  const char* key;
+  const char* message;
+};
+
+void PrintTo(const BadKey& b, std::ostream* os) {
+  *os << b.what;
+}
+
+class MalformedContacts : public ::testing::TestWithParam<BadKey> {};
+
+TEST_P(MalformedContacts, ErrorNamesLineKeyAndWhatIsAllowed) {
+  expect_error(GetParam().text, GetParam().line, GetParam().key, GetParam().message);
+}
+
+const std::string body = "[[body]]\nmass = 1\nposition = [0, 0]\n";  // lines 3-5
+
+INSTANTIATE_TEST_SUITE_P(
+    SceneContacts, MalformedContacts,
+    ::testing::Values(
+        BadKey{"contacts restitution above 1", scene("[contacts]\nrestitution = 1.5\n" + body), 4,
+               "contacts.restitution", "must be in [0, 1] (got 1.5)"},
+        BadKey{"contacts restitution negative", scene("[contacts]\nrestitution = -0.1\n" + body), 4,
+               "contacts.restitution", "must be in [0, 1] (got -0.1)"},
+        BadKey{"contacts friction negative", scene("[contacts]\nfriction = -0.2\n" + body), 4,
+               "contacts.friction", "must be >= 0 (got -0.2)"},
+        BadKey{"contacts not a table", "contacts = 1\n" + scene(body), 1, "contacts",
+               "expected a table, found an integer (1)"},
+        BadKey{"body restitution above 1", scene(body + "radius = 1\nrestitution = 2\n"), 7,
+               "body[0].restitution", "must be in [0, 1] (got 2)"},
+        BadKey{"body friction negative", scene(body + "radius = 1\nfriction = -1\n"), 7,
+               "body[0].friction", "must be >= 0 (got -1)"},
+        BadKey{"body restitution nan", scene(body + "radius = 1\nrestitution = nan\n"), 7,
+               "body[0].restitution", "must be finite"},
+        BadKey{"restitution without radius", scene(body + "restitution = 0.5\n"), 6,
+               "body[0].restitution", "needs a radius: only a disc"},
+        BadKey{"friction without radius", scene(body + "friction = 0.5\n"), 6, "body[0].friction",
+               "needs a radius"},
+        BadKey{"collide without radius", scene(body + "collide = false\n"), 6, "body[0].collide",
+               "needs a radius"},
+        BadKey{"collide not a boolean", scene(body + "radius = 1\ncollide = \"no\"\n"), 7,
+               "body[0].collide", "expected true or false, found a string (\"no\")"},
+        BadKey{"radius zero", scene(body + "radius = 0\n"), 6, "body[0].radius",
+               "must be > 0 m (got 0)"},
+        BadKey{"radius negative", scene(body + "radius = -1\n"), 6, "body[0].radius",
+               "must be > 0 m (got -1)"},
+        BadKey{"radius inf", scene(body + "radius = inf\n"), 6, "body[0].radius", "must be finite"},
+        BadKey{"unknown type", scene(body + "type = \"statc\"\n"), 6, "body[0].type",
+               "unknown body type \"statc\"; did you mean \"static\"? (valid: dynamic, static, "
+               "kinematic)"},
+        BadKey{"unknown type, nothing close", scene(body + "type = \"ghost\"\n"), 6, "body[0].type",
+               "unknown body type \"ghost\" (valid: dynamic, static, kinematic)"},
+        BadKey{"type not a string", scene(body + "type = 1\n"), 6, "body[0].type",
+               "expected a string, found an integer (1)"},
+        BadKey{"dynamic body without mass",
+               scene("[[body]]\ntype = \"dynamic\"\nposition = [0, 0]\n"), 3, "body[0].mass",
+               "missing (required)"},
+        BadKey{"template type misspelt",
+               scene("[[grid]]\ncolumns = 2\nrows = 2\norigin = [0, 0]\nspacing = [1, 1]\n"
+                     "body = { type = \"kinematik\", radius = 0.1 }\n"),
+               8, "grid[0].body.type", "did you mean \"kinematic\"?"},
+        BadKey{"template restitution without radius",
+               scene("[[chain]]\ncount = 2\nstart = [0, 0]\nspacing = [1, 0]\n"
+                     "body = { mass = 1, restitution = 0.5 }\n"),
+               7, "chain[0].body.restitution", "needs a radius"}),
+    [](const ::testing::TestParamInfo<BadKey>& info) {
+      std::string name = info.param.what;
+      for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+      return name;
+    });
+
+TEST(SceneContacts, UnknownKeysOfContactsWarnWithASuggestion) {
+  const Scene s =
+      parse_scene(scene("[contacts]\nrestitutoin = 0.5\n" + body + "radius = 1\n"), "c.toml");
+  warning(s, 4, "contacts.restitutoin: unknown key ignored (did you mean `restitution`?)");
+  const Scene t = parse_scene(scene(body + "radius = 1\ncolide = false\n"), "c.toml");
+  warning(t, 7, "body[0].colide: unknown key ignored (did you mean `collide`?)");
+}
+
+}  // namespace
+}  // namespace fixstep
