@@ -145,6 +145,11 @@ TEST(DiscBroadphase, NonFiniteAndHugeBoxesTakeTheOverflowPath) {
   s.boxes[40] = {1.0, 1.0, 1e300, 1e300};
   s.active[10] = 0, s.active[20] = 1, s.active[40] = 0;
   expect_reference(s);
+  BoxSet all;  // nothing on the grid
+  all.boxes = {{-inf, 0, inf, 1}, {0, -inf, 1, inf}, {-inf, -inf, 0, 0}, {2, 2, inf, inf}};
+  all.active = {1, 0, 0, 1};
+  expect_reference(all);
+  EXPECT_EQ(brute_force(all).size(), 2u);  // (0, 1), (0, 2)
 }
 
 TEST(DiscBroadphase, TwoThreadsGiveTheSameBitsAsOne) {

@@ -54,88 +54,113 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
   }
 }
 
-void DiscBroadphase::assign_levels(std::span<const SweptBox> boxes) {
-  double e_top = 0;  // the largest finite extent
-  for (const SweptBox& b : boxes) {
-    if (finite(b)) e_top = std::max(e_top, extent(b));
+template <class Job>
+void DiscBroadphase::both(bool split, Job& job) {
+  if (!split) {
+    job(0), job(1);
+    return;
   }
+  worker_->submit([](void* p) { (*static_cast<Job*>(p))(1); }, &job);
+  job(0);
+  worker_->wait();
+}
+
+void DiscBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) const {
+  s.e_top = 0;
+  for (std::size_t i = s.begin; i < s.end; ++i) {
+    if (finite(boxes[i])) s.e_top = std::max(s.e_top, extent(boxes[i]));
+  }
+}
+
+void DiscBroadphase::set_levels(double e_top) {
   if (!(e_top > 0 && e_top < std::numeric_limits<double>::infinity())) e_top = 1.0;  // points
   for (unsigned k = 0; k < max_levels; ++k) {
     levels_[k].inv_cell = 1.0 / (cell_factor * std::ldexp(e_top, -static_cast<int>(k)));
   }
-  level_.resize(boxes.size());
-  level_mask_ = 0;
-  for (std::size_t i = 0; i < boxes.size(); ++i) {
+  e_top_ = e_top;
+}
+
+void DiscBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
+  const double e_bottom = std::ldexp(e_top_, -static_cast<int>(max_levels - 1));
+  std::fill(std::begin(s.count), std::end(s.count), 0u);
+  s.overflow = 0;
+  for (std::size_t i = s.begin; i < s.end; ++i) {
     const double e = extent(boxes[i]);
     // Level k holds e in (e_top 2^-(k+1), e_top 2^-k], the last one everything smaller.
-    std::uint32_t level = max_levels - 1;
-    if (!finite(boxes[i])) {
-      level = overflow;
-    } else if (e > std::ldexp(e_top, -static_cast<int>(max_levels - 1))) {
-      level = static_cast<std::uint32_t>(std::ilogb(e_top / e));
+    std::uint32_t k = max_levels - 1;
+    if (e > e_bottom) k = static_cast<std::uint32_t>(std::ilogb(e_top_ / e));
+    if (!finite(boxes[i]) || !std::isfinite(levels_[k].inv_cell)) {
+      level_[i] = overflow, ++s.overflow;
+      continue;
     }
-    if (level != overflow && !std::isfinite(levels_[level].inv_cell)) level = overflow;
-    level_[i] = level;
-    if (level != overflow) level_mask_ |= std::uint64_t{1} << level;
+    level_[i] = k;
+    const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
+    if (s.count[k]++ == 0) s.lo_x[k] = s.hi_x[k] = cx, s.lo_y[k] = s.hi_y[k] = cy;
+    s.lo_x[k] = std::min(s.lo_x[k], cx), s.hi_x[k] = std::max(s.hi_x[k], cx);
+    s.lo_y[k] = std::min(s.lo_y[k], cy), s.hi_y[k] = std::max(s.hi_y[k], cy);
   }
 }
 
-void DiscBroadphase::size_tables(std::span<const SweptBox> boxes) {
-  std::int32_t lo_x[max_levels], lo_y[max_levels], hi_x[max_levels], hi_y[max_levels];
-  std::size_t count[max_levels] = {};
-  for (std::size_t i = 0; i < boxes.size(); ++i) {
-    const std::uint32_t k = level_[i];
-    if (k == overflow) continue;
-    const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
-    if (count[k]++ == 0) lo_x[k] = hi_x[k] = cx, lo_y[k] = hi_y[k] = cy;
-    lo_x[k] = std::min(lo_x[k], cx), hi_x[k] = std::max(hi_x[k], cx);
-    lo_y[k] = std::min(lo_y[k], cy), hi_y[k] = std::max(hi_y[k], cy);
-  }
+void DiscBroadphase::size_tables() {
   std::uint32_t base = 0;
+  level_mask_ = 0;
   for (unsigned k = 0; k < max_levels; ++k) {
     Level& l = levels_[k];
     l.base = base;
-    if (count[k] == 0) {
-      l.wmask = l.hmask = l.wshift = 0;
-      continue;
-    }
+    l.wmask = l.hmask = l.wshift = 0;
+    const Share &s0 = share_[0], &s1 = share_[1];
+    const std::size_t count = std::size_t{s0.count[k]} + s1.count[k];
+    if (count == 0) continue;
+    level_mask_ |= std::uint64_t{1} << k;
+    const Share& a = s0.count[k] ? s0 : s1;
+    const Share& b = s1.count[k] ? s1 : s0;
     // A dense grid over the level's home cells, wrapped to at most 2 buckets per box.
-    const auto span = [](std::int32_t lo, std::int32_t hi) {
+    const auto bits = [](std::int32_t lo, std::int32_t hi) {
       return static_cast<std::uint32_t>(std::bit_width(static_cast<std::uint64_t>(hi - lo)));
     };
-    std::uint32_t wbits = span(lo_x[k], hi_x[k]), hbits = span(lo_y[k], hi_y[k]);
-    const auto budget = static_cast<std::uint32_t>(std::bit_width(2 * count[k] - 1));
+    std::uint32_t wbits = bits(std::min(a.lo_x[k], b.lo_x[k]), std::max(a.hi_x[k], b.hi_x[k]));
+    std::uint32_t hbits = bits(std::min(a.lo_y[k], b.lo_y[k]), std::max(a.hi_y[k], b.hi_y[k]));
+    const auto budget = static_cast<std::uint32_t>(std::bit_width(2 * count - 1));
     while (wbits + hbits > budget) (wbits >= hbits ? wbits : hbits) -= 1;
     l.wmask = (std::uint32_t{1} << wbits) - 1, l.hmask = (std::uint32_t{1} << hbits) - 1;
     l.wshift = wbits;
     base += std::uint32_t{1} << (wbits + hbits);
   }
-  start_.assign(2 * std::size_t{base} + 1, 0);
+  start_.resize(2 * std::size_t{base} + 1);
+  for (auto& c : cursor_) c.assign(2 * std::size_t{base}, 0);
 }
 
-void DiscBroadphase::build_table(std::span<const SweptBox> boxes,
-                                 std::span<const std::uint8_t> active) {
-  const std::size_t n = boxes.size();
-  overflow_.clear();
-  std::size_t total = 0;
-  for (std::size_t i = 0; i < n; ++i) {  // count the entries of each (bucket, static?) key
+void DiscBroadphase::count_keys(const Share& s, std::span<const SweptBox> boxes,
+                                std::span<const std::uint8_t> active,
+                                std::vector<std::uint32_t>& count) const {
+  for (std::size_t i = s.begin; i < s.end; ++i) {  // the entries of each (bucket, static?) key
     const std::uint32_t k = level_[i];
     if (k == overflow) continue;
-    ++start_[2 * bucket(k, cell_of(boxes[i].min_x, k), cell_of(boxes[i].min_y, k)) +
-             (active[i] == 0)];
-    ++total;
+    ++count[2 * bucket(k, cell_of(boxes[i].min_x, k), cell_of(boxes[i].min_y, k)) +
+            (active[i] == 0)];
   }
-  for (std::size_t h = 1; h < start_.size(); ++h) start_[h] += start_[h - 1];  // ends
-  entry_.resize(total);
-  for (std::size_t i = n; i-- > 0;) {  // fill backwards: each key's entries in index order
+}
+
+void DiscBroadphase::start_keys() {
+  std::uint32_t next = 0;  // each key's entries: the first thread's, then the second's
+  for (std::size_t key = 0; key + 1 < start_.size(); ++key) {
+    const std::uint32_t c0 = cursor_[0][key], c1 = cursor_[1][key];
+    start_[key] = next, cursor_[0][key] = next, cursor_[1][key] = next + c0;
+    next += c0 + c1;
+  }
+  start_.back() = next;
+  entry_.resize(next);
+}
+
+void DiscBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
+                               std::span<const std::uint8_t> active,
+                               std::vector<std::uint32_t>& cursor) {
+  for (std::size_t i = s.begin; i < s.end; ++i) {  // in index order within each key
     const std::uint32_t k = level_[i];
     if (k == overflow) continue;
     const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
-    entry_[--start_[2 * bucket(k, cx, cy) + (active[i] == 0)]] = {
+    entry_[cursor[2 * bucket(k, cx, cy) + (active[i] == 0)]++] = {
         boxes[i], static_cast<std::uint32_t>(i), cx, cy};
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (level_[i] == overflow) overflow_.push_back(static_cast<std::uint32_t>(i));
   }
 }
 
@@ -190,9 +215,9 @@ void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
   if (!overflow_.empty()) scan_overflow(q.box, q.index, act, boxes, active, out);
 }
 
-bool DiscBroadphase::scan(std::size_t begin, std::size_t end, std::span<const SweptBox> boxes,
-                          std::span<const std::uint8_t> active, std::size_t max_pairs,
-                          std::vector<DiscPair>& out) const {
+bool DiscBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow,
+                          std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
+                          std::size_t max_pairs, std::vector<DiscPair>& out) const {
   out.clear();
   for (std::uint64_t m = level_mask_; m != 0; m &= m - 1) {
     const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
@@ -204,7 +229,7 @@ bool DiscBroadphase::scan(std::size_t begin, std::size_t end, std::span<const Sw
       if (out.size() > max_pairs) return false;
     }
   }
-  if (begin == 0) {  // the overflow boxes' own searches: on the first thread
+  if (with_overflow) {  // the overflow boxes' own searches (on the first thread)
     for (const std::uint32_t o : overflow_) {
       scan_overflow(boxes[o], o, active[o] != 0, boxes, active, out);
       if (out.size() > max_pairs) return false;
@@ -218,34 +243,31 @@ bool DiscBroadphase::find_pairs(std::span<const SweptBox> boxes,
                                 std::vector<DiscPair>& pairs, int threads) {
   pairs.clear();
   const std::size_t n = boxes.size();
-  assign_levels(boxes);
-  size_tables(boxes);
-  build_table(boxes, active);
-  const std::size_t e = entry_.size();
-  const std::size_t mid = threads >= 2 && n >= parallel_min_ && e >= 2 ? e / 2 : e;
-  bool ok[2] = {true, true};
-  raw_[1].clear();
-  if (mid < e) {
-    if (!worker_) worker_.reset(new Workers());
-    struct Job {
-      const DiscBroadphase* self;
-      std::span<const SweptBox> boxes;
-      std::span<const std::uint8_t> active;
-      std::size_t begin, end, max_pairs;
-      std::vector<DiscPair>* out;
-      bool* ok;
-    } job{this, boxes, active, mid, e, max_pairs, &raw_[1], &ok[1]};
-    worker_->submit(
-        [](void* p) {
-          const Job& j = *static_cast<const Job*>(p);
-          *j.ok = j.self->scan(j.begin, j.end, j.boxes, j.active, j.max_pairs, *j.out);
-        },
-        &job);
-    ok[0] = scan(0, mid, boxes, active, max_pairs, raw_[0]);
-    worker_->wait();
-  } else {
-    ok[0] = scan(0, e, boxes, active, max_pairs, raw_[0]);
+  const bool split = threads >= 2 && n >= parallel_min_ && n >= 2;
+  if (split && !worker_) worker_.reset(new Workers());
+  share_[0].begin = 0, share_[0].end = share_[1].begin = split ? n / 2 : n, share_[1].end = n;
+  level_.resize(n);
+  auto extents = [&](int t) { largest_extent(share_[t], boxes); };
+  both(split, extents);
+  set_levels(std::max(share_[0].e_top, share_[1].e_top));
+  auto levels = [&](int t) { assign_levels(share_[t], boxes); };
+  both(split, levels);
+  size_tables();
+  auto count = [&](int t) { count_keys(share_[t], boxes, active, cursor_[t]); };
+  both(split, count);
+  start_keys();
+  auto fill = [&](int t) { fill_keys(share_[t], boxes, active, cursor_[t]); };
+  both(split, fill);
+  overflow_.clear();
+  for (std::size_t i = 0; share_[0].overflow + share_[1].overflow > 0 && i < n; ++i) {
+    if (level_[i] == overflow) overflow_.push_back(static_cast<std::uint32_t>(i));
   }
+  const std::size_t e = entry_.size(), mid = split ? e / 2 : e;
+  bool ok[2] = {true, true};
+  auto search = [&](int t) {
+    ok[t] = scan(t == 0 ? 0 : mid, t == 0 ? mid : e, t == 0, boxes, active, max_pairs, raw_[t]);
+  };
+  both(split, search);
   if (!ok[0] || !ok[1] || raw_[0].size() + raw_[1].size() > max_pairs) return false;
   order_pairs(raw_[0], raw_[1], n, offset_, pairs);
   // Either thread may find them all next time (threads = 1, or a shifted split): room for it.

@@ -1,28 +1,45 @@
 // The broadphase of disc-disc contacts (issue #19, point 4): which pairs of discs may touch
 // within a tick, from the boxes their discs sweep over it. Internal to the engine: not installed.
 //
-// A hierarchical uniform grid with a spatial hash. Each box gets a level from its extent
-// e = max(width, height) against the smallest positive extent e_min of the call: level k holds
-// the boxes with e <= e_min 2^k, in cells of side cell_factor e_min 2^k, so a box covers at
-// most 2 x 2 cells of its level and a cell holds a bounded number of boxes that do not overlap,
-// whatever the mix of sizes. A box looks for partners in the cells it covers on its own level
-// and every coarser one (a pair is found by its smaller box; on one level by the smaller
-// index), and reports a pair only in the cell holding the lower-left corner of the two boxes'
-// intersection, so each pair once. The cells of all levels share one open hash table of 2^k
-// buckets (>= 4n), built by a counting sort; a collision merges cells, never changes the pairs.
-// Boxes that would cover more than max_cells_per_box cells (non-finite or astronomically large
-// boxes, a blown-up world) go to an overflow list every box checks. Pairs are then put in
-// (a, b) order by a counting sort on a and a sort of each a's short list.
+// A hierarchical uniform grid. Levels halve from the largest finite extent e_top (extent =
+// max(width, height)): level k holds the boxes with extent in (e_top 2^-(k+1), e_top 2^-k], in
+// cells of side 1.25 e_top 2^-k (the 1.25 leaves room for rounding), the last level everything
+// smaller. Each box is stored once, in its home cell (the cell of its lower-left corner); two
+// boxes of one level that overlap have home cells at most one apart, so a box searches its own
+// cell and half of its 8 neighbours (each pair of cells once), and the 3 x 3 home cells around
+// its own on every coarser level (a pair is found by its smaller box). A level's cells are a
+// dense grid over its boxes' home cells, wrapped to at most ~2 buckets per box where they
+// spread further (an outlier far away): cells that share a bucket are told apart by the home
+// cell stored with each box. The table is a counting sort by (bucket, static?), on two threads
+// in two halves of the boxes (each bucket's boxes stay in index order, so the bits do not
+// depend on the split). Non-finite boxes go to an overflow list every box checks. The pairs are
+// then put in (a, b) order by a counting sort on a and a sort of each a's short list.
 //
-// Why a grid, measured (bench/bench_broadphase.cpp, GCC 12 -O2, this machine, preliminary: see
-// the numbers in the commit message and bench's header): sweep-and-prune on x scans, for each
-// box, every box of its x-strip; in a square scene that strip holds ~sqrt(n) boxes, so its cost
-// per body grows with sqrt(n) (x2.9 from 10^3 to 10^5 on the settled pile), and a column of
-// discs costs it n^2 with no pairs to stop at. The grid's cost per body stays flat.
+// Why a grid, measured (bench/bench_broadphase.cpp, GCC 12 -O3, CPU time of one thread, ns per
+// body per call at n = 10^3 / 10^4 / 10^5; preliminary: load average 8.7-9.5 on 2 cores while
+// others compiled, ranges over three runs):
+//   settled pile:  grid 58-64 / 68-85 / 73-83 (x1.25-1.31 from 10^3 to 10^5)
+//                  sweep-and-prune, std::sort each call   45 / 328 / 570   (x12.6)
+//                  sweep-and-prune, insertion sort kept   33 / 282 / 516   (x15.4)
+//   moving gas:    grid 96-97 / 91-95 / 125-161 (x1.30-1.66)
+//                  sweep-and-prune, std::sort each call  140 / 269 / 499   (x3.6)
+//                  sweep-and-prune, insertion sort kept  110 / 224 / 425   (x3.9)
+// Sweep-and-prune on x scans, for each box, every box of its x-strip; in a square scene that
+// strip holds ~sqrt(n) boxes (a whole column of the pile's lattice), and a column of discs costs
+// it n^2 with no pair to stop at. It wins only at 10^3 on the pile (33 vs 58 ns).
 //
-// Bounded time: every scan of a cell either meets boxes that overlap the scanning one (pairs,
-// counted against max_pairs) or a bounded number that do not, and a static box scans only the
-// dynamic boxes of a cell, so a million discs at one point cost O(n + max_pairs).
+// Bounded time: a cell holds a bounded number of boxes of its level that do not overlap (their
+// extents are at least 1/2.5 of its side), every other box it holds is a pair counted against
+// max_pairs, and a static box searches only the dynamic boxes, so a million discs at one point
+// cost O(n + max_pairs): 0.1-0.5 s a call for 10^6 discs at one point with max_pairs = 4 10^6
+// (all dynamic: false; all static: true, 0.1 s), measured at load 9 on 2 cores.
+// Only boxes below e_top 2^-47 (points, not discs) at distinct places can crowd a cell.
+//
+// Two threads (same run; wall time could not be measured with 9 runnable jobs on 2 cores): at
+// 10^5 the calling thread's CPU time per call falls from 8.3 to 4.6 ms (pile) and from 16.1 to
+// 9.5 ms (gas), the serial rest being the levels' sizing, the prefix sums and the final sort; at
+// 10^4 it gains nothing measurable (845 vs 796 us), so threads = 2 splits from
+// min_parallel_boxes = 32768 boxes. To re-time on an idle machine.
 #pragma once
 
 #include <algorithm>
@@ -65,7 +82,7 @@ class DiscBroadphase {
  public:
   /// Below this many boxes a call with threads = 2 runs on one thread: the second thread's
   /// hand-off costs more than it saves (measured in bench_broadphase).
-  static constexpr std::size_t min_parallel_boxes = 8192;
+  static constexpr std::size_t min_parallel_boxes = 32768;
   /// Cell side of a level over the largest extent it holds: > 1 leaves room for rounding.
   static constexpr double cell_factor = 1.25;
   static constexpr unsigned max_levels = 48;
@@ -103,10 +120,28 @@ class DiscBroadphase {
     std::uint32_t base = 0, wmask = 0, hmask = 0, wshift = 0;
   };
   static constexpr std::uint32_t overflow = ~std::uint32_t{0};  // level_ of an overflow box
+  /// What one thread finds over its share [begin, end) of the boxes: the largest finite extent
+  /// (m), then per level the range of home cells and the count, and the overflow count.
+  struct Share {
+    std::size_t begin = 0, end = 0;
+    double e_top = 0;
+    std::int32_t lo_x[max_levels], lo_y[max_levels], hi_x[max_levels], hi_y[max_levels];
+    std::uint32_t count[max_levels];
+    std::uint32_t overflow = 0;
+  };
 
-  void assign_levels(std::span<const SweptBox> boxes);
-  void size_tables(std::span<const SweptBox> boxes);
-  void build_table(std::span<const SweptBox> boxes, std::span<const std::uint8_t> active);
+  /// Runs job(0) here and job(1) on the worker when it splits, else both here in order.
+  template <class Job>
+  void both(bool split, Job& job);
+  void largest_extent(Share& s, std::span<const SweptBox> boxes) const;
+  void set_levels(double e_top);
+  void assign_levels(Share& s, std::span<const SweptBox> boxes);
+  void size_tables();
+  void count_keys(const Share& s, std::span<const SweptBox> boxes,
+                  std::span<const std::uint8_t> active, std::vector<std::uint32_t>& count) const;
+  void start_keys();
+  void fill_keys(const Share& s, std::span<const SweptBox> boxes,
+                 std::span<const std::uint8_t> active, std::vector<std::uint32_t>& cursor);
   /// The cell of coordinate x (m) on a level, clamped to +-2^30 (monotone: neighbours stay
   /// neighbours); 0 for NaN.
   [[nodiscard]] std::int32_t cell_of(double x, std::uint32_t level) const {
@@ -119,7 +154,9 @@ class DiscBroadphase {
     return l.base + (static_cast<std::uint32_t>(cx) & l.wmask) +
            ((static_cast<std::uint32_t>(cy) & l.hmask) << l.wshift);
   }
-  bool scan(std::size_t begin, std::size_t end, std::span<const SweptBox> boxes,
+  /// The searches of entries [begin, end) (and of the overflow boxes if with_overflow) into
+  /// `out`; false once out holds more than max_pairs.
+  bool scan(std::size_t begin, std::size_t end, bool with_overflow, std::span<const SweptBox> boxes,
             std::span<const std::uint8_t> active, std::size_t max_pairs,
             std::vector<DiscPair>& out) const;
   void scan_entry(std::size_t at, std::uint32_t level, std::span<const SweptBox> boxes,
@@ -133,10 +170,13 @@ class DiscBroadphase {
 
   std::vector<std::uint32_t> level_;  // per box: its level, or `overflow`
   Level levels_[max_levels];
+  double e_top_ = 1;              // the largest finite extent of the call, m
   std::uint64_t level_mask_ = 0;  // bit k: level k holds a box
   // Bucket h's entries: entry_[start_[2h] .. start_[2h+1]) dynamic, then .. start_[2h+2) static.
   std::vector<std::uint32_t> start_;
+  std::vector<std::uint32_t> cursor_[2];  // per thread: its count, then its next slot, per key
   std::vector<Entry> entry_;
+  Share share_[2];
   std::vector<std::uint32_t> overflow_;  // indices of the overflow boxes, in order
   std::vector<DiscPair> raw_[2];         // unsorted pairs found by each thread
   std::vector<std::uint32_t> offset_;    // order_pairs' scratch
