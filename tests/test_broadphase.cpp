@@ -94,6 +94,12 @@ TEST(DiscBroadphase, MatchesBruteForceAtNegativeAndLargeCoordinates) {
   expect_reference(random_set(3000, 0.05, 0.1, 8.0, -4.0, -4.0, 0.02, 0.9, 5));  // across 0
   expect_reference(random_set(3000, 0.05, 0.1, 8.0, -1e4, -3e4, 0.02, 0.9, 6));
   expect_reference(random_set(3000, 0.05, 0.1, 8.0, 1e9, -1e9, 0.02, 0.9, 7));
+  BoxSet far = random_set(3000, 0.05, 0.1, 8.0, 0.0, 0.0, 0.02, 0.9, 16);
+  for (int i = 0; i < 4; ++i) {  // outliers: a level's cells wrap into fewer buckets
+    far.boxes.push_back({1e5 * i - 0.1, 3e4, 1e5 * i + 0.1, 3e4 + 0.2});
+    far.active.push_back(1);
+  }
+  expect_reference(far);
 }
 
 TEST(DiscBroadphase, BoxesThatTouchExactlyArePaired) {
@@ -163,7 +169,8 @@ TEST(DiscBroadphase, TwoThreadsGiveTheSameBitsAsOne) {
 }
 
 TEST(DiscBroadphase, AReusedOrCopiedObjectGivesWhatAFreshOneGives) {
-  const BoxSet first = random_set(20000, 0.001, 0.5, 30.0, -3.0, 0.0, 0.1, 0.5, 11);
+  BoxSet first = random_set(20000, 0.001, 0.5, 30.0, -3.0, 0.0, 0.1, 0.5, 11);
+  first.boxes[7] = {0.0, 0.0, std::numeric_limits<double>::infinity(), 1.0};  // overflow
   const BoxSet second = random_set(5000, 0.05, 0.1, 8.0, 2.0, 1.0, 0.02, 0.9, 12);
   DiscBroadphase used;
   find(used, first, 2);
@@ -205,21 +212,26 @@ TEST(DiscBroadphase, AMillionDiscsAtOnePointStopAtTheCap) {
 }
 
 TEST(DiscBroadphase, AllocatesNothingOnceWarm) {
-  const BoxSet big = random_set(30000, 0.05, 0.1, 25.0, 0.0, 0.0, 0.02, 0.9, 13);
+  // n >= min_parallel_boxes, so that threads = 2 splits the work.
+  const BoxSet big = random_set(40000, 0.05, 0.1, 25.0, 0.0, 0.0, 0.02, 0.9, 13);
   BoxSet moved = big;  // the same discs a tick later, off the cells' borders of before
-  for (SweptBox& b : moved.boxes)
+  for (SweptBox& b : moved.boxes) {
     b = {b.min_x + 0.037, b.min_y - 0.051, b.max_x + 0.037, b.max_y - 0.051};
+  }
   const BoxSet small = random_set(5000, 0.05, 0.1, 10.0, 0.0, 0.0, 0.02, 0.9, 15);
+  const BoxSet sparse = random_set(40000, 0.05, 0.1, 2000.0, 0.0, 0.0, 0.02, 0.9, 17);
+  ASSERT_GE(big.boxes.size(), DiscBroadphase::min_parallel_boxes);
   DiscBroadphase bp;
   std::vector<DiscPair> pairs;
-  ASSERT_TRUE(bp.find_pairs(big.boxes, big.active, 1u << 30, pairs, 2));  // warms up
+  ASSERT_TRUE(bp.find_pairs(sparse.boxes, sparse.active, 1u << 30, pairs, 2));  // the worker
+  ASSERT_TRUE(bp.find_pairs(big.boxes, big.active, 1u << 30, pairs, 1));        // the pairs
   const std::size_t warm_pairs = pairs.size();
   DiscBroadphase other;
   ASSERT_LE(find(other, moved, 1).size(), warm_pairs);  // "the same or a smaller pair count"
   bool ok = true;
   counted_bytes = 0;
   counting = true;
-  for (int threads : {1, 2}) {
+  for (int threads : {2, 1}) {  // two first: its second thread's pairs need room of their own
     ok = ok && bp.find_pairs(big.boxes, big.active, 1u << 30, pairs, threads);
     ok = ok && bp.find_pairs(moved.boxes, moved.active, 1u << 30, pairs, threads);
     ok = ok && bp.find_pairs(small.boxes, small.active, 1u << 30, pairs, threads);

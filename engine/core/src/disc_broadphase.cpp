@@ -85,11 +85,15 @@ void DiscBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
   std::fill(std::begin(s.count), std::end(s.count), 0u);
   s.overflow = 0;
   for (std::size_t i = s.begin; i < s.end; ++i) {
+    if (!finite(boxes[i])) {  // (before any arithmetic: Debug builds trap inf - inf)
+      level_[i] = overflow, ++s.overflow;
+      continue;
+    }
     const double e = extent(boxes[i]);
     // Level k holds e in (e_top 2^-(k+1), e_top 2^-k], the last one everything smaller.
     std::uint32_t k = max_levels - 1;
     if (e > e_bottom) k = static_cast<std::uint32_t>(std::ilogb(e_top_ / e));
-    if (!finite(boxes[i]) || !std::isfinite(levels_[k].inv_cell)) {
+    if (!std::isfinite(levels_[k].inv_cell)) {
       level_[i] = overflow, ++s.overflow;
       continue;
     }
