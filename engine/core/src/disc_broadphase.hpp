@@ -80,8 +80,8 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
 /// its worker thread (a copy starts its own when first asked for two threads).
 class DiscBroadphase {
  public:
-  /// Below this many boxes a call with threads = 2 runs on one thread: the second thread's
-  /// hand-off costs more than it saves (measured in bench_broadphase).
+  /// Below this many boxes a call with threads = 2 runs on one thread: at 10^4 the second
+  /// thread saved nothing measurable (bench_broadphase, loaded machine; see above).
   static constexpr std::size_t min_parallel_boxes = 32768;
   /// Cell side of a level over the largest extent it holds: > 1 leaves room for rounding.
   static constexpr double cell_factor = 1.25;
@@ -93,9 +93,11 @@ class DiscBroadphase {
   /// with a NaN coordinate overlap nothing.
   ///
   /// Returns false when the count would exceed max_pairs (`pairs` then holds an unspecified
-  /// prefix, possibly empty); the work done before it stops is O(n + max_pairs). threads: 1
-  /// or 2 (below 1 is 1, above 2 is 2); the result is bit for bit the same for both. With 2 it
-  /// runs half the boxes' searches on a worker thread it keeps (started on first use).
+  /// prefix; today empty); the work done before it stops is O(n + max_pairs). threads: 1
+  /// or 2 (below 1 is 1, above 2 is 2); the result is bit for bit the same for both. With 2
+  /// (and n >= min_parallel_boxes) it runs half of each pass (levels, table counts and fill,
+  /// searches) on a worker thread it keeps (started on first use; the sizing, prefix sums and
+  /// the final sort stay on the calling thread).
   /// Allocates nothing once warm (the same or a smaller n and pair count as an earlier call).
   /// Preconditions: active.size() == boxes.size() < 2^32 - 1, max_pairs < 2^32.
   bool find_pairs(std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
