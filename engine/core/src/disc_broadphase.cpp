@@ -1,0 +1,282 @@
+// The hierarchical grid of disc_broadphase.hpp (see its header for the method and why).
+#include "disc_broadphase.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "workers.hpp"
+
+namespace fixstep::detail {
+
+namespace {
+
+/// The box's extent max(width, height), m; NaN when a coordinate is.
+double extent(const SweptBox& b) {
+  return std::max(b.max_x - b.min_x, b.max_y - b.min_y);
+}
+
+bool finite(const SweptBox& b) {
+  return std::isfinite(b.min_x) && std::isfinite(b.min_y) && std::isfinite(b.max_x) &&
+         std::isfinite(b.max_y);
+}
+
+/// The half stencil of a cell's neighbours: each pair of neighbouring cells once.
+constexpr std::int32_t half_stencil[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+
+}  // namespace
+
+void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> second, std::size_t n,
+                 std::vector<std::uint32_t>& offset, std::vector<DiscPair>& out) {
+  offset.assign(n + 1, 0);
+  for (const DiscPair& p : first) ++offset[p.a];
+  for (const DiscPair& p : second) ++offset[p.a];
+  for (std::size_t i = 1; i <= n; ++i) offset[i] += offset[i - 1];  // end of each a's list
+  out.resize(first.size() + second.size());
+  for (std::size_t k = second.size(); k-- > 0;) out[--offset[second[k].a]] = second[k];
+  for (std::size_t k = first.size(); k-- > 0;) out[--offset[first[k].a]] = first[k];
+  offset[n] = static_cast<std::uint32_t>(out.size());  // now offset[a] is the start of a's list
+  const auto by_b = [](const DiscPair& p, const DiscPair& q) { return p.b < q.b; };
+  for (std::size_t a = 0; a < n; ++a) {
+    DiscPair* begin = out.data() + offset[a];
+    DiscPair* end = out.data() + offset[a + 1];
+    if (end - begin > 16) {
+      std::sort(begin, end, by_b);  // b is unique within a list: any sort gives one order
+      continue;
+    }
+    for (DiscPair* i = begin + (begin != end); i < end; ++i) {  // insertion sort
+      const DiscPair p = *i;
+      DiscPair* j = i;
+      for (; j > begin && j[-1].b > p.b; --j) *j = j[-1];
+      *j = p;
+    }
+  }
+}
+
+template <class Job>
+void DiscBroadphase::both(bool split, Job& job) {
+  if (!split) {
+    job(0), job(1);
+    return;
+  }
+  worker_->submit([](void* p) { (*static_cast<Job*>(p))(1); }, &job);
+  job(0);
+  worker_->wait();
+}
+
+void DiscBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) const {
+  s.e_top = 0;
+  for (std::size_t i = s.begin; i < s.end; ++i) {
+    if (finite(boxes[i])) s.e_top = std::max(s.e_top, extent(boxes[i]));
+  }
+}
+
+void DiscBroadphase::set_levels(double e_top) {
+  if (!(e_top > 0 && e_top < std::numeric_limits<double>::infinity())) e_top = 1.0;  // points
+  for (unsigned k = 0; k < max_levels; ++k) {
+    levels_[k].inv_cell = 1.0 / (cell_factor * std::ldexp(e_top, -static_cast<int>(k)));
+  }
+  e_top_ = e_top;
+}
+
+void DiscBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
+  const double e_bottom = std::ldexp(e_top_, -static_cast<int>(max_levels - 1));
+  std::fill(std::begin(s.count), std::end(s.count), 0u);
+  s.overflow = 0;
+  for (std::size_t i = s.begin; i < s.end; ++i) {
+    if (!finite(boxes[i])) {  // (before any arithmetic: Debug builds trap inf - inf)
+      level_[i] = overflow, ++s.overflow;
+      continue;
+    }
+    const double e = extent(boxes[i]);
+    // Level k holds e in (e_top 2^-(k+1), e_top 2^-k], the last one everything smaller.
+    std::uint32_t k = max_levels - 1;
+    if (e > e_bottom) k = static_cast<std::uint32_t>(std::ilogb(e_top_ / e));
+    if (!std::isfinite(levels_[k].inv_cell)) {
+      level_[i] = overflow, ++s.overflow;
+      continue;
+    }
+    level_[i] = k;
+    const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
+    if (s.count[k]++ == 0) s.lo_x[k] = s.hi_x[k] = cx, s.lo_y[k] = s.hi_y[k] = cy;
+    s.lo_x[k] = std::min(s.lo_x[k], cx), s.hi_x[k] = std::max(s.hi_x[k], cx);
+    s.lo_y[k] = std::min(s.lo_y[k], cy), s.hi_y[k] = std::max(s.hi_y[k], cy);
+  }
+}
+
+void DiscBroadphase::size_tables() {
+  std::uint32_t base = 0;
+  level_mask_ = 0;
+  for (unsigned k = 0; k < max_levels; ++k) {
+    Level& l = levels_[k];
+    l.base = base;
+    l.wmask = l.hmask = l.wshift = 0;
+    const Share &s0 = share_[0], &s1 = share_[1];
+    const std::size_t count = std::size_t{s0.count[k]} + s1.count[k];
+    if (count == 0) continue;
+    level_mask_ |= std::uint64_t{1} << k;
+    const Share& a = s0.count[k] ? s0 : s1;
+    const Share& b = s1.count[k] ? s1 : s0;
+    // A dense grid over the level's home cells, wrapped to at most 2 buckets per box.
+    const auto bits = [](std::int32_t lo, std::int32_t hi) {
+      return static_cast<std::uint32_t>(std::bit_width(static_cast<std::uint64_t>(hi - lo)));
+    };
+    std::uint32_t wbits = bits(std::min(a.lo_x[k], b.lo_x[k]), std::max(a.hi_x[k], b.hi_x[k]));
+    std::uint32_t hbits = bits(std::min(a.lo_y[k], b.lo_y[k]), std::max(a.hi_y[k], b.hi_y[k]));
+    const auto budget = static_cast<std::uint32_t>(std::bit_width(2 * count - 1));
+    while (wbits + hbits > budget) (wbits >= hbits ? wbits : hbits) -= 1;
+    l.wmask = (std::uint32_t{1} << wbits) - 1, l.hmask = (std::uint32_t{1} << hbits) - 1;
+    l.wshift = wbits;
+    base += std::uint32_t{1} << (wbits + hbits);
+  }
+  start_.resize(2 * std::size_t{base} + 1);
+  for (auto& c : cursor_) c.assign(2 * std::size_t{base}, 0);
+}
+
+void DiscBroadphase::count_keys(const Share& s, std::span<const SweptBox> boxes,
+                                std::span<const std::uint8_t> active,
+                                std::vector<std::uint32_t>& count) const {
+  for (std::size_t i = s.begin; i < s.end; ++i) {  // the entries of each (bucket, static?) key
+    const std::uint32_t k = level_[i];
+    if (k == overflow) continue;
+    ++count[2 * bucket(k, cell_of(boxes[i].min_x, k), cell_of(boxes[i].min_y, k)) +
+            (active[i] == 0)];
+  }
+}
+
+void DiscBroadphase::start_keys() {
+  std::uint32_t next = 0;  // each key's entries: the first thread's, then the second's
+  for (std::size_t key = 0; key + 1 < start_.size(); ++key) {
+    const std::uint32_t c0 = cursor_[0][key], c1 = cursor_[1][key];
+    start_[key] = next, cursor_[0][key] = next, cursor_[1][key] = next + c0;
+    next += c0 + c1;
+  }
+  start_.back() = next;
+  entry_.resize(next);
+}
+
+void DiscBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
+                               std::span<const std::uint8_t> active,
+                               std::vector<std::uint32_t>& cursor) {
+  for (std::size_t i = s.begin; i < s.end; ++i) {  // in index order within each key
+    const std::uint32_t k = level_[i];
+    if (k == overflow) continue;
+    const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
+    entry_[cursor[2 * bucket(k, cx, cy) + (active[i] == 0)]++] = {
+        boxes[i], static_cast<std::uint32_t>(i), cx, cy};
+  }
+}
+
+void DiscBroadphase::scan_own_cell(std::size_t at, std::size_t h,
+                                   std::vector<DiscPair>& out) const {
+  const Entry& q = entry_[at];  // dynamic: the dynamic boxes after it, then every static one
+  for (std::size_t p = at + 1, end = start_[2 * h + 2]; p < end; ++p) {
+    const Entry& e = entry_[p];
+    if (e.cx != q.cx || e.cy != q.cy || !boxes_overlap(q.box, e.box)) continue;
+    out.push_back({std::min(q.index, e.index), std::max(q.index, e.index)});
+  }
+}
+
+void DiscBroadphase::scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx,
+                               std::int32_t cy, std::vector<DiscPair>& out) const {
+  const std::size_t h = bucket(level, cx, cy);
+  for (std::size_t p = start_[2 * h], end = start_[2 * h + (act ? 2 : 1)]; p < end; ++p) {
+    const Entry& e = entry_[p];
+    if (e.cx != cx || e.cy != cy || !boxes_overlap(q.box, e.box)) continue;
+    out.push_back({std::min(q.index, e.index), std::max(q.index, e.index)});
+  }
+}
+
+void DiscBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
+                                   std::span<const SweptBox> boxes,
+                                   std::span<const std::uint8_t> active,
+                                   std::vector<DiscPair>& out) const {
+  const bool own = level_[q] == overflow;  // overflow boxes pair among themselves by index
+  for (const std::uint32_t o : overflow_) {
+    if ((own && o <= q) || (!act && active[o] == 0)) continue;
+    if (boxes_overlap(box, boxes[o])) out.push_back({std::min(q, o), std::max(q, o)});
+  }
+}
+
+void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
+                                std::span<const SweptBox> boxes,
+                                std::span<const std::uint8_t> active,
+                                std::vector<DiscPair>& out) const {
+  const Entry& q = entry_[at];
+  const std::size_t h = bucket(level, q.cx, q.cy);
+  const bool act = at < start_[2 * h + 1];
+  if (act) scan_own_cell(at, h, out);  // a static box finds its partners from the other side
+  for (const auto& d : half_stencil) scan_cell(q, act, level, q.cx + d[0], q.cy + d[1], out);
+  // Coarser levels: their boxes whose home cell is one of the 3 x 3 around this one's.
+  for (std::uint64_t m = level_mask_ & ((std::uint64_t{1} << level) - 1); m != 0; m &= m - 1) {
+    const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
+    const std::int32_t cx = cell_of(q.box.min_x, k), cy = cell_of(q.box.min_y, k);
+    for (std::int32_t dy = -1; dy <= 1; ++dy) {
+      for (std::int32_t dx = -1; dx <= 1; ++dx) scan_cell(q, act, k, cx + dx, cy + dy, out);
+    }
+  }
+  if (!overflow_.empty()) scan_overflow(q.box, q.index, act, boxes, active, out);
+}
+
+bool DiscBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow,
+                          std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
+                          std::size_t max_pairs, std::vector<DiscPair>& out) const {
+  out.clear();
+  for (std::uint64_t m = level_mask_; m != 0; m &= m - 1) {
+    const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
+    const std::size_t first = start_[2 * std::size_t{levels_[k].base}];
+    const std::size_t last =
+        start_[2 * (levels_[k].base + std::size_t{levels_[k].wmask + 1} * (levels_[k].hmask + 1))];
+    for (std::size_t at = std::max(begin, first); at < std::min(end, last); ++at) {
+      scan_entry(at, k, boxes, active, out);
+      if (out.size() > max_pairs) return false;
+    }
+  }
+  if (with_overflow) {  // the overflow boxes' own searches (on the first thread)
+    for (const std::uint32_t o : overflow_) {
+      scan_overflow(boxes[o], o, active[o] != 0, boxes, active, out);
+      if (out.size() > max_pairs) return false;
+    }
+  }
+  return true;
+}
+
+bool DiscBroadphase::find_pairs(std::span<const SweptBox> boxes,
+                                std::span<const std::uint8_t> active, std::size_t max_pairs,
+                                std::vector<DiscPair>& pairs, int threads) {
+  pairs.clear();
+  const std::size_t n = boxes.size();
+  const bool split = threads >= 2 && n >= parallel_min_ && n >= 2;
+  if (split && !worker_) worker_.reset(new Workers());
+  share_[0].begin = 0, share_[0].end = share_[1].begin = split ? n / 2 : n, share_[1].end = n;
+  level_.resize(n);
+  auto extents = [&](int t) { largest_extent(share_[t], boxes); };
+  both(split, extents);
+  set_levels(std::max(share_[0].e_top, share_[1].e_top));
+  auto levels = [&](int t) { assign_levels(share_[t], boxes); };
+  both(split, levels);
+  size_tables();
+  auto count = [&](int t) { count_keys(share_[t], boxes, active, cursor_[t]); };
+  both(split, count);
+  start_keys();
+  auto fill = [&](int t) { fill_keys(share_[t], boxes, active, cursor_[t]); };
+  both(split, fill);
+  overflow_.clear();
+  for (std::size_t i = 0; share_[0].overflow + share_[1].overflow > 0 && i < n; ++i) {
+    if (level_[i] == overflow) overflow_.push_back(static_cast<std::uint32_t>(i));
+  }
+  const std::size_t e = entry_.size(), mid = split ? e / 2 : e;
+  bool ok[2] = {true, true};
+  auto search = [&](int t) {
+    ok[t] = scan(t == 0 ? 0 : mid, t == 0 ? mid : e, t == 0, boxes, active, max_pairs, raw_[t]);
+  };
+  both(split, search);
+  if (!ok[0] || !ok[1] || raw_[0].size() + raw_[1].size() > max_pairs) return false;
+  order_pairs(raw_[0], raw_[1], n, offset_, pairs);
+  // Either thread may find them all next time (threads = 1, or a shifted split): room for it.
+  raw_[0].reserve(pairs.size()), raw_[1].reserve(pairs.size());
+  return true;
+}
+
+}  // namespace fixstep::detail

@@ -1,0 +1,189 @@
+// The broadphase of disc-disc contacts (issue #19, point 4): which pairs of discs may touch
+// within a tick, from the boxes their discs sweep over it. Internal to the engine: not installed.
+//
+// A hierarchical uniform grid. Levels halve from the largest finite extent e_top (extent =
+// max(width, height)): level k holds the boxes with extent in (e_top 2^-(k+1), e_top 2^-k], in
+// cells of side 1.25 e_top 2^-k (the 1.25 leaves room for rounding), the last level everything
+// smaller. Each box is stored once, in its home cell (the cell of its lower-left corner); two
+// boxes of one level that overlap have home cells at most one apart, so a box searches its own
+// cell and half of its 8 neighbours (each pair of cells once), and the 3 x 3 home cells around
+// its own on every coarser level (a pair is found by its smaller box). A level's cells are a
+// dense grid over its boxes' home cells, wrapped to at most ~2 buckets per box where they
+// spread further (an outlier far away): cells that share a bucket are told apart by the home
+// cell stored with each box. The table is a counting sort by (bucket, static?), on two threads
+// in two halves of the boxes (each bucket's boxes stay in index order, so the bits do not
+// depend on the split). Non-finite boxes go to an overflow list every box checks. The pairs are
+// then put in (a, b) order by a counting sort on a and a sort of each a's short list.
+//
+// Why a grid, measured (bench/bench_broadphase.cpp, GCC 12 -O3, CPU time of one thread, ns per
+// body per call at n = 10^3 / 10^4 / 10^5; preliminary: load average 8.7-9.5 on 2 cores while
+// others compiled, ranges over three runs):
+//   settled pile:  grid 58-64 / 68-85 / 73-83 (x1.25-1.31 from 10^3 to 10^5)
+//                  sweep-and-prune, std::sort each call   45 / 328 / 570   (x12.6)
+//                  sweep-and-prune, insertion sort kept   33 / 282 / 516   (x15.4)
+//   moving gas:    grid 96-97 / 91-95 / 125-161 (x1.30-1.66)
+//                  sweep-and-prune, std::sort each call  140 / 269 / 499   (x3.6)
+//                  sweep-and-prune, insertion sort kept  110 / 224 / 425   (x3.9)
+// Sweep-and-prune on x scans, for each box, every box of its x-strip; in a square scene that
+// strip holds ~sqrt(n) boxes (a whole column of the pile's lattice), and a column of discs costs
+// it n^2 with no pair to stop at. It wins only at 10^3 on the pile (33 vs 58 ns).
+//
+// Bounded time: a cell holds a bounded number of boxes of its level that do not overlap (their
+// extents are at least 1/2.5 of its side), every other box it holds is a pair counted against
+// max_pairs, and a static box searches only the dynamic boxes, so a million discs at one point
+// cost O(n + max_pairs): 0.1-0.5 s a call for 10^6 discs at one point with max_pairs = 4 10^6
+// (all dynamic: false; all static: true, 0.1 s), measured at load 9 on 2 cores.
+// Only boxes below e_top 2^-47 (points, not discs) at distinct places can crowd a cell.
+//
+// Two threads (same run; wall time could not be measured with 9 runnable jobs on 2 cores): at
+// 10^5 the calling thread's CPU time per call falls from 8.3 to 4.6 ms (pile) and from 16.1 to
+// 9.5 ms (gas), the serial rest being the levels' sizing, the prefix sums and the final sort; at
+// 10^4 it gains nothing measurable (845 vs 796 us), so threads = 2 splits from
+// min_parallel_boxes = 32768 boxes. To re-time on an idle machine.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "fixstep/world.hpp"  // detail::CachePtr, detail::Workers (workers.hpp)
+
+namespace fixstep::detail {
+
+/// A disc's box swept over one tick, in m (closed: min <= max on each axis).
+struct SweptBox {
+  double min_x, min_y, max_x, max_y;
+};
+
+/// Two indices into the boxes, a < b.
+struct DiscPair {
+  std::uint32_t a, b;
+  friend bool operator==(const DiscPair&, const DiscPair&) = default;
+};
+
+/// True when the closed boxes overlap (touching counts); false if any coordinate is NaN.
+inline bool boxes_overlap(const SweptBox& p, const SweptBox& q) {
+  return p.min_x <= q.max_x && q.min_x <= p.max_x && p.min_y <= q.max_y && q.min_y <= p.max_y;
+}
+
+/// Writes into `out` (resized) the pairs of `first` then `second` (each pair once, a < b <
+/// n) sorted by (a, b): a counting sort on a (`offset`, n + 1 entries of scratch) and a sort of
+/// each a's list. O(n + pairs); allocates only to grow `offset` or `out`.
+void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> second, std::size_t n,
+                 std::vector<std::uint32_t>& offset, std::vector<DiscPair>& out);
+
+/// The broadphase a World keeps between ticks. Its members are scratch only: a copy (a
+/// snapshot) or a fresh object gives the same pairs; copying it copies plain vectors and not
+/// its worker thread (a copy starts its own when first asked for two threads).
+class DiscBroadphase {
+ public:
+  /// Below this many boxes a call with threads = 2 runs on one thread: at 10^4 the second
+  /// thread saved nothing measurable (bench_broadphase, loaded machine; see above).
+  static constexpr std::size_t min_parallel_boxes = 32768;
+  /// Cell side of a level over the largest extent it holds: > 1 leaves room for rounding.
+  static constexpr double cell_factor = 1.25;
+  static constexpr unsigned max_levels = 48;
+
+  /// Writes to `pairs` (cleared first) every pair (a, b), a < b, whose boxes overlap (closed
+  /// intervals: touching counts) and of which at least one has active[i] != 0 (static discs
+  /// are not paired with each other), each once, sorted lexicographically by (a, b). Boxes
+  /// with a NaN coordinate overlap nothing.
+  ///
+  /// Returns false when the count would exceed max_pairs (`pairs` then holds an unspecified
+  /// prefix; today empty); the work done before it stops is O(n + max_pairs). threads: 1
+  /// or 2 (below 1 is 1, above 2 is 2); the result is bit for bit the same for both. With 2
+  /// (and n >= min_parallel_boxes) it runs half of each pass (levels, table counts and fill,
+  /// searches) on a worker thread it keeps (started on first use; the sizing, prefix sums and
+  /// the final sort stay on the calling thread).
+  /// Allocates nothing once warm (the same or a smaller n and pair count as an earlier call).
+  /// Preconditions: active.size() == boxes.size() < 2^32 - 1, max_pairs < 2^32.
+  bool find_pairs(std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
+                  std::size_t max_pairs, std::vector<DiscPair>& pairs, int threads);
+
+  /// Sets the n from which threads = 2 splits the work (min_parallel_boxes by default; 0 to
+  /// split always, as the benchmark does to measure the hand-off).
+  void set_parallel_min(std::size_t n) { parallel_min_ = n; }
+
+ private:
+  /// A box as the grid stores it, in its home cell (the cell of its lower-left corner) and
+  /// next to its index, so that a scan of a cell reads memory in order.
+  struct Entry {
+    SweptBox box;
+    std::uint32_t index;
+    std::int32_t cx, cy;  // home cell on its level
+  };
+  /// One level's table: cell (cx, cy) is bucket base + (cx & wmask) + (cy & hmask) << wshift,
+  /// a dense grid where the level's boxes span at most its size, a wrapped one beyond.
+  struct Level {
+    double inv_cell = 0;  // 1 / cell side, 1/m
+    std::uint32_t base = 0, wmask = 0, hmask = 0, wshift = 0;
+  };
+  static constexpr std::uint32_t overflow = ~std::uint32_t{0};  // level_ of an overflow box
+  /// What one thread finds over its share [begin, end) of the boxes: the largest finite extent
+  /// (m), then per level the range of home cells and the count, and the overflow count.
+  struct Share {
+    std::size_t begin = 0, end = 0;
+    double e_top = 0;
+    std::int32_t lo_x[max_levels], lo_y[max_levels], hi_x[max_levels], hi_y[max_levels];
+    std::uint32_t count[max_levels];
+    std::uint32_t overflow = 0;
+  };
+
+  /// Runs job(0) here and job(1) on the worker when it splits, else both here in order.
+  template <class Job>
+  void both(bool split, Job& job);
+  void largest_extent(Share& s, std::span<const SweptBox> boxes) const;
+  void set_levels(double e_top);
+  void assign_levels(Share& s, std::span<const SweptBox> boxes);
+  void size_tables();
+  void count_keys(const Share& s, std::span<const SweptBox> boxes,
+                  std::span<const std::uint8_t> active, std::vector<std::uint32_t>& count) const;
+  void start_keys();
+  void fill_keys(const Share& s, std::span<const SweptBox> boxes,
+                 std::span<const std::uint8_t> active, std::vector<std::uint32_t>& cursor);
+  /// The cell of coordinate x (m) on a level, clamped to +-2^30 (monotone: neighbours stay
+  /// neighbours); 0 for NaN.
+  [[nodiscard]] std::int32_t cell_of(double x, std::uint32_t level) const {
+    constexpr double limit = 1073741824.0;
+    const double v = std::floor(x * levels_[level].inv_cell);
+    return std::isnan(v) ? 0 : static_cast<std::int32_t>(std::clamp(v, -limit, limit));
+  }
+  [[nodiscard]] std::size_t bucket(std::uint32_t level, std::int32_t cx, std::int32_t cy) const {
+    const Level& l = levels_[level];
+    return l.base + (static_cast<std::uint32_t>(cx) & l.wmask) +
+           ((static_cast<std::uint32_t>(cy) & l.hmask) << l.wshift);
+  }
+  /// The searches of entries [begin, end) (and of the overflow boxes if with_overflow) into
+  /// `out`; false once out holds more than max_pairs.
+  bool scan(std::size_t begin, std::size_t end, bool with_overflow, std::span<const SweptBox> boxes,
+            std::span<const std::uint8_t> active, std::size_t max_pairs,
+            std::vector<DiscPair>& out) const;
+  void scan_entry(std::size_t at, std::uint32_t level, std::span<const SweptBox> boxes,
+                  std::span<const std::uint8_t> active, std::vector<DiscPair>& out) const;
+  void scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx, std::int32_t cy,
+                 std::vector<DiscPair>& out) const;
+  void scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out) const;
+  void scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
+                     std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
+                     std::vector<DiscPair>& out) const;
+
+  std::vector<std::uint32_t> level_;  // per box: its level, or `overflow`
+  Level levels_[max_levels];
+  double e_top_ = 1;              // the largest finite extent of the call, m
+  std::uint64_t level_mask_ = 0;  // bit k: level k holds a box
+  // Bucket h's entries: entry_[start_[2h] .. start_[2h+1]) dynamic, then .. start_[2h+2) static.
+  std::vector<std::uint32_t> start_;
+  std::vector<std::uint32_t> cursor_[2];  // per thread: its count, then its next slot, per key
+  std::vector<Entry> entry_;
+  Share share_[2];
+  std::vector<std::uint32_t> overflow_;  // indices of the overflow boxes, in order
+  std::vector<DiscPair> raw_[2];         // unsorted pairs found by each thread
+  std::vector<std::uint32_t> offset_;    // order_pairs' scratch
+  std::size_t parallel_min_ = min_parallel_boxes;
+  CachePtr<Workers, WorkersDeleter> worker_;
+};
+
+}  // namespace fixstep::detail
