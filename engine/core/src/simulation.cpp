@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fixstep/disc_overlap.hpp"
 #include "fixstep/stability.hpp"
 
 namespace fixstep {
@@ -177,6 +178,17 @@ Simulation make_simulation(const WorldDef& def) {
     sim.create_link(LinkDef{bodies[l.body_a], bodies[l.body_b], l.spring});
   }
   for (const PlaneDef& p : def.planes) sim.add_plane(p);
+  if (const auto pair = first_disc_overlap(def)) {
+    const auto name = [&](std::size_t i) {
+      return def.bodies[i].name.empty() ? fmt::format("body {}", i)
+                                        : fmt::format("body '{}'", def.bodies[i].name);
+    };
+    throw std::invalid_argument(fmt::format(
+        "{} and {} overlap by {:g} m at tick 0 (discs of a world with contacts must start "
+        "apart or touching)",
+        name(pair->first), name(pair->second),
+        disc_overlap_depth(def.bodies[pair->first], def.bodies[pair->second])));
+  }
   if (!def.allow_unstable) refuse_unstable(def);
   return sim;
 }

@@ -143,7 +143,8 @@ struct WorldDef {
 /// std::invalid_argument with the guard's finding and the smallest stable substep count.
 /// Also throws std::invalid_argument for invalid settings, bodies or links (as World does:
 /// the message names the body and field; for a plane, plane[i] and the field) and for a link
-/// index out of range.
+/// index out of range, and, in a world with contacts, for two colliding discs that overlap at
+/// tick 0 (naming both; first_disc_overlap, disc_overlap.hpp).
 [[nodiscard]] Simulation make_simulation(const WorldDef& def);
 
 /// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J
