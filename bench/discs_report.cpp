@@ -276,8 +276,9 @@ std::string targets_markdown(const Results& r) {
   }
   line(fmt::format(
       "\nWhat the contacts cost fixstep on the gas (time with contacts / the same world without "
-      "them): {}. Worlds without contacts at today's speed is measured by bench_throughput "
-      "before/after, not here (see docs/PERFORMANCE.md).",
+      "them): {}. Worlds without contacts at today's speed: measured before/after by "
+      "bench_throughput (engine rows), bench_coupled (fixstep rows) and the contacts-off rows "
+      "above (docs/PERFORMANCE.md, section 7).",
       costs));
   return out;
 }
@@ -291,7 +292,7 @@ std::string report_markdown(const Results& r) {
       "benchmark itself adds about 1). dt = 1/60 s; r = {} m (pile_large: {} m), m = {} kg; "
       "Chipmunk: {} "
       "iterations, collision slop {} m; Box2D: {} velocity / {} position iterations, linear "
-      "slop {} m.",
+      "slop {:.3g} m.",
       r.load_start, r.load_end, small_radius, large_radius, mass, chipmunk_iterations,
       chipmunk_slop, box2d_velocity_iterations, box2d_position_iterations, box2d_linear_slop()));
   cost_tables(v, line);
