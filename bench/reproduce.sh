@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates every table and figure of docs/PERFORMANCE.md on this machine, in one command:
-#   bash bench/reproduce.sh            (about 10 minutes on 2 cores)
+#   bash bench/reproduce.sh            (about 15 minutes on 2 cores)
 #   bash bench/reproduce.sh coupled    (only section 6, coupled systems against peers: ~3 min)
+#   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers: ~3-5 min)
 # Builds the optimised benchmark tree (build/bench), runs each study into docs/perf/, and
 # splices the generated markdown into docs/PERFORMANCE.md between its
 # "<!-- BEGIN name -->" / "<!-- END name -->" markers. Run on an otherwise idle machine:
@@ -10,8 +11,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 only="${1:-}"
 case "$only" in
-  "" | coupled) ;;
-  *) echo "usage: bash bench/reproduce.sh [coupled]" >&2; exit 2 ;;
+  "" | coupled | discs) ;;
+  *) echo "usage: bash bench/reproduce.sh [coupled|discs]" >&2; exit 2 ;;
 esac
 bash .ci/install-deps
 cmake --workflow --preset bench
@@ -43,14 +44,22 @@ if [ -z "$only" ]; then
   # docs/perf/capture.md quotes its medians.
   [ -n "${SKIP_CAPTURE:-}" ] || "$bin/bench_capture" > "$out/capture.log"
 fi
-# Coupled systems against the edge-list loop, Chipmunk2D and Box2D: tables, targets and the
-# work-precision plot, headed by the machine and date they come from (section 6 can be
-# regenerated alone, so it says where its numbers were measured).
-"$bin/bench_coupled" --report "$out" > "$out/coupled.log"
-{
+# Where a section's numbers were measured (sections 6 and 7 can be regenerated alone).
+measured_on() {
   echo "Measured on $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores, $(date -u +%Y-%m-%d), by \`bash bench/reproduce.sh${only:+ $only}\`."
-  cat "$out/coupled.md"
-} > "$out/coupled.section.md"
+}
+# Coupled systems against the edge-list loop, Chipmunk2D and Box2D: tables, targets and the
+# work-precision plot, headed by the machine and date they come from.
+if [ "$only" != discs ]; then
+  "$bin/bench_coupled" --report "$out" > "$out/coupled.log"
+  { measured_on; cat "$out/coupled.md"; } > "$out/coupled.section.md"
+fi
+# Disc contacts against Chipmunk2D and Box2D (pile, gas; N = 10^3 ... 10^5): cost per
+# body-step, overlaps, energy, targets; its first line gives the load average during the run.
+if [ "$only" != coupled ]; then
+  "$bin/bench_discs" --report "$out" > "$out/discs.log"
+  { measured_on; cat "$out/discs.md"; } > "$out/discs.section.md"
+fi
 
 splice() {  # splice NAME FILE: replace the text between the NAME markers with FILE
   local doc=docs/PERFORMANCE.md
@@ -66,5 +75,6 @@ if [ -z "$only" ]; then
   splice work_precision "$out/work_precision.md"
   splice constant_force "$out/article/constant_force.md"
 fi
-splice coupled "$out/coupled.section.md"
+[ "$only" = discs ] || splice coupled "$out/coupled.section.md"
+[ "$only" = coupled ] || splice discs "$out/discs.section.md"
 echo "reproduce: docs/PERFORMANCE.md and $out/ regenerated"

@@ -1,0 +1,331 @@
+// Disc contacts against two peer engines (issue #19, point 8), in one run (Google Benchmark):
+// a settled pile and an elastic gas of N = 10³, 10⁴, 10⁵ discs of r = 5 cm, and the pile of
+// 50 cm discs (the peers' home scale) at N = 10³, 10⁴ (discs.hpp), built by one generator and
+// stepped at dt = 1/60 s by
+//   fixstep    World<Real>::step() with WorldSettings::contacts, f64 on 1 and 2 threads and
+//              f32 on 1 (discs_fixstep.cpp); and, on the gas, the same world without contacts
+//              (the discs meet only the walls: a world that asks for no contacts);
+//   chipmunk   Chipmunk2D 7 with its spatial hash, its default tree, and (N <= 10⁴)
+//              cpHastySpace on 2 threads (discs_chipmunk.cpp);
+//   box2d      Box2D 2.4, b2CircleShape, Step(dt, 8, 3) (discs_box2d.cpp).
+// Every case is built and warmed up untimed, then its steps are timed (the median of 5
+// repetitions, 3 at 10⁵); after them, every engine's deepest overlap and kinetic energy are
+// measured on its state the same way. The report (stdout; with --report DIR also DIR/discs.md)
+// gives ns per body-step, the overlaps, fixstep's contact statistics, Box2D's broadphase share
+// and the targets as ratios measured side by side.
+//
+//   build/bench/bin/bench_discs --report docs/perf
+//   build/bench/bin/bench_discs --quick --benchmark_min_time=0.01   (N = 10³: a smoke run)
+//   build/bench/bin/bench_discs --verify-only  (the checks alone; ctest bench_discs_checks)
+//   build/bench/bin/bench_discs --trace pile box2d 1000 300  (one case, untimed, every 10 ticks)
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "discs.hpp"
+#include "fixstep/capture.hpp"
+#include "median_run.hpp"
+
+using namespace discs;
+using fixstep::Vec2;
+
+namespace {
+
+// --- the checks, run before anything is timed (and alone with --verify-only) --------------
+
+int failures = 0;
+void check(bool ok, const std::string& what) {
+  if (!ok) ++failures, std::fprintf(stderr, "bench_discs: FAILED: %s\n", what.c_str());
+}
+
+/// The scenes start with no disc overlapping another or a wall.
+void verify_scenes(std::size_t n) {
+  for (SceneKind kind : {SceneKind::pile, SceneKind::gas, SceneKind::pile_large}) {
+    const Scene s = make_scene(kind, n);
+    const Quality q = measure(s, s.position, s.velocity);
+    check(s.position.size() == n && q.disc_overlap == 0.0 && q.wall_overlap == 0.0,
+          fmt::format("{} N = {}: {} discs, overlap {:.3g} m between discs, {:.3g} m with walls",
+                      scene_name(kind), n, s.position.size(), q.disc_overlap, q.wall_overlap));
+  }
+}
+
+/// The grid finds the deepest overlap all pairs give, on states with many overlaps.
+void verify_overlap_grid() {
+  for (SceneKind kind : {SceneKind::pile, SceneKind::gas}) {
+    Scene s = make_scene(kind, 1500);
+    for (Vec2& p : s.position) p.x *= 0.93, p.y *= kind == SceneKind::gas ? 0.3 : 0.97;
+    const double grid = measure(s, s.position, s.velocity).disc_overlap;
+    const double brute = overlap_brute_force(s.position, s.radius);
+    check(grid == brute && grid > 0.0, fmt::format("{} squeezed: grid overlap {} m, all pairs {} m",
+                                                   scene_name(kind), grid, brute));
+  }
+}
+
+/// Every engine starts from the scene's state and keeps its discs finite and their centres in
+/// the box, widened by r, for `ticks` ticks (walls, gravity's sign and units as meant; a fast
+/// gas disc may sink deeper than r into a wall in an engine without continuous collision).
+void verify_engines(std::size_t n, int ticks) {
+  std::vector<Vec2> x, v;
+  for (SceneKind kind : {SceneKind::pile, SceneKind::gas, SceneKind::pile_large}) {
+    const Scene s = make_scene(kind, n);
+    for (const char* key : stepper_keys()) {
+      const auto p = make_stepper(key, s);
+      p->state(x, v);
+      double moved = 0.0;  // Box2D holds float: its start differs by rounding
+      for (std::size_t j = 0; j < n; ++j) {
+        moved =
+            std::max({moved, std::abs(x[j].x - s.position[j].x), std::abs(x[j].y - s.position[j].y),
+                      std::abs(v[j].x - s.velocity[j].x), std::abs(v[j].y - s.velocity[j].y)});
+      }
+      check(moved <= 1e-5,
+            fmt::format("{} {}: starts {:.3g} from the scene", scene_name(kind), key, moved));
+      for (int t = 0; t < ticks; ++t) p->step();
+      p->state(x, v);
+      const Quality q = measure(s, x, v);
+      check(std::isfinite(q.kinetic) && q.wall_overlap < 2.0 * s.radius,
+            fmt::format("{} {} after {} ticks: kinetic energy {} J, a disc {:.3g} m into a wall",
+                        scene_name(kind), key, ticks, q.kinetic, q.wall_overlap));
+    }
+  }
+}
+
+int run_checks(bool full) {
+  for (std::size_t n : {std::size_t{1000}, std::size_t{10'000}}) verify_scenes(n);
+  if (full) verify_scenes(100'000);
+  verify_overlap_grid();
+  verify_engines(1000, 60);
+  if (failures == 0) {
+    std::printf(
+        "checks: the scenes start without overlaps; the overlap grid agrees with all pairs; "
+        "every engine starts from the scene and keeps its discs in the box for 60 ticks (N = "
+        "10^3)\n");
+  }
+  return failures;
+}
+
+// --- benchmarks -----------------------------------------------------------------------------
+
+/// The case being timed: built and warmed up once, then stepped by all its repetitions
+/// (Google Benchmark calls the function again for each): a 10⁵-disc world takes seconds to
+/// build and warm up, and a settled pile stays settled.
+struct Live {
+  std::string id;
+  Scene scene;
+  std::unique_ptr<Stepper> stepper;
+  std::int64_t ticks = 0;
+};
+
+Live& live(SceneKind kind, const std::string& key, std::size_t n) {
+  static Live current;
+  const std::string id = fmt::format("{}/{}/{}", scene_name(kind), key, n);
+  if (current.id != id) {
+    current.stepper.reset();  // the previous engine's memory first
+    current.scene = make_scene(kind, n);
+    current.stepper = make_stepper(key, current.scene);
+    for (int t = 0; t < current.scene.warmup; ++t) current.stepper->step();
+    current.ticks = current.scene.warmup;
+    current.id = id;
+  }
+  return current;
+}
+
+void bm_step(benchmark::State& st, SceneKind kind, const std::string& key) {
+  Live& c = live(kind, key, static_cast<std::size_t>(st.range(0)));
+  for (auto _ : st) {
+    c.stepper->step();
+    benchmark::ClobberMemory();
+  }
+  c.ticks += static_cast<std::int64_t>(st.iterations());
+  const double n = double(c.scene.position.size()), r = c.scene.radius;
+  st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * std::int64_t(n));
+  std::vector<Vec2> x, v;
+  c.stepper->state(x, v);
+  const Quality q = measure(c.scene, x, v);
+  const Stats s = c.stepper->stats();
+  const double energy = kind == SceneKind::gas ? q.kinetic / initial_kinetic(c.scene)
+                                               : std::sqrt(2.0 * q.kinetic / (mass * n));
+  st.counters = {{"bodies", n},
+                 {"ticks", double(c.ticks)},
+                 {"overlap_r", q.disc_overlap / r},
+                 {"wall_r", q.wall_overlap / r},
+                 {"energy", energy},
+                 {"pairs", s.candidate_pairs},
+                 {"touching", s.touching},
+                 {"impacts", s.impacts},
+                 {"self_r", s.self_overlap / r},
+                 {"bp", s.broadphase_share},
+                 {"narrow", s.collide_share},
+                 {"threads", double(s.threads)}};
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// --trace: one case's overlaps, energy and (fixstep) contact statistics every 10 ticks.
+int trace(const std::string& scene, const std::string& key, std::size_t n, int ticks) {
+  const SceneKind kind = scene == "pile"  ? SceneKind::pile
+                         : scene == "gas" ? SceneKind::gas
+                                          : SceneKind::pile_large;
+  const Scene s = make_scene(kind, n);
+  const auto start = std::chrono::steady_clock::now();
+  const auto p = make_stepper(key, s);
+  std::vector<Vec2> x, v;
+  std::printf("built in %.3f s\n", seconds_since(start));
+  auto last = std::chrono::steady_clock::now();
+  for (int t = 0; t <= ticks; ++t) {
+    if (t % 10 == 0) {
+      p->state(x, v);
+      const Quality q = measure(s, x, v);
+      const Stats st = p->stats();
+      std::printf(
+          "tick %4d  overlap/r disc %.4f wall %.4f  kinetic %.6g J  pairs %.0f touching %.0f "
+          "impacts %.0f self/r %.4f  %.4f s/tick\n",
+          t, q.disc_overlap / s.radius, q.wall_overlap / s.radius, q.kinetic, st.candidate_pairs,
+          st.touching, st.impacts, st.self_overlap / s.radius,
+          seconds_since(last) / (t == 0 ? 1 : 10));
+      last = std::chrono::steady_clock::now();
+    }
+    if (t < ticks) p->step();
+  }
+  return 0;
+}
+
+struct Options {
+  bool quick = false, verify_only = false, min_time_given = false, reps_given = false;
+  std::optional<std::string> report;
+};
+
+std::vector<std::int64_t> sizes(const Options& o) {
+  if (o.quick) return {1000};
+  return {1000, 10'000, 100'000};
+}
+
+/// Repetitions of a case: fewer at 10⁵, where one peer step takes up to a second.
+int repetitions(const Options& o, std::int64_t n) {
+  if (o.reps_given || o.quick) return 1;
+  return n >= 100'000 ? 3 : 5;
+}
+
+void register_all(const Options& o) {
+  for (SceneKind kind : {SceneKind::pile, SceneKind::gas, SceneKind::pile_large}) {
+    for (const std::int64_t n : sizes(o)) {  // the contenders at one N run one after another
+      if (kind == SceneKind::pile_large && n > 10'000) continue;
+      for (const char* key : stepper_keys()) {
+        const std::string k = key;
+        if (k == "fixstep_f64_off" && kind != SceneKind::gas) continue;
+        if (k == "chipmunk_hasty2" && n > 10'000) continue;  // optional; 40+ s at 10^5
+        auto* b =
+            benchmark::RegisterBenchmark(fmt::format("{}/{}", scene_name(kind), k).c_str(),
+                                         [kind, k](benchmark::State& st) { bm_step(st, kind, k); });
+        b->Arg(n)->Unit(benchmark::kMicrosecond)->UseRealTime();
+        if (!o.min_time_given) b->MinTime(n >= 100'000 ? 0.05 : 0.1);
+        const int reps = repetitions(o, n);
+        if (reps > 1) b->Repetitions(reps)->ReportAggregatesOnly(true);
+      }
+    }
+  }
+}
+
+/// Keeps the median of every case, keyed "<scene>/<stepper>/<N>".
+class Collector : public benchmark::ConsoleReporter {
+ public:
+  // Colours only on a terminal: reproduce.sh keeps the console output as docs/perf/discs.log.
+  Collector() : ConsoleReporter(isatty(fileno(stdout)) ? OO_ColorTabular : OO_Tabular) {}
+  Results results;
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& r : runs) {
+      if (!fixstep::bench::median_or_single(r)) continue;
+      const auto c = [&r](const char* name) {
+        const auto it = r.counters.find(name);
+        return it == r.counters.end() ? std::nan("") : it->second.value;
+      };
+      const double n = c("bodies");
+      if (std::isnan(n)) continue;
+      const double ns =
+          r.GetAdjustedRealTime() * (r.time_unit == benchmark::kMicrosecond ? 1e3 : 1);
+      results.cases[r.run_name.function_name + "/" + r.run_name.args] = {
+          .ns_per_body_step = ns / n,
+          .bodies = n,
+          .ticks = c("ticks"),
+          .disc_overlap = c("overlap_r"),
+          .wall_overlap = c("wall_r"),
+          .kinetic_ratio = c("energy"),
+          .stats = {c("pairs"), c("touching"), c("impacts"), c("self_r"), c("bp"), c("narrow"),
+                    int(c("threads"))}};
+      const int reps = std::max<int>(1, int(r.repetitions));
+      if (n >= 100'000)
+        results.repetitions_largest = std::max(results.repetitions_largest, reps);
+      else
+        results.repetitions = std::max(results.repetitions, reps);
+    }
+  }
+};
+
+double load_average() {
+  double load[1] = {0.0};
+  return getloadavg(load, 1) == 1 ? load[0] : std::nan("");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  std::vector<char*> args;
+  for (int a = 0; a < argc; ++a) {
+    const std::string_view arg = argv[a];
+    if (arg == "--quick")
+      o.quick = true;
+    else if (arg == "--verify-only")
+      o.verify_only = true;
+    else if (arg.starts_with("--report="))
+      o.report = std::string(arg.substr(9));
+    else if (arg == "--report" && a + 1 < argc)
+      o.report = argv[++a];
+    else if (arg == "--trace" && a + 4 < argc)
+      return trace(argv[a + 1], argv[a + 2], std::stoul(argv[a + 3]), std::stoi(argv[a + 4]));
+    else {
+      o.min_time_given = o.min_time_given || arg.starts_with("--benchmark_min_time");
+      o.reps_given = o.reps_given || arg.starts_with("--benchmark_repetitions");
+      args.push_back(argv[a]);
+    }
+  }
+  try {
+    if (run_checks(!o.quick && !o.verify_only) != 0) return 1;
+    if (o.verify_only) return 0;
+
+    const double load_start = load_average();
+    int bargc = static_cast<int>(args.size());
+    benchmark::Initialize(&bargc, args.data());
+    if (benchmark::ReportUnrecognizedArguments(bargc, args.data())) return 2;
+    register_all(o);
+    Collector collector;
+    benchmark::RunSpecifiedBenchmarks(&collector);
+    benchmark::Shutdown();
+    Results res = collector.results;
+    res.sizes = sizes(o);
+    res.load_start = load_start, res.load_end = load_average();
+
+    const std::string md = report_markdown(res);
+    std::fputs(md.c_str(), stdout);
+    if (o.report) {
+      fixstep::prepare_output_dir(*o.report);
+      fixstep::write_file_atomic(*o.report + "/discs.md", md);
+      std::printf("wrote %s/discs.md\n", o.report->c_str());
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_discs: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,152 @@
+// The disc-contact benchmark (bench_discs.cpp): its two scenes, built once by one generator
+// and stepped by fixstep (discs_fixstep.cpp), Chipmunk2D 7 (discs_chipmunk.cpp) and Box2D 2.4
+// (discs_box2d.cpp) behind one interface; the overlap and energy measured on every engine's
+// state the same way (discs_scene.cpp); the report (discs_report.cpp). Internal to bench/.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fixstep/types.hpp"
+
+namespace discs {
+
+inline constexpr double tick = 1.0 / 60.0;    ///< s, every engine's step
+inline constexpr double small_radius = 0.05;  ///< m, every disc of the pile and the gas
+/// m, every disc of the large pile: the peers' home scale (Box2D's manual: moving objects of
+/// 0.1 to 10 m; its b2_linearSlop, 5 mm, is 10 % of the small radius and 1 % of this one).
+inline constexpr double large_radius = 0.5;
+inline constexpr double mass = 1.0;  ///< kg, every disc
+
+// The pile: N discs packed hexagonally `pile_layers` rows deep in a box that fits the rows
+// exactly (even rows wall to wall, odd rows one disc fewer in their pockets; the top row
+// partly filled; every gap 0.1 % of the diameter, so nothing overlaps at tick 0): ground y = 0
+// and walls x = 0 and x = width, under gravity, e = 0, μ = 0.5 (disc-disc and disc-wall). It
+// is warmed up for `pile_warmup` ticks, untimed, then timed as a settled pile. The depth is the
+// same at every N, so the work per disc is too.
+inline constexpr int pile_layers = 10;
+inline constexpr double pile_gravity = 9.81;  ///< m/s², along -y
+inline constexpr double pile_restitution = 0.0;
+inline constexpr double pile_friction = 0.5;
+inline constexpr int pile_warmup = 40;
+// The gas: N discs in a closed square box at 10 % area fraction, no gravity, e = 1, μ = 0,
+// each at a random spot of its own cell of a square grid (so nothing overlaps at tick 0) with
+// a speed uniform in [1, 3] m/s in a uniform random direction. Warmed up for `gas_warmup` ticks.
+inline constexpr double gas_area_fraction = 0.1;
+inline constexpr double gas_restitution = 1.0;
+inline constexpr double gas_friction = 0.0;
+inline constexpr double gas_speed_min = 1.0, gas_speed_max = 3.0;  ///< m/s
+inline constexpr int gas_warmup = 5;
+
+/// pile_large: the pile with discs of large_radius (N = 10³ and 10⁴ only).
+enum class SceneKind { pile, gas, pile_large };
+[[nodiscard]] const char* scene_name(SceneKind s);
+
+/// One scene as every engine builds it: discs of `radius` and `mass` in a box whose walls are
+/// the lines x = 0, x = width, y = 0 and (gas only) y = height; free space inside.
+struct Scene {
+  SceneKind kind = SceneKind::pile;
+  double radius = small_radius;           ///< m, every disc
+  std::vector<fixstep::Vec2> position{};  ///< m, disc centres
+  std::vector<fixstep::Vec2> velocity{};  ///< m/s
+  double width = 0.0, height = 0.0;       ///< m, the box (pile: height of the walls drawn)
+  bool lid = false;                       ///< a wall at y = height (the gas)
+  double gravity = 0.0;                   ///< m/s² along -y
+  double restitution = 0.0, friction = 0.0;
+  int warmup = 0;  ///< ticks stepped before timing
+};
+
+[[nodiscard]] Scene make_pile(std::size_t n, double radius = small_radius);
+[[nodiscard]] Scene make_gas(std::size_t n, std::uint64_t seed = 19);
+[[nodiscard]] Scene make_scene(SceneKind kind, std::size_t n);
+
+/// What one engine's discs look like, measured the same way for every engine.
+struct Quality {
+  double disc_overlap = 0.0;  ///< deepest 2r - |x_a - x_b| over all pairs, m (>= 0)
+  double wall_overlap = 0.0;  ///< deepest r - distance to a wall over discs, m (>= 0)
+  double kinetic = 0.0;       ///< ½ m |v|² summed, J (translation only)
+};
+/// Overlaps by a uniform grid of cell 2r (each disc against its 3 x 3 cells): O(N log N).
+[[nodiscard]] Quality measure(const Scene& s, std::span<const fixstep::Vec2> x,
+                              std::span<const fixstep::Vec2> v);
+/// The deepest disc-disc overlap by testing all pairs (the grid's check), m.
+[[nodiscard]] double overlap_brute_force(std::span<const fixstep::Vec2> x, double radius);
+/// Translational kinetic energy of the scene's initial state, J.
+[[nodiscard]] double initial_kinetic(const Scene& s);
+
+/// What an engine reports about its own contacts, NaN where it reports nothing.
+struct Stats {
+  double candidate_pairs = 0.0;   ///< fixstep: broadphase pairs in the last tick
+  double touching = 0.0;          ///< fixstep: pairs touching at the end of the last tick
+  double impacts = 0.0;           ///< fixstep: impacts resolved in the last tick
+  double self_overlap = 0.0;      ///< fixstep: its own deepest overlap left, m
+  double broadphase_share = 0.0;  ///< Box2D: b2Profile broadphase / step since the start
+  double collide_share = 0.0;     ///< Box2D: b2Profile collide (narrow phase) / step
+  int threads = 1;
+};
+
+/// An engine stepping a scene at `tick`: fixstep, Chipmunk2D or Box2D.
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  virtual void step() = 0;
+  /// Positions and velocities of the discs, in scene order.
+  virtual void state(std::vector<fixstep::Vec2>& x, std::vector<fixstep::Vec2>& v) const = 0;
+  [[nodiscard]] virtual Stats stats() const = 0;
+};
+
+/// The steppers, by key:
+///   fixstep_f64_t1, fixstep_f64_t2, fixstep_f32_t1  World<Real> with WorldSettings::contacts
+///   fixstep_f64_off   the same world without contacts (discs meet only the walls)
+///   chipmunk_hash     cpSpace with cpSpaceUseSpatialHash(2r, N)
+///   chipmunk_tree     cpSpace with its default bounding-box tree
+///   chipmunk_hasty2   cpHastySpace on 2 threads (its default tree)
+///   box2d             b2World, b2CircleShape, Step(dt, 8, 3)
+[[nodiscard]] std::span<const char* const> stepper_keys();
+[[nodiscard]] std::string stepper_label(const std::string& key);
+[[nodiscard]] std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s);
+
+[[nodiscard]] std::unique_ptr<Stepper> make_fixstep(const Scene& s, bool f32, int threads,
+                                                    bool contacts);
+enum class ChipmunkIndex { hash, tree, hasty };
+[[nodiscard]] std::unique_ptr<Stepper> make_chipmunk(const Scene& s, ChipmunkIndex index);
+[[nodiscard]] std::string chipmunk_version();
+inline constexpr int chipmunk_iterations = 10;  ///< its default
+/// Chipmunk's collision slop set to Box2D's b2_linearSlop (its default, 0.1, is in pixels).
+inline constexpr double chipmunk_slop = 0.005;  ///< m
+[[nodiscard]] std::unique_ptr<Stepper> make_box2d(const Scene& s);
+[[nodiscard]] std::string box2d_version();
+[[nodiscard]] double box2d_linear_slop();  ///< m
+inline constexpr int box2d_velocity_iterations = 8;
+inline constexpr int box2d_position_iterations = 3;
+
+// --- results and the report (discs_report.cpp) --------------------------------------------
+
+/// One timed case: "<scene>/<stepper>/<N>".
+struct CaseResult {
+  double ns_per_body_step = 0.0;  ///< median real time of a step / discs
+  double bodies = 0.0;
+  double ticks = 0.0;          ///< ticks stepped when the quality was measured (warm-up included)
+  double disc_overlap = 0.0;   ///< / r, after the timed steps
+  double wall_overlap = 0.0;   ///< / r
+  double kinetic_ratio = 0.0;  ///< kinetic energy then / at tick 0 (gas); rms speed, m/s (pile)
+  Stats stats{};               ///< self_overlap here as a fraction of r
+};
+
+struct Results {
+  std::map<std::string, CaseResult> cases{};
+  std::vector<std::int64_t> sizes{};
+  int repetitions = 1, repetitions_largest = 1;
+  double load_start = 0.0, load_end = 0.0;  ///< 1-minute load average
+};
+
+[[nodiscard]] std::string report_markdown(const Results& r);
+/// Its targets section: the targets as measured ratios, met or not.
+[[nodiscard]] std::string targets_markdown(const Results& r);
+
+}  // namespace discs

@@ -1,0 +1,303 @@
+// bench_discs' steppers by key and its report: the markdown of docs/perf/discs.md (cost per
+// body-step, overlaps, energy, fixstep's contact statistics, Box2D's broadphase share, targets).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+
+#include "discs.hpp"
+
+namespace discs {
+
+namespace {
+constexpr const char* keys[] = {"fixstep_f64_t1",  "fixstep_f64_t2", "fixstep_f32_t1",
+                                "fixstep_f64_off", "chipmunk_hash",  "chipmunk_tree",
+                                "chipmunk_hasty2", "box2d"};
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large};
+constexpr SceneKind main_scenes[] = {SceneKind::pile, SceneKind::gas};
+}  // namespace
+
+std::span<const char* const> stepper_keys() {
+  return keys;
+}
+
+std::string stepper_label(const std::string& key) {
+  if (key == "fixstep_f64_t1") return "fixstep f64, 1 thread";
+  if (key == "fixstep_f64_t2") return "fixstep f64, 2 threads";
+  if (key == "fixstep_f32_t1") return "fixstep f32, 1 thread";
+  if (key == "fixstep_f64_off") return "fixstep f64, contacts off (walls only)";
+  const std::string cp = fmt::format("Chipmunk2D {} (f64)", chipmunk_version());
+  if (key == "chipmunk_hash") return cp + ", spatial hash";
+  if (key == "chipmunk_tree") return cp + ", bounding-box tree";
+  if (key == "chipmunk_hasty2") return cp + ", cpHastySpace 2 threads";
+  if (key == "box2d") return fmt::format("Box2D {} (f32)", box2d_version());
+  return key;
+}
+
+std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s) {
+  if (key == "fixstep_f64_t1") return make_fixstep(s, false, 1, true);
+  if (key == "fixstep_f64_t2") return make_fixstep(s, false, 2, true);
+  if (key == "fixstep_f32_t1") return make_fixstep(s, true, 1, true);
+  if (key == "fixstep_f64_off") return make_fixstep(s, false, 1, false);
+  if (key == "chipmunk_hash") return make_chipmunk(s, ChipmunkIndex::hash);
+  if (key == "chipmunk_tree") return make_chipmunk(s, ChipmunkIndex::tree);
+  if (key == "chipmunk_hasty2") return make_chipmunk(s, ChipmunkIndex::hasty);
+  if (key == "box2d") return make_box2d(s);
+  throw std::invalid_argument("no stepper " + key);
+}
+
+namespace {
+
+std::string size_text(std::int64_t n) {
+  const int e = int(std::lround(std::log10(double(n))));
+  return std::llround(std::pow(10.0, e)) == n ? fmt::format("10^{}", e) : fmt::format("{}", n);
+}
+
+std::string title(SceneKind s) {
+  switch (s) {
+    case SceneKind::pile:
+      return fmt::format("Settled pile (r = {} m)", small_radius);
+    case SceneKind::gas:
+      return fmt::format("Elastic gas (r = {} m)", small_radius);
+    case SceneKind::pile_large:
+      break;
+  }
+  return fmt::format("Settled pile of large discs (r = {} m)", large_radius);
+}
+
+std::string num(double v, const char* f = "{:.3g}") {
+  return std::isnan(v) ? "–" : fmt::format(fmt::runtime(f), v);
+}
+
+struct View {
+  const Results& r;
+  [[nodiscard]] const CaseResult* at(SceneKind s, const std::string& key, std::int64_t n) const {
+    const auto it = r.cases.find(fmt::format("{}/{}/{}", scene_name(s), key, n));
+    return it == r.cases.end() ? nullptr : &it->second;
+  }
+  [[nodiscard]] double ns(SceneKind s, const std::string& key, std::int64_t n) const {
+    const CaseResult* c = at(s, key, n);
+    return c ? c->ns_per_body_step : nan;
+  }
+};
+
+using Line = std::function<void(const std::string&)>;
+
+std::string header(const Results& r, std::string& rule) {
+  std::string head = "| stepper |";
+  rule = "|---|";
+  for (auto n : r.sizes) head += fmt::format(" N = {} |", size_text(n)), rule += "---|";
+  return head;
+}
+
+/// One table with a row per stepper and a column per N, of cell(case) where the case ran.
+void table(const View& v, SceneKind s, const Line& line,
+           const std::function<std::string(const CaseResult&)>& cell,
+           std::span<const char* const> rows = keys) {
+  std::string rule;
+  line(header(v.r, rule)), line(rule);
+  for (const char* key : rows) {
+    std::string row = fmt::format("| {} |", stepper_label(key));
+    bool any = false;
+    for (auto n : v.r.sizes) {
+      const CaseResult* c = v.at(s, key, n);
+      any = any || c;
+      row += fmt::format(" {} |", c ? cell(*c) : "–");
+    }
+    if (any) line(row);
+  }
+}
+
+std::string repetitions_text(const Results& r) {
+  const auto reps = [](int k) { return fmt::format("{} repetition{}", k, k == 1 ? "" : "s"); };
+  const bool largest = std::find(r.sizes.begin(), r.sizes.end(), 100'000) != r.sizes.end();
+  if (!largest || r.repetitions_largest == r.repetitions) return reps(r.repetitions);
+  return fmt::format("{} ({} at N = 10^5)", reps(r.repetitions), r.repetitions_largest);
+}
+
+void cost_tables(const View& v, const Line& line) {
+  for (SceneKind s : all_scenes) {
+    line(fmt::format("\n#### {}: ns per body-step (time of one step / discs), median of {}\n",
+                     title(s), repetitions_text(v.r)));
+    table(v, s, line, [](const CaseResult& c) { return num(c.ns_per_body_step); });
+  }
+  line("\n#### Speed ratios, measured side by side in this run (time of the other / fixstep's)\n");
+  std::string rule;
+  const std::string head = header(v.r, rule);
+  line("| scene |" + head.substr(1)), line("|---" + rule);
+  const char* peers[] = {"chipmunk_hash", "chipmunk_tree", "chipmunk_hasty2", "box2d"};
+  for (SceneKind s : all_scenes) {
+    for (const char* p : peers) {
+      std::string row =
+          fmt::format("| {} | {} / fixstep f64 (1 thread) |", scene_name(s), stepper_label(p));
+      for (auto n : v.r.sizes)
+        row += fmt::format(" {} |", num(v.ns(s, p, n) / v.ns(s, "fixstep_f64_t1", n), "{:.2f}"));
+      line(row);
+    }
+    std::string row = fmt::format("| {} | fixstep f64: 1 thread / 2 threads |", scene_name(s));
+    for (auto n : v.r.sizes) {
+      row += fmt::format(
+          " {} |", num(v.ns(s, "fixstep_f64_t1", n) / v.ns(s, "fixstep_f64_t2", n), "{:.2f}"));
+    }
+    line(row);
+  }
+}
+
+void quality_tables(const View& v, const Line& line) {
+  for (SceneKind s : all_scenes) {
+    line(fmt::format(
+        "\n#### {}: deepest overlap after the timed steps, disc-disc / disc-wall, as a fraction "
+        "of r; {} (ticks stepped in brackets)\n",
+        title(s), s == SceneKind::gas ? "kinetic energy / at tick 0" : "rms speed (m/s)"));
+    table(v, s, line, [](const CaseResult& c) {
+      return fmt::format("{} / {}; {} ({})", num(c.disc_overlap), num(c.wall_overlap),
+                         num(c.kinetic_ratio, "{:.4g}"), num(c.ticks, "{:.0f}"));
+    });
+  }
+  line(
+      "\n#### fixstep's own contact statistics (World::contact_stats(), last tick): broadphase "
+      "candidate pairs per disc / touching pairs per disc / impacts per disc / its own deepest "
+      "overlap over r; threads used (World::threads_used()). fixstep reports no split of a "
+      "tick's time, so the broadphase's share of the time is not measured.\n");
+  for (SceneKind s : all_scenes) {
+    line(fmt::format("\n{}:\n", title(s)));
+    table(
+        v, s, line,
+        [](const CaseResult& c) {
+          return fmt::format("{} / {} / {} / {}; {}", num(c.stats.candidate_pairs / c.bodies),
+                             num(c.stats.touching / c.bodies), num(c.stats.impacts / c.bodies),
+                             num(c.stats.self_overlap), c.stats.threads);
+        },
+        std::span(keys, 4));
+  }
+  line("\n#### Box2D's own split of a step (b2Profile, summed over every step of the case)\n");
+  std::string rule;
+  const std::string head = header(v.r, rule);
+  line("| scene |" + head.substr(head.find('|', 1) + 1)), line(rule);
+  for (SceneKind s : all_scenes) {
+    std::string row =
+        fmt::format("| {}: broadphase / narrow phase, share of the step |", scene_name(s));
+    for (auto n : v.r.sizes) {
+      const CaseResult* c = v.at(s, "box2d", n);
+      row +=
+          fmt::format(" {} |", c ? fmt::format("{} / {}", num(c->stats.broadphase_share, "{:.2f}"),
+                                               num(c->stats.collide_share, "{:.2f}"))
+                                 : "–");
+    }
+    line(row);
+  }
+}
+
+std::string verdict(bool measured, bool ok) {
+  return !measured ? "not measured" : ok ? "yes" : "**no**";
+}
+
+/// The issue's targets for the peers: ≥ 5× faster than both at N = 10⁴ with no deeper overlap.
+void peer_targets(const View& v, const Line& line) {
+  constexpr std::int64_t n = 10'000;
+  for (SceneKind s : all_scenes) {
+    const CaseResult* f = v.at(s, "fixstep_f64_t1", n);
+    for (const char* peer : {"chipmunk", "box2d"}) {
+      const CaseResult* p = nullptr;  // Chipmunk: its faster one-thread index
+      for (const char* key : {"chipmunk_hash", "chipmunk_tree", "box2d"}) {
+        const CaseResult* c = v.at(s, key, n);
+        if (!c || !std::string(key).starts_with(peer)) continue;
+        if (!p || c->ns_per_body_step < p->ns_per_body_step) p = c;
+      }
+      const bool measured = f && p;
+      const double ratio = measured ? p->ns_per_body_step / f->ns_per_body_step : nan;
+      const bool deeper = measured && f->disc_overlap > p->disc_overlap;
+      line(fmt::format(
+          "| {}, N = 10^4: fixstep f64 (1 thread) ≥ 5× faster per body-step than {}{}, with no "
+          "deeper overlap | {}× (overlap / r: fixstep {}, peer {}) | {} |",
+          scene_name(s), peer == std::string("box2d") ? "Box2D" : "Chipmunk2D",
+          peer == std::string("box2d") ? "" : " (its faster index)", num(ratio, "{:.2f}"),
+          measured ? num(f->disc_overlap) : "–", measured ? num(p->disc_overlap) : "–",
+          verdict(measured, ratio >= 5.0 && !deeper)));
+    }
+  }
+}
+
+void scaling_targets(const View& v, const Line& line) {
+  for (SceneKind s : main_scenes) {
+    double lo = INFINITY, hi = 0.0;
+    for (auto n : v.r.sizes) {
+      const double ns = v.ns(s, "fixstep_f64_t1", n);
+      if (!std::isnan(ns)) lo = std::min(lo, ns), hi = std::max(hi, ns);
+    }
+    const bool all = v.r.sizes.size() == 3 && hi > 0.0;
+    line(fmt::format(
+        "| {}: fixstep f64's cost per disc within 1.5× from N = 10^3 to 10^5 (highest / lowest "
+        "ns per body-step) | {} | {} |",
+        scene_name(s), all ? fmt::format("{:.2f}×", hi / lo) : "–", verdict(all, hi / lo <= 1.5)));
+  }
+  for (SceneKind s : main_scenes) {
+    const double q = v.ns(s, "fixstep_f64_t1", 100'000) / v.ns(s, "fixstep_f64_t2", 100'000);
+    line(fmt::format(
+        "| {}: ≥ 1.5× from the second core at N = 10^5 (fixstep f64, 1 thread / 2 threads) | {} | "
+        "{} |",
+        scene_name(s), std::isnan(q) ? "–" : fmt::format("{:.2f}×", q),
+        verdict(!std::isnan(q), q >= 1.5)));
+  }
+  for (SceneKind s : {SceneKind::pile, SceneKind::pile_large}) {
+    for (auto n : v.r.sizes) {
+      const CaseResult* f = v.at(s, "fixstep_f64_t1", n);
+      if (!f) continue;
+      line(fmt::format(
+          "| {}, N = {}: fixstep's deepest overlap < 1 % of the radius (point 6's test target, "
+          "here on the timed pile) | {} | {} |",
+          scene_name(s), size_text(n), num(f->disc_overlap),
+          verdict(true, f->disc_overlap < 0.01)));
+    }
+  }
+}
+
+}  // namespace
+
+std::string targets_markdown(const Results& r) {
+  const View v{r};
+  std::string out;
+  const Line line = [&out](const std::string& s) { out += s + "\n"; };
+  line("\n#### Targets (issue #19, point 8)\n");
+  line("| target | measured | met |");
+  line("|---|---|---|");
+  peer_targets(v, line);
+  scaling_targets(v, line);
+  std::string costs;
+  for (auto n : r.sizes) {
+    const double q =
+        v.ns(SceneKind::gas, "fixstep_f64_t1", n) / v.ns(SceneKind::gas, "fixstep_f64_off", n);
+    costs +=
+        fmt::format("{}N = {}: {}", costs.empty() ? "" : ", ", size_text(n), num(q, "{:.2f}×"));
+  }
+  line(fmt::format(
+      "\nWhat the contacts cost fixstep on the gas (time with contacts / the same world without "
+      "them): {}. Worlds without contacts at today's speed: measured before/after by "
+      "bench_throughput (engine rows), bench_coupled (fixstep rows) and the contacts-off rows "
+      "above (docs/PERFORMANCE.md, section 7).",
+      costs));
+  return out;
+}
+
+std::string report_markdown(const Results& r) {
+  const View v{r};
+  std::string out;
+  const Line line = [&out](const std::string& s) { out += s + "\n"; };
+  line(fmt::format(
+      "Load average (1 min) {:.2f} at the start of the timed run, {:.2f} at its end (the "
+      "benchmark itself adds about 1). dt = 1/60 s; r = {} m (pile_large: {} m), m = {} kg; "
+      "Chipmunk: {} "
+      "iterations, collision slop {} m; Box2D: {} velocity / {} position iterations, linear "
+      "slop {:.3g} m.",
+      r.load_start, r.load_end, small_radius, large_radius, mass, chipmunk_iterations,
+      chipmunk_slop, box2d_velocity_iterations, box2d_position_iterations, box2d_linear_slop()));
+  cost_tables(v, line);
+  quality_tables(v, line);
+  return out + targets_markdown(r);
+}
+
+}  // namespace discs
