@@ -30,7 +30,7 @@
 #include <span>
 #include <vector>
 
-#include "disc_broadphase_stub.hpp"
+#include "disc_broadphase.hpp"
 #include "fixstep/components.hpp"
 #include "fixstep/world.hpp"
 

@@ -100,7 +100,7 @@ void DiscContacts<Real>::build_motions(const Tick& tick) {
 template <class Real>
 bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) {
   const std::size_t n = discs_.size();
-  const std::size_t cap = 64 * n + 1024;
+  const std::size_t cap = std::max<std::size_t>(64 * n, 1000000);  // a pile: ~3 per disc
   if (!broadphase_.find_pairs(boxes_, dynamic_, cap, pairs_, tick.threads)) {
     stats.candidate_pairs = cap;
     pairs_.clear();

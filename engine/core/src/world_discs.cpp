@@ -138,7 +138,7 @@ void World<Real>::resolve_discs() {
                                               planes_,
                                               settings_.dt,
                                               kappa(settings_.integrator, settings_.substeps),
-                                              1};
+                                              settings_.threads == 1 ? 1 : 2};
   dc.resolve(t, contact_stats_);
   const auto discs = dc.discs();
   const auto lost = dc.lost();
