@@ -69,6 +69,9 @@ struct RestContact {
   std::uint64_t key = 0;  ///< a << 32 | b (b = disc count + plane index for planes)
   std::uint32_t a = 0, b = 0;
   double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
+  double inv_a = 0, inv_b = 0;  ///< 1/kg of a and b (0: static, kinematic or a plane)
+  bool kinematic_a = false;     ///< a is a moving kinematic disc (its work is external)
+  bool kinematic_b = false;     ///< b is a moving kinematic disc (its work is external)
 };
 
 /// Last tick's resting impulses, for warm starting (part of a snapshot).

@@ -36,6 +36,9 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) continue;
     c.key = (std::uint64_t(p.a) << 32) | p.b;
     c.a = p.a, c.b = p.b;
+    c.inv_a = da.inv_mass, c.inv_b = db.inv_mass;
+    c.kinematic_a = !da.dynamic && (motion_[p.a].ux != 0.0 || motion_[p.a].uy != 0.0);
+    c.kinematic_b = !db.dynamic && (motion_[p.b].ux != 0.0 || motion_[p.b].uy != 0.0);
     c.mass = 1.0 / (da.inv_mass + db.inv_mass);
     c.friction = std::sqrt(da.friction * db.friction);
     contacts_.push_back(c);
@@ -52,26 +55,26 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
       c.a = k, c.b = n + i;
       c.nx = p.normal.x, c.ny = p.normal.y;
       c.mass = 1.0 / d.inv_mass;
+      c.inv_a = d.inv_mass;
       c.friction = p.friction;
       contacts_.push_back(c);
     }
   }
 }
 
-// Applies the impulse (jx, jy)/m to a and its opposite to b, moving each by κ dt Δv.
+// Applies the impulse (jx, jy) to a and its opposite to b, moving each by κ dt Δv.
 template <class Real>
-void DiscContacts<Real>::apply(const RestContact& c, double jx, double jy, double kdt) {
-  const Disc& da = discs_[c.a];
-  const bool disc_b = c.b < discs_.size();
-  if (disc_b && !discs_[c.b].dynamic) external_[c.a] += jx * evx_[c.b] + jy * evy_[c.b];
-  if (da.dynamic) {
-    const double dvx = da.inv_mass * jx, dvy = da.inv_mass * jy;
+[[gnu::always_inline]] inline void DiscContacts<Real>::apply(const RestContact& c, double jx,
+                                                             double jy, double kdt) {
+  if (c.kinematic_b) external_[c.a] += jx * evx_[c.b] + jy * evy_[c.b];
+  if (c.kinematic_a) external_[c.b] -= jx * evx_[c.a] + jy * evy_[c.a];
+  if (c.inv_a > 0.0) {
+    const double dvx = c.inv_a * jx, dvy = c.inv_a * jy;
     evx_[c.a] += dvx, evy_[c.a] += dvy, ex_[c.a] += kdt * dvx, ey_[c.a] += kdt * dvy;
     changed_[c.a] = 1;
   }
-  if (disc_b && discs_[c.b].dynamic) {
-    const Disc& db = discs_[c.b];
-    const double dvx = db.inv_mass * jx, dvy = db.inv_mass * jy;
+  if (c.inv_b > 0.0) {
+    const double dvx = c.inv_b * jx, dvy = c.inv_b * jy;
     evx_[c.b] -= dvx, evy_[c.b] -= dvy, ex_[c.b] -= kdt * dvx, ey_[c.b] -= kdt * dvy;
     changed_[c.b] = 1;
   }
@@ -95,7 +98,7 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick) {
   const double kdt = tick.kappa * tick.dt;
   const std::size_t n = discs_.size();
   for (int it = 0; it < velocity_iterations; ++it) {
-    // A sweep that changes no impulse by more than 1e-12 of the largest has converged.
+    // A sweep that changes no impulse by more than 1e-9 of the largest has converged.
     double change = 0.0, largest = 0.0;
     for (RestContact& c : contacts_) {
       auto relative = [&](double& vx, double& vy) {
@@ -121,7 +124,7 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick) {
       change = std::max({change, std::abs(dn), std::abs(dt)});
       largest = std::max(largest, c.lambda_n);
     }
-    if (change <= 1e-12 * largest) break;
+    if (change <= 1e-9 * largest) break;
   }
 }
 
@@ -143,10 +146,12 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
     return da.radius + db.radius - dist;
   };
   for (int it = 0; it < position_iterations; ++it) {
+    bool pushed = false;  // a sweep that pushes nothing ends the push-out
     for (const RestContact& c : contacts_) {
       double nx = 0, ny = 0, r_min = 0;
       const double depth = overlap_of(c, nx, ny, r_min);
       if (depth <= slop * r_min) continue;
+      pushed = true;
       const double push = std::min(depth - slop * r_min, max_push_out * r_min);
       const double ia = discs_[c.a].inv_mass, ib = c.b < n ? discs_[c.b].inv_mass : 0.0;
       const double share = push / (ia + ib);
@@ -157,6 +162,7 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
         changed_[c.b] = 1;
       }
     }
+    if (!pushed) break;
   }
   stats.touching = contacts_.size();
   for (const RestContact& c : contacts_) {
