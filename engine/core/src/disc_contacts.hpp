@@ -92,11 +92,14 @@ class DiscContacts {
   /// Per-tick constant accelerations of the discs' bodies (energy account), m/s².
   void set_accelerations(std::span<const Real> ax, std::span<const Real> ay);
 
-  /// Saves the start-of-tick states of the discs.
-  void save_start(const Real* x, const Real* y, const Real* vx, const Real* vy);
+  /// Saves the start-of-tick states of the discs, and their dissipated energy per unit mass
+  /// (J/kg; null when the world keeps no account).
+  void save_start(const Real* x, const Real* y, const Real* vx, const Real* vy,
+                  const Real* dissipated);
 
   struct Tick {
     Real *x, *y, *vx, *vy;  ///< the world's state arrays (dense body order)
+    const Real* dissipated;  ///< J/kg per body so far (null: no account)
     std::span<const PlaneDef> planes;
     double dt = 0, kappa = 0.5;  ///< s; κ (see above)
     int threads = 1;
@@ -155,7 +158,9 @@ class DiscContacts {
   std::vector<RestContact> contacts_;
   std::vector<WarmImpulse> warm_;
   std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
-  std::vector<double> lost_, external_, e_start_;
+  // Energy per unit mass (J/kg: ½|v|² - a·x, a the constant acceleration) at the tick's start
+  // and after the free step, and the dissipated account at the start.
+  std::vector<double> lost_, external_, e_start_, e_begin_, d_begin_;
   DiscBroadphase broadphase_;
 };
 

@@ -49,7 +49,9 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   min_radius_ = std::numeric_limits<double>::infinity();
   for (const Disc& d : discs_) min_radius_ = std::min(min_radius_, d.radius);
   for (auto* v : {&x0_, &y0_, &vx0_, &vy0_}) v->assign(n, Real(0));
-  for (auto* v : {&ex_, &ey_, &evx_, &evy_, &lost_, &external_, &e_start_}) v->assign(n, 0.0);
+  for (auto* v : {&ex_, &ey_, &evx_, &evy_, &lost_, &external_, &e_start_, &e_begin_, &d_begin_}) {
+    v->assign(n, 0.0);
+  }
   motion_.assign(n, DiscMotion{});
   boxes_.assign(n, SweptBox{});
   dynamic_.resize(n);
@@ -67,10 +69,12 @@ void DiscContacts<Real>::set_accelerations(std::span<const Real> ax, std::span<c
 }
 
 template <class Real>
-void DiscContacts<Real>::save_start(const Real* x, const Real* y, const Real* vx, const Real* vy) {
+void DiscContacts<Real>::save_start(const Real* x, const Real* y, const Real* vx, const Real* vy,
+                                    const Real* dissipated) {
   for (std::size_t k = 0; k < discs_.size(); ++k) {
     const std::uint32_t j = discs_[k].body;
     x0_[k] = x[j], y0_[k] = y[j], vx0_[k] = vx[j], vy0_[k] = vy[j];
+    d_begin_[k] = dissipated ? double(dissipated[j]) : 0.0;
   }
 }
 
@@ -84,6 +88,7 @@ void DiscContacts<Real>::build_motions(const Tick& tick) {
     const double x0 = x0_[k], y0 = y0_[k], v0x = vx0_[k], v0y = vy0_[k];
     ex_[k] = x1, ey_[k] = y1, evx_[k] = v1x, evy_[k] = v1y;
     e_start_[k] = 0.5 * (v1x * v1x + v1y * v1y) - (d.accel_x * x1 + d.accel_y * y1);
+    e_begin_[k] = 0.5 * (v0x * v0x + v0y * v0y) - (d.accel_x * x0 + d.accel_y * y0);
     DiscMotion& m = motion_[k];
     m.dx = (x1 - x0) / dt - 0.5 * (v0x + v1x), m.dy = (y1 - y0) / dt - 0.5 * (v0y + v1y);
     m.t = 0, m.x = x0, m.y = y0, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
@@ -265,22 +270,22 @@ std::size_t DiscContacts<Real>::bytes() const {
   return b(discs_) + b(linked_) + b(x0_) + b(y0_) + b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) +
          b(dynamic_) + b(pairs_) + b(offset_) + b(incident_) + b(stamp_) + b(impacts_) +
          b(changed_) + b(heap_) + b(impact_log_) + b(contacts_) + b(warm_) + b(ex_) + b(ey_) +
-         b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_);
+         b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_);
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                          \
-  template void DiscContacts<Real>::rebuild(std::vector<Disc>, std::vector<std::uint64_t>, \
-                                            const ContactSettings&);                       \
-  template void DiscContacts<Real>::set_accelerations(std::span<const Real>,               \
-                                                      std::span<const Real>);              \
-  template void DiscContacts<Real>::save_start(const Real*, const Real*, const Real*,      \
-                                               const Real*);                               \
-  template void DiscContacts<Real>::build_motions(const Tick&);                            \
-  template bool DiscContacts<Real>::find_candidates(const Tick&, ContactStats&);           \
-  template void DiscContacts<Real>::predict(std::uint32_t, double, double);                \
-  template void DiscContacts<Real>::impact(std::uint32_t, double, double);                 \
-  template void DiscContacts<Real>::run_events(const Tick&, ContactStats&);                \
-  template void DiscContacts<Real>::resolve(const Tick&, ContactStats&);                   \
+#define FIXSTEP_INSTANTIATE(Real)                                                                  \
+  template void DiscContacts<Real>::rebuild(std::vector<Disc>, std::vector<std::uint64_t>,         \
+                                            const ContactSettings&);                               \
+  template void DiscContacts<Real>::set_accelerations(std::span<const Real>,                       \
+                                                      std::span<const Real>);                      \
+  template void DiscContacts<Real>::save_start(const Real*, const Real*, const Real*, const Real*, \
+                                               const Real*);                                       \
+  template void DiscContacts<Real>::build_motions(const Tick&);                                    \
+  template bool DiscContacts<Real>::find_candidates(const Tick&, ContactStats&);                   \
+  template void DiscContacts<Real>::predict(std::uint32_t, double, double);                        \
+  template void DiscContacts<Real>::impact(std::uint32_t, double, double);                         \
+  template void DiscContacts<Real>::run_events(const Tick&, ContactStats&);                        \
+  template void DiscContacts<Real>::resolve(const Tick&, ContactStats&);                           \
   template std::size_t DiscContacts<Real>::bytes() const;
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

@@ -71,12 +71,12 @@ template <class Real>
   if (c.inv_a > 0.0) {
     const double dvx = c.inv_a * jx, dvy = c.inv_a * jy;
     evx_[c.a] += dvx, evy_[c.a] += dvy, ex_[c.a] += kdt * dvx, ey_[c.a] += kdt * dvy;
-    changed_[c.a] = 1;
+    changed_[c.a] |= 2;
   }
   if (c.inv_b > 0.0) {
     const double dvx = c.inv_b * jx, dvy = c.inv_b * jy;
     evx_[c.b] -= dvx, evy_[c.b] -= dvy, ex_[c.b] -= kdt * dvx, ey_[c.b] -= kdt * dvy;
-    changed_[c.b] = 1;
+    changed_[c.b] |= 2;
   }
 }
 
@@ -156,10 +156,10 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
       const double ia = discs_[c.a].inv_mass, ib = c.b < n ? discs_[c.b].inv_mass : 0.0;
       const double share = push / (ia + ib);
       ex_[c.a] += ia * share * nx, ey_[c.a] += ia * share * ny;
-      if (ia > 0.0) changed_[c.a] = 1;
+      if (ia > 0.0) changed_[c.a] |= 2;
       if (c.b < n && ib > 0.0) {
         ex_[c.b] -= ib * share * nx, ey_[c.b] -= ib * share * ny;
-        changed_[c.b] = 1;
+        changed_[c.b] |= 2;
       }
     }
     if (!pushed) break;
@@ -192,7 +192,14 @@ void DiscContacts<Real>::finish(const Tick& tick) {
     const double vx = double(tick.vx[j]), vy = double(tick.vy[j]);
     const double e_end =
         0.5 * (vx * vx + vy * vy) - (d.accel_x * double(tick.x[j]) + d.accel_y * double(tick.y[j]));
-    lost_[k] = e_start_[k] - e_end + external_[k] * d.inv_mass;
+    // What an impact takes is measured against the free step's end; a disc the resting solver
+    // moved is measured against the tick's start (less what damping took this tick), since
+    // resting contact undoes the free step's own energy error every tick (a semi-implicit
+    // Euler step from rest under gravity loses ½ g² dt², which would otherwise pile up in
+    // the account of a body at rest).
+    const double since_start =
+        e_begin_[k] - (tick.dissipated ? double(tick.dissipated[j]) - d_begin_[k] : 0.0);
+    lost_[k] = ((changed_[k] & 2) ? since_start : e_start_[k]) - e_end + external_[k] * d.inv_mass;
   }
 }
 

@@ -110,7 +110,10 @@ void World<Real>::save_tick_start() {
     const std::uint32_t j = m.body[i];
     m.x0[i] = x_[j], m.y0[i] = y_[j], m.vx0[i] = vx_[j], m.vy0[i] = vy_[j];
   }
-  if (discs_ && discs_->active()) discs_->save_start(x_.data(), y_.data(), vx_.data(), vy_.data());
+  if (discs_ && discs_->active()) {
+    discs_->save_start(x_.data(), y_.data(), vx_.data(), vy_.data(),
+                       settings_.track_dissipation ? dissipated_body_.data() : nullptr);
+  }
 }
 
 template <class Real>
@@ -131,14 +134,16 @@ void World<Real>::restore_immovable() {
 template <class Real>
 void World<Real>::resolve_discs() {
   detail::DiscContacts<Real>& dc = *discs_;
-  typename detail::DiscContacts<Real>::Tick t{x_.data(),
-                                              y_.data(),
-                                              vx_.data(),
-                                              vy_.data(),
-                                              planes_,
-                                              settings_.dt,
-                                              kappa(settings_.integrator, settings_.substeps),
-                                              settings_.threads == 1 ? 1 : 2};
+  typename detail::DiscContacts<Real>::Tick t{
+      x_.data(),
+      y_.data(),
+      vx_.data(),
+      vy_.data(),
+      settings_.track_dissipation ? dissipated_body_.data() : nullptr,
+      planes_,
+      settings_.dt,
+      kappa(settings_.integrator, settings_.substeps),
+      settings_.threads == 1 ? 1 : 2};
   dc.resolve(t, contact_stats_);
   const auto discs = dc.discs();
   const auto lost = dc.lost();
