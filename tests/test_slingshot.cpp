@@ -1,9 +1,11 @@
 // The slingshot game's rules (demos/slingshot/game.hpp) without a window: the band is cut when
-// the ball passes the anchor, a hit knocks a target off and scores once, and a scripted game
-// of drags and releases gives the same score, GameState and state hash every time, also when
-// its inputs are replayed without the live input path (as a recording is).
+// the ball passes the anchor, a hit (an engine impact, Simulation::impacts()) knocks a target
+// off and scores once, and a scripted game of drags and releases gives the same score,
+// GameState and state hash every time, also when its inputs are replayed without the live
+// input path (as a recording is).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <fixstep/pointer_drag.hpp>
@@ -141,16 +143,22 @@ TEST(Slingshot, HitKnocksTargetOffAndScoresOnce) {
   game.shots_left = 2;
   const std::uint32_t target = first_target + 1;
   const Vec2 t = sim.body_at(target).position;
-  // The ball just left of the target, flying at it at 10 m/s, band cut.
+  // The ball 5 cm left of touching the target, flying at it at 10 m/s, band cut: it hits
+  // 5 ms into the next tick.
   auto throw_at_target = [&] {
     sim.visit([&](auto& w) {
       const fixstep::Entity e = w.entities()[ball];
       w.template remove<fixstep::SpringDamper>(e);
-      w.set_body(e, {.mass = ball_mass, .position = {t.x - 0.9, t.y}, .velocity = {10, 0}});
+      w.set_body(e, {.mass = ball_mass, .position = {t.x - 1.0, t.y}, .velocity = {10, 0}});
     });
   };
   throw_at_target();
   play_tick(game, TickInput{0}, sim);
+  ASSERT_EQ(sim.impacts().size(), 1u);  // the engine resolved the hit, 5 ms into the tick
+  EXPECT_EQ(sim.impacts()[0].body_a, ball);
+  EXPECT_EQ(sim.impacts()[0].body_b, target);
+  EXPECT_NEAR(sim.impacts()[0].time, 0.005, 1e-4);
+  EXPECT_NEAR(sim.impacts()[0].normal_speed, 10.0, 0.1);
   EXPECT_EQ(game.score, 1);
   EXPECT_EQ(game.knocked, 1u << 1);
   EXPECT_FALSE(has_band(sim, target));             // off its rope
@@ -166,8 +174,51 @@ TEST(Slingshot, HitKnocksTargetOffAndScoresOnce) {
   });
   throw_at_target();
   play_tick(game, TickInput{30}, sim);
+  ASSERT_EQ(sim.impacts().size(), 1u);
   EXPECT_EQ(game.score, 1);
   EXPECT_LT(sim.body_at(ball).velocity.x, 5.0);
+}
+
+// A real shot (drag, release, flight) scores through the engine: the score rises exactly in
+// the ticks whose impacts (Simulation::impacts()) include a first one between the ball and a
+// target, by one per target, and a target hit again scores no more. Discs are resolved at their
+// time of impact and never left overlapping, so a rule that ignored the impacts (looking for
+// overlapping discs, or not looking) would score nothing here.
+TEST(Slingshot, ShotScoresOnceThroughAnEngineImpact) {
+  const Played shot = play({hitting_pull}, 1200);
+  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  GameState game;
+  std::uint32_t hit = 0;  // bit i: the ball has hit target i
+  int ball_target_impacts = 0;
+  for (const TickInput& in : shot.inputs) {
+    const GameState before = game;
+    play_tick(game, in, sim);
+    std::uint32_t first_hits = 0;
+    for (const fixstep::Impact& impact : sim.impacts()) {
+      EXPECT_LT(impact.body_a, impact.body_b);
+      EXPECT_GE(impact.time, 0.0);
+      EXPECT_LE(impact.time, dt);
+      EXPECT_GT(impact.normal_speed, 0.0);
+      if (impact.body_a != ball || impact.body_b < first_target ||
+          impact.body_b >= first_target + target_count) {
+        continue;
+      }
+      ++ball_target_impacts;
+      const std::uint32_t bit = 1u << (impact.body_b - first_target);
+      if ((hit & bit) == 0 && before.phase == Phase::flying) first_hits |= bit;
+      hit |= bit;
+    }
+    EXPECT_EQ(game.score - before.score, std::popcount(first_hits)) << "tick " << in.tick;
+    EXPECT_EQ(game.knocked & ~before.knocked, first_hits) << "tick " << in.tick;
+    for (int i = 0; i < target_count; ++i) {  // knocked off its rope, or still hanging
+      EXPECT_EQ(has_band(sim, first_target + std::uint32_t(i)), (game.knocked >> i & 1u) == 0);
+    }
+  }
+  EXPECT_GE(ball_target_impacts, 1);
+  EXPECT_GE(game.score, 1);
+  EXPECT_EQ(game.knocked, hit);
+  EXPECT_EQ(game.score, std::popcount(hit));
+  EXPECT_EQ(game, shot.game);
 }
 
 TEST(Slingshot, ScriptedGameIsDeterministicAndReplays) {

@@ -58,24 +58,6 @@ void edit_body(fixstep::Simulation& sim, std::uint32_t index, F&& f) {
   sim.visit([&](auto& world) { f(world, world.entities()[index]); });
 }
 
-// The ball touches target i (discs overlapping and closing in): an impulse along the line of
-// centres with restitution hit_restitution, as between two free discs. Returns whether it hit.
-bool collide(fixstep::Simulation& sim, std::uint32_t target) {
-  Body b = sim.body_at(ball), t = sim.body_at(target);
-  const Vec2 d = sub(b.position, t.position);
-  const double distance = std::hypot(d.x, d.y);
-  if (distance >= ball_radius + target_radius || distance == 0.0) return false;
-  const Vec2 n{d.x / distance, d.y / distance};  // from the target to the ball
-  const double closing = dot(sub(b.velocity, t.velocity), n);
-  if (closing >= 0.0) return false;  // already separating
-  const double j = -(1.0 + hit_restitution) * closing / (1.0 / b.mass + 1.0 / t.mass);
-  b.velocity = {b.velocity.x + j / b.mass * n.x, b.velocity.y + j / b.mass * n.y};
-  t.velocity = {t.velocity.x - j / t.mass * n.x, t.velocity.y - j / t.mass * n.y};
-  edit_body(sim, ball, [&](auto& w, fixstep::Entity e) { w.set_body(e, b); });
-  edit_body(sim, target, [&](auto& w, fixstep::Entity e) { w.set_body(e, t); });
-  return true;
-}
-
 // Puts the ball back on the band, at rest, for the next shot.
 void reload(fixstep::Simulation& sim) {
   edit_body(sim, ball, [](auto& w, fixstep::Entity e) {
@@ -94,6 +76,9 @@ Vec2 ball_rest_position() {
 fixstep::WorldDef make_level() {
   fixstep::WorldDef def;
   def.settings = {.dt = dt, .integrator = fixstep::Integrator::semi_implicit_euler};
+  // Body-vs-body contacts: the ball and the targets are discs that hit each other (and the
+  // targets each other) at their time of impact, bouncing with hit_restitution, frictionless.
+  def.settings.contacts = fixstep::ContactSettings{.restitution = hit_restitution, .friction = 0};
 
   fixstep::BodyDef ball_def;
   ball_def.name = "ball";
@@ -101,7 +86,7 @@ fixstep::WorldDef make_level() {
   ball_def.spring = band();
   ball_def.gravity = fixstep::Gravity{{0.0, -gravity}};
   ball_def.appearance = fixstep::Appearance{.radius = ball_radius, .color = ball_color};
-  ball_def.collider = fixstep::Collider{ball_radius};  // bounces on the ground and walls
+  ball_def.collider = fixstep::Collider{ball_radius};  // hits targets, ground and walls
   def.bodies.push_back(ball_def);
 
   for (int i = 0; i < target_count; ++i) {
@@ -122,11 +107,12 @@ fixstep::WorldDef make_level() {
     def.bodies.push_back(t);
   }
 
-  // The slingshot's post under the fork: three discs with no forces (they stay where they
-  // are) and no collider (drawing only).
+  // The slingshot's post under the fork: three static discs (they never move) with no
+  // collider (drawing only: out of contacts, the ball passes in front of them).
   for (int i = 0; i < 3; ++i) {
     fixstep::BodyDef post;
     post.name = "post" + std::to_string(i);
+    post.type = fixstep::BodyType::static_body;
     post.body = Body{.mass = 1.0, .position = {anchor.x, 0.5 + 0.7 * i}};
     post.appearance = fixstep::Appearance{.radius = 0.3, .color = {150, 105, 60, 255}};
     def.bodies.push_back(post);
@@ -181,10 +167,16 @@ void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& si
       }
       break;
     case Phase::flying: {
-      for (int i = 0; i < target_count; ++i) {
-        const std::uint32_t target = first_target + static_cast<std::uint32_t>(i);
-        if (!collide(sim, target) || (game.knocked & (1u << i)) != 0) continue;
-        // The first hit knocks the target off its rope, and scores.
+      // The engine resolved this tick's disc-disc impacts (the bounce); the rules read them.
+      // The ball's first impact with a target knocks it off its rope, and scores.
+      for (const fixstep::Impact& hit : sim.impacts()) {
+        if (hit.body_a != ball || hit.body_b < first_target ||
+            hit.body_b >= first_target + target_count) {
+          continue;  // not the ball and a target (ball = 0 < targets: it is always body_a)
+        }
+        const std::uint32_t target = hit.body_b;
+        const int i = static_cast<int>(target - first_target);
+        if ((game.knocked & (1u << i)) != 0) continue;  // a target scores once
         game.knocked |= 1u << i;
         ++game.score;
         edit_body(sim, target, [](auto& w, fixstep::Entity e) {

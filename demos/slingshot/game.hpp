@@ -3,8 +3,9 @@
 //
 // The whole game is two things:
 //   1. a level: a WorldDef built in code (make_level), and
-//   2. rules: after_tick(), a function run after every tick that reads the world and the
-//      tick's input and changes the world (cuts the band, knocks targets off, reloads).
+//   2. rules: after_tick(), a function run after every tick that reads the world, the tick's
+//      impacts and input and changes the world (cuts the band, knocks targets off, reloads).
+// The engine does the physics, the hits included (disc-disc contacts); the rules only score.
 // The rules keep their state in GameState, which depends only on the inputs and the world, so
 // replaying a recording's inputs reproduces the game bit for bit: score, shots and state hash.
 #pragma once
@@ -28,15 +29,17 @@ inline constexpr double ball_radius = 0.35;       ///< m
 inline constexpr double ball_mass = 1.0;          ///< kg
 inline constexpr double target_radius = 0.6;      ///< m
 inline constexpr double target_mass = 0.5;        ///< kg
-inline constexpr double hit_restitution = 0.8;    ///< ball-target bounce (0..1)
+inline constexpr double hit_restitution = 0.8;    ///< e of the disc-disc contacts (0..1)
 inline constexpr int shots_per_game = 3;          ///< balls the player gets
 inline constexpr std::uint32_t ball = 0;          ///< body index of the ball
 inline constexpr std::uint32_t first_target = 1;  ///< targets are bodies 1..target_count
 inline constexpr int target_count = 4;            ///< then come the post's bodies
 
 /// The level: the ball resting on its band at `anchor`, four targets hanging from ropes
-/// (anchored springs with a rest length), gravity on both, a post under the fork (drawing
-/// only), the ground and two walls (planes) that the colliders of ball and targets bounce on.
+/// (anchored springs with a rest length), gravity on both, a post under the fork (static,
+/// drawing only), the ground and two walls (planes) that the colliders of ball and targets
+/// bounce on. Contacts are on: ball and targets are discs that hit each other (restitution
+/// hit_restitution, no friction), resolved by the engine at their time of impact.
 [[nodiscard]] fixstep::WorldDef make_level();
 /// Where the ball rests on its band (the anchor, sagged by gravity), m.
 [[nodiscard]] fixstep::Vec2 ball_rest_position();
@@ -70,7 +73,7 @@ void prepare_input(const GameState& game, fixstep::PointerDrag& drag, fixstep::T
                    const fixstep::Simulation& sim);
 
 /// After a tick: the rules. `input` is the tick's input (with drag_body set), `sim` the world
-/// right after sim.step(input).
+/// right after sim.step(input); a hit is read from sim.impacts(), the tick's disc-disc impacts.
 void after_tick(GameState& game, const fixstep::TickInput& input, fixstep::Simulation& sim);
 
 /// One tick of the game from a prepared input: step, then the rules.

@@ -8,7 +8,7 @@
 //   prepare_input: the pointer may drag only the loaded ball (live only: the recording holds
 //                  the prepared input, drag_body included)
 //   step   = sim.step(input): physics, with the pointer's drag spring
-//   rules  = after_tick(): cut the band, knock targets off, score, reload
+//   rules  = after_tick(): cut the band, score the hits (sim.impacts()), knock targets off, reload
 // so a replay of the recorded inputs reproduces the game, and its state hashes, bit for bit.
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -51,7 +51,7 @@ SessionSettings view() {
 int play(const std::string& record_file, std::int64_t frames) {
   Window window("fixstep - slingshot", width, height);
   Session session(slingshot::make_level(), view());
-  session.set_show_energy(false);  // the pull and the hits add energy from outside the world
+  session.set_show_energy(false);  // the pull and the rules add energy from outside the world
   slingshot::GameState game;
   InputSampler sampler;
   PointerDrag drag(0.3);  // m: a small ball is easy to grab
@@ -104,7 +104,7 @@ int replay_file(const std::string& file, const std::string& out_dir, int every,
                 const std::string& last_frame) {
   const Recording rec = read_recording(file);
   Session session(slingshot::make_level(), view());
-  session.set_show_energy(false);  // the pull and the hits add energy from outside the world
+  session.set_show_energy(false);  // the pull and the rules add energy from outside the world
   if (definition_hash(session.definition()) != rec.definition_hash) {
     std::fprintf(stderr, "slingshot: error: %s was recorded on another level (hash %s, not %s)\n",
                  file.c_str(), hex_hash(rec.definition_hash).c_str(),

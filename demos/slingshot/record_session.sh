@@ -2,7 +2,8 @@
 # How assets/recordings/slingshot.rec was made: the game played in a window on a virtual X
 # display (Xvfb), the mouse driven by xdotool: three shots, each a real press on the ball, a
 # drag back, a release. Not run by CI (it replays the file); needs xvfb and xdotool, and
-# imagemagick for the screenshots.
+# imagemagick for the screenshots. Real time on a real clock: each run records a slightly
+# different game; replay it (slingshot --replay) to see its score before keeping it.
 #
 #   bash demos/slingshot/record_session.sh build/ci/bin/slingshot OUT.rec [SCREENSHOT_DIR]
 set -euo pipefail
