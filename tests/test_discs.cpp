@@ -383,3 +383,44 @@ TEST(Discs, ImpactTimesConvergeAtTheIntegratorsOrder) {
 
 }  // namespace
 }  // namespace fixstep
+
+namespace fixstep {
+namespace {
+
+// f32 worlds step the same model in double inside the contact phases and round once.
+TEST(Discs, FloatWorldsCollideAndRest) {
+  WorldSettings s{.dt = 1.0 / 60.0};
+  s.contacts = ContactSettings{.restitution = 1.0};
+  World<float> cradle(s);
+  const double r = 0.125;  // binary fractions: the positions are exact in float
+  for (int i = 0; i < 5; ++i) {
+    BodyDef b;
+    b.body = Body{.mass = 1.0,
+                  .position = {i == 0 ? -0.5 : 2 * r * i, 0.0},
+                  .velocity = {i == 0 ? 2.0 : 0.0, 0.0}};
+    b.collider = Collider{.radius = r};
+    cradle.create_body(b);
+  }
+  for (int i = 0; i < 30; ++i) cradle.step();
+  EXPECT_NEAR(cradle.vx()[4], 2.0f, 1e-6f);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(cradle.vx()[i], 0.0f, 1e-6f);
+
+  s.contacts = ContactSettings{.restitution = 0.0};
+  World<float> stack(s);
+  stack.add_plane(PlaneDef{.normal = {0, 1}});
+  for (int i = 0; i < 6; ++i) {
+    BodyDef b;
+    b.body = Body{.mass = 1.0, .position = {0.0, r + 2 * r * i}};
+    b.collider = Collider{.radius = r};
+    b.gravity = Gravity{};
+    stack.create_body(b);
+  }
+  for (int i = 0; i < 600; ++i) stack.step();
+  for (int i = 1; i < 6; ++i) {
+    EXPECT_LE(2 * r - (stack.y()[i] - stack.y()[i - 1]), 0.01 * r) << i;
+    EXPECT_NEAR(stack.vy()[i], 0.0f, 1e-5f) << i;
+  }
+}
+
+}  // namespace
+}  // namespace fixstep
