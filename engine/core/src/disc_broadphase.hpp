@@ -43,6 +43,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -127,8 +128,8 @@ class DiscBroadphase {
   struct Share {
     std::size_t begin = 0, end = 0;
     double e_top = 0;
-    std::int32_t lo_x[max_levels], lo_y[max_levels], hi_x[max_levels], hi_y[max_levels];
-    std::uint32_t count[max_levels];
+    std::array<std::int32_t, max_levels> lo_x, lo_y, hi_x, hi_y;
+    std::array<std::uint32_t, max_levels> count;
     std::uint32_t overflow = 0;
   };
 
@@ -171,17 +172,18 @@ class DiscBroadphase {
                      std::vector<DiscPair>& out) const;
 
   std::vector<std::uint32_t> level_;  // per box: its level, or `overflow`
-  Level levels_[max_levels];
+  std::array<Level, max_levels> levels_;
   double e_top_ = 1;              // the largest finite extent of the call, m
   std::uint64_t level_mask_ = 0;  // bit k: level k holds a box
   // Bucket h's entries: entry_[start_[2h] .. start_[2h+1]) dynamic, then .. start_[2h+2) static.
   std::vector<std::uint32_t> start_;
-  std::vector<std::uint32_t> cursor_[2];  // per thread: its count, then its next slot, per key
+  std::array<std::vector<std::uint32_t>, 2>
+      cursor_;  // per thread: its count, then its next slot, per key
   std::vector<Entry> entry_;
-  Share share_[2];
-  std::vector<std::uint32_t> overflow_;  // indices of the overflow boxes, in order
-  std::vector<DiscPair> raw_[2];         // unsorted pairs found by each thread
-  std::vector<std::uint32_t> offset_;    // order_pairs' scratch
+  std::array<Share, 2> share_;
+  std::vector<std::uint32_t> overflow_;       // indices of the overflow boxes, in order
+  std::array<std::vector<DiscPair>, 2> raw_;  // unsorted pairs found by each thread
+  std::vector<std::uint32_t> offset_;         // order_pairs' scratch
   std::size_t parallel_min_ = min_parallel_boxes;
   CachePtr<Workers, WorkersDeleter> worker_;
 };
