@@ -47,7 +47,8 @@ TEST(Scene, TheDocumentedSchemaLoads) {
 
 TEST(Scene, ShippedScenesLoadCleanly) {
   for (const char* name :
-       {"default", "spring_damper", "projectile", "rope", "soft_body", "cloth", "chain"}) {
+       {"default", "spring_damper", "projectile", "rope", "soft_body", "cloth", "chain", "bounce",
+        "ball_pit", "billiards", "newtons_cradle", "galton_board"}) {
     const Scene s = load_scene(std::string(FIXSTEP_SOURCE_DIR "/assets/scenes/") + name + ".toml");
     EXPECT_FALSE(s.bodies.empty()) << name;
     EXPECT_TRUE(s.warnings.empty()) << name << ": " << (s.warnings.empty() ? "" : s.warnings[0]);
