@@ -7,13 +7,15 @@
 //     (x1, v1) define a motion of constant acceleration a = (v1 - v0)/dt through both end
 //     positions, as for planes: x(s) = x0 + u s + ½ a s², u = v0 + δ, with the integrator's
 //     velocity the model's minus δ = (x1 - x0)/dt - (v0 + v1)/2 (exact for free flight and
-//     gravity). A broadphase pairs the discs whose boxes swept over the tick overlap; each
-//     pair's first contact is the first root of the quartic |d(s)|² - (r_a + r_b)² while
-//     approaching (disc_toi.hpp). Impacts are resolved in time order (ties by pair order) with
-//     Newton's restitution and a Coulomb-limited friction impulse on the linear velocities,
-//     and the pairs of the two discs are predicted again from that time on; at most
-//     max_impacts per disc and tick. An impact that would bounce back by less than one tick
-//     of the pair's relative normal acceleration (e |v_n| <= |c_n| dt) is left to phase 2.
+//     gravity). A disc that hit a plane in the tick moves instead on its motion after its last
+//     plane impact (planes are resolved first; disc impacts before that time are missed). A
+//     broadphase pairs the discs whose boxes swept over the tick overlap; each pair's first contact
+//     is the first root of the quartic |d(s)|² - (r_a + r_b)² while approaching (disc_toi.hpp).
+//     Impacts are resolved in time order (ties by pair order) with Newton's restitution and a
+//     Coulomb-limited friction impulse on the linear velocities, and the pairs of the two discs are
+//     predicted again from that time on; at most max_impacts per disc and tick. An impact that
+//     would bounce back by less than one tick of the pair's relative normal acceleration (e |v_n|
+//     <= |c_n| dt) is left to phase 2.
 //  2. Resting contact (disc_rest.cpp). Pairs touching at the end of the tick, and discs on
 //     planes, are solved together by sequential impulses (Gauss–Seidel, warm-started from the
 //     last tick's impulses) so that no pair approaches; each impulse acts as a constant
@@ -45,6 +47,7 @@ struct Disc {
   double inv_mass = 0;              ///< 1/kg; 0 for static and kinematic discs
   std::uint8_t dynamic = 0;         ///< 1 for dynamic discs
   double accel_x = 0, accel_y = 0;  ///< constant acceleration (gravity + F/m), m/s² (energy)
+  std::int32_t plane_slot = -1;     ///< its index among the plane colliders (Tick::after), or -1
 };
 
 /// A disc's motion within the tick: position X and model velocity U at time t, acceleration a.
@@ -98,10 +101,11 @@ class DiscContacts {
                   const Real* dissipated);
 
   struct Tick {
-    Real *x, *y, *vx, *vy;  ///< the world's state arrays (dense body order)
+    Real *x, *y, *vx, *vy;   ///< the world's state arrays (dense body order)
     const Real* dissipated;  ///< J/kg per body so far (null: no account)
     std::span<const PlaneDef> planes;
-    double dt = 0, kappa = 0.5;  ///< s; κ (see above)
+    std::span<const PlaneMotion> after;  ///< plane colliders' motions after a plane impact
+    double dt = 0, kappa = 0.5;          ///< s; κ (see above)
     int threads = 1;
   };
   /// Resolves the tick's contacts in place. Returns per-disc energy bookkeeping through

@@ -93,10 +93,18 @@ void DiscContacts<Real>::build_motions(const Tick& tick) {
     m.dx = (x1 - x0) / dt - 0.5 * (v0x + v1x), m.dy = (y1 - y0) / dt - 0.5 * (v0y + v1y);
     m.t = 0, m.x = x0, m.y = y0, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
     m.ax = (v1x - v0x) / dt, m.ay = (v1y - v0y) / dt;
+    if (d.plane_slot >= 0 && tick.after[d.plane_slot].t >= 0.0) {
+      const PlaneMotion& p = tick.after[d.plane_slot];  // after its last plane impact
+      m.t = p.t, m.x = p.x, m.y = p.y, m.ux = p.ux, m.uy = p.uy, m.ax = p.ax, m.ay = p.ay;
+      m.dx = p.dx, m.dy = p.dy;
+    }
     const double pad = d.radius * (1.0 + 2.0 * slop);
     SweptBox& b = boxes_[k];
-    extent(m.x, m.ux, m.ax, dt, pad, b.min_x, b.max_x);
-    extent(m.y, m.uy, m.ay, dt, pad, b.min_y, b.max_y);
+    // The box of the motion over the whole tick (extrapolated back to s = 0), and the start.
+    extent(m.px(0.0), m.ux - m.ax * m.t, m.ax, dt, pad, b.min_x, b.max_x);
+    extent(m.py(0.0), m.uy - m.ay * m.t, m.ay, dt, pad, b.min_y, b.max_y);
+    b.min_x = std::min(b.min_x, x0 - pad), b.max_x = std::max(b.max_x, x0 + pad);
+    b.min_y = std::min(b.min_y, y0 - pad), b.max_y = std::max(b.max_y, y0 + pad);
     stamp_[k] = 0, impacts_[k] = 0, changed_[k] = 0;
     lost_[k] = 0, external_[k] = 0;
   }

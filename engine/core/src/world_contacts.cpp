@@ -107,8 +107,8 @@ double first_impact(double g0, double b, double c, double horizon, double tol, d
 
 /// Resolves an impact of m with plane p (normal n) at m's current state; r = the radius, dt =
 /// the tick. Places the body on the plane; updates its velocity, its acceleration when it comes
-/// to rest, and the energy lost.
-void impact(Motion& m, const PlaneDef& p, double r, double dt) {
+/// to rest, and the energy lost. Returns true for a bounce, false when the body comes to rest.
+bool impact(Motion& m, const PlaneDef& p, double r, double dt) {
   const V2 n{p.normal.x, p.normal.y};
   m.x = m.x + (p.offset + r - dot(n, m.x)) * n;  // exactly on the plane (in double)
   const double vn = std::min(dot(n, m.v), 0.0);
@@ -127,7 +127,7 @@ void impact(Motion& m, const PlaneDef& p, double r, double dt) {
   if (!rests) {
     m.lost += 0.5 * (dot(m.v, m.v) - dot(v_after, v_after));  // on the trajectory
     m.v = v_after;
-    return;
+    return true;
   }
   // At rest the integrator's velocity has no normal part either. The energy lost is the
   // integrator's kinetic energy before and after: semi-implicit Euler's trajectory velocity
@@ -137,10 +137,10 @@ void impact(Motion& m, const PlaneDef& p, double r, double dt) {
   const V2 after = v_after - m.offset;
   m.lost += 0.5 * (dot(before, before) - dot(after, after));
   m.v = v_after;
-  if (an >= 0.0) return;
+  if (an >= 0.0) return false;
   // Resting: the normal force cancels a_n; sliding friction μ|a_n| acts over the rest T.
   const double T = dt - m.t;
-  if (T <= 0.0) return;
+  if (T <= 0.0) return false;
   const V2 at = m.a - an * n;
   const V2 free_end = m.v + T * at;
   const double free_speed = norm(free_end);
@@ -150,6 +150,7 @@ void impact(Motion& m, const PlaneDef& p, double r, double dt) {
   // Work of friction over T (its acceleration a_new - at is constant, v is linear in time).
   m.lost -= dot(a_new - at, 0.5 * T * (m.v + end));
   m.a = a_new;
+  return false;
 }
 
 }  // namespace
@@ -202,6 +203,7 @@ void World<Real>::rebuild_contacts() {
     c.radius[k] = colliders_.data[order[k]].radius;
   }
   for (auto* v : {&c.x0, &c.y0, &c.vx0, &c.vy0}) v->resize(order.size());
+  c.after.assign(order.size(), detail::PlaneMotion{});
   c.active = !planes_.empty() && !order.empty();
 }
 
@@ -223,12 +225,13 @@ void World<Real>::resolve_contacts() {
   for (std::size_t k = 0; k < c.body.size(); ++k) {
     const std::uint32_t j = c.body[k];
     const double r = c.radius[k];
+    contact_.after[k].t = -1.0;
     const V2 v0{double(c.vx0[k]), double(c.vy0[k])};
     const V2 v1{double(vx_[j]), double(vy_[j])};
     const V2 x0{double(c.x0[k]), double(c.y0[k])}, x1{double(x_[j]), double(y_[j])};
     const V2 offset = (1.0 / dt) * (x1 - x0) - 0.5 * (v0 + v1);
     Motion m{x0, v0 + offset, (1.0 / dt) * (v1 - v0), offset};
-    bool touched = false;
+    bool touched = false, bounced = false;
     // A body that starts inside a plane is pushed out; its approaching velocity is dropped.
     for (const PlaneDef& p : planes_) {
       const V2 n{p.normal.x, p.normal.y};
@@ -256,7 +259,7 @@ void World<Real>::resolve_contacts() {
       }
       if (!hit) break;
       m.advance(first);
-      impact(m, *hit, r, dt);
+      bounced = impact(m, *hit, r, dt) || bounced;
       touched = true;
     }
     if (!touched) {
@@ -266,10 +269,15 @@ void World<Real>::resolve_contacts() {
         const V2 n{p.normal.x, p.normal.y};
         if (dot(n, x1) - p.offset - r >= 0.0) continue;
         if (!touched) m = Motion{x1, v1 + offset, m.a, offset, dt, 0.0};
-        impact(m, p, r, dt);
+        bounced = impact(m, p, r, dt) || bounced;
         touched = true;
       }
       if (!touched) continue;
+    }
+    // Disc contacts continue from a bounce's motion (a body at rest keeps its integrated one).
+    if (bounced) {
+      contact_.after[k] = detail::PlaneMotion{m.t,   m.x.x, m.x.y,      m.v.x,     m.v.y,
+                                              m.a.x, m.a.y, m.offset.x, m.offset.y};
     }
     m.advance(dt - m.t);
     x_[j] = static_cast<Real>(m.x.x), y_[j] = static_cast<Real>(m.x.y);

@@ -76,6 +76,10 @@ void World<Real>::rebuild_discs() {
   auto body_of = [&](std::uint32_t i) { return bodies_.index(colliders_.set.dense[i]); };
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return body_of(a) < body_of(b); });
+  std::vector<std::int32_t> plane_slot(body_count(), -1);  // body -> its plane collider slot
+  for (std::size_t k = 0; k < contact_.body.size(); ++k) {
+    plane_slot[contact_.body[k]] = static_cast<std::int32_t>(k);
+  }
   std::vector<detail::Disc> discs(order.size());
   std::vector<std::int64_t> disc_of(body_count(), -1);
   for (std::size_t k = 0; k < order.size(); ++k) {
@@ -88,6 +92,7 @@ void World<Real>::rebuild_discs() {
     d.friction = c.friction.value_or(cs.friction);
     d.dynamic = types_[j] == BodyType::dynamic ? 1 : 0;
     d.inv_mass = d.dynamic ? 1.0 / mass_[j] : 0.0;
+    d.plane_slot = contact_.active ? plane_slot[j] : -1;
     disc_of[j] = static_cast<std::int64_t>(k);
   }
   std::vector<std::uint64_t> linked;
@@ -141,6 +146,7 @@ void World<Real>::resolve_discs() {
       vy_.data(),
       settings_.track_dissipation ? dissipated_body_.data() : nullptr,
       planes_,
+      contact_.after,
       settings_.dt,
       kappa(settings_.integrator, settings_.substeps),
       settings_.threads == 1 ? 1 : 2};

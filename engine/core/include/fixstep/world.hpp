@@ -122,6 +122,12 @@ template <class Real>
 struct ImplicitSolverDeleter {
   void operator()(ImplicitSolver<Real>* s) const;
 };
+/// A collider's motion after its last plane impact in a tick (world_contacts.cpp), from which
+/// the disc-disc contacts continue: time t (s into the tick; < 0: no plane impact this tick),
+/// position, model velocity and acceleration at t, and the integrator's velocity offset.
+struct PlaneMotion {
+  double t = -1.0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;
+};
 /// Disc-disc contacts of a world with WorldSettings::contacts (disc_contacts.hpp).
 template <class Real>
 class DiscContacts;
@@ -489,6 +495,7 @@ class World {
     std::vector<std::uint32_t> body;
     std::vector<double> radius;
     std::vector<Real> x0, y0, vx0, vy0;
+    std::vector<detail::PlaneMotion> after;  ///< per collider, this tick
     bool active = false;
   } contact_;
   void rebuild_contacts();
