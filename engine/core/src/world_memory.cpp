@@ -46,7 +46,8 @@ std::size_t World<Real>::snapshot_bytes() const {
   n += sum(net_.a, net_.b, net_.k, net_.damping, net_.rest, net_.inv_mass, net_.offset,
            net_.incident, fx_, fy_, power_body_, power_link_);
   for (std::size_t i = 0; i < s_.size(); ++i) n += bytes_of(s_[i]) + bytes_of(d_[i]);
-  n += sum(contact_.body, contact_.radius, contact_.x0, contact_.y0, contact_.vx0, contact_.vy0);
+  n += sum(contact_.body, contact_.radius, contact_.x0, contact_.y0, contact_.vx0, contact_.vy0,
+           contact_.after);
   n += sum(immovable_.body, immovable_.x0, immovable_.y0, immovable_.vx0, immovable_.vy0);
   if (discs_) n += sizeof(*discs_.get()) + discs_->bytes();
   return n;
