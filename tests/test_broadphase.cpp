@@ -142,10 +142,10 @@ TEST(DiscBroadphase, StaticDiscsAreNotPairedWithEachOther) {
 TEST(DiscBroadphase, NonFiniteAndHugeBoxesTakeTheOverflowPath) {
   BoxSet s = random_set(2000, 0.05, 0.1, 8.0, 0.0, 0.0, 0.02, 0.9, 9);
   const double inf = std::numeric_limits<double>::infinity();
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   s.boxes[10] = {-inf, -inf, inf, inf};  // a blown-up disc: overlaps everything
   s.boxes[20] = {-1e300, 2.0, 1e300, 2.5};
 #ifndef FIXSTEP_FP_TRAPS  // (Debug builds trap the comparison of a NaN, as the engine's guard)
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   s.boxes[30] = {nan, 1.0, 2.0, 2.0};  // overlaps nothing
 #endif
   s.boxes[40] = {1.0, 1.0, 1e300, 1e300};
