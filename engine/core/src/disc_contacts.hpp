@@ -28,6 +28,7 @@
 // Static discs never move; kinematic discs move at their velocity; both act as infinite mass.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -37,6 +38,11 @@
 #include "fixstep/world.hpp"
 
 namespace fixstep::detail {
+
+/// |(x, y)|, m, by the correctly rounded sqrt (std::hypot's result differs between libms).
+inline double length(double x, double y) {
+  return std::sqrt(x * x + y * y);
+}
 
 /// One disc of the contact set, in the World's dense body order at rebuild time.
 struct Disc {

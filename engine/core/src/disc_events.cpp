@@ -13,11 +13,6 @@ namespace {
 
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
-/// |(x, y)| by the correctly rounded sqrt (std::hypot differs between libms).
-double length(double x, double y) {
-  return std::sqrt(x * x + y * y);
-}
-
 /// Earlier event first; ties by pair index (a fixed order, so runs agree bit for bit).
 bool later(const DiscEvent& l, const DiscEvent& r) {
   return l.time > r.time || (l.time == r.time && l.pair > r.pair);

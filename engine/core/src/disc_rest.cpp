@@ -10,11 +10,7 @@
 
 namespace fixstep::detail {
 
-namespace {
-double length(double x, double y) {
-  return std::sqrt(x * x + y * y);
-}
-}  // namespace
+namespace {}  // namespace
 
 template <class Real>
 void DiscContacts<Real>::gather_contacts(const Tick& tick) {
