@@ -594,7 +594,7 @@ case_ "a recording given as the scene" "" run base.rec --steps 10
 head -c 300 base.rec > cut.rec
 case_ "recording: cut short (truncated)" "" replay cut.rec
 rec_case "recording: no end line (truncated)" '/^end /d'
-rec_case "recording: a newer format version" '1s/.*/fixstep-recording 2/'
+rec_case "recording: a newer format version" '1s/.*/fixstep-recording 3/'
 rec_case "recording: a button bit outside all_buttons" 's/^tick 3 push=2,0 held=0 /tick 3 push=2,0 held=800 /'
 rec_case "recording: push = inf" 's/^tick 3 push=2,0/tick 3 push=inf,0/'
 rec_case "recording: ticks out of order" 's/^tick 6 /tick 2 /'

@@ -313,7 +313,7 @@ if have_xvfb && command -v xdotool >/dev/null; then
     xdotool mousemove --window "$wid" 60 140; sleep 0.3; xdotool mouseup 1
     wait "$view"' _ "$fixstep" "$work/dragme.toml" "$work/drag.rec" "$work/drag_view.out"
   [ $? -eq 0 ] && ok "view --record under Xvfb exits 0" || { fail "view --record"; cat "$work/drag_view.out"; }
-  grep -q ' drag=0$' "$work/drag.rec" && ok "the recording holds the mouse drag of body 0" \
+  grep -q ' drag=1:1$' "$work/drag.rec" && ok "the recording holds the mouse drag of body 0" \
     || fail "no drag in the window's recording"
   "$fixstep" replay "$work/drag.rec" >"$work/drag_replay.out" 2>&1
   [ $? -eq 0 ] && ok "the window's recording replays headless with every hash verified" \
@@ -344,7 +344,7 @@ cp "$scenes/default.toml" "$work/rec/scenes/default.toml"
   --record session.rec --hash-every 1 >"$work/rec_run.out" 2>&1)
 [ $? -eq 0 ] && ok "run --input --record exits 0" || { fail "run --input --record"; cat "$work/rec_run.out"; }
 expect "run says where the recording is" '^recording=session\.rec$' "$work/rec_run.out"
-head -1 "$work/rec/session.rec" | grep -qx 'fixstep-recording 1' && ok "the recording starts with its magic and version" \
+head -1 "$work/rec/session.rec" | grep -qx 'fixstep-recording 2' && ok "the recording starts with its magic and version" \
   || fail "recording magic"
 "$fixstep" run "$scenes/default.toml" --steps 300 >"$work/rec_plain.out" 2>&1
 h_rec=$(hash_of "$work/rec_run.out")

@@ -86,7 +86,7 @@ TEST(Recording, TextAndFileRoundTripsExactly) {
   Recording rec = record_run(small_world(), 80, 7);
   rec.inputs[1].push = {0.1, -1e-300};  // shortest round-trip text must keep every bit
   rec.inputs[2].pointer = {std::nextafter(1.0, 2.0), -0.0};
-  rec.inputs[3].drag_body = 2;
+  rec.inputs[3].drag_body = initial_entity(2);
   const std::string text = format_recording(rec);
   EXPECT_EQ(parse_recording(text, "x.rec"), rec);
   EXPECT_EQ(format_recording(parse_recording(text, "x.rec")), text);
@@ -251,9 +251,9 @@ TEST(Recording, ForeignVersionAndCorruptFilesAreEachTheirKind) {
   using K = RecordingError::Kind;
   const std::string text = format_recording(record_run(small_world(), 60, 10));
   EXPECT_EQ(parse_kind("[world]\ndt = 0.01\n"), K::foreign);
-  EXPECT_EQ(parse_kind(replaced(text, "fixstep-recording 1", "fixstep-recording 2")),
+  EXPECT_EQ(parse_kind(replaced(text, "fixstep-recording 2", "fixstep-recording 3")),
             K::unsupported_version);
-  EXPECT_EQ(parse_kind(replaced(text, "fixstep-recording 1", "fixstep-recording x")), K::corrupt);
+  EXPECT_EQ(parse_kind(replaced(text, "fixstep-recording 2", "fixstep-recording x")), K::corrupt);
   const std::pair<std::string, std::string> corrupt[] = {
       {"held=2 ", "held=400 "},    // a bit outside all_buttons
       {"push=3,0", "push=inf,0"},  // not finite
@@ -303,11 +303,11 @@ TEST(Recording, AnEmptyFileOrASceneIsNamedForWhatItIs) {
             "writes one)");
   EXPECT_EQ(parse_message("[world]\ndt = 0.01\n"),
             "x.rec:1: not a fixstep recording: the first line is \"[world]\", a recording's is "
-            "`fixstep-recording 1` (this looks like a TOML scene: replay takes a recording made "
+            "`fixstep-recording 2` (this looks like a TOML scene: replay takes a recording made "
             "by `fixstep run SCENE --steps N --record FILE`)");
   EXPECT_EQ(parse_message("hello\n"),
             "x.rec:1: not a fixstep recording: the first line is \"hello\", a recording's is "
-            "`fixstep-recording 1`");
+            "`fixstep-recording 2`");
 }
 
 TEST(Recording, TheFuzzCorpusIsValid) {
@@ -346,7 +346,7 @@ drag = false
   EXPECT_EQ(in[4].held, button_left | button_pointer_primary);
   EXPECT_EQ(in[4].push, (Vec2{1.5, 0.0}));
   EXPECT_EQ(in[4].pointer, (Vec2{0.5, -1.0}));
-  EXPECT_EQ(in[4].drag_body, 2u);
+  EXPECT_EQ(in[4].drag_body, initial_entity(2));
   EXPECT_EQ(in[5].released, button_left);
   EXPECT_EQ(in[5].held, button_pointer_primary);
   EXPECT_EQ(in[5].drag_body, no_body);

@@ -240,7 +240,7 @@ TEST(Slingshot, ScriptedGameIsDeterministicAndReplays) {
   for (std::size_t i = 0; i + 1 < changed.size(); ++i) {
     if (changed[i].released != 0) {
       std::swap(changed[i].released, changed[i + 1].released);
-      changed[i].drag_body = ball;
+      changed[i].drag_body = fixstep::initial_entity(ball);
       changed[i].held = changed[i - 1].held;
       break;
     }

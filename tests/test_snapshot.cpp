@@ -149,7 +149,7 @@ TickInput scripted_input(std::uint64_t t) {
   TickInput in;
   in.tick = t;
   if (t % 50 < 10) in.push = {0.5, -0.25};
-  if (t % 70 >= 30 && t % 70 < 45) in.drag_body = 0, in.pointer = {0.3, 0.2};
+  if (t % 70 >= 30 && t % 70 < 45) in.drag_body = initial_entity(0), in.pointer = {0.3, 0.2};
   return in;
 }
 
@@ -308,7 +308,7 @@ TEST(PointerDrag, ADraggedBodyFollowsThePointerAtAnyDtAndMass) {
       Simulation sim = make_simulation(free_bodies(integrator, dt));
       TickInput in;
       in.pointer = {4.0, 2.0};
-      in.drag_body = 1;
+      in.drag_body = initial_entity(1);
       for (int t = 0; t < int(3.0 / dt); ++t) sim.step(in);
       EXPECT_NEAR(sim.body_at(1).position.x, 4.0, 1e-3);
       EXPECT_NEAR(sim.body_at(1).position.y, 2.0, 1e-3);
@@ -319,17 +319,17 @@ TEST(PointerDrag, ADraggedBodyFollowsThePointerAtAnyDtAndMass) {
 
 TEST(PointerDrag, APressPicksTheBodyUnderThePointerAndAReleaseLetsGo) {
   Simulation sim = make_simulation(free_bodies(Integrator::semi_implicit_euler, 1.0 / 60));
-  EXPECT_EQ(pick_body(sim, {3.5, 0.5}, 0.1), 1u);   // within b's radius of 1 m
-  EXPECT_EQ(pick_body(sim, {0.05, 0.0}, 0.1), 0u);  // a has no radius: the tolerance
+  EXPECT_EQ(pick_body(sim, {3.5, 0.5}, 0.1), initial_entity(1));   // within b's radius of 1 m
+  EXPECT_EQ(pick_body(sim, {0.05, 0.0}, 0.1), initial_entity(0));  // a has no radius: the tolerance
   EXPECT_EQ(pick_body(sim, {1.5, 0.0}, 0.1), no_body);
   PointerDrag drag(0.1);
   TickInput in{
       .held = button_pointer_primary, .pressed = button_pointer_primary, .pointer = {3.2, 0.0}};
   drag.apply(in, sim);
-  EXPECT_EQ(in.drag_body, 1u);
+  EXPECT_EQ(in.drag_body, initial_entity(1));
   TickInput hold{.held = button_pointer_primary, .pointer = {0.0, 0.0}};
   drag.apply(hold, sim);  // held: still b, although the pointer is now over a
-  EXPECT_EQ(hold.drag_body, 1u);
+  EXPECT_EQ(hold.drag_body, initial_entity(1));
   TickInput up{.released = button_pointer_primary};
   drag.apply(up, sim);
   EXPECT_EQ(up.drag_body, no_body);

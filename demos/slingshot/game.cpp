@@ -129,7 +129,7 @@ fixstep::WorldDef make_level() {
 void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput& input,
                    const fixstep::Simulation& sim) {
   drag.apply(input, sim);  // picks on press, drops on release
-  if (game.phase != Phase::loaded || input.drag_body != ball) {
+  if (game.phase != Phase::loaded || input.drag_body != fixstep::initial_entity(ball)) {
     input.drag_body = fixstep::no_body;  // targets are not for dragging
     return;
   }
@@ -145,7 +145,7 @@ void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& si
   const Body b = sim.body_at(ball);
   switch (game.phase) {
     case Phase::loaded: {
-      const bool dragging = input.drag_body == ball;
+      const bool dragging = input.drag_body == fixstep::initial_entity(ball);
       if (game.dragging && !dragging) {  // let go this tick
         const Vec2 pull = sub(b.position, anchor);
         if (std::hypot(pull.x, pull.y) >= min_pull) {

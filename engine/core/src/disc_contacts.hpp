@@ -121,6 +121,9 @@ class DiscContacts {
   [[nodiscard]] std::span<const double> lost() const { return lost_; }
   /// Work of kinematic discs on each disc in the last resolve(), J.
   [[nodiscard]] std::span<const double> external() const { return external_; }
+  /// The contacts of the last resolve() (touching pairs; b >= discs().size() for a plane, as
+  /// b - discs().size()), disc pairs in (a, b) order.
+  [[nodiscard]] std::span<const RestContact> touching() const { return contacts_; }
   /// The impacts of the last resolve(), in order.
   [[nodiscard]] std::span<const Impact> impacts() const { return impact_log_; }
   /// Heap bytes a copy holds (World::snapshot_bytes).

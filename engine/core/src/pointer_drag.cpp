@@ -7,8 +7,8 @@
 
 namespace fixstep {
 
-std::uint32_t pick_body(const Simulation& sim, Vec2 point, double tolerance) {
-  std::uint32_t best = no_body;
+Entity pick_body(const Simulation& sim, Vec2 point, double tolerance) {
+  Entity best = no_body;
   double best_distance = 0.0;
   sim.visit([&](const auto& w) {
     for (std::size_t j = 0; j < w.body_count(); ++j) {
@@ -16,7 +16,7 @@ std::uint32_t pick_body(const Simulation& sim, Vec2 point, double tolerance) {
       const Appearance* a = w.template get<Appearance>(w.entities()[j]);
       const double reach = std::max(a ? a->radius : 0.0, tolerance);
       if (d <= reach && (best == no_body || d < best_distance)) {
-        best = static_cast<std::uint32_t>(j);
+        best = w.entities()[j];
         best_distance = d;
       }
     }

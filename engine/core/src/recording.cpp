@@ -191,7 +191,7 @@ Recording Recorder::finish(const Simulation& sim) {
   return out;
 }
 
-ReplayReport replay(Simulation& sim, const Recording& rec) {
+ReplayReport replay(Simulation& sim, const Recording& rec, const TickRules& rules) {
   if (sim.tick() != 0) {
     throw std::invalid_argument(
         fmt::format("replay: the simulation is at tick {}, not at its start", sim.tick()));
@@ -209,6 +209,7 @@ ReplayReport replay(Simulation& sim, const Recording& rec) {
     }
     in.tick = t;
     sim.step(in);
+    if (rules) rules.after_tick(sim, in);
     report.ticks = t + 1;
     if (next_hash < rec.hashes.size() && rec.hashes[next_hash].first == t + 1) {
       if (sim.state_hash() != rec.hashes[next_hash].second) {
@@ -236,7 +237,7 @@ void apply_settings(WorldDef& def, const RecordedSettings& settings) {
   def.settings.substeps = settings.substeps;
 }
 
-ReplayReport replay(const WorldDef& def, const Recording& rec) {
+ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& rules) {
   const std::uint64_t actual = definition_hash(def);
   if (actual != rec.definition_hash) {
     throw RecordingError(
@@ -247,7 +248,7 @@ ReplayReport replay(const WorldDef& def, const Recording& rec) {
                     hex_hash(actual), hex_hash(rec.definition_hash)));
   }
   Simulation sim = make_simulation(def);
-  return replay(sim, rec);
+  return replay(sim, rec, rules);
 }
 
 void write_recording(const std::filesystem::path& file, const Recording& rec) {

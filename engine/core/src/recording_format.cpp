@@ -1,9 +1,13 @@
 // The recording file format: line-oriented text, written by format_recording and read by
 // parse_recording / read_recording. One line each:
-//   fixstep-recording 1
+//   fixstep-recording 2
 //   scene PATH                 definition HASH          integrator NAME     precision f32|f64
 //   dt SECONDS                 substeps N               hash_every K
-//   tick N push=AX,AY held=HEX pressed=HEX released=HEX pointer=X,Y drag=INDEX|none
+//   tick N push=AX,AY held=HEX pressed=HEX released=HEX pointer=X,Y drag=SLOT:GEN|none
+//        [force=SLOT:GEN,X,Y | impulse=SLOT:GEN,X,Y | velocity=SLOT:GEN,X,Y]...
+// (one line; a body is named by its handle Entity{SLOT, GEN}, per-body inputs in order).
+// Version 1 had no per-body inputs and named the dragged body by its dense INDEX, read as
+// initial_entity(INDEX) (exact for the worlds version 1 recorded, which destroyed nothing).
 //   hash N HASH                (state hash after N ticks)
 //   end TICKS HASH             (the last line; its absence means the file is truncated)
 // A tick line is written only when the input differs from the previous tick's; numbers are
@@ -210,8 +214,54 @@ void read_header(Lines& in, Recording& rec) {
   if (rec.hash_every < 1) in.fail(Kind::corrupt, "hash_every", "must be >= 1");
 }
 
+/// `SLOT:GEN` (version 2's handle; slot and generation >= 1).
+Entity handle(const Lines& in, std::string_view text, std::string_view field) {
+  const std::size_t colon = text.find(':');
+  if (colon == std::string_view::npos) {
+    in.fail(Kind::corrupt, field, fmt::format("expected SLOT:GENERATION, found {}", shown(text)));
+  }
+  const Entity e{integer<std::uint32_t>(in, text.substr(0, colon), field, 10, 0xffffffffu),
+                 integer<std::uint32_t>(in, text.substr(colon + 1), field, 10, 0xffffffffu)};
+  if (e.index1 == 0 || e.generation == 0) {
+    in.fail(Kind::corrupt, field, fmt::format("slot and generation must be >= 1 ({})", text));
+  }
+  return e;
+}
+
+/// `KIND=SLOT:GEN,X,Y`: one per-body input of version 2.
+BodyInput body_input(const Lines& in, std::string_view word) {
+  const std::size_t eq = word.find('=');
+  const std::string_view key = word.substr(0, eq);
+  BodyInput b;
+  if (key == "force") {
+    b.kind = BodyInputKind::force;
+  } else if (key == "impulse") {
+    b.kind = BodyInputKind::impulse;
+  } else if (key == "velocity") {
+    b.kind = BodyInputKind::velocity;
+  } else {
+    in.fail(Kind::corrupt, "tick",
+            fmt::format("expected force=, impulse= or velocity=, found {}", shown(word)));
+  }
+  const std::string_view value = keyed(in, word, key);
+  const std::size_t comma = value.find(',');
+  if (comma == std::string_view::npos) {
+    in.fail(Kind::corrupt, key, fmt::format("expected SLOT:GEN,X,Y, found {}", shown(value)));
+  }
+  b.body = handle(in, value.substr(0, comma), key);
+  b.value = vec2(in, value.substr(comma + 1), key);
+  return b;
+}
+
 TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec) {
-  const std::vector<std::string_view> w = fields(in, line, "tick", 8);
+  // Version 2 appends the per-body inputs to version 1's eight words.
+  const std::size_t count = words(line).size();
+  const bool v2 = rec.version >= 2;
+  if (v2 && count > 8 + max_body_inputs) {
+    in.fail(Kind::corrupt, "tick",
+            fmt::format("{} per-body inputs; at most {} per tick", count - 8, max_body_inputs));
+  }
+  const std::vector<std::string_view> w = fields(in, line, "tick", v2 && count > 8 ? count : 8);
   TickInput t;
   t.tick = integer<std::uint64_t>(in, w[1], "tick", 10, max_recording_ticks - 1);
   if (rec.inputs.empty() ? t.tick != 0 : t.tick <= rec.inputs.back().tick) {
@@ -226,7 +276,14 @@ TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec
   t.released = buttons(in, keyed(in, w[5], "released"), "released");
   t.pointer = vec2(in, keyed(in, w[6], "pointer"), "pointer");
   const std::string_view drag = keyed(in, w[7], "drag");
-  t.drag_body = drag == "none" ? no_body : integer<std::uint32_t>(in, drag, "drag", 10, no_body);
+  if (drag == "none") {
+    t.drag_body = no_body;
+  } else if (rec.version >= 2) {
+    t.drag_body = handle(in, drag, "drag");
+  } else {
+    t.drag_body = initial_entity(integer<std::uint32_t>(in, drag, "drag", 10, 0xfffffffeu));
+  }
+  for (std::size_t k = 8; k < w.size(); ++k) t.bodies.push_back(body_input(in, w[k]));
   return t;
 }
 
@@ -267,10 +324,18 @@ void format_input(std::string& out, const TickInput& t) {
       "tick {} push={},{} held={:x} pressed={:x} released={:x} pointer={},{} drag=", t.tick,
       t.push.x, t.push.y, t.held, t.pressed, t.released, t.pointer.x, t.pointer.y);
   if (t.drag_body == no_body) {
-    out += "none\n";
+    out += "none";
   } else {
-    fmt::format_to(std::back_inserter(out), "{}\n", t.drag_body);
+    fmt::format_to(std::back_inserter(out), "{}:{}", t.drag_body.index1, t.drag_body.generation);
   }
+  for (const BodyInput& b : t.bodies) {
+    const char* kind = b.kind == BodyInputKind::force     ? "force"
+                       : b.kind == BodyInputKind::impulse ? "impulse"
+                                                          : "velocity";
+    fmt::format_to(std::back_inserter(out), " {}={}:{},{},{}", kind, b.body.index1,
+                   b.body.generation, b.value.x, b.value.y);
+  }
+  out += '\n';
 }
 
 }  // namespace
@@ -284,7 +349,7 @@ std::string format_recording(const Recording& rec) {
   std::string out = fmt::format(
       "{} {}\nscene {}\ndefinition {}\nintegrator {}\nprecision {}\ndt {}\nsubsteps {}\n"
       "hash_every {}\n",
-      recording_magic, rec.version, rec.scene, hex_hash(rec.definition_hash),
+      recording_magic, recording_version, rec.scene, hex_hash(rec.definition_hash),
       integrator_name(rec.settings.integrator), precision_name(rec.settings.precision),
       rec.settings.dt, rec.settings.substeps, rec.hash_every);
   std::size_t h = 0;

@@ -92,6 +92,7 @@ void Simulation::fill_render_frame(double alpha, RenderFrame& out) const {
     const std::size_t n = w.body_count();
     out.x.resize(n);
     out.y.resize(n);
+    out.ids.assign(w.entities().begin(), w.entities().end());
     out.radius.resize(n);
     out.color.resize(n);
     out.springs.clear();
@@ -141,9 +142,11 @@ void Simulation::restore(const WorldSnapshot& snapshot) {
 }
 
 namespace {
-/// Throws std::invalid_argument with the stability guard's first finding of an unstable body
-/// or network in `def`.
-void refuse_unstable(const WorldDef& def) {
+/// Throws std::invalid_argument with the stability guard's first finding of an unstable body or
+/// network (unless def.allow_unstable); returns the guard's warnings: near the bound, or unstable
+/// and allowed.
+std::vector<std::string> judge_stability(const WorldDef& def) {
+  std::vector<std::string> warnings;
   const WorldSettings& s = def.settings;
   auto refuse = [&](const std::string& message, int min_substeps, double max_step) {
     throw std::invalid_argument(min_substeps > 0
@@ -153,14 +156,20 @@ void refuse_unstable(const WorldDef& def) {
   };
   const std::vector<bool> linked = linked_bodies(def.bodies.size(), def.links);
   for (const BodyStability& r : check_stability(def.bodies, s.integrator, s.dt, s.substeps)) {
-    if (!linked[r.body] && r.verdict == Stability::unstable) {
+    if (linked[r.body] || r.verdict == Stability::stable) continue;
+    if (r.verdict == Stability::unstable && !def.allow_unstable) {
       refuse(r.message, r.min_substeps, r.max_step);
     }
+    warnings.push_back(r.message);
   }
   const auto net = check_linked_stability(def.bodies, def.links, s.integrator, s.dt, s.substeps);
-  if (net && net->verdict == Stability::unstable) {
-    refuse(net->message, net->min_substeps, net->max_step);
+  if (net && net->verdict != Stability::stable) {
+    if (net->verdict == Stability::unstable && !def.allow_unstable) {
+      refuse(net->message, net->min_substeps, net->max_step);
+    }
+    warnings.push_back(net->message);
   }
+  return warnings;
 }
 }  // namespace
 
@@ -189,7 +198,7 @@ Simulation make_simulation(const WorldDef& def) {
         name(pair->first), name(pair->second),
         disc_overlap_depth(def.bodies[pair->first], def.bodies[pair->second])));
   }
-  if (!def.allow_unstable) refuse_unstable(def);
+  for (std::string& w : judge_stability(def)) sim.add_warning(std::move(w));
   return sim;
 }
 

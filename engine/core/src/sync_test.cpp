@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <bit>
 #include <stdexcept>
+#include <utility>
 
 namespace fixstep {
 
-SyncTest::SyncTest(Simulation& sim, int rollback_ticks)
+SyncTest::SyncTest(Simulation& sim, int rollback_ticks, TickRules rules)
     : sim_(sim),
+      rules_(std::move(rules)),
       rollback_(static_cast<std::uint64_t>(std::max(rollback_ticks, 1))),
       first_tick_(sim.tick()) {
   if (rollback_ticks < 1) {
@@ -25,6 +27,12 @@ void SyncTest::remember(std::uint64_t tick) {
   sim_.save(s.state);
   s.hash = sim_.state_hash();
   s.dissipated = sim_.dissipated_energy();
+  if (rules_.save) s.rules = rules_.save();
+}
+
+void SyncTest::tick_with_rules(const TickInput& input) {
+  sim_.step(input);
+  if (rules_) rules_.after_tick(sim_, input);
 }
 
 bool SyncTest::check(std::uint64_t tick) {
@@ -40,16 +48,19 @@ bool SyncTest::check(std::uint64_t tick) {
 bool SyncTest::step(const TickInput& input) {
   const std::uint64_t t = sim_.tick();
   slot(t).input = input;
-  sim_.step(input);
+  tick_with_rules(input);
   if (mismatch_) return false;
   remember(t + 1);
   const std::uint64_t back = std::min(rollback_, t + 1 - first_tick_);
-  sim_.restore(slot(t + 1 - back).state);
+  const Slot& from = slot(t + 1 - back);
+  sim_.restore(from.state);
+  if (rules_.restore) rules_.restore(from.rules);
   for (std::uint64_t k = t + 1 - back; k <= t; ++k) {
-    sim_.step(slot(k).input);
+    tick_with_rules(slot(k).input);
     ++resimulated_;
     if (!check(k + 1)) return false;
     sim_.save(slot(k + 1).state);
+    if (rules_.save) slot(k + 1).rules = rules_.save();
   }
   return true;
 }

@@ -93,6 +93,14 @@ void World<Real>::require(Entity e) const {
 }
 
 template <class Real>
+Entity World<Real>::find(std::string_view name) const {
+  for (std::size_t j = 0; j < names_.size(); ++j) {
+    if (names_[j] == name) return bodies_.dense[j];
+  }
+  return null_entity;
+}
+
+template <class Real>
 std::size_t World<Real>::index_of(Entity e) const {
   require(e);
   return bodies_.index(e);

@@ -245,7 +245,7 @@ bool ImplicitSolver<Real>::step(Real* x, Real* y, Real* vx, Real* vy, double h, 
 }  // namespace detail
 
 template <class Real>
-bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
+detail::ImplicitSolver<Real>& World<Real>::implicit_solver() {
   if (!implicit_) {
     // The network in double from the authoritative components (rebuilt after any change).
     implicit_.reset(new detail::ImplicitSolver<Real>());
@@ -303,11 +303,26 @@ bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
       s.linear = s.linear && ls.rest_length == 0.0;
     }
   }
-  return implicit_->step(x_.data(), y_.data(), vx_.data(), vy_.data(), double(h), push,
-                         settings_.track_dissipation, dissipated_body_.data(),
-                         dissipated_link_.data());
+  return *implicit_;
 }
 
+template <class Real>
+std::pair<double*, double*> World<Real>::implicit_accelerations() {
+  detail::ImplicitSolver<Real>& s = implicit_solver();
+  return {s.cx.data(), s.cy.data()};
+}
+
+template <class Real>
+bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
+  return implicit_solver().step(x_.data(), y_.data(), vx_.data(), vy_.data(), double(h), push,
+                                settings_.track_dissipation, dissipated_body_.data(),
+                                dissipated_link_.data());
+}
+
+template detail::ImplicitSolver<float>& World<float>::implicit_solver();
+template detail::ImplicitSolver<double>& World<double>::implicit_solver();
+template std::pair<double*, double*> World<float>::implicit_accelerations();
+template std::pair<double*, double*> World<double>::implicit_accelerations();
 template bool World<float>::step_implicit_network(float, const float[2]);
 template bool World<double>::step_implicit_network(double, const double[2]);
 template struct detail::ImplicitSolverDeleter<float>;

@@ -171,7 +171,7 @@ void World<Real>::apply_drag(const TickInput& input) {
   constexpr double two_pi = 6.283185307179586;
   const double w = two_pi * drag_frequency, h = settings_.dt;
   const double denominator = 1.0 + 2.0 * drag_damping_ratio * w * h + w * w * h * h;
-  const std::size_t j = input.drag_body;
+  const std::size_t j = bodies_.index(input.drag_body);
   const double vx = (double(vx_[j]) - h * w * w * (double(x_[j]) - input.pointer.x)) / denominator;
   const double vy = (double(vy_[j]) - h * w * w * (double(y_[j]) - input.pointer.y)) / denominator;
   if (std::isfinite(vx) && std::isfinite(vy))
@@ -182,7 +182,9 @@ template <class Real>
 void World<Real>::step(const TickInput& input) {
   const FlushDenormals ftz(settings_.flush_denormals);
   if (terms_dirty_) rebuild_terms();
-  if (input.drag_body < x_.size() && types_[input.drag_body] == BodyType::dynamic) {
+  if (!input.bodies.empty()) apply_body_inputs(input);
+  if (bodies_.contains(input.drag_body) &&
+      types_[bodies_.index(input.drag_body)] == BodyType::dynamic) {
     apply_drag(input);
   }
   if (keep_previous_) {
@@ -197,10 +199,18 @@ void World<Real>::step(const TickInput& input) {
   const bool discs = discs_ && discs_->active();
   if (contacts) save_contact_start();
   if (immovable || discs) save_tick_start();
+  const bool forces = !input.bodies.empty() && add_input_forces(input);
   integrate(input);
+  if (forces) remove_input_forces();
   if (immovable) restore_immovable();
   if (contacts) resolve_contacts();
-  if (discs) resolve_discs();
+  if (discs) {
+    resolve_discs();
+    update_contact_events();
+  } else if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
+    ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
+    begun_.clear(), touching_.clear();
+  }
 }
 
 template <class Real>

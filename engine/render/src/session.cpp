@@ -201,9 +201,10 @@ void Session::restart() {
 
 void Session::draw() {
   sim_->fill_render_frame(loop_.alpha(), frame_);
-  if (drag_body_ < frame_.x.size()) {
-    frame_.springs.push_back(
-        {static_cast<float>(drag_pointer_.x), static_cast<float>(drag_pointer_.y), drag_body_});
+  if (sim_->contains(drag_body_)) {
+    frame_.springs.push_back({static_cast<float>(drag_pointer_.x),
+                              static_cast<float>(drag_pointer_.y),
+                              static_cast<std::uint32_t>(sim_->index_of(drag_body_))});
   }
   hud_.clear();
   if (show_engine_hud_) engine_hud_lines();

@@ -61,9 +61,9 @@ std::uint32_t button_list(const Reader& r, const toml::table& t, std::string_vie
   return bits;
 }
 
-/// `drag`: a body name (its dense index) or false (no body).
-std::uint32_t drag_target(const Reader& r, const toml::node& n, const std::string& path,
-                          std::span<const BodyDef> bodies) {
+/// `drag`: a body name (its handle in the world make_simulation builds) or false (no body).
+Entity drag_target(const Reader& r, const toml::node& n, const std::string& path,
+                   std::span<const BodyDef> bodies) {
   if (n.is_boolean() && !n.as_boolean()->get()) return no_body;
   if (!n.is_string()) {
     r.fail(n.source(), path,
@@ -72,7 +72,7 @@ std::uint32_t drag_target(const Reader& r, const toml::node& n, const std::strin
   }
   const std::string_view name = n.as_string()->get();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies[i].name == name) return static_cast<std::uint32_t>(i);
+    if (bodies[i].name == name) return initial_entity(i);
   }
   std::vector<std::string> names;
   names.reserve(bodies.size());

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
+#include "fixstep/entity.hpp"
 #include "fixstep/types.hpp"
 
 namespace fixstep {
@@ -24,14 +26,41 @@ enum InputButton : std::uint32_t {
 /// Every bit a TickInput may carry (a recording with others is refused).
 inline constexpr std::uint32_t all_buttons = 0x31fu;
 
-/// TickInput::drag_body when nothing is dragged.
-inline constexpr std::uint32_t no_body = 0xffffffffu;
+/// TickInput::drag_body when nothing is dragged (the null handle).
+inline constexpr Entity no_body{};
 
 /// The drag spring: the one of Box2D's samples (their mouse joint: 5 Hz, damping ratio 0.7),
 /// per unit mass, so light and heavy bodies follow the pointer alike. World::step applies it to
 /// the dragged body's velocity with implicit Euler (stable at any dt; see World::step).
 inline constexpr double drag_frequency = 5.0;      ///< Hz
 inline constexpr double drag_damping_ratio = 0.7;  ///< ζ
+
+/// What a BodyInput does to its body during the tick it is given to (World::step).
+enum class BodyInputKind : std::uint8_t {
+  /// A force, N, acting through the whole tick as a ConstantForce would (each integrator's
+  /// stages see it); dynamic bodies only.
+  force = 0,
+  /// An impulse J, N·s, at the tick's start: Δv = J/m before the integrator runs; dynamic
+  /// bodies only.
+  impulse = 1,
+  /// The velocity, m/s, a kinematic body moves at from this tick on (it keeps it until
+  /// changed); kinematic bodies only.
+  velocity = 2,
+};
+
+/// Input addressed to one body by its handle (so it follows the body when others are
+/// destroyed), recorded and replayed with the rest of the tick's input. World::step ignores an
+/// entry whose handle is stale, whose value is not finite or whose body has the wrong type
+/// (Simulation::check_input names them); a program or a script refuses them before.
+struct BodyInput {
+  Entity body{};
+  BodyInputKind kind = BodyInputKind::force;
+  Vec2 value{};  ///< N (force), N·s (impulse) or m/s (velocity)
+  friend constexpr bool operator==(const BodyInput&, const BodyInput&) = default;
+};
+
+/// Most BodyInput entries one tick may carry (a recording with more is refused).
+inline constexpr std::size_t max_body_inputs = 4096;
 
 struct TickInput {
   std::uint64_t tick = 0;  ///< index of the tick this input is for (0 = the first tick)
@@ -43,10 +72,13 @@ struct TickInput {
   std::uint32_t pressed = 0;   ///< bits that went down since the previous tick's sample
   std::uint32_t released = 0;  ///< bits that went up since the previous tick's sample
   Vec2 pointer{};              ///< pointer position in world coordinates, m
-  /// Dense index of the body the pointer drags (a spring from `pointer` to it; see
-  /// drag_frequency), or no_body. An index >= the body count drags nothing.
-  std::uint32_t drag_body = no_body;
-  friend constexpr bool operator==(const TickInput&, const TickInput&) = default;
+  /// The body the pointer drags (a spring from `pointer` to it; see drag_frequency), or
+  /// no_body. A stale handle, or a body that is not dynamic, drags nothing.
+  Entity drag_body = no_body;
+  /// Per-body forces, impulses and kinematic velocities of this tick, applied in this order
+  /// (at most max_body_inputs). Empty costs nothing.
+  std::vector<BodyInput> bodies{};
+  friend bool operator==(const TickInput&, const TickInput&) = default;
 };
 
 /// Collects input events as they happen and hands each tick its TickInput (sample()). A press
@@ -55,7 +87,10 @@ struct TickInput {
 /// many only the first sees it. Several presses of one button between two ticks read as one
 /// (pressed is a set of bits, not a count); a press and release between two ticks sets both
 /// bits with the button not held, so a tap is never lost. Pointer, push and drag body are
-/// levels: every tick sees their latest value.
+/// levels: every tick sees their latest value. Per-body input: impulses, velocities and
+/// apply_force are events (the next tick sampled carries them, once); set_force is a level
+/// (every tick carries it until set to zero), so a thruster held over a frame of three ticks
+/// pushes in all three. A tick lists the held forces first, then the events in order.
 class InputSampler {
  public:
   /// Buttons (InputButton bits) went down; a button already held is not pressed again (key
@@ -73,22 +108,42 @@ class InputSampler {
   void set_push(Vec2 acceleration) { push_ = acceleration; }  ///< m/s²
   /// The body every following tick drags (TickInput::drag_body), or no_body; for programs that
   /// decide the drag outside the ticks (fixstep's own use PointerDrag at the tick).
-  void set_drag_body(std::uint32_t body) { drag_body_ = body; }
+  void set_drag_body(Entity body) { drag_body_ = body; }
+  /// An impulse J (N·s) on `body` in the next tick sampled (an event: once).
+  void apply_impulse(Entity body, Vec2 impulse) {
+    events_.push_back({body, BodyInputKind::impulse, impulse});
+  }
+  /// The velocity (m/s) kinematic `body` moves at from the next tick sampled on (an event: the
+  /// body keeps it until changed).
+  void set_velocity(Entity body, Vec2 velocity) {
+    events_.push_back({body, BodyInputKind::velocity, velocity});
+  }
+  /// A force (N) on `body` in the next tick sampled only (an event: once; a script's `force`).
+  void apply_force(Entity body, Vec2 force) {
+    events_.push_back({body, BodyInputKind::force, force});
+  }
+  /// A force (N) on `body` in every tick sampled from now on, until set again; (0, 0) ends it
+  /// (a thruster held down).
+  void set_force(Entity body, Vec2 force);
   [[nodiscard]] std::uint32_t held() const { return held_; }
-  [[nodiscard]] std::uint32_t drag_body() const { return drag_body_; }
+  [[nodiscard]] Entity drag_body() const { return drag_body_; }
   [[nodiscard]] Vec2 pointer() const { return pointer_; }  ///< m
 
-  /// The input of tick `tick`; clears the pending presses and releases.
+  /// The input of tick `tick`; clears the pending presses, releases and per-body events.
   TickInput sample(std::uint64_t tick) {
-    const TickInput in{tick, push_, held_, pressed_, released_, pointer_, drag_body_};
-    pressed_ = released_ = 0;
+    TickInput in;
+    sample(tick, in);
     return in;
   }
+  /// sample(tick) into `out`, reusing its storage (no allocation once it has grown).
+  void sample(std::uint64_t tick, TickInput& out);
 
  private:
   std::uint32_t held_ = 0, pressed_ = 0, released_ = 0;
   Vec2 pointer_{}, push_{};
-  std::uint32_t drag_body_ = no_body;
+  Entity drag_body_ = no_body;
+  std::vector<BodyInput> forces_;  ///< levels, in the order first set
+  std::vector<BodyInput> events_;  ///< one-tick inputs, in the order given
 };
 
 }  // namespace fixstep

@@ -10,9 +10,9 @@
 
 namespace fixstep {
 
-/// Dense index of the body nearest to `point` (m) whose distance is within its reach: its
-/// Appearance radius, or `tolerance` (m) if that is larger; no_body if none. O(bodies).
-[[nodiscard]] std::uint32_t pick_body(const Simulation& sim, Vec2 point, double tolerance);
+/// The body nearest to `point` (m) whose distance is within its reach: its Appearance radius,
+/// or `tolerance` (m) if that is larger; no_body (the null handle) if none. O(bodies).
+[[nodiscard]] Entity pick_body(const Simulation& sim, Vec2 point, double tolerance);
 
 /// Applies the pick-and-drag rule to the inputs of successive ticks: a tick whose input
 /// presses button_pointer_primary (with the button still held) picks the body under the
@@ -25,12 +25,12 @@ class PointerDrag {
   explicit PointerDrag(double tolerance);
   /// Updates the drag from `input`'s presses and releases and sets input.drag_body.
   void apply(TickInput& input, const Simulation& sim);
-  [[nodiscard]] std::uint32_t body() const { return body_; }  ///< dragged body, or no_body
+  [[nodiscard]] Entity body() const { return body_; }  ///< dragged body, or no_body
   void reset() { body_ = no_body; }
 
  private:
   double tolerance_;
-  std::uint32_t body_ = no_body;
+  Entity body_ = no_body;
 };
 
 }  // namespace fixstep

@@ -15,12 +15,13 @@
 
 #include "fixstep/input.hpp"
 #include "fixstep/integrators.hpp"
+#include "fixstep/rules.hpp"
 #include "fixstep/simulation.hpp"
 
 namespace fixstep {
 
 /// The format version this build writes and the newest it reads.
-inline constexpr int recording_version = 1;
+inline constexpr int recording_version = 2;
 /// The first word of every recording (the first line is "fixstep-recording VERSION").
 inline constexpr std::string_view recording_magic = "fixstep-recording";
 /// Most ticks a recording may hold (about 190 days at 60 Hz).
@@ -156,15 +157,18 @@ struct ReplayReport {
   [[nodiscard]] bool ok() const { return !mismatch; }
 };
 
-/// Steps `sim` (at tick 0) through every recorded input and compares each stored hash and the
-/// final one; stops at the first that differs. The state first differs in the ticks
-/// (last_match, tick]; with hash_every = 1, at exactly `tick`. Throws std::invalid_argument
-/// when sim is not at tick 0.
-[[nodiscard]] ReplayReport replay(Simulation& sim, const Recording& rec);
-/// Builds def's world (make_simulation) and replays `rec` on it. Throws RecordingError
-/// scene_mismatch naming both hashes when definition_hash(def) is not the recording's (apply
-/// rec.settings to the scene first: apply_settings).
-[[nodiscard]] ReplayReport replay(const WorldDef& def, const Recording& rec);
+/// Steps `sim` (at tick 0) through every recorded input, running `rules` after each tick (as
+/// the recorded session did: see TickRules; the rules must start from the state they had at
+/// tick 0), and compares each stored hash and the final one; stops at the first that differs.
+/// The state first differs in the ticks (last_match, tick]; with hash_every = 1, at exactly
+/// `tick`. Throws std::invalid_argument when sim is not at tick 0.
+[[nodiscard]] ReplayReport replay(Simulation& sim, const Recording& rec,
+                                  const TickRules& rules = {});
+/// Builds def's world (make_simulation) and replays `rec` on it with `rules`. Throws
+/// RecordingError scene_mismatch naming both hashes when definition_hash(def) is not the
+/// recording's (apply rec.settings to the scene first: apply_settings).
+[[nodiscard]] ReplayReport replay(const WorldDef& def, const Recording& rec,
+                                  const TickRules& rules = {});
 /// def with the recording's precision, dt, integrator and substeps.
 void apply_settings(WorldDef& def, const RecordedSettings& settings);
 

@@ -6,6 +6,8 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -21,7 +23,10 @@ struct RenderFrame {
     float anchor_x = 0, anchor_y = 0;  ///< m
     std::uint32_t body = 0;            ///< index into x / y
   };
-  std::vector<float> x, y;    ///< body positions, m (interpolated when taken with alpha)
+  std::vector<float> x, y;  ///< body positions, m (interpolated when taken with alpha)
+  /// Each body's handle, so what a renderer keeps per body across frames (trails) follows the
+  /// body, not its dense index, when bodies are created or destroyed.
+  std::vector<Entity> ids;
   std::vector<float> radius;  ///< m; 0 = no Appearance (drawn at a default size)
   std::vector<Rgba8> color;   ///< colour; alpha 0 = no Appearance (palette colour)
   std::vector<SpringLine> springs;
@@ -70,14 +75,71 @@ class Simulation {
 
   // The members below forward to the World<float> or World<double> inside: units, shapes and
   // errors are those documented in world.hpp (create_body throws std::invalid_argument naming
-  // the body and field; step never throws and allocates nothing once warmed up).
+  // the body and field; step never throws and allocates nothing once warmed up). Bodies and
+  // links are named by handles (Entity, Link), which stay valid until destroyed; dense indices
+  // (body_at, name(i), type_at) are for iterating over the bodies of one tick only, since
+  // destroy moves the last body into the hole.
+
+  // --- bodies by handle -----------------------------------------------------------------
   Entity create_body(const BodyDef& def);
+  /// Destroys the body, its components and its links; throws std::invalid_argument if stale.
+  void destroy(Entity e);
+  /// Whether e names a live body (false for the null handle and destroyed bodies).
+  [[nodiscard]] bool contains(Entity e) const;
+  /// The first body (dense order) named `name`, or the null entity. O(bodies).
+  [[nodiscard]] Entity find(std::string_view name) const;
+  /// Position (m) and velocity (m/s) of e, in double; throws std::invalid_argument if stale.
+  [[nodiscard]] Body body(Entity e) const;
+  /// Overwrites e's mass (kg), position (m) and velocity (m/s), validated as create_body; a
+  /// program's edit between ticks (a teleport, a respawn). Prefer TickInput's per-body input
+  /// (BodyInput) for what a player does, so recordings carry it.
+  void set_body(Entity e, const Body& body);
+  /// e's name ("" if none); throws std::invalid_argument if stale.
+  [[nodiscard]] const std::string& name(Entity e) const;
+  /// e's type (dynamic, static or kinematic); throws std::invalid_argument if stale.
+  [[nodiscard]] BodyType type(Entity e) const;
+  /// Dense index of e (valid until the next create or destroy); throws if stale.
+  [[nodiscard]] std::size_t index_of(Entity e) const;
+  /// The handle of the body at dense index i < body_count().
+  [[nodiscard]] Entity entity_at(std::size_t i) const;
+  /// Adds or replaces component C (SpringDamper, ConstantForce, Gravity, LinearDrag,
+  /// Appearance, Collider) on e; throws std::invalid_argument naming the field when invalid
+  /// or when e is stale.
+  template <class C>
+  void set(Entity e, const C& component) {
+    visit([&](auto& w) { w.set(e, component); });
+  }
+  /// Removes component C from e (nothing if absent); throws std::invalid_argument if stale.
+  template <class C>
+  void remove(Entity e) {
+    visit([&](auto& w) { w.template remove<C>(e); });
+  }
+  /// e's component C, or nullopt (also for a stale handle).
+  template <class C>
+  [[nodiscard]] std::optional<C> get(Entity e) const {
+    return visit([&](const auto& w) -> std::optional<C> {
+      if (!w.contains(e)) return std::nullopt;
+      const C* c = w.template get<C>(e);
+      return c ? std::optional<C>(*c) : std::nullopt;
+    });
+  }
+
+  // --- links by handle --------------------------------------------------------------------
   Link create_link(const LinkDef& def);
+  /// Destroys a link; throws std::invalid_argument if null or stale.
+  void destroy_link(Link link);
+  [[nodiscard]] bool contains(Link link) const;
+  /// A live link's definition; throws std::invalid_argument if null or stale.
+  [[nodiscard]] LinkDef link(Link link) const;
   [[nodiscard]] std::size_t link_count() const;
   /// A static half-plane bodies with a Collider collide with (World::add_plane).
   std::size_t add_plane(const PlaneDef& def);
   [[nodiscard]] std::span<const PlaneDef> planes() const;
   void step(const TickInput& input = {});
+  /// Throws std::invalid_argument naming the first entry of input.bodies World::step would
+  /// ignore: a stale handle, a non-finite value, a force or impulse on a body that is not
+  /// dynamic, a velocity for one that is not kinematic, or more than max_body_inputs entries.
+  void check_input(const TickInput& input) const;
   void set_keep_previous(bool keep);
 
   /// The runtime guard's finding: the first body whose state left the finite range (see
@@ -87,6 +149,7 @@ class Simulation {
   [[nodiscard]] double time() const;  ///< s
   [[nodiscard]] const WorldSettings& settings() const;
   [[nodiscard]] std::size_t body_count() const;
+  /// The name of the body at dense index `index` < body_count().
   [[nodiscard]] const std::string& name(std::size_t index) const;
   [[nodiscard]] EnergyReport energy() const;  ///< J
   /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
@@ -97,12 +160,23 @@ class Simulation {
   [[nodiscard]] const ContactStats& contact_stats() const;
   /// The disc-disc impacts of the last tick (World::impacts()).
   [[nodiscard]] std::span<const Impact> impacts() const;
+  /// Disc pairs that began touching in the last tick (World::contacts_begun()).
+  [[nodiscard]] std::span<const ContactEvent> contacts_begun() const;
+  /// Disc pairs that stopped touching in the last tick (World::contacts_ended()).
+  [[nodiscard]] std::span<const ContactEvent> contacts_ended() const;
+  /// What the stability guard warned of when make_simulation built this world (a body or
+  /// network within 10 % of its stability bound, or unstable but allowed), one message each;
+  /// empty for a Simulation built otherwise. fixstep's CLI prints them; a program may show
+  /// them or refuse to run.
+  [[nodiscard]] std::span<const std::string> warnings() const { return warnings_; }
+  /// Adds a warning (make_simulation's use; a program may add its own).
+  void add_warning(std::string message) { warnings_.push_back(std::move(message)); }
   /// The type of the body at dense index `index` (dynamic, static or kinematic).
   [[nodiscard]] BodyType type_at(std::size_t index) const;
   [[nodiscard]] std::uint64_t state_hash() const;
   /// Bytes a WorldSnapshot of this simulation holds (World::snapshot_bytes()).
   [[nodiscard]] std::size_t snapshot_bytes() const;
-  /// Position and velocity of body `index` in double (m, m/s).
+  /// Position and velocity of the body at dense index `index` in double (m, m/s).
   [[nodiscard]] Body body_at(std::size_t index) const;
 
   /// Fills out with positions lerp(previous, current, alpha) (alpha in [0, 1]; needs
@@ -120,6 +194,7 @@ class Simulation {
 
  private:
   std::variant<World<float>, World<double>> world_;
+  std::vector<std::string> warnings_;
 };
 
 /// Everything a world is built from: what a scene file describes (see scene.hpp), or what a
@@ -136,6 +211,13 @@ struct WorldDef {
   bool allow_unstable = false;
 };
 
+/// The handle make_simulation gives def.bodies[i]: bodies are created in order in a fresh
+/// world, so body i gets slot i at generation 1. Lets scripts and recordings name a body by
+/// its place in the definition before the world exists.
+[[nodiscard]] constexpr Entity initial_entity(std::size_t i) {
+  return Entity{static_cast<std::uint32_t>(i + 1), 1};
+}
+
 /// Builds the world `def` describes: a Simulation with def.precision and def.settings, then
 /// the bodies in order, the links and the planes. First applies the stability guard
 /// (check_stability for bodies no link joins, check_linked_stability for the rest) at def.settings'
@@ -144,7 +226,9 @@ struct WorldDef {
 /// Also throws std::invalid_argument for invalid settings, bodies or links (as World does:
 /// the message names the body and field; for a plane, plane[i] and the field) and for a link
 /// index out of range, and, in a world with contacts, for two colliding discs that overlap at
-/// tick 0 (naming both; first_disc_overlap, disc_overlap.hpp).
+/// tick 0 (naming both; first_disc_overlap, disc_overlap.hpp). The guard's warnings (a body or
+/// network within 10 % of its bound; an allowed unstable one) are kept in
+/// Simulation::warnings().
 [[nodiscard]] Simulation make_simulation(const WorldDef& def);
 
 /// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J

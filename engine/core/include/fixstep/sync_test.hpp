@@ -3,11 +3,13 @@
 // snapshot misses (or any nondeterminism) shows up at the first tick it matters.
 #pragma once
 
+#include <any>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "fixstep/input.hpp"
+#include "fixstep/rules.hpp"
 #include "fixstep/simulation.hpp"
 
 namespace fixstep {
@@ -23,14 +25,16 @@ class SyncTest {
   };
 
   /// Tests `sim` (kept by reference: it must outlive the SyncTest) with rollbacks of
-  /// `rollback_ticks` K >= 1 ticks (std::invalid_argument otherwise). Memory: K + 1 snapshots.
-  SyncTest(Simulation& sim, int rollback_ticks);
+  /// `rollback_ticks` K >= 1 ticks (std::invalid_argument otherwise), running `rules` after
+  /// every tick, first and re-simulated alike (their state is saved and restored with the
+  /// world's when they give save and restore; see TickRules). Memory: K + 1 snapshots.
+  SyncTest(Simulation& sim, int rollback_ticks, TickRules rules = {});
 
-  /// Steps one tick with `input`, then restores the snapshot of min(K, ticks stepped) ticks
-  /// ago and re-simulates up to now with the recorded inputs, comparing the state hash and the
-  /// dissipated energy (bit for bit) after every re-simulated tick with the first run's. The
-  /// simulation goes on from the re-simulated state. Returns false, and keeps the first
-  /// mismatch(), when they differ; then further calls only step.
+  /// Steps one tick with `input` (then the rules), restores the snapshot of min(K, ticks
+  /// stepped) ticks ago and re-simulates up to now with the recorded inputs, comparing the
+  /// state hash and the dissipated energy (bit for bit) after every re-simulated tick with the
+  /// first run's. The simulation goes on from the re-simulated state. Returns false, and keeps
+  /// the first mismatch(), when they differ; then further calls only step.
   bool step(const TickInput& input);
   [[nodiscard]] const std::optional<Mismatch>& mismatch() const { return mismatch_; }
   /// Ticks re-simulated so far.
@@ -42,12 +46,15 @@ class SyncTest {
     TickInput input;      ///< the input of the tick that starts from it
     std::uint64_t hash = 0;
     double dissipated = 0.0;
+    std::any rules;  ///< the rules' state after `tick` ticks (TickRules::save)
   };
   Slot& slot(std::uint64_t tick) { return slots_[tick % slots_.size()]; }
   void remember(std::uint64_t tick);
   bool check(std::uint64_t tick);
+  void tick_with_rules(const TickInput& input);
 
   Simulation& sim_;
+  TickRules rules_;
   std::uint64_t rollback_;
   std::uint64_t first_tick_;
   std::vector<Slot> slots_;

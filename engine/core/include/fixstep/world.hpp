@@ -17,6 +17,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -91,6 +92,17 @@ struct Impact {
   std::uint32_t body_a = 0, body_b = 0;  ///< dense body indices, body_a < body_b
   double time = 0.0;                     ///< s after the tick's start
   double normal_speed = 0.0;             ///< closing speed along the line of centres, m/s (> 0)
+};
+
+/// A pair of discs that began or stopped touching in the last tick (World::contacts_begun(),
+/// World::contacts_ended()): what a game's rules read to start a sound, score a hit or end a
+/// grab. Touching is the resting solver's test (centres within r_a + r_b plus its slop).
+struct ContactEvent {
+  Entity a{}, b{};  ///< the two bodies, a.slot() < b.slot()
+  /// Begun: the closing speed of the impact that began it, m/s (the largest, if several), or 0
+  /// when the discs came to touch without one (settling into contact). Ended: 0.
+  double normal_speed = 0.0;
+  friend constexpr bool operator==(const ContactEvent&, const ContactEvent&) = default;
 };
 
 /// Largest magnitude a body's x, y (m) or vx, vy (m/s) may reach. Beyond it, or at NaN or
@@ -238,6 +250,8 @@ class World {
   [[nodiscard]] std::size_t body_count() const { return bodies_.dense.size(); }
   /// Dense index of e's body (the index into x(), y(), ...); throws if e is stale.
   [[nodiscard]] std::size_t index_of(Entity e) const;
+  /// The first body in dense order named `name`, or the null entity. O(bodies).
+  [[nodiscard]] Entity find(std::string_view name) const;
 
   // --- links: spring-dampers between bodies (cold path; see LinkSpring for the force) ------
   /// Creates a link. Throws std::invalid_argument when a body is null or stale, both ends are
@@ -369,6 +383,13 @@ class World {
   /// The disc-disc impacts of the last tick in the order they were resolved (empty without
   /// contacts): what a game's rules read to score a hit. Valid until the next step.
   [[nodiscard]] std::span<const Impact> impacts() const;
+  /// Pairs of discs touching after the last tick that were not before it, in handle order,
+  /// plus pairs that struck and parted within the tick (also in contacts_ended()). Empty
+  /// without contacts. Valid until the next step.
+  [[nodiscard]] std::span<const ContactEvent> contacts_begun() const { return begun_; }
+  /// Pairs of discs touching before the last tick that are not after it (a handle may name a
+  /// body destroyed since: check contains()), plus pairs that struck and parted within it.
+  [[nodiscard]] std::span<const ContactEvent> contacts_ended() const { return ended_; }
   /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
   /// equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
@@ -515,6 +536,26 @@ class World {
   void save_tick_start();
   void restore_immovable();
   void resolve_discs();
+  // Contact events (world_events.cpp): the touching pairs after the last tick and before it,
+  // as handle pairs sorted by slot; part of a snapshot, so events after a restore are the same.
+  std::vector<ContactEvent> touching_, touching_before_, hits_;  // normal_speed unused, hits_
+  std::vector<ContactEvent> begun_, ended_;
+  void update_contact_events();
+  // Per-body input (world_input.cpp): impulses and velocities at the tick's start; forces
+  // added to the constant accelerations for the tick and taken off after it, exactly.
+  struct SavedAccel {
+    std::uint32_t body;
+    Real ax, ay;    ///< coeff_.accel_x/y before
+    double cx, cy;  ///< the implicit solver's, before
+  };
+  std::vector<SavedAccel> saved_accel_;
+  bool saved_accel_flag_ = false;
+  void apply_body_inputs(const TickInput& input);
+  bool add_input_forces(const TickInput& input);
+  void remove_input_forces();
+  detail::ImplicitSolver<Real>& implicit_solver();  // built on first use (world_implicit.cpp)
+  /// The implicit solver's constant accelerations cx, cy (m/s², body_count() each).
+  std::pair<double*, double*> implicit_accelerations();
 };
 
 // --- component access (templates, so defined here) ---------------------------------------

@@ -72,7 +72,7 @@ class Session {
   void restart();
   /// Draws the pointer's drag spring (from `pointer`, m, to body `body`) in the next draw()s,
   /// as the springs are drawn; no_body hides it.
-  void show_drag(Vec2 pointer, std::uint32_t body) { drag_pointer_ = pointer, drag_body_ = body; }
+  void show_drag(Vec2 pointer, Entity body) { drag_pointer_ = pointer, drag_body_ = body; }
   /// Shows the window's key help in the HUD.
   void set_show_controls(bool show) { show_controls_ = show; }
   /// Shows the energy line (E, dissipated, balance) in the HUD: on by default. Programs whose
@@ -118,7 +118,7 @@ class Session {
   bool show_energy_ = true;
   bool show_engine_hud_ = true;
   Vec2 drag_pointer_{};
-  std::uint32_t drag_body_ = no_body;
+  Entity drag_body_ = no_body;
   std::vector<std::string> status_lines_;  ///< set_status_lines()
 };
 

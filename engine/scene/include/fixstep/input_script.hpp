@@ -20,13 +20,13 @@ namespace fixstep {
 
 /// One [[at]] table: what changes at the start of tick `tick`.
 struct ScriptEvent {
-  std::uint64_t tick = 0;             ///< tick index (0 = the first tick)
-  std::uint32_t press = 0;            ///< InputButton bits pressed at this tick
-  std::uint32_t release = 0;          ///< InputButton bits released at this tick
-  std::optional<Vec2> pointer;        ///< m, world coordinates; a level kept until changed
-  std::optional<Vec2> push;           ///< m/s²; a level kept until changed
-  std::optional<std::uint32_t> drag;  ///< dense body index, or no_body (`drag = false`)
-  std::size_t line = 0;               ///< of the [[at]] table
+  std::uint64_t tick = 0;       ///< tick index (0 = the first tick)
+  std::uint32_t press = 0;      ///< InputButton bits pressed at this tick
+  std::uint32_t release = 0;    ///< InputButton bits released at this tick
+  std::optional<Vec2> pointer;  ///< m, world coordinates; a level kept until changed
+  std::optional<Vec2> push;     ///< m/s²; a level kept until changed
+  std::optional<Entity> drag;   ///< the body's initial_entity(), or no_body (`drag = false`)
+  std::size_t line = 0;         ///< of the [[at]] table
 };
 
 /// A parsed input script.
@@ -42,7 +42,7 @@ inline constexpr std::size_t max_script_bytes = 4u << 20;
 /// action, pointer_primary, pointer_secondary.
 [[nodiscard]] std::span<const std::pair<std::string_view, std::uint32_t>> button_names();
 
-/// Parses a script for a world of `bodies` (drag names a body; its dense index is stored).
+/// Parses a script for a world of `bodies` (drag names a body; its initial_entity() is stored).
 /// Throws SceneError "FILE:LINE:COLUMN: KEY: MESSAGE" for TOML syntax errors, an [[at]]
 /// without `tick`, ticks not strictly increasing or beyond max_recording_ticks, an unknown
 /// button (with a suggestion), a body name no body has, vectors that are not [x, y] of finite

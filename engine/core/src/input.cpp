@@ -1,0 +1,35 @@
+// InputSampler's per-body input: forces held as levels, impulses and velocities as events.
+#include "fixstep/input.hpp"
+
+#include <algorithm>
+
+namespace fixstep {
+
+void InputSampler::set_force(Entity body, Vec2 force) {
+  const auto it = std::find_if(forces_.begin(), forces_.end(),
+                               [&](const BodyInput& f) { return f.body == body; });
+  const bool zero = force.x == 0.0 && force.y == 0.0;
+  if (it == forces_.end()) {
+    if (!zero) forces_.push_back({body, BodyInputKind::force, force});
+  } else if (zero) {
+    forces_.erase(it);
+  } else {
+    it->value = force;
+  }
+}
+
+void InputSampler::sample(std::uint64_t tick, TickInput& out) {
+  out.tick = tick;
+  out.push = push_;
+  out.held = held_;
+  out.pressed = pressed_;
+  out.released = released_;
+  out.pointer = pointer_;
+  out.drag_body = drag_body_;
+  out.bodies.assign(forces_.begin(), forces_.end());
+  out.bodies.insert(out.bodies.end(), events_.begin(), events_.end());
+  pressed_ = released_ = 0;
+  events_.clear();
+}
+
+}  // namespace fixstep

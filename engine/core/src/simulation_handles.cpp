@@ -1,0 +1,104 @@
+// Simulation's handle API: bodies and links named by Entity and Link, forwarded to the
+// World<float> or World<double> inside, and the check of a tick's per-body input.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "fixstep/simulation.hpp"
+
+namespace fixstep {
+
+void Simulation::destroy(Entity e) {
+  visit([&](auto& w) { w.destroy(e); });
+}
+bool Simulation::contains(Entity e) const {
+  return visit([&](const auto& w) { return w.contains(e); });
+}
+Entity Simulation::find(std::string_view name) const {
+  return visit([&](const auto& w) { return w.find(name); });
+}
+Body Simulation::body(Entity e) const {
+  return visit([&](const auto& w) { return w.body(e); });
+}
+void Simulation::set_body(Entity e, const Body& body) {
+  visit([&](auto& w) { w.set_body(e, body); });
+}
+const std::string& Simulation::name(Entity e) const {
+  return visit([&](const auto& w) -> const std::string& { return w.name(w.index_of(e)); });
+}
+BodyType Simulation::type(Entity e) const {
+  return visit([&](const auto& w) { return w.type(e); });
+}
+std::size_t Simulation::index_of(Entity e) const {
+  return visit([&](const auto& w) { return w.index_of(e); });
+}
+Entity Simulation::entity_at(std::size_t i) const {
+  return visit([&](const auto& w) { return w.entities()[i]; });
+}
+void Simulation::destroy_link(Link link) {
+  visit([&](auto& w) { w.destroy_link(link); });
+}
+bool Simulation::contains(Link link) const {
+  return visit([&](const auto& w) { return w.contains(link); });
+}
+LinkDef Simulation::link(Link link) const {
+  return visit([&](const auto& w) { return w.link(link); });
+}
+std::span<const ContactEvent> Simulation::contacts_begun() const {
+  return visit([](const auto& w) { return w.contacts_begun(); });
+}
+std::span<const ContactEvent> Simulation::contacts_ended() const {
+  return visit([](const auto& w) { return w.contacts_ended(); });
+}
+
+namespace {
+
+std::string_view kind_name(BodyInputKind kind) {
+  switch (kind) {
+    case BodyInputKind::force:
+      return "force";
+    case BodyInputKind::impulse:
+      return "impulse";
+    case BodyInputKind::velocity:
+      return "velocity";
+  }
+  return "?";
+}
+
+}  // namespace
+
+void Simulation::check_input(const TickInput& input) const {
+  if (input.bodies.size() > max_body_inputs) {
+    throw std::invalid_argument(fmt::format("tick {}: {} per-body inputs; at most {} per tick",
+                                            input.tick, input.bodies.size(), max_body_inputs));
+  }
+  for (std::size_t i = 0; i < input.bodies.size(); ++i) {
+    const BodyInput& in = input.bodies[i];
+    const std::string who = fmt::format("tick {}: {} on body {}:{}", input.tick, kind_name(in.kind),
+                                        in.body.index1, in.body.generation);
+    if (!contains(in.body)) {
+      throw std::invalid_argument(who + ": no such body (null, or destroyed)");
+    }
+    if (!std::isfinite(in.value.x) || !std::isfinite(in.value.y)) {
+      throw std::invalid_argument(
+          fmt::format("{}: must be finite (got [{}, {}])", who, in.value.x, in.value.y));
+    }
+    const BodyType t = type(in.body);
+    const bool velocity = in.kind == BodyInputKind::velocity;
+    if (velocity && t != BodyType::kinematic) {
+      throw std::invalid_argument(fmt::format(
+          "{} ('{}'): a velocity input moves kinematic bodies only; push a dynamic body with "
+          "a force or an impulse",
+          who, name(in.body)));
+    }
+    if (!velocity && t != BodyType::dynamic) {
+      throw std::invalid_argument(fmt::format(
+          "{} ('{}'): forces and impulses move dynamic bodies only (a {} body {})", who,
+          name(in.body), t == BodyType::kinematic ? "kinematic" : "static",
+          t == BodyType::kinematic ? "moves at its velocity: give it one" : "never moves"));
+    }
+  }
+}
+
+}  // namespace fixstep

@@ -1,0 +1,90 @@
+// Per-body input of a tick (TickInput::bodies): impulses and kinematic velocities at the
+// tick's start, forces for the tick's duration.
+#include <cmath>
+
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+
+namespace {
+
+bool finite(Vec2 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y);
+}
+
+}  // namespace
+
+template <class Real>
+void World<Real>::apply_body_inputs(const TickInput& input) {
+  for (const BodyInput& in : input.bodies) {
+    if (in.kind == BodyInputKind::force || !bodies_.contains(in.body) || !finite(in.value)) {
+      continue;
+    }
+    const std::size_t j = bodies_.index(in.body);
+    if (in.kind == BodyInputKind::impulse && types_[j] == BodyType::dynamic) {
+      // Δv = J/m, in double, rounded once to Real.
+      vx_[j] = static_cast<Real>(double(vx_[j]) + in.value.x / mass_[j]);
+      vy_[j] = static_cast<Real>(double(vy_[j]) + in.value.y / mass_[j]);
+    } else if (in.kind == BodyInputKind::velocity && types_[j] == BodyType::kinematic) {
+      vx_[j] = static_cast<Real>(in.value.x);
+      vy_[j] = static_cast<Real>(in.value.y);
+    }
+  }
+}
+
+// A force F on body j for one tick is a constant acceleration F/m added to the body's own
+// (gravity + ConstantForce/m) in every stage of the integrator: the coefficient the fused
+// sweep and the link passes read (coeff_.accel_x/y), and the implicit solver's copy when the
+// tick solves a network implicitly. The previous values are saved and put back after the tick
+// bit for bit, so the next tick without the force steps as if it had never been there.
+template <class Real>
+bool World<Real>::add_input_forces(const TickInput& input) {
+  saved_accel_.clear();
+  const bool implicit = settings_.integrator == Integrator::implicit_euler && !net_.a.empty();
+  std::pair<double*, double*> solver{nullptr, nullptr};
+  for (const BodyInput& in : input.bodies) {
+    if (in.kind != BodyInputKind::force || !bodies_.contains(in.body) || !finite(in.value)) {
+      continue;
+    }
+    const auto j = static_cast<std::uint32_t>(bodies_.index(in.body));
+    if (types_[j] != BodyType::dynamic) continue;
+    if (implicit && !solver.first) solver = implicit_accelerations();
+    SavedAccel saved{j, coeff_.accel_x[j], coeff_.accel_y[j], 0.0, 0.0};
+    const double ax = in.value.x / mass_[j], ay = in.value.y / mass_[j];
+    coeff_.accel_x[j] = static_cast<Real>(double(coeff_.accel_x[j]) + ax);
+    coeff_.accel_y[j] = static_cast<Real>(double(coeff_.accel_y[j]) + ay);
+    if (solver.first) {
+      saved.cx = solver.first[j], saved.cy = solver.second[j];
+      solver.first[j] += ax, solver.second[j] += ay;
+    }
+    saved_accel_.push_back(saved);
+  }
+  if (saved_accel_.empty()) return false;
+  saved_accel_flag_ = coeff_.accel;
+  coeff_.accel = true;
+  return true;
+}
+
+template <class Real>
+void World<Real>::remove_input_forces() {
+  const bool implicit = settings_.integrator == Integrator::implicit_euler && !net_.a.empty();
+  const std::pair<double*, double*> solver =
+      implicit ? implicit_accelerations() : std::pair<double*, double*>{nullptr, nullptr};
+  // In reverse, so a body given two forces gets its first saved value back.
+  for (auto it = saved_accel_.rbegin(); it != saved_accel_.rend(); ++it) {
+    coeff_.accel_x[it->body] = it->ax, coeff_.accel_y[it->body] = it->ay;
+    if (solver.first) solver.first[it->body] = it->cx, solver.second[it->body] = it->cy;
+  }
+  coeff_.accel = saved_accel_flag_;
+  saved_accel_.clear();
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                 \
+  template void World<Real>::apply_body_inputs(const TickInput&); \
+  template bool World<Real>::add_input_forces(const TickInput&);  \
+  template void World<Real>::remove_input_forces();
+FIXSTEP_INSTANTIATE(float)
+FIXSTEP_INSTANTIATE(double)
+#undef FIXSTEP_INSTANTIATE
+
+}  // namespace fixstep
