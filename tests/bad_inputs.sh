@@ -455,6 +455,13 @@ radius = 0.0"
 case_ "radius = nan" "$ok_world
 $body
 radius = nan"
+case_ "draw_radius = 0" "$ok_world
+$body
+draw_radius = 0.0"
+case_ "flush_denormals not a boolean" '[world]
+dt = 0.01
+flush_denormals = "no"'"
+$body"
 case_ "[contacts] restitution outside [0, 1]" "$ok_world
 [contacts]
 restitution = 1.5
@@ -625,3 +632,15 @@ case_ "view without a display" "" view good.toml --frames 1
 export GALLIUM_DRIVER=foo
 case_ "GALLIUM_DRIVER=foo (Mesa would crash)" "" render good.toml --out frames --frames 1
 unset GALLIUM_DRIVER
+echo
+echo "## Writing a scene from code"
+echo
+echo '`write_scene` and `format_scene` (library calls, `fixstep/scene_writer.hpp`) refuse a'
+echo "WorldDef they cannot write so that it loads back to the same definition hash, with"
+echo "std::invalid_argument \"format_scene: WHERE: WHY\" naming the body, link or plane: a static or"
+echo "kinematic body with a mass other than 1 kg, a spring, force, gravity or drag; a static body"
+echo "with a velocity; a plane normal not of unit length; a link to a body that does not exist;"
+echo "more than 4 MiB of text; and, with the loader's own message, anything a scene file may not"
+echo "hold (a non-finite number, a mass <= 0, a name that is not UTF-8, ...). A file that cannot be"
+echo "written throws std::runtime_error \"cannot write FILE: REASON\" and leaves no temporary file."
+echo "tests/test_scene_writer.cpp tries each (RefusesWhatWouldNotLoadBackExactly, WritesTheFileWhole)."

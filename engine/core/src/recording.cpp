@@ -1,16 +1,14 @@
-// Recordings in memory: the definition hash, the Recorder, replay and the atomic write. The
-// text format (format_recording, parse_recording) is in recording_format.cpp.
+// Recordings in memory: the definition hash, the Recorder, replay and the write (atomic:
+// file_write.cpp). The text format (format_recording, parse_recording) is in recording_format.cpp.
 #include "fixstep/recording.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <type_traits>
+
+#include "fixstep/file_write.hpp"
 
 namespace fixstep {
 
@@ -252,27 +250,7 @@ ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& 
 }
 
 void write_recording(const std::filesystem::path& file, const Recording& rec) {
-  const std::string text = format_recording(rec);
-  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
-  const std::string tmp =
-      (dir / fmt::format(".{}.tmp.{}", file.filename().string(), ::getpid())).string();
-  auto fail = [&](int err) {
-    ::unlink(tmp.c_str());
-    std::error_code ec;
-    if (err == ENOENT && !std::filesystem::is_directory(dir, ec)) {
-      throw std::runtime_error(fmt::format("cannot write {}: the directory {} does not exist",
-                                           file.string(), dir.string()));
-    }
-    throw std::runtime_error(fmt::format("cannot write {}: {}", file.string(), std::strerror(err)));
-  };
-  std::FILE* out = std::fopen(tmp.c_str(), "wbe");
-  if (!out) fail(errno);
-  errno = 0;
-  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size() &&
-                       std::fflush(out) == 0 && !std::ferror(out);
-  const int write_err = errno ? errno : EIO;
-  if (std::fclose(out) != 0 || !written) fail(written ? (errno ? errno : EIO) : write_err);
-  if (::rename(tmp.c_str(), file.c_str()) != 0) fail(errno);
+  write_file_atomically(file, format_recording(rec));
 }
 
 }  // namespace fixstep

@@ -56,7 +56,7 @@ Rgba8 parse_color(const Reader& r, const toml::table& t, const std::string& path
 BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Precision precision) {
   r.check_keys(t, path,
                {"name", "type", "mass", "position", "velocity", "spring", "force", "gravity",
-                "drag", "radius", "color", "collide", "restitution", "friction"});
+                "drag", "radius", "draw_radius", "color", "collide", "restitution", "friction"});
   BodyDef def;
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
@@ -85,6 +85,17 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
   return def;
 }
 
+/// The boolean at t[key]; nullopt when absent.
+std::optional<bool> boolean(const Reader& r, const toml::table& t, std::string_view key,
+                            const std::string& path) {
+  const toml::node* n = t.get(key);
+  if (!n) return std::nullopt;
+  if (!n->is_boolean()) {
+    r.fail(n->source(), path, fmt::format("expected true or false, found {}", found(*n)));
+  }
+  return n->as_boolean()->get();
+}
+
 /// Every number of an f32 scene must stay finite as a float.
 void check_f32(const Reader& r, const toml::node& node, const std::string& path) {
   if (const toml::table* t = node.as_table()) {
@@ -111,12 +122,16 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
     r.require(*c >= 0.0, t, "drag", path + ".drag", ">= 0 N*s/m", *c);
     def.drag = LinearDrag{*c};
   }
-  if (t.get("radius") || t.get("color")) {
+  if (t.get("radius") || t.get("draw_radius") || t.get("color")) {
     Appearance ap;
     if (auto rad = r.number(t, "radius", path + ".radius")) {
       r.require(*rad > 0.0, t, "radius", path + ".radius", "> 0 m", *rad);
       ap.radius = *rad;
       def.collider = Collider{.radius = *rad};  // a disc, for planes and [contacts]
+    }
+    if (auto rad = r.number(t, "draw_radius", path + ".draw_radius")) {
+      r.require(*rad > 0.0, t, "draw_radius", path + ".draw_radius", "> 0 m", *rad);
+      ap.radius = *rad;  // drawing only: no disc without `radius`
     }
     if (t.get("color")) ap.color = parse_color(r, t, path + ".color");
     def.appearance = ap;
@@ -146,7 +161,8 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     r.fail_missing(doc, "", {"world"}, "missing [world] table (required)",
                    "add [world] with dt, the fixed step in s, e.g. dt = 0.01");
   }
-  r.check_keys(*world, "world", {"dt", "integrator", "precision", "substeps", "allow_unstable"});
+  r.check_keys(*world, "world",
+               {"dt", "integrator", "precision", "substeps", "allow_unstable", "flush_denormals"});
   scene.world.dt = r.required_number(*world, "world", "dt",
                                      "the fixed physics step in s, e.g. dt = 0.01 (100 ticks/s)");
   r.require(scene.world.dt > 0.0 && scene.world.dt <= 1.0, *world, "dt", "world.dt",
@@ -185,12 +201,11 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   if (const toml::node* n = world->get("substeps")) {
     scene.world.substeps = static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
   }
-  if (const toml::node* n = world->get("allow_unstable")) {
-    if (!n->is_boolean()) {
-      r.fail(n->source(), "world.allow_unstable",
-             fmt::format("expected true or false, found {}", found(*n)));
-    }
-    scene.allow_unstable = n->as_boolean()->get();
+  if (auto b = boolean(r, *world, "allow_unstable", "world.allow_unstable")) {
+    scene.allow_unstable = *b;
+  }
+  if (auto b = boolean(r, *world, "flush_denormals", "world.flush_denormals")) {
+    scene.world.flush_denormals = *b;
   }
 
   // Every number first, so that a generated position beyond float range is the spacing's fault.

@@ -69,8 +69,8 @@ class Generator {
                       "the bodies' template, e.g. body = { mass = 0.1 }");
     }
     r_.check_keys(*b, key("body"),
-                  {"type", "mass", "velocity", "force", "gravity", "drag", "radius", "color",
-                   "collide", "restitution", "friction"});
+                  {"type", "mass", "velocity", "force", "gravity", "drag", "radius", "draw_radius",
+                   "color", "collide", "restitution", "friction"});
     BodyDef def;
     parse_body_parts(r_, *b, key("body"), def);
     drop_moving_parts(r_, *b, key("body"), def);

@@ -1,0 +1,291 @@
+// Writing a WorldDef as a scene file (scene_writer.hpp): every body a [[body]] table, every link
+// a [[spring]], every number the shortest text that reads back as the same double; the text is
+// parsed back and its definition hash compared before it is handed out.
+#include "fixstep/scene_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <stdexcept>
+#include <string_view>
+#include <unordered_set>
+#include <vector>
+
+#include "fixstep/file_write.hpp"
+#include "fixstep/recording.hpp"
+#include "fixstep/scene.hpp"
+
+namespace fixstep {
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& where, const std::string& why) {
+  throw std::invalid_argument(fmt::format("format_scene: {}: {}", where, why));
+}
+
+/// v as a TOML float that reads back as the same double: fmt's shortest round-trip digits,
+/// with ".0" added to integral values ("-0" would read as the integer 0 and lose its sign).
+/// Non-finite values are written as TOML's nan/inf, which the loader refuses with their key.
+std::string num(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::string s = fmt::format("{}", v);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string vec(Vec2 v) {
+  return fmt::format("[{}, {}]", num(v.x), num(v.y));
+}
+
+/// s as a TOML basic string: quotes, backslashes and control characters escaped, every other
+/// byte as it is (a name must be UTF-8, as TOML requires; the loader refuses it otherwise).
+std::string toml_string(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (u < 0x20 || u == 0x7f) {
+      out += fmt::format("\\u{:04x}", u);
+    } else {
+      out += c;
+    }
+  }
+  return out + '"';
+}
+
+std::string color_text(Rgba8 c) {
+  return c.a == 255 ? fmt::format("\"#{:02x}{:02x}{:02x}\"", c.r, c.g, c.b)
+                    : fmt::format("\"#{:02x}{:02x}{:02x}{:02x}\"", c.r, c.g, c.b, c.a);
+}
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+bool same_bits(Vec2 a, Vec2 b) {
+  return same_bits(a.x, b.x) && same_bits(a.y, b.y);
+}
+
+/// Every body's name in the file, unique: a non-empty name at its first use as it is, else
+/// "body<i>" (empty) or the name with "~2", "~3", ... (the first not taken).
+std::vector<std::string> unique_names(const std::vector<BodyDef>& bodies) {
+  std::unordered_set<std::string> taken;
+  std::vector<bool> keep(bodies.size(), false);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    keep[i] = !bodies[i].name.empty() && taken.insert(bodies[i].name).second;
+  }
+  std::vector<std::string> names(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (keep[i]) {
+      names[i] = bodies[i].name;
+      continue;
+    }
+    const std::string base = bodies[i].name.empty() ? fmt::format("body{}", i) : bodies[i].name;
+    names[i] = base;
+    for (int k = 2; !taken.insert(names[i]).second; ++k) names[i] = fmt::format("{}~{}", base, k);
+  }
+  return names;
+}
+
+/// A static or kinematic body must hold only what the loader gives such a body, as all of it
+/// enters the definition hash.
+void check_immovable(const BodyDef& b, const std::string& who) {
+  if (b.type == BodyType::dynamic) return;
+  const std::string kind = body_type_name(b.type);
+  if (!same_bits(b.body.mass, 1.0)) {
+    refuse(who, fmt::format("the mass of a {} body ({} kg) cannot be written: a scene gives {} "
+                            "bodies no mass (they keep the default 1 kg), and the mass enters "
+                            "the definition hash; leave body.mass at 1",
+                            kind, b.body.mass, kind));
+  }
+  auto part = [&](bool present, std::string_view what) {
+    if (present) {
+      refuse(who, fmt::format("a {} body's {} cannot be written: the loader drops it (it would "
+                              "move the body); remove it",
+                              kind, what));
+    }
+  };
+  part(b.spring.has_value(), "spring");
+  part(b.constant_force.has_value(), "constant force");
+  part(b.gravity.has_value(), "gravity");
+  part(b.drag.has_value(), "drag");
+  const Vec2 v = b.body.velocity;
+  if (b.type == BodyType::static_body && (v.x != 0.0 || v.y != 0.0)) {
+    refuse(who, fmt::format("a static body's velocity ({}, {}) m/s cannot be written: the loader "
+                            "sets it to zero; make the body kinematic or give it none",
+                            v.x, v.y));
+  }
+}
+
+/// The plane's normal as parse_plane normalises it.
+Vec2 unit(Vec2 n) {
+  const double len = std::hypot(n.x, n.y);
+  return Vec2{n.x / len, n.y / len};
+}
+
+/// A normal to write for `n` that the loader's normalisation turns into n bit for bit: n itself
+/// when it is a fixed point (axis-aligned unit normals are), else one within 2 ulps of it.
+Vec2 written_normal(Vec2 n, std::size_t i) {
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !(std::hypot(n.x, n.y) > 0.0)) {
+    return n;  // the loader refuses it, with its message
+  }
+  if (same_bits(unit(n), n)) return n;
+  auto nudge = [](double v, int ulps) {
+    for (; ulps > 0; --ulps) v = std::nextafter(v, INFINITY);
+    for (; ulps < 0; ++ulps) v = std::nextafter(v, -INFINITY);
+    return v;
+  };
+  for (int a = -2; a <= 2; ++a) {
+    for (int b = -2; b <= 2; ++b) {
+      const Vec2 c{nudge(n.x, a), nudge(n.y, b)};
+      if (same_bits(unit(c), n)) return c;
+    }
+  }
+  const Vec2 u = unit(n);
+  refuse(fmt::format("plane[{}].normal", i),
+         fmt::format("({}, {}) cannot be written: a scene's normals are normalised when read "
+                     "(n/|n| = ({}, {})), which would change the definition hash; give the "
+                     "plane a unit normal (axis-aligned ones are always kept)",
+                     n.x, n.y, u.x, u.y));
+}
+
+void write_world(std::string& out, const WorldDef& def) {
+  const WorldSettings& s = def.settings;
+  auto it = std::back_inserter(out);
+  fmt::format_to(it, "[world]\ndt = {}\nintegrator = \"{}\"\nprecision = \"{}\"\nsubsteps = {}\n",
+                 num(s.dt), integrator_name(s.integrator), precision_name(def.precision),
+                 s.substeps);
+  if (!s.flush_denormals) out += "flush_denormals = false\n";
+  if (def.allow_unstable) out += "allow_unstable = true\n";
+  if (s.contacts) {
+    fmt::format_to(it, "\n[contacts]\nrestitution = {}\nfriction = {}\n",
+                   num(s.contacts->restitution), num(s.contacts->friction));
+  }
+}
+
+/// The disc and drawing keys: radius (the collider's), its contact keys, then draw_radius
+/// when the drawn radius is not the one the loader would give, and color.
+void write_looks(std::string& out, const BodyDef& b) {
+  auto it = std::back_inserter(out);
+  if (const std::optional<Collider>& c = b.collider) {
+    fmt::format_to(it, "radius = {}\n", num(c->radius));
+    if (!c->collide) out += "collide = false\n";
+    if (c->restitution) fmt::format_to(it, "restitution = {}\n", num(*c->restitution));
+    if (c->friction) fmt::format_to(it, "friction = {}\n", num(*c->friction));
+  }
+  if (const std::optional<Appearance>& a = b.appearance) {
+    const double drawn = b.collider ? b.collider->radius : Appearance{}.radius;
+    if (!same_bits(a->radius, drawn)) fmt::format_to(it, "draw_radius = {}\n", num(a->radius));
+    fmt::format_to(it, "color = {}\n", color_text(a->color));
+  }
+}
+
+void write_body(std::string& out, const BodyDef& b, const std::string& name) {
+  auto it = std::back_inserter(out);
+  fmt::format_to(it, "\n[[body]]\nname = {}\n", toml_string(name));
+  if (b.type != BodyType::dynamic) fmt::format_to(it, "type = \"{}\"\n", body_type_name(b.type));
+  if (b.type == BodyType::dynamic) fmt::format_to(it, "mass = {}\n", num(b.body.mass));
+  fmt::format_to(it, "position = {}\n", vec(b.body.position));
+  if (!same_bits(b.body.velocity, Vec2{})) {
+    fmt::format_to(it, "velocity = {}\n", vec(b.body.velocity));
+  }
+  if (const std::optional<SpringDamper>& s = b.spring) {
+    fmt::format_to(it,
+                   "spring = {{ anchor = {}, stiffness = {}, damping = {}, rest_length = {} }}\n",
+                   vec(s->anchor), num(s->stiffness), num(s->damping), num(s->rest_length));
+  }
+  if (b.constant_force) fmt::format_to(it, "force = {}\n", vec(b.constant_force->force));
+  if (b.gravity) fmt::format_to(it, "gravity = {}\n", vec(b.gravity->acceleration));
+  if (b.drag) fmt::format_to(it, "drag = {}\n", num(b.drag->coefficient));
+  write_looks(out, b);
+}
+
+void write_links(std::string& out, const WorldDef& def, const std::vector<std::string>& names) {
+  auto it = std::back_inserter(out);
+  for (std::size_t i = 0; i < def.links.size(); ++i) {
+    const BodyLink& l = def.links[i];
+    if (l.body_a >= names.size() || l.body_b >= names.size() || l.body_a == l.body_b) {
+      refuse(fmt::format("link[{}]", i),
+             fmt::format("joins bodies {} and {}: each must be one of the {} bodies, and they "
+                         "must differ",
+                         l.body_a, l.body_b, names.size()));
+    }
+    fmt::format_to(it,
+                   "\n[[spring]]\nbodies = [{}, {}]\nstiffness = {}\ndamping = {}\nrest_length = "
+                   "{}\n",
+                   toml_string(names[l.body_a]), toml_string(names[l.body_b]),
+                   num(l.spring.stiffness), num(l.spring.damping), num(l.spring.rest_length));
+  }
+}
+
+void write_planes(std::string& out, const WorldDef& def) {
+  auto it = std::back_inserter(out);
+  for (std::size_t i = 0; i < def.planes.size(); ++i) {
+    const PlaneDef& p = def.planes[i];
+    fmt::format_to(it, "\n[[plane]]\nnormal = {}\noffset = {}\nrestitution = {}\nfriction = {}\n",
+                   vec(written_normal(p.normal, i)), num(p.offset), num(p.restitution),
+                   num(p.friction));
+  }
+}
+
+/// The text must load (else the loader's message) and give def's definition hash.
+void check_reloads(const std::string& text, const WorldDef& def) {
+  WorldDef back;
+  try {
+    back = world_def(parse_scene(text, "<scene text>"));
+  } catch (const SceneError& e) {
+    throw std::invalid_argument(fmt::format(
+        "format_scene: the world does not load back from its scene text: {}", e.what()));
+  }
+  const std::uint64_t want = definition_hash(def), got = definition_hash(back);
+  if (got != want) {
+    throw std::logic_error(fmt::format(
+        "format_scene: the scene text loads back with definition hash {:016x}, not the world's "
+        "{:016x} (a bug of the scene writer)",
+        got, want));
+  }
+}
+
+}  // namespace
+
+std::string format_scene(const WorldDef& def) {
+  std::string out =
+      "# Written by fixstep::write_scene: every body a [[body]] table, every link a [[spring]].\n";
+  write_world(out, def);
+  const std::vector<std::string> names = unique_names(def.bodies);
+  for (std::size_t i = 0; i < def.bodies.size(); ++i) {
+    check_immovable(def.bodies[i], fmt::format("body[{}] {}", i, toml_string(names[i])));
+    write_body(out, def.bodies[i], names[i]);
+  }
+  write_links(out, def, names);
+  write_planes(out, def);
+  if (out.size() > max_scene_bytes) {
+    refuse("the world",
+           fmt::format("its scene would be {} bytes, more than the {} a scene file may have ({} "
+                       "bodies, {} links, {} planes)",
+                       out.size(), max_scene_bytes, def.bodies.size(), def.links.size(),
+                       def.planes.size()));
+  }
+  check_reloads(out, def);
+  return out;
+}
+
+void write_scene(const std::filesystem::path& file, const WorldDef& def) {
+  write_file_atomically(file, format_scene(def));
+}
+
+std::string write_scene_beside(const std::filesystem::path& recording_file, const WorldDef& def) {
+  std::filesystem::path scene = recording_file;
+  scene.replace_extension(".scene.toml");
+  write_scene(scene, def);
+  return scene.filename().string();
+}
+
+}  // namespace fixstep

@@ -1,0 +1,110 @@
+// Field-by-field, bit-for-bit comparison of two WorldDefs, for the scene writer's tests
+// (test_scene_writer.cpp): the definition hash leaves names and appearances out, this does not.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "fixstep/simulation.hpp"
+
+namespace fixstep::test {
+
+/// Equal bits: 0.0 and -0.0 differ, as they do in the definition hash.
+inline void expect_bits(double a, double b, const std::string& what) {
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b))
+      << what << ": " << a << " vs " << b;
+}
+inline void expect_bits(Vec2 a, Vec2 b, const std::string& what) {
+  expect_bits(a.x, b.x, what + ".x");
+  expect_bits(a.y, b.y, what + ".y");
+}
+inline void expect_bits(const std::optional<double>& a, const std::optional<double>& b,
+                        const std::string& what) {
+  ASSERT_EQ(a.has_value(), b.has_value()) << what;
+  if (a) expect_bits(*a, *b, what);
+}
+
+/// f(a, b) when both are set; that both or neither are.
+template <class T, class F>
+void expect_optional(const std::optional<T>& a, const std::optional<T>& b, const std::string& what,
+                     F&& f) {
+  ASSERT_EQ(a.has_value(), b.has_value()) << what;
+  if (a) f(*a, *b);
+}
+
+inline void expect_same_body(const BodyDef& a, const BodyDef& b, const std::string& w) {
+  EXPECT_EQ(a.name, b.name) << w;
+  EXPECT_EQ(a.type, b.type) << w;
+  expect_bits(a.body.mass, b.body.mass, w + ".mass");
+  expect_bits(a.body.position, b.body.position, w + ".position");
+  expect_bits(a.body.velocity, b.body.velocity, w + ".velocity");
+  expect_optional(a.spring, b.spring, w + ".spring", [&](const auto& x, const auto& y) {
+    expect_bits(x.anchor, y.anchor, w + ".spring.anchor");
+    expect_bits(x.stiffness, y.stiffness, w + ".spring.stiffness");
+    expect_bits(x.damping, y.damping, w + ".spring.damping");
+    expect_bits(x.rest_length, y.rest_length, w + ".spring.rest_length");
+  });
+  expect_optional(
+      a.constant_force, b.constant_force, w + ".force",
+      [&](const auto& x, const auto& y) { expect_bits(x.force, y.force, w + ".force"); });
+  expect_optional(a.gravity, b.gravity, w + ".gravity", [&](const auto& x, const auto& y) {
+    expect_bits(x.acceleration, y.acceleration, w + ".gravity");
+  });
+  expect_optional(a.drag, b.drag, w + ".drag", [&](const auto& x, const auto& y) {
+    expect_bits(x.coefficient, y.coefficient, w + ".drag");
+  });
+  expect_optional(a.appearance, b.appearance, w + ".appearance", [&](const auto& x, const auto& y) {
+    expect_bits(x.radius, y.radius, w + ".appearance.radius");
+    EXPECT_EQ(x.color, y.color) << w << ".appearance.color";
+  });
+  expect_optional(a.collider, b.collider, w + ".collider", [&](const auto& x, const auto& y) {
+    expect_bits(x.radius, y.radius, w + ".collider.radius");
+    expect_bits(x.restitution, y.restitution, w + ".collider.restitution");
+    expect_bits(x.friction, y.friction, w + ".collider.friction");
+    EXPECT_EQ(x.collide, y.collide) << w << ".collider.collide";
+  });
+}
+
+/// Every field of a and b, doubles bit for bit, names and appearances included.
+inline void expect_same_world(const WorldDef& a, const WorldDef& b) {
+  EXPECT_EQ(a.precision, b.precision);
+  const WorldSettings &s = a.settings, &t = b.settings;
+  expect_bits(s.dt, t.dt, "dt");
+  EXPECT_EQ(s.integrator, t.integrator);
+  EXPECT_EQ(s.substeps, t.substeps);
+  EXPECT_EQ(s.flush_denormals, t.flush_denormals);
+  EXPECT_EQ(s.track_dissipation, t.track_dissipation);
+  EXPECT_EQ(s.threads, t.threads);
+  expect_optional(s.contacts, t.contacts, "contacts", [&](const auto& x, const auto& y) {
+    expect_bits(x.restitution, y.restitution, "contacts.restitution");
+    expect_bits(x.friction, y.friction, "contacts.friction");
+  });
+  EXPECT_EQ(a.allow_unstable, b.allow_unstable);
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    expect_same_body(a.bodies[i], b.bodies[i], "body[" + std::to_string(i) + "]");
+  }
+  ASSERT_EQ(a.links.size(), b.links.size());
+  for (std::size_t i = 0; i < a.links.size(); ++i) {
+    const std::string w = "link[" + std::to_string(i) + "]";
+    EXPECT_EQ(a.links[i].body_a, b.links[i].body_a) << w;
+    EXPECT_EQ(a.links[i].body_b, b.links[i].body_b) << w;
+    expect_bits(a.links[i].spring.stiffness, b.links[i].spring.stiffness, w + ".stiffness");
+    expect_bits(a.links[i].spring.damping, b.links[i].spring.damping, w + ".damping");
+    expect_bits(a.links[i].spring.rest_length, b.links[i].spring.rest_length, w + ".rest_length");
+  }
+  ASSERT_EQ(a.planes.size(), b.planes.size());
+  for (std::size_t i = 0; i < a.planes.size(); ++i) {
+    const std::string w = "plane[" + std::to_string(i) + "]";
+    expect_bits(a.planes[i].normal, b.planes[i].normal, w + ".normal");
+    expect_bits(a.planes[i].offset, b.planes[i].offset, w + ".offset");
+    expect_bits(a.planes[i].restitution, b.planes[i].restitution, w + ".restitution");
+    expect_bits(a.planes[i].friction, b.planes[i].friction, w + ".friction");
+  }
+}
+
+}  // namespace fixstep::test

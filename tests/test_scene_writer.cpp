@@ -1,0 +1,311 @@
+// The scene writer (scene_writer.hpp): every shipped scene and a world of awkward values built in
+// code load back from their written text with the same definition hash and the same fields,
+// bit for bit; what the format cannot hold is normalised as documented or refused; the file is
+// written atomically.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fixstep/recording.hpp"
+#include "fixstep/scene.hpp"
+#include "fixstep/scene_writer.hpp"
+#include "scene_writer_check.hpp"
+
+namespace fixstep {
+namespace {
+
+namespace fs = std::filesystem;
+
+WorldDef reload(const WorldDef& def) {
+  const Scene back = parse_scene(format_scene(def), "written.toml");
+  EXPECT_TRUE(back.warnings.empty()) << back.warnings.front();
+  return world_def(back);
+}
+
+TEST(SceneWriter, EveryShippedSceneRoundTrips) {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(fs::path(FIXSTEP_SOURCE_DIR) / "assets/scenes")) {
+    if (e.path().extension() == ".toml") files.push_back(e.path());
+  }
+  ASSERT_GE(files.size(), 12u);
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.filename().string());
+    const WorldDef def = world_def(load_scene(file));
+    const WorldDef back = reload(def);
+    EXPECT_EQ(definition_hash(back), definition_hash(def));
+    test::expect_same_world(def, back);
+    EXPECT_EQ(format_scene(back), format_scene(def));  // a written scene writes itself again
+  }
+}
+
+/// n/|n|, as the loader normalises a plane's normal.
+Vec2 unit(Vec2 n) {
+  const double len = std::hypot(n.x, n.y);
+  return {n.x / len, n.y / len};
+}
+
+/// Bodies of every type, with every component, names that need escaping and numbers that need
+/// all 17 digits, a sign on zero, subnormals and the ends of the precision's range.
+WorldDef awkward_world(Precision precision, Integrator integrator) {
+  const double huge = precision == Precision::f32 ? 3.0e38 : 1.7976931348623157e308;
+  const double third = 1.0 / 3.0, tiny = 1e-300, sub = 4.9406564584124654e-324;
+  WorldDef def;
+  def.precision = precision;
+  def.settings.dt = third;
+  def.settings.integrator = integrator;
+  def.settings.substeps = 7;
+  def.settings.flush_denormals = false;
+  def.settings.track_dissipation = true;  // a scene's, always
+  def.settings.contacts = ContactSettings{.restitution = third, .friction = tiny};
+  def.allow_unstable = true;
+
+  BodyDef a;
+  a.name = "quote\" back\\slash\nnew line\ttab \x01 \x7f ünïcødé ☃ 𝄞";
+  a.body = Body{.mass = third, .position = {third, -0.0}, .velocity = {tiny, -huge}};
+  a.spring = SpringDamper{
+      .anchor = {-0.0, 2.0 / 3.0}, .stiffness = 15.0, .damping = sub, .rest_length = 0.1};
+  a.constant_force = ConstantForce{{-huge, 1e-310}};
+  a.gravity = Gravity{{0.0, -9.81}};
+  a.drag = LinearDrag{0.1 + 0.2};
+  a.collider = Collider{.radius = 0.25, .restitution = 0.125, .friction = third, .collide = false};
+  a.appearance = Appearance{.radius = 0.7, .color = {1, 2, 3, 4}};  // drawn larger than its disc
+  BodyDef wall;
+  wall.name = "wall";
+  wall.type = BodyType::static_body;
+  wall.body.position = {10.0, -0.0};
+  wall.body.velocity = {-0.0, 0.0};
+  wall.collider = Collider{.radius = 0.5};
+  wall.appearance = Appearance{.radius = 0.5, .color = {255, 255, 255, 255}};
+  BodyDef paddle;
+  paddle.name = "paddle";
+  paddle.type = BodyType::kinematic;
+  paddle.body.position = {huge, huge};
+  paddle.body.velocity = {-0.0, 3.5};
+  paddle.appearance = Appearance{.radius = 2.0, .color = {0, 0, 0, 0}};  // drawn, not a disc
+  BodyDef bare;
+  bare.name = "body0";  // the loader's default name of body 0, given to body 3
+  bare.body = Body{.mass = huge, .position = {-third, 1e-300}, .velocity = {}};
+  BodyDef dot;
+  dot.name = "dot";
+  dot.body = Body{.mass = sub, .position = {5.0, 5.0}};
+  dot.appearance = Appearance{.radius = 0.5, .color = {9, 8, 7, 255}};  // colour alone
+  def.bodies = {a, wall, paddle, bare, dot};
+  def.links = {BodyLink{0, 3, LinkSpring{third, 0.0, 1e-300}},
+               BodyLink{4, 1, LinkSpring{huge, tiny, 0.0}},
+               BodyLink{2, 1, LinkSpring{1.0, 1.0, 0.5}}};  // two immovable ends: a warning
+  def.planes = {PlaneDef{.normal = {0.0, 1.0}, .offset = -0.0, .restitution = third},
+                PlaneDef{.normal = {-1.0, -0.0}, .offset = -huge, .friction = 0.7},
+                PlaneDef{.normal = {0.6, 0.8}, .offset = tiny, .restitution = 1.0},
+                // n/|n| of these is not n/|n| again: the writer finds a normal that gives it
+                PlaneDef{.normal = unit({1.0, 1.0}), .offset = -1.0},
+                PlaneDef{.normal = unit({-1.0, 7.0}), .offset = -2.0}};
+  return def;
+}
+
+TEST(SceneWriter, AwkwardWorldRoundTripsForEveryIntegratorAndPrecision) {
+  for (const Precision precision : {Precision::f32, Precision::f64}) {
+    for (const Integrator integrator : all_integrators) {
+      SCOPED_TRACE(fmt::format("{} {}", precision_name(precision), integrator_name(integrator)));
+      const WorldDef def = awkward_world(precision, integrator);
+      const Scene back = parse_scene(format_scene(def), "written.toml");
+      ASSERT_EQ(back.warnings.size(), 1u);  // the link between two immovable bodies
+      EXPECT_NE(back.warnings[0].find("spring[2].bodies: does nothing"), std::string::npos);
+      EXPECT_EQ(definition_hash(world_def(back)), definition_hash(def));
+      test::expect_same_world(def, world_def(back));
+    }
+  }
+}
+
+TEST(SceneWriter, NumbersAreFloatsThatKeepTheirSign) {
+  const std::string text = format_scene(awkward_world(Precision::f64, Integrator::rk4));
+  EXPECT_NE(text.find("position = [0.3333333333333333, -0.0]"), std::string::npos) << text;
+  EXPECT_NE(text.find("substeps = 7\n"), std::string::npos);  // the one integer key
+  EXPECT_NE(text.find("flush_denormals = false\n"), std::string::npos);
+  EXPECT_NE(text.find("draw_radius = 0.7\n"), std::string::npos);
+  EXPECT_NE(text.find("bodies = [\"quote\\\" back\\\\slash\\nnew line\\u0009tab"),
+            std::string::npos);
+}
+
+TEST(SceneWriter, NamesAndLooksTheFormatCannotHoldAreNormalisedAsDocumented) {
+  WorldDef def;
+  def.settings.threads = 2;                // not written: reloads as 0
+  def.settings.track_dissipation = false;  // a scene's is always on
+  BodyDef body;
+  body.body.position = {0.0, 0.0};
+  def.bodies.assign(5, body);
+  def.bodies[0].name = "";       // -> body0
+  def.bodies[1].name = "body0";  // kept: taken before generated names
+  def.bodies[2].name = "twin";
+  def.bodies[3].name = "twin";                       // -> twin~2
+  def.bodies[4].name = "";                           // -> body4
+  def.bodies[4].collider = Collider{.radius = 0.3};  // no Appearance: reloads with one
+  for (std::size_t i = 0; i < 5; ++i) def.bodies[i].body.position = {double(i), 0.0};
+  def.links = {BodyLink{0, 3, {}}, BodyLink{1, 4, {}}};
+  const WorldDef back = reload(def);
+  EXPECT_EQ(definition_hash(back), definition_hash(def));
+  WorldDef expected = def;
+  expected.settings.threads = 0;
+  expected.settings.track_dissipation = true;
+  expected.bodies[0].name = "body0~2";
+  expected.bodies[3].name = "twin~2";
+  expected.bodies[4].name = "body4";
+  expected.bodies[4].appearance = Appearance{.radius = 0.3};
+  test::expect_same_world(expected, back);
+}
+
+// The two keys the writer needs, in scene files too.
+TEST(SceneWriter, LoaderReadsDrawRadiusAndFlushDenormals) {
+  const Scene s = parse_scene(R"([world]
+dt = 0.01
+flush_denormals = false
+[[body]]
+mass = 1.0
+position = [0.0, 0.0]
+draw_radius = 2.0
+[[body]]
+mass = 1.0
+position = [5.0, 0.0]
+radius = 0.5
+draw_radius = 0.25
+color = "#102030"
+[[chain]]
+count = 2
+start = [0.0, 9.0]
+spacing = [1.0, 0.0]
+body = { mass = 1.0, draw_radius = 3.0 }
+)",
+                              "keys.toml");
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  EXPECT_FALSE(s.world.flush_denormals);
+  ASSERT_EQ(s.bodies.size(), 4u);
+  EXPECT_FALSE(s.bodies[0].collider);  // drawn, not a disc
+  EXPECT_EQ(s.bodies[0].appearance->radius, 2.0);
+  EXPECT_EQ(s.bodies[1].collider->radius, 0.5);
+  EXPECT_EQ(s.bodies[1].appearance->radius, 0.25);
+  EXPECT_EQ(s.bodies[1].appearance->color, (Rgba8{16, 32, 48, 255}));
+  EXPECT_EQ(s.bodies[3].appearance->radius, 3.0);
+  EXPECT_TRUE(parse_scene("[world]\ndt = 0.01\n[[body]]\nmass = 1.0\nposition = [0.0, 0.0]\n",
+                          "default.toml")
+                  .world.flush_denormals);
+  EXPECT_THROW((void)parse_scene("[world]\ndt = 0.01\n[[body]]\nmass = 1.0\nposition = [0.0, "
+                                 "0.0]\ndraw_radius = 0.0\n",
+                                 "zero.toml"),
+               SceneError);
+}
+
+std::string refusal(const WorldDef& def) {
+  try {
+    (void)format_scene(def);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "format_scene wrote it";
+  return {};
+}
+
+TEST(SceneWriter, RefusesWhatWouldNotLoadBackExactly) {
+  WorldDef ok;
+  ok.bodies.resize(2);
+  ok.bodies[1].body.position = {1.0, 0.0};
+  auto with = [&](auto change) {
+    WorldDef d = ok;
+    change(d);
+    return refusal(d);
+  };
+  EXPECT_EQ(with([](WorldDef& d) {
+              d.bodies[1].type = BodyType::static_body;
+              d.bodies[1].body.mass = 5.0;
+            }),
+            "format_scene: body[1] \"body1\": the mass of a static body (5 kg) cannot be written: "
+            "a scene gives static bodies no mass (they keep the default 1 kg), and the mass "
+            "enters the definition hash; leave body.mass at 1");
+  EXPECT_NE(with([](WorldDef& d) {
+              d.bodies[0].type = BodyType::kinematic;
+              d.bodies[0].gravity = Gravity{};
+            }).find("body[0] \"body0\": a kinematic body's gravity cannot be written"),
+            std::string::npos);
+  EXPECT_NE(with([](WorldDef& d) {
+              d.bodies[0].type = BodyType::static_body;
+              d.bodies[0].body.velocity = {1.0, 0.0};
+            }).find("a static body's velocity (1, 0) m/s cannot be written"),
+            std::string::npos);
+  EXPECT_EQ(with([](WorldDef& d) {
+              d.links = {BodyLink{0, 2, {}}};
+            }),
+            "format_scene: link[0]: joins bodies 0 and 2: each must be one of the 2 bodies, and "
+            "they must differ");
+  EXPECT_NE(with([](WorldDef& d) {
+              d.links = {BodyLink{1, 1, {}}};
+            }).find("link[0]"),
+            std::string::npos);
+  EXPECT_NE(with([](WorldDef& d) {
+              d.planes = {PlaneDef{.normal = {0.0, 2.0}}};
+            })
+                .find("plane[0].normal: (0, 2) cannot be written: a scene's normals are "
+                      "normalised when read (n/|n| = (0, 1))"),
+            std::string::npos);
+  // What the loader refuses, in its words.
+  EXPECT_NE(with([](WorldDef& d) {
+              d.bodies[1].body.mass = std::nan("");
+            }).find("does not load back from its scene text: <scene text>:"),
+            std::string::npos);
+  EXPECT_NE(with([](WorldDef& d) {
+              d.bodies[1].body.mass = std::nan("");
+            }).find("body[1].mass: must be finite (got nan)"),
+            std::string::npos);
+  EXPECT_NE(with([](WorldDef& d) { d.bodies[0].name = "bad \xff utf-8"; }).find("<scene text>"),
+            std::string::npos);
+  EXPECT_NE(with([](WorldDef& d) { d.bodies.clear(); }).find("a scene needs at least one body"),
+            std::string::npos);
+  EXPECT_NE(
+      with([](WorldDef& d) { d.bodies.resize(100'000); }).find("the world: its scene would be "),
+      std::string::npos);
+}
+
+TEST(SceneWriter, WritesTheFileWhole) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("scene_writer_{}", ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const WorldDef def = awkward_world(Precision::f64, Integrator::velocity_verlet);
+  write_scene(dir / "world.toml", def);
+  test::expect_same_world(def, world_def(load_scene(dir / "world.toml")));
+
+  // A refused world writes nothing: the file keeps what it had.
+  WorldDef bad = def;
+  bad.bodies[0].body.mass = -1.0;
+  EXPECT_THROW(write_scene(dir / "world.toml", bad), std::invalid_argument);
+  EXPECT_EQ(definition_hash(world_def(load_scene(dir / "world.toml"))), definition_hash(def));
+
+  // The target is a directory: the rename fails, and the temporary file is gone.
+  fs::create_directory(dir / "taken.toml");
+  try {
+    write_scene(dir / "taken.toml", def);
+    ADD_FAILURE() << "wrote over a directory";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              fmt::format("cannot write {}: Is a directory", (dir / "taken.toml").string()));
+  }
+  // A directory that does not exist.
+  const fs::path missing = dir / "no_such_dir" / "w.toml";
+  try {
+    write_scene(missing, def);
+    ADD_FAILURE() << "wrote into a missing directory";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), fmt::format("cannot write {}: the directory {} does not exist",
+                                                 missing.string(), (dir / "no_such_dir").string()));
+  }
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"taken.toml", "world.toml"}));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace fixstep
