@@ -632,6 +632,21 @@ case_ "view without a display" "" view good.toml --frames 1
 export GALLIUM_DRIVER=foo
 case_ "GALLIUM_DRIVER=foo (Mesa would crash)" "" render good.toml --out frames --frames 1
 unset GALLIUM_DRIVER
+# --- hot reload in view ---
+case_ "view of a bad scene (before any window opens)" "$ok_world
+[[body]]
+mass = -1.0
+position = [0.0, 0.0]" view scene.toml --frames 1
+# window_row DESCRIPTION COMMAND EXIT FIRST-LINE: a row this script cannot run (it has no
+# display), copied from tests/view_reload_test.sh, which checks it under Xvfb.
+window_row() {
+  row=$((row + 1))
+  printf '| %d | %s (needs a window: checked by tests/view_reload_test.sh under Xvfb) | `fixstep %s` | %d | %s |\n' \
+    "$row" "$1" "$2" "$3" "$4"
+}
+window_row "a bad edit saved while view runs (body[1] mass = -1 on line 14); the window goes on" \
+  "view scene.toml" 0 \
+  "fixstep: reload failed: scene.toml:14:8: body[1].mass: must be > 0 kg (got -1); the last good world keeps running (tick N)"
 echo
 echo "## Writing a scene from code"
 echo

@@ -69,6 +69,7 @@ struct ViewOptions {
   std::optional<double> fps;
   std::optional<std::string> record;  ///< --record FILE: write a recording of the session
   std::uint64_t hash_every = 1;       ///< --hash-every K: ticks between stored state hashes
+  bool no_watch = false;              ///< --no-watch: no hot reload when the scene file is saved
 };
 
 struct ReplayOptions {

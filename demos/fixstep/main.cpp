@@ -5,7 +5,8 @@
 //                  [--size WxH] [--png-level L] [overrides]
 //   fixstep compare SCENE --with SPEC --with SPEC ... [--out DIR] [--video FILE] [--csv FILE]
 //                   [--frames N] [--fps F] [--size WxH]
-//   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [overrides]
+//   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [--no-watch]
+//                [overrides]
 //   fixstep replay FILE [--scene SCENE]
 #include <fmt/format.h>
 
@@ -187,6 +188,8 @@ int main(int argc, char** argv) try {
                    "use a virtual clock of F frames per second instead of the real clock")
       ->check(positive_finite);
   add_record_options(view_cmd, view.record, view.hash_every);
+  view_cmd->add_flag("--no-watch", view.no_watch,
+                     "do not reload the scene when its file is saved (reloading is the default)");
 
   ReplayOptions replay;
   CLI::App* replay_cmd = app.add_subcommand(

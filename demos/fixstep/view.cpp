@@ -1,4 +1,5 @@
-// `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock.
+// `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock;
+// the world is rebuilt when its scene file is saved (hot reload, scene_watch.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -11,11 +12,15 @@
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
+#include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <thread>
+#include <utility>
 
 #include "commands.hpp"
+#include "scene_watch.hpp"
 
 namespace fixstep::cli {
 
@@ -65,24 +70,106 @@ Vec2 push_of(std::uint32_t held, double view_width) {
   return {axis(button_right, button_left), axis(button_up, button_down)};
 }
 
+namespace {
+
+/// The world a window shows: the scene it was built from, its session and rewind buffer.
+struct ShownWorld {
+  Scene scene;
+  std::unique_ptr<Session> session;
+  RewindBuffer rewind{1};
+  PointerDrag drag{0.0};  ///< picks within 10 pixels; holds a body of this world only
+};
+
+/// Starts showing `session`'s world (from `scene`): the key help in the HUD, rewind from tick 0.
+/// The previous world's rewind states are freed before the new buffer is made.
+void show(ShownWorld& shown, Scene scene, std::unique_ptr<Session> session) {
+  session->set_show_controls(true);
+  shown.scene = std::move(scene);
+  shown.session = std::move(session);
+  shown.rewind = RewindBuffer(1);
+  shown.rewind = make_rewind(shown.session->simulation());
+  shown.rewind.push(shown.session->simulation());
+  const Renderer& r = shown.session->renderer();
+  shown.drag = PointerDrag(10.0 * r.camera().width / double(r.width()));
+}
+
+/// Rebuilds `shown` from its scene file as saved now, with the same command-line overrides.
+/// The new world starts at tick 0 with no trails; kept are the camera (unless the edit changed
+/// the scene's [view]: then the new [view], or the fit of the new world without one, applies),
+/// the time scale and the pause (a world the runtime guard stopped gives way to one that runs).
+/// Throws, leaving `shown` untouched, for a scene that cannot be used.
+void reload(ShownWorld& shown, const SceneOptions& o) {
+  Scene scene = load_with_overrides(o);
+  const Session& old = *shown.session;
+  const Renderer& r = old.renderer();
+  SessionSettings settings = session_settings(scene, r.width(), r.height());
+  if (scene.view.center == shown.scene.view.center && scene.view.width == shown.scene.view.width) {
+    settings.view_center = r.camera().center;
+    settings.view_width = r.camera().width;
+  }
+  auto next = std::make_unique<Session>(world_def(scene), settings);
+  FixedStepLoop& loop = shown.session->loop();
+  next->loop().set_time_scale(loop.time_scale());
+  next->loop().set_paused(loop.paused() && !old.simulation().fault());
+  show(shown, std::move(scene), std::move(next));
+}
+
+/// What the window does when the scene file was saved: reloads it (saying so on standard
+/// output), or keeps the world running and says why, in the HUD and once on standard error:
+/// the located scene error of a bad edit, or that a session being recorded keeps its world.
+void on_scene_saved(ShownWorld& shown, const ViewOptions& o, bool recording) {
+  Session& s = *shown.session;
+  const std::string file = o.scene.scene;
+  const std::uint64_t tick = s.simulation().tick();
+  const int width = s.renderer().width();
+  const float scale = s.renderer().hud_text_scale();
+  if (recording) {
+    std::fprintf(stderr,
+                 "fixstep: %s changed: not reloaded while recording (--record); the session "
+                 "keeps the world the recording started with\n",
+                 file.c_str());
+    s.set_status_lines(reload_error_lines(
+        "NOT RELOADED while recording (--record)",
+        fmt::format("{} changed on disk; quit and view it again to see the edit", file), width,
+        scale));
+    return;
+  }
+  try {
+    reload(shown, o.scene);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr,
+                 "fixstep: reload failed: %s; the last good world keeps running (tick %llu)\n",
+                 e.what(), static_cast<unsigned long long>(tick));
+    s.set_status_lines(
+        reload_error_lines("RELOAD FAILED - the last good world runs on", e.what(), width, scale));
+    return;
+  }
+  const std::size_t n = shown.session->simulation().body_count();
+  fmt::print("reloaded {}: {} bod{}, definition hash {}; tick reset to 0 (was {})\n", file, n,
+             n == 1 ? "y" : "ies", hex_hash(definition_hash(shown.session->definition())), tick);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
 int view_command(const ViewOptions& o) {
-  const Scene scene = load_with_overrides(o.scene);
+  // The watch takes the file's stamp before the file is read: a save during the load is seen.
+  std::optional<FileWatch> watch;
+  if (!o.no_watch) watch.emplace(o.scene.scene);
+  Scene scene = load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.
   Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height,
                               "fixstep render SCENE --out DIR");
-  Session session = open_session(scene, width, height);
-  session.set_show_controls(true);
+  ShownWorld shown;
+  auto first = std::make_unique<Session>(world_def(scene), session_settings(scene, width, height));
+  show(shown, std::move(scene), std::move(first));
 
-  const Camera camera = session.renderer().camera();
-  InputSampler sampler;                                   // window events -> one input per tick
-  PointerDrag drag(10.0 * camera.width / double(width));  // picks within 10 pixels
-  RewindBuffer rewind = make_rewind(session.simulation());
-  rewind.push(session.simulation());
+  InputSampler sampler;  // window events -> one input per tick
   // --record: every tick's input and state hash, following the kept timeline through rewinds
   // and restarts.
   std::optional<Recorder> recorder;
-  if (o.record) recorder.emplace(session.definition(), o.scene.scene, o.hash_every);
+  if (o.record) recorder.emplace(shown.session->definition(), o.scene.scene, o.hash_every);
   RealClock real_clock;
   // --fps: a virtual clock (validated by VirtualClock), else the real one.
   const double virtual_frame = o.fps ? VirtualClock(*o.fps).frame_seconds() : 0.0;
@@ -91,6 +178,11 @@ int view_command(const ViewOptions& o) {
   WindowEvents ev;
   for (std::int64_t frame = 0; o.frames == 0 || frame < o.frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
+    if (watch && watch->changed(frame_start)) on_scene_saved(shown, o, recorder.has_value());
+    Session& session = *shown.session;
+    RewindBuffer& rewind = shown.rewind;
+    PointerDrag& drag = shown.drag;
+    const Camera camera = session.renderer().camera();
     window.poll(ev);
     if (ev.quit) break;
     apply_loop_keys(ev, session.loop());
@@ -120,14 +212,15 @@ int view_command(const ViewOptions& o) {
     }
     if (const auto& fault = session.simulation().fault(); fault && !was_faulted) {
       // Session paused the loop; the HUD shows the message too ('r' restarts).
-      std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(scene, *fault).c_str());
+      std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(shown.scene, *fault).c_str());
     }
     session.show_drag(sampler.pointer(), drag.body());
     session.draw();
     window.present(session.renderer().pixels());
     if (!o.fps) std::this_thread::sleep_until(frame_start + frame_budget);
   }
-  fmt::print("{} driver={}\n", describe(scene), window.driver());
+  const Session& session = *shown.session;
+  fmt::print("{} driver={}\n", describe(shown.scene), window.driver());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
   if (recorder) {
     write_recording(*o.record, recorder->finish(session.simulation()));

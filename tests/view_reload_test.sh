@@ -1,0 +1,127 @@
+#!/usr/bin/env bash
+# Hot reload in `fixstep view` under Xvfb: the scene file is rewritten while the window runs.
+#   view_reload_test.sh FIXSTEP
+# A good edit is reloaded (tick reset, the new body count and definition hash reported); a bad
+# edit is reported with its file:line:column and the last good world keeps running; fixing the
+# file reloads it; with --record the session keeps its world (the recording still replays);
+# --no-watch turns reloading off. Every wait is bounded (60 s) and waits for an outcome, not
+# for a time; the program is quit with Esc (xdotool). Prints "ok - ..." / "FAIL - ...".
+set -u
+fixstep=$1
+. "$(dirname "$0")/lib.sh"
+
+if ! have_xvfb || ! command -v xdotool >/dev/null; then
+  echo "skip - Xvfb or xdotool not installed (bash .ci/install-deps installs them)"
+  finish
+fi
+start_xvfb || exit 1
+export DISPLAY=$xvfb_display
+unset WAYLAND_DISPLAY SDL_VIDEODRIVER
+
+scene=$work/scene.toml
+# scene_text N MASS: N bodies in a row on springs, the first of mass MASS (kg).
+scene_text() {
+  printf '[world]\ndt = 0.01\n[view]\ncenter = [0.0, 0.0]\nwidth = 12.0\n'
+  local i
+  for i in $(seq 0 $(($1 - 1))); do
+    printf '[[body]]\nname = "b%d"\nmass = %s\nposition = [%d.0, 1.0]\n' "$i" \
+      "$([ "$i" -eq 0 ] && echo "$2" || echo 1.0)" "$((2 * i - 2))"
+    printf 'spring = { anchor = [%d.0, 0.0], stiffness = 10.0 }\nradius = 0.4\n' "$((2 * i - 2))"
+  done
+}
+save_by_rename() { scene_text "$@" >"$scene.new" && mv "$scene.new" "$scene"; }  # a new inode
+save_in_place() { scene_text "$@" >"$scene"; }                                   # the same inode
+
+# wait_for RE FILE: until FILE matches RE (60 s at most); false if it never does.
+wait_for() {
+  local _
+  for _ in $(seq 600); do
+    grep -Eq -- "$1" "$2" 2>/dev/null && return 0
+    sleep 0.1
+  done
+  return 1
+}
+# start_view OUT ERR ARGS...: `fixstep view SCENE ARGS` in the background (pid in $view), once
+# its window is up. --frames bounds it to about 2 minutes at 60 Hz should Esc never arrive.
+start_view() {
+  local out=$1 err=$2 _
+  shift 2
+  "$fixstep" view "$scene" --size 800x600 --frames 7200 "$@" >"$out" 2>"$err" &
+  view=$! wid=""
+  for _ in $(seq 600); do
+    wid=$(xdotool search --name "fixstep - " 2>/dev/null | head -1)
+    [ -n "$wid" ] && return 0
+    kill -0 "$view" 2>/dev/null || return 1
+    sleep 0.1
+  done
+  return 1
+}
+# quit_view: Esc to the window, then its exit status (killed after 60 s: 124).
+quit_view() {
+  timeout 10 xdotool windowfocus --sync "$wid" key Escape 2>/dev/null ||
+    xdotool key --window "$wid" Escape
+  local _
+  for _ in $(seq 600); do
+    kill -0 "$view" 2>/dev/null || break
+    sleep 0.1
+  done
+  kill -0 "$view" 2>/dev/null && { kill "$view"; wait "$view"; return 124; }
+  wait "$view"
+}
+tick_in() { grep -Eo "$1" "$2" | head -1 | grep -Eo '[0-9]+$'; }
+
+# --- a good edit, a bad edit, the fix --------------------------------------------------------
+save_by_rename 1 1.0
+start_view "$work/view.out" "$work/view.err" || { fail "view did not open a window"; cat "$work/view.err"; finish; }
+save_by_rename 2 1.0
+wait_for '^reloaded .*scene\.toml: 2 bodies, definition hash [0-9a-f]{16}; tick reset to 0 \(was [0-9]+\)$' \
+  "$work/view.out" && ok "a file saved by rename is reloaded (2 bodies, tick reset)" \
+  || { fail "no reload after the first edit"; cat "$work/view.out" "$work/view.err"; }
+# the bad edit, in place (as an editor writing over the file): body[1]'s mass is on line 14
+scene_text 2 1.0 | sed '14s/mass = 1.0/mass = -1.0/' >"$scene"
+wait_for 'reload failed: .*scene\.toml:14:8: body\[1\]\.mass: must be > 0 kg \(got -1\); the last good world keeps running \(tick [0-9]+\)$' \
+  "$work/view.err" && ok "a bad edit is reported with file:line:column" \
+  || { fail "no located error for the bad edit"; cat "$work/view.err"; }
+kill -0 "$view" 2>/dev/null && ok "view keeps running after a bad edit" || fail "view exited on a bad edit"
+bad_tick=$(tick_in 'keeps running \(tick [0-9]+' "$work/view.err")
+save_in_place 3 2.0
+wait_for '^reloaded .*: 3 bodies, .*\(was [0-9]+\)$' "$work/view.out" \
+  && ok "fixing the file reloads it (3 bodies)" || { fail "no reload after the fix"; cat "$work/view.out"; }
+fixed_from=$(tick_in '3 bodies, .*\(was [0-9]+' "$work/view.out")
+[ -n "$bad_tick" ] && [ -n "$fixed_from" ] && [ "$fixed_from" -gt "$bad_tick" ] \
+  && ok "the last good world ran on after the bad edit (tick $bad_tick -> $fixed_from)" \
+  || fail "the last good world did not run on (ticks '$bad_tick' -> '$fixed_from')"
+hashes=$(grep -Eo 'definition hash [0-9a-f]{16}' "$work/view.out" | sort -u | wc -l)
+[ "$hashes" -eq 2 ] && ok "each reloaded world has its own definition hash" || fail "hashes: $hashes"
+quit_view
+[ $? -eq 0 ] && ok "view exits 0 after reloads" || { fail "view exit"; cat "$work/view.err"; }
+expect "the summary is of the last world" '^scene=.*scene\.toml integrator=.* driver=' "$work/view.out"
+expect "the summary's ticks count from the last reload" '^ticks=[0-9]+ ' "$work/view.out"
+
+# --- while recording, a save is not reloaded: the recording keeps one world ------------------
+save_by_rename 1 1.0
+cp "$scene" "$work/recorded.toml"
+start_view "$work/rec.out" "$work/rec.err" --record "$work/session.rec" \
+  || { fail "view --record did not open a window"; finish; }
+save_by_rename 2 1.0
+wait_for 'scene\.toml changed: not reloaded while recording \(--record\)' "$work/rec.err" \
+  && ok "a save while recording is reported, not reloaded" || { fail "no note while recording"; cat "$work/rec.err"; }
+quit_view
+[ $? -eq 0 ] && ok "view --record exits 0" || fail "view --record exit"
+grep -q '^reloaded' "$work/rec.out" && fail "reloaded while recording" || ok "no reload while recording"
+cp "$work/recorded.toml" "$scene"
+"$fixstep" replay "$work/session.rec" --scene "$scene" >"$work/replay.out" 2>&1 \
+  && ok "the recording replays against the scene it started with" \
+  || { fail "replay of the recording"; cat "$work/replay.out"; }
+
+# --- --no-watch ------------------------------------------------------------------------------
+# A negative check can only wait for a time: 1 s is 5 polls of the watch. It cannot fail
+# wrongly; a slow machine could only let a reload through unseen.
+start_view "$work/nowatch.out" "$work/nowatch.err" --no-watch || { fail "view --no-watch"; finish; }
+save_by_rename 3 1.0
+sleep 1
+quit_view
+[ $? -eq 0 ] && ok "view --no-watch exits 0" || fail "view --no-watch exit"
+grep -q '^reloaded' "$work/nowatch.out" && fail "--no-watch reloaded" || ok "--no-watch does not reload"
+
+finish
