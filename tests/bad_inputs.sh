@@ -507,6 +507,9 @@ velocity = [1.0, 0.0]'
 case_ "[contacts] in a scene without discs (a warning)" "$ok_world
 [contacts]
 $body"
+case_ "a body's restitution without [contacts] (a warning; it does nothing)" "$ok_world
+$disc
+restitution = 0.9"
 case_ "discs overlapping at tick 0" "$two_discs"
 case_ "a million discs at one point (refused in 2.1-2.4 s, 0.5 GB, on a busy 2-core machine)" "$ok_world
 [contacts]
