@@ -179,6 +179,38 @@ stiffness = 1
   EXPECT_TRUE(s.world.contacts.has_value());  // still on: code may add discs
 }
 
+TEST(SceneContacts, DiscCoefficientsWithoutContactsWarnAtTheirKeys) {
+  const std::string bodies = R"([[body]]
+mass = 1.0
+position = [0, 0]
+radius = 0.5
+restitution = 0.9
+[[body]]
+mass = 1.0
+position = [2, 0]
+radius = 0.5
+friction = 0.2
+[[grid]]
+columns = 2
+rows = 1
+origin = [0, 3]
+spacing = [2, 0]
+body = { mass = 1.0, radius = 0.5, restitution = 0.4, friction = 0.1 }
+)";
+  const Scene s = parse_scene(scene(bodies), "c.toml");
+  ASSERT_EQ(s.warnings.size(), 4u);  // one per key written, not per generated body
+  const std::string w = warning(s, 7, "body[0].restitution: ignored: it acts only in disc-disc");
+  EXPECT_EQ(w.rfind("c.toml:7:15: ", 0), 0u) << w;  // line and column of the value
+  EXPECT_NE(w.find("add [contacts]"), std::string::npos) << w;
+  warning(s, 12, "body[1].friction: ignored");
+  warning(s, 18, "grid[0].body.restitution: ignored");
+  warning(s, 18, "grid[0].body.friction: ignored");
+  // Still read: code that adds WorldSettings::contacts gets them.
+  EXPECT_EQ(s.bodies[0].collider->restitution, 0.9);
+  // With [contacts] they act, and nothing is said.
+  EXPECT_TRUE(parse_scene(scene("[contacts]\n" + bodies), "c.toml").warnings.empty());
+}
+
 TEST(SceneContacts, FrequencyFormOfALinkToAnAnchorUsesTheDynamicMassAlone) {
   const Scene s = parse_scene(scene(R"([[body]]
 name = "hook"

@@ -192,9 +192,33 @@ struct Passes {
   SpringShape shape;
   bool accel;
   std::atomic<bool>& bad;
+  double& work;  ///< J: the external work of static and kinematic link ends (World)
 
   void flag(bool out) {
     if (out) bad.store(true, std::memory_order_relaxed);
+  }
+  /// Adds weight (s) times the power, W, the links' static and kinematic ends deliver at state
+  /// st to `work`: for each driven link, -F·v of the link's force F on an immovable end moving
+  /// at v (F·(v_b - v_a) with F the force on end a and v = 0 for a dynamic end). With Damped,
+  /// F holds the damper too. One thread, in link order: the same bits on any thread count.
+  template <bool Damped>
+  void drive_links(StateView<Real> st, double weight) {
+    double power = 0;
+    for (const std::uint32_t l : net.driven) {
+      Real fx, fy;
+      link_force<true, Damped>(net, st, l, false, Real(0), static_cast<Real*>(nullptr), fx, fy);
+      const std::uint32_t a = net.a[l], b = net.b[l];
+      const bool fixed_a = net.inv_mass[a] == Real(0), fixed_b = net.inv_mass[b] == Real(0);
+      const double vx = (fixed_b ? double(st.vx[b]) : 0.0) - (fixed_a ? double(st.vx[a]) : 0.0);
+      const double vy = (fixed_b ? double(st.vy[b]) : 0.0) - (fixed_a ? double(st.vy[a]) : 0.0);
+      power += double(fx) * vx + double(fy) * vy;
+    }
+    work += weight * power;
+  }
+  /// drive_links with the links' dampers when some link is damped.
+  void drive(StateView<Real> st, double weight) {
+    if (net.driven.empty()) return;
+    net.damped ? drive_links<true>(st, weight) : drive_links<false>(st, weight);
   }
   template <bool Spring, bool Damped>
   void links(StateView<Real> st, Real weight) {
@@ -255,6 +279,7 @@ struct Passes {
   template <bool Explicit>
   void euler(Real h) {
     Real *accx = d[0], *accy = d[1];
+    drive({x, y, vx, vy}, double(h));  // the rectangle at the step's start, as diss_body
     accumulate({x, y, vx, vy}, Real(1), accx, accy);
     with_field<Real, 0>(shape, c.damping, accel, [&](auto field) {
       using Field = decltype(field);
@@ -277,6 +302,7 @@ struct Passes {
     // Stage i at state st: a = field + links; then `next` writes the next stage.
     auto stage = [&](StateView<Real> st, Real weight, auto next) {
       forces(st, weight);
+      drive(st, double(h) / 6.0 * double(weight));  // before `next` overwrites the stage
       bodies<0>(c.damping, nullptr, nullptr, [&](const auto& f, std::size_t j) {
         Real ax, ay, gx, gy;
         const Real SX = st.x[j], SY = st.y[j], SVX = st.vx[j], SVY = st.vy[j];
@@ -354,6 +380,7 @@ struct Passes {
     const bool body_damped = c.damping && !link_damped;
     if (link_damped) damping_flow(half);
     links<true, false>({x, y, vx, vy}, Real(0));
+    drive_links<false>({x, y, vx, vy}, double(half));  // the kicks' trapezoid (spring only)
     bodies<1>(body_damped, decay, nullptr, [&](const auto& f, std::size_t j) {
       Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j], ax, ay, gx, gy;
       if constexpr (std::decay_t<decltype(f)>::damped) {
@@ -370,6 +397,7 @@ struct Passes {
       return false;
     });
     links<true, false>({x, y, vx, vy}, Real(0));
+    drive_links<false>({x, y, vx, vy}, double(half));
     bodies<1>(body_damped, decay, nullptr, [&](const auto& f, std::size_t j) {
       Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j], ax, ay, gx, gy;
       f.conservative(X, Y, ax, ay);

@@ -94,6 +94,12 @@ void World<Real>::rebuild_network() {
     net.damped = net.damped || net.damping[l] != Real(0);
     ++net.offset[net.a[l] + 1], ++net.offset[net.b[l] + 1];
   }
+  net.driven.clear();  // links a static or kinematic end may do work through
+  for (std::size_t l = 0; l < m; ++l) {
+    if (net.inv_mass[net.a[l]] == Real(0) || net.inv_mass[net.b[l]] == Real(0)) {
+      net.driven.push_back(static_cast<std::uint32_t>(l));
+    }
+  }
   for (std::size_t j = 0; j < n; ++j) net.offset[j + 1] += net.offset[j];
   net.incident.resize(2 * m);
   std::vector<std::uint32_t> fill(net.offset.begin(), net.offset.end() - 1);
@@ -150,7 +156,8 @@ void World<Real>::step_multipass(const TickInput& input) {
       push,
       shape,
       accel,
-      bad};
+      bad,
+      external_work_};
   // Exact per-body damping factors, as the fused sweep uses them.
   const bool per_body_decay = c.damping && (m == 0 || !net_.damped);
   const Real* decay_h = per_body_decay && method == Integrator::velocity_verlet
@@ -195,6 +202,7 @@ void World<Real>::step_multipass(const TickInput& input) {
         break;
       case Integrator::implicit_euler:
         if (step_implicit_network(h, push)) bad.store(true, std::memory_order_relaxed);
+        p.drive({x_.data(), y_.data(), vx_.data(), vy_.data()}, double(h));  // end of the step
         break;
     }
   }

@@ -33,6 +33,35 @@ std::optional<double> friction(const Reader& r, const toml::table& t, const std:
   return mu;
 }
 
+/// Without [contacts]: a warning at each restitution and friction of a [[body]] or a
+/// generator's body template, which act only between discs and so do nothing.
+void warn_unused_disc_keys(Reader& r, const toml::table& doc) {
+  auto check = [&](const toml::node* node, const std::string& path) {
+    const toml::table* t = node ? node->as_table() : nullptr;
+    if (!t) return;
+    for (const std::string_view k : {"restitution", "friction"}) {
+      if (const toml::node* n = t->get(k)) {
+        r.warn(n->source(), path + "." + std::string(k),
+               fmt::format("ignored: it acts only in disc-disc contacts, and without a "
+                           "[contacts] table discs never collide ([[plane]]s use their own {}); "
+                           "add [contacts] to make discs collide, or remove it",
+                           k));
+      }
+    }
+  };
+  auto each = [&](std::string_view list, auto&& visit) {
+    const toml::array* a = doc.get(list) ? doc.get(list)->as_array() : nullptr;
+    for (std::size_t i = 0; a && i < a->size(); ++i) visit(a->get(i), i);
+  };
+  each("body", [&](const toml::node* t, std::size_t i) { check(t, fmt::format("body[{}]", i)); });
+  for (const std::string_view generator : {"chain", "grid"}) {
+    each(generator, [&](const toml::node* t, std::size_t i) {
+      const toml::table* table = t->as_table();
+      check(table ? table->get("body") : nullptr, fmt::format("{}[{}].body", generator, i));
+    });
+  }
+}
+
 }  // namespace
 
 BodyType parse_body_type(const Reader& r, const toml::table& t, const std::string& path) {
@@ -108,7 +137,10 @@ void drop_moving_parts(Reader& r, const toml::table& t, const std::string& path,
 
 void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
   const toml::table* t = r.table(doc, "contacts", "contacts");
-  if (!t) return;
+  if (!t) {
+    warn_unused_disc_keys(r, doc);
+    return;
+  }
   r.check_keys(*t, "contacts", {"restitution", "friction"});
   ContactSettings contacts;
   contacts.restitution = restitution(r, *t, "contacts").value_or(0.0);

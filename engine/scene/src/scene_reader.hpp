@@ -342,7 +342,9 @@ void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& p
 /// their keys in t (they would move it), and a static body's non-zero velocity.
 void drop_moving_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
 /// The [contacts] table into scene.world.contacts (restitution in [0, 1], friction >= 0, both
-/// default 0), warning when no body is a disc. After the bodies.
+/// default 0), warning when no body is a disc. Without the table, warns at each body's (and
+/// generator template's) restitution and friction: they act only in disc-disc contacts.
+/// After the bodies.
 void parse_contacts(Reader& r, const toml::table& doc, Scene& scene);
 
 /// The parameters of a spring table before the masses it acts on are known: stiffness k (N/m)

@@ -154,7 +154,8 @@ class Simulation {
   [[nodiscard]] EnergyReport energy() const;  ///< J
   /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
   [[nodiscard]] double dissipated_energy() const;
-  /// Work of kinematic bodies on the others through contacts, J (World::external_work()).
+  /// Work of kinematic bodies on the others through contacts and links, J
+  /// (World::external_work()).
   [[nodiscard]] double external_work() const;
   /// What the disc-disc contacts did in the last tick (World::contact_stats()).
   [[nodiscard]] const ContactStats& contact_stats() const;

@@ -373,9 +373,14 @@ class World {
   /// takes the kinetic energy its damping flow removes (velocity Verlet, Forest–Ruth), so
   /// the energy balance (E + E_dissipated - E0)/|E0| shrinks at the integrator's order.
   [[nodiscard]] double dissipated_energy() const;
-  /// Work done on the dynamic bodies from outside the world's energy account, J: by kinematic
-  /// bodies through contacts (their impulses' work on the bodies they push) since creation.
-  /// The energy balance is E + E_dissipated - W_external - E0 (energy_balance()).
+  /// Work done on the dynamic bodies from outside the world's energy account, J, since
+  /// creation: by kinematic bodies through contacts (their impulses' work on the bodies they
+  /// push) and through links (the power -F·v of each link force F on a kinematic end moving
+  /// at v, integrated with the integrator's own stages, as dissipated_energy() is). The energy
+  /// balance is E + E_dissipated - W_external - E0 (energy_balance()). Velocity Verlet and
+  /// Forest–Ruth count here only a link's spring: their damping flow takes a damped link's
+  /// whole effect on kinetic energy into dissipated_energy(), which then holds the damper's
+  /// dissipation minus the kinematic end's work through it (the balance is unchanged).
   [[nodiscard]] double external_work() const { return external_work_; }
   /// Disc-disc contacts of the last tick (WorldSettings::contacts): what the broadphase and the
   /// solver did. Zero without contacts.
@@ -486,8 +491,9 @@ class World {
     std::vector<std::uint32_t> a, b;
     std::vector<Real> k, damping, rest, inv_mass;
     std::vector<std::uint32_t> offset, incident;
-    bool rest_length = false;  ///< some link has L > 0
-    bool damped = false;       ///< some link has b > 0
+    std::vector<std::uint32_t> driven;  ///< links with a static or kinematic end, in link order
+    bool rest_length = false;           ///< some link has L > 0
+    bool damped = false;                ///< some link has b > 0
   } net_;
   // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
   // states and accumulators (see world_coupled.cpp).
