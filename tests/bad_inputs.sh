@@ -587,6 +587,30 @@ push = 3.0'
 script_case "script: misspelt key (a warning; the run goes on)" '[[at]]
 tick = 0
 presss = ["left"]'
+# Per-body input (force, impulse, velocity) against a world of a dynamic body0, a kinematic
+# paddle and a static post.
+printf '%s\n%s\n%s\n' "$ok_world" "$body" '[[body]]
+name = "paddle"
+type = "kinematic"
+position = [2.0, 0.0]
+[[body]]
+name = "post"
+type = "static"
+position = [4.0, 0.0]' > bodies.toml
+body_case() {  # DESCRIPTION [[at]]-LINE: run bodies.toml with a script of tick 1 and that line
+  printf '[[at]]\ntick = 1\n%s\n' "$2" > script.toml
+  case_ "$1" "" run bodies.toml --steps 10 --input script.toml
+}
+body_case "script: impulse names no body" 'impulse = { body = "bdy0", value = [1.0, 0.0] }'
+body_case "script: velocity for a dynamic body" 'velocity = { body = "body0", value = [1.0, 0.0] }'
+body_case "script: force on a kinematic body" 'force = { body = "paddle", value = [1.0, 0.0] }'
+body_case "script: impulse on a static body" 'impulse = { body = "post", value = [1.0, 0.0] }'
+body_case "script: impulse value nan" 'impulse = { body = "body0", value = [nan, 0.0] }'
+body_case "script: force value not [x, y]" 'force = { body = "body0", value = 3.0 }'
+body_case "script: impulse without body" 'impulse = { value = [1.0, 0.0] }'
+body_case "script: velocity without value (one of an array)" 'velocity = [{ body = "paddle", value = [1.0, 0.0] }, { body = "paddle" }]'
+body_case "script: force not a table" 'force = [1.0, 0.0]'
+body_case "script: misspelt key in an impulse (a warning; the run goes on)" 'impulse = { body = "body0", value = [1.0, 0.0], vale = [0.0, 0.0] }'
 case_ "script: missing file" "" run good.toml --steps 10 --input missing_script.toml
 case_ "script: a scene given instead" "" run good.toml --steps 10 --input good.toml
 # --- recordings (replay, render --replay, run --record) ---

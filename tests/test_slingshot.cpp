@@ -1,15 +1,20 @@
 // The slingshot game's rules (demos/slingshot/game.hpp) without a window: the band is cut when
 // the ball passes the anchor, a hit (an engine impact, Simulation::impacts()) knocks a target
 // off and scores once, and a scripted game of drags and releases gives the same score,
-// GameState and state hash every time, also when its inputs are replayed without the live
-// input path (as a recording is).
+// GameState and state hash every time, also when its recording is replayed through
+// fixstep::replay with the game's rules (slingshot::rules); the recorded session
+// (assets/recordings/slingshot.rec) passes fixstep::SyncTest with the rules at K = 1 and 8, and
+// fails it with rules that do not save and restore their state.
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <fixstep/pointer_drag.hpp>
+#include <fixstep/recording.hpp>
 #include <fixstep/simulation.hpp>
+#include <fixstep/sync_test.hpp>
+#include <optional>
 #include <vector>
 
 #include "game.hpp"
@@ -20,10 +25,14 @@ using fixstep::TickInput;
 using fixstep::Vec2;
 using namespace slingshot;
 
-bool has_band(const fixstep::Simulation& sim, std::uint32_t body) {
-  return sim.visit([&](const auto& w) {
-    return w.template get<fixstep::SpringDamper>(w.entities()[body]) != nullptr;
-  });
+bool has_band(const fixstep::Simulation& sim, fixstep::Entity body) {
+  return sim.get<fixstep::SpringDamper>(body).has_value();
+}
+
+// Whether a tick's impact is between the ball and a target: that target's number, else -1.
+int ball_hit(const fixstep::Simulation& sim, const fixstep::Impact& impact) {
+  const fixstep::Entity a = sim.entity_at(impact.body_a), b = sim.entity_at(impact.body_b);
+  return a == ball ? target_number(b) : b == ball ? target_number(a) : -1;
 }
 
 // A player driving the mouse: whenever the ball is loaded it takes the next pull of its list:
@@ -58,6 +67,7 @@ struct Played {
   GameState game;
   std::uint64_t hash = 0;
   std::vector<TickInput> inputs;  // as stepped (drag_body set): what a recording holds
+  fixstep::Recording recording;   // the same, as the game records it
 };
 
 // Live play: sampler, prepare_input (pick and drag), step, rules.
@@ -65,6 +75,7 @@ Played play(std::vector<Vec2> pulls, std::uint64_t ticks) {
   fixstep::Simulation sim = fixstep::make_simulation(make_level());
   fixstep::InputSampler sampler;
   fixstep::PointerDrag drag(0.3);
+  fixstep::Recorder recorder(make_level(), "slingshot (test)", 1);
   ScriptedPlayer player{std::move(pulls)};
   Played out;
   for (std::uint64_t t = 0; t < ticks; ++t) {
@@ -72,19 +83,34 @@ Played play(std::vector<Vec2> pulls, std::uint64_t ticks) {
     TickInput in = sampler.sample(t);
     prepare_input(out.game, drag, in, sim);
     play_tick(out.game, in, sim);
+    recorder.record(in, sim);
     out.inputs.push_back(in);
   }
   out.hash = sim.state_hash();
+  out.recording = recorder.finish(sim);
   return out;
 }
 
-// A replay: the recorded inputs as they are, step and rules only.
-Played replay(const std::vector<TickInput>& inputs) {
-  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+// A replay through the library: the recorded inputs as they are, with the game's rules.
+Played replay(const fixstep::Recording& rec) {
   Played out;
-  for (const TickInput& in : inputs) play_tick(out.game, in, sim);
-  out.hash = sim.state_hash();
+  const fixstep::ReplayReport report = fixstep::replay(make_level(), rec, rules(out.game));
+  EXPECT_TRUE(report.ok());  // every hash, one per tick
+  EXPECT_EQ(report.ticks, rec.ticks);
+  out.hash = report.final_hash;
   return out;
+}
+
+// The recorded inputs as a recording (a copy of `rec` with these inputs), to replay.
+fixstep::Recording with_inputs(const fixstep::Recording& rec, const std::vector<TickInput>& in) {
+  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::Recorder recorder(make_level(), rec.scene, 1);
+  GameState game;
+  for (const TickInput& i : in) {
+    play_tick(game, i, sim);
+    recorder.record(i, sim);
+  }
+  return recorder.finish(sim);
 }
 
 // Pulls that hit: found by playing a grid of pulls (see the disabled test below).
@@ -97,7 +123,7 @@ TEST(Slingshot, LevelBuildsAndRestsLoaded) {
   for (int t = 0; t < 240; ++t) play_tick(game, TickInput{std::uint64_t(t)}, sim);
   // Nobody touched it: the ball still sits on its band where band and gravity balance.
   EXPECT_EQ(game, GameState{});
-  const Vec2 p = sim.body_at(ball).position, rest = ball_rest_position();
+  const Vec2 p = sim.body(ball).position, rest = ball_rest_position();
   EXPECT_NEAR(p.x, rest.x, 1e-9);
   EXPECT_NEAR(p.y, rest.y, 1e-9);
   EXPECT_TRUE(has_band(sim, ball));
@@ -111,7 +137,7 @@ TEST(Slingshot, BandIsCutWhenTheBallPassesTheAnchor) {
   for (const TickInput& in : shot.inputs) {
     const Phase before = game.phase;
     play_tick(game, in, sim);
-    const Vec2 p = sim.body_at(ball).position;
+    const Vec2 p = sim.body(ball).position;
     const double past = (p.x - anchor.x) * (anchor.x - game.release_point.x) +
                         (p.y - anchor.y) * (anchor.y - game.release_point.y);
     if (game.phase == Phase::pulled) {
@@ -141,42 +167,36 @@ TEST(Slingshot, HitKnocksTargetOffAndScoresOnce) {
   GameState game;
   game.phase = Phase::flying;
   game.shots_left = 2;
-  const std::uint32_t target = first_target + 1;
-  const Vec2 t = sim.body_at(target).position;
+  const fixstep::Entity hit = target(1);
+  const Vec2 t = sim.body(hit).position;
   // The ball 5 cm left of touching the target, flying at it at 10 m/s, band cut: it hits
   // 5 ms into the next tick.
   auto throw_at_target = [&] {
-    sim.visit([&](auto& w) {
-      const fixstep::Entity e = w.entities()[ball];
-      w.template remove<fixstep::SpringDamper>(e);
-      w.set_body(e, {.mass = ball_mass, .position = {t.x - 1.0, t.y}, .velocity = {10, 0}});
-    });
+    sim.remove<fixstep::SpringDamper>(ball);
+    sim.set_body(ball, {.mass = ball_mass, .position = {t.x - 1.0, t.y}, .velocity = {10, 0}});
   };
   throw_at_target();
   play_tick(game, TickInput{0}, sim);
   ASSERT_EQ(sim.impacts().size(), 1u);  // the engine resolved the hit, 5 ms into the tick
-  EXPECT_EQ(sim.impacts()[0].body_a, ball);
-  EXPECT_EQ(sim.impacts()[0].body_b, target);
+  EXPECT_EQ(sim.entity_at(sim.impacts()[0].body_a), ball);
+  EXPECT_EQ(sim.entity_at(sim.impacts()[0].body_b), hit);
   EXPECT_NEAR(sim.impacts()[0].time, 0.005, 1e-4);
   EXPECT_NEAR(sim.impacts()[0].normal_speed, 10.0, 0.1);
   EXPECT_EQ(game.score, 1);
   EXPECT_EQ(game.knocked, 1u << 1);
-  EXPECT_FALSE(has_band(sim, target));             // off its rope
-  EXPECT_TRUE(has_band(sim, first_target));        // the others still hang
-  EXPECT_GT(sim.body_at(target).velocity.x, 5.0);  // pushed away
-  EXPECT_LT(sim.body_at(ball).velocity.x, 5.0);    // the ball lost speed
+  EXPECT_FALSE(has_band(sim, hit));           // off its rope
+  EXPECT_TRUE(has_band(sim, target(0)));      // the others still hang
+  EXPECT_GT(sim.body(hit).velocity.x, 5.0);   // pushed away
+  EXPECT_LT(sim.body(ball).velocity.x, 5.0);  // the ball lost speed
   for (int i = 1; i < 30; ++i) play_tick(game, TickInput{std::uint64_t(i)}, sim);
   EXPECT_EQ(game.score, 1);
   // Hit again: it bounces, but a target scores once.
-  sim.visit([&](auto& w) {
-    const fixstep::Entity e = w.entities()[target];
-    w.set_body(e, {.mass = target_mass, .position = t, .velocity = {}});
-  });
+  sim.set_body(hit, {.mass = target_mass, .position = t, .velocity = {}});
   throw_at_target();
   play_tick(game, TickInput{30}, sim);
   ASSERT_EQ(sim.impacts().size(), 1u);
   EXPECT_EQ(game.score, 1);
-  EXPECT_LT(sim.body_at(ball).velocity.x, 5.0);
+  EXPECT_LT(sim.body(ball).velocity.x, 5.0);
 }
 
 // A real shot (drag, release, flight) scores through the engine: the score rises exactly in
@@ -199,19 +219,17 @@ TEST(Slingshot, ShotScoresOnceThroughAnEngineImpact) {
       EXPECT_GE(impact.time, 0.0);
       EXPECT_LE(impact.time, dt);
       EXPECT_GT(impact.normal_speed, 0.0);
-      if (impact.body_a != ball || impact.body_b < first_target ||
-          impact.body_b >= first_target + target_count) {
-        continue;
-      }
+      const int i = ball_hit(sim, impact);
+      if (i < 0) continue;
       ++ball_target_impacts;
-      const std::uint32_t bit = 1u << (impact.body_b - first_target);
+      const std::uint32_t bit = 1u << i;
       if ((hit & bit) == 0 && before.phase == Phase::flying) first_hits |= bit;
       hit |= bit;
     }
     EXPECT_EQ(game.score - before.score, std::popcount(first_hits)) << "tick " << in.tick;
     EXPECT_EQ(game.knocked & ~before.knocked, first_hits) << "tick " << in.tick;
     for (int i = 0; i < target_count; ++i) {  // knocked off its rope, or still hanging
-      EXPECT_EQ(has_band(sim, first_target + std::uint32_t(i)), (game.knocked >> i & 1u) == 0);
+      EXPECT_EQ(has_band(sim, target(i)), (game.knocked >> i & 1u) == 0);
     }
   }
   EXPECT_GE(ball_target_impacts, 1);
@@ -231,8 +249,8 @@ TEST(Slingshot, ScriptedGameIsDeterministicAndReplays) {
   EXPECT_GE(a.game.score, 1);
   EXPECT_EQ(a.game.shots_left, 0);
   EXPECT_EQ(a.game.phase, Phase::over);
-  // The recorded inputs alone reproduce it, without the live input path.
-  const Played r = replay(a.inputs);
+  // The recording alone reproduces it through fixstep::replay with the rules, every hash.
+  const Played r = replay(a.recording);
   EXPECT_EQ(r.game, a.game);
   EXPECT_EQ(r.hash, a.hash);
   // One input changed (the first release one tick late) changes the game.
@@ -240,12 +258,72 @@ TEST(Slingshot, ScriptedGameIsDeterministicAndReplays) {
   for (std::size_t i = 0; i + 1 < changed.size(); ++i) {
     if (changed[i].released != 0) {
       std::swap(changed[i].released, changed[i + 1].released);
-      changed[i].drag_body = fixstep::initial_entity(ball);
+      changed[i].drag_body = ball;
       changed[i].held = changed[i - 1].held;
       break;
     }
   }
-  EXPECT_NE(replay(changed).hash, a.hash);
+  EXPECT_NE(replay(with_inputs(a.recording, changed)).hash, a.hash);
+  // Without the rules the recording does not replay (the band is never cut, nothing scores).
+  const fixstep::ReplayReport bare = fixstep::replay(make_level(), a.recording);
+  ASSERT_FALSE(bare.ok());
+}
+
+// The recorded session (assets/recordings/slingshot.rec) replayed through the library with the
+// rules: every stored hash (one per tick) and the final one verify, and the game ends as
+// tests/slingshot_replay.sh expects.
+fixstep::Recording recorded_session() {
+  return fixstep::read_recording(FIXSTEP_SOURCE_DIR "/assets/recordings/slingshot.rec");
+}
+
+TEST(Slingshot, RecordedSessionReplaysWithTheRules) {
+  const fixstep::Recording rec = recorded_session();
+  GameState game;
+  const fixstep::ReplayReport report = fixstep::replay(make_level(), rec, rules(game));
+  ASSERT_TRUE(report.ok()) << "mismatch at tick " << report.mismatch->tick;
+  EXPECT_EQ(report.verified, rec.hashes.size() + 1);
+  EXPECT_EQ(report.final_hash, rec.final_hash);
+  EXPECT_EQ(describe(game), "score=2 shots_left=0 knocked=1001 phase=over");
+}
+
+// SyncTest over the whole recorded game: every tick rolled back K ticks and re-simulated with
+// the rules (their GameState saved and restored with the world) gives the same states.
+struct SyncResult {
+  std::optional<fixstep::SyncTest::Mismatch> mismatch;
+  std::uint64_t final_hash = 0;
+};
+SyncResult sync_test_session(int k, const fixstep::TickRules& rules_to_test) {
+  const fixstep::Recording rec = recorded_session();
+  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::SyncTest test(sim, k, rules_to_test);
+  for (std::uint64_t t = 0; t < rec.ticks; ++t) {
+    if (!test.step(rec.input_at(t))) break;
+  }
+  return {test.mismatch(), sim.state_hash()};
+}
+
+TEST(Slingshot, RecordedSessionPassesTheSyncTestWithTheRules) {
+  const fixstep::Recording rec = recorded_session();
+  for (const int k : {1, 8}) {
+    GameState game;
+    const SyncResult r = sync_test_session(k, rules(game));
+    EXPECT_FALSE(r.mismatch) << "K=" << k << ": tick " << r.mismatch->tick;
+    EXPECT_EQ(r.final_hash, rec.final_hash) << "K=" << k;
+    EXPECT_EQ(describe(game), "score=2 shots_left=0 knocked=1001 phase=over") << "K=" << k;
+  }
+}
+
+// The deliberate bug the sync test is for: rules whose state is not saved and restored with
+// the world. After a rollback they re-run ticks with the state of later ones (the band already
+// cut, a target already knocked), so the re-simulated world differs.
+TEST(Slingshot, SyncTestCatchesRulesWithoutSaveAndRestore) {
+  GameState game;
+  fixstep::TickRules forgetful = rules(game);
+  forgetful.save = nullptr;
+  forgetful.restore = nullptr;
+  const SyncResult r = sync_test_session(8, forgetful);
+  ASSERT_TRUE(r.mismatch.has_value());
+  EXPECT_NE(r.mismatch->expected, r.mismatch->actual);
 }
 
 }  // namespace

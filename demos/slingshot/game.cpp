@@ -51,22 +51,29 @@ Vec2 sub(Vec2 a, Vec2 b) {
   return {a.x - b.x, a.y - b.y};
 }
 
-// Changes the world through the World<float|double> inside the Simulation: the public API for
-// components (set/remove) and body state (set_body) by entity.
-template <class F>
-void edit_body(fixstep::Simulation& sim, std::uint32_t index, F&& f) {
-  sim.visit([&](auto& world) { f(world, world.entities()[index]); });
-}
-
 // Puts the ball back on the band, at rest, for the next shot.
 void reload(fixstep::Simulation& sim) {
-  edit_body(sim, ball, [](auto& w, fixstep::Entity e) {
-    w.set_body(e, Body{.mass = ball_mass, .position = ball_rest_position(), .velocity = {}});
-    w.set(e, band());
-  });
+  sim.set_body(ball, Body{.mass = ball_mass, .position = ball_rest_position(), .velocity = {}});
+  sim.set(ball, band());
+}
+
+// Scores target i if it is not down yet: knocks it off its rope and greys it.
+void knock(GameState& game, int i, fixstep::Simulation& sim) {
+  if ((game.knocked & (1u << i)) != 0) return;  // a target scores once
+  game.knocked |= 1u << i;
+  ++game.score;
+  sim.remove<SpringDamper>(target(i));
+  sim.set(target(i), fixstep::Appearance{.radius = target_radius, .color = knocked_color});
 }
 
 }  // namespace
+
+int target_number(fixstep::Entity e) {
+  for (int i = 0; i < target_count; ++i) {
+    if (e == target(i)) return i;
+  }
+  return -1;
+}
 
 Vec2 ball_rest_position() {
   const double omega = 2.0 * std::numbers::pi * band_frequency;
@@ -129,7 +136,7 @@ fixstep::WorldDef make_level() {
 void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput& input,
                    const fixstep::Simulation& sim) {
   drag.apply(input, sim);  // picks on press, drops on release
-  if (game.phase != Phase::loaded || input.drag_body != fixstep::initial_entity(ball)) {
+  if (game.phase != Phase::loaded || input.drag_body != ball) {
     input.drag_body = fixstep::no_body;  // targets are not for dragging
     return;
   }
@@ -142,10 +149,10 @@ void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput&
 }
 
 void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& sim) {
-  const Body b = sim.body_at(ball);
+  const Body b = sim.body(ball);
   switch (game.phase) {
     case Phase::loaded: {
-      const bool dragging = input.drag_body == fixstep::initial_entity(ball);
+      const bool dragging = input.drag_body == ball;
       if (game.dragging && !dragging) {  // let go this tick
         const Vec2 pull = sub(b.position, anchor);
         if (std::hypot(pull.x, pull.y) >= min_pull) {
@@ -160,31 +167,21 @@ void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& si
     case Phase::pulled:
       // The band throws the ball; once it passes the anchor the band is cut and it flies.
       if (dot(sub(b.position, anchor), sub(anchor, game.release_point)) >= 0.0) {
-        edit_body(sim, ball,
-                  [](auto& w, fixstep::Entity e) { w.template remove<SpringDamper>(e); });
+        sim.remove<SpringDamper>(ball);
         game.phase = Phase::flying;
         game.flight_ticks = game.still_ticks = 0;
       }
       break;
     case Phase::flying: {
       // The engine resolved this tick's disc-disc impacts (the bounce); the rules read them.
-      // The ball's first impact with a target knocks it off its rope, and scores.
+      // The ball's first impact with a target knocks it off its rope, and scores. Impacts
+      // name bodies by dense index (valid in this tick): entity_at gives their handles.
       for (const fixstep::Impact& hit : sim.impacts()) {
-        if (hit.body_a != ball || hit.body_b < first_target ||
-            hit.body_b >= first_target + target_count) {
-          continue;  // not the ball and a target (ball = 0 < targets: it is always body_a)
-        }
-        const std::uint32_t target = hit.body_b;
-        const int i = static_cast<int>(target - first_target);
-        if ((game.knocked & (1u << i)) != 0) continue;  // a target scores once
-        game.knocked |= 1u << i;
-        ++game.score;
-        edit_body(sim, target, [](auto& w, fixstep::Entity e) {
-          w.template remove<SpringDamper>(e);
-          w.set(e, fixstep::Appearance{.radius = target_radius, .color = knocked_color});
-        });
+        const fixstep::Entity a = sim.entity_at(hit.body_a), z = sim.entity_at(hit.body_b);
+        const int i = a == ball ? target_number(z) : z == ball ? target_number(a) : -1;
+        if (i >= 0) knock(game, i, sim);  // the ball and a target
       }
-      const Body now = sim.body_at(ball);
+      const Body now = sim.body(ball);
       ++game.flight_ticks;
       game.still_ticks =
           std::hypot(now.velocity.x, now.velocity.y) < still_speed ? game.still_ticks + 1 : 0;
@@ -204,6 +201,11 @@ void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& si
     case Phase::over:
       break;
   }
+}
+
+fixstep::TickRules rules(GameState& game) {
+  return fixstep::stateful_rules(game, [](GameState& g, fixstep::Simulation& sim,
+                                          const TickInput& input) { after_tick(g, input, sim); });
 }
 
 std::vector<std::string> status_lines(const GameState& game) {

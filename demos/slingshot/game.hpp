@@ -4,7 +4,9 @@
 // The whole game is two things:
 //   1. a level: a WorldDef built in code (make_level), and
 //   2. rules: after_tick(), a function run after every tick that reads the world, the tick's
-//      impacts and input and changes the world (cuts the band, knocks targets off, reloads).
+//      impacts and input and changes the world (cuts the band, knocks targets off, reloads),
+//      given to the library as a fixstep::TickRules (rules()) so that fixstep::replay and
+//      fixstep::SyncTest run it as the live game does.
 // The engine does the physics, the hits included (disc-disc contacts); the rules only score.
 // The rules keep their state in GameState, which depends only on the inputs and the world, so
 // replaying a recording's inputs reproduces the game bit for bit: score, shots and state hash.
@@ -13,6 +15,7 @@
 #include <cstdint>
 #include <fixstep/input.hpp>
 #include <fixstep/pointer_drag.hpp>
+#include <fixstep/rules.hpp>
 #include <fixstep/simulation.hpp>
 #include <string>
 #include <vector>
@@ -20,20 +23,27 @@
 namespace slingshot {
 
 // --- the level (units: m, kg, s) --------------------------------------------------------------
-inline constexpr double dt = 1.0 / 120.0;         ///< s, one tick
-inline constexpr fixstep::Vec2 anchor{-12, 3};    ///< m, the band's fork: where the ball sits
-inline constexpr double band_frequency = 1.2;     ///< Hz, the rubber band on the ball's mass
-inline constexpr double max_pull = 3.0;           ///< m, farthest the band stretches
-inline constexpr double min_pull = 0.5;           ///< m, a shorter pull is no shot
-inline constexpr double ball_radius = 0.35;       ///< m
-inline constexpr double ball_mass = 1.0;          ///< kg
-inline constexpr double target_radius = 0.6;      ///< m
-inline constexpr double target_mass = 0.5;        ///< kg
-inline constexpr double hit_restitution = 0.8;    ///< e of the disc-disc contacts (0..1)
-inline constexpr int shots_per_game = 3;          ///< balls the player gets
-inline constexpr std::uint32_t ball = 0;          ///< body index of the ball
-inline constexpr std::uint32_t first_target = 1;  ///< targets are bodies 1..target_count
-inline constexpr int target_count = 4;            ///< then come the post's bodies
+inline constexpr double dt = 1.0 / 120.0;       ///< s, one tick
+inline constexpr fixstep::Vec2 anchor{-12, 3};  ///< m, the band's fork: where the ball sits
+inline constexpr double band_frequency = 1.2;   ///< Hz, the rubber band on the ball's mass
+inline constexpr double max_pull = 3.0;         ///< m, farthest the band stretches
+inline constexpr double min_pull = 0.5;         ///< m, a shorter pull is no shot
+inline constexpr double ball_radius = 0.35;     ///< m
+inline constexpr double ball_mass = 1.0;        ///< kg
+inline constexpr double target_radius = 0.6;    ///< m
+inline constexpr double target_mass = 0.5;      ///< kg
+inline constexpr double hit_restitution = 0.8;  ///< e of the disc-disc contacts (0..1)
+inline constexpr int shots_per_game = 3;        ///< balls the player gets
+inline constexpr int target_count = 4;          ///< targets, hanging from ropes
+/// The ball's handle: make_level() lists it first (fixstep::initial_entity, which stays valid
+/// across ticks whatever the rules create or destroy).
+inline constexpr fixstep::Entity ball = fixstep::initial_entity(0);
+/// Target i's handle (0 <= i < target_count): the bodies after the ball; then come the post's.
+[[nodiscard]] constexpr fixstep::Entity target(int i) {
+  return fixstep::initial_entity(1 + static_cast<std::size_t>(i));
+}
+/// The target a handle names, or -1 when it is not a target.
+[[nodiscard]] int target_number(fixstep::Entity e);
 
 /// The level: the ball resting on its band at `anchor`, four targets hanging from ropes
 /// (anchored springs with a rest length), gravity on both, a post under the fork (static,
@@ -74,7 +84,13 @@ void prepare_input(const GameState& game, fixstep::PointerDrag& drag, fixstep::T
 
 /// After a tick: the rules. `input` is the tick's input (with drag_body set), `sim` the world
 /// right after sim.step(input); a hit is read from sim.impacts(), the tick's disc-disc impacts.
+/// Changes the world through Simulation's handle API only (remove, set, set_body).
 void after_tick(GameState& game, const fixstep::TickInput& input, fixstep::Simulation& sim);
+
+/// The rules as the library runs them (fixstep::replay, fixstep::SyncTest): after_tick on
+/// `game` (held by reference: it must outlive the rules), saved and restored with the world
+/// (fixstep::stateful_rules).
+[[nodiscard]] fixstep::TickRules rules(GameState& game);
 
 /// One tick of the game from a prepared input: step, then the rules.
 inline void play_tick(GameState& game, const fixstep::TickInput& input, fixstep::Simulation& sim) {

@@ -9,7 +9,8 @@
 //                  the prepared input, drag_body included)
 //   step   = sim.step(input): physics, with the pointer's drag spring
 //   rules  = after_tick(): cut the band, score the hits (sim.impacts()), knock targets off, reload
-// so a replay of the recorded inputs reproduces the game, and its state hashes, bit for bit.
+// so a replay of the recorded inputs with the rules (fixstep::replay(sim, rec,
+// slingshot::rules(game))) reproduces the game, and its state hashes, bit for bit.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -98,57 +99,37 @@ int play(const std::string& record_file, std::int64_t frames) {
   return 0;
 }
 
-// Replays a recording headless at 60 frames/s of virtual time, checking every stored hash;
-// writes every `every`-th frame (and the last) into out_dir, the last frame to last_frame.
-int replay_file(const std::string& file, const std::string& out_dir, int every,
-                const std::string& last_frame) {
-  const Recording rec = read_recording(file);
+// Draws a recorded game through a Session at 60 frames/s of virtual time, its first `ticks`
+// ticks with the game's rules: every `every`-th frame (and the last) into out_dir, the last
+// frame to last_frame. Checks nothing: replay_file verifies the recording first.
+void draw_replay(const Recording& rec, std::uint64_t ticks, const std::string& out_dir, int every,
+                 const std::string& last_frame) {
   Session session(slingshot::make_level(), view());
   session.set_show_energy(false);  // the pull and the rules add energy from outside the world
-  if (definition_hash(session.definition()) != rec.definition_hash) {
-    std::fprintf(stderr, "slingshot: error: %s was recorded on another level (hash %s, not %s)\n",
-                 file.c_str(), hex_hash(rec.definition_hash).c_str(),
-                 hex_hash(definition_hash(session.definition())).c_str());
-    return 5;
-  }
+  slingshot::GameState game;
+  const TickRules rules = slingshot::rules(game);
   std::optional<FrameWriter> writer;
   if (!out_dir.empty()) {
     prepare_output_dir(out_dir);
     writer.emplace(out_dir, width, height);
   }
-  slingshot::GameState game;
-  std::size_t next_hash = 0;  // rec.hashes[next_hash] is the next stored hash to check
-  std::uint64_t verified = 0;
-  std::optional<std::uint64_t> diverged;  // the first tick whose hash differs
-  auto check = [&](const Simulation& sim) {
-    while (next_hash < rec.hashes.size() && rec.hashes[next_hash].first <= sim.tick()) {
-      const auto [tick, hash] = rec.hashes[next_hash++];
-      if (tick != sim.tick()) continue;
-      if (hash == sim.state_hash()) {
-        ++verified;
-      } else if (!diverged) {
-        diverged = tick;
-      }
-    }
-  };
-
   const VirtualClock clock(60.0);
   TickInput last;
   for (std::int64_t frame = 0;; ++frame) {
     if (frame > 0) {
       session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& sim) {
-        if (t >= rec.ticks || diverged) return;  // the end, or no point going on
+        if (t >= ticks) return;
         last = rec.input_at(t);
-        slingshot::play_tick(game, last, sim);
-        check(sim);
+        sim.step(last);
+        rules.after_tick(sim, last);
       });
     }
     const std::uint64_t tick = session.simulation().tick();
-    const bool end = tick >= rec.ticks || diverged;
+    const bool end = tick >= ticks;
     const bool write = writer && (frame % every == 0 || end);
     // Trails grow by one sample per frame drawn: the trail_frames frames before each frame
     // written are drawn too, so its trails look as they do in the window.
-    const double frames_left = double(rec.ticks - std::min(tick, rec.ticks)) * slingshot::dt * 60;
+    const double frames_left = double(ticks - std::min(tick, ticks)) * slingshot::dt * 60;
     const bool warm_up = (writer && every - frame % every <= Renderer::trail_frames) ||
                          (!last_frame.empty() && frames_left <= Renderer::trail_frames + 1);
     if (write || warm_up || (end && !last_frame.empty())) {
@@ -159,18 +140,36 @@ int replay_file(const std::string& file, const std::string& out_dir, int every,
     if (write) writer->submit(session.renderer().pixels());
     if (end) break;
   }
-  const Simulation& sim = session.simulation();
-  if (!diverged && sim.state_hash() == rec.final_hash) ++verified;
-  if (!diverged && sim.state_hash() != rec.final_hash) diverged = sim.tick();
   if (!last_frame.empty()) write_png(last_frame, width, height, session.renderer().pixels());
   if (writer) writer->finish();
-  std::printf("%s\n%s\nverified=%llu\n", summary_line(sim, session.initial_energy()).c_str(),
-              slingshot::describe(game).c_str(), static_cast<unsigned long long>(verified));
-  if (diverged) {
+}
+
+// Replays a recording headless with the game's rules (fixstep::replay), checking every stored
+// hash; then draws it (draw_replay) when out_dir or last_frame is given.
+int replay_file(const std::string& file, const std::string& out_dir, int every,
+                const std::string& last_frame) {
+  const Recording rec = read_recording(file);
+  const WorldDef level = slingshot::make_level();
+  if (definition_hash(level) != rec.definition_hash) {
+    std::fprintf(stderr, "slingshot: error: %s was recorded on another level (hash %s, not %s)\n",
+                 file.c_str(), hex_hash(rec.definition_hash).c_str(),
+                 hex_hash(definition_hash(level)).c_str());
+    return 5;
+  }
+  Simulation sim = make_simulation(level);
+  const double initial_energy = sim.energy().total();
+  slingshot::GameState game;
+  const ReplayReport report = replay(sim, rec, slingshot::rules(game));
+  if (!out_dir.empty() || !last_frame.empty()) {
+    draw_replay(rec, report.ticks, out_dir, every, last_frame);
+  }
+  std::printf("%s\n%s\nverified=%llu\n", summary_line(sim, initial_energy).c_str(),
+              slingshot::describe(game).c_str(), static_cast<unsigned long long>(report.verified));
+  if (report.mismatch) {
     std::fprintf(stderr,
                  "slingshot: error: %s diverged at tick %llu: the state after that many ticks "
                  "is not the recorded one\n",
-                 file.c_str(), static_cast<unsigned long long>(*diverged));
+                 file.c_str(), static_cast<unsigned long long>(report.mismatch->tick));
     return 4;
   }
   return 0;

@@ -61,18 +61,12 @@ std::uint32_t button_list(const Reader& r, const toml::table& t, std::string_vie
   return bits;
 }
 
-/// `drag`: a body name (its handle in the world make_simulation builds) or false (no body).
-Entity drag_target(const Reader& r, const toml::node& n, const std::string& path,
-                   std::span<const BodyDef> bodies) {
-  if (n.is_boolean() && !n.as_boolean()->get()) return no_body;
-  if (!n.is_string()) {
-    r.fail(n.source(), path,
-           fmt::format("expected a body name or false, found {}",
-                       n.is_boolean() ? std::string("true") : scene_detail::found(n)));
-  }
+/// The index into `bodies` of the body named by string node n (the first of that name).
+std::size_t body_index(const Reader& r, const toml::node& n, const std::string& path,
+                       std::span<const BodyDef> bodies) {
   const std::string_view name = n.as_string()->get();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (bodies[i].name == name) return initial_entity(i);
+    if (bodies[i].name == name) return i;
   }
   std::vector<std::string> names;
   names.reserve(bodies.size());
@@ -83,10 +77,94 @@ Entity drag_target(const Reader& r, const toml::node& n, const std::string& path
                      best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
 }
 
+/// `drag`: a body name (its handle in the world make_simulation builds) or false (no body).
+Entity drag_target(const Reader& r, const toml::node& n, const std::string& path,
+                   std::span<const BodyDef> bodies) {
+  if (n.is_boolean() && !n.as_boolean()->get()) return no_body;
+  if (!n.is_string()) {
+    r.fail(n.source(), path,
+           fmt::format("expected a body name or false, found {}",
+                       n.is_boolean() ? std::string("true") : scene_detail::found(n)));
+  }
+  return initial_entity(body_index(r, n, path, bodies));
+}
+
+/// Why body b cannot take input `kind`, or "" when it can.
+std::string wrong_type(BodyInputKind kind, const BodyDef& b) {
+  if (kind == BodyInputKind::velocity) {
+    if (b.type == BodyType::kinematic) return {};
+    return fmt::format(
+        "\"{}\" is a {} body: velocity is for kinematic bodies only{}", b.name,
+        body_type_name(b.type),
+        b.type == BodyType::dynamic ? " (push a dynamic one with impulse or force)" : "");
+  }
+  if (b.type == BodyType::dynamic) return {};
+  return fmt::format("\"{}\" is a {} body: {} acts on dynamic bodies only{}", b.name,
+                     body_type_name(b.type), kind == BodyInputKind::force ? "force" : "impulse",
+                     b.type == BodyType::kinematic ? " (move a kinematic one with velocity)" : "");
+}
+
+/// One `{ body = "NAME", value = [x, y] }` table at `path`.
+BodyInput body_input(Reader& r, const toml::table& t, BodyInputKind kind, const std::string& path,
+                     std::span<const BodyDef> bodies) {
+  r.check_keys(t, path, {"body", "value"});
+  const toml::node* name = t.get("body");
+  if (!name) {
+    r.fail_missing(t, path, {"body"}, "missing (required)",
+                   "the name of the body it acts on, e.g. body = \"ball\"");
+  }
+  if (!name->is_string()) {
+    r.fail(name->source(), path + ".body",
+           fmt::format("expected a body name (a string), found {}", scene_detail::found(*name)));
+  }
+  const std::size_t i = body_index(r, *name, path + ".body", bodies);
+  if (const std::string why = wrong_type(kind, bodies[i]); !why.empty()) {
+    r.fail(name->source(), path + ".body", why);
+  }
+  const toml::node* value = t.get("value");
+  if (!value) {
+    r.fail_missing(t, path, {"value"}, "missing (required)",
+                   kind == BodyInputKind::force ? "the force [x, y] in N, e.g. value = [0.0, 40.0]"
+                   : kind == BodyInputKind::impulse
+                       ? "the impulse [x, y] in N*s, e.g. value = [1.0, 0.5]"
+                       : "the velocity [x, y] in m/s, e.g. value = [2.0, 0.0]");
+  }
+  return BodyInput{initial_entity(i), kind, r.vec2_node(*value, path + ".value")};
+}
+
+[[noreturn]] void not_body_input(const Reader& r, const toml::node& n, const std::string& path) {
+  r.fail(n.source(), path,
+         fmt::format("expected {{ body = \"NAME\", value = [x, y] }} or an array of them, found {}",
+                     scene_detail::found(n)));
+}
+
+/// `force`, `impulse` or `velocity` of an [[at]] table: one inline table or an array of them,
+/// appended to out.
+void body_inputs(Reader& r, const toml::table& t, std::string_view key, BodyInputKind kind,
+                 const std::string& path, std::span<const BodyDef> bodies,
+                 std::vector<BodyInput>& out) {
+  const toml::node* n = t.get(key);
+  if (!n) return;
+  if (const toml::table* one = n->as_table()) {
+    out.push_back(body_input(r, *one, kind, path, bodies));
+    return;
+  }
+  const toml::array* a = n->as_array();
+  if (!a) not_body_input(r, *n, path);
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const std::string at = fmt::format("{}[{}]", path, i);
+    const toml::table* e = a->get(i)->as_table();
+    if (!e) not_body_input(r, *a->get(i), at);
+    out.push_back(body_input(r, *e, kind, at, bodies));
+  }
+}
+
 ScriptEvent parse_event(Reader& r, const toml::table& t, std::size_t index,
                         std::span<const BodyDef> bodies) {
   const std::string path = fmt::format("at[{}]", index);
-  r.check_keys(t, path, {"tick", "press", "release", "pointer", "push", "drag"});
+  r.check_keys(
+      t, path,
+      {"tick", "press", "release", "pointer", "push", "drag", "force", "impulse", "velocity"});
   ScriptEvent e;
   e.line = t.source().begin.line;
   const toml::node* tick = t.get("tick");
@@ -101,6 +179,14 @@ ScriptEvent parse_event(Reader& r, const toml::table& t, std::size_t index,
   e.pointer = r.vec2(t, "pointer", path + ".pointer");
   e.push = r.vec2(t, "push", path + ".push");
   if (const toml::node* d = t.get("drag")) e.drag = drag_target(r, *d, path + ".drag", bodies);
+  body_inputs(r, t, "force", BodyInputKind::force, path + ".force", bodies, e.bodies);
+  body_inputs(r, t, "impulse", BodyInputKind::impulse, path + ".impulse", bodies, e.bodies);
+  body_inputs(r, t, "velocity", BodyInputKind::velocity, path + ".velocity", bodies, e.bodies);
+  if (e.bodies.size() > max_body_inputs) {
+    r.fail(t.source(), path,
+           fmt::format("{} per-body inputs (force, impulse, velocity) in one tick; at most {}",
+                       e.bodies.size(), max_body_inputs));
+  }
   return e;
 }
 
@@ -122,7 +208,8 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
     const toml::node* n = doc.get("world") ? doc.get("world") : doc.get("body");
     r.fail(n->source(), "",
            "this is a scene file, not an input script: a script holds [[at]] tables (tick, "
-           "press, release, pointer, push, drag); see README, Input scripts");
+           "press, release, pointer, push, drag, force, impulse, velocity); see README, Input "
+           "scripts");
   }
   r.check_keys(doc, "", {"at"});
   if (const toml::array* list = r.tables(doc, "at")) {
@@ -154,6 +241,19 @@ TickInput ScriptPlayer::next() {
     if (e.pointer) sampler_.set_pointer(*e.pointer);
     if (e.push) sampler_.set_push(*e.push);
     if (e.drag) sampler_.set_drag_body(*e.drag);
+    for (const BodyInput& b : e.bodies) {
+      switch (b.kind) {
+        case BodyInputKind::force:
+          sampler_.apply_force(b.body, b.value);
+          break;
+        case BodyInputKind::impulse:
+          sampler_.apply_impulse(b.body, b.value);
+          break;
+        case BodyInputKind::velocity:
+          sampler_.set_velocity(b.body, b.value);
+          break;
+      }
+    }
   }
   return sampler_.sample(tick_++);
 }

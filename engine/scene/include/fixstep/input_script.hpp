@@ -26,7 +26,11 @@ struct ScriptEvent {
   std::optional<Vec2> pointer;  ///< m, world coordinates; a level kept until changed
   std::optional<Vec2> push;     ///< m/s²; a level kept until changed
   std::optional<Entity> drag;   ///< the body's initial_entity(), or no_body (`drag = false`)
-  std::size_t line = 0;         ///< of the [[at]] table
+  /// `force` (N, this tick only), `impulse` (N·s, Δv = J/m at this tick) and `velocity` (m/s,
+  /// a kinematic body keeps it until changed), bodies by initial_entity(); forces first, then
+  /// impulses, then velocities, each in file order.
+  std::vector<BodyInput> bodies;
+  std::size_t line = 0;  ///< of the [[at]] table
 };
 
 /// A parsed input script.
@@ -42,11 +46,14 @@ inline constexpr std::size_t max_script_bytes = 4u << 20;
 /// action, pointer_primary, pointer_secondary.
 [[nodiscard]] std::span<const std::pair<std::string_view, std::uint32_t>> button_names();
 
-/// Parses a script for a world of `bodies` (drag names a body; its initial_entity() is stored).
-/// Throws SceneError "FILE:LINE:COLUMN: KEY: MESSAGE" for TOML syntax errors, an [[at]]
-/// without `tick`, ticks not strictly increasing or beyond max_recording_ticks, an unknown
-/// button (with a suggestion), a body name no body has, vectors that are not [x, y] of finite
-/// numbers, wrong types, binary or oversized text.
+/// Parses a script for a world of `bodies` (drag, force, impulse and velocity name a body; its
+/// initial_entity() is stored). Throws SceneError "FILE:LINE:COLUMN: KEY: MESSAGE" for TOML
+/// syntax errors, an [[at]] without `tick`, ticks not strictly increasing or beyond
+/// max_recording_ticks, an unknown button (with a suggestion), a body name no body has (with a
+/// suggestion), a force or impulse on a body that is not dynamic, a velocity for one that is
+/// not kinematic, a per-body table without `body` or `value` or more than max_body_inputs of
+/// them in one tick, vectors that are not [x, y] of finite numbers, wrong types, binary or
+/// oversized text. Unknown keys (also inside a per-body table) are warnings.
 [[nodiscard]] InputScript parse_input_script(std::string_view text, const std::string& source_name,
                                              std::span<const BodyDef> bodies);
 /// As parse_input_script, from a file (SceneError when it cannot be read).
@@ -54,7 +61,9 @@ inline constexpr std::size_t max_script_bytes = 4u << 20;
                                             std::span<const BodyDef> bodies);
 
 /// Plays a script tick by tick through an InputSampler, as the window would: levels (push,
-/// pointer, drag) persist until changed; a press or release reaches exactly its tick.
+/// pointer, drag) persist until changed; a press or release, a force and an impulse reach
+/// exactly their tick (InputSampler::apply_force, apply_impulse); a velocity is given at its
+/// tick (set_velocity) and the kinematic body keeps it.
 class ScriptPlayer {
  public:
   /// The script must outlive the player.
