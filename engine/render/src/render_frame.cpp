@@ -76,6 +76,19 @@ void draw_planes(Renderer& canvas, std::span<const PlaneDef> planes) {
   }
 }
 
+/// Body j's colour: its Appearance's, or a palette colour without one (alpha 0).
+Rgba8 body_color(const RenderFrame& s, std::size_t j) {
+  return s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
+}
+
+/// Bodies are outlined discs of the body's radius (at least min_radius_px; `scale` px per m),
+/// drawn last: what the other shapes draw right below a disc's centre or an anchor is hidden
+/// (Renderer::hidden_under_disc), and they stop short there.
+float body_radius_px(const RenderFrame& s, std::size_t j, double scale) {
+  return s.radius[j] > 0.0f ? std::max(float(s.radius[j] * scale), min_radius_px)
+                            : default_radius_px;
+}
+
 }  // namespace
 
 void Renderer::grid() {
@@ -107,28 +120,6 @@ void Renderer::grid() {
   const std::string label = fmt::format("{:g} m", length);
   const float label_w = text_width(label, 2.0f);
   text(x1 - label_w, y - 24, label, 2.0f, text_color);  // right-aligned: never off the frame
-}
-
-void Renderer::clear_trails() {
-  trail_count_ = 0;
-  trail_head_ = 0;
-}
-
-void Renderer::record_trails(const RenderFrame& s) {
-  const std::size_t n = s.x.size();
-  if (n != trail_bodies_) {
-    trail_bodies_ = n;
-    trail_x_.assign(n * trail_frames, 0.0f);
-    trail_y_.assign(n * trail_frames, 0.0f);
-    clear_trails();
-  }
-  for (std::size_t j = 0; j < n; ++j) {
-    const auto p = to_pixel(s.x[j], s.y[j]);
-    trail_x_[j * trail_frames + trail_head_] = static_cast<float>(p[0]);
-    trail_y_[j * trail_frames + trail_head_] = static_cast<float>(p[1]);
-  }
-  trail_head_ = (trail_head_ + 1) % trail_frames;
-  trail_count_ = std::min(trail_count_ + 1, trail_frames);
 }
 
 namespace {
@@ -200,6 +191,42 @@ int simplify_polyline(const float* xs, const float* ys, int n, float tolerance, 
 
 }  // namespace
 
+void Renderer::draw_trails(const RenderFrame& s, double scale) {
+  // Trails: one polyline per body through its samples, fading from transparent (oldest) to
+  // 60 % opaque (newest): sample k of count (0 = oldest) has alpha 150 (k + 0.5) / count, so
+  // each segment has on average the alpha it had when every segment was a line() of alpha
+  // 150 k / count. Samples are then dropped where the polyline can skip them without leaving
+  // any of them more than trail_tolerance_px away (simplify_polyline): a trail of 44 sub-pixel
+  // segments becomes a few segments of a few pixels, and a projectile's gentle parabola a few
+  // long ones. Samples are kept in m and drawn through this frame's camera, so a moving camera
+  // (Session::follow) shows where the body went, not where it was on the screen.
+  for (std::size_t j = 0; j < trails_.size(); ++j) {
+    std::array<float, trail_frames> xs, ys;  // oldest first
+    const int count = trails_.samples(j, xs, ys);
+    if (count < 2) continue;
+    for (int k = 0; k < count; ++k) {
+      const auto p = to_pixel(xs[k], ys[k]);
+      xs[k] = static_cast<float>(p[0]);
+      ys[k] = static_cast<float>(p[1]);
+    }
+    std::array<int, trail_frames> kept;
+    const int simplified =
+        simplify_polyline(xs.data(), ys.data(), count, trail_tolerance_px, kept.data());
+    const Rgba8 c = body_color(s, j);
+    polyline_scratch_.clear();
+    for (int i = 0; i < simplified; ++i) {
+      const int k = kept[i];
+      Rgba8 ck = c;
+      ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * count));
+      polyline_scratch_.push_back({xs[k], ys[k], ck});
+    }
+    // Its newest end is the body's centre, under the body's disc.
+    shorten(polyline_scratch_, 0.0f,
+            hidden_under_disc(body_radius_px(s, j, scale) + outline_px, 2.0f));
+    polyline(polyline_scratch_, 2.0f);
+  }
+}
+
 bool Renderer::reuse_backdrop(std::span<const PlaneDef> planes) {
   auto same = [](const PlaneDef& a, const PlaneDef& b) {
     return a.normal.x == b.normal.x && a.normal.y == b.normal.y && a.offset == b.offset;
@@ -228,7 +255,7 @@ void Renderer::record_backdrop(std::span<const PlaneDef> planes) {
 
 void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines) {
   begin(background);
-  record_trails(s);
+  trails_.record(s);
   // The grid and the planes change only with the camera (or the planes): drawn once into the
   // backdrop, which every later frame starts from (a copy of 3.6 MB at 1280x720 instead of
   // clearing the frame and drawing the grid's long lines again).
@@ -240,56 +267,16 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
 
   const std::size_t n = s.x.size();
   const double scale = width_ / camera_.width;
-  auto color_of = [&](std::size_t j) {
-    return s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
-  };
-  // Bodies are outlined discs of the body's radius (at least min_radius_px), drawn last: what
-  // the other shapes draw right below a disc's centre or an anchor is hidden (Renderer::
-  // hidden_under_disc), and they stop short there.
-  auto radius_px = [&](std::size_t j) {
-    return s.radius[j] > 0.0f ? std::max(float(s.radius[j] * scale), min_radius_px)
-                              : default_radius_px;
-  };
+  auto color_of = [&](std::size_t j) { return body_color(s, j); };
+  auto radius_px = [&](std::size_t j) { return body_radius_px(s, j, scale); };
   auto under_body = [&](std::size_t j, float width) {
     return hidden_under_disc(radius_px(j) + outline_px, width);
   };
 
-  // Trails: one polyline per body through its samples, fading from transparent (oldest) to
-  // 60 % opaque (newest): sample k of count (0 = oldest) has alpha 150 (k + 0.5) / count, so
-  // each segment has on average the alpha it had when every segment was a line() of alpha
-  // 150 k / count. Samples are then dropped where the polyline can skip them without leaving
-  // any of them more than trail_tolerance_px away (simplify_polyline): a trail of 44 sub-pixel
-  // segments becomes a few segments of a few pixels, and a projectile's gentle parabola a few
-  // long ones.
   // A scene with many links (a cloth, a soft body) draws no trails: hundreds of them would
   // hide the structure the links draw.
   const bool few_links = s.links.size() <= max_zigzag_links;
-  // The ring buffers hold trail_count_ samples ending before trail_head_: oldest first, they are
-  // the `older` ones from `oldest` to the end of the buffer, then the rest from its start.
-  const int oldest = (trail_head_ - trail_count_ + trail_frames) % trail_frames;
-  const int older = std::min(trail_count_, trail_frames - oldest);
-  for (std::size_t j = 0; j < n && trail_count_ > 1 && few_links; ++j) {
-    std::array<float, trail_frames> xs, ys;  // oldest first
-    const float* tx = &trail_x_[j * trail_frames];
-    const float* ty = &trail_y_[j * trail_frames];
-    std::copy_n(tx + oldest, older, xs.begin());
-    std::copy_n(tx, trail_count_ - older, xs.begin() + older);
-    std::copy_n(ty + oldest, older, ys.begin());
-    std::copy_n(ty, trail_count_ - older, ys.begin() + older);
-    std::array<int, trail_frames> kept;
-    const int count =
-        simplify_polyline(xs.data(), ys.data(), trail_count_, trail_tolerance_px, kept.data());
-    const Rgba8 c = color_of(j);
-    polyline_scratch_.clear();
-    for (int i = 0; i < count; ++i) {
-      const int k = kept[i];
-      Rgba8 ck = c;
-      ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * trail_count_));
-      polyline_scratch_.push_back({xs[k], ys[k], ck});
-    }
-    shorten(polyline_scratch_, 0.0f, under_body(j, 2.0f));  // its newest end is the body's centre
-    polyline(polyline_scratch_, 2.0f);
-  }
+  if (few_links) draw_trails(s, scale);
 
   // Springs: a zigzag of 12 coils from (ax, ay) to (bx, by), with straight leads; the first
   // cut_start px and the last cut_end px are hidden by what is drawn over them later.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -153,6 +154,9 @@ Session::Session(WorldDef def, const SessionSettings& settings)
   if (settings.view_width) camera.width = *settings.view_width;
   renderer_.set_camera(camera);
   renderer_.set_hud_text_scale(settings.hud_text_scale);
+  auto_view_ = !settings.view_center;
+  auto_width_ = settings.view_width;
+  reserve_hud(planned_hud_lines());
 }
 
 FrameResult Session::advance(double frame_seconds, const TickInput& input) {
@@ -201,6 +205,15 @@ void Session::restart() {
 
 void Session::draw() {
   sim_->fill_render_frame(loop_.alpha(), frame_);
+  if (!follow_.is_null()) {
+    if (sim_->contains(follow_)) {
+      const std::size_t j = sim_->index_of(follow_);
+      renderer_.set_camera(
+          Camera{.center = {frame_.x[j], frame_.y[j]}, .width = renderer_.camera().width});
+    } else {
+      follow_ = null_entity;  // destroyed: the view stays where it was
+    }
+  }
   if (sim_->contains(drag_body_)) {
     frame_.springs.push_back({static_cast<float>(drag_pointer_.x),
                               static_cast<float>(drag_pointer_.y),
@@ -217,6 +230,7 @@ void Session::draw() {
   }
   if (show_controls_ && show_engine_hud_) control_hud_lines();
   hud_.insert(hud_.end(), status_lines_.begin(), status_lines_.end());
+  reserve_hud(hud_.size());
   renderer_.draw(frame_, hud_);
 }
 
@@ -245,6 +259,81 @@ void Session::control_hud_lines() {
   hud_.emplace_back(
       "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind  esc "
       "quit");
+}
+
+// The HUD's lines (engine_hud_lines, control_hud_lines): title, tick, integrator, the energy
+// line when shown; the loop's state and the key help.
+std::size_t Session::planned_hud_lines() const {
+  std::size_t n = status_lines_.size();
+  if (show_engine_hud_) n += (show_energy_ ? 4 : 3) + (show_controls_ ? 2 : 0);
+  return n;
+}
+
+void Session::reserve_hud(std::size_t lines) {
+  if (!auto_view_ || lines <= hud_reserved_) return;
+  hud_reserved_ = lines;
+  // The HUD panel covers a band at the top of the frame (at most half of it): the world is
+  // fitted into the part below, as `fixstep compare` fits its tiles.
+  const int w = renderer_.width(), h = renderer_.height();
+  const float panel = Renderer::hud_height(lines, renderer_.hud_text_scale());
+  const int band = std::min(static_cast<int>(std::ceil(panel)), h / 2);
+  const Camera fit = fit_camera(def_, w, h - band);
+  const double width = auto_width_.value_or(fit.width);
+  renderer_.set_camera(
+      Camera{.center = {fit.center.x, fit.center.y + 0.5 * band * width / w}, .width = width});
+}
+
+void Session::set_show_controls(bool show) {
+  show_controls_ = show;
+  reserve_hud(planned_hud_lines());
+}
+
+void Session::set_show_energy(bool show) {
+  show_energy_ = show;
+  reserve_hud(planned_hud_lines());
+}
+
+void Session::set_show_engine_hud(bool show) {
+  show_engine_hud_ = show;
+  reserve_hud(planned_hud_lines());
+}
+
+void Session::set_status_lines(std::vector<std::string> lines) {
+  status_lines_ = std::move(lines);
+  reserve_hud(planned_hud_lines());
+}
+
+void Session::set_view(Vec2 center, double width) {
+  if (!std::isfinite(center.x) || !std::isfinite(center.y))
+    throw std::invalid_argument(fmt::format(
+        "Session::set_view: center must be finite, got ({}, {}) m", center.x, center.y));
+  if (!(std::isfinite(width) && width > 0.0))
+    throw std::invalid_argument(
+        fmt::format("Session::set_view: width must be finite and > 0, got {} m", width));
+  take_view();
+  follow_ = null_entity;
+  renderer_.set_camera(Camera{.center = center, .width = width});
+}
+
+void Session::follow(Entity body) {
+  if (!body.is_null() && !sim_->contains(body))
+    throw std::invalid_argument(fmt::format(
+        "Session::follow: no body has handle (slot {}, generation {}) (destroyed or from "
+        "another world)",
+        body.slot(), body.generation));
+  take_view();
+  follow_ = body;
+}
+
+void Session::zoom(double factor) {
+  const double width = renderer_.camera().width / factor;
+  if (!(std::isfinite(factor) && factor > 0.0) || !(std::isfinite(width) && width > 0.0))
+    throw std::invalid_argument(fmt::format(
+        "Session::zoom: factor must be finite and > 0 and leave a finite width, got {} (width "
+        "{} m)",
+        factor, renderer_.camera().width));
+  take_view();
+  renderer_.set_camera(Camera{.center = renderer_.camera().center, .width = width});
 }
 
 }  // namespace fixstep

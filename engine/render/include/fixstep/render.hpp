@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "fixstep/simulation.hpp"
+#include "fixstep/trails.hpp"
 #include "fixstep/types.hpp"
 
 namespace fixstep {
@@ -78,8 +79,9 @@ class Renderer {
   /// Draws grid, trails, links, springs, bodies and the HUD text lines into pixels(). With at
   /// most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
   /// cloth) they are thin straight lines and no trails are drawn. Each call also appends the
-  /// bodies' positions to their trails (one sample per frame). Implemented with the canvas
-  /// calls below: begin(), primitives, finish().
+  /// bodies' positions to their trails (one sample per frame, kept per body handle: see Trails;
+  /// throws std::invalid_argument for a frame whose ids Trails::record refuses). Implemented with
+  /// the canvas calls below: begin(), primitives, finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
   /// Size of draw()'s HUD text, px per font pixel: the font (stb_easy_font) is about 7 font
   /// pixels tall and HUD lines are 11 apart, so 2 (the default) gives 22 px lines. Narrow
@@ -94,10 +96,12 @@ class Renderer {
   [[nodiscard]] static float hud_width(const std::string& line, float scale);
   /// Most links drawn as zigzags, with trails (see draw()).
   static constexpr std::size_t max_zigzag_links = 40;
-  /// Forgets the trails (after a restart or a jump).
-  void clear_trails();
+  /// Forgets the trails (after a restart or a jump): each body starts a new one.
+  void clear_trails() { trails_.clear(); }
+  /// The trails draw() draws, each body's own (see Trails: kept per handle).
+  [[nodiscard]] const Trails& trails() const { return trails_; }
   /// Number of frames a trail spans.
-  static constexpr int trail_frames = 45;
+  static constexpr int trail_frames = Trails::capacity;
 
   [[nodiscard]] std::span<const std::uint8_t> pixels() const { return pixels_; }
 
@@ -200,7 +204,8 @@ class Renderer {
   /// both cuts together (wholly hidden) is the caller's to skip.
   static void shorten(std::span<PolylinePoint> points, float cut_start, float cut_end);
   void grid();
-  void record_trails(const RenderFrame& s);
+  /// draw()'s trails: one fading polyline per body (few_links scenes only).
+  void draw_trails(const RenderFrame& s, double scale);
   /// Sets every program's uniforms for this frame, drawn upside down with flip = -1 (finish()).
   void set_flip(float flip);
   /// Draws batches_[from, to) (finish()).
@@ -242,10 +247,7 @@ class Renderer {
   std::vector<PlaneDef> backdrop_planes_;
   std::vector<char> font_scratch_;
   std::vector<PolylinePoint> polyline_scratch_;  // one trail or spring, reused every frame
-  // trails: ring buffers of trail_frames samples per body, pixel coordinates
-  std::vector<float> trail_x_, trail_y_;
-  std::size_t trail_bodies_ = 0;
-  int trail_head_ = 0, trail_count_ = 0;
+  Trails trails_;  // world coordinates, m: drawn through the camera of each frame
 };
 
 }  // namespace fixstep

@@ -22,11 +22,17 @@ namespace fixstep {
 [[nodiscard]] Camera fit_camera(const WorldDef& def, int width, int height);
 
 /// How a Session shows its world.
+///
+/// The automatic view (no view_center): the world as fit_camera frames it, in the part of the
+/// frame below the HUD's top-left panel, so the HUD never hides a body the view fits. The band
+/// reserved is as tall as the most HUD lines shown so far: it grows (and the view with it) when
+/// more lines appear (controls, status lines, the runtime guard's message), never shrinks. A
+/// program's view (view_center, or Session::set_view, follow, zoom) reserves nothing.
 struct SessionSettings {
   int width = 1280, height = 720;      ///< frame size, pixels (see Renderer)
   std::string title{};                 ///< named in the HUD's first line (e.g. the scene file)
-  std::optional<Vec2> view_center{};   ///< m; default: fit_camera's
-  std::optional<double> view_width{};  ///< visible width, m; default: fit_camera's
+  std::optional<Vec2> view_center{};   ///< m; default: the automatic view's
+  std::optional<double> view_width{};  ///< visible width, m; default: the automatic view's
   float hud_text_scale = 2.0f;         ///< see Renderer::set_hud_text_scale (in [1, 4])
 };
 
@@ -74,18 +80,39 @@ class Session {
   /// as the springs are drawn; no_body hides it.
   void show_drag(Vec2 pointer, Entity body) { drag_pointer_ = pointer, drag_body_ = body; }
   /// Shows the window's key help in the HUD.
-  void set_show_controls(bool show) { show_controls_ = show; }
+  void set_show_controls(bool show);
   /// Shows the energy line (E, dissipated, balance) in the HUD: on by default. Programs whose
   /// rules or pointer add energy from outside the world's account (a game) may hide it, as
   /// its balance then measures them, not the integrator.
-  void set_show_energy(bool show) { show_energy_ = show; }
+  void set_show_energy(bool show);
   /// Shows the engine's HUD lines (title, tick and time, integrator, energy, controls): on by
   /// default. Off, the HUD holds only the status lines and, once the runtime guard has fired,
   /// its message: for programs that lay out a HUD of their own (`fixstep compare`'s tiles).
-  void set_show_engine_hud(bool show) { show_engine_hud_ = show; }
+  void set_show_engine_hud(bool show);
   /// Extra HUD lines drawn below the engine's (a game's score, a hint), until replaced; an
   /// empty list shows none. The bitmap font is ASCII only.
-  void set_status_lines(std::vector<std::string> lines) { status_lines_ = std::move(lines); }
+  void set_status_lines(std::vector<std::string> lines);
+
+  // --- the camera: what part of the world the frame shows (units: m) ----------------------
+  /// Shows the world around `center` (m), `width` m across the frame (the height follows the
+  /// frame's aspect ratio, y up); stops following. Throws std::invalid_argument unless center
+  /// is finite and width finite and > 0.
+  void set_view(Vec2 center, double width);
+  /// Keeps `body` at the centre of the frame: each draw() centres the view on the body's
+  /// interpolated position (the position drawn), at the current width (zoom() still applies).
+  /// null_entity stops following; so does the body's destruction (the view stays where it last
+  /// was). Throws std::invalid_argument for a handle that names no body of the simulation.
+  void follow(Entity body);
+  /// Magnifies the view by `factor` about its centre: the width becomes width / factor (2
+  /// shows half as many metres across, 0.5 twice as many). Throws std::invalid_argument unless
+  /// factor is finite and > 0 and the new width finite and > 0.
+  void zoom(double factor);
+  /// The view the next draw() starts from (the last one drawn, or as set since).
+  [[nodiscard]] const Camera& view() const { return renderer_.camera(); }
+  /// The body the view follows, or null_entity.
+  [[nodiscard]] Entity followed() const { return follow_; }
+  /// Forgets the trails (a jump, a teleport, a new level): each body starts a new one.
+  void clear_trails() { renderer_.clear_trails(); }
 
   [[nodiscard]] const WorldDef& definition() const { return def_; }
   [[nodiscard]] const Simulation& simulation() const { return *sim_; }
@@ -104,6 +131,12 @@ class Session {
   void engine_hud_lines();
   /// Appends the loop's state and the window's key help to hud_.
   void control_hud_lines();
+  /// HUD lines draw() shows with the current settings, before the runtime guard's message.
+  [[nodiscard]] std::size_t planned_hud_lines() const;
+  /// The automatic view: refits the world below a HUD of `lines` lines when more than reserved.
+  void reserve_hud(std::size_t lines);
+  /// The program took the camera: the view is no longer automatic.
+  void take_view() { auto_view_ = false; }
 
   WorldDef def_;
   std::string title_;
@@ -120,6 +153,10 @@ class Session {
   Vec2 drag_pointer_{};
   Entity drag_body_ = no_body;
   std::vector<std::string> status_lines_;  ///< set_status_lines()
+  bool auto_view_ = true;                  ///< the view is fit_camera's below the HUD
+  std::optional<double> auto_width_;       ///< SessionSettings::view_width, m
+  std::size_t hud_reserved_ = 0;           ///< HUD lines the automatic view leaves room for
+  Entity follow_ = null_entity;            ///< follow()
 };
 
 template <class TickFn>
