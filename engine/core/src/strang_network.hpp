@@ -1,0 +1,183 @@
+// Velocity Verlet and Forest–Ruth on a linked world: the symmetric step
+//   S(h) = G(h/2) K(h/2) C↑(h/2) Dr(h) C↓(h/2) K(h/2) G(h/2)
+// of link_damping.hpp (G the bodies' own exact decay, K the kick on the conservative forces,
+// Dr the drift, C↑/C↓ the links' exact damping flows by ascending/descending colour), one
+// stage per Verlet step and three (w1·h, w0·h, w1·h) per Forest–Ruth step. A tick's stages
+// run as one chain whose adjacent kicks at the same position share one force pass (FSAL
+// within the tick): per stage one loop over the links for the forces at the new positions
+// (with C↓ in it), one loop for C↑ (only with damped links) and two passes over the bodies.
+// Internal to the engine: not installed; used by world_coupled.cpp.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <type_traits>
+
+#include "link_damping.hpp"
+#include "link_passes.hpp"
+
+namespace fixstep {
+
+namespace {
+
+/// One stage of the chain: step h, the bodies' exact decay e^{-γh/2} (null without body
+/// damping) and the links' flow over h/2 (null without link damping).
+template <class Real>
+struct StrangStage {
+  Real h{};
+  const Real* decay = nullptr;
+  const Real *ca = nullptr, *cb = nullptr, *energy = nullptr;
+};
+
+/// Smallest colour worth splitting between two threads (its links never share a body).
+constexpr std::size_t min_parallel_colour = 1024;
+
+/// The chain of stages of one tick on the world behind Passes p (see the file comment).
+template <class P, class Real>
+class StrangChain {
+ public:
+  StrangChain(P& p, Real* accx, Real* accy, Real* nx, Real* ny)
+      : p_(p), accx_(accx), accy_(accy), nx_(nx), ny_(ny) {}
+
+  /// Runs stages stage(0) ... stage(count - 1); `cached`: the link sums and directions at the
+  /// current positions are already in acc and (nx, ny) (the last tick's final pass).
+  template <class Stage>
+  void run(std::size_t count, Stage&& stage, bool cached) {
+    if (count == 0) return;
+    StrangStage<Real> s = stage(std::size_t{0});
+    if (!cached) forces(nullptr);  // the tick's first position: forces only, nothing to damp
+    kick(nullptr, &s);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (s.ca) colours<false>(s, true);  // C↑(h/2) at the directions of the last pass
+      drift(s.h);
+      forces(&s);  // forces at the new positions, with C↓(h/2) there
+      if (i + 1 < count) {
+        const StrangStage<Real> next = stage(i + 1);
+        kick(&s, &next);
+        s = next;
+      } else {
+        kick(&s, nullptr);
+      }
+    }
+  }
+
+ private:
+  P& p_;
+  Real *accx_, *accy_, *nx_, *ny_;
+
+  /// Each body's sum of link forces at the current positions into acc; with a stage s of a
+  /// damped network, the stage's C↓(h/2) in the same loop.
+  void forces(const StrangStage<Real>* s) {
+    if (!p_.net.damped) {
+      p_.accumulate({p_.x, p_.y, p_.vx, p_.vy}, Real(0), accx_, accy_);
+      return;
+    }
+    if (!s) {
+      std::fill(accx_, accx_ + p_.n, Real(0)), std::fill(accy_, accy_ + p_.n, Real(0));
+      colours<true>(StrangStage<Real>{}, false);
+    } else {
+      colours<true>(*s, false);  // acc zeroed by the drift
+    }
+  }
+
+  /// One loop over the colours, ascending or descending: with Force, each link's spring force
+  /// added to its ends' sums and its direction stored; with a stage's flow, its exact damping
+  /// flow (at the direction just computed, or the stored one).
+  template <bool Force>
+  void colours(const StrangStage<Real>& s, bool ascending) {
+    const std::size_t q = p_.net.color_offset.size() - 1;
+    const bool flow = s.ca != nullptr, track = p_.track;
+    for (std::size_t i = 0; i < q; ++i) {
+      const std::size_t c = ascending ? i : q - 1 - i;
+      const std::uint32_t* links = p_.net.by_color.data() + p_.net.color_offset[c];
+      const std::size_t count = p_.net.color_offset[c + 1] - p_.net.color_offset[c];
+      p_.par(
+          count,
+          [&](std::size_t i0, std::size_t i1) {
+            if (!flow)
+              colour<Force, false, false>(links, i0, i1, s);
+            else if (track)
+              colour<Force, true, true>(links, i0, i1, s);
+            else
+              colour<Force, true, false>(links, i0, i1, s);
+          },
+          min_parallel_colour);
+    }
+  }
+
+  /// Links links[i0 .. i1) of one colour (see colours()). Local copies of every pointer: the
+  /// stores through Real* would otherwise make the compiler reload them per link.
+  template <bool Force, bool Flow, bool Track>
+  void colour(const std::uint32_t* links, std::size_t i0, std::size_t i1,
+              const StrangStage<Real>& s) {
+    const auto& net = p_.net;
+    const std::uint32_t *ea = net.a.data(), *eb = net.b.data();
+    const Real *k = net.k.data(), *rest = net.rest.data(), *x = p_.x, *y = p_.y;
+    const Real *ca = s.ca, *cb = s.cb, *energy = s.energy;
+    Real *accx = accx_, *accy = accy_, *ux = nx_, *uy = ny_, *vx = p_.vx, *vy = p_.vy;
+    Real* diss = p_.diss_link;
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::uint32_t l = links[i], a = ea[l], b = eb[l];
+      const bool along = rest[l] != Real(0);
+      Real nx, ny;
+      if constexpr (Force) {
+        Real fx, fy;
+        spring_force(k, rest, x, y, l, a, b, along, fx, fy, nx, ny);
+        accx[a] += fx, accy[a] += fy;
+        accx[b] -= fx, accy[b] -= fy;
+        ux[l] = nx, uy[l] = ny;
+      } else {
+        nx = ux[l], ny = uy[l];
+      }
+      if constexpr (Flow) {
+        link_flow<Track>(a, b, l, along, nx, ny, ca[l], cb[l], energy[l], vx, vy, diss);
+      }
+    }
+  }
+
+  /// Drift x += v h (and zero the sums for the next force pass).
+  void drift(Real h) {
+    const bool zero = p_.net.damped;
+    p_.par(p_.n, [&](std::size_t j0, std::size_t j1) {
+      for (std::size_t j = j0; j < j1; ++j) p_.x[j] += p_.vx[j] * h, p_.y[j] += p_.vy[j] * h;
+      if (zero)
+        std::fill(accx_ + j0, accx_ + j1, Real(0)), std::fill(accy_ + j0, accy_ + j1, Real(0));
+    });
+  }
+
+  /// At one position, stage `end`'s closing K(h/2) G(h/2) and stage `begin`'s opening
+  /// G(h/2) K(h/2) (either may be null), on the field plus the link sums.
+  void kick(const StrangStage<Real>* end, const StrangStage<Real>* begin) {
+    const Real* d0 = end ? end->decay : begin->decay;
+    const Real* d1 = begin ? begin->decay : d0;
+    const Real end_half = end ? end->h * Real(0.5) : Real(0);
+    const Real begin_half = begin ? begin->h * Real(0.5) : Real(0);
+    const Real* inv_m = p_.net.inv_mass.data();
+    p_.template bodies<2>(p_.c.damping, d0, d1, [&](const auto& f, std::size_t j) {
+      Real X = p_.x[j], Y = p_.y[j], VX = p_.vx[j], VY = p_.vy[j], ax, ay;
+      auto decay = [&](Real factor) {
+        if constexpr (std::decay_t<decltype(f)>::damped) {
+          if (p_.track) p_.diss_body[j] += Real(0.5) * (VX * VX + VY * VY);
+          VX *= factor, VY *= factor;
+          if (p_.track) p_.diss_body[j] -= Real(0.5) * (VX * VX + VY * VY);
+        }
+      };
+      f.conservative(X, Y, ax, ay);
+      ax += inv_m[j] * accx_[j], ay += inv_m[j] * accy_[j];
+      if (end) {
+        VX += ax * end_half, VY += ay * end_half;  // kick h/2
+        decay(f.decay[0]);
+      }
+      if (begin) {
+        decay(f.decay[1]);
+        VX += ax * begin_half, VY += ay * begin_half;  // kick h/2
+      }
+      p_.vx[j] = VX, p_.vy[j] = VY;
+      return end != nullptr && out_of_range(X, Y, VX, VY);
+    });
+  }
+};
+
+}  // namespace
+
+}  // namespace fixstep
