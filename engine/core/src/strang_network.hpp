@@ -32,6 +32,58 @@ struct StrangStage {
 /// Smallest colour worth splitting between two threads (its links never share a body).
 constexpr std::size_t min_parallel_colour = 1024;
 
+/// The kick pass of the chain for bodies [j0, j1) (see StrangChain::kick): with End, the
+/// ending stage's K(h/2) then G (factor d0); with Begin, the next stage's G (factor d1) then
+/// K(h/2); a = field + (1/m)·acc. A plain loop over restrict pointers with a branch-free range
+/// check, like euler_bodies, so the compiler vectorizes it. Returns true if some state is out
+/// of range (checked with End).
+template <class Field, bool End, bool Begin, bool Track, class Real>
+bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const Real* __restrict y,
+                 Real* __restrict vx, Real* __restrict vy, Real* __restrict diss,
+                 const Real* __restrict accx, const Real* __restrict accy,
+                 const Real* __restrict inv_m, const Real* __restrict k,
+                 const Real* __restrict anchor_x, const Real* __restrict anchor_y,
+                 const Real* __restrict rest, const Real* __restrict d0, const Real* __restrict d1,
+                 const Real* __restrict cx, const Real* __restrict cy, Real push_x, Real push_y,
+                 Real end_half, Real begin_half) {
+  const Real limit = static_cast<Real>(max_state_magnitude);
+  Real out = 0;
+  for (std::size_t j = j0; j < j1; ++j) {
+    Field f;
+    if constexpr (Field::shape != SpringShape::none) {
+      f.k = k[j], f.anchor_x = anchor_x[j], f.anchor_y = anchor_y[j];
+    }
+    if constexpr (Field::shape == SpringShape::rest_length) f.rest = rest[j];
+    if constexpr (Field::accel) f.cx = cx[j] + push_x, f.cy = cy[j] + push_y;
+    const Real px = x[j], py = y[j];
+    Real pvx = vx[j], pvy = vy[j], ax, ay;
+    auto decay = [&](Real factor) {
+      if constexpr (Field::damped) {
+        if constexpr (Track) diss[j] += Real(0.5) * (pvx * pvx + pvy * pvy);
+        pvx *= factor, pvy *= factor;
+        if constexpr (Track) diss[j] -= Real(0.5) * (pvx * pvx + pvy * pvy);
+      }
+    };
+    f.conservative(px, py, ax, ay);
+    ax += inv_m[j] * accx[j], ay += inv_m[j] * accy[j];
+    if constexpr (End) {
+      pvx += ax * end_half, pvy += ay * end_half;  // kick h/2
+      decay(d0[j]);
+    }
+    if constexpr (Begin) {
+      decay(d1[j]);
+      pvx += ax * begin_half, pvy += ay * begin_half;  // kick h/2
+    }
+    vx[j] = pvx, vy[j] = pvy;
+    if constexpr (End) {
+      const bool in_range = (int(std::abs(px) <= limit) & int(std::abs(py) <= limit) &
+                             int(std::abs(pvx) <= limit) & int(std::abs(pvy) <= limit)) != 0;
+      out = in_range ? out : Real(1);
+    }
+  }
+  return out != Real(0);
+}
+
 /// The chain of stages of one tick on the world behind Passes p (see the file comment).
 template <class P, class Real>
 class StrangChain {
@@ -148,32 +200,29 @@ class StrangChain {
   /// At one position, stage `end`'s closing K(h/2) G(h/2) and stage `begin`'s opening
   /// G(h/2) K(h/2) (either may be null), on the field plus the link sums.
   void kick(const StrangStage<Real>* end, const StrangStage<Real>* begin) {
-    const Real* d0 = end ? end->decay : begin->decay;
-    const Real* d1 = begin ? begin->decay : d0;
+    const Real* d0 = end ? end->decay : nullptr;
+    const Real* d1 = begin ? begin->decay : nullptr;
     const Real end_half = end ? end->h * Real(0.5) : Real(0);
     const Real begin_half = begin ? begin->h * Real(0.5) : Real(0);
-    const Real* inv_m = p_.net.inv_mass.data();
-    p_.template bodies<2>(p_.c.damping, d0, d1, [&](const auto& f, std::size_t j) {
-      Real X = p_.x[j], Y = p_.y[j], VX = p_.vx[j], VY = p_.vy[j], ax, ay;
-      auto decay = [&](Real factor) {
-        if constexpr (std::decay_t<decltype(f)>::damped) {
-          if (p_.track) p_.diss_body[j] += Real(0.5) * (VX * VX + VY * VY);
-          VX *= factor, VY *= factor;
-          if (p_.track) p_.diss_body[j] -= Real(0.5) * (VX * VX + VY * VY);
-        }
-      };
-      f.conservative(X, Y, ax, ay);
-      ax += inv_m[j] * accx_[j], ay += inv_m[j] * accy_[j];
-      if (end) {
-        VX += ax * end_half, VY += ay * end_half;  // kick h/2
-        decay(f.decay[0]);
-      }
-      if (begin) {
-        decay(f.decay[1]);
-        VX += ax * begin_half, VY += ay * begin_half;  // kick h/2
-      }
-      p_.vx[j] = VX, p_.vy[j] = VY;
-      return end != nullptr && out_of_range(X, Y, VX, VY);
+    const auto& c = p_.c;
+    with_field<Real, 0>(p_.shape, c.damping, p_.accel, [&](auto field) {
+      using Field = decltype(field);
+      p_.par(p_.n, [&](std::size_t j0, std::size_t j1) {
+        auto run = [&]<bool End, bool Begin, bool Track>() {
+          return kick_bodies<Field, End, Begin, Track>(
+              j0, j1, p_.x, p_.y, p_.vx, p_.vy, p_.diss_body, accx_, accy_, p_.net.inv_mass.data(),
+              c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), d0, d1,
+              c.accel_x.data(), c.accel_y.data(), p_.push[0], p_.push[1], end_half, begin_half);
+        };
+        auto tracked = [&]<bool End, bool Begin>() {
+          return p_.track ? run.template operator()<End, Begin, true>()
+                          : run.template operator()<End, Begin, false>();
+        };
+        const bool out = !end     ? tracked.template operator()<false, true>()
+                         : !begin ? tracked.template operator()<true, false>()
+                                  : tracked.template operator()<true, true>();
+        p_.flag(out);
+      });
     });
   }
 };
