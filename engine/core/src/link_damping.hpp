@@ -74,13 +74,13 @@ inline void color_links(std::size_t n, const std::vector<std::uint32_t>& a,
   for (std::size_t l = 0; l < m; ++l) by_color[fill[color[l]]++] = static_cast<std::uint32_t>(l);
 }
 
-/// Link l's exact damping flow over the τ of (ca, cb, energy) (see the file comment), with
-/// direction (nx, ny) when along (L > 0), on the whole relative velocity otherwise. Track:
-/// adds the kinetic energy it removes, J, to diss[l].
+/// One link's exact damping flow over the τ of (ca, cb, energy) (see the file comment), on
+/// ends a and b, with direction (nx, ny) when along (L > 0), on the whole relative velocity
+/// otherwise. Track: adds the kinetic energy it removes, J, to *diss.
 template <bool Track, class Real>
-[[gnu::always_inline]] inline void link_flow(std::uint32_t a, std::uint32_t b, std::size_t l,
-                                             bool along, Real nx, Real ny, Real ca, Real cb,
-                                             Real energy, Real* vx, Real* vy, Real* diss) {
+[[gnu::always_inline]] inline void link_flow(std::uint32_t a, std::uint32_t b, bool along, Real nx,
+                                             Real ny, Real ca, Real cb, Real energy, Real* vx,
+                                             Real* vy, Real* diss) {
   const Real ux = vx[a] - vx[b], uy = vy[a] - vy[b];
   Real px = ux, py = uy;
   if (along) {
@@ -89,11 +89,11 @@ template <bool Track, class Real>
   }
   vx[a] += ca * px, vy[a] += ca * py;
   vx[b] -= cb * px, vy[b] -= cb * py;
-  if constexpr (Track) diss[l] += energy * (px * px + py * py);
+  if constexpr (Track) *diss += energy * (px * px + py * py);
 }
 
-/// Link l's spring force on end a (b gets the opposite), N, as link_force<true, false>
-/// computes it, and its direction (0 for L = 0 or zero length) into (nx, ny).
+/// The spring force of the link at index l of (k, rest) on end a (b gets the opposite), N, as
+/// link_force<true, false> computes it, and its direction (0 for L = 0 or zero length).
 template <class Real>
 [[gnu::always_inline]] inline void spring_force(const Real* k, const Real* rest, const Real* x,
                                                 const Real* y, std::size_t l, std::uint32_t a,

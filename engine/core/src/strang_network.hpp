@@ -141,48 +141,50 @@ class StrangChain {
     const bool flow = s.ca != nullptr, track = p_.track;
     for (std::size_t i = 0; i < q; ++i) {
       const std::size_t c = ascending ? i : q - 1 - i;
-      const std::uint32_t* links = p_.net.by_color.data() + p_.net.color_offset[c];
-      const std::size_t count = p_.net.color_offset[c + 1] - p_.net.color_offset[c];
+      const std::size_t first = p_.net.color_offset[c];
+      const std::size_t count = p_.net.color_offset[c + 1] - first;
       p_.par(
           count,
           [&](std::size_t i0, std::size_t i1) {
             if (!flow)
-              colour<Force, false, false>(links, i0, i1, s);
+              colour<Force, false, false>(first + i0, first + i1, s);
             else if (track)
-              colour<Force, true, true>(links, i0, i1, s);
+              colour<Force, true, true>(first + i0, first + i1, s);
             else
-              colour<Force, true, false>(links, i0, i1, s);
+              colour<Force, true, false>(first + i0, first + i1, s);
           },
           min_parallel_colour);
     }
   }
 
-  /// Links links[i0 .. i1) of one colour (see colours()). Local copies of every pointer: the
-  /// stores through Real* would otherwise make the compiler reload them per link.
+  /// Links [i0, i1) in colour order (see colours(); Network::color_a and LinkFlow are in
+  /// that order, so the loop streams them). Local copies of every pointer: the stores through
+  /// Real* would otherwise make the compiler reload them per link.
   template <bool Force, bool Flow, bool Track>
-  void colour(const std::uint32_t* links, std::size_t i0, std::size_t i1,
-              const StrangStage<Real>& s) {
+  void colour(std::size_t i0, std::size_t i1, const StrangStage<Real>& s) {
     const auto& net = p_.net;
-    const std::uint32_t *ea = net.a.data(), *eb = net.b.data();
-    const Real *k = net.k.data(), *rest = net.rest.data(), *x = p_.x, *y = p_.y;
+    const std::uint32_t *ea = net.color_a.data(), *eb = net.color_b.data();
+    const std::uint32_t* link = net.by_color.data();
+    const Real *k = net.color_k.data(), *rest = net.color_rest.data(), *x = p_.x, *y = p_.y;
     const Real *ca = s.ca, *cb = s.cb, *energy = s.energy;
     Real *accx = accx_, *accy = accy_, *ux = nx_, *uy = ny_, *vx = p_.vx, *vy = p_.vy;
     Real* diss = p_.diss_link;
     for (std::size_t i = i0; i < i1; ++i) {
-      const std::uint32_t l = links[i], a = ea[l], b = eb[l];
-      const bool along = rest[l] != Real(0);
+      const std::uint32_t a = ea[i], b = eb[i];
+      const bool along = rest[i] != Real(0);
       Real nx, ny;
       if constexpr (Force) {
         Real fx, fy;
-        spring_force(k, rest, x, y, l, a, b, along, fx, fy, nx, ny);
+        spring_force(k, rest, x, y, i, a, b, along, fx, fy, nx, ny);
         accx[a] += fx, accy[a] += fy;
         accx[b] -= fx, accy[b] -= fy;
-        ux[l] = nx, uy[l] = ny;
+        ux[i] = nx, uy[i] = ny;
       } else {
-        nx = ux[l], ny = uy[l];
+        nx = ux[i], ny = uy[i];
       }
       if constexpr (Flow) {
-        link_flow<Track>(a, b, l, along, nx, ny, ca[l], cb[l], energy[l], vx, vy, diss);
+        Real* slot = Track ? &diss[link[i]] : nullptr;
+        link_flow<Track>(a, b, along, nx, ny, ca[i], cb[i], energy[i], vx, vy, slot);
       }
     }
   }

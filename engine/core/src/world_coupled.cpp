@@ -103,6 +103,14 @@ void World<Real>::rebuild_network() {
   }
   net.color_offset.clear(), net.by_color.clear();
   if (net.damped) color_links(n, net.a, net.b, net.color_offset, net.by_color);
+  const std::size_t colored = net.by_color.size();
+  net.color_a.resize(colored), net.color_b.resize(colored);
+  net.color_k.resize(colored), net.color_rest.resize(colored);
+  for (std::size_t i = 0; i < colored; ++i) {
+    const std::uint32_t l = net.by_color[i];
+    net.color_a[i] = net.a[l], net.color_b[i] = net.b[l];
+    net.color_k[i] = net.k[l], net.color_rest[i] = net.rest[l];
+  }
   link_flows_.clear();
   fx_.assign(m, Real(0)), fy_.assign(m, Real(0)), power_link_.assign(m, Real(0));
   unit_x_.assign(net.damped ? m : 0, Real(0)), unit_y_.assign(net.damped ? m : 0, Real(0));
@@ -124,17 +132,18 @@ const typename World<Real>::LinkFlow& World<Real>::link_flow(double tau) {
   if (link_flows_.size() >= 4) link_flows_.clear();  // the step sizes changed
   LinkFlow f;
   f.tau = tau;
-  const std::size_t m = link_defs_.size();
+  const std::size_t m = net_.by_color.size();  // in colour order
   f.ca.resize(m), f.cb.resize(m), f.energy.resize(m);
   auto inverse_mass = [&](std::uint32_t j) {
     return types_[j] == BodyType::dynamic ? 1.0 / mass_[j] : 0.0;
   };
-  for (std::size_t l = 0; l < m; ++l) {
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::uint32_t l = net_.by_color[i];
     const double ia = inverse_mass(net_.a[l]), ib = inverse_mass(net_.b[l]);
     const double sum = ia + ib, mu = link_defs_[l].spring.damping * sum;
     const double q = sum > 0.0 ? std::expm1(-mu * tau) / sum : 0.0;
-    f.ca[l] = static_cast<Real>(ia * q), f.cb[l] = static_cast<Real>(ib * q);
-    f.energy[l] = static_cast<Real>(sum > 0.0 ? -0.5 * std::expm1(-2.0 * mu * tau) / sum : 0.0);
+    f.ca[i] = static_cast<Real>(ia * q), f.cb[i] = static_cast<Real>(ib * q);
+    f.energy[i] = static_cast<Real>(sum > 0.0 ? -0.5 * std::expm1(-2.0 * mu * tau) / sum : 0.0);
   }
   link_flows_.push_back(std::move(f));
   return link_flows_.back();

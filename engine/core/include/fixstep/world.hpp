@@ -472,10 +472,13 @@ class World {
     // commute and run in parallel (link_damping.hpp). by_color[color_offset[c] ..
     // color_offset[c+1]) are colour c's links in link order.
     std::vector<std::uint32_t> color_offset, by_color;
+    std::vector<std::uint32_t> color_a, color_b;  ///< a, b, k, rest in colour order
+    std::vector<Real> color_k, color_rest;
     bool rest_length = false;  ///< some link has L > 0
     bool damped = false;       ///< some link has b > 0
   } net_;
-  // Each link's exact damping flow over τ (link_damping.hpp), cached per τ like flows_:
+  // Each link's exact damping flow over τ (link_damping.hpp), in colour order (by_color),
+  // cached per τ like flows_:
   // Δv_a = ca·p, Δv_b = -cb·p for the relative velocity p along the link, and the kinetic
   // energy it removes, energy·|p|² (J).
   struct LinkFlow {
@@ -483,7 +486,8 @@ class World {
     std::vector<Real> ca, cb, energy;
   };
   std::vector<LinkFlow> link_flows_;
-  std::vector<Real> unit_x_, unit_y_;  ///< each link's direction at the last force pass
+  std::vector<Real> unit_x_,
+      unit_y_;  ///< each link's direction at the last force pass (colour order)
   // The Strang chain's last link sums (d_[0], d_[1]) and directions were computed at these
   // positions: the next tick's first force pass is skipped when the positions are still these,
   // bit for bit (first same as last across ticks; strang_network.hpp). Not state: a pure
