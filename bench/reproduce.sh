@@ -3,6 +3,8 @@
 #   bash bench/reproduce.sh            (about 15 minutes on 2 cores)
 #   bash bench/reproduce.sh coupled    (only section 6, coupled systems against peers: ~3 min)
 #   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers: ~3-5 min)
+#   bash bench/reproduce.sh network    (only section 6's integrator costs on damped networks,
+#                                       issue #22: ~1 min)
 # Builds the optimised benchmark tree (build/bench), runs each study into docs/perf/, and
 # splices the generated markdown into docs/PERFORMANCE.md between its
 # "<!-- BEGIN name -->" / "<!-- END name -->" markers. Run on an otherwise idle machine:
@@ -11,8 +13,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 only="${1:-}"
 case "$only" in
-  "" | coupled | discs) ;;
-  *) echo "usage: bash bench/reproduce.sh [coupled|discs]" >&2; exit 2 ;;
+  "" | coupled | discs | network) ;;
+  *) echo "usage: bash bench/reproduce.sh [coupled|discs|network]" >&2; exit 2 ;;
 esac
 bash .ci/install-deps
 cmake --workflow --preset bench
@@ -50,15 +52,22 @@ measured_on() {
 }
 # Coupled systems against the edge-list loop, Chipmunk2D and Box2D: tables, targets and the
 # work-precision plot, headed by the machine and date they come from.
-if [ "$only" != discs ]; then
+if [ -z "$only" ] || [ "$only" = coupled ]; then
   "$bin/bench_coupled" --report "$out" > "$out/coupled.log"
   { measured_on; cat "$out/coupled.md"; } > "$out/coupled.section.md"
 fi
 # Disc contacts against Chipmunk2D and Box2D (pile, gas; N = 10^3 ... 10^5): cost per
 # body-step, overlaps, energy, targets; its first line gives the load average during the run.
-if [ "$only" != coupled ]; then
+if [ -z "$only" ] || [ "$only" = discs ]; then
   "$bin/bench_discs" --report "$out" > "$out/discs.log"
   { measured_on; cat "$out/discs.md"; } > "$out/discs.section.md"
+fi
+
+# Each integrator's cost per tick on damped networks (cloth.toml and a 10^4-body cloth, f64
+# and f32, 1 and 2 threads), side by side in one run: the table of issue #22.
+if [ -z "$only" ] || [ "$only" = network ]; then
+  "$bin/bench_network_integrators" --out "$out" > "$out/network_integrators.log"
+  { measured_on; cat "$out/network_integrators.md"; } > "$out/network_integrators.section.md"
 fi
 
 splice() {  # splice NAME FILE: replace the text between the NAME markers with FILE
@@ -75,6 +84,9 @@ if [ -z "$only" ]; then
   splice work_precision "$out/work_precision.md"
   splice constant_force "$out/article/constant_force.md"
 fi
-[ "$only" = discs ] || splice coupled "$out/coupled.section.md"
-[ "$only" = coupled ] || splice discs "$out/discs.section.md"
+if [ -z "$only" ] || [ "$only" = coupled ]; then splice coupled "$out/coupled.section.md"; fi
+if [ -z "$only" ] || [ "$only" = discs ]; then splice discs "$out/discs.section.md"; fi
+if [ -z "$only" ] || [ "$only" = network ]; then
+  splice network_integrators "$out/network_integrators.section.md"
+fi
 echo "reproduce: docs/PERFORMANCE.md and $out/ regenerated"

@@ -1,6 +1,6 @@
 // The network stability guard: ω_max by power iteration against closed forms, its predicted
 // largest stable step against the step at which a linked World really diverges (chains of
-// 2 to 1000 bodies, equal and 1:1000 masses, damped links with the Taylor damping flow), and
+// 2 to 1000 bodies, equal and 1:1000 masses, damped links with their swept flows), and
 // the guard at scene load and in explain_fault.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -122,7 +122,7 @@ struct DivergenceCase {
 /// The guard's largest stable step h* must bracket the divergence of the real World: bounded
 /// (max |x| < 20 start over 2000 ticks) at 0.97 h*, growing past 1e3 start within 3000 ticks
 /// at 1.03 h*. So h* is within 3 % of the measured threshold.
-void expect_bracketed(const DivergenceCase& c) {
+void expect_bracketed(const DivergenceCase& c, bool conservative_only = false) {
   const Chain ch = chain(c.n, c.masses, 1.0, c.b);
   const NetworkStability r = check_network_stability(ch.bodies, ch.links, c.integrator, 1.0, 1);
   SCOPED_TRACE(
@@ -132,7 +132,9 @@ void expect_bracketed(const DivergenceCase& c) {
                   r.damping_bound ? "damping mode" : "top mode", r.omega_max, r.damping_rate));
   ASSERT_TRUE(std::isfinite(r.max_step) && r.max_step > 0.0);
   EXPECT_LT(growth(ch, c.integrator, 0.97 * r.max_step, 2000, 1e6), 20.0);
-  EXPECT_GT(growth(ch, c.integrator, 1.03 * r.max_step, 3000, 1e3), 1e3);
+  if (!conservative_only) {
+    EXPECT_GT(growth(ch, c.integrator, 1.03 * r.max_step, 3000, 1e3), 1e3);
+  }
 }
 
 TEST(NetworkGuard, PredictedStepBracketsTheDivergenceOfUndampedChains) {
@@ -147,14 +149,19 @@ TEST(NetworkGuard, PredictedStepBracketsTheDivergenceOfUndampedChains) {
 
 TEST(NetworkGuard, PredictedStepBracketsTheDivergenceOfDampedChains) {
   // b = 5 N*s/m on k = 1 N/m: λ_max(M⁻¹C) ≈ 20 1/s against ω_max ≈ 2 rad/s, so the damping
-  // binds: Verlet's Taylor damping flow at γh = 5.571, Forest–Ruth's at 2.857, symplectic
-  // Euler's explicit damping near γh = 2 and RK4's near 2.785. Lightly damped (b = 0.05), the
-  // top mode binds instead, Verlet and Forest–Ruth included.
+  // binds: symplectic Euler's explicit damping near γh = 2 and RK4's near 2.785; Verlet's and
+  // Forest–Ruth's swept link damping at the measured λh = 5.0 and 1.8, which only bound the
+  // divergence from below (a 2-body chain under Verlet holds to λh ≈ 43, 100 bodies to 5.5):
+  // for them the guard is conservative, not sharp. Lightly damped (b = 0.05), the top mode
+  // binds instead and is sharp for all four.
   for (Integrator integrator : {Integrator::semi_implicit_euler, Integrator::rk4,
                                 Integrator::velocity_verlet, Integrator::forest_ruth}) {
     for (double b : {5.0, 0.05}) {
-      for (std::size_t n : {2u, 100u}) expect_bracketed({n, Masses::equal, integrator, b});
-      expect_bracketed({10, Masses::alternating, integrator, b});
+      const bool swept = b > 1.0 && (integrator == Integrator::velocity_verlet ||
+                                     integrator == Integrator::forest_ruth);
+      for (std::size_t n : {2u, 10u, 100u})
+        expect_bracketed({n, Masses::equal, integrator, b}, swept);
+      expect_bracketed({10, Masses::alternating, integrator, b}, swept);
     }
   }
 }
@@ -178,7 +185,10 @@ TEST(NetworkGuard, NonProportionalDampingBindsThroughTheDampingMode) {
     EXPECT_TRUE(r.damping_bound);
     EXPECT_EQ(r.strongest_damper, std::optional<std::size_t>(9));
     EXPECT_LT(growth(c, integrator, 0.97 * r.max_step, 2000, 1e6), 20.0);
-    EXPECT_GT(growth(c, integrator, 1.03 * r.max_step, 3000, 1e3), 1e3);
+    // Verlet and Forest–Ruth: the swept bound is conservative (see the damped chains).
+    if (integrator == Integrator::semi_implicit_euler || integrator == Integrator::rk4) {
+      EXPECT_GT(growth(c, integrator, 1.03 * r.max_step, 3000, 1e3), 1e3);
+    }
   }
 }
 

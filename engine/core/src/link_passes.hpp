@@ -1,6 +1,7 @@
 // The passes of a tick of a linked world (see world_coupled.cpp): link forces, the scatter and
-// gather of their sums, the vectorized Euler body pass, and each integrator's passes over a
-// world's arrays (Passes). Internal to the engine: not installed.
+// gather of their sums, the vectorized Euler body pass, and the passes of Euler and RK4 over a
+// world's arrays (Passes; velocity Verlet and Forest–Ruth: strang_network.hpp). Internal to the
+// engine: not installed.
 #pragma once
 
 #include <algorithm>
@@ -183,8 +184,8 @@ struct Passes {
   Par par;
   std::size_t n, m;
   Real *x, *y, *vx, *vy, *fx, *fy;
-  Real* s[4];  ///< stage state (RK4) or the damping flow's w (s[2], s[3])
-  Real* d[4];  ///< RK4's k1 + 2 k2 + 2 k3
+  Real* s[4];  ///< stage state (RK4)
+  Real* d[4];  ///< RK4's k1 + 2 k2 + 2 k3; the link sums of Euler and the Strang chain
   Real *power_body, *power_link, *diss_body, *diss_link;
   bool track;
   bool serial;  ///< one thread: link sums by scatter
@@ -252,8 +253,6 @@ struct Passes {
     });
   }
 
-  /// Each body's sum of link forces (N) at state st into accx, accy: on one thread a scatter
-  /// over the links; on two, a pass over the links and a gather per body (the same bits).
   /// Each body's sum of link forces (N) at state st into accx, accy: on one thread a scatter
   /// over the links in link order; on two, a pass over the links and a gather per body in
   /// link order (each body's additions are the same, in the same order: the same bits).
@@ -340,79 +339,6 @@ struct Passes {
       return out_of_range(X, Y, VX, VY);
     });
     settle_links(sixth);
-  }
-
-  /// The damping flow D(τ) with link damping: w = v, then w = v - (τ/k) C w for k = 4..1
-  /// (see the file comment), then v = w; the kinetic energy it removes is dissipated.
-  void damping_flow(Real tau) {
-    Real *wx = s[2], *wy = s[3];
-    par(n, [&](std::size_t j0, std::size_t j1) {
-      std::copy(vx + j0, vx + j1, wx + j0), std::copy(vy + j0, vy + j1, wy + j0);
-    });
-    for (int k = 4; k >= 1; --k) {
-      links<false, true>({x, y, wx, wy}, Real(0));
-      const Real step = tau / Real(k);
-      const bool last = k == 1;
-      par(n, [&](std::size_t j0, std::size_t j1) {
-        for (std::size_t j = j0; j < j1; ++j) {
-          Real gx, gy;
-          gather(net, fx, fy, j, gx, gy);  // -(link part of C w), m/s²
-          const Real g = c.gamma[j];
-          const Real WX = vx[j] - step * (g * wx[j] - gx), WY = vy[j] - step * (g * wy[j] - gy);
-          if (!last) {
-            wx[j] = WX, wy[j] = WY;
-          } else {
-            if (track) {
-              diss_body[j] += Real(0.5) * ((vx[j] * vx[j] + vy[j] * vy[j]) - (WX * WX + WY * WY));
-            }
-            vx[j] = WX, vy[j] = WY;
-          }
-        }
-      });
-    }
-  }
-
-  /// One Strang-split Verlet step of size hh (integrators.hpp): D(hh/2), kick, drift, kick,
-  /// D(hh/2). decay: the exact per-body factors e^{-γ hh/2} when no link is damped.
-  void strang(Real hh, const Real* decay) {
-    const Real half = hh * Real(0.5);
-    const bool link_damped = net.damped;
-    const bool body_damped = c.damping && !link_damped;
-    if (link_damped) damping_flow(half);
-    links<true, false>({x, y, vx, vy}, Real(0));
-    drive_links<false>({x, y, vx, vy}, double(half));  // the kicks' trapezoid (spring only)
-    bodies<1>(body_damped, decay, nullptr, [&](const auto& f, std::size_t j) {
-      Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j], ax, ay, gx, gy;
-      if constexpr (std::decay_t<decltype(f)>::damped) {
-        if (track) diss_body[j] += Real(0.5) * (VX * VX + VY * VY);
-        VX *= f.decay[0], VY *= f.decay[0];
-        if (track) diss_body[j] -= Real(0.5) * (VX * VX + VY * VY);
-      }
-      f.conservative(X, Y, ax, ay);
-      gather(net, fx, fy, j, gx, gy);
-      ax += gx, ay += gy;
-      VX += ax * half, VY += ay * half;  // kick hh/2
-      X += VX * hh, Y += VY * hh;        // drift hh
-      x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
-      return false;
-    });
-    links<true, false>({x, y, vx, vy}, Real(0));
-    drive_links<false>({x, y, vx, vy}, double(half));
-    bodies<1>(body_damped, decay, nullptr, [&](const auto& f, std::size_t j) {
-      Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j], ax, ay, gx, gy;
-      f.conservative(X, Y, ax, ay);
-      gather(net, fx, fy, j, gx, gy);
-      ax += gx, ay += gy;
-      VX += ax * half, VY += ay * half;  // kick hh/2
-      if constexpr (std::decay_t<decltype(f)>::damped) {
-        if (track) diss_body[j] += Real(0.5) * (VX * VX + VY * VY);
-        VX *= f.decay[0], VY *= f.decay[0];
-        if (track) diss_body[j] -= Real(0.5) * (VX * VX + VY * VY);
-      }
-      vx[j] = VX, vy[j] = VY;
-      return out_of_range(X, Y, VX, VY);
-    });
-    if (link_damped) damping_flow(half);
   }
 };
 

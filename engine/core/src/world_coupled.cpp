@@ -8,27 +8,21 @@
 // crosses a thread, so one and two threads give the same bits. Multi-stage methods run the
 // pair once per stage, with stage states in scratch arrays sized at rebuild, never per tick.
 //
-// Link damping couples the bodies' velocities, so the damping flow D(τ) of the Strang-split
-// methods (velocity Verlet, Forest–Ruth; see integrators.hpp) is no longer a per-body factor:
-// it is v(τ) = exp(-τC) v with C the damping matrix (per-body γ on the diagonal, the links'
-// b/m coupling the ends). fixstep applies exp(-τC) as its fourth-order Taylor polynomial,
-// w = v; w = v - (τ/k) C w for k = 4, 3, 2, 1 (Horner), whose local error O(τ⁵) keeps Verlet at
-// order 2 and the triple jump at order 4 (Hairer, Lubich & Wanner, Geometric Numerical
-// Integration, §III.3 and §II.4: a composition keeps its order when each factor is
-// approximated beyond it). One factor is stable for τ·λ_max(C) <= 2.785 (RK4's real-axis
-// bound), but the factors of a step combine: a pure damping mode stays bounded for
-// h·λ <= 5.571 under Verlet and only h·λ <= 2.857 under Forest–Ruth. The network stability
-// guard (stability_network.cpp) measures the real step, so it applies the combined bounds.
-// Without link damping D stays the exact per-body factor.
+// Velocity Verlet and Forest–Ruth run the symmetric chain of strang_network.hpp: the links'
+// damping as their exact per-link flows, composed by colours (link_damping.hpp), so the
+// methods keep orders 2 and 4 at the cost of their force passes plus one loop over the links.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <thread>
 #include <type_traits>
 
 #include "body_field.hpp"
 #include "fixstep/world.hpp"
+#include "link_damping.hpp"
 #include "link_passes.hpp"
+#include "strang_network.hpp"
 #include "workers.hpp"
 
 namespace fixstep {
@@ -46,12 +40,18 @@ namespace {
 /// Smallest range worth handing to the second thread.
 constexpr std::size_t min_parallel_range = 4096;
 
+/// Bitwise equality (what the link sums depend on; -0 and +0, or two NaNs, are not "equal").
+template <class Real>
+bool bits_equal(Real a, Real b) {
+  return std::memcmp(&a, &b, sizeof(Real)) == 0;
+}
+
 }  // namespace
 
 template <class Real>
 template <class Pass>
-void World<Real>::parallel(std::size_t n, Pass&& pass) {
-  if (threads_used_ < 2 || n < min_parallel_range) {
+void World<Real>::parallel(std::size_t n, Pass&& pass, std::size_t min_range) {
+  if (threads_used_ < 2 || n < min_range) {
     pass(std::size_t{0}, n);
     return;
   }
@@ -107,11 +107,52 @@ void World<Real>::rebuild_network() {
     net.incident[fill[net.a[l]]++] = static_cast<std::uint32_t>(2 * l);
     net.incident[fill[net.b[l]]++] = static_cast<std::uint32_t>(2 * l + 1);
   }
+  net.color_offset.clear(), net.by_color.clear();
+  if (net.damped) color_links(n, net.a, net.b, net.color_offset, net.by_color);
+  const std::size_t colored = net.by_color.size();
+  net.color_a.resize(colored), net.color_b.resize(colored);
+  net.color_k.resize(colored), net.color_rest.resize(colored);
+  for (std::size_t i = 0; i < colored; ++i) {
+    const std::uint32_t l = net.by_color[i];
+    net.color_a[i] = net.a[l], net.color_b[i] = net.b[l];
+    net.color_k[i] = net.k[l], net.color_rest[i] = net.rest[l];
+  }
+  link_flows_.clear();
   fx_.assign(m, Real(0)), fy_.assign(m, Real(0)), power_link_.assign(m, Real(0));
+  unit_x_.assign(net.damped ? m : 0, Real(0)), unit_y_.assign(net.damped ? m : 0, Real(0));
+  fsal_x_.assign(n, Real(0)), fsal_y_.assign(n, Real(0));
+  fsal_valid_ = false;
   for (auto& v : s_) v.assign(n, Real(0));
   for (auto& v : d_) v.assign(n, Real(0));
   power_body_.assign(n, Real(0));
   implicit_.reset();  // its matrix pattern changed
+}
+
+// Each link's exact damping flow over τ (link_damping.hpp), from the masses and dampers in
+// double, rounded once; cached per τ (Verlet needs one, Forest–Ruth two).
+template <class Real>
+const typename World<Real>::LinkFlow& World<Real>::link_flow(double tau) {
+  for (const LinkFlow& f : link_flows_) {
+    if (f.tau == tau) return f;
+  }
+  if (link_flows_.size() >= 4) link_flows_.clear();  // the step sizes changed
+  LinkFlow f;
+  f.tau = tau;
+  const std::size_t m = net_.by_color.size();  // in colour order
+  f.ca.resize(m), f.cb.resize(m), f.energy.resize(m);
+  auto inverse_mass = [&](std::uint32_t j) {
+    return types_[j] == BodyType::dynamic ? 1.0 / mass_[j] : 0.0;
+  };
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::uint32_t l = net_.by_color[i];
+    const double ia = inverse_mass(net_.a[l]), ib = inverse_mass(net_.b[l]);
+    const double sum = ia + ib, mu = link_defs_[l].spring.damping * sum;
+    const double q = sum > 0.0 ? std::expm1(-mu * tau) / sum : 0.0;
+    f.ca[i] = static_cast<Real>(ia * q), f.cb[i] = static_cast<Real>(ib * q);
+    f.energy[i] = static_cast<Real>(sum > 0.0 ? -0.5 * std::expm1(-2.0 * mu * tau) / sum : 0.0);
+  }
+  link_flows_.push_back(std::move(f));
+  return link_flows_.back();
 }
 
 template <class Real>
@@ -132,7 +173,9 @@ void World<Real>::step_multipass(const TickInput& input) {
   const bool accel = c.accel || push[0] != Real(0) || push[1] != Real(0);
   const Integrator method = settings_.integrator;
   std::atomic<bool> bad{false};
-  auto par = [this](std::size_t count, auto&& pass) { this->parallel(count, pass); };
+  auto par = [this](std::size_t count, auto&& pass, std::size_t min_range = min_parallel_range) {
+    this->parallel(count, pass, min_range);
+  };
   Passes<Real, Network, Coefficients, decltype(par)> p{
       net_,
       c,
@@ -158,14 +201,52 @@ void World<Real>::step_multipass(const TickInput& input) {
       accel,
       bad,
       external_work_};
-  // Exact per-body damping factors, as the fused sweep uses them.
-  const bool per_body_decay = c.damping && (m == 0 || !net_.damped);
+  // Exact per-body damping factors, as the fused sweep uses them (worlds without links).
+  const bool per_body_decay = c.damping && m == 0;
   const Real* decay_h = per_body_decay && method == Integrator::velocity_verlet
                             ? damping_decay(0.5 * double(h))
                             : nullptr;
   const bool fr = per_body_decay && method == Integrator::forest_ruth;
   const Real* decay_h1 = fr ? damping_decay(0.5 * double(sizes.h1)) : nullptr;
   const Real* decay_h0 = fr ? damping_decay(0.5 * double(sizes.h0)) : nullptr;
+  const bool strang =
+      m > 0 && (method == Integrator::velocity_verlet || method == Integrator::forest_ruth);
+  if (!strang) fsal_valid_ = false;  // d_ is other methods' scratch
+  if (strang) {
+    // One stage per Verlet step, three (w1·h, w0·h, w1·h) per Forest–Ruth step.
+    auto stage_of = [&](Real hh) {
+      StrangStage<Real> st{.h = hh};
+      if (c.damping) st.decay = damping_decay(0.5 * double(hh));
+      if (net_.damped) {
+        const LinkFlow& f = link_flow(0.5 * double(hh));
+        st.ca = f.ca.data(), st.cb = f.cb.data(), st.energy = f.energy.data();
+      }
+      return st;
+    };
+    const bool verlet = method == Integrator::velocity_verlet;
+    // Twice: a cache full of other steps' factors is cleared by the first look-up that
+    // misses, which could drop the other τ's; the second round finds both.
+    if (!verlet) stage_of(sizes.h1), stage_of(sizes.h0);
+    const StrangStage<Real> outer = stage_of(verlet ? h : sizes.h1);
+    const StrangStage<Real> inner = verlet ? outer : stage_of(sizes.h0);
+    const std::size_t per_step = verlet ? 1 : 3;
+    StrangChain<decltype(p), Real> chain(p, d_[0].data(), d_[1].data(), unit_x_.data(),
+                                         unit_y_.data());
+    // The last tick's final link sums still hold if no position moved since (contacts, drag
+    // input, set_state and restore all move them or leave them bit for bit).
+    const bool same = fsal_valid_ &&
+                      std::equal(x_.begin(), x_.end(), fsal_x_.begin(), bits_equal<Real>) &&
+                      std::equal(y_.begin(), y_.end(), fsal_y_.begin(), bits_equal<Real>);
+    chain.run(
+        per_step * static_cast<std::size_t>(settings_.substeps),
+        [&](std::size_t i) { return i % per_step == 1 ? inner : outer; }, same);
+    std::copy(x_.begin(), x_.end(), fsal_x_.begin()),
+        std::copy(y_.begin(), y_.end(), fsal_y_.begin());
+    fsal_valid_ = true;
+    ++tick_;
+    if (bad.load(std::memory_order_relaxed) && !fault_) record_fault();
+    return;
+  }
 
   for (int sub = 0; sub < settings_.substeps; ++sub) {
     if (m == 0) {
@@ -193,13 +274,8 @@ void World<Real>::step_multipass(const TickInput& input) {
         p.rk4(h);
         break;
       case Integrator::velocity_verlet:
-        p.strang(h, decay_h);
-        break;
       case Integrator::forest_ruth:
-        p.strang(sizes.h1, decay_h1);
-        p.strang(sizes.h0, decay_h0);
-        p.strang(sizes.h1, decay_h1);
-        break;
+        break;  // the Strang chain above
       case Integrator::implicit_euler:
         if (step_implicit_network(h, push)) bad.store(true, std::memory_order_relaxed);
         p.drive({x_.data(), y_.data(), vx_.data(), vy_.data()}, double(h));  // end of the step
@@ -212,7 +288,8 @@ void World<Real>::step_multipass(const TickInput& input) {
 
 #define FIXSTEP_INSTANTIATE(Real)                              \
   template void World<Real>::step_multipass(const TickInput&); \
-  template void World<Real>::rebuild_network();
+  template void World<Real>::rebuild_network();                \
+  template const World<Real>::LinkFlow& World<Real>::link_flow(double);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

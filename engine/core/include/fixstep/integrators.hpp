@@ -7,7 +7,9 @@
 // flow is exact: D(τ): v <- v e^{-γτ}. Symplectic methods (velocity Verlet, Forest–Ruth)
 // integrate A and compose it with D symmetrically (Strang), so they keep their order on damped
 // and dragged systems: a Verlet that simply evaluated -γ v with a stale velocity would drop to
-// first order.
+// first order. On a linked world the links' dampers join in as their own exact flows, one link
+// at a time, composed by colours as a palindrome around the step (link_damping.hpp), so the
+// step stays symmetric and both methods keep their orders on damped networks too.
 #pragma once
 
 #include <optional>
@@ -36,10 +38,12 @@ enum class Integrator {
   ///   D(h/2); v += a_c(x) h/2; x += v h; v += a_c(x) h/2; D(h/2)
   /// Order 2 (also with damping and drag); symplectic when γ = 0; 1 new evaluation per step
   /// when the last kick's acceleration is stored for the next step (FSAL) — fixstep instead
-  /// re-evaluates a_c(x) in registers (2 per step), which is cheaper than storing and reloading
-  /// two arrays per body; stable for ω·h < 2. Sources: Swope, Andersen, Berens & Wilson, J. Chem.
-  /// Phys. 76, 637 (1982);
-  /// Strang, SIAM J. Numer. Anal. 5, 506 (1968) for the splitting.
+  /// re-evaluates a_c(x) in registers (2 per step) on single bodies, which is cheaper than
+  /// storing and reloading two arrays per body; on linked worlds it shares the force pass of
+  /// the kicks at one position within a tick (1 per step plus 1 per tick), and damped links
+  /// add one loop of exact per-link damping flows per step; stable for ω·h < 2. Sources:
+  /// Swope, Andersen, Berens & Wilson, J. Chem. Phys. 76, 637 (1982); Strang, SIAM J. Numer.
+  /// Anal. 5, 506 (1968) for the splitting.
   velocity_verlet,
   /// Classical fourth-order Runge–Kutta on the full a(x, v):
   ///   k1 = f(y), k2 = f(y + h k1/2), k3 = f(y + h k2/2), k4 = f(y + h k3);
@@ -62,8 +66,8 @@ enum class Integrator {
   /// w1·h, w0·h, w1·h with w1 = 1/(2 - 2^{1/3}), w0 = -2^{1/3} w1 (Yoshida's triple jump). Here
   /// each step is the Strang-split damped Verlet step above, which is symmetric, so the
   /// composition stays order 4 with damping and drag. Order 4; 3 new evaluations per step
-  /// with shared kicks (FSAL), 6 as fixstep evaluates them in registers; stable for ω·h below
-  /// about 1.57. Sources: Forest
+  /// with shared kicks (FSAL, as linked worlds do within a tick), 6 as fixstep evaluates them
+  /// in registers on single bodies; stable for ω·h below about 1.57. Sources: Forest
   /// & Ruth, Physica D 43, 105 (1990); Yoshida, Phys. Lett. A 150, 262 (1990).
   forest_ruth,
 };

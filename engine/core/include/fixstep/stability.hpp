@@ -65,14 +65,11 @@ struct BodyStability {
 
 /// Spectral radius of one step of size h (s) of `integrator` on the mode q'' = -ω² q - γ q'
 /// of a network (omega rad/s, gamma 1/s, both >= 0) as World steps it. With damped_links,
-/// velocity Verlet and Forest–Ruth apply the damping flow exp(-τγ) as its fourth-order Taylor
-/// polynomial (world_coupled.cpp), which is measured here by stepping two unit masses joined by
-/// a link of k = ω²/2, b = γ/2 (their separation obeys the mode's equation). Otherwise, and for
-/// every other integrator, the step is the one amplification() measures, and so is the result.
-/// The polynomial contracts each factor only for τγ <= 2.785; composed as Verlet applies it
-/// (twice τ = h/2) a pure damping mode stays bounded for γh <= 5.571, as Forest–Ruth applies it
-/// (τ = w1 h/2 four times, w0 h/2 twice: w0 < 0 runs the flow backwards) only for
-/// γh <= 2.857, tighter than either weight's own factor bound.
+/// velocity Verlet and Forest–Ruth apply each link's exact damping flow by colours around the
+/// conservative step (link_damping.hpp), which is measured here by stepping two unit masses
+/// joined by a link of k = ω²/2, b = γ/2 (their separation obeys the mode's equation).
+/// Otherwise, and for every other integrator, the step is the one amplification() measures,
+/// and so is the result. The flows are exact, so a pure damping mode is bounded at every h.
 [[nodiscard]] double network_amplification(Integrator integrator, double omega, double gamma,
                                            double h, bool damped_links);
 
@@ -118,7 +115,8 @@ struct NetworkStability {
 ///    anchored dampers and drag (on the full velocity) and the link dampers (b I, or b d̂d̂ᵀ
 ///    with L > 0);
 ///  * the damping mode (0, λ_max(M⁻¹C)), which binds for velocity Verlet and Forest–Ruth with
-///    damped links (the Taylor damping flow) and for explicit methods on heavy damping.
+///    damped links (their flows interleaved with the kicks) and for explicit methods on heavy
+///    damping.
 /// Static and kinematic bodies (BodyDef::type) are immovable anchors: their 1/m is 0 (their
 /// mass is ignored, need not be valid, and their own springs and drag are left out), so a link
 /// from a dynamic body of mass m to one acts on m alone, as an anchored spring would (its

@@ -413,6 +413,8 @@ class World {
   // stepping (world_step.cpp)
   void apply_drag(const TickInput& input);
   const Real* damping_decay(double tau);
+  struct LinkFlow;
+  const LinkFlow& link_flow(double tau);  // (world_coupled.cpp)
   static void validate_component(const SpringDamper& c, const std::string& who);
   static void validate_component(const ConstantForce& c, const std::string& who);
   static void validate_component(const Gravity& c, const std::string& who);
@@ -491,10 +493,34 @@ class World {
     std::vector<std::uint32_t> a, b;
     std::vector<Real> k, damping, rest, inv_mass;
     std::vector<std::uint32_t> offset, incident;
+    // With damped links, the links grouped by colour: no two links of a colour share a body
+    // (greedy edge colouring in link order), so the exact damping flows of a colour's links
+    // commute and run in parallel (link_damping.hpp). by_color[color_offset[c] ..
+    // color_offset[c+1]) are colour c's links in link order.
+    std::vector<std::uint32_t> color_offset, by_color;
+    std::vector<std::uint32_t> color_a, color_b;  ///< a, b, k, rest in colour order
+    std::vector<Real> color_k, color_rest;
     std::vector<std::uint32_t> driven;  ///< links with a static or kinematic end, in link order
-    bool rest_length = false;           ///< some link has L > 0
-    bool damped = false;                ///< some link has b > 0
+    bool rest_length = false;  ///< some link has L > 0
+    bool damped = false;       ///< some link has b > 0
   } net_;
+  // Each link's exact damping flow over τ (link_damping.hpp), in colour order (by_color),
+  // cached per τ like flows_:
+  // Δv_a = ca·p, Δv_b = -cb·p for the relative velocity p along the link, and the kinetic
+  // energy it removes, energy·|p|² (J).
+  struct LinkFlow {
+    double tau = -1.0;
+    std::vector<Real> ca, cb, energy;
+  };
+  std::vector<LinkFlow> link_flows_;
+  std::vector<Real> unit_x_,
+      unit_y_;  ///< each link's direction at the last force pass (colour order)
+  // The Strang chain's last link sums (d_[0], d_[1]) and directions were computed at these
+  // positions: the next tick's first force pass is skipped when the positions are still these,
+  // bit for bit (first same as last across ticks; strang_network.hpp). Not state: a pure
+  // function of the positions and the network, so reusing it changes no bit.
+  std::vector<Real> fsal_x_, fsal_y_;
+  bool fsal_valid_ = false;
   // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
   // states and accumulators (see world_coupled.cpp).
   std::vector<Real> fx_, fy_, power_body_, power_link_;
@@ -505,7 +531,7 @@ class World {
   // (world_coupled.cpp)
   void step_multipass(const TickInput& input);
   template <class Pass>
-  void parallel(std::size_t n, Pass&& pass);
+  void parallel(std::size_t n, Pass&& pass, std::size_t min_range);
   void rebuild_network();
   void validate_link(const LinkDef& def, const std::string& who) const;
   // (world_implicit.cpp)

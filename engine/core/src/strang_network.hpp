@@ -1,0 +1,240 @@
+// Velocity Verlet and Forest–Ruth on a linked world: the symmetric step
+//   S(h) = G(h/2) K(h/2) C↑(h/2) Dr(h) C↓(h/2) K(h/2) G(h/2)
+// of link_damping.hpp (G the bodies' own exact decay, K the kick on the conservative forces,
+// Dr the drift, C↑/C↓ the links' exact damping flows by ascending/descending colour), one
+// stage per Verlet step and three (w1·h, w0·h, w1·h) per Forest–Ruth step. A tick's stages
+// run as one chain whose adjacent kicks at the same position share one force pass (FSAL
+// within the tick): per stage one loop over the links for the forces at the new positions
+// (with C↓ in it), one loop for C↑ (only with damped links) and two passes over the bodies.
+// Internal to the engine: not installed; used by world_coupled.cpp.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <type_traits>
+
+#include "link_damping.hpp"
+#include "link_passes.hpp"
+
+namespace fixstep {
+
+namespace {
+
+/// One stage of the chain: step h, the bodies' exact decay e^{-γh/2} (null without body
+/// damping) and the links' flow over h/2 (null without link damping).
+template <class Real>
+struct StrangStage {
+  Real h{};
+  const Real* decay = nullptr;
+  const Real *ca = nullptr, *cb = nullptr, *energy = nullptr;
+};
+
+/// Smallest colour worth splitting between two threads (its links never share a body).
+constexpr std::size_t min_parallel_colour = 1024;
+
+/// The kick pass of the chain for bodies [j0, j1) (see StrangChain::kick): with End, the
+/// ending stage's K(h/2) then G (factor d0); with Begin, the next stage's G (factor d1) then
+/// K(h/2); a = field + (1/m)·acc. A plain loop over restrict pointers with a branch-free range
+/// check, like euler_bodies, so the compiler vectorizes it. Returns true if some state is out
+/// of range (checked with End).
+template <class Field, bool End, bool Begin, bool Track, class Real>
+bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const Real* __restrict y,
+                 Real* __restrict vx, Real* __restrict vy, Real* __restrict diss,
+                 const Real* __restrict accx, const Real* __restrict accy,
+                 const Real* __restrict inv_m, const Real* __restrict k,
+                 const Real* __restrict anchor_x, const Real* __restrict anchor_y,
+                 const Real* __restrict rest, const Real* __restrict d0, const Real* __restrict d1,
+                 const Real* __restrict cx, const Real* __restrict cy, Real push_x, Real push_y,
+                 Real end_half, Real begin_half) {
+  const Real limit = static_cast<Real>(max_state_magnitude);
+  Real out = 0;
+  for (std::size_t j = j0; j < j1; ++j) {
+    Field f;
+    if constexpr (Field::shape != SpringShape::none) {
+      f.k = k[j], f.anchor_x = anchor_x[j], f.anchor_y = anchor_y[j];
+    }
+    if constexpr (Field::shape == SpringShape::rest_length) f.rest = rest[j];
+    if constexpr (Field::accel) f.cx = cx[j] + push_x, f.cy = cy[j] + push_y;
+    const Real px = x[j], py = y[j];
+    Real pvx = vx[j], pvy = vy[j], ax, ay;
+    auto decay = [&](Real factor) {
+      if constexpr (Field::damped) {
+        if constexpr (Track) diss[j] += Real(0.5) * (pvx * pvx + pvy * pvy);
+        pvx *= factor, pvy *= factor;
+        if constexpr (Track) diss[j] -= Real(0.5) * (pvx * pvx + pvy * pvy);
+      }
+    };
+    f.conservative(px, py, ax, ay);
+    ax += inv_m[j] * accx[j], ay += inv_m[j] * accy[j];
+    if constexpr (End) {
+      pvx += ax * end_half, pvy += ay * end_half;  // kick h/2
+      decay(d0[j]);
+    }
+    if constexpr (Begin) {
+      decay(d1[j]);
+      pvx += ax * begin_half, pvy += ay * begin_half;  // kick h/2
+    }
+    vx[j] = pvx, vy[j] = pvy;
+    if constexpr (End) {
+      const bool in_range = (int(std::abs(px) <= limit) & int(std::abs(py) <= limit) &
+                             int(std::abs(pvx) <= limit) & int(std::abs(pvy) <= limit)) != 0;
+      out = in_range ? out : Real(1);
+    }
+  }
+  return out != Real(0);
+}
+
+/// The chain of stages of one tick on the world behind Passes p (see the file comment).
+template <class P, class Real>
+class StrangChain {
+ public:
+  StrangChain(P& p, Real* accx, Real* accy, Real* nx, Real* ny)
+      : p_(p), accx_(accx), accy_(accy), nx_(nx), ny_(ny) {}
+
+  /// Runs stages stage(0) ... stage(count - 1); `cached`: the link sums and directions at the
+  /// current positions are already in acc and (nx, ny) (the last tick's final pass).
+  template <class Stage>
+  void run(std::size_t count, Stage&& stage, bool cached) {
+    if (count == 0) return;
+    StrangStage<Real> s = stage(std::size_t{0});
+    if (!cached) forces(nullptr);  // the tick's first position: forces only, nothing to damp
+    kick(nullptr, &s);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (s.ca) colours<false>(s, true);  // C↑(h/2) at the directions of the last pass
+      drift(s.h);
+      forces(&s);  // forces at the new positions, with C↓(h/2) there
+      if (i + 1 < count) {
+        const StrangStage<Real> next = stage(i + 1);
+        kick(&s, &next);
+        s = next;
+      } else {
+        kick(&s, nullptr);
+      }
+    }
+  }
+
+ private:
+  P& p_;
+  Real *accx_, *accy_, *nx_, *ny_;
+
+  /// Each body's sum of link forces at the current positions into acc; with a stage s of a
+  /// damped network, the stage's C↓(h/2) in the same loop.
+  void forces(const StrangStage<Real>* s) {
+    if (!p_.net.damped) {
+      p_.accumulate({p_.x, p_.y, p_.vx, p_.vy}, Real(0), accx_, accy_);
+      return;
+    }
+    if (!s) {
+      std::fill(accx_, accx_ + p_.n, Real(0)), std::fill(accy_, accy_ + p_.n, Real(0));
+      colours<true>(StrangStage<Real>{}, false);
+    } else {
+      colours<true>(*s, false);  // acc zeroed by the drift
+    }
+  }
+
+  /// One loop over the colours, ascending or descending: with Force, each link's spring force
+  /// added to its ends' sums and its direction stored; with a stage's flow, its exact damping
+  /// flow (at the direction just computed, or the stored one).
+  template <bool Force>
+  void colours(const StrangStage<Real>& s, bool ascending) {
+    const std::size_t q = p_.net.color_offset.size() - 1;
+    const bool flow = s.ca != nullptr, track = p_.track;
+    for (std::size_t i = 0; i < q; ++i) {
+      const std::size_t c = ascending ? i : q - 1 - i;
+      const std::size_t first = p_.net.color_offset[c];
+      const std::size_t count = p_.net.color_offset[c + 1] - first;
+      p_.par(
+          count,
+          [&](std::size_t i0, std::size_t i1) {
+            if (!flow)
+              colour<Force, false, false>(first + i0, first + i1, s);
+            else if (track)
+              colour<Force, true, true>(first + i0, first + i1, s);
+            else
+              colour<Force, true, false>(first + i0, first + i1, s);
+          },
+          min_parallel_colour);
+    }
+  }
+
+  /// Links [i0, i1) in colour order (see colours(); Network::color_a and LinkFlow are in
+  /// that order, so the loop streams them). Local copies of every pointer: the stores through
+  /// Real* would otherwise make the compiler reload them per link.
+  template <bool Force, bool Flow, bool Track>
+  void colour(std::size_t i0, std::size_t i1, const StrangStage<Real>& s) {
+    const auto& net = p_.net;
+    const std::uint32_t *ea = net.color_a.data(), *eb = net.color_b.data();
+    const std::uint32_t* link = net.by_color.data();
+    const Real *k = net.color_k.data(), *rest = net.color_rest.data(), *x = p_.x, *y = p_.y;
+    const Real *ca = s.ca, *cb = s.cb, *energy = s.energy;
+    Real *accx = accx_, *accy = accy_, *ux = nx_, *uy = ny_, *vx = p_.vx, *vy = p_.vy;
+    Real* diss = p_.diss_link;
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::uint32_t a = ea[i], b = eb[i];
+      const bool along = rest[i] != Real(0);
+      Real nx, ny;
+      if constexpr (Force) {
+        Real fx, fy;
+        spring_force(k, rest, x, y, i, a, b, along, fx, fy, nx, ny);
+        accx[a] += fx, accy[a] += fy;
+        accx[b] -= fx, accy[b] -= fy;
+        ux[i] = nx, uy[i] = ny;
+      } else {
+        nx = ux[i], ny = uy[i];
+      }
+      if constexpr (Flow) {
+        Real* slot = Track ? &diss[link[i]] : nullptr;
+        link_flow<Track>(a, b, along, nx, ny, ca[i], cb[i], energy[i], vx, vy, slot);
+      }
+    }
+  }
+
+  /// Drift x += v h (and zero the sums for the next force pass).
+  void drift(Real h) {
+    const bool zero = p_.net.damped;
+    p_.par(p_.n, [&](std::size_t j0, std::size_t j1) {
+      for (std::size_t j = j0; j < j1; ++j) p_.x[j] += p_.vx[j] * h, p_.y[j] += p_.vy[j] * h;
+      if (zero)
+        std::fill(accx_ + j0, accx_ + j1, Real(0)), std::fill(accy_ + j0, accy_ + j1, Real(0));
+    });
+  }
+
+  /// At one position, stage `end`'s closing K(h/2) G(h/2) and stage `begin`'s opening
+  /// G(h/2) K(h/2) (either may be null), on the field plus the link sums.
+  void kick(const StrangStage<Real>* end, const StrangStage<Real>* begin) {
+    const Real* d0 = end ? end->decay : nullptr;
+    const Real* d1 = begin ? begin->decay : nullptr;
+    const Real end_half = end ? end->h * Real(0.5) : Real(0);
+    const Real begin_half = begin ? begin->h * Real(0.5) : Real(0);
+    // The work of static and kinematic ends through their links' springs, at this position
+    // with the kicks' weights (the trapezoid of the step's two kicks; their dampers' share is
+    // in the damping flows' account: World::external_work()).
+    if (!p_.net.driven.empty()) {
+      p_.template drive_links<false>({p_.x, p_.y, p_.vx, p_.vy}, double(end_half + begin_half));
+    }
+    const auto& c = p_.c;
+    with_field<Real, 0>(p_.shape, c.damping, p_.accel, [&](auto field) {
+      using Field = decltype(field);
+      p_.par(p_.n, [&](std::size_t j0, std::size_t j1) {
+        auto run = [&]<bool End, bool Begin, bool Track>() {
+          return kick_bodies<Field, End, Begin, Track>(
+              j0, j1, p_.x, p_.y, p_.vx, p_.vy, p_.diss_body, accx_, accy_, p_.net.inv_mass.data(),
+              c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), d0, d1,
+              c.accel_x.data(), c.accel_y.data(), p_.push[0], p_.push[1], end_half, begin_half);
+        };
+        auto tracked = [&]<bool End, bool Begin>() {
+          return p_.track ? run.template operator()<End, Begin, true>()
+                          : run.template operator()<End, Begin, false>();
+        };
+        const bool out = !end     ? tracked.template operator()<false, true>()
+                         : !begin ? tracked.template operator()<true, false>()
+                                  : tracked.template operator()<true, true>();
+        p_.flag(out);
+      });
+    });
+  }
+};
+
+}  // namespace
+
+}  // namespace fixstep
