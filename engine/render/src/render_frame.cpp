@@ -110,8 +110,8 @@ void Renderer::grid() {
 }
 
 void Renderer::clear_trails() {
-  trail_count_ = 0;
   trail_head_ = 0;
+  std::fill(trail_length_.begin(), trail_length_.end(), 0);
 }
 
 void Renderer::record_trails(const RenderFrame& s) {
@@ -120,15 +120,23 @@ void Renderer::record_trails(const RenderFrame& s) {
     trail_bodies_ = n;
     trail_x_.assign(n * trail_frames, 0.0f);
     trail_y_.assign(n * trail_frames, 0.0f);
+    trail_ids_.assign(n, Entity{});
+    trail_length_.assign(n, 0);
     clear_trails();
   }
+  const bool ids = s.ids.size() == n;  // a frame filled by hand may leave them out
   for (std::size_t j = 0; j < n; ++j) {
+    // Another body at this dense index (destroyed, created, moved): its trail starts here.
+    if (ids && s.ids[j] != trail_ids_[j]) {
+      trail_ids_[j] = s.ids[j];
+      trail_length_[j] = 0;
+    }
     const auto p = to_pixel(s.x[j], s.y[j]);
     trail_x_[j * trail_frames + trail_head_] = static_cast<float>(p[0]);
     trail_y_[j * trail_frames + trail_head_] = static_cast<float>(p[1]);
+    trail_length_[j] = std::min(trail_length_[j] + 1, trail_frames);
   }
   trail_head_ = (trail_head_ + 1) % trail_frames;
-  trail_count_ = std::min(trail_count_ + 1, trail_frames);
 }
 
 namespace {
@@ -264,27 +272,29 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
   // A scene with many links (a cloth, a soft body) draws no trails: hundreds of them would
   // hide the structure the links draw.
   const bool few_links = s.links.size() <= max_zigzag_links;
-  // The ring buffers hold trail_count_ samples ending before trail_head_: oldest first, they are
-  // the `older` ones from `oldest` to the end of the buffer, then the rest from its start.
-  const int oldest = (trail_head_ - trail_count_ + trail_frames) % trail_frames;
-  const int older = std::min(trail_count_, trail_frames - oldest);
-  for (std::size_t j = 0; j < n && trail_count_ > 1 && few_links; ++j) {
+  // Body j's ring buffer holds `length` samples ending before trail_head_: oldest first, they
+  // are the `older` ones from `oldest` to the end of the buffer, then the rest from its start.
+  for (std::size_t j = 0; j < n && few_links; ++j) {
+    const int length = trail_length_[j];
+    if (length < 2) continue;
+    const int oldest = (trail_head_ - length + trail_frames) % trail_frames;
+    const int older = std::min(length, trail_frames - oldest);
     std::array<float, trail_frames> xs, ys;  // oldest first
     const float* tx = &trail_x_[j * trail_frames];
     const float* ty = &trail_y_[j * trail_frames];
     std::copy_n(tx + oldest, older, xs.begin());
-    std::copy_n(tx, trail_count_ - older, xs.begin() + older);
+    std::copy_n(tx, length - older, xs.begin() + older);
     std::copy_n(ty + oldest, older, ys.begin());
-    std::copy_n(ty, trail_count_ - older, ys.begin() + older);
+    std::copy_n(ty, length - older, ys.begin() + older);
     std::array<int, trail_frames> kept;
     const int count =
-        simplify_polyline(xs.data(), ys.data(), trail_count_, trail_tolerance_px, kept.data());
+        simplify_polyline(xs.data(), ys.data(), length, trail_tolerance_px, kept.data());
     const Rgba8 c = color_of(j);
     polyline_scratch_.clear();
     for (int i = 0; i < count; ++i) {
       const int k = kept[i];
       Rgba8 ck = c;
-      ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * trail_count_));
+      ck.a = static_cast<std::uint8_t>((300 * k + 150) / (2 * length));
       polyline_scratch_.push_back({xs[k], ys[k], ck});
     }
     shorten(polyline_scratch_, 0.0f, under_body(j, 2.0f));  // its newest end is the body's centre

@@ -78,8 +78,10 @@ class Renderer {
   /// Draws grid, trails, links, springs, bodies and the HUD text lines into pixels(). With at
   /// most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
   /// cloth) they are thin straight lines and no trails are drawn. Each call also appends the
-  /// bodies' positions to their trails (one sample per frame). Implemented with the canvas
-  /// calls below: begin(), primitives, finish().
+  /// bodies' positions to their trails (one sample per frame). A trail belongs to a body's
+  /// handle (RenderFrame::ids): a body created, destroyed or moved to another dense index
+  /// starts a new trail, so no streak joins it to another body's places. Implemented with the
+  /// canvas calls below: begin(), primitives, finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
   /// Size of draw()'s HUD text, px per font pixel: the font (stb_easy_font) is about 7 font
   /// pixels tall and HUD lines are 11 apart, so 2 (the default) gives 22 px lines. Narrow
@@ -242,10 +244,13 @@ class Renderer {
   std::vector<PlaneDef> backdrop_planes_;
   std::vector<char> font_scratch_;
   std::vector<PolylinePoint> polyline_scratch_;  // one trail or spring, reused every frame
-  // trails: ring buffers of trail_frames samples per body, pixel coordinates
+  // trails: ring buffers of trail_frames samples per body, pixel coordinates, written at
+  // trail_head_; the trail_length_[j] samples of body j before it are body trail_ids_[j]'s
   std::vector<float> trail_x_, trail_y_;
+  std::vector<Entity> trail_ids_;
+  std::vector<int> trail_length_;
   std::size_t trail_bodies_ = 0;
-  int trail_head_ = 0, trail_count_ = 0;
+  int trail_head_ = 0;
 };
 
 }  // namespace fixstep
