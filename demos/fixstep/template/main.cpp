@@ -10,7 +10,7 @@
 //
 // Every tick runs the same steps, in the window, headless and in a replay:
 //   input           the keys (or the autopilot), sampled for this tick by an InputSampler
-//   per-body input  what the keys do to bodies: the hook's velocity, a pull or a kick on the claw
+//   per-body input  what the keys do to bodies: the hook's velocity, a pull or a swing of the claw
 //   step, rules     sim.step(input), then the game's rules (catch, miss, drop again): TickRules
 //   draw            the Session draws the state between the last two ticks
 // A recording holds the input only: a replay runs the same rules on it and must reach the
@@ -41,14 +41,14 @@ using namespace fixstep;
 constexpr const char* program = PROGRAM_NAME;  // the project's name (CMakeLists.txt)
 constexpr int width = 1280, height = 720;      // pixels
 
-constexpr double hook_speed = 4.0;    // m/s: the hook's speed while an arrow is held
-constexpr double hook_reach = 6.0;    // m: the hook stops at x = -6 and x = +6
-constexpr double pull_force = 8.0;    // N: down arrow held pulls the claw down
-constexpr double kick_impulse = 2.0;  // N*s: each press of Enter kicks the claw up
-constexpr double out_of_level = 0.0;  // m: a ball below this height has fallen out
-constexpr double drop_height = 11.0;  // m: balls are dropped again from here
-constexpr int exit_usage = 2;         // a mistake on the command line
-constexpr int exit_diverged = 4;      // --replay: the recorded states did not come back
+constexpr double hook_speed = 4.0;     // m/s: the hook's speed while an arrow is held
+constexpr double hook_reach = 6.0;     // m: the hook stops at x = -6 and x = +6
+constexpr double pull_force = 8.0;     // N: down arrow held pulls the claw down
+constexpr double swing_impulse = 1.5;  // N*s: each press of Enter swings the claw sideways
+constexpr double out_of_level = 0.0;   // m: a ball below this height has fallen out
+constexpr double drop_height = 11.0;   // m: balls are dropped again from here
+constexpr int exit_usage = 2;          // a mistake on the command line
+constexpr int exit_diverged = 4;       // --replay: the recorded states did not come back
 
 // ---- the rules: run after every tick ------------------------------------------------------
 
@@ -114,36 +114,37 @@ TickRules make_rules(Score& score, const WorldDef& level) {
 
 /// What the player asks for in one frame.
 struct Controls {
-  int move = 0;       // -1: hook left, +1: hook right, 0: stop
-  bool pull = false;  // pull the claw down (as long as it is held)
-  bool kick = false;  // kick the claw up (once)
+  int move = 0;        // -1: hook left, +1: hook right, 0: stop
+  bool pull = false;   // pull the claw down (as long as it is held)
+  bool swing = false;  // swing the claw towards where the hook moves (once)
 };
 
-/// The window's keys: arrows left/right move, arrow down pulls, Enter kicks.
+/// The window's keys: arrows left/right move, arrow down pulls, Enter swings.
 Controls from_keys(const WindowEvents& ev, const InputSampler& sampler) {
   const std::uint32_t held = sampler.held();  // InputButton bits
   Controls c;
   c.move = ((held & button_right) != 0 ? 1 : 0) - ((held & button_left) != 0 ? 1 : 0);
   c.pull = (held & button_down) != 0;
   for (const WindowEvents::ButtonEdge& edge : ev.edges) {
-    if (edge.press && (edge.buttons & button_action) != 0) c.kick = true;
+    if (edge.press && (edge.buttons & button_action) != 0) c.swing = true;
   }
   return c;
 }
 
 /// Headless runs play themselves with a fixed pattern of the frame number: the hook sweeps from
-/// wall to wall (3 s each way), the claw is pulled down for 0.5 s and kicked once every 2 s.
+/// wall to wall (3 s each way), the claw is pulled down for 0.5 s and swung once every 2 s.
 Controls autopilot(std::int64_t frame) {
   return {.move = (frame + 90) / 180 % 2 == 0 ? 1 : -1,
           .pull = frame % 120 >= 90,
-          .kick = frame % 120 == 60};
+          .swing = frame % 120 == 60};
 }
 
 /// Turns controls into per-body input for the next ticks, through the sampler (so a recording
 /// holds all of it): the hook's velocity (kinematic: it keeps it, so it is sent only when it
-/// changes), the pull as a force held every tick, the kick as a one-tick impulse.
+/// changes), the pull as a force held every tick, the swing as a one-tick impulse.
 struct Player {
   Vec2 hook_velocity{};  // m/s, the last one sent
+  int facing = 1;        // +1 right, -1 left: where the hook last moved
 
   void control(const Controls& c, const Simulation& sim, InputSampler& sampler) {
     const Entity hook = sim.find("hook"), claw = sim.find("claw");
@@ -153,7 +154,8 @@ struct Player {
     if (velocity != hook_velocity) sampler.set_velocity(hook, velocity);
     hook_velocity = velocity;
     sampler.set_force(claw, {0.0, c.pull ? -pull_force : 0.0});
-    if (c.kick) sampler.apply_impulse(claw, {0.0, kick_impulse});
+    if (c.move != 0) facing = c.move;
+    if (c.swing) sampler.apply_impulse(claw, {facing * swing_impulse, 0.0});
   }
 };
 
@@ -175,7 +177,7 @@ class Game {
         rules_(make_rules(score_, session_.definition())),
         scene_file_(scene.file),
         record_file_(std::move(record_file)) {
-    session_.set_show_energy(false);  // the hook and the kicks add energy from outside
+    session_.set_show_energy(false);  // the hook and the swings add energy from outside
     for (const std::string& w : session_.simulation().warnings()) {  // the stability guard's
       std::fprintf(stderr, "warning: %s\n", w.c_str());
     }
@@ -252,7 +254,7 @@ void play(Game& game) {
     if (ev.restart) game.restart();
     feed(ev, game.sampler(), game.session().renderer().camera(), width, height);
     game.advance(from_keys(ev, game.sampler()), clock.frame_seconds());
-    game.draw("arrows: move the hook   down: pull   enter: kick   r: restart   esc: quit");
+    game.draw("arrows: move the hook   down: pull   enter: swing   r: restart   esc: quit");
     window.present(game.session().renderer().pixels());
     std::this_thread::sleep_until(frame_start + std::chrono::microseconds(16667));
   }
