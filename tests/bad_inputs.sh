@@ -655,6 +655,11 @@ case_ "--csv in a missing directory" "" run good.toml --steps 10 --csv nodir/out
 case_ "--out is a file" "" render good.toml --out good.toml --frames 2
 case_ "--out not writable (/proc)" "" render good.toml --out /proc/fixstep_frames --frames 2
 case_ "--csv not writable (/proc)" "" run good.toml --steps 10 --csv /proc/fixstep.csv
+# --- fixstep new ---
+mkdir -p game && printf 'int main() {}\n' > game/main.cpp
+case_ "new: a directory that is not empty (nothing is written)" "" new game
+case_ "new: a file where the directory would be" "" new good.toml
+case_ "new: parent not writable (/proc)" "" new /proc/fixstep_game
 # --- environment ---
 case_ "view without a display" "" view good.toml --frames 1
 export GALLIUM_DRIVER=foo

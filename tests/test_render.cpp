@@ -225,6 +225,45 @@ TEST(Render, SessionFramesAreReproducible) {
                          b.renderer().pixels().begin()));
 }
 
+TEST(Render, ATrailBelongsToItsBodyNotToItsDenseIndex) {
+  // Bodies a and b, 6 m apart, drawn for 10 frames; then a is destroyed (b moves into its
+  // dense index 0) and c is created (index 1). A trail kept per index would draw a streak from
+  // a's place to b's and from b's to c's; kept per handle, b and c start new trails, so the
+  // frame is exactly the one a fresh renderer draws of the same state (no trails at all). A
+  // body that keeps its handle keeps its trail: after it moves, the frames differ.
+  auto disc = [](Vec2 at, Rgba8 color) {
+    BodyDef d;
+    d.body.position = at;
+    d.appearance = Appearance{.radius = 0.2, .color = color};
+    return d;
+  };
+  const Camera camera{.center = {0, 0}, .width = 10.0};
+  Renderer r(320, 200), fresh(320, 200);
+  r.set_camera(camera);
+  fresh.set_camera(camera);
+  Simulation sim(Precision::f64, WorldSettings{});
+  const Entity a = sim.create_body(disc({-3.1, 0.3}, {255, 0, 0, 255}));
+  const Entity b = sim.create_body(disc({2.9, 0.3}, {0, 255, 0, 255}));
+  RenderFrame s;
+  sim.fill_render_frame(0.0, s);
+  for (int f = 0; f < 10; ++f) r.draw(s, {});
+  sim.destroy(a);
+  sim.create_body(disc({0.1, 2.4}, {0, 0, 255, 255}));
+  sim.fill_render_frame(0.0, s);
+  ASSERT_EQ(s.ids[0], b);
+  r.draw(s, {});
+  fresh.draw(s, {});
+  EXPECT_TRUE(std::equal(r.pixels().begin(), r.pixels().end(), fresh.pixels().begin()));
+
+  sim.set_body(b, Body{.mass = 1.0, .position = {2.9, -2.0}, .velocity = {}});  // b moves
+  sim.fill_render_frame(0.0, s);
+  r.draw(s, {});
+  Renderer last_only(320, 200);
+  last_only.set_camera(camera);
+  last_only.draw(s, {});
+  EXPECT_FALSE(std::equal(r.pixels().begin(), r.pixels().end(), last_only.pixels().begin()));
+}
+
 TEST(Canvas, PrimitivesLandOnTheirPixelsAndClipIsExact) {
   // 100 x 80 frame on a blue background: a red 4 px horizontal line along y = 20.5 from x = 10
   // to 90 under a clip of x in [30, 60), y in [10, 40): red exactly on columns 30..59; a second

@@ -8,6 +8,7 @@
 //   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [--no-watch]
 //                [overrides]
 //   fixstep replay FILE [--scene SCENE]
+//   fixstep new DIR
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +21,7 @@
 #include "commands.hpp"
 #include "compare.hpp"
 #include "compare_tiles.hpp"
+#include "new_project.hpp"
 
 namespace {
 
@@ -110,7 +112,7 @@ std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
   const auto best = fixstep::closest(argv[1], names);
   return fmt::format(
       "fixstep: unknown command '{}'{}; the commands are run, render, compare, "
-      "view and replay (fixstep --help)",
+      "view, replay and new (fixstep --help)",
       argv[1], best ? fmt::format(" (did you mean {}?)", *best) : "");
 }
 
@@ -201,6 +203,16 @@ int main(int argc, char** argv) try {
                          "directory, then to the recording's)");
   replay_cmd->add_flag("-q,--quiet", replay.quiet, "print errors only");
 
+  std::string new_dir;
+  CLI::App* new_cmd = app.add_subcommand(
+      "new",
+      "write a prototype project into DIR (CMakeLists.txt, main.cpp, scene.toml, README.md), "
+      "built against the installed fixstep package");
+  new_cmd
+      ->add_option("dir", new_dir,
+                   "the project's directory, new or empty; its last component names the project")
+      ->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ExtrasError& e) {
@@ -275,6 +287,7 @@ int main(int argc, char** argv) try {
     return compare_command(compare);
   }
   if (replay_cmd->parsed()) return replay_command(replay);
+  if (new_cmd->parsed()) return new_command(new_dir);
   return view_command(view);
 } catch (const fixstep::RecordingError& e) {
   std::fprintf(stderr, "fixstep: error: %s\n", e.what());

@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# `fixstep new` as a new user meets it (issue #20, point 7): the installed fixstep writes a
+# project, which builds against the installed package (found through PATH, as after an
+# install), renders headless, records the autopilot's per-body input, and replays it: a replay
+# verifies, a tampered recording is refused naming the tick where the states part, and `new`
+# refuses a directory that is not empty. Run by examples/consumer/check.sh (.ci/run) with the
+# prefix it installed into.
+# Usage: bash tests/new_project_test.sh BUILD_DIR [PREFIX]
+#   BUILD_DIR: a configured and built fixstep tree; PREFIX: where it is already installed
+#   (default: installed here into a temporary prefix).
+set -euo pipefail
+src=$(cd "$(dirname "$0")/.." && pwd)
+build=$(cd "${1:?usage: new_project_test.sh BUILD_DIR [PREFIX]}" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "new_project: FAIL: $*" >&2; exit 1; }
+prefix=${2:-}
+if [[ -z $prefix ]]; then
+  prefix=$work/prefix
+  cmake --install "$build" --prefix "$prefix" >/dev/null
+fi
+export PATH="$prefix/bin:$PATH"
+cd "$work"
+
+# 1. The project: the template's files, byte for byte, named after the directory.
+fixstep new grabber > new.log || fail "fixstep new grabber: $(cat new.log)"
+for f in main.cpp scene.toml; do
+  cmp -s "$src/demos/fixstep/template/$f" "grabber/$f" || fail "grabber/$f is not the template's"
+done
+grep -q '^project(grabber LANGUAGES CXX)' grabber/CMakeLists.txt ||
+  fail "grabber/CMakeLists.txt does not name the project grabber"
+grep -q 'cmake -B build && cmake --build build' new.log || fail "new printed no build command"
+echo "new_project: fixstep new grabber: $(head -1 new.log)"
+
+# 2. It builds against the installed package as its README says (cmake finds fixstep by PATH).
+(cd grabber && cmake -B build -G Ninja >cmake.log 2>&1 && cmake --build build >>cmake.log 2>&1) ||
+  fail "the project does not build: $(tail -20 grabber/cmake.log)"
+game=$work/grabber/build/grabber
+
+# 3. Headless frames: 60 PNGs that move and are more than one colour (a one-colour 1280x720
+# frame deflates to under 20 KB even at zlib's fastest level; this scene's are 45 KB and more).
+"$game" --out frames --frames 60 > render.log || fail "grabber --out: $(cat render.log)"
+[[ $(ls frames | grep -c '^frame_[0-9]*\.png$') == 60 ]] || fail "expected 60 frames: $(ls frames)"
+cmp -s frames/frame_000000.png frames/frame_000059.png && fail "frame 59 is frame 0: nothing moved"
+for f in frames/frame_000000.png frames/frame_000059.png; do
+  [[ $(head -c 4 "$f" | od -An -c | tr -d ' ') == '211PNG' ]] || fail "$f is not a PNG"
+  (($(stat -c %s "$f") > 30000)) || fail "$f is $(stat -c %s "$f") bytes: blank?"
+done
+echo "new_project: grabber --out frames --frames 60: 60 PNGs"
+
+# 4. A headless recording of the autopilot holds per-body input: the hook's velocities, the
+# claw's held force and its impulses.
+"$game" --frames 300 --record r.rec > record.log || fail "grabber --record: $(cat record.log)"
+for kind in velocity force impulse; do
+  grep -q " $kind=" r.rec || fail "the recording holds no $kind= input"
+done
+
+# 5. It replays: every stored hash verified, exit 0.
+"$game" --replay r.rec > replay.log || fail "grabber --replay r.rec: $(cat replay.log)"
+grep -Eq '^replay: verified [0-9]+ hashes' replay.log || fail "replay printed $(cat replay.log)"
+echo "new_project: $(head -1 record.log); $(cat replay.log)"
+
+# 6. A tampered copy (the first hook velocity after tick 0 changed to 0.5 m/s) is refused,
+# naming the tick after the tampered one: the first state that differs.
+line=$(grep -m1 -E '^tick [1-9][0-9]* .*velocity=' r.rec) || fail "no velocity change after tick 0"
+tick=$(awk '{print $2}' <<<"$line")
+sed "s/^tick $tick \(.*velocity=[0-9]*:[0-9]*\),[^,]*,/tick $tick \1,0.5,/" r.rec > tampered.rec
+cmp -s r.rec tampered.rec && fail "the tampering changed nothing"
+status=0
+"$game" --replay tampered.rec > /dev/null 2> tampered.log || status=$?
+[[ $status == 4 ]] || fail "the tampered replay exited $status, not 4: $(cat tampered.log)"
+grep -q "diverged at tick $((tick + 1)):" tampered.log ||
+  fail "the tampered replay does not name tick $((tick + 1)): $(cat tampered.log)"
+echo "new_project: tampered at tick $tick: $(cat tampered.log)"
+
+# 7. A recording cut short is refused with the reader's message.
+head -n 20 r.rec > cut.rec
+status=0
+"$game" --replay cut.rec > /dev/null 2> cut.log || status=$?
+[[ $status == 1 ]] && grep -q 'cut short' cut.log || fail "a cut recording: $status $(cat cut.log)"
+
+# 8. `fixstep new` into the existing, non-empty project: refused, naming it; nothing changed.
+before=$(cd grabber && ls -l --time-style=full-iso main.cpp scene.toml CMakeLists.txt README.md)
+status=0
+fixstep new grabber > /dev/null 2> again.log || status=$?
+[[ $status == 1 ]] && grep -q 'grabber is not empty' again.log ||
+  fail "fixstep new on a non-empty directory: exit $status, $(cat again.log)"
+[[ $(cd grabber && ls -l --time-style=full-iso main.cpp scene.toml CMakeLists.txt README.md) == "$before" ]] ||
+  fail "fixstep new touched the existing project"
+echo "new_project: OK (new, build against the install, render, record, replay, tampered refused)"
