@@ -295,9 +295,17 @@ TEST(BodyTypes, ALinkToAStaticBodyIsAnAnchoredSpring) {
     bob.spring = SpringDamper{.anchor = {0.0, 0.0}, .stiffness = 30.0, .damping = 0.5};
     anchored.create_body(bob);
     for (int i = 0; i < 200; ++i) linked.step(), anchored.step();
-    EXPECT_NEAR(linked.x()[0], anchored.x()[0], 1e-9) << int(integrator);
-    EXPECT_NEAR(linked.y()[0], anchored.y()[0], 1e-9);
-    EXPECT_NEAR(linked.vy()[0], anchored.vy()[0], 1e-9);
+    // The same force; the same step except for velocity Verlet and Forest–Ruth, whose damped
+    // links take the link's exact damping flow between kick and drift (link_damping.hpp)
+    // where an anchored damper decays with the body's own flow outside the kicks: two
+    // splittings of one ODE, apart by their error terms, O(h²) and O(h⁴) (measured after 2 s:
+    // 2.4e-5 m and 2.0e-8 m).
+    const double tol = integrator == Integrator::velocity_verlet ? 1e-4
+                       : integrator == Integrator::forest_ruth   ? 1e-7
+                                                                 : 1e-9;
+    EXPECT_NEAR(linked.x()[0], anchored.x()[0], tol) << int(integrator);
+    EXPECT_NEAR(linked.y()[0], anchored.y()[0], tol);
+    EXPECT_NEAR(linked.vy()[0], anchored.vy()[0], tol);
   }
 }
 

@@ -81,7 +81,8 @@ TEST(RecordCodeWorld, FixstepReplaysAndRendersItFromTheRecording) {
     TickInput in{.tick = t};
     in.push = {t < 40 ? 3.0 : 0.0, t % 25 < 5 ? 1.5 : 0.0};  // changes every few ticks
     in.pointer = {0.01 * double(t), 2.5};
-    in.drag_body = t >= 60 && t < 90 ? initial_entity(2) : no_body;  // the bob, dragged for half a second
+    in.drag_body =
+        t >= 60 && t < 90 ? initial_entity(2) : no_body;  // the bob, dragged for half a second
     in.held = t >= 60 && t < 90 ? std::uint32_t{button_pointer_primary} : 0u;
     sim.step(in);
     recorder.record(in, sim);

@@ -169,6 +169,7 @@ class StrangChain {
     const Real *ca = s.ca, *cb = s.cb, *energy = s.energy;
     Real *accx = accx_, *accy = accy_, *ux = nx_, *uy = ny_, *vx = p_.vx, *vy = p_.vy;
     Real* diss = p_.diss_link;
+    const Real* inv_m = net.inv_mass.data();
     for (std::size_t i = i0; i < i1; ++i) {
       const std::uint32_t a = ea[i], b = eb[i];
       const bool along = rest[i] != Real(0);
@@ -184,7 +185,7 @@ class StrangChain {
       }
       if constexpr (Flow) {
         Real* slot = Track ? &diss[link[i]] : nullptr;
-        link_flow<Track>(a, b, along, nx, ny, ca[i], cb[i], energy[i], vx, vy, slot);
+        link_flow<Track>(a, b, along, nx, ny, ca[i], cb[i], energy[i], vx, vy, slot, inv_m);
       }
     }
   }

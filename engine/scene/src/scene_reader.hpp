@@ -325,7 +325,8 @@ inline bool same_point(Vec2 a, Vec2 b, Precision p) {
 }
 
 /// Reads type, mass (required for a dynamic body), velocity, force, gravity, drag, radius,
-/// draw_radius (the drawn radius, without a disc), color and the disc keys (collide, restitution, friction) of t into def.
+/// draw_radius (the drawn radius, without a disc), color and the disc keys (collide, restitution,
+/// friction) of t into def.
 void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
 
 // --- bodies that touch (scene_contacts.cpp) ---

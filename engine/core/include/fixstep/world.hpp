@@ -501,8 +501,8 @@ class World {
     std::vector<std::uint32_t> color_a, color_b;  ///< a, b, k, rest in colour order
     std::vector<Real> color_k, color_rest;
     std::vector<std::uint32_t> driven;  ///< links with a static or kinematic end, in link order
-    bool rest_length = false;  ///< some link has L > 0
-    bool damped = false;       ///< some link has b > 0
+    bool rest_length = false;           ///< some link has L > 0
+    bool damped = false;                ///< some link has b > 0
   } net_;
   // Each link's exact damping flow over τ (link_damping.hpp), in colour order (by_color),
   // cached per τ like flows_:
