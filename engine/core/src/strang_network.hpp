@@ -57,8 +57,10 @@ bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const
     if constexpr (Field::accel) f.cx = cx[j] + push_x, f.cy = cy[j] + push_y;
     const Real px = x[j], py = y[j];
     Real pvx = vx[j], pvy = vy[j], ax, ay;
-    auto decay = [&](Real factor) {
+    // The factor is read only for a damped field: d0/d1 are null otherwise.
+    auto decay = [&](const Real* __restrict d) {
       if constexpr (Field::damped) {
+        const Real factor = d[j];
         if constexpr (Track) diss[j] += Real(0.5) * (pvx * pvx + pvy * pvy);
         pvx *= factor, pvy *= factor;
         if constexpr (Track) diss[j] -= Real(0.5) * (pvx * pvx + pvy * pvy);
@@ -68,10 +70,10 @@ bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const
     ax += inv_m[j] * accx[j], ay += inv_m[j] * accy[j];
     if constexpr (End) {
       pvx += ax * end_half, pvy += ay * end_half;  // kick h/2
-      decay(d0[j]);
+      decay(d0);
     }
     if constexpr (Begin) {
-      decay(d1[j]);
+      decay(d1);
       pvx += ax * begin_half, pvy += ay * begin_half;  // kick h/2
     }
     vx[j] = pvx, vy[j] = pvy;
