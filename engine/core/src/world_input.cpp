@@ -1,5 +1,6 @@
 // Per-body input of a tick (TickInput::bodies): impulses and kinematic velocities at the
 // tick's start, forces for the tick's duration.
+#include <algorithm>
 #include <cmath>
 
 #include "fixstep/world.hpp"
@@ -79,10 +80,52 @@ void World<Real>::remove_input_forces() {
   saved_accel_.clear();
 }
 
+// The link passes and the implicit solver add TickInput::push to every body's acceleration,
+// static and kinematic bodies included: they are put back after the tick, but inside it a link
+// to them would see them move. With links and such bodies, the push is added to the dynamic
+// bodies' own accelerations instead (in Real, as the passes add it, so their bits are those of
+// an unfolded push) and the tick runs with no push; the arrays are restored after it.
+template <class Real>
+void World<Real>::fold_push(Vec2 push) {
+  const std::size_t n = x_.size();
+  const Real px = static_cast<Real>(push.x), py = static_cast<Real>(push.y);
+  push_saved_.resize(2 * n);
+  std::copy(coeff_.accel_x.begin(), coeff_.accel_x.end(), push_saved_.begin());
+  std::copy(coeff_.accel_y.begin(), coeff_.accel_y.end(), push_saved_.begin() + n);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (types_[j] != BodyType::dynamic) continue;
+    coeff_.accel_x[j] += px, coeff_.accel_y[j] += py;
+  }
+  push_saved_flag_ = coeff_.accel;
+  coeff_.accel = true;
+  if (settings_.integrator != Integrator::implicit_euler) return;
+  const auto [cx, cy] = implicit_accelerations();
+  push_saved_implicit_.assign(cx, cx + n);
+  push_saved_implicit_.insert(push_saved_implicit_.end(), cy, cy + n);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (types_[j] != BodyType::dynamic) continue;
+    cx[j] += double(px), cy[j] += double(py);
+  }
+}
+
+template <class Real>
+void World<Real>::unfold_push() {
+  const std::size_t n = x_.size();
+  std::copy(push_saved_.begin(), push_saved_.begin() + n, coeff_.accel_x.begin());
+  std::copy(push_saved_.begin() + n, push_saved_.end(), coeff_.accel_y.begin());
+  coeff_.accel = push_saved_flag_;
+  if (settings_.integrator != Integrator::implicit_euler) return;
+  const auto [cx, cy] = implicit_accelerations();
+  std::copy(push_saved_implicit_.begin(), push_saved_implicit_.begin() + n, cx);
+  std::copy(push_saved_implicit_.begin() + n, push_saved_implicit_.end(), cy);
+}
+
 #define FIXSTEP_INSTANTIATE(Real)                                 \
   template void World<Real>::apply_body_inputs(const TickInput&); \
   template bool World<Real>::add_input_forces(const TickInput&);  \
-  template void World<Real>::remove_input_forces();
+  template void World<Real>::remove_input_forces();               \
+  template void World<Real>::fold_push(Vec2);                     \
+  template void World<Real>::unfold_push();
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

@@ -200,7 +200,14 @@ void World<Real>::step(const TickInput& input) {
   if (contacts) save_contact_start();
   if (immovable || discs) save_tick_start();
   const bool forces = !input.bodies.empty() && add_input_forces(input);
-  integrate(input);
+  const bool fold = immovable && !net_.a.empty() && (input.push.x != 0.0 || input.push.y != 0.0);
+  if (fold) {
+    fold_push(input.push);
+    integrate(TickInput{.tick = input.tick});  // the push is in the accelerations now
+    unfold_push();
+  } else {
+    integrate(input);
+  }
   if (forces) remove_input_forces();
   if (immovable) restore_immovable();
   if (contacts) resolve_contacts();

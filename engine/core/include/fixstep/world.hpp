@@ -582,6 +582,13 @@ class World {
   };
   std::vector<SavedAccel> saved_accel_;
   bool saved_accel_flag_ = false;
+  // Push in a network with static or kinematic bodies: folded into the dynamic bodies'
+  // accelerations for the tick (restored after it), so no immovable end moves inside a tick.
+  std::vector<Real> push_saved_;
+  std::vector<double> push_saved_implicit_;
+  bool push_saved_flag_ = false;
+  void fold_push(Vec2 push);
+  void unfold_push();
   void apply_body_inputs(const TickInput& input);
   bool add_input_forces(const TickInput& input);
   void remove_input_forces();
