@@ -12,6 +12,7 @@
 #include <iterator>
 #include <string>
 
+#include "cli_run.hpp"
 #include "fixstep/recording.hpp"
 #include "fixstep/scene_writer.hpp"
 
@@ -54,17 +55,8 @@ WorldDef code_world() {
   return def;
 }
 
-/// The program's exit status for `args` (output into `out`).
-int fixstep_cli(const std::string& args, const fs::path& out) {
-  const int status =
-      std::system(fmt::format("'{}' {} > '{}' 2>&1", FIXSTEP_CLI, args, out.string()).c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string text_of(const fs::path& file) {
-  std::ifstream in(file);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using testing::fixstep_cli;
+using testing::text_of;
 
 TEST(RecordCodeWorld, FixstepReplaysAndRendersItFromTheRecording) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("code_world_{}", ::getpid());

@@ -16,6 +16,8 @@
 #include <iterator>
 #include <string>
 
+#include "cli_run.hpp"
+
 namespace fixstep {
 namespace {
 
@@ -109,16 +111,8 @@ TEST(ScriptBodyInput, EachKeyActsAsDocumented) {
   EXPECT_EQ(wall.position, (Vec2{10.0, 10.0}));
 }
 
-int fixstep_cli(const std::string& args, const fs::path& out) {
-  const int status =
-      std::system(fmt::format("'{}' {} > '{}' 2>&1", FIXSTEP_CLI, args, out.string()).c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string text_of(const fs::path& file) {
-  std::ifstream in(file);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using testing::fixstep_cli;
+using testing::text_of;
 
 // `fixstep run --input --record` gives the library's state bit for bit (the same state hash),
 // the recording carries the per-body inputs, and `fixstep replay` verifies every tick.
