@@ -87,8 +87,10 @@ void wrap(const std::string& text, int frame_width, float scale, std::vector<std
     const std::string word = text.substr(i, end - i);
     i = end + 1;
     if (word.empty()) continue;
-    if (std::string joined = line.empty() ? word : line + ' ' + word;
-        fits(joined, frame_width, scale)) {
+    std::string joined = line;
+    if (!joined.empty()) joined += ' ';
+    joined += word;
+    if (fits(joined, frame_width, scale)) {
       line = std::move(joined);
       continue;
     }
