@@ -13,8 +13,8 @@
 // methods keep orders 2 and 4 at the cost of their force passes plus one loop over the links.
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
-#include <cstring>
 #include <thread>
 #include <type_traits>
 
@@ -43,7 +43,8 @@ constexpr std::size_t min_parallel_range = 4096;
 /// Bitwise equality (what the link sums depend on; -0 and +0, or two NaNs, are not "equal").
 template <class Real>
 bool bits_equal(Real a, Real b) {
-  return std::memcmp(&a, &b, sizeof(Real)) == 0;
+  using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+  return std::bit_cast<Bits>(a) == std::bit_cast<Bits>(b);
 }
 
 }  // namespace
