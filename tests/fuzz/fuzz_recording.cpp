@@ -48,7 +48,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     finding(std::string("parse_recording threw a non-RecordingError: ") + e.what());
   }
   try {
-    if (fixstep::parse_recording(fixstep::format_recording(rec), "again") != rec) {
+    // format_recording writes the current version: a version 1 recording comes back as
+    // version 2 with the same content.
+    fixstep::Recording again = fixstep::parse_recording(fixstep::format_recording(rec), "again");
+    again.version = rec.version;
+    if (again != rec) {
       finding("format_recording then parse_recording does not give the same recording");
     }
     if (rec.ticks <= 2000) {
