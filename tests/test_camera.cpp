@@ -13,17 +13,14 @@
 #include "fixstep/loop.hpp"
 #include "fixstep/render.hpp"
 #include "fixstep/session.hpp"
+#include "pixels.hpp"
 
 namespace fixstep {
 namespace {
 
-struct Rgb {
-  int r, g, b;
-};
-Rgb at(const Renderer& r, int x, int y) {
-  const auto p = r.pixels().subspan((static_cast<std::size_t>(y) * r.width() + x) * 4, 4);
-  return {p[0], p[1], p[2]};
-}
+using testing::at;
+using testing::Rgb;
+
 bool is(Rgb p, Rgba8 c, int tol = 8) {
   return std::abs(p.r - c.r) <= tol && std::abs(p.g - c.g) <= tol && std::abs(p.b - c.b) <= tol;
 }

@@ -11,18 +11,15 @@
 
 #include "fixstep/render.hpp"
 #include "fixstep/trails.hpp"
+#include "pixels.hpp"
 
 namespace fixstep {
 namespace {
 // --- drawn: no streak between a destroyed body and a new one ------------------------------------
 
-struct Rgb {
-  int r, g, b;
-};
-Rgb at(const Renderer& r, int x, int y) {
-  const auto p = r.pixels().subspan((static_cast<std::size_t>(y) * r.width() + x) * 4, 4);
-  return {p[0], p[1], p[2]};
-}
+using testing::at;
+using testing::Rgb;
+
 // A trail's colour over the dark background: one channel well above another (the background
 // and the grid are near grey: their channels differ by at most 28).
 bool coloured(Rgb c) {

@@ -1,0 +1,21 @@
+// Reading a rendered frame's pixels back in the render tests (test_camera, test_trail_frames).
+#pragma once
+
+#include <cstddef>
+
+#include "fixstep/render.hpp"
+
+namespace fixstep::testing {
+
+/// One pixel's colour channels, 0..255.
+struct Rgb {
+  int r, g, b;
+};
+
+/// The pixel at column x, row y (from the top) of the renderer's RGBA8 frame.
+inline Rgb at(const Renderer& r, int x, int y) {
+  const auto p = r.pixels().subspan((static_cast<std::size_t>(y) * r.width() + x) * 4, 4);
+  return {p[0], p[1], p[2]};
+}
+
+}  // namespace fixstep::testing
