@@ -2,19 +2,23 @@
 
 #include <csignal>
 
+#include "fixstep/stop_request.hpp"
+
 namespace fixstep::cli {
 
 namespace {
 volatile std::sig_atomic_t stop_signal = 0;
-extern "C" void request_stop(int signal) {
+extern "C" void on_stop_signal(int signal) {
   stop_signal = signal;
+  fixstep::request_stop(signal);  // also seen by the engine's long loops inside a tick
 }
 }  // namespace
 
 StopOnSignal::StopOnSignal() {
   stop_signal = 0;
-  previous_int_ = std::signal(SIGINT, request_stop);
-  previous_term_ = std::signal(SIGTERM, request_stop);
+  clear_stop_request();
+  previous_int_ = std::signal(SIGINT, on_stop_signal);
+  previous_term_ = std::signal(SIGTERM, on_stop_signal);
 }
 
 StopOnSignal::~StopOnSignal() {

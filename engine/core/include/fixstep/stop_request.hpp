@@ -1,0 +1,39 @@
+// A request to stop a long operation early, process-wide as signals are: a SIGINT handler (or
+// another thread) calls request_stop(); the long loops of the engine — a tick's substeps, the
+// Newton iterations and sparse factorizations of implicit Euler, the stability guard's power
+// iteration — poll it and throw StopRequested, so a command can stop within a second even when
+// one tick takes hours. Polling costs one relaxed atomic load per substep or iteration.
+//
+// A tick that throws StopRequested is abandoned half-way: the world's state is then neither the
+// state before the tick nor after it. Discard the world or restore a snapshot taken before the
+// tick; the outputs of the ticks completed before it (CSV rows, recorded ticks, frames) are whole.
+#pragma once
+
+#include <stdexcept>
+
+namespace fixstep {
+
+/// Thrown by a long engine operation that saw a stop request. `signal()` is the value given to
+/// request_stop() (a signal number for the CLI, any non-zero value for a program).
+class StopRequested : public std::runtime_error {
+ public:
+  explicit StopRequested(int signal);
+  [[nodiscard]] int signal() const noexcept { return signal_; }
+
+ private:
+  int signal_;
+};
+
+/// Requests a stop; `signal` must be non-zero. Async-signal-safe (a lock-free atomic store).
+void request_stop(int signal) noexcept;
+
+/// The value of the pending request, or 0 when none is pending. Async-signal-safe.
+[[nodiscard]] int stop_requested() noexcept;
+
+/// Withdraws a pending request (a command does this when it starts).
+void clear_stop_request() noexcept;
+
+/// Throws StopRequested when a stop is pending; otherwise does nothing.
+void throw_if_stop_requested();
+
+}  // namespace fixstep
