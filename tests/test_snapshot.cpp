@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "fixstep/loop.hpp"
@@ -14,6 +15,7 @@
 #include "fixstep/rewind.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
+#include "fixstep/stop_request.hpp"
 #include "fixstep/sync_test.hpp"
 
 // count_new.cpp: this program's operator new, counting the bytes asked for while counting.
@@ -410,6 +412,55 @@ TEST(SyncTest, ARuleAppliedOutsideTheRollbackIsCaught) {
   EXPECT_EQ(sync.mismatch()->tick, 21u);  // the first tick stepped from the changed state
   EXPECT_NE(sync.mismatch()->expected, sync.mismatch()->actual);
   EXPECT_THROW(SyncTest(sim, 0), std::invalid_argument);
+}
+
+// --- a stop request inside a tick (issue 21, class 5) --------------------------------------
+
+TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
+  // The cloth (400 bodies, 1540 links) at 20 000 substeps: a tick of a few tenths of a second
+  // that ran to its end, without throwing, before the substeps polled the request.
+  Scene scene = load_scene(scenes_dir / "cloth.toml");
+  scene.world.substeps = 20000;
+  Simulation sim = make_simulation(scene);
+  WorldSnapshot before;
+  sim.save(before);
+  clear_stop_request();
+  std::atomic<bool> started{false};
+  std::thread stopper([&] {
+    while (!started.load()) std::this_thread::yield();
+    request_stop(2);
+  });
+  started.store(true);
+  try {
+    sim.step(TickInput{.tick = 0});
+    ADD_FAILURE() << "the tick ran to its end despite the stop request";
+  } catch (const StopRequested& e) {
+    EXPECT_EQ(e.signal(), 2);
+  }
+  stopper.join();
+  EXPECT_EQ(sim.tick(), 0u);  // the torn tick is not counted
+  clear_stop_request();
+  // A fresh world from the snapshot taken before the torn tick steps on as if nothing happened.
+  Simulation fresh = make_simulation(scene);
+  fresh.restore(before);
+  fresh.step(TickInput{.tick = 0});
+  Simulation reference = make_simulation(scene);
+  reference.step(TickInput{.tick = 0});
+  EXPECT_EQ(fresh.tick(), 1u);
+  EXPECT_EQ(fresh.state_hash(), reference.state_hash());
+}
+
+TEST(StopRequest, APendingStopStopsImplicitEulerAndTheStabilityGuard) {
+  Scene scene = load_scene(scenes_dir / "cloth.toml");
+  scene.world.integrator = Integrator::implicit_euler;
+  Simulation sim = make_simulation(scene);
+  request_stop(15);
+  EXPECT_THROW(sim.step(TickInput{.tick = 0}), StopRequested);
+  // The guard's power iteration (make_simulation checks the network) polls too.
+  scene.world.integrator = Integrator::semi_implicit_euler;
+  EXPECT_THROW((void)make_simulation(scene), StopRequested);
+  clear_stop_request();
+  EXPECT_NO_THROW(sim.step(TickInput{.tick = 0}));  // the same world steps again once cleared
 }
 
 }  // namespace

@@ -13,10 +13,12 @@
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
+#include <fixstep/stop_request.hpp>
 #include <fixstep/sync_test.hpp>
 #include <stdexcept>
 #include <vector>
 
+#include "csv_field.hpp"
 #include "exact_reference.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
@@ -123,9 +125,9 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Simulat
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
     const Body b = sim.body_at(j);
     // {} prints the shortest text that reads back as the same double: exact, no lost bits.
-    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{}", sim.tick(), sim.time(), sim.name(j),
-                   b.position.x, b.position.y, b.velocity.x, b.velocity.y, energies[j],
-                   world_energy, dissipated, balance);
+    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{}", sim.tick(), sim.time(),
+                   csv_field(sim.name(j)), b.position.x, b.position.y, b.velocity.x, b.velocity.y,
+                   energies[j], world_energy, dissipated, balance);
     if (with_exact) {
       if (const auto& e = exact[j]) {
         fmt::format_to(out, ",{},{},{}", e->position.x, e->position.y,
@@ -190,17 +192,26 @@ int run_command(const RunOptions& o) {
   }
   std::optional<Recorder> recorder;
   if (o.record) recorder.emplace(world_def(scene), o.scene.scene, o.hash_every);
+  const std::uint64_t initial_hash = o.record ? sim.state_hash() : 0;
+  bool torn = false;       // a stop request abandoned a tick half-way: the state is not a tick's
+  std::uint64_t done = 0;  // ticks completed
   std::optional<SyncTest> sync;
   if (o.sync_test) sync.emplace(sim, *o.sync_test);
   const StopOnSignal signals;
   Progress progress("run", "tick", ticks, !o.scene.quiet);
   for (std::uint64_t i = 1; i <= ticks; ++i) {
     const TickInput in = player ? player->next() : TickInput{.tick = i - 1};
-    if (sync) {
-      if (!sync->step(in)) return sync_test_failed(*sync, *o.sync_test);
-    } else {
-      sim.step(in);
+    try {
+      if (sync) {
+        if (!sync->step(in)) return sync_test_failed(*sync, *o.sync_test);
+      } else {
+        sim.step(in);
+      }
+    } catch (const StopRequested&) {  // inside the tick: discard it, keep the ticks before
+      torn = true;
+      break;
     }
+    done = i;
     if (recorder) recorder->record(in, sim);
     if (i % 1024 == 0 || i == ticks) progress.update(i);  // a clock read per 1024 ticks
     const bool diverged = sim.fault().has_value();        // the runtime guard (World::fault)
@@ -212,9 +223,12 @@ int run_command(const RunOptions& o) {
   }
   progress.finish();
   if (csv) csv->commit();  // the rows up to and including the last tick run
-  if (recorder) write_recording(*o.record, recorder->finish(sim));  // the ticks run
+  if (recorder) {          // the ticks run; after a torn tick, up to the last stored hash
+    write_recording(*o.record,
+                    torn ? recorder->finish_at_last_hash(initial_hash) : recorder->finish(sim));
+  }
   fmt::print("{}\n", describe(scene));
-  fmt::print("{}\n", summary_line(sim, e0));
+  if (!torn) fmt::print("{}\n", summary_line(sim, e0));  // a torn state has no summary
   if (o.record) fmt::print("recording={}\n", *o.record);
   if (sync) {
     fmt::print(
@@ -224,8 +238,9 @@ int run_command(const RunOptions& o) {
   }
   if (const int sig = StopOnSignal::requested()) {
     if (o.csv) fmt::print("csv={}\n", *o.csv);
-    std::fprintf(stderr, "fixstep: stopped by %s after tick %llu; output written\n",
-                 StopOnSignal::name(), static_cast<unsigned long long>(sim.tick()));
+    std::fprintf(stderr, "fixstep: stopped by %s after tick %llu%s; output written\n",
+                 StopOnSignal::name(), static_cast<unsigned long long>(done),
+                 torn ? " (the tick in progress discarded)" : "");
     return 128 + sig;
   }
   if (sim.fault()) {

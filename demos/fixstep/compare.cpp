@@ -9,12 +9,15 @@
 #include <filesystem>
 #include <fixstep/capture.hpp>
 #include <fixstep/scene_stability.hpp>
+#include <fixstep/stop_request.hpp>
 #include <fixstep/window.hpp>
+#include <span>
 #include <thread>
 #include <vector>
 
 #include "capture_sink.hpp"
 #include "comparison.hpp"
+#include "csv_field.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
 
@@ -73,16 +76,36 @@ void summarise(const CompareOptions& o, const Comparison& c,
         t.error && !c.has_exact() ? fmt::format(" at t={:.6f}", t.error_time) : "", balance,
         t.cost);
     fmt::print("  same state: {}\n", same_as_run(o.scene, t));
-    rows += fmt::format(
-        "{},{},{},{},{},{},{},{:.6f},{},{},{},{},{},{:.6e},{:.6e},{:.6e}\n", i + 1, t.spec.text,
-        integrator_name(sim.settings().integrator), sim.settings().dt, sim.settings().substeps,
-        precision_name(sim.precision()), sim.tick(), sim.time(), hex_hash(sim.state_hash()), error,
-        against, t.error ? fmt::format("{:.6f}", t.error_time) : "",
-        t.error ? fmt::format("{:.6e}", t.max_error) : "", balance, t.cost, in_loop);
+    rows +=
+        fmt::format("{},{},{},{},{},{},{},{:.6f},{},{},{},{},{},{:.6e},{:.6e},{:.6e}\n", i + 1,
+                    csv_field(t.spec.text), integrator_name(sim.settings().integrator),
+                    sim.settings().dt, sim.settings().substeps, precision_name(sim.precision()),
+                    sim.tick(), sim.time(), hex_hash(sim.state_hash()), error, against,
+                    t.error ? fmt::format("{:.6f}", t.error_time) : "",
+                    t.error ? fmt::format("{:.6e}", t.max_error) : "", balance, t.cost, in_loop);
   }
   if (csv) {
     write_file_atomic(*csv, rows);
     fmt::print("csv={}\n", csv->string());
+  }
+}
+
+/// Warns about each --with that configures the same run as an earlier one (the same
+/// integrator, dt, substeps and precision, however written): two identical tiles.
+void warn_repeated(std::span<const TileSpec> specs) {
+  for (std::size_t i = 1; i < specs.size(); ++i) {
+    const TileSpec& s = specs[i];
+    for (std::size_t j = 0; j < i; ++j) {
+      const TileSpec& t = specs[j];
+      if (s.integrator == t.integrator && s.dt == t.dt && s.substeps == t.substeps &&
+          s.precision == t.precision) {
+        std::fprintf(stderr,
+                     "warning: --with '%s' (tile %zu) configures the same run as --with '%s' "
+                     "(tile %zu): the two tiles will be identical\n",
+                     s.text.c_str(), i + 1, t.text.c_str(), j + 1);
+        break;
+      }
+    }
   }
 }
 
@@ -110,8 +133,14 @@ int capture(const CompareOptions& o, Comparison& c, int width, int height) {
   const StopOnSignal signals;
   Progress progress("compare", "frame", frames, !o.quiet);
   std::uint64_t written = 0;
+  bool torn = false;  // a stop request inside a tick: that frame is not drawn
   for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
-    if (f > 0) c.advance(clock.frame_seconds());
+    try {
+      if (f > 0) c.advance(clock.frame_seconds());
+    } catch (const StopRequested&) {
+      torn = true;
+      break;
+    }
     c.draw(frame, width);
     sink.submit(frame);
     for (std::size_t i = 0; i < c.size(); ++i) sink.add_row(f, i + 1, *c.tile(i).session);
@@ -121,7 +150,8 @@ int capture(const CompareOptions& o, Comparison& c, int width, int height) {
   progress.finish();
   fmt::print("scene={} tiles={} fps={} size={}x{}\n", o.scene, c.size(), fps, width, height);
   sink.print_paths(written, StopOnSignal::requested() ? " (stopped)" : "");
-  summarise(o, c, summary_path(o));
+  // A tile stopped inside a tick has a torn state: no summary (nor --csv) of it.
+  if (!torn) summarise(o, c, summary_path(o));
   if (const int sig = StopOnSignal::requested()) {
     std::fprintf(stderr,
                  "fixstep: stopped by %s after %llu frames; every frame written is complete\n",
@@ -171,10 +201,14 @@ int compare_command(const CompareOptions& o) {
   }
   std::vector<TileSpec> specs;
   for (const std::string& w : o.with) specs.push_back(parse_tile_spec(w));
+  if (!o.quiet) warn_repeated(specs);
   const auto [width, height] = parse_frame_size(o.size);
   const TileGrid grid = tile_grid(static_cast<int>(specs.size()), width, height);
   const bool headless = o.out || o.video;
-  Comparison comparison(base, specs, grid, o.quiet);
+  // A virtual clock (capture, or --fps in the window) is not clamped: frames 1/fps apart.
+  const bool virtual_clock = headless || o.fps;
+  const double frame = virtual_clock ? 1.0 / o.fps.value_or(60.0) : 0.0;
+  Comparison comparison(base, specs, grid, o.quiet, std::max(LoopSettings{}.max_frame_time, frame));
   return headless ? capture(o, comparison, width, height) : show(o, comparison, width, height);
 }
 

@@ -43,8 +43,8 @@ float hud_text_scale(std::span<const std::string> labels, int width) {
 }  // namespace
 
 Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const TileGrid& grid,
-                       bool quiet)
-    : base_(base), exact_(base_), grid_(grid) {
+                       bool quiet, double max_frame_time)
+    : base_(base), exact_(base_), grid_(grid), max_frame_time_(max_frame_time) {
   std::vector<Scene> scenes;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     scenes.push_back(tile_scene(base_, specs[i]));
@@ -88,6 +88,7 @@ SessionSettings Comparison::tile_settings(const Scene& scene) const {
   const int w = grid_.tile_width, h = grid_.tile_height;
   SessionSettings s = session_settings(scene, w, h);
   s.hud_text_scale = hud_scale_;
+  s.max_frame_time = max_frame_time_;
   // The HUD covers the tile's top band: the scene is fitted into the part below it.
   const int band =
       std::min(int(std::ceil(Renderer::hud_height(hud_lines, s.hud_text_scale))), h / 2);

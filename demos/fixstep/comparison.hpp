@@ -43,7 +43,9 @@ class Comparison {
   /// grid's tile size with the engine's HUD replaced by the tile's. Throws std::invalid_argument
   /// naming the spec when the stability guard refuses a tile (unless the scene allows unstable
   /// runs), RenderError when rendering cannot start. Prints the guard's warnings unless quiet.
-  Comparison(const Scene& base, std::span<const TileSpec> specs, const TileGrid& grid, bool quiet);
+  /// `max_frame_time` (s): every tile's SessionSettings::max_frame_time.
+  Comparison(const Scene& base, std::span<const TileSpec> specs, const TileGrid& grid, bool quiet,
+             double max_frame_time = 0.25);
 
   /// Runs every tile's loop for `seconds` (s) of the shared clock, timing each, then measures
   /// its error: against the exact solution at its own time when the scene has one (what `fixstep
@@ -82,6 +84,7 @@ class Comparison {
   TileGrid grid_;
   bool has_exact_ = false;
   std::size_t reference_ = 0;
+  double max_frame_time_;   ///< s, SessionSettings::max_frame_time of every tile
   float hud_scale_ = 2.0f;  ///< every tile's HUD text scale (Renderer::set_hud_text_scale)
   std::vector<std::unique_ptr<Tile>> tiles_;
 };

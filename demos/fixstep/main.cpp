@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fixstep/stop_request.hpp>
 #include <fixstep/suggest.hpp>
 
 #include "capture_sink.hpp"
@@ -289,6 +290,9 @@ int main(int argc, char** argv) try {
   if (replay_cmd->parsed()) return replay_command(replay);
   if (new_cmd->parsed()) return new_command(new_dir);
   return view_command(view);
+} catch (const fixstep::StopRequested& e) {  // a command that does not catch it (none should)
+  std::fprintf(stderr, "fixstep: %s\n", e.what());
+  return 128 + e.signal();
 } catch (const fixstep::RecordingError& e) {
   std::fprintf(stderr, "fixstep: error: %s\n", e.what());
   return fixstep::cli::exit_code(e);

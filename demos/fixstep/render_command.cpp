@@ -5,6 +5,7 @@
 #include <fixstep/manifest.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
+#include <fixstep/stop_request.hpp>
 
 #include "capture_sink.hpp"
 #include "commands.hpp"
@@ -37,18 +38,28 @@ int render_command(const RenderOptions& o) {
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
   CaptureSink sink({.out = o.out, .video = o.video, .png_level = o.png_level}, width, height, o.fps,
                    ManifestLayout::frames);
-  Session session = open_session(scene, width, height);
   const VirtualClock clock(o.fps);
+  SessionSettings settings = session_settings(scene, width, height);
+  // A virtual clock is not clamped (the clamp guards a real clock against stalls): every frame
+  // is exactly 1/fps after the last, at any --fps (issue 21, class 9).
+  settings.max_frame_time = std::max(settings.max_frame_time, clock.frame_seconds());
+  Session session(world_def(scene), settings);
   const auto frames = static_cast<std::uint64_t>(o.frames);
   std::uint64_t written = 0;
   const StopOnSignal signals;
   Progress progress("render", "frame", frames, !o.scene.quiet);
+  bool torn = false;  // a stop request inside a tick: that frame is not drawn
   for (std::uint64_t f = 0; f < frames && !StopOnSignal::requested(); ++f) {
-    if (f > 0 && rec) {  // the recorded input of each tick; none past the recording's end
-      session.advance_with(clock.frame_seconds(),
-                           [&](std::uint64_t t, Simulation& sim) { sim.step(rec->input_at(t)); });
-    } else if (f > 0) {
-      session.advance(clock.frame_seconds());
+    try {
+      if (f > 0 && rec) {  // the recorded input of each tick; none past the recording's end
+        session.advance_with(clock.frame_seconds(),
+                             [&](std::uint64_t t, Simulation& sim) { sim.step(rec->input_at(t)); });
+      } else if (f > 0) {
+        session.advance(clock.frame_seconds());
+      }
+    } catch (const StopRequested&) {
+      torn = true;
+      break;
     }
     session.draw();  // after a divergence: the last state, with the guard's message in the HUD
     sink.submit(session.renderer().pixels());
@@ -63,7 +74,8 @@ int render_command(const RenderOptions& o) {
   if (!sig && !fault) {
     fmt::print("{} renderer=\"{}\"\n", describe(scene), session.renderer().gl_renderer());
   }
-  fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
+  // A torn state (a tick abandoned half-way) has no summary.
+  if (!torn) fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
   sink.print_paths(written, sig ? " (stopped)" : fault ? " (stopped early)" : "");
   if (sig) {
     std::fprintf(stderr,

@@ -1,7 +1,8 @@
-// SIGINT / SIGTERM during a long command (run, render, compare): the handler only records the
-// signal; the command finishes the tick or frame in progress, writes out everything produced so
-// far (the CSV, every queued frame) and exits 128 + the signal number, as a shell reports a
-// signal death.
+// SIGINT / SIGTERM during a long command (run, render, compare): the handler records the signal
+// and calls fixstep::request_stop, so the engine's long loops throw StopRequested inside the
+// tick in progress (stop_request.hpp); the command discards that tick, writes out everything
+// produced before it (the CSV, every queued frame) and exits 128 + the signal number, as a shell
+// reports a signal death.
 #pragma once
 
 namespace fixstep::cli {

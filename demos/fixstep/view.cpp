@@ -103,6 +103,7 @@ void reload(ShownWorld& shown, const SceneOptions& o) {
   const Session& old = *shown.session;
   const Renderer& r = old.renderer();
   SessionSettings settings = session_settings(scene, r.width(), r.height());
+  settings.max_frame_time = shown.session->loop().settings().max_frame_time;  // as --fps set it
   if (scene.view.center == shown.scene.view.center && scene.view.width == shown.scene.view.width) {
     settings.view_center = r.camera().center;
     settings.view_width = r.camera().width;
@@ -162,7 +163,10 @@ int view_command(const ViewOptions& o) {
   Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height,
                               "fixstep render SCENE --out DIR");
   ShownWorld shown;
-  auto first = std::make_unique<Session>(world_def(scene), session_settings(scene, width, height));
+  SessionSettings settings = session_settings(scene, width, height);
+  // --fps: a virtual clock, not clamped (frames exactly 1/fps apart; issue 21, class 9).
+  if (o.fps) settings.max_frame_time = std::max(settings.max_frame_time, 1.0 / *o.fps);
+  auto first = std::make_unique<Session>(world_def(scene), settings);
   show(shown, std::move(scene), std::move(first));
 
   InputSampler sampler;  // window events -> one input per tick

@@ -180,6 +180,19 @@ Recording Recorder::finish(const Simulation& sim) {
                     sim.tick(), rec_.ticks));
   }
   rec_.final_hash = sim.state_hash();
+  return take();
+}
+
+Recording Recorder::finish_at_last_hash(std::uint64_t initial_hash) {
+  const auto [ticks, hash] = rec_.hashes.empty()
+                                 ? std::pair<std::uint64_t, std::uint64_t>{0, initial_hash}
+                                 : rec_.hashes.back();
+  truncate(ticks);
+  rec_.final_hash = hash;
+  return take();
+}
+
+Recording Recorder::take() {
   Recording out = std::move(rec_);
   rec_ = Recording{};
   rec_.scene = out.scene;

@@ -26,6 +26,7 @@
 #include <stdexcept>
 
 #include "fixstep/stability.hpp"
+#include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
 #include "stability_internal.hpp"
 
@@ -125,6 +126,7 @@ Eigenpair top_eigenpair(const Operator& op) {
   for (double& v : e.vector) v /= norm0;
   std::vector<double> y(dim), z(dim), history{0.0};  // history[t] = ρ_t
   for (int t = 1; t <= max_iterations; ++t) {
+    throw_if_stop_requested();  // one operator product per iteration (stop_request.hpp)
     op.apply(e.vector, y, z);
     const double rho = dot(e.vector, y), norm = std::sqrt(dot(y, y));
     e.value = rho, e.iterations = t;

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "fixstep/stop_request.hpp"
 #include "link_damping.hpp"
 #include "link_passes.hpp"
 
@@ -102,6 +103,7 @@ class StrangChain {
     if (!cached) forces(nullptr);  // the tick's first position: forces only, nothing to damp
     kick(nullptr, &s);
     for (std::size_t i = 0; i < count; ++i) {
+      throw_if_stop_requested();  // per stage, on the calling thread (the worker is idle here)
       if (s.ca) colours<false>(s, true);  // C↑(h/2) at the directions of the last pass
       drift(s.h);
       forces(&s);  // forces at the new positions, with C↓(h/2) there

@@ -19,6 +19,7 @@
 #include <type_traits>
 
 #include "body_field.hpp"
+#include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
 #include "link_damping.hpp"
 #include "link_passes.hpp"
@@ -250,6 +251,7 @@ void World<Real>::step_multipass(const TickInput& input) {
   }
 
   for (int sub = 0; sub < settings_.substeps; ++sub) {
+    throw_if_stop_requested();  // on this thread, with the worker idle between passes
     if (m == 0) {
       // No links: each body's fused step, as in the sweep, with the dissipation account.
       auto fused = [&]<Integrator I, int Decays>(const Real* d0, const Real* d1) {

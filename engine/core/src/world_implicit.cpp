@@ -21,6 +21,7 @@
 #include <cmath>
 #include <limits>
 
+#include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -84,6 +85,7 @@ void ImplicitSolver<Real>::build_linear(double h) {
   }
   Sparse a(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   a.setFromTriplets(triplets_.begin(), triplets_.end());
+  throw_if_stop_requested();  // the factorisation is the longest step of a linear network
   ldlt_.compute(a);
   factor_h_ = h;
   rhs_x_.resize(n), rhs_y_.resize(n), sol_x_.resize(n), sol_y_.resize(n);
@@ -142,6 +144,7 @@ bool ImplicitSolver<Real>::step_newton(Real* x, Real* y, Real* vx, Real* vy, dou
     add(2 * p + 1, 2 * q, s * b01), add(2 * p + 1, 2 * q + 1, s * b11);
   };
   for (int it = 0; it < 50; ++it) {
+    throw_if_stop_requested();  // per Newton iteration: one sparse LU each
     triplets_.clear();
     // G = M (r - x - h v) - h² F(r, (r - x)/h),  J = M + h C + h² K.
     for (Eigen::Index j = 0; j < n; ++j) {
@@ -190,6 +193,7 @@ bool ImplicitSolver<Real>::step_newton(Real* x, Real* y, Real* vx, Real* vy, dou
     jacobian_.resize(N, N);
     jacobian_.setFromTriplets(triplets_.begin(), triplets_.end());
     if (!lu_analyzed_) lu_.analyzePattern(jacobian_), lu_analyzed_ = true;
+    throw_if_stop_requested();  // again after the analysis, before the factorisation
     lu_.factorize(jacobian_);
     if (lu_.info() != Eigen::Success) break;
     delta_ = lu_.solve(g_);

@@ -8,6 +8,7 @@
 #include "body_field.hpp"
 #include "disc_contacts.hpp"
 #include "fixstep/simd.hpp"
+#include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -258,6 +259,7 @@ void World<Real>::integrate(const TickInput& input) {
     });
   };
   for (int s = 0; s < settings_.substeps; ++s) {
+    throw_if_stop_requested();  // one relaxed load per substep (stop_request.hpp)
     const bool verlet = settings_.integrator == Integrator::velocity_verlet;
     const bool fr = settings_.integrator == Integrator::forest_ruth;
     dispatch(settings_.integrator, c.damping && verlet ? damping_decay(0.5 * double(h)) : nullptr,

@@ -139,13 +139,25 @@ const WorldDef& tracked(WorldDef& def) {
   return def;
 }
 
+/// The loop of dt with the frame-time clamp max_frame_time and a tick cap that never binds
+/// below it (the derived cap stops at 10^6 + 1 ticks).
+LoopSettings loop_settings(double dt, double max_frame_time) {
+  const double ticks = std::ceil(max_frame_time / dt) + 1.0;
+  if (!(ticks <= 0x1p30)) {
+    throw std::invalid_argument(fmt::format(
+        "Session: a frame of {} s is more than 2^30 ticks of dt = {} s", max_frame_time, dt));
+  }
+  return LoopSettings{
+      .dt = dt, .max_frame_time = max_frame_time, .max_ticks_per_frame = static_cast<int>(ticks)};
+}
+
 }  // namespace
 
 Session::Session(WorldDef def, const SessionSettings& settings)
     : def_(std::move(def)),
       title_(settings.title),
       sim_(std::make_unique<Simulation>(make_simulation(tracked(def_)))),
-      loop_(LoopSettings{.dt = def_.settings.dt}),
+      loop_(loop_settings(def_.settings.dt, settings.max_frame_time)),
       renderer_(settings.width, settings.height) {
   sim_->set_keep_previous(true);
   initial_energy_ = sim_->energy().total();

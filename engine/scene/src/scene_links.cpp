@@ -1,7 +1,9 @@
 // Scene files, part two: springs between bodies ([[spring]]) and the frequency form of
 // springs. See README "Scene format".
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "scene_reader.hpp"
 
@@ -30,6 +32,20 @@ std::size_t find_body(const Reader& r, const toml::node& e, const std::string& k
   }
   r.fail(e.source(), key,
          fmt::format("no body named \"{}\"{}", name, hint.empty() ? "" : " (" + hint + ")"));
+}
+
+/// The unordered pair {a, b} as one key.
+std::uint64_t pair_key(std::size_t a, std::size_t b) {
+  return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
+}
+
+/// Where link l came from, for a warning: "spring[2] (line 14)".
+std::string link_origin(const Scene& scene, std::size_t l) {
+  const std::string key = l < scene.link_keys.size() && !scene.link_keys[l].empty()
+                              ? scene.link_keys[l]
+                              : fmt::format("link[{}]", l);
+  const std::size_t line = l < scene.link_lines.size() ? scene.link_lines[l] : 0;
+  return line ? fmt::format("{} (line {})", key, line) : key;
 }
 
 }  // namespace
@@ -117,6 +133,12 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
            fmt::format("the scene would have {} links; at most {} are allowed",
                        scene.links.size() + list->size(), max_scene_links));
   }
+  // The first link of each pair of bodies (generated links included, in either order): a second
+  // one is allowed, as the forces of both add, but is most likely a mistake (issue 21, class 9).
+  std::unordered_map<std::uint64_t, std::size_t> first_link;
+  for (std::size_t l = 0; l < scene.links.size(); ++l) {
+    first_link.emplace(pair_key(scene.links[l].body_a, scene.links[l].body_b), l);
+  }
   for (std::size_t i = 0; i < list->size(); ++i) {
     const toml::table& t = *list->get(i)->as_table();
     const std::string path = fmt::format("spring[{}]", i);
@@ -162,6 +184,12 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
                          "rest_length = 0",
                          da.name, db.name, da.body.position.x, da.body.position.y,
                          spring.rest_length));
+    }
+    if (const auto [it, fresh] = first_link.emplace(pair_key(a, b), scene.links.size()); !fresh) {
+      r.warn(n->source(), path + ".bodies",
+             fmt::format("\"{}\" and \"{}\" are already joined by {}: both links act (their "
+                         "forces add); remove one, or merge them into one spring",
+                         da.name, db.name, link_origin(scene, it->second)));
     }
     scene.links.push_back(BodyLink{a, b, spring});
     scene.link_lines.push_back(t.source().begin.line);

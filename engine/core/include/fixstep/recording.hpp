@@ -119,10 +119,17 @@ class Recorder {
   /// The recording so far, ended at `sim`'s state (whose tick() must be ticks(), else
   /// std::invalid_argument). The recorder is left empty.
   [[nodiscard]] Recording finish(const Simulation& sim);
+  /// The recording so far, ended at its last stored hash, for a session whose current state is
+  /// lost (a tick abandoned half-way by StopRequested, stop_request.hpp): the ticks after the
+  /// last stored hash are dropped and its hash is the final one; with no hash stored, the
+  /// recording ends at tick 0 with `initial_hash` (the simulation's state_hash() before its
+  /// first tick). The recorder is left empty.
+  [[nodiscard]] Recording finish_at_last_hash(std::uint64_t initial_hash);
 
   [[nodiscard]] std::uint64_t ticks() const { return rec_.ticks; }
 
  private:
+  Recording take();  ///< the recording, the recorder left empty (finish*)
   Recording rec_;
 };
 

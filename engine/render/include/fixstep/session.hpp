@@ -34,6 +34,10 @@ struct SessionSettings {
   std::optional<Vec2> view_center{};   ///< m; default: the automatic view's
   std::optional<double> view_width{};  ///< visible width, m; default: the automatic view's
   float hud_text_scale = 2.0f;         ///< see Renderer::set_hud_text_scale (in [1, 4])
+  /// The loop's frame-time clamp, s (LoopSettings::max_frame_time): the real clock's guard
+  /// against stalls. A virtual clock passes its frame time (>= 0.25 s when it is longer), so no
+  /// frame is clamped: frames are exactly 1/fps apart at any fps (issue 21, class 9).
+  double max_frame_time = 0.25;
 };
 
 class Session {
@@ -41,7 +45,8 @@ class Session {
   /// Builds the world (make_simulation(def): the stability guard applies; with
   /// WorldSettings::track_dissipation turned on, since the HUD shows the energy balance), the
   /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid
-  /// or unstable def (see make_simulation), RenderError when rendering cannot start.
+  /// or unstable def (see make_simulation), for a max_frame_time that is not finite and > 0 or
+  /// is more than 2^30 ticks, RenderError when rendering cannot start.
   explicit Session(WorldDef def, const SessionSettings& settings = {});
 
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets
