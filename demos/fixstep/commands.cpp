@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "exact_reference.hpp"
+#include "output_paths.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
 
@@ -161,6 +162,7 @@ int sync_test_failed(const SyncTest& sync, int rollback) {
 }  // namespace
 
 int run_command(const RunOptions& o) {
+  check_paths(run_paths(o));  // before any work: no output may be an input
   const Scene scene = load_with_overrides(o.scene);
   Simulation sim = make_simulation(scene);
   const double e0 = sim.energy().total();
