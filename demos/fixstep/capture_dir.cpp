@@ -23,7 +23,11 @@ std::vector<std::filesystem::path> capture_files_in(const std::filesystem::path&
   std::error_code ec;
   std::filesystem::directory_iterator it(dir, ec);
   for (const std::filesystem::directory_iterator end; !ec && it != end; it.increment(ec)) {
-    if (is_capture_file(it->path().filename().string())) files.push_back(it->path());
+    // Regular files (or links to them) only: a directory named frame_000005.png is no frame.
+    std::error_code type_ec;
+    if (is_capture_file(it->path().filename().string()) && it->is_regular_file(type_ec)) {
+      files.push_back(it->path());
+    }
   }
   std::sort(files.begin(), files.end());
   return files;

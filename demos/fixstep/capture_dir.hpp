@@ -11,7 +11,8 @@ namespace fixstep::cli {
 /// digits), frames.csv (the manifest, renamed into place after the last frame) or compare.csv.
 [[nodiscard]] bool is_capture_file(std::string_view name);
 
-/// The capture files (is_capture_file) in `dir`, sorted; none when it does not exist.
+/// The regular files (or links to one) in `dir` named as capture files (is_capture_file),
+/// sorted; none when it does not exist.
 [[nodiscard]] std::vector<std::filesystem::path> capture_files_in(const std::filesystem::path& dir);
 
 /// "" when a capture may go into `dir`: it does not exist, holds no capture file, or
