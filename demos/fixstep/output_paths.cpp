@@ -13,22 +13,27 @@ namespace fixstep::cli {
 
 namespace {
 
-/// A file's identity: device and inode; for a file not there yet, its directory's and its name.
+/// A file's identity: device and inode; for a file not there yet, its absolute path with every
+/// existing directory in it resolved (symbolic links, "..", "."), device and inode 0.
 struct FileId {
   dev_t dev = 0;
   ino_t ino = 0;
-  std::string name;  ///< "" for an existing file
+  std::string path;  ///< "" for an existing file
   bool operator==(const FileId&) const = default;
 };
+
+std::filesystem::path resolved(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec).lexically_normal();
+  std::filesystem::path p = std::filesystem::weakly_canonical(absolute, ec);
+  return ec ? absolute : p;
+}
 
 std::optional<FileId> id_of(const std::string& path, bool may_be_new) {
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0) return FileId{st.st_dev, st.st_ino, ""};
   if (!may_be_new) return std::nullopt;
-  const std::filesystem::path p(path);
-  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-  if (::stat(dir.c_str(), &st) != 0) return std::nullopt;  // writing it reports the directory
-  return FileId{st.st_dev, st.st_ino, p.filename().string()};
+  return FileId{0, 0, resolved(path).string()};
 }
 
 std::string shown(const NamedPath& p) {
@@ -55,14 +60,15 @@ void refuse_capture_inputs(const CommandPaths& c,
 }
 
 /// A file given for another output that the capture in `capture_dir` would write: DIR/frame_N.png.
-void refuse_capture_names(const CommandPaths& c, const NamedPath& out, const FileId& id) {
+void refuse_capture_names(const CommandPaths& c, const NamedPath& out) {
+  const std::filesystem::path p = resolved(out.path);
+  const std::string name = p.filename().string();
   // compare --csv DIR/compare.csv names the summary's default place: not a clash.
-  if (!c.capture_dir || out.role.starts_with("--out") || id.name.empty() ||
-      !is_capture_file(id.name) || (id.name == "compare.csv" && out.role == "--csv")) {
+  if (!c.capture_dir || out.role.starts_with("--out") || !is_capture_file(name) ||
+      (name == "compare.csv" && out.role == "--csv")) {
     return;
   }
-  const auto dir = id_of(*c.capture_dir, false);
-  if (dir && dir->dev == id.dev && dir->ino == id.ino) {
+  if (p.parent_path() == resolved(*c.capture_dir)) {
     throw PathRefused(fmt::format(
         "fixstep {}: {} is a file the capture in --out {} writes: one output would overwrite "
         "the other (nothing was written); give each its own path",
@@ -88,7 +94,7 @@ void refuse_same_files(const CommandPaths& c) {
           "(nothing was written); give each its own path",
           c.command, shown(seen[i].first), shown(out)));
     }
-    refuse_capture_names(c, out, *id);
+    refuse_capture_names(c, out);
     seen.emplace_back(out, *id);
   }
 }
