@@ -705,6 +705,24 @@ case_ "--csv in a missing directory" "" run good.toml --steps 10 --csv nodir/out
 case_ "--out is a file" "" render good.toml --out good.toml --frames 2
 case_ "--out not writable (/proc)" "" render good.toml --out /proc/fixstep_frames --frames 2
 case_ "--csv not writable (/proc)" "" run good.toml --steps 10 --csv /proc/fixstep.csv
+# --- files: outputs that are inputs, special files, capture directories (issue 21) ---
+case_ "run --record the scene itself (nothing written)" "" run good.toml --steps 5 --record good.toml
+case_ "run --csv the scene itself" "" run good.toml --steps 5 --csv good.toml
+ln good.toml hardlink.csv && ln -s good.toml symlink.rec
+case_ "run --csv a hard link of the scene" "" run good.toml --steps 5 --csv hardlink.csv
+case_ "run --record a symbolic link to the scene" "" run good.toml --steps 5 --record symlink.rec
+case_ "run --csv and --record one file" "" run good.toml --steps 5 --csv both.out --record ./both.out
+case_ "compare --csv the scene itself" "" compare good.toml --with rk4 --with semi_implicit_euler --out cmpdir --csv good.toml
+case_ "view --record the scene itself (before any window)" "" view good.toml --record good.toml
+mkfifo pipe.toml pipe.rec
+case_ "a FIFO as the scene (refused before open: no hang)" "" run pipe.toml --steps 1
+case_ "a FIFO as the input script" "" run good.toml --steps 1 --input pipe.toml
+case_ "a FIFO as the recording" "" replay pipe.rec
+case_ "/dev/zero as the recording (not read)" "" replay /dev/zero
+case_ "/dev/urandom for render --replay" "" render --replay /dev/urandom --out frames --frames 1
+case_ "/dev/null as the scene" "" run /dev/null --steps 1
+env -u DISPLAY timeout 60 "$fixstep" render good.toml --out used --frames 3 --size 64x64 >/dev/null 2>&1
+case_ "render --out a directory holding an older capture (without --overwrite)" "" render good.toml --out used --frames 2 --size 64x64
 # --- fixstep new ---
 mkdir -p game && printf 'int main() {}\n' > game/main.cpp
 case_ "new: a directory that is not empty (nothing is written)" "" new game

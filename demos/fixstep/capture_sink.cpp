@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "capture_dir.hpp"
+
 namespace fixstep::cli {
 
 std::string capture_targets_error(const CaptureTargets& t) {
@@ -16,7 +18,7 @@ CaptureSink::CaptureSink(const CaptureTargets& targets, int width, int height, d
                          ManifestLayout layout)
     : targets_(targets), width_(width), height_(height), fps_(fps) {
   if (targets_.out) {
-    prepare_output_dir(*targets_.out);
+    prepare_capture_dir(*targets_.out, targets_.overwrite);
     png_.emplace(*targets_.out, width, height, PngSettings{.level = targets_.png_level});
     png_manifest_.emplace(std::filesystem::path(*targets_.out) / "frames.csv", layout);
   }

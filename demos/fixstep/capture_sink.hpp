@@ -18,6 +18,7 @@ struct CaptureTargets {
   std::optional<std::string> out;    ///< directory of frame_NNNNNN.png (created if missing)
   std::optional<std::string> video;  ///< a .mp4 (H.264) or .gif file
   int png_level = default_png_level;
+  bool overwrite = false;  ///< --overwrite: the old capture's files in `out` are removed first
 };
 
 /// "give --out DIR or --video FILE (.mp4 or .gif)" when neither is set, or the video's
@@ -26,7 +27,8 @@ struct CaptureTargets {
 
 class CaptureSink {
  public:
-  /// Prepares the directory (prepare_output_dir) and opens the writers and manifests: PNG frames
+  /// Prepares the directory (prepare_capture_dir: created, stale temporaries and with
+  /// `overwrite` the old capture removed) and opens the writers and manifests: PNG frames
   /// through a FrameWriter, the video through a VideoWriter at `fps`, both encoding on worker
   /// threads. Throws CaptureError naming the path that cannot be written, std::invalid_argument
   /// for a size the video cannot take.

@@ -20,6 +20,7 @@
 
 #include "csv_field.hpp"
 #include "exact_reference.hpp"
+#include "output_paths.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
 
@@ -163,6 +164,7 @@ int sync_test_failed(const SyncTest& sync, int rollback) {
 }  // namespace
 
 int run_command(const RunOptions& o) {
+  check_paths(run_paths(o));  // before any work: no output may be an input
   const Scene scene = load_with_overrides(o.scene);
   Simulation sim = make_simulation(scene);
   const double e0 = sim.energy().total();

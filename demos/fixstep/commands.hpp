@@ -60,6 +60,7 @@ struct RenderOptions {
   /// --replay FILE: every tick takes the recording's input (none past its end); the
   /// recording's settings replace the scene's, whose definition hash must match.
   std::optional<std::string> replay;
+  bool overwrite = false;  ///< --overwrite: remove the old capture's files in --out DIR first
 };
 
 struct ViewOptions {

@@ -18,6 +18,7 @@
 #include "capture_sink.hpp"
 #include "comparison.hpp"
 #include "csv_field.hpp"
+#include "output_paths.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
 
@@ -34,15 +35,6 @@ std::vector<std::uint8_t> blank_frame(int width, int height) {
     frame[i + 3] = 255;
   }
   return frame;
-}
-
-/// The summary CSV's path: --csv, else DIR/compare.csv beside the PNGs, else
-/// NAME.EXT.compare.csv beside the video NAME.EXT; none for a window without --csv.
-std::optional<std::filesystem::path> summary_path(const CompareOptions& o) {
-  if (o.csv) return std::filesystem::path(*o.csv);
-  if (o.out) return std::filesystem::path(*o.out) / "compare.csv";
-  if (o.video) return std::filesystem::path(*o.video) += ".compare.csv";
-  return std::nullopt;
 }
 
 /// The `fixstep run` command line that steps tile i's configuration to the same tick.
@@ -127,8 +119,9 @@ int capture(const CompareOptions& o, Comparison& c, int width, int height) {
   const double fps = o.fps.value_or(60.0);
   const VirtualClock clock(fps);
   const auto frames = static_cast<std::uint64_t>(o.frames.value_or(default_compare_frames));
-  CaptureSink sink({.out = o.out, .video = o.video, .png_level = o.png_level}, width, height, fps,
-                   ManifestLayout::tiles);
+  CaptureSink sink(
+      {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,
+      height, fps, ManifestLayout::tiles);
   std::vector<std::uint8_t> frame = blank_frame(width, height);
   const StopOnSignal signals;
   Progress progress("compare", "frame", frames, !o.quiet);
@@ -189,11 +182,19 @@ int show(const CompareOptions& o, Comparison& c, int width, int height) {
 
 }  // namespace
 
+std::optional<std::filesystem::path> summary_path(const CompareOptions& o) {
+  if (o.csv) return std::filesystem::path(*o.csv);
+  if (o.out) return std::filesystem::path(*o.out) / "compare.csv";
+  if (o.video) return std::filesystem::path(*o.video) += ".compare.csv";
+  return std::nullopt;
+}
+
 int compare_command(const CompareOptions& o) {
   if (o.with.size() < min_tiles || o.with.size() > max_tiles) {
     throw std::invalid_argument(fmt::format("compare takes {} to {} --with configurations, got {}",
                                             min_tiles, max_tiles, o.with.size()));
   }
+  check_paths(compare_paths(o));  // before any work: no output may be an input
   Scene base = load_scene(o.scene);
   if (o.allow_unstable) base.allow_unstable = true;
   if (!o.quiet) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,10 +24,15 @@ struct CompareOptions {
   int png_level = default_png_level;
   bool allow_unstable = false;
   bool quiet = false;
+  bool overwrite = false;  ///< --overwrite: remove the old capture's files in --out DIR first
 };
 
 /// Frames of a capture when --frames is not given (4 s at 60 frames/s).
 inline constexpr std::int64_t default_compare_frames = 240;
+
+/// The summary CSV's path: --csv, else DIR/compare.csv beside the PNGs, else
+/// NAME.EXT.compare.csv beside the video NAME.EXT; none for a window without --csv.
+[[nodiscard]] std::optional<std::filesystem::path> summary_path(const CompareOptions& o);
 
 int compare_command(const CompareOptions& options);
 

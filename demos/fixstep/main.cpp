@@ -23,6 +23,7 @@
 #include "compare.hpp"
 #include "compare_tiles.hpp"
 #include "new_project.hpp"
+#include "output_paths.hpp"
 
 namespace {
 
@@ -62,6 +63,11 @@ void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
       ->needs(rec);
 }
 
+/// --overwrite of render and compare (capture_dir.hpp).
+constexpr const char* overwrite_help =
+    "--out DIR may hold an older capture: remove its frames and CSVs first (without it, such "
+    "a DIR is refused)";
+
 /// `fixstep compare`'s options.
 void add_compare_options(CLI::App* cmd, fixstep::cli::CompareOptions& o) {
   using namespace fixstep::cli;
@@ -94,6 +100,7 @@ void add_compare_options(CLI::App* cmd, fixstep::cli::CompareOptions& o) {
   cmd->add_flag("--allow-unstable", o.allow_unstable,
                 "show a tile even when the stability guard finds it unstable (warns instead)");
   cmd->add_flag("-q,--quiet", o.quiet, "print errors only");
+  cmd->add_flag("--overwrite", o.overwrite, overwrite_help);
 }
 
 /// CLI11 validator text: "" when value is a whole number (digits, an optional sign).
@@ -171,6 +178,7 @@ int main(int argc, char** argv) try {
       ->check(png_level_validator);
   render_cmd->add_option("--replay", render.replay,
                          "drive the ticks with this recording's inputs (its settings apply)");
+  render_cmd->add_flag("--overwrite", render.overwrite, overwrite_help);
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand(
@@ -293,6 +301,9 @@ int main(int argc, char** argv) try {
 } catch (const fixstep::StopRequested& e) {  // a command that does not catch it (none should)
   std::fprintf(stderr, "fixstep: %s\n", e.what());
   return 128 + e.signal();
+} catch (const fixstep::cli::PathRefused& e) {  // an output that is an input, a used --out DIR
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 } catch (const fixstep::RecordingError& e) {
   std::fprintf(stderr, "fixstep: error: %s\n", e.what());
   return fixstep::cli::exit_code(e);

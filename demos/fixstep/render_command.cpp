@@ -9,6 +9,7 @@
 
 #include "capture_sink.hpp"
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"
 
@@ -29,15 +30,16 @@ Session open_session(const Scene& scene, int width, int height) {
 int render_command(const RenderOptions& o) {
   std::optional<Recording> rec;
   if (o.replay) rec = read_recording(*o.replay);
+  const std::string scene_file =
+      rec && o.scene.scene.empty() ? recorded_scene(*rec, *o.replay) : o.scene.scene;
+  check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
   const Scene scene =
-      rec ? scene_for_recording(
-                o.scene.scene.empty() ? recorded_scene(*rec, *o.replay) : o.scene.scene, *rec,
-                o.scene.quiet)
-          : load_with_overrides(o.scene);
+      rec ? scene_for_recording(scene_file, *rec, o.scene.quiet) : load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
-  CaptureSink sink({.out = o.out, .video = o.video, .png_level = o.png_level}, width, height, o.fps,
-                   ManifestLayout::frames);
+  CaptureSink sink(
+      {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,
+      height, o.fps, ManifestLayout::frames);
   const VirtualClock clock(o.fps);
   SessionSettings settings = session_settings(scene, width, height);
   // A virtual clock is not clamped (the clamp guards a real clock against stalls): every frame

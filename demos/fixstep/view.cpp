@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "scene_watch.hpp"
 
 namespace fixstep::cli {
@@ -154,6 +155,7 @@ void on_scene_saved(ShownWorld& shown, const ViewOptions& o, bool recording) {
 }  // namespace
 
 int view_command(const ViewOptions& o) {
+  check_paths(view_paths(o));  // before any work: --record may not be the scene
   // The watch takes the file's stamp before the file is read: a save during the load is seen.
   std::optional<FileWatch> watch;
   if (!o.no_watch) watch.emplace(o.scene.scene);

@@ -9,7 +9,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
+#include <fixstep/file_read.hpp>
 
 #include "scene_reader.hpp"
 
@@ -144,6 +144,34 @@ std::vector<std::string> files_in(const std::filesystem::path& dir) {
   return names;
 }
 
+/// "no such scene file; did you mean X?", or naming the directory that does not exist.
+std::string missing_file_message(const std::filesystem::path& file, const FileKind& kind) {
+  std::error_code ec;
+  // A typo: the closest name in the same directory (as the reader wrote the path).
+  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
+  if (file.has_parent_path() && !std::filesystem::is_directory(dir, ec)) {
+    return fmt::format("no such {}: the directory {} does not exist", kind.noun,
+                       file.parent_path().string());
+  }
+  const std::optional<std::string> best = closest(file.filename().string(), files_in(dir));
+  if (!best) return fmt::format("no such {}", kind.noun);
+  return fmt::format(
+      "no such {}; did you mean {}?", kind.noun,
+      (file.has_parent_path() ? file.parent_path() / *best : std::filesystem::path(*best))
+          .string());
+}
+
+/// "is a FIFO (named pipe), not a scene file: ..." for a file that is not a regular file.
+std::string not_regular_message(const std::filesystem::path& file, const FileReadError& e,
+                                const FileKind& kind) {
+  const std::string type = file_type_of(file);
+  if (type.empty()) return e.reason();  // gone since: say what the reader saw
+  return fmt::format(
+      "is {}, not {} {}: only a regular file is read (a FIFO or a device could block or never "
+      "end)",
+      type, kind.article, kind.noun);
+}
+
 }  // namespace
 
 toml::table parse_toml(std::string_view text, const std::string& source_name, std::size_t max_bytes,
@@ -191,43 +219,26 @@ std::string read_text_file(const std::filesystem::path& file, std::size_t max_by
         fmt::format("is a directory, not {} {}{}", kind.article, kind.noun,
                     inside.empty() ? std::string() : fmt::format("; give a file in it: {}", list)));
   }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    if (!std::filesystem::exists(file, ec)) {
-      // A typo: the closest name in the same directory (as the reader wrote the path).
-      const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
-      if (file.has_parent_path() && !std::filesystem::is_directory(dir, ec)) {
-        throw SceneError(name, 0, 0, "",
-                         fmt::format("no such {}: the directory {} does not exist", kind.noun,
-                                     file.parent_path().string()));
-      }
-      const std::optional<std::string> best = closest(file.filename().string(), files_in(dir));
-      throw SceneError(
-          name, 0, 0, "",
-          fmt::format("no such {}{}", kind.noun,
-                      best ? fmt::format("; did you mean {}?",
-                                         (file.has_parent_path() ? file.parent_path() / *best
-                                                                 : std::filesystem::path(*best))
-                                             .string())
-                           : std::string()));
+  try {
+    return read_regular_file(file, max_bytes);
+  } catch (const FileReadError& e) {
+    switch (e.kind()) {
+      case FileReadError::Kind::missing:
+        throw SceneError(name, 0, 0, "", missing_file_message(file, kind));
+      case FileReadError::Kind::not_regular:
+        throw SceneError(name, 0, 0, "", not_regular_message(file, e, kind));
+      case FileReadError::Kind::too_large:
+        throw SceneError(
+            name, 0, 0, "",
+            fmt::format("file is larger than the {} bytes {} may have", max_bytes, kind.owner));
+      case FileReadError::Kind::unreadable:
+        break;
     }
     throw SceneError(name, 0, 0, "",
-                     fmt::format("cannot open {}: {}", kind.noun, std::strerror(err)));
+                     e.reason().starts_with("read error")
+                         ? e.reason()
+                         : fmt::format("cannot open {}: {}", kind.noun, e.reason()));
   }
-  std::string text;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    text.append(buf, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_bytes) {
-      throw SceneError(
-          name, 0, 0, "",
-          fmt::format("file is larger than the {} bytes {} may have", max_bytes, kind.owner));
-    }
-  }
-  if (in.bad())
-    throw SceneError(name, 0, 0, "", fmt::format("read error: {}", std::strerror(errno)));
-  return text;
 }
 
 }  // namespace scene_detail
