@@ -1,7 +1,10 @@
 // fixstep render: a scene (or a recording's replay) captured headless, frame by frame.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fixstep/capture.hpp>
+#include <fixstep/limits.hpp>
 #include <fixstep/manifest.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
@@ -22,7 +25,7 @@ SessionSettings session_settings(const Scene& scene, int width, int height) {
 }
 
 Session open_session(const Scene& scene, int width, int height) {
-  return Session(world_def(scene), session_settings(scene, width, height));
+  return Session(checked_world_def(scene), session_settings(scene, width, height));
 }
 
 int render_command(const RenderOptions& o) {
@@ -33,6 +36,10 @@ int render_command(const RenderOptions& o) {
                 o.scene.scene.empty() ? recorded_scene(*rec, *o.replay) : o.scene.scene, *rec,
                 o.scene.quiet)
           : load_with_overrides(o.scene);
+  const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.world.dt);
+  check_command_work(static_cast<std::uint64_t>(std::min(ticks, 1e18)),
+                     tick_work(scene.bodies, scene.links, scene.world),
+                     fmt::format("--frames {} at --fps {:g}", o.frames, o.fps));
   const auto [width, height] = parse_frame_size(o.size);
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
   CaptureSink sink({.out = o.out, .video = o.video, .png_level = o.png_level}, width, height, o.fps,

@@ -107,7 +107,7 @@ void reload(ShownWorld& shown, const SceneOptions& o) {
     settings.view_center = r.camera().center;
     settings.view_width = r.camera().width;
   }
-  auto next = std::make_unique<Session>(world_def(scene), settings);
+  auto next = std::make_unique<Session>(checked_world_def(scene), settings);
   FixedStepLoop& loop = shown.session->loop();
   next->loop().set_time_scale(loop.time_scale());
   next->loop().set_paused(loop.paused() && !old.simulation().fault());
@@ -162,7 +162,8 @@ int view_command(const ViewOptions& o) {
   Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height,
                               "fixstep render SCENE --out DIR");
   ShownWorld shown;
-  auto first = std::make_unique<Session>(world_def(scene), session_settings(scene, width, height));
+  auto first =
+      std::make_unique<Session>(checked_world_def(scene), session_settings(scene, width, height));
   show(shown, std::move(scene), std::move(first));
 
   InputSampler sampler;  // window events -> one input per tick

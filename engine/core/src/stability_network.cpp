@@ -26,6 +26,7 @@
 #include <stdexcept>
 
 #include "fixstep/stability.hpp"
+#include "fixstep/work_progress.hpp"
 #include "fixstep/world.hpp"
 #include "stability_internal.hpp"
 
@@ -126,6 +127,8 @@ Eigenpair top_eigenpair(const Operator& op) {
   std::vector<double> y(dim), z(dim), history{0.0};  // history[t] = ρ_t
   for (int t = 1; t <= max_iterations; ++t) {
     op.apply(e.vector, y, z);
+    report_work_progress("stability guard", "iteration", static_cast<std::uint64_t>(t),
+                         max_iterations);
     const double rho = dot(e.vector, y), norm = std::sqrt(dot(y, y));
     e.value = rho, e.iterations = t;
     history.push_back(rho);
