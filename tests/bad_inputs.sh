@@ -546,6 +546,35 @@ case_ "--frames -1" "" render good.toml --out frames --frames -1
 case_ "--steps 2.5" "" run good.toml --steps 2.5
 case_ "a misspelt subcommand (rn)" "" rn good.toml --steps 10
 case_ "view --fps 0" "" view good.toml --fps 0
+# --- limits on work and memory (issue 21) ---
+grid_scene() {  # COLUMNS ROWS [WORLD-LINE]: a grid of linked bodies (cloth without shear)
+  printf '[world]\ndt = 0.01\n%s\n[[grid]]\nname = "g"\ncolumns = %d\nrows = %d\norigin = [0.0, 0.0]\nspacing = [0.1, -0.1]\nbody = { mass = 1.0 }\nlink = { stiffness = 10.0, damping = 0.1 }\n' "${3:-}" "$1" "$2"
+}
+case_ "a 300x300 grid with substeps = 1000000 (hours a tick)" "$(grid_scene 300 300 'substeps = 1000000')"
+grid_scene 300 300 > grid300.toml
+case_ "--substeps 1000000 on a 300x300 grid" "" run grid300.toml --steps 10 --substeps 1000000
+case_ "implicit_euler on a 1000x1000 grid (SparseLU would ask for ~14 GB)" "$(grid_scene 1000 1000 'integrator = "implicit_euler"')"
+grid_scene 1000 1000 > grid1000.toml
+case_ "--integrator implicit_euler on a 1000x1000 grid" "" run grid1000.toml --steps 1 --integrator implicit_euler
+case_ "run --steps 10^12 (beyond the ticks a command may step)" "" run good.toml --steps 1000000000000
+grid_scene 100 100 > grid100.toml
+case_ "run --steps 10^9 of a 100x100 grid (3e13 body-substeps)" "" run grid100.toml --steps 1000000000
+case_ "run --steps 10^9 --record with a hash every tick (33 GB)" "" run good.toml --steps 1000000000 --record big.rec --hash-every 1
+case_ "--hash-every 1000000 (beyond 100000)" "" run good.toml --steps 10 --record out.rec --hash-every 1000000
+case_ "render --fps 0.000001 (10^14 ticks in 10^6 frames)" "" render good.toml --out frames --frames 1000000 --fps 0.000001
+case_ "compare --frames 10^12" "" compare good.toml --with rk4 --with semi_implicit_euler --frames 1000000000000 --out frames
+"$fixstep" run good.toml --steps 10 --record small.rec -q
+sed 's/^end 10 /end 1000000000 /' small.rec > claims.rec
+case_ "recording: 700 bytes claiming 10^9 ticks (no hash for most of them)" "" replay claims.rec
+sed -e 's/^hash_every 1$/hash_every 1000000000/' -e '/^hash /d' -e 's/^end 10 /end 1000000000 /' small.rec > sparse.rec
+case_ "recording: hash_every = 10^9" "" replay sparse.rec
+# A well-formed recording of a 100x100 grid claiming 10^9 ticks (a hash every 100 000): 3e13
+# body-substeps to replay, refused before the first tick.
+"$fixstep" run grid100.toml --steps 1 --record grid.rec -q
+{ sed -e 's/^hash_every 1$/hash_every 100000/' -e '/^hash /,$d' grid.rec
+  awk 'BEGIN { for (k = 1; k < 10000; ++k) printf "hash %d 0000000000000001\n", k * 100000 }'
+  echo "end 1000000000 0000000000000001"; } > grid_claims.rec
+case_ "recording: 10^9 ticks of a 100x100 grid (3e13 body-substeps)" "" replay grid_claims.rec --scene grid100.toml
 # --- video ---
 case_ "--video x.avi" "" render good.toml --video clip.avi --frames 2
 case_ "render without --out or --video" "" render good.toml --frames 2

@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <fixstep/capture.hpp>
 #include <fixstep/input_script.hpp>
+#include <fixstep/limits.hpp>
+#include <fixstep/recording_writer.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stability.hpp>
@@ -79,7 +81,15 @@ Scene load_with_overrides(const SceneOptions& o) {
   if (o.precision) scene.precision = *parse_precision(*o.precision);
   if (o.substeps) scene.world.substeps = *o.substeps;
   if (o.allow_unstable) scene.allow_unstable = true;
-  const std::vector<std::string> guard = enforce_stability(scene);  // throws when unstable
+  try {  // the overrides may ask for more work per tick than the file did (limits.hpp)
+    check_world_limits(scene.bodies, scene.links, scene.world);
+  } catch (const LimitError& e) {
+    throw LimitError(fmt::format("{} with the command line's settings: {}", o.scene, e.what()));
+  }
+  const std::vector<std::string> guard = [&] {
+    const WorkProgressLine shown(!o.quiet);  // seconds on a network of 10^6 bodies
+    return enforce_stability(scene);         // throws when unstable
+  }();
   if (!o.quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     for (const std::string& w : guard) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -87,11 +97,30 @@ Scene load_with_overrides(const SceneOptions& o) {
   return scene;
 }
 
+WorldDef checked_world_def(const Scene& scene) {
+  WorldDef def = world_def(scene);
+  def.stability_checked = true;
+  return def;
+}
+
 std::string describe(const Scene& scene) {
   return fmt::format(
       "scene={} integrator={} precision={} dt={}{}", scene.file,
       integrator_name(scene.world.integrator), precision_name(scene.precision), scene.world.dt,
       scene.world.substeps > 1 ? fmt::format(" substeps={}", scene.world.substeps) : std::string());
+}
+
+void check_recording_size(std::uint64_t ticks, std::uint64_t hash_every, const std::string& file) {
+  // A hash line is at most 33 bytes ("hash " + 10 digits + " " + 16 + "\n"): refused before
+  // the run when the hashes alone would pass the reader's limit.
+  const std::uint64_t hash_bytes = ticks / hash_every * 33;
+  if (hash_bytes > max_recording_bytes) {
+    throw LimitError(fmt::format(
+        "--record {}: {} ticks with a state hash every {} ticks would write about {} MB of "
+        "hashes; a recording may have at most {} bytes: use --hash-every {} or more",
+        file, ticks, hash_every, hash_bytes / 1000000, max_recording_bytes,
+        (ticks * 33 + max_recording_bytes - 1) / max_recording_bytes + 1));
+  }
 }
 
 namespace {
@@ -166,10 +195,15 @@ int sync_test_failed(const SyncTest& sync, int rollback) {
 int run_command(const RunOptions& o) {
   check_paths(run_paths(o));  // before any work: no output may be an input
   const Scene scene = load_with_overrides(o.scene);
-  Simulation sim = make_simulation(scene);
-  const double e0 = sim.energy().total();
   const std::uint64_t ticks =
       o.steps ? static_cast<std::uint64_t>(*o.steps) : ticks_for(*o.duration, scene.world.dt);
+  check_command_work(  // before the world is built (limits.hpp)
+      ticks, tick_work(scene.bodies, scene.links, scene.world),
+      o.steps ? fmt::format("--steps {}", *o.steps)
+              : fmt::format("--duration {:g} (at dt = {:g} s)", *o.duration, scene.world.dt));
+  if (o.record) check_recording_size(ticks, o.hash_every, *o.record);
+  Simulation sim = make_simulation(checked_world_def(scene));
+  const double e0 = sim.energy().total();
 
   std::optional<AtomicFile> csv;
   std::vector<double> energies;
@@ -192,8 +226,8 @@ int run_command(const RunOptions& o) {
     }
     player.emplace(*script);
   }
-  std::optional<Recorder> recorder;
-  if (o.record) recorder.emplace(world_def(scene), o.scene.scene, o.hash_every);
+  std::optional<RecordingWriter> recorder;  // streamed to its file: O(1) memory
+  if (o.record) recorder.emplace(world_def(scene), o.scene.scene, o.hash_every, *o.record);
   const std::uint64_t initial_hash = o.record ? sim.state_hash() : 0;
   bool torn = false;       // a stop request abandoned a tick half-way: the state is not a tick's
   std::uint64_t done = 0;  // ticks completed
@@ -225,10 +259,9 @@ int run_command(const RunOptions& o) {
   }
   progress.finish();
   if (csv) csv->commit();  // the rows up to and including the last tick run
-  if (recorder) {          // the ticks run; after a torn tick, up to the last stored hash
-    write_recording(*o.record,
-                    torn ? recorder->finish_at_last_hash(initial_hash) : recorder->finish(sim));
-  }
+  // The recording of the ticks run, renamed into place; after a torn tick, up to its last hash.
+  if (recorder && torn) recorder->finish_at_last_hash(initial_hash);
+  if (recorder && !torn) recorder->finish(sim);
   fmt::print("{}\n", describe(scene));
   if (!torn) fmt::print("{}\n", summary_line(sim, e0));  // a torn state has no summary
   if (o.record) fmt::print("recording={}\n", *o.record);

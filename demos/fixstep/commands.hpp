@@ -99,9 +99,13 @@ std::pair<int, int> parse_frame_size(const std::string& value);
 /// subcommand prints.
 std::string describe(const Scene& scene);
 
-/// Loads the scene, applies the overrides, runs the stability guard (throws SceneError for an
-/// unstable body) and prints the warnings of both to stderr.
+/// Loads the scene, applies the overrides, checks the work and memory limits (LimitError), runs
+/// the stability guard (throws SceneError for an unstable body) and prints the warnings of both
+/// to stderr.
 Scene load_with_overrides(const SceneOptions& options);
+/// world_def(scene) marked stability_checked, for a scene that load_with_overrides or
+/// scene_for_recording returned (the guard ran there, or is off): the guard runs once per load.
+[[nodiscard]] WorldDef checked_world_def(const Scene& scene);
 
 /// Opens the window; without a display, the WindowError's message (the library's: the fault
 /// only) ends with the advice to capture headless with the command `headless`.
@@ -112,6 +116,10 @@ Scene load_with_overrides(const SceneOptions& options);
 [[nodiscard]] SessionSettings session_settings(const Scene& scene, int width, int height);
 /// The frame pipeline for a scene: its world, its [view] and its file name in the HUD.
 [[nodiscard]] Session open_session(const Scene& scene, int width, int height);
+
+/// Throws LimitError when `ticks` ticks with a hash every `hash_every` would make the recording
+/// `file` larger than max_recording_bytes (the reader's limit), naming the --hash-every to use.
+void check_recording_size(std::uint64_t ticks, std::uint64_t hash_every, const std::string& file);
 
 int run_command(const RunOptions& options);
 int render_command(const RenderOptions& options);

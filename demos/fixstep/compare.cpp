@@ -5,9 +5,11 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fixstep/capture.hpp>
+#include <fixstep/limits.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/stop_request.hpp>
 #include <fixstep/window.hpp>
@@ -115,10 +117,32 @@ int report_faults(const Comparison& c) {
   return status;
 }
 
+/// Throws LimitError when `frames` frames at `fps` ask the tiles together for more than a
+/// command's work (limits.hpp): each tile steps frames/fps/dt ticks.
+void check_capture_work(const Comparison& c, std::uint64_t frames, double fps) {
+  std::uint64_t work = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const WorldDef& def = c.tile(i).session->definition();
+    const double ticks = std::ceil(double(frames - 1) / fps / def.settings.dt);
+    const std::string what =
+        fmt::format("--frames {} at --fps {:g} (--with '{}')", frames, fps, c.tile(i).spec.text);
+    const auto n = static_cast<std::uint64_t>(std::min(ticks, 1e18));
+    check_command_work(n, tick_work(def), what);
+    work += n * tick_work(def);  // each <= max_command_work: no overflow
+  }
+  if (work > max_command_work) {
+    throw LimitError(fmt::format(
+        "--frames {}: the {} tiles together would do {:.3g} body-substeps; a command may do at "
+        "most {:.0e} (about a day of CPU): capture fewer frames",
+        frames, c.size(), double(work), double(max_command_work)));
+  }
+}
+
 int capture(const CompareOptions& o, Comparison& c, int width, int height) {
   const double fps = o.fps.value_or(60.0);
   const VirtualClock clock(fps);
   const auto frames = static_cast<std::uint64_t>(o.frames.value_or(default_compare_frames));
+  check_capture_work(c, frames, fps);
   CaptureSink sink(
       {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,
       height, fps, ManifestLayout::tiles);

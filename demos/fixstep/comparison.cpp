@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fixstep/limits.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "commands.hpp"
 #include "compare_tiles.hpp"
 #include "exact_reference.hpp"
+#include "progress.hpp"
 #include "step_cost.hpp"
 
 namespace fixstep::cli {
@@ -48,8 +50,14 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
   std::vector<Scene> scenes;
   for (std::size_t i = 0; i < specs.size(); ++i) {
     scenes.push_back(tile_scene(base_, specs[i]));
+    try {  // before the guard: a tile may ask for more work per tick than the scene (limits.hpp)
+      check_world_limits(scenes.back().bodies, scenes.back().links, scenes.back().world);
+    } catch (const LimitError& e) {
+      throw LimitError(fmt::format("--with '{}': {}", specs[i].text, e.what()));
+    }
     std::vector<std::string> warnings;
     try {
+      const WorkProgressLine shown(!quiet);         // seconds on a network of 10^6 bodies
       warnings = enforce_stability(scenes.back());  // throws when unstable
     } catch (const std::exception& e) {
       throw std::invalid_argument(fmt::format(
@@ -72,7 +80,8 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     tile->spec = specs[i];
     tile->scene = std::move(scenes[i]);
     tile->label = labels[i];
-    tile->session = std::make_unique<Session>(world_def(tile->scene), tile_settings(tile->scene));
+    tile->session =
+        std::make_unique<Session>(checked_world_def(tile->scene), tile_settings(tile->scene));
     tile->session->set_show_engine_hud(false);
     tile->cost = step_cost(tile->session->definition());
     tiles_.push_back(std::move(tile));
@@ -110,8 +119,8 @@ void Comparison::restart() {
     t.max_error = 0.0;
     t.shadow.reset();
     if (!has_exact_ && i != reference_) {
-      WorldDef def = world_def(tiles_[reference_]->scene);
-      def.allow_unstable = true;  // its tile passed the guard (or was allowed past it)
+      // Its tile passed the guard (or was allowed past it): the guard runs once per tile.
+      const WorldDef def = checked_world_def(tiles_[reference_]->scene);
       t.shadow = std::make_unique<Simulation>(make_simulation(def));
     }
     measure(i);

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fixstep/limits.hpp>
 #include <fixstep/stop_request.hpp>
 #include <fixstep/suggest.hpp>
 
@@ -59,7 +60,7 @@ void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
   cmd->add_option("--hash-every", hash_every,
                   "store the state hash every K ticks in the recording (default 1: replay names "
                   "the exact first tick that differs)")
-      ->check(CLI::Range(std::uint64_t{1}, fixstep::max_recording_ticks))
+      ->check(CLI::Range(std::uint64_t{1}, fixstep::max_hash_every))
       ->needs(rec);
 }
 

@@ -48,4 +48,12 @@ void Progress::finish() {
   drawn_ = false;
 }
 
+WorkProgressLine::WorkProgressLine(bool enabled)
+    : enabled_(enabled),
+      scope_([this](std::string_view what, std::string_view unit, std::uint64_t done,
+                    std::uint64_t total) {
+        if (!line_) line_.emplace(std::string(what), std::string(unit), total, enabled_);
+        line_->update(done);
+      }) {}
+
 }  // namespace fixstep::cli

@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cstdint>
+#include <fixstep/work_progress.hpp>
+#include <optional>
 #include <string>
 
 namespace fixstep::cli {
@@ -32,6 +34,20 @@ class Progress {
   bool shown_;
   bool drawn_ = false;
   std::chrono::steady_clock::time_point start_, last_;
+};
+
+/// The engine's long work that a program does not loop over itself (the stability guard's power
+/// iteration on a large network, replay(): work_progress.hpp) shown as a Progress line while
+/// this lives, e.g. "stability guard: iteration 310/10000 ..." (10000 is the iteration's limit;
+/// it usually stops far sooner) or "replay: tick 4096/300000 ...".
+class WorkProgressLine {
+ public:
+  explicit WorkProgressLine(bool enabled);
+
+ private:
+  bool enabled_;
+  std::optional<Progress> line_;
+  WorkProgressScope scope_;
 };
 
 }  // namespace fixstep::cli

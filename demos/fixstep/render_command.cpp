@@ -1,7 +1,10 @@
 // fixstep render: a scene (or a recording's replay) captured headless, frame by frame.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fixstep/capture.hpp>
+#include <fixstep/limits.hpp>
 #include <fixstep/manifest.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
@@ -24,7 +27,7 @@ SessionSettings session_settings(const Scene& scene, int width, int height) {
 }
 
 Session open_session(const Scene& scene, int width, int height) {
-  return Session(world_def(scene), session_settings(scene, width, height));
+  return Session(checked_world_def(scene), session_settings(scene, width, height));
 }
 
 int render_command(const RenderOptions& o) {
@@ -35,6 +38,10 @@ int render_command(const RenderOptions& o) {
   check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
   const Scene scene =
       rec ? scene_for_recording(scene_file, *rec, o.scene.quiet) : load_with_overrides(o.scene);
+  const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.world.dt);
+  check_command_work(static_cast<std::uint64_t>(std::min(ticks, 1e18)),
+                     tick_work(scene.bodies, scene.links, scene.world),
+                     fmt::format("--frames {} at --fps {:g}", o.frames, o.fps));
   const auto [width, height] = parse_frame_size(o.size);
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
   CaptureSink sink(
@@ -45,7 +52,7 @@ int render_command(const RenderOptions& o) {
   // A virtual clock is not clamped (the clamp guards a real clock against stalls): every frame
   // is exactly 1/fps after the last, at any --fps (issue 21, class 9).
   settings.max_frame_time = std::max(settings.max_frame_time, clock.frame_seconds());
-  Session session(world_def(scene), settings);
+  Session session(checked_world_def(scene), settings);
   const auto frames = static_cast<std::uint64_t>(o.frames);
   std::uint64_t written = 0;
   const StopOnSignal signals;

@@ -4,9 +4,11 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fixstep/limits.hpp>
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "progress.hpp"
 
 namespace fixstep::cli {
 
@@ -65,8 +67,13 @@ int replay_command(const ReplayOptions& o) {
         o.recording, rec.scene));
   }
   const Scene scene = scene_for_recording(scene_file, rec, o.quiet);
-  Simulation sim = make_simulation(world_def(scene));
-  const ReplayReport report = replay(sim, rec);
+  check_command_work(rec.ticks, tick_work(scene.bodies, scene.links, scene.world),
+                     fmt::format("{}: end {}", o.recording, rec.ticks));
+  Simulation sim = make_simulation(checked_world_def(scene));
+  const ReplayReport report = [&] {
+    const WorkProgressLine shown(!o.quiet);
+    return replay(sim, rec);
+  }();
   fmt::print("{}\n", describe(scene));
   if (const auto& m = report.mismatch) {
     // Ticks count as in the summary's ticks=N: the state after N ticks (the input of the

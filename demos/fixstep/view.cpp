@@ -109,7 +109,7 @@ void reload(ShownWorld& shown, const SceneOptions& o) {
     settings.view_center = r.camera().center;
     settings.view_width = r.camera().width;
   }
-  auto next = std::make_unique<Session>(world_def(scene), settings);
+  auto next = std::make_unique<Session>(checked_world_def(scene), settings);
   FixedStepLoop& loop = shown.session->loop();
   next->loop().set_time_scale(loop.time_scale());
   next->loop().set_paused(loop.paused() && !old.simulation().fault());
@@ -168,7 +168,7 @@ int view_command(const ViewOptions& o) {
   SessionSettings settings = session_settings(scene, width, height);
   // --fps: a virtual clock, not clamped (frames exactly 1/fps apart; issue 21, class 9).
   if (o.fps) settings.max_frame_time = std::max(settings.max_frame_time, 1.0 / *o.fps);
-  auto first = std::make_unique<Session>(world_def(scene), settings);
+  auto first = std::make_unique<Session>(checked_world_def(scene), settings);
   show(shown, std::move(scene), std::move(first));
 
   InputSampler sampler;  // window events -> one input per tick

@@ -9,6 +9,8 @@
 #include <type_traits>
 
 #include "fixstep/file_write.hpp"
+#include "fixstep/limits.hpp"
+#include "fixstep/work_progress.hpp"
 
 namespace fixstep {
 
@@ -134,7 +136,10 @@ RecordingError::RecordingError(Kind kind, const std::string& file, std::size_t l
     : std::runtime_error(error_text(file, line, field, message)), kind_(kind), line_(line) {}
 
 Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every) {
-  if (hash_every == 0) throw std::invalid_argument("Recorder: hash_every must be >= 1");
+  if (hash_every == 0 || hash_every > max_hash_every) {  // the reader refuses more (limits.hpp)
+    throw std::invalid_argument(
+        fmt::format("Recorder: hash_every must be 1 .. {} (got {})", max_hash_every, hash_every));
+  }
   rec_.scene = std::move(scene);
   rec_.definition_hash = definition_hash(def);
   rec_.settings = {def.settings.integrator, def.precision, def.settings.dt, def.settings.substeps};
@@ -222,6 +227,7 @@ ReplayReport replay(Simulation& sim, const Recording& rec, const TickRules& rule
     sim.step(in);
     if (rules) rules.after_tick(sim, in);
     report.ticks = t + 1;
+    if (report.ticks % 1024 == 0) report_work_progress("replay", "tick", report.ticks, rec.ticks);
     if (next_hash < rec.hashes.size() && rec.hashes[next_hash].first == t + 1) {
       if (sim.state_hash() != rec.hashes[next_hash].second) {
         mismatch(t + 1, rec.hashes[next_hash].second);

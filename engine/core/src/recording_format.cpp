@@ -22,7 +22,9 @@
 #include <system_error>
 
 #include "fixstep/file_read.hpp"
+#include "fixstep/limits.hpp"
 #include "fixstep/recording.hpp"
+#include "recording_text.hpp"
 
 namespace fixstep {
 
@@ -212,6 +214,12 @@ void read_header(Lines& in, Recording& rec) {
   rec.hash_every = integer<std::uint64_t>(in, header_line(in, "hash_every"), "hash_every", 10,
                                           max_recording_ticks);
   if (rec.hash_every < 1) in.fail(Kind::corrupt, "hash_every", "must be >= 1");
+  if (rec.hash_every > max_hash_every) {  // limits.hpp: the claimed ticks follow the file's size
+    in.fail(Kind::corrupt, "hash_every",
+            fmt::format("{} ticks between state hashes; a recording stores one at least every {} "
+                        "ticks (record with --hash-every {} or less)",
+                        rec.hash_every, max_hash_every, max_hash_every));
+  }
 }
 
 /// `SLOT:GEN` (version 2's handle; slot and generation >= 1).
@@ -316,6 +324,20 @@ void end_line(const Lines& in, std::string_view line, Recording& rec) {
             fmt::format("a hash for tick {} is beyond the end ({} ticks)", rec.hashes.back().first,
                         rec.ticks));
   }
+  // A recorder stores a hash every hash_every ticks, so no stretch of the replay goes longer
+  // unchecked and the ticks claimed are bounded by the file's lines (limits.hpp): refused here,
+  // before a tick is replayed.
+  std::uint64_t last = 0;
+  for (std::size_t i = 0; i <= rec.hashes.size(); ++i) {
+    const std::uint64_t next = i < rec.hashes.size() ? rec.hashes[i].first : rec.ticks;
+    if (next - last > rec.hash_every) {
+      in.fail(Kind::corrupt, "end",
+              fmt::format("{} ticks claimed, but no state hash between ticks {} and {}: a "
+                          "recording stores one every hash_every = {} ticks",
+                          rec.ticks, last, next, rec.hash_every));
+    }
+    last = next;
+  }
 }
 
 void format_input(std::string& out, const TickInput& t) {
@@ -340,23 +362,42 @@ void format_input(std::string& out, const TickInput& t) {
 
 }  // namespace
 
-std::string format_recording(const Recording& rec) {
+namespace recording_text {
+
+std::string header(const Recording& rec) {
   for (const char c : rec.scene) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
       throw std::invalid_argument("format_recording: the scene path holds a control character");
     }
   }
-  std::string out = fmt::format(
+  return fmt::format(
       "{} {}\nscene {}\ndefinition {}\nintegrator {}\nprecision {}\ndt {}\nsubsteps {}\n"
       "hash_every {}\n",
       recording_magic, recording_version, rec.scene, hex_hash(rec.definition_hash),
       integrator_name(rec.settings.integrator), precision_name(rec.settings.precision),
       rec.settings.dt, rec.settings.substeps, rec.hash_every);
+}
+
+void append_tick(std::string& out, const TickInput& input) {
+  format_input(out, input);
+}
+
+void append_hash(std::string& out, std::uint64_t tick, std::uint64_t hash) {
+  fmt::format_to(std::back_inserter(out), "hash {} {}\n", tick, hex_hash(hash));
+}
+
+void append_end(std::string& out, std::uint64_t ticks, std::uint64_t hash) {
+  fmt::format_to(std::back_inserter(out), "end {} {}\n", ticks, hex_hash(hash));
+}
+
+}  // namespace recording_text
+
+std::string format_recording(const Recording& rec) {
+  std::string out = recording_text::header(rec);
   std::size_t h = 0;
   auto hashes_until = [&](std::uint64_t tick) {
     for (; h < rec.hashes.size() && rec.hashes[h].first <= tick; ++h) {
-      fmt::format_to(std::back_inserter(out), "hash {} {}\n", rec.hashes[h].first,
-                     hex_hash(rec.hashes[h].second));
+      recording_text::append_hash(out, rec.hashes[h].first, rec.hashes[h].second);
     }
   };
   for (const TickInput& t : rec.inputs) {
@@ -364,7 +405,7 @@ std::string format_recording(const Recording& rec) {
     format_input(out, t);
   }
   hashes_until(std::numeric_limits<std::uint64_t>::max());
-  fmt::format_to(std::back_inserter(out), "end {} {}\n", rec.ticks, hex_hash(rec.final_hash));
+  recording_text::append_end(out, rec.ticks, rec.final_hash);
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "fixstep/disc_overlap.hpp"
+#include "fixstep/limits.hpp"
 #include "fixstep/stability.hpp"
 
 namespace fixstep {
@@ -198,7 +199,10 @@ Simulation make_simulation(const WorldDef& def) {
         name(pair->first), name(pair->second),
         disc_overlap_depth(def.bodies[pair->first], def.bodies[pair->second])));
   }
-  for (std::string& w : judge_stability(def)) sim.add_warning(std::move(w));
+  check_world_limits(def.bodies, def.links, def.settings);  // before the guard's power iteration
+  if (!def.stability_checked) {
+    for (std::string& w : judge_stability(def)) sim.add_warning(std::move(w));
+  }
   return sim;
 }
 

@@ -27,6 +27,7 @@
 
 #include "fixstep/stability.hpp"
 #include "fixstep/stop_request.hpp"
+#include "fixstep/work_progress.hpp"
 #include "fixstep/world.hpp"
 #include "stability_internal.hpp"
 
@@ -128,6 +129,8 @@ Eigenpair top_eigenpair(const Operator& op) {
   for (int t = 1; t <= max_iterations; ++t) {
     throw_if_stop_requested();  // one operator product per iteration (stop_request.hpp)
     op.apply(e.vector, y, z);
+    report_work_progress("stability guard", "iteration", static_cast<std::uint64_t>(t),
+                         max_iterations);
     const double rho = dot(e.vector, y), norm = std::sqrt(dot(y, y));
     e.value = rho, e.iterations = t;
     history.push_back(rho);

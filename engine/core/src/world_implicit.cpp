@@ -15,12 +15,16 @@
 //    the damper on r is left out of J: the iteration still converges to G = 0, a little more
 //    slowly); a sparse LU per iteration, since J can be indefinite under compression.
 // The solve runs in double for f32 worlds too; the state is rounded to the world's precision.
+#include <fmt/format.h>
+
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <cmath>
 #include <limits>
+#include <new>
 
+#include "fixstep/limits.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
 
@@ -318,9 +322,18 @@ std::pair<double*, double*> World<Real>::implicit_accelerations() {
 
 template <class Real>
 bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
-  return implicit_solver().step(x_.data(), y_.data(), vx_.data(), vy_.data(), double(h), push,
-                                settings_.track_dissipation, dissipated_body_.data(),
-                                dissipated_link_.data());
+  try {
+    return implicit_solver().step(x_.data(), y_.data(), vx_.data(), vy_.data(), double(h), push,
+                                  settings_.track_dissipation, dissipated_body_.data(),
+                                  dissipated_link_.data());
+  } catch (const std::bad_alloc&) {  // the factorisation's memory (limits.hpp estimates it)
+    implicit_.reset();               // what it did get, back
+    throw LimitError(fmt::format(
+        "implicit_euler on {} bodies: out of memory in its sparse factorisation: use "
+        "semi_implicit_euler with substeps (stable where the stability guard says) for a "
+        "network this large",
+        body_count()));
+  }
 }
 
 template detail::ImplicitSolver<float>& World<float>::implicit_solver();

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "fixstep/limits.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "scene_reader.hpp"
 
@@ -248,6 +249,15 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   parse_planes(r, doc, scene);
   parse_contacts(r, doc, scene);
   check_start_overlap(scene, names);
+  // The work and memory limits (limits.hpp), at the key that sets the work per tick.
+  try {
+    check_world_limits(scene.bodies, scene.links, scene.world);
+  } catch (const LimitError& e) {
+    const bool per_tick = tick_work(scene.bodies, scene.links, scene.world) > max_tick_work;
+    const std::string key = per_tick ? "substeps" : "integrator";
+    const toml::node* at = world->get(key);
+    r.fail(at ? at->source() : world->source(), at ? "world." + key : "world", e.what());
+  }
   scene.warnings = r.take_warnings();
   return scene;
 }
@@ -269,7 +279,7 @@ WorldDef world_def(const Scene& scene) {
 Simulation make_simulation(const Scene& scene) {
   (void)enforce_stability(scene);  // throws for unstable bodies; callers print the warnings
   WorldDef def = world_def(scene);
-  def.allow_unstable = true;  // judged just above, with the scene's lines
+  def.stability_checked = true;  // judged just above, with the scene's lines: once is enough
   return make_simulation(def);
 }
 

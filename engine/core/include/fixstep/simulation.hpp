@@ -210,6 +210,11 @@ struct WorldDef {
   /// The stability guard (stability.hpp) reports instead of refusing: for demos that show a
   /// blow-up on purpose.
   bool allow_unstable = false;
+  /// The caller has already run the stability guard on this very definition (the scene
+  /// loader's enforce_stability, which names lines): make_simulation skips its own, which on a
+  /// network of 10^6 bodies costs seconds, and keeps no guard warnings. Left out of
+  /// definition_hash. Clear it when the definition changes.
+  bool stability_checked = false;
 };
 
 /// The handle make_simulation gives def.bodies[i]: bodies are created in order in a fresh
@@ -229,7 +234,9 @@ struct WorldDef {
 /// index out of range, and, in a world with contacts, for two colliding discs that overlap at
 /// tick 0 (naming both; first_disc_overlap, disc_overlap.hpp). The guard's warnings (a body or
 /// network within 10 % of its bound; an allowed unstable one) are kept in
-/// Simulation::warnings().
+/// Simulation::warnings(); with def.stability_checked the guard does not run. Throws LimitError
+/// (limits.hpp) for a tick beyond max_tick_work or an implicit solve beyond
+/// max_implicit_solve_bytes, before the guard.
 [[nodiscard]] Simulation make_simulation(const WorldDef& def);
 
 /// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J

@@ -1,0 +1,80 @@
+// The limits on the work and memory one command may ask for (issue 21, classes 4 and 6), in
+// one place: a few bytes of scene, recording or command line must not buy hours of CPU, a
+// disk-filling file or an allocation that crashes. Each limit is checked where the claim is
+// made (a scene's load, make_simulation, a recording's read, a command's start), before any
+// tick is stepped, and refused with a LimitError naming the claim, the limit and the way out.
+//
+// Work is counted in body-substeps: one body or one link advanced by one substep, what a tick of
+// the fused per-body pass and the link gather cost. Implicit Euler on a linked world counts each
+// body once more for its sparse solve. Measured here (docs/ROBUSTNESS.md, "Limits on work and
+// memory"): 8 to 16 ns per body-substep for semi-implicit Euler on grids of 10^4 and 9·10^4
+// bodies, so max_tick_work is about a second per tick and max_command_work about a day.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "fixstep/simulation.hpp"
+
+namespace fixstep {
+
+/// Most ticks one command steps: `run --steps` / `--duration`, `render` and `compare` (frames ×
+/// ticks per frame), a recording's claimed ticks (max_recording_ticks is the same number, so
+/// every run can be recorded and replayed).
+inline constexpr std::uint64_t max_command_ticks = 1'000'000'000;
+/// Most body-substeps in one tick ((bodies + links) × substeps; see tick_work): 10^8, about a
+/// second of CPU here.
+inline constexpr std::uint64_t max_tick_work = 100'000'000;
+/// Most body-substeps in one command (ticks × tick_work): 10^13, about a day of CPU here.
+inline constexpr std::uint64_t max_command_work = 10'000'000'000'000;
+/// Most ticks between two state hashes a recording stores (and of --hash-every): 100 000 ticks,
+/// 28 minutes at 60 Hz. It bounds a recording's claimed ticks by its size: at most this many
+/// ticks per hash line (about 33 bytes), so a file of a few hundred bytes cannot claim a replay
+/// of 10^9 ticks.
+inline constexpr std::uint64_t max_hash_every = 100'000;
+/// Most memory implicit Euler's sparse factorisation (Eigen's SparseLU or SimplicialLDLT over
+/// the bodies) may take, by implicit_solve_bytes' estimate: 2 GiB, about 230 000 bodies in a
+/// grid of rest-length links (a tick of 10^5 of them already takes ~6 s here).
+inline constexpr std::uint64_t max_implicit_solve_bytes = std::uint64_t{2} << 30;
+
+/// A claim beyond one of the limits above. what() names the claim, the limit and the way out.
+class LimitError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Body-substeps of one tick of the world of `bodies`, `links` (by index into bodies) and
+/// `settings`: (bodies + links) × substeps, plus bodies × substeps for implicit Euler on a
+/// world with links (its sparse solve). At most ~10^13 (the scene limits), never overflowing.
+[[nodiscard]] std::uint64_t tick_work(std::span<const BodyDef> bodies,
+                                      std::span<const BodyLink> links,
+                                      const WorldSettings& settings);
+/// tick_work of def's world.
+[[nodiscard]] std::uint64_t tick_work(const WorldDef& def);
+
+/// An upper estimate of the bytes implicit Euler's factorisation of `def`'s linked bodies asks
+/// for; 0 for another integrator or a world without links. Fitted to Eigen 3.4's SparseLU on
+/// square grids of links (the worst shipped shape: fill-in grows as n^1.5 for n linked bodies),
+/// measured as peak RSS (docs/ROBUSTNESS.md, "Limits"); a chain takes far less.
+[[nodiscard]] std::uint64_t implicit_solve_bytes(std::span<const BodyDef> bodies,
+                                                 std::span<const BodyLink> links,
+                                                 const WorldSettings& settings);
+
+/// Throws LimitError when one tick of `def` would exceed max_tick_work ("N bodies + M links × S
+/// substeps = W body-substeps per tick; a tick may do at most 1e+08 ...") or its implicit solve
+/// max_implicit_solve_bytes (naming the integrator, the linked body count, the estimate and
+/// the way out: semi_implicit_euler with substeps). make_simulation calls it, the scene loader
+/// too (locating the message at [world] substeps). Throws std::invalid_argument for a link
+/// index out of range.
+void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+                        const WorldSettings& settings);
+
+/// Throws LimitError when `ticks` ticks of `work_per_tick` body-substeps exceed max_command_ticks
+/// or max_command_work. `what` names the claim in the message, e.g. "--steps 2000000000" or
+/// "x.rec: end 1000000000".
+void check_command_work(std::uint64_t ticks, std::uint64_t work_per_tick, std::string_view what);
+
+}  // namespace fixstep

@@ -1,0 +1,108 @@
+// The work and memory limits (limits.hpp): the counts and the checks.
+#include "fixstep/limits.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "fixstep/stability.hpp"
+
+namespace fixstep {
+
+namespace {
+
+// The implicit solve's memory model (implicit_solve_bytes), from the measurements in
+// docs/ROBUSTNESS.md "Limits".
+// Peak RSS of one tick less that of none, grids with rest-length links (Newton, SparseLU):
+// 49 MB for 2·10^4 unknowns, 176 MB for 6.3·10^4, 634 MB for 2·10^5; a least-squares fit is
+// 2.4 n^1.5 + 2100 n bytes, rounded up here to stay above every measurement. Extrapolated to
+// 10^6 bodies (2·10^6 unknowns) it gives 13.5 GB, the 13.7 GB Eigen was seen to ask for.
+constexpr double fill_per_unknown = 3.0;      // bytes per unknown^1.5
+constexpr double bytes_per_unknown = 2500.0;  // bytes per unknown
+
+bool implicit_with_links(std::span<const BodyLink> links, const WorldSettings& settings) {
+  return settings.integrator == Integrator::implicit_euler && !links.empty();
+}
+
+/// Bodies some link joins (the implicit solve's unknowns are theirs).
+std::uint64_t linked_count(std::span<const BodyDef> bodies, std::span<const BodyLink> links) {
+  const std::vector<bool> linked = linked_bodies(bodies.size(), links);
+  return static_cast<std::uint64_t>(std::count(linked.begin(), linked.end(), true));
+}
+
+std::string gib(std::uint64_t bytes) {
+  return fmt::format("{:.3g} GiB", static_cast<double>(bytes) / double(std::uint64_t{1} << 30));
+}
+
+}  // namespace
+
+std::uint64_t tick_work(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+                        const WorldSettings& settings) {
+  const auto substeps = static_cast<std::uint64_t>(std::max(settings.substeps, 1));
+  std::uint64_t per_substep = bodies.size() + links.size();
+  if (implicit_with_links(links, settings)) per_substep += bodies.size();
+  return per_substep * substeps;
+}
+
+std::uint64_t tick_work(const WorldDef& def) {
+  return tick_work(def.bodies, def.links, def.settings);
+}
+
+std::uint64_t implicit_solve_bytes(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+                                   const WorldSettings& settings) {
+  if (!implicit_with_links(links, settings)) return 0;
+  // The solve covers every body (world_implicit.cpp). A spring or link with a rest length makes
+  // it Newton's, a SparseLU over x and y together (2 unknowns a body); else one
+  // SimplicialLDLT over one unknown a body for both axes.
+  const bool newton = std::any_of(links.begin(), links.end(),
+                                  [](const BodyLink& l) { return l.spring.rest_length != 0.0; }) ||
+                      std::any_of(bodies.begin(), bodies.end(), [](const BodyDef& b) {
+                        return b.spring && b.spring->rest_length != 0.0;
+                      });
+  const double per_body = newton ? 2.0 : 1.0;
+  const double linked = static_cast<double>(linked_count(bodies, links)) * per_body;
+  const double all = static_cast<double>(bodies.size()) * per_body;
+  // Fitted to peak RSS on square grids (ROBUSTNESS.md, "Limits"), rounded up: fill-in that
+  // grows as n^1.5 in the linked unknowns, and the matrix, vectors and triplets, linear in all.
+  const double bytes = fill_per_unknown * linked * std::sqrt(linked) + bytes_per_unknown * all;
+  return static_cast<std::uint64_t>(std::min(bytes, 1e19));
+}
+
+void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+                        const WorldSettings& settings) {
+  const std::uint64_t work = tick_work(bodies, links, settings);
+  if (work > max_tick_work) {
+    throw LimitError(fmt::format(
+        "{} bodies + {} links{} × {} substeps = {} body-substeps per tick; a tick may do at "
+        "most {:.0e} (about a second of CPU): use fewer substeps or fewer bodies",
+        bodies.size(), links.size(),
+        implicit_with_links(links, settings) ? fmt::format(" + {} (implicit solve)", bodies.size())
+                                             : "",
+        settings.substeps, work, double(max_tick_work)));
+  }
+  const std::uint64_t bytes = implicit_solve_bytes(bodies, links, settings);
+  if (bytes > max_implicit_solve_bytes) {
+    throw LimitError(fmt::format(
+        "implicit_euler on {} linked bodies would need about {} for its sparse factorisation "
+        "(at most {} allowed): use semi_implicit_euler with substeps (stable where the "
+        "stability guard says) for a network this large",
+        linked_count(bodies, links), gib(bytes), gib(max_implicit_solve_bytes)));
+  }
+}
+
+void check_command_work(std::uint64_t ticks, std::uint64_t work_per_tick, std::string_view what) {
+  if (ticks > max_command_ticks) {
+    throw LimitError(fmt::format("{}: {} ticks; a command may step at most {:.0e} ticks", what,
+                                 ticks, double(max_command_ticks)));
+  }
+  if (work_per_tick > 0 && ticks > max_command_work / work_per_tick) {
+    throw LimitError(fmt::format(
+        "{}: {} ticks × {} body-substeps per tick = {:.3g} body-substeps; a command may do at "
+        "most {:.0e} (about a day of CPU): step fewer ticks or a smaller world",
+        what, ticks, work_per_tick, double(ticks) * double(work_per_tick),
+        double(max_command_work)));
+  }
+}
+
+}  // namespace fixstep

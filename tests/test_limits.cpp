@@ -1,0 +1,252 @@
+// The limits on work and memory (engine/core/src/limits.cpp), where they are checked (the scene
+// loader, make_simulation, the recording reader), the guard run once per load, the engine's
+// progress reports, and the streaming recorder (recording_writer.cpp): issue 21, classes 4
+// and 6.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fixstep/limits.hpp>
+#include <fixstep/recording.hpp>
+#include <fixstep/recording_writer.hpp>
+#include <fixstep/scene.hpp>
+#include <fixstep/scene_stability.hpp>
+#include <fixstep/work_progress.hpp>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fixstep {
+namespace {
+
+/// A scene of a columns × rows grid of linked bodies (structural links only), with `world`
+/// added to [world].
+std::string grid_scene(int columns, int rows, const std::string& world) {
+  return "[world]\ndt = 0.01\n" + world +
+         "\n[[grid]]\nname = \"g\"\ncolumns = " + std::to_string(columns) +
+         "\nrows = " + std::to_string(rows) +
+         "\norigin = [0.0, 0.0]\nspacing = [0.1, -0.1]\n"
+         "body = { mass = 1.0 }\nlink = { stiffness = 10.0, damping = 0.1 }\n";
+}
+
+/// A chain of n bodies on links of rest length 1 m.
+WorldDef chain(std::size_t n) {
+  WorldDef def;
+  def.settings.dt = 0.01;
+  for (std::size_t i = 0; i < n; ++i) {
+    BodyDef b;
+    b.body = {1.0, {double(i), 0.0}, {}};
+    def.bodies.push_back(b);
+    if (i > 0) def.links.push_back(BodyLink{i - 1, i, LinkSpring{10.0, 0.1, 1.0}});
+  }
+  return def;
+}
+
+TEST(Limits, TickWorkCountsBodiesLinksSubstepsAndTheImplicitSolve) {
+  WorldDef def = chain(10);  // 10 bodies, 9 links
+  def.settings.substeps = 3;
+  EXPECT_EQ(tick_work(def), 19u * 3u);
+  def.settings.integrator = Integrator::implicit_euler;
+  EXPECT_EQ(tick_work(def), 29u * 3u);  // + a body each for the sparse solve
+  def.links.clear();
+  EXPECT_EQ(tick_work(def), 10u * 3u);  // no network: no solve
+  EXPECT_EQ(implicit_solve_bytes(def.bodies, def.links, def.settings), 0u);
+}
+
+TEST(Limits, MakeSimulationRefusesATickBeyondTheWorkLimitBeforeStepping) {
+  WorldDef def = chain(1000);  // 1999 body-substeps a substep
+  def.settings.substeps = 100'000;
+  try {
+    (void)make_simulation(def);
+    FAIL() << "a tick of 2e8 body-substeps was accepted";
+  } catch (const LimitError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("1000 bodies + 999 links × 100000 substeps = 199900000 body-substeps"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("use fewer substeps"), std::string::npos) << m;
+  }
+  def.settings.substeps = 50'000;  // 9.995e7: within
+  EXPECT_NO_THROW((void)make_simulation(def));
+}
+
+TEST(Limits, TheSceneLoaderNamesTheSubstepsLine) {
+  // 300 × 300 bodies and 179 400 links at 10^6 substeps: hours a tick before the limit.
+  const std::string text = grid_scene(300, 300, "substeps = 1000000");
+  try {
+    (void)parse_scene(text, "big.toml");
+    FAIL() << "refused only when stepped";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line(), 3u) << e.what();
+    EXPECT_EQ(e.key(), "world.substeps") << e.what();
+    EXPECT_NE(std::string(e.what()).find("body-substeps per tick"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW((void)parse_scene(grid_scene(300, 300, "substeps = 100"), "ok.toml"));
+}
+
+TEST(Limits, ImplicitEulerOnALargeNetworkIsRefusedAtLoadNamingTheWayOut) {
+  // 600 × 600 = 360 000 bodies with rest-length links: SparseLU over 720 000 unknowns.
+  const std::string text = grid_scene(600, 600, "integrator = \"implicit_euler\"");
+  try {
+    (void)parse_scene(text, "cloth.toml");
+    FAIL() << "accepted: the first tick would ask Eigen for gigabytes";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(e.key(), "world.integrator") << m;
+    EXPECT_EQ(e.line(), 3u) << m;
+    EXPECT_NE(m.find("implicit_euler on 360000 linked bodies"), std::string::npos) << m;
+    EXPECT_NE(m.find("semi_implicit_euler with substeps"), std::string::npos) << m;
+  }
+  // The estimate grows faster than the bodies (fill-in), and a small network is far within.
+  WorldDef small = chain(100), large = chain(10000);
+  small.settings.integrator = large.settings.integrator = Integrator::implicit_euler;
+  const auto bytes = [](const WorldDef& d) {
+    return implicit_solve_bytes(d.bodies, d.links, d.settings);
+  };
+  EXPECT_GT(bytes(large), 50 * bytes(small));
+  EXPECT_LT(bytes(large), max_implicit_solve_bytes / 10);
+}
+
+TEST(Limits, CommandWorkIsBoundedInTicksAndInBodySubsteps) {
+  EXPECT_NO_THROW(check_command_work(max_command_ticks, 10'000, "--steps"));  // 1e13
+  EXPECT_THROW(check_command_work(max_command_ticks + 1, 1, "--steps"), LimitError);
+  EXPECT_THROW(check_command_work(max_command_ticks, 10'001, "--steps"), LimitError);
+  try {
+    check_command_work(2'000'000'000, 4, "--steps 2000000000");
+    FAIL();
+  } catch (const LimitError& e) {
+    EXPECT_NE(std::string(e.what()).find("--steps 2000000000: 2000000000 ticks"), std::string::npos)
+        << e.what();
+  }
+}
+
+/// A recording's header with `hash_every`, then `body` (tick, hash and end lines).
+std::string recording_text(std::uint64_t hash_every, const std::string& body) {
+  return "fixstep-recording 2\nscene s.toml\ndefinition 0000000000000001\n"
+         "integrator semi_implicit_euler\nprecision f64\ndt 0.01\nsubsteps 1\nhash_every " +
+         std::to_string(hash_every) +
+         "\ntick 0 push=0,0 held=0 pressed=0 released=0 pointer=0,0 drag=none\n" + body;
+}
+
+std::string read_error(const std::string& text) {
+  try {
+    (void)parse_recording(text, "tiny.rec");
+  } catch (const RecordingError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(Limits, ATinyRecordingCannotClaimABillionTicks) {
+  // 300 bytes claiming 10^9 ticks: replayed for 35 s before its final hash was found wrong.
+  EXPECT_NE(read_error(recording_text(1, "end 1000000000 0000000000000002\n"))
+                .find("tiny.rec:10: end: 1000000000 ticks claimed, but no state hash between "
+                      "ticks 0 and 1000000000"),
+            std::string::npos);
+  EXPECT_NE(read_error(recording_text(1'000'000'000, "end 1000000000 0000000000000002\n"))
+                .find("tiny.rec:8: hash_every: 1000000000 ticks between state hashes"),
+            std::string::npos);
+  // Hashes as a recorder writes them read, also when the last stretch is shorter.
+  EXPECT_EQ(read_error(recording_text(
+                4, "hash 4 0000000000000003\nhash 8 0000000000000004\nend 10 0000000000000005\n")),
+            "accepted");
+  EXPECT_NE(read_error(recording_text(4, "hash 4 0000000000000003\nend 10 0000000000000005\n"))
+                .find("no state hash between ticks 4 and 10"),
+            std::string::npos);
+}
+
+TEST(Limits, TheStabilityGuardRunsOncePerSceneLoad) {
+  const Scene scene = parse_scene(grid_scene(30, 30, ""), "g.toml");
+  std::uint64_t iterations = 0;
+  const WorkProgressScope count(
+      [&](std::string_view what, std::string_view, std::uint64_t, std::uint64_t) {
+        if (what == "stability guard") ++iterations;
+      });
+  (void)check_scene_network(scene);
+  const std::uint64_t once = iterations;
+  ASSERT_GT(once, 0u);  // the guard's power iteration reports its progress
+  iterations = 0;
+  (void)make_simulation(scene);  // enforce_stability with the scene's lines, then the world
+  EXPECT_EQ(iterations, once);
+}
+
+TEST(Limits, ReplayReportsItsProgress) {
+  WorldDef def = chain(3);
+  Simulation sim = make_simulation(def);
+  Recorder recorder(def, "c.toml", 100);
+  for (int t = 0; t < 5000; ++t) {
+    sim.step(TickInput{.tick = std::uint64_t(t)});
+    recorder.record(TickInput{}, sim);
+  }
+  const Recording rec = recorder.finish(sim);
+  Simulation again = make_simulation(def);  // the guard reports too: outside the scope
+  std::uint64_t last = 0, total = 0;
+  const WorkProgressScope seen(
+      [&](std::string_view what, std::string_view unit, std::uint64_t done, std::uint64_t all) {
+        EXPECT_EQ(what, "replay");
+        EXPECT_EQ(unit, "tick");
+        last = done, total = all;
+      });
+  EXPECT_TRUE(replay(again, rec).ok());
+  EXPECT_EQ(last, 4096u);
+  EXPECT_EQ(total, 5000u);
+}
+
+std::string slurp(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Steps `def` `ticks` ticks with changing input into a Recorder and a RecordingWriter.
+std::string stream_and_compare(const WorldDef& def, const std::filesystem::path& file,
+                               std::uint64_t ticks, std::uint64_t hash_every,
+                               Recording& in_memory) {
+  Simulation sim = make_simulation(def);
+  Recorder recorder(def, "c.toml", hash_every);
+  RecordingWriter writer(def, "c.toml", hash_every, file);
+  for (std::uint64_t t = 0; t < ticks; ++t) {
+    TickInput in{.tick = t};
+    if (t % 7 < 3) in.push = {double(t % 5), -1.0}, in.held = button_right;
+    sim.step(in);
+    recorder.record(in, sim);
+    writer.record(in, sim);
+  }
+  in_memory = recorder.finish(sim);
+  EXPECT_FALSE(std::filesystem::exists(file)) << "the final name before finish()";
+  writer.finish(sim);
+  return slurp(file);
+}
+
+TEST(Limits, TheStreamingRecorderWritesRecordersBytesAndOnlyAtTheEnd) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("fixstep_limits_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const std::uint64_t hash_every : {1u, 3u, 1000u}) {
+    std::filesystem::remove(dir / "s.rec");
+    Recording rec;
+    const std::string text = stream_and_compare(chain(4), dir / "s.rec", 2000, hash_every, rec);
+    EXPECT_EQ(text, format_recording(rec)) << hash_every;
+    EXPECT_TRUE(replay(chain(4), parse_recording(text, "s.rec")).ok());
+  }
+  {  // abandoned (an exception, an early return): neither the file nor the temporary remains
+    RecordingWriter writer(chain(2), "c.toml", 1, dir / "gone.rec");
+    Simulation sim = make_simulation(chain(2));
+    sim.step(TickInput{});
+    writer.record(TickInput{}, sim);
+  }
+  std::size_t left = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    left += entry.path().filename() != "s.rec";
+  }
+  EXPECT_EQ(left, 0u);
+  EXPECT_THROW(RecordingWriter(chain(2), "c.toml", max_hash_every + 1, dir / "x.rec"),
+               std::invalid_argument);
+  EXPECT_THROW(RecordingWriter(chain(2), "c.toml", 1, dir / "no_dir" / "x.rec"),
+               std::runtime_error);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace fixstep
