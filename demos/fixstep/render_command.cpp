@@ -31,7 +31,7 @@ int render_command(const RenderOptions& o) {
   const Scene scene =
       rec ? scene_for_recording(
                 o.scene.scene.empty() ? recorded_scene(*rec, *o.replay) : o.scene.scene, *rec,
-                o.scene.quiet)
+                *o.replay, o.scene.quiet)
           : load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
