@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "fixstep/exact.hpp"
@@ -328,6 +329,27 @@ TEST(FloatHygiene, DampedF32StateFlushesToZeroInsteadOfGoingSubnormal) {
       seen = seen || any_subnormal(w);
     }
     EXPECT_EQ(seen, !flush) << "flush_denormals = " << flush;
+  }
+}
+
+// Issue 21, class 8: a rate so small that the dimensionless scan's step s / γ overflows (a
+// subnormal drag, or a drag over a huge mass) made World refuse an infinite dt, and the scene
+// got "world: dt must be finite and > 0 s (got inf)" with no file or key. Every step is
+// stable then: the bound is infinite and the scene loads and runs.
+TEST(Stability, ARateSoSmallItsBoundOverflowsIsStableAtEveryStep) {
+  for (const Integrator i : {Integrator::semi_implicit_euler, Integrator::explicit_euler,
+                             Integrator::rk4, Integrator::implicit_euler}) {
+    EXPECT_EQ(max_stable_step(i, 0.0, 1e-310), std::numeric_limits<double>::infinity())
+        << integrator_name(i);
+  }
+  for (const char* body :
+       {"mass = 1.0\ndrag = 1e-310", "mass = 1e308\ndrag = 1.0", "mass = 1.0\ndrag = 4.9e-324"}) {
+    const Scene s = parse_scene(
+        fmt::format("[world]\ndt = 0.01\n[[body]]\nposition = [0.0, 0.0]\n{}\n", body), "s.toml");
+    EXPECT_NO_THROW((void)enforce_stability(s)) << body;
+    Simulation sim = make_simulation(world_def(s));
+    sim.step({});
+    EXPECT_EQ(sim.body(initial_entity(0)).position, (Vec2{0.0, 0.0})) << body;
   }
 }
 

@@ -133,11 +133,12 @@ int replay_command(const ReplayOptions& options);
 /// Loads `scene_file` for replaying `rec` (warnings printed unless quiet): the recording's
 /// precision, dt, integrator and substeps replace the scene's, the stability guard is off (the
 /// recorded run ran), and the scene's definition hash must be the recording's (else
-/// RecordingError scene_mismatch).
+/// RecordingError scene_mismatch), and every body the recording names (recording_file, in
+/// messages) must be in it (else RecordingError corrupt: check_recorded_bodies).
 /// The scene file a recording names: its path as recorded if that exists (relative to the
 /// current directory), else relative to the recording file's directory.
 [[nodiscard]] std::string recorded_scene(const Recording& rec, const std::string& recording_file);
 [[nodiscard]] Scene scene_for_recording(const std::string& scene_file, const Recording& rec,
-                                        bool quiet);
+                                        const std::string& recording_file, bool quiet);
 
 }  // namespace fixstep::cli

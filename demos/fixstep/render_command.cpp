@@ -36,8 +36,8 @@ int render_command(const RenderOptions& o) {
   const std::string scene_file =
       rec && o.scene.scene.empty() ? recorded_scene(*rec, *o.replay) : o.scene.scene;
   check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
-  const Scene scene =
-      rec ? scene_for_recording(scene_file, *rec, o.scene.quiet) : load_with_overrides(o.scene);
+  const Scene scene = rec ? scene_for_recording(scene_file, *rec, *o.replay, o.scene.quiet)
+                          : load_with_overrides(o.scene);
   const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.world.dt);
   check_command_work(static_cast<std::uint64_t>(std::min(ticks, 1e18)),
                      tick_work(scene.bodies, scene.links, scene.world),

@@ -23,7 +23,8 @@ int exit_code(const RecordingError& error) {
   }
 }
 
-Scene scene_for_recording(const std::string& scene_file, const Recording& rec, bool quiet) {
+Scene scene_for_recording(const std::string& scene_file, const Recording& rec,
+                          const std::string& recording_file, bool quiet) {
   Scene scene = load_scene(scene_file);
   if (!quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -33,7 +34,8 @@ Scene scene_for_recording(const std::string& scene_file, const Recording& rec, b
   scene.world.integrator = rec.settings.integrator;
   scene.world.substeps = rec.settings.substeps;
   scene.allow_unstable = true;  // the recorded run ran: replay it whatever the guard says
-  const std::uint64_t actual = definition_hash(world_def(scene));
+  const WorldDef def = world_def(scene);
+  const std::uint64_t actual = definition_hash(def);
   if (actual != rec.definition_hash) {
     throw RecordingError(
         RecordingError::Kind::scene_mismatch, scene_file, 0, "",
@@ -42,6 +44,7 @@ Scene scene_for_recording(const std::string& scene_file, const Recording& rec, b
                     "the scene as it was recorded",
                     rec.scene, hex_hash(actual), hex_hash(rec.definition_hash)));
   }
+  check_recorded_bodies(rec, def.bodies.size(), recording_file);
   return scene;
 }
 
@@ -66,7 +69,7 @@ int replay_command(const ReplayOptions& o) {
         "nor beside the recording); give it with --scene FILE",
         o.recording, rec.scene));
   }
-  const Scene scene = scene_for_recording(scene_file, rec, o.quiet);
+  const Scene scene = scene_for_recording(scene_file, rec, o.recording, o.quiet);
   check_command_work(rec.ticks, tick_work(scene.bodies, scene.links, scene.world),
                      fmt::format("{}: end {}", o.recording, rec.ticks));
   Simulation sim = make_simulation(checked_world_def(scene));

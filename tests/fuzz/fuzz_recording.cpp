@@ -1,6 +1,8 @@
 // libFuzzer target: arbitrary bytes as a recording file. A clean rejection is a
 // RecordingError; a recording that reads must write back to the same recording (format →
-// parse is exact), and a short one must replay on a small world without any other exception.
+// parse is exact), a body it names that the small world lacks is a clean rejection
+// (check_recorded_bodies), and a short one must replay on a small world without any other
+// exception.
 // Any other exception, a crash or a sanitizer report is a finding. Built by the `fuzz` preset
 // (clang only); run as in docs/ROBUSTNESS.md, "Fuzzing".
 #include <cstddef>
@@ -55,9 +57,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (again != rec) {
       finding("format_recording then parse_recording does not give the same recording");
     }
+    // A body the small world does not have is a clean rejection, as in `fixstep replay`.
+    fixstep::check_recorded_bodies(rec, small_world().bodies.size(), "fuzz.rec");
     if (rec.ticks <= 2000) {
       fixstep::Simulation sim = fixstep::make_simulation(small_world());
       (void)fixstep::replay(sim, rec);  // a mismatch is expected; an exception is not
+    }
+  } catch (const fixstep::RecordingError& e) {
+    if (e.kind() != fixstep::RecordingError::Kind::corrupt) {
+      finding(std::string("check_recorded_bodies threw a RecordingError not corrupt: ") + e.what());
     }
   } catch (const std::exception& e) {
     finding(std::string("a recording that reads failed afterwards: ") + e.what());

@@ -82,10 +82,15 @@ Outcome check_scene_text(std::string_view text) {
 
   // The work of one tick (see max_body_substeps); beyond the budget, the scene is only loaded.
   const std::uint64_t size = scene.bodies.size() + scene.links.size();
+  const std::uint64_t discs = scene.world.contacts
+                                  ? static_cast<std::uint64_t>(std::count_if(
+                                        scene.bodies.begin(), scene.bodies.end(),
+                                        [](const BodyDef& d) { return d.collider.has_value(); }))
+                                  : 0;
   const bool implicit_network =
       scene.world.integrator == Integrator::implicit_euler && !scene.links.empty();
   const std::uint64_t per_tick = static_cast<std::uint64_t>(std::max(scene.world.substeps, 1)) *
-                                 std::max<std::uint64_t>(size, 1) *
+                                 std::max<std::uint64_t>(size + disc_weight * discs, 1) *
                                  (implicit_network ? scene.bodies.size() : 1);
   if (size > max_built_size || per_tick > max_body_substeps) return {Verdict::accepted, {}};
 

@@ -10,6 +10,7 @@
 
 #include "fixstep/file_write.hpp"
 #include "fixstep/limits.hpp"
+#include "fixstep/printable.hpp"
 #include "fixstep/work_progress.hpp"
 
 namespace fixstep {
@@ -124,7 +125,7 @@ std::string_view recording_error_name(RecordingError::Kind kind) {
 namespace {
 std::string error_text(const std::string& file, std::size_t line, std::string_view field,
                        std::string_view message) {
-  std::string where = file;
+  std::string where = printable(file);
   if (line > 0) where += fmt::format(":{}", line);
   if (!field.empty()) where += fmt::format(": {}", field);
   return fmt::format("{}: {}", where, message);
@@ -141,6 +142,7 @@ Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_ev
         fmt::format("Recorder: hash_every must be 1 .. {} (got {})", max_hash_every, hash_every));
   }
   rec_.scene = std::move(scene);
+  (void)format_recording(rec_);  // a path format_recording refuses: refused now, not at the end
   rec_.definition_hash = definition_hash(def);
   rec_.settings = {def.settings.integrator, def.precision, def.settings.dt, def.settings.substeps};
   rec_.hash_every = hash_every;
@@ -266,6 +268,27 @@ ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& 
   }
   Simulation sim = make_simulation(def);
   return replay(sim, rec, rules);
+}
+
+void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file) {
+  auto check = [&](const TickInput& in, Entity e, std::string_view field) {
+    if (e == no_body || (e.index1 <= bodies && e == initial_entity(e.index1 - 1))) return;
+    throw RecordingError(
+        RecordingError::Kind::corrupt, file, 0, field,
+        fmt::format("the tick {} line names body {}:{}, which the scene does not have (its {} "
+                    "bodies are 1:1 .. {}:1); the recording was edited or made with another "
+                    "scene",
+                    in.tick, e.index1, e.generation, bodies, bodies));
+  };
+  for (const TickInput& in : rec.inputs) {
+    check(in, in.drag_body, "drag");
+    for (const BodyInput& b : in.bodies) {
+      check(in, b.body,
+            b.kind == BodyInputKind::force     ? "force"
+            : b.kind == BodyInputKind::impulse ? "impulse"
+                                               : "velocity");
+    }
+  }
 }
 
 void write_recording(const std::filesystem::path& file, const Recording& rec) {

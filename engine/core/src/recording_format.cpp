@@ -12,6 +12,9 @@
 //   end TICKS HASH             (the last line; its absence means the file is truncated)
 // A tick line is written only when the input differs from the previous tick's; numbers are
 // the shortest text that reads back as the same double (fmt {} / std::from_chars).
+// Lines end in \n; the reader also takes \r\n (a recording checked out on Windows with
+// CRLF conversion) and drops the \r, so the same recording reads the same either way. A field
+// or path quoted in a message has its control characters escaped (printable.hpp).
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -23,6 +26,7 @@
 
 #include "fixstep/file_read.hpp"
 #include "fixstep/limits.hpp"
+#include "fixstep/printable.hpp"
 #include "fixstep/recording.hpp"
 #include "recording_text.hpp"
 
@@ -36,8 +40,8 @@ using Kind = RecordingError::Kind;
 class Lines {
  public:
   Lines(std::string_view text, const std::string& file) : text_(text), file_(file) {}
-  /// The next line, or nullopt at the end of the text. Throws truncated for a last line
-  /// without its newline.
+  /// The next line without its \n (or \r\n), or nullopt at the end of the text. Throws
+  /// truncated for a last line without its newline.
   std::optional<std::string_view> next() {
     if (pos_ >= text_.size()) return std::nullopt;
     const std::size_t end = text_.find('\n', pos_);
@@ -45,7 +49,8 @@ class Lines {
     if (end == std::string_view::npos) {
       fail(Kind::truncated, "", "the last line ends without a newline (the file was cut short)");
     }
-    const std::string_view line = text_.substr(pos_, end - pos_);
+    std::string_view line = text_.substr(pos_, end - pos_);
+    if (line.ends_with('\r')) line.remove_suffix(1);
     pos_ = end + 1;
     return line;
   }
@@ -73,7 +78,8 @@ std::vector<std::string_view> words(std::string_view line) {
 }
 
 std::string shown(std::string_view s) {
-  return s.size() > 40 ? fmt::format("\"{}...\"", s.substr(0, 40)) : fmt::format("\"{}\"", s);
+  return s.size() > 40 ? fmt::format("\"{}...\"", printable(s.substr(0, 40)))
+                       : fmt::format("\"{}\"", printable(s));
 }
 
 template <class T>
@@ -192,7 +198,8 @@ void read_header(Lines& in, Recording& rec) {
     rec.scene = std::string(line->substr(6));
     for (const char c : rec.scene) {  // a NUL in the path: found by fuzz_recording
       if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-        in.fail(Kind::corrupt, "scene", "the path holds a control character");
+        in.fail(Kind::corrupt, "scene",
+                fmt::format("the path {} holds a control character", shown(rec.scene)));
       }
     }
   }
@@ -367,7 +374,10 @@ namespace recording_text {
 std::string header(const Recording& rec) {
   for (const char c : rec.scene) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      throw std::invalid_argument("format_recording: the scene path holds a control character");
+      throw std::invalid_argument(
+          fmt::format("cannot record the scene \"{}\": its path holds a control character, "
+                      "and a recording stores the path on one line; rename the file",
+                      printable(rec.scene)));
     }
   }
   return fmt::format(

@@ -59,7 +59,11 @@ double max_stable_step(Integrator integrator, double omega, double gamma) {
   // Scan the dimensionless step s = rate·h (rate = ω, or γ without spring), then bisect.
   const double rate = omega > 0.0 ? omega : gamma;
   auto stable = [&](double s) {
-    return amplification(integrator, omega, gamma, s / rate) <= 1.0 + tolerance;
+    // A rate so small that s / rate overflows (γ = 1e-310 1/s: a subnormal drag, or a drag
+    // over a huge mass) puts the bound beyond every double: each step is stable. (Before,
+    // World refused the infinite step and the scene got "dt must be finite (got inf)".)
+    const double h = s / rate;
+    return !std::isfinite(h) || amplification(integrator, omega, gamma, h) <= 1.0 + tolerance;
   };
   double result;
   double lo = scan_from;

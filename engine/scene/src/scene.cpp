@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "fixstep/limits.hpp"
+#include "fixstep/printable.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "scene_reader.hpp"
 
@@ -16,14 +17,23 @@ namespace fixstep {
 
 namespace {
 const scene_detail::FileKind scene_file{"scene file", "a", "a scene", "scenes", ".toml"};
+
+/// `text` with each NUL written as \0.
+std::string without_nul(std::string_view text) {
+  std::string out;
+  for (const char c : text) out += c == '\0' ? std::string("\\0") : std::string(1, c);
+  return out;
+}
 }  // namespace
 
 SceneError::SceneError(std::string file, std::size_t line, std::size_t column, std::string key,
                        const std::string& message)
-    : std::runtime_error(fmt::format("{}{}{}: {}{}{}", file,
-                                     line ? fmt::format(":{}", line) : std::string(),
-                                     line && column ? fmt::format(":{}", column) : std::string(),
-                                     key, key.empty() ? "" : ": ", message)),
+    // The file and key escaped (a path with a newline stays one line); a NUL in the message
+    // escaped too, since what() is read as a C string and would end there (issue 21, class 8).
+    : std::runtime_error(fmt::format(
+          "{}{}{}: {}{}{}", printable(file), line ? fmt::format(":{}", line) : std::string(),
+          line && column ? fmt::format(":{}", column) : std::string(), printable(key),
+          key.empty() ? "" : ": ", without_nul(message))),
       file_(std::move(file)),
       line_(line),
       column_(column),

@@ -42,8 +42,9 @@ struct FileKind {
 std::string read_text_file(const std::filesystem::path& file, std::size_t max_bytes,
                            const FileKind& kind);
 /// `text` parsed as TOML. Throws SceneError for more than max_bytes, a fixstep recording, a NUL
-/// byte (binary data) and TOML syntax errors (with line and column, in plain words, with advice
-/// for common slips). Defined in scene_text.cpp.
+/// byte (binary data), nesting deeper than max_toml_depth (toml_depth.hpp; checked before
+/// toml++ parses, with line and column) and TOML syntax errors (with line and column, in plain
+/// words, with advice for common slips). Defined in scene_text.cpp.
 toml::table parse_toml(std::string_view text, const std::string& source_name, std::size_t max_bytes,
                        const FileKind& kind);
 

@@ -12,6 +12,7 @@
 #include <fixstep/file_read.hpp>
 
 #include "scene_reader.hpp"
+#include "toml_depth.hpp"
 
 namespace fixstep {
 
@@ -191,6 +192,7 @@ toml::table parse_toml(std::string_view text, const std::string& source_name, st
     throw SceneError(source_name, 0, 0, "",
                      fmt::format("binary data (NUL byte): not a TOML {}", kind.noun));
   }
+  check_toml_depth(text, source_name);  // before toml++, whose recursion it bounds
   try {
     return toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {

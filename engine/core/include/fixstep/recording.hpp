@@ -105,7 +105,8 @@ class Recorder {
  public:
   /// Starts an empty recording of the world `def` (its definition hash and settings), named
   /// `scene` in the file, storing the state hash every `hash_every` ticks (>= 1, else
-  /// std::invalid_argument).
+  /// std::invalid_argument; so is a `scene` holding a control character, which
+  /// format_recording would refuse at the end).
   Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every);
 
   /// Appends one tick: `input` is what the tick was stepped with (its tick field is ignored),
@@ -142,6 +143,12 @@ class Recorder {
 /// out of order, a hash beyond the end, more than max_recording_ticks or
 /// max_recording_bytes), naming the line and field.
 [[nodiscard]] Recording parse_recording(std::string_view text, const std::string& source_name);
+/// Throws RecordingError (corrupt, naming `file` and the field) when an input of `rec` names a
+/// body (drag, force, impulse, velocity) that a world made from a definition of `bodies`
+/// bodies does not have: for worlds whose bodies are not created or destroyed during the run
+/// (scene files), whose handles are initial_entity(0 .. bodies - 1). Called before replaying,
+/// so such a recording is a bad recording, not a diverged replay.
+void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file);
 /// Writes format_recording(rec) to `file` atomically (a temporary file beside it, then a
 /// rename): `file` is never left partial. Throws std::runtime_error naming the file and the
 /// system's reason when it cannot.

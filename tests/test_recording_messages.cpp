@@ -1,0 +1,119 @@
+// Recordings and their messages (issue 21, class 8): CRLF line ends read as LF; control
+// characters and NUL in a field or path are printed escaped (printable.hpp), never raw or cut
+// short; a scene path with a newline is refused when recording starts, naming the path; a
+// recording that names a body the scene does not have is a bad recording before replaying.
+#include <gtest/gtest.h>
+
+#include <fixstep/printable.hpp>
+#include <fixstep/recording.hpp>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace fixstep {
+namespace {
+
+WorldDef two_bodies() {
+  WorldDef def;
+  def.settings.dt = 0.01;
+  BodyDef a, b;
+  a.body = {1.0, {0.0, 0.0}, {0.0, 0.0}};
+  b.body = {1.0, {1.0, 0.0}, {0.0, 0.0}};
+  def.bodies = {a, b};
+  return def;
+}
+
+Recording short_run(const WorldDef& def) {
+  Simulation sim = make_simulation(def);
+  Recorder rec(def, "two.toml", 1);
+  for (std::uint64_t t = 0; t < 5; ++t) {
+    TickInput in{.tick = t};
+    in.push = {0.5 * double(t), 0.0};
+    sim.step(in);
+    rec.record(in, sim);
+  }
+  return rec.finish(sim);
+}
+
+std::string error_of(std::string_view text) {
+  try {
+    (void)parse_recording(text, "x.rec");
+  } catch (const RecordingError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Printable, ControlCharactersAndNulAreEscapedTheRestKept) {
+  using namespace std::string_literals;
+  EXPECT_EQ(printable("a\nb\rc\td"s), "a\\nb\\rc\\td");
+  EXPECT_EQ(printable("x\0y"s), "x\\0y");
+  EXPECT_EQ(printable("\x1b[31m\x7f"s), "\\x1b[31m\\x7f");
+  EXPECT_EQ(printable("pfad/ä\\b.toml"), "pfad/ä\\b.toml");
+}
+
+TEST(RecordingMessages, CrlfLineEndsReadAsTheSameRecording) {
+  const Recording rec = short_run(two_bodies());
+  const std::string lf = format_recording(rec);
+  std::string crlf;
+  for (const char c : lf) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  EXPECT_EQ(parse_recording(crlf, "crlf.rec"), rec);
+  EXPECT_EQ(parse_recording(crlf, "crlf.rec").scene, "two.toml");  // no \r kept in the path
+}
+
+TEST(RecordingMessages, ControlCharactersInAFieldArePrintedEscapedNotRawNorCut) {
+  using namespace std::string_literals;
+  // Before: `found "2` and the message ended at the NUL; a lone \r printed raw.
+  std::string e = error_of("fixstep-recording 2\0junk\n"s);
+  EXPECT_NE(e.find("found \"2\\0junk\""), std::string::npos) << e;
+  e = error_of("fixstep-recording 2\rx\n"s);
+  EXPECT_NE(e.find("found \"2\\rx\""), std::string::npos) << e;
+  EXPECT_EQ(e.find('\r'), std::string::npos) << e;
+  e = error_of("fixstep-recording 2\nscene a\nb\n"s);  // a newline cannot be in a line
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  e = error_of("fixstep-recording 2\nscene a\x01.toml\n"s);
+  EXPECT_NE(e.find("the path \"a\\x01.toml\" holds a control character"), std::string::npos) << e;
+}
+
+TEST(RecordingMessages, TheRecordingFileNameIsPrintedEscaped) {
+  using namespace std::string_literals;
+  try {
+    (void)parse_recording("nope\n", "bad\nname\0.rec"s);
+    FAIL();
+  } catch (const RecordingError& e) {
+    EXPECT_EQ(std::string_view(e.what()).substr(0, 17), "bad\\nname\\0.rec:1");
+  }
+}
+
+TEST(RecordingMessages, AScenePathWithANewlineIsRefusedWhenRecordingStartsAndNamed) {
+  // Before: the whole run, then "format_recording: the scene path holds a control character".
+  try {
+    Recorder rec(two_bodies(), "a\nb.toml", 1);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string_view(e.what()).find("\"a\\nb.toml\""), std::string::npos) << e.what();
+  }
+}
+
+TEST(RecordingMessages, ABodyTheSceneDoesNotHaveIsABadRecording) {
+  Recording rec = short_run(two_bodies());
+  EXPECT_NO_THROW(check_recorded_bodies(rec, 2, "ok.rec"));
+  rec.inputs[1].drag_body = Entity{3, 1};
+  try {
+    check_recorded_bodies(rec, 2, "edited.rec");
+    FAIL();
+  } catch (const RecordingError& e) {
+    EXPECT_EQ(e.kind(), RecordingError::Kind::corrupt);
+    EXPECT_NE(std::string_view(e.what()).find("edited.rec: drag: the tick 1 line names body 3:1"),
+              std::string::npos)
+        << e.what();
+  }
+  rec.inputs[1].drag_body = no_body;
+  rec.inputs[1].bodies.push_back({Entity{1, 2}, BodyInputKind::impulse, {1.0, 0.0}});
+  EXPECT_THROW(check_recorded_bodies(rec, 2, "edited.rec"), RecordingError);  // a stale handle
+  rec.inputs[1].bodies.back().body = Entity{2, 1};
+  EXPECT_NO_THROW(check_recorded_bodies(rec, 2, "ok.rec"));
+}
+
+}  // namespace
+}  // namespace fixstep
