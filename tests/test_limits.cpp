@@ -47,7 +47,8 @@ TEST(Limits, TickWorkCountsBodiesLinksSubstepsAndTheImplicitSolve) {
   def.settings.substeps = 3;
   EXPECT_EQ(tick_work(def), 19u * 3u);
   def.settings.integrator = Integrator::implicit_euler;
-  EXPECT_EQ(tick_work(def), 29u * 3u);  // + a body each for the sparse solve
+  // + each body 64·√10 (ceil: 203) times for the sparse solve
+  EXPECT_EQ(tick_work(def), (19u + 10u * 203u) * 3u);
   def.links.clear();
   EXPECT_EQ(tick_work(def), 10u * 3u);  // no network: no solve
   EXPECT_EQ(implicit_solve_bytes(def.bodies, def.links, def.settings), 0u);
@@ -55,18 +56,18 @@ TEST(Limits, TickWorkCountsBodiesLinksSubstepsAndTheImplicitSolve) {
 
 TEST(Limits, MakeSimulationRefusesATickBeyondTheWorkLimitBeforeStepping) {
   WorldDef def = chain(1000);  // 1999 body-substeps a substep
-  def.settings.substeps = 100'000;
+  def.settings.substeps = 1'000'000;
   try {
     (void)make_simulation(def);
-    FAIL() << "a tick of 2e8 body-substeps was accepted";
+    FAIL() << "a tick of 2e9 body-substeps was accepted";
   } catch (const LimitError& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("1000 bodies + 999 links × 100000 substeps = 199900000 body-substeps"),
+    EXPECT_NE(m.find("1000 bodies + 999 links × 1000000 substeps = 1999000000 body-substeps"),
               std::string::npos)
         << m;
     EXPECT_NE(m.find("use fewer substeps"), std::string::npos) << m;
   }
-  def.settings.substeps = 50'000;  // 9.995e7: within
+  def.settings.substeps = 500'000;  // 9.995e8: within
   EXPECT_NO_THROW((void)make_simulation(def));
 }
 

@@ -263,8 +263,10 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   try {
     check_world_limits(scene.bodies, scene.links, scene.world);
   } catch (const LimitError& e) {
-    const bool per_tick = tick_work(scene.bodies, scene.links, scene.world) > max_tick_work;
-    const std::string key = per_tick ? "substeps" : "integrator";
+    // check_world_limits checks the implicit solve's memory first, then the work per tick.
+    const bool memory =
+        implicit_solve_bytes(scene.bodies, scene.links, scene.world) > max_implicit_solve_bytes;
+    const std::string key = memory ? "integrator" : "substeps";
     const toml::node* at = world->get(key);
     r.fail(at ? at->source() : world->source(), at ? "world." + key : "world", e.what());
   }

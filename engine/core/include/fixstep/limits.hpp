@@ -6,9 +6,10 @@
 //
 // Work is counted in body-substeps: one body or one link advanced by one substep, what a tick of
 // the fused per-body pass and the link gather cost. Implicit Euler on a linked world counts each
-// body once more for its sparse solve. Measured here (docs/ROBUSTNESS.md, "Limits on work and
-// memory"): 8 to 16 ns per body-substep for semi-implicit Euler on grids of 10^4 and 9·10^4
-// bodies, so max_tick_work is about a second per tick and max_command_work about a day.
+// body 64·√n times more for its sparse solve (n linked bodies; limits.cpp has the measurements).
+// Measured here (docs/ROBUSTNESS.md, "Limits on work and memory"): 7 to 16 ns per body-substep
+// for semi-implicit Euler on nets of 10^2 to 9·10^4 bodies, so max_tick_work is about 10 s per
+// tick and max_command_work about a day.
 #pragma once
 
 #include <cstdint>
@@ -25,9 +26,10 @@ namespace fixstep {
 /// ticks per frame), a recording's claimed ticks (max_recording_ticks is the same number, so
 /// every run can be recorded and replayed).
 inline constexpr std::uint64_t max_command_ticks = 1'000'000'000;
-/// Most body-substeps in one tick ((bodies + links) × substeps; see tick_work): 10^8, about a
-/// second of CPU here.
-inline constexpr std::uint64_t max_tick_work = 100'000'000;
+/// Most body-substeps in one tick ((bodies + links) × substeps; see tick_work): 10^9, about 10 s
+/// of CPU here. A tick may not take hours; one of seconds is still stopped within a second by a
+/// stop request (stop_request.hpp), which the tick polls every substep.
+inline constexpr std::uint64_t max_tick_work = 1'000'000'000;
 /// Most body-substeps in one command (ticks × tick_work): 10^13, about a day of CPU here.
 inline constexpr std::uint64_t max_command_work = 10'000'000'000'000;
 /// Most ticks between two state hashes a recording stores (and of --hash-every): 100 000 ticks,
@@ -47,8 +49,9 @@ class LimitError : public std::runtime_error {
 };
 
 /// Body-substeps of one tick of the world of `bodies`, `links` (by index into bodies) and
-/// `settings`: (bodies + links) × substeps, plus bodies × substeps for implicit Euler on a
-/// world with links (its sparse solve). At most ~10^13 (the scene limits), never overflowing.
+/// `settings`: (bodies + links) × substeps, plus bodies × 64·√n × substeps for implicit Euler on
+/// a world with links (its sparse solve over n linked bodies, measured at 580 to 8600 explicit
+/// body-substeps per body). At most ~10^16 (the scene limits), never overflowing.
 [[nodiscard]] std::uint64_t tick_work(std::span<const BodyDef> bodies,
                                       std::span<const BodyLink> links,
                                       const WorldSettings& settings);
@@ -64,7 +67,7 @@ class LimitError : public std::runtime_error {
                                                  const WorldSettings& settings);
 
 /// Throws LimitError when one tick of `def` would exceed max_tick_work ("N bodies + M links × S
-/// substeps = W body-substeps per tick; a tick may do at most 1e+08 ...") or its implicit solve
+/// substeps = W body-substeps per tick; a tick may do at most 1e+09 ...") or its implicit solve
 /// max_implicit_solve_bytes (naming the integrator, the linked body count, the estimate and
 /// the way out: semi_implicit_euler with substeps). make_simulation calls it, the scene loader
 /// too (locating the message at [world] substeps). Throws std::invalid_argument for a link
