@@ -98,6 +98,17 @@ TEST(Limits, ImplicitEulerOnALargeNetworkIsRefusedAtLoadNamingTheWayOut) {
     EXPECT_NE(m.find("implicit_euler on 360000 linked bodies"), std::string::npos) << m;
     EXPECT_NE(m.find("semi_implicit_euler with substeps"), std::string::npos) << m;
   }
+  // The body bound (a stop request within a second): 160 × 160 = 25 600 refused, 150 × 150 not.
+  try {
+    (void)parse_scene(grid_scene(160, 160, "integrator = \"implicit_euler\""), "net.toml");
+    FAIL() << "accepted: one factorisation would keep a stop request waiting over a second";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key(), "world.integrator") << e.what();
+    EXPECT_NE(std::string(e.what()).find("at most 25000 may be solved together"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(
+      (void)parse_scene(grid_scene(150, 150, "integrator = \"implicit_euler\""), "ok.toml"));
   // The estimate grows faster than the bodies (fill-in), and a small network is far within.
   WorldDef small = chain(100), large = chain(10000);
   small.settings.integrator = large.settings.integrator = Integrator::implicit_euler;

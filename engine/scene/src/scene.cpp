@@ -263,9 +263,8 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   try {
     check_world_limits(scene.bodies, scene.links, scene.world);
   } catch (const LimitError& e) {
-    // check_world_limits checks the implicit solve's memory first, then the work per tick.
-    const bool memory =
-        implicit_solve_bytes(scene.bodies, scene.links, scene.world) > max_implicit_solve_bytes;
+    // check_world_limits checks the implicit solve's size first, then the work per tick.
+    const bool memory = !implicit_solve_within_limits(scene.bodies, scene.links, scene.world);
     const std::string key = memory ? "integrator" : "substeps";
     const toml::node* at = world->get(key);
     r.fail(at ? at->source() : world->source(), at ? "world." + key : "world", e.what());

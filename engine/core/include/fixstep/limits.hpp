@@ -42,6 +42,14 @@ inline constexpr std::uint64_t max_hash_every = 100'000;
 /// grid of rest-length links (a tick of 10^5 of them already takes ~6 s here).
 inline constexpr std::uint64_t max_implicit_solve_bytes = std::uint64_t{2} << 30;
 
+/// Most bodies implicit Euler may solve together (the bodies links join): 25 000. Its sparse
+/// factorisation is one Eigen call a stop request cannot interrupt, and it grows with the
+/// network: measured here (Newton on rest-length links, SparseLU), a stop waited up to 0.52 s
+/// at 22 500 bodies, 0.94 s at 40 000 and 1.41 s at 57 600 — so at most 25 000 keeps a stop
+/// within a second (docs/ROBUSTNESS.md, "Stop requests inside a tick"). Far inside
+/// max_implicit_solve_bytes (about 0.2 GiB at this size).
+inline constexpr std::uint64_t max_implicit_bodies = 25'000;
+
 /// A claim beyond one of the limits above. what() names the claim, the limit and the way out.
 class LimitError : public std::runtime_error {
  public:
@@ -66,12 +74,18 @@ class LimitError : public std::runtime_error {
                                                  std::span<const BodyLink> links,
                                                  const WorldSettings& settings);
 
+/// Whether implicit Euler's solve of this world is within max_implicit_bodies and
+/// max_implicit_solve_bytes (true for another integrator or a world without links).
+[[nodiscard]] bool implicit_solve_within_limits(std::span<const BodyDef> bodies,
+                                                std::span<const BodyLink> links,
+                                                const WorldSettings& settings);
+
 /// Throws LimitError when one tick of `def` would exceed max_tick_work ("N bodies + M links × S
 /// substeps = W body-substeps per tick; a tick may do at most 1e+09 ...") or its implicit solve
-/// max_implicit_solve_bytes (naming the integrator, the linked body count, the estimate and
-/// the way out: semi_implicit_euler with substeps). make_simulation calls it, the scene loader
-/// too (locating the message at [world] substeps). Throws std::invalid_argument for a link
-/// index out of range.
+/// max_implicit_bodies or max_implicit_solve_bytes (naming the integrator, the linked body count,
+/// the estimate and the way out: semi_implicit_euler with substeps). make_simulation calls it, the
+/// scene loader too (locating the message at [world] substeps). Throws std::invalid_argument for a
+/// link index out of range.
 void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
                         const WorldSettings& settings);
 
