@@ -654,20 +654,7 @@ stop_case() {
   row=$((row + 1))
   printf '| %d | %s | `fixstep %s` | %d | %s |\n' "$row" "$what" "$*" "$code" "$first"
 }
-long_tick='[world]
-dt = 0.01
-integrator = "implicit_euler"
-substeps = 15000
-[[grid]]
-name = "net"
-columns = 10
-rows = 10
-origin = [0.0, 0.0]
-spacing = [0.5, -0.5]
-body = { mass = 0.1, gravity = [0.0, -9.81] }
-link = { stiffness = 50.0, damping = 0.1, rest_length = 0.5 }
-pin = [[0, 0], [9, 0]]
-pin_spring = { stiffness = 50.0, damping = 0.1 }'
+long_tick=$(cat "$tests_dir/scenes/long_tick.toml")
 stop_case "SIGINT inside a 6-second tick (run; CSV and recording of the ticks before)" \
   "$long_tick" run scene.toml --steps 3 --csv stop.csv --record stop.rec
 stop_case "SIGINT inside a 6-second tick (render; the frames before)" "$long_tick" \

@@ -10,26 +10,10 @@ fixstep=$1
 
 # A 10 x 10 net of rest-length springs under implicit Euler at 15 000 substeps: a Newton solve
 # with a sparse LU per iteration in every substep, so one tick takes ~6 s here (~60 s under
-# ASan), just inside the work limit (limits.hpp: 9.9e8 of 1e9 body-substeps). Without the polls
+# ASan), just inside the work limit (limits.hpp: 9.6e8 of 1e9 body-substeps). Without the polls
 # inside the tick, SIGINT waits for the tick's end and the hang guard kills the command 3 s
 # after the signal (137); with them it exits at the next substep (~0.4 ms).
-cat >"$work/long.toml" <<'EOF'
-[world]
-dt = 0.01
-integrator = "implicit_euler"
-substeps = 15000
-
-[[grid]]
-name = "net"
-columns = 10
-rows = 10
-origin = [0.0, 0.0]
-spacing = [0.5, -0.5]
-body = { mass = 0.1, gravity = [0.0, -9.81] }
-link = { stiffness = 50.0, damping = 0.1, rest_length = 0.5 }
-pin = [[0, 0], [9, 0]]
-pin_spring = { stiffness = 50.0, damping = 0.1 }
-EOF
+cp "$(dirname "$0")/scenes/long_tick.toml" "$work/long.toml"
 
 # interrupt NAME CMD...: runs CMD, sends it SIGINT 2 s later (inside the first tick: loading takes
 # milliseconds) and SIGKILL 3 s after that (the hang guard: status 137); the status is in $status.
