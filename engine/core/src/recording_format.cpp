@@ -347,77 +347,7 @@ void end_line(const Lines& in, std::string_view line, Recording& rec) {
   }
 }
 
-void format_input(std::string& out, const TickInput& t) {
-  fmt::format_to(
-      std::back_inserter(out),
-      "tick {} push={},{} held={:x} pressed={:x} released={:x} pointer={},{} drag=", t.tick,
-      t.push.x, t.push.y, t.held, t.pressed, t.released, t.pointer.x, t.pointer.y);
-  if (t.drag_body == no_body) {
-    out += "none";
-  } else {
-    fmt::format_to(std::back_inserter(out), "{}:{}", t.drag_body.index1, t.drag_body.generation);
-  }
-  for (const BodyInput& b : t.bodies) {
-    const char* kind = b.kind == BodyInputKind::force     ? "force"
-                       : b.kind == BodyInputKind::impulse ? "impulse"
-                                                          : "velocity";
-    fmt::format_to(std::back_inserter(out), " {}={}:{},{},{}", kind, b.body.index1,
-                   b.body.generation, b.value.x, b.value.y);
-  }
-  out += '\n';
-}
-
 }  // namespace
-
-namespace recording_text {
-
-std::string header(const Recording& rec) {
-  for (const char c : rec.scene) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-      throw std::invalid_argument(
-          fmt::format("cannot record the scene \"{}\": its path holds a control character, "
-                      "and a recording stores the path on one line; rename the file",
-                      printable(rec.scene)));
-    }
-  }
-  return fmt::format(
-      "{} {}\nscene {}\ndefinition {}\nintegrator {}\nprecision {}\ndt {}\nsubsteps {}\n"
-      "hash_every {}\n",
-      recording_magic, recording_version, rec.scene, hex_hash(rec.definition_hash),
-      integrator_name(rec.settings.integrator), precision_name(rec.settings.precision),
-      rec.settings.dt, rec.settings.substeps, rec.hash_every);
-}
-
-void append_tick(std::string& out, const TickInput& input) {
-  format_input(out, input);
-}
-
-void append_hash(std::string& out, std::uint64_t tick, std::uint64_t hash) {
-  fmt::format_to(std::back_inserter(out), "hash {} {}\n", tick, hex_hash(hash));
-}
-
-void append_end(std::string& out, std::uint64_t ticks, std::uint64_t hash) {
-  fmt::format_to(std::back_inserter(out), "end {} {}\n", ticks, hex_hash(hash));
-}
-
-}  // namespace recording_text
-
-std::string format_recording(const Recording& rec) {
-  std::string out = recording_text::header(rec);
-  std::size_t h = 0;
-  auto hashes_until = [&](std::uint64_t tick) {
-    for (; h < rec.hashes.size() && rec.hashes[h].first <= tick; ++h) {
-      recording_text::append_hash(out, rec.hashes[h].first, rec.hashes[h].second);
-    }
-  };
-  for (const TickInput& t : rec.inputs) {
-    hashes_until(t.tick);
-    format_input(out, t);
-  }
-  hashes_until(std::numeric_limits<std::uint64_t>::max());
-  recording_text::append_end(out, rec.ticks, rec.final_hash);
-  return out;
-}
 
 Recording parse_recording(std::string_view text, const std::string& source_name) {
   if (text.size() > max_recording_bytes) {
