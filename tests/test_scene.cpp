@@ -412,8 +412,7 @@ TEST(Scene, SpringTablesJoinNamedBodies) {
   EXPECT_EQ(s.link_lines[1], 16u);
   // Two links between the same bodies: both act, with a warning (issue 21, class 9).
   ASSERT_EQ(s.warnings.size(), 1u);
-  EXPECT_NE(s.warnings[0].find("already joined by spring[0]"), std::string::npos)
-      << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("already joined by spring[0]"), std::string::npos) << s.warnings[0];
   const Simulation sim = make_simulation(s);
   EXPECT_EQ(sim.link_count(), 2u);
 }
