@@ -1,10 +1,9 @@
 // Stale ".NAME.tmp.PID" files of killed runs (stale_temporaries.hpp).
 #include "fixstep/stale_temporaries.hpp"
 
-#include <signal.h>
-
 #include <cerrno>
 #include <charconv>
+#include <csignal>  // kill (POSIX, declared by glibc's <signal.h>)
 #include <system_error>
 
 namespace fixstep {
