@@ -86,60 +86,40 @@ void configure_stb_once() {
 
 }  // namespace
 
-AtomicFile::AtomicFile(std::filesystem::path file) : file_(std::move(file)) {
-  const std::filesystem::path dir = file_.has_parent_path() ? file_.parent_path() : ".";
-  tmp_ = (dir / fmt::format(".{}.tmp.{}", file_.filename().string(), ::getpid())).string();
-  out_ = std::fopen(tmp_.c_str(), "wbe");
-  if (!out_) {
-    const int err = errno;
-    std::error_code ec;
-    if (err == ENOENT && !std::filesystem::exists(dir, ec)) {
-      throw CaptureError(fmt::format("cannot write {}: the directory {} does not exist",
-                                     file_.string(), dir.string()));
-    }
-    throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), reason(err)));
+namespace {
+
+/// Runs `write` on the core AtomicOutput, reporting its errors as CaptureError.
+template <class Write>
+void as_capture_error(Write&& write) {
+  try {
+    write();
+  } catch (const std::exception& e) {  // runtime_error (I/O) or logic_error (a second commit)
+    throw CaptureError(e.what());
   }
 }
 
-AtomicFile::~AtomicFile() {
-  if (out_) {
-    std::fclose(out_);
-    ::unlink(tmp_.c_str());
+AtomicOutput open_output(std::filesystem::path file) {
+  try {
+    return AtomicOutput(std::move(file));
+  } catch (const std::exception& e) {
+    throw CaptureError(e.what());
   }
 }
 
-void AtomicFile::fail(int err) {
-  if (out_) std::fclose(out_);
-  out_ = nullptr;
-  ::unlink(tmp_.c_str());
-  throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), reason(err)));
-}
+}  // namespace
+
+AtomicFile::AtomicFile(std::filesystem::path file) : out_(open_output(std::move(file))) {}
 
 void AtomicFile::append(std::span<const std::uint8_t> bytes) {
-  if (!out_) throw CaptureError(fmt::format("cannot write {}: already closed", file_.string()));
-  if (std::fwrite(bytes.data(), 1, bytes.size(), out_) != bytes.size()) fail(errno ? errno : EIO);
+  append(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 void AtomicFile::append(std::string_view text) {
-  append(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  as_capture_error([&] { out_.append(text); });
 }
 
 void AtomicFile::commit() {
-  if (!out_) throw CaptureError(fmt::format("cannot write {}: already closed", file_.string()));
-  errno = 0;
-  if (std::fflush(out_) != 0 || std::ferror(out_)) fail(errno ? errno : EIO);
-  std::FILE* f = out_;
-  out_ = nullptr;
-  if (std::fclose(f) != 0) {
-    const int err = errno;
-    ::unlink(tmp_.c_str());
-    throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), reason(err)));
-  }
-  if (::rename(tmp_.c_str(), file_.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp_.c_str());
-    throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), reason(err)));
-  }
+  as_capture_error([&] { out_.commit(); });
 }
 
 void write_file_atomic(const std::filesystem::path& file, std::span<const std::uint8_t> bytes) {

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fixstep/atomic_output.hpp"
 #include "fixstep/frame_pipeline.hpp"
 
 namespace fixstep {
@@ -22,27 +23,20 @@ class CaptureError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// A file written atomically: bytes go to a temporary file beside `file` (same directory, so
-/// the final rename cannot cross file systems), which commit() renames over `file`. Destroyed
-/// without commit() — an error, an exception, a stop — the temporary is removed; after a hard
-/// kill only a ".NAME.tmp.PID" file can remain, never a partial file under the final name.
-/// Errors (open, write, full disk, rename) throw CaptureError naming `file` and the reason.
+/// A file written atomically: core's AtomicOutput (atomic_output.hpp: a ".NAME.tmp.PID" file
+/// beside `file`, renamed over it by commit(), removed when destroyed without commit()) with
+/// its errors as CaptureError, the type render's callers catch. Errors (open, write, full
+/// disk, rename, a second commit) throw CaptureError naming `file` and the reason.
 class AtomicFile {
  public:
   explicit AtomicFile(std::filesystem::path file);
-  ~AtomicFile();
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
   void append(std::span<const std::uint8_t> bytes);
   void append(std::string_view text);
   /// Flushes, closes and renames the temporary onto the final name.
   void commit();
 
  private:
-  [[noreturn]] void fail(int err);
-  std::filesystem::path file_;
-  std::string tmp_;
-  std::FILE* out_ = nullptr;
+  AtomicOutput out_;
 };
 
 /// Writes `bytes` to `file` atomically: into a temporary file in the same directory, which is
