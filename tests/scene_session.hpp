@@ -1,5 +1,5 @@
-// Session for a loaded scene, as `fixstep render` opens it (demos/fixstep/commands.cpp,
-// open_session): its world, its [view] and its file name in the HUD. For tests and benchmarks.
+// Session for a loaded scene, as `fixstep render` opens it (demos/fixstep/render_command.cpp,
+// session_settings): its world, its [view] and its file name in the HUD. For tests and benchmarks.
 #pragma once
 
 #include <filesystem>

@@ -114,9 +114,6 @@ Scene load_with_overrides(const SceneOptions& options);
 
 /// How a Session shows a scene: its [view] and its file name in the HUD, width x height pixels.
 [[nodiscard]] SessionSettings session_settings(const Scene& scene, int width, int height);
-/// The frame pipeline for a scene: its world, its [view] and its file name in the HUD.
-[[nodiscard]] Session open_session(const Scene& scene, int width, int height);
-
 /// Throws LimitError when `ticks` ticks with a hash every `hash_every` would make the recording
 /// `file` larger than max_recording_bytes (the reader's limit), naming the --hash-every to use.
 void check_recording_size(std::uint64_t ticks, std::uint64_t hash_every, const std::string& file);

@@ -26,10 +26,6 @@ SessionSettings session_settings(const Scene& scene, int width, int height) {
                          .view_width = scene.view.width};
 }
 
-Session open_session(const Scene& scene, int width, int height) {
-  return Session(checked_world_def(scene), session_settings(scene, width, height));
-}
-
 int render_command(const RenderOptions& o) {
   std::optional<Recording> rec;
   if (o.replay) rec = read_recording(*o.replay);
