@@ -74,17 +74,14 @@ inline void color_links(std::size_t n, const std::vector<std::uint32_t>& a,
   for (std::size_t l = 0; l < m; ++l) by_color[fill[color[l]]++] = static_cast<std::uint32_t>(l);
 }
 
-/// One link's exact damping flow over the τ of (ca, cb, energy) (see the file comment), on
-/// ends a and b, with direction (nx, ny) when along (L > 0), on the whole relative velocity
-/// otherwise. Track: adds the kinetic energy it removes, J, to *diss, less the work a static or
-/// kinematic end does through the damper meanwhile (inv_m = 0 at that end): that end moves at
-/// a constant velocity u through the flow, and the damper's impulse on the other end is
-/// m Δv, so its work is m Δv·u. Kept in the link's own account (one slot per link, so the
-/// colours' threads never share one), the energy balance E + dissipated - E0 stays exact.
-template <bool Track, class Real>
+/// One link's exact damping flow over the τ of (ca, cb) (see the file comment), on ends a and
+/// b, with direction (nx, ny) when along (L > 0), on the whole relative velocity otherwise.
+/// The kinetic energy it removes, ½ |p|² (1 - e^{-2μτ}) / (1/m_a + 1/m_b) J, less the work a
+/// static or kinematic end does through the damper meanwhile, is the change of its ends'
+/// kinetic energy: strang_network.hpp counts it per body around the sweeps.
+template <class Real>
 [[gnu::always_inline]] inline void link_flow(std::uint32_t a, std::uint32_t b, bool along, Real nx,
-                                             Real ny, Real ca, Real cb, Real energy, Real* vx,
-                                             Real* vy, Real* diss, const Real* inv_m) {
+                                             Real ny, Real ca, Real cb, Real* vx, Real* vy) {
   const Real ux = vx[a] - vx[b], uy = vy[a] - vy[b];
   Real px = ux, py = uy;
   if (along) {
@@ -93,15 +90,6 @@ template <bool Track, class Real>
   }
   vx[a] += ca * px, vy[a] += ca * py;
   vx[b] -= cb * px, vy[b] -= cb * py;
-  if constexpr (Track) {
-    Real lost = energy * (px * px + py * py);
-    if (inv_m[b] == Real(0) && inv_m[a] != Real(0)) {
-      lost -= ca / inv_m[a] * (px * vx[b] + py * vy[b]);
-    } else if (inv_m[a] == Real(0) && inv_m[b] != Real(0)) {
-      lost += cb / inv_m[b] * (px * vx[a] + py * vy[a]);
-    }
-    *diss += lost;
-  }
 }
 
 /// The spring force of the link at index l of (k, rest) on end a (b gets the opposite), N, as

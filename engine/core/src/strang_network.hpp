@@ -21,13 +21,22 @@ namespace fixstep {
 
 namespace {
 
+/// One link damping sweep's coefficients (LinkFlow's ca, cb over some τ; null: no sweep).
+template <class Real>
+struct SweepFlow {
+  const Real *ca = nullptr, *cb = nullptr;
+  explicit operator bool() const { return ca != nullptr; }
+};
+
 /// One stage of the chain: step h, the bodies' exact decay e^{-γh/2} (null without body
-/// damping) and the links' flow over h/2 (null without link damping).
+/// damping), and the links' flows before its drift (C↑, `up`) and after it (C↓, `down`): both
+/// over h/2 with DampingSplit::per_stage, only at the ends of a Forest–Ruth step over its
+/// whole h/2 with per_step, none without link damping.
 template <class Real>
 struct StrangStage {
   Real h{};
   const Real* decay = nullptr;
-  const Real *ca = nullptr, *cb = nullptr, *energy = nullptr;
+  SweepFlow<Real> up{}, down{};
 };
 
 /// Smallest colour worth splitting between two threads (its links never share a body).
@@ -38,7 +47,7 @@ constexpr std::size_t min_parallel_colour = 1024;
 /// K(h/2); a = field + (1/m)·acc. A plain loop over restrict pointers with a branch-free range
 /// check, like euler_bodies, so the compiler vectorizes it. Returns true if some state is out
 /// of range (checked with End).
-template <class Field, bool End, bool Begin, bool Track, class Real>
+template <class Field, bool End, bool Begin, bool Track, bool Bracket, class Real>
 bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const Real* __restrict y,
                  Real* __restrict vx, Real* __restrict vy, Real* __restrict diss,
                  const Real* __restrict accx, const Real* __restrict accy,
@@ -46,7 +55,7 @@ bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const
                  const Real* __restrict anchor_x, const Real* __restrict anchor_y,
                  const Real* __restrict rest, const Real* __restrict d0, const Real* __restrict d1,
                  const Real* __restrict cx, const Real* __restrict cy, Real push_x, Real push_y,
-                 Real end_half, Real begin_half) {
+                 Real end_half, Real begin_half, Real swept_before, Real swept_after) {
   const Real limit = static_cast<Real>(max_state_magnitude);
   Real out = 0;
   for (std::size_t j = j0; j < j1; ++j) {
@@ -69,6 +78,10 @@ bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const
     };
     f.conservative(px, py, ax, ay);
     ax += inv_m[j] * accx[j], ay += inv_m[j] * accy[j];
+    // The links' damping sweeps between two kicks (C↓ before this pass, C↑ after it; a weight
+    // of 0 where a stage has none): the kinetic energy they take from this body, J/kg, as the
+    // difference of its ½|v|² across them.
+    if constexpr (Bracket && End) diss[j] -= swept_before * (Real(0.5) * (pvx * pvx + pvy * pvy));
     if constexpr (End) {
       pvx += ax * end_half, pvy += ay * end_half;  // kick h/2
       decay(d0);
@@ -77,6 +90,7 @@ bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const
       decay(d1);
       pvx += ax * begin_half, pvy += ay * begin_half;  // kick h/2
     }
+    if constexpr (Bracket && Begin) diss[j] += swept_after * (Real(0.5) * (pvx * pvx + pvy * pvy));
     vx[j] = pvx, vy[j] = pvy;
     if constexpr (End) {
       const bool in_range = (int(std::abs(px) <= limit) & int(std::abs(py) <= limit) &
@@ -104,7 +118,7 @@ class StrangChain {
     kick(nullptr, &s);
     for (std::size_t i = 0; i < count; ++i) {
       throw_if_stop_requested();  // per stage, on the calling thread (the worker is idle here)
-      if (s.ca) colours<false>(s, true);  // C↑(h/2) at the directions of the last pass
+      if (s.up) colours<false>(s.up, true);  // C↑ at the directions of the last pass
       drift(s.h);
       forces(&s);  // forces at the new positions, with C↓(h/2) there
       if (i + 1 < count) {
@@ -122,7 +136,7 @@ class StrangChain {
   Real *accx_, *accy_, *nx_, *ny_;
 
   /// Each body's sum of link forces at the current positions into acc; with a stage s of a
-  /// damped network, the stage's C↓(h/2) in the same loop.
+  /// damped network, the stage's C↓ (if any) in the same loop.
   void forces(const StrangStage<Real>* s) {
     if (!p_.net.damped) {
       p_.accumulate({p_.x, p_.y, p_.vx, p_.vy}, Real(0), accx_, accy_);
@@ -130,19 +144,20 @@ class StrangChain {
     }
     if (!s) {
       std::fill(accx_, accx_ + p_.n, Real(0)), std::fill(accy_, accy_ + p_.n, Real(0));
-      colours<true>(StrangStage<Real>{}, false);
+      colours<true>(SweepFlow<Real>{}, false);
     } else {
-      colours<true>(*s, false);  // acc zeroed by the drift
+      colours<true>(s->down, false);  // acc zeroed by the drift
     }
   }
 
   /// One loop over the colours, ascending or descending: with Force, each link's spring force
   /// added to its ends' sums and its direction stored; with a stage's flow, its exact damping
-  /// flow (at the direction just computed, or the stored one).
+  /// flow (at the direction just computed, or the stored one). The energy the flows remove is
+  /// counted by the kicks around them (kick_bodies, Bracket), per body, not here per link.
   template <bool Force>
-  void colours(const StrangStage<Real>& s, bool ascending) {
+  void colours(const SweepFlow<Real>& s, bool ascending) {
     const std::size_t q = p_.net.color_offset.size() - 1;
-    const bool flow = s.ca != nullptr, track = p_.track;
+    const bool flow = bool(s);
     for (std::size_t i = 0; i < q; ++i) {
       const std::size_t c = ascending ? i : q - 1 - i;
       const std::size_t first = p_.net.color_offset[c];
@@ -150,12 +165,20 @@ class StrangChain {
       p_.par(
           count,
           [&](std::size_t i0, std::size_t i1) {
-            if (!flow)
-              colour<Force, false, false>(first + i0, first + i1, s);
-            else if (track)
-              colour<Force, true, true>(first + i0, first + i1, s);
+            auto run = [&]<int Along>() {
+              if (flow)
+                colour<Force, true, Along>(first + i0, first + i1, s);
+              else
+                colour<Force, false, Along>(first + i0, first + i1, s);
+            };
+            // Whether a link's rest length is 0 is known for the whole network in the usual
+            // cases (all or none): the loop then has no branch on it.
+            if (p_.net.all_rest_length)
+              run.template operator()<1>();
+            else if (!p_.net.rest_length)
+              run.template operator()<0>();
             else
-              colour<Force, true, false>(first + i0, first + i1, s);
+              run.template operator()<2>();
           },
           min_parallel_colour);
     }
@@ -164,19 +187,17 @@ class StrangChain {
   /// Links [i0, i1) in colour order (see colours(); Network::color_a and LinkFlow are in
   /// that order, so the loop streams them). Local copies of every pointer: the stores through
   /// Real* would otherwise make the compiler reload them per link.
-  template <bool Force, bool Flow, bool Track>
-  void colour(std::size_t i0, std::size_t i1, const StrangStage<Real>& s) {
+  /// Along: 1 every link has a rest length (its direction matters), 0 none has, 2 mixed.
+  template <bool Force, bool Flow, int Along>
+  void colour(std::size_t i0, std::size_t i1, const SweepFlow<Real>& s) {
     const auto& net = p_.net;
     const std::uint32_t *ea = net.color_a.data(), *eb = net.color_b.data();
-    const std::uint32_t* link = net.by_color.data();
     const Real *k = net.color_k.data(), *rest = net.color_rest.data(), *x = p_.x, *y = p_.y;
-    const Real *ca = s.ca, *cb = s.cb, *energy = s.energy;
+    const Real *ca = s.ca, *cb = s.cb;
     Real *accx = accx_, *accy = accy_, *ux = nx_, *uy = ny_, *vx = p_.vx, *vy = p_.vy;
-    Real* diss = p_.diss_link;
-    const Real* inv_m = net.inv_mass.data();
     for (std::size_t i = i0; i < i1; ++i) {
       const std::uint32_t a = ea[i], b = eb[i];
-      const bool along = rest[i] != Real(0);
+      const bool along = Along == 2 ? rest[i] != Real(0) : Along == 1;
       Real nx, ny;
       if constexpr (Force) {
         Real fx, fy;
@@ -187,10 +208,7 @@ class StrangChain {
       } else {
         nx = ux[i], ny = uy[i];
       }
-      if constexpr (Flow) {
-        Real* slot = Track ? &diss[link[i]] : nullptr;
-        link_flow<Track>(a, b, along, nx, ny, ca[i], cb[i], energy[i], vx, vy, slot, inv_m);
-      }
+      if constexpr (Flow) link_flow(a, b, along, nx, ny, ca[i], cb[i], vx, vy);
     }
   }
 
@@ -209,6 +227,10 @@ class StrangChain {
   void kick(const StrangStage<Real>* end, const StrangStage<Real>* begin) {
     const Real* d0 = end ? end->decay : nullptr;
     const Real* d1 = begin ? begin->decay : nullptr;
+    // The kinetic energy the link sweeps take is counted around them (kick_bodies): from the
+    // closing stage's C↓, ending at this kick, and into the opening stage's C↑, starting here.
+    const Real swept_before = end && end->down ? Real(1) : Real(0);
+    const Real swept_after = begin && begin->up ? Real(1) : Real(0);
     const Real end_half = end ? end->h * Real(0.5) : Real(0);
     const Real begin_half = begin ? begin->h * Real(0.5) : Real(0);
     // The work of static and kinematic ends through their links' springs, at this position
@@ -221,15 +243,17 @@ class StrangChain {
     with_field<Real, 0>(p_.shape, c.damping, p_.accel, [&](auto field) {
       using Field = decltype(field);
       p_.par(p_.n, [&](std::size_t j0, std::size_t j1) {
-        auto run = [&]<bool End, bool Begin, bool Track>() {
-          return kick_bodies<Field, End, Begin, Track>(
+        auto run = [&]<bool End, bool Begin, bool Track, bool Bracket>() {
+          return kick_bodies<Field, End, Begin, Track, Bracket>(
               j0, j1, p_.x, p_.y, p_.vx, p_.vy, p_.diss_body, accx_, accy_, p_.net.inv_mass.data(),
               c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), d0, d1,
-              c.accel_x.data(), c.accel_y.data(), p_.push[0], p_.push[1], end_half, begin_half);
+              c.accel_x.data(), c.accel_y.data(), p_.push[0], p_.push[1], end_half, begin_half,
+              swept_before, swept_after);
         };
         auto tracked = [&]<bool End, bool Begin>() {
-          return p_.track ? run.template operator()<End, Begin, true>()
-                          : run.template operator()<End, Begin, false>();
+          if (!p_.track) return run.template operator()<End, Begin, false, false>();
+          return p_.net.damped ? run.template operator()<End, Begin, true, true>()
+                               : run.template operator()<End, Begin, true, false>();
         };
         const bool out = !end     ? tracked.template operator()<false, true>()
                          : !begin ? tracked.template operator()<true, false>()

@@ -85,6 +85,7 @@ void World<Real>::rebuild_network() {
   }
   net.offset.assign(n + 1, 0);
   net.rest_length = net.damped = false;
+  net.all_rest_length = m > 0;
   for (std::size_t l = 0; l < m; ++l) {
     const LinkDef& d = link_defs_[l];
     net.a[l] = static_cast<std::uint32_t>(bodies_.index(d.body_a));
@@ -93,6 +94,7 @@ void World<Real>::rebuild_network() {
     net.damping[l] = static_cast<Real>(d.spring.damping);
     net.rest[l] = static_cast<Real>(d.spring.rest_length);
     net.rest_length = net.rest_length || net.rest[l] != Real(0);
+    net.all_rest_length = net.all_rest_length && net.rest[l] != Real(0);
     net.damped = net.damped || net.damping[l] != Real(0);
     ++net.offset[net.a[l] + 1], ++net.offset[net.b[l] + 1];
   }
@@ -141,7 +143,7 @@ const typename World<Real>::LinkFlow& World<Real>::link_flow(double tau) {
   LinkFlow f;
   f.tau = tau;
   const std::size_t m = net_.by_color.size();  // in colour order
-  f.ca.resize(m), f.cb.resize(m), f.energy.resize(m);
+  f.ca.resize(m), f.cb.resize(m);
   auto inverse_mass = [&](std::uint32_t j) {
     return types_[j] == BodyType::dynamic ? 1.0 / mass_[j] : 0.0;
   };
@@ -151,7 +153,6 @@ const typename World<Real>::LinkFlow& World<Real>::link_flow(double tau) {
     const double sum = ia + ib, mu = link_defs_[l].spring.damping * sum;
     const double q = sum > 0.0 ? std::expm1(-mu * tau) / sum : 0.0;
     f.ca[i] = static_cast<Real>(ia * q), f.cb[i] = static_cast<Real>(ib * q);
-    f.energy[i] = static_cast<Real>(sum > 0.0 ? -0.5 * std::expm1(-2.0 * mu * tau) / sum : 0.0);
   }
   link_flows_.push_back(std::move(f));
   return link_flows_.back();
@@ -215,22 +216,33 @@ void World<Real>::step_multipass(const TickInput& input) {
       m > 0 && (method == Integrator::velocity_verlet || method == Integrator::forest_ruth);
   if (!strang) fsal_valid_ = false;  // d_ is other methods' scratch
   if (strang) {
-    // One stage per Verlet step, three (w1·h, w0·h, w1·h) per Forest–Ruth step.
-    auto stage_of = [&](Real hh) {
+    // One stage per Verlet step, three (w1·h, w0·h, w1·h) per Forest–Ruth step. The links'
+    // damping sweeps: around every stage's drift over its own h/2 (DampingSplit::per_stage),
+    // or once around the whole Forest–Ruth step over h/2 (per_step: the first stage's C↑ and
+    // the last stage's C↓ only).
+    const bool verlet = method == Integrator::velocity_verlet;
+    const bool split_per_step = !verlet && settings_.damping_split == DampingSplit::per_step;
+    auto sweep = [&](double tau) {
+      const LinkFlow& f = link_flow(tau);
+      return SweepFlow<Real>{f.ca.data(), f.cb.data()};
+    };
+    auto stage_of = [&](Real hh, bool up, bool down) {
       StrangStage<Real> st{.h = hh};
       if (c.damping) st.decay = damping_decay(0.5 * double(hh));
-      if (net_.damped) {
-        const LinkFlow& f = link_flow(0.5 * double(hh));
-        st.ca = f.ca.data(), st.cb = f.cb.data(), st.energy = f.energy.data();
+      if (net_.damped && (up || down)) {
+        const SweepFlow<Real> flow = sweep(0.5 * double(split_per_step ? h : hh));
+        if (up) st.up = flow;
+        if (down) st.down = flow;
       }
       return st;
     };
-    const bool verlet = method == Integrator::velocity_verlet;
     // Twice: a cache full of other steps' factors is cleared by the first look-up that
-    // misses, which could drop the other τ's; the second round finds both.
-    if (!verlet) stage_of(sizes.h1), stage_of(sizes.h0);
-    const StrangStage<Real> outer = stage_of(verlet ? h : sizes.h1);
-    const StrangStage<Real> inner = verlet ? outer : stage_of(sizes.h0);
+    // misses, which could drop the other τ's; the second round finds them all.
+    if (!verlet) stage_of(sizes.h1, true, true), stage_of(sizes.h0, true, true);
+    const bool inner_flows = !split_per_step;
+    const StrangStage<Real> first = stage_of(verlet ? h : sizes.h1, true, inner_flows);
+    const StrangStage<Real> inner = verlet ? first : stage_of(sizes.h0, inner_flows, inner_flows);
+    const StrangStage<Real> last = verlet ? first : stage_of(sizes.h1, inner_flows, true);
     const std::size_t per_step = verlet ? 1 : 3;
     StrangChain<decltype(p), Real> chain(p, d_[0].data(), d_[1].data(), unit_x_.data(),
                                          unit_y_.data());
@@ -241,7 +253,11 @@ void World<Real>::step_multipass(const TickInput& input) {
                       std::equal(y_.begin(), y_.end(), fsal_y_.begin(), bits_equal<Real>);
     chain.run(
         per_step * static_cast<std::size_t>(settings_.substeps),
-        [&](std::size_t i) { return i % per_step == 1 ? inner : outer; }, same);
+        [&](std::size_t i) {
+          const std::size_t k = i % per_step;
+          return k == 0 ? first : k == 1 ? inner : last;
+        },
+        same);
     std::copy(x_.begin(), x_.end(), fsal_x_.begin()),
         std::copy(y_.begin(), y_.end(), fsal_y_.begin());
     fsal_valid_ = true;

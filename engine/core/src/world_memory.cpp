@@ -47,7 +47,7 @@ std::size_t World<Real>::snapshot_bytes() const {
            net_.incident, net_.driven, net_.color_offset, net_.by_color, net_.color_a, net_.color_b,
            net_.color_k, net_.color_rest, fx_, fy_, power_body_, power_link_, link_flows_, unit_x_,
            unit_y_, fsal_x_, fsal_y_);
-  for (const LinkFlow& f : link_flows_) n += sum(f.ca, f.cb, f.energy);
+  for (const LinkFlow& f : link_flows_) n += sum(f.ca, f.cb);
   for (std::size_t i = 0; i < s_.size(); ++i) n += bytes_of(s_[i]) + bytes_of(d_[i]);
   n += sum(contact_.body, contact_.radius, contact_.x0, contact_.y0, contact_.vx0, contact_.vy0,
            contact_.after);

@@ -29,6 +29,27 @@
 
 namespace fixstep {
 
+/// Where velocity Verlet and Forest–Ruth apply the damping of a network's links: each link's
+/// exact damping flow, swept over the links by colours before (C↑) and after (C↓) a drift
+/// (link_damping.hpp, docs/INTEGRATORS.md). Verlet has one stage per step: both choices give
+/// the same step. Other integrators and networks without damped links ignore it.
+enum class DampingSplit {
+  /// Around every stage's drift: Forest–Ruth keeps order 4 with damped links, at 6 sweeps
+  /// over the links per step (about 5x semi-implicit Euler's tick on a cloth). The default:
+  /// order 4 is why one picks Forest–Ruth.
+  per_stage,
+  /// Once around each Forest–Ruth step, C↑(h/2) FR(h) C↓(h/2): 2 sweeps per step (about 3.5x
+  /// semi-implicit Euler's tick), order 4 on the springs but 2 in the link damping (measured
+  /// on the damped chain: tests/test_coupled.cpp). Without damped links, the same bits as
+  /// per_stage.
+  per_step,
+};
+
+/// "per_stage" / "per_step".
+[[nodiscard]] std::string_view damping_split_name(DampingSplit split);
+/// The DampingSplit named `name`, or nullopt.
+[[nodiscard]] std::optional<DampingSplit> parse_damping_split(std::string_view name);
+
 /// World-wide simulation settings.
 struct WorldSettings {
   double dt = 1.0 / 60.0;  ///< fixed physics step (one tick), s; finite and > 0
@@ -51,6 +72,8 @@ struct WorldSettings {
   /// states are bit-identical for every thread count: each body gathers its link forces in
   /// a fixed order, and no float is ever added atomically.
   int threads = 0;
+  /// Where velocity Verlet and Forest–Ruth apply damped links' flows (see DampingSplit).
+  DampingSplit damping_split = DampingSplit::per_stage;
   /// Body-vs-body contacts of discs (world_discs.cpp); unset (the default): none are computed
   /// and the world pays nothing for them. Contacts with planes need no setting.
   std::optional<ContactSettings> contacts = std::nullopt;
@@ -502,15 +525,16 @@ class World {
     std::vector<Real> color_k, color_rest;
     std::vector<std::uint32_t> driven;  ///< links with a static or kinematic end, in link order
     bool rest_length = false;           ///< some link has L > 0
+    bool all_rest_length = false;       ///< every link has L > 0 (none has L = 0)
     bool damped = false;                ///< some link has b > 0
   } net_;
   // Each link's exact damping flow over τ (link_damping.hpp), in colour order (by_color),
   // cached per τ like flows_:
-  // Δv_a = ca·p, Δv_b = -cb·p for the relative velocity p along the link, and the kinetic
-  // energy it removes, energy·|p|² (J).
+  // Δv_a = ca·p, Δv_b = -cb·p for the relative velocity p along the link (the kinetic energy
+  // it removes is counted per body by the kicks around the sweeps: strang_network.hpp).
   struct LinkFlow {
     double tau = -1.0;
-    std::vector<Real> ca, cb, energy;
+    std::vector<Real> ca, cb;  ///< per link in colour order (link_damping.hpp)
   };
   std::vector<LinkFlow> link_flows_;
   std::vector<Real> unit_x_,
