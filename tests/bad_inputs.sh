@@ -89,6 +89,9 @@ integrator = "verlett"
 case_ "unknown precision" "$ok_world"'
 precision = "f16"
 '"$body"
+case_ "unknown damping split" "$ok_world"'
+damping_split = "per_tick"
+'"$body"
 case_ "substeps = 0" "$ok_world
 substeps = 0
 $body"
@@ -635,6 +638,7 @@ case_ "compare: dt 1/0" "" compare good.toml --with rk4@1/0 --with rk4 --out fra
 case_ "compare: dt 2 s" "" compare good.toml --with rk4@2 --with rk4 --out frames
 case_ "compare: a misspelt option (substep)" "" compare good.toml --with rk4:substep=2 --with rk4 --out frames
 case_ "compare: substeps 0" "" compare good.toml --with rk4:substeps=0 --with rk4 --out frames
+case_ "compare: an unknown damping split" "" compare good.toml --with forest_ruth:split=half --with rk4 --out frames
 printf '%s\n%s\n%s\n' "$ok_world" "$body" 'spring = { anchor = [1.0, 0.0], stiffness = 1e6 }' > stiff.toml
 case_ "compare: a tile the guard refuses" "" compare stiff.toml --with explicit_euler --with rk4 --out frames
 case_ "compare: --window with --out" "" compare good.toml --with rk4 --with rk4 --window --out frames

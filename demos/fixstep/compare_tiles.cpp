@@ -16,10 +16,12 @@ namespace fixstep::cli {
 namespace {
 
 [[noreturn]] void bad_spec(std::string_view text, const std::string& what) {
-  throw std::invalid_argument(fmt::format(
-      "{} in '{}'; expected INTEGRATOR[@DT][:substeps=N][:precision=f32|f64], e.g. rk4@1/30 or "
-      "implicit_euler@1/15:substeps=2",
-      what, text));
+  throw std::invalid_argument(
+      fmt::format("{} in '{}'; expected "
+                  "INTEGRATOR[@DT][:substeps=N][:precision=f32|f64][:split=per_stage|per_step], "
+                  "e.g. rk4@1/30 or "
+                  "implicit_euler@1/15:substeps=2",
+                  what, text));
 }
 
 /// A whole decimal number of the text, or nullopt (no sign, no spaces, nothing after it).
@@ -72,8 +74,13 @@ void parse_option(std::string_view spec, const std::string& option, TileSpec& ou
   } else if (key == "precision") {
     out.precision = parse_precision(value);
     if (!out.precision) bad_spec(spec, fmt::format("precision '{}' is not f32 or f64", value));
+  } else if (key == "split") {
+    out.damping_split = parse_damping_split(value);
+    if (!out.damping_split) {
+      bad_spec(spec, fmt::format("split '{}' is not per_stage or per_step", value));
+    }
   } else {
-    const auto best = closest(key, std::vector<std::string>{"substeps", "precision"});
+    const auto best = closest(key, std::vector<std::string>{"substeps", "precision", "split"});
     bad_spec(spec, fmt::format("unknown option '{}'{}", key,
                                best ? fmt::format(" (did you mean {}?)", *best) : ""));
   }
@@ -114,6 +121,7 @@ Scene tile_scene(const Scene& base, const TileSpec& spec) {
   if (spec.dt) s.world.dt = *spec.dt;
   if (spec.substeps) s.world.substeps = *spec.substeps;
   if (spec.precision) s.precision = *spec.precision;
+  if (spec.damping_split) s.world.damping_split = *spec.damping_split;
   return s;
 }
 
@@ -122,9 +130,10 @@ std::string tile_label(const TileSpec& spec, const Scene& scene) {
   const std::string dt = at == std::string::npos
                              ? fmt::format("{:g}", scene.world.dt)
                              : spec.text.substr(at + 1, spec.text.find(':') - at - 1);
-  return fmt::format("{} @ {} s{}{}", integrator_name(scene.world.integrator), dt,
+  return fmt::format("{} @ {} s{}{}{}", integrator_name(scene.world.integrator), dt,
                      scene.world.substeps > 1 ? fmt::format(" x{}", scene.world.substeps) : "",
-                     scene.precision == Precision::f32 ? " f32" : "");
+                     scene.precision == Precision::f32 ? " f32" : "",
+                     scene.world.damping_split == DampingSplit::per_step ? " per_step" : "");
 }
 
 std::size_t most_accurate(std::span<const Scene> tiles) {

@@ -29,6 +29,7 @@ struct TileSpec {
   std::optional<double> dt;  ///< s
   std::optional<int> substeps;
   std::optional<Precision> precision;
+  std::optional<DampingSplit> damping_split;  ///< ":split=per_step" (velocity Verlet, Forest–Ruth)
 };
 
 /// Parses a --with value. Throws std::invalid_argument naming the part that is wrong, the value

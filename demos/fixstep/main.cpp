@@ -74,9 +74,11 @@ void add_compare_options(CLI::App* cmd, fixstep::cli::CompareOptions& o) {
   using namespace fixstep::cli;
   cmd->add_option("scene", o.scene, "scene file (TOML), e.g. assets/scenes/spring_damper.toml")
       ->required();
-  cmd->add_option("--with", o.with,
-                  "a tile: INTEGRATOR[@DT][:substeps=N][:precision=f32|f64], DT in s as a "
-                  "decimal or A/B (e.g. rk4@1/30); give it 2 to 6 times")
+  cmd->add_option(
+         "--with", o.with,
+         "a tile: INTEGRATOR[@DT][:substeps=N][:precision=f32|f64][:split=per_stage|per_step], DT "
+         "in s as a "
+         "decimal or A/B (e.g. rk4@1/30); give it 2 to 6 times")
       ->required()
       ->check(tile_spec_validator);
   auto* out =

@@ -75,6 +75,8 @@ std::uint64_t definition_hash(const WorldDef& def) {
   h.add(def.precision);
   h.add(def.settings.dt), h.add(def.settings.integrator), h.add(def.settings.substeps);
   h.add(def.settings.flush_denormals);
+  // A non-default damping split (#22) enters only when set: older recordings keep their hash.
+  if (def.settings.damping_split != DampingSplit::per_stage) h.add(def.settings.damping_split);
   h.add(def.bodies.size());
   for (const BodyDef& b : def.bodies) hash_body(h, b);
   h.add(def.links.size());

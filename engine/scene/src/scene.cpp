@@ -173,7 +173,8 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
                    "add [world] with dt, the fixed step in s, e.g. dt = 0.01");
   }
   r.check_keys(*world, "world",
-               {"dt", "integrator", "precision", "substeps", "allow_unstable", "flush_denormals"});
+               {"dt", "integrator", "precision", "substeps", "allow_unstable", "flush_denormals",
+                "damping_split"});
   scene.world.dt = r.required_number(*world, "world", "dt",
                                      "the fixed physics step in s, e.g. dt = 0.01 (100 ticks/s)");
   r.require(scene.world.dt > 0.0 && scene.world.dt <= 1.0, *world, "dt", "world.dt",
@@ -217,6 +218,14 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   }
   if (auto b = boolean(r, *world, "flush_denormals", "world.flush_denormals")) {
     scene.world.flush_denormals = *b;
+  }
+  if (auto name = r.string(*world, "damping_split", "world.damping_split")) {
+    const auto split = parse_damping_split(*name);
+    if (!split) {
+      r.fail(world->get("damping_split")->source(), "world.damping_split",
+             fmt::format("unknown damping split \"{}\" (valid: per_stage, per_step)", *name));
+    }
+    scene.world.damping_split = *split;
   }
 
   // Every number first, so that a generated position beyond float range is the spacing's fault.

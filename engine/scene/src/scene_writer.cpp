@@ -163,6 +163,9 @@ void write_world(std::string& out, const WorldDef& def) {
                  num(s.dt), integrator_name(s.integrator), precision_name(def.precision),
                  s.substeps);
   if (!s.flush_denormals) out += "flush_denormals = false\n";
+  if (s.damping_split != DampingSplit::per_stage) {
+    out += fmt::format("damping_split = \"{}\"\n", damping_split_name(s.damping_split));
+  }
   if (def.allow_unstable) out += "allow_unstable = true\n";
   if (s.contacts) {
     fmt::format_to(it, "\n[contacts]\nrestitution = {}\nfriction = {}\n",
