@@ -7,9 +7,11 @@
 
 #include "body_field.hpp"
 #include "disc_contacts.hpp"
+#include "fixstep/det_math.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
+#include "float_mode.hpp"
 
 namespace fixstep {
 
@@ -94,6 +96,15 @@ bool sweep(SimdLevel level, FIXSTEP_SWEEP_PARAMS) {
 #undef FIXSTEP_SWEEP_PARAMS
 #undef FIXSTEP_SWEEP_ARGS
 
+/// Sets every subnormal value of v (0 < |v| < the least normal) to zero of its sign: the
+/// software flush of WorldSettings::flush_denormals. Plain compares and copies, so the same on
+/// every platform and FPU mode; vectorized (compare and blend) at -O3.
+template <class Real>
+void flush_subnormals(std::vector<Real>& v) {
+  constexpr Real least_normal = std::numeric_limits<Real>::min();
+  for (Real& e : v) e = std::abs(e) < least_normal ? std::copysign(Real(0), e) : e;
+}
+
 }  // namespace
 
 template <class Real>
@@ -142,7 +153,7 @@ const Real* World<Real>::damping_decay(double tau) {
     f.tau = tau;
     f.decay.resize(coeff_.gamma.size());
     for (std::size_t j = 0; j < f.decay.size(); ++j) {
-      f.decay[j] = static_cast<Real>(std::exp(-double(coeff_.gamma[j]) * tau));
+      f.decay[j] = static_cast<Real>(det::exp(-double(coeff_.gamma[j]) * tau));
     }
     flows_.push_back(std::move(f));
     flow = flows_.end() - 1;
@@ -181,7 +192,7 @@ void World<Real>::apply_drag(const TickInput& input) {
 
 template <class Real>
 void World<Real>::step(const TickInput& input) {
-  const FlushDenormals ftz(settings_.flush_denormals);
+  const DefaultFloatMode ieee;  // no state depends on the caller's FPU mode (float_mode.hpp)
   if (terms_dirty_) rebuild_terms();
   if (!input.bodies.empty()) apply_body_inputs(input);
   if (bodies_.contains(input.drag_body) &&
@@ -218,6 +229,9 @@ void World<Real>::step(const TickInput& input) {
   } else if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
     ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
     begun_.clear(), touching_.clear();
+  }
+  if (settings_.flush_denormals) {
+    for (std::vector<Real>* v : {&x_, &y_, &vx_, &vy_}) flush_subnormals(*v);
   }
 }
 
