@@ -319,21 +319,34 @@ bool any_subnormal(const World<float>& w) {
   return false;
 }
 
-TEST(FloatHygiene, DampedF32StateFlushesToZeroInsteadOfGoingSubnormal) {
+TEST(FloatHygiene, DampedF32StateFlushesToZeroInsteadOfStayingSubnormal) {
   // A strongly damped f32 spring (ζ = 2.5) decays by e^{-0.1} per tick: it passes 1e-38 after
-  // some 900 ticks. With flush_denormals the state goes from normal floats straight to 0.
+  // some 900 ticks. With flush_denormals no subnormal state survives a flush tick (every
+  // flush_denormals_every-th), so the state meets subnormals for fewer ticks than that and
+  // ends exactly 0; without, the state stays subnormal for hundreds of ticks.
   for (bool flush : {true, false}) {
     World<float> w(WorldSettings{.dt = 0.01, .flush_denormals = flush});
     BodyDef d;
     d.body.position = {1.0, 1.0};
     d.spring = SpringDamper{.anchor = {}, .stiffness = 100.0, .damping = 50.0};
     w.create_body(d);
-    bool seen = false;
+    int subnormal_ticks = 0;
     for (int i = 0; i < 20'000; ++i) {
       w.step();
-      seen = seen || any_subnormal(w);
+      const bool sub = any_subnormal(w);
+      subnormal_ticks += sub;
+      if (flush && w.tick() % flush_denormals_every == 0) {
+        EXPECT_FALSE(sub) << "tick " << w.tick();
+      }
     }
-    EXPECT_EQ(seen, !flush) << "flush_denormals = " << flush;
+    if (flush) {
+      EXPECT_GT(subnormal_ticks, 0);  // gradual underflow within and between flushes
+      EXPECT_LT(subnormal_ticks, int(flush_denormals_every));
+      EXPECT_EQ(w.x()[0], 0.0f);
+      EXPECT_EQ(w.vx()[0], 0.0f);
+    } else {
+      EXPECT_GT(subnormal_ticks, int(flush_denormals_every));
+    }
   }
 }
 
