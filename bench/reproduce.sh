@@ -3,8 +3,8 @@
 #   bash bench/reproduce.sh            (about 15 minutes on 2 cores)
 #   bash bench/reproduce.sh coupled    (only section 6, coupled systems against peers: ~3 min)
 #   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers: ~3-5 min)
-#   bash bench/reproduce.sh network    (only section 6's integrator costs on damped networks,
-#                                       issue #22: ~1 min)
+#   bash bench/reproduce.sh network    (only section 6.1: integrator costs and the trade on
+#                                       damped networks, issue #22: ~3 min)
 # Builds the optimised benchmark tree (build/bench), runs each study into docs/perf/, and
 # splices the generated markdown into docs/PERFORMANCE.md between its
 # "<!-- BEGIN name -->" / "<!-- END name -->" markers. Run on an otherwise idle machine:
@@ -68,6 +68,8 @@ fi
 if [ -z "$only" ] || [ "$only" = network ]; then
   "$bin/bench_network_integrators" --out "$out" > "$out/network_integrators.log"
   { measured_on; cat "$out/network_integrators.md"; } > "$out/network_integrators.section.md"
+  "$bin/network_trade" --out "$out" > "$out/network_trade.log"
+  { measured_on; cat "$out/network_trade.md"; } > "$out/network_trade.section.md"
 fi
 
 splice() {  # splice NAME FILE: replace the text between the NAME markers with FILE
@@ -88,5 +90,6 @@ if [ -z "$only" ] || [ "$only" = coupled ]; then splice coupled "$out/coupled.se
 if [ -z "$only" ] || [ "$only" = discs ]; then splice discs "$out/discs.section.md"; fi
 if [ -z "$only" ] || [ "$only" = network ]; then
   splice network_integrators "$out/network_integrators.section.md"
+  splice network_trade "$out/network_trade.section.md"
 fi
 echo "reproduce: docs/PERFORMANCE.md and $out/ regenerated"

@@ -80,6 +80,7 @@ Scene load_with_overrides(const SceneOptions& o) {
   if (o.dt) scene.world.dt = *o.dt;
   if (o.precision) scene.precision = *parse_precision(*o.precision);
   if (o.substeps) scene.world.substeps = *o.substeps;
+  if (o.damping_split) scene.world.damping_split = *parse_damping_split(*o.damping_split);
   if (o.allow_unstable) scene.allow_unstable = true;
   try {  // the overrides may ask for more work per tick than the file did (limits.hpp)
     check_world_limits(scene.bodies, scene.links, scene.world);

@@ -33,6 +33,7 @@ struct SceneOptions {
   std::optional<double> dt;  ///< s
   std::optional<std::string> precision;
   std::optional<int> substeps;
+  std::optional<std::string> damping_split;  ///< per_stage | per_step (WorldSettings)
   bool allow_unstable = false;
   bool quiet = false;  ///< --quiet: errors only (no summary, warnings or progress)
 };

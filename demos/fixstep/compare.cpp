@@ -42,10 +42,12 @@ std::vector<std::uint8_t> blank_frame(int width, int height) {
 /// The `fixstep run` command line that steps tile i's configuration to the same tick.
 std::string same_as_run(const std::string& scene_file, const Tile& t) {
   const Simulation& sim = t.session->simulation();
+  const bool per_step = sim.settings().damping_split == DampingSplit::per_step;
   return fmt::format(
-      "fixstep run {} --integrator {} --dt {} --substeps {} --precision {} --steps {}", scene_file,
-      integrator_name(sim.settings().integrator), sim.settings().dt, sim.settings().substeps,
-      precision_name(sim.precision()), sim.tick());
+      "fixstep run {} --integrator {} --dt {} --substeps {} --precision {}{} --steps {}",
+      scene_file, integrator_name(sim.settings().integrator), sim.settings().dt,
+      sim.settings().substeps, precision_name(sim.precision()),
+      per_step ? " --damping-split per_step" : "", sim.tick());
 }
 
 /// A line per tile on standard output and, when `csv` is set, a CSV row per tile.
@@ -92,7 +94,7 @@ void warn_repeated(std::span<const TileSpec> specs) {
     for (std::size_t j = 0; j < i; ++j) {
       const TileSpec& t = specs[j];
       if (s.integrator == t.integrator && s.dt == t.dt && s.substeps == t.substeps &&
-          s.precision == t.precision) {
+          s.precision == t.precision && s.damping_split == t.damping_split) {
         std::fprintf(stderr,
                      "warning: --with '%s' (tile %zu) configures the same run as --with '%s' "
                      "(tile %zu): the two tiles will be identical\n",
