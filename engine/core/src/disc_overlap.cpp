@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/det_math.hpp"
+
 namespace fixstep {
 
 namespace {
@@ -94,7 +96,7 @@ bool discs_may_touch(const BodyDef& a, const BodyDef& b) {
 double disc_overlap_depth(const BodyDef& a, const BodyDef& b) {
   const double dx = a.body.position.x - b.body.position.x;
   const double dy = a.body.position.y - b.body.position.y;
-  return a.collider->radius + b.collider->radius - std::hypot(dx, dy);
+  return a.collider->radius + b.collider->radius - det::hypot(dx, dy);
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> first_disc_overlap(

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fixstep/det_math.hpp"
+
 namespace fixstep {
 
 Entity pick_body(const Simulation& sim, Vec2 point, double tolerance) {
@@ -12,7 +14,7 @@ Entity pick_body(const Simulation& sim, Vec2 point, double tolerance) {
   double best_distance = 0.0;
   sim.visit([&](const auto& w) {
     for (std::size_t j = 0; j < w.body_count(); ++j) {
-      const double d = std::hypot(double(w.x()[j]) - point.x, double(w.y()[j]) - point.y);
+      const double d = det::hypot(double(w.x()[j]) - point.x, double(w.y()[j]) - point.y);
       const Appearance* a = w.template get<Appearance>(w.entities()[j]);
       const double reach = std::max(a ? a->radius : 0.0, tolerance);
       if (d <= reach && (best == no_body || d < best_distance)) {

@@ -25,6 +25,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "fixstep/det_math.hpp"
 #include "fixstep/stability.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/work_progress.hpp"
@@ -47,7 +48,7 @@ struct Sym2 {
 
 /// Unit direction of d and its length (0 and a zero direction for d = 0).
 std::pair<Vec2, double> direction(Vec2 d) {
-  const double len = std::hypot(d.x, d.y);
+  const double len = det::hypot(d.x, d.y);
   return {len > 0.0 ? Vec2{d.x / len, d.y / len} : Vec2{}, len};
 }
 
@@ -196,7 +197,7 @@ std::size_t largest_body(const Operator& op, const std::vector<double>& v) {
   std::size_t best = 0;
   double size = -1.0;
   for (std::size_t i = 0; i < op.scale.size(); ++i) {
-    const double s = op.scale[i] * std::hypot(v[2 * i], v[2 * i + 1]);
+    const double s = op.scale[i] * det::hypot(v[2 * i], v[2 * i + 1]);
     if (s > size) size = s, best = i;
   }
   return best;

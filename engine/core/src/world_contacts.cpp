@@ -41,6 +41,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "fixstep/det_math.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -166,7 +167,7 @@ std::size_t World<Real>::add_plane(const PlaneDef& def) {
   };
   check(def.normal.x, true, "normal", "finite");
   check(def.normal.y, true, "normal", "finite");
-  const double len = std::hypot(def.normal.x, def.normal.y);
+  const double len = det::hypot(def.normal.x, def.normal.y);
   if (!(len > 0.0) || !std::isfinite(len)) {
     throw std::invalid_argument(fmt::format("{}: normal must be a non-zero vector (got [{}, {}])",
                                             who, def.normal.x, def.normal.y));

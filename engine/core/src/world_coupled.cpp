@@ -19,6 +19,7 @@
 #include <type_traits>
 
 #include "body_field.hpp"
+#include "fixstep/det_math.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
 #include "link_damping.hpp"
@@ -149,9 +150,9 @@ const typename World<Real>::LinkFlow& World<Real>::link_flow(double tau) {
     const std::uint32_t l = net_.by_color[i];
     const double ia = inverse_mass(net_.a[l]), ib = inverse_mass(net_.b[l]);
     const double sum = ia + ib, mu = link_defs_[l].spring.damping * sum;
-    const double q = sum > 0.0 ? std::expm1(-mu * tau) / sum : 0.0;
+    const double q = sum > 0.0 ? det::expm1(-mu * tau) / sum : 0.0;
     f.ca[i] = static_cast<Real>(ia * q), f.cb[i] = static_cast<Real>(ib * q);
-    f.energy[i] = static_cast<Real>(sum > 0.0 ? -0.5 * std::expm1(-2.0 * mu * tau) / sum : 0.0);
+    f.energy[i] = static_cast<Real>(sum > 0.0 ? -0.5 * det::expm1(-2.0 * mu * tau) / sum : 0.0);
   }
   link_flows_.push_back(std::move(f));
   return link_flows_.back();

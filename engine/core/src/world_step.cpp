@@ -7,6 +7,7 @@
 
 #include "body_field.hpp"
 #include "disc_contacts.hpp"
+#include "fixstep/det_math.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
@@ -142,7 +143,7 @@ const Real* World<Real>::damping_decay(double tau) {
     f.tau = tau;
     f.decay.resize(coeff_.gamma.size());
     for (std::size_t j = 0; j < f.decay.size(); ++j) {
-      f.decay[j] = static_cast<Real>(std::exp(-double(coeff_.gamma[j]) * tau));
+      f.decay[j] = static_cast<Real>(det::exp(-double(coeff_.gamma[j]) * tau));
     }
     flows_.push_back(std::move(f));
     flow = flows_.end() - 1;

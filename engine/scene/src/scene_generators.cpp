@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "fixstep/det_math.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {
@@ -135,7 +136,7 @@ class Generator {
   /// the bodies' starting distance unless `spec` gives one.
   void add_link(std::size_t a, std::size_t b, LinkSpring spring, const SpringSpec& spec) {
     const Vec2 pa = scene_.bodies[a].body.position, pb = scene_.bodies[b].body.position;
-    if (!spec.rest_length) spring.rest_length = std::hypot(pb.x - pa.x, pb.y - pa.y);
+    if (!spec.rest_length) spring.rest_length = det::hypot(pb.x - pa.x, pb.y - pa.y);
     if (!representable(spring.rest_length, scene_.precision)) {
       r_.fail(required("spacing").source(), key("spacing"),
               fmt::format("bodies {} and {} start {:g} m apart, beyond the range of {}",

@@ -2,6 +2,7 @@
 // "Scene format".
 #include <cmath>
 
+#include "fixstep/det_math.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {
@@ -15,7 +16,7 @@ PlaneDef parse_plane(Reader& r, const toml::table& t, const std::string& path) {
   PlaneDef p;
   const auto normal = r.vec2(t, "normal", path + ".normal");
   if (!normal) r.fail_missing(t, path, {"normal"}, "missing (required): [x, y] into free space");
-  const double len = std::hypot(normal->x, normal->y);
+  const double len = det::hypot(normal->x, normal->y);
   if (!(len > 0.0) || !std::isfinite(len)) {
     r.fail(t.get("normal")->source(), path + ".normal",
            fmt::format("must be a non-zero vector (got [{}, {}])", normal->x, normal->y));

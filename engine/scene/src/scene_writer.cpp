@@ -14,6 +14,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "fixstep/det_math.hpp"
 #include "fixstep/file_write.hpp"
 #include "fixstep/recording.hpp"
 #include "fixstep/scene.hpp"
@@ -126,14 +127,14 @@ void check_immovable(const BodyDef& b, const std::string& who) {
 
 /// The plane's normal as parse_plane normalises it.
 Vec2 unit(Vec2 n) {
-  const double len = std::hypot(n.x, n.y);
+  const double len = det::hypot(n.x, n.y);
   return Vec2{n.x / len, n.y / len};
 }
 
 /// A normal to write for `n` that the loader's normalisation turns into n bit for bit: n itself
 /// when it is a fixed point (axis-aligned unit normals are), else one within 2 ulps of it.
 Vec2 written_normal(Vec2 n, std::size_t i) {
-  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !(std::hypot(n.x, n.y) > 0.0)) {
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !(det::hypot(n.x, n.y) > 0.0)) {
     return n;  // the loader refuses it, with its message
   }
   if (same_bits(unit(n), n)) return n;
