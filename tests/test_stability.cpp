@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cfenv>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -11,6 +12,10 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "fixstep/world.hpp"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <xmmintrin.h>
+#endif
 
 namespace fixstep {
 namespace {
@@ -329,6 +334,45 @@ TEST(FloatHygiene, DampedF32StateFlushesToZeroInsteadOfGoingSubnormal) {
       seen = seen || any_subnormal(w);
     }
     EXPECT_EQ(seen, !flush) << "flush_denormals = " << flush;
+  }
+}
+
+// Issue 23: the caller's FPU mode cannot reach a state. World::step runs in the IEEE default
+// mode (float_mode.hpp) and flushes subnormals in software, so a caller that set flush-to-zero,
+// denormals-are-zero (x86 MXCSR) or upward rounding gets the bits of one that did not, with the
+// flush on and off, through the subnormal range (the damped spring above, every tick's hash of
+// 20 000), for a
+// velocity Verlet world whose damping factors use det::exp too.
+std::uint64_t damped_hash(bool flush, Integrator integrator) {
+  World<float> w(WorldSettings{.dt = 0.01, .integrator = integrator, .flush_denormals = flush});
+  BodyDef d;
+  d.body.position = {1.0, 1.0};
+  d.spring = SpringDamper{.anchor = {}, .stiffness = 100.0, .damping = 50.0};
+  w.create_body(d);
+  std::uint64_t h = 0;
+  for (int i = 0; i < 20'000; ++i) {
+    w.step();
+    h = h * 31 + w.state_hash();  // every tick: the state crosses 1e-38 on the way to zero
+  }
+  return h;
+}
+
+TEST(FloatHygiene, TheCallersFpuModeDoesNotReachTheState) {
+  for (bool flush : {true, false}) {
+    for (Integrator integrator : {Integrator::semi_implicit_euler, Integrator::velocity_verlet}) {
+      const std::uint64_t ieee = damped_hash(flush, integrator);
+#if defined(__x86_64__) || defined(__i386__)
+      const unsigned saved = _mm_getcsr();
+      _mm_setcsr(saved | 0x8040u);  // FTZ and DAZ
+      const std::uint64_t ftz = damped_hash(flush, integrator);
+      _mm_setcsr(saved);
+      EXPECT_EQ(ftz, ieee) << "FTZ/DAZ, flush_denormals = " << flush;
+#endif
+      ASSERT_EQ(std::fesetround(FE_UPWARD), 0);
+      const std::uint64_t upward = damped_hash(flush, integrator);
+      std::fesetround(FE_TONEAREST);
+      EXPECT_EQ(upward, ieee) << "round upward, flush_denormals = " << flush;
+    }
   }
 }
 

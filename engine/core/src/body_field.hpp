@@ -12,41 +12,11 @@
 
 #include "fixstep/integrators.hpp"
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <xmmintrin.h>
-#endif
-
 namespace fixstep {
 
 // Internal linkage on purpose: the sweeps are compiled for several ISAs from these templates,
 // and no wider-ISA copy may be picked by the linker for a baseline caller (see world_step.cpp).
 namespace {
-
-/// Sets flush-to-zero (MXCSR bit 15) and denormals-are-zero (bit 6) for the scope of one step
-/// and restores the caller's mode afterwards. x86 only; elsewhere a no-op (ARMv8 has no
-/// comparable slow path for subnormals in NEON).
-class FlushDenormals {
- public:
-  explicit FlushDenormals(bool on) : on_(on) {
-#if defined(__x86_64__) || defined(__i386__)
-    if (on_) {
-      saved_ = _mm_getcsr();
-      _mm_setcsr(saved_ | 0x8040u);
-    }
-#endif
-  }
-  ~FlushDenormals() {
-#if defined(__x86_64__) || defined(__i386__)
-    if (on_) _mm_setcsr(saved_);
-#endif
-  }
-  FlushDenormals(const FlushDenormals&) = delete;
-  FlushDenormals& operator=(const FlushDenormals&) = delete;
-
- private:
-  bool on_;
-  unsigned saved_ = 0;
-};
 
 enum class SpringShape { none, linear, rest_length };
 

@@ -11,6 +11,7 @@
 #include "fixstep/simd.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
+#include "float_mode.hpp"
 
 namespace fixstep {
 
@@ -94,6 +95,15 @@ bool sweep(SimdLevel level, FIXSTEP_SWEEP_PARAMS) {
 }
 #undef FIXSTEP_SWEEP_PARAMS
 #undef FIXSTEP_SWEEP_ARGS
+
+/// Sets every subnormal value of v (0 < |v| < the least normal) to zero of its sign: the
+/// software flush of WorldSettings::flush_denormals. Plain compares and copies, so the same on
+/// every platform and FPU mode; vectorized (compare and blend) at -O3.
+template <class Real>
+void flush_subnormals(std::vector<Real>& v) {
+  constexpr Real least_normal = std::numeric_limits<Real>::min();
+  for (Real& e : v) e = std::abs(e) < least_normal ? std::copysign(Real(0), e) : e;
+}
 
 }  // namespace
 
@@ -182,7 +192,7 @@ void World<Real>::apply_drag(const TickInput& input) {
 
 template <class Real>
 void World<Real>::step(const TickInput& input) {
-  const FlushDenormals ftz(settings_.flush_denormals);
+  const DefaultFloatMode ieee;  // no state depends on the caller's FPU mode (float_mode.hpp)
   if (terms_dirty_) rebuild_terms();
   if (!input.bodies.empty()) apply_body_inputs(input);
   if (bodies_.contains(input.drag_body) &&
@@ -219,6 +229,9 @@ void World<Real>::step(const TickInput& input) {
   } else if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
     ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
     begun_.clear(), touching_.clear();
+  }
+  if (settings_.flush_denormals) {
+    for (std::vector<Real>* v : {&x_, &y_, &vx_, &vy_}) flush_subnormals(*v);
   }
 }
 

@@ -35,10 +35,13 @@ struct WorldSettings {
   Integrator integrator = Integrator::semi_implicit_euler;
   /// Integration steps per tick, each of dt / substeps (>= 1). A tick is still dt.
   int substeps = 1;
-  /// Flush subnormal floats to zero while stepping (x86 MXCSR FTZ + DAZ, restored after each
-  /// step). A strongly damped f32 state decays into subnormals after some thousands of ticks,
-  /// and x86 then computes 24-145x slower; with this on, long damped runs cost the same as
-  /// fresh ones. The results change only in values below 1.2e-38 (f32) / 2.2e-308 (f64).
+  /// Flush subnormal state to zero: at the end of every tick each x, y, vx, vy with
+  /// 0 < |v| < the least normal (1.2e-38 f32, 2.2e-308 f64) becomes a zero of its sign, in
+  /// software, the same bits on every platform (issue 23; no FTZ/DAZ: World::step runs in the
+  /// IEEE default FPU mode whatever the caller set). A strongly damped f32 state decays into
+  /// subnormals after some thousands of ticks, and x86 then computes 24-145x slower; with this
+  /// on, long damped runs cost the same as fresh ones. Within a tick arithmetic keeps IEEE
+  /// gradual underflow. Off: subnormal states stay (same bits everywhere too, slower on x86).
   bool flush_denormals = true;
   /// Keep account of the energy dissipated by damping and drag (dissipated_energy()), so that
   /// the energy balance E + E_dissipated - E0 measures the integrator alone. Off by default:
