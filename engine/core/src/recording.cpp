@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
+#include <cstring>
 #include <type_traits>
 
 #include "fixstep/file_write.hpp"
@@ -24,7 +24,9 @@ class Fnv1a {
   void add(T value) {
     static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
     if constexpr (std::is_same_v<T, double>) {
-      add_bits(std::bit_cast<std::uint64_t>(value));
+      std::uint64_t bits = 0;  // memcpy, not std::bit_cast: libc++ 13 (emscripten) has none
+      std::memcpy(&bits, &value, sizeof bits);
+      add_bits(bits);
     } else {
       add_bits(static_cast<std::uint64_t>(value));
     }

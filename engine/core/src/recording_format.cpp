@@ -11,7 +11,7 @@
 //   hash N HASH                (state hash after N ticks)
 //   end TICKS HASH             (the last line; its absence means the file is truncated)
 // A tick line is written only when the input differs from the previous tick's; numbers are
-// the shortest text that reads back as the same double (fmt {} / std::from_chars).
+// the shortest text that reads back as the same double (fmt {} / a correctly rounded read).
 // Lines end in \n; the reader also takes \r\n (a recording checked out on Windows with
 // CRLF conversion) and drops the \r, so the same recording reads the same either way. A field
 // or path quoted in a message has its control characters escaped (printable.hpp).
@@ -22,6 +22,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <locale>
+#include <sstream>
 #include <system_error>
 
 #include "fixstep/file_read.hpp"
@@ -101,10 +103,22 @@ std::uint64_t hash16(const Lines& in, std::string_view text, std::string_view fi
   return integer<std::uint64_t>(in, text, field, 16, std::numeric_limits<std::uint64_t>::max());
 }
 
+/// A number as std::from_chars reads it (an optional '-', digits, '.', an exponent: no space,
+/// '+', hexadecimal, inf or nan), correctly rounded, in the classic locale whatever the
+/// program's. Not from_chars itself: libc++ 13 (emscripten 3.1.6) has none for double.
 double real(const Lines& in, std::string_view text, std::string_view field) {
+  const bool plain = !text.empty() && text[0] != '+' &&
+                     text.find_first_not_of("0123456789.eE+-") == std::string_view::npos;
+  thread_local std::istringstream number = [] {
+    std::istringstream s;
+    s.imbue(std::locale::classic());
+    return s;
+  }();
+  number.clear();
+  number.str(std::string(text));
   double v = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc{} || end != text.data() + text.size() || text.empty()) {
+  number >> std::noskipws >> v;
+  if (!plain || number.fail() || number.peek() != std::char_traits<char>::eof()) {
     in.fail(Kind::corrupt, field, fmt::format("expected a number, found {}", shown(text)));
   }
   if (!std::isfinite(v)) in.fail(Kind::corrupt, field, fmt::format("must be finite (got {})", v));

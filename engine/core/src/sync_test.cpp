@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
+#include <cstring>
 #include <stdexcept>
 #include <utility>
 
@@ -38,8 +38,8 @@ void SyncTest::tick_with_rules(const TickInput& input) {
 bool SyncTest::check(std::uint64_t tick) {
   const Slot& s = slot(tick);
   const std::uint64_t hash = sim_.state_hash();
-  const bool same_dissipated = std::bit_cast<std::uint64_t>(sim_.dissipated_energy()) ==
-                               std::bit_cast<std::uint64_t>(s.dissipated);
+  const double dissipated = sim_.dissipated_energy();  // compared bit for bit (memcmp: portable)
+  const bool same_dissipated = std::memcmp(&dissipated, &s.dissipated, sizeof dissipated) == 0;
   if (hash == s.hash && same_dissipated) return true;
   mismatch_ = Mismatch{tick, s.hash, hash, hash == s.hash};
   return false;

@@ -9,6 +9,15 @@
 
 namespace fixstep::detail {
 
+/// Whether this build can start a thread: not wasm32 built without pthreads (emscripten's
+/// default), where std::thread's constructor throws; worlds there step on one thread, with the
+/// same states (WorldSettings::threads).
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+inline constexpr bool threads_supported = false;
+#else
+inline constexpr bool threads_supported = true;
+#endif
+
 /// One worker thread that runs a job while the calling thread runs its own share: a spin on
 /// an atomic generation counter for the short waits between passes, a futex wait
 /// (std::atomic::wait) for the long ones between ticks, so an idle world costs no CPU.

@@ -13,8 +13,8 @@
 // methods keep orders 2 and 4 at the cost of their force passes plus one loop over the links.
 #include <algorithm>
 #include <atomic>
-#include <bit>
 #include <cmath>
+#include <cstring>
 #include <thread>
 #include <type_traits>
 
@@ -44,8 +44,8 @@ constexpr std::size_t min_parallel_range = 4096;
 /// Bitwise equality (what the link sums depend on; -0 and +0, or two NaNs, are not "equal").
 template <class Real>
 bool bits_equal(Real a, Real b) {
-  using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
-  return std::bit_cast<Bits>(a) == std::bit_cast<Bits>(b);
+  // memcmp, not std::bit_cast: emscripten 3.1.6's libc++ 13 has no bit_cast.
+  return std::memcmp(&a, &b, sizeof(Real)) == 0;
 }
 
 }  // namespace
@@ -162,7 +162,10 @@ void World<Real>::step_multipass(const TickInput& input) {
   const std::size_t n = x_.size(), m = net_.a.size();
   const int want = settings_.threads;
   static const bool second_core = std::thread::hardware_concurrency() >= 2;  // a syscall: once
-  threads_used_ = want == 1 ? 1 : want >= 2 ? 2 : (second_core && n >= parallel_min_bodies) ? 2 : 1;
+  threads_used_ = want == 1 || !detail::threads_supported     ? 1
+                  : want >= 2                                 ? 2
+                  : (second_core && n >= parallel_min_bodies) ? 2
+                                                              : 1;
   if (threads_used_ == 2 && !workers_) workers_.reset(new detail::Workers());
   const Real push[2] = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)};
   const Real h = static_cast<Real>(settings_.dt / settings_.substeps);

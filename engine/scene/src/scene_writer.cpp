@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <stdexcept>
 #include <string_view>
@@ -67,7 +67,7 @@ std::string color_text(Rgba8 c) {
 }
 
 bool same_bits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+  return std::memcmp(&a, &b, sizeof a) == 0;  // bit for bit (libc++ 13 has no std::bit_cast)
 }
 bool same_bits(Vec2 a, Vec2 b) {
   return same_bits(a.x, b.x) && same_bits(a.y, b.y);

@@ -49,7 +49,8 @@ struct WorldSettings {
   /// Threads a tick of a world with links may use: 1, 2, or 0 = automatic (2 when the
   /// machine has a second core and the world has at least parallel_min_bodies bodies). The
   /// states are bit-identical for every thread count: each body gathers its link forces in
-  /// a fixed order, and no float is ever added atomically.
+  /// a fixed order, and no float is ever added atomically. Always 1 in a wasm32 build without
+  /// pthreads (emscripten's default), which cannot start a thread.
   int threads = 0;
   /// Body-vs-body contacts of discs (world_discs.cpp); unset (the default): none are computed
   /// and the world pays nothing for them. Contacts with planes need no setting.
