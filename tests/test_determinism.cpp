@@ -15,13 +15,12 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "determinism_cases.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
@@ -32,82 +31,15 @@
 namespace fixstep {
 namespace {
 
-constexpr std::uint64_t golden_ticks = 1000;
-const std::filesystem::path scenes_dir = FIXSTEP_SOURCE_DIR "/assets/scenes";
-const std::filesystem::path golden_file = FIXSTEP_SOURCE_DIR "/tests/golden/state_hashes.txt";
-
-struct Case {
-  std::string scene;  ///< file name in assets/scenes
-  Integrator integrator;
-  Precision precision;
-  [[nodiscard]] std::string key() const {
-    return fmt::format("{} {} {}", scene, integrator_name(integrator), precision_name(precision));
-  }
-};
-
-Scene scene_for(const Case& c) {
-  Scene s = load_scene(scenes_dir / c.scene);
-  s.world.integrator = c.integrator;
-  s.precision = c.precision;
-  return s;
-}
-
-/// Implicit Euler on a scene with more links than this is left out of the cases: each of its
-/// steps runs Newton's method with a sparse LU factorization per iteration (world_implicit.cpp),
-/// about 7 ms per tick for cloth.toml's 400 bodies in the ci build and a second per tick (and
-/// 60 ms for soft_body.toml's 49) in the Debug ASan build, where 1000 ticks would take the
-/// suite's time many times over. rope.toml (39 links) and chain.toml keep the implicit network
-/// path in the golden hashes.
-constexpr std::size_t max_links_for_implicit = 40;
-
-/// Scenes whose ticks cost far more than the others' are stepped for a fraction of each test's
-/// tick count here (every case still runs, with contacts under way): ball_pit.toml steps 1008
-/// discs in contact, about 1.5 ms a tick in the ci build (1000 ticks of its 12 cases would add
-/// 20 s per test, minutes under ASan), galton_board.toml 240 discs among 321 static ones,
-/// about 0.3 ms. The golden hashes of ball_pit.toml are after 250 ticks (1.25 s: the first
-/// balls reach the floor), those of galton_board.toml after 500 (1 s: the funnel is filling).
-std::uint64_t ticks_for(const std::string& scene, std::uint64_t ticks) {
-  if (scene == "ball_pit.toml") return ticks / 4;
-  if (scene == "galton_board.toml") return ticks / 2;
-  return ticks;
-}
-
-/// Every shipped scene with every integrator and precision the stability guard accepts (except
-/// implicit Euler on scenes with more than max_links_for_implicit links).
-std::vector<Case> all_cases() {
-  std::vector<std::string> files;
-  for (const auto& e : std::filesystem::directory_iterator(scenes_dir)) {
-    if (e.path().extension() == ".toml") files.push_back(e.path().filename().string());
-  }
-  std::sort(files.begin(), files.end());
-  std::vector<Case> cases;
-  for (const std::string& f : files) {
-    for (Integrator i : all_integrators) {
-      for (Precision p : {Precision::f64, Precision::f32}) {
-        const Case c{f, i, p};
-        try {
-          const Scene scene = scene_for(c);
-          if (i == Integrator::implicit_euler && scene.links.size() > max_links_for_implicit) {
-            continue;
-          }
-          (void)make_simulation(scene);
-        } catch (const SceneError&) {
-          continue;  // refused by the stability guard: nothing to step
-        }
-        cases.push_back(c);
-      }
-    }
-  }
-  return cases;
-}
-
-/// State hash after `ticks` ticks (ticks_for: fewer for the costly scenes), stepping directly.
-std::uint64_t hash_direct(const Case& c, std::uint64_t ticks) {
-  Simulation sim = make_simulation(scene_for(c));
-  ticks = ticks_for(c.scene, ticks);
-  for (std::uint64_t t = 0; t < ticks; ++t) sim.step();
-  return sim.state_hash();
-}
+using determinism::all_cases;
+using determinism::Case;
+using determinism::golden_file;
+using determinism::golden_ticks;
+using determinism::hash_direct;
+using determinism::read_golden;
+using determinism::scene_for;
+using determinism::scenes_dir;
+using determinism::ticks_for;
 
 /// State hash after exactly `ticks` ticks (ticks_for) driven by the fixed-step loop, frames of
 /// `frame_seconds()` each (the loop decides how many ticks each frame runs).
@@ -124,36 +56,24 @@ std::uint64_t hash_through_loop(const Case& c, std::uint64_t ticks, FrameTime fr
   return sim.state_hash();
 }
 
-std::map<std::string, std::string> read_golden() {
-  std::map<std::string, std::string> golden;
-  std::ifstream in(golden_file);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto cut = line.rfind(' ');
-    golden[line.substr(0, cut)] = line.substr(cut + 1);
-  }
-  return golden;
-}
-
 TEST(Determinism, GoldenStateHashesOfEveryShippedScene) {
   const auto cases = all_cases();
   ASSERT_GE(cases.size(), 20u) << "expected most scene x integrator x precision combinations";
   if (const char* refresh = std::getenv("FIXSTEP_REFRESH_GOLDEN"); refresh && *refresh == '1') {
     std::string text = fmt::format(
         "# World::state_hash() after {} ticks ({} for ball_pit.toml, {} for galton_board.toml: "
-        "ticks_for in tests/test_determinism.cpp): scene integrator precision hash.\n"
+        "ticks_for in tests/cross/determinism_cases.cpp): scene integrator precision hash.\n"
         "# Regenerate on purpose only: FIXSTEP_REFRESH_GOLDEN=1 build/ci/bin/test_determinism "
         "--gtest_filter='*Golden*'\n",
         golden_ticks, ticks_for("ball_pit.toml", golden_ticks),
         ticks_for("galton_board.toml", golden_ticks));
     for (const Case& c : cases)
       text += fmt::format("{} {}\n", c.key(), hex_hash(hash_direct(c, golden_ticks)));
-    write_file_atomic(golden_file, text);
-    GTEST_SKIP() << "rewrote " << golden_file << " with " << cases.size() << " hashes";
+    write_file_atomic(golden_file(), text);
+    GTEST_SKIP() << "rewrote " << golden_file() << " with " << cases.size() << " hashes";
   }
   const auto golden = read_golden();
-  ASSERT_FALSE(golden.empty()) << "no hashes in " << golden_file;
+  ASSERT_FALSE(golden.empty()) << "no hashes in " << golden_file();
   EXPECT_EQ(golden.size(), cases.size()) << "scenes or integrators changed: refresh the file";
   for (const Case& c : cases) {
     const auto it = golden.find(c.key());
@@ -196,8 +116,8 @@ TEST(Determinism, SameStateAtEverySimdLevel) {
 TEST(Determinism, HeadlessSessionReachesTheSameState) {
   // The frame pipeline `render` and `view` share: drawing must not touch the physics.
   for (const char* file : {"default.toml", "projectile.toml", "spring_damper.toml"}) {
-    const Case c{file, load_scene(scenes_dir / file).world.integrator,
-                 load_scene(scenes_dir / file).precision};
+    const Case c{file, load_scene(scenes_dir() / file).world.integrator,
+                 load_scene(scenes_dir() / file).precision};
     Session session = testing::scene_session(scene_for(c), 64, 64);
     const VirtualClock clock(60.0);
     std::uint64_t frames = 0;

@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "determinism_cases.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/pointer_drag.hpp"
 #include "fixstep/rewind.hpp"
@@ -146,14 +147,9 @@ Scene scene_with(const std::string& file, Integrator integrator, Precision preci
   return s;
 }
 
-/// An input that changes every few ticks: pushes, and a drag of body 0 towards a point.
-TickInput scripted_input(std::uint64_t t) {
-  TickInput in;
-  in.tick = t;
-  if (t % 50 < 10) in.push = {0.5, -0.25};
-  if (t % 70 >= 30 && t % 70 < 45) in.drag_body = initial_entity(0), in.pointer = {0.3, 0.2};
-  return in;
-}
+/// An input that changes every few ticks: pushes, and a drag of body 0 towards a point (shared
+/// with tests/cross/sync_matrix.cpp).
+using determinism::scripted_input;
 
 TEST(Snapshot, RestoringGivesTheSameBitsAsNeverHavingLeft) {
   for (const char* file : {"default.toml", "chain.toml", "rope.toml"}) {
