@@ -1,19 +1,11 @@
-// Owning handles for what a Renderer holds in OSMesa and GL: the context and the names of its
-// shaders, programs, vertex arrays, buffers, textures and framebuffers. Internal to fixstep::render
-// (not installed).
-//
-// GL entry points are resolved against libOSMesa, which exports every GL function (checked:
-// `nm -D libOSMesa.so | grep glCreateShader`). The engine links OSMesa and never libGL: with
-// -lGL first, the same symbols would bind to libGL's dispatch, which has no current context in
-// an OSMesa program, and every call would silently do nothing (black frames).
+// Owning handles for the GL names a Renderer holds: its shaders, programs, vertex arrays,
+// buffers, textures and framebuffers (the context is gl_context.hpp's). Internal to
+// fixstep::render (not installed).
 #pragma once
 
 #include <utility>
 
-#ifndef GL_GLEXT_PROTOTYPES
-#define GL_GLEXT_PROTOTYPES 1
-#endif
-#include <GL/osmesa.h>
+#include "gl_api.hpp"  // GL through OSMesa only, never libGL (see there); WebGL2 in the browser
 
 namespace fixstep::gl {
 
@@ -49,14 +41,6 @@ class Owned {
   T value_{};
 };
 
-/// Unbinds the context if it is current on this thread, then destroys it (which also frees
-/// every GL object left in it).
-struct DestroyContext {
-  void operator()(OSMesaContext context) const noexcept {
-    if (OSMesaGetCurrentContext() == context) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
-    OSMesaDestroyContext(context);
-  }
-};
 // GL names are deleted in the context current on this thread: the one that created them must
 // be current when they are released (see Pipeline::~Pipeline).
 struct DeleteShader {
@@ -78,7 +62,6 @@ struct DeleteFramebuffer {
   void operator()(GLuint name) const noexcept { glDeleteFramebuffers(1, &name); }
 };
 
-using Context = Owned<OSMesaContext, DestroyContext>;
 using Shader = Owned<GLuint, DeleteShader>;
 using Program = Owned<GLuint, DeleteProgram>;
 using VertexArray = Owned<GLuint, DeleteVertexArray>;

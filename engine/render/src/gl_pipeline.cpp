@@ -1,18 +1,11 @@
-// The OSMesa context and GL objects of a Renderer (gl_pipeline.hpp): creation in acquisition
-// order, the shader builder (gl_shaders.hpp), release in reverse.
-#include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_objects.hpp
+// The GL context and objects of a Renderer (gl_pipeline.hpp): creation in acquisition order, the
+// shader builder (gl_shaders.hpp), release in reverse.
+#include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
 
 #include <fmt/format.h>
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include <algorithm>
 #include <array>
-#include <cstdlib>
-#include <cstring>
-#include <mutex>
 #include <string>
 #include <utility>
 
@@ -30,77 +23,6 @@ std::string trimmed(const char* log) {
   std::string s = log;
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
   return s;
-}
-
-// Mesa 22's OSMesa dereferences a null screen when GALLIUM_DRIVER names a driver it cannot
-// load (seen: GALLIUM_DRIVER=foo crashes inside OSMesaCreateContextAttribs). OSMesa runs on
-// the software rasterisers only, so refuse any other name before calling it.
-void check_gallium_driver() {
-  const char* driver = std::getenv("GALLIUM_DRIVER");
-  if (!driver || !*driver) return;
-  const std::string d = driver;
-  if (d != "llvmpipe" && d != "softpipe") {
-    throw RenderError(fmt::format(
-        "render: GALLIUM_DRIVER={} is not a driver OSMesa can use (llvmpipe or softpipe); "
-        "unset it or choose one of those",
-        d));
-  }
-}
-
-// True when the environment already sets glibc's malloc trim or mmap threshold (the user's
-// choice wins over keep_freed_heap_memory()).
-bool malloc_thresholds_set_by_user() {
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if (tunables && (std::strstr(tunables, "malloc.trim_threshold") ||
-                   std::strstr(tunables, "malloc.mmap_threshold"))) {
-    return true;
-  }
-  return std::getenv("MALLOC_TRIM_THRESHOLD_") || std::getenv("MALLOC_MMAP_THRESHOLD_");
-}
-
-// llvmpipe bins every frame into 64 KiB blocks it mallocs while binning and frees once the frame
-// is rasterised (lp_scene.c: all but the first block of a scene). With glibc's defaults the
-// blocks sit at the top of the heap when they are freed, so free() returns them to the kernel
-// (trimming above 128 KiB) and the next frame faults the same pages in again, zero-filled: with
-// 1000 bodies about 380 page faults per frame, a third of the drawing thread's CPU time
-// (docs/perf/capture.md). Raising the trim threshold keeps them; the mmap threshold is set too
-// (setting either fixes the other, which glibc would otherwise raise as large blocks come and
-// go), to glibc's own upper limit for it. Process-wide, once, and only when the environment does
-// not set them.
-void keep_freed_heap_memory() {
-#ifdef __GLIBC__
-  static std::once_flag once;
-  std::call_once(once, [] {
-    if (malloc_thresholds_set_by_user()) return;
-    constexpr int mmap_threshold = 32 << 20;  // bytes: glibc's maximum (HEAP_MAX_SIZE / 2)
-    constexpr int trim_threshold = 64 << 20;  // bytes of free heap top kept before trimming
-    mallopt(M_MMAP_THRESHOLD, mmap_threshold);
-    mallopt(M_TRIM_THRESHOLD, trim_threshold);
-  });
-#endif
-}
-
-Context create_context() {
-  check_gallium_driver();
-  keep_freed_heap_memory();
-  // Attributes as key, value pairs, one pair a line.
-  // clang-format off
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                         OSMESA_DEPTH_BITS, 0,
-                         OSMESA_STENCIL_BITS, 0,
-                         OSMESA_ACCUM_BITS, 0,
-                         OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                         OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                         OSMESA_CONTEXT_MINOR_VERSION, 3,
-                         0};
-  // clang-format on
-  Context context(OSMesaCreateContextAttribs(attribs, nullptr));
-  if (!context.get()) {
-    throw RenderError(
-        "render: OSMesaCreateContextAttribs failed to create an OpenGL 3.3 core context "
-        "(is libosmesa6 from Mesa >= 17 installed?)");
-  }
-  return context;
 }
 
 // GL_RENDERER of the current context.
@@ -153,7 +75,7 @@ int viewport_margin(int width, int height) {
 // The widest point (px) to draw as a point with a viewport `margin` px beyond the frame.
 float widest_point(int margin) {
   GLfloat range[2] = {0.0f, 0.0f};
-  glGetFloatv(GL_POINT_SIZE_RANGE, range);  // llvmpipe: 1..255
+  glGetFloatv(point_size_range, range);  // llvmpipe: 1..255
   return std::min(range[1], 2.0f * float(margin));
 }
 
@@ -192,7 +114,7 @@ Pipeline::Pipeline(int width, int height, std::uint8_t* pixels, const ShaderSour
     : width(width), height(height), pixels(pixels) {
   // Each step below either leaves its resource in a member or throws; members already filled
   // release theirs on the way out, the context last.
-  context = create_context();
+  context = Context(width, height, pixels);
   make_current();
   renderer_name = query_renderer_name();
   programs = link_programs(sources);
@@ -260,23 +182,14 @@ void Pipeline::copy_backdrop_to_frame() {
 Pipeline::~Pipeline() {
   // GL deletes names in the context current on this thread, by now perhaps another renderer's.
   // Should binding ours fail (it succeeded with the same arguments before), its names are left
-  // to OSMesaDestroyContext, which frees every object of the context.
-  if (OSMesaMakeCurrent(context.get(), pixels, GL_UNSIGNED_BYTE, width, height)) return;
+  // to the context's destruction, which frees every object of the context.
+  if (context.try_make_current()) return;
   for (LinkedProgram& p : programs) p.program.abandon();
   vao.abandon();
   vbo.abandon();
   ibo.abandon();
   backdrop.abandon();
   backdrop_framebuffer.abandon();
-}
-
-void Pipeline::make_current() const {
-  // Several renderers may live in one process (tests): bind ours before drawing. Y_UP = 0
-  // makes row 0 of the buffer the top of the image.
-  if (!OSMesaMakeCurrent(context.get(), pixels, GL_UNSIGNED_BYTE, width, height)) {
-    throw RenderError("render: OSMesaMakeCurrent failed");
-  }
-  OSMesaPixelStore(OSMESA_Y_UP, 0);
 }
 
 }  // namespace gl

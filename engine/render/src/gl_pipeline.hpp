@@ -1,7 +1,7 @@
-// Every OSMesa and GL resource of a Renderer, owned through the handles of gl_objects.hpp.
-// Internal to fixstep::render (not installed); tests/test_resources.cpp builds it from broken
-// shader sources and a missing pixel buffer to provoke each failure of its construction.
-// Defined in render.cpp.
+// Every GL resource of a Renderer (OSMesa natively, WebGL2 in the browser), owned through the
+// handles of gl_objects.hpp. Internal to fixstep::render (not installed); tests/test_resources.cpp
+// builds it from broken shader sources and a missing pixel buffer to provoke each failure of its
+// construction. Defined in render.cpp.
 #pragma once
 
 #include <array>
@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string>
 
+#include "gl_context.hpp"
 #include "gl_objects.hpp"
 
 namespace fixstep::gl {
@@ -20,7 +21,7 @@ struct ShaderSources {
   std::array<const char*, 2> fragments{};
 };
 
-/// The OSMesa context of one frame buffer and the GL objects drawn with it. The members are
+/// The GL context of one frame (gl_context.hpp) and the GL objects drawn with it. The members are
 /// declared in the order the constructor acquires them and so are released in reverse: if the
 /// constructor throws, the members built so far release what they hold (the GL names while the
 /// context is still current, then the context).
@@ -31,23 +32,23 @@ struct Pipeline {
     GLint size = -1, margin = -1, flip = -1, ring = -1;  // u_size, u_margin, u_flip, u_ring
   };
 
-  /// Creates an OpenGL 3.3 core context drawing into `pixels` (width x height RGBA8 pixels, top
-  /// row first; the caller keeps them alive and in place while the Pipeline lives), makes it
-  /// current, builds programs[i] from sources.vertex and sources.fragments[i], and creates the
-  /// vertex array and its two buffers. Throws RenderError, having released whatever it
-  /// acquired, when: GALLIUM_DRIVER names a driver other than llvmpipe or softpipe (Mesa 22
-  /// would crash on it); OSMesaCreateContextAttribs fails; OSMesaMakeCurrent fails (e.g. no
-  /// pixels); GL_RENDERER is null (GL calls do not reach OSMesa); a shader fails to compile or
-  /// a program to link.
+  /// Creates the context (Context(width, height, pixels): OSMesa draws into `pixels`, width x
+  /// height RGBA8 pixels, top row first, which the caller keeps alive and in place while the
+  /// Pipeline lives; WebGL2 on the page's canvas), makes it current, builds programs[i] from
+  /// sources.vertex and sources.fragments[i], and creates the vertex array and its two buffers.
+  /// Throws RenderError, having released whatever it acquired, when: the context cannot be
+  /// created (see Context) or made current (OSMesaMakeCurrent fails, e.g. no pixels);
+  /// GL_RENDERER is null (GL calls do not reach OSMesa); a shader fails to compile or a program
+  /// to link.
   Pipeline(int width, int height, std::uint8_t* pixels, const ShaderSources& sources);
   /// Makes the context current (so the GL names are deleted in it), then releases everything.
   ~Pipeline();
   Pipeline(const Pipeline&) = delete;
   Pipeline& operator=(const Pipeline&) = delete;
 
-  /// Makes the context current on this thread, drawing into the pixels, row 0 at the top.
-  /// Throws RenderError "render: OSMesaMakeCurrent failed".
-  void make_current() const;
+  /// Makes the context current on this thread (OSMesa: drawing into the pixels, row 0 at the
+  /// top). Throws RenderError (see Context::make_current).
+  void make_current() const { context.make_current(); }
 
   // The backdrop: an offscreen width x height picture that a frame starts from instead of a
   // clear (Renderer::draw keeps its grid and planes there while the view does not change). It is
@@ -60,8 +61,8 @@ struct Pipeline {
   /// Makes the backdrop the framebuffer drawn into, creating it on first use. Throws RenderError
   /// if GL cannot complete it.
   void draw_into_backdrop();
-  /// Makes the frame (OSMesa's framebuffer, which finish() reads into the pixels) the one drawn
-  /// into.
+  /// Makes the frame (OSMesa's framebuffer, which is the pixels; in the browser the canvas)
+  /// the one drawn into.
   void draw_into_frame();
   /// Copies the backdrop over the whole frame.
   void copy_backdrop_to_frame();

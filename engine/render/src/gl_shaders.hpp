@@ -4,6 +4,7 @@
 // compiles broken sources through the builder. The builder is defined in gl_pipeline.cpp.
 #pragma once
 
+#include "gl_api.hpp"
 #include "gl_objects.hpp"
 #include "gl_pipeline.hpp"
 
@@ -22,14 +23,15 @@ namespace fixstep::gl {
 // Every vertex is {a_pos, a_uv, a_color, a_fill} (Renderer::Vertex). The shapes program draws
 // triangles, the ring program points (one vertex per disc: a_pos its centre, a_uv = (point size
 // px, shape coordinate at the square's edge), a_fill the fill's radius). Varyings are
-// `noperspective` (w is always 1, so this only spares llvmpipe the perspective division) and
+// `noperspective` (w is always 1, so this only spares llvmpipe the perspective division; GLSL ES
+// has no such qualifier, so the sources say NOPERSPECTIVE, which FIXSTEP_GLSL_PROLOGUE defines) and
 // `flat` where they are constant over a primitive; each fragment shader reads v_color
 // (interpolated: polylines fade along their length) or v_flat_color (constant: the discs), and
 // the linker drops what a program does not read.
 
 /// Shared by both programs: pixel coordinates into the viewport, which reaches u_margin px beyond
 /// every edge of the frame (Renderer::finish()).
-inline constexpr const char* vertex_shader = R"(#version 330 core
+inline constexpr const char* vertex_shader = FIXSTEP_GLSL_PROLOGUE R"(
 layout(location = 0) in vec2 a_pos;    // pixels, origin top-left, y down
 layout(location = 1) in vec2 a_uv;     // shape coordinates; points: (size px, scale)
 layout(location = 2) in vec4 a_color;
@@ -37,8 +39,8 @@ layout(location = 3) in float a_fill;  // points: the fill's radius in shape coo
 uniform vec2 u_size;    // pixels, the frame
 uniform float u_margin; // pixels of viewport beyond each edge of the frame
 uniform float u_flip;   // 1, or -1 upside down (drawing into the backdrop: Renderer::finish())
-noperspective out vec2 v_uv;
-noperspective out vec4 v_color;
+NOPERSPECTIVE out vec2 v_uv;
+NOPERSPECTIVE out vec4 v_color;
 flat out vec4 v_flat_color;
 flat out float v_fill;
 flat out float v_point_scale;
@@ -61,9 +63,9 @@ void main() {
 /// (fwidth is 0 and w its floor). Both programs output premultiplied colour (rgb * a, a), which
 /// Renderer::finish() blends "over" the frame with (1, 1 - a): the same picture as straight
 /// alpha blended with (a, 1 - a), and one multiplication fewer per pixel for llvmpipe.
-inline constexpr const char* shapes_fragment_shader = R"(#version 330 core
-noperspective in vec2 v_uv;
-noperspective in vec4 v_color;
+inline constexpr const char* shapes_fragment_shader = FIXSTEP_GLSL_PROLOGUE R"(
+NOPERSPECTIVE in vec2 v_uv;
+NOPERSPECTIVE in vec4 v_color;
 out vec4 frag;
 void main() {
   float d = length(v_uv);
@@ -80,7 +82,7 @@ void main() {
 /// the outline in the shader, so the result is that of drawing the outline disc and then the
 /// fill disc "over" it: alpha a = af + (1 - af) ao and premultiplied colour
 /// f af + o (1 - af) ao.
-inline constexpr const char* ring_fragment_shader = R"(#version 330 core
+inline constexpr const char* ring_fragment_shader = FIXSTEP_GLSL_PROLOGUE R"(
 flat in vec4 v_flat_color;
 flat in float v_fill;
 flat in float v_point_scale;

@@ -1,5 +1,6 @@
-// Renderer: the OSMesa frame buffer and the canvas (rectangles, lines, polylines, discs, text)
-// batched into one upload and one draw call per clip; the scene view is in render_frame.cpp.
+// Renderer: the GL frame buffer (OSMesa's pixels, or the page's WebGL2 canvas) and the canvas
+// (rectangles, lines, polylines, discs, text) batched into one upload and one draw call per clip;
+// the scene view is in render_frame.cpp.
 #include "fixstep/render.hpp"
 
 #include <fmt/format.h>
@@ -12,7 +13,7 @@
 #include <cstring>
 #include <limits>
 
-#include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_objects.hpp
+#include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
 #include "gl_shaders.hpp"
 
 namespace fixstep {
@@ -346,7 +347,7 @@ void Renderer::finish() {
   glDisable(GL_SCISSOR_TEST);
   glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
   glEnable(GL_BLEND);
-  glEnable(GL_PROGRAM_POINT_SIZE);  // outlined discs: the vertex shader sets each point's size
+  gl::enable_program_point_size();  // outlined discs: the vertex shader sets each point's size
   // Colour blends "over" (the shaders output premultiplied colour); alpha keeps 1, so every pixel
   // of the PNG is opaque.
   glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);

@@ -1,0 +1,251 @@
+#!/usr/bin/env python3
+"""The web page in a real browser: Debian's chromium, headless, on SwiftShader (software
+WebGL2), the site served on 127.0.0.1 only. For every shipped scene (assets/scenes/*.toml):
+
+  (a) the page steps the scene for FRAMES frames of a 60 fps virtual clock; its state hash and
+      summary line (ticks, t, state_hash, energy, dissipated, balance) must equal, character for
+      character, what the native `fixstep run SCENE --steps N` prints for the same N ticks;
+  (b) the browser's screenshot of its last frame must be a real frame (not blank) and match the
+      native OSMesa frame `fixstep render SCENE --frames FRAMES` of the same tick within the
+      tolerance below (the rasterisers differ: llvmpipe and SwiftShader round edges, points and
+      the font's quads differently);
+  (c) the recording the page made of its run must replay natively (`fixstep replay`, every
+      stored hash verified), and a native recording (`fixstep run --record`) must replay in the
+      page with every hash verified and the native final hash.
+
+Then the long "cause" runs (--long): the page steps a scene N ticks without drawing (ticks=N)
+and must report the native `fixstep run --steps N` summary.
+
+Exits 0 when everything matched, 1 naming each failure otherwise.
+Usage: browser_check.py --fixstep build/ci/bin/fixstep --site build/web/site [--out DIR]
+"""
+import argparse
+import html
+import http.server
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cdp_pipe  # noqa: E402
+import png_image  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+# Screenshot tolerance against the OSMesa frame (b). Measured on the 12 shipped scenes at
+# 640x360 (docs/ROBUSTNESS.md, "The browser checks"): same frame, mean difference 0.016 to 0.30
+# levels, at most 0.0013 % of pixels differing by more than 64 levels (SwiftShader and llvmpipe
+# cover a few anti-aliased edge pixels differently). The frame before (1/60 s earlier)
+# differs by 1.35 to 3.2 levels and in 0.56 % to 1.4 % of pixels: both limits below fail it.
+MAX_MEAN_DIFFERENCE = 0.75   # levels per channel value, 0..255
+PIXEL_THRESHOLD = 64         # levels: a pixel "differs" when some channel differs by more
+MAX_DIFFERING_FRACTION = 0.001
+MIN_CONTENT_FRACTION = 0.01  # of pixels not the background colour
+
+
+# Debian's chromium, headless, WebGL2 on SwiftShader, nothing fetched but the page.
+CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--use-angle=swiftshader",
+                  "--enable-unsafe-swiftshader", "--disable-gpu-sandbox", "--no-first-run",
+                  "--disable-background-networking", "--disable-component-update",
+                  "--disable-sync", "--hide-scrollbars"]
+
+
+def chromium(url, out_png, width, height, budget_ms):
+    """Loads `url` in headless Chromium until the virtual-time budget is spent; returns the DOM
+    (text) and writes the screenshot of a width x height window to out_png (if given)."""
+    profile = tempfile.mkdtemp(prefix="fixstep-chromium-")
+    cmd = ["chromium", *CHROMIUM_FLAGS, f"--user-data-dir={profile}",
+           f"--virtual-time-budget={budget_ms}", f"--window-size={width},{height}",
+           "--dump-dom"]
+    if out_png:
+        cmd.append(f"--screenshot={out_png}")
+    try:
+        done = subprocess.run(cmd + [url], capture_output=True, text=True, timeout=600)
+    finally:
+        shutil.rmtree(profile, ignore_errors=True)
+    return done.stdout
+
+
+def element(dom, ident):
+    m = re.search(rf'<pre id="{ident}">(.*?)</pre>', dom, re.S)
+    return html.unescape(m.group(1)) if m else None
+
+
+def native(fixstep, *args):
+    done = subprocess.run([fixstep, *args], capture_output=True, text=True, cwd=ROOT)
+    if done.returncode != 0:
+        raise RuntimeError(f"fixstep {' '.join(args)} failed ({done.returncode}): "
+                           f"{done.stderr.strip()}")
+    return done.stdout
+
+
+def summary_of(stdout):
+    m = re.search(r"^ticks=\d+ .*$", stdout, re.M)
+    return m.group(0) if m else None
+
+
+class Site:
+    """The site folder on 127.0.0.1 (a free port), and recordings under /rec/ from `rec_dir`."""
+
+    def __init__(self, site, rec_dir):
+        class Handler(http.server.SimpleHTTPRequestHandler):
+            def __init__(self, *a, **k):
+                super().__init__(*a, directory=site, **k)
+
+            def translate_path(self, path):
+                if path.startswith("/rec/"):
+                    return os.path.join(rec_dir, os.path.basename(path.split("?")[0]))
+                if path.startswith("/tests/"):  # the test pages beside this script
+                    return os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                        os.path.basename(path.split("?")[0]))
+                return super().translate_path(path)
+
+            def log_message(self, *a):
+                pass
+
+        self.server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self.url = f"http://127.0.0.1:{self.server.server_address[1]}"
+        threading.Thread(target=self.server.serve_forever, daemon=True).start()
+
+
+def check_scene(scene, args, site, out, failures):
+    w, h = args.size.split("x")
+    name = scene[:-5]
+    shot = os.path.join(out, f"{name}_browser.png")
+    url = (f"{site.url}/index.html?scene={scene}&frames={args.frames}&fps=60&size={args.size}"
+           f"&headless=1&record=1")
+    dom = chromium(url, shot, int(w), int(h), args.budget_ms)
+    result, summary = element(dom, "result"), element(dom, "summary")
+    m = re.fullmatch(r"tick=(\d+) state_hash=([0-9a-f]{16})", result or "")
+    if not m:
+        failures.append(f"{scene}: the page did not finish: result {result!r}")
+        return
+    ticks, page_hash = m.group(1), m.group(2)
+    # (a) the state after the same ticks, natively
+    native_summary = summary_of(native(args.fixstep, "run", f"assets/scenes/{scene}", "--steps",
+                                       ticks))
+    if summary != native_summary:
+        failures.append(f"{scene}: (a) page {summary!r} != native {native_summary!r}")
+    # (b) the last frame against OSMesa's
+    frames_dir = os.path.join(out, f"{name}_native")
+    native(args.fixstep, "render", f"assets/scenes/{scene}", "--out", frames_dir, "--frames",
+           str(args.frames), "--fps", "60", "--size", args.size, "--overwrite")
+    frame = os.path.join(frames_dir, f"frame_{args.frames - 1:06d}.png")
+    browser_img, native_img = png_image.decode_png(shot), png_image.decode_png(frame)
+    content = png_image.content_fraction(browser_img)
+    mean, differing = png_image.compare(browser_img, native_img, PIXEL_THRESHOLD)
+    verdict = "ok"
+    if content < MIN_CONTENT_FRACTION:
+        verdict = "BLANK"
+        failures.append(f"{scene}: (b) the browser frame is blank ({content:.4f} of pixels drawn)")
+    elif mean > MAX_MEAN_DIFFERENCE or differing > MAX_DIFFERING_FRACTION:
+        verdict = "DIFFERENT"
+        failures.append(f"{scene}: (b) the browser frame differs from OSMesa's: mean {mean:.3f} "
+                        f"levels, {differing:.4%} of pixels by > {PIXEL_THRESHOLD}")
+    # (c) the page's recording natively, and a native recording in the page
+    page_rec = os.path.join(out, f"{name}_page.rec")
+    with open(page_rec, "w") as f:
+        f.write(element(dom, "recording") or "")
+    replayed = native(args.fixstep, "replay", page_rec, "--scene", f"assets/scenes/{scene}")
+    if f"ticks={ticks} state_hash={page_hash}" not in replayed:
+        failures.append(f"{scene}: (c) the page's recording replays natively as {replayed!r}")
+    native_rec = os.path.join(out, "rec", f"{name}.rec")
+    recorded = summary_of(native(args.fixstep, "run", f"assets/scenes/{scene}", "--steps", ticks,
+                                 "--record", native_rec))
+    dom = chromium(f"{site.url}/index.html?replay=/rec/{name}.rec&headless=1&size={args.size}",
+                   None, int(w), int(h), args.budget_ms)
+    replay_result = element(dom, "result") or ""
+    native_hash = re.search(r"state_hash=([0-9a-f]{16})", recorded).group(1)
+    if not re.fullmatch(rf"verified ticks={ticks} state_hash={native_hash} hashes=\d+",
+                        replay_result):
+        failures.append(f"{scene}: (c) the native recording in the page: {replay_result!r}")
+    print(f"{scene}: ticks={ticks} state_hash={page_hash} frame: {content:.3f} drawn, mean "
+          f"{mean:.3f}, {differing:.4%} > {PIXEL_THRESHOLD} ({verdict}); page {replay_result}",
+          flush=True)
+
+
+def check_input(args, site, failures):
+    """tests/web/input_check.html: the interactive page on the real clock, driven by DOM key and
+    mouse events (restart, pause, single step, a drag, rewind); the dragged state must differ
+    from the undisturbed one at the same tick."""
+    browser = cdp_pipe.Browser(CHROMIUM_FLAGS + ["--window-size=700,600"])
+    try:
+        browser.open(f"{site.url}/tests/input_check.html")
+        title = browser.wait_for_title("input:", 60)
+        report = browser.evaluate("document.getElementById('result').textContent") or ""
+    finally:
+        browser.close()
+    undisturbed = re.search(r"state_hash=([0-9a-f]{16})", native(
+        args.fixstep, "run", "assets/scenes/projectile.toml", "--steps", "2")).group(1)
+    dragged = re.search(r"dragged tick=2 state_hash=([0-9a-f]{16})", report)
+    if title != "input: done":
+        failures.append(f"input: {title or 'no result in 60 s'}: {report}")
+    elif not dragged or dragged.group(1) == undisturbed:
+        failures.append(f"input: the drag did not change the state ({undisturbed}): {report}")
+    print("input:", report.replace("\n", "; "), flush=True)
+
+
+def check_long(spec, args, site, failures):
+    scene, ticks = spec.split(":")
+    dom = chromium(f"{site.url}/index.html?scene={scene}&ticks={ticks}&headless=1&size=320x180",
+                   None, 320, 180, args.budget_ms)
+    summary = element(dom, "summary")
+    native_summary = summary_of(native(args.fixstep, "run", f"assets/scenes/{scene}", "--steps",
+                                       ticks))
+    ok = summary == native_summary
+    if not ok:
+        failures.append(f"{scene} ticks={ticks}: page {summary!r} (result "
+                        f"{element(dom, 'result')!r}) != native {native_summary!r}")
+    print(f"{scene} ticks={ticks}: {'same' if ok else 'DIFFERENT'}: {summary}", flush=True)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--fixstep", required=True, help="the native fixstep CLI")
+    p.add_argument("--site", required=True, help="the web build's site folder")
+    p.add_argument("--out", help="where screenshots, frames and recordings go (kept)")
+    p.add_argument("--frames", type=int, default=61, help="frames per scene (60 fps)")
+    p.add_argument("--size", default="640x360")
+    p.add_argument("--scenes", nargs="*", help="scene files (default: every shipped scene)")
+    p.add_argument("--long", nargs="*", default=["projectile.toml:40000", "default.toml:100000"],
+                   help="SCENE:TICKS runs stepped without drawing")
+    p.add_argument("--no-input", action="store_true", help="skip the input check")
+    p.add_argument("--budget-ms", type=int, default=600000, help="virtual time per page load")
+    args = p.parse_args()
+    args.fixstep = os.path.abspath(args.fixstep)
+    out = os.path.abspath(args.out or tempfile.mkdtemp(prefix="fixstep-web-"))
+    os.makedirs(os.path.join(out, "rec"), exist_ok=True)
+    site = Site(os.path.abspath(args.site), os.path.join(out, "rec"))
+    scenes = args.scenes or sorted(f for f in os.listdir(os.path.join(ROOT, "assets", "scenes"))
+                                   if f.endswith(".toml"))
+    failures, start = [], time.monotonic()
+    for scene in scenes:
+        try:
+            check_scene(scene, args, site, out, failures)
+        except (RuntimeError, ValueError, OSError) as e:
+            failures.append(f"{scene}: {e}")
+    if not args.no_input:
+        try:
+            check_input(args, site, failures)
+        except (RuntimeError, ValueError, OSError) as e:
+            failures.append(f"input: {e}")
+    for spec in args.long:
+        try:
+            check_long(spec, args, site, failures)
+        except (RuntimeError, ValueError, OSError) as e:
+            failures.append(f"{spec}: {e}")
+    print(f"browser checks: {len(scenes)} scenes, {len(args.long)} long runs, "
+          f"{time.monotonic() - start:.0f} s; output in {out}")
+    for f in failures:
+        print(f"FAIL {f}", file=sys.stderr)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

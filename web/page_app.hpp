@@ -1,0 +1,73 @@
+// The page's program: `fixstep view`'s loop in a browser (a Session drawn on the WebGL2 canvas,
+// the browser's keys and pointer, rewind), and the headless runs the browser tests drive
+// (frames=, ticks=, replay=: page_options.hpp). Web platform (wasm only).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fixstep/input.hpp"
+#include "fixstep/pointer_drag.hpp"
+#include "fixstep/recording.hpp"
+#include "fixstep/rewind.hpp"
+#include "fixstep/scene.hpp"
+#include "fixstep/session.hpp"
+#include "page_input.hpp"
+#include "page_options.hpp"
+
+namespace fixstep::web {
+
+/// Where the page's shipped scenes are (the site preloads assets/scenes there).
+inline constexpr const char* scene_dir = "assets/scenes";
+
+/// The shipped scenes' file names, sorted.
+[[nodiscard]] std::vector<std::string> shipped_scenes();
+
+class PageApp {
+ public:
+  /// Loads the scene (or, for replay=, starts fetching the recording) and builds the session
+  /// on the page's canvas. Throws what the scene loader, the stability guard or Session throw.
+  explicit PageApp(PageOptions options);
+  ~PageApp();
+  PageApp(const PageApp&) = delete;
+  PageApp& operator=(const PageApp&) = delete;
+
+  /// One browser frame at time `now_ms` (performance.now(), ms). Returns false once the page
+  /// has finished (a headless run reported its result): the main loop stops.
+  bool frame(double now_ms);
+
+  /// replay=: the fetched recording's text arrived (emscripten_async_wget_data), or failed.
+  void recording_fetched(std::string text);
+  void recording_failed(const std::string& why);
+
+ private:
+  void start_session(WorldDef def, const std::string& title);
+  void interactive_frame(double now_ms);
+  bool frames_frame();
+  bool ticks_frame(double now_ms);
+  bool replay_frame();
+  /// Writes the run's result: "tick=N state_hash=H" (id result), the summary line `fixstep run`
+  /// prints (id summary), the recording's text when recording (id recording); title "done".
+  void report();
+
+  PageOptions o_;
+  std::string scene_file_;  ///< assets/scenes/NAME
+  std::optional<Scene> scene_;
+  std::unique_ptr<Session> session_;
+  std::uint64_t frames_done_ = 0;
+  std::optional<Recorder> recorder_;
+  // interactive
+  std::unique_ptr<PageInput> input_;
+  InputSampler sampler_;
+  RewindBuffer rewind_{1};
+  PointerDrag drag_{0.0};
+  double last_ms_ = -1.0;
+  // replay
+  std::optional<Recording> recording_;
+  bool fetch_failed_ = false;
+};
+
+}  // namespace fixstep::web

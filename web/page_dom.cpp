@@ -1,0 +1,48 @@
+// The page's elements (page_dom.hpp), through small JavaScript functions (emscripten EM_JS).
+#include "page_dom.hpp"
+
+#include <emscripten/emscripten.h>
+
+namespace {
+
+// clang-format off
+EM_JS(void, js_show_text, (const char* id, const char* text), {
+  const e = document.getElementById(UTF8ToString(id));
+  if (e) e.textContent = UTF8ToString(text);
+});
+EM_JS(void, js_set_title, (const char* title), {
+  document.title = UTF8ToString(title);
+});
+EM_JS(void, js_add_scene, (const char* name, int selected), {
+  const s = document.getElementById("scene");
+  if (!s) return;
+  const o = document.createElement("option");
+  o.value = o.textContent = UTF8ToString(name);
+  o.selected = selected != 0;
+  s.appendChild(o);
+});
+// clang-format on
+
+}  // namespace
+
+namespace fixstep::web {
+
+void show_text(const char* id, const std::string& text) {
+  js_show_text(id, text.c_str());
+}
+
+void set_title(const std::string& title) {
+  js_set_title(title.c_str());
+}
+
+void list_scenes(const std::vector<std::string>& names, const std::string& current) {
+  show_text("scene", "");
+  for (const std::string& name : names) js_add_scene(name.c_str(), name == current ? 1 : 0);
+}
+
+void show_error(const std::string& message) {
+  show_text("result", "error: " + message);
+  set_title("fixstep: error");
+}
+
+}  // namespace fixstep::web

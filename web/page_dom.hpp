@@ -1,0 +1,22 @@
+// What the page shows outside the canvas: text in its elements, its title, the scene selector.
+// The browser tests (tests/web/) read the results from here. Web platform (wasm only).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace fixstep::web {
+
+/// Sets the text of the page's element with id `id` (nothing if there is none).
+void show_text(const char* id, const std::string& text);
+/// Sets document.title: how a harness knows the page has finished ("fixstep: done",
+/// "fixstep: error").
+void set_title(const std::string& title);
+/// Fills the page's scene selector (id "scene") with `names`, `current` selected; choosing
+/// another one reloads the page with ?scene=NAME.
+void list_scenes(const std::vector<std::string>& names, const std::string& current);
+/// Shows `message` as the page's result (id "result"), "error: " first, and sets the title to
+/// "fixstep: error".
+void show_error(const std::string& message);
+
+}  // namespace fixstep::web

@@ -1,0 +1,108 @@
+// The page's headless runs (page_app.hpp): frames= and ticks= on a virtual clock, replay= of a
+// fetched recording. Each reports what `fixstep render`, `fixstep run` or `fixstep replay`
+// print, so that the browser tests compare the page with the native build.
+#include <emscripten/emscripten.h>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fixstep/limits.hpp>
+#include <utility>
+
+#include "page_app.hpp"
+#include "page_dom.hpp"
+
+namespace fixstep::web {
+
+namespace {
+
+/// ticks=: the ticks stepped per browser frame stop after this much time, ms, so that the page
+/// stays responsive (the state does not depend on how the ticks are split into frames).
+constexpr double ticks_budget_ms = 50.0;
+
+}  // namespace
+
+bool PageApp::frames_frame() {
+  // `fixstep render --frames F --fps FPS`: frame 0 shows the initial state, frame f > 0 follows
+  // 1/fps s of virtual time; every frame is drawn (trails sample once per drawn frame).
+  Session& session = *session_;
+  if (frames_done_ > 0) {
+    session.advance_with(1.0 / o_.fps, [&](std::uint64_t tick, Simulation& sim) {
+      const TickInput input{.tick = tick};
+      sim.step(input);
+      if (recorder_) recorder_->record(input, sim);
+    });
+  }
+  session.draw();
+  ++frames_done_;
+  if (frames_done_ < *o_.frames && !session.simulation().fault()) return true;
+  report();
+  return false;
+}
+
+bool PageApp::ticks_frame(double now_ms) {
+  // `fixstep run --steps N`: N ticks with no input, in chunks of at most ticks_budget_ms.
+  Simulation& sim = session_->simulation();
+  while (sim.tick() < *o_.ticks && !sim.fault()) {
+    const TickInput input{.tick = sim.tick()};
+    sim.step(input);
+    if (recorder_) recorder_->record(input, sim);
+    if (sim.tick() % 256 == 0 && emscripten_get_now() - now_ms > ticks_budget_ms) break;
+  }
+  if (sim.tick() < *o_.ticks && !sim.fault()) {
+    show_text("result", fmt::format("running: tick {} of {}", sim.tick(), *o_.ticks));
+    return true;
+  }
+  session_->draw();
+  report();
+  return false;
+}
+
+void PageApp::recording_fetched(std::string text) {
+  Recording rec = parse_recording(text, *o_.replay);
+  // The recording names its scene as given to `fixstep run` (assets/scenes/NAME.toml); the
+  // page has the shipped scenes under the same folder.
+  scene_file_ =
+      fmt::format("{}/{}", scene_dir, std::filesystem::path(rec.scene).filename().string());
+  scene_ = load_scene(scene_file_);
+  WorldDef def = world_def(*scene_);
+  apply_settings(def, rec.settings);
+  def.allow_unstable = true;  // the recorded run ran: replay it whatever the guard says
+  check_recorded_bodies(rec, def.bodies.size(), *o_.replay);
+  check_command_work(rec.ticks, tick_work(def), fmt::format("{}: end {}", *o_.replay, rec.ticks));
+  const ReplayReport r = replay(def, rec);  // throws scene_mismatch
+  if (const auto& m = r.mismatch) {
+    show_text("result",
+              fmt::format("diverged at tick {}: state_hash {} recorded, {} replayed "
+                          "(the states matched at tick {})",
+                          m->tick, hex_hash(m->expected), hex_hash(m->actual), m->last_match));
+  } else {
+    show_text("result", fmt::format("verified ticks={} state_hash={} hashes={}", r.ticks,
+                                    hex_hash(r.final_hash), r.verified));
+  }
+  o_.scene = std::filesystem::path(scene_file_).filename().string();
+  start_session(std::move(def), o_.scene);
+  recording_ = std::move(rec);
+  set_title(r.ok() ? "fixstep: done" : "fixstep: diverged");
+}
+
+void PageApp::recording_failed(const std::string& why) {
+  fetch_failed_ = true;
+  show_error(fmt::format("could not fetch the recording {}: {}", *o_.replay, why));
+}
+
+bool PageApp::replay_frame() {
+  if (fetch_failed_) return false;
+  if (!recording_) return true;  // still fetching
+  // After the verdict: the recording played back on the canvas at its own pace (headless: its
+  // last state at once), ending at its last tick.
+  Session& session = *session_;
+  const Recording& rec = *recording_;
+  const double seconds = o_.headless ? double(rec.ticks) * rec.settings.dt : 1.0 / o_.fps;
+  session.advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
+    if (sim.tick() < rec.ticks) sim.step(rec.input_at(tick));
+  });
+  session.draw();
+  return session.simulation().tick() < rec.ticks && !session.simulation().fault();
+}
+
+}  // namespace fixstep::web
