@@ -104,10 +104,6 @@ void add_compare_options(CLI::App* cmd, fixstep::cli::CompareOptions& o) {
       ->check(frame_size_validator);
   cmd->add_option("--png-level", o.png_level, "PNG deflate level, as render --png-level")
       ->check(png_level_validator);
-  cmd->add_option("--damping-split", o.damping_split,
-                  "override [world] damping_split: where Forest-Ruth applies damped links' flows "
-                  "(per_stage: order 4; per_step: cheaper, order 2 in the damping)")
-      ->check(CLI::IsMember({"per_stage", "per_step"}));
   cmd->add_flag("--allow-unstable", o.allow_unstable,
                 "show a tile even when the stability guard finds it unstable (warns instead)");
   cmd->add_flag("-q,--quiet", o.quiet, "print errors only");
