@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <thread>
 #include <type_traits>
@@ -45,8 +46,11 @@ constexpr std::size_t min_parallel_range = 4096;
 /// Bitwise equality (what the link sums depend on; -0 and +0, or two NaNs, are not "equal").
 template <class Real>
 bool bits_equal(Real a, Real b) {
-  // memcmp, not std::bit_cast: emscripten 3.1.6's libc++ 13 has no bit_cast.
-  return std::memcmp(&a, &b, sizeof(Real)) == 0;
+  // memcpy into integers, not std::bit_cast: emscripten 3.1.6's libc++ 13 has no bit_cast.
+  using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+  Bits x = 0, y = 0;
+  std::memcpy(&x, &a, sizeof a), std::memcpy(&y, &b, sizeof b);
+  return x == y;
 }
 
 }  // namespace

@@ -68,7 +68,10 @@ std::string color_text(Rgba8 c) {
 }
 
 bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;  // bit for bit (libc++ 13 has no std::bit_cast)
+  // Bit for bit, as integers (libc++ 13 has no std::bit_cast).
+  std::uint64_t x = 0, y = 0;
+  std::memcpy(&x, &a, sizeof a), std::memcpy(&y, &b, sizeof b);
+  return x == y;
 }
 bool same_bits(Vec2 a, Vec2 b) {
   return same_bits(a.x, b.x) && same_bits(a.y, b.y);
