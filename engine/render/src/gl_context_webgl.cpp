@@ -48,25 +48,6 @@ Context::Context(int width, int height, std::uint8_t* pixels)
   handle_ = static_cast<std::uintptr_t>(context);
 }
 
-Context::~Context() {
-  release();
-}
-
-Context::Context(Context&& other) noexcept
-    : handle_(std::exchange(other.handle_, 0)),
-      width_(other.width_),
-      height_(other.height_),
-      pixels_(other.pixels_) {}
-
-Context& Context::operator=(Context&& other) noexcept {
-  if (this != &other) {
-    release();
-    handle_ = std::exchange(other.handle_, 0);
-    width_ = other.width_, height_ = other.height_, pixels_ = other.pixels_;
-  }
-  return *this;
-}
-
 void Context::release() noexcept {
   if (handle_ == 0) return;
   const EMSCRIPTEN_WEBGL_CONTEXT_HANDLE context = as_webgl(std::exchange(handle_, 0));
