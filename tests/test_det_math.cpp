@@ -142,9 +142,12 @@ TEST(DetMath, SpecialValuesFollowC99AnnexF) {
 
 // Golden bits: input → output as computed here. A platform whose det functions compute
 // differently (a libm call slipped in, an FMA contraction, FTZ/DAZ) fails this on its own.
-// The first two are the causes: exp(-2.73/120) (tests/scenes/cross/damped_exp.toml),
-// where glibc's FMA and non-FMA exp disagree, and the shear rest length of
-// tests/scenes/cross/hypot_rest.toml, where glibc x86-64's hypot is 1 ulp off.
+// The first four are the causes: exp(-2.73/120) (tests/scenes/cross/damped_exp.toml),
+// where glibc's FMA and non-FMA exp disagree; hypot(0.15, -0.25), where glibc's hypot is 1 ulp
+// off the correctly rounded value; and the two shear diagonals of
+// tests/scenes/cross/hypot_rest.toml (spacing 0.10 x -0.15 m): glibc aarch64 and musl
+// (emscripten) round the first 1 ulp high (0x1.71355d04de19p-3), musl the second 1 ulp low
+// (0x1.71355d04de18ep-3); glibc x86-64 rounds both correctly.
 TEST(DetMath, GoldenBitPatterns) {
   struct Case {
     int f;  // 0 exp, 1 expm1, 2 hypot
