@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fixstep/components.hpp>
+#include <fixstep/det_math.hpp>
 #include <fixstep/world.hpp>
 #include <numbers>
 #include <string>
@@ -142,7 +143,7 @@ void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput&
   }
   // The band stretches max_pull at most: hold the pointer the ball follows within reach.
   const Vec2 d = sub(input.pointer, anchor);
-  const double length = std::hypot(d.x, d.y);
+  const double length = fixstep::det::hypot(d.x, d.y);
   if (length > max_pull) {
     input.pointer = {anchor.x + d.x * max_pull / length, anchor.y + d.y * max_pull / length};
   }
@@ -155,7 +156,7 @@ void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& si
       const bool dragging = input.drag_body == ball;
       if (game.dragging && !dragging) {  // let go this tick
         const Vec2 pull = sub(b.position, anchor);
-        if (std::hypot(pull.x, pull.y) >= min_pull) {
+        if (fixstep::det::hypot(pull.x, pull.y) >= min_pull) {
           game.phase = Phase::pulled;
           game.release_point = b.position;
           --game.shots_left;
@@ -183,8 +184,9 @@ void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& si
       }
       const Body now = sim.body(ball);
       ++game.flight_ticks;
-      game.still_ticks =
-          std::hypot(now.velocity.x, now.velocity.y) < still_speed ? game.still_ticks + 1 : 0;
+      game.still_ticks = fixstep::det::hypot(now.velocity.x, now.velocity.y) < still_speed
+                             ? game.still_ticks + 1
+                             : 0;
       const bool left =
           std::abs(now.position.x) > level_half_width || now.position.y < level_bottom;
       if (!left && game.still_ticks < still_limit && game.flight_ticks < flight_limit) break;
