@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <fixstep/scene_stability.hpp>
 #include <utility>
@@ -21,29 +20,6 @@ namespace {
 /// states (`fixstep view` keeps 10 s in 512 MiB; a page has less memory).
 constexpr double rewind_seconds = 10.0;
 constexpr std::size_t rewind_max_bytes = std::size_t{128} << 20;
-
-/// Push acceleration (m/s²) of the held arrow buttons: half a view-width per s², as in
-/// `fixstep view` (demos/fixstep/view.cpp, push_of).
-Vec2 push_of(std::uint32_t held, double view_width) {
-  const double a = 0.5 * view_width;
-  auto axis = [&](std::uint32_t plus, std::uint32_t minus) {
-    return (held & plus ? a : 0.0) - (held & minus ? a : 0.0);
-  };
-  return {axis(button_right, button_left), axis(button_up, button_down)};
-}
-
-/// The loop keys, as fixstep::apply_loop_keys (fixstep/window.hpp) applies them in a window.
-void apply_loop_keys(const PageEvents& ev, FixedStepLoop& loop) {
-  if (ev.toggle_pause) loop.set_paused(!loop.paused());
-  if (ev.single_step) {
-    loop.set_paused(true);
-    loop.request_single_step();
-  }
-  if (ev.time_scale_steps != 0) {
-    loop.set_time_scale(
-        std::clamp(loop.time_scale() * std::pow(2.0, ev.time_scale_steps), 1.0 / 16.0, 16.0));
-  }
-}
 
 }  // namespace
 
@@ -67,6 +43,7 @@ PageApp::PageApp(PageOptions options)
   start_session(std::move(def), o_.scene);
   if (o_.record) recorder_.emplace(session_->definition(), scene_file_, o_.hash_every);
   if (o_.frames || o_.ticks) return;
+  session_->set_key_help(page_key_help);
   session_->set_show_controls(true);
   input_ = std::make_unique<PageInput>("#canvas", o_.width, o_.height);
   const Simulation& sim = session_->simulation();
@@ -107,7 +84,7 @@ void PageApp::interactive_frame(double now_ms) {
   apply_loop_keys(ev, session.loop());
   if (ev.restart) session.restart(), rewind_.clear(), rewind_.push(session.simulation());
   feed(ev, sampler_, camera, o_.width, o_.height);
-  sampler_.set_push(push_of(sampler_.held(), camera.width));
+  sampler_.set_push(arrow_push(sampler_.held(), camera.width));
   if (ev.rewind) {
     // One tick back per frame while Backspace is held; ticks resume from there.
     if (const WorldSnapshot* past = rewind_.step_back()) session.restore(*past);

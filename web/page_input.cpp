@@ -118,14 +118,4 @@ PageEvents PageInput::take() {
   return out;
 }
 
-void feed(const PageEvents& ev, InputSampler& sampler, const Camera& camera, int width,
-          int height) {
-  for (const PageEvents::ButtonEdge& edge : ev.edges) {
-    edge.press ? sampler.press(edge.buttons) : sampler.release(edge.buttons);
-  }
-  if (ev.pointer_seen) {
-    sampler.set_pointer(screen_to_world(camera, ev.pointer_x, ev.pointer_y, width, height));
-  }
-}
-
 }  // namespace fixstep::web

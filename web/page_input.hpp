@@ -3,31 +3,14 @@
 // handed to the same per-tick input sampling (InputSampler). Web platform (wasm only).
 #pragma once
 
-#include <cstdint>
-#include <vector>
-
-#include "fixstep/input.hpp"
-#include "fixstep/render.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/user_events.hpp"
 
 namespace fixstep::web {
 
-/// What happened since the last take(), as WindowEvents (fixstep/window.hpp) has it.
-struct PageEvents {
-  bool toggle_pause = false;  ///< space
-  bool single_step = false;   ///< '.'
-  int time_scale_steps = 0;   ///< '+' (or '=') = +1, '-' = -1, each press
-  bool restart = false;       ///< 'r'
-  bool rewind = false;        ///< Backspace held
-  /// Presses and releases of InputButton bits (arrows, Enter, mouse buttons), in order.
-  struct ButtonEdge {
-    bool press = false;
-    std::uint32_t buttons = 0;
-  };
-  std::vector<ButtonEdge> edges{};
-  bool pointer_seen = false;                ///< the pointer has been over the canvas
-  double pointer_x = 0.0, pointer_y = 0.0;  ///< frame pixels from the top-left corner
-};
+/// What happened since the last take(): the keys, buttons and pointer of a window's events
+/// (fixstep/user_events.hpp) but for `quit` and `push_direction` (a page has no Esc to quit;
+/// its arrows push through the sampled buttons).
+using PageEvents = UserEvents;
 
 /// Listens to the window's keys and to the mouse on the canvas (selector, e.g. "#canvas",
 /// whose drawing buffer is width x height px: pointer positions are scaled from the canvas's
@@ -53,10 +36,5 @@ class PageInput {
   PageEvents ev_;
   bool backspace_held_ = false;
 };
-
-/// Hands the tick-input part of `ev` to `sampler`, as fixstep::feed does for a window: the
-/// button edges in order, and the pointer in world metres through `camera` for a width x height
-/// frame (screen_to_world).
-void feed(const PageEvents& ev, InputSampler& sampler, const Camera& camera, int width, int height);
 
 }  // namespace fixstep::web

@@ -61,16 +61,6 @@ RewindBuffer make_rewind(const Simulation& sim) {
   return RewindBuffer(capacity);
 }
 
-/// Push acceleration (m/s²) of the held arrow buttons: half a view-width per s² (visible at any
-/// scene scale).
-Vec2 push_of(std::uint32_t held, double view_width) {
-  const double a = 0.5 * view_width;
-  auto axis = [&](std::uint32_t plus, std::uint32_t minus) {
-    return (held & plus ? a : 0.0) - (held & minus ? a : 0.0);
-  };
-  return {axis(button_right, button_left), axis(button_up, button_down)};
-}
-
 namespace {
 
 /// The world a window shows: the scene it was built from, its session and rewind buffer.
@@ -197,7 +187,7 @@ int view_command(const ViewOptions& o) {
       if (recorder) recorder->truncate(0);
     }
     feed(ev, sampler, camera, width, height);
-    sampler.set_push(push_of(sampler.held(), camera.width));
+    sampler.set_push(arrow_push(sampler.held(), camera.width));
 
     const double seconds = o.fps ? virtual_frame : real_clock.frame_seconds();
     const bool was_faulted = session.simulation().fault().has_value();

@@ -268,9 +268,7 @@ void Session::engine_hud_lines() {
 void Session::control_hud_lines() {
   hud_.push_back(
       fmt::format("time x{:g}{}", loop_.time_scale(), loop_.paused() ? "   PAUSED" : ""));
-  hud_.emplace_back(
-      "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind  esc "
-      "quit");
+  hud_.push_back(key_help_);
 }
 
 // The HUD's lines (engine_hud_lines, control_hud_lines): title, tick, integrator, the energy

@@ -259,16 +259,6 @@ void Window::poll(WindowEvents& ev) {
   ev.rewind = keys[SDL_SCANCODE_BACKSPACE] != 0;
 }
 
-void feed(const WindowEvents& ev, InputSampler& sampler, const Camera& camera, int width,
-          int height) {
-  for (const WindowEvents::ButtonEdge& edge : ev.edges) {
-    edge.press ? sampler.press(edge.buttons) : sampler.release(edge.buttons);
-  }
-  if (ev.pointer_seen) {
-    sampler.set_pointer(screen_to_world(camera, ev.pointer_x, ev.pointer_y, width, height));
-  }
-}
-
 void Window::present(std::span<const std::uint8_t> rgba) {
   if (rgba.size() != static_cast<std::size_t>(impl_->width) * impl_->height * 4) {
     throw WindowError("window: frame size does not match the window");

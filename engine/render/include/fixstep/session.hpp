@@ -6,12 +6,14 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "fixstep/loop.hpp"
 #include "fixstep/render.hpp"
 #include "fixstep/simulation.hpp"
+#include "fixstep/user_events.hpp"
 
 namespace fixstep {
 
@@ -84,8 +86,12 @@ class Session {
   /// Draws the pointer's drag spring (from `pointer`, m, to body `body`) in the next draw()s,
   /// as the springs are drawn; no_body hides it.
   void show_drag(Vec2 pointer, Entity body) { drag_pointer_ = pointer, drag_body_ = body; }
-  /// Shows the window's key help in the HUD.
+  /// Shows the loop's key help in the HUD (the window's, fixstep::window_key_help, unless
+  /// set_key_help() gave another).
   void set_show_controls(bool show);
+  /// The key help line set_show_controls() shows: the keys of the program's loop (e.g.
+  /// fixstep::page_key_help in a browser, which has no Esc to quit).
+  void set_key_help(std::string_view help) { key_help_ = help; }
   /// Shows the energy line (E, dissipated, balance) in the HUD: on by default. Programs whose
   /// rules or pointer add energy from outside the world's account (a game) may hide it, as
   /// its balance then measures them, not the integrator.
@@ -153,6 +159,7 @@ class Session {
   std::vector<std::string> fault_lines_;  ///< the runtime guard's message for the HUD, once built
   double initial_energy_ = 0.0;
   bool show_controls_ = false;
+  std::string key_help_{window_key_help};
   bool show_energy_ = true;
   bool show_engine_hud_ = true;
   Vec2 drag_pointer_{};

@@ -2,19 +2,15 @@
 // Separate library target (fixstep::window) so headless users do not link SDL2.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
-#include "fixstep/input.hpp"
-#include "fixstep/loop.hpp"
 #include "fixstep/render.hpp"
 #include "fixstep/types.hpp"
+#include "fixstep/user_events.hpp"
 
 namespace fixstep {
 
@@ -24,47 +20,9 @@ class WindowError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Key presses since the last poll(), and the held arrow keys.
-struct WindowEvents {
-  bool quit = false;          ///< Esc or the close button
-  bool toggle_pause = false;  ///< space
-  bool single_step = false;   ///< '.'
-  int time_scale_steps = 0;   ///< '+' = +1, '-' = -1 (each press)
-  bool restart = false;       ///< 'r'
-  bool rewind = false;    ///< Backspace held: step time backwards (programs that keep snapshots)
-  Vec2 push_direction{};  ///< arrow keys held: components in {-1, 0, 1}
-  /// A press or release of tick-input buttons (InputButton bits: arrows, Enter, mouse
-  /// buttons), in the order they happened.
-  struct ButtonEdge {
-    bool press = false;
-    std::uint32_t buttons = 0;
-  };
-  std::vector<ButtonEdge> edges{};
-  bool pointer_seen = false;                ///< the pointer is over the window (pointer is valid)
-  double pointer_x = 0.0, pointer_y = 0.0;  ///< pixels from the top-left corner
-};
-
-/// Hands the tick-input part of `ev` to `sampler`: every button edge in order, and the pointer
-/// converted to world metres through `camera` for a width x height frame (screen_to_world).
-void feed(const WindowEvents& ev, InputSampler& sampler, const Camera& camera, int width,
-          int height);
-
-/// Applies the loop keys of `ev` to `loop`, the same in every fixstep window: space toggles
-/// pause; '.' pauses and runs exactly one tick on the next advance(); each '+' doubles and each
-/// '-' halves the time scale, kept within [1/16, max_time_scale]. Quit, restart and the arrow
-/// keys are left to the caller (what they reset or push differs per program).
-inline void apply_loop_keys(const WindowEvents& ev, FixedStepLoop& loop,
-                            double max_time_scale = 16.0) {
-  if (ev.toggle_pause) loop.set_paused(!loop.paused());
-  if (ev.single_step) {
-    loop.set_paused(true);
-    loop.request_single_step();
-  }
-  if (ev.time_scale_steps != 0) {
-    loop.set_time_scale(std::clamp(loop.time_scale() * std::pow(2.0, ev.time_scale_steps),
-                                   1.0 / 16.0, max_time_scale));
-  }
-}
+/// A window's events: the keys, buttons and pointer of fixstep/user_events.hpp, with Esc and
+/// the close button as `quit` and the held arrow keys as `push_direction`.
+using WindowEvents = UserEvents;
 
 class Window {
  public:
