@@ -389,6 +389,43 @@ TEST(FloatHygiene, TheCallersFpuModeDoesNotReachTheState) {
   }
 }
 
+// The same for what happens before the first tick: a scene loaded and its world built in the
+// caller's mode. tests/scenes/cross/hypot_rest.toml's numbers are read by strtod (which rounds
+// in the current mode) and its shear rest lengths come from det::hypot, whose exact products
+// need round-to-nearest; both scenes' springs are given in the frequency form (stiffness and
+// damping computed at load) and damped_exp.toml's damping factors are inexact. In f32,
+// create_body narrows every double. Under FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO (and, on x86,
+// FTZ/DAZ) the hashes must be the default mode's.
+std::uint64_t loaded_hash(const char* name, Precision precision) {
+  Scene s = load_scene(std::string(FIXSTEP_SOURCE_DIR) + "/tests/scenes/cross/" + name);
+  s.precision = precision;
+  Simulation sim = make_simulation(world_def(s));
+  for (int i = 0; i < 300; ++i) sim.step({});
+  return sim.state_hash();
+}
+
+TEST(FloatHygiene, TheCallersFpuModeDoesNotReachALoadedWorld) {
+  for (const char* name : {"hypot_rest.toml", "damped_exp.toml"}) {
+    for (const Precision p : {Precision::f64, Precision::f32}) {
+      SCOPED_TRACE(fmt::format("{} {}", name, precision_name(p)));
+      const std::uint64_t ieee = loaded_hash(name, p);
+#if defined(__x86_64__) || defined(__i386__)
+      const unsigned saved = _mm_getcsr();
+      _mm_setcsr(saved | 0x8040u);  // FTZ and DAZ
+      const std::uint64_t ftz = loaded_hash(name, p);
+      _mm_setcsr(saved);
+      EXPECT_EQ(ftz, ieee) << "FTZ/DAZ";
+#endif
+      for (const int mode : {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
+        ASSERT_EQ(std::fesetround(mode), 0);
+        const std::uint64_t other = loaded_hash(name, p);
+        std::fesetround(FE_TONEAREST);
+        EXPECT_EQ(other, ieee) << "rounding mode " << mode;
+      }
+    }
+  }
+}
+
 // Issue 21, class 8: a rate so small that the dimensionless scan's step s / γ overflows (a
 // subnormal drag, or a drag over a huge mass) made World refuse an infinite dt, and the scene
 // got "world: dt must be finite and > 0 s (got inf)" with no file or key. Every step is

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "fixstep/det_math.hpp"
+#include "fixstep/float_mode.hpp"
 
 namespace fixstep {
 
@@ -34,6 +35,7 @@ PointerDrag::PointerDrag(double tolerance) : tolerance_(tolerance) {
 }
 
 void PointerDrag::apply(TickInput& input, const Simulation& sim) {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   const bool held = (input.held & button_pointer_primary) != 0;
   if ((input.pressed & button_pointer_primary) && held) {
     body_ = pick_body(sim, input.pointer, tolerance_);

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "fixstep/float_mode.hpp"
+
 namespace fixstep {
 
 namespace detail {
@@ -150,6 +152,7 @@ void World<Real>::validate_component(const Collider& c, const std::string& who) 
 
 template <class Real>
 Entity World<Real>::create_body(const BodyDef& def) {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   const std::string who = def.name.empty() ? std::string("body") : "body '" + def.name + "'";
   validate(def.body, who);
   if (def.spring) validate_component(*def.spring, who);
@@ -243,6 +246,7 @@ void World<Real>::validate_link(const LinkDef& def, const std::string& who) cons
 
 template <class Real>
 Link World<Real>::create_link(const LinkDef& def) {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   validate_link(def, "link");
   Entity key;
   if (!link_free_slots_.empty()) {
@@ -313,6 +317,7 @@ Body World<Real>::body(Entity e) const {
 
 template <class Real>
 void World<Real>::set_body(Entity e, const Body& b) {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   const std::size_t i = index_of(e);
   validate(b, describe(e));
   mass_[i] = b.mass;

@@ -42,6 +42,7 @@
 #include <stdexcept>
 
 #include "fixstep/det_math.hpp"
+#include "fixstep/float_mode.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -158,6 +159,7 @@ bool impact(Motion& m, const PlaneDef& p, double r, double dt) {
 
 template <class Real>
 std::size_t World<Real>::add_plane(const PlaneDef& def) {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   const std::string who = fmt::format("plane[{}]", planes_.size());
   auto check = [&](double v, bool ok, const char* field, const char* allowed) {
     if (!std::isfinite(v) || !std::isfinite(static_cast<Real>(v)) || !ok) {

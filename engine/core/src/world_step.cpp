@@ -8,10 +8,10 @@
 #include "body_field.hpp"
 #include "disc_contacts.hpp"
 #include "fixstep/det_math.hpp"
+#include "fixstep/float_mode.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
-#include "float_mode.hpp"
 
 namespace fixstep {
 
@@ -192,7 +192,7 @@ void World<Real>::apply_drag(const TickInput& input) {
 
 template <class Real>
 void World<Real>::step(const TickInput& input) {
-  const DefaultFloatMode ieee;  // no state depends on the caller's FPU mode (float_mode.hpp)
+  const IeeeFloatMode ieee;  // no state depends on the caller's FPU mode (fixstep/float_mode.hpp)
   if (terms_dirty_) rebuild_terms();
   if (!input.bodies.empty()) apply_body_inputs(input);
   if (bodies_.contains(input.drag_body) &&

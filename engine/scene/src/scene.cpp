@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "fixstep/float_mode.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/scene_stability.hpp"
@@ -153,6 +154,9 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
 }  // namespace scene_detail
 
 Scene parse_scene(std::string_view text, const std::string& source_name) {
+  // The numbers read (strtod rounds in the current mode), rest lengths, frequency-form
+  // stiffness and damping: the same whatever the caller's FPU mode (fixstep/float_mode.hpp).
+  const IeeeFloatMode ieee;
   using namespace scene_detail;
   Scene scene;
   scene.file = source_name;
