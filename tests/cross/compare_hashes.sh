@@ -18,6 +18,10 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 # Every build must have its tool before any case runs: one line naming the build and the fix
 # instead of every case failing.
 for build in "$@"; do
+  if [ ! -d "$build" ]; then
+    echo "compare_hashes: $build: no such build directory (give build directories, e.g. build/ci build/aarch64)" >&2
+    exit 2
+  fi
   if [ ! -x "$build/bin/state_hashes.sh" ]; then
     echo "compare_hashes: $build has no executable bin/state_hashes.sh: configure it (cmake --preset ...) and build the state_hashes target" >&2
     exit 2
