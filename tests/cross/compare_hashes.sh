@@ -8,12 +8,31 @@
 #   tests/cross/compare_hashes.sh NATIVE_BUILD [CROSS_BUILD...]    e.g. build/ci build/aarch64 build/wasm
 #
 # Each build needs bin/state_hashes.sh (written by its configure step: state_hashes through the
-# build's emulator) and state_hashes built. The outputs stay in
+# build's emulator) and state_hashes built; a build without either is refused (exit 2) before
+# any case runs. The outputs stay in
 # NATIVE_BUILD/cross-hashes/NAME.RUN.txt ("TICK HASH" lines). Exit 0 when every run of every
 # case gives the native hashes, 1 otherwise (every difference is printed), 2 on bad usage.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-[ $# -ge 1 ] || { sed -n '2,13p' "$0" >&2; exit 2; }
+[ $# -ge 1 ] || { echo "compare_hashes: no build directory given" >&2; sed -n '2,14p' "$0" >&2; exit 2; }
+# Every build must have its tool before any case runs: one line naming the build and the fix
+# instead of every case failing.
+for build in "$@"; do
+  if [ ! -d "$build" ]; then
+    echo "compare_hashes: $build: no such build directory (give build directories, e.g. build/ci build/aarch64)" >&2
+    exit 2
+  fi
+  if [ ! -x "$build/bin/state_hashes.sh" ]; then
+    echo "compare_hashes: $build has no executable bin/state_hashes.sh: configure it (cmake --preset ...) and build the state_hashes target" >&2
+    exit 2
+  fi
+done
+for build in "$@"; do
+  if ! "$build/bin/state_hashes.sh" "$root/assets/scenes/projectile.toml" --ticks 0 >/dev/null 2>&1; then
+    echo "compare_hashes: $build/bin/state_hashes.sh does not run: build the state_hashes target there (cmake --build $build --target state_hashes)" >&2
+    exit 2
+  fi
+done
 native=$1
 shift
 out=$native/cross-hashes

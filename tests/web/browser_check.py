@@ -18,6 +18,10 @@ and must report the native `fixstep run --steps N` summary: projectile.toml at 4
 default.toml at 10^5 (subnormals), and issue 23's cause scenes in tests/scenes/cross (exp's
 FMA/non-FMA difference, a loader input whose hypot differs between libms), cross/NAME.toml.
 
+Then the bad inputs (--no-bad-inputs skips them): every row of tests/web/bad_inputs_page.tsv,
+the page's rows of docs/BAD_INPUTS.md, loaded as index.html?QUERY must show exactly
+"error: MESSAGE" as its result.
+
 Exits 0 when everything matched, 1 naming each failure otherwise.
 Usage: browser_check.py --fixstep build/ci/bin/fixstep --site build/web/site [--out DIR]
 """
@@ -111,6 +115,7 @@ class Site:
             def log_message(self, *a):
                 pass
 
+        self.rec_dir = rec_dir
         self.server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
         self.url = f"http://127.0.0.1:{self.server.server_address[1]}"
         threading.Thread(target=self.server.serve_forever, daemon=True).start()
@@ -207,6 +212,58 @@ def check_long(spec, args, site, failures):
     print(f"{scene} ticks={ticks}: {'same' if ok else 'DIFFERENT'}: {summary}", flush=True)
 
 
+BAD_INPUTS = os.path.join(ROOT, "tests", "web", "bad_inputs_page.tsv")
+
+
+def bad_input_rows():
+    """The rows of bad_inputs_page.tsv: (description, query, message) without comments."""
+    rows = []
+    with open(BAD_INPUTS, encoding="utf-8") as f:
+        for line in f:
+            line = line.rstrip("\n")
+            if not line or line.startswith("#"):
+                continue
+            fields = line.split("\t")
+            if len(fields) != 3:
+                raise ValueError(f"{BAD_INPUTS}: not DESCRIPTION<TAB>QUERY<TAB>MESSAGE: {line!r}")
+            rows.append(tuple(fields))
+    return rows
+
+
+def write_bad_recordings(args, rec_dir):
+    """The recordings the replay= rows fetch under /rec/ (see bad_inputs_page.tsv)."""
+    base = os.path.join(rec_dir, "projectile_20.rec")
+    native(args.fixstep, "run", "assets/scenes/projectile.toml", "--steps", "20", "--record",
+           base, "--hash-every", "1", "-q")
+    with open(base, encoding="utf-8") as f:
+        lines = f.read().splitlines(keepends=True)
+    with open(os.path.join(rec_dir, "text.rec"), "w", encoding="utf-8") as f:
+        f.write("hello, not a recording\n")
+    with open(os.path.join(rec_dir, "cut.rec"), "w", encoding="utf-8") as f:
+        f.write("".join(lines[:10]))
+    with open(os.path.join(rec_dir, "foreign.rec"), "w", encoding="utf-8") as f:
+        f.write("".join("scene mine.toml\n" if line.startswith("scene ") else line
+                        for line in lines))
+    if os.path.exists(os.path.join(rec_dir, "missing.rec")):
+        os.remove(os.path.join(rec_dir, "missing.rec"))
+
+
+def check_bad_inputs(args, site, failures):
+    """Every bad input of the page (bad_inputs_page.tsv): it must stop and show exactly
+    "error: MESSAGE"."""
+    write_bad_recordings(args, site.rec_dir)
+    rows = bad_input_rows()
+    wrong = 0
+    for what, query, message in rows:
+        dom = chromium(f"{site.url}/index.html?{query}", None, 320, 180, 5000)
+        result = element(dom, "result")
+        if result != f"error: {message}":
+            wrong += 1
+            failures.append(f"bad input {what!r} (index.html?{query}): the page shows {result!r}, "
+                            f"expected {'error: ' + message!r}")
+    print(f"bad inputs: {len(rows) - wrong} of {len(rows)} show their error", flush=True)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--fixstep", required=True, help="the native fixstep CLI")
@@ -219,6 +276,8 @@ def main():
                             "cross/damped_exp.toml:2000", "cross/hypot_rest.toml:2000"],
                    help="SCENE:TICKS runs stepped without drawing")
     p.add_argument("--no-input", action="store_true", help="skip the input check")
+    p.add_argument("--no-bad-inputs", action="store_true",
+                   help="skip the bad inputs (tests/web/bad_inputs_page.tsv)")
     p.add_argument("--budget-ms", type=int, default=600000, help="virtual time per page load")
     args = p.parse_args()
     args.fixstep = os.path.abspath(args.fixstep)
@@ -243,6 +302,11 @@ def main():
             check_long(spec, args, site, failures)
         except (RuntimeError, ValueError, OSError) as e:
             failures.append(f"{spec}: {e}")
+    if not args.no_bad_inputs:
+        try:
+            check_bad_inputs(args, site, failures)
+        except (RuntimeError, ValueError, OSError) as e:
+            failures.append(f"bad inputs: {e}")
     print(f"browser checks: {len(scenes)} scenes, {len(args.long)} long runs, "
           f"{time.monotonic() - start:.0f} s; output in {out}")
     for f in failures:
