@@ -13,6 +13,10 @@ WebGL2), the site served on 127.0.0.1 only. For every shipped scene (assets/scen
       stored hash verified), and a native recording (`fixstep run --record`) must replay in the
       page with every hash verified and the native final hash.
 
+Then the input (--no-input skips it): the interactive page driven by DOM key and mouse events
+(tests/web/input_check.html), and a native recording with input (assets/inputs/default_push.toml:
+pushes, a button, a drag) replayed in the page with every hash verified.
+
 Then the long "cause" runs (--long): the page steps a scene N ticks without drawing (ticks=N)
 and must report the native `fixstep run --steps N` summary: projectile.toml at 40 000 ticks and
 default.toml at 10^5 (subnormals), and issue 23's cause scenes in tests/scenes/cross (exp's
@@ -177,6 +181,26 @@ def check_scene(scene, args, site, out, failures):
           flush=True)
 
 
+def check_input_replay(args, site, out, failures):
+    """A native recording with input (assets/inputs/default_push.toml: every body pushed right,
+    then up, the action button tapped, the ball dragged) replayed in the page: every stored hash
+    verified and the native final hash, so input recorded natively means the same in wasm."""
+    rec = os.path.join(out, "rec", "default_input.rec")
+    recorded = summary_of(native(args.fixstep, "run", "assets/scenes/default.toml", "--steps",
+                                 "300", "--input", "assets/inputs/default_push.toml",
+                                 "--record", rec))
+    native_hash = re.search(r"state_hash=([0-9a-f]{16})", recorded).group(1)
+    w, h = args.size.split("x")
+    dom = chromium(f"{site.url}/index.html?replay=/rec/default_input.rec&headless=1"
+                   f"&size={args.size}", None, int(w), int(h), args.budget_ms)
+    result = element(dom, "result") or ""
+    if not re.fullmatch(rf"verified ticks=300 state_hash={native_hash} hashes=301", result):
+        failures.append(f"input replay: default_push.toml's recording in the page: {result!r} "
+                        f"(native state_hash={native_hash})")
+    print(f"input replay: default.toml with assets/inputs/default_push.toml, native "
+          f"state_hash={native_hash}; page {result}", flush=True)
+
+
 def check_input(args, site, failures):
     """tests/web/input_check.html: the interactive page on the real clock, driven by DOM key and
     mouse events (restart, pause, single step, a drag, rewind); the dragged state must differ
@@ -275,7 +299,7 @@ def main():
     p.add_argument("--long", nargs="*", default=["projectile.toml:40000", "default.toml:100000",
                             "cross/damped_exp.toml:2000", "cross/hypot_rest.toml:2000"],
                    help="SCENE:TICKS runs stepped without drawing")
-    p.add_argument("--no-input", action="store_true", help="skip the input check")
+    p.add_argument("--no-input", action="store_true", help="skip the input checks")
     p.add_argument("--no-bad-inputs", action="store_true",
                    help="skip the bad inputs (tests/web/bad_inputs_page.tsv)")
     p.add_argument("--budget-ms", type=int, default=600000, help="virtual time per page load")
@@ -293,10 +317,13 @@ def main():
         except (RuntimeError, ValueError, OSError) as e:
             failures.append(f"{scene}: {e}")
     if not args.no_input:
-        try:
-            check_input(args, site, failures)
-        except (RuntimeError, ValueError, OSError) as e:
-            failures.append(f"input: {e}")
+        for name, check in (("input", lambda: check_input(args, site, failures)),
+                            ("input replay",
+                             lambda: check_input_replay(args, site, out, failures))):
+            try:
+                check()
+            except (RuntimeError, ValueError, OSError) as e:
+                failures.append(f"{name}: {e}")
     for spec in args.long:
         try:
             check_long(spec, args, site, failures)
