@@ -17,7 +17,7 @@
 #include <exception>
 #include <string>
 
-#include "fixstep/det_math.hpp"
+#include "../det_golden_cases.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/simulation.hpp"
 
@@ -25,39 +25,19 @@ namespace {
 
 using namespace fixstep;
 
-std::uint64_t bits(double d) {
-  std::uint64_t u = 0;
-  std::memcpy(&u, &d, sizeof u);
-  return u;
-}
-
-double from_bits(std::uint64_t u) {
-  double d = 0.0;
-  std::memcpy(&d, &u, sizeof d);
-  return d;
-}
-
 /// Failures among the golden bit patterns, each printed.
 int golden_failures() {
-  struct Case {
-    int f;  // 0 exp, 1 expm1, 2 hypot
-    std::uint64_t x, y, out;
-  };
-  const Case cases[] = {
-#include "../det_math_golden.inc"
-  };
   int failed = 0;
-  for (const Case& c : cases) {
-    const double x = from_bits(c.x), y = from_bits(c.y);
-    const double got = c.f == 0 ? det::exp(x) : c.f == 1 ? det::expm1(x) : det::hypot(x, y);
-    if (bits(got) != c.out) {
+  for (const det_golden::Case& c : det_golden::cases) {
+    if (const std::uint64_t got = det_golden::result_bits(c); got != c.out) {
       ++failed;
-      std::printf("det function %d of %a, %a: got %a, golden %a\n", c.f, x, y, got,
-                  from_bits(c.out));
+      std::printf("det function %d of %a, %a: got %a, golden %a\n", c.f, det_golden::from_bits(c.x),
+                  det_golden::from_bits(c.y), det_golden::from_bits(got),
+                  det_golden::from_bits(c.out));
     }
   }
-  std::printf("det_checks: %d of %zu golden bit patterns match\n", int(std::size(cases)) - failed,
-              std::size(cases));
+  std::printf("det_checks: %d of %zu golden bit patterns match\n",
+              int(std::size(det_golden::cases)) - failed, std::size(det_golden::cases));
   return failed;
 }
 
