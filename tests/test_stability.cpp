@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <cfenv>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -13,10 +12,6 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "fixstep/world.hpp"
-
-#if defined(__x86_64__) || defined(__i386__)
-#include <xmmintrin.h>
-#endif
 
 namespace fixstep {
 namespace {
@@ -347,96 +342,6 @@ TEST(FloatHygiene, DampedF32StateFlushesToZeroInsteadOfStayingSubnormal) {
       EXPECT_EQ(w.vx()[0], 0.0f);
     } else {
       EXPECT_GT(subnormal_ticks, int(flush_denormals_every));
-    }
-  }
-}
-
-// Issue 23: the caller's FPU mode cannot reach a state. World::step runs in the IEEE default
-// mode (float_mode.hpp) and flushes subnormals in software, so a caller that set flush-to-zero,
-// denormals-are-zero (x86 MXCSR) or upward rounding gets the bits of one that did not, with the
-// flush on and off, through the subnormal range (the damped spring above, every tick's hash of
-// 20 000), for a
-// velocity Verlet world whose damping factors use det::exp too.
-std::uint64_t damped_hash(bool flush, Integrator integrator) {
-  World<float> w(WorldSettings{.dt = 0.01, .integrator = integrator, .flush_denormals = flush});
-  BodyDef d;
-  d.body.position = {1.0, 1.0};
-  d.spring = SpringDamper{.anchor = {}, .stiffness = 100.0, .damping = 50.0};
-  w.create_body(d);
-  std::uint64_t h = 0;
-  for (int i = 0; i < 20'000; ++i) {
-    w.step();
-    h = h * 31 + w.state_hash();  // every tick: the state crosses 1e-38 on the way to zero
-  }
-  return h;
-}
-
-/// f() run with FTZ and DAZ set in MXCSR, the caller's mode restored; nullopt where there is
-/// no such mode (not x86).
-template <class F>
-std::optional<std::uint64_t> under_ftz_daz(F f) {
-#if defined(__x86_64__) || defined(__i386__)
-  const unsigned saved = _mm_getcsr();
-  _mm_setcsr(saved | 0x8040u);  // FTZ and DAZ
-  const std::uint64_t h = f();
-  _mm_setcsr(saved);
-  return h;
-#else
-  (void)f;
-  return std::nullopt;
-#endif
-}
-
-/// f() run in rounding mode `mode` (fesetround), round-to-nearest restored.
-template <class F>
-std::uint64_t under_rounding(int mode, F f) {
-  EXPECT_EQ(std::fesetround(mode), 0);
-  const std::uint64_t h = f();
-  std::fesetround(FE_TONEAREST);
-  return h;
-}
-
-TEST(FloatHygiene, TheCallersFpuModeDoesNotReachTheState) {
-  for (bool flush : {true, false}) {
-    for (Integrator integrator : {Integrator::semi_implicit_euler, Integrator::velocity_verlet}) {
-      const auto hash = [&] { return damped_hash(flush, integrator); };
-      const std::uint64_t ieee = hash();
-      if (const auto ftz = under_ftz_daz(hash)) {
-        EXPECT_EQ(*ftz, ieee) << "FTZ/DAZ, flush_denormals = " << flush;
-      }
-      EXPECT_EQ(under_rounding(FE_UPWARD, hash), ieee)
-          << "round upward, flush_denormals = " << flush;
-    }
-  }
-}
-
-// The same for what happens before the first tick: a scene loaded and its world built in the
-// caller's mode. tests/scenes/cross/hypot_rest.toml's numbers are read by strtod (which rounds
-// in the current mode) and its shear rest lengths come from det::hypot, whose exact products
-// need round-to-nearest; both scenes' springs are given in the frequency form (stiffness and
-// damping computed at load) and damped_exp.toml's damping factors are inexact. In f32,
-// create_body narrows every double. Under FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO (and, on x86,
-// FTZ/DAZ) the hashes must be the default mode's.
-std::uint64_t loaded_hash(const char* name, Precision precision) {
-  Scene s = load_scene(std::string(FIXSTEP_SOURCE_DIR) + "/tests/scenes/cross/" + name);
-  s.precision = precision;
-  Simulation sim = make_simulation(world_def(s));
-  for (int i = 0; i < 300; ++i) sim.step({});
-  return sim.state_hash();
-}
-
-TEST(FloatHygiene, TheCallersFpuModeDoesNotReachALoadedWorld) {
-  for (const char* name : {"hypot_rest.toml", "damped_exp.toml"}) {
-    for (const Precision p : {Precision::f64, Precision::f32}) {
-      SCOPED_TRACE(fmt::format("{} {}", name, precision_name(p)));
-      const auto hash = [&] { return loaded_hash(name, p); };
-      const std::uint64_t ieee = hash();
-      if (const auto ftz = under_ftz_daz(hash)) {
-        EXPECT_EQ(*ftz, ieee) << "FTZ/DAZ";
-      }
-      for (const int mode : {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO}) {
-        EXPECT_EQ(under_rounding(mode, hash), ieee) << "rounding mode " << mode;
-      }
     }
   }
 }

@@ -27,6 +27,7 @@
 #include <system_error>
 
 #include "fixstep/file_read.hpp"
+#include "fixstep/float_mode.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/recording.hpp"
@@ -364,6 +365,7 @@ void end_line(const Lines& in, std::string_view line, Recording& rec) {
 }  // namespace
 
 Recording parse_recording(std::string_view text, const std::string& source_name) {
+  const IeeeFloatMode ieee;  // dt and inputs read by strtod, which rounds in the current mode
   if (text.size() > max_recording_bytes) {
     throw RecordingError(Kind::corrupt, source_name, 0, "",
                          fmt::format("{} bytes; recordings are limited to {} bytes", text.size(),

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "fixstep/disc_overlap.hpp"
+#include "fixstep/float_mode.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/stability.hpp"
 
@@ -147,6 +148,7 @@ namespace {
 /// network (unless def.allow_unstable); returns the guard's warnings: near the bound, or unstable
 /// and allowed.
 std::vector<std::string> judge_stability(const WorldDef& def) {
+  const IeeeFloatMode ieee;  // the same verdict whatever the caller's FPU mode
   std::vector<std::string> warnings;
   const WorldSettings& s = def.settings;
   auto refuse = [&](const std::string& message, int min_substeps, double max_step) {

@@ -348,6 +348,7 @@ void World<Real>::reserve(std::size_t bodies) {
 
 template <class Real>
 void World<Real>::rebuild_terms() {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   // Per-body coefficients, summed in double and rounded once to Real.
   struct Field {
     double stiffness = 0, anchor_x = 0, anchor_y = 0, rest = 0, gamma = 0, cx = 0, cy = 0;

@@ -112,6 +112,7 @@ void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const Ti
   if (ax.size() < body_count() || ay.size() < body_count()) {
     throw std::invalid_argument("World::accelerations: output spans are shorter than body_count()");
   }
+  const IeeeFloatMode ieee;  // its results, and the coefficients it may rebuild (float_mode.hpp)
   if (terms_dirty_) rebuild_terms();
   const Coefficients& c = coeff_;
   for (std::size_t j = 0; j < body_count(); ++j) {

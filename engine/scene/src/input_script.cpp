@@ -4,6 +4,7 @@
 
 #include <array>
 
+#include "fixstep/float_mode.hpp"
 #include "fixstep/recording.hpp"
 #include "scene_reader.hpp"
 
@@ -198,6 +199,7 @@ std::span<const std::pair<std::string_view, std::uint32_t>> button_names() {
 
 InputScript parse_input_script(std::string_view text, const std::string& source_name,
                                std::span<const BodyDef> bodies) {
+  const IeeeFloatMode ieee;  // numbers read by strtod, which rounds in the current mode
   InputScript script;
   script.file = source_name;
   Reader r(script.file);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "fixstep/float_mode.hpp"
+
 namespace fixstep {
 
 std::vector<BodyStability> check_stability(const Scene& scene) {
@@ -63,6 +65,7 @@ std::string with_advice(const std::string& message, int min_substeps, double max
 }  // namespace
 
 std::vector<std::string> enforce_stability(const Scene& scene) {
+  const IeeeFloatMode ieee;  // the same verdict whatever the caller's FPU mode
   std::vector<std::string> warnings;
   const int substeps = scene.world.substeps;
   auto apply = [&](Stability verdict, std::size_t line, const std::string& key,
