@@ -7,7 +7,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <random>
 
@@ -32,17 +31,8 @@ double ulps(double got, long double ref) {
   return static_cast<double>(std::fabs(static_cast<long double>(got) - ref) / ulp);
 }
 
-std::uint64_t bits(double d) {
-  std::uint64_t b;
-  std::memcpy(&b, &d, sizeof b);
-  return b;
-}
-
-double from_bits(std::uint64_t b) {
-  double d;
-  std::memcpy(&d, &b, sizeof d);
-  return d;
-}
+using fixstep::det_golden::bits;
+using fixstep::det_golden::from_bits;
 
 /// Largest error in ulps of f against ref over n arguments drawn by draw(rng).
 template <class F, class Ref, class Draw>
@@ -151,8 +141,8 @@ TEST(DetMath, SpecialValuesFollowC99AnnexF) {
 // (0x1.71355d04de18ep-3); glibc x86-64 rounds both correctly.
 TEST(DetMath, GoldenBitPatterns) {
   int checked = 0;
-  for (const det_golden::Case& c : det_golden::cases) {
-    EXPECT_EQ(det_golden::result_bits(c), c.out)
+  for (const fixstep::det_golden::Case& c : fixstep::det_golden::cases) {
+    EXPECT_EQ(fixstep::det_golden::result_bits(c), c.out)
         << "f " << c.f << " x " << std::hexfloat << from_bits(c.x) << " y " << from_bits(c.y);
     ++checked;
   }
