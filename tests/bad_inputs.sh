@@ -847,8 +847,9 @@ fi
 # --- tests/cross/compare_hashes.sh: refused before any case runs ---
 tool=$tests_dir/cross/compare_hashes.sh tool_name=tests/cross/compare_hashes.sh
 mkdir -p nobuild unbuilt/bin
-# A configured build whose state_hashes was never built: its bin/state_hashes.sh execs nothing.
-printf '#!/bin/sh\nexec "%s/unbuilt/tests/cross/state_hashes" "$@"\n' "$work" > unbuilt/bin/state_hashes.sh
+# A configured build whose state_hashes was never built: its bin/state_hashes.sh execs nothing
+# (a path relative to the work directory, so that the message is the same in every run).
+printf '#!/bin/sh\nexec unbuilt/tests/cross/state_hashes "$@"\n' > unbuilt/bin/state_hashes.sh
 chmod +x unbuilt/bin/state_hashes.sh
 case_ "compare_hashes: no build directory" ""
 case_ "compare_hashes: a build directory that does not exist" "" build/cii
@@ -857,11 +858,20 @@ case_ "compare_hashes: a cross build without bin/state_hashes.sh" "" unbuilt nob
 case_ "compare_hashes: a build whose state_hashes is not built" "" unbuilt
 tool=$fixstep tool_name=fixstep
 # --- the web page: rows of tests/web/bad_inputs_page.tsv, which browser_check.py loads ---
-while IFS=$'\t' read -r what query message; do
-  case $what in '' | '#'*) continue ;; esac
+# Exactly three tab-separated fields a row, as browser_check.py reads them (read's IFS would
+# merge empty fields and shift the rest).
+while IFS= read -r line; do
+  case $line in '' | '#'*) continue ;; esac
+  tabs=${line//[!$'\t']/}
+  if [ ${#tabs} -ne 2 ]; then
+    echo "bad_inputs.sh: tests/web/bad_inputs_page.tsv: not DESCRIPTION<TAB>QUERY<TAB>MESSAGE: $line" >&2
+    exit 1
+  fi
+  what=${line%%$'\t'*} rest=${line#*$'\t'}
+  query=${rest%%$'\t'*} message=${rest#*$'\t'}
   row=$((row + 1))
   printf '| %d | %s (the page stops and shows the error: checked by tests/web/browser_check.py in headless Chromium) | `index.html?%s` | — | error: %s |\n' \
-    "$row" "$what" "$query" "${message//|/\\|}"
+    "$row" "${what//|/\\|}" "${query//|/\\|}" "${message//|/\\|}"
 done <"$tests_dir/web/bad_inputs_page.tsv"
 echo
 echo "## Writing a scene from code"

@@ -28,8 +28,8 @@ for build in "$@"; do
   fi
 done
 for build in "$@"; do
-  if ! "$build/bin/state_hashes.sh" "$root/assets/scenes/projectile.toml" --ticks 0 >/dev/null 2>&1; then
-    echo "compare_hashes: $build/bin/state_hashes.sh does not run: build the state_hashes target there (cmake --build $build --target state_hashes)" >&2
+  if ! why=$("$build/bin/state_hashes.sh" "$root/assets/scenes/projectile.toml" --ticks 0 2>&1 >/dev/null); then
+    echo "compare_hashes: $build/bin/state_hashes.sh does not run (${why%%$'\n'*}): build the state_hashes target there (cmake --build $build --target state_hashes), or install its emulator" >&2
     exit 2
   fi
 done

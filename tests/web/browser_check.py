@@ -66,9 +66,10 @@ CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--use-angle=swiftshader",
                   "--disable-sync", "--hide-scrollbars"]
 
 
-def chromium(url, out_png, width, height, budget_ms):
+def chromium(url, out_png, width, height, budget_ms, wall_s=600):
     """Loads `url` in headless Chromium until the virtual-time budget is spent; returns the DOM
-    (text) and writes the screenshot of a width x height window to out_png (if given)."""
+    (text) and writes the screenshot of a width x height window to out_png (if given). A browser
+    still running after wall_s seconds is killed and reported as a RuntimeError."""
     profile = tempfile.mkdtemp(prefix="fixstep-chromium-")
     cmd = ["chromium", *CHROMIUM_FLAGS, f"--user-data-dir={profile}",
            f"--virtual-time-budget={budget_ms}", f"--window-size={width},{height}",
@@ -76,7 +77,9 @@ def chromium(url, out_png, width, height, budget_ms):
     if out_png:
         cmd.append(f"--screenshot={out_png}")
     try:
-        done = subprocess.run(cmd + [url], capture_output=True, text=True, timeout=600)
+        done = subprocess.run(cmd + [url], capture_output=True, text=True, timeout=wall_s)
+    except subprocess.TimeoutExpired as e:
+        raise RuntimeError(f"chromium did not finish {url} within {wall_s} s") from e
     finally:
         shutil.rmtree(profile, ignore_errors=True)
     return done.stdout
@@ -188,8 +191,11 @@ def check_input_replay(args, site, out, failures):
     rec = os.path.join(out, "rec", "default_input.rec")
     recorded = summary_of(native(args.fixstep, "run", "assets/scenes/default.toml", "--steps",
                                  "300", "--input", "assets/inputs/default_push.toml",
-                                 "--record", rec))
-    native_hash = re.search(r"state_hash=([0-9a-f]{16})", recorded).group(1)
+                                 "--record", rec)) or ""
+    native_hash = re.search(r"state_hash=([0-9a-f]{16})", recorded)
+    if not native_hash:
+        raise RuntimeError(f"fixstep run --input --record printed no summary: {recorded!r}")
+    native_hash = native_hash.group(1)
     w, h = args.size.split("x")
     dom = chromium(f"{site.url}/index.html?replay=/rec/default_input.rec&headless=1"
                    f"&size={args.size}", None, int(w), int(h), args.budget_ms)
@@ -279,8 +285,11 @@ def check_bad_inputs(args, site, failures):
     rows = bad_input_rows()
     wrong = 0
     for what, query, message in rows:
-        dom = chromium(f"{site.url}/index.html?{query}", None, 320, 180, 5000)
-        result = element(dom, "result")
+        try:
+            result = element(chromium(f"{site.url}/index.html?{query}", None, 320, 180, 5000,
+                                      wall_s=60), "result")
+        except RuntimeError as e:
+            result = str(e)
         if result != f"error: {message}":
             wrong += 1
             failures.append(f"bad input {what!r} (index.html?{query}): the page shows {result!r}, "
@@ -314,7 +323,7 @@ def main():
     for scene in scenes:
         try:
             check_scene(scene, args, site, out, failures)
-        except (RuntimeError, ValueError, OSError) as e:
+        except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
             failures.append(f"{scene}: {e}")
     if not args.no_input:
         for name, check in (("input", lambda: check_input(args, site, failures)),
@@ -322,17 +331,17 @@ def main():
                              lambda: check_input_replay(args, site, out, failures))):
             try:
                 check()
-            except (RuntimeError, ValueError, OSError) as e:
+            except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
                 failures.append(f"{name}: {e}")
     for spec in args.long:
         try:
             check_long(spec, args, site, failures)
-        except (RuntimeError, ValueError, OSError) as e:
+        except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
             failures.append(f"{spec}: {e}")
     if not args.no_bad_inputs:
         try:
             check_bad_inputs(args, site, failures)
-        except (RuntimeError, ValueError, OSError) as e:
+        except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
             failures.append(f"bad inputs: {e}")
     print(f"browser checks: {len(scenes)} scenes, {len(args.long)} long runs, "
           f"{time.monotonic() - start:.0f} s; output in {out}")
