@@ -60,22 +60,23 @@ EM_BOOL on_mouse(int type, const EmscriptenMouseEvent* e, void* input) {
 
 PageInput::PageInput(const char* canvas, int width, int height)
     : canvas_(canvas), width_(width), height_(height) {
-  const char* window = EMSCRIPTEN_EVENT_TARGET_WINDOW;
-  emscripten_set_keydown_callback(window, this, true, on_key);
-  emscripten_set_keyup_callback(window, this, true, on_key);
-  emscripten_set_mousedown_callback(canvas, this, true, on_mouse);
-  emscripten_set_mousemove_callback(canvas, this, true, on_mouse);
-  // Released anywhere: a drag may end outside the canvas.
-  emscripten_set_mouseup_callback(window, this, true, on_mouse);
+  listen(this);
 }
 
 PageInput::~PageInput() {
+  listen(nullptr);
+}
+
+void PageInput::listen(PageInput* input) const {
   const char* window = EMSCRIPTEN_EVENT_TARGET_WINDOW;
-  emscripten_set_keydown_callback(window, nullptr, true, nullptr);
-  emscripten_set_keyup_callback(window, nullptr, true, nullptr);
-  emscripten_set_mousedown_callback(canvas_, nullptr, true, nullptr);
-  emscripten_set_mousemove_callback(canvas_, nullptr, true, nullptr);
-  emscripten_set_mouseup_callback(window, nullptr, true, nullptr);
+  const em_key_callback_func key = input ? on_key : nullptr;
+  const em_mouse_callback_func mouse = input ? on_mouse : nullptr;
+  emscripten_set_keydown_callback(window, input, true, key);
+  emscripten_set_keyup_callback(window, input, true, key);
+  emscripten_set_mousedown_callback(canvas_, input, true, mouse);
+  emscripten_set_mousemove_callback(canvas_, input, true, mouse);
+  // Released anywhere: a drag may end outside the canvas.
+  emscripten_set_mouseup_callback(window, input, true, mouse);
 }
 
 bool PageInput::key(bool down, const char* key, bool repeat) {

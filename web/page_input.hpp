@@ -31,6 +31,9 @@ class PageInput {
   void button(bool down, unsigned short button);
 
  private:
+  /// Registers the key and mouse callbacks with `input` as their data, or removes them (nullptr).
+  void listen(PageInput* input) const;
+
   const char* canvas_;
   int width_, height_;
   PageEvents ev_;
