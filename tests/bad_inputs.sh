@@ -834,6 +834,11 @@ if [ -n "$state_hashes" ]; then
   case_ "state_hashes: an option without its value" "" good.toml --ticks
   case_ "state_hashes: --ticks not an integer" "" good.toml --ticks 1e3
   case_ "state_hashes: --ticks negative" "" good.toml --ticks -5
+  case_ "state_hashes: --ticks beyond 10^9 (fixstep run's limit)" "" good.toml --ticks 99999999999999999999
+  case_ "state_hashes: --ticks within 10^9 whose work is beyond 10^13 body-substeps" "[world]
+dt = 0.01
+substeps = 100000
+$body" scene.toml --ticks 1000000000
   case_ "state_hashes: --every 0" "" good.toml --every 0
   case_ "state_hashes: an unknown integrator" "" good.toml --integrator rk5
   case_ "state_hashes: an unknown precision" "" good.toml --precision f16

@@ -16,6 +16,7 @@
 #include <string>
 #include <string_view>
 
+#include "fixstep/limits.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/simulation.hpp"
@@ -43,11 +44,12 @@ struct Options {
   std::exit(2);
 }
 
-std::uint64_t count(std::string_view name, const char* text, std::uint64_t min) {
+std::uint64_t count(std::string_view name, const char* text, std::uint64_t min, std::uint64_t max) {
   char* end = nullptr;
-  const unsigned long long v = std::strtoull(text, &end, 10);
-  if (*text < '0' || *text > '9' || *end != '\0' || v < min) {
-    usage(std::string(name) + " wants an integer >= " + std::to_string(min) + ", got " + text);
+  const unsigned long long v = std::strtoull(text, &end, 10);  // ULLONG_MAX on overflow
+  if (*text < '0' || *text > '9' || *end != '\0' || v < min || v > max) {
+    usage(std::string(name) + " wants an integer in " + std::to_string(min) + ".." +
+          std::to_string(max) + ", got " + text);
   }
   return v;
 }
@@ -71,16 +73,15 @@ Options parse(int argc, char** argv) {
     if (i + 1 >= argc) usage(std::string(a) + " needs a value");
     const char* v = argv[++i];
     if (a == "--ticks") {
-      o.ticks = count(a, v, 0);
+      o.ticks = count(a, v, 0, max_command_ticks);  // as `fixstep run --steps`
     } else if (a == "--every") {
-      o.every = count(a, v, 1);
+      o.every = count(a, v, 1, max_command_ticks);
     } else if (a == "--integrator") {
       if (!(o.integrator = parse_integrator(v))) usage(std::string("unknown integrator ") + v);
     } else if (a == "--precision") {
       if (!(o.precision = parse_precision(v))) usage(std::string("unknown precision ") + v);
     } else if (a == "--threads") {
-      o.threads = static_cast<int>(count(a, v, 0));
-      if (*o.threads > 2) usage("--threads wants 0, 1 or 2");
+      o.threads = static_cast<int>(count(a, v, 0, 2));
     } else if (a == "--simd") {
       if (!(o.simd = parse_simd(v))) usage(std::string("unknown SIMD level ") + v);
     } else {
@@ -97,6 +98,8 @@ void run(const Options& o) {
   if (o.integrator) scene.world.integrator = *o.integrator;
   if (o.precision) scene.precision = *o.precision;
   if (o.threads) scene.world.threads = *o.threads;
+  check_command_work(o.ticks, tick_work(scene.bodies, scene.links, scene.world),
+                     "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
   Simulation sim = make_simulation(scene);
   std::string out;
   auto line = [&] {
