@@ -18,6 +18,11 @@
 # temporary directory and kills the server under `set -e`, and when either step fails it exits 5
 # or 1 in place of the command's status (CI saw "problem while cleaning up temporary directory"
 # turn a `view` that exited 3 into 5). -displayfd lets Xvfb pick a free display itself.
+# -noreset: by default Xvfb resets whenever its last client disconnects, and a client that
+# connects during the reset is refused. The xdotool calls (each its own short-lived client) race
+# the `view` they wait for: CI saw `view --record` fail with "could not connect to DISPLAY=:0",
+# and 40 views each started beside eight xdotool calls failed 9 times without -noreset, 0 of 150
+# with it.
 
 work=$(mktemp -d)
 xvfb_pid="" xvfb_display=""
@@ -43,7 +48,7 @@ hash_of() {
 have_xvfb() { command -v Xvfb >/dev/null; }
 start_xvfb() {
   [ -n "$xvfb_display" ] && return 0
-  Xvfb -displayfd 3 -screen 0 1024x768x24 -nolisten tcp 3>"$work/xvfb.display" \
+  Xvfb -displayfd 3 -screen 0 1024x768x24 -nolisten tcp -noreset 3>"$work/xvfb.display" \
     >"$work/xvfb.log" 2>&1 &
   xvfb_pid=$!
   local i

@@ -11,7 +11,9 @@ game=$1
 out=$2
 shots=${3:-}
 display=:97
-Xvfb "$display" -screen 0 1280x720x24 >/dev/null 2>&1 &
+# -noreset: a client that connects while Xvfb resets (after its last client left) is refused;
+# xdotool's short-lived connections would race the game's (tests/lib.sh says more).
+Xvfb "$display" -screen 0 1280x720x24 -noreset >/dev/null 2>&1 &
 xvfb=$!
 trap 'kill "$xvfb" 2>/dev/null || true' EXIT
 export DISPLAY=$display
