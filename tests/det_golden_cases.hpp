@@ -5,8 +5,8 @@
 #pragma once
 
 #include <cstdint>
-#include <cstring>
 
+#include "fixstep/bits.hpp"
 #include "fixstep/det_math.hpp"
 
 namespace fixstep::det_golden {
@@ -20,22 +20,10 @@ inline constexpr Case cases[] = {
 #include "det_math_golden.inc"
 };
 
-inline double from_bits(std::uint64_t b) {
-  double d = 0.0;
-  std::memcpy(&d, &b, sizeof d);
-  return d;
-}
-
-inline std::uint64_t bits(double d) {
-  std::uint64_t b = 0;
-  std::memcpy(&b, &d, sizeof b);
-  return b;
-}
-
 /// The bits fixstep::det gives for the case's call on this platform.
 inline std::uint64_t result_bits(const Case& c) {
-  const double x = from_bits(c.x), y = from_bits(c.y);
-  return bits(c.f == 0 ? det::exp(x) : c.f == 1 ? det::expm1(x) : det::hypot(x, y));
+  const double x = double_from_bits(c.x), y = double_from_bits(c.y);
+  return bits_of(c.f == 0 ? det::exp(x) : c.f == 1 ? det::expm1(x) : det::hypot(x, y));
 }
 
 }  // namespace fixstep::det_golden

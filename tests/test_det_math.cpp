@@ -11,6 +11,7 @@
 #include <random>
 
 #include "det_golden_cases.hpp"
+#include "fixstep/bits.hpp"
 #include "fixstep/det_math.hpp"
 
 namespace {
@@ -31,8 +32,8 @@ double ulps(double got, long double ref) {
   return static_cast<double>(std::fabs(static_cast<long double>(got) - ref) / ulp);
 }
 
-using fixstep::det_golden::bits;
-using fixstep::det_golden::from_bits;
+using fixstep::bits_of;
+using fixstep::double_from_bits;
 
 /// Largest error in ulps of f against ref over n arguments drawn by draw(rng).
 template <class F, class Ref, class Draw>
@@ -110,7 +111,7 @@ TEST(DetMath, HypotIsWithinHalfAnUlpAndABitOverWideMagnitudes) {
 TEST(DetMath, SpecialValuesFollowC99AnnexF) {
   EXPECT_TRUE(std::isnan(exp(nan)));
   EXPECT_EQ(exp(inf), inf);
-  EXPECT_EQ(bits(exp(-inf)), bits(0.0));
+  EXPECT_EQ(bits_of(exp(-inf)), bits_of(0.0));
   EXPECT_EQ(exp(0.0), 1.0);
   EXPECT_EQ(exp(-0.0), 1.0);
   EXPECT_EQ(exp(710.0), inf);
@@ -120,14 +121,14 @@ TEST(DetMath, SpecialValuesFollowC99AnnexF) {
   EXPECT_TRUE(std::isnan(expm1(nan)));
   EXPECT_EQ(expm1(inf), inf);
   EXPECT_EQ(expm1(-inf), -1.0);
-  EXPECT_EQ(bits(expm1(-0.0)), bits(-0.0));
+  EXPECT_EQ(bits_of(expm1(-0.0)), bits_of(-0.0));
   EXPECT_EQ(expm1(0x1p-1074), 0x1p-1074);
   EXPECT_EQ(expm1(-50.0), -1.0);
   EXPECT_EQ(expm1(710.0), inf);
   EXPECT_EQ(hypot(inf, nan), inf);
   EXPECT_EQ(hypot(nan, -inf), inf);
   EXPECT_TRUE(std::isnan(hypot(nan, 1.0)));
-  EXPECT_EQ(bits(hypot(-0.0, 0.0)), bits(0.0));
+  EXPECT_EQ(bits_of(hypot(-0.0, 0.0)), bits_of(0.0));
   EXPECT_EQ(hypot(-5.0, 0.0), 5.0);
 }
 
@@ -143,7 +144,8 @@ TEST(DetMath, GoldenBitPatterns) {
   int checked = 0;
   for (const fixstep::det_golden::Case& c : fixstep::det_golden::cases) {
     EXPECT_EQ(fixstep::det_golden::result_bits(c), c.out)
-        << "f " << c.f << " x " << std::hexfloat << from_bits(c.x) << " y " << from_bits(c.y);
+        << "f " << c.f << " x " << std::hexfloat << double_from_bits(c.x) << " y "
+        << double_from_bits(c.y);
     ++checked;
   }
   EXPECT_GE(checked, 40);

@@ -14,11 +14,11 @@
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <string>
 
 #include "../det_golden_cases.hpp"
+#include "fixstep/bits.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/simulation.hpp"
 
@@ -32,9 +32,8 @@ int golden_failures() {
   for (const det_golden::Case& c : det_golden::cases) {
     if (const std::uint64_t got = det_golden::result_bits(c); got != c.out) {
       ++failed;
-      std::printf("det function %d of %a, %a: got %a, golden %a\n", c.f, det_golden::from_bits(c.x),
-                  det_golden::from_bits(c.y), det_golden::from_bits(got),
-                  det_golden::from_bits(c.out));
+      std::printf("det function %d of %a, %a: got %a, golden %a\n", c.f, double_from_bits(c.x),
+                  double_from_bits(c.y), double_from_bits(got), double_from_bits(c.out));
     }
   }
   std::printf("det_checks: %d of %zu golden bit patterns match\n",

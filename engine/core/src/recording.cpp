@@ -5,9 +5,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstring>
 #include <type_traits>
 
+#include "fixstep/bits.hpp"
 #include "fixstep/file_write.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
@@ -24,9 +24,7 @@ class Fnv1a {
   void add(T value) {
     static_assert(std::is_arithmetic_v<T> || std::is_enum_v<T>);
     if constexpr (std::is_same_v<T, double>) {
-      std::uint64_t bits = 0;  // memcpy, not std::bit_cast: libc++ 13 (emscripten) has none
-      std::memcpy(&bits, &value, sizeof bits);
-      add_bits(bits);
+      add_bits(bits_of(value));
     } else {
       add_bits(static_cast<std::uint64_t>(value));
     }

@@ -4,9 +4,10 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 #include <stdexcept>
 #include <utility>
+
+#include "fixstep/bits.hpp"
 
 namespace fixstep {
 
@@ -39,11 +40,7 @@ void SyncTest::tick_with_rules(const TickInput& input) {
 bool SyncTest::check(std::uint64_t tick) {
   const Slot& s = slot(tick);
   const std::uint64_t hash = sim_.state_hash();
-  const double dissipated = sim_.dissipated_energy();  // compared bit for bit, as integers
-  std::uint64_t now_bits = 0, then_bits = 0;
-  std::memcpy(&now_bits, &dissipated, sizeof dissipated);
-  std::memcpy(&then_bits, &s.dissipated, sizeof s.dissipated);
-  const bool same_dissipated = now_bits == then_bits;
+  const bool same_dissipated = same_bits(sim_.dissipated_energy(), s.dissipated);
   if (hash == s.hash && same_dissipated) return true;
   mismatch_ = Mismatch{tick, s.hash, hash, hash == s.hash};
   return false;

@@ -15,11 +15,11 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <thread>
 #include <type_traits>
 
 #include "body_field.hpp"
+#include "fixstep/bits.hpp"
 #include "fixstep/det_math.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
@@ -42,16 +42,6 @@ namespace {
 
 /// Smallest range worth handing to the second thread.
 constexpr std::size_t min_parallel_range = 4096;
-
-/// Bitwise equality (what the link sums depend on; -0 and +0, or two NaNs, are not "equal").
-template <class Real>
-bool bits_equal(Real a, Real b) {
-  // memcpy into integers, not std::bit_cast: emscripten 3.1.6's libc++ 13 has no bit_cast.
-  using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
-  Bits x = 0, y = 0;
-  std::memcpy(&x, &a, sizeof a), std::memcpy(&y, &b, sizeof b);
-  return x == y;
-}
 
 }  // namespace
 
@@ -257,8 +247,8 @@ void World<Real>::step_multipass(const TickInput& input) {
     // The last tick's final link sums still hold if no position moved since (contacts, drag
     // input, set_state and restore all move them or leave them bit for bit).
     const bool same = fsal_valid_ &&
-                      std::equal(x_.begin(), x_.end(), fsal_x_.begin(), bits_equal<Real>) &&
-                      std::equal(y_.begin(), y_.end(), fsal_y_.begin(), bits_equal<Real>);
+                      std::equal(x_.begin(), x_.end(), fsal_x_.begin(), same_bits<Real>) &&
+                      std::equal(y_.begin(), y_.end(), fsal_y_.begin(), same_bits<Real>);
     chain.run(
         per_step * static_cast<std::size_t>(settings_.substeps),
         [&](std::size_t i) {

@@ -7,13 +7,13 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <iterator>
 #include <stdexcept>
 #include <string_view>
 #include <unordered_set>
 #include <vector>
 
+#include "fixstep/bits.hpp"
 #include "fixstep/det_math.hpp"
 #include "fixstep/file_write.hpp"
 #include "fixstep/recording.hpp"
@@ -67,12 +67,7 @@ std::string color_text(Rgba8 c) {
                     : fmt::format("\"#{:02x}{:02x}{:02x}{:02x}\"", c.r, c.g, c.b, c.a);
 }
 
-bool same_bits(double a, double b) {
-  // Bit for bit, as integers (libc++ 13 has no std::bit_cast).
-  std::uint64_t x = 0, y = 0;
-  std::memcpy(&x, &a, sizeof a), std::memcpy(&y, &b, sizeof b);
-  return x == y;
-}
+using fixstep::same_bits;  // of doubles (fixstep/bits.hpp); of points:
 bool same_bits(Vec2 a, Vec2 b) {
   return same_bits(a.x, b.x) && same_bits(a.y, b.y);
 }
