@@ -8,8 +8,7 @@
 namespace fixstep::web {
 
 /// What happened since the last take(): the keys, buttons and pointer of a window's events
-/// (fixstep/user_events.hpp) but for `quit` and `push_direction` (a page has no Esc to quit;
-/// its arrows push through the sampled buttons).
+/// (fixstep/user_events.hpp) but for `quit` (a page has no Esc to quit).
 using PageEvents = UserEvents;
 
 /// Listens to the window's keys and to the mouse on the canvas (selector, e.g. "#canvas",

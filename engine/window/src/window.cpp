@@ -254,8 +254,6 @@ void Window::poll(WindowEvents& ev) {
     }
   }
   const Uint8* keys = SDL_GetKeyboardState(nullptr);
-  ev.push_direction.x = double(keys[SDL_SCANCODE_RIGHT]) - double(keys[SDL_SCANCODE_LEFT]);
-  ev.push_direction.y = double(keys[SDL_SCANCODE_UP]) - double(keys[SDL_SCANCODE_DOWN]);
   ev.rewind = keys[SDL_SCANCODE_BACKSPACE] != 0;
 }
 

@@ -23,8 +23,7 @@ struct UserEvents {
   bool single_step = false;   ///< '.'
   int time_scale_steps = 0;   ///< '+' (or '=') = +1, '-' = -1 (each press)
   bool restart = false;       ///< 'r'
-  bool rewind = false;    ///< Backspace held: step time backwards (programs that keep snapshots)
-  Vec2 push_direction{};  ///< arrow keys held: components in {-1, 0, 1} (a window only)
+  bool rewind = false;  ///< Backspace held: step time backwards (programs that keep snapshots)
   /// A press or release of tick-input buttons (InputButton bits: arrows, Enter, mouse
   /// buttons), in the order they happened.
   struct ButtonEdge {

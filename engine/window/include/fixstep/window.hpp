@@ -21,7 +21,7 @@ class WindowError : public std::runtime_error {
 };
 
 /// A window's events: the keys, buttons and pointer of fixstep/user_events.hpp, with Esc and
-/// the close button as `quit` and the held arrow keys as `push_direction`.
+/// the close button as `quit`. The held arrow keys are tick-input buttons (arrow_push).
 using WindowEvents = UserEvents;
 
 class Window {
