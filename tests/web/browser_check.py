@@ -320,29 +320,21 @@ def main():
     scenes = args.scenes or sorted(f for f in os.listdir(os.path.join(ROOT, "assets", "scenes"))
                                    if f.endswith(".toml"))
     failures, start = [], time.monotonic()
-    for scene in scenes:
-        try:
-            check_scene(scene, args, site, out, failures)
-        except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
-            failures.append(f"{scene}: {e}")
+    checks = [(scene, lambda s=scene: check_scene(s, args, site, out, failures))
+              for scene in scenes]
     if not args.no_input:
-        for name, check in (("input", lambda: check_input(args, site, failures)),
-                            ("input replay",
-                             lambda: check_input_replay(args, site, out, failures))):
-            try:
-                check()
-            except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
-                failures.append(f"{name}: {e}")
-    for spec in args.long:
-        try:
-            check_long(spec, args, site, failures)
-        except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
-            failures.append(f"{spec}: {e}")
+        checks += [("input", lambda: check_input(args, site, failures)),
+                   ("input replay", lambda: check_input_replay(args, site, out, failures))]
+    checks += [(spec, lambda s=spec: check_long(s, args, site, failures)) for spec in args.long]
     if not args.no_bad_inputs:
+        checks.append(("bad inputs", lambda: check_bad_inputs(args, site, failures)))
+    for name, check in checks:
+        # A check that breaks (a page without a summary, a hung Chromium, a missing file) is one
+        # failure; the others still run.
         try:
-            check_bad_inputs(args, site, failures)
+            check()
         except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
-            failures.append(f"bad inputs: {e}")
+            failures.append(f"{name}: {e}")
     print(f"browser checks: {len(scenes)} scenes, {len(args.long)} long runs, "
           f"{time.monotonic() - start:.0f} s; output in {out}")
     for f in failures:
