@@ -6,9 +6,10 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <utility>
+
+#include "fixstep/bits.hpp"
 
 namespace fixstep::det {
 namespace {
@@ -33,10 +34,7 @@ constexpr double taylor[] = {0x1.0000000000000p-1,  0x1.5555555555555p-3,  0x1.5
 
 /// 2^k for -1022 ≤ k ≤ 1023, built from its bits (exact).
 double pow2(int k) {
-  const std::uint64_t bits = static_cast<std::uint64_t>(k + 1023) << 52;
-  double d;
-  std::memcpy(&d, &bits, sizeof d);
-  return d;
+  return double_from_bits(static_cast<std::uint64_t>(k + 1023) << 52);
 }
 
 /// y·2^k for y in [0.5, 4) and -1080 ≤ k ≤ 1024, rounded once (overflow → inf, subnormal
@@ -58,13 +56,10 @@ int reduce(double x, double& hi, double& lo) {
 
 /// Exponent e with |a| in [2^e, 2^(e+1)) for finite a > 0 (subnormals included).
 int exponent_of(double a) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &a, sizeof bits);
-  const int biased = static_cast<int>(bits >> 52);
+  const int biased = static_cast<int>(bits_of(a) >> 52);
   if (biased != 0) return biased - 1023;
   const double normal = a * 0x1p64;  // exact
-  std::memcpy(&bits, &normal, sizeof bits);
-  return static_cast<int>(bits >> 52) - 1023 - 64;
+  return static_cast<int>(bits_of(normal) >> 52) - 1023 - 64;
 }
 
 /// p = a·b and the exact error e = a·b - p (Dekker's product with Veltkamp's split; needs
