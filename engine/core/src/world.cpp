@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 
+#include "fixstep/bits.hpp"
 #include "fixstep/float_mode.hpp"
 
 namespace fixstep {
@@ -483,11 +483,12 @@ template <class Real>
 std::uint64_t World<Real>::state_hash() const {
   // FNV-1a, 64-bit (Fowler, Noll, Vo): offset basis 14695981039346656037, prime 1099511628211.
   std::uint64_t h = 14695981039346656037ull;
+  // Each value's bytes, least significant first (what memory holds on every platform fixstep
+  // runs on: x86-64, aarch64, wasm32).
   auto mix = [&h](Real v) {
-    unsigned char bytes[sizeof(Real)];
-    std::memcpy(bytes, &v, sizeof(Real));
-    for (unsigned char c : bytes) {
-      h ^= c;
+    const auto bits = bits_of(v);
+    for (std::size_t i = 0; i < sizeof bits; ++i) {
+      h ^= (bits >> (8 * i)) & 0xffu;
       h *= 1099511628211ull;
     }
   };
