@@ -138,15 +138,22 @@ RecordingError::RecordingError(Kind kind, const std::string& file, std::size_t l
                                std::string_view field, std::string_view message)
     : std::runtime_error(error_text(file, line, field, message)), kind_(kind), line_(line) {}
 
-Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every) {
+Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every,
+                   std::string scene_text) {
   if (hash_every == 0 || hash_every > max_hash_every) {  // the reader refuses more (limits.hpp)
     throw std::invalid_argument(
         fmt::format("Recorder: hash_every must be 1 .. {} (got {})", max_hash_every, hash_every));
   }
   rec_.scene = std::move(scene);
+  if (scene_text.size() > max_recording_scene_bytes) {
+    throw std::invalid_argument(
+        fmt::format("Recorder: a scene_text of {} bytes; a recording embeds at most {} bytes",
+                    scene_text.size(), max_recording_scene_bytes));
+  }
   (void)format_recording(rec_);  // a path format_recording refuses: refused now, not at the end
+  rec_.scene_text = std::move(scene_text);
   rec_.definition_hash = definition_hash(def);
-  rec_.settings = {def.settings.integrator, def.precision, def.settings.dt, def.settings.substeps};
+  rec_.settings = recorded_settings(def);
   rec_.hash_every = hash_every;
 }
 
@@ -205,6 +212,7 @@ Recording Recorder::take() {
   Recording out = std::move(rec_);
   rec_ = Recording{};
   rec_.scene = out.scene;
+  rec_.scene_text = out.scene_text;
   rec_.definition_hash = out.definition_hash;
   rec_.settings = out.settings;
   rec_.hash_every = out.hash_every;
@@ -251,11 +259,20 @@ ReplayReport replay(Simulation& sim, const Recording& rec, const TickRules& rule
   return report;
 }
 
+RecordedSettings recorded_settings(const WorldDef& def) {
+  return {.integrator = def.settings.integrator,
+          .precision = def.precision,
+          .dt = def.settings.dt,
+          .substeps = def.settings.substeps,
+          .damping_split = def.settings.damping_split};
+}
+
 void apply_settings(WorldDef& def, const RecordedSettings& settings) {
   def.precision = settings.precision;
   def.settings.dt = settings.dt;
   def.settings.integrator = settings.integrator;
   def.settings.substeps = settings.substeps;
+  if (settings.damping_split) def.settings.damping_split = *settings.damping_split;
 }
 
 ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& rules) {
