@@ -76,9 +76,11 @@ Scene named_scene(const Recording& rec, const std::string& recording_file) {
   if (!std::filesystem::exists(file, ec)) {
     throw std::runtime_error(fmt::format(
         "{}: the recording's scene {} is not there (neither relative to the current directory "
-        "nor beside the recording), and the recording does not carry it (a recording made "
-        "before format version 3); give it with --scene FILE",
-        recording_file, rec.scene));
+        "nor beside the recording), and the recording does not carry it ({}); give it with "
+        "--scene FILE",
+        recording_file, rec.scene,
+        rec.version < 3 ? "a recording made before format version 3"
+                        : "the program that made it recorded none"));
   }
   return load_scene(file);
 }
