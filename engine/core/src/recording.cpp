@@ -1,5 +1,5 @@
-// Recordings in memory: the definition hash, the Recorder, replay and the write (atomic:
-// file_write.cpp). The text format (format_recording, parse_recording) is in recording_format.cpp.
+// Recordings in memory: the definition hash, the Recorder and replay. The text format
+// (format_recording, parse_recording) is in recording_format.cpp, files in recording_file.cpp.
 #include "fixstep/recording.hpp"
 
 #include <fmt/format.h>
@@ -8,7 +8,6 @@
 #include <type_traits>
 
 #include "fixstep/bits.hpp"
-#include "fixstep/file_write.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/work_progress.hpp"
@@ -308,10 +307,6 @@ void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::
                                                : "velocity");
     }
   }
-}
-
-void write_recording(const std::filesystem::path& file, const Recording& rec) {
-  write_file_atomically(file, format_recording(rec));
 }
 
 }  // namespace fixstep

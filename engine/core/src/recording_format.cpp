@@ -31,7 +31,6 @@
 #include <sstream>
 #include <system_error>
 
-#include "fixstep/file_read.hpp"
 #include "fixstep/float_mode.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
@@ -454,53 +453,6 @@ Recording parse_recording(std::string_view text, const std::string& source_name)
   }
   in.fail(Kind::truncated, "end",
           "no `end` line: the recording was cut short (the session did not finish writing it)");
-}
-
-namespace {
-
-/// The message of a RecordingError for a recording read_regular_file refused.
-std::string unreadable_message(const std::filesystem::path& file, const FileReadError& e) {
-  switch (e.kind()) {
-    case FileReadError::Kind::missing: {
-      std::error_code ec;
-      const bool no_dir =
-          file.has_parent_path() && !std::filesystem::is_directory(file.parent_path(), ec);
-      return no_dir ? fmt::format("no such recording: the directory {} does not exist",
-                                  file.parent_path().string())
-                    : std::string("no such recording");
-    }
-    case FileReadError::Kind::not_regular: {
-      const std::string type = file_type_of(file);
-      if (type == "a directory") return "is a directory, not a recording";
-      if (type.empty()) return e.reason();
-      return fmt::format(
-          "is {}, not a recording: only a regular file is read (a FIFO or a device could block "
-          "or never end)",
-          type);
-    }
-    case FileReadError::Kind::too_large:
-      return fmt::format("larger than the {} bytes a recording may have", max_recording_bytes);
-    case FileReadError::Kind::unreadable:
-      break;
-  }
-  return e.reason().starts_with("read error")
-             ? e.reason()
-             : fmt::format("cannot open the recording: {}", e.reason());
-}
-
-}  // namespace
-
-Recording read_recording(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::string text;
-  try {
-    text = read_regular_file(file, max_recording_bytes);
-  } catch (const FileReadError& e) {
-    throw RecordingError(
-        e.kind() == FileReadError::Kind::too_large ? Kind::corrupt : Kind::unreadable, name, 0, "",
-        unreadable_message(file, e));
-  }
-  return parse_recording(text, name);
 }
 
 }  // namespace fixstep
