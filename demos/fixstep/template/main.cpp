@@ -297,7 +297,8 @@ int replay_file(const std::string& file, const std::optional<std::string>& scene
   if (const auto& m = report.mismatch) {
     std::fprintf(stderr,
                  "%s: replay of %s diverged at tick %llu: state hash %s recorded, %s replayed "
-                 "(the states matched at tick %llu)\n",
+                 "(the states matched at tick %llu); the recording was edited, or made by a "
+                 "build whose physics or rules step differently\n",
                  program, file.c_str(), static_cast<unsigned long long>(m->tick),
                  hex_hash(m->expected).c_str(), hex_hash(m->actual).c_str(),
                  static_cast<unsigned long long>(m->last_match));
