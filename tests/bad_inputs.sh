@@ -756,7 +756,7 @@ case_ "a recording given as the scene" "" run base.rec --steps 10
 head -c 300 base.rec > cut.rec
 case_ "recording: cut short (truncated)" "" replay cut.rec
 rec_case "recording: no end line (truncated)" '/^end /d'
-rec_case "recording: a newer format version" '1s/.*/fixstep-recording 3/'
+rec_case "recording: a newer format version" '1s/.*/fixstep-recording 4/'
 rec_case "recording: a button bit outside all_buttons" 's/^tick 3 push=2,0 held=0 /tick 3 push=2,0 held=800 /'
 rec_case "recording: push = inf" 's/^tick 3 push=2,0/tick 3 push=inf,0/'
 rec_case "recording: ticks out of order" 's/^tick 6 /tick 2 /'
@@ -769,14 +769,40 @@ printf '%s\n%s\n' "$ok_world" '[[body]]
 mass = 2.0
 position = [0.0, 0.0]' > changed.toml
 case_ "recording: the scene changed (mass)" "" replay base.rec --scene changed.toml
-sed 's/^scene good.toml$/scene moved.toml/' base.rec > moved.rec
-case_ "recording: its scene file is gone" "" replay moved.rec
+# base.rec as format 2 wrote it (no embedded scene: replayed from the file it names)
+sed -e '1s/ 3$/ 2/' -e '/^scene_text /d' -e '/^|/d' -e '/^damping_split /d' base.rec > v2.rec
+sed 's/^scene good.toml$/scene moved.toml/' v2.rec > moved.rec
+case_ "recording (format 2, no embedded scene): its scene file is gone" "" replay moved.rec
 case_ "render --replay of a truncated recording" "" render good.toml --replay cut.rec --out frames
 case_ "render without SCENE or --replay" "" render --out frames
 case_ "--hash-every 0" "" run good.toml --steps 10 --record out.rec --hash-every 0
 case_ "--hash-every without --record" "" run good.toml --steps 10 --hash-every 5
 case_ "--record in a missing directory" "" run good.toml --steps 10 --record nodir/out.rec
 case_ "--sync-test 0" "" run good.toml --steps 10 --sync-test 0
+# recordings verified and self-contained (issue 30, class 6)
+sed 's/^tick 3 push=2,0/tick 3 push=3,0/' base.rec > flipped.rec
+case_ "render --replay of a recording with a flipped input bit (verified before any frame: nothing written)" "" render --replay flipped.rec --out frames --frames 2
+for flag in "--dt 0.02" "--integrator rk4" "--precision f32" "--substeps 2" "--damping-split per_step"; do
+  # shellcheck disable=SC2086 # the flag and its value
+  case_ "render --replay with ${flag%% *} (the recording fixes it)" "" render --replay base.rec --out frames --frames 2 $flag
+done
+scene_at=$(grep -n '^scene_text ' base.rec | cut -d: -f1)
+head -n $((scene_at + 2)) base.rec > cut_scene.rec
+case_ "recording: its embedded scene cut short" "" replay cut_scene.rec
+rec_case "recording: a byte of its embedded scene changed" 's/^|dt = 0.01$/|dt = 0.02/'
+rec_case "recording: an embedded scene over the 4 MiB scene limit" 's/^scene_text [0-9]* /scene_text 4194305 /'
+rec_case "recording: a bad escape in its embedded scene" 's/^|dt = 0.01$/|dt = \\q/'
+rec_case "recording: a raw control character in its embedded scene" "s/^|dt = 0.01\$/|dt = $(printf '\001')/"
+# an embedded scene whose bytes and checksum were both edited: it loads, but builds another world
+fnv1a() { python3 -c 'import sys
+h = 14695981039346656037
+for b in open(sys.argv[1], "rb").read():
+    h = ((h ^ b) * 1099511628211) % 2**64
+print(f"{h:016x}")' "$1"; }
+printf '%s\n%s\n' "$ok_world" "$body" | sed 's/mass = 1.0/mass = 2.0/' > other.toml
+{ sed -n 1,2p base.rec; echo "scene_text $(wc -c < other.toml) $(fnv1a other.toml)"; sed 's/^/|/' other.toml
+  sed -n '/^definition /,$p' base.rec; } > other_world.rec
+case_ "recording: its embedded scene (checksum recomputed) builds another world" "" replay other_world.rec
 # --- output locations ---
 case_ "--csv in a missing directory" "" run good.toml --steps 10 --csv nodir/out.csv
 case_ "--out is a file" "" render good.toml --out good.toml --frames 2

@@ -344,7 +344,7 @@ cp "$scenes/default.toml" "$work/rec/scenes/default.toml"
   --record session.rec --hash-every 1 >"$work/rec_run.out" 2>&1)
 [ $? -eq 0 ] && ok "run --input --record exits 0" || { fail "run --input --record"; cat "$work/rec_run.out"; }
 expect "run says where the recording is" '^recording=session\.rec$' "$work/rec_run.out"
-head -1 "$work/rec/session.rec" | grep -qx 'fixstep-recording 2' && ok "the recording starts with its magic and version" \
+head -1 "$work/rec/session.rec" | grep -qx 'fixstep-recording 3' && ok "the recording starts with its magic and version" \
   || fail "recording magic"
 "$fixstep" run "$scenes/default.toml" --steps 300 >"$work/rec_plain.out" 2>&1
 h_rec=$(hash_of "$work/rec_run.out")

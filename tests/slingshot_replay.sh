@@ -4,7 +4,7 @@
 # verifies, the final state and the score are the ones below, and the last frame is rendered.
 # The score comes only from the engine's disc-disc impacts (Simulation::impacts()): the session
 # hits two targets with the ball (ticks 538 and 3056), and knocked target 0 hits target 1.
-# Then a copy with one input line taken out must be reported as diverging.
+# Then a copy with one input line taken out must be reported as diverging, with nothing drawn.
 #
 #   slingshot_replay.sh SLINGSHOT SOURCE_DIR OUT_DIR
 set -euo pipefail
@@ -42,8 +42,13 @@ line=$(grep -n ' drag=0$' "$rec" | sed -n 5p | cut -d: -f1)
 tick=$(sed -n "${line}p" "$rec" | cut -d' ' -f2)
 sed "${line}d" "$rec" >"$out/tampered.rec"
 status=0
-"$game" --replay "$out/tampered.rec" >/dev/null 2>"$out/tampered.err" || status=$?
+"$game" --replay "$out/tampered.rec" --out "$out/tampered_frames" --last-frame "$out/tampered.png" \
+  >/dev/null 2>"$out/tampered.err" || status=$?
 [ "$status" = 4 ] || fail "a tampered recording exited $status, not 4"
-grep -q "diverged at tick $((tick + 1)):" "$out/tampered.err" ||
-  fail "not diverged at tick $((tick + 1)): $(cat "$out/tampered.err")"
+grep -Eq "tampered\.rec diverged at tick $((tick + 1)): state_hash [0-9a-f]{16} recorded, [0-9a-f]{16} replayed \(the states matched at tick $tick\)" \
+  "$out/tampered.err" || fail "not diverged at tick $((tick + 1)) with both hashes: $(cat "$out/tampered.err")"
+# A diverging recording is not drawn: no frame, no last frame, not even the directory.
+[ ! -e "$out/tampered_frames" ] && [ ! -e "$out/tampered.png" ] ||
+  fail "frames of a diverging recording were written: $(ls "$out")"
+grep -q "no frame was written" "$out/tampered.err" || fail "the error does not say what was written"
 echo "slingshot_replay: ok ($stored hashes + final verified; tampered copy: $(cat "$out/tampered.err"))"

@@ -1,6 +1,7 @@
 // A world built in code, recorded with per-tick input and its scene written beside the recording
-// (write_scene_beside): the fixstep program replays and renders it from the recording alone, and
-// refuses it once the scene no longer matches. Runs the program FIXSTEP_CLI.
+// (write_scene_beside), or carried in the recording (format_scene as its scene text): the fixstep
+// program replays and renders it from the recording alone, and refuses it once a scene beside
+// it no longer matches. Runs the program FIXSTEP_CLI.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -102,6 +103,41 @@ TEST(RecordCodeWorld, FixstepReplaysAndRendersItFromTheRecording) {
   text.replace(at, 10, "mass = 0.30000000000000004");
   std::ofstream(dir / scene) << text;
   EXPECT_EQ(fixstep_cli(fmt::format("replay '{}'", rec_file.string()), out), 6) << text_of(out);
+  fs::remove_all(dir);
+}
+
+TEST(RecordCodeWorld, ARecordingCarryingFormatSceneReplaysWithNoSceneFile) {
+  // A world built in code carried in the recording itself (format_scene's exact form): the
+  // fixstep program replays and renders it with no scene file anywhere.
+  const fs::path dir = fs::temp_directory_path() / fmt::format("code_world_text_{}", ::getpid());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path rec_file = dir / "session.rec";
+  const WorldDef def = code_world();
+  Simulation sim = make_simulation(def);
+  Recorder recorder(def, "code_world (built in code)", 1, format_scene(def));
+  for (std::uint64_t t = 0; t < 60; ++t) {
+    TickInput in{.tick = t};
+    in.push = {t < 20 ? 2.0 : 0.0, 0.0};
+    sim.step(in);
+    recorder.record(in, sim);
+  }
+  write_recording(rec_file, recorder.finish(sim));
+  EXPECT_EQ(fs::directory_iterator(dir)->path(), rec_file);  // the recording alone
+
+  const fs::path out = dir / "replay.out";
+  ASSERT_EQ(fixstep_cli(fmt::format("replay '{}'", rec_file.string()), out), 0) << text_of(out);
+  EXPECT_NE(
+      text_of(out).find("verified 61 hashes, ticks=60 state_hash=" + hex_hash(sim.state_hash())),
+      std::string::npos)
+      << text_of(out);
+  const fs::path frames = dir / "frames";
+  ASSERT_EQ(fixstep_cli(fmt::format("render --replay '{}' --out '{}' --frames 3 --size 64x36",
+                                    rec_file.string(), frames.string()),
+                        out),
+            0)
+      << text_of(out);
+  EXPECT_TRUE(fs::exists(frames / "frame_000002.png"));
   fs::remove_all(dir);
 }
 

@@ -3,8 +3,8 @@
 #   view_reload_test.sh FIXSTEP
 # A good edit is reloaded (tick reset, the new body count and definition hash reported); a bad
 # edit is reported with its file:line:column and the last good world keeps running; fixing the
-# file reloads it; with --record the session keeps its world (the recording still replays);
-# --no-watch turns reloading off. Every wait is bounded (60 s) and waits for an outcome, not
+# file reloads it; with --record the session keeps its world and the recording carries it (it
+# replays with the edit on disk, or with the file gone); --no-watch turns reloading off. Every wait is bounded (60 s) and waits for an outcome, not
 # for a time; the program is quit with Esc (xdotool). Prints "ok - ..." / "FAIL - ...".
 set -u
 fixstep=$1
@@ -109,10 +109,22 @@ wait_for 'scene\.toml changed: not reloaded while recording \(--record\)' "$work
 quit_view
 [ $? -eq 0 ] && ok "view --record exits 0" || fail "view --record exit"
 grep -q '^reloaded' "$work/rec.out" && fail "reloaded while recording" || ok "no reload while recording"
-cp "$work/recorded.toml" "$scene"
-"$fixstep" replay "$work/session.rec" --scene "$scene" >"$work/replay.out" 2>&1 \
-  && ok "the recording replays against the scene it started with" \
-  || { fail "replay of the recording"; cat "$work/replay.out"; }
+# The recording carries the scene it started with: it replays with the edit still on disk, and
+# with the file gone (before format 3 it named the file only, and the edit broke it: exit 6).
+cmp -s "$work/recorded.toml" "$scene" && fail "the scene file was not edited"
+"$fixstep" replay "$work/session.rec" >"$work/replay.out" 2>&1 \
+  && ok "the recording replays after the scene file was edited mid-session" \
+  || { fail "replay of the recording after the edit"; cat "$work/replay.out"; }
+grep -Eq '^verified [0-9]+ hashes, ticks=[0-9]+ ' "$work/replay.out" \
+  && ok "every stored hash verified" || fail "replay output: $(cat "$work/replay.out")"
+mv "$scene" "$work/edited.toml"
+"$fixstep" replay "$work/session.rec" >"$work/replay_gone.out" 2>&1 \
+  && ok "the recording replays with its scene file gone" \
+  || { fail "replay of the recording without its file"; cat "$work/replay_gone.out"; }
+"$fixstep" replay "$work/session.rec" --scene "$work/recorded.toml" >"$work/replay_at.out" 2>&1 \
+  && ok "and against the scene it started with, given explicitly" \
+  || { fail "replay of the recording with --scene"; cat "$work/replay_at.out"; }
+mv "$work/edited.toml" "$scene"
 
 # --- --no-watch ------------------------------------------------------------------------------
 # A negative check can only wait for a time: 1 s is 5 polls of the watch. It cannot fail

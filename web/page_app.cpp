@@ -41,7 +41,8 @@ PageApp::PageApp(PageOptions options)
   WorldDef def = world_def(*scene_);
   def.stability_checked = true;
   start_session(std::move(def), o_.scene);
-  if (o_.record) recorder_.emplace(session_->definition(), scene_file_, o_.hash_every);
+  if (o_.record)
+    recorder_.emplace(session_->definition(), scene_file_, o_.hash_every, scene_->text);
   if (o_.frames || o_.ticks) return;
   session_->set_key_help(page_key_help);
   session_->set_show_controls(true);

@@ -67,7 +67,7 @@ class PageApp {
   double last_ms_ = -1.0;
   // replay
   std::optional<Recording> recording_;
-  bool fetch_failed_ = false;
+  bool replay_stopped_ = false;  ///< the fetch failed or the recording diverged: nothing to play
 };
 
 }  // namespace fixstep::web

@@ -59,11 +59,15 @@ bool PageApp::ticks_frame(double now_ms) {
 
 void PageApp::recording_fetched(std::string text) {
   Recording rec = parse_recording(text, *o_.replay);
-  // The recording names its scene as given to `fixstep run` (assets/scenes/NAME.toml); the
-  // page has the shipped scenes under the same folder.
+  // A recording carries its scene (format version 3): the page loads that. An older one names
+  // its scene as given to `fixstep run` (assets/scenes/NAME.toml); the page has the shipped
+  // scenes under the same folder.
   scene_file_ =
       fmt::format("{}/{}", scene_dir, std::filesystem::path(rec.scene).filename().string());
-  scene_ = load_scene(scene_file_);
+  scene_ =
+      rec.scene_text.empty()
+          ? load_scene(scene_file_)
+          : parse_scene(rec.scene_text, fmt::format("{} (embedded in {})", rec.scene, *o_.replay));
   WorldDef def = world_def(*scene_);
   apply_settings(def, rec.settings);
   def.allow_unstable = true;  // the recorded run ran: replay it whatever the guard says
@@ -71,27 +75,30 @@ void PageApp::recording_fetched(std::string text) {
   check_command_work(rec.ticks, tick_work(def), fmt::format("{}: end {}", *o_.replay, rec.ticks));
   const ReplayReport r = replay(def, rec);  // throws scene_mismatch
   if (const auto& m = r.mismatch) {
+    // As `fixstep render --replay`: a recording that diverges is not played back.
     show_text("result",
               fmt::format("diverged at tick {}: state_hash {} recorded, {} replayed "
-                          "(the states matched at tick {})",
+                          "(the states matched at tick {}); not played back",
                           m->tick, hex_hash(m->expected), hex_hash(m->actual), m->last_match));
-  } else {
-    show_text("result", fmt::format("verified ticks={} state_hash={} hashes={}", r.ticks,
-                                    hex_hash(r.final_hash), r.verified));
+    set_title("fixstep: diverged");
+    replay_stopped_ = true;
+    return;
   }
+  show_text("result", fmt::format("verified ticks={} state_hash={} hashes={}", r.ticks,
+                                  hex_hash(r.final_hash), r.verified));
   o_.scene = std::filesystem::path(scene_file_).filename().string();
   start_session(std::move(def), o_.scene);
   recording_ = std::move(rec);
-  set_title(r.ok() ? "fixstep: done" : "fixstep: diverged");
+  set_title("fixstep: done");
 }
 
 void PageApp::recording_failed(const std::string& why) {
-  fetch_failed_ = true;
+  replay_stopped_ = true;
   show_error(fmt::format("could not fetch the recording {}: {}", *o_.replay, why));
 }
 
 bool PageApp::replay_frame() {
-  if (fetch_failed_) return false;
+  if (replay_stopped_) return false;
   if (!recording_) return true;  // still fetching
   // After the verdict: the recording played back on the canvas at its own pace (headless: its
   // last state at once), ending at its last tick.

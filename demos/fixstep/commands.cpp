@@ -228,7 +228,9 @@ int run_command(const RunOptions& o) {
     player.emplace(*script);
   }
   std::optional<RecordingWriter> recorder;  // streamed to its file: O(1) memory
-  if (o.record) recorder.emplace(world_def(scene), o.scene.scene, o.hash_every, *o.record);
+  if (o.record) {  // carrying the scene's bytes: it replays without the file
+    recorder.emplace(world_def(scene), o.scene.scene, o.hash_every, *o.record, scene.text);
+  }
   const std::uint64_t initial_hash = o.record ? sim.state_hash() : 0;
   bool torn = false;       // a stop request abandoned a tick half-way: the state is not a tick's
   std::uint64_t done = 0;  // ticks completed

@@ -58,8 +58,8 @@ struct RenderOptions {
   double fps = 60.0;
   std::string size = "1280x720";
   int png_level = default_png_level;  ///< see PngSettings::level
-  /// --replay FILE: every tick takes the recording's input (none past its end); the
-  /// recording's settings replace the scene's, whose definition hash must match.
+  /// --replay FILE: every tick takes the recording's input (none past its end), on the world
+  /// scene_for_recording gives; the recording is verified whole before the first frame.
   std::optional<std::string> replay;
   bool overwrite = false;  ///< --overwrite: remove the old capture's files in --out DIR first
 };
@@ -76,8 +76,8 @@ struct ViewOptions {
 
 struct ReplayOptions {
   std::string recording;
-  /// --scene SCENE; default: the recording's, relative to the current directory, then to the
-  /// recording's directory.
+  /// --scene SCENE; default: the scene the recording carries, or for a recording without one
+  /// the file it names (scene_for_recording).
   std::optional<std::string> scene;
   bool quiet = false;
 };
@@ -128,15 +128,32 @@ int replay_command(const ReplayOptions& options);
 /// exit_unsupported_version.
 [[nodiscard]] int exit_code(const RecordingError& error);
 
-/// Loads `scene_file` for replaying `rec` (warnings printed unless quiet): the recording's
-/// precision, dt, integrator and substeps replace the scene's, the stability guard is off (the
-/// recorded run ran), and the scene's definition hash must be the recording's (else
-/// RecordingError scene_mismatch), and every body the recording names (recording_file, in
-/// messages) must be in it (else RecordingError corrupt: check_recorded_bodies).
 /// The scene file a recording names: its path as recorded if that exists (relative to the
 /// current directory), else relative to the recording file's directory.
 [[nodiscard]] std::string recorded_scene(const Recording& rec, const std::string& recording_file);
-[[nodiscard]] Scene scene_for_recording(const std::string& scene_file, const Recording& rec,
-                                        const std::string& recording_file, bool quiet);
+/// The scene to replay `rec` (read from `recording_file`) on, warnings printed unless quiet:
+/// `scene_file` when given (a note says so when the recording carries its own scene), else
+/// the scene the recording carries (Recording::scene_text; the file on disk is not read), else,
+/// for a recording without one (format versions 1 and 2), the file it names (recorded_scene;
+/// std::runtime_error when it is not there). The recording's precision, dt, integrator,
+/// substeps and damping split replace the scene's and the stability guard is off (the
+/// recorded run ran). The scene's definition hash must be the recording's: else RecordingError
+/// scene_mismatch for a scene file, corrupt for the scene the recording carries (as for one
+/// that does not load); every body the recording names must be in it (else RecordingError
+/// corrupt: check_recorded_bodies).
+[[nodiscard]] Scene scene_for_recording(const Recording& rec, const std::string& recording_file,
+                                        const std::optional<std::string>& scene_file, bool quiet);
+/// Replays `rec` headless on `scene`'s world (scene_for_recording's), checking every stored
+/// hash and the final one (fixstep::replay), with a progress line unless quiet.
+[[nodiscard]] ReplayReport verify_recording(const Scene& scene, const Recording& rec, bool quiet);
+/// Prints the located error of a diverged replay to stderr: "fixstep: error: FILE: replay
+/// diverged at tick N: state_hash H recorded, H' replayed (...); LIKELY CAUSE" and `written`
+/// (what the command wrote, or "" for nothing to say).
+void report_divergence(const ReplayReport::Mismatch& mismatch, const std::string& recording_file,
+                       std::string_view written);
+/// "" when `options` may go with --replay; else the message naming the first flag that would
+/// change the recorded world or its stepping (--dt, --integrator, --precision, --substeps,
+/// --damping-split), for exit 2.
+[[nodiscard]] std::string replay_flag_conflict(const SceneOptions& options);
 
 }  // namespace fixstep::cli

@@ -183,8 +183,11 @@ int main(int argc, char** argv) try {
                                "1 = fastest (default), 12 = smallest and slowest",
                                fixstep::min_png_level, fixstep::max_png_level))
       ->check(png_level_validator);
-  render_cmd->add_option("--replay", render.replay,
-                         "drive the ticks with this recording's inputs (its settings apply)");
+  render_cmd->add_option(
+      "--replay", render.replay,
+      "drive the ticks with this recording's inputs, on the world it carries (or names), at its "
+      "settings; verified whole before the first frame (exit 4 if it diverges); --dt, "
+      "--integrator, --precision, --substeps and --damping-split are refused with it");
   render_cmd->add_flag("--overwrite", render.overwrite, overwrite_help);
 
   CompareOptions compare;
@@ -215,7 +218,8 @@ int main(int argc, char** argv) try {
   replay_cmd->add_option("recording", replay.recording, "recording file (fixstep run --record)")
       ->required();
   replay_cmd->add_option("--scene", replay.scene,
-                         "scene file (default: the recording's, relative to the current "
+                         "scene file (default: the scene the recording carries; for a recording "
+                         "made before format 3, the file it names, relative to the current "
                          "directory, then to the recording's)");
   replay_cmd->add_flag("-q,--quiet", replay.quiet, "print errors only");
 
@@ -279,6 +283,10 @@ int main(int argc, char** argv) try {
   if (render_cmd->parsed()) {
     if (render.scene.scene.empty() && !render.replay) {
       std::fputs("fixstep render: give SCENE (or --replay FILE, which names its scene)\n", stderr);
+      return 2;
+    }
+    if (const std::string e = render.replay ? replay_flag_conflict(render.scene) : ""; !e.empty()) {
+      std::fprintf(stderr, "fixstep render: %s\n", e.c_str());
       return 2;
     }
     if (const std::string e = capture_targets_error(

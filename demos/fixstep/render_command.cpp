@@ -26,18 +26,41 @@ SessionSettings session_settings(const Scene& scene, int width, int height) {
                          .view_width = scene.view.width};
 }
 
+namespace {
+
+/// --replay: the whole recording replayed headless and verified before anything is written, so
+/// that a diverging recording leaves no frame, video or manifest behind. True when it verified;
+/// false after the located error (report_divergence).
+bool verified_before_capture(const Scene& scene, const Recording& rec, const RenderOptions& o) {
+  const ReplayReport report = verify_recording(scene, rec, o.scene.quiet);
+  if (!report.mismatch) return true;
+  report_divergence(*report.mismatch, *o.replay,
+                    "; nothing was written (render --replay verifies the whole recording before "
+                    "its first frame)");
+  return false;
+}
+
+}  // namespace
+
 int render_command(const RenderOptions& o) {
   std::optional<Recording> rec;
   if (o.replay) rec = read_recording(*o.replay);
-  const std::string scene_file =
-      rec && o.scene.scene.empty() ? recorded_scene(*rec, *o.replay) : o.scene.scene;
+  const std::optional<std::string> given =
+      o.scene.scene.empty() ? std::nullopt : std::optional(o.scene.scene);
+  // The scene file a recording names is kept safe from the outputs too, read or not.
+  const std::string scene_file = given ? *given : recorded_scene(*rec, *o.replay);
   check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
-  const Scene scene = rec ? scene_for_recording(scene_file, *rec, *o.replay, o.scene.quiet)
+  const Scene scene = rec ? scene_for_recording(*rec, *o.replay, given, o.scene.quiet)
                           : load_with_overrides(o.scene);
   const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.world.dt);
-  check_command_work(static_cast<std::uint64_t>(std::min(ticks, 1e18)),
+  // With --replay the recording's ticks are stepped once more, to verify it first.
+  const double verified = rec ? double(rec->ticks) : 0.0;
+  check_command_work(static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)),
                      tick_work(scene.bodies, scene.links, scene.world),
-                     fmt::format("--frames {} at --fps {:g}", o.frames, o.fps));
+                     rec ? fmt::format("--frames {} at --fps {:g} with --replay {} (end {})",
+                                       o.frames, o.fps, *o.replay, rec->ticks)
+                         : fmt::format("--frames {} at --fps {:g}", o.frames, o.fps));
+  if (rec && !verified_before_capture(scene, *rec, o)) return exit_replay_diverged;
   const auto [width, height] = parse_frame_size(o.size);
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
   CaptureSink sink(

@@ -165,7 +165,9 @@ int view_command(const ViewOptions& o) {
   // --record: every tick's input and state hash, following the kept timeline through rewinds
   // and restarts.
   std::optional<Recorder> recorder;
-  if (o.record) recorder.emplace(shown.session->definition(), o.scene.scene, o.hash_every);
+  if (o.record) {  // carrying the scene as loaded: saving an edit cannot break the recording
+    recorder.emplace(shown.session->definition(), o.scene.scene, o.hash_every, shown.scene.text);
+  }
   RealClock real_clock;
   // --fps: a virtual clock (validated by VirtualClock), else the real one.
   const double virtual_frame = o.fps ? VirtualClock(*o.fps).frame_seconds() : 0.0;

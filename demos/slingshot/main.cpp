@@ -160,16 +160,21 @@ int replay_file(const std::string& file, const std::string& out_dir, int every,
   const double initial_energy = sim.energy().total();
   slingshot::GameState game;
   const ReplayReport report = replay(sim, rec, slingshot::rules(game));
-  if (!out_dir.empty() || !last_frame.empty()) {
+  // Only a recording that verified is drawn: a diverging one leaves no frame behind.
+  if (report.ok() && (!out_dir.empty() || !last_frame.empty())) {
     draw_replay(rec, report.ticks, out_dir, every, last_frame);
   }
   std::printf("%s\n%s\nverified=%llu\n", summary_line(sim, initial_energy).c_str(),
               slingshot::describe(game).c_str(), static_cast<unsigned long long>(report.verified));
-  if (report.mismatch) {
+  if (const auto& m = report.mismatch) {
     std::fprintf(stderr,
-                 "slingshot: error: %s diverged at tick %llu: the state after that many ticks "
-                 "is not the recorded one\n",
-                 file.c_str(), static_cast<unsigned long long>(report.mismatch->tick));
+                 "slingshot: error: %s diverged at tick %llu: state_hash %s recorded, %s replayed "
+                 "(the states matched at tick %llu); the recording was edited, or made by a "
+                 "build whose physics or rules step differently%s\n",
+                 file.c_str(), static_cast<unsigned long long>(m->tick),
+                 hex_hash(m->expected).c_str(), hex_hash(m->actual).c_str(),
+                 static_cast<unsigned long long>(m->last_match),
+                 out_dir.empty() && last_frame.empty() ? "" : "; no frame was written");
     return 4;
   }
   return 0;

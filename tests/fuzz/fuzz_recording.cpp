@@ -50,8 +50,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     finding(std::string("parse_recording threw a non-RecordingError: ") + e.what());
   }
   try {
-    // format_recording writes the current version: a version 1 recording comes back as
-    // version 2 with the same content.
+    // format_recording writes the current version: an older recording comes back as the
+    // current version with the same content (an embedded scene's bytes included).
     fixstep::Recording again = fixstep::parse_recording(fixstep::format_recording(rec), "again");
     again.version = rec.version;
     if (again != rec) {

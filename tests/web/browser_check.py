@@ -271,8 +271,16 @@ def write_bad_recordings(args, rec_dir):
         f.write("hello, not a recording\n")
     with open(os.path.join(rec_dir, "cut.rec"), "w", encoding="utf-8") as f:
         f.write("".join(lines[:10]))
+    # As format 2 wrote it (no embedded scene, no damping split): replayed from the scene it
+    # names, which the page does not ship.
+    v2 = ["fixstep-recording 2\n" if line.startswith("fixstep-recording ") else line
+          for line in lines
+          if not line.startswith(("scene_text ", "|", "damping_split "))]
     with open(os.path.join(rec_dir, "foreign.rec"), "w", encoding="utf-8") as f:
         f.write("".join("scene mine.toml\n" if line.startswith("scene ") else line
+                        for line in v2))
+    with open(os.path.join(rec_dir, "damaged.rec"), "w", encoding="utf-8") as f:
+        f.write("".join("|dt = \\q\n" if line.startswith("|dt = 0.01") else line
                         for line in lines))
     if os.path.exists(os.path.join(rec_dir, "missing.rec")):
         os.remove(os.path.join(rec_dir, "missing.rec"))

@@ -176,12 +176,13 @@ class Game {
       : session_(world_def(scene), view(scene)),
         rules_(make_rules(score_, session_.definition())),
         scene_file_(scene.file),
+        scene_text_(scene.text),
         record_file_(std::move(record_file)) {
     session_.set_show_energy(false);  // the hook and the swings add energy from outside
     for (const std::string& w : session_.simulation().warnings()) {  // the stability guard's
       std::fprintf(stderr, "warning: %s\n", w.c_str());
     }
-    if (!record_file_.empty()) recorder_.emplace(session_.definition(), scene_file_, 1);
+    if (!record_file_.empty()) start_recording();
   }
   Game(const Game&) = delete;  // the rules hold a reference to score_
   Game& operator=(const Game&) = delete;
@@ -212,7 +213,7 @@ class Game {
     sampler_ = {};
     player_ = {};
     score_ = {};
-    if (recorder_) recorder_.emplace(session_.definition(), scene_file_, 1);
+    if (recorder_) start_recording();
   }
 
   /// Prints the score and writes the recording, if any.
@@ -230,12 +231,16 @@ class Game {
   InputSampler& sampler() { return sampler_; }
 
  private:
+  /// A new recording, a state hash every tick, carrying the scene's text: it replays without
+  /// the scene file, and editing the file cannot break it.
+  void start_recording() { recorder_.emplace(session_.definition(), scene_file_, 1, scene_text_); }
+
   Session session_;
   InputSampler sampler_;
   Player player_;
   Score score_;
   TickRules rules_;
-  std::string scene_file_, record_file_;
+  std::string scene_file_, scene_text_, record_file_;
   std::optional<Recorder> recorder_;
 };
 
@@ -282,14 +287,18 @@ void run_headless(Game& game, std::int64_t frames, const std::string& out_dir) {
 /// stored state hash matched, exit_diverged naming the first tick whose state differs.
 int replay_file(const std::string& file, const std::optional<std::string>& scene_file) {
   const Recording rec = read_recording(file);  // throws RecordingError
-  WorldDef level = world_def(load_scene(scene_file.value_or(rec.scene)));
+  // The scene the recording carries, unless --scene names another (or it is an old recording).
+  WorldDef level =
+      world_def(scene_file || rec.scene_text.empty() ? load_scene(scene_file.value_or(rec.scene))
+                                                     : parse_scene(rec.scene_text, rec.scene));
   apply_settings(level, rec.settings);  // the recorded dt, integrator, precision, substeps
   Score score;
   const ReplayReport report = replay(level, rec, make_rules(score, level));
   if (const auto& m = report.mismatch) {
     std::fprintf(stderr,
                  "%s: replay of %s diverged at tick %llu: state hash %s recorded, %s replayed "
-                 "(the states matched at tick %llu)\n",
+                 "(the states matched at tick %llu); the recording was edited, or made by a "
+                 "build whose physics or rules step differently\n",
                  program, file.c_str(), static_cast<unsigned long long>(m->tick),
                  hex_hash(m->expected).c_str(), hex_hash(m->actual).c_str(),
                  static_cast<unsigned long long>(m->last_match));

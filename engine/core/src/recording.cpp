@@ -1,5 +1,5 @@
-// Recordings in memory: the definition hash, the Recorder, replay and the write (atomic:
-// file_write.cpp). The text format (format_recording, parse_recording) is in recording_format.cpp.
+// Recordings in memory: the definition hash, the Recorder and replay. The text format
+// (format_recording, parse_recording) is in recording_format.cpp, files in recording_file.cpp.
 #include "fixstep/recording.hpp"
 
 #include <fmt/format.h>
@@ -8,7 +8,6 @@
 #include <type_traits>
 
 #include "fixstep/bits.hpp"
-#include "fixstep/file_write.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/work_progress.hpp"
@@ -138,15 +137,22 @@ RecordingError::RecordingError(Kind kind, const std::string& file, std::size_t l
                                std::string_view field, std::string_view message)
     : std::runtime_error(error_text(file, line, field, message)), kind_(kind), line_(line) {}
 
-Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every) {
+Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every,
+                   std::string scene_text) {
   if (hash_every == 0 || hash_every > max_hash_every) {  // the reader refuses more (limits.hpp)
     throw std::invalid_argument(
         fmt::format("Recorder: hash_every must be 1 .. {} (got {})", max_hash_every, hash_every));
   }
   rec_.scene = std::move(scene);
+  if (scene_text.size() > max_recording_scene_bytes) {
+    throw std::invalid_argument(
+        fmt::format("Recorder: a scene_text of {} bytes; a recording embeds at most {} bytes",
+                    scene_text.size(), max_recording_scene_bytes));
+  }
   (void)format_recording(rec_);  // a path format_recording refuses: refused now, not at the end
+  rec_.scene_text = std::move(scene_text);
   rec_.definition_hash = definition_hash(def);
-  rec_.settings = {def.settings.integrator, def.precision, def.settings.dt, def.settings.substeps};
+  rec_.settings = recorded_settings(def);
   rec_.hash_every = hash_every;
 }
 
@@ -205,6 +211,7 @@ Recording Recorder::take() {
   Recording out = std::move(rec_);
   rec_ = Recording{};
   rec_.scene = out.scene;
+  rec_.scene_text = out.scene_text;
   rec_.definition_hash = out.definition_hash;
   rec_.settings = out.settings;
   rec_.hash_every = out.hash_every;
@@ -251,11 +258,20 @@ ReplayReport replay(Simulation& sim, const Recording& rec, const TickRules& rule
   return report;
 }
 
+RecordedSettings recorded_settings(const WorldDef& def) {
+  return {.integrator = def.settings.integrator,
+          .precision = def.precision,
+          .dt = def.settings.dt,
+          .substeps = def.settings.substeps,
+          .damping_split = def.settings.damping_split};
+}
+
 void apply_settings(WorldDef& def, const RecordedSettings& settings) {
   def.precision = settings.precision;
   def.settings.dt = settings.dt;
   def.settings.integrator = settings.integrator;
   def.settings.substeps = settings.substeps;
+  if (settings.damping_split) def.settings.damping_split = *settings.damping_split;
 }
 
 ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& rules) {
@@ -291,10 +307,6 @@ void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::
                                                : "velocity");
     }
   }
-}
-
-void write_recording(const std::filesystem::path& file, const Recording& rec) {
-  write_file_atomically(file, format_recording(rec));
 }
 
 }  // namespace fixstep

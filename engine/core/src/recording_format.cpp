@@ -1,12 +1,17 @@
 // The recording file format: line-oriented text, written by format_recording and read by
 // parse_recording / read_recording. One line each:
-//   fixstep-recording 2
-//   scene PATH                 definition HASH          integrator NAME     precision f32|f64
-//   dt SECONDS                 substeps N               hash_every K
+//   fixstep-recording 3
+//   scene PATH
+//   [scene_text BYTES CHECKSUM, then the scene's lines, each as |LINE: recording_scene_text.cpp]
+//   definition HASH            integrator NAME          precision f32|f64
+//   dt SECONDS                 substeps N               [damping_split per_stage|per_step]
+//   hash_every K
 //   tick N push=AX,AY held=HEX pressed=HEX released=HEX pointer=X,Y drag=SLOT:GEN|none
 //        [force=SLOT:GEN,X,Y | impulse=SLOT:GEN,X,Y | velocity=SLOT:GEN,X,Y]...
 // (one line; a body is named by its handle Entity{SLOT, GEN}, per-body inputs in order).
-// Version 1 had no per-body inputs and named the dragged body by its dense INDEX, read as
+// Version 2 had no scene_text and damping_split lines (the scene was read from PATH, with its
+// own damping split); version 1 had no per-body
+// inputs and named the dragged body by its dense INDEX, read as
 // initial_entity(INDEX) (exact for the worlds version 1 recorded, which destroyed nothing).
 //   hash N HASH                (state hash after N ticks)
 //   end TICKS HASH             (the last line; its absence means the file is truncated)
@@ -26,7 +31,6 @@
 #include <sstream>
 #include <system_error>
 
-#include "fixstep/file_read.hpp"
 #include "fixstep/float_mode.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
@@ -56,6 +60,13 @@ class Lines {
     if (line.ends_with('\r')) line.remove_suffix(1);
     pos_ = end + 1;
     return line;
+  }
+  /// The start of the next line (up to its newline or the end of the text) without taking it:
+  /// "" at the end. For optional lines, recognised by their first word.
+  [[nodiscard]] std::string_view peek() const {
+    if (pos_ >= text_.size()) return {};
+    const std::size_t end = text_.find('\n', pos_);
+    return text_.substr(pos_, end == std::string_view::npos ? std::string_view::npos : end - pos_);
   }
   [[noreturn]] void fail(Kind kind, std::string_view field, std::string_view message) const {
     throw RecordingError(kind, file_, line_, field, message);
@@ -202,8 +213,40 @@ void read_version(Lines& in, Recording& rec) {
   rec.version = version;
 }
 
-void read_header(Lines& in, Recording& rec) {
-  read_version(in, rec);
+/// The embedded scene's section (recording_scene_text.cpp), from its `scene_text BYTES CHECKSUM`
+/// line on: every error names the line it is on.
+void read_scene_text(Lines& in, std::string_view first, Recording& rec) {
+  const std::vector<std::string_view> w = fields(in, first, "scene_text", 3);
+  const auto bytes =
+      integer<std::uint64_t>(in, w[1], "scene_text", 10, std::numeric_limits<std::uint64_t>::max());
+  if (bytes == 0 || bytes > max_recording_scene_bytes) {
+    in.fail(Kind::corrupt, "scene_text",
+            bytes == 0 ? std::string("an embedded scene of 0 bytes (a recording without a scene "
+                                     "has no scene_text section)")
+                       : fmt::format("an embedded scene of {} bytes; a scene may have at most {} "
+                                     "bytes (the scene size limit)",
+                                     bytes, max_recording_scene_bytes));
+  }
+  recording_text::SceneTextDecoder scene(static_cast<std::size_t>(bytes),
+                                         hash16(in, w[2], "scene_text"));
+  while (!scene.done()) {
+    const auto line = in.next();
+    if (!line) {
+      in.fail(Kind::truncated, "scene_text",
+              fmt::format("the file ends inside the embedded scene ({} of its {} bytes read): the "
+                          "recording was cut short",
+                          scene.size(), bytes));
+    }
+    if (const std::string e = scene.take(*line); !e.empty())
+      in.fail(Kind::corrupt, "scene_text", e);
+  }
+  if (const std::string e = scene.finish(rec.scene_text); !e.empty()) {
+    in.fail(Kind::corrupt, "scene_text", e);
+  }
+}
+
+/// The `scene PATH` line and, from version 3, the optional scene_text section after it.
+void read_scene(Lines& in, Recording& rec) {
   {
     const auto line = in.next();
     if (!line) in.fail(Kind::truncated, "scene", "the file ends inside the header");
@@ -218,6 +261,14 @@ void read_header(Lines& in, Recording& rec) {
       }
     }
   }
+  if (rec.version >= 3 && in.peek().starts_with("scene_text ")) {
+    read_scene_text(in, *in.next(), rec);
+  }
+}
+
+void read_header(Lines& in, Recording& rec) {
+  read_version(in, rec);
+  read_scene(in, rec);
   rec.definition_hash = hash16(in, header_line(in, "definition"), "definition");
   const std::string_view integrator = header_line(in, "integrator");
   const auto i = parse_integrator(integrator);
@@ -233,6 +284,14 @@ void read_header(Lines& in, Recording& rec) {
   }
   rec.settings.substeps = integer<int>(in, header_line(in, "substeps"), "substeps", 10, 1000000);
   if (rec.settings.substeps < 1) in.fail(Kind::corrupt, "substeps", "must be >= 1");
+  if (rec.version >= 3 && in.peek().starts_with("damping_split ")) {
+    const std::string_view split = header_line(in, "damping_split");
+    rec.settings.damping_split = parse_damping_split(split);
+    if (!rec.settings.damping_split) {
+      in.fail(Kind::corrupt, "damping_split",
+              fmt::format("unknown {} (per_stage or per_step)", shown(split)));
+    }
+  }
   rec.hash_every = integer<std::uint64_t>(in, header_line(in, "hash_every"), "hash_every", 10,
                                           max_recording_ticks);
   if (rec.hash_every < 1) in.fail(Kind::corrupt, "hash_every", "must be >= 1");
@@ -394,53 +453,6 @@ Recording parse_recording(std::string_view text, const std::string& source_name)
   }
   in.fail(Kind::truncated, "end",
           "no `end` line: the recording was cut short (the session did not finish writing it)");
-}
-
-namespace {
-
-/// The message of a RecordingError for a recording read_regular_file refused.
-std::string unreadable_message(const std::filesystem::path& file, const FileReadError& e) {
-  switch (e.kind()) {
-    case FileReadError::Kind::missing: {
-      std::error_code ec;
-      const bool no_dir =
-          file.has_parent_path() && !std::filesystem::is_directory(file.parent_path(), ec);
-      return no_dir ? fmt::format("no such recording: the directory {} does not exist",
-                                  file.parent_path().string())
-                    : std::string("no such recording");
-    }
-    case FileReadError::Kind::not_regular: {
-      const std::string type = file_type_of(file);
-      if (type == "a directory") return "is a directory, not a recording";
-      if (type.empty()) return e.reason();
-      return fmt::format(
-          "is {}, not a recording: only a regular file is read (a FIFO or a device could block "
-          "or never end)",
-          type);
-    }
-    case FileReadError::Kind::too_large:
-      return fmt::format("larger than the {} bytes a recording may have", max_recording_bytes);
-    case FileReadError::Kind::unreadable:
-      break;
-  }
-  return e.reason().starts_with("read error")
-             ? e.reason()
-             : fmt::format("cannot open the recording: {}", e.reason());
-}
-
-}  // namespace
-
-Recording read_recording(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::string text;
-  try {
-    text = read_regular_file(file, max_recording_bytes);
-  } catch (const FileReadError& e) {
-    throw RecordingError(
-        e.kind() == FileReadError::Kind::too_large ? Kind::corrupt : Kind::unreadable, name, 0, "",
-        unreadable_message(file, e));
-  }
-  return parse_recording(text, name);
 }
 
 }  // namespace fixstep

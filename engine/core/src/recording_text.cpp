@@ -45,12 +45,18 @@ std::string header(const Recording& rec) {
                       printable(rec.scene)));
     }
   }
-  return fmt::format(
-      "{} {}\nscene {}\ndefinition {}\nintegrator {}\nprecision {}\ndt {}\nsubsteps {}\n"
-      "hash_every {}\n",
-      recording_magic, recording_version, rec.scene, hex_hash(rec.definition_hash),
-      integrator_name(rec.settings.integrator), precision_name(rec.settings.precision),
-      rec.settings.dt, rec.settings.substeps, rec.hash_every);
+  std::string out = fmt::format("{} {}\nscene {}\n", recording_magic, recording_version, rec.scene);
+  // Optional sections follow the scene line, each announced by its own keyword.
+  if (!rec.scene_text.empty()) append_scene_text(out, rec.scene_text);
+  fmt::format_to(std::back_inserter(out),
+                 "definition {}\nintegrator {}\nprecision {}\ndt {}\nsubsteps {}\n",
+                 hex_hash(rec.definition_hash), integrator_name(rec.settings.integrator),
+                 precision_name(rec.settings.precision), rec.settings.dt, rec.settings.substeps);
+  if (const auto split = rec.settings.damping_split) {
+    fmt::format_to(std::back_inserter(out), "damping_split {}\n", damping_split_name(*split));
+  }
+  fmt::format_to(std::back_inserter(out), "hash_every {}\n", rec.hash_every);
+  return out;
 }
 
 void append_hash(std::string& out, std::uint64_t tick, std::uint64_t hash) {

@@ -17,7 +17,7 @@ constexpr std::size_t flush_at = 1 << 16;  // bytes buffered before they go to t
 }  // namespace
 
 RecordingWriter::RecordingWriter(const WorldDef& def, std::string scene, std::uint64_t hash_every,
-                                 std::filesystem::path file)
+                                 std::filesystem::path file, std::string_view scene_text)
     : out_(std::move(file)), hash_every_(hash_every) {
   if (hash_every == 0 || hash_every > max_hash_every) {
     throw std::invalid_argument(fmt::format("RecordingWriter: hash_every must be 1 .. {} (got {})",
@@ -25,8 +25,9 @@ RecordingWriter::RecordingWriter(const WorldDef& def, std::string scene, std::ui
   }
   Recording head;  // the header's fields only
   head.scene = std::move(scene);
+  head.scene_text = scene_text;
   head.definition_hash = definition_hash(def);
-  head.settings = {def.settings.integrator, def.precision, def.settings.dt, def.settings.substeps};
+  head.settings = recorded_settings(def);
   head.hash_every = hash_every;
   line_ = recording_text::header(head);
   kept_ = line_.size();

@@ -11,10 +11,14 @@
 #include "fixstep/float_mode.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
+#include "fixstep/recording.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep {
+
+// Every scene the loader reads fits in a recording, and every scene a recording embeds loads.
+static_assert(max_recording_scene_bytes == max_scene_bytes);
 
 namespace {
 const scene_detail::FileKind scene_file{"scene file", "a", "a scene", "scenes", ".toml"};
@@ -283,6 +287,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     r.fail(at ? at->source() : world->source(), at ? "world." + key : "world", e.what());
   }
   scene.warnings = r.take_warnings();
+  scene.text = std::string(text);
   return scene;
 }
 

@@ -20,14 +20,18 @@
 
 namespace fixstep {
 
-/// The format version this build writes and the newest it reads.
-inline constexpr int recording_version = 2;
+/// The format version this build writes and the newest it reads. Version 3 may carry the scene
+/// the world was loaded from (Recording::scene_text); versions 1 and 2 still read.
+inline constexpr int recording_version = 3;
 /// The first word of every recording (the first line is "fixstep-recording VERSION").
 inline constexpr std::string_view recording_magic = "fixstep-recording";
 /// Most ticks a recording may hold (about 190 days at 60 Hz).
 inline constexpr std::uint64_t max_recording_ticks = 1'000'000'000;
 /// Largest recording file read, bytes.
 inline constexpr std::size_t max_recording_bytes = 256u << 20;
+/// Largest scene a recording embeds (Recording::scene_text), bytes: the scene loader's own
+/// limit (max_scene_bytes, scene.hpp), so every embedded scene is one the loader reads.
+inline constexpr std::size_t max_recording_scene_bytes = 4u << 20;
 
 /// FNV-1a (64-bit) over the exact bits of everything in `def` that changes the simulated
 /// states: precision, dt, integrator, substeps, flush_denormals, and for every body in order
@@ -45,11 +49,17 @@ struct RecordedSettings {
   Precision precision = Precision::f64;
   double dt = 0.01;  ///< s, > 0 and <= 1
   int substeps = 1;  ///< 1 .. 1 000 000
+  /// Forest-Ruth's damping split (WorldSettings::damping_split); nullopt when not recorded
+  /// (versions 1 and 2): the scene's own then applies.
+  std::optional<DampingSplit> damping_split;
   friend bool operator==(const RecordedSettings&, const RecordedSettings&) = default;
 };
 
-/// A recorded session: the world it ran (by definition hash and settings), every tick's input
-/// and the state hashes to verify.
+/// The settings of `def` a recording stores (damping_split included).
+[[nodiscard]] RecordedSettings recorded_settings(const WorldDef& def);
+
+/// A recorded session: the world it ran (by definition hash and settings, and from version 3
+/// the scene text it was built from), every tick's input and the state hashes to verify.
 ///
 /// Deviation from "one input per tick": `inputs` is run-length encoded, as the file is, so a
 /// recording's memory grows with the number of input changes, not with its length (a file of
@@ -57,7 +67,14 @@ struct RecordedSettings {
 /// until the next entry's tick (its `tick` field then reads as that tick: see input_at()).
 struct Recording {
   int version = recording_version;
-  std::string scene;  ///< the scene file's path as given on the command line
+  /// The scene's name: its file's path as given on the command line (or a label such as
+  /// "demo (built in code)"). With scene_text present it is a label only, never read.
+  std::string scene;
+  /// The bytes of the scene the world was loaded from, exactly as read (at most
+  /// max_recording_scene_bytes), so that the recording replays without the file and cannot be
+  /// broken by editing it; empty when the recording does not carry them (versions 1 and 2, or
+  /// a recorder given no text): such a recording is replayed with the scene file it names.
+  std::string scene_text;
   std::uint64_t definition_hash = 0;
   RecordedSettings settings;
   std::uint64_t hash_every = 60;  ///< ticks between stored hashes, >= 1
@@ -106,8 +123,12 @@ class Recorder {
   /// Starts an empty recording of the world `def` (its definition hash and settings), named
   /// `scene` in the file, storing the state hash every `hash_every` ticks (>= 1, else
   /// std::invalid_argument; so is a `scene` holding a control character, which
-  /// format_recording would refuse at the end).
-  Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every);
+  /// format_recording would refuse at the end). `scene_text`: the bytes of the scene `def` was
+  /// loaded from (Recording::scene_text; the caller's to get right: a replay refuses a text
+  /// whose world is not `def`), or empty; more than max_recording_scene_bytes is
+  /// std::invalid_argument.
+  Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every,
+           std::string scene_text = {});
 
   /// Appends one tick: `input` is what the tick was stepped with (its tick field is ignored),
   /// `after_the_tick` the simulation right after sim.step(input). Throws std::invalid_argument
@@ -135,13 +156,16 @@ class Recorder {
 };
 
 /// The recording as text (the file format; README "Recordings"). Throws std::invalid_argument
-/// for a scene path holding a control character (it would break its line).
+/// for a scene path holding a control character (it would break its line) or a scene_text
+/// longer than max_recording_scene_bytes.
 [[nodiscard]] std::string format_recording(const Recording& rec);
 /// Parses the text of a recording; `source_name` is used in messages. Throws RecordingError:
-/// foreign, unsupported_version, truncated (no `end` line, or a last line without its newline)
-/// or corrupt (a malformed line, a button bit outside all_buttons, a non-finite number, ticks
-/// out of order, a hash beyond the end, more than max_recording_ticks or
-/// max_recording_bytes), naming the line and field.
+/// foreign, unsupported_version, truncated (no `end` line, or a last line without its newline,
+/// or an embedded scene cut short) or corrupt (a malformed line, a button bit outside
+/// all_buttons, a non-finite number, ticks out of order, a hash beyond the end, more than
+/// max_recording_ticks or max_recording_bytes, an embedded scene larger than
+/// max_recording_scene_bytes or whose bytes do not match its checksum), naming the line and
+/// field.
 [[nodiscard]] Recording parse_recording(std::string_view text, const std::string& source_name);
 /// Throws RecordingError (corrupt, naming `file` and the field) when an input of `rec` names a
 /// body (drag, force, impulse, velocity) that a world made from a definition of `bodies`
@@ -183,7 +207,8 @@ struct ReplayReport {
 /// recording's (apply rec.settings to the scene first: apply_settings).
 [[nodiscard]] ReplayReport replay(const WorldDef& def, const Recording& rec,
                                   const TickRules& rules = {});
-/// def with the recording's precision, dt, integrator and substeps.
+/// def with the recording's precision, dt, integrator and substeps, and its damping split when
+/// recorded.
 void apply_settings(WorldDef& def, const RecordedSettings& settings);
 
 }  // namespace fixstep

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "fixstep/atomic_output.hpp"
 #include "fixstep/recording.hpp"
@@ -18,11 +19,14 @@ namespace fixstep {
 class RecordingWriter {
  public:
   /// Starts the recording of the world `def` (its definition hash and settings), named `scene`
-  /// in the file, storing the state hash every `hash_every` ticks (1 .. max_hash_every, else
-  /// std::invalid_argument), and creates the temporary file beside `file` (std::runtime_error
-  /// naming the file and the system's reason when it cannot, e.g. a missing directory).
+  /// in the file and carrying `scene_text` (the bytes of the scene `def` was loaded from, or
+  /// empty: Recording::scene_text; more than max_recording_scene_bytes is
+  /// std::invalid_argument), storing the state hash every `hash_every` ticks
+  /// (1 .. max_hash_every, else std::invalid_argument), and creates the temporary file beside
+  /// `file` (std::runtime_error naming the file and the system's reason when it cannot, e.g. a
+  /// missing directory).
   RecordingWriter(const WorldDef& def, std::string scene, std::uint64_t hash_every,
-                  std::filesystem::path file);
+                  std::filesystem::path file, std::string_view scene_text = {});
 
   /// Appends one tick, as Recorder::record (std::invalid_argument when after_the_tick.tick()
   /// is not ticks() + 1). Throws RecordingError corrupt when the file would grow beyond

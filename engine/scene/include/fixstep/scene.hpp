@@ -67,6 +67,9 @@ struct Scene {
   /// show blow-ups on purpose).
   bool allow_unstable = false;
   std::vector<std::string> warnings;  ///< non-fatal findings (unknown keys, with suggestions)
+  /// The bytes the scene was parsed from, exactly (at most max_scene_bytes): what a recording
+  /// of its world embeds (Recording::scene_text), so that it replays without the file.
+  std::string text;
 };
 
 /// Largest scene file accepted, bytes.

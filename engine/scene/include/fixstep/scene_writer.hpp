@@ -56,7 +56,8 @@ void write_scene(const std::filesystem::path& file, const WorldDef& def);
 /// to give Recorder as its scene. `fixstep replay out/session.rec` and `fixstep render
 /// --replay out/session.rec` then find the scene beside the recording (a relative scene path
 /// is looked up in the current directory first, then beside the recording). Throws as
-/// write_scene.
+/// write_scene. A recording can also carry the scene itself, needing no file:
+/// Recorder(def, label, hash_every, format_scene(def)).
 std::string write_scene_beside(const std::filesystem::path& recording_file, const WorldDef& def);
 
 }  // namespace fixstep
