@@ -172,6 +172,9 @@ void VideoWriter::Encoder::write_packets() {
     av_packet_rescale_ts(packet_.get(), codec_->time_base, stream_->time_base);
     // av_interleaved_write_frame takes the packet's data and leaves it blank.
     av::check(av_interleaved_write_frame(mux_.get(), packet_.get()), file_, "cannot write a frame");
+    // A failed write (a full disk, EFBIG past `ulimit -f`, a closed pipe) is kept in the
+    // I/O context and may not be returned until the trailer: stop at the first one.
+    if (mux_->pb && mux_->pb->error < 0) av::fail(file_, "cannot write a frame", mux_->pb->error);
   }
 }
 
