@@ -171,7 +171,7 @@ done
 mkdir -p "$work/blocked/frame_000005.png"
 "$fixstep" render "$scenes/default.toml" --out "$work/blocked" --frames 12 --size 64x64 >"$work/blocked.out" 2>&1
 [ $? -ne 0 ] && ok "render exits non-zero when a frame cannot be written" || fail "blocked frame exit code"
-expect "the unwritable frame is named" "error: cannot write .*/blocked/frame_000005\.png: Is a directory" \
+expect "the unwritable frame is named" "error: --out: cannot write .*/blocked/frame_000005\.png: is a directory" \
   "$work/blocked.out"
 [ "$(ls -A "$work/blocked" | tr '\n' ' ')" = "frame_000000.png frame_000001.png frame_000002.png frame_000003.png frame_000004.png frame_000005.png " ] \
   && ok "frames 0-4 kept, nothing after the failure, no temporaries" || { fail "blocked dir contents"; ls -A "$work/blocked"; }
@@ -179,7 +179,7 @@ expect "the unwritable frame is named" "error: cannot write .*/blocked/frame_000
 mkdir -p "$work/blocked_last/frame_000005.png"
 "$fixstep" render "$scenes/default.toml" --out "$work/blocked_last" --frames 6 --size 64x64 >"$work/blocked_last.out" 2>&1
 [ $? -ne 0 ] && ok "render exits non-zero when the last frame cannot be written" || fail "blocked last frame exit code"
-expect "the unwritable last frame is named" "error: cannot write .*/blocked_last/frame_000005\.png: Is a directory" \
+expect "the unwritable last frame is named" "error: --out: cannot write .*/blocked_last/frame_000005\.png: is a directory" \
   "$work/blocked_last.out"
 
 # --- SIGINT / SIGTERM: stop after the current frame, keep every frame complete -------------

@@ -54,7 +54,8 @@ bad "compare into a .avi" 2 "must end in \.mp4 \(H\.264\) or \.gif" \
   compare "$scenes/default.toml" --with rk4 --with semi_implicit_euler --video "$work/x.avi"
 bad "neither --out nor --video" 2 "give --out DIR \(PNG frames\) or --video FILE" \
   render "$scenes/default.toml"
-bad "an odd size for H.264" 1 "even" render "$scenes/default.toml" --video "$work/odd.mp4" --size 321x180
+bad "an odd size for H.264 (refused before any work)" 2 "--size 321x180 is odd.*even" \
+  render "$scenes/default.toml" --video "$work/odd.mp4" --size 321x180
 [ ! -e "$work/odd.mp4" ] && ! ls -a "$work" | grep -q '^\.odd\.mp4\.tmp' \
   && ok "nothing is left of the refused video" || fail "leftovers of odd.mp4: $(ls -a "$work")"
 bad "a video in a missing directory" 1 "nodir" render "$scenes/default.toml" --video "$work/nodir/v.mp4"

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <fixstep/output_target.hpp>
+#include <fixstep/video_limits.hpp>
+
 #include "capture_dir.hpp"
 
 namespace fixstep::cli {
@@ -14,6 +17,22 @@ std::string capture_targets_error(const CaptureTargets& t) {
   return {};
 }
 
+std::string video_options_error(const std::optional<std::string>& video, int width, int height,
+                                double fps) {
+  const std::optional<VideoFormat> format = video ? video_format_for(*video) : std::nullopt;
+  if (!format) return {};
+  const auto e = video_limit_error(*format, width, height, fps);
+  if (!e) return {};
+  return fmt::format("{} {} (--video {})",
+                     e->parameter == VideoParameter::size ? "--size" : "--fps", e->text, *video);
+}
+
+std::optional<std::filesystem::path> beside_video(const std::string& video, const char* suffix) {
+  if (classify_output(video).kind == OutputKind::stream) return std::nullopt;
+  std::filesystem::path p = video;
+  return p += suffix;
+}
+
 CaptureSink::CaptureSink(const CaptureTargets& targets, int width, int height, double fps,
                          ManifestLayout layout)
     : targets_(targets), width_(width), height_(height), fps_(fps) {
@@ -24,7 +43,9 @@ CaptureSink::CaptureSink(const CaptureTargets& targets, int width, int height, d
   }
   if (targets_.video) {
     video_.emplace(*targets_.video, width, height, fps);
-    video_manifest_.emplace(video_manifest_path(*targets_.video), layout);
+    if (const auto manifest = beside_video(*targets_.video, ".frames.csv")) {
+      video_manifest_.emplace(*manifest, layout);
+    }
   }
 }
 

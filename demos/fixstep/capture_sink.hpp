@@ -25,6 +25,18 @@ struct CaptureTargets {
 /// extension is not one VideoWriter writes; "" when the targets are usable.
 [[nodiscard]] std::string capture_targets_error(const CaptureTargets& targets);
 
+/// "--size 321x180 is odd: ..." or "--fps 0.001 is too low for GIF: ..." when a video of
+/// width x height at `fps` breaks its container's limits (video_limit_error), naming the
+/// option to change; "" when it does not or there is no video.
+[[nodiscard]] std::string video_options_error(const std::optional<std::string>& video, int width,
+                                              int height, double fps);
+
+/// The file written beside the video `video`: VIDEO + `suffix` (".frames.csv": the manifest;
+/// ".compare.csv": compare's summary). None when the video is streamed (a FIFO, a device,
+/// standard output): there is no directory of its own to write into, and a device's is /dev.
+[[nodiscard]] std::optional<std::filesystem::path> beside_video(const std::string& video,
+                                                                const char* suffix);
+
 class CaptureSink {
  public:
   /// Prepares the directory (prepare_capture_dir: created, stale temporaries and with

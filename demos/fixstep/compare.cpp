@@ -211,7 +211,7 @@ int show(const CompareOptions& o, Comparison& c, int width, int height) {
 std::optional<std::filesystem::path> summary_path(const CompareOptions& o) {
   if (o.csv) return std::filesystem::path(*o.csv);
   if (o.out) return std::filesystem::path(*o.out) / "compare.csv";
-  if (o.video) return std::filesystem::path(*o.video) += ".compare.csv";
+  if (o.video) return beside_video(*o.video, ".compare.csv");
   return std::nullopt;
 }
 

@@ -31,7 +31,8 @@ struct CompareOptions {
 inline constexpr std::int64_t default_compare_frames = 240;
 
 /// The summary CSV's path: --csv, else DIR/compare.csv beside the PNGs, else
-/// NAME.EXT.compare.csv beside the video NAME.EXT; none for a window without --csv.
+/// NAME.EXT.compare.csv beside the video NAME.EXT (beside_video: none for a streamed video);
+/// none for a window without --csv.
 [[nodiscard]] std::optional<std::filesystem::path> summary_path(const CompareOptions& o);
 
 int compare_command(const CompareOptions& options);

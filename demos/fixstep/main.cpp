@@ -18,6 +18,7 @@
 #include <fixstep/limits.hpp>
 #include <fixstep/stop_request.hpp>
 #include <fixstep/suggest.hpp>
+#include <fixstep/write_signals.hpp>
 
 #include "capture_sink.hpp"
 #include "commands.hpp"
@@ -25,6 +26,7 @@
 #include "compare_tiles.hpp"
 #include "new_project.hpp"
 #include "output_paths.hpp"
+#include "standard_output.hpp"
 
 namespace {
 
@@ -137,6 +139,9 @@ std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
 // becomes "fixstep: error: ..." and exit status 1, never std::terminate.
 int main(int argc, char** argv) try {
   using namespace fixstep::cli;
+  // A write past `ulimit -f` or into a closed pipe fails with an error fixstep reports (naming
+  // the option and the file, temporaries removed) instead of killing it without a word.
+  fixstep::ignore_write_signals();
   CLI::App app{
       "fixstep: fixed-timestep integration of spring-damper and projectile scenes, "
       "rendered headless with OSMesa or shown in an SDL2 window."};
@@ -264,6 +269,13 @@ int main(int argc, char** argv) try {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
+  const CommandPaths paths = run_cmd->parsed()       ? run_paths(run)
+                             : render_cmd->parsed()  ? render_paths(render, render.scene.scene)
+                             : compare_cmd->parsed() ? compare_paths(compare)
+                             : view_cmd->parsed()    ? view_paths(view)
+                                                     : CommandPaths{};
+  // `--csv -`: standard output carries the data alone; the summary goes to standard error.
+  if (data_on_standard_output(paths)) keep_standard_output_for_data();
   // --quiet: the summaries and paths go to standard output, which is emptied wholesale;
   // errors go to standard error (warnings and progress are skipped where they are made).
   if ((run.scene.quiet || render.scene.quiet || view.scene.quiet || replay.quiet ||
@@ -272,47 +284,62 @@ int main(int argc, char** argv) try {
     std::fputs("fixstep: error: --quiet: cannot open /dev/null for standard output\n", stderr);
     return 1;
   }
-  if (run_cmd->parsed()) {
-    if (!steps->count() && !duration->count()) {
-      std::fputs("fixstep run: give --steps N (ticks) or --duration S (simulated seconds)\n",
-                 stderr);
-      return 2;
+  const auto command = [&]() -> int {
+    if (run_cmd->parsed()) {
+      if (!steps->count() && !duration->count()) {
+        std::fputs("fixstep run: give --steps N (ticks) or --duration S (simulated seconds)\n",
+                   stderr);
+        return 2;
+      }
+      return run_command(run);
     }
-    return run_command(run);
-  }
-  if (render_cmd->parsed()) {
-    if (render.scene.scene.empty() && !render.replay) {
-      std::fputs("fixstep render: give SCENE (or --replay FILE, which names its scene)\n", stderr);
-      return 2;
-    }
-    if (const std::string e = render.replay ? replay_flag_conflict(render.scene) : ""; !e.empty()) {
-      std::fprintf(stderr, "fixstep render: %s\n", e.c_str());
-      return 2;
-    }
-    if (const std::string e = capture_targets_error(
+    if (render_cmd->parsed()) {
+      if (render.scene.scene.empty() && !render.replay) {
+        std::fputs("fixstep render: give SCENE (or --replay FILE, which names its scene)\n",
+                   stderr);
+        return 2;
+      }
+      const auto [width, height] = parse_frame_size(render.size);
+      std::string e = render.replay ? replay_flag_conflict(render.scene) : "";
+      if (e.empty())
+        e = capture_targets_error(
             {.out = render.out, .video = render.video, .png_level = render.png_level});
-        !e.empty()) {
-      std::fprintf(stderr, "fixstep render: %s\n", e.c_str());
-      return 2;
+      if (e.empty()) e = video_options_error(render.video, width, height, render.fps);
+      if (!e.empty()) {
+        std::fprintf(stderr, "fixstep render: %s\n", e.c_str());
+        return 2;
+      }
+      return render_command(render);
     }
-    return render_command(render);
+    if (compare_cmd->parsed()) {
+      if (compare.with.size() < min_tiles || compare.with.size() > max_tiles) {
+        std::fprintf(stderr, "fixstep compare: give 2 to 6 --with configurations, got %zu\n",
+                     compare.with.size());
+        return 2;
+      }
+      const auto [width, height] = parse_frame_size(compare.size);
+      std::string e = capture_targets_error({.out = compare.out, .video = compare.video});
+      if (!compare.out && !compare.video) e.clear();  // the window
+      if (e.empty())
+        e = video_options_error(compare.video, width, height, compare.fps.value_or(60));
+      if (!e.empty()) {
+        std::fprintf(stderr, "fixstep compare: %s\n", e.c_str());
+        return 2;
+      }
+      return compare_command(compare);
+    }
+    if (replay_cmd->parsed()) return replay_command(replay);
+    if (new_cmd->parsed()) return new_command(new_dir);
+    return view_command(view);
+  };
+  try {
+    return command();
+  } catch (const fixstep::RecordingError&) {
+    throw;
+  } catch (const std::runtime_error& e) {  // a write error: named by the option that gave it
+    if (const auto named = naming_the_option(paths, e.what())) throw std::runtime_error(*named);
+    throw;
   }
-  if (compare_cmd->parsed()) {
-    if (compare.with.size() < min_tiles || compare.with.size() > max_tiles) {
-      std::fprintf(stderr, "fixstep compare: give 2 to 6 --with configurations, got %zu\n",
-                   compare.with.size());
-      return 2;
-    }
-    if (const std::string e = capture_targets_error({.out = compare.out, .video = compare.video});
-        (compare.out || compare.video) && !e.empty()) {
-      std::fprintf(stderr, "fixstep compare: %s\n", e.c_str());
-      return 2;
-    }
-    return compare_command(compare);
-  }
-  if (replay_cmd->parsed()) return replay_command(replay);
-  if (new_cmd->parsed()) return new_command(new_dir);
-  return view_command(view);
 } catch (const fixstep::StopRequested& e) {  // a command that does not catch it (none should)
   std::fprintf(stderr, "fixstep: %s\n", e.what());
   return 128 + e.signal();

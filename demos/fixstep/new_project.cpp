@@ -7,9 +7,15 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <fixstep/output_target.hpp>
+#include <fixstep/stop_request.hpp>
 #include <optional>
 #include <stdexcept>
 #include <system_error>
+
+#include "output_paths.hpp"
+#include "staged_directory.hpp"
+#include "stop_signal.hpp"
 
 namespace fixstep::cli {
 
@@ -43,17 +49,18 @@ void check_target(const fs::path& dir) {
 }
 
 /// Writes `text` into `file`, which must not exist (opened exclusively: never overwritten).
-void write_new_file(const fs::path& file, std::string_view text) {
+/// Errors name `shown`: the file's name once in place.
+void write_new_file(const fs::path& file, std::string_view text, const fs::path& shown) {
   std::FILE* out = std::fopen(file.c_str(), "wx");
   if (out == nullptr) {
     throw std::runtime_error(
-        fmt::format("cannot create {}: {}", file.string(),
+        fmt::format("cannot create {}: {}", shown.string(),
                     std::error_code(errno, std::generic_category()).message()));
   }
   const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size();
   const int err = errno;
   if (std::fclose(out) != 0 || !written) {
-    throw std::runtime_error(fmt::format("cannot write {}: {}", file.string(),
+    throw std::runtime_error(fmt::format("cannot write {}: {}", shown.string(),
                                          std::error_code(err, std::generic_category()).message()));
   }
 }
@@ -88,6 +95,7 @@ std::optional<std::string> cmake_prefix_argument() {
 
 /// What to type next.
 void print_next_steps(const std::string& dir, const std::string& name) {
+  const std::string quoted = shell_quoted(dir);
   const std::optional<std::string> prefix = cmake_prefix_argument();
   std::printf(
       "Build and run it (its README.md says more):\n"
@@ -95,7 +103,7 @@ void print_next_steps(const std::string& dir, const std::string& name) {
       "  cmake -B build%s && cmake --build build\n"
       "  ./build/%s                              play in a window\n"
       "  ./build/%s --frames 120 --out frames    or 120 frames headless, as PNGs\n",
-      dir.c_str(), prefix.value_or("").c_str(), name.c_str(), name.c_str());
+      quoted.c_str(), prefix.value_or("").c_str(), name.c_str(), name.c_str());
   if (!prefix) {
     std::printf(
         "note: this fixstep is not an installed one: install the package first (cmake --install "
@@ -105,15 +113,31 @@ void print_next_steps(const std::string& dir, const std::string& name) {
 
 }  // namespace
 
+std::string shell_quoted(std::string_view word) {
+  constexpr std::string_view safe =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_./:@%+=,-";
+  const std::string head = word.starts_with('-') ? "./" : "";  // not read as an option
+  if (!word.empty() && word.find_first_not_of(safe) == std::string_view::npos) {
+    return head + std::string(word);
+  }
+  std::string out = head + "'";
+  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 std::string project_name(const fs::path& dir) {
+  if (dir.empty()) {
+    throw std::invalid_argument(
+        "DIR is empty (\"\"): give the project's directory, such as games/grabber");
+  }
   fs::path path = fs::absolute(dir).lexically_normal();
   if (path.filename().empty()) path = path.parent_path();  // "game/" names "game"
   const std::string last = path.filename().string();
   if (last.empty() || last == "." || last == "..") {
     throw std::invalid_argument(
-        fmt::format("{}: a project needs a directory with a name, such "
-                    "as games/grabber",
-                    dir.string()));
+        fmt::format("DIR {} has no name of its own: a project needs a directory with a name, "
+                    "such as games/grabber",
+                    shell_quoted(dir.string())));
   }
   std::string name = last[0] >= '0' && last[0] <= '9' ? "_" : "";
   for (const char c : last) name += identifier_char(c) ? c : '_';
@@ -137,21 +161,51 @@ std::string fill_template(std::string_view text, std::string_view name, std::str
   return out;
 }
 
-int new_command(const std::string& dir) {
-  const std::string name = project_name(dir);
-  check_target(dir);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) {
-    throw std::runtime_error(fmt::format("cannot create the directory {}: {}", dir, ec.message()));
-  }
+namespace {
+/// The directory a project named `dir` goes to: a symbolic link's final target.
+fs::path project_target(const std::string& dir) {
+  const OutputTarget target = classify_output(dir);
+  return target.fd < 0 && target.kind != OutputKind::stream ? target.path : fs::path(dir);
+}
+
+/// The template's files written into `into`; a stop request (SIGINT, SIGTERM) between two
+/// files throws StopRequested. Errors name the files as in `dir`. Returns their names, for
+/// the summary.
+std::string write_project(const fs::path& into, const std::string& dir, const std::string& name) {
   std::string written;
   for (const TemplateFile& file : template_files()) {
-    write_new_file(fs::path(dir) / file.name, fill_template(file.text, name, template_version()));
+    throw_if_stop_requested();
+    write_new_file(into / file.name, fill_template(file.text, name, template_version()),
+                   fs::path(dir) / file.name);
     written += fmt::format(" {}", file.name);
   }
-  std::printf("fixstep new: wrote the project '%s' into %s:%s\n", name.c_str(), dir.c_str(),
-              written.c_str());
+  throw_if_stop_requested();
+  return written;
+}
+}  // namespace
+
+int new_command(const std::string& dir) {
+  std::string name;
+  try {
+    name = project_name(dir);
+  } catch (const std::invalid_argument& e) {
+    throw PathRefused(fmt::format("fixstep new: {}", e.what()));
+  }
+  const fs::path target = project_target(dir);
+  check_target(target);
+  const StopOnSignal signals;  // a stop request removes the half-made project
+  std::string written;
+  try {
+    StagedDirectory staged(target);
+    written = write_project(staged.path(), dir, name);
+    staged.publish();
+  } catch (const StopRequested&) {
+    throw;
+  } catch (const std::runtime_error& e) {  // StagedDirectory removed what it made
+    throw std::runtime_error(fmt::format("{} (fixstep new left nothing behind)", e.what()));
+  }
+  std::printf("fixstep new: wrote the project '%s' into %s:%s\n", name.c_str(),
+              shell_quoted(dir).c_str(), written.c_str());
   print_next_steps(dir, name);
   return 0;
 }

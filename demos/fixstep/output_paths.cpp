@@ -1,13 +1,16 @@
 #include "output_paths.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
 
 #include <filesystem>
 #include <fixstep/manifest.hpp>
+#include <fixstep/output_target.hpp>
 #include <fixstep/stale_temporaries.hpp>
 
 #include "capture_dir.hpp"
+#include "capture_sink.hpp"
 
 namespace fixstep::cli {
 
@@ -18,8 +21,10 @@ namespace {
 struct FileId {
   dev_t dev = 0;
   ino_t ino = 0;
-  std::string path;  ///< "" for an existing file
-  bool operator==(const FileId&) const = default;
+  std::string path;        ///< "" for an existing file
+  std::string stream;      ///< what a stream is ("standard output", "a FIFO (named pipe)"), or ""
+  bool shareable = false;  ///< a character device named by its path (/dev/null), not stdout
+  bool operator==(const FileId& o) const { return dev == o.dev && ino == o.ino && path == o.path; }
 };
 
 std::filesystem::path resolved(const std::string& path) {
@@ -29,11 +34,21 @@ std::filesystem::path resolved(const std::string& path) {
   return ec ? absolute : p;
 }
 
+/// The identity of an input (`may_be_new` false) or an output: what the output's name stands
+/// for (classify_output), so "-" and "/dev/stdout" are standard output, not files so named.
 std::optional<FileId> id_of(const std::string& path, bool may_be_new) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0) return FileId{st.st_dev, st.st_ino, ""};
+  const OutputTarget target = may_be_new ? classify_output(path) : OutputTarget{};
+  const std::string stream = target.kind == OutputKind::stream ? target.what : "";
+  if (target.fd >= 0) {
+    if (::fstat(target.fd, &st) != 0) return std::nullopt;  // not open: refuse_kinds says so
+    return FileId{st.st_dev, st.st_ino, "", stream, false};
+  }
+  if (::stat(path.c_str(), &st) == 0) {
+    return FileId{st.st_dev, st.st_ino, "", stream, may_be_new && S_ISCHR(st.st_mode)};
+  }
   if (!may_be_new) return std::nullopt;
-  return FileId{0, 0, resolved(path).string()};
+  return FileId{0, 0, resolved(path).string(), "", false};
 }
 
 std::string shown(const NamedPath& p) {
@@ -87,8 +102,18 @@ void refuse_same_files(const CommandPaths& c) {
     const auto id = id_of(out.path, true);
     if (!id) continue;
     for (std::size_t i = 0; i < seen.size(); ++i) {
-      if (seen[i].second != *id) continue;
+      // Two outputs streaming into one character device (--csv /dev/null --record /dev/null)
+      // do no harm; into one file, FIFO or standard output they would mix or overwrite.
+      if (seen[i].second != *id || (i >= inputs && id->shareable && seen[i].second.shareable)) {
+        continue;
+      }
       if (i < inputs) refuse_input(c, out, seen[i].first);
+      if (!id->stream.empty()) {
+        throw PathRefused(fmt::format(
+            "fixstep {}: {} and {} both write into {}: their bytes would be mixed (nothing was "
+            "written); give each its own path",
+            c.command, shown(seen[i].first), shown(out), id->stream));
+      }
       throw PathRefused(fmt::format(
           "fixstep {}: {} and {} are the same file: one output would overwrite the other "
           "(nothing was written); give each its own path",
@@ -99,20 +124,58 @@ void refuse_same_files(const CommandPaths& c) {
   }
 }
 
+/// "" when descriptor `fd` is open for writing, else why not.
+std::string descriptor_refusal(int fd, const std::string& what) {
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags < 0) return fmt::format("names {}, which is not open", what);
+  if ((flags & O_ACCMODE) == O_RDONLY) return fmt::format("names {}, open for reading only", what);
+  return {};
+}
+
+/// An output that is a directory, block device, socket or other special file, or names a
+/// descriptor that is not open for writing.
+void refuse_kinds(const CommandPaths& c) {
+  for (const NamedPath& out : c.outputs) {
+    const OutputTarget target = classify_output(out.path);
+    std::string why = output_refusal(target);
+    if (why.empty() && target.fd >= 0) why = descriptor_refusal(target.fd, target.what);
+    if (!why.empty()) {
+      throw PathRefused(
+          fmt::format("fixstep {}: {} {}; nothing was written", c.command, shown(out), why));
+    }
+  }
+}
+
 }  // namespace
 
 void check_paths(const CommandPaths& c) {
+  refuse_kinds(c);
   refuse_same_files(c);
   if (c.capture_dir) {
     if (const std::string e = capture_dir_refusal(*c.capture_dir, c.overwrite); !e.empty()) {
       throw PathRefused(fmt::format("fixstep {}: {}", c.command, e));
     }
   }
-  for (const NamedPath& out : c.outputs) {
-    const std::filesystem::path p(out.path);
-    const std::string name = p.filename().string();
-    remove_stale_temporaries(p.parent_path(), [&](std::string_view t) { return t == name; });
+  for (const NamedPath& out : c.outputs) {  // beside the file replaced: links followed
+    const OutputTarget target = classify_output(out.path);
+    if (target.kind != OutputKind::file) continue;
+    const std::string name = target.path.filename().string();
+    remove_stale_temporaries(target.path.parent_path(),
+                             [&](std::string_view t) { return t == name; });
   }
+}
+
+std::optional<std::string> naming_the_option(const CommandPaths& c, std::string_view message) {
+  constexpr std::string_view head = "cannot write ";
+  if (!message.starts_with(head)) return std::nullopt;
+  const std::string_view rest = message.substr(head.size());
+  for (const NamedPath& out : c.outputs) {
+    if (rest.starts_with(out.path + ":")) return fmt::format("{}: {}", out.role, message);
+  }
+  if (c.capture_dir && rest.starts_with((std::filesystem::path(*c.capture_dir) / "").string())) {
+    return fmt::format("--out: {}", message);
+  }
+  return std::nullopt;
 }
 
 CommandPaths run_paths(const RunOptions& o) {
@@ -136,7 +199,9 @@ void add_capture_outputs(CommandPaths& c, const std::optional<std::string>& out,
   }
   if (video) {
     c.outputs.push_back({"--video", *video});
-    c.outputs.push_back({"--video's manifest", video_manifest_path(*video).string()});
+    if (const auto manifest = beside_video(*video, ".frames.csv")) {
+      c.outputs.push_back({"--video's manifest", manifest->string()});
+    }
   }
 }
 }  // namespace

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "commands.hpp"
@@ -42,6 +43,13 @@ struct CommandPaths {
 /// (capture_dir_refusal). Inputs that do not exist are skipped: reading them reports it.
 /// Then removes the stale ".NAME.tmp.PID" files of the outputs (remove_stale_temporaries).
 void check_paths(const CommandPaths& paths);
+
+/// `message` with the option that gave the file put first, when it is a write error ("cannot
+/// write PATH: REASON") of an output of `paths` or of a file in its capture directory:
+/// "--csv: cannot write out.csv: File too large", "--out: cannot write d/frame_000003.png:
+/// ...". std::nullopt for any other message.
+[[nodiscard]] std::optional<std::string> naming_the_option(const CommandPaths& paths,
+                                                           std::string_view message);
 
 /// The paths of `run`, `render` (`scene` the file it will load: SCENE or the recording's),
 /// `compare` and `view`, for check_paths.

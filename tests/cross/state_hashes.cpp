@@ -8,11 +8,16 @@
 // Output: "TICK HASH" per line, TICK in decimal, HASH Simulation::state_hash() in 16 lowercase
 // hex digits (hex_hash): tick 0 (the loaded state), every K-th tick, and tick N (default 1000
 // ticks, K = 1), no input. Exit 0; 2 for bad arguments or a scene the loader refuses (message
-// on stderr); 3 for a SIMD level this CPU or build lacks.
+// on stderr); 3 for a SIMD level this CPU or build lacks; 1 when standard output cannot be
+// written ("state_hashes: cannot write standard output: File too large" past `ulimit -f`,
+// "Broken pipe" when its reader has gone: SIGXFSZ and SIGPIPE are ignored, write_signals.hpp).
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -20,6 +25,7 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/simulation.hpp"
+#include "fixstep/write_signals.hpp"
 
 namespace {
 
@@ -92,6 +98,20 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+/// A write error of standard output, with the system's reason.
+class OutputError : public std::runtime_error {
+ public:
+  OutputError()
+      : std::runtime_error(std::string("cannot write standard output: ") +
+                           std::strerror(errno ? errno : EIO)) {}
+};
+
+/// Writes `text` to standard output; throws OutputError when it cannot.
+void put(const std::string& text) {
+  errno = 0;
+  if (std::fputs(text.c_str(), stdout) == EOF) throw OutputError();
+}
+
 /// Steps the scene o.ticks ticks, printing the hash lines (buffered: one write per 4 KiB).
 void run(const Options& o) {
   Scene scene = load_scene(o.scene);
@@ -104,19 +124,22 @@ void run(const Options& o) {
   std::string out;
   auto line = [&] {
     out += std::to_string(sim.tick()) + ' ' + hex_hash(sim.state_hash()) + '\n';
-    if (out.size() >= 4096) std::fputs(out.c_str(), stdout), out.clear();
+    if (out.size() >= 4096) put(out), out.clear();
   };
   line();
   for (std::uint64_t t = 1; t <= o.ticks; ++t) {
     sim.step();
     if (t % o.every == 0 || t == o.ticks) line();
   }
-  std::fputs(out.c_str(), stdout);
+  put(out);
+  errno = 0;
+  if (std::fflush(stdout) != 0) throw OutputError();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  fixstep::ignore_write_signals();  // a write error is reported, not a death by signal
   const Options o = parse(argc, argv);
   if (o.simd) {
     if (!simd_supported(*o.simd)) {
@@ -128,9 +151,12 @@ int main(int argc, char** argv) {
   }
   try {
     run(o);
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "state_hashes: %s\n", e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "state_hashes: %s\n", e.what());
     return 2;
   }
-  return std::fflush(stdout) == 0 ? 0 : 1;
+  return 0;
 }

@@ -3,6 +3,7 @@
 #include "fixstep/video.hpp"
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,7 +14,11 @@
 #include <cstring>
 #include <stdexcept>
 #include <string_view>
+#include <utility>
 
+#include "fixstep/atomic_output.hpp"
+#include "fixstep/video_limits.hpp"
+#include "fixstep/write_signals.hpp"
 #include "video_encoder.hpp"
 
 namespace fixstep {
@@ -35,8 +40,6 @@ constexpr std::array<std::string_view, 10> x264_presets = {
 constexpr std::array<std::string_view, 9> x264_tunes = {
     "", "film", "animation", "grain", "stillimage", "psnr", "ssim", "fastdecode", "zerolatency"};
 constexpr int max_video_threads = 64;
-constexpr int max_gif_side = 65535;  // GIF stores sizes in 16 bits
-constexpr int max_rate_term = 1001000;
 
 [[noreturn]] void refuse(const std::filesystem::path& file, const std::string& what) {
   throw std::invalid_argument(fmt::format("cannot write {}: {}", file.string(), what));
@@ -49,53 +52,20 @@ VideoFormat format_of(const std::filesystem::path& file) {
                            file.extension().string()));
 }
 
-void check_size(const std::filesystem::path& file, VideoFormat format, int width, int height) {
-  if (format == VideoFormat::gif) {
-    if (width < 1 || height < 1 || width > max_gif_side || height > max_gif_side) {
-      refuse(file, fmt::format("frame size {}x{} is outside 1x1..{}x{} (GIF's limits)", width,
-                               height, max_gif_side, max_gif_side));
-    }
-    return;
+/// `format` at width x height and fps within its container's limits (video_limit_error).
+AVRational checked_rate(const std::filesystem::path& file, VideoFormat format, int width,
+                        int height, double fps) {
+  if (const auto e = video_limit_error(format, width, height, fps)) {
+    refuse(file, (e->parameter == VideoParameter::size ? "frame size " : "fps ") + e->text);
   }
-  if (width < 2 || height < 2) {
-    refuse(file, fmt::format("frame size {}x{} is below 2x2, the smallest H.264 frame in "
-                             "yuv420p",
-                             width, height));
-  }
-  if (width % 2 != 0 || height % 2 != 0) {
-    refuse(file, fmt::format("frame size {}x{} is odd: MP4 (H.264 in yuv420p, the pixel format "
-                             "every player plays) stores colour per 2x2 pixel block and needs "
-                             "an even width and height (e.g. {}x{})",
-                             width, height, width + width % 2, height + height % 2));
-  }
-}
-
-// fps as a fraction: exact for whole numbers, else the closest with terms up to
-// max_rate_term (29.97 -> 30000/1001), accepted when within 1e-6 of fps.
-AVRational rate_of(const std::filesystem::path& file, double fps) {
-  if (!std::isfinite(fps) || fps <= 0.0) {
-    refuse(file, fmt::format("fps {} is not a finite number > 0", fps));
-  }
-  if (fps == std::floor(fps) && fps <= max_rate_term) return AVRational{static_cast<int>(fps), 1};
-  const AVRational r = av_d2q(fps, max_rate_term);
-  if (r.num <= 0 || r.den <= 0 || r.num > max_rate_term || r.den > max_rate_term ||
-      std::abs(av_q2d(r) - fps) > 1e-6 * fps) {
-    refuse(file, fmt::format("fps {} has no fraction with terms up to {} within 1e-6 of it", fps,
-                             max_rate_term));
-  }
-  return r;
+  const VideoRate rate = *video_rate(fps);
+  return AVRational{rate.num, rate.den};
 }
 
 // GIF: keep every n-th frame so that at most max_gif_fps frames per second remain.
 int frame_step_of(VideoFormat format, double fps) {
   if (format != VideoFormat::gif || fps <= max_gif_fps) return 1;
   return static_cast<int>(std::ceil(fps / max_gif_fps - 1e-9));
-}
-
-// ".NAME.tmp.PID" beside `file`, as AtomicFile names its temporary.
-std::filesystem::path temporary_for(const std::filesystem::path& file) {
-  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
-  return dir / fmt::format(".{}.tmp.{}", file.filename().string(), ::getpid());
 }
 
 void remove_quietly(const std::filesystem::path& file) {
@@ -128,23 +98,28 @@ std::string video_settings_error(const VideoSettings& settings) {
 VideoWriter::VideoWriter(std::filesystem::path file, int width, int height, double fps,
                          VideoSettings settings, int in_flight)
     : file_(std::move(file)), format_(format_of(file_)), width_(width), height_(height) {
-  check_size(file_, format_, width, height);
-  const AVRational rate = rate_of(file_, fps);
+  const AVRational rate = checked_rate(file_, format_, width, height, fps);
   if (const std::string error = video_settings_error(settings); !error.empty()) {
     refuse(file_, error);
   }
   if (in_flight < 1) refuse(file_, fmt::format("in_flight is {}, must be >= 1", in_flight));
   frame_step_ = frame_step_of(format_, fps);
   frame_bytes_ = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4;
-  tmp_ = temporary_for(file_);
+  ignore_file_size_signal();  // a write past `ulimit -f` fails with EFBIG, reported
+  target_ = classify_output(file_);
+  if (target_.kind == OutputKind::refused) {
+    throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), output_refusal(target_)));
+  }
   try {  // from here on the temporary file may exist: remove it if anything fails
-    encoder_ = std::make_unique<Encoder>(tmp_, file_,
-                                         Encoder::Options{.format = format_,
-                                                          .width = width,
-                                                          .height = height,
-                                                          .rate = rate,
-                                                          .step = frame_step_,
-                                                          .settings = std::move(settings)});
+    encoder_ =
+        std::make_unique<Encoder>(open_destination(), file_,
+                                  Encoder::Options{.format = format_,
+                                                   .width = width,
+                                                   .height = height,
+                                                   .rate = rate,
+                                                   .step = frame_step_,
+                                                   .settings = std::move(settings),
+                                                   .streamed = target_.kind == OutputKind::stream});
     pipeline_ = std::make_unique<FramePipeline>(
         frame_bytes_, static_cast<std::size_t>(in_flight),
         [this](std::span<const std::uint8_t> rgba, std::uint64_t pts) {
@@ -153,16 +128,55 @@ VideoWriter::VideoWriter(std::filesystem::path file, int width, int height, doub
         FramePipeline::Pending::drop);
   } catch (...) {
     encoder_.reset();
-    remove_quietly(tmp_);
+    discard();
     throw;
   }
+}
+
+std::string VideoWriter::open_destination() {
+  if (target_.kind == OutputKind::stream) {
+    stream_fd_ = open_output_stream(target_);
+    if (stream_fd_ < 0) {
+      throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), std::strerror(errno)));
+    }
+    return fmt::format("pipe:{}", stream_fd_);  // FFmpeg writes it, never closes it
+  }
+  const std::filesystem::path& target = target_.path;
+  const std::filesystem::path dir = target.has_parent_path() ? target.parent_path() : ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw CaptureError(fmt::format("cannot write {}: the directory {} does not exist",
+                                   file_.string(), dir.string()));
+  }
+  tmp_ = temporary_file_for(target);
+  return tmp_.string();
+}
+
+void VideoWriter::publish() {
+  if (target_.kind == OutputKind::stream) {
+    const int fd = std::exchange(stream_fd_, -1);
+    if (::close(fd) != 0) {
+      throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), std::strerror(errno)));
+    }
+    return;
+  }
+  // The replaced file's permission bits (FFmpeg creates the file with the default ones).
+  if (target_.mode) (void)::chmod(tmp_.c_str(), static_cast<mode_t>(*target_.mode));
+  if (::rename(tmp_.c_str(), target_.path.c_str()) != 0) {
+    throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), std::strerror(errno)));
+  }
+}
+
+void VideoWriter::discard() noexcept {
+  if (stream_fd_ >= 0) ::close(std::exchange(stream_fd_, -1));
+  if (!tmp_.empty()) remove_quietly(tmp_);
 }
 
 VideoWriter::~VideoWriter() {
   halt();  // frames still queued are dropped: the video is abandoned unless finished
   if (!finished_) {
     encoder_.reset();  // closes the temporary file, without a trailer
-    remove_quietly(tmp_);
+    discard();
   }
 }
 
@@ -198,14 +212,12 @@ void VideoWriter::finish() {
     pipeline_->stop(FramePipeline::Pending::drop);  // nothing is queued: the encoder is ours
     encoder_->finish();
     encoder_.reset();
-    if (::rename(tmp_.c_str(), file_.c_str()) != 0) {
-      throw CaptureError(fmt::format("cannot write {}: {}", file_.string(), std::strerror(errno)));
-    }
+    publish();
   } catch (...) {
     error_ = std::current_exception();  // later calls report it too
     halt();
     encoder_.reset();
-    remove_quietly(tmp_);
+    discard();
     throw;
   }
   finished_ = true;

@@ -54,14 +54,14 @@ void quiet_ffmpeg_once() {
 
 }  // namespace
 
-VideoWriter::Encoder::Encoder(const std::filesystem::path& path, const std::filesystem::path& file,
+VideoWriter::Encoder::Encoder(const std::string& url, const std::filesystem::path& file,
                               const Options& options)
     : file_(file), step_(options.step) {
   quiet_ffmpeg_once();
   const char* muxer = options.format == VideoFormat::mp4 ? "mp4" : "gif";
   // The muxer is named: the temporary file's name does not end in .mp4 / .gif.
   AVFormatContext* mux = nullptr;
-  av::check(avformat_alloc_output_context2(&mux, nullptr, muxer, path.c_str()), file_,
+  av::check(avformat_alloc_output_context2(&mux, nullptr, muxer, url.c_str()), file_,
             fmt::format("cannot set up the {} muxer", muxer));
   mux_.reset(mux);
   packet_.reset(av_packet_alloc());
@@ -77,7 +77,7 @@ VideoWriter::Encoder::Encoder(const std::filesystem::path& path, const std::file
     }
   }
   open_codec(options);
-  open_file(path, options.format);
+  open_file(url, options);
 }
 
 VideoWriter::Encoder::~Encoder() {
@@ -124,18 +124,16 @@ void VideoWriter::Encoder::open_codec(const Options& options) {
   stream_->avg_frame_rate = c.framerate;
 }
 
-void VideoWriter::Encoder::open_file(const std::filesystem::path& path, VideoFormat format) {
-  const std::filesystem::path dir = file_.has_parent_path() ? file_.parent_path() : ".";
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec)) {
-    throw CaptureError(fmt::format("cannot write {}: the directory {} does not exist",
-                                   file_.string(), dir.string()));
-  }
-  av::check(avio_open(&mux_->pb, path.c_str(), AVIO_FLAG_WRITE), file_, "cannot create the file");
+void VideoWriter::Encoder::open_file(const std::string& url, const Options& options) {
+  av::check(avio_open(&mux_->pb, url.c_str(), AVIO_FLAG_WRITE), file_, "cannot create the file");
   Dict opts;
   // faststart: after the last frame the muxer rewrites the file with the index (moov) first,
-  // so a browser plays the video while it downloads.
-  if (format == VideoFormat::mp4) opts.set("movflags", "+faststart");
+  // so a browser plays the video while it downloads. A stream cannot be rewritten: fragments
+  // (an empty index first, then a fragment per keyframe) play the same way.
+  if (options.format == VideoFormat::mp4) {
+    opts.set("movflags",
+             options.streamed ? "+frag_keyframe+empty_moov+default_base_moof" : "+faststart");
+  }
   av::check(avformat_write_header(mux_.get(), opts.get()), file_, "cannot write the header");
   header_written_ = true;
 }
@@ -174,6 +172,9 @@ void VideoWriter::Encoder::write_packets() {
     av_packet_rescale_ts(packet_.get(), codec_->time_base, stream_->time_base);
     // av_interleaved_write_frame takes the packet's data and leaves it blank.
     av::check(av_interleaved_write_frame(mux_.get(), packet_.get()), file_, "cannot write a frame");
+    // A failed write (a full disk, EFBIG past `ulimit -f`, a closed pipe) is kept in the
+    // I/O context and may not be returned until the trailer: stop at the first one.
+    if (mux_->pb && mux_->pb->error < 0) av::fail(file_, "cannot write a frame", mux_->pb->error);
   }
 }
 

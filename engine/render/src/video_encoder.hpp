@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "fixstep/video.hpp"
 #include "video_av.hpp"
@@ -14,12 +15,12 @@
 
 namespace fixstep {
 
-/// Encodes RGBA8 frames into `path` (the temporary file; errors name `file`, the final name
-/// the user asked for): MP4 through YuvConverter + libx264, GIF through GifPalette + FFmpeg's
-/// GIF encoder. Frame k has pts k in the time base 1 / `rate` (s) and lasts `step` ticks.
-/// Destroyed without finish(), it closes the file as it is (no trailer); the caller removes
-/// it. Not thread-safe: one thread at a time (VideoWriter hands it from its worker to the
-/// caller of finish() only after joining the worker).
+/// Encodes RGBA8 frames into FFmpeg's `url` (the temporary file's path, or "pipe:FD" for a
+/// stream; errors name `file`, the name the user gave): MP4 through YuvConverter + libx264, GIF
+/// through GifPalette + FFmpeg's GIF encoder. Frame k has pts k in the time base 1 / `rate` (s) and
+/// lasts `step` ticks. Destroyed without finish(), it closes the file as it is (no trailer); the
+/// caller removes it. Not thread-safe: one thread at a time (VideoWriter hands it from its worker
+/// to the caller of finish() only after joining the worker).
 class VideoWriter::Encoder {
  public:
   struct Options {
@@ -28,11 +29,11 @@ class VideoWriter::Encoder {
     AVRational rate{0, 1};      ///< frames per second as a fraction
     int step = 1;               ///< ticks of 1/rate each encoded frame lasts
     VideoSettings settings;
+    bool streamed = false;  ///< `url` cannot seek: MP4 is fragmented, not +faststart
   };
-  /// Opens the codec, the muxer and `path`, and writes the container header. Throws
+  /// Opens the codec, the muxer and `url`, and writes the container header. Throws
   /// CaptureError naming `file` (missing encoder or filter, unwritable path, refused stream).
-  Encoder(const std::filesystem::path& path, const std::filesystem::path& file,
-          const Options& options);
+  Encoder(const std::string& url, const std::filesystem::path& file, const Options& options);
   ~Encoder();
   Encoder(const Encoder&) = delete;
   Encoder& operator=(const Encoder&) = delete;
@@ -46,7 +47,7 @@ class VideoWriter::Encoder {
 
  private:
   void open_codec(const Options& options);
-  void open_file(const std::filesystem::path& path, VideoFormat format);
+  void open_file(const std::string& url, const Options& options);
   void send(const AVFrame* frame);  // nullptr: flush
   void write_packets();
   void drain_palette();

@@ -1,5 +1,6 @@
 // Writing frames as one video file: MP4 (H.264, libx264) or animated GIF, through FFmpeg's
-// libraries (libavcodec, libavformat, libswscale, libavfilter), atomically.
+// libraries (libavcodec, libavformat, libswscale, libavfilter), atomically (or streamed into a
+// pipe or device).
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@
 
 #include "fixstep/capture.hpp"
 #include "fixstep/frame_pipeline.hpp"
+#include "fixstep/output_target.hpp"
 
 namespace fixstep {
 
@@ -81,7 +83,9 @@ inline constexpr double max_gif_fps = 50.0;
 /// limited range, tagged so in the stream) with libswscale and encoded by libx264 at
 /// `settings` (the defaults use B-frames: frames are stored out of order, presented in order).
 /// The moov atom is moved to the front (+faststart) so browsers start playing before the
-/// download ends.
+/// download ends. Streamed (below), the MP4 is fragmented instead (movflags frag_keyframe,
+/// empty_moov, default_base_moof: an empty index first, then a fragment from each keyframe),
+/// the form that needs no seeking back; players and browsers play it as they do the other.
 ///
 /// GIF: each kept frame gets its own palette of 255 colours (libavfilter's palettegen,
 /// stats_mode=single, plus one transparent entry) and each pixel its nearest palette colour
@@ -95,9 +99,14 @@ inline constexpr double max_gif_fps = 50.0;
 /// delay is set so the total is exact (120 frames at 60 fps: 60 GIF frames, 2.00 s). The GIF
 /// loops forever.
 ///
-/// Atomic: bytes go to a temporary file ".NAME.tmp.PID" beside `file` (as AtomicFile); only
-/// a successful finish() renames it onto `file`. Errors, exceptions and destruction without
-/// finish() remove it: nothing ever appears under `file` unless the video is complete.
+/// Where the bytes go depends on what `file` names (classify_output, output_target.hpp), as
+/// for AtomicFile. A regular file or a new name (a symbolic link: its final target): atomic,
+/// the bytes go to a temporary file ".NAME.tmp.PID" beside it; only a successful finish()
+/// renames it over the file (with the replaced file's permission bits). Errors, exceptions
+/// and destruction without finish() remove it: nothing ever appears under `file` unless the
+/// video is complete. A FIFO or a character device: streamed, written as encoded; an
+/// abandoned video leaves what was written. A directory, block device or socket: refused.
+/// Limits: video_limit_error (video_limits.hpp) is checked first.
 ///
 /// Errors: the first frame the worker cannot encode or write stops the worker; the next
 /// submit() or finish() rethrows its CaptureError (naming `file`).
@@ -113,13 +122,12 @@ class VideoWriter {
   /// pixels; `fps` frames per second of video; `in_flight` frame buffers (each width*height*4
   /// bytes) allocated here, so submit() allocates nothing.
   /// Throws std::invalid_argument naming `file` when: the extension is neither .mp4 nor .gif;
-  /// the size is below 2x2 or odd for MP4 (H.264 in yuv420p stores colour per 2x2 block)
-  /// or below 1x1 or above 65535 for GIF; fps is not finite and > 0, or has no fraction with
-  /// terms up to 1001000 within 1e-6 of it; settings are invalid (video_settings_error);
-  /// in_flight < 1.
+  /// the size or fps break the container's limits (video_limit_error: an odd size for MP4,
+  /// a frame longer than MP4 or GIF can store, fps without a fraction); settings are invalid
+  /// (video_settings_error); in_flight < 1.
   /// Throws CaptureError naming `file` when the file cannot be created (missing or unwritable
-  /// directory), this FFmpeg lacks the encoder (libx264, gif) or a filter, or FFmpeg refuses
-  /// the stream; nothing is left on disk then.
+  /// directory), `file` is a directory, block device or socket, this FFmpeg lacks the encoder
+  /// (libx264, gif) or a filter, or FFmpeg refuses the stream; nothing is left on disk then.
   VideoWriter(std::filesystem::path file, int width, int height, double fps,
               VideoSettings settings = {}, int in_flight = 3);
   /// Without a successful finish(): stops the worker (frames still queued are dropped),
@@ -153,8 +161,14 @@ class VideoWriter {
   void halt() noexcept;                           // stops the pipeline, dropping its error
   [[noreturn]] void rethrow_or_finished() const;  // after finish(): its error, or "finished"
 
+  std::string open_destination();  // creates the temporary or opens the stream: FFmpeg's URL
+  void publish();                  // renames the temporary over the target / closes the stream
+  void discard() noexcept;         // removes the temporary / closes the stream
+
   std::filesystem::path file_;
-  std::filesystem::path tmp_;  // ".NAME.tmp.PID" beside file_, renamed onto it by finish()
+  OutputTarget target_;        // what file_ names (classify_output)
+  std::filesystem::path tmp_;  // file: ".NAME.tmp.PID" beside the target, renamed by finish()
+  int stream_fd_ = -1;         // stream: the descriptor written through FFmpeg's pipe: URL
   VideoFormat format_;
   int width_, height_;
   int frame_step_ = 1;
