@@ -644,6 +644,7 @@ case_ "--fps 0.000002 for MP4 (a frame longer than MP4 stores)" "" render good.t
 case_ "--fps 0.001 for GIF (a delay past 655.35 s)" "" render good.toml --video clip.gif --fps 0.001 --frames 2
 case_ "--fps 2000000 for a video (past the fraction's 1001000)" "" render good.toml --video clip.gif --fps 2000000 --frames 2
 case_ "compare --fps 0.001 for GIF" "" compare good.toml --with rk4 --with semi_implicit_euler --video clip.gif --fps 0.001 --frames 2
+case_ "--video - (standard output has no extension to name the format)" "" render good.toml --video - --frames 2
 mkdir -p clipdir.mp4
 case_ "--video a directory" "" render good.toml --video clipdir.mp4 --frames 2
 # --- compare ---
