@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "coupled.hpp"
+#include "fixstep/file_write.hpp"
 #include "fixstep/integrators.hpp"
 #include "fixstep/world.hpp"
 
@@ -292,10 +293,10 @@ int main(int argc, char** argv) {
   md = head + md;
   std::fputs(md.c_str(), stdout);
   if (!out.empty()) {
-    std::ofstream f(out + "/network_trade.md");
-    f << md;
-    if (!f) {
-      std::fprintf(stderr, "network_trade: cannot write %s/network_trade.md\n", out.c_str());
+    try {  // atomically, as every file fixstep writes: never a half-written report
+      fixstep::write_file_atomically(out + "/network_trade.md", md);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "network_trade: %s\n", e.what());
       return 1;
     }
   }

@@ -640,6 +640,13 @@ case_ "render without --out or --video" "" render good.toml --frames 2
 case_ "--video mp4 of an odd size" "" render good.toml --video clip.mp4 --size 321x180 --frames 2
 case_ "--video in a missing directory" "" render good.toml --video nodir/clip.mp4 --frames 2
 case_ "--video not writable (/proc)" "" render good.toml --video /proc/clip.mp4 --frames 2
+case_ "--fps 0.000002 for MP4 (a frame longer than MP4 stores)" "" render good.toml --video clip.mp4 --fps 0.000002 --frames 2
+case_ "--fps 0.001 for GIF (a delay past 655.35 s)" "" render good.toml --video clip.gif --fps 0.001 --frames 2
+case_ "--fps 2000000 for a video (past the fraction's 1001000)" "" render good.toml --video clip.gif --fps 2000000 --frames 2
+case_ "compare --fps 0.001 for GIF" "" compare good.toml --with rk4 --with semi_implicit_euler --video clip.gif --fps 0.001 --frames 2
+case_ "--video - (standard output has no extension to name the format)" "" render good.toml --video - --frames 2
+mkdir -p clipdir.mp4
+case_ "--video a directory" "" render good.toml --video clipdir.mp4 --frames 2
 # --- compare ---
 case_ "compare with one --with" "" compare good.toml --with rk4 --out frames
 case_ "compare with 7 --with" "" compare good.toml --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --out frames
@@ -826,6 +833,45 @@ case_ "/dev/urandom for render --replay" "" render --replay /dev/urandom --out f
 case_ "/dev/null as the scene" "" run /dev/null --steps 1
 env -u DISPLAY timeout 60 "$fixstep" render good.toml --out used --frames 3 --size 64x64 >/dev/null 2>&1
 case_ "render --out a directory holding an older capture (without --overwrite)" "" render good.toml --out used --frames 2 --size 64x64
+# --- output paths: links, devices, pipes, file-size limit ---
+mkdir -p adir && ln -s loop_b loop_a && ln -s loop_a loop_b
+python3 -c 'import socket; socket.socket(socket.AF_UNIX).bind("sock")'
+case_ "--csv a directory (refused before any work)" "" run good.toml --steps 10 --csv adir
+case_ "--record a socket" "" run good.toml --steps 10 --record sock
+case_ "--csv a loop of symbolic links" "" run good.toml --steps 10 --csv loop_a
+case_ "--csv /dev/fd/9, a descriptor not open" "" run good.toml --steps 10 --csv /dev/fd/9
+case_ "--csv - and --record /proc/self/fd/1: both standard output" "" run good.toml --steps 10 --csv - --record /proc/self/fd/1
+# pipe_row DESCRIPTION ARGS...: `fixstep ARGS | head -1`, the exit status fixstep's.
+pipe_row() {
+  local what=$1
+  shift
+  local code first
+  env -u DISPLAY timeout 60 "$fixstep" "$@" 2>pipe.err | head -1 >/dev/null
+  code=${PIPESTATUS[0]}
+  first=$(head -1 pipe.err)
+  row=$((row + 1))
+  printf '| %d | %s | `fixstep %s \| head -1` | %d | %s |\n' "$row" "$what" "$*" "$code" "$first"
+}
+pipe_row "--csv - into a pipe closed early (no death by SIGPIPE)" run good.toml --steps 100000 --csv -
+# Under a file-size limit of 8 KiB (`ulimit -f 8`): EFBIG, not a death by SIGXFSZ.
+printf '#!/bin/bash\nulimit -f 8\nexec "%s" "$@"\n' "$fixstep" > limited && chmod +x limited
+printf '#!/bin/bash\nulimit -f 2\nexec "%s" "$@"\n' "$fixstep" > limited2 && chmod +x limited2
+tool=$work/limited tool_name="ulimit -f 8; fixstep"
+case_ "--csv past the file-size limit" "" run good.toml --steps 2000 --csv big.csv
+case_ "--record past the file-size limit" "" run good.toml --steps 20000 --record big.rec
+case_ "--out frames past the file-size limit" "" render good.toml --out bigframes --frames 2 --size 512x512
+case_ "--video past the file-size limit" "" render good.toml --video big.gif --frames 20 --size 1024x1024
+if [ -n "$state_hashes" ]; then
+  printf '#!/bin/bash\nulimit -f 8\nexec "%s" "$@" > hashes.txt\n' "$state_hashes" > limited_sh
+  chmod +x limited_sh
+  tool=$work/limited_sh tool_name="ulimit -f 8; state_hashes"
+  case_ "state_hashes > FILE past the file-size limit" "" good.toml --ticks 100000
+fi
+tool=$work/limited2 tool_name="ulimit -f 2; fixstep"
+case_ "new past the file-size limit (nothing is left)" "" new deep/game
+tool=$fixstep tool_name=fixstep
+case_ "new \"\" (an empty DIR)" "" new ""
+case_ "new / (a DIR without a name)" "" new /
 # --- fixstep new ---
 mkdir -p game && printf 'int main() {}\n' > game/main.cpp
 case_ "new: a directory that is not empty (nothing is written)" "" new game

@@ -282,14 +282,16 @@ TEST(SceneWriter, WritesTheFileWhole) {
   EXPECT_THROW(write_scene(dir / "world.toml", bad), std::invalid_argument);
   EXPECT_EQ(definition_hash(world_def(load_scene(dir / "world.toml"))), definition_hash(def));
 
-  // The target is a directory: the rename fails, and the temporary file is gone.
+  // The target is a directory: refused before a temporary file is made.
   fs::create_directory(dir / "taken.toml");
   try {
     write_scene(dir / "taken.toml", def);
     ADD_FAILURE() << "wrote over a directory";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()),
-              fmt::format("cannot write {}: Is a directory", (dir / "taken.toml").string()));
+              fmt::format("cannot write {}: is a directory (an output is a regular file, a new "
+                          "name, a FIFO, a character device or standard output)",
+                          (dir / "taken.toml").string()));
   }
   // A directory that does not exist.
   const fs::path missing = dir / "no_such_dir" / "w.toml";

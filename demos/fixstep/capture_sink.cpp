@@ -11,6 +11,12 @@ namespace fixstep::cli {
 
 std::string capture_targets_error(const CaptureTargets& t) {
   if (!t.out && !t.video) return "give --out DIR (PNG frames) or --video FILE (.mp4 or .gif)";
+  if (t.video && !video_format_for(*t.video) && classify_output(*t.video).fd >= 0) {
+    return fmt::format(
+        "--video {}: a video's format comes from its name's extension (.mp4 or .gif), and {} "
+        "has none: to pipe a video, make a FIFO with such a name (mkfifo clip.mp4) and read it",
+        *t.video, classify_output(*t.video).what);
+  }
   if (t.video && !video_format_for(*t.video)) {
     return fmt::format("--video {}: the file name must end in .mp4 (H.264) or .gif", *t.video);
   }

@@ -61,8 +61,10 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o, bool scene_
 /// --record FILE and --hash-every K (which needs --record).
 void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
                         std::uint64_t& hash_every) {
-  auto* rec = cmd->add_option("--record", record,
-                              "write a recording (inputs and state hashes) here, atomically");
+  auto* rec =
+      cmd->add_option("--record", record,
+                      "write a recording (inputs and state hashes) here: a file atomically; "
+                      "-, a FIFO or a device streamed");
   cmd->add_option("--hash-every", hash_every,
                   "store the state hash every K ticks in the recording (default 1: replay names "
                   "the exact first tick that differs)")
@@ -157,7 +159,8 @@ int main(int argc, char** argv) try {
       run_cmd->add_option("--duration", run.duration, "simulated time (s)")->check(positive_finite);
   steps->excludes(duration);
   run_cmd->add_option("--csv", run.csv,
-                      "write tick,t,body,x,y,vx,vy,energy,... rows here (atomically; see README)");
+                      "write tick,t,body,x,y,vx,vy,energy,... rows here: a file atomically; - "
+                      "(standard output), a FIFO or a device streamed (see README)");
   run_cmd->add_option("--every", run.every, "record every K-th tick in the CSV (tick 0 always)")
       ->check(CLI::Range(std::int64_t{1}, max_ticks));
   run_cmd->add_option("--input", run.input,

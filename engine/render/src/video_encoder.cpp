@@ -108,6 +108,9 @@ void VideoWriter::Encoder::open_codec(const Options& options) {
     opts.set("preset", options.settings.preset);
     opts.set("crf", std::to_string(options.settings.crf));
     if (!options.settings.tune.empty()) opts.set("tune", options.settings.tune);
+    // A stream's fragments carry no edit list that players apply: with B-frames its first
+    // frame would be shown two frames late. In decode order, pts = dts and frame k is at k.
+    if (options.streamed) c.max_b_frames = 0;
   } else {
     c.pix_fmt = AV_PIX_FMT_PAL8;
   }

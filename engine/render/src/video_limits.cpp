@@ -12,8 +12,14 @@ namespace fixstep {
 
 namespace {
 
-constexpr int max_gif_side = 65535;                        // GIF stores sizes in 16 bits
-constexpr std::int64_t max_mp4_frame_ticks = INT_MAX - 1;  // movenc.c check_pkt: < INT_MAX
+constexpr int max_gif_side = 65535;  // GIF stores sizes in 16 bits
+// MP4 stores a frame's presentation offset (pts - dts, ctts) in 31 bits: FFmpeg's muxer
+// refuses more ("pts/dts pair unsupported"). With B-frames a frame is shown up to 1 + the
+// number of B-frames later than it is decoded; x264 allows at most 16 (X264_BFRAME_MAX), so a
+// frame may last at most INT_MAX / 17 ticks whatever the settings. Measured with the default
+// settings (2 B-frames): 3 frames of 16384 * 43690 ticks pass, of 16384 * 43691 fail.
+constexpr std::int64_t max_mp4_reorder = 17;
+constexpr std::int64_t max_mp4_frame_ticks = INT_MAX / max_mp4_reorder;
 
 std::optional<VideoLimitError> size_error(VideoFormat format, int width, int height) {
   const auto error = [](std::string text) {
@@ -44,8 +50,9 @@ std::optional<VideoLimitError> mp4_fps_error(double fps, std::optional<VideoRate
   return VideoLimitError{
       VideoParameter::fps,
       fmt::format("{:g} is too low for MP4: a frame of {:g} s is {:.0f} ticks of the track's "
-                  "timescale (1/{} s), and the MP4 container stores at most {} ticks a frame "
-                  "(at this timescale: fps >= {:.3g})",
+                  "timescale (1/{} s), and the MP4 container stores a frame's presentation "
+                  "offset, up to 17 frames with H.264's B-frames, in 31 bits: at most {} ticks "
+                  "a frame (at this timescale: fps >= {:.3g})",
                   fps, 1.0 / fps, ticks, scale, max_mp4_frame_ticks,
                   double(scale) / double(max_mp4_frame_ticks) * 1.001)};
 }

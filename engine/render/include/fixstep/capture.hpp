@@ -24,8 +24,9 @@ class CaptureError : public std::runtime_error {
 };
 
 /// A file written atomically: core's AtomicOutput (atomic_output.hpp: a ".NAME.tmp.PID" file
-/// beside `file`, renamed over it by commit(), removed when destroyed without commit()) with
-/// its errors as CaptureError, the type render's callers catch. Errors (open, write, full
+/// beside `file`, or beside the file a symbolic link leads to, renamed over it by commit(),
+/// removed when destroyed without commit(); a FIFO or device streamed to, a directory refused)
+/// with its errors as CaptureError, the type render's callers catch. Errors (open, write, full
 /// disk, rename, a second commit) throw CaptureError naming `file` and the reason.
 class AtomicFile {
  public:

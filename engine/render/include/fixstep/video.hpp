@@ -85,7 +85,9 @@ inline constexpr double max_gif_fps = 50.0;
 /// The moov atom is moved to the front (+faststart) so browsers start playing before the
 /// download ends. Streamed (below), the MP4 is fragmented instead (movflags frag_keyframe,
 /// empty_moov, default_base_moof: an empty index first, then a fragment from each keyframe),
-/// the form that needs no seeking back; players and browsers play it as they do the other.
+/// the form that needs no seeking back, and without B-frames (a fragment has no edit list to
+/// shift their reordering delay away: frame k is still at k / fps); players and browsers play
+/// it as they do the other.
 ///
 /// GIF: each kept frame gets its own palette of 255 colours (libavfilter's palettegen,
 /// stats_mode=single, plus one transparent entry) and each pixel its nearest palette colour

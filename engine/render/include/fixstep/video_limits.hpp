@@ -55,9 +55,12 @@ struct VideoLimitError {
 /// - size: MP4 (H.264 in yuv420p) needs an even width and height of at least 2; GIF 1 to
 ///   65535 pixels a side (16-bit fields);
 /// - fps: a finite number > 0 with a fraction (video_rate); MP4 stores a frame's duration in
-///   ticks of its track's timescale (mp4_timescale) and takes at most 2^31 - 2 ticks a frame
-///   (movenc.c, check_pkt: "Application provided duration ... is invalid"); GIF at least
-///   min_gif_fps (faster than max_gif_fps, frames are thinned, not refused).
+///   ticks of its track's timescale (mp4_timescale), and FFmpeg's MP4 muxer refuses a
+///   duration of 2^31 - 1 ticks or more (movenc.c, check_pkt: "Application provided duration
+///   ... is invalid") and a presentation offset (pts - dts: up to 1 + 16 B-frames = 17 frame
+///   durations) over 2^31 - 1 ("pts/dts pair unsupported"): a frame may last at most
+///   (2^31 - 1) / 17 ticks (at rate 1/N, timescale 16384: 7710 s); GIF at least min_gif_fps
+///   (faster than max_gif_fps, frames are thinned, not refused).
 [[nodiscard]] std::optional<VideoLimitError> video_limit_error(VideoFormat format, int width,
                                                                int height, double fps);
 
