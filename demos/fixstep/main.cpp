@@ -163,8 +163,9 @@ int main(int argc, char** argv) try {
                       "(standard output), a FIFO or a device streamed (see README)");
   run_cmd->add_option("--every", run.every, "record every K-th tick in the CSV (tick 0 always)")
       ->check(CLI::Range(std::int64_t{1}, max_ticks));
-  run_cmd->add_option("--input", run.input,
-                      "scripted input: a TOML file of [[at]] tables (see README, Input scripts)");
+  run_cmd->add_option(
+      "--input", run.input,
+      "scripted input: a TOML file of [[at]] tables (see docs/CLI.md, Input scripts)");
   add_record_options(run_cmd, run.record, run.hash_every);
   run_cmd
       ->add_option("--sync-test", run.sync_test,

@@ -210,7 +210,7 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
     const toml::node* n = doc.get("world") ? doc.get("world") : doc.get("body");
     r.fail(n->source(), "",
            "this is a scene file, not an input script: a script holds [[at]] tables (tick, "
-           "press, release, pointer, push, drag, force, impulse, velocity); see README, Input "
+           "press, release, pointer, push, drag, force, impulse, velocity); see docs/CLI.md, Input "
            "scripts");
   }
   r.check_keys(doc, "", {"at"});

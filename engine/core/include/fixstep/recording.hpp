@@ -1,6 +1,6 @@
 // Recordings: every tick's input of a session plus state hashes along the way, written as a
 // line-oriented text file and replayed headless to verify, bit for bit, that the engine still
-// computes the same states (issue #12, point 3). Format: README, "Recordings".
+// computes the same states (issue #12, point 3). Format: docs/CLI.md, "Recording and replay".
 #pragma once
 
 #include <cstddef>
@@ -155,9 +155,9 @@ class Recorder {
   Recording rec_;
 };
 
-/// The recording as text (the file format; README "Recordings"). Throws std::invalid_argument
-/// for a scene path holding a control character (it would break its line) or a scene_text
-/// longer than max_recording_scene_bytes.
+/// The recording as text (the file format; docs/CLI.md, "Recording and replay"). Throws
+/// std::invalid_argument for a scene path holding a control character (it would break its line) or
+/// a scene_text longer than max_recording_scene_bytes.
 [[nodiscard]] std::string format_recording(const Recording& rec);
 /// Parses the text of a recording; `source_name` is used in messages. Throws RecordingError:
 /// foreign, unsupported_version, truncated (no `end` line, or a last line without its newline,

@@ -1,6 +1,6 @@
 // Scripted input: a TOML file saying what the player does at which tick, turned into one
 // TickInput per tick (for `fixstep run --input`, so CI can record and replay a session without
-// a window). Format: README, "Input scripts".
+// a window). Format: docs/CLI.md, "Input scripts".
 #pragma once
 
 #include <cstddef>
