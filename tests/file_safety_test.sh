@@ -14,14 +14,6 @@ printf '[[at]]\ntick = 1\npush = [1.0, 0.0]\n' > in.toml
 cp in.toml in.orig
 fx() { env -u DISPLAY -u WAYLAND_DISPLAY timeout 20 "$fixstep" "$@"; }
 
-refused() {  # refused NAME EXIT PATTERN ARGS...: exit EXIT, a message matching PATTERN
-  local name=$1 code=$2 pattern=$3
-  shift 3
-  fx "$@" >out.txt 2>&1
-  local got=$?
-  [ "$got" -eq "$code" ] && grep -Eq -- "$pattern" out.txt && ok "$name: exit $code" \
-    || { fail "$name: exit $got"; cat out.txt; }
-}
 intact() {  # intact NAME FILE ORIGINAL
   cmp -s "$2" "$3" && ok "$1: $2 is untouched" || fail "$1: $2 was changed"
 }

@@ -45,6 +45,16 @@ hash_of() {
   echo "${h:-(no state_hash in $1)}"
 }
 
+# refused NAME EXIT PATTERN ARGS...: runs `fx ARGS` (the test defines fx); passes when it exits
+# EXIT with a message matching PATTERN.
+refused() {
+  local name=$1 code=$2 pattern=$3
+  shift 3
+  fx "$@" >out.txt 2>&1
+  local got=$?
+  [ "$got" -eq "$code" ] && grep -Eq -- "$pattern" out.txt && ok "$name: exit $code" \
+    || { fail "$name: exit $got"; cat out.txt; }
+}
 have_xvfb() { command -v Xvfb >/dev/null; }
 start_xvfb() {
   [ -n "$xvfb_display" ] && return 0

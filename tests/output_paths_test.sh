@@ -21,14 +21,6 @@ no_temporaries() {  # no_temporaries NAME DIR: no ".NAME.tmp.PID" file or direct
   if ls -A "$2" | grep -q '\.tmp\.[0-9]*$'; then fail "$1: temporaries left: $(ls -A "$2")"
   else ok "$1: no temporary left"; fi
 }
-refused() {  # refused NAME EXIT PATTERN ARGS...: exit EXIT, a message matching PATTERN
-  local name=$1 code=$2 pattern=$3
-  shift 3
-  fx "$@" >out.txt 2>&1
-  local got=$?
-  [ "$got" -eq "$code" ] && grep -Eq -- "$pattern" out.txt && ok "$name: exit $code" \
-    || { fail "$name: exit $got"; cat out.txt; }
-}
 
 # --- symbolic links: followed, the final target replaced atomically, the link kept ---
 echo old > t.csv && chmod 640 t.csv && ln -s t.csv l.csv
