@@ -54,6 +54,45 @@ TEST(Limits, TickWorkCountsBodiesLinksSubstepsAndTheImplicitSolve) {
   EXPECT_EQ(implicit_solve_bytes(def.bodies, def.links, def.settings), 0u);
 }
 
+TEST(Limits, TickWorkCountsPlanesAndDiscs) {
+  WorldDef def;
+  def.settings.dt = 0.01;
+  def.settings.substeps = 2;
+  for (int i = 0; i < 4; ++i) {
+    BodyDef b;
+    b.type = i == 3 ? BodyType::static_body : BodyType::dynamic;
+    b.body = {1.0, {double(i), 0.0}, {}};
+    if (i > 0) b.collider = Collider{.radius = 0.1, .collide = i != 2};
+    def.bodies.push_back(b);
+  }
+  def.planes.assign(5, PlaneDef{});
+  // 4 bodies × 2 substeps + 2 dynamic colliders × 5 planes (the static one meets none)
+  EXPECT_EQ(tick_work(def), 4u * 2u + 2u * 5u * plane_pair_work);
+  def.settings.contacts = ContactSettings{};
+  // + the 2 colliders that collide (body 2 does not) × disc_work
+  EXPECT_EQ(tick_work(def), 4u * 2u + 2u * 5u * plane_pair_work + 2u * disc_work);
+}
+
+TEST(Limits, PlanesTimesCollidersBeyondATickAreRefusedNamingThePlanes) {
+  // 40 000 dynamic colliders × 30 000 planes: 1.2e9 plane tests a tick, some 10 s.
+  std::vector<BodyDef> bodies(40'000);
+  for (BodyDef& b : bodies) b.collider = Collider{.radius = 0.1};
+  const std::vector<PlaneDef> planes(30'000);
+  const WorldSettings settings{.dt = 0.01};
+  try {
+    check_world_limits(bodies, {}, planes, settings);
+    FAIL() << "1.2e9 plane tests a tick accepted";
+  } catch (const LimitError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("40000 bodies + 0 links × 1 substeps + 40000 colliders × 30000 planes = "
+                     "1200040000 body-substeps per tick"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("use fewer planes or fewer colliders"), std::string::npos) << m;
+  }
+  EXPECT_NO_THROW(check_world_limits(bodies, {}, std::span(planes).first(20'000), settings));
+}
+
 TEST(Limits, MakeSimulationRefusesATickBeyondTheWorkLimitBeforeStepping) {
   WorldDef def = chain(1000);  // 1999 body-substeps a substep
   def.settings.substeps = 1'000'000;

@@ -299,9 +299,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadKey{"collide not a boolean", scene(body + "radius = 1\ncollide = \"no\"\n"), 7,
                "body[0].collide", "expected true or false, found a string (\"no\")"},
         BadKey{"radius zero", scene(body + "radius = 0\n"), 6, "body[0].radius",
-               "must be > 0 m (got 0)"},
+               "must be > 0 m and <= 1e12 m (got 0)"},
         BadKey{"radius negative", scene(body + "radius = -1\n"), 6, "body[0].radius",
-               "must be > 0 m (got -1)"},
+               "must be > 0 m and <= 1e12 m (got -1)"},
+        BadKey{"radius beyond the state range", scene(body + "radius = 9e307\n"), 6,
+               "body[0].radius", "must be > 0 m and <= 1e12 m (got 9e+307)"},
         BadKey{"radius inf", scene(body + "radius = inf\n"), 6, "body[0].radius", "must be finite"},
         BadKey{"unknown type", scene(body + "type = \"statc\"\n"), 6, "body[0].type",
                "unknown body type \"statc\"; did you mean \"static\"? (valid: dynamic, static, "

@@ -244,7 +244,14 @@ position = [0.0, 0.0]
 gravity = [0.0, -9.81]
 )",
                             "blow.toml");
-  StateFault f{.index = 0, .name = "stiff", .tick = 14, .time = 1.4, .field = "vx", .value = 7e12};
+  StateFault f{.index = 0,
+               .name = "stiff",
+               .tick = 14,
+               .time = 1.4,
+               .field = "vx",
+               .value = 7e12,
+               .cap = {},
+               .with = {}};
   const std::string m = explain_fault(scene, f);
   EXPECT_NE(m.find("blow.toml:5: body[0] \"stiff\""), std::string::npos) << m;
   EXPECT_NE(m.find("at tick 14"), std::string::npos) << m;
@@ -256,6 +263,27 @@ gravity = [0.0, -9.81]
   const std::string g = explain_fault(scene, f);
   EXPECT_NE(g.find("within semi_implicit_euler's stability bound"), std::string::npos) << g;
   EXPECT_NE(g.find("gravity"), std::string::npos) << g;
+}
+
+// A kinematic body has no spring or force to blame: the guard names its velocity.
+TEST(World, RuntimeGuardOfAKinematicBodyNamesItsVelocityNotSprings) {
+  const Scene scene = parse_scene(R"([world]
+dt = 0.1
+[[body]]
+name = "paddle"
+type = "kinematic"
+position = [0.0, 0.0]
+velocity = [2e13, 0.0]
+)",
+                                  "fast.toml");
+  Simulation sim = make_simulation(world_def(scene));
+  sim.step();
+  ASSERT_TRUE(sim.fault().has_value());
+  const std::string m = explain_fault(scene, *sim.fault());
+  EXPECT_NE(m.find("fast.toml:3: body[0] \"paddle\""), std::string::npos) << m;
+  EXPECT_NE(m.find("the body is kinematic"), std::string::npos) << m;
+  EXPECT_NE(m.find("2e+13, 0 m/s"), std::string::npos) << m;
+  EXPECT_EQ(m.find("spring"), std::string::npos) << m;
 }
 
 }  // namespace

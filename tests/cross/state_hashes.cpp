@@ -118,7 +118,7 @@ void run(const Options& o) {
   if (o.integrator) scene.world.integrator = *o.integrator;
   if (o.precision) scene.precision = *o.precision;
   if (o.threads) scene.world.threads = *o.threads;
-  check_command_work(o.ticks, tick_work(scene.bodies, scene.links, scene.world),
+  check_command_work(o.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.world),
                      "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
   Simulation sim = make_simulation(scene);
   std::string out;

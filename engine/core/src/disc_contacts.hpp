@@ -13,7 +13,12 @@
 //     is the first root of the quartic |d(s)|² - (r_a + r_b)² while approaching (disc_toi.hpp).
 //     Impacts are resolved in time order (ties by pair order) with Newton's restitution and a
 //     Coulomb-limited friction impulse on the linear velocities, and the pairs of the two discs are
-//     predicted again from that time on; at most max_impacts per disc and tick. An impact that
+//     predicted again from that time on. After max_impacts impacts of a disc in the tick, an
+//     impact of its pairs is resolved only if the pair would not end the tick overlapping (it
+//     would pass through): one that ends overlapping is left to the resting solver, which stops
+//     it approaching (a pile's chatter, hundreds of impacts a tick of one disc at small speeds).
+//     Predictions after impacts count against max_tick_predictions (limits.hpp): past it the
+//     tick stops resolving impacts and reports the cap through cap_hit(). An impact that
 //     would bounce back by less than one tick of the pair's relative normal acceleration (e |v_n|
 //     <= |c_n| dt) is left to phase 2.
 //  2. Resting contact (disc_rest.cpp). Pairs touching at the end of the tick, and discs on
@@ -126,11 +131,23 @@ class DiscContacts {
   [[nodiscard]] std::span<const RestContact> touching() const { return contacts_; }
   /// The impacts of the last resolve(), in order.
   [[nodiscard]] std::span<const Impact> impacts() const { return impact_log_; }
+  /// Impacts of one disc in a tick past which only pairs that would pass through each other
+  /// are resolved (others end the tick overlapping, for the resting solver).
+  static constexpr int max_impacts = 8;
+  /// A cap of limits.hpp that the last resolve() reached, or null: the work it stopped is
+  /// named in World::fault().
+  struct CapHit {
+    const char* cap = nullptr;   ///< "max_candidate_pairs" or "max_tick_predictions"
+    std::uint64_t limit = 0;     ///< the cap's value for this world
+    std::uint32_t disc = 0;      ///< the impact's first disc, or the largest swept box's
+    std::uint32_t other = npos;  ///< the impact's other disc (npos: none)
+    double time = 0;             ///< s after the tick's start (the impact left unresolved)
+    static constexpr std::uint32_t npos = 0xffffffffu;
+  };
+  [[nodiscard]] const CapHit* cap_hit() const { return cap_.cap ? &cap_ : nullptr; }
   /// Heap bytes a copy holds (World::snapshot_bytes).
   [[nodiscard]] std::size_t bytes() const;
 
-  /// Impacts resolved per disc and tick (phase 1); more wait for the resting solver.
-  static constexpr int max_impacts = 8;
   /// Gauss–Seidel sweeps of the resting solver (velocities, then positions).
   static constexpr int velocity_iterations = 20, position_iterations = 10;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
@@ -143,6 +160,8 @@ class DiscContacts {
   void build_motions(const Tick& tick);
   bool find_candidates(const Tick& tick, ContactStats& stats);
   void run_events(const Tick& tick, ContactStats& stats);
+  [[nodiscard]] std::uint32_t largest_box() const;
+  [[nodiscard]] bool ends_overlapping(std::uint32_t pair, double dt) const;
   void predict(std::uint32_t pair, double now, double dt);
   void impact(std::uint32_t pair, double now, double dt);
   // phase 2 (disc_rest.cpp)
@@ -175,6 +194,7 @@ class DiscContacts {
   // and after the free step, and the dissipated account at the start.
   std::vector<double> lost_, external_, e_start_, e_begin_, d_begin_;
   DiscBroadphase broadphase_;
+  CapHit cap_;
 };
 
 }  // namespace fixstep::detail

@@ -6,6 +6,8 @@
 
 #include "disc_contacts.hpp"
 #include "disc_toi.hpp"
+#include "fixstep/limits.hpp"
+#include "fixstep/stop_request.hpp"
 
 namespace fixstep::detail {
 
@@ -108,10 +110,11 @@ void DiscContacts<Real>::build_motions(const Tick& tick) {
 template <class Real>
 bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) {
   const std::size_t n = discs_.size();
-  const std::size_t cap = std::max<std::size_t>(64 * n, 1000000);  // a pile: ~3 per disc
+  const std::size_t cap = max_candidate_pairs(n);  // limits.hpp; a pile: ~3 per disc
   if (!broadphase_.find_pairs(boxes_, dynamic_, cap, pairs_, tick.threads)) {
-    stats.candidate_pairs = cap;
+    stats.candidate_pairs = cap, stats.capped = 1;
     pairs_.clear();
+    cap_ = CapHit{"max_candidate_pairs", cap, largest_box(), CapHit::npos, 0.0};
     return false;
   }
   // Linked pairs never collide (Box2D's collideConnected = false).
@@ -139,7 +142,6 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) 
 template <class Real>
 void DiscContacts<Real>::predict(std::uint32_t pair, double now, double dt) {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
-  if (impacts_[a] >= max_impacts || impacts_[b] >= max_impacts) return;
   const DiscMotion &ma = motion_[a], &mb = motion_[b];
   RelativeMotion r;
   r.px = ma.px(now) - mb.px(now), r.py = ma.py(now) - mb.py(now);
@@ -222,21 +224,54 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
 }
 
 template <class Real>
+std::uint32_t DiscContacts<Real>::largest_box() const {
+  std::uint32_t best = 0;
+  double widest = -1.0;
+  for (std::uint32_t k = 0; k < boxes_.size(); ++k) {
+    const SweptBox& b = boxes_[k];
+    const double w = std::max(b.max_x - b.min_x, b.max_y - b.min_y);
+    if (std::isnan(w)) return k;  // a NaN box first
+    if (w > widest) widest = w, best = k;
+  }
+  return best;
+}
+
+template <class Real>
+bool DiscContacts<Real>::ends_overlapping(std::uint32_t pair, double dt) const {
+  const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
+  const DiscMotion &ma = motion_[a], &mb = motion_[b];
+  const double gap =
+      length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - (discs_[a].radius + discs_[b].radius);
+  return gap <= 0.0;
+}
+
+template <class Real>
 void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
   heap_.clear();
   impact_log_.clear();
   for (std::uint32_t i = 0; i < pairs_.size(); ++i) predict(i, 0.0, dt);
+  std::uint64_t again = 0;  // predictions after impacts (max_tick_predictions)
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
     const DiscEvent ev = heap_.back();
     heap_.pop_back();
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
+    // Past max_impacts on either disc, a pair that ends the tick overlapping is left to the
+    // resting solver (it stops them approaching); one that would pass through is resolved.
+    if ((impacts_[a] >= max_impacts || impacts_[b] >= max_impacts) && ends_overlapping(ev.pair, dt))
+      continue;
+    if (again > max_tick_predictions) {  // an impact due that the cap leaves unresolved
+      cap_ = CapHit{"max_tick_predictions", max_tick_predictions, a, b, ev.time};
+      stats.capped = 1;
+      break;
+    }
     impact(ev.pair, ev.time, dt);
-    ++stats.impacts;
+    if (++stats.impacts % 4096 == 0) throw_if_stop_requested();  // a long tick stays stoppable
     for (const std::uint32_t k : {a, b}) {
       if (!discs_[k].dynamic) continue;
+      again += offset_[k + 1] - offset_[k];
       for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i)
         predict(incident_[i], ev.time, dt);
     }
@@ -256,6 +291,7 @@ template <class Real>
 void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats) {
   stats = ContactStats{};
   impact_log_.clear();
+  cap_ = CapHit{};
   build_motions(tick);
   if (!find_candidates(tick, stats)) return;
   run_events(tick, stats);
@@ -288,6 +324,8 @@ std::size_t DiscContacts<Real>::bytes() const {
   template void DiscContacts<Real>::predict(std::uint32_t, double, double);                        \
   template void DiscContacts<Real>::impact(std::uint32_t, double, double);                         \
   template void DiscContacts<Real>::run_events(const Tick&, ContactStats&);                        \
+  template std::uint32_t DiscContacts<Real>::largest_box() const;                                  \
+  template bool DiscContacts<Real>::ends_overlapping(std::uint32_t, double) const;                 \
   template void DiscContacts<Real>::resolve(const Tick&, ContactStats&);                           \
   template std::size_t DiscContacts<Real>::bytes() const;
 FIXSTEP_INSTANTIATE(float)

@@ -40,24 +40,49 @@ std::uint64_t implicit_body_weight(std::uint64_t linked) {
   return static_cast<std::uint64_t>(std::ceil(64.0 * std::sqrt(static_cast<double>(linked))));
 }
 
+/// The terms of tick_work (limits.hpp), in body-substeps.
+struct WorkTerms {
+  std::uint64_t bodies_links = 0, implicit = 0, planes = 0, discs = 0;
+  std::uint64_t colliders = 0, disc_count = 0;  // dynamic colliders; discs in contacts
+};
+
+WorkTerms work_terms(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+                     std::span<const PlaneDef> planes, const WorldSettings& settings) {
+  WorkTerms t;
+  const auto substeps = static_cast<std::uint64_t>(std::max(settings.substeps, 1));
+  t.bodies_links = (bodies.size() + links.size()) * substeps;
+  if (implicit_with_links(links, settings)) {
+    t.implicit = bodies.size() * implicit_body_weight(linked_count(bodies, links)) * substeps;
+  }
+  for (const BodyDef& b : bodies) {
+    if (!b.collider) continue;
+    t.colliders += b.type == BodyType::dynamic ? 1 : 0;
+    t.disc_count += settings.contacts && b.collider->collide ? 1 : 0;
+  }
+  t.planes = t.colliders * planes.size() * plane_pair_work;
+  t.discs = t.disc_count * disc_work;
+  return t;
+}
+
 std::string gib(std::uint64_t bytes) {
   return fmt::format("{:.3g} GiB", static_cast<double>(bytes) / double(std::uint64_t{1} << 30));
 }
 
 }  // namespace
 
+std::uint64_t max_candidate_pairs(std::uint64_t discs) {
+  const std::uint64_t cap = std::max<std::uint64_t>(64 * discs, 1'000'000);
+  return discs < 2 ? 0 : std::min(cap, discs * (discs - 1) / 2);
+}
+
 std::uint64_t tick_work(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
-                        const WorldSettings& settings) {
-  const auto substeps = static_cast<std::uint64_t>(std::max(settings.substeps, 1));
-  std::uint64_t per_substep = bodies.size() + links.size();
-  if (implicit_with_links(links, settings)) {
-    per_substep += bodies.size() * implicit_body_weight(linked_count(bodies, links));
-  }
-  return per_substep * substeps;
+                        std::span<const PlaneDef> planes, const WorldSettings& settings) {
+  const WorkTerms t = work_terms(bodies, links, planes, settings);
+  return t.bodies_links + t.implicit + t.planes + t.discs;
 }
 
 std::uint64_t tick_work(const WorldDef& def) {
-  return tick_work(def.bodies, def.links, def.settings);
+  return tick_work(def.bodies, def.links, def.planes, def.settings);
 }
 
 std::uint64_t implicit_solve_bytes(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
@@ -88,7 +113,7 @@ bool implicit_solve_within_limits(std::span<const BodyDef> bodies, std::span<con
 }
 
 void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
-                        const WorldSettings& settings) {
+                        std::span<const PlaneDef> planes, const WorldSettings& settings) {
   if (implicit_with_links(links, settings) && linked_count(bodies, links) > max_implicit_bodies) {
     throw LimitError(fmt::format(
         "implicit_euler on {} linked bodies: at most {} may be solved together (one sparse "
@@ -105,17 +130,27 @@ void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLin
         "stability guard says) for a network this large",
         linked_count(bodies, links), gib(bytes), gib(max_implicit_solve_bytes)));
   }
-  const std::uint64_t work = tick_work(bodies, links, settings);
+  const WorkTerms t = work_terms(bodies, links, planes, settings);
+  const std::uint64_t work = t.bodies_links + t.implicit + t.planes + t.discs;
   if (work > max_tick_work) {
+    std::string terms =
+        fmt::format("{} bodies + {} links{} × {} substeps", bodies.size(), links.size(),
+                    t.implicit > 0 ? fmt::format(" + {} × {} (implicit solve)", bodies.size(),
+                                                 implicit_body_weight(linked_count(bodies, links)))
+                                   : "",
+                    settings.substeps);
+    if (t.planes > 0) {
+      terms += fmt::format(" + {} colliders × {} planes", t.colliders, planes.size());
+    }
+    if (t.discs > 0) terms += fmt::format(" + {} discs × {} (contacts)", t.disc_count, disc_work);
     throw LimitError(fmt::format(
-        "{} bodies + {} links{} × {} substeps = {} body-substeps per tick; a tick may do at "
-        "most {:.0e} (about 10 s of CPU): use fewer substeps or fewer bodies",
-        bodies.size(), links.size(),
-        implicit_with_links(links, settings)
-            ? fmt::format(" + {} × {} (implicit solve)", bodies.size(),
-                          implicit_body_weight(linked_count(bodies, links)))
-            : "",
-        settings.substeps, work, double(max_tick_work)));
+        "{} = {} body-substeps per tick; a tick may do at most {:.0e} (about 10 s of CPU): use "
+        "fewer {}",
+        terms, work, double(max_tick_work),
+        t.planes > std::max({t.bodies_links, t.implicit, t.discs})
+            ? "planes or fewer colliders"
+            : (t.discs > std::max(t.bodies_links, t.implicit) ? "discs"
+                                                              : "substeps or fewer bodies")));
   }
 }
 

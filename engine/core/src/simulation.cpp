@@ -201,7 +201,8 @@ Simulation make_simulation(const WorldDef& def) {
         name(pair->first), name(pair->second),
         disc_overlap_depth(def.bodies[pair->first], def.bodies[pair->second])));
   }
-  check_world_limits(def.bodies, def.links, def.settings);  // before the guard's power iteration
+  check_world_limits(def.bodies, def.links, def.planes,
+                     def.settings);  // before the guard's power iteration
   if (!def.stability_checked) {
     for (std::string& w : judge_stability(def)) sim.add_warning(std::move(w));
   }

@@ -199,10 +199,41 @@ std::string remedy(int min_substeps, double max_step, int substeps) {
   return fmt::format("; stable from substeps = {} (dt <= {:.4g} s)", min_substeps,
                      max_step * substeps);
 }
+
+/// explain_fault of a contact cap (StateFault::cap set).
+std::string explain_cap(const WorldSettings& settings, const StateFault& f) {
+  const std::string head = fmt::format("contacts at tick {} (t = {:g} s): {} = {:g} reached",
+                                       f.tick, f.time, f.cap, f.value);
+  if (f.cap == "max_candidate_pairs") {
+    return fmt::format(
+        "{}: the broadphase found more candidate pairs among {}, so the tick's disc contacts "
+        "were not resolved (body[{}] \"{}\"). Likely cause: discs moving many radii per tick "
+        "through a crowd of discs: a smaller dt (now {:g} s), slower or fewer discs",
+        head, f.with, f.index, f.name, settings.dt);
+  }
+  return fmt::format(
+      "{}: the impact of body[{}] \"{}\" with {} was not resolved. Likely cause: fast bodies "
+      "driven into one another (a row of discs into a peg) or a body bouncing between close "
+      "planes, each impact predicting again: a smaller dt (now {:g} s), slower bodies or fewer "
+      "in a row",
+      head, f.index, f.name, f.with, settings.dt);
+}
+
+/// The likely cause of a kinematic body leaving the range: it moves at its velocity, which
+/// nothing but input changes.
+std::string explain_kinematic(const std::string& head, const BodyDef& d) {
+  return fmt::format(
+      "{}. Likely cause: the body is kinematic: it moves at the velocity it is given ({:g}, {:g} "
+      "m/s at creation) and only input changes that: check it, and any velocity input gives the "
+      "body (TickInput, a script's or recording's body velocity)",
+      head, d.body.velocity.x, d.body.velocity.y);
+}
+
 }  // namespace
 
 std::string explain_fault(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
                           const WorldSettings& settings, const StateFault& f) {
+  if (!f.cap.empty()) return explain_cap(settings, f);
   const std::size_t i = f.index;
   const bool position = f.field == "x" || f.field == "y";
   const std::string head = fmt::format(
@@ -210,6 +241,12 @@ std::string explain_fault(std::span<const BodyDef> bodies, std::span<const BodyL
       "(allowed |value| <= {:g})",
       i, f.name, f.tick, f.time, f.field, f.value, position ? "m" : "m/s", max_state_magnitude);
   if (i >= bodies.size()) return head + ".";
+  if (bodies[i].type == BodyType::kinematic) return explain_kinematic(head, bodies[i]);
+  if (bodies[i].type == BodyType::static_body) {
+    return head +
+           ". Likely cause: the body is static and never moves: its position is beyond "
+           "the range; place it within it";
+  }
   const std::string_view method = integrator_name(settings.integrator);
   const double dt = settings.dt;
   const int substeps = settings.substeps;

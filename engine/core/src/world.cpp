@@ -147,7 +147,8 @@ void World<Real>::validate_component(const Appearance& c, const std::string& who
 
 template <class Real>
 void World<Real>::validate_component(const Collider& c, const std::string& who) {
-  check_value<Real>(c.radius, c.radius > 0.0, who, "collider.radius", "finite and > 0 m");
+  check_value<Real>(c.radius, c.radius > 0.0 && c.radius <= max_state_magnitude, who,
+                    "collider.radius", "finite, > 0 and <= 1e12 m");
 }
 
 template <class Real>

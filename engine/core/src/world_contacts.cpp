@@ -17,9 +17,13 @@
 // -e v_n (Newton's law of restitution) and the tangential velocity v_t loses
 // min(|v_t|, μ (1 + e) |v_n|) (Coulomb friction over the impulse; Mirtich & Canny, "Impulse-
 // based simulation of rigid bodies", 1995), and the motion continues with the same a until
-// the next impact or the end of the tick (at most max_impacts per body and tick: the corner of
-// a wall and the ground takes two). A tick without an impact keeps the integrator's end state
-// bit for bit.
+// the next impact or the end of the tick. A tick without an impact keeps the integrator's end
+// state bit for bit. After a body's max_impacts-th event of the tick (a corner of a wall and
+// the ground takes two), only bounces are resolved: a body settling into a corner (an event
+// that brings it to rest, which in a narrow corner recurs without end) finishes settling in the
+// next ticks, while a body bouncing between close planes goes on bouncing, each further test
+// counted against max_tick_predictions (limits.hpp): past it the world records a StateFault
+// naming the cap, the body and the plane.
 //
 // Resting. A body whose bounce e |v_n| is at most one tick of its normal acceleration |a_n| dt
 // would hit again within about a tick (a ball with e < 1 bounces infinitely often in finite
@@ -43,13 +47,15 @@
 
 #include "fixstep/det_math.hpp"
 #include "fixstep/float_mode.hpp"
+#include "fixstep/limits.hpp"
+#include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
 
 namespace {
 
-/// Impacts resolved per body and tick; further ones wait for the next tick.
+/// Events (bounces and comings to rest) resolved per body and tick before only bounces are.
 constexpr int max_impacts = 8;
 
 struct V2 {
@@ -105,6 +111,14 @@ double first_impact(double g0, double b, double c, double horizon, double tol, d
     if (root >= 0.0 && root <= horizon && b + c * root <= 0.0) s = std::min(s, root);
   }
   return s;
+}
+
+/// True when m, advanced by s, would bounce off p rather than come to rest on it (impact()'s
+/// test).
+bool bounces(const Motion& m, double s, const PlaneDef& p, double dt) {
+  const V2 n{p.normal.x, p.normal.y};
+  const double vn = std::min(dot(n, m.v + s * m.a), 0.0);
+  return p.restitution * -vn > std::max(-dot(n, m.a), 0.0) * dt;
 }
 
 /// Resolves an impact of m with plane p (normal n) at m's current state; r = the radius, dt =
@@ -220,12 +234,15 @@ void World<Real>::save_contact_start() {
 }
 
 template <class Real>
-void World<Real>::resolve_contacts() {
+std::size_t World<Real>::resolve_contacts() {
   const ContactScratch& c = contact_;
   const double dt = settings_.dt;
   const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
   bool out_of_range = false;
+  std::uint64_t again = 0;  // plane tests after a body's max_impacts-th event (limits.hpp)
+  std::size_t capped = 0;
   for (std::size_t k = 0; k < c.body.size(); ++k) {
+    if (k % 1024 == 1023) throw_if_stop_requested();  // many planes: a tick of seconds
     const std::uint32_t j = c.body[k];
     const double r = c.radius[k];
     contact_.after[k].t = -1.0;
@@ -246,7 +263,7 @@ void World<Real>::resolve_contacts() {
       m.v = m.v - vn * n;
       touched = true;
     }
-    for (int i = 0; i < max_impacts; ++i) {
+    for (int i = 0;; ++i) {
       const double horizon = dt - m.t;
       // Rounding of the offset (x1 - x0)/dt is up to about eps |x|/dt.
       const double vtol = rel * (norm(m.v) + norm(m.a) * dt + norm(m.x) / dt);
@@ -261,6 +278,19 @@ void World<Real>::resolve_contacts() {
         if (s < first) first = s, hit = &p;
       }
       if (!hit) break;
+      if (i >= max_impacts) {
+        if (!bounces(m, first, *hit, dt)) break;  // settling into a corner: the next ticks
+        again += planes_.size();
+        if (again > max_tick_predictions) {  // cold: the bounce is left unresolved
+          if (!fault_) {
+            record_cap_fault(j, "max_tick_predictions", max_tick_predictions,
+                             fmt::format("plane[{}] (the bounce due at {:g} s into the tick)",
+                                         hit - planes_.data(), m.t + first));
+          }
+          capped = 1;
+          break;
+        }
+      }
       m.advance(first);
       bounced = impact(m, *hit, r, dt) || bounced;
       touched = true;
@@ -292,13 +322,14 @@ void World<Real>::resolve_contacts() {
     }
   }
   if (out_of_range && !fault_) record_fault();
+  return capped;
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                               \
   template std::size_t World<Real>::add_plane(const PlaneDef&); \
   template void World<Real>::rebuild_contacts();                \
   template void World<Real>::save_contact_start();              \
-  template void World<Real>::resolve_contacts();
+  template std::size_t World<Real>::resolve_contacts();
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

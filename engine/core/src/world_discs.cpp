@@ -1,6 +1,8 @@
 // The World's side of body types and disc-disc contacts: which bodies are discs, the
 // static and kinematic bodies' motion, and the energy account of contacts (the contact model
 // itself is in disc_contacts.hpp, disc_events.cpp and disc_rest.cpp).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
@@ -152,6 +154,20 @@ void World<Real>::resolve_discs() {
       settings_.threads == 1 ? 1 : 2};
   dc.resolve(t, contact_stats_);
   const auto discs = dc.discs();
+  if (const auto* hit = dc.cap_hit(); hit && !fault_) {  // cold: a cap stopped the tick's work
+    const std::uint32_t body = discs[hit->disc].body;
+    std::string with;
+    if (hit->other != hit->npos) {
+      const std::uint32_t o = discs[hit->other].body;
+      with = fmt::format("body[{}] \"{}\" (the impact due at {:g} s into the tick)", o, names_[o],
+                         hit->time);
+    } else {
+      const double r = discs[hit->disc].radius;
+      with = fmt::format("{} discs (the largest swept box is this disc's, radius {:g} m)",
+                         discs.size(), r);
+    }
+    record_cap_fault(body, hit->cap, hit->limit, std::move(with));
+  }
   const auto lost = dc.lost();
   const auto external = dc.external();
   bool out_of_range = false;

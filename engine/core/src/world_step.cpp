@@ -223,7 +223,7 @@ void World<Real>::step(const TickInput& input) {
   }
   if (forces) remove_input_forces();
   if (immovable) restore_immovable();
-  if (contacts) resolve_contacts();
+  const std::size_t plane_capped = contacts ? resolve_contacts() : 0;
   if (discs) {
     resolve_discs();
     update_contact_events();
@@ -231,6 +231,7 @@ void World<Real>::step(const TickInput& input) {
     ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
     begun_.clear(), touching_.clear();
   }
+  if (contacts) contact_stats_.capped = (discs ? contact_stats_.capped : 0) + plane_capped;
   // Every flush_denormals_every ticks: a separate pass over the four state arrays costs as much
   // memory traffic as a tick of the fused sweep, so it runs once in 64 ticks (a state that
   // decays into the subnormals meets subnormal arithmetic for at most 63 ticks, then is 0).
@@ -302,11 +303,27 @@ void World<Real>::record_fault() {
                             .tick = tick_,
                             .time = time(),
                             .field = names[f],
-                            .value = v};
+                            .value = v,
+                            .cap = {},
+                            .with = {}};
         return;
       }
     }
   }
+}
+
+// Cold path: a contact cap (limits.hpp) stopped part of this tick's contact work.
+template <class Real>
+void World<Real>::record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit,
+                                   std::string with) {
+  fault_ = StateFault{.index = body,
+                      .name = names_[body],
+                      .tick = tick_,
+                      .time = time(),
+                      .field = "contacts",
+                      .value = static_cast<double>(limit),
+                      .cap = cap,
+                      .with = std::move(with)};
 }
 
 // world.hpp declares `extern template class World<Real>`, so every member defined in this
@@ -318,6 +335,8 @@ void World<Real>::record_fault() {
   template void World<Real>::accelerations(std::span<Real>, std::span<Real>, const TickInput&); \
   template std::size_t World<Real>::bytes_per_body_step();                                      \
   template void World<Real>::record_fault();                                                    \
+  template void World<Real>::record_cap_fault(std::size_t, const char*, std::uint64_t,          \
+                                              std::string);                                     \
   template const Real* World<Real>::damping_decay(double);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

@@ -141,7 +141,8 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
   if (t.get("radius") || t.get("draw_radius") || t.get("color")) {
     Appearance ap;
     if (auto rad = r.number(t, "radius", path + ".radius")) {
-      r.require(*rad > 0.0, t, "radius", path + ".radius", "> 0 m", *rad);
+      r.require(*rad > 0.0 && *rad <= max_state_magnitude, t, "radius", path + ".radius",
+                "> 0 m and <= 1e12 m", *rad);
       ap.radius = *rad;
       def.collider = Collider{.radius = *rad};  // a disc, for planes and [contacts]
     }
@@ -278,7 +279,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   check_start_overlap(scene, names);
   // The work and memory limits (limits.hpp), at the key that sets the work per tick.
   try {
-    check_world_limits(scene.bodies, scene.links, scene.world);
+    check_world_limits(scene.bodies, scene.links, scene.planes, scene.world);
   } catch (const LimitError& e) {
     // check_world_limits checks the implicit solve's size first, then the work per tick.
     const bool memory = !implicit_solve_within_limits(scene.bodies, scene.links, scene.world);

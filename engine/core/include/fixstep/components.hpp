@@ -63,7 +63,7 @@ struct LinearDrag {
 
 /// How a body is drawn. Bodies without one are drawn with a default size and palette colour.
 struct Appearance {
-  double radius = 0.5;  ///< m, finite and > 0
+  double radius = 0.5;  ///< m, > 0 and <= max_state_magnitude (10^12 m)
   Rgba8 color{230, 87, 46, 255};
 };
 
@@ -71,7 +71,7 @@ struct Appearance {
 /// with body contacts on (WorldSettings::contacts), with the other discs. Bodies without one
 /// pass through planes and discs; colliders cost nothing in a world without planes or contacts.
 struct Collider {
-  double radius = 0.5;  ///< m, finite and > 0
+  double radius = 0.5;  ///< m, > 0 and <= max_state_magnitude (10^12 m)
   /// e of this body in disc-disc contacts, in [0, 1]; unset: ContactSettings::restitution.
   /// A pair uses the larger of its two (Box2D's rule: a bouncy ball bounces off anything).
   std::optional<double> restitution = std::nullopt;

@@ -50,18 +50,52 @@ inline constexpr std::uint64_t max_implicit_solve_bytes = std::uint64_t{2} << 30
 /// max_implicit_solve_bytes (about 0.2 GiB at this size).
 inline constexpr std::uint64_t max_implicit_bodies = 25'000;
 
+/// Most memory the sync test's K + 1 snapshots of a world may take (SyncTest keeps one per
+/// rolled-back tick): 2 GiB, as for the implicit solve.
+inline constexpr std::uint64_t max_sync_test_bytes = std::uint64_t{2} << 30;
+
+/// Most candidate pairs (discs whose boxes swept over the tick overlap) the broadphase may find
+/// in one tick of a world of `discs` discs: max(64 n, 10^6), and never more than n(n - 1)/2 (a
+/// settled pile has about 3 per disc; 64 per disc is a dense gas at several radii per tick).
+/// Past it the tick's disc contacts are not resolved: World::step records a StateFault naming
+/// this cap, the tick and the disc with the largest swept box, and ContactStats::capped counts it.
+[[nodiscard]] std::uint64_t max_candidate_pairs(std::uint64_t discs);
+/// Most times of impact one tick may predict again after impacts: a disc pair's after an
+/// impact of either disc, and a body's plane tests after its 8th plane event of the tick (one
+/// per plane). 2^24, under a second of work. It takes a row of about 250 fast discs driven into
+/// a peg (about n^3 predictions when every disc's swept box overlaps every other's), or a disc
+/// bouncing between two planes millions of times a tick, to reach it; no pile or gas comes
+/// near. Past it World::step records a StateFault naming this cap, the tick and the bodies of
+/// the impact it could not resolve, and ContactStats::capped counts it. (A body coming to rest
+/// in a corner of two planes settles over ticks: that is not an impact and is not counted.)
+inline constexpr std::uint64_t max_tick_predictions = std::uint64_t{1} << 24;
+
 /// A claim beyond one of the limits above. what() names the claim, the limit and the way out.
 class LimitError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-/// Body-substeps of one tick of the world of `bodies`, `links` (by index into bodies) and
-/// `settings`: (bodies + links) × substeps, plus bodies × 64·√n × substeps for implicit Euler on
-/// a world with links (its sparse solve over n linked bodies, measured at 580 to 8600 explicit
-/// body-substeps per body). At most ~10^16 (the scene limits), never overflowing.
+/// Weight of one (dynamic collider, plane) pair in a tick, in body-substeps: the plane pass
+/// tests each collider against every plane about three times a tick (push-out, the search for
+/// the first impact, the end check) and more after each impact (world_contacts.cpp).
+inline constexpr std::uint64_t plane_pair_work = 1;
+/// Weight of one disc of a world with contacts in a tick, in body-substeps: its swept box in the
+/// broadphase, its candidate pairs' times of impact, and the resting solver's sweeps over its
+/// contacts (about three per disc in a pile; disc_contacts.hpp).
+inline constexpr std::uint64_t disc_work = 128;
+
+/// Body-substeps of one tick of the world of `bodies`, `links` (by index into bodies),
+/// `planes` and `settings`, the sum of its terms:
+///  - (bodies + links) × substeps (the fused per-body pass and the link gather);
+///  - bodies × 64·√n × substeps for implicit Euler on a world with links (its sparse solve over
+///    n linked bodies, measured at 580 to 8600 explicit body-substeps per body);
+///  - dynamic colliders × planes × plane_pair_work (the plane contacts, once a tick);
+///  - discs × disc_work when settings.contacts is set (every collider with collide = true).
+/// At most ~10^17 (the scene limits), never overflowing.
 [[nodiscard]] std::uint64_t tick_work(std::span<const BodyDef> bodies,
                                       std::span<const BodyLink> links,
+                                      std::span<const PlaneDef> planes,
                                       const WorldSettings& settings);
 /// tick_work of def's world.
 [[nodiscard]] std::uint64_t tick_work(const WorldDef& def);
@@ -80,14 +114,15 @@ class LimitError : public std::runtime_error {
                                                 std::span<const BodyLink> links,
                                                 const WorldSettings& settings);
 
-/// Throws LimitError when one tick of `def` would exceed max_tick_work ("N bodies + M links × S
-/// substeps = W body-substeps per tick; a tick may do at most 1e+09 ...") or its implicit solve
-/// max_implicit_bodies or max_implicit_solve_bytes (naming the integrator, the linked body count,
-/// the estimate and the way out: semi_implicit_euler with substeps). make_simulation calls it, the
-/// scene loader too (locating the message at [world] substeps). Throws std::invalid_argument for a
-/// link index out of range.
+/// Throws LimitError when one tick of the world would exceed max_tick_work ("N bodies + M
+/// links × S substeps + ... = W body-substeps per tick; a tick may do at most 1e+09 ...", each
+/// term of tick_work named) or its implicit solve max_implicit_bodies or
+/// max_implicit_solve_bytes (naming the integrator, the linked body count, the estimate and the
+/// way out: semi_implicit_euler with substeps). make_simulation calls it, the scene loader too
+/// (locating the message at [world] substeps). Throws std::invalid_argument for a link index
+/// out of range.
 void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
-                        const WorldSettings& settings);
+                        std::span<const PlaneDef> planes, const WorldSettings& settings);
 
 /// Throws LimitError when `ticks` ticks of `work_per_tick` body-substeps exceed max_command_ticks
 /// or max_command_work. `what` names the claim in the message, e.g. "--steps 2000000000" or

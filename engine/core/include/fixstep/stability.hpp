@@ -158,7 +158,10 @@ struct NetworkStability {
 /// and substeps (for a body that a link joins, the network's finding, check_linked_stability):
 /// ω·h beyond the integrator's bound (with "stable from substeps = N (dt <= H s)"), explicit
 /// Euler on an undamped spring (unstable at every step), or, when the body's step is stable, a
-/// force that drives the motion (gravity, a constant force, a push) or extreme starting values.
+/// force that drives the motion (gravity, a constant force, a push) or extreme starting values;
+/// for a kinematic body, its velocity. A contact cap (fault.cap set) is explained as
+///   "contacts at tick N (t = T s): max_tick_predictions = 67108864 reached: the impact of
+///    body[i] \"a\" with body[j] \"b\" ... was not resolved. Likely cause: ..."
 [[nodiscard]] std::string explain_fault(std::span<const BodyDef> bodies,
                                         std::span<const BodyLink> links,
                                         const WorldSettings& settings, const StateFault& fault);

@@ -117,6 +117,9 @@ struct ContactStats {
   std::size_t impacts = 0;          ///< impacts resolved at their time within the tick
   std::size_t touching = 0;         ///< pairs in contact at the end of the tick (resting solver)
   double max_overlap = 0.0;         ///< deepest overlap r_a + r_b - |x_a - x_b| left, m (>= 0)
+  /// Contact work a cap stopped in the last tick (limits.hpp: max_candidate_pairs,
+  /// max_tick_predictions): 0, or 1 when the tick reached one; World::fault() then names it.
+  std::size_t capped = 0;
 };
 
 /// A disc-disc impact resolved at its time within the last tick (World::impacts()).
@@ -142,14 +145,23 @@ struct ContactEvent {
 /// any scene a game steps, and still 26 orders of magnitude below float's overflow.
 inline constexpr double max_state_magnitude = 1e12;
 
-/// The first body whose state left the finite range |value| <= max_state_magnitude.
+/// Why World::step stopped being trustworthy: the first body whose state left the finite range
+/// |value| <= max_state_magnitude, or a contact cap (limits.hpp) that kept a tick's contacts
+/// from being resolved in full (field "contacts", cap set).
 struct StateFault {
   std::size_t index = 0;   ///< dense body index (creation order while nothing is destroyed)
   std::string name;        ///< the body's name
   std::uint64_t tick = 0;  ///< the tick that produced the value (World::tick() after it)
   double time = 0.0;       ///< simulated time after that tick, s
-  std::string field;       ///< "x", "y" (m) or "vx", "vy" (m/s)
-  double value = 0.0;      ///< the offending value (NaN, ±inf or |value| > the limit)
+  std::string field;       ///< "x", "y" (m) or "vx", "vy" (m/s); "contacts" for a cap
+  double value = 0.0;      ///< the offending value (NaN, ±inf or |value| > the limit); the cap
+  /// The cap reached ("max_candidate_pairs", "max_tick_predictions"); empty for a state out of
+  /// range.
+  std::string cap;
+  /// With cap: the other party of the impact left unresolved ("body[7] \"peg\"", "plane[2]"),
+  /// or, for max_candidate_pairs, what made the pairs (the body is the disc with the largest
+  /// swept box).
+  std::string with;
 };
 
 namespace detail {
@@ -457,6 +469,7 @@ class World {
   void require(Entity e) const;
   void rebuild_terms();
   void record_fault();
+  void record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit, std::string with);
   template <class Add>
   void for_each_energy(Add&& add) const;
 
@@ -586,7 +599,7 @@ class World {
   } contact_;
   void rebuild_contacts();
   void save_contact_start();
-  void resolve_contacts();
+  std::size_t resolve_contacts();  // returns ContactStats::capped of the planes
 
   // Static and kinematic bodies (dense indices) and their start-of-tick states: after the
   // integrator, a static body is put back and a kinematic one moved on at its velocity, so

@@ -1,0 +1,137 @@
+// No cap changes contact physics silently (limits.hpp: max_candidate_pairs,
+// max_tick_predictions): within a cap the work is done, exactly where physics allows; past it the
+// tick stops with a StateFault naming the cap, the tick and the bodies, and ContactStats::capped
+// counts it. Radii are bounded where a disc is made.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "fixstep/limits.hpp"
+#include "fixstep/stability.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep {
+namespace {
+
+WorldSettings elastic(double dt, Integrator integrator = Integrator::semi_implicit_euler) {
+  WorldSettings s{.dt = dt, .integrator = integrator};
+  s.contacts = ContactSettings{.restitution = 1.0, .friction = 0.0};
+  return s;
+}
+
+BodyDef disc(Vec2 x, Vec2 v, double radius, BodyType type = BodyType::dynamic) {
+  BodyDef b;
+  b.type = type;
+  b.body = Body{.mass = 1.0, .position = x, .velocity = v};
+  b.collider = Collider{.radius = radius};
+  return b;
+}
+
+// The row: 8 discs at 500 m/s into one static peg, 8.3 m per tick. Elastic and equal in
+// mass, each impact swaps or reverses velocities, so after the 36 impacts (8 with the peg, 28
+// between neighbours, the front disc in 15 of them) every disc leaves at -500 m/s, all on the
+// near side of the peg. A cap of 8 impacts per disc (the old one) sent 3 through the peg.
+TEST(ContactCaps, ARowOfFastDiscsIntoAPegAllComeBack) {
+  for (const Integrator integrator :
+       {Integrator::semi_implicit_euler, Integrator::velocity_verlet}) {
+    World<double> w(elastic(1.0 / 60.0, integrator));
+    (void)w.create_body(disc({0.0, 0.0}, {0.0, 0.0}, 0.1, BodyType::static_body));
+    std::vector<Entity> row;
+    for (int i = 0; i < 8; ++i)
+      row.push_back(w.create_body(disc({-0.3 - 0.25 * i, 0.0}, {500.0, 0.0}, 0.1)));
+    w.step();
+    EXPECT_FALSE(w.fault().has_value());
+    EXPECT_EQ(w.contact_stats().capped, 0u);
+    EXPECT_EQ(w.contact_stats().impacts, 36u);
+    for (const Entity e : row) {
+      const Body b = w.body(e);
+      EXPECT_NEAR(b.velocity.x, -500.0, 1e-9 * 500.0) << integrator_name(integrator);
+      EXPECT_NEAR(b.velocity.y, 0.0, 1e-9) << integrator_name(integrator);
+      EXPECT_LT(b.position.x, -0.2)
+          << "a disc went through the peg (" << integrator_name(integrator) << ")";
+    }
+  }
+}
+
+// The grids: two 100 × 100 grids of discs meeting at 1000 m/s sweep 16.7 m a tick, so
+// each disc's box meets hundreds of others: 2.3e6 candidate pairs, past max_candidate_pairs
+// (1.28e6 for 2e4 discs). Before, the tick's contacts were skipped without a word.
+TEST(ContactCaps, TooManyCandidatePairsStopTheRunWithALocatedFault) {
+  World<double> w(elastic(1.0 / 60.0));
+  for (int side = 0; side < 2; ++side) {
+    const double x0 = side == 0 ? -10.5 : 0.6, v = side == 0 ? 1000.0 : -1000.0;
+    for (int i = 0; i < 100; ++i) {
+      for (int j = 0; j < 100; ++j) {
+        (void)w.create_body(disc({x0 + 0.1 * i, 0.1 * j}, {v, 0.0}, 0.04));
+      }
+    }
+  }
+  w.step();
+  ASSERT_TRUE(w.fault().has_value());
+  const StateFault& f = *w.fault();
+  EXPECT_EQ(f.field, "contacts");
+  EXPECT_EQ(f.cap, "max_candidate_pairs");
+  EXPECT_EQ(f.tick, 1u);
+  EXPECT_EQ(f.value, double(max_candidate_pairs(20000)));
+  EXPECT_EQ(w.contact_stats().capped, 1u);
+  const std::string m = explain_fault({}, {}, elastic(1.0 / 60.0), f);
+  EXPECT_NE(m.find("max_candidate_pairs = 1.28e+06 reached"), std::string::npos) << m;
+  EXPECT_NE(m.find("20000 discs"), std::string::npos) << m;
+  EXPECT_NE(m.find("a smaller dt"), std::string::npos) << m;
+}
+
+// A disc between two planes 1 cm apart (centre free to move 1 cm): at 1e5 m/s it bounces 1e5
+// times in a 10 ms tick, all resolved (it stays between the planes at its speed, e = 1); at
+// 1e7 m/s it would bounce 1e7 times, past max_tick_predictions (2 plane tests a bounce).
+void add_channel(World<double>& w) {
+  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 1.0});
+  w.add_plane(PlaneDef{.normal = {0.0, -1.0}, .offset = -0.21, .restitution = 1.0});
+}
+
+TEST(ContactCaps, ADiscBouncingBetweenClosePlanesStaysBetweenThem) {
+  World<double> w(WorldSettings{.dt = 0.01});
+  add_channel(w);
+  const Entity e = w.create_body(disc({0.0, 0.105}, {0.0, 1e5}, 0.1));
+  w.step();
+  EXPECT_FALSE(w.fault().has_value());
+  const Body b = w.body(e);
+  EXPECT_GE(b.position.y, 0.1 - 1e-9);
+  EXPECT_LE(b.position.y, 0.11 + 1e-9);
+  EXPECT_NEAR(std::abs(b.velocity.y), 1e5, 1e-6 * 1e5);
+}
+
+TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
+  World<double> w(WorldSettings{.dt = 0.01});
+  add_channel(w);
+  (void)w.create_body(disc({0.0, 0.105}, {0.0, 1e7}, 0.1));
+  w.step();
+  ASSERT_TRUE(w.fault().has_value());
+  const StateFault& f = *w.fault();
+  EXPECT_EQ(f.cap, "max_tick_predictions");
+  EXPECT_EQ(f.index, 0u);
+  EXPECT_NE(f.with.find("plane["), std::string::npos) << f.with;
+  EXPECT_EQ(w.contact_stats().capped, 1u);
+}
+
+TEST(ContactCaps, ARadiusBeyondTheStateRangeIsRefused) {
+  World<double> w(elastic(0.01));
+  EXPECT_NO_THROW((void)w.create_body(disc({0.0, 0.0}, {0.0, 0.0}, 1e12)));
+  for (const double r : {1.0001e12, 9e307}) {
+    try {
+      (void)w.create_body(disc({5e12, 0.0}, {0.0, 0.0}, r));
+      FAIL() << "radius " << r << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("collider.radius must be finite, > 0 and <= 1e12 m"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  (void)w.create_body(disc({9.9e11, 9.9e11}, {-1.0, 0.0}, 0.1));  // apart: 1.4e12 m
+  w.step();  // a disc of 1e12 m beside a small one: the broadphase copes
+  EXPECT_FALSE(w.fault().has_value());
+}
+
+}  // namespace
+}  // namespace fixstep
