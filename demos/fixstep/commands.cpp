@@ -83,7 +83,7 @@ Scene load_with_overrides(const SceneOptions& o) {
   if (o.damping_split) scene.world.damping_split = *parse_damping_split(*o.damping_split);
   if (o.allow_unstable) scene.allow_unstable = true;
   try {  // the overrides may ask for more work per tick than the file did (limits.hpp)
-    check_world_limits(scene.bodies, scene.links, scene.world);
+    check_world_limits(scene.bodies, scene.links, scene.planes, scene.world);
   } catch (const LimitError& e) {
     throw LimitError(fmt::format("{} with the command line's settings: {}", o.scene, e.what()));
   }
@@ -177,6 +177,19 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Simulat
 const std::string csv_header = "tick,t,body,x,y,vx,vy,energy,world_energy,world_dissipated,balance";
 
 namespace {
+/// Throws LimitError when the sync test's K + 1 snapshots of `sim` exceed max_sync_test_bytes.
+void check_sync_test_memory(const Simulation& sim, int rollback) {
+  const std::uint64_t bytes =
+      (static_cast<std::uint64_t>(rollback) + 1) * (sim.snapshot_bytes() + sizeof(Simulation));
+  if (bytes > max_sync_test_bytes) {
+    throw LimitError(fmt::format(
+        "--sync-test {}: {} snapshots of this world take about {:.3g} GiB; at most {:.3g} GiB "
+        "allowed: roll back fewer ticks",
+        rollback, rollback + 1, double(bytes) / double(std::uint64_t{1} << 30),
+        double(max_sync_test_bytes) / double(std::uint64_t{1} << 30)));
+  }
+}
+
 /// The message and exit status of a failed sync test.
 int sync_test_failed(const SyncTest& sync, int rollback) {
   const SyncTest::Mismatch& m = *sync.mismatch();
@@ -198,12 +211,19 @@ int run_command(const RunOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   const std::uint64_t ticks =
       o.steps ? static_cast<std::uint64_t>(*o.steps) : ticks_for(*o.duration, scene.world.dt);
+  const std::uint64_t work = tick_work(scene.bodies, scene.links, scene.planes, scene.world);
   check_command_work(  // before the world is built (limits.hpp)
-      ticks, tick_work(scene.bodies, scene.links, scene.world),
+      ticks, work,
       o.steps ? fmt::format("--steps {}", *o.steps)
               : fmt::format("--duration {:g} (at dt = {:g} s)", *o.duration, scene.world.dt));
+  if (o.sync_test) {  // each tick re-simulates K more
+    check_command_work(
+        ticks * (1 + static_cast<std::uint64_t>(*o.sync_test)), work,
+        fmt::format("--sync-test {} re-simulating {} ticks per tick", *o.sync_test, *o.sync_test));
+  }
   if (o.record) check_recording_size(ticks, o.hash_every, *o.record);
   Simulation sim = make_simulation(checked_world_def(scene));
+  if (o.sync_test) check_sync_test_memory(sim, *o.sync_test);
   const double e0 = sim.energy().total();
 
   std::optional<AtomicFile> csv;
@@ -238,6 +258,9 @@ int run_command(const RunOptions& o) {
   if (o.sync_test) sync.emplace(sim, *o.sync_test);
   const StopOnSignal signals;
   Progress progress("run", "tick", ticks, !o.scene.quiet);
+  // A clock read about every 2^20 body-substeps: every tick of a large world, every 1024th of
+  // a small one.
+  const std::uint64_t progress_every = std::clamp<std::uint64_t>((1u << 20) / (work + 1), 1, 1024);
   for (std::uint64_t i = 1; i <= ticks; ++i) {
     const TickInput in = player ? player->next() : TickInput{.tick = i - 1};
     try {
@@ -252,8 +275,8 @@ int run_command(const RunOptions& o) {
     }
     done = i;
     if (recorder) recorder->record(in, sim);
-    if (i % 1024 == 0 || i == ticks) progress.update(i);  // a clock read per 1024 ticks
-    const bool diverged = sim.fault().has_value();        // the runtime guard (World::fault)
+    if (i % progress_every == 0 || i == ticks) progress.update(i);
+    const bool diverged = sim.fault().has_value();  // the runtime guard (World::fault)
     const bool stop = StopOnSignal::requested() != 0;
     if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks || diverged || stop)) {
       append_rows(*csv, reference, sim, has_exact, e0, energies, buffer);

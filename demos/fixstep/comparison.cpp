@@ -51,7 +51,8 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
   for (std::size_t i = 0; i < specs.size(); ++i) {
     scenes.push_back(tile_scene(base_, specs[i]));
     try {  // before the guard: a tile may ask for more work per tick than the scene (limits.hpp)
-      check_world_limits(scenes.back().bodies, scenes.back().links, scenes.back().world);
+      check_world_limits(scenes.back().bodies, scenes.back().links, scenes.back().planes,
+                         scenes.back().world);
     } catch (const LimitError& e) {
       throw LimitError(fmt::format("--with '{}': {}", specs[i].text, e.what()));
     }

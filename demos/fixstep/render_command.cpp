@@ -56,7 +56,7 @@ int render_command(const RenderOptions& o) {
   // With --replay the recording's ticks are stepped once more, to verify it first.
   const double verified = rec ? double(rec->ticks) : 0.0;
   check_command_work(static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)),
-                     tick_work(scene.bodies, scene.links, scene.world),
+                     tick_work(scene.bodies, scene.links, scene.planes, scene.world),
                      rec ? fmt::format("--frames {} at --fps {:g} with --replay {} (end {})",
                                        o.frames, o.fps, *o.replay, rec->ticks)
                          : fmt::format("--frames {} at --fps {:g}", o.frames, o.fps));

@@ -158,7 +158,7 @@ void report_divergence(const ReplayReport::Mismatch& m, const std::string& recor
 int replay_command(const ReplayOptions& o) {
   const Recording rec = read_recording(o.recording);
   const Scene scene = scene_for_recording(rec, o.recording, o.scene, o.quiet);
-  check_command_work(rec.ticks, tick_work(scene.bodies, scene.links, scene.world),
+  check_command_work(rec.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.world),
                      fmt::format("{}: end {}", o.recording, rec.ticks));
   const ReplayReport report = verify_recording(scene, rec, o.quiet);
   fmt::print("{}\n", describe(scene));
