@@ -586,6 +586,46 @@ rows = 1000
 origin = [0.0, 0.0]
 spacing = [0.0, 0.0]
 body = { mass = 1.0, radius = 0.5 }"
+# --- contact caps and the work they bound: no physics dropped without a fault (issue 30, class 4)
+case_ "a disc radius of 9e307 under [contacts] (beyond 1e12 m)" "$ok_world
+[contacts]
+$body
+radius = 9e307"
+disc_grid() {  # NAME X VX: a 100x100 grid of discs r = 4 cm at spacing 10 cm moving at VX m/s
+  printf '[[grid]]\nname = "%s"\ncolumns = 100\nrows = 100\norigin = [%s, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0, radius = 0.04, velocity = [%s, 0.0] }\n' "$1" "$2" "$3"
+}
+case_ "two 100x100 grids of discs meeting at 1000 m/s (past max_candidate_pairs: a located fault)" "[world]
+dt = 0.016666666666666666
+[contacts]
+restitution = 1.0
+$(disc_grid a -10.5 1000.0)
+$(disc_grid b 0.6 -1000.0)" run scene.toml --steps 2
+case_ "a disc between planes 1 cm apart at 1e7 m/s (past max_tick_predictions: a located fault)" "$ok_world
+[[body]]
+name = \"puck\"
+mass = 1.0
+position = [0.0, 0.105]
+velocity = [0.0, 1e7]
+radius = 0.1
+[[plane]]
+normal = [0.0, 1.0]
+offset = 0.0
+restitution = 1.0
+[[plane]]
+normal = [0.0, -1.0]
+offset = -0.21
+restitution = 1.0"
+case_ "a kinematic body at 1e13 m/s (the guard names its velocity, not springs)" "$ok_world
+[[body]]
+name = \"paddle\"
+type = \"kinematic\"
+position = [0.0, 0.0]
+velocity = [1e13, 0.0]"
+{ printf '%s\n' "$ok_world" '[[grid]]' 'columns = 200' 'rows = 200' 'origin = [0.0, 0.0]' \
+    'spacing = [0.1, 0.1]' 'body = { mass = 1.0, radius = 0.04 }'
+  for ((k = 0; k < 30000; ++k)); do printf '[[plane]]\nnormal = [0.0, 1.0]\noffset = -%d.0\n' $((k + 1)); done
+} > planes.toml
+case_ "30000 planes over a 200x200 grid of discs (1.2e9 body-substeps a tick)" "$(cat planes.toml)"
 # --- command line ---
 printf '%s\n%s\n' "$ok_world" "$body" > good.toml
 case_ "--dt 5" "" run good.toml --steps 10 --dt 5
@@ -786,6 +826,8 @@ case_ "--hash-every 0" "" run good.toml --steps 10 --record out.rec --hash-every
 case_ "--hash-every without --record" "" run good.toml --steps 10 --hash-every 5
 case_ "--record in a missing directory" "" run good.toml --steps 10 --record nodir/out.rec
 case_ "--sync-test 0" "" run good.toml --steps 10 --sync-test 0
+case_ "run --steps 10^9 --sync-test 10000 (10^13 re-simulated ticks)" "" run good.toml --steps 1000000000 --sync-test 10000
+case_ "--sync-test 10000 on a 300x300 grid (10001 snapshots of 90 000 bodies)" "" run grid300.toml --steps 10 --sync-test 10000
 # recordings verified and self-contained (issue 30, class 6)
 sed 's/^tick 3 push=2,0/tick 3 push=3,0/' base.rec > flipped.rec
 case_ "render --replay of a recording with a flipped input bit (verified before any frame: nothing written)" "" render --replay flipped.rec --out frames --frames 2
