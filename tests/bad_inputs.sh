@@ -228,6 +228,25 @@ case_ "extreme but finite values (k = 1e300 N/m, m = 1e-300 kg)" "$ok_world"'
 mass = 1e-300
 position = [1.0, 0.0]
 spring = { anchor = [0.0, 0.0], stiffness = 1e300 }'
+# --- [view]: bounded before any frame is drawn (issue 30, class 2) ---
+case_ "[view] center 10^300 m out (the grid looped to std::bad_alloc)" "$ok_world
+[view]
+center = [1e300, 0.0]
+$body" render scene.toml --out frames --frames 2 --size 64x64
+case_ "[view] width = 1e300" "$ok_world
+[view]
+width = 1e300
+$body"
+case_ "[view] width = 1e-300 off the origin" "$ok_world
+[view]
+center = [1.0, 0.0]
+width = 1e-300
+$body" render scene.toml --out frames --frames 2 --size 64x64
+case_ "[view] 1 m wide 10^12 m out (too narrow to place its pixels)" "$ok_world
+[view]
+center = [0.0, 1e12]
+width = 1.0
+$body"
 # --- the parser's depth, messages (issue 21) ---
 # Nesting deeper than 64 levels (dotted-key parts, [table] header parts, [ and { around a value)
 # is refused with its line and column before toml++ parses: the issue's 50 000-part key (80 KB)
