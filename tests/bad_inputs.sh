@@ -641,6 +641,19 @@ case_ "run --steps 10^9 --record with a hash every tick (33 GB)" "" run good.tom
 case_ "--hash-every 1000000 (beyond 100000)" "" run good.toml --steps 10 --record out.rec --hash-every 1000000
 case_ "render --fps 0.000001 (10^14 ticks in 10^6 frames)" "" render good.toml --out frames --frames 1000000 --fps 0.000001
 case_ "compare --frames 10^12" "" compare good.toml --with rk4 --with semi_implicit_euler --frames 1000000000000 --out frames
+# --- messages that name the flag or key to change (issue 30, class 7) ---
+case_ "render --dt 1e-10: a frame of 0.25 s is 2.5·10^9 ticks (was blamed on Session)" "" render good.toml --out frames --frames 1 --dt 1e-10
+case_ "render --dt 1e-9 --frames 100: 1.65·10^9 ticks (was blamed on --frames and --fps alone)" "" render good.toml --out frames --frames 100 --dt 1e-9
+case_ "render --fps 0.0001 --dt 1e-6: a frame of 10^4 s" "" render good.toml --out frames --frames 2 --fps 0.0001 --dt 1e-6
+case_ "[world] dt = 1e-10 for render" "[world]
+dt = 1e-10
+$body" render scene.toml --out frames --frames 2
+case_ "view --dt 1e-10 (before any window)" "" view good.toml --dt 1e-10 --frames 1
+case_ "compare --with rk4@1e-10" "" compare good.toml --with rk4@1e-10 --with rk4 --out frames --frames 2
+printf '#!/bin/bash\nexec "%s" "$@" >&-\n' "$fixstep" > closed_stdout && chmod +x closed_stdout
+tool=$work/closed_stdout tool_name="exec >&-; fixstep"
+case_ "--csv /dev/stdout with standard output closed (was: cannot write /proc/self/fd/1)" "" run good.toml --steps 10 --csv /dev/stdout
+tool=$fixstep tool_name=fixstep
 "$fixstep" run good.toml --steps 10 --record small.rec -q
 sed 's/^end 10 /end 1000000000 /' small.rec > claims.rec
 case_ "recording: 700 bytes claiming 10^9 ticks (no hash for most of them)" "" replay claims.rec

@@ -201,6 +201,33 @@ expect "a misspelt option gets a suggestion" "unknown option --intgrator: did yo
 "$fixstep" run "$scenes/default.toml" --duration 1e300 >"$work/dur.out" 2>&1
 [ $? -ne 0 ] && ok "an absurd --duration exits non-zero" || fail "--duration 1e300 exit code"
 expect "an absurd --duration says why" "--duration 1e\+300 s at dt = 0.01 s is 1e\+302 ticks" "$work/dur.out"
+# A dt too short for one frame (the loop's 0.25 s clamp, or 1/fps when longer) is named by what
+# set it (--dt, the scene's [world] dt, a --with), with the smallest dt that would do: the frame
+# cap is ceil(0.25 s / dt) + 1 <= 2^30 ticks, so dt >= 0.25 / (2^30 - 1) = 2.33e-10 s.
+dt_refused() {  # dt_refused NAME PATTERN ARGS...: exit 1, a message matching PATTERN, no Session
+  local name=$1 pattern=$2
+  shift 2
+  "$fixstep" "$@" >"$work/dt_frame.out" 2>&1
+  local got=$?
+  [ "$got" -eq 1 ] && grep -Eq -- "$pattern" "$work/dt_frame.out" && ! grep -q Session "$work/dt_frame.out" \
+    && ok "$name: names what set dt" || { fail "$name: exit $got"; cat "$work/dt_frame.out"; }
+}
+dt_refused "render --dt 1e-10 (one frame)" \
+  "^fixstep: error: --dt 1e-10: a frame of up to 0.25 s \(the loop's frame-time clamp\) is 2.5e\+09 ticks .*: give --dt 2.33e-10 s or more$" \
+  render "$scenes/default.toml" --out "$work/dtf" --frames 1 --dt 1e-10
+dt_refused "render --dt 1e-9 --frames 100 (the command's ticks)" \
+  "^fixstep: error: --frames 100 at --fps 60 with --dt 1e-09: 1650000000 ticks; a command may step at most 1e\+09 ticks$" \
+  render "$scenes/default.toml" --out "$work/dtf" --frames 100 --dt 1e-9
+dt_refused "render --fps 0.0001 --dt 1e-6" \
+  "^fixstep: error: --dt 1e-06: a frame of 10000 s \(--fps 0.0001\) is 1e\+10 ticks .*give --dt 9.32e-06 s or more, or a larger --fps$" \
+  render "$scenes/default.toml" --out "$work/dtf" --frames 2 --fps 0.0001 --dt 1e-6
+sed 's/^dt = .*/dt = 1e-10/' "$scenes/default.toml" >"$work/tiny_dt.toml"
+dt_refused "render of a scene with dt = 1e-10" \
+  "^fixstep: error: \[world\] dt = 1e-10 s in .*tiny_dt.toml: .*set \[world\] dt \(or --dt\) to 2.33e-10 s or more$" \
+  render "$work/tiny_dt.toml" --out "$work/dtf" --frames 2
+dt_refused "view --dt 1e-10 (before any window)" "^fixstep: error: --dt 1e-10: a frame of up to 0.25 s" \
+  view "$scenes/default.toml" --dt 1e-10 --frames 1
+[ ! -e "$work/dtf" ] && ok "a refused dt writes nothing" || fail "a refused dt wrote $work/dtf"
 
 # --png-level: 0..12; anything else exits non-zero naming the flag, the range and the value
 for level in 13 -1 abc 2.5 99999999999; do

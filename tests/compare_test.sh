@@ -151,5 +151,13 @@ bad "a bad dt" 2 "dt '1/0' is not a number or a fraction" "$scenes/default.toml"
 bad "an unstable tile" 1 "--with 'explicit_euler@1/60' is unstable on this scene: .*--allow-unstable.*substeps = 3" \
   "$scenes/spring_damper.toml" --with explicit_euler@1/60 --with rk4 --out "$work/x"
 bad "--window with --out" 2 "excludes" "$scenes/default.toml" --with rk4 --with rk4 --window --out "$work/x"
+# A dt too short for one frame is named by the --with that gives it, or that takes the scene's.
+bad "a --with dt too short for a frame" 1 \
+  "^fixstep: error: --with 'rk4@1e-10': a frame of up to 0.25 s .*give --with 'rk4@DT' a DT of 2.33e-10 s or more$" \
+  "$scenes/default.toml" --with rk4@1e-10 --with rk4 --out "$work/x" --frames 2
+sed 's/^dt = .*/dt = 1e-10/' "$scenes/default.toml" >"$work/tiny_dt.toml"
+bad "a scene dt too short for a frame" 1 \
+  "^fixstep: error: --with 'semi_implicit_euler' \(the scene's \[world\] dt = 1e-10 s\): a frame of up to 0.25 s" \
+  "$work/tiny_dt.toml" --with semi_implicit_euler --with rk4@0.01 --out "$work/x" --frames 2
 
 finish

@@ -98,6 +98,31 @@ Scene load_with_overrides(const SceneOptions& o) {
   return scene;
 }
 
+std::string dt_source(const SceneOptions& o, const Scene& scene) {
+  return o.dt ? fmt::format("--dt {:g}", *o.dt)
+              : fmt::format("[world] dt = {:g} s in {}", scene.world.dt, scene.file);
+}
+
+std::string dt_fix(const SceneOptions& o) {
+  return o.dt ? "give --dt" : "set [world] dt (or --dt) to";
+}
+
+void check_frame_ticks(double frame_seconds, double dt, std::optional<double> fps,
+                       std::string_view source, std::string_view fix) {
+  const double ticks = std::ceil(frame_seconds / dt) + 1.0;
+  if (ticks <= max_frame_ticks) return;
+  // ceil(frame / dt) + 1 <= 2^30 for dt >= frame / (2^30 - 1): shown rounded up.
+  const double smallest = frame_seconds / (max_frame_ticks - 1.0) * 1.001;
+  const bool by_fps = fps && 1.0 / *fps >= frame_seconds;
+  throw LimitError(fmt::format(
+      "{}: a frame {} is {:.3g} ticks of dt = {:g} s, more than the {:.0f} one frame may step: "
+      "{} {:.3g} s or more{}",
+      source,
+      by_fps ? fmt::format("of {:g} s (--fps {:g})", frame_seconds, *fps)
+             : fmt::format("of up to {:g} s (the loop's frame-time clamp)", frame_seconds),
+      ticks - 1.0, dt, max_frame_ticks, fix, smallest, by_fps ? ", or a larger --fps" : ""));
+}
+
 WorldDef checked_world_def(const Scene& scene) {
   WorldDef def = world_def(scene);
   def.stability_checked = true;

@@ -55,6 +55,17 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     } catch (const LimitError& e) {
       throw LimitError(fmt::format("--with '{}': {}", specs[i].text, e.what()));
     }
+    // Before a Session refuses it: a dt too short for a frame, named by its --with.
+    const double dt = scenes.back().world.dt;
+    const std::optional<double> fps = max_frame_time_ > SessionSettings{}.max_frame_time
+                                          ? std::optional(1.0 / max_frame_time_)
+                                          : std::nullopt;
+    check_frame_ticks(
+        max_frame_time_, dt, fps,
+        specs[i].dt
+            ? fmt::format("--with '{}'", specs[i].text)
+            : fmt::format("--with '{}' (the scene's [world] dt = {:g} s)", specs[i].text, dt),
+        fmt::format("give --with '{}@DT' a DT of", integrator_name(specs[i].integrator)));
     std::vector<std::string> warnings;
     try {
       const WorkProgressLine shown(!quiet);         // seconds on a network of 10^6 bodies
