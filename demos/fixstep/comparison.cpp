@@ -229,7 +229,7 @@ std::vector<std::string> Comparison::hud(std::size_t i) const {
             ? fmt::format("error {:.3g} m vs exact{}", *t.error,
                           touched > 0 ? fmt::format(" ({} touched)", touched) : std::string())
             : fmt::format("error {:.3g} m vs tile {}", *t.error, reference_ + 1));
-  } else if (const std::string lost = exact_lost(i); !lost.empty()) {
+  } else if (!exact_lost(i).empty()) {
     lines.push_back(fmt::format("no exact: contact at tick {}", *t.touched->first()));
   } else {
     lines.emplace_back("error: no common tick yet");

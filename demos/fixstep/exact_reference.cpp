@@ -29,6 +29,7 @@ TouchedBodies::TouchedBodies(const Scene& scene)
   }
   for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
     dynamic_[j] = scene.bodies[j].type == BodyType::dynamic ? 1 : 0;
+    dynamic_count_ += dynamic_[j];
   }
 }
 
@@ -52,7 +53,7 @@ void TouchedBodies::touch(std::size_t j, std::uint64_t tick) {
 }
 
 void TouchedBodies::after_tick(const Simulation& sim) {
-  if (count_ == since_.size()) return;
+  if (count_ == dynamic_count_) return;
   const std::uint64_t tick = sim.tick();
   for (const Impact& i : sim.impacts()) touch(i.body_a, tick), touch(i.body_b, tick);
   for (const ContactEvent& c : sim.contacts_begun()) {

@@ -26,8 +26,8 @@ class TouchedBodies {
  public:
   /// For a run of `scene` (its bodies in order, its links), none touched.
   explicit TouchedBodies(const Scene& scene);
-  /// Records the contacts of the tick `sim` has just stepped (sim.tick()); O(contacts of the
-  /// tick), no allocation once every body is touched or none is.
+  /// Records the contacts of the tick `sim` has just stepped (sim.tick()): O(contacts of the
+  /// tick), nothing once every dynamic body is touched; no allocation.
   void after_tick(const Simulation& sim);
   /// The tick from which body j has no exact state (the first tick a contact touched it or a
   /// body linked to it), or nullopt when none has.
@@ -52,6 +52,7 @@ class TouchedBodies {
   std::vector<std::uint8_t> dynamic_;   ///< per body: 1 when dynamic
   std::uint64_t first_ = 0;
   std::size_t count_ = 0;
+  std::size_t dynamic_count_ = 0;
 };
 
 /// The exact solution of a scene where one exists: per body (exact::solve) when the scene has
