@@ -228,6 +228,25 @@ case_ "extreme but finite values (k = 1e300 N/m, m = 1e-300 kg)" "$ok_world"'
 mass = 1e-300
 position = [1.0, 0.0]
 spring = { anchor = [0.0, 0.0], stiffness = 1e300 }'
+# --- [view]: bounded before any frame is drawn (issue 30, class 2) ---
+case_ "[view] center 10^300 m out (the grid looped to std::bad_alloc)" "$ok_world
+[view]
+center = [1e300, 0.0]
+$body" render scene.toml --out frames --frames 2 --size 64x64
+case_ "[view] width = 1e300" "$ok_world
+[view]
+width = 1e300
+$body"
+case_ "[view] width = 1e-300 off the origin" "$ok_world
+[view]
+center = [1.0, 0.0]
+width = 1e-300
+$body" render scene.toml --out frames --frames 2 --size 64x64
+case_ "[view] 1 m wide 10^12 m out (too narrow to place its pixels)" "$ok_world
+[view]
+center = [0.0, 1e12]
+width = 1.0
+$body"
 # --- the parser's depth, messages (issue 21) ---
 # Nesting deeper than 64 levels (dotted-key parts, [table] header parts, [ and { around a value)
 # is refused with its line and column before toml++ parses: the issue's 50 000-part key (80 KB)
@@ -662,6 +681,19 @@ case_ "run --steps 10^9 --record with a hash every tick (33 GB)" "" run good.tom
 case_ "--hash-every 1000000 (beyond 100000)" "" run good.toml --steps 10 --record out.rec --hash-every 1000000
 case_ "render --fps 0.000001 (10^14 ticks in 10^6 frames)" "" render good.toml --out frames --frames 1000000 --fps 0.000001
 case_ "compare --frames 10^12" "" compare good.toml --with rk4 --with semi_implicit_euler --frames 1000000000000 --out frames
+# --- messages that name the flag or key to change (issue 30, class 7) ---
+case_ "render --dt 1e-10: a frame of 0.25 s is 2.5·10^9 ticks (was blamed on Session)" "" render good.toml --out frames --frames 1 --dt 1e-10
+case_ "render --dt 1e-9 --frames 100: 1.65·10^9 ticks (was blamed on --frames and --fps alone)" "" render good.toml --out frames --frames 100 --dt 1e-9
+case_ "render --fps 0.0001 --dt 1e-6: a frame of 10^4 s" "" render good.toml --out frames --frames 2 --fps 0.0001 --dt 1e-6
+case_ "[world] dt = 1e-10 for render" "[world]
+dt = 1e-10
+$body" render scene.toml --out frames --frames 2
+case_ "view --dt 1e-10 (before any window)" "" view good.toml --dt 1e-10 --frames 1
+case_ "compare --with rk4@1e-10" "" compare good.toml --with rk4@1e-10 --with rk4 --out frames --frames 2
+printf '#!/bin/bash\nexec "%s" "$@" >&-\n' "$fixstep" > closed_stdout && chmod +x closed_stdout
+tool=$work/closed_stdout tool_name="exec >&-; fixstep"
+case_ "--csv /dev/stdout with standard output closed (was: cannot write /proc/self/fd/1)" "" run good.toml --steps 10 --csv /dev/stdout
+tool=$fixstep tool_name=fixstep
 "$fixstep" run good.toml --steps 10 --record small.rec -q
 sed 's/^end 10 /end 1000000000 /' small.rec > claims.rec
 case_ "recording: 700 bytes claiming 10^9 ticks (no hash for most of them)" "" replay claims.rec

@@ -33,6 +33,60 @@ awk -F, '$1 == 100 && $3 == "vacuum" { ok = ($4 - 15 < 1e-9 && 15 - $4 < 1e-9 &&
          END { exit !ok }' "$work/p.csv" && ok "csv values: vacuum at t = 1 s matches the closed form" \
   || { fail "csv values"; grep '^100,1,vacuum' "$work/p.csv"; }
 
+# --- no exact solution where a disc contact has touched a body ----------------------------
+# A ball dropped from 3 m onto a static peg (both r = 0.5 m) touches it when it has fallen 2 m,
+# at t = sqrt(4/9.81) = 0.639 s, tick 64 at dt = 0.01 s: its CSV exact columns are filled up to
+# the tick before and empty from the first touch on, and the summary claims no exact_error.
+peg='[world]
+dt = 0.01
+
+[contacts]
+
+[[body]]
+name = "peg"
+type = "static"
+position = [0.0, 0.0]
+radius = 0.5
+'
+printf '%s\n[[body]]\nname = "ball"\nmass = 1.0\nposition = [0.0, 3.0]\nradius = 0.5\ngravity = [0.0, -9.81]\n' \
+  "$peg" >"$work/drop.toml"
+"$fixstep" run "$work/drop.toml" --steps 100 --csv "$work/drop.csv" >"$work/drop.out" 2>&1
+touch_tick=$(awk -F, '$3 == "ball" && $12 == "" { print $1; exit }' "$work/drop.csv")
+[ -n "$touch_tick" ] && [ "$touch_tick" -ge 63 ] && [ "$touch_tick" -le 65 ] \
+  && awk -F, -v t="$touch_tick" '$3 == "ball" && (($1 < t) != ($12 != "")) { bad = 1 } END { exit bad }' "$work/drop.csv" \
+  && ok "drop on a peg: the ball's exact columns up to tick $((touch_tick - 1)), empty from the touch on" \
+  || { fail "drop on a peg: exact columns (touch at '$touch_tick')"; grep -E '^6[2-6],' "$work/drop.csv"; }
+expect "drop on a peg: no exact_error, the contact and its tick named" \
+  "^exact_error=none \\(a disc contact touched 1 of 2 bodies from tick $touch_tick on.*know no contacts\\)$" "$work/drop.out"
+# The same tick when every tick is rolled back and stepped again (the events come from the
+# re-simulated tick).
+"$fixstep" run "$work/drop.toml" --steps 100 --sync-test 3 >"$work/drop_sync.out" 2>&1
+expect "drop on a peg under --sync-test 3: the same touch tick" "from tick $touch_tick on" "$work/drop_sync.out"
+# A ball resting on the peg from tick 0 (no impact: the resting contact begins in tick 1) and a
+# body falling freely beside it: the ball has no exact state from tick 1, the free body keeps
+# its own, and exact_error is the free body's alone (semi-implicit Euler: g t dt / 2 = 0.04905 m
+# at t = 1 s), not the ball's distance from free fall (4.9 m).
+printf '%s\n[[body]]\nname = "ball"\nmass = 1.0\nposition = [0.0, 1.0]\nradius = 0.5\ngravity = [0.0, -9.81]\n[[body]]\nname = "free"\nmass = 1.0\nposition = [5.0, 1.0]\ngravity = [0.0, -9.81]\n' \
+  "$peg" >"$work/rest.toml"
+"$fixstep" run "$work/rest.toml" --steps 100 --csv "$work/rest.csv" >"$work/rest.out" 2>&1
+grep -q '^0,0,ball,0,1,0,0,.*,0,1,0$' "$work/rest.csv" && grep -q '^1,0.01,ball,.*,,,$' "$work/rest.csv" \
+  && grep -Eq '^100,1,free,.*,5,[-0-9.e]+,0.0490[0-9]*$' "$work/rest.csv" \
+  && ok "resting on a peg: exact at tick 0, none from tick 1; the free body keeps its own" \
+  || { fail "resting on a peg: CSV"; grep -E '^(0|1|100),' "$work/rest.csv"; }
+expect "resting on a peg: exact_error is the free body's, the touched ball left out and named" \
+  '^exact_error=4\.90500[0-9]e-02 m \(.*a disc contact touched 1 of 3 bodies from tick 1 on' "$work/rest.out"
+# A body linked to a touched one (a zero-rest-length spring: an exact network) loses its exact
+# state with it: the contact acts on it through the link.
+printf '%s\n[[body]]\nname = "ball"\nmass = 1.0\nposition = [0.0, 3.0]\nradius = 0.5\ngravity = [0.0, -9.81]\n[[body]]\nname = "tied"\nmass = 1.0\nposition = [3.0, 3.0]\ngravity = [0.0, -9.81]\n[[spring]]\nbodies = ["ball", "tied"]\nstiffness = 1.0\n' \
+  "$peg" >"$work/tied.toml"
+"$fixstep" run "$work/tied.toml" --steps 100 --csv "$work/tied.csv" >"$work/tied.out" 2>&1
+tied_tick=$(awk -F, '$3 == "tied" && $12 == "" { print $1; exit }' "$work/tied.csv")
+ball_tick=$(awk -F, '$3 == "ball" && $12 == "" { print $1; exit }' "$work/tied.csv")
+[ -n "$tied_tick" ] && [ "$tied_tick" = "$ball_tick" ] \
+  && expect "a linked body loses its exact state with the touched one (tick $tied_tick)" \
+       "^exact_error=none \\(disc contacts touched 2 of 3 bodies from tick $tied_tick on" "$work/tied.out" \
+  || { fail "linked body: ball from '$ball_tick', tied from '$tied_tick'"; cat "$work/tied.out"; }
+
 # --- the stability guard -----------------------------------------------------------------
 "$fixstep" run "$scenes/spring_damper.toml" --steps 10 --integrator explicit_euler >"$work/guard.out" 2>&1
 [ $? -ne 0 ] && ok "guard refuses explicit Euler on the article's spring" || fail "guard exit code"
@@ -147,6 +201,33 @@ expect "a misspelt option gets a suggestion" "unknown option --intgrator: did yo
 "$fixstep" run "$scenes/default.toml" --duration 1e300 >"$work/dur.out" 2>&1
 [ $? -ne 0 ] && ok "an absurd --duration exits non-zero" || fail "--duration 1e300 exit code"
 expect "an absurd --duration says why" "--duration 1e\+300 s at dt = 0.01 s is 1e\+302 ticks" "$work/dur.out"
+# A dt too short for one frame (the loop's 0.25 s clamp, or 1/fps when longer) is named by what
+# set it (--dt, the scene's [world] dt, a --with), with the smallest dt that would do: the frame
+# cap is ceil(0.25 s / dt) + 1 <= 2^30 ticks, so dt >= 0.25 / (2^30 - 1) = 2.33e-10 s.
+dt_refused() {  # dt_refused NAME PATTERN ARGS...: exit 1, a message matching PATTERN, no Session
+  local name=$1 pattern=$2
+  shift 2
+  "$fixstep" "$@" >"$work/dt_frame.out" 2>&1
+  local got=$?
+  [ "$got" -eq 1 ] && grep -Eq -- "$pattern" "$work/dt_frame.out" && ! grep -q Session "$work/dt_frame.out" \
+    && ok "$name: names what set dt" || { fail "$name: exit $got"; cat "$work/dt_frame.out"; }
+}
+dt_refused "render --dt 1e-10 (one frame)" \
+  "^fixstep: error: --dt 1e-10: a frame of up to 0.25 s \(the loop's frame-time clamp\) is 2.5e\+09 ticks .*: give --dt 2.33e-10 s or more$" \
+  render "$scenes/default.toml" --out "$work/dtf" --frames 1 --dt 1e-10
+dt_refused "render --dt 1e-9 --frames 100 (the command's ticks)" \
+  "^fixstep: error: --frames 100 at --fps 60 with --dt 1e-09: 1650000000 ticks; a command may step at most 1e\+09 ticks$" \
+  render "$scenes/default.toml" --out "$work/dtf" --frames 100 --dt 1e-9
+dt_refused "render --fps 0.0001 --dt 1e-6" \
+  "^fixstep: error: --dt 1e-06: a frame of 10000 s \(--fps 0.0001\) is 1e\+10 ticks .*give --dt 9.32e-06 s or more, or a larger --fps$" \
+  render "$scenes/default.toml" --out "$work/dtf" --frames 2 --fps 0.0001 --dt 1e-6
+sed 's/^dt = .*/dt = 1e-10/' "$scenes/default.toml" >"$work/tiny_dt.toml"
+dt_refused "render of a scene with dt = 1e-10" \
+  "^fixstep: error: \[world\] dt = 1e-10 s in .*tiny_dt.toml: .*set \[world\] dt \(or --dt\) to 2.33e-10 s or more$" \
+  render "$work/tiny_dt.toml" --out "$work/dtf" --frames 2
+dt_refused "view --dt 1e-10 (before any window)" "^fixstep: error: --dt 1e-10: a frame of up to 0.25 s" \
+  view "$scenes/default.toml" --dt 1e-10 --frames 1
+[ ! -e "$work/dtf" ] && ok "a refused dt writes nothing" || fail "a refused dt wrote $work/dtf"
 
 # --png-level: 0..12; anything else exits non-zero naming the flag, the range and the value
 for level in 13 -1 abc 2.5 99999999999; do

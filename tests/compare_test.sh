@@ -46,6 +46,45 @@ awk -F, 'NR == 2 { a = $10 } NR == 3 { b = $10 } END { exit !(a > 100 * b) }' "$
   && ok "semi-implicit Euler @ 1/60 s errs over 100x more than RK4 @ 1/30 s" \
   || fail "error ordering: $(cut -d, -f2,10 "$work/c/compare.csv")"
 
+# --- exact only until a disc contact: tiles as `run`, no error claimed once every body is touched
+# A ball dropped from 3 m onto a static peg touches it at about tick 64 (t = 0.64 s), inside the
+# 2 s compared: no error against exact from then on, and the tick is `run`'s. Beside a ball
+# resting on the peg from tick 0, a free body keeps its exact solution: the tile's error is the
+# free body's alone, equal to `run`'s exact_error to the digit.
+peg='[world]
+dt = 0.01
+
+[contacts]
+
+[[body]]
+name = "peg"
+type = "static"
+position = [0.0, 0.0]
+radius = 0.5
+'
+printf '%s\n[[body]]\nname = "ball"\nmass = 1.0\nposition = [0.0, 3.0]\nradius = 0.5\ngravity = [0.0, -9.81]\n' \
+  "$peg" >"$work/drop.toml"
+"$fixstep" run "$work/drop.toml" --steps 100 >"$work/drop_run.out" 2>&1
+run_touch=$(grep -Eo 'from tick [0-9]+ on' "$work/drop_run.out" | grep -Eo '[0-9]+')
+"$fixstep" compare "$work/drop.toml" --with rk4 --with semi_implicit_euler --out "$work/d" \
+  --frames 120 --size 640x360 >"$work/d.out" 2>&1
+[ -n "$run_touch" ] \
+  && grep -q "^tile=2 .* error=none (a disc contact at tick $run_touch: the exact solution knows no contacts) " "$work/d.out" \
+  && [ "$(awk -F, '$1 == 2 { print $10 "|" $11 "|" $13 }' "$work/d/compare.csv")" = "|none: disc contact at tick $run_touch|" ] \
+  && ok "drop on a peg: no error against exact from the contact (tick $run_touch, as run) on" \
+  || { fail "drop on a peg: compare vs run's tick '$run_touch'"; cat "$work/d.out" "$work/d/compare.csv"; }
+printf '%s\n[[body]]\nname = "ball"\nmass = 1.0\nposition = [0.0, 1.0]\nradius = 0.5\ngravity = [0.0, -9.81]\n[[body]]\nname = "free"\nmass = 1.0\nposition = [5.0, 1.0]\ngravity = [0.0, -9.81]\n' \
+  "$peg" >"$work/rest.toml"
+"$fixstep" compare "$work/rest.toml" --with rk4 --with semi_implicit_euler --out "$work/e" \
+  --frames 60 --size 640x360 >"$work/e.out" 2>&1
+"$fixstep" run "$work/rest.toml" --integrator semi_implicit_euler \
+  --steps "$(awk -F, '$1 == 2 { print $7 }' "$work/e/compare.csv")" >"$work/e_run.out" 2>&1
+run_error=$(grep -Eo '^exact_error=[0-9.e+-]+' "$work/e_run.out" | cut -d= -f2)
+[ -n "$run_error" ] \
+  && [ "$(awk -F, '$1 == 2 { print $10 "|" $11 }' "$work/e/compare.csv")" = "$run_error|exact (1 of 3 bodies touched by a contact)" ] \
+  && ok "resting on a peg: the tile's error is the free body's ($run_error m, as run), the ball left out" \
+  || { fail "resting on a peg: compare vs run '$run_error'"; cat "$work/e.out" "$work/e/compare.csv"; }
+
 # --- without an exact solution: against the most accurate tile -----------------------------
 # rope.toml (rest-length links) has no closed form. Tile 2 (RK4, h = 1/240 s) is the most
 # accurate; tile 1's error must be max_j |x_j - x_ref,j| at the time both last had a tick,
@@ -112,5 +151,13 @@ bad "a bad dt" 2 "dt '1/0' is not a number or a fraction" "$scenes/default.toml"
 bad "an unstable tile" 1 "--with 'explicit_euler@1/60' is unstable on this scene: .*--allow-unstable.*substeps = 3" \
   "$scenes/spring_damper.toml" --with explicit_euler@1/60 --with rk4 --out "$work/x"
 bad "--window with --out" 2 "excludes" "$scenes/default.toml" --with rk4 --with rk4 --window --out "$work/x"
+# A dt too short for one frame is named by the --with that gives it, or that takes the scene's.
+bad "a --with dt too short for a frame" 1 \
+  "^fixstep: error: --with 'rk4@1e-10': a frame of up to 0.25 s .*give --with 'rk4@DT' a DT of 2.33e-10 s or more$" \
+  "$scenes/default.toml" --with rk4@1e-10 --with rk4 --out "$work/x" --frames 2
+sed 's/^dt = .*/dt = 1e-10/' "$scenes/default.toml" >"$work/tiny_dt.toml"
+bad "a scene dt too short for a frame" 1 \
+  "^fixstep: error: --with 'semi_implicit_euler' \(the scene's \[world\] dt = 1e-10 s\): a frame of up to 0.25 s" \
+  "$work/tiny_dt.toml" --with semi_implicit_euler --with rk4@0.01 --out "$work/x" --frames 2
 
 finish

@@ -1,10 +1,13 @@
 // The camera a program drives through Session (set_view, follow, zoom, clear_trails) and the
 // automatic view, which keeps the bodies it fits out from under the HUD.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -191,6 +194,42 @@ TEST(Camera, TheAutomaticViewKeepsTheBodiesItFitsOutFromUnderTheHud) {
                    .width = 640, .height = 360, .title = "corners", .view_center = Vec2{0.0, 0.0}});
   mine.draw();
   EXPECT_GT(red_pixels_in_rows(mine.renderer(), band), 100);
+}
+
+// Draws a frame with each camera, however far out or narrow, then exits: 0 when every one
+// was drawn and a centre 10^300 m out shows no grid line, else 1.
+[[noreturn]] void draw_every_camera() {
+  alarm(60);  // a hang fails in 60 s instead of holding the suite
+  Renderer r(96, 64);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const Camera cameras[] = {{{1e300, 0.0}, 1.0},  {{0.0, -1e300}, 1.0}, {{1.0, 0.0}, 1e-300},
+                            {{0x1p50, 0.0}, 1.0}, {{0.0, 0x1p50}, 1.0}, {{0.0, 0.0}, 1e-320},
+                            {{nan, 0.0}, 1.0},    {{0.0, 0.0}, inf}};
+  for (const Camera& c : cameras) {
+    r.set_camera(c);
+    r.draw(RenderFrame{}, {});
+  }
+  // A centre 10^300 m out: no grid line (they would all fall on the centre column).
+  r.set_camera(cameras[0]);
+  r.draw(RenderFrame{}, {});
+  const Rgb p = at(r, 48, 8);
+  if (!is(p, Rgba8{18, 21, 28, 255}, 2)) {
+    std::fprintf(stderr, "a grid line at 10^300 m: (%d, %d, %d)\n", p.r, p.g, p.b);
+    std::exit(1);
+  }
+  std::fprintf(stderr, "every camera drawn\n");
+  std::exit(0);
+}
+
+// Any camera draws its frame: the grid's lines are bounded (Renderer::max_grid_lines) before
+// any is made, and a spacing below the coordinates' resolution draws none. Before, a centre
+// 10^300 m out (spacing 0.1 m: x + 0.1 == x) looped forever appending each line's vertices
+// until std::bad_alloc, and so would a centre at 2^50 m, where x + 0.1 advances by an ulp
+// below 2^50 and not at all past it. In a child process, with an alarm.
+TEST(Camera, AnyCameraDrawsItsFrameWithBoundedGridLines) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(draw_every_camera(), ::testing::ExitedWithCode(0), "every camera drawn");
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 // Scene files: the documented schema loads; every malformed file names file, line and key.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -9,6 +10,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "fixstep/scene.hpp"
 
@@ -95,6 +97,24 @@ color = "#ff000080"
   EXPECT_EQ(s.bodies[0].appearance->color, (Rgba8{255, 0, 0, 128}));
   EXPECT_EQ(*s.view.width, 30.0);
   EXPECT_EQ(s.bodies[0].drag->coefficient, 0.5);
+}
+
+TEST(Scene, ViewAtItsBoundsLoads) {
+  // The widest and narrowest views, and the narrowest view of a centre at the edge of the
+  // runtime guard's range, are accepted as given.
+  for (const auto& [center, width] : {std::pair{0.0, max_view_width},
+                                      {0.0, min_view_width},
+                                      {-max_view_center, min_view_width_ratio * max_view_center},
+                                      {max_view_center, max_view_width}}) {
+    const Scene s =
+        parse_scene(fmt::format("[world]\ndt = 0.01\n[view]\ncenter = [{}, {}]\nwidth = {}\n"
+                                "[[body]]\nmass = 1\nposition = [0, 0]\n",
+                                center, -center, width),
+                    "view.toml");
+    EXPECT_EQ(s.view.center->x, center);
+    EXPECT_EQ(s.view.center->y, -center);
+    EXPECT_EQ(*s.view.width, width);
+  }
 }
 
 struct Bad {
@@ -372,7 +392,20 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"spring to a generated body out of range",
             grid_tail(3, 2) +
                 "[[spring]]\nbodies = [\"grid0[0,0]\", \"grid0[3,0]\"]\nstiffness = 1\n",
-            11, "spring[0].bodies[1]", "grid[0] makes grid0[0,0] .. grid0[2,1] ([column,row])"}),
+            11, "spring[0].bodies[1]", "grid[0] makes grid0[0,0] .. grid0[2,1] ([column,row])"},
+        // [view]: bounded so that a frame's grid lines and pixels can be placed (SceneView).
+        Bad{"view center far out", "[world]\ndt = 0.01\n[view]\ncenter = [0, -1e300]\n", 4,
+            "view.center[1]", "must be within ±1e+12 m, where bodies can be"},
+        Bad{"view center just past the guard's range",
+            "[world]\ndt = 0.01\n[view]\ncenter = [1.000001e12, 0]\n", 4, "view.center[0]",
+            "(the runtime guard's limit; got 1000001000000)"},
+        Bad{"view width huge", "[world]\ndt = 0.01\n[view]\nwidth = 1e300\n", 4, "view.width",
+            "must be 1e-06 .. 1e+13 m (got 1e+300)"},
+        Bad{"view width tiny", "[world]\ndt = 0.01\n[view]\nwidth = 1e-300\n", 4, "view.width",
+            "must be 1e-06 .. 1e+13 m (got 1e-300)"},
+        Bad{"view width too narrow for its center",
+            "[world]\ndt = 0.01\n[view]\ncenter = [3, 1e10]\nwidth = 1\n", 5, "view.width",
+            "must be >= 10 m for a center 1e+10 m out"}),
     [](const ::testing::TestParamInfo<Bad>& info) {
       std::string name = info.param.what;
       for (char& c : name) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';

@@ -113,6 +113,20 @@ Scene load_with_overrides(const SceneOptions& options);
 [[nodiscard]] Window open_window(const std::string& title, int width, int height,
                                  std::string_view headless);
 
+/// What set a scene's dt, for messages: "--dt S" when the command line did, else "[world] dt =
+/// S s in FILE".
+[[nodiscard]] std::string dt_source(const SceneOptions& options, const Scene& scene);
+/// How to give a longer dt, for check_frame_ticks: "give --dt" when the command line set it,
+/// else "set [world] dt (or --dt) to".
+[[nodiscard]] std::string dt_fix(const SceneOptions& options);
+/// Throws LimitError when a frame of up to `frame_seconds` (s: the loop's frame-time clamp, or
+/// 1/fps when longer) is more ticks of `dt` (s) than a frame may step (max_frame_ticks, the
+/// Session's refusal): the message starts with `source`, what set dt ("--dt 1e-10", "--with
+/// 'rk4@1e-10'"), says where the frame's length comes from (`fps`: the --fps given, if any),
+/// and ends with `fix`, how to give a longer dt, after the smallest dt that would do.
+void check_frame_ticks(double frame_seconds, double dt, std::optional<double> fps,
+                       std::string_view source, std::string_view fix);
+
 /// How a Session shows a scene: its [view] and its file name in the HUD, width x height pixels.
 [[nodiscard]] SessionSettings session_settings(const Scene& scene, int width, int height);
 /// Throws LimitError when `ticks` ticks with a hash every `hash_every` would make the recording

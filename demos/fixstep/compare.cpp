@@ -62,13 +62,17 @@ void summarise(const CompareOptions& o, const Comparison& c,
     const double balance = energy_balance(sim, t.session->initial_energy());
     const double in_loop = sim.time() > 0.0 ? t.wall_seconds / sim.time() : 0.0;
     const std::string error = t.error ? fmt::format("{:.6e}", *t.error) : "";
-    const std::string against = t.error ? c.error_against(i) : "";
+    // Without an error where the scene has an exact solution: why (a disc contact), if known.
+    const std::string lost = c.exact_lost(i);
+    const std::string against = t.error ? c.error_against(i) : lost.empty() ? "" : "none: " + lost;
     fmt::print(
         "tile={} with={} ticks={} t={:.6f} state_hash={} error={}{} balance={:.6e} "
         "cost={:.3e} s per simulated s\n",
         i + 1, t.spec.text, sim.tick(), sim.time(), hex_hash(sim.state_hash()),
-        error.empty() ? (c.has_exact() || i != c.reference() ? "none" : "reference")
-                      : fmt::format("{} m against {}", error, against),
+        !error.empty()  ? fmt::format("{} m against {}", error, against)
+        : !lost.empty() ? fmt::format("none (a {}: the exact solution knows no contacts)", lost)
+        : c.has_exact() || i != c.reference() ? "none"
+                                              : "reference",
         t.error && !c.has_exact() ? fmt::format(" at t={:.6f}", t.error_time) : "", balance,
         t.cost);
     fmt::print("  same state: {}\n", same_as_run(o.scene, t));

@@ -56,6 +56,17 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     } catch (const LimitError& e) {
       throw LimitError(fmt::format("--with '{}': {}", specs[i].text, e.what()));
     }
+    // Before a Session refuses it: a dt too short for a frame, named by its --with.
+    const double dt = scenes.back().world.dt;
+    const std::optional<double> fps = max_frame_time_ > SessionSettings{}.max_frame_time
+                                          ? std::optional(1.0 / max_frame_time_)
+                                          : std::nullopt;
+    check_frame_ticks(
+        max_frame_time_, dt, fps,
+        specs[i].dt
+            ? fmt::format("--with '{}'", specs[i].text)
+            : fmt::format("--with '{}' (the scene's [world] dt = {:g} s)", specs[i].text, dt),
+        fmt::format("give --with '{}@DT' a DT of", integrator_name(specs[i].integrator)));
     std::vector<std::string> warnings;
     try {
       const WorkProgressLine shown(!quiet);         // seconds on a network of 10^6 bodies
@@ -75,7 +86,14 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
   std::vector<std::string> labels;
   for (std::size_t i = 0; i < specs.size(); ++i)
     labels.push_back(hud_label(i, tile_label(specs[i], scenes[i])));
-  hud_scale_ = hud_text_scale(labels, grid_.tile_width);
+  // With disc contacts an error line may say how many bodies a contact has touched, or that
+  // it has touched them all (hud()): the widest of each fits too.
+  std::vector<std::string> widest = labels;
+  if (base_.world.contacts) {
+    widest.push_back(fmt::format("error 1.23e-14 m vs exact ({} touched)", base_.bodies.size()));
+    widest.push_back(fmt::format("no exact: contact at tick {}", max_command_ticks));
+  }
+  hud_scale_ = hud_text_scale(widest, grid_.tile_width);
   for (std::size_t i = 0; i < specs.size(); ++i) {
     auto tile = std::make_unique<Tile>();
     tile->spec = specs[i];
@@ -84,6 +102,7 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     tile->session =
         std::make_unique<Session>(checked_world_def(tile->scene), tile_settings(tile->scene));
     tile->session->set_show_engine_hud(false);
+    tile->touched.emplace(tile->scene);
     tile->cost = step_cost(tile->session->definition());
     tiles_.push_back(std::move(tile));
   }
@@ -118,6 +137,7 @@ void Comparison::restart() {
     t.error.reset();
     t.error_time = 0.0;
     t.max_error = 0.0;
+    t.touched->clear();
     t.shadow.reset();
     if (!has_exact_ && i != reference_) {
       // Its tile passed the guard (or was allowed past it): the guard runs once per tile.
@@ -132,7 +152,11 @@ void Comparison::advance(double seconds) {
   for (std::size_t i = 0; i < tiles_.size(); ++i) {
     Tile& t = *tiles_[i];
     const auto start = std::chrono::steady_clock::now();
-    t.session->advance(seconds);
+    // As Session::advance, with each tick's contacts noted for the exact error.
+    t.session->advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
+      sim.step(TickInput{.tick = tick});
+      if (has_exact_) t.touched->after_tick(sim);
+    });
     t.wall_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     measure(i);
@@ -145,7 +169,8 @@ void Comparison::measure(std::size_t i) {
   if (sim.fault()) return;  // the last measurement stands; the HUD shows the guard's message
   std::optional<double> e;
   if (has_exact_) {
-    e = exact_error(exact_, sim);
+    e = exact_error(exact_, sim, &*t.touched);
+    if (!e) t.error.reset();  // every body touched by a contact: no exact error from now on
   } else if (t.shadow) {
     e = against_shadow(sim, *t.shadow);
   }
@@ -173,8 +198,20 @@ std::optional<double> Comparison::against_shadow(const Simulation& sim, Simulati
 }
 
 std::string Comparison::error_against(std::size_t i) const {
-  if (has_exact_) return "exact";
+  if (has_exact_) {
+    const TouchedBodies& touched = *tiles_[i]->touched;
+    const std::size_t n = tiles_[i]->session->simulation().body_count();
+    return touched.first()
+               ? fmt::format("exact ({} of {} bodies touched by a contact)", touched.count(), n)
+               : "exact";
+  }
   return i == reference_ ? "" : fmt::format("tile {}", reference_ + 1);
+}
+
+std::string Comparison::exact_lost(std::size_t i) const {
+  const Tile& t = *tiles_[i];
+  if (!has_exact_ || t.error || !t.touched->first()) return {};
+  return fmt::format("disc contact at tick {}", *t.touched->first());
 }
 
 std::vector<std::string> Comparison::hud(std::size_t i) const {
@@ -187,9 +224,14 @@ std::vector<std::string> Comparison::hud(std::size_t i) const {
   if (!has_exact_ && i == reference_) {
     lines.emplace_back(reference_line);
   } else if (t.error) {
-    lines.push_back(has_exact_
-                        ? fmt::format("error {:.3g} m vs exact", *t.error)
-                        : fmt::format("error {:.3g} m vs tile {}", *t.error, reference_ + 1));
+    const std::size_t touched = t.touched->count();
+    lines.push_back(
+        has_exact_
+            ? fmt::format("error {:.3g} m vs exact{}", *t.error,
+                          touched > 0 ? fmt::format(" ({} touched)", touched) : std::string())
+            : fmt::format("error {:.3g} m vs tile {}", *t.error, reference_ + 1));
+  } else if (!exact_lost(i).empty()) {
+    lines.push_back(fmt::format("no exact: contact at tick {}", *t.touched->first()));
   } else {
     lines.emplace_back("error: no common tick yet");
   }

@@ -32,6 +32,8 @@ struct Tile {
   std::optional<double> error;  ///< largest position error over the bodies at error_time, m
   double error_time = 0.0;      ///< s
   double max_error = 0.0;       ///< largest `error` seen so far, m
+  /// The bodies a disc contact has touched (no exact state from then on): fed every tick.
+  std::optional<TouchedBodies> touched;
   /// Without an exact solution: the most accurate tile's configuration, stepped (untimed, not
   /// drawn) up to this tile's time to measure it against.
   std::unique_ptr<Simulation> shadow;
@@ -49,8 +51,9 @@ class Comparison {
 
   /// Runs every tile's loop for `seconds` (s) of the shared clock, timing each, then measures
   /// its error: against the exact solution at its own time when the scene has one (what `fixstep
-  /// run` prints as exact_error), otherwise against the most accurate tile's configuration
-  /// at the last time both have a tick.
+  /// run` prints as exact_error: over the bodies no disc contact has touched, none once every
+  /// one has been), otherwise against the most accurate tile's configuration at the last time
+  /// both have a tick.
   void advance(double seconds);
   /// Draws every tile with its HUD into its cell of `frame` (rows of frame_width RGBA8
   /// pixels); the gaps between cells are left as they are.
@@ -64,8 +67,12 @@ class Comparison {
   [[nodiscard]] bool has_exact() const { return has_exact_; }
   /// The tile the others are measured against when there is no exact solution.
   [[nodiscard]] std::size_t reference() const { return reference_; }
-  /// What tile i's error is measured against: "exact", "tile K" or "" (the reference itself).
+  /// What tile i's error is measured against: "exact", "exact (K of N bodies touched by a
+  /// contact)" (those K left out), "tile K" or "" (the reference itself).
   [[nodiscard]] std::string error_against(std::size_t i) const;
+  /// Why tile i has no error against the exact solution although the scene has one: "disc
+  /// contact at tick N" when a contact has touched every body that had one; else "".
+  [[nodiscard]] std::string exact_lost(std::size_t i) const;
   /// Whether a tile's runtime guard has fired.
   [[nodiscard]] bool any_fault() const;
 

@@ -52,25 +52,33 @@ int render_command(const RenderOptions& o) {
   check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
   const Scene scene = rec ? scene_for_recording(*rec, *o.replay, given, o.scene.quiet)
                           : load_with_overrides(o.scene);
+  const VirtualClock clock(o.fps);
+  // A virtual clock is not clamped (the clamp guards a real clock against stalls): every frame
+  // is exactly 1/fps after the last, at any --fps (issue 21, class 9).
+  const double frame_time = std::max(SessionSettings{}.max_frame_time, clock.frame_seconds());
+  // What set dt, named when a frame or the command would take too many ticks of it.
+  const std::string dt_from =
+      rec ? fmt::format("the dt of --replay {} ({:g} s)", *o.replay, scene.world.dt)
+          : dt_source(o.scene, scene);
+  check_frame_ticks(frame_time, scene.world.dt, o.fps, dt_from,
+                    rec ? "record it again with --dt" : dt_fix(o.scene));
   const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.world.dt);
   // With --replay the recording's ticks are stepped once more, to verify it first.
   const double verified = rec ? double(rec->ticks) : 0.0;
-  check_command_work(static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)),
-                     tick_work(scene.bodies, scene.links, scene.planes, scene.world),
-                     rec ? fmt::format("--frames {} at --fps {:g} with --replay {} (end {})",
-                                       o.frames, o.fps, *o.replay, rec->ticks)
-                         : fmt::format("--frames {} at --fps {:g}", o.frames, o.fps));
+  check_command_work(
+      static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)),
+      tick_work(scene.bodies, scene.links, scene.planes, scene.world),
+      rec ? fmt::format("--frames {} at --fps {:g} with --replay {} (end {})", o.frames, o.fps,
+                        *o.replay, rec->ticks)
+          : fmt::format("--frames {} at --fps {:g} with {}", o.frames, o.fps, dt_from));
   if (rec && !verified_before_capture(scene, *rec, o)) return exit_replay_diverged;
   const auto [width, height] = parse_frame_size(o.size);
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
   CaptureSink sink(
       {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,
       height, o.fps, ManifestLayout::frames);
-  const VirtualClock clock(o.fps);
   SessionSettings settings = session_settings(scene, width, height);
-  // A virtual clock is not clamped (the clamp guards a real clock against stalls): every frame
-  // is exactly 1/fps after the last, at any --fps (issue 21, class 9).
-  settings.max_frame_time = std::max(settings.max_frame_time, clock.frame_seconds());
+  settings.max_frame_time = frame_time;
   Session session(checked_world_def(scene), settings);
   const auto frames = static_cast<std::uint64_t>(o.frames);
   std::uint64_t written = 0;

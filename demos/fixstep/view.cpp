@@ -84,6 +84,13 @@ void show(ShownWorld& shown, Scene scene, std::unique_ptr<Session> session) {
   shown.drag = PointerDrag(10.0 * r.camera().width / double(r.width()));
 }
 
+/// The --fps a frame of settings.max_frame_time s stands for, if longer than the clamp.
+std::optional<double> fps_of(const SessionSettings& settings) {
+  return settings.max_frame_time > SessionSettings{}.max_frame_time
+             ? std::optional(1.0 / settings.max_frame_time)
+             : std::nullopt;
+}
+
 /// Rebuilds `shown` from its scene file as saved now, with the same command-line overrides.
 /// The new world starts at tick 0 with no trails; kept are the camera (unless the edit changed
 /// the scene's [view]: then the new [view], or the fit of the new world without one, applies),
@@ -95,6 +102,8 @@ void reload(ShownWorld& shown, const SceneOptions& o) {
   const Renderer& r = old.renderer();
   SessionSettings settings = session_settings(scene, r.width(), r.height());
   settings.max_frame_time = shown.session->loop().settings().max_frame_time;  // as --fps set it
+  check_frame_ticks(settings.max_frame_time, scene.world.dt, fps_of(settings), dt_source(o, scene),
+                    dt_fix(o));
   if (scene.view.center == shown.scene.view.center && scene.view.width == shown.scene.view.width) {
     settings.view_center = r.camera().center;
     settings.view_width = r.camera().width;
@@ -150,14 +159,16 @@ int view_command(const ViewOptions& o) {
   std::optional<FileWatch> watch;
   if (!o.no_watch) watch.emplace(o.scene.scene);
   Scene scene = load_with_overrides(o.scene);
+  // --fps: a virtual clock, not clamped (frames exactly 1/fps apart; issue 21, class 9).
+  const double frame_time = std::max(SessionSettings{}.max_frame_time, o.fps ? 1.0 / *o.fps : 0.0);
+  check_frame_ticks(frame_time, scene.world.dt, o.fps, dt_source(o.scene, scene), dt_fix(o.scene));
   const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.
   Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height,
                               "fixstep render SCENE --out DIR");
   ShownWorld shown;
   SessionSettings settings = session_settings(scene, width, height);
-  // --fps: a virtual clock, not clamped (frames exactly 1/fps apart; issue 21, class 9).
-  if (o.fps) settings.max_frame_time = std::max(settings.max_frame_time, 1.0 / *o.fps);
+  settings.max_frame_time = frame_time;
   auto first = std::make_unique<Session>(checked_world_def(scene), settings);
   show(shown, std::move(scene), std::move(first));
 

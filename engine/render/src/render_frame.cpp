@@ -96,18 +96,28 @@ void Renderer::grid() {
   const double step = std::pow(10.0, std::floor(std::log10(camera_.width / 4.0)));
   const double half_w = camera_.width * 0.5, half_h = half_w * height_ / width_;
   const double scale = width_ / camera_.width;
-  for (double gx = std::ceil((camera_.center.x - half_w) / step) * step;
-       gx <= camera_.center.x + half_w; gx += step) {
-    const float px = static_cast<float>(to_pixel(gx, 0)[0]);
-    const bool axis = std::abs(gx) < step * 1e-6;
-    line(px, 0, px, float(height_), axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
-  }
-  for (double gy = std::ceil((camera_.center.y - half_h) / step) * step;
-       gy <= camera_.center.y + half_h; gy += step) {
-    const float py = static_cast<float>(to_pixel(0, gy)[1]);
-    const bool axis = std::abs(gy) < step * 1e-6;
-    line(0, py, float(width_), py, axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
-  }
+  // Lines from `first` every `step` up to `last`: at most max_grid_lines (40 across the width,
+  // 40·height/width across the height: 20 481 in the tallest frame), and none where `step`
+  // is below the resolution of the coordinates (a centre 10^300 m out and 1 m wide: first +
+  // step == first) or the camera is not finite. Each line is 4 vertices: no camera, however
+  // far or narrow, makes a frame allocate without bound (set_camera takes any).
+  auto lines = [&](double first, double last, auto draw_line) {
+    if (!(first + step > first)) return;
+    int n = 0;
+    for (double g = first; g <= last && n < max_grid_lines; g += step, ++n) draw_line(g);
+  };
+  lines(std::ceil((camera_.center.x - half_w) / step) * step, camera_.center.x + half_w,
+        [&](double gx) {
+          const float px = static_cast<float>(to_pixel(gx, 0)[0]);
+          const bool axis = std::abs(gx) < step * 1e-6;
+          line(px, 0, px, float(height_), axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
+        });
+  lines(std::ceil((camera_.center.y - half_h) / step) * step, camera_.center.y + half_h,
+        [&](double gy) {
+          const float py = static_cast<float>(to_pixel(0, gy)[1]);
+          const bool axis = std::abs(gy) < step * 1e-6;
+          line(0, py, float(width_), py, axis ? 2.0f : 1.0f, axis ? grid_axis : grid_minor);
+        });
   // Scale bar, bottom right: 1, 2, 5 or 10 grid steps, the first at least 40 px long.
   double length = step;
   for (const double m : {2.0, 5.0, 10.0})

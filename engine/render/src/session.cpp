@@ -143,7 +143,7 @@ const WorldDef& tracked(WorldDef& def) {
 /// below it (the derived cap stops at 10^6 + 1 ticks).
 LoopSettings loop_settings(double dt, double max_frame_time) {
   const double ticks = std::ceil(max_frame_time / dt) + 1.0;
-  if (!(ticks <= 0x1p30)) {
+  if (!(ticks <= max_frame_ticks)) {
     throw std::invalid_argument(fmt::format(
         "Session: a frame of {} s is more than 2^30 ticks of dt = {} s", max_frame_time, dt));
   }

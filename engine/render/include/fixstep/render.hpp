@@ -96,6 +96,12 @@ class Renderer {
   [[nodiscard]] static float hud_width(const std::string& line, float scale);
   /// Most links drawn as zigzags, with trails (see draw()).
   static constexpr std::size_t max_zigzag_links = 40;
+  /// Most grid lines draw() draws across each axis of the frame: the grid's power-of-ten
+  /// spacing gives 4..40 across the view's width and 40·height/width across its height, at
+  /// most 40 · max_frame_size / min_frame_size. A camera whose centre is too far out for its
+  /// width to be resolved (centre + spacing == centre), or that is not finite, gets no grid
+  /// lines: no camera makes a frame's memory grow without bound.
+  static constexpr int max_grid_lines = 40 * max_frame_size / min_frame_size + 1;
   /// Forgets the trails (after a restart or a jump): each body starts a new one.
   void clear_trails() { trails_.clear(); }
   /// The trails draw() draws, each body's own (see Trails: kept per handle).

@@ -42,13 +42,17 @@ struct SessionSettings {
   double max_frame_time = 0.25;
 };
 
+/// Most ticks one frame of a Session may step: its loop's tick cap, ceil(max_frame_time / dt)
+/// + 1, must not exceed it (a Session refuses a dt too short for its longest frame).
+inline constexpr double max_frame_ticks = 0x1p30;
+
 class Session {
  public:
   /// Builds the world (make_simulation(def): the stability guard applies; with
   /// WorldSettings::track_dissipation turned on, since the HUD shows the energy balance), the
   /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid
   /// or unstable def (see make_simulation), for a max_frame_time that is not finite and > 0 or
-  /// is more than 2^30 ticks, RenderError when rendering cannot start.
+  /// is more than max_frame_ticks ticks, RenderError when rendering cannot start.
   explicit Session(WorldDef def, const SessionSettings& settings = {});
 
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets

@@ -33,7 +33,23 @@ class SceneError : public std::runtime_error {
   std::string key_;
 };
 
-/// The optional [view] table: what part of the world the frames show.
+/// Largest |x| and |y| of [view] center, m: the runtime guard's max_state_magnitude (no body
+/// is ever drawn beyond it).
+inline constexpr double max_view_center = max_state_magnitude;
+/// Narrowest [view] width, m (a micron: below it a frame's pixels are smaller than 10^-10 m).
+inline constexpr double min_view_width = 1e-6;
+/// Widest [view] width, m: ten times max_view_center, so the widest view holds every place a
+/// body can be.
+inline constexpr double max_view_width = 10.0 * max_view_center;
+/// Narrowest [view] width as a fraction of the centre's distance from the origin (its larger
+/// coordinate): a narrower view of a point that far out could not tell its pixels or its grid
+/// lines apart in doubles (about 16 digits).
+inline constexpr double min_view_width_ratio = 1e-9;
+
+/// The optional [view] table: what part of the world the frames show. The loader refuses
+/// (SceneError at the key) a center coordinate beyond ±max_view_center, a width outside
+/// [min_view_width, max_view_width], and a width below min_view_width_ratio × the center's
+/// larger coordinate: each bounds the work and memory of drawing a frame.
 struct SceneView {
   std::optional<Vec2> center;   ///< m; default: centre of the bodies and anchors
   std::optional<double> width;  ///< visible width, m; default: fits bodies and spring ranges
