@@ -459,5 +459,34 @@ TEST(StopRequest, APendingStopStopsImplicitEulerAndTheStabilityGuard) {
   EXPECT_NO_THROW(sim.step(TickInput{.tick = 0}));  // the same world steps again once cleared
 }
 
+TEST(StopRequest, AStopScopeStopsItsThreadOnlyAndAnotherThreadStepsOn) {
+  // A background load stopped by its owner while the owner steps its own world: only the
+  // thread under the scope sees the flag.
+  Scene scene = load_scene(scenes_dir / "cloth.toml");
+  scene.world.substeps = 20000;  // a tick of a few tenths of a second
+  Simulation background = make_simulation(scene);
+  clear_stop_request();
+  std::atomic<int> flag{0};
+  std::atomic<bool> started{false};
+  int stopped_with = 0;
+  std::thread worker([&] {
+    const StopScope scope(flag);
+    started.store(true);
+    try {
+      background.step(TickInput{.tick = 0});
+    } catch (const StopRequested& e) {
+      stopped_with = e.signal();
+    }
+  });
+  while (!started.load()) std::this_thread::yield();
+  flag.store(7);
+  Scene small = load_scene(scenes_dir / "cloth.toml");
+  Simulation foreground = make_simulation(small);
+  EXPECT_NO_THROW(foreground.step(TickInput{.tick = 0}));  // this thread has no scope
+  worker.join();
+  EXPECT_EQ(stopped_with, 7);
+  EXPECT_EQ(stop_requested(), 0);  // nothing process-wide was requested
+}
+
 }  // namespace
 }  // namespace fixstep
