@@ -18,6 +18,7 @@
 #include "fixstep/session.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/sync_test.hpp"
+#include "fixstep/work_progress.hpp"
 
 // count_new.cpp: this program's operator new, counting the bytes asked for while counting.
 extern std::atomic<bool> counting;
@@ -486,6 +487,29 @@ TEST(StopRequest, AStopScopeStopsItsThreadOnlyAndAnotherThreadStepsOn) {
   worker.join();
   EXPECT_EQ(stopped_with, 7);
   EXPECT_EQ(stop_requested(), 0);  // nothing process-wide was requested
+}
+
+TEST(StopRequest, GeneratorsOfManyBodiesReportProgressAndPollTheRequest) {
+  // 300 x 300 bodies and 179 400 links: reports at every 65 536 of either, the last total the
+  // scene's count; a pending stop throws before the grid is made.
+  const std::string text =
+      "[world]\ndt = 0.01\n[[grid]]\ncolumns = 300\nrows = 300\norigin = [0.0, 0.0]\n"
+      "spacing = [0.1, -0.1]\nbody = { mass = 1.0 }\nlink = { stiffness = 10.0 }\n";
+  std::vector<std::string> reports;
+  {
+    const WorkProgressScope scope(
+        [&](std::string_view what, std::string_view unit, std::uint64_t done, std::uint64_t total) {
+          reports.push_back(fmt::format("{}: {} {}/{}", what, unit, done, total));
+        });
+    (void)parse_scene(text, "grid.toml");
+  }
+  const std::vector<std::string> expected{"generating the scene: body 65536/90000",
+                                          "generating the scene: link 65536/179400",
+                                          "generating the scene: link 131072/179400"};
+  EXPECT_EQ(reports, expected);
+  std::atomic<int> flag{3};
+  const StopScope scope(flag);
+  EXPECT_THROW((void)parse_scene(text, "grid.toml"), StopRequested);
 }
 
 }  // namespace
