@@ -74,7 +74,11 @@ std::pair<int, int> parse_frame_size(const std::string& value) {
   return {w, h};
 }
 
-Scene load_with_overrides(const SceneOptions& o) {
+Scene load_with_overrides(const SceneOptions& o, bool progress_line) {
+  // The generators and the guard: seconds for 10^6 bodies and their links.
+  // Without progress_line, no scope of its own: the reports go to the caller's scope.
+  std::optional<WorkProgressLine> shown;
+  if (progress_line) shown.emplace(!o.quiet);
   Scene scene = load_scene(o.scene);
   if (o.integrator) scene.world.integrator = *parse_integrator(*o.integrator);
   if (o.dt) scene.world.dt = *o.dt;
@@ -87,10 +91,8 @@ Scene load_with_overrides(const SceneOptions& o) {
   } catch (const LimitError& e) {
     throw LimitError(fmt::format("{} with the command line's settings: {}", o.scene, e.what()));
   }
-  const std::vector<std::string> guard = [&] {
-    const WorkProgressLine shown(!o.quiet);  // seconds on a network of 10^6 bodies
-    return enforce_stability(scene);         // throws when unstable
-  }();
+  const std::vector<std::string> guard = enforce_stability(scene);  // throws when unstable
+  if (shown) shown->finish();  // the warnings start on a clean line
   if (!o.quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     for (const std::string& w : guard) std::fprintf(stderr, "warning: %s\n", w.c_str());
