@@ -17,6 +17,7 @@
 #include <fixstep/stability.hpp>
 #include <fixstep/stop_request.hpp>
 #include <fixstep/sync_test.hpp>
+#include <fixstep/work_progress.hpp>
 #include <stdexcept>
 #include <vector>
 
@@ -74,12 +75,13 @@ std::pair<int, int> parse_frame_size(const std::string& value) {
   return {w, h};
 }
 
-Scene load_with_overrides(const SceneOptions& o, bool progress_line) {
-  // The generators and the guard: seconds for 10^6 bodies and their links.
-  // Without progress_line, no scope of its own: the reports go to the caller's scope.
+Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warnings) {
+  // The generators and the guard: seconds for 10^6 bodies and their links. A caller that takes
+  // the warnings shows the progress itself: no scope of our own, the reports go to its scope.
   std::optional<WorkProgressLine> shown;
-  if (progress_line) shown.emplace(!o.quiet);
+  if (!warnings) shown.emplace(!o.quiet);
   Scene scene = load_scene(o.scene);
+  report_work_progress("checking the scene", "", 0, 0);  // no count until the guard iterates
   if (o.integrator) scene.world.integrator = *parse_integrator(*o.integrator);
   if (o.dt) scene.world.dt = *o.dt;
   if (o.precision) scene.precision = *parse_precision(*o.precision);
@@ -93,7 +95,10 @@ Scene load_with_overrides(const SceneOptions& o, bool progress_line) {
   }
   const std::vector<std::string> guard = enforce_stability(scene);  // throws when unstable
   if (shown) shown->finish();  // the warnings start on a clean line
-  if (!o.quiet) {
+  if (warnings) {
+    warnings->insert(warnings->end(), scene.warnings.begin(), scene.warnings.end());
+    warnings->insert(warnings->end(), guard.begin(), guard.end());
+  } else if (!o.quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     for (const std::string& w : guard) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
