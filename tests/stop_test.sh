@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Issue 21, classes 5 and 9 end to end: SIGINT inside one long tick (run, render, compare) exits
-# 130 within the hang guard with consistent outputs; virtual frames exactly 1/fps apart at
+# 130 within the hang guard with consistent outputs; a long load shows progress on a terminal
+# and SIGINT ends it; virtual frames exactly 1/fps apart at
 # --fps 1; RFC 4180 quoting in run --csv and compare --csv; warnings for a duplicate link and a
 # repeated --with.
 #   stop_test.sh FIXSTEP
@@ -59,6 +60,36 @@ interrupt compare "$fixstep" compare "$work/long.toml" --with implicit_euler@1/1
 [ ! -e "$work/cmp/frame_000001.png" ] && [ -z "$(find "$work" -name '.*.tmp.*')" ] \
   && ok "compare: no torn frame, no temporary left" \
   || fail "compare frames: $(ls -a "$work/cmp" 2>&1)"
+
+# --- a long load: progress on a terminal, and SIGINT ends it --------------------------------
+# A 600 x 600 grid of linked bodies (360 000 bodies, 718 800 links): ~1.5 s to load here, most of
+# it generating the bodies and links and the stability guard (a 1000 x 1000 grid takes ~4 s).
+printf '[world]\ndt = 0.01\n[[grid]]\nname = "g"\ncolumns = 600\nrows = 600\norigin = [0.0, 0.0]\nspacing = [0.1, -0.1]\nbody = { mass = 1.0 }\nlink = { stiffness = 10.0, damping = 0.1 }\n' \
+  >"$work/grid600.toml"
+if command -v script >/dev/null; then  # a terminal for standard error (util-linux)
+  script -qfec "$fixstep run $work/grid600.toml --steps 1" "$work/load_tty.txt" >/dev/null 2>&1
+  expect_text "loading shows the generators' progress on a terminal" \
+    "generating the scene: body " "$work/load_tty.txt"
+  expect_text "and the stability guard's" "stability guard: iteration " "$work/load_tty.txt"
+fi
+"$fixstep" run "$work/grid600.toml" --steps 1 >"$work/load_pipe.out" 2>&1
+grep -q "generating the scene" "$work/load_pipe.out" && fail "progress written to a pipe" \
+  || ok "no progress when standard error is not a terminal"
+# SIGINT 0.5 s into the load (before any tick): the command ends at once, 130 as a shell reports
+# it, where a load that did not stop would run on to the hang guard's SIGKILL (137).
+for cmd in run render; do
+  case $cmd in
+    run) args=(run "$work/grid600.toml" --steps 1 --csv "$work/load.csv") ;;
+    render) args=(render "$work/grid600.toml" --out "$work/load_frames" --frames 1 --size 160x120) ;;
+  esac
+  timeout --preserve-status -k 3 -s INT 0.5 "$fixstep" "${args[@]}" >"$work/load_$cmd.out" 2>&1
+  status=$?
+  [ "$status" -eq 130 ] && ok "$cmd: SIGINT during a load exits 130" \
+    || { fail "$cmd: SIGINT during a load: exit $status"; cat "$work/load_$cmd.out"; }
+done
+[ ! -e "$work/load.csv" ] && [ -z "$(find "$work" -name '.*.tmp.*')" ] \
+  && ok "a load stopped by SIGINT leaves no output and no temporary" \
+  || fail "left after a stopped load: $(ls -a "$work")"
 
 # --- class 9: a virtual clock is not clamped: --fps 1 puts frames 1 s apart ------------------
 "$fixstep" render "$(dirname "$0")/../assets/scenes/projectile.toml" --out "$work/fps1" \

@@ -5,8 +5,10 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "fixstep/render.hpp"
@@ -223,6 +225,34 @@ TEST(Render, SessionFramesAreReproducible) {
   }
   EXPECT_TRUE(std::equal(a.renderer().pixels().begin(), a.renderer().pixels().end(),
                          b.renderer().pixels().begin()));
+}
+
+TEST(Render, ASessionOfAWorldBuiltOnAnotherThreadIsTheSessionThatBuildsItsOwn) {
+  // `fixstep view` builds a reloaded world on a thread of its own and hands it to a Session:
+  // the same states and the same pixels, frame for frame; a world already stepped is refused.
+  const Scene scene = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml");
+  WorldDef def = world_def(scene);
+  def.settings.track_dissipation = true;
+  std::optional<Simulation> built;
+  std::thread builder([&] { built.emplace(make_simulation(def)); });
+  builder.join();
+  const SessionSettings settings{.width = 160, .height = 90};
+  Session given(def, std::move(*built), settings);
+  Session own(def, settings);
+  for (int f = 0; f < 5; ++f) {
+    given.advance(1.0 / 60);
+    own.advance(1.0 / 60);
+    given.draw();
+    own.draw();
+    ASSERT_EQ(given.simulation().state_hash(), own.simulation().state_hash()) << "frame " << f;
+  }
+  EXPECT_GT(own.simulation().tick(), 0u);
+  EXPECT_DOUBLE_EQ(given.initial_energy(), own.initial_energy());
+  EXPECT_TRUE(std::equal(given.renderer().pixels().begin(), given.renderer().pixels().end(),
+                         own.renderer().pixels().begin()));
+  Simulation stepped = make_simulation(def);
+  stepped.step();
+  EXPECT_THROW(Session(def, std::move(stepped), settings), std::invalid_argument);
 }
 
 TEST(Render, ATrailBelongsToItsBodyNotToItsDenseIndex) {

@@ -18,6 +18,7 @@
 #include "fixstep/session.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/sync_test.hpp"
+#include "fixstep/work_progress.hpp"
 
 // count_new.cpp: this program's operator new, counting the bytes asked for while counting.
 extern std::atomic<bool> counting;
@@ -457,6 +458,58 @@ TEST(StopRequest, APendingStopStopsImplicitEulerAndTheStabilityGuard) {
   EXPECT_THROW((void)make_simulation(scene), StopRequested);
   clear_stop_request();
   EXPECT_NO_THROW(sim.step(TickInput{.tick = 0}));  // the same world steps again once cleared
+}
+
+TEST(StopRequest, AStopScopeStopsItsThreadOnlyAndAnotherThreadStepsOn) {
+  // A background load stopped by its owner while the owner steps its own world: only the
+  // thread under the scope sees the flag.
+  Scene scene = load_scene(scenes_dir / "cloth.toml");
+  scene.world.substeps = 20000;  // a tick of a few tenths of a second
+  Simulation background = make_simulation(scene);
+  clear_stop_request();
+  std::atomic<int> flag{0};
+  std::atomic<bool> started{false};
+  int stopped_with = 0;
+  std::thread worker([&] {
+    const StopScope scope(flag);
+    started.store(true);
+    try {
+      background.step(TickInput{.tick = 0});
+    } catch (const StopRequested& e) {
+      stopped_with = e.signal();
+    }
+  });
+  while (!started.load()) std::this_thread::yield();
+  flag.store(7);
+  Scene small = load_scene(scenes_dir / "cloth.toml");
+  Simulation foreground = make_simulation(small);
+  EXPECT_NO_THROW(foreground.step(TickInput{.tick = 0}));  // this thread has no scope
+  worker.join();
+  EXPECT_EQ(stopped_with, 7);
+  EXPECT_EQ(stop_requested(), 0);  // nothing process-wide was requested
+}
+
+TEST(StopRequest, GeneratorsOfManyBodiesReportProgressAndPollTheRequest) {
+  // 300 x 300 bodies and 179 400 links: reports at every 65 536 of either, the last total the
+  // scene's count; a pending stop throws before the grid is made.
+  const std::string text =
+      "[world]\ndt = 0.01\n[[grid]]\ncolumns = 300\nrows = 300\norigin = [0.0, 0.0]\n"
+      "spacing = [0.1, -0.1]\nbody = { mass = 1.0 }\nlink = { stiffness = 10.0 }\n";
+  std::vector<std::string> reports;
+  {
+    const WorkProgressScope scope(
+        [&](std::string_view what, std::string_view unit, std::uint64_t done, std::uint64_t total) {
+          reports.push_back(fmt::format("{}: {} {}/{}", what, unit, done, total));
+        });
+    (void)parse_scene(text, "grid.toml");
+  }
+  const std::vector<std::string> expected{"generating the scene: body 65536/90000",
+                                          "generating the scene: link 65536/179400",
+                                          "generating the scene: link 131072/179400"};
+  EXPECT_EQ(reports, expected);
+  std::atomic<int> flag{3};
+  const StopScope scope(flag);
+  EXPECT_THROW((void)parse_scene(text, "grid.toml"), StopRequested);
 }
 
 }  // namespace

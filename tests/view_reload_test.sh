@@ -4,7 +4,9 @@
 # A good edit is reloaded (tick reset, the new body count and definition hash reported); a bad
 # edit is reported with its file:line:column and the last good world keeps running; fixing the
 # file reloads it; with --record the session keeps its world and the recording carries it (it
-# replays with the edit on disk, or with the file gone); --no-watch turns reloading off. Every wait is bounded (60 s) and waits for an outcome, not
+# replays with the edit on disk, or with the file gone); --no-watch turns reloading off. A save
+# loads on a thread of its own: the world before it runs on, a newer save replaces the load, Esc
+# drops it. Every wait is bounded (60 s) and waits for an outcome, not
 # for a time; the program is quit with Esc (xdotool). Prints "ok - ..." / "FAIL - ...".
 set -u
 fixstep=$1
@@ -97,6 +99,70 @@ quit_view
 [ $? -eq 0 ] && ok "view exits 0 after reloads" || { fail "view exit"; cat "$work/view.err"; }
 expect "the summary is of the last world" '^scene=.*scene\.toml integrator=.* driver=' "$work/view.out"
 expect "the summary's ticks count from the last reload" '^ticks=[0-9]+ ' "$work/view.out"
+
+# The reloaded world was built on the load's thread: with no input it steps as `run` does.
+last_ticks=$(grep -Eo '^ticks=[0-9]+' "$work/view.out" | cut -d= -f2)
+"$fixstep" run "$scene" --steps "${last_ticks:-0}" >"$work/run_same.out" 2>&1
+[ -n "$last_ticks" ] && [ "$(hash_of "$work/view.out")" = "$(hash_of "$work/run_same.out")" ] \
+  && ok "the reloaded world's state after $last_ticks ticks is run's" \
+  || { fail "reloaded world vs run: $(cat "$work/view.out" "$work/run_same.out")"; }
+
+# --- a slow load: the window keeps showing the world before the save ------------------------
+# grid_text COLUMNS ROWS: a grid of linked bodies. 1000 x 1000 (10^6 bodies, 2*10^6 links, the
+# largest legal grid) takes ~5 s to load and build here, 600 x 600 about 1.5 s. Its unknown key
+# world.mark is warned of when the loaded world is shown.
+grid_text() {
+  printf '[world]\ndt = 0.01\nmark = %d\n[[grid]]\nname = "g"\ncolumns = %d\nrows = %d\n' "$1" "$1" "$2"
+  printf 'origin = [0.0, 0.0]\nspacing = [0.1, -0.1]\nbody = { mass = 1.0 }\n'
+  printf 'link = { stiffness = 10.0, damping = 0.1 }\n'
+}
+save_grid() { grid_text "$@" >"$scene.new" && mv "$scene.new" "$scene"; }
+loading_re='^loading .*scene\.toml \(at tick [0-9]+\): the window shows the world before the save'
+save_by_rename 1 1.0
+start_view "$work/slow.out" "$work/slow.err" || { fail "view did not open a window"; finish; }
+save_grid 600 600
+wait_for "$loading_re" "$work/slow.out" && ok "a save is announced as loading" \
+  || { fail "no loading line"; cat "$work/slow.out" "$work/slow.err"; }
+wait_for '^reloaded .*: 360000 bodies, .*\(was [0-9]+\)$' "$work/slow.out" \
+  && ok "the slow load is shown when ready" || { fail "no reload of the grid"; cat "$work/slow.err"; }
+expect "the shown load's warnings are printed" 'world\.mark: unknown key' "$work/slow.err"
+from=$(tick_in 'at tick [0-9]+' "$work/slow.out")
+to=$(tick_in '360000 bodies, .*\(was [0-9]+' "$work/slow.out")
+# A load on the window's thread froze the world: it would be at the same tick.
+[ -n "$from" ] && [ -n "$to" ] && [ "$to" -gt "$from" ] \
+  && ok "the world before the save ran on while the grid loaded (tick $from -> $to)" \
+  || fail "the world did not run during the load (ticks '$from' -> '$to')"
+quit_view
+[ $? -eq 0 ] && ok "view exits 0 after the slow reload" || fail "view exit after the slow reload"
+
+# A newer save while a load runs stops that load: the newer file is what is shown.
+save_by_rename 1 1.0
+start_view "$work/newer.out" "$work/newer.err" || { fail "view did not open a window"; finish; }
+save_grid 1000 1000
+wait_for "$loading_re" "$work/newer.out" || fail "no loading line for the large grid"
+save_by_rename 2 1.0
+wait_for '^reloaded .*: 2 bodies, ' "$work/newer.out" \
+  && ok "a save during a load is loaded in its place" || { fail "no reload of the newer save"; cat "$work/newer.out" "$work/newer.err"; }
+grep -q '1000000 bodies' "$work/newer.out" && fail "the stale load was shown" \
+  || ok "the stale load of 10^6 bodies is not shown"
+expect "the stale load was stopped, not run to its end" \
+  'scene\.toml was saved again while it loaded: that load was stopped$' "$work/newer.err"
+quit_view
+[ $? -eq 0 ] && ok "view exits 0 after a dropped load" || fail "view exit after a dropped load"
+
+# Esc while the largest legal grid loads: the window answers and the load is dropped, where a
+# load on the window's thread would first finish (and print "reloaded") and only then quit.
+save_by_rename 1 1.0
+start_view "$work/quit.out" "$work/quit.err" || { fail "view did not open a window"; finish; }
+save_grid 1000 1000
+wait_for "$loading_re" "$work/quit.out" || fail "no loading line before quitting"
+quit_view
+[ $? -eq 0 ] && ok "Esc during a load exits 0" || { fail "view exit on Esc during a load"; cat "$work/quit.err"; }
+grep -q '^reloaded' "$work/quit.out" && fail "the load was shown before quitting" \
+  || ok "Esc during a load: no reload"
+expect "Esc during a load stops it, not waiting for its end" \
+  'quit while .*scene\.toml loaded: the load was stopped$' "$work/quit.err"
+expect "the summary is of the world before the save" '^ticks=[0-9]+ .*state_hash=' "$work/quit.out"
 
 # --- while recording, a save is not reloaded: the recording keeps one world ------------------
 save_by_rename 1 1.0

@@ -17,6 +17,7 @@
 #include <fixstep/stability.hpp>
 #include <fixstep/stop_request.hpp>
 #include <fixstep/sync_test.hpp>
+#include <fixstep/work_progress.hpp>
 #include <stdexcept>
 #include <vector>
 
@@ -74,8 +75,13 @@ std::pair<int, int> parse_frame_size(const std::string& value) {
   return {w, h};
 }
 
-Scene load_with_overrides(const SceneOptions& o) {
+Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warnings) {
+  // The generators and the guard: seconds for 10^6 bodies and their links. A caller that takes
+  // the warnings shows the progress itself: no scope of our own, the reports go to its scope.
+  std::optional<WorkProgressLine> shown;
+  if (!warnings) shown.emplace(!o.quiet);
   Scene scene = load_scene(o.scene);
+  report_work_progress("checking the scene", "", 0, 0);  // no count until the guard iterates
   if (o.integrator) scene.world.integrator = *parse_integrator(*o.integrator);
   if (o.dt) scene.world.dt = *o.dt;
   if (o.precision) scene.precision = *parse_precision(*o.precision);
@@ -87,11 +93,12 @@ Scene load_with_overrides(const SceneOptions& o) {
   } catch (const LimitError& e) {
     throw LimitError(fmt::format("{} with the command line's settings: {}", o.scene, e.what()));
   }
-  const std::vector<std::string> guard = [&] {
-    const WorkProgressLine shown(!o.quiet);  // seconds on a network of 10^6 bodies
-    return enforce_stability(scene);         // throws when unstable
-  }();
-  if (!o.quiet) {
+  const std::vector<std::string> guard = enforce_stability(scene);  // throws when unstable
+  if (shown) shown->finish();  // the warnings start on a clean line
+  if (warnings) {
+    warnings->insert(warnings->end(), scene.warnings.begin(), scene.warnings.end());
+    warnings->insert(warnings->end(), guard.begin(), guard.end());
+  } else if (!o.quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     for (const std::string& w : guard) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }

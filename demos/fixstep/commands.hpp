@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace fixstep::cli {
 
@@ -102,8 +103,13 @@ std::string describe(const Scene& scene);
 
 /// Loads the scene, applies the overrides, checks the work and memory limits (LimitError), runs
 /// the stability guard (throws SceneError for an unstable body) and prints the warnings of both
-/// to stderr.
-Scene load_with_overrides(const SceneOptions& options);
+/// to stderr. The generators' and the guard's progress is shown on a terminal unless --quiet
+/// (seconds for 10^6 bodies: WorkProgressLine); both poll stop requests (StopRequested). Given
+/// `warnings`, the warnings are appended there (whatever --quiet says) instead of printed and
+/// no progress line is made: the reports go to the caller's WorkProgressScope (a load on
+/// another thread, whose caller prints).
+Scene load_with_overrides(const SceneOptions& options,
+                          std::vector<std::string>* warnings = nullptr);
 /// world_def(scene) marked stability_checked, for a scene that load_with_overrides or
 /// scene_for_recording returned (the guard ran there, or is off): the guard runs once per load.
 [[nodiscard]] WorldDef checked_world_def(const Scene& scene);

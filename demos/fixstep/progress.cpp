@@ -33,8 +33,11 @@ void Progress::update(std::uint64_t done) {
   const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
   const double left = rate > 0.0 ? static_cast<double>(total_ - done) / rate : 0.0;
   // "\r" back to the line's start, "\x1b[K" erases what an earlier, longer line left.
-  std::fputs(fmt::format("\r{}: {} {}/{} ({} %)  {:.1f} {}s/s  {:.1f} s left\x1b[K", what_, unit_,
-                         done, total_, done * 100 / total_, rate, unit_, left)
+  // "ticks/s", "bodies/s"
+  const std::string units =
+      unit_.ends_with('y') ? unit_.substr(0, unit_.size() - 1) + "ies" : unit_ + "s";
+  std::fputs(fmt::format("\r{}: {} {}/{} ({} %)  {:.1f} {}/s  {:.1f} s left\x1b[K", what_, unit_,
+                         done, total_, done * 100 / total_, rate, units, left)
                  .c_str(),
              stderr);
   std::fflush(stderr);
@@ -52,8 +55,35 @@ WorkProgressLine::WorkProgressLine(bool enabled)
     : enabled_(enabled),
       scope_([this](std::string_view what, std::string_view unit, std::uint64_t done,
                     std::uint64_t total) {
-        if (!line_) line_.emplace(std::string(what), std::string(unit), total, enabled_);
+        if (!line_ || what != what_ || unit != unit_ || total != total_) {
+          line_.reset();  // erases the line of the work before
+          what_ = what, unit_ = unit, total_ = total;
+          line_.emplace(what_, unit_, total, enabled_);
+        }
         line_->update(done);
       }) {}
+
+StatusLine::StatusLine(bool enabled) : shown_(enabled && isatty(fileno(stderr)) == 1) {}
+
+StatusLine::~StatusLine() {
+  finish();
+}
+
+void StatusLine::show(const std::string& text) {
+  if (!shown_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (drawn_ && now - last_ < redraw_every) return;
+  last_ = now;
+  std::fputs(fmt::format("\r{}\x1b[K", text).c_str(), stderr);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void StatusLine::finish() {
+  if (!drawn_) return;
+  std::fputs("\r\x1b[K", stderr);
+  std::fflush(stderr);
+  drawn_ = false;
+}
 
 }  // namespace fixstep::cli

@@ -36,18 +36,44 @@ class Progress {
   std::chrono::steady_clock::time_point start_, last_;
 };
 
-/// The engine's long work that a program does not loop over itself (the stability guard's power
-/// iteration on a large network, replay(): work_progress.hpp) shown as a Progress line while
-/// this lives, e.g. "stability guard: iteration 310/10000 ..." (10000 is the iteration's limit;
-/// it usually stops far sooner) or "replay: tick 4096/300000 ...".
+/// The engine's long work that a program does not loop over itself (a scene's generators, the
+/// stability guard's power iteration on a large network, replay(): work_progress.hpp) shown as
+/// a Progress line while this lives, e.g. "generating the scene: body 65536/1000000 ...",
+/// "stability guard: iteration 310/10000 ..." (10000 is the iteration's limit; it usually stops
+/// far sooner) or "replay: tick 4096/300000 ...". Each new kind of work (what, unit, total)
+/// starts a line of its own.
 class WorkProgressLine {
  public:
   explicit WorkProgressLine(bool enabled);
+  /// Erases the line shown, if any (so that what follows starts on a clean line).
+  void finish() { line_.reset(); }
 
  private:
   bool enabled_;
+  std::string what_, unit_;
+  std::uint64_t total_ = 0;
   std::optional<Progress> line_;
   WorkProgressScope scope_;
+};
+
+/// A line of free text on standard error, rewritten in place at most every 0.1 s, while some
+/// work without a count goes on (e.g. "loading s.toml: building the world, 2.1 s"). Nothing when
+/// standard error is not a terminal or when not enabled (--quiet).
+class StatusLine {
+ public:
+  explicit StatusLine(bool enabled);
+  ~StatusLine();
+  StatusLine(const StatusLine&) = delete;
+  StatusLine& operator=(const StatusLine&) = delete;
+  /// Shows `text` in place of the line shown before (unless that was less than 0.1 s ago).
+  void show(const std::string& text);
+  /// Erases the line (also done by the destructor).
+  void finish();
+
+ private:
+  bool shown_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point last_{};
 };
 
 }  // namespace fixstep::cli

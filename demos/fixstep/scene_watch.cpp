@@ -120,4 +120,13 @@ std::vector<std::string> reload_error_lines(const std::string& heading, const st
   return lines;
 }
 
+std::vector<std::string> loading_lines(const std::string& file, const std::string& progress,
+                                       int frame_width, float scale) {
+  std::vector<std::string> lines;
+  wrap(ascii("LOADING " + file + "... (the world before the save runs on until it is ready)"),
+       frame_width, scale, lines);
+  wrap(ascii(progress), frame_width, scale, lines);
+  return lines;
+}
+
 }  // namespace fixstep::cli

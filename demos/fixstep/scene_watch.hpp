@@ -1,5 +1,5 @@
 // Hot reload for `fixstep view`: noticing that the scene file was saved, and the HUD lines that
-// say a save could not be used.
+// say a save is loading or could not be used.
 //
 // The watch polls the file's modification time, size and inode from the frame loop, at most
 // once per interval of wall time: portable, no notification API, and an editor that saves by
@@ -58,5 +58,12 @@ class FileWatch {
                                                           const std::string& message,
                                                           int frame_width, float scale,
                                                           std::size_t max_lines = 3);
+
+/// HUD lines while a saved scene loads: "LOADING `file`..." and that the world shown is the one
+/// before the save, then `progress` (what the load does now, e.g. "stability guard: iteration
+/// 310/10000 (3 %), 4.2 s"); made ASCII and wrapped as reload_error_lines does.
+[[nodiscard]] std::vector<std::string> loading_lines(const std::string& file,
+                                                     const std::string& progress, int frame_width,
+                                                     float scale);
 
 }  // namespace fixstep::cli

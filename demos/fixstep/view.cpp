@@ -1,5 +1,6 @@
 // `fixstep view`: the Session's frames presented in an SDL2 window, driven by the real clock;
-// the world is rebuilt when its scene file is saved (hot reload, scene_watch.hpp).
+// the world is rebuilt when its scene file is saved (hot reload, scene_watch.hpp), on a thread
+// of its own (scene_load.hpp) while the window keeps showing the world before the save.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -21,7 +22,10 @@
 
 #include "commands.hpp"
 #include "output_paths.hpp"
+#include "progress.hpp"
+#include "scene_load.hpp"
 #include "scene_watch.hpp"
+#include "view_rewind.hpp"
 
 namespace fixstep::cli {
 
@@ -35,32 +39,6 @@ Window open_window(const std::string& title, int width, int height, std::string_
   }
 }
 
-/// Rewind keeps this much of the past, s of simulated time (one state per tick), in at most
-/// rewind_max_bytes of states: a 300 x 300 grid of bodies and links holds about 48 MB a state,
-/// so 10 s at 60 Hz would take 29 GB.
-constexpr double rewind_seconds = 10.0;
-constexpr std::size_t rewind_max_bytes = std::size_t{512} << 20;
-
-/// A RewindBuffer of rewind_seconds of `sim`'s ticks, or less if they exceed rewind_max_bytes
-/// (said on standard error, with what it keeps).
-RewindBuffer make_rewind(const Simulation& sim) {
-  const double dt = sim.settings().dt;
-  // A tick builds the force terms and scratch arrays that every later state holds too: measure
-  // a copy stepped once (the scratch of a 90 000-body grid doubles its state).
-  Simulation probe = sim;
-  probe.step();
-  const std::size_t bytes = std::max(sim.snapshot_bytes(), probe.snapshot_bytes());
-  const std::size_t capacity = rewind_capacity(rewind_seconds, dt, bytes, rewind_max_bytes);
-  if (static_cast<double>(capacity) < std::ceil(rewind_seconds / dt)) {
-    std::fprintf(stderr,
-                 "note: rewind keeps the last %.3g s (%zu ticks), not %g s: a state of this world "
-                 "takes %.1f MiB and rewind at most %zu MiB\n",
-                 static_cast<double>(capacity) * dt, capacity, rewind_seconds,
-                 static_cast<double>(bytes) / (1 << 20), rewind_max_bytes >> 20);
-  }
-  return RewindBuffer(capacity);
-}
-
 namespace {
 
 /// The world a window shows: the scene it was built from, its session and rewind buffer.
@@ -71,14 +49,15 @@ struct ShownWorld {
   PointerDrag drag{0.0};  ///< picks within 10 pixels; holds a body of this world only
 };
 
-/// Starts showing `session`'s world (from `scene`): the key help in the HUD, rewind from tick 0.
-/// The previous world's rewind states are freed before the new buffer is made.
-void show(ShownWorld& shown, Scene scene, std::unique_ptr<Session> session) {
+/// Starts showing `session`'s world (from `scene`): the key help in the HUD, rewind from tick 0
+/// (as `plan` says). The previous world's rewind states are freed before the new buffer is made.
+void show(ShownWorld& shown, Scene scene, std::unique_ptr<Session> session,
+          const RewindPlan& plan) {
   session->set_show_controls(true);
   shown.scene = std::move(scene);
   shown.session = std::move(session);
   shown.rewind = RewindBuffer(1);
-  shown.rewind = make_rewind(shown.session->simulation());
+  shown.rewind = make_rewind(plan);
   shown.rewind.push(shown.session->simulation());
   const Renderer& r = shown.session->renderer();
   shown.drag = PointerDrag(10.0 * r.camera().width / double(r.width()));
@@ -91,53 +70,119 @@ std::optional<double> fps_of(const SessionSettings& settings) {
              : std::nullopt;
 }
 
-/// Rebuilds `shown` from its scene file as saved now, with the same command-line overrides.
-/// The new world starts at tick 0 with no trails; kept are the camera (unless the edit changed
-/// the scene's [view]: then the new [view], or the fit of the new world without one, applies),
-/// the time scale and the pause (a world the runtime guard stopped gives way to one that runs).
-/// Throws, leaving `shown` untouched, for a scene that cannot be used.
-void reload(ShownWorld& shown, const SceneOptions& o) {
-  Scene scene = load_with_overrides(o);
+/// The load's warnings on standard error, unless --quiet.
+void print_warnings(const LoadedWorld& world, const SceneOptions& o) {
+  if (o.quiet) return;
+  for (const std::string& w : world.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+}
+
+/// The first world, loaded on a thread of its own while this one shows the load's progress on
+/// a terminal ("loading s.toml: stability guard: iteration 310/10000 (3 %), 4.2 s"). SIGINT
+/// ends the process at once, as before any window opened.
+LoadedWorld load_first(const SceneOptions& o) {
+  BackgroundLoad load(o);
+  StatusLine line(!o.quiet);
+  while (!load.ready()) {
+    line.show(fmt::format("loading {}: {}", o.scene, describe(load.status())));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  line.finish();
+  LoadedWorld world = load.take();
+  print_warnings(world, o);
+  return world;
+}
+
+/// A hot reload in progress: the load of the file as saved, on its own thread. A save seen while
+/// a load runs stops that load and starts another once it has ended.
+struct Reload {
+  std::optional<BackgroundLoad> load;
+  bool again = false;  ///< a newer save was seen: load the file again when `load` ends
+};
+
+/// Shows `loaded` in place of `shown`'s world. The new world starts at tick 0 with no trails;
+/// kept are the camera (unless the edit changed the scene's [view]: then the new [view], or the
+/// fit of the new world without one, applies), the time scale and the pause (a world the
+/// runtime guard stopped gives way to one that runs). Throws, leaving `shown` untouched, when
+/// a frame of the new world would take too many ticks (check_frame_ticks).
+void swap_in(ShownWorld& shown, LoadedWorld loaded, const SceneOptions& o) {
   const Session& old = *shown.session;
   const Renderer& r = old.renderer();
+  const Scene& scene = loaded.scene;
   SessionSettings settings = session_settings(scene, r.width(), r.height());
   settings.max_frame_time = shown.session->loop().settings().max_frame_time;  // as --fps set it
+  check_frame_ticks(settings.max_frame_time, scene.world.dt, fps_of(settings), dt_source(o, scene),
+                    dt_fix(o));
   check_frame_ticks(settings.max_frame_time, scene.world.dt, fps_of(settings), dt_source(o, scene),
                     dt_fix(o));
   if (scene.view.center == shown.scene.view.center && scene.view.width == shown.scene.view.width) {
     settings.view_center = r.camera().center;
     settings.view_width = r.camera().width;
   }
-  auto next = std::make_unique<Session>(checked_world_def(scene), settings);
+  auto next = std::make_unique<Session>(std::move(loaded.def), std::move(loaded.sim), settings);
   FixedStepLoop& loop = shown.session->loop();
   next->loop().set_time_scale(loop.time_scale());
   next->loop().set_paused(loop.paused() && !old.simulation().fault());
-  show(shown, std::move(scene), std::move(next));
+  show(shown, std::move(loaded.scene), std::move(next), loaded.plan);
 }
 
-/// What the window does when the scene file was saved: reloads it (saying so on standard
-/// output), or keeps the world running and says why, in the HUD and once on standard error:
-/// the located scene error of a bad edit, or that a session being recorded keeps its world.
-void on_scene_saved(ShownWorld& shown, const ViewOptions& o, bool recording) {
+/// What the window does when the scene file was saved: starts loading it (or, while a load
+/// runs, stops that one to load the newer save after it), or, while recording, keeps the world
+/// and says why, in the HUD and once on standard error.
+void on_scene_saved(ShownWorld& shown, Reload& reload, const ViewOptions& o, bool recording) {
   Session& s = *shown.session;
-  const std::string file = o.scene.scene;
-  const std::uint64_t tick = s.simulation().tick();
-  const int width = s.renderer().width();
-  const float scale = s.renderer().hud_text_scale();
   if (recording) {
+    const std::string& file = o.scene.scene;
     std::fprintf(stderr,
                  "fixstep: %s changed: not reloaded while recording (--record); the session "
                  "keeps the world the recording started with\n",
                  file.c_str());
     s.set_status_lines(reload_error_lines(
         "NOT RELOADED while recording (--record)",
-        fmt::format("{} changed on disk; quit and view it again to see the edit", file), width,
-        scale));
+        fmt::format("{} changed on disk; quit and view it again to see the edit", file),
+        s.renderer().width(), s.renderer().hud_text_scale()));
     return;
   }
+  if (reload.load) {
+    reload.load->cancel();
+    reload.again = true;
+    return;
+  }
+  reload.load.emplace(o.scene);
+  fmt::print(
+      "loading {} (at tick {}): the window shows the world before the save until it is "
+      "ready\n",
+      o.scene.scene, s.simulation().tick());
+  std::fflush(stdout);
+}
+
+/// Each frame while a reload runs: its progress in the HUD; once it has ended, the new world
+/// shown (said on standard output), or the located error of a bad edit in the HUD and once on
+/// standard error while the last good world keeps running.
+void follow_reload(ShownWorld& shown, Reload& reload, const ViewOptions& o) {
+  Session& s = *shown.session;
+  const std::string& file = o.scene.scene;
+  const int width = s.renderer().width();
+  const float scale = s.renderer().hud_text_scale();
+  if (!reload.load->ready()) {
+    s.set_status_lines(loading_lines(file, describe(reload.load->status()), width, scale));
+    return;
+  }
+  if (reload.again) {  // a newer save stopped this load (or finds what it made stale)
+    std::fprintf(stderr, "fixstep: %s was saved again while it loaded: that load was %s\n",
+                 file.c_str(), reload.load->stop() ? "dropped" : "stopped");
+    reload.load.reset();
+    reload.load.emplace(o.scene);
+    reload.again = false;
+    return;
+  }
+  const std::uint64_t tick = s.simulation().tick();
   try {
-    reload(shown, o.scene);
+    LoadedWorld loaded = reload.load->take();
+    print_warnings(loaded, o.scene);
+    s.set_status_lines({});
+    swap_in(shown, std::move(loaded), o.scene);
   } catch (const std::exception& e) {
+    reload.load.reset();
     std::fprintf(stderr,
                  "fixstep: reload failed: %s; the last good world keeps running (tick %llu)\n",
                  e.what(), static_cast<unsigned long long>(tick));
@@ -145,6 +190,7 @@ void on_scene_saved(ShownWorld& shown, const ViewOptions& o, bool recording) {
         reload_error_lines("RELOAD FAILED - the last good world runs on", e.what(), width, scale));
     return;
   }
+  reload.load.reset();
   const std::size_t n = shown.session->simulation().body_count();
   fmt::print("reloaded {}: {} bod{}, definition hash {}; tick reset to 0 (was {})\n", file, n,
              n == 1 ? "y" : "ies", hex_hash(definition_hash(shown.session->definition())), tick);
@@ -158,19 +204,21 @@ int view_command(const ViewOptions& o) {
   // The watch takes the file's stamp before the file is read: a save during the load is seen.
   std::optional<FileWatch> watch;
   if (!o.no_watch) watch.emplace(o.scene.scene);
-  Scene scene = load_with_overrides(o.scene);
+  LoadedWorld first = load_first(o.scene);
   // --fps: a virtual clock, not clamped (frames exactly 1/fps apart; issue 21, class 9).
   const double frame_time = std::max(SessionSettings{}.max_frame_time, o.fps ? 1.0 / *o.fps : 0.0);
-  check_frame_ticks(frame_time, scene.world.dt, o.fps, dt_source(o.scene, scene), dt_fix(o.scene));
+  check_frame_ticks(frame_time, first.scene.world.dt, o.fps, dt_source(o.scene, first.scene),
+                    dt_fix(o.scene));
   const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.
-  Window window = open_window(fmt::format("fixstep - {}", scene.file), width, height,
+  Window window = open_window(fmt::format("fixstep - {}", first.scene.file), width, height,
                               "fixstep render SCENE --out DIR");
   ShownWorld shown;
-  SessionSettings settings = session_settings(scene, width, height);
+  SessionSettings settings = session_settings(first.scene, width, height);
   settings.max_frame_time = frame_time;
-  auto first = std::make_unique<Session>(checked_world_def(scene), settings);
-  show(shown, std::move(scene), std::move(first));
+  show(shown, std::move(first.scene),
+       std::make_unique<Session>(std::move(first.def), std::move(first.sim), settings), first.plan);
+  Reload reload;
 
   InputSampler sampler;  // window events -> one input per tick
   // --record: every tick's input and state hash, following the kept timeline through rewinds
@@ -187,7 +235,10 @@ int view_command(const ViewOptions& o) {
   WindowEvents ev;
   for (std::int64_t frame = 0; o.frames == 0 || frame < o.frames; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
-    if (watch && watch->changed(frame_start)) on_scene_saved(shown, o, recorder.has_value());
+    if (watch && watch->changed(frame_start)) {
+      on_scene_saved(shown, reload, o, recorder.has_value());
+    }
+    if (reload.load) follow_reload(shown, reload, o);
     Session& session = *shown.session;
     RewindBuffer& rewind = shown.rewind;
     PointerDrag& drag = shown.drag;
@@ -228,6 +279,11 @@ int view_command(const ViewOptions& o) {
     window.present(session.renderer().pixels());
     if (!o.fps) std::this_thread::sleep_until(frame_start + frame_budget);
   }
+  if (reload.load && !reload.load->stop()) {  // at its next poll: within about a second
+    std::fprintf(stderr, "fixstep: quit while %s loaded: the load was stopped\n",
+                 o.scene.scene.c_str());
+  }
+  reload.load.reset();
   const Session& session = *shown.session;
   fmt::print("{} driver={}\n", describe(shown.scene), window.driver());
   fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));

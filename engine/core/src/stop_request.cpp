@@ -9,6 +9,7 @@ namespace {
 
 std::atomic<int> pending_stop{0};
 static_assert(std::atomic<int>::is_always_lock_free, "request_stop must be async-signal-safe");
+thread_local const std::atomic<int>* thread_stop = nullptr;  ///< the innermost StopScope's
 
 }  // namespace
 
@@ -21,7 +22,8 @@ void request_stop(int signal) noexcept {
 }
 
 int stop_requested() noexcept {
-  return pending_stop.load(std::memory_order_relaxed);
+  if (const int signal = pending_stop.load(std::memory_order_relaxed)) return signal;
+  return thread_stop ? thread_stop->load(std::memory_order_relaxed) : 0;
 }
 
 void clear_stop_request() noexcept {
@@ -30,6 +32,14 @@ void clear_stop_request() noexcept {
 
 void throw_if_stop_requested() {
   if (const int signal = stop_requested(); signal != 0) throw StopRequested(signal);
+}
+
+StopScope::StopScope(const std::atomic<int>& flag) noexcept : previous_(thread_stop) {
+  thread_stop = &flag;
+}
+
+StopScope::~StopScope() {
+  thread_stop = previous_;
 }
 
 }  // namespace fixstep

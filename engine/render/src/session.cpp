@@ -151,6 +151,19 @@ LoopSettings loop_settings(double dt, double max_frame_time) {
       .dt = dt, .max_frame_time = max_frame_time, .max_ticks_per_frame = static_cast<int>(ticks)};
 }
 
+/// `sim`, checked to be a fresh build of `def` (Session's second constructor).
+Simulation& built(Simulation& sim, const WorldDef& def) {
+  if (sim.tick() != 0 || sim.body_count() != def.bodies.size() ||
+      !sim.settings().track_dissipation) {
+    throw std::invalid_argument(fmt::format(
+        "Session: the simulation given is not a fresh build of its definition (tick {}, {} of "
+        "{} bodies, dissipation {}tracked)",
+        sim.tick(), sim.body_count(), def.bodies.size(),
+        sim.settings().track_dissipation ? "" : "not "));
+  }
+  return sim;
+}
+
 }  // namespace
 
 Session::Session(WorldDef def, const SessionSettings& settings)
@@ -159,6 +172,19 @@ Session::Session(WorldDef def, const SessionSettings& settings)
       sim_(std::make_unique<Simulation>(make_simulation(tracked(def_)))),
       loop_(loop_settings(def_.settings.dt, settings.max_frame_time)),
       renderer_(settings.width, settings.height) {
+  start(settings);
+}
+
+Session::Session(WorldDef def, Simulation sim, const SessionSettings& settings)
+    : def_(std::move(def)),
+      title_(settings.title),
+      sim_(std::make_unique<Simulation>(std::move(built(sim, tracked(def_))))),
+      loop_(loop_settings(def_.settings.dt, settings.max_frame_time)),
+      renderer_(settings.width, settings.height) {
+  start(settings);
+}
+
+void Session::start(const SessionSettings& settings) {
   sim_->set_keep_previous(true);
   initial_energy_ = sim_->energy().total();
   Camera camera = fit_camera(def_, settings.width, settings.height);

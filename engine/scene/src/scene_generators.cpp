@@ -4,6 +4,8 @@
 #include <cstdint>
 
 #include "fixstep/det_math.hpp"
+#include "fixstep/stop_request.hpp"
+#include "fixstep/work_progress.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {
@@ -46,6 +48,7 @@ class Generator {
               fmt::format("the scene would have {} bodies; at most {} are allowed",
                           scene_.bodies.size() + count, max_scene_bodies));
     }
+    bodies_target_ = scene_.bodies.size() + count;
     scene_.bodies.reserve(scene_.bodies.size() + count);
     scene_.body_lines.reserve(scene_.bodies.size() + count);
     names_.index.reserve(names_.index.size() + count);
@@ -58,6 +61,7 @@ class Generator {
               fmt::format("the scene would have {} links; at most {} are allowed",
                           scene_.links.size() + count, max_scene_links));
     }
+    links_target_ = scene_.links.size() + count;
     scene_.links.reserve(scene_.links.size() + count);
     scene_.link_lines.reserve(scene_.links.size() + count);
   }
@@ -130,6 +134,7 @@ class Generator {
     }
     scene_.bodies.push_back(std::move(def));
     scene_.body_lines.push_back(t_.source().begin.line);
+    checkpoint("body", scene_.bodies.size(), bodies_target_);
   }
 
   /// Appends a link between bodies a and b (scene indices) with `spring`, whose rest length is
@@ -154,6 +159,7 @@ class Generator {
     scene_.links.push_back(BodyLink{a, b, spring});
     scene_.link_lines.push_back(t_.source().begin.line);
     scene_.link_keys.push_back(spec.path);
+    checkpoint("link", scene_.links.size(), links_target_);
   }
 
   /// Pins body i at its starting position with an anchored spring (rest length 0).
@@ -203,12 +209,22 @@ class Generator {
   }
 
  private:
+  /// Every 2^16 items (a few ms): a pending stop request throws StopRequested, and the progress
+  /// ("generating the scene: body 65536/1000000") goes to the thread's WorkProgressScope.
+  static void checkpoint(std::string_view unit, std::size_t done, std::size_t total) {
+    if (done % 65536 != 0) return;
+    throw_if_stop_requested();
+    if (total > 0) report_work_progress("generating the scene", unit, done, total);
+  }
+
   Reader& r_;
   Scene& scene_;
   BodyNames& names_;
   const toml::table& t_;
   std::string path_;
   const toml::node* name_node_ = nullptr;
+  std::size_t bodies_target_ = 0,
+              links_target_ = 0;  ///< the scene's counts once this table is done
 };
 
 /// The link spring of a generator's equal bodies of mass m: the frequency form acts on the

@@ -7,8 +7,13 @@
 // A tick that throws StopRequested is abandoned half-way: the world's state is then neither the
 // state before the tick nor after it. Discard the world or restore a snapshot taken before the
 // tick; the outputs of the ticks completed before it (CSV rows, recorded ticks, frames) are whole.
+//
+// A thread's own work can also be stopped alone: a StopScope makes the calling thread's polls see
+// a flag of its owner's too (a background load that the program cancels while its main thread
+// goes on stepping a world: a process-wide request would stop that as well).
 #pragma once
 
+#include <atomic>
 #include <stdexcept>
 
 namespace fixstep {
@@ -35,5 +40,20 @@ void clear_stop_request() noexcept;
 
 /// Throws StopRequested when a stop is pending; otherwise does nothing.
 void throw_if_stop_requested();
+
+/// While this lives, stop_requested() on the thread that made it returns `flag`'s value when no
+/// process-wide request is pending (so throw_if_stop_requested() throws once it is non-zero):
+/// another thread stops this thread's work by storing a non-zero value in `flag`, which must
+/// outlive the scope. Scopes nest (the innermost flag is seen).
+class StopScope {
+ public:
+  explicit StopScope(const std::atomic<int>& flag) noexcept;
+  ~StopScope();
+  StopScope(const StopScope&) = delete;
+  StopScope& operator=(const StopScope&) = delete;
+
+ private:
+  const std::atomic<int>* previous_;
+};
 
 }  // namespace fixstep

@@ -54,6 +54,12 @@ class Session {
   /// or unstable def (see make_simulation), for a max_frame_time that is not finite and > 0 or
   /// is more than max_frame_ticks ticks, RenderError when rendering cannot start.
   explicit Session(WorldDef def, const SessionSettings& settings = {});
+  /// As above, with the world already built: `sim` must be make_simulation(def) at tick 0, made
+  /// with def.settings.track_dissipation on (so that a large world can be built on another
+  /// thread, e.g. while a window keeps showing the previous one; the renderer is made here, on
+  /// the calling thread). Throws std::invalid_argument when sim is past tick 0, has another body
+  /// count than def, or does not track dissipation; as above otherwise.
+  Session(WorldDef def, Simulation sim, const SessionSettings& settings = {});
 
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets
   /// `input` (see TickInput).
@@ -150,6 +156,8 @@ class Session {
   [[nodiscard]] std::size_t planned_hud_lines() const;
   /// The automatic view: refits the world below a HUD of `lines` lines when more than reserved.
   void reserve_hud(std::size_t lines);
+  /// The constructors' common part, once sim_ is built.
+  void start(const SessionSettings& settings);
   /// The program took the camera: the view is no longer automatic.
   void take_view() { auto_view_ = false; }
 
