@@ -251,9 +251,11 @@ int run_command(const RunOptions& o) {
       o.steps ? fmt::format("--steps {}", *o.steps)
               : fmt::format("--duration {:g} (at dt = {:g} s)", *o.duration, scene.world.dt));
   if (o.sync_test) {  // each tick re-simulates K more
-    check_command_work(
-        ticks * (1 + static_cast<std::uint64_t>(*o.sync_test)), work,
-        fmt::format("--sync-test {} re-simulating {} ticks per tick", *o.sync_test, *o.sync_test));
+    check_command_work(ticks * (1 + static_cast<std::uint64_t>(*o.sync_test)), work,
+                       fmt::format("{} with --sync-test {} (every tick re-simulates {} more)",
+                                   o.steps ? fmt::format("--steps {}", *o.steps)
+                                           : fmt::format("--duration {:g}", *o.duration),
+                                   *o.sync_test, *o.sync_test));
   }
   if (o.record) check_recording_size(ticks, o.hash_every, *o.record);
   Simulation sim = make_simulation(checked_world_def(scene));

@@ -202,21 +202,21 @@ std::string remedy(int min_substeps, double max_step, int substeps) {
 
 /// explain_fault of a contact cap (StateFault::cap set).
 std::string explain_cap(const WorldSettings& settings, const StateFault& f) {
-  const std::string head = fmt::format("contacts at tick {} (t = {:g} s): {} = {:g} reached",
-                                       f.tick, f.time, f.cap, f.value);
+  const std::string head =
+      fmt::format("body[{}] \"{}\": contacts at tick {} (t = {:g} s): {} = {:.0f} reached", f.index,
+                  f.name, f.tick, f.time, f.cap, f.value);
   if (f.cap == "max_candidate_pairs") {
     return fmt::format(
         "{}: the broadphase found more candidate pairs among {}, so the tick's disc contacts "
-        "were not resolved (body[{}] \"{}\"). Likely cause: discs moving many radii per tick "
-        "through a crowd of discs: a smaller dt (now {:g} s), slower or fewer discs",
-        head, f.with, f.index, f.name, settings.dt);
+        "were not resolved. Likely cause: discs moving many radii per tick through a crowd of "
+        "discs: a smaller dt (now {:g} s), slower or fewer discs",
+        head, f.with, settings.dt);
   }
   return fmt::format(
-      "{}: the impact of body[{}] \"{}\" with {} was not resolved. Likely cause: fast bodies "
-      "driven into one another (a row of discs into a peg) or a body bouncing between close "
-      "planes, each impact predicting again: a smaller dt (now {:g} s), slower bodies or fewer "
-      "in a row",
-      head, f.index, f.name, f.with, settings.dt);
+      "{}: its impact with {} was not resolved. Likely cause: fast bodies driven into one "
+      "another (a row of discs into a peg) or a body bouncing between close planes, each impact "
+      "predicting again: a smaller dt (now {:g} s), slower bodies or fewer in a row",
+      head, f.with, settings.dt);
 }
 
 /// The likely cause of a kinematic body leaving the range: it moves at its velocity, which

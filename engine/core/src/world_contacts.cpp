@@ -281,9 +281,9 @@ std::size_t World<Real>::resolve_contacts() {
       if (i >= max_impacts) {
         if (!bounces(m, first, *hit, dt)) break;  // settling into a corner: the next ticks
         again += planes_.size();
-        if (again > max_tick_predictions) {  // cold: the bounce is left unresolved
+        if (again > max_tick_predictions(c.body.size())) {  // cold: the bounce is unresolved
           if (!fault_) {
-            record_cap_fault(j, "max_tick_predictions", max_tick_predictions,
+            record_cap_fault(j, "max_tick_predictions", max_tick_predictions(c.body.size()),
                              fmt::format("plane[{}] (the bounce due at {:g} s into the tick)",
                                          hit - planes_.data(), m.t + first));
           }

@@ -160,8 +160,8 @@ struct NetworkStability {
 /// Euler on an undamped spring (unstable at every step), or, when the body's step is stable, a
 /// force that drives the motion (gravity, a constant force, a push) or extreme starting values;
 /// for a kinematic body, its velocity. A contact cap (fault.cap set) is explained as
-///   "contacts at tick N (t = T s): max_tick_predictions = 67108864 reached: the impact of
-///    body[i] \"a\" with body[j] \"b\" ... was not resolved. Likely cause: ..."
+///   "body[i] \"a\": contacts at tick N (t = T s): max_tick_predictions = 16777216 reached: its
+///    impact with body[j] \"b\" (...) was not resolved. Likely cause: ..."
 [[nodiscard]] std::string explain_fault(std::span<const BodyDef> bodies,
                                         std::span<const BodyLink> links,
                                         const WorldSettings& settings, const StateFault& fault);
