@@ -16,39 +16,28 @@ Progress::Progress(std::string what, std::string unit, std::uint64_t total, bool
     : what_(std::move(what)),
       unit_(std::move(unit)),
       total_(total),
-      shown_(enabled && total > 0 && isatty(fileno(stderr)) == 1),
       start_(std::chrono::steady_clock::now()),
-      last_(start_) {}
+      line_(enabled && total > 0) {}
 
 Progress::~Progress() {
   finish();
 }
 
 void Progress::update(std::uint64_t done) {
-  if (!shown_) return;
+  if (!line_.due() && !(line_.shown() && done >= total_)) return;
   const auto now = std::chrono::steady_clock::now();
-  if (now - last_ < redraw_every && done < total_) return;
-  last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
   const double left = rate > 0.0 ? static_cast<double>(total_ - done) / rate : 0.0;
-  // "\r" back to the line's start, "\x1b[K" erases what an earlier, longer line left.
   // "ticks/s", "bodies/s"
   const std::string units =
       unit_.ends_with('y') ? unit_.substr(0, unit_.size() - 1) + "ies" : unit_ + "s";
-  std::fputs(fmt::format("\r{}: {} {}/{} ({} %)  {:.1f} {}/s  {:.1f} s left\x1b[K", what_, unit_,
-                         done, total_, done * 100 / total_, rate, units, left)
-                 .c_str(),
-             stderr);
-  std::fflush(stderr);
-  drawn_ = true;
+  line_.draw(fmt::format("{}: {} {}/{} ({} %)  {:.1f} {}/s  {:.1f} s left", what_, unit_, done,
+                         total_, done * 100 / total_, rate, units, left));
 }
 
 void Progress::finish() {
-  if (!drawn_) return;
-  std::fputs("\r\x1b[K", stderr);
-  std::fflush(stderr);
-  drawn_ = false;
+  line_.finish();
 }
 
 WorkProgressLine::WorkProgressLine(bool enabled)
@@ -69,11 +58,14 @@ StatusLine::~StatusLine() {
   finish();
 }
 
-void StatusLine::show(const std::string& text) {
+bool StatusLine::due() const {
+  return shown_ && (!drawn_ || std::chrono::steady_clock::now() - last_ >= redraw_every);
+}
+
+void StatusLine::draw(const std::string& text) {
   if (!shown_) return;
-  const auto now = std::chrono::steady_clock::now();
-  if (drawn_ && now - last_ < redraw_every) return;
-  last_ = now;
+  last_ = std::chrono::steady_clock::now();
+  // "\r" back to the line's start, "\x1b[K" erases what an earlier, longer line left.
   std::fputs(fmt::format("\r{}\x1b[K", text).c_str(), stderr);
   std::fflush(stderr);
   drawn_ = true;

@@ -11,6 +11,34 @@
 
 namespace fixstep::cli {
 
+/// A line of free text on standard error, rewritten in place at most every 0.1 s, while some
+/// work without a count goes on (e.g. "loading s.toml: building the world, 2.1 s"). Nothing when
+/// standard error is not a terminal or when not enabled (--quiet).
+class StatusLine {
+ public:
+  explicit StatusLine(bool enabled);
+  ~StatusLine();
+  StatusLine(const StatusLine&) = delete;
+  StatusLine& operator=(const StatusLine&) = delete;
+  /// Shows `text` in place of the line shown before (unless that was less than 0.1 s ago).
+  void show(const std::string& text) {
+    if (due()) draw(text);
+  }
+  /// Shows `text` now, however recently the line was drawn.
+  void draw(const std::string& text);
+  /// Whether the line is shown (enabled and a terminal).
+  [[nodiscard]] bool shown() const { return shown_; }
+  /// Whether show() would draw now: shown, and not drawn within the last 0.1 s.
+  [[nodiscard]] bool due() const;
+  /// Erases the line (also done by the destructor).
+  void finish();
+
+ private:
+  bool shown_;
+  bool drawn_ = false;
+  std::chrono::steady_clock::time_point last_{};
+};
+
 class Progress {
  public:
   /// `what` names the command ("render"), `unit` the item counted ("frame", "tick"), `total`
@@ -26,14 +54,13 @@ class Progress {
   void finish();
 
   /// Whether the line is shown (enabled and a terminal).
-  [[nodiscard]] bool shown() const { return shown_; }
+  [[nodiscard]] bool shown() const { return line_.shown(); }
 
  private:
   std::string what_, unit_;
   std::uint64_t total_;
-  bool shown_;
-  bool drawn_ = false;
-  std::chrono::steady_clock::time_point start_, last_;
+  std::chrono::steady_clock::time_point start_;
+  StatusLine line_;
 };
 
 /// The engine's long work that a program does not loop over itself (a scene's generators, the
@@ -54,26 +81,6 @@ class WorkProgressLine {
   std::uint64_t total_ = 0;
   std::optional<Progress> line_;
   WorkProgressScope scope_;
-};
-
-/// A line of free text on standard error, rewritten in place at most every 0.1 s, while some
-/// work without a count goes on (e.g. "loading s.toml: building the world, 2.1 s"). Nothing when
-/// standard error is not a terminal or when not enabled (--quiet).
-class StatusLine {
- public:
-  explicit StatusLine(bool enabled);
-  ~StatusLine();
-  StatusLine(const StatusLine&) = delete;
-  StatusLine& operator=(const StatusLine&) = delete;
-  /// Shows `text` in place of the line shown before (unless that was less than 0.1 s ago).
-  void show(const std::string& text);
-  /// Erases the line (also done by the destructor).
-  void finish();
-
- private:
-  bool shown_;
-  bool drawn_ = false;
-  std::chrono::steady_clock::time_point last_{};
 };
 
 }  // namespace fixstep::cli
