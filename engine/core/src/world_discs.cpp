@@ -166,7 +166,7 @@ void World<Real>::resolve_discs() {
       with = fmt::format("{} discs (the largest swept box is this disc's, radius {:g} m)",
                          discs.size(), r);
     }
-    record_cap_fault(body, hit->cap, hit->limit, std::move(with));
+    record_cap_fault(body, hit->cap, hit->limit, with);
   }
   const auto lost = dc.lost();
   const auto external = dc.external();

@@ -315,7 +315,7 @@ void World<Real>::record_fault() {
 // Cold path: a contact cap (limits.hpp) stopped part of this tick's contact work.
 template <class Real>
 void World<Real>::record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit,
-                                   std::string with) {
+                                   const std::string& with) {
   fault_ = StateFault{.index = body,
                       .name = names_[body],
                       .tick = tick_,
@@ -323,7 +323,7 @@ void World<Real>::record_cap_fault(std::size_t body, const char* cap, std::uint6
                       .field = "contacts",
                       .value = static_cast<double>(limit),
                       .cap = cap,
-                      .with = std::move(with)};
+                      .with = with};
 }
 
 // world.hpp declares `extern template class World<Real>`, so every member defined in this
@@ -336,7 +336,7 @@ void World<Real>::record_cap_fault(std::size_t body, const char* cap, std::uint6
   template std::size_t World<Real>::bytes_per_body_step();                                      \
   template void World<Real>::record_fault();                                                    \
   template void World<Real>::record_cap_fault(std::size_t, const char*, std::uint64_t,          \
-                                              std::string);                                     \
+                                              const std::string&);                              \
   template const Real* World<Real>::damping_decay(double);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

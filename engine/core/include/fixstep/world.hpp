@@ -469,7 +469,8 @@ class World {
   void require(Entity e) const;
   void rebuild_terms();
   void record_fault();
-  void record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit, std::string with);
+  void record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit,
+                        const std::string& with);
   template <class Add>
   void for_each_energy(Add&& add) const;
 
