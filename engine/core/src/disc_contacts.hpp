@@ -13,12 +13,16 @@
 //     is the first root of the quartic |d(s)|² - (r_a + r_b)² while approaching (disc_toi.hpp).
 //     Impacts are resolved in time order (ties by pair order) with Newton's restitution and a
 //     Coulomb-limited friction impulse on the linear velocities, and the pairs of the two discs are
-//     predicted again from that time on, every impact of the tick (none is dropped: a pile's
-//     chatter reaches hundreds of impacts of one disc in a tick), up to max_tick_predictions:
-//     past it the tick stops resolving impacts and reports the cap through cap_hit(). An impact
-//     that would bounce back by less than one tick of the pair's relative normal acceleration (e
-//     |v_n|
-//     <= |c_n| dt) is left to phase 2.
+//     predicted again from that time on. Past max_impacts impacts of either disc in the tick, a
+//     pair with e < 1 that would end the tick overlapping is handed to the resting solver, which
+//     stops it approaching (e = 0, the limit of inelastic collapse: with e < 1 three or more
+//     discs can collide infinitely often in finite time, McNamara & Young, Phys. Fluids A 4,
+//     496 (1992); a packed pile's first tick does); every other impact is resolved: a pair that
+//     would pass through, and every elastic one (e = 1 gives finitely many collisions). The
+//     predictions after impacts count against max_tick_predictions (limits.hpp): past it the
+//     tick stops resolving impacts and reports the cap through cap_hit(). An impact that would
+//     bounce back by less than one tick of the pair's relative normal acceleration
+//     (e |v_n| <= |c_n| dt) is left to phase 2.
 //  2. Resting contact (disc_rest.cpp). Pairs touching at the end of the tick, and discs on
 //     planes, are solved together by sequential impulses (Gauss–Seidel, warm-started from the
 //     last tick's impulses) so that no pair approaches; each impulse acts as a constant
@@ -129,6 +133,9 @@ class DiscContacts {
   [[nodiscard]] std::span<const RestContact> touching() const { return contacts_; }
   /// The impacts of the last resolve(), in order.
   [[nodiscard]] std::span<const Impact> impacts() const { return impact_log_; }
+  /// Impacts of a disc in a tick past which its inelastic pairs that end the tick overlapping
+  /// are left to the resting solver.
+  static constexpr int max_impacts = 8;
   /// A cap of limits.hpp that the last resolve() reached, or null: the work it stopped is
   /// named in World::fault().
   struct CapHit {
@@ -156,6 +163,7 @@ class DiscContacts {
   bool find_candidates(const Tick& tick, ContactStats& stats);
   void run_events(const Tick& tick, ContactStats& stats);
   [[nodiscard]] std::uint32_t largest_box() const;
+  [[nodiscard]] bool handed_over(std::uint32_t pair, double dt) const;
   void predict(std::uint32_t pair, double now, double dt);
   void impact(std::uint32_t pair, double now, double dt);
   // phase 2 (disc_rest.cpp)
@@ -177,7 +185,7 @@ class DiscContacts {
   std::vector<SweptBox> boxes_;
   std::vector<std::uint8_t> dynamic_;
   std::vector<DiscPair> pairs_;
-  std::vector<std::uint32_t> offset_, incident_, stamp_;
+  std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
   std::vector<DiscEvent> heap_;
   std::vector<Impact> impact_log_;

@@ -55,6 +55,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   for (std::size_t k = 0; k < n; ++k) dynamic_[k] = discs_[k].dynamic;
   offset_.assign(n + 1, 0);
   stamp_.assign(n, 0);
+  impacts_.assign(n, 0);
   changed_.assign(n, 0);
   warm_.clear();
 }
@@ -101,7 +102,7 @@ void DiscContacts<Real>::build_motions(const Tick& tick) {
     extent(m.py(0.0), m.uy - m.ay * m.t, m.ay, dt, pad, b.min_y, b.max_y);
     b.min_x = std::min(b.min_x, x0 - pad), b.max_x = std::max(b.max_x, x0 + pad);
     b.min_y = std::min(b.min_y, y0 - pad), b.max_y = std::max(b.max_y, y0 + pad);
-    stamp_[k] = 0, changed_[k] = 0;
+    stamp_[k] = 0, impacts_[k] = 0, changed_[k] = 0;
     lost_[k] = 0, external_[k] = 0;
   }
 }
@@ -218,7 +219,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   mb.ux -= db.inv_mass * jx, mb.uy -= db.inv_mass * jy;
   for (const std::uint32_t k : {a, b}) {
     if (!discs_[k].dynamic) continue;
-    ++stamp_[k], changed_[k] = 1;
+    ++stamp_[k], ++impacts_[k], changed_[k] = 1;
   }
 }
 
@@ -236,6 +237,17 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 }
 
 template <class Real>
+bool DiscContacts<Real>::handed_over(std::uint32_t pair, double dt) const {
+  const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
+  if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return false;
+  if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return false;
+  const DiscMotion &ma = motion_[a], &mb = motion_[b];
+  const double gap =
+      length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - (discs_[a].radius + discs_[b].radius);
+  return gap <= 0.0;  // it ends the tick overlapping: the resting solver stops it approaching
+}
+
+template <class Real>
 void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
   heap_.clear();
@@ -249,7 +261,8 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
     heap_.pop_back();
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
-    if (again > cap) {  // an impact due that the cap leaves unresolved
+    if (handed_over(ev.pair, dt)) continue;  // the resting solver's (see disc_contacts.hpp)
+    if (again > cap) {                       // an impact due that the cap leaves unresolved
       cap_ = CapHit{"max_tick_predictions", cap, a, b, ev.time};
       stats.capped = 1;
       break;
@@ -294,9 +307,9 @@ template <class Real>
 std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(x0_) + b(y0_) + b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) +
-         b(dynamic_) + b(pairs_) + b(offset_) + b(incident_) + b(stamp_) + b(changed_) + b(heap_) +
-         b(impact_log_) + b(contacts_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) +
-         b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_);
+         b(dynamic_) + b(pairs_) + b(offset_) + b(incident_) + b(stamp_) + b(impacts_) +
+         b(changed_) + b(heap_) + b(impact_log_) + b(contacts_) + b(warm_) + b(ex_) + b(ey_) +
+         b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \
@@ -312,6 +325,7 @@ std::size_t DiscContacts<Real>::bytes() const {
   template void DiscContacts<Real>::impact(std::uint32_t, double, double);                         \
   template void DiscContacts<Real>::run_events(const Tick&, ContactStats&);                        \
   template std::uint32_t DiscContacts<Real>::largest_box() const;                                  \
+  template bool DiscContacts<Real>::handed_over(std::uint32_t, double) const;                      \
   template void DiscContacts<Real>::resolve(const Tick&, ContactStats&);                           \
   template std::size_t DiscContacts<Real>::bytes() const;
 FIXSTEP_INSTANTIATE(float)
