@@ -64,8 +64,8 @@ inline constexpr std::uint64_t max_sync_test_bytes = std::uint64_t{2} << 30;
 /// Most times of impact one tick of a world of `bodies` discs (or plane colliders) may predict
 /// again after impacts: a disc pair's after an impact of either disc, and a body's plane tests
 /// after its 8th plane event of the tick (one per plane). max(2^24, 256 n): under a second of
-/// work, or 256 per disc. The worst tick of the shipped ball_pit (1008 discs poured into a
-/// pile, e = 0.3) predicts 106 000 (105 a disc); a row of hundreds of fast discs driven into a
+/// work, or 256 per disc. Even resolving every impact, the worst tick of the shipped ball_pit
+/// (1008 discs poured into a pile) predicts 106 000; a row of hundreds of fast discs driven into a
 /// peg, or a disc bouncing between two planes millions of times a tick, reaches the cap. Past
 /// it World::step records a StateFault naming this cap, the tick and the bodies of the impact
 /// it could not resolve, and ContactStats::capped counts it. (A body coming to rest in a corner
