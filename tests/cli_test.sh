@@ -37,17 +37,7 @@ awk -F, '$1 == 100 && $3 == "vacuum" { ok = ($4 - 15 < 1e-9 && 15 - $4 < 1e-9 &&
 # A ball dropped from 3 m onto a static peg (both r = 0.5 m) touches it when it has fallen 2 m,
 # at t = sqrt(4/9.81) = 0.639 s, tick 64 at dt = 0.01 s: its CSV exact columns are filled up to
 # the tick before and empty from the first touch on, and the summary claims no exact_error.
-peg='[world]
-dt = 0.01
-
-[contacts]
-
-[[body]]
-name = "peg"
-type = "static"
-position = [0.0, 0.0]
-radius = 0.5
-'
+peg=$(cat "$src/tests/scenes/static_peg.toml")  # a static peg; each scene adds a body
 printf '%s\n[[body]]\nname = "ball"\nmass = 1.0\nposition = [0.0, 3.0]\nradius = 0.5\ngravity = [0.0, -9.81]\n' \
   "$peg" >"$work/drop.toml"
 "$fixstep" run "$work/drop.toml" --steps 100 --csv "$work/drop.csv" >"$work/drop.out" 2>&1

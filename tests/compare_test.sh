@@ -51,17 +51,7 @@ awk -F, 'NR == 2 { a = $10 } NR == 3 { b = $10 } END { exit !(a > 100 * b) }' "$
 # 2 s compared: no error against exact from then on, and the tick is `run`'s. Beside a ball
 # resting on the peg from tick 0, a free body keeps its exact solution: the tile's error is the
 # free body's alone, equal to `run`'s exact_error to the digit.
-peg='[world]
-dt = 0.01
-
-[contacts]
-
-[[body]]
-name = "peg"
-type = "static"
-position = [0.0, 0.0]
-radius = 0.5
-'
+peg=$(cat "$src/tests/scenes/static_peg.toml")  # a static peg; each scene adds a body
 printf '%s\n[[body]]\nname = "ball"\nmass = 1.0\nposition = [0.0, 3.0]\nradius = 0.5\ngravity = [0.0, -9.81]\n' \
   "$peg" >"$work/drop.toml"
 "$fixstep" run "$work/drop.toml" --steps 100 >"$work/drop_run.out" 2>&1
