@@ -63,13 +63,13 @@ inline constexpr std::uint64_t max_sync_test_bytes = std::uint64_t{2} << 30;
 [[nodiscard]] std::uint64_t max_candidate_pairs(std::uint64_t discs);
 /// Most times of impact one tick of a world of `bodies` discs (or plane colliders) may predict
 /// again after impacts: a disc pair's after an impact of either disc, and a body's plane tests
-/// after its 8th plane event of the tick (one per plane). max(2^24, 256 n): under a second of
-/// work, or 256 per disc. Even resolving every impact, the worst tick of the shipped ball_pit
-/// (1008 discs poured into a pile) predicts 106 000; a row of hundreds of fast discs driven into a
-/// peg, or a disc bouncing between two planes millions of times a tick, reaches the cap. Past
-/// it World::step records a StateFault naming this cap, the tick and the bodies of the impact
-/// it could not resolve, and ContactStats::capped counts it. (A body coming to rest in a corner
-/// of two planes settles over ticks: that is not an impact and is not counted.)
+/// after its 8th plane event of the tick (one per plane). max(2^24, 256 n). Piles and gases
+/// stay far below it (docs/ROBUSTNESS.md, "No physics dropped by a cap"); a row of hundreds of
+/// fast elastic discs driven into a peg, or a disc bouncing between two planes millions of
+/// times a tick, reaches it. Past it World::step records a StateFault naming this cap, the
+/// tick and the bodies of the impact it could not resolve, and ContactStats::capped counts it.
+/// (A body coming to rest in a corner of two planes settles over ticks: that is not an impact
+/// and is not counted.)
 [[nodiscard]] constexpr std::uint64_t max_tick_predictions(std::uint64_t bodies) {
   return std::max<std::uint64_t>(std::uint64_t{1} << 24, 256 * bodies);
 }

@@ -1,6 +1,6 @@
 // Recordings: every tick's input of a session plus state hashes along the way, written as a
 // line-oriented text file and replayed headless to verify, bit for bit, that the engine still
-// computes the same states (issue #12, point 3). Format: docs/CLI.md, "Recording and replay".
+// computes the same states. Format: docs/CLI.md, "Recording and replay".
 #pragma once
 
 #include <cstddef>
