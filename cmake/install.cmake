@@ -29,9 +29,10 @@ install(FILES ${PROJECT_BINARY_DIR}/fixstepConfig.cmake
 set(FIXSTEP_PC_core_REQUIRES "")
 set(FIXSTEP_PC_core_LIBS "-pthread")
 set(FIXSTEP_PC_core_CFLAGS "-std=c++20 -ffp-contract=off")
-set(FIXSTEP_PC_scene_REQUIRES "fixstep-core tomlplusplus")
+set(FIXSTEP_PC_io_REQUIRES "fixstep-core")
+set(FIXSTEP_PC_scene_REQUIRES "fixstep-io fixstep-core tomlplusplus")
 set(FIXSTEP_PC_render_REQUIRES
-    "fixstep-core osmesa libdeflate libavformat libavcodec libavfilter libswscale libavutil")
+    "fixstep-io fixstep-core osmesa libdeflate libavformat libavcodec libavfilter libswscale libavutil")
 set(FIXSTEP_PC_render_LIBS "-pthread")
 set(FIXSTEP_PC_window_REQUIRES "fixstep-render sdl2")
 foreach(component IN LISTS FIXSTEP_COMPONENTS)

@@ -9,6 +9,8 @@
 #include <fixstep/session.hpp>
 #include <string>
 
+#include "fixstep/summary.hpp"
+
 int main(int argc, char** argv) {
   using namespace fixstep;
   const std::string png = argc > 1 ? argv[1] : "05_rope.png";

@@ -15,6 +15,8 @@
 #include <string>
 #include <thread>
 
+#include "fixstep/summary.hpp"
+
 int main(int argc, char** argv) {
   using namespace fixstep;
   const long frames = argc > 1 ? std::stol(argv[1]) : 0;  // 0: until the window is closed

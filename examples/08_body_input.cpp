@@ -10,6 +10,8 @@
 #include <fixstep/session.hpp>
 #include <string>
 
+#include "fixstep/summary.hpp"
+
 namespace {
 
 using namespace fixstep;

@@ -9,6 +9,7 @@
 #include <exception>
 #include <fixstep/capture.hpp>
 #include <fixstep/recording.hpp>
+#include <fixstep/recording_file.hpp>
 #include <fixstep/rules.hpp>
 #include <fixstep/session.hpp>
 #include <string>

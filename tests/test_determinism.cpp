@@ -26,6 +26,7 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/simd.hpp"
+#include "fixstep/summary.hpp"
 #include "scene_session.hpp"
 
 namespace fixstep {

@@ -14,6 +14,7 @@
 
 #include "fixstep/input_script.hpp"
 #include "fixstep/recording.hpp"
+#include "fixstep/recording_file.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/world.hpp"
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fixstep/recording.hpp"
+#include "fixstep/recording_file.hpp"
 #include "fixstep/simulation.hpp"
 
 namespace fixstep {

@@ -16,6 +16,9 @@
 #include <sstream>
 #include <string>
 
+#include "fixstep/command_limits.hpp"
+#include "fixstep/recording_file.hpp"
+
 namespace fixstep {
 namespace {
 

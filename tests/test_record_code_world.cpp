@@ -15,7 +15,9 @@
 
 #include "cli_run.hpp"
 #include "fixstep/recording.hpp"
+#include "fixstep/recording_file.hpp"
 #include "fixstep/scene_writer.hpp"
+#include "fixstep/summary.hpp"
 
 namespace fixstep {
 namespace {

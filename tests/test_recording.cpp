@@ -15,6 +15,8 @@
 #include <sstream>
 #include <string>
 
+#include "fixstep/recording_file.hpp"
+
 namespace fixstep {
 namespace {
 

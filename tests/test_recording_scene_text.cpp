@@ -9,6 +9,9 @@
 #include <fixstep/recording_writer.hpp>
 #include <string>
 
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
+
 namespace fixstep {
 namespace {
 

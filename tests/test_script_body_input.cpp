@@ -17,6 +17,8 @@
 #include <string>
 
 #include "cli_run.hpp"
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
 
 namespace fixstep {
 namespace {

@@ -17,6 +17,7 @@
 #include <optional>
 #include <vector>
 
+#include "fixstep/recording_file.hpp"
 #include "game.hpp"
 
 namespace {

@@ -1,21 +1,23 @@
 #!/usr/bin/env bash
 # The engine's layering, checked from the #include lines (run by ctest as `layering`):
-#   core  <- scene, render  <- window  <- programs
+#   core  <- io  <- scene, render  <- window  <- programs
 # 1. each component's files include only fixstep headers of the components it may use;
-# 2. the include graph of engine/ and chart/ files has no cycle (tsort finds loops).
+# 2. the include graph of engine/ and chart/ files has no cycle (tsort finds loops);
+# 3. core does no I/O: none of its files includes a header that opens files, reads paths or
+#    installs signal handlers (that is fixstep::io's).
 # Usage: tools/check_layering.sh [SOURCE_DIR]
 set -euo pipefail
 cd "${1:-$(dirname "$0")/..}"
 
-declare -A allowed=([core]="core" [scene]="core scene" [render]="core render"
-                    [window]="core render window")
+declare -A allowed=([core]="core" [io]="core io" [scene]="core io scene"
+                    [render]="core io render" [window]="core io render window")
 declare -A owner  # header name -> component
-for component in core scene render window; do
+for component in core io scene render window; do
   for h in engine/$component/include/fixstep/*.hpp; do owner[$(basename "$h")]=$component; done
 done
 
 status=0
-for component in core scene render window; do
+for component in core io scene render window; do
   while IFS=: read -r file line include; do
     header=$(sed -E 's/.*fixstep\/([a-z0-9_]+\.hpp).*/\1/' <<<"$include")
     from=${owner[$header]:-}
@@ -29,6 +31,12 @@ for component in core scene render window; do
   done < <(grep -HnE '^#include [<"]fixstep/' -r engine/$component || true)
 done
 
+io_headers='fstream|filesystem|cstdio|stdio\.h|csignal|signal\.h|fcntl\.h|unistd\.h|sys/[a-z]+\.h'
+while IFS=: read -r file line include; do
+  echo "$file:$line: core includes $include: core does no I/O (files, paths and signals are io's)"
+  status=1
+done < <(grep -HnE "^#include <($io_headers)>" -r engine/core || true)
+
 # File-level include graph: "includer included" pairs, by base name within engine/ and chart/.
 edges=$(grep -rHE '^#include [<"](fixstep/)?[a-z0-9_]+\.hpp[">]' engine chart |
         sed -E 's|^([^:]*):#include [<"](fixstep/)?([a-z0-9_]+\.hpp)[">].*|\1 \3|' |
@@ -41,5 +49,5 @@ if ! tsort <<<"$edges" >/dev/null 2>/tmp/layering_tsort.$$; then
   status=1
 fi
 rm -f /tmp/layering_tsort.$$
-[[ $status -eq 0 ]] && echo "layering: core <- scene, render <- window; no include cycle"
+[[ $status -eq 0 ]] && echo "layering: core <- io <- scene, render <- window; no include cycle; core does no I/O"
 exit $status

@@ -10,6 +10,8 @@
 #include <fixstep/scene_stability.hpp>
 #include <utility>
 
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
 #include "page_dom.hpp"
 
 namespace fixstep::web {

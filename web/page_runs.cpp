@@ -8,6 +8,9 @@
 #include <fixstep/limits.hpp>
 #include <utility>
 
+#include "fixstep/command_limits.hpp"
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
 #include "page_app.hpp"
 #include "page_dom.hpp"
 

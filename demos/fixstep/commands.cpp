@@ -23,6 +23,9 @@
 
 #include "csv_field.hpp"
 #include "exact_reference.hpp"
+#include "fixstep/command_limits.hpp"
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "fixstep/recording_file.hpp"
+
 namespace fixstep::cli {
 
 /// Exit status when the runtime guard stopped the simulation (a body's state left the finite

@@ -20,6 +20,8 @@
 #include "capture_sink.hpp"
 #include "comparison.hpp"
 #include "csv_field.hpp"
+#include "fixstep/command_limits.hpp"
+#include "fixstep/summary.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"

@@ -24,6 +24,7 @@
 #include "commands.hpp"
 #include "compare.hpp"
 #include "compare_tiles.hpp"
+#include "fixstep/recording_file.hpp"
 #include "new_project.hpp"
 #include "output_paths.hpp"
 #include "standard_output.hpp"

@@ -27,6 +27,8 @@
 #include <string>
 #include <thread>
 
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
 #include "game.hpp"
 
 namespace {

@@ -25,21 +25,21 @@ check_program() {  # check_program HOW BINARY
   echo "consumer: $how: $got, links neither OSMesa nor SDL2"
 }
 
-# 1. Installed package + find_package(fixstep 0.2 REQUIRED COMPONENTS core).
+# 1. Installed package + find_package(fixstep 0.2 REQUIRED COMPONENTS core io).
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 cmake -S "$src/examples/consumer" -B "$work/installed" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/installed" >/dev/null
 check_program installed "$work/installed/consumer"
 
-# 2. add_subdirectory: only libraries; the program builds core alone.
+# 2. add_subdirectory: only libraries; the program builds core and io alone.
 cmake -S "$src/examples/consumer" -B "$work/subproject" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DFIXSTEP_SOURCE_DIR="$src" >/dev/null
 if ninja -C "$work/subproject" -t targets all |
    grep -E '(^|/)(test_[a-z_]*|bench_[a-z_]*|hello_fixstep|integration_basics|work_precision|fuzz_[a-z_]*|fixstep|[0-9][0-9]_[a-z_]*|fixstep_chart):'; then
   fail "add_subdirectory defines test, benchmark or demo targets (above)"
 fi
-# Only the consumer and what it links (core): the other libraries are the ci build's, already
+# Only the consumer and what it links (core, io): the other libraries are the ci build's, already
 # built and checked there (building them again here cost CI ~2 minutes).
 cmake --build "$work/subproject" --target consumer >/dev/null
 check_program subproject "$work/subproject/consumer"

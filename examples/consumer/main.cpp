@@ -1,10 +1,12 @@
-// The consumer: assets/scenes/default.toml's world built in code with fixstep::core alone,
+// The consumer: assets/scenes/default.toml's world built in code with fixstep::core (and io's
+// summary line),
 // stepped 1000 ticks. It prints the summary line `fixstep run assets/scenes/default.toml
 // --steps 1000` prints, digit for digit (state hash, energy, dissipated energy, balance;
 // checked by check.sh in .ci/run): a world written in code is the scene's world.
 #include <cstdio>
 #include <exception>
 #include <fixstep/simulation.hpp>
+#include <fixstep/summary.hpp>
 
 namespace {
 

@@ -10,6 +10,7 @@
 
 #include "determinism_cases.hpp"
 #include "fixstep/simulation.hpp"
+#include "fixstep/summary.hpp"
 
 int main(int argc, char** argv) {
   using namespace fixstep;

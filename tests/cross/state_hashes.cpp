@@ -21,10 +21,12 @@
 #include <string>
 #include <string_view>
 
+#include "fixstep/command_limits.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/simulation.hpp"
+#include "fixstep/summary.hpp"
 #include "fixstep/write_signals.hpp"
 
 namespace {

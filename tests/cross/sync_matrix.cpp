@@ -11,6 +11,7 @@
 
 #include "determinism_cases.hpp"
 #include "fixstep/simulation.hpp"
+#include "fixstep/summary.hpp"
 #include "fixstep/sync_test.hpp"
 
 namespace {

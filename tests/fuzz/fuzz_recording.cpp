@@ -14,6 +14,8 @@
 #include <string>
 #include <string_view>
 
+#include "fixstep/recording_file.hpp"
+
 namespace {
 
 /// Two bodies, one link: enough for replay to step every recorded input (push, drag index).

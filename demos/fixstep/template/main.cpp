@@ -34,6 +34,9 @@
 #include <thread>
 #include <vector>
 
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
+
 namespace {
 
 using namespace fixstep;

@@ -1,5 +1,5 @@
-// Recordings in memory: the definition hash, the Recorder and replay. The text format
-// (format_recording, parse_recording) is in recording_format.cpp, files in recording_file.cpp.
+// Recordings in memory: the definition hash, the Recorder and replay. Their text and files are
+// fixstep::io's (recording_format.cpp, recording_file.cpp there).
 #include "fixstep/recording.hpp"
 
 #include <fmt/format.h>
@@ -8,8 +8,6 @@
 #include <type_traits>
 
 #include "fixstep/bits.hpp"
-#include "fixstep/limits.hpp"
-#include "fixstep/printable.hpp"
 #include "fixstep/work_progress.hpp"
 
 namespace fixstep {
@@ -105,41 +103,9 @@ TickInput Recording::input_at(std::uint64_t tick) const {
   return in;
 }
 
-std::string_view recording_error_name(RecordingError::Kind kind) {
-  switch (kind) {
-    case RecordingError::Kind::unreadable:
-      return "unreadable";
-    case RecordingError::Kind::foreign:
-      return "foreign";
-    case RecordingError::Kind::unsupported_version:
-      return "unsupported_version";
-    case RecordingError::Kind::truncated:
-      return "truncated";
-    case RecordingError::Kind::corrupt:
-      return "corrupt";
-    case RecordingError::Kind::scene_mismatch:
-      return "scene_mismatch";
-  }
-  return "unknown";
-}
-
-namespace {
-std::string error_text(const std::string& file, std::size_t line, std::string_view field,
-                       std::string_view message) {
-  std::string where = printable(file);
-  if (line > 0) where += fmt::format(":{}", line);
-  if (!field.empty()) where += fmt::format(": {}", field);
-  return fmt::format("{}: {}", where, message);
-}
-}  // namespace
-
-RecordingError::RecordingError(Kind kind, const std::string& file, std::size_t line,
-                               std::string_view field, std::string_view message)
-    : std::runtime_error(error_text(file, line, field, message)), kind_(kind), line_(line) {}
-
 Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_every,
                    std::string scene_text) {
-  if (hash_every == 0 || hash_every > max_hash_every) {  // the reader refuses more (limits.hpp)
+  if (hash_every == 0 || hash_every > max_hash_every) {  // the reader refuses more
     throw std::invalid_argument(
         fmt::format("Recorder: hash_every must be 1 .. {} (got {})", max_hash_every, hash_every));
   }
@@ -149,7 +115,15 @@ Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_ev
         fmt::format("Recorder: a scene_text of {} bytes; a recording embeds at most {} bytes",
                     scene_text.size(), max_recording_scene_bytes));
   }
-  (void)format_recording(rec_);  // a path format_recording refuses: refused now, not at the end
+  const auto control =
+      std::ranges::find_if(rec_.scene, [](unsigned char c) { return c < 0x20 || c == 0x7f; });
+  if (control != rec_.scene.end()) {
+    // the text format keeps the name on one line (recording_file.hpp): refused now, not at the end
+    throw std::invalid_argument(fmt::format(
+        "Recorder: the scene name holds a control character (0x{:02x} at byte {} of {}), and a "
+        "recording stores the name on one line",
+        static_cast<unsigned char>(*control), control - rec_.scene.begin(), rec_.scene.size()));
+  }
   rec_.scene_text = std::move(scene_text);
   rec_.definition_hash = definition_hash(def);
   rec_.settings = recorded_settings(def);
@@ -272,41 +246,6 @@ void apply_settings(WorldDef& def, const RecordedSettings& settings) {
   def.settings.integrator = settings.integrator;
   def.settings.substeps = settings.substeps;
   if (settings.damping_split) def.settings.damping_split = *settings.damping_split;
-}
-
-ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& rules) {
-  const std::uint64_t actual = definition_hash(def);
-  if (actual != rec.definition_hash) {
-    throw RecordingError(
-        RecordingError::Kind::scene_mismatch, rec.scene, 0, "definition",
-        fmt::format("the scene no longer matches the recording: its bodies, springs, planes or "
-                    "settings changed (definition hash {}, recorded {}); replay it with the world "
-                    "as it was recorded",
-                    hex_hash(actual), hex_hash(rec.definition_hash)));
-  }
-  Simulation sim = make_simulation(def);
-  return replay(sim, rec, rules);
-}
-
-void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file) {
-  auto check = [&](const TickInput& in, Entity e, std::string_view field) {
-    if (e == no_body || (e.index1 <= bodies && e == initial_entity(e.index1 - 1))) return;
-    throw RecordingError(
-        RecordingError::Kind::corrupt, file, 0, field,
-        fmt::format("the tick {} line names body {}:{}, which the scene does not have (its {} "
-                    "bodies are 1:1 .. {}:1); the recording was edited or made with another "
-                    "scene",
-                    in.tick, e.index1, e.generation, bodies, bodies));
-  };
-  for (const TickInput& in : rec.inputs) {
-    check(in, in.drag_body, "drag");
-    for (const BodyInput& b : in.bodies) {
-      check(in, b.body,
-            b.kind == BodyInputKind::force     ? "force"
-            : b.kind == BodyInputKind::impulse ? "impulse"
-                                               : "velocity");
-    }
-  }
 }
 
 }  // namespace fixstep

@@ -1,15 +1,15 @@
-// The limits on the work and memory one command may ask for (issue 21, classes 4 and 6), in
-// one place: a few bytes of scene, recording or command line must not buy hours of CPU, a
-// disk-filling file or an allocation that crashes. Each limit is checked where the claim is
-// made (a scene's load, make_simulation, a recording's read, a command's start), before any
-// tick is stepped, and refused with a LimitError naming the claim, the limit and the way out.
+// The limits on the work and memory one world may ask for, in one place: a few bytes of scene
+// or code must not buy hours of CPU per tick or an allocation that crashes. A program checks a
+// definition before stepping it (check_world_limits: LimitError naming the claim, the limit and
+// the way out); the caps a tick meets while stepping (candidate pairs, predictions) are recorded
+// as a located StateFault instead. The limits of one command (ticks, total work) are
+// fixstep::io's (command_limits.hpp).
 //
 // Work is counted in body-substeps: one body or one link advanced by one substep, what a tick of
 // the fused per-body pass and the link gather cost. Implicit Euler on a linked world counts each
-// body 64·√n times more for its sparse solve (n linked bodies; limits.cpp has the measurements).
-// Measured here (docs/ROBUSTNESS.md, "Limits on work and memory"): 7 to 16 ns per body-substep
-// for semi-implicit Euler on nets of 10^2 to 9·10^4 bodies, so max_tick_work is about 10 s per
-// tick and max_command_work about a day.
+// body 64·√n times more for its sparse solve (n linked bodies; limits.cpp has the model). What a
+// body-substep costs, and so what the limits mean in seconds: docs/ROBUSTNESS.md, "Limits on
+// work and memory".
 #pragma once
 
 #include <algorithm>
@@ -17,43 +17,25 @@
 #include <span>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 
 #include "fixstep/simulation.hpp"
 
 namespace fixstep {
 
-/// Most ticks one command steps: `run --steps` / `--duration`, `render` and `compare` (frames ×
-/// ticks per frame), a recording's claimed ticks (max_recording_ticks is the same number, so
-/// every run can be recorded and replayed).
-inline constexpr std::uint64_t max_command_ticks = 1'000'000'000;
-/// Most body-substeps in one tick ((bodies + links) × substeps; see tick_work): 10^9, about 10 s
-/// of CPU here. A tick may not take hours; one of seconds is still stopped within a second by a
-/// stop request (stop_request.hpp), which the tick polls every substep.
+/// Most body-substeps in one tick ((bodies + links) × substeps; see tick_work): 10^9 (about 10 s of
+/// CPU: docs/ROBUSTNESS.md). A tick may not take hours; one of seconds is still stopped within a
+/// second by a stop request (stop_request.hpp), which the tick polls every substep.
 inline constexpr std::uint64_t max_tick_work = 1'000'000'000;
-/// Most body-substeps in one command (ticks × tick_work): 10^13, about a day of CPU here.
-inline constexpr std::uint64_t max_command_work = 10'000'000'000'000;
-/// Most ticks between two state hashes a recording stores (and of --hash-every): 100 000 ticks,
-/// 28 minutes at 60 Hz. It bounds a recording's claimed ticks by its size: at most this many
-/// ticks per hash line (about 33 bytes), so a file of a few hundred bytes cannot claim a replay
-/// of 10^9 ticks.
-inline constexpr std::uint64_t max_hash_every = 100'000;
 /// Most memory implicit Euler's sparse factorisation (Eigen's SparseLU or SimplicialLDLT over
 /// the bodies) may take, by implicit_solve_bytes' estimate: 2 GiB, about 230 000 bodies in a
-/// grid of rest-length links (a tick of 10^5 of them already takes ~6 s here).
+/// grid of rest-length links.
 inline constexpr std::uint64_t max_implicit_solve_bytes = std::uint64_t{2} << 30;
 
 /// Most bodies implicit Euler may solve together (the bodies links join): 25 000. Its sparse
-/// factorisation is one Eigen call a stop request cannot interrupt, and it grows with the
-/// network: measured here (Newton on rest-length links, SparseLU), a stop waited up to 0.52 s
-/// at 22 500 bodies, 0.94 s at 40 000 and 1.41 s at 57 600 — so at most 25 000 keeps a stop
-/// within a second (docs/ROBUSTNESS.md, "Stop requests inside a tick"). Far inside
-/// max_implicit_solve_bytes (about 0.2 GiB at this size).
+/// factorisation is one Eigen call a stop request cannot interrupt, and its time grows with the
+/// network: this many keeps a stop within a second (measured: docs/ROBUSTNESS.md, "Stop
+/// requests inside a tick"). Far inside max_implicit_solve_bytes (about 0.2 GiB at this size).
 inline constexpr std::uint64_t max_implicit_bodies = 25'000;
-
-/// Most memory the sync test's K + 1 snapshots of a world may take (SyncTest keeps one per
-/// rolled-back tick): 2 GiB, as for the implicit solve.
-inline constexpr std::uint64_t max_sync_test_bytes = std::uint64_t{2} << 30;
 
 /// Most candidate pairs (discs whose boxes swept over the tick overlap) the broadphase may find
 /// in one tick of a world of `discs` discs: max(64 n, 10^6), and never more than n(n - 1)/2 (a
@@ -127,10 +109,5 @@ inline constexpr std::uint64_t disc_work = 128;
 /// out of range.
 void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
                         std::span<const PlaneDef> planes, const WorldSettings& settings);
-
-/// Throws LimitError when `ticks` ticks of `work_per_tick` body-substeps exceed max_command_ticks
-/// or max_command_work. `what` names the claim in the message, e.g. "--steps 2000000000" or
-/// "x.rec: end 1000000000".
-void check_command_work(std::uint64_t ticks, std::uint64_t work_per_tick, std::string_view what);
 
 }  // namespace fixstep

@@ -1,13 +1,11 @@
-// Recordings: every tick's input of a session plus state hashes along the way, written as a
-// line-oriented text file and replayed headless to verify, bit for bit, that the engine still
-// computes the same states. Format: docs/CLI.md, "Recording and replay".
+// Recordings: every tick's input of a session plus state hashes along the way, replayed headless
+// to verify, bit for bit, that the engine still computes the same states. Their text and files
+// are fixstep::io's (recording_file.hpp).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -23,12 +21,13 @@ namespace fixstep {
 /// The format version this build writes and the newest it reads. Version 3 may carry the scene
 /// the world was loaded from (Recording::scene_text); versions 1 and 2 still read.
 inline constexpr int recording_version = 3;
-/// The first word of every recording (the first line is "fixstep-recording VERSION").
-inline constexpr std::string_view recording_magic = "fixstep-recording";
 /// Most ticks a recording may hold (about 190 days at 60 Hz).
 inline constexpr std::uint64_t max_recording_ticks = 1'000'000'000;
-/// Largest recording file read, bytes.
-inline constexpr std::size_t max_recording_bytes = 256u << 20;
+/// Most ticks between two state hashes a recording stores: 100 000 ticks,
+/// 28 minutes at 60 Hz. It bounds a recording's claimed ticks by its size: at most this many
+/// ticks per hash line (about 33 bytes), so a file of a few hundred bytes cannot claim a replay
+/// of 10^9 ticks.
+inline constexpr std::uint64_t max_hash_every = 100'000;
 /// Largest scene a recording embeds (Recording::scene_text), bytes: the scene loader's own
 /// limit (max_scene_bytes, scene.hpp), so every embedded scene is one the loader reads.
 inline constexpr std::size_t max_recording_scene_bytes = 4u << 20;
@@ -91,31 +90,6 @@ struct Recording {
   friend bool operator==(const Recording&, const Recording&) = default;
 };
 
-/// A recording that cannot be used. what() reads "FILE:LINE: FIELD: MESSAGE" (line and field
-/// left out when they do not apply).
-class RecordingError : public std::runtime_error {
- public:
-  enum class Kind {
-    unreadable,           ///< the file cannot be opened or read (missing, a directory)
-    foreign,              ///< not a recording: the first line is not "fixstep-recording N"
-    unsupported_version,  ///< a recording of a version newer than recording_version
-    truncated,            ///< the file ends before its `end` line (a session cut short)
-    corrupt,              ///< a malformed line or field, a value out of range, an absurd size
-    scene_mismatch,       ///< the world to replay is not the one recorded (definition hash)
-  };
-  RecordingError(Kind kind, const std::string& file, std::size_t line, std::string_view field,
-                 std::string_view message);
-  [[nodiscard]] Kind kind() const { return kind_; }
-  [[nodiscard]] std::size_t line() const { return line_; }  ///< 1-based; 0 = not a line's fault
-
- private:
-  Kind kind_;
-  std::size_t line_;
-};
-
-/// "unreadable", "foreign", ... for messages and tests.
-[[nodiscard]] std::string_view recording_error_name(RecordingError::Kind kind);
-
 /// Records a live session tick by tick. Memory grows with input changes and stored hashes
 /// only: record() allocates only when the input changes or a hash is due (amortised).
 class Recorder {
@@ -155,32 +129,6 @@ class Recorder {
   Recording rec_;
 };
 
-/// The recording as text (the file format; docs/CLI.md, "Recording and replay"). Throws
-/// std::invalid_argument for a scene path holding a control character (it would break its line) or
-/// a scene_text longer than max_recording_scene_bytes.
-[[nodiscard]] std::string format_recording(const Recording& rec);
-/// Parses the text of a recording; `source_name` is used in messages. Throws RecordingError:
-/// foreign, unsupported_version, truncated (no `end` line, or a last line without its newline,
-/// or an embedded scene cut short) or corrupt (a malformed line, a button bit outside
-/// all_buttons, a non-finite number, ticks out of order, a hash beyond the end, more than
-/// max_recording_ticks or max_recording_bytes, an embedded scene larger than
-/// max_recording_scene_bytes or whose bytes do not match its checksum), naming the line and
-/// field.
-[[nodiscard]] Recording parse_recording(std::string_view text, const std::string& source_name);
-/// Throws RecordingError (corrupt, naming `file` and the field) when an input of `rec` names a
-/// body (drag, force, impulse, velocity) that a world made from a definition of `bodies`
-/// bodies does not have: for worlds whose bodies are not created or destroyed during the run
-/// (scene files), whose handles are initial_entity(0 .. bodies - 1). Called before replaying,
-/// so such a recording is a bad recording, not a diverged replay.
-void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file);
-/// Writes format_recording(rec) to `file` atomically (a temporary file beside it, then a
-/// rename): `file` is never left partial. Throws std::runtime_error naming the file and the
-/// system's reason when it cannot.
-void write_recording(const std::filesystem::path& file, const Recording& rec);
-/// Reads a recording file: RecordingError unreadable (cannot open, a directory, read error),
-/// else as parse_recording.
-[[nodiscard]] Recording read_recording(const std::filesystem::path& file);
-
 /// What a replay found.
 struct ReplayReport {
   std::uint64_t ticks = 0;       ///< ticks replayed (the recording's, or up to the mismatch)
@@ -201,11 +149,6 @@ struct ReplayReport {
 /// The state first differs in the ticks (last_match, tick]; with hash_every = 1, at exactly
 /// `tick`. Throws std::invalid_argument when sim is not at tick 0.
 [[nodiscard]] ReplayReport replay(Simulation& sim, const Recording& rec,
-                                  const TickRules& rules = {});
-/// Builds def's world (make_simulation) and replays `rec` on it with `rules`. Throws
-/// RecordingError scene_mismatch naming both hashes when definition_hash(def) is not the
-/// recording's (apply rec.settings to the scene first: apply_settings).
-[[nodiscard]] ReplayReport replay(const WorldDef& def, const Recording& rec,
                                   const TickRules& rules = {});
 /// def with the recording's precision, dt, integrator and substeps, and its damping split when
 /// recorded.

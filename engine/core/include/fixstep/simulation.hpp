@@ -246,12 +246,4 @@ struct WorldDef {
 /// (Simulation::external_work) taken off. initial_energy = E0 in J.
 [[nodiscard]] double energy_balance(const Simulation& sim, double initial_energy);
 
-/// "ticks=N t=T state_hash=HHHHHHHHHHHHHHHH energy=E dissipated=D balance=B": the summary
-/// `run` and `render` print. energy and dissipated in J; balance = energy_balance() (suffixed
-/// "J" when E0 = 0).
-[[nodiscard]] std::string summary_line(const Simulation& sim, double initial_energy);
-
-/// 16 lowercase hex digits.
-[[nodiscard]] std::string hex_hash(std::uint64_t hash);
-
 }  // namespace fixstep

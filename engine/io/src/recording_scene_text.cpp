@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "fixstep/printable.hpp"
+#include "fixstep/summary.hpp"
 #include "recording_text.hpp"
 
 namespace fixstep::recording_text {

@@ -7,7 +7,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "fixstep/limits.hpp"
 #include "recording_text.hpp"
 
 namespace fixstep {

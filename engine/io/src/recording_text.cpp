@@ -10,7 +10,8 @@
 #include <stdexcept>
 
 #include "fixstep/printable.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
 
 namespace fixstep {
 

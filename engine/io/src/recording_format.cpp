@@ -32,9 +32,8 @@
 #include <system_error>
 
 #include "fixstep/float_mode.hpp"
-#include "fixstep/limits.hpp"
 #include "fixstep/printable.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/recording_file.hpp"
 #include "recording_text.hpp"
 
 namespace fixstep {
@@ -295,7 +294,7 @@ void read_header(Lines& in, Recording& rec) {
   rec.hash_every = integer<std::uint64_t>(in, header_line(in, "hash_every"), "hash_every", 10,
                                           max_recording_ticks);
   if (rec.hash_every < 1) in.fail(Kind::corrupt, "hash_every", "must be >= 1");
-  if (rec.hash_every > max_hash_every) {  // limits.hpp: the claimed ticks follow the file's size
+  if (rec.hash_every > max_hash_every) {  // recording.hpp: the claimed ticks follow the file's size
     in.fail(Kind::corrupt, "hash_every",
             fmt::format("{} ticks between state hashes; a recording stores one at least every {} "
                         "ticks (record with --hash-every {} or less)",
@@ -406,7 +405,7 @@ void end_line(const Lines& in, std::string_view line, Recording& rec) {
                         rec.ticks));
   }
   // A recorder stores a hash every hash_every ticks, so no stretch of the replay goes longer
-  // unchecked and the ticks claimed are bounded by the file's lines (limits.hpp): refused here,
+  // unchecked and the ticks claimed are bounded by the file's lines (max_hash_every): refused here,
   // before a tick is replayed.
   std::uint64_t last = 0;
   for (std::size_t i = 0; i <= rec.hashes.size(); ++i) {

@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "fixstep/atomic_output.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/recording_file.hpp"
 
 namespace fixstep {
 

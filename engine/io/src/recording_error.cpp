@@ -1,0 +1,78 @@
+// A recording that cannot be used (recording_file.hpp): RecordingError's message, the check of
+// the bodies a recording names, and the replay that first checks the world is the recorded one.
+#include <fmt/format.h>
+
+#include "fixstep/printable.hpp"
+#include "fixstep/recording_file.hpp"
+#include "fixstep/summary.hpp"
+
+namespace fixstep {
+
+std::string_view recording_error_name(RecordingError::Kind kind) {
+  switch (kind) {
+    case RecordingError::Kind::unreadable:
+      return "unreadable";
+    case RecordingError::Kind::foreign:
+      return "foreign";
+    case RecordingError::Kind::unsupported_version:
+      return "unsupported_version";
+    case RecordingError::Kind::truncated:
+      return "truncated";
+    case RecordingError::Kind::corrupt:
+      return "corrupt";
+    case RecordingError::Kind::scene_mismatch:
+      return "scene_mismatch";
+  }
+  return "unknown";
+}
+
+namespace {
+std::string error_text(const std::string& file, std::size_t line, std::string_view field,
+                       std::string_view message) {
+  std::string where = printable(file);
+  if (line > 0) where += fmt::format(":{}", line);
+  if (!field.empty()) where += fmt::format(": {}", field);
+  return fmt::format("{}: {}", where, message);
+}
+}  // namespace
+
+RecordingError::RecordingError(Kind kind, const std::string& file, std::size_t line,
+                               std::string_view field, std::string_view message)
+    : std::runtime_error(error_text(file, line, field, message)), kind_(kind), line_(line) {}
+
+ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& rules) {
+  const std::uint64_t actual = definition_hash(def);
+  if (actual != rec.definition_hash) {
+    throw RecordingError(
+        RecordingError::Kind::scene_mismatch, rec.scene, 0, "definition",
+        fmt::format("the scene no longer matches the recording: its bodies, springs, planes or "
+                    "settings changed (definition hash {}, recorded {}); replay it with the world "
+                    "as it was recorded",
+                    hex_hash(actual), hex_hash(rec.definition_hash)));
+  }
+  Simulation sim = make_simulation(def);
+  return replay(sim, rec, rules);
+}
+
+void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file) {
+  auto check = [&](const TickInput& in, Entity e, std::string_view field) {
+    if (e == no_body || (e.index1 <= bodies && e == initial_entity(e.index1 - 1))) return;
+    throw RecordingError(
+        RecordingError::Kind::corrupt, file, 0, field,
+        fmt::format("the tick {} line names body {}:{}, which the scene does not have (its {} "
+                    "bodies are 1:1 .. {}:1); the recording was edited or made with another "
+                    "scene",
+                    in.tick, e.index1, e.generation, bodies, bodies));
+  };
+  for (const TickInput& in : rec.inputs) {
+    check(in, in.drag_body, "drag");
+    for (const BodyInput& b : in.bodies) {
+      check(in, b.body,
+            b.kind == BodyInputKind::force     ? "force"
+            : b.kind == BodyInputKind::impulse ? "impulse"
+                                               : "velocity");
+    }
+  }
+}
+
+}  // namespace fixstep
