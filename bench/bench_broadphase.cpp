@@ -1,4 +1,4 @@
-// The disc broadphase (issue #19, point 4): the engine's hierarchical grid
+// The disc broadphase: the engine's hierarchical grid
 // (engine/core/src/disc_broadphase.hpp) on one and two threads against sweep-and-prune on x
 // (written here: sorted by (min_x, index) with std::sort every call, or kept in last call's
 // order and re-sorted by insertion sort, nearly sorted tick to tick), all giving the same

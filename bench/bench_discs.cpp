@@ -1,4 +1,4 @@
-// Disc contacts against two peer engines (issue #19, point 8), in one run (Google Benchmark):
+// Disc contacts against two peer engines, in one run (Google Benchmark):
 // a settled pile and an elastic gas of N = 10³, 10⁴, 10⁵ discs of r = 5 cm, and the pile of
 // 50 cm discs (the peers' home scale) at N = 10³, 10⁴ (discs.hpp), built by one generator and
 // stepped at dt = 1/60 s by

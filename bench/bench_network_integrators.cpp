@@ -1,4 +1,4 @@
-// What each integrator costs per tick on damped networks, side by side in one run (issue #22):
+// What each integrator costs per tick on damped networks, side by side in one run:
 //   cloth.toml   assets/scenes/cloth.toml (400 bodies, 1520 damped links with rest lengths,
 //                dt = 2.5 ms, one step per tick), as `fixstep run` steps it;
 //   cloth 10^4   a 100 x 100 grid of 0.01 kg bodies, structural and shear links of 10 Hz,

@@ -262,7 +262,7 @@ std::string targets_markdown(const Results& r) {
   const View v{r};
   std::string out;
   const Line line = [&out](const std::string& s) { out += s + "\n"; };
-  line("\n#### Targets (issue #19, point 8)\n");
+  line("\n#### Targets\n");
   line("| target | measured | met |");
   line("|---|---|---|");
   peer_targets(v, line);

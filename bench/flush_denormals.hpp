@@ -1,5 +1,5 @@
 // The benchmarks' raw loops run with x86 flush-to-zero and denormals-are-zero, so that they
-// never meet subnormal arithmetic. World::step no longer does the same (issue 23): it runs in
+// never meet subnormal arithmetic. World::step no longer does the same: it runs in
 // the IEEE default mode (fixstep/float_mode.hpp) and flushes its state in software every 64th
 // tick (WorldSettings::flush_denormals).
 #pragma once

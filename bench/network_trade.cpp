@@ -1,4 +1,4 @@
-// The trade on networks (issue #22): every fixstep integrator at every step size against the
+// The trade on networks: every fixstep integrator at every step size against the
 // two peer engines, error against cost, on the two networks of bench_coupled (coupled.hpp):
 //   chain   100 bodies in a line, pulled at one end, anchored at the other;
 //   cloth   a 10 x 10 grid held by a frame of anchored springs;

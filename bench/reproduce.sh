@@ -4,7 +4,7 @@
 #   bash bench/reproduce.sh coupled    (only section 6, coupled systems against peers: ~3 min)
 #   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers: ~3-5 min)
 #   bash bench/reproduce.sh network    (only section 6.1: integrator costs and the trade on
-#                                       damped networks, issue #22: ~3 min)
+#                                       damped networks: ~3 min)
 # Builds the optimised benchmark tree (build/bench), runs each study into docs/perf/, and
 # splices the generated markdown into docs/PERFORMANCE.md between its
 # "<!-- BEGIN name -->" / "<!-- END name -->" markers. Run on an otherwise idle machine:
@@ -64,7 +64,7 @@ if [ -z "$only" ] || [ "$only" = discs ]; then
 fi
 
 # Each integrator's cost per tick on damped networks (cloth.toml and a 10^4-body cloth, f64
-# and f32, 1 and 2 threads), side by side in one run: the table of issue #22.
+# and f32, 1 and 2 threads), side by side in one run (docs/perf/network_integrators.md).
 if [ -z "$only" ] || [ "$only" = network ]; then
   "$bin/bench_network_integrators" --out "$out" > "$out/network_integrators.log"
   { measured_on; cat "$out/network_integrators.md"; } > "$out/network_integrators.section.md"

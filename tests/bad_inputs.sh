@@ -228,7 +228,7 @@ case_ "extreme but finite values (k = 1e300 N/m, m = 1e-300 kg)" "$ok_world"'
 mass = 1e-300
 position = [1.0, 0.0]
 spring = { anchor = [0.0, 0.0], stiffness = 1e300 }'
-# --- [view]: bounded before any frame is drawn (issue 30, class 2) ---
+# --- [view]: bounded before any frame is drawn ---
 case_ "[view] center 10^300 m out (the grid looped to std::bad_alloc)" "$ok_world
 [view]
 center = [1e300, 0.0]
@@ -247,7 +247,7 @@ case_ "[view] 1 m wide 10^12 m out (too narrow to place its pixels)" "$ok_world
 center = [0.0, 1e12]
 width = 1.0
 $body"
-# --- the parser's depth, messages (issue 21) ---
+# --- the parser's depth, messages ---
 # Nesting deeper than 64 levels (dotted-key parts, [table] header parts, [ and { around a value)
 # is refused with its line and column before toml++ parses: the issue's 50 000-part key (80 KB)
 # overflowed toml++'s stack.
@@ -605,7 +605,7 @@ rows = 1000
 origin = [0.0, 0.0]
 spacing = [0.0, 0.0]
 body = { mass = 1.0, radius = 0.5 }"
-# --- contact caps and the work they bound: no physics dropped without a fault (issue 30, class 4)
+# --- contact caps and the work they bound: no physics dropped without a fault
 case_ "a disc radius of 9e307 under [contacts] (beyond 1e12 m)" "$ok_world
 [contacts]
 $body
@@ -664,7 +664,7 @@ case_ "--frames -1" "" render good.toml --out frames --frames -1
 case_ "--steps 2.5" "" run good.toml --steps 2.5
 case_ "a misspelt subcommand (rn)" "" rn good.toml --steps 10
 case_ "view --fps 0" "" view good.toml --fps 0
-# --- limits on work and memory (issue 21) ---
+# --- limits on work and memory ---
 grid_scene() {  # COLUMNS ROWS [WORLD-LINE]: a grid of linked bodies (cloth without shear)
   printf '[world]\ndt = 0.01\n%s\n[[grid]]\nname = "g"\ncolumns = %d\nrows = %d\norigin = [0.0, 0.0]\nspacing = [0.1, -0.1]\nbody = { mass = 1.0 }\nlink = { stiffness = 10.0, damping = 0.1 }\n' "${3:-}" "$1" "$2"
 }
@@ -681,7 +681,7 @@ case_ "run --steps 10^9 --record with a hash every tick (33 GB)" "" run good.tom
 case_ "--hash-every 1000000 (beyond 100000)" "" run good.toml --steps 10 --record out.rec --hash-every 1000000
 case_ "render --fps 0.000001 (10^14 ticks in 10^6 frames)" "" render good.toml --out frames --frames 1000000 --fps 0.000001
 case_ "compare --frames 10^12" "" compare good.toml --with rk4 --with semi_implicit_euler --frames 1000000000000 --out frames
-# --- messages that name the flag or key to change (issue 30, class 7) ---
+# --- messages that name the flag or key to change ---
 case_ "render --dt 1e-10: a frame of 0.25 s is 2.5·10^9 ticks (was blamed on Session)" "" render good.toml --out frames --frames 1 --dt 1e-10
 case_ "render --dt 1e-9 --frames 100: 1.65·10^9 ticks (was blamed on --frames and --fps alone)" "" render good.toml --out frames --frames 100 --dt 1e-9
 case_ "render --fps 0.0001 --dt 1e-6: a frame of 10^4 s" "" render good.toml --out frames --frames 2 --fps 0.0001 --dt 1e-6
@@ -732,7 +732,7 @@ printf '%s\n%s\n%s\n' "$ok_world" "$body" 'spring = { anchor = [1.0, 0.0], stiff
 case_ "compare: a tile the guard refuses" "" compare stiff.toml --with explicit_euler --with rk4 --out frames
 case_ "compare: --window with --out" "" compare good.toml --with rk4 --with rk4 --window --out frames
 case_ "compare: a frame too small for 6 tiles" "" compare good.toml --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --with rk4 --size 40x40 --out frames
-# --- stop requests and silent results (issue 21) ---
+# --- stop requests and silent results ---
 # stop_case DESCRIPTION FILE-CONTENTS ARGS...: as case_, but SIGINT reaches fixstep 2 s after it
 # starts (inside its first tick, ~6 s long) and SIGKILL 3 s later (the hang guard: 137).
 stop_case() {
@@ -860,7 +860,7 @@ case_ "--record in a missing directory" "" run good.toml --steps 10 --record nod
 case_ "--sync-test 0" "" run good.toml --steps 10 --sync-test 0
 case_ "run --steps 10^9 --sync-test 10000 (10^13 re-simulated ticks)" "" run good.toml --steps 1000000000 --sync-test 10000
 case_ "--sync-test 10000 on a 300x300 grid (10001 snapshots of 90 000 bodies)" "" run grid300.toml --steps 10 --sync-test 10000
-# recordings verified and self-contained (issue 30, class 6)
+# recordings verified and self-contained
 sed 's/^tick 3 push=2,0/tick 3 push=3,0/' base.rec > flipped.rec
 case_ "render --replay of a recording with a flipped input bit (verified before any frame: nothing written)" "" render --replay flipped.rec --out frames --frames 2
 for flag in "--dt 0.02" "--integrator rk4" "--precision f32" "--substeps 2" "--damping-split per_step"; do
@@ -889,7 +889,7 @@ case_ "--csv in a missing directory" "" run good.toml --steps 10 --csv nodir/out
 case_ "--out is a file" "" render good.toml --out good.toml --frames 2
 case_ "--out not writable (/proc)" "" render good.toml --out /proc/fixstep_frames --frames 2
 case_ "--csv not writable (/proc)" "" run good.toml --steps 10 --csv /proc/fixstep.csv
-# --- files: outputs that are inputs, special files, capture directories (issue 21) ---
+# --- files: outputs that are inputs, special files, capture directories ---
 case_ "run --record the scene itself (nothing written)" "" run good.toml --steps 5 --record good.toml
 case_ "run --csv the scene itself" "" run good.toml --steps 5 --csv good.toml
 ln good.toml hardlink.csv && ln -s good.toml symlink.rec

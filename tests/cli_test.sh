@@ -406,7 +406,7 @@ expect "the sync test says what it checked" '^sync_test: rolled back 8 ticks at 
 grep -q exact_error "$work/sync.out" && fail "exact_error printed for a scripted run" \
   || ok "no exact error for a run with scripted input (the exact solutions are of the scene alone)"
 
-# --- record and replay (issue #12, point 3) -----------------------------------------------
+# --- record and replay -----------------------------------------------
 # A scripted session recorded with a hash every tick, replayed from another directory (the
 # scene path is found beside the recording), a flipped input bit, and every bad recording.
 mkdir -p "$work/rec/scenes" "$work/elsewhere"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 21, classes 1, 3 and 7, end to end: an output is never an input (by device and inode:
+# File safety end to end: an output is never an input (by device and inode:
 # links included), only regular files are read (a FIFO or device is refused, never waited on),
 # a capture directory holds one capture (--overwrite), and stale ".NAME.tmp.PID" files of
 # killed runs are removed. Every fixstep call has `timeout 20` as a hang guard only.

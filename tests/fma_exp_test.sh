@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 23: one binary, one answer whatever the CPU's optional instructions. glibc x86-64 picks
+# One binary, one answer whatever the CPU's optional instructions. glibc x86-64 picks
 # an FMA variant of exp on CPUs with FMA and a non-FMA one under
 # GLIBC_TUNABLES=glibc.cpu.hwcaps=-FMA; they round exp(-2.73/120) (the Verlet damping factor of
 # tests/scenes/cross/damped_exp.toml) 1 ulp apart, so a state that used the libm's exp got two

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `fixstep new` as a new user meets it (issue #20, point 7): the installed fixstep writes a
+# `fixstep new` as a new user meets it: the installed fixstep writes a
 # project, which builds against the installed package (found through PATH, as after an
 # install), renders headless, records the autopilot's per-body input, and replays it: a replay
 # verifies, a tampered recording is refused naming the tick where the states part, and `new`

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 21, classes 5 and 9 end to end: SIGINT inside one long tick (run, render, compare) exits
+# Stop requests end to end: SIGINT inside one long tick (run, render, compare) exits
 # 130 within the hang guard with consistent outputs; a long load shows progress on a terminal
 # and SIGINT ends it; virtual frames exactly 1/fps apart at
 # --fps 1; RFC 4180 quoting in run --csv and compare --csv; warnings for a duplicate link and a

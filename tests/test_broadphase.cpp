@@ -1,4 +1,4 @@
-// The disc broadphase (issue #19, point 4; engine/core/src/disc_broadphase.hpp): its pairs
+// The disc broadphase (engine/core/src/disc_broadphase.hpp): its pairs
 // against a brute-force O(n^2) reference on random sets, one and two threads, fresh, reused and
 // copied objects, the max_pairs cap on a million discs at one point, no allocation once warm.
 #include <gtest/gtest.h>

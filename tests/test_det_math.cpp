@@ -1,4 +1,4 @@
-// fixstep::det exp, expm1, hypot (det_math.hpp, issue 23): accuracy against x86's 80-bit long
+// fixstep::det exp, expm1, hypot (det_math.hpp): accuracy against x86's 80-bit long
 // double libm (64-bit significand, its own error about 2^-11 of a double ulp) over the ranges
 // the engine uses, IEEE special values, and golden bit patterns that any platform computing
 // differently (a libm call, an FMA contraction, FTZ) fails.

@@ -165,7 +165,7 @@ std::pair<double, double> driven_balance(Integrator method, double h, double b, 
   return worst;
 }
 
-// The work a kinematic body does through a link is external (issue #19, point 2): counted with
+// The work a kinematic body does through a link is external: counted with
 // each integrator's own stages, the balance shrinks at the integrator's order, undamped and
 // damped, with the kinematic body at either end, with and without a rest length.
 struct DrivenCase {

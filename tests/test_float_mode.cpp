@@ -1,4 +1,4 @@
-// Issue 23: the caller's FPU mode cannot reach a state (fixstep/float_mode.hpp). Everything
+// The caller's FPU mode cannot reach a state (fixstep/float_mode.hpp). Everything
 // that computes one runs in the IEEE default mode whatever the caller set, so a caller that
 // set flush-to-zero / denormals-are-zero (x86 MXCSR) or a directed rounding gets the bits of
 // one that did not: stepping, loading a scene, building and editing a world, reading a

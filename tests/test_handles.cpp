@@ -1,4 +1,4 @@
-// The handle API of a running world (issue #20, points 1, 2 and 4): bodies and links by
+// The handle API of a running world: bodies and links by
 // handle on Simulation, per-body input (forces, impulses, kinematic velocities), contact
 // events, the stability guard's warnings, and per-body input in recordings.
 #include <gtest/gtest.h>

@@ -1,7 +1,6 @@
 // The limits on work and memory (engine/core/src/limits.cpp), where they are checked (the scene
 // loader, make_simulation, the recording reader), the guard run once per load, the engine's
-// progress reports, and the streaming recorder (recording_writer.cpp): issue 21, classes 4
-// and 6.
+// progress reports, and the streaming recorder (engine/io/src/recording_writer.cpp).
 #include <gtest/gtest.h>
 #include <unistd.h>
 

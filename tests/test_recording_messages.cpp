@@ -1,4 +1,4 @@
-// Recordings and their messages (issue 21, class 8): CRLF line ends read as LF; control
+// Recordings and their messages: CRLF line ends read as LF; control
 // characters and NUL in a field or path are printed escaped (printable.hpp), never raw or cut
 // short; a scene path with a newline is refused when recording starts, naming the path; a
 // recording that names a body the scene does not have is a bad recording before replaying.

@@ -1,4 +1,4 @@
-// Resource safety of Renderer and Window (issue #11): each failure of their construction, provoked
+// Resource safety of Renderer and Window: each failure of their construction, provoked
 // after some resources were acquired, throws the right error with the right message and leaves
 // nothing behind; destructors never throw.
 //

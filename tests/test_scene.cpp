@@ -339,7 +339,7 @@ INSTANTIATE_TEST_SUITE_P(
             "[world]\ndt = 0.01\n[[grid]]\ncolumns = 1001\nrows = 1000\n", 5, "grid[0].rows",
             "the scene would have 1001000 bodies; at most 1000000 are allowed"},
         // A required key missing beside a misspelling of it: the error is at the misspelling
-        // and names both (issue #13).
+        // and names both.
         Bad{"misspelt required stiffness",
             "[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0]\n"
             "spring = { anchor = [0, 0], stifness = 15 }\n",
@@ -443,7 +443,7 @@ TEST(Scene, SpringTablesJoinNamedBodies) {
   EXPECT_EQ(s.links[1].spring.damping, 0.0);
   EXPECT_EQ(s.links[1].spring.rest_length, 0.0);
   EXPECT_EQ(s.link_lines[1], 16u);
-  // Two links between the same bodies: both act, with a warning (issue 21, class 9).
+  // Two links between the same bodies: both act, with a warning.
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_NE(s.warnings[0].find("already joined by spring[0]"), std::string::npos) << s.warnings[0];
   const Simulation sim = make_simulation(s);

@@ -1,4 +1,4 @@
-// Input per tick, snapshots, pick and drag, and the sync test (issue #12, points 1, 2, 4).
+// Input per tick, snapshots, pick and drag, and the sync test.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -411,7 +411,7 @@ TEST(SyncTest, ARuleAppliedOutsideTheRollbackIsCaught) {
   EXPECT_THROW(SyncTest(sim, 0), std::invalid_argument);
 }
 
-// --- a stop request inside a tick (issue 21, class 5) --------------------------------------
+// --- a stop request inside a tick --------------------------------------
 
 TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
   // The cloth (400 bodies, 1540 links) at 20 000 substeps: a tick of a few tenths of a second

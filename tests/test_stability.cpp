@@ -346,7 +346,7 @@ TEST(FloatHygiene, DampedF32StateFlushesToZeroInsteadOfStayingSubnormal) {
   }
 }
 
-// Issue 21, class 8: a rate so small that the dimensionless scan's step s / γ overflows (a
+// A rate so small that the dimensionless scan's step s / γ overflows (a
 // subnormal drag, or a drag over a huge mass) made World refuse an infinite dt, and the scene
 // got "world: dt must be finite and > 0 s (got inf)" with no file or key. Every step is
 // stable then: the bound is infinite and the scene loads and runs.

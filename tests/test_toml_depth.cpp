@@ -1,4 +1,4 @@
-// The TOML nesting bound (engine/scene/src/toml_depth.cpp, issue 21 class 2): a dotted key, a
+// The TOML nesting bound (engine/scene/src/toml_depth.cpp): a dotted key, a
 // [table] header, nested arrays or inline tables deeper than 64 levels are refused at their
 // line and column before toml++ parses (a 50 000-part key overflowed its stack), in scene files
 // and input scripts; strings and comments do not count; real scenes are untouched.

@@ -57,7 +57,7 @@ int render_command(const RenderOptions& o) {
                           : load_with_overrides(o.scene);
   const VirtualClock clock(o.fps);
   // A virtual clock is not clamped (the clamp guards a real clock against stalls): every frame
-  // is exactly 1/fps after the last, at any --fps (issue 21, class 9).
+  // is exactly 1/fps after the last, at any --fps.
   const double frame_time = std::max(SessionSettings{}.max_frame_time, clock.frame_seconds());
   // What set dt, named when a frame or the command would take too many ticks of it.
   const std::string dt_from =

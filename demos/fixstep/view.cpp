@@ -207,7 +207,7 @@ int view_command(const ViewOptions& o) {
   std::optional<FileWatch> watch;
   if (!o.no_watch) watch.emplace(o.scene.scene);
   LoadedWorld first = load_first(o.scene);
-  // --fps: a virtual clock, not clamped (frames exactly 1/fps apart; issue 21, class 9).
+  // --fps: a virtual clock, not clamped (frames exactly 1/fps apart).
   const double frame_time = std::max(SessionSettings{}.max_frame_time, o.fps ? 1.0 / *o.fps : 0.0);
   check_frame_ticks(frame_time, first.scene.world.dt, o.fps, dt_source(o.scene, first.scene),
                     dt_fix(o.scene));

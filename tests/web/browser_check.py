@@ -19,7 +19,7 @@ pushes, a button, a drag) replayed in the page with every hash verified.
 
 Then the long "cause" runs (--long): the page steps a scene N ticks without drawing (ticks=N)
 and must report the native `fixstep run --steps N` summary: projectile.toml at 40 000 ticks and
-default.toml at 10^5 (subnormals), and issue 23's cause scenes in tests/scenes/cross (exp's
+default.toml at 10^5 (subnormals), and the cross-platform cause scenes in tests/scenes/cross (exp's
 FMA/non-FMA difference, a loader input whose hypot differs between libms), cross/NAME.toml.
 
 Then the bad inputs (--no-bad-inputs skips them): every row of tests/web/bad_inputs_page.tsv,

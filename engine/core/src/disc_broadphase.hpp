@@ -1,4 +1,4 @@
-// The broadphase of disc-disc contacts (issue #19, point 4): which pairs of discs may touch
+// The broadphase of disc-disc contacts: which pairs of discs may touch
 // within a tick, from the boxes their discs sweep over it. Internal to the engine: not installed.
 //
 // A hierarchical uniform grid. Levels halve from the largest finite extent e_top (extent =

@@ -115,8 +115,8 @@ Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_ev
         fmt::format("Recorder: a scene_text of {} bytes; a recording embeds at most {} bytes",
                     scene_text.size(), max_recording_scene_bytes));
   }
-  const auto control =
-      std::ranges::find_if(rec_.scene, [](unsigned char c) { return c < 0x20 || c == 0x7f; });
+  const auto control = std::find_if(rec_.scene.begin(), rec_.scene.end(),
+                                    [](unsigned char c) { return c < 0x20 || c == 0x7f; });
   if (control != rec_.scene.end()) {
     // the text format keeps the name on one line (recording_file.hpp): refused now, not at the end
     throw std::invalid_argument(fmt::format(

@@ -34,7 +34,7 @@ std::string without_nul(std::string_view text) {
 SceneError::SceneError(std::string file, std::size_t line, std::size_t column, std::string key,
                        const std::string& message)
     // The file and key escaped (a path with a newline stays one line); a NUL in the message
-    // escaped too, since what() is read as a C string and would end there (issue 21, class 8).
+    // escaped too, since what() is read as a C string and would end there.
     : std::runtime_error(fmt::format(
           "{}{}{}: {}{}{}", printable(file), line ? fmt::format(":{}", line) : std::string(),
           line && column ? fmt::format(":{}", column) : std::string(), printable(key),

@@ -134,7 +134,7 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
                        scene.links.size() + list->size(), max_scene_links));
   }
   // The first link of each pair of bodies (generated links included, in either order): a second
-  // one is allowed, as the forces of both add, but is most likely a mistake (issue 21, class 9).
+  // one is allowed, as the forces of both add, but is most likely a mistake.
   std::unordered_map<std::uint64_t, std::size_t> first_link;
   for (std::size_t l = 0; l < scene.links.size(); ++l) {
     first_link.emplace(pair_key(scene.links[l].body_a, scene.links[l].body_b), l);

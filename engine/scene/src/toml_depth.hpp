@@ -1,4 +1,4 @@
-// The TOML nesting bound, checked on the text before toml++ parses it (issue 21, class 2).
+// The TOML nesting bound, checked on the text before toml++ parses it.
 // Internal to the engine: not installed.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Deterministic elementary functions (issue 23): the transcendental and root functions a
+// Deterministic elementary functions: the transcendental and root functions a
 // state depends on, computed in-tree from IEEE-754 double +, -, ×, ÷ and sqrt (all correctly
 // rounded) and exact scaling by powers of two, compiled with -ffp-contract=off. They give the
 // same bits on every platform, libm and CPU, and under any FTZ/DAZ setting of the caller for

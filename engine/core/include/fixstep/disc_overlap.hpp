@@ -38,10 +38,8 @@ namespace fixstep {
 /// every other disc, static and kinematic ones only with dynamic ones. O(n log n) time and O(n + l)
 /// memory for n discs and l links, as long as a disc's window holds few discs it may not touch
 /// (discs of one size that do not overlap: a bounded number each); it stops at the first
-/// overlap, so a million discs at one point cost two sorts. Measured (the ci build, -O2, one
-/// core of a shared 2-core machine, load 3 to 5): 10^6 dynamic discs at one point 0.16 to
-/// 0.39 s; 10^6 static discs at one point and one dynamic disc apart (no pair) 0.44 to 1.1 s;
-/// 10^5 touching discs in a square lattice (no pair) 0.02 to 0.06 s.
+/// overlap, so a million discs at one point cost two sorts. Its times on large piles:
+/// docs/ROBUSTNESS.md, "The overlap check at load".
 ///
 /// Throws std::invalid_argument for a disc (a body with a Collider that collides) whose
 /// position is not finite or whose radius is not finite and > 0, and for a link whose body

@@ -1,4 +1,4 @@
-// The floating-point mode fixstep computes a state in (issue 23): IEEE-754 defaults, whatever
+// The floating-point mode fixstep computes a state in: IEEE-754 defaults, whatever
 // the caller set. A state may not depend on the FPU mode, so every entry point that computes
 // one holds an IeeeFloatMode: round-to-nearest with gradual underflow (no flush-to-zero, no
 // denormals-are-zero) for its duration, the caller's mode restored after. They are

@@ -72,11 +72,8 @@ enum class Integrator {
   forest_ruth,
 };
 
-/// 2^{1/3}, correctly rounded to double, for Forest–Ruth's weights. A literal on purpose, not
-/// std::cbrt(2.0): GCC folds that call with MPFR (correctly rounded, ...28b), while glibc's cbrt
-/// and Clang's folding through it return 0x1.428a2f98d728cp+0, one ulp higher, which changed
-/// every Forest–Ruth f64 state between the two compilers (caught by tests/test_determinism.cpp
-/// in the clang build).
+/// 2^{1/3}, correctly rounded to double, for Forest–Ruth's weights: a literal, so that every
+/// compiler and C library gives the same bits (docs/DETERMINISM.md, "Deterministic arithmetic").
 inline constexpr double forest_ruth_cbrt2 = 0x1.428a2f98d728bp+0;
 /// Forest–Ruth's outer and inner step weights, w1 = 1/(2 - 2^{1/3}) and w0 = -2^{1/3} w1
 /// (IEEE division of exact operands: the same bits from every compiler).

@@ -75,7 +75,7 @@ inline constexpr std::uint64_t disc_work = 128;
 /// `planes` and `settings`, the sum of its terms:
 ///  - (bodies + links) × substeps (the fused per-body pass and the link gather);
 ///  - bodies × 64·√n × substeps for implicit Euler on a world with links (its sparse solve over
-///    n linked bodies, measured at 580 to 8600 explicit body-substeps per body);
+///    n linked bodies: limits.cpp has the model and its measurements);
 ///  - dynamic colliders × planes × plane_pair_work (the plane contacts, once a tick);
 ///  - discs × disc_work when settings.contacts is set (every collider with collide = true).
 /// At most ~10^17 (the scene limits), never overflowing.

@@ -59,7 +59,7 @@ struct WorldSettings {
   /// Flush subnormal state to zero: at the end of every tick whose number is a multiple of
   /// flush_denormals_every (64), each x, y, vx, vy with 0 < |v| < the least normal (1.2e-38
   /// f32, 2.2e-308 f64) becomes a zero of its sign, in software, the same bits on every
-  /// platform (issue 23; no FTZ/DAZ: World::step runs in the IEEE default FPU mode whatever the
+  /// platform (no FTZ/DAZ: World::step runs in the IEEE default FPU mode whatever the
   /// caller set). A strongly damped f32 state decays into subnormals after some thousands of
   /// ticks, and x86 then computes 24-145x slower; with this on, a decaying state pays that for
   /// at most 63 ticks, then is 0, and the flush itself costs 1/64 of a pass over the state.
@@ -571,7 +571,7 @@ class World {
   // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
   // states and accumulators (see world_coupled.cpp).
   std::vector<Real> fx_, fy_, power_body_, power_link_;
-  // std::array, not T[4]: clang-tidy 14 flags the loop variable clang makes to copy a C array.
+  // Stage states and derivatives, one vector per stage of a four-stage integrator.
   std::array<std::vector<Real>, 4> s_, d_;
   detail::CachePtr<detail::Workers, detail::WorkersDeleter> workers_;
   detail::CachePtr<detail::ImplicitSolver<Real>, detail::ImplicitSolverDeleter<Real>> implicit_;

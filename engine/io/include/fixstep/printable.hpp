@@ -1,5 +1,5 @@
 // Text from a user (a path, a name, a field of a recording) made safe to print inside a
-// one-line message (issue 21, class 8): a newline would split the message and a NUL would cut
+// one-line message: a newline would split the message and a NUL would cut
 // it short where it is printed as a C string.
 #pragma once
 

@@ -1,4 +1,4 @@
-// A recording streamed to its file tick by tick (issue 21, class 6): what `fixstep run --record`
+// A recording streamed to its file tick by tick: what `fixstep run --record`
 // uses, so that a run of 10^8 ticks records in the same few kilobytes of memory as one of 10.
 // The bytes are format_recording's for the same session; the file appears under its name only
 // when finish() renames it into place (AtomicOutput).

@@ -38,7 +38,7 @@ struct SessionSettings {
   float hud_text_scale = 2.0f;         ///< see Renderer::set_hud_text_scale (in [1, 4])
   /// The loop's frame-time clamp, s (LoopSettings::max_frame_time): the real clock's guard
   /// against stalls. A virtual clock passes its frame time (>= 0.25 s when it is longer), so no
-  /// frame is clamped: frames are exactly 1/fps apart at any fps (issue 21, class 9).
+  /// frame is clamped: frames are exactly 1/fps apart at any fps.
   double max_frame_time = 0.25;
 };
 

@@ -33,19 +33,9 @@ enum class VideoFormat {
 inline constexpr int min_video_crf = 0;
 inline constexpr int max_video_crf = 51;
 
-/// How MP4 files are encoded (GIF has no settings: see VideoWriter for what it does).
-/// The defaults were chosen by measurement on 60 frames of the 1000-body scene of
-/// bench/bench_capture.cpp at 1280x720: libx264's cost as instructions per frame under
-/// valgrind (callgrind; unlike wall time, not changed by other load), size, and PSNR of the
-/// decoded frames against the rendered RGB. Capture runs beside llvmpipe, which already keeps
-/// both cores busy drawing, so the encoder must be cheap:
-///   ultrafast, crf 20                 29 M instructions, 65 KiB/frame, 32.5 dB
-///   ultrafast, tune animation, crf 18 28 M instructions, 54 KiB/frame, 32.7 dB  <- defaults
-///   ultrafast, tune animation, crf 20 26 M instructions, 45 KiB/frame, 31.9 dB
-///   superfast, crf 20                 54 M instructions, 29 KiB/frame, 31.0 dB
-///   veryfast, crf 20                  95 M instructions, 17 KiB/frame, 30.2 dB
-/// The colour conversion adds 17 M instructions (video_yuv.cpp). 4:2:0 colour alone caps this
-/// scene near 36 dB; default.toml at the defaults: 46.3 dB, 5.5 KiB/frame.
+/// How MP4 files are encoded (GIF has no settings: see VideoWriter for what it does). The
+/// defaults are the cheapest encoder settings for their quality, chosen by instruction count
+/// (docs/perf/capture.md, "Encoder settings").
 struct VideoSettings {
   /// libx264 constant rate factor, [min_video_crf, max_video_crf]: lower is better and larger.
   int crf = 18;

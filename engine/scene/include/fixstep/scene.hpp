@@ -110,7 +110,7 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// (dropped), a static body's velocity (set to zero), springs between two such bodies, and
 /// [contacts] in a scene without discs.
 ///
-/// Generators of many bodies take time (about 1 s for 10^6 bodies and 2·10^6 links here):
+/// Generators of many bodies take time (seconds for 10^6 bodies and 2·10^6 links):
 /// every 65 536 bodies or links they report progress to the calling thread's WorkProgressScope
 /// ("generating the scene", unit "body" or "link"; fixstep/work_progress.hpp) and throw
 /// StopRequested when a stop is pending (fixstep/stop_request.hpp).

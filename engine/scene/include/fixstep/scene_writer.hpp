@@ -1,5 +1,5 @@
 // Writing a world as a scene file: a WorldDef built in code becomes a TOML scene that loads back
-// to the same definition (issue #20, point 3), so `fixstep replay` and `fixstep render --replay`
+// to the same definition, so `fixstep replay` and `fixstep render --replay`
 // work for worlds that never had a scene file. See README "Scene format", "Writing a scene".
 #pragma once
 
