@@ -1,7 +1,8 @@
 // Coupled systems (links between bodies) against the hand-written loop and two peer engines,
 // in one run (Google Benchmark), on two scenes (coupled.hpp): a chain (N bodies in a line,
 // pulled at one end, anchored at the other) and a cloth (a grid held by a frame):
-//   fixstep    World<Real>::step(), semi-implicit Euler, f64 and f32, 1 and 2 threads
+//   fixstep    fixstep::detail::WorldKernel<Real>::step(), semi-implicit Euler, f64 and f32, 1 and
+//   2 threads
 //              (WorldSettings::threads): the link pass, the per-body gather, the update;
 //   edge loop  the same arithmetic written by hand as an edge list: for each link in order
 //              f = -k d - b u, acc[a] += f, acc[b] -= f; then per body a = field + acc/m,

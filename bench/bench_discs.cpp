@@ -2,7 +2,8 @@
 // a settled pile and an elastic gas of N = 10³, 10⁴, 10⁵ discs of r = 5 cm, and the pile of
 // 50 cm discs (the peers' home scale) at N = 10³, 10⁴ (discs.hpp), built by one generator and
 // stepped at dt = 1/60 s by
-//   fixstep    World<Real>::step() with WorldSettings::contacts, f64 on 1 and 2 threads and
+//   fixstep    fixstep::detail::WorldKernel<Real>::step() with WorldSettings::contacts, f64 on 1
+//   and 2 threads and
 //              f32 on 1 (discs_fixstep.cpp); and, on the gas, the same world without contacts
 //              (the discs meet only the walls: a world that asks for no contacts);
 //   chipmunk   Chipmunk2D 7 with its spatial hash, its default tree, and (N <= 10⁴)

@@ -13,10 +13,10 @@ namespace {
 constexpr int bodies = 256;
 constexpr int age_ticks = 10'000;
 
-fixstep::World<float> damped_scene(bool flush) {
+fixstep::detail::WorldKernel<float> damped_scene(bool flush) {
   using namespace fixstep;
   // k = 100 N/m, b = 20 N*s/m, m = 1 kg (ζ = 1): amplitude e^{-10 t}, below 1e-38 by t = 9 s.
-  World<float> w(WorldSettings{.dt = 0.01, .flush_denormals = flush});
+  fixstep::detail::WorldKernel<float> w(WorldSettings{.dt = 0.01, .flush_denormals = flush});
   for (int i = 0; i < bodies; ++i) {
     BodyDef d;
     d.body.position = {1.0 + 0.01 * i, 0.5};

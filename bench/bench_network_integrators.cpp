@@ -22,7 +22,7 @@
 
 #include "fixstep/capture.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 using namespace fixstep;
 
@@ -82,13 +82,13 @@ constexpr Timed timed[] = {{Integrator::semi_implicit_euler},
 
 /// Median seconds per tick of each integrator on `c` at precision p and `threads`.
 std::vector<double> time_case(const Case& c, Precision p, int threads, int reps) {
-  std::vector<Simulation> sims;
+  std::vector<World> sims;
   for (const Timed& i : timed) {
     WorldDef d = c.def;
     d.precision = p, d.settings.integrator = i.integrator, d.settings.threads = threads;
     d.settings.damping_split = i.split;
     d.allow_unstable = true;
-    sims.push_back(make_simulation(d));
+    sims.push_back(World(d));
     sims.back().step();  // first-tick work (the passes' arrays) stays untimed
   }
   std::vector<std::vector<double>> samples(sims.size());

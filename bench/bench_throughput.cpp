@@ -1,6 +1,7 @@
 // Throughput of fixstep's stepping path against the machine's limits and against what a user
 // would write or pick instead, in one run (Google Benchmark):
-//   engine      World<Real>::step() — the normal stepping path — per integrator, f32/f64,
+//   engine      fixstep::detail::WorldKernel<Real>::step() — the normal stepping path — per
+//   integrator, f32/f64,
 //               spring-damper and projectile scenes, N = 10^2 ... 1.6·10^7 bodies;
 //   raw         a fused loop over plain arrays doing the same arithmetic (the kernel bound);
 //               checked bit for bit against the engine before anything is timed;
@@ -81,8 +82,10 @@ BodyDef body_def(SceneKind s, std::size_t j) {
 }
 
 template <class Real>
-std::unique_ptr<World<Real>> make_world(SceneKind s, std::size_t n, Integrator integrator) {
-  auto w = std::make_unique<World<Real>>(WorldSettings{.dt = dt, .integrator = integrator});
+std::unique_ptr<fixstep::detail::WorldKernel<Real>> make_world(SceneKind s, std::size_t n,
+                                                               Integrator integrator) {
+  auto w = std::make_unique<fixstep::detail::WorldKernel<Real>>(
+      WorldSettings{.dt = dt, .integrator = integrator});
   w->reserve(n);
   for (std::size_t j = 0; j < n; ++j) w->create_body(body_def(s, j));
   return w;
@@ -113,8 +116,8 @@ std::string cache_key(SceneKind s, std::size_t real, std::size_t n) {
 }
 
 template <class Real>
-World<Real>& cached_world(SceneKind s, std::size_t n) {
-  return cached<World<Real>>(0, cache_key(s, sizeof(Real), n), [&] {
+fixstep::detail::WorldKernel<Real>& cached_world(SceneKind s, std::size_t n) {
+  return cached<fixstep::detail::WorldKernel<Real>>(0, cache_key(s, sizeof(Real), n), [&] {
     return make_world<Real>(s, n, Integrator::semi_implicit_euler).release();
   });
 }
@@ -528,7 +531,7 @@ void set_rates(benchmark::State& st, std::size_t n, std::size_t bytes_per_body_s
 template <class Real>
 void bm_engine(benchmark::State& st, SceneKind s, Integrator i) {
   const auto n = static_cast<std::size_t>(st.range(0));
-  World<Real>& w = cached_world<Real>(s, n);
+  fixstep::detail::WorldKernel<Real>& w = cached_world<Real>(s, n);
   w.set_integrator(i);
   w.step();
   for (auto _ : st) {
@@ -666,7 +669,8 @@ void bm_aging(benchmark::State& st) {
   constexpr int ticks = 10'000;
   constexpr std::uint64_t warm_ticks = 1'000'000;
   auto make = [&] {
-    auto w = std::make_unique<World<float>>(WorldSettings{.dt = 0.01, .flush_denormals = flush});
+    auto w = std::make_unique<fixstep::detail::WorldKernel<float>>(
+        WorldSettings{.dt = 0.01, .flush_denormals = flush});
     for (std::size_t j = 0; j < n; ++j) {
       BodyDef d;
       d.body.position = {1.0 + 0.001 * double(j), 0.5};

@@ -56,8 +56,9 @@ struct Scene {
 
 /// A fixstep World holding the scene (bodies in scene order, then the links in order).
 template <class Real>
-std::unique_ptr<fixstep::World<Real>> make_world(const Scene& s, const fixstep::WorldSettings& ws) {
-  auto w = std::make_unique<fixstep::World<Real>>(ws);
+std::unique_ptr<fixstep::detail::WorldKernel<Real>> make_world(const Scene& s,
+                                                               const fixstep::WorldSettings& ws) {
+  auto w = std::make_unique<fixstep::detail::WorldKernel<Real>>(ws);
   w->reserve(s.bodies.size());
   std::vector<fixstep::Entity> e;
   e.reserve(s.bodies.size());

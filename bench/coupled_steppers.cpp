@@ -47,7 +47,7 @@ class FixstepStepper final : public Peer {
   [[nodiscard]] int threads_used() const override { return w_->threads_used(); }
 
  private:
-  std::unique_ptr<World<Real>> w_;
+  std::unique_ptr<fixstep::detail::WorldKernel<Real>> w_;
   std::vector<double> mass_;
 };
 

@@ -101,12 +101,11 @@ class Stepper {
 };
 
 /// The steppers, by key:
-///   fixstep_f64_t1, fixstep_f64_t2, fixstep_f32_t1  World<Real> with WorldSettings::contacts
-///   fixstep_f64_off   the same world without contacts (discs meet only the walls)
-///   chipmunk_hash     cpSpace with cpSpaceUseSpatialHash(2r, N)
-///   chipmunk_tree     cpSpace with its default bounding-box tree
-///   chipmunk_hasty2   cpHastySpace on 2 threads (its default tree)
-///   box2d             b2World, b2CircleShape, Step(dt, 8, 3)
+///   fixstep_f64_t1, fixstep_f64_t2, fixstep_f32_t1  fixstep::detail::WorldKernel<Real> with
+///   WorldSettings::contacts fixstep_f64_off   the same world without contacts (discs meet only the
+///   walls) chipmunk_hash     cpSpace with cpSpaceUseSpatialHash(2r, N) chipmunk_tree     cpSpace
+///   with its default bounding-box tree chipmunk_hasty2   cpHastySpace on 2 threads (its default
+///   tree) box2d             b2World, b2CircleShape, Step(dt, 8, 3)
 [[nodiscard]] std::span<const char* const> stepper_keys();
 [[nodiscard]] std::string stepper_label(const std::string& key);
 [[nodiscard]] std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s);

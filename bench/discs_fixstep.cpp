@@ -1,9 +1,9 @@
-// fixstep stepping a disc scene: a World<Real> (semi-implicit Euler, the default) with one
-// dynamic body per disc (Collider{radius}, mass 1 kg, Gravity in the pile), the box's walls as
-// static half-planes (PlaneDef, the scene's e and μ), and WorldSettings::contacts = the scene's
-// e and μ, on 1 or 2 threads (WorldSettings::threads). The "contacts off" variant is the same
-// world without WorldSettings::contacts: the discs meet the walls only (a world that does not
-// ask for contacts, for the before/after of the contact code).
+// fixstep stepping a disc scene: a fixstep::detail::WorldKernel<Real> (semi-implicit Euler, the
+// default) with one dynamic body per disc (Collider{radius}, mass 1 kg, Gravity in the pile), the
+// box's walls as static half-planes (PlaneDef, the scene's e and μ), and WorldSettings::contacts =
+// the scene's e and μ, on 1 or 2 threads (WorldSettings::threads). The "contacts off" variant is
+// the same world without WorldSettings::contacts: the discs meet the walls only (a world that does
+// not ask for contacts, for the before/after of the contact code).
 #include <limits>
 #include <memory>
 
@@ -20,7 +20,7 @@ template <class Real>
 class FixstepStepper final : public Stepper {
  public:
   FixstepStepper(const Scene& s, int threads, bool contacts)
-      : w_(std::make_unique<fixstep::World<Real>>(settings(s, threads, contacts))) {
+      : w_(std::make_unique<fixstep::detail::WorldKernel<Real>>(settings(s, threads, contacts))) {
     w_->reserve(s.position.size());
     add_walls(s);
     for (std::size_t j = 0; j < s.position.size(); ++j) {
@@ -70,7 +70,7 @@ class FixstepStepper final : public Stepper {
     wall({-1.0, 0.0}, -s.width);  // right wall x <= width
     if (s.lid) wall({0.0, -1.0}, -s.height);
   }
-  std::unique_ptr<fixstep::World<Real>> w_;
+  std::unique_ptr<fixstep::detail::WorldKernel<Real>> w_;
 };
 
 }  // namespace

@@ -31,7 +31,7 @@ std::string evaluations(Integrator i) {
 /// the mean energy of the first and the last 1000 ticks (~16 periods each); the band is the
 /// largest |E/E0 - 1| seen.
 std::string energy_behaviour(Integrator i) {
-  World<double> w(WorldSettings{.dt = 0.1, .integrator = i});
+  fixstep::detail::WorldKernel<double> w(WorldSettings{.dt = 0.1, .integrator = i});
   BodyDef d;
   d.body.position = {1.0, 0.0};
   d.spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
@@ -61,7 +61,7 @@ std::pair<double, double> convergence(Integrator i) {
   d.body = Body{.mass = 1.0, .position = {1.0, 0.5}, .velocity = {0.3, -0.2}};
   d.spring = SpringDamper{.anchor = {0.1, 0.0}, .stiffness = 4.0, .damping = 0.6};
   auto error = [&](double dt) {
-    World<double> w(WorldSettings{.dt = dt, .integrator = i});
+    fixstep::detail::WorldKernel<double> w(WorldSettings{.dt = dt, .integrator = i});
     w.create_body(d);
     const long n = std::lround(2.0 / dt);
     for (long k = 0; k < n; ++k) w.step();
@@ -74,7 +74,7 @@ std::pair<double, double> convergence(Integrator i) {
 
 template <class Real>
 Body run_far(const BodyDef& def, double dt, int ticks) {
-  World<Real> w(WorldSettings{.dt = dt});
+  fixstep::detail::WorldKernel<Real> w(WorldSettings{.dt = dt});
   const Entity e = w.create_body(def);
   for (int k = 0; k < ticks; ++k) w.step();
   return w.body(e);

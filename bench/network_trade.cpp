@@ -101,7 +101,7 @@ class Runner {
 
  private:
   std::vector<double> mass_;
-  std::unique_ptr<fixstep::World<double>> world_;
+  std::unique_ptr<fixstep::detail::WorldKernel<double>> world_;
   std::unique_ptr<Peer> peer_;
   int calls_per_tick_ = 1;
 };

@@ -104,7 +104,7 @@ struct Point {
 
 /// Steps one body for the system's duration and measures its errors; false if it blew up.
 bool measure(const System& sys, Integrator integrator, Level level, Point& p) {
-  World<double> w(
+  fixstep::detail::WorldKernel<double> w(
       WorldSettings{.dt = level.dt, .integrator = integrator, .substeps = level.substeps});
   const Entity e = w.create_body(sys.body);
   const auto ticks = static_cast<std::uint64_t>(std::llround(sys.duration / level.dt));
@@ -131,7 +131,7 @@ bool measure(const System& sys, Integrator integrator, Level level, Point& p) {
 /// median of 7 runs of enough steps for ~20 ms each.
 double ns_per_body_step(const System& sys, Integrator integrator) {
   constexpr std::size_t n = 4096;
-  World<double> w(WorldSettings{.dt = 1.0 / 60, .integrator = integrator});
+  fixstep::detail::WorldKernel<double> w(WorldSettings{.dt = 1.0 / 60, .integrator = integrator});
   for (std::size_t j = 0; j < n; ++j) w.create_body(sys.body);
   w.step();
   using clock = std::chrono::steady_clock;

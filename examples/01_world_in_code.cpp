@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     write_png(png, 640, 360, session.renderer().pixels());
 
     // The state, read back: body i in creation order.
-    const Simulation& sim = session.simulation();
+    const World& sim = session.simulation();
     for (std::size_t i = 0; i < sim.body_count(); ++i) {
       const Body b = sim.body_at(i);
       std::printf("%-8s x = %7.3f m  y = %7.3f m\n", sim.name(i).c_str(), b.position.x,

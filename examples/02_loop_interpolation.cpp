@@ -10,7 +10,7 @@
 #include <fixstep/capture.hpp>
 #include <fixstep/loop.hpp>
 #include <fixstep/render.hpp>
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 #include <string>
 #include <vector>
 
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   try {
     // A 1 kg bob on a spring k = 4π² N/m (1 Hz), released 1 m from its anchor.
     const double dt = 0.1;  // s: 10 ticks per second, on purpose
-    Simulation sim(Precision::f64, WorldSettings{.dt = dt});
+    World sim(Precision::f64, WorldSettings{.dt = dt});
     BodyDef bob;
     bob.body = Body{.mass = 1.0, .position = {1.0, 0.0}, .velocity = {}};
     bob.spring = SpringDamper{.anchor = {}, .stiffness = 4.0 * 3.14159265358979 * 3.14159265358979};

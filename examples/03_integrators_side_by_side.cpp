@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
     const float band = (height - 40.0f) / 6.0f;
     int row = 0;
     for (const Integrator method : all_integrators) {
-      World<double> world(WorldSettings{.dt = dt, .integrator = method});
+      fixstep::detail::WorldKernel<double> world(WorldSettings{.dt = dt, .integrator = method});
       world.create_body(bob);
       const double e0 = world.energy().total();
       std::vector<double> x{world.x()[0]};

@@ -11,7 +11,7 @@
 #include <fixstep/capture.hpp>
 #include <fixstep/exact.hpp>
 #include <fixstep/render.hpp>
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 #include <string>
 #include <vector>
 
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     const Rgba8 colors[] = {{76, 175, 240, 255}, {250, 200, 60, 255}};
     const char* names[] = {"vacuum", "drag c = 0.4 N*s/m"};
 
-    Simulation sim(Precision::f64, WorldSettings{.dt = dt});
+    World sim(Precision::f64, WorldSettings{.dt = dt});
     for (const BodyDef& d : throws) sim.create_body(d);
     std::vector<std::vector<Vec2>> ticks(2);
     double worst[2] = {0.0, 0.0};

@@ -56,12 +56,12 @@ int main(int argc, char** argv) {
                                              .view_center = Vec2{0.0, 3.5},
                                              .view_width = 17.0});
     session.set_show_engine_hud(false);  // the status lines only
-    const Simulation& sim = session.simulation();
+    const World& sim = session.simulation();
     const Entity paddle = sim.find("paddle"), ship = sim.find("ship"), kick = sim.find("kick");
     InputSampler sampler;
     const VirtualClock clock(60.0);
     for (int frame = 1; frame <= 96; ++frame) {  // 1.6 s
-      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& s) {
+      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& s) {
         if (t == 0) sampler.set_velocity(paddle, {3.0, 0.0});  // m/s, kept until changed
         if (t == 80) sampler.set_velocity(paddle, {0.0, 0.0});
         if (t == 20) sampler.set_force(ship, {0.0, 1.3 * ship_mass * g});  // N, held

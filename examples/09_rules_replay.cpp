@@ -47,7 +47,7 @@ struct Game {
 };
 
 TickRules rules(Game& game) {
-  return stateful_rules(game, [](Game& g, Simulation& sim, const TickInput&) {
+  return stateful_rules(game, [](Game& g, World& sim, const TickInput&) {
     for (std::size_t i = 0; i < sim.body_count(); ++i) {
       const Entity e = sim.entity_at(i);
       if (sim.body(e).position.x <= edge) continue;
@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
     // Live: step, then the rules, recording each tick's input and state hash.
     Game live;
     const TickRules live_rules = rules(live);
-    Simulation sim = make_simulation(def);
+    World sim = World(def);
     Recorder recorder(def, "09_rules_replay (built in code)", 1);
     for (std::uint64_t t = 0; t < ticks; ++t) {
       sim.step(input_of(t));
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
     const TickRules draw_rules = rules(drawn);
     const VirtualClock clock(60.0);
     while (session.simulation().tick() < ticks) {
-      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& s) {
+      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& s) {
         s.step(rec.input_at(t));
         draw_rules.after_tick(s, rec.input_at(t));
       });

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep::test {
 

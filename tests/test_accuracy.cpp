@@ -33,7 +33,7 @@ BodyDef dragged_projectile() {
 
 /// Position error (m) at t = 2 s against the exact solution.
 double error_at_end(Integrator integrator, const BodyDef& def, double dt) {
-  World<double> w(WorldSettings{.dt = dt, .integrator = integrator});
+  detail::WorldKernel<double> w(WorldSettings{.dt = dt, .integrator = integrator});
   w.create_body(def);
   const auto n = std::lround(2.0 / dt);
   for (long i = 0; i < n; ++i) w.step();
@@ -78,7 +78,7 @@ struct Trace {
   std::vector<double> x, energy;
 };
 Trace undamped(Integrator integrator, double dt, double seconds) {
-  World<double> w(WorldSettings{.dt = dt, .integrator = integrator});
+  detail::WorldKernel<double> w(WorldSettings{.dt = dt, .integrator = integrator});
   BodyDef d;
   d.body.position = {1000.0, 0.0};
   d.spring = SpringDamper{.anchor = {}, .stiffness = 15.0};  // ω = √15 rad/s, as in the article
@@ -174,7 +174,7 @@ TEST(Odeint, Rk4AgreesWithOdeintRungeKutta4) {
     d[2] = -k * (s[0] - ax) - gamma * s[2] + 1.0;
     d[3] = -k * (s[1] - ay) - gamma * s[3] + 2.0 - 9.81;
   };
-  World<double> w(WorldSettings{.dt = 0.01, .integrator = Integrator::rk4});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01, .integrator = Integrator::rk4});
   w.create_body(def);
   State s{1.0, 0.5, 0.3, -0.2};
   boost::numeric::odeint::runge_kutta4<State> rk4;
@@ -195,7 +195,7 @@ TEST(Odeint, SemiImplicitEulerAgreesWithOdeintSymplecticEuler) {
   // Ours updates the velocity first. Started from (x0, v0 + a(x0) dt), odeint's state after n
   // steps is (x_n, v_{n+1}) of ours: the same sequence, the velocity one step ahead.
   const double k = 4.0, dt = 0.01;
-  World<double> w(WorldSettings{.dt = dt});
+  detail::WorldKernel<double> w(WorldSettings{.dt = dt});
   BodyDef def;
   def.body = Body{.mass = 1.0, .position = {1.0, 0.5}, .velocity = {0.3, -0.2}};
   def.spring = SpringDamper{.anchor = {}, .stiffness = k};

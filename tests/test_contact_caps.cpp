@@ -36,7 +36,7 @@ BodyDef disc(Vec2 x, Vec2 v, double radius, BodyType type = BodyType::dynamic) {
 TEST(ContactCaps, ARowOfFastDiscsIntoAPegAllComeBack) {
   for (const Integrator integrator :
        {Integrator::semi_implicit_euler, Integrator::velocity_verlet}) {
-    World<double> w(elastic(1.0 / 60.0, integrator));
+    detail::WorldKernel<double> w(elastic(1.0 / 60.0, integrator));
     (void)w.create_body(disc({0.0, 0.0}, {0.0, 0.0}, 0.1, BodyType::static_body));
     std::vector<Entity> row;
     for (int i = 0; i < 8; ++i)
@@ -59,7 +59,7 @@ TEST(ContactCaps, ARowOfFastDiscsIntoAPegAllComeBack) {
 // each disc's box meets hundreds of others: 2.3e6 candidate pairs, past max_candidate_pairs
 // (1.28e6 for 2e4 discs). Before, the tick's contacts were skipped without a word.
 TEST(ContactCaps, TooManyCandidatePairsStopTheRunWithALocatedFault) {
-  World<double> w(elastic(1.0 / 60.0));
+  detail::WorldKernel<double> w(elastic(1.0 / 60.0));
   for (int side = 0; side < 2; ++side) {
     const double x0 = side == 0 ? -10.5 : 0.6, v = side == 0 ? 1000.0 : -1000.0;
     for (int i = 0; i < 100; ++i) {
@@ -85,13 +85,13 @@ TEST(ContactCaps, TooManyCandidatePairsStopTheRunWithALocatedFault) {
 // A disc between two planes 1 cm apart (centre free to move 1 cm): at 1e5 m/s it bounces 1e5
 // times in a 10 ms tick, all resolved (it stays between the planes at its speed, e = 1); at
 // 1e7 m/s it would bounce 1e7 times, past max_tick_predictions (2 plane tests a bounce).
-void add_channel(World<double>& w) {
+void add_channel(detail::WorldKernel<double>& w) {
   w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 1.0});
   w.add_plane(PlaneDef{.normal = {0.0, -1.0}, .offset = -0.21, .restitution = 1.0});
 }
 
 TEST(ContactCaps, ADiscBouncingBetweenClosePlanesStaysBetweenThem) {
-  World<double> w(WorldSettings{.dt = 0.01});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   add_channel(w);
   const Entity e = w.create_body(disc({0.0, 0.105}, {0.0, 1e5}, 0.1));
   w.step();
@@ -103,7 +103,7 @@ TEST(ContactCaps, ADiscBouncingBetweenClosePlanesStaysBetweenThem) {
 }
 
 TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
-  World<double> w(WorldSettings{.dt = 0.01});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   add_channel(w);
   (void)w.create_body(disc({0.0, 0.105}, {0.0, 1e7}, 0.1));
   w.step();
@@ -116,7 +116,7 @@ TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
 }
 
 TEST(ContactCaps, ARadiusBeyondTheStateRangeIsRefused) {
-  World<double> w(elastic(0.01));
+  detail::WorldKernel<double> w(elastic(0.01));
   EXPECT_NO_THROW((void)w.create_body(disc({0.0, 0.0}, {0.0, 0.0}, 1e12)));
   for (const double r : {1.0001e12, 9e307}) {
     try {

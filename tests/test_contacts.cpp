@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "fixstep/scene.hpp"
-#include "fixstep/simulation.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -23,9 +22,10 @@ constexpr double r = 0.5;   // m, the ball's radius
 
 /// A world with a ground plane y >= 0 (restitution e, friction mu) and one ball of radius r
 /// whose centre starts at height r + h (m) with velocity v (m/s) under gravity.
-World<double> drop(Integrator integrator, double dt, double h, double e, double mu = 0.0,
-                   Vec2 v = {}, bool track = false) {
-  World<double> w(WorldSettings{.dt = dt, .integrator = integrator, .track_dissipation = track});
+detail::WorldKernel<double> drop(Integrator integrator, double dt, double h, double e,
+                                 double mu = 0.0, Vec2 v = {}, bool track = false) {
+  detail::WorldKernel<double> w(
+      WorldSettings{.dt = dt, .integrator = integrator, .track_dissipation = track});
   w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = e, .friction = mu});
   BodyDef ball;
   ball.name = "ball";
@@ -39,7 +39,7 @@ World<double> drop(Integrator integrator, double dt, double h, double e, double 
 /// Times of impact (s) of the ball in w over `duration`: after each tick whose vy turns from
 /// < 0 to > 0, reconstructed from the end state by ballistics (v+ = √(v1² + 2 g (y1 - r)),
 /// τ = (v+ - v1)/g before the tick's end).
-std::vector<double> bounce_times(World<double>& w, double duration) {
+std::vector<double> bounce_times(detail::WorldKernel<double>& w, double duration) {
   std::vector<double> times;
   const auto ticks = static_cast<long>(std::llround(duration / w.settings().dt));
   for (long i = 0; i < ticks; ++i) {
@@ -58,7 +58,7 @@ std::vector<double> bounce_times(World<double>& w, double duration) {
 /// with e = 1: t_k = (2k + 1) √(2h/g) (fall time √(2h/g), then a full up-and-down of twice
 /// that per bounce).
 double bounce_time_error(Integrator integrator, double dt, double h, int count) {
-  World<double> w = drop(integrator, dt, h, 1.0);
+  detail::WorldKernel<double> w = drop(integrator, dt, h, 1.0);
   const double fall = std::sqrt(2.0 * h / g);
   const std::vector<double> t = bounce_times(w, (2 * count + 0.5) * fall);
   EXPECT_GE(static_cast<int>(t.size()), count);
@@ -108,7 +108,7 @@ TEST(Contacts, ElasticBallKeepsItsEnergy) {
   for (const Integrator i : all_integrators) {
     for (const double dt : {1.0 / 60.0, 1.0 / 240.0}) {
       SCOPED_TRACE(fmt::format("{} dt {}", integrator_name(i), dt));
-      World<double> w = drop(i, dt, h, 1.0);
+      detail::WorldKernel<double> w = drop(i, dt, h, 1.0);
       const double e0 = w.energy().total() - w.energy().gravity;  // relative to the ground
       const double base = w.energy().total();
       const double v_max = std::sqrt(2.0 * g * h);
@@ -131,7 +131,8 @@ TEST(Contacts, ElasticBallKeepsItsEnergy) {
 // Two walls and the ground, e = 1: a ball thrown sideways hits walls and ground (corners too)
 // and keeps its energy exactly with Verlet.
 TEST(Contacts, BoxKeepsEnergyWithWallsAndGround) {
-  World<double> w = drop(Integrator::velocity_verlet, 1.0 / 60.0, 3.0, 1.0, 0.0, {7.0, 1.0});
+  detail::WorldKernel<double> w =
+      drop(Integrator::velocity_verlet, 1.0 / 60.0, 3.0, 1.0, 0.0, {7.0, 1.0});
   w.add_plane(PlaneDef{.normal = {1.0, 0.0}, .offset = -4.0, .restitution = 1.0});
   w.add_plane(PlaneDef{.normal = {-2.0, 0.0}, .offset = -4.0, .restitution = 1.0});  // x <= 4
   EXPECT_EQ(w.planes()[2].normal.x, -1.0);                                           // normalised
@@ -147,7 +148,7 @@ TEST(Contacts, BoxKeepsEnergyWithWallsAndGround) {
 }
 
 /// Apex heights above the ground contact (m) of the ball in w over `duration` s.
-std::vector<double> apexes(World<double>& w, double duration) {
+std::vector<double> apexes(detail::WorldKernel<double>& w, double duration) {
   std::vector<double> out;
   for (long k = 0; k < std::lround(duration / w.settings().dt); ++k) {
     const double before = w.vy()[0];
@@ -166,7 +167,7 @@ TEST(Contacts, RestitutionScalesBounceHeightsByESquared) {
   for (const Integrator i :
        {Integrator::velocity_verlet, Integrator::rk4, Integrator::semi_implicit_euler}) {
     SCOPED_TRACE(std::string(integrator_name(i)));
-    World<double> w = drop(i, 1.0 / 120.0, h, e);
+    detail::WorldKernel<double> w = drop(i, 1.0 / 120.0, h, e);
     const std::vector<double> a = apexes(w, 6.0);
     ASSERT_GE(a.size(), 5u);
     const double tol = exact_on_constant_forces(i) ? 1e-10 : 5e-3;
@@ -181,8 +182,8 @@ TEST(Contacts, RestitutionScalesBounceHeightsByESquared) {
 TEST(Contacts, RestingBallStaysAtRest) {
   for (const Integrator i : all_integrators) {
     SCOPED_TRACE(std::string(integrator_name(i)));
-    World<double> w = drop(i, 1.0 / 60.0, 0.0, 0.5, 0.4);
-    World<float> f(WorldSettings{.dt = 1.0 / 60.0, .integrator = i});
+    detail::WorldKernel<double> w = drop(i, 1.0 / 60.0, 0.0, 0.5, 0.4);
+    detail::WorldKernel<float> f(WorldSettings{.dt = 1.0 / 60.0, .integrator = i});
     f.add_plane(PlaneDef{.normal = {0.0, 1.0}, .restitution = 0.5, .friction = 0.4});
     BodyDef b;
     b.body.position = {3.0, r};
@@ -195,7 +196,7 @@ TEST(Contacts, RestingBallStaysAtRest) {
     EXPECT_EQ(w.x()[0], 0.0);
     EXPECT_EQ(f.y()[0], float(r));
     EXPECT_EQ(f.vy()[0], 0.0f);
-    World<double> d = drop(i, 1.0 / 60.0, 2.0, 0.5);
+    detail::WorldKernel<double> d = drop(i, 1.0 / 60.0, 2.0, 0.5);
     for (int k = 0; k < 600; ++k) d.step();  // 10 s: the bounces have died out
     for (int k = 0; k < 600; ++k) {
       d.step();
@@ -214,7 +215,7 @@ TEST(Contacts, FrictionSlowsASlidingBallAsCoulombPredicts) {
   const double v0 = 5.0, mu = 0.2, dt = 1.0 / 100.0;
   for (const Integrator i : all_integrators) {
     SCOPED_TRACE(std::string(integrator_name(i)));
-    World<double> w = drop(i, dt, 0.0, 0.0, mu, {v0, 0.0}, true);
+    detail::WorldKernel<double> w = drop(i, dt, 0.0, 0.0, mu, {v0, 0.0}, true);
     const double e0 = w.energy().total();
     for (int k = 1; k <= 400; ++k) {
       w.step();
@@ -235,7 +236,8 @@ TEST(Contacts, FrictionSlowsASlidingBallAsCoulombPredicts) {
 
 // (e) At an impact, friction takes μ (1 + e) |v_n| of the tangential speed.
 TEST(Contacts, FrictionImpulseAtImpact) {
-  World<double> w = drop(Integrator::velocity_verlet, 1.0 / 100.0, 2.0, 0.5, 0.1, {3.0, 0.0});
+  detail::WorldKernel<double> w =
+      drop(Integrator::velocity_verlet, 1.0 / 100.0, 2.0, 0.5, 0.1, {3.0, 0.0});
   const double vn = std::sqrt(2.0 * g * 2.0);  // speed at impact
   for (int k = 0; k < 100; ++k) w.step();      // one bounce (fall 0.64 s, rise 0.32 s)
   EXPECT_NEAR(w.vx()[0], 3.0 - 0.1 * 1.5 * vn, 1e-12);
@@ -249,7 +251,8 @@ TEST(Contacts, NoPlanesOrNoCollidersChangeNothing) {
   for (const Integrator i : all_integrators) {
     for (const bool track : {false, true}) {
       auto make = [&](bool colliders, bool plane) {
-        World<double> w(WorldSettings{.dt = 0.01, .integrator = i, .track_dissipation = track});
+        detail::WorldKernel<double> w(
+            WorldSettings{.dt = 0.01, .integrator = i, .track_dissipation = track});
         if (plane) w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = -1e6});
         for (int j = 0; j < 5; ++j) {
           BodyDef b;
@@ -270,7 +273,7 @@ TEST(Contacts, NoPlanesOrNoCollidersChangeNothing) {
 }
 
 TEST(Contacts, AddPlaneRejectsBadValuesNamingTheField) {
-  World<double> w(WorldSettings{});
+  detail::WorldKernel<double> w(WorldSettings{});
   auto message = [&](const PlaneDef& p) {
     try {
       w.add_plane(p);
@@ -286,7 +289,7 @@ TEST(Contacts, AddPlaneRejectsBadValuesNamingTheField) {
   EXPECT_NE(message({.restitution = 1.5}).find("restitution must be in [0, 1]"), std::string::npos);
   EXPECT_NE(message({.friction = -0.1}).find("friction"), std::string::npos);
   EXPECT_EQ(w.planes().size(), 0u);
-  World<float> f(WorldSettings{});
+  detail::WorldKernel<float> f(WorldSettings{});
   EXPECT_THROW(f.add_plane({.offset = 1e39}), std::invalid_argument);  // inf as a float
   BodyDef b;
   b.collider = Collider{0.0};
@@ -321,7 +324,7 @@ radius = 0.25
   EXPECT_EQ(s.bodies[0].collider->radius, 0.25);
   const WorldDef def = world_def(s);
   EXPECT_EQ(def.planes.size(), 2u);
-  EXPECT_EQ(make_simulation(s).planes().size(), 2u);
+  EXPECT_EQ(make_world(s).planes().size(), 2u);
 }
 
 TEST(ScenePlanes, BadValuesAreSceneErrorsWithFileLineAndKey) {

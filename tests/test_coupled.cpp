@@ -27,7 +27,7 @@ BodyDef body_at(double x, double y, double mass = 1.0) {
 }
 
 TEST(Links, CreateDestroyAndStaleHandles) {
-  World<double> w(WorldSettings{});
+  detail::WorldKernel<double> w(WorldSettings{});
   const Entity a = w.create_body(body_at(0, 0)), b = w.create_body(body_at(1, 0));
   const Entity c = w.create_body(body_at(2, 0));
   const Link ab = w.create_link({a, b, {.stiffness = 5, .damping = 0.5, .rest_length = 1}});
@@ -54,7 +54,7 @@ TEST(Links, CreateDestroyAndStaleHandles) {
 }
 
 TEST(Links, RejectsBadDefinitionsNamingTheField) {
-  World<float> w(WorldSettings{});
+  detail::WorldKernel<float> w(WorldSettings{});
   const Entity a = w.create_body(body_at(0, 0)), b = w.create_body(body_at(0, 0));
   auto message = [&](const LinkDef& d) {
     try {
@@ -91,7 +91,7 @@ TEST(Links, FrequencyAndDampingRatio) {
 
 TEST(Links, AccelerationsFollowTheDefinition) {
   for (const double rest : {0.0, 0.8}) {
-    World<double> w(WorldSettings{});
+    detail::WorldKernel<double> w(WorldSettings{});
     BodyDef da = body_at(0.3, -0.2, 2.0), db = body_at(1.5, 0.7, 0.5);
     da.body.velocity = {0.4, -1.0};
     db.body.velocity = {-0.3, 0.6};
@@ -138,8 +138,8 @@ Chain make_chain(int n, double k, double alpha, double rest = 0.0, double mass_r
 }
 
 template <class Real>
-std::unique_ptr<World<Real>> build(const Chain& c, WorldSettings s) {
-  auto w = std::make_unique<World<Real>>(s);
+std::unique_ptr<detail::WorldKernel<Real>> build(const Chain& c, WorldSettings s) {
+  auto w = std::make_unique<detail::WorldKernel<Real>>(s);
   std::vector<Entity> e;
   for (const BodyDef& d : c.bodies) e.push_back(w->create_body(d));
   for (const BodyLink& l : c.links) w->create_link({e[l.body_a], e[l.body_b], l.spring});
@@ -170,7 +170,7 @@ TEST(Links, TrackedPassIsTheFusedPassBitForBit) {
   for (Integrator method : all_integrators) {
     for (bool rest : {false, true}) {
       auto make = [&](bool track) {
-        auto w = std::make_unique<World<float>>(WorldSettings{
+        auto w = std::make_unique<detail::WorldKernel<float>>(WorldSettings{
             .dt = 1.0 / 60, .integrator = method, .substeps = 2, .track_dissipation = track});
         for (int j = 0; j < 101; ++j) {
           BodyDef d = body_at(0.3 * (j % 7) - 1, 0.2 * (j % 5), 0.5 + 0.25 * (j % 3));
@@ -238,11 +238,13 @@ TEST(Links, ImplicitNetworkSolveMatchesTheAnchoredSpring) {
     free.body.velocity = {-2.0, 1.5};
     free.drag = LinearDrag{0.3};
     free.gravity = Gravity{};
-    World<double> single(WorldSettings{.dt = 0.05, .integrator = Integrator::implicit_euler});
+    detail::WorldKernel<double> single(
+        WorldSettings{.dt = 0.05, .integrator = Integrator::implicit_euler});
     BodyDef with_spring = free;
     with_spring.spring = anchored;
     single.create_body(with_spring);
-    World<double> linked(WorldSettings{.dt = 0.05, .integrator = Integrator::implicit_euler});
+    detail::WorldKernel<double> linked(
+        WorldSettings{.dt = 0.05, .integrator = Integrator::implicit_euler});
     const Entity a = linked.create_body(free);
     const Entity b = linked.create_body(body_at(0.5, -0.25, 1e15));
     linked.create_link({a, b, {.stiffness = 400.0, .damping = 0.0, .rest_length = rest}});

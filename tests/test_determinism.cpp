@@ -46,7 +46,7 @@ using determinism::ticks_for;
 /// `frame_seconds()` each (the loop decides how many ticks each frame runs).
 template <class FrameTime>
 std::uint64_t hash_through_loop(const Case& c, std::uint64_t ticks, FrameTime frame_seconds) {
-  Simulation sim = make_simulation(scene_for(c));
+  World sim = make_world(scene_for(c));
   ticks = ticks_for(c.scene, ticks);
   FixedStepLoop loop(LoopSettings{.dt = sim.settings().dt});
   while (sim.tick() < ticks) {
@@ -149,7 +149,7 @@ TEST(Determinism, OneBitOfInitialStateChangesTheHash) {
         s.bodies[0].body.position.x = flip(s.bodies[0].body.position.x, 40);
       else
         s.bodies[0].spring->stiffness = flip(s.bodies[0].spring->stiffness, 40);
-      Simulation changed = make_simulation(s);
+      World changed = make_world(s);
       for (std::uint64_t t = 0; t < golden_ticks; ++t) changed.step();
       EXPECT_NE(changed.state_hash(), reference)
           << precision_name(p) << (which == 0 ? ": x0" : ": stiffness") << " with bit 40 flipped";

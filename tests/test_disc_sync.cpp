@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/simulation.hpp"
 #include "fixstep/sync_test.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 namespace {
@@ -78,8 +78,8 @@ void expect_rolls_back(Integrator integrator, Precision precision, int k, std::u
   SCOPED_TRACE(testing::Message() << integrator_name(integrator) << " " << precision_name(precision)
                                   << " K = " << k);
   const WorldDef def = pile_and_paddle(integrator, precision);
-  Simulation plain = make_simulation(def);
-  Simulation tested = make_simulation(def);
+  World plain = World(def);
+  World tested = World(def);
   SyncTest sync(tested, k);
   std::size_t impacts = 0, touching_ticks = 0, paddle_hits = 0;
   const auto paddle = static_cast<std::uint32_t>(def.bodies.size() - 2);

@@ -8,7 +8,6 @@
 #include <random>
 #include <vector>
 
-#include "fixstep/simulation.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -75,7 +74,7 @@ TEST(Discs, ImpactMidTickMatchesTheClosedForm) {
     for (const double e : {0.0, 0.5, 1.0}) {
       for (const double mu : {0.0, 0.4}) {
         for (const Case& c : cases) {
-          World<double> w(contact_settings(dt, e, mu, integrator));
+          detail::WorldKernel<double> w(contact_settings(dt, e, mu, integrator));
           w.create_body(disc(c.a.m, {c.a.x, c.a.y}, {c.a.vx, c.a.vy}, c.ra));
           w.create_body(disc(c.b.m, {c.b.x, c.b.y}, {c.b.vx, c.b.vy}, c.rb));
           for (int i = 0; i < 3; ++i) w.step();
@@ -99,7 +98,8 @@ TEST(Discs, ImpactMidTickMatchesTheClosedForm) {
 TEST(Discs, EnergyLostIsWhatDissipatedGains) {
   for (const double e : {0.0, 0.5, 0.9}) {
     for (const double mu : {0.0, 0.3}) {
-      World<double> w(contact_settings(0.05, e, mu, Integrator::semi_implicit_euler, true));
+      detail::WorldKernel<double> w(
+          contact_settings(0.05, e, mu, Integrator::semi_implicit_euler, true));
       w.create_body(disc(1.0, {0.0, 0.0}, {4.0, 1.0}, 0.3));
       w.create_body(disc(2.0, {1.0, 0.2}, {-1.0, 0.0}, 0.3));
       const double e0 = w.energy().total();
@@ -115,7 +115,7 @@ TEST(Discs, EnergyLostIsWhatDissipatedGains) {
 
 TEST(Discs, NewtonsCradlePassesTheVelocityToTheLast) {
   for (const Integrator integrator : all_integrators) {
-    World<double> w(contact_settings(1.0 / 60.0, 1.0, 0.0, integrator));
+    detail::WorldKernel<double> w(contact_settings(1.0 / 60.0, 1.0, 0.0, integrator));
     const double r = 0.1;
     w.create_body(disc(1.0, {-0.5, 0.0}, {2.0, 0.0}, r));  // the striker
     for (int i = 1; i < 5; ++i) w.create_body(disc(1.0, {2 * r * i, 0.0}, {}, r));
@@ -130,7 +130,8 @@ TEST(Discs, NewtonsCradlePassesTheVelocityToTheLast) {
 TEST(Discs, ElasticGasConservesMomentumAndEnergy) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  World<double> w(contact_settings(1.0 / 60.0, 1.0, 0.0, Integrator::semi_implicit_euler));
+  detail::WorldKernel<double> w(
+      contact_settings(1.0 / 60.0, 1.0, 0.0, Integrator::semi_implicit_euler));
   const int side = 20;  // 400 discs of radius 0.1 on a 0.5 m lattice, random velocities
   for (int i = 0; i < side; ++i) {
     for (int j = 0; j < side; ++j) {
@@ -162,7 +163,7 @@ TEST(Discs, ElasticGasConservesMomentumAndEnergy) {
 
 TEST(Discs, AFastDiscBouncesOffASmallStaticDisc) {
   for (const Integrator integrator : all_integrators) {
-    World<double> w(contact_settings(1.0 / 60.0, 1.0, 0.0, integrator));
+    detail::WorldKernel<double> w(contact_settings(1.0 / 60.0, 1.0, 0.0, integrator));
     // 10 m per tick towards a peg of radius 0.05 m 25 m away.
     w.create_body(disc(1.0, {-25.0, 0.0}, {600.0, 0.0}, 0.1));
     w.create_body(disc(1.0, {0.0, 0.0}, {}, 0.05, BodyType::static_body));
@@ -176,9 +177,9 @@ TEST(Discs, AFastDiscBouncesOffASmallStaticDisc) {
 
 /// Discs of radius r in a box [-half, half] (ground at 0, walls) under gravity: a grid of
 /// `columns` × `rows` above the ground, jittered.
-World<double> pour(int columns, int rows, double r, double half, Integrator integrator,
-                   double e = 0.0) {
-  World<double> w(contact_settings(1.0 / 60.0, e, 0.3, integrator));
+detail::WorldKernel<double> pour(int columns, int rows, double r, double half,
+                                 Integrator integrator, double e = 0.0) {
+  detail::WorldKernel<double> w(contact_settings(1.0 / 60.0, e, 0.3, integrator));
   w.add_plane(PlaneDef{.normal = {0, 1}, .offset = 0.0, .restitution = 0.0, .friction = 0.3});
   w.add_plane(PlaneDef{.normal = {1, 0}, .offset = -half, .restitution = 0.0, .friction = 0.3});
   w.add_plane(PlaneDef{.normal = {-1, 0}, .offset = -half, .restitution = 0.0, .friction = 0.3});
@@ -197,7 +198,7 @@ World<double> pour(int columns, int rows, double r, double half, Integrator inte
 
 TEST(Discs, APileSettlesWithoutSinking) {
   const double r = 0.05;
-  World<double> w = pour(23, 22, r, 1.5, Integrator::semi_implicit_euler);
+  detail::WorldKernel<double> w = pour(23, 22, r, 1.5, Integrator::semi_implicit_euler);
   ASSERT_GE(w.body_count(), 500u);
   double kinetic_mid = 0;
   for (int i = 0; i < 900; ++i) {
@@ -217,7 +218,7 @@ TEST(Discs, AStackOfTenStandsInATube) {
   for (const Integrator integrator : all_integrators) {
     const double r = 0.1;
     WorldSettings s = contact_settings(1.0 / 60.0, 0.0, 0.0, integrator);
-    World<double> w(s);
+    detail::WorldKernel<double> w(s);
     w.add_plane(PlaneDef{.normal = {0, 1}});
     w.add_plane(PlaneDef{.normal = {1, 0}, .offset = -r * 1.01});
     w.add_plane(PlaneDef{.normal = {-1, 0}, .offset = -r * 1.01});
@@ -244,7 +245,7 @@ TEST(Discs, AStackOfTenStandsInATube) {
 }
 
 TEST(Discs, LinkedDiscsDoNotCollideAndCollideFalseOptsOut) {
-  World<double> w(contact_settings(0.01, 1.0, 0.0, Integrator::semi_implicit_euler));
+  detail::WorldKernel<double> w(contact_settings(0.01, 1.0, 0.0, Integrator::semi_implicit_euler));
   const Entity a = w.create_body(disc(1.0, {0.0, 0.0}, {1.0, 0.0}, 0.3));
   const Entity b = w.create_body(disc(1.0, {0.5, 0.0}, {}, 0.3));  // overlapping, linked
   w.create_link(LinkDef{a, b, LinkSpring{.stiffness = 0.0}});
@@ -259,7 +260,7 @@ TEST(Discs, LinkedDiscsDoNotCollideAndCollideFalseOptsOut) {
 
 TEST(BodyTypes, StaticNeverMovesAndKinematicKeepsItsVelocity) {
   for (const Integrator integrator : all_integrators) {
-    World<double> w(WorldSettings{.dt = 0.01, .integrator = integrator});
+    detail::WorldKernel<double> w(WorldSettings{.dt = 0.01, .integrator = integrator});
     BodyDef s = disc(1.0, {1.0, 2.0}, {}, 0.1, BodyType::static_body);
     s.gravity = Gravity{};
     const Entity st = w.create_body(s);
@@ -285,8 +286,8 @@ TEST(BodyTypes, StaticNeverMovesAndKinematicKeepsItsVelocity) {
 
 TEST(BodyTypes, ALinkToAStaticBodyIsAnAnchoredSpring) {
   for (const Integrator integrator : all_integrators) {
-    World<double> linked(WorldSettings{.dt = 0.01, .integrator = integrator});
-    World<double> anchored(WorldSettings{.dt = 0.01, .integrator = integrator});
+    detail::WorldKernel<double> linked(WorldSettings{.dt = 0.01, .integrator = integrator});
+    detail::WorldKernel<double> anchored(WorldSettings{.dt = 0.01, .integrator = integrator});
     BodyDef bob = disc(2.0, {1.0, 0.5}, {0.0, 1.0}, 0.1);
     bob.gravity = Gravity{};
     const Entity a = linked.create_body(bob);
@@ -314,8 +315,8 @@ TEST(BodyTypes, UnderPushALinkToAStaticBodyIsStillAnAnchoredSpring) {
   // too, so the link to it pulls as an anchored spring does (before the fix: 3e-4 m apart
   // after 2 s with RK4 and Verlet, 1e-3 m with implicit Euler).
   for (const Integrator integrator : all_integrators) {
-    World<double> linked(WorldSettings{.dt = 0.01, .integrator = integrator});
-    World<double> anchored(WorldSettings{.dt = 0.01, .integrator = integrator});
+    detail::WorldKernel<double> linked(WorldSettings{.dt = 0.01, .integrator = integrator});
+    detail::WorldKernel<double> anchored(WorldSettings{.dt = 0.01, .integrator = integrator});
     BodyDef bob = disc(2.0, {1.0, 0.5}, {0.0, 1.0}, 0.1);
     const Entity a = linked.create_body(bob);
     const Entity pin = linked.create_body(disc(1e-6, {0.0, 0.0}, {}, 0.1, BodyType::static_body));
@@ -333,7 +334,8 @@ TEST(BodyTypes, UnderPushALinkToAStaticBodyIsStillAnAnchoredSpring) {
 }
 
 TEST(BodyTypes, AKinematicPaddlePushesAndItsWorkIsExternal) {
-  World<double> w(contact_settings(0.01, 1.0, 0.0, Integrator::velocity_verlet, true));
+  detail::WorldKernel<double> w(
+      contact_settings(0.01, 1.0, 0.0, Integrator::velocity_verlet, true));
   w.create_body(disc(1.0, {0.0, 0.0}, {2.0, 0.0}, 0.1, BodyType::kinematic));
   w.create_body(disc(1.0, {0.5, 0.0}, {}, 0.1));
   for (int i = 0; i < 30; ++i) w.step();
@@ -346,22 +348,22 @@ TEST(BodyTypes, AKinematicPaddlePushesAndItsWorkIsExternal) {
 }
 
 TEST(Discs, SnapshotsCarryTheContactState) {
-  World<double> w = pour(10, 10, 0.05, 0.4, Integrator::semi_implicit_euler, 0.3);
+  detail::WorldKernel<double> w = pour(10, 10, 0.05, 0.4, Integrator::semi_implicit_euler, 0.3);
   for (int i = 0; i < 100; ++i) w.step();
-  World<double> copy = w;
+  detail::WorldKernel<double> copy = w;
   for (int i = 0; i < 100; ++i) w.step(), copy.step();
   EXPECT_EQ(w.state_hash(), copy.state_hash());
-  World<double> fresh = pour(10, 10, 0.05, 0.4, Integrator::semi_implicit_euler, 0.3);
+  detail::WorldKernel<double> fresh = pour(10, 10, 0.05, 0.4, Integrator::semi_implicit_euler, 0.3);
   fresh = copy;  // assignment reuses storage
   for (int i = 0; i < 50; ++i) w.step(), fresh.step();
   EXPECT_EQ(w.state_hash(), fresh.state_hash());
 }
 
 TEST(Discs, NothingChangesWithoutTheContactsTable) {
-  World<double> on = pour(5, 5, 0.05, 0.3, Integrator::rk4);
+  detail::WorldKernel<double> on = pour(5, 5, 0.05, 0.3, Integrator::rk4);
   WorldSettings off_settings = on.settings();
   off_settings.contacts.reset();
-  World<double> off(off_settings);
+  detail::WorldKernel<double> off(off_settings);
   EXPECT_FALSE(off.settings().contacts.has_value());
   for (int i = 0; i < 10; ++i) on.step();
   EXPECT_GT(on.contact_stats().candidate_pairs, 0u);
@@ -377,7 +379,7 @@ namespace {
 /// Largest error (s) of the first `count` impact times of a ball dropped from h above a static
 /// disc with e = 1, against t_k = (2k + 1) √(2h/g) (World::impacts() gives each time).
 double impact_time_error(Integrator integrator, double dt, double h, int count) {
-  World<double> w(contact_settings(dt, 1.0, 0.0, integrator));
+  detail::WorldKernel<double> w(contact_settings(dt, 1.0, 0.0, integrator));
   BodyDef ball = disc(1.0, {0.0, 0.5 + 0.25 + h}, {}, 0.25);
   ball.gravity = Gravity{{0.0, -9.81}};
   w.create_body(ball);
@@ -422,7 +424,7 @@ namespace {
 TEST(Discs, FloatWorldsCollideAndRest) {
   WorldSettings s{.dt = 1.0 / 60.0};
   s.contacts = ContactSettings{.restitution = 1.0};
-  World<float> cradle(s);
+  detail::WorldKernel<float> cradle(s);
   const double r = 0.125;  // binary fractions: the positions are exact in float
   for (int i = 0; i < 5; ++i) {
     BodyDef b;
@@ -437,7 +439,7 @@ TEST(Discs, FloatWorldsCollideAndRest) {
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(cradle.vx()[i], 0.0f, 1e-6f);
 
   s.contacts = ContactSettings{.restitution = 0.0};
-  World<float> stack(s);
+  detail::WorldKernel<float> stack(s);
   stack.add_plane(PlaneDef{.normal = {0, 1}});
   for (int i = 0; i < 6; ++i) {
     BodyDef b;

@@ -13,8 +13,9 @@ namespace fixstep {
 namespace {
 
 /// Unit-mass oscillator x'' = -ω² x - (b/m) x' along x, starting at x = 1 m, v = 0.
-World<double> oscillator(double omega, double dt, double damping, Integrator integrator) {
-  World<double> w(WorldSettings{.dt = dt, .integrator = integrator});
+detail::WorldKernel<double> oscillator(double omega, double dt, double damping,
+                                       Integrator integrator) {
+  detail::WorldKernel<double> w(WorldSettings{.dt = dt, .integrator = integrator});
   BodyDef def;
   def.body.position = {1.0, 0.0};
   def.spring = SpringDamper{.anchor = {}, .stiffness = omega * omega, .damping = damping};
@@ -23,7 +24,7 @@ World<double> oscillator(double omega, double dt, double damping, Integrator int
 }
 
 TEST(EnergyMeasure, PotentialsAndKineticAreExact) {
-  World<double> w(WorldSettings{.dt = 0.01});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   BodyDef def;
   def.body = Body{.mass = 2.0, .position = {3.0, 4.0}, .velocity = {1.0, -2.0}};
   def.spring = SpringDamper{.anchor = {0.0, 1.0}, .stiffness = 5.0, .damping = 0.3};
@@ -96,7 +97,7 @@ TEST(EnergyDrift, DampedSpringEnergyNeverIncreasesUnderSemiImplicitEuler) {
   // symplectic Euler changes by about dt (½ ω² dt (v² - ω²x²) - (b/m) v²); this is <= 0 for
   // every state when ½ ω² dt <= b/m (here 0.075 <= 0.1), so the energy must fall every tick,
   // up to round-off (1e-12 relative).
-  World<double> w(WorldSettings{.dt = 0.01});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   BodyDef def;
   def.body.position = {1000.0, 0.0};
   def.spring = SpringDamper{.anchor = {}, .stiffness = 15.0, .damping = 0.1};
@@ -115,7 +116,7 @@ TEST(EnergyDrift, DampedSpringEnergyNeverIncreasesUnderSemiImplicitEuler) {
 
 TEST(EnergyDrift, ExplicitEulerGainsEnergyOnTheArticleSpring) {
   // "Instead of damping and converging on the origin, it gains energy over time!"
-  World<float> w(WorldSettings{.dt = 0.01, .integrator = Integrator::explicit_euler});
+  detail::WorldKernel<float> w(WorldSettings{.dt = 0.01, .integrator = Integrator::explicit_euler});
   BodyDef def;
   def.body.position = {1000.0, 0.0};
   def.spring = SpringDamper{.anchor = {}, .stiffness = 15.0, .damping = 0.1};
@@ -137,7 +138,8 @@ TEST(EnergyDrift, ExplicitEulerGainsEnergyOnTheArticleSpring) {
 /// the last second of 4 s at step h, both J.
 std::pair<double, double> driven_balance(Integrator method, double h, double b, double rest,
                                          bool kinematic_first) {
-  World<double> w(WorldSettings{.dt = h, .integrator = method, .track_dissipation = true});
+  detail::WorldKernel<double> w(
+      WorldSettings{.dt = h, .integrator = method, .track_dissipation = true});
   BodyDef kin;
   kin.type = BodyType::kinematic;
   kin.body = Body{.mass = 1.0, .position = {0.0, 0.0}, .velocity = {1.5, -0.75}};

@@ -85,7 +85,8 @@ void expect_mode_independent(const std::string& what, F f) {
 // tick's hash of 20 000), for semi-implicit Euler and a velocity Verlet world whose damping
 // factors use det::exp.
 std::uint64_t damped_hash(bool flush, Integrator integrator) {
-  World<float> w(WorldSettings{.dt = 0.01, .integrator = integrator, .flush_denormals = flush});
+  detail::WorldKernel<float> w(
+      WorldSettings{.dt = 0.01, .integrator = integrator, .flush_denormals = flush});
   BodyDef d;
   d.body.position = {1.0, 1.0};
   d.spring = SpringDamper{.anchor = {}, .stiffness = 100.0, .damping = 50.0};
@@ -117,7 +118,7 @@ TEST(FloatHygiene, TheCallersFpuModeDoesNotReachTheState) {
 std::uint64_t loaded_hash(const char* name, Precision precision) {
   Scene s = load_scene(std::string(FIXSTEP_SOURCE_DIR) + "/tests/scenes/cross/" + name);
   s.precision = precision;
-  Simulation sim = make_simulation(world_def(s));
+  World sim = World(world_def(s));
   for (int i = 0; i < 300; ++i) sim.step({});
   return sim.state_hash();
 }
@@ -135,7 +136,8 @@ TEST(FloatHygiene, TheCallersFpuModeDoesNotReachALoadedWorld) {
 // step or by accelerations(), which a caller may call in its own mode. Fails without both
 // accelerations' and rebuild_terms' guards (either one covers this path).
 std::uint64_t edited_hash(bool accelerations_in_callers_mode, int mode) {
-  World<float> w(WorldSettings{.dt = 0.01, .integrator = Integrator::velocity_verlet});
+  detail::WorldKernel<float> w(
+      WorldSettings{.dt = 0.01, .integrator = Integrator::velocity_verlet});
   BodyDef d;
   d.body.position = {0.3, 0.7};
   const Entity e = w.create_body(d);
@@ -166,7 +168,7 @@ TEST(FloatHygiene, TheCallersFpuModeDoesNotReachARecordingOrAnInputScript) {
   BodyDef b;
   b.name = "b";
   def.bodies = {b};
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder recorder(def, "scenes/b.toml", 1);
   for (std::uint64_t t = 0; t < 5; ++t) {
     const TickInput in{.tick = t, .push = {0.1 * double(t), -0.3}, .pointer = {0.7, 1.1}};

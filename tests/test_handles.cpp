@@ -1,5 +1,5 @@
 // The handle API of a running world: bodies and links by
-// handle on Simulation, per-body input (forces, impulses, kinematic velocities), contact
+// handle on World, per-body input (forces, impulses, kinematic velocities), contact
 // events, the stability guard's warnings, and per-body input in recordings.
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include "fixstep/recording.hpp"
 #include "fixstep/recording_file.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 namespace {
@@ -30,7 +30,7 @@ BodyDef ball(const std::string& name, Vec2 at, Vec2 v = {}, double mass = 1.0) {
 // --- the handle API ----------------------------------------------------------------------
 
 TEST(Handles, EveryEditOfARunningWorldIsReachableOnSimulationWithoutVisit) {
-  Simulation sim(Precision::f64, WorldSettings{.dt = 0.01});
+  World sim(Precision::f64, WorldSettings{.dt = 0.01});
   const Entity a = sim.create_body(ball("a", {0, 0}));
   const Entity b = sim.create_body(ball("b", {1, 0}));
   const Entity c = sim.create_body(ball("c", {2, 0}));
@@ -66,7 +66,7 @@ TEST(Handles, EveryEditOfARunningWorldIsReachableOnSimulationWithoutVisit) {
 
 TEST(BodyInput, AnImpulseChangesTheVelocityByJOverMAtTheTicksStart) {
   // Semi-implicit Euler on a free body: v1 = v0 + J/m, x1 = x0 + v1 dt, exactly.
-  Simulation sim(Precision::f64, WorldSettings{.dt = 0.25});
+  World sim(Precision::f64, WorldSettings{.dt = 0.25});
   const Entity e = sim.create_body(ball("e", {1, 2}, {0.5, 0}, 4.0));
   TickInput in;
   in.bodies.push_back({e, BodyInputKind::impulse, {2.0, -1.0}});
@@ -82,7 +82,7 @@ TEST(BodyInput, AnImpulseChangesTheVelocityByJOverMAtTheTicksStart) {
 /// (by_input) or by a ConstantForce set before that tick and removed after it.
 std::vector<Body> forced_run(Integrator method, bool linked, bool by_input, Vec2 force) {
   WorldSettings s{.dt = 0.01, .integrator = method};
-  Simulation sim(Precision::f64, s);
+  World sim(Precision::f64, s);
   BodyDef a = ball("a", {0, 0}, {0.3, 0.1}, 2.0);
   a.gravity = Gravity{{0.0, -9.81}};
   a.spring = SpringDamper{.anchor = {0, 0}, .stiffness = 40.0, .damping = 0.5};
@@ -120,7 +120,7 @@ TEST(BodyInput, AForceForOneTickStepsAsAConstantForceForThatTickBitForBit) {
 }
 
 TEST(BodyInput, AKinematicBodyMovesAtTheVelocityItIsGivenAndKeepsIt) {
-  Simulation sim(Precision::f64, WorldSettings{.dt = 0.5});
+  World sim(Precision::f64, WorldSettings{.dt = 0.5});
   BodyDef k = ball("paddle", {0, 0});
   k.type = BodyType::kinematic;
   const Entity e = sim.create_body(k);
@@ -137,7 +137,7 @@ TEST(BodyInput, AKinematicBodyMovesAtTheVelocityItIsGivenAndKeepsIt) {
 }
 
 TEST(BodyInput, CheckInputNamesWhatStepWouldIgnore) {
-  Simulation sim(Precision::f64, WorldSettings{.dt = 0.01});
+  World sim(Precision::f64, WorldSettings{.dt = 0.01});
   const Entity d = sim.create_body(ball("d", {0, 0}));
   BodyDef s = ball("wall", {3, 0});
   s.type = BodyType::static_body;
@@ -161,7 +161,7 @@ TEST(BodyInput, CheckInputNamesWhatStepWouldIgnore) {
   EXPECT_NE(check({w, BodyInputKind::force, {1, 0}}).find("never moves"), std::string::npos);
   EXPECT_NE(check({d, BodyInputKind::force, {NAN, 0}}).find("finite"), std::string::npos);
   // What check_input refuses, step ignores: the world steps as without it.
-  Simulation twin(Precision::f64, WorldSettings{.dt = 0.01});
+  World twin(Precision::f64, WorldSettings{.dt = 0.01});
   twin.create_body(ball("d", {0, 0}));
   TickInput bad;
   bad.bodies = {{gone, BodyInputKind::impulse, {1, 0}},
@@ -195,7 +195,7 @@ TEST(BodyInput, TheSamplerHoldsForcesAsLevelsAndImpulsesAsEvents) {
 TEST(ContactEvents, TwoDiscsThatStrikeAndPartGiveOneBegunAndOneEndedWithTheClosingSpeed) {
   WorldSettings s{.dt = 0.01};
   s.contacts = ContactSettings{.restitution = 1.0, .friction = 0.0};
-  Simulation sim(Precision::f64, s);
+  World sim(Precision::f64, s);
   BodyDef a = ball("a", {-1, 0}, {2, 0});
   BodyDef b = ball("b", {1, 0}, {-1, 0});
   a.collider = b.collider = Collider{0.5};
@@ -217,7 +217,7 @@ TEST(ContactEvents, TwoDiscsThatStrikeAndPartGiveOneBegunAndOneEndedWithTheClosi
 TEST(ContactEvents, ADiscComingToRestOnAnotherBeginsOnceAndEndsWhenOneIsDestroyed) {
   WorldSettings s{.dt = 0.01};
   s.contacts = ContactSettings{.restitution = 0.0, .friction = 0.5};
-  Simulation sim(Precision::f64, s);
+  World sim(Precision::f64, s);
   BodyDef floor = ball("floor", {0, 0});
   floor.type = BodyType::static_body;
   floor.collider = Collider{1.0};
@@ -251,9 +251,9 @@ TEST(GuardWarnings, MakeSimulationKeepsANearLimitWarningWhereAProgramCanReadIt) 
   const double omega = 1.9 / def.settings.dt;
   b.spring = SpringDamper{.stiffness = omega * omega};
   def.bodies.push_back(b);
-  EXPECT_FALSE(make_simulation(def).warnings().empty());
+  EXPECT_FALSE(World(def).warnings().empty());
   def.bodies[0].spring->stiffness = 1.0;
-  EXPECT_TRUE(make_simulation(def).warnings().empty());
+  EXPECT_TRUE(World(def).warnings().empty());
 }
 
 // --- per-body input in recordings -------------------------------------------------------
@@ -264,7 +264,7 @@ TEST(BodyInputRecording, PerBodyInputsRoundTripAndReplayBitForBit) {
   BodyDef k = ball("paddle", {0, -1});
   k.type = BodyType::kinematic;
   def.bodies = {ball("ship", {0, 0}), k};
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder recorder(def, "code-built", 5);
   for (std::uint64_t t = 0; t < 30; ++t) {
     TickInput in{.tick = t};

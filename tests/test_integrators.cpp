@@ -13,8 +13,8 @@ namespace {
 
 /// 1 kg at rest at the origin pushed by a constant 10 N (the article's first example).
 template <class Real>
-World<Real> pushed_mass(double dt, Integrator integrator) {
-  World<Real> w(WorldSettings{.dt = dt, .integrator = integrator});
+detail::WorldKernel<Real> pushed_mass(double dt, Integrator integrator) {
+  detail::WorldKernel<Real> w(WorldSettings{.dt = dt, .integrator = integrator});
   BodyDef def;
   def.body.mass = 1.0;
   def.constant_force = ConstantForce{{10.0, 0.0}};
@@ -55,7 +55,7 @@ TEST(ArticleTables, ExactSolutionOfConstantForce) {
 TEST(SpringDamper, SemiImplicitTracksExactDampedOscillator) {
   // The article's system: m = 1, x0 = 1000, k = 15, b = 0.1, dt = 0.01, against the exact
   // underdamped solution (exact.hpp, tested on its own in test_exact.cpp).
-  World<double> w(WorldSettings{.dt = 0.01});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   BodyDef def;
   def.body.position = {1000.0, 0.0};
   def.spring = SpringDamper{.anchor = {}, .stiffness = 15.0, .damping = 0.1};

@@ -99,7 +99,7 @@ TEST(Limits, MakeSimulationRefusesATickBeyondTheWorkLimitBeforeStepping) {
   WorldDef def = chain(1000);  // 1999 body-substeps a substep
   def.settings.substeps = 1'000'000;
   try {
-    (void)make_simulation(def);
+    (void)World(def);
     FAIL() << "a tick of 2e9 body-substeps was accepted";
   } catch (const LimitError& e) {
     const std::string m = e.what();
@@ -109,7 +109,7 @@ TEST(Limits, MakeSimulationRefusesATickBeyondTheWorkLimitBeforeStepping) {
     EXPECT_NE(m.find("use fewer substeps"), std::string::npos) << m;
   }
   def.settings.substeps = 500'000;  // 9.995e8: within
-  EXPECT_NO_THROW((void)make_simulation(def));
+  EXPECT_NO_THROW((void)World(def));
 }
 
 TEST(Limits, TheSceneLoaderNamesTheSubstepsLine) {
@@ -219,20 +219,20 @@ TEST(Limits, TheStabilityGuardRunsOncePerSceneLoad) {
   const std::uint64_t once = iterations;
   ASSERT_GT(once, 0u);  // the guard's power iteration reports its progress
   iterations = 0;
-  (void)make_simulation(scene);  // enforce_stability with the scene's lines, then the world
+  (void)make_world(scene);  // enforce_stability with the scene's lines, then the world
   EXPECT_EQ(iterations, once);
 }
 
 TEST(Limits, ReplayReportsItsProgress) {
   WorldDef def = chain(3);
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder recorder(def, "c.toml", 100);
   for (int t = 0; t < 5000; ++t) {
     sim.step(TickInput{.tick = std::uint64_t(t)});
     recorder.record(TickInput{}, sim);
   }
   const Recording rec = recorder.finish(sim);
-  Simulation again = make_simulation(def);  // the guard reports too: outside the scope
+  World again = World(def);  // the guard reports too: outside the scope
   std::uint64_t last = 0, total = 0;
   const WorkProgressScope seen(
       [&](std::string_view what, std::string_view unit, std::uint64_t done, std::uint64_t all) {
@@ -256,7 +256,7 @@ std::string slurp(const std::filesystem::path& file) {
 std::string stream_and_compare(const WorldDef& def, const std::filesystem::path& file,
                                std::uint64_t ticks, std::uint64_t hash_every,
                                Recording& in_memory) {
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder recorder(def, "c.toml", hash_every);
   RecordingWriter writer(def, "c.toml", hash_every, file);
   for (std::uint64_t t = 0; t < ticks; ++t) {
@@ -285,7 +285,7 @@ TEST(Limits, TheStreamingRecorderWritesRecordersBytesAndOnlyAtTheEnd) {
   }
   {  // abandoned (an exception, an early return): neither the file nor the temporary remains
     RecordingWriter writer(chain(2), "c.toml", 1, dir / "gone.rec");
-    Simulation sim = make_simulation(chain(2));
+    World sim = World(chain(2));
     sim.step(TickInput{});
     writer.record(TickInput{}, sim);
   }

@@ -111,7 +111,7 @@ TEST(Loop, EachTickReceivesTheFramesInputWithItsOwnIndex) {
 
 /// Physics state after exactly n ticks of the default scene, frames arriving at `fps`.
 std::uint64_t hash_after(std::uint64_t n, double fps) {
-  Simulation sim = make_simulation(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml"));
+  World sim = make_world(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml"));
   FixedStepLoop loop(LoopSettings{.dt = sim.settings().dt});
   const VirtualClock clock(fps);
   while (sim.tick() < n) {
@@ -124,7 +124,7 @@ std::uint64_t hash_after(std::uint64_t n, double fps) {
 
 TEST(Loop, StateAfterNTicksIsBitIdenticalAtAnyFrameRate) {
   constexpr std::uint64_t n = 777;
-  Simulation direct = make_simulation(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml"));
+  World direct = make_world(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml"));
   for (std::uint64_t i = 0; i < n; ++i) direct.step();
   EXPECT_EQ(hash_after(n, 30), direct.state_hash());
   EXPECT_EQ(hash_after(n, 60), direct.state_hash());

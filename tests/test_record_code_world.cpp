@@ -70,7 +70,7 @@ TEST(RecordCodeWorld, FixstepReplaysAndRendersItFromTheRecording) {
   const WorldDef def = code_world();
   const std::string scene = write_scene_beside(rec_file, def);
   EXPECT_EQ(scene, "session.scene.toml");
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder recorder(def, scene, 1);
   for (std::uint64_t t = 0; t < 150; ++t) {
     TickInput in{.tick = t};
@@ -116,7 +116,7 @@ TEST(RecordCodeWorld, ARecordingCarryingFormatSceneReplaysWithNoSceneFile) {
   fs::create_directories(dir);
   const fs::path rec_file = dir / "session.rec";
   const WorldDef def = code_world();
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder recorder(def, "code_world (built in code)", 1, format_scene(def));
   for (std::uint64_t t = 0; t < 60; ++t) {
     TickInput in{.tick = t};

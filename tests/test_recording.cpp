@@ -47,7 +47,7 @@ TickInput input_of(std::uint64_t t) {
 }
 
 Recording record_run(const WorldDef& def, std::uint64_t ticks, std::uint64_t hash_every) {
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder rec(def, "scenes/small.toml", hash_every);
   for (std::uint64_t t = 0; t < ticks; ++t) {
     sim.step(input_of(t));
@@ -200,7 +200,7 @@ TEST(Recording, DefinitionHashCoversWhatChangesStatesOnly) {
 
 TEST(Recording, RecorderFollowsTheTimelineKeptAfterARewind) {
   const WorldDef def = small_world();
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder rec(def, "small.toml", 5);
   WorldSnapshot at20;
   for (std::uint64_t t = 0; t < 50; ++t) {
@@ -220,7 +220,7 @@ TEST(Recording, RecorderFollowsTheTimelineKeptAfterARewind) {
   }
   const Recording kept = rec.finish(sim);
   // A straight recording of the timeline that was kept: 20 ticks pushed harder, then input_of.
-  Simulation fresh = make_simulation(def);
+  World fresh = World(def);
   Recorder straight(def, "small.toml", 5);
   for (std::uint64_t t = 0; t < 80; ++t) {
     TickInput in = input_of(t);

@@ -26,7 +26,7 @@ WorldDef two_bodies() {
 }
 
 Recording short_run(const WorldDef& def) {
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder rec(def, "two.toml", 1);
   for (std::uint64_t t = 0; t < 5; ++t) {
     TickInput in{.tick = t};

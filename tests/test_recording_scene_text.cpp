@@ -30,7 +30,7 @@ WorldDef one_body() {
 /// A recording of 3 ticks carrying `scene_text`.
 Recording recorded(const std::string& scene_text) {
   const WorldDef def = one_body();
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   Recorder rec(def, "s.toml", 1, scene_text);
   for (std::uint64_t t = 0; t < 3; ++t) {
     sim.step(TickInput{.tick = t});
@@ -213,7 +213,7 @@ TEST(RecordingSceneText, TheDampingSplitIsRecordedAndApplied) {
   WorldDef def = one_body();
   def.settings.damping_split = DampingSplit::per_step;
   Recorder recorder(def, "s.toml", 1, scene);
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   const Recording rec = recorder.finish(sim);
   EXPECT_EQ(rec.settings.damping_split, DampingSplit::per_step);
   const Recording back = parse_recording(format_recording(rec), "x.rec");

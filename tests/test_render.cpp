@@ -44,7 +44,7 @@ TEST(Render, BodyIsDrawnWhereItsPositionMaps) {
   // the mirrored points (96, 132) (y flipped and x flipped) and (224, 132) (y flipped) are not red.
   Renderer r(320, 200);
   r.set_camera(Camera{.center = {0, 0}, .width = 10.0});
-  Simulation sim(Precision::f64, WorldSettings{});
+  World sim(Precision::f64, WorldSettings{});
   BodyDef d;
   d.body.position = {2.0, 1.0};
   d.appearance = Appearance{.radius = 0.5, .color = {255, 0, 0, 255}};
@@ -64,7 +64,7 @@ TEST(Render, BodyIsDrawnWhereItsPositionMaps) {
 }
 
 TEST(Render, InterpolatesBetweenTicksWithAlpha) {
-  Simulation sim(Precision::f64, WorldSettings{.dt = 1.0});
+  World sim(Precision::f64, WorldSettings{.dt = 1.0});
   BodyDef d;
   d.body.velocity = {4.0, 0.0};
   sim.create_body(d);
@@ -233,8 +233,8 @@ TEST(Render, ASessionOfAWorldBuiltOnAnotherThreadIsTheSessionThatBuildsItsOwn) {
   const Scene scene = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml");
   WorldDef def = world_def(scene);
   def.settings.track_dissipation = true;
-  std::optional<Simulation> built;
-  std::thread builder([&] { built.emplace(make_simulation(def)); });
+  std::optional<World> built;
+  std::thread builder([&] { built.emplace(World(def)); });
   builder.join();
   const SessionSettings settings{.width = 160, .height = 90};
   Session given(def, std::move(*built), settings);
@@ -250,7 +250,7 @@ TEST(Render, ASessionOfAWorldBuiltOnAnotherThreadIsTheSessionThatBuildsItsOwn) {
   EXPECT_DOUBLE_EQ(given.initial_energy(), own.initial_energy());
   EXPECT_TRUE(std::equal(given.renderer().pixels().begin(), given.renderer().pixels().end(),
                          own.renderer().pixels().begin()));
-  Simulation stepped = make_simulation(def);
+  World stepped = World(def);
   stepped.step();
   EXPECT_THROW(Session(def, std::move(stepped), settings), std::invalid_argument);
 }
@@ -271,7 +271,7 @@ TEST(Render, ATrailBelongsToItsBodyNotToItsDenseIndex) {
   Renderer r(320, 200), fresh(320, 200);
   r.set_camera(camera);
   fresh.set_camera(camera);
-  Simulation sim(Precision::f64, WorldSettings{});
+  World sim(Precision::f64, WorldSettings{});
   const Entity a = sim.create_body(disc({-3.1, 0.3}, {255, 0, 0, 255}));
   const Entity b = sim.create_body(disc({2.9, 0.3}, {0, 255, 0, 255}));
   RenderFrame s;

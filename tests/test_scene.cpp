@@ -446,7 +446,7 @@ TEST(Scene, SpringTablesJoinNamedBodies) {
   // Two links between the same bodies: both act, with a warning.
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_NE(s.warnings[0].find("already joined by spring[0]"), std::string::npos) << s.warnings[0];
-  const Simulation sim = make_simulation(s);
+  const World sim = make_world(s);
   EXPECT_EQ(sim.link_count(), 2u);
 }
 
@@ -530,7 +530,7 @@ stiffness = 7
   EXPECT_EQ(s.links[3].body_b, 1u);
   EXPECT_EQ(s.link_lines[3], 16u);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
-  EXPECT_EQ(make_simulation(s).link_count(), 4u);
+  EXPECT_EQ(make_world(s).link_count(), 4u);
 }
 
 TEST(Scene, ChainLinksInTheFrequencyFormUseTheReducedMassAndAnExplicitRestLength) {
@@ -606,7 +606,7 @@ pin_spring = { stiffness = 1000 }
   EXPECT_EQ(s.bodies[3].spring->anchor, (Vec2{0.5, 2.0}));
   EXPECT_EQ(s.bodies[3].spring->stiffness, 1000.0);
   EXPECT_TRUE(s.warnings.empty());
-  EXPECT_EQ(make_simulation(s).link_count(), 39u);
+  EXPECT_EQ(make_world(s).link_count(), 39u);
 }
 
 TEST(Scene, UnknownKeysOfTheNewTablesWarnWithASuggestion) {

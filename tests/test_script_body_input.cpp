@@ -66,7 +66,7 @@ constexpr std::uint64_t ticks = 50;
 constexpr double dt = 0.01;
 
 struct ScriptRun {
-  Simulation sim;
+  World sim;
   std::vector<Body> before, after;  // each body before and after tick 10 (10, 11 ticks run)
 };
 
@@ -74,7 +74,7 @@ ScriptRun run_script() {
   const Scene scene = parse_scene(scene_text, "bodies.toml");
   const InputScript script = parse_input_script(script_text, "s.toml", scene.bodies);
   EXPECT_TRUE(script.warnings.empty());
-  ScriptRun r{make_simulation(scene), {}, {}};
+  ScriptRun r{make_world(scene), {}, {}};
   for (const TickInput& in : script_inputs(script, ticks)) {
     r.sim.check_input(in);  // nothing World::step would ignore
     r.sim.step(in);

@@ -42,8 +42,8 @@ constexpr Mix mixes[] = {
 /// 1003 bodies (odd: the vector loops' scalar remainders run) with varied parameters; with
 /// rest lengths, one body in seven has L = 0 and one sits on its anchor (|d| = 0).
 template <class Real>
-std::unique_ptr<World<Real>> make(const Mix& m, Integrator integrator, int substeps) {
-  auto w = std::make_unique<World<Real>>(
+std::unique_ptr<detail::WorldKernel<Real>> make(const Mix& m, Integrator integrator, int substeps) {
+  auto w = std::make_unique<detail::WorldKernel<Real>>(
       WorldSettings{.dt = 1.0 / 60.0, .integrator = integrator, .substeps = substeps});
   for (int j = 0; j < 1003; ++j) {
     BodyDef d;
@@ -122,7 +122,7 @@ TEST(Simd, TheRuntimeGuardFiresAtTheSameTickAtEveryLevel) {
   // bound: every level must report it at the baseline's tick.
   auto fault_at = [](SimdLevel level) {
     set_simd_level(level);
-    World<double> w(WorldSettings{.dt = 0.1});
+    detail::WorldKernel<double> w(WorldSettings{.dt = 0.1});
     for (int j = 0; j < 1003; ++j) {
       BodyDef d;
       d.body.position = {1.0, 0.0};

@@ -1,5 +1,5 @@
 // The slingshot game's rules (demos/slingshot/game.hpp) without a window: the band is cut when
-// the ball passes the anchor, a hit (an engine impact, Simulation::impacts()) knocks a target
+// the ball passes the anchor, a hit (an engine impact, World::impacts()) knocks a target
 // off and scores once, and a scripted game of drags and releases gives the same score,
 // GameState and state hash every time, also when its recording is replayed through
 // fixstep::replay with the game's rules (slingshot::rules); the recorded session
@@ -12,8 +12,8 @@
 #include <cstdint>
 #include <fixstep/pointer_drag.hpp>
 #include <fixstep/recording.hpp>
-#include <fixstep/simulation.hpp>
 #include <fixstep/sync_test.hpp>
+#include <fixstep/world.hpp>
 #include <optional>
 #include <vector>
 
@@ -26,12 +26,12 @@ using fixstep::TickInput;
 using fixstep::Vec2;
 using namespace slingshot;
 
-bool has_band(const fixstep::Simulation& sim, fixstep::Entity body) {
+bool has_band(const fixstep::World& sim, fixstep::Entity body) {
   return sim.get<fixstep::SpringDamper>(body).has_value();
 }
 
 // Whether a tick's impact is between the ball and a target: that target's number, else -1.
-int ball_hit(const fixstep::Simulation& sim, const fixstep::Impact& impact) {
+int ball_hit(const fixstep::World& sim, const fixstep::Impact& impact) {
   const fixstep::Entity a = sim.entity_at(impact.body_a), b = sim.entity_at(impact.body_b);
   return a == ball ? target_number(b) : b == ball ? target_number(a) : -1;
 }
@@ -73,7 +73,7 @@ struct Played {
 
 // Live play: sampler, prepare_input (pick and drag), step, rules.
 Played play(std::vector<Vec2> pulls, std::uint64_t ticks) {
-  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::World sim = fixstep::World(make_level());
   fixstep::InputSampler sampler;
   fixstep::PointerDrag drag(0.3);
   fixstep::Recorder recorder(make_level(), "slingshot (test)", 1);
@@ -104,7 +104,7 @@ Played replay(const fixstep::Recording& rec) {
 
 // The recorded inputs as a recording (a copy of `rec` with these inputs), to replay.
 fixstep::Recording with_inputs(const fixstep::Recording& rec, const std::vector<TickInput>& in) {
-  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::World sim = fixstep::World(make_level());
   fixstep::Recorder recorder(make_level(), rec.scene, 1);
   GameState game;
   for (const TickInput& i : in) {
@@ -118,7 +118,7 @@ fixstep::Recording with_inputs(const fixstep::Recording& rec, const std::vector<
 const Vec2 hitting_pull{-14.4, 1.2};
 
 TEST(Slingshot, LevelBuildsAndRestsLoaded) {
-  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::World sim = fixstep::World(make_level());
   ASSERT_EQ(sim.body_count(), std::size_t(1 + target_count + 3));  // ball, targets, post
   GameState game;
   for (int t = 0; t < 240; ++t) play_tick(game, TickInput{std::uint64_t(t)}, sim);
@@ -132,7 +132,7 @@ TEST(Slingshot, LevelBuildsAndRestsLoaded) {
 
 TEST(Slingshot, BandIsCutWhenTheBallPassesTheAnchor) {
   const Played shot = play({hitting_pull}, 200);
-  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::World sim = fixstep::World(make_level());
   GameState game;
   bool saw_pulled = false, saw_flying = false;
   for (const TickInput& in : shot.inputs) {
@@ -164,7 +164,7 @@ TEST(Slingshot, ShortPullIsNoShot) {
 }
 
 TEST(Slingshot, HitKnocksTargetOffAndScoresOnce) {
-  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::World sim = fixstep::World(make_level());
   GameState game;
   game.phase = Phase::flying;
   game.shots_left = 2;
@@ -201,13 +201,13 @@ TEST(Slingshot, HitKnocksTargetOffAndScoresOnce) {
 }
 
 // A real shot (drag, release, flight) scores through the engine: the score rises exactly in
-// the ticks whose impacts (Simulation::impacts()) include a first one between the ball and a
+// the ticks whose impacts (World::impacts()) include a first one between the ball and a
 // target, by one per target, and a target hit again scores no more. Discs are resolved at their
 // time of impact and never left overlapping, so a rule that ignored the impacts (looking for
 // overlapping discs, or not looking) would score nothing here.
 TEST(Slingshot, ShotScoresOnceThroughAnEngineImpact) {
   const Played shot = play({hitting_pull}, 1200);
-  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::World sim = fixstep::World(make_level());
   GameState game;
   std::uint32_t hit = 0;  // bit i: the ball has hit target i
   int ball_target_impacts = 0;
@@ -295,7 +295,7 @@ struct SyncResult {
 };
 SyncResult sync_test_session(int k, const fixstep::TickRules& rules_to_test) {
   const fixstep::Recording rec = recorded_session();
-  fixstep::Simulation sim = fixstep::make_simulation(make_level());
+  fixstep::World sim = fixstep::World(make_level());
   fixstep::SyncTest test(sim, k, rules_to_test);
   for (std::uint64_t t = 0; t < rec.ticks; ++t) {
     if (!test.step(rec.input_at(t))) break;

@@ -160,7 +160,7 @@ TEST(Snapshot, RestoringGivesTheSameBitsAsNeverHavingLeft) {
         SCOPED_TRACE(fmt::format("{} {} {}", file, integrator_name(integrator), precision_name(p)));
         Scene scene = scene_with(file, integrator, p);
         scene.allow_unstable = true;
-        Simulation sim = make_simulation(scene);
+        World sim = make_world(scene);
         for (std::uint64_t t = 0; t < 100; ++t) sim.step(scripted_input(t));
         WorldSnapshot snap;
         EXPECT_TRUE(snap.empty());
@@ -182,7 +182,7 @@ TEST(Snapshot, RestoringGivesTheSameBitsAsNeverHavingLeft) {
 
 TEST(Snapshot, AStateTakenBeforeAComponentChangeComesBackWhole) {
   Scene scene = load_scene(scenes_dir / "default.toml");
-  Simulation sim = make_simulation(scene);
+  World sim = make_world(scene);
   for (int t = 0; t < 30; ++t) sim.step();
   WorldSnapshot snap;
   sim.save(snap);
@@ -199,7 +199,7 @@ TEST(Snapshot, AStateTakenBeforeAComponentChangeComesBackWhole) {
 }
 
 TEST(Snapshot, RestoringAnEmptySnapshotIsRefused) {
-  Simulation sim = make_simulation(load_scene(scenes_dir / "default.toml"));
+  World sim = make_world(load_scene(scenes_dir / "default.toml"));
   EXPECT_THROW(sim.restore(WorldSnapshot{}), std::invalid_argument);
 }
 
@@ -221,7 +221,7 @@ TEST(Snapshot, SessionSnapshotsKeepTheLoopsAccumulatorAndTick) {
 }
 
 TEST(Rewind, StepsBackOneTickAtATimeThroughTheLastCapacityTicks) {
-  Simulation sim = make_simulation(load_scene(scenes_dir / "default.toml"));
+  World sim = make_world(load_scene(scenes_dir / "default.toml"));
   RewindBuffer rewind(5);
   std::vector<std::uint64_t> hashes;
   rewind.push(sim);
@@ -269,7 +269,7 @@ TEST(Snapshot, SnapshotBytesIsWhatACopyAllocates) {
     for (const Precision p : {Precision::f32, Precision::f64}) {
       Scene scene = load_scene(scenes_dir / file);
       scene.precision = p;
-      Simulation sim = make_simulation(scene);
+      World sim = make_world(scene);
       sim.step();  // the force terms and scratch arrays are built at the first tick
       WorldSnapshot snap;
       counted_bytes = 0;
@@ -304,7 +304,7 @@ TEST(PointerDrag, ADraggedBodyFollowsThePointerAtAnyDtAndMass) {
   for (Integrator integrator : all_integrators) {
     for (double dt : {1.0 / 60, 0.1}) {
       SCOPED_TRACE(fmt::format("{} dt={}", integrator_name(integrator), dt));
-      Simulation sim = make_simulation(free_bodies(integrator, dt));
+      World sim = World(free_bodies(integrator, dt));
       TickInput in;
       in.pointer = {4.0, 2.0};
       in.drag_body = initial_entity(1);
@@ -317,7 +317,7 @@ TEST(PointerDrag, ADraggedBodyFollowsThePointerAtAnyDtAndMass) {
 }
 
 TEST(PointerDrag, APressPicksTheBodyUnderThePointerAndAReleaseLetsGo) {
-  Simulation sim = make_simulation(free_bodies(Integrator::semi_implicit_euler, 1.0 / 60));
+  World sim = World(free_bodies(Integrator::semi_implicit_euler, 1.0 / 60));
   EXPECT_EQ(pick_body(sim, {3.5, 0.5}, 0.1), initial_entity(1));   // within b's radius of 1 m
   EXPECT_EQ(pick_body(sim, {0.05, 0.0}, 0.1), initial_entity(0));  // a has no radius: the tolerance
   EXPECT_EQ(pick_body(sim, {1.5, 0.0}, 0.1), no_body);
@@ -351,7 +351,7 @@ std::vector<SyncCase> sync_cases() {
     for (Integrator i : all_integrators) {
       for (Precision p : {Precision::f64, Precision::f32}) {
         try {
-          (void)make_simulation(scene_with(e.path().filename().string(), i, p));
+          (void)make_world(scene_with(e.path().filename().string(), i, p));
         } catch (const SceneError&) {
           continue;  // refused by the stability guard
         }
@@ -379,8 +379,8 @@ TEST(SyncTest, EveryShippedSceneIntegratorAndPrecisionRollsBackBitExactly) {
 #else
     const std::uint64_t ticks = slow ? 3 : 40;
 #endif
-    Simulation plain = make_simulation(scene);
-    Simulation tested = make_simulation(scene);
+    World plain = make_world(scene);
+    World tested = make_world(scene);
     SyncTest sync(tested, 7);
     for (std::uint64_t t = 0; t < ticks; ++t) {
       plain.step(scripted_input(t));
@@ -396,7 +396,7 @@ TEST(SyncTest, EveryShippedSceneIntegratorAndPrecisionRollsBackBitExactly) {
 TEST(SyncTest, ARuleAppliedOutsideTheRollbackIsCaught) {
   // A program that changes the world between ticks without the sync test seeing it (here:
   // moving a body) breaks re-simulation; the sync test reports the first tick it shows.
-  Simulation sim = make_simulation(load_scene(scenes_dir / "default.toml"));
+  World sim = make_world(load_scene(scenes_dir / "default.toml"));
   SyncTest sync(sim, 4);
   for (std::uint64_t t = 0; t < 20; ++t) ASSERT_TRUE(sync.step(TickInput{.tick = t}));
   sim.visit([](auto& w) {
@@ -418,7 +418,7 @@ TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
   // that ran to its end, without throwing, before the substeps polled the request.
   Scene scene = load_scene(scenes_dir / "cloth.toml");
   scene.world.substeps = 20000;
-  Simulation sim = make_simulation(scene);
+  World sim = make_world(scene);
   WorldSnapshot before;
   sim.save(before);
   clear_stop_request();
@@ -438,10 +438,10 @@ TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
   EXPECT_EQ(sim.tick(), 0u);  // the torn tick is not counted
   clear_stop_request();
   // A fresh world from the snapshot taken before the torn tick steps on as if nothing happened.
-  Simulation fresh = make_simulation(scene);
+  World fresh = make_world(scene);
   fresh.restore(before);
   fresh.step(TickInput{.tick = 0});
-  Simulation reference = make_simulation(scene);
+  World reference = make_world(scene);
   reference.step(TickInput{.tick = 0});
   EXPECT_EQ(fresh.tick(), 1u);
   EXPECT_EQ(fresh.state_hash(), reference.state_hash());
@@ -450,12 +450,12 @@ TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
 TEST(StopRequest, APendingStopStopsImplicitEulerAndTheStabilityGuard) {
   Scene scene = load_scene(scenes_dir / "cloth.toml");
   scene.world.integrator = Integrator::implicit_euler;
-  Simulation sim = make_simulation(scene);
+  World sim = make_world(scene);
   request_stop(15);
   EXPECT_THROW(sim.step(TickInput{.tick = 0}), StopRequested);
   // The guard's power iteration (make_simulation checks the network) polls too.
   scene.world.integrator = Integrator::semi_implicit_euler;
-  EXPECT_THROW((void)make_simulation(scene), StopRequested);
+  EXPECT_THROW((void)make_world(scene), StopRequested);
   clear_stop_request();
   EXPECT_NO_THROW(sim.step(TickInput{.tick = 0}));  // the same world steps again once cleared
 }
@@ -465,7 +465,7 @@ TEST(StopRequest, AStopScopeStopsItsThreadOnlyAndAnotherThreadStepsOn) {
   // thread under the scope sees the flag.
   Scene scene = load_scene(scenes_dir / "cloth.toml");
   scene.world.substeps = 20000;  // a tick of a few tenths of a second
-  Simulation background = make_simulation(scene);
+  World background = make_world(scene);
   clear_stop_request();
   std::atomic<int> flag{0};
   std::atomic<bool> started{false};
@@ -482,7 +482,7 @@ TEST(StopRequest, AStopScopeStopsItsThreadOnlyAndAnotherThreadStepsOn) {
   while (!started.load()) std::this_thread::yield();
   flag.store(7);
   Scene small = load_scene(scenes_dir / "cloth.toml");
-  Simulation foreground = make_simulation(small);
+  World foreground = make_world(small);
   EXPECT_NO_THROW(foreground.step(TickInput{.tick = 0}));  // this thread has no scope
   worker.join();
   EXPECT_EQ(stopped_with, 7);

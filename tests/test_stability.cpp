@@ -17,8 +17,8 @@ namespace fixstep {
 namespace {
 
 /// Unit-mass undamped oscillator (ω = 1 rad/s) from x = 1 m, stepped at dt = omega_dt.
-World<double> oscillator(Integrator integrator, double omega_dt) {
-  World<double> w(WorldSettings{.dt = omega_dt, .integrator = integrator});
+detail::WorldKernel<double> oscillator(Integrator integrator, double omega_dt) {
+  detail::WorldKernel<double> w(WorldSettings{.dt = omega_dt, .integrator = integrator});
   BodyDef d;
   d.body.position = {1.0, 0.0};
   d.spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
@@ -27,7 +27,7 @@ World<double> oscillator(Integrator integrator, double omega_dt) {
 }
 
 /// Largest |x| over n steps.
-double max_amplitude(World<double>& w, int n) {
+double max_amplitude(detail::WorldKernel<double>& w, int n) {
   double m = 0;
   for (int i = 0; i < n; ++i) {
     w.step();
@@ -102,7 +102,7 @@ TEST(ImplicitEuler, NewtonSolvesTheBackwardEulerEquationsForRestLengthSprings) {
   // Euler equations x1 = x0 + h v1, v1 = v0 + h a(x1, v1) must hold to round-off (1e-12 of
   // the terms' scale), whatever Newton's path.
   const double h = 0.5, k = 200.0, b = 1.0, c = 0.5, L = 2.0, g = -9.81;
-  World<double> w(WorldSettings{.dt = h, .integrator = Integrator::implicit_euler});
+  detail::WorldKernel<double> w(WorldSettings{.dt = h, .integrator = Integrator::implicit_euler});
   BodyDef d;
   d.body = Body{.mass = 2.0, .position = {3.0, 1.0}, .velocity = {-1.0, 4.0}};
   d.spring = SpringDamper{.anchor = {0.0, 0.0}, .stiffness = k, .damping = b, .rest_length = L};
@@ -123,8 +123,8 @@ TEST(ImplicitEuler, NewtonSolvesTheBackwardEulerEquationsForRestLengthSprings) {
 TEST(Substeps, ATickOfNSubstepsIsNStepsOfDtOverN) {
   // Bit for bit: substeps only divide the tick; every integrator, f32 and f64.
   for (Integrator i : all_integrators) {
-    World<float> a(WorldSettings{.dt = 0.04, .integrator = i, .substeps = 4});
-    World<float> b(WorldSettings{.dt = 0.04 / 4, .integrator = i});
+    detail::WorldKernel<float> a(WorldSettings{.dt = 0.04, .integrator = i, .substeps = 4});
+    detail::WorldKernel<float> b(WorldSettings{.dt = 0.04 / 4, .integrator = i});
     BodyDef d;
     d.body = Body{.mass = 1.5, .position = {1.0, 2.0}, .velocity = {0.5, 0.0}};
     d.spring = SpringDamper{.anchor = {}, .stiffness = 9.0, .damping = 0.3, .rest_length = 0.5};
@@ -157,7 +157,7 @@ TEST(Guard, RefusesWithTheSmallestStableSubstepCountWhichThenRuns) {
   // so the smallest stable substep count is ceil(5 / 2) = 3.
   const Scene scene = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler"), "stiff.toml");
   try {
-    (void)make_simulation(scene);
+    (void)make_world(scene);
     FAIL() << "unstable scene accepted";
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -172,7 +172,7 @@ TEST(Guard, RefusesWithTheSmallestStableSubstepCountWhichThenRuns) {
   EXPECT_EQ(report[0].min_substeps, 3);
 
   Scene fixed = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler", 3), "stiff.toml");
-  Simulation sim = make_simulation(fixed);
+  World sim = make_world(fixed);
   const double e0 = sim.energy().total();
   for (int i = 0; i < 10'000; ++i) sim.step();
   // bounded: ω h = 5/3, so |E/E0 - 1| <= (ωh)/(1 - ωh/2) = 10 at most, far from blow-up
@@ -186,7 +186,7 @@ TEST(Guard, TheRefusalSaysWhatToDoBeforeTheNumbersThatExplainIt) {
   // growth per step follow.
   const Scene stiff = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler"), "stiff.toml");
   try {
-    (void)make_simulation(stiff);
+    (void)make_world(stiff);
     FAIL() << "unstable scene accepted";
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -201,7 +201,7 @@ TEST(Guard, TheRefusalSaysWhatToDoBeforeTheNumbersThatExplainIt) {
   }
   const Scene euler = parse_scene(scene_text(1, 1, 0.01, "explicit_euler"), "e.toml");
   try {
-    (void)make_simulation(euler);
+    (void)make_world(euler);
     FAIL() << "unstable scene accepted";
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -227,7 +227,7 @@ TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
   bob.spring = SpringDamper{.anchor = {}, .stiffness = 400.0};
   def.bodies.push_back(bob);
   try {
-    (void)make_simulation(def);
+    (void)World(def);
     FAIL() << "unstable world accepted";
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
@@ -238,13 +238,13 @@ TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
     EXPECT_EQ(what.find("allow_unstable"), std::string::npos) << what;
   }
   def.settings.substeps = 3;
-  EXPECT_EQ(make_simulation(def).body_count(), 1u);
+  EXPECT_EQ(World(def).body_count(), 1u);
   def.settings.substeps = 1;
   def.allow_unstable = true;
-  EXPECT_EQ(make_simulation(def).body_count(), 1u);
+  EXPECT_EQ(World(def).body_count(), 1u);
   // A link to a body that does not exist is refused by index, before any guard runs.
   def.links.push_back(BodyLink{.body_a = 0, .body_b = 1, .spring = {.stiffness = 1.0}});
-  EXPECT_THROW((void)make_simulation(def), std::invalid_argument);
+  EXPECT_THROW((void)World(def), std::invalid_argument);
 }
 
 TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
@@ -264,7 +264,7 @@ TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
   // explicit Euler on an undamped spring: no substep count helps
   const Scene euler = parse_scene(scene_text(1, 1, 0.01, "explicit_euler"), "e.toml");
   try {
-    (void)make_simulation(euler);
+    (void)make_world(euler);
     FAIL();
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("at every dt"), std::string::npos) << e.what();
@@ -285,9 +285,9 @@ TEST(Guard, ParameterExtremesRunBoundedOrAreRefusedNeverNaN) {
           const std::string name(integrator_name(integrator));
           const Scene scene =
               parse_scene(scene_text(k, m, dt, name.c_str(), 1, false, 0.0), "x.toml");
-          std::optional<Simulation> sim;
+          std::optional<World> sim;
           try {
-            sim.emplace(make_simulation(scene));
+            sim.emplace(make_world(scene));
           } catch (const SceneError& e) {
             ++refused;
             EXPECT_NE(std::string(e.what()).find("body 'bob'"), std::string::npos) << e.what();
@@ -308,7 +308,7 @@ TEST(Guard, ParameterExtremesRunBoundedOrAreRefusedNeverNaN) {
 
 // --- float hygiene ------------------------------------------------------------------------
 
-bool any_subnormal(const World<float>& w) {
+bool any_subnormal(const detail::WorldKernel<float>& w) {
   for (auto span : {w.x(), w.y(), w.vx(), w.vy()})
     for (float v : span)
       if (std::fpclassify(v) == FP_SUBNORMAL) return true;
@@ -321,7 +321,7 @@ TEST(FloatHygiene, DampedF32StateFlushesToZeroInsteadOfStayingSubnormal) {
   // flush_denormals_every-th), so the state meets subnormals for fewer ticks than that and
   // ends exactly 0; without, the state stays subnormal for hundreds of ticks.
   for (bool flush : {true, false}) {
-    World<float> w(WorldSettings{.dt = 0.01, .flush_denormals = flush});
+    detail::WorldKernel<float> w(WorldSettings{.dt = 0.01, .flush_denormals = flush});
     BodyDef d;
     d.body.position = {1.0, 1.0};
     d.spring = SpringDamper{.anchor = {}, .stiffness = 100.0, .damping = 50.0};
@@ -361,7 +361,7 @@ TEST(Stability, ARateSoSmallItsBoundOverflowsIsStableAtEveryStep) {
     const Scene s = parse_scene(
         fmt::format("[world]\ndt = 0.01\n[[body]]\nposition = [0.0, 0.0]\n{}\n", body), "s.toml");
     EXPECT_NO_THROW((void)enforce_stability(s)) << body;
-    Simulation sim = make_simulation(world_def(s));
+    World sim = World(world_def(s));
     sim.step({});
     EXPECT_EQ(sim.body(initial_entity(0)).position, (Vec2{0.0, 0.0})) << body;
   }

@@ -51,11 +51,11 @@ Chain chain(std::size_t n, Masses masses, double k = 1.0, double b = 0.0) {
   return c;
 }
 
-/// Steps the chain in a World<double> at step h for up to `ticks` ticks; returns the largest
-/// |x| seen over start |x| = 1 m, stopping early once it passes `stop`.
+/// Steps the chain in a detail::WorldKernel<double> at step h for up to `ticks` ticks; returns the
+/// largest |x| seen over start |x| = 1 m, stopping early once it passes `stop`.
 double growth(const Chain& c, Integrator integrator, double h, int ticks, double stop,
               DampingSplit split = DampingSplit::per_stage) {
-  World<double> w(
+  detail::WorldKernel<double> w(
       WorldSettings{.dt = h, .integrator = integrator, .threads = 1, .damping_split = split});
   std::vector<Entity> e;
   for (const BodyDef& d : c.bodies) e.push_back(w.create_body(d));
@@ -330,7 +330,7 @@ TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
   EXPECT_EQ(net.fastest_body, 1u);  // 'mid' swings hardest in the top mode
   EXPECT_NEAR(net.omega_max, 29.3543, 0.01);
   try {
-    (void)make_simulation(scene);
+    (void)make_world(scene);
     FAIL() << "unstable network accepted";
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -350,7 +350,7 @@ TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
   EXPECT_EQ(net.min_substeps, 2);  // ω_max·dt = 2.94
   const Scene fixed = network_scene(0.1, net.min_substeps);
   EXPECT_TRUE(enforce_stability(fixed).empty());
-  Simulation sim = make_simulation(fixed);
+  World sim = make_world(fixed);
   for (int i = 0; i < 5000; ++i) sim.step();
   EXPECT_FALSE(sim.fault().has_value());
 }
@@ -384,7 +384,7 @@ TEST(NetworkGuard, NearLimitWarnsAllowUnstableWarnsUnlinkedBodiesStayPerBody) {
 
 TEST(NetworkGuard, ExplainFaultUsesTheNetworkFinding) {
   const Scene scene = network_scene(0.1, 1, true);
-  Simulation sim = make_simulation(scene);
+  World sim = make_world(scene);
   for (int i = 0; i < 2000 && !sim.fault(); ++i) sim.step();
   ASSERT_TRUE(sim.fault().has_value());
   const std::string m = explain_fault(scene, *sim.fault());

@@ -22,7 +22,7 @@ BodyDef at(double x, double y) {
 
 TEST(Entity, ZeroIsNullAndHandlesAreGenerational) {
   EXPECT_TRUE(Entity{}.is_null());
-  World<double> w(WorldSettings{});
+  detail::WorldKernel<double> w(WorldSettings{});
   const Entity a = w.create_body(at(1, 0));
   EXPECT_FALSE(a.is_null());
   EXPECT_TRUE(w.contains(a));
@@ -39,7 +39,7 @@ TEST(Entity, ZeroIsNullAndHandlesAreGenerational) {
 }
 
 TEST(World, DestroyKeepsOtherBodiesAndTheirComponents) {
-  World<double> w(WorldSettings{.dt = 0.01});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   BodyDef s = at(5, 0);
   s.name = "spring";
   s.spring = SpringDamper{.anchor = {}, .stiffness = 4.0};
@@ -59,7 +59,7 @@ TEST(World, DestroyKeepsOtherBodiesAndTheirComponents) {
 }
 
 TEST(World, AccelerationsSumEveryDeclaredTerm) {
-  World<double> w(WorldSettings{});
+  detail::WorldKernel<double> w(WorldSettings{});
   BodyDef d = at(2, 3);
   d.body.mass = 2.0;
   d.body.velocity = {1, -1};
@@ -76,7 +76,7 @@ TEST(World, AccelerationsSumEveryDeclaredTerm) {
 }
 
 TEST(World, RestLengthSpringPullsAlongTheSpring) {
-  World<double> w(WorldSettings{});
+  detail::WorldKernel<double> w(WorldSettings{});
   BodyDef d = at(0, 5);
   d.spring = SpringDamper{.anchor = {}, .stiffness = 2.0, .damping = 0, .rest_length = 3.0};
   w.create_body(d);
@@ -89,13 +89,13 @@ TEST(World, RestLengthSpringPullsAlongTheSpring) {
 TEST(World, OnlyDeclaredForceTermsRun) {
   // A projectile scene declares no spring: the spring term must not exist.
   const Scene projectile = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/projectile.toml");
-  Simulation sim = make_simulation(projectile);
+  World sim = make_world(projectile);
   const unsigned terms = sim.visit([](auto& w) { return w.active_terms(); });
   EXPECT_EQ(terms & term_spring, 0u);
   EXPECT_NE(terms & term_gravity, 0u);
   EXPECT_NE(terms & term_drag, 0u);
 
-  World<double> w(WorldSettings{});
+  detail::WorldKernel<double> w(WorldSettings{});
   EXPECT_EQ(w.active_terms(), 0u);
   BodyDef d = at(1, 0);
   d.spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
@@ -106,7 +106,7 @@ TEST(World, OnlyDeclaredForceTermsRun) {
 }
 
 TEST(World, RejectsInvalidValuesNamingBodyAndField) {
-  World<float> w(WorldSettings{});
+  detail::WorldKernel<float> w(WorldSettings{});
   BodyDef d = at(0, 0);
   d.name = "bob";
   d.body.mass = 0.0;
@@ -125,23 +125,24 @@ TEST(World, RejectsInvalidValuesNamingBodyAndField) {
   d.spring = SpringDamper{.anchor = {}, .stiffness = -1.0};
   EXPECT_THROW(w.create_body(d), std::invalid_argument);
   EXPECT_EQ(w.body_count(), 0u);  // nothing half-created
-  EXPECT_THROW(World<double>(WorldSettings{.dt = 0.0}), std::invalid_argument);
-  EXPECT_THROW(World<double>(WorldSettings{.dt = std::numeric_limits<double>::infinity()}),
-               std::invalid_argument);
+  EXPECT_THROW(detail::WorldKernel<double>(WorldSettings{.dt = 0.0}), std::invalid_argument);
+  EXPECT_THROW(
+      detail::WorldKernel<double>(WorldSettings{.dt = std::numeric_limits<double>::infinity()}),
+      std::invalid_argument);
 }
 
 TEST(World, StateHashSeesEveryBit) {
-  World<double> a(WorldSettings{}), b(WorldSettings{});
+  detail::WorldKernel<double> a(WorldSettings{}), b(WorldSettings{});
   a.create_body(at(1, 2));
   b.create_body(at(1, 2));
   EXPECT_EQ(a.state_hash(), b.state_hash());
-  World<double> c(WorldSettings{});
+  detail::WorldKernel<double> c(WorldSettings{});
   c.create_body(at(std::nextafter(1.0, 2.0), 2));  // one ulp apart
   EXPECT_NE(a.state_hash(), c.state_hash());
 }
 
 TEST(World, KeepPreviousStoresTheLastTick) {
-  World<double> w(WorldSettings{.dt = 0.5});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.5});
   BodyDef d = at(0, 0);
   d.body.velocity = {2, 0};
   w.create_body(d);
@@ -158,7 +159,7 @@ TEST(World, KeepPreviousStoresTheLastTick) {
 /// spectral radius ((ω h)² - 2 + ω h √((ω h)² - 4)) / 2 = 6.854 per tick.
 template <class Real>
 void expect_guard_names_first_tick_out_of_range() {
-  World<Real> w(WorldSettings{.dt = 0.1});
+  detail::WorldKernel<Real> w(WorldSettings{.dt = 0.1});
   BodyDef calm = at(1, 0);
   calm.name = "calm";
   calm.spring = SpringDamper{.stiffness = 1.0};
@@ -206,7 +207,7 @@ TEST(Guard, NamesTheBodyFieldAndFirstTickOutOfRangeF32) {
 }
 
 TEST(Guard, CatchesAHugeStartAndStaysQuietOnLongBoundedRuns) {
-  World<double> w(WorldSettings{.dt = 0.01});
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   BodyDef far = at(2e12, 0);  // finite, accepted at creation, absurd for a game
   far.name = "far";
   BodyDef near = at(max_state_magnitude * 0.5, 0);
@@ -219,7 +220,7 @@ TEST(Guard, CatchesAHugeStartAndStaysQuietOnLongBoundedRuns) {
   EXPECT_EQ(w.fault()->field, "x");
   EXPECT_EQ(w.fault()->tick, 1u);
 
-  World<double> bounded(WorldSettings{.dt = 1.0 / 60.0});
+  detail::WorldKernel<double> bounded(WorldSettings{.dt = 1.0 / 60.0});
   BodyDef spring = at(1000, 0);  // the article's spring, x0 = 1000 m
   spring.spring = SpringDamper{.stiffness = 15.0, .damping = 0.1};
   bounded.create_body(spring);
@@ -276,7 +277,7 @@ position = [0.0, 0.0]
 velocity = [2e13, 0.0]
 )",
                                   "fast.toml");
-  Simulation sim = make_simulation(world_def(scene));
+  World sim = World(world_def(scene));
   sim.step();
   ASSERT_TRUE(sim.fault().has_value());
   const std::string m = explain_fault(scene, *sim.fault());

@@ -13,13 +13,15 @@ declare -A allowed=([core]="core" [io]="core io" [scene]="core io scene"
                     [render]="core io render" [window]="core io render window")
 declare -A owner  # header name -> component
 for component in core io scene render window; do
-  for h in engine/$component/include/fixstep/*.hpp; do owner[$(basename "$h")]=$component; done
+  for h in engine/$component/include/fixstep/*.hpp engine/$component/include/fixstep/detail/*.hpp; do
+    [[ -e $h ]] && owner[${h#engine/$component/include/fixstep/}]=$component
+  done
 done
 
 status=0
 for component in core io scene render window; do
   while IFS=: read -r file line include; do
-    header=$(sed -E 's/.*fixstep\/([a-z0-9_]+\.hpp).*/\1/' <<<"$include")
+    header=$(sed -E 's/.*fixstep\/([a-z0-9_/]+\.hpp).*/\1/' <<<"$include")
     from=${owner[$header]:-}
     if [[ -z $from ]]; then
       echo "$file:$line: includes fixstep/$header, which no engine component provides"
@@ -38,8 +40,8 @@ while IFS=: read -r file line include; do
 done < <(grep -HnE "^#include <($io_headers)>" -r engine/core || true)
 
 # File-level include graph: "includer included" pairs, by base name within engine/ and chart/.
-edges=$(grep -rHE '^#include [<"](fixstep/)?[a-z0-9_]+\.hpp[">]' engine chart |
-        sed -E 's|^([^:]*):#include [<"](fixstep/)?([a-z0-9_]+\.hpp)[">].*|\1 \3|' |
+edges=$(grep -rHE '^#include [<"](fixstep/)?(detail/)?[a-z0-9_]+\.hpp[">]' engine chart |
+        sed -E 's|^([^:]*):#include [<"](fixstep/)?(detail/)?([a-z0-9_]+\.hpp)[">].*|\1 \4|' |
         while read -r file header; do
           base=$(basename "$file")
           [[ $base == "$header" ]] || echo "$base $header"

@@ -49,7 +49,7 @@ PageApp::PageApp(PageOptions options)
   session_->set_key_help(page_key_help);
   session_->set_show_controls(true);
   input_ = std::make_unique<PageInput>("#canvas", o_.width, o_.height);
-  const Simulation& sim = session_->simulation();
+  const World& sim = session_->simulation();
   rewind_ = RewindBuffer(rewind_capacity(rewind_seconds, sim.settings().dt,
                                          std::max<std::size_t>(sim.snapshot_bytes(), 1),
                                          rewind_max_bytes));
@@ -92,7 +92,7 @@ void PageApp::interactive_frame(double now_ms) {
     // One tick back per frame while Backspace is held; ticks resume from there.
     if (const WorldSnapshot* past = rewind_.step_back()) session.restore(*past);
   } else {
-    session.advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
+    session.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
       TickInput input = sampler_.sample(tick);
       drag_.apply(input, sim);
       sim.step(input);
@@ -109,7 +109,7 @@ void PageApp::interactive_frame(double now_ms) {
 }
 
 void PageApp::report() {
-  const Simulation& sim = session_->simulation();
+  const World& sim = session_->simulation();
   show_text("result", fmt::format("tick={} state_hash={}", sim.tick(), hex_hash(sim.state_hash())));
   show_text("summary", summary_line(sim, session_->initial_energy()));
   if (recorder_) show_text("recording", format_recording(recorder_->finish(sim)));

@@ -29,7 +29,7 @@ bool PageApp::frames_frame() {
   // 1/fps s of virtual time; every frame is drawn (trails sample once per drawn frame).
   Session& session = *session_;
   if (frames_done_ > 0) {
-    session.advance_with(1.0 / o_.fps, [&](std::uint64_t tick, Simulation& sim) {
+    session.advance_with(1.0 / o_.fps, [&](std::uint64_t tick, World& sim) {
       const TickInput input{.tick = tick};
       sim.step(input);
       if (recorder_) recorder_->record(input, sim);
@@ -44,7 +44,7 @@ bool PageApp::frames_frame() {
 
 bool PageApp::ticks_frame(double now_ms) {
   // `fixstep run --steps N`: N ticks with no input, in chunks of at most ticks_budget_ms.
-  Simulation& sim = session_->simulation();
+  World& sim = session_->simulation();
   while (sim.tick() < *o_.ticks && !sim.fault()) {
     const TickInput input{.tick = sim.tick()};
     sim.step(input);
@@ -108,7 +108,7 @@ bool PageApp::replay_frame() {
   Session& session = *session_;
   const Recording& rec = *recording_;
   const double seconds = o_.headless ? double(rec.ticks) * rec.settings.dt : 1.0 / o_.fps;
-  session.advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
+  session.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
     if (sim.tick() < rec.ticks) sim.step(rec.input_at(tick));
   });
   session.draw();

@@ -177,7 +177,7 @@ std::uint64_t ticks_for(double duration, double dt) {
 }
 
 void append_rows(AtomicFile& csv, const ExactReference& reference, const TouchedBodies& touched,
-                 const Simulation& sim, bool with_exact, double e0, std::vector<double>& energies,
+                 const World& sim, bool with_exact, double e0, std::vector<double>& energies,
                  std::string& buffer) {
   std::vector<std::optional<Body>> exact;
   if (with_exact) reference.at(sim.time(), exact, &touched);
@@ -215,9 +215,9 @@ const std::string csv_header = "tick,t,body,x,y,vx,vy,energy,world_energy,world_
 
 namespace {
 /// Throws LimitError when the sync test's K + 1 snapshots of `sim` exceed max_sync_test_bytes.
-void check_sync_test_memory(const Simulation& sim, int rollback) {
+void check_sync_test_memory(const World& sim, int rollback) {
   const std::uint64_t bytes =
-      (static_cast<std::uint64_t>(rollback) + 1) * (sim.snapshot_bytes() + sizeof(Simulation));
+      (static_cast<std::uint64_t>(rollback) + 1) * (sim.snapshot_bytes() + sizeof(World));
   if (bytes > max_sync_test_bytes) {
     throw LimitError(fmt::format(
         "--sync-test {}: {} snapshots of this world take about {:.3g} GiB; at most {:.3g} GiB "
@@ -261,7 +261,7 @@ int run_command(const RunOptions& o) {
                                    *o.sync_test, *o.sync_test));
   }
   if (o.record) check_recording_size(ticks, o.hash_every, *o.record);
-  Simulation sim = make_simulation(checked_world_def(scene));
+  World sim = World(checked_world_def(scene));
   if (o.sync_test) check_sync_test_memory(sim, *o.sync_test);
   const double e0 = sim.energy().total();
 

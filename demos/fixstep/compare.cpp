@@ -43,7 +43,7 @@ std::vector<std::uint8_t> blank_frame(int width, int height) {
 
 /// The `fixstep run` command line that steps tile i's configuration to the same tick.
 std::string same_as_run(const std::string& scene_file, const Tile& t) {
-  const Simulation& sim = t.session->simulation();
+  const World& sim = t.session->simulation();
   const bool per_step = sim.settings().damping_split == DampingSplit::per_step;
   return fmt::format(
       "fixstep run {} --integrator {} --dt {} --substeps {} --precision {}{} --steps {}",
@@ -60,7 +60,7 @@ void summarise(const CompareOptions& o, const Comparison& c,
       "error_t,max_error_m,balance,cost_s_per_simulated_s,in_loop_s_per_simulated_s\n";
   for (std::size_t i = 0; i < c.size(); ++i) {
     const Tile& t = c.tile(i);
-    const Simulation& sim = t.session->simulation();
+    const World& sim = t.session->simulation();
     const double balance = energy_balance(sim, t.session->initial_energy());
     const double in_loop = sim.time() > 0.0 ? t.wall_seconds / sim.time() : 0.0;
     const std::string error = t.error ? fmt::format("{:.6e}", *t.error) : "";

@@ -108,7 +108,7 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     tiles_.push_back(std::move(tile));
   }
   {
-    const Simulation& sim0 = tiles_.front()->session->simulation();
+    const World& sim0 = tiles_.front()->session->simulation();
     has_exact_ = exact_error(exact_, sim0).has_value();
   }
   restart();
@@ -143,7 +143,7 @@ void Comparison::restart() {
     if (!has_exact_ && i != reference_) {
       // Its tile passed the guard (or was allowed past it): the guard runs once per tile.
       const WorldDef def = checked_world_def(tiles_[reference_]->scene);
-      t.shadow = std::make_unique<Simulation>(make_simulation(def));
+      t.shadow = std::make_unique<World>(World(def));
     }
     measure(i);
   }
@@ -154,7 +154,7 @@ void Comparison::advance(double seconds) {
     Tile& t = *tiles_[i];
     const auto start = std::chrono::steady_clock::now();
     // As Session::advance, with each tick's contacts noted for the exact error.
-    t.session->advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
+    t.session->advance_with(seconds, [&](std::uint64_t tick, World& sim) {
       sim.step(TickInput{.tick = tick});
       if (has_exact_) t.touched->after_tick(sim);
     });
@@ -166,7 +166,7 @@ void Comparison::advance(double seconds) {
 
 void Comparison::measure(std::size_t i) {
   Tile& t = *tiles_[i];
-  const Simulation& sim = t.session->simulation();
+  const World& sim = t.session->simulation();
   if (sim.fault()) return;  // the last measurement stands; the HUD shows the guard's message
   std::optional<double> e;
   if (has_exact_) {
@@ -181,7 +181,7 @@ void Comparison::measure(std::size_t i) {
   t.max_error = std::max(t.max_error, *e);
 }
 
-std::optional<double> Comparison::against_shadow(const Simulation& sim, Simulation& shadow) {
+std::optional<double> Comparison::against_shadow(const World& sim, World& shadow) {
   // The reference configuration, stepped up to this tile's time: it lands on it when the time is
   // on both tiles' grids of ticks (every 1/15 s for steps of 1/60, 1/30 and 1/15 s).
   const double t = sim.time(), tolerance = 1e-9 * std::max(1.0, t);
@@ -217,7 +217,7 @@ std::string Comparison::exact_lost(std::size_t i) const {
 
 std::vector<std::string> Comparison::hud(std::size_t i) const {
   const Tile& t = *tiles_[i];
-  const Simulation& sim = t.session->simulation();
+  const World& sim = t.session->simulation();
   std::vector<std::string> lines;
   lines.reserve(hud_lines);
   lines.push_back(t.label);

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <fixstep/scene.hpp>
 #include <fixstep/session.hpp>
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 #include <memory>
 #include <optional>
 #include <span>
@@ -36,7 +36,7 @@ struct Tile {
   std::optional<TouchedBodies> touched;
   /// Without an exact solution: the most accurate tile's configuration, stepped (untimed, not
   /// drawn) up to this tile's time to measure it against.
-  std::unique_ptr<Simulation> shadow;
+  std::unique_ptr<World> shadow;
 };
 
 class Comparison {
@@ -83,7 +83,7 @@ class Comparison {
   /// A tile's view: its HUD text at hud_scale_, the scene fitted below the HUD panel.
   [[nodiscard]] SessionSettings tile_settings(const Scene& scene) const;
   void measure(std::size_t i);
-  static std::optional<double> against_shadow(const Simulation& sim, Simulation& shadow);
+  static std::optional<double> against_shadow(const World& sim, World& shadow);
   [[nodiscard]] std::vector<std::string> hud(std::size_t i) const;
 
   const Scene& base_;

@@ -52,7 +52,7 @@ void TouchedBodies::touch(std::size_t j, std::uint64_t tick) {
   if (first_ == 0) first_ = tick;
 }
 
-void TouchedBodies::after_tick(const Simulation& sim) {
+void TouchedBodies::after_tick(const World& sim) {
   if (count_ == dynamic_count_) return;
   const std::uint64_t tick = sim.tick();
   for (const Impact& i : sim.impacts()) touch(i.body_a, tick), touch(i.body_b, tick);
@@ -100,7 +100,7 @@ bool ExactReference::bouncing(const BodyDef& b) const {
   return b.collider && !scene_.planes.empty();
 }
 
-std::optional<double> exact_error(const ExactReference& reference, const Simulation& sim,
+std::optional<double> exact_error(const ExactReference& reference, const World& sim,
                                   const TouchedBodies* touched) {
   std::vector<std::optional<Body>> exact;
   reference.at(sim.time(), exact, touched);

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <fixstep/exact.hpp>
 #include <fixstep/scene.hpp>
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,8 +15,8 @@ namespace fixstep::cli {
 /// Which bodies a disc-disc contact has touched in a run, and from which tick: the exact
 /// solutions know no contacts, so such a body has no exact state from that tick on. Fed after
 /// every tick (after_tick) from what the world reports of that tick: the impacts resolved at
-/// their time (Simulation::impacts()) and the pairs that began touching
-/// (Simulation::contacts_begun(): resting contacts, discs that came to touch without an impact,
+/// their time (World::impacts()) and the pairs that began touching
+/// (World::contacts_begun(): resting contacts, discs that came to touch without an impact,
 /// pairs that struck and parted within the tick, and pairs already touching at tick 0, which
 /// begin in tick 1). Only dynamic bodies are marked: a static or kinematic disc moves as it
 /// would untouched. A body joined by links to a touched body is touched too (the whole
@@ -28,7 +28,7 @@ class TouchedBodies {
   explicit TouchedBodies(const Scene& scene);
   /// Records the contacts of the tick `sim` has just stepped (sim.tick()): O(contacts of the
   /// tick), nothing once every dynamic body is touched; no allocation.
-  void after_tick(const Simulation& sim);
+  void after_tick(const World& sim);
   /// The tick from which body j has no exact state (the first tick a contact touched it or a
   /// body linked to it), or nullopt when none has.
   [[nodiscard]] std::optional<std::uint64_t> since(std::size_t j) const {
@@ -81,8 +81,7 @@ class ExactReference {
 /// never does), |x - x_exact| at sim.time(), against the exact solution of the bodies that have
 /// one (and, with `touched`, that no contact has touched); nullopt when none has (rest-length
 /// springs, non-proportional damping of links, bouncing bodies, every such body touched).
-[[nodiscard]] std::optional<double> exact_error(const ExactReference& reference,
-                                                const Simulation& sim,
+[[nodiscard]] std::optional<double> exact_error(const ExactReference& reference, const World& sim,
                                                 const TouchedBodies* touched = nullptr);
 
 /// For the summary of a run: "" when no contact touched a body; else which bodies a disc

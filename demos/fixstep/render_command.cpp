@@ -92,7 +92,7 @@ int render_command(const RenderOptions& o) {
     try {
       if (f > 0 && rec) {  // the recorded input of each tick; none past the recording's end
         session.advance_with(clock.frame_seconds(),
-                             [&](std::uint64_t t, Simulation& sim) { sim.step(rec->input_at(t)); });
+                             [&](std::uint64_t t, World& sim) { sim.step(rec->input_at(t)); });
       } else if (f > 0) {
         session.advance(clock.frame_seconds());
       }

@@ -135,7 +135,7 @@ Scene scene_for_recording(const Recording& rec, const std::string& recording_fil
 }
 
 ReplayReport verify_recording(const Scene& scene, const Recording& rec, bool quiet) {
-  Simulation sim = make_simulation(checked_world_def(scene));
+  World sim = World(checked_world_def(scene));
   const WorkProgressLine shown(!quiet);
   return replay(sim, rec);
 }

@@ -77,7 +77,7 @@ void BackgroundLoad::run(const SceneOptions& options) {
     WorldDef def = checked_world_def(scene);
     def.settings.track_dissipation = true;  // as Session's own build
     throw_if_stop_requested();
-    Simulation sim = make_simulation(def);
+    World sim = World(def);
     set_phase("measuring a state for rewind");
     const RewindPlan plan = plan_rewind(sim);
     promise_.set_value(LoadedWorld{.scene = std::move(scene),

@@ -12,7 +12,7 @@
 #include <atomic>
 #include <cstdint>
 #include <fixstep/scene.hpp>
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 #include <future>
 #include <mutex>
 #include <string>
@@ -30,7 +30,7 @@ struct LoadedWorld {
   Scene scene;                        ///< as load_with_overrides returned it
   std::vector<std::string> warnings;  ///< the scene's and the stability guard's, not yet printed
   WorldDef def;     ///< checked_world_def(scene), dissipation tracked (as Session wants)
-  Simulation sim;   ///< make_simulation(def), at tick 0
+  World sim;        ///< World(def), at tick 0
   RewindPlan plan;  ///< plan_rewind(sim)
 };
 

@@ -14,8 +14,7 @@ using Clock = std::chrono::steady_clock;
 
 /// One sample: batches of `ticks` ticks from `start` until `min_seconds` have passed; returns
 /// wall seconds per tick.
-double sample(Simulation& sim, const WorldSnapshot& start, std::uint64_t ticks,
-              double min_seconds) {
+double sample(World& sim, const WorldSnapshot& start, std::uint64_t ticks, double min_seconds) {
   std::uint64_t stepped = 0;
   double elapsed = 0.0;
   while (elapsed < min_seconds || stepped == 0) {
@@ -33,7 +32,7 @@ double sample(Simulation& sim, const WorldSnapshot& start, std::uint64_t ticks,
 double step_cost(const WorldDef& def) {
   WorldDef d = def;
   d.allow_unstable = true;  // the caller's guard has decided already
-  Simulation sim = make_simulation(d);
+  World sim = World(d);
   WorldSnapshot start;
   sim.save(start);
   const double dt = sim.settings().dt;

@@ -2,7 +2,7 @@
 // warm, on its own, the way a benchmark measures it (compare's HUD and summary).
 #pragma once
 
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 
 namespace fixstep::cli {
 
@@ -12,7 +12,7 @@ namespace fixstep::cli {
 /// stops early if the runtime guard fires), from the initial state each time, repeated until a
 /// sample has taken at least 2 ms; the median of 5 samples (1 when a
 /// sample takes longer than 50 ms, so that large worlds do not stall the command). Includes
-/// everything a tick does (Simulation::step with the scene's settings), nothing else.
+/// everything a tick does (World::step with the scene's settings), nothing else.
 [[nodiscard]] double step_cost(const WorldDef& def);
 
 }  // namespace fixstep::cli

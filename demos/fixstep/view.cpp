@@ -264,7 +264,7 @@ int view_command(const ViewOptions& o) {
         if (recorder) recorder->truncate(past->tick());
       }
     } else if (frame > 0) {
-      session.advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
+      session.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
         TickInput input = sampler.sample(tick);
         drag.apply(input, sim);
         sim.step(input);

@@ -7,10 +7,10 @@
 
 namespace fixstep::cli {
 
-RewindPlan plan_rewind(const Simulation& sim) {
+RewindPlan plan_rewind(const World& sim) {
   const double dt = sim.settings().dt;
   throw_if_stop_requested();  // before and after the copy: half a second for 10^6 bodies
-  Simulation probe = sim;
+  World probe = sim;
   throw_if_stop_requested();
   probe.step();
   const std::size_t bytes = std::max(sim.snapshot_bytes(), probe.snapshot_bytes());

@@ -4,7 +4,7 @@
 
 #include <cstddef>
 #include <fixstep/rewind.hpp>
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 
 namespace fixstep::cli {
 
@@ -25,7 +25,7 @@ struct RewindPlan {
 /// scratch arrays that every later state holds too: the scratch of a 90 000-body grid doubles
 /// its state), so it takes about a tick and a copy of the world: seconds for 10^6 bodies. Polls
 /// stop requests (throws StopRequested: fixstep/stop_request.hpp).
-[[nodiscard]] RewindPlan plan_rewind(const Simulation& sim);
+[[nodiscard]] RewindPlan plan_rewind(const World& sim);
 
 /// A RewindBuffer of plan.capacity ticks; when that is less than rewind_seconds, says so once on
 /// standard error, with what it keeps.

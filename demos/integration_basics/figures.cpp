@@ -472,8 +472,10 @@ std::vector<ForceRow> force_rows(double dt, std::uint64_t first, std::uint64_t l
   BodyDef def;
   def.body = Body{.mass = 1.0};
   def.constant_force = ConstantForce{.force = {10.0, 0.0}};
-  World<float> ee(WorldSettings{.dt = dt, .integrator = Integrator::explicit_euler});
-  World<float> sie(WorldSettings{.dt = dt, .integrator = Integrator::semi_implicit_euler});
+  fixstep::detail::WorldKernel<float> ee(
+      WorldSettings{.dt = dt, .integrator = Integrator::explicit_euler});
+  fixstep::detail::WorldKernel<float> sie(
+      WorldSettings{.dt = dt, .integrator = Integrator::semi_implicit_euler});
   ee.create_body(def);
   sie.create_body(def);
   std::vector<ForceRow> rows;

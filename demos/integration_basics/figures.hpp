@@ -1,12 +1,12 @@
 // The systems, runs, measurements and charts of Glenn Fiedler's "Integration Basics" (2004),
-// reproduced through fixstep's engine: every numerical trace is a fixstep::Simulation stepped
+// reproduced through fixstep's engine: every numerical trace is a fixstep::World stepped
 // with the chosen Integrator; the references are fixstep::exact::linear.
 #pragma once
 
 #include <cstdint>
 #include <fixstep/integrators.hpp>
 #include <fixstep/plot.hpp>
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 #include <string>
 #include <vector>
 
@@ -39,8 +39,9 @@ struct Trace {
   void add(double time, double position, double velocity, double e);
 };
 
-/// An oscillator stepped through a fixstep Simulation (World<float> or World<double>) with
-/// one integrator at a fixed dt (s); trace() holds tick 0 (the initial state) and every tick.
+/// An oscillator stepped through a fixstep World (fixstep::detail::WorldKernel<float> or
+/// fixstep::detail::WorldKernel<double>) with one integrator at a fixed dt (s); trace() holds tick
+/// 0 (the initial state) and every tick.
 class OscillatorRun {
  public:
   /// Throws std::invalid_argument for a dt that is not finite and > 0 (from World).
@@ -54,7 +55,7 @@ class OscillatorRun {
  private:
   Oscillator system_;
   Integrator integrator_;
-  Simulation sim_;
+  World sim_;
   Trace trace_;
 };
 

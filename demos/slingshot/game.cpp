@@ -53,13 +53,13 @@ Vec2 sub(Vec2 a, Vec2 b) {
 }
 
 // Puts the ball back on the band, at rest, for the next shot.
-void reload(fixstep::Simulation& sim) {
+void reload(fixstep::World& sim) {
   sim.set_body(ball, Body{.mass = ball_mass, .position = ball_rest_position(), .velocity = {}});
   sim.set(ball, band());
 }
 
 // Scores target i if it is not down yet: knocks it off its rope and greys it.
-void knock(GameState& game, int i, fixstep::Simulation& sim) {
+void knock(GameState& game, int i, fixstep::World& sim) {
   if ((game.knocked & (1u << i)) != 0) return;  // a target scores once
   game.knocked |= 1u << i;
   ++game.score;
@@ -135,7 +135,7 @@ fixstep::WorldDef make_level() {
 }
 
 void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput& input,
-                   const fixstep::Simulation& sim) {
+                   const fixstep::World& sim) {
   drag.apply(input, sim);  // picks on press, drops on release
   if (game.phase != Phase::loaded || input.drag_body != ball) {
     input.drag_body = fixstep::no_body;  // targets are not for dragging
@@ -149,7 +149,7 @@ void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput&
   }
 }
 
-void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& sim) {
+void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
   const Body b = sim.body(ball);
   switch (game.phase) {
     case Phase::loaded: {
@@ -206,7 +206,7 @@ void after_tick(GameState& game, const TickInput& input, fixstep::Simulation& si
 }
 
 fixstep::TickRules rules(GameState& game) {
-  return fixstep::stateful_rules(game, [](GameState& g, fixstep::Simulation& sim,
+  return fixstep::stateful_rules(game, [](GameState& g, fixstep::World& sim,
                                           const TickInput& input) { after_tick(g, input, sim); });
 }
 

@@ -16,7 +16,7 @@
 #include <fixstep/input.hpp>
 #include <fixstep/pointer_drag.hpp>
 #include <fixstep/rules.hpp>
-#include <fixstep/simulation.hpp>
+#include <fixstep/world.hpp>
 #include <string>
 #include <vector>
 
@@ -80,12 +80,12 @@ struct GameState {
 /// drag the ball, and only the ball, and only while it is loaded, never farther than max_pull
 /// from the anchor. `drag` holds the pick between ticks.
 void prepare_input(const GameState& game, fixstep::PointerDrag& drag, fixstep::TickInput& input,
-                   const fixstep::Simulation& sim);
+                   const fixstep::World& sim);
 
 /// After a tick: the rules. `input` is the tick's input (with drag_body set), `sim` the world
 /// right after sim.step(input); a hit is read from sim.impacts(), the tick's disc-disc impacts.
-/// Changes the world through Simulation's handle API only (remove, set, set_body).
-void after_tick(GameState& game, const fixstep::TickInput& input, fixstep::Simulation& sim);
+/// Changes the world through World's handle API only (remove, set, set_body).
+void after_tick(GameState& game, const fixstep::TickInput& input, fixstep::World& sim);
 
 /// The rules as the library runs them (fixstep::replay, fixstep::SyncTest): after_tick on
 /// `game` (held by reference: it must outlive the rules), saved and restored with the world
@@ -93,7 +93,7 @@ void after_tick(GameState& game, const fixstep::TickInput& input, fixstep::Simul
 [[nodiscard]] fixstep::TickRules rules(GameState& game);
 
 /// One tick of the game from a prepared input: step, then the rules.
-inline void play_tick(GameState& game, const fixstep::TickInput& input, fixstep::Simulation& sim) {
+inline void play_tick(GameState& game, const fixstep::TickInput& input, fixstep::World& sim) {
   sim.step(input);
   after_tick(game, input, sim);
 }

@@ -77,7 +77,7 @@ int play(const std::string& record_file, std::int64_t frames) {
       last = {};
       if (recorder) recorder.emplace(session.definition(), scene_name, hash_every);
     }
-    session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& sim) {
+    session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& sim) {
       TickInput in = sampler.sample(t);
       slingshot::prepare_input(game, drag, in, sim);
       slingshot::play_tick(game, in, sim);
@@ -90,7 +90,7 @@ int play(const std::string& record_file, std::int64_t frames) {
     window.present(session.renderer().pixels());
     std::this_thread::sleep_until(frame_start + std::chrono::microseconds(16667));
   }
-  const Simulation& sim = session.simulation();
+  const World& sim = session.simulation();
   std::printf("%s\n%s\n", summary_line(sim, session.initial_energy()).c_str(),
               slingshot::describe(game).c_str());
   if (recorder) {
@@ -119,7 +119,7 @@ void draw_replay(const Recording& rec, std::uint64_t ticks, const std::string& o
   TickInput last;
   for (std::int64_t frame = 0;; ++frame) {
     if (frame > 0) {
-      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, Simulation& sim) {
+      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& sim) {
         if (t >= ticks) return;
         last = rec.input_at(t);
         sim.step(last);
@@ -158,7 +158,7 @@ int replay_file(const std::string& file, const std::string& out_dir, int every,
                  hex_hash(definition_hash(level)).c_str());
     return 5;
   }
-  Simulation sim = make_simulation(level);
+  World sim = World(level);
   const double initial_energy = sim.energy().total();
   slingshot::GameState game;
   const ReplayReport report = replay(sim, rec, slingshot::rules(game));

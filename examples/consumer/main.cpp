@@ -5,8 +5,8 @@
 // checked by check.sh in .ci/run): a world written in code is the scene's world.
 #include <cstdio>
 #include <exception>
-#include <fixstep/simulation.hpp>
 #include <fixstep/summary.hpp>
+#include <fixstep/world.hpp>
 
 namespace {
 
@@ -48,7 +48,7 @@ int main() {
         thrown("feather", 0.1, {14, 18}, 0.1),
         thrown("cannonball", 5.0, {22, 14}, 0.2),
     };
-    Simulation sim = make_simulation(def);
+    World sim = World(def);
     const double e0 = sim.energy().total();  // J
     for (int tick = 0; tick < 1000; ++tick) sim.step();
     std::printf("%s\n", summary_line(sim, e0).c_str());  // the line `fixstep run` ends with

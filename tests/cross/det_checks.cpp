@@ -20,7 +20,7 @@
 #include "../det_golden_cases.hpp"
 #include "fixstep/bits.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace {
 
@@ -44,7 +44,7 @@ int golden_failures() {
 std::uint64_t loaded_hash(const std::string& file, Precision precision) {
   Scene s = load_scene(file);
   s.precision = precision;
-  Simulation sim = make_simulation(world_def(s));
+  World sim = World(world_def(s));
   for (int i = 0; i < 300; ++i) sim.step({});
   return sim.state_hash();
 }

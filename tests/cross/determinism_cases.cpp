@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <fstream>
 
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep::determinism {
 
@@ -68,7 +68,7 @@ std::vector<Case> all_cases() {
           if (i == Integrator::implicit_euler && scene.links.size() > max_links_for_implicit) {
             continue;
           }
-          (void)make_simulation(scene);
+          (void)make_world(scene);
         } catch (const SceneError&) {
           continue;  // refused by the stability guard: nothing to step
         }
@@ -80,7 +80,7 @@ std::vector<Case> all_cases() {
 }
 
 std::uint64_t hash_direct(const Case& c, std::uint64_t ticks) {
-  Simulation sim = make_simulation(scene_for(c));
+  World sim = make_world(scene_for(c));
   ticks = ticks_for(c.scene, ticks);
   for (std::uint64_t t = 0; t < ticks; ++t) sim.step();
   return sim.state_hash();

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "determinism_cases.hpp"
-#include "fixstep/simulation.hpp"
 #include "fixstep/summary.hpp"
+#include "fixstep/world.hpp"
 
 int main(int argc, char** argv) {
   using namespace fixstep;

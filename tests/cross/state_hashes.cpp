@@ -5,7 +5,7 @@
 //   state_hashes SCENE [--ticks N] [--every K] [--integrator NAME] [--precision f32|f64]
 //                [--simd baseline|avx2|avx512] [--threads 0|1|2]
 //
-// Output: "TICK HASH" per line, TICK in decimal, HASH Simulation::state_hash() in 16 lowercase
+// Output: "TICK HASH" per line, TICK in decimal, HASH World::state_hash() in 16 lowercase
 // hex digits (hex_hash): tick 0 (the loaded state), every K-th tick, and tick N (default 1000
 // ticks, K = 1), no input. Exit 0; 2 for bad arguments or a scene the loader refuses (message
 // on stderr); 3 for a SIMD level this CPU or build lacks; 1 when standard output cannot be
@@ -25,8 +25,8 @@
 #include "fixstep/limits.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/simd.hpp"
-#include "fixstep/simulation.hpp"
 #include "fixstep/summary.hpp"
+#include "fixstep/world.hpp"
 #include "fixstep/write_signals.hpp"
 
 namespace {
@@ -122,7 +122,7 @@ void run(const Options& o) {
   if (o.threads) scene.world.threads = *o.threads;
   check_command_work(o.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.world),
                      "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
-  Simulation sim = make_simulation(scene);
+  World sim = make_world(scene);
   std::string out;
   auto line = [&] {
     out += std::to_string(sim.tick()) + ' ' + hex_hash(sim.state_hash()) + '\n';

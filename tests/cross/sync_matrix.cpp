@@ -10,9 +10,9 @@
 #include <string>
 
 #include "determinism_cases.hpp"
-#include "fixstep/simulation.hpp"
 #include "fixstep/summary.hpp"
 #include "fixstep/sync_test.hpp"
+#include "fixstep/world.hpp"
 
 namespace {
 
@@ -23,8 +23,8 @@ using namespace fixstep::determinism;
 std::string check(const Case& c, std::uint64_t ticks) {
   const Scene scene = scene_for(c);
   ticks = ticks_for(c.scene, ticks);
-  Simulation plain = make_simulation(scene);
-  Simulation tested = make_simulation(scene);
+  World plain = make_world(scene);
+  World tested = make_world(scene);
   SyncTest sync(tested, 7);
   for (std::uint64_t t = 0; t < ticks; ++t) {
     plain.step(scripted_input(t));

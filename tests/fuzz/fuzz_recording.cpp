@@ -62,7 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // A body the small world does not have is a clean rejection, as in `fixstep replay`.
     fixstep::check_recorded_bodies(rec, small_world().bodies.size(), "fuzz.rec");
     if (rec.ticks <= 2000) {
-      fixstep::Simulation sim = fixstep::make_simulation(small_world());
+      fixstep::World sim = fixstep::World(small_world());
       (void)fixstep::replay(sim, rec);  // a mismatch is expected; an exception is not
     }
   } catch (const fixstep::RecordingError& e) {

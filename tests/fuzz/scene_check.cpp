@@ -12,7 +12,7 @@
 #include <typeinfo>
 
 #include "fixstep/scene.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep::fuzz {
 namespace {
@@ -94,9 +94,9 @@ Outcome check_scene_text(std::string_view text) {
                                  (implicit_network ? scene.bodies.size() : 1);
   if (size > max_built_size || per_tick > max_body_substeps) return {Verdict::accepted, {}};
 
-  std::optional<Simulation> sim;
+  std::optional<World> sim;
   try {
-    sim.emplace(make_simulation(scene));
+    sim.emplace(make_world(scene));
   } catch (const SceneError& e) {
     return {Verdict::rejected, e.what()};
   } catch (const std::invalid_argument& e) {
@@ -130,9 +130,9 @@ Outcome check_scene_text(std::string_view text) {
       }
     }
   } catch (const std::exception& e) {
-    return unexpected("Simulation::step", e);
+    return unexpected("World::step", e);
   } catch (...) {
-    return unexpected("Simulation::step");
+    return unexpected("World::step");
   }
   return {Verdict::accepted, {}};
 }

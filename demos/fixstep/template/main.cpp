@@ -62,14 +62,14 @@ struct Score {
   std::uint32_t dropped = 0;  // balls dropped again so far (picks the next drop's x)
 };
 
-bool is_ball(const Simulation& sim, Entity e) {
+bool is_ball(const World& sim, Entity e) {
   return sim.name(e).starts_with("ball");
 }
 
 /// Destroys ball `e` and drops a new one like it (the scene's body of the same name) from the
 /// top. Destroying and creating, rather than moving the ball, gives it a new handle: the
 /// renderer starts a new trail instead of drawing a streak across the screen.
-void drop_again(Simulation& sim, Entity e, Score& score, const std::vector<BodyDef>& balls) {
+void drop_again(World& sim, Entity e, Score& score, const std::vector<BodyDef>& balls) {
   const std::string name = sim.name(e);
   sim.destroy(e);
   for (const BodyDef& model : balls) {
@@ -90,7 +90,7 @@ TickRules make_rules(Score& score, const WorldDef& level) {
   for (const BodyDef& body : level.bodies) {
     if (body.name.starts_with("ball")) balls.push_back(body);
   }
-  return stateful_rules(score, [balls](Score& s, Simulation& sim, const TickInput&) {
+  return stateful_rules(score, [balls](Score& s, World& sim, const TickInput&) {
     const Entity claw = sim.find("claw");
     std::vector<Entity> caught, missed;
     for (const ContactEvent& contact : sim.contacts_begun()) {  // pairs that began to touch
@@ -149,7 +149,7 @@ struct Player {
   Vec2 hook_velocity{};  // m/s, the last one sent
   int facing = 1;        // +1 right, -1 left: where the hook last moved
 
-  void control(const Controls& c, const Simulation& sim, InputSampler& sampler) {
+  void control(const Controls& c, const World& sim, InputSampler& sampler) {
     const Entity hook = sim.find("hook"), claw = sim.find("claw");
     const double x = sim.body(hook).position.x;  // m
     const bool at_wall = (c.move < 0 && x <= -hook_reach) || (c.move > 0 && x >= hook_reach);
@@ -194,7 +194,7 @@ class Game {
   /// and the recorder takes the tick.
   void advance(const Controls& controls, double seconds) {
     player_.control(controls, session_.simulation(), sampler_);
-    session_.advance_with(seconds, [&](std::uint64_t tick, Simulation& sim) {
+    session_.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
       const TickInput input = sampler_.sample(tick);
       sim.step(input);
       rules_.after_tick(sim, input);
@@ -221,7 +221,7 @@ class Game {
 
   /// Prints the score and writes the recording, if any.
   void finish() {
-    const Simulation& sim = session_.simulation();
+    const World& sim = session_.simulation();
     std::printf("%s: %llu ticks, caught %d, missed %d\n", program,
                 static_cast<unsigned long long>(sim.tick()), score_.caught, score_.missed);
     if (!recorder_) return;

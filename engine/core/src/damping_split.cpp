@@ -2,7 +2,7 @@
 #include <optional>
 #include <string_view>
 
-#include "fixstep/world.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 
 namespace fixstep {
 

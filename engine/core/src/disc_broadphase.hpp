@@ -50,7 +50,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/world.hpp"  // detail::CachePtr, detail::Workers (workers.hpp)
+#include "fixstep/detail/world_kernel.hpp"  // detail::CachePtr, detail::Workers (workers.hpp)
 
 namespace fixstep::detail {
 

@@ -42,7 +42,7 @@
 
 #include "disc_broadphase.hpp"
 #include "fixstep/components.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 
 namespace fixstep::detail {
 

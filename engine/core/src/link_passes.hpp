@@ -12,7 +12,7 @@
 #include <type_traits>
 
 #include "body_field.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 
 namespace fixstep {
 

@@ -10,7 +10,7 @@
 
 namespace fixstep {
 
-Entity pick_body(const Simulation& sim, Vec2 point, double tolerance) {
+Entity pick_body(const World& sim, Vec2 point, double tolerance) {
   Entity best = no_body;
   double best_distance = 0.0;
   sim.visit([&](const auto& w) {
@@ -34,7 +34,7 @@ PointerDrag::PointerDrag(double tolerance) : tolerance_(tolerance) {
   }
 }
 
-void PointerDrag::apply(TickInput& input, const Simulation& sim) {
+void PointerDrag::apply(TickInput& input, const World& sim) {
   const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   const bool held = (input.held & button_pointer_primary) != 0;
   if ((input.pressed & button_pointer_primary) && held) {

@@ -130,7 +130,7 @@ Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_ev
   rec_.hash_every = hash_every;
 }
 
-void Recorder::record(const TickInput& input, const Simulation& after_the_tick) {
+void Recorder::record(const TickInput& input, const World& after_the_tick) {
   const std::uint64_t tick = rec_.ticks;
   if (after_the_tick.tick() != tick + 1) {
     throw std::invalid_argument(fmt::format(
@@ -162,7 +162,7 @@ void Recorder::truncate(std::uint64_t ticks) {
   rec_.ticks = ticks;
 }
 
-Recording Recorder::finish(const Simulation& sim) {
+Recording Recorder::finish(const World& sim) {
   if (sim.tick() != rec_.ticks) {
     throw std::invalid_argument(
         fmt::format("Recorder::finish: the simulation is at tick {}, the recording has {} ticks",
@@ -192,7 +192,7 @@ Recording Recorder::take() {
   return out;
 }
 
-ReplayReport replay(Simulation& sim, const Recording& rec, const TickRules& rules) {
+ReplayReport replay(World& sim, const Recording& rec, const TickRules& rules) {
   if (sim.tick() != 0) {
     throw std::invalid_argument(
         fmt::format("replay: the simulation is at tick {}, not at its start", sim.tick()));

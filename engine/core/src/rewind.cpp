@@ -26,7 +26,7 @@ RewindBuffer::RewindBuffer(std::size_t capacity) {
   slots_.resize(capacity);
 }
 
-void RewindBuffer::push(const Simulation& sim) {
+void RewindBuffer::push(const World& sim) {
   newest_ = size_ == 0 ? 0 : (newest_ + 1) % slots_.size();
   sim.save(slots_[newest_]);
   if (size_ < slots_.size()) ++size_;

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "fixstep/world.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 #include "stability_internal.hpp"
 
 namespace fixstep {
@@ -22,7 +22,7 @@ using detail::scan_to;
 }  // namespace
 
 double amplification(Integrator integrator, double omega, double gamma, double h) {
-  World<double> w(
+  detail::WorldKernel<double> w(
       WorldSettings{.dt = h, .integrator = integrator, .substeps = 1, .flush_denormals = false});
   auto unit = [&](Vec2 position, Vec2 velocity) {
     BodyDef d;

@@ -26,10 +26,10 @@
 #include <stdexcept>
 
 #include "fixstep/det_math.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 #include "fixstep/stability.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/work_progress.hpp"
-#include "fixstep/world.hpp"
 #include "stability_internal.hpp"
 
 namespace fixstep {
@@ -210,7 +210,7 @@ double network_amplification(Integrator integrator, double omega, double gamma, 
   if (!(damped_links && gamma > 0.0 && strang(integrator))) {
     return amplification(integrator, omega, gamma, h);
   }
-  World<double> w(WorldSettings{
+  detail::WorldKernel<double> w(WorldSettings{
       .dt = h, .integrator = integrator, .substeps = 1, .flush_denormals = false, .threads = 1});
   // Two pairs of unit masses; each pair's separation r = x_a - x_b obeys r'' = -2k r - 2b r'.
   auto pair = [&](double r, double u) {

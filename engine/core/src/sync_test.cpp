@@ -11,7 +11,7 @@
 
 namespace fixstep {
 
-SyncTest::SyncTest(Simulation& sim, int rollback_ticks, TickRules rules)
+SyncTest::SyncTest(World& sim, int rollback_ticks, TickRules rules)
     : sim_(sim),
       rules_(std::move(rules)),
       rollback_(static_cast<std::uint64_t>(std::max(rollback_ticks, 1))),

@@ -46,10 +46,10 @@
 #include <stdexcept>
 
 #include "fixstep/det_math.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 #include "fixstep/float_mode.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/stop_request.hpp"
-#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -172,7 +172,7 @@ bool impact(Motion& m, const PlaneDef& p, double r, double dt) {
 }  // namespace
 
 template <class Real>
-std::size_t World<Real>::add_plane(const PlaneDef& def) {
+std::size_t detail::WorldKernel<Real>::add_plane(const PlaneDef& def) {
   const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   const std::string who = fmt::format("plane[{}]", planes_.size());
   auto check = [&](double v, bool ok, const char* field, const char* allowed) {
@@ -200,7 +200,7 @@ std::size_t World<Real>::add_plane(const PlaneDef& def) {
 }
 
 template <class Real>
-void World<Real>::rebuild_contacts() {
+void detail::WorldKernel<Real>::rebuild_contacts() {
   ContactScratch& c = contact_;
   const std::size_t n = colliders_.data.size();
   std::vector<std::uint32_t> order;  // dynamic colliders: planes do not move the others
@@ -225,7 +225,7 @@ void World<Real>::rebuild_contacts() {
 }
 
 template <class Real>
-void World<Real>::save_contact_start() {
+void detail::WorldKernel<Real>::save_contact_start() {
   ContactScratch& c = contact_;
   for (std::size_t k = 0; k < c.body.size(); ++k) {
     const std::uint32_t j = c.body[k];
@@ -234,7 +234,7 @@ void World<Real>::save_contact_start() {
 }
 
 template <class Real>
-std::size_t World<Real>::resolve_contacts() {
+std::size_t detail::WorldKernel<Real>::resolve_contacts() {
   const ContactScratch& c = contact_;
   const double dt = settings_.dt;
   const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
@@ -325,11 +325,11 @@ std::size_t World<Real>::resolve_contacts() {
   return capped;
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                               \
-  template std::size_t World<Real>::add_plane(const PlaneDef&); \
-  template void World<Real>::rebuild_contacts();                \
-  template void World<Real>::save_contact_start();              \
-  template std::size_t World<Real>::resolve_contacts();
+#define FIXSTEP_INSTANTIATE(Real)                                             \
+  template std::size_t detail::WorldKernel<Real>::add_plane(const PlaneDef&); \
+  template void detail::WorldKernel<Real>::rebuild_contacts();                \
+  template void detail::WorldKernel<Real>::save_contact_start();              \
+  template std::size_t detail::WorldKernel<Real>::resolve_contacts();
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

@@ -21,8 +21,8 @@
 #include "body_field.hpp"
 #include "fixstep/bits.hpp"
 #include "fixstep/det_math.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 #include "fixstep/stop_request.hpp"
-#include "fixstep/world.hpp"
 #include "link_damping.hpp"
 #include "link_passes.hpp"
 #include "strang_network.hpp"
@@ -47,7 +47,7 @@ constexpr std::size_t min_parallel_range = 4096;
 
 template <class Real>
 template <class Pass>
-void World<Real>::parallel(std::size_t n, Pass&& pass, std::size_t min_range) {
+void detail::WorldKernel<Real>::parallel(std::size_t n, Pass&& pass, std::size_t min_range) {
   if (threads_used_ < 2 || n < min_range) {
     pass(std::size_t{0}, n);
     return;
@@ -68,7 +68,7 @@ void World<Real>::parallel(std::size_t n, Pass&& pass, std::size_t min_range) {
 }
 
 template <class Real>
-void World<Real>::rebuild_network() {
+void detail::WorldKernel<Real>::rebuild_network() {
   Network& net = net_;
   const std::size_t n = body_count(), m = link_defs_.size();
   net.a.resize(m), net.b.resize(m);
@@ -130,7 +130,8 @@ void World<Real>::rebuild_network() {
 // Each link's exact damping flow over τ (link_damping.hpp), from the masses and dampers in
 // double, rounded once; cached per τ (Verlet needs one, Forest–Ruth two).
 template <class Real>
-const typename World<Real>::LinkFlow& World<Real>::link_flow(double tau) {
+const typename detail::WorldKernel<Real>::LinkFlow& detail::WorldKernel<Real>::link_flow(
+    double tau) {
   for (const LinkFlow& f : link_flows_) {
     if (f.tau == tau) return f;
   }
@@ -154,7 +155,7 @@ const typename World<Real>::LinkFlow& World<Real>::link_flow(double tau) {
 }
 
 template <class Real>
-void World<Real>::step_multipass(const TickInput& input) {
+void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
   const std::size_t n = x_.size(), m = net_.a.size();
   const int want = settings_.threads;
   static const bool second_core = std::thread::hardware_concurrency() >= 2;  // a syscall: once
@@ -303,10 +304,10 @@ void World<Real>::step_multipass(const TickInput& input) {
   if (bad.load(std::memory_order_relaxed) && !fault_) record_fault();
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                              \
-  template void World<Real>::step_multipass(const TickInput&); \
-  template void World<Real>::rebuild_network();                \
-  template const World<Real>::LinkFlow& World<Real>::link_flow(double);
+#define FIXSTEP_INSTANTIATE(Real)                                            \
+  template void detail::WorldKernel<Real>::step_multipass(const TickInput&); \
+  template void detail::WorldKernel<Real>::rebuild_network();                \
+  template const detail::WorldKernel<Real>::LinkFlow& detail::WorldKernel<Real>::link_flow(double);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

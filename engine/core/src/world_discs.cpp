@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "disc_contacts.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 
 namespace fixstep {
 
@@ -58,7 +58,7 @@ double kappa(Integrator integrator, int substeps) {
 }  // namespace
 
 template <class Real>
-void World<Real>::rebuild_discs() {
+void detail::WorldKernel<Real>::rebuild_discs() {
   immovable_.body.clear();
   for (std::size_t j = 0; j < body_count(); ++j) {
     if (types_[j] != BodyType::dynamic) immovable_.body.push_back(static_cast<std::uint32_t>(j));
@@ -111,7 +111,7 @@ void World<Real>::rebuild_discs() {
 }
 
 template <class Real>
-void World<Real>::save_tick_start() {
+void detail::WorldKernel<Real>::save_tick_start() {
   Immovable& m = immovable_;
   for (std::size_t i = 0; i < m.body.size(); ++i) {
     const std::uint32_t j = m.body[i];
@@ -124,7 +124,7 @@ void World<Real>::save_tick_start() {
 }
 
 template <class Real>
-void World<Real>::restore_immovable() {
+void detail::WorldKernel<Real>::restore_immovable() {
   const Immovable& m = immovable_;
   const Real dt = static_cast<Real>(settings_.dt);
   for (std::size_t i = 0; i < m.body.size(); ++i) {
@@ -139,7 +139,7 @@ void World<Real>::restore_immovable() {
 }
 
 template <class Real>
-void World<Real>::resolve_discs() {
+void detail::WorldKernel<Real>::resolve_discs() {
   detail::DiscContacts<Real>& dc = *discs_;
   typename detail::DiscContacts<Real>::Tick t{
       x_.data(),
@@ -184,17 +184,17 @@ void World<Real>::resolve_discs() {
 }
 
 template <class Real>
-std::span<const Impact> World<Real>::impacts() const {
+std::span<const Impact> detail::WorldKernel<Real>::impacts() const {
   if (!discs_) return {};
   return discs_->impacts();
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                \
-  template std::span<const Impact> World<Real>::impacts() const; \
-  template void World<Real>::rebuild_discs();                    \
-  template void World<Real>::save_tick_start();                  \
-  template void World<Real>::restore_immovable();                \
-  template void World<Real>::resolve_discs();
+#define FIXSTEP_INSTANTIATE(Real)                                              \
+  template std::span<const Impact> detail::WorldKernel<Real>::impacts() const; \
+  template void detail::WorldKernel<Real>::rebuild_discs();                    \
+  template void detail::WorldKernel<Real>::save_tick_start();                  \
+  template void detail::WorldKernel<Real>::restore_immovable();                \
+  template void detail::WorldKernel<Real>::resolve_discs();
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "disc_contacts.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 
 namespace fixstep {
 
@@ -34,7 +34,7 @@ void sort_by_slots(std::vector<ContactEvent>& list) {
 }  // namespace
 
 template <class Real>
-void World<Real>::update_contact_events() {
+void detail::WorldKernel<Real>::update_contact_events() {
   touching_before_.swap(touching_);
   touching_.clear();
   begun_.clear();
@@ -90,7 +90,7 @@ void World<Real>::update_contact_events() {
   if (struck) sort_by_slots(begun_), sort_by_slots(ended_);
 }
 
-template void World<float>::update_contact_events();
-template void World<double>::update_contact_events();
+template void detail::WorldKernel<float>::update_contact_events();
+template void detail::WorldKernel<double>::update_contact_events();
 
 }  // namespace fixstep

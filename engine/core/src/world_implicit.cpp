@@ -24,9 +24,9 @@
 #include <limits>
 #include <new>
 
+#include "fixstep/detail/world_kernel.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/stop_request.hpp"
-#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -253,7 +253,7 @@ bool ImplicitSolver<Real>::step(Real* x, Real* y, Real* vx, Real* vy, double h, 
 }  // namespace detail
 
 template <class Real>
-detail::ImplicitSolver<Real>& World<Real>::implicit_solver() {
+detail::ImplicitSolver<Real>& detail::WorldKernel<Real>::implicit_solver() {
   if (!implicit_) {
     // The network in double from the authoritative components (rebuilt after any change).
     implicit_.reset(new detail::ImplicitSolver<Real>());
@@ -315,13 +315,13 @@ detail::ImplicitSolver<Real>& World<Real>::implicit_solver() {
 }
 
 template <class Real>
-std::pair<double*, double*> World<Real>::implicit_accelerations() {
+std::pair<double*, double*> detail::WorldKernel<Real>::implicit_accelerations() {
   detail::ImplicitSolver<Real>& s = implicit_solver();
   return {s.cx.data(), s.cy.data()};
 }
 
 template <class Real>
-bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
+bool detail::WorldKernel<Real>::step_implicit_network(Real h, const Real push[2]) {
   try {
     return implicit_solver().step(x_.data(), y_.data(), vx_.data(), vy_.data(), double(h), push,
                                   settings_.track_dissipation, dissipated_body_.data(),
@@ -336,12 +336,12 @@ bool World<Real>::step_implicit_network(Real h, const Real push[2]) {
   }
 }
 
-template detail::ImplicitSolver<float>& World<float>::implicit_solver();
-template detail::ImplicitSolver<double>& World<double>::implicit_solver();
-template std::pair<double*, double*> World<float>::implicit_accelerations();
-template std::pair<double*, double*> World<double>::implicit_accelerations();
-template bool World<float>::step_implicit_network(float, const float[2]);
-template bool World<double>::step_implicit_network(double, const double[2]);
+template detail::ImplicitSolver<float>& detail::WorldKernel<float>::implicit_solver();
+template detail::ImplicitSolver<double>& detail::WorldKernel<double>::implicit_solver();
+template std::pair<double*, double*> detail::WorldKernel<float>::implicit_accelerations();
+template std::pair<double*, double*> detail::WorldKernel<double>::implicit_accelerations();
+template bool detail::WorldKernel<float>::step_implicit_network(float, const float[2]);
+template bool detail::WorldKernel<double>::step_implicit_network(double, const double[2]);
 template struct detail::ImplicitSolverDeleter<float>;
 template struct detail::ImplicitSolverDeleter<double>;
 

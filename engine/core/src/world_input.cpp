@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fixstep/world.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 
 namespace fixstep {
 
@@ -16,7 +16,7 @@ bool finite(Vec2 v) {
 }  // namespace
 
 template <class Real>
-void World<Real>::apply_body_inputs(const TickInput& input) {
+void detail::WorldKernel<Real>::apply_body_inputs(const TickInput& input) {
   for (const BodyInput& in : input.bodies) {
     if (in.kind == BodyInputKind::force || !bodies_.contains(in.body) || !finite(in.value)) {
       continue;
@@ -39,7 +39,7 @@ void World<Real>::apply_body_inputs(const TickInput& input) {
 // tick solves a network implicitly. The previous values are saved and put back after the tick
 // bit for bit, so the next tick without the force steps as if it had never been there.
 template <class Real>
-bool World<Real>::add_input_forces(const TickInput& input) {
+bool detail::WorldKernel<Real>::add_input_forces(const TickInput& input) {
   saved_accel_.clear();
   const bool implicit = settings_.integrator == Integrator::implicit_euler && !net_.a.empty();
   std::pair<double*, double*> solver{nullptr, nullptr};
@@ -67,7 +67,7 @@ bool World<Real>::add_input_forces(const TickInput& input) {
 }
 
 template <class Real>
-void World<Real>::remove_input_forces() {
+void detail::WorldKernel<Real>::remove_input_forces() {
   const bool implicit = settings_.integrator == Integrator::implicit_euler && !net_.a.empty();
   const std::pair<double*, double*> solver =
       implicit ? implicit_accelerations() : std::pair<double*, double*>{nullptr, nullptr};
@@ -86,7 +86,7 @@ void World<Real>::remove_input_forces() {
 // bodies' own accelerations instead (in Real, as the passes add it, so their bits are those of
 // an unfolded push) and the tick runs with no push; the arrays are restored after it.
 template <class Real>
-void World<Real>::fold_push(Vec2 push) {
+void detail::WorldKernel<Real>::fold_push(Vec2 push) {
   const std::size_t n = x_.size();
   const Real px = static_cast<Real>(push.x), py = static_cast<Real>(push.y);
   push_saved_.resize(2 * n);
@@ -109,7 +109,7 @@ void World<Real>::fold_push(Vec2 push) {
 }
 
 template <class Real>
-void World<Real>::unfold_push() {
+void detail::WorldKernel<Real>::unfold_push() {
   const std::size_t n = x_.size();
   std::copy(push_saved_.begin(), push_saved_.begin() + n, coeff_.accel_x.begin());
   std::copy(push_saved_.begin() + n, push_saved_.end(), coeff_.accel_y.begin());
@@ -120,12 +120,12 @@ void World<Real>::unfold_push() {
   std::copy(push_saved_implicit_.begin() + n, push_saved_implicit_.end(), cy);
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                 \
-  template void World<Real>::apply_body_inputs(const TickInput&); \
-  template bool World<Real>::add_input_forces(const TickInput&);  \
-  template void World<Real>::remove_input_forces();               \
-  template void World<Real>::fold_push(Vec2);                     \
-  template void World<Real>::unfold_push();
+#define FIXSTEP_INSTANTIATE(Real)                                               \
+  template void detail::WorldKernel<Real>::apply_body_inputs(const TickInput&); \
+  template bool detail::WorldKernel<Real>::add_input_forces(const TickInput&);  \
+  template void detail::WorldKernel<Real>::remove_input_forces();               \
+  template void detail::WorldKernel<Real>::fold_push(Vec2);                     \
+  template void detail::WorldKernel<Real>::unfold_push();
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "disc_contacts.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 
 namespace fixstep {
 namespace {
@@ -35,7 +35,7 @@ std::size_t sum(const Parts&... parts) {
 }  // namespace
 
 template <class Real>
-std::size_t World<Real>::snapshot_bytes() const {
+std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
   std::size_t n = sum(generations_, free_slots_, link_generations_, link_free_slots_, bodies_, x_,
                       y_, vx_, vy_, prev_x_, prev_y_, mass_, types_, names_);
   n += sum(springs_, constant_forces_, gravities_, drags_, appearances_, colliders_, links_,
@@ -57,7 +57,7 @@ std::size_t World<Real>::snapshot_bytes() const {
   return n;
 }
 
-template std::size_t World<float>::snapshot_bytes() const;
-template std::size_t World<double>::snapshot_bytes() const;
+template std::size_t detail::WorldKernel<float>::snapshot_bytes() const;
+template std::size_t detail::WorldKernel<double>::snapshot_bytes() const;
 
 }  // namespace fixstep

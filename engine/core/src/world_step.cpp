@@ -8,10 +8,10 @@
 #include "body_field.hpp"
 #include "disc_contacts.hpp"
 #include "fixstep/det_math.hpp"
+#include "fixstep/detail/world_kernel.hpp"
 #include "fixstep/float_mode.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/stop_request.hpp"
-#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -108,7 +108,8 @@ void flush_subnormals(std::vector<Real>& v) {
 }  // namespace
 
 template <class Real>
-void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input) {
+void detail::WorldKernel<Real>::accelerations(std::span<Real> ax, std::span<Real> ay,
+                                              const TickInput& input) {
   if (ax.size() < body_count() || ay.size() < body_count()) {
     throw std::invalid_argument("World::accelerations: output spans are shorter than body_count()");
   }
@@ -145,7 +146,7 @@ void World<Real>::accelerations(std::span<Real> ax, std::span<Real> ay, const Ti
 // The damping-flow factors e^{-γτ} of every body (1 where γ = 0), computed in double once per
 // τ and cached: a tick of Verlet needs one τ, of Forest–Ruth two.
 template <class Real>
-const Real* World<Real>::damping_decay(double tau) {
+const Real* detail::WorldKernel<Real>::damping_decay(double tau) {
   auto flow = std::find_if(flows_.begin(), flows_.end(),
                            [tau](const DampingFlow& f) { return f.tau == tau; });
   if (flow == flows_.end()) {
@@ -163,7 +164,7 @@ const Real* World<Real>::damping_decay(double tau) {
 }
 
 template <class Real>
-std::size_t World<Real>::bytes_per_body_step() {
+std::size_t detail::WorldKernel<Real>::bytes_per_body_step() {
   if (terms_dirty_) rebuild_terms();
   const Coefficients& c = coeff_;
   std::size_t arrays = 8;  // x, y, vx, vy: read and written
@@ -176,7 +177,7 @@ std::size_t World<Real>::bytes_per_body_step() {
 }
 
 template <class Real>
-void World<Real>::apply_drag(const TickInput& input) {
+void detail::WorldKernel<Real>::apply_drag(const TickInput& input) {
   // The drag spring a = -ω²(x - p) - 2ζω v per unit mass, taken implicitly over the tick
   // (v1 = v0 + h a(x0 + h v1, v1)), so it is stable at any dt and any integrator:
   //   v1 = (v0 - h ω² (x0 - p)) / (1 + 2ζω h + ω² h²).
@@ -192,7 +193,7 @@ void World<Real>::apply_drag(const TickInput& input) {
 }
 
 template <class Real>
-void World<Real>::step(const TickInput& input) {
+void detail::WorldKernel<Real>::step(const TickInput& input) {
   const IeeeFloatMode ieee;  // no state depends on the caller's FPU mode (fixstep/float_mode.hpp)
   if (terms_dirty_) rebuild_terms();
   if (!input.bodies.empty()) apply_body_inputs(input);
@@ -241,7 +242,7 @@ void World<Real>::step(const TickInput& input) {
 }
 
 template <class Real>
-void World<Real>::integrate(const TickInput& input) {
+void detail::WorldKernel<Real>::integrate(const TickInput& input) {
   if (!net_.a.empty() || settings_.track_dissipation) {
     step_multipass(input);  // links or the dissipation account: world_coupled.cpp
     return;
@@ -291,7 +292,7 @@ void World<Real>::integrate(const TickInput& input) {
 
 // Cold path: find the first body (dense order) and component out of range after this tick.
 template <class Real>
-void World<Real>::record_fault() {
+void detail::WorldKernel<Real>::record_fault() {
   const std::span<const Real> fields[] = {x_, y_, vx_, vy_};
   const char* names[] = {"x", "y", "vx", "vy"};
   for (std::size_t j = 0; j < x_.size(); ++j) {
@@ -314,8 +315,8 @@ void World<Real>::record_fault() {
 
 // Cold path: a contact cap (limits.hpp) stopped part of this tick's contact work.
 template <class Real>
-void World<Real>::record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit,
-                                   const std::string& with) {
+void detail::WorldKernel<Real>::record_cap_fault(std::size_t body, const char* cap,
+                                                 std::uint64_t limit, const std::string& with) {
   fault_ = StateFault{.index = body,
                       .name = names_[body],
                       .tick = tick_,
@@ -326,18 +327,19 @@ void World<Real>::record_cap_fault(std::size_t body, const char* cap, std::uint6
                       .with = with};
 }
 
-// world.hpp declares `extern template class World<Real>`, so every member defined in this
-// file is instantiated here explicitly.
+// world.hpp declares `extern template class detail::WorldKernel<Real>`, so every member defined in
+// this file is instantiated here explicitly.
 #define FIXSTEP_INSTANTIATE(Real)                                                               \
-  template void World<Real>::step(const TickInput&);                                            \
-  template void World<Real>::integrate(const TickInput&);                                       \
-  template void World<Real>::apply_drag(const TickInput&);                                      \
-  template void World<Real>::accelerations(std::span<Real>, std::span<Real>, const TickInput&); \
-  template std::size_t World<Real>::bytes_per_body_step();                                      \
-  template void World<Real>::record_fault();                                                    \
-  template void World<Real>::record_cap_fault(std::size_t, const char*, std::uint64_t,          \
-                                              const std::string&);                              \
-  template const Real* World<Real>::damping_decay(double);
+  template void detail::WorldKernel<Real>::step(const TickInput&);                              \
+  template void detail::WorldKernel<Real>::integrate(const TickInput&);                         \
+  template void detail::WorldKernel<Real>::apply_drag(const TickInput&);                        \
+  template void detail::WorldKernel<Real>::accelerations(std::span<Real>, std::span<Real>,      \
+                                                         const TickInput&);                     \
+  template std::size_t detail::WorldKernel<Real>::bytes_per_body_step();                        \
+  template void detail::WorldKernel<Real>::record_fault();                                      \
+  template void detail::WorldKernel<Real>::record_cap_fault(std::size_t, const char*,           \
+                                                            std::uint64_t, const std::string&); \
+  template const Real* detail::WorldKernel<Real>::damping_decay(double);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

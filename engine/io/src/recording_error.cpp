@@ -50,7 +50,7 @@ ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& 
                     "as it was recorded",
                     hex_hash(actual), hex_hash(rec.definition_hash)));
   }
-  Simulation sim = make_simulation(def);
+  World sim = World(def);
   return replay(sim, rec, rules);
 }
 

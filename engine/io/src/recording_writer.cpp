@@ -49,7 +49,7 @@ void RecordingWriter::flush_if_full() {
   }
 }
 
-void RecordingWriter::record(const TickInput& input, const Simulation& after_the_tick) {
+void RecordingWriter::record(const TickInput& input, const World& after_the_tick) {
   if (after_the_tick.tick() != ticks_ + 1) {
     throw std::invalid_argument(fmt::format(
         "RecordingWriter::record: the simulation is at tick {}, the recording expects tick {}",
@@ -77,7 +77,7 @@ void RecordingWriter::record(const TickInput& input, const Simulation& after_the
   flush_if_full();
 }
 
-void RecordingWriter::finish(const Simulation& sim) {
+void RecordingWriter::finish(const World& sim) {
   if (sim.tick() != ticks_) {
     throw std::invalid_argument(
         fmt::format("RecordingWriter::finish: the simulation is at tick {}, the recording has {} "

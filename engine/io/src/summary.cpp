@@ -9,7 +9,7 @@ std::string hex_hash(std::uint64_t hash) {
   return fmt::format("{:016x}", hash);
 }
 
-std::string summary_line(const Simulation& sim, double initial_energy) {
+std::string summary_line(const World& sim, double initial_energy) {
   const double balance = energy_balance(sim, initial_energy);
   return fmt::format(
       "ticks={} t={:.6f} state_hash={} energy={:.9e} dissipated={:.9e} balance={:.6e}{}",

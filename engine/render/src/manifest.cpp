@@ -24,7 +24,7 @@ FrameManifest::FrameManifest(std::filesystem::path file, ManifestLayout layout)
 
 namespace {
 void append_state(std::string& row, const Session& session) {
-  const Simulation& sim = session.simulation();
+  const World& sim = session.simulation();
   fmt::format_to(std::back_inserter(row), "{},{:.6f},{:.6f},{:016x},{:.9e},{:.6e}\n", sim.tick(),
                  sim.time(), session.alpha(), sim.state_hash(), sim.energy().total(),
                  energy_balance(sim, session.initial_energy()));

@@ -152,7 +152,7 @@ LoopSettings loop_settings(double dt, double max_frame_time) {
 }
 
 /// `sim`, checked to be a fresh build of `def` (Session's second constructor).
-Simulation& built(Simulation& sim, const WorldDef& def) {
+World& built(World& sim, const WorldDef& def) {
   if (sim.tick() != 0 || sim.body_count() != def.bodies.size() ||
       !sim.settings().track_dissipation) {
     throw std::invalid_argument(fmt::format(
@@ -169,16 +169,16 @@ Simulation& built(Simulation& sim, const WorldDef& def) {
 Session::Session(WorldDef def, const SessionSettings& settings)
     : def_(std::move(def)),
       title_(settings.title),
-      sim_(std::make_unique<Simulation>(make_simulation(tracked(def_)))),
+      sim_(std::make_unique<World>(World(tracked(def_)))),
       loop_(loop_settings(def_.settings.dt, settings.max_frame_time)),
       renderer_(settings.width, settings.height) {
   start(settings);
 }
 
-Session::Session(WorldDef def, Simulation sim, const SessionSettings& settings)
+Session::Session(WorldDef def, World sim, const SessionSettings& settings)
     : def_(std::move(def)),
       title_(settings.title),
-      sim_(std::make_unique<Simulation>(std::move(built(sim, tracked(def_))))),
+      sim_(std::make_unique<World>(std::move(built(sim, tracked(def_))))),
       loop_(loop_settings(def_.settings.dt, settings.max_frame_time)),
       renderer_(settings.width, settings.height) {
   start(settings);
@@ -200,7 +200,7 @@ void Session::start(const SessionSettings& settings) {
 FrameResult Session::advance(double frame_seconds, const TickInput& input) {
   // After the runtime guard fires, no further tick runs and the loop pauses: the state stays
   // at the tick that diverged, and draw() shows why.
-  return advance_with(frame_seconds, [&](std::uint64_t t, Simulation& sim) {
+  return advance_with(frame_seconds, [&](std::uint64_t t, World& sim) {
     TickInput in = input;
     in.tick = t;
     sim.step(in);
@@ -209,7 +209,7 @@ FrameResult Session::advance(double frame_seconds, const TickInput& input) {
 
 FrameResult Session::advance(double frame_seconds, InputSampler& sampler) {
   return advance_with(frame_seconds,
-                      [&](std::uint64_t t, Simulation& sim) { sim.step(sampler.sample(t)); });
+                      [&](std::uint64_t t, World& sim) { sim.step(sampler.sample(t)); });
 }
 
 void Session::pause_on_fault() {
@@ -234,7 +234,7 @@ void Session::restore(const Snapshot& snapshot) {
 }
 
 void Session::restart() {
-  sim_ = std::make_unique<Simulation>(make_simulation(def_));
+  sim_ = std::make_unique<World>(World(def_));
   sim_->set_keep_previous(true);
   fault_lines_.clear();
   loop_.reset();

@@ -330,11 +330,11 @@ WorldDef world_def(const Scene& scene) {
                   .allow_unstable = scene.allow_unstable};
 }
 
-Simulation make_simulation(const Scene& scene) {
+World make_world(const Scene& scene) {
   (void)enforce_stability(scene);  // throws for unstable bodies; callers print the warnings
   WorldDef def = world_def(scene);
   def.stability_checked = true;  // judged just above, with the scene's lines: once is enough
-  return make_simulation(def);
+  return World(def);
 }
 
 }  // namespace fixstep

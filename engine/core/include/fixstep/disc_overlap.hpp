@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "fixstep/components.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -30,7 +30,7 @@ namespace fixstep {
 /// collideConnected = false); std::nullopt when there is none. When several pairs overlap, the one
 /// returned is the first the sweep meets: the same for the same input.
 ///
-/// Sweep and prune in one dimension (Baraff's sort and sweep: Dynamic Simulation of
+/// Sweep and prune in one dimension (Baraff's sort and sweep: Dynamic World of
 /// Non-Penetrating Rigid Bodies, PhD thesis, Cornell, 1992): discs sorted by the left end of their
 /// x-interval [x - r, x + r], swept left to right; the discs whose interval is still open are kept
 /// ordered by y, so each new disc is compared only with those whose centre lies within r + r_max in

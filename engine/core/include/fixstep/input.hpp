@@ -51,7 +51,7 @@ enum class BodyInputKind : std::uint8_t {
 /// Input addressed to one body by its handle (so it follows the body when others are
 /// destroyed), recorded and replayed with the rest of the tick's input. World::step ignores an
 /// entry whose handle is stale, whose value is not finite or whose body has the wrong type
-/// (Simulation::check_input names them); a program or a script refuses them before.
+/// (World::check_input names them); a program or a script refuses them before.
 struct BodyInput {
   Entity body{};
   BodyInputKind kind = BodyInputKind::force;

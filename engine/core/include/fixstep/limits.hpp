@@ -18,7 +18,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 

@@ -6,13 +6,13 @@
 #include <cstdint>
 
 #include "fixstep/input.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 
 /// The body nearest to `point` (m) whose distance is within its reach: its Appearance radius,
 /// or `tolerance` (m) if that is larger; no_body (the null handle) if none. O(bodies).
-[[nodiscard]] Entity pick_body(const Simulation& sim, Vec2 point, double tolerance);
+[[nodiscard]] Entity pick_body(const World& sim, Vec2 point, double tolerance);
 
 /// Applies the pick-and-drag rule to the inputs of successive ticks: a tick whose input
 /// presses button_pointer_primary (with the button still held) picks the body under the
@@ -24,7 +24,7 @@ class PointerDrag {
   /// finite and >= 0, else std::invalid_argument.
   explicit PointerDrag(double tolerance);
   /// Updates the drag from `input`'s presses and releases and sets input.drag_body.
-  void apply(TickInput& input, const Simulation& sim);
+  void apply(TickInput& input, const World& sim);
   [[nodiscard]] Entity body() const { return body_; }  ///< dragged body, or no_body
   void reset() { body_ = no_body; }
 

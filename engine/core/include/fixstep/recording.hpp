@@ -14,7 +14,7 @@
 #include "fixstep/input.hpp"
 #include "fixstep/integrators.hpp"
 #include "fixstep/rules.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -108,13 +108,13 @@ class Recorder {
   /// `after_the_tick` the simulation right after sim.step(input). Throws std::invalid_argument
   /// when after_the_tick.tick() is not ticks() + 1 (a tick skipped or a rewind without
   /// truncate()).
-  void record(const TickInput& input, const Simulation& after_the_tick);
+  void record(const TickInput& input, const World& after_the_tick);
   /// Keeps the first `ticks` ticks only (<= ticks(), else std::invalid_argument): after a
   /// rewind to tick `ticks` the recording follows the timeline that was kept.
   void truncate(std::uint64_t ticks);
   /// The recording so far, ended at `sim`'s state (whose tick() must be ticks(), else
   /// std::invalid_argument). The recorder is left empty.
-  [[nodiscard]] Recording finish(const Simulation& sim);
+  [[nodiscard]] Recording finish(const World& sim);
   /// The recording so far, ended at its last stored hash, for a session whose current state is
   /// lost (a tick abandoned half-way by StopRequested, stop_request.hpp): the ticks after the
   /// last stored hash are dropped and its hash is the final one; with no hash stored, the
@@ -148,8 +148,7 @@ struct ReplayReport {
 /// tick 0), and compares each stored hash and the final one; stops at the first that differs.
 /// The state first differs in the ticks (last_match, tick]; with hash_every = 1, at exactly
 /// `tick`. Throws std::invalid_argument when sim is not at tick 0.
-[[nodiscard]] ReplayReport replay(Simulation& sim, const Recording& rec,
-                                  const TickRules& rules = {});
+[[nodiscard]] ReplayReport replay(World& sim, const Recording& rec, const TickRules& rules = {});
 /// def with the recording's precision, dt, integrator and substeps, and its damping split when
 /// recorded.
 void apply_settings(WorldDef& def, const RecordedSettings& settings);

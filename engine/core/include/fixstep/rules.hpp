@@ -7,7 +7,7 @@
 #include <functional>
 
 #include "fixstep/input.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -21,9 +21,9 @@ namespace fixstep {
 /// whose state is all in the world leave both empty. stateful_rules() makes all three from a
 /// copyable state.
 struct TickRules {
-  /// Called right after sim.step(input). May change the world through Simulation's handle
+  /// Called right after sim.step(input). May change the world through World's handle
   /// API; must depend only on the world, the input and the rules' own state (determinism).
-  std::function<void(Simulation& sim, const TickInput& input)> after_tick;
+  std::function<void(World& sim, const TickInput& input)> after_tick;
   /// The rules' state now (an opaque copy); empty for rules without state.
   std::function<std::any()> save;
   /// Puts back a state save() returned.
@@ -37,10 +37,9 @@ struct TickRules {
 /// by rule(state, sim, input) after each tick; save and restore copy `state`.
 template <class State, class Rule>
 [[nodiscard]] TickRules stateful_rules(State& state, Rule rule) {
-  return TickRules{
-      [&state, rule](Simulation& sim, const TickInput& input) { rule(state, sim, input); },
-      [&state] { return std::any(state); },
-      [&state](const std::any& saved) { state = std::any_cast<const State&>(saved); }};
+  return TickRules{[&state, rule](World& sim, const TickInput& input) { rule(state, sim, input); },
+                   [&state] { return std::any(state); },
+                   [&state](const std::any& saved) { state = std::any_cast<const State&>(saved); }};
 }
 
 }  // namespace fixstep

@@ -19,7 +19,8 @@
 
 #include "fixstep/components.hpp"
 #include "fixstep/integrators.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/step_results.hpp"
+#include "fixstep/world_settings.hpp"
 
 namespace fixstep {
 

@@ -10,7 +10,7 @@
 
 #include "fixstep/input.hpp"
 #include "fixstep/rules.hpp"
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -19,7 +19,7 @@ class SyncTest {
   /// Where a re-simulated tick differed from the first run.
   struct Mismatch {
     std::uint64_t tick = 0;           ///< the tick count after the differing tick
-    std::uint64_t expected = 0;       ///< first run's state hash (Simulation::state_hash)
+    std::uint64_t expected = 0;       ///< first run's state hash (World::state_hash)
     std::uint64_t actual = 0;         ///< the re-simulation's
     bool dissipated_differs = false;  ///< hashes equal, dissipated energy's bits differ
   };
@@ -28,7 +28,7 @@ class SyncTest {
   /// `rollback_ticks` K >= 1 ticks (std::invalid_argument otherwise), running `rules` after
   /// every tick, first and re-simulated alike (their state is saved and restored with the
   /// world's when they give save and restore; see TickRules). Memory: K + 1 snapshots.
-  SyncTest(Simulation& sim, int rollback_ticks, TickRules rules = {});
+  SyncTest(World& sim, int rollback_ticks, TickRules rules = {});
 
   /// Steps one tick with `input` (then the rules), restores the snapshot of min(K, ticks
   /// stepped) ticks ago and re-simulates up to now with the recorded inputs, comparing the
@@ -53,7 +53,7 @@ class SyncTest {
   bool check(std::uint64_t tick);
   void tick_with_rules(const TickInput& input);
 
-  Simulation& sim_;
+  World& sim_;
   TickRules rules_;
   std::uint64_t rollback_;
   std::uint64_t first_tick_;

@@ -1,711 +1,253 @@
-// The world: entities, their components, and the fixed-step integration of their bodies.
-//
-// Layout (the EnTT idea, kept minimal): every component type lives in its own sparse set keyed
-// by entity slot, so adding or removing a component never touches the others. Body state is
-// stored structure-of-arrays (x, y, vx, vy) in the set's dense order, which is the order the
-// integrator walks. Since every fixstep force acts on one body, the components fold into one
-// per-body force field a(x, v) = -K s(x - anchor) - γ v + c, kept as arrays in the world's
-// precision and rebuilt only when components are added or removed, never per tick. A tick is
-// one fused pass over the bodies that reads only the arrays of the parts some body declares:
-// a force nobody declares costs nothing. active_terms() says which terms are declared.
+// The world a program holds (World), made from a WorldDef: everything a world is built from,
+// whether written in code or read from a scene file.
 #pragma once
 
-#include <array>
-#include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
-#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
-#include "fixstep/components.hpp"
-#include "fixstep/entity.hpp"
-#include "fixstep/input.hpp"
-#include "fixstep/integrators.hpp"
+#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/step_results.hpp"
+#include "fixstep/world_settings.hpp"
 
 namespace fixstep {
 
-/// Where velocity Verlet and Forest–Ruth apply the damping of a network's links: each link's
-/// exact damping flow, swept over the links by colours before (C↑) and after (C↓) a drift
-/// (link_damping.hpp, docs/INTEGRATORS.md). Verlet has one stage per step: both choices give
-/// the same step. Other integrators and networks without damped links ignore it.
-enum class DampingSplit {
-  /// Around every stage's drift: Forest–Ruth keeps order 4 with damped links, at 6 sweeps
-  /// over the links per step (about 5x semi-implicit Euler's tick on a cloth). The default:
-  /// order 4 is why one picks Forest–Ruth.
-  per_stage,
-  /// Once around each Forest–Ruth step, C↑(h/2) FR(h) C↓(h/2): 2 sweeps per step (about 3.5x
-  /// semi-implicit Euler's tick), order 4 on the springs but 2 in the link damping (measured
-  /// on the damped chain: tests/test_coupled.cpp). Without damped links, the same bits as
-  /// per_stage.
-  per_step,
+/// What the renderer needs of one moment of the world, in float (pixels need no more): the
+/// positions interpolated between the last two ticks, appearances and lines. Drawing data only,
+/// not a restorable state (a snapshot, in game-physics terms, is one).
+struct RenderFrame {
+  struct SpringLine {
+    float anchor_x = 0, anchor_y = 0;  ///< m
+    std::uint32_t body = 0;            ///< index into x / y
+  };
+  std::vector<float> x, y;  ///< body positions, m (interpolated when taken with alpha)
+  /// Each body's handle, so what a renderer keeps per body across frames (trails) follows the
+  /// body, not its dense index, when bodies are created or destroyed.
+  std::vector<Entity> ids;
+  std::vector<float> radius;  ///< m; 0 = no Appearance (drawn at a default size)
+  std::vector<Rgba8> color;   ///< colour; alpha 0 = no Appearance (palette colour)
+  std::vector<SpringLine> springs;
+  /// Links (springs between bodies), as pairs of indices into x / y.
+  struct LinkLine {
+    std::uint32_t a = 0, b = 0;
+  };
+  std::vector<LinkLine> links;
+  /// Static half-planes n·x >= offset (normals normalised), drawn as ground and walls.
+  std::vector<PlaneDef> planes;
 };
 
-/// "per_stage" / "per_step".
-[[nodiscard]] std::string_view damping_split_name(DampingSplit split);
-/// The DampingSplit named `name`, or nullopt.
-[[nodiscard]] std::optional<DampingSplit> parse_damping_split(std::string_view name);
-
-/// World-wide simulation settings.
-struct WorldSettings {
-  double dt = 1.0 / 60.0;  ///< fixed physics step (one tick), s; finite and > 0
-  Integrator integrator = Integrator::semi_implicit_euler;
-  /// Integration steps per tick, each of dt / substeps (>= 1). A tick is still dt.
-  int substeps = 1;
-  /// Flush subnormal state to zero: at the end of every tick whose number is a multiple of
-  /// flush_denormals_every (64), each x, y, vx, vy with 0 < |v| < the least normal (1.2e-38
-  /// f32, 2.2e-308 f64) becomes a zero of its sign, in software, the same bits on every
-  /// platform (no FTZ/DAZ: World::step runs in the IEEE default FPU mode whatever the
-  /// caller set). A strongly damped f32 state decays into subnormals after some thousands of
-  /// ticks, and x86 then computes 24-145x slower; with this on, a decaying state pays that for
-  /// at most 63 ticks, then is 0, and the flush itself costs 1/64 of a pass over the state.
-  /// Within a tick arithmetic keeps IEEE gradual underflow. Off: subnormal states stay (same
-  /// bits everywhere too, slower on x86).
-  bool flush_denormals = true;
-  /// Keep account of the energy dissipated by damping and drag (dissipated_energy()), so that
-  /// the energy balance E + E_dissipated - E0 measures the integrator alone. Off by default:
-  /// a world without links then steps in today's fused pass; with it on (fixstep's CLI and
-  /// sessions) a damped world steps in the multi-pass path, which computes the same states
-  /// bit for bit and adds each tick's dissipation (see World::dissipated_energy).
-  bool track_dissipation = false;
-  /// Threads a tick of a world with links may use: 1, 2, or 0 = automatic (2 when the
-  /// machine has a second core and the world has at least parallel_min_bodies bodies). The
-  /// states are bit-identical for every thread count: each body gathers its link forces in
-  /// a fixed order, and no float is ever added atomically. Always 1 in a wasm32 build without
-  /// pthreads (emscripten's default), which cannot start a thread.
-  int threads = 0;
-  /// Where velocity Verlet and Forest–Ruth apply damped links' flows (see DampingSplit).
-  DampingSplit damping_split = DampingSplit::per_stage;
-  /// Body-vs-body contacts of discs (world_discs.cpp); unset (the default): none are computed
-  /// and the world pays nothing for them. Contacts with planes need no setting.
-  std::optional<ContactSettings> contacts = std::nullopt;
+/// Everything a world is built from: what a scene file describes (see scene.hpp), or what a
+/// program writes in code. The one definition the frame pipeline (Session, render library)
+/// and the command line start from.
+struct WorldDef {
+  Precision precision = Precision::f64;
+  WorldSettings settings;        ///< dt (s), integrator, substeps, ... (see WorldSettings)
+  std::vector<BodyDef> bodies;   ///< in creation order: body i gets dense index i
+  std::vector<BodyLink> links;   ///< springs between bodies, by index into bodies
+  std::vector<PlaneDef> planes;  ///< static half-planes (ground, walls) colliders stay out of
+  /// The stability guard (stability.hpp) reports instead of refusing: for demos that show a
+  /// blow-up on purpose.
+  bool allow_unstable = false;
+  /// The caller has already run the stability guard on this very definition (the scene
+  /// loader's enforce_stability, which names lines): World(def) skips its own, which on a
+  /// network of 10^6 bodies costs seconds, and keeps no guard warnings. Left out of
+  /// definition_hash. Clear it when the definition changes.
+  bool stability_checked = false;
 };
 
-/// Ticks between two software flushes of subnormal state (WorldSettings::flush_denormals).
-inline constexpr std::uint64_t flush_denormals_every = 64;
-
-/// Bodies from which an automatic (threads = 0) world with links steps on two threads.
-inline constexpr std::size_t parallel_min_bodies = 16384;
-
-/// Bits of World::active_terms(): which force terms run each tick.
-enum ForceTermBits : unsigned {
-  term_spring = 1u << 0,
-  term_constant_force = 1u << 1,
-  term_gravity = 1u << 2,
-  term_drag = 1u << 3,
-  term_link = 1u << 4,  ///< springs between bodies: the gather over the link list runs
-};
-
-/// Mechanical energy, J. Potentials: spring ½k(|x-anchor|-L)² (anchored) and ½k(|x_a-x_b|-L)²
-/// (links), gravity -m g·x, constant force -F·x (both zero at the origin). Damping and drag
-/// are dissipative and have no potential: see World::dissipated_energy().
-struct EnergyReport {
-  double kinetic = 0.0;         ///< ½ m |v|², J
-  double spring = 0.0;          ///< anchored springs and links, J
-  double gravity = 0.0;         ///< J
-  double constant_force = 0.0;  ///< J
-  [[nodiscard]] double total() const { return kinetic + spring + gravity + constant_force; }
-};
-
-/// What the disc-disc contacts did in one tick (World::contact_stats()).
-struct ContactStats {
-  std::size_t candidate_pairs = 0;  ///< pairs of discs whose swept boxes overlap (broadphase)
-  std::size_t impacts = 0;          ///< impacts resolved at their time within the tick
-  std::size_t touching = 0;         ///< pairs in contact at the end of the tick (resting solver)
-  double max_overlap = 0.0;         ///< deepest overlap r_a + r_b - |x_a - x_b| left, m (>= 0)
-  /// Contact work a cap stopped in the last tick (limits.hpp: max_candidate_pairs,
-  /// max_tick_predictions): 0, or 1 when the tick reached one; World::fault() then names it.
-  std::size_t capped = 0;
-};
-
-/// A disc-disc impact resolved at its time within the last tick (World::impacts()).
-struct Impact {
-  std::uint32_t body_a = 0, body_b = 0;  ///< dense body indices, body_a < body_b
-  double time = 0.0;                     ///< s after the tick's start
-  double normal_speed = 0.0;             ///< closing speed along the line of centres, m/s (> 0)
-};
-
-/// A pair of discs that began or stopped touching in the last tick (World::contacts_begun(),
-/// World::contacts_ended()): what a game's rules read to start a sound, score a hit or end a
-/// grab. Touching is the resting solver's test (centres within r_a + r_b plus its slop).
-struct ContactEvent {
-  Entity a{}, b{};  ///< the two bodies, a.slot() < b.slot()
-  /// Begun: the closing speed of the impact that began it, m/s (the largest, if several), or 0
-  /// when the discs came to touch without one (settling into contact). Ended: 0.
-  double normal_speed = 0.0;
-  friend constexpr bool operator==(const ContactEvent&, const ContactEvent&) = default;
-};
-
-/// Largest magnitude a body's x, y (m) or vx, vy (m/s) may reach. Beyond it, or at NaN or
-/// infinity, World::step records a StateFault: 10¹² m is about 7 astronomical units, far outside
-/// any scene a game steps, and still 26 orders of magnitude below float's overflow.
-inline constexpr double max_state_magnitude = 1e12;
-
-/// Why World::step stopped being trustworthy: the first body whose state left the finite range
-/// |value| <= max_state_magnitude, or a contact cap (limits.hpp) that kept a tick's contacts
-/// from being resolved in full (field "contacts", cap set).
-struct StateFault {
-  std::size_t index = 0;   ///< dense body index (creation order while nothing is destroyed)
-  std::string name;        ///< the body's name
-  std::uint64_t tick = 0;  ///< the tick that produced the value (World::tick() after it)
-  double time = 0.0;       ///< simulated time after that tick, s
-  std::string field;       ///< "x", "y" (m) or "vx", "vy" (m/s); "contacts" for a cap
-  double value = 0.0;      ///< the offending value (NaN, ±inf or |value| > the limit); the cap
-  /// The cap reached ("max_candidate_pairs", "max_tick_predictions"); empty for a state out of
-  /// range.
-  std::string cap;
-  /// With cap: the other party of the impact left unresolved ("body[7] \"peg\"", "plane[2]"),
-  /// or, for max_candidate_pairs, what made the pairs (the body is the disc with the largest
-  /// swept box).
-  std::string with;
-};
-
-namespace detail {
-
-/// The second thread of a world with links (world_coupled.cpp).
-class Workers;
-struct WorkersDeleter {
-  void operator()(Workers* w) const;
-};
-/// Implicit Euler's sparse solver for a world with links (world_implicit.cpp, Eigen).
-template <class Real>
-class ImplicitSolver;
-template <class Real>
-struct ImplicitSolverDeleter {
-  void operator()(ImplicitSolver<Real>* s) const;
-};
-/// A collider's motion after its last plane impact in a tick (world_contacts.cpp), from which
-/// the disc-disc contacts continue: time t (s into the tick; < 0: no plane impact this tick),
-/// position, model velocity and acceleration at t, and the integrator's velocity offset.
-struct PlaneMotion {
-  double t = -1.0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;
-};
-/// Disc-disc contacts of a world with WorldSettings::contacts (disc_contacts.hpp).
-template <class Real>
-class DiscContacts;
-/// Deep-copying owner of a T defined elsewhere (its copy, assignment and deletion are
-/// instantiated where T is complete): a copy of the World copies the disc contacts' state,
-/// warm-start impulses included, so a snapshot steps on to the same bits.
-template <class T>
-class ClonePtr {
+/// A restorable state of a World (what game physics calls a snapshot): a complete copy of
+/// its world, taken by World::save and put back by World::restore, bit for bit.
+/// Memory: about the world's own (every per-body and per-link array).
+class WorldSnapshot {
  public:
-  ClonePtr() = default;
-  ClonePtr(const ClonePtr& other) : p_(other.p_ ? clone(*other.p_) : nullptr) {}
-  ClonePtr& operator=(const ClonePtr& other) {
-    if (this != &other) assign(p_, other.p_);
-    return *this;
-  }
-  ClonePtr(ClonePtr&& other) noexcept : p_(other.p_) { other.p_ = nullptr; }
-  ClonePtr& operator=(ClonePtr&& other) noexcept {
-    std::swap(p_, other.p_);
-    return *this;
-  }
-  ~ClonePtr() { destroy(p_); }
-  [[nodiscard]] T* get() const { return p_; }
-  T* operator->() const { return p_; }
-  T& operator*() const { return *p_; }
-  explicit operator bool() const { return p_ != nullptr; }
-  void reset(T* p = nullptr) {
-    destroy(p_);
-    p_ = p;
-  }
+  /// True until something is saved into it.
+  [[nodiscard]] bool empty() const { return !world_; }
+  /// The tick of the saved state; 0 when empty.
+  [[nodiscard]] std::uint64_t tick() const;
 
  private:
-  static T* clone(const T& t);
-  static void assign(T*& to, const T* from);  ///< reuses *to's storage when both exist
-  static void destroy(T* t);
-  T* p_ = nullptr;
+  friend class World;
+  std::optional<std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>>> world_;
 };
 
-/// Owns a cache that a copy of its owner does not share: a copy starts empty (the owner
-/// rebuilds the cache on demand) and copying into an owner drops its cache; moving moves it.
-/// For parts that hold no state a tick's result depends on: the worker thread and the implicit
-/// solver's factorisation, so a World can be copied (a snapshot) and stays bit-exact.
-template <class T, class Deleter>
-class CachePtr : public std::unique_ptr<T, Deleter> {
- public:
-  CachePtr() = default;
-  CachePtr(const CachePtr& /*other*/) noexcept : std::unique_ptr<T, Deleter>() {}
-  CachePtr& operator=(const CachePtr& other) noexcept {
-    if (this != &other) this->reset();
-    return *this;
-  }
-  CachePtr(CachePtr&&) noexcept = default;
-  CachePtr& operator=(CachePtr&&) noexcept = default;
-  ~CachePtr() = default;
-};
-
-/// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
-struct SparseSet {
-  std::vector<std::uint32_t> sparse;  ///< slot -> dense index + 1; 0 = absent
-  std::vector<Entity> dense;
-
-  [[nodiscard]] bool contains(Entity e) const {
-    return !e.is_null() && e.slot() < sparse.size() && sparse[e.slot()] != 0 &&
-           dense[sparse[e.slot()] - 1] == e;
-  }
-  [[nodiscard]] std::size_t index(Entity e) const { return sparse[e.slot()] - 1; }
-  std::size_t insert(Entity e);
-  /// Removes e and returns the dense index it had; the last element moved into that index.
-  std::size_t erase(Entity e);
-};
-
-/// A component type stored array-of-structs: cold, authoritative data.
-template <class C>
-struct Store {
-  SparseSet set;
-  std::vector<C> data;
-};
-
-}  // namespace detail
-
-/// A world of point bodies stepped at a fixed dt in precision Real (float or double).
-///
-/// Copies are complete, independent states (a snapshot): bodies, components, links, tick,
-/// energy accounts and the runtime guard's fault; a copy steps to the same bits as the
-/// original. Copy-assigning between worlds of equal size reuses storage (no allocation).
-///
-/// Errors: creation and setters throw std::invalid_argument naming the body and field when a
-/// value is non-finite (also after narrowing to Real) or out of range; using a stale or null
-/// Entity throws std::invalid_argument. step() never throws; it allocates only on the first
-/// step after a structural change (rebuilding the force-term lists) and the first time a step
-/// length is seen (damping-flow factors), and nothing per tick after that.
-template <class Real>
+/// The one object a program holds: bodies, their components, links and planes, stepped at a
+/// fixed dt in the precision chosen at creation (f32 or f64), which lives inside (a
+/// detail::WorldKernel<float> or <double>, its arrays structure-of-arrays).
 class World {
  public:
-  using real_type = Real;
+  /// An empty world of `precision` stepped with `settings`. Throws std::invalid_argument on
+  /// invalid settings (dt not finite and > 0, substeps < 1, ...).
+  World(Precision precision, const WorldSettings& settings);
+  /// Builds the world `def` describes: a World with def.precision and def.settings, then
+  /// the bodies in order, the links and the planes. First applies the stability guard
+  /// (check_stability for bodies no link joins, check_linked_stability for the rest) at
+  /// def.settings' dt, integrator and substeps: unless def.allow_unstable, an unstable body or
+  /// network throws std::invalid_argument with the guard's finding and the smallest stable substep
+  /// count. Also throws std::invalid_argument for invalid settings, bodies or links (as World does:
+  /// the message names the body and field; for a plane, plane[i] and the field) and for a link
+  /// index out of range, and, in a world with contacts, for two colliding discs that overlap at
+  /// tick 0 (naming both; first_disc_overlap, disc_overlap.hpp). The guard's warnings (a body or
+  /// network within 10 % of its bound; an allowed unstable one) are kept in
+  /// World::warnings(); with def.stability_checked the guard does not run. Throws LimitError
+  /// (limits.hpp) for a tick beyond max_tick_work or an implicit solve beyond
+  /// max_implicit_solve_bytes, before the guard.
+  explicit World(const WorldDef& def);
 
-  /// Throws std::invalid_argument if settings.dt is not finite and > 0.
-  explicit World(const WorldSettings& settings);
+  [[nodiscard]] Precision precision() const {
+    return world_.index() == 0 ? Precision::f32 : Precision::f64;
+  }
+  /// Calls f(detail::WorldKernel<float>&) or f(detail::WorldKernel<double>&).
+  template <class F>
+  decltype(auto) visit(F&& f) {
+    return std::visit(std::forward<F>(f), world_);
+  }
+  template <class F>
+  decltype(auto) visit(F&& f) const {
+    return std::visit(std::forward<F>(f), world_);
+  }
 
-  // --- entities -------------------------------------------------------------------------
-  /// Creates an entity with a Body and the optional components set in def.
+  // The members below forward to the detail::WorldKernel<float> or detail::WorldKernel<double>
+  // inside: units, shapes and errors are those documented in world.hpp (create_body throws
+  // std::invalid_argument naming the body and field; step never throws and allocates nothing once
+  // warmed up). Bodies and links are named by handles (Entity, Link), which stay valid until
+  // destroyed; dense indices (body_at, name(i), type_at) are for iterating over the bodies of one
+  // tick only, since destroy moves the last body into the hole.
+
+  // --- bodies by handle -----------------------------------------------------------------
   Entity create_body(const BodyDef& def);
-  /// Reserves room for `bodies` bodies (avoids regrowth when creating many).
-  void reserve(std::size_t bodies);
-  /// Destroys the entity, all its components and every link attached to it; its handle (and
-  /// copies, and the links' handles) become stale.
+  /// Destroys the body, its components and its links; throws std::invalid_argument if stale.
   void destroy(Entity e);
-  [[nodiscard]] bool contains(Entity e) const { return bodies_.contains(e); }
-  [[nodiscard]] std::size_t body_count() const { return bodies_.dense.size(); }
-  /// Dense index of e's body (the index into x(), y(), ...); throws if e is stale.
-  [[nodiscard]] std::size_t index_of(Entity e) const;
-  /// The first body in dense order named `name`, or the null entity. O(bodies).
+  /// Whether e names a live body (false for the null handle and destroyed bodies).
+  [[nodiscard]] bool contains(Entity e) const;
+  /// The first body (dense order) named `name`, or the null entity. O(bodies).
   [[nodiscard]] Entity find(std::string_view name) const;
+  /// Position (m) and velocity (m/s) of e, in double; throws std::invalid_argument if stale.
+  [[nodiscard]] Body body(Entity e) const;
+  /// Overwrites e's mass (kg), position (m) and velocity (m/s), validated as create_body; a
+  /// program's edit between ticks (a teleport, a respawn). Prefer TickInput's per-body input
+  /// (BodyInput) for what a player does, so recordings carry it.
+  void set_body(Entity e, const Body& body);
+  /// e's name ("" if none); throws std::invalid_argument if stale.
+  [[nodiscard]] const std::string& name(Entity e) const;
+  /// e's type (dynamic, static or kinematic); throws std::invalid_argument if stale.
+  [[nodiscard]] BodyType type(Entity e) const;
+  /// Dense index of e (valid until the next create or destroy); throws if stale.
+  [[nodiscard]] std::size_t index_of(Entity e) const;
+  /// The handle of the body at dense index i < body_count().
+  [[nodiscard]] Entity entity_at(std::size_t i) const;
+  /// Adds or replaces component C (SpringDamper, ConstantForce, Gravity, LinearDrag,
+  /// Appearance, Collider) on e; throws std::invalid_argument naming the field when invalid
+  /// or when e is stale.
+  template <class C>
+  void set(Entity e, const C& component) {
+    visit([&](auto& w) { w.set(e, component); });
+  }
+  /// Removes component C from e (nothing if absent); throws std::invalid_argument if stale.
+  template <class C>
+  void remove(Entity e) {
+    visit([&](auto& w) { w.template remove<C>(e); });
+  }
+  /// e's component C, or nullopt (also for a stale handle).
+  template <class C>
+  [[nodiscard]] std::optional<C> get(Entity e) const {
+    return visit([&](const auto& w) -> std::optional<C> {
+      if (!w.contains(e)) return std::nullopt;
+      const C* c = w.template get<C>(e);
+      return c ? std::optional<C>(*c) : std::nullopt;
+    });
+  }
 
-  // --- links: spring-dampers between bodies (cold path; see LinkSpring for the force) ------
-  /// Creates a link. Throws std::invalid_argument when a body is null or stale, both ends are
-  /// the same body, a parameter is non-finite (also after narrowing to Real) or negative, or
-  /// a rest-length link's bodies are at the same point (its direction is undefined).
+  // --- links by handle --------------------------------------------------------------------
   Link create_link(const LinkDef& def);
-  /// Destroys a link; throws std::invalid_argument if the handle is null or stale.
+  /// Destroys a link; throws std::invalid_argument if null or stale.
   void destroy_link(Link link);
   [[nodiscard]] bool contains(Link link) const;
-  [[nodiscard]] std::size_t link_count() const { return links_.dense.size(); }
-  /// The definition of a live link; throws std::invalid_argument if it is null or stale.
+  /// A live link's definition; throws std::invalid_argument if null or stale.
   [[nodiscard]] LinkDef link(Link link) const;
-  /// The handle of the link at dense index i < link_count() (creation order while no link is
-  /// destroyed).
-  [[nodiscard]] Link link_at(std::size_t i) const {
-    return Link{links_.dense[i].index1, links_.dense[i].generation};
-  }
-  /// Dense body indices of both ends of the link at dense index i (for drawing).
-  [[nodiscard]] std::pair<std::size_t, std::size_t> link_bodies(std::size_t i) const;
-
-  // --- components (cold path; each change rebuilds the force-term lists before next step) --
-  /// Adds or replaces component C on e. C is one of SpringDamper, ConstantForce, Gravity,
-  /// LinearDrag, Appearance, Collider.
-  template <class C>
-  void set(Entity e, const C& component);
-  /// Removes component C from e (no-op if absent).
-  template <class C>
-  void remove(Entity e);
-  /// The component C of e, or nullptr.
-  template <class C>
-  [[nodiscard]] const C* get(Entity e) const;
-
-  /// The type of e's body (dynamic, static or kinematic); throws if e is stale.
-  [[nodiscard]] BodyType type(Entity e) const { return types_[index_of(e)]; }
-  /// The type of the body at dense index i < body_count().
-  [[nodiscard]] BodyType type_at(std::size_t i) const { return types_[i]; }
-
-  /// Body state of e converted to double.
-  [[nodiscard]] Body body(Entity e) const;
-  /// Overwrites mass, position and velocity of e (validated like create_body).
-  void set_body(Entity e, const Body& body);
-
-  // --- planes: static half-planes bodies with a Collider collide with (world_contacts.cpp) --
-  /// Adds the half-plane n·x >= offset of free space with n = def.normal/|def.normal|; returns
-  /// its index into planes(). Throws std::invalid_argument naming the field when the normal is
-  /// zero or not finite, or offset, restitution (in [0, 1]) or friction (>= 0) is out of range
-  /// or not finite. Planes cannot be removed.
+  [[nodiscard]] std::size_t link_count() const;
+  /// A static half-plane bodies with a Collider collide with (World::add_plane).
   std::size_t add_plane(const PlaneDef& def);
-  /// The planes in order of creation, normals normalised.
-  [[nodiscard]] std::span<const PlaneDef> planes() const { return planes_; }
-
-  // --- stepping ---------------------------------------------------------------------------
-  /// Advances every body by one tick of settings().dt with the chosen integrator.
-  ///
-  /// Without links (and without track_dissipation), one fused pass over the bodies: each
-  /// body's whole tick (every substep, every stage) runs in registers and its state is loaded
-  /// and stored once. The pass reads only the coefficient arrays of force parts some body
-  /// declares; bytes_per_body_step() gives the resulting memory traffic. With links, each
-  /// force evaluation is a pass over the links (their forces) and a pass over the bodies
-  /// (each gathers its links' forces in a fixed order), on one or two threads (see
-  /// WorldSettings::threads); implicit Euler solves the linear system of the whole network
-  /// (world_implicit.cpp). Both paths give bit-identical states where both apply.
-  ///
-  /// When input.drag_body names a body, the pointer's drag spring (input.hpp: drag_frequency,
-  /// drag_damping_ratio) first changes that body's velocity, implicitly over the tick; its
-  /// work is not in the energy account (an external force, like push). A non-finite pointer
-  /// leaves the velocity as it was.
+  [[nodiscard]] std::span<const PlaneDef> planes() const;
   void step(const TickInput& input = {});
-  /// Bytes one tick moves between memory and the core per body (STREAM's convention: each
-  /// array element read or written counts once, write-allocate traffic is not counted):
-  /// x, y, vx, vy read and written, plus each coefficient array the kernel reads, plus
-  /// x and y copied to previous_x()/previous_y() when set_keep_previous is on. Rebuilds the
-  /// force field first if components changed.
-  [[nodiscard]] std::size_t bytes_per_body_step();
-  /// The runtime guard: the first body whose state left the finite range in a step (NaN,
-  /// infinity or a magnitude beyond max_state_magnitude), or nullopt. Checked inside the fused
-  /// pass on values already in registers (a compare per component; no extra memory traffic).
-  /// step() keeps stepping after a fault; callers stop (fixstep run/render exit non-zero, the
-  /// window pauses) and explain it with explain_fault() (stability.hpp).
-  [[nodiscard]] const std::optional<StateFault>& fault() const { return fault_; }
-  /// Number of ticks taken since creation.
-  [[nodiscard]] std::uint64_t tick() const { return tick_; }
-  /// Simulated time tick()·dt, s.
-  [[nodiscard]] double time() const { return static_cast<double>(tick_) * settings_.dt; }
-  [[nodiscard]] const WorldSettings& settings() const { return settings_; }
-  void set_integrator(Integrator integrator) { settings_.integrator = integrator; }
-  /// When on, step() first copies positions to previous_x()/previous_y() so a renderer can
-  /// interpolate between the last two ticks. Off by default (costs a copy per tick).
+  /// Throws std::invalid_argument naming the first entry of input.bodies World::step would
+  /// ignore: a stale handle, a non-finite value, a force or impulse on a body that is not
+  /// dynamic, a velocity for one that is not kinematic, or more than max_body_inputs entries.
+  void check_input(const TickInput& input) const;
   void set_keep_previous(bool keep);
 
-  /// Accelerations a(x, v) at the current state, m/s², links included; ax and ay must hold
-  /// body_count() (else std::invalid_argument).
-  void accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input = {});
-  /// Which force terms some body declares (bits of ForceTermBits).
-  [[nodiscard]] unsigned active_terms() const;
-  /// Threads the last step used (1 or 2).
-  [[nodiscard]] int threads_used() const { return threads_used_; }
-
-  // --- state (dense body order) -----------------------------------------------------------
-  [[nodiscard]] std::span<const Real> x() const { return x_; }
-  [[nodiscard]] std::span<const Real> y() const { return y_; }
-  [[nodiscard]] std::span<const Real> vx() const { return vx_; }
-  [[nodiscard]] std::span<const Real> vy() const { return vy_; }
-  [[nodiscard]] std::span<const Real> previous_x() const { return prev_x_; }
-  [[nodiscard]] std::span<const Real> previous_y() const { return prev_y_; }
-  [[nodiscard]] std::span<const Entity> entities() const { return bodies_.dense; }
-  [[nodiscard]] const std::string& name(std::size_t index) const { return names_[index]; }
-
-  // --- measurements -----------------------------------------------------------------------
-  /// Total mechanical energy by kind, J (see EnergyReport for the potentials).
-  [[nodiscard]] EnergyReport energy() const;
-  /// Mechanical energy of each body, J; out must hold body_count() values. A link's potential
-  /// is split equally between its two bodies.
-  void body_energies(std::span<double> out) const;
-  /// Energy taken out by damping (anchored springs and links) and drag since creation, J,
-  /// when settings().track_dissipation is on (0 otherwise). Each integrator integrates the
-  /// dissipated power Σ b|u|² + c|v|² with its own stages (Euler methods: one rectangle per
-  /// step; RK4: its weights 1/6, 1/3, 1/3, 1/6; implicit Euler: the end of the step), or
-  /// takes the kinetic energy its damping flow removes (velocity Verlet, Forest–Ruth), so
-  /// the energy balance (E + E_dissipated - E0)/|E0| shrinks at the integrator's order.
+  /// The runtime guard's finding: the first body whose state left the finite range (see
+  /// World::fault()), or nullopt.
+  [[nodiscard]] const std::optional<StateFault>& fault() const;
+  [[nodiscard]] std::uint64_t tick() const;
+  [[nodiscard]] double time() const;  ///< s
+  [[nodiscard]] const WorldSettings& settings() const;
+  [[nodiscard]] std::size_t body_count() const;
+  /// The name of the body at dense index `index` < body_count().
+  [[nodiscard]] const std::string& name(std::size_t index) const;
+  [[nodiscard]] EnergyReport energy() const;  ///< J
+  /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
   [[nodiscard]] double dissipated_energy() const;
-  /// Work done on the dynamic bodies from outside the world's energy account, J, since
-  /// creation: by kinematic bodies through contacts (their impulses' work on the bodies they
-  /// push) and through links (the power -F·v of each link force F on a kinematic end moving
-  /// at v, integrated with the integrator's own stages, as dissipated_energy() is). The energy
-  /// balance is E + E_dissipated - W_external - E0 (energy_balance()). Velocity Verlet and
-  /// Forest–Ruth count here only a link's spring: their damping flow takes a damped link's
-  /// whole effect on kinetic energy into dissipated_energy(), which then holds the damper's
-  /// dissipation minus the kinematic end's work through it (the balance is unchanged).
-  [[nodiscard]] double external_work() const { return external_work_; }
-  /// Disc-disc contacts of the last tick (WorldSettings::contacts): what the broadphase and the
-  /// solver did. Zero without contacts.
-  [[nodiscard]] const ContactStats& contact_stats() const { return contact_stats_; }
-  /// The disc-disc impacts of the last tick in the order they were resolved (empty without
-  /// contacts): what a game's rules read to score a hit. Valid until the next step.
+  /// Work of kinematic bodies on the others through contacts and links, J
+  /// (World::external_work()).
+  [[nodiscard]] double external_work() const;
+  /// What the disc-disc contacts did in the last tick (World::contact_stats()).
+  [[nodiscard]] const ContactStats& contact_stats() const;
+  /// The disc-disc impacts of the last tick (World::impacts()).
   [[nodiscard]] std::span<const Impact> impacts() const;
-  /// Pairs of discs touching after the last tick that were not before it, in handle order,
-  /// plus pairs that struck and parted within the tick (also in contacts_ended()). Empty
-  /// without contacts. Valid until the next step.
-  [[nodiscard]] std::span<const ContactEvent> contacts_begun() const { return begun_; }
-  /// Pairs of discs touching before the last tick that are not after it (a handle may name a
-  /// body destroyed since: check contains()), plus pairs that struck and parted within it.
-  [[nodiscard]] std::span<const ContactEvent> contacts_ended() const { return ended_; }
-  /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
-  /// equal hashes mean bit-identical states.
+  /// Disc pairs that began touching in the last tick (World::contacts_begun()).
+  [[nodiscard]] std::span<const ContactEvent> contacts_begun() const;
+  /// Disc pairs that stopped touching in the last tick (World::contacts_ended()).
+  [[nodiscard]] std::span<const ContactEvent> contacts_ended() const;
+  /// What the stability guard warned of when World(def) built this world (a body or
+  /// network within 10 % of its stability bound, or unstable but allowed), one message each;
+  /// empty for a World built otherwise. fixstep's CLI prints them; a program may show
+  /// them or refuse to run.
+  [[nodiscard]] std::span<const std::string> warnings() const { return warnings_; }
+  /// Adds a warning (World(def)'s use; a program may add its own).
+  void add_warning(std::string message) { warnings_.push_back(std::move(message)); }
+  /// The type of the body at dense index `index` (dynamic, static or kinematic).
+  [[nodiscard]] BodyType type_at(std::size_t index) const;
   [[nodiscard]] std::uint64_t state_hash() const;
-  /// Bytes of heap memory a copy of this world (a WorldSnapshot) holds: every array's elements
-  /// and the body names' characters (not the worker threads or the implicit solver's cache,
-  /// which a copy does not take). For budgeting many copies (RewindBuffer); about 0.5 kB per
-  /// body of a cloth-like grid with its links.
+  /// Bytes a WorldSnapshot of this simulation holds (World::snapshot_bytes()).
   [[nodiscard]] std::size_t snapshot_bytes() const;
+  /// Position and velocity of the body at dense index `index` in double (m, m/s).
+  [[nodiscard]] Body body_at(std::size_t index) const;
+
+  /// Fills out with positions lerp(previous, current, alpha) (alpha in [0, 1]; needs
+  /// set_keep_previous(true) to differ from the current state) and appearances. Reuses out's
+  /// storage: no allocation once it has grown to the body count.
+  void fill_render_frame(double alpha, RenderFrame& out) const;
+
+  /// Saves the complete state into `out`, reusing its storage: no allocation once `out` holds
+  /// a state of the same shape (same bodies, links and components).
+  void save(WorldSnapshot& out) const;
+  /// Puts back a saved state: every later step gives the same bits as after the save. The
+  /// snapshot may come from another World (it replaces this one's world, precision
+  /// included). Throws std::invalid_argument for an empty snapshot.
+  void restore(const WorldSnapshot& snapshot);
 
  private:
-  template <class C>
-  detail::Store<C>& store();
-  template <class C>
-  const detail::Store<C>& store() const;
-  void validate(const Body& body, const std::string& who) const;
-  // stepping (world_step.cpp)
-  void apply_drag(const TickInput& input);
-  const Real* damping_decay(double tau);
-  struct LinkFlow;
-  const LinkFlow& link_flow(double tau);  // (world_coupled.cpp)
-  static void validate_component(const SpringDamper& c, const std::string& who);
-  static void validate_component(const ConstantForce& c, const std::string& who);
-  static void validate_component(const Gravity& c, const std::string& who);
-  static void validate_component(const LinearDrag& c, const std::string& who);
-  static void validate_component(const Appearance& c, const std::string& who);
-  static void validate_component(const Collider& c, const std::string& who);
-  [[nodiscard]] std::string describe(Entity e) const;
-  void require(Entity e) const;
-  void rebuild_terms();
-  void record_fault();
-  void record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit,
-                        const std::string& with);
-  template <class Add>
-  void for_each_energy(Add&& add) const;
-
-  WorldSettings settings_;
-  std::uint64_t tick_ = 0;
-  bool keep_previous_ = false;
-  bool terms_dirty_ = true;
-  std::optional<StateFault> fault_;
-
-  // entity slots
-  std::vector<std::uint32_t> generations_;
-  std::vector<std::uint32_t> free_slots_;
-  std::vector<std::uint32_t> link_generations_;
-  std::vector<std::uint32_t> link_free_slots_;
-
-  // bodies: SoA in dense order
-  detail::SparseSet bodies_;
-  std::vector<Real> x_, y_, vx_, vy_, prev_x_, prev_y_;
-  std::vector<double> mass_;
-  std::vector<BodyType> types_;
-  std::vector<std::string> names_;
-  double external_work_ = 0.0;  ///< J (external_work())
-  ContactStats contact_stats_;
-
-  // components (authoritative, double)
-  detail::Store<SpringDamper> springs_;
-  detail::Store<ConstantForce> constant_forces_;
-  detail::Store<Gravity> gravities_;
-  detail::Store<LinearDrag> drags_;
-  detail::Store<Appearance> appearances_;
-  // links (authoritative, double), dense; keyed by Link handles stored as Entity-shaped keys
-  detail::SparseSet links_;
-  std::vector<LinkDef> link_defs_;
-  // dissipated energy per unit mass per body (J/kg) and per link (J), when tracked
-  std::vector<Real> dissipated_body_;
-  std::vector<Real> dissipated_link_;
-  double dissipated_gone_ = 0.0;  ///< J, of destroyed bodies and links
-  int threads_used_ = 1;
-
-  // The force field per body, in dense order, rebuilt from the components when terms_dirty_:
-  //   a(x, v) = -K s(d) - γ v + c + push,   d = x - anchor,
-  // with K = k/m, s(d) = d for rest length 0 and (|d| - L) d/|d| otherwise, γ = (b + c_drag)/m,
-  // c = F/m + g. The step kernels read only the arrays of the parts some body declares (the
-  // flags): a scene without springs never touches stiffness or anchors, one without damping
-  // never reads γ.
-  struct Coefficients {
-    std::vector<Real> stiffness, anchor_x, anchor_y, rest, gamma, accel_x, accel_y;
-    bool spring = false;       ///< some body has a spring (stiffness, anchor_x, anchor_y are read)
-    bool rest_length = false;  ///< some spring has L > 0 (rest is read; |d| needs a sqrt)
-    bool damping = false;      ///< some body has γ > 0 (gamma or the damping-flow decay)
-    bool accel = false;        ///< some body has c != 0 (accel_x, accel_y are read)
-  } coeff_;
-  // Exact damping flow D(τ) factors e^{-γτ} per body (1 where γ = 0), cached per τ: a Verlet
-  // tick needs one τ, Forest–Ruth two.
-  struct DampingFlow {
-    double tau = -1.0;
-    std::vector<Real> decay;
-  };
-  std::vector<DampingFlow> flows_;
-
-  // The link network, rebuilt with the coefficients: both ends (dense body indices) and the
-  // spring of each link in Real, 1/m per body, and each body's incident links in CSR form
-  // (incident[offset[j] .. offset[j+1]) = 2·link + (0 if the body is end a, 1 if end b)), in
-  // link order, so every body sums its link forces in the same order on any thread.
-  struct Network {
-    std::vector<std::uint32_t> a, b;
-    std::vector<Real> k, damping, rest, inv_mass;
-    std::vector<std::uint32_t> offset, incident;
-    // With damped links, the links grouped by colour: no two links of a colour share a body
-    // (greedy edge colouring in link order), so the exact damping flows of a colour's links
-    // commute and run in parallel (link_damping.hpp). by_color[color_offset[c] ..
-    // color_offset[c+1]) are colour c's links in link order.
-    std::vector<std::uint32_t> color_offset, by_color;
-    std::vector<std::uint32_t> color_a, color_b;  ///< a, b, k, rest in colour order
-    std::vector<Real> color_k, color_rest;
-    std::vector<std::uint32_t> driven;  ///< links with a static or kinematic end, in link order
-    bool rest_length = false;           ///< some link has L > 0
-    bool all_rest_length = false;       ///< every link has L > 0 (none has L = 0)
-    bool damped = false;                ///< some link has b > 0
-  } net_;
-  // Each link's exact damping flow over τ (link_damping.hpp), in colour order (by_color),
-  // cached per τ like flows_:
-  // Δv_a = ca·p, Δv_b = -cb·p for the relative velocity p along the link (the kinetic energy
-  // it removes is counted per body by the kicks around the sweeps: strang_network.hpp).
-  struct LinkFlow {
-    double tau = -1.0;
-    std::vector<Real> ca, cb;  ///< per link in colour order (link_damping.hpp)
-  };
-  std::vector<LinkFlow> link_flows_;
-  std::vector<Real> unit_x_,
-      unit_y_;  ///< each link's direction at the last force pass (colour order)
-  // The Strang chain's last link sums (d_[0], d_[1]) and directions were computed at these
-  // positions: the next tick's first force pass is skipped when the positions are still these,
-  // bit for bit (first same as last across ticks; strang_network.hpp). Not state: a pure
-  // function of the positions and the network, so reusing it changes no bit.
-  std::vector<Real> fsal_x_, fsal_y_;
-  bool fsal_valid_ = false;
-  // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
-  // states and accumulators (see world_coupled.cpp).
-  std::vector<Real> fx_, fy_, power_body_, power_link_;
-  // Stage states and derivatives, one vector per stage of a four-stage integrator.
-  std::array<std::vector<Real>, 4> s_, d_;
-  detail::CachePtr<detail::Workers, detail::WorkersDeleter> workers_;
-  detail::CachePtr<detail::ImplicitSolver<Real>, detail::ImplicitSolverDeleter<Real>> implicit_;
-  // (world_coupled.cpp)
-  void step_multipass(const TickInput& input);
-  template <class Pass>
-  void parallel(std::size_t n, Pass&& pass, std::size_t min_range);
-  void rebuild_network();
-  void validate_link(const LinkDef& def, const std::string& who) const;
-  // (world_implicit.cpp)
-  bool step_implicit_network(Real h, const Real push[2]);
-  void integrate(const TickInput& input);  // one tick of the integrator (world_step.cpp)
-
-  // Contacts with static half-planes (world_contacts.cpp). The scratch holds, for each body
-  // with a Collider, its dense index, radius and start-of-tick state (SoA), sized in
-  // rebuild_terms(), so a tick allocates nothing. Inactive (no planes or no colliders): step()
-  // runs none of it.
-  detail::Store<Collider> colliders_;
-  std::vector<PlaneDef> planes_;
-  struct ContactScratch {
-    std::vector<std::uint32_t> body;
-    std::vector<double> radius;
-    std::vector<Real> x0, y0, vx0, vy0;
-    std::vector<detail::PlaneMotion> after;  ///< per collider, this tick
-    bool active = false;
-  } contact_;
-  void rebuild_contacts();
-  void save_contact_start();
-  std::size_t resolve_contacts();  // returns ContactStats::capped of the planes
-
-  // Static and kinematic bodies (dense indices) and their start-of-tick states: after the
-  // integrator, a static body is put back and a kinematic one moved on at its velocity, so
-  // nothing (forces, links, push) moves them otherwise. Empty in a world of dynamic bodies.
-  struct Immovable {
-    std::vector<std::uint32_t> body;
-    std::vector<Real> x0, y0, vx0, vy0;
-  } immovable_;
-  // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.
-  detail::ClonePtr<detail::DiscContacts<Real>> discs_;
-  void rebuild_discs();
-  void save_tick_start();
-  void restore_immovable();
-  void resolve_discs();
-  // Contact events (world_events.cpp): the touching pairs after the last tick and before it,
-  // as handle pairs sorted by slot; part of a snapshot, so events after a restore are the same.
-  std::vector<ContactEvent> touching_, touching_before_, hits_;  // normal_speed unused, hits_
-  std::vector<ContactEvent> begun_, ended_;
-  void update_contact_events();
-  // Per-body input (world_input.cpp): impulses and velocities at the tick's start; forces
-  // added to the constant accelerations for the tick and taken off after it, exactly.
-  struct SavedAccel {
-    std::uint32_t body;
-    Real ax, ay;    ///< coeff_.accel_x/y before
-    double cx, cy;  ///< the implicit solver's, before
-  };
-  std::vector<SavedAccel> saved_accel_;
-  bool saved_accel_flag_ = false;
-  // Push in a network with static or kinematic bodies: folded into the dynamic bodies'
-  // accelerations for the tick (restored after it), so no immovable end moves inside a tick.
-  std::vector<Real> push_saved_;
-  std::vector<double> push_saved_implicit_;
-  bool push_saved_flag_ = false;
-  void fold_push(Vec2 push);
-  void unfold_push();
-  void apply_body_inputs(const TickInput& input);
-  bool add_input_forces(const TickInput& input);
-  void remove_input_forces();
-  detail::ImplicitSolver<Real>& implicit_solver();  // built on first use (world_implicit.cpp)
-  /// The implicit solver's constant accelerations cx, cy (m/s², body_count() each).
-  std::pair<double*, double*> implicit_accelerations();
+  std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>> world_;
+  std::vector<std::string> warnings_;
 };
 
-// --- component access (templates, so defined here) ---------------------------------------
-
-template <class Real>
-template <class C>
-detail::Store<C>& World<Real>::store() {
-  if constexpr (std::is_same_v<C, SpringDamper>)
-    return springs_;
-  else if constexpr (std::is_same_v<C, ConstantForce>)
-    return constant_forces_;
-  else if constexpr (std::is_same_v<C, Gravity>)
-    return gravities_;
-  else if constexpr (std::is_same_v<C, LinearDrag>)
-    return drags_;
-  else if constexpr (std::is_same_v<C, Collider>)
-    return colliders_;
-  else {
-    static_assert(std::is_same_v<C, Appearance>, "not a fixstep component");
-    return appearances_;
-  }
+/// The handle World(def) gives def.bodies[i]: bodies are created in order in a fresh
+/// world, so body i gets slot i at generation 1. Lets scripts and recordings name a body by
+/// its place in the definition before the world exists.
+[[nodiscard]] constexpr Entity initial_entity(std::size_t i) {
+  return Entity{static_cast<std::uint32_t>(i + 1), 1};
 }
 
-template <class Real>
-template <class C>
-const detail::Store<C>& World<Real>::store() const {
-  return const_cast<World*>(this)->store<C>();
-}
-
-template <class Real>
-template <class C>
-void World<Real>::set(Entity e, const C& component) {
-  require(e);
-  validate_component(component, describe(e));
-  auto& s = store<C>();
-  if (s.set.contains(e)) {
-    s.data[s.set.index(e)] = component;
-  } else {
-    s.set.insert(e);
-    s.data.push_back(component);
-  }
-  terms_dirty_ = true;
-}
-
-template <class Real>
-template <class C>
-void World<Real>::remove(Entity e) {
-  require(e);
-  auto& s = store<C>();
-  if (!s.set.contains(e)) return;
-  const std::size_t i = s.set.erase(e);
-  s.data[i] = s.data.back();
-  s.data.pop_back();
-  terms_dirty_ = true;
-}
-
-template <class Real>
-template <class C>
-const C* World<Real>::get(Entity e) const {
-  const auto& s = store<C>();
-  return s.set.contains(e) ? &s.data[s.set.index(e)] : nullptr;
-}
-
-extern template class World<float>;
-extern template class World<double>;
+/// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J
+/// when E0 = 0): what the integrator alone adds or loses, with the energy damping, drag and
+/// contacts took out (World::dissipated_energy, kept when WorldSettings::track_dissipation
+/// is on, as for every scene) put back and the work kinematic bodies did
+/// (World::external_work) taken off. initial_energy = E0 in J.
+[[nodiscard]] double energy_balance(const World& sim, double initial_energy);
 
 }  // namespace fixstep

@@ -32,10 +32,10 @@ class RecordingWriter {
   /// is not ticks() + 1). Throws RecordingError corrupt when the file would grow beyond
   /// max_recording_bytes (a recording the reader refuses), std::runtime_error on a write error;
   /// the temporary file is then removed.
-  void record(const TickInput& input, const Simulation& after_the_tick);
+  void record(const TickInput& input, const World& after_the_tick);
   /// Ends the recording at `sim`'s state (its tick() must be ticks(), else
   /// std::invalid_argument) and renames the file into place. Once only.
-  void finish(const Simulation& sim);
+  void finish(const World& sim);
   /// Ends the recording at its last stored hash (tick 0 with `initial_hash`, the state hash
   /// before the first tick, when none is stored) and renames the file into place: for a session
   /// whose current state is torn (a tick abandoned half-way by StopRequested). The ticks after

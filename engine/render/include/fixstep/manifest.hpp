@@ -27,7 +27,7 @@ enum class ManifestLayout { frames, tiles };
 ///   tick        ticks taken when the frame was drawn
 ///   t           simulated time tick·dt, s (%.6f)
 ///   alpha       the loop's interpolation weight the frame was drawn at, in [0, 1) (%.6f)
-///   state_hash  Simulation::state_hash(), 16 hex digits (what `run`/`render` summaries print)
+///   state_hash  World::state_hash(), 16 hex digits (what `run`/`render` summaries print)
 ///   energy      total energy, J (%.9e)
 ///   balance     energy_balance() (%.6e; in J when the initial energy is 0)
 class FrameManifest {

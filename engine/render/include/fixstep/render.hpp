@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/simulation.hpp"
 #include "fixstep/trails.hpp"
 #include "fixstep/types.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 

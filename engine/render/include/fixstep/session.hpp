@@ -12,8 +12,8 @@
 
 #include "fixstep/loop.hpp"
 #include "fixstep/render.hpp"
-#include "fixstep/simulation.hpp"
 #include "fixstep/user_events.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -48,23 +48,23 @@ inline constexpr double max_frame_ticks = 0x1p30;
 
 class Session {
  public:
-  /// Builds the world (make_simulation(def): the stability guard applies; with
+  /// Builds the world (World(def): the stability guard applies; with
   /// WorldSettings::track_dissipation turned on, since the HUD shows the energy balance), the
   /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid
   /// or unstable def (see make_simulation), for a max_frame_time that is not finite and > 0 or
   /// is more than max_frame_ticks ticks, RenderError when rendering cannot start.
   explicit Session(WorldDef def, const SessionSettings& settings = {});
-  /// As above, with the world already built: `sim` must be make_simulation(def) at tick 0, made
+  /// As above, with the world already built: `sim` must be World(def) at tick 0, made
   /// with def.settings.track_dissipation on (so that a large world can be built on another
   /// thread, e.g. while a window keeps showing the previous one; the renderer is made here, on
   /// the calling thread). Throws std::invalid_argument when sim is past tick 0, has another body
   /// count than def, or does not track dissipation; as above otherwise.
-  Session(WorldDef def, Simulation sim, const SessionSettings& settings = {});
+  Session(WorldDef def, World sim, const SessionSettings& settings = {});
 
   /// One frame: runs the loop for frame_seconds (s) of real or virtual time; every tick gets
   /// `input` (see TickInput).
   FrameResult advance(double frame_seconds, const TickInput& input = {});
-  /// One frame whose ticks the caller runs: tick(tick index, Simulation&) is called once per
+  /// One frame whose ticks the caller runs: tick(tick index, World&) is called once per
   /// tick the loop runs and must step the simulation once (sim.step(input) with that tick's
   /// input: from an InputSampler, a recording, a script); it may also change the world between
   /// ticks (a game's rules). No tick runs once the runtime guard has fired.
@@ -136,9 +136,9 @@ class Session {
   void clear_trails() { renderer_.clear_trails(); }
 
   [[nodiscard]] const WorldDef& definition() const { return def_; }
-  [[nodiscard]] const Simulation& simulation() const { return *sim_; }
+  [[nodiscard]] const World& simulation() const { return *sim_; }
   /// The simulation, for programs that change the world between ticks (a game's rules).
-  [[nodiscard]] Simulation& simulation() { return *sim_; }
+  [[nodiscard]] World& simulation() { return *sim_; }
   [[nodiscard]] FixedStepLoop& loop() { return loop_; }
   /// The loop's interpolation weight: draw() shows lerp(previous tick, current tick, alpha).
   [[nodiscard]] double alpha() const { return loop_.alpha(); }
@@ -163,7 +163,7 @@ class Session {
 
   WorldDef def_;
   std::string title_;
-  std::unique_ptr<Simulation> sim_;
+  std::unique_ptr<World> sim_;
   FixedStepLoop loop_;
   Renderer renderer_;
   RenderFrame frame_;

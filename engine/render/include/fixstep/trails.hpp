@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 

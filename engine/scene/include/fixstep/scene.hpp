@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "fixstep/components.hpp"
-#include "fixstep/simulation.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -119,7 +118,7 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);
 
 /// The scene's world as a WorldDef (precision, settings, bodies, links, planes, allow_unstable),
-/// copied: what Session and make_simulation(const WorldDef&) take.
+/// copied: what Session and World(const WorldDef&) take.
 [[nodiscard]] WorldDef world_def(const Scene& scene);
 
 /// Builds the world a scene describes, after the stability guard (enforce_stability,
@@ -127,6 +126,6 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// substep count when a body is unstable and the scene does not allow it. Throws
 /// std::invalid_argument if a value is not representable in the scene's precision (the loader
 /// checks this first).
-[[nodiscard]] Simulation make_simulation(const Scene& scene);
+[[nodiscard]] World make_world(const Scene& scene);
 
 }  // namespace fixstep

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 

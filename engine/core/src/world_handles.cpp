@@ -1,54 +1,55 @@
-// Simulation's handle API: bodies and links named by Entity and Link, forwarded to the
-// World<float> or World<double> inside, and the check of a tick's per-body input.
+// World's handle API: bodies and links named by Entity and Link, forwarded to the
+// detail::WorldKernel<float> or detail::WorldKernel<double> inside, and the check of a tick's
+// per-body input.
 #include <fmt/format.h>
 
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/simulation.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 
-void Simulation::destroy(Entity e) {
+void World::destroy(Entity e) {
   visit([&](auto& w) { w.destroy(e); });
 }
-bool Simulation::contains(Entity e) const {
+bool World::contains(Entity e) const {
   return visit([&](const auto& w) { return w.contains(e); });
 }
-Entity Simulation::find(std::string_view name) const {
+Entity World::find(std::string_view name) const {
   return visit([&](const auto& w) { return w.find(name); });
 }
-Body Simulation::body(Entity e) const {
+Body World::body(Entity e) const {
   return visit([&](const auto& w) { return w.body(e); });
 }
-void Simulation::set_body(Entity e, const Body& body) {
+void World::set_body(Entity e, const Body& body) {
   visit([&](auto& w) { w.set_body(e, body); });
 }
-const std::string& Simulation::name(Entity e) const {
+const std::string& World::name(Entity e) const {
   return visit([&](const auto& w) -> const std::string& { return w.name(w.index_of(e)); });
 }
-BodyType Simulation::type(Entity e) const {
+BodyType World::type(Entity e) const {
   return visit([&](const auto& w) { return w.type(e); });
 }
-std::size_t Simulation::index_of(Entity e) const {
+std::size_t World::index_of(Entity e) const {
   return visit([&](const auto& w) { return w.index_of(e); });
 }
-Entity Simulation::entity_at(std::size_t i) const {
+Entity World::entity_at(std::size_t i) const {
   return visit([&](const auto& w) { return w.entities()[i]; });
 }
-void Simulation::destroy_link(Link link) {
+void World::destroy_link(Link link) {
   visit([&](auto& w) { w.destroy_link(link); });
 }
-bool Simulation::contains(Link link) const {
+bool World::contains(Link link) const {
   return visit([&](const auto& w) { return w.contains(link); });
 }
-LinkDef Simulation::link(Link link) const {
+LinkDef World::link(Link link) const {
   return visit([&](const auto& w) { return w.link(link); });
 }
-std::span<const ContactEvent> Simulation::contacts_begun() const {
+std::span<const ContactEvent> World::contacts_begun() const {
   return visit([](const auto& w) { return w.contacts_begun(); });
 }
-std::span<const ContactEvent> Simulation::contacts_ended() const {
+std::span<const ContactEvent> World::contacts_ended() const {
   return visit([](const auto& w) { return w.contacts_ended(); });
 }
 
@@ -68,7 +69,7 @@ std::string_view kind_name(BodyInputKind kind) {
 
 }  // namespace
 
-void Simulation::check_input(const TickInput& input) const {
+void World::check_input(const TickInput& input) const {
   if (input.bodies.size() > max_body_inputs) {
     throw std::invalid_argument(fmt::format("tick {}: {} per-body inputs; at most {} per tick",
                                             input.tick, input.bodies.size(), max_body_inputs));

@@ -1,0 +1,579 @@
+// The world's kernel in one precision (Real = float or double): entities, their components, and
+// the fixed-step integration of their bodies. Internal: a program holds a fixstep::World
+// (world.hpp), which chooses the precision at creation and holds one of these inside.
+//
+// Layout (the EnTT idea, kept minimal): every component type lives in its own sparse set keyed
+// by entity slot, so adding or removing a component never touches the others. Body state is
+// stored structure-of-arrays (x, y, vx, vy) in the set's dense order, which is the order the
+// integrator walks. Since every fixstep force acts on one body, the components fold into one
+// per-body force field a(x, v) = -K s(x - anchor) - γ v + c, kept as arrays in the world's
+// precision and rebuilt only when components are added or removed, never per tick. A tick is
+// one fused pass over the bodies that reads only the arrays of the parts some body declares:
+// a force nobody declares costs nothing. active_terms() says which terms are declared.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "fixstep/components.hpp"
+#include "fixstep/entity.hpp"
+#include "fixstep/input.hpp"
+#include "fixstep/integrators.hpp"
+#include "fixstep/step_results.hpp"
+#include "fixstep/world_settings.hpp"
+
+namespace fixstep {
+
+namespace detail {
+
+/// The second thread of a world with links (world_coupled.cpp).
+class Workers;
+struct WorkersDeleter {
+  void operator()(Workers* w) const;
+};
+/// Implicit Euler's sparse solver for a world with links (world_implicit.cpp, Eigen).
+template <class Real>
+class ImplicitSolver;
+template <class Real>
+struct ImplicitSolverDeleter {
+  void operator()(ImplicitSolver<Real>* s) const;
+};
+/// A collider's motion after its last plane impact in a tick (world_contacts.cpp), from which
+/// the disc-disc contacts continue: time t (s into the tick; < 0: no plane impact this tick),
+/// position, model velocity and acceleration at t, and the integrator's velocity offset.
+struct PlaneMotion {
+  double t = -1.0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;
+};
+/// Disc-disc contacts of a world with WorldSettings::contacts (disc_contacts.hpp).
+template <class Real>
+class DiscContacts;
+/// Deep-copying owner of a T defined elsewhere (its copy, assignment and deletion are
+/// instantiated where T is complete): a copy of the World copies the disc contacts' state,
+/// warm-start impulses included, so a snapshot steps on to the same bits.
+template <class T>
+class ClonePtr {
+ public:
+  ClonePtr() = default;
+  ClonePtr(const ClonePtr& other) : p_(other.p_ ? clone(*other.p_) : nullptr) {}
+  ClonePtr& operator=(const ClonePtr& other) {
+    if (this != &other) assign(p_, other.p_);
+    return *this;
+  }
+  ClonePtr(ClonePtr&& other) noexcept : p_(other.p_) { other.p_ = nullptr; }
+  ClonePtr& operator=(ClonePtr&& other) noexcept {
+    std::swap(p_, other.p_);
+    return *this;
+  }
+  ~ClonePtr() { destroy(p_); }
+  [[nodiscard]] T* get() const { return p_; }
+  T* operator->() const { return p_; }
+  T& operator*() const { return *p_; }
+  explicit operator bool() const { return p_ != nullptr; }
+  void reset(T* p = nullptr) {
+    destroy(p_);
+    p_ = p;
+  }
+
+ private:
+  static T* clone(const T& t);
+  static void assign(T*& to, const T* from);  ///< reuses *to's storage when both exist
+  static void destroy(T* t);
+  T* p_ = nullptr;
+};
+
+/// Owns a cache that a copy of its owner does not share: a copy starts empty (the owner
+/// rebuilds the cache on demand) and copying into an owner drops its cache; moving moves it.
+/// For parts that hold no state a tick's result depends on: the worker thread and the implicit
+/// solver's factorisation, so a World can be copied (a snapshot) and stays bit-exact.
+template <class T, class Deleter>
+class CachePtr : public std::unique_ptr<T, Deleter> {
+ public:
+  CachePtr() = default;
+  CachePtr(const CachePtr& /*other*/) noexcept : std::unique_ptr<T, Deleter>() {}
+  CachePtr& operator=(const CachePtr& other) noexcept {
+    if (this != &other) this->reset();
+    return *this;
+  }
+  CachePtr(CachePtr&&) noexcept = default;
+  CachePtr& operator=(CachePtr&&) noexcept = default;
+  ~CachePtr() = default;
+};
+
+/// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
+struct SparseSet {
+  std::vector<std::uint32_t> sparse;  ///< slot -> dense index + 1; 0 = absent
+  std::vector<Entity> dense;
+
+  [[nodiscard]] bool contains(Entity e) const {
+    return !e.is_null() && e.slot() < sparse.size() && sparse[e.slot()] != 0 &&
+           dense[sparse[e.slot()] - 1] == e;
+  }
+  [[nodiscard]] std::size_t index(Entity e) const { return sparse[e.slot()] - 1; }
+  std::size_t insert(Entity e);
+  /// Removes e and returns the dense index it had; the last element moved into that index.
+  std::size_t erase(Entity e);
+};
+
+/// A component type stored array-of-structs: cold, authoritative data.
+template <class C>
+struct Store {
+  SparseSet set;
+  std::vector<C> data;
+};
+
+/// A world of point bodies stepped at a fixed dt in precision Real (float or double).
+///
+/// Copies are complete, independent states (a snapshot): bodies, components, links, tick,
+/// energy accounts and the runtime guard's fault; a copy steps to the same bits as the
+/// original. Copy-assigning between worlds of equal size reuses storage (no allocation).
+///
+/// Errors: creation and setters throw std::invalid_argument naming the body and field when a
+/// value is non-finite (also after narrowing to Real) or out of range; using a stale or null
+/// Entity throws std::invalid_argument. step() never throws; it allocates only on the first
+/// step after a structural change (rebuilding the force-term lists) and the first time a step
+/// length is seen (damping-flow factors), and nothing per tick after that.
+template <class Real>
+class WorldKernel {
+ public:
+  using real_type = Real;
+
+  /// Throws std::invalid_argument if settings.dt is not finite and > 0.
+  explicit WorldKernel(const WorldSettings& settings);
+
+  // --- entities -------------------------------------------------------------------------
+  /// Creates an entity with a Body and the optional components set in def.
+  Entity create_body(const BodyDef& def);
+  /// Reserves room for `bodies` bodies (avoids regrowth when creating many).
+  void reserve(std::size_t bodies);
+  /// Destroys the entity, all its components and every link attached to it; its handle (and
+  /// copies, and the links' handles) become stale.
+  void destroy(Entity e);
+  [[nodiscard]] bool contains(Entity e) const { return bodies_.contains(e); }
+  [[nodiscard]] std::size_t body_count() const { return bodies_.dense.size(); }
+  /// Dense index of e's body (the index into x(), y(), ...); throws if e is stale.
+  [[nodiscard]] std::size_t index_of(Entity e) const;
+  /// The first body in dense order named `name`, or the null entity. O(bodies).
+  [[nodiscard]] Entity find(std::string_view name) const;
+
+  // --- links: spring-dampers between bodies (cold path; see LinkSpring for the force) ------
+  /// Creates a link. Throws std::invalid_argument when a body is null or stale, both ends are
+  /// the same body, a parameter is non-finite (also after narrowing to Real) or negative, or
+  /// a rest-length link's bodies are at the same point (its direction is undefined).
+  Link create_link(const LinkDef& def);
+  /// Destroys a link; throws std::invalid_argument if the handle is null or stale.
+  void destroy_link(Link link);
+  [[nodiscard]] bool contains(Link link) const;
+  [[nodiscard]] std::size_t link_count() const { return links_.dense.size(); }
+  /// The definition of a live link; throws std::invalid_argument if it is null or stale.
+  [[nodiscard]] LinkDef link(Link link) const;
+  /// The handle of the link at dense index i < link_count() (creation order while no link is
+  /// destroyed).
+  [[nodiscard]] Link link_at(std::size_t i) const {
+    return Link{links_.dense[i].index1, links_.dense[i].generation};
+  }
+  /// Dense body indices of both ends of the link at dense index i (for drawing).
+  [[nodiscard]] std::pair<std::size_t, std::size_t> link_bodies(std::size_t i) const;
+
+  // --- components (cold path; each change rebuilds the force-term lists before next step) --
+  /// Adds or replaces component C on e. C is one of SpringDamper, ConstantForce, Gravity,
+  /// LinearDrag, Appearance, Collider.
+  template <class C>
+  void set(Entity e, const C& component);
+  /// Removes component C from e (no-op if absent).
+  template <class C>
+  void remove(Entity e);
+  /// The component C of e, or nullptr.
+  template <class C>
+  [[nodiscard]] const C* get(Entity e) const;
+
+  /// The type of e's body (dynamic, static or kinematic); throws if e is stale.
+  [[nodiscard]] BodyType type(Entity e) const { return types_[index_of(e)]; }
+  /// The type of the body at dense index i < body_count().
+  [[nodiscard]] BodyType type_at(std::size_t i) const { return types_[i]; }
+
+  /// Body state of e converted to double.
+  [[nodiscard]] Body body(Entity e) const;
+  /// Overwrites mass, position and velocity of e (validated like create_body).
+  void set_body(Entity e, const Body& body);
+
+  // --- planes: static half-planes bodies with a Collider collide with (world_contacts.cpp) --
+  /// Adds the half-plane n·x >= offset of free space with n = def.normal/|def.normal|; returns
+  /// its index into planes(). Throws std::invalid_argument naming the field when the normal is
+  /// zero or not finite, or offset, restitution (in [0, 1]) or friction (>= 0) is out of range
+  /// or not finite. Planes cannot be removed.
+  std::size_t add_plane(const PlaneDef& def);
+  /// The planes in order of creation, normals normalised.
+  [[nodiscard]] std::span<const PlaneDef> planes() const { return planes_; }
+
+  // --- stepping ---------------------------------------------------------------------------
+  /// Advances every body by one tick of settings().dt with the chosen integrator.
+  ///
+  /// Without links (and without track_dissipation), one fused pass over the bodies: each
+  /// body's whole tick (every substep, every stage) runs in registers and its state is loaded
+  /// and stored once. The pass reads only the coefficient arrays of force parts some body
+  /// declares; bytes_per_body_step() gives the resulting memory traffic. With links, each
+  /// force evaluation is a pass over the links (their forces) and a pass over the bodies
+  /// (each gathers its links' forces in a fixed order), on one or two threads (see
+  /// WorldSettings::threads); implicit Euler solves the linear system of the whole network
+  /// (world_implicit.cpp). Both paths give bit-identical states where both apply.
+  ///
+  /// When input.drag_body names a body, the pointer's drag spring (input.hpp: drag_frequency,
+  /// drag_damping_ratio) first changes that body's velocity, implicitly over the tick; its
+  /// work is not in the energy account (an external force, like push). A non-finite pointer
+  /// leaves the velocity as it was.
+  void step(const TickInput& input = {});
+  /// Bytes one tick moves between memory and the core per body (STREAM's convention: each
+  /// array element read or written counts once, write-allocate traffic is not counted):
+  /// x, y, vx, vy read and written, plus each coefficient array the kernel reads, plus
+  /// x and y copied to previous_x()/previous_y() when set_keep_previous is on. Rebuilds the
+  /// force field first if components changed.
+  [[nodiscard]] std::size_t bytes_per_body_step();
+  /// The runtime guard: the first body whose state left the finite range in a step (NaN,
+  /// infinity or a magnitude beyond max_state_magnitude), or nullopt. Checked inside the fused
+  /// pass on values already in registers (a compare per component; no extra memory traffic).
+  /// step() keeps stepping after a fault; callers stop (fixstep run/render exit non-zero, the
+  /// window pauses) and explain it with explain_fault() (stability.hpp).
+  [[nodiscard]] const std::optional<StateFault>& fault() const { return fault_; }
+  /// Number of ticks taken since creation.
+  [[nodiscard]] std::uint64_t tick() const { return tick_; }
+  /// Simulated time tick()·dt, s.
+  [[nodiscard]] double time() const { return static_cast<double>(tick_) * settings_.dt; }
+  [[nodiscard]] const WorldSettings& settings() const { return settings_; }
+  void set_integrator(Integrator integrator) { settings_.integrator = integrator; }
+  /// When on, step() first copies positions to previous_x()/previous_y() so a renderer can
+  /// interpolate between the last two ticks. Off by default (costs a copy per tick).
+  void set_keep_previous(bool keep);
+
+  /// Accelerations a(x, v) at the current state, m/s², links included; ax and ay must hold
+  /// body_count() (else std::invalid_argument).
+  void accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input = {});
+  /// Which force terms some body declares (bits of ForceTermBits).
+  [[nodiscard]] unsigned active_terms() const;
+  /// Threads the last step used (1 or 2).
+  [[nodiscard]] int threads_used() const { return threads_used_; }
+
+  // --- state (dense body order) -----------------------------------------------------------
+  [[nodiscard]] std::span<const Real> x() const { return x_; }
+  [[nodiscard]] std::span<const Real> y() const { return y_; }
+  [[nodiscard]] std::span<const Real> vx() const { return vx_; }
+  [[nodiscard]] std::span<const Real> vy() const { return vy_; }
+  [[nodiscard]] std::span<const Real> previous_x() const { return prev_x_; }
+  [[nodiscard]] std::span<const Real> previous_y() const { return prev_y_; }
+  [[nodiscard]] std::span<const Entity> entities() const { return bodies_.dense; }
+  [[nodiscard]] const std::string& name(std::size_t index) const { return names_[index]; }
+
+  // --- measurements -----------------------------------------------------------------------
+  /// Total mechanical energy by kind, J (see EnergyReport for the potentials).
+  [[nodiscard]] EnergyReport energy() const;
+  /// Mechanical energy of each body, J; out must hold body_count() values. A link's potential
+  /// is split equally between its two bodies.
+  void body_energies(std::span<double> out) const;
+  /// Energy taken out by damping (anchored springs and links) and drag since creation, J,
+  /// when settings().track_dissipation is on (0 otherwise). Each integrator integrates the
+  /// dissipated power Σ b|u|² + c|v|² with its own stages (Euler methods: one rectangle per
+  /// step; RK4: its weights 1/6, 1/3, 1/3, 1/6; implicit Euler: the end of the step), or
+  /// takes the kinetic energy its damping flow removes (velocity Verlet, Forest–Ruth), so
+  /// the energy balance (E + E_dissipated - E0)/|E0| shrinks at the integrator's order.
+  [[nodiscard]] double dissipated_energy() const;
+  /// Work done on the dynamic bodies from outside the world's energy account, J, since
+  /// creation: by kinematic bodies through contacts (their impulses' work on the bodies they
+  /// push) and through links (the power -F·v of each link force F on a kinematic end moving
+  /// at v, integrated with the integrator's own stages, as dissipated_energy() is). The energy
+  /// balance is E + E_dissipated - W_external - E0 (energy_balance()). Velocity Verlet and
+  /// Forest–Ruth count here only a link's spring: their damping flow takes a damped link's
+  /// whole effect on kinetic energy into dissipated_energy(), which then holds the damper's
+  /// dissipation minus the kinematic end's work through it (the balance is unchanged).
+  [[nodiscard]] double external_work() const { return external_work_; }
+  /// Disc-disc contacts of the last tick (WorldSettings::contacts): what the broadphase and the
+  /// solver did. Zero without contacts.
+  [[nodiscard]] const ContactStats& contact_stats() const { return contact_stats_; }
+  /// The disc-disc impacts of the last tick in the order they were resolved (empty without
+  /// contacts): what a game's rules read to score a hit. Valid until the next step.
+  [[nodiscard]] std::span<const Impact> impacts() const;
+  /// Pairs of discs touching after the last tick that were not before it, in handle order,
+  /// plus pairs that struck and parted within the tick (also in contacts_ended()). Empty
+  /// without contacts. Valid until the next step.
+  [[nodiscard]] std::span<const ContactEvent> contacts_begun() const { return begun_; }
+  /// Pairs of discs touching before the last tick that are not after it (a handle may name a
+  /// body destroyed since: check contains()), plus pairs that struck and parted within it.
+  [[nodiscard]] std::span<const ContactEvent> contacts_ended() const { return ended_; }
+  /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
+  /// equal hashes mean bit-identical states.
+  [[nodiscard]] std::uint64_t state_hash() const;
+  /// Bytes of heap memory a copy of this world (a WorldSnapshot) holds: every array's elements
+  /// and the body names' characters (not the worker threads or the implicit solver's cache,
+  /// which a copy does not take). For budgeting many copies (RewindBuffer); about 0.5 kB per
+  /// body of a cloth-like grid with its links.
+  [[nodiscard]] std::size_t snapshot_bytes() const;
+
+ private:
+  template <class C>
+  Store<C>& store();
+  template <class C>
+  const Store<C>& store() const;
+  void validate(const Body& body, const std::string& who) const;
+  // stepping (world_step.cpp)
+  void apply_drag(const TickInput& input);
+  const Real* damping_decay(double tau);
+  struct LinkFlow;
+  const LinkFlow& link_flow(double tau);  // (world_coupled.cpp)
+  static void validate_component(const SpringDamper& c, const std::string& who);
+  static void validate_component(const ConstantForce& c, const std::string& who);
+  static void validate_component(const Gravity& c, const std::string& who);
+  static void validate_component(const LinearDrag& c, const std::string& who);
+  static void validate_component(const Appearance& c, const std::string& who);
+  static void validate_component(const Collider& c, const std::string& who);
+  [[nodiscard]] std::string describe(Entity e) const;
+  void require(Entity e) const;
+  void rebuild_terms();
+  void record_fault();
+  void record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit,
+                        const std::string& with);
+  template <class Add>
+  void for_each_energy(Add&& add) const;
+
+  WorldSettings settings_;
+  std::uint64_t tick_ = 0;
+  bool keep_previous_ = false;
+  bool terms_dirty_ = true;
+  std::optional<StateFault> fault_;
+
+  // entity slots
+  std::vector<std::uint32_t> generations_;
+  std::vector<std::uint32_t> free_slots_;
+  std::vector<std::uint32_t> link_generations_;
+  std::vector<std::uint32_t> link_free_slots_;
+
+  // bodies: SoA in dense order
+  SparseSet bodies_;
+  std::vector<Real> x_, y_, vx_, vy_, prev_x_, prev_y_;
+  std::vector<double> mass_;
+  std::vector<BodyType> types_;
+  std::vector<std::string> names_;
+  double external_work_ = 0.0;  ///< J (external_work())
+  ContactStats contact_stats_;
+
+  // components (authoritative, double)
+  Store<SpringDamper> springs_;
+  Store<ConstantForce> constant_forces_;
+  Store<Gravity> gravities_;
+  Store<LinearDrag> drags_;
+  Store<Appearance> appearances_;
+  // links (authoritative, double), dense; keyed by Link handles stored as Entity-shaped keys
+  SparseSet links_;
+  std::vector<LinkDef> link_defs_;
+  // dissipated energy per unit mass per body (J/kg) and per link (J), when tracked
+  std::vector<Real> dissipated_body_;
+  std::vector<Real> dissipated_link_;
+  double dissipated_gone_ = 0.0;  ///< J, of destroyed bodies and links
+  int threads_used_ = 1;
+
+  // The force field per body, in dense order, rebuilt from the components when terms_dirty_:
+  //   a(x, v) = -K s(d) - γ v + c + push,   d = x - anchor,
+  // with K = k/m, s(d) = d for rest length 0 and (|d| - L) d/|d| otherwise, γ = (b + c_drag)/m,
+  // c = F/m + g. The step kernels read only the arrays of the parts some body declares (the
+  // flags): a scene without springs never touches stiffness or anchors, one without damping
+  // never reads γ.
+  struct Coefficients {
+    std::vector<Real> stiffness, anchor_x, anchor_y, rest, gamma, accel_x, accel_y;
+    bool spring = false;       ///< some body has a spring (stiffness, anchor_x, anchor_y are read)
+    bool rest_length = false;  ///< some spring has L > 0 (rest is read; |d| needs a sqrt)
+    bool damping = false;      ///< some body has γ > 0 (gamma or the damping-flow decay)
+    bool accel = false;        ///< some body has c != 0 (accel_x, accel_y are read)
+  } coeff_;
+  // Exact damping flow D(τ) factors e^{-γτ} per body (1 where γ = 0), cached per τ: a Verlet
+  // tick needs one τ, Forest–Ruth two.
+  struct DampingFlow {
+    double tau = -1.0;
+    std::vector<Real> decay;
+  };
+  std::vector<DampingFlow> flows_;
+
+  // The link network, rebuilt with the coefficients: both ends (dense body indices) and the
+  // spring of each link in Real, 1/m per body, and each body's incident links in CSR form
+  // (incident[offset[j] .. offset[j+1]) = 2·link + (0 if the body is end a, 1 if end b)), in
+  // link order, so every body sums its link forces in the same order on any thread.
+  struct Network {
+    std::vector<std::uint32_t> a, b;
+    std::vector<Real> k, damping, rest, inv_mass;
+    std::vector<std::uint32_t> offset, incident;
+    // With damped links, the links grouped by colour: no two links of a colour share a body
+    // (greedy edge colouring in link order), so the exact damping flows of a colour's links
+    // commute and run in parallel (link_damping.hpp). by_color[color_offset[c] ..
+    // color_offset[c+1]) are colour c's links in link order.
+    std::vector<std::uint32_t> color_offset, by_color;
+    std::vector<std::uint32_t> color_a, color_b;  ///< a, b, k, rest in colour order
+    std::vector<Real> color_k, color_rest;
+    std::vector<std::uint32_t> driven;  ///< links with a static or kinematic end, in link order
+    bool rest_length = false;           ///< some link has L > 0
+    bool all_rest_length = false;       ///< every link has L > 0 (none has L = 0)
+    bool damped = false;                ///< some link has b > 0
+  } net_;
+  // Each link's exact damping flow over τ (link_damping.hpp), in colour order (by_color),
+  // cached per τ like flows_:
+  // Δv_a = ca·p, Δv_b = -cb·p for the relative velocity p along the link (the kinetic energy
+  // it removes is counted per body by the kicks around the sweeps: strang_network.hpp).
+  struct LinkFlow {
+    double tau = -1.0;
+    std::vector<Real> ca, cb;  ///< per link in colour order (link_damping.hpp)
+  };
+  std::vector<LinkFlow> link_flows_;
+  std::vector<Real> unit_x_,
+      unit_y_;  ///< each link's direction at the last force pass (colour order)
+  // The Strang chain's last link sums (d_[0], d_[1]) and directions were computed at these
+  // positions: the next tick's first force pass is skipped when the positions are still these,
+  // bit for bit (first same as last across ticks; strang_network.hpp). Not state: a pure
+  // function of the positions and the network, so reusing it changes no bit.
+  std::vector<Real> fsal_x_, fsal_y_;
+  bool fsal_valid_ = false;
+  // Scratch of the multi-pass path, sized at rebuild (never per tick): link forces, stage
+  // states and accumulators (see world_coupled.cpp).
+  std::vector<Real> fx_, fy_, power_body_, power_link_;
+  // Stage states and derivatives, one vector per stage of a four-stage integrator.
+  std::array<std::vector<Real>, 4> s_, d_;
+  CachePtr<Workers, WorkersDeleter> workers_;
+  CachePtr<ImplicitSolver<Real>, ImplicitSolverDeleter<Real>> implicit_;
+  // (world_coupled.cpp)
+  void step_multipass(const TickInput& input);
+  template <class Pass>
+  void parallel(std::size_t n, Pass&& pass, std::size_t min_range);
+  void rebuild_network();
+  void validate_link(const LinkDef& def, const std::string& who) const;
+  // (world_implicit.cpp)
+  bool step_implicit_network(Real h, const Real push[2]);
+  void integrate(const TickInput& input);  // one tick of the integrator (world_step.cpp)
+
+  // Contacts with static half-planes (world_contacts.cpp). The scratch holds, for each body
+  // with a Collider, its dense index, radius and start-of-tick state (SoA), sized in
+  // rebuild_terms(), so a tick allocates nothing. Inactive (no planes or no colliders): step()
+  // runs none of it.
+  Store<Collider> colliders_;
+  std::vector<PlaneDef> planes_;
+  struct ContactScratch {
+    std::vector<std::uint32_t> body;
+    std::vector<double> radius;
+    std::vector<Real> x0, y0, vx0, vy0;
+    std::vector<PlaneMotion> after;  ///< per collider, this tick
+    bool active = false;
+  } contact_;
+  void rebuild_contacts();
+  void save_contact_start();
+  std::size_t resolve_contacts();  // returns ContactStats::capped of the planes
+
+  // Static and kinematic bodies (dense indices) and their start-of-tick states: after the
+  // integrator, a static body is put back and a kinematic one moved on at its velocity, so
+  // nothing (forces, links, push) moves them otherwise. Empty in a world of dynamic bodies.
+  struct Immovable {
+    std::vector<std::uint32_t> body;
+    std::vector<Real> x0, y0, vx0, vy0;
+  } immovable_;
+  // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.
+  ClonePtr<DiscContacts<Real>> discs_;
+  void rebuild_discs();
+  void save_tick_start();
+  void restore_immovable();
+  void resolve_discs();
+  // Contact events (world_events.cpp): the touching pairs after the last tick and before it,
+  // as handle pairs sorted by slot; part of a snapshot, so events after a restore are the same.
+  std::vector<ContactEvent> touching_, touching_before_, hits_;  // normal_speed unused, hits_
+  std::vector<ContactEvent> begun_, ended_;
+  void update_contact_events();
+  // Per-body input (world_input.cpp): impulses and velocities at the tick's start; forces
+  // added to the constant accelerations for the tick and taken off after it, exactly.
+  struct SavedAccel {
+    std::uint32_t body;
+    Real ax, ay;    ///< coeff_.accel_x/y before
+    double cx, cy;  ///< the implicit solver's, before
+  };
+  std::vector<SavedAccel> saved_accel_;
+  bool saved_accel_flag_ = false;
+  // Push in a network with static or kinematic bodies: folded into the dynamic bodies'
+  // accelerations for the tick (restored after it), so no immovable end moves inside a tick.
+  std::vector<Real> push_saved_;
+  std::vector<double> push_saved_implicit_;
+  bool push_saved_flag_ = false;
+  void fold_push(Vec2 push);
+  void unfold_push();
+  void apply_body_inputs(const TickInput& input);
+  bool add_input_forces(const TickInput& input);
+  void remove_input_forces();
+  ImplicitSolver<Real>& implicit_solver();  // built on first use (world_implicit.cpp)
+  /// The implicit solver's constant accelerations cx, cy (m/s², body_count() each).
+  std::pair<double*, double*> implicit_accelerations();
+};
+
+// --- component access (templates, so defined here) ---------------------------------------
+
+template <class Real>
+template <class C>
+Store<C>& WorldKernel<Real>::store() {
+  if constexpr (std::is_same_v<C, SpringDamper>)
+    return springs_;
+  else if constexpr (std::is_same_v<C, ConstantForce>)
+    return constant_forces_;
+  else if constexpr (std::is_same_v<C, Gravity>)
+    return gravities_;
+  else if constexpr (std::is_same_v<C, LinearDrag>)
+    return drags_;
+  else if constexpr (std::is_same_v<C, Collider>)
+    return colliders_;
+  else {
+    static_assert(std::is_same_v<C, Appearance>, "not a fixstep component");
+    return appearances_;
+  }
+}
+
+template <class Real>
+template <class C>
+const Store<C>& WorldKernel<Real>::store() const {
+  return const_cast<WorldKernel*>(this)->store<C>();
+}
+
+template <class Real>
+template <class C>
+void WorldKernel<Real>::set(Entity e, const C& component) {
+  require(e);
+  validate_component(component, describe(e));
+  auto& s = store<C>();
+  if (s.set.contains(e)) {
+    s.data[s.set.index(e)] = component;
+  } else {
+    s.set.insert(e);
+    s.data.push_back(component);
+  }
+  terms_dirty_ = true;
+}
+
+template <class Real>
+template <class C>
+void WorldKernel<Real>::remove(Entity e) {
+  require(e);
+  auto& s = store<C>();
+  if (!s.set.contains(e)) return;
+  const std::size_t i = s.set.erase(e);
+  s.data[i] = s.data.back();
+  s.data.pop_back();
+  terms_dirty_ = true;
+}
+
+template <class Real>
+template <class C>
+const C* WorldKernel<Real>::get(Entity e) const {
+  const auto& s = store<C>();
+  return s.set.contains(e) ? &s.data[s.set.index(e)] : nullptr;
+}
+
+extern template class WorldKernel<float>;
+extern template class WorldKernel<double>;
+
+}  // namespace detail
+}  // namespace fixstep

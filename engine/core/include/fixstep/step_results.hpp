@@ -1,0 +1,79 @@
+// What a tick reports: the mechanical energy, contact statistics, impacts and contact events,
+// and the runtime guard's state fault.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "fixstep/components.hpp"
+#include "fixstep/entity.hpp"
+#include "fixstep/types.hpp"
+
+namespace fixstep {
+
+/// Mechanical energy, J. Potentials: spring ½k(|x-anchor|-L)² (anchored) and ½k(|x_a-x_b|-L)²
+/// (links), gravity -m g·x, constant force -F·x (both zero at the origin). Damping and drag
+/// are dissipative and have no potential: see World::dissipated_energy().
+struct EnergyReport {
+  double kinetic = 0.0;         ///< ½ m |v|², J
+  double spring = 0.0;          ///< anchored springs and links, J
+  double gravity = 0.0;         ///< J
+  double constant_force = 0.0;  ///< J
+  [[nodiscard]] double total() const { return kinetic + spring + gravity + constant_force; }
+};
+
+/// What the disc-disc contacts did in one tick (World::contact_stats()).
+struct ContactStats {
+  std::size_t candidate_pairs = 0;  ///< pairs of discs whose swept boxes overlap (broadphase)
+  std::size_t impacts = 0;          ///< impacts resolved at their time within the tick
+  std::size_t touching = 0;         ///< pairs in contact at the end of the tick (resting solver)
+  double max_overlap = 0.0;         ///< deepest overlap r_a + r_b - |x_a - x_b| left, m (>= 0)
+  /// Contact work a cap stopped in the last tick (limits.hpp: max_candidate_pairs,
+  /// max_tick_predictions): 0, or 1 when the tick reached one; World::fault() then names it.
+  std::size_t capped = 0;
+};
+
+/// A disc-disc impact resolved at its time within the last tick (World::impacts()).
+struct Impact {
+  std::uint32_t body_a = 0, body_b = 0;  ///< dense body indices, body_a < body_b
+  double time = 0.0;                     ///< s after the tick's start
+  double normal_speed = 0.0;             ///< closing speed along the line of centres, m/s (> 0)
+};
+
+/// A pair of discs that began or stopped touching in the last tick (World::contacts_begun(),
+/// World::contacts_ended()): what a game's rules read to start a sound, score a hit or end a
+/// grab. Touching is the resting solver's test (centres within r_a + r_b plus its slop).
+struct ContactEvent {
+  Entity a{}, b{};  ///< the two bodies, a.slot() < b.slot()
+  /// Begun: the closing speed of the impact that began it, m/s (the largest, if several), or 0
+  /// when the discs came to touch without one (settling into contact). Ended: 0.
+  double normal_speed = 0.0;
+  friend constexpr bool operator==(const ContactEvent&, const ContactEvent&) = default;
+};
+
+/// Largest magnitude a body's x, y (m) or vx, vy (m/s) may reach. Beyond it, or at NaN or
+/// infinity, World::step records a StateFault: 10¹² m is about 7 astronomical units, far outside
+/// any scene a game steps, and still 26 orders of magnitude below float's overflow.
+inline constexpr double max_state_magnitude = 1e12;
+
+/// Why World::step stopped being trustworthy: the first body whose state left the finite range
+/// |value| <= max_state_magnitude, or a contact cap (limits.hpp) that kept a tick's contacts
+/// from being resolved in full (field "contacts", cap set).
+struct StateFault {
+  std::size_t index = 0;   ///< dense body index (creation order while nothing is destroyed)
+  std::string name;        ///< the body's name
+  std::uint64_t tick = 0;  ///< the tick that produced the value (World::tick() after it)
+  double time = 0.0;       ///< simulated time after that tick, s
+  std::string field;       ///< "x", "y" (m) or "vx", "vy" (m/s); "contacts" for a cap
+  double value = 0.0;      ///< the offending value (NaN, ±inf or |value| > the limit); the cap
+  /// The cap reached ("max_candidate_pairs", "max_tick_predictions"); empty for a state out of
+  /// range.
+  std::string cap;
+  /// With cap: the other party of the impact left unresolved ("body[7] \"peg\"", "plane[2]"),
+  /// or, for max_candidate_pairs, what made the pairs (the body is the disc with the largest
+  /// swept box).
+  std::string with;
+};
+
+}  // namespace fixstep

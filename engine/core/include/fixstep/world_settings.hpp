@@ -1,0 +1,86 @@
+// A world's settings: the step length dt (s), the integrator, substeps, threads, contacts and
+// the determinism switches; set when a world is made, the same for every body in it.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "fixstep/components.hpp"
+#include "fixstep/integrators.hpp"
+
+namespace fixstep {
+
+/// Where velocity Verlet and Forest–Ruth apply the damping of a network's links: each link's
+/// exact damping flow, swept over the links by colours before (C↑) and after (C↓) a drift
+/// (link_damping.hpp, docs/INTEGRATORS.md). Verlet has one stage per step: both choices give
+/// the same step. Other integrators and networks without damped links ignore it.
+enum class DampingSplit {
+  /// Around every stage's drift: Forest–Ruth keeps order 4 with damped links, at 6 sweeps
+  /// over the links per step (about 5x semi-implicit Euler's tick on a cloth). The default:
+  /// order 4 is why one picks Forest–Ruth.
+  per_stage,
+  /// Once around each Forest–Ruth step, C↑(h/2) FR(h) C↓(h/2): 2 sweeps per step (about 3.5x
+  /// semi-implicit Euler's tick), order 4 on the springs but 2 in the link damping (measured
+  /// on the damped chain: tests/test_coupled.cpp). Without damped links, the same bits as
+  /// per_stage.
+  per_step,
+};
+
+/// "per_stage" / "per_step".
+[[nodiscard]] std::string_view damping_split_name(DampingSplit split);
+/// The DampingSplit named `name`, or nullopt.
+[[nodiscard]] std::optional<DampingSplit> parse_damping_split(std::string_view name);
+
+/// World-wide simulation settings.
+struct WorldSettings {
+  double dt = 1.0 / 60.0;  ///< fixed physics step (one tick), s; finite and > 0
+  Integrator integrator = Integrator::semi_implicit_euler;
+  /// Integration steps per tick, each of dt / substeps (>= 1). A tick is still dt.
+  int substeps = 1;
+  /// Flush subnormal state to zero: at the end of every tick whose number is a multiple of
+  /// flush_denormals_every (64), each x, y, vx, vy with 0 < |v| < the least normal (1.2e-38
+  /// f32, 2.2e-308 f64) becomes a zero of its sign, in software, the same bits on every
+  /// platform (no FTZ/DAZ: World::step runs in the IEEE default FPU mode whatever the
+  /// caller set). A strongly damped f32 state decays into subnormals after some thousands of
+  /// ticks, and x86 then computes 24-145x slower; with this on, a decaying state pays that for
+  /// at most 63 ticks, then is 0, and the flush itself costs 1/64 of a pass over the state.
+  /// Within a tick arithmetic keeps IEEE gradual underflow. Off: subnormal states stay (same
+  /// bits everywhere too, slower on x86).
+  bool flush_denormals = true;
+  /// Keep account of the energy dissipated by damping and drag (dissipated_energy()), so that
+  /// the energy balance E + E_dissipated - E0 measures the integrator alone. Off by default:
+  /// a world without links then steps in today's fused pass; with it on (fixstep's CLI and
+  /// sessions) a damped world steps in the multi-pass path, which computes the same states
+  /// bit for bit and adds each tick's dissipation (see World::dissipated_energy).
+  bool track_dissipation = false;
+  /// Threads a tick of a world with links may use: 1, 2, or 0 = automatic (2 when the
+  /// machine has a second core and the world has at least parallel_min_bodies bodies). The
+  /// states are bit-identical for every thread count: each body gathers its link forces in
+  /// a fixed order, and no float is ever added atomically. Always 1 in a wasm32 build without
+  /// pthreads (emscripten's default), which cannot start a thread.
+  int threads = 0;
+  /// Where velocity Verlet and Forest–Ruth apply damped links' flows (see DampingSplit).
+  DampingSplit damping_split = DampingSplit::per_stage;
+  /// Body-vs-body contacts of discs (world_discs.cpp); unset (the default): none are computed
+  /// and the world pays nothing for them. Contacts with planes need no setting.
+  std::optional<ContactSettings> contacts = std::nullopt;
+};
+
+/// Ticks between two software flushes of subnormal state (WorldSettings::flush_denormals).
+inline constexpr std::uint64_t flush_denormals_every = 64;
+
+/// Bodies from which an automatic (threads = 0) world with links steps on two threads.
+inline constexpr std::size_t parallel_min_bodies = 16384;
+
+/// Bits of World::active_terms(): which force terms run each tick.
+enum ForceTermBits : unsigned {
+  term_spring = 1u << 0,
+  term_constant_force = 1u << 1,
+  term_gravity = 1u << 2,
+  term_drag = 1u << 3,
+  term_link = 1u << 4,  ///< springs between bodies: the gather over the link list runs
+};
+
+}  // namespace fixstep

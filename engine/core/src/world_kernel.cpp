@@ -1,0 +1,509 @@
+#include "fixstep/detail/world_kernel.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "fixstep/bits.hpp"
+#include "fixstep/float_mode.hpp"
+
+namespace fixstep {
+
+namespace detail {
+
+std::size_t SparseSet::insert(Entity e) {
+  if (e.slot() >= sparse.size()) sparse.resize(e.slot() + 1, 0);
+  dense.push_back(e);
+  sparse[e.slot()] = static_cast<std::uint32_t>(dense.size());
+  return dense.size() - 1;
+}
+
+std::size_t SparseSet::erase(Entity e) {
+  const std::size_t i = index(e);
+  const std::size_t last = dense.size() - 1;
+  if (i != last) {
+    dense[i] = dense[last];
+    sparse[dense[i].slot()] = static_cast<std::uint32_t>(i + 1);
+  }
+  dense.pop_back();
+  sparse[e.slot()] = 0;
+  return i;
+}
+
+}  // namespace detail
+
+namespace {
+
+/// A value is acceptable when it is finite in double and stays finite once narrowed to Real
+/// (1e39 is a fine double but +inf as a float).
+template <class Real>
+bool representable(double v) {
+  return std::isfinite(v) && std::isfinite(static_cast<Real>(v));
+}
+
+template <class Real>
+void check_value(double v, bool ok_range, const std::string& who, const char* field,
+                 const char* allowed) {
+  if (!representable<Real>(v) || !ok_range) {
+    throw std::invalid_argument(fmt::format("{}: {} must be {} (got {})", who, field, allowed, v));
+  }
+}
+
+template <class Real>
+void check_vec(const Vec2& v, const std::string& who, const char* field) {
+  check_value<Real>(v.x, true, who, field, "finite");
+  check_value<Real>(v.y, true, who, field, "finite");
+}
+
+/// Swap-and-pop element i of every array in the pack (keeps SoA arrays aligned).
+template <class... Vs>
+void swap_pop(std::size_t i, Vs&... vs) {
+  ((vs[i] = std::move(vs.back()), vs.pop_back()), ...);
+}
+
+}  // namespace
+
+template <class Real>
+detail::WorldKernel<Real>::WorldKernel(const WorldSettings& settings) : settings_(settings) {
+  if (!representable<Real>(settings.dt) || settings.dt <= 0.0) {
+    throw std::invalid_argument(
+        fmt::format("world: dt must be finite and > 0 s (got {})", settings.dt));
+  }
+  if (settings.substeps < 1) {
+    throw std::invalid_argument(
+        fmt::format("world: substeps must be >= 1 (got {})", settings.substeps));
+  }
+}
+
+template <class Real>
+std::string detail::WorldKernel<Real>::describe(Entity e) const {
+  if (bodies_.contains(e)) {
+    const auto& n = names_[bodies_.index(e)];
+    if (!n.empty()) return fmt::format("body '{}'", n);
+  }
+  return fmt::format("entity {}:{}", e.index1, e.generation);
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::require(Entity e) const {
+  if (!bodies_.contains(e)) {
+    throw std::invalid_argument(
+        fmt::format("entity {}:{} is null or was destroyed", e.index1, e.generation));
+  }
+}
+
+template <class Real>
+Entity detail::WorldKernel<Real>::find(std::string_view name) const {
+  for (std::size_t j = 0; j < names_.size(); ++j) {
+    if (names_[j] == name) return bodies_.dense[j];
+  }
+  return null_entity;
+}
+
+template <class Real>
+std::size_t detail::WorldKernel<Real>::index_of(Entity e) const {
+  require(e);
+  return bodies_.index(e);
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::validate(const Body& b, const std::string& who) const {
+  check_value<Real>(b.mass, b.mass > 0.0, who, "mass", "finite and > 0 kg");
+  check_vec<Real>(b.position, who, "position");
+  check_vec<Real>(b.velocity, who, "velocity");
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::validate_component(const SpringDamper& c, const std::string& who) {
+  check_vec<Real>(c.anchor, who, "spring.anchor");
+  check_value<Real>(c.stiffness, c.stiffness >= 0.0, who, "spring.stiffness",
+                    "finite and >= 0 N/m");
+  check_value<Real>(c.damping, c.damping >= 0.0, who, "spring.damping", "finite and >= 0 N*s/m");
+  check_value<Real>(c.rest_length, c.rest_length >= 0.0, who, "spring.rest_length",
+                    "finite and >= 0 m");
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::validate_component(const ConstantForce& c, const std::string& who) {
+  check_vec<Real>(c.force, who, "force");
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::validate_component(const Gravity& c, const std::string& who) {
+  check_vec<Real>(c.acceleration, who, "gravity");
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::validate_component(const LinearDrag& c, const std::string& who) {
+  check_value<Real>(c.coefficient, c.coefficient >= 0.0, who, "drag", "finite and >= 0 N*s/m");
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::validate_component(const Appearance& c, const std::string& who) {
+  check_value<Real>(c.radius, c.radius > 0.0, who, "radius", "finite and > 0 m");
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::validate_component(const Collider& c, const std::string& who) {
+  check_value<Real>(c.radius, c.radius > 0.0 && c.radius <= max_state_magnitude, who,
+                    "collider.radius", "finite, > 0 and <= 1e12 m");
+}
+
+template <class Real>
+Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
+  const std::string who = def.name.empty() ? std::string("body") : "body '" + def.name + "'";
+  validate(def.body, who);
+  if (def.spring) validate_component(*def.spring, who);
+  if (def.constant_force) validate_component(*def.constant_force, who);
+  if (def.gravity) validate_component(*def.gravity, who);
+  if (def.drag) validate_component(*def.drag, who);
+  if (def.appearance) validate_component(*def.appearance, who);
+  if (def.collider) validate_component(*def.collider, who);
+
+  Entity e;
+  if (!free_slots_.empty()) {
+    const std::uint32_t slot = free_slots_.back();
+    free_slots_.pop_back();
+    e = Entity{slot + 1, generations_[slot]};
+  } else {
+    generations_.push_back(1);
+    e = Entity{static_cast<std::uint32_t>(generations_.size()), 1};
+  }
+  bodies_.insert(e);
+  mass_.push_back(def.body.mass);
+  types_.push_back(def.type);
+  x_.push_back(static_cast<Real>(def.body.position.x));
+  y_.push_back(static_cast<Real>(def.body.position.y));
+  vx_.push_back(static_cast<Real>(def.body.velocity.x));
+  vy_.push_back(static_cast<Real>(def.body.velocity.y));
+  prev_x_.push_back(x_.back());
+  prev_y_.push_back(y_.back());
+  names_.push_back(def.name);
+  dissipated_body_.push_back(Real(0));
+
+  if (def.spring) set(e, *def.spring);
+  if (def.constant_force) set(e, *def.constant_force);
+  if (def.gravity) set(e, *def.gravity);
+  if (def.drag) set(e, *def.drag);
+  if (def.appearance) set(e, *def.appearance);
+  if (def.collider) set(e, *def.collider);
+  terms_dirty_ = true;
+  return e;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::destroy(Entity e) {
+  require(e);
+  // Links attached to e go first (Box2D destroys a body's joints with it).
+  for (std::size_t i = link_defs_.size(); i-- > 0;) {
+    if (link_defs_[i].body_a == e || link_defs_[i].body_b == e) destroy_link(link_at(i));
+  }
+  remove<SpringDamper>(e);
+  remove<ConstantForce>(e);
+  remove<Gravity>(e);
+  remove<LinearDrag>(e);
+  remove<Appearance>(e);
+  remove<Collider>(e);
+  const std::size_t i = bodies_.erase(e);
+  dissipated_gone_ += mass_[i] * double(dissipated_body_[i]);  // stays in the account
+  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, types_, names_, dissipated_body_);
+  ++generations_[e.slot()];
+  free_slots_.push_back(e.slot());
+  terms_dirty_ = true;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::validate_link(const LinkDef& def, const std::string& who) const {
+  for (const Entity e : {def.body_a, def.body_b}) {
+    if (!bodies_.contains(e)) {
+      throw std::invalid_argument(
+          fmt::format("{}: body {}:{} is null or was destroyed", who, e.index1, e.generation));
+    }
+  }
+  if (def.body_a == def.body_b) {
+    throw std::invalid_argument(fmt::format(
+        "{}: both ends are {} (a link needs two different bodies)", who, describe(def.body_a)));
+  }
+  const LinkSpring& s = def.spring;
+  // isfinite first: an ordered comparison with NaN raises FE_INVALID (trapped in Debug tests).
+  auto nonnegative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  check_value<Real>(s.stiffness, nonnegative(s.stiffness), who, "stiffness", "finite and >= 0 N/m");
+  check_value<Real>(s.damping, nonnegative(s.damping), who, "damping", "finite and >= 0 N*s/m");
+  check_value<Real>(s.rest_length, nonnegative(s.rest_length), who, "rest_length",
+                    "finite and >= 0 m");
+  if (s.rest_length > 0.0) {
+    const std::size_t a = bodies_.index(def.body_a), b = bodies_.index(def.body_b);
+    if (x_[a] == x_[b] && y_[a] == y_[b]) {
+      throw std::invalid_argument(fmt::format(
+          "{}: {} and {} are at the same point, so the direction of a link with rest length "
+          "{:g} m is undefined; move one of them or use rest_length = 0",
+          who, describe(def.body_a), describe(def.body_b), s.rest_length));
+    }
+  }
+}
+
+template <class Real>
+Link detail::WorldKernel<Real>::create_link(const LinkDef& def) {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
+  validate_link(def, "link");
+  Entity key;
+  if (!link_free_slots_.empty()) {
+    const std::uint32_t slot = link_free_slots_.back();
+    link_free_slots_.pop_back();
+    key = Entity{slot + 1, link_generations_[slot]};
+  } else {
+    link_generations_.push_back(1);
+    key = Entity{static_cast<std::uint32_t>(link_generations_.size()), 1};
+  }
+  links_.insert(key);
+  link_defs_.push_back(def);
+  dissipated_link_.push_back(Real(0));
+  terms_dirty_ = true;
+  return Link{key.index1, key.generation};
+}
+
+template <class Real>
+bool detail::WorldKernel<Real>::contains(Link link) const {
+  return links_.contains(Entity{link.index1, link.generation});
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::destroy_link(Link link) {
+  const Entity key{link.index1, link.generation};
+  if (!links_.contains(key)) {
+    throw std::invalid_argument(
+        fmt::format("link {}:{} is null or was destroyed", link.index1, link.generation));
+  }
+  const std::size_t i = links_.erase(key);
+  dissipated_gone_ += double(dissipated_link_[i]);  // stays in the account
+  swap_pop(i, link_defs_, dissipated_link_);
+  ++link_generations_[key.slot()];
+  link_free_slots_.push_back(key.slot());
+  terms_dirty_ = true;
+}
+
+template <class Real>
+LinkDef detail::WorldKernel<Real>::link(Link link) const {
+  const Entity key{link.index1, link.generation};
+  if (!links_.contains(key)) {
+    throw std::invalid_argument(
+        fmt::format("link {}:{} is null or was destroyed", link.index1, link.generation));
+  }
+  return link_defs_[links_.index(key)];
+}
+
+template <class Real>
+std::pair<std::size_t, std::size_t> detail::WorldKernel<Real>::link_bodies(std::size_t i) const {
+  return {bodies_.index(link_defs_[i].body_a), bodies_.index(link_defs_[i].body_b)};
+}
+
+template <class Real>
+double detail::WorldKernel<Real>::dissipated_energy() const {
+  double total = dissipated_gone_;
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    total += mass_[j] * double(dissipated_body_[j]);
+  }
+  for (const Real e : dissipated_link_) total += double(e);
+  return total;
+}
+
+template <class Real>
+Body detail::WorldKernel<Real>::body(Entity e) const {
+  const std::size_t i = index_of(e);
+  return Body{mass_[i], {double(x_[i]), double(y_[i])}, {double(vx_[i]), double(vy_[i])}};
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::set_body(Entity e, const Body& b) {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
+  const std::size_t i = index_of(e);
+  validate(b, describe(e));
+  mass_[i] = b.mass;
+  x_[i] = prev_x_[i] = static_cast<Real>(b.position.x);
+  y_[i] = prev_y_[i] = static_cast<Real>(b.position.y);
+  vx_[i] = static_cast<Real>(b.velocity.x);
+  vy_[i] = static_cast<Real>(b.velocity.y);
+  terms_dirty_ = true;  // 1/m enters the per-body coefficients
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::set_keep_previous(bool keep) {
+  keep_previous_ = keep;
+  prev_x_ = x_;
+  prev_y_ = y_;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::reserve(std::size_t bodies) {
+  bodies_.dense.reserve(bodies);
+  bodies_.sparse.reserve(bodies);
+  generations_.reserve(bodies);
+  for (auto* v : {&x_, &y_, &vx_, &vy_, &prev_x_, &prev_y_}) v->reserve(bodies);
+  mass_.reserve(bodies);
+  types_.reserve(bodies);
+  names_.reserve(bodies);
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::rebuild_terms() {
+  const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
+  // Per-body coefficients, summed in double and rounded once to Real.
+  struct Field {
+    double stiffness = 0, anchor_x = 0, anchor_y = 0, rest = 0, gamma = 0, cx = 0, cy = 0;
+  };
+  const std::size_t n = body_count();
+  std::vector<Field> f(n);
+  for (std::size_t i = 0; i < springs_.data.size(); ++i) {
+    const SpringDamper& s = springs_.data[i];
+    const std::size_t j = bodies_.index(springs_.set.dense[i]);
+    if (types_[j] != BodyType::dynamic) continue;  // moved by nothing but its velocity
+    Field& fj = f[j];
+    const double m = mass_[j];
+    fj.stiffness = s.stiffness / m;
+    fj.gamma += s.damping / m;
+    fj.anchor_x = s.anchor.x, fj.anchor_y = s.anchor.y, fj.rest = s.rest_length;
+  }
+  for (std::size_t i = 0; i < drags_.data.size(); ++i) {
+    const std::size_t j = bodies_.index(drags_.set.dense[i]);
+    if (types_[j] != BodyType::dynamic) continue;
+    f[j].gamma += drags_.data[i].coefficient / mass_[j];
+  }
+  for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
+    const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
+    if (types_[j] != BodyType::dynamic) continue;
+    f[j].cx += constant_forces_.data[i].force.x / mass_[j];
+    f[j].cy += constant_forces_.data[i].force.y / mass_[j];
+  }
+  for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
+    const std::size_t j = bodies_.index(gravities_.set.dense[i]);
+    if (types_[j] != BodyType::dynamic) continue;
+    f[j].cx += gravities_.data[i].acceleration.x;
+    f[j].cy += gravities_.data[i].acceleration.y;
+  }
+  Coefficients& c = coeff_;
+  auto to_real = [&](std::vector<Real>& out, double Field::*member) {
+    out.resize(n);
+    for (std::size_t j = 0; j < n; ++j) out[j] = static_cast<Real>(f[j].*member);
+  };
+  to_real(c.stiffness, &Field::stiffness);
+  to_real(c.anchor_x, &Field::anchor_x);
+  to_real(c.anchor_y, &Field::anchor_y);
+  to_real(c.rest, &Field::rest);
+  to_real(c.gamma, &Field::gamma);
+  to_real(c.accel_x, &Field::cx);
+  to_real(c.accel_y, &Field::cy);
+  c.spring = !springs_.data.empty();
+  c.rest_length = std::any_of(c.rest.begin(), c.rest.end(), [](Real r) { return r != Real(0); });
+  c.damping = std::any_of(c.gamma.begin(), c.gamma.end(), [](Real g) { return g != Real(0); });
+  c.accel = false;
+  for (std::size_t j = 0; j < n; ++j) c.accel = c.accel || c.accel_x[j] != 0 || c.accel_y[j] != 0;
+  flows_.clear();
+  rebuild_network();
+  rebuild_contacts();
+  rebuild_discs();
+  terms_dirty_ = false;
+}
+
+template <class Real>
+unsigned detail::WorldKernel<Real>::active_terms() const {
+  unsigned bits = 0;
+  if (!springs_.data.empty()) bits |= term_spring;
+  if (!constant_forces_.data.empty()) bits |= term_constant_force;
+  if (!gravities_.data.empty()) bits |= term_gravity;
+  if (!drags_.data.empty()) bits |= term_drag;
+  if (!link_defs_.empty()) bits |= term_link;
+  return bits;
+}
+
+// Calls add(body index, kind, J) for every energy contribution: kinetic ½m|v|² per body, then
+// each potential (see EnergyReport). Shared by energy() and body_energies().
+template <class Real>
+template <class Add>
+void detail::WorldKernel<Real>::for_each_energy(Add&& add) const {
+  // Static and kinematic bodies are outside the account (their motion is imposed).
+  auto dynamic = [this](std::size_t j) { return types_[j] == BodyType::dynamic; };
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    if (!dynamic(j)) continue;
+    const double vx = vx_[j], vy = vy_[j];
+    add(j, &EnergyReport::kinetic, 0.5 * mass_[j] * (vx * vx + vy * vy));
+  }
+  for (std::size_t i = 0; i < springs_.data.size(); ++i) {
+    const SpringDamper& s = springs_.data[i];
+    const std::size_t j = bodies_.index(springs_.set.dense[i]);
+    if (!dynamic(j)) continue;
+    const double dx = double(x_[j]) - s.anchor.x, dy = double(y_[j]) - s.anchor.y;
+    const double d2 = dx * dx + dy * dy;
+    const double stretch = std::sqrt(d2) - s.rest_length;
+    add(j, &EnergyReport::spring,
+        0.5 * s.stiffness * (s.rest_length == 0.0 ? d2 : stretch * stretch));
+  }
+  for (const LinkDef& l : link_defs_) {
+    const std::size_t a = bodies_.index(l.body_a), b = bodies_.index(l.body_b);
+    const double dx = double(x_[a]) - double(x_[b]), dy = double(y_[a]) - double(y_[b]);
+    const double d2 = dx * dx + dy * dy;
+    const double stretch = std::sqrt(d2) - l.spring.rest_length;
+    const double e =
+        0.5 * l.spring.stiffness * (l.spring.rest_length == 0.0 ? d2 : stretch * stretch);
+    add(a, &EnergyReport::spring, 0.5 * e);
+    add(b, &EnergyReport::spring, 0.5 * e);
+  }
+  for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
+    const Vec2 g = gravities_.data[i].acceleration;
+    const std::size_t j = bodies_.index(gravities_.set.dense[i]);
+    if (!dynamic(j)) continue;
+    add(j, &EnergyReport::gravity, -mass_[j] * (g.x * double(x_[j]) + g.y * double(y_[j])));
+  }
+  for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
+    const Vec2 f = constant_forces_.data[i].force;
+    const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
+    if (!dynamic(j)) continue;
+    add(j, &EnergyReport::constant_force, -(f.x * double(x_[j]) + f.y * double(y_[j])));
+  }
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::body_energies(std::span<double> out) const {
+  if (out.size() < body_count())
+    throw std::invalid_argument("World::body_energies: span too short");
+  std::fill_n(out.begin(), body_count(), 0.0);
+  for_each_energy([&](std::size_t j, double EnergyReport::*, double joules) { out[j] += joules; });
+}
+
+template <class Real>
+EnergyReport detail::WorldKernel<Real>::energy() const {
+  EnergyReport e;
+  for_each_energy(
+      [&](std::size_t, double EnergyReport::*kind, double joules) { e.*kind += joules; });
+  return e;
+}
+
+template <class Real>
+std::uint64_t detail::WorldKernel<Real>::state_hash() const {
+  // FNV-1a, 64-bit (Fowler, Noll, Vo): offset basis 14695981039346656037, prime 1099511628211.
+  std::uint64_t h = 14695981039346656037ull;
+  // Each value's bytes, least significant first (what memory holds on every platform fixstep
+  // runs on: x86-64, aarch64, wasm32).
+  auto mix = [&h](Real v) {
+    const auto bits = bits_of(v);
+    for (std::size_t i = 0; i < sizeof bits; ++i) {
+      h ^= (bits >> (8 * i)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  };
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    mix(x_[j]);
+    mix(y_[j]);
+    mix(vx_[j]);
+    mix(vy_[j]);
+  }
+  return h;
+}
+
+// Force evaluation and the integrators are in world_step.cpp, instantiated there.
+template class detail::WorldKernel<float>;
+template class detail::WorldKernel<double>;
+
+}  // namespace fixstep
