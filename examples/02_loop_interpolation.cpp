@@ -41,15 +41,14 @@ int main(int argc, char** argv) {
   const std::string png = argc > 1 ? argv[1] : "02_loop_interpolation.png";
   try {
     // A 1 kg bob on a spring k = 4π² N/m (1 Hz), released 1 m from its anchor.
-    const double dt = 0.1;  // s: 10 ticks per second, on purpose
-    World sim(Precision::f64, WorldSettings{.dt = dt});
+    World sim(Precision::f64, WorldSettings{.dt = 0.1});  // s: 10 ticks per second, on purpose
     BodyDef bob;
     bob.body = Body{.mass = 1.0, .position = {1.0, 0.0}, .velocity = {}};
     bob.spring = SpringDamper{.anchor = {}, .stiffness = 4.0 * 3.14159265358979 * 3.14159265358979};
     sim.create_body(bob);
     sim.set_keep_previous(true);  // keep the last tick's positions for interpolation
 
-    FixedStepLoop loop(LoopSettings{.dt = dt});
+    FixedStepLoop loop(sim);  // ticks of the world's dt
     const VirtualClock clock(60.0);
     RenderFrame drawn;
     std::vector<float> held, smooth;  // the bob's drawn x in each frame

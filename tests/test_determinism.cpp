@@ -48,7 +48,7 @@ template <class FrameTime>
 std::uint64_t hash_through_loop(const Case& c, std::uint64_t ticks, FrameTime frame_seconds) {
   World sim = make_world(scene_for(c));
   ticks = ticks_for(c.scene, ticks);
-  FixedStepLoop loop(LoopSettings{.dt = sim.settings().dt});
+  FixedStepLoop loop(sim);
   while (sim.tick() < ticks) {
     loop.advance(frame_seconds(), TickInput{}, [&](const TickInput& in) {
       if (sim.tick() < ticks) sim.step(in);

@@ -14,7 +14,7 @@ namespace {
 constexpr double dt = 0.01;
 
 TEST(Loop, SteadySixtyHzRunsOneOrTwoTicksPerFrameAndKeepsTime) {
-  FixedStepLoop loop(LoopSettings{.dt = dt});
+  FixedStepLoop loop(dt);
   double elapsed = 0;
   for (int f = 1; f <= 600; ++f) {
     const FrameResult r = loop.advance(1.0 / 60, {}, [](const TickInput&) {});
@@ -29,7 +29,7 @@ TEST(Loop, SteadySixtyHzRunsOneOrTwoTicksPerFrameAndKeepsTime) {
 }
 
 TEST(Loop, JitteryFramesNeverLoseOrInventTime) {
-  FixedStepLoop loop(LoopSettings{.dt = dt});
+  FixedStepLoop loop(dt);
   std::mt19937 rng(1234);
   std::uniform_real_distribution<double> frame(0.001, 0.05);
   double elapsed = 0;
@@ -44,7 +44,7 @@ TEST(Loop, JitteryFramesNeverLoseOrInventTime) {
 }
 
 TEST(Loop, FiveSecondHitchIsClampedToQuarterSecond) {
-  FixedStepLoop loop(LoopSettings{.dt = dt});
+  FixedStepLoop loop(dt);
   const FrameResult r = loop.advance(5.0, {}, [](const TickInput&) {});
   EXPECT_EQ(r.ticks, 25);  // 0.25 s / 0.01 s, not 500
   EXPECT_NEAR(r.clamped_time, 4.75, 1e-12);
@@ -52,7 +52,7 @@ TEST(Loop, FiveSecondHitchIsClampedToQuarterSecond) {
 }
 
 TEST(Loop, TickCapDropsTheBacklogButKeepsAlphaBelowOne) {
-  FixedStepLoop loop(LoopSettings{.dt = dt, .max_frame_time = 0.25, .max_ticks_per_frame = 10});
+  FixedStepLoop loop(dt, LoopSettings{.max_frame_time = 0.25, .max_ticks_per_frame = 10});
   const FrameResult r = loop.advance(0.2049, {}, [](const TickInput&) {});
   EXPECT_EQ(r.ticks, 10);
   EXPECT_NEAR(r.dropped_time, 0.10, 1e-9);  // 20 ticks due, 10 run, the 10 others dropped
@@ -60,7 +60,7 @@ TEST(Loop, TickCapDropsTheBacklogButKeepsAlphaBelowOne) {
 }
 
 TEST(Loop, PauseSingleStepAndTimeScale) {
-  FixedStepLoop loop(LoopSettings{.dt = dt});
+  FixedStepLoop loop(dt);
   loop.set_paused(true);
   EXPECT_EQ(loop.advance(1.0, {}, [](const TickInput&) {}).ticks, 0);
   loop.request_single_step();
@@ -75,7 +75,7 @@ TEST(Loop, PauseSingleStepAndTimeScale) {
 }
 
 TEST(Loop, WindowKeysPauseStepAndScaleTimeWithinLimits) {
-  FixedStepLoop loop(LoopSettings{.dt = dt});
+  FixedStepLoop loop(dt);
   auto run_frame = [&] { return loop.advance(1.0 / 60, {}, [](const TickInput&) {}).ticks; };
   apply_loop_keys(WindowEvents{.toggle_pause = true}, loop);
   EXPECT_TRUE(loop.paused());
@@ -98,7 +98,7 @@ TEST(Loop, WindowKeysPauseStepAndScaleTimeWithinLimits) {
 }
 
 TEST(Loop, EachTickReceivesTheFramesInputWithItsOwnIndex) {
-  FixedStepLoop loop(LoopSettings{.dt = dt});
+  FixedStepLoop loop(dt);
   std::vector<TickInput> seen;
   const TickInput frame_input{.tick = 999, .push = {1.0, -2.0}};
   loop.advance(0.035, frame_input, [&](const TickInput& in) { seen.push_back(in); });
@@ -112,7 +112,7 @@ TEST(Loop, EachTickReceivesTheFramesInputWithItsOwnIndex) {
 /// Physics state after exactly n ticks of the default scene, frames arriving at `fps`.
 std::uint64_t hash_after(std::uint64_t n, double fps) {
   World sim = make_world(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml"));
-  FixedStepLoop loop(LoopSettings{.dt = sim.settings().dt});
+  FixedStepLoop loop(sim);
   const VirtualClock clock(fps);
   while (sim.tick() < n) {
     loop.advance(clock.frame_seconds(), {}, [&](const TickInput& in) {
@@ -132,9 +132,8 @@ TEST(Loop, StateAfterNTicksIsBitIdenticalAtAnyFrameRate) {
 }
 
 TEST(Loop, RejectsBadSettings) {
-  EXPECT_THROW(FixedStepLoop(LoopSettings{.dt = 0}), std::invalid_argument);
-  EXPECT_THROW(FixedStepLoop(LoopSettings{.dt = 0.01, .max_frame_time = -1}),
-               std::invalid_argument);
+  EXPECT_THROW(FixedStepLoop(0.0), std::invalid_argument);
+  EXPECT_THROW(FixedStepLoop(0.01, LoopSettings{.max_frame_time = -1}), std::invalid_argument);
   EXPECT_THROW(VirtualClock(0), std::invalid_argument);
 }
 

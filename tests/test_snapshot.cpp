@@ -39,7 +39,7 @@ struct Frame {
 
 /// Runs the frames through a loop of dt = 10 ms and returns every tick's input.
 std::vector<TickInput> run_frames(const std::vector<Frame>& frames) {
-  FixedStepLoop loop(LoopSettings{.dt = 0.01});
+  FixedStepLoop loop(0.01);
   InputSampler sampler;
   std::vector<TickInput> seen;
   for (const Frame& f : frames) {
@@ -113,7 +113,7 @@ TEST(InputPerTick, EveryPressAndReleaseOfARandomScriptReachesExactlyOneTick) {
     seen_releases += std::popcount(in.released);
   }
   // Presses of one button between two ticks merge (a set of bits); count them the same way.
-  FixedStepLoop loop(LoopSettings{.dt = 0.01});
+  FixedStepLoop loop(0.01);
   int expected_presses = 0, expected_releases = 0;
   std::uint32_t pending_p = 0, pending_r = 0, h = 0;
   std::size_t ticks_run = 0;
@@ -190,7 +190,7 @@ TEST(Snapshot, AStateTakenBeforeAComponentChangeComesBackWhole) {
   const std::uint64_t expected = sim.state_hash();
   sim.restore(snap);
   // A game rule removes a spring; restoring must bring the spring back.
-  sim.visit([](auto& w) { w.template remove<SpringDamper>(w.entities()[0]); });
+  sim.remove<SpringDamper>(sim.bodies()[0]);
   for (int t = 0; t < 30; ++t) sim.step();
   EXPECT_NE(sim.state_hash(), expected);
   sim.restore(snap);
@@ -399,11 +399,10 @@ TEST(SyncTest, ARuleAppliedOutsideTheRollbackIsCaught) {
   World sim = make_world(load_scene(scenes_dir / "default.toml"));
   SyncTest sync(sim, 4);
   for (std::uint64_t t = 0; t < 20; ++t) ASSERT_TRUE(sync.step(TickInput{.tick = t}));
-  sim.visit([](auto& w) {
-    Body b = w.body(w.entities()[0]);
-    b.position.x += 1e-9;
-    w.set_body(w.entities()[0], b);
-  });
+  const Entity first = sim.bodies()[0];
+  Body b = sim.body(first);
+  b.position.x += 1e-9;
+  sim.set_body(first, b);
   EXPECT_FALSE(sync.step(TickInput{.tick = 20}));
   ASSERT_TRUE(sync.mismatch());
   EXPECT_EQ(sync.mismatch()->tick, 21u);  // the first tick stepped from the changed state

@@ -90,7 +90,7 @@ TEST(World, OnlyDeclaredForceTermsRun) {
   // A projectile scene declares no spring: the spring term must not exist.
   const Scene projectile = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/projectile.toml");
   World sim = make_world(projectile);
-  const unsigned terms = sim.visit([](auto& w) { return w.active_terms(); });
+  const unsigned terms = sim.active_terms();
   EXPECT_EQ(terms & term_spring, 0u);
   EXPECT_NE(terms & term_gravity, 0u);
   EXPECT_NE(terms & term_drag, 0u);

@@ -181,10 +181,8 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Touched
                  std::string& buffer) {
   std::vector<std::optional<Body>> exact;
   if (with_exact) reference.at(sim.time(), exact, &touched);
-  sim.visit([&](const auto& w) {
-    energies.resize(w.body_count());
-    w.body_energies(energies);
-  });
+  energies.resize(sim.body_count());
+  sim.body_energies(energies);
   buffer.clear();
   auto out = std::back_inserter(buffer);
   const double world_energy = sim.energy().total(), dissipated = sim.dissipated_energy();

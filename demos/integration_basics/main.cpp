@@ -220,7 +220,7 @@ int run_window(const Options& o) {
   }
   Renderer renderer(width, height);
   live.restart();
-  FixedStepLoop loop(LoopSettings{.dt = live.dt});
+  FixedStepLoop loop(live.dt);
   loop.set_time_scale(o.speed);
   RealClock real_clock;
   const std::optional<VirtualClock> virtual_clock =

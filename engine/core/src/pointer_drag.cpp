@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "fixstep/det_math.hpp"
@@ -13,17 +15,16 @@ namespace fixstep {
 Entity pick_body(const World& sim, Vec2 point, double tolerance) {
   Entity best = no_body;
   double best_distance = 0.0;
-  sim.visit([&](const auto& w) {
-    for (std::size_t j = 0; j < w.body_count(); ++j) {
-      const double d = det::hypot(double(w.x()[j]) - point.x, double(w.y()[j]) - point.y);
-      const Appearance* a = w.template get<Appearance>(w.entities()[j]);
-      const double reach = std::max(a ? a->radius : 0.0, tolerance);
-      if (d <= reach && (best == no_body || d < best_distance)) {
-        best = w.entities()[j];
-        best_distance = d;
-      }
+  for (const Entity e : sim.bodies()) {
+    const Vec2 p = sim.body(e).position;
+    const double d = det::hypot(p.x - point.x, p.y - point.y);
+    const std::optional<Appearance> a = sim.get<Appearance>(e);
+    const double reach = std::max(a ? a->radius : 0.0, tolerance);
+    if (d <= reach && (best == no_body || d < best_distance)) {
+      best = e;
+      best_distance = d;
     }
-  });
+  }
   return best;
 }
 

@@ -29,6 +29,26 @@ Entity World::create_body(const BodyDef& def) {
 Link World::create_link(const LinkDef& def) {
   return visit([&](auto& w) { return w.create_link(def); });
 }
+std::span<const Entity> World::bodies() const {
+  return visit([](const auto& w) { return w.entities(); });
+}
+
+void World::body_energies(std::span<double> out) const {
+  if (out.size() != body_count()) {
+    throw std::invalid_argument(
+        fmt::format("body_energies: out holds {} values for {} bodies", out.size(), body_count()));
+  }
+  visit([&](const auto& w) { w.body_energies(out); });
+}
+
+unsigned World::active_terms() const {
+  return visit([](const auto& w) { return w.active_terms(); });
+}
+
+int World::threads_used() const {
+  return visit([](const auto& w) { return w.threads_used(); });
+}
+
 std::size_t World::link_count() const {
   return visit([](const auto& w) { return w.link_count(); });
 }

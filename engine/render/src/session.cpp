@@ -141,14 +141,14 @@ const WorldDef& tracked(WorldDef& def) {
 
 /// The loop of dt with the frame-time clamp max_frame_time and a tick cap that never binds
 /// below it (the derived cap stops at 10^6 + 1 ticks).
-LoopSettings loop_settings(double dt, double max_frame_time) {
+FixedStepLoop make_loop(double dt, double max_frame_time) {
   const double ticks = std::ceil(max_frame_time / dt) + 1.0;
   if (!(ticks <= max_frame_ticks)) {
     throw std::invalid_argument(fmt::format(
         "Session: a frame of {} s is more than 2^30 ticks of dt = {} s", max_frame_time, dt));
   }
-  return LoopSettings{
-      .dt = dt, .max_frame_time = max_frame_time, .max_ticks_per_frame = static_cast<int>(ticks)};
+  return FixedStepLoop(dt, LoopSettings{.max_frame_time = max_frame_time,
+                                        .max_ticks_per_frame = static_cast<int>(ticks)});
 }
 
 /// `sim`, checked to be a fresh build of `def` (Session's second constructor).
@@ -170,7 +170,7 @@ Session::Session(WorldDef def, const SessionSettings& settings)
     : def_(std::move(def)),
       title_(settings.title),
       sim_(std::make_unique<World>(World(tracked(def_)))),
-      loop_(loop_settings(def_.settings.dt, settings.max_frame_time)),
+      loop_(make_loop(def_.settings.dt, settings.max_frame_time)),
       renderer_(settings.width, settings.height) {
   start(settings);
 }
@@ -179,7 +179,7 @@ Session::Session(WorldDef def, World sim, const SessionSettings& settings)
     : def_(std::move(def)),
       title_(settings.title),
       sim_(std::make_unique<World>(std::move(built(sim, tracked(def_))))),
-      loop_(loop_settings(def_.settings.dt, settings.max_frame_time)),
+      loop_(make_loop(def_.settings.dt, settings.max_frame_time)),
       renderer_(settings.width, settings.height) {
   start(settings);
 }

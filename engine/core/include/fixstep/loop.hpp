@@ -13,8 +13,10 @@
 
 namespace fixstep {
 
+class World;
+
+/// How the loop guards frames; the tick length dt is the world's (WorldSettings::dt).
 struct LoopSettings {
-  double dt = 1.0 / 60.0;        ///< physics tick, s; finite and > 0
   double max_frame_time = 0.25;  ///< frame-time clamp, s ("Fix Your Timestep!": 0.25 s)
   /// Hard cap on ticks per frame, the second guard against the spiral of death (when ticks
   /// take longer than they simulate). 0 = derive: ceil(max_frame_time / dt) + 1.
@@ -33,8 +35,12 @@ struct FrameResult {
 /// given the frame time and a tick callback, which makes it testable with scripted times.
 class FixedStepLoop {
  public:
-  /// Throws std::invalid_argument on non-finite or non-positive dt or clamp.
-  explicit FixedStepLoop(const LoopSettings& settings);
+  /// The loop of `world`'s ticks: dt = world.settings().dt. Throws std::invalid_argument on a
+  /// non-finite or non-positive clamp or a negative tick cap.
+  explicit FixedStepLoop(const World& world, const LoopSettings& settings = {});
+  /// The loop of ticks of `dt` seconds (finite and > 0), for a program stepping something else
+  /// than one World. Throws std::invalid_argument as above and for a bad dt.
+  explicit FixedStepLoop(double dt, const LoopSettings& settings = {});
 
   /// Adds frame_seconds (clamped to max_frame_time, then scaled by time_scale) to the
   /// accumulator and calls tick(TickInput) once per whole dt in it, up to the tick cap.
@@ -72,7 +78,9 @@ class FixedStepLoop {
   /// Ticks run since construction or reset().
   [[nodiscard]] std::uint64_t ticks() const { return ticks_; }
   /// alpha = accumulator / dt, in [0, 1).
-  [[nodiscard]] double alpha() const { return accumulator_ / settings_.dt; }
+  [[nodiscard]] double alpha() const { return accumulator_ / dt_; }
+  /// The tick length, s.
+  [[nodiscard]] double dt() const { return dt_; }
   [[nodiscard]] const LoopSettings& settings() const { return settings_; }
   /// Empties the accumulator and the tick count (restart).
   void reset() {
@@ -81,6 +89,7 @@ class FixedStepLoop {
   }
 
  private:
+  double dt_;
   LoopSettings settings_;
   int tick_cap_;
   /// A tick is due once the accumulator reaches dt less a relative 1e-9: 0.25 s of frames
@@ -132,13 +141,13 @@ FrameResult FixedStepLoop::advance_with(double frame_seconds, TickAt&& tick_at) 
   while (accumulator_ >= due_) {
     if (r.ticks == tick_cap_) {
       // Give up on the backlog but keep the fraction, so alpha stays in [0, 1).
-      const double keep = std::fmod(accumulator_, settings_.dt);
+      const double keep = std::fmod(accumulator_, dt_);
       r.dropped_time = accumulator_ - keep;
       accumulator_ = keep;
       break;
     }
     tick_at(ticks_++);
-    accumulator_ = std::max(accumulator_ - settings_.dt, 0.0);
+    accumulator_ = std::max(accumulator_ - dt_, 0.0);
     ++r.ticks;
   }
   r.alpha = alpha();

@@ -101,16 +101,6 @@ class World {
   [[nodiscard]] Precision precision() const {
     return world_.index() == 0 ? Precision::f32 : Precision::f64;
   }
-  /// Calls f(detail::WorldKernel<float>&) or f(detail::WorldKernel<double>&).
-  template <class F>
-  decltype(auto) visit(F&& f) {
-    return std::visit(std::forward<F>(f), world_);
-  }
-  template <class F>
-  decltype(auto) visit(F&& f) const {
-    return std::visit(std::forward<F>(f), world_);
-  }
-
   // The members below forward to the detail::WorldKernel<float> or detail::WorldKernel<double>
   // inside: units, shapes and errors are those documented in world.hpp (create_body throws
   // std::invalid_argument naming the body and field; step never throws and allocates nothing once
@@ -120,6 +110,9 @@ class World {
 
   // --- bodies by handle -----------------------------------------------------------------
   Entity create_body(const BodyDef& def);
+  /// Every live body's handle, in the order the world steps them (`for (Entity e :
+  /// world.bodies())`). Valid until the next create or destroy.
+  [[nodiscard]] std::span<const Entity> bodies() const;
   /// Destroys the body, its components and its links; throws std::invalid_argument if stale.
   void destroy(Entity e);
   /// Whether e names a live body (false for the null handle and destroyed bodies).
@@ -190,6 +183,15 @@ class World {
   /// The name of the body at dense index `index` < body_count().
   [[nodiscard]] const std::string& name(std::size_t index) const;
   [[nodiscard]] EnergyReport energy() const;  ///< J
+  /// Mechanical energy of each body, J, in bodies() order; `out` must hold body_count()
+  /// values (else std::invalid_argument). A link's potential is split equally between its two
+  /// bodies.
+  void body_energies(std::span<double> out) const;
+  /// Which force terms some body declares (bits of ForceTermBits): a term nobody declares is
+  /// not computed.
+  [[nodiscard]] unsigned active_terms() const;
+  /// Threads the last step used (1 or 2).
+  [[nodiscard]] int threads_used() const;
   /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
   [[nodiscard]] double dissipated_energy() const;
   /// Work of kinematic bodies on the others through contacts and links, J
@@ -232,6 +234,15 @@ class World {
   void restore(const WorldSnapshot& snapshot);
 
  private:
+  template <class F>
+  decltype(auto) visit(F&& f) {
+    return std::visit(std::forward<F>(f), world_);
+  }
+  template <class F>
+  decltype(auto) visit(F&& f) const {
+    return std::visit(std::forward<F>(f), world_);
+  }
+
   std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>> world_;
   std::vector<std::string> warnings_;
 };
