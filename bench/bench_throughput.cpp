@@ -1,8 +1,10 @@
 // Throughput of fixstep's stepping path against the machine's limits and against what a user
 // would write or pick instead, in one run (Google Benchmark):
-//   engine      fixstep::detail::WorldKernel<Real>::step() — the normal stepping path — per
-//   integrator, f32/f64,
-//               spring-damper and projectile scenes, N = 10^2 ... 1.6·10^7 bodies;
+//   engine      the kernel's step (detail::WorldKernel<Real>::step(), the stepping path a
+//               World holds) per integrator, f32/f64, spring-damper and projectile scenes, N = 10^2
+//               ... 1.6·10^7 bodies;
+//   world       the public fixstep::World's step (semi-implicit Euler, N <= 10^6): what the
+//               interface adds to the kernel it holds;
 //   raw         a fused loop over plain arrays doing the same arithmetic (the kernel bound);
 //               checked bit for bit against the engine before anything is timed;
 //   triad       STREAM's triad a = b + s·c (McCalpin, "Memory Bandwidth and Machine Balance
@@ -101,7 +103,7 @@ T& cached(int slot, const std::string& key, Make make) {
     std::string key;
     std::shared_ptr<void> object;
   };
-  static Slot slots[3];
+  static Slot slots[4];
   Slot& c = slots[slot];
   if (c.key != key) {
     c.object.reset();
@@ -541,6 +543,26 @@ void bm_engine(benchmark::State& st, SceneKind s, Integrator i) {
   set_rates(st, n, w.bytes_per_body_step());
 }
 
+/// The same step through the public fixstep::World (the precision inside, chosen at creation):
+/// what a program holds. Against engine/ (the kernel it holds), in the same run, it measures
+/// what the public interface adds per tick.
+template <class Real>
+void bm_world(benchmark::State& st, SceneKind s) {
+  const auto n = static_cast<std::size_t>(st.range(0));
+  auto& w = cached<fixstep::World>(3, cache_key(s, sizeof(Real), n), [&] {
+    auto* world = new fixstep::World(sizeof(Real) == 4 ? Precision::f32 : Precision::f64,
+                                     WorldSettings{.dt = dt});
+    for (std::size_t j = 0; j < n; ++j) world->create_body(body_def(s, j));
+    return world;
+  });
+  w.step();
+  for (auto _ : st) {
+    w.step();
+    benchmark::ClobberMemory();
+  }
+  set_rates(st, n, make_world<Real>(s, 1, Integrator::semi_implicit_euler)->bytes_per_body_step());
+}
+
 /// Bytes per body-step of the raw loops: the arrays each reads and writes (as the engine
 /// counts them).
 std::size_t raw_bytes(SceneKind s, Integrator i, std::size_t real) {
@@ -735,6 +757,14 @@ void register_all(const Options& o) {
                                             }),
                n);
         }
+        if (n <= 1'000'000) {  // one more world in memory: not beside the 1.6·10^7-body ones
+          tune(benchmark::RegisterBenchmark(
+                   fmt::format("world/{}/{}/semi_implicit_euler", scene_name(s), prec).c_str(),
+                   [=](benchmark::State& st) {
+                     f64 ? bm_world<double>(st, s) : bm_world<float>(st, s);
+                   }),
+               n);
+        }
         tune(benchmark::RegisterBenchmark(
                  fmt::format("aos_virtual/{}/{}/semi_implicit_euler", scene_name(s), prec).c_str(),
                  [=](benchmark::State& st) {
@@ -868,16 +898,20 @@ std::string report(const Collector& c, const Options& o) {
     line(head), line(rule);
     for (const char* p : precs) {
       std::string row = fmt::format("| naive AoS + virtual | {} |", p),
-                  row2 = fmt::format("| speed-up of the engine | {} |", p);
+                  row2 = fmt::format("| speed-up of the engine | {} |", p),
+                  row3 = fmt::format("| public World / kernel | {} |", p);
       for (auto n : ns) {
         const auto* a =
             c.find(fmt::format("aos_virtual/{}/{}/semi_implicit_euler/{}", scene_name(s), p, n));
         const auto* e =
             c.find(fmt::format("engine/{}/{}/semi_implicit_euler/{}", scene_name(s), p, n));
+        const auto* w =
+            c.find(fmt::format("world/{}/{}/semi_implicit_euler/{}", scene_name(s), p, n));
         row += a ? fmt::format(" {:.3g} |", a->ns_per_body_step()) : " – |";
         row2 += a && e ? fmt::format(" {:.1f}x |", a->ns / e->ns) : " – |";
+        row3 += w && e ? fmt::format(" {:.3f} |", w->ns / e->ns) : " – |";
       }
-      line(row), line(row2);
+      line(row), line(row2), line(row3);
     }
   }
 

@@ -61,14 +61,14 @@ int main(int argc, char** argv) {
     const float band = (height - 40.0f) / 6.0f;
     int row = 0;
     for (const Integrator method : all_integrators) {
-      fixstep::detail::WorldKernel<double> world(WorldSettings{.dt = dt, .integrator = method});
-      world.create_body(bob);
+      World world(Precision::f64, WorldSettings{.dt = dt, .integrator = method});
+      const Entity body = world.create_body(bob);
       const double e0 = world.energy().total();
-      std::vector<double> x{world.x()[0]};
+      std::vector<double> x{world.body(body).position.x};
       double worst = 0.0;
       for (int i = 1; i <= ticks; ++i) {
         world.step();
-        x.push_back(world.x()[0]);
+        x.push_back(world.body(body).position.x);
         worst = std::max(worst, std::abs(x.back() - exact[i]));
       }
       char label[160];

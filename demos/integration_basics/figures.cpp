@@ -472,18 +472,18 @@ std::vector<ForceRow> force_rows(double dt, std::uint64_t first, std::uint64_t l
   BodyDef def;
   def.body = Body{.mass = 1.0};
   def.constant_force = ConstantForce{.force = {10.0, 0.0}};
-  fixstep::detail::WorldKernel<float> ee(
-      WorldSettings{.dt = dt, .integrator = Integrator::explicit_euler});
-  fixstep::detail::WorldKernel<float> sie(
-      WorldSettings{.dt = dt, .integrator = Integrator::semi_implicit_euler});
-  ee.create_body(def);
-  sie.create_body(def);
+  World ee(Precision::f32, WorldSettings{.dt = dt, .integrator = Integrator::explicit_euler});
+  World sie(Precision::f32, WorldSettings{.dt = dt, .integrator = Integrator::semi_implicit_euler});
+  const Entity ee_body = ee.create_body(def), sie_body = sie.create_body(def);
   std::vector<ForceRow> rows;
   for (std::uint64_t tick = 0; tick <= last; ++tick) {
     if (tick >= first) {
       const double t = static_cast<double>(tick) * dt;
       const exact::AxisState e = exact::linear(0, 0, 0, 0, 0, 10.0, t);
-      rows.push_back({t, ee.x()[0], ee.vx()[0], sie.x()[0], sie.vx()[0], e.x, e.v});
+      const Body a = ee.body(ee_body), b = sie.body(sie_body);  // float values, exact in double
+      rows.push_back({t, static_cast<float>(a.position.x), static_cast<float>(a.velocity.x),
+                      static_cast<float>(b.position.x), static_cast<float>(b.velocity.x), e.x,
+                      e.v});
     }
     if (tick < last) {
       ee.step();

@@ -39,9 +39,8 @@ struct Trace {
   void add(double time, double position, double velocity, double e);
 };
 
-/// An oscillator stepped through a fixstep World (fixstep::detail::WorldKernel<float> or
-/// fixstep::detail::WorldKernel<double>) with one integrator at a fixed dt (s); trace() holds tick
-/// 0 (the initial state) and every tick.
+/// An oscillator stepped through a fixstep World (f32 or f64) with one integrator at a fixed dt
+/// (s); trace() holds tick 0 (the initial state) and every tick.
 class OscillatorRun {
  public:
   /// Throws std::invalid_argument for a dt that is not finite and > 0 (from World).
