@@ -16,6 +16,22 @@ void World::destroy(Entity e) {
 bool World::contains(Entity e) const {
   return visit([&](const auto& w) { return w.contains(e); });
 }
+void World::set_position(Entity e, Vec2 position) {
+  visit([&](auto& w) { w.set_position(e, position); });
+}
+
+void World::set_velocity(Entity e, Vec2 velocity) {
+  visit([&](auto& w) { w.set_velocity(e, velocity); });
+}
+
+std::uint64_t World::user_data(Entity e) const {
+  return visit([&](const auto& w) { return w.user_data(e); });
+}
+
+void World::set_user_data(Entity e, std::uint64_t value) {
+  visit([&](auto& w) { w.set_user_data(e, value); });
+}
+
 Entity World::find(std::string_view name) const {
   return visit([&](const auto& w) { return w.find(name); });
 }

@@ -94,12 +94,44 @@ void detail::WorldKernel<Real>::require(Entity e) const {
   }
 }
 
+namespace {
+std::uint64_t name_hash(std::string_view name) {
+  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a, 64-bit
+  for (const char c : name) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  return h;
+}
+}  // namespace
+
+template <class Real>
+void detail::WorldKernel<Real>::index_name(Entity e, const std::string& name) const {
+  if (name_index_ && !name.empty()) name_index_->by_hash[name_hash(name)].push_back(e);
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::unindex_name(Entity e, const std::string& name) const {
+  if (!name_index_ || name.empty()) return;
+  const auto it = name_index_->by_hash.find(name_hash(name));
+  if (it == name_index_->by_hash.end()) return;
+  std::erase(it->second, e);
+  if (it->second.empty()) name_index_->by_hash.erase(it);
+}
+
 template <class Real>
 Entity detail::WorldKernel<Real>::find(std::string_view name) const {
-  for (std::size_t j = 0; j < names_.size(); ++j) {
-    if (names_[j] == name) return bodies_.dense[j];
+  if (name.empty()) return null_entity;
+  if (!name_index_) {
+    name_index_.reset(new NameIndex);
+    for (std::size_t j = 0; j < names_.size(); ++j) index_name(bodies_.dense[j], names_[j]);
   }
-  return null_entity;
+  const auto it = name_index_->by_hash.find(name_hash(name));
+  if (it == name_index_->by_hash.end()) return null_entity;
+  Entity best = null_entity;
+  std::size_t best_index = 0;
+  for (const Entity e : it->second) {  // bodies of that hash: the first in dense order
+    const std::size_t j = bodies_.index(e);
+    if (names_[j] == name && (best == null_entity || j < best_index)) best = e, best_index = j;
+  }
+  return best;
 }
 
 template <class Real>
@@ -182,6 +214,8 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   prev_x_.push_back(x_.back());
   prev_y_.push_back(y_.back());
   names_.push_back(def.name);
+  user_data_.push_back(def.user_data);
+  index_name(e, def.name);
   dissipated_body_.push_back(Real(0));
 
   if (def.spring) set(e, *def.spring);
@@ -207,9 +241,11 @@ void detail::WorldKernel<Real>::destroy(Entity e) {
   remove<LinearDrag>(e);
   remove<Appearance>(e);
   remove<Collider>(e);
+  unindex_name(e, names_[bodies_.index(e)]);
   const std::size_t i = bodies_.erase(e);
   dissipated_gone_ += mass_[i] * double(dissipated_body_[i]);  // stays in the account
-  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, types_, names_, dissipated_body_);
+  swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, types_, names_, user_data_,
+           dissipated_body_);
   ++generations_[e.slot()];
   free_slots_.push_back(e.slot());
   terms_dirty_ = true;
@@ -330,6 +366,29 @@ void detail::WorldKernel<Real>::set_body(Entity e, const Body& b) {
 }
 
 template <class Real>
+void detail::WorldKernel<Real>::set_position(Entity e, Vec2 position) {
+  const IeeeFloatMode ieee;
+  const std::size_t i = index_of(e);
+  check_vec<Real>(position, describe(e), "position");
+  x_[i] = prev_x_[i] = static_cast<Real>(position.x);
+  y_[i] = prev_y_[i] = static_cast<Real>(position.y);
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::set_velocity(Entity e, Vec2 velocity) {
+  const IeeeFloatMode ieee;
+  const std::size_t i = index_of(e);
+  check_vec<Real>(velocity, describe(e), "velocity");
+  if (types_[i] == BodyType::static_body && (velocity.x != 0.0 || velocity.y != 0.0)) {
+    throw std::invalid_argument(
+        fmt::format("{}: velocity: a static body never moves (got ({}, {}) m/s); make it kinematic",
+                    describe(e), velocity.x, velocity.y));
+  }
+  vx_[i] = static_cast<Real>(velocity.x);
+  vy_[i] = static_cast<Real>(velocity.y);
+}
+
+template <class Real>
 void detail::WorldKernel<Real>::set_keep_previous(bool keep) {
   keep_previous_ = keep;
   prev_x_ = x_;
@@ -345,6 +404,7 @@ void detail::WorldKernel<Real>::reserve(std::size_t bodies) {
   mass_.reserve(bodies);
   types_.reserve(bodies);
   names_.reserve(bodies);
+  user_data_.reserve(bodies);
 }
 
 template <class Real>

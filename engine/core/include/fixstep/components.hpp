@@ -159,6 +159,10 @@ struct BodyDef {
   std::optional<LinearDrag> drag;
   std::optional<Appearance> appearance;
   std::optional<Collider> collider;  ///< contacts with the world's planes (World::add_plane)
+  /// The program's own 64-bit value for this body (an index into its tables, a tag, a
+  /// pointer's bits): kept with the body, copied by snapshots, never read by the physics nor
+  /// part of the state or definition hash.
+  std::uint64_t user_data = 0;
 };
 
 }  // namespace fixstep

@@ -117,7 +117,9 @@ class World {
   void destroy(Entity e);
   /// Whether e names a live body (false for the null handle and destroyed bodies).
   [[nodiscard]] bool contains(Entity e) const;
-  /// The first body (dense order) named `name`, or the null entity. O(bodies).
+  /// The body named `name` (the first in bodies() order when several share it), or the null
+  /// entity (also for ""). O(1) for a name no other body has: a hash index the world keeps,
+  /// built on the first call after a copy or restore.
   [[nodiscard]] Entity find(std::string_view name) const;
   /// Position (m) and velocity (m/s) of e, in double; throws std::invalid_argument if stale.
   [[nodiscard]] Body body(Entity e) const;
@@ -125,6 +127,20 @@ class World {
   /// program's edit between ticks (a teleport, a respawn). Prefer TickInput's per-body input
   /// (BodyInput) for what a player does, so recordings carry it.
   void set_body(Entity e, const Body& body);
+  /// Moves e to `position` (m), its velocity and mass kept; validated as create_body (a
+  /// non-finite or, in f32, unrepresentable value throws std::invalid_argument naming the
+  /// body and field); throws if e is stale. An edit between ticks, as set_body.
+  void set_position(Entity e, Vec2 position);
+  /// Sets e's velocity (m/s): a kinematic body's motion from the next tick on, or a dynamic
+  /// body's edit between ticks. Validated as create_body; a non-zero velocity for a static body
+  /// throws std::invalid_argument (it never moves); throws if e is stale.
+  void set_velocity(Entity e, Vec2 velocity);
+  /// The program's 64-bit value of e (BodyDef::user_data); throws std::invalid_argument if e
+  /// is stale.
+  [[nodiscard]] std::uint64_t user_data(Entity e) const;
+  /// Sets e's user data: kept with the body, copied by snapshots, never part of the state
+  /// hash; throws std::invalid_argument if e is stale.
+  void set_user_data(Entity e, std::uint64_t value);
   /// e's name ("" if none); throws std::invalid_argument if stale.
   [[nodiscard]] const std::string& name(Entity e) const;
   /// e's type (dynamic, static or kinematic); throws std::invalid_argument if stale.

@@ -21,6 +21,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -161,7 +162,9 @@ class WorldKernel {
   [[nodiscard]] std::size_t body_count() const { return bodies_.dense.size(); }
   /// Dense index of e's body (the index into x(), y(), ...); throws if e is stale.
   [[nodiscard]] std::size_t index_of(Entity e) const;
-  /// The first body in dense order named `name`, or the null entity. O(bodies).
+  /// The first body in dense order named `name`, or the null entity (also for ""). O(1) for a
+  /// name no other body has (O(k) for k bodies of one name): a hash index built on the first
+  /// call after a copy and kept up to date by create_body and destroy.
   [[nodiscard]] Entity find(std::string_view name) const;
 
   // --- links: spring-dampers between bodies (cold path; see LinkSpring for the force) ------
@@ -204,6 +207,16 @@ class WorldKernel {
   [[nodiscard]] Body body(Entity e) const;
   /// Overwrites mass, position and velocity of e (validated like create_body).
   void set_body(Entity e, const Body& body);
+  /// Moves e to `position` (m) with its velocity and mass kept, validated as create_body.
+  void set_position(Entity e, Vec2 position);
+  /// Sets e's velocity (m/s), validated as create_body: a kinematic body's next motion, or a
+  /// dynamic body's edit between ticks. Throws std::invalid_argument for a non-zero velocity
+  /// of a static body (it never moves).
+  void set_velocity(Entity e, Vec2 velocity);
+  /// The program's 64-bit value of e (BodyDef::user_data); throws if e is stale.
+  [[nodiscard]] std::uint64_t user_data(Entity e) const { return user_data_[index_of(e)]; }
+  /// Sets e's user data (part of copies and snapshots, never of the state hash).
+  void set_user_data(Entity e, std::uint64_t value) { user_data_[index_of(e)] = value; }
 
   // --- planes: static half-planes bodies with a Collider collide with (world_contacts.cpp) --
   /// Adds the half-plane n·x >= offset of free space with n = def.normal/|def.normal|; returns
@@ -359,7 +372,8 @@ class WorldKernel {
   std::vector<double> mass_;
   std::vector<BodyType> types_;
   std::vector<std::string> names_;
-  double external_work_ = 0.0;  ///< J (external_work())
+  std::vector<std::uint64_t> user_data_;  ///< BodyDef::user_data, in dense order
+  double external_work_ = 0.0;            ///< J (external_work())
   ContactStats contact_stats_;
 
   // components (authoritative, double)
@@ -440,6 +454,14 @@ class WorldKernel {
   std::vector<Real> fx_, fy_, power_body_, power_link_;
   // Stage states and derivatives, one vector per stage of a four-stage integrator.
   std::array<std::vector<Real>, 4> s_, d_;
+  /// Bodies by name for find(): FNV-1a of the name -> the bodies with that hash (unnamed bodies
+  /// are not indexed). A cache: a copy rebuilds it on its first find().
+  struct NameIndex {
+    std::unordered_map<std::uint64_t, std::vector<Entity>> by_hash;
+  };
+  void index_name(Entity e, const std::string& name) const;
+  void unindex_name(Entity e, const std::string& name) const;
+  mutable CachePtr<NameIndex, std::default_delete<NameIndex>> name_index_;
   CachePtr<Workers, WorkersDeleter> workers_;
   CachePtr<ImplicitSolver<Real>, ImplicitSolverDeleter<Real>> implicit_;
   // (world_coupled.cpp)
