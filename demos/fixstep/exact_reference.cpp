@@ -55,7 +55,8 @@ void TouchedBodies::touch(std::size_t j, std::uint64_t tick) {
 void TouchedBodies::after_tick(const World& sim) {
   if (count_ == dynamic_count_) return;
   const std::uint64_t tick = sim.tick();
-  for (const Impact& i : sim.impacts()) touch(i.body_a, tick), touch(i.body_b, tick);
+  for (const Impact& i : sim.impacts())
+    touch(sim.index_of(i.a), tick), touch(sim.index_of(i.b), tick);
   for (const ContactEvent& c : sim.contacts_begun()) {
     touch(sim.index_of(c.a), tick);
     touch(sim.index_of(c.b), tick);

@@ -175,10 +175,9 @@ void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
       break;
     case Phase::flying: {
       // The engine resolved this tick's disc-disc impacts (the bounce); the rules read them.
-      // The ball's first impact with a target knocks it off its rope, and scores. Impacts
-      // name bodies by dense index (valid in this tick): entity_at gives their handles.
+      // The ball's first impact with a target knocks it off its rope, and scores.
       for (const fixstep::Impact& hit : sim.impacts()) {
-        const fixstep::Entity a = sim.entity_at(hit.body_a), z = sim.entity_at(hit.body_b);
+        const fixstep::Entity a = hit.a, z = hit.b;
         const int i = a == ball ? target_number(z) : z == ball ? target_number(a) : -1;
         if (i >= 0) knock(game, i, sim);  // the ball and a target
       }

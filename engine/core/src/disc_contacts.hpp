@@ -96,6 +96,14 @@ struct WarmImpulse {
   double lambda_n = 0, lambda_t = 0;
 };
 
+/// An impact as the contact solver logs it: the two bodies by dense index (body_a < body_b),
+/// its time (s after the tick's start) and closing speed (m/s). World::impacts() names them
+/// by handle.
+struct DiscImpact {
+  std::uint32_t body_a = 0, body_b = 0;
+  double time = 0.0, normal_speed = 0.0;
+};
+
 template <class Real>
 class DiscContacts {
  public:
@@ -132,7 +140,7 @@ class DiscContacts {
   /// b - discs().size()), disc pairs in (a, b) order.
   [[nodiscard]] std::span<const RestContact> touching() const { return contacts_; }
   /// The impacts of the last resolve(), in order.
-  [[nodiscard]] std::span<const Impact> impacts() const { return impact_log_; }
+  [[nodiscard]] std::span<const DiscImpact> impacts() const { return impact_log_; }
   /// Impacts of a disc in a tick past which its inelastic pairs that end the tick overlapping
   /// are left to the resting solver.
   static constexpr int max_impacts = 8;
@@ -188,7 +196,7 @@ class DiscContacts {
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
   std::vector<DiscEvent> heap_;
-  std::vector<Impact> impact_log_;
+  std::vector<DiscImpact> impact_log_;
   std::vector<RestContact> contacts_;
   std::vector<WarmImpulse> warm_;
   std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s

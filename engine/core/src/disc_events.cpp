@@ -204,7 +204,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   if (e * -vn <= std::max(-cn, 0.0) * dt) e = 0.0;  // it would hit again within the tick: rest
   const double mass = 1.0 / (da.inv_mass + db.inv_mass);
   const double jn = -(1.0 + e) * vn * mass;
-  impact_log_.push_back(Impact{da.body, db.body, now, -vn});
+  impact_log_.push_back(DiscImpact{da.body, db.body, now, -vn});
   // Coulomb over the normal impulse: the tangential relative velocity loses at most μ jn/m.
   const double tx = wx - (wx * nx + wy * ny) * nx, ty = wy - (wx * nx + wy * ny) * ny;
   const double speed = length(tx, ty);

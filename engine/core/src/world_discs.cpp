@@ -186,7 +186,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
 template <class Real>
 std::span<const Impact> detail::WorldKernel<Real>::impacts() const {
   if (!discs_) return {};
-  return discs_->impacts();
+  return impacts_;
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                              \

@@ -40,6 +40,7 @@ void detail::WorldKernel<Real>::update_contact_events() {
   begun_.clear();
   ended_.clear();
   hits_.clear();
+  impacts_.clear();
   const detail::DiscContacts<Real>& dc = *discs_;
   const auto discs = dc.discs();
   const std::span<const Entity> ids = bodies_.dense;
@@ -51,7 +52,10 @@ void detail::WorldKernel<Real>::update_contact_events() {
     if (c.b < discs.size()) touching_.push_back(pair_of(discs[c.a].body, discs[c.b].body, 0.0));
   }
   sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
-  for (const Impact& i : dc.impacts()) hits_.push_back(pair_of(i.body_a, i.body_b, i.normal_speed));
+  for (const DiscImpact& i : dc.impacts()) {
+    hits_.push_back(pair_of(i.body_a, i.body_b, i.normal_speed));
+    impacts_.push_back(Impact{ids[i.body_a], ids[i.body_b], i.time, i.normal_speed});
+  }
   sort_by_slots(hits_);
   auto speed_of = [&](const ContactEvent& p) {
     double speed = 0.0;

@@ -52,7 +52,7 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
   n += sum(contact_.body, contact_.radius, contact_.x0, contact_.y0, contact_.vx0, contact_.vy0,
            contact_.after);
   n += sum(immovable_.body, immovable_.x0, immovable_.y0, immovable_.vx0, immovable_.vy0);
-  n += sum(touching_, touching_before_, hits_, begun_, ended_, saved_accel_);
+  n += sum(touching_, touching_before_, hits_, begun_, ended_, impacts_, saved_accel_);
   if (discs_) n += sizeof(*discs_.get()) + discs_->bytes();
   return n;
 }

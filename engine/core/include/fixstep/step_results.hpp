@@ -34,11 +34,12 @@ struct ContactStats {
   std::size_t capped = 0;
 };
 
-/// A disc-disc impact resolved at its time within the last tick (World::impacts()).
+/// A disc-disc impact resolved at its time within the last tick (World::impacts()), in the
+/// order they were resolved.
 struct Impact {
-  std::uint32_t body_a = 0, body_b = 0;  ///< dense body indices, body_a < body_b
-  double time = 0.0;                     ///< s after the tick's start
-  double normal_speed = 0.0;             ///< closing speed along the line of centres, m/s (> 0)
+  Entity a{}, b{};            ///< the two bodies, a before b in World::bodies() order
+  double time = 0.0;          ///< s after the tick's start
+  double normal_speed = 0.0;  ///< closing speed along the line of centres, m/s (> 0)
 };
 
 /// A pair of discs that began or stopped touching in the last tick (World::contacts_begun(),

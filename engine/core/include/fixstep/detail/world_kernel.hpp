@@ -508,6 +508,7 @@ class WorldKernel {
   // as handle pairs sorted by slot; part of a snapshot, so events after a restore are the same.
   std::vector<ContactEvent> touching_, touching_before_, hits_;  // normal_speed unused, hits_
   std::vector<ContactEvent> begun_, ended_;
+  std::vector<Impact> impacts_;  ///< the last tick's, by handle
   void update_contact_events();
   // Per-body input (world_input.cpp): impulses and velocities at the tick's start; forces
   // added to the constant accelerations for the tick and taken off after it, exactly.
