@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "fixstep/bits.hpp"
+#include "fixstep/fnv1a.hpp"
 #include "fixstep/work_progress.hpp"
 
 namespace fixstep {
@@ -36,12 +37,9 @@ class Fnv1a {
 
  private:
   void add_bits(std::uint64_t bits) {
-    for (int i = 0; i < 8; ++i) {
-      hash_ ^= (bits >> (8 * i)) & 0xffu;
-      hash_ *= 1099511628211ull;
-    }
+    for (int i = 0; i < 8; ++i) hash_ = fnv1a_byte(hash_, (bits >> (8 * i)) & 0xffu);
   }
-  std::uint64_t hash_ = 14695981039346656037ull;
+  std::uint64_t hash_ = fnv1a_basis;
 };
 
 void hash_body(Fnv1a& h, const BodyDef& b) {

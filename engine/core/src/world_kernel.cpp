@@ -8,6 +8,7 @@
 
 #include "fixstep/bits.hpp"
 #include "fixstep/float_mode.hpp"
+#include "fixstep/fnv1a.hpp"
 
 namespace fixstep {
 
@@ -94,23 +95,15 @@ void detail::WorldKernel<Real>::require(Entity e) const {
   }
 }
 
-namespace {
-std::uint64_t name_hash(std::string_view name) {
-  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a, 64-bit
-  for (const char c : name) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
-  return h;
-}
-}  // namespace
-
 template <class Real>
 void detail::WorldKernel<Real>::index_name(Entity e, const std::string& name) const {
-  if (name_index_ && !name.empty()) name_index_->by_hash[name_hash(name)].push_back(e);
+  if (name_index_ && !name.empty()) name_index_->by_hash[fnv1a(name)].push_back(e);
 }
 
 template <class Real>
 void detail::WorldKernel<Real>::unindex_name(Entity e, const std::string& name) const {
   if (!name_index_ || name.empty()) return;
-  const auto it = name_index_->by_hash.find(name_hash(name));
+  const auto it = name_index_->by_hash.find(fnv1a(name));
   if (it == name_index_->by_hash.end()) return;
   std::erase(it->second, e);
   if (it->second.empty()) name_index_->by_hash.erase(it);
@@ -123,7 +116,7 @@ Entity detail::WorldKernel<Real>::find(std::string_view name) const {
     name_index_.reset(new NameIndex);
     for (std::size_t j = 0; j < names_.size(); ++j) index_name(bodies_.dense[j], names_[j]);
   }
-  const auto it = name_index_->by_hash.find(name_hash(name));
+  const auto it = name_index_->by_hash.find(fnv1a(name));
   if (it == name_index_->by_hash.end()) return null_entity;
   Entity best = null_entity;
   std::size_t best_index = 0;

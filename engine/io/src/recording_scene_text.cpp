@@ -14,6 +14,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "fixstep/fnv1a.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/summary.hpp"
 #include "recording_text.hpp"
@@ -21,12 +22,7 @@
 namespace fixstep::recording_text {
 
 std::uint64_t scene_checksum(std::string_view text) {
-  std::uint64_t h = 14695981039346656037ull;  // FNV-1a offset basis
-  for (const char c : text) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 1099511628211ull;  // FNV prime
-  }
-  return h;
+  return fnv1a(text);
 }
 
 void append_scene_text(std::string& out, std::string_view text) {
