@@ -16,6 +16,11 @@ foreach(component IN LISTS FIXSTEP_COMPONENTS)
           COMPONENT fixstep_development)
 endforeach()
 
+# The app component brings the window when it was built with one.
+set(FIXSTEP_APP_NEEDS "scene io core render capture")
+if(TARGET fixstep_window)
+  string(APPEND FIXSTEP_APP_NEEDS " window")
+endif()
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/fixstepConfig.cmake.in
   ${PROJECT_BINARY_DIR}/fixstepConfig.cmake INSTALL_DESTINATION ${FIXSTEP_CMAKE_DIR})
 # 0.x: a minor version may break the API, so only the same minor version is compatible.
@@ -31,10 +36,15 @@ set(FIXSTEP_PC_core_LIBS "-pthread")
 set(FIXSTEP_PC_core_CFLAGS "-std=c++20 -ffp-contract=off")
 set(FIXSTEP_PC_io_REQUIRES "fixstep-core")
 set(FIXSTEP_PC_scene_REQUIRES "fixstep-io fixstep-core tomlplusplus")
-set(FIXSTEP_PC_render_REQUIRES
-    "fixstep-io fixstep-core osmesa libdeflate libavformat libavcodec libavfilter libswscale libavutil")
-set(FIXSTEP_PC_render_LIBS "-pthread")
+set(FIXSTEP_PC_render_REQUIRES "fixstep-core osmesa")
+set(FIXSTEP_PC_capture_REQUIRES
+    "fixstep-io fixstep-core libdeflate libavformat libavcodec libavfilter libswscale libavutil")
+set(FIXSTEP_PC_capture_LIBS "-pthread")
 set(FIXSTEP_PC_window_REQUIRES "fixstep-render sdl2")
+set(FIXSTEP_PC_app_REQUIRES "fixstep-scene fixstep-capture fixstep-render")
+if(TARGET fixstep_window)
+  string(APPEND FIXSTEP_PC_app_REQUIRES " fixstep-window")
+endif()
 foreach(component IN LISTS FIXSTEP_COMPONENTS)
   set(FIXSTEP_PC_COMPONENT ${component})
   set(FIXSTEP_PC_REQUIRES ${FIXSTEP_PC_${component}_REQUIRES})

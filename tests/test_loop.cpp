@@ -4,9 +4,9 @@
 #include <random>
 #include <vector>
 
+#include "fixstep/key_bindings.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/window.hpp"  // apply_loop_keys (inline; no SDL needed)
 
 namespace fixstep {
 namespace {
@@ -77,23 +77,23 @@ TEST(Loop, PauseSingleStepAndTimeScale) {
 TEST(Loop, WindowKeysPauseStepAndScaleTimeWithinLimits) {
   FixedStepLoop loop(dt);
   auto run_frame = [&] { return loop.advance(1.0 / 60, {}, [](const TickInput&) {}).ticks; };
-  apply_loop_keys(WindowEvents{.toggle_pause = true}, loop);
+  apply_loop_keys(UserEvents{.toggle_pause = true}, loop);
   EXPECT_TRUE(loop.paused());
   EXPECT_EQ(run_frame(), 0);
-  apply_loop_keys(WindowEvents{.single_step = true}, loop);
+  apply_loop_keys(UserEvents{.single_step = true}, loop);
   EXPECT_EQ(run_frame(), 1);
   EXPECT_EQ(run_frame(), 0);
-  apply_loop_keys(WindowEvents{.toggle_pause = true}, loop);
+  apply_loop_keys(UserEvents{.toggle_pause = true}, loop);
   EXPECT_FALSE(loop.paused());
-  apply_loop_keys(WindowEvents{.time_scale_steps = 3}, loop);
+  apply_loop_keys(UserEvents{.time_scale_steps = 3}, loop);
   EXPECT_EQ(loop.time_scale(), 8.0);
-  apply_loop_keys(WindowEvents{.time_scale_steps = 3}, loop);
+  apply_loop_keys(UserEvents{.time_scale_steps = 3}, loop);
   EXPECT_EQ(loop.time_scale(), 16.0);  // the default limit
-  apply_loop_keys(WindowEvents{.time_scale_steps = 3}, loop, 64.0);
+  apply_loop_keys(UserEvents{.time_scale_steps = 3}, loop, 64.0);
   EXPECT_EQ(loop.time_scale(), 64.0);
-  apply_loop_keys(WindowEvents{.time_scale_steps = -20}, loop);
+  apply_loop_keys(UserEvents{.time_scale_steps = -20}, loop);
   EXPECT_EQ(loop.time_scale(), 1.0 / 16);
-  apply_loop_keys(WindowEvents{.single_step = true}, loop);  // '.' while running pauses too
+  apply_loop_keys(UserEvents{.single_step = true}, loop);  // '.' while running pauses too
   EXPECT_TRUE(loop.paused());
 }
 

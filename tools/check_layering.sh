@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The engine's layering, checked from the #include lines (run by ctest as `layering`):
-#   core  <- io  <- scene, render  <- window  <- programs
+#   core <- io <- scene, capture;  core <- render <- window;  all of them <- app <- programs
 # 1. each component's files include only fixstep headers of the components it may use;
 # 2. the include graph of engine/ and chart/ files has no cycle (tsort finds loops);
 # 3. core does no I/O: none of its files includes a header that opens files, reads paths or
@@ -9,17 +9,19 @@
 set -euo pipefail
 cd "${1:-$(dirname "$0")/..}"
 
-declare -A allowed=([core]="core" [io]="core io" [scene]="core io scene"
-                    [render]="core io render" [window]="core io render window")
+components="core io scene render capture window app"
+declare -A allowed=([core]="core" [io]="core io" [scene]="core io scene" [render]="core render"
+                    [capture]="core io capture" [window]="core render window"
+                    [app]="$components")
 declare -A owner  # header name -> component
-for component in core io scene render window; do
+for component in $components; do
   for h in engine/$component/include/fixstep/*.hpp engine/$component/include/fixstep/detail/*.hpp; do
     [[ -e $h ]] && owner[${h#engine/$component/include/fixstep/}]=$component
   done
 done
 
 status=0
-for component in core io scene render window; do
+for component in $components; do
   while IFS=: read -r file line include; do
     header=$(sed -E 's/.*fixstep\/([a-z0-9_/]+\.hpp).*/\1/' <<<"$include")
     from=${owner[$header]:-}
@@ -51,5 +53,5 @@ if ! tsort <<<"$edges" >/dev/null 2>/tmp/layering_tsort.$$; then
   status=1
 fi
 rm -f /tmp/layering_tsort.$$
-[[ $status -eq 0 ]] && echo "layering: core <- io <- scene, render <- window; no include cycle; core does no I/O"
+[[ $status -eq 0 ]] && echo "layering: core <- io <- scene, capture; core <- render <- window; all <- app; no include cycle; core does no I/O"
 exit $status

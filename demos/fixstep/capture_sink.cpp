@@ -60,14 +60,20 @@ void CaptureSink::submit(std::span<const std::uint8_t> rgba) {
   if (video_) video_->submit(rgba);
 }
 
+namespace {
+FrameState frame_state(const Session& session) {
+  return {session.simulation(), session.alpha(), session.initial_energy()};
+}
+}  // namespace
+
 void CaptureSink::add_row(std::uint64_t frame, const Session& session) {
-  if (png_manifest_) png_manifest_->add(frame, session);
-  if (video_manifest_) video_manifest_->add(frame, session);
+  if (png_manifest_) png_manifest_->add(frame, frame_state(session));
+  if (video_manifest_) video_manifest_->add(frame, frame_state(session));
 }
 
 void CaptureSink::add_row(std::uint64_t frame, std::size_t tile, const Session& session) {
-  if (png_manifest_) png_manifest_->add(frame, tile, session);
-  if (video_manifest_) video_manifest_->add(frame, tile, session);
+  if (png_manifest_) png_manifest_->add(frame, tile, frame_state(session));
+  if (video_manifest_) video_manifest_->add(frame, tile, frame_state(session));
 }
 
 void CaptureSink::finish() {

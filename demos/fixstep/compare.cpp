@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fixstep/capture.hpp>
+#include <fixstep/key_bindings.hpp>
 #include <fixstep/limits.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/stop_request.hpp>

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fixstep/capture.hpp>
+#include <fixstep/key_bindings.hpp>
 #include <fixstep/loop.hpp>
 #include <fixstep/window.hpp>
 #include <optional>

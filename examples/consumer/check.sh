@@ -25,12 +25,33 @@ check_program() {  # check_program HOW BINARY
   echo "consumer: $how: $got, links neither OSMesa nor SDL2"
 }
 
-# 1. Installed package + find_package(fixstep 0.2 REQUIRED COMPONENTS core io).
+# 1. Installed package + find_package(fixstep 0.3 REQUIRED COMPONENTS core io).
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
 cmake -S "$src/examples/consumer" -B "$work/installed" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/installed" >/dev/null
 check_program installed "$work/installed/consumer"
+
+# Each installed component brings only the libraries it needs: the link line of a program that
+# links it alone (the linker's --as-needed would drop them from ldd's view of an empty program).
+cmake -S "$src/examples/consumer/components" -B "$work/components" -G Ninja \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
+cmake --build "$work/components" >/dev/null
+declare -A brings=([core]="" [io]="" [scene]="" [render]="osmesa" [capture]="avcodec deflate"
+                   [window]="osmesa sdl2" [app]="osmesa avcodec deflate sdl2")
+for component in core io scene render capture window app; do
+  libs=$(ninja -C "$work/components" -t commands "link_$component" | tail -1 |
+         tr '[:upper:]' '[:lower:]')
+  for lib in osmesa avcodec deflate sdl2; do
+    wanted=" ${brings[$component]} "
+    if [[ $libs == *"lib$lib"* && $wanted != *" $lib "* ]]; then
+      fail "fixstep::$component brings lib$lib"
+    elif [[ $libs != *"lib$lib"* && $wanted == *" $lib "* ]]; then
+      fail "fixstep::$component does not bring lib$lib (the check itself is wrong?)"
+    fi
+  done
+  echo "consumer: fixstep::$component brings: ${brings[$component]:-nothing beyond libc and threads}"
+done
 
 # 2. add_subdirectory: only libraries; the program builds core and io alone.
 cmake -S "$src/examples/consumer" -B "$work/subproject" -G Ninja -DCMAKE_BUILD_TYPE=Release \

@@ -1,18 +1,10 @@
 // The events an interactive program's loop reads each frame, whichever platform delivers them
-// (an SDL2 window: fixstep/window.hpp; a browser page: web/page_input.hpp), and what every
-// fixstep loop does with them: the loop keys (pause, single step, time scale) applied to the
-// FixedStepLoop, the tick-input part (button edges, pointer) handed to the InputSampler, and
-// the held arrow buttons as a push.
+// (an SDL2 window: fixstep/window.hpp; a browser page: web/page_input.hpp). What a loop does
+// with them is fixstep::app's (fixstep/key_bindings.hpp).
 #pragma once
 
 #include <cstdint>
-#include <string_view>
 #include <vector>
-
-#include "fixstep/input.hpp"
-#include "fixstep/loop.hpp"
-#include "fixstep/render.hpp"
-#include "fixstep/types.hpp"
 
 namespace fixstep {
 
@@ -34,27 +26,5 @@ struct UserEvents {
   bool pointer_seen = false;                ///< the pointer has been over the frame
   double pointer_x = 0.0, pointer_y = 0.0;  ///< frame pixels from the top-left corner
 };
-
-/// The loop keys' help line for the HUD (Session::set_key_help): a window's, with Esc to quit,
-/// and a web page's, which a page cannot quit.
-inline constexpr std::string_view window_key_help =
-    "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind  esc "
-    "quit";
-inline constexpr std::string_view page_key_help =
-    "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind";
-
-/// Hands the tick-input part of `ev` to `sampler`: every button edge in order, and the pointer
-/// converted to world metres through `camera` for a width x height frame (screen_to_world).
-void feed(const UserEvents& ev, InputSampler& sampler, const Camera& camera, int width, int height);
-
-/// Applies the loop keys of `ev` to `loop`, the same in every fixstep loop: space toggles
-/// pause; '.' pauses and runs exactly one tick on the next advance(); each '+' doubles and each
-/// '-' halves the time scale, kept within [1/16, max_time_scale]. Quit, restart and the arrow
-/// keys are left to the caller (what they reset or push differs per program).
-void apply_loop_keys(const UserEvents& ev, FixedStepLoop& loop, double max_time_scale = 16.0);
-
-/// The push acceleration (m/s²) of the held arrow buttons (`held`, InputButton bits): half a
-/// view width (`view_width`, m) per s² along each held axis, visible at any scene scale.
-[[nodiscard]] Vec2 arrow_push(std::uint32_t held, double view_width);
 
 }  // namespace fixstep

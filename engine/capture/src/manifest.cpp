@@ -23,31 +23,31 @@ FrameManifest::FrameManifest(std::filesystem::path file, ManifestLayout layout)
 }
 
 namespace {
-void append_state(std::string& row, const Session& session) {
-  const World& sim = session.simulation();
+void append_state(std::string& row, const FrameState& state) {
+  const World& sim = state.world;
   fmt::format_to(std::back_inserter(row), "{},{:.6f},{:.6f},{:016x},{:.9e},{:.6e}\n", sim.tick(),
-                 sim.time(), session.alpha(), sim.state_hash(), sim.energy().total(),
-                 energy_balance(sim, session.initial_energy()));
+                 sim.time(), state.alpha, sim.state_hash(), sim.energy().total(),
+                 energy_balance(sim, state.initial_energy));
 }
 }  // namespace
 
-void FrameManifest::add(std::uint64_t frame, const Session& session) {
+void FrameManifest::add(std::uint64_t frame, const FrameState& state) {
   if (layout_ != ManifestLayout::frames) {
     throw std::logic_error("FrameManifest::add: a tiles manifest needs the tile index");
   }
   row_.clear();
   fmt::format_to(std::back_inserter(row_), "{},", frame);
-  append_state(row_, session);
+  append_state(row_, state);
   out_.append(std::string_view(row_));
 }
 
-void FrameManifest::add(std::uint64_t frame, std::size_t tile, const Session& session) {
+void FrameManifest::add(std::uint64_t frame, std::size_t tile, const FrameState& state) {
   if (layout_ != ManifestLayout::tiles) {
     throw std::logic_error("FrameManifest::add: a frames manifest has no tile column");
   }
   row_.clear();
   fmt::format_to(std::back_inserter(row_), "{},{},", frame, tile);
-  append_state(row_, session);
+  append_state(row_, state);
   out_.append(std::string_view(row_));
 }
 

@@ -10,9 +10,9 @@
 #include <utility>
 #include <vector>
 
+#include "fixstep/key_bindings.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/render.hpp"
-#include "fixstep/user_events.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {

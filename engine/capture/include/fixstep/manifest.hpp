@@ -8,7 +8,7 @@
 #include <string>
 
 #include "fixstep/capture.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 
@@ -19,6 +19,14 @@ enum class ManifestLayout { frames, tiles };
 /// The manifest beside a video file: "clip.mp4" -> "clip.mp4.frames.csv" (same directory; the
 /// extension kept, so clip.mp4 and clip.gif have a manifest each).
 [[nodiscard]] std::filesystem::path video_manifest_path(const std::filesystem::path& video);
+
+/// What a manifest row says of a frame: the world it was drawn from, the interpolation alpha it
+/// was drawn at, in [0, 1), and the world's initial energy, J (for the balance column).
+struct FrameState {
+  const World& world;
+  double alpha = 0.0;
+  double initial_energy = 0.0;
+};
 
 /// frames.csv, written as the frames are (into an AtomicFile: complete under its name after
 /// commit(), absent before). Columns (header line first):
@@ -39,13 +47,12 @@ class FrameManifest {
   /// exist. Throws CaptureError when the file cannot be created.
   FrameManifest(std::filesystem::path file, ManifestLayout layout);
 
-  /// Appends the row of frame `frame`, drawn by `session` in its current state. Throws
-  /// CaptureError on a write error, std::logic_error in a tiles manifest. No allocation once
-  /// the row buffer has grown.
-  void add(std::uint64_t frame, const Session& session);
+  /// Appends the row of frame `frame`, drawn from `state`. Throws CaptureError on a write
+  /// error, std::logic_error in a tiles manifest. No allocation once the row buffer has grown.
+  void add(std::uint64_t frame, const FrameState& state);
   /// Appends the row of tile `tile` of frame `frame` (ManifestLayout::tiles; std::logic_error
   /// in a frames manifest).
-  void add(std::uint64_t frame, std::size_t tile, const Session& session);
+  void add(std::uint64_t frame, std::size_t tile, const FrameState& state);
   /// Puts frames.csv under its name, complete. Throws CaptureError when it cannot.
   void commit();
 
