@@ -1007,6 +1007,31 @@ case_ "compare_hashes: a build directory that does not exist" "" build/cii
 case_ "compare_hashes: a directory without bin/state_hashes.sh (not configured)" "" nobuild
 case_ "compare_hashes: a cross build without bin/state_hashes.sh" "" unbuilt nobuild
 case_ "compare_hashes: a build whose state_hashes is not built" "" unbuilt
+# --- a game run by fixstep::app::run (the slingshot, demos/slingshot, built beside fixstep) ---
+game=$(dirname "$fixstep")/slingshot
+if [ -x "$game" ]; then
+  tool=$game tool_name=slingshot
+  cp "$tests_dir/../assets/recordings/slingshot.rec" sling.rec
+  sed "$(grep -n ' drag=0$' sling.rec | sed -n 5p | cut -d: -f1)d" sling.rec > tampered.rec
+  head -n 20 sling.rec > cut.rec
+  "$fixstep" run "$tests_dir/../assets/scenes/default.toml" --steps 5 --record other.rec >/dev/null
+  mkdir -p outdir
+  case_ "a game: --frames 0" "" --frames 0
+  case_ "a game: --frames not a whole number" "" --frames 1.5
+  case_ "a game: --out without --frames (a window writes no frames)" "" --out frames
+  case_ "a game: --replay and --record together" "" --replay sling.rec --record again.rec
+  case_ "a game: --sync-test without --frames" "" --sync-test 4
+  case_ "a game: an unknown option" "" --bogus
+  case_ "a game: a window without a display" ""
+  case_ "a game: --record into a directory" "" --frames 10 --record outdir
+  case_ "a game: --record into a directory that does not exist" "" --frames 10 --record nodir/x.rec
+  case_ "a game: --last-frame over the recording replayed" "" --replay sling.rec --last-frame sling.rec
+  case_ "a game: --replay of a file that does not exist" "" --replay none.rec
+  case_ "a game: --replay of a recording cut short" "" --replay cut.rec
+  case_ "a game: --replay of a recording with one input line removed (nothing drawn)" "" \
+    --replay tampered.rec --last-frame last.png
+  case_ "a game: --replay of another world's recording (fixstep run's)" "" --replay other.rec
+fi
 tool=$fixstep tool_name=fixstep
 # --- the web page: rows of tests/web/bad_inputs_page.tsv, which browser_check.py loads ---
 # Exactly three tab-separated fields a row, as browser_check.py reads them (read's IFS would

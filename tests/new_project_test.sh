@@ -57,8 +57,15 @@ done
 
 # 5. It replays: every stored hash verified, exit 0.
 "$game" --replay r.rec > replay.log || fail "grabber --replay r.rec: $(cat replay.log)"
-grep -Eq '^replay: verified [0-9]+ hashes' replay.log || fail "replay printed $(cat replay.log)"
-echo "new_project: $(head -1 record.log); $(cat replay.log)"
+grep -Eq '^verified=[0-9]+$' replay.log || fail "replay printed $(cat replay.log)"
+grep -Fxq "$(grep '^caught=' record.log)" replay.log || fail "the replay's score is not the run's"
+echo "new_project: $(head -1 record.log); $(tr '\n' ' ' < replay.log)"
+
+"$game" --frames 300 --sync-test 8 > sync.log || fail "grabber --sync-test 8: $(cat sync.log)"
+grep -q '^sync test: .*: the same$' sync.log || fail "the sync test printed $(cat sync.log)"
+grep -Fxq "$(grep '^ticks=' record.log)" sync.log || fail "the sync test's state is not the run's"
+"$game" --help | grep -q -- '--replay FILE' || fail "--help does not list --replay FILE"
+echo "new_project: $(tail -1 sync.log)"
 
 # 6. A tampered copy (the first hook velocity after tick 0 changed to 0.5 m/s) is refused,
 # naming the tick after the tampered one: the first state that differs.

@@ -20,7 +20,7 @@ export DISPLAY=$display
 sleep 1
 "$game" --record "$out" &
 pid=$!
-win=$(xdotool search --sync --name "fixstep - slingshot" | head -n 1)
+win=$(xdotool search --sync --name "^slingshot$" | head -n 1)
 sleep 1
 
 # World metres to window pixels: the game's camera is centred on (0, 9) m, 46 m wide, in a

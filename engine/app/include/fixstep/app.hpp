@@ -1,0 +1,94 @@
+// A game in one call: fixstep::app::run(game, settings, argc, argv) gives a game type the
+// window, headless capture, recording, replay with verification, the sync test and --help.
+//
+// A game is a copyable type with two members, and up to five more:
+//
+//   void setup(WorldDef& level);                           // required
+//   void rules(World& world, const TickInput& input);      // required
+//   void input(const UserEvents& ev, const World& world, InputSampler& sampler);
+//   void autopilot(std::int64_t frame, const World& world, InputSampler& sampler);
+//   void prepare(TickInput& input, const World& world);
+//   void draw(Overlay& overlay) const;
+//   std::string summary() const;
+//
+// setup() completes the level: run() hands it the scene file's world (Settings::scene_file, or
+// --scene), or an empty WorldDef when the game builds its level in code. rules() runs after
+// every tick, live, in a replay and in the sync test alike, so it may change the world
+// (score, spawn, destroy) and keep state in the game's members: run() copies the game to start
+// afresh (restart, replay) and to roll back (sync test). input() turns a window's events into
+// per-body input (the sampler carries it into the ticks and the recording); autopilot() does
+// the same for a headless frame; prepare() adjusts one live tick's input before it is stepped
+// (e.g. which body the pointer may drag); draw() adds lines to the HUD; summary() is the game's
+// state in one line, printed after a run and a replay.
+#pragma once
+
+#include <concepts>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "fixstep/detail/game_model.hpp"
+#include "fixstep/overlay.hpp"
+#include "fixstep/types.hpp"
+
+namespace fixstep::app {
+
+/// What run() needs to know of a game besides its type.
+struct Settings {
+  /// The program's name: messages, the window's title, --help, and the scene name a
+  /// recording stores when the level is built in code ("NAME (built in code)").
+  std::string name;
+  /// What the game is, one line (--help's first line).
+  std::string description{};
+  /// The level's scene file (TOML, fixstep/scene.hpp), loaded at start and for each replay
+  /// that carries no scene text; --scene FILE replaces it. Empty: no file, setup() builds the
+  /// level from an empty WorldDef.
+  std::string scene_file{};
+  int width = 1280, height = 720;  ///< frame size, pixels
+  /// The view: centre (m) and visible width (m); default: the scene's [view], else a view that
+  /// fits the world (fit_camera).
+  std::optional<Vec2> view_center{};
+  std::optional<double> view_width{};
+  /// The game's keys, shown at the bottom of the window's HUD (e.g. "arrows: move  enter: jump").
+  std::string controls{};
+  /// Shows the HUD's energy line. Off by default: a game's input and rules add energy from
+  /// outside the world's account, so its balance would measure them, not the integrator.
+  bool show_energy = false;
+};
+
+/// What a type needs to be run: copyable, with setup() and rules() (see the top of this file).
+template <class G>
+concept Game = std::copy_constructible<G> && std::is_copy_assignable_v<G> &&
+    requires(G g, WorldDef& level, World& world, const TickInput& input) {
+  g.setup(level);
+  g.rules(world, input);
+};
+
+/// Runs `game` as its command line asks, and returns the process's exit status:
+///
+///   NAME                                play in a window until Esc or the close button
+///   NAME --frames N [--out DIR]         N frames headless on a 60 Hz virtual clock, the
+///                                       autopilot playing; PNG frames into DIR
+///   NAME --window --frames N            N frames in the window, then quit
+///   NAME ... --record FILE              record the session (the input, a state hash a tick)
+///   NAME --replay FILE [--out DIR [--every K]] [--last-frame PNG]
+///                                       re-simulate a recording with the rules, verify every
+///                                       stored hash, then draw it
+///   NAME --frames N --sync-test K       N frames headless, each tick rolled back K ticks and
+///                                       re-simulated (the game's state with the world's)
+///   --scene FILE                        another level (when the game has a scene file)
+///   --help                              the above
+///
+/// Exit status: 0 success; 1 an error (a bad scene, an unreadable or cut recording, an
+/// unwritable output, no display), its message on standard error naming the file; 2 a bad
+/// command line; 4 a replay whose state differs from the recording's (naming the first tick,
+/// both hashes and the last tick that matched; nothing is drawn); 8 a sync test that found a
+/// difference. Never throws.
+template <Game G>
+int run(G game, const Settings& settings, int argc, char** argv) {
+  return detail::run_game(detail::GameModel<G>(std::move(game)), settings, argc, argv);
+}
+
+}  // namespace fixstep::app

@@ -1,0 +1,69 @@
+// fixstep::app: the level a run starts from (app_modes.hpp).
+#include <any>
+#include <cstdio>
+#include <fixstep/scene.hpp>
+#include <memory>
+
+#include "app_modes.hpp"
+
+namespace fixstep::app::detail {
+
+namespace {
+
+/// The view: the settings', else the scene's [view], else the automatic one.
+SessionSettings view(const Settings& settings, const SceneView& scene_view) {
+  return {.width = settings.width,
+          .height = settings.height,
+          .title = settings.name,
+          .view_center = settings.view_center ? settings.view_center : scene_view.center,
+          .view_width = settings.view_width ? settings.view_width : scene_view.width};
+}
+
+Level from_scene(const AnyGame& game, const Settings& settings, const Scene* scene) {
+  Level level;
+  if (scene != nullptr) {
+    for (const std::string& w : scene->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    level.def = world_def(*scene);
+    level.scene_name = scene->file;
+    level.scene_text = scene->text;
+  } else {
+    level.scene_name = settings.name + " (built in code)";
+  }
+  level.view = view(settings, scene != nullptr ? scene->view : SceneView{});
+  game.clone()->setup(level.def);
+  // Summaries print the energy balance, and a Session keeps the account anyway: every mode
+  // steps the same world.
+  level.def.settings.track_dissipation = true;
+  return level;
+}
+
+}  // namespace
+
+Level load_level(const AnyGame& game, const Settings& settings, const std::string& file) {
+  if (file.empty()) return from_scene(game, settings, nullptr);
+  const Scene scene = load_scene(file);  // throws SceneError naming file:line:column and key
+  return from_scene(game, settings, &scene);
+}
+
+Level replay_level(const AnyGame& game, const Settings& settings, const Recording& rec,
+                   const std::optional<std::string>& scene) {
+  Level level;
+  if (!scene && !rec.scene_text.empty()) {
+    const Scene carried = parse_scene(rec.scene_text, rec.scene);
+    level = from_scene(game, settings, &carried);
+  } else {
+    level = load_level(game, settings, scene.value_or(settings.scene_file));
+  }
+  apply_settings(level.def, rec.settings);  // the recorded dt, integrator, precision, substeps
+  return level;
+}
+
+TickRules game_rules(AnyGame& game) {
+  return TickRules{[&game](World& world, const TickInput& input) { game.rules(world, input); },
+                   [&game] { return std::any(std::shared_ptr<const AnyGame>(game.clone())); },
+                   [&game](const std::any& saved) {
+                     game.assign(*std::any_cast<const std::shared_ptr<const AnyGame>&>(saved));
+                   }};
+}
+
+}  // namespace fixstep::app::detail

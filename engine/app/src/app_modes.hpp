@@ -1,0 +1,65 @@
+// Internal to fixstep::app: the modes app::run dispatches to, and the level each starts from.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "fixstep/app.hpp"
+#include "fixstep/recording.hpp"
+#include "fixstep/session.hpp"
+
+namespace fixstep::app::detail {
+
+/// Exit statuses of app::run (see its docstring).
+inline constexpr int exit_error = 1;
+inline constexpr int exit_usage = 2;
+inline constexpr int exit_diverged = 4;
+inline constexpr int exit_sync_mismatch = 8;
+
+/// A command line run() refuses (exit_usage).
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// What the command line asked for.
+struct Options {
+  std::optional<std::string> scene;  ///< --scene FILE
+  std::string out, record, replay, last_frame;
+  std::int64_t frames = 0;  ///< 0: play in a window until quit
+  int every = 1;            ///< --every K
+  int sync_test = 0;        ///< --sync-test K (0: none)
+  bool window = false;      ///< --window
+};
+
+/// The level a run starts from: the game's setup() applied to the scene's world (or to an
+/// empty one), with what a recording of it stores and the view it is shown with.
+struct Level {
+  WorldDef def;
+  std::string scene_name;  ///< Recording::scene: the scene file, or "NAME (built in code)"
+  std::string scene_text;  ///< Recording::scene_text: the scene file's bytes, or empty
+  SessionSettings view;
+};
+
+/// Loads the scene file `file` (none when empty), prints its warnings, applies `game`'s setup()
+/// (a fresh copy's: `game` is not changed). Throws SceneError for a bad scene, what World's
+/// constructor throws for a level it refuses.
+[[nodiscard]] Level load_level(const AnyGame& game, const Settings& settings,
+                               const std::string& file);
+/// The level `rec` was recorded on: the scene it carries, else `scene` (--scene) or the game's
+/// scene file; the game's setup(), then the recorded settings (dt, integrator, precision).
+[[nodiscard]] Level replay_level(const AnyGame& game, const Settings& settings,
+                                 const Recording& rec, const std::optional<std::string>& scene);
+/// TickRules that run `game`'s rules (held by reference) and save and restore it by copy.
+[[nodiscard]] TickRules game_rules(AnyGame& game);
+
+/// Plays in the window (until quit, or o.frames frames) or headless (o.frames frames), recording
+/// into o.record when given; prints the summary. Returns the exit status.
+int play(const AnyGame& game, const Settings& settings, const Options& o);
+/// Replays o.replay, verifies it, draws it when asked. Returns the exit status.
+int replay_file(const AnyGame& game, const Settings& settings, const Options& o);
+/// Runs o.frames frames headless under a sync test of o.sync_test ticks. Returns the exit status.
+int sync_test(const AnyGame& game, const Settings& settings, const Options& o);
+
+}  // namespace fixstep::app::detail

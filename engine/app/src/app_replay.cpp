@@ -1,0 +1,142 @@
+// fixstep::app: a recording replayed with the game's rules, verified, then drawn; the sync test.
+#include <algorithm>
+#include <cstdio>
+#include <fixstep/capture.hpp>
+#include <fixstep/recording_file.hpp>
+#include <fixstep/summary.hpp>
+#include <fixstep/sync_test.hpp>
+#include <optional>
+
+#include "app_modes.hpp"
+
+namespace fixstep::app::detail {
+
+namespace {
+
+constexpr double replay_fps = 60.0;  // frames/s of a drawn replay's virtual clock
+
+/// Draws a verified recording through a Session at 60 frames/s of virtual time, its first
+/// `ticks` ticks with the game's rules: every o.every-th frame (and the last) into o.out, the
+/// last frame to o.last_frame.
+void draw_replay(const AnyGame& prototype, const Settings& settings, const Level& level,
+                 const Recording& rec, std::uint64_t ticks, const Options& o) {
+  Session session(level.def, level.view);
+  session.set_show_energy(settings.show_energy);
+  const std::unique_ptr<AnyGame> game = prototype.clone();
+  std::optional<FrameWriter> writer;
+  if (!o.out.empty()) {
+    prepare_output_dir(o.out);
+    writer.emplace(o.out, settings.width, settings.height);
+  }
+  const VirtualClock clock(replay_fps);
+  const double frames_per_tick = level.def.settings.dt * replay_fps;
+  TickInput last;
+  Overlay overlay;
+  for (std::int64_t frame = 0;; ++frame) {
+    if (frame > 0) {
+      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& world) {
+        if (t >= ticks) return;
+        last = rec.input_at(t);
+        world.step(last);
+        game->rules(world, last);
+      });
+    }
+    const std::uint64_t tick = session.simulation().tick();
+    const bool end = tick >= ticks;
+    const bool write = writer && (frame % o.every == 0 || end);
+    // Trails grow by one sample per frame drawn: the trail_frames frames before each frame
+    // written are drawn too, so its trails look as they do in the window.
+    const double frames_left = double(ticks - std::min(tick, ticks)) * frames_per_tick;
+    const bool warm_up = (writer && o.every - frame % o.every <= Renderer::trail_frames) ||
+                         (!o.last_frame.empty() && frames_left <= Renderer::trail_frames + 1);
+    if (write || warm_up || (end && !o.last_frame.empty())) {
+      overlay.clear();
+      game->draw(overlay);
+      session.set_status_lines(overlay.lines());
+      session.show_drag(last.pointer, last.drag_body);
+      session.draw();
+    }
+    if (write) writer->submit(session.renderer().pixels());
+    if (end) break;
+  }
+  if (!o.last_frame.empty()) {
+    write_png(o.last_frame, settings.width, settings.height, session.renderer().pixels());
+  }
+  if (writer) writer->finish();
+}
+
+}  // namespace
+
+int replay_file(const AnyGame& prototype, const Settings& settings, const Options& o) {
+  const Recording rec = read_recording(o.replay);  // throws RecordingError naming the file
+  const Level level = replay_level(prototype, settings, rec, o.scene);
+  World world(level.def);
+  const double initial_energy = world.energy().total();
+  const std::unique_ptr<AnyGame> game = prototype.clone();
+  if (definition_hash(level.def) != rec.definition_hash) {
+    std::fprintf(stderr, "%s: error: %s was recorded on another level (hash %s, this one %s)\n",
+                 settings.name.c_str(), o.replay.c_str(), hex_hash(rec.definition_hash).c_str(),
+                 hex_hash(definition_hash(level.def)).c_str());
+    return exit_error;
+  }
+  const ReplayReport report = replay(world, rec, game_rules(*game));
+  // Only a recording that verified is drawn: a diverging one leaves no frame behind.
+  if (report.ok() && (!o.out.empty() || !o.last_frame.empty())) {
+    draw_replay(prototype, settings, level, rec, report.ticks, o);
+  }
+  std::printf("%s\n", summary_line(world, initial_energy).c_str());
+  if (const std::string s = game->summary(); !s.empty()) std::printf("%s\n", s.c_str());
+  std::printf("verified=%llu\n", static_cast<unsigned long long>(report.verified));
+  if (const auto& m = report.mismatch) {
+    std::fprintf(stderr,
+                 "%s: error: %s diverged at tick %llu: state_hash %s recorded, %s replayed "
+                 "(the states matched at tick %llu); the recording was edited, or made by a "
+                 "build whose physics or rules step differently%s\n",
+                 settings.name.c_str(), o.replay.c_str(), static_cast<unsigned long long>(m->tick),
+                 hex_hash(m->expected).c_str(), hex_hash(m->actual).c_str(),
+                 static_cast<unsigned long long>(m->last_match),
+                 o.out.empty() && o.last_frame.empty() ? "" : "; no frame was written");
+    return exit_diverged;
+  }
+  return 0;
+}
+
+int sync_test(const AnyGame& prototype, const Settings& settings, const Options& o) {
+  const Level level = load_level(prototype, settings, o.scene.value_or(settings.scene_file));
+  World world(level.def);
+  const double initial_energy = world.energy().total();
+  const std::unique_ptr<AnyGame> game = prototype.clone();
+  SyncTest test(world, o.sync_test, game_rules(*game));
+  InputSampler sampler;
+  FixedStepLoop loop(world);
+  const VirtualClock clock(replay_fps);
+  for (std::int64_t frame = 1; frame < o.frames && !test.mismatch(); ++frame) {
+    game->autopilot(frame, world, sampler);
+    loop.advance_with(clock.frame_seconds(), [&](std::uint64_t t) {
+      if (test.mismatch()) return;
+      TickInput input = sampler.sample(t);
+      game->prepare(input, world);
+      test.step(input);
+    });
+  }
+  if (const auto& m = test.mismatch()) {
+    std::fprintf(stderr,
+                 "%s: error: sync test: tick %llu re-simulated differs: state_hash %s first, %s "
+                 "after a rollback of %d ticks%s; a state the snapshot or the game's copy "
+                 "misses, or a rule that is not deterministic\n",
+                 settings.name.c_str(), static_cast<unsigned long long>(m->tick),
+                 hex_hash(m->expected).c_str(), hex_hash(m->actual).c_str(), o.sync_test,
+                 m->dissipated_differs ? " (the dissipated energy differs)" : "");
+    return exit_sync_mismatch;
+  }
+  std::printf("%s\n", summary_line(world, initial_energy).c_str());
+  if (const std::string s = game->summary(); !s.empty()) std::printf("%s\n", s.c_str());
+  std::printf(
+      "sync test: %llu ticks, each rolled back %d ticks and re-simulated (%llu ticks): "
+      "the same\n",
+      static_cast<unsigned long long>(world.tick()), o.sync_test,
+      static_cast<unsigned long long>(test.resimulated()));
+  return 0;
+}
+
+}  // namespace fixstep::app::detail

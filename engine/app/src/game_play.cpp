@@ -1,0 +1,76 @@
+// fixstep::app: a game being played live (game_play.hpp).
+#include "game_play.hpp"
+
+#include <cstdio>
+#include <fixstep/recording_file.hpp>
+#include <fixstep/summary.hpp>
+#include <utility>
+
+namespace fixstep::app::detail {
+
+namespace {
+/// A recording stores the state hash after every tick, so a replay names the exact first tick
+/// that differs (about 25 bytes a tick).
+constexpr std::uint64_t hash_every = 1;
+}  // namespace
+
+GamePlay::GamePlay(const AnyGame& prototype, Level level, const Settings& settings,
+                   std::string record_file)
+    : prototype_(prototype),
+      level_(std::move(level)),
+      name_(settings.name),
+      record_file_(std::move(record_file)),
+      session_(level_.def, level_.view),
+      game_(prototype.clone()) {
+  session_.set_show_energy(settings.show_energy);
+  for (const std::string& w : session_.simulation().warnings()) {  // the stability guard's
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
+  if (!record_file_.empty()) start_recording();
+}
+
+void GamePlay::start_recording() {
+  recorder_.emplace(session_.definition(), level_.scene_name, hash_every, level_.scene_text);
+}
+
+void GamePlay::advance(double seconds) {
+  session_.advance_with(seconds, [&](std::uint64_t tick, World& world) {
+    TickInput input = sampler_.sample(tick);
+    game_->prepare(input, world);
+    world.step(input);
+    game_->rules(world, input);
+    if (recorder_) recorder_->record(input, world);
+    last_ = input;
+  });
+}
+
+void GamePlay::draw(std::string_view hint) {
+  overlay_.clear();
+  game_->draw(overlay_);
+  std::vector<std::string> lines = overlay_.lines();
+  if (!hint.empty()) lines.emplace_back(hint);
+  session_.set_status_lines(std::move(lines));
+  session_.show_drag(last_.pointer, last_.drag_body);  // the pointer's spring, if it drags
+  session_.draw();
+}
+
+void GamePlay::restart() {
+  session_.restart();
+  game_ = prototype_.clone();
+  sampler_ = {};
+  last_ = {};
+  if (recorder_) start_recording();
+}
+
+void GamePlay::finish() {
+  const World& world = session_.simulation();
+  std::printf("%s\n", summary_line(world, session_.initial_energy()).c_str());
+  if (const std::string s = game_->summary(); !s.empty()) std::printf("%s\n", s.c_str());
+  if (!recorder_) return;
+  write_recording(record_file_, recorder_->finish(world));
+  std::printf("recorded %llu ticks to %s (check it: %s --replay %s)\n",
+              static_cast<unsigned long long>(world.tick()), record_file_.c_str(), name_.c_str(),
+              record_file_.c_str());
+}
+
+}  // namespace fixstep::app::detail

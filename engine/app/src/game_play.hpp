@@ -1,0 +1,55 @@
+// Internal to fixstep::app: a game being played live, in a window or headless.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "app_modes.hpp"
+#include "fixstep/input.hpp"
+#include "fixstep/overlay.hpp"
+#include "fixstep/recording.hpp"
+#include "fixstep/session.hpp"
+
+namespace fixstep::app::detail {
+
+/// The game, its Session and the input sampler; a recorder when recording. Every live tick:
+/// the sampler's input, prepare(), step, rules(), record.
+class GamePlay {
+ public:
+  /// Starts `prototype`'s copy on `level`; records into `record_file` unless it is empty.
+  GamePlay(const AnyGame& prototype, Level level, const Settings& settings,
+           std::string record_file);
+  GamePlay(const GamePlay&) = delete;
+  GamePlay& operator=(const GamePlay&) = delete;
+
+  /// One frame of `seconds` (s) of real or virtual time.
+  void advance(double seconds);
+  /// Draws the frame: the world, the engine's HUD, the game's lines and `hint`.
+  void draw(std::string_view hint);
+  /// Back to tick 0: a fresh copy of the game, an empty sampler, a new recording.
+  void restart();
+  /// Prints the summary line and the game's, and writes the recording, if any.
+  void finish();
+
+  [[nodiscard]] Session& session() { return session_; }
+  [[nodiscard]] InputSampler& sampler() { return sampler_; }
+  [[nodiscard]] AnyGame& game() { return *game_; }
+
+ private:
+  void start_recording();
+
+  const AnyGame& prototype_;
+  Level level_;
+  std::string name_, record_file_;
+  Session session_;
+  std::unique_ptr<AnyGame> game_;
+  InputSampler sampler_;
+  std::optional<Recorder> recorder_;
+  TickInput last_;  ///< the last tick's input (drawn: the pointer's drag)
+  Overlay overlay_;
+};
+
+}  // namespace fixstep::app::detail

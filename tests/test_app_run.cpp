@@ -1,0 +1,138 @@
+// fixstep::app::run: a game type given the headless run, record, replay with verification, the
+// sync test and the command line, checked through its outputs and exit statuses.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fixstep/app.hpp>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace fixstep;
+
+constexpr double dt = 0.01;  // s
+
+/// A ball dropped from 10 m; the rules count the ticks after which it is still above 5 m.
+/// Semi-implicit Euler from rest: y_n = 10 - g dt² n(n+1)/2, so y_n > 5 exactly for
+/// n(n+1) < 10 / (g dt²) = 10193.7..., that is n <= 100: 100 ticks once the run is long enough.
+struct Drop {
+  int above = 0;
+  void setup(WorldDef& level) {
+    level.settings.dt = dt;
+    BodyDef ball;
+    ball.name = "ball";
+    ball.body = {.mass = 1.0, .position = {0.0, 10.0}};
+    ball.gravity = Gravity{};
+    level.bodies.push_back(ball);
+  }
+  void rules(World& world, const TickInput&) {
+    if (world.body(world.find("ball")).position.y > 5.0) ++above;
+  }
+  void autopilot(std::int64_t frame, const World& world, InputSampler& sampler) const {
+    if (frame == 30) sampler.apply_impulse(world.find("ball"), {1.0, 0.0});  // N·s
+  }
+  [[nodiscard]] std::string summary() const { return "above=" + std::to_string(above); }
+};
+
+/// Rules that read state kept outside the world and the game (a global): a rollback cannot put
+/// it back, so the sync test must find the difference.
+int outside_counter = 0;
+struct Leaky : Drop {
+  void rules(World& world, const TickInput& input) {
+    Drop::rules(world, input);
+    if (++outside_counter % 50 == 0) world.set_velocity(world.find("ball"), {0.0, 1.0});
+  }
+};
+
+const app::Settings settings{.name = "drop", .width = 160, .height = 90};
+
+/// run(game, settings, args...) with standard output captured into `out`.
+template <class G>
+int run(const G& game, std::initializer_list<std::string> args, std::string* out = nullptr) {
+  std::vector<std::string> words{"drop"};
+  words.insert(words.end(), args);
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  testing::internal::CaptureStdout();
+  const int status = app::run(game, settings, int(argv.size()), argv.data());
+  const std::string printed = testing::internal::GetCapturedStdout();
+  if (out != nullptr) *out = printed;
+  return status;
+}
+
+class AppRun : public testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        std::filesystem::temp_directory_path() / ("fixstep_app_run_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  [[nodiscard]] std::string path(const char* name) const { return (dir_ / name).string(); }
+  std::filesystem::path dir_;
+};
+
+TEST_F(AppRun, HeadlessRunsTheRulesEveryTick) {
+  std::string out;
+  ASSERT_EQ(run(Drop{}, {"--frames", "121"}, &out), 0);
+  // 120 frames of 1/60 s = 2 s = 200 ticks of 0.01 s: the ball fell below 5 m after tick 100.
+  EXPECT_NE(out.find("ticks=200 "), std::string::npos) << out;
+  EXPECT_NE(out.find("above=100\n"), std::string::npos) << out;
+}
+
+TEST_F(AppRun, RecordingReplaysWithTheRulesAndRefusesATamperedCopy) {
+  const std::string rec = path("drop.rec");
+  std::string played, replayed;
+  ASSERT_EQ(run(Drop{}, {"--frames", "61", "--record", rec}, &played), 0);
+  ASSERT_EQ(run(Drop{}, {"--replay", rec}, &replayed), 0) << replayed;
+  EXPECT_EQ(played.substr(0, played.find('\n')), replayed.substr(0, replayed.find('\n')));
+  EXPECT_NE(replayed.find("above=100\nverified=101\n"), std::string::npos) << replayed;
+
+  // The autopilot's impulse made three times as strong: the state differs from that tick on.
+  std::stringstream text;
+  text << std::ifstream(rec).rdbuf();
+  std::string edited = text.str();
+  const std::size_t at = edited.find(",1,0\n", edited.find("impulse="));
+  ASSERT_NE(at, std::string::npos) << edited.substr(0, 400);
+  edited.replace(at, 4, ",3,0");
+  const std::string tampered = path("tampered.rec");
+  std::ofstream(tampered) << edited;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(Drop{}, {"--replay", tampered}), 4);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("tampered.rec diverged at tick "),
+            std::string::npos);
+}
+
+TEST_F(AppRun, SyncTestPassesForRulesInTheGameAndFailsForStateOutsideIt) {
+  std::string live, synced;
+  ASSERT_EQ(run(Drop{}, {"--frames", "121"}, &live), 0);
+  ASSERT_EQ(run(Drop{}, {"--frames", "121", "--sync-test", "7"}, &synced), 0) << synced;
+  EXPECT_EQ(live.substr(0, live.find('\n')), synced.substr(0, synced.find('\n')));
+  outside_counter = 0;
+  EXPECT_EQ(run(Leaky{}, {"--frames", "121", "--sync-test", "7"}), 8);
+}
+
+TEST_F(AppRun, BadCommandLinesExitTwo) {
+  EXPECT_EQ(run(Drop{}, {"--frames", "0"}), 2);
+  EXPECT_EQ(run(Drop{}, {"--frames", "1.5"}), 2);
+  EXPECT_EQ(run(Drop{}, {"--out", path("frames")}), 2);  // no --frames: a window has no --out
+  EXPECT_EQ(run(Drop{}, {"--replay", "x.rec", "--record", "y.rec"}), 2);
+  EXPECT_EQ(run(Drop{}, {"--sync-test", "4"}), 2);  // no --frames
+  EXPECT_EQ(run(Drop{}, {"--bogus"}), 2);
+  EXPECT_FALSE(std::filesystem::exists(path("frames")));
+}
+
+TEST_F(AppRun, MissingRecordingExitsOneNamingIt) {
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run(Drop{}, {"--replay", path("none.rec")}), 1);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("none.rec"), std::string::npos);
+}
+
+}  // namespace
