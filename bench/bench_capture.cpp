@@ -68,7 +68,7 @@ constexpr int clip_frames = 60;
 Scene many_bodies(int n) {
   Scene s;
   s.file = fmt::format("many_bodies({})", n);
-  s.world.dt = 0.01;
+  s.settings.dt = 0.01;
   s.precision = Precision::f64;
   s.view.center = Vec2{0.0, 0.0};
   s.view.width = 160.0;

@@ -79,7 +79,7 @@ Accuracy measure(const std::string& key, const Scene& s, const Reference& ref, d
       const double e = std::hypot(st[j].position.x - r.position.x, st[j].position.y - r.position.y);
       err = std::isnan(e) ? INFINITY : std::max(err, e);
     }
-    for (const BodyLink& l : s.links) {
+    for (const fixstep::detail::IndexLink& l : s.links) {
       a.min_link =
           std::min(a.min_link, std::hypot(st[l.body_a].position.x - st[l.body_b].position.x,
                                           st[l.body_a].position.y - st[l.body_b].position.y));

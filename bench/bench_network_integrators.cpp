@@ -87,7 +87,6 @@ std::vector<double> time_case(const Case& c, Precision p, int threads, int reps)
     WorldDef d = c.def;
     d.precision = p, d.settings.integrator = i.integrator, d.settings.threads = threads;
     d.settings.damping_split = i.split;
-    d.allow_unstable = true;
     sims.push_back(World(d));
     sims.back().step();  // first-tick work (the passes' arrays) stays untimed
   }

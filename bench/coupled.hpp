@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fixstep/components.hpp"
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/world.hpp"
 
 namespace coupled {
@@ -40,8 +41,8 @@ enum class SceneKind { chain, cloth };
 
 struct Scene {
   SceneKind kind = SceneKind::chain;
-  std::vector<fixstep::BodyDef> bodies{};  ///< mass, initial state, anchored spring, pull
-  std::vector<fixstep::BodyLink> links{};  ///< rest length 0
+  std::vector<fixstep::BodyDef> bodies{};           ///< mass, initial state, anchored spring, pull
+  std::vector<fixstep::detail::IndexLink> links{};  ///< rest length 0
   /// When not empty: the scene with every spring given a small rest length L behaves exactly
   /// like this one (rest length 0) shifted by L·rest_shift[j] per body, as long as no spring
   /// changes direction (true for the chain: all springs point along -x from b to a). Box2D
@@ -54,6 +55,17 @@ struct Scene {
 [[nodiscard]] Scene make_cloth(std::size_t side);
 [[nodiscard]] Scene make_scene(SceneKind kind, std::size_t bodies);  ///< cloth: side = √bodies
 
+/// The scene's links as a WorldDef holds them (by the handles World(def) gives its bodies).
+[[nodiscard]] inline std::vector<fixstep::LinkDef> link_defs(const Scene& s) {
+  std::vector<fixstep::LinkDef> out;
+  out.reserve(s.links.size());
+  for (const fixstep::detail::IndexLink& l : s.links) {
+    out.push_back({fixstep::detail::defined_entity(l.body_a),
+                   fixstep::detail::defined_entity(l.body_b), l.spring});
+  }
+  return out;
+}
+
 /// A fixstep World holding the scene (bodies in scene order, then the links in order).
 template <class Real>
 std::unique_ptr<fixstep::detail::WorldKernel<Real>> make_world(const Scene& s,
@@ -63,7 +75,7 @@ std::unique_ptr<fixstep::detail::WorldKernel<Real>> make_world(const Scene& s,
   std::vector<fixstep::Entity> e;
   e.reserve(s.bodies.size());
   for (const fixstep::BodyDef& d : s.bodies) e.push_back(w->create_body(d));
-  for (const fixstep::BodyLink& l : s.links) {
+  for (const fixstep::detail::IndexLink& l : s.links) {
     w->create_link({.body_a = e[l.body_a], .body_b = e[l.body_b], .spring = l.spring});
   }
   return w;

@@ -32,7 +32,7 @@ Reference rk4_reference(const Scene& s, std::span<const double> times, int subst
 }
 
 Reference reference(const Scene& s, std::span<const double> times) {
-  auto net = fixstep::exact::LinearNetwork::make(s.bodies, s.links);
+  auto net = fixstep::exact::LinearNetwork::make(s.bodies, link_defs(s));
   if (!net)
     throw std::invalid_argument(
         "reference: the scene is not a proportionally damped linear network");

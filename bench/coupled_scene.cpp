@@ -8,7 +8,7 @@ namespace coupled {
 
 using fixstep::Body;
 using fixstep::BodyDef;
-using fixstep::BodyLink;
+using BodyLink = fixstep::detail::IndexLink;
 using fixstep::LinkSpring;
 using fixstep::SpringDamper;
 

@@ -17,7 +17,7 @@ namespace coupled {
 
 using fixstep::Body;
 using fixstep::BodyDef;
-using fixstep::BodyLink;
+using BodyLink = fixstep::detail::IndexLink;
 using fixstep::SpringDamper;
 using fixstep::Vec2;
 using fixstep::World;

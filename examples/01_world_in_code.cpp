@@ -53,9 +53,9 @@ int main(int argc, char** argv) {
     // The state, read back: body i in creation order.
     const World& sim = session.simulation();
     for (std::size_t i = 0; i < sim.body_count(); ++i) {
-      const Body b = sim.body_at(i);
-      std::printf("%-8s x = %7.3f m  y = %7.3f m\n", sim.name(i).c_str(), b.position.x,
-                  b.position.y);
+      const Body b = sim.body(sim.bodies()[i]);
+      std::printf("%-8s x = %7.3f m  y = %7.3f m\n", sim.name(sim.bodies()[i]).c_str(),
+                  b.position.x, b.position.y);
     }
     std::printf("%s\nwrote %s\n", summary_line(sim, session.initial_energy()).c_str(), png.c_str());
   } catch (const std::exception& e) {

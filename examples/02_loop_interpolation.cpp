@@ -50,15 +50,15 @@ int main(int argc, char** argv) {
 
     FixedStepLoop loop(sim);  // ticks of the world's dt
     const VirtualClock clock(60.0);
-    RenderFrame drawn;
+    std::vector<float> x(1), y(1);    // the drawn position, m
     std::vector<float> held, smooth;  // the bob's drawn x in each frame
     for (int frame = 0; frame < frames; ++frame) {
       if (frame > 0)
         loop.advance(clock.frame_seconds(), {}, [&](const TickInput& in) { sim.step(in); });
-      sim.fill_render_frame(1.0, drawn);  // alpha = 1: the current tick, as is
-      held.push_back(drawn.x[0]);
-      sim.fill_render_frame(loop.alpha(), drawn);  // between the last two ticks
-      smooth.push_back(drawn.x[0]);
+      sim.interpolate_positions(1.0, x, y);  // alpha = 1: the current tick, as is
+      held.push_back(x[0]);
+      sim.interpolate_positions(loop.alpha(), x, y);  // between the last two ticks
+      smooth.push_back(x[0]);
     }
 
     Renderer r(width, height);

@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
     for (int n = 0; n * dt <= duration + 1e-9; ++n) {
       if (n > 0) sim.step();
       for (std::size_t i = 0; i < 2; ++i) {
-        const Vec2 p = sim.body_at(i).position, q = exact::solve(throws[i], sim.time())->position;
+        const Vec2 p = sim.body(sim.bodies()[i]).position,
+                   q = exact::solve(throws[i], sim.time())->position;
         ticks[i].push_back(p);
         worst[i] = std::max(worst[i], std::hypot(p.x - q.x, p.y - q.y));
       }

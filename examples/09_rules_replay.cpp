@@ -12,6 +12,7 @@
 #include <fixstep/recording_file.hpp>
 #include <fixstep/rules.hpp>
 #include <fixstep/session.hpp>
+#include <span>
 #include <string>
 
 namespace {
@@ -49,7 +50,7 @@ struct Game {
 TickRules rules(Game& game) {
   return stateful_rules(game, [](Game& g, World& sim, const TickInput&) {
     for (std::size_t i = 0; i < sim.body_count(); ++i) {
-      const Entity e = sim.entity_at(i);
+      const Entity e = sim.bodies()[i];
       if (sim.body(e).position.x <= edge) continue;
       sim.set_body(e, Body{.mass = 1.0, .position = respawn, .velocity = {}});
       ++g.respawns;
@@ -57,11 +58,10 @@ TickRules rules(Game& game) {
   });
 }
 
-// The player: an upward kick (impulse, N·s) for one ball every 1.5 s.
-TickInput input_of(std::uint64_t t) {
+// The player: an upward kick (impulse, N·s) for one of the three balls every 1.5 s.
+TickInput input_of(std::uint64_t t, std::span<const Entity> balls) {
   TickInput in{.tick = t};
-  if (t % 180 == 90)
-    in.bodies.push_back({initial_entity(t / 180 % 3), BodyInputKind::impulse, {1.0, 5.0}});
+  if (t % 180 == 90) in.bodies.push_back({balls[t / 180 % 3], BodyInputKind::impulse, {1.0, 5.0}});
   return in;
 }
 
@@ -77,9 +77,10 @@ int main(int argc, char** argv) {
     World sim = World(def);
     Recorder recorder(def, "09_rules_replay (built in code)", 1);
     for (std::uint64_t t = 0; t < ticks; ++t) {
-      sim.step(input_of(t));
-      live_rules.after_tick(sim, input_of(t));
-      recorder.record(input_of(t), sim);
+      const TickInput in = input_of(t, sim.defined_bodies());  // def.bodies' handles, in order
+      sim.step(in);
+      live_rules.after_tick(sim, in);
+      recorder.record(in, sim);
     }
     const Recording rec = recorder.finish(sim);
 

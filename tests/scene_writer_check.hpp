@@ -83,7 +83,6 @@ inline void expect_same_world(const WorldDef& a, const WorldDef& b) {
     expect_bits(x.restitution, y.restitution, "contacts.restitution");
     expect_bits(x.friction, y.friction, "contacts.friction");
   });
-  EXPECT_EQ(a.allow_unstable, b.allow_unstable);
   ASSERT_EQ(a.bodies.size(), b.bodies.size());
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {
     expect_same_body(a.bodies[i], b.bodies[i], "body[" + std::to_string(i) + "]");

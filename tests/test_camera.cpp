@@ -95,7 +95,7 @@ TEST(Camera, TheFollowedBodyStaysAtTheCentreAndItsTrailShowsItsPath) {
   const auto owner =
       quiet_session({ball({0.0, 0.5}, {6.0, 0.0}, red), ball({0.0, -1.5}, {}, yellow)});
   Session& s = *owner;
-  const Entity red_ball = initial_entity(0);
+  const Entity red_ball = s.simulation().defined_bodies()[0];
   s.set_view({0.0, 0.0}, 10.0);
   s.follow(red_ball);
   EXPECT_EQ(s.followed(), red_ball);
@@ -131,7 +131,7 @@ TEST(Camera, TheFollowedBodyStaysAtTheCentreAndItsTrailShowsItsPath) {
   EXPECT_EQ(s.followed(), null_entity);
   EXPECT_EQ(s.view().center.x, last.x);
   EXPECT_THROW(s.follow(red_ball), std::invalid_argument);  // stale
-  s.follow(initial_entity(1));
+  s.follow(s.simulation().defined_bodies()[1]);
   s.follow(null_entity);  // stops
   s.draw();
   EXPECT_EQ(s.view().center.x, last.x);
@@ -143,7 +143,8 @@ TEST(Camera, ClearTrailsForgetsEveryTrail) {
   s.set_view({0.0, 0.0}, 10.0);
   const VirtualClock clock(60.0);
   auto trail_pixels = [&] {
-    const auto p = s.renderer().to_pixel(s.simulation().body_at(0).position.x, 0.5);
+    const auto p =
+        s.renderer().to_pixel(s.simulation().body(s.simulation().bodies()[0]).position.x, 0.5);
     int n = 0;
     for (int x = int(p[0]) - 45; x < int(p[0]) - 16; ++x)
       n += reddish(at(s.renderer(), x, int(p[1])));

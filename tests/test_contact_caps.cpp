@@ -110,7 +110,7 @@ TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
   ASSERT_TRUE(w.fault().has_value());
   const StateFault& f = *w.fault();
   EXPECT_EQ(f.cap, "max_tick_predictions");
-  EXPECT_EQ(f.index, 0u);
+  EXPECT_EQ(f.body, w.entities()[0]);
   EXPECT_NE(f.with.find("plane["), std::string::npos) << f.with;
   EXPECT_EQ(w.contact_stats().capped, 1u);
 }

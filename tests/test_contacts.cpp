@@ -319,7 +319,7 @@ radius = 0.25
   EXPECT_EQ(s.planes[0].restitution, 0.5);
   EXPECT_EQ(s.planes[1].offset, -4.0);
   EXPECT_EQ(s.planes[1].friction, 0.3);
-  EXPECT_EQ(s.plane_lines, (std::vector<std::size_t>{3, 6}));
+  EXPECT_EQ(s.source.plane_lines, (std::vector<std::size_t>{3, 6}));
   ASSERT_TRUE(s.bodies[0].collider.has_value());
   EXPECT_EQ(s.bodies[0].collider->radius, 0.25);
   const WorldDef def = world_def(s);

@@ -16,6 +16,7 @@
 #include "fixstep/exact.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/world.hpp"
+#include "link_between.hpp"
 
 namespace fixstep {
 namespace {
@@ -119,7 +120,7 @@ TEST(Links, AccelerationsFollowTheDefinition) {
 /// last body pulled out: a linear network with proportional damping (an exact solution).
 struct Chain {
   std::vector<BodyDef> bodies;
-  std::vector<BodyLink> links;
+  std::vector<LinkDef> links;
 };
 Chain make_chain(int n, double k, double alpha, double rest = 0.0, double mass_ratio = 1.0) {
   Chain c;
@@ -130,9 +131,9 @@ Chain make_chain(int n, double k, double alpha, double rest = 0.0, double mass_r
     c.bodies.push_back(d);
   }
   for (int i = 0; i + 1 < n; ++i) {
-    c.links.push_back({.body_a = std::size_t(i),
-                       .body_b = std::size_t(i + 1),
-                       .spring = {.stiffness = k, .damping = alpha * k, .rest_length = rest}});
+    c.links.push_back(
+        fixstep::test::link_between(std::size_t(i), std::size_t(i + 1),
+                                    {.stiffness = k, .damping = alpha * k, .rest_length = rest}));
   }
   return c;
 }
@@ -142,7 +143,8 @@ std::unique_ptr<detail::WorldKernel<Real>> build(const Chain& c, WorldSettings s
   auto w = std::make_unique<detail::WorldKernel<Real>>(s);
   std::vector<Entity> e;
   for (const BodyDef& d : c.bodies) e.push_back(w->create_body(d));
-  for (const BodyLink& l : c.links) w->create_link({e[l.body_a], e[l.body_b], l.spring});
+  for (const LinkDef& l : c.links)
+    w->create_link({e[l.body_a.slot()], e[l.body_b.slot()], l.spring});
   return w;
 }
 
@@ -199,9 +201,8 @@ TEST(Links, TwoThreadsAndEverySimdLevelGiveTheSameBits) {
   const SimdLevel saved = simd_level();
   Chain c = make_chain(3 * 4096 + 17, 50.0, 0.01, 0.0, 2.0);
   for (std::size_t i = 0; i + 7 < c.bodies.size(); i += 7) {  // extra links: a web
-    c.links.push_back({.body_a = i,
-                       .body_b = i + 7,
-                       .spring = {.stiffness = 9.0, .damping = 0.1, .rest_length = 0.2}});
+    c.links.push_back(fixstep::test::link_between(
+        i, i + 7, {.stiffness = 9.0, .damping = 0.1, .rest_length = 0.2}));
   }
   for (Integrator method : all_integrators) {
     // Explicit Euler diverges on this web; implicit Euler's solve is serial (Eigen) and has
@@ -350,7 +351,7 @@ TEST(Links, PerStepDampingSplitIsOrderTwoAndTheSameWithoutDamping) {
 TEST(Links, StrangChainReusesItsLastForcePassOnlyWhileItHolds) {
   for (Integrator method : {Integrator::velocity_verlet, Integrator::forest_ruth}) {
     Chain c = make_chain(7, 40.0, 0.05, 0.3);
-    c.links.push_back({.body_a = 0, .body_b = 4, .spring = {.stiffness = 9.0, .damping = 0.4}});
+    c.links.push_back(fixstep::test::link_between(0, 4, {.stiffness = 9.0, .damping = 0.4}));
     c.bodies.back().type = BodyType::kinematic;
     c.bodies.back().body.velocity = {0.37, 0.29};
     const WorldSettings s{.dt = 1.0 / 120, .integrator = method, .substeps = 3};
@@ -379,9 +380,8 @@ TEST(Links, StrangChainReusesItsLastForcePassOnlyWhileItHolds) {
 Chain rest_length_network() {
   Chain c = make_chain(5, 60.0, 0.0, 0.5);
   for (std::size_t l = 0; l < c.links.size(); ++l) c.links[l].spring.damping = 0.3;
-  c.links.push_back({.body_a = 0,
-                     .body_b = 2,
-                     .spring = {.stiffness = 20.0, .damping = 0.1, .rest_length = 0.9}});
+  c.links.push_back(
+      fixstep::test::link_between(0, 2, {.stiffness = 20.0, .damping = 0.1, .rest_length = 0.9}));
   for (BodyDef& d : c.bodies) d.gravity = Gravity{};
   return c;
 }
@@ -412,8 +412,8 @@ std::vector<Body> odeint_reference(const Chain& c, double t_end) {
                  d.spring->damping * s[4 * j + 3];
       }
     }
-    for (const BodyLink& l : c.links) {
-      const std::size_t a = l.body_a, b = l.body_b;
+    for (const LinkDef& l : c.links) {
+      const std::size_t a = l.body_a.slot(), b = l.body_b.slot();
       const double dx = s[4 * a] - s[4 * b], dy = s[4 * a + 1] - s[4 * b + 1];
       const double ux = s[4 * a + 2] - s[4 * b + 2], uy = s[4 * a + 3] - s[4 * b + 3];
       const double len = std::hypot(dx, dy), nx = dx / len, ny = dy / len;

@@ -117,7 +117,7 @@ TEST(Determinism, SameStateAtEverySimdLevel) {
 TEST(Determinism, HeadlessSessionReachesTheSameState) {
   // The frame pipeline `render` and `view` share: drawing must not touch the physics.
   for (const char* file : {"default.toml", "projectile.toml", "spring_damper.toml"}) {
-    const Case c{file, load_scene(scenes_dir() / file).world.integrator,
+    const Case c{file, load_scene(scenes_dir() / file).settings.integrator,
                  load_scene(scenes_dir() / file).precision};
     Session session = testing::scene_session(scene_for(c), 64, 64);
     const VirtualClock clock(60.0);

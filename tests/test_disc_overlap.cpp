@@ -11,8 +11,10 @@
 #include <string_view>
 #include <vector>
 
+#include "fixstep/definition_checks.hpp"
 #include "fixstep/disc_overlap.hpp"
 #include "fixstep/scene.hpp"
+#include "link_between.hpp"
 
 namespace fixstep {
 namespace {
@@ -45,7 +47,7 @@ TEST(DiscOverlap, FindsAPairAndLeavesTouchingDiscsAlone) {
 
 TEST(DiscOverlap, LinkedPairsNonCollidingDiscsAndTwoAnchorsAreExempt) {
   std::vector<BodyDef> b{disc(0, 0, 1), disc(0.5, 0, 1)};
-  const std::vector<BodyLink> link{{1, 0, LinkSpring{1.0, 0.0, 0.0}}};
+  const std::vector<LinkDef> link{fixstep::test::link_between(1, 0, LinkSpring{1.0, 0.0, 0.0})};
   EXPECT_EQ(first_disc_overlap(b, link), std::nullopt);  // collideConnected = false
   EXPECT_EQ(first_disc_overlap(b, {}), Pair({0, 1}));
   b[1].collider->collide = false;
@@ -75,8 +77,34 @@ TEST(DiscOverlap, RefusesNonFiniteDiscsAndLinksOutOfRange) {
   b[1] = disc(3, 0, 0.0);
   EXPECT_THROW((void)first_disc_overlap(b, {}), std::invalid_argument);
   b[1] = disc(3, 0, 1);
-  const std::vector<BodyLink> bad{{0, 2, LinkSpring{}}};
+  const std::vector<LinkDef> bad{fixstep::test::link_between(0, 2)};
   EXPECT_THROW((void)first_disc_overlap(b, bad), std::invalid_argument);
+}
+
+TEST(DefinitionChecks, OverlapsAreTheProgramsCallAndWorldBuildsWhatItIsGiven) {
+  WorldDef def;
+  def.settings.contacts = ContactSettings{};
+  BodyDef left;
+  left.name = "left";
+  left.collider = Collider{.radius = 1.0};
+  BodyDef right = left;
+  right.name = "right";
+  right.body.position = {1.5, 0.0};  // 0.5 m into the left disc
+  (void)def.add_body(left);
+  (void)def.add_body(right);
+  EXPECT_EQ(World(def).body_count(), 2u);
+  try {
+    check_overlaps(def);
+    FAIL() << "overlapping discs accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("body 'left' and body 'right' overlap by 0.5 m at tick 0"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW((void)check_definition(def), std::invalid_argument);
+  def.settings.contacts.reset();  // discs that never meet may start anywhere
+  EXPECT_NO_THROW(check_overlaps(def));
+  EXPECT_TRUE(check_definition(def).empty());
 }
 
 TEST(DiscOverlap, AgreesWithEveryPairCheckedOnRandomScenes) {
@@ -100,14 +128,15 @@ TEST(DiscOverlap, AgreesWithEveryPairCheckedOnRandomScenes) {
                                   : BodyType::kinematic));
       b.back().collider->collide = uniform() > 0.1;
     }
-    std::vector<BodyLink> links;
+    std::vector<LinkDef> links;
     for (std::size_t l = 0; l < n / 3; ++l) {
       const std::size_t a = std::size_t(uniform() * n), c = std::size_t(uniform() * n);
-      if (a != c) links.push_back({a, c, LinkSpring{}});
+      if (a != c) links.push_back(fixstep::test::link_between(a, c, LinkSpring{}));
     }
     auto eligible = [&](std::size_t i, std::size_t j) {
-      for (const BodyLink& l : links) {
-        if ((l.body_a == i && l.body_b == j) || (l.body_a == j && l.body_b == i)) return false;
+      for (const LinkDef& l : links) {
+        const std::size_t la = l.body_a.slot(), lb = l.body_b.slot();
+        if ((la == i && lb == j) || (la == j && lb == i)) return false;
       }
       return discs_may_touch(b[i], b[j]) && disc_overlap_depth(b[i], b[j]) > 1e-9;
     };

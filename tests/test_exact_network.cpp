@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "fixstep/exact.hpp"
+#include "link_between.hpp"
 
 namespace fixstep {
 namespace {
@@ -88,7 +89,7 @@ TEST(ExactNetwork, TwoLinkedBodiesAreCentreOfMassAndRelativeOscillator) {
   defs[0].constant_force = ConstantForce{force};
   defs[1].body = Body{.mass = m2, .position = {-0.5, 0.0}, .velocity = {1.0, -0.4}};
   for (BodyDef& d : defs) d.gravity = Gravity{g};
-  const std::vector<BodyLink> links{{0, 1, LinkSpring{k, b, 0.0}}};
+  const std::vector<LinkDef> links{fixstep::test::link_between(0, 1, LinkSpring{k, b, 0.0})};
   const auto net = exact::LinearNetwork::make(defs, links);
   ASSERT_TRUE(net.has_value());
 
@@ -128,7 +129,7 @@ TEST(ExactNetwork, FreeChainsCentreOfMassFollowsTheParabola) {
   // accel/ω² some 1e16 m away). The centre of mass obeys M X'' = Σ F + M g exactly.
   const double mass[] = {0.7, 3.3, 5.9, 2.0}, k[] = {30.0, 81.0, 64.0};
   std::vector<BodyDef> defs(4);
-  std::vector<BodyLink> links;
+  std::vector<LinkDef> links;
   double total = 0.0;
   Vec2 x0{}, p0{};
   for (std::size_t i = 0; i < 4; ++i) {
@@ -139,7 +140,9 @@ TEST(ExactNetwork, FreeChainsCentreOfMassFollowsTheParabola) {
     total += mass[i];
     x0 = {x0.x + mass[i] * defs[i].body.position.x, x0.y + mass[i] * defs[i].body.position.y};
     p0 = {p0.x + mass[i] * defs[i].body.velocity.x, p0.y + mass[i] * defs[i].body.velocity.y};
-    if (i > 0) links.push_back({i - 1, i, LinkSpring{k[i - 1], 0.01 * k[i - 1], 0.0}});
+    if (i > 0)
+      links.push_back(
+          fixstep::test::link_between(i - 1, i, LinkSpring{k[i - 1], 0.01 * k[i - 1], 0.0}));
   }
   defs[2].constant_force = ConstantForce{{2.0, 1.0}};
   const auto net = exact::LinearNetwork::make(defs, links);
@@ -164,7 +167,7 @@ TEST(ExactNetwork, FreeChainsCentreOfMassFollowsTheParabola) {
 /// α = 0.02 s, β = 0.1 1/s: link dampers b = α k, body 0's anchored damper α k0, drag β m.
 struct Chain {
   std::vector<BodyDef> bodies;
-  std::vector<BodyLink> links;
+  std::vector<LinkDef> links;
 };
 
 Chain damped_chain() {
@@ -183,7 +186,7 @@ Chain damped_chain() {
     c.bodies.push_back(d);
   }
   for (std::size_t l = 0; l < 5; ++l)
-    c.links.push_back({l, l + 1, LinkSpring{k[l], alpha * k[l], 0.0}});
+    c.links.push_back(fixstep::test::link_between(l, l + 1, LinkSpring{k[l], alpha * k[l], 0.0}));
   return c;
 }
 
@@ -208,8 +211,8 @@ TEST(ExactNetwork, DampedChainUnderGravityAgreesWithOdeintDopri5) {
       ds[4 * i] = s[4 * i + 2], ds[4 * i + 1] = s[4 * i + 3];
       ds[4 * i + 2] = fx, ds[4 * i + 3] = fy;
     }
-    for (const BodyLink& l : chain.links) {
-      const std::size_t a = 4 * l.body_a, b = 4 * l.body_b;
+    for (const LinkDef& l : chain.links) {
+      const std::size_t a = 4 * l.body_a.slot(), b = 4 * l.body_b.slot();
       for (int c = 0; c < 2; ++c) {
         const double f = -l.spring.stiffness * (s[a + c] - s[b + c]) -
                          l.spring.damping * (s[a + 2 + c] - s[b + 2 + c]);
@@ -278,7 +281,7 @@ TEST(ExactNetwork, NonlinearOrNonProportionalNetworksAreRefused) {
   Chain undamped = base;
   for (BodyDef& d : undamped.bodies) d.drag.reset();
   undamped.bodies[0].spring->damping = 0.0;
-  for (BodyLink& l : undamped.links) l.spring.damping = 0.0;
+  for (LinkDef& l : undamped.links) l.spring.damping = 0.0;
   EXPECT_TRUE(make(undamped).has_value());
 }
 
@@ -288,7 +291,7 @@ TEST(ExactNetwork, RejectsInvalidArguments) {
     EXPECT_THROW((void)exact::LinearNetwork::make(x.bodies, x.links), std::invalid_argument);
   };
   Chain out_of_range = c;
-  out_of_range.links[0].body_b = 6;
+  out_of_range.links[0].body_b = detail::defined_entity(6);
   throws(out_of_range);
   Chain self = c;
   self.links[1].body_b = self.links[1].body_a;

@@ -14,10 +14,12 @@
 #include <string>
 
 #include "cli_run.hpp"
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/recording.hpp"
 #include "fixstep/recording_file.hpp"
 #include "fixstep/scene_writer.hpp"
 #include "fixstep/summary.hpp"
+#include "link_between.hpp"
 
 namespace fixstep {
 namespace {
@@ -53,7 +55,8 @@ WorldDef code_world() {
   paddle.body.velocity = {-0.5, 0.0};
   paddle.collider = Collider{.radius = 0.4};
   def.bodies = {ball, hook, bob, paddle};
-  def.links = {BodyLink{2, 1, LinkSpring{.stiffness = 200.0, .damping = 0.5, .rest_length = 1.0}}};
+  def.links = {fixstep::test::link_between(
+      2, 1, LinkSpring{.stiffness = 200.0, .damping = 0.5, .rest_length = 1.0})};
   def.planes = {PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 0.6}};
   return def;
 }
@@ -76,8 +79,8 @@ TEST(RecordCodeWorld, FixstepReplaysAndRendersItFromTheRecording) {
     TickInput in{.tick = t};
     in.push = {t < 40 ? 3.0 : 0.0, t % 25 < 5 ? 1.5 : 0.0};  // changes every few ticks
     in.pointer = {0.01 * double(t), 2.5};
-    in.drag_body =
-        t >= 60 && t < 90 ? initial_entity(2) : no_body;  // the bob, dragged for half a second
+    in.drag_body = t >= 60 && t < 90 ? detail::defined_entity(2)
+                                     : null_entity;  // the bob, dragged for half a second
     in.held = t >= 60 && t < 90 ? std::uint32_t{button_pointer_primary} : 0u;
     sim.step(in);
     recorder.record(in, sim);

@@ -15,7 +15,9 @@
 #include <sstream>
 #include <string>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/recording_file.hpp"
+#include "link_between.hpp"
 
 namespace fixstep {
 namespace {
@@ -31,7 +33,7 @@ WorldDef small_world() {
   b.drag = LinearDrag{0.05};
   c.name = "c", c.body = {0.5, {2.0, 0.0}, {}};
   def.bodies = {a, b, c};
-  def.links = {BodyLink{0, 2, LinkSpring{20.0, 0.2, 1.0}}};
+  def.links = {fixstep::test::link_between(0, 2, LinkSpring{20.0, 0.2, 1.0})};
   return def;
 }
 
@@ -88,7 +90,7 @@ TEST(Recording, TextAndFileRoundTripsExactly) {
   Recording rec = record_run(small_world(), 80, 7);
   rec.inputs[1].push = {0.1, -1e-300};  // shortest round-trip text must keep every bit
   rec.inputs[2].pointer = {std::nextafter(1.0, 2.0), -0.0};
-  rec.inputs[3].drag_body = initial_entity(2);
+  rec.inputs[3].drag_body = detail::defined_entity(2);
   const std::string text = format_recording(rec);
   EXPECT_EQ(parse_recording(text, "x.rec"), rec);
   EXPECT_EQ(format_recording(parse_recording(text, "x.rec")), text);
@@ -164,7 +166,6 @@ TEST(Recording, DefinitionHashCoversWhatChangesStatesOnly) {
   same.bodies[0].name = "renamed";
   same.bodies[0].appearance = Appearance{};
   same.settings.track_dissipation = !def.settings.track_dissipation;
-  same.allow_unstable = true;
   EXPECT_EQ(definition_hash(same), h);
   auto changed = [&](auto&& edit) {
     WorldDef d = def;
@@ -356,10 +357,10 @@ drag = false
   EXPECT_EQ(in[4].held, button_left | button_pointer_primary);
   EXPECT_EQ(in[4].push, (Vec2{1.5, 0.0}));
   EXPECT_EQ(in[4].pointer, (Vec2{0.5, -1.0}));
-  EXPECT_EQ(in[4].drag_body, initial_entity(2));
+  EXPECT_EQ(in[4].drag_body, detail::defined_entity(2));
   EXPECT_EQ(in[5].released, button_left);
   EXPECT_EQ(in[5].held, button_pointer_primary);
-  EXPECT_EQ(in[5].drag_body, no_body);
+  EXPECT_EQ(in[5].drag_body, null_entity);
   EXPECT_EQ(in[6].released, 0u);
   EXPECT_EQ(in[7].push, (Vec2{1.5, 0.0}));
   for (std::uint64_t t = 0; t < 8; ++t) EXPECT_EQ(in[t].tick, t);

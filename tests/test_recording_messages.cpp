@@ -112,7 +112,7 @@ TEST(RecordingMessages, ABodyTheSceneDoesNotHaveIsABadRecording) {
               std::string::npos)
         << e.what();
   }
-  rec.inputs[1].drag_body = no_body;
+  rec.inputs[1].drag_body = null_entity;
   rec.inputs[1].bodies.push_back({Entity{1, 2}, BodyInputKind::impulse, {1.0, 0.0}});
   EXPECT_THROW(check_recorded_bodies(rec, 2, "edited.rec"), RecordingError);  // a stale handle
   rec.inputs[1].bodies.back().body = Entity{2, 1};

@@ -50,7 +50,7 @@ TEST(Render, BodyIsDrawnWhereItsPositionMaps) {
   d.appearance = Appearance{.radius = 0.5, .color = {255, 0, 0, 255}};
   sim.create_body(d);
   RenderFrame s;
-  sim.fill_render_frame(0.0, s);
+  fill_render_frame(sim, 0.0, s);
   r.draw(s, {});
   const auto p = r.to_pixel(2.0, 1.0);
   EXPECT_DOUBLE_EQ(p[0], 224.0);
@@ -71,7 +71,7 @@ TEST(Render, InterpolatesBetweenTicksWithAlpha) {
   sim.set_keep_previous(true);
   sim.step();  // x: 0 -> 4
   RenderFrame s;
-  sim.fill_render_frame(0.25, s);
+  fill_render_frame(sim, 0.25, s);
   EXPECT_FLOAT_EQ(s.x[0], 1.0f);
 }
 
@@ -160,7 +160,8 @@ TEST(Render, LinksAreZigzagsWhenFewAndThinLinesWhenMany) {
     s.y = {0.0f, 0.0f};
     s.radius = {0.0f, 0.0f};
     s.color = {Rgba8{0, 0, 0, 0}, Rgba8{0, 0, 0, 0}};
-    s.links.assign(links, RenderFrame::LinkLine{0, 1});
+    s.link_a.assign(links, 0);
+    s.link_b.assign(links, 1);
     r->draw(s, {});
     return r;
   };
@@ -275,18 +276,18 @@ TEST(Render, ATrailBelongsToItsBodyNotToItsDenseIndex) {
   const Entity a = sim.create_body(disc({-3.1, 0.3}, {255, 0, 0, 255}));
   const Entity b = sim.create_body(disc({2.9, 0.3}, {0, 255, 0, 255}));
   RenderFrame s;
-  sim.fill_render_frame(0.0, s);
+  fill_render_frame(sim, 0.0, s);
   for (int f = 0; f < 10; ++f) r.draw(s, {});
   sim.destroy(a);
   sim.create_body(disc({0.1, 2.4}, {0, 0, 255, 255}));
-  sim.fill_render_frame(0.0, s);
+  fill_render_frame(sim, 0.0, s);
   ASSERT_EQ(s.ids[0], b);
   r.draw(s, {});
   fresh.draw(s, {});
   EXPECT_TRUE(std::equal(r.pixels().begin(), r.pixels().end(), fresh.pixels().begin()));
 
   sim.set_body(b, Body{.mass = 1.0, .position = {2.9, -2.0}, .velocity = {}});  // b moves
-  sim.fill_render_frame(0.0, s);
+  fill_render_frame(sim, 0.0, s);
   r.draw(s, {});
   Renderer last_only(320, 200);
   last_only.set_camera(camera);

@@ -33,8 +33,8 @@ spring = { anchor = [0.0, 0.0], stiffness = 15.0, damping = 0.1 }  # N/m, N*s/m
 
 TEST(Scene, TheDocumentedSchemaLoads) {
   const Scene s = parse_scene(minimal, "minimal.toml");
-  EXPECT_EQ(s.world.dt, 0.01);
-  EXPECT_EQ(s.world.integrator, Integrator::semi_implicit_euler);
+  EXPECT_EQ(s.settings.dt, 0.01);
+  EXPECT_EQ(s.settings.integrator, Integrator::semi_implicit_euler);
   EXPECT_EQ(s.precision, Precision::f32);
   ASSERT_EQ(s.bodies.size(), 1u);
   const BodyDef& b = s.bodies[0];
@@ -68,10 +68,10 @@ TEST(Scene, ChainSceneIsLinearWithDampingProportionalToStiffness) {
   EXPECT_GT(alpha, 0.0);
   EXPECT_EQ(s.bodies[0].spring->rest_length, 0.0);
   for (const BodyDef& b : s.bodies) EXPECT_FALSE(b.drag.has_value()) << b.name;
-  for (const BodyLink& l : s.links) {
+  for (const LinkDef& l : s.links) {
     EXPECT_EQ(l.spring.rest_length, 0.0);
     EXPECT_NEAR(l.spring.damping / l.spring.stiffness, alpha, 1e-12 * alpha);
-    EXPECT_EQ(l.body_b, l.body_a + 1);  // a linear chain in body order
+    EXPECT_EQ(l.body_b.slot(), l.body_a.slot() + 1);  // a linear chain in body order
   }
 }
 
@@ -92,7 +92,7 @@ color = "#ff000080"
 )",
                               "opt.toml");
   EXPECT_EQ(s.precision, Precision::f64);  // default
-  EXPECT_EQ(s.world.integrator, Integrator::semi_implicit_euler);
+  EXPECT_EQ(s.settings.integrator, Integrator::semi_implicit_euler);
   EXPECT_EQ(s.bodies[0].name, "body0");
   EXPECT_EQ(s.bodies[0].appearance->color, (Rgba8{255, 0, 0, 128}));
   EXPECT_EQ(*s.view.width, 30.0);
@@ -431,18 +431,18 @@ TEST(Scene, SpringTablesJoinNamedBodies) {
                              "stiffness = 3\n"),
                   "springs.toml");
   ASSERT_EQ(s.links.size(), 2u);
-  ASSERT_EQ(s.link_lines.size(), 2u);
-  EXPECT_EQ(s.links[0].body_a, 1u);  // "b"
-  EXPECT_EQ(s.links[0].body_b, 0u);  // "a"
+  ASSERT_EQ(s.source.link_lines.size(), 2u);
+  EXPECT_EQ(s.links[0].body_a.slot(), 1u);  // "b"
+  EXPECT_EQ(s.links[0].body_b.slot(), 0u);  // "a"
   EXPECT_EQ(s.links[0].spring.stiffness, 12.5);
   EXPECT_EQ(s.links[0].spring.damping, 0.25);
   EXPECT_EQ(s.links[0].spring.rest_length, 0.75);
-  EXPECT_EQ(s.link_lines[0], 11u);
+  EXPECT_EQ(s.source.link_lines[0], 11u);
   // Defaults: damping 0, rest length 0.
   EXPECT_EQ(s.links[1].spring.stiffness, 3.0);
   EXPECT_EQ(s.links[1].spring.damping, 0.0);
   EXPECT_EQ(s.links[1].spring.rest_length, 0.0);
-  EXPECT_EQ(s.link_lines[1], 16u);
+  EXPECT_EQ(s.source.link_lines[1], 16u);
   // Two links between the same bodies: both act, with a warning.
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_NE(s.warnings[0].find("already joined by spring[0]"), std::string::npos) << s.warnings[0];
@@ -496,7 +496,7 @@ stiffness = 7
 )",
                               "chain.toml");
   ASSERT_EQ(s.bodies.size(), 5u);
-  ASSERT_EQ(s.body_lines.size(), 5u);
+  ASSERT_EQ(s.source.body_lines.size(), 5u);
   for (std::size_t i = 0; i < 4; ++i) {
     const BodyDef& b = s.bodies[1 + i];
     EXPECT_EQ(b.name, "rope[" + std::to_string(i) + "]");
@@ -507,7 +507,7 @@ stiffness = 7
     EXPECT_EQ(b.drag->coefficient, 0.01);
     EXPECT_EQ(b.appearance->radius, 0.1);
     EXPECT_EQ(b.appearance->color, (Rgba8{255, 0, 0, 255}));
-    EXPECT_EQ(s.body_lines[1 + i], 7u);
+    EXPECT_EQ(s.source.body_lines[1 + i], 7u);
     EXPECT_EQ(b.spring.has_value(), i == 0 || i == 3) << i;
   }
   // The pins: anchored at the start position, frequency form on the body's own mass.
@@ -519,16 +519,16 @@ stiffness = 7
   // Links: consecutive bodies, rest length = the spacing's length, then the [[spring]].
   ASSERT_EQ(s.links.size(), 4u);
   for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(s.links[i].body_a, 1 + i);
-    EXPECT_EQ(s.links[i].body_b, 2 + i);
+    EXPECT_EQ(s.links[i].body_a.slot(), 1 + i);
+    EXPECT_EQ(s.links[i].body_b.slot(), 2 + i);
     EXPECT_EQ(s.links[i].spring.stiffness, 100.0);
     EXPECT_EQ(s.links[i].spring.damping, 0.5);
     EXPECT_NEAR(s.links[i].spring.rest_length, std::hypot(0.5, 0.25), 1e-15);
-    EXPECT_EQ(s.link_lines[i], 7u);
+    EXPECT_EQ(s.source.link_lines[i], 7u);
   }
-  EXPECT_EQ(s.links[3].body_a, 0u);
-  EXPECT_EQ(s.links[3].body_b, 1u);
-  EXPECT_EQ(s.link_lines[3], 16u);
+  EXPECT_EQ(s.links[3].body_a.slot(), 0u);
+  EXPECT_EQ(s.links[3].body_b.slot(), 1u);
+  EXPECT_EQ(s.source.link_lines[3], 16u);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
   EXPECT_EQ(make_world(s).link_count(), 4u);
 }
@@ -574,8 +574,9 @@ pin_spring = { stiffness = 1000 }
   // bend: 2 per row x 3 + 4 x 1 = 10.
   ASSERT_EQ(s.links.size(), 17u + 12u + 10u);
   std::size_t structural = 0, shear = 0, bend = 0;
-  for (const BodyLink& l : s.links) {
-    const Vec2 a = s.bodies[l.body_a].body.position, b = s.bodies[l.body_b].body.position;
+  for (const LinkDef& l : s.links) {
+    const Vec2 a = s.bodies[l.body_a.slot()].body.position,
+               b = s.bodies[l.body_b.slot()].body.position;
     const double d = std::hypot(a.x - b.x, a.y - b.y);
     if (l.spring.stiffness == 50.0) {
       ++structural;
@@ -597,9 +598,9 @@ pin_spring = { stiffness = 1000 }
   EXPECT_EQ(shear, 12u);
   EXPECT_EQ(bend, 10u);
   // The first links: cloth[0,0]-cloth[1,0], then cloth[0,0]-cloth[0,1].
-  EXPECT_EQ(s.links[0].body_a, 0u);
-  EXPECT_EQ(s.links[0].body_b, 1u);
-  EXPECT_EQ(s.links[1].body_b, 4u);
+  EXPECT_EQ(s.links[0].body_a.slot(), 0u);
+  EXPECT_EQ(s.links[0].body_b.slot(), 1u);
+  EXPECT_EQ(s.links[1].body_b.slot(), 4u);
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     EXPECT_EQ(s.bodies[i].spring.has_value(), i == 0 || i == 3) << i;
   }

@@ -57,16 +57,16 @@ TEST(SceneContacts, ContactsTableFillsTheWorldSettings) {
   const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
   const Scene on =
       parse_scene(scene("[contacts]\nrestitution = 0.5\nfriction = 0.3\n" + disc), "c.toml");
-  ASSERT_TRUE(on.world.contacts.has_value());
-  EXPECT_EQ(on.world.contacts->restitution, 0.5);
-  EXPECT_EQ(on.world.contacts->friction, 0.3);
+  ASSERT_TRUE(on.settings.contacts.has_value());
+  EXPECT_EQ(on.settings.contacts->restitution, 0.5);
+  EXPECT_EQ(on.settings.contacts->friction, 0.3);
   EXPECT_TRUE(on.warnings.empty()) << on.warnings[0];
   EXPECT_TRUE(world_def(on).settings.contacts.has_value());  // what Session and the CLI build
   const Scene defaults = parse_scene(scene("[contacts]\n" + disc), "c.toml");
-  ASSERT_TRUE(defaults.world.contacts.has_value());
-  EXPECT_EQ(defaults.world.contacts->restitution, 0.0);
-  EXPECT_EQ(defaults.world.contacts->friction, 0.0);
-  EXPECT_FALSE(parse_scene(scene(disc), "c.toml").world.contacts.has_value());
+  ASSERT_TRUE(defaults.settings.contacts.has_value());
+  EXPECT_EQ(defaults.settings.contacts->restitution, 0.0);
+  EXPECT_EQ(defaults.settings.contacts->friction, 0.0);
+  EXPECT_FALSE(parse_scene(scene(disc), "c.toml").settings.contacts.has_value());
 }
 
 TEST(SceneContacts, BodyTypesAndDiscKeysFillBodyDefAndCollider) {
@@ -176,7 +176,7 @@ stiffness = 1
   warning(s, 14,
           "spring[0].bodies: does nothing: \"a\" (static) and \"b\" (kinematic) are both "
           "immovable");
-  EXPECT_TRUE(s.world.contacts.has_value());  // still on: code may add discs
+  EXPECT_TRUE(s.settings.contacts.has_value());  // still on: code may add discs
 }
 
 TEST(SceneContacts, DiscCoefficientsWithoutContactsWarnAtTheirKeys) {

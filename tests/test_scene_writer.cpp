@@ -15,6 +15,7 @@
 #include "fixstep/recording.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_writer.hpp"
+#include "link_between.hpp"
 #include "scene_writer_check.hpp"
 
 namespace fixstep {
@@ -63,7 +64,6 @@ WorldDef awkward_world(Precision precision, Integrator integrator) {
   def.settings.flush_denormals = false;
   def.settings.track_dissipation = true;  // a scene's, always
   def.settings.contacts = ContactSettings{.restitution = third, .friction = tiny};
-  def.allow_unstable = true;
 
   BodyDef a;
   a.name = "quote\" back\\slash\nnew line\ttab \x01 \x7f ünïcødé ☃ 𝄞";
@@ -96,9 +96,10 @@ WorldDef awkward_world(Precision precision, Integrator integrator) {
   dot.body = Body{.mass = sub, .position = {5.0, 5.0}};
   dot.appearance = Appearance{.radius = 0.5, .color = {9, 8, 7, 255}};  // colour alone
   def.bodies = {a, wall, paddle, bare, dot};
-  def.links = {BodyLink{0, 3, LinkSpring{third, 0.0, 1e-300}},
-               BodyLink{4, 1, LinkSpring{huge, tiny, 0.0}},
-               BodyLink{2, 1, LinkSpring{1.0, 1.0, 0.5}}};  // two immovable ends: a warning
+  def.links = {fixstep::test::link_between(0, 3, LinkSpring{third, 0.0, 1e-300}),
+               fixstep::test::link_between(4, 1, LinkSpring{huge, tiny, 0.0}),
+               fixstep::test::link_between(
+                   2, 1, LinkSpring{1.0, 1.0, 0.5})};  // two immovable ends: a warning
   def.planes = {PlaneDef{.normal = {0.0, 1.0}, .offset = -0.0, .restitution = third},
                 PlaneDef{.normal = {-1.0, -0.0}, .offset = -huge, .friction = 0.7},
                 PlaneDef{.normal = {0.6, 0.8}, .offset = tiny, .restitution = 1.0},
@@ -146,7 +147,7 @@ TEST(SceneWriter, NamesAndLooksTheFormatCannotHoldAreNormalisedAsDocumented) {
   def.bodies[4].name = "";                           // -> body4
   def.bodies[4].collider = Collider{.radius = 0.3};  // no Appearance: reloads with one
   for (std::size_t i = 0; i < 5; ++i) def.bodies[i].body.position = {double(i), 0.0};
-  def.links = {BodyLink{0, 3, {}}, BodyLink{1, 4, {}}};
+  def.links = {fixstep::test::link_between(0, 3, {}), fixstep::test::link_between(1, 4, {})};
   const WorldDef back = reload(def);
   EXPECT_EQ(definition_hash(back), definition_hash(def));
   WorldDef expected = def;
@@ -182,7 +183,7 @@ body = { mass = 1.0, draw_radius = 3.0 }
 )",
                               "keys.toml");
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
-  EXPECT_FALSE(s.world.flush_denormals);
+  EXPECT_FALSE(s.settings.flush_denormals);
   ASSERT_EQ(s.bodies.size(), 4u);
   EXPECT_FALSE(s.bodies[0].collider);  // drawn, not a disc
   EXPECT_EQ(s.bodies[0].appearance->radius, 2.0);
@@ -192,7 +193,7 @@ body = { mass = 1.0, draw_radius = 3.0 }
   EXPECT_EQ(s.bodies[3].appearance->radius, 3.0);
   EXPECT_TRUE(parse_scene("[world]\ndt = 0.01\n[[body]]\nmass = 1.0\nposition = [0.0, 0.0]\n",
                           "default.toml")
-                  .world.flush_denormals);
+                  .settings.flush_denormals);
   EXPECT_THROW((void)parse_scene("[world]\ndt = 0.01\n[[body]]\nmass = 1.0\nposition = [0.0, "
                                  "0.0]\ndraw_radius = 0.0\n",
                                  "zero.toml"),
@@ -235,15 +236,12 @@ TEST(SceneWriter, RefusesWhatWouldNotLoadBackExactly) {
               d.bodies[0].body.velocity = {1.0, 0.0};
             }).find("a static body's velocity (1, 0) m/s cannot be written"),
             std::string::npos);
-  EXPECT_EQ(with([](WorldDef& d) {
-              d.links = {BodyLink{0, 2, {}}};
-            }),
-            "format_scene: link[0]: joins bodies 0 and 2: each must be one of the 2 bodies, and "
-            "they must differ");
-  EXPECT_NE(with([](WorldDef& d) {
-              d.links = {BodyLink{1, 1, {}}};
-            }).find("link[0]"),
-            std::string::npos);
+  EXPECT_EQ(with([](WorldDef& d) { d.links = {fixstep::test::link_between(0, 2, {})}; }),
+            "format_scene: link[0]: joins body[0] and body[2]: each must be one of the 2 bodies (a "
+            "handle WorldDef::add_body returned), and they must differ");
+  EXPECT_NE(
+      with([](WorldDef& d) { d.links = {fixstep::test::link_between(1, 1, {})}; }).find("link[0]"),
+      std::string::npos);
   EXPECT_NE(with([](WorldDef& d) {
               d.planes = {PlaneDef{.normal = {0.0, 2.0}}};
             })

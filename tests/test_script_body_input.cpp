@@ -79,7 +79,7 @@ ScriptRun run_script() {
     r.sim.check_input(in);  // nothing World::step would ignore
     r.sim.step(in);
     for (std::size_t i = 0; i < 4 && (r.sim.tick() == 10 || r.sim.tick() == 11); ++i) {
-      (r.sim.tick() == 10 ? r.before : r.after).push_back(r.sim.body(initial_entity(i)));
+      (r.sim.tick() == 10 ? r.before : r.after).push_back(r.sim.body(r.sim.defined_bodies()[i]));
     }
   }
   return r;
@@ -87,8 +87,10 @@ ScriptRun run_script() {
 
 TEST(ScriptBodyInput, EachKeyActsAsDocumented) {
   const ScriptRun r = run_script();
-  const Body ball = r.sim.body(initial_entity(0)), ship = r.sim.body(initial_entity(1)),
-             paddle = r.sim.body(initial_entity(2)), wall = r.sim.body(initial_entity(3));
+  const Body ball = r.sim.body(r.sim.defined_bodies()[0]),
+             ship = r.sim.body(r.sim.defined_bodies()[1]),
+             paddle = r.sim.body(r.sim.defined_bodies()[2]),
+             wall = r.sim.body(r.sim.defined_bodies()[3]);
   // Before tick 10 nothing moves.
   ASSERT_EQ(r.before.size(), 4u);
   for (const Body& b : r.before) EXPECT_EQ(b.velocity, (Vec2{0.0, 0.0}));

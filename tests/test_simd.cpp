@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/integrators.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/world.hpp"
@@ -134,12 +135,12 @@ TEST(Simd, TheRuntimeGuardFiresAtTheSameTickAtEveryLevel) {
   };
   const auto reference = fault_at(SimdLevel::baseline);
   ASSERT_TRUE(reference.has_value());
-  EXPECT_EQ(reference->index, 500u);
+  EXPECT_EQ(reference->body, detail::defined_entity(500));
   for (SimdLevel level : levels) {
     if (!simd_supported(level)) continue;
     const auto f = fault_at(level);
     ASSERT_TRUE(f.has_value()) << simd_level_name(level);
-    EXPECT_EQ(f->index, reference->index) << simd_level_name(level);
+    EXPECT_EQ(f->body, reference->body) << simd_level_name(level);
     EXPECT_EQ(f->tick, reference->tick) << simd_level_name(level);
     EXPECT_EQ(f->field, reference->field) << simd_level_name(level);
   }

@@ -15,6 +15,7 @@
 #include <fixstep/sync_test.hpp>
 #include <fixstep/world.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "fixstep/recording_file.hpp"
@@ -31,9 +32,9 @@ bool has_band(const fixstep::World& sim, fixstep::Entity body) {
 }
 
 // Whether a tick's impact is between the ball and a target: that target's number, else -1.
-int ball_hit(const fixstep::Impact& impact) {
-  const fixstep::Entity a = impact.a, b = impact.b;
-  return a == ball ? target_number(b) : b == ball ? target_number(a) : -1;
+int ball_hit(const fixstep::World& sim, const fixstep::Impact& impact) {
+  const fixstep::Entity a = impact.a, b = impact.b, the_ball = ball(sim);
+  return a == the_ball ? target_number(sim, b) : b == the_ball ? target_number(sim, a) : -1;
 }
 
 // A player driving the mouse: whenever the ball is loaded it takes the next pull of its list:
@@ -124,10 +125,10 @@ TEST(Slingshot, LevelBuildsAndRestsLoaded) {
   for (int t = 0; t < 240; ++t) play_tick(game, TickInput{std::uint64_t(t)}, sim);
   // Nobody touched it: the ball still sits on its band where band and gravity balance.
   EXPECT_EQ(game, GameState{});
-  const Vec2 p = sim.body(ball).position, rest = ball_rest_position();
+  const Vec2 p = sim.body(ball(sim)).position, rest = ball_rest_position();
   EXPECT_NEAR(p.x, rest.x, 1e-9);
   EXPECT_NEAR(p.y, rest.y, 1e-9);
-  EXPECT_TRUE(has_band(sim, ball));
+  EXPECT_TRUE(has_band(sim, ball(sim)));
 }
 
 TEST(Slingshot, BandIsCutWhenTheBallPassesTheAnchor) {
@@ -138,18 +139,18 @@ TEST(Slingshot, BandIsCutWhenTheBallPassesTheAnchor) {
   for (const TickInput& in : shot.inputs) {
     const Phase before = game.phase;
     play_tick(game, in, sim);
-    const Vec2 p = sim.body(ball).position;
+    const Vec2 p = sim.body(ball(sim)).position;
     const double past = (p.x - anchor.x) * (anchor.x - game.release_point.x) +
                         (p.y - anchor.y) * (anchor.y - game.release_point.y);
     if (game.phase == Phase::pulled) {
       saw_pulled = true;
       EXPECT_LT(past, 0.0) << "tick " << in.tick;  // short of the anchor: band still on
-      EXPECT_TRUE(has_band(sim, ball));
+      EXPECT_TRUE(has_band(sim, ball(sim)));
     }
     if (before == Phase::pulled && game.phase == Phase::flying) {
       saw_flying = true;
       EXPECT_GE(past, 0.0) << "tick " << in.tick;  // cut the tick it passes
-      EXPECT_FALSE(has_band(sim, ball));
+      EXPECT_FALSE(has_band(sim, ball(sim)));
     }
   }
   EXPECT_TRUE(saw_pulled);
@@ -168,27 +169,27 @@ TEST(Slingshot, HitKnocksTargetOffAndScoresOnce) {
   GameState game;
   game.phase = Phase::flying;
   game.shots_left = 2;
-  const fixstep::Entity hit = target(1);
+  const fixstep::Entity hit = sim.find("target" + std::to_string(1));
   const Vec2 t = sim.body(hit).position;
   // The ball 5 cm left of touching the target, flying at it at 10 m/s, band cut: it hits
   // 5 ms into the next tick.
   auto throw_at_target = [&] {
-    sim.remove<fixstep::SpringDamper>(ball);
-    sim.set_body(ball, {.mass = ball_mass, .position = {t.x - 1.0, t.y}, .velocity = {10, 0}});
+    sim.remove<fixstep::SpringDamper>(ball(sim));
+    sim.set_body(ball(sim), {.mass = ball_mass, .position = {t.x - 1.0, t.y}, .velocity = {10, 0}});
   };
   throw_at_target();
   play_tick(game, TickInput{0}, sim);
   ASSERT_EQ(sim.impacts().size(), 1u);  // the engine resolved the hit, 5 ms into the tick
-  EXPECT_EQ(sim.impacts()[0].a, ball);
+  EXPECT_EQ(sim.impacts()[0].a, ball(sim));
   EXPECT_EQ(sim.impacts()[0].b, hit);
   EXPECT_NEAR(sim.impacts()[0].time, 0.005, 1e-4);
   EXPECT_NEAR(sim.impacts()[0].normal_speed, 10.0, 0.1);
   EXPECT_EQ(game.score, 1);
   EXPECT_EQ(game.knocked, 1u << 1);
-  EXPECT_FALSE(has_band(sim, hit));           // off its rope
-  EXPECT_TRUE(has_band(sim, target(0)));      // the others still hang
-  EXPECT_GT(sim.body(hit).velocity.x, 5.0);   // pushed away
-  EXPECT_LT(sim.body(ball).velocity.x, 5.0);  // the ball lost speed
+  EXPECT_FALSE(has_band(sim, hit));                                    // off its rope
+  EXPECT_TRUE(has_band(sim, sim.find("target" + std::to_string(0))));  // the others still hang
+  EXPECT_GT(sim.body(hit).velocity.x, 5.0);                            // pushed away
+  EXPECT_LT(sim.body(ball(sim)).velocity.x, 5.0);                      // the ball lost speed
   for (int i = 1; i < 30; ++i) play_tick(game, TickInput{std::uint64_t(i)}, sim);
   EXPECT_EQ(game.score, 1);
   // Hit again: it bounces, but a target scores once.
@@ -197,7 +198,7 @@ TEST(Slingshot, HitKnocksTargetOffAndScoresOnce) {
   play_tick(game, TickInput{30}, sim);
   ASSERT_EQ(sim.impacts().size(), 1u);
   EXPECT_EQ(game.score, 1);
-  EXPECT_LT(sim.body(ball).velocity.x, 5.0);
+  EXPECT_LT(sim.body(ball(sim)).velocity.x, 5.0);
 }
 
 // A real shot (drag, release, flight) scores through the engine: the score rises exactly in
@@ -220,7 +221,7 @@ TEST(Slingshot, ShotScoresOnceThroughAnEngineImpact) {
       EXPECT_GE(impact.time, 0.0);
       EXPECT_LE(impact.time, dt);
       EXPECT_GT(impact.normal_speed, 0.0);
-      const int i = ball_hit(impact);
+      const int i = ball_hit(sim, impact);
       if (i < 0) continue;
       ++ball_target_impacts;
       const std::uint32_t bit = 1u << i;
@@ -230,7 +231,8 @@ TEST(Slingshot, ShotScoresOnceThroughAnEngineImpact) {
     EXPECT_EQ(game.score - before.score, std::popcount(first_hits)) << "tick " << in.tick;
     EXPECT_EQ(game.knocked & ~before.knocked, first_hits) << "tick " << in.tick;
     for (int i = 0; i < target_count; ++i) {  // knocked off its rope, or still hanging
-      EXPECT_EQ(has_band(sim, target(i)), (game.knocked >> i & 1u) == 0);
+      EXPECT_EQ(has_band(sim, sim.find("target" + std::to_string(i))),
+                (game.knocked >> i & 1u) == 0);
     }
   }
   EXPECT_GE(ball_target_impacts, 1);
@@ -259,7 +261,7 @@ TEST(Slingshot, ScriptedGameIsDeterministicAndReplays) {
   for (std::size_t i = 0; i + 1 < changed.size(); ++i) {
     if (changed[i].released != 0) {
       std::swap(changed[i].released, changed[i + 1].released);
-      changed[i].drag_body = ball;
+      changed[i].drag_body = fixstep::World(make_level()).find("ball");
       changed[i].held = changed[i - 1].held;
       break;
     }

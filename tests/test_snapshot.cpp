@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "determinism_cases.hpp"
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/pointer_drag.hpp"
 #include "fixstep/rewind.hpp"
@@ -143,7 +144,7 @@ TEST(InputPerTick, EveryPressAndReleaseOfARandomScriptReachesExactlyOneTick) {
 
 Scene scene_with(const std::string& file, Integrator integrator, Precision precision) {
   Scene s = load_scene(scenes_dir / file);
-  s.world.integrator = integrator;
+  s.settings.integrator = integrator;
   s.precision = precision;
   return s;
 }
@@ -307,31 +308,33 @@ TEST(PointerDrag, ADraggedBodyFollowsThePointerAtAnyDtAndMass) {
       World sim = World(free_bodies(integrator, dt));
       TickInput in;
       in.pointer = {4.0, 2.0};
-      in.drag_body = initial_entity(1);
+      in.drag_body = detail::defined_entity(1);
       for (int t = 0; t < int(3.0 / dt); ++t) sim.step(in);
-      EXPECT_NEAR(sim.body_at(1).position.x, 4.0, 1e-3);
-      EXPECT_NEAR(sim.body_at(1).position.y, 2.0, 1e-3);
-      EXPECT_EQ(sim.body_at(0).position.x, 0.0);  // the other body is left alone
+      EXPECT_NEAR(sim.body(sim.bodies()[1]).position.x, 4.0, 1e-3);
+      EXPECT_NEAR(sim.body(sim.bodies()[1]).position.y, 2.0, 1e-3);
+      EXPECT_EQ(sim.body(sim.bodies()[0]).position.x, 0.0);  // the other body is left alone
     }
   }
 }
 
 TEST(PointerDrag, APressPicksTheBodyUnderThePointerAndAReleaseLetsGo) {
   World sim = World(free_bodies(Integrator::semi_implicit_euler, 1.0 / 60));
-  EXPECT_EQ(pick_body(sim, {3.5, 0.5}, 0.1), initial_entity(1));   // within b's radius of 1 m
-  EXPECT_EQ(pick_body(sim, {0.05, 0.0}, 0.1), initial_entity(0));  // a has no radius: the tolerance
-  EXPECT_EQ(pick_body(sim, {1.5, 0.0}, 0.1), no_body);
+  EXPECT_EQ(pick_body(sim, {3.5, 0.5}, 0.1),
+            detail::defined_entity(1));  // within b's radius of 1 m
+  EXPECT_EQ(pick_body(sim, {0.05, 0.0}, 0.1),
+            detail::defined_entity(0));  // a has no radius: the tolerance
+  EXPECT_EQ(pick_body(sim, {1.5, 0.0}, 0.1), null_entity);
   PointerDrag drag(0.1);
   TickInput in{
       .held = button_pointer_primary, .pressed = button_pointer_primary, .pointer = {3.2, 0.0}};
   drag.apply(in, sim);
-  EXPECT_EQ(in.drag_body, initial_entity(1));
+  EXPECT_EQ(in.drag_body, detail::defined_entity(1));
   TickInput hold{.held = button_pointer_primary, .pointer = {0.0, 0.0}};
   drag.apply(hold, sim);  // held: still b, although the pointer is now over a
-  EXPECT_EQ(hold.drag_body, initial_entity(1));
+  EXPECT_EQ(hold.drag_body, detail::defined_entity(1));
   TickInput up{.released = button_pointer_primary};
   drag.apply(up, sim);
-  EXPECT_EQ(up.drag_body, no_body);
+  EXPECT_EQ(up.drag_body, null_entity);
   EXPECT_THROW(PointerDrag(-1.0), std::invalid_argument);
 }
 
@@ -373,7 +376,7 @@ TEST(SyncTest, EveryShippedSceneIntegratorAndPrecisionRollsBackBitExactly) {
     // cloth.toml, a second in the Debug ASan build), and a thousand discs in contact
     // (ball_pit.toml) take ~1.5 ms a tick: fewer ticks there, every path still run.
     const bool slow = (c.integrator == Integrator::implicit_euler && scene.links.size() > 40) ||
-                      (scene.world.contacts && scene.bodies.size() > 1000);
+                      (scene.settings.contacts && scene.bodies.size() > 1000);
 #ifdef NDEBUG
     const std::uint64_t ticks = slow ? 12 : 120;
 #else
@@ -416,7 +419,7 @@ TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
   // The cloth (400 bodies, 1540 links) at 20 000 substeps: a tick of a few tenths of a second
   // that ran to its end, without throwing, before the substeps polled the request.
   Scene scene = load_scene(scenes_dir / "cloth.toml");
-  scene.world.substeps = 20000;
+  scene.settings.substeps = 20000;
   World sim = make_world(scene);
   WorldSnapshot before;
   sim.save(before);
@@ -448,12 +451,12 @@ TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
 
 TEST(StopRequest, APendingStopStopsImplicitEulerAndTheStabilityGuard) {
   Scene scene = load_scene(scenes_dir / "cloth.toml");
-  scene.world.integrator = Integrator::implicit_euler;
+  scene.settings.integrator = Integrator::implicit_euler;
   World sim = make_world(scene);
   request_stop(15);
   EXPECT_THROW(sim.step(TickInput{.tick = 0}), StopRequested);
-  // The guard's power iteration (make_simulation checks the network) polls too.
-  scene.world.integrator = Integrator::semi_implicit_euler;
+  // The guard's power iteration (make_world checks the network) polls too.
+  scene.settings.integrator = Integrator::semi_implicit_euler;
   EXPECT_THROW((void)make_world(scene), StopRequested);
   clear_stop_request();
   EXPECT_NO_THROW(sim.step(TickInput{.tick = 0}));  // the same world steps again once cleared
@@ -463,7 +466,7 @@ TEST(StopRequest, AStopScopeStopsItsThreadOnlyAndAnotherThreadStepsOn) {
   // A background load stopped by its owner while the owner steps its own world: only the
   // thread under the scope sees the flag.
   Scene scene = load_scene(scenes_dir / "cloth.toml");
-  scene.world.substeps = 20000;  // a tick of a few tenths of a second
+  scene.settings.substeps = 20000;  // a tick of a few tenths of a second
   World background = make_world(scene);
   clear_stop_request();
   std::atomic<int> flag{0};

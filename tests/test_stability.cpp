@@ -8,10 +8,12 @@
 #include <optional>
 #include <string>
 
+#include "fixstep/definition_checks.hpp"
 #include "fixstep/exact.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "fixstep/world.hpp"
+#include "link_between.hpp"
 
 namespace fixstep {
 namespace {
@@ -177,7 +179,7 @@ TEST(Guard, RefusesWithTheSmallestStableSubstepCountWhichThenRuns) {
   for (int i = 0; i < 10'000; ++i) sim.step();
   // bounded: ω h = 5/3, so |E/E0 - 1| <= (ωh)/(1 - ωh/2) = 10 at most, far from blow-up
   EXPECT_LT(sim.energy().total() / e0, 11.0);
-  EXPECT_TRUE(std::isfinite(sim.body_at(0).position.x));
+  EXPECT_TRUE(std::isfinite(sim.body(sim.bodies()[0]).position.x));
 }
 
 TEST(Guard, TheRefusalSaysWhatToDoBeforeTheNumbersThatExplainIt) {
@@ -217,8 +219,8 @@ TEST(Guard, TheRefusalSaysWhatToDoBeforeTheNumbersThatExplainIt) {
 
 TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
   // The same stiff body as above (ω·dt = 5 with symplectic Euler) as a WorldDef: the core's
-  // make_simulation refuses it, states the fault and the smallest stable substep count, and
-  // says nothing of scene files (no "[world]", no "allow_unstable").
+  // check_stability(def) refuses it, states the fault and the smallest stable substep count, and
+  // says nothing of scene files (no "[world]", no "allow_unstable"). World(def) itself builds it.
   WorldDef def;
   def.settings = {.dt = 0.25, .integrator = Integrator::semi_implicit_euler};
   BodyDef bob;
@@ -226,8 +228,9 @@ TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
   bob.body.position = {1.0, 0.0};
   bob.spring = SpringDamper{.anchor = {}, .stiffness = 400.0};
   def.bodies.push_back(bob);
+  EXPECT_EQ(World(def).body_count(), 1u);  // the guard is the program's call, not World's
   try {
-    (void)World(def);
+    (void)check_stability(def);
     FAIL() << "unstable world accepted";
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
@@ -238,13 +241,15 @@ TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
     EXPECT_EQ(what.find("allow_unstable"), std::string::npos) << what;
   }
   def.settings.substeps = 3;
-  EXPECT_EQ(World(def).body_count(), 1u);
+  EXPECT_TRUE(check_stability(def).empty());
   def.settings.substeps = 1;
-  def.allow_unstable = true;
-  EXPECT_EQ(World(def).body_count(), 1u);
-  // A link to a body that does not exist is refused by index, before any guard runs.
-  def.links.push_back(BodyLink{.body_a = 0, .body_b = 1, .spring = {.stiffness = 1.0}});
+  const std::vector<std::string> allowed = check_stability(def, /*allow_unstable=*/true);
+  ASSERT_EQ(allowed.size(), 1u);
+  EXPECT_NE(allowed[0].find("body 'bob' is unstable"), std::string::npos) << allowed[0];
+  // A link to a body the definition does not have is refused, by World and by the guard.
+  def.links.push_back(fixstep::test::link_between(0, 1, {.stiffness = 1.0}));
   EXPECT_THROW((void)World(def), std::invalid_argument);
+  EXPECT_THROW((void)check_stability(def, true), std::invalid_argument);
 }
 
 TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
@@ -295,7 +300,7 @@ TEST(Guard, ParameterExtremesRunBoundedOrAreRefusedNeverNaN) {
           }
           ++ran;
           for (int i = 0; i < 2000; ++i) sim->step();
-          const Body b = sim->body_at(0);
+          const Body b = sim->body(sim->bodies()[0]);
           const auto exact = exact::solve(scene.bodies[0], sim->time());
           const std::string where = fmt::format("{} k={} m={} dt={}", name, k, m, dt);
           ASSERT_TRUE(std::isfinite(b.position.x) && std::isfinite(b.velocity.x)) << where;
@@ -363,7 +368,7 @@ TEST(Stability, ARateSoSmallItsBoundOverflowsIsStableAtEveryStep) {
     EXPECT_NO_THROW((void)enforce_stability(s)) << body;
     World sim = World(world_def(s));
     sim.step({});
-    EXPECT_EQ(sim.body(initial_entity(0)).position, (Vec2{0.0, 0.0})) << body;
+    EXPECT_EQ(sim.body(sim.defined_bodies()[0]).position, (Vec2{0.0, 0.0})) << body;
   }
 }
 

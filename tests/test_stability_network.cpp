@@ -14,6 +14,7 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "fixstep/world.hpp"
+#include "link_between.hpp"
 
 namespace fixstep {
 namespace {
@@ -31,7 +32,7 @@ const char* masses_name(Masses m) {
 /// excites the top mode (the fastest mode of a chain alternates from body to body).
 struct Chain {
   std::vector<BodyDef> bodies;
-  std::vector<BodyLink> links;
+  std::vector<LinkDef> links;
 };
 
 Chain chain(std::size_t n, Masses masses, double k = 1.0, double b = 0.0) {
@@ -46,7 +47,7 @@ Chain chain(std::size_t n, Masses masses, double k = 1.0, double b = 0.0) {
     d.body.position = {i % 2 ? -1.0 : 1.0, 0.0};
     if (i == 0) d.spring = SpringDamper{.anchor = {}, .stiffness = k, .damping = b};
     c.bodies.push_back(d);
-    if (i > 0) c.links.push_back({i - 1, i, LinkSpring{k, b, 0.0}});
+    if (i > 0) c.links.push_back(fixstep::test::link_between(i - 1, i, LinkSpring{k, b, 0.0}));
   }
   return c;
 }
@@ -59,7 +60,8 @@ double growth(const Chain& c, Integrator integrator, double h, int ticks, double
       WorldSettings{.dt = h, .integrator = integrator, .threads = 1, .damping_split = split});
   std::vector<Entity> e;
   for (const BodyDef& d : c.bodies) e.push_back(w.create_body(d));
-  for (const BodyLink& l : c.links) w.create_link(LinkDef{e[l.body_a], e[l.body_b], l.spring});
+  for (const LinkDef& l : c.links)
+    w.create_link(LinkDef{e[l.body_a.slot()], e[l.body_b.slot()], l.spring});
   double largest = 1.0;
   for (int t = 0; t < ticks && largest <= stop; ++t) {
     w.step();
@@ -198,7 +200,7 @@ TEST(NetworkGuard, NonProportionalDampingBindsThroughTheDampingMode) {
     tail.name = "tail";
     tail.body.position = {1.0, 0.0};
     c.bodies.push_back(tail);
-    c.links.push_back({9, 10, LinkSpring{0.01, 5.0, 0.0}});
+    c.links.push_back(fixstep::test::link_between(9, 10, LinkSpring{0.01, 5.0, 0.0}));
     const NetworkStability r = check_network_stability(c.bodies, c.links, integrator, 1.0, 1);
     SCOPED_TRACE(fmt::format("{}: h* = {:.6g} s, λ_max(M⁻¹C) = {:.6g}", integrator_name(integrator),
                              r.max_step, r.damping_rate));
@@ -225,7 +227,7 @@ Chain anchored_pair(BodyType type, double k) {
   anchor.type = type;
   anchor.body.mass = 1e-6;  // ignored unless dynamic
   c.bodies = {bob, anchor};
-  c.links = {{0, 1, LinkSpring{k, 0.0, 0.0}}};
+  c.links = {fixstep::test::link_between(0, 1, LinkSpring{k, 0.0, 0.0})};
   return c;
 }
 
@@ -238,7 +240,7 @@ TEST(NetworkAnchors, ALinkToAStaticOrKinematicBodyIsJudgedWithTheDynamicMassAlon
         check_network_stability(c.bodies, c.links, Integrator::semi_implicit_euler, 0.1, 1);
     EXPECT_NEAR(r.omega_max, 10.0, 1e-9) << body_type_name(type);
     EXPECT_EQ(r.verdict, Stability::stable) << r.message;
-    EXPECT_EQ(r.fastest_body, 0u);  // the anchor never moves
+    EXPECT_EQ(r.fastest_body, detail::defined_entity(0));  // the anchor never moves
     EXPECT_EQ(r.stiffest_link, std::optional<std::size_t>(0));
   }
   const Chain free = anchored_pair(BodyType::dynamic, 100.0);
@@ -262,7 +264,7 @@ TEST(NetworkAnchors, StiffestLinkWeighsAnAnchoredLinkByTheDynamicMass) {
   b.name = "b";
   b.body = Body{.mass = 1.0, .position = {2.0, 0.0}};
   c.bodies.push_back(b);
-  c.links.push_back({0, 2, LinkSpring{60.0, 0.0, 0.0}});
+  c.links.push_back(fixstep::test::link_between(0, 2, LinkSpring{60.0, 0.0, 0.0}));
   const NetworkStability r =
       check_network_stability(c.bodies, c.links, Integrator::semi_implicit_euler, 0.01, 1);
   EXPECT_EQ(r.stiffest_link, std::optional<std::size_t>(1));
@@ -282,7 +284,7 @@ TEST(NetworkAnchors, LinksBetweenTwoAnchorsAndAnchorsOwnSpringsDoNothing) {
   s1.spring = SpringDamper{.anchor = {}, .stiffness = 1e12, .damping = 1e6};
   c.bodies.push_back(s1);
   c.bodies.push_back(s2);
-  c.links.push_back({2, 3, LinkSpring{1e12, 1e6, 0.0}});
+  c.links.push_back(fixstep::test::link_between(2, 3, LinkSpring{1e12, 1e6, 0.0}));
   const NetworkStability r =
       check_network_stability(c.bodies, c.links, Integrator::semi_implicit_euler, 0.1, 1);
   EXPECT_NEAR(r.omega_max, 10.0, 1e-9);
@@ -298,22 +300,23 @@ TEST(NetworkAnchors, LinksBetweenTwoAnchorsAndAnchorsOwnSpringsDoNothing) {
 Scene network_scene(double dt, int substeps, bool allow = false) {
   Scene s;
   s.file = "chain.toml";
-  s.world.dt = dt;
-  s.world.substeps = substeps;
-  s.world.integrator = Integrator::semi_implicit_euler;
+  s.settings.dt = dt;
+  s.settings.substeps = substeps;
+  s.settings.integrator = Integrator::semi_implicit_euler;
   s.allow_unstable = allow;
   for (const char* name : {"top", "mid", "tip", "solo"}) {
     BodyDef d;
     d.name = name;
     d.body.position = {1.0, 0.0};
     s.bodies.push_back(d);
-    s.body_lines.push_back(4 * s.bodies.size());
+    s.source.body_lines.push_back(4 * s.bodies.size());
   }
   s.bodies[0].spring = SpringDamper{.anchor = {}, .stiffness = 100.0};
   s.bodies[3].spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
-  s.links = {{0, 1, LinkSpring{100.0, 0.0, 0.0}}, {1, 2, LinkSpring{400.0, 0.0, 0.0}}};
-  s.link_lines = {30, 34};
-  s.link_keys = {"spring[0]", "spring[1]"};
+  s.links = {fixstep::test::link_between(0, 1, LinkSpring{100.0, 0.0, 0.0}),
+             fixstep::test::link_between(1, 2, LinkSpring{400.0, 0.0, 0.0})};
+  s.source.link_lines = {30, 34};
+  s.source.link_keys = {"spring[0]", "spring[1]"};
   return s;
 }
 
@@ -327,7 +330,7 @@ TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
   ASSERT_EQ(net.verdict, Stability::unstable);
   EXPECT_EQ(net.bodies, 3u);  // 'solo' is not part of it
   EXPECT_EQ(net.stiffest_link, std::optional<std::size_t>(1));
-  EXPECT_EQ(net.fastest_body, 1u);  // 'mid' swings hardest in the top mode
+  EXPECT_EQ(net.fastest_body, detail::defined_entity(1));  // 'mid' swings hardest in the top mode
   EXPECT_NEAR(net.omega_max, 29.3543, 0.01);
   try {
     (void)make_world(scene);

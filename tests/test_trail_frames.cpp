@@ -57,7 +57,7 @@ int streak_pixels(const std::vector<Vec2>& gone, const std::vector<Vec2>& born, 
   RenderFrame s;
   for (int f = 0; f < 30; ++f) {
     sim.step();
-    sim.fill_render_frame(1.0, s);
+    fill_render_frame(sim, 1.0, s);
     r.draw(s, {});
   }
   auto destroy = [&] {
@@ -69,7 +69,7 @@ int streak_pixels(const std::vector<Vec2>& gone, const std::vector<Vec2>& born, 
   if (order == Order::destroy_first) destroy(), create();
   if (order == Order::create_first) create(), destroy();
   sim.step();
-  sim.fill_render_frame(1.0, s);
+  fill_render_frame(sim, 1.0, s);
   r.draw(s, {});
 
   int stray = 0;

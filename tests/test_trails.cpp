@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/render.hpp"
 #include "fixstep/trails.hpp"
 
@@ -82,7 +83,7 @@ TEST(Trails, AFrameWithoutIdsKeysBodiesByIndexAndBadIdsAreRefused) {
 TEST(Trails, RecordingAllocatesNothingOnceWarm) {
   // 10^4 bodies, steady, then 100 of them replaced by new bodies in the freed slots.
   std::vector<Entity> ids(10000);
-  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = initial_entity(i);
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = detail::defined_entity(i);
   RenderFrame f = frame_of(ids, 0.0f);
   Trails t;
   t.record(f);

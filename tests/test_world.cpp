@@ -3,10 +3,12 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "fixstep/world.hpp"
@@ -36,6 +38,57 @@ TEST(Entity, ZeroIsNullAndHandlesAreGenerational) {
   EXPECT_THROW(w.destroy(a), std::invalid_argument);
   EXPECT_THROW((void)w.body(Entity{}), std::invalid_argument);
   EXPECT_EQ(w.body(b).position.x, 2.0);
+}
+
+TEST(WorldDef, AddBodyGivesTheHandlesTheWorldGivesAndLinksUseThem) {
+  WorldDef def;
+  BodyDef b;
+  b.name = "a";
+  const Entity a = def.add_body(b);
+  b.name = "b";
+  b.body.position = {1.0, 0.0};
+  const Entity c = def.add_body(b);
+  def.add_link(a, c, {.stiffness = 3.0, .rest_length = 1.0});
+  const World w(def);
+  ASSERT_EQ(w.defined_bodies().size(), 2u);
+  EXPECT_EQ(w.defined_bodies()[0], a);
+  EXPECT_EQ(w.defined_bodies()[1], c);
+  EXPECT_EQ(w.name(a), "a");
+  EXPECT_EQ(w.name(c), "b");
+  ASSERT_EQ(w.link_count(), 1u);
+  std::uint32_t ea = 9, eb = 9;
+  w.link_ends(std::span(&ea, 1), std::span(&eb, 1));
+  EXPECT_EQ(ea, 0u);
+  EXPECT_EQ(eb, 1u);
+  // A handle the definition did not give (a later generation, a slot past its bodies) is
+  // refused, naming the link.
+  WorldDef bad = def;
+  bad.links[0].body_b = Entity{2, 2};
+  try {
+    (void)World(bad);
+    FAIL() << "a stale handle was linked";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("link[0]: body 2:2 is not one of the definition's 2"),
+              std::string::npos)
+        << e.what();
+  }
+  bad.links[0].body_b = Entity{3, 1};
+  EXPECT_THROW((void)World(bad), std::invalid_argument);
+}
+
+TEST(World, InterpolatedPositionsLieBetweenTheLastTwoTicks) {
+  World w(Precision::f64, WorldSettings{.dt = 0.5});
+  BodyDef b;
+  b.body.velocity = {2.0, -4.0};  // m/s: 1 m and -2 m a tick, no forces
+  (void)w.create_body(b);
+  w.set_keep_previous(true);
+  w.step();
+  float x = 0, y = 0;
+  w.interpolate_positions(0.25, std::span(&x, 1), std::span(&y, 1));
+  EXPECT_FLOAT_EQ(x, 0.25f);
+  EXPECT_FLOAT_EQ(y, -0.5f);
+  std::vector<float> wrong(2);
+  EXPECT_THROW(w.interpolate_positions(0.0, wrong, wrong), std::invalid_argument);
 }
 
 TEST(World, DestroyKeepsOtherBodiesAndTheirComponents) {
@@ -188,7 +241,7 @@ void expect_guard_names_first_tick_out_of_range() {
   w.step();
   ASSERT_TRUE(w.fault().has_value());
   const StateFault& f = *w.fault();
-  EXPECT_EQ(f.index, 1u);
+  EXPECT_EQ(f.body, detail::defined_entity(1));
   EXPECT_EQ(f.name, "stiff");
   EXPECT_EQ(f.tick, expected_tick);
   EXPECT_DOUBLE_EQ(f.time, 0.1 * double(expected_tick));
@@ -245,7 +298,7 @@ position = [0.0, 0.0]
 gravity = [0.0, -9.81]
 )",
                             "blow.toml");
-  StateFault f{.index = 0,
+  StateFault f{.body = detail::defined_entity(0),
                .name = "stiff",
                .tick = 14,
                .time = 1.4,
@@ -260,7 +313,7 @@ gravity = [0.0, -9.81]
   EXPECT_NE(m.find("Likely cause"), std::string::npos) << m;
   EXPECT_NE(m.find("ω·h = 3 exceeds the stability bound 2"), std::string::npos) << m;
   EXPECT_NE(m.find("substeps = 2"), std::string::npos) << m;
-  f.index = 1, f.name = "thrown", f.field = "y";
+  f.body = detail::defined_entity(1), f.name = "thrown", f.field = "y";
   const std::string g = explain_fault(scene, f);
   EXPECT_NE(g.find("within semi_implicit_euler's stability bound"), std::string::npos) << g;
   EXPECT_NE(g.find("gravity"), std::string::npos) << g;

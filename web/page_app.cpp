@@ -41,7 +41,6 @@ PageApp::PageApp(PageOptions options)
   scene_ = load_scene(scene_file_);
   (void)enforce_stability(*scene_);  // throws for an unstable scene, as `fixstep run` does
   WorldDef def = world_def(*scene_);
-  def.stability_checked = true;
   start_session(std::move(def), o_.scene);
   if (o_.record)
     recorder_.emplace(session_->definition(), scene_file_, o_.hash_every, scene_->text);
@@ -105,7 +104,7 @@ void PageApp::interactive_frame(double now_ms) {
   show_text("result",
             fmt::format("tick={} state_hash={} paused={} dragging={}", session.simulation().tick(),
                         hex_hash(session.simulation().state_hash()), int(session.loop().paused()),
-                        int(drag_.body() != no_body)));
+                        int(drag_.body() != null_entity)));
 }
 
 void PageApp::report() {

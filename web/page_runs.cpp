@@ -73,7 +73,6 @@ void PageApp::recording_fetched(std::string text) {
           : parse_scene(rec.scene_text, fmt::format("{} (embedded in {})", rec.scene, *o_.replay));
   WorldDef def = world_def(*scene_);
   apply_settings(def, rec.settings);
-  def.allow_unstable = true;  // the recorded run ran: replay it whatever the guard says
   check_recorded_bodies(rec, def.bodies.size(), *o_.replay);
   check_command_work(rec.ticks, tick_work(def), fmt::format("{}: end {}", *o_.replay, rec.ticks));
   const ReplayReport r = replay(def, rec);  // throws scene_mismatch

@@ -85,14 +85,14 @@ Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warni
   if (!warnings) shown.emplace(!o.quiet);
   Scene scene = load_scene(o.scene);
   report_work_progress("checking the scene", "", 0, 0);  // no count until the guard iterates
-  if (o.integrator) scene.world.integrator = *parse_integrator(*o.integrator);
-  if (o.dt) scene.world.dt = *o.dt;
+  if (o.integrator) scene.settings.integrator = *parse_integrator(*o.integrator);
+  if (o.dt) scene.settings.dt = *o.dt;
   if (o.precision) scene.precision = *parse_precision(*o.precision);
-  if (o.substeps) scene.world.substeps = *o.substeps;
-  if (o.damping_split) scene.world.damping_split = *parse_damping_split(*o.damping_split);
+  if (o.substeps) scene.settings.substeps = *o.substeps;
+  if (o.damping_split) scene.settings.damping_split = *parse_damping_split(*o.damping_split);
   if (o.allow_unstable) scene.allow_unstable = true;
   try {  // the overrides may ask for more work per tick than the file did (limits.hpp)
-    check_world_limits(scene.bodies, scene.links, scene.planes, scene.world);
+    check_world_limits(scene.bodies, scene.links, scene.planes, scene.settings);
   } catch (const LimitError& e) {
     throw LimitError(fmt::format("{} with the command line's settings: {}", o.scene, e.what()));
   }
@@ -110,7 +110,7 @@ Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warni
 
 std::string dt_source(const SceneOptions& o, const Scene& scene) {
   return o.dt ? fmt::format("--dt {:g}", *o.dt)
-              : fmt::format("[world] dt = {:g} s in {}", scene.world.dt, scene.file);
+              : fmt::format("[world] dt = {:g} s in {}", scene.settings.dt, scene.file);
 }
 
 std::string dt_fix(const SceneOptions& o) {
@@ -133,17 +133,13 @@ void check_frame_ticks(double frame_seconds, double dt, std::optional<double> fp
       ticks - 1.0, dt, max_frame_ticks, fix, smallest, by_fps ? ", or a larger --fps" : ""));
 }
 
-WorldDef checked_world_def(const Scene& scene) {
-  WorldDef def = world_def(scene);
-  def.stability_checked = true;
-  return def;
-}
-
 std::string describe(const Scene& scene) {
-  return fmt::format(
-      "scene={} integrator={} precision={} dt={}{}", scene.file,
-      integrator_name(scene.world.integrator), precision_name(scene.precision), scene.world.dt,
-      scene.world.substeps > 1 ? fmt::format(" substeps={}", scene.world.substeps) : std::string());
+  return fmt::format("scene={} integrator={} precision={} dt={}{}", scene.file,
+                     integrator_name(scene.settings.integrator), precision_name(scene.precision),
+                     scene.settings.dt,
+                     scene.settings.substeps > 1
+                         ? fmt::format(" substeps={}", scene.settings.substeps)
+                         : std::string());
 }
 
 void check_recording_size(std::uint64_t ticks, std::uint64_t hash_every, const std::string& file) {
@@ -188,11 +184,11 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Touched
   const double world_energy = sim.energy().total(), dissipated = sim.dissipated_energy();
   const double balance = energy_balance(sim, e0);
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
-    const Body b = sim.body_at(j);
+    const Body b = sim.body(sim.bodies()[j]);
     // {} prints the shortest text that reads back as the same double: exact, no lost bits.
     fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{}", sim.tick(), sim.time(),
-                   csv_field(sim.name(j)), b.position.x, b.position.y, b.velocity.x, b.velocity.y,
-                   energies[j], world_energy, dissipated, balance);
+                   csv_field(sim.name(sim.bodies()[j])), b.position.x, b.position.y, b.velocity.x,
+                   b.velocity.y, energies[j], world_energy, dissipated, balance);
     if (with_exact) {
       if (const auto& e = exact[j]) {
         fmt::format_to(out, ",{},{},{}", e->position.x, e->position.y,
@@ -245,12 +241,12 @@ int run_command(const RunOptions& o) {
   check_paths(run_paths(o));  // before any work: no output may be an input
   const Scene scene = load_with_overrides(o.scene);
   const std::uint64_t ticks =
-      o.steps ? static_cast<std::uint64_t>(*o.steps) : ticks_for(*o.duration, scene.world.dt);
-  const std::uint64_t work = tick_work(scene.bodies, scene.links, scene.planes, scene.world);
+      o.steps ? static_cast<std::uint64_t>(*o.steps) : ticks_for(*o.duration, scene.settings.dt);
+  const std::uint64_t work = tick_work(scene.bodies, scene.links, scene.planes, scene.settings);
   check_command_work(  // before the world is built (limits.hpp)
       ticks, work,
       o.steps ? fmt::format("--steps {}", *o.steps)
-              : fmt::format("--duration {:g} (at dt = {:g} s)", *o.duration, scene.world.dt));
+              : fmt::format("--duration {:g} (at dt = {:g} s)", *o.duration, scene.settings.dt));
   if (o.sync_test) {  // each tick re-simulates K more
     check_command_work(ticks * (1 + static_cast<std::uint64_t>(*o.sync_test)), work,
                        fmt::format("{} with --sync-test {} (every tick re-simulates {} more)",
@@ -259,7 +255,7 @@ int run_command(const RunOptions& o) {
                                    *o.sync_test, *o.sync_test));
   }
   if (o.record) check_recording_size(ticks, o.hash_every, *o.record);
-  World sim = World(checked_world_def(scene));
+  World sim = World(world_def(scene));
   if (o.sync_test) check_sync_test_memory(sim, *o.sync_test);
   const double e0 = sim.energy().total();
 

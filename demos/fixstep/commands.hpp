@@ -112,9 +112,6 @@ std::string describe(const Scene& scene);
 /// another thread, whose caller prints).
 Scene load_with_overrides(const SceneOptions& options,
                           std::vector<std::string>* warnings = nullptr);
-/// world_def(scene) marked stability_checked, for a scene that load_with_overrides or
-/// scene_for_recording returned (the guard ran there, or is off): the guard runs once per load.
-[[nodiscard]] WorldDef checked_world_def(const Scene& scene);
 
 /// Opens the window; without a display, the WindowError's message (the library's: the fault
 /// only) ends with the advice to capture headless with the command `headless`.

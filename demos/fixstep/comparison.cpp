@@ -53,12 +53,12 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     scenes.push_back(tile_scene(base_, specs[i]));
     try {  // before the guard: a tile may ask for more work per tick than the scene (limits.hpp)
       check_world_limits(scenes.back().bodies, scenes.back().links, scenes.back().planes,
-                         scenes.back().world);
+                         scenes.back().settings);
     } catch (const LimitError& e) {
       throw LimitError(fmt::format("--with '{}': {}", specs[i].text, e.what()));
     }
     // Before a Session refuses it: a dt too short for a frame, named by its --with.
-    const double dt = scenes.back().world.dt;
+    const double dt = scenes.back().settings.dt;
     const std::optional<double> fps = max_frame_time_ > SessionSettings{}.max_frame_time
                                           ? std::optional(1.0 / max_frame_time_)
                                           : std::nullopt;
@@ -90,7 +90,7 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
   // With disc contacts an error line may say how many bodies a contact has touched, or that
   // it has touched them all (hud()): the widest of each fits too.
   std::vector<std::string> widest = labels;
-  if (base_.world.contacts) {
+  if (base_.settings.contacts) {
     widest.push_back(fmt::format("error 1.23e-14 m vs exact ({} touched)", base_.bodies.size()));
     widest.push_back(fmt::format("no exact: contact at tick {}", max_command_ticks));
   }
@@ -100,8 +100,7 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     tile->spec = specs[i];
     tile->scene = std::move(scenes[i]);
     tile->label = labels[i];
-    tile->session =
-        std::make_unique<Session>(checked_world_def(tile->scene), tile_settings(tile->scene));
+    tile->session = std::make_unique<Session>(world_def(tile->scene), tile_settings(tile->scene));
     tile->session->set_show_engine_hud(false);
     tile->touched.emplace(tile->scene);
     tile->cost = step_cost(tile->session->definition());
@@ -142,7 +141,7 @@ void Comparison::restart() {
     t.shadow.reset();
     if (!has_exact_ && i != reference_) {
       // Its tile passed the guard (or was allowed past it): the guard runs once per tile.
-      const WorldDef def = checked_world_def(tiles_[reference_]->scene);
+      const WorldDef def = world_def(tiles_[reference_]->scene);
       t.shadow = std::make_unique<World>(World(def));
     }
     measure(i);
@@ -192,7 +191,7 @@ std::optional<double> Comparison::against_shadow(const World& sim, World& shadow
   if (shadow.fault() || std::abs(shadow.time() - t) > tolerance) return std::nullopt;
   double worst = 0.0;
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
-    const Body a = sim.body_at(j), b = shadow.body_at(j);
+    const Body a = sim.body(sim.bodies()[j]), b = shadow.body(shadow.bodies()[j]);
     worst = std::max(worst, std::hypot(a.position.x - b.position.x, a.position.y - b.position.y));
   }
   return worst;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fixstep/detail/defined_entity.hpp>
 #include <fixstep/exact.hpp>
 #include <numeric>
 
@@ -21,7 +22,7 @@ TouchedBodies::TouchedBodies(const Scene& scene)
     return j;
   };
   std::iota(next_.begin(), next_.end(), std::size_t{0});
-  for (const BodyLink& l : scene.links) {
+  for (const detail::IndexLink& l : detail::index_links(scene.links, scene.bodies.size())) {
     const std::size_t a = root(l.body_a), b = root(l.body_b);
     if (a == b) continue;
     component_[b] = a;
@@ -108,8 +109,8 @@ std::optional<double> exact_error(const ExactReference& reference, const World& 
   std::optional<double> worst;
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
     // A static body never moves: its error is 0 whatever the integrator (nothing to measure).
-    if (exact[j] && sim.type_at(j) != BodyType::static_body) {
-      const Body b = sim.body_at(j);
+    if (exact[j] && sim.type(sim.bodies()[j]) != BodyType::static_body) {
+      const Body b = sim.body(sim.bodies()[j]);
       const double e =
           std::hypot(b.position.x - exact[j]->position.x, b.position.y - exact[j]->position.y);
       worst = std::max(worst.value_or(0.0), e);

@@ -61,16 +61,16 @@ int render_command(const RenderOptions& o) {
   const double frame_time = std::max(SessionSettings{}.max_frame_time, clock.frame_seconds());
   // What set dt, named when a frame or the command would take too many ticks of it.
   const std::string dt_from =
-      rec ? fmt::format("the dt of --replay {} ({:g} s)", *o.replay, scene.world.dt)
+      rec ? fmt::format("the dt of --replay {} ({:g} s)", *o.replay, scene.settings.dt)
           : dt_source(o.scene, scene);
-  check_frame_ticks(frame_time, scene.world.dt, o.fps, dt_from,
+  check_frame_ticks(frame_time, scene.settings.dt, o.fps, dt_from,
                     rec ? "record it again with --dt" : dt_fix(o.scene));
-  const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.world.dt);
+  const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.settings.dt);
   // With --replay the recording's ticks are stepped once more, to verify it first.
   const double verified = rec ? double(rec->ticks) : 0.0;
   check_command_work(
       static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)),
-      tick_work(scene.bodies, scene.links, scene.planes, scene.world),
+      tick_work(scene.bodies, scene.links, scene.planes, scene.settings),
       rec ? fmt::format("--frames {} at --fps {:g} with --replay {} (end {})", o.frames, o.fps,
                         *o.replay, rec->ticks)
           : fmt::format("--frames {} at --fps {:g} with {}", o.frames, o.fps, dt_from));
@@ -82,7 +82,7 @@ int render_command(const RenderOptions& o) {
       height, o.fps, ManifestLayout::frames);
   SessionSettings settings = session_settings(scene, width, height);
   settings.max_frame_time = frame_time;
-  Session session(checked_world_def(scene), settings);
+  Session session(world_def(scene), settings);
   const auto frames = static_cast<std::uint64_t>(o.frames);
   std::uint64_t written = 0;
   const StopOnSignal signals;

@@ -106,10 +106,10 @@ Scene scene_for_recording(const Recording& rec, const std::string& recording_fil
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   scene.precision = rec.settings.precision;
-  scene.world.dt = rec.settings.dt;
-  scene.world.integrator = rec.settings.integrator;
-  scene.world.substeps = rec.settings.substeps;
-  if (rec.settings.damping_split) scene.world.damping_split = *rec.settings.damping_split;
+  scene.settings.dt = rec.settings.dt;
+  scene.settings.integrator = rec.settings.integrator;
+  scene.settings.substeps = rec.settings.substeps;
+  if (rec.settings.damping_split) scene.settings.damping_split = *rec.settings.damping_split;
   scene.allow_unstable = true;  // the recorded run ran: replay it whatever the guard says
   const WorldDef def = world_def(scene);
   const std::uint64_t actual = definition_hash(def);
@@ -135,7 +135,7 @@ Scene scene_for_recording(const Recording& rec, const std::string& recording_fil
 }
 
 ReplayReport verify_recording(const Scene& scene, const Recording& rec, bool quiet) {
-  World sim = World(checked_world_def(scene));
+  World sim = World(world_def(scene));
   const WorkProgressLine shown(!quiet);
   return replay(sim, rec);
 }
@@ -161,7 +161,7 @@ void report_divergence(const ReplayReport::Mismatch& m, const std::string& recor
 int replay_command(const ReplayOptions& o) {
   const Recording rec = read_recording(o.recording);
   const Scene scene = scene_for_recording(rec, o.recording, o.scene, o.quiet);
-  check_command_work(rec.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.world),
+  check_command_work(rec.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.settings),
                      fmt::format("{}: end {}", o.recording, rec.ticks));
   const ReplayReport report = verify_recording(scene, rec, o.quiet);
   fmt::print("{}\n", describe(scene));

@@ -74,7 +74,7 @@ void BackgroundLoad::run(const SceneOptions& options) {
     std::vector<std::string> warnings;
     Scene scene = load_with_overrides(options, &warnings);
     set_phase("building the world");
-    WorldDef def = checked_world_def(scene);
+    WorldDef def = world_def(scene);
     def.settings.track_dissipation = true;  // as Session's own build
     throw_if_stop_requested();
     World sim = World(def);

@@ -29,9 +29,9 @@ namespace fixstep::cli {
 struct LoadedWorld {
   Scene scene;                        ///< as load_with_overrides returned it
   std::vector<std::string> warnings;  ///< the scene's and the stability guard's, not yet printed
-  WorldDef def;     ///< checked_world_def(scene), dissipation tracked (as Session wants)
-  World sim;        ///< World(def), at tick 0
-  RewindPlan plan;  ///< plan_rewind(sim)
+  WorldDef def;                       ///< world_def(scene), dissipation tracked (as Session wants)
+  World sim;                          ///< World(def), at tick 0
+  RewindPlan plan;                    ///< plan_rewind(sim)
 };
 
 /// What a load is doing now.
@@ -62,13 +62,13 @@ class BackgroundLoad {
   /// What the load is doing now.
   [[nodiscard]] LoadStatus status() const;
   /// Waits for the load's end and returns the world, or rethrows the load's error: SceneError,
-  /// LimitError, std::invalid_argument (load_with_overrides, make_simulation), std::bad_alloc,
+  /// LimitError, std::invalid_argument (load_with_overrides, World(def)), std::bad_alloc,
   /// StopRequested after cancel(). Call once.
   [[nodiscard]] LoadedWorld take();
   /// Asks the load to stop at its next poll (a StopScope on its thread: no other thread's work
   /// is stopped): the generators poll every 65 536 items, the stability guard every iteration,
   /// the rewind plan's tick every substep; the longest stretch without a poll is building the
-  /// world (make_simulation): 0.65 s here for the largest legal one (10^6 bodies, 4·10^6 links),
+  /// world (World(def)): 0.65 s here for the largest legal one (10^6 bodies, 4·10^6 links),
   /// then freeing what was made takes a few tenths of a second more.
   void cancel() { stop_.store(1); }
   /// cancel(), then waits for the load's end: false when the load was stopped, true when it had

@@ -30,9 +30,7 @@ double sample(World& sim, const WorldSnapshot& start, std::uint64_t ticks, doubl
 }  // namespace
 
 double step_cost(const WorldDef& def) {
-  WorldDef d = def;
-  d.allow_unstable = true;  // the caller's guard has decided already
-  World sim = World(d);
+  World sim = World(def);  // the caller's guard has decided already
   WorldSnapshot start;
   sim.save(start);
   const double dt = sim.settings().dt;

@@ -7,7 +7,7 @@
 namespace fixstep::cli {
 
 /// Wall seconds per simulated second of stepping a world built from `def` from its initial
-/// state (make_simulation: throws as it does). Steps batches of one simulated second, or of
+/// state (World(def): throws as it does). Steps batches of one simulated second, or of
 /// as many ticks as take about 2 ms when that is fewer (a first tick estimates it; a batch
 /// stops early if the runtime guard fires), from the initial state each time, repeated until a
 /// sample has taken at least 2 ms; the median of 5 samples (1 when a

@@ -38,13 +38,13 @@ OscillatorRun::OscillatorRun(const Oscillator& system, Integrator integrator, Pr
   def.spring =
       SpringDamper{.anchor = {0.0, 0.0}, .stiffness = system.stiffness, .damping = system.damping};
   sim_.create_body(def);
-  const Body b = sim_.body_at(0);
+  const Body b = sim_.body(sim_.bodies()[0]);
   trace_.add(0.0, b.position.x, b.velocity.x, sim_.energy().total());
 }
 
 void OscillatorRun::step() {
   sim_.step();
-  const Body b = sim_.body_at(0);
+  const Body b = sim_.body(sim_.bodies()[0]);
   trace_.add(sim_.time(), b.position.x, b.velocity.x, sim_.energy().total());
 }
 

@@ -54,26 +54,30 @@ Vec2 sub(Vec2 a, Vec2 b) {
 
 // Puts the ball back on the band, at rest, for the next shot.
 void reload(fixstep::World& sim) {
-  sim.set_body(ball, Body{.mass = ball_mass, .position = ball_rest_position(), .velocity = {}});
-  sim.set(ball, band());
+  const fixstep::Entity b = ball(sim);
+  sim.set_body(b, Body{.mass = ball_mass, .position = ball_rest_position(), .velocity = {}});
+  sim.set(b, band());
 }
 
-// Scores target i if it is not down yet: knocks it off its rope and greys it.
-void knock(GameState& game, int i, fixstep::World& sim) {
+// Scores target `e` (number i) if it is not down yet: knocks it off its rope and greys it.
+void knock(GameState& game, int i, fixstep::Entity e, fixstep::World& sim) {
   if ((game.knocked & (1u << i)) != 0) return;  // a target scores once
   game.knocked |= 1u << i;
   ++game.score;
-  sim.remove<SpringDamper>(target(i));
-  sim.set(target(i), fixstep::Appearance{.radius = target_radius, .color = knocked_color});
+  sim.remove<SpringDamper>(e);
+  sim.set(e, fixstep::Appearance{.radius = target_radius, .color = knocked_color});
 }
 
 }  // namespace
 
-int target_number(fixstep::Entity e) {
-  for (int i = 0; i < target_count; ++i) {
-    if (e == target(i)) return i;
-  }
-  return -1;
+fixstep::Entity ball(const fixstep::World& sim) {
+  return sim.find("ball");
+}
+
+int target_number(const fixstep::World& sim, fixstep::Entity e) {
+  if (!sim.contains(e)) return -1;
+  const std::uint64_t tag = sim.user_data(e);
+  return tag >= target_tag && tag < target_tag + target_count ? int(tag - target_tag) : -1;
 }
 
 Vec2 ball_rest_position() {
@@ -95,6 +99,7 @@ fixstep::WorldDef make_level() {
   ball_def.gravity = fixstep::Gravity{{0.0, -gravity}};
   ball_def.appearance = fixstep::Appearance{.radius = ball_radius, .color = ball_color};
   ball_def.collider = fixstep::Collider{ball_radius};  // hits targets, ground and walls
+  ball_def.user_data = ball_tag;
   def.bodies.push_back(ball_def);
 
   for (int i = 0; i < target_count; ++i) {
@@ -112,6 +117,7 @@ fixstep::WorldDef make_level() {
     t.gravity = fixstep::Gravity{{0.0, -gravity}};
     t.appearance = fixstep::Appearance{.radius = target_radius, .color = target_color};
     t.collider = fixstep::Collider{target_radius};
+    t.user_data = target_tag + std::uint64_t(i);
     def.bodies.push_back(t);
   }
 
@@ -137,8 +143,8 @@ fixstep::WorldDef make_level() {
 void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput& input,
                    const fixstep::World& sim) {
   drag.apply(input, sim);  // picks on press, drops on release
-  if (game.phase != Phase::loaded || input.drag_body != ball) {
-    input.drag_body = fixstep::no_body;  // targets are not for dragging
+  if (game.phase != Phase::loaded || input.drag_body != ball(sim)) {
+    input.drag_body = fixstep::null_entity;  // targets are not for dragging
     return;
   }
   // The band stretches max_pull at most: hold the pointer the ball follows within reach.
@@ -150,10 +156,11 @@ void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput&
 }
 
 void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
-  const Body b = sim.body(ball);
+  const fixstep::Entity the_ball = ball(sim);
+  const Body b = sim.body(the_ball);
   switch (game.phase) {
     case Phase::loaded: {
-      const bool dragging = input.drag_body == ball;
+      const bool dragging = input.drag_body == the_ball;
       if (game.dragging && !dragging) {  // let go this tick
         const Vec2 pull = sub(b.position, anchor);
         if (fixstep::det::hypot(pull.x, pull.y) >= min_pull) {
@@ -168,7 +175,7 @@ void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
     case Phase::pulled:
       // The band throws the ball; once it passes the anchor the band is cut and it flies.
       if (dot(sub(b.position, anchor), sub(anchor, game.release_point)) >= 0.0) {
-        sim.remove<SpringDamper>(ball);
+        sim.remove<SpringDamper>(the_ball);
         game.phase = Phase::flying;
         game.flight_ticks = game.still_ticks = 0;
       }
@@ -177,11 +184,12 @@ void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
       // The engine resolved this tick's disc-disc impacts (the bounce); the rules read them.
       // The ball's first impact with a target knocks it off its rope, and scores.
       for (const fixstep::Impact& hit : sim.impacts()) {
-        const fixstep::Entity a = hit.a, z = hit.b;
-        const int i = a == ball ? target_number(z) : z == ball ? target_number(a) : -1;
-        if (i >= 0) knock(game, i, sim);  // the ball and a target
+        const fixstep::Entity other =
+            hit.a == the_ball ? hit.b : (hit.b == the_ball ? hit.a : fixstep::null_entity);
+        const int i = target_number(sim, other);
+        if (i >= 0) knock(game, i, other, sim);  // the ball and a target
       }
-      const Body now = sim.body(ball);
+      const Body now = sim.body(the_ball);
       ++game.flight_ticks;
       game.still_ticks = fixstep::det::hypot(now.velocity.x, now.velocity.y) < still_speed
                              ? game.still_ticks + 1

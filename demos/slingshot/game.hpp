@@ -35,15 +35,14 @@ inline constexpr double target_mass = 0.5;      ///< kg
 inline constexpr double hit_restitution = 0.8;  ///< e of the disc-disc contacts (0..1)
 inline constexpr int shots_per_game = 3;        ///< balls the player gets
 inline constexpr int target_count = 4;          ///< targets, hanging from ropes
-/// The ball's handle: make_level() lists it first (fixstep::initial_entity, which stays valid
-/// across ticks whatever the rules create or destroy).
-inline constexpr fixstep::Entity ball = fixstep::initial_entity(0);
-/// Target i's handle (0 <= i < target_count): the bodies after the ball; then come the post's.
-[[nodiscard]] constexpr fixstep::Entity target(int i) {
-  return fixstep::initial_entity(1 + static_cast<std::size_t>(i));
-}
-/// The target a handle names, or -1 when it is not a target.
-[[nodiscard]] int target_number(fixstep::Entity e);
+/// BodyDef::user_data of the ball, and of target i (0 <= i < target_count): target_tag + i. The
+/// rules tell the bodies apart by it (posts: 0).
+inline constexpr std::uint64_t ball_tag = 1;
+inline constexpr std::uint64_t target_tag = 100;
+/// The ball's handle (World::find, O(1)).
+[[nodiscard]] fixstep::Entity ball(const fixstep::World& sim);
+/// The target `e` is (from its user data), or -1 when it is not a target or not a live body.
+[[nodiscard]] int target_number(const fixstep::World& sim, fixstep::Entity e);
 
 /// The level: the ball resting on its band at `anchor`, four targets hanging from ropes
 /// (anchored springs with a rest length), gravity on both, a post under the fork (static,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep::determinism {
@@ -23,7 +24,7 @@ std::string Case::key() const {
 
 Scene scene_for(const Case& c) {
   Scene s = load_scene(scenes_dir() / c.scene);
-  s.world.integrator = c.integrator;
+  s.settings.integrator = c.integrator;
   s.precision = c.precision;
   return s;
 }
@@ -102,7 +103,8 @@ TickInput scripted_input(std::uint64_t t) {
   TickInput in;
   in.tick = t;
   if (t % 50 < 10) in.push = {0.5, -0.25};
-  if (t % 70 >= 30 && t % 70 < 45) in.drag_body = initial_entity(0), in.pointer = {0.3, 0.2};
+  if (t % 70 >= 30 && t % 70 < 45)
+    in.drag_body = detail::defined_entity(0), in.pointer = {0.3, 0.2};
   return in;
 }
 

@@ -117,10 +117,10 @@ void put(const std::string& text) {
 /// Steps the scene o.ticks ticks, printing the hash lines (buffered: one write per 4 KiB).
 void run(const Options& o) {
   Scene scene = load_scene(o.scene);
-  if (o.integrator) scene.world.integrator = *o.integrator;
+  if (o.integrator) scene.settings.integrator = *o.integrator;
   if (o.precision) scene.precision = *o.precision;
-  if (o.threads) scene.world.threads = *o.threads;
-  check_command_work(o.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.world),
+  if (o.threads) scene.settings.threads = *o.threads;
+  check_command_work(o.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.settings),
                      "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
   World sim = make_world(scene);
   std::string out;

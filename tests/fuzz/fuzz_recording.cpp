@@ -14,6 +14,7 @@
 #include <string>
 #include <string_view>
 
+#include "../link_between.hpp"
 #include "fixstep/recording_file.hpp"
 
 namespace {
@@ -28,7 +29,7 @@ const fixstep::WorldDef& small_world() {
     a.spring = fixstep::SpringDamper{{0.0, 0.0}, 10.0, 0.1, 0.0};
     b.body = {1.0, {1.0, 0.0}, {0.0, 0.0}};
     d.bodies = {a, b};
-    d.links = {fixstep::BodyLink{0, 1, fixstep::LinkSpring{10.0, 0.1, 1.0}}};
+    d.links = {fixstep::test::link_between(0, 1, fixstep::LinkSpring{10.0, 0.1, 1.0})};
     return d;
   }();
   return def;

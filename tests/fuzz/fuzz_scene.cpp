@@ -11,7 +11,7 @@
 #include "scene_check.hpp"
 
 namespace {
-// FIXSTEP_FUZZ_STRICT=1 also makes these fatal: std::invalid_argument from make_simulation
+// FIXSTEP_FUZZ_STRICT=1 also makes these fatal: std::invalid_argument from make_world
 // (scene.hpp says the loader checks every value World would refuse first), and a non-finite
 // state in a scene outside the bounded range (scene_check.hpp, bounded_max).
 const bool strict = [] {

@@ -48,7 +48,7 @@ bool small(const Vec2& v) {
 /// See bounded_max: a scene whose non-finite states are findings.
 bool bounded_scene(const Scene& scene) {
   if (scene.allow_unstable) return false;
-  const bool links_ok = std::all_of(scene.links.begin(), scene.links.end(), [](const BodyLink& l) {
+  const bool links_ok = std::all_of(scene.links.begin(), scene.links.end(), [](const LinkDef& l) {
     return small(l.spring.stiffness) && small(l.spring.damping) && small(l.spring.rest_length);
   });
   if (!links_ok) return false;
@@ -82,14 +82,14 @@ Outcome check_scene_text(std::string_view text) {
 
   // The work of one tick (see max_body_substeps); beyond the budget, the scene is only loaded.
   const std::uint64_t size = scene.bodies.size() + scene.links.size();
-  const std::uint64_t discs = scene.world.contacts
+  const std::uint64_t discs = scene.settings.contacts
                                   ? static_cast<std::uint64_t>(std::count_if(
                                         scene.bodies.begin(), scene.bodies.end(),
                                         [](const BodyDef& d) { return d.collider.has_value(); }))
                                   : 0;
   const bool implicit_network =
-      scene.world.integrator == Integrator::implicit_euler && !scene.links.empty();
-  const std::uint64_t per_tick = static_cast<std::uint64_t>(std::max(scene.world.substeps, 1)) *
+      scene.settings.integrator == Integrator::implicit_euler && !scene.links.empty();
+  const std::uint64_t per_tick = static_cast<std::uint64_t>(std::max(scene.settings.substeps, 1)) *
                                  std::max<std::uint64_t>(size + disc_weight * discs, 1) *
                                  (implicit_network ? scene.bodies.size() : 1);
   if (size > max_built_size || per_tick > max_body_substeps) return {Verdict::accepted, {}};
@@ -102,9 +102,9 @@ Outcome check_scene_text(std::string_view text) {
   } catch (const std::invalid_argument& e) {
     return {Verdict::rejected_by_world, e.what()};
   } catch (const std::exception& e) {
-    return unexpected("make_simulation", e);
+    return unexpected("make_world", e);
   } catch (...) {
-    return unexpected("make_simulation");
+    return unexpected("make_world");
   }
 
   const int ticks =
@@ -113,19 +113,20 @@ Outcome check_scene_text(std::string_view text) {
     for (int tick = 1; tick <= ticks; ++tick) {
       sim->step();
       for (std::size_t i = 0; i < sim->body_count(); ++i) {
-        const Body b = sim->body_at(i);
+        const Entity e = sim->bodies()[i];
+        const Body b = sim->body(e);
         if (!finite(b.position) || !finite(b.velocity)) {
           // Whatever the scene, the runtime guard must have caught it (World::fault), on this
           // tick or before: a NaN or infinity it missed would spread silently.
           const bool caught = sim->fault().has_value() && sim->fault()->tick <= sim->tick();
-          return {
-              bounded_scene(scene) || !caught ? Verdict::finding : Verdict::overflowed,
-              fmt::format("non-finite state at tick {} (dt {} s, {}, {}, substeps {}): "
-                          "body[{}] \"{}\" position ({}, {}) velocity ({}, {}){}",
-                          tick, scene.world.dt, integrator_name(scene.world.integrator),
-                          scene.precision == Precision::f32 ? "f32" : "f64", scene.world.substeps,
-                          i, sim->name(i), b.position.x, b.position.y, b.velocity.x, b.velocity.y,
-                          caught ? "" : "; the runtime guard did not report it")};
+          return {bounded_scene(scene) || !caught ? Verdict::finding : Verdict::overflowed,
+                  fmt::format("non-finite state at tick {} (dt {} s, {}, {}, substeps {}): "
+                              "body[{}] \"{}\" position ({}, {}) velocity ({}, {}){}",
+                              tick, scene.settings.dt, integrator_name(scene.settings.integrator),
+                              scene.precision == Precision::f32 ? "f32" : "f64",
+                              scene.settings.substeps, i, sim->name(e), b.position.x, b.position.y,
+                              b.velocity.x, b.velocity.y,
+                              caught ? "" : "; the runtime guard did not report it")};
         }
       }
     }

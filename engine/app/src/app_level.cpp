@@ -1,6 +1,7 @@
 // fixstep::app: the level a run starts from (app_modes.hpp).
 #include <any>
 #include <cstdio>
+#include <fixstep/definition_checks.hpp>
 #include <fixstep/scene.hpp>
 #include <memory>
 
@@ -40,9 +41,15 @@ Level from_scene(const AnyGame& game, const Settings& settings, const Scene* sce
 }  // namespace
 
 Level load_level(const AnyGame& game, const Settings& settings, const std::string& file) {
-  if (file.empty()) return from_scene(game, settings, nullptr);
+  if (file.empty()) {
+    Level level = from_scene(game, settings, nullptr);
+    level.warnings = check_definition(level.def);
+    return level;
+  }
   const Scene scene = load_scene(file);  // throws SceneError naming file:line:column and key
-  return from_scene(game, settings, &scene);
+  Level level = from_scene(game, settings, &scene);
+  level.warnings = check_definition(level.def, scene.allow_unstable);
+  return level;
 }
 
 Level replay_level(const AnyGame& game, const Settings& settings, const Recording& rec,
@@ -55,6 +62,7 @@ Level replay_level(const AnyGame& game, const Settings& settings, const Recordin
     level = load_level(game, settings, scene.value_or(settings.scene_file));
   }
   apply_settings(level.def, rec.settings);  // the recorded dt, integrator, precision, substeps
+  level.warnings = check_definition(level.def, /*allow_unstable=*/true);
   return level;
 }
 

@@ -40,15 +40,19 @@ struct Level {
   std::string scene_name;  ///< Recording::scene: the scene file, or "NAME (built in code)"
   std::string scene_text;  ///< Recording::scene_text: the scene file's bytes, or empty
   SessionSettings view;
+  /// The checks' findings on def (check_definition): the stability guard's warnings.
+  std::vector<std::string> warnings;
 };
 
 /// Loads the scene file `file` (none when empty), prints its warnings, applies `game`'s setup()
-/// (a fresh copy's: `game` is not changed). Throws SceneError for a bad scene, what World's
-/// constructor throws for a level it refuses.
+/// (a fresh copy's: `game` is not changed), then checks the level (check_definition, with the
+/// scene's allow_unstable). Throws SceneError for a bad scene, what check_definition throws for
+/// a level it refuses.
 [[nodiscard]] Level load_level(const AnyGame& game, const Settings& settings,
                                const std::string& file);
 /// The level `rec` was recorded on: the scene it carries, else `scene` (--scene) or the game's
-/// scene file; the game's setup(), then the recorded settings (dt, integrator, precision).
+/// scene file; the game's setup(), then the recorded settings (dt, integrator, precision). The
+/// recorded run ran, so an unstable level is replayed all the same (its limits are checked).
 [[nodiscard]] Level replay_level(const AnyGame& game, const Settings& settings,
                                  const Recording& rec, const std::optional<std::string>& scene);
 /// TickRules that run `game`'s rules (held by reference) and save and restore it by copy.

@@ -23,7 +23,7 @@ GamePlay::GamePlay(const AnyGame& prototype, Level level, const Settings& settin
       session_(level_.def, level_.view),
       game_(prototype.clone()) {
   session_.set_show_energy(settings.show_energy);
-  for (const std::string& w : session_.simulation().warnings()) {  // the stability guard's
+  for (const std::string& w : level_.warnings) {  // the stability guard's
     std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   if (!record_file_.empty()) start_recording();

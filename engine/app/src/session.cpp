@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/stability.hpp"
 
 namespace fixstep {
@@ -72,7 +73,9 @@ Camera fit_camera(const WorldDef& def, int width, int height) {
       while (group[i] != i) i = group[i] = group[group[i]];
       return i;
     };
-    for (const BodyLink& l : def.links) group[root(l.body_a)] = root(l.body_b);
+    for (const detail::IndexLink& l : detail::index_links(def.links, n)) {
+      group[root(l.body_a)] = root(l.body_b);
+    }
     std::vector<std::size_t> anchors(n, 0), held_by(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
       if (def.bodies[i].spring) ++anchors[root(i)], held_by[root(i)] = i;
@@ -242,7 +245,7 @@ void Session::restart() {
 }
 
 void Session::draw() {
-  sim_->fill_render_frame(loop_.alpha(), frame_);
+  fill_render_frame(*sim_, loop_.alpha(), frame_);
   if (!follow_.is_null()) {
     if (sim_->contains(follow_)) {
       const std::size_t j = sim_->index_of(follow_);

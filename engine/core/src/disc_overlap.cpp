@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "fixstep/det_math.hpp"
+#include "fixstep/detail/defined_entity.hpp"
 
 namespace fixstep {
 
@@ -62,15 +63,10 @@ double touching_tolerance(const Disc& a, const Disc& b) {
 
 /// The links between two discs, as sorted (lower, higher) body index pairs.
 std::vector<std::pair<std::size_t, std::size_t>> linked_pairs(std::span<const BodyDef> bodies,
-                                                              std::span<const BodyLink> links) {
+                                                              std::span<const LinkDef> links) {
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   auto disc = [&](std::size_t i) { return bodies[i].collider && bodies[i].collider->collide; };
-  for (std::size_t l = 0; l < links.size(); ++l) {
-    const BodyLink& link = links[l];
-    if (link.body_a >= bodies.size() || link.body_b >= bodies.size()) {
-      throw std::invalid_argument(fmt::format("disc overlap: link[{}] joins bodies {} and {} of {}",
-                                              l, link.body_a, link.body_b, bodies.size()));
-    }
+  for (const detail::IndexLink& link : detail::index_links(links, bodies.size())) {
     if (disc(link.body_a) && disc(link.body_b)) {
       pairs.emplace_back(std::min(link.body_a, link.body_b), std::max(link.body_a, link.body_b));
     }
@@ -100,7 +96,7 @@ double disc_overlap_depth(const BodyDef& a, const BodyDef& b) {
 }
 
 std::optional<std::pair<std::size_t, std::size_t>> first_disc_overlap(
-    std::span<const BodyDef> bodies, std::span<const BodyLink> links) {
+    std::span<const BodyDef> bodies, std::span<const LinkDef> links) {
   std::vector<Disc> discs = discs_of(bodies);
   const auto linked = linked_pairs(bodies, links);
   if (discs.size() > std::numeric_limits<std::uint32_t>::max()) {

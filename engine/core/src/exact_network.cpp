@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/exact.hpp"
 
 namespace fixstep::exact {
@@ -76,11 +77,7 @@ void check_body(const BodyDef& def, std::size_t i) {
   if (def.drag) rate(def.drag->coefficient, "drag coefficient");
 }
 
-void check_link(const BodyLink& l, std::size_t i, std::size_t n) {
-  if (l.body_a >= n || l.body_b >= n) {
-    fail(fmt::format("link[{}]: body index {} out of range ({} bodies)", i,
-                     std::max(l.body_a, l.body_b), n));
-  }
+void check_link(const detail::IndexLink& l, std::size_t i) {
   if (l.body_a == l.body_b) fail(fmt::format("link[{}]: both ends are body {}", i, l.body_a));
   for (auto [v, name] :
        {std::pair{l.spring.stiffness, "stiffness"}, std::pair{l.spring.damping, "damping"},
@@ -135,21 +132,22 @@ std::size_t find(std::vector<std::size_t>& parent, std::size_t i) {
 }  // namespace
 
 std::optional<LinearNetwork> LinearNetwork::make(std::span<const BodyDef> bodies,
-                                                 std::span<const BodyLink> links) {
+                                                 std::span<const LinkDef> link_defs) {
   const std::size_t n = bodies.size();
   for (std::size_t i = 0; i < n; ++i) check_body(bodies[i], i);
-  for (std::size_t l = 0; l < links.size(); ++l) check_link(links[l], l, n);
+  const std::vector<detail::IndexLink> links = detail::index_links(link_defs, n);
+  for (std::size_t l = 0; l < links.size(); ++l) check_link(links[l], l);
   for (const BodyDef& b : bodies) {
     if (b.spring && b.spring->rest_length > 0.0) return std::nullopt;  // nonlinear
   }
-  for (const BodyLink& l : links) {
+  for (const detail::IndexLink& l : links) {
     if (l.spring.rest_length > 0.0) return std::nullopt;
   }
 
   // Connected components (union-find), each listed in body order.
   std::vector<std::size_t> parent(n);
   std::iota(parent.begin(), parent.end(), std::size_t{0});
-  for (const BodyLink& l : links) parent[find(parent, l.body_a)] = find(parent, l.body_b);
+  for (const detail::IndexLink& l : links) parent[find(parent, l.body_a)] = find(parent, l.body_b);
   std::vector<std::size_t> block_of(n, n), local(n);
   auto modes = std::make_unique<Modes>();
   for (std::size_t i = 0; i < n; ++i) {
@@ -160,8 +158,9 @@ std::optional<LinearNetwork> LinearNetwork::make(std::span<const BodyDef> bodies
     blk.bodies.push_back(i);
     modes->mass.push_back(bodies[i].body.mass);
   }
-  std::vector<std::vector<const BodyLink*>> block_links(modes->blocks.size());
-  for (const BodyLink& l : links) block_links[block_of[find(parent, l.body_a)]].push_back(&l);
+  std::vector<std::vector<const detail::IndexLink*>> block_links(modes->blocks.size());
+  for (const detail::IndexLink& l : links)
+    block_links[block_of[find(parent, l.body_a)]].push_back(&l);
 
   for (std::size_t bi = 0; bi < modes->blocks.size(); ++bi) {
     Modes::Block& blk = modes->blocks[bi];
@@ -185,7 +184,7 @@ std::optional<LinearNetwork> LinearNetwork::make(std::span<const BodyDef> bodies
       x0(j) = def.body.position.x, y0(j) = def.body.position.y;
       vx0(j) = def.body.velocity.x, vy0(j) = def.body.velocity.y;
     }
-    for (const BodyLink* l : block_links[bi]) {
+    for (const detail::IndexLink* l : block_links[bi]) {
       const auto a = static_cast<Eigen::Index>(local[l->body_a]);
       const auto b = static_cast<Eigen::Index>(local[l->body_b]);
       const double kl = l->spring.stiffness, bl = l->spring.damping;

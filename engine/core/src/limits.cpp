@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/stability.hpp"
 
 namespace fixstep {
@@ -21,12 +22,12 @@ namespace {
 constexpr double fill_per_unknown = 3.0;      // bytes per unknown^1.5
 constexpr double bytes_per_unknown = 2500.0;  // bytes per unknown
 
-bool implicit_with_links(std::span<const BodyLink> links, const WorldSettings& settings) {
+bool implicit_with_links(std::span<const LinkDef> links, const WorldSettings& settings) {
   return settings.integrator == Integrator::implicit_euler && !links.empty();
 }
 
 /// Bodies some link joins (the implicit solve's unknowns are theirs).
-std::uint64_t linked_count(std::span<const BodyDef> bodies, std::span<const BodyLink> links) {
+std::uint64_t linked_count(std::span<const BodyDef> bodies, std::span<const LinkDef> links) {
   const std::vector<bool> linked = linked_bodies(bodies.size(), links);
   return static_cast<std::uint64_t>(std::count(linked.begin(), linked.end(), true));
 }
@@ -46,7 +47,7 @@ struct WorkTerms {
   std::uint64_t colliders = 0, disc_count = 0;  // dynamic colliders; discs in contacts
 };
 
-WorkTerms work_terms(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+WorkTerms work_terms(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
                      std::span<const PlaneDef> planes, const WorldSettings& settings) {
   WorkTerms t;
   const auto substeps = static_cast<std::uint64_t>(std::max(settings.substeps, 1));
@@ -75,7 +76,7 @@ std::uint64_t max_candidate_pairs(std::uint64_t discs) {
   return discs < 2 ? 0 : std::min(cap, discs * (discs - 1) / 2);
 }
 
-std::uint64_t tick_work(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+std::uint64_t tick_work(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
                         std::span<const PlaneDef> planes, const WorldSettings& settings) {
   const WorkTerms t = work_terms(bodies, links, planes, settings);
   return t.bodies_links + t.implicit + t.planes + t.discs;
@@ -85,14 +86,14 @@ std::uint64_t tick_work(const WorldDef& def) {
   return tick_work(def.bodies, def.links, def.planes, def.settings);
 }
 
-std::uint64_t implicit_solve_bytes(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+std::uint64_t implicit_solve_bytes(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
                                    const WorldSettings& settings) {
   if (!implicit_with_links(links, settings)) return 0;
   // The solve covers every body (world_implicit.cpp). A spring or link with a rest length makes
   // it Newton's, a SparseLU over x and y together (2 unknowns a body); else one
   // SimplicialLDLT over one unknown a body for both axes.
   const bool newton = std::any_of(links.begin(), links.end(),
-                                  [](const BodyLink& l) { return l.spring.rest_length != 0.0; }) ||
+                                  [](const LinkDef& l) { return l.spring.rest_length != 0.0; }) ||
                       std::any_of(bodies.begin(), bodies.end(), [](const BodyDef& b) {
                         return b.spring && b.spring->rest_length != 0.0;
                       });
@@ -105,14 +106,14 @@ std::uint64_t implicit_solve_bytes(std::span<const BodyDef> bodies, std::span<co
   return static_cast<std::uint64_t>(std::min(bytes, 1e19));
 }
 
-bool implicit_solve_within_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+bool implicit_solve_within_limits(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
                                   const WorldSettings& settings) {
   return !implicit_with_links(links, settings) ||
          (linked_count(bodies, links) <= max_implicit_bodies &&
           implicit_solve_bytes(bodies, links, settings) <= max_implicit_solve_bytes);
 }
 
-void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+void check_world_limits(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
                         std::span<const PlaneDef> planes, const WorldSettings& settings) {
   if (implicit_with_links(links, settings) && linked_count(bodies, links) > max_implicit_bodies) {
     throw LimitError(fmt::format(

@@ -13,14 +13,14 @@
 namespace fixstep {
 
 Entity pick_body(const World& sim, Vec2 point, double tolerance) {
-  Entity best = no_body;
+  Entity best = null_entity;
   double best_distance = 0.0;
   for (const Entity e : sim.bodies()) {
     const Vec2 p = sim.body(e).position;
     const double d = det::hypot(p.x - point.x, p.y - point.y);
     const std::optional<Appearance> a = sim.get<Appearance>(e);
     const double reach = std::max(a ? a->radius : 0.0, tolerance);
-    if (d <= reach && (best == no_body || d < best_distance)) {
+    if (d <= reach && (best == null_entity || d < best_distance)) {
       best = e;
       best_distance = d;
     }
@@ -41,7 +41,7 @@ void PointerDrag::apply(TickInput& input, const World& sim) {
   if ((input.pressed & button_pointer_primary) && held) {
     body_ = pick_body(sim, input.pointer, tolerance_);
   } else if (!held) {
-    body_ = no_body;
+    body_ = null_entity;
   }
   input.drag_body = body_;
 }

@@ -70,13 +70,14 @@ std::uint64_t definition_hash(const WorldDef& def) {
   h.add(def.precision);
   h.add(def.settings.dt), h.add(def.settings.integrator), h.add(def.settings.substeps);
   h.add(def.settings.flush_denormals);
-  // A non-default damping split (#22) enters only when set: older recordings keep their hash.
+  // A non-default damping split enters only when set: older recordings keep their hash.
   if (def.settings.damping_split != DampingSplit::per_stage) h.add(def.settings.damping_split);
   h.add(def.bodies.size());
   for (const BodyDef& b : def.bodies) hash_body(h, b);
   h.add(def.links.size());
-  for (const BodyLink& l : def.links) {
-    h.add(l.body_a), h.add(l.body_b);
+  for (const LinkDef& l : def.links) {  // each end by its place in def.bodies
+    h.add(static_cast<std::size_t>(l.body_a.slot())),
+        h.add(static_cast<std::size_t>(l.body_b.slot()));
     h.add(l.spring.stiffness), h.add(l.spring.damping), h.add(l.spring.rest_length);
   }
   h.add(def.planes.size());

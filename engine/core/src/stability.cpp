@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/detail/world_kernel.hpp"
 #include "stability_internal.hpp"
 
@@ -94,7 +95,7 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
     const BodyDef& def = bodies[i];
     if (def.type != BodyType::dynamic) continue;  // not integrated: nothing to judge
     BodyStability r;
-    r.body = i;
+    r.body = detail::defined_entity(i);
     const double m = def.body.mass;
     r.omega = def.spring ? std::sqrt(def.spring->stiffness / m) : 0.0;
     r.gamma =
@@ -157,26 +158,24 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
 
 namespace fixstep {
 
-std::vector<bool> linked_bodies(std::size_t body_count, std::span<const BodyLink> links) {
+std::vector<bool> detail::linked_by_index(std::size_t body_count,
+                                          std::span<const detail::IndexLink> links) {
   std::vector<bool> linked(body_count, false);
-  for (std::size_t l = 0; l < links.size(); ++l) {
-    const BodyLink& link = links[l];
-    if (link.body_a >= body_count || link.body_b >= body_count) {
-      throw std::invalid_argument(
-          fmt::format("link[{}]: body index out of range ({} and {} of {} bodies)", l, link.body_a,
-                      link.body_b, body_count));
-    }
-    linked[link.body_a] = linked[link.body_b] = true;
-  }
+  for (const detail::IndexLink& link : links) linked[link.body_a] = linked[link.body_b] = true;
   return linked;
 }
 
+std::vector<bool> linked_bodies(std::size_t body_count, std::span<const LinkDef> links) {
+  return detail::linked_by_index(body_count, detail::index_links(links, body_count));
+}
+
 std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> all_bodies,
-                                                       std::span<const BodyLink> all_links,
+                                                       std::span<const LinkDef> all_links,
                                                        Integrator integrator, double dt,
                                                        int substeps) {
   if (all_links.empty()) return std::nullopt;
-  const std::vector<bool> linked = linked_bodies(all_bodies.size(), all_links);
+  std::vector<detail::IndexLink> links = detail::index_links(all_links, all_bodies.size());
+  const std::vector<bool> linked = detail::linked_by_index(all_bodies.size(), links);
   std::vector<std::size_t> index(all_bodies.size()), order;
   std::vector<BodyDef> bodies;
   for (std::size_t i = 0; i < all_bodies.size(); ++i) {
@@ -185,10 +184,9 @@ std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> 
     order.push_back(i);
     bodies.push_back(all_bodies[i]);
   }
-  std::vector<BodyLink> links(all_links.begin(), all_links.end());
-  for (BodyLink& l : links) l.body_a = index[l.body_a], l.body_b = index[l.body_b];
-  NetworkStability r = check_network_stability(bodies, links, integrator, dt, substeps);
-  r.fastest_body = order[r.fastest_body];
+  for (detail::IndexLink& l : links) l.body_a = index[l.body_a], l.body_b = index[l.body_b];
+  NetworkStability r = detail::network_stability(bodies, links, integrator, dt, substeps);
+  r.fastest_body = detail::defined_entity(order[r.fastest_body.slot()]);
   return r;
 }
 
@@ -200,11 +198,17 @@ std::string remedy(int min_substeps, double max_step, int substeps) {
                      max_step * substeps);
 }
 
+/// "body[I]" for the definition's body I, else "body S:G" (its handle's slot and generation).
+std::string body_label(Entity e, std::size_t defined) {
+  if (const auto i = detail::defined_index(e, defined)) return fmt::format("body[{}]", *i);
+  return fmt::format("body {}:{}", e.index1, e.generation);
+}
+
 /// explain_fault of a contact cap (StateFault::cap set).
-std::string explain_cap(const WorldSettings& settings, const StateFault& f) {
+std::string explain_cap(const WorldSettings& settings, const StateFault& f, std::size_t defined) {
   const std::string head =
-      fmt::format("body[{}] \"{}\": contacts at tick {} (t = {:g} s): {} = {:.0f} reached", f.index,
-                  f.name, f.tick, f.time, f.cap, f.value);
+      fmt::format("{} \"{}\": contacts at tick {} (t = {:g} s): {} = {:.0f} reached",
+                  body_label(f.body, defined), f.name, f.tick, f.time, f.cap, f.value);
   if (f.cap == "max_candidate_pairs") {
     return fmt::format(
         "{}: the broadphase found more candidate pairs among {}, so the tick's disc contacts "
@@ -231,16 +235,18 @@ std::string explain_kinematic(const std::string& head, const BodyDef& d) {
 
 }  // namespace
 
-std::string explain_fault(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+std::string explain_fault(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
                           const WorldSettings& settings, const StateFault& f) {
-  if (!f.cap.empty()) return explain_cap(settings, f);
-  const std::size_t i = f.index;
+  if (!f.cap.empty()) return explain_cap(settings, f, bodies.size());
   const bool position = f.field == "x" || f.field == "y";
   const std::string head = fmt::format(
-      "body[{}] \"{}\": state left the finite range at tick {} (t = {:g} s): {} = {:g} {} "
+      "{} \"{}\": state left the finite range at tick {} (t = {:g} s): {} = {:g} {} "
       "(allowed |value| <= {:g})",
-      i, f.name, f.tick, f.time, f.field, f.value, position ? "m" : "m/s", max_state_magnitude);
-  if (i >= bodies.size()) return head + ".";
+      body_label(f.body, bodies.size()), f.name, f.tick, f.time, f.field, f.value,
+      position ? "m" : "m/s", max_state_magnitude);
+  const std::optional<std::size_t> defined = detail::defined_index(f.body, bodies.size());
+  if (!defined) return head + ".";
+  const std::size_t i = *defined;
   if (bodies[i].type == BodyType::kinematic) return explain_kinematic(head, bodies[i]);
   if (bodies[i].type == BodyType::static_body) {
     return head +

@@ -5,10 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/disc_overlap.hpp"
-#include "fixstep/float_mode.hpp"
-#include "fixstep/limits.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/detail/defined_entity.hpp"
 
 namespace fixstep {
 
@@ -70,9 +67,6 @@ const ContactStats& World::contact_stats() const {
 std::span<const Impact> World::impacts() const {
   return visit([](const auto& w) { return w.impacts(); });
 }
-BodyType World::type_at(std::size_t index) const {
-  return visit([&](const auto& w) { return w.type_at(index); });
-}
 void World::step(const TickInput& input) {
   visit([&](auto& w) { w.step(input); });
 }
@@ -94,9 +88,6 @@ const WorldSettings& World::settings() const {
 std::size_t World::body_count() const {
   return visit([](const auto& w) { return w.body_count(); });
 }
-const std::string& World::name(std::size_t index) const {
-  return visit([&](const auto& w) -> const std::string& { return w.name(index); });
-}
 EnergyReport World::energy() const {
   return visit([](const auto& w) { return w.energy(); });
 }
@@ -106,43 +97,35 @@ std::uint64_t World::state_hash() const {
 std::size_t World::snapshot_bytes() const {
   return visit([](const auto& w) { return w.snapshot_bytes(); });
 }
-Body World::body_at(std::size_t i) const {
-  return visit([&](const auto& w) { return w.body(w.entities()[i]); });
-}
 
-void World::fill_render_frame(double alpha, RenderFrame& out) const {
+void World::interpolate_positions(double alpha, std::span<float> x, std::span<float> y) const {
   visit([&](const auto& w) {
     const std::size_t n = w.body_count();
-    out.x.resize(n);
-    out.y.resize(n);
-    out.ids.assign(w.entities().begin(), w.entities().end());
-    out.radius.resize(n);
-    out.color.resize(n);
-    out.springs.clear();
-    const double a = alpha;
+    if (x.size() != n || y.size() != n) {
+      throw std::invalid_argument(
+          fmt::format("interpolate_positions: x and y must hold {} values, not {} and {}", n,
+                      x.size(), y.size()));
+    }
     for (std::size_t j = 0; j < n; ++j) {
       const double px = w.previous_x()[j], py = w.previous_y()[j];
-      out.x[j] = static_cast<float>(px + (double(w.x()[j]) - px) * a);
-      out.y[j] = static_cast<float>(py + (double(w.y()[j]) - py) * a);
-      const Entity e = w.entities()[j];
-      if (const Appearance* ap = w.template get<Appearance>(e)) {
-        out.radius[j] = static_cast<float>(ap->radius);
-        out.color[j] = ap->color;
-      } else {
-        out.radius[j] = 0.0f;
-        out.color[j] = Rgba8{0, 0, 0, 0};
-      }
-      if (const SpringDamper* s = w.template get<SpringDamper>(e)) {
-        out.springs.push_back({static_cast<float>(s->anchor.x), static_cast<float>(s->anchor.y),
-                               static_cast<std::uint32_t>(j)});
-      }
+      x[j] = static_cast<float>(px + (double(w.x()[j]) - px) * alpha);
+      y[j] = static_cast<float>(py + (double(w.y()[j]) - py) * alpha);
     }
-    out.links.resize(w.link_count());
-    for (std::size_t i = 0; i < w.link_count(); ++i) {
-      const auto [a, b] = w.link_bodies(i);
-      out.links[i] = {static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b)};
+  });
+}
+
+void World::link_ends(std::span<std::uint32_t> a, std::span<std::uint32_t> b) const {
+  visit([&](const auto& w) {
+    const std::size_t n = w.link_count();
+    if (a.size() != n || b.size() != n) {
+      throw std::invalid_argument(fmt::format(
+          "link_ends: a and b must hold {} values, not {} and {}", n, a.size(), b.size()));
     }
-    out.planes.assign(w.planes().begin(), w.planes().end());
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto [ia, ib] = w.link_bodies(i);
+      a[i] = static_cast<std::uint32_t>(ia);
+      b[i] = static_cast<std::uint32_t>(ib);
+    }
   });
 }
 
@@ -164,68 +147,19 @@ void World::restore(const WorldSnapshot& snapshot) {
   world_ = *snapshot.world_;
 }
 
-namespace {
-/// Throws std::invalid_argument with the stability guard's first finding of an unstable body or
-/// network (unless def.allow_unstable); returns the guard's warnings: near the bound, or unstable
-/// and allowed.
-std::vector<std::string> judge_stability(const WorldDef& def) {
-  const IeeeFloatMode ieee;  // the same verdict whatever the caller's FPU mode
-  std::vector<std::string> warnings;
-  const WorldSettings& s = def.settings;
-  auto refuse = [&](const std::string& message, int min_substeps, double max_step) {
-    throw std::invalid_argument(min_substeps > 0
-                                    ? fmt::format("{}; stable from substeps = {} (dt <= {:.4g} s)",
-                                                  message, min_substeps, max_step * s.substeps)
-                                    : message);
-  };
-  const std::vector<bool> linked = linked_bodies(def.bodies.size(), def.links);
-  for (const BodyStability& r : check_stability(def.bodies, s.integrator, s.dt, s.substeps)) {
-    if (linked[r.body] || r.verdict == Stability::stable) continue;
-    if (r.verdict == Stability::unstable && !def.allow_unstable) {
-      refuse(r.message, r.min_substeps, r.max_step);
-    }
-    warnings.push_back(r.message);
-  }
-  const auto net = check_linked_stability(def.bodies, def.links, s.integrator, s.dt, s.substeps);
-  if (net && net->verdict != Stability::stable) {
-    if (net->verdict == Stability::unstable && !def.allow_unstable) {
-      refuse(net->message, net->min_substeps, net->max_step);
-    }
-    warnings.push_back(net->message);
-  }
-  return warnings;
-}
-}  // namespace
-
 World::World(const WorldDef& def) : World(def.precision, def.settings) {
-  // Built first so invalid settings, bodies and links are reported by World, then judged.
-  std::vector<Entity> bodies;
-  bodies.reserve(def.bodies.size());
-  for (const BodyDef& body : def.bodies) bodies.push_back(create_body(body));
-  for (const BodyLink& l : def.links) {
-    if (l.body_a >= bodies.size() || l.body_b >= bodies.size()) {
-      throw std::invalid_argument(fmt::format("link: body index out of range ({} and {} of {})",
-                                              l.body_a, l.body_b, bodies.size()));
-    }
-    create_link(LinkDef{bodies[l.body_a], bodies[l.body_b], l.spring});
+  defined_.reserve(def.bodies.size());
+  for (const BodyDef& body : def.bodies) defined_.push_back(create_body(body));
+  // By place first, so a handle from another definition or world is named as such.
+  for (const detail::IndexLink& l : detail::index_links(def.links, def.bodies.size())) {
+    create_link(LinkDef{defined_[l.body_a], defined_[l.body_b], l.spring});
   }
   for (const PlaneDef& p : def.planes) add_plane(p);
-  if (const auto pair = first_disc_overlap(def)) {
-    const auto name = [&](std::size_t i) {
-      return def.bodies[i].name.empty() ? fmt::format("body {}", i)
-                                        : fmt::format("body '{}'", def.bodies[i].name);
-    };
-    throw std::invalid_argument(fmt::format(
-        "{} and {} overlap by {:g} m at tick 0 (discs of a world with contacts must start "
-        "apart or touching)",
-        name(pair->first), name(pair->second),
-        disc_overlap_depth(def.bodies[pair->first], def.bodies[pair->second])));
-  }
-  check_world_limits(def.bodies, def.links, def.planes,
-                     def.settings);  // before the guard's power iteration
-  if (!def.stability_checked) {
-    for (std::string& w : judge_stability(def)) add_warning(std::move(w));
-  }
+}
+
+Entity WorldDef::add_body(BodyDef body) {
+  bodies.push_back(std::move(body));
+  return detail::defined_entity(bodies.size() - 1);
 }
 
 double energy_balance(const World& sim, double initial_energy) {

@@ -50,9 +50,6 @@ BodyType World::type(Entity e) const {
 std::size_t World::index_of(Entity e) const {
   return visit([&](const auto& w) { return w.index_of(e); });
 }
-Entity World::entity_at(std::size_t i) const {
-  return visit([&](const auto& w) { return w.entities()[i]; });
-}
 void World::destroy_link(Link link) {
   visit([&](auto& w) { w.destroy_link(link); });
 }

@@ -299,7 +299,7 @@ void detail::WorldKernel<Real>::record_fault() {
     for (int f = 0; f < 4; ++f) {
       const double v = static_cast<double>(fields[f][j]);
       if (!(std::abs(v) <= max_state_magnitude)) {
-        fault_ = StateFault{.index = j,
+        fault_ = StateFault{.body = bodies_.dense[j],
                             .name = names_[j],
                             .tick = tick_,
                             .time = time(),
@@ -317,7 +317,7 @@ void detail::WorldKernel<Real>::record_fault() {
 template <class Real>
 void detail::WorldKernel<Real>::record_cap_fault(std::size_t body, const char* cap,
                                                  std::uint64_t limit, const std::string& with) {
-  fault_ = StateFault{.index = body,
+  fault_ = StateFault{.body = bodies_.dense[body],
                       .name = names_[body],
                       .tick = tick_,
                       .time = time(),

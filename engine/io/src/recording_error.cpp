@@ -2,6 +2,7 @@
 // the bodies a recording names, and the replay that first checks the world is the recorded one.
 #include <fmt/format.h>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/recording_file.hpp"
 #include "fixstep/summary.hpp"
@@ -56,7 +57,8 @@ ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& 
 
 void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file) {
   auto check = [&](const TickInput& in, Entity e, std::string_view field) {
-    if (e == no_body || (e.index1 <= bodies && e == initial_entity(e.index1 - 1))) return;
+    if (e == null_entity || (e.index1 <= bodies && e == detail::defined_entity(e.index1 - 1)))
+      return;
     throw RecordingError(
         RecordingError::Kind::corrupt, file, 0, field,
         fmt::format("the tick {} line names body {}:{}, which the scene does not have (its {} "

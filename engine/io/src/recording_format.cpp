@@ -12,7 +12,7 @@
 // Version 2 had no scene_text and damping_split lines (the scene was read from PATH, with its
 // own damping split); version 1 had no per-body
 // inputs and named the dragged body by its dense INDEX, read as
-// initial_entity(INDEX) (exact for the worlds version 1 recorded, which destroyed nothing).
+// detail::defined_entity(INDEX) (exact for the worlds version 1 recorded, which destroyed nothing).
 //   hash N HASH                (state hash after N ticks)
 //   end TICKS HASH             (the last line; its absence means the file is truncated)
 // A tick line is written only when the input differs from the previous tick's; numbers are
@@ -31,6 +31,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/float_mode.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/recording_file.hpp"
@@ -365,11 +366,11 @@ TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec
   t.pointer = vec2(in, keyed(in, w[6], "pointer"), "pointer");
   const std::string_view drag = keyed(in, w[7], "drag");
   if (drag == "none") {
-    t.drag_body = no_body;
+    t.drag_body = null_entity;
   } else if (rec.version >= 2) {
     t.drag_body = handle(in, drag, "drag");
   } else {
-    t.drag_body = initial_entity(integer<std::uint32_t>(in, drag, "drag", 10, 0xfffffffeu));
+    t.drag_body = detail::defined_entity(integer<std::uint32_t>(in, drag, "drag", 10, 0xfffffffeu));
   }
   for (std::size_t k = 8; k < w.size(); ++k) t.bodies.push_back(body_input(in, w[k]));
   return t;

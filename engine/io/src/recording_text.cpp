@@ -22,7 +22,7 @@ void append_tick(std::string& out, const TickInput& t) {
       std::back_inserter(out),
       "tick {} push={},{} held={:x} pressed={:x} released={:x} pointer={},{} drag=", t.tick,
       t.push.x, t.push.y, t.held, t.pressed, t.released, t.pointer.x, t.pointer.y);
-  if (t.drag_body == no_body) {
+  if (t.drag_body == null_entity) {
     out += "none";
   } else {
     fmt::format_to(std::back_inserter(out), "{}:{}", t.drag_body.index1, t.drag_body.generation);

@@ -285,7 +285,7 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
 
   // A scene with many links (a cloth, a soft body) draws no trails: hundreds of them would
   // hide the structure the links draw.
-  const bool few_links = s.links.size() <= max_zigzag_links;
+  const bool few_links = s.link_a.size() <= max_zigzag_links;
   if (few_links) draw_trails(s, scale);
 
   // Springs: a zigzag of 12 coils from (ax, ay) to (bx, by), with straight leads; the first
@@ -317,12 +317,13 @@ void Renderer::draw(const RenderFrame& s, std::span<const std::string> hud_lines
 
   // Links (springs between bodies): zigzags like the anchored springs when there are few,
   // thin straight lines when there are many (a cloth's zigzags would merge into felt).
-  for (const RenderFrame::LinkLine& l : s.links) {
-    const auto a = to_pixel(s.x[l.a], s.y[l.a]);
-    const auto b = to_pixel(s.x[l.b], s.y[l.b]);
+  for (std::size_t i = 0; i < s.link_a.size(); ++i) {
+    const std::uint32_t la = s.link_a[i], lb = s.link_b[i];
+    const auto a = to_pixel(s.x[la], s.y[la]);
+    const auto b = to_pixel(s.x[lb], s.y[lb]);
     if (few_links) {
-      zigzag(float(a[0]), float(a[1]), float(b[0]), float(b[1]), under_body(l.a, 2.0f),
-             under_body(l.b, 2.0f));
+      zigzag(float(a[0]), float(a[1]), float(b[0]), float(b[1]), under_body(la, 2.0f),
+             under_body(lb, 2.0f));
     } else {
       line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 1.25f, link_color);
     }

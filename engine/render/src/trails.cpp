@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "fixstep/detail/defined_entity.hpp"
+
 namespace fixstep {
 
 void Trails::grow(std::uint32_t slot) {
@@ -26,7 +28,7 @@ void Trails::record(const RenderFrame& frame) {
   const std::uint32_t previous = stamp_++;
   slot_of_.resize(n);
   for (std::size_t j = 0; j < n; ++j) {
-    const Entity e = frame.ids.empty() ? initial_entity(j) : frame.ids[j];
+    const Entity e = frame.ids.empty() ? detail::defined_entity(j) : frame.ids[j];
     if (e.is_null())
       throw std::invalid_argument(fmt::format("RenderFrame: body {} has a null id", j));
     const std::uint32_t s = e.slot();

@@ -4,6 +4,7 @@
 
 #include <array>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/float_mode.hpp"
 #include "fixstep/recording.hpp"
 #include "scene_reader.hpp"
@@ -78,16 +79,16 @@ std::size_t body_index(const Reader& r, const toml::node& n, const std::string& 
                      best ? fmt::format(" (did you mean \"{}\"?)", *best) : ""));
 }
 
-/// `drag`: a body name (its handle in the world make_simulation builds) or false (no body).
+/// `drag`: a body name (its handle in the world World(def) builds) or false (no body).
 Entity drag_target(const Reader& r, const toml::node& n, const std::string& path,
                    std::span<const BodyDef> bodies) {
-  if (n.is_boolean() && !n.as_boolean()->get()) return no_body;
+  if (n.is_boolean() && !n.as_boolean()->get()) return null_entity;
   if (!n.is_string()) {
     r.fail(n.source(), path,
            fmt::format("expected a body name or false, found {}",
                        n.is_boolean() ? std::string("true") : scene_detail::found(n)));
   }
-  return initial_entity(body_index(r, n, path, bodies));
+  return detail::defined_entity(body_index(r, n, path, bodies));
 }
 
 /// Why body b cannot take input `kind`, or "" when it can.
@@ -130,7 +131,7 @@ BodyInput body_input(Reader& r, const toml::table& t, BodyInputKind kind, const 
                        ? "the impulse [x, y] in N*s, e.g. value = [1.0, 0.5]"
                        : "the velocity [x, y] in m/s, e.g. value = [2.0, 0.0]");
   }
-  return BodyInput{initial_entity(i), kind, r.vec2_node(*value, path + ".value")};
+  return BodyInput{detail::defined_entity(i), kind, r.vec2_node(*value, path + ".value")};
 }
 
 [[noreturn]] void not_body_input(const Reader& r, const toml::node& n, const std::string& path) {

@@ -165,7 +165,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   using namespace scene_detail;
   Scene scene;
   scene.file = source_name;
-  scene.world.track_dissipation = true;
+  scene.settings.track_dissipation = true;
   Reader r(scene.file);
 
   const toml::table doc = scene_detail::parse_toml(text, source_name, max_scene_bytes, scene_file);
@@ -184,10 +184,10 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   r.check_keys(*world, "world",
                {"dt", "integrator", "precision", "substeps", "allow_unstable", "flush_denormals",
                 "damping_split"});
-  scene.world.dt = r.required_number(*world, "world", "dt",
-                                     "the fixed physics step in s, e.g. dt = 0.01 (100 ticks/s)");
-  r.require(scene.world.dt > 0.0 && scene.world.dt <= 1.0, *world, "dt", "world.dt",
-            "> 0 and <= 1 s", scene.world.dt);
+  scene.settings.dt = r.required_number(
+      *world, "world", "dt", "the fixed physics step in s, e.g. dt = 0.01 (100 ticks/s)");
+  r.require(scene.settings.dt > 0.0 && scene.settings.dt <= 1.0, *world, "dt", "world.dt",
+            "> 0 and <= 1 s", scene.settings.dt);
   if (auto name = r.string(*world, "integrator", "world.integrator")) {
     auto i = parse_integrator(*name);
     if (!i) {
@@ -208,7 +208,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
                          best ? fmt::format("; did you mean \"{}\"?", *best) : std::string(),
                          integrator_names()));
     }
-    scene.world.integrator = *i;
+    scene.settings.integrator = *i;
   }
   if (auto name = r.string(*world, "precision", "world.precision")) {
     auto p = parse_precision(*name);
@@ -220,13 +220,13 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   }
 
   if (const toml::node* n = world->get("substeps")) {
-    scene.world.substeps = static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
+    scene.settings.substeps = static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
   }
   if (auto b = boolean(r, *world, "allow_unstable", "world.allow_unstable")) {
     scene.allow_unstable = *b;
   }
   if (auto b = boolean(r, *world, "flush_denormals", "world.flush_denormals")) {
-    scene.world.flush_denormals = *b;
+    scene.settings.flush_denormals = *b;
   }
   if (auto name = r.string(*world, "damping_split", "world.damping_split")) {
     const auto split = parse_damping_split(*name);
@@ -234,7 +234,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
       r.fail(world->get("damping_split")->source(), "world.damping_split",
              fmt::format("unknown damping split \"{}\" (valid: per_stage, per_step)", *name));
     }
-    scene.world.damping_split = *split;
+    scene.settings.damping_split = *split;
   }
 
   // Every number first, so that a generated position beyond float range is the spacing's fault.
@@ -288,7 +288,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
                fmt::format("duplicate body name \"{}\" (names must be unique)", def.name));
       }
       scene.bodies.push_back(std::move(def));
-      scene.body_lines.push_back(t.source().begin.line);
+      scene.source.body_lines.push_back(t.source().begin.line);
     }
   }
   parse_generators(r, doc, scene, names);
@@ -303,10 +303,10 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   check_start_overlap(scene, names);
   // The work and memory limits (limits.hpp), at the key that sets the work per tick.
   try {
-    check_world_limits(scene.bodies, scene.links, scene.planes, scene.world);
+    check_world_limits(scene.bodies, scene.links, scene.planes, scene.settings);
   } catch (const LimitError& e) {
     // check_world_limits checks the implicit solve's size first, then the work per tick.
-    const bool memory = !implicit_solve_within_limits(scene.bodies, scene.links, scene.world);
+    const bool memory = !implicit_solve_within_limits(scene.bodies, scene.links, scene.settings);
     const std::string key = memory ? "integrator" : "substeps";
     const toml::node* at = world->get(key);
     r.fail(at ? at->source() : world->source(), at ? "world." + key : "world", e.what());
@@ -321,20 +321,9 @@ Scene load_scene(const std::filesystem::path& file) {
                      file.string());
 }
 
-WorldDef world_def(const Scene& scene) {
-  return WorldDef{.precision = scene.precision,
-                  .settings = scene.world,
-                  .bodies = scene.bodies,
-                  .links = scene.links,
-                  .planes = scene.planes,
-                  .allow_unstable = scene.allow_unstable};
-}
-
 World make_world(const Scene& scene) {
   (void)enforce_stability(scene);  // throws for unstable bodies; callers print the warnings
-  WorldDef def = world_def(scene);
-  def.stability_checked = true;  // judged just above, with the scene's lines: once is enough
-  return World(def);
+  return World(world_def(scene));  // limits and overlaps were checked as the scene loaded
 }
 
 }  // namespace fixstep

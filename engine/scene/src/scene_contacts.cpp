@@ -145,7 +145,7 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
   ContactSettings contacts;
   contacts.restitution = restitution(r, *t, "contacts").value_or(0.0);
   contacts.friction = friction(r, *t, "contacts").value_or(0.0);
-  scene.world.contacts = contacts;
+  scene.settings.contacts = contacts;
   const bool discs = std::any_of(scene.bodies.begin(), scene.bodies.end(),
                                  [](const BodyDef& b) { return b.collider.has_value(); });
   if (!discs) {
@@ -156,7 +156,7 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
 }
 
 void check_start_overlap(const Scene& scene, const BodyNames& names) {
-  if (!scene.world.contacts) return;
+  if (!scene.settings.contacts) return;
   std::optional<std::pair<std::size_t, std::size_t>> pair;
   try {
     pair = first_disc_overlap(scene.bodies, scene.links);
@@ -165,7 +165,7 @@ void check_start_overlap(const Scene& scene, const BodyNames& names) {
   }
   if (!pair) return;
   const auto [a, b] = *pair;
-  const std::size_t la = scene.body_lines[a], lb = scene.body_lines[b];
+  const std::size_t la = scene.source.body_lines[a], lb = scene.source.body_lines[b];
   const std::size_t later = lb >= la ? b : a;
   // The key of the later body: body[i] for a [[body]] table, else its generator's table.
   std::string key = fmt::format("body[{}]", later);
@@ -176,7 +176,7 @@ void check_start_overlap(const Scene& scene, const BodyNames& names) {
   const double reach = da.collider->radius + db.collider->radius;
   const double apart = reach - disc_overlap_depth(da, db);
   throw SceneError(
-      scene.file, scene.body_lines[later], 0, key,
+      scene.file, scene.source.body_lines[later], 0, key,
       fmt::format("discs \"{}\" (line {}) and \"{}\" (line {}) overlap by {:.6g} m where they "
                   "start (centres {:.6g} m apart, radii {:g} + {:g} m), and [contacts] would "
                   "push them apart at once; move them apart, set collide = false on one, or "

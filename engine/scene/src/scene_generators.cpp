@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "fixstep/det_math.hpp"
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/stop_request.hpp"
 #include "fixstep/work_progress.hpp"
 #include "scene_reader.hpp"
@@ -50,7 +51,7 @@ class Generator {
     }
     bodies_target_ = scene_.bodies.size() + count;
     scene_.bodies.reserve(scene_.bodies.size() + count);
-    scene_.body_lines.reserve(scene_.bodies.size() + count);
+    scene_.source.body_lines.reserve(scene_.bodies.size() + count);
     names_.index.reserve(names_.index.size() + count);
   }
 
@@ -63,7 +64,7 @@ class Generator {
     }
     links_target_ = scene_.links.size() + count;
     scene_.links.reserve(scene_.links.size() + count);
-    scene_.link_lines.reserve(scene_.links.size() + count);
+    scene_.source.link_lines.reserve(scene_.links.size() + count);
   }
 
   /// The body template `body = { mass = ..., ... }`.
@@ -130,10 +131,10 @@ class Generator {
       r_.fail(name_node_ ? name_node_->source() : t_.source(), key("name"),
               fmt::format("body name \"{}\" is already taken by the body of line {} (names must "
                           "be unique)",
-                          def.name, scene_.body_lines[it->second]));
+                          def.name, scene_.source.body_lines[it->second]));
     }
     scene_.bodies.push_back(std::move(def));
-    scene_.body_lines.push_back(t_.source().begin.line);
+    scene_.source.body_lines.push_back(t_.source().begin.line);
     checkpoint("body", scene_.bodies.size(), bodies_target_);
   }
 
@@ -156,9 +157,9 @@ class Generator {
                       "separates them or leave rest_length out",
                       scene_.bodies[a].name, scene_.bodies[b].name, spring.rest_length, spec.path));
     }
-    scene_.links.push_back(BodyLink{a, b, spring});
-    scene_.link_lines.push_back(t_.source().begin.line);
-    scene_.link_keys.push_back(spec.path);
+    scene_.links.push_back(LinkDef{detail::defined_entity(a), detail::defined_entity(b), spring});
+    scene_.source.link_lines.push_back(t_.source().begin.line);
+    scene_.source.link_keys.push_back(spec.path);
     checkpoint("link", scene_.links.size(), links_target_);
   }
 

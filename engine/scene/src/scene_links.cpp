@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {
@@ -41,10 +42,10 @@ std::uint64_t pair_key(std::size_t a, std::size_t b) {
 
 /// Where link l came from, for a warning: "spring[2] (line 14)".
 std::string link_origin(const Scene& scene, std::size_t l) {
-  const std::string key = l < scene.link_keys.size() && !scene.link_keys[l].empty()
-                              ? scene.link_keys[l]
+  const std::string key = l < scene.source.link_keys.size() && !scene.source.link_keys[l].empty()
+                              ? scene.source.link_keys[l]
                               : fmt::format("link[{}]", l);
-  const std::size_t line = l < scene.link_lines.size() ? scene.link_lines[l] : 0;
+  const std::size_t line = l < scene.source.link_lines.size() ? scene.source.link_lines[l] : 0;
   return line ? fmt::format("{} (line {})", key, line) : key;
 }
 
@@ -137,7 +138,7 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
   // one is allowed, as the forces of both add, but is most likely a mistake.
   std::unordered_map<std::uint64_t, std::size_t> first_link;
   for (std::size_t l = 0; l < scene.links.size(); ++l) {
-    first_link.emplace(pair_key(scene.links[l].body_a, scene.links[l].body_b), l);
+    first_link.emplace(pair_key(scene.links[l].body_a.slot(), scene.links[l].body_b.slot()), l);
   }
   for (std::size_t i = 0; i < list->size(); ++i) {
     const toml::table& t = *list->get(i)->as_table();
@@ -191,9 +192,9 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
                          "forces add); remove one, or merge them into one spring",
                          da.name, db.name, link_origin(scene, it->second)));
     }
-    scene.links.push_back(BodyLink{a, b, spring});
-    scene.link_lines.push_back(t.source().begin.line);
-    scene.link_keys.push_back(path);
+    scene.links.push_back(LinkDef{detail::defined_entity(a), detail::defined_entity(b), spring});
+    scene.source.link_lines.push_back(t.source().begin.line);
+    scene.source.link_keys.push_back(path);
   }
 }
 

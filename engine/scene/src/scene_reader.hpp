@@ -343,7 +343,7 @@ void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& p
 /// For a static or kinematic def: drops spring, gravity, force and drag with a warning at
 /// their keys in t (they would move it), and a static body's non-zero velocity.
 void drop_moving_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
-/// The [contacts] table into scene.world.contacts (restitution in [0, 1], friction >= 0, both
+/// The [contacts] table into scene.settings.contacts (restitution in [0, 1], friction >= 0, both
 /// default 0), warning when no body is a disc. Without the table, warns at each body's (and
 /// generator template's) restitution and friction: they act only in disc-disc contacts.
 /// After the bodies.

@@ -4,18 +4,19 @@
 
 #include <cmath>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/float_mode.hpp"
 
 namespace fixstep {
 
 std::vector<BodyStability> check_stability(const Scene& scene) {
-  return check_stability(scene.bodies, scene.world.integrator, scene.world.dt,
-                         scene.world.substeps);
+  return check_stability(scene.bodies, scene.settings.integrator, scene.settings.dt,
+                         scene.settings.substeps);
 }
 
 std::optional<NetworkStability> check_scene_network(const Scene& scene) {
-  return check_linked_stability(scene.bodies, scene.links, scene.world.integrator, scene.world.dt,
-                                scene.world.substeps);
+  return check_linked_stability(scene.bodies, scene.links, scene.settings.integrator,
+                                scene.settings.dt, scene.settings.substeps);
 }
 
 namespace {
@@ -67,7 +68,7 @@ std::string with_advice(const std::string& message, int min_substeps, double max
 std::vector<std::string> enforce_stability(const Scene& scene) {
   const IeeeFloatMode ieee;  // the same verdict whatever the caller's FPU mode
   std::vector<std::string> warnings;
-  const int substeps = scene.world.substeps;
+  const int substeps = scene.settings.substeps;
   auto apply = [&](Stability verdict, std::size_t line, const std::string& key,
                    const std::string& message, const std::string& advised) {
     if (verdict == Stability::unstable && !scene.allow_unstable) {
@@ -79,13 +80,14 @@ std::vector<std::string> enforce_stability(const Scene& scene) {
     }
   };
   auto body_line = [&](std::size_t i) {
-    return i < scene.body_lines.size() ? scene.body_lines[i] : std::size_t{0};
+    return i < scene.source.body_lines.size() ? scene.source.body_lines[i] : std::size_t{0};
   };
   // Bodies that links join are judged as a network below, not on their own.
   const std::vector<bool> linked = linked_bodies(scene.bodies.size(), scene.links);
   for (const BodyStability& r : check_stability(scene)) {
-    if (linked[r.body]) continue;
-    apply(r.verdict, body_line(r.body), fmt::format("body[{}]", r.body), r.message,
+    const std::size_t i = r.body.slot();
+    if (linked[i]) continue;
+    apply(r.verdict, body_line(i), fmt::format("body[{}]", i), r.message,
           with_advice(r.message, r.min_substeps, r.max_step, r.radius, substeps,
                       scene.allow_unstable));
   }
@@ -95,12 +97,15 @@ std::vector<std::string> enforce_stability(const Scene& scene) {
     const std::optional<std::size_t> link =
         net->damping_bound ? net->strongest_damper : net->stiffest_link;
     if (link) {
-      const std::size_t line = *link < scene.link_lines.size() ? scene.link_lines[*link] : 0;
-      const bool named = *link < scene.link_keys.size() && !scene.link_keys[*link].empty();
-      apply(net->verdict, line, named ? scene.link_keys[*link] : fmt::format("link[{}]", *link),
-            net->message, advised);
+      const std::size_t line =
+          *link < scene.source.link_lines.size() ? scene.source.link_lines[*link] : 0;
+      const bool named =
+          *link < scene.source.link_keys.size() && !scene.source.link_keys[*link].empty();
+      apply(net->verdict, line,
+            named ? scene.source.link_keys[*link] : fmt::format("link[{}]", *link), net->message,
+            advised);
     } else {
-      const std::size_t i = net->fastest_body;
+      const std::size_t i = net->fastest_body.slot();
       apply(net->verdict, body_line(i), fmt::format("body[{}]", i), net->message, advised);
     }
   }
@@ -108,10 +113,11 @@ std::vector<std::string> enforce_stability(const Scene& scene) {
 }
 
 std::string explain_fault(const Scene& scene, const StateFault& fault) {
-  const std::size_t i = fault.index;
-  const std::size_t line = i < scene.body_lines.size() ? scene.body_lines[i] : 0;
+  const auto i = detail::defined_index(fault.body, scene.bodies.size());
+  const std::size_t line =
+      i && *i < scene.source.body_lines.size() ? scene.source.body_lines[*i] : 0;
   return fmt::format("{}{}: {}", scene.file, line ? fmt::format(":{}", line) : std::string(),
-                     explain_fault(scene.bodies, scene.links, scene.world, fault));
+                     explain_fault(scene.bodies, scene.links, scene.settings, fault));
 }
 
 }  // namespace fixstep

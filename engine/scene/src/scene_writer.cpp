@@ -15,6 +15,7 @@
 
 #include "fixstep/bits.hpp"
 #include "fixstep/det_math.hpp"
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/file_write.hpp"
 #include "fixstep/recording.hpp"
 #include "fixstep/scene.hpp"
@@ -165,7 +166,6 @@ void write_world(std::string& out, const WorldDef& def) {
   if (s.damping_split != DampingSplit::per_stage) {
     out += fmt::format("damping_split = \"{}\"\n", damping_split_name(s.damping_split));
   }
-  if (def.allow_unstable) out += "allow_unstable = true\n";
   if (s.contacts) {
     fmt::format_to(it, "\n[contacts]\nrestitution = {}\nfriction = {}\n",
                    num(s.contacts->restitution), num(s.contacts->friction));
@@ -209,16 +209,26 @@ void write_body(std::string& out, const BodyDef& b, const std::string& name) {
   write_looks(out, b);
 }
 
+/// "body[i]" for the handle WorldDef::add_body gives its i-th body, else "body S:G" (slot and
+/// generation, 1-based slot as in recordings).
+std::string body_label(Entity e) {
+  if (!e.is_null() && e.generation == 1) return fmt::format("body[{}]", e.slot());
+  return fmt::format("body {}:{}", e.index1, e.generation);
+}
+
 void write_links(std::string& out, const WorldDef& def, const std::vector<std::string>& names) {
   auto it = std::back_inserter(out);
   for (std::size_t i = 0; i < def.links.size(); ++i) {
-    const BodyLink& l = def.links[i];
-    if (l.body_a >= names.size() || l.body_b >= names.size() || l.body_a == l.body_b) {
+    const LinkDef& d = def.links[i];
+    const auto a = detail::defined_index(d.body_a, names.size());
+    const auto b = detail::defined_index(d.body_b, names.size());
+    if (!a || !b || *a == *b) {
       refuse(fmt::format("link[{}]", i),
-             fmt::format("joins bodies {} and {}: each must be one of the {} bodies, and they "
-                         "must differ",
-                         l.body_a, l.body_b, names.size()));
+             fmt::format("joins {} and {}: each must be one of the {} bodies (a handle "
+                         "WorldDef::add_body returned), and they must differ",
+                         body_label(d.body_a), body_label(d.body_b), names.size()));
     }
+    const detail::IndexLink l{*a, *b, d.spring};
     fmt::format_to(it,
                    "\n[[spring]]\nbodies = [{}, {}]\nstiffness = {}\ndamping = {}\nrest_length = "
                    "{}\n",

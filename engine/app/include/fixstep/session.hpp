@@ -48,10 +48,10 @@ inline constexpr double max_frame_ticks = 0x1p30;
 
 class Session {
  public:
-  /// Builds the world (World(def): the stability guard applies; with
-  /// WorldSettings::track_dissipation turned on, since the HUD shows the energy balance), the
-  /// loop (ticks of def.settings.dt) and the renderer. Throws std::invalid_argument for an invalid
-  /// or unstable def (see make_simulation), for a max_frame_time that is not finite and > 0 or
+  /// Builds the world (World(def), with WorldSettings::track_dissipation turned on, since the HUD
+  /// shows the energy balance), the loop (ticks of def.settings.dt) and the renderer. Judges
+  /// nothing: check the definition first (check_definition). Throws std::invalid_argument for an
+  /// invalid def (as World(def)), for a max_frame_time that is not finite and > 0 or
   /// is more than max_frame_ticks ticks, RenderError when rendering cannot start.
   explicit Session(WorldDef def, const SessionSettings& settings = {});
   /// As above, with the world already built: `sim` must be World(def) at tick 0, made
@@ -94,7 +94,7 @@ class Session {
   /// Back to the initial state (tick 0), trails cleared; pause and time scale are kept.
   void restart();
   /// Draws the pointer's drag spring (from `pointer`, m, to body `body`) in the next draw()s,
-  /// as the springs are drawn; no_body hides it.
+  /// as the springs are drawn; null_entity hides it.
   void show_drag(Vec2 pointer, Entity body) { drag_pointer_ = pointer, drag_body_ = body; }
   /// Shows the loop's key help in the HUD (the window's, fixstep::window_key_help, unless
   /// set_key_help() gave another).
@@ -175,7 +175,7 @@ class Session {
   bool show_energy_ = true;
   bool show_engine_hud_ = true;
   Vec2 drag_pointer_{};
-  Entity drag_body_ = no_body;
+  Entity drag_body_ = null_entity;
   std::vector<std::string> status_lines_;  ///< set_status_lines()
   bool auto_view_ = true;                  ///< the view is fit_camera's below the HUD
   std::optional<double> auto_width_;       ///< SessionSettings::view_width, m

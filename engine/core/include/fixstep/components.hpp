@@ -110,27 +110,20 @@ struct PlaneDef {
 /// Force on body a (body b gets the opposite), with d = x_a - x_b and u = v_a - v_b:
 ///   L = 0:  F = -k d - b u                                  (linear, each axis independent)
 ///   L > 0:  F = -k (|d| - L) d/|d| - b (u·d̂) d̂,  d̂ = d/|d|    (damping along the spring only)
-/// The parameters of a link, shared by the World API (LinkDef) and by index-based lists
-/// (BodyLink: scene files, the stability guard, the exact solutions).
+/// The parameters of a link (LinkDef::spring).
 struct LinkSpring {
   double stiffness = 0.0;    ///< k, N/m, finite and >= 0
   double damping = 0.0;      ///< b, N*s/m, finite and >= 0, on the relative velocity
   double rest_length = 0.0;  ///< L, m, finite and >= 0
 };
 
-/// What World::create_link needs, in the spirit of Box2D's b2DistanceJointDef: two live,
-/// distinct bodies and the spring between them.
+/// A link between two bodies, in the spirit of Box2D's b2DistanceJointDef: what
+/// World::create_link takes, and what WorldDef::links holds. Its bodies are handles: of live
+/// bodies for create_link; for a WorldDef, the handles WorldDef::add_body returned (those
+/// World(def) gives the definition's bodies).
 struct LinkDef {
-  Entity body_a;  ///< must be a live body of the world
-  Entity body_b;  ///< must be a live body of the world, != body_a
-  LinkSpring spring{};
-};
-
-/// A link between bodies given by their index in a body list (Scene::bodies, or any list
-/// handed to the stability guard and the exact solutions before a world exists).
-struct BodyLink {
-  std::size_t body_a = 0;  ///< index into the body list
-  std::size_t body_b = 0;  ///< index into the body list, != body_a
+  Entity body_a;  ///< one end
+  Entity body_b;  ///< the other end, != body_a
   LinkSpring spring{};
 };
 

@@ -26,7 +26,7 @@ namespace fixstep {
 /// into bodies) with |x_i - x_j| < r_i + r_j - tol, overlapping by more than
 /// tol = 1e-9 (r_i + r_j) + 4 ε max|coordinate| (ε = 2^-52; touching discs, and discs placed
 /// touching whose distance rounds a little short, do not overlap), that may touch (discs_may_touch)
-/// and that no link in `links` (indices into bodies) joins (linked bodies never collide, Box2D's
+/// and that no link in `links` (as in a WorldDef) joins (linked bodies never collide, Box2D's
 /// collideConnected = false); std::nullopt when there is none. When several pairs overlap, the one
 /// returned is the first the sweep meets: the same for the same input.
 ///
@@ -42,10 +42,10 @@ namespace fixstep {
 /// docs/ROBUSTNESS.md, "The overlap check at load".
 ///
 /// Throws std::invalid_argument for a disc (a body with a Collider that collides) whose
-/// position is not finite or whose radius is not finite and > 0, and for a link whose body
-/// index is out of range.
+/// position is not finite or whose radius is not finite and > 0, and for a link whose end is
+/// not among the bodies.
 [[nodiscard]] std::optional<std::pair<std::size_t, std::size_t>> first_disc_overlap(
-    std::span<const BodyDef> bodies, std::span<const BodyLink> links);
+    std::span<const BodyDef> bodies, std::span<const LinkDef> links);
 
 /// first_disc_overlap of def.bodies and def.links when def.settings.contacts is set;
 /// std::nullopt without contacts (no disc-disc contact is ever computed then). Throws as the

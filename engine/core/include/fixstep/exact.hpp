@@ -77,14 +77,14 @@ enum class Regime {
 /// within 1e-13 to 1e-12 of the motion's scale on the tests' networks of one to six bodies.
 class LinearNetwork {
  public:
-  /// The network of `bodies` and `links` (indices into bodies), or std::nullopt when it is
+  /// The network of `bodies` and `links` (as in a WorldDef), or std::nullopt when it is
   /// not linear with proportional damping (a rest length > 0, or in some connected component
   /// damping not of the form αK + βM to a relative 1e-9 per damper). Throws
-  /// std::invalid_argument for a link index out of range, a link whose ends are the same
+  /// std::invalid_argument for a link end not among the bodies, a link whose ends are the same
   /// body, a negative or non-finite link parameter, or invalid body parameters (as solve(),
   /// and non-finite positions, velocities, anchors, forces or gravity).
   [[nodiscard]] static std::optional<LinearNetwork> make(std::span<const BodyDef> bodies,
-                                                         std::span<const BodyLink> links);
+                                                         std::span<const LinkDef> links);
   /// Every body's exact position (m) and velocity (m/s) at time t (s), in body order; out
   /// must hold bodies.size() entries (throws std::invalid_argument otherwise or for a
   /// non-finite t). Masses are copied from the definitions.

@@ -26,9 +26,6 @@ enum InputButton : std::uint32_t {
 /// Every bit a TickInput may carry (a recording with others is refused).
 inline constexpr std::uint32_t all_buttons = 0x31fu;
 
-/// TickInput::drag_body when nothing is dragged (the null handle).
-inline constexpr Entity no_body{};
-
 /// The drag spring: the one of Box2D's samples (their mouse joint: 5 Hz, damping ratio 0.7),
 /// per unit mass, so light and heavy bodies follow the pointer alike. World::step applies it to
 /// the dragged body's velocity with implicit Euler (stable at any dt; see World::step).
@@ -73,8 +70,8 @@ struct TickInput {
   std::uint32_t released = 0;  ///< bits that went up since the previous tick's sample
   Vec2 pointer{};              ///< pointer position in world coordinates, m
   /// The body the pointer drags (a spring from `pointer` to it; see drag_frequency), or
-  /// no_body. A stale handle, or a body that is not dynamic, drags nothing.
-  Entity drag_body = no_body;
+  /// null_entity. A stale handle, or a body that is not dynamic, drags nothing.
+  Entity drag_body = null_entity;
   /// Per-body forces, impulses and kinematic velocities of this tick, applied in this order
   /// (at most max_body_inputs). Empty costs nothing.
   std::vector<BodyInput> bodies{};
@@ -106,7 +103,7 @@ class InputSampler {
   }
   void set_pointer(Vec2 position) { pointer_ = position; }    ///< m, world coordinates
   void set_push(Vec2 acceleration) { push_ = acceleration; }  ///< m/s²
-  /// The body every following tick drags (TickInput::drag_body), or no_body; for programs that
+  /// The body every following tick drags (TickInput::drag_body), or null_entity; for programs that
   /// decide the drag outside the ticks (fixstep's own use PointerDrag at the tick).
   void set_drag_body(Entity body) { drag_body_ = body; }
   /// An impulse J (N·s) on `body` in the next tick sampled (an event: once).
@@ -141,7 +138,7 @@ class InputSampler {
  private:
   std::uint32_t held_ = 0, pressed_ = 0, released_ = 0;
   Vec2 pointer_{}, push_{};
-  Entity drag_body_ = no_body;
+  Entity drag_body_ = null_entity;
   std::vector<BodyInput> forces_;  ///< levels, in the order first set
   std::vector<BodyInput> events_;  ///< one-tick inputs, in the order given
 };

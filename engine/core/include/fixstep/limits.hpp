@@ -71,7 +71,7 @@ inline constexpr std::uint64_t plane_pair_work = 1;
 /// contacts (about three per disc in a pile; disc_contacts.hpp).
 inline constexpr std::uint64_t disc_work = 128;
 
-/// Body-substeps of one tick of the world of `bodies`, `links` (by index into bodies),
+/// Body-substeps of one tick of the world of `bodies`, `links` (as in a WorldDef),
 /// `planes` and `settings`, the sum of its terms:
 ///  - (bodies + links) × substeps (the fused per-body pass and the link gather);
 ///  - bodies × 64·√n × substeps for implicit Euler on a world with links (its sparse solve over
@@ -80,7 +80,7 @@ inline constexpr std::uint64_t disc_work = 128;
 ///  - discs × disc_work when settings.contacts is set (every collider with collide = true).
 /// At most ~10^17 (the scene limits), never overflowing.
 [[nodiscard]] std::uint64_t tick_work(std::span<const BodyDef> bodies,
-                                      std::span<const BodyLink> links,
+                                      std::span<const LinkDef> links,
                                       std::span<const PlaneDef> planes,
                                       const WorldSettings& settings);
 /// tick_work of def's world.
@@ -91,23 +91,23 @@ inline constexpr std::uint64_t disc_work = 128;
 /// square grids of links (the worst shipped shape: fill-in grows as n^1.5 for n linked bodies),
 /// measured as peak RSS (docs/ROBUSTNESS.md, "Limits"); a chain takes far less.
 [[nodiscard]] std::uint64_t implicit_solve_bytes(std::span<const BodyDef> bodies,
-                                                 std::span<const BodyLink> links,
+                                                 std::span<const LinkDef> links,
                                                  const WorldSettings& settings);
 
 /// Whether implicit Euler's solve of this world is within max_implicit_bodies and
 /// max_implicit_solve_bytes (true for another integrator or a world without links).
 [[nodiscard]] bool implicit_solve_within_limits(std::span<const BodyDef> bodies,
-                                                std::span<const BodyLink> links,
+                                                std::span<const LinkDef> links,
                                                 const WorldSettings& settings);
 
 /// Throws LimitError when one tick of the world would exceed max_tick_work ("N bodies + M
 /// links × S substeps + ... = W body-substeps per tick; a tick may do at most 1e+09 ...", each
 /// term of tick_work named) or its implicit solve max_implicit_bodies or
 /// max_implicit_solve_bytes (naming the integrator, the linked body count, the estimate and the
-/// way out: semi_implicit_euler with substeps). make_simulation calls it, the scene loader too
-/// (locating the message at [world] substeps). Throws std::invalid_argument for a link index
-/// out of range.
-void check_world_limits(std::span<const BodyDef> bodies, std::span<const BodyLink> links,
+/// way out: semi_implicit_euler with substeps). check_limits(def) calls it (definition_checks.hpp),
+/// the scene loader too (locating the message at [world] substeps). Throws std::invalid_argument
+/// for a link index out of range.
+void check_world_limits(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
                         std::span<const PlaneDef> planes, const WorldSettings& settings);
 
 }  // namespace fixstep

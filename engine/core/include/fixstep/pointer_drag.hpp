@@ -11,7 +11,7 @@
 namespace fixstep {
 
 /// The body nearest to `point` (m) whose distance is within its reach: its Appearance radius,
-/// or `tolerance` (m) if that is larger; no_body (the null handle) if none. O(bodies).
+/// or `tolerance` (m) if that is larger; null_entity (the null handle) if none. O(bodies).
 [[nodiscard]] Entity pick_body(const World& sim, Vec2 point, double tolerance);
 
 /// Applies the pick-and-drag rule to the inputs of successive ticks: a tick whose input
@@ -25,12 +25,12 @@ class PointerDrag {
   explicit PointerDrag(double tolerance);
   /// Updates the drag from `input`'s presses and releases and sets input.drag_body.
   void apply(TickInput& input, const World& sim);
-  [[nodiscard]] Entity body() const { return body_; }  ///< dragged body, or no_body
-  void reset() { body_ = no_body; }
+  [[nodiscard]] Entity body() const { return body_; }  ///< dragged body, or null_entity
+  void reset() { body_ = null_entity; }
 
  private:
   double tolerance_;
-  Entity body_ = no_body;
+  Entity body_ = null_entity;
 };
 
 }  // namespace fixstep

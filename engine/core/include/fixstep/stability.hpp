@@ -41,7 +41,7 @@ enum class Stability {
 
 /// The guard's finding for one body.
 struct BodyStability {
-  std::size_t body = 0;   ///< index into the bodies checked
+  Entity body{};          ///< the body: the handle World(def) gives the checked list's body
   double omega = 0.0;     ///< rad/s
   double gamma = 0.0;     ///< 1/s
   double h = 0.0;         ///< step = dt / substeps, s
@@ -100,7 +100,8 @@ struct NetworkStability {
   std::optional<std::size_t> stiffest_link;
   /// The link with the largest b/μ; nullopt when no link has b > 0.
   std::optional<std::size_t> strongest_damper;
-  std::size_t fastest_body = 0;  ///< largest displacement |M^-½ φ| in the top mode (body index)
+  /// The body of largest displacement |M^-½ φ| in the top mode: the handle World(def) gives it.
+  Entity fastest_body{};
   Stability verdict = Stability::stable;
   std::string message;  ///< empty when stable
 };
@@ -131,24 +132,24 @@ struct NetworkStability {
 /// Verdict: unstable when a radius exceeds 1, near_limit when h > 0.9 max_step. The message,
 /// like check_stability's, names ω_max·h (or λ_max(M⁻¹C)·h) and its bound, the smallest
 /// stable substep count, the stiffest link (or strongest damper) with its two bodies, and
-/// the fastest body. Throws std::invalid_argument for a link index out of range or with both
+/// the fastest body. Throws std::invalid_argument for a link end not among the bodies, both
 /// ends on one body, a dynamic body's mass not finite and > 0, dt not finite and > 0, or
 /// substeps < 1.
 [[nodiscard]] NetworkStability check_network_stability(std::span<const BodyDef> bodies,
-                                                       std::span<const BodyLink> links,
+                                                       std::span<const LinkDef> links,
                                                        Integrator integrator, double dt,
                                                        int substeps);
 
-/// Which of `body_count` bodies some link joins. Throws std::invalid_argument for a link whose
-/// body index is out of range.
+/// Which of `body_count` bodies some link joins (links by the handles World(def) gives a
+/// definition's bodies). Throws std::invalid_argument for a link whose end is not one of them.
 [[nodiscard]] std::vector<bool> linked_bodies(std::size_t body_count,
-                                              std::span<const BodyLink> links);
+                                              std::span<const LinkDef> links);
 
-/// check_network_stability for the bodies some link joins (links by index into `bodies`, as
-/// World::create_link takes them; fastest_body is an index into `bodies`); std::nullopt when
-/// there are no links. Throws as check_network_stability and linked_bodies.
+/// check_network_stability for the bodies some link joins (bodies and links as in a WorldDef;
+/// fastest_body is the handle World(def) gives it); std::nullopt when there are no links. Throws as
+/// check_network_stability and linked_bodies.
 [[nodiscard]] std::optional<NetworkStability> check_linked_stability(
-    std::span<const BodyDef> bodies, std::span<const BodyLink> links, Integrator integrator,
+    std::span<const BodyDef> bodies, std::span<const LinkDef> links, Integrator integrator,
     double dt, int substeps);
 
 /// The runtime guard's message for `fault` (World::fault()) in a world built from `bodies` and
@@ -164,7 +165,7 @@ struct NetworkStability {
 ///   "body[i] \"a\": contacts at tick N (t = T s): max_tick_predictions = 16777216 reached: its
 ///    impact with body[j] \"b\" (...) was not resolved. Likely cause: ..."
 [[nodiscard]] std::string explain_fault(std::span<const BodyDef> bodies,
-                                        std::span<const BodyLink> links,
+                                        std::span<const LinkDef> links,
                                         const WorldSettings& settings, const StateFault& fault);
 
 }  // namespace fixstep

@@ -62,7 +62,7 @@ inline constexpr double max_state_magnitude = 1e12;
 /// |value| <= max_state_magnitude, or a contact cap (limits.hpp) that kept a tick's contacts
 /// from being resolved in full (field "contacts", cap set).
 struct StateFault {
-  std::size_t index = 0;   ///< dense body index (creation order while nothing is destroyed)
+  Entity body{};           ///< the body (its handle when the fault was recorded)
   std::string name;        ///< the body's name
   std::uint64_t tick = 0;  ///< the tick that produced the value (World::tick() after it)
   double time = 0.0;       ///< simulated time after that tick, s

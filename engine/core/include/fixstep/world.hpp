@@ -17,47 +17,24 @@
 
 namespace fixstep {
 
-/// What the renderer needs of one moment of the world, in float (pixels need no more): the
-/// positions interpolated between the last two ticks, appearances and lines. Drawing data only,
-/// not a restorable state (a snapshot, in game-physics terms, is one).
-struct RenderFrame {
-  struct SpringLine {
-    float anchor_x = 0, anchor_y = 0;  ///< m
-    std::uint32_t body = 0;            ///< index into x / y
-  };
-  std::vector<float> x, y;  ///< body positions, m (interpolated when taken with alpha)
-  /// Each body's handle, so what a renderer keeps per body across frames (trails) follows the
-  /// body, not its dense index, when bodies are created or destroyed.
-  std::vector<Entity> ids;
-  std::vector<float> radius;  ///< m; 0 = no Appearance (drawn at a default size)
-  std::vector<Rgba8> color;   ///< colour; alpha 0 = no Appearance (palette colour)
-  std::vector<SpringLine> springs;
-  /// Links (springs between bodies), as pairs of indices into x / y.
-  struct LinkLine {
-    std::uint32_t a = 0, b = 0;
-  };
-  std::vector<LinkLine> links;
-  /// Static half-planes n·x >= offset (normals normalised), drawn as ground and walls.
-  std::vector<PlaneDef> planes;
-};
-
 /// Everything a world is built from: what a scene file describes (see scene.hpp), or what a
 /// program writes in code. The one definition the frame pipeline (Session, render library)
 /// and the command line start from.
 struct WorldDef {
   Precision precision = Precision::f64;
   WorldSettings settings;        ///< dt (s), integrator, substeps, ... (see WorldSettings)
-  std::vector<BodyDef> bodies;   ///< in creation order: body i gets dense index i
-  std::vector<BodyLink> links;   ///< springs between bodies, by index into bodies
+  std::vector<BodyDef> bodies;   ///< in creation order (add_body)
+  std::vector<LinkDef> links;    ///< springs between bodies, by the handles add_body returned
   std::vector<PlaneDef> planes;  ///< static half-planes (ground, walls) colliders stay out of
-  /// The stability guard (stability.hpp) reports instead of refusing: for demos that show a
-  /// blow-up on purpose.
-  bool allow_unstable = false;
-  /// The caller has already run the stability guard on this very definition (the scene
-  /// loader's enforce_stability, which names lines): World(def) skips its own, which on a
-  /// network of 10^6 bodies costs seconds, and keeps no guard warnings. Left out of
-  /// definition_hash. Clear it when the definition changes.
-  bool stability_checked = false;
+
+  /// Appends `body` and returns the handle World(def) will give it (World::defined_bodies()
+  /// lists the same handles), for the links and per-body inputs a program writes before the
+  /// world exists.
+  Entity add_body(BodyDef body);
+  /// Appends a link between two bodies add_body returned; World(def) validates it.
+  void add_link(Entity a, Entity b, const LinkSpring& spring) {
+    links.push_back(LinkDef{a, b, spring});
+  }
 };
 
 /// A restorable state of a World (what game physics calls a snapshot): a complete copy of
@@ -83,19 +60,12 @@ class World {
   /// An empty world of `precision` stepped with `settings`. Throws std::invalid_argument on
   /// invalid settings (dt not finite and > 0, substeps < 1, ...).
   World(Precision precision, const WorldSettings& settings);
-  /// Builds the world `def` describes: a World with def.precision and def.settings, then
-  /// the bodies in order, the links and the planes. First applies the stability guard
-  /// (check_stability for bodies no link joins, check_linked_stability for the rest) at
-  /// def.settings' dt, integrator and substeps: unless def.allow_unstable, an unstable body or
-  /// network throws std::invalid_argument with the guard's finding and the smallest stable substep
-  /// count. Also throws std::invalid_argument for invalid settings, bodies or links (as World does:
-  /// the message names the body and field; for a plane, plane[i] and the field) and for a link
-  /// index out of range, and, in a world with contacts, for two colliding discs that overlap at
-  /// tick 0 (naming both; first_disc_overlap, disc_overlap.hpp). The guard's warnings (a body or
-  /// network within 10 % of its bound; an allowed unstable one) are kept in
-  /// World::warnings(); with def.stability_checked the guard does not run. Throws LimitError
-  /// (limits.hpp) for a tick beyond max_tick_work or an implicit solve beyond
-  /// max_implicit_solve_bytes, before the guard.
+  /// Builds the world `def` describes: a World with def.precision and def.settings, then the
+  /// bodies in order, the links and the planes. Throws std::invalid_argument for invalid
+  /// settings, bodies, links or planes (the message names the body and field; for a plane,
+  /// plane[i]), and for a link whose end is not one of def's bodies. It judges nothing else: the
+  /// stability guard, the work limits and the overlap of discs at tick 0 are the program's
+  /// explicit calls (check_definition, definition_checks.hpp), made before building.
   explicit World(const WorldDef& def);
 
   [[nodiscard]] Precision precision() const {
@@ -105,14 +75,17 @@ class World {
   // inside: units, shapes and errors are those documented in world.hpp (create_body throws
   // std::invalid_argument naming the body and field; step never throws and allocates nothing once
   // warmed up). Bodies and links are named by handles (Entity, Link), which stay valid until
-  // destroyed; dense indices (body_at, name(i), type_at) are for iterating over the bodies of one
-  // tick only, since destroy moves the last body into the hole.
+  // destroyed; bodies() lists the live ones in the order the world steps them.
 
   // --- bodies by handle -----------------------------------------------------------------
   Entity create_body(const BodyDef& def);
   /// Every live body's handle, in the order the world steps them (`for (Entity e :
   /// world.bodies())`). Valid until the next create or destroy.
   [[nodiscard]] std::span<const Entity> bodies() const;
+  /// The handles World(def) gave def.bodies, in definition order: defined_bodies()[i] is
+  /// def.bodies[i]'s (a destroyed one stays listed, stale). Empty for a world built without a
+  /// WorldDef.
+  [[nodiscard]] std::span<const Entity> defined_bodies() const { return defined_; }
   /// Destroys the body, its components and its links; throws std::invalid_argument if stale.
   void destroy(Entity e);
   /// Whether e names a live body (false for the null handle and destroyed bodies).
@@ -147,8 +120,6 @@ class World {
   [[nodiscard]] BodyType type(Entity e) const;
   /// Dense index of e (valid until the next create or destroy); throws if stale.
   [[nodiscard]] std::size_t index_of(Entity e) const;
-  /// The handle of the body at dense index i < body_count().
-  [[nodiscard]] Entity entity_at(std::size_t i) const;
   /// Adds or replaces component C (SpringDamper, ConstantForce, Gravity, LinearDrag,
   /// Appearance, Collider) on e; throws std::invalid_argument naming the field when invalid
   /// or when e is stale.
@@ -196,8 +167,6 @@ class World {
   [[nodiscard]] double time() const;  ///< s
   [[nodiscard]] const WorldSettings& settings() const;
   [[nodiscard]] std::size_t body_count() const;
-  /// The name of the body at dense index `index` < body_count().
-  [[nodiscard]] const std::string& name(std::size_t index) const;
   [[nodiscard]] EnergyReport energy() const;  ///< J
   /// Mechanical energy of each body, J, in bodies() order; `out` must hold body_count()
   /// values (else std::invalid_argument). A link's potential is split equally between its two
@@ -221,25 +190,19 @@ class World {
   [[nodiscard]] std::span<const ContactEvent> contacts_begun() const;
   /// Disc pairs that stopped touching in the last tick (World::contacts_ended()).
   [[nodiscard]] std::span<const ContactEvent> contacts_ended() const;
-  /// What the stability guard warned of when World(def) built this world (a body or
-  /// network within 10 % of its stability bound, or unstable but allowed), one message each;
-  /// empty for a World built otherwise. fixstep's CLI prints them; a program may show
-  /// them or refuse to run.
-  [[nodiscard]] std::span<const std::string> warnings() const { return warnings_; }
-  /// Adds a warning (World(def)'s use; a program may add its own).
-  void add_warning(std::string message) { warnings_.push_back(std::move(message)); }
-  /// The type of the body at dense index `index` (dynamic, static or kinematic).
-  [[nodiscard]] BodyType type_at(std::size_t index) const;
   [[nodiscard]] std::uint64_t state_hash() const;
   /// Bytes a WorldSnapshot of this simulation holds (World::snapshot_bytes()).
   [[nodiscard]] std::size_t snapshot_bytes() const;
-  /// Position and velocity of the body at dense index `index` in double (m, m/s).
-  [[nodiscard]] Body body_at(std::size_t index) const;
 
-  /// Fills out with positions lerp(previous, current, alpha) (alpha in [0, 1]; needs
-  /// set_keep_previous(true) to differ from the current state) and appearances. Reuses out's
-  /// storage: no allocation once it has grown to the body count.
-  void fill_render_frame(double alpha, RenderFrame& out) const;
+  /// Positions lerp(previous, current, alpha) in m, in bodies() order, for drawing between two
+  /// ticks (alpha in [0, 1], the loop's interpolation alpha; needs set_keep_previous(true) to
+  /// differ from the current state). x and y must hold body_count() values (else
+  /// std::invalid_argument).
+  void interpolate_positions(double alpha, std::span<float> x, std::span<float> y) const;
+  /// Each live link's two bodies as places in bodies() (a[i], b[i] for the i-th link in creation
+  /// order while none is destroyed), for drawing; a and b must hold link_count() values (else
+  /// std::invalid_argument).
+  void link_ends(std::span<std::uint32_t> a, std::span<std::uint32_t> b) const;
 
   /// Saves the complete state into `out`, reusing its storage: no allocation once `out` holds
   /// a state of the same shape (same bodies, links and components).
@@ -260,15 +223,8 @@ class World {
   }
 
   std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>> world_;
-  std::vector<std::string> warnings_;
+  std::vector<Entity> defined_;  ///< defined_bodies()
 };
-
-/// The handle World(def) gives def.bodies[i]: bodies are created in order in a fresh
-/// world, so body i gets slot i at generation 1. Lets scripts and recordings name a body by
-/// its place in the definition before the world exists.
-[[nodiscard]] constexpr Entity initial_entity(std::size_t i) {
-  return Entity{static_cast<std::uint32_t>(i + 1), 1};
-}
 
 /// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J
 /// when E0 = 0): what the integrator alone adds or loses, with the energy damping, drag and

@@ -59,8 +59,8 @@ class RecordingError : public std::runtime_error {
 /// Throws RecordingError (corrupt, naming `file` and the field) when an input of `rec` names a
 /// body (drag, force, impulse, velocity) that a world made from a definition of `bodies`
 /// bodies does not have: for worlds whose bodies are not created or destroyed during the run
-/// (scene files), whose handles are initial_entity(0 .. bodies - 1). Called before replaying,
-/// so such a recording is a bad recording, not a diverged replay.
+/// (scene files), whose handles are defined_bodies() of a world of `bodies` bodies. Called before
+/// replaying, so such a recording is a bad recording, not a diverged replay.
 void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file);
 /// Writes format_recording(rec) to `file` atomically (a temporary file beside it, then a
 /// rename): `file` is never left partial. Throws std::runtime_error naming the file and the
@@ -70,7 +70,7 @@ void write_recording(const std::filesystem::path& file, const Recording& rec);
 /// else as parse_recording.
 [[nodiscard]] Recording read_recording(const std::filesystem::path& file);
 
-/// Builds def's world (make_simulation) and replays `rec` on it with `rules` (recording.hpp's
+/// Builds def's world (World(def)) and replays `rec` on it with `rules` (recording.hpp's
 /// replay). Throws
 /// RecordingError scene_mismatch naming both hashes when definition_hash(def) is not the
 /// recording's (apply rec.settings to the scene first: apply_settings).

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/frame_data.hpp"
 #include "fixstep/trails.hpp"
 #include "fixstep/types.hpp"
 #include "fixstep/world.hpp"

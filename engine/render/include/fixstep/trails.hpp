@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/world.hpp"
+#include "fixstep/frame_data.hpp"
 
 namespace fixstep {
 
@@ -26,9 +26,9 @@ class Trails {
   static constexpr int capacity = 45;
 
   /// Appends each body's position (frame.x[j], frame.y[j]), m, to the trail of frame.ids[j]. A
-  /// frame without ids (filled by hand) keys body j by initial_entity(j), as if no body were ever
-  /// created or destroyed. Throws std::invalid_argument if ids is neither empty nor as long as
-  /// x, or holds a null handle; handles within one frame must be distinct.
+  /// frame without ids (filled by hand) keys body j by the handle World(def) gives def.bodies[j],
+  /// as if no body were ever created or destroyed. Throws std::invalid_argument if ids is neither
+  /// empty nor as long as x, or holds a null handle; handles within one frame must be distinct.
   void record(const RenderFrame& frame);
   /// Forgets every trail: each body starts an empty one at the next record() (after a restart,
   /// a rewind or a jump of the camera).

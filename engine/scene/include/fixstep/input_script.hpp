@@ -25,10 +25,11 @@ struct ScriptEvent {
   std::uint32_t release = 0;    ///< InputButton bits released at this tick
   std::optional<Vec2> pointer;  ///< m, world coordinates; a level kept until changed
   std::optional<Vec2> push;     ///< m/s²; a level kept until changed
-  std::optional<Entity> drag;   ///< the body's initial_entity(), or no_body (`drag = false`)
+  std::optional<Entity>
+      drag;  ///< the body's handle (World::defined_bodies()), or null_entity (`drag = false`)
   /// `force` (N, this tick only), `impulse` (N·s, Δv = J/m at this tick) and `velocity` (m/s,
-  /// a kinematic body keeps it until changed), bodies by initial_entity(); forces first, then
-  /// impulses, then velocities, each in file order.
+  /// a kinematic body keeps it until changed), bodies by their handles (World::defined_bodies());
+  /// forces first, then impulses, then velocities, each in file order.
   std::vector<BodyInput> bodies;
   std::size_t line = 0;  ///< of the [[at]] table
 };
@@ -47,13 +48,13 @@ inline constexpr std::size_t max_script_bytes = 4u << 20;
 [[nodiscard]] std::span<const std::pair<std::string_view, std::uint32_t>> button_names();
 
 /// Parses a script for a world of `bodies` (drag, force, impulse and velocity name a body; its
-/// initial_entity() is stored). Throws SceneError "FILE:LINE:COLUMN: KEY: MESSAGE" for TOML
-/// syntax errors, an [[at]] without `tick`, ticks not strictly increasing or beyond
-/// max_recording_ticks, an unknown button (with a suggestion), a body name no body has (with a
-/// suggestion), a force or impulse on a body that is not dynamic, a velocity for one that is
-/// not kinematic, a per-body table without `body` or `value` or more than max_body_inputs of
-/// them in one tick, vectors that are not [x, y] of finite numbers, wrong types, binary or
-/// oversized text. Unknown keys (also inside a per-body table) are warnings.
+/// its World::defined_bodies() handle is stored). Throws SceneError "FILE:LINE:COLUMN: KEY:
+/// MESSAGE" for TOML syntax errors, an [[at]] without `tick`, ticks not strictly increasing or
+/// beyond max_recording_ticks, an unknown button (with a suggestion), a body name no body has (with
+/// a suggestion), a force or impulse on a body that is not dynamic, a velocity for one that is not
+/// kinematic, a per-body table without `body` or `value` or more than max_body_inputs of them in
+/// one tick, vectors that are not [x, y] of finite numbers, wrong types, binary or oversized text.
+/// Unknown keys (also inside a per-body table) are warnings.
 [[nodiscard]] InputScript parse_input_script(std::string_view text, const std::string& source_name,
                                              std::span<const BodyDef> bodies);
 /// As parse_input_script, from a file (SceneError when it cannot be read).

@@ -54,30 +54,33 @@ struct SceneView {
   std::optional<double> width;  ///< visible width, m; default: fits bodies and spring ranges
 };
 
-/// A parsed, validated scene. Its world settings keep the dissipation account
-/// (WorldSettings::track_dissipation), so a scene's summaries and HUD show the energy balance.
-struct Scene {
-  std::string file;     ///< where it came from (for messages)
-  WorldSettings world;  ///< [world] dt (s) and integrator; [contacts] (world.contacts)
-  Precision precision = Precision::f64;
-  SceneView view;
-  /// [[body]] tables in file order, then the bodies of [[chain]] and [[grid]] tables (in file
-  /// order, each in its own order); names unique.
-  std::vector<BodyDef> bodies;
-  /// Line of each body's table: its [[body]], or the generator that made it (0 if not from a
-  /// file).
+/// Where each part of a scene was declared, for messages: line numbers (0 if not from a file)
+/// parallel to the definition's lists.
+struct SceneSourceMap {
+  /// Line of each body's table: its [[body]], or the generator that made it.
   std::vector<std::size_t> body_lines;
-  /// Springs between bodies, by body index: those of [[chain]] and [[grid]] tables, then the
-  /// [[spring]] tables.
-  std::vector<BodyLink> links;
-  std::vector<std::size_t> link_lines;  ///< line of each link's table (0 if not from a file)
-  /// Where each link was declared, for messages: "spring[3]" for a [[spring]] table,
-  /// "chain[0].link", "grid[1].shear", ... for generated links (empty if not from a file).
+  std::vector<std::size_t> link_lines;  ///< line of each link's table
+  /// Where each link was declared: "spring[3]" for a [[spring]] table, "chain[0].link",
+  /// "grid[1].shear", ... for generated links (empty if not from a file).
   std::vector<std::string> link_keys;
-  /// [[plane]] tables in file order: static half-planes (normals normalised) that bodies with
-  /// a radius (a Collider) bounce on.
-  std::vector<PlaneDef> planes;
   std::vector<std::size_t> plane_lines;  ///< line of each [[plane]] table
+};
+
+/// A parsed, validated scene: the WorldDef it describes, plus its view and its source map.
+/// Being a WorldDef, it builds a world as one (World(scene), or make_world(scene) with the
+/// stability guard); its settings keep the dissipation account
+/// (WorldSettings::track_dissipation), so a scene's summaries and HUD show the energy balance.
+///   - settings: [world] dt (s), integrator, substeps, ...; [contacts] (settings.contacts);
+///   - bodies: [[body]] tables in file order, then the bodies of [[chain]] and [[grid]] tables
+///     (in file order, each in its own order); names unique;
+///   - links: those of [[chain]] and [[grid]] tables, then the [[spring]] tables, by the
+///     handles World(def) gives the bodies;
+///   - planes: [[plane]] tables in file order: static half-planes (normals normalised) that
+///     bodies with a radius (a Collider) bounce on.
+struct Scene : WorldDef {
+  std::string file;  ///< where it came from (for messages)
+  SceneView view;
+  SceneSourceMap source;
   /// [world] allow_unstable: the stability guard warns instead of refusing (for demos that
   /// show blow-ups on purpose).
   bool allow_unstable = false;
@@ -117,9 +120,11 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// As load_scene, from text; `source_name` is used in messages.
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);
 
-/// The scene's world as a WorldDef (precision, settings, bodies, links, planes, allow_unstable),
-/// copied: what Session and World(const WorldDef&) take.
-[[nodiscard]] WorldDef world_def(const Scene& scene);
+/// The scene's world as a WorldDef (precision, settings, bodies, links, planes): the
+/// definition the scene holds, copied.
+[[nodiscard]] inline WorldDef world_def(const Scene& scene) {
+  return scene;
+}
 
 /// Builds the world a scene describes, after the stability guard (enforce_stability,
 /// scene_stability.hpp): throws SceneError naming the body, ω·h, the bound and the smallest stable

@@ -26,10 +26,11 @@ namespace fixstep {
 ///     radius differs from the collider's (or with no collider, from 0.5 m) is `draw_radius`.
 ///   - not written, as they change no state and the hash leaves them out: settings.threads
 ///     (reloads as 0, automatic) and settings.track_dissipation (a scene keeps the account:
-///     true). flush_denormals is written only when false, allow_unstable only when true.
+///     true). flush_denormals is written only when false; allow_unstable never (a WorldDef has
+///     none: the stability guard is the program's call, check_definition).
 ///
 /// Throws std::invalid_argument, "format_scene: WHERE: WHY", when `def` cannot be written so
-/// that it loads back exactly: a link naming a body index out of range or one body twice; a
+/// that it loads back exactly: a link naming a body that is not one of def's or one body twice; a
 /// static or kinematic body with a mass other than the default 1 kg, a spring, constant force,
 /// gravity or drag (a scene gives such bodies none), or a static body with a non-zero
 /// velocity; a plane normal that the loader's normalisation (n/|n|) would change (a normal
