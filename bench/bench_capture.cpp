@@ -38,7 +38,7 @@
 #include <string_view>
 #include <vector>
 
-#include "../tests/scene_session.hpp"
+#include "../tests/support/scene_session.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"

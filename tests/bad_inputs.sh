@@ -1060,4 +1060,4 @@ echo "with a velocity; a plane normal not of unit length; a link to a body that 
 echo "more than 4 MiB of text; and, with the loader's own message, anything a scene file may not"
 echo "hold (a non-finite number, a mass <= 0, a name that is not UTF-8, ...). A file that cannot be"
 echo "written throws std::runtime_error \"cannot write FILE: REASON\" and leaves no temporary file."
-echo "tests/test_scene_writer.cpp tries each (RefusesWhatWouldNotLoadBackExactly, WritesTheFileWhole)."
+echo "tests/scene/test_scene_writer.cpp tries each (RefusesWhatWouldNotLoadBackExactly, WritesTheFileWhole)."

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end checks of video capture from the command line: `render --video` and
 # `compare --video` write the file, its manifest beside it with the summary's hashes, and
-# refuse what they cannot write. (tests/test_video.cpp decodes the files and checks frames,
+# refuse what they cannot write. (tests/capture/test_video.cpp decodes the files and checks frames,
 # size, rate and PSNR.)
 #   video_cli_test.sh FIXSTEP SOURCE_DIR
 set -u

@@ -1,6 +1,6 @@
 // The golden determinism matrix on core and scene alone: every shipped scene x integrator x
 // precision the stability guard accepts, stepped a fixed number of ticks and hashed
-// (World::state_hash). Shared by tests/test_determinism.cpp (GoogleTest, native) and the
+// (World::state_hash). Shared by tests/core/test_determinism.cpp (GoogleTest, native) and the
 // cross-architecture programs in this directory (aarch64 under qemu, wasm32 under node), so
 // every platform checks the same cases against the same tests/golden/state_hashes.txt.
 #pragma once

@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "../link_between.hpp"
+#include "link_between.hpp"
 #include "fixstep/recording_file.hpp"
 
 namespace {

@@ -2,7 +2,7 @@
 // sweep (world_step.cpp, compiled once per SIMD level) and the multi-pass path
 // (world_coupled.cpp). Both call the same always-inline functions, so a body's arithmetic is
 // the same operations in the same order on either path, and the states are bit-identical
-// (tests/test_coupled.cpp checks it). Internal to the engine: not installed.
+// (tests/core/test_coupled.cpp checks it). Internal to the engine: not installed.
 #pragma once
 
 #include <algorithm>

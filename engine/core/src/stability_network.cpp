@@ -161,7 +161,7 @@ double spectral_radius(double a, double b, double c, double d) {
 /// contracts, but sweeps and drifts alternate, and a network is not the two-body pair
 /// network_amplification measures (which is exact at every h): measured on anchored uniform
 /// chains of 10 and 100 bodies (k = 1 N/m, b = 5 N·s/m) and a chain with a stiff dashpot at
-/// its end (tests/test_stability_network.cpp), they diverge from λh ≈ 5.5 (Verlet) and
+/// its end (tests/core/test_stability_network.cpp), they diverge from λh ≈ 5.5 (Verlet) and
 /// λh ≈ 1.94 (Forest–Ruth, whose middle stage runs the flows backwards); these bounds sit
 /// below both.
 double swept_damping_bound(Integrator integrator) {

@@ -10,14 +10,14 @@
 //
 // Only double is provided: float callers compute in double and round once (static_cast).
 // sqrt needs no copy: IEEE-754 requires it correctly rounded, so std::sqrt is the same
-// everywhere. Accuracy against long double: tests/test_det_math.cpp (max errors stated there
+// everywhere. Accuracy against long double: tests/core/test_det_math.cpp (max errors stated there
 // and in docs/ROBUSTNESS.md).
 #pragma once
 
 namespace fixstep::det {
 
 /// e^x for any double x, dimensionless. Error ≤ 0.52 ulp for normal results, ≤ 0.75 ulp
-/// for subnormal ones (measured against long double, tests/test_det_math.cpp).
+/// for subnormal ones (measured against long double, tests/core/test_det_math.cpp).
 /// NaN → NaN, +inf → +inf, -inf → +0, x > 709.78 → +inf (overflow), x < -745.13 → +0.
 /// Never raises or sets errno.
 /// Method: Cody–Waite reduction x = k ln2 + r + c, |r| ≤ ln2/2, with ln2 split in a 32-bit

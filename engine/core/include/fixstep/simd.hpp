@@ -6,7 +6,7 @@
 // results: the sweeps do element-wise IEEE-754 arithmetic only (add, mul, div, sqrt, each
 // correctly rounded at any vector width), never reductions, and -ffp-contract=off keeps the
 // compiler from fusing a multiply and an add into an FMA (which rounds once instead of twice).
-// tests/test_simd.cpp checks the identity for every integrator, field and precision.
+// tests/core/test_simd.cpp checks the identity for every integrator, field and precision.
 #pragma once
 
 #include <string_view>

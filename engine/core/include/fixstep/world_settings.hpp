@@ -23,7 +23,7 @@ enum class DampingSplit {
   per_stage,
   /// Once around each Forest–Ruth step, C↑(h/2) FR(h) C↓(h/2): 2 sweeps per step (about 3.5x
   /// semi-implicit Euler's tick), order 4 on the springs but 2 in the link damping (measured
-  /// on the damped chain: tests/test_coupled.cpp). Without damped links, the same bits as
+  /// on the damped chain: tests/core/test_coupled.cpp). Without damped links, the same bits as
   /// per_stage.
   per_step,
 };

@@ -11,7 +11,6 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/definition_checks.hpp"
 #include "fixstep/disc_overlap.hpp"
 #include "fixstep/scene.hpp"
 #include "link_between.hpp"
@@ -79,32 +78,6 @@ TEST(DiscOverlap, RefusesNonFiniteDiscsAndLinksOutOfRange) {
   b[1] = disc(3, 0, 1);
   const std::vector<LinkDef> bad{fixstep::test::link_between(0, 2)};
   EXPECT_THROW((void)first_disc_overlap(b, bad), std::invalid_argument);
-}
-
-TEST(DefinitionChecks, OverlapsAreTheProgramsCallAndWorldBuildsWhatItIsGiven) {
-  WorldDef def;
-  def.settings.contacts = ContactSettings{};
-  BodyDef left;
-  left.name = "left";
-  left.collider = Collider{.radius = 1.0};
-  BodyDef right = left;
-  right.name = "right";
-  right.body.position = {1.5, 0.0};  // 0.5 m into the left disc
-  (void)def.add_body(left);
-  (void)def.add_body(right);
-  EXPECT_EQ(World(def).body_count(), 2u);
-  try {
-    check_overlaps(def);
-    FAIL() << "overlapping discs accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("body 'left' and body 'right' overlap by 0.5 m at tick 0"),
-              std::string::npos)
-        << e.what();
-  }
-  EXPECT_THROW((void)check_definition(def), std::invalid_argument);
-  def.settings.contacts.reset();  // discs that never meet may start anywhere
-  EXPECT_NO_THROW(check_overlaps(def));
-  EXPECT_TRUE(check_definition(def).empty());
 }
 
 TEST(DiscOverlap, AgreesWithEveryPairCheckedOnRandomScenes) {

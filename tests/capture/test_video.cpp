@@ -74,7 +74,7 @@ struct Clip {
   }
 };
 
-/// Renders default.toml as `fixstep render --size 640x360` does (tests/scene_session.hpp, a
+/// Renders default.toml as `fixstep render --size 640x360` does (tests/support/scene_session.hpp, a
 /// 60 fps virtual clock) and submits every frame to an MP4 and a GIF VideoWriter.
 const Clip& clip() {
   static const Clip c = [] {
