@@ -29,7 +29,6 @@ TEST(GuardWarnings, CheckStabilityReturnsANearLimitWarningWhereAProgramCanReadIt
   EXPECT_TRUE(check_definition(def).empty());
 }
 
-
 TEST(DefinitionChecks, OverlapsAreTheProgramsCallAndWorldBuildsWhatItIsGiven) {
   WorldDef def;
   def.settings.contacts = ContactSettings{};

@@ -1,6 +1,7 @@
 // det_checks: the arithmetic the cross builds rely on, checked on the build's own platform
 // (aarch64 under qemu, wasm32 under node), where GoogleTest is not built:
-//   1. fixstep::det's golden bit patterns (tests/support/det_math_golden.inc, DetMath.GoldenBitPatterns
+//   1. fixstep::det's golden bit patterns (tests/support/det_math_golden.inc,
+//   DetMath.GoldenBitPatterns
 //      natively): exp, expm1 and hypot give the x86-64 bits for every listed argument;
 //   2. the caller's FPU mode does not reach a state (FloatHygiene.TheCallersFpuMode* natively):
 //      tests/scenes/cross/hypot_rest.toml loaded, built and stepped 300 ticks in f64 and f32

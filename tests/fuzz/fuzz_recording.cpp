@@ -14,8 +14,8 @@
 #include <string>
 #include <string_view>
 
-#include "link_between.hpp"
 #include "fixstep/recording_file.hpp"
+#include "link_between.hpp"
 
 namespace {
 

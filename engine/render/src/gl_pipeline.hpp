@@ -1,7 +1,7 @@
 // Every GL resource of a Renderer (OSMesa natively, WebGL2 in the browser), owned through the
-// handles of gl_objects.hpp. Internal to fixstep::render (not installed); tests/render/test_resources.cpp
-// builds it from broken shader sources and a missing pixel buffer to provoke each failure of its
-// construction. Defined in render.cpp.
+// handles of gl_objects.hpp. Internal to fixstep::render (not installed);
+// tests/render/test_resources.cpp builds it from broken shader sources and a missing pixel buffer
+// to provoke each failure of its construction. Defined in render.cpp.
 #pragma once
 
 #include <array>

@@ -1,7 +1,8 @@
 // The renderer's GLSL programs: their sources (what each draws, and how its vertices are laid
 // out) and the builder that compiles them into owning handles (whatever a failed step created is
-// deleted before it throws). Internal to fixstep::render (not installed); tests/render/test_resources.cpp
-// compiles broken sources through the builder. The builder is defined in gl_pipeline.cpp.
+// deleted before it throws). Internal to fixstep::render (not installed);
+// tests/render/test_resources.cpp compiles broken sources through the builder. The builder is
+// defined in gl_pipeline.cpp.
 #pragma once
 
 #include "gl_api.hpp"
