@@ -166,7 +166,16 @@ std::vector<bool> detail::linked_by_index(std::size_t body_count,
 }
 
 std::vector<bool> linked_bodies(std::size_t body_count, std::span<const LinkDef> links) {
-  return detail::linked_by_index(body_count, detail::index_links(links, body_count));
+  std::vector<bool> linked(body_count, false);
+  for (std::size_t l = 0; l < links.size(); ++l) {  // flags from each end's place: no copy
+    const auto a = detail::defined_index(links[l].body_a, body_count);
+    const auto b = detail::defined_index(links[l].body_b, body_count);
+    if (!a || !b) {  // index_links names the link and its bad end
+      (void)detail::index_links(links.first(l + 1), body_count);
+    }
+    linked[*a] = linked[*b] = true;
+  }
+  return linked;
 }
 
 std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> all_bodies,
