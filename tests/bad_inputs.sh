@@ -1026,6 +1026,9 @@ if [ -x "$game" ]; then
   case_ "a game: --record into a directory" "" --frames 10 --record outdir
   case_ "a game: --record into a directory that does not exist" "" --frames 10 --record nodir/x.rec
   case_ "a game: --last-frame over the recording replayed" "" --replay sling.rec --last-frame sling.rec
+  case_ "a game: --last-frame without --frames or --replay (a window until quit)" "" \
+    --last-frame last.png
+  case_ "a game: --last-frame into a directory" "" --frames 10 --last-frame outdir
   case_ "a game: --replay of a file that does not exist" "" --replay none.rec
   case_ "a game: --replay of a recording cut short" "" --replay cut.rec
   case_ "a game: --replay of a recording with one input line removed (nothing drawn)" "" \

@@ -50,6 +50,25 @@ struct Leaky : Drop {
   }
 };
 
+/// Drop, but the rules name the ball by the handle setup() kept (WorldDef::add_body) and by the
+/// user data it gave the ball: both must reach the copy that plays, replays and rolls back.
+struct Tagged {
+  int above = 0;
+  Entity ball = null_entity;
+  void setup(WorldDef& level) {
+    level.settings.dt = dt;
+    BodyDef def;
+    def.body = {.mass = 1.0, .position = {0.0, 10.0}};
+    def.gravity = Gravity{};
+    def.user_data = 7;
+    ball = level.add_body(def);
+  }
+  void rules(World& world, const TickInput&) {
+    if (world.user_data(ball) == 7 && world.body(ball).position.y > 5.0) ++above;
+  }
+  [[nodiscard]] std::string summary() const { return "above=" + std::to_string(above); }
+};
+
 const app::Settings settings{.name = "drop", .width = 160, .height = 90};
 
 /// run(game, settings, args...) with standard output captured into `out`.
@@ -117,6 +136,32 @@ TEST_F(AppRun, SyncTestPassesForRulesInTheGameAndFailsForStateOutsideIt) {
   EXPECT_EQ(live.substr(0, live.find('\n')), synced.substr(0, synced.find('\n')));
   outside_counter = 0;
   EXPECT_EQ(run(Leaky{}, {"--frames", "121", "--sync-test", "7"}), 8);
+}
+
+TEST_F(AppRun, WhatSetupKeepsInTheGameReachesEveryMode) {
+  const std::string rec = path("tagged.rec");
+  std::string played, replayed, synced;
+  ASSERT_EQ(run(Tagged{}, {"--frames", "121", "--record", rec}, &played), 0);
+  EXPECT_NE(played.find("above=100\n"), std::string::npos) << played;  // as Drop's
+  ASSERT_EQ(run(Tagged{}, {"--replay", rec}, &replayed), 0) << replayed;
+  EXPECT_NE(replayed.find("above=100\nverified=201\n"), std::string::npos) << replayed;
+  ASSERT_EQ(run(Tagged{}, {"--frames", "121", "--sync-test", "7"}, &synced), 0) << synced;
+  EXPECT_NE(synced.find("above=100\n"), std::string::npos) << synced;
+}
+
+TEST_F(AppRun, LastFrameOfAHeadlessRunIsWritten) {
+  const std::string png = path("last.png");
+  ASSERT_EQ(run(Drop{}, {"--frames", "10", "--last-frame", png}), 0);
+  ASSERT_TRUE(std::filesystem::exists(png));
+  // A PNG of 160 x 90 pixels: the signature, then IHDR's width and height (big-endian).
+  std::ifstream file(png, std::ios::binary);
+  unsigned char head[24] = {};
+  file.read(reinterpret_cast<char*>(head), sizeof head);
+  EXPECT_EQ(head[1], 'P');
+  EXPECT_EQ((head[18] << 8) | head[19], 160);
+  EXPECT_EQ((head[22] << 8) | head[23], 90);
+  EXPECT_EQ(run(Drop{}, {"--last-frame", png}), 2);  // a window until quit has no last frame
+  EXPECT_EQ(run(Drop{}, {"--frames", "10", "--sync-test", "2", "--last-frame", png}), 2);
 }
 
 TEST_F(AppRun, BadCommandLinesExitTwo) {

@@ -31,7 +31,9 @@ Level from_scene(const AnyGame& game, const Settings& settings, const Scene* sce
     level.scene_name = settings.name + " (built in code)";
   }
   level.view = view(settings, scene != nullptr ? scene->view : SceneView{});
-  game.clone()->setup(level.def);
+  std::unique_ptr<AnyGame> set_up = game.clone();
+  set_up->setup(level.def);
+  level.game = std::move(set_up);
   // Summaries print the energy balance, and a Session keeps the account anyway: every mode
   // steps the same world.
   level.def.settings.track_dissipation = true;

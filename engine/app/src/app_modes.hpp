@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -40,14 +41,17 @@ struct Level {
   std::string scene_name;  ///< Recording::scene: the scene file, or "NAME (built in code)"
   std::string scene_text;  ///< Recording::scene_text: the scene file's bytes, or empty
   SessionSettings view;
+  /// The game after its setup(): what a run plays, and what a restart, a replay and a rollback
+  /// copy (so what setup() keeps in the game's members, handles and tags, is kept).
+  std::shared_ptr<const AnyGame> game;
   /// The checks' findings on def (check_definition): the stability guard's warnings.
   std::vector<std::string> warnings;
 };
 
-/// Loads the scene file `file` (none when empty), prints its warnings, applies `game`'s setup()
-/// (a fresh copy's: `game` is not changed), then checks the level (check_definition, with the
-/// scene's allow_unstable). Throws SceneError for a bad scene, what check_definition throws for
-/// a level it refuses.
+/// Loads the scene file `file` (none when empty), prints its warnings, applies the setup() of
+/// a copy of `game` (kept as Level::game; `game` is not changed), then checks the level
+/// (check_definition, with the scene's allow_unstable). Throws SceneError for a bad scene, what
+/// check_definition throws for a level it refuses.
 [[nodiscard]] Level load_level(const AnyGame& game, const Settings& settings,
                                const std::string& file);
 /// The level `rec` was recorded on: the scene it carries, else `scene` (--scene) or the game's

@@ -49,9 +49,10 @@ void play_window(GamePlay& play, const Settings& settings, std::int64_t frames) 
 }
 
 /// Runs `frames` frames headless on a virtual 60 Hz clock (frame 0 is t = 0), the autopilot
-/// playing; writes every frame as DIR/frame_NNNNNN.png when `out_dir` is not empty.
+/// playing; writes every frame as DIR/frame_NNNNNN.png when `out_dir` is not empty, and draws
+/// the last frames (those its trails show) when `last_frame` is asked for.
 void play_headless(GamePlay& play, const Settings& settings, std::int64_t frames,
-                   const std::string& out_dir) {
+                   const std::string& out_dir, bool last_frame) {
   std::optional<FrameWriter> writer;
   if (!out_dir.empty()) {
     prepare_output_dir(out_dir);
@@ -63,9 +64,9 @@ void play_headless(GamePlay& play, const Settings& settings, std::int64_t frames
       play.game().autopilot(frame, play.session().simulation(), play.sampler());
       play.advance(clock.frame_seconds());
     }
-    if (!writer) continue;
+    if (!writer && !(last_frame && frames - frame <= Renderer::trail_frames + 1)) continue;
     play.draw("autopilot");
-    writer->submit(play.session().renderer().pixels());
+    if (writer) writer->submit(play.session().renderer().pixels());
   }
   if (writer) writer->finish();
 }
@@ -73,12 +74,16 @@ void play_headless(GamePlay& play, const Settings& settings, std::int64_t frames
 }  // namespace
 
 int play(const AnyGame& game, const Settings& settings, const Options& o) {
-  GamePlay play(game, load_level(game, settings, o.scene.value_or(settings.scene_file)), settings,
-                o.record);
+  Level level = load_level(game, settings, o.scene.value_or(settings.scene_file));
+  const std::shared_ptr<const AnyGame> set_up = level.game;
+  GamePlay play(*set_up, std::move(level), settings, o.record);
   if (o.window || o.frames == 0) {
     play_window(play, settings, o.frames);
   } else {
-    play_headless(play, settings, o.frames, o.out);
+    play_headless(play, settings, o.frames, o.out, !o.last_frame.empty());
+  }
+  if (!o.last_frame.empty()) {
+    write_png(o.last_frame, settings.width, settings.height, play.session().renderer().pixels());
   }
   play.finish();
   return 0;

@@ -72,7 +72,7 @@ int replay_file(const AnyGame& prototype, const Settings& settings, const Option
   const Level level = replay_level(prototype, settings, rec, o.scene);
   World world(level.def);
   const double initial_energy = world.energy().total();
-  const std::unique_ptr<AnyGame> game = prototype.clone();
+  const std::unique_ptr<AnyGame> game = level.game->clone();
   if (definition_hash(level.def) != rec.definition_hash) {
     std::fprintf(stderr, "%s: error: %s was recorded on another level (hash %s, this one %s)\n",
                  settings.name.c_str(), o.replay.c_str(), hex_hash(rec.definition_hash).c_str(),
@@ -82,7 +82,7 @@ int replay_file(const AnyGame& prototype, const Settings& settings, const Option
   const ReplayReport report = replay(world, rec, game_rules(*game));
   // Only a recording that verified is drawn: a diverging one leaves no frame behind.
   if (report.ok() && (!o.out.empty() || !o.last_frame.empty())) {
-    draw_replay(prototype, settings, level, rec, report.ticks, o);
+    draw_replay(*level.game, settings, level, rec, report.ticks, o);
   }
   std::printf("%s\n", summary_line(world, initial_energy).c_str());
   if (const std::string s = game->summary(); !s.empty()) std::printf("%s\n", s.c_str());
@@ -105,7 +105,7 @@ int sync_test(const AnyGame& prototype, const Settings& settings, const Options&
   const Level level = load_level(prototype, settings, o.scene.value_or(settings.scene_file));
   World world(level.def);
   const double initial_energy = world.energy().total();
-  const std::unique_ptr<AnyGame> game = prototype.clone();
+  const std::unique_ptr<AnyGame> game = level.game->clone();
   SyncTest test(world, o.sync_test, game_rules(*game));
   InputSampler sampler;
   FixedStepLoop loop(world);

@@ -57,16 +57,16 @@ Options parse(const Settings& settings, int argc, char** argv) {
   cli.add_option("--every", o.every, "with --replay --out: every K-th frame (and the last)")
       ->type_name("K")
       ->check(at_least_one);
-  cli.add_option("--last-frame", o.last_frame, "with --replay: write the last frame as PNG")
-      ->type_name("PNG")
-      ->needs(replay_opt);
+  auto* last_opt = cli.add_option("--last-frame", o.last_frame,
+                                  "with --frames or --replay: write the last frame as PNG")
+                       ->type_name("PNG");
   auto* sync_opt = cli.add_option("--sync-test", o.sync_test,
                                   "with --frames: roll every tick back K ticks and re-simulate")
                        ->type_name("K")
                        ->check(at_least_one)
                        ->needs(frames_opt);
   replay_opt->excludes(record_opt)->excludes(frames_opt);
-  sync_opt->excludes(record_opt)->excludes(out_opt);
+  sync_opt->excludes(record_opt)->excludes(out_opt)->excludes(last_opt);
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -76,6 +76,9 @@ Options parse(const Settings& settings, int argc, char** argv) {
     throw UsageError(e.what());
   }
   if (scene_opt->count() > 0) o.scene = scene;
+  if (last_opt->count() > 0 && o.frames == 0 && o.replay.empty()) {
+    throw UsageError("--last-frame PNG needs --frames N or --replay FILE");
+  }
   if (!o.out.empty() && o.replay.empty() && (o.frames == 0 || o.window)) {
     throw UsageError("--out DIR needs --frames N (headless) or --replay FILE");
   }

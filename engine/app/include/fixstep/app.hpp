@@ -14,12 +14,13 @@
 // setup() completes the level: run() hands it the scene file's world (Settings::scene_file, or
 // --scene), or an empty WorldDef when the game builds its level in code. rules() runs after
 // every tick, live, in a replay and in the sync test alike, so it may change the world
-// (score, spawn, destroy) and keep state in the game's members: run() copies the game to start
-// afresh (restart, replay) and to roll back (sync test). input() turns a window's events into
-// per-body input (the sampler carries it into the ticks and the recording); autopilot() does
-// the same for a headless frame; prepare() adjusts one live tick's input before it is stepped
-// (e.g. which body the pointer may drag); draw() adds lines to the HUD; summary() is the game's
-// state in one line, printed after a run and a replay.
+// (score, spawn, destroy) and keep state in the game's members: run() copies the game as
+// setup() left it to start afresh (restart, replay) and to roll back (sync test), so what setup()
+// keeps (the handles WorldDef::add_body returned, the bodies it tagged) every copy has. input()
+// turns a window's events into per-body input (the sampler carries it into the ticks and the
+// recording); autopilot() does the same for a headless frame; prepare() adjusts one live tick's
+// input before it is stepped (e.g. which body the pointer may drag); draw() adds lines to the HUD;
+// summary() is the game's state in one line, printed after a run and a replay.
 #pragma once
 
 #include <concepts>
@@ -72,6 +73,7 @@ concept Game = std::copy_constructible<G> && std::is_copy_assignable_v<G> &&
 ///   NAME --frames N [--out DIR]         N frames headless on a 60 Hz virtual clock, the
 ///                                       autopilot playing; PNG frames into DIR
 ///   NAME --window --frames N            N frames in the window, then quit
+///   NAME --frames N --last-frame PNG    ... and the last frame (headless or in the window)
 ///   NAME ... --record FILE              record the session (the input, a state hash a tick)
 ///   NAME --replay FILE [--out DIR [--every K]] [--last-frame PNG]
 ///                                       re-simulate a recording with the rules, verify every
