@@ -1,26 +1,26 @@
 // A rope: 16 bodies joined by spring-dampers between bodies (links), pinned at one end to an
 // anchored spring, released horizontally under gravity. Links join the handles WorldDef::add_body
-// returns, the same form a scene's [[chain]] produces; the guard is the program's explicit call.
+// returns, the same form a scene's [[chain]] produces. The rope is a game with no rules, run by
+// fixstep::app::run, which checks the level (the stability guard: it would name the stiffest
+// link and the substeps that are stable), and gives it the window, headless frames, recording
+// and replay.
 //
-//   05_rope [OUT.png]
-#include <cstdio>
-#include <exception>
-#include <fixstep/capture.hpp>
-#include <fixstep/definition_checks.hpp>
-#include <fixstep/session.hpp>
+//   05_rope --frames 48 --last-frame OUT.png    0.8 s headless: the rope halfway down its swing
+//   05_rope                                     in a window
+//   05_rope --help                              the rest
+#include <fixstep/app.hpp>
 #include <string>
 #include <vector>
 
-#include "fixstep/summary.hpp"
+namespace {
 
-int main(int argc, char** argv) {
-  using namespace fixstep;
-  const std::string png = argc > 1 ? argv[1] : "05_rope.png";
-  try {
+using namespace fixstep;
+
+struct Rope {
+  void setup(WorldDef& level) {
     constexpr int count = 16;
     constexpr double spacing = 0.5, mass = 0.1;  // m, kg per body
-    WorldDef world;
-    world.settings = {.dt = 1.0 / 240.0, .integrator = Integrator::semi_implicit_euler};
+    level.settings = {.dt = 1.0 / 240.0, .integrator = Integrator::semi_implicit_euler};
     std::vector<Entity> rope;
     for (int i = 0; i < count; ++i) {
       BodyDef b;
@@ -32,33 +32,28 @@ int main(int argc, char** argv) {
         b.spring = SpringDamper{.anchor = {0.0, 0.0}, .stiffness = 2000.0, .damping = 5.0};
         b.appearance->color = {250, 200, 60, 255};
       }
-      rope.push_back(world.add_body(b));
+      rope.push_back(level.add_body(b));
     }
     // Each link: k = 500 N/m, b = 0.5 N·s/m, rest length = the spacing, so the rope stretches
-    // only under load. Stable for semi-implicit Euler at this dt: the guard checks the network
-    // (it throws, naming the stiffest link and the substeps that would be stable, if not).
-    for (std::size_t i = 0; i + 1 < count; ++i) {
-      world.add_link(rope[i], rope[i + 1],
+    // only under load; stable for semi-implicit Euler at this dt.
+    for (std::size_t i = 0; i + 1 < rope.size(); ++i) {
+      level.add_link(rope[i], rope[i + 1],
                      {.stiffness = 500.0, .damping = 0.5, .rest_length = spacing});
     }
-    for (const std::string& w : check_definition(world)) std::printf("warning: %s\n", w.c_str());
-
-    Session session(world, SessionSettings{.width = 640,
-                                           .height = 360,
-                                           .title = "rope",
-                                           .view_center = Vec2{3.2, -1.0},
-                                           .view_width = 13.0});
-    const VirtualClock clock(60.0);
-    for (int frame = 1; frame <= 48; ++frame) {  // 0.8 s: the rope halfway down its swing
-      session.advance(clock.frame_seconds());
-      session.draw();  // every frame, so the trails show the swing
-    }
-    write_png(png, 640, 360, session.renderer().pixels());
-    std::printf("%s\nwrote %s\n",
-                summary_line(session.simulation(), session.initial_energy()).c_str(), png.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "05_rope: %s\n", e.what());
-    return 1;
   }
-  return 0;
+  void rules(World&, const TickInput&) {}  // the rope only falls
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return app::run(Rope{},
+                  {.name = "05_rope",
+                   .description = "a rope of 16 linked bodies, pinned at one end, released",
+                   .width = 640,
+                   .height = 360,
+                   .view_center = Vec2{3.2, -1.0},
+                   .view_width = 13.0,
+                   .show_energy = true},
+                  argc, argv);
 }

@@ -1,16 +1,14 @@
-// Per-body input: what a player does to one body, given as that tick's input (TickInput::
-// bodies, through an InputSampler) so that a recording carries it. A kinematic paddle moved by
-// velocity input knocks a ball along the ground; a thruster force lifts a ship for one second;
-// an impulse kicks a ball up (Δv = J/m).
+// Per-body input: what a player does to one body, given as that tick's input (TickInput::bodies)
+// so that a recording carries it. A kinematic paddle moved by velocity input knocks a ball along
+// the ground; a thruster force lifts a ship for one second; an impulse kicks a ball up
+// (Δv = J/m). The script is the game's prepare(), which fixstep::app::run calls before each live
+// tick; a replay steps the recorded input.
 //
-//   08_body_input [OUT.png]
-#include <cstdio>
-#include <exception>
-#include <fixstep/capture.hpp>
-#include <fixstep/session.hpp>
+//   08_body_input --frames 96 --last-frame OUT.png    1.6 s headless
+//   08_body_input --frames 96 --record input.rec      ... recorded; --replay input.rec verifies
+//   08_body_input --help                              the rest
+#include <fixstep/app.hpp>
 #include <string>
-
-#include "fixstep/summary.hpp"
 
 namespace {
 
@@ -31,57 +29,51 @@ BodyDef disc(const char* name, BodyType type, double mass, Vec2 at, double r, Rg
   return b;
 }
 
-WorldDef world() {
-  WorldDef def;
-  def.settings = {.dt = 1.0 / 120.0, .integrator = Integrator::semi_implicit_euler};
-  def.settings.contacts = ContactSettings{.restitution = 0.5, .friction = 0.0};
-  def.bodies = {
-      disc("paddle", BodyType::kinematic, 1.0, {-7.0, 0.6}, 0.6, {90, 160, 230, 255}),
-      disc("ball", BodyType::dynamic, 1.0, {-5.0, 0.35}, 0.35, {230, 70, 60, 255}),
-      disc("ship", BodyType::dynamic, ship_mass, {1.0, 0.5}, 0.5, {250, 200, 60, 255}),
-      disc("kick", BodyType::dynamic, kick_mass, {4.5, 0.3}, 0.3, {120, 200, 110, 255}),
-  };
-  def.planes.push_back({.normal = {0, 1}, .offset = 0, .restitution = 0.3, .friction = 0.1});
-  return def;
-}
+struct BodyInputs {
+  Entity paddle = null_entity, ship = null_entity,
+         kick = null_entity;  // the handles the world gives them (WorldDef::add_body)
+
+  void setup(WorldDef& level) {
+    level.settings = {.dt = 1.0 / 120.0, .integrator = Integrator::semi_implicit_euler};
+    level.settings.contacts = ContactSettings{.restitution = 0.5, .friction = 0.0};
+    paddle = level.add_body(
+        disc("paddle", BodyType::kinematic, 1.0, {-7.0, 0.6}, 0.6, {90, 160, 230, 255}));
+    level.add_body(disc("ball", BodyType::dynamic, 1.0, {-5.0, 0.35}, 0.35, {230, 70, 60, 255}));
+    ship = level.add_body(
+        disc("ship", BodyType::dynamic, ship_mass, {1.0, 0.5}, 0.5, {250, 200, 60, 255}));
+    kick = level.add_body(
+        disc("kick", BodyType::dynamic, kick_mass, {4.5, 0.3}, 0.3, {120, 200, 110, 255}));
+    level.planes.push_back({.normal = {0, 1}, .offset = 0, .restitution = 0.3, .friction = 0.1});
+  }
+  void rules(World&, const TickInput&) {}
+
+  // The player's script, by tick: velocity (m/s, kept until changed), force (N, this tick),
+  // impulse (N·s, once).
+  void prepare(TickInput& in, const World&) const {
+    const std::uint64_t t = in.tick;
+    if (t == 0) in.bodies.push_back({paddle, BodyInputKind::velocity, {3.0, 0.0}});
+    if (t == 80) in.bodies.push_back({paddle, BodyInputKind::velocity, {0.0, 0.0}});
+    if (t >= 20 && t < 140) {
+      in.bodies.push_back({ship, BodyInputKind::force, {0.0, 1.3 * ship_mass * g}});
+    }
+    if (t == 30) in.bodies.push_back({kick, BodyInputKind::impulse, kick_impulse});
+  }
+  void draw(app::Overlay& overlay) const {
+    overlay.text("blue: velocity input 3 m/s (kinematic), ticks 0-79");
+    overlay.text("yellow: thruster force 1.3 m g, ticks 20-139");
+    overlay.text("green: impulse (0.6, 3.5) N s at tick 30: dv = J/m");
+  }
+};
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string png = argc > 1 ? argv[1] : "08_body_input.png";
-  try {
-    Session session(world(), SessionSettings{.width = 640,
-                                             .height = 360,
-                                             .title = "per-body input",
-                                             .view_center = Vec2{0.0, 3.5},
-                                             .view_width = 17.0});
-    session.set_show_engine_hud(false);  // the status lines only
-    const World& sim = session.simulation();
-    const Entity paddle = sim.find("paddle"), ship = sim.find("ship"), kick = sim.find("kick");
-    InputSampler sampler;
-    const VirtualClock clock(60.0);
-    for (int frame = 1; frame <= 96; ++frame) {  // 1.6 s
-      session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& s) {
-        if (t == 0) sampler.set_velocity(paddle, {3.0, 0.0});  // m/s, kept until changed
-        if (t == 80) sampler.set_velocity(paddle, {0.0, 0.0});
-        if (t == 20) sampler.set_force(ship, {0.0, 1.3 * ship_mass * g});  // N, held
-        if (t == 140) sampler.set_force(ship, {0.0, 0.0});                 // released
-        if (t == 30) sampler.apply_impulse(kick, kick_impulse);            // N·s, once
-        s.step(sampler.sample(t));
-      });
-      session.set_status_lines({"blue: velocity input 3 m/s (kinematic), ticks 0-79",
-                                "yellow: thruster force 1.3 m g, ticks 20-139",
-                                "green: impulse (0.6, 3.5) N s at tick 30: dv = J/m"});
-      session.draw();  // every frame, so the trails show the paths
-    }
-    write_png(png, 640, 360, session.renderer().pixels());
-    const Body b = sim.body(sim.find("ball")), s = sim.body(ship);
-    std::printf("ball v = (%.3f, %.3f) m/s, ship y = %.3f m\n%s\nwrote %s\n", b.velocity.x,
-                b.velocity.y, s.position.y, summary_line(sim, session.initial_energy()).c_str(),
-                png.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "08_body_input: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  return app::run(BodyInputs{},
+                  {.name = "08_body_input",
+                   .description = "velocity, force and impulse input on single bodies",
+                   .width = 640,
+                   .height = 360,
+                   .view_center = Vec2{0.0, 3.5},
+                   .view_width = 17.0},
+                  argc, argv);
 }
