@@ -30,40 +30,48 @@ struct Catch {
   Vec2 hook_velocity{};        // m/s, the last one sent
   int facing = 1;              // +1 right, -1 left: where the hook last moved
 
+  // The level's bodies are told apart by their user data (BodyDef::user_data, kept with each
+  // body, copied by snapshots): a ball carries 1 + its place in `balls`, the claw `claw_tag`.
+  // The scene names them; setup() reads the names once, the rules never.
+  static constexpr std::uint64_t claw_tag = 1'000'000;
+
   void setup(WorldDef& level) {
-    for (const BodyDef& body : level.bodies) {
-      if (body.name.starts_with("ball")) balls.push_back(body);
+    for (BodyDef& body : level.bodies) {
+      if (body.name.starts_with("ball")) {
+        body.user_data = balls.size() + 1;
+        balls.push_back(body);
+      } else if (body.name == "claw") {
+        body.user_data = claw_tag;
+      }
     }
+  }
+  static bool is_ball(const World& world, Entity e) {
+    const std::uint64_t tag = world.user_data(e);
+    return tag >= 1 && tag < claw_tag;
   }
 
   // A ball the claw touched in this tick is caught, a ball below the level is missed; either
   // is destroyed and dropped again from the top (a new handle: a new trail, not a streak).
   void rules(World& world, const TickInput&) {
-    const Entity claw = world.find("claw");
     std::vector<Entity> gone;
     for (const ContactEvent& c : world.contacts_begun()) {  // pairs that began to touch
-      const Entity ball = c.a == claw ? c.b : (c.b == claw ? c.a : null_entity);
-      if (ball != null_entity && world.name(ball).starts_with("ball")) {
-        ++caught, gone.push_back(ball);
-      }
+      const bool a_is_claw = world.user_data(c.a) == claw_tag;
+      const Entity ball = a_is_claw ? c.b : (world.user_data(c.b) == claw_tag ? c.a : null_entity);
+      if (ball != null_entity && is_ball(world, ball)) ++caught, gone.push_back(ball);
     }
     for (const Entity e : world.bodies()) {
-      if (!world.name(e).starts_with("ball") || world.body(e).position.y >= out_of_level) continue;
+      if (!is_ball(world, e) || world.body(e).position.y >= out_of_level) continue;
       if (std::find(gone.begin(), gone.end(), e) == gone.end()) ++missed, gone.push_back(e);
     }
     for (const Entity e : gone) drop_again(world, e);
   }
 
   void drop_again(World& world, Entity e) {
-    const std::string name = world.name(e);
+    BodyDef ball = balls[world.user_data(e) - 1];  // the model, its user data included
     world.destroy(e);
-    for (BodyDef ball : balls) {
-      if (ball.name != name) continue;
-      ball.body.position = {-6.0 + double(dropped++ * 5 % 13), drop_height};  // x in -6..6 m
-      ball.body.velocity = {};
-      world.create_body(ball);
-      return;
-    }
+    ball.body.position = {-6.0 + double(dropped++ * 5 % 13), drop_height};  // x in -6..6 m
+    ball.body.velocity = {};
+    world.create_body(ball);
   }
 
   // The window's keys: arrows left/right move the hook, down pulls the claw, Enter swings it.
