@@ -50,7 +50,7 @@ for component in core io scene render capture window app; do
       fail "fixstep::$component does not bring lib$lib (the check itself is wrong?)"
     fi
   done
-  echo "consumer: fixstep::$component brings: ${brings[$component]:-nothing beyond libc and threads}"
+  echo "consumer: fixstep::$component brings: ${brings[$component]:-none of OSMesa, FFmpeg, libdeflate, SDL2}"
 done
 
 # 2. add_subdirectory: only libraries; the program builds core and io alone.
