@@ -43,7 +43,7 @@ struct Level {
   SessionSettings view;
   /// The game after its setup(): what a run plays, and what a restart, a replay and a rollback
   /// copy (so what setup() keeps in the game's members, handles and tags, is kept).
-  std::shared_ptr<const AnyGame> game;
+  std::unique_ptr<const AnyGame> game;
   /// The checks' findings on def (check_definition): the stability guard's warnings.
   std::vector<std::string> warnings;
 };

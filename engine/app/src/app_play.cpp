@@ -74,9 +74,8 @@ void play_headless(GamePlay& play, const Settings& settings, std::int64_t frames
 }  // namespace
 
 int play(const AnyGame& game, const Settings& settings, const Options& o) {
-  Level level = load_level(game, settings, o.scene.value_or(settings.scene_file));
-  const std::shared_ptr<const AnyGame> set_up = level.game;
-  GamePlay play(*set_up, std::move(level), settings, o.record);
+  GamePlay play(load_level(game, settings, o.scene.value_or(settings.scene_file)), settings,
+                o.record);
   if (o.window || o.frames == 0) {
     play_window(play, settings, o.frames);
   } else {

@@ -18,11 +18,11 @@ constexpr double replay_fps = 60.0;  // frames/s of a drawn replay's virtual clo
 /// Draws a verified recording through a Session at 60 frames/s of virtual time, its first
 /// `ticks` ticks with the game's rules: every o.every-th frame (and the last) into o.out, the
 /// last frame to o.last_frame.
-void draw_replay(const AnyGame& prototype, const Settings& settings, const Level& level,
-                 const Recording& rec, std::uint64_t ticks, const Options& o) {
+void draw_replay(const Settings& settings, const Level& level, const Recording& rec,
+                 std::uint64_t ticks, const Options& o) {
   Session session(level.def, level.view);
   session.set_show_energy(settings.show_energy);
-  const std::unique_ptr<AnyGame> game = prototype.clone();
+  const std::unique_ptr<AnyGame> game = level.game->clone();
   std::optional<FrameWriter> writer;
   if (!o.out.empty()) {
     prepare_output_dir(o.out);
@@ -82,7 +82,7 @@ int replay_file(const AnyGame& prototype, const Settings& settings, const Option
   const ReplayReport report = replay(world, rec, game_rules(*game));
   // Only a recording that verified is drawn: a diverging one leaves no frame behind.
   if (report.ok() && (!o.out.empty() || !o.last_frame.empty())) {
-    draw_replay(*level.game, settings, level, rec, report.ticks, o);
+    draw_replay(settings, level, rec, report.ticks, o);
   }
   std::printf("%s\n", summary_line(world, initial_energy).c_str());
   if (const std::string s = game->summary(); !s.empty()) std::printf("%s\n", s.c_str());

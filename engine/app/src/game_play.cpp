@@ -14,14 +14,12 @@ namespace {
 constexpr std::uint64_t hash_every = 1;
 }  // namespace
 
-GamePlay::GamePlay(const AnyGame& prototype, Level level, const Settings& settings,
-                   std::string record_file)
-    : prototype_(prototype),
-      level_(std::move(level)),
+GamePlay::GamePlay(Level level, const Settings& settings, std::string record_file)
+    : level_(std::move(level)),
       name_(settings.name),
       record_file_(std::move(record_file)),
       session_(level_.def, level_.view),
-      game_(prototype.clone()) {
+      game_(level_.game->clone()) {
   session_.set_show_energy(settings.show_energy);
   for (const std::string& w : level_.warnings) {  // the stability guard's
     std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -56,7 +54,7 @@ void GamePlay::draw(std::string_view hint) {
 
 void GamePlay::restart() {
   session_.restart();
-  game_ = prototype_.clone();
+  game_ = level_.game->clone();
   sampler_ = {};
   last_ = {};
   if (recorder_) start_recording();

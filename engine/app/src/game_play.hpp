@@ -19,9 +19,9 @@ namespace fixstep::app::detail {
 /// the sampler's input, prepare(), step, rules(), record.
 class GamePlay {
  public:
-  /// Starts `prototype`'s copy on `level`; records into `record_file` unless it is empty.
-  GamePlay(const AnyGame& prototype, Level level, const Settings& settings,
-           std::string record_file);
+  /// Starts a copy of level.game (the game as setup() left it) on `level`; records into
+  /// `record_file` unless it is empty.
+  GamePlay(Level level, const Settings& settings, std::string record_file);
   GamePlay(const GamePlay&) = delete;
   GamePlay& operator=(const GamePlay&) = delete;
 
@@ -41,7 +41,6 @@ class GamePlay {
  private:
   void start_recording();
 
-  const AnyGame& prototype_;
   Level level_;
   std::string name_, record_file_;
   Session session_;
