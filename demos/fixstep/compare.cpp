@@ -187,7 +187,7 @@ int capture(const CompareOptions& o, Comparison& c, int width, int height) {
   return report_faults(c);
 }
 
-int show(const CompareOptions& o, Comparison& c, int width, int height) {
+int show_comparison(const CompareOptions& o, Comparison& c, int width, int height) {
   Window window = open_window(fmt::format("fixstep compare - {}", o.scene), width, height,
                               "fixstep compare SCENE --with ... --out DIR");
   std::vector<std::uint8_t> frame = blank_frame(width, height);
@@ -243,7 +243,8 @@ int compare_command(const CompareOptions& o) {
   const bool virtual_clock = headless || o.fps;
   const double frame = virtual_clock ? 1.0 / o.fps.value_or(60.0) : 0.0;
   Comparison comparison(base, specs, grid, o.quiet, std::max(LoopSettings{}.max_frame_time, frame));
-  return headless ? capture(o, comparison, width, height) : show(o, comparison, width, height);
+  return headless ? capture(o, comparison, width, height)
+                  : show_comparison(o, comparison, width, height);
 }
 
 }  // namespace fixstep::cli

@@ -21,7 +21,7 @@ WorldSettings elastic(double dt, Integrator integrator = Integrator::semi_implic
   return s;
 }
 
-BodyDef disc(Vec2 x, Vec2 v, double radius, BodyType type = BodyType::dynamic) {
+BodyDef moving_disc(Vec2 x, Vec2 v, double radius, BodyType type = BodyType::dynamic) {
   BodyDef b;
   b.type = type;
   b.body = Body{.mass = 1.0, .position = x, .velocity = v};
@@ -37,10 +37,10 @@ TEST(ContactCaps, ARowOfFastDiscsIntoAPegAllComeBack) {
   for (const Integrator integrator :
        {Integrator::semi_implicit_euler, Integrator::velocity_verlet}) {
     detail::WorldKernel<double> w(elastic(1.0 / 60.0, integrator));
-    (void)w.create_body(disc({0.0, 0.0}, {0.0, 0.0}, 0.1, BodyType::static_body));
+    (void)w.create_body(moving_disc({0.0, 0.0}, {0.0, 0.0}, 0.1, BodyType::static_body));
     std::vector<Entity> row;
     for (int i = 0; i < 8; ++i)
-      row.push_back(w.create_body(disc({-0.3 - 0.25 * i, 0.0}, {500.0, 0.0}, 0.1)));
+      row.push_back(w.create_body(moving_disc({-0.3 - 0.25 * i, 0.0}, {500.0, 0.0}, 0.1)));
     w.step();
     EXPECT_FALSE(w.fault().has_value());
     EXPECT_EQ(w.contact_stats().capped, 0u);
@@ -64,7 +64,7 @@ TEST(ContactCaps, TooManyCandidatePairsStopTheRunWithALocatedFault) {
     const double x0 = side == 0 ? -10.5 : 0.6, v = side == 0 ? 1000.0 : -1000.0;
     for (int i = 0; i < 100; ++i) {
       for (int j = 0; j < 100; ++j) {
-        (void)w.create_body(disc({x0 + 0.1 * i, 0.1 * j}, {v, 0.0}, 0.04));
+        (void)w.create_body(moving_disc({x0 + 0.1 * i, 0.1 * j}, {v, 0.0}, 0.04));
       }
     }
   }
@@ -93,7 +93,7 @@ void add_channel(detail::WorldKernel<double>& w) {
 TEST(ContactCaps, ADiscBouncingBetweenClosePlanesStaysBetweenThem) {
   detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   add_channel(w);
-  const Entity e = w.create_body(disc({0.0, 0.105}, {0.0, 1e5}, 0.1));
+  const Entity e = w.create_body(moving_disc({0.0, 0.105}, {0.0, 1e5}, 0.1));
   w.step();
   EXPECT_FALSE(w.fault().has_value());
   const Body b = w.body(e);
@@ -105,7 +105,7 @@ TEST(ContactCaps, ADiscBouncingBetweenClosePlanesStaysBetweenThem) {
 TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
   detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   add_channel(w);
-  (void)w.create_body(disc({0.0, 0.105}, {0.0, 1e7}, 0.1));
+  (void)w.create_body(moving_disc({0.0, 0.105}, {0.0, 1e7}, 0.1));
   w.step();
   ASSERT_TRUE(w.fault().has_value());
   const StateFault& f = *w.fault();
@@ -117,10 +117,10 @@ TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
 
 TEST(ContactCaps, ARadiusBeyondTheStateRangeIsRefused) {
   detail::WorldKernel<double> w(elastic(0.01));
-  EXPECT_NO_THROW((void)w.create_body(disc({0.0, 0.0}, {0.0, 0.0}, 1e12)));
+  EXPECT_NO_THROW((void)w.create_body(moving_disc({0.0, 0.0}, {0.0, 0.0}, 1e12)));
   for (const double r : {1.0001e12, 9e307}) {
     try {
-      (void)w.create_body(disc({5e12, 0.0}, {0.0, 0.0}, r));
+      (void)w.create_body(moving_disc({5e12, 0.0}, {0.0, 0.0}, r));
       FAIL() << "radius " << r << " accepted";
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("collider.radius must be finite, > 0 and <= 1e12 m"),
@@ -128,7 +128,7 @@ TEST(ContactCaps, ARadiusBeyondTheStateRangeIsRefused) {
           << e.what();
     }
   }
-  (void)w.create_body(disc({9.9e11, 9.9e11}, {-1.0, 0.0}, 0.1));  // apart: 1.4e12 m
+  (void)w.create_body(moving_disc({9.9e11, 9.9e11}, {-1.0, 0.0}, 0.1));  // apart: 1.4e12 m
   w.step();  // a disc of 1e12 m beside a small one: the broadphase copes
   EXPECT_FALSE(w.fault().has_value());
 }

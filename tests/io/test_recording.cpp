@@ -18,6 +18,7 @@
 #include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/recording_file.hpp"
 #include "link_between.hpp"
+#include "text_edit.hpp"
 
 namespace fixstep {
 namespace {
@@ -244,11 +245,7 @@ TEST(Recording, EveryCutShortFileIsTruncated) {
   EXPECT_NE(parse_message(text.substr(0, text.size() - 30)).find("x.rec:"), std::string::npos);
 }
 
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return at == std::string::npos ? text : text.replace(at, from.size(), to);
-}
+using testing::replaced;
 
 TEST(Recording, ForeignVersionAndCorruptFilesAreEachTheirKind) {
   using K = RecordingError::Kind;

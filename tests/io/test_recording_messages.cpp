@@ -37,7 +37,7 @@ Recording short_run(const WorldDef& def) {
   return rec.finish(sim);
 }
 
-std::string error_of(std::string_view text) {
+std::string message_of(std::string_view text) {
   try {
     (void)parse_recording(text, "x.rec");
   } catch (const RecordingError& e) {
@@ -66,14 +66,14 @@ TEST(RecordingMessages, CrlfLineEndsReadAsTheSameRecording) {
 TEST(RecordingMessages, ControlCharactersInAFieldArePrintedEscapedNotRawNorCut) {
   using namespace std::string_literals;
   // Before: `found "2` and the message ended at the NUL; a lone \r printed raw.
-  std::string e = error_of("fixstep-recording 2\0junk\n"s);
+  std::string e = message_of("fixstep-recording 2\0junk\n"s);
   EXPECT_NE(e.find("found \"2\\0junk\""), std::string::npos) << e;
-  e = error_of("fixstep-recording 2\rx\n"s);
+  e = message_of("fixstep-recording 2\rx\n"s);
   EXPECT_NE(e.find("found \"2\\rx\""), std::string::npos) << e;
   EXPECT_EQ(e.find('\r'), std::string::npos) << e;
-  e = error_of("fixstep-recording 2\nscene a\nb\n"s);  // a newline cannot be in a line
+  e = message_of("fixstep-recording 2\nscene a\nb\n"s);  // a newline cannot be in a line
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
-  e = error_of("fixstep-recording 2\nscene a\x01.toml\n"s);
+  e = message_of("fixstep-recording 2\nscene a\x01.toml\n"s);
   EXPECT_NE(e.find("the path \"a\\x01.toml\" holds a control character"), std::string::npos) << e;
 }
 

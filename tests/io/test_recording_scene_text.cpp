@@ -11,6 +11,7 @@
 
 #include "fixstep/recording_file.hpp"
 #include "fixstep/summary.hpp"
+#include "text_edit.hpp"
 
 namespace fixstep {
 namespace {
@@ -39,7 +40,7 @@ Recording recorded(const std::string& scene_text) {
   return rec.finish(sim);
 }
 
-std::string error_of(const std::string& text) {
+std::string kind_and_message(const std::string& text) {
   try {
     (void)parse_recording(text, "x.rec");
   } catch (const RecordingError& e) {
@@ -48,11 +49,7 @@ std::string error_of(const std::string& text) {
   return "(parsed)";
 }
 
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return at == std::string::npos ? text : text.replace(at, from.size(), to);
-}
+using testing::replaced;
 
 const std::string scene =
     "[world]\ndt = 0.01\n\n[[body]]\nmass = 1.0 # kg\nposition = [1.0, 0.0]\n";
@@ -125,11 +122,11 @@ TEST(RecordingSceneText, EveryCutInsideTheSceneIsTruncated) {
   const std::string text = format_recording(recorded(scene));
   const std::size_t from = text.find("scene_text"), to = text.find("definition");
   for (std::size_t n = from; n < to; ++n) {
-    const std::string e = error_of(text.substr(0, n));
+    const std::string e = kind_and_message(text.substr(0, n));
     EXPECT_TRUE(e.starts_with("truncated: x.rec:")) << n << " " << e;
   }
   // Whole lines cut: the reader names the section and what it read.
-  const std::string e = error_of(text.substr(0, text.find("|[[body]]")));
+  const std::string e = kind_and_message(text.substr(0, text.find("|[[body]]")));
   EXPECT_EQ(e,
             "truncated: x.rec:6: scene_text: the file ends inside the embedded scene (19 of "
             "its 66 bytes read): the recording was cut short")
@@ -139,49 +136,50 @@ TEST(RecordingSceneText, EveryCutInsideTheSceneIsTruncated) {
 TEST(RecordingSceneText, AnEditedOrDamagedSceneIsCorruptNamingItsLine) {
   const std::string text = format_recording(recorded(scene));
   // One byte changed: the checksum, located at the section's last line.
-  std::string e = error_of(replaced(text, "|mass = 1.0", "|mass = 2.0"));
+  std::string e = kind_and_message(replaced(text, "|mass = 1.0", "|mass = 2.0"));
   EXPECT_TRUE(
       e.starts_with("corrupt: x.rec:9: scene_text: the embedded scene's bytes do not "
                     "match its checksum"))
       << e;
   // A line dropped: the next header line is not a scene line.
-  e = error_of(replaced(text, "|\n|[[body]]\n", "|[[body]]\n"));
+  e = kind_and_message(replaced(text, "|\n|[[body]]\n", "|[[body]]\n"));
   EXPECT_TRUE(
       e.starts_with("corrupt: x.rec:9: scene_text: expected a line of the embedded scene "
                     "(`|` and the line), found \"definition"))
       << e;
   // A line added: more bytes than the header gives.
-  e = error_of(replaced(text, "|[[body]]\n", "|[[body]]\n|extra = 1\n"));
+  e = kind_and_message(replaced(text, "|[[body]]\n", "|[[body]]\n|extra = 1\n"));
   EXPECT_TRUE(
       e.starts_with("corrupt: x.rec:10: scene_text: the embedded scene's lines hold more "
                     "than its 66 bytes"))
       << e;
-  e = error_of(replaced(text, "|dt = 0.01", "|dt = \\q.01"));
+  e = kind_and_message(replaced(text, "|dt = 0.01", "|dt = \\q.01"));
   EXPECT_EQ(e,
             "corrupt: x.rec:5: scene_text: an unknown escape at column 7 (the embedded scene "
             "has \\\\, \\r and \\xHH only)");
-  e = error_of(replaced(text, "|dt = 0.01", "|dt = \\x0"));
+  e = kind_and_message(replaced(text, "|dt = 0.01", "|dt = \\x0"));
   EXPECT_TRUE(e.starts_with("corrupt: x.rec:5: scene_text: an unknown escape")) << e;
-  e = error_of(replaced(text, "|dt = 0.01", "|dt = \x01.01"));
+  e = kind_and_message(replaced(text, "|dt = 0.01", "|dt = \x01.01"));
   EXPECT_TRUE(
       e.starts_with("corrupt: x.rec:5: scene_text: a control character (byte 0x01) at "
                     "column 7"))
       << e;
-  e = error_of(replaced(text, "scene_text 66 ", "scene_text 0 "));
+  e = kind_and_message(replaced(text, "scene_text 66 ", "scene_text 0 "));
   EXPECT_TRUE(e.starts_with("corrupt: x.rec:3: scene_text: an embedded scene of 0 bytes")) << e;
-  e = error_of(replaced(text, "scene_text 66 ", "scene_text 66x "));
+  e = kind_and_message(replaced(text, "scene_text 66 ", "scene_text 66x "));
   EXPECT_TRUE(e.starts_with("corrupt: x.rec:3: scene_text: expected an integer")) << e;
 }
 
 TEST(RecordingSceneText, IsBoundedByTheSceneSizeLimit) {
   const std::string text = format_recording(recorded(scene));
-  const std::string e = error_of(replaced(text, "scene_text 66 ", "scene_text 4194305 "));
+  const std::string e = kind_and_message(replaced(text, "scene_text 66 ", "scene_text 4194305 "));
   EXPECT_TRUE(
       e.starts_with("corrupt: x.rec:3: scene_text: an embedded scene of 4194305 bytes; a "
                     "scene may have at most 4194304 bytes (the scene size limit)"))
       << e;
-  EXPECT_TRUE(error_of(replaced(text, "scene_text 66 ", "scene_text 99999999999999999999999 "))
-                  .starts_with("corrupt: x.rec:3: scene_text: expected an integer"));
+  EXPECT_TRUE(
+      kind_and_message(replaced(text, "scene_text 66 ", "scene_text 99999999999999999999999 "))
+          .starts_with("corrupt: x.rec:3: scene_text: expected an integer"));
   // At the limit a scene is carried; past it the recorder refuses it before the first tick.
   const std::string largest(max_recording_scene_bytes, 'x');
   EXPECT_EQ(parse_recording(format_recording(recorded(largest)), "x.rec").scene_text, largest);
@@ -203,10 +201,10 @@ TEST(RecordingSceneText, OlderVersionsReadWithoutAScene) {
   // The version 3 lines are not read in a version 2 file.
   const std::string with_scene =
       replaced(format_recording(recorded(scene)), "fixstep-recording 3", "fixstep-recording 2");
-  EXPECT_TRUE(error_of(with_scene)
+  EXPECT_TRUE(kind_and_message(with_scene)
                   .starts_with("corrupt: x.rec:3: definition: expected the "
                                "`definition` line, found \"scene_text 66"))
-      << error_of(with_scene);
+      << kind_and_message(with_scene);
 }
 
 TEST(RecordingSceneText, TheDampingSplitIsRecordedAndApplied) {

@@ -32,7 +32,8 @@ bool reddish(Rgb p) {
   return p.r > 60 && p.r > p.g + 40 && p.r > p.b + 40;
 }
 
-constexpr Rgba8 red{255, 0, 0, 255}, yellow{250, 200, 60, 255};
+using testing::red;
+constexpr Rgba8 yellow{250, 200, 60, 255};
 
 BodyDef ball(Vec2 p, Vec2 v, Rgba8 color) {
   BodyDef d;

@@ -13,19 +13,16 @@
 
 #include "fixstep/render.hpp"
 #include "fixstep/session.hpp"
+#include "pixels.hpp"
 #include "scene_session.hpp"
 
 namespace fixstep {
 namespace {
 
-struct Pixel {
-  int r, g, b, a;
-};
-Pixel at(const Renderer& r, int x, int y) {
-  const auto p = r.pixels().subspan((static_cast<std::size_t>(y) * r.width() + x) * 4, 4);
-  return {p[0], p[1], p[2], p[3]};
-}
-bool near(Pixel p, Rgba8 c, int tol) {
+using testing::at;
+using testing::Rgb;
+
+bool near(Rgb p, Rgba8 c, int tol) {
   return std::abs(p.r - c.r) <= tol && std::abs(p.g - c.g) <= tol && std::abs(p.b - c.b) <= tol;
 }
 
@@ -357,7 +354,7 @@ TEST(Canvas, PolylineInterpolatesColourAndJoinsCorners) {
   r.finish();
   EXPECT_TRUE(near(at(r, 12, 20), red, 12));
   EXPECT_TRUE(near(at(r, 98, 20), blue, 12));
-  const Pixel mid = at(r, 55, 20);  // halfway: as much red as blue
+  const Rgb mid = at(r, 55, 20);  // halfway: as much red as blue
   EXPECT_NEAR(mid.r, 128, 10);
   EXPECT_NEAR(mid.b, 128, 10);
   EXPECT_TRUE(near(at(r, 101, 19), blue, 2));  // the outer corner of the turn is covered

@@ -28,7 +28,8 @@ bool coloured(Rgb c) {
 
 constexpr int frame_w = 400, frame_h = 200;  // 20 m wide: 20 px per m, origin at (200, 100)
 constexpr double px_per_m = 20.0;
-constexpr Rgba8 red{255, 0, 0, 255}, blue{40, 80, 255, 255}, green{0, 255, 0, 255};
+using testing::red;
+constexpr Rgba8 blue{40, 80, 255, 255}, green{0, 255, 0, 255};
 
 BodyDef body_at(Vec2 p, Rgba8 color, Vec2 v = {}) {
   BodyDef d;

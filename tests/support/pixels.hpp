@@ -12,6 +12,9 @@ struct Rgb {
   int r, g, b;
 };
 
+/// Pure red, the colour the render tests give the bodies they look for.
+inline constexpr Rgba8 red{255, 0, 0, 255};
+
 /// The pixel at column x, row y (from the top) of the renderer's RGBA8 frame.
 inline Rgb at(const Renderer& r, int x, int y) {
   const auto p = r.pixels().subspan((static_cast<std::size_t>(y) * r.width() + x) * 4, 4);

@@ -13,11 +13,11 @@ namespace fixstep::detail {
 namespace {
 
 /// The box's extent max(width, height), m; NaN when a coordinate is.
-double extent(const SweptBox& b) {
+double box_extent(const SweptBox& b) {
   return std::max(b.max_x - b.min_x, b.max_y - b.min_y);
 }
 
-bool finite(const SweptBox& b) {
+bool box_finite(const SweptBox& b) {
   return std::isfinite(b.min_x) && std::isfinite(b.min_y) && std::isfinite(b.max_x) &&
          std::isfinite(b.max_y);
 }
@@ -68,7 +68,7 @@ void DiscBroadphase::both(bool split, Job& job) {
 void DiscBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) const {
   s.e_top = 0;
   for (std::size_t i = s.begin; i < s.end; ++i) {
-    if (finite(boxes[i])) s.e_top = std::max(s.e_top, extent(boxes[i]));
+    if (box_finite(boxes[i])) s.e_top = std::max(s.e_top, box_extent(boxes[i]));
   }
 }
 
@@ -85,11 +85,11 @@ void DiscBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
   std::fill(std::begin(s.count), std::end(s.count), 0u);
   s.overflow = 0;
   for (std::size_t i = s.begin; i < s.end; ++i) {
-    if (!finite(boxes[i])) {  // (before any arithmetic: Debug builds trap inf - inf)
+    if (!box_finite(boxes[i])) {  // (before any arithmetic: Debug builds trap inf - inf)
       level_[i] = overflow, ++s.overflow;
       continue;
     }
-    const double e = extent(boxes[i]);
+    const double e = box_extent(boxes[i]);
     // Level k holds e in (e_top 2^-(k+1), e_top 2^-k], the last one everything smaller.
     std::uint32_t k = max_levels - 1;
     if (e > e_bottom) k = static_cast<std::uint32_t>(std::ilogb(e_top_ / e));

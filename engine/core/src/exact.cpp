@@ -11,7 +11,7 @@
 namespace fixstep::exact {
 namespace {
 
-void require(bool ok, const char* name, const char* rule, double value) {
+void require_exact(bool ok, const char* name, const char* rule, double value) {
   if (!ok) {
     throw std::invalid_argument(
         fmt::format("fixstep::exact: {} must be {} (got {})", name, rule, value));
@@ -19,11 +19,11 @@ void require(bool ok, const char* name, const char* rule, double value) {
 }
 
 void require_finite(double value, const char* name) {
-  require(std::isfinite(value), name, "finite", value);
+  require_exact(std::isfinite(value), name, "finite", value);
 }
 
 void require_rate(double value, const char* name) {
-  require(std::isfinite(value) && value >= 0.0, name, "finite and >= 0", value);
+  require_exact(std::isfinite(value) && value >= 0.0, name, "finite and >= 0", value);
 }
 
 // The two basis solutions of the homogeneous equation y'' + γ y' + ω² y = 0:
@@ -139,7 +139,7 @@ AxisState linear(double x0, double v0, double omega2, double gamma, double ancho
 
 std::optional<Body> solve(const BodyDef& def, double t) {
   const Body& body = def.body;
-  require(std::isfinite(body.mass) && body.mass > 0.0, "mass", "finite and > 0", body.mass);
+  require_exact(std::isfinite(body.mass) && body.mass > 0.0, "mass", "finite and > 0", body.mass);
   double omega2 = 0.0;
   double damping = 0.0;  // b + c, N*s/m
   Vec2 anchor{};

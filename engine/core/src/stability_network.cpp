@@ -39,7 +39,7 @@ using detail::scan_from;
 using detail::scan_to;
 using detail::stability_margin;
 using detail::stability_tolerance;
-constexpr double infinity = std::numeric_limits<double>::infinity();
+constexpr double unbounded = std::numeric_limits<double>::infinity();
 
 /// A symmetric 2×2 block [xx xy; xy yy] (N/m or N·s/m).
 struct Sym2 {
@@ -96,7 +96,7 @@ struct Operator {
   }
 };
 
-double dot(const std::vector<double>& a, const std::vector<double>& b) {
+double inner(const std::vector<double>& a, const std::vector<double>& b) {
   double s = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * b[i];
   return s;
@@ -124,7 +124,7 @@ Eigenpair top_eigenpair(const Operator& op) {
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     v = static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-52 - 1.0;
   }
-  const double norm0 = std::sqrt(dot(e.vector, e.vector));
+  const double norm0 = std::sqrt(inner(e.vector, e.vector));
   for (double& v : e.vector) v /= norm0;
   std::vector<double> y(dim), z(dim), history{0.0};  // history[t] = ρ_t
   for (int t = 1; t <= max_iterations; ++t) {
@@ -132,7 +132,7 @@ Eigenpair top_eigenpair(const Operator& op) {
     op.apply(e.vector, y, z);
     report_work_progress("stability guard", "iteration", static_cast<std::uint64_t>(t),
                          max_iterations);
-    const double rho = dot(e.vector, y), norm = std::sqrt(dot(y, y));
+    const double rho = inner(e.vector, y), norm = std::sqrt(inner(y, y));
     e.value = rho, e.iterations = t;
     history.push_back(rho);
     if (!(norm > 0.0) || !std::isfinite(norm)) return e;  // A x = 0, or overflow
@@ -184,7 +184,7 @@ double mode_max_step(Integrator integrator, double omega, double gamma, bool dam
   if (!stable(lo)) return 0.0;
   double hi = lo;
   while (hi < scan_to && stable(hi)) lo = hi, hi *= 1.25;
-  if (hi >= scan_to) return infinity;
+  if (hi >= scan_to) return unbounded;
   for (int i = 0; i < 80 && hi - lo > 1e-12 * hi; ++i) {
     const double mid = 0.5 * (lo + hi);
     (stable(mid) ? lo : hi) = mid;
@@ -319,7 +319,7 @@ NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
   const Eigenpair top = huge ? Eigenpair{} : top_eigenpair(k_op);
   // (std::max passes NaN on as 0: the overflow test below looks at the raw values.)
   r.omega_max = std::sqrt(std::max(0.0, top.value));
-  r.omega_error = top.error < 1.0 ? 1.0 / std::sqrt(1.0 - top.error) - 1.0 : infinity;
+  r.omega_error = top.error < 1.0 ? 1.0 / std::sqrt(1.0 - top.error) - 1.0 : unbounded;
   r.iterations = top.iterations;
   if (!huge) r.fastest_body = detail::defined_entity(largest_body(k_op, top.vector));
   Eigenpair damp;
@@ -327,7 +327,7 @@ NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
   if (damped && !huge) {
     std::vector<double> y(2 * n), z(2 * n);
     c_op.apply(top.vector, y, z);
-    gamma_raw = dot(top.vector, y);
+    gamma_raw = inner(top.vector, y);
     r.gamma = std::max(0.0, gamma_raw);
     damp = top_eigenpair(c_op);
     r.damping_rate = std::max(0.0, damp.value);
@@ -335,7 +335,7 @@ NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
   if (huge || !std::isfinite(top.value) || !std::isfinite(r.omega_max * r.omega_max) ||
       !std::isfinite(gamma_raw) || !std::isfinite(damp.value)) {
     r.verdict = Stability::unstable;
-    r.radius = infinity;
+    r.radius = unbounded;
     r.message = fmt::format(
         "{} has stiffness or damping per mass beyond the range of a double, so no integrator "
         "and no step can follow it",
@@ -349,15 +349,15 @@ NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
   std::vector<Mode> modes;
   if (r.omega_max > 0.0) modes.push_back({r.omega_max, r.gamma, 0.0, 0.0});
   if (r.damping_rate > 0.0) modes.push_back({0.0, r.damping_rate, 0.0, 0.0});
-  r.max_step = infinity;
+  r.max_step = unbounded;
   r.radius = 1.0;
   if (modes.empty()) return r;  // no spring and no damper: every step is stable
   // Beyond the swept damping bound the growth is a network's, not the pair's: reported as
-  // unbounded (infinity) rather than the pair's contraction.
+  // unbounded (unbounded) rather than the pair's contraction.
   auto radius_at = [&](const Mode& m, double h) {
     if (m.omega == 0.0 && damped_links && strang(integrator) &&
         h * m.gamma > swept_damping_bound(integrator)) {
-      return infinity;
+      return unbounded;
     }
     return network_amplification(integrator, m.omega, m.gamma, h, damped_links);
   };
