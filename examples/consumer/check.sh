@@ -53,9 +53,10 @@ for component in core io scene render capture window app; do
   echo "consumer: fixstep::$component brings: ${brings[$component]:-none of OSMesa, FFmpeg, libdeflate, SDL2}"
 done
 
-# 2. add_subdirectory: only libraries; the program builds core and io alone.
+# 2. add_subdirectory: only libraries; the program builds core and io alone (as a unity build,
+# as CI builds everything: a parent project's CMAKE_UNITY_BUILD reaches fixstep's targets).
 cmake -S "$src/examples/consumer" -B "$work/subproject" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DFIXSTEP_SOURCE_DIR="$src" >/dev/null
+  -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 -DFIXSTEP_SOURCE_DIR="$src" >/dev/null
 if ninja -C "$work/subproject" -t targets all |
    grep -E '(^|/)(test_[a-z_]*|bench_[a-z_]*|hello_fixstep|integration_basics|work_precision|fuzz_[a-z_]*|fixstep|[0-9][0-9]_[a-z_]*|fixstep_chart):'; then
   fail "add_subdirectory defines test, benchmark or demo targets (above)"
