@@ -37,9 +37,9 @@ set(FIXSTEP_PC_core_CFLAGS "-std=c++20 -ffp-contract=off")
 set(FIXSTEP_PC_io_REQUIRES "fixstep-core fmt")
 set(FIXSTEP_PC_scene_REQUIRES "fixstep-io fixstep-core tomlplusplus fmt")
 set(FIXSTEP_PC_render_REQUIRES "fixstep-core osmesa fmt")
-set(FIXSTEP_PC_capture_REQUIRES
-    "fixstep-io fixstep-core fmt libdeflate libavformat libavcodec libavfilter libswscale libavutil")
-set(FIXSTEP_PC_capture_LIBS "-pthread")
+# capture loads FFmpeg's shared libraries (libavcodec.so.59, ...) when it writes a video.
+set(FIXSTEP_PC_capture_REQUIRES "fixstep-io fixstep-core fmt libdeflate")
+set(FIXSTEP_PC_capture_LIBS "-pthread -ldl")
 set(FIXSTEP_PC_window_REQUIRES "fixstep-render sdl2 fmt")
 set(FIXSTEP_PC_app_REQUIRES "fixstep-scene fixstep-capture fixstep-render fmt")
 if(TARGET fixstep_window)

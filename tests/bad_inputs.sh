@@ -716,6 +716,12 @@ case_ "--fps 0.000002 for MP4 (a frame longer than MP4 stores)" "" render good.t
 case_ "--fps 0.001 for GIF (a delay past 655.35 s)" "" render good.toml --video clip.gif --fps 0.001 --frames 2
 case_ "--fps 2000000 for a video (past the fraction's 1001000)" "" render good.toml --video clip.gif --fps 2000000 --frames 2
 case_ "compare --fps 0.001 for GIF" "" compare good.toml --with rk4 --with semi_implicit_euler --video clip.gif --fps 0.001 --frames 2
+# FFmpeg is loaded when the first video is opened (capture's ffmpeg_library.cpp): a library that
+# will not load is an error naming it, and nothing is written.
+mkdir -p broken_ffmpeg && : > broken_ffmpeg/libavcodec.so.59
+export LD_LIBRARY_PATH=broken_ffmpeg
+case_ "--video with an empty libavcodec.so.59 first on LD_LIBRARY_PATH" "" render good.toml --video clip.mp4 --frames 2
+unset LD_LIBRARY_PATH
 case_ "--video - (standard output has no extension to name the format)" "" render good.toml --video - --frames 2
 mkdir -p clipdir.mp4
 case_ "--video a directory" "" render good.toml --video clipdir.mp4 --frames 2

@@ -37,8 +37,9 @@ check_program installed "$work/installed/consumer"
 cmake -S "$src/examples/consumer/components" -B "$work/components" -G Ninja \
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/components" >/dev/null
-declare -A brings=([core]="" [io]="" [scene]="" [render]="osmesa" [capture]="avcodec deflate"
-                   [window]="osmesa sdl2" [app]="osmesa avcodec deflate sdl2")
+# capture loads FFmpeg when it writes a video (dlopen), so nothing links libavcodec.
+declare -A brings=([core]="" [io]="" [scene]="" [render]="osmesa" [capture]="deflate"
+                   [window]="osmesa sdl2" [app]="osmesa deflate sdl2")
 for component in core io scene render capture window app; do
   libs=$(ninja -C "$work/components" -t commands "link_$component" | tail -1 |
          tr '[:upper:]' '[:lower:]')

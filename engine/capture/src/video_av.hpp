@@ -2,45 +2,37 @@
 // fixstep::render's video capture: video_encoder.cpp, video_palette.cpp).
 #pragma once
 
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavfilter/avfilter.h>
-#include <libavformat/avformat.h>
-#include <libavutil/error.h>
-#include <libavutil/frame.h>
-#include <libswscale/swscale.h>
-}
-
 #include <fmt/format.h>
 
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "ffmpeg_library.hpp"
 #include "fixstep/capture.hpp"
 
 namespace fixstep::av {
 
 struct FrameFree {
-  void operator()(AVFrame* f) const { av_frame_free(&f); }
+  void operator()(AVFrame* f) const { ffmpeg().av_frame_free(&f); }
 };
 struct PacketFree {
-  void operator()(AVPacket* p) const { av_packet_free(&p); }
+  void operator()(AVPacket* p) const { ffmpeg().av_packet_free(&p); }
 };
 struct CodecFree {
-  void operator()(AVCodecContext* c) const { avcodec_free_context(&c); }
+  void operator()(AVCodecContext* c) const { ffmpeg().avcodec_free_context(&c); }
 };
 struct SwsFree {
-  void operator()(SwsContext* s) const { sws_freeContext(s); }
+  void operator()(SwsContext* s) const { ffmpeg().sws_freeContext(s); }
 };
 struct MuxerFree {  // closes the file if open, then frees the muxer and its streams
   void operator()(AVFormatContext* m) const {
-    if (m->pb) avio_closep(&m->pb);
-    avformat_free_context(m);
+    if (m->pb) ffmpeg().avio_closep(&m->pb);
+    ffmpeg().avformat_free_context(m);
   }
 };
 struct GraphFree {
-  void operator()(AVFilterGraph* g) const { avfilter_graph_free(&g); }
+  void operator()(AVFilterGraph* g) const { ffmpeg().avfilter_graph_free(&g); }
 };
 using Frame = std::unique_ptr<AVFrame, FrameFree>;
 using Packet = std::unique_ptr<AVPacket, PacketFree>;
@@ -52,7 +44,7 @@ using Graph = std::unique_ptr<AVFilterGraph, GraphFree>;
 /// FFmpeg's message for error code `err` (a negative AVERROR).
 inline std::string error_text(int err) {
   char buf[AV_ERROR_MAX_STRING_SIZE] = {};
-  av_strerror(err, buf, sizeof buf);
+  ffmpeg().av_strerror(err, buf, sizeof buf);
   return buf;
 }
 
@@ -71,12 +63,12 @@ inline int check(int err, const std::filesystem::path& file, const std::string& 
 /// Throws CaptureError naming `file` when FFmpeg cannot allocate it.
 inline Frame make_frame(AVPixelFormat format, int width, int height,
                         const std::filesystem::path& file) {
-  Frame f(av_frame_alloc());
+  Frame f(ffmpeg().av_frame_alloc());
   if (!f) throw CaptureError(fmt::format("cannot write {}: out of memory", file.string()));
   f->format = format;
   f->width = width;
   f->height = height;
-  check(av_frame_get_buffer(f.get(), 32), file, "cannot allocate a frame");
+  check(ffmpeg().av_frame_get_buffer(f.get(), 32), file, "cannot allocate a frame");
   return f;
 }
 

@@ -1,10 +1,5 @@
 #include "video_encoder.hpp"
 
-extern "C" {
-#include <libavutil/dict.h>
-#include <libavutil/opt.h>
-}
-
 #include <mutex>
 #include <string>
 
@@ -16,13 +11,15 @@ namespace {
 // leave in it are options nobody took (a typo or an option this FFmpeg lacks).
 class Dict {
  public:
-  void set(const char* key, const std::string& value) { av_dict_set(&d_, key, value.c_str(), 0); }
+  void set(const char* key, const std::string& value) {
+    av::ffmpeg().av_dict_set(&d_, key, value.c_str(), 0);
+  }
   AVDictionary** get() { return &d_; }
   [[nodiscard]] const char* first_key() const {
-    const AVDictionaryEntry* e = av_dict_get(d_, "", nullptr, AV_DICT_IGNORE_SUFFIX);
+    const AVDictionaryEntry* e = av::ffmpeg().av_dict_get(d_, "", nullptr, AV_DICT_IGNORE_SUFFIX);
     return e ? e->key : nullptr;
   }
-  ~Dict() { av_dict_free(&d_); }
+  ~Dict() { av::ffmpeg().av_dict_free(&d_); }
   Dict() = default;
   Dict(const Dict&) = delete;
   Dict& operator=(const Dict&) = delete;
@@ -33,7 +30,7 @@ class Dict {
 
 const AVCodec* find_encoder(VideoFormat format, const std::filesystem::path& file) {
   const char* name = format == VideoFormat::mp4 ? "libx264" : "gif";
-  const AVCodec* codec = avcodec_find_encoder_by_name(name);
+  const AVCodec* codec = av::ffmpeg().avcodec_find_encoder_by_name(name);
   if (!codec) {
     throw CaptureError(fmt::format(
         "cannot write {}: this FFmpeg has no \"{}\" encoder (Debian 12's libavcodec59 has it)",
@@ -48,7 +45,7 @@ const AVCodec* find_encoder(VideoFormat format, const std::filesystem::path& fil
 void quiet_ffmpeg_once() {
   static std::once_flag once;
   std::call_once(once, [] {
-    if (av_log_get_level() == AV_LOG_INFO) av_log_set_level(AV_LOG_ERROR);
+    if (av::ffmpeg().av_log_get_level() == AV_LOG_INFO) av::ffmpeg().av_log_set_level(AV_LOG_ERROR);
   });
 }
 
@@ -61,17 +58,17 @@ VideoWriter::Encoder::Encoder(const std::string& url, const std::filesystem::pat
   const char* muxer = options.format == VideoFormat::mp4 ? "mp4" : "gif";
   // The muxer is named: the temporary file's name does not end in .mp4 / .gif.
   AVFormatContext* mux = nullptr;
-  av::check(avformat_alloc_output_context2(&mux, nullptr, muxer, url.c_str()), file_,
+  av::check(av::ffmpeg().avformat_alloc_output_context2(&mux, nullptr, muxer, url.c_str()), file_,
             fmt::format("cannot set up the {} muxer", muxer));
   mux_.reset(mux);
-  packet_.reset(av_packet_alloc());
+  packet_.reset(av::ffmpeg().av_packet_alloc());
   if (!packet_) throw CaptureError(fmt::format("cannot write {}: out of memory", file_.string()));
   const AVRational time_base{options.rate.den, options.rate.num};
   if (options.format == VideoFormat::mp4) {
     yuv_.emplace(options.width, options.height, file_);
   } else {
     palette_.emplace(options.width, options.height, time_base, file_);
-    paletted_.reset(av_frame_alloc());
+    paletted_.reset(av::ffmpeg().av_frame_alloc());
     if (!paletted_) {
       throw CaptureError(fmt::format("cannot write {}: out of memory", file_.string()));
     }
@@ -84,13 +81,13 @@ VideoWriter::Encoder::~Encoder() {
   // FFmpeg 5.1's GIF muxer holds the last packet back (its delay depends on the next one) and
   // frees it only in its trailer, so an abandoned GIF would leak it: write the trailer into
   // the temporary file, which the caller removes. (The MP4 muxer frees all in its deinit.)
-  if (palette_ && header_written_ && !trailer_written_) av_write_trailer(mux_.get());
+  if (palette_ && header_written_ && !trailer_written_) av::ffmpeg().av_write_trailer(mux_.get());
 }
 
 void VideoWriter::Encoder::open_codec(const Options& options) {
   const AVCodec* codec = find_encoder(options.format, file_);
-  stream_ = avformat_new_stream(mux_.get(), nullptr);
-  codec_.reset(avcodec_alloc_context3(codec));
+  stream_ = av::ffmpeg().avformat_new_stream(mux_.get(), nullptr);
+  codec_.reset(av::ffmpeg().avcodec_alloc_context3(codec));
   if (!stream_ || !codec_) {
     throw CaptureError(fmt::format("cannot write {}: out of memory", file_.string()));
   }
@@ -98,7 +95,7 @@ void VideoWriter::Encoder::open_codec(const Options& options) {
   c.width = options.width;
   c.height = options.height;
   c.time_base = AVRational{options.rate.den, options.rate.num};
-  c.framerate = av_div_q(options.rate, AVRational{options.step, 1});
+  c.framerate = av::ffmpeg().av_div_q(options.rate, AVRational{options.step, 1});
   c.sample_aspect_ratio = AVRational{1, 1};
   Dict opts;
   if (options.format == VideoFormat::mp4) {
@@ -115,20 +112,21 @@ void VideoWriter::Encoder::open_codec(const Options& options) {
     c.pix_fmt = AV_PIX_FMT_PAL8;
   }
   if (mux_->oformat->flags & AVFMT_GLOBALHEADER) c.flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-  av::check(avcodec_open2(&c, codec, opts.get()), file_,
+  av::check(av::ffmpeg().avcodec_open2(&c, codec, opts.get()), file_,
             fmt::format("the {} encoder refuses the stream", codec->name));
   if (const char* unused = opts.first_key()) {
     throw CaptureError(fmt::format("cannot write {}: the {} encoder has no option \"{}\"",
                                    file_.string(), codec->name, unused));
   }
-  av::check(avcodec_parameters_from_context(stream_->codecpar, &c), file_,
+  av::check(av::ffmpeg().avcodec_parameters_from_context(stream_->codecpar, &c), file_,
             "cannot describe the stream");
   stream_->time_base = c.time_base;
   stream_->avg_frame_rate = c.framerate;
 }
 
 void VideoWriter::Encoder::open_file(const std::string& url, const Options& options) {
-  av::check(avio_open(&mux_->pb, url.c_str(), AVIO_FLAG_WRITE), file_, "cannot create the file");
+  av::check(av::ffmpeg().avio_open(&mux_->pb, url.c_str(), AVIO_FLAG_WRITE), file_,
+            "cannot create the file");
   Dict opts;
   // faststart: after the last frame the muxer rewrites the file with the index (moov) first,
   // so a browser plays the video while it downloads. A stream cannot be rewritten: fragments
@@ -137,7 +135,8 @@ void VideoWriter::Encoder::open_file(const std::string& url, const Options& opti
     opts.set("movflags",
              options.streamed ? "+frag_keyframe+empty_moov+default_base_moof" : "+faststart");
   }
-  av::check(avformat_write_header(mux_.get(), opts.get()), file_, "cannot write the header");
+  av::check(av::ffmpeg().avformat_write_header(mux_.get(), opts.get()), file_,
+            "cannot write the header");
   header_written_ = true;
 }
 
@@ -153,28 +152,30 @@ void VideoWriter::Encoder::encode(std::span<const std::uint8_t> rgba, std::int64
 void VideoWriter::Encoder::drain_palette() {
   while (palette_->pull(paletted_.get())) {
     send(paletted_.get());
-    av_frame_unref(paletted_.get());
+    av::ffmpeg().av_frame_unref(paletted_.get());
   }
 }
 
 void VideoWriter::Encoder::send(const AVFrame* frame) {
   if (frame) last_pts_ = frame->pts;
-  av::check(avcodec_send_frame(codec_.get(), frame), file_, "the encoder refused a frame");
+  av::check(av::ffmpeg().avcodec_send_frame(codec_.get(), frame), file_,
+            "the encoder refused a frame");
   write_packets();
 }
 
 void VideoWriter::Encoder::write_packets() {
   for (;;) {
-    const int err = avcodec_receive_packet(codec_.get(), packet_.get());
+    const int err = av::ffmpeg().avcodec_receive_packet(codec_.get(), packet_.get());
     if (err == AVERROR(EAGAIN) || err == AVERROR_EOF) return;
     av::check(err, file_, "the encoder failed");
     // Every frame lasts `step` ticks of the time base: the last frame too, so a clip of N
     // frames lasts exactly N * step / rate seconds.
     packet_->duration = step_;
     packet_->stream_index = stream_->index;
-    av_packet_rescale_ts(packet_.get(), codec_->time_base, stream_->time_base);
+    av::ffmpeg().av_packet_rescale_ts(packet_.get(), codec_->time_base, stream_->time_base);
     // av_interleaved_write_frame takes the packet's data and leaves it blank.
-    av::check(av_interleaved_write_frame(mux_.get(), packet_.get()), file_, "cannot write a frame");
+    av::check(av::ffmpeg().av_interleaved_write_frame(mux_.get(), packet_.get()), file_,
+              "cannot write a frame");
     // A failed write (a full disk, EFBIG past `ulimit -f`, a closed pipe) is kept in the
     // I/O context and may not be returned until the trailer: stop at the first one.
     if (mux_->pb && mux_->pb->error < 0) av::fail(file_, "cannot write a frame", mux_->pb->error);
@@ -192,8 +193,8 @@ void VideoWriter::Encoder::finish() {
   send(nullptr);
   if (palette_) set_gif_final_delay();
   trailer_written_ = true;  // even if it fails: av_write_trailer is not to be called twice
-  av::check(av_write_trailer(mux_.get()), file_, "cannot finish the file");
-  av::check(avio_closep(&mux_->pb), file_, "cannot close the file");
+  av::check(av::ffmpeg().av_write_trailer(mux_.get()), file_, "cannot finish the file");
+  av::check(av::ffmpeg().avio_closep(&mux_->pb), file_, "cannot close the file");
 }
 
 void VideoWriter::Encoder::set_gif_final_delay() {
@@ -201,9 +202,9 @@ void VideoWriter::Encoder::set_gif_final_delay() {
   // and the last frame, unless told, the delay before it: the total would be off by the
   // rounding. The last frame ends at (last pts + step) / rate: its delay is what remains.
   const AVRational tb = codec_->time_base;
-  const std::int64_t last = av_rescale_q(last_pts_, tb, stream_->time_base);
-  const std::int64_t end = av_rescale_q(last_pts_ + step_, tb, stream_->time_base);
-  av::check(av_opt_set_int(mux_->priv_data, "final_delay", end - last, 0), file_,
+  const std::int64_t last = av::ffmpeg().av_rescale_q(last_pts_, tb, stream_->time_base);
+  const std::int64_t end = av::ffmpeg().av_rescale_q(last_pts_ + step_, tb, stream_->time_base);
+  av::check(av::ffmpeg().av_opt_set_int(mux_->priv_data, "final_delay", end - last, 0), file_,
             "the GIF muxer has no final_delay option");
 }
 

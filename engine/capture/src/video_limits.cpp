@@ -45,7 +45,8 @@ std::optional<VideoLimitError> size_error(VideoFormat format, int width, int hei
 // (`rate` empty: fps below 1/max_video_rate_term, or none close enough) the timescale of rate 1/N.
 std::optional<VideoLimitError> mp4_fps_error(double fps, std::optional<VideoRate> rate) {
   const std::int64_t scale = mp4_timescale(rate.value_or(VideoRate{1, 1}));
-  const double ticks = rate ? double(av_rescale(scale, rate->den, rate->num)) : double(scale) / fps;
+  const double ticks =
+      rate ? double(av::ffmpeg().av_rescale(scale, rate->den, rate->num)) : double(scale) / fps;
   if (ticks <= double(max_mp4_frame_ticks)) return {};
   return VideoLimitError{
       VideoParameter::fps,
@@ -74,7 +75,7 @@ std::optional<VideoRate> video_rate(double fps) {
   if (fps == std::floor(fps) && fps <= max_video_rate_term) {
     return VideoRate{static_cast<int>(fps), 1};
   }
-  const AVRational r = av_d2q(fps, max_video_rate_term);
+  const AVRational r = av::ffmpeg().av_d2q(fps, max_video_rate_term);
   if (r.num <= 0 || r.den <= 0 || r.num > max_video_rate_term || r.den > max_video_rate_term ||
       std::abs(av_q2d(r) - fps) > 1e-6 * fps) {
     return std::nullopt;

@@ -1,12 +1,6 @@
 #include "video_palette.hpp"
 
-extern "C" {
-#include <libavfilter/buffersink.h>
-#include <libavfilter/buffersrc.h>
-#include <libavutil/imgutils.h>
-#include <libavutil/mathematics.h>
-#include <libavutil/opt.h>
-}
+#include <cstdint>
 
 namespace fixstep::av {
 
@@ -30,29 +24,29 @@ constexpr const char* palette_filters =
     "split[a][b];[a]palettegen=stats_mode=single[p];[b][p]paletteuse=new=1:dither=none";
 
 struct InOutFree {
-  void operator()(AVFilterInOut* io) const { avfilter_inout_free(&io); }
+  void operator()(AVFilterInOut* io) const { ffmpeg().avfilter_inout_free(&io); }
 };
 using InOut = std::unique_ptr<AVFilterInOut, InOutFree>;
 
 AVFilterContext* make_filter(AVFilterGraph* graph, const char* filter, const char* name,
                              const std::string& args, const std::filesystem::path& file) {
-  const AVFilter* f = avfilter_get_by_name(filter);
+  const AVFilter* f = ffmpeg().avfilter_get_by_name(filter);
   if (!f) {
     throw CaptureError(
         fmt::format("cannot write {}: this FFmpeg has no \"{}\" filter", file.string(), filter));
   }
   AVFilterContext* ctx = nullptr;
-  check(avfilter_graph_create_filter(&ctx, f, name, args.empty() ? nullptr : args.c_str(), nullptr,
-                                     graph),
+  check(ffmpeg().avfilter_graph_create_filter(&ctx, f, name, args.empty() ? nullptr : args.c_str(),
+                                              nullptr, graph),
         file, fmt::format("cannot create the {} filter", filter));
   return ctx;
 }
 
 // An AVFilterInOut naming `ctx`'s pad 0 as `label` (what avfilter_graph_parse_ptr links).
 InOut make_inout(const char* label, AVFilterContext* ctx, const std::filesystem::path& file) {
-  InOut io(avfilter_inout_alloc());
+  InOut io(ffmpeg().avfilter_inout_alloc());
   if (!io) throw CaptureError(fmt::format("cannot write {}: out of memory", file.string()));
-  io->name = av_strdup(label);
+  io->name = ffmpeg().av_strdup(label);
   io->filter_ctx = ctx;
   io->pad_idx = 0;
   io->next = nullptr;
@@ -70,12 +64,12 @@ GifPalette::GifPalette(int width, int height, AVRational time_base,
 
 void GifPalette::build(int width, int height, AVRational time_base) {
   for (const char* needed : {"palettegen", "paletteuse", "split"}) {
-    if (!avfilter_get_by_name(needed)) {
+    if (!ffmpeg().avfilter_get_by_name(needed)) {
       throw CaptureError(
           fmt::format("cannot write {}: this FFmpeg has no \"{}\" filter", file_.string(), needed));
     }
   }
-  graph_.reset(avfilter_graph_alloc());
+  graph_.reset(ffmpeg().avfilter_graph_alloc());
   if (!graph_) throw CaptureError(fmt::format("cannot write {}: out of memory", file_.string()));
   graph_->nb_threads = 1;  // filter on the VideoWriter's worker thread only
   source_ = make_filter(
@@ -85,7 +79,10 @@ void GifPalette::build(int width, int height, AVRational time_base) {
       file_);
   sink_ = make_filter(graph_.get(), "buffersink", "out", "", file_);
   const AVPixelFormat pal8[] = {AV_PIX_FMT_PAL8, AV_PIX_FMT_NONE};
-  check(av_opt_set_int_list(sink_, "pix_fmts", pal8, AV_PIX_FMT_NONE, AV_OPT_SEARCH_CHILDREN),
+  // av_opt_set_int_list's expansion (libavutil/opt.h): the list, terminator excluded, as bytes.
+  check(ffmpeg().av_opt_set_bin(sink_, "pix_fmts", reinterpret_cast<const std::uint8_t*>(pal8),
+                                static_cast<int>(sizeof pal8 - sizeof pal8[0]),
+                                AV_OPT_SEARCH_CHILDREN),
         file_, "cannot ask the filter graph for PAL8 frames");
   // Parse: the description's open input is fed by "in" (our source's output), its open output
   // feeds "out" (the sink's input).
@@ -93,36 +90,37 @@ void GifPalette::build(int width, int height, AVRational time_base) {
   InOut inputs = make_inout("out", sink_, file_);
   AVFilterInOut* in = inputs.release();
   AVFilterInOut* out = outputs.release();
-  const int parsed = avfilter_graph_parse_ptr(graph_.get(), palette_filters, &in, &out, nullptr);
+  const int parsed =
+      ffmpeg().avfilter_graph_parse_ptr(graph_.get(), palette_filters, &in, &out, nullptr);
   inputs.reset(in);
   outputs.reset(out);
   check(parsed, file_, "cannot build the palette filter graph");
-  check(avfilter_graph_config(graph_.get(), nullptr), file_,
+  check(ffmpeg().avfilter_graph_config(graph_.get(), nullptr), file_,
         "cannot configure the palette filter graph");
-  sink_time_base_ = av_buffersink_get_time_base(sink_);
+  sink_time_base_ = ffmpeg().av_buffersink_get_time_base(sink_);
 }
 
 void GifPalette::push(std::span<const std::uint8_t> rgba, std::int64_t pts) {
   // The graph may still hold the previous frame (paletteuse waits for its palette): then
   // this gives input_ a new buffer instead of overwriting the one in use.
-  check(av_frame_make_writable(input_.get()), file_, "cannot reuse the frame buffer");
-  av_image_copy_plane(input_->data[0], input_->linesize[0], rgba.data(), width_ * 4, width_ * 4,
-                      height_);
+  check(ffmpeg().av_frame_make_writable(input_.get()), file_, "cannot reuse the frame buffer");
+  ffmpeg().av_image_copy_plane(input_->data[0], input_->linesize[0], rgba.data(), width_ * 4,
+                               width_ * 4, height_);
   input_->pts = pts;
-  check(av_buffersrc_add_frame_flags(source_, input_.get(), AV_BUFFERSRC_FLAG_KEEP_REF), file_,
-        "the palette filter refused a frame");
+  check(ffmpeg().av_buffersrc_add_frame_flags(source_, input_.get(), AV_BUFFERSRC_FLAG_KEEP_REF),
+        file_, "the palette filter refused a frame");
 }
 
 void GifPalette::end() {
-  check(av_buffersrc_add_frame_flags(source_, nullptr, 0), file_,
+  check(ffmpeg().av_buffersrc_add_frame_flags(source_, nullptr, 0), file_,
         "cannot end the palette filter's input");
 }
 
 bool GifPalette::pull(AVFrame* out) {
-  const int err = av_buffersink_get_frame(sink_, out);
+  const int err = ffmpeg().av_buffersink_get_frame(sink_, out);
   if (err == AVERROR(EAGAIN) || err == AVERROR_EOF) return false;
   check(err, file_, "the palette filter failed");
-  out->pts = av_rescale_q(out->pts, sink_time_base_, time_base_);
+  out->pts = ffmpeg().av_rescale_q(out->pts, sink_time_base_, time_base_);
   return true;
 }
 

@@ -32,8 +32,8 @@ constexpr int sws_flags = SWS_POINT | SWS_ACCURATE_RND;
 
 YuvConverter::YuvConverter(int width, int height, const std::filesystem::path& file)
     : width_(width), height_(height), file_(file) {
-  sws_.reset(sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, AV_PIX_FMT_YUV420P,
-                            sws_flags, nullptr, nullptr, nullptr));
+  sws_.reset(ffmpeg().sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height,
+                                     AV_PIX_FMT_YUV420P, sws_flags, nullptr, nullptr, nullptr));
   if (!sws_) {
     throw CaptureError(
         fmt::format("cannot write {}: libswscale cannot convert RGBA to yuv420p", file.string()));
@@ -41,17 +41,18 @@ YuvConverter::YuvConverter(int width, int height, const std::filesystem::path& f
   // The destination matrix (`table`, BT.709) and ranges: RGB in is full range (1), YUV out is
   // limited (0). `inv_table` only matters for YUV input. Brightness 0, contrast and
   // saturation 1.0 in 16.16 fixed point.
-  const int* bt709 = sws_getCoefficients(SWS_CS_ITU709);
-  check(sws_setColorspaceDetails(sws_.get(), bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16), file,
-        "libswscale refuses the BT.709 matrix");
+  const int* bt709 = ffmpeg().sws_getCoefficients(SWS_CS_ITU709);
+  check(ffmpeg().sws_setColorspaceDetails(sws_.get(), bt709, 1, bt709, 0, 0, 1 << 16, 1 << 16),
+        file, "libswscale refuses the BT.709 matrix");
   frame_ = make_frame(AV_PIX_FMT_YUV420P, width, height, file);
 }
 
 AVFrame* YuvConverter::convert(std::span<const std::uint8_t> rgba, std::int64_t pts) {
-  check(av_frame_make_writable(frame_.get()), file_, "cannot reuse the frame buffer");
+  check(ffmpeg().av_frame_make_writable(frame_.get()), file_, "cannot reuse the frame buffer");
   const std::uint8_t* src[4] = {rgba.data(), nullptr, nullptr, nullptr};
   const int stride[4] = {width_ * 4, 0, 0, 0};
-  const int rows = sws_scale(sws_.get(), src, stride, 0, height_, frame_->data, frame_->linesize);
+  const int rows =
+      ffmpeg().sws_scale(sws_.get(), src, stride, 0, height_, frame_->data, frame_->linesize);
   if (rows != height_) {
     throw CaptureError(fmt::format("cannot write {}: libswscale converted {} of {} rows",
                                    file_.string(), rows, height_));
