@@ -14,15 +14,17 @@ namespace {
 #define FIXSTEP_SONAME(name, major) "lib" #name ".so." AV_STRINGIFY(major)
 // The sonames of the libraries the headers describe: a library of another major version has
 // another ABI, and would be refused by name rather than called with the wrong layouts.
-constexpr const char* avutil = FIXSTEP_SONAME(avutil, LIBAVUTIL_VERSION_MAJOR);
-constexpr const char* avcodec = FIXSTEP_SONAME(avcodec, LIBAVCODEC_VERSION_MAJOR);
-constexpr const char* avformat = FIXSTEP_SONAME(avformat, LIBAVFORMAT_VERSION_MAJOR);
-constexpr const char* avfilter = FIXSTEP_SONAME(avfilter, LIBAVFILTER_VERSION_MAJOR);
-constexpr const char* swscale = FIXSTEP_SONAME(swscale, LIBSWSCALE_VERSION_MAJOR);
+struct Sonames {
+  const char* avutil = FIXSTEP_SONAME(avutil, LIBAVUTIL_VERSION_MAJOR);
+  const char* avcodec = FIXSTEP_SONAME(avcodec, LIBAVCODEC_VERSION_MAJOR);
+  const char* avformat = FIXSTEP_SONAME(avformat, LIBAVFORMAT_VERSION_MAJOR);
+  const char* avfilter = FIXSTEP_SONAME(avfilter, LIBAVFILTER_VERSION_MAJOR);
+  const char* swscale = FIXSTEP_SONAME(swscale, LIBSWSCALE_VERSION_MAJOR);
+};
 #undef FIXSTEP_SONAME
 
-// The loaded table, or why it could not be loaded. The libraries stay loaded until the process
-// ends (never dlclose'd: frames and codecs may outlive any owner here).
+// The loaded table, or why it could not be loaded (the first failure). The libraries stay
+// loaded until the process ends (never dlclose'd: frames and codecs may outlive any owner here).
 struct Loaded {
   FfmpegFunctions functions;
   std::string error;
@@ -49,24 +51,15 @@ void find(void* library, const char* soname, const char* name, Function& to, std
 }
 
 Loaded load() {
+  constexpr Sonames soname;
   Loaded l;
-  struct {
-    const char* soname;
-    void* handle;
-  } libs[] = {{avutil, nullptr},
-              {avcodec, nullptr},
-              {avformat, nullptr},
-              {avfilter, nullptr},
-              {swscale, nullptr}};
-  for (auto& lib : libs) lib.handle = open_library(lib.soname, l.error);
-  auto handle = [&](const char* soname) {
-    for (const auto& lib : libs) {
-      if (lib.soname == soname) return lib.handle;
-    }
-    return static_cast<void*>(nullptr);
-  };
-#define FIXSTEP_FFMPEG_FIND(library, function) \
-  find(handle(library), library, #function, l.functions.function, l.error);
+  const struct {
+    void *avutil, *avcodec, *avformat, *avfilter, *swscale;
+  } library{open_library(soname.avutil, l.error), open_library(soname.avcodec, l.error),
+            open_library(soname.avformat, l.error), open_library(soname.avfilter, l.error),
+            open_library(soname.swscale, l.error)};
+#define FIXSTEP_FFMPEG_FIND(lib, function) \
+  find(library.lib, soname.lib, #function, l.functions.function, l.error);
   FIXSTEP_FFMPEG_FUNCTIONS(FIXSTEP_FFMPEG_FIND)
 #undef FIXSTEP_FFMPEG_FIND
   return l;

@@ -19,7 +19,9 @@ class Dict {
     const AVDictionaryEntry* e = av::ffmpeg().av_dict_get(d_, "", nullptr, AV_DICT_IGNORE_SUFFIX);
     return e ? e->key : nullptr;
   }
-  ~Dict() { av::ffmpeg().av_dict_free(&d_); }
+  ~Dict() {
+    if (d_) av::ffmpeg().av_dict_free(&d_);  // (an empty one never needed FFmpeg loaded)
+  }
   Dict() = default;
   Dict(const Dict&) = delete;
   Dict& operator=(const Dict&) = delete;
