@@ -24,8 +24,9 @@ namespace {
 using testing::at;
 using testing::Rgb;
 
+// A body's colour as drawn: within 8 of what was asked (the outline's blend at its edge).
 bool is(Rgb p, Rgba8 c, int tol = 8) {
-  return std::abs(p.r - c.r) <= tol && std::abs(p.g - c.g) <= tol && std::abs(p.b - c.b) <= tol;
+  return testing::near(p, c, tol);
 }
 // Red over the background, a grid line, or under the HUD's dark panel (which leaves ~105).
 bool reddish(Rgb p) {

@@ -20,11 +20,8 @@ namespace fixstep {
 namespace {
 
 using testing::at;
+using testing::near;
 using testing::Rgb;
-
-bool near(Rgb p, Rgba8 c, int tol) {
-  return std::abs(p.r - c.r) <= tol && std::abs(p.g - c.g) <= tol && std::abs(p.b - c.b) <= tol;
-}
 
 TEST(Render, FrameHasTheRequestedSizeAndIsOpaque) {
   Renderer r(320, 200);

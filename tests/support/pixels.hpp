@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdlib>
 
 #include "fixstep/render.hpp"
 
@@ -11,6 +12,11 @@ namespace fixstep::testing {
 struct Rgb {
   int r, g, b;
 };
+
+/// Whether each of p's channels is within `tol` (0..255) of c's (alpha not compared).
+inline bool near(Rgb p, Rgba8 c, int tol) {
+  return std::abs(p.r - c.r) <= tol && std::abs(p.g - c.g) <= tol && std::abs(p.b - c.b) <= tol;
+}
 
 /// Pure red, the colour the render tests give the bodies they look for.
 inline constexpr Rgba8 red{255, 0, 0, 255};
