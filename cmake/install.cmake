@@ -36,7 +36,9 @@ set(FIXSTEP_PC_core_LIBS "-pthread")
 set(FIXSTEP_PC_core_CFLAGS "-std=c++20 -ffp-contract=off")
 set(FIXSTEP_PC_io_REQUIRES "fixstep-core fmt")
 set(FIXSTEP_PC_scene_REQUIRES "fixstep-io fixstep-core tomlplusplus fmt")
-set(FIXSTEP_PC_render_REQUIRES "fixstep-core osmesa fmt")
+# render loads libOSMesa.so.8 when it creates its first context.
+set(FIXSTEP_PC_render_REQUIRES "fixstep-core fmt")
+set(FIXSTEP_PC_render_LIBS "-ldl")
 # capture loads FFmpeg's shared libraries (libavcodec.so.59, ...) when it writes a video.
 set(FIXSTEP_PC_capture_REQUIRES "fixstep-io fixstep-core fmt libdeflate")
 set(FIXSTEP_PC_capture_LIBS "-pthread -ldl")

@@ -722,6 +722,11 @@ mkdir -p broken_ffmpeg && : > broken_ffmpeg/libavcodec.so.59
 export LD_LIBRARY_PATH=broken_ffmpeg
 case_ "--video with an empty libavcodec.so.59 first on LD_LIBRARY_PATH" "" render good.toml --video clip.mp4 --frames 2
 unset LD_LIBRARY_PATH
+# So is OSMesa, when the first frame's context is created (render's osmesa_library.cpp).
+mkdir -p broken_osmesa && : > broken_osmesa/libOSMesa.so.8
+export LD_LIBRARY_PATH=broken_osmesa
+case_ "render with an empty libOSMesa.so.8 first on LD_LIBRARY_PATH" "" render good.toml --out osmesa_frames --frames 2
+unset LD_LIBRARY_PATH
 case_ "--video - (standard output has no extension to name the format)" "" render good.toml --video - --frames 2
 mkdir -p clipdir.mp4
 case_ "--video a directory" "" render good.toml --video clipdir.mp4 --frames 2

@@ -24,6 +24,7 @@
 #include "fixstep/window.hpp"
 #include "gl_pipeline.hpp"  // engine/render/src: internal, not installed
 #include "gl_shaders.hpp"
+#include "osmesa_library.hpp"
 
 namespace fixstep {
 namespace {
@@ -124,10 +125,11 @@ void shade() { frag = vec4(1.0); }
 // `prefix`, and that neither the context (still current otherwise) nor memory stays behind.
 void expect_pipeline_failure(const gl::ShaderSources& sources, std::uint8_t* pixels,
                              const std::string& prefix) {
-  ASSERT_EQ(OSMesaGetCurrentContext(), nullptr);
+  ASSERT_EQ(gl::osmesa().OSMesaGetCurrentContext(), nullptr);
   const double growth = heap_growth_per_call([&] {
     expect_error<RenderError>([&] { gl::Pipeline pipeline(size, size, pixels, sources); }, prefix);
-    EXPECT_EQ(OSMesaGetCurrentContext(), nullptr) << "the context outlived the failure";
+    EXPECT_EQ(gl::osmesa().OSMesaGetCurrentContext(), nullptr)
+        << "the context outlived the failure";
   });
   EXPECT_LT(growth, max_pipeline_growth) << "bytes left per failed construction";
 }
@@ -165,7 +167,7 @@ TEST(RenderResources, CompletePipelineReleasesEverything) {
     EXPECT_NE(pipeline.vbo.get(), 0u);
   });
   EXPECT_LT(growth, max_pipeline_growth);
-  EXPECT_EQ(OSMesaGetCurrentContext(), nullptr);
+  EXPECT_EQ(gl::osmesa().OSMesaGetCurrentContext(), nullptr);
 }
 
 // The builder on a context that lives on: a failed compile or link must delete its shader or

@@ -14,6 +14,7 @@
 
 #include "fixstep/render.hpp"
 #include "gl_context.hpp"
+#include "osmesa_library.hpp"
 
 namespace fixstep::gl {
 
@@ -88,7 +89,7 @@ Context::Context(int width, int height, std::uint8_t* pixels)
                          OSMESA_CONTEXT_MINOR_VERSION, 3,
                          0};
   // clang-format on
-  handle_ = reinterpret_cast<std::uintptr_t>(OSMesaCreateContextAttribs(attribs, nullptr));
+  handle_ = reinterpret_cast<std::uintptr_t>(osmesa().OSMesaCreateContextAttribs(attribs, nullptr));
   if (handle_ == 0) {
     throw RenderError(
         "render: OSMesaCreateContextAttribs failed to create an OpenGL 3.3 core context "
@@ -99,17 +100,18 @@ Context::Context(int width, int height, std::uint8_t* pixels)
 void Context::release() noexcept {
   if (handle_ == 0) return;
   const OSMesaContext context = as_osmesa(std::exchange(handle_, 0));
-  if (OSMesaGetCurrentContext() == context) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
-  OSMesaDestroyContext(context);
+  if (osmesa().OSMesaGetCurrentContext() == context)
+    osmesa().OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
+  osmesa().OSMesaDestroyContext(context);
 }
 
 bool Context::try_make_current() const noexcept {
   // Several renderers may live in one process (tests): bind ours before drawing. Y_UP = 0
   // makes row 0 of the buffer the top of the image.
-  if (!OSMesaMakeCurrent(as_osmesa(handle_), pixels_, GL_UNSIGNED_BYTE, width_, height_)) {
+  if (!osmesa().OSMesaMakeCurrent(as_osmesa(handle_), pixels_, GL_UNSIGNED_BYTE, width_, height_)) {
     return false;
   }
-  OSMesaPixelStore(OSMESA_Y_UP, 0);
+  osmesa().OSMesaPixelStore(OSMESA_Y_UP, 0);
   return true;
 }
 

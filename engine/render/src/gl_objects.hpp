@@ -44,22 +44,22 @@ class Owned {
 // GL names are deleted in the context current on this thread: the one that created them must
 // be current when they are released (see Pipeline::~Pipeline).
 struct DeleteShader {
-  void operator()(GLuint name) const noexcept { glDeleteShader(name); }
+  void operator()(GLuint name) const noexcept { gl::api().glDeleteShader(name); }
 };
 struct DeleteProgram {
-  void operator()(GLuint name) const noexcept { glDeleteProgram(name); }
+  void operator()(GLuint name) const noexcept { gl::api().glDeleteProgram(name); }
 };
 struct DeleteVertexArray {
-  void operator()(GLuint name) const noexcept { glDeleteVertexArrays(1, &name); }
+  void operator()(GLuint name) const noexcept { gl::api().glDeleteVertexArrays(1, &name); }
 };
 struct DeleteBuffer {
-  void operator()(GLuint name) const noexcept { glDeleteBuffers(1, &name); }
+  void operator()(GLuint name) const noexcept { gl::api().glDeleteBuffers(1, &name); }
 };
 struct DeleteTexture {
-  void operator()(GLuint name) const noexcept { glDeleteTextures(1, &name); }
+  void operator()(GLuint name) const noexcept { gl::api().glDeleteTextures(1, &name); }
 };
 struct DeleteFramebuffer {
-  void operator()(GLuint name) const noexcept { glDeleteFramebuffers(1, &name); }
+  void operator()(GLuint name) const noexcept { gl::api().glDeleteFramebuffers(1, &name); }
 };
 
 using Shader = Owned<GLuint, DeleteShader>;

@@ -27,7 +27,7 @@ std::string trimmed(const char* log) {
 
 // GL_RENDERER of the current context.
 std::string query_renderer_name() {
-  const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const auto* name = reinterpret_cast<const char*>(gl::api().glGetString(GL_RENDERER));
   if (!name) {
     throw RenderError(
         "render: GL_RENDERER is null: GL calls are not reaching OSMesa. Link libOSMesa only; a "
@@ -43,30 +43,30 @@ std::array<Pipeline::LinkedProgram, 2> link_programs(const ShaderSources& source
     const Shader fragment = compile_shader(GL_FRAGMENT_SHADER, sources.fragments[i]);
     Pipeline::LinkedProgram& p = programs[i];
     p.program = link_program(vertex, fragment);
-    p.size = glGetUniformLocation(p.program.get(), "u_size");
-    p.margin = glGetUniformLocation(p.program.get(), "u_margin");
-    p.flip = glGetUniformLocation(p.program.get(), "u_flip");
-    p.ring = glGetUniformLocation(p.program.get(), "u_ring");
+    p.size = gl::api().glGetUniformLocation(p.program.get(), "u_size");
+    p.margin = gl::api().glGetUniformLocation(p.program.get(), "u_margin");
+    p.flip = gl::api().glGetUniformLocation(p.program.get(), "u_flip");
+    p.ring = gl::api().glGetUniformLocation(p.program.get(), "u_ring");
   }
   return programs;
 }
 
 VertexArray create_vertex_array() {
   GLuint name = 0;
-  glGenVertexArrays(1, &name);
+  gl::api().glGenVertexArrays(1, &name);
   return VertexArray(name);
 }
 
 Buffer create_buffer() {
   GLuint name = 0;
-  glGenBuffers(1, &name);
+  gl::api().glGenBuffers(1, &name);
   return Buffer(name);
 }
 
 // px of viewport beyond each edge of a width x height frame (see Renderer::finish()).
 int viewport_margin(int width, int height) {
   GLint max_dims[2] = {0, 0};
-  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_dims);
+  gl::api().glGetIntegerv(GL_MAX_VIEWPORT_DIMS, max_dims);
   // (llvmpipe reports 16384 x 16384, viewport bounds -32768..32767: the full 256 px even at
   // max_frame_size.)
   return std::clamp((std::min(max_dims[0] - width, max_dims[1] - height)) / 2, 0, 256);
@@ -75,36 +75,36 @@ int viewport_margin(int width, int height) {
 // The widest point (px) to draw as a point with a viewport `margin` px beyond the frame.
 float widest_point(int margin) {
   GLfloat range[2] = {0.0f, 0.0f};
-  glGetFloatv(point_size_range, range);  // llvmpipe: 1..255
+  gl::api().glGetFloatv(point_size_range, range);  // llvmpipe: 1..255
   return std::min(range[1], 2.0f * float(margin));
 }
 
 }  // namespace
 
 Shader compile_shader(GLenum type, const char* source) {
-  Shader shader(glCreateShader(type));
-  glShaderSource(shader.get(), 1, &source, nullptr);
-  glCompileShader(shader.get());
+  Shader shader(gl::api().glCreateShader(type));
+  gl::api().glShaderSource(shader.get(), 1, &source, nullptr);
+  gl::api().glCompileShader(shader.get());
   GLint ok = 0;
-  glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
+  gl::api().glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
   if (!ok) {
     char log[2048] = {};
-    glGetShaderInfoLog(shader.get(), sizeof log, nullptr, log);
+    gl::api().glGetShaderInfoLog(shader.get(), sizeof log, nullptr, log);
     throw RenderError(fmt::format("render: shader compilation failed: {}", trimmed(log)));
   }
   return shader;
 }
 
 Program link_program(const Shader& vertex, const Shader& fragment) {
-  Program program(glCreateProgram());
-  glAttachShader(program.get(), vertex.get());
-  glAttachShader(program.get(), fragment.get());
-  glLinkProgram(program.get());
+  Program program(gl::api().glCreateProgram());
+  gl::api().glAttachShader(program.get(), vertex.get());
+  gl::api().glAttachShader(program.get(), fragment.get());
+  gl::api().glLinkProgram(program.get());
   GLint linked = 0;
-  glGetProgramiv(program.get(), GL_LINK_STATUS, &linked);
+  gl::api().glGetProgramiv(program.get(), GL_LINK_STATUS, &linked);
   if (!linked) {
     char log[2048] = {};
-    glGetProgramInfoLog(program.get(), sizeof log, nullptr, log);
+    gl::api().glGetProgramInfoLog(program.get(), sizeof log, nullptr, log);
     throw RenderError(fmt::format("render: shader program failed to link: {}", trimmed(log)));
   }
   return program;
@@ -129,26 +129,28 @@ namespace {
 
 Texture create_texture(int width, int height) {
   GLuint name = 0;
-  glGenTextures(1, &name);
+  gl::api().glGenTextures(1, &name);
   Texture texture(name);
-  glBindTexture(GL_TEXTURE_2D, name);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glBindTexture(GL_TEXTURE_2D, 0);
+  gl::api().glBindTexture(GL_TEXTURE_2D, name);
+  gl::api().glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                         nullptr);
+  gl::api().glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl::api().glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl::api().glBindTexture(GL_TEXTURE_2D, 0);
   return texture;
 }
 
 // A framebuffer drawing into `texture`, left bound to GL_FRAMEBUFFER.
 Framebuffer create_framebuffer(const Texture& texture) {
   GLuint name = 0;
-  glGenFramebuffers(1, &name);
+  gl::api().glGenFramebuffers(1, &name);
   Framebuffer framebuffer(name);
-  glBindFramebuffer(GL_FRAMEBUFFER, name);
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture.get(), 0);
-  if (const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  gl::api().glBindFramebuffer(GL_FRAMEBUFFER, name);
+  gl::api().glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                                   texture.get(), 0);
+  if (const GLenum status = gl::api().glCheckFramebufferStatus(GL_FRAMEBUFFER);
       status != GL_FRAMEBUFFER_COMPLETE) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::api().glBindFramebuffer(GL_FRAMEBUFFER, 0);
     throw RenderError(fmt::format("render: backdrop framebuffer incomplete (0x{:x})", status));
   }
   return framebuffer;
@@ -158,7 +160,7 @@ Framebuffer create_framebuffer(const Texture& texture) {
 
 void Pipeline::draw_into_backdrop() {
   if (backdrop_framebuffer.get()) {
-    glBindFramebuffer(GL_FRAMEBUFFER, backdrop_framebuffer.get());
+    gl::api().glBindFramebuffer(GL_FRAMEBUFFER, backdrop_framebuffer.get());
     return;
   }
   Texture texture = create_texture(width, height);
@@ -167,16 +169,17 @@ void Pipeline::draw_into_backdrop() {
 }
 
 void Pipeline::draw_into_frame() {
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::api().glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void Pipeline::copy_backdrop_to_frame() {
   // Upside down in GL terms (see draw_into_backdrop), same size and format, no scissor: llvmpipe
   // copies the rows (a copy of the resource's region), without drawing.
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, backdrop_framebuffer.get());
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glBlitFramebuffer(0, 0, width, height, 0, height, width, 0, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::api().glBindFramebuffer(GL_READ_FRAMEBUFFER, backdrop_framebuffer.get());
+  gl::api().glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  gl::api().glBlitFramebuffer(0, 0, width, height, 0, height, width, 0, GL_COLOR_BUFFER_BIT,
+                              GL_NEAREST);
+  gl::api().glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 Pipeline::~Pipeline() {

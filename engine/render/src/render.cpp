@@ -66,19 +66,19 @@ Renderer::Renderer(int width, int height) : width_(width), height_(height) {
   gl_ = std::make_unique<Gl>(width, height, pixels_.data(), gl::shader_sources);
   gl_renderer_ = gl_->renderer_name;
 
-  glBindVertexArray(gl_->vao.get());
-  glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo.get());  // part of the VAO's state
+  gl::api().glBindVertexArray(gl_->vao.get());
+  gl::api().glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
+  gl::api().glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo.get());  // part of the VAO's state
   const auto stride = static_cast<GLsizei>(sizeof(Vertex));
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<void*>(offsetof(Vertex, x)));
-  glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<void*>(offsetof(Vertex, u)));
-  glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride,
-                        reinterpret_cast<void*>(offsetof(Vertex, r)));
-  glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<void*>(offsetof(Vertex, fill)));
-  for (GLuint i = 0; i < 4; ++i) glEnableVertexAttribArray(i);
+  gl::api().glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride,
+                                  reinterpret_cast<void*>(offsetof(Vertex, x)));
+  gl::api().glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, stride,
+                                  reinterpret_cast<void*>(offsetof(Vertex, u)));
+  gl::api().glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride,
+                                  reinterpret_cast<void*>(offsetof(Vertex, r)));
+  gl::api().glVertexAttribPointer(3, 1, GL_FLOAT, GL_FALSE, stride,
+                                  reinterpret_cast<void*>(offsetof(Vertex, fill)));
+  for (GLuint i = 0; i < 4; ++i) gl::api().glEnableVertexAttribArray(i);
   font_scratch_.resize(std::size_t{64} * 1024);
 }
 
@@ -326,9 +326,9 @@ namespace {
 void upload(GLenum target, std::size_t& capacity, const void* data, std::size_t bytes) {
   if (bytes > capacity) {
     capacity = std::max(bytes, 2 * capacity);
-    glBufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_DYNAMIC_DRAW);
+    gl::api().glBufferData(target, static_cast<GLsizeiptr>(capacity), nullptr, GL_DYNAMIC_DRAW);
   }
-  if (bytes > 0) glBufferSubData(target, 0, static_cast<GLsizeiptr>(bytes), data);
+  if (bytes > 0) gl::api().glBufferSubData(target, 0, static_cast<GLsizeiptr>(bytes), data);
 }
 
 }  // namespace
@@ -343,17 +343,19 @@ void Renderer::finish() {
   // vertex of the chunk on each small flush: that was a third of the drawing thread's time with
   // 1000 bodies (measured with perf; docs/perf/capture.md). Vertices farther than the margin
   // out still take the clipping path, correctly.
-  glViewport(-gl_->margin, -gl_->margin, width_ + 2 * gl_->margin, height_ + 2 * gl_->margin);
-  glDisable(GL_SCISSOR_TEST);
-  glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f, 1.0f);
-  glEnable(GL_BLEND);
+  gl::api().glViewport(-gl_->margin, -gl_->margin, width_ + 2 * gl_->margin,
+                       height_ + 2 * gl_->margin);
+  gl::api().glDisable(GL_SCISSOR_TEST);
+  gl::api().glClearColor(background_.r / 255.0f, background_.g / 255.0f, background_.b / 255.0f,
+                         1.0f);
+  gl::api().glEnable(GL_BLEND);
   gl::enable_program_point_size();  // outlined discs: the vertex shader sets each point's size
   // Colour blends "over" (the shaders output premultiplied colour); alpha keeps 1, so every pixel
   // of the PNG is opaque.
-  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  gl::api().glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   set_flip(1.0f);
-  glBindVertexArray(gl_->vao.get());
-  glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
+  gl::api().glBindVertexArray(gl_->vao.get());
+  gl::api().glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
   upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), vertices_.size() * sizeof(Vertex));
   upload(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo_bytes, indices_.data(),
          indices_.size() * sizeof(std::uint32_t));
@@ -361,30 +363,30 @@ void Renderer::finish() {
   if (backdrop_ == Backdrop::record) {  // its batches into the backdrop, then copied
     gl_->draw_into_backdrop();
     set_flip(-1.0f);  // upside down: see gl::Pipeline::draw_into_backdrop
-    glClear(GL_COLOR_BUFFER_BIT);
+    gl::api().glClear(GL_COLOR_BUFFER_BIT);
     draw_batches(0, backdrop_batches_);
     gl_->draw_into_frame();
     set_flip(1.0f);
     first_batch = backdrop_batches_;
   }
   if (backdrop_ == Backdrop::none) {
-    glClear(GL_COLOR_BUFFER_BIT);
+    gl::api().glClear(GL_COLOR_BUFFER_BIT);
   } else {
     gl_->copy_backdrop_to_frame();
   }
   draw_batches(first_batch, batches_.size());
-  glFinish();
-  if (const GLenum err = glGetError(); err != GL_NO_ERROR) {
+  gl::api().glFinish();
+  if (const GLenum err = gl::api().glGetError(); err != GL_NO_ERROR) {
     throw RenderError(fmt::format("render: GL error 0x{:x} while drawing", err));
   }
 }
 
 void Renderer::set_flip(float flip) {
   for (const gl::Pipeline::LinkedProgram& p : gl_->programs) {
-    glUseProgram(p.program.get());
-    glUniform2f(p.size, float(width_), float(height_));
-    glUniform1f(p.margin, float(gl_->margin));
-    glUniform1f(p.flip, flip);
+    gl::api().glUseProgram(p.program.get());
+    gl::api().glUniform2f(p.size, float(width_), float(height_));
+    gl::api().glUniform1f(p.margin, float(gl_->margin));
+    gl::api().glUniform1f(p.flip, flip);
   }
 }
 
@@ -396,27 +398,27 @@ void Renderer::draw_batches(std::size_t from, std::size_t to) {
     if (end == first) continue;
     if (batches_[b].program != program) {
       program = batches_[b].program;
-      glUseProgram(gl_->programs[program].program.get());
+      gl::api().glUseProgram(gl_->programs[program].program.get());
     }
     if (program == outlined_discs) {
       const Rgba8 r = batches_[b].ring;
-      glUniform4f(gl_->programs[program].ring, r.r / 255.0f, r.g / 255.0f, r.b / 255.0f,
-                  r.a / 255.0f);
+      gl::api().glUniform4f(gl_->programs[program].ring, r.r / 255.0f, r.g / 255.0f, r.b / 255.0f,
+                            r.a / 255.0f);
     }
     if (const auto& c = batches_[b].clip) {
       // GL's scissor box has its origin at the bottom-left; pixels() rows run top down.
       const int x0 = std::clamp(c->x0, 0, width_), x1 = std::clamp(c->x1, x0, width_);
       const int y0 = std::clamp(c->y0, 0, height_), y1 = std::clamp(c->y1, y0, height_);
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(x0, height_ - y1, x1 - x0, y1 - y0);
+      gl::api().glEnable(GL_SCISSOR_TEST);
+      gl::api().glScissor(x0, height_ - y1, x1 - x0, y1 - y0);
     } else {
-      glDisable(GL_SCISSOR_TEST);
+      gl::api().glDisable(GL_SCISSOR_TEST);
     }
-    glDrawElements(program == outlined_discs ? GL_POINTS : GL_TRIANGLES,
-                   static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
-                   reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+    gl::api().glDrawElements(program == outlined_discs ? GL_POINTS : GL_TRIANGLES,
+                             static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   }
-  glDisable(GL_SCISSOR_TEST);
+  gl::api().glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace fixstep
