@@ -33,7 +33,7 @@ class Browser:
             stderr=subprocess.DEVNULL)
         os.close(self._to_browser_r)
         os.close(self._from_browser_w)
-        self._next_id, self._buffer, self._session = 0, b"", None
+        self._next_id, self._buffer, self._session, self._target = 0, b"", None, None
 
     def _send(self, method, params=None, session=True):
         self._next_id += 1
@@ -56,16 +56,31 @@ class Browser:
 
     def open(self, url):
         """Opens `url` in a new tab, which the other calls then address."""
-        target = self._send("Target.createTarget", {"url": url}, session=False)["targetId"]
+        self._target = self._send("Target.createTarget", {"url": url}, session=False)["targetId"]
         self._session = self._send("Target.attachToTarget",
-                                   {"targetId": target, "flatten": True}, session=False)[
+                                   {"targetId": self._target, "flatten": True}, session=False)[
                                        "sessionId"]
+
+    def close_tab(self):
+        """Closes the tab open() opened last (its page and WebGL context go with it)."""
+        self._send("Target.closeTarget", {"targetId": self._target}, session=False)
+        self._session = None
 
     def evaluate(self, expression):
         """The value of a JavaScript expression in the tab."""
         result = self._send("Runtime.evaluate", {"expression": expression,
                                                  "returnByValue": True})
         return result.get("result", {}).get("value")
+
+    def wait_for(self, expression, done, timeout_s):
+        """Polls a JavaScript expression until done(value) is true; returns the last value it
+        had (done or not) after at most timeout_s seconds (real time)."""
+        deadline = time.monotonic() + timeout_s
+        while True:
+            value = self.evaluate(expression)
+            if done(value) or time.monotonic() >= deadline:
+                return value
+            time.sleep(0.05)
 
     def wait_for_title(self, prefix, timeout_s):
         """Polls document.title until it starts with `prefix`; returns it, or None after
