@@ -90,6 +90,24 @@ def element(dom, ident):
     return html.unescape(m.group(1)) if m else None
 
 
+def page_settled(result):
+    """True once the page's result is final: neither still loading nor a run in progress."""
+    return isinstance(result, str) and result != "loading" and not result.startswith("running")
+
+
+def page_texts(browser, url, ids, wall_s=600):
+    """Loads `url` in a tab of `browser` (cdp_pipe.Browser) on the real clock, waits until its
+    result settles (page_settled; at most wall_s seconds), and returns the text of each element
+    of `ids` (None for one the page lacks). For pages that need no screenshot: one Chromium
+    serves them all (a Chromium started per page cost about 4 s of CPU)."""
+    browser.open(url)
+    try:
+        browser.wait_for("document.getElementById('result')?.textContent", page_settled, wall_s)
+        return [browser.evaluate(f"document.getElementById('{i}')?.textContent") for i in ids]
+    finally:
+        browser.close_tab()
+
+
 def native(fixstep, *args):
     done = subprocess.run([fixstep, *args], capture_output=True, text=True, cwd=ROOT)
     if done.returncode != 0:
@@ -172,9 +190,10 @@ def check_scene(scene, args, site, out, failures):
     native_rec = os.path.join(out, "rec", f"{name}.rec")
     recorded = summary_of(native(args.fixstep, "run", f"assets/scenes/{scene}", "--steps", ticks,
                                  "--record", native_rec))
-    dom = chromium(f"{site.url}/index.html?replay=/rec/{name}.rec&headless=1&size={args.size}",
-                   None, int(w), int(h), args.budget_ms)
-    replay_result = element(dom, "result") or ""
+    replay_result, = page_texts(
+        args.browser, f"{site.url}/index.html?replay=/rec/{name}.rec&headless=1&size={args.size}",
+        ["result"])
+    replay_result = replay_result or ""
     native_hash = re.search(r"state_hash=([0-9a-f]{16})", recorded).group(1)
     if not re.fullmatch(rf"verified ticks={ticks} state_hash={native_hash} hashes=\d+",
                         replay_result):
@@ -196,10 +215,9 @@ def check_input_replay(args, site, out, failures):
     if not native_hash:
         raise RuntimeError(f"fixstep run --input --record printed no summary: {recorded!r}")
     native_hash = native_hash.group(1)
-    w, h = args.size.split("x")
-    dom = chromium(f"{site.url}/index.html?replay=/rec/default_input.rec&headless=1"
-                   f"&size={args.size}", None, int(w), int(h), args.budget_ms)
-    result = element(dom, "result") or ""
+    result, = page_texts(args.browser, f"{site.url}/index.html?replay=/rec/default_input.rec"
+                         f"&headless=1&size={args.size}", ["result"])
+    result = result or ""
     if not re.fullmatch(rf"verified ticks=300 state_hash={native_hash} hashes=301", result):
         failures.append(f"input replay: default_push.toml's recording in the page: {result!r} "
                         f"(native state_hash={native_hash})")
@@ -230,15 +248,15 @@ def check_input(args, site, failures):
 
 def check_long(spec, args, site, failures):
     scene, ticks = spec.split(":")
-    dom = chromium(f"{site.url}/index.html?scene={scene}&ticks={ticks}&headless=1&size=320x180",
-                   None, 320, 180, args.budget_ms)
-    summary = element(dom, "summary")
+    result, summary = page_texts(
+        args.browser, f"{site.url}/index.html?scene={scene}&ticks={ticks}&headless=1&size=320x180",
+        ["result", "summary"])
     path = f"tests/scenes/{scene}" if scene.startswith("cross/") else f"assets/scenes/{scene}"
     native_summary = summary_of(native(args.fixstep, "run", path, "--steps", ticks))
     ok = summary == native_summary
     if not ok:
-        failures.append(f"{scene} ticks={ticks}: page {summary!r} (result "
-                        f"{element(dom, 'result')!r}) != native {native_summary!r}")
+        failures.append(f"{scene} ticks={ticks}: page {summary!r} (result {result!r}) != "
+                        f"native {native_summary!r}")
     print(f"{scene} ticks={ticks}: {'same' if ok else 'DIFFERENT'}: {summary}", flush=True)
 
 
@@ -286,30 +304,18 @@ def write_bad_recordings(args, rec_dir):
         os.remove(os.path.join(rec_dir, "missing.rec"))
 
 
-def page_settled(result):
-    """True once the page's result is final: neither still loading nor a run in progress."""
-    return isinstance(result, str) and result != "loading" and not result.startswith("running")
-
-
 def check_bad_inputs(args, site, failures):
     """Every bad input of the page (bad_inputs_page.tsv): it must stop and show exactly
-    "error: MESSAGE". One Chromium, a tab per input (a Chromium started per input cost about
-    4 s of CPU each)."""
+    "error: MESSAGE"."""
     write_bad_recordings(args, site.rec_dir)
     rows = bad_input_rows()
     wrong = 0
-    browser = cdp_pipe.Browser(CHROMIUM_FLAGS + ["--window-size=320,180"])
+    results = []
     try:
-        results = []
         for _, query, _ in rows:
-            browser.open(f"{site.url}/index.html?{query}")
-            results.append(browser.wait_for(
-                "document.getElementById('result')?.textContent", page_settled, 60))
-            browser.close_tab()
+            results += page_texts(args.browser, f"{site.url}/index.html?{query}", ["result"], 60)
     except RuntimeError as e:
         results += [str(e)] * (len(rows) - len(results))
-    finally:
-        browser.close()
     for (what, query, message), result in zip(rows, results):
         if result != f"error: {message}":
             wrong += 1
@@ -349,13 +355,19 @@ def main():
     checks += [(spec, lambda s=spec: check_long(s, args, site, failures)) for spec in args.long]
     if not args.no_bad_inputs:
         checks.append(("bad inputs", lambda: check_bad_inputs(args, site, failures)))
-    for name, check in checks:
-        # A check that breaks (a page without a summary, a hung Chromium, a missing file) is one
-        # failure; the others still run.
-        try:
-            check()
-        except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
-            failures.append(f"{name}: {e}")
+    # One Chromium (DevTools pipe) for every page read without a screenshot.
+    window = args.size.replace("x", ",")
+    args.browser = cdp_pipe.Browser(CHROMIUM_FLAGS + [f"--window-size={window}"])
+    try:
+        for name, check in checks:
+            # A check that breaks (a page without a summary, a hung Chromium, a missing file) is
+            # one failure; the others still run.
+            try:
+                check()
+            except (RuntimeError, ValueError, OSError, AttributeError, TypeError) as e:
+                failures.append(f"{name}: {e}")
+    finally:
+        args.browser.close()
     print(f"browser checks: {len(scenes)} scenes, {len(args.long)} long runs, "
           f"{time.monotonic() - start:.0f} s; output in {out}")
     for f in failures:
