@@ -74,6 +74,37 @@ TEST(Camera, SetViewPutsAKnownPointAtAKnownPixel) {
   EXPECT_EQ(s.view().width, 10.0);  // a refused view changes nothing
 }
 
+TEST(Camera, FollowByNameFromTheStartAndAgainAfterARestart) {
+  WorldDef def;
+  def.settings.dt = 1.0 / 60;
+  def.bodies = {ball({0.0, 0.5}, {6.0, 0.0}, red), ball({0.0, -1.5}, {}, yellow)};
+  def.bodies[0].name = "runner";
+  Session s(def,
+            SessionSettings{.width = 320, .height = 200, .view_width = 10.0, .follow = "runner"});
+  s.set_show_engine_hud(false);
+  const Entity runner = s.simulation().find("runner");
+  EXPECT_EQ(s.followed(), runner);
+  const VirtualClock clock(60.0);
+  for (int f = 1; f <= 30; ++f) s.advance(clock.frame_seconds());
+  s.draw();
+  // The view is centred on the position drawn (interpolated, within a tick of the state's).
+  EXPECT_NEAR(s.view().center.x, s.simulation().body(runner).position.x, 6.0 / 60 + 1e-6);
+  EXPECT_GT(s.view().center.x, 2.5);  // m: about 3 m after 0.5 s at 6 m/s
+  EXPECT_TRUE(is(at(s.renderer(), 160, 100), red));
+  s.simulation().destroy(runner);
+  s.draw();
+  EXPECT_EQ(s.followed(), null_entity);
+  s.restart();  // the named body is back (the same handle, as at the first build) and followed
+  EXPECT_EQ(s.followed(), s.simulation().find("runner"));
+  s.draw();
+  EXPECT_EQ(s.view().center.x, 0.0);
+  EXPECT_EQ(s.view().center.y, 0.5);
+  EXPECT_TRUE(is(at(s.renderer(), 160, 100), red));
+  EXPECT_THROW(
+      { Session unknown(def, SessionSettings{.width = 320, .height = 200, .follow = "nobody"}); },
+      std::invalid_argument);
+}
+
 TEST(Camera, ZoomMagnifiesAboutTheCentre) {
   const auto owner = quiet_session({ball({1.0, 0.0}, {}, red)});
   Session& s = *owner;

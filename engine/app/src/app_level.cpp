@@ -17,7 +17,8 @@ SessionSettings view(const Settings& settings, const SceneView& scene_view) {
           .height = settings.height,
           .title = settings.name,
           .view_center = settings.view_center ? settings.view_center : scene_view.center,
-          .view_width = settings.view_width ? settings.view_width : scene_view.width};
+          .view_width = settings.view_width ? settings.view_width : scene_view.width,
+          .follow = settings.follow};
 }
 
 Level from_scene(const AnyGame& game, const Settings& settings, const Scene* scene) {

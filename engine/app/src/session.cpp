@@ -198,6 +198,18 @@ void Session::start(const SessionSettings& settings) {
   auto_view_ = !settings.view_center;
   auto_width_ = settings.view_width;
   reserve_hud(planned_hud_lines());
+  follow_name_ = settings.follow;
+  follow_named();
+}
+
+void Session::follow_named() {
+  if (follow_name_.empty()) return;
+  const Entity body = sim_->find(follow_name_);
+  if (body.is_null()) {
+    throw std::invalid_argument(fmt::format(
+        "Session: the view is to follow \"{}\", and no body has that name", follow_name_));
+  }
+  follow(body);
 }
 
 FrameResult Session::advance(double frame_seconds, const TickInput& input) {
@@ -242,6 +254,7 @@ void Session::restart() {
   fault_lines_.clear();
   loop_.reset();
   renderer_.clear_trails();
+  follow_named();
 }
 
 void Session::draw() {

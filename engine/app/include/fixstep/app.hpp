@@ -52,6 +52,10 @@ struct Settings {
   /// fits the world (fit_camera).
   std::optional<Vec2> view_center{};
   std::optional<double> view_width{};
+  /// The name of a body the view keeps at the centre of the frame (Session::follow), in every
+  /// mode, from the first frame and after a restart; empty: the view stays put. A level
+  /// without a body of that name is an error (exit 1).
+  std::string follow{};
   /// The game's keys, shown at the bottom of the window's HUD (e.g. "arrows: move  enter: jump").
   std::string controls{};
   /// Shows the HUD's energy line. Off by default: a game's input and rules add energy from

@@ -35,7 +35,10 @@ struct SessionSettings {
   std::string title{};                 ///< named in the HUD's first line (e.g. the scene file)
   std::optional<Vec2> view_center{};   ///< m; default: the automatic view's
   std::optional<double> view_width{};  ///< visible width, m; default: the automatic view's
-  float hud_text_scale = 2.0f;         ///< see Renderer::set_hud_text_scale (in [1, 4])
+  /// The name of a body the view follows (follow()) from the start and after each restart();
+  /// empty: none. The constructor throws std::invalid_argument when no body has that name.
+  std::string follow{};
+  float hud_text_scale = 2.0f;  ///< see Renderer::set_hud_text_scale (in [1, 4])
   /// The loop's frame-time clamp, s (LoopSettings::max_frame_time): the real clock's guard
   /// against stalls. A virtual clock passes its frame time (>= 0.25 s when it is longer), so no
   /// frame is clamped: frames are exactly 1/fps apart at any fps.
@@ -91,7 +94,8 @@ class Session {
   void restore(const WorldSnapshot& world);
   /// Renders the state interpolated by the loop's alpha, with the HUD, into renderer().pixels().
   void draw();
-  /// Back to the initial state (tick 0), trails cleared; pause and time scale are kept.
+  /// Back to the initial state (tick 0), trails cleared; pause and time scale are kept, and the
+  /// view follows SessionSettings::follow's body again.
   void restart();
   /// Draws the pointer's drag spring (from `pointer`, m, to body `body`) in the next draw()s,
   /// as the springs are drawn; null_entity hides it.
@@ -160,6 +164,9 @@ class Session {
   void start(const SessionSettings& settings);
   /// The program took the camera: the view is no longer automatic.
   void take_view() { auto_view_ = false; }
+  /// Follows the body named follow_name_ (nothing when it is empty). Throws
+  /// std::invalid_argument when no body has that name.
+  void follow_named();
 
   WorldDef def_;
   std::string title_;
@@ -181,6 +188,7 @@ class Session {
   std::optional<double> auto_width_;       ///< SessionSettings::view_width, m
   std::size_t hud_reserved_ = 0;           ///< HUD lines the automatic view leaves room for
   Entity follow_ = null_entity;            ///< follow()
+  std::string follow_name_;                ///< SessionSettings::follow
 };
 
 template <class TickFn>
