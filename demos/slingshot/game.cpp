@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <fixstep/components.hpp>
-#include <fixstep/det_math.hpp>
 #include <fixstep/world.hpp>
 #include <numbers>
 #include <string>
@@ -43,13 +42,6 @@ constexpr Rope ropes[target_count] = {{{4, 11}, 4}, {{8, 11}, 6.5}, {{12, 11}, 3
 SpringDamper band() {
   const fixstep::LinkSpring s = fixstep::spring_from_frequency(band_frequency, 0.1, ball_mass);
   return SpringDamper{.anchor = anchor, .stiffness = s.stiffness, .damping = s.damping};
-}
-
-double dot(Vec2 a, Vec2 b) {
-  return a.x * b.x + a.y * b.y;
-}
-Vec2 sub(Vec2 a, Vec2 b) {
-  return {a.x - b.x, a.y - b.y};
 }
 
 // Puts the ball back on the band, at rest, for the next shot.
@@ -148,10 +140,10 @@ void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput&
     return;
   }
   // The band stretches max_pull at most: hold the pointer the ball follows within reach.
-  const Vec2 d = sub(input.pointer, anchor);
-  const double length = fixstep::det::hypot(d.x, d.y);
-  if (length > max_pull) {
-    input.pointer = {anchor.x + d.x * max_pull / length, anchor.y + d.y * max_pull / length};
+  const Vec2 d = input.pointer - anchor;
+  const double reach = fixstep::length(d);
+  if (reach > max_pull) {
+    input.pointer = {anchor.x + d.x * max_pull / reach, anchor.y + d.y * max_pull / reach};
   }
 }
 
@@ -162,8 +154,8 @@ void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
     case Phase::loaded: {
       const bool dragging = input.drag_body == the_ball;
       if (game.dragging && !dragging) {  // let go this tick
-        const Vec2 pull = sub(b.position, anchor);
-        if (fixstep::det::hypot(pull.x, pull.y) >= min_pull) {
+        const Vec2 pull = b.position - anchor;
+        if (fixstep::length(pull) >= min_pull) {
           game.phase = Phase::pulled;
           game.release_point = b.position;
           --game.shots_left;
@@ -174,7 +166,7 @@ void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
     }
     case Phase::pulled:
       // The band throws the ball; once it passes the anchor the band is cut and it flies.
-      if (dot(sub(b.position, anchor), sub(anchor, game.release_point)) >= 0.0) {
+      if (dot(b.position - anchor, anchor - game.release_point) >= 0.0) {
         sim.remove<SpringDamper>(the_ball);
         game.phase = Phase::flying;
         game.flight_ticks = game.still_ticks = 0;
@@ -191,9 +183,7 @@ void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
       }
       const Body now = sim.body(the_ball);
       ++game.flight_ticks;
-      game.still_ticks = fixstep::det::hypot(now.velocity.x, now.velocity.y) < still_speed
-                             ? game.still_ticks + 1
-                             : 0;
+      game.still_ticks = fixstep::length(now.velocity) < still_speed ? game.still_ticks + 1 : 0;
       const bool left =
           std::abs(now.position.x) > level_half_width || now.position.y < level_bottom;
       if (!left && game.still_ticks < still_limit && game.flight_ticks < flight_limit) break;

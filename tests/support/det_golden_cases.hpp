@@ -12,7 +12,7 @@
 namespace fixstep::det_golden {
 
 struct Case {
-  int f;                    ///< 0 exp(x), 1 expm1(x), 2 hypot(x, y)
+  int f;  ///< 0 exp(x), 1 expm1(x), 2 hypot(x, y), 3 sin(x), 4 cos(x), 5 atan(x), 6 atan2(x, y)
   std::uint64_t x, y, out;  ///< IEEE-754 double bits of the arguments and of the result
 };
 
@@ -23,7 +23,22 @@ inline constexpr Case cases[] = {
 /// The bits fixstep::det gives for the case's call on this platform.
 inline std::uint64_t result_bits(const Case& c) {
   const double x = double_from_bits(c.x), y = double_from_bits(c.y);
-  return bits_of(c.f == 0 ? det::exp(x) : c.f == 1 ? det::expm1(x) : det::hypot(x, y));
+  switch (c.f) {
+    case 0:
+      return bits_of(det::exp(x));
+    case 1:
+      return bits_of(det::expm1(x));
+    case 2:
+      return bits_of(det::hypot(x, y));
+    case 3:
+      return bits_of(det::sin(x));
+    case 4:
+      return bits_of(det::cos(x));
+    case 5:
+      return bits_of(det::atan(x));
+    default:
+      return bits_of(det::atan2(x, y));
+  }
 }
 
 }  // namespace fixstep::det_golden

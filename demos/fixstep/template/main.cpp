@@ -25,7 +25,6 @@ constexpr double drop_height = 11.0;   // m: balls are dropped again from here
 struct Catch {
   // What the game remembers outside the world; run() copies it to restart or roll back.
   int caught = 0, missed = 0;
-  std::uint32_t dropped = 0;   // balls dropped again so far (picks the next drop's x)
   std::vector<BodyDef> balls;  // the level's balls: the models of those dropped again
   Vec2 hook_velocity{};        // m/s, the last one sent
   int facing = 1;              // +1 right, -1 left: where the hook last moved
@@ -51,7 +50,9 @@ struct Catch {
   }
 
   // A ball the claw touched in this tick is caught, a ball below the level is missed; either
-  // is destroyed and dropped again from the top (a new handle: a new trail, not a streak).
+  // is destroyed and dropped again from the top (a new handle: a new trail, not a streak), at
+  // an x the world's random generator picks (its state is in every snapshot, so replays and
+  // rollbacks drop the same balls; [world] seed in scene.toml chooses the sequence).
   void rules(World& world, const TickInput&) {
     std::vector<Entity> gone;
     for (const ContactEvent& c : world.contacts_begun()) {  // pairs that began to touch
@@ -69,7 +70,7 @@ struct Catch {
   void drop_again(World& world, Entity e) {
     BodyDef ball = balls[world.user_data(e) - 1];  // the model, its user data included
     world.destroy(e);
-    ball.body.position = {-6.0 + double(dropped++ * 5 % 13), drop_height};  // x in -6..6 m
+    ball.body.position = {world.random().uniform(-hook_reach, hook_reach), drop_height};
     ball.body.velocity = {};
     world.create_body(ball);
   }

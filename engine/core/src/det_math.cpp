@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "fixstep/bits.hpp"
+#include "fixstep/types.hpp"
 
 namespace fixstep::det {
 namespace {
@@ -167,3 +168,9 @@ double hypot(double x, double y) {
 }
 
 }  // namespace fixstep::det
+
+namespace fixstep {
+double length(Vec2 a) {
+  return det::hypot(a.x, a.y);
+}
+}  // namespace fixstep

@@ -87,6 +87,7 @@ std::uint64_t definition_hash(const WorldDef& def) {
   if (def.settings.contacts) {  // absent: the hash of a world from before contacts
     h.add(def.settings.contacts->restitution), h.add(def.settings.contacts->friction);
   }
+  if (def.settings.seed != 0) h.add(def.settings.seed);  // 0: the hash from before seeds
   return h.value();
 }
 

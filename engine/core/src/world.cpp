@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/fnv1a.hpp"
 
 namespace fixstep {
 
@@ -18,7 +19,7 @@ std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>> make_world
 }  // namespace
 
 World::World(Precision precision, const WorldSettings& settings)
-    : world_(make_world(precision, settings)) {}
+    : world_(make_world(precision, settings)), random_(settings.seed) {}
 
 Entity World::create_body(const BodyDef& def) {
   return visit([&](auto& w) { return w.create_body(def); });
@@ -92,7 +93,13 @@ EnergyReport World::energy() const {
   return visit([](const auto& w) { return w.energy(); });
 }
 std::uint64_t World::state_hash() const {
-  return visit([](const auto& w) { return w.state_hash(); });
+  const std::uint64_t bodies = visit([](const auto& w) { return w.state_hash(); });
+  if (random_.draws() == 0) return bodies;
+  std::uint64_t hash = bodies;
+  for (int shift = 0; shift < 64; shift += 8) {
+    hash = fnv1a_byte(hash, static_cast<unsigned char>(random_.state() >> shift));
+  }
+  return hash;
 }
 std::size_t World::snapshot_bytes() const {
   return visit([](const auto& w) { return w.snapshot_bytes(); });
@@ -140,11 +147,13 @@ void World::save(WorldSnapshot& out) const {
   } else {
     out.world_.emplace(world_);
   }
+  out.random_ = random_;
 }
 
 void World::restore(const WorldSnapshot& snapshot) {
   if (!snapshot.world_) throw std::invalid_argument("snapshot: empty (nothing was saved into it)");
   world_ = *snapshot.world_;
+  random_ = snapshot.random_;
 }
 
 World::World(const WorldDef& def) : World(def.precision, def.settings) {

@@ -183,7 +183,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   }
   r.check_keys(*world, "world",
                {"dt", "integrator", "precision", "substeps", "allow_unstable", "flush_denormals",
-                "damping_split"});
+                "damping_split", "seed"});
   scene.settings.dt = r.required_number(
       *world, "world", "dt", "the fixed physics step in s, e.g. dt = 0.01 (100 ticks/s)");
   r.require(scene.settings.dt > 0.0 && scene.settings.dt <= 1.0, *world, "dt", "world.dt",
@@ -221,6 +221,10 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
 
   if (const toml::node* n = world->get("substeps")) {
     scene.settings.substeps = static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
+  }
+  if (const toml::node* n = world->get("seed")) {  // TOML integers: 0 .. 2^63 - 1
+    scene.settings.seed = static_cast<std::uint64_t>(
+        r.integer_node(*n, "world.seed", 0, std::numeric_limits<std::int64_t>::max()));
   }
   if (auto b = boolean(r, *world, "allow_unstable", "world.allow_unstable")) {
     scene.allow_unstable = *b;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 #include <string_view>
 #include <unordered_set>
@@ -163,6 +164,12 @@ void write_world(std::string& out, const WorldDef& def) {
                  num(s.dt), integrator_name(s.integrator), precision_name(def.precision),
                  s.substeps);
   if (!s.flush_denormals) out += "flush_denormals = false\n";
+  if (s.seed > std::uint64_t{std::numeric_limits<std::int64_t>::max()}) {
+    throw std::invalid_argument(fmt::format(
+        "world.seed: {} is above 2^63 - 1, the largest TOML integer; a scene file cannot hold it",
+        s.seed));
+  }
+  if (s.seed != 0) fmt::format_to(it, "seed = {}\n", s.seed);
   if (s.damping_split != DampingSplit::per_stage) {
     out += fmt::format("damping_split = \"{}\"\n", damping_split_name(s.damping_split));
   }

@@ -1,8 +1,8 @@
-// Deterministic elementary functions: the transcendental and root functions a
-// state depends on, computed in-tree from IEEE-754 double +, -, ×, ÷ and sqrt (all correctly
-// rounded) and exact scaling by powers of two, compiled with -ffp-contract=off. They give the
-// same bits on every platform, libm and CPU, and under any FTZ/DAZ setting of the caller for
-// normal results (see docs/ROBUSTNESS.md, "Deterministic arithmetic").
+// Deterministic elementary functions: the transcendental and root functions a state or a
+// game's rules depend on, computed in-tree from IEEE-754 double +, -, ×, ÷ and sqrt (all
+// correctly rounded) and exact scaling by powers of two, compiled with -ffp-contract=off. They
+// give the same bits on every platform, libm and CPU, and under any FTZ/DAZ setting of the
+// caller for normal results (see docs/ROBUSTNESS.md, "Deterministic arithmetic").
 //
 // The libm's exp and hypot do not: glibc x86-64 picks an FMA variant of exp on CPUs with FMA
 // (1 ulp apart from its non-FMA variant and from musl on ~0.07 % of arguments), and glibc
@@ -46,5 +46,40 @@ double expm1(double x);
 /// "corrected"); T. J. Dekker, "A floating-point technique for extending the available
 /// precision", Numer. Math. 18, 1971.
 double hypot(double x, double y);
+
+/// The largest |x| (rad) sin and cos accept: 2^19·π/2 ≈ 823 549.66 rad, where x - nπ/2 is
+/// still computed to 151 bits with a 20-bit n (a spinning body at 100 rad/s reaches it after
+/// more than two hours).
+inline constexpr double trig_max_argument = 0x1.921fb54442d18p+19;
+
+/// sin x for x in rad, |x| ≤ trig_max_argument. Error ≤ 1 ulp (measured against long double,
+/// tests/core/test_det_trig.cpp). NaN → NaN, ±inf → NaN, ±0 → ±0; |x| > trig_max_argument
+/// (finite) throws std::domain_error naming x.
+/// Method: x = nπ/2 + r, |r| ≤ π/4 (about), by Cody–Waite reduction with π/2 in three 33-bit
+/// parts and a 53-bit tail, the remainder kept as a double-double (the "medium" case of
+/// fdlibm's e_rem_pio2.c, always to 151 bits); then sin or cos of r by fdlibm's k_sin.c and
+/// k_cos.c minimax polynomials (degree 13 and 14 on [-π/4, π/4], relative error < 2^-58) with
+/// their first-order correction for r's tail, chosen and signed by n mod 4. Sun Microsystems'
+/// fdlibm 5.3 (1993); W. J. Cody, W. Waite, "Software Manual for the Elementary Functions", 1980.
+double sin(double x);
+
+/// cos x for x in rad, |x| ≤ trig_max_argument. Error ≤ 1 ulp (measured, see sin). NaN → NaN,
+/// ±inf → NaN, cos(±0) = 1; |x| > trig_max_argument (finite) throws std::domain_error.
+/// Method: as sin.
+double cos(double x);
+
+/// arctan x in rad, in [-π/2, π/2], for any double x. Error ≤ 1 ulp (measured, see sin).
+/// NaN → NaN, ±inf → ±π/2, ±0 → ±0.
+/// Method: fdlibm's s_atan.c: |x| reduced to [0, 7/16] by atan x = atan c + atan((x - c)/(1 + cx))
+/// for c = 1/2, 1, 3/2 or ∞ (atan c as a double-double), then an odd polynomial of degree 23.
+double atan(double x);
+
+/// The angle of the vector (x, y) in rad, in [-π, π]: atan(y/x) put in its quadrant. Error ≤ 2
+/// ulp (measured, see sin). Follows C99 Annex F for zeros, infinities and NaN:
+/// atan2(±0, +0) = ±0, atan2(±0, -0) = ±π, atan2(±0, x < 0) = ±π, atan2(y > 0, ±0) = π/2,
+/// atan2(±inf, +inf) = ±π/4, atan2(±inf, -inf) = ±3π/4; NaN in either → NaN.
+/// Method: fdlibm's e_atan2.c: atan(|y/x|), then π - (z - π_lo) and its reflections, with π as a
+/// double-double.
+double atan2(double y, double x);
 
 }  // namespace fixstep::det

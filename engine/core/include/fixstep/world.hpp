@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/random.hpp"
 #include "fixstep/step_results.hpp"
 #include "fixstep/world_settings.hpp"
 
@@ -50,6 +51,7 @@ class WorldSnapshot {
  private:
   friend class World;
   std::optional<std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>>> world_;
+  Random random_;
 };
 
 /// The one object a program holds: bodies, their components, links and planes, stepped at a
@@ -190,6 +192,9 @@ class World {
   [[nodiscard]] std::span<const ContactEvent> contacts_begun() const;
   /// Disc pairs that stopped touching in the last tick (World::contacts_ended()).
   [[nodiscard]] std::span<const ContactEvent> contacts_ended() const;
+  /// The state hash of the bodies (detail::WorldKernel::state_hash), with random()'s state
+  /// mixed in (FNV-1a over its 64-bit state) once it has been drawn from: a world whose rules
+  /// never roll dice hashes as it did before random() existed.
   [[nodiscard]] std::uint64_t state_hash() const;
   /// Bytes a WorldSnapshot of this simulation holds (World::snapshot_bytes()).
   [[nodiscard]] std::size_t snapshot_bytes() const;
@@ -203,6 +208,14 @@ class World {
   /// order while none is destroyed), for drawing; a and b must hold link_count() values (else
   /// std::invalid_argument).
   void link_ends(std::span<std::uint32_t> a, std::span<std::uint32_t> b) const;
+
+  /// The world's random generator for game rules: seeded with WorldSettings::seed when the
+  /// world is made, saved and restored with snapshots (so a restore, a rewind or a replay
+  /// rolls the same numbers again), and mixed into state_hash() once it has been drawn from.
+  /// Draw from it only inside a tick's rules (or between ticks, as any edit), never in
+  /// drawing code: a frame rate must not change what it gives.
+  [[nodiscard]] Random& random() { return random_; }
+  [[nodiscard]] const Random& random() const { return random_; }
 
   /// Saves the complete state into `out`, reusing its storage: no allocation once `out` holds
   /// a state of the same shape (same bodies, links and components).
@@ -224,6 +237,7 @@ class World {
 
   std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>> world_;
   std::vector<Entity> defined_;  ///< defined_bodies()
+  Random random_;                ///< random()
 };
 
 /// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J

@@ -66,6 +66,9 @@ struct WorldSettings {
   /// Body-vs-body contacts of discs (world_discs.cpp); unset (the default): none are computed
   /// and the world pays nothing for them. Contacts with planes need no setting.
   std::optional<ContactSettings> contacts = std::nullopt;
+  /// Seed of the world's random generator for game rules (World::random(); any value). Part
+  /// of the definition hash only when not 0, so worlds that never set it hash as before.
+  std::uint64_t seed = 0;
 };
 
 /// Ticks between two software flushes of subnormal state (WorldSettings::flush_denormals).
