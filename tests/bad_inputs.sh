@@ -108,6 +108,12 @@ $body"
 case_ "substeps not an integer" "$ok_world
 substeps = 1.5
 $body"
+case_ "world.seed negative" "$ok_world
+seed = -1
+$body"
+case_ "world.seed not an integer" "$ok_world
+seed = 1.5
+$body"
 case_ "no bodies" "$ok_world"
 case_ "[[body]] not an array of tables" "body = 3
 $ok_world"
@@ -846,7 +852,12 @@ case_ "a recording given as the scene" "" run base.rec --steps 10
 head -c 300 base.rec > cut.rec
 case_ "recording: cut short (truncated)" "" replay cut.rec
 rec_case "recording: no end line (truncated)" '/^end /d'
-rec_case "recording: a newer format version" '1s/.*/fixstep-recording 4/'
+rec_case "recording: a newer format version" '1s/.*/fixstep-recording 5/'
+# Format 4 names the game rules a recording was made with; fixstep has none of a game's.
+rec_case "recording: needs a game's rules (rules slingshot 1)" '1s/ 3$/ 4/;/^hash_every /a rules slingshot 1'
+case_ "render --replay of a recording that needs a game's rules" "" render --replay bad.rec --out frames
+rec_case "recording: a rules name with a space" '1s/ 3$/ 4/;/^hash_every /a rules sling shot 1'
+rec_case "recording: rules version 0" '1s/ 3$/ 4/;/^hash_every /a rules slingshot 0'
 rec_case "recording: a button bit outside all_buttons" 's/^tick 3 push=2,0 held=0 /tick 3 push=2,0 held=800 /'
 rec_case "recording: push = inf" 's/^tick 3 push=2,0/tick 3 push=inf,0/'
 rec_case "recording: ticks out of order" 's/^tick 6 /tick 2 /'
@@ -1045,6 +1056,10 @@ if [ -x "$game" ]; then
   case_ "a game: --replay of a recording with one input line removed (nothing drawn)" "" \
     --replay tampered.rec --last-frame last.png
   case_ "a game: --replay of another world's recording (fixstep run's)" "" --replay other.rec
+  "$game" --frames 10 --record fresh.rec >/dev/null  # names its rules: slingshot 1
+  sed 's/^rules slingshot 1$/rules slingshot 2/' fresh.rec > newer_rules.rec
+  case_ "a game: --replay of a recording of other rules (rules slingshot 2)" "" \
+    --replay newer_rules.rec
 fi
 tool=$fixstep tool_name=fixstep
 # --- the web page: rows of tests/web/bad_inputs_page.tsv, which browser_check.py loads ---

@@ -86,6 +86,24 @@ status=0
 "$game" --replay cut.rec > /dev/null 2> cut.log || status=$?
 [[ $status == 1 ]] && grep -q 'cut short' cut.log || fail "a cut recording: $status $(cat cut.log)"
 
+# 7b. The recording names its rules (the program and its rules version): `fixstep replay` and
+# `fixstep render --replay`, which have none of the game's rules, refuse it (exit 5) naming the
+# program, writing nothing; the game refuses a recording of another rules version (exit 1).
+grep -qx 'rules grabber 1' r.rec || fail "the recording does not name its rules: $(sed -n 1,12p r.rec)"
+for cmd in "replay r.rec" "render --replay r.rec --out rules_frames"; do
+  status=0
+  fixstep $cmd > /dev/null 2> rules.log || status=$?
+  [[ $status == 5 ]] && grep -q 'recorded by grabber with its game rules (version 1)' rules.log ||
+    fail "fixstep $cmd: exit $status, $(cat rules.log)"
+done
+[[ ! -e rules_frames ]] || fail "render --replay of a rules recording wrote frames"
+sed 's/^rules grabber 1$/rules grabber 2/' r.rec > newer_rules.rec
+status=0
+"$game" --replay newer_rules.rec > /dev/null 2> newer.log || status=$?
+[[ $status == 1 ]] && grep -q 'needs the rules grabber version 2, and this program has grabber version 1' newer.log ||
+  fail "a recording of other rules: exit $status, $(cat newer.log)"
+echo "new_project: rules named and checked: $(cat rules.log)"
+
 # 8. `fixstep new` into the existing, non-empty project: refused, naming it; nothing changed.
 before=$(cd grabber && ls -l --time-style=full-iso main.cpp scene.toml CMakeLists.txt README.md)
 status=0

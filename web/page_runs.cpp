@@ -62,6 +62,7 @@ bool PageApp::ticks_frame(double now_ms) {
 
 void PageApp::recording_fetched(std::string text) {
   Recording rec = parse_recording(text, *o_.replay);
+  check_physics_only(rec, *o_.replay);  // the page has no game's rules
   // A recording carries its scene (format version 3): the page loads that. An older one names
   // its scene as given to `fixstep run` (assets/scenes/NAME.toml); the page has the shipped
   // scenes under the same folder.

@@ -92,6 +92,7 @@ Scene named_scene(const Recording& rec, const std::string& recording_file) {
 
 Scene scene_for_recording(const Recording& rec, const std::string& recording_file,
                           const std::optional<std::string>& scene_file, bool quiet) {
+  check_physics_only(rec, recording_file);
   const bool embedded = !scene_file && !rec.scene_text.empty();
   if (scene_file && !rec.scene_text.empty() && !quiet) {
     std::fprintf(stderr,

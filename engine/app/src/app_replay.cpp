@@ -69,6 +69,17 @@ void draw_replay(const Settings& settings, const Level& level, const Recording& 
 
 int replay_file(const AnyGame& prototype, const Settings& settings, const Options& o) {
   const Recording rec = read_recording(o.replay);  // throws RecordingError naming the file
+  // A recording from before rules were named (format 3) is replayed: its hashes decide.
+  const std::string rules = rules_name_of(settings.name);
+  if (!rec.rules_name.empty() &&
+      (rec.rules_name != rules || rec.rules_version != settings.rules_version)) {
+    std::fprintf(stderr,
+                 "%s: error: %s needs the rules %s version %u, and this program has %s version "
+                 "%u: replay it with the program (and version) that recorded it\n",
+                 settings.name.c_str(), o.replay.c_str(), rec.rules_name.c_str(), rec.rules_version,
+                 rules.c_str(), settings.rules_version);
+    return exit_error;
+  }
   const Level level = replay_level(prototype, settings, rec, o.scene);
   World world(level.def);
   const double initial_energy = world.energy().total();

@@ -18,6 +18,7 @@ GamePlay::GamePlay(Level level, const Settings& settings, std::string record_fil
     : level_(std::move(level)),
       name_(settings.name),
       record_file_(std::move(record_file)),
+      rules_version_(settings.rules_version),
       session_(level_.def, level_.view),
       game_(level_.game->clone()) {
   session_.set_show_energy(settings.show_energy);
@@ -29,6 +30,7 @@ GamePlay::GamePlay(Level level, const Settings& settings, std::string record_fil
 
 void GamePlay::start_recording() {
   recorder_.emplace(session_.definition(), level_.scene_name, hash_every, level_.scene_text);
+  recorder_->set_rules(rules_name_of(name_), rules_version_);
 }
 
 void GamePlay::advance(double seconds) {

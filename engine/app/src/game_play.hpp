@@ -43,6 +43,7 @@ class GamePlay {
 
   Level level_;
   std::string name_, record_file_;
+  std::uint32_t rules_version_;  ///< Settings::rules_version
   Session session_;
   std::unique_ptr<AnyGame> game_;
   InputSampler sampler_;

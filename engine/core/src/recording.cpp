@@ -181,11 +181,40 @@ Recording Recorder::finish_at_last_hash(std::uint64_t initial_hash) {
   return take();
 }
 
+std::string rules_name_fault(std::string_view name) {
+  if (name.empty()) return "is empty";
+  if (name.size() > max_rules_name_bytes) {
+    return fmt::format("is {} bytes long (at most {})", name.size(), max_rules_name_bytes);
+  }
+  for (const char c : name) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '.' || c == '_' || c == '-';
+    if (!ok) {
+      return fmt::format("holds byte 0x{:02x}; use letters, digits, '.', '_' and '-'",
+                         static_cast<unsigned char>(c));
+    }
+  }
+  return {};
+}
+
+void Recorder::set_rules(std::string name, std::uint32_t version) {
+  if (const std::string fault = rules_name_fault(name); !fault.empty()) {
+    throw std::invalid_argument("Recorder::set_rules: the rules name " + fault);
+  }
+  if (version == 0) throw std::invalid_argument("Recorder::set_rules: the version must be >= 1");
+  rec_.rules_name = std::move(name);
+  rec_.rules_version = version;
+  rec_.version = recording_version;
+}
+
 Recording Recorder::take() {
   Recording out = std::move(rec_);
   rec_ = Recording{};
   rec_.scene = out.scene;
   rec_.scene_text = out.scene_text;
+  rec_.rules_name = out.rules_name;
+  rec_.rules_version = out.rules_version;
+  rec_.version = out.version;
   rec_.definition_hash = out.definition_hash;
   rec_.settings = out.settings;
   rec_.hash_every = out.hash_every;

@@ -23,6 +23,8 @@ std::string_view recording_error_name(RecordingError::Kind kind) {
       return "corrupt";
     case RecordingError::Kind::scene_mismatch:
       return "scene_mismatch";
+    case RecordingError::Kind::needs_rules:
+      return "needs_rules";
   }
   return "unknown";
 }
@@ -40,6 +42,15 @@ std::string error_text(const std::string& file, std::size_t line, std::string_vi
 RecordingError::RecordingError(Kind kind, const std::string& file, std::size_t line,
                                std::string_view field, std::string_view message)
     : std::runtime_error(error_text(file, line, field, message)), kind_(kind), line_(line) {}
+
+void check_physics_only(const Recording& rec, const std::string& file) {
+  if (rec.rules_name.empty()) return;
+  throw RecordingError(
+      RecordingError::Kind::needs_rules, file, 0, "rules",
+      fmt::format("recorded by {} with its game rules (version {}); physics alone would step "
+                  "another game: replay it with that program's --replay {}",
+                  rec.rules_name, rec.rules_version, printable(file)));
+}
 
 ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& rules) {
   const std::uint64_t actual = definition_hash(def);

@@ -6,9 +6,11 @@
 //   definition HASH            integrator NAME          precision f32|f64
 //   dt SECONDS                 substeps N               [damping_split per_stage|per_step]
 //   hash_every K
+//   [rules NAME VERSION]       (version 4: the game rules the ticks were stepped with)
 //   tick N push=AX,AY held=HEX pressed=HEX released=HEX pointer=X,Y drag=SLOT:GEN|none
 //        [force=SLOT:GEN,X,Y | impulse=SLOT:GEN,X,Y | velocity=SLOT:GEN,X,Y]...
 // (one line; a body is named by its handle Entity{SLOT, GEN}, per-body inputs in order).
+// Version 3 had no rules line (a recording without rules is still written as version 3).
 // Version 2 had no scene_text and damping_split lines (the scene was read from PATH, with its
 // own damping split); version 1 had no per-body
 // inputs and named the dragged body by its dense INDEX, read as
@@ -196,7 +198,7 @@ void read_version(Lines& in, Recording& rec) {
                       line->find('=') != std::string_view::npos;
     in.fail(Kind::foreign, "",
             fmt::format("not a fixstep recording: the first line is {}, a recording's is `{} {}`{}",
-                        shown(*line), recording_magic, recording_version,
+                        shown(*line), recording_magic, recording_version_without_rules,
                         toml ? " (this looks like a TOML scene: replay takes a recording made by "
                                "`fixstep run SCENE --steps N --record FILE`)"
                              : ""));
@@ -243,6 +245,19 @@ void read_scene_text(Lines& in, std::string_view first, Recording& rec) {
   if (const std::string e = scene.finish(rec.scene_text); !e.empty()) {
     in.fail(Kind::corrupt, "scene_text", e);
   }
+}
+
+/// `rules NAME VERSION` (version 4): the rules the recording needs.
+void read_rules(Lines& in, Recording& rec) {
+  const std::vector<std::string_view> w = words(*in.next());  // peeked: the line is there
+  if (w.size() != 3) in.fail(Kind::corrupt, "rules", "expected `rules NAME VERSION`");
+  if (const std::string fault = rules_name_fault(w[1]); !fault.empty()) {
+    in.fail(Kind::corrupt, "rules", "the name " + fault);
+  }
+  rec.rules_name = std::string(w[1]);
+  rec.rules_version =
+      integer<std::uint32_t>(in, w[2], "rules", 10, std::numeric_limits<std::uint32_t>::max());
+  if (rec.rules_version < 1) in.fail(Kind::corrupt, "rules", "the version must be >= 1");
 }
 
 /// The `scene PATH` line and, from version 3, the optional scene_text section after it.
@@ -301,6 +316,7 @@ void read_header(Lines& in, Recording& rec) {
                         "ticks (record with --hash-every {} or less)",
                         rec.hash_every, max_hash_every, max_hash_every));
   }
+  if (rec.version >= 4 && in.peek().starts_with("rules ")) read_rules(in, rec);
 }
 
 /// `SLOT:GEN` (version 2's handle; slot and generation >= 1).

@@ -46,7 +46,9 @@ std::string header(const Recording& rec) {
                       printable(rec.scene)));
     }
   }
-  std::string out = fmt::format("{} {}\nscene {}\n", recording_magic, recording_version, rec.scene);
+  // Version 4 only for a recording that names its rules: one without reads in older builds.
+  const int version = rec.rules_name.empty() ? recording_version_without_rules : recording_version;
+  std::string out = fmt::format("{} {}\nscene {}\n", recording_magic, version, rec.scene);
   // Optional sections follow the scene line, each announced by its own keyword.
   if (!rec.scene_text.empty()) append_scene_text(out, rec.scene_text);
   fmt::format_to(std::back_inserter(out),
@@ -57,6 +59,9 @@ std::string header(const Recording& rec) {
     fmt::format_to(std::back_inserter(out), "damping_split {}\n", damping_split_name(*split));
   }
   fmt::format_to(std::back_inserter(out), "hash_every {}\n", rec.hash_every);
+  if (!rec.rules_name.empty()) {
+    fmt::format_to(std::back_inserter(out), "rules {} {}\n", rec.rules_name, rec.rules_version);
+  }
   return out;
 }
 

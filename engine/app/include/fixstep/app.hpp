@@ -43,6 +43,12 @@ struct Settings {
   std::string name;
   /// What the game is, one line (--help's first line).
   std::string description{};
+  /// The version of the game's rules (>= 1), written with the name into every recording the
+  /// game makes (Recording::rules_name, rules_version; the name with each character outside
+  /// letters, digits, '.', '_' and '-' made '_'). Raise it when a change to the rules would
+  /// replay older recordings differently: --replay refuses a recording of other rules, naming
+  /// both, and `fixstep replay` refuses any recording that needs rules.
+  std::uint32_t rules_version = 1;
   /// The level's scene file (TOML, fixstep/scene.hpp), loaded at start and for each replay
   /// that carries no scene text; --scene FILE replaces it. Empty: no file, setup() builds the
   /// level from an empty WorldDef.

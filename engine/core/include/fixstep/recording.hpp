@@ -18,9 +18,19 @@
 
 namespace fixstep {
 
-/// The format version this build writes and the newest it reads. Version 3 may carry the scene
-/// the world was loaded from (Recording::scene_text); versions 1 and 2 still read.
-inline constexpr int recording_version = 3;
+/// The newest format version this build reads and writes. Version 4 names the rules a
+/// recording needs (Recording::rules_name); a recording without rules is still written as
+/// version 3, which older builds read. Version 3 may carry the scene the world was loaded from
+/// (Recording::scene_text); versions 1 and 2 still read.
+inline constexpr int recording_version = 4;
+/// The version a recording without rules is written as (and a Recording's until
+/// Recorder::set_rules).
+inline constexpr int recording_version_without_rules = 3;
+/// Most bytes of a rules name (Recording::rules_name).
+inline constexpr std::size_t max_rules_name_bytes = 64;
+/// What is wrong with `name` as a rules name ("" when nothing: 1 .. max_rules_name_bytes of
+/// ASCII letters, digits, '.', '_' and '-'). Never throws.
+[[nodiscard]] std::string rules_name_fault(std::string_view name);
 /// Most ticks a recording may hold (about 190 days at 60 Hz).
 inline constexpr std::uint64_t max_recording_ticks = 1'000'000'000;
 /// Most ticks between two state hashes a recording stores: 100 000 ticks,
@@ -65,7 +75,7 @@ struct RecordedSettings {
 /// a few lines may name 10^9 ticks). inputs[k] is the input of every tick from inputs[k].tick
 /// until the next entry's tick (its `tick` field then reads as that tick: see input_at()).
 struct Recording {
-  int version = recording_version;
+  int version = recording_version_without_rules;  ///< recording_version once it names rules
   /// The scene's name: its file's path as given on the command line (or a label such as
   /// "demo (built in code)"). With scene_text present it is a label only, never read.
   std::string scene;
@@ -74,6 +84,13 @@ struct Recording {
   /// broken by editing it; empty when the recording does not carry them (versions 1 and 2, or
   /// a recorder given no text): such a recording is replayed with the scene file it names.
   std::string scene_text;
+  /// The game rules the recording needs, named by the program that made it (fixstep::app::run
+  /// writes its Settings::name and rules_version): its ticks were stepped with those rules, so
+  /// a replay without them diverges. Empty (and rules_version 0) for a recording of physics
+  /// alone, which `fixstep replay` replays. A name is 1 .. max_rules_name_bytes of letters,
+  /// digits, '.', '_' and '-'; a version is >= 1.
+  std::string rules_name;
+  std::uint32_t rules_version = 0;
   std::uint64_t definition_hash = 0;
   RecordedSettings settings;
   std::uint64_t hash_every = 60;  ///< ticks between stored hashes, >= 1
@@ -123,6 +140,10 @@ class Recorder {
   [[nodiscard]] Recording finish_at_last_hash(std::uint64_t initial_hash);
 
   [[nodiscard]] std::uint64_t ticks() const { return rec_.ticks; }
+  /// Names the rules the ticks are stepped with (Recording::rules_name, rules_version). Throws
+  /// std::invalid_argument for an empty or longer name, a character outside letters, digits,
+  /// '.', '_' and '-', or version 0.
+  void set_rules(std::string name, std::uint32_t version);
 
  private:
   Recording take();  ///< the recording, the recorder left empty (finish*)

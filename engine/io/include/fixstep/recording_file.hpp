@@ -30,6 +30,7 @@ class RecordingError : public std::runtime_error {
     truncated,            ///< the file ends before its `end` line (a session cut short)
     corrupt,              ///< a malformed line or field, a value out of range, an absurd size
     scene_mismatch,       ///< the world to replay is not the one recorded (definition hash)
+    needs_rules,          ///< made with game rules (Recording::rules_name) the reader lacks
   };
   RecordingError(Kind kind, const std::string& file, std::size_t line, std::string_view field,
                  std::string_view message);
@@ -62,6 +63,10 @@ class RecordingError : public std::runtime_error {
 /// (scene files), whose handles are defined_bodies() of a world of `bodies` bodies. Called before
 /// replaying, so such a recording is a bad recording, not a diverged replay.
 void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file);
+/// Throws RecordingError needs_rules, naming `file` and the rules, when `rec` was made with
+/// game rules (Recording::rules_name): a program that replays physics alone (`fixstep
+/// replay`, `render --replay`, the web page) would step a different game.
+void check_physics_only(const Recording& rec, const std::string& file);
 /// Writes format_recording(rec) to `file` atomically (a temporary file beside it, then a
 /// rename): `file` is never left partial. Throws std::runtime_error naming the file and the
 /// system's reason when it cannot.
