@@ -300,6 +300,12 @@ def write_bad_recordings(args, rec_dir):
     with open(os.path.join(rec_dir, "damaged.rec"), "w", encoding="utf-8") as f:
         f.write("".join("|dt = \\q\n" if line.startswith("|dt = 0.01") else line
                         for line in lines))
+    # Format 4, naming the game rules it was recorded with: the page has none of a game's.
+    with open(os.path.join(rec_dir, "rules.rec"), "w", encoding="utf-8") as f:
+        f.write("".join(("fixstep-recording 4\n" if line.startswith("fixstep-recording ")
+                         else line) + ("rules slingshot 1\n" if line.startswith("hash_every ")
+                                       else "")
+                        for line in lines))
     if os.path.exists(os.path.join(rec_dir, "missing.rec")):
         os.remove(os.path.join(rec_dir, "missing.rec"))
 

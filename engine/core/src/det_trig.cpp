@@ -3,6 +3,7 @@
 // The methods, their sources and the measured errors are in det_math.hpp; the polynomial
 // coefficients and the split constants of π/2 are fdlibm 5.3's (Sun Microsystems, 1993).
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -136,7 +137,8 @@ double atan_nonnegative(double x) {
 }  // namespace
 
 double sin(double x) {
-  if (x != x || std::isinf(x)) return x - x;  // NaN
+  if (x != x) return x + x;                                            // NaN (quieted)
+  if (std::isinf(x)) return std::numeric_limits<double>::quiet_NaN();  // raising no flag
   double y0, y1;
   switch (reduce_half_pi(x, y0, y1) & 3) {
     case 0:
@@ -151,7 +153,8 @@ double sin(double x) {
 }
 
 double cos(double x) {
-  if (x != x || std::isinf(x)) return x - x;
+  if (x != x) return x + x;
+  if (std::isinf(x)) return std::numeric_limits<double>::quiet_NaN();
   double y0, y1;
   switch (reduce_half_pi(x, y0, y1) & 3) {
     case 0:

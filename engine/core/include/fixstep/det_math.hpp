@@ -53,8 +53,9 @@ double hypot(double x, double y);
 inline constexpr double trig_max_argument = 0x1.921fb54442d18p+19;
 
 /// sin x for x in rad, |x| ≤ trig_max_argument. Error ≤ 1 ulp (measured against long double,
-/// tests/core/test_det_trig.cpp). NaN → NaN, ±inf → NaN, ±0 → ±0; |x| > trig_max_argument
-/// (finite) throws std::domain_error naming x.
+/// tests/core/test_det_trig.cpp). NaN → NaN, ±inf → NaN, ±0 → ±0; never raises an FP
+/// exception flag (±inf too); |x| > trig_max_argument (finite) throws std::domain_error
+/// naming x.
 /// Method: x = nπ/2 + r, |r| ≤ π/4 (about), by Cody–Waite reduction with π/2 in three 33-bit
 /// parts and a 53-bit tail, the remainder kept as a double-double (the "medium" case of
 /// fdlibm's e_rem_pio2.c, always to 151 bits); then sin or cos of r by fdlibm's k_sin.c and

@@ -3,6 +3,7 @@
 // same dice again after a restore, in a replay and on every platform.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 
@@ -43,9 +44,11 @@ class Random {
   }
 
   /// A double in [lo, hi): lo + (hi - lo)·uniform() (may round to hi when hi - lo is far
-  /// above lo's ulp). Throws std::invalid_argument unless lo and hi are finite with lo ≤ hi.
-  constexpr double uniform(double lo, double hi) {
-    if (!(lo <= hi) || hi - lo > 1.7976931348623157e308 || lo - lo != 0.0) {
+  /// above lo's ulp). Throws std::invalid_argument unless lo, hi and hi - lo are finite with
+  /// lo ≤ hi (checked without raising an FP exception flag).
+  double uniform(double lo, double hi) {
+    if (!std::isfinite(lo) || !std::isfinite(hi) || std::isgreater(lo, hi) ||
+        !std::isfinite(hi - lo)) {
       throw std::invalid_argument("Random::uniform: needs finite lo <= hi");
     }
     return lo + (hi - lo) * uniform();
@@ -76,9 +79,9 @@ class Random {
 
   /// True with probability p (uniform() < p): p ≤ 0 never, p ≥ 1 always. NaN throws
   /// std::invalid_argument.
-  constexpr bool chance(double p) {
-    if (p != p) throw std::invalid_argument("Random::chance: p is NaN");
-    return uniform() < p;
+  bool chance(double p) {
+    if (std::isnan(p)) throw std::invalid_argument("Random::chance: p is NaN");
+    return std::isless(uniform(), p);
   }
 
   /// 32-bit values drawn since seeding (uniform() draws two). A World mixes its generator's
