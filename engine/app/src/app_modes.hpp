@@ -20,15 +20,13 @@ inline constexpr int exit_diverged = 4;
 inline constexpr int exit_sync_mismatch = 8;
 
 /// The rules name a game's recordings carry: `program` with every character a rules name
-/// may not hold (recording.hpp, rules_name_fault) made '_', cut to max_rules_name_bytes;
+/// may not hold (is_rules_name_char) made '_', cut to max_rules_name_bytes;
 /// "game" for an empty name.
 inline std::string rules_name_of(const std::string& program) {
   std::string name = program.empty() ? std::string("game") : program;
   if (name.size() > max_rules_name_bytes) name.resize(max_rules_name_bytes);
   for (char& c : name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '.' || c == '_' || c == '-';
-    if (!ok) c = '_';
+    if (!is_rules_name_char(c)) c = '_';
   }
   return name;
 }

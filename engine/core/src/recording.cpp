@@ -187,9 +187,7 @@ std::string rules_name_fault(std::string_view name) {
     return fmt::format("is {} bytes long (at most {})", name.size(), max_rules_name_bytes);
   }
   for (const char c : name) {
-    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                    c == '.' || c == '_' || c == '-';
-    if (!ok) {
+    if (!is_rules_name_char(c)) {
       return fmt::format("holds byte 0x{:02x}; use letters, digits, '.', '_' and '-'",
                          static_cast<unsigned char>(c));
     }

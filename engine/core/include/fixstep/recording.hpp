@@ -28,8 +28,13 @@ inline constexpr int recording_version = 4;
 inline constexpr int recording_version_without_rules = 3;
 /// Most bytes of a rules name (Recording::rules_name).
 inline constexpr std::size_t max_rules_name_bytes = 64;
+/// Whether a rules name may hold `c`: an ASCII letter or digit, '.', '_' or '-'.
+[[nodiscard]] constexpr bool is_rules_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' ||
+         c == '_' || c == '-';
+}
 /// What is wrong with `name` as a rules name ("" when nothing: 1 .. max_rules_name_bytes of
-/// ASCII letters, digits, '.', '_' and '-'). Never throws.
+/// characters is_rules_name_char accepts). Never throws.
 [[nodiscard]] std::string rules_name_fault(std::string_view name);
 /// Most ticks a recording may hold (about 190 days at 60 Hz).
 inline constexpr std::uint64_t max_recording_ticks = 1'000'000'000;
