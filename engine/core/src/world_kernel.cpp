@@ -168,6 +168,8 @@ void detail::WorldKernel<Real>::validate_component(const LinearDrag& c, const st
 template <class Real>
 void detail::WorldKernel<Real>::validate_component(const Appearance& c, const std::string& who) {
   check_value<Real>(c.radius, c.radius > 0.0, who, "radius", "finite and > 0 m");
+  check_value<Real>(c.trail_time, c.trail_time > 0.0 && c.trail_time <= max_trail_time, who,
+                    "trail_time", "finite, > 0 and <= 10 s");
 }
 
 template <class Real>

@@ -46,11 +46,10 @@ SceneError::SceneError(std::string file, std::size_t line, std::size_t column, s
 
 namespace scene_detail {
 
-namespace {
-
-Rgba8 parse_color(const Reader& r, const toml::table& t, const std::string& path) {
-  const toml::node* n = t.get("color");
-  const std::string s = *r.string(t, "color", path);
+Rgba8 parse_color(const Reader& r, const toml::table& t, std::string_view key,
+                  const std::string& path) {
+  const toml::node* n = t.get(key);
+  const std::string s = *r.string(t, key, path);
   auto hex = [](char c) -> int {
     if (c >= '0' && c <= '9') return c - '0';
     if (c >= 'a' && c <= 'f') return c - 'a' + 10;
@@ -69,10 +68,13 @@ Rgba8 parse_color(const Reader& r, const toml::table& t, const std::string& path
   return Rgba8{byte(1), byte(3), byte(5), s.size() == 9 ? byte(7) : std::uint8_t{255}};
 }
 
+namespace {
+
 BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Precision precision) {
   r.check_keys(t, path,
                {"name", "type", "mass", "position", "velocity", "spring", "force", "gravity",
-                "drag", "radius", "draw_radius", "color", "collide", "restitution", "friction"});
+                "drag", "radius", "draw_radius", "color", "visible", "trail", "trail_time",
+                "collide", "restitution", "friction"});
   BodyDef def;
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
@@ -138,7 +140,8 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
     r.require(*c >= 0.0, t, "drag", path + ".drag", ">= 0 N*s/m", *c);
     def.drag = LinearDrag{*c};
   }
-  if (t.get("radius") || t.get("draw_radius") || t.get("color")) {
+  if (t.get("radius") || t.get("draw_radius") || t.get("color") || t.get("visible") ||
+      t.get("trail") || t.get("trail_time")) {
     Appearance ap;
     if (auto rad = r.number(t, "radius", path + ".radius")) {
       r.require(*rad > 0.0 && *rad <= max_state_magnitude, t, "radius", path + ".radius",
@@ -150,7 +153,14 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
       r.require(*rad > 0.0, t, "draw_radius", path + ".draw_radius", "> 0 m", *rad);
       ap.radius = *rad;  // drawing only: no disc without `radius`
     }
-    if (t.get("color")) ap.color = parse_color(r, t, path + ".color");
+    if (t.get("color")) ap.color = parse_color(r, t, "color", path + ".color");
+    if (auto v = boolean(r, t, "visible", path + ".visible")) ap.visible = *v;
+    if (auto v = boolean(r, t, "trail", path + ".trail")) ap.trail = *v;
+    if (auto v = r.number(t, "trail_time", path + ".trail_time")) {
+      r.require(*v > 0.0 && *v <= max_trail_time, t, "trail_time", path + ".trail_time",
+                "> 0 and <= 10 s", *v);
+      ap.trail_time = *v;
+    }
     def.appearance = ap;
   }
   parse_disc_keys(r, t, path, def);
@@ -244,38 +254,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   // Every number first, so that a generated position beyond float range is the spacing's fault.
   if (scene.precision == Precision::f32) check_f32(r, doc, "");
 
-  if (const toml::table* view = r.table(doc, "view", "view")) {
-    r.check_keys(*view, "view", {"center", "width"});
-    // Bounded before any frame is drawn (SceneView): a view of a point 10^300 m out, or
-    // 10^-300 m wide, has no pixels to draw.
-    scene.view.center = r.vec2(*view, "center", "view.center");
-    double far = 0.0;  // m, the centre's larger coordinate
-    if (const auto& c = scene.view.center) {
-      const toml::array& xy = *view->get("center")->as_array();
-      for (int i = 0; i < 2; ++i) {
-        const double v = i == 0 ? c->x : c->y;
-        if (std::abs(v) > max_view_center) {
-          r.fail(xy.get(static_cast<std::size_t>(i))->source(), fmt::format("view.center[{}]", i),
-                 fmt::format("must be within ±{:g} m, where bodies can be (the runtime guard's "
-                             "limit; got {})",
-                             max_view_center, v));
-        }
-        far = std::max(far, std::abs(v));
-      }
-    }
-    if (auto w = r.number(*view, "width", "view.width")) {
-      r.require(*w > 0.0, *view, "width", "view.width", "> 0 m", *w);
-      r.require(*w >= min_view_width && *w <= max_view_width, *view, "width", "view.width",
-                fmt::format("{:g} .. {:g} m", min_view_width, max_view_width), *w);
-      r.require(*w >= min_view_width_ratio * far, *view, "width", "view.width",
-                fmt::format(">= {:g} m for a center {:g} m out ({:g} of its distance: a "
-                            "narrower view there cannot place its pixels); move the center "
-                            "closer to the origin or widen the view",
-                            min_view_width_ratio * far, far, min_view_width_ratio),
-                *w);
-      scene.view.width = *w;
-    }
-  }
+  parse_view(r, doc, scene);
 
   // Bodies: [[body]] tables, then the generators' bodies; links: the generators', then
   // [[spring]] tables (which may name any body).

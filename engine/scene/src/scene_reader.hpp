@@ -392,6 +392,12 @@ void parse_generators(Reader& r, const toml::table& doc, Scene& scene, BodyNames
 /// [[plane]] tables: appends their planes (normals normalised) and lines to the scene
 /// (scene_planes.cpp).
 void parse_planes(Reader& r, const toml::table& doc, Scene& scene);
+/// The [view] table into scene.view (scene_view.cpp).
+void parse_view(Reader& r, const toml::table& doc, Scene& scene);
+/// t[key] (which must be present), "#rrggbb" or "#rrggbbaa", as a colour; `path` names the key
+/// in errors (scene.cpp).
+Rgba8 parse_color(const Reader& r, const toml::table& t, std::string_view key,
+                  const std::string& path);
 /// [[spring]] tables: appends their links to the scene, after every body is known
 /// (scene_links.cpp).
 void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names);

@@ -193,6 +193,11 @@ void write_looks(std::string& out, const BodyDef& b) {
     const double drawn = b.collider ? b.collider->radius : Appearance{}.radius;
     if (!same_bits(a->radius, drawn)) fmt::format_to(it, "draw_radius = {}\n", num(a->radius));
     fmt::format_to(it, "color = {}\n", color_text(a->color));
+    if (!a->visible) out += "visible = false\n";
+    if (!a->trail) out += "trail = false\n";
+    if (!same_bits(a->trail_time, default_trail_time)) {
+      fmt::format_to(it, "trail_time = {}\n", num(a->trail_time));
+    }
   }
 }
 

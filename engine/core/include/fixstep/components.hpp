@@ -61,10 +61,25 @@ struct LinearDrag {
   double coefficient = 0.0;  ///< c, N*s/m, finite and >= 0
 };
 
-/// How a body is drawn. Bodies without one are drawn with a default size and palette colour.
+/// Seconds of past motion a trail shows by default (Appearance::trail_time).
+inline constexpr double default_trail_time = 0.75;
+/// Longest Appearance::trail_time, s.
+inline constexpr double max_trail_time = 10.0;
+
+/// How a body is drawn. Bodies without one are drawn with a default size and palette colour
+/// and the default trail. Drawing only: no field enters the physics, the state hash or the
+/// definition hash, and changing one between ticks costs no rebuild of the force terms.
 struct Appearance {
   double radius = 0.5;  ///< m, > 0 and <= max_state_magnitude (10^12 m)
   Rgba8 color{230, 87, 46, 255};
+  /// false: neither the body nor its trail is drawn (it is still simulated, collides and is
+  /// found by queries); shown again, its trail starts afresh where it is.
+  bool visible = true;
+  /// false: no trail behind this body.
+  bool trail = true;
+  /// Seconds of past motion the trail shows (sampled every tick), finite, in (0,
+  /// max_trail_time].
+  double trail_time = default_trail_time;
 };
 
 /// A disc the body occupies: for contacts with static half-planes (PlaneDef) and, in a world

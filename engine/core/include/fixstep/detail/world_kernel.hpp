@@ -573,7 +573,7 @@ void WorldKernel<Real>::set(Entity e, const C& component) {
     s.set.insert(e);
     s.data.push_back(component);
   }
-  terms_dirty_ = true;
+  if constexpr (!std::is_same_v<C, Appearance>) terms_dirty_ = true;  // drawing only
 }
 
 template <class Real>
@@ -585,7 +585,7 @@ void WorldKernel<Real>::remove(Entity e) {
   const std::size_t i = s.set.erase(e);
   s.data[i] = s.data.back();
   s.data.pop_back();
-  terms_dirty_ = true;
+  if constexpr (!std::is_same_v<C, Appearance>) terms_dirty_ = true;  // drawing only
 }
 
 template <class Real>
