@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fixstep/scene_stability.hpp>
+#include <fixstep/scene_view_settings.hpp>
 #include <utility>
 
 #include "fixstep/recording_file.hpp"
@@ -61,7 +62,10 @@ PageApp::~PageApp() = default;
 
 void PageApp::start_session(WorldDef def, const std::string& title) {
   SessionSettings settings{.width = o_.width, .height = o_.height, .title = title};
-  if (scene_) settings.view_center = scene_->view.center, settings.view_width = scene_->view.width;
+  if (scene_) {
+    settings.view_center = scene_->view.center, settings.view_width = scene_->view.width;
+    apply_scene_view_style(scene_->view, settings);  // background, grid, axes, scale bar, HUD
+  }
   // A virtual clock is not clamped (as `fixstep render`): frames exactly 1/fps apart.
   settings.max_frame_time = std::max(settings.max_frame_time, 1.0 / o_.fps);
   session_ = std::make_unique<Session>(std::move(def), settings);

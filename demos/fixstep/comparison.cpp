@@ -117,6 +117,8 @@ SessionSettings Comparison::tile_settings(const Scene& scene) const {
   const int w = grid_.tile_width, h = grid_.tile_height;
   SessionSettings s = session_settings(scene, w, h);
   s.hud_text_scale = hud_scale_;
+  s.hud_corner = HudCorner::top_left;  // the tiles' own HUD layout: the band below is for it
+  s.show_hud = true;
   s.max_frame_time = max_frame_time_;
   // The HUD covers the tile's top band: the scene is fitted into the part below it.
   const int band =

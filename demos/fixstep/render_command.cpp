@@ -7,6 +7,7 @@
 #include <fixstep/limits.hpp>
 #include <fixstep/manifest.hpp>
 #include <fixstep/scene_stability.hpp>
+#include <fixstep/scene_view_settings.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/stop_request.hpp>
 
@@ -22,11 +23,13 @@
 namespace fixstep::cli {
 
 SessionSettings session_settings(const Scene& scene, int width, int height) {
-  return SessionSettings{.width = width,
-                         .height = height,
-                         .title = std::filesystem::path(scene.file).filename().string(),
-                         .view_center = scene.view.center,
-                         .view_width = scene.view.width};
+  SessionSettings s{.width = width,
+                    .height = height,
+                    .title = std::filesystem::path(scene.file).filename().string(),
+                    .view_center = scene.view.center,
+                    .view_width = scene.view.width};
+  apply_scene_view_style(scene.view, s);  // background, grid, axes, scale bar, HUD
+  return s;
 }
 
 namespace {

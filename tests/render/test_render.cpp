@@ -270,18 +270,27 @@ TEST(Render, ATrailBelongsToItsBodyNotToItsDenseIndex) {
   const Entity a = sim.create_body(disc({-3.1, 0.3}, {255, 0, 0, 255}));
   const Entity b = sim.create_body(disc({2.9, 0.3}, {0, 255, 0, 255}));
   RenderFrame s;
-  fill_render_frame(sim, 0.0, s);
-  for (int f = 0; f < 10; ++f) r.draw(s, {});
+  for (int f = 0; f < 10; ++f) {  // trails sample every tick: one tick a frame here
+    sim.step();
+    r.sample_trails(sim);
+    fill_render_frame(sim, 1.0, s);
+    r.draw(s, {});
+  }
   sim.destroy(a);
   sim.create_body(disc({0.1, 2.4}, {0, 0, 255, 255}));
-  fill_render_frame(sim, 0.0, s);
+  sim.step();
+  r.sample_trails(sim);
+  fill_render_frame(sim, 1.0, s);
   ASSERT_EQ(s.ids[0], b);
   r.draw(s, {});
   fresh.draw(s, {});
   EXPECT_TRUE(std::equal(r.pixels().begin(), r.pixels().end(), fresh.pixels().begin()));
 
-  sim.set_body(b, Body{.mass = 1.0, .position = {2.9, -2.0}, .velocity = {}});  // b moves
-  fill_render_frame(sim, 0.0, s);
+  // b moves (a velocity, not a teleport: a teleport cuts its trail) and keeps its trail.
+  sim.set_velocity(b, {0.0, -30.0});
+  sim.step();
+  r.sample_trails(sim);
+  fill_render_frame(sim, 1.0, s);
   r.draw(s, {});
   Renderer last_only(320, 200);
   last_only.set_camera(camera);

@@ -5,17 +5,19 @@
 #include <filesystem>
 
 #include "fixstep/scene.hpp"
+#include "fixstep/scene_view_settings.hpp"
 #include "fixstep/session.hpp"
 
 namespace fixstep::testing {
 
 inline Session scene_session(const Scene& scene, int width, int height) {
-  return Session(world_def(scene),
-                 SessionSettings{.width = width,
-                                 .height = height,
-                                 .title = std::filesystem::path(scene.file).filename().string(),
-                                 .view_center = scene.view.center,
-                                 .view_width = scene.view.width});
+  SessionSettings s{.width = width,
+                    .height = height,
+                    .title = std::filesystem::path(scene.file).filename().string(),
+                    .view_center = scene.view.center,
+                    .view_width = scene.view.width};
+  apply_scene_view_style(scene.view, s);
+  return Session(world_def(scene), s);
 }
 
 }  // namespace fixstep::testing

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fixstep/definition_checks.hpp>
 #include <fixstep/scene.hpp>
+#include <fixstep/scene_view_settings.hpp>
 #include <memory>
 
 #include "app_modes.hpp"
@@ -11,14 +12,21 @@ namespace fixstep::app::detail {
 
 namespace {
 
-/// The view: the settings', else the scene's [view], else the automatic one.
+/// The view: the settings', else the scene's [view], else the automatic one; its look likewise.
 SessionSettings view(const Settings& settings, const SceneView& scene_view) {
-  return {.width = settings.width,
-          .height = settings.height,
-          .title = settings.name,
-          .view_center = settings.view_center ? settings.view_center : scene_view.center,
-          .view_width = settings.view_width ? settings.view_width : scene_view.width,
-          .follow = settings.follow};
+  SessionSettings s{.width = settings.width,
+                    .height = settings.height,
+                    .title = settings.name,
+                    .view_center = settings.view_center ? settings.view_center : scene_view.center,
+                    .view_width = settings.view_width ? settings.view_width : scene_view.width,
+                    .follow = settings.follow};
+  apply_scene_view_style(scene_view, s);
+  if (settings.style) s.style = *settings.style;
+  if (settings.hud_corner) s.hud_corner = *settings.hud_corner;
+  if (settings.show_hud) s.show_hud = *settings.show_hud;
+  if (settings.hud_text_scale) s.hud_text_scale = *settings.hud_text_scale;
+  if (settings.hud_lines) s.hud_lines = *settings.hud_lines;
+  return s;
 }
 
 Level from_scene(const AnyGame& game, const Settings& settings, const Scene* scene) {

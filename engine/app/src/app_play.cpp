@@ -50,7 +50,7 @@ void play_window(GamePlay& play, const Settings& settings, std::int64_t frames) 
 
 /// Runs `frames` frames headless on a virtual 60 Hz clock (frame 0 is t = 0), the autopilot
 /// playing; writes every frame as DIR/frame_NNNNNN.png when `out_dir` is not empty, and draws
-/// the last frames (those its trails show) when `last_frame` is asked for.
+/// the last frame when `last_frame` is asked for (trails are sampled every tick, drawn or not).
 void play_headless(GamePlay& play, const Settings& settings, std::int64_t frames,
                    const std::string& out_dir, bool last_frame) {
   std::optional<FrameWriter> writer;
@@ -64,7 +64,7 @@ void play_headless(GamePlay& play, const Settings& settings, std::int64_t frames
       play.game().autopilot(frame, play.session().simulation(), play.sampler());
       play.advance(clock.frame_seconds());
     }
-    if (!writer && !(last_frame && frames - frame <= Renderer::trail_frames + 1)) continue;
+    if (!writer && !(last_frame && frame + 1 == frames)) continue;
     play.draw("autopilot");
     if (writer) writer->submit(play.session().renderer().pixels());
   }

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "app_modes.hpp"
+#include "game_play.hpp"
 
 namespace fixstep::app::detail {
 
@@ -29,7 +30,6 @@ void draw_replay(const Settings& settings, const Level& level, const Recording& 
     writer.emplace(o.out, settings.width, settings.height);
   }
   const VirtualClock clock(replay_fps);
-  const double frames_per_tick = level.def.settings.dt * replay_fps;
   TickInput last;
   Overlay overlay;
   for (std::int64_t frame = 0;; ++frame) {
@@ -44,17 +44,10 @@ void draw_replay(const Settings& settings, const Level& level, const Recording& 
     const std::uint64_t tick = session.simulation().tick();
     const bool end = tick >= ticks;
     const bool write = writer && (frame % o.every == 0 || end);
-    // Trails grow by one sample per frame drawn: the trail_frames frames before each frame
-    // written are drawn too, so its trails look as they do in the window.
-    const double frames_left = double(ticks - std::min(tick, ticks)) * frames_per_tick;
-    const bool warm_up = (writer && o.every - frame % o.every <= Renderer::trail_frames) ||
-                         (!o.last_frame.empty() && frames_left <= Renderer::trail_frames + 1);
-    if (write || warm_up || (end && !o.last_frame.empty())) {
-      overlay.clear();
-      game->draw(overlay);
-      session.set_status_lines(overlay.lines());
+    // Trails are sampled every tick (Session), so only the frames kept are drawn.
+    if (write || (end && !o.last_frame.empty())) {
       session.show_drag(last.pointer, last.drag_body);
-      session.draw();
+      draw_game(session, *game, overlay, {});
     }
     if (write) writer->submit(session.renderer().pixels());
     if (end) break;

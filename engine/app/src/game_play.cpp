@@ -45,13 +45,24 @@ void GamePlay::advance(double seconds) {
 }
 
 void GamePlay::draw(std::string_view hint) {
-  overlay_.clear();
-  game_->draw(overlay_);
-  std::vector<std::string> lines = overlay_.lines();
-  if (!hint.empty()) lines.emplace_back(hint);
-  session_.set_status_lines(std::move(lines));
   session_.show_drag(last_.pointer, last_.drag_body);  // the pointer's spring, if it drags
-  session_.draw();
+  draw_game(session_, *game_, overlay_, hint);
+}
+
+void draw_game(Session& session, const AnyGame& game, Overlay& overlay, std::string_view hint) {
+  session.prepare_frame();
+  overlay.clear();
+  overlay.bind(&session);
+  try {
+    game.draw(overlay);
+  } catch (...) {
+    overlay.bind(nullptr);
+    throw;
+  }
+  overlay.bind(nullptr);
+  if (!hint.empty()) overlay.text(hint);
+  session.set_status_lines(overlay.lines());
+  session.draw(overlay);
 }
 
 void GamePlay::restart() {

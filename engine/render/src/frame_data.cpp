@@ -14,15 +14,21 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
   out.ids.assign(bodies.begin(), bodies.end());
   out.radius.resize(n);
   out.color.resize(n);
+  out.visible.resize(n);
+  out.trail_time.resize(n);
   out.springs.clear();
   for (std::size_t j = 0; j < n; ++j) {
     const Entity e = bodies[j];
     if (const std::optional<Appearance> a = world.get<Appearance>(e)) {
       out.radius[j] = static_cast<float>(a->radius);
       out.color[j] = a->color;
+      out.visible[j] = a->visible ? 1 : 0;
+      out.trail_time[j] = a->trail ? static_cast<float>(a->trail_time) : 0.0f;
     } else {
       out.radius[j] = 0.0f;
       out.color[j] = Rgba8{0, 0, 0, 0};
+      out.visible[j] = 1;
+      out.trail_time[j] = static_cast<float>(default_trail_time);
     }
     if (const std::optional<SpringDamper> s = world.get<SpringDamper>(e)) {
       out.springs.push_back({static_cast<float>(s->anchor.x), static_cast<float>(s->anchor.y),
@@ -34,6 +40,9 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
   out.link_b.resize(links);
   world.link_ends(out.link_a, out.link_b);
   out.planes.assign(world.planes().begin(), world.planes().end());
+  out.tick = world.tick();
+  out.dt = world.settings().dt;
+  out.alpha = alpha;
 }
 
 }  // namespace fixstep

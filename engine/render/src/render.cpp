@@ -1,6 +1,6 @@
 // Renderer: the GL frame buffer (OSMesa's pixels, or the page's WebGL2 canvas) and the canvas
-// (rectangles, lines, polylines, discs, text) batched into one upload and one draw call per clip;
-// the scene view is in render_frame.cpp.
+// (rectangles, lines, discs, text) batched into one upload and one draw call per clip; polylines,
+// circles, polygons and arrows are in render_shapes.cpp, the scene view in render_frame.cpp.
 #include "fixstep/render.hpp"
 
 #include <fmt/format.h>
@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 
+#include "aa_pad.hpp"
 #include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
 #include "gl_shaders.hpp"
 
@@ -26,19 +27,11 @@ Vec2 screen_to_world(const Camera& camera, double px, double py, int width, int 
 
 namespace {
 
-// How far quads reach beyond the edge of a line or disc, px. The fragment shader's coverage
-// (1 - d) / fwidth(d) + 0.5 reaches 0 at half a fwidth beyond the edge: 0.5 px across an
-// axis-aligned edge, at most sqrt(2) / 2 = 0.707 px across a diagonal one (fwidth is
-// |d/dx| + |d/dy|). Fragments farther out blend with alpha 0, so 0.75 px draws the picture a
-// whole pixel of padding drew (checked on 1000-body frames: all but one pixel within 1 level)
-// with fewer fragments.
-constexpr float aa_pad_px = 0.75f;
-
 // stb_easy_font indexes its glyph table with (char - 32) and has glyphs for ' '..'~' only: any
 // other byte would read outside the table. Each UTF-8 sequence (or other byte) outside that
 // range becomes one '?'; '\n' is kept (a new line).
-std::string printable(const std::string& s) {
-  std::string out;
+void printable_into(const std::string& s, std::string& out) {
+  out.clear();
   out.reserve(s.size());
   for (const char ch : s) {
     const auto c = static_cast<unsigned char>(ch);
@@ -47,6 +40,11 @@ std::string printable(const std::string& s) {
     else if ((c & 0xC0) != 0x80)
       out.push_back('?');  // UTF-8 continuation bytes are dropped
   }
+}
+
+std::string printable(const std::string& s) {
+  std::string out;
+  printable_into(s, out);
   return out;
 }
 
@@ -106,7 +104,7 @@ void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c
   const float len = std::sqrt(dx * dx + dy * dy);
   if (len < 1e-3f) return;
   use(shapes, {});
-  const float h = 0.5f * width, pad = h + aa_pad_px;  // room for the anti-aliased edge
+  const float h = 0.5f * width, pad = h + detail::aa_pad_px;  // room for the anti-aliased edge
   const float nx = -dy / len * pad, ny = dx / len * pad;
   const float e = pad / h;
   quad({{x0 + nx, y0 + ny}, {x1 + nx, y1 + ny}, {x1 - nx, y1 - ny}, {x0 - nx, y0 - ny}},
@@ -115,7 +113,7 @@ void Renderer::line(float x0, float y0, float x1, float y1, float width, Rgba8 c
 
 void Renderer::disc(float cx, float cy, float r, Rgba8 c) {
   use(shapes, {});
-  const float pad = r + aa_pad_px, e = pad / r;
+  const float pad = r + detail::aa_pad_px, e = pad / r;
   quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
        {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c);
 }
@@ -125,7 +123,7 @@ void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width, R
     disc(cx, cy, r, c);
     return;
   }
-  const float outer = r + outline_width, pad = outer + aa_pad_px;
+  const float outer = r + outline_width, pad = outer + detail::aa_pad_px;
   if (2.0f * pad > gl_->max_point_size) {  // too wide for a point: the two discs it stands for
     disc(cx, cy, outer, outline_c);
     disc(cx, cy, r, c);
@@ -164,7 +162,7 @@ float Renderer::hidden_under_disc(float outer, float width) {
   // its colour replaces whatever lies below there. A line ending at the centre can stop `cut` px
   // short, with a flat end, when its quad's part beyond, reaching `pad` px to either side, lies
   // within that radius: cut^2 + pad^2 <= (outer - 1)^2.
-  const float opaque = outer - 1.0f, pad = 0.5f * width + aa_pad_px;
+  const float opaque = outer - 1.0f, pad = 0.5f * width + detail::aa_pad_px;
   return opaque > pad ? std::sqrt(opaque * opaque - pad * pad) : 0.0f;
 }
 
@@ -172,7 +170,7 @@ float Renderer::hidden_under_square(float half, float width, float ux, float uy)
   // The square (solid, opaque) replaces every pixel whose centre lies strictly inside it. The
   // quad of a line leaving its centre in direction (ux, uy) (a unit vector) reaches s |ux| +
   // pad |uy| along x and s |uy| + pad |ux| along y over its first s px; both must stay inside.
-  const float pad = 0.5f * width + aa_pad_px, inside = half - 0.01f;
+  const float pad = 0.5f * width + detail::aa_pad_px, inside = half - 0.01f;
   const float ax = std::abs(ux), ay = std::abs(uy);
   float cut = std::numeric_limits<float>::max();
   if (ax > 0.0f) cut = std::min(cut, (inside - pad * ay) / ax);
@@ -212,61 +210,13 @@ void Renderer::shorten(std::span<PolylinePoint> points, float cut_start, float c
   pull_towards(points[n - 2], points[n - 1], cut_end);
 }
 
-void Renderer::polyline(std::span<const PolylinePoint> points, float width) {
-  // The strip is a sequence of vertex pairs: left = point + normal * pad, right = point -
-  // normal * pad, shape coordinate v = +e / -e, as in line() (pad includes aa_pad_px for the
-  // anti-aliased edge). A pair emitted with `join` is connected to the pair before it by
-  // two triangles.
-  use(shapes, {});
-  const float h = 0.5f * width, pad = h + aa_pad_px, e = pad / h;
-  constexpr float min_step = 1e-3f;  // px, as line()
-  // cos of the sharpest turn still mitred: 90°, where the mitre is sqrt(2) * pad long.
-  constexpr float mitre_limit = 0.0f;
-  auto pair = [&](const PolylinePoint& p, float nx, float ny, bool join) {
-    const auto base = static_cast<std::uint32_t>(vertices_.size());
-    vertex(p.x + nx, p.y + ny, 0.0f, e, p.c);
-    vertex(p.x - nx, p.y - ny, 0.0f, -e, p.c);
-    if (join) {
-      for (std::uint32_t i : {0u, 1u, 3u, 0u, 3u, 2u}) indices_.push_back(base - 2 + i);
-    }
-  };
-  if (points.empty()) return;
-  // `prev`: the last distinct point; (dx, dy): unit direction of the segment ending there.
-  const PolylinePoint* prev = &points[0];
-  float dx = 0, dy = 0;
-  bool started = false;  // the first segment (and the pair at its start) has been emitted
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    const PolylinePoint& p = points[i];
-    const float sx = p.x - prev->x, sy = p.y - prev->y;
-    const float len = std::sqrt(sx * sx + sy * sy);
-    if (len < min_step) continue;
-    const float ux = sx / len, uy = sy / len;
-    if (!started) {
-      pair(*prev, -uy * pad, ux * pad, false);
-      started = true;
-    } else if (dx * ux + dy * uy >= mitre_limit) {  // mitre: one pair on the bisector
-      float mx = dx + ux, my = dy + uy;
-      const float ml = std::sqrt(mx * mx + my * my);
-      mx /= ml, my /= ml;
-      // Offset pad / cos(half the turn) along the bisector's normal: pad from both segments.
-      const float scale = pad / (mx * ux + my * uy);
-      pair(*prev, -my * scale, mx * scale, true);
-    } else {  // too sharp: end this strip flat and start the next one flat
-      pair(*prev, -dy * pad, dx * pad, true);
-      pair(*prev, -uy * pad, ux * pad, false);
-    }
-    dx = ux, dy = uy;
-    prev = &p;
-  }
-  if (started) pair(*prev, -dy * pad, dx * pad, true);
-}
-
 template <class Transform>
 void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel) {
   // stb_easy_font emits quads of 4 vertices {x, y, z, rgba8} (16 bytes each) in font units,
   // at most ~270 bytes per character on average (its documentation); give it room for long
   // strings rather than letting it truncate them.
-  std::string copy = printable(s);
+  std::string& copy = text_scratch_;  // kept: no allocation once it has held the longest text
+  printable_into(s, copy);
   font_scratch_.resize(std::max(font_scratch_.size(), copy.size() * 1024));
   unsigned char rgba[4] = {c.r, c.g, c.b, c.a};
   const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, font_scratch_.data(),

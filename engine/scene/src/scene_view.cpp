@@ -1,15 +1,125 @@
-// Scene files: the [view] table (what part of the world the frames show). See README
-// "Scene format".
+// Scene files: the [view] table (what part of the world the frames show, and how: background,
+// grid, axes, scale bar, the HUD's corner, scale and lines). See README "Scene format".
+#include <array>
 #include <cmath>
+#include <string_view>
+#include <utility>
 
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {
 
+namespace {
+
+/// The boolean at view[key] (path view.KEY); nullopt when absent.
+std::optional<bool> view_flag(const Reader& r, const toml::table& view, std::string_view key) {
+  const toml::node* n = view.get(key);
+  if (!n) return std::nullopt;
+  if (!n->is_boolean()) {
+    r.fail(n->source(), fmt::format("view.{}", key),
+           fmt::format("expected true or false, found {}", found(*n)));
+  }
+  return n->as_boolean()->get();
+}
+
+constexpr std::array<std::pair<std::string_view, SceneHud>, 5> hud_places{{
+    {"top_left", SceneHud::top_left},
+    {"top_right", SceneHud::top_right},
+    {"bottom_left", SceneHud::bottom_left},
+    {"bottom_right", SceneHud::bottom_right},
+    {"off", SceneHud::off},
+}};
+
+constexpr std::array<std::pair<std::string_view, std::uint32_t>, 5> hud_line_names{{
+    {"title", scene_hud_title},
+    {"time", scene_hud_time},
+    {"integrator", scene_hud_integrator},
+    {"energy", scene_hud_energy},
+    {"controls", scene_hud_controls},
+}};
+
+/// "a", "b" and "c" for messages.
+template <std::size_t N, class T>
+std::string names_of(const std::array<std::pair<std::string_view, T>, N>& table) {
+  std::string out;
+  for (std::size_t i = 0; i < N; ++i) {
+    out += fmt::format("{}\"{}\"", i == 0 ? "" : (i + 1 == N ? " or " : ", "), table[i].first);
+  }
+  return out;
+}
+
+/// hud = "top_left" | "top_right" | "bottom_left" | "bottom_right" | "off".
+void parse_hud_place(const Reader& r, const toml::table& view, SceneView& out) {
+  const auto place = r.string(view, "hud", "view.hud");
+  if (!place) return;
+  for (const auto& [name, value] : hud_places) {
+    if (*place == name) {
+      out.hud = value;
+      return;
+    }
+  }
+  r.fail(view.get("hud")->source(), "view.hud",
+         fmt::format("expected {}, found \"{}\"", names_of(hud_places), *place));
+}
+
+/// hud_lines = ["title", "time", "integrator", "energy", "controls"] (any of them, once each).
+void parse_hud_lines(const Reader& r, const toml::table& view, SceneView& out) {
+  const toml::node* n = view.get("hud_lines");
+  if (!n) return;
+  const toml::array* list = n->as_array();
+  if (!list) {
+    r.fail(n->source(), "view.hud_lines",
+           fmt::format("expected an array of line names ({}), found {}", names_of(hud_line_names),
+                       found(*n)));
+  }
+  std::uint32_t bits = 0;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::node& item = *list->get(i);
+    const std::string path = fmt::format("view.hud_lines[{}]", i);
+    const toml::value<std::string>* name = item.as_string();
+    if (!name) r.fail(item.source(), path, fmt::format("expected a string, found {}", found(item)));
+    std::uint32_t bit = 0;
+    for (const auto& [line, value] : hud_line_names)
+      if (name->get() == line) bit = value;
+    if (bit == 0) {
+      r.fail(item.source(), path,
+             fmt::format("expected {}, found \"{}\"", names_of(hud_line_names), name->get()));
+    }
+    if ((bits & bit) != 0)
+      r.fail(item.source(), path, fmt::format("\"{}\" is named twice", name->get()));
+    bits |= bit;
+  }
+  out.hud_lines = bits;
+}
+
+/// background, grid, axes, scale_bar, hud, hud_scale, hud_lines.
+void parse_view_style(const Reader& r, const toml::table& view, SceneView& out) {
+  if (view.contains("background"))
+    out.background = parse_color(r, view, "background", "view.background");
+  out.grid = view_flag(r, view, "grid");
+  out.axes = view_flag(r, view, "axes");
+  out.scale_bar = view_flag(r, view, "scale_bar");
+  parse_hud_place(r, view, out);
+  if (auto scale = r.number(view, "hud_scale", "view.hud_scale")) {
+    r.require(
+        *scale >= min_scene_hud_scale && *scale <= max_scene_hud_scale, view, "hud_scale",
+        "view.hud_scale",
+        fmt::format("{:g} .. {:g} (px per font pixel)", min_scene_hud_scale, max_scene_hud_scale),
+        *scale);
+    out.hud_scale = *scale;
+  }
+  parse_hud_lines(r, view, out);
+}
+
+}  // namespace
+
 void parse_view(Reader& r, const toml::table& doc, Scene& scene) {
   const toml::table* view = r.table(doc, "view", "view");
   if (!view) return;
-  r.check_keys(*view, "view", {"center", "width"});
+  r.check_keys(*view, "view",
+               {"center", "width", "background", "grid", "axes", "scale_bar", "hud", "hud_scale",
+                "hud_lines"});
+  parse_view_style(r, *view, scene.view);
   // Bounded before any frame is drawn (SceneView): a view of a point 10^300 m out, or
   // 10^-300 m wide, has no pixels to draw.
   scene.view.center = r.vec2(*view, "center", "view.center");

@@ -19,7 +19,8 @@
 // keeps (the handles WorldDef::add_body returned, the bodies it tagged) every copy has. input()
 // turns a window's events into per-body input (the sampler carries it into the ticks and the
 // recording); autopilot() does the same for a headless frame; prepare() adjusts one live tick's
-// input before it is stepped (e.g. which body the pointer may drag); draw() adds lines to the HUD;
+// input before it is stepped (e.g. which body the pointer may drag); draw() draws shapes over the
+// world (lines, circles, polygons, arrows, labels: app::Overlay) and adds lines to the HUD;
 // summary() is the game's state in one line, printed after a run and a replay.
 #pragma once
 
@@ -67,6 +68,18 @@ struct Settings {
   /// Shows the HUD's energy line. Off by default: a game's input and rules add energy from
   /// outside the world's account, so its balance would measure them, not the integrator.
   bool show_energy = false;
+  // The view's look. Each, when set, replaces what the scene's [view] table says (background,
+  // grid, axes and scale_bar together; hud; hud_scale; hud_lines); unset, the scene's keys, else
+  // the defaults, apply (SessionSettings).
+  /// Background colour, grid, axes and scale bar.
+  std::optional<ViewStyle> style{};
+  /// The HUD's corner; `show_hud` false hides it all (the game's text() lines included).
+  std::optional<HudCorner> hud_corner{};
+  std::optional<bool> show_hud{};
+  /// The HUD's text scale, px per font pixel, in [1, 4] (else run() exits 1).
+  std::optional<float> hud_text_scale{};
+  /// Which engine lines the HUD may show (HudLine bits of fixstep/session.hpp).
+  std::optional<unsigned> hud_lines{};
 };
 
 /// What a type needs to be run: copyable, with setup() and rules() (see the top of this file).

@@ -5,11 +5,13 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "fixstep/draw_list.hpp"
 #include "fixstep/key_bindings.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/render.hpp"
@@ -22,6 +24,18 @@ namespace fixstep {
 /// links (a rope pinned at one end), the circle round that anchor through the farthest of them,
 /// with a 15 % margin. `width` and `height` are the frame size in pixels (for the aspect ratio).
 [[nodiscard]] Camera fit_camera(const WorldDef& def, int width, int height);
+
+/// The engine's HUD lines, as bits of SessionSettings::hud_lines (Session::set_hud_lines). The
+/// values are those of the scene's [view] hud_lines (SceneView::hud_lines).
+enum HudLine : unsigned {
+  hud_title = 1u << 0,       ///< "fixstep  TITLE  (N bodies)"
+  hud_time = 1u << 1,        ///< tick, t and dt
+  hud_integrator = 1u << 2,  ///< the integrator and precision
+  hud_energy = 1u << 3,      ///< energy, dissipated, balance (when set_show_energy is on)
+  hud_controls = 1u << 4,    ///< time scale and the key help (when set_show_controls is on)
+};
+/// Every engine HUD line.
+inline constexpr unsigned all_hud_lines = 0x1f;
 
 /// How a Session shows its world.
 ///
@@ -39,6 +53,17 @@ struct SessionSettings {
   /// empty: none. The constructor throws std::invalid_argument when no body has that name.
   std::string follow{};
   float hud_text_scale = 2.0f;  ///< see Renderer::set_hud_text_scale (in [1, 4])
+  /// Background colour, grid, axes and scale bar (Renderer::set_view_style).
+  ViewStyle style{};
+  /// The corner the HUD panel sits in; with the automatic view, the band reserved for it is at
+  /// the top or the bottom of the frame accordingly.
+  HudCorner hud_corner = HudCorner::top_left;
+  /// false: no HUD at all (neither the engine's lines nor the status lines; the runtime guard's
+  /// message still shows when it fires), and no band reserved for it.
+  bool show_hud = true;
+  /// Which of the engine's lines the HUD may show (HudLine bits; energy and controls also need
+  /// their switches).
+  unsigned hud_lines = all_hud_lines;
   /// The loop's frame-time clamp, s (LoopSettings::max_frame_time): the real clock's guard
   /// against stalls. A virtual clock passes its frame time (>= 0.25 s when it is longer), so no
   /// frame is clamped: frames are exactly 1/fps apart at any fps.
@@ -94,6 +119,17 @@ class Session {
   void restore(const WorldSnapshot& world);
   /// Renders the state interpolated by the loop's alpha, with the HUD, into renderer().pixels().
   void draw();
+  /// The same, with `overlay`'s shapes drawn after the bodies and before the HUD (a game's
+  /// drawing: app::Overlay).
+  void draw(const DrawList& overlay);
+  /// Takes the frame the next draw() draws: the bodies' positions interpolated by alpha, the
+  /// followed body centred. draw() takes it itself unless prepare_frame() was called since the
+  /// last tick or draw (so that a game can ask drawn_position() first); nothing may change the
+  /// world in between.
+  void prepare_frame();
+  /// Where `body` is drawn in the prepared frame (prepare_frame()), m: its position interpolated
+  /// by alpha; nullopt for a handle that names no live body or when no frame is prepared.
+  [[nodiscard]] std::optional<Vec2> drawn_position(Entity body) const;
   /// Back to the initial state (tick 0), trails cleared; pause and time scale are kept, and the
   /// view follows SessionSettings::follow's body again.
   void restart();
@@ -115,8 +151,20 @@ class Session {
   /// its message: for programs that lay out a HUD of their own (`fixstep compare`'s tiles).
   void set_show_engine_hud(bool show);
   /// Extra HUD lines drawn below the engine's (a game's score, a hint), until replaced; an
-  /// empty list shows none. The bitmap font is ASCII only.
-  void set_status_lines(std::vector<std::string> lines);
+  /// empty list shows none. The bitmap font is ASCII only. The lines are copied into storage
+  /// the session keeps: setting lines every frame allocates nothing once warm.
+  void set_status_lines(std::span<const std::string> lines);
+  /// Background colour, grid, axes and scale bar (SessionSettings::style).
+  void set_view_style(const ViewStyle& style) { renderer_.set_view_style(style); }
+  /// The HUD's corner (SessionSettings::hud_corner).
+  void set_hud_corner(HudCorner corner);
+  /// Shows the HUD or hides it all (SessionSettings::show_hud).
+  void set_show_hud(bool show);
+  /// Which engine lines the HUD may show (HudLine bits; SessionSettings::hud_lines).
+  void set_hud_lines(unsigned lines);
+  /// The HUD's text scale, px per font pixel: Renderer::set_hud_text_scale (throws
+  /// std::invalid_argument outside [1, 4]).
+  void set_hud_text_scale(float scale);
 
   // --- the camera: what part of the world the frame shows (units: m) ----------------------
   /// Shows the world around `center` (m), `width` m across the frame (the height follows the
@@ -147,6 +195,8 @@ class Session {
   /// The loop's interpolation weight: draw() shows lerp(previous tick, current tick, alpha).
   [[nodiscard]] double alpha() const { return loop_.alpha(); }
   [[nodiscard]] const Renderer& renderer() const { return renderer_; }
+  /// The frame last prepared or drawn (prepare_frame()).
+  [[nodiscard]] const RenderFrame& frame() const { return frame_; }
   [[nodiscard]] double initial_energy() const { return initial_energy_; }
 
  private:
@@ -160,6 +210,10 @@ class Session {
   [[nodiscard]] std::size_t planned_hud_lines() const;
   /// The automatic view: refits the world below a HUD of `lines` lines when more than reserved.
   void reserve_hud(std::size_t lines);
+  /// After each tick: samples the trails; the prepared frame is stale.
+  void after_tick();
+  /// Renders the prepared frame, `overlay` (if any) and the HUD.
+  void render(const DrawList* overlay);
   /// The constructors' common part, once sim_ is built.
   void start(const SessionSettings& settings);
   /// The program took the camera: the view is no longer automatic.
@@ -189,12 +243,19 @@ class Session {
   std::size_t hud_reserved_ = 0;           ///< HUD lines the automatic view leaves room for
   Entity follow_ = null_entity;            ///< follow()
   std::string follow_name_;                ///< SessionSettings::follow
+  bool frame_ready_ = false;               ///< prepare_frame() since the last tick or draw
+  HudCorner hud_corner_ = HudCorner::top_left;
+  bool show_hud_ = true;
+  unsigned hud_lines_ = all_hud_lines;
+  std::size_t status_count_ = 0;  ///< status_lines_[0, status_count_) are shown
 };
 
 template <class TickFn>
 FrameResult Session::advance_with(double frame_seconds, TickFn&& tick) {
   const FrameResult r = loop_.advance_with(frame_seconds, [&](std::uint64_t t) {
-    if (!sim_->fault()) tick(t, *sim_);
+    if (sim_->fault()) return;
+    tick(t, *sim_);
+    after_tick();
   });
   pause_on_fault();
   return r;

@@ -23,15 +23,29 @@ struct RenderFrame {
   std::vector<Entity> ids;
   std::vector<float> radius;  ///< m; 0 = no Appearance (drawn at a default size)
   std::vector<Rgba8> color;   ///< colour; alpha 0 = no Appearance (palette colour)
+  /// Appearance::visible: 0 = neither the body, its trail nor its anchored spring is drawn.
+  /// Empty: every body is drawn (a frame filled by hand).
+  std::vector<std::uint8_t> visible;
+  /// Seconds of trail behind each body (Appearance::trail_time; 0 = Appearance::trail off).
+  /// Empty: default_trail_time for every body.
+  std::vector<float> trail_time;
   std::vector<SpringLine> springs;
   /// Links (springs between bodies): link i joins entries link_a[i] and link_b[i] of x / y.
   std::vector<std::uint32_t> link_a, link_b;
   /// Static half-planes n·x >= offset (normals normalised), drawn as ground and walls.
   std::vector<PlaneDef> planes;
+  /// The world's tick when the frame was taken (World::tick()) and its dt (s; 0: unknown, a
+  /// frame filled by hand, taken as 1/60 s), and the interpolation alpha of x / y: the frame
+  /// shows the moment tick - (1 - alpha) ticks. Trails (Trails::prepare) sample a frame whose
+  /// tick they have not sampled, and fade their samples by their age before this moment.
+  std::uint64_t tick = 0;
+  double dt = 0.0;
+  double alpha = 1.0;
 };
 
 /// Fills `out` from `world` at interpolation alpha (in [0, 1]; World::interpolate_positions):
-/// positions, handles, appearances, anchored springs, links and planes. Reuses out's storage: no
+/// positions, handles, appearances (visibility and trails included), anchored springs, links,
+/// planes, the tick, dt and alpha. Reuses out's storage: no
 /// allocation once it has grown to the world's size.
 void fill_render_frame(const World& world, double alpha, RenderFrame& out);
 

@@ -39,6 +39,23 @@ struct Camera {
 [[nodiscard]] Vec2 screen_to_world(const Camera& camera, double px, double py, int width,
                                    int height);
 
+/// The scene view's default background colour.
+inline constexpr Rgba8 default_background{18, 21, 28, 255};
+
+/// What the scene view draws besides the world (Renderer::set_view_style).
+struct ViewStyle {
+  Rgba8 background = default_background;  ///< the frame's colour (its alpha is ignored: opaque)
+  bool grid = true;                       ///< grid lines every power of ten metres
+  bool axes = true;                       ///< the lines x = 0 and y = 0, brighter than the grid
+  /// The scale bar (a length of 1, 2 or 5 times a power of ten metres), in the bottom corner
+  /// the HUD does not take: bottom right, or bottom left when the HUD is there.
+  bool scale_bar = true;
+  friend bool operator==(const ViewStyle&, const ViewStyle&) = default;
+};
+
+/// A corner of the frame (the HUD panel's place: Renderer::set_hud_corner).
+enum class HudCorner : std::uint8_t { top_left, top_right, bottom_left, bottom_right };
+
 /// Frame sizes accepted by Renderer, pixels (OSMesa's own limit is larger).
 inline constexpr int min_frame_size = 16;
 inline constexpr int max_frame_size = 8192;
@@ -77,19 +94,39 @@ class Renderer {
   /// of world point (x, y) in m under the current camera.
   [[nodiscard]] std::array<double, 2> to_pixel(double x, double y) const;
 
-  /// Draws grid, trails, links, springs, bodies and the HUD text lines into pixels(). With at
-  /// most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
-  /// cloth) they are thin straight lines and no trails are drawn. Each call also appends the
-  /// bodies' positions to their trails (one sample per frame, kept per body handle: see Trails;
-  /// throws std::invalid_argument for a frame whose ids Trails::record refuses). Implemented with
-  /// the canvas calls below: begin(), primitives, finish().
+  /// Draws the scene view of `frame` (see draw_scene()) and the HUD text lines (draw_hud()) into
+  /// pixels(): draw_scene(frame), draw_hud(hud_lines), finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
+  /// Starts a picture (begin()) of the scene view of `frame`: background, grid, axes and scale
+  /// bar as view_style() says, the planes, trails, links, springs and the visible bodies. With
+  /// at most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
+  /// cloth) they are thin straight lines and no trails are drawn. A body hidden by its
+  /// Appearance (RenderFrame::visible 0) is not drawn, nor its trail, nor the springs and links
+  /// that end at it. Prepares the trails first (Trails::prepare: throws std::invalid_argument for
+  /// a frame it refuses). Canvas primitives recorded after it are drawn over the bodies (a
+  /// game's overlay); draw_hud() and finish() complete the picture.
+  void draw_scene(const RenderFrame& frame);
+  /// The HUD panel with `lines` (none: nothing) in the corner hud_corner() names, at
+  /// hud_text_scale(), over whatever was recorded before.
+  void draw_hud(std::span<const std::string> lines);
+  /// Samples the trails after a tick of `world` (Trails::sample; Session calls it after every
+  /// tick). A world with more than max_zigzag_links links, whose trails are not drawn, is not
+  /// sampled.
+  void sample_trails(const World& world);
   /// Size of draw()'s HUD text, px per font pixel: the font (stb_easy_font) is about 7 font
   /// pixels tall and HUD lines are 11 apart, so 2 (the default) gives 22 px lines. Narrow
   /// frames take less (`fixstep compare`'s tiles). Throws std::invalid_argument unless
-  /// `scale` is finite and in [1, 4].
+  /// `scale` is finite and in [min_hud_text_scale, max_hud_text_scale].
   void set_hud_text_scale(float scale);
   [[nodiscard]] float hud_text_scale() const { return hud_text_scale_; }
+  static constexpr float min_hud_text_scale = 1.0f;
+  static constexpr float max_hud_text_scale = 4.0f;
+  /// The frame's corner the HUD panel sits in (top_left by default).
+  void set_hud_corner(HudCorner corner) { hud_corner_ = corner; }
+  [[nodiscard]] HudCorner hud_corner() const { return hud_corner_; }
+  /// What the scene view draws besides the world (background, grid, axes, scale bar).
+  void set_view_style(const ViewStyle& style) { style_ = style; }
+  [[nodiscard]] const ViewStyle& view_style() const { return style_; }
   /// Height in px of draw()'s HUD panel holding `lines` lines at scale `scale`, margin included.
   [[nodiscard]] static float hud_height(std::size_t lines, float scale);
   /// Width in px of draw()'s HUD panel for `line` (its widest line) at scale `scale`, margin
@@ -105,10 +142,8 @@ class Renderer {
   static constexpr int max_grid_lines = 40 * max_frame_size / min_frame_size + 1;
   /// Forgets the trails (after a restart or a jump): each body starts a new one.
   void clear_trails() { trails_.clear(); }
-  /// The trails draw() draws, each body's own (see Trails: kept per handle).
+  /// The trails draw() draws, each body's own (see Trails: kept per handle, sampled per tick).
   [[nodiscard]] const Trails& trails() const { return trails_; }
-  /// Number of frames a trail spans.
-  static constexpr int trail_frames = Trails::capacity;
 
   [[nodiscard]] std::span<const std::uint8_t> pixels() const { return pixels_; }
 
@@ -162,6 +197,26 @@ class Renderer {
   /// GL point (the cheapest primitive for llvmpipe); a disc wider than GL's largest point (255 px
   /// with llvmpipe) is drawn as those two discs. outline_width <= 0 draws the plain disc.
   void disc(float cx, float cy, float r, Rgba8 c, float outline_width, Rgba8 outline_c);
+  /// A point of a closed polyline or polygon, px.
+  struct Point {
+    float x = 0, y = 0;
+  };
+  /// An anti-aliased closed polyline of `width` px through `points` and back to the first, joins
+  /// as polyline()'s (all mitred up to 90°, the first point's included); fewer than two distinct
+  /// points draw nothing.
+  void closed_polyline(std::span<const Point> points, float width, Rgba8 c);
+  /// An anti-aliased circle (an outline, not filled) of radius r px centred on (cx, cy), its
+  /// line `width` px wide centred on the radius: a closed polyline of enough sides that no
+  /// chord strays 0.05 px from the circle (8 to 1024 sides). r <= 0 or width <= 0: nothing.
+  void circle(float cx, float cy, float r, float width, Rgba8 c);
+  /// A filled convex polygon (a triangle fan from points[0]; any winding), not smoothed. The
+  /// caller ensures convexity; fewer than 3 points draw nothing.
+  void polygon(std::span<const Point> points, Rgba8 c);
+  /// An arrow from (x0, y0) to (x1, y1): an anti-aliased shaft `width` px wide and a filled
+  /// triangular head, not smoothed, `head` px long and as wide, whose tip is (x1, y1). An arrow
+  /// shorter than its head is all head (scaled down to its length); shorter than 1e-3 px draws
+  /// nothing.
+  void arrow(float x0, float y0, float x1, float y1, float width, float head, Rgba8 c);
   /// Text in stb_easy_font's bitmap font (printable ASCII: any other character, e.g. a UTF-8
   /// "ω", is drawn as one '?'; '\n' starts a new line), `scale` px per font
   /// unit, with the top-left corner of the first glyph cell at (x, y). A line of capitals is
@@ -194,8 +249,6 @@ class Renderer {
   void vertex(float x, float y, float u, float v, Rgba8 c, float fill = 0.0f) {
     vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, fill});
   }
-  /// draw()'s HUD panel and its lines, at hud_text_scale_.
-  void hud(std::span<const std::string> lines);
   template <class Transform>
   void glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to_pixel);
   // Occlusion by what draw() draws later, fully opaque (so what lies below does not matter):
@@ -210,9 +263,15 @@ class Renderer {
   /// end whose segment is not longer than its cut + 0.01 px stays. A single segment shorter than
   /// both cuts together (wholly hidden) is the caller's to skip.
   static void shorten(std::span<PolylinePoint> points, float cut_start, float cut_end);
+  /// The grid, axes and scale bar, as style_ says.
   void grid();
+  /// The scale bar for grid spacing `step` m.
+  void scale_bar(double step);
   /// draw()'s trails: one fading polyline per body (few_links scenes only).
   void draw_trails(const RenderFrame& s, double scale);
+  /// A pair of strip vertices at (x, y) offset by +-(nx, ny) px (shape coordinate v = +-e) in
+  /// colour c, joined to the pair before it by two triangles when `join`.
+  void strip_pair(float x, float y, float nx, float ny, float e, Rgba8 c, bool join);
   /// Sets every program's uniforms for this frame, drawn upside down with flip = -1 (finish()).
   void set_flip(float flip);
   /// Draws batches_[from, to) (finish()).
@@ -231,6 +290,8 @@ class Renderer {
   std::string gl_renderer_;
   Camera camera_;
   float hud_text_scale_ = 2.0f;  ///< px per font pixel in draw()'s HUD
+  HudCorner hud_corner_ = HudCorner::top_left;
+  ViewStyle style_;
   std::vector<Vertex> vertices_;
   std::vector<std::uint32_t> indices_;  // triangles (3 indices each) or points (1 each)
   // Draw batches: indices [first, next batch's first) share one clip rectangle.
@@ -249,11 +310,15 @@ class Renderer {
   std::size_t backdrop_batches_ = 0;
   // What the backdrop shows, once recorded: draw()'s grid and planes for these.
   bool backdrop_recorded_ = false;
-  Rgba8 backdrop_background_{};
+  ViewStyle backdrop_style_;
+  HudCorner backdrop_hud_corner_ = HudCorner::top_left;
   Camera backdrop_camera_;
   std::vector<PlaneDef> backdrop_planes_;
   std::vector<char> font_scratch_;
+  std::string text_scratch_;                     // glyphs(): the printable copy of a text
   std::vector<PolylinePoint> polyline_scratch_;  // one trail or spring, reused every frame
+  std::vector<Point> point_scratch_;             // closed_polyline()'s distinct points
+  std::vector<Point> circle_scratch_;            // circle()'s sides
   Trails trails_;  // world coordinates, m: drawn through the camera of each frame
 };
 

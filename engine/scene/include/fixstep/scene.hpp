@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -45,13 +46,40 @@ inline constexpr double max_view_width = 10.0 * max_view_center;
 /// lines apart in doubles (about 16 digits).
 inline constexpr double min_view_width_ratio = 1e-9;
 
-/// The optional [view] table: what part of the world the frames show. The loader refuses
-/// (SceneError at the key) a center coordinate beyond ±max_view_center, a width outside
+/// Where the [view] table puts the HUD (hud = "top_left", ..., "off").
+enum class SceneHud : std::uint8_t { top_left, top_right, bottom_left, bottom_right, off };
+
+/// The engine's HUD lines a [view] hud_lines array names, as bits (the app library's HudLine
+/// values): "title", "time", "integrator", "energy", "controls".
+inline constexpr std::uint32_t scene_hud_title = 1u << 0;
+inline constexpr std::uint32_t scene_hud_time = 1u << 1;
+inline constexpr std::uint32_t scene_hud_integrator = 1u << 2;
+inline constexpr std::uint32_t scene_hud_energy = 1u << 3;
+inline constexpr std::uint32_t scene_hud_controls = 1u << 4;
+
+/// Narrowest and widest [view] hud_scale, px per font pixel (the renderer's limits).
+inline constexpr double min_scene_hud_scale = 1.0;
+inline constexpr double max_scene_hud_scale = 4.0;
+
+/// The optional [view] table: what part of the world the frames show, and how. The loader
+/// refuses (SceneError at the key) a center coordinate beyond ±max_view_center, a width outside
 /// [min_view_width, max_view_width], and a width below min_view_width_ratio × the center's
-/// larger coordinate: each bounds the work and memory of drawing a frame.
+/// larger coordinate: each bounds the work and memory of drawing a frame. Each field is unset
+/// when the table does not name it: the program's choice, else the default, applies.
 struct SceneView {
   std::optional<Vec2> center;   ///< m; default: centre of the bodies and anchors
   std::optional<double> width;  ///< visible width, m; default: fits bodies and spring ranges
+  /// background = "#rrggbb" (or "#rrggbbaa": the alpha is ignored, frames are opaque).
+  std::optional<Rgba8> background;
+  std::optional<bool> grid;       ///< grid = true/false: grid lines every power of ten metres
+  std::optional<bool> axes;       ///< axes = true/false: the lines x = 0 and y = 0
+  std::optional<bool> scale_bar;  ///< scale_bar = true/false
+  std::optional<SceneHud> hud;    ///< hud = "top_left" | ... | "bottom_right" | "off"
+  /// hud_scale = 1 .. 4: the HUD's text, px per font pixel.
+  std::optional<double> hud_scale;
+  /// hud_lines = ["title", "time", ...]: which engine lines the HUD may show (scene_hud_* bits;
+  /// [] none: only a program's own lines).
+  std::optional<std::uint32_t> hud_lines;
 };
 
 /// Where each part of a scene was declared, for messages: line numbers (0 if not from a file)

@@ -1,0 +1,191 @@
+// DrawList::draw (draw_list.hpp): each shape through the camera into canvas primitives, culled
+// and clipped in double so that no far-away coordinate reaches GL as a huge float.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "fixstep/draw_list.hpp"
+#include "fixstep/render.hpp"
+
+namespace fixstep {
+
+namespace {
+
+/// px beyond the frame's edges within which coordinates are passed to the canvas as they are;
+/// lines reaching farther are clipped to it (a float keeps 1/16 px at this distance).
+constexpr double reach_px = 4096.0;
+/// Widest circle or disc drawn, px.
+constexpr double max_round_px = 1e6;
+
+/// The frame grown by reach_px on every side, px.
+struct Box {
+  double x0, y0, x1, y1;
+  [[nodiscard]] bool holds(Vec2 p) const {
+    return p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1;
+  }
+};
+
+/// Cuts the segment a-b to `box` (Liang–Barsky); false when none of it is inside.
+bool clip(Vec2& a, Vec2& b, const Box& box) {
+  double t0 = 0.0, t1 = 1.0;
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double p[4] = {-dx, dx, -dy, dy};
+  const double q[4] = {a.x - box.x0, box.x1 - a.x, a.y - box.y0, box.y1 - a.y};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0.0) {
+      if (q[i] < 0.0) return false;
+      continue;
+    }
+    const double t = q[i] / p[i];
+    if (p[i] < 0.0) {
+      t0 = std::max(t0, t);
+    } else {
+      t1 = std::min(t1, t);
+    }
+    if (t0 > t1) return false;
+  }
+  const Vec2 start{a.x + t0 * dx, a.y + t0 * dy}, end{a.x + t1 * dx, a.y + t1 * dy};
+  a = start;
+  b = end;
+  return true;
+}
+
+/// Clips the convex polygon `in` to `box` (Sutherland–Hodgman, one edge at a time) into `out`.
+void clip_polygon(const std::vector<Vec2>& in, const Box& box, std::vector<Vec2>& out,
+                  std::vector<Vec2>& scratch) {
+  out = in;
+  for (int edge = 0; edge < 4; ++edge) {
+    auto inside = [&](Vec2 p) {
+      switch (edge) {
+        case 0:
+          return p.x >= box.x0;
+        case 1:
+          return p.x <= box.x1;
+        case 2:
+          return p.y >= box.y0;
+        default:
+          return p.y <= box.y1;
+      }
+    };
+    auto cut = [&](Vec2 a, Vec2 b) {
+      const double t = edge < 2 ? ((edge == 0 ? box.x0 : box.x1) - a.x) / (b.x - a.x)
+                                : ((edge == 2 ? box.y0 : box.y1) - a.y) / (b.y - a.y);
+      return Vec2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+    };
+    scratch.clear();
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const Vec2 a = out[i], b = out[(i + 1) % out.size()];
+      if (inside(a)) scratch.push_back(a);
+      if (inside(a) != inside(b)) scratch.push_back(cut(a, b));
+    }
+    out.swap(scratch);
+    if (out.empty()) return;
+  }
+}
+
+/// Scratch of the shapes being drawn, kept between frames (no allocation once warm).
+struct Scratch {
+  std::vector<Vec2> px, clipped, spare;
+  std::vector<Renderer::PolylinePoint> strip;
+  std::vector<Renderer::Point> points;
+  std::string text;
+};
+
+}  // namespace
+
+void DrawList::draw(Renderer& canvas) const {
+  thread_local Scratch scratch;
+  const Camera& cam = canvas.camera();
+  const double scale = canvas.width() / cam.width;  // px per m
+  const Box box{-reach_px, -reach_px, canvas.width() + reach_px, canvas.height() + reach_px};
+  for (const Shape& s : shapes_) {
+    const bool world = s.space == Space::world;
+    const double unit = world ? scale : 1.0;  // px per size unit
+    // The shape's points in px (double).
+    scratch.px.clear();
+    for (const Vec2 p : points_of(s)) {
+      if (world) {
+        const std::array<double, 2> q = canvas.to_pixel(p.x, p.y);
+        scratch.px.push_back({q[0], q[1]});
+      } else {
+        scratch.px.push_back(p);
+      }
+    }
+    const std::vector<Vec2>& px = scratch.px;
+    const auto c = s.color;
+    switch (s.kind) {
+      case Kind::line:
+      case Kind::arrow: {
+        Vec2 a = px[0], b = px[1];
+        const Vec2 tip = b;
+        if (!clip(a, b, box)) break;
+        const auto w = float(s.width * unit);
+        if (s.kind == Kind::line) {
+          canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), w, c);
+        } else if (b.x == tip.x && b.y == tip.y) {  // the head is in reach
+          canvas.arrow(float(a.x), float(a.y), float(b.x), float(b.y), w, float(s.size * unit), c);
+        } else {  // the tip is far beyond the frame: the shaft is all that shows
+          canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), w, c);
+        }
+        break;
+      }
+      case Kind::polyline: {
+        const auto w = float(s.width * unit);
+        if (std::all_of(px.begin(), px.end(), [&](Vec2 p) { return box.holds(p); })) {
+          scratch.strip.clear();
+          for (const Vec2 p : px) scratch.strip.push_back({float(p.x), float(p.y), c});
+          canvas.polyline(scratch.strip, w);
+          break;
+        }
+        for (std::size_t i = 0; i + 1 < px.size(); ++i) {  // some point far out: segment by segment
+          Vec2 a = px[i], b = px[i + 1];
+          if (clip(a, b, box)) canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), w, c);
+        }
+        break;
+      }
+      case Kind::circle:
+      case Kind::disc: {
+        const double r = s.width * unit, reach = r + (s.kind == Kind::circle ? s.size * unit : 0.0);
+        const Vec2 o = px[0];
+        if (2.0 * reach > max_round_px || o.x + reach < 0.0 || o.y + reach < 0.0 ||
+            o.x - reach > canvas.width() || o.y - reach > canvas.height()) {
+          break;
+        }
+        if (s.kind == Kind::disc) {
+          if (r > 0.0) canvas.disc(float(o.x), float(o.y), float(r), c);
+        } else {
+          canvas.circle(float(o.x), float(o.y), float(r), float(s.size * unit), c);
+        }
+        break;
+      }
+      case Kind::rect: {
+        const double x0 = std::clamp(std::min(px[0].x, px[1].x), box.x0, box.x1);
+        const double x1 = std::clamp(std::max(px[0].x, px[1].x), box.x0, box.x1);
+        const double y0 = std::clamp(std::min(px[0].y, px[1].y), box.y0, box.y1);
+        const double y1 = std::clamp(std::max(px[0].y, px[1].y), box.y0, box.y1);
+        if (x1 > x0 && y1 > y0) canvas.rect(float(x0), float(y0), float(x1), float(y1), c);
+        break;
+      }
+      case Kind::polygon: {
+        const bool inside = std::all_of(px.begin(), px.end(), [&](Vec2 p) { return box.holds(p); });
+        if (!inside) clip_polygon(px, box, scratch.clipped, scratch.spare);
+        const std::vector<Vec2>& shown = inside ? px : scratch.clipped;
+        scratch.points.clear();
+        for (const Vec2 p : shown) scratch.points.push_back({float(p.x), float(p.y)});
+        canvas.polygon(scratch.points, c);
+        break;
+      }
+      case Kind::label: {
+        const Vec2 at = px[0];
+        if (!box.holds(at)) break;  // text reaches at most a few thousand px
+        scratch.text.assign(text_, s.text_first, s.text_count);
+        canvas.text(float(at.x), float(at.y), scratch.text, float(s.width), c);
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace fixstep
