@@ -44,11 +44,13 @@ SpringDamper band() {
   return SpringDamper{.anchor = anchor, .stiffness = s.stiffness, .damping = s.damping};
 }
 
-// Puts the ball back on the band, at rest, for the next shot.
+// Puts the ball back on the band, at rest, for the next shot (a teleport: its trail starts
+// afresh), its trail off while it waits.
 void reload(fixstep::World& sim) {
   const fixstep::Entity b = ball(sim);
   sim.set_body(b, Body{.mass = ball_mass, .position = ball_rest_position(), .velocity = {}});
   sim.set(b, band());
+  sim.set(b, ball_look(Phase::loaded));
 }
 
 // Scores target `e` (number i) if it is not down yet: knocks it off its rope and greys it.
@@ -61,6 +63,14 @@ void knock(GameState& game, int i, fixstep::Entity e, fixstep::World& sim) {
 }
 
 }  // namespace
+
+fixstep::Appearance ball_look(Phase phase) {
+  // The trail shows the flight only: not the player's drag while loaded.
+  return fixstep::Appearance{.radius = ball_radius,
+                             .color = ball_color,
+                             .trail = phase == Phase::pulled || phase == Phase::flying,
+                             .trail_time = 1.5};
+}
 
 fixstep::Entity ball(const fixstep::World& sim) {
   return sim.find("ball");
@@ -89,7 +99,7 @@ fixstep::WorldDef make_level() {
   ball_def.body = Body{.mass = ball_mass, .position = ball_rest_position()};
   ball_def.spring = band();
   ball_def.gravity = fixstep::Gravity{{0.0, -gravity}};
-  ball_def.appearance = fixstep::Appearance{.radius = ball_radius, .color = ball_color};
+  ball_def.appearance = ball_look(Phase::loaded);
   ball_def.collider = fixstep::Collider{ball_radius};  // hits targets, ground and walls
   ball_def.user_data = ball_tag;
   def.bodies.push_back(ball_def);
@@ -113,16 +123,7 @@ fixstep::WorldDef make_level() {
     def.bodies.push_back(t);
   }
 
-  // The slingshot's post under the fork: three static discs (they never move) with no
-  // collider (drawing only: out of contacts, the ball passes in front of them).
-  for (int i = 0; i < 3; ++i) {
-    fixstep::BodyDef post;
-    post.name = "post" + std::to_string(i);
-    post.type = fixstep::BodyType::static_body;
-    post.body = Body{.mass = 1.0, .position = {anchor.x, 0.5 + 0.7 * i}};
-    post.appearance = fixstep::Appearance{.radius = 0.3, .color = {150, 105, 60, 255}};
-    def.bodies.push_back(post);
-  }
+  // The slingshot itself (post, fork, rubber) is no body: the game draws it (draw.cpp).
 
   // The ground (y >= 0) and two walls (|x| <= 22 m): half-planes the bodies'
   // colliders bounce on (restitution e) and slide along (friction μ).
@@ -159,6 +160,7 @@ void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
           game.phase = Phase::pulled;
           game.release_point = b.position;
           --game.shots_left;
+          sim.set(the_ball, ball_look(Phase::pulled));
         }
       }
       game.dragging = dragging;

@@ -36,7 +36,7 @@ inline constexpr double hit_restitution = 0.8;  ///< e of the disc-disc contacts
 inline constexpr int shots_per_game = 3;        ///< balls the player gets
 inline constexpr int target_count = 4;          ///< targets, hanging from ropes
 /// BodyDef::user_data of the ball, and of target i (0 <= i < target_count): target_tag + i. The
-/// rules tell the bodies apart by it (posts: 0).
+/// rules tell the bodies apart by it.
 inline constexpr std::uint64_t ball_tag = 1;
 inline constexpr std::uint64_t target_tag = 100;
 /// The ball's handle (World::find, O(1)).
@@ -45,10 +45,10 @@ inline constexpr std::uint64_t target_tag = 100;
 [[nodiscard]] int target_number(const fixstep::World& sim, fixstep::Entity e);
 
 /// The level: the ball resting on its band at `anchor`, four targets hanging from ropes
-/// (anchored springs with a rest length), gravity on both, a post under the fork (static,
-/// drawing only), the ground and two walls (planes) that the colliders of ball and targets
-/// bounce on. Contacts are on: ball and targets are discs that hit each other (restitution
-/// hit_restitution, no friction), resolved by the engine at their time of impact.
+/// (anchored springs with a rest length), gravity on both, the ground and two walls (planes)
+/// that the colliders of ball and targets bounce on (the slingshot's post and fork are drawn by
+/// the game: draw.hpp). Contacts are on: ball and targets are discs that hit each other
+/// (restitution hit_restitution, no friction), resolved by the engine at their time of impact.
 [[nodiscard]] fixstep::WorldDef make_level();
 /// Where the ball rests on its band (the anchor, sagged by gravity), m.
 [[nodiscard]] fixstep::Vec2 ball_rest_position();
@@ -74,6 +74,9 @@ struct GameState {
   int still_ticks = 0;              ///< consecutive slow ticks in flight
   friend bool operator==(const GameState&, const GameState&) = default;
 };
+
+/// The ball's Appearance in `phase`: its trail on only in flight (pulled, flying), 1.5 s long.
+[[nodiscard]] fixstep::Appearance ball_look(Phase phase);
 
 /// Before a tick (live play only; a replay takes the recorded input as is): lets the pointer
 /// drag the ball, and only the ball, and only while it is loaded, never farther than max_pull

@@ -12,10 +12,12 @@
 //            prepared input, drag_body included)
 //   step     world.step(input): physics, with the pointer's drag spring
 //   rules    cut the band, score the hits (world.impacts()), knock targets off, reload
+// and every frame the game draws the slingshot and its aim guide over the world (draw.hpp).
 #include <fixstep/app.hpp>
 #include <fixstep/pointer_drag.hpp>
 #include <string>
 
+#include "draw.hpp"
 #include "game.hpp"
 
 namespace {
@@ -32,7 +34,8 @@ struct Slingshot {
     slingshot::prepare_input(state, drag, input, world);
   }
   void draw(app::Overlay& overlay) const {
-    for (std::string& line : slingshot::status_lines(state)) overlay.text(std::move(line));
+    slingshot::draw_slingshot(state, overlay);  // post, fork, band, aim guide
+    for (const std::string& line : slingshot::status_lines(state)) overlay.text(line);
   }
   [[nodiscard]] std::string summary() const { return slingshot::describe(state); }
 };
@@ -46,6 +49,8 @@ int main(int argc, char** argv) {
                                   "ropes",
                    .view_center = Vec2{0.0, 9.0},  // the whole level, ground near the bottom
                    .view_width = 46.0,             // m: walls at the edges
-                   .controls = "mouse: drag the ball back and let go"},
+                   .controls = "mouse: drag the ball back and let go",
+                   // The grid, without the x = 0 axis through the middle of the playfield.
+                   .style = ViewStyle{.axes = false}},
                   argc, argv);
 }
