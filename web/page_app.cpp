@@ -13,6 +13,7 @@
 
 #include "fixstep/recording_file.hpp"
 #include "fixstep/summary.hpp"
+#include "overlay_card.hpp"
 #include "page_dom.hpp"
 
 namespace fixstep::web {
@@ -66,6 +67,7 @@ void PageApp::start_session(WorldDef def, const std::string& title) {
     settings.view_center = scene_->view.center, settings.view_width = scene_->view.width;
     apply_scene_view_style(scene_->view, settings);  // background, grid, axes, scale bar, HUD
   }
+  if (o_.overlay_card) overlay_card_style(settings);
   // A virtual clock is not clamped (as `fixstep render`): frames exactly 1/fps apart.
   settings.max_frame_time = std::max(settings.max_frame_time, 1.0 / o_.fps);
   session_ = std::make_unique<Session>(std::move(def), settings);
@@ -103,12 +105,22 @@ void PageApp::interactive_frame(double now_ms) {
     });
   }
   session.show_drag(sampler_.pointer(), drag_.body());
-  session.draw();
+  draw();
   // What the input did, for a person and for tests/web/input_check.html.
   show_text("result",
             fmt::format("tick={} state_hash={} paused={} dragging={}", session.simulation().tick(),
                         hex_hash(session.simulation().state_hash()), int(session.loop().paused()),
                         int(drag_.body() != null_entity)));
+}
+
+void PageApp::draw() {
+  Session& session = *session_;
+  if (!o_.overlay_card) {
+    session.draw();
+    return;
+  }
+  overlay_card(card_, session.view().center, session.view().width / 6.0);
+  session.draw(card_);
 }
 
 void PageApp::report() {

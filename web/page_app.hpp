@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/draw_list.hpp"
 #include "fixstep/input.hpp"
 #include "fixstep/pointer_drag.hpp"
 #include "fixstep/recording.hpp"
@@ -53,7 +54,11 @@ class PageApp {
   /// prints (id summary), the recording's text when recording (id recording); title "done".
   void report();
 
+  /// Draws the frame: with the overlay test card over it when asked (overlay=card).
+  void draw();
+
   PageOptions o_;
+  DrawList card_;           ///< overlay=card's shapes, recorded each frame about the view
   std::string scene_file_;  ///< assets/scenes/NAME
   std::optional<Scene> scene_;
   std::unique_ptr<Session> session_;

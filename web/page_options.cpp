@@ -109,10 +109,16 @@ void set(PageOptions& o, const std::string& name, const std::string& value) {
     parse_size(value, o);
   } else if (name == "headless") {
     o.headless = parse_flag(name, value);
+  } else if (name == "overlay") {
+    if (value != "card") {
+      throw std::invalid_argument(
+          fmt::format("overlay={}: must be card (the overlay test card)", value));
+    }
+    o.overlay_card = true;
   } else {
     throw std::invalid_argument(fmt::format(
         "unknown parameter '{}' (known: scene, frames, ticks, replay, fps, record, hash_every, "
-        "size, headless)",
+        "size, headless, overlay)",
         name));
   }
 }

@@ -33,13 +33,18 @@ struct PageOptions {
   /// width x height window is the canvas alone; frames= and ticks= run on timers (headless
   /// Chromium's virtual time does not run requestAnimationFrame).
   bool headless = false;
+  /// overlay=card: draws the overlay test card (overlay_card.hpp: every DrawList shape, a view
+  /// style of its own) over the scene, as the native golden frame test does, for the browser
+  /// checks to compare.
+  bool overlay_card = false;
 };
 
 /// Parses a query string ("?a=1&b=2", the leading '?' optional; values percent-decoded).
 /// Throws std::invalid_argument naming the parameter for an unknown parameter or a bad value:
 /// a scene name with a '/' or not ending in .toml, a count that is not a whole number in
 /// 1..10^9, an fps that is not finite and > 0, a size outside 16..8192 px per side, more than
-/// one of frames, ticks and replay, or record without frames or ticks.
+/// one of frames, ticks and replay, record without frames or ticks, or an overlay other than
+/// card.
 [[nodiscard]] PageOptions parse_page_options(std::string_view query);
 
 /// The page's own query string (location.search).

@@ -35,7 +35,7 @@ bool PageApp::frames_frame() {
       if (recorder_) recorder_->record(input, sim);
     });
   }
-  session.draw();
+  draw();
   ++frames_done_;
   if (frames_done_ < *o_.frames && !session.simulation().fault()) return true;
   report();
@@ -55,7 +55,7 @@ bool PageApp::ticks_frame(double now_ms) {
     show_text("result", fmt::format("running: tick {} of {}", sim.tick(), *o_.ticks));
     return true;
   }
-  session_->draw();
+  draw();
   report();
   return false;
 }
@@ -111,7 +111,7 @@ bool PageApp::replay_frame() {
   session.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
     if (sim.tick() < rec.ticks) sim.step(rec.input_at(tick));
   });
-  session.draw();
+  draw();
   return session.simulation().tick() < rec.ticks && !session.simulation().fault();
 }
 

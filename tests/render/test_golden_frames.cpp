@@ -26,9 +26,11 @@
 #include <stb_image.h>
 
 #include "fixstep/capture.hpp"
+#include "fixstep/draw_list.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
+#include "overlay_card.hpp"
 #include "scene_session.hpp"
 
 namespace fixstep {
@@ -164,6 +166,50 @@ TEST(GoldenFrames, OneFlippedBitOfPhysicsFailsTheComparison) {
   const auto a = render(load_scene(scenes_dir / "default.toml"));
   const auto b = render(load_scene(scenes_dir / "default.toml"));
   EXPECT_EQ(a, b);
+}
+
+// The overlay test card (web/overlay_card.hpp: every DrawList shape in world and screen
+// coordinates, a view style of its own, the HUD bottom right) over default.toml at frame 60, as
+// the page draws it with frames=61&overlay=card (the browser checks compare the two).
+std::vector<std::uint8_t> render_overlay_card() {
+  const Scene scene = load_scene(scenes_dir / "default.toml");
+  SessionSettings settings{.width = width,
+                           .height = height,
+                           .title = "default.toml",
+                           .view_center = scene.view.center,
+                           .view_width = scene.view.width};
+  web::overlay_card_style(settings);
+  Session session(world_def(scene), settings);
+  const VirtualClock clock(60.0);
+  DrawList card;
+  for (int f = 0; f <= 60; ++f) {
+    if (f > 0) session.advance(clock.frame_seconds());
+    web::overlay_card(card, session.view().center, session.view().width / 6.0);
+    session.draw(card);
+  }
+  const auto p = session.renderer().pixels();
+  return {p.begin(), p.end()};
+}
+
+TEST(GoldenFrames, TheOverlayCardMatchesItsReferenceFrame) {
+  const std::string stem = "overlay_card_frame_000060";
+  const auto frame = render_overlay_card();
+  const auto reference = golden_dir / (stem + ".png");
+  if (refreshing()) {
+    write_png(reference, width, height, frame);
+    GTEST_SKIP() << "rewrote " << reference;
+  }
+  const auto golden = read_png(reference);
+  ASSERT_FALSE(golden.empty()) << reference << " is missing; see the refresh command in this file";
+  const Comparison c = compare(frame, golden);
+  if (!matches(c)) {
+    const auto failures = std::filesystem::current_path() / "golden_failures";
+    std::filesystem::create_directories(failures);
+    write_png(failures / (stem + ".actual.png"), width, height, frame);
+    write_png(failures / (stem + ".diff.png"), width, height, c.diff);
+    ADD_FAILURE() << stem << ": " << c.beyond << " pixels differ by more than " << channel_tolerance
+                  << " (largest difference " << c.worst << ")";
+  }
 }
 
 }  // namespace

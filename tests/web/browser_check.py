@@ -13,6 +13,10 @@ WebGL2), the site served on 127.0.0.1 only. For every shipped scene (assets/scen
       stored hash verified), and a native recording (`fixstep run --record`) must replay in the
       page with every hash verified and the native final hash.
 
+Then the overlay test card (web/overlay_card.hpp: every shape a game draws, a view style of its
+own) drawn by the page over default.toml (overlay=card) against its native golden frame
+(tests/golden/frames/overlay_card_frame_000060.png), with the tolerance of (b).
+
 Then the input (--no-input skips it): the interactive page driven by DOM key and mouse events
 (tests/web/input_check.html), and a native recording with input (assets/inputs/default_push.toml:
 pushes, a button, a drag) replayed in the page with every hash verified.
@@ -203,6 +207,39 @@ def check_scene(scene, args, site, out, failures):
           flush=True)
 
 
+def check_overlay_card(args, site, out, failures):
+    """The overlay test card (web/overlay_card.hpp: every DrawList shape in world and screen
+    coordinates, its own background, no grid, the HUD bottom right) over default.toml at frame 60
+    (frames=61&overlay=card) against the native golden frame of the same card
+    (tests/golden/frames/overlay_card_frame_000060.png, drawn by test_golden_frames), within the
+    scenes' tolerance."""
+    if args.size != "640x360" or args.frames != 61:
+        print("overlay card: skipped (its golden frame is frame 60 at 640x360)", flush=True)
+        return
+    shot = os.path.join(out, "overlay_card_browser.png")
+    url = (f"{site.url}/index.html?scene=default.toml&frames=61&fps=60&size=640x360"
+           f"&headless=1&overlay=card")
+    dom = chromium(url, shot, 640, 360, args.budget_ms)
+    result = element(dom, "result") or ""
+    if not re.fullmatch(r"tick=\d+ state_hash=[0-9a-f]{16}", result):
+        failures.append(f"overlay card: the page did not finish: result {result!r}")
+        return
+    golden = os.path.join(ROOT, "tests", "golden", "frames", "overlay_card_frame_000060.png")
+    browser_img, native_img = png_image.decode_png(shot), png_image.decode_png(golden)
+    content = png_image.content_fraction(browser_img)
+    mean, differing = png_image.compare(browser_img, native_img, PIXEL_THRESHOLD)
+    verdict = "ok"
+    if content < MIN_CONTENT_FRACTION:
+        verdict = "BLANK"
+        failures.append(f"overlay card: the browser frame is blank ({content:.4f} drawn)")
+    elif mean > MAX_MEAN_DIFFERENCE or differing > MAX_DIFFERING_FRACTION:
+        verdict = "DIFFERENT"
+        failures.append(f"overlay card: the browser frame differs from OSMesa's: mean {mean:.3f} "
+                        f"levels, {differing:.4%} of pixels by > {PIXEL_THRESHOLD}")
+    print(f"overlay card: {content:.3f} drawn, mean {mean:.3f}, {differing:.4%} > "
+          f"{PIXEL_THRESHOLD} ({verdict})", flush=True)
+
+
 def check_input_replay(args, site, out, failures):
     """A native recording with input (assets/inputs/default_push.toml: every body pushed right,
     then up, the action button tapped, the ball dragged) replayed in the page: every stored hash
@@ -355,6 +392,7 @@ def main():
     failures, start = [], time.monotonic()
     checks = [(scene, lambda s=scene: check_scene(s, args, site, out, failures))
               for scene in scenes]
+    checks.append(("overlay card", lambda: check_overlay_card(args, site, out, failures)))
     if not args.no_input:
         checks += [("input", lambda: check_input(args, site, failures)),
                    ("input replay", lambda: check_input_replay(args, site, out, failures))]

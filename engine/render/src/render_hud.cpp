@@ -45,8 +45,9 @@ void Renderer::draw_hud(std::span<const std::string> lines) {
   const bool right = hud_corner_ == HudCorner::top_right || hud_corner_ == HudCorner::bottom_right;
   const bool bottom =
       hud_corner_ == HudCorner::bottom_left || hud_corner_ == HudCorner::bottom_right;
-  const float x0 = right ? float(width_) - hud_margin - w : hud_margin;
-  const float y0 = bottom ? float(height_) - hud_margin - h : hud_margin;
+  // A panel wider (taller) than the frame keeps its left (top) edge in view.
+  const float x0 = right ? std::max(hud_margin, float(width_) - hud_margin - w) : hud_margin;
+  const float y0 = bottom ? std::max(hud_margin, float(height_) - hud_margin - h) : hud_margin;
   rect(x0, y0, x0 + w, y0 + h, scene_palette::panel);
   float y = y0 + hud_pad * scale;
   for (const std::string& l : lines) {
