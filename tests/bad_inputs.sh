@@ -603,6 +603,30 @@ $body"
 case_ "a body's restitution without [contacts] (a warning; it does nothing)" "$ok_world
 $disc
 restitution = 0.9"
+case_ "a sensor without [contacts] (it could never report)" "$ok_world
+$disc
+sensor = true"
+case_ "sensor not a boolean" "$ok_world
+[contacts]
+$disc
+sensor = 1"
+case_ "collision category a float" "$ok_world
+[contacts]
+$disc
+category = 2.0"
+case_ "collision group beyond 32 bits" "$ok_world
+[contacts]
+$disc
+group = 3000000000"
+case_ "a body's collision mask without [contacts] (a warning; it does nothing)" "$ok_world
+$disc
+mask = 2"
+case_ "trail_time beyond 10 s" "$ok_world
+$disc
+trail_time = 60.0"
+case_ "visible not a boolean" "$ok_world
+$disc
+visible = \"no\""
 case_ "discs overlapping at tick 0" "$two_discs"
 case_ "a million discs at one point (refused in 1.1-2.4 s, 0.5 GB, on a shared 2-core machine)" "$ok_world
 [contacts]

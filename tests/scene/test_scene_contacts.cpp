@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "fixstep/disc_overlap.hpp"
+#include "fixstep/recording.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
+#include "fixstep/scene_writer.hpp"
 
 namespace fixstep {
 namespace {
@@ -253,6 +255,70 @@ stiffness = 225
   EXPECT_THROW((void)enforce_stability(parse_scene(free, "c.toml")), SceneError) << free;
 }
 
+TEST(SceneContacts, SensorAndFilterKeysFillTheColliderAndWriteBack) {
+  const Scene s = parse_scene(scene(R"([contacts]
+[[body]]
+name = "bucket"
+type = "kinematic"
+position = [0, 0]
+radius = 1
+sensor = true
+mask = 0x2
+[[body]]
+name = "ball"
+mass = 1
+position = [0, 5]
+radius = 0.1
+category = 0x2
+mask = -1
+group = -3
+[[body]]
+name = "marker"
+type = "static"
+position = [4, 0]
+radius = 0.1
+category = -9223372036854775808
+visible = false
+trail = false
+trail_time = 2.5
+)"),
+                              "c.toml");
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+  const Collider &bucket = *s.bodies[0].collider, &ball = *s.bodies[1].collider;
+  EXPECT_TRUE(bucket.sensor);
+  EXPECT_EQ(bucket.filter.category, default_category);
+  EXPECT_EQ(bucket.filter.mask, 2u);
+  EXPECT_FALSE(ball.sensor);
+  EXPECT_EQ(ball.filter.category, 2u);
+  EXPECT_EQ(ball.filter.mask, all_categories);  // -1: every bit
+  EXPECT_EQ(ball.filter.group, -3);
+  EXPECT_EQ(s.bodies[2].collider->filter.category, std::uint64_t{1} << 63);
+  const Appearance& marker = *s.bodies[2].appearance;
+  EXPECT_FALSE(marker.visible);
+  EXPECT_FALSE(marker.trail);
+  EXPECT_EQ(marker.trail_time, 2.5);
+  // Written and read back: the same definition (its hash holds the new keys).
+  const Scene again = parse_scene(format_scene(world_def(s)), "again.toml");
+  EXPECT_EQ(definition_hash(again), definition_hash(s));
+  EXPECT_EQ(again.bodies[2].collider->filter, s.bodies[2].collider->filter);
+  EXPECT_FALSE(again.bodies[2].appearance->visible);
+  EXPECT_EQ(again.bodies[2].appearance->trail_time, 2.5);
+  // The hash tells a sensor from a disc and one filter from another.
+  WorldDef other = world_def(s);
+  other.bodies[0].collider->sensor = false;
+  EXPECT_NE(definition_hash(other), definition_hash(s));
+  other = world_def(s);
+  other.bodies[1].collider->filter.group = 3;
+  EXPECT_NE(definition_hash(other), definition_hash(s));
+}
+
+TEST(SceneContacts, FilterKeysWithoutContactsWarnAndASensorIsRefused) {
+  const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 1\n";  // lines 3-6
+  const Scene s = parse_scene(scene(disc + "category = 2\n"), "c.toml");
+  warning(s, 7, "body[0].category: ignored: it acts only in disc-disc contacts");
+  expect_error(scene(disc + "sensor = true\n"), 7, "body[0].sensor", "needs a [contacts] table");
+}
+
 struct BadKey {
   const char* what;
   std::string text;
@@ -319,6 +385,23 @@ INSTANTIATE_TEST_SUITE_P(
                scene("[[grid]]\ncolumns = 2\nrows = 2\norigin = [0, 0]\nspacing = [1, 1]\n"
                      "body = { type = \"kinematik\", radius = 0.1 }\n"),
                8, "grid[0].body.type", "did you mean \"kinematic\"?"},
+        BadKey{"sensor without radius", scene("[contacts]\n" + body + "sensor = true\n"), 7,
+               "body[0].sensor", "needs a radius"},
+        BadKey{"sensor not a boolean", scene("[contacts]\n" + body + "radius = 1\nsensor = 1\n"), 8,
+               "body[0].sensor", "expected true or false, found an integer (1)"},
+        BadKey{"category a float", scene("[contacts]\n" + body + "radius = 1\ncategory = 2.0\n"), 8,
+               "body[0].category", "expected an integer, found a float"},
+        BadKey{"mask a string", scene("[contacts]\n" + body + "radius = 1\nmask = \"all\"\n"), 8,
+               "body[0].mask", "expected an integer, found a string"},
+        BadKey{"group beyond int32",
+               scene("[contacts]\n" + body + "radius = 1\ngroup = 3000000000\n"), 8,
+               "body[0].group", "must be -2147483648 .. 2147483647"},
+        BadKey{"trail_time zero", scene(body + "radius = 1\ntrail_time = 0\n"), 7,
+               "body[0].trail_time", "must be > 0 and <= 10 s (got 0)"},
+        BadKey{"trail_time too long", scene(body + "radius = 1\ntrail_time = 11\n"), 7,
+               "body[0].trail_time", "must be > 0 and <= 10 s (got 11)"},
+        BadKey{"visible not a boolean", scene(body + "visible = \"no\"\n"), 6, "body[0].visible",
+               "expected true or false, found a string"},
         BadKey{"template restitution without radius",
                scene("[[chain]]\ncount = 2\nstart = [0, 0]\nspacing = [1, 0]\n"
                      "body = { mass = 1, restitution = 0.5 }\n"),

@@ -59,6 +59,7 @@ struct Disc {
   double friction = 0;              ///< μ >= 0
   double inv_mass = 0;              ///< 1/kg; 0 for static and kinematic discs
   std::uint8_t dynamic = 0;         ///< 1 for dynamic discs
+  std::uint8_t sensor = 0;          ///< 1 for a sensor (Collider::sensor): no contact, sensed
   double accel_x = 0, accel_y = 0;  ///< constant acceleration (gravity + F/m), m/s² (energy)
   std::int32_t plane_slot = -1;     ///< its index among the plane colliders (Tick::after), or -1
 };
@@ -96,6 +97,13 @@ struct WarmImpulse {
   double lambda_n = 0, lambda_t = 0;
 };
 
+/// A disc overlapping a sensor after a tick, or crossing it within the tick (begun and ended
+/// in it), by dense body index.
+struct SensorOverlap {
+  std::uint32_t sensor = 0, visitor = 0;
+  std::uint8_t crossed = 0;  ///< 1: it met the sensor only within the tick
+};
+
 /// An impact as the contact solver logs it: the two bodies by dense index (body_a < body_b),
 /// its time (s after the tick's start) and closing speed (m/s). World::impacts() names them
 /// by handle.
@@ -108,9 +116,11 @@ template <class Real>
 class DiscContacts {
  public:
   /// Replaces the disc set (after a structural change); `linked` holds the keys a << 32 | b
-  /// (a < b, disc indices) of linked pairs, sorted. Forgets the warm-start impulses.
+  /// (a < b, disc indices) of linked pairs, sorted; `filters` each disc's filter, or nothing
+  /// when every disc has the default filter and none is a sensor (no pair is then looked at
+  /// twice). Forgets the warm-start impulses.
   void rebuild(std::vector<Disc> discs, std::vector<std::uint64_t> linked,
-               const ContactSettings& settings);
+               std::vector<CollisionFilter> filters, const ContactSettings& settings);
   [[nodiscard]] bool active() const { return !discs_.empty(); }
   [[nodiscard]] std::span<const Disc> discs() const { return discs_; }
   /// Per-tick constant accelerations of the discs' bodies (energy account), m/s².
@@ -141,6 +151,8 @@ class DiscContacts {
   [[nodiscard]] std::span<const RestContact> touching() const { return contacts_; }
   /// The impacts of the last resolve(), in order.
   [[nodiscard]] std::span<const DiscImpact> impacts() const { return impact_log_; }
+  /// The sensors' overlaps after the last resolve(), by (sensor, visitor) disc pair order.
+  [[nodiscard]] std::span<const SensorOverlap> sensed() const { return sensed_; }
   /// Impacts of a disc in a tick past which its inelastic pairs that end the tick overlapping
   /// are left to the resting solver.
   static constexpr int max_impacts = 8;
@@ -169,6 +181,11 @@ class DiscContacts {
   // phase 1 (disc_events.cpp)
   void build_motions(const Tick& tick);
   bool find_candidates(const Tick& tick, ContactStats& stats);
+  /// Drops from pairs_ the linked pairs and the pairs filters reject, and moves the sensor
+  /// pairs (one sensor, one not) to sensor_pairs_ (disc_sensors.cpp).
+  void sort_out_pairs();
+  /// Fills sensed_ from sensor_pairs_ at the tick's end state (disc_sensors.cpp).
+  void detect_sensors(const Tick& tick);
   void run_events(const Tick& tick, ContactStats& stats);
   [[nodiscard]] std::uint32_t largest_box() const;
   [[nodiscard]] bool handed_over(std::uint32_t pair, double dt) const;
@@ -185,6 +202,7 @@ class DiscContacts {
 
   std::vector<Disc> discs_;
   std::vector<std::uint64_t> linked_;
+  std::vector<CollisionFilter> filters_;  ///< per disc; empty: all default, no sensor
   ContactSettings settings_;
   double min_radius_ = 0;
   // per tick (sized once; no allocation once warm)
@@ -192,7 +210,8 @@ class DiscContacts {
   std::vector<DiscMotion> motion_;
   std::vector<SweptBox> boxes_;
   std::vector<std::uint8_t> dynamic_;
-  std::vector<DiscPair> pairs_;
+  std::vector<DiscPair> pairs_, sensor_pairs_;
+  std::vector<SensorOverlap> sensed_;
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
   std::vector<DiscEvent> heap_;

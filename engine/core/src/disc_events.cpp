@@ -38,9 +38,12 @@ void extent(double a, double u, double c, double h, double pad, double& lo, doub
 
 template <class Real>
 void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint64_t> linked,
+                                 std::vector<CollisionFilter> filters,
                                  const ContactSettings& settings) {
   discs_ = std::move(discs);
   linked_ = std::move(linked);
+  filters_ = std::move(filters);
+  sensor_pairs_.clear(), sensed_.clear();
   settings_ = settings;
   const std::size_t n = discs_.size();
   min_radius_ = std::numeric_limits<double>::infinity();
@@ -117,13 +120,9 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) 
     cap_ = CapHit{"max_candidate_pairs", cap, largest_box(), CapHit::npos, 0.0};
     return false;
   }
-  // Linked pairs never collide (Box2D's collideConnected = false).
-  if (!linked_.empty()) {
-    std::erase_if(pairs_, [&](DiscPair p) {
-      const std::uint64_t key = (std::uint64_t(p.a) << 32) | p.b;
-      return std::binary_search(linked_.begin(), linked_.end(), key);
-    });
-  }
+  // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither, and
+  // sensors only sense: none of them reaches the narrowphase.
+  if (!linked_.empty() || !filters_.empty()) sort_out_pairs();
   stats.candidate_pairs = pairs_.size();
   // Each disc's pairs (CSR, in pair order).
   std::fill(offset_.begin(), offset_.end(), 0u);
@@ -291,6 +290,7 @@ template <class Real>
 void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats) {
   stats = ContactStats{};
   impact_log_.clear();
+  sensor_pairs_.clear(), sensed_.clear();
   cap_ = CapHit{};
   build_motions(tick);
   if (!find_candidates(tick, stats)) return;
@@ -301,20 +301,22 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats) {
   push_out(tick, stats);
   keep_impulses();
   finish(tick);
+  if (!sensor_pairs_.empty()) detect_sensors(tick);
 }
 
 template <class Real>
 std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
-  return b(discs_) + b(linked_) + b(x0_) + b(y0_) + b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) +
-         b(dynamic_) + b(pairs_) + b(offset_) + b(incident_) + b(stamp_) + b(impacts_) +
-         b(changed_) + b(heap_) + b(impact_log_) + b(contacts_) + b(warm_) + b(ex_) + b(ey_) +
-         b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_);
+  return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
+         b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
+         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(heap_) + b(impact_log_) +
+         b(contacts_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
+         b(e_start_) + b(e_begin_) + b(d_begin_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \
   template void DiscContacts<Real>::rebuild(std::vector<Disc>, std::vector<std::uint64_t>,         \
-                                            const ContactSettings&);                               \
+                                            std::vector<CollisionFilter>, const ContactSettings&); \
   template void DiscContacts<Real>::set_accelerations(std::span<const Real>,                       \
                                                       std::span<const Real>);                      \
   template void DiscContacts<Real>::save_start(const Real*, const Real*, const Real*, const Real*, \

@@ -37,7 +37,7 @@ std::vector<Disc> discs_of(std::span<const BodyDef> bodies) {
   std::vector<Disc> discs;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const BodyDef& d = bodies[i];
-    if (!d.collider || !d.collider->collide) continue;
+    if (!d.collider || !d.collider->collide || d.collider->sensor) continue;  // sensors may
     const double x = d.body.position.x, y = d.body.position.y, r = d.collider->radius;
     if (!std::isfinite(x) || !std::isfinite(y)) {
       throw std::invalid_argument(fmt::format(
@@ -86,6 +86,8 @@ struct Side {
 
 bool discs_may_touch(const BodyDef& a, const BodyDef& b) {
   return a.collider && b.collider && a.collider->collide && b.collider->collide &&
+         !a.collider->sensor && !b.collider->sensor &&
+         should_collide(a.collider->filter, b.collider->filter) &&
          (a.type == BodyType::dynamic || b.type == BodyType::dynamic);
 }
 
@@ -122,6 +124,9 @@ std::optional<std::pair<std::size_t, std::size_t>> first_disc_overlap(
     const double dx = a.x - b.x, dy = a.y - b.y;
     const double reach = a.r + b.r - touching_tolerance(a, b);
     if (!(reach > 0.0 && dx * dx + dy * dy < reach * reach)) return false;
+    if (!should_collide(bodies[a.body].collider->filter, bodies[b.body].collider->filter)) {
+      return false;
+    }
     const std::pair key{std::min(a.body, b.body), std::max(a.body, b.body)};
     return !std::binary_search(linked.begin(), linked.end(), key);
   };

@@ -41,7 +41,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   }
   for (std::uint32_t k = 0; k < n; ++k) {
     const Disc& d = discs_[k];
-    if (!d.dynamic) continue;
+    if (!d.dynamic || d.sensor) continue;
     for (std::uint32_t i = 0; i < tick.planes.size(); ++i) {
       const PlaneDef& p = tick.planes[i];
       const double gap = p.normal.x * ex_[k] + p.normal.y * ey_[k] - p.offset - d.radius;

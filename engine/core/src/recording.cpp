@@ -59,6 +59,11 @@ void hash_body(Fnv1a& h, const BodyDef& b) {
       h.add_optional(c.friction, [&](double mu) { h.add(mu); });
       h.add(c.collide);
     }
+    // Sensors and filters likewise: only when set.
+    if (c.sensor) h.add(c.sensor);
+    if (c.filter != CollisionFilter{}) {
+      h.add(c.filter.category), h.add(c.filter.mask), h.add(c.filter.group);
+    }
   });
   if (b.type != BodyType::dynamic) h.add(b.type);
 }

@@ -22,7 +22,9 @@ World::World(Precision precision, const WorldSettings& settings)
     : world_(make_world(precision, settings)), random_(settings.seed) {}
 
 Entity World::create_body(const BodyDef& def) {
-  return visit([&](auto& w) { return w.create_body(def); });
+  const Entity e = visit([&](auto& w) { return w.create_body(def); });
+  queries_changed();
+  return e;
 }
 Link World::create_link(const LinkDef& def) {
   return visit([&](auto& w) { return w.create_link(def); });
@@ -51,6 +53,7 @@ std::size_t World::link_count() const {
   return visit([](const auto& w) { return w.link_count(); });
 }
 std::size_t World::add_plane(const PlaneDef& def) {
+  queries_changed();
   return visit([&](auto& w) { return w.add_plane(def); });
 }
 std::span<const PlaneDef> World::planes() const {
@@ -70,6 +73,7 @@ std::span<const Impact> World::impacts() const {
 }
 void World::step(const TickInput& input) {
   visit([&](auto& w) { w.step(input); });
+  queries_changed();
 }
 void World::set_keep_previous(bool keep) {
   visit([&](auto& w) { w.set_keep_previous(keep); });
@@ -154,6 +158,7 @@ void World::restore(const WorldSnapshot& snapshot) {
   if (!snapshot.world_) throw std::invalid_argument("snapshot: empty (nothing was saved into it)");
   world_ = *snapshot.world_;
   random_ = snapshot.random_;
+  queries_changed();
 }
 
 World::World(const WorldDef& def) : World(def.precision, def.settings) {

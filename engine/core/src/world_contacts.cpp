@@ -203,9 +203,11 @@ template <class Real>
 void detail::WorldKernel<Real>::rebuild_contacts() {
   ContactScratch& c = contact_;
   const std::size_t n = colliders_.data.size();
-  std::vector<std::uint32_t> order;  // dynamic colliders: planes do not move the others
+  // Dynamic colliders: planes do not move the others, and push no sensor.
+  std::vector<std::uint32_t> order;
   auto dynamic = [&](std::uint32_t i) {
-    return types_[bodies_.index(colliders_.set.dense[i])] == BodyType::dynamic;
+    return types_[bodies_.index(colliders_.set.dense[i])] == BodyType::dynamic &&
+           !colliders_.data[i].sensor;
   };
   for (std::uint32_t i = 0; i < n; ++i) {
     if (dynamic(i)) order.push_back(i);

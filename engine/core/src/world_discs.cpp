@@ -83,6 +83,8 @@ void detail::WorldKernel<Real>::rebuild_discs() {
     plane_slot[contact_.body[k]] = static_cast<std::int32_t>(k);
   }
   std::vector<detail::Disc> discs(order.size());
+  std::vector<CollisionFilter> filters(order.size());
+  bool filtered = false;  // some disc has a filter other than the default, or is a sensor
   std::vector<std::int64_t> disc_of(body_count(), -1);
   for (std::size_t k = 0; k < order.size(); ++k) {
     const Collider& c = colliders_.data[order[k]];
@@ -95,8 +97,12 @@ void detail::WorldKernel<Real>::rebuild_discs() {
     d.dynamic = types_[j] == BodyType::dynamic ? 1 : 0;
     d.inv_mass = d.dynamic ? 1.0 / mass_[j] : 0.0;
     d.plane_slot = contact_.active ? plane_slot[j] : -1;
+    d.sensor = c.sensor ? 1 : 0;
+    filters[k] = c.filter;
+    filtered = filtered || c.sensor || c.filter != CollisionFilter{};
     disc_of[j] = static_cast<std::int64_t>(k);
   }
+  if (!filtered) filters.clear();
   std::vector<std::uint64_t> linked;
   for (const LinkDef& l : link_defs_) {
     const std::int64_t a = disc_of[bodies_.index(l.body_a)], b = disc_of[bodies_.index(l.body_b)];
@@ -106,7 +112,7 @@ void detail::WorldKernel<Real>::rebuild_discs() {
   std::sort(linked.begin(), linked.end());
   linked.erase(std::unique(linked.begin(), linked.end()), linked.end());
   if (!discs_) discs_.reset(new detail::DiscContacts<Real>());
-  discs_->rebuild(std::move(discs), std::move(linked), cs);
+  discs_->rebuild(std::move(discs), std::move(linked), std::move(filters), cs);
   discs_->set_accelerations(coeff_.accel_x, coeff_.accel_y);
 }
 

@@ -12,12 +12,14 @@ namespace fixstep {
 
 void World::destroy(Entity e) {
   visit([&](auto& w) { w.destroy(e); });
+  queries_changed();
 }
 bool World::contains(Entity e) const {
   return visit([&](const auto& w) { return w.contains(e); });
 }
 void World::set_position(Entity e, Vec2 position) {
   visit([&](auto& w) { w.set_position(e, position); });
+  queries_changed();
 }
 
 void World::set_velocity(Entity e, Vec2 velocity) {
@@ -40,6 +42,7 @@ Body World::body(Entity e) const {
 }
 void World::set_body(Entity e, const Body& body) {
   visit([&](auto& w) { w.set_body(e, body); });
+  queries_changed();
 }
 const std::string& World::name(Entity e) const {
   return visit([&](const auto& w) -> const std::string& { return w.name(w.index_of(e)); });
@@ -64,6 +67,15 @@ std::span<const ContactEvent> World::contacts_begun() const {
 }
 std::span<const ContactEvent> World::contacts_ended() const {
   return visit([](const auto& w) { return w.contacts_ended(); });
+}
+std::span<const SensorEvent> World::sensors_begun() const {
+  return visit([](const auto& w) { return w.sensors_begun(); });
+}
+std::span<const SensorEvent> World::sensors_ended() const {
+  return visit([](const auto& w) { return w.sensors_ended(); });
+}
+std::span<const SensorEvent> World::sensor_overlaps() const {
+  return visit([](const auto& w) { return w.sensor_overlaps(); });
 }
 
 namespace {

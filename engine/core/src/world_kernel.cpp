@@ -188,7 +188,7 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   if (def.gravity) validate_component(*def.gravity, who);
   if (def.drag) validate_component(*def.drag, who);
   if (def.appearance) validate_component(*def.appearance, who);
-  if (def.collider) validate_component(*def.collider, who);
+  if (def.collider) validate_component(*def.collider, who), check_sensor(*def.collider, who);
 
   Entity e;
   if (!free_slots_.empty()) {

@@ -53,6 +53,7 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
            contact_.after);
   n += sum(immovable_.body, immovable_.x0, immovable_.y0, immovable_.vx0, immovable_.vy0);
   n += sum(touching_, touching_before_, hits_, begun_, ended_, impacts_, saved_accel_);
+  n += sum(sensed_, sensed_before_, sensor_crossed_, sensor_begun_, sensor_ended_);
   if (discs_) n += sizeof(*discs_.get()) + discs_->bytes();
   return n;
 }

@@ -228,9 +228,16 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (discs) {
     resolve_discs();
     update_contact_events();
-  } else if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
-    ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
-    begun_.clear(), touching_.clear();
+    update_sensor_events();
+  } else {
+    if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
+      ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
+      begun_.clear(), touching_.clear();
+    }
+    if (!sensed_.empty() || !sensor_begun_.empty() || !sensor_ended_.empty()) {
+      sensor_ended_.assign(sensed_.begin(), sensed_.end());
+      sensor_begun_.clear(), sensed_.clear();
+    }
   }
   if (contacts) contact_stats_.capped = (discs ? contact_stats_.capped : 0) + plane_capped;
   // Every flush_denormals_every ticks: a separate pass over the four state arrays costs as much

@@ -33,19 +33,27 @@ std::optional<double> friction(const Reader& r, const toml::table& t, const std:
   return mu;
 }
 
-/// Without [contacts]: a warning at each restitution and friction of a [[body]] or a
-/// generator's body template, which act only between discs and so do nothing.
+/// Without [contacts]: a warning at each restitution, friction, category, mask and group of a
+/// [[body]] or a generator's body template, which act only between discs and so do nothing,
+/// and an error at a sensor = true (a sensor that could never report).
 void warn_unused_disc_keys(Reader& r, const toml::table& doc) {
   auto check = [&](const toml::node* node, const std::string& path) {
     const toml::table* t = node ? node->as_table() : nullptr;
     if (!t) return;
-    for (const std::string_view k : {"restitution", "friction"}) {
+    if (const toml::node* n = t->get("sensor"); n && n->value_or(false)) {
+      r.fail(n->source(), path + ".sensor",
+             "needs a [contacts] table: sensors see discs through disc contacts, and without "
+             "them a sensor would never report anything; add [contacts]");
+    }
+    for (const std::string_view k : {"restitution", "friction", "category", "mask", "group"}) {
       if (const toml::node* n = t->get(k)) {
         r.warn(n->source(), path + "." + std::string(k),
                fmt::format("ignored: it acts only in disc-disc contacts, and without a "
-                           "[contacts] table discs never collide ([[plane]]s use their own {}); "
-                           "add [contacts] to make discs collide, or remove it",
-                           k));
+                           "[contacts] table discs never collide{}; add [contacts] to make "
+                           "discs collide, or remove it",
+                           k == "restitution" || k == "friction"
+                               ? fmt::format(" ([[plane]]s use their own {})", k)
+                               : std::string(" (planes have no filter)")));
       }
     }
   };
@@ -93,8 +101,40 @@ void parse_body_mass(Reader& r, const toml::table& t, const std::string& path, B
   }
 }
 
+/// t[key] as filter bits: an integer whose 64-bit two's complement is the bit set (-1: every
+/// category; hexadecimal allowed), nullopt when absent.
+std::optional<std::uint64_t> filter_bits(const Reader& r, const toml::table& t,
+                                         std::string_view key, const std::string& path) {
+  const toml::node* n = t.get(key);
+  if (!n) return std::nullopt;
+  const std::int64_t v = r.integer_node(*n, path, std::numeric_limits<std::int64_t>::min(),
+                                        std::numeric_limits<std::int64_t>::max());
+  return static_cast<std::uint64_t>(v);
+}
+
+/// sensor, category, mask and group of t into c.
+void parse_filter_keys(const Reader& r, const toml::table& t, const std::string& path,
+                       Collider& c) {
+  if (const toml::node* n = t.get("sensor")) {
+    if (!n->is_boolean()) {
+      r.fail(n->source(), path + ".sensor",
+             fmt::format("expected true or false, found {}", found(*n)));
+    }
+    c.sensor = n->as_boolean()->get();
+  }
+  if (auto bits = filter_bits(r, t, "category", path + ".category")) c.filter.category = *bits;
+  if (auto bits = filter_bits(r, t, "mask", path + ".mask")) c.filter.mask = *bits;
+  if (const toml::node* n = t.get("group")) {
+    c.filter.group = static_cast<std::int32_t>(
+        r.integer_node(*n, path + ".group", std::numeric_limits<std::int32_t>::min(),
+                       std::numeric_limits<std::int32_t>::max(),
+                       " (positive: the group always collides, negative: never)"));
+  }
+}
+
 void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {
-  for (const std::string_view k : {"collide", "restitution", "friction"}) {
+  for (const std::string_view k :
+       {"collide", "restitution", "friction", "sensor", "category", "mask", "group"}) {
     if (t.get(k) && !def.collider) {
       r.fail(t.get(k)->source(), path + "." + std::string(k),
              "needs a radius: only a disc (a body with a radius) takes part in contacts; add "
@@ -111,6 +151,7 @@ void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& p
   }
   def.collider->restitution = restitution(r, t, path);
   def.collider->friction = friction(r, t, path);
+  parse_filter_keys(r, t, path, *def.collider);
 }
 
 void drop_moving_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {

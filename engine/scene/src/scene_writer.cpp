@@ -179,6 +179,13 @@ void write_world(std::string& out, const WorldDef& def) {
   }
 }
 
+/// Filter bits as the loader reads them: hexadecimal, or the negative integer of the same 64-bit
+/// two's complement when the top bit is set (TOML integers are signed).
+std::string bits_text(std::uint64_t bits) {
+  if (bits >> 63) return fmt::format("{}", static_cast<std::int64_t>(bits));
+  return fmt::format("0x{:x}", bits);
+}
+
 /// The disc and drawing keys: radius (the collider's), its contact keys, then draw_radius
 /// when the drawn radius is not the one the loader would give, and color.
 void write_looks(std::string& out, const BodyDef& b) {
@@ -188,6 +195,11 @@ void write_looks(std::string& out, const BodyDef& b) {
     if (!c->collide) out += "collide = false\n";
     if (c->restitution) fmt::format_to(it, "restitution = {}\n", num(*c->restitution));
     if (c->friction) fmt::format_to(it, "friction = {}\n", num(*c->friction));
+    if (c->sensor) out += "sensor = true\n";
+    const CollisionFilter f = c->filter, none{};
+    if (f.category != none.category) fmt::format_to(it, "category = {}\n", bits_text(f.category));
+    if (f.mask != none.mask) fmt::format_to(it, "mask = {}\n", bits_text(f.mask));
+    if (f.group != none.group) fmt::format_to(it, "group = {}\n", f.group);
   }
   if (const std::optional<Appearance>& a = b.appearance) {
     const double drawn = b.collider ? b.collider->radius : Appearance{}.radius;

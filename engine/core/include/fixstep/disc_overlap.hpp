@@ -14,8 +14,9 @@
 namespace fixstep {
 
 /// Whether bodies a and b take part in disc-disc contacts with each other, leaving links
-/// aside: both have a Collider with collide = true and at least one of them is dynamic (two
-/// static or kinematic bodies never touch: neither can be moved).
+/// aside: both have a Collider with collide = true, neither is a sensor, their filters accept
+/// each other (should_collide) and at least one of them is dynamic (two static or kinematic
+/// bodies never touch: neither can be moved).
 [[nodiscard]] bool discs_may_touch(const BodyDef& a, const BodyDef& b);
 
 /// How deep the discs of a and b overlap at their starting positions, m:

@@ -53,6 +53,15 @@ struct ContactEvent {
   friend constexpr bool operator==(const ContactEvent&, const ContactEvent&) = default;
 };
 
+/// A disc that began or stopped overlapping a sensor in the last tick (World::sensors_begun(),
+/// World::sensors_ended()), or overlaps one now (World::sensor_overlaps()): the ball in the
+/// bucket. Overlapping is |x_sensor - x_visitor| < r_sensor + r_visitor.
+struct SensorEvent {
+  Entity sensor{};   ///< the body whose Collider is a sensor
+  Entity visitor{};  ///< the disc it sees (never a sensor)
+  friend constexpr bool operator==(const SensorEvent&, const SensorEvent&) = default;
+};
+
 /// Largest magnitude a body's x, y (m) or vx, vy (m/s) may reach. Beyond it, or at NaN or
 /// infinity, World::step records a StateFault: 10¹² m is about 7 astronomical units, far outside
 /// any scene a game steps, and still 26 orders of magnitude below float's overflow.

@@ -12,11 +12,19 @@
 #include <vector>
 
 #include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/query.hpp"
 #include "fixstep/random.hpp"
 #include "fixstep/step_results.hpp"
 #include "fixstep/world_settings.hpp"
 
 namespace fixstep {
+
+namespace detail {
+class QueryGrid;
+struct QueryGridDeleter {
+  void operator()(QueryGrid* grid) const;
+};
+}  // namespace detail
 
 /// Everything a world is built from: what a scene file describes (see scene.hpp), or what a
 /// program writes in code. The one definition the frame pipeline (Session, render library)
@@ -128,11 +136,13 @@ class World {
   template <class C>
   void set(Entity e, const C& component) {
     visit([&](auto& w) { w.set(e, component); });
+    if constexpr (std::is_same_v<C, Collider>) queries_changed();
   }
   /// Removes component C from e (nothing if absent); throws std::invalid_argument if stale.
   template <class C>
   void remove(Entity e) {
     visit([&](auto& w) { w.template remove<C>(e); });
+    if constexpr (std::is_same_v<C, Collider>) queries_changed();
   }
   /// e's component C, or nullopt (also for a stale handle).
   template <class C>
@@ -192,6 +202,18 @@ class World {
   [[nodiscard]] std::span<const ContactEvent> contacts_begun() const;
   /// Disc pairs that stopped touching in the last tick (World::contacts_ended()).
   [[nodiscard]] std::span<const ContactEvent> contacts_ended() const;
+  /// Discs that began overlapping a sensor (Collider::sensor) in the last tick, by (sensor,
+  /// visitor) slot order, plus those that crossed one within the tick (also in
+  /// sensors_ended()). A sensor sees the non-sensor discs its filter accepts
+  /// (should_collide) and that are not linked to it, when at least one of the two is dynamic;
+  /// raised at the tick the overlap starts. Empty without sensors; valid until the next step.
+  [[nodiscard]] std::span<const SensorEvent> sensors_begun() const;
+  /// Discs that stopped overlapping a sensor in the last tick (a handle may name a body
+  /// destroyed since: check contains()), plus those that crossed one within the tick.
+  [[nodiscard]] std::span<const SensorEvent> sensors_ended() const;
+  /// Every disc overlapping a sensor after the last tick (|Δx| < r_sensor + r_visitor at the
+  /// tick's end), by (sensor, visitor) slot order: what is in the bucket now.
+  [[nodiscard]] std::span<const SensorEvent> sensor_overlaps() const;
   /// The state hash of the bodies (detail::WorldKernel::state_hash), with random()'s state
   /// mixed in (FNV-1a over its 64-bit state) once it has been drawn from: a world whose rules
   /// never roll dice hashes as it did before random() existed.
@@ -208,6 +230,42 @@ class World {
   /// order while none is destroyed), for drawing; a and b must hold link_count() values (else
   /// std::invalid_argument).
   void link_ends(std::span<std::uint32_t> a, std::span<std::uint32_t> b) const;
+
+  // --- spatial queries (query.hpp): the discs (Collider) at their positions after the last
+  // tick, and the planes. Each runs through a grid of the discs built on the first query after
+  // the world changed (a step, a body created, destroyed or moved, a Collider set), in O(n)
+  // with no allocation once warm; a query then visits the grid cells its region covers
+  // (query_grid.hpp), at most every disc once. Not safe to call on one World from two threads
+  // at once (the grid is a cache). Every query throws std::invalid_argument naming the
+  // argument when a coordinate is not finite (or a radius not finite and >= 0).
+
+  /// The first shape the ray origin + s · translation, s in [0, 1] (m), enters: the hit with
+  /// the least fraction, ties by handle slot and planes last (by index); nullopt when it
+  /// enters none. A ray starting inside a disc or on the solid side of a plane does not hit
+  /// that shape (Box2D's rule). A zero translation hits nothing.
+  [[nodiscard]] std::optional<RayHit> cast_ray(Vec2 origin, Vec2 translation,
+                                               const QueryFilter& filter = {}) const;
+  /// Every shape the ray enters, ordered by fraction (ties by handle slot, planes last by
+  /// index). Writes the first min(total, out.size()) hits of that order into `out` and
+  /// returns the total (call with an empty span to count). Allocates nothing once warm.
+  std::size_t cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out,
+                           const QueryFilter& filter = {}) const;
+  /// The discs containing `point` (|point - centre| <= r) and the planes it lies inside
+  /// (n·point < offset), in handle slot order, planes last (by index). Writes the first
+  /// min(total, out.size()) and returns the total.
+  std::size_t query_point(Vec2 point, std::span<QueryHit> out,
+                          const QueryFilter& filter = {}) const;
+  /// The discs overlapping the box [lower, upper] (m; the box's closest point to the centre
+  /// within r) and the planes whose solid side it reaches, in handle slot order, planes last.
+  /// Writes the first min(total, out.size()) and returns the total. Throws
+  /// std::invalid_argument also when lower > upper on an axis.
+  std::size_t overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
+                           const QueryFilter& filter = {}) const;
+  /// The discs overlapping the circle (|c - center| <= r + radius, m) and the planes it
+  /// reaches, in handle slot order, planes last. Writes the first min(total, out.size()) and
+  /// returns the total.
+  std::size_t overlap_circle(Vec2 center, double radius, std::span<QueryHit> out,
+                             const QueryFilter& filter = {}) const;
 
   /// The world's random generator for game rules: seeded with WorldSettings::seed when the
   /// world is made, saved and restored with snapshots (so a restore, a rewind or a replay
@@ -236,8 +294,15 @@ class World {
   }
 
   std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>> world_;
+  /// The queries' grid is out of date (a step or an edit of the discs).
+  void queries_changed();
+  /// The queries' grid, rebuilt first when out of date.
+  const detail::QueryGrid& query_grid() const;
+
   std::vector<Entity> defined_;  ///< defined_bodies()
   Random random_;                ///< random()
+  /// The queries' grid: a cache, empty in a copy (query_grid()).
+  mutable detail::CachePtr<detail::QueryGrid, detail::QueryGridDeleter> queries_;
 };
 
 /// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J

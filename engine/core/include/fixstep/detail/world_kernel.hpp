@@ -319,6 +319,15 @@ class WorldKernel {
   /// Pairs of discs touching before the last tick that are not after it (a handle may name a
   /// body destroyed since: check contains()), plus pairs that struck and parted within it.
   [[nodiscard]] std::span<const ContactEvent> contacts_ended() const { return ended_; }
+  /// Discs that began overlapping a sensor in the last tick, by (sensor, visitor) slot order,
+  /// plus those that crossed it within the tick (also in sensors_ended()). Empty without
+  /// sensors. Valid until the next step.
+  [[nodiscard]] std::span<const SensorEvent> sensors_begun() const { return sensor_begun_; }
+  /// Discs that stopped overlapping a sensor in the last tick (a handle may name a body
+  /// destroyed since), plus those that crossed it within the tick.
+  [[nodiscard]] std::span<const SensorEvent> sensors_ended() const { return sensor_ended_; }
+  /// Every disc overlapping a sensor after the last tick, by (sensor, visitor) slot order.
+  [[nodiscard]] std::span<const SensorEvent> sensor_overlaps() const { return sensed_; }
   /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
   /// equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
@@ -510,6 +519,13 @@ class WorldKernel {
   std::vector<ContactEvent> begun_, ended_;
   std::vector<Impact> impacts_;  ///< the last tick's, by handle
   void update_contact_events();
+  // Sensor events (world_sensors.cpp), kept like the contact events: part of a snapshot.
+  std::vector<SensorEvent> sensed_, sensed_before_, sensor_crossed_;
+  std::vector<SensorEvent> sensor_begun_, sensor_ended_;
+  void update_sensor_events();
+  /// Throws std::invalid_argument naming `who` when c is a sensor and the world has no disc
+  /// contacts (WorldSettings::contacts), where no sensor would ever see anything.
+  void check_sensor(const Collider& c, const std::string& who) const;
   // Per-body input (world_input.cpp): impulses and velocities at the tick's start; forces
   // added to the constant accelerations for the tick and taken off after it, exactly.
   struct SavedAccel {
@@ -566,6 +582,7 @@ template <class C>
 void WorldKernel<Real>::set(Entity e, const C& component) {
   require(e);
   validate_component(component, describe(e));
+  if constexpr (std::is_same_v<C, Collider>) check_sensor(component, describe(e));
   auto& s = store<C>();
   if (s.set.contains(e)) {
     s.data[s.set.index(e)] = component;

@@ -1,0 +1,51 @@
+// What World's spatial queries take and give: ray casts, point, box and circle overlap queries
+// against the bodies' discs (Collider) and the static half-planes (PlaneDef), in the spirit of
+// Box2D's b2World_CastRay, b2World_OverlapAABB and b2QueryFilter.
+#pragma once
+
+#include <cstdint>
+
+#include "fixstep/components.hpp"
+#include "fixstep/entity.hpp"
+#include "fixstep/types.hpp"
+
+namespace fixstep {
+
+/// Which shapes a query sees (Box2D's b2QueryFilter): a disc is seen when its category meets
+/// `mask` and its own mask meets `category` (the rule should_collide() applies between two
+/// discs, without groups). Discs with collide = false are seen too: a query asks about
+/// geometry, not contacts.
+struct QueryFilter {
+  std::uint64_t category = default_category;  ///< bits: what the query counts as
+  std::uint64_t mask = all_categories;        ///< bits: the disc categories it sees
+  bool sensors = false;                       ///< true: sensors are seen too
+  bool planes = true;                         ///< false: planes are not seen
+};
+
+/// Whether `filter` sees a disc with filter `disc` (sensors and planes aside).
+[[nodiscard]] constexpr bool query_sees(const QueryFilter& filter, const CollisionFilter& disc) {
+  return (disc.category & filter.mask) != 0 && (disc.mask & filter.category) != 0;
+}
+
+/// Marks a hit that is no plane (QueryHit::plane, RayHit::plane).
+inline constexpr std::uint32_t no_plane = 0xffffffffu;
+
+/// A shape a query found: a body's disc (body) or a plane (plane, an index into
+/// World::planes(); body is then the null entity).
+struct QueryHit {
+  Entity body{};
+  std::uint32_t plane = no_plane;
+  friend constexpr bool operator==(const QueryHit&, const QueryHit&) = default;
+};
+
+/// Where a ray first enters a shape: the ray is origin + s · translation for s in [0, 1].
+struct RayHit {
+  Entity body{};                   ///< the body whose disc it hit, or null for a plane
+  std::uint32_t plane = no_plane;  ///< the plane it hit (index into World::planes())
+  double fraction = 0.0;           ///< s at the hit, in [0, 1]
+  Vec2 point{};                    ///< m, origin + fraction · translation
+  Vec2 normal{};                   ///< unit outward normal of the shape at point
+  friend constexpr bool operator==(const RayHit&, const RayHit&) = default;
+};
+
+}  // namespace fixstep

@@ -1,0 +1,244 @@
+// World's spatial queries (query.hpp, world.hpp): ray casts, point, box and circle queries
+// through the grid of query_grid.hpp, results in a fixed order kept in the caller's span.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "fixstep/world.hpp"
+#include "query_grid.hpp"
+
+namespace fixstep {
+
+void detail::QueryGridDeleter::operator()(QueryGrid* grid) const {
+  delete grid;
+}
+
+namespace {
+
+void require_finite_query(Vec2 v, const char* query, const char* what) {
+  if (!std::isfinite(v.x) || !std::isfinite(v.y)) {
+    throw std::invalid_argument(
+        fmt::format("{}: {} must be finite (got ({}, {}))", query, what, v.x, v.y));
+  }
+}
+
+/// The order of query results: bodies by slot, then planes by index.
+bool hit_less(const QueryHit& l, const QueryHit& r) {
+  if ((l.plane == no_plane) != (r.plane == no_plane)) return l.plane == no_plane;
+  if (l.plane != no_plane) return l.plane < r.plane;
+  return l.body.slot() < r.body.slot();
+}
+
+/// The order of ray hits: by fraction, then as hit_less.
+bool ray_less(const RayHit& l, const RayHit& r) {
+  if (l.fraction != r.fraction) return l.fraction < r.fraction;
+  return hit_less(QueryHit{l.body, l.plane}, QueryHit{r.body, r.plane});
+}
+
+/// Keeps the first out.size() results of `less` seen so far in `out` (a max-heap while
+/// collecting, sorted by finish()), and counts them all: no allocation.
+template <class T, class Less>
+class Collector {
+ public:
+  Collector(std::span<T> out, Less less) : out_(out), less_(less) {}
+  void add(const T& hit) {
+    ++total_;
+    if (kept_ < out_.size()) {
+      out_[kept_++] = hit;
+      std::push_heap(out_.begin(), out_.begin() + std::ptrdiff_t(kept_), less_);
+    } else if (kept_ > 0 && less_(hit, out_[0])) {
+      std::pop_heap(out_.begin(), out_.begin() + std::ptrdiff_t(kept_), less_);
+      out_[kept_ - 1] = hit;
+      std::push_heap(out_.begin(), out_.begin() + std::ptrdiff_t(kept_), less_);
+    }
+  }
+  std::size_t finish() {
+    std::sort_heap(out_.begin(), out_.begin() + std::ptrdiff_t(kept_), less_);
+    return total_;
+  }
+
+ private:
+  std::span<T> out_;
+  Less less_;
+  std::size_t kept_ = 0, total_ = 0;
+};
+
+bool seen(const QueryFilter& f, const detail::QueryDisc& d) {
+  return (f.sensors || !d.sensor) && query_sees(f, d.filter);
+}
+
+/// Where the ray p + s·t (s in [0, 1]) enters the disc (c, r), as s; NaN when it does not
+/// (or starts inside it): the smaller root of |p + s t - c|² = r².
+double ray_disc(Vec2 p, Vec2 t, double cx, double cy, double r) {
+  const double mx = p.x - cx, my = p.y - cy;
+  const double c = mx * mx + my * my - r * r;
+  const double a = t.x * t.x + t.y * t.y;
+  const double b = mx * t.x + my * t.y;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!(c > 0.0) || !(b < 0.0) || !(a > 0.0)) return nan;  // inside, or heading away
+  const double disc = b * b - a * c;
+  if (disc < 0.0) return nan;
+  const double s = c / (-b + std::sqrt(disc));  // = (-b - √disc)/a, without cancellation
+  return s <= 1.0 ? s : nan;
+}
+
+}  // namespace
+
+void World::queries_changed() {
+  if (queries_) queries_->stale = true;
+}
+
+const detail::QueryGrid& World::query_grid() const {
+  if (!queries_) queries_.reset(new detail::QueryGrid());
+  detail::QueryGrid& g = *queries_;
+  if (!g.stale) return g;
+  g.discs.clear();
+  visit([&](const auto& w) {
+    const auto ids = w.entities();
+    const auto x = w.x(), y = w.y();
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const Collider* c = w.template get<Collider>(ids[i]);
+      // A disc whose state left the finite range (World::fault) is nowhere.
+      if (c && std::isfinite(double(x[i])) && std::isfinite(double(y[i]))) {
+        g.discs.push_back({double(x[i]), double(y[i]), c->radius, ids[i], c->filter, c->sensor});
+      }
+    }
+  });
+  g.build();
+  return g;
+}
+
+std::size_t World::cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out,
+                                const QueryFilter& filter) const {
+  require_finite_query(origin, "cast_ray", "origin");
+  require_finite_query(translation, "cast_ray", "translation");
+  Collector<RayHit, decltype(&ray_less)> hits(out, &ray_less);
+  const detail::QueryGrid& g = query_grid();
+  auto disc_hit = [&](std::size_t i) {
+    const detail::QueryDisc& d = g.discs[i];
+    if (!seen(filter, d)) return;
+    const double s = ray_disc(origin, translation, d.x, d.y, d.r);
+    if (std::isnan(s)) return;
+    const Vec2 at{origin.x + s * translation.x, origin.y + s * translation.y};
+    hits.add(RayHit{d.body, no_plane, s, at, Vec2{(at.x - d.x) / d.r, (at.y - d.y) / d.r}});
+  };
+  // The ray in pieces one cell long, each piece's box visited once per disc (marks).
+  const double len = std::sqrt(translation.x * translation.x + translation.y * translation.y);
+  const double pieces = std::ceil(len / g.cell_side());
+  const std::uint32_t mark = queries_->next_mark();
+  auto once = [&](std::size_t i) {
+    if (queries_->mark(i, mark)) disc_hit(i);
+  };
+  if (!(pieces <= double(g.discs.size()))) {
+    for (std::size_t i = 0; i < g.discs.size(); ++i) once(i);
+  } else {
+    const auto n = static_cast<std::size_t>(pieces);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double s0 = double(k) / double(n), s1 = double(k + 1) / double(n);
+      const double ax = origin.x + s0 * translation.x, ay = origin.y + s0 * translation.y;
+      const double bx = origin.x + s1 * translation.x, by = origin.y + s1 * translation.y;
+      g.for_each_near(std::min(ax, bx), std::min(ay, by), std::max(ax, bx), std::max(ay, by), once);
+    }
+  }
+  if (filter.planes) {
+    const std::span<const PlaneDef> ps = planes();
+    for (std::uint32_t i = 0; i < ps.size(); ++i) {
+      const PlaneDef& p = ps[i];
+      const double start = p.normal.x * origin.x + p.normal.y * origin.y - p.offset;
+      const double along = p.normal.x * translation.x + p.normal.y * translation.y;
+      if (!(start >= 0.0) || !(along < 0.0) || !(start <= -along)) continue;
+      const double s = -start / along;
+      hits.add(RayHit{Entity{}, i, s,
+                      Vec2{origin.x + s * translation.x, origin.y + s * translation.y}, p.normal});
+    }
+  }
+  return hits.finish();
+}
+
+std::optional<RayHit> World::cast_ray(Vec2 origin, Vec2 translation,
+                                      const QueryFilter& filter) const {
+  RayHit first;
+  if (cast_ray_all(origin, translation, std::span<RayHit>(&first, 1), filter) == 0) {
+    return std::nullopt;
+  }
+  return first;
+}
+
+namespace {
+
+/// Whether the disc (c, r) overlaps the box [lo, hi]: the box's point closest to c within r.
+bool disc_box(const detail::QueryDisc& d, Vec2 lo, Vec2 hi, double pad) {
+  const double dx = d.x - std::clamp(d.x, lo.x, hi.x), dy = d.y - std::clamp(d.y, lo.y, hi.y);
+  const double reach = d.r + pad;
+  return dx * dx + dy * dy <= reach * reach;
+}
+
+}  // namespace
+
+std::size_t World::overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
+                                const QueryFilter& filter) const {
+  require_finite_query(lower, "overlap_aabb", "lower");
+  require_finite_query(upper, "overlap_aabb", "upper");
+  if (lower.x > upper.x || lower.y > upper.y) {
+    throw std::invalid_argument(
+        fmt::format("overlap_aabb: lower ({}, {}) must not exceed upper ({}, {})", lower.x, lower.y,
+                    upper.x, upper.y));
+  }
+  Collector<QueryHit, decltype(&hit_less)> hits(out, &hit_less);
+  const detail::QueryGrid& g = query_grid();
+  g.for_each_near(lower.x, lower.y, upper.x, upper.y, [&](std::size_t i) {
+    const detail::QueryDisc& d = g.discs[i];
+    if (seen(filter, d) && disc_box(d, lower, upper, 0.0)) hits.add(QueryHit{d.body});
+  });
+  if (filter.planes) {
+    const std::span<const PlaneDef> ps = planes();
+    for (std::uint32_t i = 0; i < ps.size(); ++i) {
+      const PlaneDef& p = ps[i];
+      // The box's corner deepest along -n.
+      const double x = p.normal.x > 0.0 ? lower.x : upper.x;
+      const double y = p.normal.y > 0.0 ? lower.y : upper.y;
+      if (p.normal.x * x + p.normal.y * y < p.offset) hits.add(QueryHit{Entity{}, i});
+    }
+  }
+  return hits.finish();
+}
+
+std::size_t World::overlap_circle(Vec2 center, double radius, std::span<QueryHit> out,
+                                  const QueryFilter& filter) const {
+  require_finite_query(center, "overlap_circle", "center");
+  if (!(std::isfinite(radius) && radius >= 0.0)) {
+    throw std::invalid_argument(
+        fmt::format("overlap_circle: radius must be finite and >= 0 m (got {})", radius));
+  }
+  Collector<QueryHit, decltype(&hit_less)> hits(out, &hit_less);
+  const detail::QueryGrid& g = query_grid();
+  g.for_each_near(center.x - radius, center.y - radius, center.x + radius, center.y + radius,
+                  [&](std::size_t i) {
+                    const detail::QueryDisc& d = g.discs[i];
+                    if (!seen(filter, d)) return;
+                    const double dx = d.x - center.x, dy = d.y - center.y, reach = d.r + radius;
+                    if (dx * dx + dy * dy <= reach * reach) hits.add(QueryHit{d.body});
+                  });
+  if (filter.planes) {
+    const std::span<const PlaneDef> ps = planes();
+    for (std::uint32_t i = 0; i < ps.size(); ++i) {
+      const PlaneDef& p = ps[i];
+      if (p.normal.x * center.x + p.normal.y * center.y - radius < p.offset) {
+        hits.add(QueryHit{Entity{}, i});
+      }
+    }
+  }
+  return hits.finish();
+}
+
+std::size_t World::query_point(Vec2 point, std::span<QueryHit> out,
+                               const QueryFilter& filter) const {
+  require_finite_query(point, "query_point", "point");
+  return overlap_circle(point, 0.0, out, filter);
+}
+
+}  // namespace fixstep

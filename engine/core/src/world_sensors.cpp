@@ -1,0 +1,78 @@
+// Sensor events: which discs began and stopped overlapping a sensor in a tick, from the
+// sensors' overlaps after the tick (disc_sensors.cpp) and before it. O(overlaps) per tick, only
+// in worlds with sensors; no allocation once warm.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "disc_contacts.hpp"
+#include "fixstep/detail/world_kernel.hpp"
+
+namespace fixstep {
+
+namespace {
+
+bool sensor_order(const SensorEvent& l, const SensorEvent& r) {
+  if (l.sensor.slot() != r.sensor.slot()) return l.sensor.slot() < r.sensor.slot();
+  return l.visitor.slot() < r.visitor.slot();
+}
+
+void sort_sensor_events(std::vector<SensorEvent>& list) {
+  if (!std::is_sorted(list.begin(), list.end(), sensor_order)) {
+    std::sort(list.begin(), list.end(), sensor_order);
+  }
+}
+
+}  // namespace
+
+template <class Real>
+void detail::WorldKernel<Real>::check_sensor(const Collider& c, const std::string& who) const {
+  if (c.sensor && !settings_.contacts) {
+    throw std::invalid_argument(
+        fmt::format("{}: collider.sensor needs disc contacts (WorldSettings::contacts; a scene's "
+                    "[contacts] table): without them no sensor would ever see a disc",
+                    who));
+  }
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::update_sensor_events() {
+  sensed_before_.swap(sensed_);
+  sensed_.clear(), sensor_crossed_.clear(), sensor_begun_.clear(), sensor_ended_.clear();
+  const std::span<const Entity> ids = bodies_.dense;
+  for (const detail::SensorOverlap& o : discs_->sensed()) {
+    const SensorEvent e{ids[o.sensor], ids[o.visitor]};
+    (o.crossed ? sensor_crossed_ : sensed_).push_back(e);
+  }
+  if (sensed_.empty() && sensed_before_.empty() && sensor_crossed_.empty()) return;
+  sort_sensor_events(sensed_);
+  // Both lists sorted by slots: one merge finds what began and what ended.
+  std::size_t i = 0, k = 0;
+  const std::size_t n = sensed_.size(), m = sensed_before_.size();
+  while (i < n || k < m) {
+    if (k == m || (i < n && sensor_order(sensed_[i], sensed_before_[k]))) {
+      sensor_begun_.push_back(sensed_[i++]);
+    } else if (i == n || sensor_order(sensed_before_[k], sensed_[i])) {
+      sensor_ended_.push_back(sensed_before_[k++]);
+    } else {
+      if (sensed_[i] != sensed_before_[k]) {  // a slot reused by a new body
+        sensor_ended_.push_back(sensed_before_[k]);
+        sensor_begun_.push_back(sensed_[i]);
+      }
+      ++i, ++k;
+    }
+  }
+  if (!sensor_crossed_.empty()) {  // in and out within the tick: begun and ended at once
+    sensor_begun_.insert(sensor_begun_.end(), sensor_crossed_.begin(), sensor_crossed_.end());
+    sensor_ended_.insert(sensor_ended_.end(), sensor_crossed_.begin(), sensor_crossed_.end());
+    sort_sensor_events(sensor_begun_), sort_sensor_events(sensor_ended_);
+  }
+}
+
+template void detail::WorldKernel<float>::check_sensor(const Collider&, const std::string&) const;
+template void detail::WorldKernel<double>::check_sensor(const Collider&, const std::string&) const;
+template void detail::WorldKernel<float>::update_sensor_events();
+template void detail::WorldKernel<double>::update_sensor_events();
+
+}  // namespace fixstep
