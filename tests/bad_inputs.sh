@@ -1061,7 +1061,7 @@ game=$(dirname "$fixstep")/slingshot
 if [ -x "$game" ]; then
   tool=$game tool_name=slingshot
   cp "$tests_dir/../assets/recordings/slingshot.rec" sling.rec
-  sed "$(grep -n ' drag=0$' sling.rec | sed -n 5p | cut -d: -f1)d" sling.rec > tampered.rec
+  sed "$(grep -n ' drag=1:1$' sling.rec | sed -n 5p | cut -d: -f1)d" sling.rec > tampered.rec
   head -n 20 sling.rec > cut.rec
   "$fixstep" run "$tests_dir/../assets/scenes/default.toml" --steps 5 --record other.rec >/dev/null
   mkdir -p outdir

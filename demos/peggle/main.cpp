@@ -10,6 +10,7 @@
 #include <fixstep/det_math.hpp>
 #include <string>
 
+#include "draw.hpp"
 #include "game.hpp"
 
 namespace {
@@ -21,15 +22,24 @@ struct Peggle {
 
   void setup(WorldDef& level) { level = peggle::make_level(); }
   void rules(World& world, const TickInput& input) { peggle::after_tick(state, input, world); }
-  /// Headless: sweeps the aim across the field and shoots every 4 s.
+  std::int64_t aimed_since = 0;  ///< autopilot: the frame the current aim began
+
+  /// Headless: sweeps the aim across the field and shoots 0.75 s after each ball is gone.
   void autopilot(std::int64_t frame, const World& /*world*/, InputSampler& sampler) {
     const double t = static_cast<double>(frame) / 60.0;
-    sampler.set_pointer(Vec2{7.0 * det::sin(0.7 * t + 0.4), 0.0});
-    if (frame % 240 == 40) sampler.press(button_action);
-    if (frame % 240 == 41) sampler.release(button_action);
+    if (state.phase == peggle::Phase::aiming) {  // the pointer rests while a ball flies
+      sampler.set_pointer(Vec2{7.0 * det::sin(0.9 * t + 0.4), 0.0});
+    }
+    sampler.release(button_action);  // the last frame's press, if any (a no-op otherwise)
+    if (state.phase != peggle::Phase::aiming) {
+      aimed_since = frame + 1;
+    } else if (frame - aimed_since == 45) {
+      sampler.press(button_action);
+    }
   }
   void draw(app::Overlay& overlay) const {
-    for (std::string& line : peggle::status_lines(state)) overlay.text(std::move(line));
+    peggle::draw_game(state, overlay);
+    for (const std::string& line : peggle::status_lines(state)) overlay.text(line);
   }
   [[nodiscard]] std::string summary() const { return peggle::describe(state); }
 };
@@ -37,11 +47,16 @@ struct Peggle {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return app::run(Peggle{},
-                  {.name = "peggle",
-                   .description = "aim, shoot ten balls into the pegs and clear them",
-                   .view_center = Vec2{0.0, -0.5},
-                   .view_width = 30.0,
-                   .controls = "mouse: aim   click or enter: shoot"},
-                  argc, argv);
+  return app::run(
+      Peggle{},
+      {.name = "peggle",
+       .description = "aim, shoot ten balls into the pegs and clear them",
+       .view_center = Vec2{0.0, -0.6},  // the launcher to below the bucket
+       .view_width = 38.0,
+       .controls = "mouse: aim   click or enter: shoot",
+       .style =
+           ViewStyle{
+               .background = {18, 20, 32, 255}, .grid = false, .axes = false, .scale_bar = true},
+       .hud_text_scale = 1.4f},  // the HUD fits left of the field
+      argc, argv);
 }
