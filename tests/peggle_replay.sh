@@ -2,7 +2,7 @@
 # The peggle demo's recorded session (assets/recordings/peggle.rec: 40 s of its autopilot,
 # `peggle --frames 2400 --record FILE`) replayed headless with its rules: every stored state
 # hash verifies, the game ends where it did (a ball caught by the bucket's sensor, pegs lit by
-# contacts and cleared), and the last frame is rendered. Then the same recording through
+# contacts and cleared), and the last frame is rendered; the sync test passes. Then the same recording through
 # `fixstep replay`, which has no peggle rules, must be refused naming the program (exit 5).
 #
 #   peggle_replay.sh PEGGLE FIXSTEP SOURCE_DIR OUT_DIR
@@ -31,6 +31,11 @@ grep -qx "verified=$((stored + 1))" "$out/replay.txt" ||
   fail "not every hash verified ($stored stored + the final one)"
 [ "$(head -c 8 "$out/last.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] ||
   fail "last.png is not a PNG"
+
+# The sync test: every tick rolled back 8 ticks and stepped again with the rules (sensor and
+# contact events, the world's random generator and the game's state all in the snapshot).
+"$game" --frames 900 --sync-test 8 >"$out/sync.txt" || fail "sync test exited $? ($(cat "$out/sync.txt"))"
+grep -q "each rolled back 8 ticks and re-simulated" "$out/sync.txt" || fail "no sync test report"
 
 status=0
 "$cli" replay "$rec" >/dev/null 2>"$out/cli.err" || status=$?
