@@ -254,6 +254,46 @@ case_ "[view] 1 m wide 10^12 m out (too narrow to place its pixels)" "$ok_world
 center = [0.0, 1e12]
 width = 1.0
 $body"
+case_ "[view] background not a colour" "$ok_world
+[view]
+background = \"#12345\"
+$body"
+case_ "[view] grid not a boolean" "$ok_world
+[view]
+grid = 1
+$body"
+case_ "[view] axes not a boolean" "$ok_world
+[view]
+axes = \"off\"
+$body"
+case_ "[view] scale_bar not a boolean" "$ok_world
+[view]
+scale_bar = 0.0
+$body"
+case_ "[view] hud in no corner" "$ok_world
+[view]
+hud = \"centre\"
+$body"
+case_ "[view] hud_scale = 8" "$ok_world
+[view]
+hud_scale = 8
+$body"
+case_ "[view] hud_lines a string" "$ok_world
+[view]
+hud_lines = \"energy\"
+$body"
+case_ "[view] hud_lines naming an unknown line" "$ok_world
+[view]
+hud_lines = [\"tick\"]
+$body"
+case_ "[view] hud_lines naming a line twice" "$ok_world
+[view]
+hud_lines = [\"energy\", \"energy\"]
+$body"
+case_ "[view] misspelt key (a warning; the run goes on)" "$ok_world
+[view]
+axis = false
+$body"
 # --- the parser's depth, messages ---
 # Nesting deeper than 64 levels (dotted-key parts, [table] header parts, [ and { around a value)
 # is refused with its line and column before toml++ parses: the issue's 50 000-part key (80 KB)
