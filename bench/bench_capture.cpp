@@ -14,7 +14,7 @@
 // video file into a temporary directory, after 45 untimed frames so that every body's trail
 // is full (the writer is created and finished inside the timed clip, as `render` does); five
 // repetitions, interleaved at random with the other benchmarks', medians reported. Scenes:
-// 1000 spring-damper and projectile bodies built in code (many_bodies below), and
+// 1000 spring-damper and projectile bodies built in code (bench/many_bodies.hpp), and
 // assets/scenes/default.toml (6 bodies). Then one frame of the 1000-body scene is encoded at
 // every level, for the size/speed table. The last lines print the medians and the issues'
 // targets: shipped >= 60 frames/s and shipped >= 2.5x naive_stb at 1000 bodies (PNG), and mp4
@@ -44,6 +44,7 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/video.hpp"
+#include "many_bodies.hpp"
 
 // The naive baseline: stb_image_write exactly as fixstep used it before libdeflate (built-in
 // deflate at stb's default level 8, default filter choice). This copy is private to this file
@@ -61,47 +62,9 @@ constexpr int width = 1280, height = 720;
 constexpr int warm_frames = 45;  // Renderer::trail_frames: trails are full from here on
 constexpr int clip_frames = 60;
 
-/// 1000 bodies on a 40 x 25 grid filling a 160 m x 90 m view: two in three hang on
-/// spring-dampers (k = 5..15 N/m, released 1.5 m from their anchors, so they circle and
-/// swing), one in three is a projectile thrown up at 25..33 m/s under gravity with a little
-/// drag (they rise through the grid for the whole measured second). Deterministic.
-Scene many_bodies(int n) {
-  Scene s;
-  s.file = fmt::format("many_bodies({})", n);
-  s.settings.dt = 0.01;
-  s.precision = Precision::f64;
-  s.view.center = Vec2{0.0, 0.0};
-  s.view.width = 160.0;
-  constexpr int cols = 40;
-  for (int i = 0; i < n; ++i) {
-    BodyDef b;
-    b.name = fmt::format("b{}", i);
-    const double gx = -78.0 + 4.0 * (i % cols), gy = -40.0 + 3.3 * (i / cols);
-    const double hue = double(i) / n;
-    b.appearance = Appearance{.radius = 0.6 + 0.1 * ((i * 7) % 5),
-                              .color = {static_cast<std::uint8_t>(60 + 190 * hue),
-                                        static_cast<std::uint8_t>(120 + 100 * std::sin(7.0 * hue)),
-                                        static_cast<std::uint8_t>(240 - 180 * hue), 255}};
-    if (i % 3 != 2) {
-      b.body = Body{.mass = 1.0,
-                    .position = {gx + 1.5 * std::cos(i), gy + 1.5 * std::sin(i)},
-                    .velocity = {0.0, 0.0}};
-      b.spring =
-          SpringDamper{.anchor = {gx, gy}, .stiffness = 5.0 + (i % 11), .damping = 0.05 * (i % 4)};
-    } else {
-      b.body = Body{
-          .mass = 1.0, .position = {gx, -45.0}, .velocity = {2.0 * std::sin(i), 25.0 + (i % 9)}};
-      b.gravity = Gravity{};
-      b.drag = LinearDrag{.coefficient = 0.02 * (i % 5)};
-    }
-    s.bodies.push_back(b);
-  }
-  return s;
-}
-
 Scene scene_named(const std::string& name) {
   if (name == "default") return load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml");
-  return many_bodies(1000);
+  return bench::many_bodies(1000);
 }
 
 /// The PNG of the naive baseline, as fixstep's write_png made it before libdeflate.
@@ -189,7 +152,7 @@ void capture(benchmark::State& state, const std::string& scene_name, Mode mode) 
 /// One frame of the 1000-body scene (frame 105: trails full), for the encoder table.
 const std::vector<std::uint8_t>& sample_frame() {
   static const std::vector<std::uint8_t> frame = [] {
-    Session session = testing::scene_session(many_bodies(1000), width, height);
+    Session session = testing::scene_session(bench::many_bodies(1000), width, height);
     const VirtualClock clock(60.0);
     for (int f = 0; f <= warm_frames + clip_frames; ++f) {
       if (f > 0) session.advance(clock.frame_seconds());

@@ -18,6 +18,7 @@ void check_finite(double v, const char* call, const char* field) {
 }
 
 void check_point(Vec2 p, const char* call, const char* name) {
+  if (std::isfinite(p.x) && std::isfinite(p.y)) return;  // names formatted only when refused
   check_finite(p.x, call, fmt::format("{}.x", name).c_str());
   check_finite(p.y, call, fmt::format("{}.y", name).c_str());
 }

@@ -99,8 +99,28 @@ void main() {
 }
 )";
 
-/// The programs, in the order of Renderer::shapes and Renderer::outlined_discs.
-inline constexpr ShaderSources shader_sources{vertex_shader,
-                                              {shapes_fragment_shader, ring_fragment_shader}};
+/// Circle outlines (Renderer::circle) drawn as points, like the outlined discs: uv runs to 1 at
+/// the ring's outer edge and v_fill is its inner radius in the same units; the colour is the
+/// vertex's. Coverage is the outer disc's less the inner one's, each anti-aliased as the discs
+/// are, so a ring is the picture a disc of its colour leaves outside a hole.
+inline constexpr const char* circle_fragment_shader = FIXSTEP_GLSL_PROLOGUE R"(
+flat in vec4 v_flat_color;
+flat in float v_fill;
+flat in float v_point_scale;
+out vec4 frag;
+void main() {
+  float d = length((gl_PointCoord * 2.0 - 1.0) * v_point_scale);
+  float w = max(fwidth(d), 1e-6);
+  float outer = clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  float inner = clamp((v_fill - d) / w + 0.5, 0.0, 1.0);
+  float a = v_flat_color.a * max(outer - inner, 0.0);
+  frag = vec4(v_flat_color.rgb * a, a);
+}
+)";
+
+/// The programs, in the order of Renderer::shapes, Renderer::outlined_discs and
+/// Renderer::circles.
+inline constexpr ShaderSources shader_sources{
+    vertex_shader, {shapes_fragment_shader, ring_fragment_shader, circle_fragment_shader}};
 
 }  // namespace fixstep::gl

@@ -15,6 +15,7 @@
 
 #include "aa_pad.hpp"
 #include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
+#include "renderer_gl.hpp"
 #include "gl_shaders.hpp"
 
 namespace fixstep {
@@ -49,10 +50,6 @@ std::string printable(const std::string& s) {
 }
 
 }  // namespace
-
-struct Renderer::Gl : gl::Pipeline {
-  using Pipeline::Pipeline;
-};
 
 Renderer::Renderer(int width, int height) : width_(width), height_(height) {
   if (width < min_frame_size || height < min_frame_size || width > max_frame_size ||
@@ -364,7 +361,7 @@ void Renderer::draw_batches(std::size_t from, std::size_t to) {
     } else {
       gl::api().glDisable(GL_SCISSOR_TEST);
     }
-    gl::api().glDrawElements(program == outlined_discs ? GL_POINTS : GL_TRIANGLES,
+    gl::api().glDrawElements(program == shapes ? GL_TRIANGLES : GL_POINTS,
                              static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
                              reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   }

@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "aa_pad.hpp"
+#include "renderer_gl.hpp"  // gl_->max_point_size
 #include "fixstep/render.hpp"
 
 namespace fixstep {
@@ -119,6 +120,14 @@ void Renderer::closed_polyline(std::span<const Point> points, float width, Rgba8
 
 void Renderer::circle(float cx, float cy, float r, float width, Rgba8 c) {
   if (!(r > 0.0f) || !(width > 0.0f)) return;
+  const float outer = r + 0.5f * width, inner = std::max(r - 0.5f * width, 0.0f);
+  const float pad = outer + detail::aa_pad_px;
+  if (2.0f * pad <= gl_->max_point_size) {  // one point: see disc() with an outline
+    use(circles, {});
+    indices_.push_back(static_cast<std::uint32_t>(vertices_.size()));
+    vertex(cx, cy, 2.0f * pad, pad / outer, c, inner / outer);
+    return;
+  }
   // Sides such that the sagitta r (1 - cos(pi / sides)) stays within 0.05 px.
   const double half_angle = std::acos(std::max(-1.0, 1.0 - 0.05 / double(r)));
   const double wanted = half_angle > 0.0 ? std::ceil(std::numbers::pi / half_angle) : 1024.0;

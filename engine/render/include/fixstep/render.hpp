@@ -206,8 +206,10 @@ class Renderer {
   /// points draw nothing.
   void closed_polyline(std::span<const Point> points, float width, Rgba8 c);
   /// An anti-aliased circle (an outline, not filled) of radius r px centred on (cx, cy), its
-  /// line `width` px wide centred on the radius: a closed polyline of enough sides that no
-  /// chord strays 0.05 px from the circle (8 to 1024 sides). r <= 0 or width <= 0: nothing.
+  /// line `width` px wide centred on the radius (a ring from r - width/2, at least 0, to
+  /// r + width/2): one GL point, as the outlined discs are; wider than GL's largest point, a
+  /// closed polyline of enough sides that no chord strays 0.05 px from the circle (8 to 1024
+  /// sides). r <= 0 or width <= 0: nothing.
   void circle(float cx, float cy, float r, float width, Rgba8 c);
   /// A filled convex polygon (a triangle fan from points[0]; any winding), not smoothed. The
   /// caller ensures convexity; fewer than 3 points draw nothing.
@@ -242,6 +244,7 @@ class Renderer {
   // Fragment programs; each batch uses one.
   static constexpr int shapes = 0;          // triangles: solids, discs, lines, polylines, text
   static constexpr int outlined_discs = 1;  // points: disc() with an outline
+  static constexpr int circles = 2;         // points: circle()
   /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
   /// outlined_discs, outline colour `ring`), starting a new batch if needed.
   void use(int program, Rgba8 ring);
