@@ -134,7 +134,7 @@ void DrawList::arrow(Vec2 from, Vec2 to, double width, double head, Rgba8 color,
 
 void DrawList::label(Vec2 at, std::string_view text, double scale, Rgba8 color, Space space) {
   check_point(at, "label", "at");
-  if (!(scale >= min_text_scale && scale <= max_text_scale)) {
+  if (!std::isfinite(scale) || scale < min_text_scale || scale > max_text_scale) {
     throw std::invalid_argument(
         fmt::format("DrawList::label: scale must be in [{:g}, {:g}], got {}", min_text_scale,
                     max_text_scale, scale));
