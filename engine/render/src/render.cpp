@@ -15,8 +15,8 @@
 
 #include "aa_pad.hpp"
 #include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
-#include "renderer_gl.hpp"
 #include "gl_shaders.hpp"
+#include "renderer_gl.hpp"
 
 namespace fixstep {
 

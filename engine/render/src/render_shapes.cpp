@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "aa_pad.hpp"
-#include "renderer_gl.hpp"  // gl_->max_point_size
 #include "fixstep/render.hpp"
+#include "renderer_gl.hpp"  // gl_->max_point_size
 
 namespace fixstep {
 
