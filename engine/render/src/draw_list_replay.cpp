@@ -122,11 +122,11 @@ void DrawList::draw(Renderer& canvas) const {
         const Vec2 tip = b;
         if (!clip(a, b, box)) break;
         const auto w = float(s.width * unit);
-        if (s.kind == Kind::line) {
-          canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), w, c);
-        } else if (b.x == tip.x && b.y == tip.y) {  // the head is in reach
+        // An arrow whose tip is in reach has its head; beyond it, the shaft is all that shows.
+        const bool head = s.kind == Kind::arrow && b.x == tip.x && b.y == tip.y;
+        if (head) {
           canvas.arrow(float(a.x), float(a.y), float(b.x), float(b.y), w, float(s.size * unit), c);
-        } else {  // the tip is far beyond the frame: the shaft is all that shows
+        } else {
           canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), w, c);
         }
         break;
