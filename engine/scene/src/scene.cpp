@@ -103,17 +103,6 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
   return def;
 }
 
-/// The boolean at t[key]; nullopt when absent.
-std::optional<bool> boolean(const Reader& r, const toml::table& t, std::string_view key,
-                            const std::string& path) {
-  const toml::node* n = t.get(key);
-  if (!n) return std::nullopt;
-  if (!n->is_boolean()) {
-    r.fail(n->source(), path, fmt::format("expected true or false, found {}", found(*n)));
-  }
-  return n->as_boolean()->get();
-}
-
 /// Every number of an f32 scene must stay finite as a float.
 void check_f32(const Reader& r, const toml::node& node, const std::string& path) {
   if (const toml::table* t = node.as_table()) {
@@ -154,8 +143,8 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
       ap.radius = *rad;  // drawing only: no disc without `radius`
     }
     if (t.get("color")) ap.color = parse_color(r, t, "color", path + ".color");
-    if (auto v = boolean(r, t, "visible", path + ".visible")) ap.visible = *v;
-    if (auto v = boolean(r, t, "trail", path + ".trail")) ap.trail = *v;
+    if (auto v = r.boolean(t, "visible", path + ".visible")) ap.visible = *v;
+    if (auto v = r.boolean(t, "trail", path + ".trail")) ap.trail = *v;
     if (auto v = r.number(t, "trail_time", path + ".trail_time")) {
       r.require(*v > 0.0 && *v <= max_trail_time, t, "trail_time", path + ".trail_time",
                 "> 0 and <= 10 s", *v);
@@ -236,10 +225,10 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
     scene.settings.seed = static_cast<std::uint64_t>(
         r.integer_node(*n, "world.seed", 0, std::numeric_limits<std::int64_t>::max()));
   }
-  if (auto b = boolean(r, *world, "allow_unstable", "world.allow_unstable")) {
+  if (auto b = r.boolean(*world, "allow_unstable", "world.allow_unstable")) {
     scene.allow_unstable = *b;
   }
-  if (auto b = boolean(r, *world, "flush_denormals", "world.flush_denormals")) {
+  if (auto b = r.boolean(*world, "flush_denormals", "world.flush_denormals")) {
     scene.settings.flush_denormals = *b;
   }
   if (auto name = r.string(*world, "damping_split", "world.damping_split")) {

@@ -115,13 +115,7 @@ std::optional<std::uint64_t> filter_bits(const Reader& r, const toml::table& t,
 /// sensor, category, mask and group of t into c.
 void parse_filter_keys(const Reader& r, const toml::table& t, const std::string& path,
                        Collider& c) {
-  if (const toml::node* n = t.get("sensor")) {
-    if (!n->is_boolean()) {
-      r.fail(n->source(), path + ".sensor",
-             fmt::format("expected true or false, found {}", found(*n)));
-    }
-    c.sensor = n->as_boolean()->get();
-  }
+  if (auto v = r.boolean(t, "sensor", path + ".sensor")) c.sensor = *v;
   if (auto bits = filter_bits(r, t, "category", path + ".category")) c.filter.category = *bits;
   if (auto bits = filter_bits(r, t, "mask", path + ".mask")) c.filter.mask = *bits;
   if (const toml::node* n = t.get("group")) {
@@ -142,13 +136,7 @@ void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& p
     }
   }
   if (!def.collider) return;
-  if (const toml::node* n = t.get("collide")) {
-    if (!n->is_boolean()) {
-      r.fail(n->source(), path + ".collide",
-             fmt::format("expected true or false, found {}", found(*n)));
-    }
-    def.collider->collide = n->as_boolean()->get();
-  }
+  if (auto v = r.boolean(t, "collide", path + ".collide")) def.collider->collide = *v;
   def.collider->restitution = restitution(r, t, path);
   def.collider->friction = friction(r, t, path);
   parse_filter_keys(r, t, path, *def.collider);

@@ -248,6 +248,18 @@ class Reader {
     return vec2_node(*n, path);
   }
 
+  /// The boolean at t[key]; nullopt when absent. A value of another type is an error at the key
+  /// ("expected true or false, found ...").
+  std::optional<bool> boolean(const toml::table& t, std::string_view key,
+                              const std::string& path) const {
+    const toml::node* n = t.get(key);
+    if (!n) return std::nullopt;
+    if (!n->is_boolean()) {
+      fail(n->source(), path, fmt::format("expected true or false, found {}", found(*n)));
+    }
+    return n->as_boolean()->get();
+  }
+
   std::optional<std::string> string(const toml::table& t, std::string_view key,
                                     const std::string& path) const {
     const toml::node* n = t.get(key);

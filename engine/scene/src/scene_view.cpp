@@ -11,17 +11,6 @@ namespace fixstep::scene_detail {
 
 namespace {
 
-/// The boolean at view[key] (path view.KEY); nullopt when absent.
-std::optional<bool> view_flag(const Reader& r, const toml::table& view, std::string_view key) {
-  const toml::node* n = view.get(key);
-  if (!n) return std::nullopt;
-  if (!n->is_boolean()) {
-    r.fail(n->source(), fmt::format("view.{}", key),
-           fmt::format("expected true or false, found {}", found(*n)));
-  }
-  return n->as_boolean()->get();
-}
-
 constexpr std::array<std::pair<std::string_view, SceneHud>, 5> hud_places{{
     {"top_left", SceneHud::top_left},
     {"top_right", SceneHud::top_right},
@@ -96,9 +85,9 @@ void parse_hud_lines(const Reader& r, const toml::table& view, SceneView& out) {
 void parse_view_style(const Reader& r, const toml::table& view, SceneView& out) {
   if (view.contains("background"))
     out.background = parse_color(r, view, "background", "view.background");
-  out.grid = view_flag(r, view, "grid");
-  out.axes = view_flag(r, view, "axes");
-  out.scale_bar = view_flag(r, view, "scale_bar");
+  out.grid = r.boolean(view, "grid", "view.grid");
+  out.axes = r.boolean(view, "axes", "view.axes");
+  out.scale_bar = r.boolean(view, "scale_bar", "view.scale_bar");
   parse_hud_place(r, view, out);
   if (auto scale = r.number(view, "hud_scale", "view.hud_scale")) {
     r.require(
