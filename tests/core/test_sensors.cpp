@@ -265,6 +265,38 @@ TEST(Sensors, EventsComeBackAfterARestoreAndADestroyedVisitorEnds) {
   EXPECT_EQ(sim.sensors_ended()[0].visitor, ball_e);
 }
 
+TEST(Sensors, ASlotReusedBetweenTicksEndsTheOldVisitorAndBeginsTheNew) {
+  World sim(Precision::f64, contact_settings());
+  const Entity zone = sim.create_body(sensor_disc("zone", {0, 0}, 0.5, BodyType::static_body));
+  const Entity old_ball = sim.create_body(disc("old", {0.1, 0}, {}, 0.1));
+  sim.step();
+  ASSERT_EQ(sim.sensors_begun().size(), 1u);
+  sim.destroy(old_ball);
+  const Entity new_ball = sim.create_body(disc("new", {-0.1, 0}, {}, 0.1));
+  ASSERT_EQ(new_ball.slot(), old_ball.slot());  // the same slot, a new generation
+  sim.step();
+  ASSERT_EQ(sim.sensors_ended().size(), 1u);
+  EXPECT_EQ(sim.sensors_ended()[0], (SensorEvent{zone, old_ball}));
+  ASSERT_EQ(sim.sensors_begun().size(), 1u);
+  EXPECT_EQ(sim.sensors_begun()[0], (SensorEvent{zone, new_ball}));
+  // Moved out between ticks through the sensor's far side: one end, not an end and a crossing.
+  sim.set_position(new_ball, Vec2{3, 0});
+  sim.step();
+  EXPECT_EQ(sim.sensors_ended().size(), 1u);
+  EXPECT_TRUE(sim.sensors_begun().empty());
+  // Inside again, then put far left and thrown through the sensor within one tick: it left
+  // (one end) and crossed (a begin); the pair ends once.
+  sim.set_position(new_ball, Vec2{0, 0});
+  sim.step();
+  ASSERT_EQ(sim.sensors_begun().size(), 1u);
+  sim.set_position(new_ball, Vec2{-3, 0});
+  sim.set_velocity(new_ball, Vec2{600, 0});  // 6 m in the tick, through the zone
+  sim.step();
+  EXPECT_EQ(sim.sensors_begun().size(), 1u);
+  EXPECT_EQ(sim.sensors_ended().size(), 1u);
+  EXPECT_TRUE(sim.sensor_overlaps().empty());
+}
+
 TEST(Sensors, ASensorNeedsDiscContacts) {
   World sim(Precision::f64, WorldSettings{.dt = 0.01});
   EXPECT_THROW(sim.create_body(sensor_disc("s", {0, 0}, 0.5, BodyType::static_body)),

@@ -5,6 +5,7 @@
 
 #include "disc_contacts.hpp"
 #include "fixstep/detail/world_kernel.hpp"
+#include "sorted_diff.hpp"
 
 namespace fixstep {
 
@@ -64,23 +65,12 @@ void detail::WorldKernel<Real>::update_contact_events() {
     return speed;
   };
   // Both lists sorted by slots: one merge finds what began and what ended.
-  std::size_t i = 0, k = 0;
-  const std::size_t n = touching_.size(), m = touching_before_.size();
-  while (i < n || k < m) {
-    if (k == m || (i < n && slot_less(touching_[i], touching_before_[k]))) {
-      begun_.push_back({touching_[i].a, touching_[i].b, speed_of(touching_[i])});
-      ++i;
-    } else if (i == n || slot_less(touching_before_[k], touching_[i])) {
-      ended_.push_back(touching_before_[k++]);
-    } else {
-      // The same slots: still touching, unless a slot was reused by a new body.
-      if (!same(touching_[i], touching_before_[k])) {
-        ended_.push_back(touching_before_[k]);
-        begun_.push_back({touching_[i].a, touching_[i].b, speed_of(touching_[i])});
-      }
-      ++i, ++k;
-    }
-  }
+  detail::sorted_diff<ContactEvent>(
+      touching_, touching_before_, slot_less, same,
+      [&](const ContactEvent& p) {
+        begun_.push_back({p.a, p.b, speed_of(p)});
+      },
+      [&](const ContactEvent& p) { ended_.push_back(p); });
   // Pairs that struck and parted within the tick: begun and ended at once.
   bool struck = false;
   for (std::size_t h = 0; h < hits_.size(); ++h) {

@@ -8,6 +8,7 @@
 
 #include "disc_contacts.hpp"
 #include "fixstep/detail/world_kernel.hpp"
+#include "sorted_diff.hpp"
 
 namespace fixstep {
 
@@ -48,24 +49,19 @@ void detail::WorldKernel<Real>::update_sensor_events() {
   if (sensed_.empty() && sensed_before_.empty() && sensor_crossed_.empty()) return;
   sort_sensor_events(sensed_);
   // Both lists sorted by slots: one merge finds what began and what ended.
-  std::size_t i = 0, k = 0;
-  const std::size_t n = sensed_.size(), m = sensed_before_.size();
-  while (i < n || k < m) {
-    if (k == m || (i < n && sensor_order(sensed_[i], sensed_before_[k]))) {
-      sensor_begun_.push_back(sensed_[i++]);
-    } else if (i == n || sensor_order(sensed_before_[k], sensed_[i])) {
-      sensor_ended_.push_back(sensed_before_[k++]);
-    } else {
-      if (sensed_[i] != sensed_before_[k]) {  // a slot reused by a new body
-        sensor_ended_.push_back(sensed_before_[k]);
-        sensor_begun_.push_back(sensed_[i]);
-      }
-      ++i, ++k;
-    }
-  }
+  detail::sorted_diff<SensorEvent>(
+      sensed_, sensed_before_, sensor_order,
+      [](const SensorEvent& l, const SensorEvent& r) { return l == r; },
+      [&](const SensorEvent& e) { sensor_begun_.push_back(e); },
+      [&](const SensorEvent& e) { sensor_ended_.push_back(e); });
   if (!sensor_crossed_.empty()) {  // in and out within the tick: begun and ended at once
-    sensor_begun_.insert(sensor_begun_.end(), sensor_crossed_.begin(), sensor_crossed_.end());
-    sensor_ended_.insert(sensor_ended_.end(), sensor_crossed_.begin(), sensor_crossed_.end());
+    for (const SensorEvent& e : sensor_crossed_) {
+      sensor_begun_.push_back(e);
+      // One moved out between ticks (set_position) before crossing has ended above: once.
+      if (!std::binary_search(sensed_before_.begin(), sensed_before_.end(), e, sensor_order)) {
+        sensor_ended_.push_back(e);
+      }
+    }
     sort_sensor_events(sensor_begun_), sort_sensor_events(sensor_ended_);
   }
 }
