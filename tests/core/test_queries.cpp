@@ -222,6 +222,9 @@ TEST(Queries, BadArgumentsAreRefusedByName) {
   EXPECT_THROW((void)s.world.cast_ray({nan, 0}, {1, 0}), std::invalid_argument);
   EXPECT_THROW((void)s.world.cast_ray({0, 0}, {INFINITY, 0}), std::invalid_argument);
   EXPECT_THROW(s.world.overlap_circle({0, 0}, -1, out), std::invalid_argument);
+  EXPECT_THROW((void)s.world.cast_ray({0, 0}, {1e200, 1e200}), std::invalid_argument);
+  EXPECT_THROW((void)s.world.cast_ray({1e16, 0}, {1, 0}), std::invalid_argument);
+  EXPECT_NO_THROW((void)s.world.cast_ray({1e12, 0}, {-2e12, 0}));  // across the whole world
   EXPECT_THROW(s.world.overlap_aabb({1, 0}, {0, 1}, out), std::invalid_argument);
   try {
     s.world.query_point({0, nan}, out);

@@ -116,6 +116,13 @@ std::size_t World::cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit>
                                 const QueryFilter& filter) const {
   require_finite_query(origin, "cast_ray", "origin");
   require_finite_query(translation, "cast_ray", "translation");
+  const double len = std::sqrt(translation.x * translation.x + translation.y * translation.y);
+  if (!std::isfinite(len) || std::abs(origin.x) + std::abs(origin.y) + len > max_query_reach) {
+    // Beyond it the ray-disc quadratic's terms overflow (a NaN, not a hit).
+    throw std::invalid_argument(
+        fmt::format("cast_ray: the ray from ({}, {}) over ({}, {}) reaches beyond {:g} m", origin.x,
+                    origin.y, translation.x, translation.y, max_query_reach));
+  }
   Collector<RayHit, decltype(&ray_less)> hits(out, &ray_less);
   const detail::QueryGrid& g = query_grid();
   auto disc_hit = [&](std::size_t i) {
@@ -127,7 +134,6 @@ std::size_t World::cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit>
     hits.add(RayHit{d.body, no_plane, s, at, Vec2{(at.x - d.x) / d.r, (at.y - d.y) / d.r}});
   };
   // The ray in pieces one cell long, each piece's box visited once per disc (marks).
-  const double len = std::sqrt(translation.x * translation.x + translation.y * translation.y);
   const double pieces = std::ceil(len / g.cell_side());
   const std::uint32_t mark = queries_->next_mark();
   auto once = [&](std::size_t i) {

@@ -27,6 +27,11 @@ struct QueryFilter {
   return (disc.category & filter.mask) != 0 && (disc.mask & filter.category) != 0;
 }
 
+/// Farthest a ray may reach from the origin, m (|origin.x| + |origin.y| + |translation|): a
+/// thousand times max_state_magnitude, where no body is, and far below where the squares of a
+/// ray's terms overflow.
+inline constexpr double max_query_reach = 1e15;
+
 /// Marks a hit that is no plane (QueryHit::plane, RayHit::plane).
 inline constexpr std::uint32_t no_plane = 0xffffffffu;
 

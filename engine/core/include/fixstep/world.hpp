@@ -242,7 +242,8 @@ class World {
   /// The first shape the ray origin + s · translation, s in [0, 1] (m), enters: the hit with
   /// the least fraction, ties by handle slot and planes last (by index); nullopt when it
   /// enters none. A ray starting inside a disc or on the solid side of a plane does not hit
-  /// that shape (Box2D's rule). A zero translation hits nothing.
+  /// that shape (Box2D's rule). A zero translation hits nothing. Throws std::invalid_argument
+  /// also for a ray reaching beyond max_query_reach.
   [[nodiscard]] std::optional<RayHit> cast_ray(Vec2 origin, Vec2 translation,
                                                const QueryFilter& filter = {}) const;
   /// Every shape the ray enters, ordered by fraction (ties by handle slot, planes last by
