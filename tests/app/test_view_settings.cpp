@@ -12,7 +12,7 @@
 #include "pixels.hpp"
 
 namespace fixstep {
-namespace {
+namespace view_settings_tests {
 
 const std::string body =
     "[world]\ndt = 0.01\n[[body]]\nmass = 1.0\nposition = [0.0, 0.0]\nradius = 0.5\n";
@@ -109,5 +109,5 @@ TEST(SceneViewStyle, AppliedToASessionItShapesTheFrame) {
   EXPECT_FALSE(off.show_hud);
 }
 
-}  // namespace
+}  // namespace view_settings_tests
 }  // namespace fixstep

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <vector>
 
-#include "game.hpp"
+#include "peggle/game.hpp"
 
-namespace {
+namespace peggle_tests {
 
 using fixstep::Entity;
 using fixstep::TickInput;
@@ -138,4 +138,4 @@ TEST(Peggle, TheSameInputsGiveTheSameGameAndARestoreReplaysIt) {
   EXPECT_EQ(peggle::describe(c.game), peggle::describe(a.game));
 }
 
-}  // namespace
+}  // namespace peggle_tests

@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "fixstep/recording_file.hpp"
-#include "game.hpp"
+#include "slingshot/game.hpp"
 
-namespace {
+namespace slingshot_tests {
 
 using fixstep::TickInput;
 using fixstep::Vec2;
@@ -329,4 +329,4 @@ TEST(Slingshot, SyncTestCatchesRulesWithoutSaveAndRestore) {
   EXPECT_NE(r.mismatch->expected, r.mismatch->actual);
 }
 
-}  // namespace
+}  // namespace slingshot_tests

@@ -21,7 +21,7 @@ extern std::atomic<bool> counting;              // count_new.cpp
 extern std::atomic<std::size_t> counted_bytes;  // bytes asked for while counting
 
 namespace fixstep {
-namespace {
+namespace trail_tests {
 
 struct Points {
   std::array<float, Trails::max_points> x{}, y{}, age{};
@@ -257,5 +257,5 @@ TEST(Trails, SamplingAndDrawListsAllocateNothingOnceWarm) {
   EXPECT_EQ(list.size(), 4000u);
 }
 
-}  // namespace
+}  // namespace trail_tests
 }  // namespace fixstep
