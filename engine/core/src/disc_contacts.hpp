@@ -141,7 +141,7 @@ class DiscContacts {
   };
   /// Resolves the tick's contacts in place. Returns per-disc energy bookkeeping through
   /// lost() (J/kg, dynamic discs) and external() (J); fills stats.
-  void resolve(const Tick& tick, ContactStats& stats);
+  void resolve(const Tick& tick, ContactStats& stats, StepProfile& profile);
   /// Energy the last resolve() took from each disc, J/kg (index: disc).
   [[nodiscard]] std::span<const double> lost() const { return lost_; }
   /// Work of kinematic discs on each disc in the last resolve(), J.
@@ -171,7 +171,8 @@ class DiscContacts {
   [[nodiscard]] std::size_t bytes() const;
 
   /// Gauss–Seidel sweeps of the resting solver (velocities, then positions).
-  static constexpr int velocity_iterations = 20, position_iterations = 10;
+  static constexpr int velocity_iterations = ContactStats::max_velocity_sweeps,
+                       position_iterations = ContactStats::max_position_sweeps;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
   static constexpr double slop = 0.005;
   /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
@@ -194,7 +195,7 @@ class DiscContacts {
   // phase 2 (disc_rest.cpp)
   void gather_contacts(const Tick& tick);
   void warm_start(const Tick& tick);
-  void solve_velocities(const Tick& tick);
+  void solve_velocities(const Tick& tick, ContactStats& stats);
   void push_out(const Tick& tick, ContactStats& stats);
   void keep_impulses();
   void apply(const RestContact& c, double jx, double jy, double kdt);

@@ -8,6 +8,7 @@
 #include "disc_toi.hpp"
 #include "fixstep/limits.hpp"
 #include "fixstep/stop_request.hpp"
+#include "phase_clock.hpp"
 
 namespace fixstep::detail {
 
@@ -287,19 +288,25 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
 }
 
 template <class Real>
-void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats) {
+void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProfile& profile) {
   stats = ContactStats{};
   impact_log_.clear();
   sensor_pairs_.clear(), sensed_.clear();
   cap_ = CapHit{};
+  PhaseClock clock(true);
   build_motions(tick);
-  if (!find_candidates(tick, stats)) return;
+  const bool candidates = find_candidates(tick, stats);
+  profile.broadphase = clock.lap();
+  profile.impacts = profile.resting = 0.0;
+  if (!candidates) return;
   run_events(tick, stats);
+  profile.impacts = clock.lap();
   gather_contacts(tick);
   warm_start(tick);
-  solve_velocities(tick);
+  solve_velocities(tick, stats);
   push_out(tick, stats);
   keep_impulses();
+  profile.resting = clock.lap();
   finish(tick);
   if (!sensor_pairs_.empty()) detect_sensors(tick);
 }
@@ -328,7 +335,7 @@ std::size_t DiscContacts<Real>::bytes() const {
   template void DiscContacts<Real>::run_events(const Tick&, ContactStats&);                        \
   template std::uint32_t DiscContacts<Real>::largest_box() const;                                  \
   template bool DiscContacts<Real>::handed_over(std::uint32_t, double) const;                      \
-  template void DiscContacts<Real>::resolve(const Tick&, ContactStats&);                           \
+  template void DiscContacts<Real>::resolve(const Tick&, ContactStats&, StepProfile&);             \
   template std::size_t DiscContacts<Real>::bytes() const;
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

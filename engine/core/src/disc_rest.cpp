@@ -90,10 +90,13 @@ void DiscContacts<Real>::warm_start(const Tick& tick) {
 }
 
 template <class Real>
-void DiscContacts<Real>::solve_velocities(const Tick& tick) {
+void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats) {
   const double kdt = tick.kappa * tick.dt;
   const std::size_t n = discs_.size();
+  if (contacts_.empty()) return;
+  stats.velocity_converged = false;
   for (int it = 0; it < velocity_iterations; ++it) {
+    ++stats.velocity_sweeps;
     // A sweep that changes no impulse by more than 1e-9 of the largest has converged.
     double change = 0.0, largest = 0.0;
     for (RestContact& c : contacts_) {
@@ -120,7 +123,10 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick) {
       change = std::max({change, std::abs(dn), std::abs(dt)});
       largest = std::max(largest, c.lambda_n);
     }
-    if (change <= 1e-9 * largest) break;
+    if (change <= 1e-9 * largest) {
+      stats.velocity_converged = true;
+      break;
+    }
   }
 }
 
@@ -141,7 +147,8 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
     r_min = std::min(da.radius, db.radius);
     return da.radius + db.radius - dist;
   };
-  for (int it = 0; it < position_iterations; ++it) {
+  for (int it = 0; it < position_iterations && !contacts_.empty(); ++it) {
+    ++stats.position_sweeps;
     bool pushed = false;  // a sweep that pushes nothing ends the push-out
     for (const RestContact& c : contacts_) {
       double nx = 0, ny = 0, r_min = 0;
@@ -163,7 +170,9 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
   stats.touching = contacts_.size();
   for (const RestContact& c : contacts_) {
     double nx = 0, ny = 0, r_min = 0;
-    stats.max_overlap = std::max(stats.max_overlap, overlap_of(c, nx, ny, r_min));
+    const double depth = overlap_of(c, nx, ny, r_min);
+    stats.max_overlap = std::max(stats.max_overlap, depth);
+    if (std::isgreater(depth, slop * r_min)) stats.positions_settled = false;
   }
 }
 
@@ -203,7 +212,7 @@ void DiscContacts<Real>::finish(const Tick& tick) {
   template void DiscContacts<Real>::gather_contacts(const Tick&);                      \
   template void DiscContacts<Real>::apply(const RestContact&, double, double, double); \
   template void DiscContacts<Real>::warm_start(const Tick&);                           \
-  template void DiscContacts<Real>::solve_velocities(const Tick&);                     \
+  template void DiscContacts<Real>::solve_velocities(const Tick&, ContactStats&);      \
   template void DiscContacts<Real>::push_out(const Tick&, ContactStats&);              \
   template void DiscContacts<Real>::keep_impulses();                                   \
   template void DiscContacts<Real>::finish(const Tick&);

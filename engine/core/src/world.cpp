@@ -68,6 +68,9 @@ double World::external_work() const {
 const ContactStats& World::contact_stats() const {
   return visit([](const auto& w) -> const ContactStats& { return w.contact_stats(); });
 }
+const StepProfile& World::profile() const {
+  return visit([](const auto& w) -> const StepProfile& { return w.profile(); });
+}
 std::span<const Impact> World::impacts() const {
   return visit([](const auto& w) { return w.impacts(); });
 }

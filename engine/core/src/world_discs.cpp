@@ -158,7 +158,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       settings_.dt,
       kappa(settings_.integrator, settings_.substeps),
       settings_.threads == 1 ? 1 : 2};
-  dc.resolve(t, contact_stats_);
+  dc.resolve(t, contact_stats_, profile_);
   const auto discs = dc.discs();
   if (const auto* hit = dc.cap_hit(); hit && !fault_) {  // cold: a cap stopped the tick's work
     const std::uint32_t body = discs[hit->disc].body;

@@ -12,6 +12,7 @@
 #include "fixstep/float_mode.hpp"
 #include "fixstep/simd.hpp"
 #include "fixstep/stop_request.hpp"
+#include "phase_clock.hpp"
 
 namespace fixstep {
 
@@ -211,6 +212,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   const bool contacts = contact_.active;
   const bool immovable = !immovable_.body.empty();
   const bool discs = discs_ && discs_->active();
+  detail::PhaseClock clock(discs);  // World::profile(): read only with disc contacts
   if (contacts) save_contact_start();
   if (immovable || discs) save_tick_start();
   const bool forces = !input.bodies.empty() && add_input_forces(input);
@@ -224,12 +226,18 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   }
   if (forces) remove_input_forces();
   if (immovable) restore_immovable();
+  profile_.integrate = clock.lap();
   const std::size_t plane_capped = contacts ? resolve_contacts() : 0;
   if (discs) {
     resolve_discs();
     update_contact_events();
     update_sensor_events();
+    // The events: what the contacts' phases (broadphase, impacts, resting) leave of the lap.
+    const StepProfile& p = profile_;
+    profile_.events = std::max(clock.lap() - p.broadphase - p.impacts - p.resting, 0.0);
+    profile_.step = clock.total();
   } else {
+    if (profile_.step != 0.0) profile_ = StepProfile{};
     if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
       ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
       begun_.clear(), touching_.clear();

@@ -32,6 +32,35 @@ struct ContactStats {
   /// Contact work a cap stopped in the last tick (limits.hpp: max_candidate_pairs,
   /// max_tick_predictions): 0, or 1 when the tick reached one; World::fault() then names it.
   std::size_t capped = 0;
+  /// Gauss–Seidel sweeps the resting solver ran over the touching pairs in the last tick:
+  /// velocity sweeps (impulses; at most max_velocity_sweeps) and push-out sweeps (positions; at
+  /// most max_position_sweeps). 0 when no pair touched.
+  int velocity_sweeps = 0;
+  int position_sweeps = 0;
+  /// Whether the velocity sweeps converged (the last one changed no accumulated impulse by more
+  /// than 1e-9 of the largest) rather than stopping at max_velocity_sweeps; true when no pair
+  /// touched.
+  bool velocity_converged = true;
+  /// Whether the push-out left no pair deeper than the solver's slop (0.5 % of the smaller
+  /// radius) rather than stopping at max_position_sweeps; true when no pair touched.
+  bool positions_settled = true;
+  /// The resting solver's sweep bounds (the values velocity_sweeps and position_sweeps reach
+  /// when the solver did not converge).
+  static constexpr int max_velocity_sweeps = 20, max_position_sweeps = 10;
+};
+
+/// Where the last tick's time went in a world with disc contacts (World::profile()): seconds of
+/// wall-clock time (std::chrono::steady_clock) per phase, as Box2D's b2Profile reports them.
+/// For finding the costly phase only: no state depends on it, and it differs from run to run.
+/// A world without disc contacts measures nothing (every field 0), so its ticks pay no clock.
+/// The phases add up to `step`, less the few reads of the clock between them.
+struct StepProfile {
+  double step = 0.0;        ///< s, the whole tick
+  double integrate = 0.0;   ///< s, input, forces, springs, links and the integrator's free step
+  double broadphase = 0.0;  ///< s, the discs' motions in the tick and their candidate pairs
+  double impacts = 0.0;     ///< s, impacts found and resolved at their time within the tick
+  double resting = 0.0;     ///< s, the resting solver: gather, warm start, sweeps, push-out
+  double events = 0.0;      ///< s, the state written back, sensors, contact and sensor events
 };
 
 /// A disc-disc impact resolved at its time within the last tick (World::impacts()), in the

@@ -196,6 +196,10 @@ class World {
   [[nodiscard]] double external_work() const;
   /// What the disc-disc contacts did in the last tick (World::contact_stats()).
   [[nodiscard]] const ContactStats& contact_stats() const;
+  /// Where the last tick's time went in a world with disc contacts: integration, broadphase,
+  /// impacts, the resting solver and events, in seconds of wall-clock time (StepProfile; all 0
+  /// without disc contacts). Timings only: no state depends on them.
+  [[nodiscard]] const StepProfile& profile() const;
   /// The disc-disc impacts of the last tick (World::impacts()).
   [[nodiscard]] std::span<const Impact> impacts() const;
   /// Disc pairs that began touching in the last tick (World::contacts_begun()).

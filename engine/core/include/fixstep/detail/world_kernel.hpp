@@ -309,6 +309,8 @@ class WorldKernel {
   /// Disc-disc contacts of the last tick (WorldSettings::contacts): what the broadphase and the
   /// solver did. Zero without contacts.
   [[nodiscard]] const ContactStats& contact_stats() const { return contact_stats_; }
+  /// Where the last tick's time went, with disc contacts (StepProfile); zero without.
+  [[nodiscard]] const StepProfile& profile() const { return profile_; }
   /// The disc-disc impacts of the last tick in the order they were resolved (empty without
   /// contacts): what a game's rules read to score a hit. Valid until the next step.
   [[nodiscard]] std::span<const Impact> impacts() const;
@@ -384,6 +386,7 @@ class WorldKernel {
   std::vector<std::uint64_t> user_data_;  ///< BodyDef::user_data, in dense order
   double external_work_ = 0.0;            ///< J (external_work())
   ContactStats contact_stats_;
+  StepProfile profile_;  ///< profile(): timings only, never read by the physics
 
   // components (authoritative, double)
   Store<SpringDamper> springs_;
