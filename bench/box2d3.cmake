@@ -50,6 +50,10 @@ set_target_properties(fixstep_box2d3 PROPERTIES
   IMPORTED_LOCATION ${box2d3_library}
   INTERFACE_INCLUDE_DIRECTORIES ${box2d3_source}/include)
 add_dependencies(fixstep_box2d3 box2d3)
+# Box2D 2.4's library (an imported target of this directory only), for the symbol check
+# (tests/CMakeLists.txt: bench_discs_box2d3_symbols).
+get_target_property(box2d24_library box2d::box2d LOCATION)
+set_property(GLOBAL PROPERTY FIXSTEP_BOX2D24_LIBRARY ${box2d24_library})
 
 find_package(Threads REQUIRED)
 # discs_box2d3.cpp (the stepper) and discs_box2d3_tasks.cpp (its task system): v3's headers
