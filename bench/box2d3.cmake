@@ -20,6 +20,14 @@ if(NOT EXISTS "${FIXSTEP_BOX2D3_ARCHIVE}")
   set(FIXSTEP_HAVE_BOX2D3 OFF)
   return()
 endif()
+# Checked here too (ExternalProject checks it again when it unpacks), so that another archive
+# stops the configure with its path rather than the build.
+file(SHA256 "${FIXSTEP_BOX2D3_ARCHIVE}" box2d3_sha256)
+if(NOT box2d3_sha256 STREQUAL FIXSTEP_BOX2D3_SHA256)
+  message(FATAL_ERROR "Box2D v3 peer: ${FIXSTEP_BOX2D3_ARCHIVE} has sha256 ${box2d3_sha256}, not "
+                      "${FIXSTEP_BOX2D3_SHA256} (Box2D v3.1.1's archive): set FIXSTEP_BOX2D3_ARCHIVE "
+                      "to that archive, or to a path that does not exist to skip the peer")
+endif()
 set(FIXSTEP_HAVE_BOX2D3 ON)
 message(STATUS "Box2D v3 peer: built from ${FIXSTEP_BOX2D3_ARCHIVE}")
 
