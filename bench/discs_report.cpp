@@ -404,10 +404,11 @@ std::string report_markdown(const Results& r) {
       "Load average (1 min) {:.2f} at the start of the timed run, {:.2f} at its end (the "
       "benchmark itself adds about 1). dt = 1/60 s; r = {} m (pile_large: {} m), m = {} kg; "
       "Chipmunk: {} "
-      "iterations, collision slop {} m; Box2D: {} velocity / {} position iterations, linear "
+      "iterations, collision slop {} m; Box2D {}: {} velocity / {} position iterations, linear "
       "slop {:.3g} m{}.",
       r.load_start, r.load_end, small_radius, large_radius, mass, chipmunk_iterations,
-      chipmunk_slop, box2d_velocity_iterations, box2d_position_iterations, box2d_linear_slop(),
+      chipmunk_slop, box2d_version(), box2d_velocity_iterations, box2d_position_iterations,
+      box2d_linear_slop(),
       box2d3_built() ? fmt::format("; Box2D {}: {} substeps, linear slop {:.3g} m, sleeping off",
                                    box2d3_version(), box2d3_substeps, box2d3_linear_slop())
                      : std::string("; Box2D v3 not built")));
