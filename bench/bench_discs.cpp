@@ -1,4 +1,4 @@
-// Disc contacts against two peer engines, in one run (Google Benchmark):
+// Disc contacts against peer engines, in one run (Google Benchmark):
 // a settled pile and an elastic gas of N = 10³, 10⁴, 10⁵ discs of r = 5 cm, and the pile of
 // 50 cm discs (the peers' home scale) at N = 10³, 10⁴ (discs.hpp), built by one generator and
 // stepped at dt = 1/60 s by
@@ -8,9 +8,12 @@
 //              (the discs meet only the walls: a world that asks for no contacts);
 //   chipmunk   Chipmunk2D 7 with its spatial hash, its default tree, and (N <= 10⁴)
 //              cpHastySpace on 2 threads (discs_chipmunk.cpp);
-//   box2d      Box2D 2.4, b2CircleShape, Step(dt, 8, 3) (discs_box2d.cpp).
-// Every case is built and warmed up untimed, then its steps are timed (the median of 5
-// repetitions, 3 at 10⁵); after them, every engine's deepest overlap and kinetic energy are
+//   box2d      Box2D 2.4, b2CircleShape, Step(dt, 8, 3) (discs_box2d.cpp);
+//   box2d3     Box2D v3 (where bench/box2d3.cmake built it), b2World_Step(dt, 4) on 1 and 2
+//              workers (discs_box2d3.cpp).
+// Every case is built and warmed up untimed, then the same ticks are timed for every engine and
+// every N (5 repetitions of 4 ticks, the median; --benchmark_min_time makes Google Benchmark
+// choose the ticks instead); after them, every engine's deepest overlap and kinetic energy are
 // measured on its state the same way. The report (stdout; with --report DIR also DIR/discs.md)
 // gives ns per body-step, the overlaps, fixstep's contact statistics, Box2D's broadphase share
 // and the targets as ratios measured side by side.
@@ -99,16 +102,43 @@ void verify_engines(std::size_t n, int ticks) {
   }
 }
 
+/// Every engine drops a disc that falls as gravity says and comes to rest on the ground.
+void verify_drop() {
+  for (const char* key : stepper_keys()) {
+    for (const std::string& f : check_drop(key)) check(false, f);
+  }
+}
+
+/// Box2D v3 gives the same state on 1 and 2 workers (it is deterministic across thread counts,
+/// so the task system of its 2 workers hands it every piece once).
+void verify_box2d3_workers(std::size_t n, int ticks) {
+  std::vector<Vec2> x1, v1, x2, v2;
+  for (SceneKind kind : {SceneKind::pile, SceneKind::gas}) {
+    const Scene s = make_scene(kind, n);
+    const auto one = make_stepper("box2d3_w1", s), two = make_stepper("box2d3_w2", s);
+    for (int t = 0; t < ticks; ++t) one->step(), two->step();
+    one->state(x1, v1), two->state(x2, v2);
+    check(x1 == x2 && v1 == v2 && two->stats().threads == 2,
+          fmt::format("{}: Box2D v3's state after {} ticks differs between 1 and 2 workers",
+                      scene_name(kind), ticks));
+  }
+}
+
 int run_checks(bool full) {
   for (std::size_t n : {std::size_t{1000}, std::size_t{10'000}}) verify_scenes(n);
   if (full) verify_scenes(100'000);
   verify_overlap_grid();
   verify_engines(1000, 60);
+  verify_drop();
+  if (box2d3_built()) verify_box2d3_workers(1000, 60);
   if (failures == 0) {
     std::printf(
         "checks: the scenes start without overlaps; the overlap grid agrees with all pairs; "
         "every engine starts from the scene and keeps its discs in the box for 60 ticks (N = "
-        "10^3)\n");
+        "10^3); every engine's dropped disc falls ½ g t² and rests on the ground; %s\n",
+        box2d3_built() ? "Box2D v3's state is the same on 1 and 2 workers"
+                       : "Box2D v3 not built (its source archive was not found): its checks "
+                         "skipped");
   }
   return failures;
 }
@@ -211,11 +241,14 @@ std::vector<std::int64_t> sizes(const Options& o) {
   return {1000, 10'000, 100'000};
 }
 
-/// Repetitions of a case: fewer at 10⁵, where one peer step takes up to a second.
-int repetitions(const Options& o, std::int64_t n) {
+/// Repetitions of a case, each of `ticks_per_repetition` ticks: every engine and every N times
+/// the same ticks (the pile's ticks 41-60, the gas's 6-25), so that costs compare like with
+/// like (a pile still settling costs more per tick than a settled one).
+int repetitions(const Options& o) {
   if (o.reps_given || o.quick) return 1;
-  return n >= 100'000 ? 3 : 5;
+  return 5;
 }
+constexpr int ticks_per_repetition = 4;
 
 void register_all(const Options& o) {
   for (SceneKind kind : {SceneKind::pile, SceneKind::gas, SceneKind::pile_large}) {
@@ -229,8 +262,8 @@ void register_all(const Options& o) {
             benchmark::RegisterBenchmark(fmt::format("{}/{}", scene_name(kind), k).c_str(),
                                          [kind, k](benchmark::State& st) { bm_step(st, kind, k); });
         b->Arg(n)->Unit(benchmark::kMicrosecond)->UseRealTime();
-        if (!o.min_time_given) b->MinTime(n >= 100'000 ? 0.05 : 0.1);
-        const int reps = repetitions(o, n);
+        if (!o.min_time_given) b->Iterations(ticks_per_repetition);
+        const int reps = repetitions(o);
         if (reps > 1) b->Repetitions(reps)->ReportAggregatesOnly(true);
       }
     }

@@ -1,6 +1,7 @@
 // The disc-contact benchmark (bench_discs.cpp): its two scenes, built once by one generator
 // and stepped by fixstep (discs_fixstep.cpp), Chipmunk2D 7 (discs_chipmunk.cpp) and Box2D 2.4
-// (discs_box2d.cpp) behind one interface; the overlap and energy measured on every engine's
+// (discs_box2d.cpp) and, where its source archive is present, Box2D v3 (discs_box2d3.cpp) behind
+// one interface; the overlap and energy measured on every engine's
 // state the same way (discs_scene.cpp); the report (discs_report.cpp). Internal to bench/.
 #pragma once
 
@@ -100,12 +101,16 @@ class Stepper {
   [[nodiscard]] virtual Stats stats() const = 0;
 };
 
-/// The steppers, by key:
-///   fixstep_f64_t1, fixstep_f64_t2, fixstep_f32_t1  fixstep::detail::WorldKernel<Real> with
-///   WorldSettings::contacts fixstep_f64_off   the same world without contacts (discs meet only the
-///   walls) chipmunk_hash     cpSpace with cpSpaceUseSpatialHash(2r, N) chipmunk_tree     cpSpace
-///   with its default bounding-box tree chipmunk_hasty2   cpHastySpace on 2 threads (its default
-///   tree) box2d             b2World, b2CircleShape, Step(dt, 8, 3)
+// The steppers, by key:
+// - fixstep_f64_t1, fixstep_f64_t2, fixstep_f32_t1: fixstep::detail::WorldKernel<Real> with
+//   WorldSettings::contacts;
+// - fixstep_f64_off: the same world without contacts (discs meet only the walls);
+// - chipmunk_hash: cpSpace with cpSpaceUseSpatialHash(2r, N);
+// - chipmunk_tree: cpSpace with its default bounding-box tree;
+// - chipmunk_hasty2: cpHastySpace on 2 threads (its default tree);
+// - box2d: Box2D 2.4's b2World, b2CircleShape, Step(dt, 8, 3);
+// - box2d3_w1, box2d3_w2: Box2D v3's b2World_Step(dt, 4) on 1 and 2 workers (where built).
+/// The keys of the steppers this build has (Box2D v3's only where box2d3_built()).
 [[nodiscard]] std::span<const char* const> stepper_keys();
 [[nodiscard]] std::string stepper_label(const std::string& key);
 [[nodiscard]] std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s);
@@ -123,6 +128,18 @@ inline constexpr double chipmunk_slop = 0.005;  ///< m
 [[nodiscard]] double box2d_linear_slop();  ///< m
 inline constexpr int box2d_velocity_iterations = 8;
 inline constexpr int box2d_position_iterations = 3;
+/// Box2D v3 (discs_box2d3.cpp), where bench/box2d3.cmake found its source archive (false
+/// otherwise: its steppers are absent and its checks skipped).
+[[nodiscard]] bool box2d3_built();
+/// Box2D v3 on `workers` threads (1: its own serial task functions; 2: Box2d3Tasks).
+[[nodiscard]] std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers);
+[[nodiscard]] std::string box2d3_version();
+[[nodiscard]] double box2d3_linear_slop();  ///< m
+inline constexpr int box2d3_substeps = 4;   ///< b2World_Step's subStepCount: v3's default
+
+/// A disc dropped from rest onto the ground by the stepper `key`: falls ½ g t² and rests at
+/// y = r within tolerances (discs_checks.cpp); what failed, empty if nothing.
+[[nodiscard]] std::vector<std::string> check_drop(const std::string& key);
 
 // --- results and the report (discs_report.cpp) --------------------------------------------
 

@@ -7,19 +7,39 @@
 #include <functional>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
+#include <utility>
 
 #include "discs.hpp"
 
 namespace discs {
 
 namespace {
-constexpr const char* keys[] = {"fixstep_f64_t1",  "fixstep_f64_t2", "fixstep_f32_t1",
-                                "fixstep_f64_off", "chipmunk_hash",  "chipmunk_tree",
-                                "chipmunk_hasty2", "box2d"};
+// The fixstep keys first (the contact statistics' table takes the first 4).
+constexpr const char* all_keys[] = {
+    "fixstep_f64_t1", "fixstep_f64_t2",  "fixstep_f32_t1", "fixstep_f64_off", "chipmunk_hash",
+    "chipmunk_tree",  "chipmunk_hasty2", "box2d",          "box2d3_w1",       "box2d3_w2"};
+const std::span<const char* const> keys(all_keys, box2d3_built() ? 10 : 8);
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large};
 constexpr SceneKind main_scenes[] = {SceneKind::pile, SceneKind::gas};
 }  // namespace
+
+#if !FIXSTEP_HAVE_BOX2D3
+// Box2D v3 is not built (bench/box2d3.cmake: its archive is absent): no steppers to make.
+bool box2d3_built() {
+  return false;
+}
+std::unique_ptr<Stepper> make_box2d3(const Scene&, int) {
+  throw std::logic_error("Box2D v3 is not built");
+}
+std::string box2d3_version() {
+  return "3 (not built)";
+}
+double box2d3_linear_slop() {
+  return nan;
+}
+#endif
 
 std::span<const char* const> stepper_keys() {
   return keys;
@@ -35,6 +55,8 @@ std::string stepper_label(const std::string& key) {
   if (key == "chipmunk_tree") return cp + ", bounding-box tree";
   if (key == "chipmunk_hasty2") return cp + ", cpHastySpace 2 threads";
   if (key == "box2d") return fmt::format("Box2D {} (f32)", box2d_version());
+  if (key == "box2d3_w1") return fmt::format("Box2D {} (f32), 1 worker", box2d3_version());
+  if (key == "box2d3_w2") return fmt::format("Box2D {} (f32), 2 workers", box2d3_version());
   return key;
 }
 
@@ -47,6 +69,8 @@ std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s) {
   if (key == "chipmunk_tree") return make_chipmunk(s, ChipmunkIndex::tree);
   if (key == "chipmunk_hasty2") return make_chipmunk(s, ChipmunkIndex::hasty);
   if (key == "box2d") return make_box2d(s);
+  if (key == "box2d3_w1" && box2d3_built()) return make_box2d3(s, 1);
+  if (key == "box2d3_w2" && box2d3_built()) return make_box2d3(s, 2);
   throw std::invalid_argument("no stepper " + key);
 }
 
@@ -129,13 +153,20 @@ void cost_tables(const View& v, const Line& line) {
   std::string rule;
   const std::string head = header(v.r, rule);
   line("| scene |" + head.substr(1)), line("|---" + rule);
-  const char* peers[] = {"chipmunk_hash", "chipmunk_tree", "chipmunk_hasty2", "box2d"};
+  // Each peer against fixstep on as many threads (Box2D v3's 2 workers against 2 threads).
+  const std::pair<const char*, const char*> peers[] = {
+      {"chipmunk_hash", "fixstep_f64_t1"},   {"chipmunk_tree", "fixstep_f64_t1"},
+      {"chipmunk_hasty2", "fixstep_f64_t1"}, {"box2d", "fixstep_f64_t1"},
+      {"box2d3_w1", "fixstep_f64_t1"},       {"box2d3_w2", "fixstep_f64_t2"}};
   for (SceneKind s : all_scenes) {
-    for (const char* p : peers) {
+    for (const auto& [p, f] : peers) {
+      if (!std::ranges::count(keys, std::string_view(p))) continue;
       std::string row =
-          fmt::format("| {} | {} / fixstep f64 (1 thread) |", scene_name(s), stepper_label(p));
+          fmt::format("| {} | {} / {} |", scene_name(s), stepper_label(p),
+                      f == std::string_view("fixstep_f64_t1") ? "fixstep f64 (1 thread)"
+                                                              : "fixstep f64 (2 threads)");
       for (auto n : v.r.sizes)
-        row += fmt::format(" {} |", num(v.ns(s, p, n) / v.ns(s, "fixstep_f64_t1", n), "{:.2f}"));
+        row += fmt::format(" {} |", num(v.ns(s, p, n) / v.ns(s, f, n), "{:.2f}"));
       line(row);
     }
     std::string row = fmt::format("| {} | fixstep f64: 1 thread / 2 threads |", scene_name(s));
@@ -172,23 +203,28 @@ void quality_tables(const View& v, const Line& line) {
                              num(c.stats.touching / c.bodies), num(c.stats.impacts / c.bodies),
                              num(c.stats.self_overlap), c.stats.threads);
         },
-        std::span(keys, 4));
+        keys.first(4));
   }
-  line("\n#### Box2D's own split of a step (b2Profile, summed over every step of the case)\n");
+  line(
+      "\n#### Box2D's own split of a step (b2Profile, summed over every step of the case; v3: "
+      "its `pairs` as the broadphase, `collide` as the narrow phase)\n");
   std::string rule;
   const std::string head = header(v.r, rule);
   line("| scene |" + head.substr(head.find('|', 1) + 1)), line(rule);
   for (SceneKind s : all_scenes) {
-    std::string row =
-        fmt::format("| {}: broadphase / narrow phase, share of the step |", scene_name(s));
-    for (auto n : v.r.sizes) {
-      const CaseResult* c = v.at(s, "box2d", n);
-      row +=
-          fmt::format(" {} |", c ? fmt::format("{} / {}", num(c->stats.broadphase_share, "{:.2f}"),
-                                               num(c->stats.collide_share, "{:.2f}"))
-                                 : "–");
+    for (const char* key : {"box2d", "box2d3_w1", "box2d3_w2"}) {
+      if (!std::ranges::count(keys, std::string_view(key))) continue;
+      std::string row = fmt::format("| {}, {}: broadphase / narrow phase, share of the step |",
+                                    scene_name(s), stepper_label(key));
+      for (auto n : v.r.sizes) {
+        const CaseResult* c = v.at(s, key, n);
+        row += fmt::format(" {} |",
+                           c ? fmt::format("{} / {}", num(c->stats.broadphase_share, "{:.2f}"),
+                                           num(c->stats.collide_share, "{:.2f}"))
+                             : "–");
+      }
+      line(row);
     }
-    line(row);
   }
 }
 
@@ -256,6 +292,82 @@ void scaling_targets(const View& v, const Line& line) {
   }
 }
 
+/// The issue-33 table: fixstep on 1 and 2 threads beside Box2D v3 on 1 and 2 workers.
+void box2d3_table(const View& v, const Line& line) {
+  line(fmt::format(
+      "\n#### fixstep against Box2D {}: ns per body-step, median of {}; deepest disc-disc "
+      "overlap / r after the timed steps (fixstep f64 1 thread · Box2D v3 1 worker)\n",
+      box2d3_version(), repetitions_text(v.r)));
+  if (!box2d3_built()) {
+    line("Box2D v3 not built (bench/box2d3.cmake: its source archive was not found).");
+    return;
+  }
+  line(
+      "| scene | N | fixstep f64 1 thread | fixstep f64 2 threads | Box2D v3 1 worker | Box2D v3 "
+      "2 workers | deepest overlap / r: fixstep · Box2D v3 |");
+  line("|---|---|---|---|---|---|---|");
+  const auto row = [&](const std::string& label, SceneKind s, std::int64_t n, bool fixstep) {
+    const CaseResult* f = fixstep ? v.at(s, "fixstep_f64_t1", n) : nullptr;
+    const CaseResult* b = v.at(s, "box2d3_w1", n);
+    if (!b && !f) return;
+    line(fmt::format("| {} | {} | {} | {} | {} | {} | {} · {} |", label, size_text(n),
+                     fixstep ? num(v.ns(s, "fixstep_f64_t1", n)) : "–",
+                     fixstep ? num(v.ns(s, "fixstep_f64_t2", n)) : "–",
+                     num(v.ns(s, "box2d3_w1", n)), num(v.ns(s, "box2d3_w2", n)),
+                     f ? num(f->disc_overlap) : "–", b ? num(b->disc_overlap) : "–"));
+  };
+  for (auto n : v.r.sizes)
+    row(fmt::format("pile, r = {} m", small_radius), SceneKind::pile, n, true);
+  for (auto n : v.r.sizes)
+    row(fmt::format("pile, r = {} m", large_radius), SceneKind::pile_large, n, true);
+  for (auto n : v.r.sizes) row("gas", SceneKind::gas, n, true);
+  // Box2D's circles rotate: its pile is already a pile of rolling discs (the pile rows' cases).
+  for (auto n : v.r.sizes) {
+    row(fmt::format("pile of rolling discs, r = {} m: Box2D v3's own figure (its circles "
+                    "rotate: the same cases as its pile above); fixstep has no rolling discs yet",
+                    small_radius),
+        SceneKind::pile, n, false);
+  }
+}
+
+/// Issue 33's targets against Box2D v3, where it was built.
+void box2d3_targets(const View& v, const Line& line) {
+  if (!box2d3_built()) return;
+  constexpr std::int64_t n4 = 10'000;
+  for (int threads : {1, 2}) {
+    const std::string f_key = threads == 1 ? "fixstep_f64_t1" : "fixstep_f64_t2";
+    const std::string b_key = threads == 1 ? "box2d3_w1" : "box2d3_w2";
+    const CaseResult* f = v.at(SceneKind::pile, f_key, n4);
+    const CaseResult* b = v.at(SceneKind::pile, b_key, n4);
+    const bool measured = f && b;
+    const double ratio = measured ? b->ns_per_body_step / f->ns_per_body_step : nan;
+    const bool shallow = measured && f->disc_overlap <= b->disc_overlap / 5.0;
+    line(fmt::format(
+        "| pile, N = 10^4: fixstep f64 ({0} thread{1}) ≥ 2× faster per body-step than Box2D v3 "
+        "({0} worker{1}), at no more than a fifth of its overlap | {2}× (overlap / r: fixstep "
+        "{3}, Box2D v3 {4}) | {5} |",
+        threads, threads == 1 ? "" : "s", num(ratio, "{:.2f}"),
+        measured ? num(f->disc_overlap) : "–", measured ? num(b->disc_overlap) : "–",
+        verdict(measured, ratio >= 2.0 && shallow)));
+  }
+  for (int threads : {1, 2}) {
+    const std::string f_key = threads == 1 ? "fixstep_f64_t1" : "fixstep_f64_t2";
+    const std::string b_key = threads == 1 ? "box2d3_w1" : "box2d3_w2";
+    std::string measured_text;
+    bool all = !v.r.sizes.empty(), ok = true;
+    for (auto n : v.r.sizes) {
+      const double q = v.ns(SceneKind::gas, b_key, n) / v.ns(SceneKind::gas, f_key, n);
+      all = all && !std::isnan(q), ok = ok && q >= 3.0;
+      measured_text += fmt::format("{}N = {}: {}", measured_text.empty() ? "" : ", ", size_text(n),
+                                   num(q, "{:.2f}×"));
+    }
+    line(fmt::format(
+        "| gas, every N: fixstep f64 ({0} thread{1}) ≥ 3× faster per body-step than Box2D v3 "
+        "({0} worker{1}) | {2} | {3} |",
+        threads, threads == 1 ? "" : "s", measured_text, verdict(all, ok)));
+  }
+}
+
 }  // namespace
 
 std::string targets_markdown(const Results& r) {
@@ -267,6 +379,7 @@ std::string targets_markdown(const Results& r) {
   line("|---|---|---|");
   peer_targets(v, line);
   scaling_targets(v, line);
+  box2d3_targets(v, line);
   std::string costs;
   for (auto n : r.sizes) {
     const double q =
@@ -291,10 +404,15 @@ std::string report_markdown(const Results& r) {
       "Load average (1 min) {:.2f} at the start of the timed run, {:.2f} at its end (the "
       "benchmark itself adds about 1). dt = 1/60 s; r = {} m (pile_large: {} m), m = {} kg; "
       "Chipmunk: {} "
-      "iterations, collision slop {} m; Box2D: {} velocity / {} position iterations, linear "
-      "slop {:.3g} m.",
+      "iterations, collision slop {} m; Box2D {}: {} velocity / {} position iterations, linear "
+      "slop {:.3g} m{}.",
       r.load_start, r.load_end, small_radius, large_radius, mass, chipmunk_iterations,
-      chipmunk_slop, box2d_velocity_iterations, box2d_position_iterations, box2d_linear_slop()));
+      chipmunk_slop, box2d_version(), box2d_velocity_iterations, box2d_position_iterations,
+      box2d_linear_slop(),
+      box2d3_built() ? fmt::format("; Box2D {}: {} substeps, linear slop {:.3g} m, sleeping off",
+                                   box2d3_version(), box2d3_substeps, box2d3_linear_slop())
+                     : std::string("; Box2D v3 not built")));
+  box2d3_table(v, line);
   cost_tables(v, line);
   quality_tables(v, line);
   return out + targets_markdown(r);

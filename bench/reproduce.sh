@@ -2,7 +2,8 @@
 # Regenerates every table and figure of docs/PERFORMANCE.md on this machine, in one command:
 #   bash bench/reproduce.sh            (about 15 minutes on 2 cores)
 #   bash bench/reproduce.sh coupled    (only section 6, coupled systems against peers: ~3 min)
-#   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers: ~3-5 min)
+#   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers, with
+#                                       Box2D v3 where ../shared/peers has its source: ~6-9 min)
 #   bash bench/reproduce.sh network    (only section 6.1: integrator costs and the trade on
 #                                       damped networks: ~3 min)
 # Builds the optimised benchmark tree (build/bench), runs each study into docs/perf/, and
@@ -56,8 +57,10 @@ if [ -z "$only" ] || [ "$only" = coupled ]; then
   "$bin/bench_coupled" --report "$out" > "$out/coupled.log"
   { measured_on; cat "$out/coupled.md"; } > "$out/coupled.section.md"
 fi
-# Disc contacts against Chipmunk2D and Box2D (pile, gas; N = 10^3 ... 10^5): cost per
-# body-step, overlaps, energy, targets; its first line gives the load average during the run.
+# Disc contacts against Chipmunk2D, Box2D 2.4 and Box2D v3 (pile, gas; N = 10^3 ... 10^5): cost
+# per body-step, overlaps, energy, targets; its first line gives the load average during the
+# run. Box2D v3 is in it where bench/box2d3.cmake found ../shared/peers/box2d-3.1.1.tar.gz
+# (the configure step above says "Box2D v3 peer skipped: ..." otherwise).
 if [ -z "$only" ] || [ "$only" = discs ]; then
   "$bin/bench_discs" --report "$out" > "$out/discs.log"
   { measured_on; cat "$out/discs.md"; } > "$out/discs.section.md"
