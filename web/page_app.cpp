@@ -38,7 +38,11 @@ std::vector<std::string> shipped_scenes() {
 
 PageApp::PageApp(PageOptions options)
     : o_(std::move(options)), scene_file_(fmt::format("{}/{}", scene_dir, o_.scene)) {
-  list_scenes(shipped_scenes(), o_.scene);
+  list_scenes(shipped_scenes(), o_.game ? std::string() : o_.scene);
+  if (o_.game) {
+    game_ = std::make_unique<PageGame>(o_);
+    return;
+  }
   if (o_.replay) return;  // the session waits for the recording (recording_fetched)
   scene_ = load_scene(scene_file_);
   (void)enforce_stability(*scene_);  // throws for an unstable scene, as `fixstep run` does
@@ -75,6 +79,7 @@ void PageApp::start_session(WorldDef def, const std::string& title) {
 }
 
 bool PageApp::frame(double now_ms) {
+  if (game_) return !replay_stopped_ && game_->frame(now_ms);
   if (o_.frames) return frames_frame();
   if (o_.ticks) return ticks_frame(now_ms);
   if (o_.replay) return replay_frame();

@@ -16,6 +16,7 @@
 #include "fixstep/rewind.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
+#include "page_game.hpp"
 #include "page_input.hpp"
 #include "page_options.hpp"
 
@@ -30,7 +31,8 @@ inline constexpr const char* scene_dir = "assets/scenes";
 class PageApp {
  public:
   /// Loads the scene (or, for replay=, starts fetching the recording) and builds the session
-  /// on the page's canvas. Throws what the scene loader, the stability guard or Session throw.
+  /// on the page's canvas; with game=, starts the game instead (PageGame). Throws what the
+  /// scene loader, the stability guard or Session throw.
   explicit PageApp(PageOptions options);
   ~PageApp();
   PageApp(const PageApp&) = delete;
@@ -58,8 +60,9 @@ class PageApp {
   void draw();
 
   PageOptions o_;
-  DrawList card_;           ///< overlay=card's shapes, recorded each frame about the view
-  std::string scene_file_;  ///< assets/scenes/NAME
+  std::unique_ptr<PageGame> game_;  ///< game=: the page plays a game instead of a scene
+  DrawList card_;                   ///< overlay=card's shapes, recorded each frame about the view
+  std::string scene_file_;          ///< assets/scenes/NAME
   std::optional<Scene> scene_;
   std::unique_ptr<Session> session_;
   std::uint64_t frames_done_ = 0;

@@ -37,6 +37,7 @@ void set_title(const std::string& title) {
 
 void list_scenes(const std::vector<std::string>& names, const std::string& current) {
   show_text("scene", "");
+  if (current.empty()) js_add_scene("", 1);  // a game is playing: no scene chosen
   for (const std::string& name : names) js_add_scene(name.c_str(), name == current ? 1 : 0);
 }
 

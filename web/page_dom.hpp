@@ -12,8 +12,9 @@ void show_text(const char* id, const std::string& text);
 /// Sets document.title: how a harness knows the page has finished ("fixstep: done",
 /// "fixstep: error").
 void set_title(const std::string& title);
-/// Fills the page's scene selector (id "scene") with `names`, `current` selected; choosing
-/// another one reloads the page with ?scene=NAME.
+/// Fills the page's scene selector (id "scene") with `names`, `current` selected (an empty
+/// `current`: an empty entry first, selected); choosing another one reloads the page with
+/// ?scene=NAME.
 void list_scenes(const std::vector<std::string>& names, const std::string& current);
 /// Shows `message` as the page's result (id "result"), "error: " first, and sets the title to
 /// "fixstep: error".

@@ -3,11 +3,14 @@
 
 #include <emscripten/emscripten.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace fixstep::web {
 
@@ -109,6 +112,12 @@ void set(PageOptions& o, const std::string& name, const std::string& value) {
     parse_size(value, o);
   } else if (name == "headless") {
     o.headless = parse_flag(name, value);
+  } else if (name == "game") {
+    if (std::find(page_game_names.begin(), page_game_names.end(), value) == page_game_names.end()) {
+      throw std::invalid_argument(
+          fmt::format("game={}: must be {}", value, fmt::join(page_game_names, " or ")));
+    }
+    o.game = value;
   } else if (name == "overlay") {
     if (value != "card") {
       throw std::invalid_argument(
@@ -118,9 +127,15 @@ void set(PageOptions& o, const std::string& name, const std::string& value) {
   } else {
     throw std::invalid_argument(fmt::format(
         "unknown parameter '{}' (known: scene, frames, ticks, replay, fps, record, hash_every, "
-        "size, headless, overlay)",
+        "size, headless, overlay, game)",
         name));
   }
+}
+
+/// game=: what a game takes besides itself (its level is its own, its clock 60 Hz).
+bool applies_to_game(const std::string& name) {
+  return name == "game" || name == "frames" || name == "replay" || name == "size" ||
+         name == "headless";
 }
 
 }  // namespace
@@ -128,6 +143,7 @@ void set(PageOptions& o, const std::string& name, const std::string& value) {
 PageOptions parse_page_options(std::string_view query) {
   if (query.starts_with('?')) query.remove_prefix(1);
   PageOptions o;
+  std::vector<std::string> given;  // the parameters' names, in order
   while (!query.empty()) {
     const std::size_t amp = query.find('&');
     const std::string_view pair = query.substr(0, amp);
@@ -137,6 +153,17 @@ PageOptions parse_page_options(std::string_view query) {
     const std::string name = decoded(pair.substr(0, eq));
     const std::string value = eq == std::string_view::npos ? "" : decoded(pair.substr(eq + 1));
     set(o, name, value);
+    given.push_back(name);
+  }
+  if (o.game) {
+    for (const std::string& name : given) {
+      if (!applies_to_game(name)) {
+        throw std::invalid_argument(
+            fmt::format("{}= does not apply to game={}: a game takes frames=, replay=, size= and "
+                        "headless= only",
+                        name, *o.game));
+      }
+    }
   }
   if (int(o.frames.has_value()) + int(o.ticks.has_value()) + int(o.replay.has_value()) > 1) {
     throw std::invalid_argument("give at most one of frames=, ticks= and replay=");

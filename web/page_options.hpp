@@ -3,12 +3,16 @@
 // (tests/web/), which run it headless on a virtual clock. Web platform (wasm only).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
 
 namespace fixstep::web {
+
+/// The games the page plays (game=NAME): demos/peggle and demos/slingshot (page_games.hpp).
+inline constexpr std::array<std::string_view, 2> page_game_names{"peggle", "slingshot"};
 
 /// The page's parameters. Without `frames`, `ticks` or `replay` the page is interactive: the
 /// scene runs on the browser's clock, driven by requestAnimationFrame, with keys and pointer.
@@ -37,14 +41,23 @@ struct PageOptions {
   /// style of its own) over the scene, as the native golden frame test does, for the browser
   /// checks to compare.
   bool overlay_card = false;
+  /// game=NAME: plays a game of page_game_names as its program's fixstep::app::run does
+  /// (the game builds its level; its input, rules, drawing, view and HUD lines). Interactive:
+  /// the browser's pointer and keys through the game's input (e.g. aim and click). frames=F:
+  /// what `NAME --frames F` does, the autopilot playing on a 60 Hz virtual clock, the last
+  /// frame drawn. replay=URL: a recording of that game (its rules name and version), verified
+  /// with its rules as `NAME --replay` does, then played back. Takes frames=, replay=, size= and
+  /// headless= only.
+  std::optional<std::string> game;
 };
 
 /// Parses a query string ("?a=1&b=2", the leading '?' optional; values percent-decoded).
 /// Throws std::invalid_argument naming the parameter for an unknown parameter or a bad value:
 /// a scene name with a '/' or not ending in .toml, a count that is not a whole number in
 /// 1..10^9, an fps that is not finite and > 0, a size outside 16..8192 px per side, more than
-/// one of frames, ticks and replay, record without frames or ticks, or an overlay other than
-/// card.
+/// one of frames, ticks and replay, record without frames or ticks, an overlay other than
+/// card, a game not of page_game_names, or game= with a parameter other than frames, replay,
+/// size and headless.
 [[nodiscard]] PageOptions parse_page_options(std::string_view query);
 
 /// The page's own query string (location.search).

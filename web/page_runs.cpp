@@ -4,8 +4,10 @@
 #include <emscripten/emscripten.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fixstep/limits.hpp>
+#include <stdexcept>
 #include <utility>
 
 #include "fixstep/command_limits.hpp"
@@ -61,8 +63,18 @@ bool PageApp::ticks_frame(double now_ms) {
 }
 
 void PageApp::recording_fetched(std::string text) {
+  if (game_) {
+    game_->recording_fetched(text);
+    return;
+  }
   Recording rec = parse_recording(text, *o_.replay);
-  check_physics_only(rec, *o_.replay);  // the page has no game's rules
+  if (std::find(page_game_names.begin(), page_game_names.end(), rec.rules_name) !=
+      page_game_names.end()) {
+    throw std::invalid_argument(fmt::format(
+        "{}: recorded by the game {} (rules version {}): open it with game={}&replay={}",
+        *o_.replay, rec.rules_name, rec.rules_version, rec.rules_name, *o_.replay));
+  }
+  check_physics_only(rec, *o_.replay);  // the scenes have no game's rules
   // A recording carries its scene (format version 3): the page loads that. An older one names
   // its scene as given to `fixstep run` (assets/scenes/NAME.toml); the page has the shipped
   // scenes under the same folder.

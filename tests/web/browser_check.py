@@ -17,9 +17,22 @@ Then the overlay test card (web/overlay_card.hpp: every shape a game draws, a vi
 own) drawn by the page over default.toml (overlay=card) against its native golden frame
 (tests/golden/frames/overlay_card_frame_000060.png), with the tolerance of (b).
 
+Then the games (--no-games skips them), the page's game=NAME, NAME being demos/peggle and
+demos/slingshot as their programs' fixstep::app::run plays them: game=NAME&frames=GAME_FRAMES
+headless (the autopilot playing) must end in the state hash and summary lines the native `NAME
+--frames GAME_FRAMES` prints, and peggle's last frame must match the native `--last-frame PNG`
+with the tolerance of (b) (both 1280x720, the programs' size); game=NAME&replay= of
+assets/recordings/NAME.rec must verify every stored hash in the page with the native `NAME
+--replay`'s final hash, count and summary, and slingshot's last frame played back must match
+the native `slingshot --replay --last-frame PNG` (slingshot has no autopilot: its frames= run,
+the level at rest, is compared by state only; its replay's frame has a shot in it). A slingshot
+recording refused by game=peggle is a row of the bad inputs below.
+
 Then the input (--no-input skips it): the interactive page driven by DOM key and mouse events
-(tests/web/input_check.html), and a native recording with input (assets/inputs/default_push.toml:
-pushes, a button, a drag) replayed in the page with every hash verified.
+(tests/web/input_check.html), game=peggle played by them (tests/web/game_input_check.html: the
+pointer aims, a click shoots, r restarts), and a native recording with input
+(assets/inputs/default_push.toml: pushes, a button, a drag) replayed in the page with every hash
+verified.
 
 Then the long "cause" runs (--long): the page steps a scene N ticks without drawing (ticks=N)
 and must report the native `fixstep run --steps N` summary: projectile.toml at 40 000 ticks and
@@ -240,6 +253,95 @@ def check_overlay_card(args, site, out, failures):
           f"{PIXEL_THRESHOLD} ({verdict})", flush=True)
 
 
+GAME_SIZE = (1280, 720)  # app::Settings' frame size: the games' programs have no --size
+
+
+def native_game(args, game, *options):
+    """Runs the native game program (beside the fixstep CLI) and returns its standard output."""
+    program = os.path.join(os.path.dirname(args.fixstep), game)
+    done = subprocess.run([program, *options], capture_output=True, text=True, cwd=ROOT)
+    if done.returncode != 0:
+        raise RuntimeError(f"{game} {' '.join(options)} failed ({done.returncode}): "
+                           f"{done.stderr.strip()}")
+    return done.stdout
+
+
+def compare_game_frame(label, shot, native_png, failures):
+    """The browser's screenshot `shot` against the native frame: not blank, and within the
+    tolerance of (b). Returns the verdict for the log."""
+    browser_img, native_img = png_image.decode_png(shot), png_image.decode_png(native_png)
+    content = png_image.content_fraction(browser_img)
+    mean, differing = png_image.compare(browser_img, native_img, PIXEL_THRESHOLD)
+    verdict = "ok"
+    if content < MIN_CONTENT_FRACTION:
+        verdict = "BLANK"
+        failures.append(f"{label}: the browser frame is blank ({content:.4f} drawn)")
+    elif mean > MAX_MEAN_DIFFERENCE or differing > MAX_DIFFERING_FRACTION:
+        verdict = "DIFFERENT"
+        failures.append(f"{label}: the browser frame differs from the native one: mean "
+                        f"{mean:.3f} levels, {differing:.4%} of pixels by > {PIXEL_THRESHOLD}")
+    return (f"frame: {content:.3f} drawn, mean {mean:.3f}, {differing:.4%} > {PIXEL_THRESHOLD} "
+            f"({verdict})")
+
+
+def check_game_frames(game, args, site, out, failures, frame=True):
+    """game=GAME&frames=N headless against the native `GAME --frames N --last-frame PNG`: the
+    same state hash and summary lines (the engine's and the game's), and with `frame` the last
+    frame within the tolerance of (b)."""
+    frames = args.game_frames
+    shot = os.path.join(out, f"game_{game}_browser.png")
+    url = f"{site.url}/index.html?game={game}&frames={frames}&headless=1"
+    if frame:
+        dom = chromium(url, shot, *GAME_SIZE, args.budget_ms)
+        result, summary = element(dom, "result"), element(dom, "summary")
+    else:
+        result, summary = page_texts(args.browser, url, ["result", "summary"])
+    result, summary = result or "", summary or ""
+    if not re.fullmatch(r"tick=\d+ state_hash=[0-9a-f]{16}", result):
+        failures.append(f"game={game}: the page did not finish: result {result!r}")
+        return
+    native_png = os.path.join(out, f"game_{game}_native.png")
+    printed = native_game(args, game, "--frames", str(frames),
+                          *(["--last-frame", native_png] if frame else [])).strip()
+    native_hash = re.search(r"state_hash=([0-9a-f]{16})", printed)
+    if summary != printed or not native_hash or not result.endswith(native_hash.group(0)):
+        failures.append(f"game={game} frames={frames}: page {result!r} {summary!r} != native "
+                        f"{printed!r}")
+    verdict = compare_game_frame(f"game={game}", shot, native_png, failures) if frame else ""
+    print(f"game={game} frames={frames}: {result}; {summary.splitlines()[-1]}; {verdict}",
+          flush=True)
+
+
+def check_game_replay(game, args, site, out, failures, frame=False):
+    """game=GAME&replay= of assets/recordings/GAME.rec: every stored hash verified in the page,
+    with the final hash, the count of hashes and the summary lines of the native `GAME
+    --replay`; with `frame`, the page's last frame of the recording played back against the
+    native `--last-frame PNG` (tolerance of (b))."""
+    shutil.copyfile(os.path.join(ROOT, "assets", "recordings", f"{game}.rec"),
+                    os.path.join(site.rec_dir, f"{game}_game.rec"))
+    url = f"{site.url}/index.html?game={game}&replay=/rec/{game}_game.rec&headless=1"
+    shot = os.path.join(out, f"game_{game}_replay_browser.png")
+    native_png = os.path.join(out, f"game_{game}_replay_native.png")
+    if frame:
+        dom = chromium(url, shot, *GAME_SIZE, args.budget_ms)
+        result, summary = element(dom, "result"), element(dom, "summary")
+    else:
+        result, summary = page_texts(args.browser, url, ["result", "summary"])
+    result, summary = result or "", summary or ""
+    recording = os.path.join("assets", "recordings", f"{game}.rec")
+    printed = native_game(args, game, "--replay", recording,
+                          *(["--last-frame", native_png] if frame else [])).strip()
+    lines = printed.splitlines()
+    m = re.search(r"ticks=(\d+) .*state_hash=([0-9a-f]{16})", lines[0])
+    verified = re.fullmatch(r"verified=(\d+)", lines[-1])
+    expected = (f"verified ticks={m.group(1)} state_hash={m.group(2)} hashes={verified.group(1)}"
+                if m and verified else None)
+    if result != expected or summary != "\n".join(lines[:-1]):
+        failures.append(f"game={game} replay: page {result!r} {summary!r} != native {printed!r}")
+    verdict = compare_game_frame(f"game={game} replay", shot, native_png, failures) if frame else ""
+    print(f"game={game} replay of {recording}: page {result}; {verdict}", flush=True)
+
+
 def check_input_replay(args, site, out, failures):
     """A native recording with input (assets/inputs/default_push.toml: every body pushed right,
     then up, the action button tapped, the ball dragged) replayed in the page: every stored hash
@@ -281,6 +383,21 @@ def check_input(args, site, failures):
     elif not dragged or dragged.group(1) == undisturbed:
         failures.append(f"input: the drag did not change the state ({undisturbed}): {report}")
     print("input:", report.replace("\n", "; "), flush=True)
+
+
+def check_game_input(args, site, failures):
+    """tests/web/game_input_check.html: game=peggle played interactively on the real clock by
+    DOM mouse and key events (the pointer aims, a click shoots, r restarts)."""
+    browser = cdp_pipe.Browser(CHROMIUM_FLAGS + ["--window-size=700,600"])
+    try:
+        browser.open(f"{site.url}/tests/game_input_check.html")
+        title = browser.wait_for_title("game input:", 60)
+        report = browser.evaluate("document.getElementById('result').textContent") or ""
+    finally:
+        browser.close()
+    if title != "game input: done":
+        failures.append(f"game input: {title or 'no result in 60 s'}: {report}")
+    print("game input:", report.replace("\n", "; "), flush=True)
 
 
 def check_long(spec, args, site, failures):
@@ -337,10 +454,13 @@ def write_bad_recordings(args, rec_dir):
     with open(os.path.join(rec_dir, "damaged.rec"), "w", encoding="utf-8") as f:
         f.write("".join("|dt = \\q\n" if line.startswith("|dt = 0.01") else line
                         for line in lines))
-    # Format 4, naming the game rules it was recorded with: the page has none of a game's.
+    # A game's recording for the game= rows (slingshot's, refused by game=peggle).
+    shutil.copyfile(os.path.join(ROOT, "assets", "recordings", "slingshot.rec"),
+                    os.path.join(rec_dir, "slingshot_game.rec"))
+    # Format 4, naming the game rules it was recorded with: the page has no game of that name.
     with open(os.path.join(rec_dir, "rules.rec"), "w", encoding="utf-8") as f:
         f.write("".join(("fixstep-recording 4\n" if line.startswith("fixstep-recording ")
-                         else line) + ("rules slingshot 1\n" if line.startswith("hash_every ")
+                         else line) + ("rules pinball 1\n" if line.startswith("hash_every ")
                                        else "")
                         for line in lines))
     if os.path.exists(os.path.join(rec_dir, "missing.rec")):
@@ -379,6 +499,9 @@ def main():
                             "cross/damped_exp.toml:2000", "cross/hypot_rest.toml:2000"],
                    help="SCENE:TICKS runs stepped without drawing")
     p.add_argument("--no-input", action="store_true", help="skip the input checks")
+    p.add_argument("--no-games", action="store_true", help="skip the games (game=)")
+    p.add_argument("--game-frames", type=int, default=240,
+                   help="frames of each game's headless run (60 fps)")
     p.add_argument("--no-bad-inputs", action="store_true",
                    help="skip the bad inputs (tests/web/bad_inputs_page.tsv)")
     p.add_argument("--budget-ms", type=int, default=600000, help="virtual time per page load")
@@ -393,8 +516,19 @@ def main():
     checks = [(scene, lambda s=scene: check_scene(s, args, site, out, failures))
               for scene in scenes]
     checks.append(("overlay card", lambda: check_overlay_card(args, site, out, failures)))
+    if not args.no_games:
+        # Three screenshots (each a Chromium of its own): peggle's autopilot run, and slingshot's
+        # recorded shot (its headless run, without an autopilot, is checked by state only).
+        checks += [("game=peggle", lambda: check_game_frames("peggle", args, site, out, failures)),
+                   ("game=slingshot",
+                    lambda: check_game_frames("slingshot", args, site, out, failures, False))]
+        checks += [("game=peggle replay",
+                    lambda: check_game_replay("peggle", args, site, out, failures)),
+                   ("game=slingshot replay",
+                    lambda: check_game_replay("slingshot", args, site, out, failures, True))]
     if not args.no_input:
         checks += [("input", lambda: check_input(args, site, failures)),
+                   ("game input", lambda: check_game_input(args, site, failures)),
                    ("input replay", lambda: check_input_replay(args, site, out, failures))]
     checks += [(spec, lambda s=spec: check_long(s, args, site, failures)) for spec in args.long]
     if not args.no_bad_inputs:

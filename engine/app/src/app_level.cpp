@@ -1,4 +1,4 @@
-// fixstep::app: the level a run starts from (app_modes.hpp).
+// fixstep::app: the level a run starts from (fixstep/detail/game_level.hpp).
 #include <any>
 #include <cstdio>
 #include <fixstep/definition_checks.hpp>
@@ -6,7 +6,7 @@
 #include <fixstep/scene_view_settings.hpp>
 #include <memory>
 
-#include "app_modes.hpp"
+#include "fixstep/detail/game_level.hpp"
 
 namespace fixstep::app::detail {
 

@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "app_modes.hpp"
-#include "game_play.hpp"
+#include "fixstep/detail/game_play.hpp"
 #ifdef FIXSTEP_APP_WINDOW
 #include <fixstep/window.hpp>
 #endif

@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "app_modes.hpp"
-#include "game_play.hpp"
+#include "fixstep/detail/game_play.hpp"
 
 namespace fixstep::app::detail {
 
@@ -73,23 +73,14 @@ int replay_file(const AnyGame& prototype, const Settings& settings, const Option
                  rules.c_str(), settings.rules_version);
     return exit_error;
   }
-  const Level level = replay_level(prototype, settings, rec, o.scene);
-  World world(level.def);
-  const double initial_energy = world.energy().total();
-  const std::unique_ptr<AnyGame> game = level.game->clone();
-  if (definition_hash(level.def) != rec.definition_hash) {
-    std::fprintf(stderr, "%s: error: %s was recorded on another level (hash %s, this one %s)\n",
-                 settings.name.c_str(), o.replay.c_str(), hex_hash(rec.definition_hash).c_str(),
-                 hex_hash(definition_hash(level.def)).c_str());
-    return exit_error;
-  }
-  const ReplayReport report = replay(world, rec, game_rules(*game));
+  const GameReplay r = replay_game(prototype, settings, rec, o.replay, o.scene);
+  const ReplayReport& report = r.report;
   // Only a recording that verified is drawn: a diverging one leaves no frame behind.
   if (report.ok() && (!o.out.empty() || !o.last_frame.empty())) {
-    draw_replay(settings, level, rec, report.ticks, o);
+    draw_replay(settings, r.level, rec, report.ticks, o);
   }
-  std::printf("%s\n", summary_line(world, initial_energy).c_str());
-  if (const std::string s = game->summary(); !s.empty()) std::printf("%s\n", s.c_str());
+  std::printf("%s\n", summary_line(*r.world, r.initial_energy).c_str());
+  if (const std::string s = r.game->summary(); !s.empty()) std::printf("%s\n", s.c_str());
   std::printf("verified=%llu\n", static_cast<unsigned long long>(report.verified));
   if (const auto& m = report.mismatch) {
     std::fprintf(stderr,

@@ -1,5 +1,5 @@
-// fixstep::app: a game being played live (game_play.hpp).
-#include "game_play.hpp"
+// fixstep::app: a game being played live (fixstep/detail/game_play.hpp).
+#include "fixstep/detail/game_play.hpp"
 
 #include <cstdio>
 #include <fixstep/recording_file.hpp>

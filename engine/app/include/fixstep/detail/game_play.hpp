@@ -1,4 +1,5 @@
-// Internal to fixstep::app: a game being played live, in a window or headless.
+// Internal to fixstep::app, and shared with the web page (web/): a game being played live, in
+// a window, headless or in a browser.
 #pragma once
 
 #include <cstdint>
@@ -7,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "app_modes.hpp"
+#include "fixstep/detail/game_level.hpp"
 #include "fixstep/input.hpp"
 #include "fixstep/overlay.hpp"
 #include "fixstep/recording.hpp"

@@ -1,0 +1,20 @@
+# The two games as libraries, for their programs (demos/CMakeLists.txt) and for the web page
+# (web/CMakeLists.txt includes this file: game=peggle, game=slingshot). Each game is two:
+#   NAME_game  the level and the rules on fixstep::core (tests/demos/ check them without a window)
+#   NAME_play  the game as fixstep::app runs it: NAME_app.hpp (the Game type and its
+#              app::Settings) and the game's drawing (draw.cpp)
+include_guard(GLOBAL)
+
+# slingshot: drag the ball back on its band, let go, knock the targets off their ropes.
+add_library(slingshot_game STATIC ${CMAKE_CURRENT_LIST_DIR}/slingshot/game.cpp)
+target_link_libraries(slingshot_game PUBLIC fixstep::core PRIVATE fixstep_options)
+target_include_directories(slingshot_game PUBLIC ${CMAKE_CURRENT_LIST_DIR}/slingshot)
+add_library(slingshot_play STATIC ${CMAKE_CURRENT_LIST_DIR}/slingshot/draw.cpp)
+target_link_libraries(slingshot_play PUBLIC slingshot_game fixstep::app PRIVATE fixstep_options)
+
+# peggle: a Peggle-like (sensors, filters, a ray-cast aim guide, the game's own drawing).
+add_library(peggle_game STATIC ${CMAKE_CURRENT_LIST_DIR}/peggle/game.cpp)
+target_link_libraries(peggle_game PUBLIC fixstep::core PRIVATE fixstep_options)
+target_include_directories(peggle_game PUBLIC ${CMAKE_CURRENT_LIST_DIR}/peggle)
+add_library(peggle_play STATIC ${CMAKE_CURRENT_LIST_DIR}/peggle/draw.cpp)
+target_link_libraries(peggle_play PUBLIC peggle_game fixstep::app PRIVATE fixstep_options)

@@ -1,0 +1,27 @@
+// fixstep::app: a recording replayed with a game's rules and verified
+// (fixstep/detail/game_level.hpp).
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "fixstep/detail/game_level.hpp"
+#include "fixstep/summary.hpp"
+
+namespace fixstep::app::detail {
+
+GameReplay replay_game(const AnyGame& game, const Settings& settings, const Recording& rec,
+                       const std::string& file, const std::optional<std::string>& scene) {
+  GameReplay r{.level = replay_level(game, settings, rec, scene)};
+  if (definition_hash(r.level.def) != rec.definition_hash) {
+    throw std::runtime_error(fmt::format("{} was recorded on another level (hash {}, this one {})",
+                                         file, hex_hash(rec.definition_hash),
+                                         hex_hash(definition_hash(r.level.def))));
+  }
+  r.world = std::make_unique<World>(r.level.def);
+  r.initial_energy = r.world->energy().total();
+  r.game = r.level.game->clone();
+  r.report = replay(*r.world, rec, game_rules(*r.game));
+  return r;
+}
+
+}  // namespace fixstep::app::detail
