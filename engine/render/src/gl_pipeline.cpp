@@ -36,9 +36,9 @@ std::string query_renderer_name() {
   return name;
 }
 
-std::array<Pipeline::LinkedProgram, 3> link_programs(const ShaderSources& sources) {
+std::array<Pipeline::LinkedProgram, 2> link_programs(const ShaderSources& sources) {
   const Shader vertex = compile_shader(GL_VERTEX_SHADER, sources.vertex);
-  std::array<Pipeline::LinkedProgram, 3> programs;
+  std::array<Pipeline::LinkedProgram, 2> programs;
   for (std::size_t i = 0; i < programs.size(); ++i) {
     const Shader fragment = compile_shader(GL_FRAGMENT_SHADER, sources.fragments[i]);
     Pipeline::LinkedProgram& p = programs[i];

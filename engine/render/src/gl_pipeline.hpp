@@ -18,7 +18,7 @@ namespace fixstep::gl {
 /// fragment shader per program.
 struct ShaderSources {
   const char* vertex = nullptr;
-  std::array<const char*, 3> fragments{};
+  std::array<const char*, 2> fragments{};
 };
 
 /// The GL context of one frame (gl_context.hpp) and the GL objects drawn with it. The members are
@@ -71,7 +71,7 @@ struct Pipeline {
   std::uint8_t* pixels;
   // --- resources, in acquisition order ---
   Context context;
-  std::array<LinkedProgram, 3> programs;
+  std::array<LinkedProgram, 2> programs;
   VertexArray vao;
   Buffer vbo, ibo;  // vertices; triangles (3 indices each), part of vao's state
   // --- state ---

@@ -22,13 +22,14 @@ namespace fixstep::gl {
 
 // --- the renderer's programs (Renderer, render.cpp) -------------------------------------------
 // Every vertex is {a_pos, a_uv, a_color, a_fill} (Renderer::Vertex). The shapes program draws
-// triangles, the ring program points (one vertex per disc: a_pos its centre, a_uv = (point size
-// px, shape coordinate at the square's edge), a_fill the fill's radius). Varyings are
+// triangles (a_fill: a circle's hole, see below), the ring program points (one vertex per disc:
+// a_pos its centre, a_uv = (point size px, shape coordinate at the square's edge), a_fill the
+// fill's radius). Varyings are
 // `noperspective` (w is always 1, so this only spares llvmpipe the perspective division; GLSL ES
 // has no such qualifier, so the sources say NOPERSPECTIVE, which FIXSTEP_GLSL_PROLOGUE defines) and
 // `flat` where they are constant over a primitive; each fragment shader reads v_color
-// (interpolated: polylines fade along their length) or v_flat_color (constant: the discs), and
-// the linker drops what a program does not read.
+// (interpolated: polylines fade along their length) or v_flat_color (constant: the outlined
+// discs), and the linker drops what a program does not read.
 
 /// Shared by both programs: pixel coordinates into the viewport, which reaches u_margin px beyond
 /// every edge of the frame (Renderer::finish()).
@@ -57,21 +58,33 @@ void main() {
 }
 )";
 
-/// Solids, lines, polylines, plain discs, text, in one branch-free shader. Discs and lines are
-/// anti-aliased analytically: coverage falls from 1 to 0 over one pixel at the shape's edge,
-/// where the distance d = |uv| from the centre (a disc's centre, a line's middle: a line has
-/// uv = (0, v)) is 1, measured with fwidth. Solids have uv = 0 everywhere, hence full coverage
-/// (fwidth is 0 and w its floor). Both programs output premultiplied colour (rgb * a, a), which
-/// Renderer::finish() blends "over" the frame with (1, 1 - a): the same picture as straight
-/// alpha blended with (a, 1 - a), and one multiplication fewer per pixel for llvmpipe.
+/// Solids, lines, polylines, plain discs, circles (rings), text, in one branch-free shader. Discs
+/// and lines are anti-aliased analytically: coverage falls from 1 to 0 over one pixel at the
+/// shape's edge, where the distance d = |uv| from the centre (a disc's centre, a line's middle: a
+/// line has uv = (0, v)) is 1, measured with fwidth. A circle (Renderer::circle) is a disc with a
+/// hole: v_fill is the hole's radius in the same units, and its coverage (anti-aliased likewise)
+/// is taken away, so a ring is the picture a disc of its colour leaves outside the hole; every
+/// other vertex has v_fill = Renderer::no_hole (-1e30), whose coverage is 0 everywhere (unless
+/// fwidth exceeds 1e30: a line narrower than 1e-30 px), so that outer - inner is the disc's or
+/// line's own coverage, bit for bit. Solids have uv = 0
+/// everywhere, hence full coverage (fwidth is 0 and w its floor). Both programs output
+/// premultiplied colour (rgb * a, a), which Renderer::finish() blends "over" the frame with
+/// (1, 1 - a): the same picture as straight alpha blended with (a, 1 - a), and one multiplication
+/// fewer per pixel for llvmpipe. Circles were GL points of a program of their own (cheaper alone:
+/// one primitive instead of two triangles), but a game interleaves them with other shapes, and
+/// every change of program is a batch and a draw call of its own, which cost llvmpipe more than
+/// the second triangle does (docs/perf/overlay.md).
 inline constexpr const char* shapes_fragment_shader = FIXSTEP_GLSL_PROLOGUE R"(
 NOPERSPECTIVE in vec2 v_uv;
 NOPERSPECTIVE in vec4 v_color;
+flat in float v_fill;
 out vec4 frag;
 void main() {
   float d = length(v_uv);
   float w = max(fwidth(d), 1e-6);
-  float a = v_color.a * clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  float outer = clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
+  float inner = clamp((v_fill - d) / w + 0.5, 0.0, 1.0);
+  float a = v_color.a * max(outer - inner, 0.0);
   frag = vec4(v_color.rgb * a, a);
 }
 )";
@@ -99,28 +112,8 @@ void main() {
 }
 )";
 
-/// Circle outlines (Renderer::circle) drawn as points, like the outlined discs: uv runs to 1 at
-/// the ring's outer edge and v_fill is its inner radius in the same units; the colour is the
-/// vertex's. Coverage is the outer disc's less the inner one's, each anti-aliased as the discs
-/// are, so a ring is the picture a disc of its colour leaves outside a hole.
-inline constexpr const char* circle_fragment_shader = FIXSTEP_GLSL_PROLOGUE R"(
-flat in vec4 v_flat_color;
-flat in float v_fill;
-flat in float v_point_scale;
-out vec4 frag;
-void main() {
-  float d = length((gl_PointCoord * 2.0 - 1.0) * v_point_scale);
-  float w = max(fwidth(d), 1e-6);
-  float outer = clamp((1.0 - d) / w + 0.5, 0.0, 1.0);
-  float inner = clamp((v_fill - d) / w + 0.5, 0.0, 1.0);
-  float a = v_flat_color.a * max(outer - inner, 0.0);
-  frag = vec4(v_flat_color.rgb * a, a);
-}
-)";
-
-/// The programs, in the order of Renderer::shapes, Renderer::outlined_discs and
-/// Renderer::circles.
-inline constexpr ShaderSources shader_sources{
-    vertex_shader, {shapes_fragment_shader, ring_fragment_shader, circle_fragment_shader}};
+/// The programs, in the order of Renderer::shapes and Renderer::outlined_discs.
+inline constexpr ShaderSources shader_sources{vertex_shader,
+                                              {shapes_fragment_shader, ring_fragment_shader}};
 
 }  // namespace fixstep::gl

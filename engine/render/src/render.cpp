@@ -85,9 +85,9 @@ std::array<double, 2> Renderer::to_pixel(double x, double y) const {
           height_ * 0.5 - (y - camera_.center.y) * scale};
 }
 
-void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c) {
+void Renderer::quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float fill) {
   const auto base = static_cast<std::uint32_t>(vertices_.size());
-  for (int i = 0; i < 4; ++i) vertex(p[i][0], p[i][1], uv[i][0], uv[i][1], c);
+  for (int i = 0; i < 4; ++i) vertex(p[i][0], p[i][1], uv[i][0], uv[i][1], c, fill);
   for (std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) indices_.push_back(base + i);
 }
 

@@ -9,7 +9,6 @@
 
 #include "aa_pad.hpp"
 #include "fixstep/render.hpp"
-#include "renderer_gl.hpp"  // gl_->max_point_size
 
 namespace fixstep {
 
@@ -122,10 +121,14 @@ void Renderer::circle(float cx, float cy, float r, float width, Rgba8 c) {
   if (!(r > 0.0f) || !(width > 0.0f)) return;
   const float outer = r + 0.5f * width, inner = std::max(r - 0.5f * width, 0.0f);
   const float pad = outer + detail::aa_pad_px;
-  if (2.0f * pad <= gl_->max_point_size) {  // one point: see disc() with an outline
-    use(circles, {});
-    indices_.push_back(static_cast<std::uint32_t>(vertices_.size()));
-    vertex(cx, cy, 2.0f * pad, pad / outer, c, inner / outer);
+  // Up to this width (px), a quad: the disc of radius `outer` with a hole (the shapes program,
+  // gl_shaders.hpp), which shades every pixel of its square; wider, the ring alone, as a strip.
+  constexpr float widest_quad = 255.0f;  // as wide as llvmpipe's widest point, where it was one
+  if (2.0f * pad <= widest_quad) {
+    use(shapes, {});
+    const float e = pad / outer;
+    quad({{cx - pad, cy - pad}, {cx + pad, cy - pad}, {cx + pad, cy + pad}, {cx - pad, cy + pad}},
+         {{-e, -e}, {e, -e}, {e, e}, {-e, e}}, c, inner / outer);
     return;
   }
   // Sides such that the sagitta r (1 - cos(pi / sides)) stays within 0.05 px.

@@ -207,9 +207,10 @@ class Renderer {
   void closed_polyline(std::span<const Point> points, float width, Rgba8 c);
   /// An anti-aliased circle (an outline, not filled) of radius r px centred on (cx, cy), its
   /// line `width` px wide centred on the radius (a ring from r - width/2, at least 0, to
-  /// r + width/2): one GL point, as the outlined discs are; wider than GL's largest point, a
+  /// r + width/2): one quad of two triangles, drawn with the lines and discs (in the same draw
+  /// call as the shapes around it); wider than 255 px (outer diameter and anti-aliasing), a
   /// closed polyline of enough sides that no chord strays 0.05 px from the circle (8 to 1024
-  /// sides). r <= 0 or width <= 0: nothing.
+  /// sides), which shades fewer pixels than the quad would. r <= 0 or width <= 0: nothing.
   void circle(float cx, float cy, float r, float width, Rgba8 c);
   /// A filled convex polygon (a triangle fan from points[0]; any winding), not smoothed. The
   /// caller ensures convexity; fewer than 3 points draw nothing.
@@ -235,21 +236,24 @@ class Renderer {
 
  private:
   // A vertex of either program (gl_shaders.hpp): position px, shape coordinates (a point's size
-  // px and scale for outlined discs), colour, and an outlined disc's fill radius (0 elsewhere).
+  // px and scale for outlined discs), colour, and an outlined disc's fill radius or a circle's
+  // hole radius in shape coordinates (no_hole elsewhere).
   struct Vertex {
     float x, y, u, v;
     std::uint8_t r, g, b, a;
     float fill;
   };
   // Fragment programs; each batch uses one.
-  static constexpr int shapes = 0;          // triangles: solids, discs, lines, polylines, text
+  static constexpr int shapes = 0;  // triangles: solids, discs, circles, lines, polylines, text
   static constexpr int outlined_discs = 1;  // points: disc() with an outline
-  static constexpr int circles = 2;         // points: circle()
+  // A shapes vertex's `fill` when its shape has no hole (every shape but circle()'s rings): the
+  // shader's hole coverage is 0 everywhere (gl_shaders.hpp).
+  static constexpr float no_hole = -1e30f;
   /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
   /// outlined_discs, outline colour `ring`), starting a new batch if needed.
   void use(int program, Rgba8 ring);
-  void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c);
-  void vertex(float x, float y, float u, float v, Rgba8 c, float fill = 0.0f) {
+  void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float fill = no_hole);
+  void vertex(float x, float y, float u, float v, Rgba8 c, float fill = no_hole) {
     vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, fill});
   }
   template <class Transform>
