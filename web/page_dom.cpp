@@ -2,6 +2,9 @@
 #include "page_dom.hpp"
 
 #include <emscripten/emscripten.h>
+#include <fmt/format.h>
+
+#include "fixstep/summary.hpp"  // hex_hash
 
 namespace {
 
@@ -44,6 +47,20 @@ void list_scenes(const std::vector<std::string>& names, const std::string& curre
 void show_error(const std::string& message) {
   show_text("result", "error: " + message);
   set_title("fixstep: error");
+}
+
+bool show_replay_verdict(const ReplayReport& r) {
+  if (const auto& m = r.mismatch) {
+    show_text("result",
+              fmt::format("diverged at tick {}: state_hash {} recorded, {} replayed "
+                          "(the states matched at tick {}); not played back",
+                          m->tick, hex_hash(m->expected), hex_hash(m->actual), m->last_match));
+    set_title("fixstep: diverged");
+    return false;
+  }
+  show_text("result", fmt::format("verified ticks={} state_hash={} hashes={}", r.ticks,
+                                  hex_hash(r.final_hash), r.verified));
+  return true;
 }
 
 }  // namespace fixstep::web

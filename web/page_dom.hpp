@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/recording.hpp"  // ReplayReport
+
 namespace fixstep::web {
 
 /// Sets the text of the page's element with id `id` (nothing if there is none).
@@ -19,5 +21,10 @@ void list_scenes(const std::vector<std::string>& names, const std::string& curre
 /// Shows `message` as the page's result (id "result"), "error: " first, and sets the title to
 /// "fixstep: error".
 void show_error(const std::string& message);
+/// Shows a verified replay's verdict as the page's result (id "result"): "verified ticks=N
+/// state_hash=H hashes=K", or, for a recording that diverged, the first tick, both hashes and
+/// the last tick that matched, with the title "fixstep: diverged". Returns whether it verified
+/// (a diverged recording is not played back, as `fixstep render --replay` and `NAME --replay`).
+bool show_replay_verdict(const ReplayReport& r);
 
 }  // namespace fixstep::web

@@ -146,18 +146,10 @@ void PageGame::recording_fetched(const std::string& text) {
             : std::string("replay it with the program (and version) that recorded it")));
   }
   app::detail::GameReplay r = app::detail::replay_game(*prototype_, settings_, rec, file, {});
-  if (const auto& m = r.report.mismatch) {
-    // As `NAME --replay`: a recording that diverges is not played back.
-    show_text("result",
-              fmt::format("diverged at tick {}: state_hash {} recorded, {} replayed "
-                          "(the states matched at tick {}); not played back",
-                          m->tick, hex_hash(m->expected), hex_hash(m->actual), m->last_match));
-    set_title("fixstep: diverged");
+  if (!show_replay_verdict(r.report)) {  // a recording that diverges is not played back
     replay_stopped_ = true;
     return;
   }
-  show_text("result", fmt::format("verified ticks={} state_hash={} hashes={}", r.report.ticks,
-                                  hex_hash(r.report.final_hash), r.report.verified));
   show_summary(*r.world, r.initial_energy, *r.game);
   session_ = std::make_unique<Session>(r.level.def, r.level.view);
   session_->set_show_energy(settings_.show_energy);

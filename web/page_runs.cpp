@@ -89,18 +89,10 @@ void PageApp::recording_fetched(std::string text) {
   check_recorded_bodies(rec, def.bodies.size(), *o_.replay);
   check_command_work(rec.ticks, tick_work(def), fmt::format("{}: end {}", *o_.replay, rec.ticks));
   const ReplayReport r = replay(def, rec);  // throws scene_mismatch
-  if (const auto& m = r.mismatch) {
-    // As `fixstep render --replay`: a recording that diverges is not played back.
-    show_text("result",
-              fmt::format("diverged at tick {}: state_hash {} recorded, {} replayed "
-                          "(the states matched at tick {}); not played back",
-                          m->tick, hex_hash(m->expected), hex_hash(m->actual), m->last_match));
-    set_title("fixstep: diverged");
+  if (!show_replay_verdict(r)) {            // a recording that diverges is not played back
     replay_stopped_ = true;
     return;
   }
-  show_text("result", fmt::format("verified ticks={} state_hash={} hashes={}", r.ticks,
-                                  hex_hash(r.final_hash), r.verified));
   o_.scene = std::filesystem::path(scene_file_).filename().string();
   start_session(std::move(def), o_.scene);
   recording_ = std::move(rec);

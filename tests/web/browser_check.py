@@ -238,19 +238,8 @@ def check_overlay_card(args, site, out, failures):
         failures.append(f"overlay card: the page did not finish: result {result!r}")
         return
     golden = os.path.join(ROOT, "tests", "golden", "frames", "overlay_card_frame_000060.png")
-    browser_img, native_img = png_image.decode_png(shot), png_image.decode_png(golden)
-    content = png_image.content_fraction(browser_img)
-    mean, differing = png_image.compare(browser_img, native_img, PIXEL_THRESHOLD)
-    verdict = "ok"
-    if content < MIN_CONTENT_FRACTION:
-        verdict = "BLANK"
-        failures.append(f"overlay card: the browser frame is blank ({content:.4f} drawn)")
-    elif mean > MAX_MEAN_DIFFERENCE or differing > MAX_DIFFERING_FRACTION:
-        verdict = "DIFFERENT"
-        failures.append(f"overlay card: the browser frame differs from OSMesa's: mean {mean:.3f} "
-                        f"levels, {differing:.4%} of pixels by > {PIXEL_THRESHOLD}")
-    print(f"overlay card: {content:.3f} drawn, mean {mean:.3f}, {differing:.4%} > "
-          f"{PIXEL_THRESHOLD} ({verdict})", flush=True)
+    verdict = compare_frame("overlay card", shot, golden, failures, "OSMesa's")
+    print(f"overlay card: {verdict}", flush=True)
 
 
 GAME_SIZE = (1280, 720)  # app::Settings' frame size: the games' programs have no --size
@@ -266,10 +255,10 @@ def native_game(args, game, *options):
     return done.stdout
 
 
-def compare_game_frame(label, shot, native_png, failures):
-    """The browser's screenshot `shot` against the native frame: not blank, and within the
-    tolerance of (b). Returns the verdict for the log."""
-    browser_img, native_img = png_image.decode_png(shot), png_image.decode_png(native_png)
+def compare_frame(label, shot, reference_png, failures, reference="the native one"):
+    """The browser's screenshot `shot` against a reference frame (`reference` names it in the
+    message): not blank, and within the tolerance of (b). Returns the verdict for the log."""
+    browser_img, native_img = png_image.decode_png(shot), png_image.decode_png(reference_png)
     content = png_image.content_fraction(browser_img)
     mean, differing = png_image.compare(browser_img, native_img, PIXEL_THRESHOLD)
     verdict = "ok"
@@ -278,9 +267,9 @@ def compare_game_frame(label, shot, native_png, failures):
         failures.append(f"{label}: the browser frame is blank ({content:.4f} drawn)")
     elif mean > MAX_MEAN_DIFFERENCE or differing > MAX_DIFFERING_FRACTION:
         verdict = "DIFFERENT"
-        failures.append(f"{label}: the browser frame differs from the native one: mean "
+        failures.append(f"{label}: the browser frame differs from {reference}: mean "
                         f"{mean:.3f} levels, {differing:.4%} of pixels by > {PIXEL_THRESHOLD}")
-    return (f"frame: {content:.3f} drawn, mean {mean:.3f}, {differing:.4%} > {PIXEL_THRESHOLD} "
+    return (f"{content:.3f} drawn, mean {mean:.3f}, {differing:.4%} > {PIXEL_THRESHOLD} "
             f"({verdict})")
 
 
@@ -307,7 +296,7 @@ def check_game_frames(game, args, site, out, failures, frame=True):
     if summary != printed or not native_hash or not result.endswith(native_hash.group(0)):
         failures.append(f"game={game} frames={frames}: page {result!r} {summary!r} != native "
                         f"{printed!r}")
-    verdict = compare_game_frame(f"game={game}", shot, native_png, failures) if frame else ""
+    verdict = "frame: " + compare_frame(f"game={game}", shot, native_png, failures) if frame else ""
     print(f"game={game} frames={frames}: {result}; {summary.splitlines()[-1]}; {verdict}",
           flush=True)
 
@@ -338,7 +327,7 @@ def check_game_replay(game, args, site, out, failures, frame=False):
                 if m and verified else None)
     if result != expected or summary != "\n".join(lines[:-1]):
         failures.append(f"game={game} replay: page {result!r} {summary!r} != native {printed!r}")
-    verdict = compare_game_frame(f"game={game} replay", shot, native_png, failures) if frame else ""
+    verdict = "frame: " + compare_frame(f"game={game} replay", shot, native_png, failures) if frame else ""
     print(f"game={game} replay of {recording}: page {result}; {verdict}", flush=True)
 
 
