@@ -115,8 +115,10 @@ class Stepper {
 [[nodiscard]] std::string stepper_label(const std::string& key);
 [[nodiscard]] std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s);
 
+/// fixstep on the scene; box2d_iterations: the resting solver at Box2D 2.4's iteration counts
+/// (box2d_velocity_iterations, box2d_position_iterations) instead of its defaults.
 [[nodiscard]] std::unique_ptr<Stepper> make_fixstep(const Scene& s, bool f32, int threads,
-                                                    bool contacts);
+                                                    bool contacts, bool box2d_iterations = false);
 enum class ChipmunkIndex { hash, tree, hasty };
 [[nodiscard]] std::unique_ptr<Stepper> make_chipmunk(const Scene& s, ChipmunkIndex index);
 [[nodiscard]] std::string chipmunk_version();

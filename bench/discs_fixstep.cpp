@@ -1,7 +1,8 @@
 // fixstep stepping a disc scene: a fixstep::detail::WorldKernel<Real> (semi-implicit Euler, the
 // default) with one dynamic body per disc (Collider{radius}, mass 1 kg, Gravity in the pile), the
 // box's walls as static half-planes (PlaneDef, the scene's e and μ), and WorldSettings::contacts =
-// the scene's e and μ, on 1 or 2 threads (WorldSettings::threads). The "contacts off" variant is
+// the scene's e and μ, on 1 or 2 threads (WorldSettings::threads), with the resting solver's
+// default iterations or Box2D 2.4's 8 velocity / 3 position ones. The "contacts off" variant is
 // the same world without WorldSettings::contacts: the discs meet the walls only (a world that does
 // not ask for contacts, for the before/after of the contact code).
 #include <limits>
@@ -19,8 +20,9 @@ namespace {
 template <class Real>
 class FixstepStepper final : public Stepper {
  public:
-  FixstepStepper(const Scene& s, int threads, bool contacts)
-      : w_(std::make_unique<fixstep::detail::WorldKernel<Real>>(settings(s, threads, contacts))) {
+  FixstepStepper(const Scene& s, int threads, bool contacts, bool box2d_iterations)
+      : w_(std::make_unique<fixstep::detail::WorldKernel<Real>>(
+            settings(s, threads, contacts, box2d_iterations))) {
     w_->reserve(s.position.size());
     add_walls(s);
     for (std::size_t j = 0; j < s.position.size(); ++j) {
@@ -53,9 +55,16 @@ class FixstepStepper final : public Stepper {
 
  private:
   static double nan() { return std::numeric_limits<double>::quiet_NaN(); }
-  static fixstep::WorldSettings settings(const Scene& s, int threads, bool contacts) {
+  static fixstep::WorldSettings settings(const Scene& s, int threads, bool contacts,
+                                         bool box2d_iterations) {
     fixstep::WorldSettings ws{.dt = tick, .threads = threads};
-    if (contacts) ws.contacts = fixstep::ContactSettings{s.restitution, s.friction};
+    if (contacts) {
+      ws.contacts = fixstep::ContactSettings{.restitution = s.restitution, .friction = s.friction};
+      if (box2d_iterations) {
+        ws.contacts->velocity_iterations = box2d_velocity_iterations;
+        ws.contacts->position_iterations = box2d_position_iterations;
+      }
+    }
     return ws;
   }
   void add_walls(const Scene& s) {
@@ -75,9 +84,10 @@ class FixstepStepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_fixstep(const Scene& s, bool f32, int threads, bool contacts) {
-  if (f32) return std::make_unique<FixstepStepper<float>>(s, threads, contacts);
-  return std::make_unique<FixstepStepper<double>>(s, threads, contacts);
+std::unique_ptr<Stepper> make_fixstep(const Scene& s, bool f32, int threads, bool contacts,
+                                      bool box2d_iterations) {
+  if (f32) return std::make_unique<FixstepStepper<float>>(s, threads, contacts, box2d_iterations);
+  return std::make_unique<FixstepStepper<double>>(s, threads, contacts, box2d_iterations);
 }
 
 }  // namespace discs

@@ -16,10 +16,11 @@ namespace discs {
 
 namespace {
 // The fixstep keys first (the contact statistics' table takes the first 4).
-constexpr const char* all_keys[] = {
-    "fixstep_f64_t1", "fixstep_f64_t2",  "fixstep_f32_t1", "fixstep_f64_off", "chipmunk_hash",
-    "chipmunk_tree",  "chipmunk_hasty2", "box2d",          "box2d3_w1",       "box2d3_w2"};
-const std::span<const char* const> keys(all_keys, box2d3_built() ? 10 : 8);
+constexpr const char* all_keys[] = {"fixstep_f64_t1",  "fixstep_f64_t2", "fixstep_f32_t1",
+                                    "fixstep_f64_off", "fixstep_i8_t1",  "fixstep_i8_t2",
+                                    "chipmunk_hash",   "chipmunk_tree",  "chipmunk_hasty2",
+                                    "box2d",           "box2d3_w1",      "box2d3_w2"};
+const std::span<const char* const> keys(all_keys, box2d3_built() ? 12 : 10);
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large};
 constexpr SceneKind main_scenes[] = {SceneKind::pile, SceneKind::gas};
@@ -50,6 +51,8 @@ std::string stepper_label(const std::string& key) {
   if (key == "fixstep_f64_t2") return "fixstep f64, 2 threads";
   if (key == "fixstep_f32_t1") return "fixstep f32, 1 thread";
   if (key == "fixstep_f64_off") return "fixstep f64, contacts off (walls only)";
+  if (key == "fixstep_i8_t1") return "fixstep f64, 8/3 iterations, 1 thread";
+  if (key == "fixstep_i8_t2") return "fixstep f64, 8/3 iterations, 2 threads";
   const std::string cp = fmt::format("Chipmunk2D {} (f64)", chipmunk_version());
   if (key == "chipmunk_hash") return cp + ", spatial hash";
   if (key == "chipmunk_tree") return cp + ", bounding-box tree";
@@ -65,6 +68,8 @@ std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s) {
   if (key == "fixstep_f64_t2") return make_fixstep(s, false, 2, true);
   if (key == "fixstep_f32_t1") return make_fixstep(s, true, 1, true);
   if (key == "fixstep_f64_off") return make_fixstep(s, false, 1, false);
+  if (key == "fixstep_i8_t1") return make_fixstep(s, false, 1, true, true);
+  if (key == "fixstep_i8_t2") return make_fixstep(s, false, 2, true, true);
   if (key == "chipmunk_hash") return make_chipmunk(s, ChipmunkIndex::hash);
   if (key == "chipmunk_tree") return make_chipmunk(s, ChipmunkIndex::tree);
   if (key == "chipmunk_hasty2") return make_chipmunk(s, ChipmunkIndex::hasty);
@@ -303,18 +308,21 @@ void box2d3_table(const View& v, const Line& line) {
     return;
   }
   line(
-      "| scene | N | fixstep f64 1 thread | fixstep f64 2 threads | Box2D v3 1 worker | Box2D v3 "
-      "2 workers | deepest overlap / r: fixstep · Box2D v3 |");
-  line("|---|---|---|---|---|---|---|");
+      "| scene | N | fixstep f64 1 thread | fixstep f64 2 threads | fixstep 8/3 iterations 1 "
+      "thread | fixstep 8/3 iterations 2 threads | Box2D v3 1 worker | Box2D v3 2 workers | "
+      "deepest overlap / r: fixstep · fixstep 8/3 · Box2D v3 |");
+  line("|---|---|---|---|---|---|---|---|---|");
   const auto row = [&](const std::string& label, SceneKind s, std::int64_t n, bool fixstep) {
     const CaseResult* f = fixstep ? v.at(s, "fixstep_f64_t1", n) : nullptr;
+    const CaseResult* f8 = fixstep ? v.at(s, "fixstep_i8_t1", n) : nullptr;
     const CaseResult* b = v.at(s, "box2d3_w1", n);
     if (!b && !f) return;
-    line(fmt::format("| {} | {} | {} | {} | {} | {} | {} · {} |", label, size_text(n),
-                     fixstep ? num(v.ns(s, "fixstep_f64_t1", n)) : "–",
-                     fixstep ? num(v.ns(s, "fixstep_f64_t2", n)) : "–",
-                     num(v.ns(s, "box2d3_w1", n)), num(v.ns(s, "box2d3_w2", n)),
-                     f ? num(f->disc_overlap) : "–", b ? num(b->disc_overlap) : "–"));
+    const auto ns = [&](const char* key) { return fixstep ? num(v.ns(s, key, n)) : "–"; };
+    line(fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} · {} · {} |", label,
+                     size_text(n), ns("fixstep_f64_t1"), ns("fixstep_f64_t2"), ns("fixstep_i8_t1"),
+                     ns("fixstep_i8_t2"), num(v.ns(s, "box2d3_w1", n)),
+                     num(v.ns(s, "box2d3_w2", n)), f ? num(f->disc_overlap) : "–",
+                     f8 ? num(f8->disc_overlap) : "–", b ? num(b->disc_overlap) : "–"));
   };
   for (auto n : v.r.sizes)
     row(fmt::format("pile, r = {} m", small_radius), SceneKind::pile, n, true);
@@ -334,21 +342,24 @@ void box2d3_table(const View& v, const Line& line) {
 void box2d3_targets(const View& v, const Line& line) {
   if (!box2d3_built()) return;
   constexpr std::int64_t n4 = 10'000;
-  for (int threads : {1, 2}) {
-    const std::string f_key = threads == 1 ? "fixstep_f64_t1" : "fixstep_f64_t2";
-    const std::string b_key = threads == 1 ? "box2d3_w1" : "box2d3_w2";
-    const CaseResult* f = v.at(SceneKind::pile, f_key, n4);
-    const CaseResult* b = v.at(SceneKind::pile, b_key, n4);
-    const bool measured = f && b;
-    const double ratio = measured ? b->ns_per_body_step / f->ns_per_body_step : nan;
-    const bool shallow = measured && f->disc_overlap <= b->disc_overlap / 5.0;
-    line(fmt::format(
-        "| pile, N = 10^4: fixstep f64 ({0} thread{1}) ≥ 2× faster per body-step than Box2D v3 "
-        "({0} worker{1}), at no more than a fifth of its overlap | {2}× (overlap / r: fixstep "
-        "{3}, Box2D v3 {4}) | {5} |",
-        threads, threads == 1 ? "" : "s", num(ratio, "{:.2f}"),
-        measured ? num(f->disc_overlap) : "–", measured ? num(b->disc_overlap) : "–",
-        verdict(measured, ratio >= 2.0 && shallow)));
+  for (const bool box2d_iterations : {false, true}) {
+    for (int threads : {1, 2}) {
+      const std::string f_key =
+          fmt::format("fixstep_{}_t{}", box2d_iterations ? "i8" : "f64", threads);
+      const std::string b_key = threads == 1 ? "box2d3_w1" : "box2d3_w2";
+      const CaseResult* f = v.at(SceneKind::pile, f_key, n4);
+      const CaseResult* b = v.at(SceneKind::pile, b_key, n4);
+      const bool measured = f && b;
+      const double ratio = measured ? b->ns_per_body_step / f->ns_per_body_step : nan;
+      const bool shallow = measured && f->disc_overlap <= b->disc_overlap / 5.0;
+      line(fmt::format(
+          "| pile, N = 10^4: fixstep f64{6} ({0} thread{1}) ≥ 2× faster per body-step than "
+          "Box2D v3 ({0} worker{1}), at no more than a fifth of its overlap | {2}× (overlap / r: "
+          "fixstep {3}, Box2D v3 {4}) | {5} |",
+          threads, threads == 1 ? "" : "s", num(ratio, "{:.2f}"),
+          measured ? num(f->disc_overlap) : "–", measured ? num(b->disc_overlap) : "–",
+          verdict(measured, ratio >= 2.0 && shallow), box2d_iterations ? ", 8/3 iterations" : ""));
+    }
   }
   for (int threads : {1, 2}) {
     const std::string f_key = threads == 1 ? "fixstep_f64_t1" : "fixstep_f64_t2";

@@ -596,6 +596,14 @@ case_ "[contacts] negative friction" "$ok_world
 [contacts]
 friction = -0.3
 $disc"
+case_ "[contacts] velocity_iterations of 0 (at least one)" "$ok_world
+[contacts]
+velocity_iterations = 0
+$disc"
+case_ "[contacts] position_iterations above 1000" "$ok_world
+[contacts]
+position_iterations = 5000
+$disc"
 case_ "a body's restitution outside [0, 1]" "$ok_world
 [contacts]
 $disc

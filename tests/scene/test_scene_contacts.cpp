@@ -69,6 +69,20 @@ TEST(SceneContacts, ContactsTableFillsTheWorldSettings) {
   EXPECT_EQ(defaults.settings.contacts->restitution, 0.0);
   EXPECT_EQ(defaults.settings.contacts->friction, 0.0);
   EXPECT_FALSE(parse_scene(scene(disc), "c.toml").settings.contacts.has_value());
+  EXPECT_EQ(defaults.settings.contacts->velocity_iterations,
+            ContactSettings::default_velocity_iterations);
+  EXPECT_EQ(defaults.settings.contacts->position_iterations,
+            ContactSettings::default_position_iterations);
+  // The resting solver's iteration counts; format_scene writes them back (it checks that the
+  // text loads to the same definition hash, which includes them when not the defaults).
+  const Scene fast = parse_scene(
+      scene("[contacts]\nvelocity_iterations = 8\nposition_iterations = 0\n" + disc), "c.toml");
+  EXPECT_EQ(fast.settings.contacts->velocity_iterations, 8);
+  EXPECT_EQ(fast.settings.contacts->position_iterations, 0);
+  const std::string text = format_scene(world_def(fast));
+  EXPECT_NE(text.find("velocity_iterations = 8\nposition_iterations = 0\n"), std::string::npos)
+      << text;
+  EXPECT_EQ(format_scene(world_def(defaults)).find("iterations"), std::string::npos);
 }
 
 TEST(SceneContacts, BodyTypesAndDiscKeysFillBodyDefAndCollider) {
@@ -348,6 +362,12 @@ INSTANTIATE_TEST_SUITE_P(
                "contacts.restitution", "must be in [0, 1] (got -0.1)"},
         BadKey{"contacts friction negative", scene("[contacts]\nfriction = -0.2\n" + body), 4,
                "contacts.friction", "must be >= 0 (got -0.2)"},
+        BadKey{"contacts velocity_iterations zero",
+               scene("[contacts]\nvelocity_iterations = 0\n" + body), 4,
+               "contacts.velocity_iterations", "must be 1 .. 1000 (got 0)"},
+        BadKey{"contacts position_iterations a float",
+               scene("[contacts]\nposition_iterations = 2.5\n" + body), 4,
+               "contacts.position_iterations", "expected an integer, found a float"},
         BadKey{"contacts not a table", "contacts = 1\n" + scene(body), 1, "contacts",
                "expected a table, found an integer (1)"},
         BadKey{"body restitution above 1", scene(body + "radius = 1\nrestitution = 2\n"), 7,

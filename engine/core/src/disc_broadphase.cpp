@@ -54,6 +54,11 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
   }
 }
 
+Workers& DiscBroadphase::worker() {
+  if (!worker_) worker_.reset(new Workers());
+  return *worker_;
+}
+
 template <class Job>
 void DiscBroadphase::both(bool split, Job& job) {
   if (!split) {

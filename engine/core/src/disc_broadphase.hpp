@@ -108,6 +108,10 @@ class DiscBroadphase {
   /// split always, as the benchmark does to measure the hand-off).
   void set_parallel_min(std::size_t n) { parallel_min_ = n; }
 
+  /// The broadphase's worker thread (started on first call), lent to the resting solver so
+  /// that a world's discs keep one second thread.
+  Workers& worker();
+
  private:
   /// A box as the grid stores it, in its home cell (the cell of its lower-left corner) and
   /// next to its index, so that a scan of a cell reads memory in order.

@@ -35,6 +35,7 @@
 // Static discs never move; kinematic discs move at their velocity; both act as infinite mass.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -170,9 +171,8 @@ class DiscContacts {
   /// Heap bytes a copy holds (World::snapshot_bytes).
   [[nodiscard]] std::size_t bytes() const;
 
-  /// Gauss–Seidel sweeps of the resting solver (velocities, then positions).
-  static constexpr int velocity_iterations = ContactStats::max_velocity_sweeps,
-                       position_iterations = ContactStats::max_position_sweeps;
+  /// Contacts from which the resting solver splits them into two halves (split_contacts()).
+  static constexpr std::size_t min_split_contacts = 1024;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
   static constexpr double slop = 0.005;
   /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
@@ -194,9 +194,20 @@ class DiscContacts {
   void impact(std::uint32_t pair, double now, double dt);
   // phase 2 (disc_rest.cpp)
   void gather_contacts(const Tick& tick);
+  /// Splits contacts_ into two halves of the discs and the contacts across the cut: order_
+  /// lists them part by part (key order within a part), part_start_[p] where part p begins
+  /// (disc_halves.cpp). Below min_split_contacts everything is part 0.
+  void split_contacts(ContactStats& stats);
+  /// Runs range(begin, end, thread) over order_'s parts: the two halves, on two threads when
+  /// tick.threads >= 2, then the contacts across the cut on this thread.
+  template <class Range>
+  void parts_pass(const Tick& tick, Range& range);
   void warm_start(const Tick& tick);
   void solve_velocities(const Tick& tick, ContactStats& stats);
   void push_out(const Tick& tick, ContactStats& stats);
+  /// The depth of contact c's overlap now (m), its normal and the smaller radius.
+  double overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny,
+                    double& r_min) const;
   void keep_impulses();
   void apply(const RestContact& c, double jx, double jy, double kdt);
   void finish(const Tick& tick);
@@ -217,8 +228,12 @@ class DiscContacts {
   std::vector<std::uint8_t> changed_;
   std::vector<DiscEvent> heap_;
   std::vector<DiscImpact> impact_log_;
-  std::vector<RestContact> contacts_;
-  std::vector<WarmImpulse> warm_;
+  std::vector<RestContact> contacts_;  ///< disc pairs in key order, then planes in key order
+  std::uint32_t plane_contacts_ = 0;   ///< where contacts_'s plane contacts begin
+  std::vector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
+  std::array<std::uint32_t, 4> part_start_{};
+  std::vector<double> cut_;                  ///< split_contacts()'s
+  std::vector<WarmImpulse> warm_;            ///< by key
   std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
   // Energy per unit mass (J/kg: ½|v|² - a·x, a the constant acceleration) at the tick's start
   // and after the free step, and the dissipated account at the start.

@@ -302,6 +302,7 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   run_events(tick, stats);
   profile.impacts = clock.lap();
   gather_contacts(tick);
+  split_contacts(stats);
   warm_start(tick);
   solve_velocities(tick, stats);
   push_out(tick, stats);
@@ -317,8 +318,8 @@ std::size_t DiscContacts<Real>::bytes() const {
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
          b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(heap_) + b(impact_log_) +
-         b(contacts_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
-         b(e_start_) + b(e_begin_) + b(d_begin_);
+         b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) +
+         b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \

@@ -2,15 +2,23 @@
 // sequential impulses (Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005: clamped
 // accumulated impulses, warm starting, Coulomb friction bounded by μ times the normal
 // impulse), each acting as a constant contact force over the tick, then a bounded push-out of
-// what overlap is left (see disc_contacts.hpp).
+// what overlap is left (see disc_contacts.hpp). A large pile's iterations run over its two
+// halves at once on two threads, then over the contacts across the cut (disc_halves.cpp), with
+// the same result on one thread or two.
 #include <algorithm>
 #include <cmath>
 
 #include "disc_contacts.hpp"
+#include "workers.hpp"
 
 namespace fixstep::detail {
 
-namespace {}  // namespace
+/// What a velocity iteration's share found: the largest change of an accumulated impulse and
+/// the largest normal impulse (N·s). (Not file-local: the solver's lambdas, members of a class
+/// template, hold it.)
+struct RestSweep {
+  double change = 0.0, largest = 0.0;
+};
 
 template <class Real>
 void DiscContacts<Real>::gather_contacts(const Tick& tick) {
@@ -39,6 +47,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     c.friction = std::sqrt(da.friction * db.friction);
     contacts_.push_back(c);
   }
+  plane_contacts_ = static_cast<std::uint32_t>(contacts_.size());
   for (std::uint32_t k = 0; k < n; ++k) {
     const Disc& d = discs_[k];
     if (!d.dynamic || d.sensor) continue;
@@ -77,16 +86,53 @@ template <class Real>
 }
 
 template <class Real>
-void DiscContacts<Real>::warm_start(const Tick& tick) {
-  const double kdt = tick.kappa * tick.dt;
-  for (RestContact& c : contacts_) {
-    const auto it =
-        std::lower_bound(warm_.begin(), warm_.end(), c.key,
-                         [](const WarmImpulse& w, std::uint64_t k) { return w.key < k; });
-    if (it == warm_.end() || it->key != c.key) continue;
-    c.lambda_n = it->lambda_n, c.lambda_t = it->lambda_t;
-    apply(c, c.lambda_n * c.nx - c.lambda_t * c.ny, c.lambda_n * c.ny + c.lambda_t * c.nx, kdt);
+template <class Range>
+void DiscContacts<Real>::parts_pass(const Tick& tick, Range& range) {
+  const auto& p = part_start_;
+  if (tick.threads >= 2 && p[1] > p[0] && p[2] > p[1]) {
+    struct Half {
+      Range* range;
+      std::uint32_t begin, end;
+    } half{&range, p[1], p[2]};
+    Workers& w = broadphase_.worker();
+    w.submit(
+        [](void* h) {
+          const auto* half = static_cast<Half*>(h);
+          (*half->range)(half->begin, half->end, 1);
+        },
+        &half);
+    range(p[0], p[1], 0);
+    w.wait();
+  } else {
+    range(p[0], p[1], 0), range(p[1], p[2], 0);
   }
+  range(p[2], p[3], 0);  // across the cut
+}
+
+template <class Real>
+void DiscContacts<Real>::warm_start(const Tick& tick) {
+  // Last tick's impulses by key: contacts_ is two runs in key order (disc pairs, then
+  // planes), warm_ one, so each run is matched in one walk.
+  const std::size_t bounds[3] = {0, plane_contacts_, contacts_.size()};
+  for (int run = 0; run < 2; ++run) {
+    std::size_t w = 0;
+    for (std::size_t i = bounds[run]; i < bounds[run + 1]; ++i) {
+      RestContact& c = contacts_[i];
+      while (w < warm_.size() && warm_[w].key < c.key) ++w;
+      if (w < warm_.size() && warm_[w].key == c.key) {
+        c.lambda_n = warm_[w].lambda_n, c.lambda_t = warm_[w].lambda_t;
+      }
+    }
+  }
+  const double kdt = tick.kappa * tick.dt;
+  auto range = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const RestContact& c = contacts_[order_[i]];
+      if (c.lambda_n == 0.0 && c.lambda_t == 0.0) continue;
+      apply(c, c.lambda_n * c.nx - c.lambda_t * c.ny, c.lambda_n * c.ny + c.lambda_t * c.nx, kdt);
+    }
+  };
+  parts_pass(tick, range);
 }
 
 template <class Real>
@@ -95,11 +141,11 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
   const std::size_t n = discs_.size();
   if (contacts_.empty()) return;
   stats.velocity_converged = false;
-  for (int it = 0; it < velocity_iterations; ++it) {
-    ++stats.velocity_sweeps;
-    // A sweep that changes no impulse by more than 1e-9 of the largest has converged.
-    double change = 0.0, largest = 0.0;
-    for (RestContact& c : contacts_) {
+  RestSweep sweep[2];
+  auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
+    RestSweep& out = sweep[thread];
+    for (std::uint32_t i = begin; i < end; ++i) {
+      RestContact& c = contacts_[order_[i]];
       auto relative = [&](double& vx, double& vy) {
         vx = evx_[c.a], vy = evy_[c.a];
         if (c.b < n) vx -= evx_[c.b], vy -= evy_[c.b];
@@ -120,10 +166,17 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
       const double dt = lt - c.lambda_t;
       c.lambda_t = lt;
       if (dt != 0.0) apply(c, -dt * c.ny, dt * c.nx, kdt);
-      change = std::max({change, std::abs(dn), std::abs(dt)});
-      largest = std::max(largest, c.lambda_n);
+      out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
+      out.largest = std::max(out.largest, c.lambda_n);
     }
-    if (change <= 1e-9 * largest) {
+  };
+  for (int it = 0; it < settings_.velocity_iterations; ++it) {
+    ++stats.velocity_sweeps;
+    sweep[0] = sweep[1] = RestSweep{};
+    parts_pass(tick, range);
+    // An iteration that changes no impulse by more than 1e-9 of the largest has converged.
+    if (std::max(sweep[0].change, sweep[1].change) <=
+        1e-9 * std::max(sweep[0].largest, sweep[1].largest)) {
       stats.velocity_converged = true;
       break;
     }
@@ -131,32 +184,36 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
 }
 
 template <class Real>
+double DiscContacts<Real>::overlap_of(const Tick& tick, const RestContact& c, double& nx,
+                                      double& ny, double& r_min) const {
+  const std::size_t n = discs_.size();
+  const Disc& da = discs_[c.a];
+  if (c.b >= n) {
+    const PlaneDef& p = tick.planes[c.b - n];
+    nx = p.normal.x, ny = p.normal.y, r_min = da.radius;
+    return da.radius + p.offset - (nx * ex_[c.a] + ny * ey_[c.a]);
+  }
+  const Disc& db = discs_[c.b];
+  const double dx = ex_[c.a] - ex_[c.b], dy = ey_[c.a] - ey_[c.b];
+  const double dist = length(dx, dy);
+  nx = dist > 0.0 ? dx / dist : c.nx, ny = dist > 0.0 ? dy / dist : c.ny;
+  r_min = std::min(da.radius, db.radius);
+  return da.radius + db.radius - dist;
+}
+
+template <class Real>
 void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
   const std::size_t n = discs_.size();
-  auto overlap_of = [&](const RestContact& c, double& nx, double& ny, double& r_min) {
-    const Disc& da = discs_[c.a];
-    if (c.b >= n) {
-      const PlaneDef& p = tick.planes[c.b - n];
-      nx = p.normal.x, ny = p.normal.y, r_min = da.radius;
-      return da.radius + p.offset - (nx * ex_[c.a] + ny * ey_[c.a]);
-    }
-    const Disc& db = discs_[c.b];
-    const double dx = ex_[c.a] - ex_[c.b], dy = ey_[c.a] - ey_[c.b];
-    const double dist = length(dx, dy);
-    nx = dist > 0.0 ? dx / dist : c.nx, ny = dist > 0.0 ? dy / dist : c.ny;
-    r_min = std::min(da.radius, db.radius);
-    return da.radius + db.radius - dist;
-  };
-  for (int it = 0; it < position_iterations && !contacts_.empty(); ++it) {
-    ++stats.position_sweeps;
-    bool pushed = false;  // a sweep that pushes nothing ends the push-out
-    for (const RestContact& c : contacts_) {
+  bool pushed[2] = {false, false};  // an iteration that pushes nothing ends the push-out
+  auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const RestContact& c = contacts_[order_[i]];
       double nx = 0, ny = 0, r_min = 0;
-      const double depth = overlap_of(c, nx, ny, r_min);
+      const double depth = overlap_of(tick, c, nx, ny, r_min);
       if (depth <= slop * r_min) continue;
-      pushed = true;
+      pushed[thread] = true;
       const double push = std::min(depth - slop * r_min, max_push_out * r_min);
-      const double ia = discs_[c.a].inv_mass, ib = c.b < n ? discs_[c.b].inv_mass : 0.0;
+      const double ia = c.inv_a, ib = c.b < n ? c.inv_b : 0.0;
       const double share = push / (ia + ib);
       ex_[c.a] += ia * share * nx, ey_[c.a] += ia * share * ny;
       if (ia > 0.0) changed_[c.a] |= 2;
@@ -165,12 +222,17 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
         changed_[c.b] |= 2;
       }
     }
-    if (!pushed) break;
+  };
+  for (int it = 0; it < settings_.position_iterations && !contacts_.empty(); ++it) {
+    ++stats.position_sweeps;
+    pushed[0] = pushed[1] = false;
+    parts_pass(tick, range);
+    if (!pushed[0] && !pushed[1]) break;
   }
   stats.touching = contacts_.size();
   for (const RestContact& c : contacts_) {
     double nx = 0, ny = 0, r_min = 0;
-    const double depth = overlap_of(c, nx, ny, r_min);
+    const double depth = overlap_of(tick, c, nx, ny, r_min);
     stats.max_overlap = std::max(stats.max_overlap, depth);
     if (std::isgreater(depth, slop * r_min)) stats.positions_settled = false;
   }
@@ -178,12 +240,15 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
 
 template <class Real>
 void DiscContacts<Real>::keep_impulses() {
+  // The two key-ordered runs of contacts_ merged into one key-ordered list.
   warm_.clear();
-  for (const RestContact& c : contacts_) {
+  std::size_t i = 0, j = plane_contacts_;
+  const std::size_t mid = plane_contacts_, end = contacts_.size();
+  while (i < mid || j < end) {
+    const bool disc = j == end || (i < mid && contacts_[i].key < contacts_[j].key);
+    const RestContact& c = contacts_[disc ? i++ : j++];
     if (c.lambda_n > 0.0) warm_.push_back(WarmImpulse{c.key, c.lambda_n, c.lambda_t});
   }
-  std::sort(warm_.begin(), warm_.end(),
-            [](const WarmImpulse& l, const WarmImpulse& r) { return l.key < r.key; });
 }
 
 template <class Real>
@@ -208,13 +273,15 @@ void DiscContacts<Real>::finish(const Tick& tick) {
   }
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                      \
-  template void DiscContacts<Real>::gather_contacts(const Tick&);                      \
-  template void DiscContacts<Real>::apply(const RestContact&, double, double, double); \
-  template void DiscContacts<Real>::warm_start(const Tick&);                           \
-  template void DiscContacts<Real>::solve_velocities(const Tick&, ContactStats&);      \
-  template void DiscContacts<Real>::push_out(const Tick&, ContactStats&);              \
-  template void DiscContacts<Real>::keep_impulses();                                   \
+#define FIXSTEP_INSTANTIATE(Real)                                                          \
+  template void DiscContacts<Real>::gather_contacts(const Tick&);                          \
+  template void DiscContacts<Real>::apply(const RestContact&, double, double, double);     \
+  template void DiscContacts<Real>::warm_start(const Tick&);                               \
+  template void DiscContacts<Real>::solve_velocities(const Tick&, ContactStats&);          \
+  template void DiscContacts<Real>::push_out(const Tick&, ContactStats&);                  \
+  template double DiscContacts<Real>::overlap_of(const Tick&, const RestContact&, double&, \
+                                                 double&, double&) const;                  \
+  template void DiscContacts<Real>::keep_impulses();                                       \
   template void DiscContacts<Real>::finish(const Tick&);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

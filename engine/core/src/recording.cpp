@@ -90,7 +90,13 @@ std::uint64_t definition_hash(const WorldDef& def) {
     h.add(p.normal), h.add(p.offset), h.add(p.restitution), h.add(p.friction);
   }
   if (def.settings.contacts) {  // absent: the hash of a world from before contacts
-    h.add(def.settings.contacts->restitution), h.add(def.settings.contacts->friction);
+    const ContactSettings& c = *def.settings.contacts;
+    h.add(c.restitution), h.add(c.friction);
+    // The solver's iterations when not the defaults (absent: the hash from before them).
+    if (c.velocity_iterations != ContactSettings::default_velocity_iterations ||
+        c.position_iterations != ContactSettings::default_position_iterations) {
+      h.add(c.velocity_iterations), h.add(c.position_iterations);
+    }
   }
   if (def.settings.seed != 0) h.add(def.settings.seed);  // 0: the hash from before seeds
   return h.value();

@@ -9,6 +9,7 @@
 
 #include "disc_contacts.hpp"
 #include "fixstep/detail/world_kernel.hpp"
+#include "workers.hpp"
 
 namespace fixstep {
 
@@ -157,7 +158,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       contact_.after,
       settings_.dt,
       kappa(settings_.integrator, settings_.substeps),
-      settings_.threads == 1 ? 1 : 2};
+      settings_.threads == 1 || !detail::threads_supported ? 1 : 2};  // same states either way
   dc.resolve(t, contact_stats_, profile_);
   const auto discs = dc.discs();
   if (const auto* hit = dc.cap_hit(); hit && !fault_) {  // cold: a cap stopped the tick's work

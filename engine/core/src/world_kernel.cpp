@@ -76,6 +76,19 @@ detail::WorldKernel<Real>::WorldKernel(const WorldSettings& settings) : settings
     throw std::invalid_argument(
         fmt::format("world: substeps must be >= 1 (got {})", settings.substeps));
   }
+  if (const auto& c = settings.contacts) {
+    constexpr int most = ContactSettings::max_iterations;
+    if (c->velocity_iterations < 1 || c->velocity_iterations > most) {
+      throw std::invalid_argument(
+          fmt::format("world: contacts.velocity_iterations must be in [1, {}] (got {})", most,
+                      c->velocity_iterations));
+    }
+    if (c->position_iterations < 0 || c->position_iterations > most) {
+      throw std::invalid_argument(
+          fmt::format("world: contacts.position_iterations must be in [0, {}] (got {})", most,
+                      c->position_iterations));
+    }
+  }
 }
 
 template <class Real>

@@ -170,10 +170,20 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
     warn_unused_disc_keys(r, doc);
     return;
   }
-  r.check_keys(*t, "contacts", {"restitution", "friction"});
+  r.check_keys(*t, "contacts",
+               {"restitution", "friction", "velocity_iterations", "position_iterations"});
   ContactSettings contacts;
   contacts.restitution = restitution(r, *t, "contacts").value_or(0.0);
   contacts.friction = friction(r, *t, "contacts").value_or(0.0);
+  constexpr int most = ContactSettings::max_iterations;
+  if (const toml::node* n = t->get("velocity_iterations")) {
+    contacts.velocity_iterations =
+        static_cast<int>(r.integer_node(*n, "contacts.velocity_iterations", 1, most));
+  }
+  if (const toml::node* n = t->get("position_iterations")) {
+    contacts.position_iterations =
+        static_cast<int>(r.integer_node(*n, "contacts.position_iterations", 0, most));
+  }
   scene.settings.contacts = contacts;
   const bool discs = std::any_of(scene.bodies.begin(), scene.bodies.end(),
                                  [](const BodyDef& b) { return b.collider.has_value(); });

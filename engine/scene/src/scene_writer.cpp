@@ -174,8 +174,15 @@ void write_world(std::string& out, const WorldDef& def) {
     out += fmt::format("damping_split = \"{}\"\n", damping_split_name(s.damping_split));
   }
   if (s.contacts) {
-    fmt::format_to(it, "\n[contacts]\nrestitution = {}\nfriction = {}\n",
-                   num(s.contacts->restitution), num(s.contacts->friction));
+    const ContactSettings& c = *s.contacts;
+    fmt::format_to(it, "\n[contacts]\nrestitution = {}\nfriction = {}\n", num(c.restitution),
+                   num(c.friction));
+    if (c.velocity_iterations != ContactSettings::default_velocity_iterations) {
+      fmt::format_to(it, "velocity_iterations = {}\n", c.velocity_iterations);
+    }
+    if (c.position_iterations != ContactSettings::default_position_iterations) {
+      fmt::format_to(it, "position_iterations = {}\n", c.position_iterations);
+    }
   }
 }
 

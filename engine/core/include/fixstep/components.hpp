@@ -131,9 +131,23 @@ struct Collider {
 
 /// Body-vs-body contacts of discs (Collider), on when WorldSettings::contacts is set. Bodies
 /// joined by a link never collide with each other (Box2D's collideConnected = false).
+///
+/// The resting solver (disc_contacts.hpp) runs warm-started sequential impulses (Catto, GDC
+/// 2005) over the touching pairs in a fixed number of iterations a tick, as Box2D 2.4
+/// (velocityIterations, positionIterations) and Chipmunk2D (iterations) do: the iteration
+/// counts are part of the method, like dt, not caps. What one tick's iterations leave (an
+/// impulse not yet at its limit, an overlap deeper than the slop) is carried into the next
+/// tick by warm starting and the next tick's push-out; ContactStats reports both. More
+/// iterations cost proportionally more and settle a deep pile in fewer ticks.
 struct ContactSettings {
   double restitution = 0.0;  ///< e in [0, 1], every pair's default
   double friction = 0.0;     ///< Coulomb μ >= 0, every pair's default
+  /// Velocity iterations a tick (normal and friction impulses), in [1, max_iterations].
+  int velocity_iterations = default_velocity_iterations;
+  /// Position iterations a tick (push-out of overlap beyond the slop), in [0, max_iterations].
+  int position_iterations = default_position_iterations;
+  static constexpr int default_velocity_iterations = 20, default_position_iterations = 10;
+  static constexpr int max_iterations = 1000;
 };
 
 /// A static half-plane n·x >= offset of free space (ground, wall), which bodies with a

@@ -32,21 +32,23 @@ struct ContactStats {
   /// Contact work a cap stopped in the last tick (limits.hpp: max_candidate_pairs,
   /// max_tick_predictions): 0, or 1 when the tick reached one; World::fault() then names it.
   std::size_t capped = 0;
-  /// Gauss–Seidel sweeps the resting solver ran over the touching pairs in the last tick:
-  /// velocity sweeps (impulses; at most max_velocity_sweeps) and push-out sweeps (positions; at
-  /// most max_position_sweeps). 0 when no pair touched.
+  /// Iterations the resting solver ran over the touching pairs in the last tick: velocity
+  /// iterations (impulses; at most ContactSettings::velocity_iterations) and position
+  /// iterations (push-out; at most ContactSettings::position_iterations). 0 when no pair
+  /// touched. Fewer than the setting when the solver finished early (below).
   int velocity_sweeps = 0;
   int position_sweeps = 0;
-  /// Whether the velocity sweeps converged (the last one changed no accumulated impulse by more
-  /// than 1e-9 of the largest) rather than stopping at max_velocity_sweeps; true when no pair
-  /// touched.
+  /// Whether the velocity iterations finished early: the last one changed no accumulated
+  /// impulse by more than 1e-9 of the largest. False is normal in a deep pile: the rest is
+  /// carried into the next tick by warm starting. True when no pair touched.
   bool velocity_converged = true;
-  /// Whether the push-out left no pair deeper than the solver's slop (0.5 % of the smaller
-  /// radius) rather than stopping at max_position_sweeps; true when no pair touched.
+  /// Whether no pair is left deeper than the solver's slop (0.5 % of the smaller radius) after
+  /// the position iterations. False is normal while a pile settles: the next tick's push-out
+  /// goes on (max_overlap says how deep). True when no pair touched.
   bool positions_settled = true;
-  /// The resting solver's sweep bounds (the values velocity_sweeps and position_sweeps reach
-  /// when the solver did not converge).
-  static constexpr int max_velocity_sweeps = 20, max_position_sweeps = 10;
+  /// Touching pairs across the cut that splits a large pile in two halves for the resting
+  /// solver (the halves are solved at once on two threads; these after them, on one).
+  std::size_t across = 0;
 };
 
 /// Where the last tick's time went in a world with disc contacts (World::profile()): seconds of
