@@ -111,15 +111,15 @@ TEST(ContactSweeps, IterationCountsOutOfRangeAreRefused) {
 }
 
 // A pile large enough to be split in halves for two threads (contacts across the cut solved
-// after them): one thread and two step it to the same bits, tick after tick, while it falls,
-// collides and settles.
+// after them) and to share the first impact predictions between them: one thread and two step
+// it to the same bits, tick after tick, while it falls, collides and settles.
 TEST(ContactSweeps, APileSplitForTwoThreadsStepsToTheSameBitsOnOne) {
   auto make = [](int threads) {
     WorldDef def = ground_world();
     def.settings.threads = threads;
     def.planes.push_back(PlaneDef{.normal = {1, 0}, .offset = -2.0, .friction = 0.3});
     def.planes.push_back(PlaneDef{.normal = {-1, 0}, .offset = -2.0, .friction = 0.3});
-    for (int i = 0; i < 30; ++i) {
+    for (int i = 0; i < 40; ++i) {
       for (int j = 0; j < 40; ++j) {
         const double jitter = 0.001 * double((i * 7 + j * 3) % 5);
         def.bodies.push_back(falling_disc({-1.95 + 0.1 * j + jitter, 0.05 + 0.1 * i}, 0.049));
@@ -135,7 +135,8 @@ TEST(ContactSweeps, APileSplitForTwoThreadsStepsToTheSameBitsOnOne) {
     across = std::max(across, one->contact_stats().across);
     ASSERT_EQ(one->contact_stats().across, two->contact_stats().across) << "tick " << t;
   }
-  EXPECT_GT(one->contact_stats().touching, 1024u);  // split, not one part
+  EXPECT_GT(one->contact_stats().touching, 1024u);         // split, not one part
+  EXPECT_GT(one->contact_stats().candidate_pairs, 4096u);  // predictions shared
   EXPECT_GT(across, 0u);
 }
 

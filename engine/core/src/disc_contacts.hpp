@@ -173,6 +173,8 @@ class DiscContacts {
 
   /// Contacts from which the resting solver splits them into two halves (split_contacts()).
   static constexpr std::size_t min_split_contacts = 1024;
+  /// Candidate pairs from which two threads share the first impact predictions.
+  static constexpr std::size_t min_parallel_pairs = 4096;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
   static constexpr double slop = 0.005;
   /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
@@ -190,7 +192,13 @@ class DiscContacts {
   void run_events(const Tick& tick, ContactStats& stats);
   [[nodiscard]] std::uint32_t largest_box() const;
   [[nodiscard]] bool handed_over(std::uint32_t pair, double dt) const;
+  /// Pushes pair's next impact after `now` (s) onto the event queue, if it has one this tick.
   void predict(std::uint32_t pair, double now, double dt);
+  /// The pair's next impact after `now` into out; false when it has none this tick.
+  bool next_event(std::uint32_t pair, double now, double dt, DiscEvent& out) const;
+  /// The event queue filled with every pair's first impact (two threads share the pairs when
+  /// tick.threads >= 2 and there are min_parallel_pairs or more).
+  void first_events(const Tick& tick);
   void impact(std::uint32_t pair, double now, double dt);
   // phase 2 (disc_rest.cpp)
   void gather_contacts(const Tick& tick);
@@ -226,7 +234,7 @@ class DiscContacts {
   std::vector<SensorOverlap> sensed_;
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
-  std::vector<DiscEvent> heap_;
+  std::vector<DiscEvent> heap_, events_;  ///< the event queue; first_events()'s second half
   std::vector<DiscImpact> impact_log_;
   std::vector<RestContact> contacts_;  ///< disc pairs in key order, then planes in key order
   std::uint32_t plane_contacts_ = 0;   ///< where contacts_'s plane contacts begin

@@ -9,6 +9,7 @@
 #include "fixstep/limits.hpp"
 #include "fixstep/stop_request.hpp"
 #include "phase_clock.hpp"
+#include "workers.hpp"
 
 namespace fixstep::detail {
 
@@ -141,6 +142,15 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) 
 
 template <class Real>
 void DiscContacts<Real>::predict(std::uint32_t pair, double now, double dt) {
+  DiscEvent ev;
+  if (!next_event(pair, now, dt, ev)) return;
+  heap_.push_back(ev);
+  std::push_heap(heap_.begin(), heap_.end(), later);
+}
+
+template <class Real>
+bool DiscContacts<Real>::next_event(std::uint32_t pair, double now, double dt,
+                                    DiscEvent& out) const {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
   const DiscMotion &ma = motion_[a], &mb = motion_[b];
   RelativeMotion r;
@@ -179,9 +189,44 @@ void DiscContacts<Real>::predict(std::uint32_t pair, double now, double dt) {
       if (length(ex, ey) - r.radius <= 16.0 * eps * scale && impact_speed(h, 0.0)) when = dt;
     }
   }
-  if (when > dt) return;
-  heap_.push_back(DiscEvent{when, pair, stamp_[a], stamp_[b]});
-  std::push_heap(heap_.begin(), heap_.end(), later);
+  if (when > dt) return false;
+  out = DiscEvent{when, pair, stamp_[a], stamp_[b]};
+  return true;
+}
+
+template <class Real>
+void DiscContacts<Real>::first_events(const Tick& tick) {
+  // Each pair's first event from the tick's start: independent of the others, so two threads
+  // share the pairs; the heap pops them in (time, pair) order whatever order they are found in.
+  const auto m = static_cast<std::uint32_t>(pairs_.size());
+  auto find = [&](std::uint32_t begin, std::uint32_t end, std::vector<DiscEvent>& out) {
+    DiscEvent ev;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      if (next_event(i, 0.0, tick.dt, ev)) out.push_back(ev);
+    }
+  };
+  heap_.clear();
+  if (tick.threads >= 2 && m >= min_parallel_pairs) {
+    struct Half {
+      decltype(find)* run;
+      std::uint32_t begin, end;
+      std::vector<DiscEvent>* out;
+    } half{&find, m / 2, m, &events_};
+    events_.clear();
+    Workers& w = broadphase_.worker();
+    w.submit(
+        [](void* h) {
+          const auto* half = static_cast<Half*>(h);
+          (*half->run)(half->begin, half->end, *half->out);
+        },
+        &half);
+    find(0, m / 2, heap_);
+    w.wait();
+    heap_.insert(heap_.end(), events_.begin(), events_.end());
+  } else {
+    find(0, m, heap_);
+  }
+  std::make_heap(heap_.begin(), heap_.end(), later);
 }
 
 template <class Real>
@@ -250,9 +295,8 @@ bool DiscContacts<Real>::handed_over(std::uint32_t pair, double dt) const {
 template <class Real>
 void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
-  heap_.clear();
   impact_log_.clear();
-  for (std::uint32_t i = 0; i < pairs_.size(); ++i) predict(i, 0.0, dt);
+  first_events(tick);
   std::uint64_t again = 0;  // predictions after impacts, at most max_tick_predictions
   const std::uint64_t cap = max_tick_predictions(discs_.size());
   while (!heap_.empty()) {
@@ -317,9 +361,10 @@ std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
-         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(heap_) + b(impact_log_) +
-         b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) +
-         b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_);
+         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(heap_) + b(events_) +
+         b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) + b(ex_) +
+         b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) +
+         b(d_begin_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \
@@ -332,6 +377,8 @@ std::size_t DiscContacts<Real>::bytes() const {
   template void DiscContacts<Real>::build_motions(const Tick&);                                    \
   template bool DiscContacts<Real>::find_candidates(const Tick&, ContactStats&);                   \
   template void DiscContacts<Real>::predict(std::uint32_t, double, double);                        \
+  template bool DiscContacts<Real>::next_event(std::uint32_t, double, double, DiscEvent&) const;   \
+  template void DiscContacts<Real>::first_events(const Tick&);                                     \
   template void DiscContacts<Real>::impact(std::uint32_t, double, double);                         \
   template void DiscContacts<Real>::run_events(const Tick&, ContactStats&);                        \
   template std::uint32_t DiscContacts<Real>::largest_box() const;                                  \
