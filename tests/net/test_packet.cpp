@@ -36,7 +36,7 @@ PacketError decode(const Bytes& b, const net::DecodeContext& ctx = two_players()
 
 Bytes request(std::uint8_t flags = 0, std::uint32_t nonce = 77) {
   Bytes b;
-  b.header(1, 0xff, 5).u8(flags).u32(nonce).zeros(64 - 17);
+  b.header(1, 0xff, 5).u8(flags).u32(nonce).u64(0xfeedf00d).zeros(64 - 25);
   return b;
 }
 
@@ -47,8 +47,10 @@ TEST(NetPacket, HandshakeRequestDecodesAndIsPaddedTo64Bytes) {
   EXPECT_EQ(p.header.sequence, 5u);
   EXPECT_TRUE(p.request.spectator);
   EXPECT_EQ(p.request.nonce, 1234u);
+  EXPECT_EQ(p.request.definition_hash, 0xfeedf00du);
   std::vector<std::uint8_t> encoded;
-  net::encode_handshake_request({.sequence = 5}, {.spectator = true, .nonce = 1234}, encoded);
+  net::encode_handshake_request(
+      {.sequence = 5}, {.spectator = true, .nonce = 1234, .definition_hash = 0xfeedf00d}, encoded);
   EXPECT_EQ(encoded, request(1, 1234).v);
 }
 

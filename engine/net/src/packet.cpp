@@ -54,7 +54,8 @@ PacketError decode_request(detail::ByteReader& r, std::size_t size, Packet& p) {
   if ((flags & ~1u) != 0) return PacketError::bad_field;
   p.request.spectator = (flags & 1u) != 0;
   p.request.nonce = r.u32();
-  if (!r.zeros(handshake_request_bytes - header_bytes - 5)) return PacketError::bad_field;
+  p.request.definition_hash = r.u64();
+  if (!r.zeros(handshake_request_bytes - header_bytes - 13)) return PacketError::bad_field;
   return PacketError::none;
 }
 
@@ -132,7 +133,7 @@ PacketError decode_body(detail::ByteReader& r, std::span<const std::uint8_t> byt
       if (size < disconnect_bytes) return PacketError::too_short;
       if (size > disconnect_bytes) return PacketError::trailing_bytes;
       const std::uint8_t reason = r.u8();
-      if (reason < 1 || reason > 4) return PacketError::bad_field;
+      if (reason < 1 || reason > 5) return PacketError::bad_field;
       p.disconnect.reason = static_cast<DisconnectReason>(reason);
       return PacketError::none;
     }
@@ -180,6 +181,7 @@ void encode_handshake_request(const Header& h, const HandshakeRequest& m,
   write_header(w, {MessageKind::handshake_request, no_slot, h.sequence});
   w.u8(m.spectator ? 1 : 0);
   w.u32(m.nonce);
+  w.u64(m.definition_hash);
   w.zeros(handshake_request_bytes - w.size());
 }
 

@@ -73,7 +73,8 @@ struct Header {
 
 struct HandshakeRequest {
   bool spectator = false;
-  std::uint32_t nonce = 0;  ///< echoed in the accept
+  std::uint32_t nonce = 0;            ///< echoed in the accept
+  std::uint64_t definition_hash = 0;  ///< the joiner's world (a host with another refuses)
 };
 
 struct HandshakeAccept {
@@ -116,9 +117,10 @@ struct StateHashMessage {
 
 enum class DisconnectReason : std::uint8_t {
   leaving = 1,
-  refused = 2,  ///< the host refused the handshake (full, another world, bad request)
+  refused = 2,  ///< the host refused the handshake: no free slot
   desync = 3,
   timeout = 4,
+  another_world = 5,  ///< the host refused the handshake: the joiner's world is another
 };
 
 struct DisconnectMessage {

@@ -1,0 +1,153 @@
+// Deterministic lockstep over the network: every peer steps tick t once every player's input
+// for t has arrived, so all peers compute the same states bit for bit (fixstep's determinism),
+// sending only inputs. A host (player 0) relays the inputs of each player to the others (a
+// star: a joining peer knows only the host's address); spectators receive them all and send
+// none. Local input is played `input_delay` ticks after it is given (the playout delay), so a
+// link whose round trip is shorter than the delay never stalls. Peers exchange state hashes of
+// confirmed ticks every hash_every ticks; a mismatch stops the match with a located report.
+// Each peer records the confirmed inputs as a fixstep recording. docs/NETWORK.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fixstep/net_protocol.hpp"
+#include "fixstep/net_transport.hpp"
+#include "fixstep/recording.hpp"
+#include "fixstep/rules.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep::net {
+
+/// The input a tick is stepped with, from the players' inputs of that tick (index = slot). Runs
+/// on every peer inside the tick, before World::step, so it must be deterministic (as rules
+/// are): it may read the world (a player's buttons turned into an impulse on the body it
+/// controls, found by handle).
+using InputMerge = std::function<TickInput(std::span<const TickInput> players, const World& world)>;
+
+/// The default merge: body inputs concatenated in slot order; push summed in slot order;
+/// held, pressed and released or-ed; pointer and drag body the first player's (by slot) that
+/// drags a body, else player 0's pointer and no drag.
+[[nodiscard]] TickInput merge_inputs(std::span<const TickInput> players, const World& world);
+
+/// The match: what the host decides and sends joiners in the handshake (players, input_delay,
+/// hash_every), and what each peer decides for itself (the rest).
+struct MatchSettings {
+  std::uint8_t players = 2;       ///< 2 .. max_players
+  std::uint16_t input_delay = 3;  ///< ticks between giving an input and its tick, >= 1
+  std::uint16_t hash_every = 30;  ///< ticks between exchanged state hashes, >= 1
+  std::uint64_t match_ticks = 0;  ///< the match ends after this many ticks; 0: never
+  std::uint32_t resend_ms = 10;   ///< unacknowledged inputs resent at least this often
+  /// A player (or the host) heard from for this long stops the match ("timed out").
+  std::uint32_t peer_timeout_ms = 5000;
+  /// A connection that has not completed the handshake after this long is dropped.
+  std::uint32_t handshake_timeout_ms = 3000;
+  /// Recording: the scene name and text (Recorder), the state hash stored every this many
+  /// ticks, and the rules' name and version when the match has rules (Recorder::set_rules).
+  std::string scene_name = "network match";
+  std::string scene_text;
+  std::uint64_t record_hash_every = 1;
+  std::string rules_name;
+  std::uint32_t rules_version = 0;
+};
+
+/// Where a peer's match is.
+enum class MatchState : std::uint8_t {
+  connecting,  ///< waiting for the transport or the handshake
+  playing,
+  finished,  ///< match_ticks stepped
+  desynced,  ///< a state hash differed: desync() says where
+  failed,    ///< refused, timed out or disconnected: error() says why
+};
+
+/// Where two peers' states first differed, as far as the exchanged hashes show: the state
+/// after `tick` ticks hashed `ours` on player (or spectator) `our_slot` and `theirs` on
+/// `their_slot`; the hashes of the tick hash_every before matched.
+struct DesyncReport {
+  std::uint64_t tick = 0;
+  std::uint8_t our_slot = 0, their_slot = 0;
+  std::uint64_t ours = 0, theirs = 0;
+};
+
+/// What a peer counted.
+struct MatchStats {
+  std::uint64_t packets_sent = 0, bytes_sent = 0;
+  std::uint64_t packets_received = 0, bytes_received = 0;
+  /// Packets dropped, by PacketError (index = its value): malformed, out of window, replayed,
+  /// unexpected. None of them is ever used.
+  std::array<std::uint64_t, packet_error_count> dropped{};
+  std::uint64_t conflicting_inputs = 0;  ///< resent inputs that differ from the first copy
+  std::uint64_t stalls = 0;         ///< advance() calls that stepped nothing, waiting for input
+  double stalled_ms = 0.0;          ///< time spent waiting so
+  std::uint32_t round_trip_ms = 0;  ///< to the host (a joiner) or the slowest player (a host)
+  std::uint64_t hashes_compared = 0;
+  [[nodiscard]] std::uint64_t dropped_total() const;
+};
+
+/// One peer of a lockstep match: the host or a joiner (player or spectator). Single-threaded:
+/// call poll() and advance() often (every frame, or every millisecond in a test).
+class LockstepPeer {
+ public:
+  /// Hosts a match of `def` as player 0, listening on `bind` (127.0.0.1 and a port; port 0
+  /// picks one: port()). `rules` run after every tick (held by reference: they must outlive
+  /// the peer); `merge` makes each tick's input (merge_inputs when empty). Throws
+  /// TransportError when the port cannot be bound, std::invalid_argument for bad settings.
+  [[nodiscard]] static LockstepPeer host(const WorldDef& def, const MatchSettings& settings,
+                                         const Address& bind, TickRules rules = {},
+                                         InputMerge merge = {});
+  /// Joins the match hosted at `host` as a player (or a spectator). players, input_delay and
+  /// hash_every come from the host; the rest from `settings`. The host refuses a joiner whose
+  /// world differs (definition hash).
+  [[nodiscard]] static LockstepPeer join(const WorldDef& def, const MatchSettings& settings,
+                                         const Address& host, bool spectator = false,
+                                         TickRules rules = {}, InputMerge merge = {});
+  LockstepPeer(LockstepPeer&&) noexcept;
+  LockstepPeer& operator=(LockstepPeer&&) noexcept;
+  ~LockstepPeer();
+
+  /// Receives and handles every packet that has arrived (waiting at most wait_ms for the
+  /// first), sends what is due, checks timeouts.
+  void poll(std::uint32_t wait_ms = 0);
+  /// Whether the local player may give the next input (a player, playing, fewer than
+  /// input_delay + 1 inputs ahead of the next tick to step).
+  [[nodiscard]] bool wants_input() const;
+  /// The local player's input for tick next_input_tick() (its tick field is set). Throws
+  /// std::logic_error when !wants_input(), std::invalid_argument when the network refuses it
+  /// (check_input).
+  void add_input(TickInput input);
+  [[nodiscard]] std::uint64_t next_input_tick() const;
+  /// Steps every tick whose inputs have all arrived (none past match_ticks), running the
+  /// merge, World::step and the rules, recording each; returns the ticks stepped. Nothing
+  /// stepped while playing counts a stall.
+  int advance();
+
+  [[nodiscard]] MatchState state() const;
+  [[nodiscard]] const std::string& error() const;  ///< why it failed ("" otherwise)
+  [[nodiscard]] const std::optional<DesyncReport>& desync() const;
+  [[nodiscard]] const MatchStats& stats() const;
+  [[nodiscard]] std::uint8_t slot() const;     ///< no_slot until the handshake completes
+  [[nodiscard]] std::uint8_t players() const;  ///< 0 until the handshake completes
+  [[nodiscard]] std::uint16_t port() const;    ///< the bound port
+  [[nodiscard]] const World& world() const;
+  /// The world, for a test that corrupts one peer's state on purpose (a desync).
+  [[nodiscard]] World& world_for_test();
+  /// The recording of the ticks stepped so far (Recorder::finish at the current state).
+  [[nodiscard]] Recording recording() const;
+  /// Leaves: tells the others (disconnect) and flushes. The peer is finished or failed after.
+  void leave();
+
+  struct Impl;  ///< internal (engine/net/src/lockstep_impl.hpp)
+
+ private:
+  explicit LockstepPeer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fixstep::net

@@ -1,0 +1,283 @@
+// fixstep::net: a lockstep peer's construction, stepping and hashes (fixstep/lockstep.hpp).
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "fixstep/net_input_codec.hpp"
+#include "lockstep_impl.hpp"
+
+namespace fixstep::net {
+
+namespace {
+
+void check_settings(const MatchSettings& s) {
+  if (s.players < 2 || s.players > max_players) {
+    throw std::invalid_argument(
+        fmt::format("lockstep: players must be 2 .. {} (got {})", max_players, s.players));
+  }
+  if (s.input_delay < 1) throw std::invalid_argument("lockstep: input_delay must be >= 1 tick");
+  if (s.hash_every < 1) throw std::invalid_argument("lockstep: hash_every must be >= 1 tick");
+}
+
+std::unique_ptr<LockstepPeer::Impl> make_impl(const WorldDef& def, const MatchSettings& settings,
+                                              TickRules rules, InputMerge merge) {
+  auto impl = std::make_unique<LockstepPeer::Impl>();
+  impl->settings = settings;
+  impl->def = def;
+  impl->def_hash = definition_hash(def);
+  impl->world = std::make_unique<World>(def);
+  impl->rules = std::move(rules);
+  impl->merge = merge ? std::move(merge) : InputMerge(merge_inputs);
+  impl->started_at = detail::clock_ms();
+  // A nonce that differs between runs and peers; only echoed, never trusted for security.
+  impl->nonce = static_cast<std::uint32_t>(impl->started_at * 1000.0) ^
+                static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(impl.get()));
+  return impl;
+}
+
+}  // namespace
+
+TickInput merge_inputs(std::span<const TickInput> players, const World& /*world*/) {
+  TickInput out;
+  bool dragging = false;
+  for (const TickInput& in : players) {
+    out.push.x += in.push.x;
+    out.push.y += in.push.y;
+    out.held |= in.held;
+    out.pressed |= in.pressed;
+    out.released |= in.released;
+    if (!dragging && !in.drag_body.is_null()) {
+      out.pointer = in.pointer;
+      out.drag_body = in.drag_body;
+      dragging = true;
+    }
+    out.bodies.insert(out.bodies.end(), in.bodies.begin(), in.bodies.end());
+  }
+  if (!dragging && !players.empty()) out.pointer = players[0].pointer;
+  return out;
+}
+
+std::uint64_t MatchStats::dropped_total() const {
+  std::uint64_t n = 0;
+  for (std::uint64_t d : dropped) n += d;
+  return n;
+}
+
+LockstepPeer::LockstepPeer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+LockstepPeer::LockstepPeer(LockstepPeer&&) noexcept = default;
+LockstepPeer& LockstepPeer::operator=(LockstepPeer&&) noexcept = default;
+LockstepPeer::~LockstepPeer() = default;
+
+LockstepPeer LockstepPeer::host(const WorldDef& def, const MatchSettings& settings,
+                                const Address& bind, TickRules rules, InputMerge merge) {
+  check_settings(settings);
+  auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
+  impl->is_host = true;
+  impl->transport.emplace(
+      Transport::listen(bind, max_players - 1 + max_spectators,
+                        {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}));
+  impl->start(settings.players, 0);
+  return LockstepPeer(std::move(impl));
+}
+
+LockstepPeer LockstepPeer::join(const WorldDef& def, const MatchSettings& settings,
+                                const Address& host, bool spectator, TickRules rules,
+                                InputMerge merge) {
+  auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
+  impl->spectator = spectator;
+  impl->host_address = host;
+  impl->transport.emplace(
+      Transport::connect(host, {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}));
+  detail::Remote r;
+  r.conn = 0;
+  r.slot = 0;
+  r.connected_at = r.last_heard = impl->started_at;
+  impl->remotes.push_back(r);
+  return LockstepPeer(std::move(impl));
+}
+
+void LockstepPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
+  players = player_count;
+  slot = own_slot;
+  state = MatchState::playing;
+  for (std::size_t p = 0; p < players; ++p) {
+    inputs[p].clear();
+    for (std::uint64_t t = 0; t < settings.input_delay; ++t) inputs[p].push_back(TickInput{t});
+  }
+  recorder.emplace(def, settings.scene_name, settings.record_hash_every, settings.scene_text);
+  if (!settings.rules_name.empty())
+    recorder->set_rules(settings.rules_name, settings.rules_version);
+}
+
+void LockstepPeer::Impl::fail(std::string why) {
+  if (state == MatchState::failed || state == MatchState::desynced) return;
+  state = MatchState::failed;
+  error = std::move(why);
+}
+
+std::string LockstepPeer::Impl::who(const detail::Remote& r) const {
+  const std::string address = transport->peer_address(r.conn);
+  if (!is_host) return fmt::format("the host ({})", address);
+  if (r.slot < max_players) return fmt::format("player {} ({})", r.slot, address);
+  if (r.slot != no_slot)
+    return fmt::format("spectator {} ({})", r.slot - spectator_slot_base, address);
+  return fmt::format("a peer that has not joined ({})", address);
+}
+
+void LockstepPeer::Impl::mark_dirty() {
+  for (detail::Remote& r : remotes) r.dirty = true;
+}
+
+void LockstepPeer::Impl::record_hash(std::uint64_t tick, std::uint64_t hash) {
+  own_hashes[tick] = hash;
+  if (slot < players) send_hash({slot, static_cast<std::uint32_t>(tick), hash}, nullptr);
+  compare_hashes();
+}
+
+void LockstepPeer::Impl::compare_hashes() {
+  for (auto it = their_hashes.begin(); it != their_hashes.end();) {
+    const auto own = own_hashes.find(it->first);
+    if (own == own_hashes.end()) {
+      ++it;
+      continue;
+    }
+    ++stats.hashes_compared;
+    if (own->second != it->second.hash && !desync) {
+      desync = DesyncReport{it->first, slot, it->second.player, own->second, it->second.hash};
+      state = MatchState::desynced;
+      error = fmt::format(
+          "desync at tick {}: our state (slot {}) hashes {:016x}, player {}'s {:016x}; the "
+          "hashes of tick {} matched",
+          it->first, slot, own->second, it->second.player, it->second.hash,
+          it->first >= settings.hash_every ? it->first - settings.hash_every : 0);
+    }
+    it = their_hashes.erase(it);
+  }
+}
+
+void LockstepPeer::poll(std::uint32_t wait_ms) {
+  Impl& m = *impl_;
+  for (;;) {
+    const TransportEvent ev = m.transport->poll(wait_ms);
+    wait_ms = 0;
+    if (ev.kind == TransportEvent::Kind::none) break;
+    m.handle(ev, detail::clock_ms());
+  }
+  const double now = detail::clock_ms();
+  m.check_timeouts(now);
+  m.send_due(now);
+  m.transport->flush();
+}
+
+bool LockstepPeer::wants_input() const {
+  const Impl& m = *impl_;
+  if (m.state != MatchState::playing || m.slot >= m.players) return false;
+  const std::uint64_t next = m.known(m.slot);
+  if (m.settings.match_ticks != 0 && next >= m.settings.match_ticks) return false;
+  return next < m.next_step + m.settings.input_delay + 1;
+}
+
+std::uint64_t LockstepPeer::next_input_tick() const {
+  return impl_->slot < impl_->players ? impl_->known(impl_->slot) : 0;
+}
+
+void LockstepPeer::add_input(TickInput input) {
+  Impl& m = *impl_;
+  if (!wants_input()) throw std::logic_error("LockstepPeer::add_input: no input wanted now");
+  if (check_input(input) != PacketError::none) {
+    throw std::invalid_argument(
+        "LockstepPeer::add_input: an input the network refuses: a "
+        "non-finite value, an unknown button or body input kind, or more "
+        "than max_net_body_inputs body inputs");
+  }
+  input.tick = m.known(m.slot);
+  m.inputs[m.slot].push_back(std::move(input));
+  m.mark_dirty();
+}
+
+int LockstepPeer::advance() {
+  Impl& m = *impl_;
+  if (m.state != MatchState::playing) return 0;
+  int stepped = 0;
+  for (;;) {
+    if (m.settings.match_ticks != 0 && m.next_step >= m.settings.match_ticks) {
+      m.state = MatchState::finished;
+      break;
+    }
+    bool ready = true;
+    for (std::size_t p = 0; p < m.players; ++p) ready = ready && m.known(p) > m.next_step;
+    if (!ready) break;
+    m.merge_scratch.clear();
+    for (std::size_t p = 0; p < m.players; ++p) m.merge_scratch.push_back(m.inputs[p][m.next_step]);
+    TickInput merged = m.merge(m.merge_scratch, *m.world);
+    merged.tick = m.next_step;
+    m.world->step(merged);
+    if (m.rules) m.rules.after_tick(*m.world, merged);
+    m.recorder->record(merged, *m.world);
+    ++m.next_step;
+    ++stepped;
+    if (m.next_step % m.settings.hash_every == 0) m.record_hash(m.next_step, m.world->state_hash());
+    if (m.state != MatchState::playing) break;  // a desync found
+  }
+  const double now = detail::clock_ms();
+  if (stepped == 0 && m.state == MatchState::playing) {
+    ++m.stats.stalls;
+    if (m.stall_since < 0.0) m.stall_since = now;
+  } else if (m.stall_since >= 0.0) {
+    m.stats.stalled_ms += now - m.stall_since;
+    m.stall_since = -1.0;
+  }
+  return stepped;
+}
+
+MatchState LockstepPeer::state() const {
+  return impl_->state;
+}
+const std::string& LockstepPeer::error() const {
+  return impl_->error;
+}
+const std::optional<DesyncReport>& LockstepPeer::desync() const {
+  return impl_->desync;
+}
+const MatchStats& LockstepPeer::stats() const {
+  return impl_->stats;
+}
+std::uint8_t LockstepPeer::slot() const {
+  return impl_->slot;
+}
+std::uint8_t LockstepPeer::players() const {
+  return impl_->players;
+}
+std::uint16_t LockstepPeer::port() const {
+  return impl_->transport->port();
+}
+const World& LockstepPeer::world() const {
+  return *impl_->world;
+}
+World& LockstepPeer::world_for_test() {
+  return *impl_->world;
+}
+
+Recording LockstepPeer::recording() const {
+  if (!impl_->recorder) throw std::logic_error("LockstepPeer::recording: the match never started");
+  Recorder copy = *impl_->recorder;
+  return copy.finish(*impl_->world);
+}
+
+void LockstepPeer::leave() {
+  Impl& m = *impl_;
+  for (detail::Remote& r : m.remotes) {
+    if (!r.handshaken) continue;
+    std::vector<std::uint8_t> bytes;
+    encode_disconnect(m.header(r, MessageKind::disconnect, Channel::reliable),
+                      {DisconnectReason::leaving}, bytes);
+    m.send_reliable(r, bytes);
+    m.transport->disconnect(r.conn);
+  }
+  m.transport->flush();
+  if (m.state == MatchState::playing || m.state == MatchState::connecting) {
+    m.fail("left the match");
+  }
+}
+
+}  // namespace fixstep::net
