@@ -1,6 +1,7 @@
 // fixstep::net: a lockstep peer's construction, stepping and hashes (fixstep/lockstep.hpp).
 #include <fmt/format.h>
 
+#include <random>
 #include <stdexcept>
 
 #include "fixstep/net_input_codec.hpp"
@@ -30,8 +31,7 @@ std::unique_ptr<LockstepPeer::Impl> make_impl(const WorldDef& def, const MatchSe
   impl->merge = merge ? std::move(merge) : InputMerge(merge_inputs);
   impl->started_at = detail::clock_ms();
   // A nonce that differs between runs and peers; only echoed, never trusted for security.
-  impl->nonce = static_cast<std::uint32_t>(impl->started_at * 1000.0) ^
-                static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(impl.get()));
+  impl->nonce = std::random_device{}();
   return impl;
 }
 
