@@ -14,80 +14,9 @@
 namespace fixstep::net_test {
 namespace {
 
-using net::LockstepPeer;
+using net::MatchPeer;
 using net::MatchSettings;
 using net::MatchState;
-
-MatchSettings match(std::uint8_t players, std::uint64_t ticks) {
-  MatchSettings s;
-  s.players = players;
-  s.input_delay = 6;
-  s.hash_every = 10;
-  s.match_ticks = ticks;
-  s.peer_timeout_ms = 3000;
-  s.scene_name = billiards().file;
-  s.scene_text = billiards().text;
-  return s;
-}
-
-/// A host and `joiners` joining through `link` (spectators last).
-Match start(const MatchSettings& s, int joiners, int spectators, const net::LinkSettings& link,
-            const std::vector<TickRules>& rules = {}) {
-  Match m;
-  const WorldDef def = world_def(billiards());
-  auto rules_of = [&](std::size_t i) { return i < rules.size() ? rules[i] : TickRules{}; };
-  m.peers.push_back(
-      std::make_unique<LockstepPeer>(LockstepPeer::host(def, s, {"127.0.0.1", 0}, rules_of(0))));
-  m.link =
-      std::make_unique<net::LinkConditioner>(net::Address{"127.0.0.1", m.peers[0]->port()}, link);
-  for (int i = 0; i < joiners + spectators; ++i) {
-    m.peers.push_back(std::make_unique<LockstepPeer>(
-        LockstepPeer::join(def, s, {"127.0.0.1", m.link->port()}, i >= joiners,
-                           rules_of(static_cast<std::size_t>(i) + 1))));
-  }
-  return m;
-}
-
-/// Every peer finished with the same recording, every hash exchanged matched, nothing
-/// malformed was received; returns the host's recording.
-Recording expect_agreement(const Match& m, std::uint64_t ticks) {
-  const Recording first = m.peers[0]->recording();
-  EXPECT_EQ(first.ticks, ticks);
-  const std::string text = format_recording(first);
-  for (const auto& p : m.peers) {
-    EXPECT_EQ(p->state(), MatchState::finished) << p->error();
-    EXPECT_FALSE(p->desync());
-    EXPECT_EQ(format_recording(p->recording()), text) << "slot " << int(p->slot());
-    EXPECT_GT(p->stats().hashes_compared, 0u);
-    // Only the conditioner's duplicates (as replays: out_of_window) and a joiner's first
-    // inputs (before its accept arrived: unexpected) are dropped; nothing malformed.
-    const auto& dropped = p->stats().dropped;
-    const auto window = dropped[static_cast<std::size_t>(net::PacketError::out_of_window)];
-    const auto early = dropped[static_cast<std::size_t>(net::PacketError::unexpected)];
-    EXPECT_LE(early, 20u);  // inputs that overtook the handshake's accept
-    EXPECT_EQ(p->stats().dropped_total(), window + early) << [&] {
-      std::string s;
-      for (std::size_t k = 0; k < dropped.size(); ++k)
-        s += std::string(net::packet_error_name(static_cast<net::PacketError>(k))) + "=" +
-             std::to_string(dropped[k]) + " ";
-      return s;
-    }();
-    EXPECT_LE(window, m.link->stats().duplicated);
-    EXPECT_EQ(p->stats().conflicting_inputs, 0u);
-  }
-  return first;
-}
-
-/// Whether the merged input of some tick carries body inputs of `players` different bodies.
-bool every_player_played(const Recording& rec, std::size_t players) {
-  std::vector<bool> seen(players, false);
-  for (const TickInput& in : rec.inputs) {
-    for (const BodyInput& b : in.bodies) {
-      if (b.body.slot() < players) seen[b.body.slot()] = true;
-    }
-  }
-  return std::all_of(seen.begin(), seen.end(), [](bool b) { return b; });
-}
 
 TEST(Lockstep, TwoPlayersThroughALossyLinkReplayWithFixstepReplay) {
   const MatchSettings s = match(2, 300);
@@ -119,22 +48,6 @@ TEST(Lockstep, TwoPlayersThroughALossyLinkReplayWithFixstepReplay) {
   std::filesystem::remove(file);
 }
 
-/// Rules with state: a counter of button presses, and every press a kick to a ball chosen by
-/// it, so the rules change the world and a replay without them would differ.
-struct PressCounter {
-  std::uint64_t presses = 0;
-};
-
-TickRules press_rules(PressCounter& c) {
-  return stateful_rules(c, [](PressCounter& st, World& world, const TickInput& in) {
-    if (in.pressed == 0) return;
-    ++st.presses;
-    const auto bodies = world.bodies();
-    const Entity e = bodies[st.presses % bodies.size()];
-    world.set_velocity(e, {0.05 * static_cast<double>(st.presses % 7), -0.03});
-  });
-}
-
 TEST(Lockstep, EightPlayersAndASpectatorWithRulesAgree) {
   const MatchSettings s = match(8, 200);
   const net::LinkSettings link{.latency_ms = 10.0, .jitter_ms = 8.0, .loss = 0.1, .seed = 8};
@@ -162,7 +75,7 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   // Player 1's world gets a nudge once it has stepped 95 ticks: the hashes of tick 100 differ.
   bool nudged = false;
   EXPECT_FALSE(m.run(20000, [&](std::size_t i) {
-    LockstepPeer& p = *m.peers[i];
+    MatchPeer& p = *m.peers[i];
     if (i == 1 && !nudged && p.world().tick() >= 95) {
       World& w = p.world_for_test();
       w.set_velocity(w.bodies()[3], {1e-9, 0.0});
@@ -171,10 +84,7 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   }));
   ASSERT_TRUE(nudged);
   // Both peers stop (the second once the other's hash arrives).
-  for (int k = 0; k < 200 && m.peers[0]->state() != MatchState::desynced; ++k) {
-    m.link->pump();
-    for (auto& p : m.peers) p->poll(1);
-  }
+  m.keep_playing(500);
   const std::uint64_t corrupted_at = m.peers[1]->recording().ticks;
   for (const auto& p : m.peers) {
     ASSERT_EQ(p->state(), MatchState::desynced) << p->error();
@@ -214,11 +124,11 @@ TEST(Lockstep, ASilentPlayerTimesOutWithAClearMessage) {
 
 TEST(Lockstep, AJoinerWithAnotherWorldOrAFullMatchIsRefused) {
   const MatchSettings s = match(2, 50);
-  LockstepPeer host = LockstepPeer::host(world_def(billiards()), s, {"127.0.0.1", 0});
+  MatchPeer host = MatchPeer::host(world_def(billiards()), s, {"127.0.0.1", 0});
   WorldDef other = world_def(billiards());
   other.settings.dt *= 2.0;
-  LockstepPeer stranger = LockstepPeer::join(other, s, {"127.0.0.1", host.port()});
-  LockstepPeer first = LockstepPeer::join(world_def(billiards()), s, {"127.0.0.1", host.port()});
+  MatchPeer stranger = MatchPeer::join(other, s, {"127.0.0.1", host.port()});
+  MatchPeer first = MatchPeer::join(world_def(billiards()), s, {"127.0.0.1", host.port()});
   const auto start_wait = std::chrono::steady_clock::now();
   while (std::chrono::steady_clock::now() - start_wait < std::chrono::seconds(5) &&
          (stranger.state() == MatchState::connecting || first.state() == MatchState::connecting)) {
@@ -231,7 +141,7 @@ TEST(Lockstep, AJoinerWithAnotherWorldOrAFullMatchIsRefused) {
       << "[" << stranger.error() << "]";
   ASSERT_EQ(first.state(), MatchState::playing) << first.error();
   EXPECT_EQ(first.slot(), 1);
-  LockstepPeer third = LockstepPeer::join(world_def(billiards()), s, {"127.0.0.1", host.port()});
+  MatchPeer third = MatchPeer::join(world_def(billiards()), s, {"127.0.0.1", host.port()});
   const auto again = std::chrono::steady_clock::now();
   while (third.state() == MatchState::connecting &&
          std::chrono::steady_clock::now() - again < std::chrono::seconds(5)) {
@@ -245,7 +155,7 @@ TEST(Lockstep, AJoinerWithAnotherWorldOrAFullMatchIsRefused) {
 }
 
 /// Polls `host` and `raw` until `raw` receives a datagram (at most 2 s).
-std::optional<std::vector<std::uint8_t>> answer(LockstepPeer& host, net::Transport& raw) {
+std::optional<std::vector<std::uint8_t>> answer(MatchPeer& host, net::Transport& raw) {
   const auto start = std::chrono::steady_clock::now();
   while (std::chrono::steady_clock::now() - start < std::chrono::seconds(2)) {
     host.poll(0);
@@ -256,7 +166,7 @@ std::optional<std::vector<std::uint8_t>> answer(LockstepPeer& host, net::Transpo
 }
 
 /// Polls `host` and `raw` for `ms`, counting what `raw` receives and the largest datagram.
-std::pair<int, std::size_t> listen(LockstepPeer& host, net::Transport& raw, int ms) {
+std::pair<int, std::size_t> listen(MatchPeer& host, net::Transport& raw, int ms) {
   std::pair<int, std::size_t> got{0, 0};
   const auto start = std::chrono::steady_clock::now();
   while (std::chrono::steady_clock::now() - start < std::chrono::milliseconds(ms)) {
@@ -270,13 +180,13 @@ std::pair<int, std::size_t> listen(LockstepPeer& host, net::Transport& raw, int 
   return got;
 }
 
-std::uint64_t dropped(const LockstepPeer& p, net::PacketError e) {
+std::uint64_t dropped(const MatchPeer& p, net::PacketError e) {
   return p.stats().dropped[static_cast<std::size_t>(e)];
 }
 
 TEST(Lockstep, HostilePacketsAreDroppedAndCountedWithoutAmplification) {
   MatchSettings s = match(2, 0);
-  LockstepPeer host = LockstepPeer::host(world_def(billiards()), s, {"127.0.0.1", 0});
+  MatchPeer host = MatchPeer::host(world_def(billiards()), s, {"127.0.0.1", 0});
   net::Transport raw = net::Transport::connect({"127.0.0.1", host.port()});
   for (int k = 0; k < 2000 && raw.poll(1).kind != net::TransportEvent::Kind::connected; ++k) {
     host.poll(0);

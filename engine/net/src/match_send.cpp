@@ -1,23 +1,23 @@
 // fixstep::net: what a lockstep peer sends: input runs resent until acknowledged, state
-// hashes, refusals (fixstep/lockstep.hpp).
+// hashes, refusals (fixstep/match_peer.hpp).
 #include <algorithm>
 
-#include "lockstep_impl.hpp"
+#include "match_peer_impl.hpp"
 
 namespace fixstep::net {
 
-Header LockstepPeer::Impl::header(detail::Remote& r, MessageKind kind, Channel channel) {
+Header MatchPeer::Impl::header(detail::Remote& r, MessageKind kind, Channel channel) {
   std::uint32_t& seq = channel == Channel::reliable ? r.seq_reliable : r.seq_unreliable;
   return Header{kind, slot, seq++};
 }
 
-void LockstepPeer::Impl::send_reliable(detail::Remote& r, const std::vector<std::uint8_t>& bytes) {
+void MatchPeer::Impl::send_reliable(detail::Remote& r, const std::vector<std::uint8_t>& bytes) {
   transport->send(r.conn, bytes, Channel::reliable);
   ++stats.packets_sent;
   stats.bytes_sent += bytes.size();
 }
 
-void LockstepPeer::Impl::refuse(detail::Remote& r, DisconnectReason why) {
+void MatchPeer::Impl::refuse(detail::Remote& r, DisconnectReason why) {
   std::vector<std::uint8_t> bytes;
   // 13 bytes to a 64-byte request: no amplification.
   encode_disconnect(Header{MessageKind::disconnect, slot, r.seq_reliable++}, {why}, bytes);
@@ -25,7 +25,7 @@ void LockstepPeer::Impl::refuse(detail::Remote& r, DisconnectReason why) {
   transport->disconnect(r.conn);
 }
 
-void LockstepPeer::Impl::send_hash(const StateHashMessage& m, const detail::Remote* except) {
+void MatchPeer::Impl::send_hash(const StateHashMessage& m, const detail::Remote* except) {
   for (detail::Remote& r : remotes) {
     if (!r.handshaken || &r == except) continue;
     std::vector<std::uint8_t> bytes;
@@ -34,10 +34,10 @@ void LockstepPeer::Impl::send_hash(const StateHashMessage& m, const detail::Remo
   }
 }
 
-void LockstepPeer::Impl::send_due(double now) {
+void MatchPeer::Impl::send_due(double now) {
   if (players == 0) return;
   for (detail::Remote& r : remotes) {
-    if (!r.handshaken) continue;
+    if (!r.handshaken || (is_host && !r.heard_inputs)) continue;
     if (r.dirty || now - r.last_sent >= settings.resend_ms) send_inputs(r, now);
   }
   std::uint32_t rtt = 0;
@@ -47,7 +47,7 @@ void LockstepPeer::Impl::send_due(double now) {
   stats.round_trip_ms = rtt;
 }
 
-void LockstepPeer::Impl::send_inputs(detail::Remote& r, double now) {
+void MatchPeer::Impl::send_inputs(detail::Remote& r, double now) {
   // Each player's ticks the remote lacks, from what it acknowledged: resent until it does.
   std::vector<RunToSend> runs;
   for (std::uint8_t p = 0; p < players; ++p) {

@@ -1,11 +1,11 @@
 // fixstep::net: what a lockstep peer does with each packet it receives, after the decoder has
-// validated it (fixstep/lockstep.hpp).
+// validated it (fixstep/match_peer.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 
 #include "fixstep/net_input_codec.hpp"
-#include "lockstep_impl.hpp"
+#include "match_peer_impl.hpp"
 
 namespace fixstep::net {
 
@@ -19,14 +19,14 @@ constexpr std::size_t max_pending_hashes = 4096;
 
 }  // namespace
 
-detail::Remote* LockstepPeer::Impl::remote(std::uint32_t conn) {
+detail::Remote* MatchPeer::Impl::remote(std::uint32_t conn) {
   for (detail::Remote& r : remotes) {
     if (r.conn == conn) return &r;
   }
   return nullptr;
 }
 
-DecodeContext LockstepPeer::Impl::context(const detail::Remote& r) const {
+DecodeContext MatchPeer::Impl::context(const detail::Remote& r) const {
   DecodeContext ctx;
   if (!r.handshaken) return ctx;
   ctx.players = players;
@@ -35,7 +35,7 @@ DecodeContext LockstepPeer::Impl::context(const detail::Remote& r) const {
   return ctx;
 }
 
-void LockstepPeer::Impl::handle(const TransportEvent& ev, double now) {
+void MatchPeer::Impl::handle(const TransportEvent& ev, double now) {
   using Kind = TransportEvent::Kind;
   if (ev.kind == Kind::connected) {
     if (is_host) {
@@ -83,7 +83,7 @@ void LockstepPeer::Impl::handle(const TransportEvent& ev, double now) {
   receive(*r, p, ev.channel, now);
 }
 
-void LockstepPeer::Impl::receive(detail::Remote& r, const Packet& p, Channel channel, double now) {
+void MatchPeer::Impl::receive(detail::Remote& r, const Packet& p, Channel channel, double now) {
   auto drop = [&](PacketError e) { ++stats.dropped[static_cast<std::size_t>(e)]; };
   // Sequence numbers: the unreliable channel's within a window, once each; the reliable
   // channel's increasing (ENet delivers it in order).
@@ -119,6 +119,7 @@ void LockstepPeer::Impl::receive(detail::Remote& r, const Packet& p, Channel cha
       return;
     case MessageKind::inputs:
       r.last_heard = now;
+      r.heard_inputs = true;
       return on_inputs(r, p);
     case MessageKind::state_hash:
       r.last_heard = now;
@@ -126,7 +127,7 @@ void LockstepPeer::Impl::receive(detail::Remote& r, const Packet& p, Channel cha
   }
 }
 
-void LockstepPeer::Impl::on_request(detail::Remote& r, const Packet& p) {
+void MatchPeer::Impl::on_request(detail::Remote& r, const Packet& p) {
   if (p.request.definition_hash != def_hash) return refuse(r, DisconnectReason::another_world);
   std::uint8_t given = no_slot;
   if (p.request.spectator) {
@@ -156,7 +157,7 @@ void LockstepPeer::Impl::on_request(detail::Remote& r, const Packet& p) {
   send_reliable(r, bytes);  // 30 bytes, the request's 64: no amplification
 }
 
-void LockstepPeer::Impl::on_refused(DisconnectReason why) {
+void MatchPeer::Impl::on_refused(DisconnectReason why) {
   if (why == DisconnectReason::another_world) {
     fail(
         fmt::format("the host at {}:{} refused us: it plays another world (our definition "
@@ -168,7 +169,7 @@ void LockstepPeer::Impl::on_refused(DisconnectReason why) {
   }
 }
 
-void LockstepPeer::Impl::on_accept(detail::Remote& r, const Packet& p) {
+void MatchPeer::Impl::on_accept(detail::Remote& r, const Packet& p) {
   const HandshakeAccept& a = p.accept;
   if (a.nonce != nonce)
     return (void)++stats.dropped[static_cast<std::size_t>(PacketError::unexpected)];
@@ -191,7 +192,7 @@ void LockstepPeer::Impl::on_accept(detail::Remote& r, const Packet& p) {
   start(a.players, a.your_slot);
 }
 
-void LockstepPeer::Impl::on_inputs(detail::Remote& r, const Packet& p) {
+void MatchPeer::Impl::on_inputs(detail::Remote& r, const Packet& p) {
   // Who may send whose inputs: a player its own; the host everyone's but ours; a spectator none.
   for (const InputRun& run : p.inputs.runs) {
     const bool allowed = is_host ? (run.player == r.slot && r.slot < players) : run.player != slot;
@@ -217,13 +218,14 @@ void LockstepPeer::Impl::on_inputs(detail::Remote& r, const Packet& p) {
       } else {
         have.push_back(prev);
         grew = true;
+        if (shown) check_prediction(run.player, t);
       }
     }
   }
   if (grew) mark_dirty();
 }
 
-void LockstepPeer::Impl::on_hash(detail::Remote& r, const StateHashMessage& m) {
+void MatchPeer::Impl::on_hash(detail::Remote& r, const StateHashMessage& m) {
   auto drop = [&](PacketError e) { ++stats.dropped[static_cast<std::size_t>(e)]; };
   if (m.player == slot) return drop(PacketError::unexpected);
   if (is_host && m.player != r.slot) return drop(PacketError::unexpected);
@@ -234,7 +236,7 @@ void LockstepPeer::Impl::on_hash(detail::Remote& r, const StateHashMessage& m) {
   compare_hashes();
 }
 
-void LockstepPeer::Impl::check_timeouts(double now) {
+void MatchPeer::Impl::check_timeouts(double now) {
   if (!is_host && state == MatchState::connecting &&
       now - started_at > settings.handshake_timeout_ms) {
     fail(fmt::format("no answer from the host at {}:{} within {} ms", host_address.host,

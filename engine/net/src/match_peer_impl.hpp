@@ -1,18 +1,21 @@
-// Internal to fixstep::net: a lockstep peer's state (fixstep/lockstep.hpp), shared by the
-// files that step it (lockstep.cpp), receive (lockstep_receive.cpp) and send
-// (lockstep_send.cpp).
+// Internal to fixstep::net: a lockstep peer's state (fixstep/match_peer.hpp), shared by the
+// files that step it (match_peer.cpp), receive (match_receive.cpp) and send
+// (match_send.cpp).
 #pragma once
 
+#include <any>
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <deque>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "fixstep/lockstep.hpp"
+#include "fixstep/match_peer.hpp"
 #include "fixstep/net_packet.hpp"
 #include "sequence_window.hpp"
 
@@ -31,18 +34,30 @@ struct Remote {
   bool handshaken = false;
   std::uint8_t slot = no_slot;
   double connected_at = 0.0, last_heard = 0.0, last_sent = -1e300;
-  bool dirty = true;                                    ///< something new to send
+  bool dirty = true;  ///< something new to send
+  /// An inputs packet came from it: it has the handshake's accept (a host sends a joiner no
+  /// inputs before, which it would drop).
+  bool heard_inputs = false;
   std::array<std::uint32_t, max_players> their_next{};  ///< per player: what it has (acks)
   SequenceWindow window;                                ///< unreliable channel
   std::optional<std::uint32_t> reliable_seen;           ///< the reliable channel's last
   std::uint32_t seq_unreliable = 0, seq_reliable = 0;   ///< sent
 };
 
+/// Rollback: the shown world's state before tick `tick`, and the inputs it was stepped with.
+struct ShownFrame {
+  std::uint64_t tick = 0;
+  WorldSnapshot snapshot;
+  std::any rules;  ///< TickRules::save() before the tick (rules with state)
+  std::array<TickInput, max_players> used{};
+  std::uint32_t predicted = 0;  ///< bit p: used[p] was a prediction
+};
+
 }  // namespace fixstep::net::detail
 
 namespace fixstep::net {
 
-struct LockstepPeer::Impl {
+struct MatchPeer::Impl {
   bool is_host = false;
   bool spectator = false;
   Address host_address;
@@ -71,8 +86,15 @@ struct LockstepPeer::Impl {
   std::uint8_t spectators = 0;
   std::vector<std::uint8_t> buffer;
   std::vector<TickInput> merge_scratch;
+  // Rollback (settings.max_rollback > 0, players only): the shown world, its frames for the
+  // ticks [frames.front().tick, shown->tick()), the first tick predicted wrong, the rules'
+  // state of the confirmed world while the rules object holds the shown one's.
+  std::unique_ptr<World> shown;
+  std::deque<detail::ShownFrame> frames;
+  std::uint64_t wrong_from = std::numeric_limits<std::uint64_t>::max();
+  std::any confirmed_rules;
 
-  // lockstep.cpp
+  // match_peer.cpp
   void start(std::uint8_t players, std::uint8_t slot);  ///< the handshake done
   void fail(std::string why);
   [[nodiscard]] std::uint32_t known(std::size_t player) const {
@@ -83,7 +105,17 @@ struct LockstepPeer::Impl {
   void compare_hashes();
   void mark_dirty();
 
-  // lockstep_receive.cpp
+  [[nodiscard]] bool rules_have_state() const { return rules && rules.save && rules.restore; }
+  int step_confirmed();
+
+  // rollback.cpp
+  [[nodiscard]] TickInput predict(std::size_t player, std::uint64_t tick) const;
+  void check_prediction(std::size_t player, std::uint64_t tick);
+  void step_shown();
+  void roll_back();
+  void advance_shown();
+
+  // match_receive.cpp
   void handle(const TransportEvent& ev, double now);
   void receive(detail::Remote& r, const Packet& p, Channel channel, double now);
   void on_request(detail::Remote& r, const Packet& p);
@@ -95,7 +127,7 @@ struct LockstepPeer::Impl {
   [[nodiscard]] detail::Remote* remote(std::uint32_t conn);
   [[nodiscard]] DecodeContext context(const detail::Remote& r) const;
 
-  // lockstep_send.cpp
+  // match_send.cpp
   void send_due(double now);
   void send_inputs(detail::Remote& r, double now);
   void send_reliable(detail::Remote& r, const std::vector<std::uint8_t>& bytes);

@@ -1,11 +1,11 @@
-// fixstep::net: a lockstep peer's construction, stepping and hashes (fixstep/lockstep.hpp).
+// fixstep::net: a lockstep peer's construction, stepping and hashes (fixstep/match_peer.hpp).
 #include <fmt/format.h>
 
 #include <random>
 #include <stdexcept>
 
 #include "fixstep/net_input_codec.hpp"
-#include "lockstep_impl.hpp"
+#include "match_peer_impl.hpp"
 
 namespace fixstep::net {
 
@@ -14,15 +14,14 @@ namespace {
 void check_settings(const MatchSettings& s) {
   if (s.players < 2 || s.players > max_players) {
     throw std::invalid_argument(
-        fmt::format("lockstep: players must be 2 .. {} (got {})", max_players, s.players));
+        fmt::format("match: players must be 2 .. {} (got {})", max_players, s.players));
   }
-  if (s.input_delay < 1) throw std::invalid_argument("lockstep: input_delay must be >= 1 tick");
-  if (s.hash_every < 1) throw std::invalid_argument("lockstep: hash_every must be >= 1 tick");
+  if (s.hash_every < 1) throw std::invalid_argument("match: hash_every must be >= 1 tick");
 }
 
-std::unique_ptr<LockstepPeer::Impl> make_impl(const WorldDef& def, const MatchSettings& settings,
-                                              TickRules rules, InputMerge merge) {
-  auto impl = std::make_unique<LockstepPeer::Impl>();
+std::unique_ptr<MatchPeer::Impl> make_impl(const WorldDef& def, const MatchSettings& settings,
+                                           TickRules rules, InputMerge merge) {
+  auto impl = std::make_unique<MatchPeer::Impl>();
   impl->settings = settings;
   impl->def = def;
   impl->def_hash = definition_hash(def);
@@ -63,13 +62,13 @@ std::uint64_t MatchStats::dropped_total() const {
   return n;
 }
 
-LockstepPeer::LockstepPeer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-LockstepPeer::LockstepPeer(LockstepPeer&&) noexcept = default;
-LockstepPeer& LockstepPeer::operator=(LockstepPeer&&) noexcept = default;
-LockstepPeer::~LockstepPeer() = default;
+MatchPeer::MatchPeer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+MatchPeer::MatchPeer(MatchPeer&&) noexcept = default;
+MatchPeer& MatchPeer::operator=(MatchPeer&&) noexcept = default;
+MatchPeer::~MatchPeer() = default;
 
-LockstepPeer LockstepPeer::host(const WorldDef& def, const MatchSettings& settings,
-                                const Address& bind, TickRules rules, InputMerge merge) {
+MatchPeer MatchPeer::host(const WorldDef& def, const MatchSettings& settings, const Address& bind,
+                          TickRules rules, InputMerge merge) {
   check_settings(settings);
   auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
   impl->is_host = true;
@@ -77,12 +76,11 @@ LockstepPeer LockstepPeer::host(const WorldDef& def, const MatchSettings& settin
       Transport::listen(bind, max_players - 1 + max_spectators,
                         {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}));
   impl->start(settings.players, 0);
-  return LockstepPeer(std::move(impl));
+  return MatchPeer(std::move(impl));
 }
 
-LockstepPeer LockstepPeer::join(const WorldDef& def, const MatchSettings& settings,
-                                const Address& host, bool spectator, TickRules rules,
-                                InputMerge merge) {
+MatchPeer MatchPeer::join(const WorldDef& def, const MatchSettings& settings, const Address& host,
+                          bool spectator, TickRules rules, InputMerge merge) {
   auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
   impl->spectator = spectator;
   impl->host_address = host;
@@ -93,10 +91,10 @@ LockstepPeer LockstepPeer::join(const WorldDef& def, const MatchSettings& settin
   r.slot = 0;
   r.connected_at = r.last_heard = impl->started_at;
   impl->remotes.push_back(r);
-  return LockstepPeer(std::move(impl));
+  return MatchPeer(std::move(impl));
 }
 
-void LockstepPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
+void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
   players = player_count;
   slot = own_slot;
   state = MatchState::playing;
@@ -104,18 +102,22 @@ void LockstepPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot)
     inputs[p].clear();
     for (std::uint64_t t = 0; t < settings.input_delay; ++t) inputs[p].push_back(TickInput{t});
   }
+  if (settings.max_rollback > 0 && slot < players) {
+    shown = std::make_unique<World>(def);
+    if (rules_have_state()) confirmed_rules = rules.save();
+  }
   recorder.emplace(def, settings.scene_name, settings.record_hash_every, settings.scene_text);
   if (!settings.rules_name.empty())
     recorder->set_rules(settings.rules_name, settings.rules_version);
 }
 
-void LockstepPeer::Impl::fail(std::string why) {
+void MatchPeer::Impl::fail(std::string why) {
   if (state == MatchState::failed || state == MatchState::desynced) return;
   state = MatchState::failed;
   error = std::move(why);
 }
 
-std::string LockstepPeer::Impl::who(const detail::Remote& r) const {
+std::string MatchPeer::Impl::who(const detail::Remote& r) const {
   const std::string address = transport->peer_address(r.conn);
   if (!is_host) return fmt::format("the host ({})", address);
   if (r.slot < max_players) return fmt::format("player {} ({})", r.slot, address);
@@ -124,17 +126,17 @@ std::string LockstepPeer::Impl::who(const detail::Remote& r) const {
   return fmt::format("a peer that has not joined ({})", address);
 }
 
-void LockstepPeer::Impl::mark_dirty() {
+void MatchPeer::Impl::mark_dirty() {
   for (detail::Remote& r : remotes) r.dirty = true;
 }
 
-void LockstepPeer::Impl::record_hash(std::uint64_t tick, std::uint64_t hash) {
+void MatchPeer::Impl::record_hash(std::uint64_t tick, std::uint64_t hash) {
   own_hashes[tick] = hash;
   if (slot < players) send_hash({slot, static_cast<std::uint32_t>(tick), hash}, nullptr);
   compare_hashes();
 }
 
-void LockstepPeer::Impl::compare_hashes() {
+void MatchPeer::Impl::compare_hashes() {
   for (auto it = their_hashes.begin(); it != their_hashes.end();) {
     const auto own = own_hashes.find(it->first);
     if (own == own_hashes.end()) {
@@ -155,7 +157,7 @@ void LockstepPeer::Impl::compare_hashes() {
   }
 }
 
-void LockstepPeer::poll(std::uint32_t wait_ms) {
+void MatchPeer::poll(std::uint32_t wait_ms) {
   Impl& m = *impl_;
   for (;;) {
     const TransportEvent ev = m.transport->poll(wait_ms);
@@ -169,24 +171,25 @@ void LockstepPeer::poll(std::uint32_t wait_ms) {
   m.transport->flush();
 }
 
-bool LockstepPeer::wants_input() const {
+bool MatchPeer::wants_input() const {
   const Impl& m = *impl_;
   if (m.state != MatchState::playing || m.slot >= m.players) return false;
   const std::uint64_t next = m.known(m.slot);
   if (m.settings.match_ticks != 0 && next >= m.settings.match_ticks) return false;
-  return next < m.next_step + m.settings.input_delay + 1;
+  const std::uint64_t stepping = m.shown ? m.shown->tick() : m.next_step;
+  return next < stepping + m.settings.input_delay + 1;
 }
 
-std::uint64_t LockstepPeer::next_input_tick() const {
+std::uint64_t MatchPeer::next_input_tick() const {
   return impl_->slot < impl_->players ? impl_->known(impl_->slot) : 0;
 }
 
-void LockstepPeer::add_input(TickInput input) {
+void MatchPeer::add_input(TickInput input) {
   Impl& m = *impl_;
-  if (!wants_input()) throw std::logic_error("LockstepPeer::add_input: no input wanted now");
+  if (!wants_input()) throw std::logic_error("MatchPeer::add_input: no input wanted now");
   if (check_input(input) != PacketError::none) {
     throw std::invalid_argument(
-        "LockstepPeer::add_input: an input the network refuses: a "
+        "MatchPeer::add_input: an input the network refuses: a "
         "non-finite value, an unknown button or body input kind, or more "
         "than max_net_body_inputs body inputs");
   }
@@ -195,29 +198,56 @@ void LockstepPeer::add_input(TickInput input) {
   m.mark_dirty();
 }
 
-int LockstepPeer::advance() {
-  Impl& m = *impl_;
-  if (m.state != MatchState::playing) return 0;
-  int stepped = 0;
-  for (;;) {
-    if (m.settings.match_ticks != 0 && m.next_step >= m.settings.match_ticks) {
-      m.state = MatchState::finished;
-      break;
+int MatchPeer::Impl::step_confirmed() {
+  auto ready = [&] {
+    for (std::size_t p = 0; p < players; ++p) {
+      if (known(p) <= next_step) return false;
     }
-    bool ready = true;
-    for (std::size_t p = 0; p < m.players; ++p) ready = ready && m.known(p) > m.next_step;
-    if (!ready) break;
-    m.merge_scratch.clear();
-    for (std::size_t p = 0; p < m.players; ++p) m.merge_scratch.push_back(m.inputs[p][m.next_step]);
-    TickInput merged = m.merge(m.merge_scratch, *m.world);
-    merged.tick = m.next_step;
-    m.world->step(merged);
-    if (m.rules) m.rules.after_tick(*m.world, merged);
-    m.recorder->record(merged, *m.world);
-    ++m.next_step;
+    return true;
+  };
+  if (settings.match_ticks != 0 && next_step >= settings.match_ticks) {
+    state = MatchState::finished;
+    return 0;
+  }
+  if (!ready()) return 0;
+  // Rollback: the rules object holds the shown world's state; the confirmed world's meanwhile.
+  const bool swap = shown && rules_have_state();
+  std::any shown_rules;
+  if (swap) {
+    shown_rules = rules.save();
+    rules.restore(confirmed_rules);
+  }
+  int stepped = 0;
+  while (state == MatchState::playing && ready()) {
+    merge_scratch.clear();
+    for (std::size_t p = 0; p < players; ++p) merge_scratch.push_back(inputs[p][next_step]);
+    TickInput merged = merge(merge_scratch, *world);
+    merged.tick = next_step;
+    world->step(merged);
+    if (rules) rules.after_tick(*world, merged);
+    recorder->record(merged, *world);
+    ++next_step;
     ++stepped;
-    if (m.next_step % m.settings.hash_every == 0) m.record_hash(m.next_step, m.world->state_hash());
-    if (m.state != MatchState::playing) break;  // a desync found
+    if (next_step % settings.hash_every == 0) record_hash(next_step, world->state_hash());
+    if (settings.match_ticks != 0 && next_step >= settings.match_ticks) {
+      state = MatchState::finished;
+    }
+  }
+  if (swap) {
+    confirmed_rules = rules.save();
+    rules.restore(shown_rules);
+  }
+  return stepped;
+}
+
+int MatchPeer::advance() {
+  Impl& m = *impl_;
+  const bool shown_behind = m.shown && m.state == MatchState::finished;
+  if (m.state != MatchState::playing && !shown_behind) return 0;
+  const int stepped = m.step_confirmed();
+  if (m.shown) {
+    m.advance_shown();
+    return stepped;
   }
   const double now = detail::clock_ms();
   if (stepped == 0 && m.state == MatchState::playing) {
@@ -230,41 +260,44 @@ int LockstepPeer::advance() {
   return stepped;
 }
 
-MatchState LockstepPeer::state() const {
+MatchState MatchPeer::state() const {
   return impl_->state;
 }
-const std::string& LockstepPeer::error() const {
+const std::string& MatchPeer::error() const {
   return impl_->error;
 }
-const std::optional<DesyncReport>& LockstepPeer::desync() const {
+const std::optional<DesyncReport>& MatchPeer::desync() const {
   return impl_->desync;
 }
-const MatchStats& LockstepPeer::stats() const {
+const MatchStats& MatchPeer::stats() const {
   return impl_->stats;
 }
-std::uint8_t LockstepPeer::slot() const {
+std::uint8_t MatchPeer::slot() const {
   return impl_->slot;
 }
-std::uint8_t LockstepPeer::players() const {
+std::uint8_t MatchPeer::players() const {
   return impl_->players;
 }
-std::uint16_t LockstepPeer::port() const {
+std::uint16_t MatchPeer::port() const {
   return impl_->transport->port();
 }
-const World& LockstepPeer::world() const {
+const World& MatchPeer::world() const {
   return *impl_->world;
 }
-World& LockstepPeer::world_for_test() {
+const World& MatchPeer::shown_world() const {
+  return impl_->shown ? *impl_->shown : *impl_->world;
+}
+World& MatchPeer::world_for_test() {
   return *impl_->world;
 }
 
-Recording LockstepPeer::recording() const {
-  if (!impl_->recorder) throw std::logic_error("LockstepPeer::recording: the match never started");
+Recording MatchPeer::recording() const {
+  if (!impl_->recorder) throw std::logic_error("MatchPeer::recording: the match never started");
   Recorder copy = *impl_->recorder;
   return copy.finish(*impl_->world);
 }
 
-void LockstepPeer::leave() {
+void MatchPeer::leave() {
   Impl& m = *impl_;
   for (detail::Remote& r : m.remotes) {
     if (!r.handshaken) continue;

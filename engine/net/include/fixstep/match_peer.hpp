@@ -1,11 +1,18 @@
-// Deterministic lockstep over the network: every peer steps tick t once every player's input
-// for t has arrived, so all peers compute the same states bit for bit (fixstep's determinism),
-// sending only inputs. A host (player 0) relays the inputs of each player to the others (a
-// star: a joining peer knows only the host's address); spectators receive them all and send
-// none. Local input is played `input_delay` ticks after it is given (the playout delay), so a
-// link whose round trip is shorter than the delay never stalls. Peers exchange state hashes of
-// confirmed ticks every hash_every ticks; a mismatch stops the match with a located report.
-// Each peer records the confirmed inputs as a fixstep recording. docs/NETWORK.md.
+// A networked match, in one of two kinds, over the same protocol:
+// - deterministic lockstep (MatchSettings::max_rollback = 0): every peer steps tick t once
+//   every player's input for t has arrived, so all peers compute the same states bit for bit
+//   (fixstep's determinism), sending only inputs. Local input is played `input_delay` ticks
+//   after it is given (the playout delay), so a link whose round trip is shorter than the delay
+//   never stalls.
+// - rollback (max_rollback > 0, GGPO-style): besides the confirmed world, a shown world runs
+//   ahead on predicted inputs of the remote players (their last input's levels); when a real
+//   input differs from the prediction, the shown world is restored from the snapshot of that
+//   tick and re-simulated, at most max_rollback ticks.
+// A host (player 0) relays the inputs of each player to the others (a star: a joining peer
+// knows only the host's address); spectators receive them all and send none. Peers exchange
+// state hashes of confirmed ticks every hash_every ticks; a mismatch stops the match with a
+// located report. Each peer records the confirmed inputs as a fixstep recording.
+// docs/NETWORK.md.
 #pragma once
 
 #include <array>
@@ -41,10 +48,18 @@ using InputMerge = std::function<TickInput(std::span<const TickInput> players, c
 /// hash_every), and what each peer decides for itself (the rest).
 struct MatchSettings {
   std::uint8_t players = 2;       ///< 2 .. max_players
-  std::uint16_t input_delay = 3;  ///< ticks between giving an input and its tick, >= 1
+  std::uint16_t input_delay = 3;  ///< ticks between giving an input and its tick
   std::uint16_t hash_every = 30;  ///< ticks between exchanged state hashes, >= 1
   std::uint64_t match_ticks = 0;  ///< the match ends after this many ticks; 0: never
-  std::uint32_t resend_ms = 10;   ///< unacknowledged inputs resent at least this often
+  /// Rollback: most ticks the shown world may run ahead of the confirmed one on predicted
+  /// inputs (and so the longest re-simulation); 0: lockstep (the shown world is the confirmed
+  /// one). This peer's own choice: peers of either kind play one match.
+  std::uint16_t max_rollback = 0;
+  /// Rollback's time synchronisation: ticks per second the caller steps at (to turn the round
+  /// trip into ticks); advance() waits a frame while the shown world is more than half the
+  /// round trip plus one tick ahead of the slowest player's last input.
+  double tick_rate_hz = 60.0;
+  std::uint32_t resend_ms = 10;  ///< unacknowledged inputs resent at least this often
   /// A player (or the host) heard from for this long stops the match ("timed out").
   std::uint32_t peer_timeout_ms = 5000;
   /// A connection that has not completed the handshake after this long is dropped.
@@ -88,29 +103,37 @@ struct MatchStats {
   double stalled_ms = 0.0;          ///< time spent waiting so
   std::uint32_t round_trip_ms = 0;  ///< to the host (a joiner) or the slowest player (a host)
   std::uint64_t hashes_compared = 0;
+  // Rollback only:
+  std::uint64_t predicted_ticks = 0;    ///< shown ticks stepped with a predicted input
+  std::uint64_t rollbacks = 0;          ///< restores of the shown world
+  std::uint64_t rolled_back_ticks = 0;  ///< ticks re-simulated, in all
+  std::uint64_t max_rolled_back = 0;    ///< the most ticks one rollback re-simulated
+  std::uint64_t last_rolled_back = 0;   ///< ticks the last advance() re-simulated
+  std::uint64_t waits = 0;              ///< advance() calls that waited for time sync
+  std::int64_t frame_advantage = 0;     ///< shown tick minus the slowest player's, last frame
   [[nodiscard]] std::uint64_t dropped_total() const;
 };
 
 /// One peer of a lockstep match: the host or a joiner (player or spectator). Single-threaded:
 /// call poll() and advance() often (every frame, or every millisecond in a test).
-class LockstepPeer {
+class MatchPeer {
  public:
   /// Hosts a match of `def` as player 0, listening on `bind` (127.0.0.1 and a port; port 0
   /// picks one: port()). `rules` run after every tick (held by reference: they must outlive
   /// the peer); `merge` makes each tick's input (merge_inputs when empty). Throws
   /// TransportError when the port cannot be bound, std::invalid_argument for bad settings.
-  [[nodiscard]] static LockstepPeer host(const WorldDef& def, const MatchSettings& settings,
-                                         const Address& bind, TickRules rules = {},
-                                         InputMerge merge = {});
+  [[nodiscard]] static MatchPeer host(const WorldDef& def, const MatchSettings& settings,
+                                      const Address& bind, TickRules rules = {},
+                                      InputMerge merge = {});
   /// Joins the match hosted at `host` as a player (or a spectator). players, input_delay and
   /// hash_every come from the host; the rest from `settings`. The host refuses a joiner whose
   /// world differs (definition hash).
-  [[nodiscard]] static LockstepPeer join(const WorldDef& def, const MatchSettings& settings,
-                                         const Address& host, bool spectator = false,
-                                         TickRules rules = {}, InputMerge merge = {});
-  LockstepPeer(LockstepPeer&&) noexcept;
-  LockstepPeer& operator=(LockstepPeer&&) noexcept;
-  ~LockstepPeer();
+  [[nodiscard]] static MatchPeer join(const WorldDef& def, const MatchSettings& settings,
+                                      const Address& host, bool spectator = false,
+                                      TickRules rules = {}, InputMerge merge = {});
+  MatchPeer(MatchPeer&&) noexcept;
+  MatchPeer& operator=(MatchPeer&&) noexcept;
+  ~MatchPeer();
 
   /// Receives and handles every packet that has arrived (waiting at most wait_ms for the
   /// first), sends what is due, checks timeouts.
@@ -125,7 +148,11 @@ class LockstepPeer {
   [[nodiscard]] std::uint64_t next_input_tick() const;
   /// Steps every tick whose inputs have all arrived (none past match_ticks), running the
   /// merge, World::step and the rules, recording each; returns the ticks stepped. Nothing
-  /// stepped while playing counts a stall.
+  /// stepped while playing counts a stall. Rollback: then rolls the shown world back to the
+  /// first tick whose prediction was wrong and re-simulates, and steps it one tick ahead when
+  /// the local input for it is there, it is less than max_rollback ticks ahead of the confirmed
+  /// world and time sync allows. The rules' state (TickRules save and restore, which rollback
+  /// needs for rules with state) is the shown world's between calls.
   int advance();
 
   [[nodiscard]] MatchState state() const;
@@ -135,7 +162,10 @@ class LockstepPeer {
   [[nodiscard]] std::uint8_t slot() const;     ///< no_slot until the handshake completes
   [[nodiscard]] std::uint8_t players() const;  ///< 0 until the handshake completes
   [[nodiscard]] std::uint16_t port() const;    ///< the bound port
+  /// The confirmed world: every tick stepped with every player's real input.
   [[nodiscard]] const World& world() const;
+  /// What to show: the rollback world (ahead on predictions), or the confirmed one in lockstep.
+  [[nodiscard]] const World& shown_world() const;
   /// The world, for a test that corrupts one peer's state on purpose (a desync).
   [[nodiscard]] World& world_for_test();
   /// The recording of the ticks stepped so far (Recorder::finish at the current state).
@@ -143,10 +173,10 @@ class LockstepPeer {
   /// Leaves: tells the others (disconnect) and flushes. The peer is finished or failed after.
   void leave();
 
-  struct Impl;  ///< internal (engine/net/src/lockstep_impl.hpp)
+  struct Impl;  ///< internal (engine/net/src/match_peer_impl.hpp)
 
  private:
-  explicit LockstepPeer(std::unique_ptr<Impl> impl);
+  explicit MatchPeer(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 
