@@ -98,6 +98,15 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   }
   EXPECT_GE(corrupted_at, 100u);
   EXPECT_EQ(m.peers[0]->desync()->ours, m.peers[1]->desync()->theirs);
+  // Offline: the healthy peer's recording replays; the corrupted one's diverges right after
+  // the nudge (a hash every tick: the state after tick 96 is the first the nudge changed).
+  World healthy(world_def(billiards()));
+  EXPECT_TRUE(replay(healthy, m.peers[0]->recording()).ok());
+  World corrupted(world_def(billiards()));
+  const ReplayReport r = replay(corrupted, m.peers[1]->recording());
+  ASSERT_FALSE(r.ok());
+  EXPECT_GE(r.mismatch->tick, 96u);
+  EXPECT_LE(r.mismatch->tick, 100u);
 }
 
 TEST(Lockstep, ASilentPlayerTimesOutWithAClearMessage) {

@@ -103,7 +103,8 @@ struct LinkConditioner::Impl {
 
   void schedule(LinkModel& model, int fd, const sockaddr_in& to, std::size_t n, double now) {
     for (double at : model.decide(now)) {
-      queue.push(Pending{at, order++, fd, to, {buffer.begin(), buffer.begin() + n}});
+      queue.push(Pending{
+          at, order++, fd, to, {buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(n)}});
     }
   }
 

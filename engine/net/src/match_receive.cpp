@@ -13,7 +13,7 @@ namespace {
 
 /// Most inputs a player may be ahead of the next tick to step (beyond its input delay): a
 /// peer may not make another store an unbounded future.
-constexpr std::uint64_t max_ahead = 2 * max_run_ticks;
+constexpr std::uint64_t max_ahead = 2 * std::uint64_t{max_run_ticks};
 /// Most state hashes held for ticks not yet stepped here.
 constexpr std::size_t max_pending_hashes = 4096;
 
