@@ -99,5 +99,26 @@ TEST(Rollback, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   }
 }
 
+/// A match longer than the inputs kept: each peer holds at most about two chunks of 1024 ticks
+/// per player, and the recordings (which keep every input change) still agree and replay.
+TEST(Rollback, LongMatchesKeepBoundedInputs) {
+  for (std::uint16_t rollback : {std::uint16_t{0}, std::uint16_t{8}}) {
+    net::MatchSettings s = match(2, 2600);
+    s.input_delay = rollback ? 1 : 6;
+    s.max_rollback = rollback;
+    s.hash_every = 100;
+    s.record_hash_every = 100;
+    Match m = start(s, 1, 0, net::LinkSettings{.seed = 4});
+    ASSERT_TRUE(m.run(30000)) << m.peers[0]->error() << " / " << m.peers[1]->error();
+    const Recording rec = expect_agreement(m, 2600);
+    for (const auto& p : m.peers) {
+      EXPECT_LE(p->stats().stored_inputs, 2u * 2 * 1024) << "max_rollback " << rollback;
+      EXPECT_GE(p->stats().stored_inputs, 2u * 500) << "max_rollback " << rollback;
+    }
+    World sim(world_def(billiards()));
+    EXPECT_TRUE(replay(sim, rec).ok()) << "max_rollback " << rollback;
+  }
+}
+
 }  // namespace
 }  // namespace fixstep::net_test

@@ -100,6 +100,7 @@ void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
   state = MatchState::playing;
   for (std::size_t p = 0; p < players; ++p) {
     inputs[p].clear();
+    base[p] = 0;
     for (std::uint64_t t = 0; t < settings.input_delay; ++t) inputs[p].push_back(TickInput{t});
   }
   if (settings.max_rollback > 0 && slot < players) {
@@ -220,7 +221,7 @@ int MatchPeer::Impl::step_confirmed() {
   int stepped = 0;
   while (state == MatchState::playing && ready()) {
     merge_scratch.clear();
-    for (std::size_t p = 0; p < players; ++p) merge_scratch.push_back(inputs[p][next_step]);
+    for (std::size_t p = 0; p < players; ++p) merge_scratch.push_back(input_at(p, next_step));
     TickInput merged = merge(merge_scratch, *world);
     merged.tick = next_step;
     world->step(merged);
@@ -240,15 +241,36 @@ int MatchPeer::Impl::step_confirmed() {
   return stepped;
 }
 
+void MatchPeer::Impl::trim_inputs() {
+  // Kept: from the tick before the first one anyone may still need (a delta's base): the next
+  // confirmed tick, the shown world's, and each connected peer's next needed tick.
+  constexpr std::uint64_t chunk = 1024;  // dropped at once, so erasing costs O(1) a tick
+  std::size_t stored = 0;
+  for (std::size_t p = 0; p < players; ++p) {
+    std::uint64_t keep = next_step;
+    if (shown) keep = std::min<std::uint64_t>(keep, shown->tick());
+    for (const detail::Remote& r : remotes) {
+      if (r.handshaken) keep = std::min<std::uint64_t>(keep, r.their_next[p]);
+    }
+    keep = std::min<std::uint64_t>(keep, known(p));
+    if (keep > 0 && keep - 1 >= base[p] + chunk) {
+      const std::uint64_t drop = keep - 1 - base[p];
+      inputs[p].erase(inputs[p].begin(), inputs[p].begin() + static_cast<std::ptrdiff_t>(drop));
+      base[p] += drop;
+    }
+    stored += inputs[p].size();
+  }
+  stats.stored_inputs = stored;
+}
+
 int MatchPeer::advance() {
   Impl& m = *impl_;
   const bool shown_behind = m.shown && m.state == MatchState::finished;
   if (m.state != MatchState::playing && !shown_behind) return 0;
   const int stepped = m.step_confirmed();
-  if (m.shown) {
-    m.advance_shown();
-    return stepped;
-  }
+  if (m.shown) m.advance_shown();
+  m.trim_inputs();
+  if (m.shown) return stepped;
   const double now = detail::clock_ms();
   if (stepped == 0 && m.state == MatchState::playing) {
     ++m.stats.stalls;

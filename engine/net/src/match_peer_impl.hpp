@@ -75,7 +75,10 @@ struct MatchPeer::Impl {
   MatchStats stats;
   std::uint8_t slot = no_slot;
   std::uint8_t players = 0;
-  std::array<std::vector<TickInput>, max_players> inputs;  ///< per player, from tick 0
+  /// Per player, the inputs of ticks base[p] .. known(p) - 1: those before are dropped once
+  /// no one needs them (trim_inputs), so memory does not grow with the match's length.
+  std::array<std::vector<TickInput>, max_players> inputs;
+  std::array<std::uint64_t, max_players> base{};
   std::uint64_t next_step = 0;
   std::vector<detail::Remote> remotes;
   std::map<std::uint64_t, std::uint64_t> own_hashes;            ///< tick -> our state hash
@@ -98,7 +101,7 @@ struct MatchPeer::Impl {
   void start(std::uint8_t players, std::uint8_t slot);  ///< the handshake done
   void fail(std::string why);
   [[nodiscard]] std::uint32_t known(std::size_t player) const {
-    return static_cast<std::uint32_t>(inputs[player].size());
+    return static_cast<std::uint32_t>(base[player] + inputs[player].size());
   }
   [[nodiscard]] std::string who(const detail::Remote& r) const;
   void record_hash(std::uint64_t tick, std::uint64_t hash);
@@ -107,6 +110,10 @@ struct MatchPeer::Impl {
 
   [[nodiscard]] bool rules_have_state() const { return rules && rules.save && rules.restore; }
   int step_confirmed();
+  [[nodiscard]] const TickInput& input_at(std::size_t player, std::uint64_t tick) const {
+    return inputs[player][tick - base[player]];
+  }
+  void trim_inputs();
 
   // rollback.cpp
   [[nodiscard]] TickInput predict(std::size_t player, std::uint64_t tick) const;

@@ -205,18 +205,25 @@ void MatchPeer::Impl::on_inputs(detail::Remote& r, const Packet& p) {
   const std::uint64_t limit = next_step + settings.input_delay + max_ahead;
   bool grew = false;
   for (const InputRun& run : p.inputs.runs) {
-    std::vector<TickInput>& have = inputs[run.player];
-    TickInput prev = run.first_tick == 0 ? TickInput{} : have[run.first_tick - 1];
+    const std::size_t q = run.player;
+    if (run.first_tick > 0 && run.first_tick - 1 < base[q]) {
+      // Its base tick was dropped long ago (trim_inputs): its ticks are all here already.
+      ++stats.dropped[static_cast<std::size_t>(PacketError::out_of_window)];
+      continue;
+    }
+    TickInput prev = run.first_tick == 0 ? TickInput{} : input_at(q, run.first_tick - 1);
     for (std::size_t i = 0; i < run.deltas.size(); ++i) {
       const std::uint64_t t = run.first_tick + i;
       prev = apply_delta(run.deltas[i], prev, t);
-      if (t < have.size()) {
-        if (!same_input(prev, have[t])) ++stats.conflicting_inputs;  // the first copy stands
+      if (t < known(q)) {
+        if (t >= base[q] && !same_input(prev, input_at(q, t))) {
+          ++stats.conflicting_inputs;  // the first copy stands
+        }
       } else if (t >= limit) {
         ++stats.dropped[static_cast<std::size_t>(PacketError::out_of_window)];
         break;
       } else {
-        have.push_back(prev);
+        inputs[q].push_back(prev);
         grew = true;
         if (shown) check_prediction(run.player, t);
       }

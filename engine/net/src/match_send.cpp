@@ -54,10 +54,11 @@ void MatchPeer::Impl::send_inputs(detail::Remote& r, double now) {
     const bool ours_to_send = is_host ? p != r.slot : p == slot;
     if (!ours_to_send) continue;
     const std::uint32_t from = r.their_next[p];
+    if (from > 0 && from - 1 < base[p]) continue;  // a peer left that far behind times out
     const std::uint32_t to = std::min<std::uint32_t>(known(p), from + max_run_ticks);
     if (from >= to) continue;
-    runs.push_back({p, std::span<const TickInput>(inputs[p]).subspan(from, to - from),
-                    from > 0 ? &inputs[p][from - 1] : nullptr});
+    runs.push_back({p, std::span<const TickInput>(inputs[p]).subspan(from - base[p], to - from),
+                    from > 0 ? &input_at(p, from - 1) : nullptr});
   }
   // A packet too large: the longest run halved until it fits (the rest goes next time).
   while (inputs_packet_size(players, runs) > max_packet_bytes) {

@@ -12,7 +12,7 @@ namespace fixstep::net {
 TickInput MatchPeer::Impl::predict(std::size_t player, std::uint64_t tick) const {
   // The last input's levels (buttons held, push, pointer, drag), not its events: a press, a
   // release or an impulse happens once, so repeating it would be a worse guess.
-  TickInput in = known(player) > 0 ? inputs[player][known(player) - 1] : TickInput{};
+  TickInput in = known(player) > 0 ? input_at(player, known(player) - 1) : TickInput{};
   in.tick = tick;
   in.pressed = 0;
   in.released = 0;
@@ -24,7 +24,7 @@ void MatchPeer::Impl::check_prediction(std::size_t player, std::uint64_t tick) {
   if (frames.empty() || tick < frames.front().tick || tick >= shown->tick()) return;
   const detail::ShownFrame& f = frames[tick - frames.front().tick];
   if (((f.predicted >> player) & 1u) == 0) return;
-  if (!same_input(inputs[player][tick], f.used[player])) wrong_from = std::min(wrong_from, tick);
+  if (!same_input(input_at(player, tick), f.used[player])) wrong_from = std::min(wrong_from, tick);
 }
 
 void MatchPeer::Impl::step_shown() {
@@ -35,7 +35,7 @@ void MatchPeer::Impl::step_shown() {
   if (rules_have_state()) f.rules = rules.save();
   for (std::size_t p = 0; p < players; ++p) {
     if (known(p) > t) {
-      f.used[p] = inputs[p][t];
+      f.used[p] = input_at(p, t);
     } else {
       f.used[p] = predict(p, t);
       f.predicted |= 1u << p;

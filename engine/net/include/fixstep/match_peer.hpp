@@ -103,6 +103,9 @@ struct MatchStats {
   double stalled_ms = 0.0;          ///< time spent waiting so
   std::uint32_t round_trip_ms = 0;  ///< to the host (a joiner) or the slowest player (a host)
   std::uint64_t hashes_compared = 0;
+  /// Players' inputs held now (all players): those no peer needs any more are dropped in
+  /// chunks of 1024 ticks, so this stays bounded however long the match.
+  std::uint64_t stored_inputs = 0;
   // Rollback only:
   std::uint64_t predicted_ticks = 0;    ///< shown ticks stepped with a predicted input
   std::uint64_t rollbacks = 0;          ///< restores of the shown world
