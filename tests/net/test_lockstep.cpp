@@ -163,6 +163,28 @@ TEST(Lockstep, AJoinerWithAnotherWorldOrAFullMatchIsRefused) {
       << "[" << third.error() << "]";
 }
 
+/// send_interval_ms batches the ticks of that long into one packet: at most one inputs packet
+/// per interval to each peer, whatever the frame rate, and the match still agrees.
+TEST(Lockstep, SendIntervalBatchesTicks) {
+  MatchSettings s = match(2, 120);
+  s.input_delay = 8;
+  s.send_interval_ms = 40;
+  s.resend_ms = 40;
+  s.hash_every = 60;
+  Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 6});
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_TRUE(m.run(20000, {}, 5.0)) << m.peers[0]->error();
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  expect_agreement(m, 120);
+  for (const auto& p : m.peers) {
+    // Inputs packets: at most one per 40 ms (and the first); reliable ones: the handshake's
+    // and two state hashes.
+    EXPECT_LE(p->stats().packets_sent, static_cast<std::uint64_t>(ms / 40.0) + 1 + 3);
+    EXPECT_GT(p->stats().packets_sent, 5u);
+  }
+}
+
 /// Polls `host` and `raw` until `raw` receives a datagram (at most 2 s).
 std::optional<std::vector<std::uint8_t>> answer(MatchPeer& host, net::Transport& raw) {
   const auto start = std::chrono::steady_clock::now();

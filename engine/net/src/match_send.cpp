@@ -38,7 +38,10 @@ void MatchPeer::Impl::send_due(double now) {
   if (players == 0) return;
   for (detail::Remote& r : remotes) {
     if (!r.handshaken || (is_host && !r.heard_inputs)) continue;
-    if (r.dirty || now - r.last_sent >= settings.resend_ms) send_inputs(r, now);
+    const double since = now - r.last_sent;
+    if ((r.dirty && since >= settings.send_interval_ms) || since >= settings.resend_ms) {
+      send_inputs(r, now);
+    }
   }
   std::uint32_t rtt = 0;
   for (const detail::Remote& r : remotes) {

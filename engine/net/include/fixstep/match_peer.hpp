@@ -60,6 +60,10 @@ struct MatchSettings {
   /// round trip plus one tick ahead of the slowest player's last input.
   double tick_rate_hz = 60.0;
   std::uint32_t resend_ms = 10;  ///< unacknowledged inputs resent at least this often
+  /// Least time between two inputs packets to one peer, ms: 0 sends one on every new input
+  /// (one a tick), more batches the ticks of that long into one packet (fewer headers, less
+  /// bandwidth, as much more latency).
+  std::uint32_t send_interval_ms = 0;
   /// A player (or the host) heard from for this long stops the match ("timed out").
   std::uint32_t peer_timeout_ms = 5000;
   /// A connection that has not completed the handshake after this long is dropped.
