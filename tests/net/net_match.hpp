@@ -53,10 +53,16 @@ struct Match {
   /// index)` after each advance.
   void round(bool frame, const std::function<void(std::size_t)>& each_tick,
              bool one_input = false) {
+    round(std::vector<bool>(peers.size(), frame), each_tick, one_input);
+  }
+  /// round() with a frame for peer i when frames[i].
+  void round(const std::vector<bool>& frames, const std::function<void(std::size_t)>& each_tick,
+             bool one_input) {
     if (link) link->pump();
     prev_held.resize(peers.size(), 0);
     for (std::size_t i = 0; i < peers.size(); ++i) {
       net::MatchPeer& p = *peers[i];
+      const bool frame = frames[i];
       p.poll(0);
       while (frame && p.wants_input()) {
         TickInput in = scripted_input(p.world(), p.slot(), p.next_input_tick());
@@ -76,15 +82,23 @@ struct Match {
   /// Returns whether every peer finished.
   bool run(double deadline_ms, const std::function<void(std::size_t)>& each_tick = {},
            double frame_ms = 0.0) {
+    return run(deadline_ms, each_tick, std::vector<double>(peers.size(), frame_ms));
+  }
+  /// run() with peer i's frames every frame_ms[i].
+  bool run(double deadline_ms, const std::function<void(std::size_t)>& each_tick,
+           const std::vector<double>& frame_ms) {
     const auto start = std::chrono::steady_clock::now();
-    double next_frame = 0.0;
+    std::vector<double> next_frame(peers.size(), 0.0);
+    std::vector<bool> frames(peers.size());
     for (;;) {
       const double elapsed =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
-      const bool frame = elapsed >= next_frame;
-      if (frame) next_frame += frame_ms;
-      round(frame, each_tick, frame_ms > 0.0);
+      for (std::size_t i = 0; i < peers.size(); ++i) {
+        frames[i] = elapsed >= next_frame[i];
+        if (frames[i]) next_frame[i] += frame_ms[i];
+      }
+      round(frames, each_tick, frame_ms[0] > 0.0);
       bool all_done = true;
       for (const auto& p : peers) {
         const net::MatchState s = p->state();

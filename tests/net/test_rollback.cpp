@@ -99,6 +99,37 @@ TEST(Rollback, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   }
 }
 
+/// Time sync: a peer stepping 3 times as fast as the other waits for it (frame advantage held
+/// near half the round trip) instead of running max_rollback ticks ahead and stalling there.
+TEST(Rollback, AFasterPeerWaitsForTheSlowerOne) {
+  net::MatchSettings fast = match(2, 240);
+  fast.input_delay = 1;
+  fast.max_rollback = 8;
+  fast.tick_rate_hz = 500.0;  // a frame every 2 ms
+  net::MatchSettings slow = fast;
+  slow.tick_rate_hz = 1000.0 / 6.0;  // every 6 ms
+  Match m;
+  const WorldDef def = world_def(billiards());
+  m.peers.push_back(
+      std::make_unique<net::MatchPeer>(net::MatchPeer::host(def, fast, {"127.0.0.1", 0})));
+  m.link = std::make_unique<net::LinkConditioner>(net::Address{"127.0.0.1", m.peers[0]->port()},
+                                                  net::LinkSettings{.latency_ms = 5.0, .seed = 12});
+  m.peers.push_back(std::make_unique<net::MatchPeer>(
+      net::MatchPeer::join(def, slow, {"127.0.0.1", m.link->port()})));
+  std::int64_t most_ahead = 0;
+  ASSERT_TRUE(m.run(
+      20000,
+      [&](std::size_t i) {
+        if (i == 0) most_ahead = std::max(most_ahead, m.peers[0]->stats().frame_advantage);
+      },
+      std::vector<double>{2.0, 6.0}));
+  expect_agreement(m, 240);
+  const net::MatchStats& s = m.peers[0]->stats();
+  EXPECT_GT(s.waits, 50u);
+  EXPECT_LT(s.stalls, s.waits);  // it waited, rather than ran into the rollback window
+  EXPECT_LE(most_ahead, 8);
+}
+
 /// A match longer than the inputs kept: each peer holds at most about two chunks of 1024 ticks
 /// per player, and the recordings (which keep every input change) still agree and replay.
 TEST(Rollback, LongMatchesKeepBoundedInputs) {
