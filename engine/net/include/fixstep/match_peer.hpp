@@ -1,0 +1,190 @@
+// A networked match, in one of two kinds, over the same protocol:
+// - deterministic lockstep (MatchSettings::max_rollback = 0): every peer steps tick t once
+//   every player's input for t has arrived, so all peers compute the same states bit for bit
+//   (fixstep's determinism), sending only inputs. Local input is played `input_delay` ticks
+//   after it is given (the playout delay), so a link whose round trip is shorter than the delay
+//   never stalls.
+// - rollback (max_rollback > 0, GGPO-style): besides the confirmed world, a shown world runs
+//   ahead on predicted inputs of the remote players (their last input's levels); when a real
+//   input differs from the prediction, the shown world is restored from the snapshot of that
+//   tick and re-simulated, at most max_rollback ticks.
+// A host (player 0) relays the inputs of each player to the others (a star: a joining peer
+// knows only the host's address); spectators receive them all and send none. Peers exchange
+// state hashes of confirmed ticks every hash_every ticks; a mismatch stops the match with a
+// located report. Each peer records the confirmed inputs as a fixstep recording.
+// docs/NETWORK.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fixstep/net_protocol.hpp"
+#include "fixstep/net_transport.hpp"
+#include "fixstep/recording.hpp"
+#include "fixstep/rules.hpp"
+#include "fixstep/world.hpp"
+
+namespace fixstep::net {
+
+/// The input a tick is stepped with, from the players' inputs of that tick (index = slot). Runs
+/// on every peer inside the tick, before World::step, so it must be deterministic (as rules
+/// are): it may read the world (a player's buttons turned into an impulse on the body it
+/// controls, found by handle).
+using InputMerge = std::function<TickInput(std::span<const TickInput> players, const World& world)>;
+
+/// The default merge: body inputs concatenated in slot order; push summed in slot order;
+/// held, pressed and released or-ed; pointer and drag body the first player's (by slot) that
+/// drags a body, else player 0's pointer and no drag.
+[[nodiscard]] TickInput merge_inputs(std::span<const TickInput> players, const World& world);
+
+/// The match: what the host decides and sends joiners in the handshake (players, input_delay,
+/// hash_every), and what each peer decides for itself (the rest).
+struct MatchSettings {
+  std::uint8_t players = 2;       ///< 2 .. max_players
+  std::uint16_t input_delay = 3;  ///< ticks between giving an input and its tick
+  std::uint16_t hash_every = 30;  ///< ticks between exchanged state hashes, >= 1
+  std::uint64_t match_ticks = 0;  ///< the match ends after this many ticks; 0: never
+  /// Rollback: most ticks the shown world may run ahead of the confirmed one on predicted
+  /// inputs (and so the longest re-simulation); 0: lockstep (the shown world is the confirmed
+  /// one). This peer's own choice: peers of either kind play one match.
+  std::uint16_t max_rollback = 0;
+  /// Rollback's time synchronisation: ticks per second the caller steps at (to turn the round
+  /// trip into ticks); advance() waits a frame while the shown world is more than half the
+  /// round trip plus one tick ahead of the slowest player's last input.
+  double tick_rate_hz = 60.0;
+  std::uint32_t resend_ms = 10;  ///< unacknowledged inputs resent at least this often
+  /// Least time between two inputs packets to one peer, ms: 0 sends one on every new input
+  /// (one a tick), more batches the ticks of that long into one packet (fewer headers, less
+  /// bandwidth, as much more latency).
+  std::uint32_t send_interval_ms = 0;
+  /// A player (or the host) heard from for this long stops the match ("timed out").
+  std::uint32_t peer_timeout_ms = 5000;
+  /// A connection that has not completed the handshake after this long is dropped.
+  std::uint32_t handshake_timeout_ms = 3000;
+  /// Recording: the scene name and text (Recorder), the state hash stored every this many
+  /// ticks, and the rules' name and version when the match has rules (Recorder::set_rules).
+  std::string scene_name = "network match";
+  std::string scene_text;
+  std::uint64_t record_hash_every = 1;
+  std::string rules_name;
+  std::uint32_t rules_version = 0;
+};
+
+/// Where a peer's match is.
+enum class MatchState : std::uint8_t {
+  connecting,  ///< waiting for the transport or the handshake
+  playing,
+  finished,  ///< match_ticks stepped
+  desynced,  ///< a state hash differed: desync() says where
+  failed,    ///< refused, timed out or disconnected: error() says why
+};
+
+/// Where two peers' states first differed, as far as the exchanged hashes show: the state
+/// after `tick` ticks hashed `ours` on player (or spectator) `our_slot` and `theirs` on
+/// `their_slot`; the hashes of the tick hash_every before matched.
+struct DesyncReport {
+  std::uint64_t tick = 0;
+  std::uint8_t our_slot = 0, their_slot = 0;
+  std::uint64_t ours = 0, theirs = 0;
+};
+
+/// What a peer counted.
+struct MatchStats {
+  std::uint64_t packets_sent = 0, bytes_sent = 0;
+  std::uint64_t packets_received = 0, bytes_received = 0;
+  /// Packets dropped, by PacketError (index = its value): malformed, out of window, replayed,
+  /// unexpected. None of them is ever used.
+  std::array<std::uint64_t, packet_error_count> dropped{};
+  std::uint64_t conflicting_inputs = 0;  ///< resent inputs that differ from the first copy
+  std::uint64_t stalls = 0;         ///< advance() calls that stepped nothing, waiting for input
+  double stalled_ms = 0.0;          ///< time spent waiting so
+  std::uint32_t round_trip_ms = 0;  ///< to the host (a joiner) or the slowest player (a host)
+  std::uint64_t hashes_compared = 0;
+  /// Players' inputs held now (all players): those no peer needs any more are dropped in
+  /// chunks of 1024 ticks, so this stays bounded however long the match.
+  std::uint64_t stored_inputs = 0;
+  // Rollback only:
+  std::uint64_t predicted_ticks = 0;    ///< shown ticks stepped with a predicted input
+  std::uint64_t rollbacks = 0;          ///< restores of the shown world
+  std::uint64_t rolled_back_ticks = 0;  ///< ticks re-simulated, in all
+  std::uint64_t max_rolled_back = 0;    ///< the most ticks one rollback re-simulated
+  std::uint64_t last_rolled_back = 0;   ///< ticks the last advance() re-simulated
+  std::uint64_t waits = 0;              ///< advance() calls that waited for time sync
+  std::int64_t frame_advantage = 0;     ///< shown tick minus the slowest player's, last frame
+  [[nodiscard]] std::uint64_t dropped_total() const;
+};
+
+/// One peer of a lockstep match: the host or a joiner (player or spectator). Single-threaded:
+/// call poll() and advance() often (every frame, or every millisecond in a test).
+class MatchPeer {
+ public:
+  /// Hosts a match of `def` as player 0, listening on `bind` (127.0.0.1 and a port; port 0
+  /// picks one: port()). `rules` run after every tick (held by reference: they must outlive
+  /// the peer); `merge` makes each tick's input (merge_inputs when empty). Throws
+  /// TransportError when the port cannot be bound, std::invalid_argument for bad settings.
+  [[nodiscard]] static MatchPeer host(const WorldDef& def, const MatchSettings& settings,
+                                      const Address& bind, TickRules rules = {},
+                                      InputMerge merge = {});
+  /// Joins the match hosted at `host` as a player (or a spectator). players, input_delay and
+  /// hash_every come from the host; the rest from `settings`. The host refuses a joiner whose
+  /// world differs (definition hash).
+  [[nodiscard]] static MatchPeer join(const WorldDef& def, const MatchSettings& settings,
+                                      const Address& host, bool spectator = false,
+                                      TickRules rules = {}, InputMerge merge = {});
+  MatchPeer(MatchPeer&&) noexcept;
+  MatchPeer& operator=(MatchPeer&&) noexcept;
+  ~MatchPeer();
+
+  /// Receives and handles every packet that has arrived (waiting at most wait_ms for the
+  /// first), sends what is due, checks timeouts.
+  void poll(std::uint32_t wait_ms = 0);
+  /// Whether the local player may give the next input (a player, playing, fewer than
+  /// input_delay + 1 inputs ahead of the next tick to step).
+  [[nodiscard]] bool wants_input() const;
+  /// The local player's input for tick next_input_tick() (its tick field is set). Throws
+  /// std::logic_error when !wants_input(), std::invalid_argument when the network refuses it
+  /// (check_input).
+  void add_input(TickInput input);
+  [[nodiscard]] std::uint64_t next_input_tick() const;
+  /// Steps every tick whose inputs have all arrived (none past match_ticks), running the
+  /// merge, World::step and the rules, recording each; returns the ticks stepped. Nothing
+  /// stepped while playing counts a stall. Rollback: then rolls the shown world back to the
+  /// first tick whose prediction was wrong and re-simulates, and steps it one tick ahead when
+  /// the local input for it is there, it is less than max_rollback ticks ahead of the confirmed
+  /// world and time sync allows. The rules' state (TickRules save and restore, which rollback
+  /// needs for rules with state) is the shown world's between calls.
+  int advance();
+
+  [[nodiscard]] MatchState state() const;
+  [[nodiscard]] const std::string& error() const;  ///< why it failed ("" otherwise)
+  [[nodiscard]] const std::optional<DesyncReport>& desync() const;
+  [[nodiscard]] const MatchStats& stats() const;
+  [[nodiscard]] std::uint8_t slot() const;     ///< no_slot until the handshake completes
+  [[nodiscard]] std::uint8_t players() const;  ///< 0 until the handshake completes
+  [[nodiscard]] std::uint16_t port() const;    ///< the bound port
+  /// The confirmed world: every tick stepped with every player's real input.
+  [[nodiscard]] const World& world() const;
+  /// What to show: the rollback world (ahead on predictions), or the confirmed one in lockstep.
+  [[nodiscard]] const World& shown_world() const;
+  /// The world, for a test that corrupts one peer's state on purpose (a desync).
+  [[nodiscard]] World& world_for_test();
+  /// The recording of the ticks stepped so far (Recorder::finish at the current state).
+  [[nodiscard]] Recording recording() const;
+  /// Leaves: tells the others (disconnect) and flushes. The peer is finished or failed after.
+  void leave();
+
+  struct Impl;  ///< internal (engine/net/src/match_peer_impl.hpp)
+
+ private:
+  explicit MatchPeer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fixstep::net

@@ -1,0 +1,92 @@
+// Datagrams between peers over UDP with ENet: a host that peers connect to, or a peer that
+// connects to one; two channels (unreliable unsequenced for inputs, reliable for the rest);
+// ENet's round-trip estimate and its connection timeout. Bound to 127.0.0.1 unless told
+// otherwise. What the bytes mean is the session's (net_packet.hpp).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fixstep::net {
+
+/// An IPv4 address and UDP port; port 0 binds any free port.
+struct Address {
+  std::string host = "127.0.0.1";
+  std::uint16_t port = 0;
+};
+
+/// The channels of a connection.
+enum class Channel : std::uint8_t {
+  unreliable = 0,  ///< unsequenced: may be lost, duplicated (by the network) or reordered
+  reliable = 1,    ///< delivered once, in order, unless the connection breaks
+};
+
+/// What Transport::poll reports.
+struct TransportEvent {
+  enum class Kind : std::uint8_t { none, connected, received, disconnected };
+  Kind kind = Kind::none;
+  std::uint32_t peer = 0;  ///< the connection's id (Transport::send)
+  Channel channel = Channel::unreliable;
+  std::vector<std::uint8_t> bytes{};  ///< received: the datagram
+};
+
+/// Timeouts of a connection, ms: ENet declares it lost when an acknowledgement is missing for
+/// longer than `minimum_ms` after `limit` retries, or for `maximum_ms` at any rate.
+struct TimeoutSettings {
+  std::uint32_t minimum_ms = 5000;
+  std::uint32_t maximum_ms = 10000;
+};
+
+/// Thrown when a socket cannot be created, bound or connected (the message names the
+/// address and what failed).
+class TransportError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// One ENet host: listening for up to `max_peers` (Transport::listen) or connected to one host
+/// (Transport::connect). Single-threaded: poll(), send() and the rest from one thread.
+class Transport {
+ public:
+  /// Listens on `bind` (127.0.0.1 and a port, 0 for any) for up to max_peers connections.
+  [[nodiscard]] static Transport listen(const Address& bind, std::size_t max_peers,
+                                        TimeoutSettings timeouts = {});
+  /// Connects to `host`, from `bind` (127.0.0.1, any port). The connection's id is 0; a
+  /// `connected` event follows once ENet's handshake completes.
+  [[nodiscard]] static Transport connect(const Address& host, TimeoutSettings timeouts = {},
+                                         const Address& bind = {});
+  Transport(Transport&&) noexcept;
+  Transport& operator=(Transport&&) noexcept;
+  ~Transport();
+
+  /// The next event, waiting at most timeout_ms for one (0: only what has arrived); kind none
+  /// when there is none.
+  [[nodiscard]] TransportEvent poll(std::uint32_t timeout_ms);
+  /// Queues `bytes` to `peer` on `channel` (sent by the next poll() or flush()); a peer that
+  /// is not connected is ignored.
+  void send(std::uint32_t peer, std::span<const std::uint8_t> bytes, Channel channel);
+  /// Sends what is queued now.
+  void flush();
+  /// Ends the connection to `peer` after what is queued to it (a `disconnected` event
+  /// follows; poll() until it does).
+  void disconnect(std::uint32_t peer);
+  /// Drops the connection to `peer` at once, telling it nothing.
+  void drop(std::uint32_t peer);
+  /// ENet's mean round-trip time to `peer`, ms (0 for an unknown peer).
+  [[nodiscard]] std::uint32_t round_trip_ms(std::uint32_t peer) const;
+  /// The port this host is bound to.
+  [[nodiscard]] std::uint16_t port() const;
+  /// The remote address of `peer` as "a.b.c.d:port" ("" for an unknown peer).
+  [[nodiscard]] std::string peer_address(std::uint32_t peer) const;
+
+ private:
+  struct Impl;
+  explicit Transport(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fixstep::net

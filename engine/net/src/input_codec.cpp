@@ -1,0 +1,225 @@
+// fixstep::net: per-tick input as deltas and runs (fixstep/net_input_codec.hpp).
+#include <bit>
+#include <cmath>
+#include <stdexcept>
+
+#include "byte_io.hpp"
+#include "fixstep/net_input_codec.hpp"
+
+namespace fixstep::net {
+
+namespace {
+
+bool finite(Vec2 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y);
+}
+bool buttons_ok(std::uint32_t bits) {
+  return (bits & ~all_buttons) == 0;
+}
+
+/// Bytes of the fields `mask` names in `in`.
+std::size_t fields_size(std::uint8_t mask, const TickInput& in) {
+  std::size_t n = 1;
+  if (mask & field_push) n += 16;
+  if (mask & field_held) n += 2;
+  if (mask & field_edges) n += 4;
+  if (mask & field_pointer) n += 16;
+  if (mask & field_drag) n += 8;
+  if (mask & field_bodies) n += 1 + 25 * in.bodies.size();
+  return n;
+}
+
+void write_entity(detail::ByteWriter& w, Entity e) {
+  w.u32(e.index1);
+  w.u32(e.generation);
+}
+
+Entity read_entity(detail::ByteReader& r) {
+  Entity e;
+  e.index1 = r.u32();
+  e.generation = r.u32();
+  return e;
+}
+
+void write_fields(detail::ByteWriter& w, std::uint8_t mask, const TickInput& in) {
+  w.u8(static_cast<std::uint8_t>(0x80u | mask));
+  if (mask & field_push) {
+    w.f64(in.push.x);
+    w.f64(in.push.y);
+  }
+  if (mask & field_held) w.u16(static_cast<std::uint16_t>(in.held));
+  if (mask & field_edges) {
+    w.u16(static_cast<std::uint16_t>(in.pressed));
+    w.u16(static_cast<std::uint16_t>(in.released));
+  }
+  if (mask & field_pointer) {
+    w.f64(in.pointer.x);
+    w.f64(in.pointer.y);
+  }
+  if (mask & field_drag) write_entity(w, in.drag_body);
+  if (mask & field_bodies) {
+    w.u8(static_cast<std::uint8_t>(in.bodies.size()));
+    for (const BodyInput& b : in.bodies) {
+      write_entity(w, b.body);
+      w.u8(static_cast<std::uint8_t>(b.kind));
+      w.f64(b.value.x);
+      w.f64(b.value.y);
+    }
+  }
+}
+
+/// Reads the fields of `mask` into d.fields; bad_input for a value check_input refuses.
+PacketError read_fields(detail::ByteReader& r, InputDelta& d) {
+  TickInput& in = d.fields;
+  if (d.mask & field_push) in.push = {r.f64(), r.f64()};
+  if (d.mask & field_held) in.held = r.u16();
+  if (d.mask & field_edges) {
+    in.pressed = r.u16();
+    in.released = r.u16();
+  }
+  if (d.mask & field_pointer) in.pointer = {r.f64(), r.f64()};
+  if (d.mask & field_drag) in.drag_body = read_entity(r);
+  if (d.mask & field_bodies) {
+    const std::uint8_t count = r.u8();
+    if (count > max_net_body_inputs) return PacketError::bad_input;
+    in.bodies.resize(count);
+    for (BodyInput& b : in.bodies) {
+      b.body = read_entity(r);
+      const std::uint8_t kind = r.u8();
+      if (kind > static_cast<std::uint8_t>(BodyInputKind::velocity)) return PacketError::bad_input;
+      b.kind = static_cast<BodyInputKind>(kind);
+      b.value = {r.f64(), r.f64()};
+    }
+  }
+  if (!r.ok()) return PacketError::too_short;
+  return check_input(in);
+}
+
+}  // namespace
+
+bool same_input(const TickInput& a, const TickInput& b) {
+  return changed_fields(a, b) == 0;
+}
+
+PacketError check_input(const TickInput& in) {
+  if (!finite(in.push) || !finite(in.pointer)) return PacketError::bad_input;
+  if (!buttons_ok(in.held) || !buttons_ok(in.pressed) || !buttons_ok(in.released)) {
+    return PacketError::bad_input;
+  }
+  if (in.bodies.size() > max_net_body_inputs) return PacketError::bad_input;
+  for (const BodyInput& b : in.bodies) {
+    if (!finite(b.value) || static_cast<std::uint8_t>(b.kind) > 2) return PacketError::bad_input;
+  }
+  return PacketError::none;
+}
+
+std::uint8_t changed_fields(const TickInput& prev, const TickInput& in) {
+  // Bitwise comparisons of the doubles: -0.0 and 0.0 are different inputs to a replay's hash.
+  auto bits_differ = [](Vec2 a, Vec2 b) {
+    return std::bit_cast<std::uint64_t>(a.x) != std::bit_cast<std::uint64_t>(b.x) ||
+           std::bit_cast<std::uint64_t>(a.y) != std::bit_cast<std::uint64_t>(b.y);
+  };
+  auto bodies_differ = [&](const std::vector<BodyInput>& a, const std::vector<BodyInput>& b) {
+    if (a.size() != b.size()) return true;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].body != b[i].body || a[i].kind != b[i].kind || bits_differ(a[i].value, b[i].value)) {
+        return true;
+      }
+    }
+    return false;
+  };
+  std::uint8_t mask = 0;
+  if (bits_differ(prev.push, in.push)) mask |= field_push;
+  if (prev.held != in.held) mask |= field_held;
+  if (prev.pressed != in.pressed || prev.released != in.released) mask |= field_edges;
+  if (bits_differ(prev.pointer, in.pointer)) mask |= field_pointer;
+  if (prev.drag_body != in.drag_body) mask |= field_drag;
+  if (bodies_differ(prev.bodies, in.bodies)) mask |= field_bodies;
+  return mask;
+}
+
+TickInput apply_delta(const InputDelta& d, const TickInput& prev, std::uint64_t tick) {
+  TickInput in = prev;
+  in.tick = tick;
+  if (d.mask & field_push) in.push = d.fields.push;
+  if (d.mask & field_held) in.held = d.fields.held;
+  if (d.mask & field_edges) {
+    in.pressed = d.fields.pressed;
+    in.released = d.fields.released;
+  }
+  if (d.mask & field_pointer) in.pointer = d.fields.pointer;
+  if (d.mask & field_drag) in.drag_body = d.fields.drag_body;
+  if (d.mask & field_bodies) in.bodies = d.fields.bodies;
+  return in;
+}
+
+void encode_inputs(std::span<const TickInput> inputs, const TickInput& prev,
+                   std::vector<std::uint8_t>& out) {
+  detail::ByteWriter w(out);
+  const TickInput* before = &prev;
+  std::size_t repeats = 0;
+  auto flush = [&] {
+    while (repeats > 0) {
+      const std::size_t n = repeats < 128 ? repeats : 128;
+      w.u8(static_cast<std::uint8_t>(n - 1));
+      repeats -= n;
+    }
+  };
+  for (const TickInput& in : inputs) {
+    if (check_input(in) != PacketError::none) {
+      throw std::invalid_argument("net::encode_inputs: an input the network refuses (check_input)");
+    }
+    const std::uint8_t mask = changed_fields(*before, in);
+    if (mask == 0) {
+      ++repeats;
+    } else {
+      flush();
+      write_fields(w, mask, in);
+    }
+    before = &in;
+  }
+  flush();
+}
+
+std::size_t encoded_size(std::span<const TickInput> inputs, const TickInput& prev) {
+  std::size_t n = 0, repeats = 0;
+  const TickInput* before = &prev;
+  for (const TickInput& in : inputs) {
+    const std::uint8_t mask = changed_fields(*before, in);
+    if (mask == 0) {
+      ++repeats;
+    } else {
+      n += (repeats + 127) / 128 + fields_size(mask, in);
+      repeats = 0;
+    }
+    before = &in;
+  }
+  return n + (repeats + 127) / 128;
+}
+
+PacketError decode_inputs(std::span<const std::uint8_t> in, std::uint32_t ticks,
+                          std::vector<InputDelta>& out, std::size_t& used) {
+  out.clear();
+  used = 0;
+  if (ticks == 0 || ticks > max_run_ticks) return PacketError::bad_tick_range;
+  detail::ByteReader r(in);
+  while (out.size() < ticks) {
+    const std::uint8_t item = r.u8();
+    if (!r.ok()) return PacketError::too_short;
+    if ((item & 0x80u) == 0) {
+      const std::size_t n = std::size_t{item} + 1;
+      if (n > ticks - out.size()) return PacketError::bad_field;
+      out.resize(out.size() + n);  // mask 0: the tick before, repeated
+      continue;
+    }
+    InputDelta d;
+    d.mask = static_cast<std::uint8_t>(item & 0x7fu);
+    if (d.mask == 0 || (d.mask & ~all_input_fields) != 0) return PacketError::bad_field;
+    if (const PacketError e = read_fields(r, d); e != PacketError::none) return e;
+    out.push_back(std::move(d));
+  }
+  used = r.position();
+  return PacketError::none;
+}
+
+}  // namespace fixstep::net

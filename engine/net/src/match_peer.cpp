@@ -1,0 +1,338 @@
+// fixstep::net: a lockstep peer's construction, stepping and hashes (fixstep/match_peer.hpp).
+#include <fmt/format.h>
+
+#include <random>
+#include <stdexcept>
+
+#include "fixstep/net_input_codec.hpp"
+#include "match_peer_impl.hpp"
+
+namespace fixstep::net {
+
+namespace {
+
+void check_settings(const MatchSettings& s) {
+  if (s.players < 2 || s.players > max_players) {
+    throw std::invalid_argument(
+        fmt::format("match: players must be 2 .. {} (got {})", max_players, s.players));
+  }
+  if (s.hash_every < 1) throw std::invalid_argument("match: hash_every must be >= 1 tick");
+}
+
+std::unique_ptr<MatchPeer::Impl> make_impl(const WorldDef& def, const MatchSettings& settings,
+                                           TickRules rules, InputMerge merge) {
+  auto impl = std::make_unique<MatchPeer::Impl>();
+  impl->settings = settings;
+  impl->def = def;
+  impl->def_hash = definition_hash(def);
+  impl->world = std::make_unique<World>(def);
+  impl->rules = std::move(rules);
+  impl->merge = merge ? std::move(merge) : InputMerge(merge_inputs);
+  impl->started_at = detail::clock_ms();
+  // A nonce that differs between runs and peers; only echoed, never trusted for security.
+  impl->nonce = std::random_device{}();
+  return impl;
+}
+
+}  // namespace
+
+TickInput merge_inputs(std::span<const TickInput> players, const World& /*world*/) {
+  TickInput out;
+  bool dragging = false;
+  for (const TickInput& in : players) {
+    out.push.x += in.push.x;
+    out.push.y += in.push.y;
+    out.held |= in.held;
+    out.pressed |= in.pressed;
+    out.released |= in.released;
+    if (!dragging && !in.drag_body.is_null()) {
+      out.pointer = in.pointer;
+      out.drag_body = in.drag_body;
+      dragging = true;
+    }
+    out.bodies.insert(out.bodies.end(), in.bodies.begin(), in.bodies.end());
+  }
+  if (!dragging && !players.empty()) out.pointer = players[0].pointer;
+  return out;
+}
+
+std::uint64_t MatchStats::dropped_total() const {
+  std::uint64_t n = 0;
+  for (std::uint64_t d : dropped) n += d;
+  return n;
+}
+
+MatchPeer::MatchPeer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+MatchPeer::MatchPeer(MatchPeer&&) noexcept = default;
+MatchPeer& MatchPeer::operator=(MatchPeer&&) noexcept = default;
+MatchPeer::~MatchPeer() = default;
+
+MatchPeer MatchPeer::host(const WorldDef& def, const MatchSettings& settings, const Address& bind,
+                          TickRules rules, InputMerge merge) {
+  check_settings(settings);
+  auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
+  impl->is_host = true;
+  impl->transport.emplace(
+      Transport::listen(bind, max_players - 1 + max_spectators,
+                        {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}));
+  impl->start(settings.players, 0);
+  return MatchPeer(std::move(impl));
+}
+
+MatchPeer MatchPeer::join(const WorldDef& def, const MatchSettings& settings, const Address& host,
+                          bool spectator, TickRules rules, InputMerge merge) {
+  auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
+  impl->spectator = spectator;
+  impl->host_address = host;
+  impl->transport.emplace(
+      Transport::connect(host, {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}));
+  detail::Remote r;
+  r.conn = 0;
+  r.slot = 0;
+  r.connected_at = r.last_heard = impl->started_at;
+  impl->remotes.push_back(r);
+  return MatchPeer(std::move(impl));
+}
+
+void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
+  players = player_count;
+  slot = own_slot;
+  state = MatchState::playing;
+  for (std::size_t p = 0; p < players; ++p) {
+    inputs[p].clear();
+    base[p] = 0;
+    for (std::uint64_t t = 0; t < settings.input_delay; ++t) inputs[p].push_back(TickInput{t});
+  }
+  if (settings.max_rollback > 0 && slot < players) {
+    shown = std::make_unique<World>(def);
+    if (rules_have_state()) confirmed_rules = rules.save();
+  }
+  recorder.emplace(def, settings.scene_name, settings.record_hash_every, settings.scene_text);
+  if (!settings.rules_name.empty())
+    recorder->set_rules(settings.rules_name, settings.rules_version);
+}
+
+void MatchPeer::Impl::fail(std::string why) {
+  if (state == MatchState::failed || state == MatchState::desynced) return;
+  state = MatchState::failed;
+  error = std::move(why);
+}
+
+std::string MatchPeer::Impl::who(const detail::Remote& r) const {
+  const std::string address = transport->peer_address(r.conn);
+  if (!is_host) return fmt::format("the host ({})", address);
+  if (r.slot < max_players) return fmt::format("player {} ({})", r.slot, address);
+  if (r.slot != no_slot)
+    return fmt::format("spectator {} ({})", r.slot - spectator_slot_base, address);
+  return fmt::format("a peer that has not joined ({})", address);
+}
+
+void MatchPeer::Impl::mark_dirty() {
+  for (detail::Remote& r : remotes) r.dirty = true;
+}
+
+void MatchPeer::Impl::record_hash(std::uint64_t tick, std::uint64_t hash) {
+  own_hashes[tick] = hash;
+  if (slot < players) send_hash({slot, static_cast<std::uint32_t>(tick), hash}, nullptr);
+  compare_hashes();
+}
+
+void MatchPeer::Impl::compare_hashes() {
+  for (auto it = their_hashes.begin(); it != their_hashes.end();) {
+    const auto own = own_hashes.find(it->first);
+    if (own == own_hashes.end()) {
+      ++it;
+      continue;
+    }
+    ++stats.hashes_compared;
+    if (own->second != it->second.hash && !desync) {
+      desync = DesyncReport{it->first, slot, it->second.player, own->second, it->second.hash};
+      state = MatchState::desynced;
+      error = fmt::format(
+          "desync at tick {}: our state (slot {}) hashes {:016x}, player {}'s {:016x}; the "
+          "hashes of tick {} matched",
+          it->first, slot, own->second, it->second.player, it->second.hash,
+          it->first >= settings.hash_every ? it->first - settings.hash_every : 0);
+    }
+    it = their_hashes.erase(it);
+  }
+}
+
+void MatchPeer::poll(std::uint32_t wait_ms) {
+  Impl& m = *impl_;
+  for (;;) {
+    const TransportEvent ev = m.transport->poll(wait_ms);
+    wait_ms = 0;
+    if (ev.kind == TransportEvent::Kind::none) break;
+    m.handle(ev, detail::clock_ms());
+  }
+  const double now = detail::clock_ms();
+  m.check_timeouts(now);
+  m.send_due(now);
+  m.transport->flush();
+}
+
+bool MatchPeer::wants_input() const {
+  const Impl& m = *impl_;
+  if (m.state != MatchState::playing || m.slot >= m.players) return false;
+  const std::uint64_t next = m.known(m.slot);
+  if (m.settings.match_ticks != 0 && next >= m.settings.match_ticks) return false;
+  const std::uint64_t stepping = m.shown ? m.shown->tick() : m.next_step;
+  return next < stepping + m.settings.input_delay + 1;
+}
+
+std::uint64_t MatchPeer::next_input_tick() const {
+  return impl_->slot < impl_->players ? impl_->known(impl_->slot) : 0;
+}
+
+void MatchPeer::add_input(TickInput input) {
+  Impl& m = *impl_;
+  if (!wants_input()) throw std::logic_error("MatchPeer::add_input: no input wanted now");
+  if (check_input(input) != PacketError::none) {
+    throw std::invalid_argument(
+        "MatchPeer::add_input: an input the network refuses: a "
+        "non-finite value, an unknown button or body input kind, or more "
+        "than max_net_body_inputs body inputs");
+  }
+  input.tick = m.known(m.slot);
+  m.inputs[m.slot].push_back(std::move(input));
+  m.mark_dirty();
+}
+
+int MatchPeer::Impl::step_confirmed() {
+  auto ready = [&] {
+    for (std::size_t p = 0; p < players; ++p) {
+      if (known(p) <= next_step) return false;
+    }
+    return true;
+  };
+  if (settings.match_ticks != 0 && next_step >= settings.match_ticks) {
+    state = MatchState::finished;
+    return 0;
+  }
+  if (!ready()) return 0;
+  // Rollback: the rules object holds the shown world's state; the confirmed world's meanwhile.
+  const bool swap = shown && rules_have_state();
+  std::any shown_rules;
+  if (swap) {
+    shown_rules = rules.save();
+    rules.restore(confirmed_rules);
+  }
+  int stepped = 0;
+  while (state == MatchState::playing && ready()) {
+    merge_scratch.clear();
+    for (std::size_t p = 0; p < players; ++p) merge_scratch.push_back(input_at(p, next_step));
+    TickInput merged = merge(merge_scratch, *world);
+    merged.tick = next_step;
+    world->step(merged);
+    if (rules) rules.after_tick(*world, merged);
+    recorder->record(merged, *world);
+    ++next_step;
+    ++stepped;
+    if (next_step % settings.hash_every == 0) record_hash(next_step, world->state_hash());
+    if (settings.match_ticks != 0 && next_step >= settings.match_ticks) {
+      state = MatchState::finished;
+    }
+  }
+  if (swap) {
+    confirmed_rules = rules.save();
+    rules.restore(shown_rules);
+  }
+  return stepped;
+}
+
+void MatchPeer::Impl::trim_inputs() {
+  // Kept: from the tick before the first one anyone may still need (a delta's base): the next
+  // confirmed tick, the shown world's, and each connected peer's next needed tick.
+  constexpr std::uint64_t chunk = 1024;  // dropped at once, so erasing costs O(1) a tick
+  std::size_t stored = 0;
+  for (std::size_t p = 0; p < players; ++p) {
+    std::uint64_t keep = next_step;
+    if (shown) keep = std::min<std::uint64_t>(keep, shown->tick());
+    for (const detail::Remote& r : remotes) {
+      if (r.handshaken) keep = std::min<std::uint64_t>(keep, r.their_next[p]);
+    }
+    keep = std::min<std::uint64_t>(keep, known(p));
+    if (keep > 0 && keep - 1 >= base[p] + chunk) {
+      const std::uint64_t drop = keep - 1 - base[p];
+      inputs[p].erase(inputs[p].begin(), inputs[p].begin() + static_cast<std::ptrdiff_t>(drop));
+      base[p] += drop;
+    }
+    stored += inputs[p].size();
+  }
+  stats.stored_inputs = stored;
+}
+
+int MatchPeer::advance() {
+  Impl& m = *impl_;
+  const bool shown_behind = m.shown && m.state == MatchState::finished;
+  if (m.state != MatchState::playing && !shown_behind) return 0;
+  const int stepped = m.step_confirmed();
+  if (m.shown) m.advance_shown();
+  m.trim_inputs();
+  if (m.shown) return stepped;
+  const double now = detail::clock_ms();
+  if (stepped == 0 && m.state == MatchState::playing) {
+    ++m.stats.stalls;
+    if (m.stall_since < 0.0) m.stall_since = now;
+  } else if (m.stall_since >= 0.0) {
+    m.stats.stalled_ms += now - m.stall_since;
+    m.stall_since = -1.0;
+  }
+  return stepped;
+}
+
+MatchState MatchPeer::state() const {
+  return impl_->state;
+}
+const std::string& MatchPeer::error() const {
+  return impl_->error;
+}
+const std::optional<DesyncReport>& MatchPeer::desync() const {
+  return impl_->desync;
+}
+const MatchStats& MatchPeer::stats() const {
+  return impl_->stats;
+}
+std::uint8_t MatchPeer::slot() const {
+  return impl_->slot;
+}
+std::uint8_t MatchPeer::players() const {
+  return impl_->players;
+}
+std::uint16_t MatchPeer::port() const {
+  return impl_->transport->port();
+}
+const World& MatchPeer::world() const {
+  return *impl_->world;
+}
+const World& MatchPeer::shown_world() const {
+  return impl_->shown ? *impl_->shown : *impl_->world;
+}
+World& MatchPeer::world_for_test() {
+  return *impl_->world;
+}
+
+Recording MatchPeer::recording() const {
+  if (!impl_->recorder) throw std::logic_error("MatchPeer::recording: the match never started");
+  Recorder copy = *impl_->recorder;
+  return copy.finish(*impl_->world);
+}
+
+void MatchPeer::leave() {
+  Impl& m = *impl_;
+  for (detail::Remote& r : m.remotes) {
+    if (!r.handshaken) continue;
+    std::vector<std::uint8_t> bytes;
+    encode_disconnect(m.header(r, MessageKind::disconnect, Channel::reliable),
+                      {DisconnectReason::leaving}, bytes);
+    m.send_reliable(r, bytes);
+    m.transport->disconnect(r.conn);
+  }
+  m.transport->flush();
+  if (m.state == MatchState::playing || m.state == MatchState::connecting) {
+    m.fail("left the match");
+  }
+}
+
+}  // namespace fixstep::net

@@ -1,0 +1,146 @@
+// Internal to fixstep::net: a lockstep peer's state (fixstep/match_peer.hpp), shared by the
+// files that step it (match_peer.cpp), receive (match_receive.cpp) and send
+// (match_send.cpp).
+#pragma once
+
+#include <any>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fixstep/match_peer.hpp"
+#include "fixstep/net_packet.hpp"
+#include "sequence_window.hpp"
+
+namespace fixstep::net::detail {
+
+inline double clock_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+/// Another peer this one has a connection to: the host's players and spectators, or a joiner's
+/// host.
+struct Remote {
+  std::uint32_t conn = 0;  ///< Transport's id
+  bool handshaken = false;
+  std::uint8_t slot = no_slot;
+  double connected_at = 0.0, last_heard = 0.0, last_sent = -1e300;
+  bool dirty = true;  ///< something new to send
+  /// An inputs packet came from it: it has the handshake's accept (a host sends a joiner no
+  /// inputs before, which it would drop).
+  bool heard_inputs = false;
+  std::array<std::uint32_t, max_players> their_next{};  ///< per player: what it has (acks)
+  SequenceWindow window;                                ///< unreliable channel
+  std::optional<std::uint32_t> reliable_seen;           ///< the reliable channel's last
+  std::uint32_t seq_unreliable = 0, seq_reliable = 0;   ///< sent
+};
+
+/// Rollback: the shown world's state before tick `tick`, and the inputs it was stepped with.
+struct ShownFrame {
+  std::uint64_t tick = 0;
+  WorldSnapshot snapshot;
+  std::any rules;  ///< TickRules::save() before the tick (rules with state)
+  std::array<TickInput, max_players> used{};
+  std::uint32_t predicted = 0;  ///< bit p: used[p] was a prediction
+};
+
+}  // namespace fixstep::net::detail
+
+namespace fixstep::net {
+
+struct MatchPeer::Impl {
+  bool is_host = false;
+  bool spectator = false;
+  Address host_address;
+  MatchSettings settings;
+  WorldDef def;
+  std::uint64_t def_hash = 0;
+  std::unique_ptr<World> world;
+  TickRules rules;
+  InputMerge merge;
+  std::optional<Transport> transport;
+  std::optional<Recorder> recorder;
+  MatchState state = MatchState::connecting;
+  std::string error;
+  std::optional<DesyncReport> desync;
+  MatchStats stats;
+  std::uint8_t slot = no_slot;
+  std::uint8_t players = 0;
+  /// Per player, the inputs of ticks base[p] .. known(p) - 1: those before are dropped once
+  /// no one needs them (trim_inputs), so memory does not grow with the match's length.
+  std::array<std::vector<TickInput>, max_players> inputs;
+  std::array<std::uint64_t, max_players> base{};
+  std::uint64_t next_step = 0;
+  std::vector<detail::Remote> remotes;
+  std::map<std::uint64_t, std::uint64_t> own_hashes;            ///< tick -> our state hash
+  std::multimap<std::uint64_t, StateHashMessage> their_hashes;  ///< not compared yet
+  std::uint32_t nonce = 0;
+  double started_at = 0.0;
+  double stall_since = -1.0;
+  std::uint8_t spectators = 0;
+  std::vector<std::uint8_t> buffer;
+  std::vector<TickInput> merge_scratch;
+  // Rollback (settings.max_rollback > 0, players only): the shown world, its frames for the
+  // ticks [frames.front().tick, shown->tick()), the first tick predicted wrong, the rules'
+  // state of the confirmed world while the rules object holds the shown one's.
+  std::unique_ptr<World> shown;
+  std::deque<detail::ShownFrame> frames;
+  std::uint64_t wrong_from = std::numeric_limits<std::uint64_t>::max();
+  std::any confirmed_rules;
+
+  // match_peer.cpp
+  void start(std::uint8_t players, std::uint8_t slot);  ///< the handshake done
+  void fail(std::string why);
+  [[nodiscard]] std::uint32_t known(std::size_t player) const {
+    return static_cast<std::uint32_t>(base[player] + inputs[player].size());
+  }
+  [[nodiscard]] std::string who(const detail::Remote& r) const;
+  void record_hash(std::uint64_t tick, std::uint64_t hash);
+  void compare_hashes();
+  void mark_dirty();
+
+  [[nodiscard]] bool rules_have_state() const { return rules && rules.save && rules.restore; }
+  int step_confirmed();
+  [[nodiscard]] const TickInput& input_at(std::size_t player, std::uint64_t tick) const {
+    return inputs[player][tick - base[player]];
+  }
+  void trim_inputs();
+
+  // rollback.cpp
+  [[nodiscard]] TickInput predict(std::size_t player, std::uint64_t tick) const;
+  void check_prediction(std::size_t player, std::uint64_t tick);
+  void step_shown();
+  void roll_back();
+  void advance_shown();
+
+  // match_receive.cpp
+  void handle(const TransportEvent& ev, double now);
+  void receive(detail::Remote& r, const Packet& p, Channel channel, double now);
+  void on_request(detail::Remote& r, const Packet& p);
+  void on_accept(detail::Remote& r, const Packet& p);
+  void on_refused(DisconnectReason why);
+  void on_inputs(detail::Remote& r, const Packet& p);
+  void on_hash(detail::Remote& r, const StateHashMessage& m);
+  void check_timeouts(double now);
+  [[nodiscard]] detail::Remote* remote(std::uint32_t conn);
+  [[nodiscard]] DecodeContext context(const detail::Remote& r) const;
+
+  // match_send.cpp
+  void send_due(double now);
+  void send_inputs(detail::Remote& r, double now);
+  void send_reliable(detail::Remote& r, const std::vector<std::uint8_t>& bytes);
+  void send_hash(const StateHashMessage& m, const detail::Remote* except);
+  void refuse(detail::Remote& r, DisconnectReason why);
+  [[nodiscard]] Header header(detail::Remote& r, MessageKind kind, Channel channel);
+};
+
+}  // namespace fixstep::net

@@ -1,0 +1,155 @@
+// Rollback matches on loopback through the link conditioner: 2 and 8 players (and a
+// spectator) with latency, jitter and loss; the shown worlds predict, roll back at most
+// max_rollback ticks and land on the confirmed states; the recordings are identical and
+// replay; a corrupted peer is still found at its tick.
+#include <gtest/gtest.h>
+
+#include "net_match.hpp"
+
+namespace fixstep::net_test {
+namespace {
+
+using net::MatchState;
+
+/// After every advance: a shown world at the confirmed tick has the confirmed state (the
+/// rollbacks restored and re-simulated exactly), and is never more than max_rollback ahead.
+std::function<void(std::size_t)> shown_matches_confirmed(Match& m, int& compared) {
+  return [&m, &compared](std::size_t i) {
+    const net::MatchPeer& p = *m.peers[i];
+    const World& shown = p.shown_world();
+    const World& confirmed = p.world();
+    EXPECT_LE(shown.tick(), confirmed.tick() + 8);
+    if (shown.tick() == confirmed.tick() && &shown != &confirmed) {
+      EXPECT_EQ(shown.state_hash(), confirmed.state_hash())
+          << "peer " << i << " tick " << shown.tick();
+      ++compared;
+    }
+  };
+}
+
+void expect_rollbacks(const Match& m, std::size_t players) {
+  for (std::size_t i = 0; i < players; ++i) {
+    const net::MatchStats& s = m.peers[i]->stats();
+    EXPECT_GT(s.predicted_ticks, 0u) << i;
+    EXPECT_GT(s.rollbacks, 0u) << i;
+    EXPECT_GE(s.rolled_back_ticks, s.rollbacks) << i;
+    EXPECT_LE(s.max_rolled_back, 8u) << i;
+    EXPECT_EQ(m.peers[i]->shown_world().tick(), m.peers[i]->world().tick());
+    EXPECT_EQ(m.peers[i]->shown_world().state_hash(), m.peers[i]->world().state_hash());
+  }
+}
+
+TEST(Rollback, TwoPlayersThroughALossyLinkLandOnTheConfirmedStates) {
+  net::MatchSettings s = match(2, 300);
+  s.input_delay = 1;
+  s.max_rollback = 8;
+  s.tick_rate_hz = 200.0;  // a frame every 5 ms
+  const net::LinkSettings link{
+      .latency_ms = 15.0, .jitter_ms = 10.0, .loss = 0.1, .duplicate = 0.02, .seed = 31};
+  Match m = start(s, 1, 0, link);
+  int compared = 0;
+  ASSERT_TRUE(m.run(20000, shown_matches_confirmed(m, compared), 5.0)) << m.peers[0]->error();
+  const Recording rec = expect_agreement(m, 300);
+  expect_rollbacks(m, 2);
+  EXPECT_GE(compared, 2);  // at least at the end, on each peer
+  World sim(world_def(billiards()));
+  EXPECT_TRUE(replay(sim, rec).ok());
+}
+
+TEST(Rollback, EightPlayersAndASpectatorWithRulesAgree) {
+  net::MatchSettings s = match(8, 200);
+  s.input_delay = 2;
+  s.max_rollback = 8;
+  s.tick_rate_hz = 200.0;  // a frame every 5 ms: the link's 10 ms are 2 ticks
+  const net::LinkSettings link{.latency_ms = 10.0, .jitter_ms = 8.0, .loss = 0.2, .seed = 9};
+  std::vector<PressCounter> counters(9);
+  std::vector<TickRules> rules;
+  for (auto& c : counters) rules.push_back(press_rules(c));
+  Match m = start(s, 7, 1, link, rules);
+  int compared = 0;
+  ASSERT_TRUE(m.run(30000, shown_matches_confirmed(m, compared), 5.0)) << m.peers[0]->error();
+  const Recording rec = expect_agreement(m, 200);
+  expect_rollbacks(m, 8);
+  // The rules' state is the shown world's between calls; at the end, the confirmed one's too.
+  for (const auto& c : counters) EXPECT_EQ(c.presses, counters[0].presses);
+  PressCounter fresh;
+  World with(world_def(billiards()));
+  EXPECT_TRUE(replay(with, rec, press_rules(fresh)).ok());
+  EXPECT_EQ(fresh.presses, counters[0].presses);
+}
+
+TEST(Rollback, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
+  net::MatchSettings s = match(2, 300);
+  s.input_delay = 1;
+  s.max_rollback = 8;
+  Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 2});
+  bool nudged = false;
+  EXPECT_FALSE(m.run(20000, [&](std::size_t i) {
+    net::MatchPeer& p = *m.peers[i];
+    if (i == 1 && !nudged && p.world().tick() >= 95) {
+      World& w = p.world_for_test();
+      w.set_velocity(w.bodies()[3], {1e-9, 0.0});
+      nudged = true;
+    }
+  }));
+  m.keep_playing(500);  // the other peer steps to tick 100 too
+  for (const auto& p : m.peers) {
+    ASSERT_EQ(p->state(), MatchState::desynced) << p->error();
+    EXPECT_EQ(p->desync()->tick, 100u);
+  }
+}
+
+/// Time sync: a peer stepping 3 times as fast as the other waits for it (frame advantage held
+/// near half the round trip) instead of running max_rollback ticks ahead and stalling there.
+TEST(Rollback, AFasterPeerWaitsForTheSlowerOne) {
+  net::MatchSettings fast = match(2, 240);
+  fast.input_delay = 1;
+  fast.max_rollback = 8;
+  fast.tick_rate_hz = 500.0;  // a frame every 2 ms
+  net::MatchSettings slow = fast;
+  slow.tick_rate_hz = 1000.0 / 6.0;  // every 6 ms
+  Match m;
+  const WorldDef def = world_def(billiards());
+  m.peers.push_back(
+      std::make_unique<net::MatchPeer>(net::MatchPeer::host(def, fast, {"127.0.0.1", 0})));
+  m.link = std::make_unique<net::LinkConditioner>(net::Address{"127.0.0.1", m.peers[0]->port()},
+                                                  net::LinkSettings{.latency_ms = 5.0, .seed = 12});
+  m.peers.push_back(std::make_unique<net::MatchPeer>(
+      net::MatchPeer::join(def, slow, {"127.0.0.1", m.link->port()})));
+  std::int64_t most_ahead = 0;
+  ASSERT_TRUE(m.run(
+      20000,
+      [&](std::size_t i) {
+        if (i == 0) most_ahead = std::max(most_ahead, m.peers[0]->stats().frame_advantage);
+      },
+      std::vector<double>{2.0, 6.0}));
+  expect_agreement(m, 240);
+  const net::MatchStats& s = m.peers[0]->stats();
+  EXPECT_GT(s.waits, 50u);
+  EXPECT_LT(s.stalls, s.waits);  // it waited, rather than ran into the rollback window
+  EXPECT_LE(most_ahead, 8);
+}
+
+/// A match longer than the inputs kept: each peer holds at most about two chunks of 1024 ticks
+/// per player, and the recordings (which keep every input change) still agree and replay.
+TEST(Rollback, LongMatchesKeepBoundedInputs) {
+  for (std::uint16_t rollback : {std::uint16_t{0}, std::uint16_t{8}}) {
+    net::MatchSettings s = match(2, 2600);
+    s.input_delay = rollback ? 1 : 6;
+    s.max_rollback = rollback;
+    s.hash_every = 100;
+    s.record_hash_every = 100;
+    Match m = start(s, 1, 0, net::LinkSettings{.seed = 4});
+    ASSERT_TRUE(m.run(30000)) << m.peers[0]->error() << " / " << m.peers[1]->error();
+    const Recording rec = expect_agreement(m, 2600);
+    for (const auto& p : m.peers) {
+      EXPECT_LE(p->stats().stored_inputs, 2u * 2 * 1024) << "max_rollback " << rollback;
+      EXPECT_GE(p->stats().stored_inputs, 2u * 500) << "max_rollback " << rollback;
+    }
+    World sim(world_def(billiards()));
+    EXPECT_TRUE(replay(sim, rec).ok()) << "max_rollback " << rollback;
+  }
+}
+
+}  // namespace
+}  // namespace fixstep::net_test
