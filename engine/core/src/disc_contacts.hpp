@@ -44,6 +44,7 @@
 #include "disc_broadphase.hpp"
 #include "fixstep/components.hpp"
 #include "fixstep/detail/world_kernel.hpp"
+#include "pass_team.hpp"
 
 namespace fixstep::detail {
 
@@ -90,6 +91,7 @@ struct RestContact {
   double inv_a = 0, inv_b = 0;  ///< 1/kg of a and b (0: static, kinematic or a plane)
   bool kinematic_a = false;     ///< a is a moving kinematic disc (its work is external)
   bool kinematic_b = false;     ///< b is a moving kinematic disc (its work is external)
+  std::uint8_t moved = 0;       ///< 1 once an impulse or a push-out moved its discs this tick
 };
 
 /// Last tick's resting impulses, for warm starting (part of a snapshot).
@@ -210,6 +212,9 @@ class DiscContacts {
   /// tick.threads >= 2, then the contacts across the cut on this thread.
   template <class Range>
   void parts_pass(const Tick& tick, Range& range);
+  /// Warm start, velocity iterations and push-out, on two threads when the contacts were
+  /// split and tick.threads >= 2 (the worker serves every pass: pass_team.hpp).
+  void solve_resting(const Tick& tick, ContactStats& stats);
   void warm_start(const Tick& tick);
   void solve_velocities(const Tick& tick, ContactStats& stats);
   void push_out(const Tick& tick, ContactStats& stats);
@@ -217,7 +222,7 @@ class DiscContacts {
   double overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny,
                     double& r_min) const;
   void keep_impulses();
-  void apply(const RestContact& c, double jx, double jy, double kdt);
+  void apply(RestContact& c, double jx, double jy, double kdt);
   void finish(const Tick& tick);
 
   std::vector<Disc> discs_;
@@ -240,9 +245,11 @@ class DiscContacts {
   std::uint32_t plane_contacts_ = 0;   ///< where contacts_'s plane contacts begin
   std::vector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};
-  std::vector<double> cut_;                  ///< split_contacts()'s
-  std::vector<WarmImpulse> warm_;            ///< by key
-  std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
+  std::vector<double> cut_;                                 ///< split_contacts()'s
+  CachePtr<PassTeam, std::default_delete<PassTeam>> team_;  ///< the passes' second thread
+  bool team_on_ = false;                                    ///< within solve_resting()
+  std::vector<WarmImpulse> warm_;                           ///< by key
+  std::vector<double> ex_, ey_, evx_, evy_;                 ///< end states in double, m and m/s
   // Energy per unit mass (J/kg: ½|v|² - a·x, a the constant acceleration) at the tick's start
   // and after the free step, and the dissipated account at the start.
   std::vector<double> lost_, external_, e_start_, e_begin_, d_begin_;

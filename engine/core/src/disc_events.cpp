@@ -347,9 +347,7 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   profile.impacts = clock.lap();
   gather_contacts(tick);
   split_contacts(stats);
-  warm_start(tick);
-  solve_velocities(tick, stats);
-  push_out(tick, stats);
+  solve_resting(tick, stats);
   keep_impulses();
   profile.resting = clock.lap();
   finish(tick);

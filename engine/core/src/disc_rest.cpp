@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "disc_contacts.hpp"
+#include "pass_team.hpp"
 #include "workers.hpp"
 
 namespace fixstep::detail {
@@ -69,44 +70,70 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
 
 // Applies the impulse (jx, jy) to a and its opposite to b, moving each by κ dt Δv.
 template <class Real>
-[[gnu::always_inline]] inline void DiscContacts<Real>::apply(const RestContact& c, double jx,
-                                                             double jy, double kdt) {
+[[gnu::always_inline]] inline void DiscContacts<Real>::apply(RestContact& c, double jx, double jy,
+                                                             double kdt) {
   if (c.kinematic_b) external_[c.a] += jx * evx_[c.b] + jy * evy_[c.b];
   if (c.kinematic_a) external_[c.b] -= jx * evx_[c.a] + jy * evy_[c.a];
+  c.moved = 1;  // its discs are marked changed after the passes (mark_moved)
   if (c.inv_a > 0.0) {
     const double dvx = c.inv_a * jx, dvy = c.inv_a * jy;
     evx_[c.a] += dvx, evy_[c.a] += dvy, ex_[c.a] += kdt * dvx, ey_[c.a] += kdt * dvy;
-    changed_[c.a] |= 2;
   }
   if (c.inv_b > 0.0) {
     const double dvx = c.inv_b * jx, dvy = c.inv_b * jy;
     evx_[c.b] -= dvx, evy_[c.b] -= dvy, ex_[c.b] -= kdt * dvx, ey_[c.b] -= kdt * dvy;
-    changed_[c.b] |= 2;
   }
 }
 
 template <class Real>
 template <class Range>
-void DiscContacts<Real>::parts_pass(const Tick& tick, Range& range) {
+void DiscContacts<Real>::parts_pass(const Tick& /*tick*/, Range& range) {
   const auto& p = part_start_;
-  if (tick.threads >= 2 && p[1] > p[0] && p[2] > p[1]) {
+  if (team_on_) {
     struct Half {
       Range* range;
       std::uint32_t begin, end;
     } half{&range, p[1], p[2]};
-    Workers& w = broadphase_.worker();
-    w.submit(
+    team_->post(
         [](void* h) {
           const auto* half = static_cast<Half*>(h);
           (*half->range)(half->begin, half->end, 1);
         },
         &half);
     range(p[0], p[1], 0);
-    w.wait();
+    team_->wait();
   } else {
     range(p[0], p[1], 0), range(p[1], p[2], 0);
   }
   range(p[2], p[3], 0);  // across the cut
+}
+
+template <class Real>
+void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
+  const auto& p = part_start_;
+  team_on_ = tick.threads >= 2 && p[1] > p[0] && p[2] > p[1];
+  Workers* worker = nullptr;
+  if (team_on_) {  // the worker serves every pass of this tick's resting solve
+    if (!team_) team_.reset(new PassTeam());
+    worker = &broadphase_.worker();
+    worker->submit(&PassTeam::serve, team_.get());
+  }
+  warm_start(tick);
+  solve_velocities(tick, stats);
+  push_out(tick, stats);
+  if (team_on_) {
+    team_->finish();
+    worker->wait();
+    team_on_ = false;
+  }
+  // The discs the passes moved, from their contacts' marks: written here, on one thread,
+  // since a byte per disc written by two threads would share cache lines.
+  const std::size_t n = discs_.size();
+  for (const RestContact& c : contacts_) {
+    if (!c.moved) continue;
+    if (c.inv_a > 0.0) changed_[c.a] |= 2;
+    if (c.b < n && c.inv_b > 0.0) changed_[c.b] |= 2;
+  }
 }
 
 template <class Real>
@@ -127,7 +154,7 @@ void DiscContacts<Real>::warm_start(const Tick& tick) {
   const double kdt = tick.kappa * tick.dt;
   auto range = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
     for (std::uint32_t i = begin; i < end; ++i) {
-      const RestContact& c = contacts_[order_[i]];
+      RestContact& c = contacts_[order_[i]];
       if (c.lambda_n == 0.0 && c.lambda_t == 0.0) continue;
       apply(c, c.lambda_n * c.nx - c.lambda_t * c.ny, c.lambda_n * c.ny + c.lambda_t * c.nx, kdt);
     }
@@ -143,7 +170,7 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
   stats.velocity_converged = false;
   RestSweep sweep[2];
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
-    RestSweep& out = sweep[thread];
+    RestSweep out;  // written to sweep[thread] once: the two threads' entries share a line
     for (std::uint32_t i = begin; i < end; ++i) {
       RestContact& c = contacts_[order_[i]];
       auto relative = [&](double& vx, double& vy) {
@@ -169,6 +196,8 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
       out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
       out.largest = std::max(out.largest, c.lambda_n);
     }
+    sweep[thread].change = std::max(sweep[thread].change, out.change);
+    sweep[thread].largest = std::max(sweep[thread].largest, out.largest);
   };
   for (int it = 0; it < settings_.velocity_iterations; ++it) {
     ++stats.velocity_sweeps;
@@ -206,22 +235,20 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
   const std::size_t n = discs_.size();
   bool pushed[2] = {false, false};  // an iteration that pushes nothing ends the push-out
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
+    bool any = false;  // written to pushed[thread] once (see solve_velocities)
     for (std::uint32_t i = begin; i < end; ++i) {
-      const RestContact& c = contacts_[order_[i]];
+      RestContact& c = contacts_[order_[i]];
       double nx = 0, ny = 0, r_min = 0;
       const double depth = overlap_of(tick, c, nx, ny, r_min);
       if (depth <= slop * r_min) continue;
-      pushed[thread] = true;
+      any = true, c.moved = 1;
       const double push = std::min(depth - slop * r_min, max_push_out * r_min);
       const double ia = c.inv_a, ib = c.b < n ? c.inv_b : 0.0;
       const double share = push / (ia + ib);
       ex_[c.a] += ia * share * nx, ey_[c.a] += ia * share * ny;
-      if (ia > 0.0) changed_[c.a] |= 2;
-      if (c.b < n && ib > 0.0) {
-        ex_[c.b] -= ib * share * nx, ey_[c.b] -= ib * share * ny;
-        changed_[c.b] |= 2;
-      }
+      if (c.b < n && ib > 0.0) ex_[c.b] -= ib * share * nx, ey_[c.b] -= ib * share * ny;
     }
+    if (any) pushed[thread] = true;
   };
   for (int it = 0; it < settings_.position_iterations && !contacts_.empty(); ++it) {
     ++stats.position_sweeps;
@@ -275,8 +302,9 @@ void DiscContacts<Real>::finish(const Tick& tick) {
 
 #define FIXSTEP_INSTANTIATE(Real)                                                          \
   template void DiscContacts<Real>::gather_contacts(const Tick&);                          \
-  template void DiscContacts<Real>::apply(const RestContact&, double, double, double);     \
+  template void DiscContacts<Real>::apply(RestContact&, double, double, double);           \
   template void DiscContacts<Real>::warm_start(const Tick&);                               \
+  template void DiscContacts<Real>::solve_resting(const Tick&, ContactStats&);             \
   template void DiscContacts<Real>::solve_velocities(const Tick&, ContactStats&);          \
   template void DiscContacts<Real>::push_out(const Tick&, ContactStats&);                  \
   template double DiscContacts<Real>::overlap_of(const Tick&, const RestContact&, double&, \
