@@ -175,6 +175,9 @@ class DiscContacts {
 
   /// Contacts from which the resting solver splits them into two halves (split_contacts()).
   static constexpr std::size_t min_split_contacts = 1024;
+  /// Touching pairs from which a split pile's halves run on two threads (below, one thread runs
+  /// the same passes in the same order: handing the halves over costs more than it saves).
+  static constexpr std::size_t min_parallel_contacts = 8192;
   /// Candidate pairs from which two threads share the first impact predictions.
   static constexpr std::size_t min_parallel_pairs = 4096;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
