@@ -111,8 +111,8 @@ void DiscContacts<Real>::parts_pass(const Tick& /*tick*/, Range& range) {
 template <class Real>
 void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   const auto& p = part_start_;
-  team_on_ = tick.threads >= 2 && p[1] > p[0] && p[2] > p[1] &&
-             contacts_.size() >= min_parallel_contacts;
+  team_on_ =
+      tick.threads >= 2 && p[1] > p[0] && p[2] > p[1] && contacts_.size() >= min_parallel_contacts;
   Workers* worker = nullptr;
   if (team_on_) {  // the worker serves every pass of this tick's resting solve
     if (!team_) team_.reset(new PassTeam());
