@@ -86,16 +86,19 @@ expect "the reference tile is named" '^tile=2 .* error=reference ' "$work/r.out"
 expect "tile 1 is measured against tile 2" '^tile=1 .* error=[0-9.e+-]+ m against tile 2 at t=' "$work/r.out"
 err=$(awk -F, '$1 == 1 { print $10 }' "$work/r/compare.csv")
 ticks=$(awk -F, '$1 == 1 { print $7 }' "$work/r/compare.csv")
+# (Their output is kept and shown if the comparison fails: it once failed in CI's asan run
+# with both runs' CSVs apparently missing, and passed on every rerun.)
 "$fixstep" run "$scenes/rope.toml" --integrator velocity_verlet --dt 0.016666666666666666 --substeps 4 \
-  --steps "$ticks" --every "$ticks" --csv "$work/r1.csv" >/dev/null 2>&1
+  --steps "$ticks" --every "$ticks" --csv "$work/r1.csv" >"$work/r1.out" 2>&1
 "$fixstep" run "$scenes/rope.toml" --integrator rk4 --dt 0.016666666666666666 --substeps 4 \
-  --steps "$ticks" --every "$ticks" --csv "$work/r2.csv" >/dev/null 2>&1
+  --steps "$ticks" --every "$ticks" --csv "$work/r2.csv" >"$work/r2.out" 2>&1
 recomputed=$(awk -F, -v n="$ticks" 'FNR > 1 && $1 == n { if (FILENAME ~ /r1/) { x[$3] = $4; y[$3] = $5 }
     else { d = sqrt(($4 - x[$3])^2 + ($5 - y[$3])^2); if (d > m) m = d } } END { printf "%.6e", m }' \
   "$work/r1.csv" "$work/r2.csv")
 [ -n "$err" ] && [ "$err" = "$recomputed" ] \
   && ok "tile 1's error against tile 2 ($err m) equals the two runs' largest distance" \
-  || fail "rope error: compare $err, recomputed $recomputed"
+  || { fail "rope error: compare $err, recomputed $recomputed (ticks '$ticks')"
+       cat "$work/r.out" "$work/r/compare.csv" "$work/r1.out" "$work/r2.out"; }
 
 # --- progress on a terminal only, --quiet, the window ------------------------------------
 grep -q 'frames/s' "$work/c.out" && fail "progress printed when not on a terminal" \

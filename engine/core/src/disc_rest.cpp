@@ -115,7 +115,8 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
       tick.threads >= 2 && p[1] > p[0] && p[2] > p[1] && contacts_.size() >= min_parallel_contacts;
   Workers* worker = nullptr;
   if (team_on_) {  // the worker serves every pass of this tick's resting solve
-    if (!team_) team_.reset(new PassTeam());
+    // CachePtr (a copy starts empty) has no assignment from std::unique_ptr.
+    if (!team_) team_.reset(new PassTeam());  // NOLINT(modernize-make-unique)
     worker = &broadphase_.worker();
     worker->submit(&PassTeam::serve, team_.get());
   }
