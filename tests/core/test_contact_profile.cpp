@@ -6,12 +6,16 @@
 // settings (checked), and a pile split in halves for two threads steps to the same bits on one.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 
+#include "fixstep/stop_request.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -139,6 +143,46 @@ TEST(ContactSweeps, APileSplitForTwoThreadsStepsToTheSameBitsOnOne) {
   EXPECT_GT(touching, 8192u);                              // split, on two threads
   EXPECT_GT(one->contact_stats().candidate_pairs, 4096u);  // predictions shared
   EXPECT_GT(across, 0u);
+}
+
+// A stop request (SIGINT) reaches a long resting solve (up to 1000 iterations a tick) on two
+// threads: the tick throws StopRequested within it, and the world steps on once the request is
+// cleared (the worker that served the passes was released, nothing hangs).
+TEST(ContactSweeps, AStopRequestEndsALongRestingSolveOnTwoThreads) {
+  WorldDef def = ground_world();
+  def.settings.threads = 2;
+  def.settings.contacts->velocity_iterations = 1000;
+  def.planes.push_back(PlaneDef{.normal = {1, 0}, .offset = -2.0, .friction = 0.3});
+  def.planes.push_back(PlaneDef{.normal = {-1, 0}, .offset = -2.0, .friction = 0.3});
+  const double r = 0.049;
+  for (int i = 0; i < 110; ++i) {  // a touching grid: about 8700 pairs from the first tick
+    for (int j = 0; j < 40; ++j)
+      def.bodies.push_back(falling_disc({-1.911 + 2 * r * j, r + 2 * r * i}, r));
+  }
+  World w(def);
+  // The first tick's resting solve runs its 1000 iterations (a 110-row grid does not converge
+  // from no warm start), about 0.1 s or more; the request comes 30 ms into the tick, after the
+  // step's own poll at its start and the tick's earlier phases.
+  clear_stop_request();
+  std::atomic<bool> started{false};
+  std::thread stopper([&] {
+    while (!started.load()) std::this_thread::yield();
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+    request_stop(2);
+  });
+  started.store(true);
+  try {
+    w.step();
+    ADD_FAILURE() << "the tick ran to its end despite the stop request";
+  } catch (const StopRequested& e) {
+    EXPECT_EQ(e.signal(), 2);
+  }
+  stopper.join();
+  const std::uint64_t torn = w.tick();
+  clear_stop_request();
+  w.step();
+  EXPECT_EQ(w.tick(), torn + 1);
+  EXPECT_GT(w.contact_stats().touching, 8192u);  // the passes ran on two threads
 }
 
 // Discs apart, with contacts on: no pair touches, no sweep runs, and nothing is unconverged.

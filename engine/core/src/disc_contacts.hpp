@@ -211,10 +211,10 @@ class DiscContacts {
   /// lists them part by part (key order within a part), part_start_[p] where part p begins
   /// (disc_halves.cpp). Below min_split_contacts everything is part 0.
   void split_contacts(ContactStats& stats);
-  /// Runs range(begin, end, thread) over order_'s parts: the two halves, on two threads when
-  /// tick.threads >= 2, then the contacts across the cut on this thread.
+  /// Runs range(begin, end, thread) over order_'s parts: the two halves, on two threads within
+  /// solve_resting() when it shares them, then the contacts across the cut on this thread.
   template <class Range>
-  void parts_pass(const Tick& tick, Range& range);
+  void parts_pass(Range& range);
   /// Warm start, velocity iterations and push-out, on two threads when the contacts were
   /// split and tick.threads >= 2 (the worker serves every pass: pass_team.hpp).
   void solve_resting(const Tick& tick, ContactStats& stats);

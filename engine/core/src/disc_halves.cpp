@@ -24,9 +24,8 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
   part_start_ = {0, std::uint32_t(m), std::uint32_t(m), std::uint32_t(m)};
   // Within a part the contacts keep contacts_'s order: disc pairs, then planes, each in key
   // order.
-  auto in_order = [](std::size_t i) { return static_cast<std::uint32_t>(i); };
   if (m < min_split_contacts) {
-    for (std::size_t i = 0; i < m; ++i) order_[i] = in_order(i);
+    for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
     return;
   }
   // The wider axis of the dynamic discs, and the median coordinate along it.
@@ -41,7 +40,7 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
   for (std::size_t k = 0; k < n; ++k) {
     if (!discs_[k].dynamic) continue;
     if (std::isnan(along[k])) {  // no order to cut by: one part (the world reports the NaN)
-      for (std::size_t i = 0; i < m; ++i) order_[i] = in_order(i);
+      for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
       return;
     }
     cut_.push_back(along[k]);
@@ -52,19 +51,18 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
   // Each contact's part (0, 1: a half; 2: across the cut), then a stable counting sort.
   std::uint32_t count[3] = {0, 0, 0};
   scratch_.resize(m);
-  for (std::size_t j = 0; j < m; ++j) {
-    const std::uint32_t i = in_order(j);
+  for (std::size_t i = 0; i < m; ++i) {
     const RestContact& c = contacts_[i];
     const bool a_moves = c.inv_a > 0.0, b_moves = c.b < n && c.inv_b > 0.0;
     const std::uint32_t sa = along[c.a] < median ? 0 : 1;
     const std::uint32_t sb = b_moves && along[c.b] < median ? 0 : 1;
     const std::uint32_t part = !a_moves ? sb : !b_moves ? sa : sa == sb ? sa : 2;
-    scratch_[j] = part;
+    scratch_[i] = part;
     ++count[part];
   }
   part_start_ = {0, count[0], count[0] + count[1], std::uint32_t(m)};
   std::uint32_t cursor[3] = {part_start_[0], part_start_[1], part_start_[2]};
-  for (std::size_t j = 0; j < m; ++j) order_[cursor[scratch_[j]]++] = in_order(j);
+  for (std::size_t i = 0; i < m; ++i) order_[cursor[scratch_[i]]++] = std::uint32_t(i);
   stats.across = count[2];
 }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "disc_contacts.hpp"
+#include "fixstep/stop_request.hpp"
 #include "pass_team.hpp"
 #include "workers.hpp"
 
@@ -87,7 +88,7 @@ template <class Real>
 
 template <class Real>
 template <class Range>
-void DiscContacts<Real>::parts_pass(const Tick& /*tick*/, Range& range) {
+void DiscContacts<Real>::parts_pass(Range& range) {
   const auto& p = part_start_;
   if (team_on_) {
     struct Half {
@@ -120,14 +121,16 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
     worker = &broadphase_.worker();
     worker->submit(&PassTeam::serve, team_.get());
   }
-  warm_start(tick);
-  solve_velocities(tick, stats);
-  push_out(tick, stats);
-  if (team_on_) {
-    team_->finish();
-    worker->wait();
-    team_on_ = false;
+  // A stop request (SIGINT) ends the passes early; the worker is released before it is thrown.
+  try {
+    warm_start(tick);
+    solve_velocities(tick, stats);
+    push_out(tick, stats);
+  } catch (...) {
+    if (team_on_) team_->finish(), worker->wait(), team_on_ = false;
+    throw;
   }
+  if (team_on_) team_->finish(), worker->wait(), team_on_ = false;
   // The discs the passes moved, from their contacts' marks: written here, on one thread,
   // since a byte per disc written by two threads would share cache lines.
   const std::size_t n = discs_.size();
@@ -161,7 +164,7 @@ void DiscContacts<Real>::warm_start(const Tick& tick) {
       apply(c, c.lambda_n * c.nx - c.lambda_t * c.ny, c.lambda_n * c.ny + c.lambda_t * c.nx, kdt);
     }
   };
-  parts_pass(tick, range);
+  parts_pass(range);
 }
 
 template <class Real>
@@ -202,9 +205,10 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
     sweep[thread].largest = std::max(sweep[thread].largest, out.largest);
   };
   for (int it = 0; it < settings_.velocity_iterations; ++it) {
+    if (it % 16 == 15) throw_if_stop_requested();  // up to 1000 iterations: a long tick
     ++stats.velocity_sweeps;
     sweep[0] = sweep[1] = RestSweep{};
-    parts_pass(tick, range);
+    parts_pass(range);
     // An iteration that changes no impulse by more than 1e-9 of the largest has converged.
     if (std::max(sweep[0].change, sweep[1].change) <=
         1e-9 * std::max(sweep[0].largest, sweep[1].largest)) {
@@ -253,9 +257,10 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
     if (any) pushed[thread] = true;
   };
   for (int it = 0; it < settings_.position_iterations && !contacts_.empty(); ++it) {
+    if (it % 16 == 15) throw_if_stop_requested();
     ++stats.position_sweeps;
     pushed[0] = pushed[1] = false;
-    parts_pass(tick, range);
+    parts_pass(range);
     if (!pushed[0] && !pushed[1]) break;
   }
   stats.touching = contacts_.size();
