@@ -100,7 +100,7 @@ const Clip& clip() {
   return c;
 }
 
-TEST(VideoMp4, HasEveryFrameAtTheExactRateAndSize) {
+TEST(VideoClipMp4, HasEveryFrameAtTheExactRateAndSize) {
   const Decoded d = decode(clip().mp4);
   EXPECT_EQ(d.codec, "h264");
   EXPECT_EQ(d.pix_fmt, AV_PIX_FMT_YUV420P);
@@ -119,7 +119,7 @@ TEST(VideoMp4, HasEveryFrameAtTheExactRateAndSize) {
   EXPECT_EQ(names_in(clip().dir), (std::vector<std::string>{"default.gif", "default.mp4"}));
 }
 
-TEST(VideoMp4, FirstAndLastFramesMatchThePngPathsPixels) {
+TEST(VideoClipMp4, FirstAndLastFramesMatchThePngPathsPixels) {
   // Measured with the default settings (ultrafast, tune animation, crf 18; SWS_POINT):
   // 45.3 dB (frame 0) and 44.4 dB (frame 119), decoded as a player does (chroma interpolated).
   // 4:2:0 colour alone caps these frames near 47 dB. A BT.601 / 709 mix-up stays above 35 dB
@@ -133,7 +133,7 @@ TEST(VideoMp4, FirstAndLastFramesMatchThePngPathsPixels) {
   }
 }
 
-TEST(VideoMp4, IndexComesFirstForStreaming) {
+TEST(VideoClipMp4, IndexComesFirstForStreaming) {
   const std::string bytes = read_all(clip().mp4);
   const auto moov = bytes.find("moov"), mdat = bytes.find("mdat");
   ASSERT_NE(moov, std::string::npos);
@@ -141,7 +141,7 @@ TEST(VideoMp4, IndexComesFirstForStreaming) {
   EXPECT_LT(moov, mdat);  // +faststart
 }
 
-TEST(VideoGif, KeepsEveryOtherFrameOf60FpsWithDelaysBrowsersHonour) {
+TEST(VideoClipGif, KeepsEveryOtherFrameOf60FpsWithDelaysBrowsersHonour) {
   const Decoded d = decode(clip().gif);
   EXPECT_EQ(d.codec, "gif");
   EXPECT_EQ(d.width, width);
@@ -158,7 +158,7 @@ TEST(VideoGif, KeepsEveryOtherFrameOf60FpsWithDelaysBrowsersHonour) {
   EXPECT_EQ(d.pts.back() + d.lengths.back(), 200);
 }
 
-TEST(VideoGif, FramesLookLikeThePngPaths) {
+TEST(VideoClipGif, FramesLookLikeThePngPaths) {
   // Measured: 69.0 dB (frame 0) and 65.8 dB (submitted frame 118, GIF frame 59): each frame's
   // own 255 colours cover default.toml's flat colours nearly exactly. Reusing the first frame's
   // palette (paletteuse without new=1) gives 48.3 dB on the last; a fixed 3-3-2 palette (each
