@@ -8,8 +8,8 @@
 //  2. lockstep stalls and rollback re-simulation against one-way latency (0, 50, 150, 500 ms,
 //     2 s) and loss (0, 5, 25 %): matches paced at 200 ticks/s with the latency scaled by
 //     60/200, so a round trip is as many ticks as at 60 ticks/s (ENet's own timers and the
-//     resend margin are not scaled); stall share of the match's wall time, ticks per second
-//     at 60 ticks/s, rollbacks and re-simulated ticks;
+//     resend margin are not scaled; the send interval is); stall share of the match's wall time,
+//     ticks per second at 60 ticks/s, rollbacks and re-simulated ticks;
 //  3. the longest rollback that fits a 16.7 ms frame: restore + re-simulation on the ball pit
 //     (assets/scenes/ball_pit.toml, 1000 discs, settled 400 ticks) and the shipped games'
 //     levels (slingshot, peggle), median of repeats, less the frame's own two ticks (the
@@ -126,8 +126,11 @@ void latency(bool quick) {
         c.settings.input_delay = rollback ? 2 : 6;
         c.settings.max_rollback = rollback ? 16 : 0;
         c.settings.tick_rate_hz = pace_hz;
+        // The send interval is time too: as many ticks as the default's at 60 ticks/s.
+        c.settings.send_interval_ms =
+            static_cast<std::uint32_t>(net::MatchSettings{}.send_interval_ms * scale);
         c.frame_ms = 1000.0 / pace_hz;
-        c.measure_from = 0;
+        c.measure_from = 10;  // after the handshake
         c.link.latency_ms = l * scale;
         c.link.loss = loss;
         c.link.seed = 11;
@@ -141,22 +144,24 @@ void latency(bool quick) {
   emit(
       "lockstep: input delay 6 ticks; rollback: input delay 2, max_rollback 16. Paced at {:.0f} "
       "ticks/s with the latency scaled by {:.2f}; times below are scaled back to 60 ticks/s. "
-      "The joiner's counts.\n\n",
+      "Send interval scaled too. Counted from tick 10 (after the handshake); stalled: the "
+      "share of the match's wall time a lockstep peer waited; a rollback peer counts stalls "
+      "(max_rollback ahead) and waits (time sync) per advance(). The joiner's counts.\n\n",
       pace_hz, scale);
   emit(
-      "| kind | latency (one way) | loss | ticks/s (of 60) | stalled | rollbacks | re-simulated "
-      "ticks/s | longest rollback | ok |\n");
-  emit("|---|---|---|---|---|---|---|---|---|\n");
+      "| kind | latency (one way) | loss | ticks/s (of 60) | stalled (lockstep) | stalls / waits | "
+      "rollbacks | re-simulated ticks/s | longest rollback | ok |\n");
+  emit("|---|---|---|---|---|---|---|---|---|---|\n");
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const NetCase& c = cases[i];
     const NetResult& r = results[i];
     const net::MatchStats& j = r.joiner;
-    const double played_s = r.elapsed_ms / 1000.0 / scale;  // at 60 ticks/s
+    const double played_s = r.seconds / scale;  // from tick 10 on, at 60 ticks/s
     const double rate = r.ticks / std::max(played_s, 1e-9);
     const double stalled = j.stalled_ms / std::max(r.elapsed_ms, 1e-9);
-    emit("| {} | {:.0f} ms | {:.0f} % | {:.1f} | {:.0f} % | {} | {:.1f} | {} | {} |\n",
+    emit("| {} | {:.0f} ms | {:.0f} % | {:.1f} | {:.0f} % | {} / {} | {} | {:.1f} | {} | {} |\n",
          c.settings.max_rollback ? "rollback" : "lockstep", c.link.latency_ms / scale,
-         100.0 * c.link.loss, rate, 100.0 * stalled, j.rollbacks,
+         100.0 * c.link.loss, rate, 100.0 * stalled, j.stalls, j.waits, j.rollbacks,
          j.rolled_back_ticks / std::max(played_s, 1e-9), j.max_rolled_back,
          r.finished && r.same_recording ? "yes" : "NO: " + r.error);
   }
