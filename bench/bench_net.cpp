@@ -69,7 +69,7 @@ NetCase base_case(std::uint64_t ticks) {
 
 void bandwidth(bool quick) {
   const std::uint64_t ticks = quick ? 240 : 900;
-  const std::vector<std::uint32_t> intervals = {0, 17, 33, 50};
+  const std::vector<std::uint32_t> intervals = {0, 17, 33, 50, 67};
   const std::vector<double> rtts = {0.0, 50.0, 150.0};
   const std::vector<Play> plays = {Play::idle, Play::typical, Play::busy};
   std::vector<NetCase> cases;

@@ -49,7 +49,9 @@ using InputMerge = std::function<TickInput(std::span<const TickInput> players, c
 struct MatchSettings {
   std::uint8_t players = 2;       ///< 2 .. max_players
   std::uint16_t input_delay = 3;  ///< ticks between giving an input and its tick
-  std::uint16_t hash_every = 30;  ///< ticks between exchanged state hashes, >= 1
+  /// Ticks between exchanged state hashes, >= 1. A hash a second costs a player about 0.6
+  /// kbit/s (the hash, and ENet's acknowledgement of it in a datagram of its own).
+  std::uint16_t hash_every = 60;
   std::uint64_t match_ticks = 0;  ///< the match ends after this many ticks; 0: never
   /// Rollback: most ticks the shown world may run ahead of the confirmed one on predicted
   /// inputs (and so the longest re-simulation); 0: lockstep (the shown world is the confirmed
