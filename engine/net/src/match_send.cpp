@@ -82,14 +82,12 @@ void MatchPeer::Impl::send_inputs(detail::Remote& r, double now) {
     if (!ours_to_send(r, p)) continue;
     const std::uint32_t acked = r.their_next[p];
     if (acked > 0 && acked - 1 < base[p]) continue;  // a peer left that far behind times out
-    std::uint32_t from = acked;
-    if (r.sent_to[p] <= acked) {
-      r.ack_moved_at[p] = now;  // nothing in flight: the timer starts with these ticks
-    } else if (now - r.ack_moved_at[p] >= resend_timeout(r)) {
-      r.ack_moved_at[p] = now;  // resent from the ack
-    } else {
-      from = r.sent_to[p];
-    }
+    // Nothing in flight: the timer starts with these ticks. In flight for a resend timeout:
+    // resent from the ack (the timer restarts). Else only the ticks not sent yet.
+    const bool in_flight = r.sent_to[p] > acked;
+    const bool from_ack = !in_flight || now - r.ack_moved_at[p] >= resend_timeout(r);
+    if (from_ack) r.ack_moved_at[p] = now;
+    const std::uint32_t from = from_ack ? acked : r.sent_to[p];
     const std::uint32_t to = std::min<std::uint32_t>(known(p), from + max_run_ticks);
     if (from >= to) continue;
     first[p] = from;
