@@ -151,6 +151,7 @@ int play(const Options& o) {
                                 : fmt::format("not finished within {} s (at tick {})", o.deadline_s,
                                               peer.world().tick());
     std::fprintf(stderr, "net_peer: %s\n", why.c_str());
+    peer.leave();  // the other peer stops at once, not after its timeout
     return 1;
   }
   const Recording rec = peer.recording();
