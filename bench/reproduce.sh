@@ -6,6 +6,8 @@
 #                                       Box2D v3 where ../shared/peers has its source: ~6-9 min)
 #   bash bench/reproduce.sh network    (only section 6.1: integrator costs and the trade on
 #                                       damped networks: ~3 min)
+#   bash bench/reproduce.sh net        (only section 8, networking: bandwidth, stalls and
+#                                       rollbacks through the link conditioner: ~4 min)
 # Builds the optimised benchmark tree (build/bench), runs each study into docs/perf/, and
 # splices the generated markdown into docs/PERFORMANCE.md between its
 # "<!-- BEGIN name -->" / "<!-- END name -->" markers. Run on an otherwise idle machine:
@@ -14,8 +16,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 only="${1:-}"
 case "$only" in
-  "" | coupled | discs | network) ;;
-  *) echo "usage: bash bench/reproduce.sh [coupled|discs|network]" >&2; exit 2 ;;
+  "" | coupled | discs | network | net) ;;
+  *) echo "usage: bash bench/reproduce.sh [coupled|discs|network|net]" >&2; exit 2 ;;
 esac
 bash .ci/install-deps
 cmake --workflow --preset bench
@@ -75,6 +77,13 @@ if [ -z "$only" ] || [ "$only" = network ]; then
   { measured_on; cat "$out/network_trade.md"; } > "$out/network_trade.section.md"
 fi
 
+# Networking: bandwidth per player (byte counts), lockstep stalls and rollbacks against latency
+# and loss through the link conditioner, the longest rollback per 16.7 ms frame (bench_net).
+if [ -z "$only" ] || [ "$only" = net ]; then
+  "$bin/bench_net" --report "$out/net.md" > "$out/net.log"
+  { measured_on; cat "$out/net.md"; } > "$out/net.section.md"
+fi
+
 splice() {  # splice NAME FILE: replace the text between the NAME markers with FILE
   local doc=docs/PERFORMANCE.md
   awk -v name="$1" -v src="$2" '
@@ -95,4 +104,5 @@ if [ -z "$only" ] || [ "$only" = network ]; then
   splice network_integrators "$out/network_integrators.section.md"
   splice network_trade "$out/network_trade.section.md"
 fi
+if [ -z "$only" ] || [ "$only" = net ]; then splice net "$out/net.section.md"; fi
 echo "reproduce: docs/PERFORMANCE.md and $out/ regenerated"

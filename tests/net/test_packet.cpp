@@ -175,8 +175,12 @@ TEST(NetPacket, InputsRefusals) {
   Bytes one_tick;
   one_tick.u8(0);  // 1 tick, same as before
   EXPECT_EQ(decode(one_run(1, 10, 1, one_tick)), PacketError::none);
-  EXPECT_EQ(decode(one_run(2, 10, 1, one_tick)), PacketError::bad_slot);        // player 2 of 2
-  EXPECT_EQ(decode(one_run(1, 11, 1, one_tick)), PacketError::bad_tick_range);  // gap
+  EXPECT_EQ(decode(one_run(2, 10, 1, one_tick)), PacketError::bad_slot);  // player 2 of 2
+  // A run after a gap (ticks in flight or lost) decodes (the session skips it), up to
+  // max_gap_ticks after the receiver's next needed tick (10 here), not beyond.
+  EXPECT_EQ(decode(one_run(1, 11, 1, one_tick)), PacketError::none);
+  EXPECT_EQ(decode(one_run(1, 10 + net::max_gap_ticks, 1, one_tick)), PacketError::none);
+  EXPECT_EQ(decode(one_run(1, 11 + net::max_gap_ticks, 1, one_tick)), PacketError::bad_tick_range);
   EXPECT_EQ(decode(one_run(1, 10, 0, one_tick)), PacketError::bad_tick_range);
   EXPECT_EQ(decode(one_run(1, 10, 257, one_tick)), PacketError::bad_tick_range);
   EXPECT_EQ(decode(one_run(1, 10, 2, one_tick)), PacketError::too_short);  // 1 tick of 2

@@ -170,6 +170,11 @@ void MatchPeer::poll(std::uint32_t wait_ms) {
   m.check_timeouts(now);
   m.send_due(now);
   m.transport->flush();
+  const TransportCounters c = m.transport->counters();
+  m.stats.wire_datagrams_sent = c.datagrams_sent;
+  m.stats.wire_bytes_sent = c.bytes_sent + c.datagrams_sent * ip_udp_header_bytes;
+  m.stats.wire_datagrams_received = c.datagrams_received;
+  m.stats.wire_bytes_received = c.bytes_received + c.datagrams_received * ip_udp_header_bytes;
 }
 
 bool MatchPeer::wants_input() const {

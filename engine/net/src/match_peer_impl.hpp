@@ -39,9 +39,16 @@ struct Remote {
   /// inputs before, which it would drop).
   bool heard_inputs = false;
   std::array<std::uint32_t, max_players> their_next{};  ///< per player: what it has (acks)
-  SequenceWindow window;                                ///< unreliable channel
-  std::optional<std::uint32_t> reliable_seen;           ///< the reliable channel's last
-  std::uint32_t seq_unreliable = 0, seq_reliable = 0;   ///< sent
+  /// Per player: the end of the ticks sent to it at least once, and when its ack last moved
+  /// (or the ticks in flight were last resent): those in flight are sent once, and resent
+  /// from the ack only when it has not moved for a retransmission timeout (resend_timeout).
+  std::array<std::uint32_t, max_players> sent_to{};
+  std::array<double, max_players> ack_moved_at{};
+  SequenceWindow window;                               ///< unreliable channel
+  std::optional<std::uint32_t> reliable_seen;          ///< the reliable channel's last
+  std::uint32_t seq_unreliable = 0, seq_reliable = 0;  ///< sent
+  /// State hashes to send with the next inputs packet (one datagram for both).
+  std::vector<StateHashMessage> hashes_due;
 };
 
 /// Rollback: the shown world's state before tick `tick`, and the inputs it was stepped with.
@@ -128,7 +135,7 @@ struct MatchPeer::Impl {
   void on_request(detail::Remote& r, const Packet& p);
   void on_accept(detail::Remote& r, const Packet& p);
   void on_refused(DisconnectReason why);
-  void on_inputs(detail::Remote& r, const Packet& p);
+  void on_inputs(detail::Remote& r, const Packet& p, double now);
   void on_hash(detail::Remote& r, const StateHashMessage& m);
   void check_timeouts(double now);
   [[nodiscard]] detail::Remote* remote(std::uint32_t conn);
@@ -137,6 +144,11 @@ struct MatchPeer::Impl {
   // match_send.cpp
   void send_due(double now);
   void send_inputs(detail::Remote& r, double now);
+  [[nodiscard]] double resend_timeout(const detail::Remote& r) const;
+  [[nodiscard]] bool resend_due(const detail::Remote& r, double now) const;
+  [[nodiscard]] bool ours_to_send(const detail::Remote& r, std::size_t player) const {
+    return is_host ? player != r.slot : player == slot;
+  }
   void send_reliable(detail::Remote& r, const std::vector<std::uint8_t>& bytes);
   void send_hash(const StateHashMessage& m, const detail::Remote* except);
   void refuse(detail::Remote& r, DisconnectReason why);

@@ -120,7 +120,7 @@ void MatchPeer::Impl::receive(detail::Remote& r, const Packet& p, Channel channe
     case MessageKind::inputs:
       r.last_heard = now;
       r.heard_inputs = true;
-      return on_inputs(r, p);
+      return on_inputs(r, p, now);
     case MessageKind::state_hash:
       r.last_heard = now;
       return on_hash(r, p.hash);
@@ -192,7 +192,7 @@ void MatchPeer::Impl::on_accept(detail::Remote& r, const Packet& p) {
   start(a.players, a.your_slot);
 }
 
-void MatchPeer::Impl::on_inputs(detail::Remote& r, const Packet& p) {
+void MatchPeer::Impl::on_inputs(detail::Remote& r, const Packet& p, double now) {
   // Who may send whose inputs: a player its own; the host everyone's but ours; a spectator none.
   for (const InputRun& run : p.inputs.runs) {
     const bool allowed = is_host ? (run.player == r.slot && r.slot < players) : run.player != slot;
@@ -200,12 +200,21 @@ void MatchPeer::Impl::on_inputs(detail::Remote& r, const Packet& p) {
   }
   for (std::size_t q = 0; q < players; ++q) {
     const std::uint32_t acked = std::min(p.inputs.next_needed[q], known(q));
-    r.their_next[q] = std::max(r.their_next[q], acked);
+    if (acked > r.their_next[q]) {
+      r.their_next[q] = acked;
+      r.ack_moved_at[q] = now;
+    }
   }
   const std::uint64_t limit = next_step + settings.input_delay + max_ahead;
   bool grew = false;
   for (const InputRun& run : p.inputs.runs) {
     const std::size_t q = run.player;
+    if (run.first_tick > known(q)) {
+      // Sent after ticks that have not arrived (lost or late): its base is missing. The sender
+      // resends from our ack when it does not move.
+      ++stats.gap_runs;
+      continue;
+    }
     if (run.first_tick > 0 && run.first_tick - 1 < base[q]) {
       // Its base tick was dropped long ago (trim_inputs): its ticks are all here already.
       ++stats.dropped[static_cast<std::size_t>(PacketError::out_of_window)];

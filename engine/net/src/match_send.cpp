@@ -6,6 +6,14 @@
 
 namespace fixstep::net {
 
+namespace {
+
+/// An inputs packet goes to each peer at least this often (ms), new ticks or not: its acks,
+/// and a sign of life (peer_timeout_ms).
+constexpr double heartbeat_ms = 100.0;
+
+}  // namespace
+
 Header MatchPeer::Impl::header(detail::Remote& r, MessageKind kind, Channel channel) {
   std::uint32_t& seq = channel == Channel::reliable ? r.seq_reliable : r.seq_unreliable;
   return Header{kind, slot, seq++};
@@ -26,12 +34,28 @@ void MatchPeer::Impl::refuse(detail::Remote& r, DisconnectReason why) {
 }
 
 void MatchPeer::Impl::send_hash(const StateHashMessage& m, const detail::Remote* except) {
+  // Queued: sent just before the next inputs packet to each peer (send_inputs), so ENet puts
+  // both in one datagram.
   for (detail::Remote& r : remotes) {
-    if (!r.handshaken || &r == except) continue;
-    std::vector<std::uint8_t> bytes;
-    encode_state_hash(header(r, MessageKind::state_hash, Channel::reliable), m, bytes);
-    send_reliable(r, bytes);
+    if (r.handshaken && &r != except) r.hashes_due.push_back(m);
   }
+}
+
+double MatchPeer::Impl::resend_timeout(const detail::Remote& r) const {
+  // The ack of a tick comes back a round trip after it is sent, plus up to the receiver's
+  // send interval (it acknowledges in its next packet); resend_ms more for jitter.
+  const double rtt = transport->round_trip_ms(r.conn);
+  return rtt * 1.25 + settings.send_interval_ms + settings.resend_ms;
+}
+
+bool MatchPeer::Impl::resend_due(const detail::Remote& r, double now) const {
+  for (std::size_t p = 0; p < players; ++p) {
+    if (ours_to_send(r, p) && r.their_next[p] < r.sent_to[p] &&
+        now - r.ack_moved_at[p] >= resend_timeout(r)) {
+      return true;
+    }
+  }
+  return false;
 }
 
 void MatchPeer::Impl::send_due(double now) {
@@ -39,9 +63,8 @@ void MatchPeer::Impl::send_due(double now) {
   for (detail::Remote& r : remotes) {
     if (!r.handshaken || (is_host && !r.heard_inputs)) continue;
     const double since = now - r.last_sent;
-    if ((r.dirty && since >= settings.send_interval_ms) || since >= settings.resend_ms) {
-      send_inputs(r, now);
-    }
+    const bool due = (r.dirty || resend_due(r, now)) && since >= settings.send_interval_ms;
+    if (due || since >= heartbeat_ms) send_inputs(r, now);
   }
   std::uint32_t rtt = 0;
   for (const detail::Remote& r : remotes) {
@@ -51,15 +74,23 @@ void MatchPeer::Impl::send_due(double now) {
 }
 
 void MatchPeer::Impl::send_inputs(detail::Remote& r, double now) {
-  // Each player's ticks the remote lacks, from what it acknowledged: resent until it does.
+  // Each player's ticks the remote lacks: those not sent yet, or all from its ack when the ack
+  // has not moved for a resend timeout (a packet lost).
   std::vector<RunToSend> runs;
+  std::array<std::uint32_t, max_players> first{};
   for (std::uint8_t p = 0; p < players; ++p) {
-    const bool ours_to_send = is_host ? p != r.slot : p == slot;
-    if (!ours_to_send) continue;
-    const std::uint32_t from = r.their_next[p];
-    if (from > 0 && from - 1 < base[p]) continue;  // a peer left that far behind times out
+    if (!ours_to_send(r, p)) continue;
+    const std::uint32_t acked = r.their_next[p];
+    if (acked > 0 && acked - 1 < base[p]) continue;  // a peer left that far behind times out
+    // Nothing in flight: the timer starts with these ticks. In flight for a resend timeout:
+    // resent from the ack (the timer restarts). Else only the ticks not sent yet.
+    const bool in_flight = r.sent_to[p] > acked;
+    const bool from_ack = !in_flight || now - r.ack_moved_at[p] >= resend_timeout(r);
+    if (from_ack) r.ack_moved_at[p] = now;
+    const std::uint32_t from = from_ack ? acked : r.sent_to[p];
     const std::uint32_t to = std::min<std::uint32_t>(known(p), from + max_run_ticks);
     if (from >= to) continue;
+    first[p] = from;
     runs.push_back({p, std::span<const TickInput>(inputs[p]).subspan(from - base[p], to - from),
                     from > 0 ? &input_at(p, from - 1) : nullptr});
   }
@@ -70,8 +101,18 @@ void MatchPeer::Impl::send_inputs(detail::Remote& r, double now) {
     });
     longest->inputs = longest->inputs.first(std::max<std::size_t>(1, longest->inputs.size() / 2));
   }
+  for (const RunToSend& run : runs) {
+    const auto end = static_cast<std::uint32_t>(first[run.player] + run.inputs.size());
+    r.sent_to[run.player] = std::max(r.sent_to[run.player], end);
+  }
   std::array<std::uint32_t, max_players> acks{};
   for (std::size_t p = 0; p < players; ++p) acks[p] = known(p);
+  for (const StateHashMessage& m : r.hashes_due) {
+    std::vector<std::uint8_t> bytes;
+    encode_state_hash(header(r, MessageKind::state_hash, Channel::reliable), m, bytes);
+    send_reliable(r, bytes);
+  }
+  r.hashes_due.clear();
   encode_inputs_message(header(r, MessageKind::inputs, Channel::unreliable), players, acks, runs,
                         buffer);
   transport->send(r.conn, buffer, Channel::unreliable);

@@ -85,7 +85,9 @@ PacketError decode_run(detail::ByteReader& r, std::span<const std::uint8_t> byte
   if (run.player >= ctx.players) return PacketError::bad_slot;
   if ((seen >> run.player) & 1u) return PacketError::bad_field;  // one run per player
   if (ticks == 0 || ticks > max_run_ticks) return PacketError::bad_tick_range;
-  if (run.first_tick > ctx.next_needed[run.player] ||
+  // A run may start after the receiver's next needed tick (the ticks between are in flight
+  // or lost: it skips the run), but not far after it.
+  if (run.first_tick > std::uint64_t{ctx.next_needed[run.player]} + max_gap_ticks ||
       std::uint64_t{run.first_tick} + ticks > max_recording_ticks) {
     return PacketError::bad_tick_range;
   }

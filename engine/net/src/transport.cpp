@@ -33,6 +33,15 @@ std::string format_address(const ENetAddress& a) {
   return fmt::format("{}:{}", ip, a.port);
 }
 
+/// ENet's adaptive range coder on every datagram this host sends (kept only where it is
+/// smaller) and receives: both ends of a fixstep connection use it; a datagram a few bytes
+/// shorter (docs/NETWORK.md, "Bandwidth").
+void compress(ENetHost* host) {
+  if (enet_host_compress_with_range_coder(host) != 0) {
+    throw TransportError("ENet: cannot set up the range coder");
+  }
+}
+
 }  // namespace
 
 struct Transport::Impl {
@@ -69,6 +78,7 @@ Transport Transport::listen(const Address& bind, std::size_t max_peers, TimeoutS
                     "of this machine)",
                     bind.host, bind.port));
   }
+  compress(impl->host);
   return Transport(std::move(impl));
 }
 
@@ -82,6 +92,7 @@ Transport Transport::connect(const Address& host, TimeoutSettings timeouts, cons
   if (impl->host == nullptr) {
     throw TransportError(fmt::format("ENet: cannot bind {}:{}", bind.host, bind.port));
   }
+  compress(impl->host);
   ENetPeer* peer = enet_host_connect(impl->host, &remote, 2, 0);
   if (peer == nullptr) {
     throw TransportError(fmt::format("ENet: cannot connect to {}:{}", host.host, host.port));
@@ -143,6 +154,11 @@ void Transport::drop(std::uint32_t peer) {
 std::uint32_t Transport::round_trip_ms(std::uint32_t peer) const {
   const ENetPeer* p = impl_->peer(peer);
   return p != nullptr ? p->roundTripTime : 0;
+}
+
+TransportCounters Transport::counters() const {
+  const ENetHost* h = impl_->host;
+  return {h->totalSentPackets, h->totalSentData, h->totalReceivedPackets, h->totalReceivedData};
 }
 
 std::uint16_t Transport::port() const {

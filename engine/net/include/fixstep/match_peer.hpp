@@ -49,7 +49,9 @@ using InputMerge = std::function<TickInput(std::span<const TickInput> players, c
 struct MatchSettings {
   std::uint8_t players = 2;       ///< 2 .. max_players
   std::uint16_t input_delay = 3;  ///< ticks between giving an input and its tick
-  std::uint16_t hash_every = 30;  ///< ticks between exchanged state hashes, >= 1
+  /// Ticks between exchanged state hashes, >= 1. A hash a second costs a player about 0.6
+  /// kbit/s (the hash, and ENet's acknowledgement of it in a datagram of its own).
+  std::uint16_t hash_every = 60;
   std::uint64_t match_ticks = 0;  ///< the match ends after this many ticks; 0: never
   /// Rollback: most ticks the shown world may run ahead of the confirmed one on predicted
   /// inputs (and so the longest re-simulation); 0: lockstep (the shown world is the confirmed
@@ -59,11 +61,14 @@ struct MatchSettings {
   /// trip into ticks); advance() waits a frame while the shown world is more than half the
   /// round trip plus one tick ahead of the slowest player's last input.
   double tick_rate_hz = 60.0;
-  std::uint32_t resend_ms = 10;  ///< unacknowledged inputs resent at least this often
+  /// Inputs in flight are sent once; resent from the receiver's ack when it has not moved for
+  /// 1.25 round trips + send_interval_ms + this margin (ms).
+  std::uint32_t resend_ms = 10;
   /// Least time between two inputs packets to one peer, ms: 0 sends one on every new input
-  /// (one a tick), more batches the ticks of that long into one packet (fewer headers, less
-  /// bandwidth, as much more latency).
-  std::uint32_t send_interval_ms = 0;
+  /// and every new input received (about two a tick), more batches the ticks of that long into
+  /// one packet (fewer headers, less bandwidth, up to as much more latency each way). The
+  /// default, 3 ticks at 60 ticks/s, keeps a player under 16 kbit/s (docs/NETWORK.md).
+  std::uint32_t send_interval_ms = 50;
   /// A player (or the host) heard from for this long stops the match ("timed out").
   std::uint32_t peer_timeout_ms = 5000;
   /// A connection that has not completed the handshake after this long is dropped.
@@ -103,6 +108,13 @@ struct MatchStats {
   /// unexpected. None of them is ever used.
   std::array<std::uint64_t, packet_error_count> dropped{};
   std::uint64_t conflicting_inputs = 0;  ///< resent inputs that differ from the first copy
+  /// Input runs skipped: they started after a tick not arrived yet (lost or late)
+  std::uint64_t gap_runs = 0;
+  /// On the wire (Transport::counters at the last poll): UDP datagrams, and their bytes with
+  /// the IPv4 and UDP headers (ip_udp_header_bytes each), ENet's headers, acknowledgements
+  /// and pings included; all connections of this peer together.
+  std::uint64_t wire_datagrams_sent = 0, wire_bytes_sent = 0;
+  std::uint64_t wire_datagrams_received = 0, wire_bytes_received = 0;
   std::uint64_t stalls = 0;         ///< advance() calls that stepped nothing, waiting for input
   double stalled_ms = 0.0;          ///< time spent waiting so
   std::uint32_t round_trip_ms = 0;  ///< to the host (a joiner) or the slowest player (a host)

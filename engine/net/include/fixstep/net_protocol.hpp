@@ -28,6 +28,10 @@ inline constexpr std::uint8_t no_slot = 0xff;
 inline constexpr std::uint8_t spectator_slot_base = 0x80;
 /// Most ticks one input run carries (a sender resends at most this many unacknowledged ticks).
 inline constexpr std::uint32_t max_run_ticks = 256;
+/// Most ticks an input run may start after the receiver's next needed tick (the ticks
+/// between in flight or lost: the receiver skips such a run, and the sender resends from its
+/// acknowledgement when that stops moving).
+inline constexpr std::uint32_t max_gap_ticks = 2 * max_run_ticks;
 /// Most per-body inputs one player's tick may carry on the network (TickInput::bodies).
 inline constexpr std::size_t max_net_body_inputs = 16;
 /// Handshake requests are padded to this size, so that no reply to a peer that has not

@@ -41,6 +41,17 @@ struct TimeoutSettings {
   std::uint32_t maximum_ms = 10000;
 };
 
+/// What a host put on and took off the wire, all connections together: UDP datagrams and their
+/// payload bytes (ENet's own headers, acknowledgements and pings included; not the 28 bytes
+/// of IPv4 and UDP headers each datagram adds).
+struct TransportCounters {
+  std::uint64_t datagrams_sent = 0, bytes_sent = 0;
+  std::uint64_t datagrams_received = 0, bytes_received = 0;
+};
+
+/// IPv4 (20 bytes, no options) and UDP (8) headers: what each datagram costs besides its payload.
+inline constexpr std::uint64_t ip_udp_header_bytes = 28;
+
 /// Thrown when a socket cannot be created, bound or connected (the message names the
 /// address and what failed).
 class TransportError : public std::runtime_error {
@@ -78,6 +89,8 @@ class Transport {
   void drop(std::uint32_t peer);
   /// ENet's mean round-trip time to `peer`, ms (0 for an unknown peer).
   [[nodiscard]] std::uint32_t round_trip_ms(std::uint32_t peer) const;
+  /// ENet's counts of this host's datagrams and bytes since it was made.
+  [[nodiscard]] TransportCounters counters() const;
   /// The port this host is bound to.
   [[nodiscard]] std::uint16_t port() const;
   /// The remote address of `peer` as "a.b.c.d:port" ("" for an unknown peer).
