@@ -5,6 +5,7 @@
 #pragma once
 
 #include <fixstep/app.hpp>
+#include <fixstep/session.hpp>
 #include <span>
 #include <string>
 

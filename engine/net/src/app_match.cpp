@@ -67,7 +67,11 @@ class Peer {
 
   MatchPeer& match() { return match_; }
   const Level& level() const { return level_; }
-  const AnyGame& rules_game() const { return *rules_; }
+  /// The rules' game (the shown world's state), seated as the local player for drawing.
+  const AnyGame& drawn_game() {
+    if (match_.slot() < match_.players()) rules_->seat(match_.slot());
+    return *rules_;
+  }
   [[nodiscard]] bool live() const {
     return match_.state() == MatchState::connecting || match_.state() == MatchState::playing;
   }
@@ -138,7 +142,7 @@ bool play_window(Peer& peer, MatchView& view, const app::Settings& settings, boo
     owed -= due * dt;  // time the match could not take (a stall) is not owed later
     (void)peer.give_inputs(sampler, bot, due);
     (void)m.advance();
-    view.draw(peer.rules_game(), m);
+    view.draw(peer.drawn_game(), m);
     view.present();
     std::this_thread::sleep_until(frame_start + std::chrono::microseconds(16667));
   }
@@ -160,7 +164,7 @@ int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, boo
   MatchPeer& m = peer.match();
   const World& world = m.world();
   std::printf("%s\n", summary_line(world, World(peer.level().def).energy().total()).c_str());
-  if (const std::string s = peer.rules_game().summary(); !s.empty()) std::printf("%s\n", s.c_str());
+  if (const std::string s = peer.drawn_game().summary(); !s.empty()) std::printf("%s\n", s.c_str());
   const MatchStats& st = m.stats();
   std::printf("match: slot=%u ticks=%llu stalls=%llu rollbacks=%llu hashes=%llu dropped=%llu\n",
               static_cast<unsigned>(m.slot()), static_cast<unsigned long long>(world.tick()),
@@ -210,7 +214,7 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
   } else if (quit) {
     m.leave();  // Esc or the close button: tells the other player
   }
-  if (!o.last_frame.empty()) view.write_last_frame(peer.rules_game(), m, o.last_frame);
+  if (!o.last_frame.empty()) view.write_last_frame(peer.drawn_game(), m, o.last_frame);
   return finish(peer, settings, o, quit);
 }
 

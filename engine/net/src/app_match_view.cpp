@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <fixstep/capture.hpp>
 #include <fixstep/detail/game_play.hpp>
 #include <fixstep/key_bindings.hpp>
@@ -77,7 +78,12 @@ std::string MatchView::status(const MatchPeer& match) const {
 
 void MatchView::draw(const app::detail::AnyGame& game, const MatchPeer& match) {
   Session& s = session();
-  match.shown_world().save(snapshot_);
+  // The shown world as it is now: the loop's accumulator just under a tick, so the frame is
+  // drawn at the last tick's positions (alpha 1), not the ones before it (the shown world keeps
+  // none of its own: the session draws what the match stepped).
+  const World& shown = match.shown_world();
+  shown.save(snapshot_.world);
+  snapshot_.loop = {std::nextafter(shown.settings().dt, 0.0), shown.tick()};
   s.restore(snapshot_);
   app::detail::draw_game(s, game, overlay_, status(match));
 }

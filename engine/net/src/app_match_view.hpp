@@ -28,8 +28,8 @@ class MatchView {
   /// The window's events of this frame: the pointer and buttons into `sampler`, then the
   /// game's input() (unless `bot`: the autopilot plays). Returns false on Esc or close.
   bool poll_window(InputSampler& sampler, app::detail::AnyGame& game, const World& shown, bool bot);
-  /// Draws the match's shown world, the game's drawing (`game`: the rules' state) and the
-  /// match's line.
+  /// Draws the match's shown world, the game's drawing (`game`: the rules' state, seated as
+  /// the local player) and the match's line.
   void draw(const app::detail::AnyGame& game, const MatchPeer& match);
   /// Shows the last frame drawn in the window.
   void present();
@@ -45,7 +45,7 @@ class MatchView {
   const app::Settings& settings_;
   std::string kind_;
   std::optional<Session> session_;
-  WorldSnapshot snapshot_;
+  Session::Snapshot snapshot_;
   app::Overlay overlay_;
   struct WindowHolder;
   std::unique_ptr<WindowHolder> window_;

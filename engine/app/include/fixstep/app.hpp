@@ -25,7 +25,8 @@
 // world (lines, circles, polygons, arrows, labels: app::Overlay) and adds lines to the HUD;
 // summary() is the game's state in one line, printed after a run and a replay. seat() and
 // merge() are for networked play (fixstep::net::run, fixstep/net_app.hpp): seat() tells the
-// game which player its input() and autopilot() play (0 = the host), and merge() makes each
+// game which player its input(), autopilot() and draw() play (0 = the host; it may be called
+// again at any time, so it must not change what rules() do), and merge() makes each
 // tick's one input from every player's (index = player), on every peer, before the step (so,
 // like rules(), it must be deterministic; it replaces prepare() in a match).
 #pragma once
