@@ -163,6 +163,10 @@ void linger_and_leave(MatchPeer& m) {
 int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, bool quit) {
   MatchPeer& m = peer.match();
   const World& world = m.world();
+  if (m.state() == MatchState::failed && world.tick() == 0 && !quit) {  // never played
+    std::fprintf(stderr, "%s: error: %s\n", settings.name.c_str(), m.error().c_str());
+    return exit_failed;
+  }
   std::printf("%s\n", summary_line(world, World(peer.level().def).energy().total()).c_str());
   if (const std::string s = peer.drawn_game().summary(); !s.empty()) std::printf("%s\n", s.c_str());
   const MatchStats& st = m.stats();

@@ -38,6 +38,10 @@ bool is_ipv4(const std::string& text) {
   return inet_pton(AF_INET, text.c_str(), &a) == 1;
 }
 
+/// app::run's own modes, which a match does not take.
+constexpr std::string_view app_only_flags[] = {"--frames", "--out", "--replay", "--every",
+                                               "--sync-test"};
+
 /// A CLI11 check that a value is a whole number in [lo, hi].
 CLI::Validator in_range(std::uint64_t lo, std::uint64_t hi) {
   const std::string range = std::to_string(lo) + "-" + std::to_string(hi);
@@ -97,6 +101,16 @@ Address parse_host_port(const std::string& flag, const std::string& text) {
 }
 
 std::optional<MatchOptions> parse_match(const std::string& program, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    for (const std::string_view flag : app_only_flags) {
+      const std::string_view arg(argv[i]);
+      if (arg == flag || arg.starts_with(std::string(flag) + "=")) {
+        throw UsageError(std::string(flag) +
+                         " is not a match option: a match is played live (--host / --join); "
+                         "replay its recording (--record FILE) afterwards with --replay FILE");
+      }
+    }
+  }
   MatchOptions o;
   CLI::App cli(program + ": one peer of a networked match", program);
   std::uint16_t host_port = 0;

@@ -24,8 +24,9 @@
 // peer: the players' inputs merged (the game's merge(), else net::merge_inputs then nothing
 // else: prepare() is for single-player runs), World::step, the game's rules(); the recording is
 // an ordinary recording of the game (NAME --replay FILE verifies it with the rules). Exit
-// status: app::run's, and 5 when the match desynced, 6 when it failed (refused, timed out, the
-// other player left). Layering: fixstep::net uses fixstep::app, never the reverse; a program
+// status as app::run's: 0 the match played to its end (or the player quit), 1 an error (a
+// port that cannot be bound, refused, timed out, the other player left), 2 a bad command line,
+// 4 the peers' states differed (a desync: the message names the tick). Layering: fixstep::net uses fixstep::app, never the reverse; a program
 // that calls this links fixstep::net_app.
 #pragma once
 
