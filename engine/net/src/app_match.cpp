@@ -215,8 +215,8 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
   }
   if (m.state() == MatchState::finished) {
     linger_and_leave(m);
-  } else if (quit) {
-    m.leave();  // Esc or the close button: tells the other player
+  } else {
+    m.leave();  // quit, a desync, a failure: the other player is told at once, not timed out
   }
   if (!o.last_frame.empty()) view.write_last_frame(peer.drawn_game(), m, o.last_frame);
   return finish(peer, settings, o, quit);
