@@ -5,6 +5,7 @@
 #      duplicates, reordering); both exit 0 (no desync, no timeout), report the same final
 #      state, write byte-identical recordings (cmp), and the recording replays with the game's
 #      rules, every hash verified;
+#      and the game's rules survive a rollback (app::run's --sync-test);
 #  (b) on a virtual X server, two windows (host and joiner, bots driving, shown on the real
 #      clock) play 240 ticks; each writes its last frame, which must be a real frame: not blank,
 #      the puck and both mallets in it (tests/png_check.py counts their colours).
@@ -71,6 +72,10 @@ match() {
 
 match lockstep 4
 match rollback 2
+
+# The rules' state survives rollback: every tick rolled back 8 ticks and re-simulated.
+"$game" --frames 300 --sync-test 8 >sync.out 2>&1 && ok "sync test: the rules roll back" ||
+  { fail "sync test"; cat sync.out; }
 
 # (b) two windows.
 if have_xvfb && start_xvfb; then
