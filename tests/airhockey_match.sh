@@ -8,7 +8,7 @@
 #      and the game's rules survive a rollback (app::run's --sync-test);
 #  (b) on a virtual X server, two windows (host and joiner, bots driving, shown on the real
 #      clock) play 240 ticks; each writes its last frame, which must be a real frame: not blank,
-#      the puck and both mallets in it (tests/png_check.py counts their colours).
+#      the puck and both mallets in it, the puck away from where it started (tests/png_check.py).
 #
 #   airhockey_match.sh AIRHOCKEY LINK_RELAY SOURCE_DIR
 set -uo pipefail
@@ -100,9 +100,11 @@ if have_xvfb && start_xvfb; then
   [ "$(hash_of win.host.out)" = "$(hash_of win.join.out)" ] && ok "windows: the same final state" ||
     fail "windows: final states differ"
   for side in host join; do
-    # Not blank; the puck (yellow) and both mallets (red, blue) drawn.
+    # Not blank; the puck (yellow) and both mallets (red, blue) drawn, the puck away from the
+    # centre of the table (pixel 480, 372), where it starts: the frame shows the match's state.
     python3 "$src/tests/png_check.py" "$side.png" 250,220,60:200 230,70,70:1500 70,130,240:1500 \
-      >"$side.png.txt" 2>&1 && ok "windows: $side.png shows the table, the puck, the mallets" ||
+      250,220,60@480,372:40 >"$side.png.txt" 2>&1 &&
+      ok "windows: $side.png shows the table, the puck (moved), the mallets" ||
       { fail "windows: $side.png"; cat "$side.png.txt"; }
   done
   [ -n "${AIRHOCKEY_KEEP_FRAMES:-}" ] && cp host.png join.png "$AIRHOCKEY_KEEP_FRAMES"/

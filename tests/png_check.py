@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""png_check.py PNG COLOR=R,G,B:MIN ...: decodes an 8-bit RGB or RGBA PNG (the standard library
-only) and checks that it is not a blank frame (more than 8 distinct colours) and that each
-COLOR (within 40 of each channel) covers at least MIN pixels. Prints the counts; exit 1 when a
-check fails, 2 when the file is not such a PNG."""
+"""png_check.py PNG CHECK ...: decodes an 8-bit RGB or RGBA PNG (the standard library only) and
+checks that it is not a blank frame (more than 8 distinct colours), and each CHECK:
+  R,G,B:MIN        the colour (within 40 of each channel) covers at least MIN pixels;
+  R,G,B@X,Y:D      the centre of the pixels of that colour is at least D px from pixel (X, Y)
+                   (a body that moved from where it started).
+Prints what it found; exit 1 when a check fails, 2 when the file is not such a PNG."""
 import struct
 import sys
 import zlib
@@ -47,12 +49,16 @@ def decode(path):
                 line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
         rows.append(line)
         prev = line
-    return [tuple(r[x * bpp : x * bpp + 3]) for r in rows for x in range(width)]
+    return width, [tuple(r[x * bpp : x * bpp + 3]) for r in rows for x in range(width)]
+
+
+def near(p, want):
+    return all(abs(a - b) <= 40 for a, b in zip(p, want))
 
 
 def main():
     try:
-        pixels = decode(sys.argv[1])
+        width, pixels = decode(sys.argv[1])
     except (OSError, ValueError, zlib.error, struct.error) as e:
         print(f"{sys.argv[1]}: {e}")
         return 2
@@ -62,9 +68,25 @@ def main():
     ok = len(counts) > 8
     print(f"{sys.argv[1]}: {len(counts)} colours")
     for spec in sys.argv[2:]:
+        if "@" in spec:
+            rgb, rest = spec.split("@")
+            xy, least = rest.split(":")
+            want = tuple(int(v) for v in rgb.split(","))
+            x0, y0 = (float(v) for v in xy.split(","))
+            found = [(i % width, i // width) for i, p in enumerate(pixels) if near(p, want)]
+            if not found:
+                print(f"  {rgb}: no pixel")
+                ok = False
+                continue
+            cx = sum(x for x, _ in found) / len(found)
+            cy = sum(y for _, y in found) / len(found)
+            d = ((cx - x0) ** 2 + (cy - y0) ** 2) ** 0.5
+            print(f"  {rgb}: centre ({cx:.0f}, {cy:.0f}), {d:.0f} px from ({x0:.0f}, {y0:.0f}) (at least {least})")
+            ok = ok and d >= float(least)
+            continue
         rgb, least = spec.split(":")
         want = tuple(int(v) for v in rgb.split(","))
-        n = sum(c for p, c in counts.items() if all(abs(a - b) <= 40 for a, b in zip(p, want)))
+        n = sum(c for p, c in counts.items() if near(p, want))
         print(f"  {rgb}: {n} pixels (at least {least})")
         ok = ok and n >= int(least)
     return 0 if ok else 1
