@@ -1,6 +1,7 @@
 // fixstep::net_app: a game of fixstep::app played as one peer of a networked match
 // (fixstep/net_app.hpp): the match set up from the command line, played in a window or by the
 // game's autopilot, drawn from the shown world, its recording written at the end.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fixstep/capture.hpp>
@@ -12,6 +13,7 @@
 #include <fixstep/summary.hpp>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <thread>
 
