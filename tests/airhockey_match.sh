@@ -3,8 +3,8 @@
 #  (a) for each session kind (lockstep, rollback): a host and a joiner, both scripted bots, play a
 #      match of 600 ticks through the link conditioner (link_relay: latency, jitter, 10 % loss,
 #      duplicates, reordering); both exit 0 (no desync, no timeout), report the same final
-#      state, write byte-identical recordings (cmp), and the recording replays with the game's
-#      rules, every hash verified;
+#      state and score (a goal scored), write byte-identical recordings (cmp), and the recording
+#      replays with the game's rules to the same state and score, every hash verified;
 #      and the game's rules survive a rollback (app::run's --sync-test);
 #  (b) on a virtual X server, two windows (host and joiner, bots driving, shown on the real
 #      clock) play 240 ticks; each writes its last frame, which must be a real frame: not blank,
@@ -61,11 +61,18 @@ match() {
   [ "$(hash_of "$kind.host.out")" = "$(hash_of "$kind.join.out")" ] &&
     ok "$kind: the same final state ($(hash_of "$kind.host.out"))" ||
     fail "$kind: final states differ: $(hash_of "$kind.host.out") / $(hash_of "$kind.join.out")"
+  # The score, the rules' state: the same on both peers and in the replay, and the bots' scripts
+  # put the puck into a goal (a goal sensor's event, through the network) within the 600 ticks.
+  score=$(grep -E '^red=' "$kind.host.out")
+  [ -n "$score" ] && [ "$score" = "$(grep -E '^red=' "$kind.join.out")" ] &&
+    [[ $score != red=0\ blue=0* ]] && ok "$kind: the same score, a goal scored ($score)" ||
+    fail "$kind: scores: host '$score', joiner '$(grep -E '^red=' "$kind.join.out")'"
   cmp "$kind.host.rec" "$kind.join.rec" && ok "$kind: identical recordings" ||
     fail "$kind: the recordings differ"
   "$game" --replay "$kind.host.rec" >"$kind.replay.out" 2>&1 &&
     grep -qx 'verified=601' "$kind.replay.out" &&
     [ "$(hash_of "$kind.replay.out")" = "$(hash_of "$kind.host.out")" ] &&
+    grep -qx "$score" "$kind.replay.out" &&
     ok "$kind: the recording replays with the rules (601 hashes verified)" ||
     { fail "$kind: the replay"; cat "$kind.replay.out"; }
 }

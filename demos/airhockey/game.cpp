@@ -158,8 +158,8 @@ fixstep::TickInput computer_input(int player, const fixstep::World& world) {
 Vec2 bot_pointer(int player, std::int64_t tick) {
   const double t = static_cast<double>(tick) * dt, phase = player == 0 ? 0.0 : 1.7;
   const double side = player == 0 ? -1.0 : 1.0;
-  return {side * (1.9 + 1.1 * fixstep::det::sin(1.3 * t + phase)),
-          1.7 * fixstep::det::sin((2.1 + 0.4 * player) * t + phase)};
+  return {side * (1.2 + 2.0 * fixstep::det::sin(4.3 * t + phase)),
+          2.0 * fixstep::det::sin((0.7 + 0.23 * player) * t + phase)};
 }
 
 void after_tick(GameState& game, fixstep::World& sim) {
