@@ -21,13 +21,14 @@
 //     --scene FILE                  another level (both peers must play the same)
 //
 // and every other command line goes to app::run unchanged. Each tick of a match runs, on every
-// peer: the players' inputs merged (the game's merge(), else net::merge_inputs then nothing
-// else: prepare() is for single-player runs), World::step, the game's rules(); the recording is
+// peer: the players' inputs merged (the game's merge(), else net::merge_inputs; prepare() is
+// for single-player runs only), World::step, the game's rules(); the recording is
 // an ordinary recording of the game (NAME --replay FILE verifies it with the rules). Exit
 // status as app::run's: 0 the match played to its end (or the player quit), 1 an error (a
 // port that cannot be bound, refused, timed out, the other player left), 2 a bad command line,
-// 4 the peers' states differed (a desync: the message names the tick). Layering: fixstep::net uses fixstep::app, never the reverse; a program
-// that calls this links fixstep::net_app.
+// 4 the peers' states differed (a desync: the message names the tick). Layering: net_app uses
+// fixstep::app and fixstep::net, and app never uses net; a program that calls this links
+// fixstep::net_app.
 #pragma once
 
 #include <fixstep/app.hpp>
