@@ -64,7 +64,7 @@ echo "exit 2 for bad arguments, a scene the loader refuses or a build without it
 echo "match that does not finish) and the web"
 echo "page's (tests/web/bad_inputs_page.tsv): a page has no exit status, so the exit column says —;"
 echo "the page stops and shows \"error: MESSAGE\", which tests/web/browser_check.py checks in"
-echo "headless Chromium."
+echo "headless Chromium. After them, a networked game's match flags (airhockey: fixstep::net::run)."
 echo
 echo "| # | bad input | command | exit | first line printed |"
 echo "|---|---|---|---|---|"
@@ -1174,6 +1174,41 @@ while IFS= read -r line; do
   printf '| %d | %s (the page stops and shows the error: checked by tests/web/browser_check.py in headless Chromium) | `index.html?%s` | — | error: %s |\n' \
     "$row" "${what//|/\\|}" "${query//|/\\|}" "${message//|/\\|}"
 done <"$tests_dir/web/bad_inputs_page.tsv"
+# --- a networked game (airhockey, demos/airhockey: fixstep::net::run, built beside fixstep) ---
+# Every match flag's bad values: refused before any socket is opened (exit 2) or, for what only
+# the network can tell (an address not on this machine, nobody hosting), exit 1 with the reason.
+game=$(dirname "$fixstep")/airhockey
+if [ -x "$game" ]; then
+  tool=$game tool_name=airhockey
+  mkdir -p outdir
+  case_ "a match: --host port out of range" "" --host 70000
+  case_ "a match: --host port not a number" "" --host abc
+  case_ "a match: --join without a port" "" --join 127.0.0.1
+  case_ "a match: --join port 0" "" --join 127.0.0.1:0
+  case_ "a match: --join port out of range" "" --join 127.0.0.1:99999
+  case_ "a match: --join a host name (only IPv4 addresses)" "" --join localhost:7777
+  case_ "a match: both --host and --join" "" --host 7777 --join 127.0.0.1:7777
+  case_ "a match: a match option without --host or --join" "" --session rollback
+  case_ "a match: an unknown --session" "" --host 0 --session fast
+  case_ "a match: --max-rollback without --session rollback" "" --host 0 --max-rollback 8
+  case_ "a match: --max-rollback 0" "" --host 0 --session rollback --max-rollback 0
+  case_ "a match: --input-delay over 60" "" --host 0 --input-delay 61
+  case_ "a match: --bind not an IPv4 address" "" --host 0 --bind 1.2.3
+  case_ "a match: --join from an address not on this machine" "" --join 127.0.0.1:9 \
+    --bind 192.0.2.1 --bot --ticks 10
+  case_ "a match: --ticks 0" "" --host 0 --ticks 0
+  case_ "a match: --bot without --ticks" "" --host 0 --bot
+  case_ "a match: --window without --bot" "" --host 0 --window
+  case_ "a match: an app::run mode in a match (--replay)" "" --host 0 --replay x.rec
+  case_ "a match: --record into a directory" "" --host 0 --bot --ticks 10 --record outdir
+  case_ "a match: --record into a directory that does not exist" "" --host 0 --bot --ticks 10 \
+    --record nodir/x.rec
+  case_ "a match: --bind an address not on this machine" "" --host 0 --bind 192.0.2.1 --bot \
+    --ticks 10
+  case_ "a match: --join where nobody hosts (3 s)" "" --join 127.0.0.1:9 --bot --ticks 10
+  case_ "a match in a window without a display" "" --host 0
+fi
+tool=$fixstep tool_name=fixstep
 echo
 echo "## Writing a scene from code"
 echo

@@ -80,12 +80,12 @@ MatchPeer MatchPeer::host(const WorldDef& def, const MatchSettings& settings, co
 }
 
 MatchPeer MatchPeer::join(const WorldDef& def, const MatchSettings& settings, const Address& host,
-                          bool spectator, TickRules rules, InputMerge merge) {
+                          bool spectator, TickRules rules, InputMerge merge, const Address& bind) {
   auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
   impl->spectator = spectator;
   impl->host_address = host;
   impl->transport.emplace(
-      Transport::connect(host, {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}));
+      Transport::connect(host, {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}, bind));
   detail::Remote r;
   r.conn = 0;
   r.slot = 0;

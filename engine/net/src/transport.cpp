@@ -90,7 +90,9 @@ Transport Transport::connect(const Address& host, TimeoutSettings timeouts, cons
   impl->timeouts = timeouts;
   impl->host = enet_host_create(&local, 1, 2, 0, 0);
   if (impl->host == nullptr) {
-    throw TransportError(fmt::format("ENet: cannot bind {}:{}", bind.host, bind.port));
+    throw TransportError(
+        fmt::format("ENet: cannot connect from {}:{} (in use, or not an address of this machine)",
+                    bind.host, bind.port));
   }
   compress(impl->host);
   ENetPeer* peer = enet_host_connect(impl->host, &remote, 2, 0);

@@ -1,7 +1,7 @@
 // A game in one call: fixstep::app::run(game, settings, argc, argv) gives a game type the
 // window, headless capture, recording, replay with verification, the sync test and --help.
 //
-// A game is a copyable type with two members, and up to five more:
+// A game is a copyable type with two members, and up to seven more:
 //
 //   void setup(WorldDef& level);                           // required
 //   void rules(World& world, const TickInput& input);      // required
@@ -10,6 +10,8 @@
 //   void prepare(TickInput& input, const World& world);
 //   void draw(Overlay& overlay) const;
 //   std::string summary() const;
+//   void seat(int player);                                 // networked play only
+//   TickInput merge(std::span<const TickInput> players, const World& world) const;
 //
 // setup() completes the level: run() hands it the scene file's world (Settings::scene_file, or
 // --scene), or an empty WorldDef when the game builds its level in code. rules() runs after
@@ -21,7 +23,12 @@
 // recording); autopilot() does the same for a headless frame; prepare() adjusts one live tick's
 // input before it is stepped (e.g. which body the pointer may drag); draw() draws shapes over the
 // world (lines, circles, polygons, arrows, labels: app::Overlay) and adds lines to the HUD;
-// summary() is the game's state in one line, printed after a run and a replay.
+// summary() is the game's state in one line, printed after a run and a replay. seat() and
+// merge() are for networked play (fixstep::net::run, fixstep/net_app.hpp): seat() tells the
+// game which player its input(), autopilot() and draw() play (0 = the host; it may be called
+// again at any time, so it must not change what rules() do), and merge() makes each
+// tick's one input from every player's (index = player), on every peer, before the step (so,
+// like rules(), it must be deterministic; it replaces prepare() in a match).
 #pragma once
 
 #include <concepts>

@@ -146,10 +146,13 @@ class MatchPeer {
                                       InputMerge merge = {});
   /// Joins the match hosted at `host` as a player (or a spectator). players, input_delay and
   /// hash_every come from the host; the rest from `settings`. The host refuses a joiner whose
-  /// world differs (definition hash).
+  /// world differs (definition hash). The joiner's socket is bound to `bind` (127.0.0.1 and
+  /// any port by default, which reaches hosts on this machine only; 0.0.0.0 or an address of
+  /// this machine's to reach others). Throws TransportError when it cannot be bound.
   [[nodiscard]] static MatchPeer join(const WorldDef& def, const MatchSettings& settings,
                                       const Address& host, bool spectator = false,
-                                      TickRules rules = {}, InputMerge merge = {});
+                                      TickRules rules = {}, InputMerge merge = {},
+                                      const Address& bind = {});
   MatchPeer(MatchPeer&&) noexcept;
   MatchPeer& operator=(MatchPeer&&) noexcept;
   ~MatchPeer();

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -33,6 +34,12 @@ class AnyGame {
   virtual void prepare(TickInput& input, const World& world) = 0;
   virtual void draw(Overlay& overlay) const = 0;
   [[nodiscard]] virtual std::string summary() const = 0;
+  /// Networked play: the player this program's input() and autopilot() play (0 = the host).
+  virtual void seat(int player) = 0;
+  /// Networked play: the tick's input from every player's (index = player), into `out`;
+  /// false when the game has no merge() (the network's default merge applies).
+  [[nodiscard]] virtual bool merge(std::span<const TickInput> players, const World& world,
+                                   TickInput& out) const = 0;
 
  protected:
   AnyGame() = default;
@@ -69,6 +76,18 @@ class GameModel final : public AnyGame {
       return std::string(game_.summary());
     } else {
       return {};
+    }
+  }
+  void seat(int player) override {
+    if constexpr (requires { game_.seat(player); }) game_.seat(player);
+  }
+  [[nodiscard]] bool merge(std::span<const TickInput> players, const World& world,
+                           TickInput& out) const override {
+    if constexpr (requires { out = game_.merge(players, world); }) {
+      out = game_.merge(players, world);
+      return true;
+    } else {
+      return false;
     }
   }
 

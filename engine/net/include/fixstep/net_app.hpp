@@ -1,0 +1,52 @@
+// A game written for fixstep::app::run, networked by choosing a session on the command line:
+// fixstep::net::run(game, settings, argc, argv) is app::run with two more ways to play,
+//
+//   NAME --host PORT [match options]        host a match as player 0 on PORT (0: any free port,
+//                                           printed) and play it
+//   NAME --join HOST:PORT [match options]   join the match hosted at HOST:PORT as player 1
+//
+//   match options:
+//     --session lockstep|rollback   lockstep (default): every peer shows the confirmed world;
+//                                   rollback: the shown world runs ahead on predictions
+//     --input-delay N               ticks between an input and its tick (host decides; 0-60,
+//                                   default 3)
+//     --max-rollback N              rollback: most ticks shown ahead (1-60, default 8)
+//     --bind ADDR                   the local IPv4 address (default 127.0.0.1)
+//     --ticks N                     the match ends after N ticks (default: until Esc)
+//     --record FILE                 write the match's confirmed recording at the end
+//     --bot                         the game's autopilot plays (seat-aware, by tick), headless
+//                                   unless --window; needs --ticks
+//     --window                      with --bot: show the match in a window
+//     --last-frame PNG              write the last frame drawn
+//     --scene FILE                  another level (both peers must play the same)
+//
+// and every other command line goes to app::run unchanged. Each tick of a match runs, on every
+// peer: the players' inputs merged (the game's merge(), else net::merge_inputs; prepare() is
+// for single-player runs only), World::step, the game's rules(); the recording is
+// an ordinary recording of the game (NAME --replay FILE verifies it with the rules). Exit
+// status as app::run's: 0 the match played to its end (or the player quit), 1 an error (a
+// port that cannot be bound, refused, timed out, the other player left), 2 a bad command line,
+// 4 the peers' states differed (a desync: the message names the tick). Layering: net_app uses
+// fixstep::app and fixstep::net, and app never uses net; a program that calls this links
+// fixstep::net_app.
+#pragma once
+
+#include <fixstep/app.hpp>
+#include <utility>
+
+namespace fixstep::net {
+
+namespace detail {
+/// net::run's body: the match when the command line asks for one, app::run's modes otherwise.
+[[nodiscard]] int run_networked(const app::detail::AnyGame& game, const app::Settings& settings,
+                                int argc, char** argv);
+}  // namespace detail
+
+/// Runs `game` as app::run does, or as one peer of a networked match (see the top of this file).
+/// Never throws.
+template <app::Game G>
+int run(G game, const app::Settings& settings, int argc, char** argv) {
+  return detail::run_networked(app::detail::GameModel<G>(std::move(game)), settings, argc, argv);
+}
+
+}  // namespace fixstep::net

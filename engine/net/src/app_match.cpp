@@ -1,0 +1,259 @@
+// fixstep::net_app: a game of fixstep::app played as one peer of a networked match
+// (fixstep/net_app.hpp): the match set up from the command line, played in a window or by the
+// game's autopilot, drawn from the shown world, its recording written at the end.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fixstep/capture.hpp>
+#include <fixstep/detail/game_play.hpp>
+#include <fixstep/key_bindings.hpp>
+#include <fixstep/match_peer.hpp>
+#include <fixstep/net_app.hpp>
+#include <fixstep/recording_file.hpp>
+#include <fixstep/summary.hpp>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <thread>
+
+#include "app_match_error.hpp"
+#include "app_match_options.hpp"
+#include "app_match_view.hpp"
+
+namespace fixstep::net::detail {
+
+namespace {
+
+using app::detail::AnyGame;
+using app::detail::Level;
+
+/// After the last tick, a peer keeps answering this long (ms), so that the other gets what it
+/// still lacks (resent inputs, the last hash) before this one leaves.
+constexpr int linger_ms = 600;
+
+/// The match's settings from the command line and the level (recorded as the game records).
+MatchSettings match_settings(const app::Settings& settings, const Level& level,
+                             const MatchOptions& o) {
+  MatchSettings s;
+  s.players = 2;
+  s.input_delay = o.input_delay;
+  s.match_ticks = o.ticks;
+  s.max_rollback = o.rollback ? o.max_rollback : 0;
+  s.tick_rate_hz = 1.0 / level.def.settings.dt;
+  s.scene_name = level.scene_name;
+  s.scene_text = level.scene_text;
+  s.rules_name = app::detail::rules_name_of(settings.name);
+  s.rules_version = settings.rules_version;
+  return s;
+}
+
+/// The merge every peer runs: the game's merge(), else the network's default.
+InputMerge game_merge(const AnyGame& game) {
+  return [&game](std::span<const TickInput> players, const World& world) {
+    TickInput out;
+    if (game.merge(players, world, out)) return out;
+    return merge_inputs(players, world);
+  };
+}
+
+/// One peer: the level, the game copies (the rules' state, and the local player's input side),
+/// the match.
+class Peer {
+ public:
+  Peer(const AnyGame& game, const app::Settings& settings, const MatchOptions& o)
+      : level_(app::detail::load_level(game, settings, o.scene.value_or(settings.scene_file))),
+        rules_(level_.game->clone()),
+        player_(level_.game->clone()),
+        match_(start(settings, o)) {}
+
+  MatchPeer& match() { return match_; }
+  const Level& level() const { return level_; }
+  /// The rules' game (the shown world's state), seated as the local player for drawing.
+  const AnyGame& drawn_game() {
+    if (match_.slot() < match_.players()) rules_->seat(match_.slot());
+    return *rules_;
+  }
+  [[nodiscard]] bool live() const {
+    return match_.state() == MatchState::connecting || match_.state() == MatchState::playing;
+  }
+
+  /// Gives the match every input it wants now: the sampler's (after the game's autopilot,
+  /// when `bot`, called with the input's tick, so a bot's input depends on the tick only).
+  /// Returns the inputs given.
+  int give_inputs(InputSampler& sampler, bool bot, int most) {
+    if (!seated_ && match_.state() == MatchState::playing) {
+      player_->seat(match_.slot());
+      seated_ = true;
+    }
+    int given = 0;
+    while (given < most && match_.wants_input()) {
+      const std::uint64_t tick = match_.next_input_tick();
+      if (bot) player_->autopilot(static_cast<std::int64_t>(tick), match_.shown_world(), sampler);
+      match_.add_input(sampler.sample(tick));
+      ++given;
+    }
+    return given;
+  }
+  AnyGame& player() { return *player_; }
+
+ private:
+  MatchPeer start(const app::Settings& settings, const MatchOptions& o) {
+    const MatchSettings s = match_settings(settings, level_, o);
+    if (o.host_port) {
+      return MatchPeer::host(level_.def, s, Address{o.bind, *o.host_port},
+                             app::detail::game_rules(*rules_), game_merge(*level_.game));
+    }
+    return MatchPeer::join(level_.def, s, *o.join, false, app::detail::game_rules(*rules_),
+                           game_merge(*level_.game), Address{o.bind, 0});
+  }
+
+  Level level_;
+  std::unique_ptr<AnyGame> rules_;   ///< runs the rules: the shown world's state between calls
+  std::unique_ptr<AnyGame> player_;  ///< the local player's input() and autopilot()
+  MatchPeer match_;
+  bool seated_ = false;
+};
+
+/// Plays headless as fast as the match goes: the autopilot gives every input wanted.
+void play_bot(Peer& peer) {
+  InputSampler sampler;
+  MatchPeer& m = peer.match();
+  while (peer.live()) {
+    m.poll(1);
+    (void)peer.give_inputs(sampler, true, 1 << 30);
+    (void)m.advance();
+  }
+}
+
+/// Plays in the window on the real clock, an input a tick of the level's dt, until Esc, the
+/// close button or the match's end. Returns false when the player quit.
+bool play_window(Peer& peer, MatchView& view, const app::Settings& settings, bool bot) {
+  const double dt = peer.level().def.settings.dt;
+  InputSampler sampler;
+  MatchPeer& m = peer.match();
+  view.open_window(settings.name);
+  RealClock clock;
+  double owed = 0.0;  // s of real time not yet turned into inputs
+  while (peer.live()) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    if (!view.poll_window(sampler, peer.player(), m.shown_world(), bot)) return false;
+    m.poll(0);
+    owed = std::min(owed + clock.frame_seconds(), 0.25);
+    const int due = static_cast<int>(owed / dt);
+    owed -= due * dt;  // time the match could not take (a stall) is not owed later
+    (void)peer.give_inputs(sampler, bot, due);
+    (void)m.advance();
+    view.draw(peer.drawn_game(), m);
+    view.present();
+    std::this_thread::sleep_until(frame_start + std::chrono::microseconds(16667));
+  }
+  return true;
+}
+
+/// Keeps the match answering a little after its end, then leaves.
+void linger_and_leave(MatchPeer& m) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(linger_ms);
+  while (m.state() == MatchState::finished && std::chrono::steady_clock::now() < until) {
+    m.poll(1);
+    (void)m.advance();
+  }
+  m.leave();
+}
+
+/// What the match came to: the summary lines, the recording, the exit status.
+int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, bool quit) {
+  MatchPeer& m = peer.match();
+  const World& world = m.world();
+  if (m.state() == MatchState::failed && world.tick() == 0 && !quit) {  // never played
+    std::fprintf(stderr, "%s: error: %s\n", settings.name.c_str(), m.error().c_str());
+    return exit_failed;
+  }
+  std::printf("%s\n", summary_line(world, World(peer.level().def).energy().total()).c_str());
+  if (const std::string s = peer.drawn_game().summary(); !s.empty()) std::printf("%s\n", s.c_str());
+  const MatchStats& st = m.stats();
+  std::printf("match: slot=%u ticks=%llu stalls=%llu rollbacks=%llu hashes=%llu dropped=%llu\n",
+              static_cast<unsigned>(m.slot()), static_cast<unsigned long long>(world.tick()),
+              static_cast<unsigned long long>(st.stalls),
+              static_cast<unsigned long long>(st.rollbacks),
+              static_cast<unsigned long long>(st.hashes_compared),
+              static_cast<unsigned long long>(st.dropped_total()));
+  if (!o.record.empty() && world.tick() > 0) {
+    write_recording(o.record, m.recording());
+    std::printf("recorded %llu ticks to %s (check it: %s --replay %s)\n",
+                static_cast<unsigned long long>(world.tick()), o.record.c_str(),
+                settings.name.c_str(), o.record.c_str());
+  }
+  std::fflush(stdout);
+  if (m.state() == MatchState::desynced) {
+    std::fprintf(stderr, "%s: error: %s\n", settings.name.c_str(), m.error().c_str());
+    return exit_desync;
+  }
+  if (m.state() == MatchState::failed && !quit) {
+    std::fprintf(stderr, "%s: error: %s\n", settings.name.c_str(), m.error().c_str());
+    return exit_failed;
+  }
+  return 0;
+}
+
+int play_match(const AnyGame& game, const app::Settings& settings, const MatchOptions& o) {
+  Peer peer(game, settings, o);
+  MatchPeer& m = peer.match();
+  if (o.host_port) {
+    std::printf("%s: hosting on %s:%u (%s, input delay %u)\n", settings.name.c_str(),
+                o.bind.c_str(), static_cast<unsigned>(m.port()),
+                o.rollback ? "rollback" : "lockstep", static_cast<unsigned>(o.input_delay));
+  } else {
+    std::printf("%s: joining %s:%u (%s)\n", settings.name.c_str(), o.join->host.c_str(),
+                static_cast<unsigned>(o.join->port), o.rollback ? "rollback" : "lockstep");
+  }
+  std::fflush(stdout);
+  MatchView view(peer.level(), settings, o.rollback ? "rollback" : "lockstep");
+  bool quit = false;
+  if (o.bot && !o.window) {
+    play_bot(peer);
+  } else {
+    quit = !play_window(peer, view, settings, o.bot);
+  }
+  if (m.state() == MatchState::finished) {
+    linger_and_leave(m);
+  } else {
+    m.leave();  // quit, a desync, a failure: the other player is told at once, not timed out
+  }
+  if (!o.last_frame.empty()) view.write_last_frame(peer.drawn_game(), m, o.last_frame);
+  return finish(peer, settings, o, quit);
+}
+
+}  // namespace
+
+int run_networked(const AnyGame& game, const app::Settings& settings, int argc, char** argv) {
+  const char* name = settings.name.c_str();
+  if (!wants_match(argc, argv)) {
+    const int status = app::detail::run_game(game, settings, argc, argv);
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg(argv[i]);
+      if (arg == "--help" || arg == "-h") {
+        std::printf(
+            "\nNetworked play: %s --host PORT | --join HOST:PORT [--session "
+            "lockstep|rollback] ...\n(%s --host 0 --help lists the match options)\n",
+            name, name);
+      }
+    }
+    return status;
+  }
+  try {
+    const std::optional<MatchOptions> o = parse_match(settings.name, argc, argv);
+    if (!o) return 0;  // --help
+    check_match_outputs(*o, settings.scene_file);
+    return play_match(game, settings, *o);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "%s: %s\nRun with --host 0 --help for more information.\n", name,
+                 e.what());
+    return exit_usage;
+  } catch (const std::exception& e) {  // a bad scene, a port in use, no display
+    std::fprintf(stderr, "%s: error: %s\n", name, e.what());
+    return exit_error;
+  }
+}
+
+}  // namespace fixstep::net::detail

@@ -1,0 +1,183 @@
+// fixstep::net_app: the command line of a networked match.
+#include "app_match_options.hpp"
+
+#include <arpa/inet.h>
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <fixstep/output_target.hpp>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+
+#include "app_match_error.hpp"
+
+namespace fixstep::net::detail {
+
+namespace {
+
+/// The flags only a match has: any of them asks for one.
+constexpr std::string_view match_flags[] = {"--host",  "--join",        "--session",
+                                            "--bind",  "--input-delay", "--max-rollback",
+                                            "--ticks", "--bot"};
+
+/// `text` as a whole number in [lo, hi], else nullopt.
+std::optional<std::uint64_t> whole(const std::string& text, std::uint64_t lo, std::uint64_t hi) {
+  std::uint64_t n = 0;
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, n);
+  if (error != std::errc{} || stop != end || text.empty() || n < lo || n > hi) return {};
+  return n;
+}
+
+bool is_ipv4(const std::string& text) {
+  in_addr a{};
+  return inet_pton(AF_INET, text.c_str(), &a) == 1;
+}
+
+/// app::run's own modes, which a match does not take.
+constexpr std::string_view app_only_flags[] = {"--frames", "--out", "--replay", "--every",
+                                               "--sync-test"};
+
+/// A CLI11 check that a value is a whole number in [lo, hi].
+CLI::Validator in_range(std::uint64_t lo, std::uint64_t hi) {
+  const std::string range = std::to_string(lo) + "-" + std::to_string(hi);
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        if (whole(text, lo, hi)) return {};
+        return "wants a whole number in " + range + ", got '" + text + "'";
+      },
+      range);
+}
+
+/// Refuses what does not fit together (UsageError).
+void check(const MatchOptions& o) {
+  if (o.host_port && o.join) throw UsageError("--host and --join: a peer either hosts or joins");
+  if (!o.host_port && !o.join) {
+    throw UsageError("match options need --host PORT (host a match) or --join HOST:PORT");
+  }
+  if (!is_ipv4(o.bind)) {
+    throw UsageError("--bind wants an IPv4 address such as 127.0.0.1 or 0.0.0.0, got '" + o.bind +
+                     "'");
+  }
+  if (o.bot && o.ticks == 0) throw UsageError("--bot needs --ticks N (when the match ends)");
+  if (o.window && !o.bot) throw UsageError("--window needs --bot (without it, the window shows)");
+}
+
+}  // namespace
+
+bool wants_match(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg(argv[i]);
+    for (const std::string_view flag : match_flags) {
+      if (arg == flag ||
+          (arg.starts_with(flag) && arg.size() > flag.size() && arg[flag.size()] == '=')) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+Address parse_host_port(const std::string& flag, const std::string& text) {
+  const std::size_t colon = text.rfind(':');
+  if (colon == std::string::npos) {
+    throw UsageError(flag + " wants HOST:PORT (e.g. 127.0.0.1:7777), got '" + text + "'");
+  }
+  const std::string host = text.substr(0, colon), port = text.substr(colon + 1);
+  if (!is_ipv4(host)) {
+    throw UsageError(flag + " " + text + ": HOST must be an IPv4 address such as 127.0.0.1 (" +
+                     "names are not resolved), got '" + host + "'");
+  }
+  const auto p = whole(port, 1, 65535);
+  if (!p) throw UsageError(flag + " " + text + ": PORT wants 1-65535, got '" + port + "'");
+  return Address{host, static_cast<std::uint16_t>(*p)};
+}
+
+std::optional<MatchOptions> parse_match(const std::string& program, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    for (const std::string_view flag : app_only_flags) {
+      const std::string_view arg(argv[i]);
+      if (arg == flag || arg.starts_with(std::string(flag) + "=")) {
+        throw UsageError(std::string(flag) +
+                         " is not a match option: a match is played live (--host / --join); "
+                         "replay its recording (--record FILE) afterwards with --replay FILE");
+      }
+    }
+  }
+  MatchOptions o;
+  CLI::App cli(program + ": one peer of a networked match", program);
+  std::uint16_t host_port = 0;
+  std::string join, session = "lockstep", scene;
+  auto* host_opt = cli.add_option("--host", host_port, "host a match on PORT (0: any, printed)")
+                       ->type_name("PORT")
+                       ->check(in_range(0, 65535));
+  auto* join_opt =
+      cli.add_option("--join", join, "join the match hosted at HOST:PORT")->type_name("HOST:PORT");
+  auto* session_opt = cli.add_option("--session", session, "lockstep (default) or rollback")
+                          ->type_name("KIND")
+                          ->check(CLI::IsMember({"lockstep", "rollback"}));
+  cli.add_option("--bind", o.bind, "the local IPv4 address (default 127.0.0.1)")->type_name("ADDR");
+  cli.add_option("--input-delay", o.input_delay, "ticks between an input and its tick (0-60)")
+      ->type_name("N")
+      ->check(in_range(0, 60));
+  auto* rollback_opt =
+      cli.add_option("--max-rollback", o.max_rollback, "rollback: most ticks ahead (1-60)")
+          ->type_name("N")
+          ->check(in_range(1, 60));
+  cli.add_option("--ticks", o.ticks, "the match ends after N ticks")
+      ->type_name("N")
+      ->check(in_range(1, 100000000));
+  auto* scene_opt = cli.add_option("--scene", scene, "play the level in FILE")->type_name("FILE");
+  cli.add_option("--record", o.record, "write the match's recording to FILE")->type_name("FILE");
+  cli.add_option("--last-frame", o.last_frame, "write the last frame as PNG")->type_name("PNG");
+  cli.add_flag("--bot", o.bot, "the game's autopilot plays (headless unless --window)");
+  cli.add_flag("--window", o.window, "with --bot: show the window");
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(cli.help().c_str(), stdout);
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(e.what());
+  }
+  if (host_opt->count() > 0) o.host_port = host_port;
+  if (join_opt->count() > 0) o.join = parse_host_port("--join", join);
+  if (scene_opt->count() > 0) o.scene = scene;
+  o.rollback = session == "rollback";
+  if (rollback_opt->count() > 0 && !o.rollback) {
+    throw UsageError("--max-rollback needs --session rollback");
+  }
+  (void)session_opt;
+  check(o);
+  return o;
+}
+
+void check_match_outputs(const MatchOptions& o, const std::string& default_scene) {
+  const std::string scene = o.scene.value_or(default_scene);
+  for (const auto& [flag, path] :
+       {std::pair{"--record", o.record}, {"--last-frame", o.last_frame}}) {
+    if (path.empty()) continue;
+    const OutputTarget target = classify_output(path);
+    if (std::string why = output_refusal(target); !why.empty()) {
+      throw std::runtime_error(fmt::format("{} {} {}; nothing was run", flag, path, why));
+    }
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    if (target.kind == OutputKind::file &&
+        !std::filesystem::is_directory(dir.empty() ? "." : dir)) {
+      throw std::runtime_error(fmt::format(
+          "{} {}: the directory {} does not exist; nothing was run", flag, path, dir.string()));
+    }
+    std::error_code ec;
+    if (!scene.empty() && std::filesystem::equivalent(path, scene, ec) && !ec) {
+      throw std::runtime_error(fmt::format(
+          "{} {} is the scene file: an output never overwrites an input; nothing was run", flag,
+          path));
+    }
+  }
+}
+
+}  // namespace fixstep::net::detail

@@ -1,0 +1,45 @@
+// Internal to fixstep::net_app: the command line of a networked match (net_app.hpp).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "fixstep/net_transport.hpp"
+
+namespace fixstep::net::detail {
+
+/// What a match's command line asked for.
+struct MatchOptions {
+  std::optional<std::uint16_t> host_port;  ///< --host PORT
+  std::optional<Address> join;             ///< --join HOST:PORT
+  std::string bind = "127.0.0.1";          ///< --bind ADDR
+  bool rollback = false;                   ///< --session rollback
+  std::uint16_t input_delay = 3;           ///< --input-delay N
+  std::uint16_t max_rollback = 8;          ///< --max-rollback N (rollback only)
+  std::uint64_t ticks = 0;                 ///< --ticks N (0: until quit)
+  std::optional<std::string> scene;        ///< --scene FILE
+  std::string record, last_frame;          ///< --record FILE, --last-frame PNG
+  bool bot = false, window = false;        ///< --bot, --window
+};
+
+/// Whether the command line names a match option (then parse_match handles it all, else
+/// app::run does).
+[[nodiscard]] bool wants_match(int argc, char** argv);
+
+/// Parses a match's command line. Throws UsageError naming the flag and the bad value (a port
+/// outside 0-65535 or not a number, HOST:PORT without a port, both --host and --join, neither,
+/// --max-rollback without --session rollback, --bot without --ticks, a flag of app::run's
+/// other modes); prints the help and returns nullopt for --help.
+[[nodiscard]] std::optional<MatchOptions> parse_match(const std::string& program, int argc,
+                                                      char** argv);
+
+/// Refuses (std::runtime_error, naming the flag and the path), before anything runs, an output
+/// that may not be written (a directory, a missing directory) or that is the scene file.
+void check_match_outputs(const MatchOptions& o, const std::string& default_scene);
+
+/// "HOST:PORT" as an address: HOST a dotted IPv4 address or a name, PORT 1-65535. Throws
+/// app::detail::UsageError naming `flag` and the text otherwise.
+[[nodiscard]] Address parse_host_port(const std::string& flag, const std::string& text);
+
+}  // namespace fixstep::net::detail

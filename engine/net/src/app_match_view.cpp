@@ -1,0 +1,103 @@
+// fixstep::net_app: a match drawn (app_match_view.hpp).
+#include "app_match_view.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fixstep/capture.hpp>
+#include <fixstep/detail/game_play.hpp>
+#include <fixstep/key_bindings.hpp>
+#include <stdexcept>
+#ifdef FIXSTEP_NET_WINDOW
+#include <fixstep/window.hpp>
+#endif
+
+namespace fixstep::net::detail {
+
+struct MatchView::WindowHolder {
+#ifdef FIXSTEP_NET_WINDOW
+  explicit WindowHolder(const std::string& title, int width, int height)
+      : window(title, width, height) {}
+  Window window;
+  UserEvents events;
+#endif
+};
+
+MatchView::MatchView(const app::detail::Level& level, const app::Settings& settings,
+                     std::string kind)
+    : level_(level), settings_(settings), kind_(std::move(kind)) {}
+
+MatchView::~MatchView() = default;
+
+Session& MatchView::session() {
+  if (!session_) session_.emplace(level_.def, level_.view);
+  return *session_;
+}
+
+void MatchView::open_window(const std::string& title) {
+#ifdef FIXSTEP_NET_WINDOW
+  window_ = std::make_unique<WindowHolder>(title, settings_.width, settings_.height);
+#else
+  (void)title;
+  throw std::runtime_error("this build of fixstep has no window (FIXSTEP_BUILD_WINDOW=OFF)");
+#endif
+}
+
+bool MatchView::poll_window(InputSampler& sampler, app::detail::AnyGame& game, const World& shown,
+                            bool bot) {
+#ifdef FIXSTEP_NET_WINDOW
+  UserEvents& ev = window_->events;
+  window_->window.poll(ev);
+  if (ev.quit) return false;
+  if (bot) return true;
+  feed(ev, sampler, session().renderer().camera(), settings_.width, settings_.height);
+  game.input(ev, shown, sampler);
+  return true;
+#else
+  (void)sampler, (void)game, (void)shown, (void)bot;
+  return false;
+#endif
+}
+
+std::string MatchView::status(const MatchPeer& match) const {
+  const MatchStats& s = match.stats();
+  switch (match.state()) {
+    case MatchState::connecting:
+      return fmt::format("{}: waiting for the other player", kind_);
+    case MatchState::playing:
+    case MatchState::finished:
+      return fmt::format("player {} of {}  {}  tick {}  rtt {} ms  stalls {}{}", match.slot(),
+                         match.players(), kind_, match.shown_world().tick(), s.round_trip_ms,
+                         s.stalls, match.state() == MatchState::finished ? "  (match over)" : "");
+    case MatchState::desynced:
+    case MatchState::failed:
+      break;
+  }
+  return match.error();
+}
+
+void MatchView::draw(const app::detail::AnyGame& game, const MatchPeer& match) {
+  Session& s = session();
+  // The shown world as it is now: the loop's accumulator just under a tick, so the frame is
+  // drawn at the last tick's positions (alpha 1), not the ones before it (the shown world keeps
+  // none of its own: the session draws what the match stepped).
+  const World& shown = match.shown_world();
+  shown.save(snapshot_.world);
+  snapshot_.loop = {std::nextafter(shown.settings().dt, 0.0), shown.tick()};
+  s.restore(snapshot_);
+  app::detail::draw_game(s, game, overlay_, status(match));
+}
+
+void MatchView::present() {
+#ifdef FIXSTEP_NET_WINDOW
+  if (window_) window_->window.present(session().renderer().pixels());
+#endif
+}
+
+void MatchView::write_last_frame(const app::detail::AnyGame& game, const MatchPeer& match,
+                                 const std::string& png) {
+  draw(game, match);
+  write_png(png, settings_.width, settings_.height, session().renderer().pixels());
+}
+
+}  // namespace fixstep::net::detail

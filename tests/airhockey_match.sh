@@ -1,0 +1,121 @@
+#!/usr/bin/env bash
+# airhockey over the network, end to end (three processes on loopback):
+#  (a) for each session kind (lockstep, rollback): a host and a joiner, both scripted bots, play a
+#      match of 600 ticks through the link conditioner (link_relay: latency, jitter, 10 % loss,
+#      duplicates, reordering); both exit 0 (no desync, no timeout), report the same final
+#      state and score (a goal scored), write byte-identical recordings (cmp), and the recording
+#      replays with the game's rules to the same state and score, every hash verified;
+#      and the game's rules survive a rollback (app::run's --sync-test);
+#  (b) on a virtual X server, two windows (host and joiner, bots driving, shown on the real
+#      clock) play 240 ticks; each writes its last frame, which must be a real frame: not blank,
+#      the puck and both mallets in it, the puck away from where it started (tests/png_check.py).
+#
+#   airhockey_match.sh AIRHOCKEY LINK_RELAY SOURCE_DIR
+set -uo pipefail
+game=$1
+relay=$2
+src=$3
+# shellcheck source=tests/lib.sh
+. "$src/tests/lib.sh"
+cd "$work" || exit 1
+
+# wait_port FILE: the port a host printed ("hosting on 127.0.0.1:PORT"), waiting up to 10 s.
+wait_port() {
+  local i p
+  for i in $(seq 200); do
+    p=$(grep -Eo 'hosting on [0-9.]+:[0-9]+' "$1" 2>/dev/null | grep -Eo '[0-9]+$')
+    [ -n "$p" ] && { echo "$p"; return 0; }
+    sleep 0.05
+  done
+  return 1
+}
+
+# match KIND DELAY: a bot match of KIND through the relay; checks (a).
+match() {
+  local kind=$1 delay=$2 hp rp host_status join_status
+  "$game" --host 0 --session "$kind" --input-delay "$delay" --bot --ticks 600 \
+    --record "$kind.host.rec" >"$kind.host.out" 2>&1 &
+  local host_pid=$!
+  hp=$(wait_port "$kind.host.out") || { fail "$kind: the host printed no port"; cat "$kind.host.out"; return; }
+  "$relay" --upstream "127.0.0.1:$hp" --latency-ms 6 --jitter-ms 4 --loss 0.1 --duplicate 0.02 \
+    --reorder 0.02 --seed 7 --port-file "$kind.relay.port" --seconds 60 >"$kind.relay.out" 2>&1 &
+  local relay_pid=$!
+  for _ in $(seq 100); do [ -s "$kind.relay.port" ] && break; sleep 0.05; done
+  rp=$(cat "$kind.relay.port")
+  "$game" --join "127.0.0.1:$rp" --session "$kind" --bot --ticks 600 --record "$kind.join.rec" \
+    >"$kind.join.out" 2>&1
+  join_status=$?
+  wait "$host_pid"
+  host_status=$?
+  kill "$relay_pid" 2>/dev/null
+  wait "$relay_pid" 2>/dev/null
+  if [ "$host_status" = 0 ] && [ "$join_status" = 0 ]; then
+    ok "$kind: host and joiner finished (no desync)"
+  else
+    fail "$kind: host exited $host_status, joiner $join_status"
+    cat "$kind.host.out" "$kind.join.out" "$kind.relay.out"
+    return
+  fi
+  grep -Eq 'dropped=[1-9]' "$kind.relay.out" && ok "$kind: the link dropped datagrams" ||
+    { fail "$kind: the link dropped nothing"; cat "$kind.relay.out"; }
+  [ "$(hash_of "$kind.host.out")" = "$(hash_of "$kind.join.out")" ] &&
+    ok "$kind: the same final state ($(hash_of "$kind.host.out"))" ||
+    fail "$kind: final states differ: $(hash_of "$kind.host.out") / $(hash_of "$kind.join.out")"
+  # The score, the rules' state: the same on both peers and in the replay, and the bots' scripts
+  # put the puck into a goal (a goal sensor's event, through the network) within the 600 ticks.
+  score=$(grep -E '^red=' "$kind.host.out")
+  [ -n "$score" ] && [ "$score" = "$(grep -E '^red=' "$kind.join.out")" ] &&
+    [[ $score != red=0\ blue=0* ]] && ok "$kind: the same score, a goal scored ($score)" ||
+    fail "$kind: scores: host '$score', joiner '$(grep -E '^red=' "$kind.join.out")'"
+  cmp "$kind.host.rec" "$kind.join.rec" && ok "$kind: identical recordings" ||
+    fail "$kind: the recordings differ"
+  "$game" --replay "$kind.host.rec" >"$kind.replay.out" 2>&1 &&
+    grep -qx 'verified=601' "$kind.replay.out" &&
+    [ "$(hash_of "$kind.replay.out")" = "$(hash_of "$kind.host.out")" ] &&
+    grep -qx "$score" "$kind.replay.out" &&
+    ok "$kind: the recording replays with the rules (601 hashes verified)" ||
+    { fail "$kind: the replay"; cat "$kind.replay.out"; }
+}
+
+match lockstep 4
+match rollback 2
+
+# The rules' state survives rollback: every tick rolled back 8 ticks and re-simulated.
+"$game" --frames 300 --sync-test 8 >sync.out 2>&1 && ok "sync test: the rules roll back" ||
+  { fail "sync test"; cat sync.out; }
+
+# (b) two windows.
+if have_xvfb && start_xvfb; then
+  DISPLAY=$xvfb_display "$game" --host 0 --bot --window --ticks 240 --last-frame host.png \
+    >win.host.out 2>&1 &
+  host_pid=$!
+  if hp=$(wait_port win.host.out); then
+    DISPLAY=$xvfb_display "$game" --join "127.0.0.1:$hp" --bot --window --ticks 240 \
+      --last-frame join.png >win.join.out 2>&1
+    join_status=$?
+  else
+    join_status="(no port)"
+  fi
+  wait "$host_pid"
+  host_status=$?
+  if [ "$host_status" = 0 ] && [ "$join_status" = 0 ]; then
+    ok "windows: host and joiner played 240 ticks"
+  else
+    fail "windows: host exited $host_status, joiner $join_status"
+    cat win.host.out win.join.out
+  fi
+  [ "$(hash_of win.host.out)" = "$(hash_of win.join.out)" ] && ok "windows: the same final state" ||
+    fail "windows: final states differ"
+  for side in host join; do
+    # Not blank; the puck (yellow) and both mallets (red, blue) drawn, the puck away from the
+    # centre of the table (pixel 480, 372), where it starts: the frame shows the match's state.
+    python3 "$src/tests/png_check.py" "$side.png" 250,220,60:200 230,70,70:1500 70,130,240:1500 \
+      250,220,60@480,372:40 >"$side.png.txt" 2>&1 &&
+      ok "windows: $side.png shows the table, the puck (moved), the mallets" ||
+      { fail "windows: $side.png"; cat "$side.png.txt"; }
+  done
+  [ -n "${AIRHOCKEY_KEEP_FRAMES:-}" ] && cp host.png join.png "$AIRHOCKEY_KEEP_FRAMES"/
+else
+  echo "skip - windows: no Xvfb"
+fi
+finish
