@@ -40,8 +40,9 @@ struct Remote {
   bool heard_inputs = false;
   std::array<std::uint32_t, max_players> their_next{};  ///< per player: what it has (acks)
   /// Per player: the end of the ticks sent to it at least once, and when its ack last moved
-  /// (or the ticks in flight were last resent): those in flight are sent once, and resent
-  /// from the ack only when it has not moved for a retransmission timeout (resend_timeout).
+  /// (or the ticks in flight were last resent): while small (redundant()) they are sent again
+  /// in every packet; else once, and resent from the ack only when it has not moved for a
+  /// retransmission timeout (resend_timeout).
   std::array<std::uint32_t, max_players> sent_to{};
   std::array<double, max_players> ack_moved_at{};
   SequenceWindow window;                               ///< unreliable channel
@@ -146,6 +147,9 @@ struct MatchPeer::Impl {
   void send_inputs(detail::Remote& r, double now);
   [[nodiscard]] double resend_timeout(const detail::Remote& r) const;
   [[nodiscard]] bool resend_due(const detail::Remote& r, double now) const;
+  /// Whether player p's ticks from `acked` on encode within settings.redundant_bytes (sent
+  /// again in every packet until acknowledged).
+  [[nodiscard]] bool redundant(std::uint8_t p, std::uint32_t acked) const;
   [[nodiscard]] bool ours_to_send(const detail::Remote& r, std::size_t player) const {
     return is_host ? player != r.slot : player == slot;
   }

@@ -1,7 +1,9 @@
-// fixstep::net: what a lockstep peer sends: input runs resent until acknowledged, state
-// hashes, refusals (fixstep/match_peer.hpp).
+// fixstep::net: what a lockstep peer sends: input runs (redundantly until acknowledged while
+// they are small, else once and resent after a timeout), state hashes, refusals
+// (fixstep/match_peer.hpp).
 #include <algorithm>
 
+#include "fixstep/net_input_codec.hpp"
 #include "match_peer_impl.hpp"
 
 namespace fixstep::net {
@@ -58,6 +60,15 @@ bool MatchPeer::Impl::resend_due(const detail::Remote& r, double now) const {
   return false;
 }
 
+bool MatchPeer::Impl::redundant(std::uint8_t p, std::uint32_t acked) const {
+  if (settings.redundant_bytes == 0 || acked >= known(p)) return false;
+  const std::uint32_t to = std::min<std::uint32_t>(known(p), acked + max_run_ticks);
+  const auto ticks = std::span<const TickInput>(inputs[p]).subspan(acked - base[p], to - acked);
+  const TickInput empty{};
+  return encoded_size(ticks, acked > 0 ? input_at(p, acked - 1) : empty) <=
+         settings.redundant_bytes;
+}
+
 void MatchPeer::Impl::send_due(double now) {
   if (players == 0) return;
   for (detail::Remote& r : remotes) {
@@ -82,11 +93,15 @@ void MatchPeer::Impl::send_inputs(detail::Remote& r, double now) {
     if (!ours_to_send(r, p)) continue;
     const std::uint32_t acked = r.their_next[p];
     if (acked > 0 && acked - 1 < base[p]) continue;  // a peer left that far behind times out
-    // Nothing in flight: the timer starts with these ticks. In flight for a resend timeout:
-    // resent from the ack (the timer restarts). Else only the ticks not sent yet.
+    // Nothing in flight: the timer starts with these ticks. Small enough: everything from the
+    // ack again (redundantly). In flight for a resend timeout: resent from the ack (the timer
+    // restarts). Else only the ticks not sent yet.
     const bool in_flight = r.sent_to[p] > acked;
-    const bool from_ack = !in_flight || now - r.ack_moved_at[p] >= resend_timeout(r);
-    if (from_ack) r.ack_moved_at[p] = now;
+    const bool timed_out = in_flight && now - r.ack_moved_at[p] >= resend_timeout(r);
+    if (!in_flight || timed_out) r.ack_moved_at[p] = now;
+    const bool small = redundant(p, acked);
+    if (timed_out && !small) ++stats.resends;
+    const bool from_ack = !in_flight || timed_out || small;
     const std::uint32_t from = from_ack ? acked : r.sent_to[p];
     const std::uint32_t to = std::min<std::uint32_t>(known(p), from + max_run_ticks);
     if (from >= to) continue;

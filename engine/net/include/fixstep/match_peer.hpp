@@ -61,8 +61,14 @@ struct MatchSettings {
   /// trip into ticks); advance() waits a frame while the shown world is more than half the
   /// round trip plus one tick ahead of the slowest player's last input.
   double tick_rate_hz = 60.0;
-  /// Inputs in flight are sent once; resent from the receiver's ack when it has not moved for
-  /// 1.25 round trips + send_interval_ms + this margin (ms).
+  /// A player's inputs not yet acknowledged are sent again in every inputs packet (redundantly:
+  /// a lost packet is made good by the next one, no round trip lost) while they encode in at
+  /// most this many bytes (net_input_codec.hpp: unchanged ticks cost a byte per 128); beyond
+  /// it, ticks in flight are sent once and resent from the ack after a resend timeout (a busy
+  /// player stays within the bandwidth). 0: always once.
+  std::uint32_t redundant_bytes = 32;
+  /// Inputs in flight sent once (above) are resent from the receiver's ack when it has not
+  /// moved for 1.25 round trips + send_interval_ms + this margin (ms).
   std::uint32_t resend_ms = 10;
   /// Least time between two inputs packets to one peer, ms: 0 sends one on every new input
   /// and every new input received (about two a tick), more batches the ticks of that long into
@@ -110,6 +116,9 @@ struct MatchStats {
   std::uint64_t conflicting_inputs = 0;  ///< resent inputs that differ from the first copy
   /// Input runs skipped: they started after a tick not arrived yet (lost or late)
   std::uint64_t gap_runs = 0;
+  /// Input runs resent from the receiver's ack after a resend timeout (a packet lost while
+  /// the ticks in flight were sent once: MatchSettings::redundant_bytes)
+  std::uint64_t resends = 0;
   /// On the wire (Transport::counters at the last poll): UDP datagrams, and their bytes with
   /// the IPv4 and UDP headers (ip_udp_header_bytes each), ENet's headers, acknowledgements
   /// and pings included; all connections of this peer together.
