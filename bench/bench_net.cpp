@@ -12,7 +12,7 @@
 //     ticks per second at 60 ticks/s, rollbacks and re-simulated ticks;
 //  3. the longest rollback that fits a 16.7 ms frame: restore + re-simulation on the ball pit
 //     (assets/scenes/ball_pit.toml, 1000 discs, settled 400 ticks) and the shipped games'
-//     levels (slingshot, peggle), median of repeats, less the frame's own two ticks (the
+//     levels (airhockey, slingshot, peggle), median of repeats, less the frame's own two ticks (the
 //     confirmed world's and the shown world's).
 // Tables 1 and 2 run all their matches side by side from one thread. Byte counts do not depend
 // on the machine; the times do: time on an idle machine.
@@ -33,6 +33,7 @@
 #include "fixstep/scene.hpp"
 #include "net_runs.hpp"
 #ifdef FIXSTEP_BENCH_GAMES
+#include "airhockey/game.hpp"
 #include "peggle/game.hpp"
 #include "slingshot/game.hpp"
 #endif
@@ -182,6 +183,7 @@ void longest_rollback(bool quick) {
   levels.push_back({"ball_pit.toml (1000 discs)",
                     world_def(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/ball_pit.toml")), 400});
 #ifdef FIXSTEP_BENCH_GAMES
+  levels.push_back({"airhockey (the two-player demo)", airhockey::make_level(), 60});
   levels.push_back({"slingshot", slingshot::make_level(), 60});
   levels.push_back({"peggle", peggle::make_level(), 60});
 #endif
