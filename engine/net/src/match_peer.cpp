@@ -277,7 +277,10 @@ int MatchPeer::advance() {
   m.trim_inputs();
   if (m.shown) return stepped;
   const double now = detail::clock_ms();
-  if (stepped == 0 && m.state == MatchState::playing) {
+  // A stall waits for another peer: this player's own input for the next tick is given (a
+  // frame that gave no input, between two ticks, waits for nobody).
+  const bool own_given = m.slot >= m.players || m.known(m.slot) > m.next_step;
+  if (stepped == 0 && own_given && m.state == MatchState::playing) {
     ++m.stats.stalls;
     if (m.stall_since < 0.0) m.stall_since = now;
   } else if (m.stall_since >= 0.0) {

@@ -124,7 +124,9 @@ struct MatchStats {
   /// and pings included; all connections of this peer together.
   std::uint64_t wire_datagrams_sent = 0, wire_bytes_sent = 0;
   std::uint64_t wire_datagrams_received = 0, wire_bytes_received = 0;
-  std::uint64_t stalls = 0;         ///< advance() calls that stepped nothing, waiting for input
+  /// advance() calls that stepped nothing while this player's input for the next tick was
+  /// given (a spectator: any that stepped nothing): waiting for another player's input
+  std::uint64_t stalls = 0;
   double stalled_ms = 0.0;          ///< time spent waiting so
   std::uint32_t round_trip_ms = 0;  ///< to the host (a joiner) or the slowest player (a host)
   std::uint64_t hashes_compared = 0;
