@@ -185,6 +185,35 @@ TEST(Lockstep, SendIntervalBatchesTicks) {
   }
 }
 
+/// The playout delay: a lockstep player steps tick t once its own input for t + input_delay
+/// is given, one tick per local input, however the other player's inputs arrive (here in
+/// bursts, a packet per 40 ms). Checked after every advance() of every frame (5 ms frames);
+/// stepping each tick as soon as both inputs are there broke it at tick 1.
+TEST(Lockstep, APlayerPlaysTicksOutOnItsOwnInputsClock) {
+  MatchSettings s = match(2, 120);
+  s.input_delay = 8;
+  s.send_interval_ms = 40;
+  Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 2.0, .seed = 8});
+  std::uint64_t behind = 0, checks = 0;
+  ASSERT_TRUE(m.run(
+      20000,
+      [&](std::size_t i) {
+        const MatchPeer& p = *m.peers[i];
+        // (the last input_delay ticks play out once every own input is given)
+        if (p.state() != MatchState::playing || p.next_input_tick() >= 120) return;
+        ++checks;
+        // Every own input given up to next_input_tick(); ticks before it minus the delay may
+        // have been played out, no later one.
+        EXPECT_LE(p.world().tick() + s.input_delay, p.next_input_tick()) << "slot " << i;
+        if (p.world().tick() + s.input_delay < p.next_input_tick()) ++behind;
+      },
+      5.0))
+      << m.peers[0]->error();
+  expect_agreement(m, 120);
+  EXPECT_GT(checks, 200u);
+  EXPECT_GT(behind, 0u);  // it did wait for the other's bursts at times
+}
+
 /// Polls `host` and `raw` until `raw` receives a datagram (at most 2 s).
 std::optional<std::vector<std::uint8_t>> answer(MatchPeer& host, net::Transport& raw) {
   const auto start = std::chrono::steady_clock::now();
@@ -267,11 +296,14 @@ TEST(Lockstep, HostilePacketsAreDroppedAndCountedWithoutAmplification) {
   EXPECT_EQ(dropped(host, net::PacketError::bad_field), 1u);
   EXPECT_EQ(dropped(host, net::PacketError::bad_slot), 1u);
   EXPECT_EQ(host.state(), MatchState::playing) << host.error();
-  // The one good input was taken: with the host's own for tick 6, tick 6 steps (and no more).
+  // The one good input was taken: with the host's own inputs, tick 6 steps (and no more: the
+  // host plays tick t out once its own input for t + 6 is given, the playout delay).
   ASSERT_TRUE(host.wants_input());
   ASSERT_EQ(host.next_input_tick(), 6u);
-  host.add_input(TickInput{});
-  (void)host.advance();
+  for (int frame = 0; frame < 20; ++frame) {
+    while (host.wants_input()) host.add_input(TickInput{});
+    (void)host.advance();
+  }
   EXPECT_EQ(host.world().tick(), 7u);
 }
 

@@ -5,22 +5,23 @@
 #include <optional>
 #include <string>
 
+#include "fixstep/match_peer.hpp"
 #include "fixstep/net_transport.hpp"
 
 namespace fixstep::net::detail {
 
 /// What a match's command line asked for.
 struct MatchOptions {
-  std::optional<std::uint16_t> host_port;  ///< --host PORT
-  std::optional<Address> join;             ///< --join HOST:PORT
-  std::string bind = "127.0.0.1";          ///< --bind ADDR
-  bool rollback = false;                   ///< --session rollback
-  std::uint16_t input_delay = 3;           ///< --input-delay N
-  std::uint16_t max_rollback = 8;          ///< --max-rollback N (rollback only)
-  std::uint64_t ticks = 0;                 ///< --ticks N (0: until quit)
-  std::optional<std::string> scene;        ///< --scene FILE
-  std::string record, last_frame;          ///< --record FILE, --last-frame PNG
-  bool bot = false, window = false;        ///< --bot, --window
+  std::optional<std::uint16_t> host_port;                        ///< --host PORT
+  std::optional<Address> join;                                   ///< --join HOST:PORT
+  std::string bind = "127.0.0.1";                                ///< --bind ADDR
+  bool rollback = false;                                         ///< --session rollback
+  std::uint16_t input_delay = net::MatchSettings{}.input_delay;  ///< --input-delay N
+  std::uint16_t max_rollback = 8;    ///< --max-rollback N (rollback only)
+  std::uint64_t ticks = 0;           ///< --ticks N (0: until quit)
+  std::optional<std::string> scene;  ///< --scene FILE
+  std::string record, last_frame;    ///< --record FILE, --last-frame PNG
+  bool bot = false, window = false;  ///< --bot, --window
 };
 
 /// Whether the command line names a match option (then parse_match handles it all, else

@@ -205,11 +205,18 @@ void MatchPeer::add_input(TickInput input) {
 }
 
 int MatchPeer::Impl::step_confirmed() {
+  // A lockstep player plays tick t out when its own input for t + input_delay is given (the
+  // playout delay): one tick per local input, on the player's clock, however the other
+  // players' inputs arrive (in bursts of a send interval); a rollback peer's confirmed world
+  // and a spectator's step as soon as every input is there. The match's last input_delay
+  // ticks have no later local input: they step once every own input is given.
+  const bool paced = !shown && slot < players;
   auto ready = [&] {
     for (std::size_t p = 0; p < players; ++p) {
       if (known(p) <= next_step) return false;
     }
-    return true;
+    const bool all_given = settings.match_ticks != 0 && known(slot) >= settings.match_ticks;
+    return !paced || all_given || known(slot) > next_step + settings.input_delay;
   };
   if (settings.match_ticks != 0 && next_step >= settings.match_ticks) {
     state = MatchState::finished;

@@ -47,8 +47,12 @@ using InputMerge = std::function<TickInput(std::span<const TickInput> players, c
 /// The match: what the host decides and sends joiners in the handshake (players, input_delay,
 /// hash_every), and what each peer decides for itself (the rest).
 struct MatchSettings {
-  std::uint8_t players = 2;       ///< 2 .. max_players
-  std::uint16_t input_delay = 3;  ///< ticks between giving an input and its tick
+  std::uint8_t players = 2;  ///< 2 .. max_players
+  /// Ticks between giving an input and its tick (a lockstep player plays tick t out when it
+  /// gives its input for t + input_delay). The default, 100 ms at 60 ticks/s, covers two send
+  /// intervals (the default's) and a round trip on a local network: pick it above the round
+  /// trip + 2 send intervals, in ticks, to never stall.
+  std::uint16_t input_delay = 6;
   /// Ticks between exchanged state hashes, >= 1. A hash a second costs a player about 0.6
   /// kbit/s (the hash, and ENet's acknowledgement of it in a datagram of its own).
   std::uint16_t hash_every = 60;
