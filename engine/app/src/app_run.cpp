@@ -85,35 +85,12 @@ Options parse(const Settings& settings, int argc, char** argv) {
   return o;
 }
 
-/// Whether `a` and `b` name one existing file.
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code ec;
-  return !a.empty() && !b.empty() && std::filesystem::equivalent(a, b, ec) && !ec;
-}
-
 /// Refuses, before anything runs, an output that may not be written (a directory, a socket, a
 /// missing directory) or that is one of the inputs: a session is not played only to be lost.
 void check_outputs(const Settings& settings, const Options& o) {
   const std::string scene = o.scene.value_or(settings.scene_file);
-  for (const auto& [flag, path] :
-       {std::pair{"--record", o.record}, {"--last-frame", o.last_frame}}) {
-    if (path.empty()) continue;
-    const OutputTarget target = classify_output(path);
-    if (std::string why = output_refusal(target); !why.empty()) {
-      throw std::runtime_error(fmt::format("{} {} {}; nothing was run", flag, path, why));
-    }
-    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-    if (target.kind == OutputKind::file &&
-        !std::filesystem::is_directory(dir.empty() ? "." : dir)) {
-      throw std::runtime_error(fmt::format(
-          "{} {}: the directory {} does not exist; nothing was run", flag, path, dir.string()));
-    }
-    if (same_file(path, scene) || same_file(path, o.replay)) {
-      throw std::runtime_error(fmt::format(
-          "{} {} is an input of this run: an output never overwrites an input; nothing was run",
-          flag, path));
-    }
-  }
+  check_output_before_run("--record", o.record, {scene, o.replay});
+  check_output_before_run("--last-frame", o.last_frame, {scene, o.replay});
 }
 
 int run_mode(const AnyGame& game, const Settings& settings, const Options& o) {

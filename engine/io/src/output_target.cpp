@@ -9,6 +9,7 @@
 #include <array>
 #include <atomic>
 #include <charconv>
+#include <stdexcept>
 #include <string_view>
 
 #include "fixstep/file_read.hpp"
@@ -113,6 +114,28 @@ int standard_output_descriptor() noexcept {
 
 void set_standard_output_descriptor(int fd) noexcept {
   standard_output.store(fd, std::memory_order_relaxed);
+}
+
+void check_output_before_run(std::string_view flag, const std::string& path,
+                             std::initializer_list<std::string_view> inputs) {
+  if (path.empty()) return;
+  const OutputTarget target = classify_output(path);
+  if (std::string why = output_refusal(target); !why.empty()) {
+    throw std::runtime_error(fmt::format("{} {} {}; nothing was run", flag, path, why));
+  }
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (target.kind == OutputKind::file && !std::filesystem::is_directory(dir.empty() ? "." : dir)) {
+    throw std::runtime_error(fmt::format("{} {}: the directory {} does not exist; nothing was run",
+                                         flag, path, dir.string()));
+  }
+  for (const std::string_view input : inputs) {
+    std::error_code ec;
+    if (!input.empty() && std::filesystem::equivalent(path, input, ec) && !ec) {
+      throw std::runtime_error(fmt::format(
+          "{} {} is an input of this run: an output never overwrites an input; nothing was run",
+          flag, path));
+    }
+  }
 }
 
 }  // namespace fixstep

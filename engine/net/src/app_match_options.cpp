@@ -158,26 +158,8 @@ std::optional<MatchOptions> parse_match(const std::string& program, int argc, ch
 
 void check_match_outputs(const MatchOptions& o, const std::string& default_scene) {
   const std::string scene = o.scene.value_or(default_scene);
-  for (const auto& [flag, path] :
-       {std::pair{"--record", o.record}, {"--last-frame", o.last_frame}}) {
-    if (path.empty()) continue;
-    const OutputTarget target = classify_output(path);
-    if (std::string why = output_refusal(target); !why.empty()) {
-      throw std::runtime_error(fmt::format("{} {} {}; nothing was run", flag, path, why));
-    }
-    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-    if (target.kind == OutputKind::file &&
-        !std::filesystem::is_directory(dir.empty() ? "." : dir)) {
-      throw std::runtime_error(fmt::format(
-          "{} {}: the directory {} does not exist; nothing was run", flag, path, dir.string()));
-    }
-    std::error_code ec;
-    if (!scene.empty() && std::filesystem::equivalent(path, scene, ec) && !ec) {
-      throw std::runtime_error(fmt::format(
-          "{} {} is the scene file: an output never overwrites an input; nothing was run", flag,
-          path));
-    }
-  }
+  check_output_before_run("--record", o.record, {scene});
+  check_output_before_run("--last-frame", o.last_frame, {scene});
 }
 
 }  // namespace fixstep::net::detail

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace fixstep {
 
@@ -50,6 +52,14 @@ struct OutputTarget {
 /// "" when `target` may be written; for a refused one why not, e.g. "is a directory (an output
 /// is a regular file, a new name, a FIFO, a character device or standard output)".
 [[nodiscard]] std::string output_refusal(const OutputTarget& target);
+
+/// Refuses, before anything runs, the output `path` a program was given as `flag` (named in
+/// the message): one output_refusal() refuses, a new file in a directory that does not exist,
+/// or the same file as one of `inputs` (an output never overwrites an input; empty names are
+/// skipped). Throws std::runtime_error "FLAG PATH WHY; nothing was run". An empty `path` (no
+/// such output) passes.
+void check_output_before_run(std::string_view flag, const std::string& path,
+                             std::initializer_list<std::string_view> inputs);
 
 /// Opens a stream target (kind stream) for writing: a new descriptor (O_CLOEXEC) that the
 /// caller closes; for a descriptor name, a duplicate of it. Opening a FIFO waits until a
