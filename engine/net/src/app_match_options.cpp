@@ -121,9 +121,11 @@ std::optional<MatchOptions> parse_match(const std::string& program, int argc, ch
                           ->type_name("KIND")
                           ->check(CLI::IsMember({"lockstep", "rollback"}));
   cli.add_option("--bind", o.bind, "the local IPv4 address (default 127.0.0.1)")->type_name("ADDR");
-  cli.add_option("--input-delay", o.input_delay, "ticks between an input and its tick (0-60)")
-      ->type_name("N")
-      ->check(in_range(0, 60));
+  auto* delay_opt =
+      cli.add_option("--input-delay", o.input_delay,
+                     "ticks between an input and its tick (0-60; default 6, rollback 2)")
+          ->type_name("N")
+          ->check(in_range(0, 60));
   auto* rollback_opt =
       cli.add_option("--max-rollback", o.max_rollback, "rollback: most ticks ahead (1-60)")
           ->type_name("N")
@@ -148,6 +150,9 @@ std::optional<MatchOptions> parse_match(const std::string& program, int argc, ch
   if (join_opt->count() > 0) o.join = parse_host_port("--join", join);
   if (scene_opt->count() > 0) o.scene = scene;
   o.rollback = session == "rollback";
+  // Rollback shows its own input at once and predicts the others': a short delay spares it
+  // re-simulation; lockstep waits for every input, so its default covers two send intervals.
+  if (delay_opt->count() == 0 && o.rollback) o.input_delay = rollback_input_delay;
   if (rollback_opt->count() > 0 && !o.rollback) {
     throw UsageError("--max-rollback needs --session rollback");
   }

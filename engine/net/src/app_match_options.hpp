@@ -10,6 +10,9 @@
 
 namespace fixstep::net::detail {
 
+/// A rollback host's input delay when --input-delay is not given, ticks.
+inline constexpr std::uint16_t rollback_input_delay = 2;
+
 /// What a match's command line asked for.
 struct MatchOptions {
   std::optional<std::uint16_t> host_port;                        ///< --host PORT
