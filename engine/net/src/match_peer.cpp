@@ -215,8 +215,9 @@ int MatchPeer::Impl::step_confirmed() {
     for (std::size_t p = 0; p < players; ++p) {
       if (known(p) <= next_step) return false;
     }
+    if (!paced) return true;  // (a spectator's slot has no inputs of its own)
     const bool all_given = settings.match_ticks != 0 && known(slot) >= settings.match_ticks;
-    return !paced || all_given || known(slot) > next_step + settings.input_delay;
+    return all_given || known(slot) > next_step + settings.input_delay;
   };
   if (settings.match_ticks != 0 && next_step >= settings.match_ticks) {
     state = MatchState::finished;
