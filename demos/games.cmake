@@ -1,5 +1,6 @@
-# The two games as libraries, for their programs (demos/CMakeLists.txt) and for the web page
-# (web/CMakeLists.txt includes this file: game=peggle, game=slingshot). Each game is two:
+# The three games as libraries, for their programs (demos/CMakeLists.txt) and for the web page
+# (web/CMakeLists.txt includes this file: game=airhockey, game=peggle, game=slingshot). Each
+# game is two:
 #   NAME_game  the level and the rules on fixstep::core (tests/demos/ check them without a window)
 #   NAME_play  the game as fixstep::app runs it: NAME_app.hpp (the Game type and its
 #              app::Settings) and the game's drawing (draw.cpp)
@@ -18,3 +19,11 @@ target_link_libraries(peggle_game PUBLIC fixstep::core PRIVATE fixstep_options)
 target_include_directories(peggle_game PUBLIC ${CMAKE_CURRENT_LIST_DIR}/peggle)
 add_library(peggle_play STATIC ${CMAKE_CURRENT_LIST_DIR}/peggle/draw.cpp)
 target_link_libraries(peggle_play PUBLIC peggle_game fixstep::app PRIVATE fixstep_options)
+
+# airhockey: two mallets, one puck; two players over the network (its program links
+# fixstep::net_app: --host / --join), or one against the computer (its program, and the page).
+add_library(airhockey_game STATIC ${CMAKE_CURRENT_LIST_DIR}/airhockey/game.cpp)
+target_link_libraries(airhockey_game PUBLIC fixstep::core PRIVATE fixstep_options)
+target_include_directories(airhockey_game PUBLIC ${CMAKE_CURRENT_LIST_DIR}/airhockey)
+add_library(airhockey_play STATIC ${CMAKE_CURRENT_LIST_DIR}/airhockey/draw.cpp)
+target_link_libraries(airhockey_play PUBLIC airhockey_game fixstep::app PRIVATE fixstep_options)

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "airhockey_app.hpp"
 #include "fixstep/key_bindings.hpp"
 #include "fixstep/loop.hpp"
 #include "fixstep/recording_file.hpp"
@@ -32,6 +33,10 @@ constexpr double game_fps = 60.0;
 std::pair<std::unique_ptr<const app::detail::AnyGame>, app::Settings> make_game(
     const std::string& name) {
   using app::detail::GameModel;
+  if (name == "airhockey") {  // single-player: the computer plays the right mallet (prepare())
+    return {std::make_unique<GameModel<airhockey::AirHockey>>(airhockey::AirHockey{}),
+            airhockey::app_settings()};
+  }
   if (name == "peggle") {
     return {std::make_unique<GameModel<peggle::Peggle>>(peggle::Peggle{}), peggle::app_settings()};
   }
@@ -50,7 +55,11 @@ bool is_page_game(const std::string& name) {
 
 PageGame::PageGame(PageOptions o) : o_(std::move(o)) {
   std::tie(prototype_, settings_) = make_game(*o_.game);
-  settings_.width = o_.width, settings_.height = o_.height;  // size=, 1280x720 as app::run's
+  if (o_.size_given) {
+    settings_.width = o_.width, settings_.height = o_.height;
+  } else {  // the program's size (app::Settings), as `NAME --frames` draws
+    o_.width = settings_.width, o_.height = settings_.height;
+  }
   if (o_.replay) return;  // the level waits for the recording (recording_fetched)
   play_ = std::make_unique<app::detail::GamePlay>(
       app::detail::load_level(*prototype_, settings_, settings_.scene_file), settings_, "");

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -76,6 +77,7 @@ void parse_size(const std::string& value, PageOptions& o) {
   if (x == std::string::npos) side("");
   o.width = side(value.substr(0, x));
   o.height = side(value.substr(x + 1));
+  o.size_given = true;
 }
 
 bool parse_flag(const std::string& name, const std::string& value) {
@@ -114,8 +116,11 @@ void set(PageOptions& o, const std::string& name, const std::string& value) {
     o.headless = parse_flag(name, value);
   } else if (name == "game") {
     if (std::find(page_game_names.begin(), page_game_names.end(), value) == page_game_names.end()) {
-      throw std::invalid_argument(
-          fmt::format("game={}: must be {}", value, fmt::join(page_game_names, " or ")));
+      // "a, b or c"
+      const auto all_but_last = std::span(page_game_names).first(page_game_names.size() - 1);
+      throw std::invalid_argument(fmt::format("game={}: must be {} or {}", value,
+                                              fmt::join(all_but_last, ", "),
+                                              page_game_names.back()));
     }
     o.game = value;
   } else if (name == "overlay") {

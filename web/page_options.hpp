@@ -11,8 +11,10 @@
 
 namespace fixstep::web {
 
-/// The games the page plays (game=NAME): demos/peggle and demos/slingshot (page_games.hpp).
-inline constexpr std::array<std::string_view, 2> page_game_names{"peggle", "slingshot"};
+/// The games the page plays (game=NAME): demos/airhockey (against the computer; no network),
+/// demos/peggle and demos/slingshot (page_game.hpp).
+inline constexpr std::array<std::string_view, 3> page_game_names{"airhockey", "peggle",
+                                                                 "slingshot"};
 
 /// The page's parameters. Without `frames`, `ticks` or `replay` the page is interactive: the
 /// scene runs on the browser's clock, driven by requestAnimationFrame, with keys and pointer.
@@ -31,8 +33,11 @@ struct PageOptions {
   std::optional<std::string> replay;
   double fps = 60.0;    ///< fps=F: the virtual clock's frames per second (frames=), > 0
   bool record = false;  ///< record=1: with frames= or ticks=, also shows the run's recording
-  std::uint64_t hash_every = 60;   ///< hash_every=K: ticks between a recording's stored hashes
-  int width = 1280, height = 720;  ///< size=WxH: the canvas, px (as `fixstep render --size`)
+  std::uint64_t hash_every = 60;  ///< hash_every=K: ticks between a recording's stored hashes
+  /// size=WxH: the canvas, px (as `fixstep render --size`); a game without size= has the
+  /// size its program draws (app::Settings: e.g. airhockey 960x600).
+  int width = 1280, height = 720;
+  bool size_given = false;  ///< size= was given
   /// headless=1: the page's bar and scroll bars are hidden, so that a screenshot of a
   /// width x height window is the canvas alone; frames= and ticks= run on timers (headless
   /// Chromium's virtual time does not run requestAnimationFrame).
@@ -45,9 +50,9 @@ struct PageOptions {
   /// (the game builds its level; its input, rules, drawing, view and HUD lines). Interactive:
   /// the browser's pointer and keys through the game's input (e.g. aim and click). frames=F:
   /// what `NAME --frames F` does, the autopilot playing on a 60 Hz virtual clock, the last
-  /// frame drawn. replay=URL: a recording of that game (its rules name and version), verified
-  /// with its rules as `NAME --replay` does, then played back. Takes frames=, replay=, size= and
-  /// headless= only.
+  /// frame drawn. replay=URL: a recording of that game (its rules name and version; for
+  /// airhockey a network match's, as either peer wrote it), verified with its rules as `NAME
+  /// --replay` does, then played back. Takes frames=, replay=, size= and headless= only.
   std::optional<std::string> game;
 };
 

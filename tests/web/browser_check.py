@@ -17,16 +17,22 @@ Then the overlay test card (web/overlay_card.hpp: every shape a game draws, a vi
 own) drawn by the page over default.toml (overlay=card) against its native golden frame
 (tests/golden/frames/overlay_card_frame_000060.png), with the tolerance of (b).
 
-Then the games (--no-games skips them), the page's game=NAME, NAME being demos/peggle and
-demos/slingshot as their programs' fixstep::app::run plays them: game=NAME&frames=GAME_FRAMES
-headless (the autopilot playing) must end in the state hash and summary lines the native `NAME
---frames GAME_FRAMES` prints, and peggle's last frame must match the native `--last-frame PNG`
-with the tolerance of (b) (both 1280x720, the programs' size); game=NAME&replay= of
-assets/recordings/NAME.rec must verify every stored hash in the page with the native `NAME
---replay`'s final hash, count and summary, and slingshot's last frame played back must match
-the native `slingshot --replay --last-frame PNG` (slingshot has no autopilot: its frames= run,
-the level at rest, is compared by state only; its replay's frame has a shot in it). A slingshot
-recording refused by game=peggle is a row of the bad inputs below.
+Then the games (--no-games skips them), the page's game=NAME, NAME being demos/airhockey,
+demos/peggle and demos/slingshot as their programs' fixstep::app::run plays them:
+game=NAME&frames=GAME_FRAMES headless (the autopilot playing; airhockey's against the
+computer, as the program without --host / --join) must end in the state hash and summary lines
+the native `NAME --frames GAME_FRAMES` prints, and airhockey's and peggle's last frames must
+match the native `--last-frame PNG` with the tolerance of (b) (each at its program's size:
+1280x720, airhockey 960x600); game=NAME&replay= of assets/recordings/NAME.rec must verify
+every stored hash in the page with the native `NAME --replay`'s final hash, count and summary,
+and slingshot's last frame played back must match the native `slingshot --replay --last-frame
+PNG` (slingshot has no autopilot: its frames= run, the level at rest, is compared by state
+only; its replay's frame has a shot in it). A network match (tests/web/native_match.py: two
+native airhockey bots, host and joiner, over loopback, their recordings byte-identical) is
+replayed the same way, game=airhockey&replay= of the host's recording: every stored hash (one a
+tick) verified in the page as `airhockey --replay` verifies it, and its last frame against the
+native one. A slingshot recording refused by game=peggle and by game=airhockey, and the match's
+by game=peggle, are rows of the bad inputs below.
 
 Then the input (--no-input skips it): the interactive page driven by DOM key and mouse events
 (tests/web/input_check.html), game=peggle played by them (tests/web/game_input_check.html: the
@@ -61,6 +67,7 @@ import time
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cdp_pipe  # noqa: E402
+import native_match  # noqa: E402
 import png_image  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -242,7 +249,9 @@ def check_overlay_card(args, site, out, failures):
     print(f"overlay card: {verdict}", flush=True)
 
 
-GAME_SIZE = (1280, 720)  # app::Settings' frame size: the games' programs have no --size
+# Each game's frame size, px: its app::Settings' (the programs have no --size), which the page
+# takes too when given no size=.
+GAME_SIZES = {"airhockey": (960, 600), "peggle": (1280, 720), "slingshot": (1280, 720)}
 
 
 def native_game(args, game, *options):
@@ -281,7 +290,7 @@ def check_game_frames(game, args, site, out, failures, frame=True):
     shot = os.path.join(out, f"game_{game}_browser.png")
     url = f"{site.url}/index.html?game={game}&frames={frames}&headless=1"
     if frame:
-        dom = chromium(url, shot, *GAME_SIZE, args.budget_ms)
+        dom = chromium(url, shot, *GAME_SIZES[game], args.budget_ms)
         result, summary = element(dom, "result"), element(dom, "summary")
     else:
         result, summary = page_texts(args.browser, url, ["result", "summary"])
@@ -301,23 +310,26 @@ def check_game_frames(game, args, site, out, failures, frame=True):
           flush=True)
 
 
-def check_game_replay(game, args, site, out, failures, frame=False):
-    """game=GAME&replay= of assets/recordings/GAME.rec: every stored hash verified in the page,
-    with the final hash, the count of hashes and the summary lines of the native `GAME
-    --replay`; with `frame`, the page's last frame of the recording played back against the
-    native `--last-frame PNG` (tolerance of (b))."""
-    shutil.copyfile(os.path.join(ROOT, "assets", "recordings", f"{game}.rec"),
-                    os.path.join(site.rec_dir, f"{game}_game.rec"))
-    url = f"{site.url}/index.html?game={game}&replay=/rec/{game}_game.rec&headless=1"
-    shot = os.path.join(out, f"game_{game}_replay_browser.png")
-    native_png = os.path.join(out, f"game_{game}_replay_native.png")
+def check_game_replay(game, args, site, out, failures, frame=False, recording=None):
+    """game=GAME&replay= of `recording` (default assets/recordings/GAME.rec): every stored hash
+    verified in the page, with the final hash, the count of hashes and the summary lines of the
+    native `GAME --replay`; with `frame`, the page's last frame of the recording played back
+    against the native `--last-frame PNG` (tolerance of (b)). Returns the page's result."""
+    recording = recording or os.path.join("assets", "recordings", f"{game}.rec")
+    served = f"{game}_game.rec"
+    if os.path.dirname(os.path.abspath(recording)) != os.path.abspath(site.rec_dir):
+        shutil.copyfile(os.path.join(ROOT, recording), os.path.join(site.rec_dir, served))
+    else:  # already under /rec/
+        served = os.path.basename(recording)
+    url = f"{site.url}/index.html?game={game}&replay=/rec/{served}&headless=1"
+    shot = os.path.join(out, f"game_{served[:-4]}_replay_browser.png")
+    native_png = os.path.join(out, f"game_{served[:-4]}_replay_native.png")
     if frame:
-        dom = chromium(url, shot, *GAME_SIZE, args.budget_ms)
+        dom = chromium(url, shot, *GAME_SIZES[game], args.budget_ms)
         result, summary = element(dom, "result"), element(dom, "summary")
     else:
         result, summary = page_texts(args.browser, url, ["result", "summary"])
     result, summary = result or "", summary or ""
-    recording = os.path.join("assets", "recordings", f"{game}.rec")
     printed = native_game(args, game, "--replay", recording,
                           *(["--last-frame", native_png] if frame else [])).strip()
     lines = printed.splitlines()
@@ -329,6 +341,32 @@ def check_game_replay(game, args, site, out, failures, frame=False):
         failures.append(f"game={game} replay: page {result!r} {summary!r} != native {printed!r}")
     verdict = "frame: " + compare_frame(f"game={game} replay", shot, native_png, failures) if frame else ""
     print(f"game={game} replay of {recording}: page {result}; {verdict}", flush=True)
+    return result
+
+
+MATCH_TICKS = 600  # as tests/airhockey_match.sh
+
+
+def match_recording(args, rec_dir):
+    """The recording of a native airhockey match (native_match.record_match) under /rec/, as
+    rec_dir/airhockey_match.rec: made once, for the match check and the bad inputs."""
+    rec = os.path.join(rec_dir, "airhockey_match.rec")
+    if not os.path.exists(rec):
+        airhockey = os.path.join(os.path.dirname(args.fixstep), "airhockey")
+        native_match.record_match(airhockey, rec_dir, MATCH_TICKS)
+    return rec
+
+
+def check_match_replay(args, site, out, failures):
+    """A network match's recording (two native bots over loopback, both peers' recordings
+    identical) replayed in the page with game=airhockey: every stored hash, one a tick, verified
+    as `airhockey --replay` verifies it, the same final state and score, and its last frame
+    against the native one."""
+    rec = match_recording(args, site.rec_dir)
+    result = check_game_replay("airhockey", args, site, out, failures, True, rec)
+    if not re.fullmatch(rf"verified ticks={MATCH_TICKS} state_hash=[0-9a-f]{{16}} "
+                        rf"hashes={MATCH_TICKS + 1}", result or ""):
+        failures.append(f"airhockey match replay: not every tick's hash verified: {result!r}")
 
 
 def check_input_replay(args, site, out, failures):
@@ -443,9 +481,11 @@ def write_bad_recordings(args, rec_dir):
     with open(os.path.join(rec_dir, "damaged.rec"), "w", encoding="utf-8") as f:
         f.write("".join("|dt = \\q\n" if line.startswith("|dt = 0.01") else line
                         for line in lines))
-    # A game's recording for the game= rows (slingshot's, refused by game=peggle).
+    # A game's recording for the game= rows (slingshot's, refused by game=peggle and
+    # game=airhockey), and a network match's (airhockey's, refused by game=peggle).
     shutil.copyfile(os.path.join(ROOT, "assets", "recordings", "slingshot.rec"),
                     os.path.join(rec_dir, "slingshot_game.rec"))
+    match_recording(args, rec_dir)
     # Format 4, naming the game rules it was recorded with: the page has no game of that name.
     with open(os.path.join(rec_dir, "rules.rec"), "w", encoding="utf-8") as f:
         f.write("".join(("fixstep-recording 4\n" if line.startswith("fixstep-recording ")
@@ -506,15 +546,20 @@ def main():
               for scene in scenes]
     checks.append(("overlay card", lambda: check_overlay_card(args, site, out, failures)))
     if not args.no_games:
-        # Three screenshots (each a Chromium of its own): peggle's autopilot run, and slingshot's
-        # recorded shot (its headless run, without an autopilot, is checked by state only).
-        checks += [("game=peggle", lambda: check_game_frames("peggle", args, site, out, failures)),
+        # Five screenshots (each a Chromium of its own): airhockey's and peggle's autopilot runs,
+        # slingshot's recorded shot (its headless run, without an autopilot, is checked by state
+        # only), and the last frame of airhockey's network match.
+        checks += [("game=airhockey",
+                    lambda: check_game_frames("airhockey", args, site, out, failures)),
+                   ("game=peggle", lambda: check_game_frames("peggle", args, site, out, failures)),
                    ("game=slingshot",
                     lambda: check_game_frames("slingshot", args, site, out, failures, False))]
         checks += [("game=peggle replay",
                     lambda: check_game_replay("peggle", args, site, out, failures)),
                    ("game=slingshot replay",
-                    lambda: check_game_replay("slingshot", args, site, out, failures, True))]
+                    lambda: check_game_replay("slingshot", args, site, out, failures, True)),
+                   ("airhockey match replay",
+                    lambda: check_match_replay(args, site, out, failures))]
     if not args.no_input:
         checks += [("input", lambda: check_input(args, site, failures)),
                    ("game input", lambda: check_game_input(args, site, failures)),
