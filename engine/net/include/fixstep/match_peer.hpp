@@ -53,8 +53,8 @@ struct MatchSettings {
   /// intervals (the default's) and a round trip on a local network: pick it above the round
   /// trip + 2 send intervals, in ticks, to never stall.
   std::uint16_t input_delay = 6;
-  /// Ticks between exchanged state hashes, >= 1. A hash a second costs a player about 0.6
-  /// kbit/s (the hash, and ENet's acknowledgement of it in a datagram of its own).
+  /// Ticks between exchanged state hashes, >= 1. Each exchange is a reliable message and its
+  /// acknowledgement (what that costs in bandwidth: docs/NETWORK.md).
   std::uint16_t hash_every = 60;
   std::uint64_t match_ticks = 0;  ///< the match ends after this many ticks; 0: never
   /// Rollback: most ticks the shown world may run ahead of the confirmed one on predicted
@@ -77,7 +77,7 @@ struct MatchSettings {
   /// Least time between two inputs packets to one peer, ms: 0 sends one on every new input
   /// and every new input received (about two a tick), more batches the ticks of that long into
   /// one packet (fewer headers, less bandwidth, up to as much more latency each way). The
-  /// default, 3 ticks at 60 ticks/s, keeps a player under 16 kbit/s (docs/NETWORK.md).
+  /// default is 3 ticks at 60 ticks/s (its bandwidth against the others': docs/NETWORK.md).
   std::uint32_t send_interval_ms = 50;
   /// A player (or the host) heard from for this long stops the match ("timed out").
   std::uint32_t peer_timeout_ms = 5000;

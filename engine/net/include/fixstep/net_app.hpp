@@ -9,7 +9,7 @@
 //     --session lockstep|rollback   lockstep (default): every peer shows the confirmed world;
 //                                   rollback: the shown world runs ahead on predictions
 //     --input-delay N               ticks between an input and its tick (host decides; 0-60,
-//                                   default 3)
+//                                   default 6, or 2 for a rollback host)
 //     --max-rollback N              rollback: most ticks shown ahead (1-60, default 8)
 //     --bind ADDR                   the local IPv4 address (default 127.0.0.1)
 //     --ticks N                     the match ends after N ticks (default: until Esc)

@@ -89,7 +89,8 @@ class Transport {
   void drop(std::uint32_t peer);
   /// ENet's mean round-trip time to `peer`, ms (0 for an unknown peer).
   [[nodiscard]] std::uint32_t round_trip_ms(std::uint32_t peer) const;
-  /// ENet's counts of this host's datagrams and bytes since it was made.
+  /// ENet's counts of this host's datagrams and bytes since it was made (ENet keeps them in 32
+  /// bits: they wrap after 2^32).
   [[nodiscard]] TransportCounters counters() const;
   /// The port this host is bound to.
   [[nodiscard]] std::uint16_t port() const;
