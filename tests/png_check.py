@@ -5,51 +5,19 @@ checks that it is not a blank frame (more than 8 distinct colours), and each CHE
   R,G,B@X,Y:D      the centre of the pixels of that colour is at least D px from pixel (X, Y)
                    (a body that moved from where it started).
 Prints what it found; exit 1 when a check fails, 2 when the file is not such a PNG."""
+import os
 import struct
 import sys
 import zlib
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "web"))
+from png_image import decode_png  # noqa: E402  (the browser checks' decoder)
+
 
 def decode(path):
-    data = open(path, "rb").read()
-    if data[:8] != b"\x89PNG\r\n\x1a\n":
-        raise ValueError("not a PNG")
-    pos, idat, width = 8, b"", 0
-    while pos < len(data):
-        (length,) = struct.unpack(">I", data[pos : pos + 4])
-        kind = data[pos + 4 : pos + 8]
-        body = data[pos + 8 : pos + 8 + length]
-        if kind == b"IHDR":
-            width, height, depth, color = struct.unpack(">IIBB", body[:10])
-            if depth != 8 or color not in (2, 6):
-                raise ValueError("not 8-bit RGB(A)")
-            bpp = 3 if color == 2 else 4
-        elif kind == b"IDAT":
-            idat += body
-        pos += 12 + length
-    raw, stride = zlib.decompress(idat), width * bpp
-    rows, prev = [], bytearray(stride)
-    for y in range(height):
-        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1 : (y + 1) * (stride + 1)])
-        if f == 1:
-            for i in range(bpp, stride):
-                line[i] = (line[i] + line[i - bpp]) & 255
-        elif f == 2:
-            line = bytearray((a + b) & 255 for a, b in zip(line, prev))
-        elif f == 3:
-            for i in range(stride):
-                left = line[i - bpp] if i >= bpp else 0
-                line[i] = (line[i] + ((left + prev[i]) >> 1)) & 255
-        elif f == 4:
-            for i in range(stride):
-                a = line[i - bpp] if i >= bpp else 0
-                b, c = prev[i], prev[i - bpp] if i >= bpp else 0
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(line)
-        prev = line
-    return width, [tuple(r[x * bpp : x * bpp + 3]) for r in rows for x in range(width)]
+    """(width, pixels as RGB tuples in row order) of the PNG at `path`."""
+    width, _, rows = decode_png(path)
+    return width, [tuple(r[x * 3 : x * 3 + 3]) for r in rows for x in range(width)]
 
 
 def near(p, want):

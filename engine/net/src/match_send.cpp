@@ -99,7 +99,7 @@ void MatchPeer::Impl::send_inputs(detail::Remote& r, double now) {
     const bool in_flight = r.sent_to[p] > acked;
     const bool timed_out = in_flight && now - r.ack_moved_at[p] >= resend_timeout(r);
     if (!in_flight || timed_out) r.ack_moved_at[p] = now;
-    const bool small = redundant(p, acked);
+    const bool small = in_flight && redundant(p, acked);
     if (timed_out && !small) ++stats.resends;
     const bool from_ack = !in_flight || timed_out || small;
     const std::uint32_t from = from_ack ? acked : r.sent_to[p];
