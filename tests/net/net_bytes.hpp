@@ -20,7 +20,7 @@ struct Bytes {
   }
   /// The 12-byte header: "FXSN", version, kind, slot, reserved 0, sequence.
   Bytes& header(std::uint8_t kind, std::uint8_t slot, std::uint32_t sequence,
-                std::uint8_t version = 1) {
+                std::uint8_t version = net::protocol_version) {
     v.insert(v.end(), {'F', 'X', 'S', 'N'});
     return u8(version).u8(kind).u8(slot).u8(0).u32(sequence);
   }

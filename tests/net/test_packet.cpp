@@ -2,6 +2,7 @@
 // typed error, the encoders giving the same bytes, input runs exact and cheap when unchanged.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -78,9 +79,12 @@ TEST(NetPacket, HeaderRefusalsInOrder) {
   Bytes foreign = request();
   foreign.v[0] = 'G';
   EXPECT_EQ(decode(foreign), PacketError::bad_protocol_id);
-  Bytes v2;
-  v2.header(1, 0xff, 0, 2).zeros(52);
-  EXPECT_EQ(decode(v2), PacketError::bad_version);
+  for (std::uint8_t version :
+       {std::uint8_t{net::protocol_version - 1}, std::uint8_t{net::protocol_version + 1}}) {
+    Bytes other;
+    other.header(1, 0xff, 0, version).zeros(52);
+    EXPECT_EQ(decode(other), PacketError::bad_version) << int{version};
+  }
   for (int kind : {0, 6, 255}) {
     Bytes k;
     k.header(static_cast<std::uint8_t>(kind), 0, 0).zeros(20);
@@ -125,10 +129,11 @@ Bytes inputs_header(std::uint32_t ack0 = 10, std::uint32_t ack1 = 9, std::uint8_
 }
 
 TEST(NetPacket, InputsRunOfRepeatsAndChanges) {
-  // Player 1, ticks 8..12: tick 8 holds `left`, 9..11 repeat it, tick 12 moves the pointer.
+  // Player 1, ticks 8..12: tick 8 holds `left`, 9..11 repeat it, tick 12 moves the pointer
+  // (off the pointer grid: two doubles).
   Bytes b = inputs_header();
   Bytes items;
-  items.u8(0x80 | 0x02).u16(1).u8(2).u8(0x80 | 0x08).f64(0.5).f64(-2.0);
+  items.u8(0x80 | 0x02).u16(1).u8(2).u8(0x80 | 0x08).f64(0.1).f64(-2.0);
   b.u8(1).u32(8).u16(5).u16(items.v.size());
   b.v.insert(b.v.end(), items.v.begin(), items.v.end());
   net::Packet p;
@@ -151,7 +156,7 @@ TEST(NetPacket, InputsRunOfRepeatsAndChanges) {
     EXPECT_EQ(ticks[i].pointer.x, 0.0) << i;
   }
   EXPECT_EQ(ticks[4].held, button_left);
-  EXPECT_EQ(ticks[4].pointer.x, 0.5);
+  EXPECT_EQ(ticks[4].pointer.x, 0.1);
   EXPECT_EQ(ticks[4].pointer.y, -2.0);
   EXPECT_EQ(ticks[4].tick, 12u);
   // The encoder writes the same bytes.
@@ -195,7 +200,7 @@ TEST(NetPacket, InputsRefusals) {
   no_field.u8(0x80);
   EXPECT_EQ(decode(one_run(1, 10, 1, no_field)), PacketError::bad_field);
   Bytes reserved;
-  reserved.u8(0xc0);
+  reserved.u8(0xc8).zeros(16);  // the pointer both exact and on the grid
   EXPECT_EQ(decode(one_run(1, 10, 1, reserved)), PacketError::bad_field);
   // Acknowledging more of the receiver's (slot 0) ticks than it has.
   Bytes future = inputs_header(11, 9, 0);
@@ -313,6 +318,110 @@ TEST(NetInputCodec, UnchangedTicksCostOneBytePer128) {
   std::vector<std::uint8_t> bytes;
   net::encode_inputs(std::span(ticks).first(256), prev, bytes);
   EXPECT_EQ(bytes, (std::vector<std::uint8_t>{127, 127}));
+}
+
+/// Bytes of one changed tick whose pointer is on the grid (0x80 | wire_pointer_grid, then two
+/// zigzag varints).
+std::size_t grid_pointer_tick_bytes(Vec2 p) {
+  TickInput in{};
+  in.pointer = p;
+  return net::encoded_size({&in, 1}, TickInput{});
+}
+
+TEST(NetInputCodec, PointerOnTheGridGoesAsVarintsOfGridUnits) {
+  // (0.5, -2.0) m = (512, -2048) grid units of 2^-10 m; zigzag 1024 and 4095.
+  Bytes items;
+  items.u8(0x80 | 0x40).u8(0x80).u8(0x08).u8(0xff).u8(0x1f);
+  std::vector<net::InputDelta> deltas;
+  std::size_t used = 0;
+  ASSERT_EQ(net::decode_inputs(items.v, 1, deltas, used), PacketError::none);
+  EXPECT_EQ(used, 5u);
+  ASSERT_EQ(deltas.size(), 1u);
+  EXPECT_EQ(deltas[0].mask, net::field_pointer);  // the wire bit is never seen past decoding
+  EXPECT_EQ(deltas[0].fields.pointer.x, 0.5);
+  EXPECT_EQ(deltas[0].fields.pointer.y, -2.0);
+  TickInput in{};
+  in.pointer = {0.5, -2.0};
+  std::vector<std::uint8_t> bytes;
+  net::encode_inputs({&in, 1}, TickInput{}, bytes);
+  EXPECT_EQ(bytes, items.v);
+  // Sizes: 1 + 1 + 1 for a grid unit or less each way; 1 + 16 off the grid, for -0.0 (a
+  // varint has no negative zero) and beyond 2^40 units.
+  EXPECT_EQ(grid_pointer_tick_bytes({0x1p-10, -0x1p-10}), 3u);
+  EXPECT_EQ(grid_pointer_tick_bytes({20.0, -20.0}), 7u);  // 20480 units: 3-byte varints
+  EXPECT_EQ(grid_pointer_tick_bytes({0x1p-11, 0.0}), 17u);
+  EXPECT_EQ(grid_pointer_tick_bytes({-0.0, 1.0}), 17u);
+  EXPECT_EQ(grid_pointer_tick_bytes({0x1p30, -0x1p30}), 13u);  // 2^40 units: 6 bytes each
+  EXPECT_EQ(grid_pointer_tick_bytes({0x1p30 + 0x1p-10, 0.0}), 17u);
+}
+
+TEST(NetInputCodec, GridPointersRoundTripBitForBit) {
+  // 10 x 10 pairs, each as it is and rounded: 200 ticks (a run holds at most 256).
+  const double values[] = {0.0,    -0.0,    0x1p-10, -0x1p-10,         1.0 / 3.0,
+                           0x1p30, -0x1p30, 1e300,   0x1p30 + 0x1p-10, -123.4560546875};
+  std::vector<TickInput> ticks;
+  for (double x : values) {
+    for (double y : values) {
+      TickInput in{};
+      in.tick = ticks.size();
+      in.pointer = {x, y};
+      ticks.push_back(in);
+      in.pointer = net::round_to_pointer_grid({x, y});
+      ticks.push_back(in);
+    }
+  }
+  const TickInput prev{};
+  std::vector<std::uint8_t> bytes;
+  net::encode_inputs(ticks, prev, bytes);
+  EXPECT_EQ(bytes.size(), net::encoded_size(ticks, prev));
+  std::vector<net::InputDelta> deltas;
+  std::size_t used = 0;
+  ASSERT_EQ(net::decode_inputs(bytes, static_cast<std::uint32_t>(ticks.size()), deltas, used),
+            PacketError::none);
+  EXPECT_EQ(used, bytes.size());
+  TickInput at = prev;
+  for (std::size_t t = 0; t < ticks.size(); ++t) {
+    at = net::apply_delta(deltas[t], at, t);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(at.pointer.x),
+              std::bit_cast<std::uint64_t>(ticks[t].pointer.x))
+        << t;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(at.pointer.y),
+              std::bit_cast<std::uint64_t>(ticks[t].pointer.y))
+        << t;
+  }
+}
+
+TEST(NetInputCodec, RoundToPointerGrid) {
+  const auto round = [](double v) { return net::round_to_pointer_grid({v, 0.0}).x; };
+  EXPECT_EQ(round(1.0), 1.0);
+  EXPECT_EQ(round(0.3), 307.0 / 1024.0);    // 307.2 units
+  EXPECT_EQ(round(-0.3), -307.0 / 1024.0);  // symmetric
+  EXPECT_EQ(round(0x1p-11), 0.0);           // half a unit: ties to even
+  EXPECT_EQ(round(3 * 0x1p-11), 2 * 0x1p-10);
+  EXPECT_FALSE(std::signbit(round(-0.0)));
+  EXPECT_FALSE(std::signbit(round(-0x1p-12)));
+  EXPECT_EQ(round(1e300), 1e300);  // beyond the grid's range: as it is
+  EXPECT_TRUE(std::isnan(round(std::numeric_limits<double>::quiet_NaN())));
+  // Every rounded value goes compact.
+  for (double v = -50.0; v < 50.0; v += 0.0137) {
+    EXPECT_LE(grid_pointer_tick_bytes(net::round_to_pointer_grid({v, -v})), 7u) << v;
+  }
+}
+
+TEST(NetInputCodec, GridPointerRefusals) {
+  std::vector<net::InputDelta> deltas;
+  std::size_t used = 0;
+  Bytes beyond;  // 2^40 + 1 units: zigzag 2^41 + 2
+  beyond.u8(0x80 | 0x40).u8(0x82).u8(0x80).u8(0x80).u8(0x80).u8(0x80).u8(0x40).u8(0x00);
+  EXPECT_EQ(net::decode_inputs(beyond.v, 1, deltas, used), PacketError::bad_input);
+  Bytes overlong;  // a varint of 10 bytes
+  overlong.u8(0x80 | 0x40).zeros(0);
+  for (int i = 0; i < 9; ++i) overlong.u8(0x80);
+  overlong.u8(0x00).u8(0x00);
+  EXPECT_NE(net::decode_inputs(overlong.v, 1, deltas, used), PacketError::none);
+  Bytes cut;  // the second varint missing
+  cut.u8(0x80 | 0x40).u8(0x02);
+  EXPECT_EQ(net::decode_inputs(cut.v, 1, deltas, used), PacketError::too_short);
 }
 
 TEST(NetInputCodec, EncoderRefusesWhatTheDecoderWould) {

@@ -18,6 +18,14 @@ class ByteWriter {
   void u32(std::uint32_t v) { uint(v, 4); }
   void u64(std::uint64_t v) { uint(v, 8); }
   void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
+  /// LEB128: 7 bits a byte, low bits first, the top bit set on every byte but the last.
+  void varint(std::uint64_t v) {
+    while (v >= 0x80u) {
+      out_.push_back(static_cast<std::uint8_t>(v | 0x80u));
+      v >>= 7;
+    }
+    out_.push_back(static_cast<std::uint8_t>(v));
+  }
   void zeros(std::size_t n) { out_.insert(out_.end(), n, 0); }
   [[nodiscard]] std::size_t size() const { return out_.size(); }
   /// Overwrites the 16-bit value at byte `at` (a length known only after what follows).
@@ -42,6 +50,18 @@ class ByteReader {
   std::uint32_t u32() { return static_cast<std::uint32_t>(uint(4)); }
   std::uint64_t u64() { return uint(8); }
   double f64() { return std::bit_cast<double>(u64()); }
+  /// A LEB128 varint of at most `max_bytes` bytes (<= 9: 63 bits); a longer one or one that
+  /// ends past the span sets ok() false and returns 0.
+  std::uint64_t varint(int max_bytes) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < max_bytes; ++i) {
+      const std::uint8_t b = u8();
+      v |= std::uint64_t{b & 0x7fu} << (7 * i);
+      if ((b & 0x80u) == 0) return ok_ ? v : 0;
+    }
+    ok_ = false;
+    return 0;
+  }
   [[nodiscard]] bool ok() const { return ok_; }
   [[nodiscard]] std::size_t remaining() const { return ok_ ? in_.size() - at_ : 0; }
   [[nodiscard]] std::size_t position() const { return at_; }

@@ -1,6 +1,8 @@
 // fixstep::net: per-tick input as deltas and runs (fixstep/net_input_codec.hpp).
+#include <array>
 #include <bit>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "byte_io.hpp"
@@ -17,13 +19,50 @@ bool buttons_ok(std::uint32_t bits) {
   return (bits & ~all_buttons) == 0;
 }
 
+/// A coordinate's grid units when it is on the pointer grid (round_to_pointer_grid's
+/// values), else nothing.
+std::optional<std::int64_t> grid_units(double v) {
+  if (!std::isfinite(v) || (std::signbit(v) && v == 0.0)) return std::nullopt;
+  const double scaled = std::ldexp(v, pointer_grid_bits);
+  if (std::fabs(scaled) > static_cast<double>(max_pointer_grid_units)) return std::nullopt;
+  if (std::trunc(scaled) != scaled) return std::nullopt;
+  return static_cast<std::int64_t>(scaled);
+}
+
+std::uint64_t zigzag(std::int64_t v) {
+  return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63);
+}
+
+std::int64_t unzigzag(std::uint64_t u) {
+  return static_cast<std::int64_t>(u >> 1) ^ -static_cast<std::int64_t>(u & 1u);
+}
+
+std::size_t varint_size(std::uint64_t v) {
+  std::size_t n = 1;
+  for (; v >= 0x80u; v >>= 7) ++n;
+  return n;
+}
+
+/// Grid units of both coordinates of p, when both are on the grid.
+std::optional<std::array<std::int64_t, 2>> pointer_units(Vec2 p) {
+  const auto x = grid_units(p.x), y = grid_units(p.y);
+  if (!x || !y) return std::nullopt;
+  return std::array<std::int64_t, 2>{*x, *y};
+}
+
+std::size_t pointer_size(Vec2 p) {
+  const auto units = pointer_units(p);
+  if (!units) return 16;
+  return varint_size(zigzag((*units)[0])) + varint_size(zigzag((*units)[1]));
+}
+
 /// Bytes of the fields `mask` names in `in`.
 std::size_t fields_size(std::uint8_t mask, const TickInput& in) {
   std::size_t n = 1;
   if (mask & field_push) n += 16;
   if (mask & field_held) n += 2;
   if (mask & field_edges) n += 4;
-  if (mask & field_pointer) n += 16;
+  if (mask & field_pointer) n += pointer_size(in.pointer);
   if (mask & field_drag) n += 8;
   if (mask & field_bodies) n += 1 + 25 * in.bodies.size();
   return n;
@@ -42,7 +81,10 @@ Entity read_entity(detail::ByteReader& r) {
 }
 
 void write_fields(detail::ByteWriter& w, std::uint8_t mask, const TickInput& in) {
-  w.u8(static_cast<std::uint8_t>(0x80u | mask));
+  const auto units = (mask & field_pointer) ? pointer_units(in.pointer) : std::nullopt;
+  const std::uint8_t wire_mask =
+      units ? static_cast<std::uint8_t>((mask & ~field_pointer) | wire_pointer_grid) : mask;
+  w.u8(static_cast<std::uint8_t>(0x80u | wire_mask));
   if (mask & field_push) {
     w.f64(in.push.x);
     w.f64(in.push.y);
@@ -52,7 +94,10 @@ void write_fields(detail::ByteWriter& w, std::uint8_t mask, const TickInput& in)
     w.u16(static_cast<std::uint16_t>(in.pressed));
     w.u16(static_cast<std::uint16_t>(in.released));
   }
-  if (mask & field_pointer) {
+  if (units) {
+    w.varint(zigzag((*units)[0]));
+    w.varint(zigzag((*units)[1]));
+  } else if (mask & field_pointer) {
     w.f64(in.pointer.x);
     w.f64(in.pointer.y);
   }
@@ -68,9 +113,18 @@ void write_fields(detail::ByteWriter& w, std::uint8_t mask, const TickInput& in)
   }
 }
 
-/// Reads the fields of `mask` into d.fields; bad_input for a value check_input refuses.
-PacketError read_fields(detail::ByteReader& r, InputDelta& d) {
+/// One coordinate on the pointer grid: bad_input beyond max_pointer_grid_units.
+double read_grid_coordinate(detail::ByteReader& r, bool& in_range) {
+  const std::int64_t units = unzigzag(r.varint(9));
+  if (units > max_pointer_grid_units || units < -max_pointer_grid_units) in_range = false;
+  return std::ldexp(static_cast<double>(units), -pointer_grid_bits);
+}
+
+/// Reads the fields of `wire_mask` into d.fields (a pointer on the grid into field_pointer);
+/// bad_input for a value check_input refuses.
+PacketError read_fields(detail::ByteReader& r, std::uint8_t wire_mask, InputDelta& d) {
   TickInput& in = d.fields;
+  bool in_range = true;
   if (d.mask & field_push) in.push = {r.f64(), r.f64()};
   if (d.mask & field_held) in.held = r.u16();
   if (d.mask & field_edges) {
@@ -78,6 +132,11 @@ PacketError read_fields(detail::ByteReader& r, InputDelta& d) {
     in.released = r.u16();
   }
   if (d.mask & field_pointer) in.pointer = {r.f64(), r.f64()};
+  if (wire_mask & wire_pointer_grid) {
+    in.pointer.x = read_grid_coordinate(r, in_range);
+    in.pointer.y = read_grid_coordinate(r, in_range);
+    d.mask |= field_pointer;
+  }
   if (d.mask & field_drag) in.drag_body = read_entity(r);
   if (d.mask & field_bodies) {
     const std::uint8_t count = r.u8();
@@ -92,10 +151,22 @@ PacketError read_fields(detail::ByteReader& r, InputDelta& d) {
     }
   }
   if (!r.ok()) return PacketError::too_short;
+  if (!in_range) return PacketError::bad_input;
   return check_input(in);
 }
 
 }  // namespace
+
+Vec2 round_to_pointer_grid(Vec2 p) {
+  auto round = [](double v) {
+    const double scaled = std::ldexp(v, pointer_grid_bits);
+    if (!std::isfinite(v) || std::fabs(scaled) > static_cast<double>(max_pointer_grid_units)) {
+      return v;
+    }
+    return std::ldexp(std::nearbyint(scaled), -pointer_grid_bits) + 0.0;  // + 0.0: no -0.0
+  };
+  return {round(p.x), round(p.y)};
+}
 
 bool same_input(const TickInput& a, const TickInput& b) {
   return changed_fields(a, b) == 0;
@@ -213,9 +284,13 @@ PacketError decode_inputs(std::span<const std::uint8_t> in, std::uint32_t ticks,
       continue;
     }
     InputDelta d;
-    d.mask = static_cast<std::uint8_t>(item & 0x7fu);
-    if (d.mask == 0 || (d.mask & ~all_input_fields) != 0) return PacketError::bad_field;
-    if (const PacketError e = read_fields(r, d); e != PacketError::none) return e;
+    const auto wire_mask = static_cast<std::uint8_t>(item & 0x7fu);
+    d.mask = static_cast<std::uint8_t>(wire_mask & all_input_fields);
+    if (wire_mask == 0) return PacketError::bad_field;
+    if ((wire_mask & wire_pointer_grid) && (wire_mask & field_pointer)) {
+      return PacketError::bad_field;  // the pointer twice
+    }
+    if (const PacketError e = read_fields(r, wire_mask, d); e != PacketError::none) return e;
     out.push_back(std::move(d));
   }
   used = r.position();

@@ -200,6 +200,7 @@ void MatchPeer::add_input(TickInput input) {
         "than max_net_body_inputs body inputs");
   }
   input.tick = m.known(m.slot);
+  if (m.settings.pointer_on_grid) input.pointer = round_to_pointer_grid(input.pointer);
   m.inputs[m.slot].push_back(std::move(input));
   m.mark_dirty();
 }

@@ -79,6 +79,11 @@ struct MatchSettings {
   /// one packet (fewer headers, less bandwidth, up to as much more latency each way). The
   /// default is 3 ticks at 60 ticks/s (its bandwidth against the others': docs/NETWORK.md).
   std::uint32_t send_interval_ms = 50;
+  /// add_input rounds the player's pointer to the pointer grid (net_input_codec.hpp:
+  /// round_to_pointer_grid, about 1 mm) before it is played, sent or recorded, so that a
+  /// moving pointer costs 2–6 bytes a tick on the wire instead of 16. Every peer plays the
+  /// rounded pointer, so the match stays deterministic either way; false sends it exactly.
+  bool pointer_on_grid = true;
   /// A player (or the host) heard from for this long stops the match ("timed out").
   std::uint32_t peer_timeout_ms = 5000;
   /// A connection that has not completed the handshake after this long is dropped.
@@ -178,7 +183,8 @@ class MatchPeer {
   /// Whether the local player may give the next input (a player, playing, fewer than
   /// input_delay + 1 inputs ahead of the next tick to step).
   [[nodiscard]] bool wants_input() const;
-  /// The local player's input for tick next_input_tick() (its tick field is set). Throws
+  /// The local player's input for tick next_input_tick() (its tick field is set; its pointer
+  /// rounded to the pointer grid first, MatchSettings::pointer_on_grid). Throws
   /// std::logic_error when !wants_input(), std::invalid_argument when the network refuses it
   /// (check_input).
   void add_input(TickInput input);

@@ -22,6 +22,22 @@ enum InputField : std::uint8_t {
   field_bodies = 1u << 5,   ///< bodies (<= max_net_body_inputs, kinds 0..2, finite values)
 };
 inline constexpr std::uint8_t all_input_fields = 0x3f;
+/// On the wire only, in place of field_pointer: a pointer on the pointer grid, as two zigzag
+/// LEB128 varints of grid units (decoded into field_pointer: InputDelta never carries it).
+inline constexpr std::uint8_t wire_pointer_grid = 1u << 6;
+
+/// The pointer grid: 2^-pointer_grid_bits m (about 1 mm). A pointer whose coordinates are
+/// multiples of it, at most max_pointer_grid_units of it from 0 and not -0.0, goes on the wire
+/// as two varints (1–3 bytes each within ±1 km) instead of two doubles (16 bytes); the value
+/// decoded is the same double, bit for bit.
+inline constexpr int pointer_grid_bits = 10;
+inline constexpr std::int64_t max_pointer_grid_units = std::int64_t{1} << 40;
+
+/// `p` with each coordinate rounded to the nearest multiple of the pointer grid (ties to even;
+/// -0.0 becomes 0.0); a coordinate beyond max_pointer_grid_units of the grid, or not finite,
+/// is returned as it is. Deterministic: scaling by a power of two and rounding to an integer
+/// are exact.
+[[nodiscard]] Vec2 round_to_pointer_grid(Vec2 p);
 
 /// Whether a and b are the same input bit for bit (0.0 and -0.0 differ), their tick fields
 /// aside.
