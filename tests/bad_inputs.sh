@@ -1188,7 +1188,12 @@ if [ -x "$game" ]; then
   case_ "a match: --join port out of range" "" --join 127.0.0.1:99999
   case_ "a match: --join a host name (only IPv4 addresses)" "" --join localhost:7777
   case_ "a match: both --host and --join" "" --host 7777 --join 127.0.0.1:7777
-  case_ "a match: a match option without --host or --join" "" --session rollback
+  case_ "a match: a match option without --host, --join or --spectate" "" --session rollback
+  case_ "a match: --players 1" "" --host 0 --players 1
+  case_ "a match: --players beyond the game's max_players (airhockey: 2)" "" --host 0 --players 3
+  case_ "a match: --players from a joiner" "" --join 127.0.0.1:7777 --players 2
+  case_ "a match: both --host and --spectate" "" --host 7777 --spectate 127.0.0.1:7777
+  case_ "a match: --spectate without a port" "" --spectate 127.0.0.1
   case_ "a match: an unknown --session" "" --host 0 --session fast
   case_ "a match: --max-rollback without --session rollback" "" --host 0 --max-rollback 8
   case_ "a match: --max-rollback 0" "" --host 0 --session rollback --max-rollback 0

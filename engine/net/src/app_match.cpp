@@ -1,6 +1,8 @@
 // fixstep::net_app: a game of fixstep::app played as one peer of a networked match
 // (fixstep/net_app.hpp): the match set up from the command line, played in a window or by the
 // game's autopilot, drawn from the shown world, its recording written at the end.
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -36,7 +38,7 @@ constexpr int linger_ms = 600;
 MatchSettings match_settings(const app::Settings& settings, const Level& level,
                              const MatchOptions& o) {
   MatchSettings s;
-  s.players = 2;
+  s.players = o.players;
   s.input_delay = o.input_delay;
   s.match_ticks = o.ticks;
   s.max_rollback = o.rollback ? o.max_rollback : 0;
@@ -82,7 +84,7 @@ class Peer {
   /// when `bot`, called with the input's tick, so a bot's input depends on the tick only).
   /// Returns the inputs given.
   int give_inputs(InputSampler& sampler, bool bot, int most) {
-    if (!seated_ && match_.state() == MatchState::playing) {
+    if (!seated_ && match_.state() == MatchState::playing && match_.slot() < match_.players()) {
       player_->seat(match_.slot());
       seated_ = true;
     }
@@ -104,8 +106,10 @@ class Peer {
       return MatchPeer::host(level_.def, s, Address{o.bind, *o.host_port},
                              app::detail::game_rules(*rules_), game_merge(*level_.game));
     }
-    return MatchPeer::join(level_.def, s, *o.join, false, app::detail::game_rules(*rules_),
-                           game_merge(*level_.game), Address{o.bind, 0});
+    const bool spectator = o.spectate.has_value();
+    return MatchPeer::join(level_.def, s, spectator ? *o.spectate : *o.join, spectator,
+                           app::detail::game_rules(*rules_), game_merge(*level_.game),
+                           Address{o.bind, 0});
   }
 
   Level level_;
@@ -115,15 +119,26 @@ class Peer {
   bool seated_ = false;
 };
 
-/// Plays headless as fast as the match goes: the autopilot gives every input wanted.
-void play_bot(Peer& peer) {
+/// Plays headless as fast as the match goes: the autopilot gives every input wanted. On a
+/// terminal, a line of progress (tick of ticks, stalls) twice a second, on stderr.
+void play_bot(Peer& peer, const std::string& name, std::uint64_t ticks) {
   InputSampler sampler;
   MatchPeer& m = peer.match();
+  const bool terminal = isatty(STDERR_FILENO) == 1;
+  auto next_report = std::chrono::steady_clock::now();
   while (peer.live()) {
     m.poll(1);
     (void)peer.give_inputs(sampler, true, 1 << 30);
     (void)m.advance();
+    if (terminal && std::chrono::steady_clock::now() >= next_report) {
+      next_report += std::chrono::milliseconds(500);
+      std::fprintf(stderr, "\r%s: tick %llu of %llu, %llu stalls ", name.c_str(),
+                   static_cast<unsigned long long>(m.world().tick()),
+                   static_cast<unsigned long long>(ticks),
+                   static_cast<unsigned long long>(m.stats().stalls));
+    }
   }
+  if (terminal) std::fputs("\n", stderr);
 }
 
 /// Plays in the window on the real clock, an input a tick of the level's dt, until Esc, the
@@ -200,18 +215,20 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
   Peer peer(game, settings, o);
   MatchPeer& m = peer.match();
   if (o.host_port) {
-    std::printf("%s: hosting on %s:%u (%s, input delay %u)\n", settings.name.c_str(),
-                o.bind.c_str(), static_cast<unsigned>(m.port()),
+    std::printf("%s: hosting on %s:%u (%u players, %s, input delay %u)\n", settings.name.c_str(),
+                o.bind.c_str(), static_cast<unsigned>(m.port()), static_cast<unsigned>(o.players),
                 o.rollback ? "rollback" : "lockstep", static_cast<unsigned>(o.input_delay));
   } else {
-    std::printf("%s: joining %s:%u (%s)\n", settings.name.c_str(), o.join->host.c_str(),
-                static_cast<unsigned>(o.join->port), o.rollback ? "rollback" : "lockstep");
+    const Address& to = o.join ? *o.join : *o.spectate;
+    std::printf("%s: %s %s:%u (%s)\n", settings.name.c_str(), o.join ? "joining" : "watching",
+                to.host.c_str(), static_cast<unsigned>(to.port),
+                o.rollback ? "rollback" : "lockstep");
   }
   std::fflush(stdout);
   MatchView view(peer.level(), settings, o.rollback ? "rollback" : "lockstep");
   bool quit = false;
   if (o.bot && !o.window) {
-    play_bot(peer);
+    play_bot(peer, settings.name, o.ticks);
   } else {
     quit = !play_window(peer, view, settings, o.bot);
   }
@@ -242,7 +259,8 @@ int run_networked(const AnyGame& game, const app::Settings& settings, int argc, 
     return status;
   }
   try {
-    const std::optional<MatchOptions> o = parse_match(settings.name, argc, argv);
+    const std::optional<MatchOptions> o =
+        parse_match(settings.name, settings.max_players, argc, argv);
     if (!o) return 0;  // --help
     check_match_outputs(*o, settings.scene_file);
     return play_match(game, settings, *o);

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -20,9 +21,9 @@ namespace fixstep::net::detail {
 namespace {
 
 /// The flags only a match has: any of them asks for one.
-constexpr std::string_view match_flags[] = {"--host",  "--join",        "--session",
-                                            "--bind",  "--input-delay", "--max-rollback",
-                                            "--ticks", "--bot"};
+constexpr std::string_view match_flags[] = {
+    "--host", "--join",        "--spectate",     "--players", "--session",
+    "--bind", "--input-delay", "--max-rollback", "--ticks",   "--bot"};
 
 /// `text` as a whole number in [lo, hi], else nullopt.
 std::optional<std::uint64_t> whole(const std::string& text, std::uint64_t lo, std::uint64_t hi) {
@@ -54,10 +55,19 @@ CLI::Validator in_range(std::uint64_t lo, std::uint64_t hi) {
 }
 
 /// Refuses what does not fit together (UsageError).
-void check(const MatchOptions& o) {
-  if (o.host_port && o.join) throw UsageError("--host and --join: a peer either hosts or joins");
-  if (!o.host_port && !o.join) {
-    throw UsageError("match options need --host PORT (host a match) or --join HOST:PORT");
+void check(const MatchOptions& o, bool players_given) {
+  const int roles =
+      int{o.host_port.has_value()} + int{o.join.has_value()} + int{o.spectate.has_value()};
+  if (roles > 1) {
+    throw UsageError("--host, --join and --spectate: a peer either hosts, joins or watches");
+  }
+  if (roles == 0) {
+    throw UsageError(
+        "match options need --host PORT (host a match), --join HOST:PORT (play in one) or "
+        "--spectate HOST:PORT (watch one)");
+  }
+  if (players_given && !o.host_port) {
+    throw UsageError("--players is the host's choice (a joiner or spectator is told it)");
   }
   if (!is_ipv4(o.bind)) {
     throw UsageError("--bind wants an IPv4 address such as 127.0.0.1 or 0.0.0.0, got '" + o.bind +
@@ -97,7 +107,8 @@ Address parse_host_port(const std::string& flag, const std::string& text) {
   return Address{host, static_cast<std::uint16_t>(*p)};
 }
 
-std::optional<MatchOptions> parse_match(const std::string& program, int argc, char** argv) {
+std::optional<MatchOptions> parse_match(const std::string& program, int max_players, int argc,
+                                        char** argv) {
   for (int i = 1; i < argc; ++i) {
     for (const std::string_view flag : app_only_flags) {
       const std::string_view arg(argv[i]);
@@ -111,12 +122,32 @@ std::optional<MatchOptions> parse_match(const std::string& program, int argc, ch
   MatchOptions o;
   CLI::App cli(program + ": one peer of a networked match", program);
   std::uint16_t host_port = 0;
-  std::string join, session = "lockstep", scene;
+  std::string join, spectate, session = "lockstep", scene;
+  unsigned players = 2;
   auto* host_opt = cli.add_option("--host", host_port, "host a match on PORT (0: any, printed)")
                        ->type_name("PORT")
                        ->check(in_range(0, 65535));
   auto* join_opt =
       cli.add_option("--join", join, "join the match hosted at HOST:PORT")->type_name("HOST:PORT");
+  auto* spectate_opt =
+      cli.add_option("--spectate", spectate, "watch the match hosted at HOST:PORT (no input)")
+          ->type_name("HOST:PORT");
+  const auto most =
+      static_cast<std::uint64_t>(std::clamp(max_players, 2, static_cast<int>(net::max_players)));
+  auto* players_opt =
+      cli.add_option("--players", players,
+                     "a host: players in the match (2-" + std::to_string(most) + ", default 2)")
+          ->type_name("N")
+          ->check(CLI::Validator(
+              [most](std::string& text) -> std::string {
+                if (whole(text, 2, most)) return {};
+                if (whole(text, most + 1, 255)) {
+                  return "this game seats at most " + std::to_string(most) +
+                         " players (its Settings::max_players), got '" + text + "'";
+                }
+                return "wants a whole number in 2-" + std::to_string(most) + ", got '" + text + "'";
+              },
+              "2-" + std::to_string(most)));
   auto* session_opt = cli.add_option("--session", session, "lockstep (default) or rollback")
                           ->type_name("KIND")
                           ->check(CLI::IsMember({"lockstep", "rollback"}));
@@ -136,7 +167,8 @@ std::optional<MatchOptions> parse_match(const std::string& program, int argc, ch
   auto* scene_opt = cli.add_option("--scene", scene, "play the level in FILE")->type_name("FILE");
   cli.add_option("--record", o.record, "write the match's recording to FILE")->type_name("FILE");
   cli.add_option("--last-frame", o.last_frame, "write the last frame as PNG")->type_name("PNG");
-  cli.add_flag("--bot", o.bot, "the game's autopilot plays (headless unless --window)");
+  cli.add_flag("--bot", o.bot,
+               "the game's autopilot plays, a spectator just watches (headless unless --window)");
   cli.add_flag("--window", o.window, "with --bot: show the window");
   try {
     cli.parse(argc, argv);
@@ -148,6 +180,8 @@ std::optional<MatchOptions> parse_match(const std::string& program, int argc, ch
   }
   if (host_opt->count() > 0) o.host_port = host_port;
   if (join_opt->count() > 0) o.join = parse_host_port("--join", join);
+  if (spectate_opt->count() > 0) o.spectate = parse_host_port("--spectate", spectate);
+  o.players = static_cast<std::uint8_t>(players);
   if (scene_opt->count() > 0) o.scene = scene;
   o.rollback = session == "rollback";
   // Rollback shows its own input at once and predicts the others': a short delay spares it
@@ -157,7 +191,7 @@ std::optional<MatchOptions> parse_match(const std::string& program, int argc, ch
     throw UsageError("--max-rollback needs --session rollback");
   }
   (void)session_opt;
-  check(o);
+  check(o, players_opt->count() > 0);
   return o;
 }
 

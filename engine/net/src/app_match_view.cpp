@@ -63,12 +63,18 @@ std::string MatchView::status(const MatchPeer& match) const {
   const MatchStats& s = match.stats();
   switch (match.state()) {
     case MatchState::connecting:
-      return fmt::format("{}: waiting for the other player", kind_);
+      return fmt::format("{}: waiting for the other players", kind_);
     case MatchState::playing:
-    case MatchState::finished:
-      return fmt::format("player {} of {}  {}  tick {}  rtt {} ms  stalls {}{}", match.slot(),
-                         match.players(), kind_, match.shown_world().tick(), s.round_trip_ms,
-                         s.stalls, match.state() == MatchState::finished ? "  (match over)" : "");
+    case MatchState::finished: {
+      const std::string who =
+          match.slot() < match.players()
+              ? fmt::format("player {} of {}", match.slot(), match.players())
+              : fmt::format("spectator {} ({} players)", match.slot() - spectator_slot_base,
+                            match.players());
+      return fmt::format("{}  {}  tick {}  rtt {} ms  stalls {}{}", who, kind_,
+                         match.shown_world().tick(), s.round_trip_ms, s.stalls,
+                         match.state() == MatchState::finished ? "  (match over)" : "");
+    }
     case MatchState::desynced:
     case MatchState::failed:
       break;

@@ -87,6 +87,10 @@ struct Settings {
   std::optional<float> hud_text_scale{};
   /// Which engine lines the HUD may show (HudLine bits of fixstep/session.hpp).
   std::optional<unsigned> hud_lines{};
+  /// Networked play (fixstep::net::run): the most players the game seats, 2–8; a host's
+  /// --players may ask for up to this many (else exit 2). seat() and merge() see players
+  /// 0 .. N-1.
+  int max_players = 2;
 };
 
 /// What a type needs to be run: copyable, with setup() and rules() (see the top of this file).

@@ -3,9 +3,13 @@
 //
 //   NAME --host PORT [match options]        host a match as player 0 on PORT (0: any free port,
 //                                           printed) and play it
-//   NAME --join HOST:PORT [match options]   join the match hosted at HOST:PORT as player 1
+//   NAME --join HOST:PORT [match options]   join the match hosted at HOST:PORT as the next
+//                                           free player (1, 2, ...)
+//   NAME --spectate HOST:PORT [options]     watch it (no input; up to 8 spectators)
 //
 //   match options:
+//     --players N                   a host: the match's players, 2 .. Settings::max_players
+//                                   (default 2); it starts when all have joined
 //     --session lockstep|rollback   lockstep (default): every peer shows the confirmed world;
 //                                   rollback: the shown world runs ahead on predictions
 //     --input-delay N               ticks between an input and its tick (host decides; 0-60,
@@ -15,7 +19,8 @@
 //     --ticks N                     the match ends after N ticks (default: until Esc)
 //     --record FILE                 write the match's confirmed recording at the end
 //     --bot                         the game's autopilot plays (seat-aware, by tick), headless
-//                                   unless --window; needs --ticks
+//                                   unless --window; needs --ticks (a spectator: watches
+//                                   headless)
 //     --window                      with --bot: show the match in a window
 //     --last-frame PNG              write the last frame drawn
 //     --scene FILE                  another level (both peers must play the same)
