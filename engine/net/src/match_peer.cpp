@@ -1,6 +1,7 @@
 // fixstep::net: a lockstep peer's construction, stepping and hashes (fixstep/match_peer.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <random>
 #include <stdexcept>
 
@@ -32,6 +33,18 @@ std::unique_ptr<MatchPeer::Impl> make_impl(const WorldDef& def, const MatchSetti
   // A nonce that differs between runs and peers; only echoed, never trusted for security.
   impl->nonce = std::random_device{}();
   return impl;
+}
+
+/// ENet's own timeout of a reliable command (a state hash, a ping) left unacknowledged: well
+/// beyond peer_timeout_ms, so that the match's "not heard from" decides when a link is dead,
+/// and a link that still carries packets through heavy loss (ENet doubles its resend time up
+/// to 32 round trips) is not cut by an unlucky run of lost resends.
+TimeoutSettings enet_timeouts(const MatchSettings& s) {
+  const auto at_most = [](std::uint64_t ms) {
+    return static_cast<std::uint32_t>(std::min<std::uint64_t>(ms, 0xffffffffu));
+  };
+  return {at_most(std::uint64_t{s.peer_timeout_ms} * 4),
+          at_most(std::uint64_t{s.peer_timeout_ms} * 8)};
 }
 
 }  // namespace
@@ -73,8 +86,7 @@ MatchPeer MatchPeer::host(const WorldDef& def, const MatchSettings& settings, co
   auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
   impl->is_host = true;
   impl->transport.emplace(
-      Transport::listen(bind, max_players - 1 + max_spectators,
-                        {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}));
+      Transport::listen(bind, max_players - 1 + max_spectators, enet_timeouts(settings)));
   impl->start(settings.players, 0);
   return MatchPeer(std::move(impl));
 }
@@ -84,8 +96,7 @@ MatchPeer MatchPeer::join(const WorldDef& def, const MatchSettings& settings, co
   auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
   impl->spectator = spectator;
   impl->host_address = host;
-  impl->transport.emplace(
-      Transport::connect(host, {settings.peer_timeout_ms, settings.peer_timeout_ms * 2}, bind));
+  impl->transport.emplace(Transport::connect(host, enet_timeouts(settings), bind));
   detail::Remote r;
   r.conn = 0;
   r.slot = 0;

@@ -84,7 +84,9 @@ struct MatchSettings {
   /// moving pointer costs 2–6 bytes a tick on the wire instead of 16. Every peer plays the
   /// rounded pointer, so the match stays deterministic either way; false sends it exactly.
   bool pointer_on_grid = true;
-  /// A player (or the host) heard from for this long stops the match ("timed out").
+  /// A player (or the host) not heard from for this long stops the match ("timed out").
+  /// ENet's own timeout of an unacknowledged reliable message is set to 4–8 times this, so
+  /// that heavy loss on a live link does not cut it.
   std::uint32_t peer_timeout_ms = 5000;
   /// A connection that has not completed the handshake after this long is dropped.
   std::uint32_t handshake_timeout_ms = 3000;
