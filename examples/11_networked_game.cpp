@@ -90,9 +90,10 @@ struct KingOfTheHill {
   // player p sets off 30 p ticks after red, so red gets the ring first.
   void autopilot(std::int64_t frame, const World&, InputSampler& sampler) {
     sampler.release(button_left | button_right | button_up | button_down);
-    if (frame < 30 * player) return;
+    const std::int64_t off = std::int64_t{30} * player;  // this player's start, ticks
+    if (frame < off) return;
     const Vec2 from = starts[static_cast<std::size_t>(player)];
-    const bool wrestle = frame > 30 * (player + 2) && (frame / 40) % 2 == 0;
+    const bool wrestle = frame > off + 60 && (frame / 40) % 2 == 0;
     if (from.x < 0.0) sampler.press(button_right);
     if (from.x > 0.0) sampler.press(button_left);
     if (from.y < 0.0) sampler.press(button_up);
