@@ -35,6 +35,9 @@ struct WorldDef {
   std::vector<BodyDef> bodies;   ///< in creation order (add_body)
   std::vector<LinkDef> links;    ///< springs between bodies, by the handles add_body returned
   std::vector<PlaneDef> planes;  ///< static half-planes (ground, walls) colliders stay out of
+  /// Static segments (level geometry) colliders stay out of; polylines as their segments
+  /// (polyline_segments, add_polyline). After the planes in every order.
+  std::vector<SegmentDef> segments;
 
   /// Appends `body` and returns the handle World(def) will give it (World::defined_bodies()
   /// lists the same handles), for the links and per-body inputs a program writes before the
@@ -44,6 +47,10 @@ struct WorldDef {
   void add_link(Entity a, Entity b, const LinkSpring& spring) {
     links.push_back(LinkDef{a, b, spring});
   }
+  /// Appends the segments of a polyline through `points` (polyline_segments: throws
+  /// std::invalid_argument for too few points or a zero-length segment).
+  void add_polyline(std::span<const Vec2> points, double restitution, double friction,
+                    bool closed = false);
 };
 
 /// A restorable state of a World (what game physics calls a snapshot): a complete copy of
@@ -165,6 +172,15 @@ class World {
   /// A static half-plane bodies with a Collider collide with (World::add_plane).
   std::size_t add_plane(const PlaneDef& def);
   [[nodiscard]] std::span<const PlaneDef> planes() const;
+  /// A static segment bodies with a Collider collide with (SegmentDef); returns its index into
+  /// segments(). Throws std::invalid_argument naming segment[i] and the field for a
+  /// non-finite end, coinciding ends, or restitution or friction out of range.
+  std::size_t add_segment(const SegmentDef& def);
+  /// The segments of a polyline (polyline_segments), joined by ghost vertices; returns the
+  /// index of its first segment. Throws as polyline_segments and add_segment do.
+  std::size_t add_polyline(std::span<const Vec2> points, double restitution, double friction,
+                           bool closed = false);
+  [[nodiscard]] std::span<const SegmentDef> segments() const;
   void step(const TickInput& input = {});
   /// Throws std::invalid_argument naming the first entry of input.bodies World::step would
   /// ignore: a stale handle, a non-finite value, a force or impulse on a body that is not
