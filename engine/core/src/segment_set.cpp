@@ -46,13 +46,16 @@ double seg_length(double x, double y) {
 }
 
 /// The first s in [0, horizon] where g(s) = g0 + b s + ½ c s² falls to 0 while approaching
-/// (b + c s <= 0), or infinity; within tol of contact (g0 <= tol): 0 when moving or
-/// accelerating in, else -2b/c when it leaves and falls back. The planes' rule
-/// (world_contacts.cpp), roots by disc_toi.hpp's cancellation-free quadratic.
-double line_impact(double g0, double b, double c, double horizon, double tol, double vtol) {
+/// (b + c s <= 0), or infinity; within tol of contact (g0 <= tol): 0 when moving (beyond
+/// vtol) or accelerating (beyond atol, m/s²) in, else -2b/c when it leaves and falls back.
+/// (A disc resting on a sloped segment has its normal acceleration cancelled up to rounding,
+/// ~1e-15 |a|: without atol that rounding would be an impact at 0 again and again.) The planes'
+/// rule (world_contacts.cpp), roots by disc_toi.hpp's cancellation-free quadratic.
+double line_impact(double g0, double b, double c, double horizon, double tol, double vtol,
+                   double atol) {
   constexpr double none = std::numeric_limits<double>::infinity();
   if (g0 <= tol) {
-    if (b < -vtol || (b <= vtol && c < 0.0)) return 0.0;
+    if (b < -vtol || (b <= vtol && c < -atol)) return 0.0;
     return c < 0.0 && -2.0 * b / c <= horizon ? -2.0 * b / c : none;
   }
   double roots[2] = {none, none};
@@ -100,13 +103,16 @@ double segment_impact(const SegmentShape& s, const SegmentMotion& m, double r, d
   auto position = [&m](double t, double& x, double& y) {
     x = m.x + m.vx * t + 0.5 * m.ax * t * t, y = m.y + m.vy * t + 0.5 * m.ay * t * t;
   };
+  // Rounding of a cancelled normal acceleration (a few ulps of |a|).
+  const double atol =
+      64.0 * std::numeric_limits<double>::epsilon() * std::sqrt(m.ax * m.ax + m.ay * m.ay);
   // The interior: the face the centre is on.
   {
     const double h = s.nx * (m.x - s.ax) + s.ny * (m.y - s.ay);
     const double side = h >= 0.0 ? 1.0 : -1.0;
     const double nx = side * s.nx, ny = side * s.ny;
     const double t = line_impact(std::abs(h) - r, nx * m.vx + ny * m.vy, nx * m.ax + ny * m.ay,
-                                 horizon, tol, vtol);
+                                 horizon, tol, vtol, atol);
     double x = 0, y = 0;
     position(std::isfinite(t) ? t : 0.0, x, y);
     const double along = s.dx * (x - s.ax) + s.dy * (y - s.ay);
@@ -123,7 +129,7 @@ double segment_impact(const SegmentShape& s, const SegmentMotion& m, double r, d
     if (d - r <= tol) {
       if (d > 0.0) {
         const double b = (ex * m.vx + ey * m.vy) / d, c = (ex * m.ax + ey * m.ay) / d;
-        if (b < -vtol || (b <= vtol && c < 0.0)) t = 0.0;
+        if (b < -vtol || (b <= vtol && c < -atol)) t = 0.0;
       }
     } else {
       t = first_contact(RelativeMotion{ex, ey, m.vx, m.vy, m.ax, m.ay, r}, horizon);

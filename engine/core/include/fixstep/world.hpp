@@ -14,6 +14,7 @@
 #include "fixstep/detail/world_kernel.hpp"
 #include "fixstep/query.hpp"
 #include "fixstep/random.hpp"
+#include "fixstep/segment.hpp"
 #include "fixstep/step_results.hpp"
 #include "fixstep/world_settings.hpp"
 
