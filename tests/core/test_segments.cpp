@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -217,6 +218,35 @@ TEST(Segments, BadDefinitionsAreRefused) {
     EXPECT_NE(std::string(e.what()).find("segment[0]"), std::string::npos) << e.what();
   }
   EXPECT_TRUE(w.segments().empty());
+}
+
+// Ray casts and overlap queries see segments: a ray down from (1, 3) over (0, -6) crosses the
+// segment (0, 0)-(4, 2) at y = 0.5, fraction 2.5/6 (to 1e-15), with the normal facing the ray;
+// a circle or box reaching it finds it, one short of it does not; planes = false keeps it.
+// Deliberate bug checked: the normal not turned to face the ray fails.
+TEST(Segments, QueriesSeeSegments) {
+  World w(Precision::f64, settings());
+  w.add_segment(SegmentDef{.a = {0.0, 0.0}, .b = {4.0, 2.0}});
+  const std::optional<RayHit> hit = w.cast_ray({1.0, 3.0}, {0.0, -6.0});
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->segment, 0u);
+  EXPECT_EQ(hit->plane, no_plane);
+  EXPECT_NEAR(hit->fraction, 2.5 / 6.0, 1e-15);
+  EXPECT_NEAR(hit->point.y, 0.5, 1e-15);
+  EXPECT_NEAR(hit->normal.x, -1.0 / std::sqrt(5.0), 1e-15);
+  EXPECT_NEAR(hit->normal.y, 2.0 / std::sqrt(5.0), 1e-15);
+  const std::optional<RayHit> below = w.cast_ray({1.0, -3.0}, {0.0, 6.0});
+  ASSERT_TRUE(below.has_value());
+  EXPECT_NEAR(below->normal.y, -2.0 / std::sqrt(5.0), 1e-15);
+  EXPECT_FALSE(w.cast_ray({1.0, 3.0}, {0.0, -2.0}).has_value());  // stops short
+  EXPECT_FALSE(w.cast_ray({1.0, 3.0}, {0.0, -6.0}, QueryFilter{.segments = false}).has_value());
+  QueryHit out[2];
+  const double d = 2.0 / std::sqrt(5.0);  // distance from (0, 1) to the segment
+  EXPECT_EQ(w.overlap_circle({0.0, 1.0}, d + 1e-12, out), 1u);
+  EXPECT_EQ(out[0].segment, 0u);
+  EXPECT_EQ(w.overlap_circle({0.0, 1.0}, d - 1e-12, out), 0u);
+  EXPECT_EQ(w.overlap_aabb({1.0, 0.0}, {1.5, 0.6}, out), 1u);
+  EXPECT_EQ(w.overlap_aabb({1.0, 0.8}, {1.5, 1.0}, out), 0u);
 }
 
 }  // namespace

@@ -261,31 +261,31 @@ class World {
   // argument when a coordinate is not finite (or a radius not finite and >= 0).
 
   /// The first shape the ray origin + s · translation, s in [0, 1] (m), enters: the hit with
-  /// the least fraction, ties by handle slot and planes last (by index); nullopt when it
-  /// enters none. A ray starting inside a disc or on the solid side of a plane does not hit
-  /// that shape (Box2D's rule). A zero translation hits nothing. Throws std::invalid_argument
-  /// also for a ray reaching beyond max_query_reach.
+  /// the least fraction, ties by handle slot and planes (by index) and segments (by index) last;
+  /// nullopt when it enters none. A ray starting inside a disc or on the solid side of a plane does
+  /// not hit that shape (Box2D's rule). A zero translation hits nothing. Throws
+  /// std::invalid_argument also for a ray reaching beyond max_query_reach.
   [[nodiscard]] std::optional<RayHit> cast_ray(Vec2 origin, Vec2 translation,
                                                const QueryFilter& filter = {}) const;
-  /// Every shape the ray enters, ordered by fraction (ties by handle slot, planes last by
-  /// index). Writes the first min(total, out.size()) hits of that order into `out` and
-  /// returns the total (call with an empty span to count). Allocates nothing once warm.
+  /// Every shape the ray enters, ordered by fraction (ties by handle slot, planes and segments last
+  /// by index). Writes the first min(total, out.size()) hits of that order into `out` and returns
+  /// the total (call with an empty span to count). Allocates nothing once warm.
   std::size_t cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out,
                            const QueryFilter& filter = {}) const;
   /// The discs containing `point` (|point - centre| <= r) and the planes it lies inside
-  /// (n·point < offset), in handle slot order, planes last (by index). Writes the first
-  /// min(total, out.size()) and returns the total.
+  /// (n·point < offset), in handle slot order, planes (by index) and segments (by index) last.
+  /// Writes the first min(total, out.size()) and returns the total.
   std::size_t query_point(Vec2 point, std::span<QueryHit> out,
                           const QueryFilter& filter = {}) const;
   /// The discs overlapping the box [lower, upper] (m; the box's closest point to the centre
-  /// within r) and the planes whose solid side it reaches, in handle slot order, planes last.
-  /// Writes the first min(total, out.size()) and returns the total. Throws
+  /// within r) and the planes whose solid side it reaches, in handle slot order, planes and
+  /// segments last. Writes the first min(total, out.size()) and returns the total. Throws
   /// std::invalid_argument also when lower > upper on an axis.
   std::size_t overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
                            const QueryFilter& filter = {}) const;
   /// The discs overlapping the circle (|c - center| <= r + radius, m) and the planes it
-  /// reaches, in handle slot order, planes last. Writes the first min(total, out.size()) and
-  /// returns the total.
+  /// reaches, in handle slot order, planes and segments last. Writes the first min(total,
+  /// out.size()) and returns the total.
   std::size_t overlap_circle(Vec2 center, double radius, std::span<QueryHit> out,
                              const QueryFilter& filter = {}) const;
 
