@@ -505,7 +505,7 @@ $body
 a = [0.0, 0.0]
 b = [1.0, 0.0]
 restitution = 2.0"
-case_ "[[segment]] unknown key" "$ok_world
+case_ "[[segment]] unknown key (a warning; the run goes on)" "$ok_world
 $body
 [[segment]]
 a = [0.0, 0.0]
