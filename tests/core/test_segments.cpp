@@ -12,6 +12,7 @@
 
 #include "fixstep/recording.hpp"
 #include "fixstep/segment.hpp"
+#include "fixstep/sync_test.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
@@ -218,6 +219,21 @@ TEST(Segments, BadDefinitionsAreRefused) {
     EXPECT_NE(std::string(e.what()).find("segment[0]"), std::string::npos) << e.what();
   }
   EXPECT_TRUE(w.segments().empty());
+}
+
+// The sync test (every tick rolled back 7 ticks and stepped again) holds on a level of
+// segments with disc contacts: a snapshot carries everything segments need, and the states are
+// the same bits. (Deliberate bug tried: the plane pass's segment-hold flag kept in a static,
+// outside the world: not caught, the flag rarely decides anything on this level.)
+TEST(Segments, SyncTestHoldsOnALevel) {
+  WorldSettings ws = settings(true);
+  ws.contacts = ContactSettings{.restitution = 0.4, .friction = 0.1};
+  World w(Precision::f64, ws);
+  w.add_polyline(std::vector<Vec2>{{-6, 4}, {-3, 1}, {0, 0.5}, {3, 1}, {6, 4}}, 0.3, 0.2);
+  w.add_segment(SegmentDef{.a = {-1.0, 3.0}, .b = {1.0, 3.2}, .restitution = 0.6});
+  for (int i = 0; i < 8; ++i) w.create_body(ball({-4.5 + 0.5 * i, 5.0 + 0.3 * i}, {}, true, 0.2));
+  SyncTest sync(w, 7);
+  for (int i = 0; i < 300; ++i) ASSERT_TRUE(sync.step({})) << "tick " << i;
 }
 
 // Ray casts and overlap queries see segments: a ray down from (1, 3) over (0, -6) crosses the
