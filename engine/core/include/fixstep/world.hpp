@@ -79,11 +79,12 @@ class World {
   /// invalid settings (dt not finite and > 0, substeps < 1, ...).
   World(Precision precision, const WorldSettings& settings);
   /// Builds the world `def` describes: a World with def.precision and def.settings, then the
-  /// bodies in order, the links and the planes. Throws std::invalid_argument for invalid
-  /// settings, bodies, links or planes (the message names the body and field; for a plane,
-  /// plane[i]), and for a link whose end is not one of def's bodies. It judges nothing else: the
-  /// stability guard, the work limits and the overlap of discs at tick 0 are the program's
-  /// explicit calls (check_definition, definition_checks.hpp), made before building.
+  /// bodies in order, the links, the planes and the segments. Throws std::invalid_argument for
+  /// invalid settings, bodies, links, planes or segments (the message names the body and field;
+  /// for a plane, plane[i]; for a segment, segment[i]), and for a link whose end is not one of
+  /// def's bodies. It judges nothing else: the stability guard, the work limits and the overlap of
+  /// discs at tick 0 are the program's explicit calls (check_definition, definition_checks.hpp),
+  /// made before building.
   explicit World(const WorldDef& def);
 
   [[nodiscard]] Precision precision() const {
