@@ -485,6 +485,54 @@ $body
 normal = [0.0, 1.0]
 offset = 0.0
 point = [0.0, 0.0]"
+case_ "[[segment]] whose ends coincide" "$ok_world
+$body
+[[segment]]
+a = [1.0, 2.0]
+b = [1.0, 2.0]"
+case_ "[[segment]] without b" "$ok_world
+$body
+[[segment]]
+a = [1.0, 2.0]"
+case_ "[[segment]] a = [nan, 0.0]" "$ok_world
+$body
+[[segment]]
+a = [nan, 0.0]
+b = [1.0, 0.0]"
+case_ "[[segment]] restitution outside [0, 1]" "$ok_world
+$body
+[[segment]]
+a = [0.0, 0.0]
+b = [1.0, 0.0]
+restitution = 2.0"
+case_ "[[segment]] unknown key (a warning; the run goes on)" "$ok_world
+$body
+[[segment]]
+a = [0.0, 0.0]
+b = [1.0, 0.0]
+thickness = 0.1"
+case_ "[[polyline]] with one point" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0]]"
+case_ "[[polyline]] with a repeated point (a zero-length segment)" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [2.0, 1.0]]"
+case_ "[[polyline]] point = [inf, 0.0]" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0], [inf, 0.0]]"
+case_ "[[polyline]] negative friction" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0], [1.0, 0.0]]
+friction = -1.0"
+case_ "[[polyline]] closed with two points" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0], [1.0, 0.0]]
+closed = true"
 case_ "[[chain]] without count" "$ok_world
 [[chain]]
 start = [0.0, 0.0]"

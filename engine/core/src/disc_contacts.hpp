@@ -141,6 +141,8 @@ class DiscContacts {
     std::span<const PlaneMotion> after;  ///< plane colliders' motions after a plane impact
     double dt = 0, kappa = 0.5;          ///< s; κ (see above)
     int threads = 1;
+    const SegmentSet* segments = nullptr;  ///< static segments (null: none); contacts with
+                                           ///< them are the plane contacts' b past the planes
   };
   /// Resolves the tick's contacts in place. Returns per-disc energy bookkeeping through
   /// lost() (J/kg, dynamic discs) and external() (J); fills stats.
@@ -225,6 +227,12 @@ class DiscContacts {
   double overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny,
                     double& r_min) const;
   void keep_impulses();
+  // segments (disc_segments.cpp)
+  /// Appends disc k's resting contacts with the segments near its end position, in segment
+  /// order (key k << 32 | n + planes + segment), as gather_contacts() does for planes.
+  void gather_segment_contacts(const Tick& tick, std::uint32_t k);
+  /// overlap_of() for a segment contact: the depth (m) and normal at the closest feature now.
+  double segment_overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny) const;
   void apply(RestContact& c, double jx, double jy, double kdt);
   void finish(const Tick& tick);
 
@@ -257,6 +265,7 @@ class DiscContacts {
   // and after the free step, and the dissipated account at the start.
   std::vector<double> lost_, external_, e_start_, e_begin_, d_begin_;
   DiscBroadphase broadphase_;
+  std::vector<std::uint32_t> segments_near_;  ///< gather_segment_contacts()'s scratch
   CapHit cap_;
 };
 

@@ -66,6 +66,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
       c.friction = p.friction;
       contacts_.push_back(c);
     }
+    if (tick.segments) gather_segment_contacts(tick, k);
   }
 }
 
@@ -223,6 +224,10 @@ double DiscContacts<Real>::overlap_of(const Tick& tick, const RestContact& c, do
                                       double& ny, double& r_min) const {
   const std::size_t n = discs_.size();
   const Disc& da = discs_[c.a];
+  if (c.b >= n + tick.planes.size()) {
+    r_min = da.radius;
+    return segment_overlap_of(tick, c, nx, ny);
+  }
   if (c.b >= n) {
     const PlaneDef& p = tick.planes[c.b - n];
     nx = p.normal.x, ny = p.normal.y, r_min = da.radius;

@@ -99,6 +99,14 @@ std::uint64_t definition_hash(const WorldDef& def) {
     }
   }
   if (def.settings.seed != 0) h.add(def.settings.seed);  // 0: the hash from before seeds
+  if (!def.segments.empty()) {  // absent: the hash of a world from before segments
+    h.add(def.segments.size());
+    for (const SegmentDef& s : def.segments) {
+      h.add(s.a), h.add(s.b), h.add(s.restitution), h.add(s.friction);
+      h.add(s.prev.has_value()), h.add(s.prev.value_or(Vec2{}));
+      h.add(s.next.has_value()), h.add(s.next.value_or(Vec2{}));
+    }
+  }
   return h.value();
 }
 

@@ -59,6 +59,20 @@ std::size_t World::add_plane(const PlaneDef& def) {
 std::span<const PlaneDef> World::planes() const {
   return visit([](const auto& w) { return w.planes(); });
 }
+std::size_t World::add_segment(const SegmentDef& def) {
+  queries_changed();
+  return visit([&](auto& w) { return w.add_segment(def); });
+}
+std::size_t World::add_polyline(std::span<const Vec2> points, double restitution, double friction,
+                                bool closed) {
+  const std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
+  const std::size_t first = segments().size();
+  for (const SegmentDef& s : chain) add_segment(s);
+  return first;
+}
+std::span<const SegmentDef> World::segments() const {
+  return visit([](const auto& w) { return w.segments(); });
+}
 double World::dissipated_energy() const {
   return visit([](const auto& w) { return w.dissipated_energy(); });
 }
@@ -172,6 +186,13 @@ World::World(const WorldDef& def) : World(def.precision, def.settings) {
     create_link(LinkDef{defined_[l.body_a], defined_[l.body_b], l.spring});
   }
   for (const PlaneDef& p : def.planes) add_plane(p);
+  for (const SegmentDef& s : def.segments) add_segment(s);
+}
+
+void WorldDef::add_polyline(std::span<const Vec2> points, double restitution, double friction,
+                            bool closed) {
+  const std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
+  segments.insert(segments.end(), chain.begin(), chain.end());
 }
 
 Entity WorldDef::add_body(BodyDef body) {

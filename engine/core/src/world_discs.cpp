@@ -159,6 +159,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       settings_.dt,
       kappa(settings_.integrator, settings_.substeps),
       settings_.threads == 1 || !detail::threads_supported ? 1 : 2};  // same states either way
+  if (!segments_.empty()) t.segments = &segments_;
   dc.resolve(t, contact_stats_, profile_);
   const auto discs = dc.discs();
   if (const auto* hit = dc.cap_hit(); hit && !fault_) {  // cold: a cap stopped the tick's work

@@ -26,8 +26,10 @@ void require_finite_query(Vec2 v, const char* query, const char* what) {
   }
 }
 
-/// The order of query results: bodies by slot, then planes by index.
+/// The order of query results: bodies by slot, then planes by index, then segments by index.
 bool hit_less(const QueryHit& l, const QueryHit& r) {
+  if ((l.segment == no_plane) != (r.segment == no_plane)) return l.segment == no_plane;
+  if (l.segment != no_plane) return l.segment < r.segment;
   if ((l.plane == no_plane) != (r.plane == no_plane)) return l.plane == no_plane;
   if (l.plane != no_plane) return l.plane < r.plane;
   return l.body.slot() < r.body.slot();
@@ -36,7 +38,44 @@ bool hit_less(const QueryHit& l, const QueryHit& r) {
 /// The order of ray hits: by fraction, then as hit_less.
 bool ray_less(const RayHit& l, const RayHit& r) {
   if (l.fraction != r.fraction) return l.fraction < r.fraction;
-  return hit_less(QueryHit{l.body, l.plane}, QueryHit{r.body, r.plane});
+  return hit_less(QueryHit{l.body, l.plane, l.segment}, QueryHit{r.body, r.plane, r.segment});
+}
+
+/// The fraction s in [0, 1] at which the ray o + s t crosses segment (a, b), or NaN (parallel
+/// rays, a ray along the segment's line included, never hit it).
+double ray_segment(Vec2 o, Vec2 t, const SegmentDef& seg) {
+  const double ex = seg.b.x - seg.a.x, ey = seg.b.y - seg.a.y;
+  const double denom = t.x * ey - t.y * ex;
+  if (denom == 0.0) return std::nan("");
+  const double wx = seg.a.x - o.x, wy = seg.a.y - o.y;
+  const double s = (wx * ey - wy * ex) / denom, u = (wx * t.y - wy * t.x) / denom;
+  return s >= 0.0 && s <= 1.0 && u >= 0.0 && u <= 1.0 ? s : std::nan("");
+}
+
+/// The distance from c to the segment's closest point, m.
+double segment_distance(Vec2 c, const SegmentDef& seg) {
+  const double ex = seg.b.x - seg.a.x, ey = seg.b.y - seg.a.y;
+  const double wx = c.x - seg.a.x, wy = c.y - seg.a.y;
+  const double u = std::clamp((wx * ex + wy * ey) / (ex * ex + ey * ey), 0.0, 1.0);
+  const double dx = wx - u * ex, dy = wy - u * ey;
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+/// Whether the segment meets the box [lo, hi] (Liang–Barsky clipping of a + u (b - a)).
+bool segment_box(const SegmentDef& seg, Vec2 lo, Vec2 hi) {
+  double u0 = 0.0, u1 = 1.0;
+  const double d[2] = {seg.b.x - seg.a.x, seg.b.y - seg.a.y};
+  const double a[2] = {seg.a.x, seg.a.y}, l[2] = {lo.x, lo.y}, h[2] = {hi.x, hi.y};
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0.0) {
+      if (a[k] < l[k] || a[k] > h[k]) return false;
+      continue;
+    }
+    double t0 = (l[k] - a[k]) / d[k], t1 = (h[k] - a[k]) / d[k];
+    if (t0 > t1) std::swap(t0, t1);
+    u0 = std::max(u0, t0), u1 = std::min(u1, t1);
+  }
+  return u0 <= u1;
 }
 
 /// Keeps the first out.size() results of `less` seen so far in `out` (a max-heap while
@@ -162,6 +201,19 @@ std::size_t World::cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit>
                       Vec2{origin.x + s * translation.x, origin.y + s * translation.y}, p.normal});
     }
   }
+  if (filter.segments) {  // every segment: a level's are few beside its discs
+    const std::span<const SegmentDef> ss = segments();
+    for (std::uint32_t i = 0; i < ss.size(); ++i) {
+      const double s = ray_segment(origin, translation, ss[i]);
+      if (std::isnan(s)) continue;
+      const double ex = ss[i].b.x - ss[i].a.x, ey = ss[i].b.y - ss[i].a.y;
+      const double len = std::sqrt(ex * ex + ey * ey);
+      const double side = -ey * translation.x + ex * translation.y > 0.0 ? -1.0 : 1.0;
+      hits.add(RayHit{Entity{}, no_plane, s,
+                      Vec2{origin.x + s * translation.x, origin.y + s * translation.y},
+                      Vec2{side * -ey / len, side * ex / len}, i});
+    }
+  }
   return hits.finish();
 }
 
@@ -210,6 +262,12 @@ std::size_t World::overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
       if (p.normal.x * x + p.normal.y * y < p.offset) hits.add(QueryHit{Entity{}, i});
     }
   }
+  if (filter.segments) {
+    const std::span<const SegmentDef> ss = segments();
+    for (std::uint32_t i = 0; i < ss.size(); ++i) {
+      if (segment_box(ss[i], lower, upper)) hits.add(QueryHit{Entity{}, no_plane, i});
+    }
+  }
   return hits.finish();
 }
 
@@ -236,6 +294,12 @@ std::size_t World::overlap_circle(Vec2 center, double radius, std::span<QueryHit
       if (p.normal.x * center.x + p.normal.y * center.y - radius < p.offset) {
         hits.add(QueryHit{Entity{}, i});
       }
+    }
+  }
+  if (filter.segments) {
+    const std::span<const SegmentDef> ss = segments();
+    for (std::uint32_t i = 0; i < ss.size(); ++i) {
+      if (segment_distance(center, ss[i]) <= radius) hits.add(QueryHit{Entity{}, no_plane, i});
     }
   }
   return hits.finish();

@@ -40,6 +40,7 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
   out.link_b.resize(links);
   world.link_ends(out.link_a, out.link_b);
   out.planes.assign(world.planes().begin(), world.planes().end());
+  out.segments.assign(world.segments().begin(), world.segments().end());
   out.tick = world.tick();
   out.dt = world.settings().dt;
   out.alpha = alpha;

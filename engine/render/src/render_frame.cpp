@@ -58,6 +58,16 @@ void draw_planes(Renderer& canvas, std::span<const PlaneDef> planes) {
   }
 }
 
+/// Draws each segment as a line of the planes' colour, 2.5 px wide (above the backdrop: a
+/// level's segments are few beside its bodies).
+void draw_segments(Renderer& canvas, std::span<const SegmentDef> segments) {
+  for (const SegmentDef& s : segments) {
+    const auto a = canvas.to_pixel(s.a.x, s.a.y), b = canvas.to_pixel(s.b.x, s.b.y);
+    canvas.line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 2.5f,
+                scene_palette::plane_line);
+  }
+}
+
 }  // namespace
 
 void Renderer::grid() {
@@ -171,6 +181,7 @@ void Renderer::draw_scene(const RenderFrame& s) {
     draw_planes(*this, s.planes);
     record_backdrop(s.planes);
   }
+  draw_segments(*this, s.segments);
 
   const std::size_t n = s.x.size();
   const double scale = width_ / camera_.width;

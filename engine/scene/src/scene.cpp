@@ -173,7 +173,9 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
                      "the scene file is empty (no tables or keys): a scene needs a [world] table "
                      "with dt and at least one [[body]]; see README, Scene format");
   }
-  r.check_keys(doc, "", {"world", "view", "contacts", "body", "spring", "chain", "grid", "plane"});
+  r.check_keys(doc, "",
+               {"world", "view", "contacts", "body", "spring", "chain", "grid", "plane", "segment",
+                "polyline"});
 
   const toml::table* world = r.table(doc, "world", "world");
   if (!world) {
@@ -271,6 +273,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   }
   parse_springs(r, doc, scene, names);
   parse_planes(r, doc, scene);
+  parse_segments(r, doc, scene);
   parse_contacts(r, doc, scene);
   check_start_overlap(scene, names);
   // The work and memory limits (limits.hpp), at the key that sets the work per tick.

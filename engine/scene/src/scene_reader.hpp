@@ -404,6 +404,9 @@ void parse_generators(Reader& r, const toml::table& doc, Scene& scene, BodyNames
 /// [[plane]] tables: appends their planes (normals normalised) and lines to the scene
 /// (scene_planes.cpp).
 void parse_planes(Reader& r, const toml::table& doc, Scene& scene);
+/// [[segment]] tables, then [[polyline]] tables (each as its segments, joined by ghost
+/// vertices): appends their segments and lines to the scene (scene_segments.cpp).
+void parse_segments(Reader& r, const toml::table& doc, Scene& scene);
 /// The [view] table into scene.view (scene_view.cpp).
 void parse_view(Reader& r, const toml::table& doc, Scene& scene);
 /// t[key] (which must be present), "#rrggbb" or "#rrggbbaa", as a colour; `path` names the key

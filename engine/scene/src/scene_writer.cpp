@@ -278,6 +278,17 @@ void write_planes(std::string& out, const WorldDef& def) {
   }
 }
 
+/// Every segment a [[segment]] table, polylines' ghost vertices as prev and next.
+void write_segments(std::string& out, const WorldDef& def) {
+  auto it = std::back_inserter(out);
+  for (const SegmentDef& s : def.segments) {
+    fmt::format_to(it, "\n[[segment]]\na = {}\nb = {}\nrestitution = {}\nfriction = {}\n", vec(s.a),
+                   vec(s.b), num(s.restitution), num(s.friction));
+    if (s.prev) fmt::format_to(it, "prev = {}\n", vec(*s.prev));
+    if (s.next) fmt::format_to(it, "next = {}\n", vec(*s.next));
+  }
+}
+
 /// The text must load (else the loader's message) and give def's definition hash.
 void check_reloads(const std::string& text, const WorldDef& def) {
   WorldDef back;
@@ -309,6 +320,7 @@ std::string format_scene(const WorldDef& def) {
   }
   write_links(out, def, names);
   write_planes(out, def);
+  write_segments(out, def);
   if (out.size() > max_scene_bytes) {
     refuse("the world",
            fmt::format("its scene would be {} bytes, more than the {} a scene file may have ({} "

@@ -20,6 +20,7 @@ struct QueryFilter {
   std::uint64_t mask = all_categories;        ///< bits: the disc categories it sees
   bool sensors = false;                       ///< true: sensors are seen too
   bool planes = true;                         ///< false: planes are not seen
+  bool segments = true;                       ///< false: segments are not seen
 };
 
 /// Whether `filter` sees a disc with filter `disc` (sensors and planes aside).
@@ -35,11 +36,13 @@ inline constexpr double max_query_reach = 1e15;
 /// Marks a hit that is no plane (QueryHit::plane, RayHit::plane).
 inline constexpr std::uint32_t no_plane = 0xffffffffu;
 
-/// A shape a query found: a body's disc (body) or a plane (plane, an index into
-/// World::planes(); body is then the null entity).
+/// A shape a query found: a body's disc (body), a plane (plane, an index into
+/// World::planes()) or a segment (segment, an index into World::segments()); body is the null
+/// entity for the last two.
 struct QueryHit {
   Entity body{};
   std::uint32_t plane = no_plane;
+  std::uint32_t segment = no_plane;  ///< no_plane: no segment
   friend constexpr bool operator==(const QueryHit&, const QueryHit&) = default;
 };
 
@@ -50,6 +53,9 @@ struct RayHit {
   double fraction = 0.0;           ///< s at the hit, in [0, 1]
   Vec2 point{};                    ///< m, origin + fraction · translation
   Vec2 normal{};                   ///< unit outward normal of the shape at point
+  /// The segment it hit (index into World::segments(); its normal faces the ray's origin), or
+  /// no_plane.
+  std::uint32_t segment = no_plane;
   friend constexpr bool operator==(const RayHit&, const RayHit&) = default;
 };
 

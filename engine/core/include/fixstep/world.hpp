@@ -14,6 +14,7 @@
 #include "fixstep/detail/world_kernel.hpp"
 #include "fixstep/query.hpp"
 #include "fixstep/random.hpp"
+#include "fixstep/segment.hpp"
 #include "fixstep/step_results.hpp"
 #include "fixstep/world_settings.hpp"
 
@@ -35,6 +36,9 @@ struct WorldDef {
   std::vector<BodyDef> bodies;   ///< in creation order (add_body)
   std::vector<LinkDef> links;    ///< springs between bodies, by the handles add_body returned
   std::vector<PlaneDef> planes;  ///< static half-planes (ground, walls) colliders stay out of
+  /// Static segments (level geometry) colliders stay out of; polylines as their segments
+  /// (polyline_segments, add_polyline). After the planes in every order.
+  std::vector<SegmentDef> segments;
 
   /// Appends `body` and returns the handle World(def) will give it (World::defined_bodies()
   /// lists the same handles), for the links and per-body inputs a program writes before the
@@ -44,6 +48,10 @@ struct WorldDef {
   void add_link(Entity a, Entity b, const LinkSpring& spring) {
     links.push_back(LinkDef{a, b, spring});
   }
+  /// Appends the segments of a polyline through `points` (polyline_segments: throws
+  /// std::invalid_argument for too few points or a zero-length segment).
+  void add_polyline(std::span<const Vec2> points, double restitution, double friction,
+                    bool closed = false);
 };
 
 /// A restorable state of a World (what game physics calls a snapshot): a complete copy of
@@ -71,11 +79,12 @@ class World {
   /// invalid settings (dt not finite and > 0, substeps < 1, ...).
   World(Precision precision, const WorldSettings& settings);
   /// Builds the world `def` describes: a World with def.precision and def.settings, then the
-  /// bodies in order, the links and the planes. Throws std::invalid_argument for invalid
-  /// settings, bodies, links or planes (the message names the body and field; for a plane,
-  /// plane[i]), and for a link whose end is not one of def's bodies. It judges nothing else: the
-  /// stability guard, the work limits and the overlap of discs at tick 0 are the program's
-  /// explicit calls (check_definition, definition_checks.hpp), made before building.
+  /// bodies in order, the links, the planes and the segments. Throws std::invalid_argument for
+  /// invalid settings, bodies, links, planes or segments (the message names the body and field;
+  /// for a plane, plane[i]; for a segment, segment[i]), and for a link whose end is not one of
+  /// def's bodies. It judges nothing else: the stability guard, the work limits and the overlap of
+  /// discs at tick 0 are the program's explicit calls (check_definition, definition_checks.hpp),
+  /// made before building.
   explicit World(const WorldDef& def);
 
   [[nodiscard]] Precision precision() const {
@@ -165,6 +174,15 @@ class World {
   /// A static half-plane bodies with a Collider collide with (World::add_plane).
   std::size_t add_plane(const PlaneDef& def);
   [[nodiscard]] std::span<const PlaneDef> planes() const;
+  /// A static segment bodies with a Collider collide with (SegmentDef); returns its index into
+  /// segments(). Throws std::invalid_argument naming segment[i] and the field for a
+  /// non-finite end, coinciding ends, or restitution or friction out of range.
+  std::size_t add_segment(const SegmentDef& def);
+  /// The segments of a polyline (polyline_segments), joined by ghost vertices; returns the
+  /// index of its first segment. Throws as polyline_segments and add_segment do.
+  std::size_t add_polyline(std::span<const Vec2> points, double restitution, double friction,
+                           bool closed = false);
+  [[nodiscard]] std::span<const SegmentDef> segments() const;
   void step(const TickInput& input = {});
   /// Throws std::invalid_argument naming the first entry of input.bodies World::step would
   /// ignore: a stale handle, a non-finite value, a force or impulse on a body that is not
@@ -244,31 +262,31 @@ class World {
   // argument when a coordinate is not finite (or a radius not finite and >= 0).
 
   /// The first shape the ray origin + s · translation, s in [0, 1] (m), enters: the hit with
-  /// the least fraction, ties by handle slot and planes last (by index); nullopt when it
-  /// enters none. A ray starting inside a disc or on the solid side of a plane does not hit
-  /// that shape (Box2D's rule). A zero translation hits nothing. Throws std::invalid_argument
-  /// also for a ray reaching beyond max_query_reach.
+  /// the least fraction, ties by handle slot and planes (by index) and segments (by index) last;
+  /// nullopt when it enters none. A ray starting inside a disc or on the solid side of a plane does
+  /// not hit that shape (Box2D's rule). A zero translation hits nothing. Throws
+  /// std::invalid_argument also for a ray reaching beyond max_query_reach.
   [[nodiscard]] std::optional<RayHit> cast_ray(Vec2 origin, Vec2 translation,
                                                const QueryFilter& filter = {}) const;
-  /// Every shape the ray enters, ordered by fraction (ties by handle slot, planes last by
-  /// index). Writes the first min(total, out.size()) hits of that order into `out` and
-  /// returns the total (call with an empty span to count). Allocates nothing once warm.
+  /// Every shape the ray enters, ordered by fraction (ties by handle slot, planes and segments last
+  /// by index). Writes the first min(total, out.size()) hits of that order into `out` and returns
+  /// the total (call with an empty span to count). Allocates nothing once warm.
   std::size_t cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out,
                            const QueryFilter& filter = {}) const;
   /// The discs containing `point` (|point - centre| <= r) and the planes it lies inside
-  /// (n·point < offset), in handle slot order, planes last (by index). Writes the first
-  /// min(total, out.size()) and returns the total.
+  /// (n·point < offset), in handle slot order, planes (by index) and segments (by index) last.
+  /// Writes the first min(total, out.size()) and returns the total.
   std::size_t query_point(Vec2 point, std::span<QueryHit> out,
                           const QueryFilter& filter = {}) const;
   /// The discs overlapping the box [lower, upper] (m; the box's closest point to the centre
-  /// within r) and the planes whose solid side it reaches, in handle slot order, planes last.
-  /// Writes the first min(total, out.size()) and returns the total. Throws
+  /// within r) and the planes whose solid side it reaches, in handle slot order, planes and
+  /// segments last. Writes the first min(total, out.size()) and returns the total. Throws
   /// std::invalid_argument also when lower > upper on an axis.
   std::size_t overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
                            const QueryFilter& filter = {}) const;
   /// The discs overlapping the circle (|c - center| <= r + radius, m) and the planes it
-  /// reaches, in handle slot order, planes last. Writes the first min(total, out.size()) and
-  /// returns the total.
+  /// reaches, in handle slot order, planes and segments last. Writes the first min(total,
+  /// out.size()) and returns the total.
   std::size_t overlap_circle(Vec2 center, double radius, std::span<QueryHit> out,
                              const QueryFilter& filter = {}) const;
 

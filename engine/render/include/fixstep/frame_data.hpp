@@ -34,6 +34,8 @@ struct RenderFrame {
   std::vector<std::uint32_t> link_a, link_b;
   /// Static half-planes n·x >= offset (normals normalised), drawn as ground and walls.
   std::vector<PlaneDef> planes;
+  /// Static segments (level geometry), drawn as lines in the planes' colour.
+  std::vector<SegmentDef> segments;
   /// The world's tick when the frame was taken (World::tick()) and its dt (s; 0: unknown, a
   /// frame filled by hand, taken as 1/60 s), and the interpolation alpha of x / y: the frame
   /// shows the moment tick - (1 - alpha) ticks. Trails (Trails::prepare) sample a frame whose
@@ -45,7 +47,7 @@ struct RenderFrame {
 
 /// Fills `out` from `world` at interpolation alpha (in [0, 1]; World::interpolate_positions):
 /// positions, handles, appearances (visibility and trails included), anchored springs, links,
-/// planes, the tick, dt and alpha. Reuses out's storage: no
+/// planes, segments, the tick, dt and alpha. Reuses out's storage: no
 /// allocation once it has grown to the world's size.
 void fill_render_frame(const World& world, double alpha, RenderFrame& out);
 

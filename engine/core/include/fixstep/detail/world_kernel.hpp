@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "fixstep/components.hpp"
+#include "fixstep/detail/segment_set.hpp"
 #include "fixstep/entity.hpp"
 #include "fixstep/input.hpp"
 #include "fixstep/integrators.hpp"
@@ -226,6 +227,13 @@ class WorldKernel {
   std::size_t add_plane(const PlaneDef& def);
   /// The planes in order of creation, normals normalised.
   [[nodiscard]] std::span<const PlaneDef> planes() const { return planes_; }
+  /// Adds a static segment (SegmentDef) and returns its index into segments(). Throws
+  /// std::invalid_argument naming segment[i] and the field when an end or ghost vertex is not
+  /// finite, the ends coincide, or restitution (in [0, 1]) or friction (>= 0) is out of range
+  /// (world_segments.cpp). Segments cannot be removed.
+  std::size_t add_segment(const SegmentDef& def);
+  [[nodiscard]] std::span<const SegmentDef> segments() const { return segments_.defs(); }
+  [[nodiscard]] const SegmentSet& segment_set() const { return segments_; }
 
   // --- stepping ---------------------------------------------------------------------------
   /// Advances every body by one tick of settings().dt with the chosen integrator.
@@ -502,6 +510,17 @@ class WorldKernel {
   void rebuild_contacts();
   void save_contact_start();
   std::size_t resolve_contacts();  // returns ContactStats::capped of the planes
+  // Static segments (world_segments.cpp): the plane pass meets them as local planes.
+  SegmentSet segments_;
+  std::vector<std::uint32_t> segment_found_;  ///< a query's scratch
+  /// The deepest segment contact of a disc (x, y, m; radius r) overlapping it by more than
+  /// tol (m), as its local plane (friction and restitution the segment's); false: none.
+  bool segment_overlap(double x, double y, double r, double tol, PlaneDef& plane);
+  /// The first segment impact of a disc moving as m over [0, horizon] (s), or infinity;
+  /// plane gets the contact's local plane, index the segment; `looked` the segments tested.
+  double first_segment_hit(const SegmentMotion& m, double r, double horizon, double rel,
+                           double vtol, PlaneDef& plane, std::uint32_t& index,
+                           std::uint64_t& looked);
 
   // Static and kinematic bodies (dense indices) and their start-of-tick states: after the
   // integrator, a static body is put back and a kinematic one moved on at its velocity, so

@@ -1,0 +1,49 @@
+// Level geometry: static segments and polylines (chains of segments) that disc colliders meet.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "fixstep/types.hpp"
+
+namespace fixstep {
+
+/// A static line segment from a to b (m) that bodies with a Collider of radius r collide with,
+/// on both of its faces: their centres stay at least r from every point of it. Box2D's
+/// b2Segment, and with ghost vertices its b2ChainSegment.
+///
+/// A contact is resolved at its time of impact inside the tick exactly as a plane's (PlaneDef):
+/// Newton's restitution e on the normal velocity and a Coulomb-limited friction impulse μ on
+/// the tangential one, or coming to rest and sliding with friction μ |a_n|. The contact's
+/// normal is that of the closest point of the segment to the disc's centre: the segment's
+/// normal on its interior, (centre - end point)/r at an end point (a disc of radius 0).
+///
+/// Ghost vertices (polylines, add_polyline). A segment whose end `a` joins a previous segment
+/// of a chain holds that segment's other end as `prev` (and `next` beyond b likewise). A joint
+/// is then no corner a disc sliding along the chain can catch on: a contact with the joint
+/// vertex itself is kept only when the disc's centre lies in the joint's own region, past the
+/// end of the segment before it (along that segment's direction) and before the start of the
+/// one after it; that region is the wedge between the two segments' normals on a joint's
+/// convex side and is empty on its concave side and at a straight joint. Everywhere else a
+/// neighbour's interior contact covers the disc. A joint's vertex belongs to the segment that
+/// starts there (its `a`): the segment ending there never reports it.
+struct SegmentDef {
+  Vec2 a{};                    ///< first end, m, finite
+  Vec2 b{1.0, 0.0};            ///< second end, m, finite, != a
+  double restitution = 0.0;    ///< e, finite, in [0, 1]
+  double friction = 0.0;       ///< μ, finite and >= 0
+  std::optional<Vec2> prev{};  ///< ghost vertex before a (a chain's previous point), m
+  std::optional<Vec2> next{};  ///< ghost vertex after b (a chain's next point), m
+  friend bool operator==(const SegmentDef&, const SegmentDef&) = default;
+};
+
+/// The segments of a polyline through `points` (m; at least 2, consecutive points distinct),
+/// each joined to its neighbours by ghost vertices (SegmentDef); `closed` adds the segment from
+/// the last point back to the first and joins it at both ends. Throws std::invalid_argument
+/// for fewer than 2 points (3 when closed) or a zero-length segment (naming its index).
+[[nodiscard]] std::vector<SegmentDef> polyline_segments(std::span<const Vec2> points,
+                                                        double restitution, double friction,
+                                                        bool closed = false);
+
+}  // namespace fixstep

@@ -1,0 +1,58 @@
+// Disc contacts, phase 2, with static segments: each segment a disc touches at the tick's end
+// is a resting contact as a plane is (disc_rest.cpp), along the normal of its closest feature
+// under the ghost-vertex rule (segment_set.hpp), so that a polyline's joints catch nothing.
+#include <cmath>
+
+#include "disc_contacts.hpp"
+
+namespace fixstep::detail {
+
+template <class Real>
+void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t k) {
+  const Disc& d = discs_[k];
+  const double reach = d.radius * (1.0 + slop);
+  const double x = ex_[k], y = ey_[k];
+  tick.segments->query(x - reach, y - reach, x + reach, y + reach, segments_near_);
+  const auto base = static_cast<std::uint32_t>(discs_.size() + tick.planes.size());
+  for (const std::uint32_t i : segments_near_) {
+    const SegmentShape& s = tick.segments->shapes()[i];
+    SegmentTouch t;
+    if (!segment_touch(s, x, y, t)) continue;  // a joint a neighbour covers
+    const double gap = t.distance - d.radius;
+    if (gap > slop * d.radius) continue;
+    // Still apart and closing faster than a tick of acceleration: the next tick's impact.
+    const double vn = evx_[k] * t.nx + evy_[k] * t.ny;
+    const double cn = motion_[k].ax * t.nx + motion_[k].ay * t.ny;
+    if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) continue;
+    RestContact c;
+    c.key = (std::uint64_t(k) << 32) | (base + i);
+    c.a = k, c.b = base + i;
+    c.nx = t.nx, c.ny = t.ny;
+    c.mass = 1.0 / d.inv_mass;
+    c.inv_a = d.inv_mass;
+    c.friction = s.friction;
+    contacts_.push_back(c);
+  }
+}
+
+template <class Real>
+double DiscContacts<Real>::segment_overlap_of(const Tick& tick, const RestContact& c, double& nx,
+                                              double& ny) const {
+  const auto base = discs_.size() + tick.planes.size();
+  const SegmentShape& s = tick.segments->shapes()[c.b - base];
+  SegmentTouch t;
+  nx = c.nx, ny = c.ny;
+  if (!segment_touch(s, ex_[c.a], ey_[c.a], t)) return 0.0;  // moved where a neighbour holds it
+  nx = t.nx, ny = t.ny;
+  return discs_[c.a].radius - t.distance;
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                                                  \
+  template void DiscContacts<Real>::gather_segment_contacts(const Tick&, std::uint32_t);           \
+  template double DiscContacts<Real>::segment_overlap_of(const Tick&, const RestContact&, double&, \
+                                                         double&) const;
+FIXSTEP_INSTANTIATE(float)
+FIXSTEP_INSTANTIATE(double)
+#undef FIXSTEP_INSTANTIATE
+
+}  // namespace fixstep::detail

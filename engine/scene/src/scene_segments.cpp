@@ -1,0 +1,110 @@
+// Scene files: static segments and polylines ([[segment]], [[polyline]]: level geometry). See
+// docs/SCENES.md.
+#include <cmath>
+
+#include "fixstep/step_results.hpp"
+#include "scene_reader.hpp"
+
+namespace fixstep::scene_detail {
+
+namespace {
+
+/// A point within max_state_magnitude of the origin (the world refuses others).
+Vec2 point_node(Reader& r, const toml::node& n, const std::string& path) {
+  const Vec2 p = r.vec2_node(n, path);
+  if (!(std::abs(p.x) <= max_state_magnitude && std::abs(p.y) <= max_state_magnitude)) {
+    r.fail(n.source(), path,
+           fmt::format("must lie within {:g} m of the origin (got [{}, {}])", max_state_magnitude,
+                       p.x, p.y));
+  }
+  return p;
+}
+
+/// restitution in [0, 1] and friction >= 0 (default 0) of a [[segment]] or [[polyline]].
+void parse_surface(Reader& r, const toml::table& t, const std::string& path, double& e,
+                   double& mu) {
+  if (auto v = r.number(t, "restitution", path + ".restitution")) {
+    r.require(*v >= 0.0 && *v <= 1.0, t, "restitution", path + ".restitution", "in [0, 1]", *v);
+    e = *v;
+  }
+  if (auto v = r.number(t, "friction", path + ".friction")) {
+    r.require(*v >= 0.0, t, "friction", path + ".friction", ">= 0", *v);
+    mu = *v;
+  }
+}
+
+/// One [[segment]] table: a and b ([x, y] m, required, distinct), restitution, friction, and
+/// the ghost vertices prev and next ([x, y] m, optional; SegmentDef).
+SegmentDef parse_segment(Reader& r, const toml::table& t, const std::string& path) {
+  r.check_keys(t, path, {"a", "b", "restitution", "friction", "prev", "next"});
+  SegmentDef s;
+  for (const char* key : {"a", "b"}) {
+    const toml::node* n = t.get(key);
+    if (!n) r.fail_missing(t, path, {key}, "missing (required): an end point [x, y] in m");
+    (std::string_view(key) == "a" ? s.a : s.b) = point_node(r, *n, path + "." + key);
+  }
+  if (s.a == s.b) {
+    r.fail(t.get("b")->source(), path + ".b",
+           fmt::format("equals a ([{}, {}]): a segment needs two distinct ends", s.a.x, s.a.y));
+  }
+  if (const toml::node* n = t.get("prev")) s.prev = point_node(r, *n, path + ".prev");
+  if (const toml::node* n = t.get("next")) s.next = point_node(r, *n, path + ".next");
+  parse_surface(r, t, path, s.restitution, s.friction);
+  return s;
+}
+
+/// One [[polyline]] table: points (an array of at least 2 [x, y], 3 when closed, consecutive
+/// ones distinct), restitution, friction, closed (default false). Appends its segments.
+void parse_polyline(Reader& r, const toml::table& t, const std::string& path,
+                    std::vector<SegmentDef>& out) {
+  r.check_keys(t, path, {"points", "restitution", "friction", "closed"});
+  const toml::node* n = t.get("points");
+  if (!n) r.fail_missing(t, path, {"points"}, "missing (required): [[x, y], [x, y], ...] in m");
+  const toml::array* a = n->as_array();
+  if (!a) r.fail(n->source(), path + ".points", "expected an array of [x, y] points");
+  const bool closed = r.boolean(t, "closed", path + ".closed").value_or(false);
+  if (a->size() < (closed ? 3u : 2u)) {
+    r.fail(n->source(), path + ".points",
+           fmt::format("needs at least {} points{} (got {})", closed ? 3 : 2,
+                       closed ? " when closed" : "", a->size()));
+  }
+  std::vector<Vec2> points;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const std::string at = fmt::format("{}.points[{}]", path, i);
+    points.push_back(point_node(r, *a->get(i), at));
+    if (i > 0 && points[i] == points[i - 1]) {
+      r.fail(a->get(i)->source(), at,
+             fmt::format("repeats point {} ([{}, {}]): a segment needs two distinct ends", i - 1,
+                         points[i].x, points[i].y));
+    }
+  }
+  if (closed && points.back() == points.front()) {
+    r.fail(a->get(a->size() - 1)->source(), fmt::format("{}.points[{}]", path, a->size() - 1),
+           "repeats point 0: a closed polyline joins its last point to its first itself");
+  }
+  double e = 0.0, mu = 0.0;
+  parse_surface(r, t, path, e, mu);
+  const std::vector<SegmentDef> chain = polyline_segments(points, e, mu, closed);
+  out.insert(out.end(), chain.begin(), chain.end());
+}
+
+}  // namespace
+
+void parse_segments(Reader& r, const toml::table& doc, Scene& scene) {
+  if (const toml::array* list = r.tables(doc, "segment")) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table& t = *list->get(i)->as_table();
+      scene.segments.push_back(parse_segment(r, t, fmt::format("segment[{}]", i)));
+      scene.source.segment_lines.push_back(t.source().begin.line);
+    }
+  }
+  if (const toml::array* list = r.tables(doc, "polyline")) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::table& t = *list->get(i)->as_table();
+      parse_polyline(r, t, fmt::format("polyline[{}]", i), scene.segments);
+      scene.source.segment_lines.resize(scene.segments.size(), t.source().begin.line);
+    }
+  }
+}
+
+}  // namespace fixstep::scene_detail
