@@ -64,6 +64,7 @@ struct Disc {
   std::uint8_t sensor = 0;          ///< 1 for a sensor (Collider::sensor): no contact, sensed
   double accel_x = 0, accel_y = 0;  ///< constant acceleration (gravity + F/m), m/s² (energy)
   std::int32_t plane_slot = -1;     ///< its index among the plane colliders (Tick::after), or -1
+  double inv_inertia = 0;           ///< 1/(kg·m²) with rolling discs; 0: it does not turn
 };
 
 /// A disc's motion within the tick: position X and model velocity U at time t, acceleration a.
@@ -89,9 +90,13 @@ struct RestContact {
   std::uint32_t a = 0, b = 0;
   double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
   double inv_a = 0, inv_b = 0;  ///< 1/kg of a and b (0: static, kinematic or a plane)
-  bool kinematic_a = false;     ///< a is a moving kinematic disc (its work is external)
-  bool kinematic_b = false;     ///< b is a moving kinematic disc (its work is external)
-  std::uint8_t moved = 0;       ///< 1 once an impulse or a push-out moved its discs this tick
+  /// Rolling discs: the mass along the tangent at the contact point, kg (1 / (1/m_a + 1/m_b +
+  /// r_a²/I_a + r_b²/I_b); `mass` without rolling), the radii r_a, r_b from the centres to the
+  /// contact point (m; 0 for a plane and without rolling) and r/I of each (rad/s per N·s).
+  double mass_t = 0, arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
+  bool kinematic_a = false;  ///< a is a moving kinematic disc (its work is external)
+  bool kinematic_b = false;  ///< b is a moving kinematic disc (its work is external)
+  std::uint8_t moved = 0;    ///< 1 once an impulse or a push-out moved its discs this tick
 };
 
 /// Last tick's resting impulses, for warm starting (part of a snapshot).
@@ -133,6 +138,8 @@ class DiscContacts {
   /// (J/kg; null when the world keeps no account).
   void save_start(const Real* x, const Real* y, const Real* vx, const Real* vy,
                   const Real* dissipated);
+  /// Saves the start-of-tick angular velocities (rad/s) of rolling discs (energy account).
+  void save_spin_start(const Real* spin);
 
   struct Tick {
     Real *x, *y, *vx, *vy;   ///< the world's state arrays (dense body order)
@@ -141,6 +148,7 @@ class DiscContacts {
     std::span<const PlaneMotion> after;  ///< plane colliders' motions after a plane impact
     double dt = 0, kappa = 0.5;          ///< s; κ (see above)
     int threads = 1;
+    Real* spin = nullptr;  ///< angular velocities, rad/s, with rolling discs (null: none)
   };
   /// Resolves the tick's contacts in place. Returns per-disc energy bookkeeping through
   /// lost() (J/kg, dynamic discs) and external() (J); fills stats.
@@ -226,6 +234,15 @@ class DiscContacts {
                     double& r_min) const;
   void keep_impulses();
   void apply(RestContact& c, double jx, double jy, double kdt);
+  /// Turns c's rolling discs by the tangential impulse lt (N·s along t = (-n_y, n_x) on a).
+  void turn(const RestContact& c, double lt) {
+    ew_[c.a] -= c.turn_a * lt;
+    if (c.b < discs_.size()) ew_[c.b] -= c.turn_b * lt;
+  }
+  /// The contact point's tangential velocity of rolling discs' turn: -(ω_a r_a + ω_b r_b).
+  [[nodiscard]] double turn_slip(const RestContact& c) const {
+    return ew_[c.a] * c.arm_a + (c.b < discs_.size() ? ew_[c.b] * c.arm_b : 0.0);
+  }
   void finish(const Tick& tick);
 
   std::vector<Disc> discs_;
@@ -253,6 +270,10 @@ class DiscContacts {
   bool team_on_ = false;                                    ///< within solve_resting()
   std::vector<WarmImpulse> warm_;                           ///< by key
   std::vector<double> ex_, ey_, evx_, evy_;                 ///< end states in double, m and m/s
+  /// Rolling discs (settings_.rolling; empty otherwise): ω in double during the tick and at
+  /// its start, rad/s.
+  std::vector<double> ew_, ew0_;
+  bool rolling_ = false;
   // Energy per unit mass (J/kg: ½|v|² - a·x, a the constant acceleration) at the tick's start
   // and after the free step, and the dissipated account at the start.
   std::vector<double> lost_, external_, e_start_, e_begin_, d_begin_;
