@@ -334,8 +334,9 @@ class WorldKernel {
   [[nodiscard]] std::span<const SensorEvent> sensors_ended() const { return sensor_ended_; }
   /// Every disc overlapping a sensor after the last tick, by (sensor, visitor) slot order.
   [[nodiscard]] std::span<const SensorEvent> sensor_overlaps() const { return sensed_; }
-  /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
-  /// equal hashes mean bit-identical states.
+  /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order, then,
+  /// with rolling discs (ContactSettings::rolling) only, every body's θ and ω: equal hashes
+  /// mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
   /// Bytes of heap memory a copy of this world (a WorldSnapshot) holds: every array's elements
   /// and the body names' characters (not the worker threads or the implicit solver's cache,
