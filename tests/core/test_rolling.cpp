@@ -109,6 +109,26 @@ TEST(Rolling, ASpinningDiscDroppedOnTheGroundLeavesAtAThirdOfOmegaR) {
   }
 }
 
+TEST(Rolling, ASpinningDiscDroppedOnABigStaticDiscLeavesAtAThirdOfOmegaR) {
+  // The same through disc contacts (the impact at landing, then the resting solver): a static
+  // disc of radius 100 km is locally flat ground. The dropped disc stops slipping after about
+  // 0.6 s and has rolled about 1 m at 2 s, where the ground has turned by 1e-5 rad: gravity
+  // along it has added about 1e-4 m/s by then, within the tolerance of 1e-4 ω0 r (3e-4 m/s).
+  const double r = 0.25, w0 = 12.0, big = 1e5;
+  for (const Integrator integrator : rolling_integrators) {
+    detail::WorldKernel<double> w(rolling_world(0.0, 0.3, integrator));
+    w.create_body(rolling_disc({0.0, r + 0.3}, {}, r, w0));
+    BodyDef ground;
+    ground.type = BodyType::static_body;
+    ground.body.position = {0.0, -big};
+    ground.collider = Collider{.radius = big};
+    w.create_body(ground);
+    for (int i = 0; i < 120; ++i) w.step();
+    EXPECT_NEAR(w.vx()[0], -w0 * r / 3.0, 1e-4 * w0 * r) << int(integrator);
+    EXPECT_NEAR(w.angular_velocity()[0], w0 / 3.0, 1e-4 * w0) << int(integrator);
+  }
+}
+
 /// Angular momentum about the origin, orbital Σ m x × v plus spin Σ I ω, kg·m²/s.
 double angular_momentum(const detail::WorldKernel<double>& w, double r) {
   double l = 0.0;
