@@ -32,6 +32,12 @@
 //     n substeps; (n-1)/2n for explicit Euler). A stack at rest is then held exactly by the
 //     integrator's own step. An overlap left beyond the slop is pushed out along the normal
 //     (positions only, split by inverse mass, at most max_push_out of the radius a tick).
+// With rolling discs (ContactSettings::rolling) friction, in impacts and at rest, acts on the
+// slip at the contact point, (v_a - v_b)·t - ω_a r_a - ω_b r_b (t = (-n_y, n_x)), with the
+// tangential mass 1 / (1/m_a + 1/m_b + r_a²/I_a + r_b²/I_b), and its impulse λ t on a turns a by
+// -r_a λ / I_a and b by -r_b λ / I_b (Catto's friction with angular terms, for discs): an
+// impact changes no angular momentum about any point (its arms r_a, r_b add up to the distance
+// at the time of impact).
 // Static discs never move; kinematic discs move at their velocity; both act as infinite mass.
 #pragma once
 

@@ -34,6 +34,15 @@
 // v_t + a_t T loses min(|v_t + a_t T|, μ |a_n| T), and the body moves with the constant
 // acceleration that gives that end velocity. A body on a slope with μ >= tan θ stays put.
 //
+// Rolling discs (ContactSettings::rolling). Friction acts at the contact point instead: its
+// slip u = v·t - ω r (t = (-n_y, n_x), ω counter-clockwise) is what a friction change Δ of the
+// tangential velocity stops, turning the disc by -Δ s / r (s = m r² / I); so Δ = -u / (1 + s),
+// within μ (1 + e) |v_n| at an impact and μ |a_n| T over the rest T of the tick (of the
+// integrator's velocity at rest, which the next tick starts from). A disc released on a slope
+// then rolls at a_t / (1 + 1/s) while that bound allows (μ >= tan θ / (1 + s)) and slides at
+// a_t - μ |a_n| otherwise, exactly per tick; I ω + m r v_t stays as it was while only friction
+// acts (the spinning drop). The rotational energy ½ I ω² it changes is in the account.
+//
 // Energy. With track_dissipation, the kinetic energy each impact and each push-out removes,
 // and the work of friction while resting, are added to dissipated_energy(), so the balance
 // E + E_dissipated - E0 stays the integrator's error.
