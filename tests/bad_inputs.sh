@@ -663,6 +663,29 @@ case_ "a body's negative friction" "$ok_world
 [contacts]
 $disc
 friction = -1.0"
+case_ "[contacts] rolling not a boolean" "$ok_world
+[contacts]
+rolling = 1
+$disc"
+case_ "a rolling disc's inertia of 0" "$ok_world
+[contacts]
+rolling = true
+$disc
+inertia = 0.0"
+case_ "inertia on a body without radius" "$ok_world
+[contacts]
+rolling = true
+$body
+inertia = 0.5"
+case_ "a body's angular_velocity not a number" "$ok_world
+[contacts]
+rolling = true
+$disc
+angular_velocity = \"fast\""
+case_ "angular_velocity without rolling (a warning; ignored)" "$ok_world
+[contacts]
+$disc
+angular_velocity = 5.0"
 case_ "restitution on a body without radius" "$ok_world
 $body
 restitution = 0.5"

@@ -32,6 +32,12 @@
 //     n substeps; (n-1)/2n for explicit Euler). A stack at rest is then held exactly by the
 //     integrator's own step. An overlap left beyond the slop is pushed out along the normal
 //     (positions only, split by inverse mass, at most max_push_out of the radius a tick).
+// With rolling discs (ContactSettings::rolling) friction, in impacts and at rest, acts on the
+// slip at the contact point, (v_a - v_b)·t - ω_a r_a - ω_b r_b (t = (-n_y, n_x)), with the
+// tangential mass 1 / (1/m_a + 1/m_b + r_a²/I_a + r_b²/I_b), and its impulse λ t on a turns a by
+// -r_a λ / I_a and b by -r_b λ / I_b (Catto's friction with angular terms, for discs): an
+// impact changes no angular momentum about any point (its arms r_a, r_b add up to the distance
+// at the time of impact).
 // Static discs never move; kinematic discs move at their velocity; both act as infinite mass.
 #pragma once
 
@@ -64,6 +70,7 @@ struct Disc {
   std::uint8_t sensor = 0;          ///< 1 for a sensor (Collider::sensor): no contact, sensed
   double accel_x = 0, accel_y = 0;  ///< constant acceleration (gravity + F/m), m/s² (energy)
   std::int32_t plane_slot = -1;     ///< its index among the plane colliders (Tick::after), or -1
+  double inv_inertia = 0;           ///< 1/(kg·m²) with rolling discs; 0: it does not turn
 };
 
 /// A disc's motion within the tick: position X and model velocity U at time t, acceleration a.
@@ -89,9 +96,13 @@ struct RestContact {
   std::uint32_t a = 0, b = 0;
   double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
   double inv_a = 0, inv_b = 0;  ///< 1/kg of a and b (0: static, kinematic or a plane)
-  bool kinematic_a = false;     ///< a is a moving kinematic disc (its work is external)
-  bool kinematic_b = false;     ///< b is a moving kinematic disc (its work is external)
-  std::uint8_t moved = 0;       ///< 1 once an impulse or a push-out moved its discs this tick
+  /// Rolling discs: the mass along the tangent at the contact point, kg (1 / (1/m_a + 1/m_b +
+  /// r_a²/I_a + r_b²/I_b); `mass` without rolling), the radii r_a, r_b from the centres to the
+  /// contact point (m; 0 for a plane and without rolling) and r/I of each (rad/s per N·s).
+  double mass_t = 0, arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
+  bool kinematic_a = false;  ///< a is a moving kinematic disc (its work is external)
+  bool kinematic_b = false;  ///< b is a moving kinematic disc (its work is external)
+  std::uint8_t moved = 0;    ///< 1 once an impulse or a push-out moved its discs this tick
 };
 
 /// Last tick's resting impulses, for warm starting (part of a snapshot).
@@ -133,6 +144,8 @@ class DiscContacts {
   /// (J/kg; null when the world keeps no account).
   void save_start(const Real* x, const Real* y, const Real* vx, const Real* vy,
                   const Real* dissipated);
+  /// Saves the start-of-tick angular velocities (rad/s) of rolling discs (energy account).
+  void save_spin_start(const Real* spin);
 
   struct Tick {
     Real *x, *y, *vx, *vy;   ///< the world's state arrays (dense body order)
@@ -143,6 +156,7 @@ class DiscContacts {
     int threads = 1;
     const SegmentSet* segments = nullptr;  ///< static segments (null: none); contacts with
                                            ///< them are the plane contacts' b past the planes
+    Real* spin = nullptr;  ///< angular velocities, rad/s, with rolling discs (null: none)
   };
   /// Resolves the tick's contacts in place. Returns per-disc energy bookkeeping through
   /// lost() (J/kg, dynamic discs) and external() (J); fills stats.
@@ -234,6 +248,15 @@ class DiscContacts {
   /// overlap_of() for a segment contact: the depth (m) and normal at the closest feature now.
   double segment_overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny) const;
   void apply(RestContact& c, double jx, double jy, double kdt);
+  /// Turns c's rolling discs by the tangential impulse lt (N·s along t = (-n_y, n_x) on a).
+  void turn(const RestContact& c, double lt) {
+    ew_[c.a] -= c.turn_a * lt;
+    if (c.b < discs_.size()) ew_[c.b] -= c.turn_b * lt;
+  }
+  /// The contact point's tangential velocity of rolling discs' turn: -(ω_a r_a + ω_b r_b).
+  [[nodiscard]] double turn_slip(const RestContact& c) const {
+    return ew_[c.a] * c.arm_a + (c.b < discs_.size() ? ew_[c.b] * c.arm_b : 0.0);
+  }
   void finish(const Tick& tick);
 
   std::vector<Disc> discs_;
@@ -261,6 +284,10 @@ class DiscContacts {
   bool team_on_ = false;                                    ///< within solve_resting()
   std::vector<WarmImpulse> warm_;                           ///< by key
   std::vector<double> ex_, ey_, evx_, evy_;                 ///< end states in double, m and m/s
+  /// Rolling discs (settings_.rolling; empty otherwise): ω in double during the tick and at
+  /// its start, rad/s.
+  std::vector<double> ew_, ew0_;
+  bool rolling_ = false;
   // Energy per unit mass (J/kg: ½|v|² - a·x, a the constant acceleration) at the tick's start
   // and after the free step, and the dissipated account at the start.
   std::vector<double> lost_, external_, e_start_, e_begin_, d_begin_;

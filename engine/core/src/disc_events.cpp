@@ -63,6 +63,8 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   impacts_.assign(n, 0);
   changed_.assign(n, 0);
   warm_.clear();
+  rolling_ = settings.rolling;
+  ew_.assign(rolling_ ? n : 0, 0.0), ew0_.assign(rolling_ ? n : 0, 0.0);
 }
 
 template <class Real>
@@ -78,6 +80,11 @@ void DiscContacts<Real>::save_start(const Real* x, const Real* y, const Real* vx
     x0_[k] = x[j], y0_[k] = y[j], vx0_[k] = vx[j], vy0_[k] = vy[j];
     d_begin_[k] = dissipated ? double(dissipated[j]) : 0.0;
   }
+}
+
+template <class Real>
+void DiscContacts<Real>::save_spin_start(const Real* spin) {
+  for (std::size_t k = 0; k < ew0_.size(); ++k) ew0_[k] = double(spin[discs_[k].body]);
 }
 
 template <class Real>
@@ -255,8 +262,21 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   const double speed = length(tx, ty);
   const double mu = std::sqrt(da.friction * db.friction);
   const double jt = std::min(speed * mass, mu * jn);
-  const double jx = jn * nx - (speed > 0.0 ? jt * tx / speed : 0.0);
-  const double jy = jn * ny - (speed > 0.0 ? jt * ty / speed : 0.0);
+  double jx = jn * nx - (speed > 0.0 ? jt * tx / speed : 0.0);
+  double jy = jn * ny - (speed > 0.0 ? jt * ty / speed : 0.0);
+  if (rolling_) {  // friction at the contact point: the discs' turn slips there too
+    // The contact point divides the line of centres in the ratio of the radii (at the
+    // computed time of impact |x_a - x_b| = r_a + r_b to rounding): the arms add up to the
+    // distance, so the impulse changes no angular momentum about any point.
+    const double scale = len > 0.0 ? len / (da.radius + db.radius) : 1.0;
+    const double ra = da.radius * scale, rb = db.radius * scale;
+    const double slip = -wx * ny + wy * nx - (ew_[a] * ra + ew_[b] * rb);
+    const double mass_t =
+        1.0 / (da.inv_mass + db.inv_mass + ra * ra * da.inv_inertia + rb * rb * db.inv_inertia);
+    const double lt = std::clamp(-slip * mass_t, -mu * jn, mu * jn);
+    jx = jn * nx - lt * ny, jy = jn * ny + lt * nx;
+    ew_[a] -= ra * da.inv_inertia * lt, ew_[b] -= rb * db.inv_inertia * lt;
+  }
   // The work of a kinematic disc's impulse is external (J·V over the impulse).
   if (!da.dynamic) external_[b] -= jx * ma.ux + jy * ma.uy;
   if (!db.dynamic) external_[a] += jx * mb.ux + jy * mb.uy;
@@ -339,6 +359,7 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   cap_ = CapHit{};
   PhaseClock clock(true);
   build_motions(tick);
+  for (std::size_t k = 0; k < ew_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);
   const bool candidates = find_candidates(tick, stats);
   profile.broadphase = clock.lap();
   profile.impacts = profile.resting = 0.0;
@@ -362,7 +383,7 @@ std::size_t DiscContacts<Real>::bytes() const {
          b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(heap_) + b(events_) +
          b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) + b(ex_) +
          b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) +
-         b(d_begin_);
+         b(d_begin_) + b(ew_) + b(ew0_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \
@@ -372,6 +393,7 @@ std::size_t DiscContacts<Real>::bytes() const {
                                                       std::span<const Real>);                      \
   template void DiscContacts<Real>::save_start(const Real*, const Real*, const Real*, const Real*, \
                                                const Real*);                                       \
+  template void DiscContacts<Real>::save_spin_start(const Real*);                                  \
   template void DiscContacts<Real>::build_motions(const Tick&);                                    \
   template bool DiscContacts<Real>::find_candidates(const Tick&, ContactStats&);                   \
   template void DiscContacts<Real>::predict(std::uint32_t, double, double);                        \

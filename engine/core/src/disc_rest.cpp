@@ -45,8 +45,13 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     c.inv_a = da.inv_mass, c.inv_b = db.inv_mass;
     c.kinematic_a = !da.dynamic && (motion_[p.a].ux != 0.0 || motion_[p.a].uy != 0.0);
     c.kinematic_b = !db.dynamic && (motion_[p.b].ux != 0.0 || motion_[p.b].uy != 0.0);
-    c.mass = 1.0 / (da.inv_mass + db.inv_mass);
+    c.mass = c.mass_t = 1.0 / (da.inv_mass + db.inv_mass);
     c.friction = std::sqrt(da.friction * db.friction);
+    if (rolling_) {
+      c.arm_a = da.radius, c.arm_b = db.radius;
+      c.turn_a = da.radius * da.inv_inertia, c.turn_b = db.radius * db.inv_inertia;
+      c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + c.arm_a * c.turn_a + c.arm_b * c.turn_b);
+    }
     contacts_.push_back(c);
   }
   plane_contacts_ = static_cast<std::uint32_t>(contacts_.size());
@@ -61,9 +66,13 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
       c.key = (std::uint64_t(k) << 32) | (n + i);
       c.a = k, c.b = n + i;
       c.nx = p.normal.x, c.ny = p.normal.y;
-      c.mass = 1.0 / d.inv_mass;
+      c.mass = c.mass_t = 1.0 / d.inv_mass;
       c.inv_a = d.inv_mass;
       c.friction = p.friction;
+      if (rolling_) {
+        c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
+        c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
+      }
       contacts_.push_back(c);
     }
     if (tick.segments) gather_segment_contacts(tick, k);
@@ -163,6 +172,7 @@ void DiscContacts<Real>::warm_start(const Tick& tick) {
       RestContact& c = contacts_[order_[i]];
       if (c.lambda_n == 0.0 && c.lambda_t == 0.0) continue;
       apply(c, c.lambda_n * c.nx - c.lambda_t * c.ny, c.lambda_n * c.ny + c.lambda_t * c.nx, kdt);
+      if (rolling_) turn(c, c.lambda_t);
     }
   };
   parts_pass(range);
@@ -193,12 +203,16 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
       if (dn != 0.0) apply(c, dn * c.nx, dn * c.ny, kdt);
       // Friction along t = (-n_y, n_x), within Coulomb's cone |λ_t| <= μ λ_n.
       relative(vx, vy);
-      const double vt = -vx * c.ny + vy * c.nx;
+      // With rolling discs, at the contact point: less the turn's ω r of each disc.
+      const double vt = -vx * c.ny + vy * c.nx - (rolling_ ? turn_slip(c) : 0.0);
       const double bound = c.friction * c.lambda_n;
-      const double lt = std::clamp(c.lambda_t - vt * c.mass, -bound, bound);
+      const double lt = std::clamp(c.lambda_t - vt * c.mass_t, -bound, bound);
       const double dt = lt - c.lambda_t;
       c.lambda_t = lt;
-      if (dt != 0.0) apply(c, -dt * c.ny, dt * c.nx, kdt);
+      if (dt != 0.0) {
+        apply(c, -dt * c.ny, dt * c.nx, kdt);
+        if (rolling_) turn(c, dt);
+      }
       out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
       out.largest = std::max(out.largest, c.lambda_n);
     }
@@ -309,6 +323,12 @@ void DiscContacts<Real>::finish(const Tick& tick) {
     const double since_start =
         e_begin_[k] - (tick.dissipated ? double(tick.dissipated[j]) - d_begin_[k] : 0.0);
     lost_[k] = ((changed_[k] & 2) ? since_start : e_start_[k]) - e_end + external_[k] * d.inv_mass;
+    if (rolling_ && d.inv_inertia > 0.0) {  // the turn's ½ (I/m) ω², against the same start
+      const double w_ref = (changed_[k] & 2) ? ew0_[k] : double(tick.spin[j]);  // not yet set
+      const auto w = static_cast<Real>(ew_[k]);
+      tick.spin[j] = w;
+      lost_[k] += 0.5 * d.inv_mass / d.inv_inertia * (w_ref * w_ref - double(w) * double(w));
+    }
   }
 }
 

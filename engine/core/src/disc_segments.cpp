@@ -28,9 +28,13 @@ void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t
     c.key = (std::uint64_t(k) << 32) | (base + i);
     c.a = k, c.b = base + i;
     c.nx = t.nx, c.ny = t.ny;
-    c.mass = 1.0 / d.inv_mass;
+    c.mass = c.mass_t = 1.0 / d.inv_mass;
     c.inv_a = d.inv_mass;
     c.friction = s.friction;
+    if (rolling_) {  // as a plane contact's (disc_rest.cpp)
+      c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
+      c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
+    }
     contacts_.push_back(c);
   }
 }

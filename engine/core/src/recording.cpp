@@ -64,7 +64,12 @@ void hash_body(Fnv1a& h, const BodyDef& b) {
     if (c.filter != CollisionFilter{}) {
       h.add(c.filter.category), h.add(c.filter.mask), h.add(c.filter.group);
     }
+    if (c.inertia) h.add(*c.inertia);  // rolling discs' given inertia: only when set
   });
+  // A rolling disc's start angle and spin: only when not 0 (older definitions keep their hash).
+  if (b.body.angle != 0.0 || b.body.angular_velocity != 0.0) {
+    h.add(b.body.angle), h.add(b.body.angular_velocity);
+  }
   if (b.type != BodyType::dynamic) h.add(b.type);
 }
 
@@ -97,6 +102,7 @@ std::uint64_t definition_hash(const WorldDef& def) {
         c.position_iterations != ContactSettings::default_position_iterations) {
       h.add(c.velocity_iterations), h.add(c.position_iterations);
     }
+    if (c.rolling) h.add(c.rolling);  // absent: the hash from before rolling discs
   }
   if (def.settings.seed != 0) h.add(def.settings.seed);  // 0: the hash from before seeds
   if (!def.segments.empty()) {  // absent: the hash of a world from before segments

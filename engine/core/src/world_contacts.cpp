@@ -34,6 +34,15 @@
 // v_t + a_t T loses min(|v_t + a_t T|, μ |a_n| T), and the body moves with the constant
 // acceleration that gives that end velocity. A body on a slope with μ >= tan θ stays put.
 //
+// Rolling discs (ContactSettings::rolling). Friction acts at the contact point instead: its
+// slip u = v·t - ω r (t = (-n_y, n_x), ω counter-clockwise) is what a friction change Δ of the
+// tangential velocity stops, turning the disc by -Δ s / r (s = m r² / I); so Δ = -u / (1 + s),
+// within μ (1 + e) |v_n| at an impact and μ |a_n| T over the rest T of the tick (of the
+// integrator's velocity at rest, which the next tick starts from). A disc released on a slope
+// then rolls at a_t / (1 + 1/s) while that bound allows (μ >= tan θ / (1 + s)) and slides at
+// a_t - μ |a_n| otherwise, exactly per tick; I ω + m r v_t stays as it was while only friction
+// acts (the spinning drop). The rotational energy ½ I ω² it changes is in the account.
+//
 // Energy. With track_dissipation, the kinetic energy each impact and each push-out removes,
 // and the work of friction while resting, are added to dissipated_energy(), so the balance
 // E + E_dissipated - E0 stays the integrator's error.
@@ -134,10 +143,26 @@ bool bounces(const Motion& m, double s, const PlaneDef& p, double dt) {
   return p.restitution * -vn > std::max(-dot(n, m.a), 0.0) * dt;
 }
 
+/// A rolling disc's turn (ContactSettings::rolling): angular velocity w (rad/s) and
+/// s = m r² / I (2 for a uniform disc), the ratio of the contact point's tangential velocity
+/// change through the spin to that through the centre under one friction impulse.
+struct Spin {
+  double w = 0, s = 0;
+};
+
+/// The friction change of tangential velocity (m/s, along t = (-n_y, n_x)) that stops a rolling
+/// disc's contact point from slipping, slip u = v·t - ω r: -u / (1 + s), within Coulomb's
+/// bound (m/s). The disc's ω changes by -Δ s / r.
+double stick(double slip, double s, double bound) {
+  return std::clamp(-slip / (1.0 + s), -bound, bound);
+}
+
 /// Resolves an impact of m with plane p (normal n) at m's current state; r = the radius, dt =
-/// the tick. Places the body on the plane; updates its velocity, its acceleration when it comes
-/// to rest, and the energy lost. Returns true for a bounce, false when the body comes to rest.
-bool impact(Motion& m, const PlaneDef& p, double r, double dt) {
+/// the tick; spin: the disc's turn in a world of rolling discs (null otherwise), whose friction
+/// then acts at the contact point. Places the body on the plane; updates its velocity, its
+/// acceleration when it comes to rest, and the energy lost. Returns true for a bounce, false when
+/// the body comes to rest.
+bool impact(Motion& m, const PlaneDef& p, double r, double dt, Spin* spin) {
   const V2 n{p.normal.x, p.normal.y};
   m.x = m.x + (p.offset + r - dot(n, m.x)) * n;  // exactly on the plane (in double)
   const double vn = std::min(dot(n, m.v), 0.0);
@@ -149,9 +174,22 @@ bool impact(Motion& m, const PlaneDef& p, double r, double dt) {
   // bounce; at rest of the integrator's own velocity (semi-implicit Euler's trajectory leads
   // it by a dt/2 into the plane, which no impulse stops).
   const double vn_stopped = rests ? std::min(dot(n, m.v - m.offset), 0.0) : vn;
-  const double speed = norm(vt);
-  const double cut = std::min(speed, p.friction * (1.0 + e) * -vn_stopped);
-  const V2 vt_after = speed > 0.0 ? ((speed - cut) / speed) * vt : vt;
+  V2 vt_after = vt;
+  if (spin) {
+    const V2 t{-n.y, n.x};
+    const double w0 = spin->w;
+    // The slip of the integrator's velocity at rest (it is what the next tick starts from),
+    // of the trajectory's at a bounce (as the friction without rolling).
+    const double vt_slip = dot(t, rests ? vt - m.offset : vt);
+    const double d = stick(vt_slip - w0 * r, spin->s, p.friction * (1.0 + e) * -vn_stopped);
+    vt_after = vt + d * t;
+    spin->w = w0 - d * spin->s / r;
+    m.lost += 0.5 * (r * r / spin->s) * (w0 * w0 - spin->w * spin->w);  // ½ (I/m) ω²
+  } else {
+    const double speed = norm(vt);
+    const double cut = std::min(speed, p.friction * (1.0 + e) * -vn_stopped);
+    vt_after = speed > 0.0 ? ((speed - cut) / speed) * vt : vt;
+  }
   const V2 v_after = vt_after + (-e * vn) * n;
   if (!rests) {
     m.lost += 0.5 * (dot(m.v, m.v) - dot(v_after, v_after));  // on the trajectory
@@ -172,9 +210,19 @@ bool impact(Motion& m, const PlaneDef& p, double r, double dt) {
   if (T <= 0.0) return false;
   const V2 at = m.a - an * n;
   const V2 free_end = m.v + T * at;
-  const double free_speed = norm(free_end);
-  const double slow = std::min(free_speed, p.friction * -an * T);
-  const V2 end = free_speed > 0.0 ? ((free_speed - slow) / free_speed) * free_end : free_end;
+  V2 end = free_end;
+  if (spin) {  // the contact point's slip at T stopped within μ|a_n| T: rolls or slides
+    const V2 t{-n.y, n.x};
+    const double w0 = spin->w;
+    const double d = stick(dot(t, free_end - m.offset) - w0 * r, spin->s, p.friction * -an * T);
+    end = free_end + d * t;
+    spin->w = w0 - d * spin->s / r;
+    m.lost += 0.5 * (r * r / spin->s) * (w0 * w0 - spin->w * spin->w);
+  } else {
+    const double free_speed = norm(free_end);
+    const double slow = std::min(free_speed, p.friction * -an * T);
+    end = free_speed > 0.0 ? ((free_speed - slow) / free_speed) * free_end : free_end;
+  }
   const V2 a_new = (1.0 / T) * (end - m.v);
   // Work of friction over T (its acceleration a_new - at is constant, v is linear in time).
   m.lost -= dot(a_new - at, 0.5 * T * (m.v + end));
@@ -277,6 +325,12 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     // without segments never take this path.
     const V2 a_free = m.a;
     bool held = false;
+    Spin turn;
+    Spin* spin = nullptr;
+    if (rolling_ && inv_inertia_[j] > 0.0) {
+      turn = Spin{double(spin_[j]), mass_[j] * r * r * inv_inertia_[j]};
+      spin = &turn;
+    }
     // A body that starts inside a plane is pushed out; its approaching velocity is dropped.
     for (const PlaneDef& p : planes_) touched = push_out(m, p, r, rel) || touched;
     PlaneDef local;  // a segment's contact as a plane (world_segments.cpp)
@@ -324,7 +378,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
         }
       }
       m.advance(first);
-      const bool bounce = impact(m, *hit, r, dt);
+      const bool bounce = impact(m, *hit, r, dt, spin);
       if (bounce && (held || hit == &local)) m.a = a_free, held = false;
       held = held || (!bounce && hit == &local);
       bounced = bounce || bounced;
@@ -337,12 +391,12 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
         const V2 n{p.normal.x, p.normal.y};
         if (dot(n, x1) - p.offset - r >= 0.0) continue;
         if (!touched) m = Motion{x1, v1 + offset, m.a, offset, dt, 0.0};
-        bounced = impact(m, p, r, dt) || bounced;
+        bounced = impact(m, p, r, dt, spin) || bounced;
         touched = true;
       }
       if (!segments_.empty() && segment_overlap(x1.x, x1.y, r, 0.0, local)) {
         if (!touched) m = Motion{x1, v1 + offset, m.a, offset, dt, 0.0};
-        bounced = impact(m, local, r, dt) || bounced;
+        bounced = impact(m, local, r, dt, spin) || bounced;
         touched = true;
       }
       if (!touched) continue;
@@ -355,6 +409,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     m.advance(dt - m.t);
     x_[j] = static_cast<Real>(m.x.x), y_[j] = static_cast<Real>(m.x.y);
     vx_[j] = static_cast<Real>(m.v.x - m.offset.x), vy_[j] = static_cast<Real>(m.v.y - m.offset.y);
+    if (spin) spin_[j] = static_cast<Real>(turn.w);
     if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(m.lost);
     // The runtime guard, as in the sweep: a push-out beyond the range is a fault too.
     for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {

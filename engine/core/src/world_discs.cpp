@@ -99,6 +99,7 @@ void detail::WorldKernel<Real>::rebuild_discs() {
     d.inv_mass = d.dynamic ? 1.0 / mass_[j] : 0.0;
     d.plane_slot = contact_.active ? plane_slot[j] : -1;
     d.sensor = c.sensor ? 1 : 0;
+    d.inv_inertia = rolling_ && d.dynamic && !c.sensor ? 1.0 / inertia_of(mass_[j], c) : 0.0;
     filters[k] = c.filter;
     filtered = filtered || c.sensor || c.filter != CollisionFilter{};
     disc_of[j] = static_cast<std::int64_t>(k);
@@ -127,6 +128,7 @@ void detail::WorldKernel<Real>::save_tick_start() {
   if (discs_ && discs_->active()) {
     discs_->save_start(x_.data(), y_.data(), vx_.data(), vy_.data(),
                        settings_.track_dissipation ? dissipated_body_.data() : nullptr);
+    if (rolling_) discs_->save_spin_start(spin_.data());
   }
 }
 
@@ -160,6 +162,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       kappa(settings_.integrator, settings_.substeps),
       settings_.threads == 1 || !detail::threads_supported ? 1 : 2};  // same states either way
   if (!segments_.empty()) t.segments = &segments_;
+  if (rolling_) t.spin = spin_.data();
   dc.resolve(t, contact_stats_, profile_);
   const auto discs = dc.discs();
   if (const auto* hit = dc.cap_hit(); hit && !fault_) {  // cold: a cap stopped the tick's work

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "fixstep/bits.hpp"
@@ -88,6 +89,7 @@ detail::WorldKernel<Real>::WorldKernel(const WorldSettings& settings) : settings
           fmt::format("world: contacts.position_iterations must be in [0, {}] (got {})", most,
                       c->position_iterations));
     }
+    rolling_ = c->rolling;
   }
 }
 
@@ -151,6 +153,8 @@ void detail::WorldKernel<Real>::validate(const Body& b, const std::string& who) 
   check_value<Real>(b.mass, b.mass > 0.0, who, "mass", "finite and > 0 kg");
   check_vec<Real>(b.position, who, "position");
   check_vec<Real>(b.velocity, who, "velocity");
+  check_value<Real>(b.angle, true, who, "angle", "finite (rad)");
+  check_value<Real>(b.angular_velocity, true, who, "angular_velocity", "finite (rad/s)");
 }
 
 template <class Real>
@@ -189,6 +193,10 @@ template <class Real>
 void detail::WorldKernel<Real>::validate_component(const Collider& c, const std::string& who) {
   check_value<Real>(c.radius, c.radius > 0.0 && c.radius <= max_state_magnitude, who,
                     "collider.radius", "finite, > 0 and <= 1e12 m");
+  if (c.inertia) {
+    check_value<Real>(*c.inertia, *c.inertia > 0.0, who, "collider.inertia",
+                      "finite and > 0 kg*m^2");
+  }
 }
 
 template <class Real>
@@ -225,6 +233,11 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   user_data_.push_back(def.user_data);
   index_name(e, def.name);
   dissipated_body_.push_back(Real(0));
+  if (rolling_) {
+    angle_.push_back(static_cast<Real>(std::remainder(def.body.angle, 2.0 * std::numbers::pi)));
+    spin_.push_back(static_cast<Real>(def.body.angular_velocity));
+    inv_inertia_.push_back(0.0);
+  }
 
   if (def.spring) set(e, *def.spring);
   if (def.constant_force) set(e, *def.constant_force);
@@ -254,6 +267,7 @@ void detail::WorldKernel<Real>::destroy(Entity e) {
   dissipated_gone_ += mass_[i] * double(dissipated_body_[i]);  // stays in the account
   swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, types_, names_, user_data_,
            dissipated_body_);
+  if (rolling_) swap_pop(i, angle_, spin_, inv_inertia_);
   ++generations_[e.slot()];
   free_slots_.push_back(e.slot());
   terms_dirty_ = true;
@@ -357,7 +371,9 @@ double detail::WorldKernel<Real>::dissipated_energy() const {
 template <class Real>
 Body detail::WorldKernel<Real>::body(Entity e) const {
   const std::size_t i = index_of(e);
-  return Body{mass_[i], {double(x_[i]), double(y_[i])}, {double(vx_[i]), double(vy_[i])}};
+  Body b{mass_[i], {double(x_[i]), double(y_[i])}, {double(vx_[i]), double(vy_[i])}};
+  if (rolling_) b.angle = double(angle_[i]), b.angular_velocity = double(spin_[i]);
+  return b;
 }
 
 template <class Real>
@@ -370,6 +386,10 @@ void detail::WorldKernel<Real>::set_body(Entity e, const Body& b) {
   y_[i] = prev_y_[i] = static_cast<Real>(b.position.y);
   vx_[i] = static_cast<Real>(b.velocity.x);
   vy_[i] = static_cast<Real>(b.velocity.y);
+  if (rolling_) {
+    angle_[i] = static_cast<Real>(std::remainder(b.angle, 2.0 * std::numbers::pi));
+    spin_[i] = static_cast<Real>(b.angular_velocity);
+  }
   terms_dirty_ = true;  // 1/m enters the per-body coefficients
 }
 
@@ -470,6 +490,7 @@ void detail::WorldKernel<Real>::rebuild_terms() {
   for (std::size_t j = 0; j < n; ++j) c.accel = c.accel || c.accel_x[j] != 0 || c.accel_y[j] != 0;
   flows_.clear();
   rebuild_network();
+  if (rolling_) rebuild_inertia();
   rebuild_contacts();
   rebuild_discs();
   terms_dirty_ = false;
@@ -497,6 +518,14 @@ void detail::WorldKernel<Real>::for_each_energy(Add&& add) const {
     if (!dynamic(j)) continue;
     const double vx = vx_[j], vy = vy_[j];
     add(j, &EnergyReport::kinetic, 0.5 * mass_[j] * (vx * vx + vy * vy));
+  }
+  if (rolling_) {  // rotational ½ I ω² of rolling discs
+    for (std::size_t i = 0; i < colliders_.data.size(); ++i) {
+      const std::size_t j = bodies_.index(colliders_.set.dense[i]);
+      if (!dynamic(j)) continue;
+      const double w = spin_[j];
+      add(j, &EnergyReport::kinetic, 0.5 * inertia_of(mass_[j], colliders_.data[i]) * w * w);
+    }
   }
   for (std::size_t i = 0; i < springs_.data.size(); ++i) {
     const SpringDamper& s = springs_.data[i];
@@ -567,6 +596,8 @@ std::uint64_t detail::WorldKernel<Real>::state_hash() const {
     mix(vx_[j]);
     mix(vy_[j]);
   }
+  // Rolling discs (only in worlds that ask: every other world hashes as before).
+  for (std::size_t j = 0; j < angle_.size(); ++j) mix(angle_[j]), mix(spin_[j]);
   return h;
 }
 

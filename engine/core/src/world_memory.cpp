@@ -39,7 +39,8 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
   std::size_t n = sum(generations_, free_slots_, link_generations_, link_free_slots_, bodies_, x_,
                       y_, vx_, vy_, prev_x_, prev_y_, mass_, types_, names_, user_data_);
   n += sum(springs_, constant_forces_, gravities_, drags_, appearances_, colliders_, links_,
-           link_defs_, dissipated_body_, dissipated_link_, planes_, segment_found_);
+           link_defs_, dissipated_body_, dissipated_link_, planes_, segment_found_, angle_, spin_,
+           inv_inertia_);
   n += segments_.bytes();
   n += sum(coeff_.stiffness, coeff_.anchor_x, coeff_.anchor_y, coeff_.rest, coeff_.gamma,
            coeff_.accel_x, coeff_.accel_y, flows_);

@@ -247,6 +247,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
       sensor_begun_.clear(), sensed_.clear();
     }
   }
+  if (rolling_) integrate_angles();
   if (contacts) contact_stats_.capped = (discs ? contact_stats_.capped : 0) + plane_capped;
   // Every flush_denormals_every ticks: a separate pass over the four state arrays costs as much
   // memory traffic as a tick of the fused sweep, so it runs once in 64 ticks (a state that

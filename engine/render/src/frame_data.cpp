@@ -17,6 +17,8 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
   out.visible.resize(n);
   out.trail_time.resize(n);
   out.springs.clear();
+  const auto& contacts = world.settings().contacts;
+  out.angle.resize(contacts && contacts->rolling ? n : 0);
   for (std::size_t j = 0; j < n; ++j) {
     const Entity e = bodies[j];
     if (const std::optional<Appearance> a = world.get<Appearance>(e)) {
@@ -29,6 +31,11 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
       out.color[j] = Rgba8{0, 0, 0, 0};
       out.visible[j] = 1;
       out.trail_time[j] = static_cast<float>(default_trail_time);
+    }
+    if (!out.angle.empty()) {  // θ at the frame's moment: the tick's θ less (1 - α) ω dt
+      const Body b = world.body(e);
+      const double back = (1.0 - alpha) * b.angular_velocity * world.settings().dt;
+      out.angle[j] = static_cast<float>(b.angle - back);
     }
     if (const std::optional<SpringDamper> s = world.get<SpringDamper>(e)) {
       out.springs.push_back({static_cast<float>(s->anchor.x), static_cast<float>(s->anchor.y),

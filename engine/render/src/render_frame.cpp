@@ -256,6 +256,22 @@ void Renderer::draw_scene(const RenderFrame& s) {
     disc(float(p[0]), float(p[1]), radius_px(j), scene_palette::body_color(s, j),
          scene_palette::outline_px, scene_palette::outline);
   }
+  if (s.angle.size() == n) draw_spin_marks(s);
+}
+
+void Renderer::draw_spin_marks(const RenderFrame& s) {
+  // Rolling discs: a line from the centre to the rim at the disc's angle, so that the spin
+  // shows (after every disc: one batch of lines, not a change of program per disc).
+  const double scale = width_ / camera_.width;
+  for (std::size_t j = 0; j < s.x.size(); ++j) {
+    if (!scene_palette::body_visible(s, j)) continue;
+    const float r = scene_palette::body_radius_px(s, j, scale);
+    if (r < 3.0f) continue;  // too small for a mark to show
+    const auto p = to_pixel(s.x[j], s.y[j]);
+    const float cx = float(p[0]), cy = float(p[1]);
+    const float ex = cx + r * std::cos(s.angle[j]), ey = cy - r * std::sin(s.angle[j]);  // y down
+    line(cx, cy, ex, ey, std::max(1.5f, 0.12f * r), scene_palette::outline);
+  }
 }
 
 }  // namespace fixstep

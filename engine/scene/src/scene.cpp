@@ -71,10 +71,12 @@ Rgba8 parse_color(const Reader& r, const toml::table& t, std::string_view key,
 namespace {
 
 BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Precision precision) {
-  r.check_keys(t, path, {"name",    "type",     "mass",       "position", "velocity",    "spring",
-                         "force",   "gravity",  "drag",       "radius",   "draw_radius", "color",
-                         "visible", "trail",    "trail_time", "collide",  "restitution", "friction",
-                         "sensor",  "category", "mask",       "group"});
+  r.check_keys(t, path,
+               {"name",    "type",     "mass",       "position", "velocity",    "spring",
+                "force",   "gravity",  "drag",       "radius",   "draw_radius", "color",
+                "visible", "trail",    "trail_time", "collide",  "restitution", "friction",
+                "sensor",  "category", "mask",       "group",    "angle",       "angular_velocity",
+                "inertia"});
   BodyDef def;
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
@@ -153,6 +155,7 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
     def.appearance = ap;
   }
   parse_disc_keys(r, t, path, def);
+  parse_rolling_keys(r, t, path, def);
 }
 
 }  // namespace scene_detail

@@ -168,10 +168,12 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
   const toml::table* t = r.table(doc, "contacts", "contacts");
   if (!t) {
     warn_unused_disc_keys(r, doc);
+    warn_unused_rolling_keys(r, doc);
     return;
   }
-  r.check_keys(*t, "contacts",
-               {"restitution", "friction", "velocity_iterations", "position_iterations"});
+  r.check_keys(
+      *t, "contacts",
+      {"restitution", "friction", "velocity_iterations", "position_iterations", "rolling"});
   ContactSettings contacts;
   contacts.restitution = restitution(r, *t, "contacts").value_or(0.0);
   contacts.friction = friction(r, *t, "contacts").value_or(0.0);
@@ -184,6 +186,8 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
     contacts.position_iterations =
         static_cast<int>(r.integer_node(*n, "contacts.position_iterations", 0, most));
   }
+  if (auto v = r.boolean(*t, "rolling", "contacts.rolling")) contacts.rolling = *v;
+  if (!contacts.rolling) warn_unused_rolling_keys(r, doc);
   scene.settings.contacts = contacts;
   const bool discs = std::any_of(scene.bodies.begin(), scene.bodies.end(),
                                  [](const BodyDef& b) { return b.collider.has_value(); });

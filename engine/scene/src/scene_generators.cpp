@@ -74,10 +74,12 @@ class Generator {
       r_.fail_missing(t_, path_, {"body"}, "missing (required)",
                       "the bodies' template, e.g. body = { mass = 0.1 }");
     }
-    r_.check_keys(*b, key("body"),
-                  {"type", "mass", "velocity", "force", "gravity", "drag", "radius", "draw_radius",
-                   "color", "visible", "trail", "trail_time", "collide", "restitution", "friction",
-                   "sensor", "category", "mask", "group"});
+    r_.check_keys(
+        *b, key("body"),
+        {"type",        "mass",   "velocity", "force", "gravity",    "drag",    "radius",
+         "draw_radius", "color",  "visible",  "trail", "trail_time", "collide", "restitution",
+         "friction",    "sensor", "category", "mask",  "group",      "angle",   "angular_velocity",
+         "inertia"});
     BodyDef def;
     parse_body_parts(r_, *b, key("body"), def);
     drop_moving_parts(r_, *b, key("body"), def);

@@ -352,6 +352,13 @@ void parse_body_mass(Reader& r, const toml::table& t, const std::string& path, B
 /// collide (boolean), restitution (in [0, 1]) and friction (>= 0) of t into def.collider;
 /// each is an error without a radius (def.collider unset).
 void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// angle (rad), angular_velocity (rad/s) and inertia (> 0 kg*m^2, an error without a radius) of
+/// t into def, for rolling discs (scene_rolling.cpp).
+void parse_rolling_keys(const Reader& r, const toml::table& t, const std::string& path,
+                        BodyDef& def);
+/// Warns at each body's (and generator template's) angle, angular_velocity and inertia: they act
+/// only with `[contacts] rolling = true`.
+void warn_unused_rolling_keys(Reader& r, const toml::table& doc);
 /// For a static or kinematic def: drops spring, gravity, force and drag with a warning at
 /// their keys in t (they would move it), and a static body's non-zero velocity.
 void drop_moving_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);

@@ -183,6 +183,7 @@ void write_world(std::string& out, const WorldDef& def) {
     if (c.position_iterations != ContactSettings::default_position_iterations) {
       fmt::format_to(it, "position_iterations = {}\n", c.position_iterations);
     }
+    if (c.rolling) out += "rolling = true\n";
   }
 }
 
@@ -207,6 +208,7 @@ void write_looks(std::string& out, const BodyDef& b) {
     if (f.category != none.category) fmt::format_to(it, "category = {}\n", bits_text(f.category));
     if (f.mask != none.mask) fmt::format_to(it, "mask = {}\n", bits_text(f.mask));
     if (f.group != none.group) fmt::format_to(it, "group = {}\n", f.group);
+    if (c->inertia) fmt::format_to(it, "inertia = {}\n", num(*c->inertia));
   }
   if (const std::optional<Appearance>& a = b.appearance) {
     const double drawn = b.collider ? b.collider->radius : Appearance{}.radius;
@@ -228,6 +230,10 @@ void write_body(std::string& out, const BodyDef& b, const std::string& name) {
   fmt::format_to(it, "position = {}\n", vec(b.body.position));
   if (!same_bits(b.body.velocity, Vec2{})) {
     fmt::format_to(it, "velocity = {}\n", vec(b.body.velocity));
+  }
+  if (b.body.angle != 0.0) fmt::format_to(it, "angle = {}\n", num(b.body.angle));
+  if (b.body.angular_velocity != 0.0) {
+    fmt::format_to(it, "angular_velocity = {}\n", num(b.body.angular_velocity));
   }
   if (const std::optional<SpringDamper>& s = b.spring) {
     fmt::format_to(it,

@@ -30,6 +30,12 @@ struct Body {
   double mass = 1.0;  ///< kg, finite and > 0
   Vec2 position{};    ///< m
   Vec2 velocity{};    ///< m/s
+  /// Orientation θ, rad, finite: read and stepped only in a world with rolling discs
+  /// (ContactSettings::rolling), kept in [-π, π]; ignored elsewhere.
+  double angle = 0.0;
+  /// Angular velocity ω, rad/s, finite (counter-clockwise positive): as angle, only with
+  /// rolling discs.
+  double angular_velocity = 0.0;
 };
 
 /// A spring-damper from the body to a fixed anchor point.
@@ -127,6 +133,9 @@ struct Collider {
   bool sensor = false;
   /// Which discs this one may touch and sense (CollisionFilter).
   CollisionFilter filter{};
+  /// Moment of inertia about the centre, kg·m², finite and > 0, used only with rolling discs
+  /// (ContactSettings::rolling); unset: a uniform disc's ½ m r².
+  std::optional<double> inertia = std::nullopt;
 };
 
 /// Body-vs-body contacts of discs (Collider), on when WorldSettings::contacts is set. Bodies
@@ -146,6 +155,13 @@ struct ContactSettings {
   int velocity_iterations = default_velocity_iterations;
   /// Position iterations a tick (push-out of overlap beyond the slop), in [0, max_iterations].
   int position_iterations = default_position_iterations;
+  /// Rolling discs: every dynamic body keeps an angle and an angular velocity (Body::angle,
+  /// Body::angular_velocity), friction acts at the contact point (the relative tangential
+  /// velocity there includes ω r of each disc) and its impulse P turns each disc by r × P / I
+  /// (I: Collider::inertia, else ½ m r²), with plane contacts, disc impacts and resting
+  /// contacts alike. Off (the default): no angle is stored or stepped, friction acts on the
+  /// centres' velocities, and nothing is paid for it.
+  bool rolling = false;
   static constexpr int default_velocity_iterations = 20, default_position_iterations = 10;
   static constexpr int max_iterations = 1000;
 };

@@ -29,6 +29,10 @@ struct RenderFrame {
   /// Seconds of trail behind each body (Appearance::trail_time; 0 = Appearance::trail off).
   /// Empty: default_trail_time for every body.
   std::vector<float> trail_time;
+  /// Each body's angle θ (rad, counter-clockwise from +x, interpolated like x / y) in a world of
+  /// rolling discs (ContactSettings::rolling), drawn as a line from the disc's centre to its
+  /// rim. Empty: no angles (no line).
+  std::vector<float> angle;
   std::vector<SpringLine> springs;
   /// Links (springs between bodies): link i joins entries link_a[i] and link_b[i] of x / y.
   std::vector<std::uint32_t> link_a, link_b;

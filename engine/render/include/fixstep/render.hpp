@@ -235,6 +235,9 @@ class Renderer {
   [[nodiscard]] static float text_height(float scale) { return 9.0f * scale; }
 
  private:
+  /// Rolling discs' marks: a line from each visible disc's centre to its rim at its angle
+  /// (RenderFrame::angle), over the discs.
+  void draw_spin_marks(const RenderFrame& frame);
   // A vertex of either program (gl_shaders.hpp): position px, shape coordinates (a point's size
   // px and scale for outlined discs), colour, and an outlined disc's fill radius or a circle's
   // hole radius in shape coordinates (no_hole elsewhere).

@@ -290,6 +290,10 @@ class WorldKernel {
   [[nodiscard]] std::span<const Real> previous_x() const { return prev_x_; }
   [[nodiscard]] std::span<const Real> previous_y() const { return prev_y_; }
   [[nodiscard]] std::span<const Entity> entities() const { return bodies_.dense; }
+  /// Angles θ (rad, in [-π, π]) and angular velocities ω (rad/s) of rolling discs; empty in
+  /// a world without ContactSettings::rolling.
+  [[nodiscard]] std::span<const Real> angle() const { return angle_; }
+  [[nodiscard]] std::span<const Real> angular_velocity() const { return spin_; }
   [[nodiscard]] const std::string& name(std::size_t index) const { return names_[index]; }
 
   // --- measurements -----------------------------------------------------------------------
@@ -338,8 +342,9 @@ class WorldKernel {
   [[nodiscard]] std::span<const SensorEvent> sensors_ended() const { return sensor_ended_; }
   /// Every disc overlapping a sensor after the last tick, by (sensor, visitor) slot order.
   [[nodiscard]] std::span<const SensorEvent> sensor_overlaps() const { return sensed_; }
-  /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order:
-  /// equal hashes mean bit-identical states.
+  /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order, then,
+  /// with rolling discs (ContactSettings::rolling) only, every body's θ and ω: equal hashes
+  /// mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
   /// Bytes of heap memory a copy of this world (a WorldSnapshot) holds: every array's elements
   /// and the body names' characters (not the worker threads or the implicit solver's cache,
@@ -532,6 +537,20 @@ class WorldKernel {
   // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.
   ClonePtr<DiscContacts<Real>> discs_;
   void rebuild_discs();
+  // Rolling discs (world_rolling.cpp; ContactSettings::rolling): θ (rad) and ω (rad/s) per
+  // body in dense order, and 1/I (1/(kg·m²); 0 for a body that does not turn: no collider,
+  // static or kinematic). All three are empty in a world without rolling.
+  std::vector<Real> angle_, spin_;
+  std::vector<double> inv_inertia_;
+  bool rolling_ = false;
+  /// A disc's moment of inertia about its centre, kg·m²: Collider::inertia, else ½ m r².
+  static double inertia_of(double mass, const Collider& c) {
+    return c.inertia ? *c.inertia : 0.5 * mass * c.radius * c.radius;
+  }
+  /// inv_inertia_ from the colliders (after a structural change).
+  void rebuild_inertia();
+  /// θ += ω dt for every body, wrapped into (-π, π] (semi-implicit: the tick's end ω).
+  void integrate_angles();
   void save_tick_start();
   void restore_immovable();
   void resolve_discs();
