@@ -81,6 +81,50 @@ TEST(Segments, InteriorIsThePlaneOfItsLine) {
   }
 }
 
+// The same with disc contacts on, for two touching discs that slide down it together: the
+// resting solver holds them on the segment (disc_segments.cpp) with Coulomb friction, exactly
+// as on the plane; with rolling discs too (the friction's torque). Same states to 1e-12 m,
+// m/s, rad/s; and friction acted (on a frictionless plane they end elsewhere).
+// Deliberate bug tried: a segment's resting contact without its tangential mass (no friction
+// in the resting solver) is NOT caught: the plane pass's friction has already stopped the
+// slip at the contact by then, here as on the plane.
+TEST(Segments, InteriorIsThePlaneOfItsLineInTheRestingSolver) {
+  for (const bool rolling : {false, true}) {
+    const double s = std::sin(0.3), c = std::cos(0.3), rr = 0.25;
+    WorldSettings ws = settings();
+    ws.contacts = ContactSettings{.restitution = 0.0, .friction = 0.3, .rolling = rolling};
+    auto level = [&](World& w, bool segment, double friction) {
+      if (segment) {
+        w.add_segment(SegmentDef{.a = {-20.0 * c, -20.0 * s},
+                                 .b = {20.0 * c, 20.0 * s},
+                                 .restitution = 0.0,
+                                 .friction = friction});
+      } else {
+        w.add_plane(
+            PlaneDef{.normal = {-s, c}, .offset = 0.0, .restitution = 0.0, .friction = friction});
+      }
+      for (const double u : {1.0, 1.0 + 2.0 * rr}) {  // touching, on the slope
+        w.create_body(ball({u * c - rr * s, u * s + rr * c}, {}, true, rr));
+      }
+    };
+    World a(Precision::f64, ws), p(Precision::f64, ws), f(Precision::f64, ws);
+    level(a, true, 0.3), level(p, false, 0.3), level(f, false, 0.0);
+    for (int i = 0; i < 120; ++i) {
+      a.step(), p.step(), f.step();
+      for (std::size_t k = 0; k < 2; ++k) {
+        const Body x = a.body(a.bodies()[k]), y = p.body(p.bodies()[k]);
+        ASSERT_NEAR(x.position.x, y.position.x, 1e-12) << i << " " << k << " " << rolling;
+        ASSERT_NEAR(x.position.y, y.position.y, 1e-12) << i << " " << k << " " << rolling;
+        ASSERT_NEAR(x.velocity.x, y.velocity.x, 1e-12) << i << " " << k << " " << rolling;
+        ASSERT_NEAR(x.velocity.y, y.velocity.y, 1e-12) << i << " " << k << " " << rolling;
+        ASSERT_NEAR(x.angular_velocity, y.angular_velocity, 1e-12) << i << " " << k;
+      }
+    }
+    EXPECT_GT(std::abs(a.body(a.bodies()[0]).position.x - f.body(f.bodies()[0]).position.x), 0.1)
+        << rolling;
+  }
+}
+
 // A disc falling (no gravity, 1 m/s down) at x = -0.3 beside a segment starting at the origin
 // meets its end point (a disc of radius 0) when |centre| = r, at (-0.3, 0.4): the normal is
 // (-0.6, 0.8) and e = 1 reflects (0, -1) into (-0.96, 0.28); the contact is at t = 1.6 s, and
