@@ -37,8 +37,7 @@ std::optional<double> friction(const Reader& r, const toml::table& t, const std:
 /// [[body]] or a generator's body template, which act only between discs and so do nothing,
 /// and an error at a sensor = true (a sensor that could never report).
 void warn_unused_disc_keys(Reader& r, const toml::table& doc) {
-  auto check = [&](const toml::node* node, const std::string& path) {
-    const toml::table* t = node ? node->as_table() : nullptr;
+  auto check = [&](const toml::table* t, const std::string& path) {
     if (!t) return;
     if (const toml::node* n = t->get("sensor"); n && n->value_or(false)) {
       r.fail(n->source(), path + ".sensor",
@@ -57,17 +56,7 @@ void warn_unused_disc_keys(Reader& r, const toml::table& doc) {
       }
     }
   };
-  auto each = [&](std::string_view list, auto&& visit) {
-    const toml::array* a = doc.get(list) ? doc.get(list)->as_array() : nullptr;
-    for (std::size_t i = 0; a && i < a->size(); ++i) visit(a->get(i), i);
-  };
-  each("body", [&](const toml::node* t, std::size_t i) { check(t, fmt::format("body[{}]", i)); });
-  for (const std::string_view generator : {"chain", "grid"}) {
-    each(generator, [&](const toml::node* t, std::size_t i) {
-      const toml::table* table = t->as_table();
-      check(table ? table->get("body") : nullptr, fmt::format("{}[{}].body", generator, i));
-    });
-  }
+  for_each_body_table(doc, check);
 }
 
 }  // namespace

@@ -342,6 +342,27 @@ inline bool same_point(Vec2 a, Vec2 b, Precision p) {
 /// friction) of t into def.
 void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
 
+/// Calls visit(table, path) for every body table of the document: each [[body]] ("body[i]")
+/// and each generator's body template ("chain[i].body", "grid[i].body"); table is null where an
+/// entry is not a table.
+template <class Visit>
+void for_each_body_table(const toml::table& doc, Visit&& visit) {
+  auto each = [&](std::string_view list, auto&& f) {
+    const toml::array* a = doc.get(list) ? doc.get(list)->as_array() : nullptr;
+    for (std::size_t i = 0; a && i < a->size(); ++i) f(a->get(i), i);
+  };
+  each("body", [&](const toml::node* t, std::size_t i) {
+    visit(t ? t->as_table() : nullptr, fmt::format("body[{}]", i));
+  });
+  for (const std::string_view generator : {"chain", "grid"}) {
+    each(generator, [&](const toml::node* t, std::size_t i) {
+      const toml::table* table = t ? t->as_table() : nullptr;
+      const toml::node* body = table ? table->get("body") : nullptr;
+      visit(body ? body->as_table() : nullptr, fmt::format("{}[{}].body", generator, i));
+    });
+  }
+}
+
 // --- bodies that touch (scene_contacts.cpp) ---
 /// t.type ("dynamic", the default, "static" or "kinematic"); an unknown name is an error with
 /// the closest valid one.

@@ -33,8 +33,7 @@ void parse_rolling_keys(const Reader& r, const toml::table& t, const std::string
 }
 
 void warn_unused_rolling_keys(Reader& r, const toml::table& doc) {
-  auto check = [&](const toml::node* node, const std::string& path) {
-    const toml::table* t = node ? node->as_table() : nullptr;
+  auto check = [&](const toml::table* t, const std::string& path) {
     if (!t) return;
     for (const std::string_view k : rolling_keys) {
       if (const toml::node* n = t->get(k)) {
@@ -44,17 +43,7 @@ void warn_unused_rolling_keys(Reader& r, const toml::table& doc) {
       }
     }
   };
-  auto each = [&](std::string_view list, auto&& visit) {
-    const toml::array* a = doc.get(list) ? doc.get(list)->as_array() : nullptr;
-    for (std::size_t i = 0; a && i < a->size(); ++i) visit(a->get(i), i);
-  };
-  each("body", [&](const toml::node* t, std::size_t i) { check(t, fmt::format("body[{}]", i)); });
-  for (const std::string_view generator : {"chain", "grid"}) {
-    each(generator, [&](const toml::node* t, std::size_t i) {
-      const toml::table* table = t->as_table();
-      check(table ? table->get("body") : nullptr, fmt::format("{}[{}].body", generator, i));
-    });
-  }
+  for_each_body_table(doc, check);
 }
 
 }  // namespace fixstep::scene_detail
