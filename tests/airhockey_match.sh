@@ -20,15 +20,7 @@ src=$3
 cd "$work" || exit 1
 
 # wait_port FILE: the port a host printed ("hosting on 127.0.0.1:PORT"), waiting up to 10 s.
-wait_port() {
-  local i p
-  for i in $(seq 200); do
-    p=$(grep -Eo 'hosting on [0-9.]+:[0-9]+' "$1" 2>/dev/null | grep -Eo '[0-9]+$')
-    [ -n "$p" ] && { echo "$p"; return 0; }
-    sleep 0.05
-  done
-  return 1
-}
+wait_port() { wait_for "$1" 'hosting on [0-9.]+:[0-9]+' | grep -Eo '[0-9]+$'; }
 
 # match KIND DELAY: a bot match of KIND through the relay; checks (a).
 match() {

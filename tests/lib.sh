@@ -12,6 +12,8 @@
 #   have_xvfb             whether Xvfb is installed (bash .ci/install-deps installs it);
 #   with_xvfb CMD...      CMD with DISPLAY set to a virtual X server (Xvfb, 1024x768x24) started on
 #                         the first call and kept for the script; returns CMD's exit status;
+#   wait_for FILE RE      the first match of the extended regular expression RE in FILE,
+#                         waiting up to 10 s for it (status 1 if none came);
 #   finish                prints "P passed, F failed" and exits non-zero if a check failed.
 #
 # with_xvfb starts Xvfb itself rather than through xvfb-run: xvfb-run's exit trap removes its
@@ -89,4 +91,14 @@ finish() {
   echo "$passes passed, $failures failed"
   [ "$failures" -eq 0 ]
   exit
+}
+
+wait_for() {
+  local i v
+  for i in $(seq 200); do
+    v=$(grep -Eo "$2" "$1" 2>/dev/null | head -1)
+    [ -n "$v" ] && { echo "$v"; return 0; }
+    sleep 0.05
+  done
+  return 1
 }

@@ -17,17 +17,6 @@ src=$3
 cd "$work" || exit 1
 ticks=300
 
-# wait_for FILE RE: the first match of RE in FILE, waiting up to 10 s.
-wait_for() {
-  local i v
-  for i in $(seq 200); do
-    v=$(grep -Eo "$2" "$1" 2>/dev/null | head -1)
-    [ -n "$v" ] && { echo "$v"; return 0; }
-    sleep 0.05
-  done
-  return 1
-}
-
 # match KIND: the match of eight and two spectators; checks all of the above.
 match() {
   local kind=$1 hp rp pids=() names=() i status failed=0
