@@ -155,8 +155,9 @@ struct MatchStats {
   [[nodiscard]] std::uint64_t dropped_total() const;
 };
 
-/// One peer of a lockstep match: the host or a joiner (player or spectator). Single-threaded:
-/// call poll() and advance() often (every frame, or every millisecond in a test).
+/// One peer of a match, lockstep or rollback (MatchSettings::max_rollback): the host or a joiner
+/// (player or spectator). Single-threaded: call poll() and advance() often (every frame, or
+/// every millisecond in a test).
 class MatchPeer {
  public:
   /// Hosts a match of `def` as player 0, listening on `bind` (127.0.0.1 and a port; port 0
