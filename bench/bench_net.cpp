@@ -1,10 +1,12 @@
-// fixstep::net's costs (docs/NETWORK.md, docs/PERFORMANCE.md "Networking"), in three tables:
+// fixstep::net's costs (docs/NETWORK.md, docs/PERFORMANCE.md "Networking"), in four tables:
 //  1. bandwidth per player at 60 ticks/s: a two-player lockstep match on billiards.toml paced
 //     at 60 frames/s through the link conditioner (round trip 0, 50, 150 ms; the input delay
 //     above the round trip, so it never stalls), for each send interval and play (bench/
 //     net_runs.hpp: idle, typical, busy): the joiner's bytes on the wire (UDP payloads with
 //     ENet's headers, acknowledgements and pings, plus 28 bytes of IPv4 and UDP headers per
 //     datagram; ENet's host counters) from tick 60 to the end, over the wall time they took;
+//  1b. the same with 8 players (lockstep, the default send interval, round trip 0 and 50 ms):
+//     the first joiner's upload (its own input, to the host) and download (the others');
 //  2. lockstep stalls and rollback re-simulation against one-way latency (0, 50, 150, 500 ms,
 //     2 s) and loss (0, 5, 25 %): matches paced at 200 ticks/s with the latency scaled by
 //     60/200, so a round trip is as many ticks as at 60 ticks/s (ENet's own timers and the
@@ -14,10 +16,11 @@
 //     (assets/scenes/ball_pit.toml, 1000 discs, settled 400 ticks) and the shipped games'
 //     levels (airhockey, slingshot, peggle), median of repeats, less the frame's own two ticks (the
 //     confirmed world's and the shown world's).
-// Tables 1 and 2 run all their matches side by side from one thread. Byte counts do not depend
+// Tables 1, 1b and 2 run all their matches side by side from one thread. Byte counts do not depend
 // on the machine; the times do: time on an idle machine.
 //
-//   build/bench/bin/bench_net [--quick] [--only bandwidth|latency|rollback] [--report FILE]
+//   build/bench/bin/bench_net [--quick] [--only bandwidth|players|latency|rollback]
+//                             [--report FILE]
 //     (--quick: shorter matches, about a minute; --only: one table)
 #include <fmt/format.h>
 
@@ -111,6 +114,50 @@ void bandwidth(bool quick) {
         r.datagrams / s, r.datagrams ? double(r.wire_sent) / r.datagrams : 0.0,
         r.ticks ? double(r.payload_sent) / r.ticks : 0.0, r.ticks / s,
         r.finished && r.same_recording ? "yes" : "NO: " + r.error);
+  }
+}
+
+void eight_players(bool quick) {
+  const std::uint64_t ticks = quick ? 240 : 900;
+  const std::vector<double> rtts = {0.0, 50.0};
+  const std::vector<Play> plays = {Play::idle, Play::typical, Play::busy};
+  const std::uint32_t interval = net::MatchSettings{}.send_interval_ms;
+  std::vector<NetCase> cases;
+  for (double rtt : rtts) {
+    for (Play play : plays) {
+      NetCase c = base_case(ticks);
+      c.settings.players = 8;
+      c.settings.input_delay =
+          static_cast<std::uint16_t>(3 + (rtt + 2.0 * interval) / (1000.0 / 60.0));
+      c.link.latency_ms = rtt / 2.0;
+      c.link.seed = 7;
+      c.play = play;
+      cases.push_back(c);
+    }
+  }
+  const std::vector<NetResult> results = bench::run_cases(cases, quick ? 30000 : 60000);
+  emit(
+      "\n### Bandwidth per player with 8 players at 60 ticks/s (lockstep, default send "
+      "interval)\n\n");
+  emit(
+      "send interval {} ms; every player plays the same way. A joiner sends only its own input, "
+      "to the host (a star); it receives the other seven players' from the host. kbit/s: the "
+      "first joiner's, on the wire, as above.\n\n",
+      interval);
+  emit(
+      "| RTT | play | input delay | kbit/s sent | kbit/s received | datagrams/s | fixstep "
+      "bytes/tick "
+      "sent | ticks/s | ok |\n");
+  emit("|---|---|---|---|---|---|---|---|---|\n");
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const NetCase& c = cases[i];
+    const NetResult& r = results[i];
+    const double s = std::max(r.seconds, 1e-9);
+    emit("| {:.0f} ms | {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} |\n",
+         2.0 * c.link.latency_ms, bench::play_name(c.play), c.settings.input_delay,
+         8.0 * r.wire_sent / s / 1000.0, 8.0 * r.wire_received / s / 1000.0, r.datagrams / s,
+         r.ticks ? double(r.payload_sent) / r.ticks : 0.0, r.ticks / s,
+         r.finished && r.same_recording ? "yes" : "NO: " + r.error);
   }
 }
 
@@ -230,19 +277,21 @@ int main(int argc, char** argv) {
       report = argv[++i];
     } else if (a == "--only" && i + 1 < argc &&
                (std::string_view(argv[i + 1]) == "bandwidth" ||
+                std::string_view(argv[i + 1]) == "players" ||
                 std::string_view(argv[i + 1]) == "latency" ||
                 std::string_view(argv[i + 1]) == "rollback")) {
       only = argv[++i];
     } else {
       std::fprintf(stderr,
                    "bench_net: unknown option `%s` or value (usage: bench_net [--quick] [--only "
-                   "bandwidth|latency|rollback] [--report FILE])\n",
+                   "bandwidth|players|latency|rollback] [--report FILE])\n",
                    argv[i]);
       return 2;
     }
   }
   emit("## Networking (bench_net{})\n", quick ? " --quick" : "");
   if (only.empty() || only == "bandwidth") bandwidth(quick);
+  if (only.empty() || only == "players") eight_players(quick);
   if (only.empty() || only == "latency") latency(quick);
   if (only.empty() || only == "rollback") longest_rollback(quick);
   if (!report.empty()) {

@@ -1,6 +1,6 @@
-// bench_net's matches: scripted plays, and many two-player matches (host, link conditioner,
-// joiner) run side by side from one thread, each paced at its own frame rate, with the byte
-// counts taken between a start tick and the end.
+// bench_net's matches: scripted plays, and many matches (host, link conditioner, joiners: the
+// settings' players - 1) run side by side from one thread, each paced at its own frame rate,
+// with the first joiner's byte counts taken between a start tick and the end.
 #pragma once
 
 #include <chrono>
@@ -61,8 +61,8 @@ struct NetCase {
   std::uint64_t measure_from = 60;  ///< the counts are taken from this confirmed tick on
 };
 
-/// What a match gave: the joiner's counts between measure_from and the end, and both peers'
-/// final stats.
+/// What a match gave: the (first) joiner's counts between measure_from and the end, and the
+/// host's and that joiner's final stats.
 struct NetResult {
   bool finished = false;
   std::string error;
@@ -82,6 +82,7 @@ namespace detail {
 struct Running {
   const NetCase* c = nullptr;
   std::unique_ptr<net::MatchPeer> host, joiner;
+  std::vector<std::unique_ptr<net::MatchPeer>> others;  ///< the other joiners (players > 2)
   std::unique_ptr<net::LinkConditioner> link;
   double next_frame = 0.0, started = 0.0, mark_time = -1.0;
   net::MatchStats mark{};
@@ -107,13 +108,22 @@ inline void finish(Running& r, double now) {
   const net::MatchStats& j = r.joiner->stats();
   out.finished = r.host->state() == net::MatchState::finished &&
                  r.joiner->state() == net::MatchState::finished;
+  for (const auto& o : r.others) {
+    out.finished = out.finished && o->state() == net::MatchState::finished;
+  }
   out.error = !r.host->error().empty() ? r.host->error() : r.joiner->error();
+  for (const auto& o : r.others) {
+    if (out.error.empty()) out.error = o->error();
+  }
   out.host = r.host->stats();
   out.joiner = j;
   out.elapsed_ms = now - r.started;
   if (out.finished) {
-    out.same_recording =
-        format_recording(r.host->recording()) == format_recording(r.joiner->recording());
+    const std::string host = format_recording(r.host->recording());
+    out.same_recording = host == format_recording(r.joiner->recording());
+    for (const auto& o : r.others) {
+      out.same_recording = out.same_recording && host == format_recording(o->recording());
+    }
   }
   if (r.mark_time >= 0.0) {
     out.ticks = r.joiner->world().tick() - r.mark_tick;
@@ -141,6 +151,10 @@ inline std::vector<NetResult> run_cases(const std::vector<NetCase>& cases, doubl
                                                     cases[i].link);
     r.joiner = std::make_unique<net::MatchPeer>(
         net::MatchPeer::join(def, cases[i].settings, {"127.0.0.1", r.link->port()}));
+    for (int k = 2; k < cases[i].settings.players; ++k) {
+      r.others.push_back(std::make_unique<net::MatchPeer>(
+          net::MatchPeer::join(def, cases[i].settings, {"127.0.0.1", r.link->port()})));
+    }
     r.started = r.next_frame = detail::now_ms();
   }
   const double start = detail::now_ms();
@@ -152,11 +166,13 @@ inline std::vector<NetResult> run_cases(const std::vector<NetCase>& cases, doubl
       r.link->pump();
       r.host->poll(0);
       r.joiner->poll(0);
+      for (auto& o : r.others) o->poll(0);
       double now = detail::now_ms();
       if (now >= r.next_frame) {
         r.next_frame += r.c->frame_ms;
         detail::frame(*r.host, r.c->play);
         detail::frame(*r.joiner, r.c->play);
+        for (auto& o : r.others) detail::frame(*o, r.c->play);
       }
       now = detail::now_ms();
       if (r.mark_time < 0.0 && r.joiner->world().tick() >= r.c->measure_from) {
@@ -168,10 +184,17 @@ inline std::vector<NetResult> run_cases(const std::vector<NetCase>& cases, doubl
         return s == net::MatchState::finished || s == net::MatchState::failed ||
                s == net::MatchState::desynced;
       };
-      if ((over(r.host->state()) && over(r.joiner->state())) ||
+      bool others_over = true, others_failed = false;
+      for (const auto& o : r.others) {
+        others_over = others_over && over(o->state());
+        others_failed = others_failed || o->state() == net::MatchState::failed ||
+                        o->state() == net::MatchState::desynced;
+      }
+      if ((over(r.host->state()) && over(r.joiner->state()) && others_over) ||
           r.host->state() == net::MatchState::failed ||
           r.joiner->state() == net::MatchState::failed ||
-          r.joiner->state() == net::MatchState::desynced || now - start > deadline_ms) {
+          r.joiner->state() == net::MatchState::desynced || others_failed ||
+          now - start > deadline_ms) {
         detail::finish(r, now);
       }
     }

@@ -9,8 +9,10 @@ foreach(component IN LISTS FIXSTEP_COMPONENTS)
   install(TARGETS fixstep_${component} EXPORT fixstep-${component}
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT fixstep_development
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT fixstep_runtime)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/${component}/include/
-          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT fixstep_development)
+  if(IS_DIRECTORY ${PROJECT_SOURCE_DIR}/engine/${component}/include)  # (net_app's is net's)
+    install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/${component}/include/
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT fixstep_development)
+  endif()
   install(EXPORT fixstep-${component} NAMESPACE fixstep::
           FILE fixstep-${component}-targets.cmake DESTINATION ${FIXSTEP_CMAKE_DIR}
           COMPONENT fixstep_development)
@@ -47,6 +49,9 @@ set(FIXSTEP_PC_app_REQUIRES "fixstep-scene fixstep-capture fixstep-render fmt")
 if(TARGET fixstep_window)
   string(APPEND FIXSTEP_PC_app_REQUIRES " fixstep-window")
 endif()
+# net links ENet (libenet); net_app is a game's --host / --join (app and net).
+set(FIXSTEP_PC_net_REQUIRES "fixstep-io fixstep-core libenet fmt")
+set(FIXSTEP_PC_net_app_REQUIRES "fixstep-net fixstep-app fmt")
 foreach(component IN LISTS FIXSTEP_COMPONENTS)
   set(FIXSTEP_PC_COMPONENT ${component})
   set(FIXSTEP_PC_REQUIRES ${FIXSTEP_PC_${component}_REQUIRES})

@@ -6,9 +6,11 @@
 #      state and score (a goal scored), write byte-identical recordings (cmp), and the recording
 #      replays with the game's rules to the same state and score, every hash verified;
 #      and the game's rules survive a rollback (app::run's --sync-test);
-#  (b) on a virtual X server, two windows (host and joiner, bots driving, shown on the real
-#      clock) play 240 ticks; each writes its last frame, which must be a real frame: not blank,
-#      the puck and both mallets in it, the puck away from where it started (tests/png_check.py).
+#  (b) on a virtual X server, for each session kind, two windows (host and joiner, bots
+#      driving, shown on the real clock) play 240 ticks through the link conditioner (10 ms
+#      each way, jitter, 5 % loss); both exit 0 with the same final state, and each writes its
+#      last frame, which must be a real frame: not blank, the puck and both mallets in it, the
+#      puck away from where it started (tests/png_check.py).
 #
 #   airhockey_match.sh AIRHOCKEY LINK_RELAY SOURCE_DIR
 set -uo pipefail
@@ -76,37 +78,53 @@ match rollback 2
 "$game" --frames 300 --sync-test 8 >sync.out 2>&1 && ok "sync test: the rules roll back" ||
   { fail "sync test"; cat sync.out; }
 
-# (b) two windows.
-if have_xvfb && start_xvfb; then
-  DISPLAY=$xvfb_display "$game" --host 0 --bot --window --ticks 240 --last-frame host.png \
-    >win.host.out 2>&1 &
+# windows KIND: (b) for session KIND, two windows through the relay (latency, jitter, 5 % loss).
+windows() {
+  local kind=$1 hp rp host_pid relay_pid host_status join_status side
+  DISPLAY=$xvfb_display "$game" --host 0 --session "$kind" --bot --window --ticks 240 \
+    --last-frame "$kind.host.png" >"win.$kind.host.out" 2>&1 &
   host_pid=$!
-  if hp=$(wait_port win.host.out); then
-    DISPLAY=$xvfb_display "$game" --join "127.0.0.1:$hp" --bot --window --ticks 240 \
-      --last-frame join.png >win.join.out 2>&1
+  if hp=$(wait_port "win.$kind.host.out"); then
+    "$relay" --upstream "127.0.0.1:$hp" --latency-ms 10 --jitter-ms 4 --loss 0.05 --seed 5 \
+      --port-file "win.$kind.relay.port" --seconds 60 >"win.$kind.relay.out" 2>&1 &
+    relay_pid=$!
+    for _ in $(seq 100); do [ -s "win.$kind.relay.port" ] && break; sleep 0.05; done
+    rp=$(cat "win.$kind.relay.port")
+    DISPLAY=$xvfb_display "$game" --join "127.0.0.1:$rp" --session "$kind" --bot --window \
+      --ticks 240 --last-frame "$kind.join.png" >"win.$kind.join.out" 2>&1
     join_status=$?
+    kill "$relay_pid" 2>/dev/null
+    wait "$relay_pid" 2>/dev/null
   else
     join_status="(no port)"
   fi
   wait "$host_pid"
   host_status=$?
   if [ "$host_status" = 0 ] && [ "$join_status" = 0 ]; then
-    ok "windows: host and joiner played 240 ticks"
+    ok "windows ($kind): host and joiner played 240 ticks through the relay"
   else
-    fail "windows: host exited $host_status, joiner $join_status"
-    cat win.host.out win.join.out
+    fail "windows ($kind): host exited $host_status, joiner $join_status"
+    cat "win.$kind.host.out" "win.$kind.join.out" "win.$kind.relay.out" 2>/dev/null
   fi
-  [ "$(hash_of win.host.out)" = "$(hash_of win.join.out)" ] && ok "windows: the same final state" ||
-    fail "windows: final states differ"
+  grep -Eq 'dropped=[1-9]' "win.$kind.relay.out" && ok "windows ($kind): the link dropped datagrams" ||
+    { fail "windows ($kind): the link dropped nothing"; cat "win.$kind.relay.out"; }
+  [ "$(hash_of "win.$kind.host.out")" = "$(hash_of "win.$kind.join.out")" ] &&
+    ok "windows ($kind): the same final state" || fail "windows ($kind): final states differ"
   for side in host join; do
     # Not blank; the puck (yellow) and both mallets (red, blue) drawn, the puck away from the
     # centre of the table (pixel 480, 372), where it starts: the frame shows the match's state.
-    python3 "$src/tests/png_check.py" "$side.png" 250,220,60:200 230,70,70:1500 70,130,240:1500 \
-      250,220,60@480,372:40 >"$side.png.txt" 2>&1 &&
-      ok "windows: $side.png shows the table, the puck (moved), the mallets" ||
-      { fail "windows: $side.png"; cat "$side.png.txt"; }
+    python3 "$src/tests/png_check.py" "$kind.$side.png" 250,220,60:200 230,70,70:1500 \
+      70,130,240:1500 250,220,60@480,372:40 >"$kind.$side.png.txt" 2>&1 &&
+      ok "windows ($kind): $side.png shows the table, the puck (moved), the mallets" ||
+      { fail "windows ($kind): $side.png"; cat "$kind.$side.png.txt"; }
   done
-  [ -n "${AIRHOCKEY_KEEP_FRAMES:-}" ] && cp host.png join.png "$AIRHOCKEY_KEEP_FRAMES"/
+  [ -n "${AIRHOCKEY_KEEP_FRAMES:-}" ] && cp "$kind.host.png" "$kind.join.png" "$AIRHOCKEY_KEEP_FRAMES"/
+}
+
+# (b) two windows, each session kind.
+if have_xvfb && start_xvfb; then
+  windows lockstep
+  windows rollback
 else
   echo "skip - windows: no Xvfb"
 fi

@@ -40,11 +40,11 @@ cmake --build "$work/components" >/dev/null
 # capture loads FFmpeg when it writes a video and render libOSMesa when it creates a context
 # (dlopen), so nothing links libavcodec and only window (SDL2) links a graphics library.
 declare -A brings=([core]="" [io]="" [scene]="" [render]="" [capture]="deflate"
-                   [window]="sdl2" [app]="deflate sdl2")
-for component in core io scene render capture window app; do
+                   [window]="sdl2" [app]="deflate sdl2" [net]="enet" [net_app]="deflate sdl2 enet")
+for component in core io scene render capture window app net net_app; do
   libs=$(ninja -C "$work/components" -t commands "link_$component" | tail -1 |
          tr '[:upper:]' '[:lower:]')
-  for lib in osmesa avcodec deflate sdl2; do
+  for lib in osmesa avcodec deflate sdl2 enet; do
     wanted=" ${brings[$component]} "
     if [[ $libs == *"lib$lib"* && $wanted != *" $lib "* ]]; then
       fail "fixstep::$component brings lib$lib"
@@ -52,7 +52,7 @@ for component in core io scene render capture window app; do
       fail "fixstep::$component does not bring lib$lib (the check itself is wrong?)"
     fi
   done
-  echo "consumer: fixstep::$component brings: ${brings[$component]:-none of OSMesa, FFmpeg, libdeflate, SDL2}"
+  echo "consumer: fixstep::$component brings: ${brings[$component]:-none of OSMesa, FFmpeg, libdeflate, SDL2, ENet}"
 done
 
 # 2. add_subdirectory: only libraries; the program builds core and io alone (as a unity build,

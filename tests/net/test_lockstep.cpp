@@ -10,6 +10,7 @@
 #include <fixstep/recording_file.hpp>
 
 #include "net_match.hpp"
+#include "raw_peer.hpp"
 
 namespace fixstep::net_test {
 namespace {
@@ -212,36 +213,6 @@ TEST(Lockstep, APlayerPlaysTicksOutOnItsOwnInputsClock) {
   expect_agreement(m, 120);
   EXPECT_GT(checks, 200u);
   EXPECT_GT(behind, 0u);  // it did wait for the other's bursts at times
-}
-
-/// Polls `host` and `raw` until `raw` receives a datagram (at most 2 s).
-std::optional<std::vector<std::uint8_t>> answer(MatchPeer& host, net::Transport& raw) {
-  const auto start = std::chrono::steady_clock::now();
-  while (std::chrono::steady_clock::now() - start < std::chrono::seconds(2)) {
-    host.poll(0);
-    net::TransportEvent ev = raw.poll(1);
-    if (ev.kind == net::TransportEvent::Kind::received) return ev.bytes;
-  }
-  return std::nullopt;
-}
-
-/// Polls `host` and `raw` for `ms`, counting what `raw` receives and the largest datagram.
-std::pair<int, std::size_t> listen(MatchPeer& host, net::Transport& raw, int ms) {
-  std::pair<int, std::size_t> got{0, 0};
-  const auto start = std::chrono::steady_clock::now();
-  while (std::chrono::steady_clock::now() - start < std::chrono::milliseconds(ms)) {
-    host.poll(0);
-    net::TransportEvent ev = raw.poll(1);
-    if (ev.kind == net::TransportEvent::Kind::received) {
-      ++got.first;
-      got.second = std::max(got.second, ev.bytes.size());
-    }
-  }
-  return got;
-}
-
-std::uint64_t dropped(const MatchPeer& p, net::PacketError e) {
-  return p.stats().dropped[static_cast<std::size_t>(e)];
 }
 
 TEST(Lockstep, HostilePacketsAreDroppedAndCountedWithoutAmplification) {

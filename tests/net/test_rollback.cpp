@@ -99,6 +99,40 @@ TEST(Rollback, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   }
 }
 
+/// As Lockstep.ASilentPlayerTimesOutWithAClearMessage: a rollback host whose player goes
+/// silent holds its shown world back (at most max_rollback ticks ahead) and stops with a clear
+/// message (no desync, nothing dropped).
+TEST(Rollback, ASilentPlayerTimesOutWithAClearMessage) {
+  net::MatchSettings s = match(2, 0);
+  s.input_delay = 1;
+  s.max_rollback = 8;
+  s.peer_timeout_ms = 300;
+  Match m = start(s, 1, 0, net::LinkSettings{.seed = 1});
+  (void)m.run(500, [&](std::size_t) {});  // never finishes (match_ticks 0): bounded by time
+  net::MatchPeer& host = *m.peers[0];
+  ASSERT_EQ(host.state(), MatchState::playing) << host.error();
+  ASSERT_GT(host.world().tick(), 10u);
+  const auto start_wait = std::chrono::steady_clock::now();
+  while (host.state() == MatchState::playing &&
+         std::chrono::steady_clock::now() - start_wait < std::chrono::seconds(5)) {
+    m.link->pump();
+    host.poll(1);
+    while (host.wants_input()) {
+      host.add_input(scripted_input(host.world(), 0, host.next_input_tick()));
+    }
+    (void)host.advance();
+  }
+  ASSERT_EQ(host.state(), MatchState::failed);
+  EXPECT_NE(host.error().find("player 1 (127.0.0.1:"), std::string::npos) << host.error();
+  EXPECT_NE(host.error().find("timed out"), std::string::npos) << host.error();
+  EXPECT_FALSE(host.desync());
+  // It held back: time sync waited for the silent player, or the shown world reached
+  // max_rollback ahead.
+  EXPECT_GT(host.stats().waits + host.stats().stalls, 0u);
+  EXPECT_LE(host.shown_world().tick(), host.world().tick() + s.max_rollback);
+  EXPECT_EQ(host.stats().dropped_total(), 0u);
+}
+
 /// Time sync: a peer stepping 3 times as fast as the other waits for it (frame advantage held
 /// near half the round trip) instead of running max_rollback ticks ahead and stalling there.
 TEST(Rollback, AFasterPeerWaitsForTheSlowerOne) {

@@ -45,8 +45,8 @@ struct MatchOptions {
 /// that may not be written (a directory, a missing directory) or that is the scene file.
 void check_match_outputs(const MatchOptions& o, const std::string& default_scene);
 
-/// "HOST:PORT" as an address: HOST a dotted IPv4 address or a name, PORT 1-65535. Throws
-/// app::detail::UsageError naming `flag` and the text otherwise.
+/// "HOST:PORT" as an address: HOST a dotted IPv4 address (a name is refused: none is resolved),
+/// PORT 1-65535. Throws app::detail::UsageError naming `flag` and the text otherwise.
 [[nodiscard]] Address parse_host_port(const std::string& flag, const std::string& text);
 
 }  // namespace fixstep::net::detail

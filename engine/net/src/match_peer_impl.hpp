@@ -50,6 +50,12 @@ struct Remote {
   std::uint32_t seq_unreliable = 0, seq_reliable = 0;  ///< sent
   /// State hashes to send with the next inputs packet (one datagram for both).
   std::vector<StateHashMessage> hashes_due;
+  /// Rollback's time sync: its frame advantage over us when it sent its newest inputs packet
+  /// (its own inputs known against its acknowledgement of ours), the end of its own inputs
+  /// it has sent (arrived in order or not), and that packet's sequence.
+  std::int64_t their_advantage = 0;
+  std::uint64_t their_position = 0;
+  std::optional<std::uint32_t> advantage_seq;
 };
 
 /// Rollback: the shown world's state before tick `tick`, and the inputs it was stepped with.
@@ -104,6 +110,9 @@ struct MatchPeer::Impl {
   std::deque<detail::ShownFrame> frames;
   std::uint64_t wrong_from = std::numeric_limits<std::uint64_t>::max();
   std::any confirmed_rules;
+  /// Time sync, per player heard directly (a joiner: the host; the host: each player): how
+  /// many frames this peer is ahead of it, averaged (advance_shown).
+  std::array<double, max_players> ahead_of{};
 
   // match_peer.cpp
   void start(std::uint8_t players, std::uint8_t slot);  ///< the handshake done
@@ -129,6 +138,7 @@ struct MatchPeer::Impl {
   void step_shown();
   void roll_back();
   void advance_shown();
+  [[nodiscard]] double time_sync_ahead();  ///< frames ahead of the others, averaged
 
   // match_receive.cpp
   void handle(const TransportEvent& ev, double now);

@@ -239,6 +239,20 @@ void MatchPeer::Impl::on_inputs(detail::Remote& r, const Packet& p, double now) 
     }
   }
   if (grew) mark_dirty();
+  // Rollback's time sync: the sender's frame advantage over us as it sent this packet (its own
+  // inputs it had, against its acknowledgement of ours), from its newest packet only.
+  const std::uint8_t sender = is_host ? r.slot : std::uint8_t{0};
+  if (shown && sender < players && (!r.advantage_seq || p.header.sequence > *r.advantage_seq)) {
+    std::uint64_t theirs = known(sender);
+    for (const InputRun& run : p.inputs.runs) {
+      if (run.player == sender)
+        theirs = std::max<std::uint64_t>(theirs, run.first_tick + run.deltas.size());
+    }
+    r.their_advantage =
+        static_cast<std::int64_t>(theirs) - static_cast<std::int64_t>(p.inputs.next_needed[slot]);
+    r.their_position = std::max(r.their_position, theirs);
+    r.advantage_seq = p.header.sequence;
+  }
 }
 
 void MatchPeer::Impl::on_hash(detail::Remote& r, const StateHashMessage& m) {

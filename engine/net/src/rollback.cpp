@@ -72,12 +72,53 @@ void MatchPeer::Impl::roll_back() {
   wrong_from = std::numeric_limits<std::uint64_t>::max();
 }
 
+namespace {
+
+/// Time sync's average: each frame's sample weighs 1/16 (about the last 16 frames).
+constexpr double sync_weight = 1.0 / 16.0;
+/// What a wait takes off the averages at once: a quarter of the frame given back (the samples
+/// show the rest as the packets carry it; taking it all off at once makes a peer much faster
+/// than another run to max_rollback before it waits enough).
+constexpr double sync_wait_credit = 0.25;
+/// Frames ahead (on average) above which a frame waits.
+constexpr double sync_threshold = 2.0;
+
+}  // namespace
+
+double MatchPeer::Impl::time_sync_ahead() {
+  // GGPO's time sync: against each player heard directly (a joiner: the host; the host: each
+  // player), our frame advantage (the next tick to show, against the newest of its inputs that
+  // reached us, used or not) and its over us (from its newest packet: its own inputs against
+  // its acknowledgement of ours; 0 before one came). Both are late by the link's delay and the
+  // send interval, about the same each way, so half their difference is how far ahead of it
+  // we are whatever the delay (what the old rule, "ahead of its last input by more than half
+  // the round trip + 1", counted as ahead: a match on a clean link waited about one frame a
+  // tick). Sampled every frame, waiting or not, and averaged over about 16.
+  const std::uint64_t t = shown->tick();
+  double most = 0.0;
+  for (std::uint8_t p = 0; p < players; ++p) {
+    if (p == slot || (!is_host && p != 0)) continue;
+    const detail::Remote* heard = nullptr;
+    for (const detail::Remote& r : remotes) {
+      if (r.handshaken && r.slot == p && r.advantage_seq) heard = &r;
+    }
+    const double ours =
+        static_cast<double>(t + settings.input_delay) -
+        static_cast<double>(std::max<std::uint64_t>(known(p), heard ? heard->their_position : 0));
+    const double sample = 0.5 * (ours - static_cast<double>(heard ? heard->their_advantage : 0));
+    // (Before its first packet, nothing to average: the sample itself.)
+    ahead_of[p] = heard ? ahead_of[p] + sync_weight * (sample - ahead_of[p]) : sample;
+    most = std::max(most, ahead_of[p]);
+  }
+  return most;
+}
+
 void MatchPeer::Impl::advance_shown() {
   roll_back();
   if (state == MatchState::failed || state == MatchState::desynced) return;
   while (shown->tick() < next_step) step_shown();  // confirmed inputs: no prediction
   while (!frames.empty() && frames.front().tick < next_step) frames.pop_front();
-  // Time sync: how far ahead of the slowest player (by its last input) the shown world is.
+  // How far ahead of the slowest player (by its last input) the shown world is (a statistic).
   const std::uint64_t t = shown->tick();
   std::int64_t advantage = 0;
   for (std::size_t p = 0; p < players; ++p) {
@@ -87,13 +128,14 @@ void MatchPeer::Impl::advance_shown() {
   }
   stats.frame_advantage = advantage;
   if (settings.match_ticks != 0 && t >= settings.match_ticks) return;
+  const double ahead = time_sync_ahead();
   if (t - next_step >= settings.max_rollback) {
     ++stats.stalls;  // as far ahead as rollback may go
     return;
   }
   if (known(slot) <= t) return;  // the local input of the tick is not given yet
-  const double half_trip = 0.5e-3 * stats.round_trip_ms * settings.tick_rate_hz;
-  if (static_cast<double>(advantage) > half_trip + 1.0) {
+  if (ahead > sync_threshold) {
+    for (double& a : ahead_of) a -= sync_wait_credit;
     ++stats.waits;
     return;
   }

@@ -61,9 +61,8 @@ struct MatchSettings {
   /// inputs (and so the longest re-simulation); 0: lockstep (the shown world is the confirmed
   /// one). This peer's own choice: peers of either kind play one match.
   std::uint16_t max_rollback = 0;
-  /// Rollback's time synchronisation: ticks per second the caller steps at (to turn the round
-  /// trip into ticks); advance() waits a frame while the shown world is more than half the
-  /// round trip plus one tick ahead of the slowest player's last input.
+  /// Ticks per second the caller steps at. Not used by time sync any more (it counts in frames:
+  /// docs/NETWORK.md, "Rollback"); kept so that code setting it still compiles.
   double tick_rate_hz = 60.0;
   /// A player's inputs not yet acknowledged are sent again in every inputs packet (redundantly:
   /// a lost packet is made good by the next one, no round trip lost) while they encode in at
@@ -150,13 +149,18 @@ struct MatchStats {
   std::uint64_t rolled_back_ticks = 0;  ///< ticks re-simulated, in all
   std::uint64_t max_rolled_back = 0;    ///< the most ticks one rollback re-simulated
   std::uint64_t last_rolled_back = 0;   ///< ticks the last advance() re-simulated
-  std::uint64_t waits = 0;              ///< advance() calls that waited for time sync
-  std::int64_t frame_advantage = 0;     ///< shown tick minus the slowest player's, last frame
+  /// advance() calls that waited for time sync: this peer ahead of another by over 2 frames,
+  /// on average, the link's delay taken out (GGPO's frame advantage)
+  std::uint64_t waits = 0;
+  /// The shown tick minus the slowest player's (its last input we have), last frame: the link's
+  /// delay included, so not what time sync acts on
+  std::int64_t frame_advantage = 0;
   [[nodiscard]] std::uint64_t dropped_total() const;
 };
 
-/// One peer of a lockstep match: the host or a joiner (player or spectator). Single-threaded:
-/// call poll() and advance() often (every frame, or every millisecond in a test).
+/// One peer of a match, lockstep or rollback (MatchSettings::max_rollback): the host or a joiner
+/// (player or spectator). Single-threaded: call poll() and advance() often (every frame, or
+/// every millisecond in a test).
 class MatchPeer {
  public:
   /// Hosts a match of `def` as player 0, listening on `bind` (127.0.0.1 and a port; port 0
