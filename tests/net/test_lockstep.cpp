@@ -3,9 +3,11 @@
 // recordings that replay; a peer corrupted on purpose is reported at the right tick; a silent
 // player times out with a clear message; a joiner with another world is refused.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <fixstep/desync_recording.hpp>
 #include <fixstep/net_packet.hpp>
 #include <fixstep/recording_file.hpp>
 
@@ -108,6 +110,26 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   ASSERT_FALSE(r.ok());
   EXPECT_GE(r.mismatch->tick, 96u);
   EXPECT_LE(r.mismatch->tick, 100u);
+  // What net_app keeps of a desync without --record: each peer's recording in a file of its
+  // own, named by slot and tick, never replacing a file (a link included), read back whole.
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("fixstep_desync_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::create_symlink(dir / "elsewhere.rec", dir / "game-desync-p0-t100.rec");
+  const auto host_file = net::write_desync_recording(*m.peers[0], dir, "game");
+  EXPECT_EQ(host_file.filename(), "game-desync-p0-t100-2.rec");
+  EXPECT_FALSE(std::filesystem::exists(dir / "elsewhere.rec"));  // not written through
+  const auto joiner_file = net::write_desync_recording(*m.peers[1], dir, "game");
+  EXPECT_EQ(joiner_file.filename(), "game-desync-p1-t100.rec");
+  EXPECT_EQ(net::write_desync_recording(*m.peers[1], dir, "game").filename(),
+            "game-desync-p1-t100-2.rec");
+  World from_file(world_def(billiards()));
+  EXPECT_TRUE(replay(from_file, read_recording(host_file)).ok());
+  World corrupted_from_file(world_def(billiards()));
+  EXPECT_EQ(replay(corrupted_from_file, read_recording(joiner_file)).mismatch->tick,
+            r.mismatch->tick);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Lockstep, ASilentPlayerTimesOutWithAClearMessage) {

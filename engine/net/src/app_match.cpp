@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <fixstep/capture.hpp>
+#include <fixstep/desync_recording.hpp>
 #include <fixstep/detail/game_play.hpp>
 #include <fixstep/key_bindings.hpp>
 #include <fixstep/match_peer.hpp>
@@ -202,6 +204,16 @@ int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, boo
   std::fflush(stdout);
   if (m.state() == MatchState::desynced) {
     std::fprintf(stderr, "%s: error: %s\n", settings.name.c_str(), m.error().c_str());
+    if (o.record.empty() && world.tick() > 0) {  // kept to replay and compare offline
+      try {
+        const auto file = write_desync_recording(m, ".", settings.name);
+        std::fprintf(stderr, "%s: this peer's recording is in %s (%s --replay %s)\n",
+                     settings.name.c_str(), file.c_str(), settings.name.c_str(), file.c_str());
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: error: the desync recording was not written: %s\n",
+                     settings.name.c_str(), e.what());
+      }
+    }
     return exit_desync;
   }
   if (m.state() == MatchState::failed && !quit) {

@@ -1,0 +1,23 @@
+// A peer's recording kept after a desync, so that the peers' runs can be replayed and compared
+// offline (docs/NETWORK.md, "Desync detection").
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "fixstep/match_peer.hpp"
+
+namespace fixstep::net {
+
+/// Writes `peer`'s recording (MatchPeer::recording(): its confirmed ticks, each with its state
+/// hash) into `dir` as STEM-desync-pSLOT-tTICK.rec, TICK being the desync's tick
+/// (MatchPeer::desync()), or the recording's length when there is no report; when that name is
+/// taken (by any kind of file, a link included) -2, -3, … up to -99 is added before ".rec", so
+/// no file is ever replaced. The file is written atomically (io's write_recording). Returns the
+/// path written. Throws std::runtime_error naming the directory when all 99 names are taken,
+/// or io's error (naming the file and the system's reason) when it cannot be written.
+[[nodiscard]] std::filesystem::path write_desync_recording(const MatchPeer& peer,
+                                                           const std::filesystem::path& dir,
+                                                           const std::string& stem);
+
+}  // namespace fixstep::net

@@ -1,0 +1,35 @@
+// write_desync_recording (desync_recording.hpp): a free file name, then io's atomic write.
+#include "fixstep/desync_recording.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <fixstep/recording_file.hpp>
+#include <stdexcept>
+#include <system_error>
+
+namespace fixstep::net {
+
+std::filesystem::path write_desync_recording(const MatchPeer& peer,
+                                             const std::filesystem::path& dir,
+                                             const std::string& stem) {
+  const Recording rec = peer.recording();
+  const std::uint64_t tick = peer.desync() ? peer.desync()->tick : rec.ticks;
+  const std::string base =
+      fmt::format("{}-desync-p{}-t{}", stem, static_cast<unsigned>(peer.slot()), tick);
+  for (int n = 1; n <= 99; ++n) {
+    const std::filesystem::path file =
+        dir / (n == 1 ? base + ".rec" : fmt::format("{}-{}.rec", base, n));
+    std::error_code ec;
+    // symlink_status: a dangling link is taken too (never written through).
+    if (std::filesystem::symlink_status(file, ec).type() != std::filesystem::file_type::not_found)
+      continue;
+    write_recording(file, rec);
+    return file;
+  }
+  throw std::runtime_error(
+      fmt::format("{}: {}.rec and -2 to -99 are all taken: no name left for the desync recording",
+                  dir.string(), base));
+}
+
+}  // namespace fixstep::net
