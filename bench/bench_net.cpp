@@ -71,6 +71,21 @@ NetCase base_case(std::uint64_t ticks) {
   return c;
 }
 
+/// A lockstep bandwidth case: `players` playing `play` through a link of round trip `rtt` ms,
+/// sending every `interval` ms, with an input delay above the round trip and a send interval
+/// each way (so that no peer ever waits for input).
+NetCase bandwidth_case(std::uint64_t ticks, std::uint8_t players, std::uint32_t interval,
+                       double rtt, Play play) {
+  NetCase c = base_case(ticks);
+  c.settings.players = players;
+  c.settings.send_interval_ms = interval;
+  c.settings.input_delay = static_cast<std::uint16_t>(3 + (rtt + 2.0 * interval) / (1000.0 / 60.0));
+  c.link.latency_ms = rtt / 2.0;
+  c.link.seed = 7;
+  c.play = play;
+  return c;
+}
+
 void bandwidth(bool quick) {
   const std::uint64_t ticks = quick ? 240 : 900;
   const std::vector<std::uint32_t> intervals = {0, 17, 33, 50, 67};
@@ -79,17 +94,7 @@ void bandwidth(bool quick) {
   std::vector<NetCase> cases;
   for (std::uint32_t interval : intervals) {
     for (double rtt : rtts) {
-      for (Play play : plays) {
-        NetCase c = base_case(ticks);
-        c.settings.send_interval_ms = interval;
-        // Above the round trip (and a send interval each way): never waits for input.
-        c.settings.input_delay =
-            static_cast<std::uint16_t>(3 + (rtt + 2.0 * interval) / (1000.0 / 60.0));
-        c.link.latency_ms = rtt / 2.0;
-        c.link.seed = 7;
-        c.play = play;
-        cases.push_back(c);
-      }
+      for (Play play : plays) cases.push_back(bandwidth_case(ticks, 2, interval, rtt, play));
     }
   }
   const std::vector<NetResult> results = bench::run_cases(cases, quick ? 30000 : 60000);
@@ -124,16 +129,7 @@ void eight_players(bool quick) {
   const std::uint32_t interval = net::MatchSettings{}.send_interval_ms;
   std::vector<NetCase> cases;
   for (double rtt : rtts) {
-    for (Play play : plays) {
-      NetCase c = base_case(ticks);
-      c.settings.players = 8;
-      c.settings.input_delay =
-          static_cast<std::uint16_t>(3 + (rtt + 2.0 * interval) / (1000.0 / 60.0));
-      c.link.latency_ms = rtt / 2.0;
-      c.link.seed = 7;
-      c.play = play;
-      cases.push_back(c);
-    }
+    for (Play play : plays) cases.push_back(bandwidth_case(ticks, 8, interval, rtt, play));
   }
   const std::vector<NetResult> results = bench::run_cases(cases, quick ? 30000 : 60000);
   emit(
