@@ -105,6 +105,8 @@ class Stepper {
 // - fixstep_f64_t1, fixstep_f64_t2, fixstep_f32_t1: fixstep::detail::WorldKernel<Real> with
 //   WorldSettings::contacts;
 // - fixstep_f64_off: the same world without contacts (discs meet only the walls);
+// - fixstep_roll_t1, fixstep_roll_t2: f64 with rolling discs (the pile only), as the peers'
+//   rotating circles;
 // - chipmunk_hash: cpSpace with cpSpaceUseSpatialHash(2r, N);
 // - chipmunk_tree: cpSpace with its default bounding-box tree;
 // - chipmunk_hasty2: cpHastySpace on 2 threads (its default tree);
@@ -116,9 +118,12 @@ class Stepper {
 [[nodiscard]] std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s);
 
 /// fixstep on the scene; box2d_iterations: the resting solver at Box2D 2.4's iteration counts
-/// (box2d_velocity_iterations, box2d_position_iterations) instead of its defaults.
+/// (box2d_velocity_iterations, box2d_position_iterations) instead of its defaults; rolling:
+/// rolling discs (ContactSettings::rolling; uniform discs, I = ½ m r²), as the peers' circles,
+/// which rotate.
 [[nodiscard]] std::unique_ptr<Stepper> make_fixstep(const Scene& s, bool f32, int threads,
-                                                    bool contacts, bool box2d_iterations = false);
+                                                    bool contacts, bool box2d_iterations = false,
+                                                    bool rolling = false);
 enum class ChipmunkIndex { hash, tree, hasty };
 [[nodiscard]] std::unique_ptr<Stepper> make_chipmunk(const Scene& s, ChipmunkIndex index);
 [[nodiscard]] std::string chipmunk_version();

@@ -2,7 +2,8 @@
 // default) with one dynamic body per disc (Collider{radius}, mass 1 kg, Gravity in the pile), the
 // box's walls as static half-planes (PlaneDef, the scene's e and μ), and WorldSettings::contacts =
 // the scene's e and μ, on 1 or 2 threads (WorldSettings::threads), with the resting solver's
-// default iterations or Box2D 2.4's 8 velocity / 3 position ones. The "contacts off" variant is
+// default iterations or Box2D 2.4's 8 velocity / 3 position ones, and with rolling discs
+// (ContactSettings::rolling: uniform discs, I = ½ m r²) or without. The "contacts off" variant is
 // the same world without WorldSettings::contacts: the discs meet the walls only (a world that does
 // not ask for contacts, for the before/after of the contact code).
 #include <limits>
@@ -20,9 +21,9 @@ namespace {
 template <class Real>
 class FixstepStepper final : public Stepper {
  public:
-  FixstepStepper(const Scene& s, int threads, bool contacts, bool box2d_iterations)
+  FixstepStepper(const Scene& s, int threads, bool contacts, bool box2d_iterations, bool rolling)
       : w_(std::make_unique<fixstep::detail::WorldKernel<Real>>(
-            settings(s, threads, contacts, box2d_iterations))) {
+            settings(s, threads, contacts, box2d_iterations, rolling))) {
     w_->reserve(s.position.size());
     add_walls(s);
     for (std::size_t j = 0; j < s.position.size(); ++j) {
@@ -56,10 +57,11 @@ class FixstepStepper final : public Stepper {
  private:
   static double nan() { return std::numeric_limits<double>::quiet_NaN(); }
   static fixstep::WorldSettings settings(const Scene& s, int threads, bool contacts,
-                                         bool box2d_iterations) {
+                                         bool box2d_iterations, bool rolling) {
     fixstep::WorldSettings ws{.dt = tick, .threads = threads};
     if (contacts) {
       ws.contacts = fixstep::ContactSettings{.restitution = s.restitution, .friction = s.friction};
+      ws.contacts->rolling = rolling;
       if (box2d_iterations) {
         ws.contacts->velocity_iterations = box2d_velocity_iterations;
         ws.contacts->position_iterations = box2d_position_iterations;
@@ -85,9 +87,11 @@ class FixstepStepper final : public Stepper {
 }  // namespace
 
 std::unique_ptr<Stepper> make_fixstep(const Scene& s, bool f32, int threads, bool contacts,
-                                      bool box2d_iterations) {
-  if (f32) return std::make_unique<FixstepStepper<float>>(s, threads, contacts, box2d_iterations);
-  return std::make_unique<FixstepStepper<double>>(s, threads, contacts, box2d_iterations);
+                                      bool box2d_iterations, bool rolling) {
+  if (f32) {
+    return std::make_unique<FixstepStepper<float>>(s, threads, contacts, box2d_iterations, rolling);
+  }
+  return std::make_unique<FixstepStepper<double>>(s, threads, contacts, box2d_iterations, rolling);
 }
 
 }  // namespace discs

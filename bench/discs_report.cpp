@@ -16,11 +16,11 @@ namespace discs {
 
 namespace {
 // The fixstep keys first (the contact statistics' table takes the first 4).
-constexpr const char* all_keys[] = {"fixstep_f64_t1",  "fixstep_f64_t2", "fixstep_f32_t1",
-                                    "fixstep_f64_off", "fixstep_i8_t1",  "fixstep_i8_t2",
-                                    "chipmunk_hash",   "chipmunk_tree",  "chipmunk_hasty2",
-                                    "box2d",           "box2d3_w1",      "box2d3_w2"};
-const std::span<const char* const> keys(all_keys, box2d3_built() ? 12 : 10);
+constexpr const char* all_keys[] = {
+    "fixstep_f64_t1",  "fixstep_f64_t2",  "fixstep_f32_t1",  "fixstep_f64_off", "fixstep_i8_t1",
+    "fixstep_i8_t2",   "fixstep_roll_t1", "fixstep_roll_t2", "chipmunk_hash",   "chipmunk_tree",
+    "chipmunk_hasty2", "box2d",           "box2d3_w1",       "box2d3_w2"};
+const std::span<const char* const> keys(all_keys, box2d3_built() ? 14 : 12);
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large};
 constexpr SceneKind main_scenes[] = {SceneKind::pile, SceneKind::gas};
@@ -53,6 +53,8 @@ std::string stepper_label(const std::string& key) {
   if (key == "fixstep_f64_off") return "fixstep f64, contacts off (walls only)";
   if (key == "fixstep_i8_t1") return "fixstep f64, 8/3 iterations, 1 thread";
   if (key == "fixstep_i8_t2") return "fixstep f64, 8/3 iterations, 2 threads";
+  if (key == "fixstep_roll_t1") return "fixstep f64, rolling discs, 1 thread";
+  if (key == "fixstep_roll_t2") return "fixstep f64, rolling discs, 2 threads";
   const std::string cp = fmt::format("Chipmunk2D {} (f64)", chipmunk_version());
   if (key == "chipmunk_hash") return cp + ", spatial hash";
   if (key == "chipmunk_tree") return cp + ", bounding-box tree";
@@ -70,6 +72,8 @@ std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s) {
   if (key == "fixstep_f64_off") return make_fixstep(s, false, 1, false);
   if (key == "fixstep_i8_t1") return make_fixstep(s, false, 1, true, true);
   if (key == "fixstep_i8_t2") return make_fixstep(s, false, 2, true, true);
+  if (key == "fixstep_roll_t1") return make_fixstep(s, false, 1, true, false, true);
+  if (key == "fixstep_roll_t2") return make_fixstep(s, false, 2, true, false, true);
   if (key == "chipmunk_hash") return make_chipmunk(s, ChipmunkIndex::hash);
   if (key == "chipmunk_tree") return make_chipmunk(s, ChipmunkIndex::tree);
   if (key == "chipmunk_hasty2") return make_chipmunk(s, ChipmunkIndex::hasty);
@@ -329,12 +333,20 @@ void box2d3_table(const View& v, const Line& line) {
   for (auto n : v.r.sizes)
     row(fmt::format("pile, r = {} m", large_radius), SceneKind::pile_large, n, true);
   for (auto n : v.r.sizes) row("gas", SceneKind::gas, n, true);
-  // Box2D's circles rotate: its pile is already a pile of rolling discs (the pile rows' cases).
+  // Box2D's circles rotate: its pile is a pile of rolling discs (the same cases as its pile
+  // above), beside fixstep's rolling discs (fixstep_roll_*) on the same pile.
   for (auto n : v.r.sizes) {
-    row(fmt::format("pile of rolling discs, r = {} m: Box2D v3's own figure (its circles "
-                    "rotate: the same cases as its pile above); fixstep has no rolling discs yet",
-                    small_radius),
-        SceneKind::pile, n, false);
+    const SceneKind s = SceneKind::pile;
+    const CaseResult* f = v.at(s, "fixstep_roll_t1", n);
+    const CaseResult* b = v.at(s, "box2d3_w1", n);
+    if (!f && !b) continue;
+    line(
+        fmt::format("| pile of rolling discs, r = {} m (fixstep: ContactSettings::rolling) | {} | "
+                    "{} | {} | – | – | {} | {} | {} · – · {} |",
+                    small_radius, size_text(n), num(v.ns(s, "fixstep_roll_t1", n)),
+                    num(v.ns(s, "fixstep_roll_t2", n)), num(v.ns(s, "box2d3_w1", n)),
+                    num(v.ns(s, "box2d3_w2", n)), f ? num(f->disc_overlap) : "–",
+                    b ? num(b->disc_overlap) : "–"));
   }
 }
 
