@@ -161,7 +161,11 @@ TEST(Rollback, AFasterPeerWaitsForTheSlowerOne) {
   const net::MatchStats& s = m.peers[0]->stats();
   EXPECT_GT(s.waits, 50u);
   EXPECT_LT(s.stalls, s.waits);  // it waited, rather than ran into the rollback window
-  EXPECT_LE(most_ahead, 8);
+  // Never beyond the window: frame_advantage counts from the slower peer's last input, which
+  // the confirmed world trails by the input delay, so the window's edge is max_rollback +
+  // input_delay (9). Time sync keeps the fast peer short of it (7-8) on an idle machine; under
+  // ASan and a loaded CI machine its frames come late and it touches the edge, where it stalls.
+  EXPECT_LE(most_ahead, fast.max_rollback + fast.input_delay);
 }
 
 /// A match longer than the inputs kept: each peer holds at most about two chunks of 1024 ticks
