@@ -18,8 +18,7 @@ std::filesystem::path write_desync_recording(const MatchPeer& peer,
   const std::string base =
       fmt::format("{}-desync-p{}-t{}", stem, static_cast<unsigned>(peer.slot()), tick);
   for (int n = 1; n <= 99; ++n) {
-    const std::filesystem::path file =
-        dir / (n == 1 ? base + ".rec" : fmt::format("{}-{}.rec", base, n));
+    std::filesystem::path file = dir / (n == 1 ? base + ".rec" : fmt::format("{}-{}.rec", base, n));
     std::error_code ec;
     // symlink_status: a dangling link is taken too (never written through).
     if (std::filesystem::symlink_status(file, ec).type() != std::filesystem::file_type::not_found)
