@@ -169,7 +169,6 @@ void latency(bool quick) {
         NetCase c = base_case(ticks);
         c.settings.input_delay = rollback ? 2 : 6;
         c.settings.max_rollback = rollback ? 16 : 0;
-        c.settings.tick_rate_hz = pace_hz;
         // The send interval is time too: as many ticks as the default's at 60 ticks/s.
         c.settings.send_interval_ms =
             static_cast<std::uint32_t>(net::MatchSettings{}.send_interval_ms * scale);

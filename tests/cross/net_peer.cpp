@@ -121,7 +121,6 @@ int play(const Options& o) {
   s.input_delay = 8;
   s.hash_every = 30;
   s.match_ticks = o.ticks;
-  s.tick_rate_hz = 200.0;
   s.peer_timeout_ms = 10000;  // an emulated peer starts slowly
   s.handshake_timeout_ms = 10000;
   s.scene_name = scene.file;

@@ -43,7 +43,6 @@ TEST(Rollback, TwoPlayersThroughALossyLinkLandOnTheConfirmedStates) {
   net::MatchSettings s = match(2, 300);
   s.input_delay = 1;
   s.max_rollback = 8;
-  s.tick_rate_hz = 200.0;  // a frame every 5 ms
   const net::LinkSettings link{
       .latency_ms = 15.0, .jitter_ms = 10.0, .loss = 0.1, .duplicate = 0.02, .seed = 31};
   Match m = start(s, 1, 0, link);
@@ -60,13 +59,13 @@ TEST(Rollback, EightPlayersAndASpectatorWithRulesAgree) {
   net::MatchSettings s = match(8, 200);
   s.input_delay = 2;
   s.max_rollback = 8;
-  s.tick_rate_hz = 200.0;  // a frame every 5 ms: the link's 10 ms are 2 ticks
   const net::LinkSettings link{.latency_ms = 10.0, .jitter_ms = 8.0, .loss = 0.2, .seed = 9};
   std::vector<PressCounter> counters(9);
   std::vector<TickRules> rules;
   for (auto& c : counters) rules.push_back(press_rules(c));
   Match m = start(s, 7, 1, link, rules);
   int compared = 0;
+  // A frame every 5 ms: the link's 10 ms are 2 frames.
   ASSERT_TRUE(m.run(30000, shown_matches_confirmed(m, compared), 5.0)) << m.peers[0]->error();
   const Recording rec = expect_agreement(m, 200);
   expect_rollbacks(m, 8);
@@ -136,36 +135,33 @@ TEST(Rollback, ASilentPlayerTimesOutWithAClearMessage) {
 /// Time sync: a peer stepping 3 times as fast as the other waits for it (frame advantage held
 /// near half the round trip) instead of running max_rollback ticks ahead and stalling there.
 TEST(Rollback, AFasterPeerWaitsForTheSlowerOne) {
-  net::MatchSettings fast = match(2, 240);
-  fast.input_delay = 1;
-  fast.max_rollback = 8;
-  fast.tick_rate_hz = 500.0;  // a frame every 2 ms
-  net::MatchSettings slow = fast;
-  slow.tick_rate_hz = 1000.0 / 6.0;  // every 6 ms
+  net::MatchSettings s = match(2, 240);
+  s.input_delay = 1;
+  s.max_rollback = 8;
   Match m;
   const WorldDef def = world_def(billiards());
   m.peers.push_back(
-      std::make_unique<net::MatchPeer>(net::MatchPeer::host(def, fast, {"127.0.0.1", 0})));
+      std::make_unique<net::MatchPeer>(net::MatchPeer::host(def, s, {"127.0.0.1", 0})));
   m.link = std::make_unique<net::LinkConditioner>(net::Address{"127.0.0.1", m.peers[0]->port()},
                                                   net::LinkSettings{.latency_ms = 5.0, .seed = 12});
   m.peers.push_back(std::make_unique<net::MatchPeer>(
-      net::MatchPeer::join(def, slow, {"127.0.0.1", m.link->port()})));
+      net::MatchPeer::join(def, s, {"127.0.0.1", m.link->port()})));
   std::int64_t most_ahead = 0;
   ASSERT_TRUE(m.run(
       20000,
       [&](std::size_t i) {
         if (i == 0) most_ahead = std::max(most_ahead, m.peers[0]->stats().frame_advantage);
       },
-      std::vector<double>{2.0, 6.0}));
+      std::vector<double>{2.0, 6.0}));  // the host a frame every 2 ms, the joiner every 6
   expect_agreement(m, 240);
-  const net::MatchStats& s = m.peers[0]->stats();
-  EXPECT_GT(s.waits, 50u);
-  EXPECT_LT(s.stalls, s.waits);  // it waited, rather than ran into the rollback window
+  const net::MatchStats& st = m.peers[0]->stats();
+  EXPECT_GT(st.waits, 50u);
+  EXPECT_LT(st.stalls, st.waits);  // it waited, rather than ran into the rollback window
   // Never beyond the window: frame_advantage counts from the slower peer's last input, which
   // the confirmed world trails by the input delay, so the window's edge is max_rollback +
   // input_delay (9). Time sync keeps the fast peer short of it (7-8) on an idle machine; under
   // ASan and a loaded CI machine its frames come late and it touches the edge, where it stalls.
-  EXPECT_LE(most_ahead, fast.max_rollback + fast.input_delay);
+  EXPECT_LE(most_ahead, s.max_rollback + s.input_delay);
 }
 
 /// A match longer than the inputs kept: each peer holds at most about two chunks of 1024 ticks

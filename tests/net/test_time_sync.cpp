@@ -27,7 +27,6 @@ std::vector<Held> held_per_100_ticks(const net::LinkSettings& link, std::uint64_
   net::MatchSettings s = match(2, ticks);
   s.input_delay = 2;
   s.max_rollback = 16;
-  s.tick_rate_hz = 200.0;
   s.send_interval_ms = 15;
   Match m = start(s, 1, 0, link);
   std::vector<net::MatchStats> at(2);
@@ -40,7 +39,7 @@ std::vector<Held> held_per_100_ticks(const net::LinkSettings& link, std::uint64_
           at[i] = m.peers[i]->stats();
         }
       },
-      1000.0 / s.tick_rate_hz);
+      1000.0 / 200.0);  // 200 frames/s
   EXPECT_TRUE(finished) << m.peers[0]->error() << " / " << m.peers[1]->error();
   expect_agreement(m, ticks);
   std::vector<Held> out;

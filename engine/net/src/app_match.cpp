@@ -44,7 +44,6 @@ MatchSettings match_settings(const app::Settings& settings, const Level& level,
   s.input_delay = o.input_delay;
   s.match_ticks = o.ticks;
   s.max_rollback = o.rollback ? o.max_rollback : 0;
-  s.tick_rate_hz = 1.0 / level.def.settings.dt;
   s.scene_name = level.scene_name;
   s.scene_text = level.scene_text;
   s.rules_name = app::detail::rules_name_of(settings.name);

@@ -61,9 +61,6 @@ struct MatchSettings {
   /// inputs (and so the longest re-simulation); 0: lockstep (the shown world is the confirmed
   /// one). This peer's own choice: peers of either kind play one match.
   std::uint16_t max_rollback = 0;
-  /// Ticks per second the caller steps at. Not used by time sync any more (it counts in frames:
-  /// docs/NETWORK.md, "Rollback"); kept so that code setting it still compiles.
-  double tick_rate_hz = 60.0;
   /// A player's inputs not yet acknowledged are sent again in every inputs packet (redundantly:
   /// a lost packet is made good by the next one, no round trip lost) while they encode in at
   /// most this many bytes (net_input_codec.hpp: unchanged ticks cost a byte per 128); beyond
