@@ -92,6 +92,22 @@ TEST(HostilePeers, InputsMoreThan512TicksAheadAreDroppedAndCounted) {
   EXPECT_EQ(m.host.stats().stored_inputs, m.host.next_input_tick() + 518u);
 }
 
+/// A joiner the host accepted but never heard inputs from may still be waiting for the accept
+/// (ENet resends a lost one after 500 ms, doubling): the host gives it the handshake's time,
+/// not only peer_timeout_ms, then times it out with the usual message.
+TEST(HostilePeers, AnAcceptedJoinerNotHeardFromHasTheHandshakesTime) {
+  net::MatchSettings s = match(2, 0);
+  s.peer_timeout_ms = 200;
+  s.handshake_timeout_ms = 900;
+  Handshaken m = handshaken(s);  // the raw joiner never sends inputs
+  (void)listen(m.host, m.raw, 600);
+  EXPECT_EQ(m.host.state(), MatchState::playing) << m.host.error();
+  (void)listen(m.host, m.raw, 700);
+  EXPECT_EQ(m.host.state(), MatchState::failed);
+  EXPECT_NE(m.host.error().find("timed out: nothing received for"), std::string::npos)
+      << m.host.error();
+}
+
 TEST(HostilePeers, AConnectionThatNeverCompletesTheHandshakeIsDroppedSilently) {
   net::MatchSettings s = match(2, 0);
   s.handshake_timeout_ms = 150;

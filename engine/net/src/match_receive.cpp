@@ -283,7 +283,12 @@ void MatchPeer::Impl::check_timeouts(double now) {
   for (detail::Remote& r : remotes) {
     if (!r.handshaken) continue;
     const bool matters = !is_host || r.slot < players;
-    if (matters && state == MatchState::playing && now - r.last_heard > settings.peer_timeout_ms) {
+    // A joiner the host accepted but has not heard inputs from may not have the accept yet
+    // (ENet resends a lost one after 500 ms, doubling): it has the handshake's time too.
+    const double limit = is_host && !r.heard_inputs
+                             ? std::max(settings.peer_timeout_ms, settings.handshake_timeout_ms)
+                             : settings.peer_timeout_ms;
+    if (matters && state == MatchState::playing && now - r.last_heard > limit) {
       fail(fmt::format("{} timed out: nothing received for {} ms (at tick {})", who(r),
                        static_cast<long long>(now - r.last_heard), next_step));
     }
