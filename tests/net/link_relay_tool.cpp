@@ -48,6 +48,8 @@ int main(int argc, char** argv) {
   cli.add_option("--loss", link.loss)->check(CLI::Range(0.0, 1.0));
   cli.add_option("--duplicate", link.duplicate)->check(CLI::Range(0.0, 1.0));
   cli.add_option("--reorder", link.reorder)->check(CLI::Range(0.0, 1.0));
+  cli.add_option("--lossless-ms", link.lossless_ms, "nothing lost for this long at first")
+      ->check(CLI::Range(0.0, 3600000.0));
   cli.add_option("--seed", link.seed);
   cli.add_option("--port", port, "the relay's port (0: any)");
   cli.add_option("--port-file", port_file, "write the relay's port into FILE");

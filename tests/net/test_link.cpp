@@ -32,6 +32,16 @@ TEST(LinkModel, RandomLossWithinToleranceOfTheSetting) {
   }
 }
 
+TEST(LinkModel, NothingIsLostForLosslessMsAfterTheFirstDatagram) {
+  // Everything lost, in bursts too, but not in the first 100 ms counted from the first
+  // datagram (at 50 ms): those at 50-149 ms get through, from 150 ms on none does.
+  LinkModel m(
+      LinkSettings{.loss = 1.0, .burst_start = 1.0, .burst_length = 3.0, .lossless_ms = 100.0});
+  for (int t = 50; t < 300; ++t) EXPECT_EQ(m.decide(t).empty(), t >= 150) << t;
+  EXPECT_EQ(m.stats().dropped, 150u);
+  EXPECT_THROW(LinkModel(LinkSettings{.lossless_ms = -1.0}), std::invalid_argument);
+}
+
 TEST(LinkModel, BurstsHaveTheirMeanLengthAndStationaryFraction) {
   // Gilbert's model: P(enter) = 0.02, P(leave) = 1/5: lost fraction p / (p + q) = 0.0909,
   // bursts 5 datagrams long on average.

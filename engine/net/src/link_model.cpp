@@ -22,7 +22,8 @@ LinkModel::LinkModel(const LinkSettings& settings) : s_(settings), state_(settin
       !probability(s_.reorder)) {
     throw std::invalid_argument("link conditioner: a probability outside [0, 1]");
   }
-  if (!duration(s_.latency_ms) || !duration(s_.jitter_ms) || !duration(s_.reorder_ms)) {
+  if (!duration(s_.latency_ms) || !duration(s_.jitter_ms) || !duration(s_.reorder_ms) ||
+      !duration(s_.lossless_ms)) {
     throw std::invalid_argument("link conditioner: a time that is negative or not finite");
   }
   if (!std::isfinite(s_.burst_length) || s_.burst_length < 1.0) {
@@ -49,12 +50,14 @@ std::vector<double> LinkModel::decide(double now_ms) {
   } else if (burst_draw < s_.burst_start) {
     in_burst_ = true;
   }
-  if (in_burst_) {
+  if (first_ms_ < 0.0) first_ms_ = now_ms;
+  const bool lossless = now_ms - first_ms_ < s_.lossless_ms;
+  if (in_burst_ && !lossless) {
     ++stats_.dropped;
     ++stats_.burst_dropped;
     return {};
   }
-  if (loss_draw < s_.loss) {
+  if (loss_draw < s_.loss && !lossless) {
     ++stats_.dropped;
     return {};
   }

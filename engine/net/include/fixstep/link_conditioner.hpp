@@ -26,6 +26,10 @@ struct LinkSettings {
   /// sent after it overtake it.
   double reorder = 0.0;
   double reorder_ms = 20.0;
+  /// For this long after a direction's first datagram nothing is lost (random or burst): a
+  /// connection and its handshake get through, then the loss starts. ENet resends a lost
+  /// connect after 500 ms, doubling, so at heavy loss a handshake alone can take many seconds.
+  double lossless_ms = 0.0;
   std::uint64_t seed = 1;
 };
 
@@ -54,6 +58,7 @@ class LinkModel {
   double uniform();  ///< [0, 1)
   LinkSettings s_;
   std::uint64_t state_;
+  double first_ms_ = -1.0;  ///< the first datagram's arrival (-1: none yet)
   bool in_burst_ = false;
   LinkStats stats_;
 };
