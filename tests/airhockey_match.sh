@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # airhockey over the network, end to end (three processes on loopback):
 #  (a) for each session kind (lockstep, rollback): a host and a joiner, both scripted bots, play a
-#      match of 600 ticks through the link conditioner (link_relay: latency, jitter, 10 % loss,
-#      duplicates, reordering); both exit 0 (no desync, no timeout), report the same final
-#      state and score (a goal scored), write byte-identical recordings (cmp), and the recording
-#      replays with the game's rules to the same state and score, every hash verified;
+#      match of 600 ticks through the link conditioner (link_relay: latency, jitter, 10 % loss
+#      after the first second, duplicates, reordering); both exit 0 (no desync, no timeout),
+#      report the same final state and score (a goal scored), write byte-identical recordings
+#      (cmp), and the recording replays with the game's rules to the same state and score,
+#      every hash verified;
 #      and the game's rules survive a rollback (app::run's --sync-test);
 #  (b) on a virtual X server, for each session kind, two windows (host and joiner, bots
 #      driving, shown on the real clock) play 240 ticks through the link conditioner (10 ms
@@ -31,7 +32,7 @@ match() {
     --record "$kind.host.rec" >"$kind.host.out" 2>&1 &
   local host_pid=$!
   hp=$(wait_port "$kind.host.out") || { fail "$kind: the host printed no port"; cat "$kind.host.out"; return; }
-  "$relay" --upstream "127.0.0.1:$hp" --latency-ms 6 --jitter-ms 4 --loss 0.1 --duplicate 0.02 \
+  "$relay" --upstream "127.0.0.1:$hp" --latency-ms 6 --jitter-ms 4 --loss 0.1 --lossless-ms 1000 --duplicate 0.02 \
     --reorder 0.02 --seed 7 --port-file "$kind.relay.port" --seconds 60 >"$kind.relay.out" 2>&1 &
   local relay_pid=$!
   for _ in $(seq 100); do [ -s "$kind.relay.port" ] && break; sleep 0.05; done
@@ -85,7 +86,7 @@ windows() {
     --last-frame "$kind.host.png" >"win.$kind.host.out" 2>&1 &
   host_pid=$!
   if hp=$(wait_port "win.$kind.host.out"); then
-    "$relay" --upstream "127.0.0.1:$hp" --latency-ms 10 --jitter-ms 4 --loss 0.05 --seed 5 \
+    "$relay" --upstream "127.0.0.1:$hp" --latency-ms 10 --jitter-ms 4 --loss 0.05 --lossless-ms 1000 --seed 5 \
       --port-file "win.$kind.relay.port" --seconds 60 >"win.$kind.relay.out" 2>&1 &
     relay_pid=$!
     for _ in $(seq 100); do [ -s "win.$kind.relay.port" ] && break; sleep 0.05; done

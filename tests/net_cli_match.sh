@@ -2,10 +2,10 @@
 # A match of eight players and two spectators from a game's command line (net::run), for each
 # session kind (lockstep, rollback): examples/11_networked_game hosts with --players 8, seven
 # bots join and two spectators watch, every one of them through the link conditioner
-# (link_relay: latency, jitter, 5 % loss, duplicates, reordering). Checks: all ten exit 0 (no
-# desync, no timeout), every player slot 0-7 taken once and two spectator slots, the same final
-# state and score on all ten, byte-identical recordings, and the host's recording replays with
-# the rules to the same state, every hash verified.
+# (link_relay: latency, jitter, 5 % loss after the first second, duplicates, reordering).
+# Checks: all ten exit 0 (no desync, no timeout), every player slot 0-7 taken once and two
+# spectator slots, the same final state and score on all ten, byte-identical recordings, and
+# the host's recording replays with the rules to the same state, every hash verified.
 #
 #   net_cli_match.sh GAME LINK_RELAY SOURCE_DIR
 set -uo pipefail
@@ -25,7 +25,7 @@ match() {
   pids+=($!) names+=(p0)
   hp=$(wait_for "$kind.p0.out" 'hosting on [0-9.]+:[0-9]+' | grep -Eo '[0-9]+$') ||
     { fail "$kind: the host printed no port"; cat "$kind.p0.out"; return; }
-  "$relay" --upstream "127.0.0.1:$hp" --latency-ms 5 --jitter-ms 3 --loss 0.05 --duplicate 0.02 \
+  "$relay" --upstream "127.0.0.1:$hp" --latency-ms 5 --jitter-ms 3 --loss 0.05 --lossless-ms 1000 --duplicate 0.02 \
     --reorder 0.02 --seed 11 --port-file "$kind.relay.port" --seconds 90 >"$kind.relay.out" 2>&1 &
   local relay_pid=$!
   for _ in $(seq 100); do [ -s "$kind.relay.port" ] && break; sleep 0.05; done

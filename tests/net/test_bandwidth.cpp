@@ -25,19 +25,19 @@ TEST(SlowLinks, LockstepCompletesAtHalfASecondAndAQuarterLost) {
   s.peer_timeout_ms = 30000;
   s.handshake_timeout_ms = 30000;
   const net::LinkSettings link{.latency_ms = 500.0, .loss = 0.25, .seed = 5};
-  Match m = start(s, 1, 0, link);
+  Match m = start(s, 1, 0, link, {}, /*clean_handshake=*/false);
   // One input a frame (60 frames/s), so each tick goes in a packet of its own and losses hit
   // inputs, not only acknowledgements.
   ASSERT_TRUE(m.run(40000, {}, 1000.0 / 60.0))
       << m.peers[0]->error() << " / " << m.peers[1]->error();
   const Recording rec = expect_agreement(m, 30);
   EXPECT_GT(m.link->stats().dropped, 0u);
-  std::uint64_t gaps = 0;
   for (const auto& p : m.peers) {
     EXPECT_GT(p->stats().stalls, 0u);  // it did wait for the link
-    gaps += p->stats().gap_runs;
   }
-  EXPECT_GT(gaps, 0u);  // inputs were lost, and made good by resending from the ack
+  // The lost inputs were made good: as a gap run resent from the ack, a resend, or only in the
+  // redundant copy the next packet carries, as the ticks happened to be batched (the machine's
+  // load decides that, so no one of them is asserted). With resending off it does not finish.
   World sim(world_def(billiards()));
   EXPECT_TRUE(replay(sim, rec).ok());
 }
@@ -52,7 +52,7 @@ TEST(SlowLinks, DefaultsSendAtMost16KbitPerPlayerAt60Ticks) {
   s.hash_every = net::MatchSettings{}.hash_every;
   s.send_interval_ms = net::MatchSettings{}.send_interval_ms;
   Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 10.0, .seed = 9});
-  ASSERT_TRUE(m.run(30000, {}, 1000.0 / 60.0)) << m.peers[0]->error();
+  ASSERT_TRUE(m.run(30000, {}, 1000.0 / 60.0)) << m.describe();
   expect_agreement(m, 240);
   for (const auto& p : m.peers) {
     const double per_tick = static_cast<double>(p->stats().wire_bytes_sent) / 240.0;
@@ -70,7 +70,7 @@ TEST(SlowLinks, SmallInputsInFlightGoInEveryPacketUntilAcknowledged) {
     MatchSettings s = match(2, 120);
     s.redundant_bytes = redundant_bytes;
     Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 10.0, .loss = 0.2, .seed = 21});
-    EXPECT_TRUE(m.run(30000, {}, 1000.0 / 60.0)) << m.peers[0]->error();
+    EXPECT_TRUE(m.run(30000, {}, 1000.0 / 60.0)) << m.describe();
     expect_agreement(m, 120);
     EXPECT_GT(m.link->stats().dropped, 10u);
     std::uint64_t n = 0;

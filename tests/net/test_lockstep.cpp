@@ -58,7 +58,7 @@ TEST(Lockstep, EightPlayersAndASpectatorWithRulesAgree) {
   std::vector<TickRules> rules;
   for (auto& c : counters) rules.push_back(press_rules(c));
   Match m = start(s, 7, 1, link, rules);
-  ASSERT_TRUE(m.run(30000)) << m.peers[0]->error();
+  ASSERT_TRUE(m.run(30000)) << m.describe();
   const Recording rec = expect_agreement(m, 200);
   EXPECT_TRUE(every_player_played(rec, 8));
   EXPECT_EQ(m.peers[8]->slot(), net::spectator_slot_base);
@@ -138,7 +138,7 @@ TEST(Lockstep, ASilentPlayerTimesOutWithAClearMessage) {
   Match m = start(s, 1, 0, net::LinkSettings{.seed = 1});
   // Play until both have stepped some ticks, then player 1 goes silent.
   (void)m.run(500, [&](std::size_t) {});  // never finishes (match_ticks 0): bounded by time
-  ASSERT_EQ(m.peers[0]->state(), MatchState::playing) << m.peers[0]->error();
+  ASSERT_EQ(m.peers[0]->state(), MatchState::playing) << m.describe();
   ASSERT_GT(m.peers[0]->world().tick(), 10u);
   const auto start_wait = std::chrono::steady_clock::now();
   while (m.peers[0]->state() == MatchState::playing &&
@@ -148,9 +148,8 @@ TEST(Lockstep, ASilentPlayerTimesOutWithAClearMessage) {
     (void)m.peers[0]->advance();
   }
   ASSERT_EQ(m.peers[0]->state(), MatchState::failed);
-  EXPECT_NE(m.peers[0]->error().find("player 1 (127.0.0.1:"), std::string::npos)
-      << m.peers[0]->error();
-  EXPECT_NE(m.peers[0]->error().find("timed out"), std::string::npos) << m.peers[0]->error();
+  EXPECT_NE(m.peers[0]->error().find("player 1 (127.0.0.1:"), std::string::npos) << m.describe();
+  EXPECT_NE(m.peers[0]->error().find("timed out"), std::string::npos) << m.describe();
   EXPECT_GT(m.peers[0]->stats().stalls, 0u);
 }
 
@@ -196,7 +195,7 @@ TEST(Lockstep, SendIntervalBatchesTicks) {
   s.hash_every = 60;
   Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 6});
   const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_TRUE(m.run(20000, {}, 5.0)) << m.peers[0]->error();
+  ASSERT_TRUE(m.run(20000, {}, 5.0)) << m.describe();
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   expect_agreement(m, 120);
@@ -231,7 +230,7 @@ TEST(Lockstep, APlayerPlaysTicksOutOnItsOwnInputsClock) {
         if (p.world().tick() + s.input_delay < p.next_input_tick()) ++behind;
       },
       5.0))
-      << m.peers[0]->error();
+      << m.describe();
   expect_agreement(m, 120);
   EXPECT_GT(checks, 200u);
   EXPECT_GT(behind, 0u);  // it did wait for the other's bursts at times
