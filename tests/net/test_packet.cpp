@@ -270,9 +270,15 @@ TEST(NetPacket, StateHashAndDisconnect) {
   d.header(5, 1, 0).u8(3);
   ASSERT_EQ(decode(d, {}, p), PacketError::none);
   EXPECT_EQ(p.disconnect.reason, net::DisconnectReason::desync);
-  Bytes bad_reason;
-  bad_reason.header(5, 1, 0).u8(9);
-  EXPECT_EQ(decode(bad_reason), PacketError::bad_field);
+  Bytes late;
+  late.header(5, 1, 0).u8(6);
+  ASSERT_EQ(decode(late, {}, p), PacketError::none);
+  EXPECT_EQ(p.disconnect.reason, net::DisconnectReason::too_late);
+  for (const std::uint8_t reason : {0, 7, 9}) {
+    Bytes bad_reason;
+    bad_reason.header(5, 1, 0).u8(reason);
+    EXPECT_EQ(decode(bad_reason), PacketError::bad_field) << int(reason);
+  }
 }
 
 TEST(NetInputCodec, RoundTripsEveryFieldBitForBit) {

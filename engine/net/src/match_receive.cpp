@@ -131,6 +131,10 @@ void MatchPeer::Impl::on_request(detail::Remote& r, const Packet& p) {
   if (p.request.definition_hash != def_hash) return refuse(r, DisconnectReason::another_world);
   std::uint8_t given = no_slot;
   if (p.request.spectator) {
+    // A spectator steps from tick 0: too late once the first inputs are dropped.
+    const bool first_kept =
+        std::all_of(base.begin(), base.begin() + players, [](std::uint64_t b) { return b == 0; });
+    if (!first_kept) return refuse(r, DisconnectReason::too_late);
     if (spectators < max_spectators)
       given = static_cast<std::uint8_t>(spectator_slot_base + spectators++);
   } else {
@@ -155,10 +159,20 @@ void MatchPeer::Impl::on_request(detail::Remote& r, const Packet& p) {
   std::vector<std::uint8_t> bytes;
   encode_handshake_accept(header(r, MessageKind::handshake_accept, Channel::reliable), a, bytes);
   send_reliable(r, bytes);  // 30 bytes, the request's 64: no amplification
+  // A spectator coming mid-match checks the ticks before it came against our hashes too
+  // (sent once it has sent inputs, as every hash is: no amplification).
+  for (const auto& [tick, hash] : own_hashes) {
+    r.hashes_due.push_back({slot, static_cast<std::uint32_t>(tick), hash});
+  }
 }
 
 void MatchPeer::Impl::on_refused(DisconnectReason why) {
-  if (why == DisconnectReason::another_world) {
+  if (why == DisconnectReason::too_late) {
+    fail(
+        fmt::format("the host at {}:{} refused us: too late to watch (the match is past the "
+                    "first ticks' inputs, which a spectator needs and the host no longer keeps)",
+                    host_address.host, host_address.port));
+  } else if (why == DisconnectReason::another_world) {
     fail(
         fmt::format("the host at {}:{} refused us: it plays another world (our definition "
                     "hash {:016x})",

@@ -135,7 +135,7 @@ PacketError decode_body(detail::ByteReader& r, std::span<const std::uint8_t> byt
       if (size < disconnect_bytes) return PacketError::too_short;
       if (size > disconnect_bytes) return PacketError::trailing_bytes;
       const std::uint8_t reason = r.u8();
-      if (reason < 1 || reason > 5) return PacketError::bad_field;
+      if (reason < 1 || reason > 6) return PacketError::bad_field;
       p.disconnect.reason = static_cast<DisconnectReason>(reason);
       return PacketError::none;
     }

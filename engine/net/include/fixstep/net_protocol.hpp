@@ -125,6 +125,9 @@ enum class DisconnectReason : std::uint8_t {
   desync = 3,
   timeout = 4,
   another_world = 5,  ///< the host refused the handshake: the joiner's world is another
+  /// The host refused a spectator: it no longer keeps the match's first inputs (it keeps a
+  /// bounded window of them), so a spectator, which steps from tick 0, could not follow.
+  too_late = 6,
 };
 
 struct DisconnectMessage {
