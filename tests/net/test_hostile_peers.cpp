@@ -98,11 +98,11 @@ TEST(HostilePeers, InputsMoreThan512TicksAheadAreDroppedAndCounted) {
 TEST(HostilePeers, AnAcceptedJoinerNotHeardFromHasTheHandshakesTime) {
   net::MatchSettings s = match(2, 0);
   s.peer_timeout_ms = 200;
-  s.handshake_timeout_ms = 900;
+  s.handshake_timeout_ms = 1500;
   Handshaken m = handshaken(s);  // the raw joiner never sends inputs
-  (void)listen(m.host, m.raw, 600);
+  (void)listen(m.host, m.raw, 700);  // over 3 peer timeouts, under the handshake's
   EXPECT_EQ(m.host.state(), MatchState::playing) << m.host.error();
-  (void)listen(m.host, m.raw, 700);
+  (void)listen(m.host, m.raw, 1500);
   EXPECT_EQ(m.host.state(), MatchState::failed);
   EXPECT_NE(m.host.error().find("timed out: nothing received for"), std::string::npos)
       << m.host.error();
