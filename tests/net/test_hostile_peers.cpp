@@ -99,7 +99,7 @@ TEST(HostilePeers, AnAcceptedJoinerNotHeardFromHasTheHandshakesTime) {
   net::MatchSettings s = match(2, 0);
   s.peer_timeout_ms = 200;
   s.handshake_timeout_ms = 1500;
-  Handshaken m = handshaken(s);  // the raw joiner never sends inputs
+  Handshaken m = handshaken(s);      // the raw joiner never sends inputs
   (void)listen(m.host, m.raw, 700);  // over 3 peer timeouts, under the handshake's
   EXPECT_EQ(m.host.state(), MatchState::playing) << m.host.error();
   (void)listen(m.host, m.raw, 1500);
