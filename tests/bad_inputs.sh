@@ -1323,4 +1323,5 @@ echo "| N10 | a NaN or infinite push, pointer or body value; a button bit outsid
 echo "| N11 | a sequence number already received (a replay) or over 64 behind; inputs more than 512 ticks ahead | out_of_window |"
 echo "| N12 | inputs or a hash before the handshake; another player's inputs from a client; a second handshake | unexpected |"
 echo "| N13 | a handshake from a joiner with another world, or to a full match | refused: a 13-byte disconnect (another_world / refused), then the connection closed |"
-echo "| N14 | a connection that never completes the handshake | dropped after handshake_timeout_ms, nothing sent |"
+echo "| N14 | a connection that never completes the handshake; an accepted joiner that never sends inputs | dropped after handshake_timeout_ms, nothing sent; the accepted one times the match out (\"player 1 (…) timed out: nothing received for N ms\") after the longer of handshake_timeout_ms and peer_timeout_ms (its accept may have been lost) |"
+echo "| N15 | a spectator joining after the host dropped the match's first inputs (it keeps a bounded window) | refused: a 13-byte disconnect (too_late); the spectator fails with \"the host at HOST:PORT refused us: too late to watch …\" (LateSpectators.*) |"
