@@ -173,11 +173,6 @@ inline net::MatchSettings match(std::uint8_t players, std::uint64_t ticks) {
   s.hash_every = 10;
   s.match_ticks = ticks;
   s.peer_timeout_ms = 3000;
-  // The handshake goes through the test's lossy link too, and ENet resends a lost connect
-  // after 500 ms, doubling: at 20 % loss one joiner in ten needs more than the default 3 s,
-  // so a match of 8 failed its start about every other link seed. These tests are about the
-  // match, not the handshake (HostilePeers and the airhockey rows time handshakes out).
-  s.handshake_timeout_ms = 20000;
   // Most tests step faster than real time (as fast as inputs arrive): a packet on every new
   // input, not the default's one per 50 ms (SlowLinks.Defaults... plays the default).
   s.send_interval_ms = 0;
