@@ -85,9 +85,9 @@ struct MatchSettings {
   /// that heavy loss on a live link does not cut it.
   std::uint32_t peer_timeout_ms = 5000;
   /// A connection that has not completed the handshake after this long is dropped. ENet
-  /// resends a lost connect after 500 ms, doubling each time, and the handshake is four
-  /// messages: on a link losing a fifth of its packets about one join in ten takes longer than
-  /// 3 s, so raise this for such links (a joiner that gives up early retries nothing).
+  /// resends a lost connect after 500 ms, doubling each time (a message lost twice in a row
+  /// arrives after 1.5 s, three times after 3.5 s), and the handshake is four messages: raise
+  /// this for lossy links (a joiner that gives up early retries nothing).
   std::uint32_t handshake_timeout_ms = 3000;
   /// Recording: the scene name and text (Recorder), the state hash stored every this many
   /// ticks, and the rules' name and version when the match has rules (Recorder::set_rules).
