@@ -90,8 +90,9 @@ std::filesystem::path out_dir() {
   return dir;
 }
 
-void frame(benchmark::State& state, bool with_overlay, Output output) {
+void frame(benchmark::State& state, bool with_overlay, Output output, OverlayPath path) {
   Session session = testing::scene_session(bench::many_bodies(1000), width, height);
+  session.set_overlay_path(path);
   const VirtualClock clock(60.0);
   DrawList list;
   double t = 0.0;
@@ -145,11 +146,19 @@ class MedianKeeper : public benchmark::ConsoleReporter {
 }  // namespace
 
 int main(int argc, char** argv) {
+  struct Case {
+    bool with;
+    OverlayPath path;
+    const char* name;
+  };
+  // The overlay drawn by the CPU rasteriser (fixstep's default) and by GL (llvmpipe), beside.
+  const Case cases[] = {{false, OverlayPath::cpu, "bodies_only"},
+                        {true, OverlayPath::cpu, "with_overlay_1000"},
+                        {true, OverlayPath::gl, "with_overlay_1000_gl"}};
   for (const auto& [output, name] : {std::pair{Output::render, "render"}, {Output::png, "png"}}) {
-    for (const bool with : {false, true}) {
-      benchmark::RegisterBenchmark(
-          fmt::format("{}/{}", name, with ? "with_overlay_1000" : "bodies_only").c_str(), frame,
-          with, output)
+    for (const Case& c : cases) {
+      benchmark::RegisterBenchmark(fmt::format("{}/{}", name, c.name).c_str(), frame, c.with,
+                                   output, c.path)
           ->Unit(benchmark::kMillisecond)
           ->MeasureProcessCPUTime()  // llvmpipe rasterises on threads of its own
           ->UseRealTime()
@@ -176,26 +185,30 @@ int main(int argc, char** argv) {
   MedianKeeper reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
-  // (with - without) / with of one output's medians (or fastest repetitions) in `m`.
-  auto report = [&](const char* output, const char* what, std::map<std::string, double>& m) {
+  // (with - without) / with of one output's medians (or fastest repetitions) in `m`, the overlay
+  // drawn by `path` ("" the CPU rasteriser, "_gl" GL).
+  auto report = [&](const char* output, const char* what, std::map<std::string, double>& m,
+                    const char* path) {
     const double without = m[fmt::format("{}/bodies_only", output)];
-    const double with = m[fmt::format("{}/with_overlay_1000", output)];
+    const double with = m[fmt::format("{}/with_overlay_1000{}", output, path)];
     if (!(without > 0.0 && with > 0.0)) return 1.0;
     const double share = (with - without) / with;
-    std::printf("  %-6s %-44s %6.2f ms a frame, %6.2f ms with the overlay: %5.1f %%\n", output,
-                what, without, with, 100.0 * share);
+    std::printf("  %-6s %-3s %-40s %6.2f ms a frame, %6.2f ms with the overlay: %5.1f %%\n", output,
+                *path ? "gl" : "cpu", what, without, with, 100.0 * share);
     return share;
   };
   std::printf(
       "\n1000 bodies at %dx%d without and with a %d-primitive overlay (its share of the "
-      "frame):\n",
+      "frame), the overlay drawn by fixstep's CPU rasteriser (cpu) and by GL (gl):\n",
       width, height, primitives);
   for (const char* output : {"render", "png"}) {
-    report(output, "wall time, medians", reporter.medians);
-    report(output, "wall time, fastest repetitions", reporter.mins);
-    report(output, "CPU time of every thread, medians", reporter.cpu_medians);
+    for (const char* path : {"", "_gl"}) {
+      report(output, "wall time, medians", reporter.medians, path);
+      report(output, "wall time, fastest repetitions", reporter.mins, path);
+      report(output, "CPU time of every thread, medians", reporter.cpu_medians, path);
+    }
   }
-  const double capture = report("png", "(target: <= 20 % of a captured frame)", reporter.mins);
+  const double capture = report("png", "(target: <= 20 % of a captured frame)", reporter.mins, "");
   std::printf("  target <= 20 %% of a captured frame (PNG, fastest repetitions): %s\n",
               capture <= 0.20 ? "met" : "MISSED");
   std::filesystem::remove_all(out_dir());

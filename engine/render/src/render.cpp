@@ -17,6 +17,7 @@
 #include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
 #include "gl_shaders.hpp"
 #include "renderer_gl.hpp"
+#include "soft_shapes.hpp"
 
 namespace fixstep {
 
@@ -255,6 +256,7 @@ void Renderer::begin(Rgba8 background) {
   batches_.assign(1, Batch{});
   background_ = background;
   backdrop_ = Backdrop::none;
+  overlay_batch_ = npos;
 }
 
 void Renderer::set_clip(std::optional<ClipRect> clip) {
@@ -321,11 +323,46 @@ void Renderer::finish() {
   } else {
     gl_->copy_backdrop_to_frame();
   }
-  draw_batches(first_batch, batches_.size());
+  const std::size_t soft = first_soft_batch();
+  draw_batches(first_batch, soft);
   gl::api().glFinish();
   if (const GLenum err = gl::api().glGetError(); err != GL_NO_ERROR) {
     throw RenderError(fmt::format("render: GL error 0x{:x} while drawing", err));
   }
+  draw_soft_batches(soft);
+}
+
+std::size_t Renderer::first_soft_batch() const {
+#ifdef __EMSCRIPTEN__
+  return batches_.size();  // the picture is WebGL's canvas, not pixels_
+#else
+  if (overlay_path_ != OverlayPath::cpu || overlay_batch_ == npos) return batches_.size();
+  for (std::size_t b = overlay_batch_; b < batches_.size(); ++b) {
+    if (batches_[b].program != shapes) return batches_.size();
+  }
+  if (!detail::within_soft_reach(std::span(vertices_).subspan(overlay_vertex_))) {
+    return batches_.size();
+  }
+  return overlay_batch_;
+#endif
+}
+
+void Renderer::draw_soft_batches(std::size_t from) {
+  if (from == batches_.size()) return;
+  if (!soft_) soft_ = std::make_unique<detail::SoftRasteriser>();
+  for (std::size_t b = from; b < batches_.size(); ++b) {
+    const std::size_t first = batches_[b].first;
+    const std::size_t end = b + 1 < batches_.size() ? batches_[b + 1].first : indices_.size();
+    detail::PixelBox box{0, 0, width_, height_};
+    if (const auto& c = batches_[b].clip) {  // as draw_batches() cuts it
+      box.x0 = std::clamp(c->x0, 0, width_);
+      box.x1 = std::clamp(c->x1, box.x0, width_);
+      box.y0 = std::clamp(c->y0, 0, height_);
+      box.y1 = std::clamp(c->y1, box.y0, height_);
+    }
+    soft_->add(vertices_, std::span(indices_).subspan(first, end - first), box);
+  }
+  soft_->draw(pixels_, width_, height_);
 }
 
 void Renderer::set_flip(float flip) {

@@ -257,6 +257,11 @@ void Renderer::draw_scene(const RenderFrame& s) {
          scene_palette::outline_px, scene_palette::outline);
   }
   if (s.angle.size() == n) draw_spin_marks(s);
+  // What follows (a game's overlay, the HUD) starts a batch of its own (finish()).
+  batches_.push_back(
+      Batch{indices_.size(), batches_.back().clip, batches_.back().program, batches_.back().ring});
+  overlay_batch_ = batches_.size() - 1;
+  overlay_vertex_ = vertices_.size();
 }
 
 void Renderer::draw_spin_marks(const RenderFrame& s) {

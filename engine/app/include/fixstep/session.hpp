@@ -156,6 +156,8 @@ class Session {
   void set_status_lines(std::span<const std::string> lines);
   /// Background colour, grid, axes and scale bar (SessionSettings::style).
   void set_view_style(const ViewStyle& style) { renderer_.set_view_style(style); }
+  /// Who rasterises the overlay and the HUD (Renderer::set_overlay_path; the CPU by default).
+  void set_overlay_path(OverlayPath path) { renderer_.set_overlay_path(path); }
   /// The HUD's corner (SessionSettings::hud_corner).
   void set_hud_corner(HudCorner corner);
   /// Shows the HUD or hides it all (SessionSettings::show_hud).

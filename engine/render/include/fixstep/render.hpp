@@ -60,6 +60,29 @@ enum class HudCorner : std::uint8_t { top_left, top_right, bottom_left, bottom_r
 inline constexpr int min_frame_size = 16;
 inline constexpr int max_frame_size = 8192;
 
+namespace detail {
+/// A vertex of the renderer's GL programs (gl_shaders.hpp) and of its CPU rasteriser
+/// (soft_shapes.hpp): position px, shape coordinates (a point's size px and scale for outlined
+/// discs), colour (straight alpha), and an outlined disc's fill radius or a circle's hole radius
+/// in shape coordinates (Renderer::no_hole elsewhere). Internal to the renderer.
+struct CanvasVertex {
+  float x, y, u, v;
+  std::uint8_t r, g, b, a;
+  float fill;
+};
+class SoftRasteriser;  // soft_shapes.hpp
+}  // namespace detail
+
+/// Who rasterises what a frame draws after its scene view (a game's overlay, the HUD).
+enum class OverlayPath : std::uint8_t {
+  /// fixstep's CPU rasteriser, straight into pixels() after GL has drawn the scene: the same
+  /// picture (the shader's coverage and blending), without llvmpipe's cost per triangle.
+  /// Shapes of the outlined-disc program, or beyond 2^20 px, fall back to GL for the frame.
+  cpu,
+  /// GL, like the scene view (the browser page always draws this way).
+  gl,
+};
+
 /// Draws RenderFrames with OSMesa (Mesa's software GL, core profile 3.3+).
 ///
 /// Shapes: pixels() is height rows of width RGBA8 pixels (4 bytes each, straight alpha,
@@ -126,6 +149,10 @@ class Renderer {
   [[nodiscard]] HudCorner hud_corner() const { return hud_corner_; }
   /// What the scene view draws besides the world (background, grid, axes, scale bar).
   void set_view_style(const ViewStyle& style) { style_ = style; }
+  /// How finish() rasterises what is recorded after draw_scene() (OverlayPath; cpu by default
+  /// natively, gl in the browser, where this setting is ignored).
+  void set_overlay_path(OverlayPath path) { overlay_path_ = path; }
+  [[nodiscard]] OverlayPath overlay_path() const { return overlay_path_; }
   [[nodiscard]] const ViewStyle& view_style() const { return style_; }
   /// Height in px of draw()'s HUD panel holding `lines` lines at scale `scale`, margin included.
   [[nodiscard]] static float hud_height(std::size_t lines, float scale);
@@ -238,14 +265,7 @@ class Renderer {
   /// Rolling discs' marks: a line from each visible disc's centre to its rim at its angle
   /// (RenderFrame::angle), over the discs.
   void draw_spin_marks(const RenderFrame& frame);
-  // A vertex of either program (gl_shaders.hpp): position px, shape coordinates (a point's size
-  // px and scale for outlined discs), colour, and an outlined disc's fill radius or a circle's
-  // hole radius in shape coordinates (no_hole elsewhere).
-  struct Vertex {
-    float x, y, u, v;
-    std::uint8_t r, g, b, a;
-    float fill;
-  };
+  using Vertex = detail::CanvasVertex;
   // Fragment programs; each batch uses one.
   static constexpr int shapes = 0;  // triangles: solids, discs, circles, lines, polylines, text
   static constexpr int outlined_discs = 1;  // points: disc() with an outline
@@ -312,6 +332,17 @@ class Renderer {
     Rgba8 ring{};  // outline colour of outlined_discs
   };
   std::vector<Batch> batches_;
+  // What draw_scene() recorded ends where batches_[overlay_batch_] and vertices_[overlay_vertex_]
+  // start (npos: no scene view this frame); finish() rasterises the rest as overlay_path_ says.
+  static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+  std::size_t overlay_batch_ = npos;
+  std::size_t overlay_vertex_ = 0;
+  OverlayPath overlay_path_ = OverlayPath::cpu;
+  std::unique_ptr<detail::SoftRasteriser> soft_;  // made on the first frame that needs it
+  /// The first batch finish() leaves to the CPU rasteriser (batches_.size(): none).
+  [[nodiscard]] std::size_t first_soft_batch() const;
+  /// Rasterises batches_[from, end) on the CPU into pixels_ (finish()).
+  void draw_soft_batches(std::size_t from);
   Rgba8 background_{};
   // How this frame starts (finish()): cleared to background_; from a copy of the backdrop
   // (gl::Pipeline), drawn first from batches_[0, backdrop_batches_) (record) or as it is (reuse).

@@ -1,0 +1,293 @@
+// SoftPiece (soft_piece.hpp): set-up from the corners, each row's span from exact integer edge
+// functions, and the rows drawn: solid pieces a span at a time, the rest a 2x2 quad at a time
+// (one vector lane a pixel), so that the shader's derivatives are the differences llvmpipe
+// takes.
+#include "soft_piece.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "soft_lanes.hpp"
+
+namespace fixstep::detail {
+
+namespace {
+
+using namespace lanes;
+constexpr std::int64_t sub = soft_subpixels;
+constexpr float hole_threshold = soft_no_hole;
+
+/// Exact: whether pixel i of the row whose centre is at subpixel Y is inside edge e.
+inline bool inside(const SoftEdge& e, std::int64_t i, std::int64_t Y) {
+  return e.a * (i * sub + sub / 2) + e.b * Y + e.c >= 0;
+}
+
+/// floor(n / d) for d > 0.
+inline std::int64_t floor_div(std::int64_t n, std::int64_t d) {
+  const std::int64_t q = n / d;
+  return (n % d != 0 && n < 0) ? q - 1 : q;
+}
+
+}  // namespace
+
+bool SoftPiece::set_up(const CanvasVertex* const* v, int corners, const PixelBox& cut) {
+  std::int64_t p[4][2] = {};
+  for (int k = 0; k < corners; ++k) {
+    p[k][0] = std::llround(double(v[k]->x) * sub);
+    p[k][1] = std::llround(double(v[k]->y) * sub);
+  }
+  const std::int64_t area = soft_cross(p[0], p[1], p[2]);
+  if (area == 0) return false;
+  const bool flip = area < 0;  // one winding for the edges: inside is where all are >= 0
+  SoftEdge left[4], right[4];
+  lefts = rights = 0;
+  std::int64_t first_row = INT32_MIN, last_row = INT32_MAX;
+  for (int k = 0; k < corners; ++k) {
+    const int from = flip ? (corners - k) % corners : k;
+    const int to = flip ? (corners - k - 1) % corners : (k + 1) % corners;
+    SoftEdge e;
+    e.a = p[from][1] - p[to][1];
+    e.b = p[to][0] - p[from][0];
+    e.c = -(e.a * p[from][0] + e.b * p[from][1]);
+    // A pixel centre on an edge shared by two pieces belongs to exactly one: the edge's
+    // direction is reversed in the other, and only one of (a, b), (-a, -b) passes this.
+    if (!(e.a > 0 || (e.a == 0 && e.b > 0))) e.c -= 1;
+    if (e.a == 0) {  // rows j with b (j sub + sub/2) + c >= 0
+      const std::int64_t n = e.b * (sub / 2) + e.c;
+      if (e.b > 0) {
+        first_row = std::max(first_row, -floor_div(n, e.b * sub));
+      } else {
+        last_row = std::min(last_row, floor_div(n, -e.b * sub));
+      }
+      continue;
+    }
+    // a (i sub + sub/2) + b (j sub + sub/2) + c = 0
+    const double step = double(e.a) * sub;
+    e.at = -(double(e.b) * (sub / 2) + double(e.c) + double(e.a) * (sub / 2)) / step;
+    e.per_row = -double(e.b) * sub / step;
+    if (e.a > 0) {
+      left[lefts++] = e;
+    } else {
+      right[rights++] = e;
+    }
+  }
+  for (int k = 0; k < lefts; ++k) edge[k] = left[k];
+  for (int k = 0; k < rights; ++k) edge[lefts + k] = right[k];
+  // The planes, from the first three corners (a quad's fourth lies on them: add()).
+  double x[3], y[3];
+  for (int k = 0; k < 3; ++k) x[k] = double(p[k][0]) / sub, y[k] = double(p[k][1]) / sub;
+  x0 = x[0];
+  y0 = y[0];
+  const double inv_det = 1.0 / ((x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]));
+  auto plane = [&](double f0, double f1, double f2) {
+    return SoftPlane{f0, ((f1 - f0) * (y[2] - y[0]) - (f2 - f0) * (y[1] - y[0])) * inv_det,
+                     ((f2 - f0) * (x[1] - x[0]) - (f1 - f0) * (x[2] - x[0])) * inv_det};
+  };
+  u = plane(v[0]->u, v[1]->u, v[2]->u);
+  this->v = plane(v[0]->v, v[1]->v, v[2]->v);
+  const std::uint8_t* c[3] = {&v[0]->r, &v[1]->r, &v[2]->r};
+  flat_color = true;
+  for (int ch = 0; ch < 4; ++ch) {
+    flat_color = flat_color && c[0][ch] == c[1][ch] && c[0][ch] == c[2][ch];
+  }
+  for (int ch = 0; ch < 4; ++ch) {
+    const auto value = [&](int k) { return double(float(c[k][ch]) / 255.0f); };
+    color[ch] = flat_color ? SoftPlane{value(0), 0, 0} : plane(value(0), value(1), value(2));
+  }
+  fill = v[corners - 1]->fill;  // flat: GL's provoking vertex is the last (one per shape)
+  solid = flat_color && fill < hole_threshold;
+  hole_r = reach_r = -1;
+  if (!solid && !(u.at == 0.0 && u.dx == 0.0 && u.dy == 0.0)) find_round();
+  for (int k = 0; k < corners && solid; ++k) solid = v[k]->u == 0.0f && v[k]->v == 0.0f;
+  box = cut;
+  std::int64_t top = p[0][1], bottom = p[0][1];
+  for (int k = 1; k < corners; ++k)
+    top = std::min(top, p[k][1]), bottom = std::max(bottom, p[k][1]);
+  row0 = std::max(box.y0, static_cast<int>(std::floor(double(top) / sub - 0.5)));
+  row1 = std::min(box.y1 - 1, static_cast<int>(std::ceil(double(bottom) / sub - 0.5)));
+  row0 = static_cast<int>(std::max<std::int64_t>(row0, first_row));
+  row1 = static_cast<int>(std::min<std::int64_t>(row1, last_row));
+  std::int64_t x_min = p[0][0], x_max = p[0][0];
+  for (int k = 1; k < corners; ++k)
+    x_min = std::min(x_min, p[k][0]), x_max = std::max(x_max, p[k][0]);
+  rect = solid && corners == 4;
+  for (int k = 0; k < corners && rect; ++k) {  // every corner on the bounding box's corners
+    rect = (p[k][0] == x_min || p[k][0] == x_max) && (p[k][1] == top || p[k][1] == bottom);
+  }
+  if (rect) {
+    // Pixel (i, j) is inside where left <= i sub + sub/2 < right and top <= j sub + sub/2 <
+    // bottom: the tie rule of the edges (the left and top edges own their centres).
+    auto first_from = [](std::int64_t edge) { return floor_div(edge - sub / 2 + sub - 1, sub); };
+    col0 = static_cast<int>(std::max<std::int64_t>(box.x0, first_from(x_min)));
+    col1 = static_cast<int>(std::min<std::int64_t>(box.x1, first_from(x_max)) - 1);
+    row0 = static_cast<int>(std::max<std::int64_t>(box.y0, first_from(top)));
+    row1 = static_cast<int>(std::min<std::int64_t>(box.y1, first_from(bottom)) - 1);
+    return row0 <= row1 && col0 <= col1;
+  }
+  return row0 <= row1 && box.x0 < box.x1;
+}
+
+void SoftPiece::find_round() {
+  // uv = 0 at the centre. A pixel step changes uv by at most s (the map's Frobenius norm, at
+  // least its largest singular value) and by at least |det| / s (at most its smallest), and
+  // d's fwidth w is at most w_max. Alpha is 0 where d >= 1 + w / 2 (outside the shape) and,
+  // for a circle, where d <= fill - w / 2 (inside its hole); in px, with a margin for float
+  // rounding:
+  const double det = u.dx * v.dy - u.dy * v.dx;
+  if (!(std::abs(det) > 1e-12)) return;
+  const double du = -u.at, dv = -v.at;  // solve the planes for uv = 0
+  centre_x = x0 + (du * v.dy - u.dy * dv) / det;
+  centre_y = y0 + (u.dx * dv - du * v.dx) / det;
+  const double s = std::sqrt(u.dx * u.dx + u.dy * u.dy + v.dx * v.dx + v.dy * v.dy);
+  const double w_max = std::hypot(u.dx, v.dx) + std::hypot(u.dy, v.dy);
+  reach_r = (1.0 + 0.5 * w_max) * s / std::abs(det) + 0.01;
+  if (fill >= hole_threshold) hole_r = (double(fill) - 0.5 * w_max) / s - 0.01;
+}
+
+void SoftPiece::span(int j, int& lo, int& hi) const {
+  // The tightest bound of each side, in double (within 1e-9 px of the exact one), rounded
+  // inwards; decided exactly where it is a hair from a whole pixel (only a pixel centre on an
+  // edge itself can go either way).
+  const SoftEdge* end = edge + lefts + rights;
+  double from = double(box.x0), to = double(box.x1 - 1);
+  for (const SoftEdge* e = edge; e != edge + lefts; ++e)
+    from = std::max(from, e->at + e->per_row * j);
+  for (const SoftEdge* e = edge + lefts; e != end; ++e) to = std::min(to, e->at + e->per_row * j);
+  if (!(from <= double(box.x1)) || !(to >= double(box.x0 - 1))) {  // none inside the box
+    lo = box.x0;
+    hi = lo - 1;
+    return;
+  }
+  auto first = static_cast<std::int64_t>(from);  // from >= box.x0 >= 0: towards zero is floor
+  const double rest_first = from - double(first);
+  if (rest_first > 0.0) ++first;                        // ceil
+  auto last = static_cast<std::int64_t>(to + 1.0) - 1;  // floor (to >= -1)
+  const double rest_last = to - double(last);
+  const std::int64_t Y = std::int64_t(j) * sub + sub / 2;
+  auto inside_all = [&](const SoftEdge* b, const SoftEdge* e, std::int64_t i) {
+    for (; b != e; ++b) {
+      if (!inside(*b, i, Y)) return false;
+    }
+    return true;
+  };
+  constexpr double hair = 1e-6;
+  if (lefts > 0 && (rest_first < hair || rest_first > 1.0 - hair)) {
+    while (!inside_all(edge, edge + lefts, first)) ++first;
+    while (first > box.x0 && inside_all(edge, edge + lefts, first - 1)) --first;
+  }
+  if (rights > 0 && (rest_last < hair || rest_last > 1.0 - hair)) {
+    while (!inside_all(edge + lefts, end, last)) --last;
+    while (last < box.x1 - 1 && inside_all(edge + lefts, end, last + 1)) ++last;
+  }
+  lo = static_cast<int>(first);
+  hi = static_cast<int>(std::max(last, first - 1));
+}
+
+void SoftPiece::draw_solid(std::uint8_t* pixels, int width, int first, int last) const {
+  const float ca = float(color[3].at);
+  const int a = to8(ca);
+  if (a == 0) return;
+  const int r = to8(float(color[0].at) * ca), g = to8(float(color[1].at) * ca),
+            b = to8(float(color[2].at) * ca);
+  for (int j = std::max(first, row0); j <= std::min(last, row1); ++j) {
+    int lo = col0, hi = col1;
+    if (!rect) span(j, lo, hi);
+    blend_span(pixels + (std::size_t(j) * std::size_t(width) + std::size_t(lo)) * 4, hi - lo + 1, r,
+               g, b, a);
+  }
+}
+
+void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last) const {
+  // A 2x2 quad is one vector of 4 lanes: (row 0, column 0), (0, 1), (1, 0), (1, 1).
+  const V4 column{0.0f, 1.0f, 0.0f, 1.0f}, row{0.0f, 0.0f, 1.0f, 1.0f};
+  const bool line = u.at == 0.0 && u.dx == 0.0 && u.dy == 0.0;  // d = |v|, no root needed
+  const bool hole = fill >= hole_threshold;
+  for (int top = first; top <= last; top += 2) {
+    int lo[2] = {0, 0}, hi[2] = {-1, -1};
+    for (int r = 0; r < 2; ++r) {
+      if (top + r >= row0 && top + r <= row1) span(top + r, lo[r], hi[r]);
+    }
+    int x_first = width, x_last = -1;  // the columns either row covers
+    for (int r = 0; r < 2; ++r) {
+      if (lo[r] > hi[r]) continue;
+      x_first = std::min(x_first, lo[r]);
+      x_last = std::max(x_last, hi[r]);
+    }
+    if (x_first > x_last) continue;
+    const int x_start = x_first & ~1;
+    const V4I lo4{lo[0], lo[0], lo[1], lo[1]}, hi4{hi[0], hi[0], hi[1], hi[1]};
+    // Values at the centre of pixel (x_start, top), and their steps per px.
+    const double cx = x_start + 0.5, cy = top + 0.5;
+    const V4 u_step = splat(float(u.dx)), v_step = splat(float(v.dx));
+    const V4 u_quad = splat(float(at(u, cx, cy))) + splat(float(u.dy)) * row;
+    const V4 v_quad = splat(float(at(v, cx, cy))) + splat(float(v.dy)) * row;
+    V4 c_quad[4], c_step[4];
+    for (int ch = 0; ch < 4; ++ch) {
+      c_quad[ch] = splat(float(at(color[ch], cx, cy))) + splat(float(color[ch].dy)) * row;
+      c_step[ch] = splat(float(color[ch].dx));
+    }
+    std::uint8_t* rows[2] = {pixels + std::size_t(top) * std::size_t(width) * 4,
+                             pixels + std::size_t(top + 1) * std::size_t(width) * 4};
+    // Quads wholly outside a round shape, or inside a circle's hole (their alpha 0
+    // everywhere), are skipped.
+    int skip_from = x_last + 1, skip_to = x_last;  // quads x in [skip_from, skip_to)
+    int x_begin = x_start;
+    if (reach_r > 0.0) {
+      const double near = centre_y >= cy && centre_y <= cy + 1.0
+                              ? 0.0
+                              : std::min(std::abs(cy - centre_y), std::abs(cy + 1.0 - centre_y));
+      if (near >= reach_r) continue;
+      const double half = std::sqrt(reach_r * reach_r - near * near);
+      x_last = std::min(x_last, static_cast<int>(std::floor(centre_x + half - 0.5)));
+      const int from = static_cast<int>(std::ceil(centre_x - half - 0.5));
+      if (from > x_begin) x_begin = from & ~1;
+    }
+    if (hole_r > 0.0) {
+      const double dy = std::max(std::abs(cy - centre_y), std::abs(cy + 1.0 - centre_y));
+      if (dy < hole_r) {
+        const double half = std::sqrt(hole_r * hole_r - dy * dy);
+        skip_from = static_cast<int>(std::ceil(centre_x - half - 0.5));
+        skip_to = static_cast<int>(std::floor(centre_x + half - 0.5));  // last column inside
+        skip_from += skip_from & 1;                                     // whole quads only
+        skip_to = skip_to - 1 - ((skip_to - 1) & 1) + 2;  // one past the last whole quad
+        skip_to = std::max(skip_to, skip_from);
+      }
+    }
+    for (int x = x_begin; x <= x_last; x += 2) {
+      if (x >= skip_from && x < skip_to) x = skip_to;
+      if (x > x_last) break;
+      const V4 s = splat(float(x - x_start)) + column;
+      const V4 vv = v_quad + v_step * s;
+      V4 d;
+      if (line) {
+        d = abs4(vv);
+      } else {
+        const V4 uu = u_quad + u_step * s;
+        d = sqrt4(uu * uu + vv * vv);
+      }
+      const V4 w = max4(abs4(d - other_column(d)) + abs4(d - other_row(d)), splat(1e-6f));
+      V4 coverage = clamp01((splat(1.0f) - d) / w + splat(0.5f));
+      if (hole) coverage = max4(coverage - clamp01((splat(fill) - d) / w + splat(0.5f)), V4{});
+      const V4 a = (c_quad[3] + c_step[3] * s) * coverage;
+      const V4I a8 = to8(a), r8 = to8((c_quad[0] + c_step[0] * s) * a),
+                g8 = to8((c_quad[1] + c_step[1] * s) * a),
+                b8 = to8((c_quad[2] + c_step[2] * s) * a);
+      const V4I xs = V4I{x, x + 1, x, x + 1};
+      const V4I drawn = (xs >= lo4) & (xs <= hi4) & (a8 > 0);
+      if (!(drawn[0] | drawn[1] | drawn[2] | drawn[3])) continue;
+      if (x + 1 < width) {
+        blend_quad(rows[0] + std::size_t(x) * 4, rows[1] + std::size_t(x) * 4, r8 & drawn,
+                   g8 & drawn, b8 & drawn, a8 & drawn);
+        continue;
+      }
+      for (int lane = 0; lane < 4; ++lane) {  // the frame's last column: no pixel beyond it
+        if (!drawn[lane]) continue;
+        blend(rows[lane >> 1] + std::size_t(x + (lane & 1)) * 4, r8[lane], g8[lane], b8[lane],
+              a8[lane]);
+      }
+    }
+  }
+}
+
+}  // namespace fixstep::detail

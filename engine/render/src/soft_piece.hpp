@@ -1,0 +1,77 @@
+// One convex piece of the CPU rasteriser (soft_shapes.hpp): a triangle, or a quad of two that
+// share one affine map, with its exact edges, its interpolated planes and the drawing of its
+// rows. Internal to fixstep::render (not installed).
+#pragma once
+
+#include <cstdint>
+
+#include "fixstep/render.hpp"
+
+namespace fixstep::detail {
+
+/// Subpixel steps per px of the edges (llvmpipe's precision).
+inline constexpr std::int64_t soft_subpixels = 256;
+/// A fill below this is Renderer::no_hole (no circle's hole).
+inline constexpr float soft_no_hole = -1e29f;
+
+/// An axis-aligned pixel rectangle [x0, x1) x [y0, y1) that drawing is cut to.
+struct PixelBox {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+/// One edge's half-plane over subpixel coordinates: a pixel centre (X, Y) is inside where
+/// a X + b Y + c >= 0 (the tie rule folded into c). In pixel terms, row j's pixels i satisfy
+/// i >= bound (a > 0) or i <= bound (a < 0), bound = at + per_row j, kept in double to decide
+/// quickly and checked exactly where it is within a hair of a whole pixel.
+struct SoftEdge {
+  std::int64_t a = 0, b = 0, c = 0;
+  double at = 0, per_row = 0;
+};
+
+/// A value interpolated affinely over a piece: at px (x, y), at + dx (x - x0) + dy (y - y0).
+struct SoftPlane {
+  double at = 0, dx = 0, dy = 0;
+};
+
+/// (q - p) x (r - p), exact over subpixel coordinates.
+inline std::int64_t soft_cross(const std::int64_t (&p)[2], const std::int64_t (&q)[2],
+                               const std::int64_t (&r)[2]) {
+  return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
+}
+
+/// One convex piece (a triangle, or a quad of two), set up for drawing.
+struct SoftPiece {
+  SoftEdge edge[4];           ///< left edges (a > 0), then right edges (a < 0)
+  int lefts = 0, rights = 0;  ///< horizontal edges only limit the rows
+  double x0 = 0, y0 = 0;      ///< the first vertex, px (snapped): the planes' origin
+  SoftPlane u, v, color[4];
+  PixelBox box;
+  float fill = 0;
+  bool solid = false;       ///< coverage 1 everywhere: no shape coordinates, no hole
+  bool flat_color = false;  ///< one colour: the vertices'
+  bool rect = false;        ///< solid and axis-aligned: columns [col0, col1] on every row
+  int row0 = 0, row1 = -1;  ///< rows it may cover, within the box
+  int col0 = 0, col1 = -1;
+  /// A disc's or circle's centre (uv = 0), px: pixel centres within hole_r px of it (a
+  /// circle's hole) or beyond reach_r px (outside the shape) are sure to get alpha 0
+  /// (reach_r < 0: not round; hole_r < 0: no hole).
+  double centre_x = 0, centre_y = 0, hole_r = -1, reach_r = -1;
+  /// Sets centre_x, centre_y, hole_r and reach_r (set_up()).
+  void find_round();
+
+  /// Sets up the piece with corners v (3 or 4, convex, in order); false when it covers no pixel
+  /// centre (no area, or outside the box).
+  bool set_up(const CanvasVertex* const* v, int corners, const PixelBox& cut);
+  /// Pixels [lo, hi] of row j whose centres are inside, within the box (lo > hi: none).
+  void span(int j, int& lo, int& hi) const;
+  [[nodiscard]] double at(const SoftPlane& p, double x, double y) const {
+    return p.at + p.dx * (x - x0) + p.dy * (y - y0);
+  }
+  /// Rows [first, last] of a solid piece of one colour.
+  void draw_solid(std::uint8_t* pixels, int width, int first, int last) const;
+  /// Rows [first, last] of any piece, `first` the top row of one of the GL framebuffer's 2x2
+  /// quads.
+  void draw_shaded(std::uint8_t* pixels, int width, int first, int last) const;
+};
+
+}  // namespace fixstep::detail
