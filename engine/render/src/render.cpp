@@ -305,9 +305,14 @@ void Renderer::finish() {
   set_flip(1.0f);
   gl::api().glBindVertexArray(gl_->vao.get());
   gl::api().glBindBuffer(GL_ARRAY_BUFFER, gl_->vbo.get());
-  upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), vertices_.size() * sizeof(Vertex));
+  // What the CPU rasterises (the overlay and HUD, first_soft_batch()) never reaches GL.
+  const std::size_t soft = first_soft_batch();
+  const bool gl_all = soft == batches_.size();
+  const std::size_t gl_vertices = gl_all ? vertices_.size() : overlay_vertex_;
+  const std::size_t gl_indices = gl_all ? indices_.size() : batches_[soft].first;
+  upload(GL_ARRAY_BUFFER, gl_->vbo_bytes, vertices_.data(), gl_vertices * sizeof(Vertex));
   upload(GL_ELEMENT_ARRAY_BUFFER, gl_->ibo_bytes, indices_.data(),
-         indices_.size() * sizeof(std::uint32_t));
+         gl_indices * sizeof(std::uint32_t));
   std::size_t first_batch = 0;
   if (backdrop_ == Backdrop::record) {  // its batches into the backdrop, then copied
     gl_->draw_into_backdrop();
@@ -323,7 +328,6 @@ void Renderer::finish() {
   } else {
     gl_->copy_backdrop_to_frame();
   }
-  const std::size_t soft = first_soft_batch();
   draw_batches(first_batch, soft);
   gl::api().glFinish();
   if (const GLenum err = gl::api().glGetError(); err != GL_NO_ERROR) {

@@ -31,12 +31,8 @@ inline std::int64_t floor_div(std::int64_t n, std::int64_t d) {
 
 }  // namespace
 
-bool SoftPiece::set_up(const CanvasVertex* const* v, int corners, const PixelBox& cut) {
-  std::int64_t p[4][2] = {};
-  for (int k = 0; k < corners; ++k) {
-    p[k][0] = std::llround(double(v[k]->x) * sub);
-    p[k][1] = std::llround(double(v[k]->y) * sub);
-  }
+bool SoftPiece::set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2], int corners,
+                       const PixelBox& cut) {
   const std::int64_t area = soft_cross(p[0], p[1], p[2]);
   if (area == 0) return false;
   const bool flip = area < 0;  // one winding for the edges: inside is where all are >= 0
@@ -63,9 +59,9 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, int corners, const PixelBox
       continue;
     }
     // a (i sub + sub/2) + b (j sub + sub/2) + c = 0
-    const double step = double(e.a) * sub;
-    e.at = -(double(e.b) * (sub / 2) + double(e.c) + double(e.a) * (sub / 2)) / step;
-    e.per_row = -double(e.b) * sub / step;
+    const double inv_step = 1.0 / (double(e.a) * sub);
+    e.at = -(double(e.b) * (sub / 2) + double(e.c) + double(e.a) * (sub / 2)) * inv_step;
+    e.per_row = -double(e.b) * sub * inv_step;
     if (e.a > 0) {
       left[lefts++] = e;
     } else {
@@ -104,10 +100,11 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, int corners, const PixelBox
   std::int64_t top = p[0][1], bottom = p[0][1];
   for (int k = 1; k < corners; ++k)
     top = std::min(top, p[k][1]), bottom = std::max(bottom, p[k][1]);
-  row0 = std::max(box.y0, static_cast<int>(std::floor(double(top) / sub - 0.5)));
-  row1 = std::min(box.y1 - 1, static_cast<int>(std::ceil(double(bottom) / sub - 0.5)));
-  row0 = static_cast<int>(std::max<std::int64_t>(row0, first_row));
-  row1 = static_cast<int>(std::min<std::int64_t>(row1, last_row));
+  // Rows whose centres lie within [top, bottom] (and within the horizontal edges' rows).
+  row0 =
+      static_cast<int>(std::max({std::int64_t(box.y0), floor_div(top - sub / 2, sub), first_row}));
+  row1 = static_cast<int>(
+      std::min({std::int64_t(box.y1 - 1), -floor_div(sub / 2 - bottom, sub), last_row}));
   std::int64_t x_min = p[0][0], x_max = p[0][0];
   for (int k = 1; k < corners; ++k)
     x_min = std::min(x_min, p[k][0]), x_max = std::max(x_max, p[k][0]);
@@ -115,17 +112,27 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, int corners, const PixelBox
   for (int k = 0; k < corners && rect; ++k) {  // every corner on the bounding box's corners
     rect = (p[k][0] == x_min || p[k][0] == x_max) && (p[k][1] == top || p[k][1] == bottom);
   }
-  if (rect) {
-    // Pixel (i, j) is inside where left <= i sub + sub/2 < right and top <= j sub + sub/2 <
-    // bottom: the tie rule of the edges (the left and top edges own their centres).
-    auto first_from = [](std::int64_t edge) { return floor_div(edge - sub / 2 + sub - 1, sub); };
-    col0 = static_cast<int>(std::max<std::int64_t>(box.x0, first_from(x_min)));
-    col1 = static_cast<int>(std::min<std::int64_t>(box.x1, first_from(x_max)) - 1);
-    row0 = static_cast<int>(std::max<std::int64_t>(box.y0, first_from(top)));
-    row1 = static_cast<int>(std::min<std::int64_t>(box.y1, first_from(bottom)) - 1);
-    return row0 <= row1 && col0 <= col1;
-  }
+  if (rect) return set_up_rect(*v[0], x_min, top, x_max, bottom, cut);
   return row0 <= row1 && box.x0 < box.x1;
+}
+
+bool SoftPiece::set_up_rect(const CanvasVertex& c, std::int64_t x_min, std::int64_t y_min,
+                            std::int64_t x_max, std::int64_t y_max, const PixelBox& cut) {
+  lefts = rights = 0;
+  const std::uint8_t* rgba = &c.r;
+  for (int ch = 0; ch < 4; ++ch) color[ch] = SoftPlane{double(float(rgba[ch]) / 255.0f), 0, 0};
+  fill = c.fill;
+  flat_color = solid = rect = true;
+  hole_r = reach_r = -1;
+  box = cut;
+  // Pixel (i, j) is inside where x_min <= i sub + sub/2 < x_max and y_min <= j sub + sub/2 <
+  // y_max: the tie rule of the edges (the left and top edges own their centres).
+  auto first_from = [](std::int64_t edge) { return floor_div(edge - sub / 2 + sub - 1, sub); };
+  col0 = static_cast<int>(std::max<std::int64_t>(box.x0, first_from(x_min)));
+  col1 = static_cast<int>(std::min<std::int64_t>(box.x1, first_from(x_max)) - 1);
+  row0 = static_cast<int>(std::max<std::int64_t>(box.y0, first_from(y_min)));
+  row1 = static_cast<int>(std::min<std::int64_t>(box.y1, first_from(y_max)) - 1);
+  return row0 <= row1 && col0 <= col1;
 }
 
 void SoftPiece::find_round() {
@@ -140,7 +147,7 @@ void SoftPiece::find_round() {
   centre_x = x0 + (du * v.dy - u.dy * dv) / det;
   centre_y = y0 + (u.dx * dv - du * v.dx) / det;
   const double s = std::sqrt(u.dx * u.dx + u.dy * u.dy + v.dx * v.dx + v.dy * v.dy);
-  const double w_max = std::hypot(u.dx, v.dx) + std::hypot(u.dy, v.dy);
+  const double w_max = std::sqrt(u.dx * u.dx + v.dx * v.dx) + std::sqrt(u.dy * u.dy + v.dy * v.dy);
   reach_r = (1.0 + 0.5 * w_max) * s / std::abs(det) + 0.01;
   if (fill >= hole_threshold) hole_r = (double(fill) - 0.5 * w_max) / s - 0.01;
 }

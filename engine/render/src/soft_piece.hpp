@@ -33,6 +33,13 @@ struct SoftPlane {
   double at = 0, dx = 0, dy = 0;
 };
 
+/// x (px, within soft_reach_px) in subpixel steps, rounded to nearest, halves away from zero
+/// (std::llround's rounding, inline: x 256 is exact in double, and so is the added half).
+inline std::int64_t soft_snap(float x) {
+  const double s = double(x) * double(soft_subpixels);
+  return static_cast<std::int64_t>(s >= 0.0 ? s + 0.5 : s - 0.5);
+}
+
 /// (q - p) x (r - p), exact over subpixel coordinates.
 inline std::int64_t soft_cross(const std::int64_t (&p)[2], const std::int64_t (&q)[2],
                                const std::int64_t (&r)[2]) {
@@ -59,9 +66,14 @@ struct SoftPiece {
   /// Sets centre_x, centre_y, hole_r and reach_r (set_up()).
   void find_round();
 
-  /// Sets up the piece with corners v (3 or 4, convex, in order); false when it covers no pixel
-  /// centre (no area, or outside the box).
-  bool set_up(const CanvasVertex* const* v, int corners, const PixelBox& cut);
+  /// Sets up the piece with corners v (3 or 4, convex, in order), snapped to p (soft_snap); false
+  /// when it covers no pixel centre (no area, or outside the box).
+  bool set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2], int corners,
+              const PixelBox& cut);
+  /// Sets up a solid axis-aligned rectangle of colour c from subpixel corner (x0, y0) to
+  /// (x1, y1) (x0 < x1, y0 < y1) without edges or planes; false when it covers no pixel centre.
+  bool set_up_rect(const CanvasVertex& c, std::int64_t x0, std::int64_t y0, std::int64_t x1,
+                   std::int64_t y1, const PixelBox& cut);
   /// Pixels [lo, hi] of row j whose centres are inside, within the box (lo > hi: none).
   void span(int j, int& lo, int& hi) const;
   [[nodiscard]] double at(const SoftPlane& p, double x, double y) const {

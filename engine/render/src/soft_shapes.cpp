@@ -64,17 +64,29 @@ void SoftRasteriser::clear() {
 
 namespace {
 
+/// Whether (a, b, c), (a, c, d) is an axis-aligned rectangle of area with opposite corners a
+/// and c (snapped: p), solid (no shape coordinates, no hole) and of one colour.
+bool solid_rect(const CanvasVertex& a, const CanvasVertex& b, const CanvasVertex& c,
+                const CanvasVertex& d, const std::int64_t (&p)[4][2]) {
+  const bool sides =
+      (p[0][0] == p[3][0] && p[1][0] == p[2][0] && p[0][1] == p[1][1] && p[2][1] == p[3][1]) ||
+      (p[0][0] == p[1][0] && p[2][0] == p[3][0] && p[0][1] == p[3][1] && p[1][1] == p[2][1]);
+  if (!sides || p[0][0] == p[2][0] || p[0][1] == p[2][1]) return false;
+  for (const CanvasVertex* v : {&a, &b, &c, &d}) {
+    if (v->u != 0.0f || v->v != 0.0f || !(v->fill < soft_no_hole) || v->r != a.r || v->g != a.g ||
+        v->b != a.b || v->a != a.a) {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// Whether triangles (a, b, c) and (a, c, d) make one convex quad a b c d on which d's attributes
 /// are those the plane through a, b, c gives it, within float rounding (then GL's two planes
 /// are one, and the quad can be drawn as one piece).
 bool one_quad(const CanvasVertex& a, const CanvasVertex& b, const CanvasVertex& c,
-              const CanvasVertex& d) {
+              const CanvasVertex& d, const std::int64_t (&p)[4][2]) {
   if (a.fill != d.fill || c.fill != d.fill) return false;
-  const std::int64_t p[4][2] = {
-      {std::llround(double(a.x) * soft_subpixels), std::llround(double(a.y) * soft_subpixels)},
-      {std::llround(double(b.x) * soft_subpixels), std::llround(double(b.y) * soft_subpixels)},
-      {std::llround(double(c.x) * soft_subpixels), std::llround(double(c.y) * soft_subpixels)},
-      {std::llround(double(d.x) * soft_subpixels), std::llround(double(d.y) * soft_subpixels)}};
   const std::int64_t turns[4] = {soft_cross(p[0], p[1], p[2]), soft_cross(p[1], p[2], p[3]),
                                  soft_cross(p[2], p[3], p[0]), soft_cross(p[3], p[0], p[1])};
   const bool left = turns[0] > 0, right = turns[0] < 0;
@@ -84,8 +96,8 @@ bool one_quad(const CanvasVertex& a, const CanvasVertex& b, const CanvasVertex& 
   // d = a + s (b - a) + t (c - a): its attributes predicted likewise.
   const double bx = double(b.x) - a.x, by = double(b.y) - a.y, cx = double(c.x) - a.x,
                cy = double(c.y) - a.y, dx = double(d.x) - a.x, dy = double(d.y) - a.y;
-  const double det = bx * cy - cx * by;
-  const double s = (dx * cy - cx * dy) / det, t = (bx * dy - dx * by) / det;
+  const double inv_det = 1.0 / (bx * cy - cx * by);
+  const double s = (dx * cy - cx * dy) * inv_det, t = (bx * dy - dx * by) * inv_det;
   auto fits = [&](double fa, double fb, double fc, double fd, double tolerance) {
     return std::abs(fa + s * (fb - fa) + t * (fc - fa) - fd) <= tolerance;
   };
@@ -106,19 +118,31 @@ void SoftRasteriser::add(std::span<const CanvasVertex> vertices,
   for (std::size_t k = 0; k + 2 < indices.size(); k += 3) {
     const CanvasVertex* v[4] = {&vertices[indices[k]], &vertices[indices[k + 1]],
                                 &vertices[indices[k + 2]], nullptr};
+    std::int64_t p[4][2] = {};
+    for (int n = 0; n < 3; ++n) p[n][0] = soft_snap(v[n]->x), p[n][1] = soft_snap(v[n]->y);
     int corners = 3;
     // The renderer's quads: (a, b, c) then (a, c, d).
     if (k + 5 < indices.size() && indices[k + 3] == indices[k] &&
         indices[k + 4] == indices[k + 2]) {
       const CanvasVertex* d = &vertices[indices[k + 5]];
-      if (one_quad(*v[0], *v[1], *v[2], *d)) {
+      p[3][0] = soft_snap(d->x);
+      p[3][1] = soft_snap(d->y);
+      if (solid_rect(*v[0], *v[1], *v[2], *d, p)) {  // a glyph's, a panel's: no edges needed
+        const std::int64_t x0 = std::min(p[0][0], p[2][0]), x1 = std::max(p[0][0], p[2][0]);
+        const std::int64_t y0 = std::min(p[0][1], p[2][1]), y1 = std::max(p[0][1], p[2][1]);
+        pieces_.emplace_back();
+        if (!pieces_.back().set_up_rect(*d, x0, y0, x1, y1, box)) pieces_.pop_back();
+        k += 3;
+        continue;
+      }
+      if (one_quad(*v[0], *v[1], *v[2], *d, p)) {
         v[3] = d;
         corners = 4;
         k += 3;
       }
     }
     pieces_.emplace_back();
-    if (!pieces_.back().set_up(v, corners, box)) pieces_.pop_back();
+    if (!pieces_.back().set_up(v, p, corners, box)) pieces_.pop_back();
   }
 }
 
