@@ -206,10 +206,29 @@ void SoftPiece::draw_solid(std::uint8_t* pixels, int width, int first, int last)
 }
 
 void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last) const {
-  // A 2x2 quad is one vector of 4 lanes: (row 0, column 0), (0, 1), (1, 0), (1, 1).
-  const V4 column{0.0f, 1.0f, 0.0f, 1.0f}, row{0.0f, 0.0f, 1.0f, 1.0f};
   const bool line = u.at == 0.0 && u.dx == 0.0 && u.dy == 0.0;  // d = |v|, no root needed
   const bool hole = fill >= hole_threshold;
+  if (line) {
+    if (hole) {
+      flat_color ? draw_quads<true, true, true>(pixels, width, first, last)
+                 : draw_quads<true, true, false>(pixels, width, first, last);
+    } else {
+      flat_color ? draw_quads<true, false, true>(pixels, width, first, last)
+                 : draw_quads<true, false, false>(pixels, width, first, last);
+    }
+  } else if (hole) {
+    flat_color ? draw_quads<false, true, true>(pixels, width, first, last)
+               : draw_quads<false, true, false>(pixels, width, first, last);
+  } else {
+    flat_color ? draw_quads<false, false, true>(pixels, width, first, last)
+               : draw_quads<false, false, false>(pixels, width, first, last);
+  }
+}
+
+template <bool line, bool hole, bool flat>
+void SoftPiece::draw_quads(std::uint8_t* pixels, int width, int first, int last) const {
+  // A 2x2 quad is one vector of 4 lanes: (row 0, column 0), (0, 1), (1, 0), (1, 1).
+  const V4 column{0.0f, 1.0f, 0.0f, 1.0f}, row{0.0f, 0.0f, 1.0f, 1.0f};
   for (int top = first; top <= last; top += 2) {
     int lo[2] = {0, 0}, hi[2] = {-1, -1};
     for (int r = 0; r < 2; ++r) {
@@ -227,12 +246,17 @@ void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last
     // Values at the centre of pixel (x_start, top), and their steps per px.
     const double cx = x_start + 0.5, cy = top + 0.5;
     const V4 u_step = splat(float(u.dx)), v_step = splat(float(v.dx));
-    const V4 u_quad = splat(float(at(u, cx, cy))) + splat(float(u.dy)) * row;
+    const V4 u_quad = line ? V4{} : splat(float(at(u, cx, cy))) + splat(float(u.dy)) * row;
     const V4 v_quad = splat(float(at(v, cx, cy))) + splat(float(v.dy)) * row;
     V4 c_quad[4], c_step[4];
     for (int ch = 0; ch < 4; ++ch) {
-      c_quad[ch] = splat(float(at(color[ch], cx, cy))) + splat(float(color[ch].dy)) * row;
-      c_step[ch] = splat(float(color[ch].dx));
+      if constexpr (flat) {
+        c_quad[ch] = splat(float(color[ch].at));  // its planes are flat: at() is `at`, exactly
+        c_step[ch] = V4{};
+      } else {
+        c_quad[ch] = splat(float(at(color[ch], cx, cy))) + splat(float(color[ch].dy)) * row;
+        c_step[ch] = splat(float(color[ch].dx));
+      }
     }
     std::uint8_t* rows[2] = {pixels + std::size_t(top) * std::size_t(width) * 4,
                              pixels + std::size_t(top + 1) * std::size_t(width) * 4};
@@ -267,7 +291,7 @@ void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last
       const V4 s = splat(float(x - x_start)) + column;
       const V4 vv = v_quad + v_step * s;
       V4 d;
-      if (line) {
+      if constexpr (line) {
         d = abs4(vv);
       } else {
         const V4 uu = u_quad + u_step * s;
@@ -275,11 +299,12 @@ void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last
       }
       const V4 w = max4(abs4(d - other_column(d)) + abs4(d - other_row(d)), splat(1e-6f));
       V4 coverage = clamp01((splat(1.0f) - d) / w + splat(0.5f));
-      if (hole) coverage = max4(coverage - clamp01((splat(fill) - d) / w + splat(0.5f)), V4{});
-      const V4 a = (c_quad[3] + c_step[3] * s) * coverage;
-      const V4I a8 = to8(a), r8 = to8((c_quad[0] + c_step[0] * s) * a),
-                g8 = to8((c_quad[1] + c_step[1] * s) * a),
-                b8 = to8((c_quad[2] + c_step[2] * s) * a);
+      if constexpr (hole)
+        coverage = max4(coverage - clamp01((splat(fill) - d) / w + splat(0.5f)), V4{});
+      V4 c[4];  // the colour at each lane
+      for (int ch = 0; ch < 4; ++ch) c[ch] = flat ? c_quad[ch] : c_quad[ch] + c_step[ch] * s;
+      const V4 a = c[3] * coverage;
+      const V4I a8 = to8(a), r8 = to8(c[0] * a), g8 = to8(c[1] * a), b8 = to8(c[2] * a);
       const V4I xs = V4I{x, x + 1, x, x + 1};
       const V4I drawn = (xs >= lo4) & (xs <= hi4) & (a8 > 0);
       if (!(drawn[0] | drawn[1] | drawn[2] | drawn[3])) continue;

@@ -84,6 +84,9 @@ struct SoftPiece {
   /// Rows [first, last] of any piece, `first` the top row of one of the GL framebuffer's 2x2
   /// quads.
   void draw_shaded(std::uint8_t* pixels, int width, int first, int last) const;
+  /// draw_shaded() for a line's coordinates (u = 0), a hole or not, one colour or not.
+  template <bool line, bool hole, bool flat>
+  void draw_quads(std::uint8_t* pixels, int width, int first, int last) const;
 };
 
 }  // namespace fixstep::detail
