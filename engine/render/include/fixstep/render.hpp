@@ -1,5 +1,7 @@
 // Headless rendering through OSMesa: every frame, headless or windowed, is drawn here into a
-// CPU-side RGBA8 buffer (one render path; the window only presents these pixels).
+// CPU-side RGBA8 buffer (one render path; the window only presents these pixels); what a frame
+// draws over its scene view (a game's overlay, the HUD) is rasterised there by the CPU
+// (OverlayPath).
 #pragma once
 
 #include <array>
@@ -127,7 +129,8 @@ class Renderer {
   /// Appearance (RenderFrame::visible 0) is not drawn, nor its trail, nor the springs and links
   /// that end at it. Prepares the trails first (Trails::prepare: throws std::invalid_argument for
   /// a frame it refuses). Canvas primitives recorded after it are drawn over the bodies (a
-  /// game's overlay); draw_hud() and finish() complete the picture.
+  /// game's overlay, rasterised as overlay_path() says); draw_hud() and finish() complete the
+  /// picture.
   void draw_scene(const RenderFrame& frame);
   /// The HUD panel with `lines` (none: nothing) in the corner hud_corner() names, at
   /// hud_text_scale(), over whatever was recorded before.
@@ -190,7 +193,11 @@ class Renderer {
   /// primitives recorded in between. Forgets primitives recorded since the last finish().
   void begin(Rgba8 background);
   /// Rasterises everything recorded since begin() into pixels() (one upload, one draw call per
-  /// clip change). Throws RenderError if GL reports an error.
+  /// clip change); what was recorded after draw_scene() (the overlay, the HUD) as
+  /// overlay_path() says: by default natively the CPU draws it into pixels() once GL has drawn
+  /// the rest (the same coverage, derivatives and blending as the shader under llvmpipe, to a
+  /// level or two), on a second thread too where the machine has a second core. Throws
+  /// RenderError if GL reports an error.
   void finish();
   /// Primitives recorded after this call are cut to `clip` (GL scissor: exact to the pixel)
   /// until the next set_clip(); std::nullopt draws on the whole frame again.
