@@ -31,11 +31,6 @@ inline void blend(std::uint8_t* p, int r, int g, int b, int a) {
   p[2] = static_cast<std::uint8_t>(std::min(255, b + mul255(p[2], keep)));
 }
 
-/// 8-bit value of x in [0, 1] (round to nearest, as llvmpipe converts its fragments).
-inline int to8(float x) {
-  return static_cast<int>(x * 255.0f + 0.5f);
-}
-
 /// Four floats (ints): one 2x2 quad of pixels, lanes (row 0, column 0), (0, 1), (1, 0), (1, 1).
 using V4 = float __attribute__((vector_size(16)));
 using V4I = std::int32_t __attribute__((vector_size(16)));
@@ -59,6 +54,7 @@ inline V4 other_column(V4 x) {
 inline V4 other_row(V4 x) {
   return __builtin_shufflevector(x, x, 2, 3, 0, 1);
 }
+/// Square roots, correctly rounded in every lane.
 inline V4 sqrt4(V4 x) {
 #if defined(__SSE__)
   return _mm_sqrt_ps(x);
@@ -69,8 +65,14 @@ inline V4 sqrt4(V4 x) {
   return x;
 #endif
 }
+/// 8-bit values of x in [0, 1]: x 255 + 0.5 truncated (round to nearest, as llvmpipe converts
+/// its fragments).
 inline V4I to8(V4 x) {
   return __builtin_convertvector(x * 255.0f + 0.5f, V4I);
+}
+/// to8() of one value (the vector's arithmetic, so that solid and shaded pixels round alike).
+inline int to8(float x) {
+  return to8(V4{x, x, x, x})[0];
 }
 
 using V4U = std::uint32_t __attribute__((vector_size(16)));

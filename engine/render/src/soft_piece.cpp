@@ -60,7 +60,8 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2],
     }
     // a (i sub + sub/2) + b (j sub + sub/2) + c = 0
     const double inv_step = 1.0 / (double(e.a) * sub);
-    e.at = -(double(e.b) * (sub / 2) + double(e.c) + double(e.a) * (sub / 2)) * inv_step;
+    const double half = 0.5 * double(sub);
+    e.at = -(double(e.b) * half + double(e.c) + double(e.a) * half) * inv_step;
     e.per_row = -double(e.b) * sub * inv_step;
     if (e.a > 0) {
       left[lefts++] = e;

@@ -10,6 +10,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 #include "soft_piece.hpp"
@@ -163,11 +164,11 @@ void SoftRasteriser::draw(std::span<std::uint8_t> pixels, int width, int height)
   }
   for (int b = 0; b < bands_; ++b) band_start_[std::size_t(b) + 1] += band_start_[std::size_t(b)];
   band_list_.resize(band_start_[std::size_t(bands_)]);
-  fill_.assign(band_start_.begin(), band_start_.end() - 1);
+  band_next_.assign(band_start_.begin(), band_start_.end() - 1);
   for (std::size_t k = 0; k < pieces_.size(); ++k) {
     const SoftPiece& t = pieces_[k];
     for (int b = band_of(t.row0); b <= band_of(t.row1); ++b) {
-      band_list_[fill_[std::size_t(b)]++] = static_cast<std::uint32_t>(k);
+      band_list_[band_next_[std::size_t(b)]++] = static_cast<std::uint32_t>(k);
     }
   }
   next_band_.store(0);
@@ -196,23 +197,28 @@ bool SoftRasteriser::start_crew() {
   if (crew_) return true;
   if (std::thread::hardware_concurrency() < 2) return false;
   crew_ = std::make_unique<Crew>();
-  crew_->thread = std::thread([this] {
-    std::uint64_t seen = 0;
-    for (;;) {
-      {
-        std::unique_lock lock(crew_->mutex);
-        crew_->wake.wait(lock, [&] { return crew_->stop || crew_->job != seen; });
-        if (crew_->stop) return;
-        seen = crew_->job;
+  try {
+    crew_->thread = std::thread([this] {
+      std::uint64_t seen = 0;
+      for (;;) {
+        {
+          std::unique_lock lock(crew_->mutex);
+          crew_->wake.wait(lock, [&] { return crew_->stop || crew_->job != seen; });
+          if (crew_->stop) return;
+          seen = crew_->job;
+        }
+        run_bands();
+        {
+          const std::lock_guard lock(crew_->mutex);
+          crew_->busy = false;
+        }
+        crew_->done.notify_one();
       }
-      run_bands();
-      {
-        const std::lock_guard lock(crew_->mutex);
-        crew_->busy = false;
-      }
-      crew_->done.notify_one();
-    }
-  });
+    });
+  } catch (const std::system_error&) {  // no thread to be had: the caller draws alone
+    crew_.reset();
+    return false;
+  }
   return true;
 #endif
 }

@@ -38,11 +38,11 @@ inline constexpr double soft_reach_px = 1 << 20;
 ///   8-bit arithmetic, rounded; alpha stays 255.
 /// The frame is drawn in bands of rows, each band's triangles in their order, so that a band's
 /// pixels stay in cache, shared between the calling thread and a second one (started on the
-/// first large frame where there is a second core); the result is the same as drawing triangle
-/// after triangle, whichever thread draws a band. Two
-/// triangles (a, b, c), (a, c, d) that make one convex quad with one affine map of their
-/// attributes are drawn as that quad (the same pixels, set up once). Keeps its
-/// scratch between frames: allocates nothing once it has drawn its largest frame.
+/// first large frame where there is a second core, if the system gives it a thread); the result
+/// is the same as drawing triangle after triangle, whichever thread draws a band. Two triangles
+/// (a, b, c), (a, c, d) that make one convex quad with one affine map of their attributes are
+/// drawn as that quad (the same pixels, set up once). Keeps its scratch between frames:
+/// allocates nothing once it has drawn its largest frame.
 class SoftRasteriser {
  public:
   SoftRasteriser();
@@ -53,7 +53,7 @@ class SoftRasteriser {
   /// Forgets the triangles added since the last draw().
   void clear();
   /// Adds the triangles `indices` (3 each, into `vertices`, all within soft_reach_px), cut to
-  /// `box`, after those added before.
+  /// `box` (within the frame draw() is given), after those added before.
   void add(std::span<const CanvasVertex> vertices, std::span<const std::uint32_t> indices,
            PixelBox box);
   /// Draws every triangle added into `pixels` (width x height RGBA8), then clear()s.
@@ -68,7 +68,7 @@ class SoftRasteriser {
   /// Draws bands of frame_ until none is left (both threads).
   void run_bands();
   std::vector<SoftPiece> pieces_;
-  std::vector<std::uint32_t> band_start_, band_list_, fill_;  // pieces by band (counting sort)
+  std::vector<std::uint32_t> band_start_, band_list_, band_next_;  // pieces by band (counting sort)
   std::span<std::uint8_t> frame_;  // the frame being drawn, width_ x height_, in bands_ bands
   int width_ = 0, height_ = 0, bands_ = 0;
   std::atomic<int> next_band_{0};  // the next band a thread takes
