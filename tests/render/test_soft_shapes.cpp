@@ -54,6 +54,17 @@ const std::uint8_t* pixel(const std::vector<std::uint8_t>& frame, int width, int
   return &frame[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4];
 }
 
+/// Expects the red channel 255 on the pixels of `white` and 0 on every other.
+void expect_white_exactly(const std::vector<std::uint8_t>& frame, int width, int height,
+                          PixelBox white) {
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const bool in = x >= white.x0 && x < white.x1 && y >= white.y0 && y < white.y1;
+      EXPECT_EQ(pixel(frame, width, x, y)[0], in ? 255 : 0) << "pixel (" << x << ", " << y << ")";
+    }
+  }
+}
+
 TEST(SoftShapes, ARectangleCoversThePixelsWhoseCentresItHolds) {
   // [2.5, 7.5) x [1.5, 4.5): centres x + 0.5 in it for x = 2..6 (2.5 on the left edge is in, 7.5
   // on the right edge is out), y = 1..3.
@@ -64,12 +75,7 @@ TEST(SoftShapes, ARectangleCoversThePixelsWhoseCentresItHolds) {
        {solid(2.5f, 1.5f, c), solid(7.5f, 1.5f, c), solid(7.5f, 4.5f, c), solid(2.5f, 1.5f, c),
         solid(7.5f, 4.5f, c), solid(2.5f, 4.5f, c)},
        {0, 0, w, h});
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const bool in = x >= 2 && x <= 6 && y >= 1 && y <= 3;
-      EXPECT_EQ(pixel(frame, w, x, y)[0], in ? 255 : 0) << "pixel (" << x << ", " << y << ")";
-    }
-  }
+  expect_white_exactly(frame, w, h, {2, 1, 7, 4});
 }
 
 TEST(SoftShapes, TwoTrianglesSharingAnEdgeThroughPixelCentresBlendEachPixelOnce) {
@@ -126,12 +132,7 @@ TEST(SoftShapes, NothingIsDrawnOutsideTheClipBox) {
        {solid(-5.0f, -5.0f, c), solid(30.0f, -5.0f, c), solid(30.0f, 30.0f, c),
         solid(-5.0f, -5.0f, c), solid(30.0f, 30.0f, c), solid(-5.0f, 30.0f, c)},
        {4, 6, 9, 15});
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const bool in = x >= 4 && x < 9 && y >= 6 && y < 15;
-      EXPECT_EQ(pixel(frame, w, x, y)[0], in ? 255 : 0) << "pixel (" << x << ", " << y << ")";
-    }
-  }
+  expect_white_exactly(frame, w, h, {4, 6, 9, 15});
 }
 
 TEST(SoftShapes, TheOverlayMatchesLlvmpipeDrawingItToTwoLevels) {
