@@ -124,6 +124,38 @@ TEST(SoftShapes, AnAntiAliasedDiscCoversItsArea) {
   }
 }
 
+TEST(SoftShapes, ADiscCutByTheFramesTopAndBottomCoversWhatIsInside) {
+  // A frame of odd height pairs its top row with row -1 in GL's 2x2 quads (they pair rows
+  // counted from the bottom); nothing may be read or written there (ASan builds check it). A
+  // disc whose centre is 0.4 px inside the top (bottom) edge covers its area less the
+  // circular segment beyond the edge, r^2 acos(h / r) - h sqrt(r^2 - h^2) at depth h = 0.4 px,
+  // within the disc test's tolerance, in frames of even and odd height.
+  constexpr int w = 40;
+  constexpr float r = 6.0f, inside = 0.4f, pad = r + 0.75f, e = pad / r;
+  const double cut =
+      double(r) * r * std::acos(inside / r) - inside * std::sqrt(r * r - inside * inside);
+  const double exact = std::numbers::pi * r * r - cut;
+  for (const int h : {16, 17}) {
+    for (const float cy : {inside, float(h) - inside}) {
+      auto frame = frame_of(w, h, {0, 0, 0, 255});
+      const float cx = 19.3f;
+      auto at = [&](float x, float y, float u, float v) {
+        return CanvasVertex{x, y, u, v, 255, 255, 255, 255, no_hole};
+      };
+      const std::vector<CanvasVertex> vertices = {
+          at(cx - pad, cy - pad, -e, -e), at(cx + pad, cy - pad, e, -e),
+          at(cx + pad, cy + pad, e, e), at(cx - pad, cy + pad, -e, e)};
+      SoftRasteriser raster;
+      raster.add(vertices, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}, {0, 0, w, h});
+      raster.draw(frame, w, h);
+      double area = 0.0;
+      for (std::size_t k = 0; k < frame.size(); k += 4) area += frame[k] / 255.0;
+      EXPECT_NEAR(area, exact, std::max(1.0, 0.002 * exact))
+          << "height " << h << ", centre y " << cy;
+    }
+  }
+}
+
 TEST(SoftShapes, NothingIsDrawnOutsideTheClipBox) {
   constexpr int w = 20, h = 20;
   auto frame = frame_of(w, h, {0, 0, 0, 255});

@@ -259,7 +259,10 @@ void SoftPiece::draw_quads(std::uint8_t* pixels, int width, int first, int last)
         c_step[ch] = splat(float(color[ch].dx));
       }
     }
-    std::uint8_t* rows[2] = {pixels + std::size_t(top) * std::size_t(width) * 4,
+    // In a frame of odd height the top row's quad pairs it with row -1, outside the frame: no
+    // lane there is drawn (its span is empty), and the quad is blended lane by lane.
+    const bool whole = top >= 0;
+    std::uint8_t* rows[2] = {whole ? pixels + std::size_t(top) * std::size_t(width) * 4 : nullptr,
                              pixels + std::size_t(top + 1) * std::size_t(width) * 4};
     // Quads wholly outside a round shape, or inside a circle's hole (their alpha 0
     // everywhere), are skipped.
@@ -309,12 +312,12 @@ void SoftPiece::draw_quads(std::uint8_t* pixels, int width, int first, int last)
       const V4I xs = V4I{x, x + 1, x, x + 1};
       const V4I drawn = (xs >= lo4) & (xs <= hi4) & (a8 > 0);
       if (!(drawn[0] | drawn[1] | drawn[2] | drawn[3])) continue;
-      if (x + 1 < width) {
+      if (x + 1 < width && whole) {  // every lane's pixel is in the frame
         blend_quad(rows[0] + std::size_t(x) * 4, rows[1] + std::size_t(x) * 4, r8 & drawn,
                    g8 & drawn, b8 & drawn, a8 & drawn);
         continue;
       }
-      for (int lane = 0; lane < 4; ++lane) {  // the frame's last column: no pixel beyond it
+      for (int lane = 0; lane < 4; ++lane) {  // the last column, or row -1: pixels beyond
         if (!drawn[lane]) continue;
         blend(rows[lane >> 1] + std::size_t(x + (lane & 1)) * 4, r8[lane], g8[lane], b8[lane],
               a8[lane]);
