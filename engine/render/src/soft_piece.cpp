@@ -137,20 +137,25 @@ bool SoftPiece::set_up_rect(const CanvasVertex& c, std::int64_t x_min, std::int6
 }
 
 void SoftPiece::find_round() {
-  // uv = 0 at the centre. A pixel step changes uv by at most s (the map's Frobenius norm, at
-  // least its largest singular value) and by at least |det| / s (at most its smallest), and
-  // d's fwidth w is at most w_max. Alpha is 0 where d >= 1 + w / 2 (outside the shape) and,
-  // for a circle, where d <= fill - w / 2 (inside its hole); in px, with a margin for float
-  // rounding:
+  // uv = 0 at the centre. A step of ρ px changes uv by at most σ_max ρ and at least σ_min ρ,
+  // σ the singular values of the map's Jacobian J, and d's fwidth w is at most w_max. Alpha is
+  // 0 where d >= 1 + w / 2 (outside the shape) and, for a circle, where d <= fill - w / 2
+  // (inside its hole). σ_max² = (S + √(S² - 4 det²)) / 2 with S = |J|² (Frobenius), the
+  // eigenvalues of JᵀJ, and σ_min = |det| / σ_max; σ_max is taken a part in 10⁶ large, and
+  // the radii get a further 0.01 px margin, against the rounding of these doubles and of the
+  // floats the quads compute d in.
   const double det = u.dx * v.dy - u.dy * v.dx;
   if (!(std::abs(det) > 1e-12)) return;
   const double du = -u.at, dv = -v.at;  // solve the planes for uv = 0
   centre_x = x0 + (du * v.dy - u.dy * dv) / det;
   centre_y = y0 + (u.dx * dv - du * v.dx) / det;
-  const double s = std::sqrt(u.dx * u.dx + u.dy * u.dy + v.dx * v.dx + v.dy * v.dy);
+  const double frobenius2 = u.dx * u.dx + u.dy * u.dy + v.dx * v.dx + v.dy * v.dy;
+  const double gap = std::sqrt(std::max(0.0, frobenius2 * frobenius2 - 4.0 * det * det));
+  const double sigma_max = std::sqrt(0.5 * (frobenius2 + gap)) * (1.0 + 1e-6);
+  const double sigma_min = std::abs(det) / sigma_max;
   const double w_max = std::sqrt(u.dx * u.dx + v.dx * v.dx) + std::sqrt(u.dy * u.dy + v.dy * v.dy);
-  reach_r = (1.0 + 0.5 * w_max) * s / std::abs(det) + 0.01;
-  if (fill >= hole_threshold) hole_r = (double(fill) - 0.5 * w_max) / s - 0.01;
+  reach_r = (1.0 + 0.5 * w_max) / sigma_min + 0.01;
+  if (fill >= hole_threshold) hole_r = (double(fill) - 0.5 * w_max) / sigma_max - 0.01;
 }
 
 void SoftPiece::span(int j, int& lo, int& hi) const {
@@ -289,10 +294,14 @@ void SoftPiece::draw_quads(std::uint8_t* pixels, int width, int first, int last)
         skip_to = std::max(skip_to, skip_from);
       }
     }
-    for (int x = x_begin; x <= x_last; x += 2) {
-      if (x >= skip_from && x < skip_to) x = skip_to;
+    // Each lane's column from x_start, a small whole number: stepping it by 2 is exact.
+    V4 s = splat(float(x_begin - x_start)) + column;
+    for (int x = x_begin; x <= x_last; x += 2, s += 2.0f) {
+      if (x >= skip_from && x < skip_to) {
+        x = skip_to;
+        s = splat(float(x - x_start)) + column;
+      }
       if (x > x_last) break;
-      const V4 s = splat(float(x - x_start)) + column;
       const V4 vv = v_quad + v_step * s;
       V4 d;
       if constexpr (line) {
@@ -311,7 +320,8 @@ void SoftPiece::draw_quads(std::uint8_t* pixels, int width, int first, int last)
       const V4I a8 = to8(a), r8 = to8(c[0] * a), g8 = to8(c[1] * a), b8 = to8(c[2] * a);
       const V4I xs = V4I{x, x + 1, x, x + 1};
       const V4I drawn = (xs >= lo4) & (xs <= hi4) & (a8 > 0);
-      if (!(drawn[0] | drawn[1] | drawn[2] | drawn[3])) continue;
+      // A quad with no lane drawn is blended too (a lane of alpha and colour 0 leaves its pixel
+      // exactly as it is): no branch to mispredict.
       if (x + 1 < width && whole) {  // every lane's pixel is in the frame
         blend_quad(rows[0] + std::size_t(x) * 4, rows[1] + std::size_t(x) * 4, r8 & drawn,
                    g8 & drawn, b8 & drawn, a8 & drawn);
