@@ -38,14 +38,33 @@ using V4I = std::int32_t __attribute__((vector_size(16)));
 inline V4 splat(float x) {
   return V4{x, x, x, x};
 }
+/// |x| in every lane: the sign bit cleared (|-0| = +0).
 inline V4 abs4(V4 x) {
-  return x < 0.0f ? -x : x;
+  return V4(V4I(x) & 0x7fffffff);
 }
+/// The larger (smaller) of a and b in every lane, for lanes that are not NaN (the rasteriser's
+/// never are); which zero a tie of -0 and +0 gives may differ, which no 8-bit value it feeds
+/// sees.
 inline V4 max4(V4 a, V4 b) {
+#if defined(__SSE__)
+  return _mm_max_ps(a, b);
+#elif defined(__aarch64__)
+  return vmaxq_f32(a, b);
+#else
   return a < b ? b : a;
+#endif
+}
+inline V4 min4(V4 a, V4 b) {
+#if defined(__SSE__)
+  return _mm_min_ps(a, b);
+#elif defined(__aarch64__)
+  return vminq_f32(a, b);
+#else
+  return a < b ? a : b;
+#endif
 }
 inline V4 clamp01(V4 x) {
-  return max4(x > 1.0f ? splat(1.0f) : x, V4{});
+  return max4(min4(x, splat(1.0f)), V4{});
 }
 /// Each lane's neighbour in the other column (row) of its quad.
 inline V4 other_column(V4 x) {
