@@ -221,10 +221,16 @@ std::vector<std::string> status_lines(const GameState& game) {
     case Phase::flying:
       lines.emplace_back("ball in play");
       break;
-    case Phase::over:
+    case Phase::over: {
+#ifdef __EMSCRIPTEN__
+      constexpr const char* keys = "   (r plays again)";  // a page has no Esc to quit with
+#else
+      constexpr const char* keys = "   (r plays again, esc quits)";
+#endif
       lines.emplace_back("GAME OVER: " + std::to_string(game.score) + " of " +
-                         std::to_string(target_count) + " down   (r plays again, esc quits)");
+                         std::to_string(target_count) + " down" + keys);
       break;
+    }
   }
   return lines;
 }
