@@ -104,7 +104,14 @@ inline V4U over(V4U pixels, V4U src, V4U keep) {
   const V8U16 keep16 = V8U16(keep | keep << 16);
   auto scaled = [&](V4U two_channels) {  // mul255(channel, keep) for two 8-bit channels
     const V8U16 t = V8U16(two_channels) * keep16 + 0x80;
+#if defined(__SSE2__)
+    // (t + (t >> 8)) >> 8 == (257 t) >> 16 for every 16-bit t: 257 t = 256 t + t, and
+    // t + t / 256 lies within one of the whole number t + floor(t / 256) below it, which
+    // no multiple of 256 falls strictly between.
+    return V4U(_mm_mulhi_epu16(__m128i(t), _mm_set1_epi16(257)));
+#else
     return V4U((t + (t >> 8)) >> 8);
+#endif
   };
   const V4U rb = scaled(pixels & 0x00ff00ffu), ga = scaled((pixels >> 8) & 0x00ff00ffu);
   return (rb | ga << 8) + src;  // each channel at most 255: no carry between them
