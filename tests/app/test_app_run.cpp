@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fixstep/app.hpp>
+#include <fixstep/detail/game_model.hpp>
+#include <fixstep/detail/game_play.hpp>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>
@@ -178,6 +180,30 @@ TEST_F(AppRun, MissingRecordingExitsOneNamingIt) {
   testing::internal::CaptureStderr();
   EXPECT_EQ(run(Drop{}, {"--replay", path("none.rec")}), 1);
   EXPECT_NE(testing::internal::GetCapturedStderr().find("none.rec"), std::string::npos);
+}
+
+/// A game whose drawing is one HUD line.
+struct Scored : Drop {
+  void draw(app::Overlay& overlay) const { overlay.text("score 0"); }
+};
+
+TEST(AppDraw, TheHintGivesAStatusLinePerLineOfIt) {
+  // The window's hint is the game's keys and the window's on two lines (one line of both is
+  // wider than the HUD beside a game's field): after the game's own lines, in order.
+  WorldDef level;
+  Scored game;
+  game.setup(level);
+  Session session(level, SessionSettings{.width = 64, .height = 36});
+  const app::detail::GameModel<Scored> model(game);
+  app::Overlay overlay;
+  app::detail::draw_game(session, model, overlay, "mouse: aim\nr: restart   esc: quit");
+  const auto lines = overlay.lines();
+  EXPECT_EQ(std::vector<std::string>(lines.begin(), lines.end()),
+            (std::vector<std::string>{"score 0", "mouse: aim", "r: restart   esc: quit"}));
+  app::detail::draw_game(session, model, overlay, "autopilot");
+  EXPECT_EQ(overlay.lines().size(), 2u);
+  app::detail::draw_game(session, model, overlay, {});
+  EXPECT_EQ(overlay.lines().size(), 1u);
 }
 
 }  // namespace

@@ -23,9 +23,11 @@ constexpr auto window_frame = std::chrono::microseconds(16667);  // the window's
 void play_window(GamePlay& play, const Settings& settings, std::int64_t frames) {
 #ifdef FIXSTEP_APP_WINDOW
   Window window(settings.name, settings.width, settings.height);
+  // The game's keys and the window's, a line each: one line of both is wider than a HUD
+  // beside a game's field.
   const std::string hint = settings.controls.empty()
                                ? "r: restart   esc: quit"
-                               : settings.controls + "   r: restart   esc: quit";
+                               : settings.controls + "\nr: restart   esc: quit";
   RealClock clock;
   UserEvents ev;
   for (std::int64_t frame = 0; frames == 0 || frame < frames; ++frame) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fixstep/recording_file.hpp>
 #include <fixstep/summary.hpp>
+#include <string_view>
 #include <utility>
 
 namespace fixstep::app::detail {
@@ -60,7 +61,11 @@ void draw_game(Session& session, const AnyGame& game, Overlay& overlay, std::str
     throw;
   }
   overlay.bind(nullptr);
-  if (!hint.empty()) overlay.text(hint);
+  while (!hint.empty()) {  // a line per '\n'
+    const std::size_t end = hint.find('\n');
+    overlay.text(hint.substr(0, end));
+    hint.remove_prefix(end == std::string_view::npos ? hint.size() : end + 1);
+  }
   session.set_status_lines(overlay.lines());
   session.draw(overlay);
 }

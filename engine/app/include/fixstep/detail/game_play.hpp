@@ -18,7 +18,8 @@ namespace fixstep::app::detail {
 
 /// One frame of `game` on `session`: the frame prepared (Session::prepare_frame), the game's
 /// drawing into `overlay` (emptied first; bound to the session while the game draws), its HUD
-/// lines and `hint` as the status lines, then the frame drawn with the overlay.
+/// lines and `hint` (one line per '\n' in it) as the status lines, then the frame drawn with
+/// the overlay.
 void draw_game(Session& session, const AnyGame& game, Overlay& overlay, std::string_view hint);
 
 /// The game, its Session and the input sampler; a recorder when recording. Every live tick:
