@@ -82,6 +82,36 @@ std::vector<std::uint8_t> decode(std::span<const std::uint8_t> png, int w, int h
   return out;
 }
 
+/// The PNG colour type (IHDR's 10th data byte): 2 RGB, 6 RGBA.
+int png_colour_type(std::span<const std::uint8_t> png) {
+  return png.size() > 25 ? png[25]
+                         : -1;  // signature 8, length 4, "IHDR" 4, width 4, height 4, depth 1
+}
+
+TEST(Capture, AnOpaqueImageIsWrittenAsRgbAndRoundTripsExactly) {
+  // Every alpha 255 (every rendered frame): colour type 2, a quarter fewer bytes to compress,
+  // decoding to the same RGBA. Widths 1 to 9 and 37 (rows of every length mod 4, each pixel
+  // written over the last one's alpha, the last into the spare byte); one alpha of 254
+  // keeps the image RGBA (type 6).
+  for (const int w : {1, 2, 3, 4, 5, 6, 7, 8, 9, 37}) {
+    const int h = 5;
+    std::vector<std::uint8_t> rgba(std::size_t(w) * h * 4);
+    for (std::size_t i = 0; i < rgba.size(); ++i) {
+      rgba[i] = i % 4 == 3 ? 255 : static_cast<std::uint8_t>(i * 37 + 11);
+    }
+    PngEncoder encoder;
+    const auto opaque = encoder.encode(w, h, rgba);
+    std::vector<std::uint8_t> png(opaque.begin(), opaque.end());
+    EXPECT_EQ(png_colour_type(png), 2) << "width " << w;
+    EXPECT_EQ(decode(png, w, h), rgba) << "width " << w;
+    rgba[rgba.size() - 1] = 254;  // the last pixel's alpha
+    const auto translucent = encoder.encode(w, h, rgba);
+    png.assign(translucent.begin(), translucent.end());
+    EXPECT_EQ(png_colour_type(png), 6) << "width " << w;
+    EXPECT_EQ(decode(png, w, h), rgba) << "width " << w;
+  }
+}
+
 std::vector<std::uint8_t> read_all(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), {}};

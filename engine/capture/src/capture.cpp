@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <climits>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <span>
 #include <vector>
 
 namespace {
@@ -82,6 +84,28 @@ void configure_stb_once() {
     return true;
   }();
   (void)configured;
+}
+
+/// Packs the RGBA8 pixels of `rgba` as RGB8 into `rgb` (3/4 of its size) when every alpha is
+/// 255, and returns whether it was so (`rgb` is then the image); false for any other alpha.
+/// Each pixel is copied as 4 bytes 3 bytes apart, the next one overwriting its alpha: one load
+/// and one store a pixel (`rgb` keeps a byte of room past the image for the last).
+bool pack_opaque_rgb(std::span<const std::uint8_t> rgba, std::vector<std::uint8_t>& rgb) {
+  const std::size_t pixels = rgba.size() / 4;
+  rgb.resize(pixels * 3 + 1);
+  const std::uint8_t* in = rgba.data();
+  std::uint8_t* out = rgb.data();
+  std::uint32_t all = 0xffffffffu;  // every pixel's bytes ANDed: byte 3 is the alphas'
+  for (std::size_t i = 0; i < pixels; ++i, in += 4, out += 3) {
+    std::uint32_t p = 0;
+    std::memcpy(&p, in, 4);
+    all &= p;
+    std::memcpy(out, &p, 4);
+  }
+  rgb.pop_back();  // the room; the capacity stays for the next image
+  std::uint8_t bytes[4];
+  std::memcpy(bytes, &all, 4);
+  return bytes[3] == 0xffu;
 }
 
 }  // namespace
@@ -186,7 +210,11 @@ std::span<const std::uint8_t> PngEncoder::encode(int width, int height,
     Bind(const Bind&) = delete;
     Bind& operator=(const Bind&) = delete;
   } bind(compressor_->c);
-  const int ok = stbi_write_png_to_func(append, &png_, width, height, 4, rgba.data(), width * 4);
+  // An opaque image (a rendered frame always is) as RGB: a quarter fewer bytes to compress.
+  const bool opaque = pack_opaque_rgb(rgba, rgb_);
+  const int ok =
+      opaque ? stbi_write_png_to_func(append, &png_, width, height, 3, rgb_.data(), width * 3)
+             : stbi_write_png_to_func(append, &png_, width, height, 4, rgba.data(), width * 4);
   if (!ok) throw CaptureError(fmt::format("cannot write {}: PNG encoding failed", name));
   return png_;
 }

@@ -88,9 +88,11 @@ class PngEncoder {
   [[nodiscard]] const PngSettings& options() const { return options_; }
 
   /// Encodes an RGBA8 image: `rgba` is height rows of width*4 bytes (R, G, B, A), top row
-  /// first, width and height >= 1. Returns the PNG file's bytes, valid until the next call on
-  /// this encoder. Throws CaptureError (naming `name`, e.g. the file it is meant for) if the
-  /// size does not match or encoding fails.
+  /// first, width and height >= 1. An image whose every alpha is 255 (as every frame the
+  /// renderer draws) is written as RGB (PNG colour type 2), any other as RGBA (type 6): both
+  /// decode to the same RGBA. Returns the PNG file's bytes, valid until the next call on this
+  /// encoder. Throws CaptureError (naming `name`, e.g. the file it is meant for) if the size
+  /// does not match or encoding fails.
   [[nodiscard]] std::span<const std::uint8_t> encode(int width, int height,
                                                      std::span<const std::uint8_t> rgba,
                                                      std::string_view name = "image");
@@ -102,6 +104,7 @@ class PngEncoder {
   struct Compressor;
   PngSettings options_;
   std::unique_ptr<Compressor> compressor_;
+  std::vector<std::uint8_t> rgb_;  ///< an opaque image packed as RGB8
   std::vector<std::uint8_t> png_;
 };
 
