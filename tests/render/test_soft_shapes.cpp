@@ -101,28 +101,33 @@ TEST(SoftShapes, TwoTrianglesSharingAnEdgeThroughPixelCentresBlendEachPixelOnce)
   EXPECT_EQ(pixel(frame, w, 12, 5)[0], 0);  // beyond the right edge
 }
 
+/// The renderer's disc of radius r px at (cx, cy), white over a black w x h frame: a quad
+/// reaching 0.75 px beyond r with shape coordinates +-e. Returns the covered area, px^2 (the
+/// red channel summed / 255).
+double disc_area_drawn(int w, int h, float cx, float cy, float r) {
+  auto frame = frame_of(w, h, {0, 0, 0, 255});
+  const float pad = r + 0.75f, e = pad / r;
+  auto at = [&](float x, float y, float u, float v) {
+    return CanvasVertex{x, y, u, v, 255, 255, 255, 255, no_hole};
+  };
+  const std::vector<CanvasVertex> vertices = {
+      at(cx - pad, cy - pad, -e, -e), at(cx + pad, cy - pad, e, -e), at(cx + pad, cy + pad, e, e),
+      at(cx - pad, cy + pad, -e, e)};
+  SoftRasteriser raster;
+  raster.add(vertices, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}, {0, 0, w, h});
+  raster.draw(frame, w, h);
+  double area = 0.0;
+  for (std::size_t k = 0; k < frame.size(); k += 4) area += frame[k] / 255.0;
+  return area;
+}
+
 TEST(SoftShapes, AnAntiAliasedDiscCoversItsArea) {
-  // The renderer's disc: a quad reaching 0.75 px beyond radius r with shape coordinates +-e;
-  // white over black, the red channel summed / 255 is the covered area: pi r^2 within 1 px^2
-  // (the edge is a ramp about 1 px wide, its width from |ddx| + |ddy|, up to sqrt(2) wider
-  // than the gradient on diagonals; seen 0.51 px^2 over at r = 5) or 0.2 %.
-  constexpr int w = 64, h = 64;
+  // pi r^2 within 1 px^2 (the edge is a ramp about 1 px wide, its width from |ddx| + |ddy|, up
+  // to sqrt(2) wider than the gradient on diagonals; seen 0.51 px^2 over at r = 5) or 0.2 %.
   for (const float r : {5.0f, 12.3f, 25.0f}) {
-    auto frame = frame_of(w, h, {0, 0, 0, 255});
-    const float cx = 31.7f, cy = 32.2f, pad = r + 0.75f, e = pad / r;
-    auto at = [&](float x, float y, float u, float v) {
-      return CanvasVertex{x, y, u, v, 255, 255, 255, 255, no_hole};
-    };
-    const CanvasVertex q[4] = {at(cx - pad, cy - pad, -e, -e), at(cx + pad, cy - pad, e, -e),
-                               at(cx + pad, cy + pad, e, e), at(cx - pad, cy + pad, -e, e)};
-    const std::vector<CanvasVertex> vertices(std::begin(q), std::end(q));
-    SoftRasteriser raster;
-    raster.add(vertices, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}, {0, 0, w, h});
-    raster.draw(frame, w, h);
-    double area = 0.0;
-    for (std::size_t k = 0; k < frame.size(); k += 4) area += frame[k] / 255.0;
     const double exact = std::numbers::pi * r * r;
-    EXPECT_NEAR(area, exact, std::max(1.0, 0.002 * exact)) << "r = " << r;
+    EXPECT_NEAR(disc_area_drawn(64, 64, 31.7f, 32.2f, r), exact, std::max(1.0, 0.002 * exact))
+        << "r = " << r;
   }
 }
 
@@ -132,27 +137,13 @@ TEST(SoftShapes, ADiscCutByTheFramesTopAndBottomCoversWhatIsInside) {
   // disc whose centre is 0.4 px inside the top (bottom) edge covers its area less the
   // circular segment beyond the edge, r^2 acos(h / r) - h sqrt(r^2 - h^2) at depth h = 0.4 px,
   // within the disc test's tolerance, in frames of even and odd height.
-  constexpr int w = 40;
-  constexpr float r = 6.0f, inside = 0.4f, pad = r + 0.75f, e = pad / r;
+  constexpr float r = 6.0f, inside = 0.4f;
   const double cut =
       double(r) * r * std::acos(inside / r) - inside * std::sqrt(r * r - inside * inside);
   const double exact = std::numbers::pi * r * r - cut;
   for (const int h : {16, 17}) {
     for (const float cy : {inside, float(h) - inside}) {
-      auto frame = frame_of(w, h, {0, 0, 0, 255});
-      const float cx = 19.3f;
-      auto at = [&](float x, float y, float u, float v) {
-        return CanvasVertex{x, y, u, v, 255, 255, 255, 255, no_hole};
-      };
-      const std::vector<CanvasVertex> vertices = {
-          at(cx - pad, cy - pad, -e, -e), at(cx + pad, cy - pad, e, -e),
-          at(cx + pad, cy + pad, e, e), at(cx - pad, cy + pad, -e, e)};
-      SoftRasteriser raster;
-      raster.add(vertices, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}, {0, 0, w, h});
-      raster.draw(frame, w, h);
-      double area = 0.0;
-      for (std::size_t k = 0; k < frame.size(); k += 4) area += frame[k] / 255.0;
-      EXPECT_NEAR(area, exact, std::max(1.0, 0.002 * exact))
+      EXPECT_NEAR(disc_area_drawn(40, h, 19.3f, cy, r), exact, std::max(1.0, 0.002 * exact))
           << "height " << h << ", centre y " << cy;
     }
   }
