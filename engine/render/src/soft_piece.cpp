@@ -109,6 +109,8 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2],
   std::int64_t x_min = p[0][0], x_max = p[0][0];
   for (int k = 1; k < corners; ++k)
     x_min = std::min(x_min, p[k][0]), x_max = std::max(x_max, p[k][0]);
+  col0 = static_cast<int>(std::max(std::int64_t(box.x0), floor_div(x_min - sub / 2, sub)));
+  col1 = static_cast<int>(std::min(std::int64_t(box.x1 - 1), floor_div(x_max - sub / 2, sub) + 1));
   rect = solid && corners == 4;
   for (int k = 0; k < corners && rect; ++k) {  // every corner on the bounding box's corners
     rect = (p[k][0] == x_min || p[k][0] == x_max) && (p[k][1] == top || p[k][1] == bottom);

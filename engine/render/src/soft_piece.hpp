@@ -58,7 +58,7 @@ struct SoftPiece {
   bool flat_color = false;  ///< one colour: the vertices'
   bool rect = false;        ///< solid and axis-aligned: columns [col0, col1] on every row
   int row0 = 0, row1 = -1;  ///< rows it may cover, within the box
-  int col0 = 0, col1 = -1;
+  int col0 = 0, col1 = -1;  ///< columns it may cover, within the box (a rect: exactly these)
   /// A disc's or circle's centre (uv = 0), px: pixel centres within hole_r px of it (a
   /// circle's hole) or beyond reach_r px (outside the shape) are sure to get alpha 0
   /// (reach_r < 0: not round; hole_r < 0: no hole).

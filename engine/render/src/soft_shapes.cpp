@@ -19,15 +19,8 @@ namespace fixstep::detail {
 
 namespace {
 
-constexpr int band_rows = 16;  // rows of a band: 80 KB of a 1280 px frame
-
-/// Brings rows [first, last] of the frame into the cache ahead of their use, a line at a time.
-void prefetch(std::span<std::uint8_t> pixels, int width, int height, int first, int last) {
-  const std::size_t row = std::size_t(width) * 4;
-  const std::size_t begin = std::size_t(std::clamp(first, 0, height)) * row;
-  const std::size_t end = std::size_t(std::clamp(last + 1, 0, height)) * row;
-  for (std::size_t k = begin; k < end; k += 64) __builtin_prefetch(pixels.data() + k, 1);
-}
+constexpr int band_rows = 16;              // rows of a band: 80 KB of a 1280 px frame
+constexpr std::uint32_t ahead_pieces = 2;  // how far ahead the pieces' pixels are asked for
 
 }  // namespace
 
@@ -223,14 +216,30 @@ bool SoftRasteriser::start_crew() {
 #endif
 }
 
+void SoftRasteriser::ahead(const SoftPiece& t, int first, int last) const {
+  const std::size_t row = std::size_t(width_) * 4;
+  const std::size_t x0 = std::size_t(t.col0) * 4, x1 = std::size_t(t.col1) * 4 + 3;
+  for (int j = std::max({first, t.row0, 0}); j <= std::min(last, t.row1); ++j) {
+    const auto p = reinterpret_cast<std::uintptr_t>(frame_.data() + std::size_t(j) * row);
+    for (std::uintptr_t a = (p + x0) & ~std::uintptr_t(63); a <= p + x1; a += 64) {
+      __builtin_prefetch(reinterpret_cast<const void*>(a), 1);
+    }
+  }
+}
+
 void SoftRasteriser::run_bands() {
   const int odd = height_ & 1;
   for (int b = next_band_.fetch_add(1); b < bands_; b = next_band_.fetch_add(1)) {
     const int first = b * band_rows - odd, last = first + band_rows - 1;
-    // The frame comes from OSMesa's copy of it, out of the cache: the band's rows are asked for
-    // before they are drawn.
-    prefetch(frame_, width_, height_, first, last);
-    for (std::uint32_t n = band_start_[std::size_t(b)]; n < band_start_[std::size_t(b) + 1]; ++n) {
+    // The frame comes from OSMesa's copy of it, mostly out of the first two levels of cache:
+    // the lines a piece covers are asked for two pieces before it is drawn (the whole band at
+    // once, or a band ahead, is too much at a time to arrive in time and stay).
+    const std::uint32_t begin = band_start_[std::size_t(b)], end = band_start_[std::size_t(b) + 1];
+    for (std::uint32_t n = begin; n < std::min(begin + ahead_pieces, end); ++n) {
+      ahead(pieces_[band_list_[n]], first, last);
+    }
+    for (std::uint32_t n = begin; n < end; ++n) {
+      if (n + ahead_pieces < end) ahead(pieces_[band_list_[n + ahead_pieces]], first, last);
       const SoftPiece& t = pieces_[band_list_[n]];
       if (t.solid) {
         t.draw_solid(frame_.data(), width_, first, last);

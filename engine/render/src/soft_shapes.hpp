@@ -67,6 +67,8 @@ class SoftRasteriser {
   bool start_crew();
   /// Draws bands of frame_ until none is left (both threads).
   void run_bands();
+  /// Asks for the cache lines piece t covers in rows [first, last] of the frame.
+  void ahead(const SoftPiece& t, int first, int last) const;
   std::vector<SoftPiece> pieces_;
   std::vector<std::uint32_t> band_start_, band_list_, band_next_;  // pieces by band (counting sort)
   std::span<std::uint8_t> frame_;  // the frame being drawn, width_ x height_, in bands_ bands
