@@ -160,74 +160,133 @@ TEST(SoftShapes, NothingIsDrawnOutsideTheClipBox) {
   expect_white_exactly(frame, w, h, {4, 6, 9, 15});
 }
 
-TEST(SoftShapes, RandomShapesDrawOnlyInsideTheirFrameAndClipBox) {
-  // Seeded random triangles and quads (solid, lines, discs, rings; rotated, reaching past every
-  // edge) in frames of 1 to 40 px a side, odd and even, cut to random clip boxes, sometimes 400
-  // at once (two threads): no pixel outside the box changes and alpha stays 255. Under ASan
-  // (the asan preset) this also checks that nothing is read or written outside the frame.
-  std::mt19937 rng(20261126);
+/// Seeded random triangles and quads (solid, lines, discs, rings; rotated, reaching past every
+/// edge) in a frame of 1 to 40 px a side, odd or even, cut to a random clip box, sometimes 400
+/// at once (two threads).
+struct RandomShapes {
+  int w = 0, h = 0;
+  std::vector<CanvasVertex> vertices;
+  std::vector<std::uint32_t> indices;
+  PixelBox box;
+};
+
+RandomShapes random_shapes(std::mt19937& rng, int round) {
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  RandomShapes r;
+  r.w = 1 + int(rng() % 40), r.h = 1 + int(rng() % 40);
+  const auto w = float(r.w), h = float(r.h);
+  const int shapes = 1 + int(rng() % (round % 10 == 0 ? 400 : 6));
+  for (int s = 0; s < shapes; ++s) {
+    const float cx = (0.7f * unit(rng) + 0.5f) * w, cy = (0.7f * unit(rng) + 0.5f) * h;
+    const float sx = 0.1f + std::abs(unit(rng)) * w, sy = 0.1f + std::abs(unit(rng)) * h;
+    const int kind = int(rng() % 4);  // 0 a line's (u = 0), 1 a disc's, 2 a ring's, 3 solid
+    const float fill = kind == 2 ? 0.7f : no_hole;
+    const auto red = std::uint8_t(rng() % 256), alpha = std::uint8_t(rng() % 256);
+    auto at = [&](float x, float y, float u, float v) {
+      return CanvasVertex{x,
+                          y,
+                          kind == 0 || kind == 3 ? 0.0f : u,
+                          kind == 3 ? 0.0f : v,
+                          red,
+                          std::uint8_t(255 - red),
+                          100,
+                          alpha,
+                          fill};
+    };
+    const auto base = static_cast<std::uint32_t>(r.vertices.size());
+    if (rng() % 3 == 0) {
+      for (int k = 0; k < 3; ++k) {
+        r.vertices.push_back(at(cx + unit(rng) * sx, cy + unit(rng) * sy, unit(rng), unit(rng)));
+        r.indices.push_back(base + std::uint32_t(k));
+      }
+      continue;
+    }
+    const float c = unit(rng), sn = unit(rng), e = 1.2f;  // a quad, rotated and scaled
+    for (const auto& [px, py] :
+         {std::pair{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}}) {
+      r.vertices.push_back(
+          at(cx + c * px * sx - sn * py * sy, cy + sn * px * sx + c * py * sy, px * e, py * e));
+    }
+    for (const std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) r.indices.push_back(base + k);
+  }
+  r.box = {0, 0, r.w, r.h};
+  if (rng() % 2 != 0) {
+    r.box.x0 = int(rng() % std::uint32_t(r.w));
+    r.box.x1 = r.box.x0 + int(rng() % std::uint32_t(r.w - r.box.x0 + 1));
+    r.box.y0 = int(rng() % std::uint32_t(r.h));
+    r.box.y1 = r.box.y0 + int(rng() % std::uint32_t(r.h - r.box.y0 + 1));
+  }
+  return r;
+}
+
+TEST(SoftShapes, RandomShapesDrawOnlyInsideTheirFrameAndClipBox) {
+  // No pixel outside the box changes and alpha stays 255. Under ASan (the asan preset) this
+  // also checks that nothing is read or written outside the frame.
+  std::mt19937 rng(20261126);
   for (int round = 0; round < 3000; ++round) {
-    const int w = 1 + int(rng() % 40), h = 1 + int(rng() % 40);
-    auto frame = frame_of(w, h, {0, 0, 0, 255});
-    std::vector<CanvasVertex> vertices;
-    std::vector<std::uint32_t> indices;
-    const int shapes = 1 + int(rng() % (round % 10 == 0 ? 400 : 6));
-    for (int s = 0; s < shapes; ++s) {
-      const float cx = (0.7f * unit(rng) + 0.5f) * float(w),
-                  cy = (0.7f * unit(rng) + 0.5f) * float(h);
-      const float sx = 0.1f + std::abs(unit(rng)) * float(w),
-                  sy = 0.1f + std::abs(unit(rng)) * float(h);
-      const int kind = int(rng() % 4);  // 0 a line's (u = 0), 1 a disc's, 2 a ring's, 3 solid
-      const float fill = kind == 2 ? 0.7f : no_hole;
-      const auto red = std::uint8_t(rng() % 256), alpha = std::uint8_t(rng() % 256);
-      auto at = [&](float x, float y, float u, float v) {
-        return CanvasVertex{x,
-                            y,
-                            kind == 0 || kind == 3 ? 0.0f : u,
-                            kind == 3 ? 0.0f : v,
-                            red,
-                            std::uint8_t(255 - red),
-                            100,
-                            alpha,
-                            fill};
-      };
-      const auto base = static_cast<std::uint32_t>(vertices.size());
-      if (rng() % 3 == 0) {
-        for (int k = 0; k < 3; ++k) {
-          vertices.push_back(at(cx + unit(rng) * sx, cy + unit(rng) * sy, unit(rng), unit(rng)));
-          indices.push_back(base + std::uint32_t(k));
-        }
-        continue;
-      }
-      const float c = unit(rng), sn = unit(rng), e = 1.2f;  // a quad, rotated and scaled
-      for (const auto& [px, py] :
-           {std::pair{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}}) {
-        vertices.push_back(
-            at(cx + c * px * sx - sn * py * sy, cy + sn * px * sx + c * py * sy, px * e, py * e));
-      }
-      for (const std::uint32_t k : {0u, 1u, 2u, 0u, 2u, 3u}) indices.push_back(base + k);
-    }
-    PixelBox box{0, 0, w, h};
-    if (rng() % 2 != 0) {
-      box.x0 = int(rng() % std::uint32_t(w));
-      box.x1 = box.x0 + int(rng() % std::uint32_t(w - box.x0 + 1));
-      box.y0 = int(rng() % std::uint32_t(h));
-      box.y1 = box.y0 + int(rng() % std::uint32_t(h - box.y0 + 1));
-    }
+    const RandomShapes r = random_shapes(rng, round);
+    auto frame = frame_of(r.w, r.h, {0, 0, 0, 255});
     SoftRasteriser raster;
-    raster.add(vertices, indices, box);
-    raster.draw(frame, w, h);
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
+    raster.add(r.vertices, r.indices, r.box);
+    raster.draw(frame, r.w, r.h);
+    const PixelBox& box = r.box;
+    for (int y = 0; y < r.h; ++y) {
+      for (int x = 0; x < r.w; ++x) {
         const bool in = x >= box.x0 && x < box.x1 && y >= box.y0 && y < box.y1;
-        const std::uint8_t* p = pixel(frame, w, x, y);
+        const std::uint8_t* p = pixel(frame, r.w, x, y);
         ASSERT_TRUE(p[3] == 255 && (in || (p[0] == 0 && p[1] == 0 && p[2] == 0)))
-            << "round " << round << ": pixel (" << x << ", " << y << ") of " << w << " x " << h
+            << "round " << round << ": pixel (" << x << ", " << y << ") of " << r.w << " x " << r.h
             << ", box [" << box.x0 << ", " << box.x1 << ") x [" << box.y0 << ", " << box.y1 << ")";
       }
     }
   }
+}
+
+/// Restores the rasteriser's choice of lanes when a test ends.
+struct WideLanes {
+  bool was = detail::soft_wide_lanes();
+  ~WideLanes() { detail::set_soft_wide_lanes(was); }
+};
+
+TEST(SoftShapes, EightLanesDrawTheSamePixelsAsFour) {
+  // The AVX2 path (two quads a vector) against the 4-lane one, byte for byte: the random shapes
+  // above over a frame of varied colours, then bench_overlay's 1000 shapes over its scene.
+  const WideLanes restore;
+  detail::set_soft_wide_lanes(true);
+  if (!detail::soft_wide_lanes()) GTEST_SKIP() << "this CPU has no AVX2: one path only";
+  auto draw_both = [](const RandomShapes& r, std::vector<std::uint8_t> frame) {
+    std::vector<std::uint8_t> out[2];
+    for (const bool wide : {false, true}) {
+      detail::set_soft_wide_lanes(wide);
+      out[wide] = frame;
+      SoftRasteriser raster;
+      raster.add(r.vertices, r.indices, r.box);
+      raster.draw(out[wide], r.w, r.h);
+    }
+    return std::pair{out[0], out[1]};
+  };
+  std::mt19937 rng(20261127);
+  std::size_t changed = 0;  // bytes the shapes changed: the comparison is not of blank frames
+  for (int round = 0; round < 3000; ++round) {
+    const RandomShapes r = random_shapes(rng, round);
+    std::vector<std::uint8_t> frame(std::size_t(r.w) * std::size_t(r.h) * 4);
+    for (std::size_t k = 0; k < frame.size(); ++k) frame[k] = k % 4 == 3 ? 255 : rng() % 256;
+    const auto [narrow, wide] = draw_both(r, frame);
+    ASSERT_EQ(narrow, wide) << "round " << round << ", " << r.w << " x " << r.h;
+    for (std::size_t k = 0; k < frame.size(); ++k) changed += narrow[k] != frame[k];
+  }
+  EXPECT_GT(changed, 100000u);
+  Session session = testing::scene_session(bench::many_bodies(1000), 1280, 720);
+  session.advance(0.1);
+  DrawList list;
+  testing::record_overlay(list, 0.1);
+  std::vector<std::uint8_t> frames[2];
+  for (const bool wide : {false, true}) {
+    detail::set_soft_wide_lanes(wide);
+    session.draw(list);
+    frames[wide].assign(session.renderer().pixels().begin(), session.renderer().pixels().end());
+  }
+  EXPECT_TRUE(frames[0] == frames[1]) << "the 1000-shape overlay";
 }
 
 TEST(SoftShapes, TheOverlayMatchesLlvmpipeDrawingItToTwoLevels) {

@@ -1,10 +1,12 @@
 // SoftPiece (soft_piece.hpp): set-up from the corners, each row's span from exact integer edge
 // functions, and the rows drawn: solid pieces a span at a time, the rest a 2x2 quad at a time
 // (one vector lane a pixel), so that the shader's derivatives are the differences llvmpipe
-// takes.
+// takes. Where the CPU has AVX2, shaded pieces are drawn two quads a vector instead
+// (soft_piece_avx2.cpp), with the same pixels.
 #include "soft_piece.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 
@@ -213,7 +215,36 @@ void SoftPiece::draw_solid(std::uint8_t* pixels, int width, int first, int last)
   }
 }
 
+namespace {
+
+bool cpu_has_wide_lanes() {
+#if FIXSTEP_SOFT_WIDE
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") != 0;
+#else
+  return false;
+#endif
+}
+
+std::atomic<bool> wide_lanes{cpu_has_wide_lanes()};
+
+}  // namespace
+
+bool soft_wide_lanes() {
+  return wide_lanes.load(std::memory_order_relaxed);
+}
+
+void set_soft_wide_lanes(bool wide) {
+  wide_lanes.store(wide && cpu_has_wide_lanes(), std::memory_order_relaxed);
+}
+
 void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last) const {
+#if FIXSTEP_SOFT_WIDE
+  if (soft_wide_lanes()) {
+    draw_shaded_wide(*this, pixels, width, first, last);
+    return;
+  }
+#endif
   const bool line = u.at == 0.0 && u.dx == 0.0 && u.dy == 0.0;  // d = |v|, no root needed
   const bool hole = fill >= hole_threshold;
   if (line) {
@@ -233,77 +264,87 @@ void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last
   }
 }
 
+bool SoftPiece::quad_row(int top, int width, std::uint8_t* pixels, SoftQuadRow& q) const {
+  for (int r = 0; r < 2; ++r) {
+    q.lo[r] = 0, q.hi[r] = -1;
+    if (top + r >= row0 && top + r <= row1) span(top + r, q.lo[r], q.hi[r]);
+  }
+  int x_first = width, x_last = -1;  // the columns either row covers
+  for (int r = 0; r < 2; ++r) {
+    if (q.lo[r] > q.hi[r]) continue;
+    x_first = std::min(x_first, q.lo[r]);
+    x_last = std::max(x_last, q.hi[r]);
+  }
+  if (x_first > x_last) return false;
+  q.x_start = x_first & ~1;
+  q.cx = q.x_start + 0.5;
+  q.cy = top + 0.5;
+  // In a frame of odd height the top row's quad pairs it with row -1, outside the frame: no
+  // lane there is drawn (its span is empty), and the quad is blended lane by lane.
+  q.whole = top >= 0;
+  q.rows[0] = q.whole ? pixels + std::size_t(top) * std::size_t(width) * 4 : nullptr;
+  q.rows[1] = pixels + std::size_t(top + 1) * std::size_t(width) * 4;
+  // Quads wholly outside a round shape, or inside a circle's hole (their alpha 0
+  // everywhere), are skipped.
+  q.skip_from = x_last + 1, q.skip_to = x_last;  // quads x in [skip_from, skip_to)
+  q.x_begin = q.x_start;
+  const double cy = q.cy;
+  if (reach_r > 0.0) {
+    const double near = centre_y >= cy && centre_y <= cy + 1.0
+                            ? 0.0
+                            : std::min(std::abs(cy - centre_y), std::abs(cy + 1.0 - centre_y));
+    if (near >= reach_r) return false;
+    const double half = std::sqrt(reach_r * reach_r - near * near);
+    x_last = std::min(x_last, static_cast<int>(std::floor(centre_x + half - 0.5)));
+    const int from = static_cast<int>(std::ceil(centre_x - half - 0.5));
+    if (from > q.x_begin) q.x_begin = from & ~1;
+  }
+  q.x_last = x_last;
+  if (hole_r > 0.0) {
+    const double dy = std::max(std::abs(cy - centre_y), std::abs(cy + 1.0 - centre_y));
+    if (dy < hole_r) {
+      const double half = std::sqrt(hole_r * hole_r - dy * dy);
+      int from = static_cast<int>(std::ceil(centre_x - half - 0.5));
+      int to = static_cast<int>(std::floor(centre_x + half - 0.5));  // last column inside
+      from += from & 1;                                              // whole quads only
+      to = to - 1 - ((to - 1) & 1) + 2;                              // one past the last whole quad
+      q.skip_from = from;
+      q.skip_to = std::max(to, from);
+    }
+  }
+  return q.x_begin <= q.x_last;
+}
+
 template <bool line, bool hole, bool flat>
 void SoftPiece::draw_quads(std::uint8_t* pixels, int width, int first, int last) const {
   // A 2x2 quad is one vector of 4 lanes: (row 0, column 0), (0, 1), (1, 0), (1, 1).
   const V4 column{0.0f, 1.0f, 0.0f, 1.0f}, row{0.0f, 0.0f, 1.0f, 1.0f};
+  const V4 u_step = splat(float(u.dx)), v_step = splat(float(v.dx));
+  SoftQuadRow q;
   for (int top = first; top <= last; top += 2) {
-    int lo[2] = {0, 0}, hi[2] = {-1, -1};
-    for (int r = 0; r < 2; ++r) {
-      if (top + r >= row0 && top + r <= row1) span(top + r, lo[r], hi[r]);
-    }
-    int x_first = width, x_last = -1;  // the columns either row covers
-    for (int r = 0; r < 2; ++r) {
-      if (lo[r] > hi[r]) continue;
-      x_first = std::min(x_first, lo[r]);
-      x_last = std::max(x_last, hi[r]);
-    }
-    if (x_first > x_last) continue;
-    const int x_start = x_first & ~1;
-    const V4I lo4{lo[0], lo[0], lo[1], lo[1]}, hi4{hi[0], hi[0], hi[1], hi[1]};
+    if (!quad_row(top, width, pixels, q)) continue;
+    const V4I lo4{q.lo[0], q.lo[0], q.lo[1], q.lo[1]}, hi4{q.hi[0], q.hi[0], q.hi[1], q.hi[1]};
     // Values at the centre of pixel (x_start, top), and their steps per px.
-    const double cx = x_start + 0.5, cy = top + 0.5;
-    const V4 u_step = splat(float(u.dx)), v_step = splat(float(v.dx));
-    const V4 u_quad = line ? V4{} : splat(float(at(u, cx, cy))) + splat(float(u.dy)) * row;
-    const V4 v_quad = splat(float(at(v, cx, cy))) + splat(float(v.dy)) * row;
+    const V4 u_quad = line ? V4{} : splat(float(at(u, q.cx, q.cy))) + splat(float(u.dy)) * row;
+    const V4 v_quad = splat(float(at(v, q.cx, q.cy))) + splat(float(v.dy)) * row;
     V4 c_quad[4], c_step[4];
     for (int ch = 0; ch < 4; ++ch) {
       if constexpr (flat) {
         c_quad[ch] = splat(float(color[ch].at));  // its planes are flat: at() is `at`, exactly
         c_step[ch] = V4{};
       } else {
-        c_quad[ch] = splat(float(at(color[ch], cx, cy))) + splat(float(color[ch].dy)) * row;
+        c_quad[ch] = splat(float(at(color[ch], q.cx, q.cy))) + splat(float(color[ch].dy)) * row;
         c_step[ch] = splat(float(color[ch].dx));
       }
     }
-    // In a frame of odd height the top row's quad pairs it with row -1, outside the frame: no
-    // lane there is drawn (its span is empty), and the quad is blended lane by lane.
-    const bool whole = top >= 0;
-    std::uint8_t* rows[2] = {whole ? pixels + std::size_t(top) * std::size_t(width) * 4 : nullptr,
-                             pixels + std::size_t(top + 1) * std::size_t(width) * 4};
-    // Quads wholly outside a round shape, or inside a circle's hole (their alpha 0
-    // everywhere), are skipped.
-    int skip_from = x_last + 1, skip_to = x_last;  // quads x in [skip_from, skip_to)
-    int x_begin = x_start;
-    if (reach_r > 0.0) {
-      const double near = centre_y >= cy && centre_y <= cy + 1.0
-                              ? 0.0
-                              : std::min(std::abs(cy - centre_y), std::abs(cy + 1.0 - centre_y));
-      if (near >= reach_r) continue;
-      const double half = std::sqrt(reach_r * reach_r - near * near);
-      x_last = std::min(x_last, static_cast<int>(std::floor(centre_x + half - 0.5)));
-      const int from = static_cast<int>(std::ceil(centre_x - half - 0.5));
-      if (from > x_begin) x_begin = from & ~1;
-    }
-    if (hole_r > 0.0) {
-      const double dy = std::max(std::abs(cy - centre_y), std::abs(cy + 1.0 - centre_y));
-      if (dy < hole_r) {
-        const double half = std::sqrt(hole_r * hole_r - dy * dy);
-        skip_from = static_cast<int>(std::ceil(centre_x - half - 0.5));
-        skip_to = static_cast<int>(std::floor(centre_x + half - 0.5));  // last column inside
-        skip_from += skip_from & 1;                                     // whole quads only
-        skip_to = skip_to - 1 - ((skip_to - 1) & 1) + 2;  // one past the last whole quad
-        skip_to = std::max(skip_to, skip_from);
-      }
-    }
     // Each lane's column from x_start, a small whole number: stepping it by 2 is exact.
-    V4 s = splat(float(x_begin - x_start)) + column;
-    for (int x = x_begin; x <= x_last; x += 2, s += 2.0f) {
-      if (x >= skip_from && x < skip_to) {
-        x = skip_to;
-        s = splat(float(x - x_start)) + column;
+    V4 s = splat(float(q.x_begin - q.x_start)) + column;
+    for (int x = q.x_begin; x <= q.x_last; x += 2, s += 2.0f) {
+      if (x >= q.skip_from && x < q.skip_to) {
+        x = q.skip_to;
+        s = splat(float(x - q.x_start)) + column;
       }
-      if (x > x_last) break;
+      if (x > q.x_last) break;
       const V4 vv = v_quad + v_step * s;
       V4 d;
       if constexpr (line) {
@@ -324,14 +365,14 @@ void SoftPiece::draw_quads(std::uint8_t* pixels, int width, int first, int last)
       const V4I drawn = (xs >= lo4) & (xs <= hi4) & (a8 > 0);
       // A quad with no lane drawn is blended too (a lane of alpha and colour 0 leaves its pixel
       // exactly as it is): no branch to mispredict.
-      if (x + 1 < width && whole) {  // every lane's pixel is in the frame
-        blend_quad(rows[0] + std::size_t(x) * 4, rows[1] + std::size_t(x) * 4, r8 & drawn,
+      if (x + 1 < width && q.whole) {  // every lane's pixel is in the frame
+        blend_quad(q.rows[0] + std::size_t(x) * 4, q.rows[1] + std::size_t(x) * 4, r8 & drawn,
                    g8 & drawn, b8 & drawn, a8 & drawn);
         continue;
       }
       for (int lane = 0; lane < 4; ++lane) {  // the last column, or row -1: pixels beyond
         if (!drawn[lane]) continue;
-        blend(rows[lane >> 1] + std::size_t(x + (lane & 1)) * 4, r8[lane], g8[lane], b8[lane],
+        blend(q.rows[lane >> 1] + std::size_t(x + (lane & 1)) * 4, r8[lane], g8[lane], b8[lane],
               a8[lane]);
       }
     }

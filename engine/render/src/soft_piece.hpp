@@ -7,6 +7,13 @@
 
 #include "fixstep/render.hpp"
 
+// Where the rasteriser has an 8-lane (AVX2) path beside its 4-lane one, chosen at run time.
+#if defined(__x86_64__) && !defined(__EMSCRIPTEN__)
+#define FIXSTEP_SOFT_WIDE 1
+#else
+#define FIXSTEP_SOFT_WIDE 0
+#endif
+
 namespace fixstep::detail {
 
 /// Subpixel steps per px of the edges (llvmpipe's precision).
@@ -45,6 +52,18 @@ inline std::int64_t soft_cross(const std::int64_t (&p)[2], const std::int64_t (&
                                const std::int64_t (&r)[2]) {
   return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
 }
+
+/// One row of a piece's 2x2 quads (SoftPiece::quad_row()): the rows' spans, the columns to draw
+/// and the rows' pixels.
+struct SoftQuadRow {
+  int lo[2] = {0, 0}, hi[2] = {-1, -1};  ///< each row's span of pixels [lo, hi] (lo > hi: none)
+  int x_start = 0;  ///< the even column the planes are taken at (with cx, cy: its centre, px)
+  int x_begin = 0, x_last = -1;    ///< quads from column x_begin (even) to x_last
+  int skip_from = 0, skip_to = 0;  ///< quads x in [skip_from, skip_to) have alpha 0
+  double cx = 0, cy = 0;
+  std::uint8_t* rows[2] = {nullptr, nullptr};  ///< the rows' pixels (row -1: nullptr)
+  bool whole = false;                          ///< both rows are in the frame
+};
 
 /// One convex piece (a triangle, or a quad of two), set up for drawing.
 struct SoftPiece {
@@ -87,6 +106,16 @@ struct SoftPiece {
   /// draw_shaded() for a line's coordinates (u = 0), a hole or not, one colour or not.
   template <bool line, bool hole, bool flat>
   void draw_quads(std::uint8_t* pixels, int width, int first, int last) const;
+  /// The quads of rows top and top + 1 of a frame `width` px wide: false when none is drawn.
+  bool quad_row(int top, int width, std::uint8_t* pixels, SoftQuadRow& row) const;
 };
+
+/// Whether shaded pieces are drawn two quads at a time in 8-lane vectors (AVX2, where the CPU
+/// has it; the pixels are the same as with 4 lanes). The setter is for tests and benchmarks.
+bool soft_wide_lanes();
+void set_soft_wide_lanes(bool wide);
+
+/// SoftPiece::draw_shaded() in 8 lanes (soft_piece_avx2.cpp; only where soft_wide_lanes()).
+void draw_shaded_wide(const SoftPiece& piece, std::uint8_t* pixels, int width, int first, int last);
 
 }  // namespace fixstep::detail
