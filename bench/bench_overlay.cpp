@@ -7,7 +7,7 @@
 // print
 // the overlay's share of the frame, (with - without) / with, for frames drawn only and for frames
 // captured as `fixstep render --out` captures them (PNG files written on a worker thread), and
-// the target: <= 20 % of a captured frame ("at capture speed").
+// the target: <= 20 % of a captured frame ("at capture speed"), on the medians.
 //   build/ci/bin/bench_overlay          (about two minutes)
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
@@ -169,8 +169,11 @@ int main(int argc, char** argv) {
       report(output, "CPU time of every thread, medians", reporter.cpu_medians, path);
     }
   }
-  const double capture = report("png", "(target: <= 20 % of a captured frame)", reporter.mins, "");
-  std::printf("  target <= 20 %% of a captured frame (PNG, fastest repetitions): %s\n",
+  // Judged on the medians, as every timing of docs/PERFORMANCE.md is: on a shared machine the
+  // fastest of 15 repetitions of each case moves by several points from run to run.
+  const double capture =
+      report("png", "(target: <= 20 % of a captured frame)", reporter.medians, "");
+  std::printf("  target <= 20 %% of a captured frame (PNG, wall time, medians): %s\n",
               capture <= 0.20 ? "met" : "MISSED");
   std::filesystem::remove_all(out_dir());
   return 0;
