@@ -202,7 +202,7 @@ std::vector<std::string> status_lines(const GameState& game) {
                                  std::to_string(game.pegs_left)};
   switch (game.phase) {
     case Phase::aiming:
-      lines.emplace_back("aim with the mouse, click (or Enter) to shoot");
+      lines.emplace_back("aiming");  // how to aim and shoot: the controls hint beside
       break;
     case Phase::flying:
       lines.emplace_back(game.lit.empty() ? "ball in play"

@@ -215,7 +215,7 @@ std::vector<std::string> status_lines(const GameState& game) {
                                  std::to_string(game.shots_left)};
   switch (game.phase) {
     case Phase::loaded:
-      lines.emplace_back("drag the red ball back with the mouse and let go");
+      lines.emplace_back("ball loaded");  // how to shoot: the controls hint beside
       break;
     case Phase::pulled:
     case Phase::flying:
