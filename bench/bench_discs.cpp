@@ -1,6 +1,7 @@
 // Disc contacts against peer engines, in one run (Google Benchmark):
-// a settled pile and an elastic gas of N = 10³, 10⁴, 10⁵ discs of r = 5 cm, and the pile of
-// 50 cm discs (the peers' home scale) at N = 10³, 10⁴ (discs.hpp), built by one generator and
+// a pile (ticks 41-60) and an elastic gas of N = 10³, 10⁴, 10⁵ discs of r = 5 cm, and at
+// N = 10³, 10⁴ the same pile settled (ticks 361-380) and the pile of 50 cm discs (the peers'
+// home scale) (discs.hpp), built by one generator and
 // stepped at dt = 1/60 s by
 //   fixstep    fixstep::detail::WorldKernel<Real>::step() with WorldSettings::contacts, f64 on 1
 //   and 2 threads and
@@ -204,9 +205,10 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 /// --trace: one case's overlaps, energy and (fixstep) contact statistics every 10 ticks.
 int trace(const std::string& scene, const std::string& key, std::size_t n, int ticks) {
-  const SceneKind kind = scene == "pile"  ? SceneKind::pile
-                         : scene == "gas" ? SceneKind::gas
-                                          : SceneKind::pile_large;
+  const SceneKind kind = scene == "pile"           ? SceneKind::pile
+                         : scene == "gas"          ? SceneKind::gas
+                         : scene == "pile_settled" ? SceneKind::pile_settled
+                                                   : SceneKind::pile_large;
   const Scene s = make_scene(kind, n);
   const auto start = std::chrono::steady_clock::now();
   const auto p = make_stepper(key, s);
@@ -242,8 +244,8 @@ std::vector<std::int64_t> sizes(const Options& o) {
 }
 
 /// Repetitions of a case, each of `ticks_per_repetition` ticks: every engine and every N times
-/// the same ticks (the pile's ticks 41-60, the gas's 6-25), so that costs compare like with
-/// like (a pile still settling costs more per tick than a settled one).
+/// the same ticks (the pile's ticks 41-60, the settled pile's 361-380, the gas's 6-25), so that
+/// costs compare like with like (a pile still settling costs more per tick than a settled one).
 int repetitions(const Options& o) {
   if (o.reps_given || o.quick) return 1;
   return 5;
@@ -251,9 +253,12 @@ int repetitions(const Options& o) {
 constexpr int ticks_per_repetition = 4;
 
 void register_all(const Options& o) {
-  for (SceneKind kind : {SceneKind::pile, SceneKind::gas, SceneKind::pile_large}) {
+  for (SceneKind kind :
+       {SceneKind::pile, SceneKind::gas, SceneKind::pile_large, SceneKind::pile_settled}) {
     for (const std::int64_t n : sizes(o)) {  // the contenders at one N run one after another
-      if (kind == SceneKind::pile_large && n > 10'000) continue;
+      if ((kind == SceneKind::pile_large || kind == SceneKind::pile_settled) && n > 10'000) {
+        continue;
+      }
       for (const char* key : stepper_keys()) {
         const std::string k = key;
         if (k == "fixstep_f64_off" && kind != SceneKind::gas) continue;

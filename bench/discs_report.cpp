@@ -22,7 +22,8 @@ constexpr const char* all_keys[] = {
     "chipmunk_hasty2", "box2d",           "box2d3_w1",       "box2d3_w2"};
 const std::span<const char* const> keys(all_keys, box2d3_built() ? 14 : 12);
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large};
+constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large,
+                                    SceneKind::pile_settled};
 constexpr SceneKind main_scenes[] = {SceneKind::pile, SceneKind::gas};
 }  // namespace
 
@@ -93,9 +94,13 @@ std::string size_text(std::int64_t n) {
 std::string title(SceneKind s) {
   switch (s) {
     case SceneKind::pile:
-      return fmt::format("Settled pile (r = {} m)", small_radius);
+      return fmt::format("Pile, ticks {}–{} (r = {} m)", pile_warmup + 1, pile_warmup + 20,
+                         small_radius);
     case SceneKind::gas:
       return fmt::format("Elastic gas (r = {} m)", small_radius);
+    case SceneKind::pile_settled:
+      return fmt::format("Settled pile, ticks {}–{} (r = {} m)", pile_settled_warmup + 1,
+                         pile_settled_warmup + 20, small_radius);
     case SceneKind::pile_large:
       break;
   }
@@ -330,6 +335,11 @@ void box2d3_table(const View& v, const Line& line) {
   };
   for (auto n : v.r.sizes)
     row(fmt::format("pile, r = {} m", small_radius), SceneKind::pile, n, true);
+  for (auto n : v.r.sizes) {
+    row(fmt::format("settled pile (ticks {}–{}), r = {} m", pile_settled_warmup + 1,
+                    pile_settled_warmup + 20, small_radius),
+        SceneKind::pile_settled, n, true);
+  }
   for (auto n : v.r.sizes)
     row(fmt::format("pile, r = {} m", large_radius), SceneKind::pile_large, n, true);
   for (auto n : v.r.sizes) row("gas", SceneKind::gas, n, true);
@@ -354,23 +364,26 @@ void box2d3_table(const View& v, const Line& line) {
 void box2d3_targets(const View& v, const Line& line) {
   if (!box2d3_built()) return;
   constexpr std::int64_t n4 = 10'000;
-  for (const bool box2d_iterations : {false, true}) {
-    for (int threads : {1, 2}) {
-      const std::string f_key =
-          fmt::format("fixstep_{}_t{}", box2d_iterations ? "i8" : "f64", threads);
-      const std::string b_key = threads == 1 ? "box2d3_w1" : "box2d3_w2";
-      const CaseResult* f = v.at(SceneKind::pile, f_key, n4);
-      const CaseResult* b = v.at(SceneKind::pile, b_key, n4);
-      const bool measured = f && b;
-      const double ratio = measured ? b->ns_per_body_step / f->ns_per_body_step : nan;
-      const bool shallow = measured && f->disc_overlap <= b->disc_overlap / 5.0;
-      line(fmt::format(
-          "| pile, N = 10^4: fixstep f64{6} ({0} thread{1}) ≥ 2× faster per body-step than "
-          "Box2D v3 ({0} worker{1}), at no more than a fifth of its overlap | {2}× (overlap / r: "
-          "fixstep {3}, Box2D v3 {4}) | {5} |",
-          threads, threads == 1 ? "" : "s", num(ratio, "{:.2f}"),
-          measured ? num(f->disc_overlap) : "–", measured ? num(b->disc_overlap) : "–",
-          verdict(measured, ratio >= 2.0 && shallow), box2d_iterations ? ", 8/3 iterations" : ""));
+  for (const SceneKind s : {SceneKind::pile, SceneKind::pile_settled}) {
+    for (const bool box2d_iterations : {false, true}) {
+      for (int threads : {1, 2}) {
+        const std::string f_key =
+            fmt::format("fixstep_{}_t{}", box2d_iterations ? "i8" : "f64", threads);
+        const std::string b_key = threads == 1 ? "box2d3_w1" : "box2d3_w2";
+        const CaseResult* f = v.at(s, f_key, n4);
+        const CaseResult* b = v.at(s, b_key, n4);
+        const bool measured = f && b;
+        const double ratio = measured ? b->ns_per_body_step / f->ns_per_body_step : nan;
+        const bool shallow = measured && f->disc_overlap <= b->disc_overlap / 5.0;
+        line(fmt::format(
+            "| {7}, N = 10^4: fixstep f64{6} ({0} thread{1}) ≥ 2× faster per body-step than "
+            "Box2D v3 ({0} worker{1}), at no more than a fifth of its overlap | {2}× (overlap / "
+            "r: fixstep {3}, Box2D v3 {4}) | {5} |",
+            threads, threads == 1 ? "" : "s", num(ratio, "{:.2f}"),
+            measured ? num(f->disc_overlap) : "–", measured ? num(b->disc_overlap) : "–",
+            verdict(measured, ratio >= 2.0 && shallow), box2d_iterations ? ", 8/3 iterations" : "",
+            s == SceneKind::pile ? "pile" : "settled pile"));
+      }
     }
   }
   for (int threads : {1, 2}) {

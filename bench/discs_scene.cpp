@@ -13,7 +13,17 @@ namespace discs {
 using fixstep::Vec2;
 
 const char* scene_name(SceneKind s) {
-  return s == SceneKind::pile ? "pile" : s == SceneKind::gas ? "gas" : "pile_large";
+  switch (s) {
+    case SceneKind::pile:
+      return "pile";
+    case SceneKind::gas:
+      return "gas";
+    case SceneKind::pile_large:
+      return "pile_large";
+    case SceneKind::pile_settled:
+      break;
+  }
+  return "pile_settled";
 }
 
 namespace {
@@ -92,6 +102,12 @@ Scene make_gas(std::size_t n, std::uint64_t seed) {
 
 Scene make_scene(SceneKind kind, std::size_t n) {
   if (kind == SceneKind::gas) return make_gas(n);
+  if (kind == SceneKind::pile_settled) {
+    Scene sc = make_pile(n, small_radius);
+    sc.kind = SceneKind::pile_settled;
+    sc.warmup = pile_settled_warmup;
+    return sc;
+  }
   return make_pile(n, kind == SceneKind::pile ? small_radius : large_radius);
 }
 
