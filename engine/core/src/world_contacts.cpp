@@ -112,6 +112,14 @@ double first_impact(double g0, double b, double c, double horizon, double tol, d
     if (b < -vtol || (b <= vtol && c < 0.0)) return 0.0;
     return c < 0.0 && -2.0 * b / c <= horizon ? -2.0 * b / c : none;
   }
+  // A gap that stays above its lower bound over the window, g0 + min(0, b h) + min(0, ½ c h²),
+  // has no root there: most bodies against most planes, decided without the roots. The margin
+  // (far above the bound's rounding) leaves every case near a root to the roots below, so the
+  // answer is the one they give.
+  const double low = g0 + std::min(0.0, b * horizon) + std::min(0.0, 0.5 * c * horizon * horizon);
+  if (low > tol + 1e-12 * (g0 + std::abs(b) * horizon + std::abs(c) * horizon * horizon)) {
+    return none;
+  }
   const double disc = b * b - 2.0 * c * g0;
   if (disc < 0.0) return none;
   const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
