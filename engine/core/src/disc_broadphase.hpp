@@ -35,11 +35,12 @@
 // (all dynamic: false; all static: true, 0.1 s), measured at load 9 on 2 cores.
 // Only boxes below e_top 2^-47 (points, not discs) at distinct places can crowd a cell.
 //
-// Two threads (same run; wall time could not be measured with 9 runnable jobs on 2 cores): at
-// 10^5 the calling thread's CPU time per call falls from 8.3 to 4.6 ms (pile) and from 16.1 to
-// 9.5 ms (gas), the serial rest being the levels' sizing, the prefix sums and the final sort; at
-// 10^4 it gains nothing measurable (845 vs 796 us), so threads = 2 splits from
-// min_parallel_boxes = 32768 boxes. To re-time on an idle machine.
+// Two threads (bench_broadphase's grid rows, wall time, medians of 5, twice, on an idle 2-core
+// EPYC VM): split, a call at 10^4 boxes takes 414-475 instead of 641-716 us (pile) and 651-657
+// instead of 892-961 us (gas); at 10^3 42-44 instead of 57-58 us (pile) but 63 or 120 instead
+// of 95-96 us (gas): the serial rest is the levels' sizing, the prefix sums and the final sort,
+// and the hand-over costs some microseconds. So threads = 2 splits from min_parallel_boxes =
+// 4096 boxes.
 #pragma once
 
 #include <algorithm>
@@ -83,7 +84,7 @@ class DiscBroadphase {
  public:
   /// Below this many boxes a call with threads = 2 runs on one thread: at 10^4 the second
   /// thread saved nothing measurable (bench_broadphase, loaded machine; see above).
-  static constexpr std::size_t min_parallel_boxes = 32768;
+  static constexpr std::size_t min_parallel_boxes = 4096;
   /// Cell side of a level over the largest extent it holds: > 1 leaves room for rounding.
   static constexpr double cell_factor = 1.25;
   static constexpr unsigned max_levels = 48;
