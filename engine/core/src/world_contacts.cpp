@@ -139,13 +139,15 @@ double first_impact(double g0, double b, double c, double horizon, double tol, d
 /// touch it, and its integrated state stands, as those tests would leave it.
 bool clear_of_planes(std::span<const PlaneDef> planes, V2 x0, V2 x1, V2 v0, V2 v1, double r,
                      double dt, double rel) {
+  // The margin's scale, once for every plane: |n·u| <= |u_x| + |u_y| for a unit n.
+  const auto l1 = [](V2 u) { return std::abs(u.x) + std::abs(u.y); };
+  const double body = l1(x0) + l1(x1) + r + 2.0 * (l1(v0) + l1(v1)) * dt;
+  const double k = rel + 1e-12;
   for (const PlaneDef& p : planes) {
     const V2 n{p.normal.x, p.normal.y};
-    const double n0 = dot(n, x0), n1 = dot(n, x1), dv = std::abs(dot(n, v1 - v0)) * dt;
-    const double low = std::min(n0, n1) - 0.125 * dv - p.offset - r;
-    const double scale = std::abs(n0) + std::abs(n1) + std::abs(p.offset) + r + dv +
-                         (std::abs(dot(n, v0)) + std::abs(dot(n, v1))) * dt;
-    if (!(low > rel * scale + 1e-12 * scale)) return false;
+    const double n0 = dot(n, x0), n1 = dot(n, x1);
+    const double low = std::min(n0, n1) - 0.125 * std::abs(dot(n, v1 - v0)) * dt - p.offset - r;
+    if (!(low > k * (body + std::abs(p.offset)))) return false;
   }
   return true;
 }
