@@ -18,7 +18,6 @@ namespace {
 
 using namespace lanes;
 constexpr std::int64_t sub = soft_subpixels;
-constexpr float hole_threshold = soft_no_hole;
 
 /// Exact: whether pixel i of the row whose centre is at subpixel Y is inside edge e.
 inline bool inside(const SoftEdge& e, std::int64_t i, std::int64_t Y) {
@@ -95,9 +94,9 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2],
     color[ch] = flat_color ? SoftPlane{value(0), 0, 0} : plane(value(0), value(1), value(2));
   }
   fill = v[corners - 1]->fill;  // flat: GL's provoking vertex is the last (one per shape)
-  solid = flat_color && fill < hole_threshold;
+  solid = flat_color && !has_hole();
   hole_r = reach_r = -1;
-  if (!solid && !(u.at == 0.0 && u.dx == 0.0 && u.dy == 0.0)) find_round();
+  if (!solid && !is_line()) find_round();
   for (int k = 0; k < corners && solid; ++k) solid = v[k]->u == 0.0f && v[k]->v == 0.0f;
   box = cut;
   std::int64_t top = p[0][1], bottom = p[0][1];
@@ -159,7 +158,7 @@ void SoftPiece::find_round() {
   const double sigma_min = std::abs(det) / sigma_max;
   const double w_max = std::sqrt(u.dx * u.dx + v.dx * v.dx) + std::sqrt(u.dy * u.dy + v.dy * v.dy);
   reach_r = (1.0 + 0.5 * w_max) / sigma_min + 0.01;
-  if (fill >= hole_threshold) hole_r = (double(fill) - 0.5 * w_max) / sigma_max - 0.01;
+  if (has_hole()) hole_r = (double(fill) - 0.5 * w_max) / sigma_max - 0.01;
 }
 
 void SoftPiece::span(int j, int& lo, int& hi) const {
@@ -245,8 +244,7 @@ void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last
     return;
   }
 #endif
-  const bool line = u.at == 0.0 && u.dx == 0.0 && u.dy == 0.0;  // d = |v|, no root needed
-  const bool hole = fill >= hole_threshold;
+  const bool line = is_line(), hole = has_hole();
   if (line) {
     if (hole) {
       flat_color ? draw_quads<true, true, true>(pixels, width, first, last)

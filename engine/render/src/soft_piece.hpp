@@ -95,6 +95,10 @@ struct SoftPiece {
                    std::int64_t y1, const PixelBox& cut);
   /// Pixels [lo, hi] of row j whose centres are inside, within the box (lo > hi: none).
   void span(int j, int& lo, int& hi) const;
+  /// A line's piece: its shape coordinate u is 0 everywhere, so d = |v| (no root needed).
+  [[nodiscard]] bool is_line() const { return u.at == 0.0 && u.dx == 0.0 && u.dy == 0.0; }
+  /// A circle's piece: the coverage of its hole (radius `fill`) is taken away.
+  [[nodiscard]] bool has_hole() const { return fill >= soft_no_hole; }
   [[nodiscard]] double at(const SoftPlane& p, double x, double y) const {
     return p.at + p.dx * (x - x0) + p.dy * (y - y0);
   }

@@ -154,9 +154,7 @@ __attribute__((target("avx2"))) void draw_quads(const SoftPiece& p, std::uint8_t
 }  // namespace
 
 void draw_shaded_wide(const SoftPiece& p, std::uint8_t* pixels, int width, int first, int last) {
-  const bool line = p.u.at == 0.0 && p.u.dx == 0.0 && p.u.dy == 0.0;  // d = |v|
-  const bool hole = p.fill >= soft_no_hole;
-  const bool flat = p.flat_color;
+  const bool line = p.is_line(), hole = p.has_hole(), flat = p.flat_color;
   if (line) {
     if (hole) {
       flat ? draw_quads<true, true, true>(p, pixels, width, first, last)
