@@ -146,6 +146,30 @@ class DiscContacts {
                   const Real* dissipated);
   /// Saves the start-of-tick angular velocities (rad/s) of rolling discs (energy account).
   void save_spin_start(const Real* spin);
+  /// Disc k sleeps (ContactSettings::sleep): it acts as a static disc, of infinite mass and
+  /// at rest, and the broadphase pairs it with no other sleeper; or wakes, with its body's
+  /// 1/m (1/kg) and, with rolling discs, 1/I (1/(kg·m²)).
+  void set_asleep(std::uint32_t k, bool asleep, double inv_mass, double inv_inertia) {
+    Disc& d = discs_[k];
+    d.dynamic = dynamic_[k] = asleep ? 0 : 1;
+    d.inv_mass = asleep ? 0.0 : inv_mass;
+    d.inv_inertia = asleep ? 0.0 : inv_inertia;
+  }
+  /// Each disc's swept box over the tick, as the broadphase pairs them (the motion from the
+  /// start state to the end state, padded by the radius and twice the slop), m.
+  [[nodiscard]] std::span<const SweptBox> boxes() const { return boxes_; }
+  /// The last resolve()'s candidate pairs (swept boxes overlapping; linked, filtered-out and
+  /// sensor pairs dropped), by disc index.
+  [[nodiscard]] std::span<const DiscPair> candidate_pairs() const { return pairs_; }
+  /// Whether discs k and l may collide (their filters; true without filters).
+  [[nodiscard]] bool may_collide(std::uint32_t k, std::uint32_t l) const {
+    return filters_.empty() || should_collide(filters_[k], filters_[l]);
+  }
+  /// The discs' start-of-tick positions and velocities (save_start()), m and m/s.
+  [[nodiscard]] std::span<const Real> start_x() const { return x0_; }
+  [[nodiscard]] std::span<const Real> start_y() const { return y0_; }
+  [[nodiscard]] std::span<const Real> start_vx() const { return vx0_; }
+  [[nodiscard]] std::span<const Real> start_vy() const { return vy0_; }
 
   struct Tick {
     Real *x, *y, *vx, *vy;   ///< the world's state arrays (dense body order)
@@ -157,6 +181,11 @@ class DiscContacts {
     const SegmentSet* segments = nullptr;  ///< static segments (null: none); contacts with
                                            ///< them are the plane contacts' b past the planes
     Real* spin = nullptr;  ///< angular velocities, rad/s, with rolling discs (null: none)
+    /// Called once the discs' motions and swept boxes are known, before the broadphase pairs
+    /// them (null: not called): sleeping islands that a box reaches wake there, so that what
+    /// the broadphase would pair with a sleeper is woken first (world_sleep.cpp).
+    void (*wake)(void* context) = nullptr;
+    void* wake_context = nullptr;
   };
   /// Resolves the tick's contacts in place. Returns per-disc energy bookkeeping through
   /// lost() (J/kg, dynamic discs) and external() (J); fills stats.

@@ -359,6 +359,7 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   cap_ = CapHit{};
   PhaseClock clock(true);
   build_motions(tick);
+  if (tick.wake) tick.wake(tick.wake_context);
   for (std::size_t k = 0; k < ew_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);
   const bool candidates = find_candidates(tick, stats);
   profile.broadphase = clock.lap();

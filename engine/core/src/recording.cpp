@@ -103,6 +103,7 @@ std::uint64_t definition_hash(const WorldDef& def) {
       h.add(c.velocity_iterations), h.add(c.position_iterations);
     }
     if (c.rolling) h.add(c.rolling);  // absent: the hash from before rolling discs
+    if (c.sleep) h.add(c.sleep), h.add(c.sleep_speed), h.add(c.sleep_time);  // absent: before
   }
   if (def.settings.seed != 0) h.add(def.settings.seed);  // 0: the hash from before seeds
   if (!def.segments.empty()) {  // absent: the hash of a world from before segments

@@ -340,6 +340,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     const std::uint32_t j = c.body[k];
     const double r = c.radius[k];
     contact_.after[k].t = -1.0;
+    if (sleep_ && asleep_[j] != 0) continue;  // a sleeper stays where it is
     const V2 v0{double(c.vx0[k]), double(c.vy0[k])};
     const V2 v1{double(vx_[j]), double(vy_[j])};
     const V2 x0{double(c.x0[k]), double(c.y0[k])}, x1{double(x_[j]), double(y_[j])};

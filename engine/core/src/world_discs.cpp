@@ -67,6 +67,9 @@ void detail::WorldKernel<Real>::rebuild_discs() {
   for (auto* v : {&immovable_.x0, &immovable_.y0, &immovable_.vx0, &immovable_.vy0}) {
     v->resize(immovable_.body.size());
   }
+  immovable_dirty_ = false;
+  disc_of_.clear();
+  kinematic_discs_.clear();
   if (!settings_.contacts) {
     discs_.reset();
     return;
@@ -103,6 +106,14 @@ void detail::WorldKernel<Real>::rebuild_discs() {
     filters[k] = c.filter;
     filtered = filtered || c.sensor || c.filter != CollisionFilter{};
     disc_of[j] = static_cast<std::int64_t>(k);
+    if (types_[j] == BodyType::kinematic) kinematic_discs_.push_back(static_cast<std::uint32_t>(j));
+  }
+  dynamic_discs_ = static_cast<std::size_t>(
+      std::count_if(discs.begin(), discs.end(), [](const detail::Disc& d) { return d.dynamic; }));
+  if (sleep_) {
+    disc_of_.resize(disc_of.size());
+    for (std::size_t j = 0; j < disc_of.size(); ++j)
+      disc_of_[j] = static_cast<std::int32_t>(disc_of[j]);
   }
   if (!filtered) filters.clear();
   std::vector<std::uint64_t> linked;
@@ -119,13 +130,17 @@ void detail::WorldKernel<Real>::rebuild_discs() {
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::save_tick_start() {
+void detail::WorldKernel<Real>::save_tick_start(bool discs) {
   Immovable& m = immovable_;
   for (std::size_t i = 0; i < m.body.size(); ++i) {
     const std::uint32_t j = m.body[i];
     m.x0[i] = x_[j], m.y0[i] = y_[j], m.vx0[i] = vx_[j], m.vy0[i] = vy_[j];
   }
-  if (discs_ && discs_->active()) {
+  if (sleep_ && settings_.track_dissipation) {  // a sleeper's free step dissipates nothing
+    m.d0.resize(m.body.size());
+    for (std::size_t i = 0; i < m.body.size(); ++i) m.d0[i] = dissipated_body_[m.body[i]];
+  }
+  if (discs) {
     discs_->save_start(x_.data(), y_.data(), vx_.data(), vy_.data(),
                        settings_.track_dissipation ? dissipated_body_.data() : nullptr);
     if (rolling_) discs_->save_spin_start(spin_.data());
@@ -138,7 +153,10 @@ void detail::WorldKernel<Real>::restore_immovable() {
   const Real dt = static_cast<Real>(settings_.dt);
   for (std::size_t i = 0; i < m.body.size(); ++i) {
     const std::uint32_t j = m.body[i];
-    if (types_[j] == BodyType::static_body) {
+    if (sleep_ && types_[j] == BodyType::dynamic) {  // a sleeper, at rest where it was
+      x_[j] = m.x0[i], y_[j] = m.y0[i], vx_[j] = Real(0), vy_[j] = Real(0);
+      if (settings_.track_dissipation) dissipated_body_[j] = m.d0[i];
+    } else if (types_[j] == BodyType::static_body) {
       x_[j] = m.x0[i], y_[j] = m.y0[i], vx_[j] = Real(0), vy_[j] = Real(0);
     } else {  // kinematic: on at its velocity
       x_[j] = m.x0[i] + m.vx0[i] * dt, y_[j] = m.y0[i] + m.vy0[i] * dt;
@@ -163,6 +181,10 @@ void detail::WorldKernel<Real>::resolve_discs() {
       settings_.threads == 1 || !detail::threads_supported ? 1 : 2};  // same states either way
   if (!segments_.empty()) t.segments = &segments_;
   if (rolling_) t.spin = spin_.data();
+  if (sleepers_ != 0) {
+    t.wake = [](void* kernel) { static_cast<WorldKernel*>(kernel)->wake_near_movers(); };
+    t.wake_context = this;
+  }
   dc.resolve(t, contact_stats_, profile_);
   const auto discs = dc.discs();
   if (const auto* hit = dc.cap_hit(); hit && !fault_) {  // cold: a cap stopped the tick's work
@@ -203,7 +225,7 @@ std::span<const Impact> detail::WorldKernel<Real>::impacts() const {
 #define FIXSTEP_INSTANTIATE(Real)                                              \
   template std::span<const Impact> detail::WorldKernel<Real>::impacts() const; \
   template void detail::WorldKernel<Real>::rebuild_discs();                    \
-  template void detail::WorldKernel<Real>::save_tick_start();                  \
+  template void detail::WorldKernel<Real>::save_tick_start(bool);              \
   template void detail::WorldKernel<Real>::restore_immovable();                \
   template void detail::WorldKernel<Real>::resolve_discs();
 FIXSTEP_INSTANTIATE(float)

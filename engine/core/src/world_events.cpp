@@ -52,6 +52,14 @@ void detail::WorldKernel<Real>::update_contact_events() {
   for (const detail::RestContact& c : dc.touching()) {
     if (c.b < discs.size()) touching_.push_back(pair_of(discs[c.a].body, discs[c.b].body, 0.0));
   }
+  if (sleepers_ != 0) {  // two sleepers are not solved, and stay in touch (ContactSettings::sleep)
+    for (const ContactEvent& p : touching_before_) {
+      if (bodies_.contains(p.a) && bodies_.contains(p.b) && asleep(bodies_.index(p.a)) &&
+          asleep(bodies_.index(p.b))) {
+        touching_.push_back(p);
+      }
+    }
+  }
   sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
   for (const DiscImpact& i : dc.impacts()) {
     hits_.push_back(pair_of(i.body_a, i.body_b, i.normal_speed));

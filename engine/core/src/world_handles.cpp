@@ -50,6 +50,12 @@ const std::string& World::name(Entity e) const {
 BodyType World::type(Entity e) const {
   return visit([&](const auto& w) { return w.type(e); });
 }
+bool World::asleep(Entity e) const {
+  return visit([&](const auto& w) { return w.asleep(w.index_of(e)); });
+}
+void World::wake(Entity e) {
+  visit([&](auto& w) { w.wake(w.index_of(e)); });
+}
 std::size_t World::index_of(Entity e) const {
   return visit([&](const auto& w) { return w.index_of(e); });
 }

@@ -90,6 +90,8 @@ detail::WorldKernel<Real>::WorldKernel(const WorldSettings& settings) : settings
                       c->position_iterations));
     }
     rolling_ = c->rolling;
+    sleep_ = c->sleep;
+    if (sleep_) sleep_ticks_ = sleep_ticks(*c, settings.dt);
   }
 }
 
@@ -238,6 +240,7 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
     spin_.push_back(static_cast<Real>(def.body.angular_velocity));
     inv_inertia_.push_back(0.0);
   }
+  if (sleep_) still_ticks_.push_back(0), asleep_.push_back(0);
 
   if (def.spring) set(e, *def.spring);
   if (def.constant_force) set(e, *def.constant_force);
@@ -268,6 +271,7 @@ void detail::WorldKernel<Real>::destroy(Entity e) {
   swap_pop(i, x_, y_, vx_, vy_, prev_x_, prev_y_, mass_, types_, names_, user_data_,
            dissipated_body_);
   if (rolling_) swap_pop(i, angle_, spin_, inv_inertia_);
+  if (sleep_) swap_pop(i, still_ticks_, asleep_);  // every island wakes at the rebuild
   ++generations_[e.slot()];
   free_slots_.push_back(e.slot());
   terms_dirty_ = true;
@@ -400,6 +404,7 @@ void detail::WorldKernel<Real>::set_position(Entity e, Vec2 position) {
   check_vec<Real>(position, describe(e), "position");
   x_[i] = prev_x_[i] = static_cast<Real>(position.x);
   y_[i] = prev_y_[i] = static_cast<Real>(position.y);
+  if (sleep_) wake(i);
 }
 
 template <class Real>
@@ -414,6 +419,7 @@ void detail::WorldKernel<Real>::set_velocity(Entity e, Vec2 velocity) {
   }
   vx_[i] = static_cast<Real>(velocity.x);
   vy_[i] = static_cast<Real>(velocity.y);
+  if (sleep_) wake(i);
 }
 
 template <class Real>
@@ -493,6 +499,7 @@ void detail::WorldKernel<Real>::rebuild_terms() {
   if (rolling_) rebuild_inertia();
   rebuild_contacts();
   rebuild_discs();
+  if (sleep_) reset_sleep();  // a structural change wakes every island
   terms_dirty_ = false;
 }
 
@@ -598,6 +605,12 @@ std::uint64_t detail::WorldKernel<Real>::state_hash() const {
   }
   // Rolling discs (only in worlds that ask: every other world hashes as before).
   for (std::size_t j = 0; j < angle_.size(); ++j) mix(angle_[j]), mix(spin_[j]);
+  // Sleeping islands (only in worlds that ask), as the bytes of two 32-bit counts.
+  auto mix_count = [&h](std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) h ^= (v >> (8 * i)) & 0xffu, h *= 1099511628211ull;
+  };
+  for (std::size_t j = 0; j < asleep_.size(); ++j)
+    mix_count(still_ticks_[j]), mix_count(asleep_[j]);
   return h;
 }
 

@@ -53,7 +53,10 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
   for (std::size_t i = 0; i < s_.size(); ++i) n += bytes_of(s_[i]) + bytes_of(d_[i]);
   n += sum(contact_.body, contact_.radius, contact_.x0, contact_.y0, contact_.vx0, contact_.vy0,
            contact_.after);
-  n += sum(immovable_.body, immovable_.x0, immovable_.y0, immovable_.vx0, immovable_.vy0);
+  n += sum(immovable_.body, immovable_.x0, immovable_.y0, immovable_.vx0, immovable_.vy0,
+           immovable_.d0);
+  n += sum(still_ticks_, asleep_, disc_of_, kinematic_discs_, island_parent_, wake_labels_,
+           island_blocked_);
   n += sum(touching_, touching_before_, hits_, begun_, ended_, impacts_, saved_accel_);
   n += sum(sensed_, sensed_before_, sensor_crossed_, sensor_begun_, sensor_ended_);
   if (discs_) n += sizeof(*discs_.get()) + discs_->bytes();

@@ -197,6 +197,11 @@ template <class Real>
 void detail::WorldKernel<Real>::step(const TickInput& input) {
   const IeeeFloatMode ieee;  // no state depends on the caller's FPU mode (fixstep/float_mode.hpp)
   if (terms_dirty_) rebuild_terms();
+  if (sleep_) {
+    woken_ = 0, sleeper_contacts_ = 0;
+    if (sleepers_ != 0) wake_for_input(input);
+    if (immovable_dirty_) rebuild_immovable();
+  }
   if (!input.bodies.empty()) apply_body_inputs(input);
   if (bodies_.contains(input.drag_body) &&
       types_[bodies_.index(input.drag_body)] == BodyType::dynamic) {
@@ -211,10 +216,12 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   // One branch each per tick otherwise.
   const bool contacts = contact_.active;
   const bool immovable = !immovable_.body.empty();
-  const bool discs = discs_ && discs_->active();
+  // With sleeping islands, a tick in which every disc sleeps skips the disc phases.
+  const bool quiet = sleep_ && sleepers_ != 0 && discs_ && discs_->active() && discs_at_rest();
+  const bool discs = discs_ && discs_->active() && !quiet;
   detail::PhaseClock clock(discs);  // World::profile(): read only with disc contacts
   if (contacts) save_contact_start();
-  if (immovable || discs) save_tick_start();
+  if (immovable || discs) save_tick_start(discs);
   const bool forces = !input.bodies.empty() && add_input_forces(input);
   const bool fold = immovable && !net_.a.empty() && (input.push.x != 0.0 || input.push.y != 0.0);
   if (fold) {
@@ -236,6 +243,8 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
     const StepProfile& p = profile_;
     profile_.events = std::max(clock.lap() - p.broadphase - p.impacts - p.resting, 0.0);
     profile_.step = clock.total();
+  } else if (quiet) {
+    quiet_discs();
   } else {
     if (profile_.step != 0.0) profile_ = StepProfile{};
     if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
@@ -248,6 +257,12 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
     }
   }
   if (rolling_) integrate_angles();
+  if (sleep_) {
+    if (discs) update_sleep(input);
+    contact_stats_.sleeping = sleepers_;
+    contact_stats_.woken = woken_;
+    contact_stats_.sleeper_contacts = sleeper_contacts_;
+  }
   if (contacts) contact_stats_.capped = (discs ? contact_stats_.capped : 0) + plane_capped;
   // Every flush_denormals_every ticks: a separate pass over the four state arrays costs as much
   // memory traffic as a tick of the fused sweep, so it runs once in 64 ticks (a state that

@@ -162,6 +162,19 @@ struct ContactSettings {
   /// contacts alike. Off (the default): no angle is stored or stepped, friction acts on the
   /// centres' velocities, and nothing is paid for it.
   bool rolling = false;
+  /// Sleeping islands: bodies joined by resting disc contacts and links form an island; one
+  /// whose every body is a dynamic disc that has stayed slower than sleep_speed (its centre,
+  /// and with rolling discs its rim) for sleep_time, without input, falls asleep: its
+  /// velocities become 0 and it is neither stepped nor solved (it acts as a static body)
+  /// until an awake disc's motion over a tick comes near it, a resting contact or link joins
+  /// it to an awake body, or input or an edit touches one of its bodies (Box2D's
+  /// b2_timeToSleep rule, Catto 2006). Off (the default): every body is stepped every tick,
+  /// as in a world from before sleeping; on, a sleeping island ignores the forces too small
+  /// to wake it (a pile on a slowly tilting plane stays put).
+  bool sleep = false;
+  double sleep_speed = default_sleep_speed;  ///< m/s, finite and > 0
+  double sleep_time = default_sleep_time;    ///< s, finite and >= 0 (rounded up to ticks)
+  static constexpr double default_sleep_speed = 0.05, default_sleep_time = 0.5;
   static constexpr int default_velocity_iterations = 20, default_position_iterations = 10;
   static constexpr int max_iterations = 1000;
 };

@@ -49,6 +49,15 @@ struct ContactStats {
   /// Touching pairs across the cut that splits a large pile in two halves for the resting
   /// solver (the halves are solved at once on two threads; these after them, on one).
   std::size_t across = 0;
+  /// Bodies asleep after the tick (ContactSettings::sleep; 0 without sleeping).
+  std::size_t sleeping = 0;
+  /// Islands woken in the tick: by an awake disc's motion coming near, a contact, input or an
+  /// edit (ContactSettings::sleep).
+  std::size_t woken = 0;
+  /// Impacts and resting contacts of an awake disc with a sleeping one in the tick, which
+  /// would have acted as a static disc (it then wakes at the tick's end). Always 0: an island
+  /// wakes before the broadphase pairs any of its discs with an awake one; kept as a check.
+  std::size_t sleeper_contacts = 0;
 };
 
 /// Where the last tick's time went in a world with disc contacts (World::profile()): seconds of

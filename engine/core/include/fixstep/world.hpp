@@ -20,13 +20,6 @@
 
 namespace fixstep {
 
-namespace detail {
-class QueryGrid;
-struct QueryGridDeleter {
-  void operator()(QueryGrid* grid) const;
-};
-}  // namespace detail
-
 /// Everything a world is built from: what a scene file describes (see scene.hpp), or what a
 /// program writes in code. The one definition the frame pipeline (Session, render library)
 /// and the command line start from.
@@ -137,6 +130,13 @@ class World {
   [[nodiscard]] const std::string& name(Entity e) const;
   /// e's type (dynamic, static or kinematic); throws std::invalid_argument if stale.
   [[nodiscard]] BodyType type(Entity e) const;
+  /// Whether e sleeps (ContactSettings::sleep): its island is at rest and is neither stepped
+  /// nor solved until woken. False in a world without sleeping; throws if e is stale.
+  [[nodiscard]] bool asleep(Entity e) const;
+  /// Wakes e's island and restarts e's time at rest (an edit between ticks, as set_velocity:
+  /// set_position and set_velocity wake too). Nothing else in a world without sleeping;
+  /// throws if e is stale.
+  void wake(Entity e);
   /// Dense index of e (valid until the next create or destroy); throws if stale.
   [[nodiscard]] std::size_t index_of(Entity e) const;
   /// Adds or replaces component C (SpringDamper, ConstantForce, Gravity, LinearDrag,

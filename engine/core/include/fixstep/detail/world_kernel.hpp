@@ -58,6 +58,12 @@ struct PlaneMotion {
 /// Disc-disc contacts of a world with WorldSettings::contacts (disc_contacts.hpp).
 template <class Real>
 class DiscContacts;
+/// The uniform grid of discs that World's queries and the sleeping islands' wake test use
+/// (query_grid.hpp).
+class QueryGrid;
+struct QueryGridDeleter {
+  void operator()(QueryGrid* grid) const;
+};
 /// Deep-copying owner of a T defined elsewhere (its copy, assignment and deletion are
 /// instantiated where T is complete): a copy of the World copies the disc contacts' state,
 /// warm-start impulses included, so a snapshot steps on to the same bits.
@@ -295,6 +301,13 @@ class WorldKernel {
   [[nodiscard]] std::span<const Real> angle() const { return angle_; }
   [[nodiscard]] std::span<const Real> angular_velocity() const { return spin_; }
   [[nodiscard]] const std::string& name(std::size_t index) const { return names_[index]; }
+  /// Whether the body at dense index i sleeps (ContactSettings::sleep): false in a world
+  /// without sleeping.
+  [[nodiscard]] bool asleep(std::size_t index) const {
+    return !asleep_.empty() && asleep_[index] != 0;
+  }
+  /// Wakes the island of the body at dense index i (nothing when it is awake).
+  void wake(std::size_t index);
 
   // --- measurements -----------------------------------------------------------------------
   /// Total mechanical energy by kind, J (see EnergyReport for the potentials).
@@ -343,8 +356,9 @@ class WorldKernel {
   /// Every disc overlapping a sensor after the last tick, by (sensor, visitor) slot order.
   [[nodiscard]] std::span<const SensorEvent> sensor_overlaps() const { return sensed_; }
   /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in dense order, then,
-  /// with rolling discs (ContactSettings::rolling) only, every body's θ and ω: equal hashes
-  /// mean bit-identical states.
+  /// with rolling discs (ContactSettings::rolling) only, every body's θ and ω, then, with
+  /// sleeping (ContactSettings::sleep) only, every body's ticks below the sleep speed and its
+  /// island's number while asleep (0 awake): equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
   /// Bytes of heap memory a copy of this world (a WorldSnapshot) holds: every array's elements
   /// and the body names' characters (not the worker threads or the implicit solver's cache,
@@ -533,6 +547,7 @@ class WorldKernel {
   struct Immovable {
     std::vector<std::uint32_t> body;
     std::vector<Real> x0, y0, vx0, vy0;
+    std::vector<Real> d0;  ///< sleepers' dissipated J/kg (ContactSettings::sleep, tracked)
   } immovable_;
   // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.
   ClonePtr<DiscContacts<Real>> discs_;
@@ -551,9 +566,55 @@ class WorldKernel {
   void rebuild_inertia();
   /// θ += ω dt for every body, wrapped into (-π, π] (semi-implicit: the tick's end ω).
   void integrate_angles();
-  void save_tick_start();
+  /// Saves the immovable bodies' start states, and the discs' when `discs` (their phases run).
+  void save_tick_start(bool discs);
   void restore_immovable();
   void resolve_discs();
+  // Sleeping islands (world_sleep.cpp; ContactSettings::sleep). Per body in dense order: the
+  // ticks it has stayed below the sleep speed (saturating) and its island's number while
+  // asleep (0: awake); empty in a world without sleeping. A sleeping body is in the
+  // immovable list (put back after the free step, as a static body) and a disc of infinite
+  // mass to the disc phases until woken. Numbers come from next_island_, in the order the
+  // islands fell asleep, so they are the same on every run.
+  std::vector<std::uint32_t> still_ticks_, asleep_;
+  std::uint32_t next_island_ = 1;
+  std::uint32_t sleep_ticks_ = 0;               ///< ticks below the speed before an island sleeps
+  std::size_t sleepers_ = 0;                    ///< bodies asleep
+  bool sleep_ = false;                          ///< ContactSettings::sleep
+  bool immovable_dirty_ = false;                ///< the immovable list misses a change of sleepers
+  std::vector<std::int32_t> disc_of_;           ///< body -> disc index, or -1 (with sleeping only)
+  std::vector<std::uint32_t> kinematic_discs_;  ///< their bodies (rebuild_discs)
+  std::size_t dynamic_discs_ = 0;               ///< dynamic discs (rebuild_discs)
+  /// Whether every disc sleeps or is static, or is kinematic and still: the disc phases have
+  /// nothing to do.
+  [[nodiscard]] bool discs_at_rest() const;
+  std::vector<std::uint32_t> island_parent_, wake_labels_;  ///< scratch of one tick
+  std::vector<std::uint8_t> island_blocked_;                ///< scratch of one tick
+  CachePtr<QueryGrid, QueryGridDeleter> sleep_grid_;        ///< the sleepers (a cache)
+  std::size_t sleeper_contacts_ = 0;  ///< this tick's contacts with sleepers (ContactStats)
+  std::size_t woken_ = 0;             ///< islands woken this tick (ContactStats)
+  /// Refuses (std::invalid_argument) sleep settings out of range; returns sleep_ticks_.
+  static std::uint32_t sleep_ticks(const ContactSettings& c, double dt);
+  /// Resizes the sleep state after a structural change: every island awake.
+  void reset_sleep();
+  /// The immovable list: static and kinematic bodies, and sleepers.
+  void rebuild_immovable();
+  /// Wakes the islands of bodies with input this tick (before the free step).
+  void wake_for_input(const TickInput& input);
+  /// Wakes the islands that an awake disc's motion over the tick may reach (after the free
+  /// step, before the sleepers are put back: a woken body keeps its free step).
+  void wake_near_movers();
+  /// Wakes the islands whose numbers are in wake_labels_ (then clears it).
+  void wake_labelled();
+  /// After the tick: contacts with sleepers wake them; islands at rest fall asleep.
+  void update_sleep(const TickInput& input);
+  /// Joins the tick's awake islands (island_parent_); island_blocked_[root] for an island that
+  /// may not sleep.
+  void join_islands();
+  void fall_asleep(std::size_t j, std::uint32_t label);
+  /// The end of a tick whose every disc sleeps or is static: the disc phases are skipped, and
+  /// the events say nothing began or ended.
+  void quiet_discs();
   // Contact events (world_events.cpp): the touching pairs after the last tick and before it,
   // as handle pairs sorted by slot; part of a snapshot, so events after a restore are the same.
   std::vector<ContactEvent> touching_, touching_before_, hits_;  // normal_speed unused, hits_

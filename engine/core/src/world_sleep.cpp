@@ -1,0 +1,309 @@
+// Sleeping islands (ContactSettings::sleep): bodies at rest that cost nothing until something
+// comes near, as Box2D's islands sleep (Catto, "Solver2D" and b2_timeToSleep: bodies slower
+// than 5 cm/s for 0.5 s).
+//
+// At the end of a tick every dynamic disc that moves slower than sleep_speed (its centre, and
+// with rolling discs its rim) counts one more still tick, any other body none. Islands are the
+// awake bodies joined by the tick's resting contacts between dynamic discs and by links
+// (union-find, the smaller index the root). An island sleeps when every body in it is a
+// dynamic disc (not a sensor) that has been still for sleep_ticks_ ticks, none had input,
+// and none touches or is linked to a kinematic body that moves; its velocities become 0 (the
+// kinetic energy they held goes to the dissipated account), it joins the immovable bodies
+// (put back after each free step) and the disc phases see it as a static disc.
+//
+// An island wakes, whole, when the swept box of an awake disc's motion over a tick (the box the
+// broadphase pairs it by, after the plane contacts) overlaps the box of one of its discs (the
+// disc padded as the broadphase pads it): DiscContacts::resolve calls wake_near_movers() once
+// the boxes are built and before they are paired, so the broadphase never pairs an awake disc
+// with a sleeper, and the woken bodies take part in the tick's impacts and resting contacts from
+// rest where they slept. Islands are joined over the candidate pairs as well as the resting
+// contacts, so two islands that the broadphase pairs never wake each other in turn. An island
+// also wakes on input to one of its bodies, on an edit of one (set_position, set_velocity,
+// World::wake), and, as a check that should never fire, when an impact or resting contact with
+// an awake disc reached it (ContactStats::sleeper_contacts). A structural change (a body,
+// component, link or plane created or destroyed, set_body) wakes every island.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "disc_contacts.hpp"
+#include "fixstep/detail/world_kernel.hpp"
+#include "query_grid.hpp"
+
+namespace fixstep {
+
+namespace {
+
+constexpr std::uint32_t still_cap = 0xffffffffu;  // a saturating count of still ticks
+
+std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t j) {
+  while (parent[j] != j) j = parent[j] = parent[parent[j]];  // path halving
+  return j;
+}
+
+void join(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b) {
+  a = find_root(parent, a), b = find_root(parent, b);
+  if (a < b) parent[b] = a;
+  if (b < a) parent[a] = b;
+}
+
+}  // namespace
+
+template <class Real>
+std::uint32_t detail::WorldKernel<Real>::sleep_ticks(const ContactSettings& c, double dt) {
+  if (!std::isfinite(c.sleep_speed) || c.sleep_speed <= 0.0) {
+    throw std::invalid_argument(fmt::format(
+        "world: contacts.sleep_speed must be finite and > 0 m/s (got {})", c.sleep_speed));
+  }
+  const double ticks = std::ceil(c.sleep_time / dt);
+  if (!std::isfinite(c.sleep_time) || c.sleep_time < 0.0 || !(ticks < 1e9)) {
+    throw std::invalid_argument(fmt::format(
+        "world: contacts.sleep_time must be finite, >= 0 s and under 1e9 ticks (got {} s)",
+        c.sleep_time));
+  }
+  return std::max(static_cast<std::uint32_t>(ticks), std::uint32_t{1});
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::reset_sleep() {
+  const std::size_t n = body_count();
+  still_ticks_.assign(n, 0);
+  asleep_.assign(n, 0);
+  sleepers_ = 0;
+  if (sleep_grid_) sleep_grid_->stale = true;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::rebuild_immovable() {
+  Immovable& m = immovable_;
+  m.body.clear();
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    if (types_[j] != BodyType::dynamic || (sleep_ && asleep_[j] != 0)) {
+      m.body.push_back(static_cast<std::uint32_t>(j));
+    }
+  }
+  for (auto* v : {&m.x0, &m.y0, &m.vx0, &m.vy0}) v->resize(m.body.size());
+  immovable_dirty_ = false;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::wake(std::size_t index) {
+  // After a structural change the rebuild at the next step wakes every island anyway.
+  if (asleep_.empty() || asleep_[index] == 0 || terms_dirty_) {
+    if (!still_ticks_.empty()) still_ticks_[index] = 0;
+    return;
+  }
+  wake_labels_.push_back(asleep_[index]);
+  wake_labelled();
+  still_ticks_[index] = 0;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::wake_labelled() {
+  if (wake_labels_.empty()) return;
+  std::sort(wake_labels_.begin(), wake_labels_.end());
+  wake_labels_.erase(std::unique(wake_labels_.begin(), wake_labels_.end()), wake_labels_.end());
+  woken_ += wake_labels_.size();
+  for (std::size_t j = 0; j < asleep_.size(); ++j) {
+    if (asleep_[j] == 0 ||
+        !std::binary_search(wake_labels_.begin(), wake_labels_.end(), asleep_[j])) {
+      continue;
+    }
+    asleep_[j] = 0, still_ticks_[j] = 0, --sleepers_;
+    const std::int32_t k = disc_of_[j];
+    const double inv_i = rolling_ ? inv_inertia_[j] : 0.0;
+    discs_->set_asleep(static_cast<std::uint32_t>(k), false, 1.0 / mass_[j], inv_i);
+  }
+  wake_labels_.clear();
+  immovable_dirty_ = true;
+  if (sleep_grid_) sleep_grid_->stale = true;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::wake_for_input(const TickInput& input) {
+  if (input.push.x != 0.0 || input.push.y != 0.0) {  // a push moves every body
+    for (const std::uint32_t label : asleep_) {
+      if (label != 0) wake_labels_.push_back(label);
+    }
+  }
+  for (const BodyInput& b : input.bodies) {
+    if (bodies_.contains(b.body)) wake(bodies_.index(b.body));
+  }
+  if (bodies_.contains(input.drag_body)) wake(bodies_.index(input.drag_body));
+  wake_labelled();
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::wake_near_movers() {
+  if (!sleep_grid_) sleep_grid_.reset(new QueryGrid());
+  QueryGrid& g = *sleep_grid_;
+  const auto discs = discs_->discs();
+  const auto boxes = discs_->boxes();
+  if (g.stale) {  // a sleeper's box is its disc padded as the broadphase pads it
+    g.discs.clear();
+    for (std::size_t k = 0; k < discs.size(); ++k) {
+      const std::uint32_t j = discs[k].body;
+      if (asleep_[j] == 0) continue;
+      const SweptBox& b = boxes[k];
+      g.discs.push_back({0.5 * (b.min_x + b.max_x), 0.5 * (b.min_y + b.max_y),
+                         0.5 * (b.max_x - b.min_x), bodies_.dense[j], CollisionFilter{}, false});
+    }
+    g.build();
+    g.stale = false;
+  }
+  for (std::size_t k = 0; k < discs.size(); ++k) {
+    const std::uint32_t j = discs[k].body;
+    if (asleep_[j] != 0 || types_[j] == BodyType::static_body || discs[k].sensor) continue;
+    const SweptBox& b = boxes[k];
+    const auto mover = static_cast<std::uint32_t>(k);
+    g.for_each_near(b.min_x, b.min_y, b.max_x, b.max_y, [&](std::size_t i) {
+      const std::size_t sleeper = bodies_.index(g.discs[i].body);
+      const auto other = static_cast<std::uint32_t>(disc_of_[sleeper]);
+      if (asleep_[sleeper] == 0 || !boxes_overlap(b, boxes[other])) return;
+      if (!discs_->may_collide(mover, other)) return;
+      wake_labels_.push_back(asleep_[sleeper]);
+    });
+  }
+  wake_labelled();
+}
+
+template <class Real>
+bool detail::WorldKernel<Real>::discs_at_rest() const {
+  if (sleepers_ < dynamic_discs_) return false;
+  return std::all_of(kinematic_discs_.begin(), kinematic_discs_.end(),
+                     [&](std::uint32_t j) { return vx_[j] == Real(0) && vy_[j] == Real(0); });
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::quiet_discs() {
+  begun_.clear(), ended_.clear(), hits_.clear(), impacts_.clear();
+  sensor_begun_.clear(), sensor_ended_.clear();
+  contact_stats_ = ContactStats{};
+  profile_ = StepProfile{};
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::join_islands() {
+  const std::size_t n = body_count();
+  island_parent_.resize(n);
+  for (std::uint32_t j = 0; j < n; ++j) island_parent_[j] = j;
+  std::vector<std::uint8_t>& blocked = island_blocked_;
+  blocked.assign(n, 0);
+  const auto discs = discs_->discs();
+  auto moving = [&](std::uint32_t j) {
+    return types_[j] == BodyType::kinematic && (vx_[j] != Real(0) || vy_[j] != Real(0));
+  };
+  // Two awake dynamic bodies: a sleeper near an awake island stays an island of its own.
+  auto awake = [&](std::uint32_t j) { return types_[j] == BodyType::dynamic && asleep_[j] == 0; };
+  for (const RestContact& c : discs_->touching()) {
+    if (c.b >= discs.size()) continue;  // a plane or a segment: static
+    const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
+    const bool da = awake(a), db = awake(b);
+    if (da && db) join(island_parent_, a, b);
+    if (da && moving(b)) blocked[a] = 1;
+    if (db && moving(a)) blocked[b] = 1;
+  }
+  // Discs near enough to be paired by the broadphase share an island too: an awake one would
+  // otherwise wake a sleeping neighbour every tick (Box2D links islands through contacts
+  // within its speculative distance for the same reason).
+  for (const DiscPair& p : discs_->candidate_pairs()) {
+    const std::uint32_t a = discs[p.a].body, b = discs[p.b].body;
+    if (awake(a) && awake(b)) join(island_parent_, a, b);
+  }
+  for (std::size_t l = 0; l < net_.a.size(); ++l) {
+    const std::uint32_t a = net_.a[l], b = net_.b[l];
+    const bool da = awake(a), db = awake(b);
+    if (da && db) join(island_parent_, a, b);
+    if (da && moving(b)) blocked[a] = 1;
+    if (db && moving(a)) blocked[b] = 1;
+  }
+  for (std::uint32_t j = 0; j < n; ++j) {  // a body not ready, or blocked, keeps its island up
+    const bool ready = still_ticks_[j] >= sleep_ticks_ && asleep_[j] == 0;
+    if (!ready || blocked[j]) blocked[find_root(island_parent_, j)] = 1;
+  }
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::fall_asleep(std::size_t j, std::uint32_t label) {
+  const double v2 = double(vx_[j]) * double(vx_[j]) + double(vy_[j]) * double(vy_[j]);
+  double joules_per_kg = 0.5 * v2;
+  if (rolling_ && inv_inertia_[j] > 0.0) {
+    const double w = double(spin_[j]);
+    joules_per_kg += 0.5 * w * w / (inv_inertia_[j] * mass_[j]);
+    spin_[j] = Real(0);
+  }
+  if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(joules_per_kg);
+  vx_[j] = Real(0), vy_[j] = Real(0);
+  asleep_[j] = label, ++sleepers_;
+  discs_->set_asleep(static_cast<std::uint32_t>(disc_of_[j]), true, 0.0, 0.0);
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
+  const auto discs = discs_->discs();
+  // Contacts and impacts that reached a sleeper: it acted as a static disc this tick.
+  for (const RestContact& c : discs_->touching()) {
+    if (c.b >= discs.size()) continue;
+    const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
+    if (asleep_[a] != 0 && asleep_[b] == 0 && types_[b] == BodyType::dynamic) {
+      wake_labels_.push_back(asleep_[a]), ++sleeper_contacts_;
+    }
+    if (asleep_[b] != 0 && asleep_[a] == 0 && types_[a] == BodyType::dynamic) {
+      wake_labels_.push_back(asleep_[b]), ++sleeper_contacts_;
+    }
+  }
+  for (const DiscImpact& i : discs_->impacts()) {
+    for (const std::uint32_t j : {i.body_a, i.body_b}) {
+      if (asleep_[j] != 0) wake_labels_.push_back(asleep_[j]), ++sleeper_contacts_;
+    }
+  }
+  wake_labelled();
+  // Still ticks: dynamic discs below the speed (and their rims, when they roll).
+  const double s2 = settings_.contacts->sleep_speed * settings_.contacts->sleep_speed;
+  bool ready = false;
+  for (const Disc& d : discs) {
+    const std::uint32_t j = d.body;
+    if (asleep_[j] != 0 || types_[j] != BodyType::dynamic || d.sensor) continue;
+    double v2 = double(vx_[j]) * double(vx_[j]) + double(vy_[j]) * double(vy_[j]);
+    if (rolling_) v2 = std::max(v2, double(spin_[j]) * double(spin_[j]) * d.radius * d.radius);
+    std::uint32_t& still = still_ticks_[j];
+    still = v2 < s2 ? std::min(still_cap - 1, still) + 1 : 0;
+    ready = ready || still >= sleep_ticks_;
+  }
+  for (const BodyInput& b : input.bodies) {
+    if (bodies_.contains(b.body)) still_ticks_[bodies_.index(b.body)] = 0;
+  }
+  if (!ready) return;
+  join_islands();
+  for (std::uint32_t j = 0; j < body_count(); ++j) {
+    if (asleep_[j] != 0 || types_[j] != BodyType::dynamic || disc_of_[j] < 0) continue;
+    const std::uint32_t root = find_root(island_parent_, j);
+    if (island_blocked_[root]) continue;
+    // The root is the island's smallest index, so it is met first and takes the next number.
+    fall_asleep(j, root == j ? next_island_++ : asleep_[root]);
+  }
+  immovable_dirty_ = true;
+  if (sleep_grid_) sleep_grid_->stale = true;
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                                                \
+  template std::uint32_t detail::WorldKernel<Real>::sleep_ticks(const ContactSettings&, double); \
+  template void detail::WorldKernel<Real>::reset_sleep();                                        \
+  template void detail::WorldKernel<Real>::rebuild_immovable();                                  \
+  template void detail::WorldKernel<Real>::wake(std::size_t);                                    \
+  template void detail::WorldKernel<Real>::wake_labelled();                                      \
+  template void detail::WorldKernel<Real>::wake_for_input(const TickInput&);                     \
+  template void detail::WorldKernel<Real>::wake_near_movers();                                   \
+  template void detail::WorldKernel<Real>::quiet_discs();                                        \
+  template bool detail::WorldKernel<Real>::discs_at_rest() const;                                \
+  template void detail::WorldKernel<Real>::join_islands();                                       \
+  template void detail::WorldKernel<Real>::fall_asleep(std::size_t, std::uint32_t);              \
+  template void detail::WorldKernel<Real>::update_sleep(const TickInput&);
+FIXSTEP_INSTANTIATE(float)
+FIXSTEP_INSTANTIATE(double)
+#undef FIXSTEP_INSTANTIATE
+
+}  // namespace fixstep
