@@ -686,6 +686,29 @@ case_ "angular_velocity without rolling (a warning; ignored)" "$ok_world
 [contacts]
 $disc
 angular_velocity = 5.0"
+case_ "[contacts] sleep not a boolean" "$ok_world
+[contacts]
+sleep = \"yes\"
+$disc"
+case_ "[contacts] sleep_speed of 0" "$ok_world
+[contacts]
+sleep = true
+sleep_speed = 0.0
+$disc"
+case_ "[contacts] negative sleep_time" "$ok_world
+[contacts]
+sleep = true
+sleep_time = -1.0
+$disc"
+case_ "[contacts] sleep_time of 1e8 s (1e10 ticks of dt = 0.01 s; must be under 1e9)" "$ok_world
+[contacts]
+sleep = true
+sleep_time = 1e8
+$disc"
+case_ "sleep_speed without sleep (a warning; ignored)" "$ok_world
+[contacts]
+sleep_speed = 0.1
+$disc"
 case_ "restitution on a body without radius" "$ok_world
 $body
 restitution = 0.5"

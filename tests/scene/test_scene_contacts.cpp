@@ -1,9 +1,11 @@
 // Scene files, bodies that touch: [contacts], body types, the disc keys, the generators' discs,
 // and the discs that overlap where they start (the loader's definitions, not the motion).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "fixstep/scene_writer.hpp"
+#include "fixstep/world.hpp"
 
 namespace fixstep {
 namespace {
@@ -83,6 +86,93 @@ TEST(SceneContacts, ContactsTableFillsTheWorldSettings) {
   EXPECT_NE(text.find("velocity_iterations = 8\nposition_iterations = 0\n"), std::string::npos)
       << text;
   EXPECT_EQ(format_scene(world_def(defaults)).find("iterations"), std::string::npos);
+}
+
+TEST(SceneContacts, SleepKeysFillTheContactSettingsAndWriteBack) {
+  const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
+  const Scene off = parse_scene(scene("[contacts]\n" + disc), "c.toml");
+  EXPECT_FALSE(off.settings.contacts->sleep);
+  EXPECT_EQ(off.settings.contacts->sleep_speed, ContactSettings::default_sleep_speed);
+  EXPECT_EQ(off.settings.contacts->sleep_time, ContactSettings::default_sleep_time);
+  EXPECT_EQ(format_scene(world_def(off)).find("sleep"), std::string::npos);
+
+  const Scene on = parse_scene(
+      scene("[contacts]\nsleep = true\nsleep_speed = 0.02\nsleep_time = 1.25\n" + disc), "c.toml");
+  EXPECT_TRUE(on.warnings.empty()) << on.warnings[0];  // known keys, no unknown-key warning
+  const ContactSettings& c = *on.settings.contacts;
+  EXPECT_TRUE(c.sleep);
+  EXPECT_EQ(c.sleep_speed, 0.02);
+  EXPECT_EQ(c.sleep_time, 1.25);
+  EXPECT_NO_THROW((void)make_world(on));
+  // Written and read back: the same settings and definition hash (format_scene checks the hash,
+  // which holds the three keys with sleep on, so a key left out would throw there).
+  const std::string text = format_scene(world_def(on));
+  EXPECT_NE(text.find("sleep = true\nsleep_speed = 0.02\nsleep_time = 1.25\n"), std::string::npos)
+      << text;
+  const Scene again = parse_scene(text, "again.toml");
+  EXPECT_TRUE(again.warnings.empty()) << again.warnings[0];
+  EXPECT_TRUE(again.settings.contacts->sleep);
+  EXPECT_EQ(again.settings.contacts->sleep_speed, 0.02);
+  EXPECT_EQ(again.settings.contacts->sleep_time, 1.25);
+  EXPECT_EQ(definition_hash(again), definition_hash(on));
+  EXPECT_NE(definition_hash(again), definition_hash(off));
+
+  // sleep = true with the default speed and time: only `sleep = true` is written.
+  const Scene plain = parse_scene(scene("[contacts]\nsleep = true\n" + disc), "c.toml");
+  EXPECT_TRUE(plain.settings.contacts->sleep);
+  const std::string plain_text = format_scene(world_def(plain));
+  EXPECT_NE(plain_text.find("sleep = true\n"), std::string::npos) << plain_text;
+  EXPECT_EQ(plain_text.find("sleep_"), std::string::npos) << plain_text;
+  EXPECT_TRUE(parse_scene(plain_text, "again.toml").settings.contacts->sleep);
+
+  // sleep_time = 0 (asleep after one tick) is allowed.
+  const Scene zero =
+      parse_scene(scene("[contacts]\nsleep = true\nsleep_time = 0\n" + disc), "c.toml");
+  EXPECT_EQ(zero.settings.contacts->sleep_time, 0.0);
+  EXPECT_NE(format_scene(world_def(zero)).find("sleep_time = 0.0\n"), std::string::npos);
+}
+
+TEST(SceneContacts, SleepTimeIsRefusedWhereTheWorldRefusesIt) {
+  // dt = 0.5 s: 499999999.5 s is 999999999 ticks, the most the World takes; a quarter second
+  // more rounds up to 1e9 ticks.
+  auto text = [](std::string_view time) {
+    return "[world]\ndt = 0.5\n[contacts]\nsleep = true\nsleep_time = " + std::string(time) +
+           "\n[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
+  };
+  const Scene most = parse_scene(text("499999999.5"), "c.toml");
+  EXPECT_EQ(most.settings.contacts->sleep_time, 499999999.5);
+  EXPECT_NO_THROW((void)make_world(most));
+  expect_error(text("499999999.75"), 5, "contacts.sleep_time",
+               "must be under 1e9 ticks of dt = 0.5 s (got 5e+08 s, 1e+09 ticks)");
+  WorldDef over = world_def(most);
+  over.settings.contacts->sleep_time = 499999999.75;
+  EXPECT_THROW((void)World(over), std::invalid_argument);  // what the loader keeps out
+}
+
+TEST(SceneContacts, SleepSpeedAndTimeWithoutSleepWarnAtTheirKeys) {
+  const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
+  for (const std::string_view sleep : {"", "sleep = false\n"}) {
+    SCOPED_TRACE(sleep);
+    const std::string keys = "sleep_speed = 0.1\nsleep_time = 2\n";
+    const std::size_t first = sleep.empty() ? 4 : 5;
+    const Scene s = parse_scene(scene("[contacts]\n" + std::string(sleep) + keys + disc), "c.toml");
+    ASSERT_EQ(s.warnings.size(), 2u);
+    const std::string w =
+        warning(s, first,
+                "contacts.sleep_speed: ignored: islands fall asleep only with sleep on; add "
+                "sleep = true to [contacts], or remove it");
+    EXPECT_EQ(w.rfind(fmt::format("c.toml:{}:15: ", first), 0), 0u) << w;  // at the value
+    warning(s, first + 1, "contacts.sleep_time: ignored: islands fall asleep only with sleep on");
+    // Still read and checked, as the rolling keys are without rolling.
+    EXPECT_FALSE(s.settings.contacts->sleep);
+    EXPECT_EQ(s.settings.contacts->sleep_speed, 0.1);
+    EXPECT_EQ(s.settings.contacts->sleep_time, 2.0);
+  }
+  // With sleep = true they act, and nothing is said.
+  EXPECT_TRUE(
+      parse_scene(scene("[contacts]\nsleep = true\nsleep_speed = 0.1\nsleep_time = 2\n" + disc),
+                  "c.toml")
+          .warnings.empty());
 }
 
 TEST(SceneContacts, BodyTypesAndDiscKeysFillBodyDefAndCollider) {
@@ -368,6 +458,49 @@ INSTANTIATE_TEST_SUITE_P(
         BadKey{"contacts position_iterations a float",
                scene("[contacts]\nposition_iterations = 2.5\n" + body), 4,
                "contacts.position_iterations", "expected an integer, found a float"},
+        BadKey{"contacts sleep not a boolean", scene("[contacts]\nsleep = 1\n" + body), 4,
+               "contacts.sleep", "expected true or false, found an integer (1)"},
+        BadKey{"contacts sleep a string", scene("[contacts]\nsleep = \"yes\"\n" + body), 4,
+               "contacts.sleep", "expected true or false, found a string (\"yes\")"},
+        BadKey{"contacts sleep_speed zero",
+               scene("[contacts]\nsleep = true\nsleep_speed = 0\n" + body), 5,
+               "contacts.sleep_speed", "must be > 0 m/s (got 0)"},
+        BadKey{"contacts sleep_speed negative",
+               scene("[contacts]\nsleep = true\nsleep_speed = -0.1\n" + body), 5,
+               "contacts.sleep_speed", "must be > 0 m/s (got -0.1)"},
+        BadKey{"contacts sleep_speed nan",
+               scene("[contacts]\nsleep = true\nsleep_speed = nan\n" + body), 5,
+               "contacts.sleep_speed", "must be finite (got nan)"},
+        BadKey{"contacts sleep_speed inf",
+               scene("[contacts]\nsleep = true\nsleep_speed = inf\n" + body), 5,
+               "contacts.sleep_speed", "must be finite (got inf)"},
+        BadKey{"contacts sleep_speed a string",
+               scene("[contacts]\nsleep = true\nsleep_speed = \"0.1\"\n" + body), 5,
+               "contacts.sleep_speed",
+               "expected a number, found a string (\"0.1\"); write the number without quotes"},
+        BadKey{"contacts sleep_speed zero without sleep",
+               scene("[contacts]\nsleep_speed = 0\n" + body), 4, "contacts.sleep_speed",
+               "must be > 0 m/s (got 0)"},
+        BadKey{"contacts sleep_time negative",
+               scene("[contacts]\nsleep = true\nsleep_time = -1\n" + body), 5,
+               "contacts.sleep_time", "must be >= 0 s (got -1)"},
+        BadKey{"contacts sleep_time nan",
+               scene("[contacts]\nsleep = true\nsleep_time = nan\n" + body), 5,
+               "contacts.sleep_time", "must be finite (got nan)"},
+        BadKey{"contacts sleep_time inf",
+               scene("[contacts]\nsleep = true\nsleep_time = inf\n" + body), 5,
+               "contacts.sleep_time", "must be finite (got inf)"},
+        BadKey{"contacts sleep_time a boolean",
+               scene("[contacts]\nsleep = true\nsleep_time = true\n" + body), 5,
+               "contacts.sleep_time", "expected a number, found a boolean (true)"},
+        BadKey{"contacts sleep_time beyond 1e9 ticks",
+               scene("[contacts]\nsleep = true\nsleep_time = 1e8\n" + body), 5,
+               "contacts.sleep_time",
+               "must be under 1e9 ticks of dt = 0.01 s (got 1e+08 s, 1e+10 ticks); give a "
+               "shorter sleep_time"},
+        BadKey{"contacts sleep_time beyond 1e9 ticks without sleep",
+               scene("[contacts]\nsleep_time = 1e300\n" + body), 4, "contacts.sleep_time",
+               "must be under 1e9 ticks of dt = 0.01 s (got 1e+300 s, 1e+302 ticks)"},
         BadKey{"contacts not a table", "contacts = 1\n" + scene(body), 1, "contacts",
                "expected a table, found an integer (1)"},
         BadKey{"body restitution above 1", scene(body + "radius = 1\nrestitution = 2\n"), 7,
@@ -436,6 +569,10 @@ TEST(SceneContacts, UnknownKeysOfContactsWarnWithASuggestion) {
   const Scene s =
       parse_scene(scene("[contacts]\nrestitutoin = 0.5\n" + body + "radius = 1\n"), "c.toml");
   warning(s, 4, "contacts.restitutoin: unknown key ignored (did you mean `restitution`?)");
+  const Scene u = parse_scene(
+      scene("[contacts]\nslep = true\nsleep_sped = 0.1\n" + body + "radius = 1\n"), "c.toml");
+  warning(u, 4, "contacts.slep: unknown key ignored (did you mean `sleep`?)");
+  warning(u, 5, "contacts.sleep_sped: unknown key ignored (did you mean `sleep_speed`?)");
   const Scene t = parse_scene(scene(body + "radius = 1\ncolide = false\n"), "c.toml");
   warning(t, 7, "body[0].colide: unknown key ignored (did you mean `collide`?)");
 }

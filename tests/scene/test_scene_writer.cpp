@@ -63,7 +63,12 @@ WorldDef awkward_world(Precision precision, Integrator integrator) {
   def.settings.substeps = 7;
   def.settings.flush_denormals = false;
   def.settings.track_dissipation = true;  // a scene's, always
-  def.settings.contacts = ContactSettings{.restitution = third, .friction = tiny};
+  def.settings.contacts = ContactSettings{.restitution = third,
+                                          .friction = tiny,
+                                          .velocity_iterations = 3,
+                                          .sleep = true,
+                                          .sleep_speed = third,
+                                          .sleep_time = tiny};
 
   BodyDef a;
   a.name = "quote\" back\\slash\nnew line\ttab \x01 \x7f ünïcødé ☃ 𝄞";
@@ -129,6 +134,9 @@ TEST(SceneWriter, NumbersAreFloatsThatKeepTheirSign) {
   EXPECT_NE(text.find("substeps = 7\n"), std::string::npos);  // the one integer key
   EXPECT_NE(text.find("flush_denormals = false\n"), std::string::npos);
   EXPECT_NE(text.find("draw_radius = 0.7\n"), std::string::npos);
+  EXPECT_NE(text.find("sleep = true\nsleep_speed = 0.3333333333333333\nsleep_time = 1e-300\n"),
+            std::string::npos)
+      << text;
   EXPECT_NE(text.find("bodies = [\"quote\\\" back\\\\slash\\nnew line\\u0009tab"),
             std::string::npos);
 }
@@ -148,6 +156,9 @@ TEST(SceneWriter, NamesAndLooksTheFormatCannotHoldAreNormalisedAsDocumented) {
   def.bodies[4].collider = Collider{.radius = 0.3};  // no Appearance: reloads with one
   for (std::size_t i = 0; i < 5; ++i) def.bodies[i].body.position = {double(i), 0.0};
   def.links = {fixstep::test::link_between(0, 3, {}), fixstep::test::link_between(1, 4, {})};
+  // Sleep off: sleep_speed and sleep_time do nothing and are not hashed, so not written (a
+  // scene with them and no `sleep = true` warns); they reload as the defaults.
+  def.settings.contacts = ContactSettings{.sleep_speed = 0.2, .sleep_time = 3.0};
   const WorldDef back = reload(def);
   EXPECT_EQ(definition_hash(back), definition_hash(def));
   WorldDef expected = def;
@@ -157,6 +168,8 @@ TEST(SceneWriter, NamesAndLooksTheFormatCannotHoldAreNormalisedAsDocumented) {
   expected.bodies[3].name = "twin~2";
   expected.bodies[4].name = "body4";
   expected.bodies[4].appearance = Appearance{.radius = 0.3};
+  expected.settings.contacts->sleep_speed = ContactSettings::default_sleep_speed;
+  expected.settings.contacts->sleep_time = ContactSettings::default_sleep_time;
   test::expect_same_world(expected, back);
 }
 
@@ -257,6 +270,15 @@ TEST(SceneWriter, RefusesWhatWouldNotLoadBackExactly) {
               d.bodies[1].body.mass = std::nan("");
             }).find("body[1].mass: must be finite (got nan)"),
             std::string::npos);
+  EXPECT_NE(with([](WorldDef& d) {
+              d.settings.contacts = ContactSettings{.sleep = true, .sleep_speed = 0.0};
+            }).find("contacts.sleep_speed: must be > 0 m/s (got 0)"),
+            std::string::npos);
+  EXPECT_NE(
+      with([](WorldDef& d) {
+        d.settings.contacts = ContactSettings{.sleep = true, .sleep_time = 1e8};
+      }).find("contacts.sleep_time: must be under 1e9 ticks of dt = 0.0166667 s (got 1e+08 s"),
+      std::string::npos);
   EXPECT_NE(with([](WorldDef& d) { d.bodies[0].name = "bad \xff utf-8"; }).find("<scene text>"),
             std::string::npos);
   EXPECT_NE(with([](WorldDef& d) { d.bodies.clear(); }).find("a scene needs at least one body"),

@@ -82,6 +82,12 @@ inline void expect_same_world(const WorldDef& a, const WorldDef& b) {
   expect_optional(s.contacts, t.contacts, "contacts", [&](const auto& x, const auto& y) {
     expect_bits(x.restitution, y.restitution, "contacts.restitution");
     expect_bits(x.friction, y.friction, "contacts.friction");
+    EXPECT_EQ(x.velocity_iterations, y.velocity_iterations) << "contacts.velocity_iterations";
+    EXPECT_EQ(x.position_iterations, y.position_iterations) << "contacts.position_iterations";
+    EXPECT_EQ(x.rolling, y.rolling) << "contacts.rolling";
+    EXPECT_EQ(x.sleep, y.sleep) << "contacts.sleep";
+    expect_bits(x.sleep_speed, y.sleep_speed, "contacts.sleep_speed");
+    expect_bits(x.sleep_time, y.sleep_time, "contacts.sleep_time");
   });
   ASSERT_EQ(a.bodies.size(), b.bodies.size());
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {

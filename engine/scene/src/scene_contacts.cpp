@@ -59,6 +59,36 @@ void warn_unused_disc_keys(Reader& r, const toml::table& doc) {
   for_each_body_table(doc, check);
 }
 
+/// sleep (boolean), sleep_speed (m/s, > 0) and sleep_time (s, >= 0 and under 1e9 ticks of dt,
+/// as the World refuses otherwise) of [contacts] into c; sleep_speed and sleep_time without
+/// sleep = true are read and checked but warned about: they do nothing.
+void parse_sleep_keys(Reader& r, const toml::table& t, double dt, ContactSettings& c) {
+  if (auto v = r.boolean(t, "sleep", "contacts.sleep")) c.sleep = *v;
+  if (auto v = r.number(t, "sleep_speed", "contacts.sleep_speed")) {
+    r.require(*v > 0.0, t, "sleep_speed", "contacts.sleep_speed", "> 0 m/s", *v);
+    c.sleep_speed = *v;
+  }
+  if (auto v = r.number(t, "sleep_time", "contacts.sleep_time")) {
+    r.require(*v >= 0.0, t, "sleep_time", "contacts.sleep_time", ">= 0 s", *v);
+    const double ticks = std::ceil(*v / dt);  // as the World counts them (world_sleep.cpp)
+    if (!(ticks < 1e9)) {
+      r.fail(t.get("sleep_time")->source(), "contacts.sleep_time",
+             fmt::format("must be under 1e9 ticks of dt = {:g} s (got {:g} s, {:g} ticks); give "
+                         "a shorter sleep_time",
+                         dt, *v, ticks));
+    }
+    c.sleep_time = *v;
+  }
+  if (c.sleep) return;
+  for (const std::string_view k : {"sleep_speed", "sleep_time"}) {
+    if (const toml::node* n = t.get(k)) {
+      r.warn(n->source(), "contacts." + std::string(k),
+             "ignored: islands fall asleep only with sleep on; add sleep = true to [contacts], "
+             "or remove it");
+    }
+  }
+}
+
 }  // namespace
 
 BodyType parse_body_type(const Reader& r, const toml::table& t, const std::string& path) {
@@ -160,9 +190,9 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
     warn_unused_rolling_keys(r, doc);
     return;
   }
-  r.check_keys(
-      *t, "contacts",
-      {"restitution", "friction", "velocity_iterations", "position_iterations", "rolling"});
+  r.check_keys(*t, "contacts",
+               {"restitution", "friction", "velocity_iterations", "position_iterations", "rolling",
+                "sleep", "sleep_speed", "sleep_time"});
   ContactSettings contacts;
   contacts.restitution = restitution(r, *t, "contacts").value_or(0.0);
   contacts.friction = friction(r, *t, "contacts").value_or(0.0);
@@ -177,6 +207,7 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
   }
   if (auto v = r.boolean(*t, "rolling", "contacts.rolling")) contacts.rolling = *v;
   if (!contacts.rolling) warn_unused_rolling_keys(r, doc);
+  parse_sleep_keys(r, *t, scene.settings.dt, contacts);
   scene.settings.contacts = contacts;
   const bool discs = std::any_of(scene.bodies.begin(), scene.bodies.end(),
                                  [](const BodyDef& b) { return b.collider.has_value(); });

@@ -384,9 +384,10 @@ void warn_unused_rolling_keys(Reader& r, const toml::table& doc);
 /// their keys in t (they would move it), and a static body's non-zero velocity.
 void drop_moving_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
 /// The [contacts] table into scene.settings.contacts (restitution in [0, 1], friction >= 0, both
-/// default 0), warning when no body is a disc. Without the table, warns at each body's (and
-/// generator template's) restitution and friction: they act only in disc-disc contacts.
-/// After the bodies.
+/// default 0; sleep_speed > 0 m/s and sleep_time >= 0 s and under 1e9 ticks of scene.settings.dt,
+/// each warned about without sleep = true), warning when no body is a disc. Without the table,
+/// warns at each body's (and generator template's) restitution and friction: they act only in
+/// disc-disc contacts. After the bodies and [world].
 void parse_contacts(Reader& r, const toml::table& doc, Scene& scene);
 
 /// The parameters of a spring table before the masses it acts on are known: stiffness k (N/m)

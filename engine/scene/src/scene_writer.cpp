@@ -184,6 +184,15 @@ void write_world(std::string& out, const WorldDef& def) {
       fmt::format_to(it, "position_iterations = {}\n", c.position_iterations);
     }
     if (c.rolling) out += "rolling = true\n";
+    if (c.sleep) {  // sleep_speed and sleep_time act (and are hashed) only with sleep on
+      out += "sleep = true\n";
+      if (!same_bits(c.sleep_speed, ContactSettings::default_sleep_speed)) {
+        fmt::format_to(it, "sleep_speed = {}\n", num(c.sleep_speed));
+      }
+      if (!same_bits(c.sleep_time, ContactSettings::default_sleep_time)) {
+        fmt::format_to(it, "sleep_time = {}\n", num(c.sleep_time));
+      }
+    }
   }
 }
 

@@ -27,7 +27,10 @@ namespace fixstep {
 ///   - not written, as they change no state and the hash leaves them out: settings.threads
 ///     (reloads as 0, automatic) and settings.track_dissipation (a scene keeps the account:
 ///     true). flush_denormals is written only when false; allow_unstable never (a WorldDef has
-///     none: the stability guard is the program's call, check_definition).
+///     none: the stability guard is the program's call, check_definition). The contacts'
+///     sleep_speed and sleep_time are written only with sleep on, and only when not the
+///     defaults: with sleep off they do nothing, the hash leaves them out, and they reload as
+///     the defaults.
 ///
 /// Throws std::invalid_argument, "format_scene: WHERE: WHY", when `def` cannot be written so
 /// that it loads back exactly: a link naming a body that is not one of def's or one body twice; a
