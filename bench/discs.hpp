@@ -112,6 +112,8 @@ class Stepper {
 // - fixstep_f64_off: the same world without contacts (discs meet only the walls);
 // - fixstep_roll_t1, fixstep_roll_t2: f64 with rolling discs (the pile only), as the peers'
 //   rotating circles;
+// - fixstep_sleep_t1, fixstep_sleep_t2: f64 with sleeping islands (ContactSettings::sleep at
+//   its defaults; the settled pile only, where it sleeps);
 // - chipmunk_hash: cpSpace with cpSpaceUseSpatialHash(2r, N);
 // - chipmunk_tree: cpSpace with its default bounding-box tree;
 // - chipmunk_hasty2: cpHastySpace on 2 threads (its default tree);
@@ -125,10 +127,10 @@ class Stepper {
 /// fixstep on the scene; box2d_iterations: the resting solver at Box2D 2.4's iteration counts
 /// (box2d_velocity_iterations, box2d_position_iterations) instead of its defaults; rolling:
 /// rolling discs (ContactSettings::rolling; uniform discs, I = ½ m r²), as the peers' circles,
-/// which rotate.
+/// which rotate; sleep: sleeping islands (ContactSettings::sleep, its default speed and time).
 [[nodiscard]] std::unique_ptr<Stepper> make_fixstep(const Scene& s, bool f32, int threads,
                                                     bool contacts, bool box2d_iterations = false,
-                                                    bool rolling = false);
+                                                    bool rolling = false, bool sleep = false);
 enum class ChipmunkIndex { hash, tree, hasty };
 [[nodiscard]] std::unique_ptr<Stepper> make_chipmunk(const Scene& s, ChipmunkIndex index);
 [[nodiscard]] std::string chipmunk_version();

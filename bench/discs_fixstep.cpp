@@ -21,9 +21,10 @@ namespace {
 template <class Real>
 class FixstepStepper final : public Stepper {
  public:
-  FixstepStepper(const Scene& s, int threads, bool contacts, bool box2d_iterations, bool rolling)
+  FixstepStepper(const Scene& s, int threads, bool contacts, bool box2d_iterations, bool rolling,
+                 bool sleep)
       : w_(std::make_unique<fixstep::detail::WorldKernel<Real>>(
-            settings(s, threads, contacts, box2d_iterations, rolling))) {
+            settings(s, threads, contacts, box2d_iterations, rolling, sleep))) {
     w_->reserve(s.position.size());
     add_walls(s);
     for (std::size_t j = 0; j < s.position.size(); ++j) {
@@ -57,11 +58,12 @@ class FixstepStepper final : public Stepper {
  private:
   static double nan() { return std::numeric_limits<double>::quiet_NaN(); }
   static fixstep::WorldSettings settings(const Scene& s, int threads, bool contacts,
-                                         bool box2d_iterations, bool rolling) {
+                                         bool box2d_iterations, bool rolling, bool sleep) {
     fixstep::WorldSettings ws{.dt = tick, .threads = threads};
     if (contacts) {
       ws.contacts = fixstep::ContactSettings{.restitution = s.restitution, .friction = s.friction};
       ws.contacts->rolling = rolling;
+      ws.contacts->sleep = sleep;
       if (box2d_iterations) {
         ws.contacts->velocity_iterations = box2d_velocity_iterations;
         ws.contacts->position_iterations = box2d_position_iterations;
@@ -87,11 +89,13 @@ class FixstepStepper final : public Stepper {
 }  // namespace
 
 std::unique_ptr<Stepper> make_fixstep(const Scene& s, bool f32, int threads, bool contacts,
-                                      bool box2d_iterations, bool rolling) {
+                                      bool box2d_iterations, bool rolling, bool sleep) {
   if (f32) {
-    return std::make_unique<FixstepStepper<float>>(s, threads, contacts, box2d_iterations, rolling);
+    return std::make_unique<FixstepStepper<float>>(s, threads, contacts, box2d_iterations, rolling,
+                                                   sleep);
   }
-  return std::make_unique<FixstepStepper<double>>(s, threads, contacts, box2d_iterations, rolling);
+  return std::make_unique<FixstepStepper<double>>(s, threads, contacts, box2d_iterations, rolling,
+                                                  sleep);
 }
 
 }  // namespace discs

@@ -16,11 +16,13 @@ namespace discs {
 
 namespace {
 // The fixstep keys first (the contact statistics' table takes the first 4).
-constexpr const char* all_keys[] = {
-    "fixstep_f64_t1",  "fixstep_f64_t2",  "fixstep_f32_t1",  "fixstep_f64_off", "fixstep_i8_t1",
-    "fixstep_i8_t2",   "fixstep_roll_t1", "fixstep_roll_t2", "chipmunk_hash",   "chipmunk_tree",
-    "chipmunk_hasty2", "box2d",           "box2d3_w1",       "box2d3_w2"};
-const std::span<const char* const> keys(all_keys, box2d3_built() ? 14 : 12);
+constexpr const char* all_keys[] = {"fixstep_f64_t1",   "fixstep_f64_t2",  "fixstep_f32_t1",
+                                    "fixstep_f64_off",  "fixstep_i8_t1",   "fixstep_i8_t2",
+                                    "fixstep_roll_t1",  "fixstep_roll_t2", "fixstep_sleep_t1",
+                                    "fixstep_sleep_t2", "chipmunk_hash",   "chipmunk_tree",
+                                    "chipmunk_hasty2",  "box2d",           "box2d3_w1",
+                                    "box2d3_w2"};
+const std::span<const char* const> keys(all_keys, box2d3_built() ? 16 : 14);
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large,
                                     SceneKind::pile_settled};
@@ -56,6 +58,8 @@ std::string stepper_label(const std::string& key) {
   if (key == "fixstep_i8_t2") return "fixstep f64, 8/3 iterations, 2 threads";
   if (key == "fixstep_roll_t1") return "fixstep f64, rolling discs, 1 thread";
   if (key == "fixstep_roll_t2") return "fixstep f64, rolling discs, 2 threads";
+  if (key == "fixstep_sleep_t1") return "fixstep f64, sleeping islands, 1 thread";
+  if (key == "fixstep_sleep_t2") return "fixstep f64, sleeping islands, 2 threads";
   const std::string cp = fmt::format("Chipmunk2D {} (f64)", chipmunk_version());
   if (key == "chipmunk_hash") return cp + ", spatial hash";
   if (key == "chipmunk_tree") return cp + ", bounding-box tree";
@@ -75,6 +79,8 @@ std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s) {
   if (key == "fixstep_i8_t2") return make_fixstep(s, false, 2, true, true);
   if (key == "fixstep_roll_t1") return make_fixstep(s, false, 1, true, false, true);
   if (key == "fixstep_roll_t2") return make_fixstep(s, false, 2, true, false, true);
+  if (key == "fixstep_sleep_t1") return make_fixstep(s, false, 1, true, false, false, true);
+  if (key == "fixstep_sleep_t2") return make_fixstep(s, false, 2, true, false, false, true);
   if (key == "chipmunk_hash") return make_chipmunk(s, ChipmunkIndex::hash);
   if (key == "chipmunk_tree") return make_chipmunk(s, ChipmunkIndex::tree);
   if (key == "chipmunk_hasty2") return make_chipmunk(s, ChipmunkIndex::hasty);
@@ -404,6 +410,23 @@ void box2d3_targets(const View& v, const Line& line) {
   }
 }
 
+/// The sleeping target: a settled pile asleep costs at most 5 % of it awake.
+void sleep_targets(const View& v, const Line& line) {
+  constexpr std::int64_t n4 = 10'000;
+  for (int threads : {1, 2}) {
+    const std::string awake = fmt::format("fixstep_f64_t{}", threads);
+    const std::string asleep = fmt::format("fixstep_sleep_t{}", threads);
+    const double q =
+        v.ns(SceneKind::pile_settled, asleep, n4) / v.ns(SceneKind::pile_settled, awake, n4);
+    line(fmt::format(
+        "| settled pile (ticks {}–{}), N = 10^4, {} thread{}: asleep (ContactSettings::sleep) "
+        "≤ 5 % of its awake cost per body-step | {} ({} against {} ns) | {} |",
+        pile_settled_warmup + 1, pile_settled_warmup + 20, threads, threads == 1 ? "" : "s",
+        num(100.0 * q, "{:.1f} %"), num(v.ns(SceneKind::pile_settled, asleep, n4)),
+        num(v.ns(SceneKind::pile_settled, awake, n4)), verdict(!std::isnan(q), q <= 0.05)));
+  }
+}
+
 }  // namespace
 
 std::string targets_markdown(const Results& r) {
@@ -416,6 +439,7 @@ std::string targets_markdown(const Results& r) {
   peer_targets(v, line);
   scaling_targets(v, line);
   box2d3_targets(v, line);
+  sleep_targets(v, line);
   std::string costs;
   for (auto n : r.sizes) {
     const double q =
