@@ -217,6 +217,71 @@ TEST(Sleep, TheEnergyAccountKeepsWhatFallingAsleepTakes) {
   EXPECT_NEAR(energy_balance(w, e0), 0.0, 1e-12);
 }
 
+TEST(Sleep, LinkedDiscsSleepAndWakeTogether) {
+  // Two discs on the floor 1 m apart, joined by a damped link: one island though they never
+  // touch. Input on one wakes the other.
+  WorldDef def = sleepy_world();
+  for (const double x : {-0.5, 0.5}) {
+    BodyDef b;
+    b.body = Body{.mass = 1.0, .position = {x, r}};
+    b.collider = Collider{.radius = r};
+    b.gravity = Gravity{};
+    def.bodies.push_back(b);
+  }
+  LinkDef link;
+  link.spring = LinkSpring{.stiffness = 50.0, .damping = 2.0, .rest_length = 1.0};
+  World w(def);
+  const std::vector<Entity> ids(w.bodies().begin(), w.bodies().end());
+  link.body_a = ids[0], link.body_b = ids[1];
+  w.create_link(link);
+  ASSERT_LE(step_until_asleep(w, 600), 600);
+  TickInput in;
+  in.bodies.push_back(BodyInput{.body = ids[0], .kind = BodyInputKind::impulse, .value = {0.2, 0}});
+  w.step(in);
+  EXPECT_FALSE(w.asleep(ids[0]));
+  EXPECT_FALSE(w.asleep(ids[1]));  // woken through the link
+}
+
+TEST(Sleep, ASpinningDiscStaysAwakeWhileItsRimMoves) {
+  // A rolling disc spinning in place on a frictionless floor: its centre is still, its rim
+  // moves at ω r = 0.5 m/s, above the sleep speed, so it never sleeps.
+  WorldDef def = sleepy_world();
+  def.settings.contacts->rolling = true;
+  def.settings.contacts->friction = 0.0;
+  def.planes[0].friction = 0.0;
+  BodyDef b;
+  b.body = Body{.mass = 1.0, .position = {0.0, r}, .angular_velocity = 10.0};
+  b.collider = Collider{.radius = r};
+  b.gravity = Gravity{};
+  def.bodies.push_back(b);
+  World w(def);
+  EXPECT_EQ(step_until_asleep(w, 300), 301);
+  EXPECT_EQ(w.body(w.bodies()[0]).angular_velocity, 10.0);
+}
+
+TEST(Sleep, AMovingKinematicDiscKeepsWhatRestsOnItAwake) {
+  // A disc resting on a kinematic disc that drifts sideways at 1 cm/s (below the sleep
+  // speed): the rider's island touches a moving body, so it must not sleep (it would be left
+  // behind, hanging in the air).
+  WorldDef def = sleepy_world();
+  def.settings.contacts->friction = 1.0;
+  BodyDef carrier;
+  carrier.type = BodyType::kinematic;
+  carrier.body = Body{.mass = 1.0, .position = {0.0, 0.5}, .velocity = {0.01, 0.0}};
+  carrier.collider = Collider{.radius = 0.2};
+  def.bodies.push_back(carrier);
+  BodyDef rider;
+  rider.body = Body{.mass = 1.0, .position = {0.0, 0.5 + 0.2 + r}};
+  rider.collider = Collider{.radius = r};
+  rider.gravity = Gravity{};
+  def.bodies.push_back(rider);
+  World w(def);
+  for (int t = 0; t < 300; ++t) {
+    w.step();
+    ASSERT_EQ(w.contact_stats().sleeping, 0u) << "tick " << t;
+  }
+}
+
 /// The sync test (rollbacks of 1 and 7 ticks) over a pile that falls asleep and a ball that
 /// wakes it, every integrator, f64 and f32.
 TEST(Sleep, TheSyncTestRollsBackSleepAndWakeBitExactly) {
