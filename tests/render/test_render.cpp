@@ -57,6 +57,35 @@ TEST(Render, BodyIsDrawnWhereItsPositionMaps) {
   EXPECT_FALSE(near(at(r, 96, 132), red, 60));
 }
 
+TEST(Render, ASleepingDiscIsDrawnHalfwayToGrey) {
+  // A red disc resting on the floor in a world with sleeping islands: awake, drawn red; once
+  // asleep (ContactSettings::sleep), halfway from red to grey (128, 132, 140).
+  Renderer r(320, 200);
+  r.set_camera(Camera{.center = {0, 0}, .width = 10.0});
+  WorldSettings ws;
+  ws.contacts = ContactSettings{.sleep = true, .sleep_time = 0.1};
+  World sim(Precision::f64, ws);
+  sim.add_plane(PlaneDef{.normal = {0, 1}, .offset = 0.0});
+  BodyDef d;
+  d.body.position = {2.0, 0.5};
+  d.collider = Collider{.radius = 0.5};
+  d.gravity = Gravity{};
+  d.appearance = Appearance{.radius = 0.5, .color = {255, 0, 0, 255}};
+  const Entity e = sim.create_body(d);
+  sim.step();
+  RenderFrame s;
+  fill_render_frame(sim, 1.0, s);
+  ASSERT_FALSE(sim.asleep(e));
+  r.draw(s, {});
+  EXPECT_TRUE(near(at(r, 224, 84), Rgba8{255, 0, 0, 255}, 2));
+  for (int t = 0; t < 30 && !sim.asleep(e); ++t) sim.step();
+  ASSERT_TRUE(sim.asleep(e));
+  fill_render_frame(sim, 1.0, s);
+  ASSERT_EQ(s.asleep.size(), 1u);
+  r.draw(s, {});
+  EXPECT_TRUE(near(at(r, 224, 84), Rgba8{192, 66, 70, 255}, 2));
+}
+
 TEST(Render, InterpolatesBetweenTicksWithAlpha) {
   World sim(Precision::f64, WorldSettings{.dt = 1.0});
   BodyDef d;

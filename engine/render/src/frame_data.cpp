@@ -19,6 +19,7 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
   out.springs.clear();
   const auto& contacts = world.settings().contacts;
   out.angle.resize(contacts && contacts->rolling ? n : 0);
+  out.asleep.resize(contacts && contacts->sleep ? n : 0);
   for (std::size_t j = 0; j < n; ++j) {
     const Entity e = bodies[j];
     if (const std::optional<Appearance> a = world.get<Appearance>(e)) {
@@ -37,6 +38,7 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
       const double back = (1.0 - alpha) * b.angular_velocity * world.settings().dt;
       out.angle[j] = static_cast<float>(b.angle - back);
     }
+    if (!out.asleep.empty()) out.asleep[j] = world.asleep(e) ? 1 : 0;
     if (const std::optional<SpringDamper> s = world.get<SpringDamper>(e)) {
       out.springs.push_back({static_cast<float>(s->anchor.x), static_cast<float>(s->anchor.y),
                              static_cast<std::uint32_t>(j)});

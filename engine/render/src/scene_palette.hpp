@@ -28,9 +28,17 @@ inline constexpr float min_radius_px = 3.0f;
 inline constexpr float outline_px = 1.5f;      // bodies' outline, beyond their radius
 inline constexpr float anchor_half_px = 5.0f;  // anchors are squares of twice this side
 
-/// Body j's colour: its Appearance's, or a palette colour without one (alpha 0).
+inline constexpr Rgba8 sleep_grey{128, 132, 140, 255};
+
+/// Body j's colour: its Appearance's, or a palette colour without one (alpha 0); halfway to
+/// sleep_grey while it sleeps (RenderFrame::asleep).
 inline Rgba8 body_color(const RenderFrame& s, std::size_t j) {
-  return s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
+  const Rgba8 c = s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
+  if (s.asleep.empty() || s.asleep[j] == 0) return c;
+  auto mid = [](std::uint8_t a, std::uint8_t b) {
+    return static_cast<std::uint8_t>((unsigned(a) + unsigned(b) + 1u) / 2u);
+  };
+  return Rgba8{mid(c.r, sleep_grey.r), mid(c.g, sleep_grey.g), mid(c.b, sleep_grey.b), c.a};
 }
 
 /// Bodies are outlined discs of the body's radius (at least min_radius_px; `scale` px per m),

@@ -33,6 +33,9 @@ struct RenderFrame {
   /// rolling discs (ContactSettings::rolling), drawn as a line from the disc's centre to its
   /// rim. Empty: no angles (no line).
   std::vector<float> angle;
+  /// 1 for a body that sleeps (ContactSettings::sleep; World::asleep), drawn in its colour
+  /// half greyed, as Box2D's debug draw greys sleeping bodies. Empty: none sleeps.
+  std::vector<std::uint8_t> asleep;
   std::vector<SpringLine> springs;
   /// Links (springs between bodies): link i joins entries link_a[i] and link_b[i] of x / y.
   std::vector<std::uint32_t> link_a, link_b;
