@@ -101,8 +101,10 @@ struct RestContact {
   /// contact point (m; 0 for a plane and without rolling) and r/I of each (rad/s per N·s).
   double mass_t = 0, arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
   bool kinematic_a = false;  ///< a is a moving kinematic disc (its work is external)
-  bool kinematic_b = false;  ///< b is a moving kinematic disc (its work is external)
-  std::uint8_t moved = 0;    ///< 1 once an impulse or a push-out moved its discs this tick
+  bool kinematic_b = false;  ///< b is a moving kinematic disc or segment (its work is external)
+  /// b's velocity when b is a plane or a segment (m/s): a kinematic body's segment moves.
+  double bvx = 0, bvy = 0;
+  std::uint8_t moved = 0;  ///< 1 once an impulse or a push-out moved its discs this tick
 };
 
 /// Last tick's resting impulses, for warm starting (part of a snapshot).

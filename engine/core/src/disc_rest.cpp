@@ -83,7 +83,10 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
 template <class Real>
 [[gnu::always_inline]] inline void DiscContacts<Real>::apply(RestContact& c, double jx, double jy,
                                                              double kdt) {
-  if (c.kinematic_b) external_[c.a] += jx * evx_[c.b] + jy * evy_[c.b];
+  if (c.kinematic_b) {
+    const bool disc = c.b < discs_.size();
+    external_[c.a] += jx * (disc ? evx_[c.b] : c.bvx) + jy * (disc ? evy_[c.b] : c.bvy);
+  }
   if (c.kinematic_a) external_[c.b] -= jx * evx_[c.a] + jy * evy_[c.a];
   c.moved = 1;  // its discs are marked changed after the passes (mark_moved)
   if (c.inv_a > 0.0) {
@@ -191,7 +194,11 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
       RestContact& c = contacts_[order_[i]];
       auto relative = [&](double& vx, double& vy) {
         vx = evx_[c.a], vy = evy_[c.a];
-        if (c.b < n) vx -= evx_[c.b], vy -= evy_[c.b];
+        if (c.b < n) {
+          vx -= evx_[c.b], vy -= evy_[c.b];
+        } else if (c.kinematic_b) {  // a moving segment
+          vx -= c.bvx, vy -= c.bvy;
+        }
       };
       double vx = 0, vy = 0;
       relative(vx, vy);

@@ -1,6 +1,10 @@
-// Disc contacts, phase 2, with static segments: each segment a disc touches at the tick's end
-// is a resting contact as a plane is (disc_rest.cpp), along the normal of its closest feature
-// under the ghost-vertex rule (segment_set.hpp), so that a polyline's joints catch nothing.
+// Disc contacts, phase 2, with segments: each segment a disc touches at the tick's end is a
+// resting contact as a plane is (disc_rest.cpp), along the normal of its closest feature
+// under the ghost-vertex rule (segment_set.hpp), so that a polyline's joints catch nothing. A
+// segment a kinematic body carries is where its body has moved it by the tick's end (u dt on
+// from where the tick found it), and the contact's target is its velocity u: the impulses stop
+// the disc approaching it and sliding along it relative to u, and their work J·u is the
+// body's (external_).
 #include <cmath>
 
 #include "disc_contacts.hpp"
@@ -16,18 +20,21 @@ void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t
   const auto base = static_cast<std::uint32_t>(discs_.size() + tick.planes.size());
   for (const std::uint32_t i : segments_near_) {
     const SegmentShape& s = tick.segments->shapes()[i];
+    const Vec2 u = tick.segments->velocity(i);
     SegmentTouch t;
-    if (!segment_touch(s, x, y, t)) continue;  // a joint a neighbour covers
+    if (!segment_touch(s, x - u.x * tick.dt, y - u.y * tick.dt, t)) continue;  // a neighbour's
     const double gap = t.distance - d.radius;
     if (gap > slop * d.radius) continue;
     // Still apart and closing faster than a tick of acceleration: the next tick's impact.
-    const double vn = evx_[k] * t.nx + evy_[k] * t.ny;
+    const double vn = (evx_[k] - u.x) * t.nx + (evy_[k] - u.y) * t.ny;
     const double cn = motion_[k].ax * t.nx + motion_[k].ay * t.ny;
     if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) continue;
     RestContact c;
     c.key = (std::uint64_t(k) << 32) | (base + i);
     c.a = k, c.b = base + i;
     c.nx = t.nx, c.ny = t.ny;
+    c.bvx = u.x, c.bvy = u.y;
+    c.kinematic_b = u.x != 0.0 || u.y != 0.0;
     c.mass = c.mass_t = 1.0 / d.inv_mass;
     c.inv_a = d.inv_mass;
     c.friction = s.friction;
@@ -44,9 +51,10 @@ double DiscContacts<Real>::segment_overlap_of(const Tick& tick, const RestContac
                                               double& ny) const {
   const auto base = discs_.size() + tick.planes.size();
   const SegmentShape& s = tick.segments->shapes()[c.b - base];
+  const double x = ex_[c.a] - c.bvx * tick.dt, y = ey_[c.a] - c.bvy * tick.dt;
   SegmentTouch t;
   nx = c.nx, ny = c.ny;
-  if (!segment_touch(s, ex_[c.a], ey_[c.a], t)) return 0.0;  // moved where a neighbour holds it
+  if (!segment_touch(s, x, y, t)) return 0.0;  // moved where a neighbour holds it
   nx = t.nx, ny = t.ny;
   return discs_[c.a].radius - t.distance;
 }

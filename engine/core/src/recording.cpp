@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "fixstep/bits.hpp"
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/fnv1a.hpp"
 #include "fixstep/work_progress.hpp"
 
@@ -112,6 +113,12 @@ std::uint64_t definition_hash(const WorldDef& def) {
       h.add(s.a), h.add(s.b), h.add(s.restitution), h.add(s.friction);
       h.add(s.prev.has_value()), h.add(s.prev.value_or(Vec2{}));
       h.add(s.next.has_value()), h.add(s.next.value_or(Vec2{}));
+      // The carrying body's place in the definition (absent: a static segment, as before).
+      if (!s.body.is_null()) {
+        h.add(std::uint64_t{1} +
+              std::uint64_t{
+                  detail::defined_index(s.body, def.bodies.size()).value_or(def.bodies.size())});
+      }
     }
   }
   return h.value();

@@ -148,7 +148,8 @@ double segment_impact(const SegmentShape& s, const SegmentMotion& m, double r, d
   return first;
 }
 
-void SegmentSet::add(const SegmentDef& def) {
+namespace {
+SegmentShape shape_of(const SegmentDef& def) {
   SegmentShape s;
   s.ax = def.a.x, s.ay = def.a.y, s.bx = def.b.x, s.by = def.b.y;
   s.length = seg_length(s.bx - s.ax, s.by - s.ay);
@@ -162,8 +163,35 @@ void SegmentSet::add(const SegmentDef& def) {
   }
   s.has_next = def.next.has_value() && !(*def.next == def.b);
   s.restitution = def.restitution, s.friction = def.friction;
+  return s;
+}
+}  // namespace
+
+void SegmentSet::add(const SegmentDef& def) {
   defs_.push_back(def);
-  shapes_.push_back(s);
+  shapes_.push_back(shape_of(def));
+  if (!velocity_.empty()) velocity_.emplace_back();
+}
+
+void SegmentSet::add_carried(const SegmentDef& def, Vec2 origin) {
+  carried_.push_back(static_cast<std::uint32_t>(defs_.size()));
+  carried_def_.push_back(def);
+  carried_origin_.push_back(origin);
+  add(def);
+  velocity_.resize(defs_.size());
+}
+
+void SegmentSet::place(std::size_t k, Vec2 position, Vec2 velocity) {
+  const std::uint32_t i = carried_[k];
+  const SegmentDef& at = carried_def_[k];
+  const double dx = position.x - carried_origin_[k].x, dy = position.y - carried_origin_[k].y;
+  const auto moved = [&](Vec2 p) { return Vec2{p.x + dx, p.y + dy}; };
+  SegmentDef& d = defs_[i];
+  d.a = moved(at.a), d.b = moved(at.b);
+  if (at.prev) d.prev = moved(*at.prev);
+  if (at.next) d.next = moved(*at.next);
+  shapes_[i] = shape_of(d);
+  velocity_[i] = velocity;
 }
 
 std::int64_t SegmentSet::cell(double v) const {
@@ -182,12 +210,20 @@ void SegmentSet::build() {
   grid_.clear(), big_.clear();
   if (shapes_.empty()) return;
   double sum = 0.0;
-  for (const SegmentShape& s : shapes_) {
+  std::size_t fixed = 0;
+  for (std::uint32_t i = 0; i < shapes_.size(); ++i) {
+    if (!defs_[i].body.is_null()) continue;  // carried: in every query
+    const SegmentShape& s = shapes_[i];
     sum += std::max(std::abs(s.bx - s.ax), std::abs(s.by - s.ay));
+    ++fixed;
   }
-  cell_ = std::max(sum / double(shapes_.size()), 1e-6);
+  cell_ = fixed ? std::max(sum / double(fixed), 1e-6) : 1.0;
   for (std::uint32_t i = 0; i < shapes_.size(); ++i) {
     const SegmentShape& s = shapes_[i];
+    if (!defs_[i].body.is_null()) {
+      big_.push_back(i);
+      continue;
+    }
     const std::int64_t x0 = cell(std::min(s.ax, s.bx)), x1 = cell(std::max(s.ax, s.bx));
     const std::int64_t y0 = cell(std::min(s.ay, s.by)), y1 = cell(std::max(s.ay, s.by));
     if (double(x1 - x0 + 1) * double(y1 - y0 + 1) > double(max_cells_per_segment)) {
@@ -224,7 +260,10 @@ void SegmentSet::query(double x0, double y0, double x1, double y1,
 
 std::size_t SegmentSet::bytes() const {
   return defs_.capacity() * sizeof(SegmentDef) + shapes_.capacity() * sizeof(SegmentShape) +
-         grid_.capacity() * sizeof(grid_[0]) + big_.capacity() * sizeof(std::uint32_t);
+         grid_.capacity() * sizeof(grid_[0]) + big_.capacity() * sizeof(std::uint32_t) +
+         carried_.capacity() * sizeof(std::uint32_t) +
+         carried_def_.capacity() * sizeof(SegmentDef) +
+         (carried_origin_.capacity() + velocity_.capacity()) * sizeof(Vec2);
 }
 
 }  // namespace detail

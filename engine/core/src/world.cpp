@@ -64,10 +64,10 @@ std::size_t World::add_segment(const SegmentDef& def) {
   return visit([&](auto& w) { return w.add_segment(def); });
 }
 std::size_t World::add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                                bool closed) {
-  const std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
+                                bool closed, Entity body) {
+  std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
   const std::size_t first = segments().size();
-  for (const SegmentDef& s : chain) add_segment(s);
+  for (SegmentDef& s : chain) s.body = body, add_segment(s);
   return first;
 }
 std::span<const SegmentDef> World::segments() const {
@@ -186,12 +186,26 @@ World::World(const WorldDef& def) : World(def.precision, def.settings) {
     create_link(LinkDef{defined_[l.body_a], defined_[l.body_b], l.spring});
   }
   for (const PlaneDef& p : def.planes) add_plane(p);
-  for (const SegmentDef& s : def.segments) add_segment(s);
+  for (std::size_t i = 0; i < def.segments.size(); ++i) {
+    SegmentDef s = def.segments[i];
+    if (!s.body.is_null()) {  // the definition's handle: the body made from it here
+      const std::optional<std::size_t> at = detail::defined_index(s.body, def.bodies.size());
+      if (!at) {
+        throw std::invalid_argument(fmt::format(
+            "segment[{}]: body {}:{} is not one of the definition's {} bodies (use the handles "
+            "WorldDef::add_body returns)",
+            i, s.body.index1, s.body.generation, def.bodies.size()));
+      }
+      s.body = defined_[*at];
+    }
+    add_segment(s);
+  }
 }
 
 void WorldDef::add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                            bool closed) {
-  const std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
+                            bool closed, Entity body) {
+  std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
+  for (SegmentDef& s : chain) s.body = body;
   segments.insert(segments.end(), chain.begin(), chain.end());
 }
 

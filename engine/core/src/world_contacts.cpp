@@ -260,6 +260,39 @@ bool impact(Motion& m, const PlaneDef& p, double r, double dt, Spin* spin) {
   return false;
 }
 
+/// A contact with a plane moving at u (a segment a kinematic body carries; world_segments.cpp)
+/// is resolved on m seen from the plane's frame (its velocity less u; position, acceleration and
+/// the integrator's offset unchanged, u being constant within the tick), and the result is
+/// taken back into the world's frame; `work` gets the plane's work on the body per unit mass,
+/// Δv·u (J/kg, Δv the change of the integrator's velocity). A static plane (u = 0) is resolved on m
+/// itself. As push_out().
+bool push_out_moving(Motion& m, const PlaneDef& p, double r, double rel, V2 u, double& work) {
+  if (u.x == 0.0 && u.y == 0.0) return push_out(m, p, r, rel);
+  Motion seen = m;
+  seen.v = m.v - u;
+  if (!push_out(seen, p, r, rel)) return false;
+  const V2 v = seen.v + u;
+  work += dot(v - m.v, u);
+  seen.v = v;
+  m = seen;
+  return true;
+}
+
+/// impact() against a plane moving at u, as push_out_moving().
+bool impact_moving(Motion& m, const PlaneDef& p, double r, double dt, Spin* spin, V2 u,
+                   double& work) {
+  if (u.x == 0.0 && u.y == 0.0) return impact(m, p, r, dt, spin);
+  Motion seen = m;
+  seen.v = m.v - u;
+  const bool bounce = impact(seen, p, r, dt, spin);
+  const V2 v = seen.v + u;
+  // Of the integrator's velocity (the model's less the offset, which a rest also changes).
+  work += dot((v - seen.offset) - (m.v - m.offset), u);
+  seen.v = v;
+  m = seen;
+  return bounce;
+}
+
 }  // namespace
 
 template <class Real>
@@ -365,10 +398,17 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     }
     // A body that starts inside a plane is pushed out; its approaching velocity is dropped.
     for (const PlaneDef& p : planes_) touched = push_out(m, p, r, rel) || touched;
-    PlaneDef local;  // a segment's contact as a plane (world_segments.cpp)
+    PlaneDef local;     // a segment's contact as a plane (world_segments.cpp)
+    Vec2 local_u;       // its velocity (a kinematic body's segment; 0 static)
+    double work = 0.0;  // J/kg the kinematic bodies' segments do on this body
+    // The frame of the surface hit (moving at u_hit), and the power per unit mass of the force
+    // that holds a rest on a moving segment (its work goes to `work`).
+    V2 u_hit;
+    double held_rate = 0.0;  // W/kg
     for (int s = 0; s < 4 && !segments_.empty(); ++s) {
       const double tol = rel * (std::abs(m.x.x) + std::abs(m.x.y) + r);
-      if (!segment_overlap(m.x.x, m.x.y, r, tol, local) || !push_out(m, local, r, rel)) break;
+      if (!segment_overlap(m.x.x, m.x.y, r, tol, m.t, local, local_u)) break;
+      if (!push_out_moving(m, local, r, rel, V2{local_u.x, local_u.y}, work)) break;
       touched = true;
     }
     for (int i = 0;; ++i) {
@@ -389,12 +429,16 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
       std::uint64_t looked = 0;
       if (!segments_.empty()) {
         const detail::SegmentMotion sm{m.x.x, m.x.y, m.v.x, m.v.y, m.a.x, m.a.y};
-        const double s = first_segment_hit(sm, r, horizon, rel, vtol, local, segment, looked);
+        const double s =
+            first_segment_hit(sm, m.t, r, horizon, rel, vtol, local, local_u, segment, looked);
         if (s < first) first = s, hit = &local;
       }
       if (!hit) break;
+      u_hit = hit == &local ? V2{local_u.x, local_u.y} : V2{};
       if (i >= max_impacts) {
-        if (!bounces(m, first, *hit, dt)) break;  // settling into a corner: the next ticks
+        Motion seen = m;  // from the surface's frame
+        seen.v = seen.v - u_hit;
+        if (!bounces(seen, first, *hit, dt)) break;  // settling into a corner: the next ticks
         again += planes_.size() + looked;
         if (again > max_tick_predictions(c.body.size())) {  // cold: the bounce is unresolved
           if (!fault_) {
@@ -410,8 +454,17 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
         }
       }
       m.advance(first);
-      const bool bounce = impact(m, *hit, r, dt, spin);
-      if (bounce && (held || hit == &local)) m.a = a_free, held = false;
+      const V2 a_before = m.a;
+      const bool bounce = impact_moving(m, *hit, r, dt, spin, u_hit, work);
+      if (!bounce && (u_hit.x != 0.0 || u_hit.y != 0.0)) {
+        // Held on a moving segment: the holding force's work over the rest of the tick.
+        const double rate = dot(m.a - a_before, u_hit);
+        work += rate * (dt - m.t), held_rate += rate;
+      }
+      if (bounce && (held || hit == &local)) {
+        work -= held_rate * (dt - m.t), held_rate = 0.0;  // the hold ends here
+        m.a = a_free, held = false;
+      }
       held = held || (!bounce && hit == &local);
       bounced = bounce || bounced;
       touched = true;
@@ -426,9 +479,10 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
         bounced = impact(m, p, r, dt, spin) || bounced;
         touched = true;
       }
-      if (!segments_.empty() && segment_overlap(x1.x, x1.y, r, 0.0, local)) {
+      if (!segments_.empty() && segment_overlap(x1.x, x1.y, r, 0.0, dt, local, local_u)) {
         if (!touched) m = Motion{x1, v1 + offset, m.a, offset, dt, 0.0};
-        bounced = impact(m, local, r, dt, spin) || bounced;
+        const V2 u{local_u.x, local_u.y};
+        bounced = impact_moving(m, local, r, dt, spin, u, work) || bounced;
         touched = true;
       }
       if (!touched) continue;
@@ -443,6 +497,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     vx_[j] = static_cast<Real>(m.v.x - m.offset.x), vy_[j] = static_cast<Real>(m.v.y - m.offset.y);
     if (spin) spin_[j] = static_cast<Real>(turn.w);
     if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(m.lost);
+    if (work != 0.0) external_work_ += mass_[j] * work;
     // The runtime guard, as in the sweep: a push-out beyond the range is a fault too.
     for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {
       out_of_range = out_of_range || !(std::abs(double(value)) <= max_state_magnitude);

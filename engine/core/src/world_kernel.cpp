@@ -394,6 +394,7 @@ void detail::WorldKernel<Real>::set_body(Entity e, const Body& b) {
     angle_[i] = static_cast<Real>(std::remainder(b.angle, 2.0 * std::numbers::pi));
     spin_[i] = static_cast<Real>(b.angular_velocity);
   }
+  if (segments_.moves()) place_segments();
   terms_dirty_ = true;  // 1/m enters the per-body coefficients
 }
 
@@ -405,6 +406,7 @@ void detail::WorldKernel<Real>::set_position(Entity e, Vec2 position) {
   x_[i] = prev_x_[i] = static_cast<Real>(position.x);
   y_[i] = prev_y_[i] = static_cast<Real>(position.y);
   if (sleep_) wake(i);
+  if (segments_.moves()) place_segments();
 }
 
 template <class Real>
@@ -420,6 +422,7 @@ void detail::WorldKernel<Real>::set_velocity(Entity e, Vec2 velocity) {
   vx_[i] = static_cast<Real>(velocity.x);
   vy_[i] = static_cast<Real>(velocity.y);
   if (sleep_) wake(i);
+  if (segments_.moves()) place_segments();
 }
 
 template <class Real>

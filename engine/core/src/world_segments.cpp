@@ -1,8 +1,12 @@
-// Static segments in the plane pass (world_contacts.cpp): a disc meets each segment near it as
-// the local plane of its contact (the closest point's normal, the segment's friction and
+// Segments in the plane pass (world_contacts.cpp): a disc meets each segment near it as the
+// local plane of its contact (the closest point's normal, the segment's friction and
 // restitution), found at its time of impact by segment_impact() (segment_set.cpp). The
 // segments near a disc come from the segment grid, queried with the box the disc can reach in
-// the rest of the tick (|v| T + ½ |a| T² + r about its centre).
+// the rest of the tick (|v| T + ½ |a| T² + r about its centre). A segment a kinematic body
+// carries is where place_segments() put it at the tick's start and moves at its body's velocity
+// u through the tick: it is met in its own frame (the disc's motion less u t), and its local
+// plane is given where it is at the contact's time, with u, which the caller's impact takes
+// as the plane's velocity.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -44,32 +48,65 @@ std::size_t detail::WorldKernel<Real>::add_segment(const SegmentDef& def) {
     throw std::invalid_argument(
         fmt::format("{}: friction must be finite and >= 0 (got {})", who, mu));
   }
-  segments_.add(def);
+  if (def.body.is_null()) {
+    segments_.add(def);
+  } else {
+    if (!bodies_.contains(def.body) || types_[bodies_.index(def.body)] != BodyType::kinematic) {
+      throw std::invalid_argument(fmt::format(
+          "{}: body must be a live kinematic body (got {}{})", who, describe(def.body),
+          bodies_.contains(def.body)
+              ? fmt::format(", a {} one", body_type_name(types_[bodies_.index(def.body)]))
+              : std::string()));
+    }
+    const std::size_t j = bodies_.index(def.body);
+    segments_.add_carried(def, Vec2{double(x_[j]), double(y_[j])});
+    place_segments();
+  }
   terms_dirty_ = true;  // rebuild_contacts() rebuilds the grid
   return segments_.size() - 1;
 }
 
 template <class Real>
+void detail::WorldKernel<Real>::place_segments() {
+  const auto carried = segments_.carried();
+  for (std::size_t k = 0; k < carried.size(); ++k) {
+    const Entity e = segments_.defs()[carried[k]].body;
+    if (!bodies_.contains(e)) {  // its body was destroyed: it stays where it is, static
+      segments_.stop(k);
+      continue;
+    }
+    const std::size_t j = bodies_.index(e);
+    segments_.place(k, Vec2{double(x_[j]), double(y_[j])}, Vec2{double(vx_[j]), double(vy_[j])});
+  }
+}
+
+template <class Real>
 bool detail::WorldKernel<Real>::segment_overlap(double x, double y, double r, double tol,
-                                                PlaneDef& plane) {
+                                                double time, PlaneDef& plane, Vec2& u) {
   segments_.query(x - r, y - r, x + r, y + r, segment_found_);
   double deepest = -tol;
   bool found = false;
   for (const std::uint32_t i : segment_found_) {
     const SegmentShape& s = segments_.shapes()[i];
+    const Vec2 v = segments_.velocity(i);  // the disc seen from the segment's frame
     SegmentTouch t;
-    if (!segment_touch(s, x, y, t) || !(t.distance - r < deepest)) continue;
+    if (!segment_touch(s, x - v.x * time, y - v.y * time, t) || !(t.distance - r < deepest)) {
+      continue;
+    }
     deepest = t.distance - r;
-    plane = PlaneDef{Vec2{t.nx, t.ny}, t.offset, s.restitution, s.friction};
+    const double offset = t.offset + (t.nx * v.x + t.ny * v.y) * time;  // where it is now
+    plane = PlaneDef{Vec2{t.nx, t.ny}, v.x != 0.0 || v.y != 0.0 ? offset : t.offset, s.restitution,
+                     s.friction};
+    u = v;
     found = true;
   }
   return found;
 }
 
 template <class Real>
-double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion& m, double r,
+double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion& m, double time, double r,
                                                     double horizon, double rel, double vtol,
-                                                    PlaneDef& plane, std::uint32_t& index,
+                                                    PlaneDef& plane, Vec2& u, std::uint32_t& index,
                                                     std::uint64_t& looked) {
   const double reach = (std::sqrt(m.vx * m.vx + m.vy * m.vy) +
                         0.5 * horizon * std::sqrt(m.ax * m.ax + m.ay * m.ay)) *
@@ -81,22 +118,30 @@ double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion& m, doub
   double first = std::numeric_limits<double>::infinity();
   for (const std::uint32_t i : segment_found_) {
     const SegmentShape& s = segments_.shapes()[i];
+    const Vec2 v = segments_.velocity(i);
+    const bool moving = v.x != 0.0 || v.y != 0.0;
+    SegmentMotion rel_m = m;  // the disc's motion seen from the segment's frame
+    if (moving) {
+      rel_m.x -= v.x * time, rel_m.y -= v.y * time, rel_m.vx -= v.x, rel_m.vy -= v.y;
+    }
     SegmentTouch t;
-    const double when = segment_impact(s, m, r, horizon, tol, vtol, t);
+    const double when = segment_impact(s, moving ? rel_m : m, r, horizon, tol, vtol, t);
     if (!(when < first)) continue;
-    first = when, index = i;
-    plane = PlaneDef{Vec2{t.nx, t.ny}, t.offset, s.restitution, s.friction};
+    first = when, index = i, u = v;
+    const double offset = t.offset + (t.nx * v.x + t.ny * v.y) * (time + when);
+    plane = PlaneDef{Vec2{t.nx, t.ny}, moving ? offset : t.offset, s.restitution, s.friction};
   }
   return first;
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                                 \
-  template std::size_t detail::WorldKernel<Real>::add_segment(const SegmentDef&);                 \
-  template bool detail::WorldKernel<Real>::segment_overlap(double, double, double, double,        \
-                                                           PlaneDef&);                            \
-  template double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion&, double,      \
-                                                               double, double, double, PlaneDef&, \
-                                                               std::uint32_t&, std::uint64_t&);
+#define FIXSTEP_INSTANTIATE(Real)                                                                  \
+  template std::size_t detail::WorldKernel<Real>::add_segment(const SegmentDef&);                  \
+  template bool detail::WorldKernel<Real>::segment_overlap(double, double, double, double, double, \
+                                                           PlaneDef&, Vec2&);                      \
+  template void detail::WorldKernel<Real>::place_segments();                                       \
+  template double detail::WorldKernel<Real>::first_segment_hit(                                    \
+      const SegmentMotion&, double, double, double, double, double, PlaneDef&, Vec2&,              \
+      std::uint32_t&, std::uint64_t&);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

@@ -203,6 +203,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
     if (immovable_dirty_) rebuild_immovable();
   }
   if (!input.bodies.empty()) apply_body_inputs(input);
+  if (segments_.moves()) place_segments();  // the carrying bodies' velocities for this tick
   if (bodies_.contains(input.drag_body) &&
       types_[bodies_.index(input.drag_body)] == BodyType::dynamic) {
     apply_drag(input);
@@ -257,6 +258,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
     }
   }
   if (rolling_) integrate_angles();
+  if (segments_.moves()) place_segments();  // where the tick left the carrying bodies
   if (sleep_) {
     if (discs) update_sleep(input);
     contact_stats_.sleeping = sleepers_;

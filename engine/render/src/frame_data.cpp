@@ -50,6 +50,15 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
   world.link_ends(out.link_a, out.link_b);
   out.planes.assign(world.planes().begin(), world.planes().end());
   out.segments.assign(world.segments().begin(), world.segments().end());
+  for (SegmentDef& s : out.segments) {  // a carried one where its body is at the frame's moment
+    if (s.body.is_null() || !world.contains(s.body)) continue;
+    const Vec2 v = world.body(s.body).velocity;
+    const double back = (1.0 - alpha) * world.settings().dt;
+    const auto moved = [&](Vec2 p) { return Vec2{p.x - v.x * back, p.y - v.y * back}; };
+    s.a = moved(s.a), s.b = moved(s.b);
+    if (s.prev) s.prev = moved(*s.prev);
+    if (s.next) s.next = moved(*s.next);
+  }
   out.tick = world.tick();
   out.dt = world.settings().dt;
   out.alpha = alpha;

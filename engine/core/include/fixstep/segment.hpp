@@ -5,13 +5,23 @@
 #include <span>
 #include <vector>
 
+#include "fixstep/entity.hpp"
 #include "fixstep/types.hpp"
 
 namespace fixstep {
 
-/// A static line segment from a to b (m) that bodies with a Collider of radius r collide with,
-/// on both of its faces: their centres stay at least r from every point of it. Box2D's
-/// b2Segment, and with ghost vertices its b2ChainSegment.
+/// A line segment from a to b (m) that bodies with a Collider of radius r collide with, on both
+/// of its faces: their centres stay at least r from every point of it. Box2D's b2Segment, and
+/// with ghost vertices its b2ChainSegment. Static, or carried by a kinematic body (`body`).
+///
+/// A segment carried by a kinematic body (a moving platform, a lift, a sweeping paddle) moves
+/// with it: its points are where they are when it is added, and it is displaced by however
+/// far the body has moved since (kinematic bodies do not turn). Contacts with it are resolved
+/// in its own frame, which moves at the body's velocity u, constant within a tick: a disc's
+/// normal velocity relative to it becomes -e times what it was, friction acts on the relative
+/// tangential velocity (a disc at rest on a platform is carried along), and the work it does
+/// on the discs (J·u for an impulse J) is in World::external_work(). Destroying the body
+/// leaves its segments where they are, static.
 ///
 /// A contact is resolved at its time of impact inside the tick exactly as a plane's (PlaneDef):
 /// Newton's restitution e on the normal velocity and a Coulomb-limited friction impulse μ on
@@ -35,6 +45,9 @@ struct SegmentDef {
   double friction = 0.0;       ///< μ, finite and >= 0
   std::optional<Vec2> prev{};  ///< ghost vertex before a (a chain's previous point), m
   std::optional<Vec2> next{};  ///< ghost vertex after b (a chain's next point), m
+  /// The kinematic body that carries it (null: static). For World::add_segment a live handle;
+  /// in a WorldDef, a handle WorldDef::add_body returned.
+  Entity body{};
   friend bool operator==(const SegmentDef&, const SegmentDef&) = default;
 };
 

@@ -29,7 +29,8 @@ struct WorldDef {
   std::vector<BodyDef> bodies;   ///< in creation order (add_body)
   std::vector<LinkDef> links;    ///< springs between bodies, by the handles add_body returned
   std::vector<PlaneDef> planes;  ///< static half-planes (ground, walls) colliders stay out of
-  /// Static segments (level geometry) colliders stay out of; polylines as their segments
+  /// Segments (level geometry, static or carried by a kinematic body: SegmentDef::body, a
+  /// handle add_body returned) colliders stay out of; polylines as their segments
   /// (polyline_segments, add_polyline). After the planes in every order.
   std::vector<SegmentDef> segments;
 
@@ -42,9 +43,10 @@ struct WorldDef {
     links.push_back(LinkDef{a, b, spring});
   }
   /// Appends the segments of a polyline through `points` (polyline_segments: throws
-  /// std::invalid_argument for too few points or a zero-length segment).
+  /// std::invalid_argument for too few points or a zero-length segment), carried by `body`
+  /// (a handle add_body returned, of a kinematic body) or static (null).
   void add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                    bool closed = false);
+                    bool closed = false, Entity body = {});
 };
 
 /// A restorable state of a World (what game physics calls a snapshot): a complete copy of
@@ -178,10 +180,11 @@ class World {
   /// segments(). Throws std::invalid_argument naming segment[i] and the field for a
   /// non-finite end, coinciding ends, or restitution or friction out of range.
   std::size_t add_segment(const SegmentDef& def);
-  /// The segments of a polyline (polyline_segments), joined by ghost vertices; returns the
-  /// index of its first segment. Throws as polyline_segments and add_segment do.
+  /// The segments of a polyline (polyline_segments), joined by ghost vertices, static or
+  /// carried by the kinematic `body`; returns the index of its first segment. Throws as
+  /// polyline_segments and add_segment do.
   std::size_t add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                           bool closed = false);
+                           bool closed = false, Entity body = {});
   [[nodiscard]] std::span<const SegmentDef> segments() const;
   void step(const TickInput& input = {});
   /// Throws std::invalid_argument naming the first entry of input.bodies World::step would

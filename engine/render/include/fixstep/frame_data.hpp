@@ -41,7 +41,8 @@ struct RenderFrame {
   std::vector<std::uint32_t> link_a, link_b;
   /// Static half-planes n·x >= offset (normals normalised), drawn as ground and walls.
   std::vector<PlaneDef> planes;
-  /// Static segments (level geometry), drawn as lines in the planes' colour.
+  /// Segments (level geometry), drawn as lines in the planes' colour; one a kinematic body
+  /// carries where its body is at the frame's moment (interpolated like x / y).
   std::vector<SegmentDef> segments;
   /// The world's tick when the frame was taken (World::tick()) and its dt (s; 0: unknown, a
   /// frame filled by hand, taken as 1/60 s), and the interpolation alpha of x / y: the frame

@@ -53,14 +53,31 @@ double segment_impact(const SegmentShape& s, const SegmentMotion& m, double r, d
                       double tol, double vtol, SegmentTouch& at);
 
 /// The segments of a world in creation order and a uniform grid of their bounding boxes, so
-/// that a disc tests only the segments near it. Cells are the mean of the segments' larger box
-/// sides; a segment spanning more than max_cells_per_segment cells is tested by every query.
+/// that a disc tests only the segments near it. Cells are the mean of the static segments'
+/// larger box sides; a segment spanning more than max_cells_per_segment cells, and every
+/// segment a kinematic body carries (SegmentDef::body), is tested by every query. A carried
+/// segment is where place() last put it, with the velocity place() gave it.
 class SegmentSet {
  public:
   static constexpr std::size_t max_cells_per_segment = 64;
   /// Appends a checked definition (WorldKernel::add_segment validates it); the grid is stale
   /// until build().
   void add(const SegmentDef& def);
+  /// Appends a segment carried by a kinematic body whose position is `origin` (m) now.
+  void add_carried(const SegmentDef& def, Vec2 origin);
+  /// The carried segments' indices, in creation order.
+  [[nodiscard]] std::span<const std::uint32_t> carried() const { return carried_; }
+  /// Puts carried segment carried()[k] where its body at `position` (m) puts it, moving at
+  /// `velocity` (m/s) until the next place(). Nothing is rebuilt: every query tests it.
+  void place(std::size_t k, Vec2 position, Vec2 velocity);
+  /// Leaves carried segment carried()[k] where it is, at rest (its body is gone).
+  void stop(std::size_t k) { velocity_[carried_[k]] = Vec2{}; }
+  /// Segment i's velocity (m/s): 0 for a static one.
+  [[nodiscard]] Vec2 velocity(std::uint32_t i) const {
+    return velocity_.empty() ? Vec2{} : velocity_[i];
+  }
+  /// Whether some segment is carried.
+  [[nodiscard]] bool moves() const { return !carried_.empty(); }
   /// Rebuilds the grid of the segments added so far.
   void build();
   [[nodiscard]] bool empty() const { return defs_.empty(); }
@@ -80,6 +97,12 @@ class SegmentSet {
   double cell_ = 1.0;                                          ///< m
   std::vector<std::pair<std::uint64_t, std::uint32_t>> grid_;  ///< (cell key, segment), sorted
   std::vector<std::uint32_t> big_;                             ///< segments in every query
+  // Carried segments: their indices, definitions where they were added and their bodies'
+  // positions then; every segment's velocity (empty while none is carried).
+  std::vector<std::uint32_t> carried_;
+  std::vector<SegmentDef> carried_def_;
+  std::vector<Vec2> carried_origin_;
+  std::vector<Vec2> velocity_;
 };
 
 }  // namespace fixstep::detail

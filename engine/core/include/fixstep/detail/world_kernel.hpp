@@ -532,14 +532,19 @@ class WorldKernel {
   // Static segments (world_segments.cpp): the plane pass meets them as local planes.
   SegmentSet segments_;
   std::vector<std::uint32_t> segment_found_;  ///< a query's scratch
-  /// The deepest segment contact of a disc (x, y, m; radius r) overlapping it by more than
-  /// tol (m), as its local plane (friction and restitution the segment's); false: none.
-  bool segment_overlap(double x, double y, double r, double tol, PlaneDef& plane);
-  /// The first segment impact of a disc moving as m over [0, horizon] (s), or infinity;
-  /// plane gets the contact's local plane, index the segment; `looked` the segments tested.
-  double first_segment_hit(const SegmentMotion& m, double r, double horizon, double rel,
-                           double vtol, PlaneDef& plane, std::uint32_t& index,
+  /// The deepest segment contact of a disc (x, y, m; radius r) at `time` (s into the tick)
+  /// overlapping it by more than tol (m), as its local plane there (friction and restitution
+  /// the segment's) and the segment's velocity u (m/s; 0 static); false: none.
+  bool segment_overlap(double x, double y, double r, double tol, double time, PlaneDef& plane,
+                       Vec2& u);
+  /// The first segment impact of a disc moving as m from `time` (s into the tick) over
+  /// [0, horizon] (s), or infinity; plane gets the contact's local plane at that moment, u
+  /// the segment's velocity, index the segment; `looked` the segments tested.
+  double first_segment_hit(const SegmentMotion& m, double time, double r, double horizon,
+                           double rel, double vtol, PlaneDef& plane, Vec2& u, std::uint32_t& index,
                            std::uint64_t& looked);
+  /// Puts every segment a kinematic body carries where its body is, at its velocity.
+  void place_segments();
 
   // Static and kinematic bodies (dense indices) and their start-of-tick states: after the
   // integrator, a static body is put back and a kinematic one moved on at its velocity, so
