@@ -282,6 +282,57 @@ TEST(Sleep, AMovingKinematicDiscKeepsWhatRestsOnItAwake) {
   }
 }
 
+TEST(Sleep, AMovingSegmentWakesWhatItWillReachAndKeepsItsRidersAwake) {
+  // A pile asleep on the floor; a wall (a segment carried by a kinematic body) then moves in
+  // from the left at 0.5 m/s: the pile wakes before the wall reaches it, and is pushed, never
+  // entered (every disc's centre stays r, less the slop, from the wall).
+  WorldDef def = sleepy_world();
+  add_pile(def, 0.0, 3, 2, 12, false);
+  BodyDef pusher;
+  pusher.type = BodyType::kinematic;
+  pusher.body = Body{.mass = 1.0, .position = {-1.0, 0.0}};
+  const Entity p = def.add_body(pusher);
+  def.segments.push_back(SegmentDef{.a = {-1.0, 0.0}, .b = {-1.0, 1.0}, .body = p});
+  World w(def);
+  const std::vector<Entity> ids(w.bodies().begin(), w.bodies().end());
+  const Entity wall = ids.back();
+  for (int t = 0; t < 1200 && w.contact_stats().sleeping < 6; ++t) w.step();
+  ASSERT_EQ(w.contact_stats().sleeping, 6u);
+  const double first_x = w.body(ids[0]).position.x;
+  w.set_velocity(wall, {0.5, 0.0});
+  std::size_t woken = 0;
+  for (int t = 0; t < 120; ++t) {
+    w.step();
+    woken += w.contact_stats().woken;
+    const double at = w.segments()[0].a.x;
+    for (std::size_t k = 0; k < 6; ++k) {
+      ASSERT_GE(w.body(ids[k]).position.x - at, 0.99 * r) << "disc " << k << " tick " << t;
+    }
+  }
+  EXPECT_GE(woken, 1u);
+  EXPECT_GT(w.body(ids[0]).position.x, first_x + 0.1);  // pushed along
+}
+
+TEST(Sleep, ADiscRidingAMovingPlatformNeverSleeps) {
+  WorldDef def = sleepy_world();
+  BodyDef carrier;
+  carrier.type = BodyType::kinematic;
+  carrier.body = Body{.mass = 1.0, .position = {0.0, 0.0}, .velocity = {0.01, 0.0}};
+  const Entity c = def.add_body(carrier);
+  def.segments.push_back(SegmentDef{.a = {-5.0, 0.5}, .b = {5.0, 0.5}, .friction = 0.5, .body = c});
+  BodyDef b;
+  b.body = Body{.mass = 1.0, .position = {0.0, 0.5 + r}};
+  b.collider = Collider{.radius = r};
+  b.gravity = Gravity{};
+  def.bodies.push_back(b);
+  World w(def);
+  for (int t = 0; t < 300; ++t) {
+    w.step();
+    ASSERT_EQ(w.contact_stats().sleeping, 0u) << "tick " << t;
+  }
+  EXPECT_NEAR(w.body(w.bodies()[1]).velocity.x, 0.01, 1e-9);  // carried along
+}
+
 /// The sync test (rollbacks of 1 and 7 ticks) over a pile that falls asleep and a ball that
 /// wakes it, every integrator, f64 and f32.
 TEST(Sleep, TheSyncTestRollsBackSleepAndWakeBitExactly) {

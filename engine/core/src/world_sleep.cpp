@@ -137,23 +137,52 @@ void detail::WorldKernel<Real>::wake_for_input(const TickInput& input) {
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::wake_near_movers() {
+const detail::QueryGrid& detail::WorldKernel<Real>::sleeper_grid() {
   if (!sleep_grid_) sleep_grid_.reset(new QueryGrid());
   QueryGrid& g = *sleep_grid_;
-  const auto discs = discs_->discs();
-  const auto boxes = discs_->boxes();
-  if (g.stale) {  // a sleeper's box is its disc padded as the broadphase pads it
+  if (g.stale) {  // a sleeper's reach is its disc padded as the broadphase pads it
     g.discs.clear();
-    for (std::size_t k = 0; k < discs.size(); ++k) {
-      const std::uint32_t j = discs[k].body;
-      if (asleep_[j] == 0) continue;
-      const SweptBox& b = boxes[k];
-      g.discs.push_back({0.5 * (b.min_x + b.max_x), 0.5 * (b.min_y + b.max_y),
-                         0.5 * (b.max_x - b.min_x), bodies_.dense[j], CollisionFilter{}, false});
+    for (const Disc& d : discs_->discs()) {
+      if (asleep_[d.body] == 0) continue;
+      const double pad = d.radius * (1.0 + 2.0 * DiscContacts<Real>::slop);
+      g.discs.push_back({double(x_[d.body]), double(y_[d.body]), pad, bodies_.dense[d.body],
+                         CollisionFilter{}, false});
     }
     g.build();
     g.stale = false;
   }
+  return g;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::wake_by_segments() {
+  // A segment a kinematic body carries sweeps, this tick, the box of where place_segments() put
+  // it and where it will be after dt: an island it may reach wakes before the free step.
+  const QueryGrid& g = sleeper_grid();
+  const double dt = settings_.dt;
+  for (const std::uint32_t i : segments_.carried()) {
+    const Vec2 u = segments_.velocity(i);
+    if (u.x == 0.0 && u.y == 0.0) continue;
+    const SegmentDef& s = segments_.defs()[i];
+    const double x0 = std::min(s.a.x, s.b.x), x1 = std::max(s.a.x, s.b.x);
+    const double y0 = std::min(s.a.y, s.b.y), y1 = std::max(s.a.y, s.b.y);
+    const double lx = std::min(x0, x0 + u.x * dt), hx = std::max(x1, x1 + u.x * dt);
+    const double ly = std::min(y0, y0 + u.y * dt), hy = std::max(y1, y1 + u.y * dt);
+    g.for_each_near(lx, ly, hx, hy, [&](std::size_t k) {
+      const QueryDisc& d = g.discs[k];
+      if (d.x + d.r < lx || d.x - d.r > hx || d.y + d.r < ly || d.y - d.r > hy) return;
+      const std::size_t sleeper = bodies_.index(d.body);
+      if (asleep_[sleeper] != 0) wake_labels_.push_back(asleep_[sleeper]);
+    });
+  }
+  wake_labelled();
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::wake_near_movers() {
+  const QueryGrid& g = sleeper_grid();
+  const auto discs = discs_->discs();
+  const auto boxes = discs_->boxes();
   for (std::size_t k = 0; k < discs.size(); ++k) {
     const std::uint32_t j = discs[k].body;
     if (asleep_[j] != 0 || types_[j] == BodyType::static_body || discs[k].sensor) continue;
@@ -199,7 +228,10 @@ void detail::WorldKernel<Real>::join_islands() {
   // Two awake dynamic bodies: a sleeper near an awake island stays an island of its own.
   auto awake = [&](std::uint32_t j) { return types_[j] == BodyType::dynamic && asleep_[j] == 0; };
   for (const RestContact& c : discs_->touching()) {
-    if (c.b >= discs.size()) continue;  // a plane or a segment: static
+    if (c.b >= discs.size()) {  // a plane or a segment: static, unless a kinematic body's
+      if (c.kinematic_b) blocked[discs[c.a].body] = 1;
+      continue;
+    }
     const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
     const bool da = awake(a), db = awake(b);
     if (da && db) join(island_parent_, a, b);
@@ -297,6 +329,8 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
   template void detail::WorldKernel<Real>::wake_labelled();                                      \
   template void detail::WorldKernel<Real>::wake_for_input(const TickInput&);                     \
   template void detail::WorldKernel<Real>::wake_near_movers();                                   \
+  template void detail::WorldKernel<Real>::wake_by_segments();                                   \
+  template const detail::QueryGrid& detail::WorldKernel<Real>::sleeper_grid();                   \
   template void detail::WorldKernel<Real>::quiet_discs();                                        \
   template bool detail::WorldKernel<Real>::discs_at_rest() const;                                \
   template void detail::WorldKernel<Real>::join_islands();                                       \

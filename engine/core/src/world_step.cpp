@@ -200,10 +200,13 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (sleep_) {
     woken_ = 0, sleeper_contacts_ = 0;
     if (sleepers_ != 0) wake_for_input(input);
-    if (immovable_dirty_) rebuild_immovable();
   }
   if (!input.bodies.empty()) apply_body_inputs(input);
-  if (segments_.moves()) place_segments();  // the carrying bodies' velocities for this tick
+  if (segments_.moves()) {
+    place_segments();  // the carrying bodies' velocities for this tick
+    if (sleep_ && sleepers_ != 0) wake_by_segments();
+  }
+  if (immovable_dirty_) rebuild_immovable();  // sleepers woken above step from here on
   if (bodies_.contains(input.drag_body) &&
       types_[bodies_.index(input.drag_body)] == BodyType::dynamic) {
     apply_drag(input);

@@ -609,6 +609,11 @@ class WorldKernel {
   /// Wakes the islands that an awake disc's motion over the tick may reach (after the free
   /// step, before the sleepers are put back: a woken body keeps its free step).
   void wake_near_movers();
+  /// The grid of the sleeping discs, each padded as the broadphase pads it (built when stale).
+  const QueryGrid& sleeper_grid();
+  /// Wakes the islands a segment carried by a moving kinematic body may reach in the tick
+  /// (before the free step).
+  void wake_by_segments();
   /// Wakes the islands whose numbers are in wake_labels_ (then clears it).
   void wake_labelled();
   /// After the tick: contacts with sleepers wake them; islands at rest fall asleep.
