@@ -86,6 +86,26 @@ TEST(Render, ASleepingDiscIsDrawnHalfwayToGrey) {
   EXPECT_TRUE(near(at(r, 224, 84), Rgba8{192, 66, 70, 255}, 2));
 }
 
+TEST(Render, ACarriedSegmentIsDrawnWhereItsBodyIsAtTheFramesMoment) {
+  // A segment carried by a kinematic body moving right at 3 m/s: at alpha 1 the frame has it
+  // where the body is after the tick, at alpha 0.25 three quarters of a tick (3/4 · 3 m/s · dt)
+  // back, as the bodies' positions are interpolated.
+  World sim(Precision::f64, WorldSettings{.dt = 0.1});
+  BodyDef k;
+  k.type = BodyType::kinematic;
+  k.body = Body{.mass = 1.0, .position = {0.0, 0.0}, .velocity = {3.0, 0.0}};
+  const Entity e = sim.create_body(k);
+  sim.add_segment(SegmentDef{.a = {-1.0, 0.0}, .b = {1.0, 0.0}, .body = e});
+  sim.step();
+  RenderFrame s;
+  fill_render_frame(sim, 1.0, s);
+  ASSERT_EQ(s.segments.size(), 1u);
+  EXPECT_NEAR(s.segments[0].a.x, -0.7, 1e-12);
+  fill_render_frame(sim, 0.25, s);
+  EXPECT_NEAR(s.segments[0].a.x, -0.7 - 0.75 * 0.3, 1e-12);
+  EXPECT_NEAR(s.segments[0].b.x, 1.3 - 0.75 * 0.3, 1e-12);
+}
+
 TEST(Render, InterpolatesBetweenTicksWithAlpha) {
   World sim(Precision::f64, WorldSettings{.dt = 1.0});
   BodyDef d;
