@@ -533,6 +533,27 @@ $body
 [[polyline]]
 points = [[0.0, 0.0], [1.0, 0.0]]
 closed = true"
+case_ "[[segment]] body naming no body (a misspelt name)" "$ok_world
+[[body]]
+name = \"lift\"
+type = \"kinematic\"
+position = [0.0, 0.0]
+velocity = [0.0, 1.0]
+[[segment]]
+a = [-1.0, 0.0]
+b = [1.0, 0.0]
+body = \"lfit\""
+case_ "[[polyline]] body that is not kinematic (a dynamic body)" "$ok_world
+$body
+[[polyline]]
+points = [[-1.0, 0.0], [1.0, 0.0]]
+body = \"body0\""
+case_ "[[segment]] body not a string" "$ok_world
+$body
+[[segment]]
+a = [-1.0, 0.0]
+b = [1.0, 0.0]
+body = 0"
 case_ "[[chain]] without count" "$ok_world
 [[chain]]
 start = [0.0, 0.0]"

@@ -288,6 +288,101 @@ TEST(SceneWriter, RefusesWhatWouldNotLoadBackExactly) {
       std::string::npos);
 }
 
+/// How many times `part` occurs in `text`.
+std::size_t count(const std::string& text, std::string_view part) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+// Segments a kinematic body carries (SegmentDef::body) are written with `body` = its name, on
+// each segment of a carried polyline, and load back to the same segments (carriers included)
+// and the same hash; a carrier with no name, or a repeated one, goes by the name the writer
+// gives it (as links do). A carrier that is not one of the bodies, or not kinematic, is refused.
+TEST(SceneWriter, CarriedSegmentsRoundTripByTheirBodysName) {
+  const Scene scene = parse_scene(R"([world]
+dt = 0.01
+[[body]]
+name = "ball"
+mass = 1.0
+position = [0.0, 5.0]
+[[body]]
+name = "lift"
+type = "kinematic"
+position = [0.0, 0.0]
+velocity = [0.5, 2.0]
+[[grid]]
+name = "deck"
+columns = 2
+rows = 1
+origin = [10.0, 0.0]
+spacing = [1.0, 1.0]
+body = { type = "kinematic", velocity = [-1.0, 0.0] }
+[[segment]]
+a = [-1.0, 0.0]
+b = [1.0, 0.0]
+body = "lift"
+[[segment]]
+a = [-10.0, -6.0]
+b = [10.0, -6.0]
+[[polyline]]
+points = [[-1.0, 1.0], [0.0, 1.5], [1.0, 1.0]]
+friction = 0.3
+body = "lift"
+[[polyline]]
+points = [[9.0, -1.0], [12.0, -1.0], [12.0, 1.0]]
+closed = true
+body = "deck[1,0]"
+)",
+                                  "carried.toml");
+  const WorldDef def = world_def(scene);
+  ASSERT_EQ(def.segments.size(), 7u);
+  const std::string text = format_scene(def);
+  EXPECT_EQ(count(text, "\nbody = \"lift\"\n"), 3u) << text;
+  EXPECT_EQ(count(text, "\nbody = \"deck[1,0]\"\n"), 3u) << text;
+  EXPECT_EQ(count(text, "\nbody = "), 6u) << text;  // not on the static segment
+  const WorldDef back = reload(def);
+  EXPECT_EQ(definition_hash(back), definition_hash(def));
+  test::expect_same_world(def, back);
+  EXPECT_EQ(back.segments, def.segments);
+  EXPECT_EQ(format_scene(back), text);  // a written scene writes itself again
+
+  // Built in code: a carrier without a name, and one whose name repeats.
+  WorldDef code;
+  BodyDef carrier;
+  carrier.type = BodyType::kinematic;
+  carrier.body.velocity = {1.0, 0.0};
+  const Entity unnamed = code.add_body(carrier);  // written as body0
+  carrier.name = "twin";
+  carrier.body.position = {0.0, 3.0};
+  (void)code.add_body(carrier);
+  carrier.body.position = {0.0, 6.0};
+  const Entity twin2 = code.add_body(carrier);  // written as twin~2
+  code.segments.push_back(SegmentDef{.a = {-1.0, 0.0}, .b = {1.0, 0.0}, .body = unnamed});
+  const std::vector<Vec2> points{{-1.0, 6.0}, {0.0, 7.0}, {1.0, 6.0}};
+  code.add_polyline(points, 0.5, 0.25, true, twin2);
+  const std::string code_text = format_scene(code);
+  EXPECT_EQ(count(code_text, "\nbody = \"body0\"\n"), 1u) << code_text;
+  EXPECT_EQ(count(code_text, "\nbody = \"twin~2\"\n"), 3u) << code_text;
+  const WorldDef code_back = reload(code);
+  EXPECT_EQ(definition_hash(code_back), definition_hash(code));
+  EXPECT_EQ(code_back.segments, code.segments);
+  EXPECT_EQ(code_back.bodies[2].name, "twin~2");
+
+  WorldDef stray = code;
+  stray.segments[0].body = detail::defined_entity(7);
+  EXPECT_EQ(refusal(stray),
+            "format_scene: segment[0]: is carried by body[7]: it must be one of the 3 bodies (a "
+            "handle WorldDef::add_body returned)");
+  WorldDef dynamic = code;
+  dynamic.bodies[0].type = BodyType::dynamic;
+  EXPECT_EQ(refusal(dynamic),
+            "format_scene: segment[0]: is carried by body[0] \"body0\", a dynamic body: only a "
+            "kinematic body can carry segments");
+}
+
 TEST(SceneWriter, WritesTheFileWhole) {
   const fs::path dir = fs::temp_directory_path() / fmt::format("scene_writer_{}", ::getpid());
   fs::remove_all(dir);

@@ -110,6 +110,20 @@ inline void expect_same_world(const WorldDef& a, const WorldDef& b) {
     expect_bits(a.planes[i].restitution, b.planes[i].restitution, w + ".restitution");
     expect_bits(a.planes[i].friction, b.planes[i].friction, w + ".friction");
   }
+  ASSERT_EQ(a.segments.size(), b.segments.size());
+  for (std::size_t i = 0; i < a.segments.size(); ++i) {
+    const std::string w = "segment[" + std::to_string(i) + "]";
+    const SegmentDef &x = a.segments[i], &y = b.segments[i];
+    expect_bits(x.a, y.a, w + ".a");
+    expect_bits(x.b, y.b, w + ".b");
+    expect_bits(x.restitution, y.restitution, w + ".restitution");
+    expect_bits(x.friction, y.friction, w + ".friction");
+    ASSERT_EQ(x.prev.has_value(), y.prev.has_value()) << w << ".prev";
+    if (x.prev) expect_bits(*x.prev, *y.prev, w + ".prev");
+    ASSERT_EQ(x.next.has_value(), y.next.has_value()) << w << ".next";
+    if (x.next) expect_bits(*x.next, *y.next, w + ".next");
+    EXPECT_EQ(x.body, y.body) << w << ".body";
+  }
 }
 
 }  // namespace fixstep::test

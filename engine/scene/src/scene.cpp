@@ -276,7 +276,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   }
   parse_springs(r, doc, scene, names);
   parse_planes(r, doc, scene);
-  parse_segments(r, doc, scene);
+  parse_segments(r, doc, scene, names);
   parse_contacts(r, doc, scene);
   check_start_overlap(scene, names);
   // The work and memory limits (limits.hpp), at the key that sets the work per tick.

@@ -12,8 +12,22 @@ namespace fixstep::scene_detail {
 
 namespace {
 
-/// The index of the body named by element e of a [[spring]]'s bodies, else a located error
-/// with the closest name.
+/// The unordered pair {a, b} as one key.
+std::uint64_t pair_key(std::size_t a, std::size_t b) {
+  return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
+}
+
+/// Where link l came from, for a warning: "spring[2] (line 14)".
+std::string link_origin(const Scene& scene, std::size_t l) {
+  const std::string key = l < scene.source.link_keys.size() && !scene.source.link_keys[l].empty()
+                              ? scene.source.link_keys[l]
+                              : fmt::format("link[{}]", l);
+  const std::size_t line = l < scene.source.link_lines.size() ? scene.source.link_lines[l] : 0;
+  return line ? fmt::format("{} (line {})", key, line) : key;
+}
+
+}  // namespace
+
 std::size_t find_body(const Reader& r, const toml::node& e, const std::string& key,
                       const BodyNames& names) {
   if (!e.is_string()) {
@@ -34,22 +48,6 @@ std::size_t find_body(const Reader& r, const toml::node& e, const std::string& k
   r.fail(e.source(), key,
          fmt::format("no body named \"{}\"{}", name, hint.empty() ? "" : " (" + hint + ")"));
 }
-
-/// The unordered pair {a, b} as one key.
-std::uint64_t pair_key(std::size_t a, std::size_t b) {
-  return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
-}
-
-/// Where link l came from, for a warning: "spring[2] (line 14)".
-std::string link_origin(const Scene& scene, std::size_t l) {
-  const std::string key = l < scene.source.link_keys.size() && !scene.source.link_keys[l].empty()
-                              ? scene.source.link_keys[l]
-                              : fmt::format("link[{}]", l);
-  const std::size_t line = l < scene.source.link_lines.size() ? scene.source.link_lines[l] : 0;
-  return line ? fmt::format("{} (line {})", key, line) : key;
-}
-
-}  // namespace
 
 SpringSpec parse_spring_spec(const Reader& r, const toml::table& t, const std::string& path,
                              bool with_rest_length) {

@@ -434,14 +434,21 @@ void parse_generators(Reader& r, const toml::table& doc, Scene& scene, BodyNames
 /// (scene_planes.cpp).
 void parse_planes(Reader& r, const toml::table& doc, Scene& scene);
 /// [[segment]] tables, then [[polyline]] tables (each as its segments, joined by ghost
-/// vertices): appends their segments and lines to the scene (scene_segments.cpp).
-void parse_segments(Reader& r, const toml::table& doc, Scene& scene);
+/// vertices): appends their segments and lines to the scene (scene_segments.cpp). A table's
+/// `body` names the kinematic body that carries its segments (SegmentDef::body), after every
+/// body is known.
+void parse_segments(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names);
 /// The [view] table into scene.view (scene_view.cpp).
 void parse_view(Reader& r, const toml::table& doc, Scene& scene);
 /// t[key] (which must be present), "#rrggbb" or "#rrggbbaa", as a colour; `path` names the key
 /// in errors (scene.cpp).
 Rgba8 parse_color(const Reader& r, const toml::table& t, std::string_view key,
                   const std::string& path);
+/// The scene index of the body named by node n (a [[spring]]'s bodies element, a segment's
+/// body), else a located error at `key`: n not a string, or no body of that name (with the
+/// closest name, and which generator makes names of that form) (scene_links.cpp).
+std::size_t find_body(const Reader& r, const toml::node& n, const std::string& key,
+                      const BodyNames& names);
 /// [[spring]] tables: appends their links to the scene, after every body is known
 /// (scene_links.cpp).
 void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names);

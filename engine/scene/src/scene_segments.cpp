@@ -1,7 +1,8 @@
-// Scene files: static segments and polylines ([[segment]], [[polyline]]: level geometry). See
-// docs/SCENES.md.
+// Scene files: segments and polylines ([[segment]], [[polyline]]: level geometry), static or
+// carried by a kinematic body (`body`). See docs/SCENES.md.
 #include <cmath>
 
+#include "fixstep/detail/defined_entity.hpp"
 #include "fixstep/step_results.hpp"
 #include "scene_reader.hpp"
 
@@ -33,10 +34,30 @@ void parse_surface(Reader& r, const toml::table& t, const std::string& path, dou
   }
 }
 
-/// One [[segment]] table: a and b ([x, y] m, required, distinct), restitution, friction, and
-/// the ghost vertices prev and next ([x, y] m, optional; SegmentDef).
-SegmentDef parse_segment(Reader& r, const toml::table& t, const std::string& path) {
-  r.check_keys(t, path, {"a", "b", "restitution", "friction", "prev", "next"});
+/// The carrier of a [[segment]] or [[polyline]] table (`what`, for the message): the WorldDef
+/// handle of the body its `body` key names, or null (a static segment) without the key. Errors
+/// at the key: not a string, no body of that name (find_body), a body that is not kinematic.
+Entity parse_carrier(const Reader& r, const toml::table& t, const std::string& path,
+                     const Scene& scene, const BodyNames& names, std::string_view what) {
+  const toml::node* n = t.get("body");
+  if (!n) return Entity{};
+  const std::string key = path + ".body";
+  const std::size_t i = find_body(r, *n, key, names);
+  const BodyDef& b = scene.bodies[i];
+  if (b.type != BodyType::kinematic) {
+    r.fail(n->source(), key,
+           fmt::format("\"{}\" (line {}) is a {} body: only a kinematic body can carry segments; "
+                       "give it type = \"kinematic\", or leave `body` out for a static {}",
+                       b.name, scene.source.body_lines[i], body_type_name(b.type), what));
+  }
+  return detail::defined_entity(i);
+}
+
+/// One [[segment]] table: a and b ([x, y] m, required, distinct), restitution, friction, the
+/// ghost vertices prev and next ([x, y] m, optional; SegmentDef) and the carrying body.
+SegmentDef parse_segment(Reader& r, const toml::table& t, const std::string& path,
+                         const Scene& scene, const BodyNames& names) {
+  r.check_keys(t, path, {"a", "b", "restitution", "friction", "prev", "next", "body"});
   SegmentDef s;
   for (const char* key : {"a", "b"}) {
     const toml::node* n = t.get(key);
@@ -50,14 +71,16 @@ SegmentDef parse_segment(Reader& r, const toml::table& t, const std::string& pat
   if (const toml::node* n = t.get("prev")) s.prev = point_node(r, *n, path + ".prev");
   if (const toml::node* n = t.get("next")) s.next = point_node(r, *n, path + ".next");
   parse_surface(r, t, path, s.restitution, s.friction);
+  s.body = parse_carrier(r, t, path, scene, names, "segment");
   return s;
 }
 
 /// One [[polyline]] table: points (an array of at least 2 [x, y], 3 when closed, consecutive
-/// ones distinct), restitution, friction, closed (default false). Appends its segments.
-void parse_polyline(Reader& r, const toml::table& t, const std::string& path,
-                    std::vector<SegmentDef>& out) {
-  r.check_keys(t, path, {"points", "restitution", "friction", "closed"});
+/// ones distinct), restitution, friction, closed (default false) and the body carrying every
+/// segment. Appends its segments to the scene.
+void parse_polyline(Reader& r, const toml::table& t, const std::string& path, Scene& scene,
+                    const BodyNames& names) {
+  r.check_keys(t, path, {"points", "restitution", "friction", "closed", "body"});
   const toml::node* n = t.get("points");
   if (!n) r.fail_missing(t, path, {"points"}, "missing (required): [[x, y], [x, y], ...] in m");
   const toml::array* a = n->as_array();
@@ -84,24 +107,26 @@ void parse_polyline(Reader& r, const toml::table& t, const std::string& path,
   }
   double e = 0.0, mu = 0.0;
   parse_surface(r, t, path, e, mu);
-  const std::vector<SegmentDef> chain = polyline_segments(points, e, mu, closed);
-  out.insert(out.end(), chain.begin(), chain.end());
+  const Entity body = parse_carrier(r, t, path, scene, names, "polyline");
+  std::vector<SegmentDef> chain = polyline_segments(points, e, mu, closed);
+  for (SegmentDef& s : chain) s.body = body;
+  scene.segments.insert(scene.segments.end(), chain.begin(), chain.end());
 }
 
 }  // namespace
 
-void parse_segments(Reader& r, const toml::table& doc, Scene& scene) {
+void parse_segments(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names) {
   if (const toml::array* list = r.tables(doc, "segment")) {
     for (std::size_t i = 0; i < list->size(); ++i) {
       const toml::table& t = *list->get(i)->as_table();
-      scene.segments.push_back(parse_segment(r, t, fmt::format("segment[{}]", i)));
+      scene.segments.push_back(parse_segment(r, t, fmt::format("segment[{}]", i), scene, names));
       scene.source.segment_lines.push_back(t.source().begin.line);
     }
   }
   if (const toml::array* list = r.tables(doc, "polyline")) {
     for (std::size_t i = 0; i < list->size(); ++i) {
       const toml::table& t = *list->get(i)->as_table();
-      parse_polyline(r, t, fmt::format("polyline[{}]", i), scene.segments);
+      parse_polyline(r, t, fmt::format("polyline[{}]", i), scene, names);
       scene.source.segment_lines.resize(scene.segments.size(), t.source().begin.line);
     }
   }

@@ -1,6 +1,7 @@
 // Writing a WorldDef as a scene file (scene_writer.hpp): every body a [[body]] table, every link
-// a [[spring]], every number the shortest text that reads back as the same double; the text is
-// parsed back and its definition hash compared before it is handed out.
+// a [[spring]], every segment a [[segment]] (naming the body that carries it), every number the
+// shortest text that reads back as the same double; the text is parsed back and its definition
+// hash compared before it is handed out.
 #include "fixstep/scene_writer.hpp"
 
 #include <fmt/format.h>
@@ -293,14 +294,31 @@ void write_planes(std::string& out, const WorldDef& def) {
   }
 }
 
-/// Every segment a [[segment]] table, polylines' ghost vertices as prev and next.
-void write_segments(std::string& out, const WorldDef& def) {
+/// Every segment a [[segment]] table, polylines' ghost vertices as prev and next, and the
+/// kinematic body carrying it (each segment of a carried polyline) as `body`, by its name.
+void write_segments(std::string& out, const WorldDef& def, const std::vector<std::string>& names) {
   auto it = std::back_inserter(out);
-  for (const SegmentDef& s : def.segments) {
+  for (std::size_t i = 0; i < def.segments.size(); ++i) {
+    const SegmentDef& s = def.segments[i];
     fmt::format_to(it, "\n[[segment]]\na = {}\nb = {}\nrestitution = {}\nfriction = {}\n", vec(s.a),
                    vec(s.b), num(s.restitution), num(s.friction));
     if (s.prev) fmt::format_to(it, "prev = {}\n", vec(*s.prev));
     if (s.next) fmt::format_to(it, "next = {}\n", vec(*s.next));
+    if (s.body.is_null()) continue;
+    const auto b = detail::defined_index(s.body, names.size());
+    if (!b) {
+      refuse(fmt::format("segment[{}]", i),
+             fmt::format("is carried by {}: it must be one of the {} bodies (a handle "
+                         "WorldDef::add_body returned)",
+                         body_label(s.body), names.size()));
+    }
+    if (def.bodies[*b].type != BodyType::kinematic) {
+      refuse(fmt::format("segment[{}]", i),
+             fmt::format("is carried by body[{}] {}, a {} body: only a kinematic body can carry "
+                         "segments",
+                         *b, toml_string(names[*b]), body_type_name(def.bodies[*b].type)));
+    }
+    fmt::format_to(it, "body = {}\n", toml_string(names[*b]));
   }
 }
 
@@ -335,7 +353,7 @@ std::string format_scene(const WorldDef& def) {
   }
   write_links(out, def, names);
   write_planes(out, def);
-  write_segments(out, def);
+  write_segments(out, def, names);
   if (out.size() > max_scene_bytes) {
     refuse("the world",
            fmt::format("its scene would be {} bytes, more than the {} a scene file may have ({} "

@@ -108,7 +108,8 @@ struct SceneSourceMap {
 ///   - planes: [[plane]] tables in file order: static half-planes (normals normalised) that
 ///     bodies with a radius (a Collider) bounce on;
 ///   - segments: [[segment]] tables in file order, then the segments of [[polyline]] tables
-///     (in file order, each joined by ghost vertices: SegmentDef).
+///     (in file order, each joined by ghost vertices: SegmentDef); a table's `body` names the
+///     kinematic body carrying its segments (SegmentDef::body, that body's handle).
 struct Scene : WorldDef {
   std::string file;  ///< where it came from (for messages)
   SceneView view;
@@ -137,13 +138,15 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// rest-length spring between bodies that start at the same point, [[plane]] tables with a
 /// zero normal, restitution outside [0, 1] or negative friction (in [[plane]], [[segment]],
 /// [[polyline]], [contacts] and bodies), a [[segment]] whose ends coincide, a [[polyline]]
-/// with fewer than 2 points (3 when closed) or a point repeating the one before it, an unknown body
-/// type (with the closest valid one), collide/restitution/friction on a body without radius, discs
-/// overlapping where they start when [contacts] is on (naming both and the overlap in m;
-/// first_disc_overlap), generators beyond max_scene_bodies / max_scene_links, and unreadable,
-/// binary or oversized files. Warns (Scene::warnings) about unknown keys, a mass, spring, gravity,
-/// force or drag given to a static or kinematic body (dropped), a static body's velocity (set to
-/// zero), springs between two such bodies, and [contacts] in a scene without discs.
+/// with fewer than 2 points (3 when closed) or a point repeating the one before it, a [[segment]]
+/// or [[polyline]] whose body is not a string, names no body (with the closest name) or names
+/// one that is not kinematic, an unknown body type (with the closest valid one),
+/// collide/restitution/friction on a body without radius, discs overlapping where they start
+/// when [contacts] is on (naming both and the overlap in m; first_disc_overlap), generators beyond
+/// max_scene_bodies / max_scene_links, and unreadable, binary or oversized files. Warns
+/// (Scene::warnings) about unknown keys, a mass, spring, gravity, force or drag given to a static
+/// or kinematic body (dropped), a static body's velocity (set to zero), springs between two such
+/// bodies, and [contacts] in a scene without discs.
 ///
 /// Generators of many bodies take time (seconds for 10^6 bodies and 2·10^6 links):
 /// every 65 536 bodies or links they report progress to the calling thread's WorkProgressScope

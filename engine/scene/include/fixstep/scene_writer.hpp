@@ -14,7 +14,9 @@ namespace fixstep {
 /// equal definition_hash (recording.hpp), and every number bit for bit (each written as the
 /// shortest decimal that reads back as the same double, always as a TOML float so -0.0 keeps
 /// its sign). Every body becomes a [[body]] table and every link a [[spring]] table, in order,
-/// so body i and link i keep their indices; generators are not reconstructed.
+/// so body i and link i keep their indices; generators are not reconstructed. Every segment
+/// becomes a [[segment]] table, in order (a polyline's segments with their ghost vertices as
+/// prev and next), one a kinematic body carries with `body` = that body's name.
 ///
 /// What the format holds differently, documented and tested:
 ///   - names: every body is written with a name, and links name their bodies by it. A name is
@@ -34,6 +36,7 @@ namespace fixstep {
 ///
 /// Throws std::invalid_argument, "format_scene: WHERE: WHY", when `def` cannot be written so
 /// that it loads back exactly: a link naming a body that is not one of def's or one body twice; a
+/// segment carried by a body that is not one of def's or not kinematic; a
 /// static or kinematic body with a mass other than the default 1 kg, a spring, constant force,
 /// gravity or drag (a scene gives such bodies none), or a static body with a non-zero
 /// velocity; a plane normal that the loader's normalisation (n/|n|) would change (a normal
