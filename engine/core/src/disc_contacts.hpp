@@ -183,6 +183,9 @@ class DiscContacts {
     const SegmentSet* segments = nullptr;  ///< static segments (null: none); contacts with
                                            ///< them are the plane contacts' b past the planes
     Real* spin = nullptr;  ///< angular velocities, rad/s, with rolling discs (null: none)
+    /// Work the plane pass's moving segments did on each body this tick, J/kg (dense body
+    /// order; null: none moves): in the account of a disc measured from the tick's start.
+    const double* plane_work = nullptr;
     /// Called once the discs' motions and swept boxes are known, before the broadphase pairs
     /// them (null: not called): sleeping islands that a box reaches wake there, so that what
     /// the broadphase would pair with a sleeper is woken first (world_sleep.cpp).

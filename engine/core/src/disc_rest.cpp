@@ -327,8 +327,9 @@ void DiscContacts<Real>::finish(const Tick& tick) {
     // resting contact undoes the free step's own energy error every tick (a semi-implicit
     // Euler step from rest under gravity loses ½ g² dt², which would otherwise pile up in
     // the account of a body at rest).
-    const double since_start =
-        e_begin_[k] - (tick.dissipated ? double(tick.dissipated[j]) - d_begin_[k] : 0.0);
+    const double since_start = e_begin_[k] -
+                               (tick.dissipated ? double(tick.dissipated[j]) - d_begin_[k] : 0.0) +
+                               (tick.plane_work ? tick.plane_work[j] : 0.0);
     lost_[k] = ((changed_[k] & 2) ? since_start : e_start_[k]) - e_end + external_[k] * d.inv_mass;
     if (rolling_ && d.inv_inertia > 0.0) {  // the turn's ½ (I/m) ω², against the same start
       const double w_ref = (changed_[k] & 2) ? ew0_[k] : double(tick.spin[j]);  // not yet set

@@ -42,6 +42,9 @@ struct Motion {
   V2 x, v, a, offset;
   double t = 0;     ///< s since the tick's start
   double lost = 0;  ///< kinetic energy removed so far, J/kg
+  /// The friction of the rests holding the body (their sum, m/s²), whose work over the rest of
+  /// the tick `lost` holds as reckoned on the path the motion had when each began.
+  V2 friction{};
 
   void advance(double s) {
     x = x + s * v + (0.5 * s * s) * a;
@@ -205,6 +208,7 @@ inline bool impact(Motion& m, const PlaneDef& p, double r, double dt, Spin* spin
   const V2 a_new = (1.0 / T) * (end - m.v);
   // Work of friction over T (its acceleration a_new - at is constant, v is linear in time).
   m.lost -= dot(a_new - at, 0.5 * T * (m.v + end));
+  m.friction = m.friction + (a_new - at);
   m.a = a_new;
   return false;
 }

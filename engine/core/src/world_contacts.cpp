@@ -139,6 +139,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
   bool out_of_range = false;
   std::uint64_t again = 0;  // plane tests after a body's max_impacts-th event (limits.hpp)
   std::size_t capped = 0;
+  if (segments_.moves()) plane_work_.assign(body_count(), 0.0);
   for (std::size_t k = 0; k < c.body.size(); ++k) {
     if (k % 1024 == 1023) throw_if_stop_requested();  // many planes: a tick of seconds
     const std::uint32_t j = c.body[k];
@@ -225,7 +226,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
         }
       }
       m.advance(first);
-      const V2 a_before = m.a;
+      const V2 a_before = m.a, v_before = m.v, friction = m.friction;
       const bool bounce = impact_moving(m, *hit, r, dt, spin, u_hit, work);
       if (!bounce && (u_hit.x != 0.0 || u_hit.y != 0.0)) {
         // Held on a moving segment: the holding force's work over the rest of the tick.
@@ -234,7 +235,14 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
       }
       if (bounce && (held || hit == &local)) {
         work -= held_rate * (dt - m.t), held_rate = 0.0;  // the hold ends here
-        m.a = a_free, held = false;
+        m.a = a_free, held = false, m.friction = V2{};
+        // The friction of the rests it left acts no more: take back what was reckoned of it.
+        const double T = dt - m.t;
+        m.lost += dot(friction, T * v_before + (0.5 * T * T) * a_before);
+      } else if (friction.x != 0.0 || friction.y != 0.0) {
+        // A rest's friction was reckoned on the path before this event: on the path after it.
+        const double T = dt - m.t;
+        m.lost -= dot(friction, T * (m.v - v_before) + (0.5 * T * T) * (m.a - a_before));
       }
       held = held || (!bounce && hit == &local);
       bounced = bounce || bounced;
@@ -269,6 +277,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     if (spin) spin_[j] = static_cast<Real>(turn.w);
     if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(m.lost);
     if (work != 0.0) external_work_ += mass_[j] * work;
+    if (!plane_work_.empty()) plane_work_[j] = work;
     // The runtime guard, as in the sweep: a push-out beyond the range is a fault too.
     for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {
       out_of_range = out_of_range || !(std::abs(double(value)) <= max_state_magnitude);

@@ -181,6 +181,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       settings_.threads == 1 || !detail::threads_supported ? 1 : 2};  // same states either way
   if (!segments_.empty()) t.segments = &segments_;
   if (rolling_) t.spin = spin_.data();
+  if (!plane_work_.empty()) t.plane_work = plane_work_.data();
   if (sleepers_ != 0) {
     t.wake = [](void* kernel) { static_cast<WorldKernel*>(kernel)->wake_near_movers(); };
     t.wake_context = this;

@@ -532,6 +532,9 @@ class WorldKernel {
   // Static segments (world_segments.cpp): the plane pass meets them as local planes.
   SegmentSet segments_;
   std::vector<std::uint32_t> segment_found_;  ///< a query's scratch
+  /// Work of the moving segments on each body in this tick's plane pass, J/kg (dense order;
+  /// empty while no segment moves): the resting solver's account of a disc takes it.
+  std::vector<double> plane_work_;
   /// The deepest segment contact of a disc (x, y, m; radius r) at `time` (s into the tick)
   /// overlapping it by more than tol (m), as its local plane there (friction and restitution
   /// the segment's) and the segment's velocity u (m/s; 0 static); false: none.
