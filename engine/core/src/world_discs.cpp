@@ -89,7 +89,7 @@ void detail::WorldKernel<Real>::rebuild_discs() {
   std::vector<detail::Disc> discs(order.size());
   std::vector<CollisionFilter> filters(order.size());
   bool filtered = false;  // some disc has a filter other than the default, or is a sensor
-  std::vector<std::int64_t> disc_of(body_count(), -1);
+  disc_of_.assign(body_count(), -1);
   for (std::size_t k = 0; k < order.size(); ++k) {
     const Collider& c = colliders_.data[order[k]];
     const std::size_t j = body_of(order[k]);
@@ -105,20 +105,15 @@ void detail::WorldKernel<Real>::rebuild_discs() {
     d.inv_inertia = rolling_ && d.dynamic && !c.sensor ? 1.0 / inertia_of(mass_[j], c) : 0.0;
     filters[k] = c.filter;
     filtered = filtered || c.sensor || c.filter != CollisionFilter{};
-    disc_of[j] = static_cast<std::int64_t>(k);
+    disc_of_[j] = static_cast<std::int32_t>(k);
     if (types_[j] == BodyType::kinematic) kinematic_discs_.push_back(static_cast<std::uint32_t>(j));
   }
   dynamic_discs_ = static_cast<std::size_t>(
       std::count_if(discs.begin(), discs.end(), [](const detail::Disc& d) { return d.dynamic; }));
-  if (sleep_) {
-    disc_of_.resize(disc_of.size());
-    for (std::size_t j = 0; j < disc_of.size(); ++j)
-      disc_of_[j] = static_cast<std::int32_t>(disc_of[j]);
-  }
   if (!filtered) filters.clear();
   std::vector<std::uint64_t> linked;
   for (const LinkDef& l : link_defs_) {
-    const std::int64_t a = disc_of[bodies_.index(l.body_a)], b = disc_of[bodies_.index(l.body_b)];
+    const std::int64_t a = disc_of_[bodies_.index(l.body_a)], b = disc_of_[bodies_.index(l.body_b)];
     if (a < 0 || b < 0) continue;
     linked.push_back((std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b)));
   }
@@ -153,11 +148,9 @@ void detail::WorldKernel<Real>::restore_immovable() {
   const Real dt = static_cast<Real>(settings_.dt);
   for (std::size_t i = 0; i < m.body.size(); ++i) {
     const std::uint32_t j = m.body[i];
-    if (sleep_ && types_[j] == BodyType::dynamic) {  // a sleeper, at rest where it was
+    if (types_[j] != BodyType::kinematic) {  // static, or a sleeper: at rest where it was
       x_[j] = m.x0[i], y_[j] = m.y0[i], vx_[j] = Real(0), vy_[j] = Real(0);
-      if (settings_.track_dissipation) dissipated_body_[j] = m.d0[i];
-    } else if (types_[j] == BodyType::static_body) {
-      x_[j] = m.x0[i], y_[j] = m.y0[i], vx_[j] = Real(0), vy_[j] = Real(0);
+      if (!m.d0.empty() && types_[j] == BodyType::dynamic) dissipated_body_[j] = m.d0[i];
     } else {  // kinematic: on at its velocity
       x_[j] = m.x0[i] + m.vx0[i] * dt, y_[j] = m.y0[i] + m.vy0[i] * dt;
       vx_[j] = m.vx0[i], vy_[j] = m.vy0[i];

@@ -589,17 +589,13 @@ EnergyReport detail::WorldKernel<Real>::energy() const {
 
 template <class Real>
 std::uint64_t detail::WorldKernel<Real>::state_hash() const {
-  // FNV-1a, 64-bit (Fowler, Noll, Vo): offset basis 14695981039346656037, prime 1099511628211.
-  std::uint64_t h = 14695981039346656037ull;
-  // Each value's bytes, least significant first (what memory holds on every platform fixstep
-  // runs on: x86-64, aarch64, wasm32).
-  auto mix = [&h](Real v) {
-    const auto bits = bits_of(v);
-    for (std::size_t i = 0; i < sizeof bits; ++i) {
-      h ^= (bits >> (8 * i)) & 0xffu;
-      h *= 1099511628211ull;
-    }
+  // FNV-1a (fnv1a.hpp) of each value's bytes, least significant first (what memory holds on
+  // every platform fixstep runs on: x86-64, aarch64, wasm32).
+  std::uint64_t h = fnv1a_basis;
+  auto mix_bytes = [&h](std::uint64_t bits, std::size_t bytes) {
+    for (std::size_t i = 0; i < bytes; ++i) h = fnv1a_byte(h, (bits >> (8 * i)) & 0xffu);
   };
+  auto mix = [&](Real v) { mix_bytes(bits_of(v), sizeof(Real)); };
   for (std::size_t j = 0; j < body_count(); ++j) {
     mix(x_[j]);
     mix(y_[j]);
@@ -609,11 +605,9 @@ std::uint64_t detail::WorldKernel<Real>::state_hash() const {
   // Rolling discs (only in worlds that ask: every other world hashes as before).
   for (std::size_t j = 0; j < angle_.size(); ++j) mix(angle_[j]), mix(spin_[j]);
   // Sleeping islands (only in worlds that ask), as the bytes of two 32-bit counts.
-  auto mix_count = [&h](std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) h ^= (v >> (8 * i)) & 0xffu, h *= 1099511628211ull;
-  };
-  for (std::size_t j = 0; j < asleep_.size(); ++j)
-    mix_count(still_ticks_[j]), mix_count(asleep_[j]);
+  for (std::size_t j = 0; j < asleep_.size(); ++j) {
+    mix_bytes(still_ticks_[j], sizeof(std::uint32_t)), mix_bytes(asleep_[j], sizeof(std::uint32_t));
+  }
   return h;
 }
 

@@ -590,7 +590,7 @@ class WorldKernel {
   std::size_t sleepers_ = 0;                    ///< bodies asleep
   bool sleep_ = false;                          ///< ContactSettings::sleep
   bool immovable_dirty_ = false;                ///< the immovable list misses a change of sleepers
-  std::vector<std::int32_t> disc_of_;           ///< body -> disc index, or -1 (with sleeping only)
+  std::vector<std::int32_t> disc_of_;           ///< body -> disc index, or -1 (rebuild_discs)
   std::vector<std::uint32_t> kinematic_discs_;  ///< their bodies (rebuild_discs)
   std::size_t dynamic_discs_ = 0;               ///< dynamic discs (rebuild_discs)
   /// Whether every disc sleeps or is static, or is kinematic and still: the disc phases have
