@@ -60,14 +60,7 @@ double kappa(Integrator integrator, int substeps) {
 
 template <class Real>
 void detail::WorldKernel<Real>::rebuild_discs() {
-  immovable_.body.clear();
-  for (std::size_t j = 0; j < body_count(); ++j) {
-    if (types_[j] != BodyType::dynamic) immovable_.body.push_back(static_cast<std::uint32_t>(j));
-  }
-  for (auto* v : {&immovable_.x0, &immovable_.y0, &immovable_.vx0, &immovable_.vy0}) {
-    v->resize(immovable_.body.size());
-  }
-  immovable_dirty_ = false;
+  rebuild_immovable();
   disc_of_.clear();
   kinematic_discs_.clear();
   if (!settings_.contacts) {
@@ -122,6 +115,20 @@ void detail::WorldKernel<Real>::rebuild_discs() {
   if (!discs_) discs_.reset(new detail::DiscContacts<Real>());
   discs_->rebuild(std::move(discs), std::move(linked), std::move(filters), cs);
   discs_->set_accelerations(coeff_.accel_x, coeff_.accel_y);
+}
+
+// Static and kinematic bodies, and with ContactSettings::sleep the sleepers.
+template <class Real>
+void detail::WorldKernel<Real>::rebuild_immovable() {
+  Immovable& m = immovable_;
+  m.body.clear();
+  for (std::size_t j = 0; j < body_count(); ++j) {
+    if (types_[j] != BodyType::dynamic || (sleep_ && asleep_[j] != 0)) {
+      m.body.push_back(static_cast<std::uint32_t>(j));
+    }
+  }
+  for (auto* v : {&m.x0, &m.y0, &m.vx0, &m.vy0}) v->resize(m.body.size());
+  immovable_dirty_ = false;
 }
 
 template <class Real>
@@ -219,6 +226,7 @@ std::span<const Impact> detail::WorldKernel<Real>::impacts() const {
 #define FIXSTEP_INSTANTIATE(Real)                                              \
   template std::span<const Impact> detail::WorldKernel<Real>::impacts() const; \
   template void detail::WorldKernel<Real>::rebuild_discs();                    \
+  template void detail::WorldKernel<Real>::rebuild_immovable();                \
   template void detail::WorldKernel<Real>::save_tick_start(bool);              \
   template void detail::WorldKernel<Real>::restore_immovable();                \
   template void detail::WorldKernel<Real>::resolve_discs();

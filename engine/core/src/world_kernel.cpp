@@ -501,8 +501,8 @@ void detail::WorldKernel<Real>::rebuild_terms() {
   rebuild_network();
   if (rolling_) rebuild_inertia();
   rebuild_contacts();
-  rebuild_discs();
   if (sleep_) reset_sleep();  // a structural change wakes every island
+  rebuild_discs();
   terms_dirty_ = false;
 }
 

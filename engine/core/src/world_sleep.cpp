@@ -77,19 +77,6 @@ void detail::WorldKernel<Real>::reset_sleep() {
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::rebuild_immovable() {
-  Immovable& m = immovable_;
-  m.body.clear();
-  for (std::size_t j = 0; j < body_count(); ++j) {
-    if (types_[j] != BodyType::dynamic || (sleep_ && asleep_[j] != 0)) {
-      m.body.push_back(static_cast<std::uint32_t>(j));
-    }
-  }
-  for (auto* v : {&m.x0, &m.y0, &m.vx0, &m.vy0}) v->resize(m.body.size());
-  immovable_dirty_ = false;
-}
-
-template <class Real>
 void detail::WorldKernel<Real>::wake(std::size_t index) {
   // After a structural change the rebuild at the next step wakes every island anyway.
   if (asleep_.empty() || asleep_[index] == 0 || terms_dirty_) {
@@ -324,7 +311,6 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
 #define FIXSTEP_INSTANTIATE(Real)                                                                \
   template std::uint32_t detail::WorldKernel<Real>::sleep_ticks(const ContactSettings&, double); \
   template void detail::WorldKernel<Real>::reset_sleep();                                        \
-  template void detail::WorldKernel<Real>::rebuild_immovable();                                  \
   template void detail::WorldKernel<Real>::wake(std::size_t);                                    \
   template void detail::WorldKernel<Real>::wake_labelled();                                      \
   template void detail::WorldKernel<Real>::wake_for_input(const TickInput&);                     \
