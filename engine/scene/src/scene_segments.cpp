@@ -108,9 +108,7 @@ void parse_polyline(Reader& r, const toml::table& t, const std::string& path, Sc
   double e = 0.0, mu = 0.0;
   parse_surface(r, t, path, e, mu);
   const Entity body = parse_carrier(r, t, path, scene, names, "polyline");
-  std::vector<SegmentDef> chain = polyline_segments(points, e, mu, closed);
-  for (SegmentDef& s : chain) s.body = body;
-  scene.segments.insert(scene.segments.end(), chain.begin(), chain.end());
+  scene.add_polyline(points, e, mu, closed, body);
 }
 
 }  // namespace
