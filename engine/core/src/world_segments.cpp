@@ -94,7 +94,8 @@ bool detail::WorldKernel<Real>::segment_overlap(double x, double y, double r, do
       continue;
     }
     deepest = t.distance - r;
-    const double offset = t.offset + (t.nx * v.x + t.ny * v.y) * time;  // where it is now
+    // Where it is now; a static segment's offset as it was (adding 0 would turn -0 into +0).
+    const double offset = t.offset + (t.nx * v.x + t.ny * v.y) * time;
     plane = PlaneDef{Vec2{t.nx, t.ny}, v.x != 0.0 || v.y != 0.0 ? offset : t.offset, s.restitution,
                      s.friction};
     u = v;

@@ -261,6 +261,15 @@ void detail::WorldKernel<Real>::fall_asleep(std::size_t j, std::uint32_t label) 
 }
 
 template <class Real>
+std::uint32_t detail::WorldKernel<Real>::take_island_number() {
+  // Numbers wrap after 2^32 - 1 islands (0 means awake and is skipped): two islands that then
+  // share a number wake together, which is safe (a needless wake), never a lost one.
+  const std::uint32_t n = next_island_;
+  next_island_ = n == 0xffffffffu ? 1u : n + 1u;
+  return n;
+}
+
+template <class Real>
 void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
   const auto discs = discs_->discs();
   // Contacts and impacts that reached a sleeper: it acted as a static disc this tick.
@@ -302,7 +311,7 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
     const std::uint32_t root = find_root(island_parent_, j);
     if (island_blocked_[root]) continue;
     // The root is the island's smallest index, so it is met first and takes the next number.
-    fall_asleep(j, root == j ? next_island_++ : asleep_[root]);
+    fall_asleep(j, root == j ? take_island_number() : asleep_[root]);
   }
   immovable_dirty_ = true;
   if (sleep_grid_) sleep_grid_->stale = true;
@@ -321,6 +330,7 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
   template bool detail::WorldKernel<Real>::discs_at_rest() const;                                \
   template void detail::WorldKernel<Real>::join_islands();                                       \
   template void detail::WorldKernel<Real>::fall_asleep(std::size_t, std::uint32_t);              \
+  template std::uint32_t detail::WorldKernel<Real>::take_island_number();                        \
   template void detail::WorldKernel<Real>::update_sleep(const TickInput&);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

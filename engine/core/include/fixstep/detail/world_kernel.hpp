@@ -625,6 +625,8 @@ class WorldKernel {
   /// may not sleep.
   void join_islands();
   void fall_asleep(std::size_t j, std::uint32_t label);
+  /// The next island number (never 0, which means awake).
+  std::uint32_t take_island_number();
   /// The end of a tick whose every disc sleeps or is static: the disc phases are skipped, and
   /// the events say nothing began or ended.
   void quiet_discs();
