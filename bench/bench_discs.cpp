@@ -222,10 +222,10 @@ int trace(const std::string& scene, const std::string& key, std::size_t n, int t
       const Stats st = p->stats();
       std::printf(
           "tick %4d  overlap/r disc %.4f wall %.4f  kinetic %.6g J  pairs %.0f touching %.0f "
-          "impacts %.0f self/r %.4f  %.4f s/tick\n",
+          "impacts %.0f self/r %.4f sweeps %d/%d  %.4f s/tick\n",
           t, q.disc_overlap / s.radius, q.wall_overlap / s.radius, q.kinetic, st.candidate_pairs,
-          st.touching, st.impacts, st.self_overlap / s.radius,
-          seconds_since(last) / (t == 0 ? 1 : 10));
+          st.touching, st.impacts, st.self_overlap / s.radius, st.velocity_sweeps,
+          st.position_sweeps, seconds_since(last) / (t == 0 ? 1 : 10));
       last = std::chrono::steady_clock::now();
     }
     if (t < ticks) p->step();

@@ -94,6 +94,9 @@ struct Stats {
   double broadphase_share = 0.0;  ///< Box2D: b2Profile broadphase / step since the start
   double collide_share = 0.0;     ///< Box2D: b2Profile collide (narrow phase) / step
   int threads = 1;
+  /// fixstep: the resting solver's velocity and position iterations in the last tick
+  /// (ContactStats::velocity_sweeps, position_sweeps).
+  int velocity_sweeps = 0, position_sweeps = 0;
 };
 
 /// An engine stepping a scene at `tick`: fixstep, Chipmunk2D or Box2D.

@@ -52,7 +52,9 @@ class FixstepStepper final : public Stepper {
             .self_overlap = c.max_overlap,
             .broadphase_share = nan(),
             .collide_share = nan(),
-            .threads = w_->threads_used()};
+            .threads = w_->threads_used(),
+            .velocity_sweeps = c.velocity_sweeps,
+            .position_sweeps = c.position_sweeps};
   }
 
  private:

@@ -59,6 +59,8 @@ inline double length(double x, double y) {
   return std::sqrt(x * x + y * y);
 }
 
+struct RestSweep;  // disc_rest.cpp
+
 /// One disc of the contact set, in the World's dense body order at rebuild time.
 struct Disc {
   std::uint32_t body = 0;           ///< dense body index
@@ -96,6 +98,8 @@ struct RestContact {
   std::uint32_t a = 0, b = 0;
   double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
   double inv_a = 0, inv_b = 0;  ///< 1/kg of a and b (0: static, kinematic or a plane)
+  /// The radii r_a + r_b (r_a for a plane or a segment) and the smaller radius, m.
+  double radii = 0, r_min = 0;
   /// Rolling discs: the mass along the tangent at the contact point, kg (1 / (1/m_a + 1/m_b +
   /// r_a²/I_a + r_b²/I_b); `mass` without rolling), the radii r_a, r_b from the centres to the
   /// contact point (m; 0 for a plane and without rolling) and r/I of each (rad/s per N·s).
@@ -270,6 +274,9 @@ class DiscContacts {
   void solve_resting(const Tick& tick, ContactStats& stats);
   void warm_start(const Tick& tick);
   void solve_velocities(const Tick& tick, ContactStats& stats);
+  /// One contact's normal and friction impulses in a velocity iteration; out gathers the
+  /// iteration's largest change and largest normal impulse.
+  void solve_contact(RestContact& c, double kdt, RestSweep& out);
   void push_out(const Tick& tick, ContactStats& stats);
   /// The depth of contact c's overlap now (m), its normal and the smaller radius.
   double overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny,

@@ -42,6 +42,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) continue;
     c.key = (std::uint64_t(p.a) << 32) | p.b;
     c.a = p.a, c.b = p.b;
+    c.radii = da.radius + db.radius, c.r_min = std::min(da.radius, db.radius);
     c.inv_a = da.inv_mass, c.inv_b = db.inv_mass;
     c.kinematic_a = !da.dynamic && (motion_[p.a].ux != 0.0 || motion_[p.a].uy != 0.0);
     c.kinematic_b = !db.dynamic && (motion_[p.b].ux != 0.0 || motion_[p.b].uy != 0.0);
@@ -65,6 +66,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
       RestContact c;
       c.key = (std::uint64_t(k) << 32) | (n + i);
       c.a = k, c.b = n + i;
+      c.radii = c.r_min = d.radius;
       c.nx = p.normal.x, c.ny = p.normal.y;
       c.mass = c.mass_t = 1.0 / d.inv_mass;
       c.inv_a = d.inv_mass;
@@ -181,48 +183,68 @@ void DiscContacts<Real>::warm_start(const Tick& tick) {
   parts_pass(range);
 }
 
+// One contact's normal and friction impulses, a Gauss–Seidel step: no approach at the end of
+// the tick (the accumulated normal impulse stays >= 0), then friction along t = (-n_y, n_x)
+// within Coulomb's cone |λ_t| <= μ λ_n. Each impulse is applied as apply() would apply it, in
+// the same operations and order, to the two discs' state held in locals and written back once.
+template <class Real>
+[[gnu::always_inline]] inline void DiscContacts<Real>::solve_contact(RestContact& c, double kdt,
+                                                                     RestSweep& out) {
+  const std::uint32_t a = c.a, b = c.b;
+  const bool move_a = c.inv_a > 0.0, move_b = c.inv_b > 0.0;  // move_b: b is a disc
+  double vax = evx_[a], vay = evy_[a], vbx = 0.0, vby = 0.0;
+  if (b < discs_.size()) {
+    vbx = evx_[b], vby = evy_[b];
+  } else if (c.kinematic_b) {  // a moving segment
+    vbx = c.bvx, vby = c.bvy;
+  }
+  double xa = 0, ya = 0, xb = 0, yb = 0;
+  if (move_a) xa = ex_[a], ya = ey_[a];
+  if (move_b) xb = ex_[b], yb = ey_[b];
+  const auto push = [&](double jx, double jy) {  // apply(c, jx, jy, kdt) on the locals
+    if (c.kinematic_b) external_[a] += jx * vbx + jy * vby;
+    if (c.kinematic_a) external_[b] -= jx * vax + jy * vay;
+    c.moved = 1;
+    if (move_a) {
+      const double dvx = c.inv_a * jx, dvy = c.inv_a * jy;
+      vax += dvx, vay += dvy, xa += kdt * dvx, ya += kdt * dvy;
+    }
+    if (move_b) {
+      const double dvx = c.inv_b * jx, dvy = c.inv_b * jy;
+      vbx -= dvx, vby -= dvy, xb -= kdt * dvx, yb -= kdt * dvy;
+    }
+  };
+  // Normal: x - 0 is x, so a plane's relative velocity is a's own.
+  const double vn = (vax - vbx) * c.nx + (vay - vby) * c.ny;
+  const double ln = std::max(c.lambda_n - vn * c.mass, 0.0);
+  const double dn = ln - c.lambda_n;
+  c.lambda_n = ln;
+  if (dn != 0.0) push(dn * c.nx, dn * c.ny);
+  // Friction; with rolling discs at the contact point, less the turn's ω r of each disc.
+  const double vt = -(vax - vbx) * c.ny + (vay - vby) * c.nx - (rolling_ ? turn_slip(c) : 0.0);
+  const double bound = c.friction * c.lambda_n;
+  const double lt = std::clamp(c.lambda_t - vt * c.mass_t, -bound, bound);
+  const double dt = lt - c.lambda_t;
+  c.lambda_t = lt;
+  if (dt != 0.0) {
+    push(-dt * c.ny, dt * c.nx);
+    if (rolling_) turn(c, dt);
+  }
+  if (move_a) evx_[a] = vax, evy_[a] = vay, ex_[a] = xa, ey_[a] = ya;
+  if (move_b) evx_[b] = vbx, evy_[b] = vby, ex_[b] = xb, ey_[b] = yb;
+  out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
+  out.largest = std::max(out.largest, c.lambda_n);
+}
+
 template <class Real>
 void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats) {
   const double kdt = tick.kappa * tick.dt;
-  const std::size_t n = discs_.size();
   if (contacts_.empty()) return;
   stats.velocity_converged = false;
   RestSweep sweep[2];
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
     RestSweep out;  // written to sweep[thread] once: the two threads' entries share a line
-    for (std::uint32_t i = begin; i < end; ++i) {
-      RestContact& c = contacts_[order_[i]];
-      auto relative = [&](double& vx, double& vy) {
-        vx = evx_[c.a], vy = evy_[c.a];
-        if (c.b < n) {
-          vx -= evx_[c.b], vy -= evy_[c.b];
-        } else if (c.kinematic_b) {  // a moving segment
-          vx -= c.bvx, vy -= c.bvy;
-        }
-      };
-      double vx = 0, vy = 0;
-      relative(vx, vy);
-      // Normal: no approach at the end of the tick; the accumulated impulse stays >= 0.
-      const double vn = vx * c.nx + vy * c.ny;
-      const double ln = std::max(c.lambda_n - vn * c.mass, 0.0);
-      const double dn = ln - c.lambda_n;
-      c.lambda_n = ln;
-      if (dn != 0.0) apply(c, dn * c.nx, dn * c.ny, kdt);
-      // Friction along t = (-n_y, n_x), within Coulomb's cone |λ_t| <= μ λ_n.
-      relative(vx, vy);
-      // With rolling discs, at the contact point: less the turn's ω r of each disc.
-      const double vt = -vx * c.ny + vy * c.nx - (rolling_ ? turn_slip(c) : 0.0);
-      const double bound = c.friction * c.lambda_n;
-      const double lt = std::clamp(c.lambda_t - vt * c.mass_t, -bound, bound);
-      const double dt = lt - c.lambda_t;
-      c.lambda_t = lt;
-      if (dt != 0.0) {
-        apply(c, -dt * c.ny, dt * c.nx, kdt);
-        if (rolling_) turn(c, dt);
-      }
-      out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
-      out.largest = std::max(out.largest, c.lambda_n);
-    }
+    for (std::uint32_t i = begin; i < end; ++i) solve_contact(contacts_[order_[i]], kdt, out);
     sweep[thread].change = std::max(sweep[thread].change, out.change);
     sweep[thread].largest = std::max(sweep[thread].largest, out.largest);
   };
@@ -244,22 +266,17 @@ template <class Real>
 double DiscContacts<Real>::overlap_of(const Tick& tick, const RestContact& c, double& nx,
                                       double& ny, double& r_min) const {
   const std::size_t n = discs_.size();
-  const Disc& da = discs_[c.a];
-  if (c.b >= n + tick.planes.size()) {
-    r_min = da.radius;
-    return segment_overlap_of(tick, c, nx, ny);
-  }
+  r_min = c.r_min;
+  if (c.b >= n + tick.planes.size()) return segment_overlap_of(tick, c, nx, ny);
   if (c.b >= n) {
     const PlaneDef& p = tick.planes[c.b - n];
-    nx = p.normal.x, ny = p.normal.y, r_min = da.radius;
-    return da.radius + p.offset - (nx * ex_[c.a] + ny * ey_[c.a]);
+    nx = p.normal.x, ny = p.normal.y;
+    return c.radii + p.offset - (nx * ex_[c.a] + ny * ey_[c.a]);
   }
-  const Disc& db = discs_[c.b];
   const double dx = ex_[c.a] - ex_[c.b], dy = ey_[c.a] - ey_[c.b];
   const double dist = length(dx, dy);
   nx = dist > 0.0 ? dx / dist : c.nx, ny = dist > 0.0 ? dy / dist : c.ny;
-  r_min = std::min(da.radius, db.radius);
-  return da.radius + db.radius - dist;
+  return c.radii - dist;
 }
 
 template <class Real>
@@ -345,6 +362,7 @@ void DiscContacts<Real>::finish(const Tick& tick) {
   template void DiscContacts<Real>::apply(RestContact&, double, double, double);           \
   template void DiscContacts<Real>::warm_start(const Tick&);                               \
   template void DiscContacts<Real>::solve_resting(const Tick&, ContactStats&);             \
+  template void DiscContacts<Real>::solve_contact(RestContact&, double, RestSweep&);       \
   template void DiscContacts<Real>::solve_velocities(const Tick&, ContactStats&);          \
   template void DiscContacts<Real>::push_out(const Tick&, ContactStats&);                  \
   template double DiscContacts<Real>::overlap_of(const Tick&, const RestContact&, double&, \

@@ -32,6 +32,7 @@ void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t
     RestContact c;
     c.key = (std::uint64_t(k) << 32) | (base + i);
     c.a = k, c.b = base + i;
+    c.radii = c.r_min = d.radius;
     c.nx = t.nx, c.ny = t.ny;
     c.bvx = u.x, c.bvy = u.y;
     c.kinematic_b = u.x != 0.0 || u.y != 0.0;
@@ -56,7 +57,7 @@ double DiscContacts<Real>::segment_overlap_of(const Tick& tick, const RestContac
   nx = c.nx, ny = c.ny;
   if (!segment_touch(s, x, y, t)) return 0.0;  // moved where a neighbour holds it
   nx = t.nx, ny = t.ny;
-  return discs_[c.a].radius - t.distance;
+  return c.radii - t.distance;
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \
