@@ -196,18 +196,24 @@ detail::WorldKernel<double> pour(int columns, int rows, double r, double half,
   return w;
 }
 
+// A pour of 506 discs is chaotic: when it comes to rest (avalanches stop) depends on every
+// rounding of its history (ticks 500-1400 for the pours of seeds 1-6 in a box like this one).
+// After 30 s it is at rest, no deeper than 1 % of r anywhere, and its push-out, with nothing
+// beyond the slop, stops after one iteration instead of running all of its bound.
 TEST(Discs, APileSettlesWithoutSinking) {
   const double r = 0.05;
   detail::WorldKernel<double> w = pour(23, 22, r, 1.5, Integrator::semi_implicit_euler);
   ASSERT_GE(w.body_count(), 500u);
   double kinetic_mid = 0;
-  for (int i = 0; i < 900; ++i) {
+  for (int i = 0; i < 1800; ++i) {
     w.step();
     if (i == 300) kinetic_mid = w.energy().kinetic;
   }
   EXPECT_LT(w.contact_stats().max_overlap, 0.01 * r);
   EXPECT_LT(w.energy().kinetic, 1e-3 * kinetic_mid);
-  EXPECT_LT(w.energy().kinetic / double(w.body_count()), 1e-4);  // J per 1 kg disc: at rest
+  EXPECT_LT(w.energy().kinetic / double(w.body_count()), 1e-12);  // J per 1 kg disc: at rest
+  EXPECT_TRUE(w.contact_stats().positions_settled);
+  EXPECT_LT(w.contact_stats().position_sweeps, ContactSettings::default_position_iterations);
   for (std::size_t k = 0; k < w.body_count(); ++k) {
     EXPECT_GE(w.y()[k], r * (1 - 0.01)) << k;
     EXPECT_LE(std::abs(w.x()[k]), 1.5 - r * (1 - 0.01)) << k;

@@ -31,7 +31,8 @@
 //     velocity Verlet, RK4 and Forest–Ruth; (n+1)/2n for semi-implicit and implicit Euler at
 //     n substeps; (n-1)/2n for explicit Euler). A stack at rest is then held exactly by the
 //     integrator's own step. An overlap left beyond the slop is pushed out along the normal
-//     (positions only, split by inverse mass, at most max_push_out of the radius a tick).
+//     (positions only, split by inverse mass, at most max_push_out of the radius a sweep;
+//     an overlap within push_out_tolerance of the slop is left: rounding).
 // With rolling discs (ContactSettings::rolling) friction, in impacts and at rest, acts on the
 // slip at the contact point, (v_a - v_b)·t - ω_a r_a - ω_b r_b (t = (-n_y, n_x)), with the
 // tangential mass 1 / (1/m_a + 1/m_b + r_a²/I_a + r_b²/I_b), and its impulse λ t on a turns a by
@@ -238,6 +239,10 @@ class DiscContacts {
   static constexpr double slop = 0.005;
   /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
   static constexpr double max_push_out = 0.2;
+  /// Overlap beyond the slop that the push-out leaves, as a fraction of the smaller radius: a
+  /// pile pushed out to the slop stays within rounding of it, and without this margin those
+  /// rounding-sized overlaps kept every push-out iteration busy on a pile at rest.
+  static constexpr double push_out_tolerance = 1e-6;
 
  private:
   // phase 1 (disc_events.cpp)

@@ -289,7 +289,7 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
       RestContact& c = contacts_[order_[i]];
       double nx = 0, ny = 0, r_min = 0;
       const double depth = overlap_of(tick, c, nx, ny, r_min);
-      if (depth <= slop * r_min) continue;
+      if (depth <= (slop + push_out_tolerance) * r_min) continue;
       any = true, c.moved = 1;
       const double push = std::min(depth - slop * r_min, max_push_out * r_min);
       const double ia = c.inv_a, ib = c.b < n ? c.inv_b : 0.0;
@@ -311,7 +311,7 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
     double nx = 0, ny = 0, r_min = 0;
     const double depth = overlap_of(tick, c, nx, ny, r_min);
     stats.max_overlap = std::max(stats.max_overlap, depth);
-    if (std::isgreater(depth, slop * r_min)) stats.positions_settled = false;
+    if (std::isgreater(depth, (slop + push_out_tolerance) * r_min)) stats.positions_settled = false;
   }
 }
 

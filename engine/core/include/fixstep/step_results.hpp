@@ -42,9 +42,9 @@ struct ContactStats {
   /// impulse by more than 1e-9 of the largest. False is normal in a deep pile: the rest is
   /// carried into the next tick by warm starting. True when no pair touched.
   bool velocity_converged = true;
-  /// Whether no pair is left deeper than the solver's slop (0.5 % of the smaller radius) after
-  /// the position iterations. False is normal while a pile settles: the next tick's push-out
-  /// goes on (max_overlap says how deep). True when no pair touched.
+  /// Whether no pair is left deeper than the solver's slop (0.5 % of the smaller radius, plus
+  /// 10^-6 of it for rounding) after the position iterations. False is normal while a pile settles:
+  /// the next tick's push-out goes on (max_overlap says how deep). True when no pair touched.
   bool positions_settled = true;
   /// Touching pairs across the cut that splits a large pile in two halves for the resting
   /// solver (the halves are solved at once on two threads; these after them, on one).
