@@ -77,15 +77,17 @@ void detail::WorldKernel<Real>::reset_sleep() {
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::wake(std::size_t index) {
+bool detail::WorldKernel<Real>::mark_awake(std::size_t index) {
+  if (!still_ticks_.empty()) still_ticks_[index] = 0;
   // After a structural change the rebuild at the next step wakes every island anyway.
-  if (asleep_.empty() || asleep_[index] == 0 || terms_dirty_) {
-    if (!still_ticks_.empty()) still_ticks_[index] = 0;
-    return;
-  }
+  if (asleep_.empty() || asleep_[index] == 0 || terms_dirty_) return false;
   wake_labels_.push_back(asleep_[index]);
-  wake_labelled();
-  still_ticks_[index] = 0;
+  return true;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::wake(std::size_t index) {
+  if (mark_awake(index)) wake_labelled();
 }
 
 template <class Real>
@@ -116,10 +118,10 @@ void detail::WorldKernel<Real>::wake_for_input(const TickInput& input) {
       if (label != 0) wake_labels_.push_back(label);
     }
   }
-  for (const BodyInput& b : input.bodies) {
-    if (bodies_.contains(b.body)) wake(bodies_.index(b.body));
+  for (const BodyInput& b : input.bodies) {  // marked, then woken in one pass
+    if (bodies_.contains(b.body)) mark_awake(bodies_.index(b.body));
   }
-  if (bodies_.contains(input.drag_body)) wake(bodies_.index(input.drag_body));
+  if (bodies_.contains(input.drag_body)) mark_awake(bodies_.index(input.drag_body));
   wake_labelled();
 }
 
@@ -321,6 +323,7 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
   template std::uint32_t detail::WorldKernel<Real>::sleep_ticks(const ContactSettings&, double); \
   template void detail::WorldKernel<Real>::reset_sleep();                                        \
   template void detail::WorldKernel<Real>::wake(std::size_t);                                    \
+  template bool detail::WorldKernel<Real>::mark_awake(std::size_t);                              \
   template void detail::WorldKernel<Real>::wake_labelled();                                      \
   template void detail::WorldKernel<Real>::wake_for_input(const TickInput&);                     \
   template void detail::WorldKernel<Real>::wake_near_movers();                                   \

@@ -617,8 +617,11 @@ class WorldKernel {
   /// Wakes the islands a segment carried by a moving kinematic body may reach in the tick
   /// (before the free step).
   void wake_by_segments();
-  /// Wakes the islands whose numbers are in wake_labels_ (then clears it).
+  /// Wakes the islands whose numbers are in wake_labels_ (then clears it): one pass over the
+  /// bodies, however many islands.
   void wake_labelled();
+  /// Puts the island of the body at dense index i in wake_labels_ (false when it is awake).
+  bool mark_awake(std::size_t index);
   /// After the tick: contacts with sleepers wake them; islands at rest fall asleep.
   void update_sleep(const TickInput& input);
   /// Joins the tick's awake islands (island_parent_); island_blocked_[root] for an island that
