@@ -153,15 +153,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     const V2 offset = (1.0 / dt) * (x1 - x0) - 0.5 * (v0 + v1);
     Motion m{x0, v0 + offset, (1.0 / dt) * (v1 - v0), offset};
     bool touched = false, bounced = false;
-    // A rest that holds the body's normal acceleration on a segment holds it only while the
-    // body slides along it: a bounce off anything else (or off a segment, after a rest on a
-    // plane) gives back the free acceleration, so no holding force works on a body that left
-    // its surface, and a surface the body still presses on holds it again at once. (A rest on
-    // a second surface still keeps the first one's hold for the rest of the tick: the energy
-    // account then misses that force's work, ~1e-4 of a level's energy over 10 s.) Worlds
-    // without segments never take this path.
-    const V2 a_free = m.a;
-    bool held = false;
+    Surfaces surfaces{.a_free = m.a};
     Spin turn;
     Spin* spin = nullptr;
     if (rolling_ && inv_inertia_[j] > 0.0) {
@@ -170,17 +162,12 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     }
     // A body that starts inside a plane is pushed out; its approaching velocity is dropped.
     for (const PlaneDef& p : planes_) touched = push_out(m, p, r, rel) || touched;
-    PlaneDef local;     // a segment's contact as a plane (world_segments.cpp)
-    Vec2 local_u;       // its velocity (a kinematic body's segment; 0 static)
-    double work = 0.0;  // J/kg the kinematic bodies' segments do on this body
-    // The frame of the surface hit (moving at u_hit), and the power per unit mass of the force
-    // that holds a rest on a moving segment (its work goes to `work`).
-    V2 u_hit;
-    double held_rate = 0.0;  // W/kg
+    PlaneDef local;  // a segment's contact as a plane (world_segments.cpp)
+    Vec2 local_u;    // its velocity (a kinematic body's segment; 0 static)
     for (int s = 0; s < 4 && !segments_.empty(); ++s) {
       const double tol = rel * (std::abs(m.x.x) + std::abs(m.x.y) + r);
       if (!segment_overlap(m.x.x, m.x.y, r, tol, m.t, local, local_u)) break;
-      if (!push_out_moving(m, local, r, rel, V2{local_u.x, local_u.y}, work)) break;
+      if (!push_out_moving(m, local, r, rel, V2{local_u.x, local_u.y}, surfaces.work)) break;
       touched = true;
     }
     for (int i = 0;; ++i) {
@@ -206,7 +193,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
         if (s < first) first = s, hit = &local;
       }
       if (!hit) break;
-      u_hit = hit == &local ? V2{local_u.x, local_u.y} : V2{};
+      const V2 u_hit = hit == &local ? V2{local_u.x, local_u.y} : V2{};  // the surface's frame
       if (i >= max_impacts) {
         Motion seen = m;  // from the surface's frame
         seen.v = seen.v - u_hit;
@@ -226,25 +213,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
         }
       }
       m.advance(first);
-      const V2 a_before = m.a, v_before = m.v, friction = m.friction;
-      const bool bounce = impact_moving(m, *hit, r, dt, spin, u_hit, work);
-      if (!bounce && (u_hit.x != 0.0 || u_hit.y != 0.0)) {
-        // Held on a moving segment: the holding force's work over the rest of the tick.
-        const double rate = dot(m.a - a_before, u_hit);
-        work += rate * (dt - m.t), held_rate += rate;
-      }
-      if (bounce && (held || hit == &local)) {
-        work -= held_rate * (dt - m.t), held_rate = 0.0;  // the hold ends here
-        m.a = a_free, held = false, m.friction = V2{};
-        // The friction of the rests it left acts no more: take back what was reckoned of it.
-        const double T = dt - m.t;
-        m.lost += dot(friction, T * v_before + (0.5 * T * T) * a_before);
-      } else if (friction.x != 0.0 || friction.y != 0.0) {
-        // A rest's friction was reckoned on the path before this event: on the path after it.
-        const double T = dt - m.t;
-        m.lost -= dot(friction, T * (m.v - v_before) + (0.5 * T * T) * (m.a - a_before));
-      }
-      held = held || (!bounce && hit == &local);
+      const bool bounce = resolve_event(m, *hit, hit == &local, u_hit, r, dt, spin, surfaces);
       bounced = bounce || bounced;
       touched = true;
     }
@@ -261,7 +230,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
       if (!segments_.empty() && segment_overlap(x1.x, x1.y, r, 0.0, dt, local, local_u)) {
         if (!touched) m = Motion{x1, v1 + offset, m.a, offset, dt, 0.0};
         const V2 u{local_u.x, local_u.y};
-        bounced = impact_moving(m, local, r, dt, spin, u, work) || bounced;
+        bounced = impact_moving(m, local, r, dt, spin, u, surfaces.work) || bounced;
         touched = true;
       }
       if (!touched) continue;
@@ -276,8 +245,8 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     vx_[j] = static_cast<Real>(m.v.x - m.offset.x), vy_[j] = static_cast<Real>(m.v.y - m.offset.y);
     if (spin) spin_[j] = static_cast<Real>(turn.w);
     if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(m.lost);
-    if (work != 0.0) external_work_ += mass_[j] * work;
-    if (!plane_work_.empty()) plane_work_[j] = work;
+    if (surfaces.work != 0.0) external_work_ += mass_[j] * surfaces.work;
+    if (!plane_work_.empty()) plane_work_[j] = surfaces.work;
     // The runtime guard, as in the sweep: a push-out beyond the range is a fault too.
     for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {
       out_of_range = out_of_range || !(std::abs(double(value)) <= max_state_magnitude);
