@@ -293,7 +293,17 @@ class DiscContacts {
   void gather_segment_contacts(const Tick& tick, std::uint32_t k);
   /// overlap_of() for a segment contact: the depth (m) and normal at the closest feature now.
   double segment_overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny) const;
-  void apply(RestContact& c, double jx, double jy, double kdt);
+  /// A contact's two discs as an impulse changes them (disc_rest.cpp): velocities (m/s; b's a
+  /// segment's or 0 past the discs) and the positions (m) of those the solver moves.
+  struct Pair {
+    double vax = 0, vay = 0, vbx = 0, vby = 0, xa = 0, ya = 0, xb = 0, yb = 0;
+    bool move_a = false, move_b = false;
+  };
+  Pair load(const RestContact& c) const;
+  /// Applies the impulse (jx, jy) N·s to a and its opposite to b in p, moving each by κ dt Δv
+  /// (kdt = κ dt, s); a kinematic partner's work goes to external_.
+  void push(RestContact& c, Pair& p, double jx, double jy, double kdt);
+  void store(const RestContact& c, const Pair& p);
   /// Turns c's rolling discs by the tangential impulse lt (N·s along t = (-n_y, n_x) on a).
   void turn(const RestContact& c, double lt) {
     ew_[c.a] -= c.turn_a * lt;

@@ -81,24 +81,44 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   }
 }
 
-// Applies the impulse (jx, jy) to a and its opposite to b, moving each by κ dt Δv.
+// The state of a contact's two discs that an impulse changes: their velocities (a segment's
+// or a plane's for b past the discs) and the positions of those the solver moves, loaded once.
 template <class Real>
-[[gnu::always_inline]] inline void DiscContacts<Real>::apply(RestContact& c, double jx, double jy,
-                                                             double kdt) {
-  if (c.kinematic_b) {
-    const bool disc = c.b < discs_.size();
-    external_[c.a] += jx * (disc ? evx_[c.b] : c.bvx) + jy * (disc ? evy_[c.b] : c.bvy);
+[[gnu::always_inline]] inline auto DiscContacts<Real>::load(const RestContact& c) const -> Pair {
+  Pair p{.move_a = c.inv_a > 0.0, .move_b = c.inv_b > 0.0};  // move_b: b is a disc
+  p.vax = evx_[c.a], p.vay = evy_[c.a];
+  if (c.b < discs_.size()) {
+    p.vbx = evx_[c.b], p.vby = evy_[c.b];
+  } else if (c.kinematic_b) {  // a moving segment
+    p.vbx = c.bvx, p.vby = c.bvy;
   }
-  if (c.kinematic_a) external_[c.b] -= jx * evx_[c.a] + jy * evy_[c.a];
-  c.moved = 1;  // its discs are marked changed after the passes (mark_moved)
-  if (c.inv_a > 0.0) {
+  if (p.move_a) p.xa = ex_[c.a], p.ya = ey_[c.a];
+  if (p.move_b) p.xb = ex_[c.b], p.yb = ey_[c.b];
+  return p;
+}
+
+// Applies the impulse (jx, jy) to a and its opposite to b, moving each by κ dt Δv (kdt = κ dt);
+// a kinematic partner's work on the other disc goes to external_.
+template <class Real>
+[[gnu::always_inline]] inline void DiscContacts<Real>::push(RestContact& c, Pair& p, double jx,
+                                                            double jy, double kdt) {
+  if (c.kinematic_b) external_[c.a] += jx * p.vbx + jy * p.vby;
+  if (c.kinematic_a) external_[c.b] -= jx * p.vax + jy * p.vay;
+  c.moved = 1;  // its discs are marked changed after the passes (solve_resting)
+  if (p.move_a) {
     const double dvx = c.inv_a * jx, dvy = c.inv_a * jy;
-    evx_[c.a] += dvx, evy_[c.a] += dvy, ex_[c.a] += kdt * dvx, ey_[c.a] += kdt * dvy;
+    p.vax += dvx, p.vay += dvy, p.xa += kdt * dvx, p.ya += kdt * dvy;
   }
-  if (c.inv_b > 0.0) {
+  if (p.move_b) {
     const double dvx = c.inv_b * jx, dvy = c.inv_b * jy;
-    evx_[c.b] -= dvx, evy_[c.b] -= dvy, ex_[c.b] -= kdt * dvx, ey_[c.b] -= kdt * dvy;
+    p.vbx -= dvx, p.vby -= dvy, p.xb -= kdt * dvx, p.yb -= kdt * dvy;
   }
+}
+
+template <class Real>
+[[gnu::always_inline]] inline void DiscContacts<Real>::store(const RestContact& c, const Pair& p) {
+  if (p.move_a) evx_[c.a] = p.vax, evy_[c.a] = p.vay, ex_[c.a] = p.xa, ey_[c.a] = p.ya;
+  if (p.move_b) evx_[c.b] = p.vbx, evy_[c.b] = p.vby, ex_[c.b] = p.xb, ey_[c.b] = p.yb;
 }
 
 template <class Real>
@@ -176,7 +196,9 @@ void DiscContacts<Real>::warm_start(const Tick& tick) {
     for (std::uint32_t i = begin; i < end; ++i) {
       RestContact& c = contacts_[order_[i]];
       if (c.lambda_n == 0.0 && c.lambda_t == 0.0) continue;
-      apply(c, c.lambda_n * c.nx - c.lambda_t * c.ny, c.lambda_n * c.ny + c.lambda_t * c.nx, kdt);
+      Pair p = load(c);
+      push(c, p, c.lambda_n * c.nx - c.lambda_t * c.ny, c.lambda_n * c.ny + c.lambda_t * c.nx, kdt);
+      store(c, p);
       if (rolling_) turn(c, c.lambda_t);
     }
   };
@@ -185,53 +207,29 @@ void DiscContacts<Real>::warm_start(const Tick& tick) {
 
 // One contact's normal and friction impulses, a Gauss–Seidel step: no approach at the end of
 // the tick (the accumulated normal impulse stays >= 0), then friction along t = (-n_y, n_x)
-// within Coulomb's cone |λ_t| <= μ λ_n. Each impulse is applied as apply() would apply it, in
-// the same operations and order, to the two discs' state held in locals and written back once.
+// within Coulomb's cone |λ_t| <= μ λ_n, on the two discs' state loaded once and stored once.
 template <class Real>
 [[gnu::always_inline]] inline void DiscContacts<Real>::solve_contact(RestContact& c, double kdt,
                                                                      RestSweep& out) {
-  const std::uint32_t a = c.a, b = c.b;
-  const bool move_a = c.inv_a > 0.0, move_b = c.inv_b > 0.0;  // move_b: b is a disc
-  double vax = evx_[a], vay = evy_[a], vbx = 0.0, vby = 0.0;
-  if (b < discs_.size()) {
-    vbx = evx_[b], vby = evy_[b];
-  } else if (c.kinematic_b) {  // a moving segment
-    vbx = c.bvx, vby = c.bvy;
-  }
-  double xa = 0, ya = 0, xb = 0, yb = 0;
-  if (move_a) xa = ex_[a], ya = ey_[a];
-  if (move_b) xb = ex_[b], yb = ey_[b];
-  const auto push = [&](double jx, double jy) {  // apply(c, jx, jy, kdt) on the locals
-    if (c.kinematic_b) external_[a] += jx * vbx + jy * vby;
-    if (c.kinematic_a) external_[b] -= jx * vax + jy * vay;
-    c.moved = 1;
-    if (move_a) {
-      const double dvx = c.inv_a * jx, dvy = c.inv_a * jy;
-      vax += dvx, vay += dvy, xa += kdt * dvx, ya += kdt * dvy;
-    }
-    if (move_b) {
-      const double dvx = c.inv_b * jx, dvy = c.inv_b * jy;
-      vbx -= dvx, vby -= dvy, xb -= kdt * dvx, yb -= kdt * dvy;
-    }
-  };
+  Pair p = load(c);
   // Normal: x - 0 is x, so a plane's relative velocity is a's own.
-  const double vn = (vax - vbx) * c.nx + (vay - vby) * c.ny;
+  const double vn = (p.vax - p.vbx) * c.nx + (p.vay - p.vby) * c.ny;
   const double ln = std::max(c.lambda_n - vn * c.mass, 0.0);
   const double dn = ln - c.lambda_n;
   c.lambda_n = ln;
-  if (dn != 0.0) push(dn * c.nx, dn * c.ny);
+  if (dn != 0.0) push(c, p, dn * c.nx, dn * c.ny, kdt);
   // Friction; with rolling discs at the contact point, less the turn's ω r of each disc.
-  const double vt = -(vax - vbx) * c.ny + (vay - vby) * c.nx - (rolling_ ? turn_slip(c) : 0.0);
+  const double vt =
+      -(p.vax - p.vbx) * c.ny + (p.vay - p.vby) * c.nx - (rolling_ ? turn_slip(c) : 0.0);
   const double bound = c.friction * c.lambda_n;
   const double lt = std::clamp(c.lambda_t - vt * c.mass_t, -bound, bound);
   const double dt = lt - c.lambda_t;
   c.lambda_t = lt;
   if (dt != 0.0) {
-    push(-dt * c.ny, dt * c.nx);
+    push(c, p, -dt * c.ny, dt * c.nx, kdt);
     if (rolling_) turn(c, dt);
   }
-  if (move_a) evx_[a] = vax, evy_[a] = vay, ex_[a] = xa, ey_[a] = ya;
-  if (move_b) evx_[b] = vbx, evy_[b] = vby, ex_[b] = xb, ey_[b] = yb;
+  store(c, p);
   out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
   out.largest = std::max(out.largest, c.lambda_n);
 }
@@ -359,7 +357,6 @@ void DiscContacts<Real>::finish(const Tick& tick) {
 
 #define FIXSTEP_INSTANTIATE(Real)                                                          \
   template void DiscContacts<Real>::gather_contacts(const Tick&);                          \
-  template void DiscContacts<Real>::apply(RestContact&, double, double, double);           \
   template void DiscContacts<Real>::warm_start(const Tick&);                               \
   template void DiscContacts<Real>::solve_resting(const Tick&, ContactStats&);             \
   template void DiscContacts<Real>::solve_contact(RestContact&, double, RestSweep&);       \
