@@ -12,64 +12,15 @@
 #include <string_view>
 #include <vector>
 
+#include "carried_segments_scene.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/world.hpp"
 
 namespace fixstep {
 namespace scene_segments_test {  // named: a unity batch shares anonymous namespaces
 
-// Lines 1-27: a dynamic disc, a kinematic lift moving at (0.5, 2) m/s, a static floor body and
-// a grid of two kinematic bodies deck[0,0] and deck[1,0] moving left at 1 m/s.
-constexpr std::string_view bodies = R"([world]
-dt = 0.01
-[[body]]
-name = "ball"
-mass = 1.0
-position = [0.0, 5.0]
-radius = 0.25
-[[body]]
-name = "lift"
-type = "kinematic"
-position = [0.0, 0.0]
-velocity = [0.5, 2.0]
-[[body]]
-name = "floor"
-type = "static"
-position = [0.0, -5.0]
-[[grid]]
-name = "deck"
-columns = 2
-rows = 1
-origin = [10.0, 0.0]
-spacing = [1.0, 1.0]
-body = { type = "kinematic", velocity = [-1.0, 0.0] }
-# the level: from line 28
-#
-#
-#
-)";
-
-// Segment 0 carried by the lift, 1 static; polyline 0 (segments 2, 3) carried by the lift,
-// polyline 1 (closed: segments 4, 5, 6) by deck[1,0], polyline 2 (segment 7) static.
-const std::string level = std::string(bodies) + R"([[segment]]
-a = [-1.0, 0.0]
-b = [1.0, 0.0]
-friction = 0.5
-body = "lift"
-[[segment]]
-a = [-10.0, -6.0]
-b = [10.0, -6.0]
-[[polyline]]
-points = [[-1.0, 1.0], [0.0, 1.5], [1.0, 1.0]]
-friction = 0.3
-body = "lift"
-[[polyline]]
-points = [[9.0, -1.0], [12.0, -1.0], [12.0, 1.0]]
-closed = true
-body = "deck[1,0]"
-[[polyline]]
-points = [[-3.0, -4.0], [3.0, -4.0]]
-)";
+using test::carried_bodies;  // carried_segments_scene.hpp
+const std::string& level = test::carried_level;
 
 /// The handles WorldDef::add_body returns for the scene's bodies, in order.
 std::vector<Entity> handles(const Scene& s) {
@@ -243,7 +194,7 @@ TEST(SceneSegments, ABadBodyKeyIsRefusedAtItsKey) {
   };
   for (const BadCarrier& c : cases) {
     SCOPED_TRACE(c.table);
-    const SceneError e = error_of(std::string(bodies) + c.table);
+    const SceneError e = error_of(std::string(carried_bodies) + c.table);
     EXPECT_EQ(e.line(), c.line) << e.what();
     EXPECT_EQ(e.column(), c.column) << e.what();
     EXPECT_EQ(e.key(), c.key) << e.what();
@@ -254,7 +205,7 @@ TEST(SceneSegments, ABadBodyKeyIsRefusedAtItsKey) {
         << e.what();
   }
   // A misspelt key is an unknown key, with the suggestion, and the segment stays static.
-  const Scene s = parse_scene(std::string(bodies) + segment + "bdy = \"lift\"\n", "k.toml");
+  const Scene s = parse_scene(std::string(carried_bodies) + segment + "bdy = \"lift\"\n", "k.toml");
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_NE(s.warnings[0].find("k.toml:31:1: segment[0].bdy: unknown key ignored (did you mean "
                                "`body`?)"),

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "carried_segments_scene.hpp"
 #include "fixstep/recording.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_writer.hpp"
@@ -302,43 +303,9 @@ std::size_t count(const std::string& text, std::string_view part) {
 // and the same hash; a carrier with no name, or a repeated one, goes by the name the writer
 // gives it (as links do). A carrier that is not one of the bodies, or not kinematic, is refused.
 TEST(SceneWriter, CarriedSegmentsRoundTripByTheirBodysName) {
-  const Scene scene = parse_scene(R"([world]
-dt = 0.01
-[[body]]
-name = "ball"
-mass = 1.0
-position = [0.0, 5.0]
-[[body]]
-name = "lift"
-type = "kinematic"
-position = [0.0, 0.0]
-velocity = [0.5, 2.0]
-[[grid]]
-name = "deck"
-columns = 2
-rows = 1
-origin = [10.0, 0.0]
-spacing = [1.0, 1.0]
-body = { type = "kinematic", velocity = [-1.0, 0.0] }
-[[segment]]
-a = [-1.0, 0.0]
-b = [1.0, 0.0]
-body = "lift"
-[[segment]]
-a = [-10.0, -6.0]
-b = [10.0, -6.0]
-[[polyline]]
-points = [[-1.0, 1.0], [0.0, 1.5], [1.0, 1.0]]
-friction = 0.3
-body = "lift"
-[[polyline]]
-points = [[9.0, -1.0], [12.0, -1.0], [12.0, 1.0]]
-closed = true
-body = "deck[1,0]"
-)",
-                                  "carried.toml");
+  const Scene scene = parse_scene(test::carried_level, "carried.toml");
   const WorldDef def = world_def(scene);
-  ASSERT_EQ(def.segments.size(), 7u);
+  ASSERT_EQ(def.segments.size(), 8u);
   const std::string text = format_scene(def);
   EXPECT_EQ(count(text, "\nbody = \"lift\"\n"), 3u) << text;
   EXPECT_EQ(count(text, "\nbody = \"deck[1,0]\"\n"), 3u) << text;
