@@ -13,7 +13,7 @@ game=$1
 src=$2
 out=$3
 rec=$src/assets/recordings/slingshot.rec
-expected_hash=fec64f5926a1f78e
+expected_hash=b7cab41f8a0a3b87
 expected_game="score=2 shots_left=0 knocked=1001 phase=over"
 rm -rf "$out"
 mkdir -p "$out"

@@ -112,6 +112,29 @@ struct RestContact {
   std::uint8_t moved = 0;  ///< 1 once an impulse or a push-out moved its discs this tick
 };
 
+/// A resting contact as the velocity iterations see it (disc_rows.cpp), in order_'s order:
+/// its two bodies as slots of the solver's own velocity array (a slot of velocity 0 for a
+/// static body or a plane), and what an impulse needs, from RestContact.
+struct SolveRow {
+  std::uint32_t a = 0, b = 0;  ///< slots of DiscContacts' solver velocities
+  double nx = 0, ny = 0, mass = 0, mass_t = 0, friction = 0, lambda_n = 0, lambda_t = 0;
+  double inv_a = 0, inv_b = 0;  ///< 1/kg (0: the slot is not moved)
+};
+
+/// A resting contact as the push-out sees it (disc_rows.cpp), in order_'s order: its discs (b
+/// past the discs for a plane or a segment), r_a + r_b (r_a past the discs) and the smaller
+/// radius (m), and the shares w_a = (1/m_a) / (1/m_a + 1/m_b) and w_b of a push that each
+/// disc takes (0: it is not moved).
+struct PushRow {
+  std::uint32_t a = 0, b = 0;
+  double radii = 0, r_min = 0, w_a = 0, w_b = 0;
+};
+
+/// A velocity in the solver's own array, m/s.
+struct SolveVelocity {
+  double x = 0, y = 0;
+};
+
 /// Last tick's resting impulses, for warm starting (part of a snapshot).
 struct WarmImpulse {
   std::uint64_t key = 0;
@@ -277,15 +300,27 @@ class DiscContacts {
   /// Warm start, velocity iterations and push-out, on two threads when the contacts were
   /// split and tick.threads >= 2 (the worker serves every pass: pass_team.hpp).
   void solve_resting(const Tick& tick, ContactStats& stats);
-  void warm_start(const Tick& tick);
-  void solve_velocities(const Tick& tick, ContactStats& stats);
-  /// One contact's normal and friction impulses in a velocity iteration; out gathers the
-  /// iteration's largest change and largest normal impulse.
-  void solve_contact(RestContact& c, double kdt, RestSweep& out);
+  /// Each contact's impulses from last tick's by key (warm_), 0 for a new contact.
+  void match_warm();
+  // velocity iterations on rows (disc_rows.cpp)
+  /// rows_ from contacts_ in order_'s order, with the solver velocities of their discs.
+  void build_rows();
+  /// Writes the velocities and impulses back, and moves each disc an impulse changed by
+  /// κ dt times its velocity's change (kdt = κ dt, s): the contact forces over the tick.
+  void scatter_rows(double kdt);
+  void warm_start();
+  void solve_velocities(ContactStats& stats);
+  /// Row i's normal and friction impulses in a velocity iteration; out gathers the
+  /// iteration's largest change and largest normal impulse. Extras: the work of kinematic
+  /// partners and rolling discs' turn (worlds without either pay for neither).
+  template <bool Extras>
+  void solve_row(std::uint32_t i, RestSweep& out);
+  /// Applies the impulse λ_n n + λ_t t (N·s) to row i's body a and its opposite to b.
+  template <bool Extras>
+  void push_row(std::uint32_t i, SolveVelocity& va, SolveVelocity& vb, double ln, double lt);
   void push_out(const Tick& tick, ContactStats& stats);
-  /// The depth of contact c's overlap now (m), its normal and the smaller radius.
-  double overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny,
-                    double& r_min) const;
+  /// The depth of push row i's overlap now (m) and its normal.
+  double overlap_of(const Tick& tick, std::uint32_t i, double& nx, double& ny) const;
   void keep_impulses();
   // segments (disc_segments.cpp)
   /// Appends disc k's resting contacts with the segments near its end position, in segment
@@ -293,17 +328,6 @@ class DiscContacts {
   void gather_segment_contacts(const Tick& tick, std::uint32_t k);
   /// overlap_of() for a segment contact: the depth (m) and normal at the closest feature now.
   double segment_overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny) const;
-  /// A contact's two discs as an impulse changes them (disc_rest.cpp): velocities (m/s; b's a
-  /// segment's or 0 past the discs) and the positions (m) of those the solver moves.
-  struct Pair {
-    double vax = 0, vay = 0, vbx = 0, vby = 0, xa = 0, ya = 0, xb = 0, yb = 0;
-    bool move_a = false, move_b = false;
-  };
-  Pair load(const RestContact& c) const;
-  /// Applies the impulse (jx, jy) N·s to a and its opposite to b in p, moving each by κ dt Δv
-  /// (kdt = κ dt, s); a kinematic partner's work goes to external_.
-  void push(RestContact& c, Pair& p, double jx, double jy, double kdt);
-  void store(const RestContact& c, const Pair& p);
   /// Turns c's rolling discs by the tangential impulse lt (N·s along t = (-n_y, n_x) on a).
   void turn(const RestContact& c, double lt) {
     ew_[c.a] -= c.turn_a * lt;
@@ -339,7 +363,19 @@ class DiscContacts {
   CachePtr<PassTeam, std::default_delete<PassTeam>> team_;  ///< the passes' second thread
   bool team_on_ = false;                                    ///< within solve_resting()
   std::vector<WarmImpulse> warm_;                           ///< by key
-  std::vector<double> ex_, ey_, evx_, evy_;                 ///< end states in double, m and m/s
+  // the velocity iterations' own state (disc_rows.cpp; sized once, no allocation once warm)
+  std::vector<SolveRow> rows_;
+  std::vector<PushRow> push_rows_;
+  std::vector<std::uint8_t> row_moved_;  ///< 1 once an impulse of row i moved its discs
+  /// Solver velocities by slot (the first three: velocity 0, one per part of order_, never
+  /// written by two threads) and at the start of the iterations.
+  std::vector<SolveVelocity> sv_, sv0_;
+  std::vector<std::uint32_t> slot_of_;    ///< per disc: its slot while the rows exist, else none
+  std::vector<std::uint32_t> slot_disc_;  ///< per slot: its disc (none: a fixed velocity)
+  std::vector<std::uint8_t> slot_moved_;
+  static constexpr std::uint32_t no_slot = 0xffffffffu;
+  bool plain_rows_ = true;  ///< no rolling disc and no moving kinematic partner in the rows
+  std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
   /// Rolling discs (settings_.rolling; empty otherwise): ω in double during the tick and at
   /// its start, rad/s.
   std::vector<double> ew_, ew0_;

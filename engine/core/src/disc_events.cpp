@@ -384,7 +384,8 @@ std::size_t DiscContacts<Real>::bytes() const {
          b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(heap_) + b(events_) +
          b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) + b(ex_) +
          b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) +
-         b(d_begin_) + b(ew_) + b(ew0_);
+         b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) +
+         b(sv0_) + b(slot_of_) + b(slot_disc_) + b(slot_moved_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \

@@ -81,44 +81,26 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   }
 }
 
-// The state of a contact's two discs that an impulse changes: their velocities (a segment's
-// or a plane's for b past the discs) and the positions of those the solver moves, loaded once.
+// Applies the impulse λ_n n + λ_t t (N·s; t = (-n_y, n_x)) to row i's body a and its opposite
+// to b, each as the impulse's components times the row's 1/m n (so that the chain of one row's
+// arithmetic through a disc's velocity is short); with extras, a moving kinematic partner's
+// work on the other disc goes to external_.
 template <class Real>
-[[gnu::always_inline]] inline auto DiscContacts<Real>::load(const RestContact& c) const -> Pair {
-  Pair p{.move_a = c.inv_a > 0.0, .move_b = c.inv_b > 0.0};  // move_b: b is a disc
-  p.vax = evx_[c.a], p.vay = evy_[c.a];
-  if (c.b < discs_.size()) {
-    p.vbx = evx_[c.b], p.vby = evy_[c.b];
-  } else if (c.kinematic_b) {  // a moving segment
-    p.vbx = c.bvx, p.vby = c.bvy;
+template <bool Extras>
+[[gnu::always_inline]] inline void DiscContacts<Real>::push_row(std::uint32_t i, SolveVelocity& va,
+                                                                SolveVelocity& vb, double ln,
+                                                                double lt) {
+  const SolveRow& r = rows_[i];
+  if constexpr (Extras) {
+    const RestContact& c = contacts_[order_[i]];
+    const double jx = ln * r.nx - lt * r.ny, jy = ln * r.ny + lt * r.nx;
+    if (c.kinematic_b) external_[c.a] += jx * vb.x + jy * vb.y;
+    if (c.kinematic_a) external_[c.b] -= jx * va.x + jy * va.y;
   }
-  if (p.move_a) p.xa = ex_[c.a], p.ya = ey_[c.a];
-  if (p.move_b) p.xb = ex_[c.b], p.yb = ey_[c.b];
-  return p;
-}
-
-// Applies the impulse (jx, jy) to a and its opposite to b, moving each by κ dt Δv (kdt = κ dt);
-// a kinematic partner's work on the other disc goes to external_.
-template <class Real>
-[[gnu::always_inline]] inline void DiscContacts<Real>::push(RestContact& c, Pair& p, double jx,
-                                                            double jy, double kdt) {
-  if (c.kinematic_b) external_[c.a] += jx * p.vbx + jy * p.vby;
-  if (c.kinematic_a) external_[c.b] -= jx * p.vax + jy * p.vay;
-  c.moved = 1;  // its discs are marked changed after the passes (solve_resting)
-  if (p.move_a) {
-    const double dvx = c.inv_a * jx, dvy = c.inv_a * jy;
-    p.vax += dvx, p.vay += dvy, p.xa += kdt * dvx, p.ya += kdt * dvy;
-  }
-  if (p.move_b) {
-    const double dvx = c.inv_b * jx, dvy = c.inv_b * jy;
-    p.vbx -= dvx, p.vby -= dvy, p.xb -= kdt * dvx, p.yb -= kdt * dvy;
-  }
-}
-
-template <class Real>
-[[gnu::always_inline]] inline void DiscContacts<Real>::store(const RestContact& c, const Pair& p) {
-  if (p.move_a) evx_[c.a] = p.vax, evy_[c.a] = p.vay, ex_[c.a] = p.xa, ey_[c.a] = p.ya;
-  if (p.move_b) evx_[c.b] = p.vbx, evy_[c.b] = p.vby, ex_[c.b] = p.xb, ey_[c.b] = p.yb;
+  const double ax = r.inv_a * r.nx, ay = r.inv_a * r.ny;
+  const double bx = r.inv_b * r.nx, by = r.inv_b * r.ny;
+  va.x += ln * ax - lt * ay, va.y += ln * ay + lt * ax;
+  vb.x -= ln * bx - lt * by, vb.y -= ln * by + lt * bx;
 }
 
 template <class Real>
@@ -149,6 +131,8 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   const auto& p = part_start_;
   team_on_ =
       tick.threads >= 2 && p[1] > p[0] && p[2] > p[1] && contacts_.size() >= min_parallel_contacts;
+  match_warm();
+  build_rows();
   Workers* worker = nullptr;
   if (team_on_) {  // the worker serves every pass of this tick's resting solve
     // CachePtr (a copy starts empty) has no assignment from std::unique_ptr.
@@ -158,8 +142,9 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   }
   // A stop request (SIGINT) ends the passes early; the worker is released before it is thrown.
   try {
-    warm_start(tick);
-    solve_velocities(tick, stats);
+    warm_start();
+    solve_velocities(stats);
+    scatter_rows(tick.kappa * tick.dt);
     push_out(tick, stats);
   } catch (...) {
     if (team_on_) team_->finish(), worker->wait(), team_on_ = false;
@@ -177,9 +162,9 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
 }
 
 template <class Real>
-void DiscContacts<Real>::warm_start(const Tick& tick) {
-  // Last tick's impulses by key: contacts_ is two runs in key order (disc pairs, then
-  // planes), warm_ one, so each run is matched in one walk.
+void DiscContacts<Real>::match_warm() {
+  // contacts_ is two runs in key order (disc pairs, then planes), warm_ one, so each run is
+  // matched in one walk.
   const std::size_t bounds[3] = {0, plane_contacts_, contacts_.size()};
   for (int run = 0; run < 2; ++run) {
     std::size_t w = 0;
@@ -191,58 +176,73 @@ void DiscContacts<Real>::warm_start(const Tick& tick) {
       }
     }
   }
-  const double kdt = tick.kappa * tick.dt;
+}
+
+template <class Real>
+void DiscContacts<Real>::warm_start() {
   auto range = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
     for (std::uint32_t i = begin; i < end; ++i) {
-      RestContact& c = contacts_[order_[i]];
-      if (c.lambda_n == 0.0 && c.lambda_t == 0.0) continue;
-      Pair p = load(c);
-      push(c, p, c.lambda_n * c.nx - c.lambda_t * c.ny, c.lambda_n * c.ny + c.lambda_t * c.nx, kdt);
-      store(c, p);
-      if (rolling_) turn(c, c.lambda_t);
+      const SolveRow& r = rows_[i];
+      if (r.lambda_n == 0.0 && r.lambda_t == 0.0) continue;
+      row_moved_[i] = 1;
+      if (plain_rows_) {
+        push_row<false>(i, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
+      } else {
+        push_row<true>(i, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
+        if (rolling_) turn(contacts_[order_[i]], r.lambda_t);
+      }
     }
   };
   parts_pass(range);
 }
 
-// One contact's normal and friction impulses, a Gauss–Seidel step: no approach at the end of
-// the tick (the accumulated normal impulse stays >= 0), then friction along t = (-n_y, n_x)
-// within Coulomb's cone |λ_t| <= μ λ_n, on the two discs' state loaded once and stored once.
+// One row's normal and friction impulses, a Gauss–Seidel step: no approach at the end of the
+// tick (the accumulated normal impulse stays >= 0), and friction along t = (-n_y, n_x) within
+// Coulomb's cone |λ_t| <= μ λ_n. A normal impulse changes no tangential velocity (t · n = 0;
+// nor any turn: it acts through the centres), so both are found from the velocities as loaded
+// and applied as one impulse: the same step as normal then friction, with a dependency chain
+// through the discs' velocities half as long. The impulse is applied even when it is 0, so
+// that a sweep has no branch.
 template <class Real>
-[[gnu::always_inline]] inline void DiscContacts<Real>::solve_contact(RestContact& c, double kdt,
-                                                                     RestSweep& out) {
-  Pair p = load(c);
-  // Normal: x - 0 is x, so a plane's relative velocity is a's own.
-  const double vn = (p.vax - p.vbx) * c.nx + (p.vay - p.vby) * c.ny;
-  const double ln = std::max(c.lambda_n - vn * c.mass, 0.0);
-  const double dn = ln - c.lambda_n;
-  c.lambda_n = ln;
-  if (dn != 0.0) push(c, p, dn * c.nx, dn * c.ny, kdt);
-  // Friction; with rolling discs at the contact point, less the turn's ω r of each disc.
-  const double vt =
-      -(p.vax - p.vbx) * c.ny + (p.vay - p.vby) * c.nx - (rolling_ ? turn_slip(c) : 0.0);
-  const double bound = c.friction * c.lambda_n;
-  const double lt = std::clamp(c.lambda_t - vt * c.mass_t, -bound, bound);
-  const double dt = lt - c.lambda_t;
-  c.lambda_t = lt;
-  if (dt != 0.0) {
-    push(c, p, -dt * c.ny, dt * c.nx, kdt);
-    if (rolling_) turn(c, dt);
+template <bool Extras>
+[[gnu::always_inline]] inline void DiscContacts<Real>::solve_row(std::uint32_t i, RestSweep& out) {
+  SolveRow& r = rows_[i];
+  SolveVelocity va = sv_[r.a], vb = sv_[r.b];
+  // x - 0 is x, so a plane's relative velocity is a's own.
+  const double rx = va.x - vb.x, ry = va.y - vb.y;
+  const double vn = rx * r.nx + ry * r.ny;
+  // With rolling discs, the contact point's velocity less the turn's ω r of each disc.
+  double vt = -rx * r.ny + ry * r.nx;
+  if constexpr (Extras) {
+    if (rolling_) vt -= turn_slip(contacts_[order_[i]]);
   }
-  store(c, p);
+  const double ln = std::max(r.lambda_n - vn * r.mass, 0.0);
+  const double bound = r.friction * ln;
+  const double lt = std::clamp(r.lambda_t - vt * r.mass_t, -bound, bound);
+  const double dn = ln - r.lambda_n, dt = lt - r.lambda_t;
+  r.lambda_n = ln, r.lambda_t = lt;
+  push_row<Extras>(i, va, vb, dn, dt);
+  if constexpr (Extras) {
+    if (rolling_) turn(contacts_[order_[i]], dt);
+  }
+  sv_[r.a] = va, sv_[r.b] = vb;
+  row_moved_[i] |= std::uint8_t((dn != 0.0) | (dt != 0.0));
   out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
-  out.largest = std::max(out.largest, c.lambda_n);
+  out.largest = std::max(out.largest, ln);
 }
 
 template <class Real>
-void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats) {
-  const double kdt = tick.kappa * tick.dt;
+void DiscContacts<Real>::solve_velocities(ContactStats& stats) {
   if (contacts_.empty()) return;
   stats.velocity_converged = false;
   RestSweep sweep[2];
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
     RestSweep out;  // written to sweep[thread] once: the two threads' entries share a line
-    for (std::uint32_t i = begin; i < end; ++i) solve_contact(contacts_[order_[i]], kdt, out);
+    if (plain_rows_) {
+      for (std::uint32_t i = begin; i < end; ++i) solve_row<false>(i, out);
+    } else {
+      for (std::uint32_t i = begin; i < end; ++i) solve_row<true>(i, out);
+    }
     sweep[thread].change = std::max(sweep[thread].change, out.change);
     sweep[thread].largest = std::max(sweep[thread].largest, out.largest);
   };
@@ -261,39 +261,41 @@ void DiscContacts<Real>::solve_velocities(const Tick& tick, ContactStats& stats)
 }
 
 template <class Real>
-double DiscContacts<Real>::overlap_of(const Tick& tick, const RestContact& c, double& nx,
-                                      double& ny, double& r_min) const {
+double DiscContacts<Real>::overlap_of(const Tick& tick, std::uint32_t i, double& nx,
+                                      double& ny) const {
   const std::size_t n = discs_.size();
-  r_min = c.r_min;
-  if (c.b >= n + tick.planes.size()) return segment_overlap_of(tick, c, nx, ny);
-  if (c.b >= n) {
-    const PlaneDef& p = tick.planes[c.b - n];
+  const PushRow& r = push_rows_[i];
+  if (r.b >= n + tick.planes.size()) return segment_overlap_of(tick, contacts_[order_[i]], nx, ny);
+  if (r.b >= n) {
+    const PlaneDef& p = tick.planes[r.b - n];
     nx = p.normal.x, ny = p.normal.y;
-    return c.radii + p.offset - (nx * ex_[c.a] + ny * ey_[c.a]);
+    return r.radii + p.offset - (nx * ex_[r.a] + ny * ey_[r.a]);
   }
-  const double dx = ex_[c.a] - ex_[c.b], dy = ey_[c.a] - ey_[c.b];
+  const double dx = ex_[r.a] - ex_[r.b], dy = ey_[r.a] - ey_[r.b];
   const double dist = length(dx, dy);
-  nx = dist > 0.0 ? dx / dist : c.nx, ny = dist > 0.0 ? dy / dist : c.ny;
-  return c.radii - dist;
+  if (dist > 0.0) {
+    nx = dx / dist, ny = dy / dist;
+  } else {
+    nx = contacts_[order_[i]].nx, ny = contacts_[order_[i]].ny;
+  }
+  return r.radii - dist;
 }
 
 template <class Real>
 void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
-  const std::size_t n = discs_.size();
   bool pushed[2] = {false, false};  // an iteration that pushes nothing ends the push-out
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
     bool any = false;  // written to pushed[thread] once (see solve_velocities)
     for (std::uint32_t i = begin; i < end; ++i) {
-      RestContact& c = contacts_[order_[i]];
-      double nx = 0, ny = 0, r_min = 0;
-      const double depth = overlap_of(tick, c, nx, ny, r_min);
-      if (depth <= (slop + push_out_tolerance) * r_min) continue;
-      any = true, c.moved = 1;
-      const double push = std::min(depth - slop * r_min, max_push_out * r_min);
-      const double ia = c.inv_a, ib = c.b < n ? c.inv_b : 0.0;
-      const double share = push / (ia + ib);
-      ex_[c.a] += ia * share * nx, ey_[c.a] += ia * share * ny;
-      if (c.b < n && ib > 0.0) ex_[c.b] -= ib * share * nx, ey_[c.b] -= ib * share * ny;
+      const PushRow& r = push_rows_[i];
+      double nx = 0, ny = 0;
+      const double depth = overlap_of(tick, i, nx, ny);
+      if (depth <= (slop + push_out_tolerance) * r.r_min) continue;
+      any = true, contacts_[order_[i]].moved = 1;
+      const double push = std::min(depth - slop * r.r_min, max_push_out * r.r_min);
+      const double pa = r.w_a * push, pb = r.w_b * push;
+      ex_[r.a] += pa * nx, ey_[r.a] += pa * ny;
+      if (pb > 0.0) ex_[r.b] -= pb * nx, ey_[r.b] -= pb * ny;
     }
     if (any) pushed[thread] = true;
   };
@@ -305,11 +307,13 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
     if (!pushed[0] && !pushed[1]) break;
   }
   stats.touching = contacts_.size();
-  for (const RestContact& c : contacts_) {
-    double nx = 0, ny = 0, r_min = 0;
-    const double depth = overlap_of(tick, c, nx, ny, r_min);
+  for (std::uint32_t i = 0; i < push_rows_.size(); ++i) {
+    double nx = 0, ny = 0;
+    const double depth = overlap_of(tick, i, nx, ny);
     stats.max_overlap = std::max(stats.max_overlap, depth);
-    if (std::isgreater(depth, (slop + push_out_tolerance) * r_min)) stats.positions_settled = false;
+    if (std::isgreater(depth, (slop + push_out_tolerance) * push_rows_[i].r_min)) {
+      stats.positions_settled = false;
+    }
   }
 }
 
@@ -355,16 +359,16 @@ void DiscContacts<Real>::finish(const Tick& tick) {
   }
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                          \
-  template void DiscContacts<Real>::gather_contacts(const Tick&);                          \
-  template void DiscContacts<Real>::warm_start(const Tick&);                               \
-  template void DiscContacts<Real>::solve_resting(const Tick&, ContactStats&);             \
-  template void DiscContacts<Real>::solve_contact(RestContact&, double, RestSweep&);       \
-  template void DiscContacts<Real>::solve_velocities(const Tick&, ContactStats&);          \
-  template void DiscContacts<Real>::push_out(const Tick&, ContactStats&);                  \
-  template double DiscContacts<Real>::overlap_of(const Tick&, const RestContact&, double&, \
-                                                 double&, double&) const;                  \
-  template void DiscContacts<Real>::keep_impulses();                                       \
+#define FIXSTEP_INSTANTIATE(Real)                                                              \
+  template void DiscContacts<Real>::gather_contacts(const Tick&);                              \
+  template void DiscContacts<Real>::match_warm();                                              \
+  template void DiscContacts<Real>::warm_start();                                              \
+  template void DiscContacts<Real>::solve_resting(const Tick&, ContactStats&);                 \
+  template void DiscContacts<Real>::solve_velocities(ContactStats&);                           \
+  template void DiscContacts<Real>::push_out(const Tick&, ContactStats&);                      \
+  template double DiscContacts<Real>::overlap_of(const Tick&, std::uint32_t, double&, double&) \
+      const;                                                                                   \
+  template void DiscContacts<Real>::keep_impulses();                                           \
   template void DiscContacts<Real>::finish(const Tick&);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
