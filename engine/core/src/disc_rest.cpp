@@ -284,12 +284,15 @@ double DiscContacts<Real>::overlap_of(const Tick& tick, std::uint32_t i, double&
 template <class Real>
 void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
   bool pushed[2] = {false, false};  // an iteration that pushes nothing ends the push-out
+  double deepest[2] = {0.0, 0.0};   // and its deepest overlap is the tick's last
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
     bool any = false;  // written to pushed[thread] once (see solve_velocities)
+    double most = deepest[thread];
     for (std::uint32_t i = begin; i < end; ++i) {
       const PushRow& r = push_rows_[i];
       double nx = 0, ny = 0;
       const double depth = overlap_of(tick, i, nx, ny);
+      most = std::max(most, depth);
       if (depth <= (slop + push_out_tolerance) * r.r_min) continue;
       any = true, contacts_[order_[i]].moved = 1;
       const double push = std::min(depth - slop * r.r_min, max_push_out * r.r_min);
@@ -298,15 +301,25 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
       if (pb > 0.0) ex_[r.b] -= pb * nx, ey_[r.b] -= pb * ny;
     }
     if (any) pushed[thread] = true;
+    deepest[thread] = most;
   };
+  bool settled = false;
   for (int it = 0; it < settings_.position_iterations && !contacts_.empty(); ++it) {
     if (it % 16 == 15) throw_if_stop_requested();
     ++stats.position_sweeps;
     pushed[0] = pushed[1] = false;
+    deepest[0] = deepest[1] = 0.0;
     parts_pass(range);
-    if (!pushed[0] && !pushed[1]) break;
+    if (!pushed[0] && !pushed[1]) {
+      settled = true;
+      break;
+    }
   }
   stats.touching = contacts_.size();
+  if (settled) {  // the last sweep moved nothing: its overlaps are the tick's
+    stats.max_overlap = std::max({stats.max_overlap, deepest[0], deepest[1]});
+    return;
+  }
   for (std::uint32_t i = 0; i < push_rows_.size(); ++i) {
     double nx = 0, ny = 0;
     const double depth = overlap_of(tick, i, nx, ny);
