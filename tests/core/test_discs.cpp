@@ -238,6 +238,12 @@ TEST(Discs, AStackOfTenStandsInATube) {
     for (int i = 0; i < 300; ++i) w.step();
     // Each contact rests at the slop (0.5 % of the radius), none deeper, nothing creeps.
     EXPECT_NEAR(w.y()[0], r, 1e-12) << int(integrator);
+    // The deepest overlap the tick reports is the stack's own, from the positions.
+    double deepest = r - w.y()[0];
+    for (int i = 1; i < 10; ++i) deepest = std::max(deepest, 2 * r - (w.y()[i] - w.y()[i - 1]));
+    EXPECT_GT(deepest, 0.004 * r);
+    EXPECT_NEAR(w.contact_stats().max_overlap, deepest, 1e-15) << int(integrator);
+    EXPECT_TRUE(w.contact_stats().positions_settled);
     for (int i = 0; i < 10; ++i) {
       if (i > 0) {
         const double overlap = 2 * r - (w.y()[i] - w.y()[i - 1]);
