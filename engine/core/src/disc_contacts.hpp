@@ -130,6 +130,12 @@ struct PushRow {
   double radii = 0, r_min = 0, w_a = 0, w_b = 0;
 };
 
+/// A rolling row's turn (disc_rows.cpp): the radii r_a, r_b from the centres to the contact
+/// point (m; 0 for a plane) and r/I of each disc (rad/s per N·s; 0: it does not turn).
+struct RollRow {
+  double arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
+};
+
 /// A velocity in the solver's own array, m/s.
 struct SolveVelocity {
   double x = 0, y = 0;
@@ -310,13 +316,18 @@ class DiscContacts {
   void scatter_rows(double kdt);
   void warm_start();
   void solve_velocities(ContactStats& stats);
+  /// What a sweep's rows need beyond impulses on velocities (row_kind_): the work of moving
+  /// kinematic partners, the turn of rolling discs. Worlds without them pay for neither.
+  static constexpr int kinematic_rows = 1, rolling_rows = 2;
+  /// Calls f(std::integral_constant<int, row_kind_>{}): one sweep's loop for each kind.
+  template <class F>
+  void with_row_kind(F&& f);
   /// Row i's normal and friction impulses in a velocity iteration; out gathers the
-  /// iteration's largest change and largest normal impulse. Extras: the work of kinematic
-  /// partners and rolling discs' turn (worlds without either pay for neither).
-  template <bool Extras>
+  /// iteration's largest change and largest normal impulse.
+  template <int Kind>
   void solve_row(std::uint32_t i, RestSweep& out);
   /// Applies the impulse λ_n n + λ_t t (N·s) to row i's body a and its opposite to b.
-  template <bool Extras>
+  template <int Kind>
   void push_row(std::uint32_t i, SolveVelocity& va, SolveVelocity& vb, double ln, double lt);
   void push_out(const Tick& tick, ContactStats& stats);
   /// The depth of push row i's overlap now (m) and its normal.
@@ -328,14 +339,15 @@ class DiscContacts {
   void gather_segment_contacts(const Tick& tick, std::uint32_t k);
   /// overlap_of() for a segment contact: the depth (m) and normal at the closest feature now.
   double segment_overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny) const;
-  /// Turns c's rolling discs by the tangential impulse lt (N·s along t = (-n_y, n_x) on a).
-  void turn(const RestContact& c, double lt) {
-    ew_[c.a] -= c.turn_a * lt;
-    if (c.b < discs_.size()) ew_[c.b] -= c.turn_b * lt;
+  /// Turns row i's rolling discs by the tangential impulse lt (N·s along t = (-n_y, n_x) on a).
+  void turn(std::uint32_t i, double lt) {
+    const RollRow& t = roll_rows_[i];
+    sw_[rows_[i].a] -= t.turn_a * lt, sw_[rows_[i].b] -= t.turn_b * lt;
   }
-  /// The contact point's tangential velocity of rolling discs' turn: -(ω_a r_a + ω_b r_b).
-  [[nodiscard]] double turn_slip(const RestContact& c) const {
-    return ew_[c.a] * c.arm_a + (c.b < discs_.size() ? ew_[c.b] * c.arm_b : 0.0);
+  /// The contact point's tangential velocity of row i's rolling discs' turn: -(ω_a r_a + ω_b r_b).
+  [[nodiscard]] double turn_slip(std::uint32_t i) const {
+    const RollRow& t = roll_rows_[i];
+    return sw_[rows_[i].a] * t.arm_a + sw_[rows_[i].b] * t.arm_b;
   }
   void finish(const Tick& tick);
 
@@ -373,8 +385,10 @@ class DiscContacts {
   std::vector<std::uint32_t> slot_of_;    ///< per disc: its slot while the rows exist, else none
   std::vector<std::uint32_t> slot_disc_;  ///< per slot: its disc (none: a fixed velocity)
   std::vector<std::uint8_t> slot_moved_;
+  std::vector<RollRow> roll_rows_;  ///< with rolling discs (empty otherwise)
+  std::vector<double> sw_;          ///< angular velocities by slot with rolling discs, rad/s
   static constexpr std::uint32_t no_slot = 0xffffffffu;
-  bool plain_rows_ = true;  ///< no rolling disc and no moving kinematic partner in the rows
+  int row_kind_ = 0;                         ///< kinematic_rows | rolling_rows, as the rows need
   std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
   /// Rolling discs (settings_.rolling; empty otherwise): ω in double during the tick and at
   /// its start, rad/s.

@@ -385,7 +385,7 @@ std::size_t DiscContacts<Real>::bytes() const {
          b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) + b(ex_) +
          b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) +
          b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) +
-         b(sv0_) + b(slot_of_) + b(slot_disc_) + b(slot_moved_);
+         b(sv0_) + b(slot_of_) + b(slot_disc_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \

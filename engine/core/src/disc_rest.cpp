@@ -7,6 +7,7 @@
 // the same result on one thread or two.
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "disc_contacts.hpp"
 #include "fixstep/stop_request.hpp"
@@ -83,15 +84,15 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
 
 // Applies the impulse λ_n n + λ_t t (N·s; t = (-n_y, n_x)) to row i's body a and its opposite
 // to b, each as the impulse's components times the row's 1/m n (so that the chain of one row's
-// arithmetic through a disc's velocity is short); with extras, a moving kinematic partner's
-// work on the other disc goes to external_.
+// arithmetic through a disc's velocity is short); with kinematic rows, a moving kinematic
+// partner's work on the other disc goes to external_.
 template <class Real>
-template <bool Extras>
+template <int Kind>
 [[gnu::always_inline]] inline void DiscContacts<Real>::push_row(std::uint32_t i, SolveVelocity& va,
                                                                 SolveVelocity& vb, double ln,
                                                                 double lt) {
   const SolveRow& r = rows_[i];
-  if constexpr (Extras) {
+  if constexpr ((Kind & kinematic_rows) != 0) {
     const RestContact& c = contacts_[order_[i]];
     const double jx = ln * r.nx - lt * r.ny, jy = ln * r.ny + lt * r.nx;
     if (c.kinematic_b) external_[c.a] += jx * vb.x + jy * vb.y;
@@ -179,18 +180,35 @@ void DiscContacts<Real>::match_warm() {
 }
 
 template <class Real>
+template <class F>
+void DiscContacts<Real>::with_row_kind(F&& f) {
+  switch (row_kind_) {
+    case 0:
+      f(std::integral_constant<int, 0>{});
+      break;
+    case kinematic_rows:
+      f(std::integral_constant<int, kinematic_rows>{});
+      break;
+    case rolling_rows:
+      f(std::integral_constant<int, rolling_rows>{});
+      break;
+    default:
+      f(std::integral_constant<int, kinematic_rows | rolling_rows>{});
+      break;
+  }
+}
+
+template <class Real>
 void DiscContacts<Real>::warm_start() {
   auto range = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
     for (std::uint32_t i = begin; i < end; ++i) {
       const SolveRow& r = rows_[i];
       if (r.lambda_n == 0.0 && r.lambda_t == 0.0) continue;
       row_moved_[i] = 1;
-      if (plain_rows_) {
-        push_row<false>(i, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
-      } else {
-        push_row<true>(i, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
-        if (rolling_) turn(contacts_[order_[i]], r.lambda_t);
-      }
+      with_row_kind([&](auto kind) {
+        push_row<kind()>(i, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
+        if constexpr ((kind() & rolling_rows) != 0) turn(i, r.lambda_t);
+      });
     }
   };
   parts_pass(range);
@@ -204,7 +222,7 @@ void DiscContacts<Real>::warm_start() {
 // through the discs' velocities half as long. The impulse is applied even when it is 0, so
 // that a sweep has no branch.
 template <class Real>
-template <bool Extras>
+template <int Kind>
 [[gnu::always_inline]] inline void DiscContacts<Real>::solve_row(std::uint32_t i, RestSweep& out) {
   SolveRow& r = rows_[i];
   SolveVelocity va = sv_[r.a], vb = sv_[r.b];
@@ -213,18 +231,14 @@ template <bool Extras>
   const double vn = rx * r.nx + ry * r.ny;
   // With rolling discs, the contact point's velocity less the turn's ω r of each disc.
   double vt = -rx * r.ny + ry * r.nx;
-  if constexpr (Extras) {
-    if (rolling_) vt -= turn_slip(contacts_[order_[i]]);
-  }
+  if constexpr ((Kind & rolling_rows) != 0) vt -= turn_slip(i);
   const double ln = std::max(r.lambda_n - vn * r.mass, 0.0);
   const double bound = r.friction * ln;
   const double lt = std::clamp(r.lambda_t - vt * r.mass_t, -bound, bound);
   const double dn = ln - r.lambda_n, dt = lt - r.lambda_t;
   r.lambda_n = ln, r.lambda_t = lt;
-  push_row<Extras>(i, va, vb, dn, dt);
-  if constexpr (Extras) {
-    if (rolling_) turn(contacts_[order_[i]], dt);
-  }
+  push_row<Kind>(i, va, vb, dn, dt);
+  if constexpr ((Kind & rolling_rows) != 0) turn(i, dt);
   sv_[r.a] = va, sv_[r.b] = vb;
   row_moved_[i] |= std::uint8_t((dn != 0.0) | (dt != 0.0));
   out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
@@ -238,11 +252,9 @@ void DiscContacts<Real>::solve_velocities(ContactStats& stats) {
   RestSweep sweep[2];
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
     RestSweep out;  // written to sweep[thread] once: the two threads' entries share a line
-    if (plain_rows_) {
-      for (std::uint32_t i = begin; i < end; ++i) solve_row<false>(i, out);
-    } else {
-      for (std::uint32_t i = begin; i < end; ++i) solve_row<true>(i, out);
-    }
+    with_row_kind([&](auto kind) {
+      for (std::uint32_t i = begin; i < end; ++i) solve_row<kind()>(i, out);
+    });
     sweep[thread].change = std::max(sweep[thread].change, out.change);
     sweep[thread].largest = std::max(sweep[thread].largest, out.largest);
   };

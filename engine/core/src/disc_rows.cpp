@@ -27,18 +27,23 @@ void DiscContacts<Real>::build_rows() {
   row_moved_.assign(m, 0);
   sv_.assign(3, SolveVelocity{});  // parts 0, 1 and across the cut: a fixed velocity 0
   slot_disc_.assign(3, no_slot);
-  plain_rows_ = !rolling_;
-  auto fixed = [&](double vx, double vy) {
+  sw_.assign(rolling_ ? 3 : 0, 0.0);
+  roll_rows_.resize(rolling_ ? m : 0);
+  row_kind_ = rolling_ ? rolling_rows : 0;
+  auto fixed = [&](double vx, double vy, double w) {
     sv_.push_back({vx, vy});
+    if (rolling_) sw_.push_back(w);
     slot_disc_.push_back(no_slot);
     return std::uint32_t(sv_.size() - 1);
   };
+  auto spin = [&](std::uint32_t k) { return rolling_ ? ew_[k] : 0.0; };
   auto slot = [&](std::uint32_t k, bool moves, bool kinematic, std::uint32_t part) {
-    if (kinematic) return fixed(evx_[k], evy_[k]);
+    if (kinematic) return fixed(evx_[k], evy_[k], spin(k));
     if (!moves) return part;
     if (slot_of_[k] == no_slot) {
       slot_of_[k] = std::uint32_t(sv_.size());
       sv_.push_back({evx_[k], evy_[k]});
+      if (rolling_) sw_.push_back(ew_[k]);
       slot_disc_.push_back(k);
     }
     return slot_of_[k];
@@ -51,9 +56,10 @@ void DiscContacts<Real>::build_rows() {
       if (c.b < n) {
         r.b = slot(c.b, c.inv_b > 0.0, c.kinematic_b, part);
       } else {
-        r.b = c.kinematic_b ? fixed(c.bvx, c.bvy) : part;  // a moving segment, or still
+        r.b = c.kinematic_b ? fixed(c.bvx, c.bvy, 0.0) : part;  // a moving segment, or still
       }
-      if (c.kinematic_a || c.kinematic_b) plain_rows_ = false;
+      if (c.kinematic_a || c.kinematic_b) row_kind_ |= kinematic_rows;
+      if (rolling_) roll_rows_[i] = RollRow{c.arm_a, c.arm_b, c.turn_a, c.turn_b};
       r.nx = c.nx, r.ny = c.ny, r.mass = c.mass, r.mass_t = c.mass_t, r.friction = c.friction;
       r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
       r.inv_a = c.inv_a, r.inv_b = c.b < n ? c.inv_b : 0.0;
@@ -84,6 +90,7 @@ void DiscContacts<Real>::scatter_rows(double kdt) {
     const std::uint32_t k = slot_disc_[s];
     if (k == no_slot || !slot_moved_[s]) continue;
     evx_[k] = sv_[s].x, evy_[k] = sv_[s].y;
+    if (rolling_) ew_[k] = sw_[s];
     ex_[k] += kdt * (sv_[s].x - sv0_[s].x), ey_[k] += kdt * (sv_[s].y - sv0_[s].y);
   }
 }
