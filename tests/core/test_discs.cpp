@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -466,6 +467,39 @@ namespace fixstep {
 namespace {
 
 // f32 worlds step the same model in double inside the contact phases and round once.
+TEST(Discs, AFloatPileFarFromTheOriginComesToRest) {
+  // A small hexagonal pile (4 rows of 8 and 7) in an f32 world on a floor 40 m up, where a
+  // float's spacing (3.8e-6 m) is 4e-5 of the radius: rounding the positions to float at each
+  // tick's end moves the contacts by more than the push-out's own margin (1e-6 r). Those
+  // rounding-sized overlaps are not pushed again, so the pile comes to rest (one push-out
+  // iteration a tick), within the slop plus that rounding.
+  WorldSettings s{.dt = 1.0 / 60.0};
+  s.contacts = ContactSettings{.restitution = 0.0, .friction = 0.5};
+  detail::WorldKernel<float> pile(s);
+  const double r = 0.1, floor = 40.0, left = 40.0, width = 16 * r;
+  pile.add_plane(PlaneDef{.normal = {0, 1}, .offset = floor});
+  pile.add_plane(PlaneDef{.normal = {1, 0}, .offset = left});
+  pile.add_plane(PlaneDef{.normal = {-1, 0}, .offset = -(left + width)});
+  for (int row = 0; row < 4; ++row) {
+    const int count = row % 2 == 0 ? 8 : 7;
+    for (int i = 0; i < count; ++i) {
+      BodyDef b;
+      b.body = Body{.mass = 1.0,
+                    .position = {left + r * (1 + (row % 2)) + 2 * r * i,
+                                 floor + r + row * r * std::sqrt(3.0) * 1.001}};
+      b.collider = Collider{.radius = r};
+      b.gravity = Gravity{};
+      pile.create_body(b);
+    }
+  }
+  for (int i = 0; i < 1200; ++i) pile.step();
+  EXPECT_TRUE(pile.contact_stats().positions_settled);
+  EXPECT_EQ(pile.contact_stats().position_sweeps, 1);
+  const double rounding = 2.0 * std::numeric_limits<float>::epsilon() * (left + width);
+  EXPECT_LE(pile.contact_stats().max_overlap, 0.005 * r * (1 + 1e-6) + rounding);
+  EXPECT_LT(pile.energy().kinetic, 1e-9);
+}
+
 TEST(Discs, FloatWorldsCollideAndRest) {
   WorldSettings s{.dt = 1.0 / 60.0};
   s.contacts = ContactSettings{.restitution = 1.0};

@@ -42,10 +42,13 @@
 // Static discs never move; kinematic discs move at their velocity; both act as infinite mass.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "disc_broadphase.hpp"
@@ -332,6 +335,19 @@ class DiscContacts {
   void push_out(const Tick& tick, ContactStats& stats);
   /// The depth of push row i's overlap now (m) and its normal.
   double overlap_of(const Tick& tick, std::uint32_t i, double& nx, double& ny) const;
+  /// What storing the positions as Real can add to push row r's overlap, m: 0 in f64 (the
+  /// solver's own precision); in f32 each coordinate rounds to the nearest float at the tick's
+  /// end, which moves the pair's distance by up to 2 ε max|x| (ε = FLT_EPSILON), so that an
+  /// overlap pushed out to the slop is not pushed again every tick for its rounding.
+  [[nodiscard]] double storage_rounding(const PushRow& r) const {
+    if constexpr (std::is_same_v<Real, double>) {
+      return 0.0;
+    } else {
+      double most = std::max(std::abs(ex_[r.a]), std::abs(ey_[r.a]));
+      if (r.b < discs_.size()) most = std::max({most, std::abs(ex_[r.b]), std::abs(ey_[r.b])});
+      return 2.0 * double(std::numeric_limits<float>::epsilon()) * most;
+    }
+  }
   void keep_impulses();
   // segments (disc_segments.cpp)
   /// Appends disc k's resting contacts with the segments near its end position, in segment

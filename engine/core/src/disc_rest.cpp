@@ -305,7 +305,7 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
       double nx = 0, ny = 0;
       const double depth = overlap_of(tick, i, nx, ny);
       most = std::max(most, depth);
-      if (depth <= (slop + push_out_tolerance) * r.r_min) continue;
+      if (depth <= (slop + push_out_tolerance) * r.r_min + storage_rounding(r)) continue;
       any = true, contacts_[order_[i]].moved = 1;
       const double push = std::min(depth - slop * r.r_min, max_push_out * r.r_min);
       const double pa = r.w_a * push, pb = r.w_b * push;
@@ -336,7 +336,8 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
     double nx = 0, ny = 0;
     const double depth = overlap_of(tick, i, nx, ny);
     stats.max_overlap = std::max(stats.max_overlap, depth);
-    if (std::isgreater(depth, (slop + push_out_tolerance) * push_rows_[i].r_min)) {
+    const PushRow& r = push_rows_[i];
+    if (std::isgreater(depth, (slop + push_out_tolerance) * r.r_min + storage_rounding(r))) {
       stats.positions_settled = false;
     }
   }
