@@ -201,15 +201,15 @@ void DiscContacts<Real>::with_row_kind(F&& f) {
 template <class Real>
 void DiscContacts<Real>::warm_start() {
   auto range = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const SolveRow& r = rows_[i];
-      if (r.lambda_n == 0.0 && r.lambda_t == 0.0) continue;
-      row_moved_[i] = 1;
-      with_row_kind([&](auto kind) {
+    with_row_kind([&](auto kind) {
+      for (std::uint32_t i = begin; i < end; ++i) {
+        const SolveRow& r = rows_[i];
+        if (r.lambda_n == 0.0 && r.lambda_t == 0.0) continue;
+        row_moved_[i] = 1;
         push_row<kind()>(i, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
         if constexpr ((kind() & rolling_rows) != 0) turn(i, r.lambda_t);
-      });
-    }
+      }
+    });
   };
   parts_pass(range);
 }

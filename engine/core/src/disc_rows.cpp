@@ -1,13 +1,13 @@
 // Disc contacts, phase 2: the velocity iterations' and the push-out's own copies of what they
-// read and write. The
-// contacts in solving order (order_) become rows of the fields an impulse needs, and the discs
-// they move get slots in one array of velocities, numbered as the rows first meet them: a
-// sweep then reads and writes one compact array in nearly the order it lies in memory, and
-// never a position (an impulse acts as a constant force over the tick, so a disc's position
-// changes by κ dt times its velocity's change: scatter_rows() moves it once, after the sweeps).
-// A static disc, a plane or a still segment is the velocity-0 slot of the row's part; a
-// moving kinematic partner gets a slot of its own per row. No slot is written by both threads.
-// The push-out's rows hold what it needs of a contact and nothing else, in the same order.
+// read and write. The contacts in solving order (order_) become rows of the fields an impulse
+// needs, and the discs they move get slots in one array of velocities, numbered as the rows
+// first meet them: a sweep then reads and writes one compact array in nearly the order it lies
+// in memory, and never a position (an impulse acts as a constant force over the tick, so a
+// disc's position changes by κ dt times its velocity's change: scatter_rows() moves it once,
+// after the sweeps). A static disc, a plane or a still segment is the velocity-0 slot of the
+// row's part; a moving kinematic partner gets a slot of its own per row. No slot is written by
+// both threads. The push-out's rows hold what it needs of a contact and nothing else, in the
+// same order.
 #include "disc_contacts.hpp"
 
 namespace fixstep::detail {
