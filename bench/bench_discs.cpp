@@ -215,6 +215,7 @@ int trace(const std::string& scene, const std::string& key, std::size_t n, int t
   std::vector<Vec2> x, v;
   std::printf("built in %.3f s\n", seconds_since(start));
   auto last = std::chrono::steady_clock::now();
+  double phase[4] = {};  // fixstep: broadphase, impacts, resting, the rest (s, summed)
   for (int t = 0; t <= ticks; ++t) {
     if (t % 10 == 0) {
       p->state(x, v);
@@ -226,9 +227,19 @@ int trace(const std::string& scene, const std::string& key, std::size_t n, int t
           t, q.disc_overlap / s.radius, q.wall_overlap / s.radius, q.kinetic, st.candidate_pairs,
           st.touching, st.impacts, st.self_overlap / s.radius, st.velocity_sweeps,
           st.position_sweeps, seconds_since(last) / (t == 0 ? 1 : 10));
+      if (t > 0 && phase[0] + phase[1] + phase[2] + phase[3] > 0.0) {
+        std::printf("           ms/tick: broadphase %.3f impacts %.3f resting %.3f other %.3f\n",
+                    phase[0] * 100, phase[1] * 100, phase[2] * 100, phase[3] * 100);
+      }
+      std::fill(std::begin(phase), std::end(phase), 0.0);
       last = std::chrono::steady_clock::now();
     }
-    if (t < ticks) p->step();
+    if (t < ticks) {
+      p->step();
+      const Stats st = p->stats();
+      const double add[4] = {st.broadphase_s, st.impacts_s, st.resting_s, st.other_s};
+      for (int i = 0; i < 4; ++i) phase[i] += std::isnan(add[i]) ? 0.0 : add[i];
+    }
   }
   return 0;
 }

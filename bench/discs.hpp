@@ -97,6 +97,9 @@ struct Stats {
   /// fixstep: the resting solver's velocity and position iterations in the last tick
   /// (ContactStats::velocity_sweeps, position_sweeps).
   int velocity_sweeps = 0, position_sweeps = 0;
+  /// fixstep: the last tick's time by phase (World::profile()), s: broadphase, impacts,
+  /// resting solver, and the rest of the tick (integration and events).
+  double broadphase_s = 0.0, impacts_s = 0.0, resting_s = 0.0, other_s = 0.0;
 };
 
 /// An engine stepping a scene at `tick`: fixstep, Chipmunk2D or Box2D.

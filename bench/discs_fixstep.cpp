@@ -46,6 +46,7 @@ class FixstepStepper final : public Stepper {
   }
   [[nodiscard]] Stats stats() const override {
     const fixstep::ContactStats& c = w_->contact_stats();
+    const fixstep::StepProfile& p = w_->profile();
     return {.candidate_pairs = double(c.candidate_pairs),
             .touching = double(c.touching),
             .impacts = double(c.impacts),
@@ -54,7 +55,11 @@ class FixstepStepper final : public Stepper {
             .collide_share = nan(),
             .threads = w_->threads_used(),
             .velocity_sweeps = c.velocity_sweeps,
-            .position_sweeps = c.position_sweeps};
+            .position_sweeps = c.position_sweeps,
+            .broadphase_s = p.broadphase,
+            .impacts_s = p.impacts,
+            .resting_s = p.resting,
+            .other_s = p.step - p.broadphase - p.impacts - p.resting};
   }
 
  private:
