@@ -6,8 +6,6 @@
 #include <cmath>
 #include <limits>
 
-#include "workers.hpp"
-
 namespace fixstep::detail {
 
 namespace {
@@ -54,20 +52,13 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
   }
 }
 
-Workers& DiscBroadphase::worker() {
-  if (!worker_) worker_.reset(new Workers());
-  return *worker_;
-}
-
 template <class Job>
 void DiscBroadphase::both(bool split, Job& job) {
   if (!split) {
     job(0), job(1);
     return;
   }
-  worker_->submit([](void* p) { (*static_cast<Job*>(p))(1); }, &job);
-  job(0);
-  worker_->wait();
+  second_.both(job);
 }
 
 void DiscBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) const {
@@ -253,7 +244,6 @@ bool DiscBroadphase::find_pairs(std::span<const SweptBox> boxes,
   pairs.clear();
   const std::size_t n = boxes.size();
   const bool split = threads >= 2 && n >= parallel_min_ && n >= 2;
-  if (split && !worker_) worker_.reset(new Workers());
   share_[0].begin = 0, share_[0].end = share_[1].begin = split ? n / 2 : n, share_[1].end = n;
   level_.resize(n);
   auto extents = [&](int t) { largest_extent(share_[t], boxes); };

@@ -51,7 +51,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/detail/world_kernel.hpp"  // detail::CachePtr, detail::Workers (workers.hpp)
+#include "second_thread.hpp"
 
 namespace fixstep::detail {
 
@@ -109,9 +109,10 @@ class DiscBroadphase {
   /// split always, as the benchmark does to measure the hand-off).
   void set_parallel_min(std::size_t n) { parallel_min_ = n; }
 
-  /// The broadphase's worker thread (started on first call), lent to the resting solver so
-  /// that a world's discs keep one second thread.
-  Workers& worker();
+  /// The broadphase's second thread (its worker started on first use), lent to the impact
+  /// predictions and the resting solver so that a world's discs keep one second thread; a
+  /// tick's disc phase keeps a run of it open (SecondThread::open) around all of them.
+  SecondThread& second_thread() { return second_; }
 
  private:
   /// A box as the grid stores it, in its home cell (the cell of its lower-left corner) and
@@ -190,7 +191,7 @@ class DiscBroadphase {
   std::array<std::vector<DiscPair>, 2> raw_;  // unsorted pairs found by each thread
   std::vector<std::uint32_t> offset_;         // order_pairs' scratch
   std::size_t parallel_min_ = min_parallel_boxes;
-  CachePtr<Workers, WorkersDeleter> worker_;
+  SecondThread second_;
 };
 
 }  // namespace fixstep::detail

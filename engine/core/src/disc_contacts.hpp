@@ -54,7 +54,6 @@
 #include "disc_broadphase.hpp"
 #include "fixstep/components.hpp"
 #include "fixstep/detail/world_kernel.hpp"
-#include "pass_team.hpp"
 
 namespace fixstep::detail {
 
@@ -266,7 +265,10 @@ class DiscContacts {
   /// the same passes in the same order: handing the halves over costs more than it saves).
   static constexpr std::size_t min_parallel_contacts = 8192;
   /// Candidate pairs from which two threads share the first impact predictions.
-  static constexpr std::size_t min_parallel_pairs = 4096;
+  static constexpr std::size_t min_parallel_pairs = 512;
+  /// Discs from which a tick with two threads keeps its second thread spinning between passes
+  /// (SecondThread::open) rather than waking it for each.
+  static constexpr std::size_t min_parallel_discs = 1024;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
   static constexpr double slop = 0.005;
   /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
@@ -307,7 +309,7 @@ class DiscContacts {
   template <class Range>
   void parts_pass(Range& range);
   /// Warm start, velocity iterations and push-out, on two threads when the contacts were
-  /// split and tick.threads >= 2 (the worker serves every pass: pass_team.hpp).
+  /// split and tick.threads >= 2 (the second thread of second_thread.hpp).
   void solve_resting(const Tick& tick, ContactStats& stats);
   /// Each contact's impulses from last tick's by key (warm_), 0 for a new contact.
   void match_warm();
@@ -387,10 +389,9 @@ class DiscContacts {
   std::uint32_t plane_contacts_ = 0;   ///< where contacts_'s plane contacts begin
   std::vector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};
-  std::vector<double> cut_;                                 ///< split_contacts()'s
-  CachePtr<PassTeam, std::default_delete<PassTeam>> team_;  ///< the passes' second thread
-  bool team_on_ = false;                                    ///< within solve_resting()
-  std::vector<WarmImpulse> warm_;                           ///< by key
+  std::vector<double> cut_;        ///< split_contacts()'s
+  bool team_on_ = false;           ///< within solve_resting(): the halves on two threads
+  std::vector<WarmImpulse> warm_;  ///< by key
   // the velocity iterations' own state (disc_rows.cpp; sized once, no allocation once warm)
   std::vector<SolveRow> rows_;
   std::vector<PushRow> push_rows_;

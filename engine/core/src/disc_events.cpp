@@ -9,7 +9,6 @@
 #include "fixstep/limits.hpp"
 #include "fixstep/stop_request.hpp"
 #include "phase_clock.hpp"
-#include "workers.hpp"
 
 namespace fixstep::detail {
 
@@ -214,21 +213,9 @@ void DiscContacts<Real>::first_events(const Tick& tick) {
   };
   heap_.clear();
   if (tick.threads >= 2 && m >= min_parallel_pairs) {
-    struct Half {
-      decltype(find)* run;
-      std::uint32_t begin, end;
-      std::vector<DiscEvent>* out;
-    } half{&find, m / 2, m, &events_};
     events_.clear();
-    Workers& w = broadphase_.worker();
-    w.submit(
-        [](void* h) {
-          const auto* half = static_cast<Half*>(h);
-          (*half->run)(half->begin, half->end, *half->out);
-        },
-        &half);
-    find(0, m / 2, heap_);
-    w.wait();
+    auto halves = [&](int half) { half == 0 ? find(0, m / 2, heap_) : find(m / 2, m, events_); };
+    broadphase_.second_thread().both(halves);
     heap_.insert(heap_.end(), events_.begin(), events_.end());
   } else {
     find(0, m, heap_);
@@ -358,6 +345,9 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   sensor_pairs_.clear(), sensed_.clear();
   cap_ = CapHit{};
   PhaseClock clock(true);
+  // Two threads: the worker spins through the tick's passes (see SecondThread).
+  const SecondThreadRun run(broadphase_.second_thread(),
+                            tick.threads >= 2 && discs_.size() >= min_parallel_discs);
   build_motions(tick);
   if (tick.wake) tick.wake(tick.wake_context);
   for (std::size_t k = 0; k < ew_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);

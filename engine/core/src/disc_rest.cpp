@@ -11,8 +11,6 @@
 
 #include "disc_contacts.hpp"
 #include "fixstep/stop_request.hpp"
-#include "pass_team.hpp"
-#include "workers.hpp"
 
 namespace fixstep::detail {
 
@@ -109,18 +107,8 @@ template <class Range>
 void DiscContacts<Real>::parts_pass(Range& range) {
   const auto& p = part_start_;
   if (team_on_) {
-    struct Half {
-      Range* range;
-      std::uint32_t begin, end;
-    } half{&range, p[1], p[2]};
-    team_->post(
-        [](void* h) {
-          const auto* half = static_cast<Half*>(h);
-          (*half->range)(half->begin, half->end, 1);
-        },
-        &half);
-    range(p[0], p[1], 0);
-    team_->wait();
+    auto halves = [&](int half) { range(p[half], p[half + 1], half); };
+    broadphase_.second_thread().both(halves);
   } else {
     range(p[0], p[1], 0), range(p[1], p[2], 0);
   }
@@ -134,24 +122,10 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
       tick.threads >= 2 && p[1] > p[0] && p[2] > p[1] && contacts_.size() >= min_parallel_contacts;
   match_warm();
   build_rows();
-  Workers* worker = nullptr;
-  if (team_on_) {  // the worker serves every pass of this tick's resting solve
-    // CachePtr (a copy starts empty) has no assignment from std::unique_ptr.
-    if (!team_) team_.reset(new PassTeam());  // NOLINT(modernize-make-unique)
-    worker = &broadphase_.worker();
-    worker->submit(&PassTeam::serve, team_.get());
-  }
-  // A stop request (SIGINT) ends the passes early; the worker is released before it is thrown.
-  try {
-    warm_start();
-    solve_velocities(stats);
-    scatter_rows(tick.kappa * tick.dt);
-    push_out(tick, stats);
-  } catch (...) {
-    if (team_on_) team_->finish(), worker->wait(), team_on_ = false;
-    throw;
-  }
-  if (team_on_) team_->finish(), worker->wait(), team_on_ = false;
+  warm_start();
+  solve_velocities(stats);
+  scatter_rows(tick.kappa * tick.dt);
+  push_out(tick, stats);
   // The discs the passes moved, from their contacts' marks: written here, on one thread,
   // since a byte per disc written by two threads would share cache lines.
   const std::size_t n = discs_.size();

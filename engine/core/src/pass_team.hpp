@@ -1,5 +1,5 @@
-// Two threads through the many short passes of the resting solver (disc_rest.cpp). Internal to
-// the engine: not installed.
+// Two threads through the many short passes of a tick's disc contacts (second_thread.hpp).
+// Internal to the engine: not installed.
 #pragma once
 
 #include <atomic>

@@ -1,0 +1,102 @@
+// The second thread of a world's disc contacts: the broadphase, the first impact predictions
+// and the resting solver's passes each share their work by halves with it. Internal to the
+// engine: not installed.
+#pragma once
+
+#include <memory>
+
+#include "pass_team.hpp"
+#include "workers.hpp"
+
+namespace fixstep::detail {
+
+/// A worker thread started on first use, and two ways to hand it half of a pass:
+/// - outside a run (open() not called), each both() wakes the worker (Workers: a futex wait
+///   between calls, so an idle world costs no CPU);
+/// - inside a run (open() ... close(), one tick's disc phase), the worker spins between passes
+///   (PassTeam), since a futex wake-up costs tens of microseconds on a virtual machine, more
+///   than many of a tick's passes take.
+/// A copy (a snapshot) starts without a thread and outside a run.
+class SecondThread {
+ public:
+  SecondThread() = default;
+  SecondThread(const SecondThread& /*other*/) noexcept {}
+  SecondThread& operator=(const SecondThread& other) noexcept {
+    if (this != &other) close(), state_.reset();
+    return *this;
+  }
+  ~SecondThread() { close(); }
+
+  /// Starts a run: until close(), the worker waits for the next pass by spinning.
+  void open() {
+    if (open_) return;
+    start();
+    state_->workers.submit(&PassTeam::serve, &state_->team);
+    open_ = true;
+  }
+  /// Ends the run (the worker then sleeps between calls); nothing if none is open.
+  void close() noexcept {
+    if (!open_) return;
+    state_->team.finish();
+    state_->workers.wait();
+    open_ = false;
+  }
+  [[nodiscard]] bool is_open() const { return open_; }
+
+  /// Runs job(1) on the worker while this thread runs job(0), and returns when both have
+  /// finished (job(1) also when job(0) throws, before the exception leaves).
+  template <class Job>
+  void both(Job& job) {
+    start();
+    auto run = [](void* p) { (*static_cast<Job*>(p))(1); };
+    if (open_) {
+      state_->team.post(run, &job);
+    } else {
+      state_->workers.submit(run, &job);
+    }
+    try {
+      job(0);
+    } catch (...) {
+      wait();
+      throw;
+    }
+    wait();
+  }
+
+ private:
+  struct State {
+    PassTeam team;
+    Workers workers;  // last: its thread stops before the team it may serve goes
+  };
+  void start() {
+    if (!state_) state_ = std::make_unique<State>();
+  }
+  void wait() {
+    if (open_) {
+      state_->team.wait();
+    } else {
+      state_->workers.wait();
+    }
+  }
+  std::unique_ptr<State> state_;
+  bool open_ = false;
+};
+
+/// Keeps a SecondThread's run open for a scope (a tick's disc phase), and closes it on the way
+/// out, by return or by exception.
+class SecondThreadRun {
+ public:
+  SecondThreadRun(SecondThread& thread, bool open) : thread_(open ? &thread : nullptr) {
+    if (thread_) thread_->open();
+  }
+  ~SecondThreadRun() {
+    if (thread_) thread_->close();
+  }
+  SecondThreadRun(const SecondThreadRun&) = delete;
+  SecondThreadRun& operator=(const SecondThreadRun&) = delete;
+
+ private:
+  SecondThread* thread_;
+};
+
+}  // namespace fixstep::detail
