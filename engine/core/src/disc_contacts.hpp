@@ -111,7 +111,6 @@ struct RestContact {
   bool kinematic_b = false;  ///< b is a moving kinematic disc or segment (its work is external)
   /// b's velocity when b is a plane or a segment (m/s): a kinematic body's segment moves.
   double bvx = 0, bvy = 0;
-  std::uint8_t moved = 0;  ///< 1 once an impulse or a push-out moved its discs this tick
 };
 
 /// A resting contact as the velocity iterations see it (disc_rows.cpp), in order_'s order:
@@ -281,6 +280,19 @@ class DiscContacts {
  private:
   // phase 1 (disc_events.cpp)
   void build_motions(const Tick& tick);
+  void build_motions(const Tick& tick, std::size_t begin, std::size_t end);
+  /// Runs pass(begin, end, half) over [0, n): as two halves (0 and 1) on two threads when
+  /// the tick's run of the second thread is open (resolve()), else as one (half 0) here. For
+  /// passes whose items are independent (one disc, one pair): the same result either way.
+  template <class Pass>
+  void halves(std::size_t n, Pass&& pass) {
+    if (!broadphase_.second_thread().is_open() || n < 2) {
+      pass(std::size_t{0}, n, 0);
+      return;
+    }
+    auto job = [&](int half) { half == 0 ? pass(std::size_t{0}, n / 2, 0) : pass(n / 2, n, 1); };
+    broadphase_.second_thread().both(job);
+  }
   bool find_candidates(const Tick& tick, ContactStats& stats);
   /// Drops from pairs_ the linked pairs and the pairs filters reject, and moves the sensor
   /// pairs (one sensor, one not) to sensor_pairs_ (disc_sensors.cpp).
@@ -298,8 +310,11 @@ class DiscContacts {
   /// tick.threads >= 2 and there are min_parallel_pairs or more).
   void first_events(const Tick& tick);
   void impact(std::uint32_t pair, double now, double dt);
-  // phase 2 (disc_rest.cpp)
+  // phase 2 (disc_gather.cpp, then disc_rest.cpp)
   void gather_contacts(const Tick& tick);
+  /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
+  /// and not an impact of the next tick), and if so its contact into *out (when not null).
+  bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out) const;
   /// Splits contacts_ into two halves of the discs and the contacts across the cut: order_
   /// lists them part by part (key order within a part), part_start_[p] where part p begins
   /// (disc_halves.cpp). Below min_split_contacts everything is part 0.
@@ -307,7 +322,16 @@ class DiscContacts {
   /// Runs range(begin, end, thread) over order_'s parts: the two halves, on two threads within
   /// solve_resting() when it shares them, then the contacts across the cut on this thread.
   template <class Range>
-  void parts_pass(Range& range);
+  void parts_pass(Range& range) {
+    const auto& p = part_start_;
+    if (team_on_) {
+      auto halves = [&](int half) { range(p[half], p[half + 1], half); };
+      broadphase_.second_thread().both(halves);
+    } else {
+      range(p[0], p[1], 0), range(p[1], p[2], 0);
+    }
+    range(p[2], p[3], 0);  // across the cut
+  }
   /// Warm start, velocity iterations and push-out, on two threads when the contacts were
   /// split and tick.threads >= 2 (the second thread of second_thread.hpp).
   void solve_resting(const Tick& tick, ContactStats& stats);
@@ -368,6 +392,7 @@ class DiscContacts {
     return sw_[rows_[i].a] * t.arm_a + sw_[rows_[i].b] * t.arm_b;
   }
   void finish(const Tick& tick);
+  void finish(const Tick& tick, std::size_t begin, std::size_t end);
 
   std::vector<Disc> discs_;
   std::vector<std::uint64_t> linked_;
@@ -383,6 +408,7 @@ class DiscContacts {
   std::vector<SensorOverlap> sensed_;
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
+  std::vector<std::uint8_t> touch_;       ///< gather_contacts()'s on two threads: pair i touches
   std::vector<DiscEvent> heap_, events_;  ///< the event queue; first_events()'s second half
   std::vector<DiscImpact> impact_log_;
   std::vector<RestContact> contacts_;  ///< disc pairs in key order, then planes in key order
@@ -396,16 +422,17 @@ class DiscContacts {
   std::vector<SolveRow> rows_;
   std::vector<PushRow> push_rows_;
   std::vector<std::uint8_t> row_moved_;  ///< 1 once an impulse of row i moved its discs
-  /// Solver velocities by slot (the first three: velocity 0, one per part of order_, never
-  /// written by two threads) and at the start of the iterations.
-  std::vector<SolveVelocity> sv_, sv0_;
-  std::vector<std::uint32_t> slot_of_;    ///< per disc: its slot while the rows exist, else none
-  std::vector<std::uint32_t> slot_disc_;  ///< per slot: its disc (none: a fixed velocity)
+  /// Solver velocities by slot: the first three velocity 0, one per part of order_ (never
+  /// written by two threads), then disc k's at 3 + k, then a moving kinematic partner's, one
+  /// a row (see disc_rows.cpp).
+  std::vector<SolveVelocity> sv_;
+  /// Per slot: 1 once an impulse changed it (and, for a disc's slot, once the push-out moved
+  /// the disc).
   std::vector<std::uint8_t> slot_moved_;
-  std::vector<RollRow> roll_rows_;  ///< with rolling discs (empty otherwise)
-  std::vector<double> sw_;          ///< angular velocities by slot with rolling discs, rad/s
-  static constexpr std::uint32_t no_slot = 0xffffffffu;
-  int row_kind_ = 0;                         ///< kinematic_rows | rolling_rows, as the rows need
+  bool kinematic_contacts_ = false;  ///< a contact of this tick has a kinematic partner
+  std::vector<RollRow> roll_rows_;   ///< with rolling discs (empty otherwise)
+  std::vector<double> sw_;           ///< angular velocities by slot with rolling discs, rad/s
+  int row_kind_ = 0;                 ///< kinematic_rows | rolling_rows, as the rows need
   std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
   /// Rolling discs (settings_.rolling; empty otherwise): ω in double during the tick and at
   /// its start, rad/s.

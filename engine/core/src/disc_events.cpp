@@ -88,8 +88,14 @@ void DiscContacts<Real>::save_spin_start(const Real* spin) {
 
 template <class Real>
 void DiscContacts<Real>::build_motions(const Tick& tick) {
+  halves(discs_.size(),
+         [&](std::size_t begin, std::size_t end, int) { build_motions(tick, begin, end); });
+}
+
+template <class Real>
+void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std::size_t end) {
   const double dt = tick.dt;
-  for (std::size_t k = 0; k < discs_.size(); ++k) {
+  for (std::size_t k = begin; k < end; ++k) {
     const Disc& d = discs_[k];
     const std::uint32_t j = d.body;
     const double x1 = tick.x[j], y1 = tick.y[j], v1x = tick.vx[j], v1y = tick.vy[j];
@@ -371,11 +377,11 @@ std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
-         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(heap_) + b(events_) +
+         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(touch_) + b(heap_) + b(events_) +
          b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) + b(ex_) +
          b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) +
          b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) +
-         b(sv0_) + b(slot_of_) + b(slot_disc_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
+         b(slot_moved_) + b(roll_rows_) + b(sw_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \
@@ -387,6 +393,7 @@ std::size_t DiscContacts<Real>::bytes() const {
                                                const Real*);                                       \
   template void DiscContacts<Real>::save_spin_start(const Real*);                                  \
   template void DiscContacts<Real>::build_motions(const Tick&);                                    \
+  template void DiscContacts<Real>::build_motions(const Tick&, std::size_t, std::size_t);          \
   template bool DiscContacts<Real>::find_candidates(const Tick&, ContactStats&);                   \
   template void DiscContacts<Real>::predict(std::uint32_t, double, double);                        \
   template bool DiscContacts<Real>::next_event(std::uint32_t, double, double, DiscEvent&) const;   \

@@ -11,6 +11,7 @@
 // and left a deep pile of rigid contacts far from converged after a few iterations; see
 // docs/perf/contact_solver_plan.md).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "disc_contacts.hpp"
@@ -48,21 +49,34 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
   const auto mid = cut_.begin() + std::ptrdiff_t(cut_.size() / 2);
   std::nth_element(cut_.begin(), mid, cut_.end());
   const double median = *mid;  // the same value whatever the algorithm's order
-  // Each contact's part (0, 1: a half; 2: across the cut), then a stable counting sort.
-  std::uint32_t count[3] = {0, 0, 0};
+  // Each contact's part (0, 1: a half; 2: across the cut), then a stable counting sort, both
+  // over two halves of the contacts (on two threads within the tick's run of the second
+  // thread; the first half's contacts go before the second's in each part).
+  std::array<std::array<std::uint32_t, 3>, 2> in_half{};
   scratch_.resize(m);
-  for (std::size_t i = 0; i < m; ++i) {
-    const RestContact& c = contacts_[i];
-    const bool a_moves = c.inv_a > 0.0, b_moves = c.b < n && c.inv_b > 0.0;
-    const std::uint32_t sa = along[c.a] < median ? 0 : 1;
-    const std::uint32_t sb = b_moves && along[c.b] < median ? 0 : 1;
-    const std::uint32_t part = !a_moves ? sb : !b_moves ? sa : sa == sb ? sa : 2;
-    scratch_[i] = part;
-    ++count[part];
-  }
+  halves(m, [&](std::size_t begin, std::size_t end, int half) {
+    std::array<std::uint32_t, 3> count{};
+    for (std::size_t i = begin; i < end; ++i) {
+      const RestContact& c = contacts_[i];
+      const bool a_moves = c.inv_a > 0.0, b_moves = c.b < n && c.inv_b > 0.0;
+      const std::uint32_t sa = along[c.a] < median ? 0 : 1;
+      const std::uint32_t sb = b_moves && along[c.b] < median ? 0 : 1;
+      const std::uint32_t part = !a_moves ? sb : !b_moves ? sa : sa == sb ? sa : 2;
+      scratch_[i] = part;
+      ++count[part];
+    }
+    in_half[half] = count;
+  });
+  std::uint32_t count[3];
+  for (int part = 0; part < 3; ++part) count[part] = in_half[0][part] + in_half[1][part];
   part_start_ = {0, count[0], count[0] + count[1], std::uint32_t(m)};
-  std::uint32_t cursor[3] = {part_start_[0], part_start_[1], part_start_[2]};
-  for (std::size_t i = 0; i < m; ++i) order_[cursor[scratch_[i]]++] = std::uint32_t(i);
+  halves(m, [&](std::size_t begin, std::size_t end, int half) {
+    std::uint32_t cursor[3];
+    for (int part = 0; part < 3; ++part) {
+      cursor[part] = part_start_[part] + (half == 1 ? in_half[0][part] : 0);
+    }
+    for (std::size_t i = begin; i < end; ++i) order_[cursor[scratch_[i]]++] = std::uint32_t(i);
+  });
   stats.across = count[2];
 }
 

@@ -21,65 +21,6 @@ struct RestSweep {
   double change = 0.0, largest = 0.0;
 };
 
-template <class Real>
-void DiscContacts<Real>::gather_contacts(const Tick& tick) {
-  contacts_.clear();
-  const auto n = static_cast<std::uint32_t>(discs_.size());
-  for (const DiscPair& p : pairs_) {
-    const Disc &da = discs_[p.a], &db = discs_[p.b];
-    const double dx = ex_[p.a] - ex_[p.b], dy = ey_[p.a] - ey_[p.b];
-    const double dist = length(dx, dy);
-    const double gap = dist - (da.radius + db.radius);
-    if (gap > slop * std::min(da.radius, db.radius)) continue;
-    RestContact c;
-    c.nx = dist > 0.0 ? dx / dist : 0.0, c.ny = dist > 0.0 ? dy / dist : 1.0;
-    // A pair still apart that closes faster than one tick of relative acceleration is an
-    // impact of the next tick, not a resting contact.
-    const double vn = (evx_[p.a] - evx_[p.b]) * c.nx + (evy_[p.a] - evy_[p.b]) * c.ny;
-    const double cn =
-        (motion_[p.a].ax - motion_[p.b].ax) * c.nx + (motion_[p.a].ay - motion_[p.b].ay) * c.ny;
-    if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) continue;
-    c.key = (std::uint64_t(p.a) << 32) | p.b;
-    c.a = p.a, c.b = p.b;
-    c.radii = da.radius + db.radius, c.r_min = std::min(da.radius, db.radius);
-    c.inv_a = da.inv_mass, c.inv_b = db.inv_mass;
-    c.kinematic_a = !da.dynamic && (motion_[p.a].ux != 0.0 || motion_[p.a].uy != 0.0);
-    c.kinematic_b = !db.dynamic && (motion_[p.b].ux != 0.0 || motion_[p.b].uy != 0.0);
-    c.mass = c.mass_t = 1.0 / (da.inv_mass + db.inv_mass);
-    c.friction = std::sqrt(da.friction * db.friction);
-    if (rolling_) {
-      c.arm_a = da.radius, c.arm_b = db.radius;
-      c.turn_a = da.radius * da.inv_inertia, c.turn_b = db.radius * db.inv_inertia;
-      c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + c.arm_a * c.turn_a + c.arm_b * c.turn_b);
-    }
-    contacts_.push_back(c);
-  }
-  plane_contacts_ = static_cast<std::uint32_t>(contacts_.size());
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const Disc& d = discs_[k];
-    if (!d.dynamic || d.sensor) continue;
-    for (std::uint32_t i = 0; i < tick.planes.size(); ++i) {
-      const PlaneDef& p = tick.planes[i];
-      const double gap = p.normal.x * ex_[k] + p.normal.y * ey_[k] - p.offset - d.radius;
-      if (gap > slop * d.radius) continue;
-      RestContact c;
-      c.key = (std::uint64_t(k) << 32) | (n + i);
-      c.a = k, c.b = n + i;
-      c.radii = c.r_min = d.radius;
-      c.nx = p.normal.x, c.ny = p.normal.y;
-      c.mass = c.mass_t = 1.0 / d.inv_mass;
-      c.inv_a = d.inv_mass;
-      c.friction = p.friction;
-      if (rolling_) {
-        c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
-        c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
-      }
-      contacts_.push_back(c);
-    }
-    if (tick.segments) gather_segment_contacts(tick, k);
-  }
-}
-
 // Applies the impulse λ_n n + λ_t t (N·s; t = (-n_y, n_x)) to row i's body a and its opposite
 // to b, each as the impulse's components times the row's 1/m n (so that the chain of one row's
 // arithmetic through a disc's velocity is short); with kinematic rows, a moving kinematic
@@ -103,19 +44,6 @@ template <int Kind>
 }
 
 template <class Real>
-template <class Range>
-void DiscContacts<Real>::parts_pass(Range& range) {
-  const auto& p = part_start_;
-  if (team_on_) {
-    auto halves = [&](int half) { range(p[half], p[half + 1], half); };
-    broadphase_.second_thread().both(halves);
-  } else {
-    range(p[0], p[1], 0), range(p[1], p[2], 0);
-  }
-  range(p[2], p[3], 0);  // across the cut
-}
-
-template <class Real>
 void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   const auto& p = part_start_;
   team_on_ =
@@ -126,30 +54,32 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   solve_velocities(stats);
   scatter_rows(tick.kappa * tick.dt);
   push_out(tick, stats);
-  // The discs the passes moved, from their contacts' marks: written here, on one thread,
-  // since a byte per disc written by two threads would share cache lines.
-  const std::size_t n = discs_.size();
-  for (const RestContact& c : contacts_) {
-    if (!c.moved) continue;
-    if (c.inv_a > 0.0) changed_[c.a] |= 2;
-    if (c.b < n && c.inv_b > 0.0) changed_[c.b] |= 2;
-  }
+  // The discs the passes moved (their slots' marks; a slot is a disc's own, never shared).
+  halves(discs_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+    for (std::size_t k = begin; k < end; ++k) {
+      if (slot_moved_[3 + k]) changed_[k] |= 2;
+    }
+  });
 }
 
 template <class Real>
 void DiscContacts<Real>::match_warm() {
   // contacts_ is two runs in key order (disc pairs, then planes), warm_ one, so each run is
-  // matched in one walk.
+  // matched in one walk (each half of it in one, from its first key on).
   const std::size_t bounds[3] = {0, plane_contacts_, contacts_.size()};
   for (int run = 0; run < 2; ++run) {
-    std::size_t w = 0;
-    for (std::size_t i = bounds[run]; i < bounds[run + 1]; ++i) {
-      RestContact& c = contacts_[i];
-      while (w < warm_.size() && warm_[w].key < c.key) ++w;
-      if (w < warm_.size() && warm_[w].key == c.key) {
-        c.lambda_n = warm_[w].lambda_n, c.lambda_t = warm_[w].lambda_t;
+    const std::size_t first = bounds[run];
+    halves(bounds[run + 1] - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
+      if (begin == end) return;
+      auto w =
+          std::lower_bound(warm_.begin(), warm_.end(), contacts_[first + begin].key,
+                           [](const WarmImpulse& h, std::uint64_t key) { return h.key < key; });
+      for (std::size_t i = first + begin; i < first + end; ++i) {
+        RestContact& c = contacts_[i];
+        while (w != warm_.end() && w->key < c.key) ++w;
+        if (w != warm_.end() && w->key == c.key) c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
       }
-    }
+    });
   }
 }
 
@@ -280,11 +210,13 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
       const double depth = overlap_of(tick, i, nx, ny);
       most = std::max(most, depth);
       if (depth <= (slop + push_out_tolerance) * r.r_min + storage_rounding(r)) continue;
-      any = true, contacts_[order_[i]].moved = 1;
+      any = true;
       const double push = std::min(depth - slop * r.r_min, max_push_out * r.r_min);
       const double pa = r.w_a * push, pb = r.w_b * push;
       ex_[r.a] += pa * nx, ey_[r.a] += pa * ny;
+      if (r.w_a > 0.0) slot_moved_[3 + r.a] = 1;
       if (pb > 0.0) ex_[r.b] -= pb * nx, ey_[r.b] -= pb * ny;
+      if (r.w_b > 0.0) slot_moved_[3 + r.b] = 1;
     }
     if (any) pushed[thread] = true;
     deepest[thread] = most;
@@ -332,7 +264,12 @@ void DiscContacts<Real>::keep_impulses() {
 
 template <class Real>
 void DiscContacts<Real>::finish(const Tick& tick) {
-  for (std::size_t k = 0; k < discs_.size(); ++k) {
+  halves(discs_.size(), [&](std::size_t begin, std::size_t end, int) { finish(tick, begin, end); });
+}
+
+template <class Real>
+void DiscContacts<Real>::finish(const Tick& tick, std::size_t begin, std::size_t end) {
+  for (std::size_t k = begin; k < end; ++k) {
     if (!changed_[k]) continue;
     const Disc& d = discs_[k];
     const std::uint32_t j = d.body;
@@ -360,7 +297,6 @@ void DiscContacts<Real>::finish(const Tick& tick) {
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                              \
-  template void DiscContacts<Real>::gather_contacts(const Tick&);                              \
   template void DiscContacts<Real>::match_warm();                                              \
   template void DiscContacts<Real>::warm_start();                                              \
   template void DiscContacts<Real>::solve_resting(const Tick&, ContactStats&);                 \
@@ -369,7 +305,8 @@ void DiscContacts<Real>::finish(const Tick& tick) {
   template double DiscContacts<Real>::overlap_of(const Tick&, std::uint32_t, double&, double&) \
       const;                                                                                   \
   template void DiscContacts<Real>::keep_impulses();                                           \
-  template void DiscContacts<Real>::finish(const Tick&);
+  template void DiscContacts<Real>::finish(const Tick&);                                       \
+  template void DiscContacts<Real>::finish(const Tick&, std::size_t, std::size_t);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

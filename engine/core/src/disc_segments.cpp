@@ -36,6 +36,7 @@ void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t
     c.nx = t.nx, c.ny = t.ny;
     c.bvx = u.x, c.bvy = u.y;
     c.kinematic_b = u.x != 0.0 || u.y != 0.0;
+    kinematic_contacts_ = kinematic_contacts_ || c.kinematic_b;
     c.mass = c.mass_t = 1.0 / d.inv_mass;
     c.inv_a = d.inv_mass;
     c.friction = s.friction;

@@ -1,0 +1,119 @@
+// Disc contacts, phase 2 begins: the resting contacts of the tick, gathered from the candidate
+// pairs that touch at the tick's end (within the slop, and not an impact of the next tick) and
+// from the discs on planes and segments, in key order: disc pairs, then planes and segments.
+// With the tick's run of the second thread open (disc_events.cpp), the pairs are gathered in
+// two passes over two halves of them, with the same contacts in the same order.
+#include <cmath>
+
+#include "disc_contacts.hpp"
+
+namespace fixstep::detail {
+
+template <class Real>
+bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestContact* out) const {
+  const Disc &da = discs_[p.a], &db = discs_[p.b];
+  const double dx = ex_[p.a] - ex_[p.b], dy = ey_[p.a] - ey_[p.b];
+  const double dist = length(dx, dy);
+  const double gap = dist - (da.radius + db.radius);
+  if (gap > slop * std::min(da.radius, db.radius)) return false;
+  const double nx = dist > 0.0 ? dx / dist : 0.0, ny = dist > 0.0 ? dy / dist : 1.0;
+  // A pair still apart that closes faster than one tick of relative acceleration is an
+  // impact of the next tick, not a resting contact.
+  const double vn = (evx_[p.a] - evx_[p.b]) * nx + (evy_[p.a] - evy_[p.b]) * ny;
+  const double cn =
+      (motion_[p.a].ax - motion_[p.b].ax) * nx + (motion_[p.a].ay - motion_[p.b].ay) * ny;
+  if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) return false;
+  if (out == nullptr) return true;
+  RestContact& c = *out;
+  c = RestContact{};
+  c.nx = nx, c.ny = ny;
+  c.key = (std::uint64_t(p.a) << 32) | p.b;
+  c.a = p.a, c.b = p.b;
+  c.radii = da.radius + db.radius, c.r_min = std::min(da.radius, db.radius);
+  c.inv_a = da.inv_mass, c.inv_b = db.inv_mass;
+  c.kinematic_a = !da.dynamic && (motion_[p.a].ux != 0.0 || motion_[p.a].uy != 0.0);
+  c.kinematic_b = !db.dynamic && (motion_[p.b].ux != 0.0 || motion_[p.b].uy != 0.0);
+  c.mass = c.mass_t = 1.0 / (da.inv_mass + db.inv_mass);
+  c.friction = std::sqrt(da.friction * db.friction);
+  if (rolling_) {
+    c.arm_a = da.radius, c.arm_b = db.radius;
+    c.turn_a = da.radius * da.inv_inertia, c.turn_b = db.radius * db.inv_inertia;
+    c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + c.arm_a * c.turn_a + c.arm_b * c.turn_b);
+  }
+  return true;
+}
+
+template <class Real>
+void DiscContacts<Real>::gather_contacts(const Tick& tick) {
+  const auto n = static_cast<std::uint32_t>(discs_.size());
+  const std::size_t m = pairs_.size();
+  bool kinematic[2] = {false, false};
+  if (broadphase_.second_thread().is_open() && m >= min_parallel_pairs) {
+    // Two threads: which pairs touch, by halves of the pairs; then each half's contacts,
+    // the second half's after the first's (the same contacts in the same order as one pass).
+    std::size_t found[2] = {0, 0};
+    touch_.resize(m);
+    halves(m, [&](std::size_t begin, std::size_t end, int half) {
+      std::size_t count = 0;
+      for (std::size_t i = begin; i < end; ++i) {
+        touch_[i] = pair_contact(tick, pairs_[i], nullptr) ? 1 : 0;
+        count += touch_[i];
+      }
+      found[half] = count;
+    });
+    contacts_.resize(found[0] + found[1]);
+    halves(m, [&](std::size_t begin, std::size_t end, int half) {
+      std::size_t at = half == 1 ? found[0] : 0;
+      bool moving = false;
+      for (std::size_t i = begin; i < end; ++i) {
+        if (!touch_[i]) continue;
+        RestContact& c = contacts_[at++];
+        pair_contact(tick, pairs_[i], &c);
+        moving = moving || c.kinematic_a || c.kinematic_b;
+      }
+      kinematic[half] = moving;
+    });
+  } else {
+    contacts_.clear();
+    RestContact c;
+    for (const DiscPair& p : pairs_) {
+      if (!pair_contact(tick, p, &c)) continue;
+      kinematic[0] = kinematic[0] || c.kinematic_a || c.kinematic_b;
+      contacts_.push_back(c);
+    }
+  }
+  kinematic_contacts_ = kinematic[0] || kinematic[1];
+  plane_contacts_ = static_cast<std::uint32_t>(contacts_.size());
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const Disc& d = discs_[k];
+    if (!d.dynamic || d.sensor) continue;
+    for (std::uint32_t i = 0; i < tick.planes.size(); ++i) {
+      const PlaneDef& p = tick.planes[i];
+      const double gap = p.normal.x * ex_[k] + p.normal.y * ey_[k] - p.offset - d.radius;
+      if (gap > slop * d.radius) continue;
+      RestContact c;
+      c.key = (std::uint64_t(k) << 32) | (n + i);
+      c.a = k, c.b = n + i;
+      c.radii = c.r_min = d.radius;
+      c.nx = p.normal.x, c.ny = p.normal.y;
+      c.mass = c.mass_t = 1.0 / d.inv_mass;
+      c.inv_a = d.inv_mass;
+      c.friction = p.friction;
+      if (rolling_) {
+        c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
+        c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
+      }
+      contacts_.push_back(c);
+    }
+    if (tick.segments) gather_segment_contacts(tick, k);
+  }
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                 \
+  template void DiscContacts<Real>::gather_contacts(const Tick&); \
+  template bool DiscContacts<Real>::pair_contact(const Tick&, const DiscPair&, RestContact*) const;
+FIXSTEP_INSTANTIATE(float)
+FIXSTEP_INSTANTIATE(double)
+#undef FIXSTEP_INSTANTIATE
+
+}  // namespace fixstep::detail
