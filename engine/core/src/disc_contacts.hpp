@@ -237,6 +237,21 @@ class DiscContacts {
   /// The contacts of the last resolve() (touching pairs; b >= discs().size() for a plane, as
   /// b - discs().size()), disc pairs in (a, b) order.
   [[nodiscard]] std::span<const RestContact> touching() const { return contacts_; }
+  /// How many of touching()'s contacts, the first ones, are disc pairs (the rest: planes and
+  /// segments).
+  [[nodiscard]] std::size_t disc_pair_contacts() const { return plane_contacts_; }
+  /// Runs pass(begin, end, half) over [0, n): as two halves (0 and 1) on two threads when
+  /// the tick's run of the second thread is open (SecondThreadRun), else as one (half 0) here. For
+  /// passes whose items are independent (one disc, one pair): the same result either way.
+  template <class Pass>
+  void halves(std::size_t n, Pass&& pass) {
+    if (!broadphase_.second_thread().is_open() || n < 2) {
+      pass(std::size_t{0}, n, 0);
+      return;
+    }
+    auto job = [&](int half) { half == 0 ? pass(std::size_t{0}, n / 2, 0) : pass(n / 2, n, 1); };
+    broadphase_.second_thread().both(job);
+  }
   /// The impacts of the last resolve(), in order.
   [[nodiscard]] std::span<const DiscImpact> impacts() const { return impact_log_; }
   /// The sensors' overlaps after the last resolve(), by (sensor, visitor) disc pair order.
@@ -268,6 +283,12 @@ class DiscContacts {
   /// Discs from which a tick with two threads keeps its second thread spinning between passes
   /// (SecondThread::open) rather than waking it for each.
   static constexpr std::size_t min_parallel_discs = 1024;
+  /// The second thread a tick on `threads` threads shares its passes with (SecondThreadRun
+  /// keeps it spinning through them), or null: one thread, or fewer than min_parallel_discs.
+  [[nodiscard]] SecondThread* second_thread(int threads) {
+    return threads >= 2 && discs_.size() >= min_parallel_discs ? &broadphase_.second_thread()
+                                                               : nullptr;
+  }
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
   static constexpr double slop = 0.005;
   /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
@@ -281,18 +302,6 @@ class DiscContacts {
   // phase 1 (disc_events.cpp)
   void build_motions(const Tick& tick);
   void build_motions(const Tick& tick, std::size_t begin, std::size_t end);
-  /// Runs pass(begin, end, half) over [0, n): as two halves (0 and 1) on two threads when
-  /// the tick's run of the second thread is open (resolve()), else as one (half 0) here. For
-  /// passes whose items are independent (one disc, one pair): the same result either way.
-  template <class Pass>
-  void halves(std::size_t n, Pass&& pass) {
-    if (!broadphase_.second_thread().is_open() || n < 2) {
-      pass(std::size_t{0}, n, 0);
-      return;
-    }
-    auto job = [&](int half) { half == 0 ? pass(std::size_t{0}, n / 2, 0) : pass(n / 2, n, 1); };
-    broadphase_.second_thread().both(job);
-  }
   bool find_candidates(const Tick& tick, ContactStats& stats);
   /// Drops from pairs_ the linked pairs and the pairs filters reject, and moves the sensor
   /// pairs (one sensor, one not) to sensor_pairs_ (disc_sensors.cpp).
@@ -315,6 +324,8 @@ class DiscContacts {
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
   /// and not an impact of the next tick), and if so its contact into *out (when not null).
   bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out) const;
+  /// Appends dynamic disc k's contacts with the planes (within the slop) to out, in plane order.
+  void plane_contacts_of(const Tick& tick, std::uint32_t k, std::vector<RestContact>& out) const;
   /// Splits contacts_ into two halves of the discs and the contacts across the cut: order_
   /// lists them part by part (key order within a part), part_start_[p] where part p begins
   /// (disc_halves.cpp). Below min_split_contacts everything is part 0.
@@ -408,6 +419,7 @@ class DiscContacts {
   std::vector<SensorOverlap> sensed_;
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
+  std::array<std::vector<RestContact>, 2> plane_half_;  ///< gather_contacts()'s on two threads
   std::vector<std::uint8_t> touch_;       ///< gather_contacts()'s on two threads: pair i touches
   std::vector<DiscEvent> heap_, events_;  ///< the event queue; first_events()'s second half
   std::vector<DiscImpact> impact_log_;

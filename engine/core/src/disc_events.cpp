@@ -351,9 +351,9 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   sensor_pairs_.clear(), sensed_.clear();
   cap_ = CapHit{};
   PhaseClock clock(true);
-  // Two threads: the worker spins through the tick's passes (see SecondThread).
-  const SecondThreadRun run(broadphase_.second_thread(),
-                            tick.threads >= 2 && discs_.size() >= min_parallel_discs);
+  // Two threads: the worker spins through the tick's passes (see SecondThread), if the
+  // world has not opened its run already.
+  const SecondThreadRun run(second_thread(tick.threads));
   build_motions(tick);
   if (tick.wake) tick.wake(tick.wake_context);
   for (std::size_t k = 0; k < ew_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);
@@ -377,11 +377,11 @@ std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
-         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(touch_) + b(heap_) + b(events_) +
-         b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) + b(ex_) +
-         b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) + b(e_start_) + b(e_begin_) +
-         b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) +
-         b(slot_moved_) + b(roll_rows_) + b(sw_);
+         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(touch_) + b(plane_half_[0]) +
+         b(plane_half_[1]) + b(heap_) + b(events_) + b(impact_log_) + b(contacts_) + b(order_) +
+         b(scratch_) + b(cut_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) +
+         b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) +
+         b(push_rows_) + b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \

@@ -84,34 +84,57 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   }
   kinematic_contacts_ = kinematic[0] || kinematic[1];
   plane_contacts_ = static_cast<std::uint32_t>(contacts_.size());
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const Disc& d = discs_[k];
-    if (!d.dynamic || d.sensor) continue;
-    for (std::uint32_t i = 0; i < tick.planes.size(); ++i) {
-      const PlaneDef& p = tick.planes[i];
-      const double gap = p.normal.x * ex_[k] + p.normal.y * ey_[k] - p.offset - d.radius;
-      if (gap > slop * d.radius) continue;
-      RestContact c;
-      c.key = (std::uint64_t(k) << 32) | (n + i);
-      c.a = k, c.b = n + i;
-      c.radii = c.r_min = d.radius;
-      c.nx = p.normal.x, c.ny = p.normal.y;
-      c.mass = c.mass_t = 1.0 / d.inv_mass;
-      c.inv_a = d.inv_mass;
-      c.friction = p.friction;
-      if (rolling_) {
-        c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
-        c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
+  if (tick.segments == nullptr && broadphase_.second_thread().is_open()) {
+    // Two threads: each half of the discs' plane contacts apart, then the first's and the
+    // second's after the pairs (the same contacts in the same order).
+    halves(n, [&](std::size_t begin, std::size_t end, int half) {
+      plane_half_[half].clear();
+      for (std::size_t k = begin; k < end; ++k) {
+        plane_contacts_of(tick, static_cast<std::uint32_t>(k), plane_half_[half]);
       }
-      contacts_.push_back(c);
-    }
-    if (tick.segments) gather_segment_contacts(tick, k);
+    });
+    for (const auto& half : plane_half_)
+      contacts_.insert(contacts_.end(), half.begin(), half.end());
+    return;
+  }
+  for (std::uint32_t k = 0; k < n; ++k) {
+    plane_contacts_of(tick, k, contacts_);
+    if (tick.segments && discs_[k].dynamic && !discs_[k].sensor) gather_segment_contacts(tick, k);
   }
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                 \
-  template void DiscContacts<Real>::gather_contacts(const Tick&); \
-  template bool DiscContacts<Real>::pair_contact(const Tick&, const DiscPair&, RestContact*) const;
+template <class Real>
+void DiscContacts<Real>::plane_contacts_of(const Tick& tick, std::uint32_t k,
+                                           std::vector<RestContact>& out) const {
+  const auto n = static_cast<std::uint32_t>(discs_.size());
+  const Disc& d = discs_[k];
+  if (!d.dynamic || d.sensor) return;
+  for (std::uint32_t i = 0; i < tick.planes.size(); ++i) {
+    const PlaneDef& p = tick.planes[i];
+    const double gap = p.normal.x * ex_[k] + p.normal.y * ey_[k] - p.offset - d.radius;
+    if (gap > slop * d.radius) continue;
+    RestContact c;
+    c.key = (std::uint64_t(k) << 32) | (n + i);
+    c.a = k, c.b = n + i;
+    c.radii = c.r_min = d.radius;
+    c.nx = p.normal.x, c.ny = p.normal.y;
+    c.mass = c.mass_t = 1.0 / d.inv_mass;
+    c.inv_a = d.inv_mass;
+    c.friction = p.friction;
+    if (rolling_) {
+      c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
+      c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
+    }
+    out.push_back(c);
+  }
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                                            \
+  template void DiscContacts<Real>::gather_contacts(const Tick&);                            \
+  template bool DiscContacts<Real>::pair_contact(const Tick&, const DiscPair&, RestContact*) \
+      const;                                                                                 \
+  template void DiscContacts<Real>::plane_contacts_of(const Tick&, std::uint32_t,            \
+                                                      std::vector<RestContact>&) const;
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

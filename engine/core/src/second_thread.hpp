@@ -82,11 +82,13 @@ class SecondThread {
   bool open_ = false;
 };
 
-/// Keeps a SecondThread's run open for a scope (a tick's disc phase), and closes it on the way
-/// out, by return or by exception.
+/// Keeps a SecondThread's run open for a scope (a tick's disc phases), and closes it on the way
+/// out, by return or by exception; nothing when given no thread, or one whose run an outer
+/// scope keeps open.
 class SecondThreadRun {
  public:
-  SecondThreadRun(SecondThread& thread, bool open) : thread_(open ? &thread : nullptr) {
+  explicit SecondThreadRun(SecondThread* thread)
+      : thread_(thread != nullptr && !thread->is_open() ? thread : nullptr) {
     if (thread_) thread_->open();
   }
   ~SecondThreadRun() {

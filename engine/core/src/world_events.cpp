@@ -37,7 +37,6 @@ void sort_by_slots(std::vector<ContactEvent>& list) {
 template <class Real>
 void detail::WorldKernel<Real>::update_contact_events() {
   touching_before_.swap(touching_);
-  touching_.clear();
   begun_.clear();
   ended_.clear();
   hits_.clear();
@@ -49,9 +48,16 @@ void detail::WorldKernel<Real>::update_contact_events() {
     const Entity a = ids[ja], b = ids[jb];
     return b.slot() < a.slot() ? ContactEvent{b, a, speed} : ContactEvent{a, b, speed};
   };
-  for (const detail::RestContact& c : dc.touching()) {
-    if (c.b < discs.size()) touching_.push_back(pair_of(discs[c.a].body, discs[c.b].body, 0.0));
-  }
+  // The disc pairs come first among the touching contacts; by halves on the discs' second
+  // thread within the tick's run of it (world_step.cpp).
+  const auto touching = dc.touching();
+  touching_.resize(dc.disc_pair_contacts());
+  discs_->halves(touching_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const detail::RestContact& c = touching[i];
+      touching_[i] = pair_of(discs[c.a].body, discs[c.b].body, 0.0);
+    }
+  });
   if (sleepers_ != 0) {  // two sleepers are not solved, and stay in touch (ContactSettings::sleep)
     for (const ContactEvent& p : touching_before_) {
       if (bodies_.contains(p.a) && bodies_.contains(p.b) && asleep(bodies_.index(p.a)) &&

@@ -223,6 +223,10 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   // With sleeping islands, a tick in which every disc sleeps skips the disc phases.
   const bool quiet = sleep_ && sleepers_ != 0 && discs_ && discs_->active() && discs_at_rest();
   const bool discs = discs_ && discs_->active() && !quiet;
+  // Two threads: the discs' second thread wakes while the bodies integrate, and spins
+  // between the disc phases' passes to the end of the contact events (second_thread.hpp).
+  const int threads = settings_.threads == 1 || !detail::threads_supported ? 1 : 2;
+  const detail::SecondThreadRun run(discs ? discs_->second_thread(threads) : nullptr);
   detail::PhaseClock clock(discs);  // World::profile(): read only with disc contacts
   if (contacts) save_contact_start();
   if (immovable || discs) save_tick_start(discs);
