@@ -427,9 +427,10 @@ class DiscContacts {
   std::uint32_t plane_contacts_ = 0;   ///< where contacts_'s plane contacts begin
   std::vector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};
-  std::vector<double> cut_;        ///< split_contacts()'s
-  bool team_on_ = false;           ///< within solve_resting(): the halves on two threads
-  std::vector<WarmImpulse> warm_;  ///< by key
+  std::vector<double> cut_;              ///< split_contacts()'s
+  bool team_on_ = false;                 ///< within solve_resting(): the halves on two threads
+  std::vector<WarmImpulse> warm_;        ///< by key
+  std::vector<WarmImpulse> warm_upper_;  ///< keep_impulses()'s upper keys on two threads
   // the velocity iterations' own state (disc_rows.cpp; sized once, no allocation once warm)
   std::vector<SolveRow> rows_;
   std::vector<PushRow> push_rows_;

@@ -379,9 +379,10 @@ std::size_t DiscContacts<Real>::bytes() const {
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
          b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(touch_) + b(plane_half_[0]) +
          b(plane_half_[1]) + b(heap_) + b(events_) + b(impact_log_) + b(contacts_) + b(order_) +
-         b(scratch_) + b(cut_) + b(warm_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) +
-         b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) +
-         b(push_rows_) + b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
+         b(scratch_) + b(cut_) + b(warm_) + b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) +
+         b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) +
+         b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) +
+         b(sw_);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                                                                  \

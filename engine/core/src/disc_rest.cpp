@@ -251,15 +251,37 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
 
 template <class Real>
 void DiscContacts<Real>::keep_impulses() {
-  // The two key-ordered runs of contacts_ merged into one key-ordered list.
-  warm_.clear();
-  std::size_t i = 0, j = plane_contacts_;
+  // The two key-ordered runs of contacts_ (disc pairs [0, mid), planes and segments [mid, end))
+  // merged into one key-ordered list of the impulses that push.
   const std::size_t mid = plane_contacts_, end = contacts_.size();
-  while (i < mid || j < end) {
-    const bool disc = j == end || (i < mid && contacts_[i].key < contacts_[j].key);
-    const RestContact& c = contacts_[disc ? i++ : j++];
-    if (c.lambda_n > 0.0) warm_.push_back(WarmImpulse{c.key, c.lambda_n, c.lambda_t});
+  auto merge = [&](std::size_t i, std::size_t i_end, std::size_t j, std::size_t j_end,
+                   std::vector<WarmImpulse>& out) {
+    while (i < i_end || j < j_end) {
+      const bool disc = j == j_end || (i < i_end && contacts_[i].key < contacts_[j].key);
+      const RestContact& c = contacts_[disc ? i++ : j++];
+      if (c.lambda_n > 0.0) out.push_back(WarmImpulse{c.key, c.lambda_n, c.lambda_t});
+    }
+  };
+  warm_.clear();
+  if (!broadphase_.second_thread().is_open() || mid < 2) {
+    merge(0, mid, mid, end, warm_);
+    return;
   }
+  // Two threads: the keys below the middle disc pair's, and the rest, each merged apart.
+  const std::size_t h = mid / 2;
+  const auto split =
+      std::lower_bound(contacts_.begin() + std::ptrdiff_t(mid), contacts_.end(), contacts_[h].key,
+                       [](const RestContact& c, std::uint64_t key) { return c.key < key; });
+  const auto j = static_cast<std::size_t>(split - contacts_.begin());
+  halves(2, [&](std::size_t begin, std::size_t /*end*/, int /*half*/) {
+    if (begin == 0) {
+      merge(0, h, mid, j, warm_);
+    } else {
+      warm_upper_.clear();
+      merge(h, mid, j, end, warm_upper_);
+    }
+  });
+  warm_.insert(warm_.end(), warm_upper_.begin(), warm_upper_.end());
 }
 
 template <class Real>
