@@ -223,10 +223,12 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   // With sleeping islands, a tick in which every disc sleeps skips the disc phases.
   const bool quiet = sleep_ && sleepers_ != 0 && discs_ && discs_->active() && discs_at_rest();
   const bool discs = discs_ && discs_->active() && !quiet;
-  // Two threads: the discs' second thread wakes while the bodies integrate, and spins
-  // between the disc phases' passes to the end of the contact events (second_thread.hpp).
+  // Two threads: the discs' second thread spins between the disc phases' passes to the end of
+  // the contact events (second_thread.hpp). Without links it wakes while the bodies integrate;
+  // with them, after (the links' own worker shares the integration).
   const int threads = settings_.threads == 1 || !detail::threads_supported ? 1 : 2;
-  const detail::SecondThreadRun run(discs ? discs_->second_thread(threads) : nullptr);
+  auto disc_thread = [&] { return discs ? discs_->second_thread(threads) : nullptr; };
+  const detail::SecondThreadRun early(net_.a.empty() ? disc_thread() : nullptr);
   detail::PhaseClock clock(discs);  // World::profile(): read only with disc contacts
   if (contacts) save_contact_start();
   if (immovable || discs) save_tick_start(discs);
@@ -242,6 +244,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (forces) remove_input_forces();
   if (immovable) restore_immovable();
   profile_.integrate = clock.lap();
+  const detail::SecondThreadRun run(disc_thread());  // nothing if `early` holds it open
   const std::size_t plane_capped = contacts ? resolve_contacts() : 0;
   if (discs) {
     resolve_discs();
