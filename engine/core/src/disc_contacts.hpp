@@ -275,10 +275,12 @@ class DiscContacts {
 
   /// Contacts from which the resting solver splits them into two halves (split_contacts()).
   static constexpr std::size_t min_split_contacts = 1024;
-  /// Touching pairs from which a split pile's halves run on two threads (below, one thread runs
-  /// the same passes in the same order: handing the halves over costs more than it saves).
+  /// Touching pairs from which a split pile's halves run on two threads in the resting solver's
+  /// passes over its parts (below, one thread runs the same passes in the same order: handing
+  /// the halves over costs more than it saves).
   static constexpr std::size_t min_parallel_contacts = 8192;
-  /// Candidate pairs from which two threads share the first impact predictions.
+  /// Candidate pairs from which two threads share the first impact predictions and the
+  /// gathering, within the tick's run of the second thread.
   static constexpr std::size_t min_parallel_pairs = 512;
   /// Discs from which a tick with two threads keeps its second thread spinning between passes
   /// (SecondThread::open) rather than waking it for each.
@@ -427,9 +429,9 @@ class DiscContacts {
   std::uint32_t plane_contacts_ = 0;   ///< where contacts_'s plane contacts begin
   std::vector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};
-  std::vector<double> cut_;              ///< split_contacts()'s
-  bool team_on_ = false;                 ///< within solve_resting(): the halves on two threads
-  std::vector<WarmImpulse> warm_;        ///< by key
+  std::vector<double> cut_;        ///< split_contacts()'s
+  bool team_on_ = false;           ///< set by solve_resting(): its parts' halves on two threads
+  std::vector<WarmImpulse> warm_;  ///< by key
   std::vector<WarmImpulse> warm_upper_;  ///< keep_impulses()'s upper keys on two threads
   // the velocity iterations' own state (disc_rows.cpp; sized once, no allocation once warm)
   std::vector<SolveRow> rows_;

@@ -45,6 +45,8 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   linked_ = std::move(linked);
   filters_ = std::move(filters);
   sensor_pairs_.clear(), sensed_.clear();
+  // The last tick's contacts name discs of the old set (touching() until the next gather).
+  contacts_.clear(), plane_contacts_ = 0;
   settings_ = settings;
   const std::size_t n = discs_.size();
   min_radius_ = std::numeric_limits<double>::infinity();
@@ -218,7 +220,7 @@ void DiscContacts<Real>::first_events(const Tick& tick) {
     }
   };
   heap_.clear();
-  if (tick.threads >= 2 && m >= min_parallel_pairs) {
+  if (broadphase_.second_thread().is_open() && m >= min_parallel_pairs) {
     events_.clear();
     auto halves = [&](int half) { half == 0 ? find(0, m / 2, heap_) : find(m / 2, m, events_); };
     broadphase_.second_thread().both(halves);

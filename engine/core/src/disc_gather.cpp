@@ -1,8 +1,10 @@
 // Disc contacts, phase 2 begins: the resting contacts of the tick, gathered from the candidate
 // pairs that touch at the tick's end (within the slop, and not an impact of the next tick) and
 // from the discs on planes and segments, in key order: disc pairs, then planes and segments.
-// With the tick's run of the second thread open (disc_events.cpp), the pairs are gathered in
-// two passes over two halves of them, with the same contacts in the same order.
+// With the tick's run of the second thread open (world_step.cpp, disc_events.cpp), the pairs
+// are gathered in two passes over two halves of them, and the discs' plane contacts by halves,
+// with the same contacts in the same order.
+#include <cassert>
 #include <cmath>
 
 #include "disc_contacts.hpp"
@@ -68,7 +70,8 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
       for (std::size_t i = begin; i < end; ++i) {
         if (!touch_[i]) continue;
         RestContact& c = contacts_[at++];
-        pair_contact(tick, pairs_[i], &c);
+        [[maybe_unused]] const bool touches = pair_contact(tick, pairs_[i], &c);
+        assert(touches);  // the same arithmetic as the first pass (no contraction)
         moving = moving || c.kinematic_a || c.kinematic_b;
       }
       kinematic[half] = moving;
@@ -87,8 +90,8 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   if (tick.segments == nullptr && broadphase_.second_thread().is_open()) {
     // Two threads: each half of the discs' plane contacts apart, then the first's and the
     // second's after the pairs (the same contacts in the same order).
+    for (auto& half : plane_half_) half.clear();
     halves(n, [&](std::size_t begin, std::size_t end, int half) {
-      plane_half_[half].clear();
       for (std::size_t k = begin; k < end; ++k) {
         plane_contacts_of(tick, static_cast<std::uint32_t>(k), plane_half_[half]);
       }

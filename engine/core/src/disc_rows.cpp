@@ -6,8 +6,9 @@
 // change: scatter_rows() moves it once, after the sweeps). A static disc, a plane or a still
 // segment is the velocity-0 slot of the row's part (slots 0, 1, 2); a moving kinematic
 // partner gets a slot of its own per row, past the discs'. No slot is written by both threads,
-// and the two halves' rows are built and scattered on the two threads. The push-out's rows
-// hold what it needs of a contact and nothing else, in the same order.
+// and the two halves' rows are built and scattered on the two threads (on one when a row has a
+// moving kinematic partner: its slot is appended). The push-out's rows hold what it needs of a
+// contact and nothing else, in the same order.
 #include "disc_contacts.hpp"
 
 namespace fixstep::detail {

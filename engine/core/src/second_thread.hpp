@@ -1,9 +1,12 @@
-// The second thread of a world's disc contacts: the broadphase, the first impact predictions
-// and the resting solver's passes each share their work by halves with it. Internal to the
-// engine: not installed.
+// The second thread of a world's disc contacts: from the integration to the contact events,
+// the tick's passes over discs, pairs and contacts (the broadphase, the impact predictions,
+// the gathering, the resting solver, the events) share their work by halves with it. Internal
+// to the engine: not installed.
 #pragma once
 
+#include <exception>
 #include <memory>
+#include <thread>
 
 #include "pass_team.hpp"
 #include "workers.hpp"
@@ -13,7 +16,7 @@ namespace fixstep::detail {
 /// A worker thread started on first use, and two ways to hand it half of a pass:
 /// - outside a run (open() not called), each both() wakes the worker (Workers: a futex wait
 ///   between calls, so an idle world costs no CPU);
-/// - inside a run (open() ... close(), one tick's disc phase), the worker spins between passes
+/// - inside a run (open() ... close(), one tick's disc phases), the worker spins between passes
 ///   (PassTeam), since a futex wake-up costs tens of microseconds on a virtual machine, more
 ///   than many of a tick's passes take.
 /// A copy (a snapshot) starts without a thread and outside a run.
@@ -44,15 +47,27 @@ class SecondThread {
   [[nodiscard]] bool is_open() const { return open_; }
 
   /// Runs job(1) on the worker while this thread runs job(0), and returns when both have
-  /// finished (job(1) also when job(0) throws, before the exception leaves).
+  /// finished (job(1) also when job(0) throws, before the exception leaves). An exception of
+  /// job(1) (std::bad_alloc as a vector grows) is thrown here, after job(0) has finished.
   template <class Job>
   void both(Job& job) {
     start();
-    auto run = [](void* p) { (*static_cast<Job*>(p))(1); };
+    struct Half {
+      Job* job;
+      std::exception_ptr error;
+    } half{&job, nullptr};
+    auto run = [](void* p) {
+      auto* h = static_cast<Half*>(p);
+      try {
+        (*h->job)(1);
+      } catch (...) {
+        h->error = std::current_exception();
+      }
+    };
     if (open_) {
-      state_->team.post(run, &job);
+      state_->team.post(run, &half);
     } else {
-      state_->workers.submit(run, &job);
+      state_->workers.submit(run, &half);
     }
     try {
       job(0);
@@ -61,6 +76,7 @@ class SecondThread {
       throw;
     }
     wait();
+    if (half.error) std::rethrow_exception(half.error);
   }
 
  private:
@@ -81,6 +97,15 @@ class SecondThread {
   std::unique_ptr<State> state_;
   bool open_ = false;
 };
+
+/// The threads a world's disc contacts use for WorldSettings::threads = want: 1 when asked for
+/// or when the build cannot start a thread, 2 when asked for, and for 0 (automatic) 2 where the
+/// machine has a second core. The states are the same either way.
+inline int disc_threads(int want) {
+  static const bool second_core = std::thread::hardware_concurrency() >= 2;  // a syscall: once
+  if (want == 1 || !threads_supported) return 1;
+  return want >= 2 || second_core ? 2 : 1;
+}
 
 /// Keeps a SecondThread's run open for a scope (a tick's disc phases), and closes it on the way
 /// out, by return or by exception; nothing when given no thread, or one whose run an outer

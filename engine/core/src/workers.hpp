@@ -1,5 +1,5 @@
-// The second thread of a world with links (World::parallel in world_coupled.cpp). Internal to
-// the engine: not installed.
+// A worker thread: the second thread of a world's links (World::parallel in world_coupled.cpp)
+// and of its disc contacts (second_thread.hpp). Internal to the engine: not installed.
 #pragma once
 
 #include <atomic>

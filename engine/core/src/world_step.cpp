@@ -224,11 +224,13 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   const bool quiet = sleep_ && sleepers_ != 0 && discs_ && discs_->active() && discs_at_rest();
   const bool discs = discs_ && discs_->active() && !quiet;
   // Two threads: the discs' second thread spins between the disc phases' passes to the end of
-  // the contact events (second_thread.hpp). Without links it wakes while the bodies integrate;
-  // with them, after (the links' own worker shares the integration).
-  const int threads = settings_.threads == 1 || !detail::threads_supported ? 1 : 2;
+  // the contact events (second_thread.hpp). It wakes while the bodies integrate, unless the
+  // integration has a worker of its own (links, or the dissipation account: step_multipass),
+  // and then after it.
+  const int threads = detail::disc_threads(settings_.threads);
   auto disc_thread = [&] { return discs ? discs_->second_thread(threads) : nullptr; };
-  const detail::SecondThreadRun early(net_.a.empty() ? disc_thread() : nullptr);
+  const bool own_worker = !net_.a.empty() || settings_.track_dissipation;
+  const detail::SecondThreadRun early(own_worker ? nullptr : disc_thread());
   detail::PhaseClock clock(discs);  // World::profile(): read only with disc contacts
   if (contacts) save_contact_start();
   if (immovable || discs) save_tick_start(discs);
