@@ -441,8 +441,9 @@ class DiscContacts {
   /// written by two threads), then disc k's at 3 + k, then a moving kinematic partner's, one
   /// a row (see disc_rows.cpp).
   std::vector<SolveVelocity> sv_;
-  /// Per slot: 1 once an impulse changed it (and, for a disc's slot, once the push-out moved
-  /// the disc).
+  /// Per slot, for this tick's rows: 0, or 1 once an impulse changed it, 2 once scatter_rows()
+  /// moved its disc by that (and for a disc's slot nonzero once the push-out moved the disc).
+  /// The slots of discs in no row keep an earlier tick's marks, never read.
   std::vector<std::uint8_t> slot_moved_;
   bool kinematic_contacts_ = false;  ///< a contact of this tick has a kinematic partner
   std::vector<RollRow> roll_rows_;   ///< with rolling discs (empty otherwise)

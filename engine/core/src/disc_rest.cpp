@@ -54,12 +54,15 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   solve_velocities(stats);
   scatter_rows(tick.kappa * tick.dt);
   push_out(tick, stats);
-  // The discs the passes moved (their slots' marks; a slot is a disc's own, never shared).
-  halves(discs_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
-    for (std::size_t k = begin; k < end; ++k) {
-      if (slot_moved_[3 + k]) changed_[k] |= 2;
+  // The discs the passes moved (their slots' marks), through the rows: only discs in contact.
+  auto marks = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const PushRow& r = push_rows_[i];
+      if (r.w_a > 0.0 && slot_moved_[3 + r.a]) changed_[r.a] |= 2;
+      if (r.w_b > 0.0 && slot_moved_[3 + r.b]) changed_[r.b] |= 2;
     }
-  });
+  };
+  parts_pass(marks);
 }
 
 template <class Real>

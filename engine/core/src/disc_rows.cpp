@@ -28,12 +28,6 @@ void DiscContacts<Real>::build_rows() {
     sv_[s] = SolveVelocity{}, slot_moved_[s] = 0;
     if (rolling_) sw_[s] = 0.0;
   }
-  halves(n, [&](std::size_t begin, std::size_t end, int /*half*/) {
-    for (std::size_t k = begin; k < end; ++k) {
-      sv_[3 + k] = {evx_[k], evy_[k]}, slot_moved_[3 + k] = 0;
-      if (rolling_) sw_[3 + k] = ew_[k];
-    }
-  });
   // A moving kinematic partner's slot: its velocity for the tick (appended: one thread only).
   auto fixed = [&](double vx, double vy, double w) {
     sv_.push_back({vx, vy});
@@ -44,9 +38,15 @@ void DiscContacts<Real>::build_rows() {
   const auto& p = part_start_;
   auto fill = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
     const std::uint32_t part = begin >= p[2] ? 2 : begin >= p[1] ? 1 : 0;
+    // A moving disc's slot holds its velocity as the tick left it, written by each of its rows
+    // (the same values; only the discs in rows are touched, however many discs there are).
     auto slot = [&](std::uint32_t k, bool moves, bool kinematic) {
       if (kinematic) return fixed(evx_[k], evy_[k], spin(k));
-      return moves ? std::uint32_t(3 + k) : part;
+      if (!moves) return part;
+      const std::uint32_t s = 3 + k;
+      sv_[s] = {evx_[k], evy_[k]}, slot_moved_[s] = 0;
+      if (rolling_) sw_[s] = ew_[k];
+      return s;
     };
     for (std::uint32_t i = begin; i < end; ++i) {
       const RestContact& c = contacts_[order_[i]];
@@ -90,16 +90,24 @@ void DiscContacts<Real>::scatter_rows(double kdt) {
     }
   };
   parts_pass(rows);
-  // sv_ at 3 + k started at evx_, evy_ (untouched since build_rows()).
-  halves(discs_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
-    for (std::size_t k = begin; k < end; ++k) {
-      const SolveVelocity& v = sv_[3 + k];
-      if (!slot_moved_[3 + k]) continue;
-      ex_[k] += kdt * (v.x - evx_[k]), ey_[k] += kdt * (v.y - evy_[k]);
-      evx_[k] = v.x, evy_[k] = v.y;
-      if (rolling_) ew_[k] = sw_[3 + k];
+  // Each moved disc once, at the first of its rows (its slot's mark goes from 1 to 2): a disc's
+  // rows are in its half's part and across the cut, which runs after both halves. Its slot
+  // started at evx_, evy_ (untouched since build_rows()).
+  const std::size_t n = discs_.size();
+  auto move = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      for (const std::uint32_t s : {rows_[i].a, rows_[i].b}) {
+        if (s < 3 || s >= 3 + n || slot_moved_[s] != 1) continue;  // not a disc's, or not moved
+        const std::size_t k = s - 3;
+        const SolveVelocity& v = sv_[s];
+        ex_[k] += kdt * (v.x - evx_[k]), ey_[k] += kdt * (v.y - evy_[k]);
+        evx_[k] = v.x, evy_[k] = v.y;
+        if (rolling_) ew_[k] = sw_[s];
+        slot_moved_[s] = 2;
+      }
     }
-  });
+  };
+  parts_pass(move);
 }
 
 #define FIXSTEP_INSTANTIATE(Real)                 \
