@@ -6,7 +6,6 @@
 
 #include <exception>
 #include <memory>
-#include <thread>
 
 #include "pass_team.hpp"
 #include "workers.hpp"
@@ -102,9 +101,8 @@ class SecondThread {
 /// or when the build cannot start a thread, 2 when asked for, and for 0 (automatic) 2 where the
 /// machine has a second core. The states are the same either way.
 inline int disc_threads(int want) {
-  static const bool second_core = std::thread::hardware_concurrency() >= 2;  // a syscall: once
   if (want == 1 || !threads_supported) return 1;
-  return want >= 2 || second_core ? 2 : 1;
+  return want >= 2 || has_second_core() ? 2 : 1;
 }
 
 /// Keeps a SecondThread's run open for a scope (a tick's disc phases), and closes it on the way

@@ -18,6 +18,12 @@ inline constexpr bool threads_supported = false;
 inline constexpr bool threads_supported = true;
 #endif
 
+/// Whether the machine has a second core (asked once: a system call).
+inline bool has_second_core() {
+  static const bool second = std::thread::hardware_concurrency() >= 2;
+  return second;
+}
+
 /// One worker thread that runs a job while the calling thread runs its own share: a spin on
 /// an atomic generation counter for the short waits between passes, a futex wait
 /// (std::atomic::wait) for the long ones between ticks, so an idle world costs no CPU.
