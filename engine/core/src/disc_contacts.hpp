@@ -52,6 +52,7 @@
 #include <vector>
 
 #include "disc_broadphase.hpp"
+#include "disc_records.hpp"
 #include "fixstep/components.hpp"
 #include "fixstep/detail/world_kernel.hpp"
 
@@ -63,105 +64,6 @@ inline double length(double x, double y) {
 }
 
 struct RestSweep;  // disc_rest.cpp
-
-/// One disc of the contact set, in the World's dense body order at rebuild time.
-struct Disc {
-  std::uint32_t body = 0;           ///< dense body index
-  double radius = 0;                ///< m
-  double restitution = 0;           ///< e in [0, 1]
-  double friction = 0;              ///< μ >= 0
-  double inv_mass = 0;              ///< 1/kg; 0 for static and kinematic discs
-  std::uint8_t dynamic = 0;         ///< 1 for dynamic discs
-  std::uint8_t sensor = 0;          ///< 1 for a sensor (Collider::sensor): no contact, sensed
-  double accel_x = 0, accel_y = 0;  ///< constant acceleration (gravity + F/m), m/s² (energy)
-  std::int32_t plane_slot = -1;     ///< its index among the plane colliders (Tick::after), or -1
-  double inv_inertia = 0;           ///< 1/(kg·m²) with rolling discs; 0: it does not turn
-};
-
-/// A disc's motion within the tick: position X and model velocity U at time t, acceleration a.
-struct DiscMotion {
-  double t = 0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;  // d: offset δ
-  [[nodiscard]] double px(double s) const {
-    return x + ux * (s - t) + 0.5 * ax * (s - t) * (s - t);
-  }
-  [[nodiscard]] double py(double s) const {
-    return y + uy * (s - t) + 0.5 * ay * (s - t) * (s - t);
-  }
-};
-
-/// An impact waiting in the event queue: time, pair index and the two discs' versions.
-struct DiscEvent {
-  double time = 0;
-  std::uint32_t pair = 0, stamp_a = 0, stamp_b = 0;
-};
-
-/// A contact of the resting solver: disc a against disc b, or against plane p (b = npos).
-struct RestContact {
-  std::uint64_t key = 0;  ///< a << 32 | b (b = disc count + plane index for planes)
-  std::uint32_t a = 0, b = 0;
-  double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
-  double inv_a = 0, inv_b = 0;  ///< 1/kg of a and b (0: static, kinematic or a plane)
-  /// The radii r_a + r_b (r_a for a plane or a segment) and the smaller radius, m.
-  double radii = 0, r_min = 0;
-  /// Rolling discs: the mass along the tangent at the contact point, kg (1 / (1/m_a + 1/m_b +
-  /// r_a²/I_a + r_b²/I_b); `mass` without rolling), the radii r_a, r_b from the centres to the
-  /// contact point (m; 0 for a plane and without rolling) and r/I of each (rad/s per N·s).
-  double mass_t = 0, arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
-  bool kinematic_a = false;  ///< a is a moving kinematic disc (its work is external)
-  bool kinematic_b = false;  ///< b is a moving kinematic disc or segment (its work is external)
-  /// b's velocity when b is a plane or a segment (m/s): a kinematic body's segment moves.
-  double bvx = 0, bvy = 0;
-};
-
-/// A resting contact as the velocity iterations see it (disc_rows.cpp), in order_'s order:
-/// its two bodies as slots of the solver's own velocity array (a slot of velocity 0 for a
-/// static body or a plane), and what an impulse needs, from RestContact.
-struct SolveRow {
-  std::uint32_t a = 0, b = 0;  ///< slots of DiscContacts' solver velocities
-  double nx = 0, ny = 0, mass = 0, mass_t = 0, friction = 0, lambda_n = 0, lambda_t = 0;
-  double inv_a = 0, inv_b = 0;  ///< 1/kg (0: the slot is not moved)
-};
-
-/// A resting contact as the push-out sees it (disc_rows.cpp), in order_'s order: its discs (b
-/// past the discs for a plane or a segment), r_a + r_b (r_a past the discs) and the smaller
-/// radius (m), and the shares w_a = (1/m_a) / (1/m_a + 1/m_b) and w_b of a push that each
-/// disc takes (0: it is not moved).
-struct PushRow {
-  std::uint32_t a = 0, b = 0;
-  double radii = 0, r_min = 0, w_a = 0, w_b = 0;
-};
-
-/// A rolling row's turn (disc_rows.cpp): the radii r_a, r_b from the centres to the contact
-/// point (m; 0 for a plane) and r/I of each disc (rad/s per N·s; 0: it does not turn).
-struct RollRow {
-  double arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
-};
-
-/// A velocity in the solver's own array, m/s.
-struct SolveVelocity {
-  double x = 0, y = 0;
-};
-
-/// Last tick's resting impulses, for warm starting (part of a snapshot).
-struct WarmImpulse {
-  std::uint64_t key = 0;
-  double lambda_n = 0, lambda_t = 0;
-};
-
-/// A disc overlapping a sensor after a tick, or crossing it within the tick (begun and ended
-/// in it), by dense body index.
-struct SensorOverlap {
-  std::uint32_t sensor = 0, visitor = 0;
-  std::uint8_t crossed = 0;  ///< 1: it met the sensor only within the tick
-};
-
-/// An impact as the contact solver logs it: the two bodies by dense index (body_a < body_b),
-/// its time (s after the tick's start) and closing speed (m/s). World::impacts() names them
-/// by handle.
-struct DiscImpact {
-  std::uint32_t body_a = 0, body_b = 0;
-  double time = 0.0, normal_speed = 0.0;
-};
 
 template <class Real>
 class DiscContacts {
