@@ -23,7 +23,8 @@
 //     tick stops resolving impacts and reports the cap through cap_hit(). An impact that would
 //     bounce back by less than one tick of the pair's relative normal acceleration
 //     (e |v_n| <= |c_n| dt) is left to phase 2.
-//  2. Resting contact (disc_rest.cpp). Pairs touching at the end of the tick, and discs on
+//  2. Resting contact (disc_gather.cpp, disc_rest.cpp). Pairs touching at the end of the tick, and
+//  discs on
 //     planes, are solved together by sequential impulses (Gauss–Seidel, warm-started from the
 //     last tick's impulses) so that no pair approaches; each impulse acts as a constant
 //     contact force over the tick, so it moves the positions by κ dt Δv, κ being how far the
@@ -154,6 +155,16 @@ class DiscContacts {
     auto job = [&](int half) { half == 0 ? pass(std::size_t{0}, n / 2, 0) : pass(n / 2, n, 1); };
     broadphase_.second_thread().both(job);
   }
+  /// Runs job(0) and job(1): on two threads when the tick's run of the second thread is open,
+  /// else one after the other here. For jobs that write nothing the other reads or writes.
+  template <class Job>
+  void both_halves(Job& job) {
+    if (!broadphase_.second_thread().is_open()) {
+      job(0), job(1);
+      return;
+    }
+    broadphase_.second_thread().both(job);
+  }
   /// The impacts of the last resolve(), in order.
   [[nodiscard]] std::span<const DiscImpact> impacts() const { return impact_log_; }
   /// The sensors' overlaps after the last resolve(), by (sensor, visitor) disc pair order.
@@ -184,8 +195,9 @@ class DiscContacts {
   /// Candidate pairs from which two threads share the first impact predictions and the
   /// gathering, within the tick's run of the second thread.
   static constexpr std::size_t min_parallel_pairs = 512;
-  /// Discs from which a tick with two threads keeps its second thread spinning between passes
-  /// (SecondThread::open) rather than waking it for each.
+  /// Discs from which a tick with two threads shares its passes with the second thread,
+  /// which spins between them (SecondThread::open) rather than waking for each; below, every
+  /// pass runs on the stepping thread.
   static constexpr std::size_t min_parallel_discs = 1024;
   /// The second thread a tick on `threads` threads shares its passes with (SecondThreadRun
   /// keeps it spinning through them), or null: one thread, or fewer than min_parallel_discs.
@@ -219,8 +231,8 @@ class DiscContacts {
   void predict(std::uint32_t pair, double now, double dt);
   /// The pair's next impact after `now` into out; false when it has none this tick.
   bool next_event(std::uint32_t pair, double now, double dt, DiscEvent& out) const;
-  /// The event queue filled with every pair's first impact (two threads share the pairs when
-  /// tick.threads >= 2 and there are min_parallel_pairs or more).
+  /// The event queue filled with every pair's first impact (two threads share the pairs within
+  /// the tick's run of the second thread when there are min_parallel_pairs or more).
   void first_events(const Tick& tick);
   void impact(std::uint32_t pair, double now, double dt);
   // phase 2 (disc_gather.cpp, then disc_rest.cpp)
@@ -228,6 +240,10 @@ class DiscContacts {
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
   /// and not an impact of the next tick), and if so its contact into *out (when not null).
   bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out) const;
+  /// Disc k's resting contact with a plane or segment b (b past the discs) along its normal
+  /// (nx, ny), friction μ: its key, radii, masses and, with rolling discs, its turn.
+  [[nodiscard]] RestContact wall_contact(std::uint32_t k, std::uint32_t b, double nx, double ny,
+                                         double friction) const;
   /// Appends dynamic disc k's contacts with the planes (within the slop) to out, in plane order.
   void plane_contacts_of(const Tick& tick, std::uint32_t k, std::vector<RestContact>& out) const;
   /// Splits contacts_ into two halves of the discs and the contacts across the cut: order_
@@ -248,7 +264,7 @@ class DiscContacts {
     range(p[2], p[3], 0);  // across the cut
   }
   /// Warm start, velocity iterations and push-out, on two threads when the contacts were
-  /// split and tick.threads >= 2 (the second thread of second_thread.hpp).
+  /// split and min_parallel_contacts or more within the tick's run of the second thread.
   void solve_resting(const Tick& tick, ContactStats& stats);
   /// Each contact's impulses from last tick's by key (warm_), 0 for a new contact.
   void match_warm();

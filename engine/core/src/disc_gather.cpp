@@ -76,6 +76,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
       }
       kinematic[half] = moving;
     });
+    touch_.clear();  // scratch: a snapshot need not copy it
   } else {
     contacts_.clear();
     RestContact c;
@@ -87,6 +88,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   }
   kinematic_contacts_ = kinematic[0] || kinematic[1];
   plane_contacts_ = static_cast<std::uint32_t>(contacts_.size());
+  if (tick.planes.empty() && tick.segments == nullptr) return;  // nothing but disc pairs
   if (tick.segments == nullptr && broadphase_.second_thread().is_open()) {
     // Two threads: each half of the discs' plane contacts apart, then the first's and the
     // second's after the pairs (the same contacts in the same order).
@@ -96,8 +98,10 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
         plane_contacts_of(tick, static_cast<std::uint32_t>(k), plane_half_[half]);
       }
     });
-    for (const auto& half : plane_half_)
+    for (auto& half : plane_half_) {
       contacts_.insert(contacts_.end(), half.begin(), half.end());
+      half.clear();  // scratch: a snapshot need not copy it
+    }
     return;
   }
   for (std::uint32_t k = 0; k < n; ++k) {
@@ -116,28 +120,37 @@ void DiscContacts<Real>::plane_contacts_of(const Tick& tick, std::uint32_t k,
     const PlaneDef& p = tick.planes[i];
     const double gap = p.normal.x * ex_[k] + p.normal.y * ey_[k] - p.offset - d.radius;
     if (gap > slop * d.radius) continue;
-    RestContact c;
-    c.key = (std::uint64_t(k) << 32) | (n + i);
-    c.a = k, c.b = n + i;
-    c.radii = c.r_min = d.radius;
-    c.nx = p.normal.x, c.ny = p.normal.y;
-    c.mass = c.mass_t = 1.0 / d.inv_mass;
-    c.inv_a = d.inv_mass;
-    c.friction = p.friction;
-    if (rolling_) {
-      c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
-      c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
-    }
-    out.push_back(c);
+    out.push_back(wall_contact(k, n + i, p.normal.x, p.normal.y, p.friction));
   }
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                            \
-  template void DiscContacts<Real>::gather_contacts(const Tick&);                            \
-  template bool DiscContacts<Real>::pair_contact(const Tick&, const DiscPair&, RestContact*) \
-      const;                                                                                 \
-  template void DiscContacts<Real>::plane_contacts_of(const Tick&, std::uint32_t,            \
-                                                      std::vector<RestContact>&) const;
+template <class Real>
+RestContact DiscContacts<Real>::wall_contact(std::uint32_t k, std::uint32_t b, double nx, double ny,
+                                             double friction) const {
+  const Disc& d = discs_[k];
+  RestContact c;
+  c.key = (std::uint64_t(k) << 32) | b;
+  c.a = k, c.b = b;
+  c.radii = c.r_min = d.radius;
+  c.nx = nx, c.ny = ny;
+  c.mass = c.mass_t = 1.0 / d.inv_mass;
+  c.inv_a = d.inv_mass;
+  c.friction = friction;
+  if (rolling_) {
+    c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
+    c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
+  }
+  return c;
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                                             \
+  template void DiscContacts<Real>::gather_contacts(const Tick&);                             \
+  template bool DiscContacts<Real>::pair_contact(const Tick&, const DiscPair&, RestContact*)  \
+      const;                                                                                  \
+  template void DiscContacts<Real>::plane_contacts_of(const Tick&, std::uint32_t,             \
+                                                      std::vector<RestContact>&) const;       \
+  template RestContact DiscContacts<Real>::wall_contact(std::uint32_t, std::uint32_t, double, \
+                                                        double, double) const;
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

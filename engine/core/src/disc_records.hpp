@@ -39,7 +39,8 @@ struct DiscEvent {
   std::uint32_t pair = 0, stamp_a = 0, stamp_b = 0;
 };
 
-/// A contact of the resting solver: disc a against disc b, or against plane p (b = npos).
+/// A contact of the resting solver: disc a against disc b, or against plane p (b = disc count
+/// + p) or a segment (past the planes).
 struct RestContact {
   std::uint64_t key = 0;  ///< a << 32 | b (b = disc count + plane index for planes)
   std::uint32_t a = 0, b = 0;

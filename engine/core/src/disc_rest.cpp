@@ -276,15 +276,17 @@ void DiscContacts<Real>::keep_impulses() {
       std::lower_bound(contacts_.begin() + std::ptrdiff_t(mid), contacts_.end(), contacts_[h].key,
                        [](const RestContact& c, std::uint64_t key) { return c.key < key; });
   const auto j = static_cast<std::size_t>(split - contacts_.begin());
-  halves(2, [&](std::size_t begin, std::size_t /*end*/, int /*half*/) {
-    if (begin == 0) {
+  auto job = [&](int half) {
+    if (half == 0) {
       merge(0, h, mid, j, warm_);
     } else {
       warm_upper_.clear();
       merge(h, mid, j, end, warm_upper_);
     }
-  });
+  };
+  both_halves(job);
   warm_.insert(warm_.end(), warm_upper_.begin(), warm_upper_.end());
+  warm_upper_.clear();  // scratch: a snapshot need not copy it
 }
 
 template <class Real>

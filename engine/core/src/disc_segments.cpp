@@ -1,5 +1,5 @@
 // Disc contacts, phase 2, with segments: each segment a disc touches at the tick's end is a
-// resting contact as a plane is (disc_rest.cpp), along the normal of its closest feature
+// resting contact as a plane is (disc_gather.cpp), along the normal of its closest feature
 // under the ghost-vertex rule (segment_set.hpp), so that a polyline's joints catch nothing. A
 // segment a kinematic body carries is where its body has moved it by the tick's end (u dt on
 // from where the tick found it), and the contact's target is its velocity u: the impulses stop
@@ -29,21 +29,10 @@ void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t
     const double vn = (evx_[k] - u.x) * t.nx + (evy_[k] - u.y) * t.ny;
     const double cn = motion_[k].ax * t.nx + motion_[k].ay * t.ny;
     if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) continue;
-    RestContact c;
-    c.key = (std::uint64_t(k) << 32) | (base + i);
-    c.a = k, c.b = base + i;
-    c.radii = c.r_min = d.radius;
-    c.nx = t.nx, c.ny = t.ny;
+    RestContact c = wall_contact(k, base + i, t.nx, t.ny, s.friction);
     c.bvx = u.x, c.bvy = u.y;
     c.kinematic_b = u.x != 0.0 || u.y != 0.0;
     kinematic_contacts_ = kinematic_contacts_ || c.kinematic_b;
-    c.mass = c.mass_t = 1.0 / d.inv_mass;
-    c.inv_a = d.inv_mass;
-    c.friction = s.friction;
-    if (rolling_) {  // as a plane contact's (disc_rest.cpp)
-      c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
-      c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
-    }
     contacts_.push_back(c);
   }
 }

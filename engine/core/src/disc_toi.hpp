@@ -31,8 +31,9 @@ struct Quartic {
 
 /// f(τ) = k0 + k1 τ + k2 τ², m²: the gap quartic of a motion without relative acceleration
 /// (k3 = k4 = 0). For τ >= 0 both evaluations round to the same bits as Quartic's on
-/// {k0, k1, k2, ±0, +0}: there τ k4 = +0, k3 + 0 = +0, τ · 0 = +0 and k2 + 0 = k2 (k2 is a sum
-/// of squares plus ±0, never -0), so the roots bisected are the same to the last bit.
+/// {k0, k1, k2, ±0, +0}: there τ k4 = +0, k3 + 0 = +0, τ · 0 = +0 and k2 + 0 = k2 (k2 is never
+/// -0: its first term |w|² is >= +0, and +0 + -0 is +0), so the roots bisected are the same to
+/// the last bit.
 struct Quadratic {
   double k0 = 0, k1 = 0, k2 = 0;
   [[nodiscard]] double operator()(double t) const { return k0 + t * (k1 + t * k2); }
