@@ -269,7 +269,7 @@ TEST(SecondThread, AnExceptionOfTheWorkersHalfIsThrownOnTheCaller) {
 }
 
 // A world opens a run for its tick and the disc phase asks for one again: the inner scope
-// neither opens nor closes it.
+// neither opens nor closes it; close() ends a run before its scope does.
 TEST(SecondThread, ANestedRunLeavesTheOuterOneOpen) {
   SecondThread thread;
   {
@@ -280,6 +280,16 @@ TEST(SecondThread, ANestedRunLeavesTheOuterOneOpen) {
       EXPECT_TRUE(thread.is_open());
     }
     EXPECT_TRUE(thread.is_open());
+  }
+  EXPECT_FALSE(thread.is_open());
+  {  // closed before the scope ends (a tick after its contact events): once, and for good
+    SecondThreadRun run(&thread);
+    SecondThreadRun inner(&thread);
+    inner.close();
+    EXPECT_TRUE(thread.is_open());
+    run.close();
+    EXPECT_FALSE(thread.is_open());
+    run.close();
   }
   EXPECT_FALSE(thread.is_open());
   const SecondThreadRun none(nullptr);

@@ -97,25 +97,20 @@ class SecondThread {
   bool open_ = false;
 };
 
-/// The threads a world's disc contacts use for WorldSettings::threads = want: 1 when asked for
-/// or when the build cannot start a thread, 2 when asked for, and for 0 (automatic) 2 where the
-/// machine has a second core. The states are the same either way.
-inline int disc_threads(int want) {
-  if (want == 1 || !threads_supported) return 1;
-  return want >= 2 || has_second_core() ? 2 : 1;
-}
-
 /// Keeps a SecondThread's run open for a scope (a tick's disc phases), and closes it on the way
-/// out, by return or by exception; nothing when given no thread, or one whose run an outer
-/// scope keeps open.
+/// out (or at close()), by return or by exception; nothing when given no thread, or one whose run
+/// an outer scope keeps open.
 class SecondThreadRun {
  public:
   explicit SecondThreadRun(SecondThread* thread)
       : thread_(thread != nullptr && !thread->is_open() ? thread : nullptr) {
     if (thread_) thread_->open();
   }
-  ~SecondThreadRun() {
+  ~SecondThreadRun() { close(); }
+  /// Ends the run before the scope does (the worker then sleeps); nothing if it holds none.
+  void close() noexcept {
     if (thread_) thread_->close();
+    thread_ = nullptr;
   }
   SecondThreadRun(const SecondThreadRun&) = delete;
   SecondThreadRun& operator=(const SecondThreadRun&) = delete;

@@ -24,6 +24,15 @@ inline bool has_second_core() {
   return second;
 }
 
+/// The threads a world uses for WorldSettings::threads = want: 1 when asked for or when the
+/// build cannot start a thread, 2 when asked for, and for 0 (automatic) 2 where the machine has
+/// a second core (the links add a least size: parallel_min_bodies). The states are the same
+/// either way.
+inline int threads_for(int want) {
+  if (want == 1 || !threads_supported) return 1;
+  return want >= 2 || has_second_core() ? 2 : 1;
+}
+
 /// One worker thread that runs a job while the calling thread runs its own share: a spin on
 /// an atomic generation counter for the short waits between passes, a futex wait
 /// (std::atomic::wait) for the long ones between ticks, so an idle world costs no CPU.

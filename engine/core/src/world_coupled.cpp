@@ -157,10 +157,7 @@ template <class Real>
 void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
   const std::size_t n = x_.size(), m = net_.a.size();
   const int want = settings_.threads;
-  threads_used_ = want == 1 || !detail::threads_supported                   ? 1
-                  : want >= 2                                               ? 2
-                  : (detail::has_second_core() && n >= parallel_min_bodies) ? 2
-                                                                            : 1;
+  threads_used_ = detail::threads_for(want) == 2 && (want >= 2 || n >= parallel_min_bodies) ? 2 : 1;
   if (threads_used_ == 2 && !workers_) workers_.reset(new detail::Workers());
   const Real push[2] = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)};
   const Real h = static_cast<Real>(settings_.dt / settings_.substeps);

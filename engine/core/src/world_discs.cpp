@@ -178,7 +178,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       contact_.after,
       settings_.dt,
       kappa(settings_.integrator, settings_.substeps),
-      detail::disc_threads(settings_.threads)};  // the same states either way
+      detail::threads_for(settings_.threads)};  // the same states either way
   if (!segments_.empty()) t.segments = &segments_;
   if (rolling_) t.spin = spin_.data();
   if (!plane_work_.empty()) t.plane_work = plane_work_.data();

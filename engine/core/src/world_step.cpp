@@ -227,10 +227,10 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   // the contact events (second_thread.hpp). It wakes while the bodies integrate, unless the
   // integration has a worker of its own (links, or the dissipation account: step_multipass),
   // and then after it.
-  const int threads = detail::disc_threads(settings_.threads);
+  const int threads = detail::threads_for(settings_.threads);
   auto disc_thread = [&] { return discs ? discs_->second_thread(threads) : nullptr; };
   const bool own_worker = !net_.a.empty() || settings_.track_dissipation;
-  const detail::SecondThreadRun early(own_worker ? nullptr : disc_thread());
+  detail::SecondThreadRun early(own_worker ? nullptr : disc_thread());
   detail::PhaseClock clock(discs);  // World::profile(): read only with disc contacts
   if (contacts) save_contact_start();
   if (immovable || discs) save_tick_start(discs);
@@ -246,7 +246,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (forces) remove_input_forces();
   if (immovable) restore_immovable();
   profile_.integrate = clock.lap();
-  const detail::SecondThreadRun run(disc_thread());  // nothing if `early` holds it open
+  detail::SecondThreadRun run(disc_thread());  // nothing if `early` holds it open
   const std::size_t plane_capped = contacts ? resolve_contacts() : 0;
   if (discs) {
     resolve_discs();
@@ -256,6 +256,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
     const StepProfile& p = profile_;
     profile_.events = std::max(clock.lap() - p.broadphase - p.impacts - p.resting, 0.0);
     profile_.step = clock.total();
+    run.close(), early.close();  // the worker sleeps through the rest of the tick
   } else if (quiet) {
     quiet_discs();
   } else {
