@@ -40,7 +40,7 @@
 
 #include "../tests/support/scene_session.hpp"
 #include "fixstep/capture.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/video.hpp"

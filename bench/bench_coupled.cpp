@@ -35,7 +35,7 @@
 
 #include "coupled.hpp"
 #include "fixstep/capture.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 #include "median_run.hpp"
 
 using namespace fixstep;

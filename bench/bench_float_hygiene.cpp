@@ -6,7 +6,7 @@
 //   build/release/bin/bench_float_hygiene
 #include <benchmark/benchmark.h>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace {
 

@@ -22,7 +22,7 @@
 
 #include "fixstep/capture.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 using namespace fixstep;
 

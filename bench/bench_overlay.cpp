@@ -28,7 +28,7 @@
 #include "../tests/support/scene_session.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/draw_list.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/session.hpp"
 #include "many_bodies.hpp"
 

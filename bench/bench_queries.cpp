@@ -19,7 +19,7 @@
 #include <random>
 #include <vector>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace {
 

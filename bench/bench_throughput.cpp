@@ -37,8 +37,8 @@
 #include <vector>
 
 #include "fixstep/capture.hpp"
-#include "fixstep/simd.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/simd.hpp"
+#include "fixstep/core/world.hpp"
 #include "flush_denormals.hpp"
 #include "median_run.hpp"
 
@@ -855,7 +855,7 @@ std::string report(const Collector& c, const Options& o) {
   const char* precs[] = {"f32", "f64"};
   line(
       fmt::format("Engine sweeps, raw loops and triad compiled for SIMD level **{}** "
-                  "(fixstep/simd.hpp; chosen at run time, `--simd=` to force one).",
+                  "(fixstep/core/simd.hpp; chosen at run time, `--simd=` to force one).",
                   simd_level_name(o.simd)));
 
   for (SceneKind s : {SceneKind::spring, SceneKind::projectile}) {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/components.hpp"
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace coupled {
 

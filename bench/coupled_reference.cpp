@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "coupled.hpp"
-#include "fixstep/exact.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/exact.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace coupled {
 

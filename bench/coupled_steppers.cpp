@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "coupled.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 #include "flush_denormals.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)

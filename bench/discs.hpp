@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/types.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace discs {
 

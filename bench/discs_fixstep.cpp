@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "discs.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace discs {
 

@@ -1,6 +1,6 @@
 // The benchmarks' raw loops run with x86 flush-to-zero and denormals-are-zero, so that they
 // never meet subnormal arithmetic. World::step no longer does the same: it runs in
-// the IEEE default mode (fixstep/float_mode.hpp) and flushes its state in software every 64th
+// the IEEE default mode (fixstep/core/float_mode.hpp) and flushes its state in software every 64th
 // tick (WorldSettings::flush_denormals).
 #pragma once
 

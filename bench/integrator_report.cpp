@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <string>
 
-#include "fixstep/exact.hpp"
-#include "fixstep/stability.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/exact.hpp"
+#include "fixstep/core/stability.hpp"
+#include "fixstep/core/world.hpp"
 
 using namespace fixstep;
 

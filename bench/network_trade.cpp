@@ -29,8 +29,8 @@
 
 #include "coupled.hpp"
 #include "fixstep/file_write.hpp"
-#include "fixstep/integrators.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/integrators.hpp"
+#include "fixstep/core/world.hpp"
 
 using namespace coupled;
 using fixstep::Body;

@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "fixstep/capture.hpp"
-#include "fixstep/exact.hpp"
+#include "fixstep/core/exact.hpp"
 #include "fixstep/plot.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 using namespace fixstep;
 

@@ -1,7 +1,7 @@
 // The smallest fixstep program: a world made in code, stepped at a fixed dt, its bodies'
 // positions printed. fixstep::core alone: no renderer, no window, no file.
 #include <cstdio>
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 
 int main() {
   using namespace fixstep;

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <exception>
 #include <fixstep/capture.hpp>
-#include <fixstep/loop.hpp>
+#include <fixstep/core/loop.hpp>
 #include <fixstep/render.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 #include <string>
 #include <vector>
 

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <exception>
 #include <fixstep/capture.hpp>
-#include <fixstep/exact.hpp>
+#include <fixstep/core/exact.hpp>
 #include <fixstep/render.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 #include <string>
 #include <vector>
 

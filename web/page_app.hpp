@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "fixstep/draw_list.hpp"
-#include "fixstep/input.hpp"
-#include "fixstep/pointer_drag.hpp"
-#include "fixstep/recording.hpp"
-#include "fixstep/rewind.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/pointer_drag.hpp"
+#include "fixstep/core/recording.hpp"
+#include "fixstep/core/rewind.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
 #include "page_game.hpp"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/recording.hpp"  // ReplayReport
+#include "fixstep/core/recording.hpp"  // ReplayReport
 
 namespace fixstep::web {
 

@@ -12,7 +12,7 @@
 
 #include "airhockey_app.hpp"
 #include "fixstep/key_bindings.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/recording_file.hpp"
 #include "fixstep/summary.hpp"
 #include "page_dom.hpp"

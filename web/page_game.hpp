@@ -14,7 +14,7 @@
 #include "fixstep/app.hpp"
 #include "fixstep/detail/game_level.hpp"
 #include "fixstep/detail/game_play.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/session.hpp"
 #include "page_input.hpp"
 #include "page_options.hpp"

@@ -3,7 +3,7 @@
 // handed to the same per-tick input sampling (InputSampler). Web platform (wasm only).
 #pragma once
 
-#include "fixstep/input.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/user_events.hpp"
 
 namespace fixstep::web {

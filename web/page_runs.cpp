@@ -6,7 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fixstep/limits.hpp>
+#include <fixstep/core/limits.hpp>
 #include <stdexcept>
 #include <utility>
 

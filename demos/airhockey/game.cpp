@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fixstep/det_math.hpp>
+#include <fixstep/core/det_math.hpp>
 #include <string>
 
 namespace airhockey {

@@ -15,8 +15,8 @@
 
 #include <array>
 #include <cstdint>
-#include <fixstep/input.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world.hpp>
 #include <span>
 #include <string>
 #include <vector>

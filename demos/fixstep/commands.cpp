@@ -10,14 +10,14 @@
 #include <cstdlib>
 #include <fixstep/capture.hpp>
 #include <fixstep/input_script.hpp>
-#include <fixstep/limits.hpp>
+#include <fixstep/core/limits.hpp>
 #include <fixstep/recording_writer.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
-#include <fixstep/stability.hpp>
-#include <fixstep/stop_request.hpp>
-#include <fixstep/sync_test.hpp>
-#include <fixstep/work_progress.hpp>
+#include <fixstep/core/stability.hpp>
+#include <fixstep/core/stop_request.hpp>
+#include <fixstep/core/sync_test.hpp>
+#include <fixstep/core/work_progress.hpp>
 #include <stdexcept>
 #include <vector>
 

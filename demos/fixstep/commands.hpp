@@ -3,7 +3,7 @@
 
 #include <cstdint>
 #include <fixstep/capture.hpp>
-#include <fixstep/recording.hpp>
+#include <fixstep/core/recording.hpp>
 #include <fixstep/scene.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>

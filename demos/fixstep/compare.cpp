@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <fixstep/capture.hpp>
 #include <fixstep/key_bindings.hpp>
-#include <fixstep/limits.hpp>
+#include <fixstep/core/limits.hpp>
 #include <fixstep/scene_stability.hpp>
-#include <fixstep/stop_request.hpp>
+#include <fixstep/core/stop_request.hpp>
 #include <fixstep/window.hpp>
 #include <span>
 #include <thread>

@@ -5,7 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <fixstep/integrators.hpp>
+#include <fixstep/core/integrators.hpp>
 #include <fixstep/scene.hpp>
 #include <optional>
 #include <span>

@@ -8,7 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fixstep/limits.hpp>
+#include <fixstep/core/limits.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <memory>

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <fixstep/scene.hpp>
 #include <fixstep/session.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 #include <memory>
 #include <optional>
 #include <span>

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fixstep/detail/defined_entity.hpp>
-#include <fixstep/exact.hpp>
+#include <fixstep/core/detail/defined_entity.hpp>
+#include <fixstep/core/exact.hpp>
 #include <numeric>
 
 namespace fixstep::cli {

@@ -3,9 +3,9 @@
 #pragma once
 
 #include <cstdint>
-#include <fixstep/exact.hpp>
+#include <fixstep/core/exact.hpp>
 #include <fixstep/scene.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 #include <optional>
 #include <string>
 #include <vector>

@@ -15,8 +15,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fixstep/limits.hpp>
-#include <fixstep/stop_request.hpp>
+#include <fixstep/core/limits.hpp>
+#include <fixstep/core/stop_request.hpp>
 #include <fixstep/suggest.hpp>
 #include <fixstep/write_signals.hpp>
 

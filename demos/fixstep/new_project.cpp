@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fixstep/output_target.hpp>
-#include <fixstep/stop_request.hpp>
+#include <fixstep/core/stop_request.hpp>
 #include <optional>
 #include <stdexcept>
 #include <system_error>

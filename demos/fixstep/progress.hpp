@@ -5,7 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
-#include <fixstep/work_progress.hpp>
+#include <fixstep/core/work_progress.hpp>
 #include <optional>
 #include <string>
 

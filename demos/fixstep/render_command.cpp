@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <fixstep/capture.hpp>
-#include <fixstep/limits.hpp>
+#include <fixstep/core/limits.hpp>
 #include <fixstep/manifest.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/scene_view_settings.hpp>
 #include <fixstep/session.hpp>
-#include <fixstep/stop_request.hpp>
+#include <fixstep/core/stop_request.hpp>
 
 #include "capture_sink.hpp"
 #include "commands.hpp"

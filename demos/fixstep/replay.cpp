@@ -5,7 +5,7 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fixstep/limits.hpp>
+#include <fixstep/core/limits.hpp>
 #include <stdexcept>
 
 #include "commands.hpp"

@@ -4,8 +4,8 @@
 
 #include <chrono>
 #include <exception>
-#include <fixstep/stop_request.hpp>
-#include <fixstep/work_progress.hpp>
+#include <fixstep/core/stop_request.hpp>
+#include <fixstep/core/work_progress.hpp>
 #include <utility>
 
 namespace fixstep::cli {

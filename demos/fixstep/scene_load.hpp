@@ -6,13 +6,13 @@
 // Nothing is shared while the load runs but its status (under a mutex) and its stop flag (an
 // atomic): the loaded world passes to the caller whole, through a future, once the thread is
 // done with it. The world is built exactly as on the calling thread (every step fixes its own
-// floating-point mode: fixstep/float_mode.hpp), so its ticks are the same.
+// floating-point mode: fixstep/core/float_mode.hpp), so its ticks are the same.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <fixstep/scene.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 #include <future>
 #include <mutex>
 #include <string>

@@ -2,7 +2,7 @@
 // warm, on its own, the way a benchmark measures it (compare's HUD and summary).
 #pragma once
 
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 
 namespace fixstep::cli {
 

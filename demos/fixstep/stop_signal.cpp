@@ -2,7 +2,7 @@
 
 #include <csignal>
 
-#include "fixstep/stop_request.hpp"
+#include "fixstep/core/stop_request.hpp"
 
 namespace fixstep::cli {
 

@@ -7,9 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fixstep/pointer_drag.hpp>
-#include <fixstep/recording.hpp>
-#include <fixstep/rewind.hpp>
+#include <fixstep/core/pointer_drag.hpp>
+#include <fixstep/core/recording.hpp>
+#include <fixstep/core/rewind.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>

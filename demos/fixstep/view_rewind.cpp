@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fixstep/stop_request.hpp>
+#include <fixstep/core/stop_request.hpp>
 
 namespace fixstep::cli {
 

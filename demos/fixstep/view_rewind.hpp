@@ -3,8 +3,8 @@
 #pragma once
 
 #include <cstddef>
-#include <fixstep/rewind.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/rewind.hpp>
+#include <fixstep/core/world.hpp>
 
 namespace fixstep::cli {
 
@@ -24,7 +24,7 @@ struct RewindPlan {
 /// The plan for `sim`'s world. Measures a copy stepped once (a tick builds force terms and
 /// scratch arrays that every later state holds too: the scratch of a 90 000-body grid doubles
 /// its state), so it takes about a tick and a copy of the world: seconds for 10^6 bodies. Polls
-/// stop requests (throws StopRequested: fixstep/stop_request.hpp).
+/// stop requests (throws StopRequested: fixstep/core/stop_request.hpp).
 [[nodiscard]] RewindPlan plan_rewind(const World& sim);
 
 /// A RewindBuffer of plan.capacity ticks; when that is less than rewind_seconds, says so once on

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fixstep/exact.hpp>
+#include <fixstep/core/exact.hpp>
 #include <numbers>
 #include <stdexcept>
 

@@ -4,9 +4,9 @@
 #pragma once
 
 #include <cstdint>
-#include <fixstep/integrators.hpp>
+#include <fixstep/core/integrators.hpp>
 #include <fixstep/plot.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 #include <string>
 #include <vector>
 

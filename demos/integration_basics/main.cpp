@@ -18,7 +18,7 @@
 #include <filesystem>
 #include <fixstep/capture.hpp>
 #include <fixstep/key_bindings.hpp>
-#include <fixstep/loop.hpp>
+#include <fixstep/core/loop.hpp>
 #include <fixstep/window.hpp>
 #include <optional>
 #include <string>

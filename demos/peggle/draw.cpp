@@ -2,7 +2,7 @@
 #include "draw.hpp"
 
 #include <cstdint>
-#include <fixstep/det_math.hpp>
+#include <fixstep/core/det_math.hpp>
 #include <optional>
 
 namespace peggle {

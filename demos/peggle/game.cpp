@@ -2,8 +2,8 @@
 #include "game.hpp"
 
 #include <algorithm>
-#include <fixstep/det_math.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/det_math.hpp>
+#include <fixstep/core/world.hpp>
 #include <string>
 
 namespace peggle {

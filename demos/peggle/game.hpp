@@ -19,8 +19,8 @@
 #pragma once
 
 #include <cstdint>
-#include <fixstep/input.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world.hpp>
 #include <optional>
 #include <string>
 #include <vector>

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 #include <fixstep/app.hpp>
-#include <fixstep/det_math.hpp>
+#include <fixstep/core/det_math.hpp>
 #include <string>
 
 #include "draw.hpp"

@@ -2,8 +2,8 @@
 #include "game.hpp"
 
 #include <cmath>
-#include <fixstep/components.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/world.hpp>
 #include <numbers>
 #include <string>
 

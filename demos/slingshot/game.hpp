@@ -13,10 +13,10 @@
 #pragma once
 
 #include <cstdint>
-#include <fixstep/input.hpp>
-#include <fixstep/pointer_drag.hpp>
-#include <fixstep/rules.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/pointer_drag.hpp>
+#include <fixstep/core/rules.hpp>
+#include <fixstep/core/world.hpp>
 #include <string>
 #include <vector>
 

@@ -6,7 +6,7 @@
 #pragma once
 
 #include <fixstep/app.hpp>
-#include <fixstep/pointer_drag.hpp>
+#include <fixstep/core/pointer_drag.hpp>
 #include <string>
 
 #include "draw.hpp"

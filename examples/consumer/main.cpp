@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <exception>
 #include <fixstep/summary.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/world.hpp>
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/video.hpp"
 #include "scene_session.hpp"

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/exact.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/exact.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

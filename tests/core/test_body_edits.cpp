@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace {
 

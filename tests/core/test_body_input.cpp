@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/input.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

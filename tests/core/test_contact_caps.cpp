@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/limits.hpp"
-#include "fixstep/stability.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/limits.hpp"
+#include "fixstep/core/stability.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

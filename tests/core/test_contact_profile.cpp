@@ -15,8 +15,8 @@
 #include <thread>
 #include <utility>
 
-#include "fixstep/stop_request.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/stop_request.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace contact_profile_tests {

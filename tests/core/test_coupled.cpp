@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/exact.hpp"
-#include "fixstep/simd.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/exact.hpp"
+#include "fixstep/core/simd.hpp"
+#include "fixstep/core/world.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

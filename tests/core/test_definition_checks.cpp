@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/definition_checks.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/definition_checks.hpp"
+#include "fixstep/core/world.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

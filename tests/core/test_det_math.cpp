@@ -11,8 +11,8 @@
 #include <random>
 
 #include "det_golden_cases.hpp"
-#include "fixstep/bits.hpp"
-#include "fixstep/det_math.hpp"
+#include "fixstep/core/bits.hpp"
+#include "fixstep/core/det_math.hpp"
 
 namespace {
 

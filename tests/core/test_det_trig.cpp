@@ -10,9 +10,9 @@
 #include <random>
 #include <stdexcept>
 
-#include "fixstep/bits.hpp"
-#include "fixstep/det_math.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/bits.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/types.hpp"
 
 // A named namespace: this file shares a unity build with test_det_math.cpp.
 namespace det_trig_test {

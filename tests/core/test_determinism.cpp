@@ -22,10 +22,10 @@
 
 #include "determinism_cases.hpp"
 #include "fixstep/capture.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
-#include "fixstep/simd.hpp"
+#include "fixstep/core/simd.hpp"
 #include "fixstep/summary.hpp"
 #include "scene_session.hpp"
 

@@ -1,4 +1,4 @@
-// The sync test (fixstep/sync_test.hpp) on worlds with disc-disc contacts:
+// The sync test (fixstep/core/sync_test.hpp) on worlds with disc-disc contacts:
 // rollbacks of 1 and 7 ticks over a pile poured into a box and a kinematic paddle, long enough
 // for impacts, resting contacts with warm-started impulses and the paddle's pushes to happen,
 // with every integrator in f64 and f32. Each case also checks that contacts really happened,
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/sync_test.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/sync_test.hpp"
+#include "fixstep/core/world.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace disc_thread_tests {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/exact.hpp"
+#include "fixstep/core/exact.hpp"
 
 namespace fixstep {
 namespace {

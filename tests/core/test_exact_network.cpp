@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/exact.hpp"
+#include "fixstep/core/exact.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

@@ -1,4 +1,4 @@
-// The caller's FPU mode cannot reach a state (fixstep/float_mode.hpp). Everything
+// The caller's FPU mode cannot reach a state (fixstep/core/float_mode.hpp). Everything
 // that computes one runs in the IEEE default mode whatever the caller set, so a caller that
 // set flush-to-zero / denormals-are-zero (x86 MXCSR) or a directed rounding gets the bits of
 // one that did not: stepping, loading a scene, building and editing a world, reading a
@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "fixstep/input_script.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/recording_file.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

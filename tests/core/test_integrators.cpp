@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fixstep/exact.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/exact.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

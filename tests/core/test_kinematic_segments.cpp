@@ -11,9 +11,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/segment.hpp"
-#include "fixstep/sync_test.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/sync_test.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace carried_segments_test {  // named: a unity batch shares anonymous namespaces

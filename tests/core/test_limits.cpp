@@ -5,18 +5,18 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fixstep/limits.hpp>
-#include <fixstep/recording.hpp>
+#include <fixstep/core/limits.hpp>
+#include <fixstep/core/recording.hpp>
 #include <fixstep/recording_writer.hpp>
 #include <fixstep/scene.hpp>
 #include <fixstep/scene_stability.hpp>
-#include <fixstep/work_progress.hpp>
+#include <fixstep/core/work_progress.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "fixstep/command_limits.hpp"
-#include "fixstep/definition_checks.hpp"
+#include "fixstep/core/definition_checks.hpp"
 #include "fixstep/recording_file.hpp"
 #include "link_between.hpp"
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "fixstep/key_bindings.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/scene.hpp"
 
 namespace fixstep {

@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/random.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/random.hpp"
+#include "fixstep/core/world.hpp"
 #include "test_bodies.hpp"
 
 // count_new.cpp: this program's operator new, counting the bytes asked for while counting.

@@ -9,11 +9,11 @@
 #include <limits>
 #include <stdexcept>
 
-#include "fixstep/random.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/random.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_writer.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 // A named namespace: this file shares a unity build with test_snapshot.cpp.
 namespace random_test {

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <random>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

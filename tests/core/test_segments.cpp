@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/recording.hpp"
-#include "fixstep/segment.hpp"
-#include "fixstep/sync_test.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/recording.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/sync_test.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/disc_overlap.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/disc_overlap.hpp"
+#include "fixstep/core/world.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

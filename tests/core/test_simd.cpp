@@ -1,4 +1,4 @@
-// Every SIMD level of the stepping sweeps (fixstep/simd.hpp) must give the baseline level's
+// Every SIMD level of the stepping sweeps (fixstep/core/simd.hpp) must give the baseline level's
 // results bit for bit: a world's state after N ticks may not depend on the CPU it ran on.
 #include <gtest/gtest.h>
 
@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/integrators.hpp"
-#include "fixstep/simd.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/integrators.hpp"
+#include "fixstep/core/simd.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "fixstep/sync_test.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/sync_test.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

@@ -11,15 +11,15 @@
 #include <vector>
 
 #include "determinism_cases.hpp"
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/loop.hpp"
-#include "fixstep/pointer_drag.hpp"
-#include "fixstep/rewind.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/loop.hpp"
+#include "fixstep/core/pointer_drag.hpp"
+#include "fixstep/core/rewind.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
-#include "fixstep/stop_request.hpp"
-#include "fixstep/sync_test.hpp"
-#include "fixstep/work_progress.hpp"
+#include "fixstep/core/stop_request.hpp"
+#include "fixstep/core/sync_test.hpp"
+#include "fixstep/core/work_progress.hpp"
 
 // count_new.cpp: this program's operator new, counting the bytes asked for while counting.
 extern std::atomic<bool> counting;

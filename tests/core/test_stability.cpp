@@ -8,11 +8,11 @@
 #include <optional>
 #include <string>
 
-#include "fixstep/definition_checks.hpp"
-#include "fixstep/exact.hpp"
+#include "fixstep/core/definition_checks.hpp"
+#include "fixstep/core/exact.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

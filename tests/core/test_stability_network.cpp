@@ -13,7 +13,7 @@
 
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

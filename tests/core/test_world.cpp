@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

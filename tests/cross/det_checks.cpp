@@ -19,9 +19,9 @@
 #include <string>
 
 #include "det_golden_cases.hpp"
-#include "fixstep/bits.hpp"
+#include "fixstep/core/bits.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace {
 

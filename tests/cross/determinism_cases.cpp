@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <fstream>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep::determinism {
 

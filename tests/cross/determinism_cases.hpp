@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/input.hpp"
-#include "fixstep/integrators.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/integrators.hpp"
 #include "fixstep/scene.hpp"
 
 namespace fixstep::determinism {

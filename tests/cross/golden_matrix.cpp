@@ -14,7 +14,7 @@
 
 #include "determinism_cases.hpp"
 #include "fixstep/summary.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 int main(int argc, char** argv) {
   using namespace fixstep;

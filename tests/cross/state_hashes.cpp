@@ -22,11 +22,11 @@
 #include <string_view>
 
 #include "fixstep/command_limits.hpp"
-#include "fixstep/limits.hpp"
+#include "fixstep/core/limits.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/simd.hpp"
+#include "fixstep/core/simd.hpp"
 #include "fixstep/summary.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 #include "fixstep/write_signals.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// sync_matrix: the sync test (fixstep/sync_test.hpp: roll back K = 7 ticks at every tick,
+// sync_matrix: the sync test (fixstep/core/sync_test.hpp: roll back K = 7 ticks at every tick,
 // re-simulate, compare hash and dissipated energy bit for bit) over every case of the golden
 // matrix (determinism_cases.hpp) with the scripted input, on core and scene alone, so the
 // aarch64 (qemu) and wasm32 (node) builds run it. Also checks that the rolled-back run ends in
@@ -11,8 +11,8 @@
 
 #include "determinism_cases.hpp"
 #include "fixstep/summary.hpp"
-#include "fixstep/sync_test.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/sync_test.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace {
 

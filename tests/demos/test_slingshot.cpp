@@ -10,10 +10,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <fixstep/pointer_drag.hpp>
-#include <fixstep/recording.hpp>
-#include <fixstep/sync_test.hpp>
-#include <fixstep/world.hpp>
+#include <fixstep/core/pointer_drag.hpp>
+#include <fixstep/core/recording.hpp>
+#include <fixstep/core/sync_test.hpp>
+#include <fixstep/core/world.hpp>
 #include <optional>
 #include <string>
 #include <vector>

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <fixstep/recording.hpp>
+#include <fixstep/core/recording.hpp>
 #include <string>
 #include <string_view>
 

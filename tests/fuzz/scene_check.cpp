@@ -12,7 +12,7 @@
 #include <typeinfo>
 
 #include "fixstep/scene.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep::fuzz {
 namespace {

@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/recording_file.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

@@ -9,13 +9,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fixstep/input_script.hpp>
-#include <fixstep/recording.hpp>
+#include <fixstep/core/recording.hpp>
 #include <fixstep/scene.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>
 
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/recording_file.hpp"
 #include "link_between.hpp"
 #include "text_edit.hpp"

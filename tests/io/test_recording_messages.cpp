@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fixstep/printable.hpp>
-#include <fixstep/recording.hpp>
+#include <fixstep/core/recording.hpp>
 #include <stdexcept>
 #include <string>
 #include <string_view>

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/recording_file.hpp"
 
 // A named namespace: this file shares a unity build with the other recording tests.

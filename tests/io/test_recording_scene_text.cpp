@@ -5,7 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fixstep/recording.hpp>
+#include <fixstep/core/recording.hpp>
 #include <fixstep/recording_writer.hpp>
 #include <string>
 

@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/render.hpp"
 #include "fixstep/session.hpp"
 #include "pixels.hpp"

@@ -27,7 +27,7 @@
 
 #include "fixstep/capture.hpp"
 #include "fixstep/draw_list.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
 #include "overlay_card.hpp"

@@ -14,7 +14,7 @@
 
 #include "../../bench/many_bodies.hpp"  // bench_overlay's scene
 #include "fixstep/draw_list.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/session.hpp"
 #include "overlay_shapes.hpp"
 #include "scene_session.hpp"

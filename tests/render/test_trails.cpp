@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/draw_list.hpp"
 #include "fixstep/frame_data.hpp"
 #include "fixstep/trails.hpp"

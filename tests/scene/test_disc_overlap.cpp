@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/disc_overlap.hpp"
+#include "fixstep/core/disc_overlap.hpp"
 #include "fixstep/scene.hpp"
 #include "link_between.hpp"
 

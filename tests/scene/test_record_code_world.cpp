@@ -14,8 +14,8 @@
 #include <string>
 
 #include "cli_run.hpp"
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/recording_file.hpp"
 #include "fixstep/scene_writer.hpp"
 #include "fixstep/summary.hpp"

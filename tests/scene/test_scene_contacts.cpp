@@ -10,12 +10,12 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/disc_overlap.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/disc_overlap.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "fixstep/scene_writer.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

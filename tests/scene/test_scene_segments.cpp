@@ -14,7 +14,7 @@
 
 #include "carried_segments_scene.hpp"
 #include "fixstep/scene.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace scene_segments_test {  // named: a unity batch shares anonymous namespaces

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "carried_segments_scene.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/scene_writer.hpp"
 #include "link_between.hpp"

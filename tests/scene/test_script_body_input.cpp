@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fixstep/input_script.hpp>
-#include <fixstep/recording.hpp>
+#include <fixstep/core/recording.hpp>
 #include <fixstep/scene.hpp>
 #include <fstream>
 #include <iterator>

@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "fixstep/bits.hpp"
-#include "fixstep/det_math.hpp"
+#include "fixstep/core/bits.hpp"
+#include "fixstep/core/det_math.hpp"
 
 namespace fixstep::det_golden {
 

@@ -4,8 +4,8 @@
 
 #include <cstddef>
 
-#include "fixstep/components.hpp"
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 
 namespace fixstep::test {
 

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep::test {
 

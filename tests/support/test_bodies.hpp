@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "fixstep/components.hpp"
+#include "fixstep/core/components.hpp"
 
 namespace fixstep::test {
 

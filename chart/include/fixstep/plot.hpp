@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "fixstep/render.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 

@@ -1,7 +1,7 @@
 // fixstep::app: the level a run starts from (fixstep/detail/game_level.hpp).
 #include <any>
 #include <cstdio>
-#include <fixstep/definition_checks.hpp>
+#include <fixstep/core/definition_checks.hpp>
 #include <fixstep/scene.hpp>
 #include <fixstep/scene_view_settings.hpp>
 #include <memory>

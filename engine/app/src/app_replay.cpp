@@ -4,7 +4,7 @@
 #include <fixstep/capture.hpp>
 #include <fixstep/recording_file.hpp>
 #include <fixstep/summary.hpp>
-#include <fixstep/sync_test.hpp>
+#include <fixstep/core/sync_test.hpp>
 #include <optional>
 
 #include "app_modes.hpp"

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/stability.hpp"
 
 namespace fixstep {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "fixstep/session.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/core/stability.hpp"
 
 namespace fixstep {
 

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <vector>
 
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/session.hpp"
 
 namespace fixstep {

@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <limits>
 
-#include "fixstep/integrators.hpp"
+#include "fixstep/core/integrators.hpp"
 
 namespace fixstep {
 

@@ -1,4 +1,4 @@
-#include "fixstep/components.hpp"
+#include "fixstep/core/components.hpp"
 
 #include <fmt/format.h>
 

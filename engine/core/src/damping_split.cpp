@@ -2,7 +2,7 @@
 #include <optional>
 #include <string_view>
 
-#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
 
 namespace fixstep {
 

@@ -1,5 +1,5 @@
 // The links of a definition by place in its body list (detail/defined_entity.hpp).
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 
 #include <fmt/format.h>
 

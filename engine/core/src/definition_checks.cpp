@@ -1,14 +1,14 @@
 // The checks on a definition before it is built (definition_checks.hpp).
-#include "fixstep/definition_checks.hpp"
+#include "fixstep/core/definition_checks.hpp"
 
 #include <fmt/format.h>
 
 #include <stdexcept>
 
-#include "fixstep/disc_overlap.hpp"
-#include "fixstep/float_mode.hpp"
-#include "fixstep/limits.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/core/disc_overlap.hpp"
+#include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/limits.hpp"
+#include "fixstep/core/stability.hpp"
 
 namespace fixstep {
 

@@ -2,15 +2,15 @@
 // exact power-of-two scaling only. The library is compiled with -ffp-contract=off, so no a·b + c
 // below is fused into an FMA on any target; every operation rounds once, the same everywhere.
 // Constants are hex literals (exact); the method and its sources are in det_math.hpp.
-#include "fixstep/det_math.hpp"
+#include "fixstep/core/det_math.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
 
-#include "fixstep/bits.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/bits.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep::det {
 namespace {

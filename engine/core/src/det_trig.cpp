@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/det_math.hpp"
+#include "fixstep/core/det_math.hpp"
 
 namespace fixstep::det {
 namespace {

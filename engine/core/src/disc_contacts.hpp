@@ -54,8 +54,8 @@
 
 #include "disc_broadphase.hpp"
 #include "disc_records.hpp"
-#include "fixstep/components.hpp"
-#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
 
 namespace fixstep::detail {
 

@@ -6,8 +6,8 @@
 
 #include "disc_contacts.hpp"
 #include "disc_toi.hpp"
-#include "fixstep/limits.hpp"
-#include "fixstep/stop_request.hpp"
+#include "fixstep/core/limits.hpp"
+#include "fixstep/core/stop_request.hpp"
 #include "phase_clock.hpp"
 
 namespace fixstep::detail {

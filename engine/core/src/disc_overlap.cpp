@@ -1,6 +1,6 @@
 // Overlapping discs at the start (disc_overlap.hpp): sweep and prune along x, the open discs
 // ordered by y.
-#include "fixstep/disc_overlap.hpp"
+#include "fixstep/core/disc_overlap.hpp"
 
 #include <fmt/format.h>
 
@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/det_math.hpp"
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 
 namespace fixstep {
 

@@ -10,7 +10,7 @@
 #include <type_traits>
 
 #include "disc_contacts.hpp"
-#include "fixstep/stop_request.hpp"
+#include "fixstep/core/stop_request.hpp"
 
 namespace fixstep::detail {
 

@@ -1,7 +1,7 @@
 // Exact solutions of x'' + γ x' + ω² (x - anchor) = accel. Every formula below is derived
 // in the comments; the physics is that of Thornton & Marion, Classical Dynamics, 5th ed., §3.5
 // (damped oscillations) and Taylor, Classical Mechanics, §2.2–2.3 (linear air resistance).
-#include "fixstep/exact.hpp"
+#include "fixstep/core/exact.hpp"
 
 #include <fmt/format.h>
 

@@ -21,8 +21,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/exact.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/exact.hpp"
 
 namespace fixstep::exact {
 

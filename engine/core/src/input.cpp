@@ -1,5 +1,5 @@
 // InputSampler's per-body input: forces held as levels, impulses and velocities as events.
-#include "fixstep/input.hpp"
+#include "fixstep/core/input.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "fixstep/integrators.hpp"
+#include "fixstep/core/integrators.hpp"
 
 namespace fixstep {
 

@@ -1,13 +1,13 @@
 // The work and memory limits (limits.hpp): the counts and the checks.
-#include "fixstep/limits.hpp"
+#include "fixstep/core/limits.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/stability.hpp"
 
 namespace fixstep {
 

@@ -1,10 +1,10 @@
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

@@ -10,7 +10,7 @@
 #include <limits>
 #include <span>
 
-#include "fixstep/components.hpp"
+#include "fixstep/core/components.hpp"
 
 namespace fixstep::plane_contact {
 

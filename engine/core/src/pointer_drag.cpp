@@ -1,4 +1,4 @@
-#include "fixstep/pointer_drag.hpp"
+#include "fixstep/core/pointer_drag.hpp"
 
 #include <fmt/format.h>
 
@@ -7,8 +7,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "fixstep/det_math.hpp"
-#include "fixstep/float_mode.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/float_mode.hpp"
 
 namespace fixstep {
 

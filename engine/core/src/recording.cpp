@@ -1,16 +1,16 @@
 // Recordings in memory: the definition hash, the Recorder and replay. Their text and files are
 // fixstep::io's (recording_format.cpp, recording_file.cpp there).
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <type_traits>
 
-#include "fixstep/bits.hpp"
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/fnv1a.hpp"
-#include "fixstep/work_progress.hpp"
+#include "fixstep/core/bits.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/fnv1a.hpp"
+#include "fixstep/core/work_progress.hpp"
 
 namespace fixstep {
 

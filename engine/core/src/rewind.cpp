@@ -1,4 +1,4 @@
-#include "fixstep/rewind.hpp"
+#include "fixstep/core/rewind.hpp"
 
 #include <fmt/format.h>
 

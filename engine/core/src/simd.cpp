@@ -1,4 +1,4 @@
-#include "fixstep/simd.hpp"
+#include "fixstep/core/simd.hpp"
 
 #include <atomic>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "fixstep/stability.hpp"
+#include "fixstep/core/stability.hpp"
 
 #include <fmt/format.h>
 
@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
 #include "stability_internal.hpp"
 
 namespace fixstep {

@@ -5,8 +5,8 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/stability.hpp"
 
 namespace fixstep::detail {
 

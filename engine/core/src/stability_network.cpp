@@ -25,11 +25,11 @@
 #include <limits>
 #include <stdexcept>
 
-#include "fixstep/det_math.hpp"
-#include "fixstep/detail/world_kernel.hpp"
-#include "fixstep/stability.hpp"
-#include "fixstep/stop_request.hpp"
-#include "fixstep/work_progress.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
+#include "fixstep/core/stability.hpp"
+#include "fixstep/core/stop_request.hpp"
+#include "fixstep/core/work_progress.hpp"
 #include "stability_internal.hpp"
 
 namespace fixstep {

@@ -1,4 +1,4 @@
-#include "fixstep/stop_request.hpp"
+#include "fixstep/core/stop_request.hpp"
 
 #include <atomic>
 #include <string>

@@ -1,4 +1,4 @@
-#include "fixstep/sync_test.hpp"
+#include "fixstep/core/sync_test.hpp"
 
 #include <fmt/format.h>
 
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "fixstep/bits.hpp"
+#include "fixstep/core/bits.hpp"
 
 namespace fixstep {
 

@@ -1,5 +1,5 @@
 // The calling thread's progress callback (work_progress.hpp).
-#include "fixstep/work_progress.hpp"
+#include "fixstep/core/work_progress.hpp"
 
 #include <utility>
 

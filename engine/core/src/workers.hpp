@@ -5,7 +5,7 @@
 #include <atomic>
 #include <thread>
 
-#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
 
 namespace fixstep::detail {
 

@@ -1,12 +1,12 @@
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/fnv1a.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/fnv1a.hpp"
 
 namespace fixstep {
 

@@ -55,11 +55,11 @@
 #include <span>
 #include <stdexcept>
 
-#include "fixstep/det_math.hpp"
-#include "fixstep/detail/world_kernel.hpp"
-#include "fixstep/float_mode.hpp"
-#include "fixstep/limits.hpp"
-#include "fixstep/stop_request.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
+#include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/limits.hpp"
+#include "fixstep/core/stop_request.hpp"
 #include "plane_contact.hpp"
 
 namespace fixstep {

@@ -18,10 +18,10 @@
 #include <type_traits>
 
 #include "body_field.hpp"
-#include "fixstep/bits.hpp"
-#include "fixstep/det_math.hpp"
-#include "fixstep/detail/world_kernel.hpp"
-#include "fixstep/stop_request.hpp"
+#include "fixstep/core/bits.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
+#include "fixstep/core/stop_request.hpp"
 #include "link_damping.hpp"
 #include "link_passes.hpp"
 #include "strang_network.hpp"

@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "disc_contacts.hpp"
-#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
 #include "workers.hpp"
 
 namespace fixstep {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

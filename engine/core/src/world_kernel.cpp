@@ -1,4 +1,4 @@
-#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
 
 #include <fmt/format.h>
 
@@ -7,9 +7,9 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "fixstep/bits.hpp"
-#include "fixstep/float_mode.hpp"
-#include "fixstep/fnv1a.hpp"
+#include "fixstep/core/bits.hpp"
+#include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/fnv1a.hpp"
 
 namespace fixstep {
 

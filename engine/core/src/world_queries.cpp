@@ -8,7 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 #include "query_grid.hpp"
 
 namespace fixstep {

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "disc_contacts.hpp"
-#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
 #include "sorted_diff.hpp"
 
 namespace fixstep {

@@ -30,7 +30,7 @@
 #include <stdexcept>
 
 #include "disc_contacts.hpp"
-#include "fixstep/detail/world_kernel.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
 #include "query_grid.hpp"
 
 namespace fixstep {

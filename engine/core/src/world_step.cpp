@@ -7,11 +7,11 @@
 
 #include "body_field.hpp"
 #include "disc_contacts.hpp"
-#include "fixstep/det_math.hpp"
-#include "fixstep/detail/world_kernel.hpp"
-#include "fixstep/float_mode.hpp"
-#include "fixstep/simd.hpp"
-#include "fixstep/stop_request.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
+#include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/simd.hpp"
+#include "fixstep/core/stop_request.hpp"
 #include "phase_clock.hpp"
 
 namespace fixstep {
@@ -65,7 +65,7 @@ template <class Field, class Real, class Step>
   return out_of_range != Real(0);
 }
 
-// The same loop compiled for each SimdLevel (fixstep/simd.hpp). These templates have internal
+// The same loop compiled for each SimdLevel (fixstep/core/simd.hpp). These templates have internal
 // linkage (anonymous namespace) and inline everything they call that is marked always_inline,
 // so no code compiled for a wider ISA can be picked by the linker for a baseline caller.
 template <class Field, class Real, class Step>
@@ -195,7 +195,7 @@ void detail::WorldKernel<Real>::apply_drag(const TickInput& input) {
 
 template <class Real>
 void detail::WorldKernel<Real>::step(const TickInput& input) {
-  const IeeeFloatMode ieee;  // no state depends on the caller's FPU mode (fixstep/float_mode.hpp)
+  const IeeeFloatMode ieee;  // no state depends on the caller's FPU mode (fixstep/core/float_mode.hpp)
   if (terms_dirty_) rebuild_terms();
   if (sleep_) {
     woken_ = 0, sleeper_contacts_ = 0;

@@ -2,7 +2,7 @@
 // the bodies a recording names, and the replay that first checks the world is the recorded one.
 #include <fmt/format.h>
 
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/recording_file.hpp"
 #include "fixstep/summary.hpp"

@@ -33,8 +33,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/float_mode.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/float_mode.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/recording_file.hpp"
 #include "recording_text.hpp"

@@ -14,7 +14,7 @@
 #include <iterator>
 #include <stdexcept>
 
-#include "fixstep/fnv1a.hpp"
+#include "fixstep/core/fnv1a.hpp"
 #include "fixstep/printable.hpp"
 #include "fixstep/summary.hpp"
 #include "recording_text.hpp"

@@ -4,7 +4,7 @@
 #include "byte_io.hpp"
 #include "fixstep/net_input_codec.hpp"
 #include "fixstep/net_packet.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 
 namespace fixstep::net {
 

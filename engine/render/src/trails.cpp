@@ -8,7 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 
 namespace fixstep {
 

@@ -4,9 +4,9 @@
 
 #include <array>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/float_mode.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/recording.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep {

@@ -8,10 +8,10 @@
 #include <cstdlib>
 #include <limits>
 
-#include "fixstep/float_mode.hpp"
-#include "fixstep/limits.hpp"
+#include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/limits.hpp"
 #include "fixstep/printable.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "scene_reader.hpp"
 
@@ -162,7 +162,7 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
 
 Scene parse_scene(std::string_view text, const std::string& source_name) {
   // The numbers read (strtod rounds in the current mode), rest lengths, frequency-form
-  // stiffness and damping: the same whatever the caller's FPU mode (fixstep/float_mode.hpp).
+  // stiffness and damping: the same whatever the caller's FPU mode (fixstep/core/float_mode.hpp).
   const IeeeFloatMode ieee;
   using namespace scene_detail;
   Scene scene;

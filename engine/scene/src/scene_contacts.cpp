@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "fixstep/disc_overlap.hpp"
+#include "fixstep/core/disc_overlap.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {

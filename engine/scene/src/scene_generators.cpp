@@ -3,10 +3,10 @@
 #include <cmath>
 #include <cstdint>
 
-#include "fixstep/det_math.hpp"
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/stop_request.hpp"
-#include "fixstep/work_progress.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/stop_request.hpp"
+#include "fixstep/core/work_progress.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {

@@ -2,7 +2,7 @@
 // "Scene format".
 #include <cmath>
 
-#include "fixstep/det_math.hpp"
+#include "fixstep/core/det_math.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {

@@ -2,8 +2,8 @@
 // carried by a kinematic body (`body`). See docs/SCENES.md.
 #include <cmath>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/step_results.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "fixstep/detail/defined_entity.hpp"
-#include "fixstep/float_mode.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/float_mode.hpp"
 
 namespace fixstep {
 

@@ -15,11 +15,11 @@
 #include <unordered_set>
 #include <vector>
 
-#include "fixstep/bits.hpp"
-#include "fixstep/det_math.hpp"
-#include "fixstep/detail/defined_entity.hpp"
+#include "fixstep/core/bits.hpp"
+#include "fixstep/core/det_math.hpp"
+#include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/file_write.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/scene.hpp"
 
 namespace fixstep {
@@ -70,7 +70,7 @@ std::string color_text(Rgba8 c) {
                     : fmt::format("\"#{:02x}{:02x}{:02x}{:02x}\"", c.r, c.g, c.b, c.a);
 }
 
-using fixstep::same_bits;  // of doubles (fixstep/bits.hpp); of points:
+using fixstep::same_bits;  // of doubles (fixstep/core/bits.hpp); of points:
 bool same_bits(Vec2 a, Vec2 b) {
   return same_bits(a.x, b.x) && same_bits(a.y, b.y);
 }

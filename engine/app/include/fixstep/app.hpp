@@ -40,7 +40,7 @@
 
 #include "fixstep/detail/game_model.hpp"
 #include "fixstep/overlay.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep::app {
 

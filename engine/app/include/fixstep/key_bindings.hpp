@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <string_view>
 
-#include "fixstep/input.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/render.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/types.hpp"
 #include "fixstep/user_events.hpp"
 
 namespace fixstep {

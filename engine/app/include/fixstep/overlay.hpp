@@ -12,7 +12,7 @@
 
 #include "fixstep/draw_list.hpp"
 #include "fixstep/render.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 class Session;

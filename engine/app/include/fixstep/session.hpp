@@ -13,9 +13,9 @@
 
 #include "fixstep/draw_list.hpp"
 #include "fixstep/key_bindings.hpp"
-#include "fixstep/loop.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/render.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

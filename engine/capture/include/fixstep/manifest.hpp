@@ -8,7 +8,7 @@
 #include <string>
 
 #include "fixstep/capture.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

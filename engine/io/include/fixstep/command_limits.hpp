@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "fixstep/limits.hpp"
+#include "fixstep/core/limits.hpp"
 
 namespace fixstep {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 
 namespace fixstep {
 

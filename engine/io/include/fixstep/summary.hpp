@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

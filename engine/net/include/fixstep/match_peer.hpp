@@ -27,9 +27,9 @@
 
 #include "fixstep/net_protocol.hpp"
 #include "fixstep/net_transport.hpp"
-#include "fixstep/recording.hpp"
-#include "fixstep/rules.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/recording.hpp"
+#include "fixstep/core/rules.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep::net {
 

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/input.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/net_protocol.hpp"
 
 namespace fixstep::net {

@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/input.hpp"
+#include "fixstep/core/input.hpp"
 
 namespace fixstep::net {
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/types.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 

@@ -16,8 +16,8 @@
 
 #include "fixstep/frame_data.hpp"
 #include "fixstep/trails.hpp"
-#include "fixstep/types.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/types.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "fixstep/frame_data.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

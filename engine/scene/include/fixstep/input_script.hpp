@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/components.hpp"
-#include "fixstep/input.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
 
 namespace fixstep {
 

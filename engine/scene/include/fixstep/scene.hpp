@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/components.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 
@@ -150,8 +150,8 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 ///
 /// Generators of many bodies take time (seconds for 10^6 bodies and 2·10^6 links):
 /// every 65 536 bodies or links they report progress to the calling thread's WorkProgressScope
-/// ("generating the scene", unit "body" or "link"; fixstep/work_progress.hpp) and throw
-/// StopRequested when a stop is pending (fixstep/stop_request.hpp).
+/// ("generating the scene", unit "body" or "link"; fixstep/core/work_progress.hpp) and throw
+/// StopRequested when a stop is pending (fixstep/core/stop_request.hpp).
 [[nodiscard]] Scene load_scene(const std::filesystem::path& file);
 /// As load_scene, from text; `source_name` is used in messages.
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "fixstep/scene.hpp"
-#include "fixstep/stability.hpp"
+#include "fixstep/core/stability.hpp"
 
 namespace fixstep {
 

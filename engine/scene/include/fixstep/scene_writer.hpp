@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "fixstep/render.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/types.hpp"
 #include "fixstep/user_events.hpp"
 
 namespace fixstep {

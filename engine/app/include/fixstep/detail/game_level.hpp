@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "fixstep/app.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/session.hpp"
 
 namespace fixstep::app::detail {

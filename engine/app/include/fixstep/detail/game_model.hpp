@@ -8,10 +8,10 @@
 #include <string>
 #include <utility>
 
-#include "fixstep/input.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/overlay.hpp"
 #include "fixstep/user_events.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep::app {
 struct Settings;

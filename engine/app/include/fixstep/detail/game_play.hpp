@@ -9,9 +9,9 @@
 #include <string_view>
 
 #include "fixstep/detail/game_level.hpp"
-#include "fixstep/input.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/overlay.hpp"
-#include "fixstep/recording.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/session.hpp"
 
 namespace fixstep::app::detail {

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include "fixstep/components.hpp"
-#include "fixstep/entity.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/entity.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 

@@ -6,8 +6,8 @@
 #include <any>
 #include <functional>
 
-#include "fixstep/input.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

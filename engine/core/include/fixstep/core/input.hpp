@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "fixstep/entity.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/entity.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 

@@ -8,8 +8,8 @@
 #include <span>
 #include <utility>
 
-#include "fixstep/components.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/components.hpp"
-#include "fixstep/integrators.hpp"
-#include "fixstep/step_results.hpp"
-#include "fixstep/world_settings.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/integrators.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

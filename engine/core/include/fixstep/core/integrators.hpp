@@ -15,7 +15,7 @@
 #include <optional>
 #include <string_view>
 
-#include "fixstep/types.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 

@@ -25,13 +25,13 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/components.hpp"
-#include "fixstep/detail/segment_set.hpp"
-#include "fixstep/entity.hpp"
-#include "fixstep/input.hpp"
-#include "fixstep/integrators.hpp"
-#include "fixstep/step_results.hpp"
-#include "fixstep/world_settings.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/detail/segment_set.hpp"
+#include "fixstep/core/entity.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/integrators.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

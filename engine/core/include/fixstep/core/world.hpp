@@ -11,12 +11,12 @@
 #include <variant>
 #include <vector>
 
-#include "fixstep/detail/world_kernel.hpp"
-#include "fixstep/query.hpp"
-#include "fixstep/random.hpp"
-#include "fixstep/segment.hpp"
-#include "fixstep/step_results.hpp"
-#include "fixstep/world_settings.hpp"
+#include "fixstep/core/detail/world_kernel.hpp"
+#include "fixstep/core/query.hpp"
+#include "fixstep/core/random.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

@@ -5,8 +5,8 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/entity.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/entity.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 

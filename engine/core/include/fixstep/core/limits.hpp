@@ -18,7 +18,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

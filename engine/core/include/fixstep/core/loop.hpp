@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "fixstep/input.hpp"
+#include "fixstep/core/input.hpp"
 
 namespace fixstep {
 

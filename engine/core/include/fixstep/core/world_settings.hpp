@@ -7,8 +7,8 @@
 #include <optional>
 #include <string_view>
 
-#include "fixstep/components.hpp"
-#include "fixstep/integrators.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/integrators.hpp"
 
 namespace fixstep {
 

@@ -8,9 +8,9 @@
 #include <optional>
 #include <vector>
 
-#include "fixstep/input.hpp"
-#include "fixstep/rules.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/rules.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

@@ -10,8 +10,8 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/components.hpp"
-#include "fixstep/entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/entity.hpp"
 
 namespace fixstep::detail {
 

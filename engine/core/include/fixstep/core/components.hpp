@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "fixstep/entity.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/entity.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 

@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/input.hpp"
-#include "fixstep/integrators.hpp"
-#include "fixstep/rules.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/integrators.hpp"
+#include "fixstep/core/rules.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/segment.hpp"
+#include "fixstep/core/segment.hpp"
 
 namespace fixstep::detail {
 

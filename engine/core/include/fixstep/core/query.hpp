@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "fixstep/components.hpp"
-#include "fixstep/entity.hpp"
-#include "fixstep/types.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/entity.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 

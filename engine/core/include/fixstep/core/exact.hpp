@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/components.hpp"
+#include "fixstep/core/components.hpp"
 
 namespace fixstep::exact {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "fixstep/world.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 

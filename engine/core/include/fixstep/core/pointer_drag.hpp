@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "fixstep/input.hpp"
-#include "fixstep/world.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 
