@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <fixstep/link_conditioner.hpp>
 #include <fixstep/match_peer.hpp>
-#include <fixstep/recording_file.hpp>
+#include <fixstep/io/recording_file.hpp>
 #include <fixstep/scene.hpp>
 #include <memory>
 #include <string>

@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "coupled.hpp"
-#include "fixstep/file_write.hpp"
+#include "fixstep/io/file_write.hpp"
 #include "fixstep/core/integrators.hpp"
 #include "fixstep/core/world.hpp"
 

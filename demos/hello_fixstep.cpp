@@ -9,7 +9,7 @@
 #include <fixstep/session.hpp>
 #include <string>
 
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 
 int main(int argc, char** argv) {
   using namespace fixstep;

@@ -15,7 +15,7 @@
 #include <string>
 #include <thread>
 
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 
 int main(int argc, char** argv) {
   using namespace fixstep;

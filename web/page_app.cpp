@@ -11,8 +11,8 @@
 #include <fixstep/scene_view_settings.hpp>
 #include <utility>
 
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 #include "overlay_card.hpp"
 #include "page_dom.hpp"
 

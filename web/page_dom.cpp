@@ -4,7 +4,7 @@
 #include <emscripten/emscripten.h>
 #include <fmt/format.h>
 
-#include "fixstep/summary.hpp"  // hex_hash
+#include "fixstep/io/summary.hpp"  // hex_hash
 
 namespace {
 

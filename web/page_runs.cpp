@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "fixstep/command_limits.hpp"
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/command_limits.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 #include "page_app.hpp"
 #include "page_dom.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <fixstep/capture.hpp>
-#include <fixstep/stale_temporaries.hpp>
+#include <fixstep/io/stale_temporaries.hpp>
 #include <system_error>
 
 namespace fixstep::cli {

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <fixstep/output_target.hpp>
+#include <fixstep/io/output_target.hpp>
 #include <fixstep/video_limits.hpp>
 
 #include "capture_dir.hpp"

@@ -11,7 +11,7 @@
 #include <fixstep/capture.hpp>
 #include <fixstep/input_script.hpp>
 #include <fixstep/core/limits.hpp>
-#include <fixstep/recording_writer.hpp>
+#include <fixstep/io/recording_writer.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/core/stability.hpp>
@@ -23,9 +23,9 @@
 
 #include "csv_field.hpp"
 #include "exact_reference.hpp"
-#include "fixstep/command_limits.hpp"
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/command_limits.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"

@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 
 namespace fixstep::cli {
 

@@ -18,7 +18,7 @@
 #include "commands.hpp"
 #include "compare_tiles.hpp"
 #include "exact_reference.hpp"
-#include "fixstep/command_limits.hpp"
+#include "fixstep/io/command_limits.hpp"
 #include "progress.hpp"
 #include "step_cost.hpp"
 

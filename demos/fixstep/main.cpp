@@ -18,13 +18,13 @@
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/suggest.hpp>
-#include <fixstep/write_signals.hpp>
+#include <fixstep/io/write_signals.hpp>
 
 #include "capture_sink.hpp"
 #include "commands.hpp"
 #include "compare.hpp"
 #include "compare_tiles.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "new_project.hpp"
 #include "output_paths.hpp"
 #include "standard_output.hpp"

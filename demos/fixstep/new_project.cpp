@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
-#include <fixstep/output_target.hpp>
+#include <fixstep/io/output_target.hpp>
 #include <fixstep/core/stop_request.hpp>
 #include <optional>
 #include <stdexcept>

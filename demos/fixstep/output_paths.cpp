@@ -6,8 +6,8 @@
 
 #include <filesystem>
 #include <fixstep/manifest.hpp>
-#include <fixstep/output_target.hpp>
-#include <fixstep/stale_temporaries.hpp>
+#include <fixstep/io/output_target.hpp>
+#include <fixstep/io/stale_temporaries.hpp>
 
 #include "capture_dir.hpp"
 #include "capture_sink.hpp"

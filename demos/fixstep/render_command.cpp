@@ -13,9 +13,9 @@
 
 #include "capture_sink.hpp"
 #include "commands.hpp"
-#include "fixstep/command_limits.hpp"
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/command_limits.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "stop_signal.hpp"

@@ -9,9 +9,9 @@
 #include <stdexcept>
 
 #include "commands.hpp"
-#include "fixstep/command_limits.hpp"
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/command_limits.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 #include "progress.hpp"
 
 namespace fixstep::cli {

@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <fixstep/output_target.hpp>
+#include <fixstep/io/output_target.hpp>
 
 namespace fixstep::cli {
 

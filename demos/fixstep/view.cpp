@@ -21,8 +21,8 @@
 #include <utility>
 
 #include "commands.hpp"
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "scene_load.hpp"

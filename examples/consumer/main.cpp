@@ -5,7 +5,7 @@
 // checked by check.sh in .ci/run): a world written in code is the scene's world.
 #include <cstdio>
 #include <exception>
-#include <fixstep/summary.hpp>
+#include <fixstep/io/summary.hpp>
 #include <fixstep/core/world.hpp>
 
 namespace {

@@ -26,7 +26,7 @@
 #include "fixstep/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/core/simd.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 #include "scene_session.hpp"
 
 namespace fixstep {

@@ -14,7 +14,7 @@
 
 #include "fixstep/input_script.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/core/world.hpp"
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/recording.hpp>
-#include <fixstep/recording_writer.hpp>
+#include <fixstep/io/recording_writer.hpp>
 #include <fixstep/scene.hpp>
 #include <fixstep/scene_stability.hpp>
 #include <fixstep/core/work_progress.hpp>
@@ -15,9 +15,9 @@
 #include <sstream>
 #include <string>
 
-#include "fixstep/command_limits.hpp"
+#include "fixstep/io/command_limits.hpp"
 #include "fixstep/core/definition_checks.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

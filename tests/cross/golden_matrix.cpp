@@ -13,7 +13,7 @@
 #include <string>
 
 #include "determinism_cases.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 #include "fixstep/core/world.hpp"
 
 int main(int argc, char** argv) {

@@ -25,7 +25,7 @@
 #include <thread>
 
 #include "fixstep/match_peer.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "fixstep/scene.hpp"
 
 using namespace fixstep;

@@ -21,13 +21,13 @@
 #include <string>
 #include <string_view>
 
-#include "fixstep/command_limits.hpp"
+#include "fixstep/io/command_limits.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/scene.hpp"
 #include "fixstep/core/simd.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 #include "fixstep/core/world.hpp"
-#include "fixstep/write_signals.hpp"
+#include "fixstep/io/write_signals.hpp"
 
 namespace {
 

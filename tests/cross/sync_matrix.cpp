@@ -10,7 +10,7 @@
 #include <string>
 
 #include "determinism_cases.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 #include "fixstep/core/sync_test.hpp"
 #include "fixstep/core/world.hpp"
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "slingshot/game.hpp"
 
 namespace slingshot_tests {

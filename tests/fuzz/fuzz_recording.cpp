@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "link_between.hpp"
 
 namespace {

@@ -9,7 +9,7 @@
 
 #include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "fixstep/core/world.hpp"
 #include "test_bodies.hpp"
 

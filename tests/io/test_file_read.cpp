@@ -7,8 +7,8 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fixstep/file_read.hpp>
-#include <fixstep/stale_temporaries.hpp>
+#include <fixstep/io/file_read.hpp>
+#include <fixstep/io/stale_temporaries.hpp>
 #include <fstream>
 #include <string>
 

@@ -14,9 +14,9 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
-#include <fixstep/atomic_output.hpp>
-#include <fixstep/output_target.hpp>
-#include <fixstep/write_signals.hpp>
+#include <fixstep/io/atomic_output.hpp>
+#include <fixstep/io/output_target.hpp>
+#include <fixstep/io/write_signals.hpp>
 #include <fstream>
 #include <iterator>
 #include <string>

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "fixstep/core/detail/defined_entity.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "link_between.hpp"
 #include "text_edit.hpp"
 

@@ -4,13 +4,13 @@
 // recording that names a body the scene does not have is a bad recording before replaying.
 #include <gtest/gtest.h>
 
-#include <fixstep/printable.hpp>
+#include <fixstep/io/printable.hpp>
 #include <fixstep/core/recording.hpp>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 
 namespace fixstep {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "fixstep/core/recording.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 
 // A named namespace: this file shares a unity build with the other recording tests.
 namespace recording_rules_test {

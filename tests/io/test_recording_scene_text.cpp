@@ -6,11 +6,11 @@
 
 #include <filesystem>
 #include <fixstep/core/recording.hpp>
-#include <fixstep/recording_writer.hpp>
+#include <fixstep/io/recording_writer.hpp>
 #include <string>
 
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 #include "text_edit.hpp"
 
 namespace fixstep {

@@ -8,7 +8,7 @@
 #include <chrono>
 #include <fixstep/link_conditioner.hpp>
 #include <fixstep/match_peer.hpp>
-#include <fixstep/recording_file.hpp>
+#include <fixstep/io/recording_file.hpp>
 #include <fixstep/scene.hpp>
 #include <functional>
 #include <memory>

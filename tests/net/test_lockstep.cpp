@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <fixstep/desync_recording.hpp>
 #include <fixstep/net_packet.hpp>
-#include <fixstep/recording_file.hpp>
+#include <fixstep/io/recording_file.hpp>
 
 #include "net_match.hpp"
 #include "raw_peer.hpp"

@@ -16,9 +16,9 @@
 #include "cli_run.hpp"
 #include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "fixstep/scene_writer.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

@@ -17,8 +17,8 @@
 #include <string>
 
 #include "cli_run.hpp"
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 
 namespace fixstep {
 namespace {

@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <fixstep/capture.hpp>
-#include <fixstep/recording_file.hpp>
-#include <fixstep/summary.hpp>
+#include <fixstep/io/recording_file.hpp>
+#include <fixstep/io/summary.hpp>
 #include <fixstep/core/sync_test.hpp>
 #include <optional>
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fixstep/output_target.hpp>
+#include <fixstep/io/output_target.hpp>
 #include <stdexcept>
 #include <string>
 #include <system_error>

@@ -2,8 +2,8 @@
 #include "fixstep/detail/game_play.hpp"
 
 #include <cstdio>
-#include <fixstep/recording_file.hpp>
-#include <fixstep/summary.hpp>
+#include <fixstep/io/recording_file.hpp>
+#include <fixstep/io/summary.hpp>
 #include <string_view>
 #include <utility>
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "fixstep/detail/game_level.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 
 namespace fixstep::app::detail {
 

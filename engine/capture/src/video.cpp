@@ -16,9 +16,9 @@
 #include <string_view>
 #include <utility>
 
-#include "fixstep/atomic_output.hpp"
+#include "fixstep/io/atomic_output.hpp"
 #include "fixstep/video_limits.hpp"
-#include "fixstep/write_signals.hpp"
+#include "fixstep/io/write_signals.hpp"
 #include "video_encoder.hpp"
 
 namespace fixstep {

@@ -1,6 +1,6 @@
 // An output written into a temporary file and renamed into place, or streamed
 // (atomic_output.hpp).
-#include "fixstep/atomic_output.hpp"
+#include "fixstep/io/atomic_output.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -13,7 +13,7 @@
 #include <system_error>
 #include <utility>
 
-#include "fixstep/write_signals.hpp"
+#include "fixstep/io/write_signals.hpp"
 
 namespace fixstep {
 

@@ -1,5 +1,5 @@
 // The limits of one command (command_limits.hpp).
-#include "fixstep/command_limits.hpp"
+#include "fixstep/io/command_limits.hpp"
 
 #include <fmt/format.h>
 

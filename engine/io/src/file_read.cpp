@@ -1,5 +1,5 @@
 // Reading a whole regular file with a bound (file_read.hpp).
-#include "fixstep/file_read.hpp"
+#include "fixstep/io/file_read.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>

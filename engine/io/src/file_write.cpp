@@ -1,8 +1,8 @@
 // The atomic file write shared by recordings and scene files (file_write.hpp): one AtomicOutput
 // (atomic_output.hpp) written whole.
-#include "fixstep/file_write.hpp"
+#include "fixstep/io/file_write.hpp"
 
-#include "fixstep/atomic_output.hpp"
+#include "fixstep/io/atomic_output.hpp"
 
 namespace fixstep {
 

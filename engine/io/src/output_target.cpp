@@ -1,5 +1,5 @@
 // Classifying an output path and opening a stream target (output_target.hpp).
-#include "fixstep/output_target.hpp"
+#include "fixstep/io/output_target.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "fixstep/file_read.hpp"
+#include "fixstep/io/file_read.hpp"
 
 namespace fixstep {
 

@@ -1,4 +1,4 @@
-#include "fixstep/printable.hpp"
+#include "fixstep/io/printable.hpp"
 
 #include <fmt/format.h>
 

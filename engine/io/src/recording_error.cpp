@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include "fixstep/core/detail/defined_entity.hpp"
-#include "fixstep/printable.hpp"
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/printable.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 
 namespace fixstep {
 

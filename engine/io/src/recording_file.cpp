@@ -2,15 +2,15 @@
 // write_recording (atomic: file_write.hpp). The text itself is made and read apart from any file
 // (format_recording, parse_recording: recording_format.cpp), so that a caller may keep it in a
 // buffer of its own.
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 
 #include <fmt/format.h>
 
 #include <string>
 #include <system_error>
 
-#include "fixstep/file_read.hpp"
-#include "fixstep/file_write.hpp"
+#include "fixstep/io/file_read.hpp"
+#include "fixstep/io/file_write.hpp"
 
 namespace fixstep {
 

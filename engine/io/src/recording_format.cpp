@@ -35,8 +35,8 @@
 
 #include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/core/float_mode.hpp"
-#include "fixstep/printable.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/printable.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "recording_text.hpp"
 
 namespace fixstep {

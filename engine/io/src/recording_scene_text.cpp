@@ -15,8 +15,8 @@
 #include <stdexcept>
 
 #include "fixstep/core/fnv1a.hpp"
-#include "fixstep/printable.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/printable.hpp"
+#include "fixstep/io/summary.hpp"
 #include "recording_text.hpp"
 
 namespace fixstep::recording_text {

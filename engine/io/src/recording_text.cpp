@@ -9,9 +9,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "fixstep/printable.hpp"
-#include "fixstep/recording_file.hpp"
-#include "fixstep/summary.hpp"
+#include "fixstep/io/printable.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/summary.hpp"
 
 namespace fixstep {
 

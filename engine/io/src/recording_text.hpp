@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/recording_file.hpp"
 
 namespace fixstep::recording_text {
 

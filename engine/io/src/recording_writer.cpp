@@ -1,6 +1,6 @@
 // The streaming recorder (recording_writer.hpp): the lines format_recording writes, in the same
 // order, appended as the ticks come.
-#include "fixstep/recording_writer.hpp"
+#include "fixstep/io/recording_writer.hpp"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // Stale ".NAME.tmp.PID" files of killed runs (stale_temporaries.hpp).
-#include "fixstep/stale_temporaries.hpp"
+#include "fixstep/io/stale_temporaries.hpp"
 
 #include <cerrno>
 #include <charconv>

@@ -1,5 +1,5 @@
 // A simulation's state as text (summary.hpp).
-#include "fixstep/summary.hpp"
+#include "fixstep/io/summary.hpp"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // SIGXFSZ and SIGPIPE ignored where they would kill (write_signals.hpp).
-#include "fixstep/write_signals.hpp"
+#include "fixstep/io/write_signals.hpp"
 
 #include <csignal>
 

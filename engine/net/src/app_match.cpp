@@ -13,8 +13,8 @@
 #include <fixstep/key_bindings.hpp>
 #include <fixstep/match_peer.hpp>
 #include <fixstep/net_app.hpp>
-#include <fixstep/recording_file.hpp>
-#include <fixstep/summary.hpp>
+#include <fixstep/io/recording_file.hpp>
+#include <fixstep/io/summary.hpp>
 #include <memory>
 #include <optional>
 #include <span>

@@ -9,7 +9,7 @@
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
-#include <fixstep/output_target.hpp>
+#include <fixstep/io/output_target.hpp>
 #include <stdexcept>
 #include <string_view>
 #include <system_error>

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include <cstdint>
-#include <fixstep/recording_file.hpp>
+#include <fixstep/io/recording_file.hpp>
 #include <stdexcept>
 #include <system_error>
 

@@ -10,7 +10,7 @@
 
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/limits.hpp"
-#include "fixstep/printable.hpp"
+#include "fixstep/io/printable.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/scene_stability.hpp"
 #include "scene_reader.hpp"

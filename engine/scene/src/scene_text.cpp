@@ -9,7 +9,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
-#include <fixstep/file_read.hpp>
+#include <fixstep/io/file_read.hpp>
 
 #include "scene_reader.hpp"
 #include "toml_depth.hpp"

@@ -18,7 +18,7 @@
 #include "fixstep/core/bits.hpp"
 #include "fixstep/core/det_math.hpp"
 #include "fixstep/core/detail/defined_entity.hpp"
-#include "fixstep/file_write.hpp"
+#include "fixstep/io/file_write.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/scene.hpp"
 

@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/atomic_output.hpp"
+#include "fixstep/io/atomic_output.hpp"
 #include "fixstep/frame_pipeline.hpp"
 
 namespace fixstep {

@@ -14,7 +14,7 @@
 
 #include "fixstep/capture.hpp"
 #include "fixstep/frame_pipeline.hpp"
-#include "fixstep/output_target.hpp"
+#include "fixstep/io/output_target.hpp"
 
 namespace fixstep {
 

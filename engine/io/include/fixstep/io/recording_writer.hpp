@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "fixstep/atomic_output.hpp"
-#include "fixstep/recording_file.hpp"
+#include "fixstep/io/atomic_output.hpp"
+#include "fixstep/io/recording_file.hpp"
 
 namespace fixstep {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "fixstep/output_target.hpp"
+#include "fixstep/io/output_target.hpp"
 
 namespace fixstep {
 
