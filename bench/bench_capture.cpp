@@ -41,7 +41,7 @@
 #include "../tests/support/scene_session.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/video.hpp"
 #include "many_bodies.hpp"

@@ -33,7 +33,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "net_runs.hpp"
 #ifdef FIXSTEP_BENCH_GAMES
 #include "airhockey/game.hpp"

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "fixstep/capture.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
 
 using namespace fixstep;

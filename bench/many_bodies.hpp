@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep::bench {
 

@@ -8,7 +8,7 @@
 #include <fixstep/link_conditioner.hpp>
 #include <fixstep/match_peer.hpp>
 #include <fixstep/io/recording_file.hpp>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <memory>
 #include <string>
 #include <thread>

@@ -1332,7 +1332,7 @@ tool=$fixstep tool_name=fixstep
 echo
 echo "## Writing a scene from code"
 echo
-echo '`write_scene` and `format_scene` (library calls, `fixstep/scene_writer.hpp`) refuse a'
+echo '`write_scene` and `format_scene` (library calls, `fixstep/scene/scene_writer.hpp`) refuse a'
 echo "WorldDef they cannot write so that it loads back to the same definition hash, with"
 echo "std::invalid_argument \"format_scene: WHERE: WHY\" naming the body, link or plane: a static or"
 echo "kinematic body with a mass other than 1 kg, a spring, force, gravity or drag; a static body"

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fixstep/scene_stability.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/scene_view_settings.hpp>
 #include <utility>
 

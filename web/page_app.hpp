@@ -14,7 +14,7 @@
 #include "fixstep/core/pointer_drag.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/rewind.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/session.hpp"
 #include "page_game.hpp"
 #include "page_input.hpp"

@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fixstep/capture.hpp>
-#include <fixstep/input_script.hpp>
+#include <fixstep/scene/input_script.hpp>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/io/recording_writer.hpp>
-#include <fixstep/scene_stability.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/core/stability.hpp>
 #include <fixstep/core/stop_request.hpp>

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <fixstep/capture.hpp>
 #include <fixstep/core/recording.hpp>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
 #include <optional>

@@ -11,7 +11,7 @@
 #include <fixstep/capture.hpp>
 #include <fixstep/key_bindings.hpp>
 #include <fixstep/core/limits.hpp>
-#include <fixstep/scene_stability.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/window.hpp>
 #include <span>

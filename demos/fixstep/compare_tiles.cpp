@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fixstep/render.hpp>
-#include <fixstep/suggest.hpp>
+#include <fixstep/scene/suggest.hpp>
 #include <stdexcept>
 
 namespace fixstep::cli {

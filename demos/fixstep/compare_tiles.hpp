@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <fixstep/core/integrators.hpp>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <optional>
 #include <span>
 #include <string>

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fixstep/core/limits.hpp>
-#include <fixstep/scene_stability.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <memory>
 #include <stdexcept>

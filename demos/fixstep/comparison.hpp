@@ -4,7 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/core/world.hpp>
 #include <memory>

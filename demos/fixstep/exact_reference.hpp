@@ -4,7 +4,7 @@
 
 #include <cstdint>
 #include <fixstep/core/exact.hpp>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <fixstep/core/world.hpp>
 #include <optional>
 #include <string>

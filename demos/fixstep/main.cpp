@@ -17,7 +17,7 @@
 #include <cstdio>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/stop_request.hpp>
-#include <fixstep/suggest.hpp>
+#include <fixstep/scene/suggest.hpp>
 #include <fixstep/io/write_signals.hpp>
 
 #include "capture_sink.hpp"

@@ -6,7 +6,7 @@
 #include <fixstep/capture.hpp>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/manifest.hpp>
-#include <fixstep/scene_stability.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/scene_view_settings.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/core/stop_request.hpp>

@@ -11,7 +11,7 @@
 
 #include <atomic>
 #include <cstdint>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <fixstep/core/world.hpp>
 #include <future>
 #include <mutex>

@@ -10,7 +10,7 @@
 #include <fixstep/core/pointer_drag.hpp>
 #include <fixstep/core/recording.hpp>
 #include <fixstep/core/rewind.hpp>
-#include <fixstep/scene_stability.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
 #include <memory>

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/scene_view_settings.hpp"
 #include "fixstep/session.hpp"
 #include "pixels.hpp"

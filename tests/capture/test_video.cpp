@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "fixstep/core/loop.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/video.hpp"
 #include "scene_session.hpp"
 #include "video_decode.hpp"

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {

@@ -23,7 +23,7 @@
 #include "determinism_cases.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/io/summary.hpp"

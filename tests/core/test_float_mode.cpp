@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/input_script.hpp"
+#include "fixstep/scene/input_script.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/io/recording_file.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)

@@ -8,8 +8,8 @@
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/recording.hpp>
 #include <fixstep/io/recording_writer.hpp>
-#include <fixstep/scene.hpp>
-#include <fixstep/scene_stability.hpp>
+#include <fixstep/scene/scene.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/core/work_progress.hpp>
 #include <fstream>
 #include <sstream>

@@ -6,7 +6,7 @@
 
 #include "fixstep/key_bindings.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep {
 namespace {

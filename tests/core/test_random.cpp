@@ -11,8 +11,8 @@
 
 #include "fixstep/core/random.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/scene.hpp"
-#include "fixstep/scene_writer.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/scene_writer.hpp"
 #include "fixstep/core/world.hpp"
 
 // A named namespace: this file shares a unity build with test_snapshot.cpp.

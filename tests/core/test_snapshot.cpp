@@ -15,7 +15,7 @@
 #include "fixstep/core/loop.hpp"
 #include "fixstep/core/pointer_drag.hpp"
 #include "fixstep/core/rewind.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/session.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/sync_test.hpp"

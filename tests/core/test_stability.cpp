@@ -10,8 +10,8 @@
 
 #include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/exact.hpp"
-#include "fixstep/scene.hpp"
-#include "fixstep/scene_stability.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/scene_stability.hpp"
 #include "fixstep/core/world.hpp"
 #include "link_between.hpp"
 

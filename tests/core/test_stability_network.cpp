@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/scene.hpp"
-#include "fixstep/scene_stability.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/scene_stability.hpp"
 #include "fixstep/core/world.hpp"
 #include "link_between.hpp"
 

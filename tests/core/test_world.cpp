@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "fixstep/core/detail/defined_entity.hpp"
-#include "fixstep/scene.hpp"
-#include "fixstep/scene_stability.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/scene_stability.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {

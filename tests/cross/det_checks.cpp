@@ -20,7 +20,7 @@
 
 #include "det_golden_cases.hpp"
 #include "fixstep/core/bits.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace {

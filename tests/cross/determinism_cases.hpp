@@ -13,7 +13,7 @@
 
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/integrators.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep::determinism {
 

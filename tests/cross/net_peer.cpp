@@ -26,7 +26,7 @@
 
 #include "fixstep/match_peer.hpp"
 #include "fixstep/io/recording_file.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 
 using namespace fixstep;
 

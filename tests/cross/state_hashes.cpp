@@ -23,7 +23,7 @@
 
 #include "fixstep/io/command_limits.hpp"
 #include "fixstep/core/limits.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/io/summary.hpp"
 #include "fixstep/core/world.hpp"

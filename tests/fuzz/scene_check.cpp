@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <typeinfo>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep::fuzz {

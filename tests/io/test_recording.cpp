@@ -8,9 +8,9 @@
 #include <bit>
 #include <cmath>
 #include <filesystem>
-#include <fixstep/input_script.hpp>
+#include <fixstep/scene/input_script.hpp>
 #include <fixstep/core/recording.hpp>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>

@@ -28,7 +28,7 @@
 #include "fixstep/capture.hpp"
 #include "fixstep/draw_list.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/session.hpp"
 #include "overlay_card.hpp"
 #include "scene_session.hpp"

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fixstep/core/disc_overlap.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

@@ -17,7 +17,7 @@
 #include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/io/recording_file.hpp"
-#include "fixstep/scene_writer.hpp"
+#include "fixstep/scene/scene_writer.hpp"
 #include "fixstep/io/summary.hpp"
 #include "link_between.hpp"
 

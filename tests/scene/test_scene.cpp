@@ -12,7 +12,7 @@
 #include <string_view>
 #include <utility>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep {
 namespace {

@@ -12,9 +12,9 @@
 
 #include "fixstep/core/disc_overlap.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/scene.hpp"
-#include "fixstep/scene_stability.hpp"
-#include "fixstep/scene_writer.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/scene_stability.hpp"
+#include "fixstep/scene/scene_writer.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {

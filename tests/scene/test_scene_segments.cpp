@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "carried_segments_scene.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {

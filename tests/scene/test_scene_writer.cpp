@@ -14,8 +14,8 @@
 
 #include "carried_segments_scene.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/scene.hpp"
-#include "fixstep/scene_writer.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/scene_writer.hpp"
 #include "link_between.hpp"
 #include "scene_writer_check.hpp"
 

@@ -9,9 +9,9 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fixstep/input_script.hpp>
+#include <fixstep/scene/input_script.hpp>
 #include <fixstep/core/recording.hpp>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <fstream>
 #include <iterator>
 #include <string>

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/suggest.hpp"
+#include "fixstep/scene/suggest.hpp"
 
 namespace fixstep {
 namespace {

@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/input_script.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/input_script.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/scene_view_settings.hpp"
 #include "fixstep/session.hpp"
 

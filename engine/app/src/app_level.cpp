@@ -2,7 +2,7 @@
 #include <any>
 #include <cstdio>
 #include <fixstep/core/definition_checks.hpp>
-#include <fixstep/scene.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <fixstep/scene_view_settings.hpp>
 #include <memory>
 

@@ -1,6 +1,6 @@
 // Input scripts: [[at]] tables of a TOML file read with the scene loader's Reader (FILE:LINE:
 // COLUMN: KEY errors, unknown keys warned about with a suggestion).
-#include "fixstep/input_script.hpp"
+#include "fixstep/scene/input_script.hpp"
 
 #include <array>
 

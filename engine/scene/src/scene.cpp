@@ -1,4 +1,4 @@
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -12,7 +12,7 @@
 #include "fixstep/core/limits.hpp"
 #include "fixstep/io/printable.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/scene_stability.hpp"
+#include "fixstep/scene/scene_stability.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep {

@@ -21,8 +21,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "fixstep/scene.hpp"
-#include "fixstep/suggest.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/suggest.hpp"
 
 namespace fixstep::scene_detail {
 

@@ -1,4 +1,4 @@
-#include "fixstep/scene_stability.hpp"
+#include "fixstep/scene/scene_stability.hpp"
 
 #include <fmt/format.h>
 

@@ -2,7 +2,7 @@
 // a [[spring]], every segment a [[segment]] (naming the body that carries it), every number the
 // shortest text that reads back as the same double; the text is parsed back and its definition
 // hash compared before it is handed out.
-#include "fixstep/scene_writer.hpp"
+#include "fixstep/scene/scene_writer.hpp"
 
 #include <fmt/format.h>
 
@@ -20,7 +20,7 @@
 #include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/io/file_write.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep {
 

@@ -1,4 +1,4 @@
-#include "fixstep/suggest.hpp"
+#include "fixstep/scene/suggest.hpp"
 
 #include <algorithm>
 #include <vector>

@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep::scene_detail {
 

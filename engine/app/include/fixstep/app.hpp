@@ -57,7 +57,7 @@ struct Settings {
   /// replay older recordings differently: --replay refuses a recording of other rules, naming
   /// both, and `fixstep replay` refuses any recording that needs rules.
   std::uint32_t rules_version = 1;
-  /// The level's scene file (TOML, fixstep/scene.hpp), loaded at start and for each replay
+  /// The level's scene file (TOML, fixstep/scene/scene.hpp), loaded at start and for each replay
   /// that carries no scene text; --scene FILE replaces it. Empty: no file, setup() builds the
   /// level from an empty WorldDef.
   std::string scene_file{};

@@ -3,7 +3,7 @@
 // of its own to link.
 #pragma once
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/session.hpp"
 
 namespace fixstep {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/scene.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/stability.hpp"
 
 namespace fixstep {
