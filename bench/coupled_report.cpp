@@ -11,7 +11,7 @@
 #include "coupled.hpp"
 #include "fixstep/capture.hpp"
 #include "fixstep/plot.hpp"
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 
 namespace coupled {
 

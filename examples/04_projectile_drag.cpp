@@ -10,7 +10,7 @@
 #include <exception>
 #include <fixstep/capture.hpp>
 #include <fixstep/core/exact.hpp>
-#include <fixstep/render.hpp>
+#include <fixstep/render/render.hpp>
 #include <fixstep/core/world.hpp>
 #include <string>
 #include <vector>

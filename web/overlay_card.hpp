@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 
-#include "fixstep/draw_list.hpp"
+#include "fixstep/render/draw_list.hpp"
 #include "fixstep/session.hpp"
 
 namespace fixstep::web {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/draw_list.hpp"
+#include "fixstep/render/draw_list.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/pointer_drag.hpp"
 #include "fixstep/core/recording.hpp"

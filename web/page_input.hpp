@@ -4,12 +4,12 @@
 #pragma once
 
 #include "fixstep/core/input.hpp"
-#include "fixstep/user_events.hpp"
+#include "fixstep/render/user_events.hpp"
 
 namespace fixstep::web {
 
 /// What happened since the last take(): the keys, buttons and pointer of a window's events
-/// (fixstep/user_events.hpp) but for `quit` (a page has no Esc to quit).
+/// (fixstep/render/user_events.hpp) but for `quit` (a page has no Esc to quit).
 using PageEvents = UserEvents;
 
 /// Listens to the window's keys and to the mouse on the canvas (selector, e.g. "#canvas",

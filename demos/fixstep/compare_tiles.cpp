@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fixstep/render.hpp>
+#include <fixstep/render/render.hpp>
 #include <fixstep/scene/suggest.hpp>
 #include <stdexcept>
 

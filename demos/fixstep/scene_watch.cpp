@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fixstep/render.hpp>
+#include <fixstep/render/render.hpp>
 #include <string_view>
 #include <system_error>
 #include <utility>

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "fixstep/core/loop.hpp"
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/session.hpp"
 #include "pixels.hpp"
 

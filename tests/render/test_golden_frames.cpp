@@ -26,7 +26,7 @@
 #include <stb_image.h>
 
 #include "fixstep/capture.hpp"
-#include "fixstep/draw_list.hpp"
+#include "fixstep/render/draw_list.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/session.hpp"

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "fixstep/capture.hpp"
-#include "fixstep/draw_list.hpp"
-#include "fixstep/render.hpp"
+#include "fixstep/render/draw_list.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/session.hpp"
 #include "pixels.hpp"
 

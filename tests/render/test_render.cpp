@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/session.hpp"
 #include "pixels.hpp"
 #include "scene_session.hpp"

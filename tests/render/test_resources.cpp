@@ -20,7 +20,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/window.hpp"
 #include "gl_pipeline.hpp"  // engine/render/src: internal, not installed
 #include "gl_shaders.hpp"

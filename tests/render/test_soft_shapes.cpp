@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "../../bench/many_bodies.hpp"  // bench_overlay's scene
-#include "fixstep/draw_list.hpp"
+#include "fixstep/render/draw_list.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/session.hpp"
 #include "overlay_shapes.hpp"

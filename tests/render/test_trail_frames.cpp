@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/render.hpp"
-#include "fixstep/trails.hpp"
+#include "fixstep/render/render.hpp"
+#include "fixstep/render/trails.hpp"
 #include "pixels.hpp"
 
 namespace fixstep {

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "fixstep/core/detail/defined_entity.hpp"
-#include "fixstep/draw_list.hpp"
-#include "fixstep/frame_data.hpp"
-#include "fixstep/trails.hpp"
+#include "fixstep/render/draw_list.hpp"
+#include "fixstep/render/frame_data.hpp"
+#include "fixstep/render/trails.hpp"
 
 extern std::atomic<bool> counting;              // count_new.cpp
 extern std::atomic<std::size_t> counted_bytes;  // bytes asked for while counting

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "fixstep/draw_list.hpp"
+#include "fixstep/render/draw_list.hpp"
 
 namespace fixstep::testing {
 

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdlib>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 
 namespace fixstep::testing {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/core/types.hpp"
 
 namespace fixstep {

@@ -1,5 +1,5 @@
 // DrawList (draw_list.hpp): recording the shapes, every argument checked.
-#include "fixstep/draw_list.hpp"
+#include "fixstep/render/draw_list.hpp"
 
 #include <fmt/format.h>
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/draw_list.hpp"
-#include "fixstep/render.hpp"
+#include "fixstep/render/draw_list.hpp"
+#include "fixstep/render/render.hpp"
 
 namespace fixstep {
 

@@ -1,5 +1,5 @@
 // A RenderFrame taken from a World (frame_data.hpp).
-#include "fixstep/frame_data.hpp"
+#include "fixstep/render/frame_data.hpp"
 
 #include <optional>
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "gl_context.hpp"
 #include "osmesa_library.hpp"
 

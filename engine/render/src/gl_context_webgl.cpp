@@ -6,7 +6,7 @@
 
 #include <utility>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "gl_context.hpp"
 
 namespace fixstep::gl {

@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "gl_shaders.hpp"
 
 namespace fixstep {

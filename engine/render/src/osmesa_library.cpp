@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 
 namespace fixstep::gl {
 namespace {

@@ -1,7 +1,7 @@
 // Renderer: the GL frame buffer (OSMesa's pixels, or the page's WebGL2 canvas) and the canvas
 // (rectangles, lines, discs, text) batched into one upload and one draw call per clip; polylines,
 // circles, polygons and arrows are in render_shapes.cpp, the scene view in render_frame.cpp.
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 
 #include <fmt/format.h>
 #include <stb/stb_easy_font.h>

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "scene_palette.hpp"
 
 namespace fixstep {

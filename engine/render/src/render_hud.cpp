@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "scene_palette.hpp"
 
 namespace fixstep {

@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "aa_pad.hpp"
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 
 namespace fixstep {
 

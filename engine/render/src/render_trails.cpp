@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "scene_palette.hpp"
 
 namespace fixstep {

@@ -2,7 +2,7 @@
 // (render.cpp, render_shapes.cpp). Internal.
 #pragma once
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
 
 namespace fixstep {

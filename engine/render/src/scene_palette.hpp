@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <iterator>
 
-#include "fixstep/frame_data.hpp"
+#include "fixstep/render/frame_data.hpp"
 
 namespace fixstep::scene_palette {
 

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 
 // Where the rasteriser has an 8-lane (AVX2) path beside its 4-lane one, chosen at run time.
 #if defined(__x86_64__) && !defined(__EMSCRIPTEN__)

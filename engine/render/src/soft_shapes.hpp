@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "soft_piece.hpp"
 
 namespace fixstep::detail {

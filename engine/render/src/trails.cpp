@@ -1,5 +1,5 @@
 // Trails (trails.hpp): per-tick samples kept per body handle, cut at teleports and spawns.
-#include "fixstep/trails.hpp"
+#include "fixstep/render/trails.hpp"
 
 #include <fmt/format.h>
 

@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/draw_list.hpp"
-#include "fixstep/render.hpp"
+#include "fixstep/render/draw_list.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {

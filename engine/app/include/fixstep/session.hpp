@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/draw_list.hpp"
+#include "fixstep/render/draw_list.hpp"
 #include "fixstep/key_bindings.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {

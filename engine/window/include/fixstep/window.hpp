@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/render.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/core/types.hpp"
-#include "fixstep/user_events.hpp"
+#include "fixstep/render/user_events.hpp"
 
 namespace fixstep {
 
@@ -20,7 +20,7 @@ class WindowError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// A window's events: the keys, buttons and pointer of fixstep/user_events.hpp, with Esc and
+/// A window's events: the keys, buttons and pointer of fixstep/render/user_events.hpp, with Esc and
 /// the close button as `quit`. The held arrow keys are tick-input buttons (arrow_push).
 using WindowEvents = UserEvents;
 

@@ -10,7 +10,7 @@
 
 #include "fixstep/core/input.hpp"
 #include "fixstep/overlay.hpp"
-#include "fixstep/user_events.hpp"
+#include "fixstep/render/user_events.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep::app {

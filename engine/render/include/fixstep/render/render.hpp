@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/frame_data.hpp"
-#include "fixstep/trails.hpp"
+#include "fixstep/render/frame_data.hpp"
+#include "fixstep/render/trails.hpp"
 #include "fixstep/core/types.hpp"
 #include "fixstep/core/world.hpp"
 

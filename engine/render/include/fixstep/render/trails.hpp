@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/frame_data.hpp"
+#include "fixstep/render/frame_data.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {
