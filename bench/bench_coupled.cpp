@@ -34,7 +34,7 @@
 #include <vector>
 
 #include "coupled.hpp"
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/core/world.hpp"
 #include "median_run.hpp"
 

@@ -37,7 +37,7 @@
 #include <vector>
 
 #include "discs.hpp"
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "median_run.hpp"
 
 using namespace discs;

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
 

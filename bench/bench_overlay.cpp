@@ -26,7 +26,7 @@
 
 #include "../tests/support/overlay_shapes.hpp"
 #include "../tests/support/scene_session.hpp"
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/session.hpp"

@@ -36,7 +36,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/core/world.hpp"
 #include "flush_denormals.hpp"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "coupled.hpp"
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/plot.hpp"
 #include "fixstep/render/render.hpp"
 

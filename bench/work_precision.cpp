@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/core/exact.hpp"
 #include "fixstep/plot.hpp"
 #include "fixstep/core/world.hpp"

@@ -5,7 +5,7 @@
 //   build/release/bin/hello_fixstep [OUT_DIR]     (default: hello_frames)
 #include <cstdio>
 #include <exception>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/session.hpp>
 #include <string>
 

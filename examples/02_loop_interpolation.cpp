@@ -7,7 +7,7 @@
 //   02_loop_interpolation [OUT.png]
 #include <cstdio>
 #include <exception>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/core/loop.hpp>
 #include <fixstep/render/render.hpp>
 #include <fixstep/core/world.hpp>

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/core/exact.hpp>
 #include <fixstep/render/render.hpp>
 #include <fixstep/core/world.hpp>

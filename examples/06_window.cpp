@@ -8,7 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/session.hpp>
 #include <fixstep/window.hpp>
 #include <optional>

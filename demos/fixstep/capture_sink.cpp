@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include <fixstep/io/output_target.hpp>
-#include <fixstep/video_limits.hpp>
+#include <fixstep/capture/video_limits.hpp>
 
 #include "capture_dir.hpp"
 

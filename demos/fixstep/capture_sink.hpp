@@ -4,10 +4,10 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <fixstep/capture.hpp>
-#include <fixstep/manifest.hpp>
+#include <fixstep/capture/capture.hpp>
+#include <fixstep/capture/manifest.hpp>
 #include <fixstep/session.hpp>
-#include <fixstep/video.hpp>
+#include <fixstep/capture/video.hpp>
 #include <optional>
 #include <span>
 #include <string>

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/scene/input_script.hpp>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/io/recording_writer.hpp>

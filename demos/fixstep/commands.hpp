@@ -2,7 +2,7 @@
 #pragma once
 
 #include <cstdint>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/core/recording.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <fixstep/session.hpp>

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/key_bindings.hpp>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/scene/scene_stability.hpp>

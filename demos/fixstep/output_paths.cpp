@@ -5,7 +5,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
-#include <fixstep/manifest.hpp>
+#include <fixstep/capture/manifest.hpp>
 #include <fixstep/io/output_target.hpp>
 #include <fixstep/io/stale_temporaries.hpp>
 

@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/core/limits.hpp>
-#include <fixstep/manifest.hpp>
+#include <fixstep/capture/manifest.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/scene_view_settings.hpp>
 #include <fixstep/session.hpp>

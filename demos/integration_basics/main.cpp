@@ -16,7 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/key_bindings.hpp>
 #include <fixstep/core/loop.hpp>
 #include <fixstep/window.hpp>

@@ -14,7 +14,7 @@
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>
 
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 
 namespace fixstep {
 namespace {

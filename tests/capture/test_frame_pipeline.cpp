@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/frame_pipeline.hpp"
+#include "fixstep/capture/frame_pipeline.hpp"
 
 namespace fixstep {
 namespace {

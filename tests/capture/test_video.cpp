@@ -21,7 +21,7 @@
 
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/video.hpp"
+#include "fixstep/capture/video.hpp"
 #include "scene_session.hpp"
 #include "video_decode.hpp"
 

@@ -13,8 +13,8 @@
 #include <thread>
 #include <vector>
 
-#include "fixstep/video.hpp"
-#include "fixstep/video_limits.hpp"
+#include "fixstep/capture/video.hpp"
+#include "fixstep/capture/video_limits.hpp"
 #include "video_decode.hpp"
 
 namespace fixstep {

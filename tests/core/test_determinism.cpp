@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "determinism_cases.hpp"
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/session.hpp"

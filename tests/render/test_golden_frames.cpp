@@ -25,7 +25,7 @@
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>
 
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/render/render.hpp"
 #include "fixstep/session.hpp"

@@ -1,6 +1,6 @@
 // fixstep::app: live play, in the window on the real clock or headless on a virtual one.
 #include <chrono>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/key_bindings.hpp>
 #include <optional>
 #include <stdexcept>

@@ -1,7 +1,7 @@
 // fixstep::app: a recording replayed with the game's rules, verified, then drawn; the sync test.
 #include <algorithm>
 #include <cstdio>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/io/summary.hpp>
 #include <fixstep/core/sync_test.hpp>

@@ -1,4 +1,4 @@
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 
 #include <fmt/format.h>
 #include <libdeflate.h>

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 
 namespace fixstep::av {
 namespace {

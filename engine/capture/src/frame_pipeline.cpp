@@ -1,5 +1,5 @@
 // FramePipeline: the producer/worker ring of frame buffers (see frame_pipeline.hpp).
-#include "fixstep/frame_pipeline.hpp"
+#include "fixstep/capture/frame_pipeline.hpp"
 
 #include <fmt/format.h>
 

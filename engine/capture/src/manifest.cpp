@@ -1,4 +1,4 @@
-#include "fixstep/manifest.hpp"
+#include "fixstep/capture/manifest.hpp"
 
 #include <fmt/format.h>
 

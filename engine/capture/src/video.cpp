@@ -1,6 +1,6 @@
 // VideoWriter: argument checks, the temporary file's fate and the producer/worker pipeline
 // (the encoding itself is video_encoder.cpp).
-#include "fixstep/video.hpp"
+#include "fixstep/capture/video.hpp"
 
 #include <fmt/format.h>
 #include <sys/stat.h>
@@ -17,7 +17,7 @@
 #include <utility>
 
 #include "fixstep/io/atomic_output.hpp"
-#include "fixstep/video_limits.hpp"
+#include "fixstep/capture/video_limits.hpp"
 #include "fixstep/io/write_signals.hpp"
 #include "video_encoder.hpp"
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "ffmpeg_library.hpp"
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 
 namespace fixstep::av {
 

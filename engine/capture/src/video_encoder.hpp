@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include "fixstep/video.hpp"
+#include "fixstep/capture/video.hpp"
 #include "video_av.hpp"
 #include "video_palette.hpp"
 #include "video_yuv.hpp"

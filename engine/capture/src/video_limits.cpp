@@ -1,5 +1,5 @@
 // The containers' limits on a video's size and frame rate (video_limits.hpp).
-#include "fixstep/video_limits.hpp"
+#include "fixstep/capture/video_limits.hpp"
 
 #include <fmt/format.h>
 

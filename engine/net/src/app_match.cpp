@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/desync_recording.hpp>
 #include <fixstep/detail/game_play.hpp>
 #include <fixstep/key_bindings.hpp>

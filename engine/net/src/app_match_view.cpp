@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fixstep/capture.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/detail/game_play.hpp>
 #include <fixstep/key_bindings.hpp>
 #include <stdexcept>

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/capture.hpp"
-#include "fixstep/frame_pipeline.hpp"
+#include "fixstep/capture/capture.hpp"
+#include "fixstep/capture/frame_pipeline.hpp"
 #include "fixstep/io/output_target.hpp"
 
 namespace fixstep {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "fixstep/capture.hpp"
+#include "fixstep/capture/capture.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {

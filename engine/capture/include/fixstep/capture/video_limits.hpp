@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "fixstep/video.hpp"
+#include "fixstep/capture/video.hpp"
 
 namespace fixstep {
 

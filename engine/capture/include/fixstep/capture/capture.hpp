@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "fixstep/io/atomic_output.hpp"
-#include "fixstep/frame_pipeline.hpp"
+#include "fixstep/capture/frame_pipeline.hpp"
 
 namespace fixstep {
 
