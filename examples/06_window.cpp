@@ -10,7 +10,7 @@
 #include <exception>
 #include <fixstep/capture/capture.hpp>
 #include <fixstep/session.hpp>
-#include <fixstep/window.hpp>
+#include <fixstep/window/window.hpp>
 #include <optional>
 #include <string>
 #include <thread>

@@ -1,5 +1,5 @@
 // The browser's keyboard and pointer (emscripten's html5.h callbacks) as the events `fixstep
-// view` reads from its SDL2 window (fixstep/window.hpp): the same keys, buttons and pointer,
+// view` reads from its SDL2 window (fixstep/window/window.hpp): the same keys, buttons and pointer,
 // handed to the same per-tick input sampling (InputSampler). Web platform (wasm only).
 #pragma once
 

@@ -6,7 +6,7 @@
 #include <fixstep/core/recording.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <fixstep/session.hpp>
-#include <fixstep/window.hpp>
+#include <fixstep/window/window.hpp>
 #include <optional>
 #include <string>
 #include <string_view>

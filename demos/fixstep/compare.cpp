@@ -13,7 +13,7 @@
 #include <fixstep/core/limits.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/core/stop_request.hpp>
-#include <fixstep/window.hpp>
+#include <fixstep/window/window.hpp>
 #include <span>
 #include <thread>
 #include <vector>

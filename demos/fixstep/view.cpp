@@ -12,7 +12,7 @@
 #include <fixstep/core/rewind.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/session.hpp>
-#include <fixstep/window.hpp>
+#include <fixstep/window/window.hpp>
 #include <memory>
 #include <optional>
 #include <string>

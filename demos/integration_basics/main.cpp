@@ -19,7 +19,7 @@
 #include <fixstep/capture/capture.hpp>
 #include <fixstep/key_bindings.hpp>
 #include <fixstep/core/loop.hpp>
-#include <fixstep/window.hpp>
+#include <fixstep/window/window.hpp>
 #include <optional>
 #include <string>
 #include <thread>

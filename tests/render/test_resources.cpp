@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "fixstep/render/render.hpp"
-#include "fixstep/window.hpp"
+#include "fixstep/window/window.hpp"
 #include "gl_pipeline.hpp"  // engine/render/src: internal, not installed
 #include "gl_shaders.hpp"
 #include "osmesa_library.hpp"

@@ -9,7 +9,7 @@
 #include "app_modes.hpp"
 #include "fixstep/detail/game_play.hpp"
 #ifdef FIXSTEP_APP_WINDOW
-#include <fixstep/window.hpp>
+#include <fixstep/window/window.hpp>
 #endif
 
 namespace fixstep::app::detail {

@@ -15,7 +15,7 @@
 
 #include "app_modes.hpp"
 #ifdef FIXSTEP_APP_WINDOW
-#include <fixstep/window.hpp>
+#include <fixstep/window/window.hpp>
 #endif
 
 namespace fixstep::app::detail {

@@ -9,7 +9,7 @@
 #include <fixstep/key_bindings.hpp>
 #include <stdexcept>
 #ifdef FIXSTEP_NET_WINDOW
-#include <fixstep/window.hpp>
+#include <fixstep/window/window.hpp>
 #endif
 
 namespace fixstep::net::detail {

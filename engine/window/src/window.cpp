@@ -1,4 +1,4 @@
-#include "fixstep/window.hpp"
+#include "fixstep/window/window.hpp"
 
 #include <SDL.h>
 #include <fmt/format.h>

@@ -1,5 +1,5 @@
 // The events an interactive program's loop reads each frame, whichever platform delivers them
-// (an SDL2 window: fixstep/window.hpp; a browser page: web/page_input.hpp). What a loop does
+// (an SDL2 window: fixstep/window/window.hpp; a browser page: web/page_input.hpp). What a loop does
 // with them is fixstep::app's (fixstep/key_bindings.hpp).
 #pragma once
 
