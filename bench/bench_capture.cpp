@@ -42,7 +42,7 @@
 #include "fixstep/capture/capture.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "fixstep/capture/video.hpp"
 #include "many_bodies.hpp"
 

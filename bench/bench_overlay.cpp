@@ -29,7 +29,7 @@
 #include "fixstep/capture/capture.hpp"
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "many_bodies.hpp"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <exception>
 #include <fixstep/capture/capture.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <string>
 
 #include "fixstep/io/summary.hpp"

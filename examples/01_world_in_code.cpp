@@ -5,7 +5,7 @@
 //   01_world_in_code --frames 73 --last-frame OUT.png    1.2 s headless, the last frame
 //   01_world_in_code                                     in a window
 #include <cmath>
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <string>
 
 namespace {

@@ -8,7 +8,7 @@
 //   05_rope --frames 48 --last-frame OUT.png    0.8 s headless: the rope halfway down its swing
 //   05_rope                                     in a window
 //   05_rope --help                              the rest
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <string>
 #include <vector>
 

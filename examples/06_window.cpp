@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <exception>
 #include <fixstep/capture/capture.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <fixstep/window/window.hpp>
 #include <optional>
 #include <string>

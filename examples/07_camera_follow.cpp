@@ -7,7 +7,7 @@
 //   07_camera_follow --frames 151 --last-frame OUT.png   2.5 s headless: some 25 m down the level
 //   07_camera_follow                                     in a window
 //   07_camera_follow --help                              the rest
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 
 namespace {
 

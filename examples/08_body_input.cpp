@@ -7,7 +7,7 @@
 //   08_body_input --frames 96 --last-frame OUT.png    1.6 s headless
 //   08_body_input --frames 96 --record input.rec      ... recorded; --replay input.rec verifies
 //   08_body_input --help                              the rest
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <string>
 
 namespace {

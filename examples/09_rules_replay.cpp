@@ -9,7 +9,7 @@
 //                                                       re-simulated with the rule, verified
 //   09_rules_replay --frames 361 --sync-test 8          every tick rolled back 8 ticks
 #include <array>
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <string>
 
 namespace {

@@ -8,7 +8,7 @@
 //   10_overlay                                         in a window
 #include <cmath>
 #include <cstdio>
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <optional>
 
 namespace {

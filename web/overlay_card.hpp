@@ -10,7 +10,7 @@
 #include <cmath>
 
 #include "fixstep/render/draw_list.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 
 namespace fixstep::web {
 

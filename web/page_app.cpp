@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fixstep/scene/scene_stability.hpp>
-#include <fixstep/scene_view_settings.hpp>
+#include <fixstep/app/scene_view_settings.hpp>
 #include <utility>
 
 #include "fixstep/io/recording_file.hpp"

@@ -15,7 +15,7 @@
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/rewind.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "page_game.hpp"
 #include "page_input.hpp"
 #include "page_options.hpp"

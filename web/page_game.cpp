@@ -11,7 +11,7 @@
 #include <utility>
 
 #include "airhockey_app.hpp"
-#include "fixstep/key_bindings.hpp"
+#include "fixstep/app/key_bindings.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/io/summary.hpp"

@@ -1,5 +1,5 @@
 // The page's game mode (game=NAME, page_options.hpp): a game of demos/ played as its program's
-// fixstep::app::run plays it, through the same pieces (fixstep/detail/game_level.hpp,
+// fixstep::app::run plays it, through the same pieces (fixstep/app/game_level.hpp,
 // game_play.hpp): the level its setup() builds, its rules after every tick, its input from the
 // browser's pointer and keys (the same feed() into the same InputSampler as a window's), its
 // drawing and HUD lines over the world in its view; headless frames= with its autopilot, and
@@ -11,11 +11,11 @@
 #include <optional>
 #include <string>
 
-#include "fixstep/app.hpp"
-#include "fixstep/detail/game_level.hpp"
-#include "fixstep/detail/game_play.hpp"
+#include "fixstep/app/app.hpp"
+#include "fixstep/app/game_level.hpp"
+#include "fixstep/app/game_play.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "page_input.hpp"
 #include "page_options.hpp"
 

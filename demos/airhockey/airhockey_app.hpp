@@ -4,8 +4,8 @@
 // is run with.
 #pragma once
 
-#include <fixstep/app.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/app.hpp>
+#include <fixstep/app/session.hpp>
 #include <span>
 #include <string>
 

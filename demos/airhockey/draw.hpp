@@ -2,7 +2,7 @@
 // creases and the score.
 #pragma once
 
-#include <fixstep/overlay.hpp>
+#include <fixstep/app/overlay.hpp>
 
 #include "game.hpp"
 

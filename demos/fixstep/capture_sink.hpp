@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fixstep/capture/capture.hpp>
 #include <fixstep/capture/manifest.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <fixstep/capture/video.hpp>
 #include <optional>
 #include <span>

@@ -13,7 +13,7 @@
 #include <fixstep/core/limits.hpp>
 #include <fixstep/io/recording_writer.hpp>
 #include <fixstep/scene/scene_stability.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <fixstep/core/stability.hpp>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/sync_test.hpp>

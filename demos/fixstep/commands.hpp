@@ -5,7 +5,7 @@
 #include <fixstep/capture/capture.hpp>
 #include <fixstep/core/recording.hpp>
 #include <fixstep/scene/scene.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <fixstep/window/window.hpp>
 #include <optional>
 #include <string>

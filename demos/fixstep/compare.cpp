@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fixstep/capture/capture.hpp>
-#include <fixstep/key_bindings.hpp>
+#include <fixstep/app/key_bindings.hpp>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/core/stop_request.hpp>

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/scene/scene_stability.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <memory>
 #include <stdexcept>
 #include <string>

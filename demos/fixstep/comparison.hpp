@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <fixstep/scene/scene.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <fixstep/core/world.hpp>
 #include <memory>
 #include <optional>

@@ -7,8 +7,8 @@
 #include <fixstep/core/limits.hpp>
 #include <fixstep/capture/manifest.hpp>
 #include <fixstep/scene/scene_stability.hpp>
-#include <fixstep/scene_view_settings.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/scene_view_settings.hpp>
+#include <fixstep/app/session.hpp>
 #include <fixstep/core/stop_request.hpp>
 
 #include "capture_sink.hpp"

@@ -11,7 +11,7 @@
 #include <fixstep/core/recording.hpp>
 #include <fixstep/core/rewind.hpp>
 #include <fixstep/scene/scene_stability.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <fixstep/window/window.hpp>
 #include <memory>
 #include <optional>

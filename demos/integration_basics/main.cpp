@@ -17,7 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fixstep/capture/capture.hpp>
-#include <fixstep/key_bindings.hpp>
+#include <fixstep/app/key_bindings.hpp>
 #include <fixstep/core/loop.hpp>
 #include <fixstep/window/window.hpp>
 #include <optional>

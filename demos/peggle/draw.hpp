@@ -3,7 +3,7 @@
 // straight ahead, and the bucket between its rims.
 #pragma once
 
-#include <fixstep/overlay.hpp>
+#include <fixstep/app/overlay.hpp>
 
 #include "game.hpp"
 

@@ -7,7 +7,7 @@
 //   peggle --frames N [--out DIR]              N frames headless, the autopilot shooting
 //   peggle --replay FILE [--out DIR [--every K]] [--last-frame PNG]
 //   peggle --help                              the rest
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 
 #include "peggle_app.hpp"
 

@@ -1,11 +1,11 @@
-// peggle as a fixstep::app game (fixstep/app.hpp's Game): the rules of game.hpp, the autopilot
+// peggle as a fixstep::app game (fixstep/app/app.hpp's Game): the rules of game.hpp, the autopilot
 // of a headless run, the drawing of draw.hpp and the HUD's lines, and the settings it is run
 // with (its view and look). One definition for the program (main.cpp: app::run) and for the web
 // page (web/: game=peggle), so that both play, record and replay the same game.
 #pragma once
 
 #include <cstdint>
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <fixstep/core/det_math.hpp>
 #include <string>
 

@@ -3,7 +3,7 @@
 // pulls. Drawing only: nothing here is in the world, its state hash or the recording.
 #pragma once
 
-#include <fixstep/overlay.hpp>
+#include <fixstep/app/overlay.hpp>
 
 #include "game.hpp"
 

@@ -14,7 +14,7 @@
 //   step     world.step(input): physics, with the pointer's drag spring
 //   rules    cut the band, score the hits (world.impacts()), knock targets off, reload
 // and every frame the game draws the slingshot and its aim guide over the world (draw.hpp).
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 
 #include "slingshot_app.hpp"
 

@@ -1,11 +1,11 @@
-// slingshot as a fixstep::app game (fixstep/app.hpp's Game): the rules of game.hpp, the
+// slingshot as a fixstep::app game (fixstep/app/app.hpp's Game): the rules of game.hpp, the
 // pointer's drag limited to the loaded ball, the drawing of draw.hpp and the HUD's lines, and
 // the settings it is run with (its view and look). One definition for the program (main.cpp:
 // app::run) and for the web page (web/: game=slingshot), so that both play, record and replay
 // the same game.
 #pragma once
 
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <fixstep/core/pointer_drag.hpp>
 #include <string>
 

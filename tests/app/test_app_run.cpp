@@ -5,9 +5,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fixstep/app.hpp>
-#include <fixstep/detail/game_model.hpp>
-#include <fixstep/detail/game_play.hpp>
+#include <fixstep/app/app.hpp>
+#include <fixstep/app/game_model.hpp>
+#include <fixstep/app/game_play.hpp>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>

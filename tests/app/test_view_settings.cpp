@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/scene_view_settings.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/scene_view_settings.hpp"
+#include "fixstep/app/session.hpp"
 #include "pixels.hpp"
 
 namespace fixstep {

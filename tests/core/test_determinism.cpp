@@ -24,7 +24,7 @@
 #include "fixstep/capture/capture.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/io/summary.hpp"
 #include "scene_session.hpp"

@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "fixstep/key_bindings.hpp"
+#include "fixstep/app/key_bindings.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
 

@@ -16,7 +16,7 @@
 #include "fixstep/core/pointer_drag.hpp"
 #include "fixstep/core/rewind.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/sync_test.hpp"
 #include "fixstep/core/work_progress.hpp"

@@ -15,7 +15,7 @@
 
 #include "fixstep/core/loop.hpp"
 #include "fixstep/render/render.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "pixels.hpp"
 
 namespace fixstep {

@@ -29,7 +29,7 @@
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "overlay_card.hpp"
 #include "scene_session.hpp"
 

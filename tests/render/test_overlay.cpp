@@ -16,7 +16,7 @@
 #include "fixstep/capture/capture.hpp"
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/render/render.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "pixels.hpp"
 
 namespace fixstep {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fixstep/render/render.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "pixels.hpp"
 #include "scene_session.hpp"
 

@@ -15,7 +15,7 @@
 #include "../../bench/many_bodies.hpp"  // bench_overlay's scene
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "overlay_shapes.hpp"
 #include "scene_session.hpp"
 #include "soft_shapes.hpp"

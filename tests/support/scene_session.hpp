@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/scene_view_settings.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/scene_view_settings.hpp"
+#include "fixstep/app/session.hpp"
 
 namespace fixstep::testing {
 

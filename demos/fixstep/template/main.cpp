@@ -7,7 +7,7 @@
 // does the rest: the window, headless frames, --record, --replay, --sync-test and --help.
 #include <algorithm>
 #include <cstdint>
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <string>
 #include <vector>
 

@@ -1,12 +1,12 @@
-// fixstep::app: the level a run starts from (fixstep/detail/game_level.hpp).
+// fixstep::app: the level a run starts from (fixstep/app/game_level.hpp).
 #include <any>
 #include <cstdio>
 #include <fixstep/core/definition_checks.hpp>
 #include <fixstep/scene/scene.hpp>
-#include <fixstep/scene_view_settings.hpp>
+#include <fixstep/app/scene_view_settings.hpp>
 #include <memory>
 
-#include "fixstep/detail/game_level.hpp"
+#include "fixstep/app/game_level.hpp"
 
 namespace fixstep::app::detail {
 

@@ -1,5 +1,5 @@
 // Internal to fixstep::app: the modes app::run dispatches to (the level each starts from:
-// fixstep/detail/game_level.hpp).
+// fixstep/app/game_level.hpp).
 #pragma once
 
 #include <cstdint>
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/app.hpp"
-#include "fixstep/detail/game_level.hpp"
+#include "fixstep/app/app.hpp"
+#include "fixstep/app/game_level.hpp"
 
 namespace fixstep::app::detail {
 

@@ -1,13 +1,13 @@
 // fixstep::app: live play, in the window on the real clock or headless on a virtual one.
 #include <chrono>
 #include <fixstep/capture/capture.hpp>
-#include <fixstep/key_bindings.hpp>
+#include <fixstep/app/key_bindings.hpp>
 #include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include "app_modes.hpp"
-#include "fixstep/detail/game_play.hpp"
+#include "fixstep/app/game_play.hpp"
 #ifdef FIXSTEP_APP_WINDOW
 #include <fixstep/window/window.hpp>
 #endif

@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "app_modes.hpp"
-#include "fixstep/detail/game_play.hpp"
+#include "fixstep/app/game_play.hpp"
 
 namespace fixstep::app::detail {
 

@@ -1,5 +1,5 @@
-// fixstep::app: a game being played live (fixstep/detail/game_play.hpp).
-#include "fixstep/detail/game_play.hpp"
+// fixstep::app: a game being played live (fixstep/app/game_play.hpp).
+#include "fixstep/app/game_play.hpp"
 
 #include <cstdio>
 #include <fixstep/io/recording_file.hpp>

@@ -1,10 +1,10 @@
 // fixstep::app: a recording replayed with a game's rules and verified
-// (fixstep/detail/game_level.hpp).
+// (fixstep/app/game_level.hpp).
 #include <fmt/format.h>
 
 #include <stdexcept>
 
-#include "fixstep/detail/game_level.hpp"
+#include "fixstep/app/game_level.hpp"
 #include "fixstep/io/summary.hpp"
 
 namespace fixstep::app::detail {

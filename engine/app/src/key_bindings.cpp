@@ -1,5 +1,5 @@
 // What every fixstep loop does with its user's events (key_bindings.hpp).
-#include "fixstep/key_bindings.hpp"
+#include "fixstep/app/key_bindings.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // app::Overlay (overlay.hpp): the HUD lines kept between frames, and the frame being drawn.
-#include "fixstep/overlay.hpp"
+#include "fixstep/app/overlay.hpp"
 
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 
 namespace fixstep::app {
 

@@ -1,4 +1,4 @@
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 
 #include <fmt/format.h>
 

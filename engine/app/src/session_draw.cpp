@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 #include "fixstep/core/stability.hpp"
 
 namespace fixstep {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "fixstep/core/detail/defined_entity.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 
 namespace fixstep {
 

@@ -9,8 +9,8 @@
 #include <exception>
 #include <fixstep/capture/capture.hpp>
 #include <fixstep/desync_recording.hpp>
-#include <fixstep/detail/game_play.hpp>
-#include <fixstep/key_bindings.hpp>
+#include <fixstep/app/game_play.hpp>
+#include <fixstep/app/key_bindings.hpp>
 #include <fixstep/match_peer.hpp>
 #include <fixstep/net_app.hpp>
 #include <fixstep/io/recording_file.hpp>

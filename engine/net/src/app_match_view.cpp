@@ -5,8 +5,8 @@
 
 #include <cmath>
 #include <fixstep/capture/capture.hpp>
-#include <fixstep/detail/game_play.hpp>
-#include <fixstep/key_bindings.hpp>
+#include <fixstep/app/game_play.hpp>
+#include <fixstep/app/key_bindings.hpp>
 #include <stdexcept>
 #ifdef FIXSTEP_NET_WINDOW
 #include <fixstep/window/window.hpp>

@@ -3,10 +3,10 @@
 // the game's drawing and a line of the match's state.
 #pragma once
 
-#include <fixstep/detail/game_level.hpp>
-#include <fixstep/detail/game_model.hpp>
+#include <fixstep/app/game_level.hpp>
+#include <fixstep/app/game_model.hpp>
 #include <fixstep/match_peer.hpp>
-#include <fixstep/session.hpp>
+#include <fixstep/app/session.hpp>
 #include <memory>
 #include <optional>
 #include <string>

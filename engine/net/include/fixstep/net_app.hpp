@@ -36,7 +36,7 @@
 // fixstep::net_app.
 #pragma once
 
-#include <fixstep/app.hpp>
+#include <fixstep/app/app.hpp>
 #include <utility>
 
 namespace fixstep::net {

@@ -1,6 +1,6 @@
 // The events an interactive program's loop reads each frame, whichever platform delivers them
 // (an SDL2 window: fixstep/window/window.hpp; a browser page: web/page_input.hpp). What a loop does
-// with them is fixstep::app's (fixstep/key_bindings.hpp).
+// with them is fixstep::app's (fixstep/app/key_bindings.hpp).
 #pragma once
 
 #include <cstdint>

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/app.hpp"
+#include "fixstep/app/app.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 
 namespace fixstep::app::detail {
 

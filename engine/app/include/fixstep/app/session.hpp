@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fixstep/render/draw_list.hpp"
-#include "fixstep/key_bindings.hpp"
+#include "fixstep/app/key_bindings.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/render/render.hpp"
 #include "fixstep/core/world.hpp"

@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "fixstep/core/input.hpp"
-#include "fixstep/overlay.hpp"
+#include "fixstep/app/overlay.hpp"
 #include "fixstep/render/user_events.hpp"
 #include "fixstep/core/world.hpp"
 

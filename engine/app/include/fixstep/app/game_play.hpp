@@ -8,11 +8,11 @@
 #include <string>
 #include <string_view>
 
-#include "fixstep/detail/game_level.hpp"
+#include "fixstep/app/game_level.hpp"
 #include "fixstep/core/input.hpp"
-#include "fixstep/overlay.hpp"
+#include "fixstep/app/overlay.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 
 namespace fixstep::app::detail {
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/session.hpp"
+#include "fixstep/app/session.hpp"
 
 namespace fixstep {
 

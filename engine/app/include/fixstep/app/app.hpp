@@ -38,8 +38,8 @@
 #include <string>
 #include <utility>
 
-#include "fixstep/detail/game_model.hpp"
-#include "fixstep/overlay.hpp"
+#include "fixstep/app/game_model.hpp"
+#include "fixstep/app/overlay.hpp"
 #include "fixstep/core/types.hpp"
 
 namespace fixstep::app {
@@ -85,7 +85,7 @@ struct Settings {
   std::optional<bool> show_hud{};
   /// The HUD's text scale, px per font pixel, in [1, 4] (else run() exits 1).
   std::optional<float> hud_text_scale{};
-  /// Which engine lines the HUD may show (HudLine bits of fixstep/session.hpp).
+  /// Which engine lines the HUD may show (HudLine bits of fixstep/app/session.hpp).
   std::optional<unsigned> hud_lines{};
   /// Networked play (fixstep::net::run): the most players the game seats, 2–8; a host's
   /// --players may ask for up to this many (else exit 2). seat() and merge() see players
