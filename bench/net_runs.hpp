@@ -5,8 +5,8 @@
 
 #include <chrono>
 #include <cstdint>
-#include <fixstep/link_conditioner.hpp>
-#include <fixstep/match_peer.hpp>
+#include <fixstep/net/link_conditioner.hpp>
+#include <fixstep/net/match_peer.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <memory>

@@ -1344,7 +1344,7 @@ echo "tests/scene/test_scene_writer.cpp tries each (RefusesWhatWouldNotLoadBackE
 echo
 echo "## Network packets (fixstep::net)"
 echo
-echo "A peer of a networked match (fixstep/match_peer.hpp) gets datagrams, not files: every packet"
+echo "A peer of a networked match (fixstep/net/match_peer.hpp) gets datagrams, not files: every packet"
 echo "is checked by net::decode_packet before any field is used, and a bad one is dropped and"
 echo "counted by its PacketError (MatchStats::dropped), never answered with more bytes than it"
 echo "carried, never a crash or a desync. Tried by tests/net/test_packet.cpp (hand-built bytes),"

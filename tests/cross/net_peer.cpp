@@ -24,7 +24,7 @@
 #include <string_view>
 #include <thread>
 
-#include "fixstep/match_peer.hpp"
+#include "fixstep/net/match_peer.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/scene/scene.hpp"
 

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <fixstep/net_input_codec.hpp>
-#include <fixstep/net_packet.hpp>
+#include <fixstep/net/net_input_codec.hpp>
+#include <fixstep/net/net_packet.hpp>
 #include <span>
 #include <vector>
 

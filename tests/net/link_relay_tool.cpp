@@ -1,4 +1,4 @@
-// link_relay: the link conditioner (fixstep/link_conditioner.hpp) as a program, so that scripts
+// link_relay: the link conditioner (fixstep/net/link_conditioner.hpp) as a program, so that scripts
 // can put two processes of a game on either side of a bad link:
 //
 //   link_relay --upstream 127.0.0.1:7777 [--latency-ms 20] [--jitter-ms 5] [--loss 0.05]
@@ -13,7 +13,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <fixstep/link_conditioner.hpp>
+#include <fixstep/net/link_conditioner.hpp>
 #include <fstream>
 #include <string>
 #include <thread>

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fixstep/link_conditioner.hpp>
-#include <fixstep/match_peer.hpp>
+#include <fixstep/net/link_conditioner.hpp>
+#include <fixstep/net/match_peer.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <functional>

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <fixstep/match_peer.hpp>
-#include <fixstep/net_packet.hpp>
+#include <fixstep/net/match_peer.hpp>
+#include <fixstep/net/net_packet.hpp>
 #include <optional>
 #include <span>
 #include <utility>

@@ -12,7 +12,7 @@
 #include <cstring>
 #include <thread>
 
-#include "fixstep/link_conditioner.hpp"
+#include "fixstep/net/link_conditioner.hpp"
 
 namespace fixstep::net_test {
 namespace {

@@ -7,8 +7,8 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fixstep/desync_recording.hpp>
-#include <fixstep/net_packet.hpp>
+#include <fixstep/net/desync_recording.hpp>
+#include <fixstep/net/net_packet.hpp>
 #include <fixstep/io/recording_file.hpp>
 
 #include "net_match.hpp"

@@ -9,8 +9,8 @@
 #include <iterator>
 #include <limits>
 
-#include "fixstep/net_input_codec.hpp"
-#include "fixstep/net_packet.hpp"
+#include "fixstep/net/net_input_codec.hpp"
+#include "fixstep/net/net_packet.hpp"
 #include "net_bytes.hpp"
 
 namespace fixstep::net_test {

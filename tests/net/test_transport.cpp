@@ -6,7 +6,7 @@
 #include <chrono>
 #include <optional>
 
-#include "fixstep/net_transport.hpp"
+#include "fixstep/net/net_transport.hpp"
 
 namespace fixstep::net_test {
 namespace {

@@ -1,5 +1,5 @@
 // fixstep::net_app: a game of fixstep::app played as one peer of a networked match
-// (fixstep/net_app.hpp): the match set up from the command line, played in a window or by the
+// (fixstep/net/net_app.hpp): the match set up from the command line, played in a window or by the
 // game's autopilot, drawn from the shown world, its recording written at the end.
 #include <unistd.h>
 
@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <exception>
 #include <fixstep/capture/capture.hpp>
-#include <fixstep/desync_recording.hpp>
+#include <fixstep/net/desync_recording.hpp>
 #include <fixstep/app/game_play.hpp>
 #include <fixstep/app/key_bindings.hpp>
-#include <fixstep/match_peer.hpp>
-#include <fixstep/net_app.hpp>
+#include <fixstep/net/match_peer.hpp>
+#include <fixstep/net/net_app.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/io/summary.hpp>
 #include <memory>

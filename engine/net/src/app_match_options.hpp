@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
-#include "fixstep/match_peer.hpp"
-#include "fixstep/net_transport.hpp"
+#include "fixstep/net/match_peer.hpp"
+#include "fixstep/net/net_transport.hpp"
 
 namespace fixstep::net::detail {
 

@@ -5,7 +5,7 @@
 
 #include <fixstep/app/game_level.hpp>
 #include <fixstep/app/game_model.hpp>
-#include <fixstep/match_peer.hpp>
+#include <fixstep/net/match_peer.hpp>
 #include <fixstep/app/session.hpp>
 #include <memory>
 #include <optional>

@@ -1,5 +1,5 @@
 // write_desync_recording (desync_recording.hpp): a free file name, then io's atomic write.
-#include "fixstep/desync_recording.hpp"
+#include "fixstep/net/desync_recording.hpp"
 
 #include <fmt/format.h>
 

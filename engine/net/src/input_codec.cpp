@@ -1,4 +1,4 @@
-// fixstep::net: per-tick input as deltas and runs (fixstep/net_input_codec.hpp).
+// fixstep::net: per-tick input as deltas and runs (fixstep/net/net_input_codec.hpp).
 #include <array>
 #include <bit>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "byte_io.hpp"
-#include "fixstep/net_input_codec.hpp"
+#include "fixstep/net/net_input_codec.hpp"
 
 namespace fixstep::net {
 

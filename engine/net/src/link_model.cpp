@@ -1,8 +1,8 @@
-// fixstep::net: the link conditioner's decisions (fixstep/link_conditioner.hpp).
+// fixstep::net: the link conditioner's decisions (fixstep/net/link_conditioner.hpp).
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/link_conditioner.hpp"
+#include "fixstep/net/link_conditioner.hpp"
 
 namespace fixstep::net {
 

@@ -1,4 +1,4 @@
-// fixstep::net: the link conditioner's UDP relay (fixstep/link_conditioner.hpp).
+// fixstep::net: the link conditioner's UDP relay (fixstep/net/link_conditioner.hpp).
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -11,7 +11,7 @@
 #include <cstring>
 #include <queue>
 
-#include "fixstep/link_conditioner.hpp"
+#include "fixstep/net/link_conditioner.hpp"
 
 namespace fixstep::net {
 

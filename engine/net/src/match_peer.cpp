@@ -1,11 +1,11 @@
-// fixstep::net: a lockstep peer's construction, stepping and hashes (fixstep/match_peer.hpp).
+// fixstep::net: a lockstep peer's construction, stepping and hashes (fixstep/net/match_peer.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <random>
 #include <stdexcept>
 
-#include "fixstep/net_input_codec.hpp"
+#include "fixstep/net/net_input_codec.hpp"
 #include "match_peer_impl.hpp"
 
 namespace fixstep::net {

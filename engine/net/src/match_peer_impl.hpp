@@ -1,4 +1,4 @@
-// Internal to fixstep::net: a lockstep peer's state (fixstep/match_peer.hpp), shared by the
+// Internal to fixstep::net: a lockstep peer's state (fixstep/net/match_peer.hpp), shared by the
 // files that step it (match_peer.cpp), receive (match_receive.cpp) and send
 // (match_send.cpp).
 #pragma once
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/match_peer.hpp"
-#include "fixstep/net_packet.hpp"
+#include "fixstep/net/match_peer.hpp"
+#include "fixstep/net/net_packet.hpp"
 #include "sequence_window.hpp"
 
 namespace fixstep::net::detail {

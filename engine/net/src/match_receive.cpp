@@ -1,10 +1,10 @@
 // fixstep::net: what a lockstep peer does with each packet it receives, after the decoder has
-// validated it (fixstep/match_peer.hpp).
+// validated it (fixstep/net/match_peer.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "fixstep/net_input_codec.hpp"
+#include "fixstep/net/net_input_codec.hpp"
 #include "match_peer_impl.hpp"
 
 namespace fixstep::net {

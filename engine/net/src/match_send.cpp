@@ -1,9 +1,9 @@
 // fixstep::net: what a lockstep peer sends: input runs (redundantly until acknowledged while
 // they are small, else once and resent after a timeout), state hashes, refusals
-// (fixstep/match_peer.hpp).
+// (fixstep/net/match_peer.hpp).
 #include <algorithm>
 
-#include "fixstep/net_input_codec.hpp"
+#include "fixstep/net/net_input_codec.hpp"
 #include "match_peer_impl.hpp"
 
 namespace fixstep::net {

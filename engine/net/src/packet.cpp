@@ -1,9 +1,9 @@
-// fixstep::net: packets encoded and decoded (fixstep/net_packet.hpp).
+// fixstep::net: packets encoded and decoded (fixstep/net/net_packet.hpp).
 #include <stdexcept>
 
 #include "byte_io.hpp"
-#include "fixstep/net_input_codec.hpp"
-#include "fixstep/net_packet.hpp"
+#include "fixstep/net/net_input_codec.hpp"
+#include "fixstep/net/net_packet.hpp"
 #include "fixstep/core/recording.hpp"
 
 namespace fixstep::net {

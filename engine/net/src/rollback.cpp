@@ -1,10 +1,10 @@
 // fixstep::net: a rollback peer's shown world: stepped ahead on predicted inputs, rolled back
-// to the first tick predicted wrong and re-simulated (fixstep/match_peer.hpp).
+// to the first tick predicted wrong and re-simulated (fixstep/net/match_peer.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "fixstep/net_input_codec.hpp"
+#include "fixstep/net/net_input_codec.hpp"
 #include "match_peer_impl.hpp"
 
 namespace fixstep::net {

@@ -1,10 +1,10 @@
-// fixstep::net: datagrams over ENet (fixstep/net_transport.hpp).
+// fixstep::net: datagrams over ENet (fixstep/net/net_transport.hpp).
 #include <enet/enet.h>
 #include <fmt/format.h>
 
 #include <mutex>
 
-#include "fixstep/net_transport.hpp"
+#include "fixstep/net/net_transport.hpp"
 
 namespace fixstep::net {
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "fixstep/match_peer.hpp"
+#include "fixstep/net/match_peer.hpp"
 
 namespace fixstep::net {
 

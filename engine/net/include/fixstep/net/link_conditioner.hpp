@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "fixstep/net_transport.hpp"
+#include "fixstep/net/net_transport.hpp"
 
 namespace fixstep::net {
 

@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/net_protocol.hpp"
-#include "fixstep/net_transport.hpp"
+#include "fixstep/net/net_protocol.hpp"
+#include "fixstep/net/net_transport.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/rules.hpp"
 #include "fixstep/core/world.hpp"

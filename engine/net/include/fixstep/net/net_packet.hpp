@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/net_protocol.hpp"
+#include "fixstep/net/net_protocol.hpp"
 
 namespace fixstep::net {
 

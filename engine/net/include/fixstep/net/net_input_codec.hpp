@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "fixstep/core/input.hpp"
-#include "fixstep/net_protocol.hpp"
+#include "fixstep/net/net_protocol.hpp"
 
 namespace fixstep::net {
 
