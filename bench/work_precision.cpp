@@ -1,6 +1,6 @@
 // Work-precision study: for each integrator, the error it makes against the exact solution
 // versus what it costs, over a sweep of step sizes h = dt / substeps, on three systems with
-// closed-form solutions (engine/core/include/fixstep/exact.hpp):
+// closed-form solutions (engine/core/include/fixstep/core/exact.hpp):
 //   damped      spring-damper k = 4 N/m, b = 0.6 N·s/m, m = 1 kg (ω = 2 rad/s, ζ = 0.15), 10 s
 //   projectile  gravity 9.81 m/s², wind 2 N, drag 0.2 N·s/m, m = 1 kg, thrown at 25 m/s, 4 s
 //   undamped    k = 4 N/m, m = 1 kg on a circular orbit (ω = 2 rad/s), 100 s (~32 periods)

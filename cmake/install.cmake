@@ -9,7 +9,7 @@ foreach(component IN LISTS FIXSTEP_COMPONENTS)
   install(TARGETS fixstep_${component} EXPORT fixstep-${component}
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT fixstep_development
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT fixstep_runtime)
-  if(IS_DIRECTORY ${PROJECT_SOURCE_DIR}/engine/${component}/include)  # (net_app's is net's)
+  if(IS_DIRECTORY ${PROJECT_SOURCE_DIR}/engine/${component}/include)
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/${component}/include/
             DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT fixstep_development)
   endif()

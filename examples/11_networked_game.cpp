@@ -17,7 +17,7 @@
 //   11_networked_game --host 0 --bot --ticks 240 --record a.rec     scripted, headless
 //   11_networked_game --replay a.rec                  verify the match's recording
 #include <array>
-#include <fixstep/net/net_app.hpp>
+#include <fixstep/net_app/run.hpp>
 #include <span>
 #include <string>
 

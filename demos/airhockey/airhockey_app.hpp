@@ -1,4 +1,4 @@
-// airhockey as a fixstep::app game, networked (fixstep/net/net_app.hpp's net::run): the rules of
+// airhockey as a fixstep::app game, networked (fixstep/net_app/run.hpp's net::run): the rules of
 // game.hpp, the players' pointers merged into the mallets' velocities, the computer on the
 // right in single-player runs, the scripted bot, the drawing of draw.hpp, and the settings it
 // is run with.

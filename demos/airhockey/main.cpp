@@ -16,7 +16,7 @@
 //   merge  both players' pointers into the mallets' velocities (game.hpp merge)
 //   step   world.step(input): the puck off the mallets and walls
 //   rules  goals (the goal sensors), the serve, the puck's speed limit
-#include <fixstep/net/net_app.hpp>
+#include <fixstep/net_app/run.hpp>
 
 #include "airhockey_app.hpp"
 

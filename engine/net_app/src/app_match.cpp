@@ -1,5 +1,5 @@
 // fixstep::net_app: a game of fixstep::app played as one peer of a networked match
-// (fixstep/net/net_app.hpp): the match set up from the command line, played in a window or by the
+// (fixstep/net_app/run.hpp): the match set up from the command line, played in a window or by the
 // game's autopilot, drawn from the shown world, its recording written at the end.
 #include <unistd.h>
 
@@ -12,7 +12,7 @@
 #include <fixstep/app/game_play.hpp>
 #include <fixstep/app/key_bindings.hpp>
 #include <fixstep/net/match_peer.hpp>
-#include <fixstep/net/net_app.hpp>
+#include <fixstep/net_app/run.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/io/summary.hpp>
 #include <memory>
