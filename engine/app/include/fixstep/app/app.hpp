@@ -24,7 +24,7 @@
 // input before it is stepped (e.g. which body the pointer may drag); draw() draws shapes over the
 // world (lines, circles, polygons, arrows, labels: app::Overlay) and adds lines to the HUD;
 // summary() is the game's state in one line, printed after a run and a replay. seat() and
-// merge() are for networked play (fixstep::net::run, fixstep/net/net_app.hpp): seat() tells the
+// merge() are for networked play (fixstep::net::run, fixstep/net_app/run.hpp): seat() tells the
 // game which player its input(), autopilot() and draw() play (0 = the host; it may be called
 // again at any time, so it must not change what rules() do), and merge() makes each
 // tick's one input from every player's (index = player), on every peer, before the step (so,
