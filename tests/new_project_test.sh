@@ -25,7 +25,7 @@ cd "$work"
 # 1. The project: the template's files, byte for byte, named after the directory.
 fixstep new grabber > new.log || fail "fixstep new grabber: $(cat new.log)"
 for f in main.cpp scene.toml; do
-  cmp -s "$src/demos/fixstep/template/$f" "grabber/$f" || fail "grabber/$f is not the template's"
+  cmp -s "$src/cli/template/$f" "grabber/$f" || fail "grabber/$f is not the template's"
 done
 grep -q '^project(grabber LANGUAGES CXX)' grabber/CMakeLists.txt ||
   fail "grabber/CMakeLists.txt does not name the project grabber"

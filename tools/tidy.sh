@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tools/tidy.sh BUILD_DIR: clang-tidy 14 with the root .clang-tidy over the sources of engine/,
-# chart/, demos/ and examples/ compiled in BUILD_DIR/compile_commands.json (not tests/ or bench/:
+# chart/, cli/, demos/ and examples/ compiled in BUILD_DIR/compile_commands.json (not tests/ or bench/:
 # GoogleTest and Benchmark macros). Prints every finding once and exits non-zero on any.
 #
 #   cmake --preset ci-clang && tools/tidy.sh build/ci-clang
@@ -37,13 +37,13 @@ jobs=${TIDY_JOBS:-2}
 files=()
 while IFS= read -r f; do
   case "$f" in
-    "$root"/engine/* | "$root"/chart/* | "$root"/demos/* | "$root"/examples/*) files+=("$f") ;;
-    "$build"/engine/*/Unity/* | "$build"/chart/*/Unity/* | "$build"/demos/*/Unity/* | \
+    "$root"/engine/* | "$root"/chart/* | "$root"/cli/* | "$root"/demos/* | "$root"/examples/*) files+=("$f") ;;
+    "$build"/engine/*/Unity/* | "$build"/chart/*/Unity/* | "$build"/cli/*/Unity/* | "$build"/demos/*/Unity/* | \
       "$build"/examples/*/Unity/*) files+=("$f") ;;
   esac
 done < <(sed -n 's/^ *"file": "\(.*\)",\{0,1\}$/\1/p' "$db" | sort -u)
 if [ ${#files[@]} -eq 0 ]; then
-  echo "tidy: no engine/, chart/, demos/ or examples/ sources in $db" >&2
+  echo "tidy: no engine/, chart/, cli/, demos/ or examples/ sources in $db" >&2
   exit 2
 fi
 

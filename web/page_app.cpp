@@ -1,5 +1,5 @@
 // The page's program (page_app.hpp): building the session, the interactive loop (as
-// demos/fixstep/view.cpp runs it in a window) and the report.
+// cli/view.cpp runs it in a window) and the report.
 #include "page_app.hpp"
 
 #include <emscripten/emscripten.h>

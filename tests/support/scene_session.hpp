@@ -1,4 +1,4 @@
-// Session for a loaded scene, as `fixstep render` opens it (demos/fixstep/render_command.cpp,
+// Session for a loaded scene, as `fixstep render` opens it (cli/render_command.cpp,
 // session_settings): its world, its [view] and its file name in the HUD. For tests and benchmarks.
 #pragma once
 

@@ -1,6 +1,6 @@
 // `fixstep new DIR`: writes a standalone prototype project (CMakeLists.txt, main.cpp,
 // scene.toml, README.md) built against the installed fixstep package. The files are those of
-// demos/fixstep/template/, embedded in the program at build time (template_files.cpp.in).
+// cli/template/, embedded in the program at build time (template_files.cpp.in).
 #pragma once
 
 #include <filesystem>
