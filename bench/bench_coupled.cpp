@@ -35,6 +35,7 @@
 
 #include "coupled.hpp"
 #include "fixstep/capture/capture.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
 #include "median_run.hpp"
 
@@ -79,7 +80,7 @@ Accuracy measure(const std::string& key, const Scene& s, const Reference& ref, d
       const double e = std::hypot(st[j].position.x - r.position.x, st[j].position.y - r.position.y);
       err = std::isnan(e) ? INFINITY : std::max(err, e);
     }
-    for (const fixstep::detail::IndexLink& l : s.links) {
+    for (const fixstep::IndexLink& l : s.links) {
       a.min_link =
           std::min(a.min_link, std::hypot(st[l.body_a].position.x - st[l.body_b].position.x,
                                           st[l.body_a].position.y - st[l.body_b].position.y));

@@ -6,7 +6,10 @@
 //   build/release/bin/bench_float_hygiene
 #include <benchmark/benchmark.h>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 namespace {
 

@@ -33,6 +33,9 @@
 #include <string_view>
 #include <vector>
 
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "net_runs.hpp"
 #ifdef FIXSTEP_BENCH_GAMES

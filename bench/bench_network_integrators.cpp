@@ -21,8 +21,10 @@
 #include <vector>
 
 #include "fixstep/capture/capture.hpp"
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/scene/scene.hpp"
 
 using namespace fixstep;
 

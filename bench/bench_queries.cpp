@@ -19,7 +19,11 @@
 #include <random>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/query.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace {
 

@@ -37,10 +37,13 @@
 #include <vector>
 
 #include "fixstep/capture/capture.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "flush_denormals.hpp"
 #include "median_run.hpp"
+#include "world_kernel.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>

@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "fixstep/core/components.hpp"
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 namespace coupled {
 
@@ -41,8 +43,8 @@ enum class SceneKind { chain, cloth };
 
 struct Scene {
   SceneKind kind = SceneKind::chain;
-  std::vector<fixstep::BodyDef> bodies{};           ///< mass, initial state, anchored spring, pull
-  std::vector<fixstep::detail::IndexLink> links{};  ///< rest length 0
+  std::vector<fixstep::BodyDef> bodies{};   ///< mass, initial state, anchored spring, pull
+  std::vector<fixstep::IndexLink> links{};  ///< rest length 0
   /// When not empty: the scene with every spring given a small rest length L behaves exactly
   /// like this one (rest length 0) shifted by L·rest_shift[j] per body, as long as no spring
   /// changes direction (true for the chain: all springs point along -x from b to a). Box2D
@@ -59,9 +61,8 @@ struct Scene {
 [[nodiscard]] inline std::vector<fixstep::LinkDef> link_defs(const Scene& s) {
   std::vector<fixstep::LinkDef> out;
   out.reserve(s.links.size());
-  for (const fixstep::detail::IndexLink& l : s.links) {
-    out.push_back({fixstep::detail::defined_entity(l.body_a),
-                   fixstep::detail::defined_entity(l.body_b), l.spring});
+  for (const fixstep::IndexLink& l : s.links) {
+    out.push_back({fixstep::defined_entity(l.body_a), fixstep::defined_entity(l.body_b), l.spring});
   }
   return out;
 }
@@ -75,7 +76,7 @@ std::unique_ptr<fixstep::detail::WorldKernel<Real>> make_world(const Scene& s,
   std::vector<fixstep::Entity> e;
   e.reserve(s.bodies.size());
   for (const fixstep::BodyDef& d : s.bodies) e.push_back(w->create_body(d));
-  for (const fixstep::detail::IndexLink& l : s.links) {
+  for (const fixstep::IndexLink& l : s.links) {
     w->create_link({.body_a = e[l.body_a], .body_b = e[l.body_b], .spring = l.spring});
   }
   return w;

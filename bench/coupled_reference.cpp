@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "coupled.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/exact.hpp"
 #include "fixstep/core/world.hpp"
 

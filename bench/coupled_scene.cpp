@@ -8,7 +8,7 @@ namespace coupled {
 
 using fixstep::Body;
 using fixstep::BodyDef;
-using BodyLink = fixstep::detail::IndexLink;
+using BodyLink = fixstep::IndexLink;
 using fixstep::LinkSpring;
 using fixstep::SpringDamper;
 

@@ -6,8 +6,10 @@
 #include <stdexcept>
 
 #include "coupled.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
 #include "flush_denormals.hpp"
+#include "world_kernel.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>
@@ -17,7 +19,7 @@ namespace coupled {
 
 using fixstep::Body;
 using fixstep::BodyDef;
-using BodyLink = fixstep::detail::IndexLink;
+using BodyLink = fixstep::IndexLink;
 using fixstep::SpringDamper;
 using fixstep::Vec2;
 using fixstep::World;

@@ -10,7 +10,11 @@
 #include <memory>
 
 #include "discs.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 namespace discs {
 

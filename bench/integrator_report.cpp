@@ -9,9 +9,13 @@
 #include <cstdio>
 #include <string>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/exact.hpp"
 #include "fixstep/core/stability.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 using namespace fixstep;
 

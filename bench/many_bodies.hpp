@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 
 namespace fixstep::bench {

@@ -5,9 +5,12 @@
 
 #include <chrono>
 #include <cstdint>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/recording_file.hpp>
 #include <fixstep/net/link_conditioner.hpp>
 #include <fixstep/net/match_peer.hpp>
-#include <fixstep/io/recording_file.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <memory>
 #include <string>

@@ -28,9 +28,12 @@
 #include <vector>
 
 #include "coupled.hpp"
-#include "fixstep/io/file_write.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/integrators.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/io/file_write.hpp"
+#include "world_kernel.hpp"
 
 using namespace coupled;
 using fixstep::Body;

@@ -71,7 +71,7 @@ class Box2dPeer final : public Peer {
             {b, b2Vec2(float(d.constant_force->force.x), float(d.constant_force->force.y))});
       }
     }
-    for (const fixstep::detail::IndexLink& l : s.links) {
+    for (const fixstep::IndexLink& l : s.links) {
       spring(bodies_[l.body_a], bodies_[l.body_b], b2Vec2(0.0f, 0.0f), l.spring.rest_length,
              l.spring.stiffness, l.spring.damping);
     }

@@ -47,7 +47,7 @@ class ChipmunkPeer final : public Peer {
         pulled_.push_back({b, cpv(d.constant_force->force.x, d.constant_force->force.y)});
       }
     }
-    for (const fixstep::detail::IndexLink& l : s.links) {
+    for (const fixstep::IndexLink& l : s.links) {
       springs_.push_back(cpSpaceAddConstraint(
           space_, cpDampedSpringNew(bodies_[l.body_a], bodies_[l.body_b], cpvzero, cpvzero,
                                     l.spring.rest_length, l.spring.stiffness, l.spring.damping)));

@@ -28,9 +28,12 @@
 #include <vector>
 
 #include "fixstep/capture/capture.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/exact.hpp"
-#include "fixstep/plot.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/plot.hpp"
+#include "world_kernel.hpp"
 
 using namespace fixstep;
 

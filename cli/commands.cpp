@@ -8,16 +8,20 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fixstep/capture/capture.hpp>
-#include <fixstep/scene/input_script.hpp>
-#include <fixstep/core/limits.hpp>
-#include <fixstep/io/recording_writer.hpp>
-#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/app/session.hpp>
+#include <fixstep/capture/capture.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/limits.hpp>
 #include <fixstep/core/stability.hpp>
+#include <fixstep/core/step_results.hpp>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/sync_test.hpp>
 #include <fixstep/core/work_progress.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/recording_writer.hpp>
+#include <fixstep/scene/input_script.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <stdexcept>
 #include <vector>
 

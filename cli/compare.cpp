@@ -8,11 +8,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fixstep/capture/capture.hpp>
 #include <fixstep/app/key_bindings.hpp>
+#include <fixstep/capture/capture.hpp>
 #include <fixstep/core/limits.hpp>
-#include <fixstep/scene/scene_stability.hpp>
+#include <fixstep/core/step_results.hpp>
 #include <fixstep/core/stop_request.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/window/window.hpp>
 #include <span>
 #include <thread>

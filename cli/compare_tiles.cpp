@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <fixstep/core/world_settings.hpp>
 #include <fixstep/render/render.hpp>
 #include <fixstep/scene/suggest.hpp>
 #include <stdexcept>

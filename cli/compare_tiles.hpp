@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <fixstep/core/integrators.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <optional>
 #include <span>

@@ -8,9 +8,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fixstep/core/limits.hpp>
-#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/app/session.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/limits.hpp>
+#include <fixstep/core/step_results.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <memory>
 #include <stdexcept>
 #include <string>

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fixstep/core/detail/defined_entity.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/defined_bodies.hpp>
 #include <fixstep/core/exact.hpp>
+#include <fixstep/core/step_results.hpp>
 #include <numeric>
 
 namespace fixstep::cli {
@@ -22,7 +24,7 @@ TouchedBodies::TouchedBodies(const Scene& scene)
     return j;
   };
   std::iota(next_.begin(), next_.end(), std::size_t{0});
-  for (const detail::IndexLink& l : detail::index_links(scene.links, scene.bodies.size())) {
+  for (const fixstep::IndexLink& l : fixstep::index_links(scene.links, scene.bodies.size())) {
     const std::size_t a = root(l.body_a), b = root(l.body_b);
     if (a == b) continue;
     component_[b] = a;

@@ -3,9 +3,10 @@
 #pragma once
 
 #include <cstdint>
+#include <fixstep/core/components.hpp>
 #include <fixstep/core/exact.hpp>
-#include <fixstep/scene/scene.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <optional>
 #include <string>
 #include <vector>

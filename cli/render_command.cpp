@@ -3,13 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fixstep/capture/capture.hpp>
-#include <fixstep/core/limits.hpp>
-#include <fixstep/capture/manifest.hpp>
-#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/app/scene_view_settings.hpp>
 #include <fixstep/app/session.hpp>
+#include <fixstep/capture/capture.hpp>
+#include <fixstep/capture/manifest.hpp>
+#include <fixstep/core/limits.hpp>
+#include <fixstep/core/step_results.hpp>
 #include <fixstep/core/stop_request.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 
 #include "capture_sink.hpp"
 #include "commands.hpp"

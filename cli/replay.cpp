@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fixstep/core/limits.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <stdexcept>
 
 #include "commands.hpp"

@@ -6,6 +6,8 @@
 #include <exception>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/work_progress.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <utility>
 
 namespace fixstep::cli {

@@ -11,8 +11,9 @@
 
 #include <atomic>
 #include <cstdint>
-#include <fixstep/scene/scene.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <future>
 #include <mutex>
 #include <string>

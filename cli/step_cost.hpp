@@ -3,6 +3,7 @@
 #pragma once
 
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
 
 namespace fixstep::cli {
 

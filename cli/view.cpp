@@ -7,11 +7,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fixstep/app/session.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/pointer_drag.hpp>
 #include <fixstep/core/recording.hpp>
 #include <fixstep/core/rewind.hpp>
+#include <fixstep/core/step_results.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <fixstep/scene/scene_stability.hpp>
-#include <fixstep/app/session.hpp>
 #include <fixstep/window/window.hpp>
 #include <memory>
 #include <optional>

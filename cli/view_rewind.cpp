@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fixstep/core/stop_request.hpp>
+#include <fixstep/core/world_settings.hpp>
 
 namespace fixstep::cli {
 

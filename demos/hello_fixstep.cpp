@@ -5,8 +5,10 @@
 //   build/release/bin/hello_fixstep [OUT_DIR]     (default: hello_frames)
 #include <cstdio>
 #include <exception>
-#include <fixstep/capture/capture.hpp>
 #include <fixstep/app/session.hpp>
+#include <fixstep/capture/capture.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <string>
 
 #include "fixstep/io/summary.hpp"

@@ -6,6 +6,9 @@
 //   01_world_in_code                                     in a window
 #include <cmath>
 #include <fixstep/app/app.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <string>
 
 namespace {

@@ -8,9 +8,12 @@
 #include <cstdio>
 #include <exception>
 #include <fixstep/capture/capture.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/loop.hpp>
-#include <fixstep/render/render.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/render/render.hpp>
 #include <string>
 #include <vector>
 

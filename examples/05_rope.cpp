@@ -9,6 +9,9 @@
 //   05_rope                                     in a window
 //   05_rope --help                              the rest
 #include <fixstep/app/app.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <string>
 #include <vector>
 

@@ -8,8 +8,10 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
-#include <fixstep/capture/capture.hpp>
 #include <fixstep/app/session.hpp>
+#include <fixstep/capture/capture.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <fixstep/window/window.hpp>
 #include <optional>
 #include <string>

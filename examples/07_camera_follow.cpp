@@ -8,6 +8,9 @@
 //   07_camera_follow                                     in a window
 //   07_camera_follow --help                              the rest
 #include <fixstep/app/app.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
 
 namespace {
 

@@ -8,6 +8,10 @@
 //   08_body_input --frames 96 --record input.rec      ... recorded; --replay input.rec verifies
 //   08_body_input --help                              the rest
 #include <fixstep/app/app.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <string>
 
 namespace {

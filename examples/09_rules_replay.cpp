@@ -10,6 +10,10 @@
 //   09_rules_replay --frames 361 --sync-test 8          every tick rolled back 8 ticks
 #include <array>
 #include <fixstep/app/app.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <string>
 
 namespace {

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fixstep/app/app.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <optional>
 
 namespace {

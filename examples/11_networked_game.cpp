@@ -17,6 +17,10 @@
 //   11_networked_game --host 0 --bot --ticks 240 --record a.rec     scripted, headless
 //   11_networked_game --replay a.rec                  verify the match's recording
 #include <array>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <fixstep/net_app/run.hpp>
 #include <span>
 #include <string>

@@ -7,8 +7,12 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/app/scene_view_settings.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/scene/scene_stability.hpp>
 #include <utility>
 
 #include "fixstep/io/recording_file.hpp"

@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/render/draw_list.hpp"
+#include "fixstep/app/session.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/pointer_drag.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/rewind.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/render/draw_list.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/app/session.hpp"
 #include "page_game.hpp"
 #include "page_input.hpp"
 #include "page_options.hpp"

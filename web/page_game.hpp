@@ -14,8 +14,9 @@
 #include "fixstep/app/app.hpp"
 #include "fixstep/app/game_level.hpp"
 #include "fixstep/app/game_play.hpp"
-#include "fixstep/core/recording.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/recording.hpp"
 #include "page_input.hpp"
 #include "page_options.hpp"
 

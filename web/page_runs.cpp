@@ -6,7 +6,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/limits.hpp>
+#include <fixstep/core/step_results.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <stdexcept>
 #include <utility>
 

@@ -8,6 +8,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <fixstep/app/app.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/random.hpp>
+#include <fixstep/core/step_results.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <string>
 #include <vector>
 

@@ -6,6 +6,8 @@
 
 #include <fixstep/app/app.hpp>
 #include <fixstep/app/session.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <span>
 #include <string>
 

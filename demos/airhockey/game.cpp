@@ -3,7 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fixstep/core/components.hpp>
 #include <fixstep/core/det_math.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/step_results.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <string>
 
 namespace airhockey {

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <fixstep/core/input.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <span>
 #include <string>
 #include <vector>

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fixstep/core/components.hpp>
 #include <fixstep/core/exact.hpp>
+#include <fixstep/core/step_results.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <numbers>
 #include <stdexcept>
 

@@ -16,8 +16,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fixstep/capture/capture.hpp>
 #include <fixstep/app/key_bindings.hpp>
+#include <fixstep/capture/capture.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/loop.hpp>
 #include <fixstep/window/window.hpp>
 #include <optional>

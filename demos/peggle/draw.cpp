@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <fixstep/core/det_math.hpp>
+#include <fixstep/core/query.hpp>
 #include <optional>
 
 namespace peggle {

@@ -2,8 +2,15 @@
 #include "game.hpp"
 
 #include <algorithm>
+#include <fixstep/core/components.hpp>
 #include <fixstep/core/det_math.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/query.hpp>
+#include <fixstep/core/random.hpp>
+#include <fixstep/core/step_results.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <string>
 
 namespace peggle {

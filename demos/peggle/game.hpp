@@ -20,7 +20,9 @@
 
 #include <cstdint>
 #include <fixstep/core/input.hpp>
+#include <fixstep/core/query.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <optional>
 #include <string>
 #include <vector>

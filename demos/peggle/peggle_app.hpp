@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <fixstep/app/app.hpp>
 #include <fixstep/core/det_math.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <string>
 
 #include "draw.hpp"

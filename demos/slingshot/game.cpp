@@ -3,7 +3,11 @@
 
 #include <cmath>
 #include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/step_results.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <numbers>
 #include <string>
 

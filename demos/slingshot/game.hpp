@@ -13,10 +13,12 @@
 #pragma once
 
 #include <cstdint>
+#include <fixstep/core/components.hpp>
 #include <fixstep/core/input.hpp>
 #include <fixstep/core/pointer_drag.hpp>
 #include <fixstep/core/rules.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <string>
 #include <vector>
 

@@ -6,7 +6,9 @@
 #pragma once
 
 #include <fixstep/app/app.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/pointer_drag.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <string>
 
 #include "draw.hpp"

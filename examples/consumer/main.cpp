@@ -5,8 +5,12 @@
 // checked by check.sh in .ci/run): a world written in code is the scene's world.
 #include <cstdio>
 #include <exception>
-#include <fixstep/io/summary.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/step_results.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/summary.hpp>
 
 namespace {
 

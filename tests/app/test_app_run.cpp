@@ -8,6 +8,10 @@
 #include <fixstep/app/app.hpp>
 #include <fixstep/app/game_model.hpp>
 #include <fixstep/app/game_play.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>

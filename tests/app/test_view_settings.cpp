@@ -6,9 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/app/scene_view_settings.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "pixels.hpp"
 
 namespace fixstep {

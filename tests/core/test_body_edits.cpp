@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace {
 

@@ -7,8 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

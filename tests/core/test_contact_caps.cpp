@@ -8,9 +8,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/stability.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {

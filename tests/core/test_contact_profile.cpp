@@ -15,8 +15,12 @@
 #include <thread>
 #include <utility>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 namespace contact_profile_tests {

@@ -11,8 +11,13 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/scene/scene.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {

@@ -13,10 +13,14 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/exact.hpp"
 #include "fixstep/core/simd.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "link_between.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {

@@ -7,8 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

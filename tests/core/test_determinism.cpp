@@ -21,12 +21,14 @@
 #include <vector>
 
 #include "determinism_cases.hpp"
-#include "fixstep/capture/capture.hpp"
-#include "fixstep/core/loop.hpp"
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/capture/capture.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/loop.hpp"
 #include "fixstep/core/simd.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/io/summary.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "scene_session.hpp"
 
 namespace fixstep {

@@ -11,8 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/sync_test.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {

@@ -14,7 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 namespace disc_thread_tests {

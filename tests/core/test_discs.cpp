@@ -9,7 +9,12 @@
 #include <random>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {

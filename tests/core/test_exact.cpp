@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/exact.hpp"
 
 namespace fixstep {

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/exact.hpp"
 #include "link_between.hpp"
 
@@ -291,7 +292,7 @@ TEST(ExactNetwork, RejectsInvalidArguments) {
     EXPECT_THROW((void)exact::LinearNetwork::make(x.bodies, x.links), std::invalid_argument);
   };
   Chain out_of_range = c;
-  out_of_range.links[0].body_b = detail::defined_entity(6);
+  out_of_range.links[0].body_b = fixstep::defined_entity(6);
   throws(out_of_range);
   Chain self = c;
   self.links[1].body_b = self.links[1].body_a;

@@ -12,11 +12,16 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/scene/input_script.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/io/recording_file.hpp"
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/io/recording_file.hpp"
+#include "fixstep/scene/input_script.hpp"
+#include "fixstep/scene/scene.hpp"
+#include "world_kernel.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <xmmintrin.h>

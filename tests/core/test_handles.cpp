@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/exact.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {

@@ -11,9 +11,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/segment.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/sync_test.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 namespace carried_segments_test {  // named: a unity batch shares anonymous namespaces

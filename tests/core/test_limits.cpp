@@ -5,18 +5,22 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/recording.hpp>
+#include <fixstep/core/work_progress.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <fixstep/io/recording_writer.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <fixstep/scene/scene_stability.hpp>
-#include <fixstep/core/work_progress.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>
 
-#include "fixstep/io/command_limits.hpp"
 #include "fixstep/core/definition_checks.hpp"
+#include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "link_between.hpp"
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fixstep/app/key_bindings.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
 

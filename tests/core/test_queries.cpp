@@ -10,8 +10,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/query.hpp"
 #include "fixstep/core/random.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
 // count_new.cpp: this program's operator new, counting the bytes asked for while counting.

@@ -9,11 +9,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/random.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_writer.hpp"
-#include "fixstep/core/world.hpp"
 
 // A named namespace: this file shares a unity build with test_snapshot.cpp.
 namespace random_test {

@@ -11,7 +11,11 @@
 #include <numbers>
 #include <random>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {

@@ -10,10 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/query.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/segment.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/sync_test.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 namespace {

@@ -7,8 +7,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/disc_overlap.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {

@@ -8,10 +8,15 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/integrators.hpp"
 #include "fixstep/core/simd.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
@@ -135,7 +140,7 @@ TEST(Simd, TheRuntimeGuardFiresAtTheSameTickAtEveryLevel) {
   };
   const auto reference = fault_at(SimdLevel::baseline);
   ASSERT_TRUE(reference.has_value());
-  EXPECT_EQ(reference->body, detail::defined_entity(500));
+  EXPECT_EQ(reference->body, fixstep::defined_entity(500));
   for (SimdLevel level : levels) {
     if (!simd_supported(level)) continue;
     const auto f = fault_at(level);

@@ -10,8 +10,14 @@
 #include <random>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/sync_test.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 namespace {

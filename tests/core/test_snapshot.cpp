@@ -11,15 +11,19 @@
 #include <vector>
 
 #include "determinism_cases.hpp"
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/app/session.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/core/pointer_drag.hpp"
 #include "fixstep/core/rewind.hpp"
-#include "fixstep/scene/scene.hpp"
-#include "fixstep/app/session.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/sync_test.hpp"
 #include "fixstep/core/work_progress.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/scene/scene.hpp"
 
 // count_new.cpp: this program's operator new, counting the bytes asked for while counting.
 extern std::atomic<bool> counting;
@@ -308,7 +312,7 @@ TEST(PointerDrag, ADraggedBodyFollowsThePointerAtAnyDtAndMass) {
       World sim = World(free_bodies(integrator, dt));
       TickInput in;
       in.pointer = {4.0, 2.0};
-      in.drag_body = detail::defined_entity(1);
+      in.drag_body = fixstep::defined_entity(1);
       for (int t = 0; t < int(3.0 / dt); ++t) sim.step(in);
       EXPECT_NEAR(sim.body(sim.bodies()[1]).position.x, 4.0, 1e-3);
       EXPECT_NEAR(sim.body(sim.bodies()[1]).position.y, 2.0, 1e-3);
@@ -320,18 +324,18 @@ TEST(PointerDrag, ADraggedBodyFollowsThePointerAtAnyDtAndMass) {
 TEST(PointerDrag, APressPicksTheBodyUnderThePointerAndAReleaseLetsGo) {
   World sim = World(free_bodies(Integrator::semi_implicit_euler, 1.0 / 60));
   EXPECT_EQ(pick_body(sim, {3.5, 0.5}, 0.1),
-            detail::defined_entity(1));  // within b's radius of 1 m
+            fixstep::defined_entity(1));  // within b's radius of 1 m
   EXPECT_EQ(pick_body(sim, {0.05, 0.0}, 0.1),
-            detail::defined_entity(0));  // a has no radius: the tolerance
+            fixstep::defined_entity(0));  // a has no radius: the tolerance
   EXPECT_EQ(pick_body(sim, {1.5, 0.0}, 0.1), null_entity);
   PointerDrag drag(0.1);
   TickInput in{
       .held = button_pointer_primary, .pressed = button_pointer_primary, .pointer = {3.2, 0.0}};
   drag.apply(in, sim);
-  EXPECT_EQ(in.drag_body, detail::defined_entity(1));
+  EXPECT_EQ(in.drag_body, fixstep::defined_entity(1));
   TickInput hold{.held = button_pointer_primary, .pointer = {0.0, 0.0}};
   drag.apply(hold, sim);  // held: still b, although the pointer is now over a
-  EXPECT_EQ(hold.drag_body, detail::defined_entity(1));
+  EXPECT_EQ(hold.drag_body, fixstep::defined_entity(1));
   TickInput up{.released = button_pointer_primary};
   drag.apply(up, sim);
   EXPECT_EQ(up.drag_body, null_entity);

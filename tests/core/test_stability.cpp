@@ -8,12 +8,17 @@
 #include <optional>
 #include <string>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/exact.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_stability.hpp"
-#include "fixstep/core/world.hpp"
 #include "link_between.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {

@@ -11,10 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_stability.hpp"
-#include "fixstep/core/world.hpp"
 #include "link_between.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
@@ -240,7 +244,7 @@ TEST(NetworkAnchors, ALinkToAStaticOrKinematicBodyIsJudgedWithTheDynamicMassAlon
         check_network_stability(c.bodies, c.links, Integrator::semi_implicit_euler, 0.1, 1);
     EXPECT_NEAR(r.omega_max, 10.0, 1e-9) << body_type_name(type);
     EXPECT_EQ(r.verdict, Stability::stable) << r.message;
-    EXPECT_EQ(r.fastest_body, detail::defined_entity(0));  // the anchor never moves
+    EXPECT_EQ(r.fastest_body, fixstep::defined_entity(0));  // the anchor never moves
     EXPECT_EQ(r.stiffest_link, std::optional<std::size_t>(0));
   }
   const Chain free = anchored_pair(BodyType::dynamic, 100.0);
@@ -330,7 +334,7 @@ TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
   ASSERT_EQ(net.verdict, Stability::unstable);
   EXPECT_EQ(net.bodies, 3u);  // 'solo' is not part of it
   EXPECT_EQ(net.stiffest_link, std::optional<std::size_t>(1));
-  EXPECT_EQ(net.fastest_body, detail::defined_entity(1));  // 'mid' swings hardest in the top mode
+  EXPECT_EQ(net.fastest_body, fixstep::defined_entity(1));  // 'mid' swings hardest in the top mode
   EXPECT_NEAR(net.omega_max, 29.3543, 0.01);
   try {
     (void)make_world(scene);

@@ -8,10 +8,16 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_stability.hpp"
-#include "fixstep/core/world.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
@@ -241,7 +247,7 @@ void expect_guard_names_first_tick_out_of_range() {
   w.step();
   ASSERT_TRUE(w.fault().has_value());
   const StateFault& f = *w.fault();
-  EXPECT_EQ(f.body, detail::defined_entity(1));
+  EXPECT_EQ(f.body, fixstep::defined_entity(1));
   EXPECT_EQ(f.name, "stiff");
   EXPECT_EQ(f.tick, expected_tick);
   EXPECT_DOUBLE_EQ(f.time, 0.1 * double(expected_tick));
@@ -298,7 +304,7 @@ position = [0.0, 0.0]
 gravity = [0.0, -9.81]
 )",
                             "blow.toml");
-  StateFault f{.body = detail::defined_entity(0),
+  StateFault f{.body = fixstep::defined_entity(0),
                .name = "stiff",
                .tick = 14,
                .time = 1.4,
@@ -313,7 +319,7 @@ gravity = [0.0, -9.81]
   EXPECT_NE(m.find("Likely cause"), std::string::npos) << m;
   EXPECT_NE(m.find("ω·h = 3 exceeds the stability bound 2"), std::string::npos) << m;
   EXPECT_NE(m.find("substeps = 2"), std::string::npos) << m;
-  f.body = detail::defined_entity(1), f.name = "thrown", f.field = "y";
+  f.body = fixstep::defined_entity(1), f.name = "thrown", f.field = "y";
   const std::string g = explain_fault(scene, f);
   EXPECT_NE(g.find("within semi_implicit_euler's stability bound"), std::string::npos) << g;
   EXPECT_NE(g.find("gravity"), std::string::npos) << g;

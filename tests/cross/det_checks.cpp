@@ -20,8 +20,9 @@
 
 #include "det_golden_cases.hpp"
 #include "fixstep/core/bits.hpp"
-#include "fixstep/scene/scene.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace {
 

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <fstream>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep::determinism {
 
@@ -104,7 +106,7 @@ TickInput scripted_input(std::uint64_t t) {
   in.tick = t;
   if (t % 50 < 10) in.push = {0.5, -0.25};
   if (t % 70 >= 30 && t % 70 < 45)
-    in.drag_body = detail::defined_entity(0), in.pointer = {0.3, 0.2};
+    in.drag_body = fixstep::defined_entity(0), in.pointer = {0.3, 0.2};
   return in;
 }
 

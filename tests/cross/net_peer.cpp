@@ -24,8 +24,10 @@
 #include <string_view>
 #include <thread>
 
-#include "fixstep/net/match_peer.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/io/recording_file.hpp"
+#include "fixstep/net/match_peer.hpp"
 #include "fixstep/scene/scene.hpp"
 
 using namespace fixstep;

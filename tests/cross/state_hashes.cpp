@@ -21,13 +21,14 @@
 #include <string>
 #include <string_view>
 
-#include "fixstep/io/command_limits.hpp"
 #include "fixstep/core/limits.hpp"
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/simd.hpp"
-#include "fixstep/io/summary.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/io/command_limits.hpp"
+#include "fixstep/io/summary.hpp"
 #include "fixstep/io/write_signals.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace {
 

@@ -10,8 +10,11 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/pointer_drag.hpp>
 #include <fixstep/core/recording.hpp>
+#include <fixstep/core/step_results.hpp>
 #include <fixstep/core/sync_test.hpp>
 #include <fixstep/core/world.hpp>
 #include <optional>

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <fixstep/core/input.hpp>
 #include <fixstep/net/net_input_codec.hpp>
 #include <fixstep/net/net_packet.hpp>
 #include <span>

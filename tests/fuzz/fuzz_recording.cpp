@@ -10,7 +10,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <fixstep/core/components.hpp>
 #include <fixstep/core/recording.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <string>
 #include <string_view>
 

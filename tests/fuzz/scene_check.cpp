@@ -11,8 +11,10 @@
 #include <stdexcept>
 #include <typeinfo>
 
-#include "fixstep/scene/scene.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep::fuzz {
 namespace {

@@ -7,10 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
-#include "fixstep/io/recording_file.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/io/recording_file.hpp"
 #include "test_bodies.hpp"
 
 namespace fixstep {
@@ -29,11 +33,11 @@ TEST(BodyInputRecording, PerBodyInputsRoundTripAndReplayBitForBit) {
   for (std::uint64_t t = 0; t < 30; ++t) {
     TickInput in{.tick = t};
     if (t % 7 == 1)
-      in.bodies.push_back({detail::defined_entity(0), BodyInputKind::impulse, {0.1, 1.0 / 3}});
+      in.bodies.push_back({fixstep::defined_entity(0), BodyInputKind::impulse, {0.1, 1.0 / 3}});
     if (t >= 10 && t < 14)
-      in.bodies.push_back({detail::defined_entity(0), BodyInputKind::force, {0, 4}});
+      in.bodies.push_back({fixstep::defined_entity(0), BodyInputKind::force, {0, 4}});
     if (t == 12)
-      in.bodies.push_back({detail::defined_entity(1), BodyInputKind::velocity, {1.5, 0}});
+      in.bodies.push_back({fixstep::defined_entity(1), BodyInputKind::velocity, {1.5, 0}});
     sim.step(in);
     recorder.record(in, sim);
   }
@@ -57,7 +61,7 @@ TEST(BodyInputRecording, AVersion1DragIndexReadsAsTheBodysInitialHandle) {
       "end 1 0000000000000002\n";
   const Recording rec = parse_recording(v1, "v1.rec");
   ASSERT_EQ(rec.inputs.size(), 1u);
-  EXPECT_EQ(rec.inputs[0].drag_body, detail::defined_entity(3));
+  EXPECT_EQ(rec.inputs[0].drag_body, fixstep::defined_entity(3));
   // Per-body words belong to version 2 only.
   std::string extra = v1;
   extra.replace(extra.find("drag=3"), 6, "drag=3 impulse=1:1,0,1");

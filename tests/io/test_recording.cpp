@@ -8,14 +8,18 @@
 #include <bit>
 #include <cmath>
 #include <filesystem>
-#include <fixstep/scene/input_script.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/recording.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/scene/input_script.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <fstream>
 #include <sstream>
 #include <string>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "link_between.hpp"
 #include "text_edit.hpp"
@@ -91,7 +95,7 @@ TEST(Recording, TextAndFileRoundTripsExactly) {
   Recording rec = record_run(small_world(), 80, 7);
   rec.inputs[1].push = {0.1, -1e-300};  // shortest round-trip text must keep every bit
   rec.inputs[2].pointer = {std::nextafter(1.0, 2.0), -0.0};
-  rec.inputs[3].drag_body = detail::defined_entity(2);
+  rec.inputs[3].drag_body = fixstep::defined_entity(2);
   const std::string text = format_recording(rec);
   EXPECT_EQ(parse_recording(text, "x.rec"), rec);
   EXPECT_EQ(format_recording(parse_recording(text, "x.rec")), text);
@@ -355,7 +359,7 @@ drag = false
   EXPECT_EQ(in[4].held, button_left | button_pointer_primary);
   EXPECT_EQ(in[4].push, (Vec2{1.5, 0.0}));
   EXPECT_EQ(in[4].pointer, (Vec2{0.5, -1.0}));
-  EXPECT_EQ(in[4].drag_body, detail::defined_entity(2));
+  EXPECT_EQ(in[4].drag_body, fixstep::defined_entity(2));
   EXPECT_EQ(in[5].released, button_left);
   EXPECT_EQ(in[5].held, button_pointer_primary);
   EXPECT_EQ(in[5].drag_body, null_entity);

@@ -4,8 +4,12 @@
 // recording that names a body the scene does not have is a bad recording before replaying.
 #include <gtest/gtest.h>
 
-#include <fixstep/io/printable.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/recording.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/printable.hpp>
 #include <stdexcept>
 #include <string>
 #include <string_view>

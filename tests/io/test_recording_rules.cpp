@@ -5,7 +5,11 @@
 
 #include <string>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/io/recording_file.hpp"
 
 // A named namespace: this file shares a unity build with the other recording tests.

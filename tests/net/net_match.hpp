@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/io/recording_file.hpp>
 #include <fixstep/net/link_conditioner.hpp>
 #include <fixstep/net/match_peer.hpp>
-#include <fixstep/io/recording_file.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <functional>
 #include <memory>

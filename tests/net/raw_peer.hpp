@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <fixstep/net/match_peer.hpp>
 #include <fixstep/net/net_packet.hpp>
 #include <optional>

@@ -7,9 +7,12 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_def.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/recording_file.hpp>
 #include <fixstep/net/desync_recording.hpp>
 #include <fixstep/net/net_packet.hpp>
-#include <fixstep/io/recording_file.hpp>
 
 #include "net_match.hpp"
 #include "raw_peer.hpp"

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <limits>
 
+#include "fixstep/core/input.hpp"
 #include "fixstep/net/net_input_codec.hpp"
 #include "fixstep/net/net_packet.hpp"
 #include "net_bytes.hpp"

@@ -13,9 +13,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/core/loop.hpp"
-#include "fixstep/render/render.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/loop.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/render/render.hpp"
 #include "pixels.hpp"
 
 namespace fixstep {

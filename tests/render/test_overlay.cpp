@@ -13,10 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/app/session.hpp"
 #include "fixstep/capture/capture.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/render/render.hpp"
-#include "fixstep/app/session.hpp"
 #include "pixels.hpp"
 
 namespace fixstep {

@@ -11,8 +11,12 @@
 #include <thread>
 #include <vector>
 
-#include "fixstep/render/render.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/render/render.hpp"
 #include "pixels.hpp"
 #include "scene_session.hpp"
 

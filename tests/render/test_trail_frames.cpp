@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/render/render.hpp"
 #include "fixstep/render/trails.hpp"
 #include "pixels.hpp"

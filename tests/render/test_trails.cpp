@@ -12,7 +12,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/render/frame_data.hpp"
 #include "fixstep/render/trails.hpp"

@@ -11,7 +11,10 @@
 #include <string_view>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/disc_overlap.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "link_between.hpp"
 

@@ -14,11 +14,15 @@
 #include <string>
 
 #include "cli_run.hpp"
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/io/recording_file.hpp"
-#include "fixstep/scene/scene_writer.hpp"
 #include "fixstep/io/summary.hpp"
+#include "fixstep/scene/scene_writer.hpp"
 #include "link_between.hpp"
 
 namespace fixstep {
@@ -79,7 +83,7 @@ TEST(RecordCodeWorld, FixstepReplaysAndRendersItFromTheRecording) {
     TickInput in{.tick = t};
     in.push = {t < 40 ? 3.0 : 0.0, t % 25 < 5 ? 1.5 : 0.0};  // changes every few ticks
     in.pointer = {0.01 * double(t), 2.5};
-    in.drag_body = t >= 60 && t < 90 ? detail::defined_entity(2)
+    in.drag_body = t >= 60 && t < 90 ? fixstep::defined_entity(2)
                                      : null_entity;  // the bob, dragged for half a second
     in.held = t >= 60 && t < 90 ? std::uint32_t{button_pointer_primary} : 0u;
     sim.step(in);

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <utility>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 
 namespace fixstep {

@@ -10,12 +10,15 @@
 #include <string_view>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/disc_overlap.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_stability.hpp"
 #include "fixstep/scene/scene_writer.hpp"
-#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 namespace {

@@ -13,8 +13,12 @@
 #include <vector>
 
 #include "carried_segments_scene.hpp"
-#include "fixstep/scene/scene.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep {
 namespace scene_segments_test {  // named: a unity batch shares anonymous namespaces

@@ -13,7 +13,11 @@
 #include <vector>
 
 #include "carried_segments_scene.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_writer.hpp"
 #include "link_between.hpp"
@@ -339,7 +343,7 @@ TEST(SceneWriter, CarriedSegmentsRoundTripByTheirBodysName) {
   EXPECT_EQ(code_back.bodies[2].name, "twin~2");
 
   WorldDef stray = code;
-  stray.segments[0].body = detail::defined_entity(7);
+  stray.segments[0].body = fixstep::defined_entity(7);
   EXPECT_EQ(refusal(stray),
             "format_scene: segment[0]: is carried by body[7]: it must be one of the 3 bodies (a "
             "handle WorldDef::add_body returned)");

@@ -9,8 +9,10 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fixstep/scene/input_script.hpp>
+#include <fixstep/core/components.hpp>
+#include <fixstep/core/input.hpp>
 #include <fixstep/core/recording.hpp>
+#include <fixstep/scene/input_script.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <fstream>
 #include <iterator>

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/scene/input_script.hpp"
 #include "fixstep/scene/scene.hpp"
 

@@ -5,12 +5,12 @@
 #include <cstddef>
 
 #include "fixstep/core/components.hpp"
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 
 namespace fixstep::test {
 
 [[nodiscard]] inline LinkDef link_between(std::size_t a, std::size_t b, LinkSpring spring = {}) {
-  return LinkDef{detail::defined_entity(a), detail::defined_entity(b), spring};
+  return LinkDef{fixstep::defined_entity(a), fixstep::defined_entity(b), spring};
 }
 
 }  // namespace fixstep::test

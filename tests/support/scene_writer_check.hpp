@@ -9,7 +9,11 @@
 #include <optional>
 #include <string>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep::test {
 

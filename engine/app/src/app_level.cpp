@@ -1,9 +1,11 @@
 // fixstep::app: the level a run starts from (fixstep/app/game_level.hpp).
 #include <any>
 #include <cstdio>
-#include <fixstep/core/definition_checks.hpp>
-#include <fixstep/scene/scene.hpp>
 #include <fixstep/app/scene_view_settings.hpp>
+#include <fixstep/core/definition_checks.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_settings.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <memory>
 
 #include "fixstep/app/game_level.hpp"

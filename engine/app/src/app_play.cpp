@@ -1,7 +1,8 @@
 // fixstep::app: live play, in the window on the real clock or headless on a virtual one.
 #include <chrono>
-#include <fixstep/capture/capture.hpp>
 #include <fixstep/app/key_bindings.hpp>
+#include <fixstep/capture/capture.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <optional>
 #include <stdexcept>
 #include <thread>

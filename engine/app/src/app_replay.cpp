@@ -2,9 +2,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <fixstep/capture/capture.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/step_results.hpp>
+#include <fixstep/core/sync_test.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/io/summary.hpp>
-#include <fixstep/core/sync_test.hpp>
 #include <optional>
 
 #include "app_modes.hpp"

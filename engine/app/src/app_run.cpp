@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fixstep/core/world_settings.hpp>
 #include <fixstep/io/output_target.hpp>
 #include <stdexcept>
 #include <string>

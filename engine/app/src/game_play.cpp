@@ -7,6 +7,9 @@
 #include <string_view>
 #include <utility>
 
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_settings.hpp"
+
 namespace fixstep::app::detail {
 
 namespace {

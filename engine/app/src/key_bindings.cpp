@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fixstep/core/input.hpp"
+
 namespace fixstep {
 
 void feed(const UserEvents& ev, InputSampler& sampler, const Camera& camera, int width,

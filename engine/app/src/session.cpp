@@ -11,8 +11,11 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/stability.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

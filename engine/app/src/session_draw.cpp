@@ -11,6 +11,8 @@
 
 #include "fixstep/app/session.hpp"
 #include "fixstep/core/stability.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

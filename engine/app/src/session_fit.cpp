@@ -5,8 +5,10 @@
 #include <numeric>
 #include <vector>
 
-#include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep {
 
@@ -67,7 +69,7 @@ Camera fit_camera(const WorldDef& def, int width, int height) {
       while (group[i] != i) i = group[i] = group[group[i]];
       return i;
     };
-    for (const detail::IndexLink& l : detail::index_links(def.links, n)) {
+    for (const fixstep::IndexLink& l : fixstep::index_links(def.links, n)) {
       group[root(l.body_a)] = root(l.body_b);
     }
     std::vector<std::size_t> anchors(n, 0), held_by(n, 0);

@@ -5,6 +5,8 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "fixstep/core/step_results.hpp"
+
 namespace fixstep {
 
 std::filesystem::path video_manifest_path(const std::filesystem::path& video) {

@@ -16,8 +16,9 @@
 #include <string_view>
 #include <utility>
 
-#include "fixstep/io/atomic_output.hpp"
 #include "fixstep/capture/video_limits.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/io/atomic_output.hpp"
 #include "fixstep/io/write_signals.hpp"
 #include "video_encoder.hpp"
 

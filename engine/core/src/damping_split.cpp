@@ -2,7 +2,7 @@
 #include <optional>
 #include <string_view>
 
-#include "fixstep/core/detail/world_kernel.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/det_math.hpp"
-#include "fixstep/core/detail/defined_entity.hpp"
 
 namespace fixstep {
 
@@ -66,7 +66,7 @@ std::vector<std::pair<std::size_t, std::size_t>> linked_pairs(std::span<const Bo
                                                               std::span<const LinkDef> links) {
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   auto disc = [&](std::size_t i) { return bodies[i].collider && bodies[i].collider->collide; };
-  for (const detail::IndexLink& link : detail::index_links(links, bodies.size())) {
+  for (const fixstep::IndexLink& link : fixstep::index_links(links, bodies.size())) {
     if (disc(link.body_a) && disc(link.body_b)) {
       pairs.emplace_back(std::min(link.body_a, link.body_b), std::max(link.body_a, link.body_b));
     }

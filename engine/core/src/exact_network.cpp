@@ -21,7 +21,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/exact.hpp"
 
 namespace fixstep::exact {
@@ -77,7 +77,7 @@ void check_body(const BodyDef& def, std::size_t i) {
   if (def.drag) rate(def.drag->coefficient, "drag coefficient");
 }
 
-void check_link(const detail::IndexLink& l, std::size_t i) {
+void check_link(const fixstep::IndexLink& l, std::size_t i) {
   if (l.body_a == l.body_b) fail(fmt::format("link[{}]: both ends are body {}", i, l.body_a));
   for (auto [v, name] :
        {std::pair{l.spring.stiffness, "stiffness"}, std::pair{l.spring.damping, "damping"},
@@ -135,19 +135,19 @@ std::optional<LinearNetwork> LinearNetwork::make(std::span<const BodyDef> bodies
                                                  std::span<const LinkDef> link_defs) {
   const std::size_t n = bodies.size();
   for (std::size_t i = 0; i < n; ++i) check_body(bodies[i], i);
-  const std::vector<detail::IndexLink> links = detail::index_links(link_defs, n);
+  const std::vector<fixstep::IndexLink> links = fixstep::index_links(link_defs, n);
   for (std::size_t l = 0; l < links.size(); ++l) check_link(links[l], l);
   for (const BodyDef& b : bodies) {
     if (b.spring && b.spring->rest_length > 0.0) return std::nullopt;  // nonlinear
   }
-  for (const detail::IndexLink& l : links) {
+  for (const fixstep::IndexLink& l : links) {
     if (l.spring.rest_length > 0.0) return std::nullopt;
   }
 
   // Connected components (union-find), each listed in body order.
   std::vector<std::size_t> parent(n);
   std::iota(parent.begin(), parent.end(), std::size_t{0});
-  for (const detail::IndexLink& l : links) parent[find(parent, l.body_a)] = find(parent, l.body_b);
+  for (const fixstep::IndexLink& l : links) parent[find(parent, l.body_a)] = find(parent, l.body_b);
   std::vector<std::size_t> block_of(n, n), local(n);
   auto modes = std::make_unique<Modes>();
   for (std::size_t i = 0; i < n; ++i) {
@@ -158,8 +158,8 @@ std::optional<LinearNetwork> LinearNetwork::make(std::span<const BodyDef> bodies
     blk.bodies.push_back(i);
     modes->mass.push_back(bodies[i].body.mass);
   }
-  std::vector<std::vector<const detail::IndexLink*>> block_links(modes->blocks.size());
-  for (const detail::IndexLink& l : links)
+  std::vector<std::vector<const fixstep::IndexLink*>> block_links(modes->blocks.size());
+  for (const fixstep::IndexLink& l : links)
     block_links[block_of[find(parent, l.body_a)]].push_back(&l);
 
   for (std::size_t bi = 0; bi < modes->blocks.size(); ++bi) {
@@ -184,7 +184,7 @@ std::optional<LinearNetwork> LinearNetwork::make(std::span<const BodyDef> bodies
       x0(j) = def.body.position.x, y0(j) = def.body.position.y;
       vx0(j) = def.body.velocity.x, vy0(j) = def.body.velocity.y;
     }
-    for (const detail::IndexLink* l : block_links[bi]) {
+    for (const fixstep::IndexLink* l : block_links[bi]) {
       const auto a = static_cast<Eigen::Index>(local[l->body_a]);
       const auto b = static_cast<Eigen::Index>(local[l->body_b]);
       const double kl = l->spring.stiffness, bl = l->spring.damping;

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/stability.hpp"
 
 namespace fixstep {

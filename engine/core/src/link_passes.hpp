@@ -12,7 +12,7 @@
 #include <type_traits>
 
 #include "body_field.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

@@ -8,7 +8,7 @@
 #include <type_traits>
 
 #include "fixstep/core/bits.hpp"
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/fnv1a.hpp"
 #include "fixstep/core/work_progress.hpp"
 
@@ -117,7 +117,7 @@ std::uint64_t definition_hash(const WorldDef& def) {
       if (!s.body.is_null()) {
         h.add(std::uint64_t{1} +
               std::uint64_t{
-                  detail::defined_index(s.body, def.bodies.size()).value_or(def.bodies.size())});
+                  fixstep::defined_index(s.body, def.bodies.size()).value_or(def.bodies.size())});
       }
     }
   }

@@ -1,6 +1,6 @@
 // Static segments: their geometry, grid, closest features under the ghost-vertex rule and
-// times of impact (fixstep/core/detail/segment_set.hpp).
-#include "fixstep/core/detail/segment_set.hpp"
+// times of impact (segment_set.hpp).
+#include "segment_set.hpp"
 
 #include <fmt/format.h>
 

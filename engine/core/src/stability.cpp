@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "fixstep/core/detail/defined_entity.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "stability_internal.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 
@@ -95,7 +95,7 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
     const BodyDef& def = bodies[i];
     if (def.type != BodyType::dynamic) continue;  // not integrated: nothing to judge
     BodyStability r;
-    r.body = detail::defined_entity(i);
+    r.body = fixstep::defined_entity(i);
     const double m = def.body.mass;
     r.omega = def.spring ? std::sqrt(def.spring->stiffness / m) : 0.0;
     r.gamma =
@@ -159,19 +159,19 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
 namespace fixstep {
 
 std::vector<bool> detail::linked_by_index(std::size_t body_count,
-                                          std::span<const detail::IndexLink> links) {
+                                          std::span<const fixstep::IndexLink> links) {
   std::vector<bool> linked(body_count, false);
-  for (const detail::IndexLink& link : links) linked[link.body_a] = linked[link.body_b] = true;
+  for (const fixstep::IndexLink& link : links) linked[link.body_a] = linked[link.body_b] = true;
   return linked;
 }
 
 std::vector<bool> linked_bodies(std::size_t body_count, std::span<const LinkDef> links) {
   std::vector<bool> linked(body_count, false);
   for (std::size_t l = 0; l < links.size(); ++l) {  // flags from each end's place: no copy
-    const auto a = detail::defined_index(links[l].body_a, body_count);
-    const auto b = detail::defined_index(links[l].body_b, body_count);
+    const auto a = fixstep::defined_index(links[l].body_a, body_count);
+    const auto b = fixstep::defined_index(links[l].body_b, body_count);
     if (!a || !b) {  // index_links names the link and its bad end
-      (void)detail::index_links(links.first(l + 1), body_count);
+      (void)fixstep::index_links(links.first(l + 1), body_count);
     }
     linked[*a] = linked[*b] = true;
   }
@@ -183,7 +183,7 @@ std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> 
                                                        Integrator integrator, double dt,
                                                        int substeps) {
   if (all_links.empty()) return std::nullopt;
-  std::vector<detail::IndexLink> links = detail::index_links(all_links, all_bodies.size());
+  std::vector<fixstep::IndexLink> links = fixstep::index_links(all_links, all_bodies.size());
   const std::vector<bool> linked = detail::linked_by_index(all_bodies.size(), links);
   std::vector<std::size_t> index(all_bodies.size()), order;
   std::vector<BodyDef> bodies;
@@ -193,9 +193,9 @@ std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> 
     order.push_back(i);
     bodies.push_back(all_bodies[i]);
   }
-  for (detail::IndexLink& l : links) l.body_a = index[l.body_a], l.body_b = index[l.body_b];
+  for (fixstep::IndexLink& l : links) l.body_a = index[l.body_a], l.body_b = index[l.body_b];
   NetworkStability r = detail::network_stability(bodies, links, integrator, dt, substeps);
-  r.fastest_body = detail::defined_entity(order[r.fastest_body.slot()]);
+  r.fastest_body = fixstep::defined_entity(order[r.fastest_body.slot()]);
   return r;
 }
 
@@ -209,7 +209,7 @@ std::string remedy(int min_substeps, double max_step, int substeps) {
 
 /// "body[I]" for the definition's body I, else "body S:G" (its handle's slot and generation).
 std::string body_label(Entity e, std::size_t defined) {
-  if (const auto i = detail::defined_index(e, defined)) return fmt::format("body[{}]", *i);
+  if (const auto i = fixstep::defined_index(e, defined)) return fmt::format("body[{}]", *i);
   return fmt::format("body {}:{}", e.index1, e.generation);
 }
 
@@ -253,7 +253,7 @@ std::string explain_fault(std::span<const BodyDef> bodies, std::span<const LinkD
       "(allowed |value| <= {:g})",
       body_label(f.body, bodies.size()), f.name, f.tick, f.time, f.field, f.value,
       position ? "m" : "m/s", max_state_magnitude);
-  const std::optional<std::size_t> defined = detail::defined_index(f.body, bodies.size());
+  const std::optional<std::size_t> defined = fixstep::defined_index(f.body, bodies.size());
   if (!defined) return head + ".";
   const std::size_t i = *defined;
   if (bodies[i].type == BodyType::kinematic) return explain_kinematic(head, bodies[i]);

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/stability.hpp"
 
 namespace fixstep::detail {

@@ -26,11 +26,11 @@
 #include <stdexcept>
 
 #include "fixstep/core/det_math.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "fixstep/core/stability.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/work_progress.hpp"
 #include "stability_internal.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
@@ -72,7 +72,7 @@ Sym2 link_damping_block(double b, double rest, Vec2 d) {
 /// M^-½ A M^-½ on the 2n-vector (x0, y0, x1, y1, ...), A assembled from a block per body (on
 /// the diagonal) and per link (in the pattern [S -S; -S S] of its ends).
 struct Operator {
-  std::span<const detail::IndexLink> links;
+  std::span<const fixstep::IndexLink> links;
   std::vector<double> scale;  // 1/sqrt(m), kg^-½
   std::vector<Sym2> body, link;
 
@@ -230,12 +230,12 @@ double network_amplification(Integrator integrator, double omega, double gamma, 
 NetworkStability check_network_stability(std::span<const BodyDef> bodies,
                                          std::span<const LinkDef> links, Integrator integrator,
                                          double dt, int substeps) {
-  return detail::network_stability(bodies, detail::index_links(links, bodies.size()), integrator,
+  return detail::network_stability(bodies, fixstep::index_links(links, bodies.size()), integrator,
                                    dt, substeps);
 }
 
 NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
-                                           std::span<const detail::IndexLink> links,
+                                           std::span<const fixstep::IndexLink> links,
                                            Integrator integrator, double dt, int substeps) {
   const std::size_t n = bodies.size();
   if (!(std::isfinite(dt) && dt > 0.0)) {
@@ -278,10 +278,10 @@ NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
   c_op.scale = k_op.scale;
   NetworkStability r;
   r.bodies = n, r.springs = links.size(), r.h = dt / substeps;
-  r.fastest_body = detail::defined_entity(0);
+  r.fastest_body = fixstep::defined_entity(0);
   double stiffest = 0.0, strongest = 0.0;
   for (std::size_t l = 0; l < links.size(); ++l) {
-    const detail::IndexLink& link = links[l];
+    const fixstep::IndexLink& link = links[l];
     if (link.body_a >= n || link.body_b >= n || link.body_a == link.body_b) {
       throw std::invalid_argument(
           fmt::format("network stability: spring[{}] joins bodies {} and {} of {}", l, link.body_a,
@@ -321,7 +321,7 @@ NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
   r.omega_max = std::sqrt(std::max(0.0, top.value));
   r.omega_error = top.error < 1.0 ? 1.0 / std::sqrt(1.0 - top.error) - 1.0 : unbounded;
   r.iterations = top.iterations;
-  if (!huge) r.fastest_body = detail::defined_entity(largest_body(k_op, top.vector));
+  if (!huge) r.fastest_body = fixstep::defined_entity(largest_body(k_op, top.vector));
   Eigenpair damp;
   double gamma_raw = 0.0;
   if (damped && !huge) {
@@ -377,7 +377,7 @@ NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
   const Mode& b = modes[bind];
   r.damping_bound = b.omega == 0.0;
   if (r.damping_bound && damped) {
-    r.fastest_body = detail::defined_entity(largest_body(c_op, damp.vector));
+    r.fastest_body = fixstep::defined_entity(largest_body(c_op, damp.vector));
   }
   const double rate = r.damping_bound ? b.gamma : b.omega;
   const char* what = r.damping_bound ? "λ_max(M⁻¹C)·h" : "ω_max·h";
@@ -386,7 +386,7 @@ NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
   std::string naming;
   const std::optional<std::size_t> link = r.damping_bound ? r.strongest_damper : r.stiffest_link;
   if (link) {
-    const detail::IndexLink& l = links[*link];
+    const fixstep::IndexLink& l = links[*link];
     naming = fmt::format(
         "{} link '{}'–'{}', {} = {:g} {}, ", r.damping_bound ? "strongest damper:" : "stiffest",
         bodies[l.body_a].name, bodies[l.body_b].name, r.damping_bound ? "b" : "k",

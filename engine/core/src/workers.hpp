@@ -5,7 +5,7 @@
 #include <atomic>
 #include <thread>
 
-#include "fixstep/core/detail/world_kernel.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep::detail {
 

@@ -1,3 +1,6 @@
+// World: its construction, copies and snapshots, and the members that forward to the kernel
+// inside (world_state.hpp); the handle API is in world_handles.cpp, the queries in
+// world_queries.cpp.
 #include "fixstep/core/world.hpp"
 
 #include <fmt/format.h>
@@ -5,21 +8,88 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/fnv1a.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/random.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "world_state.hpp"
 
 namespace fixstep {
 
 namespace {
-std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>> make_world(
-    Precision p, const WorldSettings& s) {
+detail::AnyKernel make_kernel(Precision p, const WorldSettings& s) {
   if (p == Precision::f32) return detail::WorldKernel<float>(s);
   return detail::WorldKernel<double>(s);
 }
 }  // namespace
 
 World::World(Precision precision, const WorldSettings& settings)
-    : world_(make_world(precision, settings)), random_(settings.seed) {}
+    : state_(new detail::WorldState{
+          make_kernel(precision, settings), {}, Random(settings.seed), {}}) {}
+
+World::World(const World& other) : state_(new detail::WorldState(*other.state_)) {}
+World& World::operator=(const World& other) {
+  if (this != &other) {
+    if (state_) {
+      *state_ = *other.state_;  // the kernel's copy-assignment: vectors keep their storage
+    } else {
+      state_.reset(new detail::WorldState(*other.state_));
+    }
+  }
+  return *this;
+}
+World::World(World&& other) noexcept = default;
+World& World::operator=(World&& other) noexcept = default;
+World::~World() = default;
+
+Precision World::precision() const {
+  return state_->kernel.index() == 0 ? Precision::f32 : Precision::f64;
+}
+std::span<const Entity> World::defined_bodies() const {
+  return state_->defined;
+}
+Random& World::random() {
+  return state_->random;
+}
+const Random& World::random() const {
+  return state_->random;
+}
+
+template <class C>
+void World::set(Entity e, const C& component) {
+  visit([&](auto& w) { w.set(e, component); });
+  if constexpr (std::is_same_v<C, Collider>) queries_changed();
+}
+template <class C>
+void World::remove(Entity e) {
+  visit([&](auto& w) { w.template remove<C>(e); });
+  if constexpr (std::is_same_v<C, Collider>) queries_changed();
+}
+template <class C>
+std::optional<C> World::get(Entity e) const {
+  return visit([&](const auto& w) -> std::optional<C> {
+    if (!w.contains(e)) return std::nullopt;
+    const C* c = w.template get<C>(e);
+    return c ? std::optional<C>(*c) : std::nullopt;
+  });
+}
+// The components (components.hpp): set, remove and get of each, compiled here once.
+#define FIXSTEP_WORLD_COMPONENT(C)               \
+  template void World::set<C>(Entity, const C&); \
+  template void World::remove<C>(Entity);        \
+  template std::optional<C> World::get<C>(Entity) const;
+FIXSTEP_WORLD_COMPONENT(SpringDamper)
+FIXSTEP_WORLD_COMPONENT(ConstantForce)
+FIXSTEP_WORLD_COMPONENT(Gravity)
+FIXSTEP_WORLD_COMPONENT(LinearDrag)
+FIXSTEP_WORLD_COMPONENT(Appearance)
+FIXSTEP_WORLD_COMPONENT(Collider)
+#undef FIXSTEP_WORLD_COMPONENT
 
 Entity World::create_body(const BodyDef& def) {
   const Entity e = visit([&](auto& w) { return w.create_body(def); });
@@ -92,6 +162,9 @@ void World::step(const TickInput& input) {
   visit([&](auto& w) { w.step(input); });
   queries_changed();
 }
+void World::step() {
+  step(TickInput{});
+}
 void World::set_keep_previous(bool keep) {
   visit([&](auto& w) { w.set_keep_previous(keep); });
 }
@@ -115,15 +188,17 @@ EnergyReport World::energy() const {
 }
 std::uint64_t World::state_hash() const {
   const std::uint64_t bodies = visit([](const auto& w) { return w.state_hash(); });
-  if (random_.draws() == 0) return bodies;
+  const Random& random = state_->random;
+  if (random.draws() == 0) return bodies;
   std::uint64_t hash = bodies;
   for (int shift = 0; shift < 64; shift += 8) {
-    hash = fnv1a_byte(hash, static_cast<unsigned char>(random_.state() >> shift));
+    hash = fnv1a_byte(hash, static_cast<unsigned char>(random.state() >> shift));
   }
   return hash;
 }
 std::size_t World::snapshot_bytes() const {
-  return visit([](const auto& w) { return w.snapshot_bytes(); });
+  // The kernel's arrays, and the block a WorldSnapshot holds them in.
+  return sizeof(detail::SnapshotState) + visit([](const auto& w) { return w.snapshot_bytes(); });
 }
 
 void World::interpolate_positions(double alpha, std::span<float> x, std::span<float> y) const {
@@ -157,46 +232,68 @@ void World::link_ends(std::span<std::uint32_t> a, std::span<std::uint32_t> b) co
   });
 }
 
+WorldSnapshot::WorldSnapshot() = default;
+WorldSnapshot::WorldSnapshot(const WorldSnapshot& other)
+    : state_(other.state_ ? new detail::SnapshotState(*other.state_) : nullptr) {}
+WorldSnapshot& WorldSnapshot::operator=(const WorldSnapshot& other) {
+  if (this == &other) return *this;
+  if (!other.state_) {
+    state_.reset();
+  } else if (state_) {
+    *state_ = *other.state_;
+  } else {
+    state_.reset(new detail::SnapshotState(*other.state_));
+  }
+  return *this;
+}
+WorldSnapshot::WorldSnapshot(WorldSnapshot&& other) noexcept = default;
+WorldSnapshot& WorldSnapshot::operator=(WorldSnapshot&& other) noexcept = default;
+WorldSnapshot::~WorldSnapshot() = default;
+
 std::uint64_t WorldSnapshot::tick() const {
-  if (!world_) return 0;
-  return std::visit([](const auto& w) { return w.tick(); }, *world_);
+  if (!state_) return 0;
+  return std::visit([](const auto& w) { return w.tick(); }, state_->kernel);
 }
 
 void World::save(WorldSnapshot& out) const {
-  if (out.world_ && out.world_->index() == world_.index()) {
-    *out.world_ = world_;  // World's copy-assignment: vectors keep their storage
-  } else {
-    out.world_.emplace(world_);
+  if (!out.state_) {
+    out.state_.reset(new detail::SnapshotState{state_->kernel, state_->random});
+    return;
   }
-  out.random_ = random_;
+  // The kernel's copy-assignment keeps the vectors' storage when the precision matches.
+  out.state_->kernel = state_->kernel;
+  out.state_->random = state_->random;
 }
 
 void World::restore(const WorldSnapshot& snapshot) {
-  if (!snapshot.world_) throw std::invalid_argument("snapshot: empty (nothing was saved into it)");
-  world_ = *snapshot.world_;
-  random_ = snapshot.random_;
+  if (!snapshot.state_) {
+    throw std::invalid_argument("snapshot: empty (nothing was saved into it)");
+  }
+  state_->kernel = snapshot.state_->kernel;
+  state_->random = snapshot.state_->random;
   queries_changed();
 }
 
 World::World(const WorldDef& def) : World(def.precision, def.settings) {
-  defined_.reserve(def.bodies.size());
-  for (const BodyDef& body : def.bodies) defined_.push_back(create_body(body));
+  std::vector<Entity>& defined = state_->defined;
+  defined.reserve(def.bodies.size());
+  for (const BodyDef& body : def.bodies) defined.push_back(create_body(body));
   // By place first, so a handle from another definition or world is named as such.
-  for (const detail::IndexLink& l : detail::index_links(def.links, def.bodies.size())) {
-    create_link(LinkDef{defined_[l.body_a], defined_[l.body_b], l.spring});
+  for (const fixstep::IndexLink& l : fixstep::index_links(def.links, def.bodies.size())) {
+    create_link(LinkDef{defined[l.body_a], defined[l.body_b], l.spring});
   }
   for (const PlaneDef& p : def.planes) add_plane(p);
   for (std::size_t i = 0; i < def.segments.size(); ++i) {
     SegmentDef s = def.segments[i];
     if (!s.body.is_null()) {  // the definition's handle: the body made from it here
-      const std::optional<std::size_t> at = detail::defined_index(s.body, def.bodies.size());
+      const std::optional<std::size_t> at = fixstep::defined_index(s.body, def.bodies.size());
       if (!at) {
         throw std::invalid_argument(fmt::format(
             "segment[{}]: body {}:{} is not one of the definition's {} bodies (use the handles "
             "WorldDef::add_body returns)",
             i, s.body.index1, s.body.generation, def.bodies.size()));
       }
-      s.body = defined_[*at];
+      s.body = defined[*at];
     }
     add_segment(s);
   }
@@ -211,7 +308,7 @@ void WorldDef::add_polyline(std::span<const Vec2> points, double restitution, do
 
 Entity WorldDef::add_body(BodyDef body) {
   bodies.push_back(std::move(body));
-  return detail::defined_entity(bodies.size() - 1);
+  return fixstep::defined_entity(bodies.size() - 1);
 }
 
 double energy_balance(const World& sim, double initial_energy) {

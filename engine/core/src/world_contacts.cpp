@@ -56,11 +56,11 @@
 #include <stdexcept>
 
 #include "fixstep/core/det_math.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "plane_contact.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

@@ -20,12 +20,12 @@
 #include "body_field.hpp"
 #include "fixstep/core/bits.hpp"
 #include "fixstep/core/det_math.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "link_damping.hpp"
 #include "link_passes.hpp"
 #include "strang_network.hpp"
 #include "workers.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

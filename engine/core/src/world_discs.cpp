@@ -8,8 +8,8 @@
 #include <numeric>
 
 #include "disc_contacts.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "workers.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

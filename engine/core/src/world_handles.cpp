@@ -1,12 +1,15 @@
-// World's handle API: bodies and links named by Entity and Link, forwarded to the
-// detail::WorldKernel<float> or detail::WorldKernel<double> inside, and the check of a tick's
-// per-body input.
+// World's handle API: bodies and links named by Entity and Link, forwarded to the kernel
+// inside (world_state.hpp), and the check of a tick's per-body input.
 #include <fmt/format.h>
 
 #include <cmath>
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "world_state.hpp"
 
 namespace fixstep {
 

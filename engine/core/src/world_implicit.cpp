@@ -24,9 +24,9 @@
 #include <limits>
 #include <new>
 
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/stop_request.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

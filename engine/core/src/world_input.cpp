@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fixstep/core/detail/world_kernel.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

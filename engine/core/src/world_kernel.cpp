@@ -1,4 +1,4 @@
-#include "fixstep/core/detail/world_kernel.hpp"
+#include "world_kernel.hpp"
 
 #include <fmt/format.h>
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "disc_contacts.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {

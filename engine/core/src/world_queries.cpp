@@ -8,8 +8,12 @@
 #include <optional>
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/query.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
 #include "query_grid.hpp"
+#include "world_state.hpp"
 
 namespace fixstep {
 
@@ -128,25 +132,28 @@ double ray_disc(Vec2 p, Vec2 t, double cx, double cy, double r) {
 }  // namespace
 
 void World::queries_changed() {
-  if (queries_) queries_->stale = true;
+  if (state_->queries) state_->queries->stale = true;
 }
 
-const detail::QueryGrid& World::query_grid() const {
-  if (!queries_) queries_.reset(new detail::QueryGrid());
-  detail::QueryGrid& g = *queries_;
+const detail::QueryGrid& detail::query_grid(const WorldState& state) {
+  if (!state.queries) state.queries.reset(new QueryGrid());
+  QueryGrid& g = *state.queries;
   if (!g.stale) return g;
   g.discs.clear();
-  visit([&](const auto& w) {
-    const auto ids = w.entities();
-    const auto x = w.x(), y = w.y();
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-      const Collider* c = w.template get<Collider>(ids[i]);
-      // A disc whose state left the finite range (World::fault) is nowhere.
-      if (c && std::isfinite(double(x[i])) && std::isfinite(double(y[i]))) {
-        g.discs.push_back({double(x[i]), double(y[i]), c->radius, ids[i], c->filter, c->sensor});
-      }
-    }
-  });
+  std::visit(
+      [&](const auto& w) {
+        const auto ids = w.entities();
+        const auto x = w.x(), y = w.y();
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+          const Collider* c = w.template get<Collider>(ids[i]);
+          // A disc whose state left the finite range (World::fault) is nowhere.
+          if (c && std::isfinite(double(x[i])) && std::isfinite(double(y[i]))) {
+            g.discs.push_back(
+                {double(x[i]), double(y[i]), c->radius, ids[i], c->filter, c->sensor});
+          }
+        }
+      },
+      state.kernel);
   g.build();
   return g;
 }
@@ -163,7 +170,7 @@ std::size_t World::cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit>
                     origin.y, translation.x, translation.y, max_query_reach));
   }
   Collector<RayHit, decltype(&ray_less)> hits(out, &ray_less);
-  const detail::QueryGrid& g = query_grid();
+  const detail::QueryGrid& g = detail::query_grid(*state_);
   auto disc_hit = [&](std::size_t i) {
     const detail::QueryDisc& d = g.discs[i];
     if (!seen(filter, d)) return;
@@ -174,9 +181,9 @@ std::size_t World::cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit>
   };
   // The ray in pieces one cell long, each piece's box visited once per disc (marks).
   const double pieces = std::ceil(len / g.cell_side());
-  const std::uint32_t mark = queries_->next_mark();
+  const std::uint32_t mark = state_->queries->next_mark();
   auto once = [&](std::size_t i) {
-    if (queries_->mark(i, mark)) disc_hit(i);
+    if (state_->queries->mark(i, mark)) disc_hit(i);
   };
   if (!(pieces <= double(g.discs.size()))) {
     for (std::size_t i = 0; i < g.discs.size(); ++i) once(i);
@@ -247,7 +254,7 @@ std::size_t World::overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
                     upper.x, upper.y));
   }
   Collector<QueryHit, decltype(&hit_less)> hits(out, &hit_less);
-  const detail::QueryGrid& g = query_grid();
+  const detail::QueryGrid& g = detail::query_grid(*state_);
   g.for_each_near(lower.x, lower.y, upper.x, upper.y, [&](std::size_t i) {
     const detail::QueryDisc& d = g.discs[i];
     if (seen(filter, d) && disc_box(d, lower, upper, 0.0)) hits.add(QueryHit{d.body});
@@ -279,7 +286,7 @@ std::size_t World::overlap_circle(Vec2 center, double radius, std::span<QueryHit
         fmt::format("overlap_circle: radius must be finite and >= 0 m (got {})", radius));
   }
   Collector<QueryHit, decltype(&hit_less)> hits(out, &hit_less);
-  const detail::QueryGrid& g = query_grid();
+  const detail::QueryGrid& g = detail::query_grid(*state_);
   g.for_each_near(center.x - radius, center.y - radius, center.x + radius, center.y + radius,
                   [&](std::size_t i) {
                     const detail::QueryDisc& d = g.discs[i];
@@ -309,6 +316,23 @@ std::size_t World::query_point(Vec2 point, std::span<QueryHit> out,
                                const QueryFilter& filter) const {
   require_finite_query(point, "query_point", "point");
   return overlap_circle(point, 0.0, out, filter);
+}
+
+// Each query without a filter: the same with QueryFilter{} (every body, plane and segment).
+std::optional<RayHit> World::cast_ray(Vec2 origin, Vec2 translation) const {
+  return cast_ray(origin, translation, QueryFilter{});
+}
+std::size_t World::cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out) const {
+  return cast_ray_all(origin, translation, out, QueryFilter{});
+}
+std::size_t World::query_point(Vec2 point, std::span<QueryHit> out) const {
+  return query_point(point, out, QueryFilter{});
+}
+std::size_t World::overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out) const {
+  return overlap_aabb(lower, upper, out, QueryFilter{});
+}
+std::size_t World::overlap_circle(Vec2 center, double radius, std::span<QueryHit> out) const {
+  return overlap_circle(center, radius, out, QueryFilter{});
 }
 
 }  // namespace fixstep

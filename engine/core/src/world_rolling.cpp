@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "fixstep/core/detail/world_kernel.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

@@ -14,9 +14,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/limits.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

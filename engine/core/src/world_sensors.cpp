@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "disc_contacts.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "sorted_diff.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

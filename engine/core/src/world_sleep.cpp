@@ -30,8 +30,8 @@
 #include <stdexcept>
 
 #include "disc_contacts.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "query_grid.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 

@@ -8,11 +8,11 @@
 #include "body_field.hpp"
 #include "disc_contacts.hpp"
 #include "fixstep/core/det_math.hpp"
-#include "fixstep/core/detail/world_kernel.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "phase_clock.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 
@@ -195,7 +195,8 @@ void detail::WorldKernel<Real>::apply_drag(const TickInput& input) {
 
 template <class Real>
 void detail::WorldKernel<Real>::step(const TickInput& input) {
-  const IeeeFloatMode ieee;  // no state depends on the caller's FPU mode (fixstep/core/float_mode.hpp)
+  const IeeeFloatMode
+      ieee;  // no state depends on the caller's FPU mode (fixstep/core/float_mode.hpp)
   if (terms_dirty_) rebuild_terms();
   if (sleep_) {
     woken_ = 0, sleeper_contacts_ = 0;

@@ -2,7 +2,9 @@
 // the bodies a recording names, and the replay that first checks the world is the recorded one.
 #include <fmt/format.h>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/io/printable.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/io/summary.hpp"
@@ -68,7 +70,7 @@ ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& 
 
 void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file) {
   auto check = [&](const TickInput& in, Entity e, std::string_view field) {
-    if (e == null_entity || (e.index1 <= bodies && e == detail::defined_entity(e.index1 - 1)))
+    if (e == null_entity || (e.index1 <= bodies && e == fixstep::defined_entity(e.index1 - 1)))
       return;
     throw RecordingError(
         RecordingError::Kind::corrupt, file, 0, field,

@@ -14,7 +14,8 @@
 // Version 2 had no scene_text and damping_split lines (the scene was read from PATH, with its
 // own damping split); version 1 had no per-body
 // inputs and named the dragged body by its dense INDEX, read as
-// detail::defined_entity(INDEX) (exact for the worlds version 1 recorded, which destroyed nothing).
+// fixstep::defined_entity(INDEX) (exact for the worlds version 1 recorded, which destroyed
+// nothing).
 //   hash N HASH                (state hash after N ticks)
 //   end TICKS HASH             (the last line; its absence means the file is truncated)
 // A tick line is written only when the input differs from the previous tick's; numbers are
@@ -33,8 +34,10 @@
 #include <sstream>
 #include <system_error>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/io/printable.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "recording_text.hpp"
@@ -386,7 +389,8 @@ TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec
   } else if (rec.version >= 2) {
     t.drag_body = handle(in, drag, "drag");
   } else {
-    t.drag_body = detail::defined_entity(integer<std::uint32_t>(in, drag, "drag", 10, 0xfffffffeu));
+    t.drag_body =
+        fixstep::defined_entity(integer<std::uint32_t>(in, drag, "drag", 10, 0xfffffffeu));
   }
   for (std::size_t k = 8; k < w.size(); ++k) t.bodies.push_back(body_input(in, w[k]));
   return t;

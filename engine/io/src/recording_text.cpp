@@ -9,6 +9,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/io/printable.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/io/summary.hpp"

@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "fixstep/core/input.hpp"
 #include "fixstep/io/recording_file.hpp"
 
 namespace fixstep::recording_text {

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "recording_text.hpp"
 
 namespace fixstep {

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include "fixstep/core/step_results.hpp"
+
 namespace fixstep {
 
 std::string hex_hash(std::uint64_t hash) {

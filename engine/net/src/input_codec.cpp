@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "byte_io.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/net/net_input_codec.hpp"
 
 namespace fixstep::net {

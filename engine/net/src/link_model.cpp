@@ -2,6 +2,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/net/link_conditioner.hpp"
 
 namespace fixstep::net {

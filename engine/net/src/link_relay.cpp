@@ -11,6 +11,7 @@
 #include <cstring>
 #include <queue>
 
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/net/link_conditioner.hpp"
 
 namespace fixstep::net {

@@ -5,6 +5,9 @@
 #include <random>
 #include <stdexcept>
 
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/net/net_input_codec.hpp"
 #include "match_peer_impl.hpp"
 

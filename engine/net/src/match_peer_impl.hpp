@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/net/match_peer.hpp"
 #include "fixstep/net/net_packet.hpp"
 #include "sequence_window.hpp"

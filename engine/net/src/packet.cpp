@@ -2,9 +2,10 @@
 #include <stdexcept>
 
 #include "byte_io.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/net/net_input_codec.hpp"
 #include "fixstep/net/net_packet.hpp"
-#include "fixstep/core/recording.hpp"
 
 namespace fixstep::net {
 

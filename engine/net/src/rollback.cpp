@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/net/net_input_codec.hpp"
 #include "match_peer_impl.hpp"
 

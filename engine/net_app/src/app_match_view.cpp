@@ -4,9 +4,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fixstep/capture/capture.hpp>
 #include <fixstep/app/game_play.hpp>
 #include <fixstep/app/key_bindings.hpp>
+#include <fixstep/capture/capture.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/core/world_settings.hpp>
 #include <stdexcept>
 #ifdef FIXSTEP_NET_WINDOW
 #include <fixstep/window/window.hpp>

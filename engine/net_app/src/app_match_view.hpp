@@ -5,8 +5,9 @@
 
 #include <fixstep/app/game_level.hpp>
 #include <fixstep/app/game_model.hpp>
-#include <fixstep/net/match_peer.hpp>
 #include <fixstep/app/session.hpp>
+#include <fixstep/core/input.hpp>
+#include <fixstep/net/match_peer.hpp>
 #include <memory>
 #include <optional>
 #include <string>

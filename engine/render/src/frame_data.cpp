@@ -3,6 +3,10 @@
 
 #include <optional>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/world_settings.hpp"
+
 namespace fixstep {
 
 void fill_render_frame(const World& world, double alpha, RenderFrame& out) {

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/render/render.hpp"
 #include "scene_palette.hpp"
 

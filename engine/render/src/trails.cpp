@@ -8,7 +8,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 
@@ -128,7 +131,7 @@ void Trails::prepare(const RenderFrame& frame) {
   check_size(frame.visible.size(), "visible flags");
   check_size(frame.trail_time.size(), "trail times");
   auto id = [&](std::size_t j) {
-    const Entity e = frame.ids.empty() ? detail::defined_entity(j) : frame.ids[j];
+    const Entity e = frame.ids.empty() ? fixstep::defined_entity(j) : frame.ids[j];
     if (e.is_null())
       throw std::invalid_argument(fmt::format("RenderFrame: body {} has a null id", j));
     return e;
@@ -164,7 +167,7 @@ void Trails::clear() {
 
 int Trails::points(const RenderFrame& frame, std::size_t j, std::span<float, max_points> xs,
                    std::span<float, max_points> ys, std::span<float, max_points> ages) const {
-  const Entity e = frame.ids.empty() ? detail::defined_entity(j) : frame.ids[j];
+  const Entity e = frame.ids.empty() ? fixstep::defined_entity(j) : frame.ids[j];
   if (!known(e)) return 0;
   const std::uint32_t s = e.slot();
   const Setting& set = setting_[s];

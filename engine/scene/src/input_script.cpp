@@ -4,8 +4,10 @@
 
 #include <array>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
 #include "scene_reader.hpp"
 
@@ -88,7 +90,7 @@ Entity drag_target(const Reader& r, const toml::node& n, const std::string& path
            fmt::format("expected a body name or false, found {}",
                        n.is_boolean() ? std::string("true") : scene_detail::found(n)));
   }
-  return detail::defined_entity(body_index(r, n, path, bodies));
+  return fixstep::defined_entity(body_index(r, n, path, bodies));
 }
 
 /// Why body b cannot take input `kind`, or "" when it can.
@@ -131,7 +133,7 @@ BodyInput body_input(Reader& r, const toml::table& t, BodyInputKind kind, const 
                        ? "the impulse [x, y] in N*s, e.g. value = [1.0, 0.5]"
                        : "the velocity [x, y] in m/s, e.g. value = [2.0, 0.0]");
   }
-  return BodyInput{detail::defined_entity(i), kind, r.vec2_node(*value, path + ".value")};
+  return BodyInput{fixstep::defined_entity(i), kind, r.vec2_node(*value, path + ".value")};
 }
 
 [[noreturn]] void not_body_input(const Reader& r, const toml::node& n, const std::string& path) {

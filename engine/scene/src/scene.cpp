@@ -8,10 +8,13 @@
 #include <cstdlib>
 #include <limits>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/limits.hpp"
-#include "fixstep/io/printable.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/io/printable.hpp"
 #include "fixstep/scene/scene_stability.hpp"
 #include "scene_reader.hpp"
 

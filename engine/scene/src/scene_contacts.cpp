@@ -4,7 +4,9 @@
 #include <array>
 #include <cmath>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/disc_overlap.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {

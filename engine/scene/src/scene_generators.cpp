@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdint>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/det_math.hpp"
-#include "fixstep/core/detail/defined_entity.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/work_progress.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {
@@ -160,7 +162,7 @@ class Generator {
                       "separates them or leave rest_length out",
                       scene_.bodies[a].name, scene_.bodies[b].name, spring.rest_length, spec.path));
     }
-    scene_.links.push_back(LinkDef{detail::defined_entity(a), detail::defined_entity(b), spring});
+    scene_.links.push_back(LinkDef{fixstep::defined_entity(a), fixstep::defined_entity(b), spring});
     scene_.source.link_lines.push_back(t_.source().begin.line);
     scene_.source.link_keys.push_back(spec.path);
     checkpoint("link", scene_.links.size(), links_target_);

@@ -5,7 +5,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {
@@ -190,7 +191,7 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
                          "forces add); remove one, or merge them into one spring",
                          da.name, db.name, link_origin(scene, it->second)));
     }
-    scene.links.push_back(LinkDef{detail::defined_entity(a), detail::defined_entity(b), spring});
+    scene.links.push_back(LinkDef{fixstep::defined_entity(a), fixstep::defined_entity(b), spring});
     scene.source.link_lines.push_back(t.source().begin.line);
     scene.source.link_keys.push_back(path);
   }

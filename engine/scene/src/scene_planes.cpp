@@ -2,6 +2,7 @@
 // "Scene format".
 #include <cmath>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/det_math.hpp"
 #include "scene_reader.hpp"
 

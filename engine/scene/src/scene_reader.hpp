@@ -21,6 +21,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/suggest.hpp"
 

@@ -2,8 +2,11 @@
 // carried by a kinematic body (`body`). See docs/SCENES.md.
 #include <cmath>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "scene_reader.hpp"
 
 namespace fixstep::scene_detail {
@@ -50,7 +53,7 @@ Entity parse_carrier(const Reader& r, const toml::table& t, const std::string& p
                        "give it type = \"kinematic\", or leave `body` out for a static {}",
                        b.name, scene.source.body_lines[i], body_type_name(b.type), what));
   }
-  return detail::defined_entity(i);
+  return fixstep::defined_entity(i);
 }
 
 /// One [[segment]] table: a and b ([x, y] m, required, distinct), restitution, friction, the

@@ -4,8 +4,10 @@
 
 #include <cmath>
 
-#include "fixstep/core/detail/defined_entity.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 
@@ -113,7 +115,7 @@ std::vector<std::string> enforce_stability(const Scene& scene) {
 }
 
 std::string explain_fault(const Scene& scene, const StateFault& fault) {
-  const auto i = detail::defined_index(fault.body, scene.bodies.size());
+  const auto i = fixstep::defined_index(fault.body, scene.bodies.size());
   const std::size_t line =
       i && *i < scene.source.body_lines.size() ? scene.source.body_lines[*i] : 0;
   return fmt::format("{}{}: {}", scene.file, line ? fmt::format(":{}", line) : std::string(),

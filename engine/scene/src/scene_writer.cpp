@@ -16,10 +16,14 @@
 #include <vector>
 
 #include "fixstep/core/bits.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/det_math.hpp"
-#include "fixstep/core/detail/defined_entity.hpp"
-#include "fixstep/io/file_write.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "fixstep/io/file_write.hpp"
 #include "fixstep/scene/scene.hpp"
 
 namespace fixstep {
@@ -267,15 +271,15 @@ void write_links(std::string& out, const WorldDef& def, const std::vector<std::s
   auto it = std::back_inserter(out);
   for (std::size_t i = 0; i < def.links.size(); ++i) {
     const LinkDef& d = def.links[i];
-    const auto a = detail::defined_index(d.body_a, names.size());
-    const auto b = detail::defined_index(d.body_b, names.size());
+    const auto a = fixstep::defined_index(d.body_a, names.size());
+    const auto b = fixstep::defined_index(d.body_b, names.size());
     if (!a || !b || *a == *b) {
       refuse(fmt::format("link[{}]", i),
              fmt::format("joins {} and {}: each must be one of the {} bodies (a handle "
                          "WorldDef::add_body returned), and they must differ",
                          body_label(d.body_a), body_label(d.body_b), names.size()));
     }
-    const detail::IndexLink l{*a, *b, d.spring};
+    const fixstep::IndexLink l{*a, *b, d.spring};
     fmt::format_to(it,
                    "\n[[spring]]\nbodies = [{}, {}]\nstiffness = {}\ndamping = {}\nrest_length = "
                    "{}\n",
@@ -305,7 +309,7 @@ void write_segments(std::string& out, const WorldDef& def, const std::vector<std
     if (s.prev) fmt::format_to(it, "prev = {}\n", vec(*s.prev));
     if (s.next) fmt::format_to(it, "next = {}\n", vec(*s.next));
     if (s.body.is_null()) continue;
-    const auto b = detail::defined_index(s.body, names.size());
+    const auto b = fixstep::defined_index(s.body, names.size());
     if (!b) {
       refuse(fmt::format("segment[{}]", i),
              fmt::format("is carried by {}: it must be one of the {} bodies (a handle "

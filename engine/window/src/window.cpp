@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include "fixstep/core/input.hpp"
+
 namespace fixstep {
 
 namespace {

@@ -40,7 +40,9 @@
 
 #include "fixstep/app/game_model.hpp"
 #include "fixstep/app/overlay.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/types.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep::app {
 

@@ -11,8 +11,9 @@
 #include <vector>
 
 #include "fixstep/app/app.hpp"
-#include "fixstep/core/recording.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/core/recording.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep::app::detail {
 

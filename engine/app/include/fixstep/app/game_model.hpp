@@ -8,10 +8,11 @@
 #include <string>
 #include <utility>
 
-#include "fixstep/core/input.hpp"
 #include "fixstep/app/overlay.hpp"
-#include "fixstep/render/user_events.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/render/user_events.hpp"
 
 namespace fixstep::app {
 struct Settings;

@@ -11,11 +11,14 @@
 #include <utility>
 #include <vector>
 
-#include "fixstep/render/draw_list.hpp"
 #include "fixstep/app/key_bindings.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/render/render.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/render/draw_list.hpp"
+#include "fixstep/render/render.hpp"
 
 namespace fixstep {
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep {
 

@@ -10,6 +10,7 @@
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep {
 

@@ -18,7 +18,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

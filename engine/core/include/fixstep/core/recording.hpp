@@ -15,6 +15,8 @@
 #include "fixstep/core/integrators.hpp"
 #include "fixstep/core/rules.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

@@ -2,74 +2,81 @@
 // whether written in code or read from a scene file.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
-#include <utility>
-#include <variant>
-#include <vector>
 
-#include "fixstep/core/detail/world_kernel.hpp"
-#include "fixstep/core/query.hpp"
-#include "fixstep/core/random.hpp"
-#include "fixstep/core/segment.hpp"
-#include "fixstep/core/step_results.hpp"
-#include "fixstep/core/world_settings.hpp"
+#include "fixstep/core/entity.hpp"
+#include "fixstep/core/types.hpp"
 
 namespace fixstep {
 
-/// Everything a world is built from: what a scene file describes (see scene.hpp), or what a
-/// program writes in code. The one definition the frame pipeline (Session, render library)
-/// and the command line start from.
-struct WorldDef {
-  Precision precision = Precision::f64;
-  WorldSettings settings;        ///< dt (s), integrator, substeps, ... (see WorldSettings)
-  std::vector<BodyDef> bodies;   ///< in creation order (add_body)
-  std::vector<LinkDef> links;    ///< springs between bodies, by the handles add_body returned
-  std::vector<PlaneDef> planes;  ///< static half-planes (ground, walls) colliders stay out of
-  /// Segments (level geometry, static or carried by a kinematic body: SegmentDef::body, a
-  /// handle add_body returned) colliders stay out of; polylines as their segments
-  /// (polyline_segments, add_polyline). After the planes in every order.
-  std::vector<SegmentDef> segments;
+// The types of World's interface, declared here and defined in the headers named: include
+// those (or fixstep/core.hpp, all of core) to use what a call takes or returns.
+struct WorldDef;                     // world_def.hpp
+struct WorldSettings;                // world_settings.hpp
+struct Body;                         // components.hpp
+struct BodyDef;                      // components.hpp
+struct LinkDef;                      // components.hpp
+struct PlaneDef;                     // components.hpp
+enum class BodyType : std::uint8_t;  // components.hpp
+struct SegmentDef;                   // segment.hpp
+struct TickInput;                    // input.hpp
+struct EnergyReport;                 // step_results.hpp
+struct ContactStats;                 // step_results.hpp
+struct StepProfile;                  // step_results.hpp
+struct Impact;                       // step_results.hpp
+struct ContactEvent;                 // step_results.hpp
+struct SensorEvent;                  // step_results.hpp
+struct StateFault;                   // step_results.hpp
+struct QueryFilter;                  // query.hpp
+struct QueryHit;                     // query.hpp
+struct RayHit;                       // query.hpp
+class Random;                        // random.hpp
 
-  /// Appends `body` and returns the handle World(def) will give it (World::defined_bodies()
-  /// lists the same handles), for the links and per-body inputs a program writes before the
-  /// world exists.
-  Entity add_body(BodyDef body);
-  /// Appends a link between two bodies add_body returned; World(def) validates it.
-  void add_link(Entity a, Entity b, const LinkSpring& spring) {
-    links.push_back(LinkDef{a, b, spring});
-  }
-  /// Appends the segments of a polyline through `points` (polyline_segments: throws
-  /// std::invalid_argument for too few points or a zero-length segment), carried by `body`
-  /// (a handle add_body returned, of a kinematic body) or static (null).
-  void add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                    bool closed = false, Entity body = {});
-};
+namespace detail {
+struct WorldState;     // the kernel behind a World (engine/core/src/world_state.hpp)
+struct SnapshotState;  // a saved kernel (engine/core/src/world_state.hpp)
+}  // namespace detail
 
 /// A restorable state of a World (what game physics calls a snapshot): a complete copy of
 /// its world, taken by World::save and put back by World::restore, bit for bit.
 /// Memory: about the world's own (every per-body and per-link array).
 class WorldSnapshot {
  public:
+  WorldSnapshot();
+  WorldSnapshot(const WorldSnapshot& other);
+  WorldSnapshot& operator=(const WorldSnapshot& other);
+  WorldSnapshot(WorldSnapshot&& other) noexcept;
+  WorldSnapshot& operator=(WorldSnapshot&& other) noexcept;
+  ~WorldSnapshot();
   /// True until something is saved into it.
-  [[nodiscard]] bool empty() const { return !world_; }
+  [[nodiscard]] bool empty() const { return !state_; }
   /// The tick of the saved state; 0 when empty.
   [[nodiscard]] std::uint64_t tick() const;
 
  private:
   friend class World;
-  std::optional<std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>>> world_;
-  Random random_;
+  std::unique_ptr<detail::SnapshotState> state_;
 };
 
 /// The one object a program holds: bodies, their components, links and planes, stepped at a
-/// fixed dt in the precision chosen at creation (f32 or f64), which lives inside (a
-/// detail::WorldKernel<float> or <double>, its arrays structure-of-arrays).
+/// fixed dt in the precision chosen at creation (f32 or f64). Its state lives behind a pointer
+/// (the kernel, its arrays structure-of-arrays, is not part of the interface); a World copies
+/// deeply (a copy steps on to the same bits) and moves cheaply. A moved-from World may only be
+/// assigned to or destroyed.
 class World {
  public:
+  World(const World& other);
+  World& operator=(const World& other);
+  World(World&& other) noexcept;
+  World& operator=(World&& other) noexcept;
+  ~World();
+
   /// An empty world of `precision` stepped with `settings`. Throws std::invalid_argument on
   /// invalid settings (dt not finite and > 0, substeps < 1, ...).
   World(Precision precision, const WorldSettings& settings);
@@ -82,14 +89,10 @@ class World {
   /// made before building.
   explicit World(const WorldDef& def);
 
-  [[nodiscard]] Precision precision() const {
-    return world_.index() == 0 ? Precision::f32 : Precision::f64;
-  }
-  // The members below forward to the detail::WorldKernel<float> or detail::WorldKernel<double>
-  // inside: units, shapes and errors are those documented in world.hpp (create_body throws
-  // std::invalid_argument naming the body and field; step never throws and allocates nothing once
-  // warmed up). Bodies and links are named by handles (Entity, Link), which stay valid until
-  // destroyed; bodies() lists the live ones in the order the world steps them.
+  /// The precision the world steps in (WorldDef::precision).
+  [[nodiscard]] Precision precision() const;
+  // Bodies and links are named by handles (Entity, Link), which stay valid until destroyed;
+  // bodies() lists the live ones in the order the world steps them.
 
   // --- bodies by handle -----------------------------------------------------------------
   Entity create_body(const BodyDef& def);
@@ -99,7 +102,7 @@ class World {
   /// The handles World(def) gave def.bodies, in definition order: defined_bodies()[i] is
   /// def.bodies[i]'s (a destroyed one stays listed, stale). Empty for a world built without a
   /// WorldDef.
-  [[nodiscard]] std::span<const Entity> defined_bodies() const { return defined_; }
+  [[nodiscard]] std::span<const Entity> defined_bodies() const;
   /// Destroys the body, its components and its links; throws std::invalid_argument if stale.
   void destroy(Entity e);
   /// Whether e names a live body (false for the null handle and destroyed bodies).
@@ -145,25 +148,13 @@ class World {
   /// Appearance, Collider) on e; throws std::invalid_argument naming the field when invalid
   /// or when e is stale.
   template <class C>
-  void set(Entity e, const C& component) {
-    visit([&](auto& w) { w.set(e, component); });
-    if constexpr (std::is_same_v<C, Collider>) queries_changed();
-  }
+  void set(Entity e, const C& component);
   /// Removes component C from e (nothing if absent); throws std::invalid_argument if stale.
   template <class C>
-  void remove(Entity e) {
-    visit([&](auto& w) { w.template remove<C>(e); });
-    if constexpr (std::is_same_v<C, Collider>) queries_changed();
-  }
+  void remove(Entity e);
   /// e's component C, or nullopt (also for a stale handle).
   template <class C>
-  [[nodiscard]] std::optional<C> get(Entity e) const {
-    return visit([&](const auto& w) -> std::optional<C> {
-      if (!w.contains(e)) return std::nullopt;
-      const C* c = w.template get<C>(e);
-      return c ? std::optional<C>(*c) : std::nullopt;
-    });
-  }
+  [[nodiscard]] std::optional<C> get(Entity e) const;
 
   // --- links by handle --------------------------------------------------------------------
   Link create_link(const LinkDef& def);
@@ -186,7 +177,15 @@ class World {
   std::size_t add_polyline(std::span<const Vec2> points, double restitution, double friction,
                            bool closed = false, Entity body = {});
   [[nodiscard]] std::span<const SegmentDef> segments() const;
-  void step(const TickInput& input = {});
+  /// Advances the world by one tick (WorldSettings::dt, s) with no input: step(TickInput{}).
+  void step();
+  /// Advances the world by one tick of `input` (its per-body forces, impulses and kinematic
+  /// velocities; check_input says which entries it would ignore). Allocates nothing once warmed
+  /// up. Throws StopRequested (stop_request.hpp) when a stop is requested during a long tick;
+  /// the world is then neither the old state nor the new one and must be restored from a
+  /// snapshot or dropped. Nothing else: a state that leaves the finite range is reported by
+  /// fault(), not thrown.
+  void step(const TickInput& input);
   /// Throws std::invalid_argument naming the first entry of input.bodies World::step would
   /// ignore: a stale handle, a non-finite value, a force or impulse on a body that is not
   /// dynamic, a velocity for one that is not kinematic, or more than max_body_inputs entries.
@@ -239,11 +238,16 @@ class World {
   /// Every disc overlapping a sensor after the last tick (|Δx| < r_sensor + r_visitor at the
   /// tick's end), by (sensor, visitor) slot order: what is in the bucket now.
   [[nodiscard]] std::span<const SensorEvent> sensor_overlaps() const;
-  /// The state hash of the bodies (detail::WorldKernel::state_hash), with random()'s state
-  /// mixed in (FNV-1a over its 64-bit state) once it has been drawn from: a world whose rules
-  /// never roll dice hashes as it did before random() existed.
+  /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in bodies() order, then,
+  /// with rolling discs (ContactSettings::rolling) only, every body's θ and ω, then, with
+  /// sleeping (ContactSettings::sleep) only, every body's ticks below the sleep speed and its
+  /// island's number while asleep (0 awake); random()'s state is mixed in (FNV-1a over its
+  /// 64-bit state) once it has been drawn from, so a world whose rules never roll dice hashes as
+  /// one without random(). Equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
-  /// Bytes a WorldSnapshot of this simulation holds (World::snapshot_bytes()).
+  /// Bytes of heap memory a WorldSnapshot of this world holds: every array's elements, the body
+  /// names' characters and the snapshot's own block (not the worker thread or the implicit
+  /// solver's cache, which a copy does not take). For budgeting many snapshots (RewindBuffer).
   [[nodiscard]] std::size_t snapshot_bytes() const;
 
   /// Positions lerp(previous, current, alpha) in m, in bodies() order, for drawing between two
@@ -256,13 +260,14 @@ class World {
   /// std::invalid_argument).
   void link_ends(std::span<std::uint32_t> a, std::span<std::uint32_t> b) const;
 
-  // --- spatial queries (query.hpp): the discs (Collider) at their positions after the last
-  // tick, and the planes. Each runs through a grid of the discs built on the first query after
-  // the world changed (a step, a body created, destroyed or moved, a Collider set), in O(n)
-  // with no allocation once warm; a query then visits the grid cells its region covers
-  // (query_grid.hpp), at most every disc once. Not safe to call on one World from two threads
-  // at once (the grid is a cache). Every query throws std::invalid_argument naming the
-  // argument when a coordinate is not finite (or a radius not finite and >= 0).
+  // --- spatial queries (query.hpp; each without a filter is the same with QueryFilter{}): the
+  // discs (Collider) at their positions after the last tick, and the planes. Each runs through a
+  // grid of the discs built on the first query after the world changed (a step, a body created,
+  // destroyed or moved, a Collider set), in O(n) with no allocation once warm; a query then visits
+  // the grid cells its region covers (query_grid.hpp), at most every disc once. Not safe to call on
+  // one World from two threads at once (the grid is a cache). Every query throws
+  // std::invalid_argument naming the argument when a coordinate is not finite (or a radius not
+  // finite and >= 0).
 
   /// The first shape the ray origin + s · translation, s in [0, 1] (m), enters: the hit with
   /// the least fraction, ties by handle slot and planes (by index) and segments (by index) last;
@@ -270,36 +275,40 @@ class World {
   /// not hit that shape (Box2D's rule). A zero translation hits nothing. Throws
   /// std::invalid_argument also for a ray reaching beyond max_query_reach.
   [[nodiscard]] std::optional<RayHit> cast_ray(Vec2 origin, Vec2 translation,
-                                               const QueryFilter& filter = {}) const;
+                                               const QueryFilter& filter) const;
+  [[nodiscard]] std::optional<RayHit> cast_ray(Vec2 origin, Vec2 translation) const;
   /// Every shape the ray enters, ordered by fraction (ties by handle slot, planes and segments last
   /// by index). Writes the first min(total, out.size()) hits of that order into `out` and returns
   /// the total (call with an empty span to count). Allocates nothing once warm.
   std::size_t cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out,
-                           const QueryFilter& filter = {}) const;
+                           const QueryFilter& filter) const;
+  std::size_t cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out) const;
   /// The discs containing `point` (|point - centre| <= r) and the planes it lies inside
   /// (n·point < offset), in handle slot order, planes (by index) and segments (by index) last.
   /// Writes the first min(total, out.size()) and returns the total.
-  std::size_t query_point(Vec2 point, std::span<QueryHit> out,
-                          const QueryFilter& filter = {}) const;
+  std::size_t query_point(Vec2 point, std::span<QueryHit> out, const QueryFilter& filter) const;
+  std::size_t query_point(Vec2 point, std::span<QueryHit> out) const;
   /// The discs overlapping the box [lower, upper] (m; the box's closest point to the centre
   /// within r) and the planes whose solid side it reaches, in handle slot order, planes and
   /// segments last. Writes the first min(total, out.size()) and returns the total. Throws
   /// std::invalid_argument also when lower > upper on an axis.
   std::size_t overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
-                           const QueryFilter& filter = {}) const;
+                           const QueryFilter& filter) const;
+  std::size_t overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out) const;
   /// The discs overlapping the circle (|c - center| <= r + radius, m) and the planes it
   /// reaches, in handle slot order, planes and segments last. Writes the first min(total,
   /// out.size()) and returns the total.
   std::size_t overlap_circle(Vec2 center, double radius, std::span<QueryHit> out,
-                             const QueryFilter& filter = {}) const;
+                             const QueryFilter& filter) const;
+  std::size_t overlap_circle(Vec2 center, double radius, std::span<QueryHit> out) const;
 
   /// The world's random generator for game rules: seeded with WorldSettings::seed when the
   /// world is made, saved and restored with snapshots (so a restore, a rewind or a replay
   /// rolls the same numbers again), and mixed into state_hash() once it has been drawn from.
   /// Draw from it only inside a tick's rules (or between ticks, as any edit), never in
   /// drawing code: a frame rate must not change what it gives.
-  [[nodiscard]] Random& random() { return random_; }
-  [[nodiscard]] const Random& random() const { return random_; }
+  [[nodiscard]] Random& random();
+  [[nodiscard]] const Random& random() const;
 
   /// Saves the complete state into `out`, reusing its storage: no allocation once `out` holds
   /// a state of the same shape (same bodies, links and components).
@@ -310,25 +319,16 @@ class World {
   void restore(const WorldSnapshot& snapshot);
 
  private:
+  /// Calls f on the kernel inside (WorldKernel<float> or <double>); defined with the state
+  /// (engine/core/src/world_state.hpp), for World's own sources.
   template <class F>
-  decltype(auto) visit(F&& f) {
-    return std::visit(std::forward<F>(f), world_);
-  }
+  decltype(auto) visit(F&& f);
   template <class F>
-  decltype(auto) visit(F&& f) const {
-    return std::visit(std::forward<F>(f), world_);
-  }
-
-  std::variant<detail::WorldKernel<float>, detail::WorldKernel<double>> world_;
+  decltype(auto) visit(F&& f) const;
   /// The queries' grid is out of date (a step or an edit of the discs).
   void queries_changed();
-  /// The queries' grid, rebuilt first when out of date.
-  const detail::QueryGrid& query_grid() const;
 
-  std::vector<Entity> defined_;  ///< defined_bodies()
-  Random random_;                ///< random()
-  /// The queries' grid: a cache, empty in a copy (query_grid()).
-  mutable detail::CachePtr<detail::QueryGrid, detail::QueryGridDeleter> queries_;
+  std::unique_ptr<detail::WorldState> state_;
 };
 
 /// The energy balance error (E + E_dissipated - W_external - E0)/|E0| (dimensionless; in J

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep {
 

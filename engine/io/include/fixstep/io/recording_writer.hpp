@@ -9,6 +9,8 @@
 #include <string>
 #include <string_view>
 
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/io/atomic_output.hpp"
 #include "fixstep/io/recording_file.hpp"
 

@@ -25,11 +25,13 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/net/net_protocol.hpp"
-#include "fixstep/net/net_transport.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/rules.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/net/net_protocol.hpp"
+#include "fixstep/net/net_transport.hpp"
 
 namespace fixstep::net {
 

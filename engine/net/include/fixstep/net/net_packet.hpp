@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "fixstep/core/input.hpp"
 #include "fixstep/net/net_protocol.hpp"
 
 namespace fixstep::net {

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {

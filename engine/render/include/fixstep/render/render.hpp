@@ -14,10 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/render/frame_data.hpp"
-#include "fixstep/render/trails.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/types.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/render/frame_data.hpp"
+#include "fixstep/render/trails.hpp"
 
 namespace fixstep {
 

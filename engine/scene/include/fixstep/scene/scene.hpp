@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep {
 

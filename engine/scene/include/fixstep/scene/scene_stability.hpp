@@ -6,8 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/core/stability.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep {
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep {
 

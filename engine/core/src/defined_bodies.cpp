@@ -1,11 +1,11 @@
-// The links of a definition by place in its body list (detail/defined_entity.hpp).
-#include "fixstep/core/detail/defined_entity.hpp"
+// The links of a definition by place in its body list (fixstep/core/defined_bodies.hpp).
+#include "fixstep/core/defined_bodies.hpp"
 
 #include <fmt/format.h>
 
 #include <stdexcept>
 
-namespace fixstep::detail {
+namespace fixstep {
 
 std::vector<IndexLink> index_links(std::span<const LinkDef> links, std::size_t bodies) {
   std::vector<IndexLink> out;
@@ -26,4 +26,4 @@ std::vector<IndexLink> index_links(std::span<const LinkDef> links, std::size_t b
   return out;
 }
 
-}  // namespace fixstep::detail
+}  // namespace fixstep

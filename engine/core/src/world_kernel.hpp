@@ -26,12 +26,12 @@
 #include <vector>
 
 #include "fixstep/core/components.hpp"
-#include "fixstep/core/detail/segment_set.hpp"
 #include "fixstep/core/entity.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/integrators.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "segment_set.hpp"
 
 namespace fixstep {
 

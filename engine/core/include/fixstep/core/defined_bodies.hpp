@@ -1,6 +1,6 @@
-// Internal: the handles World(def) gives a definition's bodies, for the library's own code that
-// names a definition's bodies before a world exists (scene loading, input scripts, recordings'
-// checks, the checks on a definition). A program gets them from WorldDef::add_body or asks the
+// The handles World(def) gives a definition's bodies, for code that names a definition's bodies
+// before a world exists (scene loading, input scripts, recordings' checks, the checks on a
+// definition, exact solutions). A program usually gets them from WorldDef::add_body or asks the
 // world: World::defined_bodies().
 #pragma once
 
@@ -13,7 +13,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/entity.hpp"
 
-namespace fixstep::detail {
+namespace fixstep {
 
 /// Bodies are created in order in a fresh world, so body i gets slot i at generation 1.
 [[nodiscard]] constexpr Entity defined_entity(std::size_t i) {
@@ -42,4 +42,4 @@ struct IndexLink {
 [[nodiscard]] std::vector<IndexLink> index_links(std::span<const LinkDef> links,
                                                  std::size_t bodies);
 
-}  // namespace fixstep::detail
+}  // namespace fixstep

@@ -1,0 +1,49 @@
+// What a World holds behind its pointer (world.hpp): the kernel in the precision chosen at
+// creation, the handles of its definition's bodies, the rules' random generator and the
+// queries' grid; and what a WorldSnapshot holds. Internal to core: World's own sources
+// (world.cpp, world_handles.cpp, world_queries.cpp) include it.
+#pragma once
+
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "fixstep/core/random.hpp"
+#include "fixstep/core/world.hpp"
+#include "world_kernel.hpp"
+
+namespace fixstep::detail {
+
+/// The kernel in one of the two precisions.
+using AnyKernel = std::variant<WorldKernel<float>, WorldKernel<double>>;
+
+struct WorldState {
+  AnyKernel kernel;
+  std::vector<Entity> defined;  ///< World::defined_bodies()
+  Random random;                ///< World::random()
+  /// The queries' grid: a cache, empty in a copy (world_queries.cpp: query_grid).
+  mutable CachePtr<QueryGrid, QueryGridDeleter> queries;
+};
+
+struct SnapshotState {
+  AnyKernel kernel;
+  Random random;
+};
+
+/// The queries' grid of `state`, rebuilt first when out of date (world_queries.cpp).
+const QueryGrid& query_grid(const WorldState& state);
+
+}  // namespace fixstep::detail
+
+namespace fixstep {
+
+template <class F>
+decltype(auto) World::visit(F&& f) {
+  return std::visit(std::forward<F>(f), state_->kernel);
+}
+template <class F>
+decltype(auto) World::visit(F&& f) const {
+  return std::visit(std::forward<F>(f), std::as_const(state_->kernel));
+}
+
+}  // namespace fixstep
