@@ -131,136 +131,209 @@ void detail::WorldKernel<Real>::save_contact_start() {
   }
 }
 
+/// One body's way through a tick's planes and segments (resolve_contacts): its motion, what
+/// it met, and the surface (a segment's contact as a plane) it met last.
+struct detail::PlaneWay {
+  Motion m;
+  Surfaces surfaces;
+  Spin turn;
+  Spin* spin = nullptr;  ///< &turn for a rolling disc
+  PlaneDef local;        ///< a segment's contact as a plane (world_segments.cpp)
+  Vec2 local_u;          ///< its velocity (a kinematic body's segment; 0 static)
+  bool touched = false;  ///< some plane or segment acted on the body this tick
+  bool bounced = false;  ///< some impact was a bounce (the disc phases start from it)
+};
+
+/// What resolve_contacts counts over the bodies of a tick.
+struct detail::PlaneTally {
+  std::uint64_t again = 0;  ///< plane tests after a body's max_impacts-th event (limits.hpp)
+  std::size_t capped = 0;   ///< ContactStats::capped of the planes
+  bool out_of_range = false;
+};
+
 template <class Real>
 std::size_t detail::WorldKernel<Real>::resolve_contacts() {
   const ContactScratch& c = contact_;
-  const double dt = settings_.dt;
-  const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
-  bool out_of_range = false;
-  std::uint64_t again = 0;  // plane tests after a body's max_impacts-th event (limits.hpp)
-  std::size_t capped = 0;
+  PlaneTally tally;
   if (segments_.moves()) plane_work_.assign(body_count(), 0.0);
   for (std::size_t k = 0; k < c.body.size(); ++k) {
     if (k % 1024 == 1023) throw_if_stop_requested();  // many planes: a tick of seconds
-    const std::uint32_t j = c.body[k];
-    const double r = c.radius[k];
-    contact_.after[k].t = -1.0;
-    if (sleep_ && asleep_[j] != 0) continue;  // a sleeper stays where it is
-    const V2 v0{double(c.vx0[k]), double(c.vy0[k])};
-    const V2 v1{double(vx_[j]), double(vy_[j])};
-    const V2 x0{double(c.x0[k]), double(c.y0[k])}, x1{double(x_[j]), double(y_[j])};
-    if (segments_.empty() && clear_of_planes(planes_, x0, x1, v0, v1, r, dt, rel)) continue;
-    const V2 offset = (1.0 / dt) * (x1 - x0) - 0.5 * (v0 + v1);
-    Motion m{x0, v0 + offset, (1.0 / dt) * (v1 - v0), offset};
-    bool touched = false, bounced = false;
-    Surfaces surfaces{.a_free = m.a};
-    Spin turn;
-    Spin* spin = nullptr;
-    if (rolling_ && inv_inertia_[j] > 0.0) {
-      turn = Spin{double(spin_[j]), mass_[j] * r * r * inv_inertia_[j]};
-      spin = &turn;
-    }
-    // A body that starts inside a plane is pushed out; its approaching velocity is dropped.
-    for (const PlaneDef& p : planes_) touched = push_out(m, p, r, rel) || touched;
-    PlaneDef local;  // a segment's contact as a plane (world_segments.cpp)
-    Vec2 local_u;    // its velocity (a kinematic body's segment; 0 static)
-    for (int s = 0; s < 4 && !segments_.empty(); ++s) {
-      const double tol = rel * (std::abs(m.x.x) + std::abs(m.x.y) + r);
-      if (!segment_overlap(m.x.x, m.x.y, r, tol, m.t, local, local_u)) break;
-      if (!push_out_moving(m, local, r, rel, V2{local_u.x, local_u.y}, surfaces.work)) break;
-      touched = true;
-    }
-    for (int i = 0;; ++i) {
-      const double horizon = dt - m.t;
-      // Rounding of the offset (x1 - x0)/dt is up to about eps |x|/dt.
-      const double vtol = rel * (norm(m.v) + norm(m.a) * dt + norm(m.x) / dt);
-      double first = std::numeric_limits<double>::infinity();
-      const PlaneDef* hit = nullptr;
-      for (const PlaneDef& p : planes_) {
-        const V2 n{p.normal.x, p.normal.y};
-        const double nx = dot(n, m.x);
-        const double g0 = nx - p.offset - r;
-        const double tol = rel * (std::abs(nx) + std::abs(p.offset) + r);
-        const double s = first_impact(g0, dot(n, m.v), dot(n, m.a), horizon, tol, vtol);
-        if (s < first) first = s, hit = &p;
-      }
-      std::uint32_t segment = 0;
-      std::uint64_t looked = 0;
-      if (!segments_.empty()) {
-        const detail::SegmentMotion sm{m.x.x, m.x.y, m.v.x, m.v.y, m.a.x, m.a.y};
-        const double s =
-            first_segment_hit(sm, m.t, r, horizon, rel, vtol, local, local_u, segment, looked);
-        if (s < first) first = s, hit = &local;
-      }
-      if (!hit) break;
-      const V2 u_hit = hit == &local ? V2{local_u.x, local_u.y} : V2{};  // the surface's frame
-      if (i >= max_impacts) {
-        Motion seen = m;  // from the surface's frame
-        seen.v = seen.v - u_hit;
-        if (!bounces(seen, first, *hit, dt)) break;  // settling into a corner: the next ticks
-        again += planes_.size() + looked;
-        if (again > max_tick_predictions(c.body.size())) {  // cold: the bounce is unresolved
-          if (!fault_) {
-            record_cap_fault(
-                j, "max_tick_predictions", max_tick_predictions(c.body.size()),
-                fmt::format("{} (the bounce due at {:g} s into the tick)",
-                            hit == &local ? fmt::format("segment[{}]", segment)
-                                          : fmt::format("plane[{}]", hit - planes_.data()),
-                            m.t + first));
-          }
-          capped = 1;
-          break;
-        }
-      }
-      m.advance(first);
-      const bool bounce = resolve_event(m, *hit, hit == &local, u_hit, r, dt, spin, surfaces);
-      bounced = bounce || bounced;
-      touched = true;
-    }
-    if (!touched) {
-      // The model found no impact; rounding may still leave the end state a hair inside: an
-      // impact at the end of the tick.
-      for (const PlaneDef& p : planes_) {
-        const V2 n{p.normal.x, p.normal.y};
-        if (dot(n, x1) - p.offset - r >= 0.0) continue;
-        if (!touched) m = Motion{x1, v1 + offset, m.a, offset, dt, 0.0};
-        bounced = impact(m, p, r, dt, spin) || bounced;
-        touched = true;
-      }
-      if (!segments_.empty() && segment_overlap(x1.x, x1.y, r, 0.0, dt, local, local_u)) {
-        if (!touched) m = Motion{x1, v1 + offset, m.a, offset, dt, 0.0};
-        const V2 u{local_u.x, local_u.y};
-        bounced = impact_moving(m, local, r, dt, spin, u, surfaces.work) || bounced;
-        touched = true;
-      }
-      if (!touched) continue;
-    }
-    // Disc contacts continue from a bounce's motion (a body at rest keeps its integrated one).
-    if (bounced) {
-      contact_.after[k] = detail::PlaneMotion{m.t,   m.x.x, m.x.y,      m.v.x,     m.v.y,
-                                              m.a.x, m.a.y, m.offset.x, m.offset.y};
-    }
-    m.advance(dt - m.t);
-    x_[j] = static_cast<Real>(m.x.x), y_[j] = static_cast<Real>(m.x.y);
-    vx_[j] = static_cast<Real>(m.v.x - m.offset.x), vy_[j] = static_cast<Real>(m.v.y - m.offset.y);
-    if (spin) spin_[j] = static_cast<Real>(turn.w);
-    if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(m.lost);
-    if (surfaces.work != 0.0) external_work_ += mass_[j] * surfaces.work;
-    if (!plane_work_.empty()) plane_work_[j] = surfaces.work;
-    // The runtime guard, as in the sweep: a push-out beyond the range is a fault too.
-    for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {
-      out_of_range = out_of_range || !(std::abs(double(value)) <= max_state_magnitude);
-    }
+    resolve_body_contacts(k, tally);
   }
-  if (out_of_range && !fault_) record_fault();
-  return capped;
+  if (tally.out_of_range && !fault_) record_fault();
+  return tally.capped;
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                             \
-  template std::size_t detail::WorldKernel<Real>::add_plane(const PlaneDef&); \
-  template void detail::WorldKernel<Real>::rebuild_contacts();                \
-  template void detail::WorldKernel<Real>::save_contact_start();              \
-  template std::size_t detail::WorldKernel<Real>::resolve_contacts();
+template <class Real>
+void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t k, PlaneTally& tally) {
+  const ContactScratch& c = contact_;
+  const double dt = settings_.dt;
+  const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
+  const std::uint32_t j = c.body[k];
+  const double r = c.radius[k];
+  contact_.after[k].t = -1.0;
+  if (sleep_ && asleep_[j] != 0) return;  // a sleeper stays where it is
+  const V2 v0{double(c.vx0[k]), double(c.vy0[k])};
+  const V2 v1{double(vx_[j]), double(vy_[j])};
+  const V2 x0{double(c.x0[k]), double(c.y0[k])}, x1{double(x_[j]), double(y_[j])};
+  if (segments_.empty() && clear_of_planes(planes_, x0, x1, v0, v1, r, dt, rel)) return;
+  const V2 offset = (1.0 / dt) * (x1 - x0) - 0.5 * (v0 + v1);
+  PlaneWay w;
+  w.m = Motion{x0, v0 + offset, (1.0 / dt) * (v1 - v0), offset};
+  w.surfaces = Surfaces{.a_free = w.m.a};
+  if (rolling_ && inv_inertia_[j] > 0.0) {
+    w.turn = Spin{double(spin_[j]), mass_[j] * r * r * inv_inertia_[j]};
+    w.spin = &w.turn;
+  }
+  push_out_of_surfaces(w, r, rel);
+  follow_plane_impacts(w, j, r, tally);
+  if (!w.touched && !touch_at_tick_end(w, x1, v1 + offset, offset, r)) return;
+  store_plane_way(k, j, w, tally);
+}
+
+// A body that starts inside a plane is pushed out; its approaching velocity is dropped.
+template <class Real>
+void detail::WorldKernel<Real>::push_out_of_surfaces(PlaneWay& w, double r, double rel) {
+  for (const PlaneDef& p : planes_) w.touched = push_out(w.m, p, r, rel) || w.touched;
+  for (int s = 0; s < 4 && !segments_.empty(); ++s) {
+    const double tol = rel * (std::abs(w.m.x.x) + std::abs(w.m.x.y) + r);
+    if (!segment_overlap(w.m.x.x, w.m.x.y, r, tol, w.m.t, w.local, w.local_u)) break;
+    const V2 u{w.local_u.x, w.local_u.y};
+    if (!push_out_moving(w.m, w.local, r, rel, u, w.surfaces.work)) break;
+    w.touched = true;
+  }
+}
+
+// The impacts of the tick in time order: the first plane or segment the motion meets, resolved
+// there, until none is met before the tick's end.
+template <class Real>
+void detail::WorldKernel<Real>::follow_plane_impacts(PlaneWay& w, std::uint32_t j, double r,
+                                                     PlaneTally& tally) {
+  const double dt = settings_.dt;
+  const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
+  Motion& m = w.m;
+  for (int i = 0;; ++i) {
+    const double horizon = dt - m.t;
+    // Rounding of the offset (x1 - x0)/dt is up to about eps |x|/dt.
+    const double vtol = rel * (norm(m.v) + norm(m.a) * dt + norm(m.x) / dt);
+    double first = std::numeric_limits<double>::infinity();
+    const PlaneDef* hit = nullptr;
+    for (const PlaneDef& p : planes_) {
+      const V2 n{p.normal.x, p.normal.y};
+      const double nx = dot(n, m.x);
+      const double g0 = nx - p.offset - r;
+      const double tol = rel * (std::abs(nx) + std::abs(p.offset) + r);
+      const double s = first_impact(g0, dot(n, m.v), dot(n, m.a), horizon, tol, vtol);
+      if (s < first) first = s, hit = &p;
+    }
+    std::uint32_t segment = 0;
+    std::uint64_t looked = 0;
+    if (!segments_.empty()) {
+      const detail::SegmentMotion sm{m.x.x, m.x.y, m.v.x, m.v.y, m.a.x, m.a.y};
+      const double s =
+          first_segment_hit(sm, m.t, r, horizon, rel, vtol, w.local, w.local_u, segment, looked);
+      if (s < first) first = s, hit = &w.local;
+    }
+    if (!hit) return;
+    const V2 u_hit = hit == &w.local ? V2{w.local_u.x, w.local_u.y} : V2{};  // surface's frame
+    if (i >= max_impacts &&
+        !keep_bouncing(w, j, *hit, first, planes_.size() + looked, segment, tally)) {
+      return;
+    }
+    m.advance(first);
+    const bool bounce = resolve_event(m, *hit, hit == &w.local, u_hit, r, dt, w.spin, w.surfaces);
+    w.bounced = bounce || w.bounced;
+    w.touched = true;
+  }
+}
+
+// After a body's max_impacts-th event: only a bounce goes on (a body settling into a corner
+// finishes in the next ticks), each further test counted against max_tick_predictions; past
+// it the world records a StateFault naming the cap, the body and the plane or segment.
+template <class Real>
+bool detail::WorldKernel<Real>::keep_bouncing(const PlaneWay& w, std::uint32_t j,
+                                              const PlaneDef& hit, double first,
+                                              std::uint64_t tests, std::uint32_t segment,
+                                              PlaneTally& tally) {
+  const bool on_segment = &hit == &w.local;
+  Motion seen = w.m;  // from the surface's frame
+  seen.v = seen.v - (on_segment ? V2{w.local_u.x, w.local_u.y} : V2{});
+  if (!bounces(seen, first, hit, settings_.dt)) return false;  // settling into a corner
+  tally.again += tests;
+  const std::uint64_t cap = max_tick_predictions(contact_.body.size());
+  if (tally.again <= cap) return true;
+  if (!fault_) {  // cold: the bounce is unresolved
+    record_cap_fault(j, "max_tick_predictions", cap,
+                     fmt::format("{} (the bounce due at {:g} s into the tick)",
+                                 on_segment ? fmt::format("segment[{}]", segment)
+                                            : fmt::format("plane[{}]", &hit - planes_.data()),
+                                 w.m.t + first));
+  }
+  tally.capped = 1;
+  return false;
+}
+
+// The model found no impact; rounding may still leave the end state a hair inside: an impact
+// at the end of the tick. Returns whether there was one.
+template <class Real>
+bool detail::WorldKernel<Real>::touch_at_tick_end(PlaneWay& w, V2 x1, V2 u1, V2 offset, double r) {
+  const double dt = settings_.dt;
+  Motion& m = w.m;
+  for (const PlaneDef& p : planes_) {
+    const V2 n{p.normal.x, p.normal.y};
+    if (dot(n, x1) - p.offset - r >= 0.0) continue;
+    if (!w.touched) m = Motion{x1, u1, m.a, offset, dt, 0.0};
+    w.bounced = impact(m, p, r, dt, w.spin) || w.bounced;
+    w.touched = true;
+  }
+  if (!segments_.empty() && segment_overlap(x1.x, x1.y, r, 0.0, dt, w.local, w.local_u)) {
+    if (!w.touched) m = Motion{x1, u1, m.a, offset, dt, 0.0};
+    const V2 u{w.local_u.x, w.local_u.y};
+    w.bounced = impact_moving(m, w.local, r, dt, w.spin, u, w.surfaces.work) || w.bounced;
+    w.touched = true;
+  }
+  return w.touched;
+}
+
+// The body's state at the tick's end from its way through the planes, and its account.
+template <class Real>
+void detail::WorldKernel<Real>::store_plane_way(std::size_t k, std::uint32_t j, PlaneWay& w,
+                                                PlaneTally& tally) {
+  Motion& m = w.m;
+  // Disc contacts continue from a bounce's motion (a body at rest keeps its integrated one).
+  if (w.bounced) {
+    contact_.after[k] =
+        detail::PlaneMotion{m.t, m.x.x, m.x.y, m.v.x, m.v.y, m.a.x, m.a.y, m.offset.x, m.offset.y};
+  }
+  m.advance(settings_.dt - m.t);
+  x_[j] = static_cast<Real>(m.x.x), y_[j] = static_cast<Real>(m.x.y);
+  vx_[j] = static_cast<Real>(m.v.x - m.offset.x), vy_[j] = static_cast<Real>(m.v.y - m.offset.y);
+  if (w.spin) spin_[j] = static_cast<Real>(w.turn.w);
+  if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(m.lost);
+  if (w.surfaces.work != 0.0) external_work_ += mass_[j] * w.surfaces.work;
+  if (!plane_work_.empty()) plane_work_[j] = w.surfaces.work;
+  // The runtime guard, as in the sweep: a push-out beyond the range is a fault too.
+  for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {
+    tally.out_of_range = tally.out_of_range || !(std::abs(double(value)) <= max_state_magnitude);
+  }
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                                                 \
+  template std::size_t detail::WorldKernel<Real>::add_plane(const PlaneDef&);                     \
+  template void detail::WorldKernel<Real>::rebuild_contacts();                                    \
+  template void detail::WorldKernel<Real>::save_contact_start();                                  \
+  template std::size_t detail::WorldKernel<Real>::resolve_contacts();                             \
+  template void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t, PlaneTally&);       \
+  template void detail::WorldKernel<Real>::push_out_of_surfaces(PlaneWay&, double, double);       \
+  template void detail::WorldKernel<Real>::follow_plane_impacts(PlaneWay&, std::uint32_t, double, \
+                                                                PlaneTally&);                     \
+  template bool detail::WorldKernel<Real>::keep_bouncing(const PlaneWay&, std::uint32_t,          \
+                                                         const PlaneDef&, double, std::uint64_t,  \
+                                                         std::uint32_t, PlaneTally&);             \
+  template bool detail::WorldKernel<Real>::touch_at_tick_end(                                     \
+      PlaneWay&, plane_contact::V2, plane_contact::V2, plane_contact::V2, double);                \
+  template void detail::WorldKernel<Real>::store_plane_way(std::size_t, std::uint32_t, PlaneWay&, \
+                                                           PlaneTally&);
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)
 #undef FIXSTEP_INSTANTIATE

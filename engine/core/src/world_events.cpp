@@ -98,7 +98,24 @@ void detail::WorldKernel<Real>::update_contact_events() {
   if (struck) sort_by_slots(begun_), sort_by_slots(ended_);
 }
 
+// A tick without disc phases (no active discs): the pairs and sensor overlaps of the last tick
+// with discs all end, and nothing begins.
+template <class Real>
+void detail::WorldKernel<Real>::end_disc_events() {
+  if (profile_.step != 0.0) profile_ = StepProfile{};
+  if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
+    ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
+    begun_.clear(), touching_.clear();
+  }
+  if (!sensed_.empty() || !sensor_begun_.empty() || !sensor_ended_.empty()) {
+    sensor_ended_.assign(sensed_.begin(), sensed_.end());
+    sensor_begun_.clear(), sensed_.clear();
+  }
+}
+
 template void detail::WorldKernel<float>::update_contact_events();
 template void detail::WorldKernel<double>::update_contact_events();
+template void detail::WorldKernel<float>::end_disc_events();
+template void detail::WorldKernel<double>::end_disc_events();
 
 }  // namespace fixstep

@@ -1,5 +1,7 @@
-// Per-body input of a tick (TickInput::bodies): impulses and kinematic velocities at the
-// tick's start, forces for the tick's duration.
+// A tick's input (TickInput), applied in two places of the tick and nowhere else: at its start
+// (apply_input: islands woken, impulses and kinematic velocities, carried segments placed, the
+// pointer's drag) and around its integration (integrate_with_input: per-body forces and the
+// push for the tick's duration, put back after it).
 #include <algorithm>
 #include <cmath>
 
@@ -120,11 +122,49 @@ void detail::WorldKernel<Real>::unfold_push() {
   std::copy(push_saved_implicit_.begin() + n, push_saved_implicit_.end(), cy);
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                               \
-  template void detail::WorldKernel<Real>::apply_body_inputs(const TickInput&); \
-  template bool detail::WorldKernel<Real>::add_input_forces(const TickInput&);  \
-  template void detail::WorldKernel<Real>::remove_input_forces();               \
-  template void detail::WorldKernel<Real>::fold_push(Vec2);                     \
+template <class Real>
+void detail::WorldKernel<Real>::apply_input(const TickInput& input) {
+  if (sleep_) {
+    woken_ = 0, sleeper_contacts_ = 0;
+    if (sleepers_ != 0) wake_for_input(input);  // world_sleep.cpp
+  }
+  if (!input.bodies.empty()) apply_body_inputs(input);
+  if (segments_.moves()) {
+    place_segments();  // the carrying bodies' velocities for this tick (world_segments.cpp)
+    if (sleep_ && sleepers_ != 0) wake_by_segments();
+  }
+  if (immovable_dirty_) rebuild_immovable();  // sleepers woken above step from here on
+  if (bodies_.contains(input.drag_body) &&
+      types_[bodies_.index(input.drag_body)] == BodyType::dynamic) {
+    apply_drag(input);  // world_step.cpp
+  }
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::integrate_with_input(const TickInput& input, bool immovable,
+                                                     bool discs) {
+  if (contact_.active) save_contact_start();       // world_contacts.cpp
+  if (immovable || discs) save_tick_start(discs);  // world_discs.cpp
+  const bool forces = !input.bodies.empty() && add_input_forces(input);
+  const bool fold = immovable && !net_.a.empty() && (input.push.x != 0.0 || input.push.y != 0.0);
+  if (fold) {
+    fold_push(input.push);
+    integrate(TickInput{.tick = input.tick});  // the push is in the accelerations now
+    unfold_push();
+  } else {
+    integrate(input);  // world_step.cpp
+  }
+  if (forces) remove_input_forces();
+  if (immovable) restore_immovable();
+}
+
+#define FIXSTEP_INSTANTIATE(Real)                                                              \
+  template void detail::WorldKernel<Real>::apply_input(const TickInput&);                      \
+  template void detail::WorldKernel<Real>::integrate_with_input(const TickInput&, bool, bool); \
+  template void detail::WorldKernel<Real>::apply_body_inputs(const TickInput&);                \
+  template bool detail::WorldKernel<Real>::add_input_forces(const TickInput&);                 \
+  template void detail::WorldKernel<Real>::remove_input_forces();                              \
+  template void detail::WorldKernel<Real>::fold_push(Vec2);                                    \
   template void detail::WorldKernel<Real>::unfold_push();
 FIXSTEP_INSTANTIATE(float)
 FIXSTEP_INSTANTIATE(double)

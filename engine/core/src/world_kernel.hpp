@@ -35,6 +35,10 @@
 
 namespace fixstep {
 
+namespace plane_contact {
+struct V2;  // plane_contact.hpp
+}  // namespace plane_contact
+
 namespace detail {
 
 /// The second thread of a world with links (world_coupled.cpp).
@@ -55,6 +59,10 @@ struct ImplicitSolverDeleter {
 struct PlaneMotion {
   double t = -1.0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;
 };
+/// One body's way through a tick's planes and segments, and the tick's count of them
+/// (world_contacts.cpp).
+struct PlaneWay;
+struct PlaneTally;
 /// Disc-disc contacts of a world with WorldSettings::contacts (disc_contacts.hpp).
 template <class Real>
 class DiscContacts;
@@ -512,6 +520,25 @@ class WorldKernel {
   // (world_implicit.cpp)
   bool step_implicit_network(Real h, const Real push[2]);
   void integrate(const TickInput& input);  // one tick of the integrator (world_step.cpp)
+  /// What a tick runs besides the integration (world_tick.cpp: plan_tick).
+  struct TickPlan {
+    bool planes = false;      ///< contacts with planes (world_contacts.cpp)
+    bool immovable = false;   ///< static, kinematic or sleeping bodies put back after the step
+    bool quiet = false;       ///< every disc sleeps: the disc phases are skipped
+    bool discs = false;       ///< the disc phases run (world_discs.cpp, world_events.cpp, ...)
+    bool own_worker = false;  ///< the integration has a worker thread of its own (links)
+    int threads = 1;          ///< threads the disc phases may use
+  };
+  [[nodiscard]] TickPlan plan_tick() const;
+  /// The tick's input at its start: islands woken, impulses, kinematic velocities, carried
+  /// segments placed, the pointer's drag (world_input.cpp).
+  void apply_input(const TickInput& input);
+  /// The integration with the tick's per-body forces and push, the contacts' and the
+  /// immovable bodies' start states saved before it and put back after (world_input.cpp).
+  void integrate_with_input(const TickInput& input, bool immovable, bool discs);
+  void keep_previous_positions();  ///< previous_x/y for interpolation (world_step.cpp)
+  /// WorldSettings::flush_denormals, every flush_denormals_every ticks (world_step.cpp).
+  void flush_state_subnormals();
 
   // Contacts with static half-planes (world_contacts.cpp). The scratch holds, for each body
   // with a Collider, its dense index, radius and start-of-tick state (SoA), sized in
@@ -529,6 +556,15 @@ class WorldKernel {
   void rebuild_contacts();
   void save_contact_start();
   std::size_t resolve_contacts();  // returns ContactStats::capped of the planes
+  // Its steps for one body (world_contacts.cpp).
+  void resolve_body_contacts(std::size_t k, PlaneTally& tally);
+  void push_out_of_surfaces(PlaneWay& w, double r, double rel);
+  void follow_plane_impacts(PlaneWay& w, std::uint32_t j, double r, PlaneTally& tally);
+  bool keep_bouncing(const PlaneWay& w, std::uint32_t j, const PlaneDef& hit, double first,
+                     std::uint64_t tests, std::uint32_t segment, PlaneTally& tally);
+  bool touch_at_tick_end(PlaneWay& w, plane_contact::V2 x1, plane_contact::V2 u1,
+                         plane_contact::V2 offset, double r);
+  void store_plane_way(std::size_t k, std::uint32_t j, PlaneWay& w, PlaneTally& tally);
   // Static segments (world_segments.cpp): the plane pass meets them as local planes.
   SegmentSet segments_;
   std::vector<std::uint32_t> segment_found_;  ///< a query's scratch
@@ -633,6 +669,12 @@ class WorldKernel {
   /// The end of a tick whose every disc sleeps or is static: the disc phases are skipped, and
   /// the events say nothing began or ended.
   void quiet_discs();
+  /// The sleeping islands after a tick (update_sleep when the disc phases ran) and their
+  /// counts in contact_stats_.
+  void finish_sleep(const TickInput& input, bool discs);
+  /// A tick without disc phases: the last tick's pairs and sensor overlaps end
+  /// (world_events.cpp).
+  void end_disc_events();
   // Contact events (world_events.cpp): the touching pairs after the last tick and before it,
   // as handle pairs sorted by slot; part of a snapshot, so events after a restore are the same.
   std::vector<ContactEvent> touching_, touching_before_, hits_;  // normal_speed unused, hits_

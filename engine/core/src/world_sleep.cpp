@@ -319,6 +319,14 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
   if (sleep_grid_) sleep_grid_->stale = true;
 }
 
+template <class Real>
+void detail::WorldKernel<Real>::finish_sleep(const TickInput& input, bool discs) {
+  if (discs) update_sleep(input);
+  contact_stats_.sleeping = sleepers_;
+  contact_stats_.woken = woken_;
+  contact_stats_.sleeper_contacts = sleeper_contacts_;
+}
+
 #define FIXSTEP_INSTANTIATE(Real)                                                                \
   template std::uint32_t detail::WorldKernel<Real>::sleep_ticks(const ContactSettings&, double); \
   template void detail::WorldKernel<Real>::reset_sleep();                                        \
@@ -330,6 +338,7 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
   template void detail::WorldKernel<Real>::wake_by_segments();                                   \
   template const detail::QueryGrid& detail::WorldKernel<Real>::sleeper_grid();                   \
   template void detail::WorldKernel<Real>::quiet_discs();                                        \
+  template void detail::WorldKernel<Real>::finish_sleep(const TickInput&, bool);                 \
   template bool detail::WorldKernel<Real>::discs_at_rest() const;                                \
   template void detail::WorldKernel<Real>::join_islands();                                       \
   template void detail::WorldKernel<Real>::fall_asleep(std::size_t, std::uint32_t);              \

@@ -194,98 +194,18 @@ void detail::WorldKernel<Real>::apply_drag(const TickInput& input) {
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::step(const TickInput& input) {
-  const IeeeFloatMode
-      ieee;  // no state depends on the caller's FPU mode (fixstep/core/float_mode.hpp)
-  if (terms_dirty_) rebuild_terms();
-  if (sleep_) {
-    woken_ = 0, sleeper_contacts_ = 0;
-    if (sleepers_ != 0) wake_for_input(input);
-  }
-  if (!input.bodies.empty()) apply_body_inputs(input);
-  if (segments_.moves()) {
-    place_segments();  // the carrying bodies' velocities for this tick
-    if (sleep_ && sleepers_ != 0) wake_by_segments();
-  }
-  if (immovable_dirty_) rebuild_immovable();  // sleepers woken above step from here on
-  if (bodies_.contains(input.drag_body) &&
-      types_[bodies_.index(input.drag_body)] == BodyType::dynamic) {
-    apply_drag(input);
-  }
-  if (keep_previous_) {
-    std::copy(x_.begin(), x_.end(), prev_x_.begin());
-    std::copy(y_.begin(), y_.end(), prev_y_.begin());
-  }
-  // Contacts with planes (world_contacts.cpp): only when the world has planes and colliders;
-  // static and kinematic bodies and disc-disc contacts (world_discs.cpp): only when declared.
-  // One branch each per tick otherwise.
-  const bool contacts = contact_.active;
-  const bool immovable = !immovable_.body.empty();
-  // With sleeping islands, a tick in which every disc sleeps skips the disc phases.
-  const bool quiet = sleep_ && sleepers_ != 0 && discs_ && discs_->active() && discs_at_rest();
-  const bool discs = discs_ && discs_->active() && !quiet;
-  // Two threads: the discs' second thread spins between the disc phases' passes to the end of
-  // the contact events (second_thread.hpp). It wakes while the bodies integrate, unless the
-  // integration has a worker of its own (links, or the dissipation account: step_multipass),
-  // and then after it.
-  const int threads = detail::threads_for(settings_.threads);
-  auto disc_thread = [&] { return discs ? discs_->second_thread(threads) : nullptr; };
-  const bool own_worker = !net_.a.empty() || settings_.track_dissipation;
-  detail::SecondThreadRun early(own_worker ? nullptr : disc_thread());
-  detail::PhaseClock clock(discs);  // World::profile(): read only with disc contacts
-  if (contacts) save_contact_start();
-  if (immovable || discs) save_tick_start(discs);
-  const bool forces = !input.bodies.empty() && add_input_forces(input);
-  const bool fold = immovable && !net_.a.empty() && (input.push.x != 0.0 || input.push.y != 0.0);
-  if (fold) {
-    fold_push(input.push);
-    integrate(TickInput{.tick = input.tick});  // the push is in the accelerations now
-    unfold_push();
-  } else {
-    integrate(input);
-  }
-  if (forces) remove_input_forces();
-  if (immovable) restore_immovable();
-  profile_.integrate = clock.lap();
-  detail::SecondThreadRun run(disc_thread());  // nothing if `early` holds it open
-  const std::size_t plane_capped = contacts ? resolve_contacts() : 0;
-  if (discs) {
-    resolve_discs();
-    update_contact_events();
-    update_sensor_events();
-    // The events: what the contacts' phases (broadphase, impacts, resting) leave of the lap.
-    const StepProfile& p = profile_;
-    profile_.events = std::max(clock.lap() - p.broadphase - p.impacts - p.resting, 0.0);
-    profile_.step = clock.total();
-    run.close(), early.close();  // the worker sleeps through the rest of the tick
-  } else if (quiet) {
-    quiet_discs();
-  } else {
-    if (profile_.step != 0.0) profile_ = StepProfile{};
-    if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
-      ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
-      begun_.clear(), touching_.clear();
-    }
-    if (!sensed_.empty() || !sensor_begun_.empty() || !sensor_ended_.empty()) {
-      sensor_ended_.assign(sensed_.begin(), sensed_.end());
-      sensor_begun_.clear(), sensed_.clear();
-    }
-  }
-  if (rolling_) integrate_angles();
-  if (segments_.moves()) place_segments();  // where the tick left the carrying bodies
-  if (sleep_) {
-    if (discs) update_sleep(input);
-    contact_stats_.sleeping = sleepers_;
-    contact_stats_.woken = woken_;
-    contact_stats_.sleeper_contacts = sleeper_contacts_;
-  }
-  if (contacts) contact_stats_.capped = (discs ? contact_stats_.capped : 0) + plane_capped;
-  // Every flush_denormals_every ticks: a separate pass over the four state arrays costs as much
-  // memory traffic as a tick of the fused sweep, so it runs once in 64 ticks (a state that
-  // decays into the subnormals meets subnormal arithmetic for at most 63 ticks, then is 0).
-  if (settings_.flush_denormals && tick_ % flush_denormals_every == 0) {
-    for (std::vector<Real>* v : {&x_, &y_, &vx_, &vy_}) flush_subnormals(*v);
-  }
+void detail::WorldKernel<Real>::keep_previous_positions() {
+  std::copy(x_.begin(), x_.end(), prev_x_.begin());
+  std::copy(y_.begin(), y_.end(), prev_y_.begin());
+}
+
+// Every flush_denormals_every ticks: a separate pass over the four state arrays costs as much
+// memory traffic as a tick of the fused sweep, so it runs once in 64 ticks (a state that decays
+// into the subnormals meets subnormal arithmetic for at most 63 ticks, then is 0).
+template <class Real>
+void detail::WorldKernel<Real>::flush_state_subnormals() {
+  if (!settings_.flush_denormals || tick_ % flush_denormals_every != 0) return;
+  for (std::vector<Real>* v : {&x_, &y_, &vx_, &vy_}) flush_subnormals(*v);
 }
 
 template <class Real>
@@ -377,7 +297,8 @@ void detail::WorldKernel<Real>::record_cap_fault(std::size_t body, const char* c
 // world.hpp declares `extern template class detail::WorldKernel<Real>`, so every member defined in
 // this file is instantiated here explicitly.
 #define FIXSTEP_INSTANTIATE(Real)                                                               \
-  template void detail::WorldKernel<Real>::step(const TickInput&);                              \
+  template void detail::WorldKernel<Real>::keep_previous_positions();                           \
+  template void detail::WorldKernel<Real>::flush_state_subnormals();                            \
   template void detail::WorldKernel<Real>::integrate(const TickInput&);                         \
   template void detail::WorldKernel<Real>::apply_drag(const TickInput&);                        \
   template void detail::WorldKernel<Real>::accelerations(std::span<Real>, std::span<Real>,      \

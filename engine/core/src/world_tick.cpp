@@ -1,0 +1,74 @@
+// One tick of the world (WorldKernel::step): its phases in order, each named for what it does
+// and defined in the file named beside it. docs/ARCHITECTURE.md lists the same phases.
+#include <algorithm>
+
+#include "disc_contacts.hpp"
+#include "fixstep/core/float_mode.hpp"
+#include "phase_clock.hpp"
+#include "second_thread.hpp"
+#include "workers.hpp"
+#include "world_kernel.hpp"
+
+namespace fixstep {
+
+template <class Real>
+typename detail::WorldKernel<Real>::TickPlan detail::WorldKernel<Real>::plan_tick() const {
+  TickPlan plan;
+  // Contacts with planes only when the world has planes and colliders; static and kinematic
+  // bodies and disc-disc contacts only when declared: one branch each per tick otherwise.
+  plan.planes = contact_.active;
+  plan.immovable = !immovable_.body.empty();
+  // With sleeping islands, a tick in which every disc sleeps skips the disc phases.
+  const bool active = discs_ && discs_->active();
+  plan.quiet = sleep_ && sleepers_ != 0 && active && discs_at_rest();
+  plan.discs = active && !plan.quiet;
+  // The integration has a worker of its own with links or the dissipation account
+  // (step_multipass); the discs' second thread then wakes after it, else during it.
+  plan.own_worker = !net_.a.empty() || settings_.track_dissipation;
+  plan.threads = detail::threads_for(settings_.threads);
+  return plan;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::step(const TickInput& input) {
+  const IeeeFloatMode ieee;           // no state depends on the caller's FPU mode (float_mode.hpp)
+  if (terms_dirty_) rebuild_terms();  // world_kernel.cpp
+  apply_input(input);                 // world_input.cpp
+  if (keep_previous_) keep_previous_positions();  // world_step.cpp
+  const TickPlan plan = plan_tick();
+  // Two threads: the discs' second thread spins between the disc phases' passes to the end of
+  // the contact events (second_thread.hpp).
+  auto disc_thread = [&] { return plan.discs ? discs_->second_thread(plan.threads) : nullptr; };
+  detail::SecondThreadRun early(plan.own_worker ? nullptr : disc_thread());
+  detail::PhaseClock clock(plan.discs);  // World::profile(): read only with disc contacts
+  integrate_with_input(input, plan.immovable, plan.discs);  // world_input.cpp, world_step.cpp
+  profile_.integrate = clock.lap();
+  detail::SecondThreadRun run(disc_thread());  // nothing if `early` holds it open
+  const std::size_t plane_capped = plan.planes ? resolve_contacts() : 0;  // world_contacts.cpp
+  if (plan.discs) {
+    resolve_discs();          // broadphase, impacts, resting solver: world_discs.cpp
+    update_contact_events();  // world_events.cpp
+    update_sensor_events();   // world_sensors.cpp
+    // The events: what the contacts' phases (broadphase, impacts, resting) leave of the lap.
+    const StepProfile& p = profile_;
+    profile_.events = std::max(clock.lap() - p.broadphase - p.impacts - p.resting, 0.0);
+    profile_.step = clock.total();
+    run.close(), early.close();  // the worker sleeps through the rest of the tick
+  } else if (plan.quiet) {
+    quiet_discs();  // world_sleep.cpp
+  } else {
+    end_disc_events();  // world_events.cpp
+  }
+  if (rolling_) integrate_angles();             // world_rolling.cpp
+  if (segments_.moves()) place_segments();      // where the tick left the carriers
+  if (sleep_) finish_sleep(input, plan.discs);  // world_sleep.cpp
+  if (plan.planes) contact_stats_.capped = (plan.discs ? contact_stats_.capped : 0) + plane_capped;
+  flush_state_subnormals();  // world_step.cpp
+}
+
+template void detail::WorldKernel<float>::step(const TickInput&);
+template void detail::WorldKernel<double>::step(const TickInput&);
+template detail::WorldKernel<float>::TickPlan detail::WorldKernel<float>::plan_tick() const;
+template detail::WorldKernel<double>::TickPlan detail::WorldKernel<double>::plan_tick() const;
+
+}  // namespace fixstep
