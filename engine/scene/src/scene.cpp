@@ -161,19 +161,12 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
   parse_rolling_keys(r, t, path, def);
 }
 
-}  // namespace scene_detail
+namespace {
 
-Scene parse_scene(std::string_view text, const std::string& source_name) {
-  // The numbers read (strtod rounds in the current mode), rest lengths, frequency-form
-  // stiffness and damping: the same whatever the caller's FPU mode (fixstep/core/float_mode.hpp).
-  const IeeeFloatMode ieee;
-  using namespace scene_detail;
-  Scene scene;
-  scene.file = source_name;
-  scene.settings.track_dissipation = true;
-  Reader r(scene.file);
-
-  const toml::table doc = scene_detail::parse_toml(text, source_name, max_scene_bytes, scene_file);
+/// The TOML document of a scene's text: an error when it is empty, or names a table or key no
+/// scene has.
+toml::table read_document(Reader& r, std::string_view text, const std::string& source_name) {
+  toml::table doc = parse_toml(text, source_name, max_scene_bytes, scene_file);
   if (doc.empty()) {
     throw SceneError(source_name, 0, 0, "",
                      "the scene file is empty (no tables or keys): a scene needs a [world] table "
@@ -182,7 +175,81 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   r.check_keys(doc, "",
                {"world", "view", "contacts", "body", "spring", "chain", "grid", "plane", "segment",
                 "polyline"});
+  return doc;
+}
 
+/// The valid integrator a misspelt `name` most likely meant: one within two edits, else the one
+/// valid name holding what was written ("verlet"); nullopt when there is none.
+std::optional<std::string> suggest_integrator(const std::string& name) {
+  std::vector<std::string> valid;
+  for (const Integrator v : all_integrators) valid.emplace_back(integrator_name(v));
+  std::optional<std::string> best = closest(name, valid);
+  if (!best && name.size() >= 2 &&
+      std::count_if(valid.begin(), valid.end(),
+                    [&](const std::string& v) { return v.find(name) != std::string::npos; }) == 1) {
+    best = *std::find_if(valid.begin(), valid.end(),
+                         [&](const std::string& v) { return v.find(name) != std::string::npos; });
+  }
+  return best;
+}
+
+/// world.integrator into scene.settings.integrator (an unknown name is an error, with the name
+/// it most likely meant).
+void read_integrator(const Reader& r, const toml::table& world, Scene& scene) {
+  if (auto name = r.string(world, "integrator", "world.integrator")) {
+    auto i = parse_integrator(*name);
+    if (!i) {
+      const std::optional<std::string> best = suggest_integrator(*name);
+      r.fail(world.get("integrator")->source(), "world.integrator",
+             fmt::format("unknown integrator \"{}\"{} (valid: {})", *name,
+                         best ? fmt::format("; did you mean \"{}\"?", *best) : std::string(),
+                         integrator_names()));
+    }
+    scene.settings.integrator = *i;
+  }
+}
+
+/// world.precision into scene.precision.
+void read_precision(const Reader& r, const toml::table& world, Scene& scene) {
+  if (auto name = r.string(world, "precision", "world.precision")) {
+    auto p = parse_precision(*name);
+    if (!p) {
+      r.fail(world.get("precision")->source(), "world.precision",
+             fmt::format("unknown precision \"{}\" (valid: f32, f64)", *name));
+    }
+    scene.precision = *p;
+  }
+}
+
+/// The optional keys of [world] after dt, integrator and precision, in this order: substeps,
+/// seed, allow_unstable, flush_denormals and damping_split.
+void read_world_options(const Reader& r, const toml::table& world, Scene& scene) {
+  if (const toml::node* n = world.get("substeps")) {
+    scene.settings.substeps = static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
+  }
+  if (const toml::node* n = world.get("seed")) {  // TOML integers: 0 .. 2^63 - 1
+    scene.settings.seed = static_cast<std::uint64_t>(
+        r.integer_node(*n, "world.seed", 0, std::numeric_limits<std::int64_t>::max()));
+  }
+  if (auto b = r.boolean(world, "allow_unstable", "world.allow_unstable")) {
+    scene.allow_unstable = *b;
+  }
+  if (auto b = r.boolean(world, "flush_denormals", "world.flush_denormals")) {
+    scene.settings.flush_denormals = *b;
+  }
+  if (auto name = r.string(world, "damping_split", "world.damping_split")) {
+    const auto split = parse_damping_split(*name);
+    if (!split) {
+      r.fail(world.get("damping_split")->source(), "world.damping_split",
+             fmt::format("unknown damping split \"{}\" (valid: per_stage, per_step)", *name));
+    }
+    scene.settings.damping_split = *split;
+  }
+}
+
+/// The [world] table (required) into scene.settings, scene.precision and scene.allow_unstable;
+/// returns it, for the errors of the limits that its keys set.
+const toml::table& parse_world(Reader& r, const toml::table& doc, Scene& scene) {
   const toml::table* world = r.table(doc, "world", "world");
   if (!world) {
     r.fail_missing(doc, "", {"world"}, "missing [world] table (required)",
@@ -195,82 +262,70 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
       *world, "world", "dt", "the fixed physics step in s, e.g. dt = 0.01 (100 ticks/s)");
   r.require(scene.settings.dt > 0.0 && scene.settings.dt <= 1.0, *world, "dt", "world.dt",
             "> 0 and <= 1 s", scene.settings.dt);
-  if (auto name = r.string(*world, "integrator", "world.integrator")) {
-    auto i = parse_integrator(*name);
-    if (!i) {
-      // A name within two edits, else the one valid name holding what was written ("verlet").
-      std::vector<std::string> valid;
-      for (const Integrator v : all_integrators) valid.emplace_back(integrator_name(v));
-      std::optional<std::string> best = closest(*name, valid);
-      if (!best && name->size() >= 2 &&
-          std::count_if(valid.begin(), valid.end(), [&](const std::string& v) {
-            return v.find(*name) != std::string::npos;
-          }) == 1) {
-        best = *std::find_if(valid.begin(), valid.end(), [&](const std::string& v) {
-          return v.find(*name) != std::string::npos;
-        });
-      }
-      r.fail(world->get("integrator")->source(), "world.integrator",
-             fmt::format("unknown integrator \"{}\"{} (valid: {})", *name,
-                         best ? fmt::format("; did you mean \"{}\"?", *best) : std::string(),
-                         integrator_names()));
-    }
-    scene.settings.integrator = *i;
-  }
-  if (auto name = r.string(*world, "precision", "world.precision")) {
-    auto p = parse_precision(*name);
-    if (!p) {
-      r.fail(world->get("precision")->source(), "world.precision",
-             fmt::format("unknown precision \"{}\" (valid: f32, f64)", *name));
-    }
-    scene.precision = *p;
-  }
+  read_integrator(r, *world, scene);
+  read_precision(r, *world, scene);
+  read_world_options(r, *world, scene);
+  return *world;
+}
 
-  if (const toml::node* n = world->get("substeps")) {
-    scene.settings.substeps = static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
-  }
-  if (const toml::node* n = world->get("seed")) {  // TOML integers: 0 .. 2^63 - 1
-    scene.settings.seed = static_cast<std::uint64_t>(
-        r.integer_node(*n, "world.seed", 0, std::numeric_limits<std::int64_t>::max()));
-  }
-  if (auto b = r.boolean(*world, "allow_unstable", "world.allow_unstable")) {
-    scene.allow_unstable = *b;
-  }
-  if (auto b = r.boolean(*world, "flush_denormals", "world.flush_denormals")) {
-    scene.settings.flush_denormals = *b;
-  }
-  if (auto name = r.string(*world, "damping_split", "world.damping_split")) {
-    const auto split = parse_damping_split(*name);
-    if (!split) {
-      r.fail(world->get("damping_split")->source(), "world.damping_split",
-             fmt::format("unknown damping split \"{}\" (valid: per_stage, per_step)", *name));
+/// [[body]] tables: appends their bodies (named "body<i>" when unnamed; names must be unique)
+/// and lines to the scene.
+void parse_bodies(Reader& r, const toml::table& doc, Scene& scene, BodyNames& names) {
+  const toml::array* list = r.tables(doc, "body");
+  if (!list) return;
+  for (std::size_t i = 0; i < list->size(); ++i) {
+    const toml::table& t = *list->get(i)->as_table();
+    const std::string path = fmt::format("body[{}]", i);
+    BodyDef def = parse_body(r, t, path, scene.precision);
+    if (def.name.empty()) def.name = fmt::format("body{}", i);
+    if (!names.index.emplace(def.name, scene.bodies.size()).second) {
+      const toml::node* n = t.get("name");
+      r.fail(n ? n->source() : t.source(), path + ".name",
+             fmt::format("duplicate body name \"{}\" (names must be unique)", def.name));
     }
-    scene.settings.damping_split = *split;
+    scene.bodies.push_back(std::move(def));
+    scene.source.body_lines.push_back(t.source().begin.line);
   }
+}
 
+/// The work and memory limits (limits.hpp), an error at the key of `world` that sets the work
+/// per tick.
+void check_limits(const Reader& r, const Scene& scene, const toml::table& world) {
+  try {
+    check_world_limits(scene.bodies, scene.links, scene.planes, scene.settings);
+  } catch (const LimitError& e) {
+    // check_world_limits checks the implicit solve's size first, then the work per tick.
+    const bool memory = !implicit_solve_within_limits(scene.bodies, scene.links, scene.settings);
+    const std::string key = memory ? "integrator" : "substeps";
+    const toml::node* at = world.get(key);
+    r.fail(at ? at->source() : world.source(), at ? "world." + key : "world", e.what());
+  }
+}
+
+}  // namespace
+
+}  // namespace scene_detail
+
+Scene parse_scene(std::string_view text, const std::string& source_name) {
+  // The numbers read (strtod rounds in the current mode), rest lengths, frequency-form
+  // stiffness and damping: the same whatever the caller's FPU mode (fixstep/core/float_mode.hpp).
+  const IeeeFloatMode ieee;
+  using namespace scene_detail;
+  Scene scene;
+  scene.file = source_name;
+  scene.settings.track_dissipation = true;
+  Reader r(scene.file);
+
+  const toml::table doc = read_document(r, text, source_name);
+  const toml::table& world = parse_world(r, doc, scene);
   // Every number first, so that a generated position beyond float range is the spacing's fault.
   if (scene.precision == Precision::f32) check_f32(r, doc, "");
-
   parse_view(r, doc, scene);
 
   // Bodies: [[body]] tables, then the generators' bodies; links: the generators', then
   // [[spring]] tables (which may name any body).
   BodyNames names;
-  if (const toml::array* list = r.tables(doc, "body")) {
-    for (std::size_t i = 0; i < list->size(); ++i) {
-      const toml::table& t = *list->get(i)->as_table();
-      const std::string path = fmt::format("body[{}]", i);
-      BodyDef def = parse_body(r, t, path, scene.precision);
-      if (def.name.empty()) def.name = fmt::format("body{}", i);
-      if (!names.index.emplace(def.name, scene.bodies.size()).second) {
-        const toml::node* n = t.get("name");
-        r.fail(n ? n->source() : t.source(), path + ".name",
-               fmt::format("duplicate body name \"{}\" (names must be unique)", def.name));
-      }
-      scene.bodies.push_back(std::move(def));
-      scene.source.body_lines.push_back(t.source().begin.line);
-    }
-  }
+  parse_bodies(r, doc, scene, names);
   parse_generators(r, doc, scene, names);
   if (scene.bodies.empty()) {
     throw SceneError(source_name, 1, 1, "body",
@@ -282,16 +337,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   parse_segments(r, doc, scene, names);
   parse_contacts(r, doc, scene);
   check_start_overlap(scene, names);
-  // The work and memory limits (limits.hpp), at the key that sets the work per tick.
-  try {
-    check_world_limits(scene.bodies, scene.links, scene.planes, scene.settings);
-  } catch (const LimitError& e) {
-    // check_world_limits checks the implicit solve's size first, then the work per tick.
-    const bool memory = !implicit_solve_within_limits(scene.bodies, scene.links, scene.settings);
-    const std::string key = memory ? "integrator" : "substeps";
-    const toml::node* at = world->get(key);
-    r.fail(at ? at->source() : world->source(), at ? "world." + key : "world", e.what());
-  }
+  check_limits(r, scene, world);
   scene.warnings = r.take_warnings();
   scene.text = std::string(text);
   return scene;
