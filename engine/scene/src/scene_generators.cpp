@@ -278,12 +278,19 @@ void parse_chain(Reader& r, const toml::table& t, std::size_t c, Scene& scene, B
   });
 }
 
-void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, BodyNames& names) {
-  Generator g(r, scene, names, t, fmt::format("grid[{}]", c));
-  r.check_keys(t, g.path(),
-               {"name", "columns", "rows", "origin", "spacing", "body", "link", "shear", "bend",
-                "pin", "pin_spring"});
-  const std::string name = g.name(fmt::format("grid{}", c));
+/// A grid's bodies: `columns` in a row, `rows` rows, the body of column i and row j at scene
+/// index first + j * columns + i.
+struct GridShape {
+  std::size_t columns = 0, rows = 0, first = 0;
+
+  [[nodiscard]] std::size_t at(std::size_t i, std::size_t j) const {
+    return first + j * columns + i;
+  }
+};
+
+/// A grid's columns and rows (each required, 1 .. max_scene_bodies) and room for its bodies,
+/// which begin at scene index `first`.
+GridShape read_grid_shape(const Reader& r, Generator& g, std::size_t first) {
   const std::int64_t limit = max_scene_bodies;
   const toml::node& columns_node =
       g.required("columns", "the number of bodies in a row, e.g. columns = 10");
@@ -292,6 +299,92 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
   const toml::node& rows_node = g.required("rows", "the number of rows, e.g. rows = 10");
   const auto rows = static_cast<std::size_t>(r.integer_node(rows_node, g.key("rows"), 1, limit));
   g.reserve_bodies(std::uint64_t{columns} * rows, rows_node, g.key("rows"));
+  return GridShape{.columns = columns, .rows = rows, .first = first};
+}
+
+/// Appends the grid's bodies, row by row, each a copy of `body` named name[column,row] at
+/// origin + (column * spacing.x, row * spacing.y).
+void add_grid_bodies(Generator& g, const GridShape& s, const std::string& name, const BodyDef& body,
+                     Vec2 origin, Vec2 spacing) {
+  for (std::size_t j = 0; j < s.rows; ++j) {
+    for (std::size_t i = 0; i < s.columns; ++i) {
+      g.add_body(body, fmt::format("{}[{},{}]", name, i, j),
+                 Vec2{origin.x + double(i) * spacing.x, origin.y + double(j) * spacing.y});
+    }
+  }
+  g.describe(s.first, name,
+             fmt::format("{} makes {}[0,0] .. {}[{},{}] ([column,row])", g.path(), name, name,
+                         s.columns - 1, s.rows - 1));
+}
+
+/// Links each body to its neighbours `gap` columns and `gap` rows on, row by row.
+void link_grid_neighbours(Generator& g, const GridShape& s, const SpringSpec& spec,
+                          const LinkSpring& spring, std::size_t gap) {
+  for (std::size_t j = 0; j < s.rows; ++j) {
+    for (std::size_t i = 0; i < s.columns; ++i) {
+      if (i + gap < s.columns) g.add_link(s.at(i, j), s.at(i + gap, j), spring, spec);
+      if (j + gap < s.rows) g.add_link(s.at(i, j), s.at(i, j + gap), spring, spec);
+    }
+  }
+}
+
+/// Links both diagonals of each cell, row by row.
+void link_grid_diagonals(Generator& g, const GridShape& s, const SpringSpec& spec,
+                         const LinkSpring& spring) {
+  for (std::size_t j = 0; j + 1 < s.rows; ++j) {
+    for (std::size_t i = 0; i + 1 < s.columns; ++i) {
+      g.add_link(s.at(i, j), s.at(i + 1, j + 1), spring, spec);
+      g.add_link(s.at(i + 1, j), s.at(i, j + 1), spring, spec);
+    }
+  }
+}
+
+/// The grid's link, shear and bend springs (each optional: without any, the bodies are not
+/// linked, a box of discs), between bodies of mass m.
+void add_grid_links(const Reader& r, Generator& g, const toml::table& t, const GridShape& s,
+                    double m, Precision precision) {
+  const std::optional<SpringSpec> link = g.spring("link", true);
+  const std::optional<SpringSpec> shear = g.spring("shear", true);
+  const std::optional<SpringSpec> bend = g.spring("bend", true);
+  // Links in order: structural (row then column neighbours, row by row), shear (both
+  // diagonals of each cell), bend (neighbours two apart).
+  auto pairs = [](std::size_t n, std::size_t gap) { return n > gap ? n - gap : 0; };
+  const std::size_t columns = s.columns, rows = s.rows;
+  const std::uint64_t structural = link ? pairs(columns, 1) * rows + columns * pairs(rows, 1) : 0;
+  const std::uint64_t diagonal = shear ? 2 * pairs(columns, 1) * pairs(rows, 1) : 0;
+  const std::uint64_t two_apart = bend ? pairs(columns, 2) * rows + columns * pairs(rows, 2) : 0;
+  const std::string_view first_key = link ? "link" : shear ? "shear" : "bend";
+  if (link || shear || bend) {
+    g.reserve_links(structural + diagonal + two_apart, *t.get(first_key), g.key(first_key));
+  }
+  if (link) link_grid_neighbours(g, s, *link, pair_spring(r, *link, m, precision), 1);
+  if (shear) link_grid_diagonals(g, s, *shear, pair_spring(r, *shear, m, precision));
+  if (bend) link_grid_neighbours(g, s, *bend, pair_spring(r, *bend, m, precision), 2);
+}
+
+/// The scene index of the body an element n of a grid's `pin` names: [column, row].
+std::size_t grid_pin(const Reader& r, const GridShape& s, const toml::node& n,
+                     const std::string& key) {
+  const toml::array* ij = n.as_array();
+  if (!ij || ij->size() != 2) {
+    r.fail(n.source(), key,
+           ij ? fmt::format("expected [column, row] (2 integers), found {}", elements(ij->size()))
+              : fmt::format("expected [column, row], found {}", found(n)));
+  }
+  const auto i = r.integer_node(*ij->get(0), key + "[0]", 0, std::int64_t(s.columns) - 1,
+                                fmt::format(", one of the grid's {} columns", s.columns));
+  const auto j = r.integer_node(*ij->get(1), key + "[1]", 0, std::int64_t(s.rows) - 1,
+                                fmt::format(", one of the grid's {} rows", s.rows));
+  return s.at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+}
+
+void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, BodyNames& names) {
+  Generator g(r, scene, names, t, fmt::format("grid[{}]", c));
+  r.check_keys(t, g.path(),
+               {"name", "columns", "rows", "origin", "spacing", "body", "link", "shear", "bend",
+                "pin", "pin_spring"});
+  const std::string name = g.name(fmt::format("grid{}", c));
+  const GridShape shape = read_grid_shape(r, g, scene.bodies.size());
   const Vec2 origin = r.vec2_node(
       g.required("origin", "the position [x, y] in m of the first body, e.g. [0.0, 0.0]"),
       g.key("origin"));
@@ -301,65 +394,10 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
                              "[0.1, -0.1]"),
                   g.key("spacing"));
   const BodyDef body = g.body_template();
-  const std::size_t first = scene.bodies.size();
-  auto at = [&](std::size_t i, std::size_t j) { return first + j * columns + i; };
-  for (std::size_t j = 0; j < rows; ++j) {
-    for (std::size_t i = 0; i < columns; ++i) {
-      g.add_body(body, fmt::format("{}[{},{}]", name, i, j),
-                 Vec2{origin.x + double(i) * spacing.x, origin.y + double(j) * spacing.y});
-    }
-  }
-  g.describe(first, name,
-             fmt::format("{} makes {}[0,0] .. {}[{},{}] ([column,row])", g.path(), name, name,
-                         columns - 1, rows - 1));
+  add_grid_bodies(g, shape, name, body, origin, spacing);
   if (g.ignore_springs(body, {"link", "shear", "bend", "pin", "pin_spring"})) return;
-  // Each spring table is optional: without any, the bodies are not linked (a box of discs).
-  const std::optional<SpringSpec> link = g.spring("link", true);
-  const std::optional<SpringSpec> shear = g.spring("shear", true);
-  const std::optional<SpringSpec> bend = g.spring("bend", true);
-  // Links in order: structural (row then column neighbours, row by row), shear (both
-  // diagonals of each cell), bend (neighbours two apart).
-  auto pairs = [](std::size_t n, std::size_t gap) { return n > gap ? n - gap : 0; };
-  const std::uint64_t structural = link ? pairs(columns, 1) * rows + columns * pairs(rows, 1) : 0;
-  const std::uint64_t diagonal = shear ? 2 * pairs(columns, 1) * pairs(rows, 1) : 0;
-  const std::uint64_t two_apart = bend ? pairs(columns, 2) * rows + columns * pairs(rows, 2) : 0;
-  const std::string_view first_key = link ? "link" : shear ? "shear" : "bend";
-  if (link || shear || bend) {
-    g.reserve_links(structural + diagonal + two_apart, *t.get(first_key), g.key(first_key));
-  }
-  const double m = body.body.mass;
-  auto connect = [&](const SpringSpec& spec, std::size_t gap, bool diagonals) {
-    const LinkSpring spring = pair_spring(r, spec, m, scene.precision);
-    for (std::size_t j = 0; j < rows; ++j) {
-      for (std::size_t i = 0; i < columns; ++i) {
-        if (diagonals) {
-          if (i + 1 < columns && j + 1 < rows) {
-            g.add_link(at(i, j), at(i + 1, j + 1), spring, spec);
-            g.add_link(at(i + 1, j), at(i, j + 1), spring, spec);
-          }
-          continue;
-        }
-        if (i + gap < columns) g.add_link(at(i, j), at(i + gap, j), spring, spec);
-        if (j + gap < rows) g.add_link(at(i, j), at(i, j + gap), spring, spec);
-      }
-    }
-  };
-  if (link) connect(*link, 1, false);
-  if (shear) connect(*shear, 1, true);
-  if (bend) connect(*bend, 2, false);
-  g.pins([&](const toml::node& n, const std::string& key) {
-    const toml::array* ij = n.as_array();
-    if (!ij || ij->size() != 2) {
-      r.fail(n.source(), key,
-             ij ? fmt::format("expected [column, row] (2 integers), found {}", elements(ij->size()))
-                : fmt::format("expected [column, row], found {}", found(n)));
-    }
-    const auto i = r.integer_node(*ij->get(0), key + "[0]", 0, std::int64_t(columns) - 1,
-                                  fmt::format(", one of the grid's {} columns", columns));
-    const auto j = r.integer_node(*ij->get(1), key + "[1]", 0, std::int64_t(rows) - 1,
-                                  fmt::format(", one of the grid's {} rows", rows));
-    return at(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
-  });
+  add_grid_links(r, g, t, shape, body.body.mass, scene.precision);
+  g.pins([&](const toml::node& n, const std::string& key) { return grid_pin(r, shape, n, key); });
 }
 
 }  // namespace
