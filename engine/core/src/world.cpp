@@ -26,21 +26,30 @@ detail::AnyKernel make_kernel(Precision p, const WorldSettings& s) {
   if (p == Precision::f32) return detail::WorldKernel<float>(s);
   return detail::WorldKernel<double>(s);
 }
+
+/// A deep copy of *from into `to` (empty when from is): into the state `to` holds when it holds
+/// one, so the kernel's copy-assignment keeps the vectors' storage.
+template <class T>
+void copy_into(std::unique_ptr<T>& to, const std::unique_ptr<T>& from) {
+  if (!from) {
+    to.reset();
+  } else if (to) {
+    *to = *from;
+  } else {
+    to = std::make_unique<T>(*from);
+  }
+}
 }  // namespace
 
 World::World(Precision precision, const WorldSettings& settings)
     : state_(new detail::WorldState{
           make_kernel(precision, settings), {}, Random(settings.seed), {}}) {}
 
-World::World(const World& other) : state_(new detail::WorldState(*other.state_)) {}
+World::World(const World& other) {
+  copy_into(state_, other.state_);
+}
 World& World::operator=(const World& other) {
-  if (this != &other) {
-    if (state_) {
-      *state_ = *other.state_;  // the kernel's copy-assignment: vectors keep their storage
-    } else {
-      state_.reset(new detail::WorldState(*other.state_));
-    }
-  }
+  if (this != &other) copy_into(state_, other.state_);
   return *this;
 }
 World::World(World&& other) noexcept = default;
@@ -233,17 +242,11 @@ void World::link_ends(std::span<std::uint32_t> a, std::span<std::uint32_t> b) co
 }
 
 WorldSnapshot::WorldSnapshot() = default;
-WorldSnapshot::WorldSnapshot(const WorldSnapshot& other)
-    : state_(other.state_ ? new detail::SnapshotState(*other.state_) : nullptr) {}
+WorldSnapshot::WorldSnapshot(const WorldSnapshot& other) {
+  copy_into(state_, other.state_);
+}
 WorldSnapshot& WorldSnapshot::operator=(const WorldSnapshot& other) {
-  if (this == &other) return *this;
-  if (!other.state_) {
-    state_.reset();
-  } else if (state_) {
-    *state_ = *other.state_;
-  } else {
-    state_.reset(new detail::SnapshotState(*other.state_));
-  }
+  if (this != &other) copy_into(state_, other.state_);
   return *this;
 }
 WorldSnapshot::WorldSnapshot(WorldSnapshot&& other) noexcept = default;
