@@ -11,16 +11,10 @@
 
 #include "fixstep/core/defined_bodies.hpp"
 #include "stability_internal.hpp"
+#include "stability_verdict.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
-
-namespace {
-constexpr double tolerance = detail::stability_tolerance;
-constexpr double margin = detail::stability_margin;
-using detail::scan_from;
-using detail::scan_to;
-}  // namespace
 
 double amplification(Integrator integrator, double omega, double gamma, double h) {
   detail::WorldKernel<double> w(
@@ -38,15 +32,7 @@ double amplification(Integrator integrator, double omega, double gamma, double h
   unit({1.0, 0.0}, {});  // first column of M: the step applied to (x, v) = (1, 0)
   unit({}, {1.0, 0.0});  // second column: (0, 1)
   w.step();
-  const double a = w.x()[0], b = w.x()[1], c = w.vx()[0], d = w.vx()[1];
-  // Eigenvalues of [[a, b], [c, d]]: tr/2 ± sqrt(disc) with disc = tr²/4 - det, written as
-  // ((a - d)/2)² + bc, which does not cancel when both eigenvalues are near 1 (drag: 1 and
-  // 1 - γh). A complex pair has |λ|² = det exactly.
-  const double half_trace = 0.5 * (a + d), det = a * d - b * c;
-  const double disc = 0.25 * (a - d) * (a - d) + b * c;
-  if (disc < 0.0) return std::sqrt(det);
-  const double root = std::sqrt(disc);
-  return std::max(std::abs(half_trace + root), std::abs(half_trace - root));
+  return detail::spectral_radius(w.x()[0], w.x()[1], w.vx()[0], w.vx()[1]);
 }
 
 double max_stable_step(Integrator integrator, double omega, double gamma) {
@@ -57,40 +43,67 @@ double max_stable_step(Integrator integrator, double omega, double gamma) {
   const auto key = std::make_tuple(integrator, omega, gamma);
   if (auto it = cache.find(key); it != cache.end()) return it->second;
 
-  // Scan the dimensionless step s = rate·h (rate = ω, or γ without spring), then bisect.
+  // The dimensionless step s = rate·h (rate = ω, or γ without spring).
   const double rate = omega > 0.0 ? omega : gamma;
-  auto stable = [&](double s) {
+  const double result = detail::largest_stable_step(rate, [&](double s) {
     // A rate so small that s / rate overflows (γ = 1e-310 1/s: a subnormal drag, or a drag
     // over a huge mass) puts the bound beyond every double: each step is stable. (Before,
     // World refused the infinite step and the scene got "dt must be finite (got inf)".)
     const double h = s / rate;
-    return !std::isfinite(h) || amplification(integrator, omega, gamma, h) <= 1.0 + tolerance;
-  };
-  double result;
-  double lo = scan_from;
-  if (!stable(lo)) {
-    result = 0.0;
-  } else {
-    double hi = lo;
-    while (hi < scan_to && stable(hi)) lo = hi, hi *= 1.25;
-    if (hi >= scan_to) {
-      result = std::numeric_limits<double>::infinity();
-    } else {
-      for (int i = 0; i < 80 && hi - lo > 1e-12 * hi; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (stable(mid) ? lo : hi) = mid;
-      }
-      result = lo / rate;
-    }
-  }
+    return !std::isfinite(h) ||
+           amplification(integrator, omega, gamma, h) <= 1.0 + detail::stability_tolerance;
+  });
   cache.emplace(key, result);
   return result;
 }
 
+namespace {
+
+/// The finding for a body whose k/m or (b + c)/m overflows a double: no step of any
+/// integrator can follow it.
+void judge_out_of_range(const BodyDef& def, BodyStability& r) {
+  const double m = def.body.mass;
+  r.verdict = Stability::unstable;
+  r.radius = std::numeric_limits<double>::infinity();
+  r.message = fmt::format(
+      "body '{}' has k/m = {:g} 1/s² and (damping + drag)/m = {:g} 1/s (mass {:g} kg): "
+      "beyond the range of a double, so no integrator and no step can follow it",
+      def.name, (def.spring ? def.spring->stiffness : 0.0) / m, r.gamma, m);
+}
+
+/// check_stability for one dynamic body with a spring or damping (its ω and γ already in r).
+void judge_body(const BodyDef& def, Integrator integrator, double dt, int substeps,
+                BodyStability& r) {
+  r.h = dt / substeps;
+  if (!std::isfinite(r.omega * r.omega) || !std::isfinite(r.gamma)) {
+    judge_out_of_range(def, r);
+    return;
+  }
+  r.max_step = max_stable_step(integrator, r.omega, r.gamma);
+  r.radius = amplification(integrator, r.omega, r.gamma, r.h);
+  const bool spring = r.omega > 0.0;
+  detail::GuardFinding f{.subject = fmt::format("body '{}'", def.name),
+                         .method = integrator_name(integrator),
+                         .dt = dt,
+                         .substeps = substeps,
+                         .h = r.h,
+                         .max_step = r.max_step,
+                         .radius = r.radius,
+                         .step_name = spring ? "ω·h" : "γ·h",
+                         .rate = spring ? r.omega : r.gamma,
+                         .named_max_step = r.max_step,
+                         .rates = {{{"ω", r.omega, "rad/s"}, {"γ", r.gamma, "1/s"}, {}}}};
+  detail::Judgement j = detail::judge(f, [&](double h) {
+    return amplification(integrator, r.omega, r.gamma, h) > 1.0 + detail::stability_tolerance;
+  });
+  r.verdict = j.verdict, r.min_substeps = j.min_substeps, r.message = std::move(j.message);
+}
+
+}  // namespace
+
 std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Integrator integrator,
                                            double dt, int substeps) {
   std::vector<BodyStability> out;
-  const std::string_view method = integrator_name(integrator);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const BodyDef& def = bodies[i];
     if (def.type != BodyType::dynamic) continue;  // not integrated: nothing to judge
@@ -101,54 +114,7 @@ std::vector<BodyStability> check_stability(std::span<const BodyDef> bodies, Inte
     r.gamma =
         ((def.spring ? def.spring->damping : 0.0) + (def.drag ? def.drag->coefficient : 0.0)) / m;
     if (r.omega == 0.0 && r.gamma == 0.0) continue;
-    r.h = dt / substeps;
-    if (!std::isfinite(r.omega * r.omega) || !std::isfinite(r.gamma)) {
-      // k/m or (b + c)/m overflows a double: no step of any integrator can follow it.
-      r.verdict = Stability::unstable;
-      r.radius = std::numeric_limits<double>::infinity();
-      r.message = fmt::format(
-          "body '{}' has k/m = {:g} 1/s² and (damping + drag)/m = {:g} 1/s (mass {:g} kg): "
-          "beyond the range of a double, so no integrator and no step can follow it",
-          def.name, (def.spring ? def.spring->stiffness : 0.0) / m, r.gamma, m);
-      out.push_back(std::move(r));
-      continue;
-    }
-    r.max_step = max_stable_step(integrator, r.omega, r.gamma);
-    r.radius = amplification(integrator, r.omega, r.gamma, r.h);
-    const bool spring = r.omega > 0.0;
-    const double rate = spring ? r.omega : r.gamma;
-    const char* what = spring ? "ω·h" : "γ·h";
-    const std::string who = fmt::format("body '{}'", def.name);
-    if (r.radius > 1.0 + tolerance) {
-      r.verdict = Stability::unstable;
-      if (r.max_step > 0.0) {
-        r.min_substeps = static_cast<int>(std::min(std::ceil(dt / r.max_step), 1e9));
-        while (r.min_substeps < 1000000000 &&
-               amplification(integrator, r.omega, r.gamma, dt / r.min_substeps) > 1.0 + tolerance) {
-          ++r.min_substeps;
-        }
-        // The rates that are not zero, and substeps only when there are several.
-        std::string rates;
-        if (r.omega > 0.0) rates += fmt::format("ω = {:.4g} rad/s, ", r.omega);
-        if (r.gamma > 0.0) rates += fmt::format("γ = {:.4g} 1/s, ", r.gamma);
-        r.message = fmt::format(
-            "{} is unstable with {} at dt = {:g} s{}: {} = {:.4g} exceeds the stability bound "
-            "{:.4g} ({}growth {:.6g}x per step)",
-            who, method, dt,
-            substeps > 1 ? fmt::format(" and substeps = {}", substeps) : std::string(), what,
-            rate * r.h, rate * r.max_step, rates, r.radius);
-      } else {
-        r.message = fmt::format(
-            "{} is unstable with {} at every dt: its energy grows each step ({} = {:.4g}, growth "
-            "{:.6g}x per step)",
-            who, method, what, rate * r.h, r.radius);
-      }
-    } else if (r.h > margin * r.max_step) {
-      r.verdict = Stability::near_limit;
-      r.message =
-          fmt::format("{} is within 10 % of {}'s stability bound: {} = {:.4g}, bound {:.4g}", who,
-                      method, what, rate * r.h, rate * r.max_step);
-    }
+    judge_body(def, integrator, dt, substeps, r);
     out.push_back(std::move(r));
   }
   return out;
@@ -200,13 +166,6 @@ std::optional<NetworkStability> check_linked_stability(std::span<const BodyDef> 
 }
 
 namespace {
-/// "; stable from substeps = N (dt <= H s)" when a substep count fixes the step, else "".
-std::string remedy(int min_substeps, double max_step, int substeps) {
-  if (min_substeps <= 0) return {};
-  return fmt::format("; stable from substeps = {} (dt <= {:.4g} s)", min_substeps,
-                     max_step * substeps);
-}
-
 /// "body[I]" for the definition's body I, else "body S:G" (its handle's slot and generation).
 std::string body_label(Entity e, std::size_t defined) {
   if (const auto i = fixstep::defined_index(e, defined)) return fmt::format("body[{}]", *i);
@@ -270,7 +229,7 @@ std::string explain_fault(std::span<const BodyDef> bodies, std::span<const LinkD
         *check_linked_stability(bodies, links, settings.integrator, dt, substeps);
     if (net.verdict == Stability::unstable) {
       return fmt::format("{}. Likely cause: {}{}", head, net.message,
-                         remedy(net.min_substeps, net.max_step, substeps));
+                         detail::stable_from(net.min_substeps, net.max_step, substeps));
     }
     return fmt::format(
         "{}. Likely cause: the body is in a network of {} bodies and {} spring{} within {}'s "
@@ -285,7 +244,7 @@ std::string explain_fault(std::span<const BodyDef> bodies, std::span<const LinkD
   if (!own.empty() && own.front().verdict == Stability::unstable) {
     const BodyStability& r = own.front();
     return fmt::format("{}. Likely cause: {}{}", head, r.message,
-                       remedy(r.min_substeps, r.max_step, substeps));
+                       detail::stable_from(r.min_substeps, r.max_step, substeps));
   }
   const BodyDef& d = bodies[i];
   return fmt::format(

@@ -30,14 +30,12 @@
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/work_progress.hpp"
 #include "stability_internal.hpp"
+#include "stability_verdict.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
 
-using detail::scan_from;
-using detail::scan_to;
-using detail::stability_margin;
 using detail::stability_tolerance;
 constexpr double unbounded = std::numeric_limits<double>::infinity();
 
@@ -147,15 +145,6 @@ bool strang(Integrator i) {
   return i == Integrator::velocity_verlet || i == Integrator::forest_ruth;
 }
 
-/// Spectral radius of [[a, b], [c, d]] (as amplification()).
-double spectral_radius(double a, double b, double c, double d) {
-  const double half_trace = 0.5 * (a + d), det = a * d - b * c;
-  const double disc = 0.25 * (a - d) * (a - d) + b * c;
-  if (disc < 0.0) return std::sqrt(det);
-  const double root = std::sqrt(disc);
-  return std::max(std::abs(half_trace + root), std::abs(half_trace - root));
-}
-
 /// λ_max(M⁻¹C)·h up to which velocity Verlet and Forest–Ruth keep a damped network bounded
 /// with its links' flows swept by colours (link_damping.hpp). Each flow is exact and
 /// contracts, but sweeps and drifts alternate, and a network is not the two-body pair
@@ -176,20 +165,10 @@ double mode_max_step(Integrator integrator, double omega, double gamma, bool dam
   }
   if (omega == 0.0) return swept_damping_bound(integrator) / gamma;  // the damping mode
   const double rate = omega > 0.0 ? omega : gamma;
-  auto stable = [&](double s) {
+  return detail::largest_stable_step(rate, [&](double s) {
     return network_amplification(integrator, omega, gamma, s / rate, true) <=
            1.0 + stability_tolerance;
-  };
-  double lo = scan_from;
-  if (!stable(lo)) return 0.0;
-  double hi = lo;
-  while (hi < scan_to && stable(hi)) lo = hi, hi *= 1.25;
-  if (hi >= scan_to) return unbounded;
-  for (int i = 0; i < 80 && hi - lo > 1e-12 * hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (stable(mid) ? lo : hi) = mid;
-  }
-  return lo / rate;
+  });
 }
 
 /// The body with the largest displacement |M^-½ v| in the unit vector v.
@@ -201,6 +180,230 @@ std::size_t largest_body(const Operator& op, const std::vector<double>& v) {
     if (s > size) size = s, best = i;
   }
   return best;
+}
+
+/// "network of 3 bodies and 2 springs": what the network's messages are about.
+std::string network_subject(std::size_t bodies, std::size_t links) {
+  return fmt::format("network of {} bod{} and {} spring{}", bodies, bodies == 1 ? "y" : "ies",
+                     links, links == 1 ? "" : "s");
+}
+
+/// dt and substeps as the network guard takes them, or std::invalid_argument.
+void check_step(double dt, int substeps) {
+  if (!(std::isfinite(dt) && dt > 0.0)) {
+    throw std::invalid_argument(
+        fmt::format("network stability: dt must be finite and > 0 (got {})", dt));
+  }
+  if (substeps < 1) {
+    throw std::invalid_argument(
+        fmt::format("network stability: substeps must be >= 1 (got {})", substeps));
+  }
+}
+
+/// A network's stiffness and damping operators and what the guard reads off its parts.
+struct Assembly {
+  explicit Assembly(std::span<const fixstep::IndexLink> links)
+      : k_op{links, {}, {}, {}}, c_op{links, {}, {}, {}} {}
+  Operator k_op, c_op;
+  bool damped_links = false;  ///< some link that moves a body has b > 0
+  bool damped = false;        ///< some body or such link has damping
+  // Each spring's and damper's coefficient per mass of its lighter end (1/s², 1/s): the
+  // entries of M^-½ K M^-½ and M^-½ C M^-½ are below them, and their sums bound λ_max.
+  std::vector<double> per_mass;
+  std::optional<std::size_t> stiffest_link, strongest_damper;  ///< NetworkStability's
+};
+
+/// The bodies' diagonal blocks of K and C and their 1/sqrt(m); throws for a dynamic body's
+/// mass not finite and > 0.
+void add_bodies(std::span<const BodyDef> bodies, Assembly& as) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodyDef& d = bodies[i];
+    if (d.type != BodyType::dynamic) {  // an immovable anchor: 1/m = 0, nothing of its own
+      as.k_op.scale.push_back(0.0);
+      as.k_op.body.emplace_back();
+      as.c_op.body.emplace_back();
+      continue;
+    }
+    if (!(std::isfinite(d.body.mass) && d.body.mass > 0.0)) {
+      throw std::invalid_argument(
+          fmt::format("network stability: body[{}] '{}': mass must be finite and > 0 (got {})", i,
+                      d.name, d.body.mass));
+    }
+    as.k_op.scale.push_back(1.0 / std::sqrt(d.body.mass));
+    const double bc = (d.spring ? d.spring->damping : 0.0) + (d.drag ? d.drag->coefficient : 0.0);
+    as.k_op.body.push_back(d.spring ? stiffness_block(d.spring->stiffness, d.spring->rest_length,
+                                                      {d.body.position.x - d.spring->anchor.x,
+                                                       d.body.position.y - d.spring->anchor.y})
+                                    : Sym2{});
+    as.c_op.body.push_back({bc, 0.0, bc});
+    as.damped = as.damped || bc > 0.0;
+    as.per_mass.push_back((d.spring ? d.spring->stiffness : 0.0) / d.body.mass);
+    as.per_mass.push_back(bc / d.body.mass);
+  }
+  as.c_op.scale = as.k_op.scale;
+}
+
+/// The links' blocks of K and C, the stiffest link and the strongest damper; throws for a
+/// link end not among the bodies or both ends on one body.
+void add_links(std::span<const BodyDef> bodies, std::span<const fixstep::IndexLink> links,
+               Assembly& as) {
+  const std::size_t n = bodies.size();
+  double stiffest = 0.0, strongest = 0.0;
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    const fixstep::IndexLink& link = links[l];
+    if (link.body_a >= n || link.body_b >= n || link.body_a == link.body_b) {
+      throw std::invalid_argument(
+          fmt::format("network stability: spring[{}] joins bodies {} and {} of {}", l, link.body_a,
+                      link.body_b, n));
+    }
+    const Body &a = bodies[link.body_a].body, &b = bodies[link.body_b].body;
+    const Vec2 d{a.position.x - b.position.x, a.position.y - b.position.y};
+    const LinkSpring& s = link.spring;
+    as.k_op.link.push_back(stiffness_block(s.stiffness, s.rest_length, d));
+    as.c_op.link.push_back(link_damping_block(s.damping, s.rest_length, d));
+    // The masses that move: a static or kinematic end is an anchor (infinite mass), so the
+    // link acts on the other end's mass alone; between two anchors it moves nothing.
+    const bool move_a = bodies[link.body_a].type == BodyType::dynamic,
+               move_b = bodies[link.body_b].type == BodyType::dynamic;
+    if (!move_a && !move_b) continue;
+    as.damped_links = as.damped_links || s.damping > 0.0;
+    const double lighter = !move_a ? b.mass : !move_b ? a.mass : std::min(a.mass, b.mass);
+    as.per_mass.push_back(s.stiffness / lighter);
+    as.per_mass.push_back(s.damping / lighter);
+    const double mu = move_a && move_b ? reduced_mass(a.mass, b.mass) : lighter;
+    if (s.stiffness > 0.0 && s.stiffness / mu > stiffest)
+      stiffest = s.stiffness / mu, as.stiffest_link = l;
+    if (s.damping > 0.0 && s.damping / mu > strongest)
+      strongest = s.damping / mu, as.strongest_damper = l;
+  }
+  as.damped = as.damped || as.damped_links;
+}
+
+/// The network's top stiffness mode and, when damped, its top damping mode: power iteration
+/// on both operators (none when a coefficient per mass is beyond ~1e300, where the iteration
+/// itself would overflow, and inf - inf trap in Debug).
+struct Spectrum {
+  bool huge = false;
+  Eigenpair top, damp;
+  double gamma_raw = 0.0;  ///< the top mode's Rayleigh quotient of M^-½ C M^-½, 1/s
+};
+
+/// Spectrum of the assembly, with omega_max, omega_error, iterations, gamma, damping_rate and
+/// fastest_body (for the top mode) set in r.
+Spectrum find_spectrum(const Assembly& as, NetworkStability& r) {
+  Spectrum sp;
+  sp.huge = std::any_of(as.per_mass.begin(), as.per_mass.end(),
+                        [](double v) { return !(v <= 1e300 / 4.0); });
+  if (!sp.huge) sp.top = top_eigenpair(as.k_op);
+  // (std::max passes NaN on as 0: the overflow test looks at the raw values.)
+  r.omega_max = std::sqrt(std::max(0.0, sp.top.value));
+  r.omega_error = sp.top.error < 1.0 ? 1.0 / std::sqrt(1.0 - sp.top.error) - 1.0 : unbounded;
+  r.iterations = sp.top.iterations;
+  if (!sp.huge) r.fastest_body = fixstep::defined_entity(largest_body(as.k_op, sp.top.vector));
+  if (as.damped && !sp.huge) {
+    const std::size_t dim = sp.top.vector.size();
+    std::vector<double> y(dim), z(dim);
+    as.c_op.apply(sp.top.vector, y, z);
+    sp.gamma_raw = inner(sp.top.vector, y);
+    r.gamma = std::max(0.0, sp.gamma_raw);
+    sp.damp = top_eigenpair(as.c_op);
+    r.damping_rate = std::max(0.0, sp.damp.value);
+  }
+  return sp;
+}
+
+/// Whether some rate of the spectrum overflowed a double.
+bool overflowed(const Spectrum& sp, const NetworkStability& r) {
+  return sp.huge || !std::isfinite(sp.top.value) || !std::isfinite(r.omega_max * r.omega_max) ||
+         !std::isfinite(sp.gamma_raw) || !std::isfinite(sp.damp.value);
+}
+
+/// The two test modes of a network as World steps it: the fastest (ω_max, γ) and the most
+/// damped (0, λ_max(M⁻¹C)), those whose rate is not zero.
+struct TestModes {
+  struct Mode {
+    double omega, gamma, max_step, radius;
+  };
+  Integrator integrator;
+  bool damped_links;
+  std::vector<Mode> modes;
+
+  /// Spectral radius of one step h (s) on mode m. Beyond the swept damping bound the growth
+  /// is a network's, not the pair's: reported as unbounded rather than the pair's contraction.
+  [[nodiscard]] double radius_at(const Mode& m, double h) const {
+    if (m.omega == 0.0 && damped_links && strang(integrator) &&
+        h * m.gamma > swept_damping_bound(integrator)) {
+      return unbounded;
+    }
+    return network_amplification(integrator, m.omega, m.gamma, h, damped_links);
+  }
+  /// Some mode grows at step h (s).
+  [[nodiscard]] bool unstable(double h) const {
+    return std::any_of(modes.begin(), modes.end(),
+                       [&](const Mode& m) { return radius_at(m, h) > 1.0 + stability_tolerance; });
+  }
+  /// Each mode's largest stable step and radius at h (s); the smallest step and largest
+  /// radius of them all into r.
+  void measure(double h, NetworkStability& r) {
+    for (Mode& m : modes) {
+      m.max_step = mode_max_step(integrator, m.omega, m.gamma, damped_links);
+      m.radius = radius_at(m, h);
+      r.max_step = std::min(r.max_step, m.max_step);
+      r.radius = std::max(r.radius, m.radius);
+    }
+  }
+  /// The mode the message names: an unstable one before a stable one, then the lower bound.
+  [[nodiscard]] const Mode& binding() const {
+    auto grows = [](const Mode& m) { return m.radius > 1.0 + stability_tolerance; };
+    std::size_t bind = 0;
+    for (std::size_t i = 1; i < modes.size(); ++i) {
+      const bool gi = grows(modes[i]), gb = grows(modes[bind]);
+      if (gi != gb ? gi : modes[i].max_step < modes[bind].max_step) bind = i;
+    }
+    return modes[bind];
+  }
+};
+
+/// "stiffest link 'a'–'b', k = 100 N/m, fastest body 'c'" (with the damping mode binding:
+/// "strongest damper: link ..., b = ... N·s/m, ..."), as the network's message names them.
+std::string name_culprits(std::span<const BodyDef> bodies,
+                          std::span<const fixstep::IndexLink> links, const NetworkStability& r) {
+  std::string naming;
+  const std::optional<std::size_t> link = r.damping_bound ? r.strongest_damper : r.stiffest_link;
+  if (link) {
+    const fixstep::IndexLink& l = links[*link];
+    naming = fmt::format(
+        "{} link '{}'–'{}', {} = {:g} {}, ", r.damping_bound ? "strongest damper:" : "stiffest",
+        bodies[l.body_a].name, bodies[l.body_b].name, r.damping_bound ? "b" : "k",
+        r.damping_bound ? l.spring.damping : l.spring.stiffness, r.damping_bound ? "N·s/m" : "N/m");
+  }
+  return naming + fmt::format("fastest body '{}'", bodies[r.fastest_body.slot()].name);
+}
+
+/// The verdict on a network whose mode b binds, with its message (stability_verdict.hpp).
+void judge_network(std::span<const BodyDef> bodies, std::span<const fixstep::IndexLink> links,
+                   Integrator integrator, double dt, int substeps, const TestModes& tm,
+                   const TestModes::Mode& b, NetworkStability& r) {
+  const bool swept = r.damping_bound && tm.damped_links && strang(integrator);
+  detail::GuardFinding f{
+      .subject = network_subject(bodies.size(), links.size()),
+      .method = integrator_name(integrator),
+      .dt = dt,
+      .substeps = substeps,
+      .h = r.h,
+      .max_step = r.max_step,
+      .radius = r.radius,
+      .step_name = r.damping_bound ? "λ_max(M⁻¹C)·h" : "ω_max·h",
+      .rate = r.damping_bound ? b.gamma : b.omega,
+      .named_max_step = b.max_step,
+      .bound_name = swept ? "bound of its swept link damping" : "stability bound",
+      .rates = {{{"ω_max", r.omega_max, "rad/s"},
+                 {"γ", r.gamma, "1/s"},
+                 {"λ_max(M⁻¹C)", r.damping_rate, "1/s"}}},
+      .naming = name_culprits(bodies, links, r),
+      .infinite_diverges = true};
+  detail::Judgement j = detail::judge(f, [&](double h) { return tm.unstable(h); });
+  r.verdict = j.verdict, r.min_substeps = j.min_substeps, r.message = std::move(j.message);
 }
 
 }  // namespace
@@ -223,8 +426,8 @@ double network_amplification(Integrator integrator, double omega, double gamma, 
   pair(1.0, 0.0);  // first column of the step's matrix: (r, r') = (1, 0)
   pair(0.0, 1.0);  // second column: (0, 1)
   w.step();
-  return spectral_radius(w.x()[0] - w.x()[1], w.x()[2] - w.x()[3], w.vx()[0] - w.vx()[1],
-                         w.vx()[2] - w.vx()[3]);
+  return detail::spectral_radius(w.x()[0] - w.x()[1], w.x()[2] - w.x()[3], w.vx()[0] - w.vx()[1],
+                                 w.vx()[2] - w.vx()[3]);
 }
 
 NetworkStability check_network_stability(std::span<const BodyDef> bodies,
@@ -237,195 +440,37 @@ NetworkStability check_network_stability(std::span<const BodyDef> bodies,
 NetworkStability detail::network_stability(std::span<const BodyDef> bodies,
                                            std::span<const fixstep::IndexLink> links,
                                            Integrator integrator, double dt, int substeps) {
-  const std::size_t n = bodies.size();
-  if (!(std::isfinite(dt) && dt > 0.0)) {
-    throw std::invalid_argument(
-        fmt::format("network stability: dt must be finite and > 0 (got {})", dt));
-  }
-  if (substeps < 1) {
-    throw std::invalid_argument(
-        fmt::format("network stability: substeps must be >= 1 (got {})", substeps));
-  }
-  Operator k_op{links, {}, {}, {}}, c_op{links, {}, {}, {}};
-  bool damped_links = false, damped = false;
-  // Each spring's and damper's coefficient per mass of its lighter end (1/s², 1/s): the
-  // entries of M^-½ K M^-½ and M^-½ C M^-½ are below them, and their sums bound λ_max.
-  std::vector<double> per_mass;
-  for (std::size_t i = 0; i < n; ++i) {
-    const BodyDef& d = bodies[i];
-    if (d.type != BodyType::dynamic) {  // an immovable anchor: 1/m = 0, nothing of its own
-      k_op.scale.push_back(0.0);
-      k_op.body.emplace_back();
-      c_op.body.emplace_back();
-      continue;
-    }
-    if (!(std::isfinite(d.body.mass) && d.body.mass > 0.0)) {
-      throw std::invalid_argument(
-          fmt::format("network stability: body[{}] '{}': mass must be finite and > 0 (got {})", i,
-                      d.name, d.body.mass));
-    }
-    k_op.scale.push_back(1.0 / std::sqrt(d.body.mass));
-    const double bc = (d.spring ? d.spring->damping : 0.0) + (d.drag ? d.drag->coefficient : 0.0);
-    k_op.body.push_back(d.spring ? stiffness_block(d.spring->stiffness, d.spring->rest_length,
-                                                   {d.body.position.x - d.spring->anchor.x,
-                                                    d.body.position.y - d.spring->anchor.y})
-                                 : Sym2{});
-    c_op.body.push_back({bc, 0.0, bc});
-    damped = damped || bc > 0.0;
-    per_mass.push_back((d.spring ? d.spring->stiffness : 0.0) / d.body.mass);
-    per_mass.push_back(bc / d.body.mass);
-  }
-  c_op.scale = k_op.scale;
+  check_step(dt, substeps);
+  Assembly as(links);
+  add_bodies(bodies, as);
   NetworkStability r;
-  r.bodies = n, r.springs = links.size(), r.h = dt / substeps;
+  r.bodies = bodies.size(), r.springs = links.size(), r.h = dt / substeps;
   r.fastest_body = fixstep::defined_entity(0);
-  double stiffest = 0.0, strongest = 0.0;
-  for (std::size_t l = 0; l < links.size(); ++l) {
-    const fixstep::IndexLink& link = links[l];
-    if (link.body_a >= n || link.body_b >= n || link.body_a == link.body_b) {
-      throw std::invalid_argument(
-          fmt::format("network stability: spring[{}] joins bodies {} and {} of {}", l, link.body_a,
-                      link.body_b, n));
-    }
-    const Body &a = bodies[link.body_a].body, &b = bodies[link.body_b].body;
-    const Vec2 d{a.position.x - b.position.x, a.position.y - b.position.y};
-    const LinkSpring& s = link.spring;
-    k_op.link.push_back(stiffness_block(s.stiffness, s.rest_length, d));
-    c_op.link.push_back(link_damping_block(s.damping, s.rest_length, d));
-    // The masses that move: a static or kinematic end is an anchor (infinite mass), so the
-    // link acts on the other end's mass alone; between two anchors it moves nothing.
-    const bool move_a = bodies[link.body_a].type == BodyType::dynamic,
-               move_b = bodies[link.body_b].type == BodyType::dynamic;
-    if (!move_a && !move_b) continue;
-    damped_links = damped_links || s.damping > 0.0;
-    const double lighter = !move_a ? b.mass : !move_b ? a.mass : std::min(a.mass, b.mass);
-    per_mass.push_back(s.stiffness / lighter);
-    per_mass.push_back(s.damping / lighter);
-    const double mu = move_a && move_b ? reduced_mass(a.mass, b.mass) : lighter;
-    if (s.stiffness > 0.0 && s.stiffness / mu > stiffest)
-      stiffest = s.stiffness / mu, r.stiffest_link = l;
-    if (s.damping > 0.0 && s.damping / mu > strongest)
-      strongest = s.damping / mu, r.strongest_damper = l;
-  }
-  damped = damped || damped_links;
-
-  const std::string method(integrator_name(integrator));
-  const std::string network =
-      fmt::format("network of {} bod{} and {} spring{}", n, n == 1 ? "y" : "ies", links.size(),
-                  links.size() == 1 ? "" : "s");
-  // Beyond ~1e300 1/s² the iteration itself would overflow (and inf - inf trap in Debug).
-  const bool huge =
-      std::any_of(per_mass.begin(), per_mass.end(), [](double v) { return !(v <= 1e300 / 4.0); });
-  const Eigenpair top = huge ? Eigenpair{} : top_eigenpair(k_op);
-  // (std::max passes NaN on as 0: the overflow test below looks at the raw values.)
-  r.omega_max = std::sqrt(std::max(0.0, top.value));
-  r.omega_error = top.error < 1.0 ? 1.0 / std::sqrt(1.0 - top.error) - 1.0 : unbounded;
-  r.iterations = top.iterations;
-  if (!huge) r.fastest_body = fixstep::defined_entity(largest_body(k_op, top.vector));
-  Eigenpair damp;
-  double gamma_raw = 0.0;
-  if (damped && !huge) {
-    std::vector<double> y(2 * n), z(2 * n);
-    c_op.apply(top.vector, y, z);
-    gamma_raw = inner(top.vector, y);
-    r.gamma = std::max(0.0, gamma_raw);
-    damp = top_eigenpair(c_op);
-    r.damping_rate = std::max(0.0, damp.value);
-  }
-  if (huge || !std::isfinite(top.value) || !std::isfinite(r.omega_max * r.omega_max) ||
-      !std::isfinite(gamma_raw) || !std::isfinite(damp.value)) {
+  add_links(bodies, links, as);
+  r.stiffest_link = as.stiffest_link, r.strongest_damper = as.strongest_damper;
+  const Spectrum sp = find_spectrum(as, r);
+  if (overflowed(sp, r)) {
     r.verdict = Stability::unstable;
     r.radius = unbounded;
     r.message = fmt::format(
         "{} has stiffness or damping per mass beyond the range of a double, so no integrator "
         "and no step can follow it",
-        network);
+        network_subject(r.bodies, r.springs));
     return r;
   }
-  // The two test modes: the fastest (ω_max, γ) and the most damped (0, λ_max(M⁻¹C)).
-  struct Mode {
-    double omega, gamma, max_step, radius;
-  };
-  std::vector<Mode> modes;
-  if (r.omega_max > 0.0) modes.push_back({r.omega_max, r.gamma, 0.0, 0.0});
-  if (r.damping_rate > 0.0) modes.push_back({0.0, r.damping_rate, 0.0, 0.0});
+  TestModes tm{integrator, as.damped_links, {}};
+  if (r.omega_max > 0.0) tm.modes.push_back({r.omega_max, r.gamma, 0.0, 0.0});
+  if (r.damping_rate > 0.0) tm.modes.push_back({0.0, r.damping_rate, 0.0, 0.0});
   r.max_step = unbounded;
   r.radius = 1.0;
-  if (modes.empty()) return r;  // no spring and no damper: every step is stable
-  // Beyond the swept damping bound the growth is a network's, not the pair's: reported as
-  // unbounded (unbounded) rather than the pair's contraction.
-  auto radius_at = [&](const Mode& m, double h) {
-    if (m.omega == 0.0 && damped_links && strang(integrator) &&
-        h * m.gamma > swept_damping_bound(integrator)) {
-      return unbounded;
-    }
-    return network_amplification(integrator, m.omega, m.gamma, h, damped_links);
-  };
-  for (Mode& m : modes) {
-    m.max_step = mode_max_step(integrator, m.omega, m.gamma, damped_links);
-    m.radius = radius_at(m, r.h);
-    r.max_step = std::min(r.max_step, m.max_step);
-    r.radius = std::max(r.radius, m.radius);
-  }
-  // The mode named in the message: an unstable one before a stable one, then the lower bound.
-  auto grows = [](const Mode& m) { return m.radius > 1.0 + stability_tolerance; };
-  std::size_t bind = 0;
-  for (std::size_t i = 1; i < modes.size(); ++i) {
-    const bool gi = grows(modes[i]), gb = grows(modes[bind]);
-    if (gi != gb ? gi : modes[i].max_step < modes[bind].max_step) bind = i;
-  }
-  const Mode& b = modes[bind];
+  if (tm.modes.empty()) return r;  // no spring and no damper: every step is stable
+  tm.measure(r.h, r);
+  const TestModes::Mode& b = tm.binding();
   r.damping_bound = b.omega == 0.0;
-  if (r.damping_bound && damped) {
-    r.fastest_body = fixstep::defined_entity(largest_body(c_op, damp.vector));
+  if (r.damping_bound && as.damped) {
+    r.fastest_body = fixstep::defined_entity(largest_body(as.c_op, sp.damp.vector));
   }
-  const double rate = r.damping_bound ? b.gamma : b.omega;
-  const char* what = r.damping_bound ? "λ_max(M⁻¹C)·h" : "ω_max·h";
-  const bool swept = r.damping_bound && damped_links && strang(integrator);
-  const char* bound_name = swept ? "bound of its swept link damping" : "stability bound";
-  std::string naming;
-  const std::optional<std::size_t> link = r.damping_bound ? r.strongest_damper : r.stiffest_link;
-  if (link) {
-    const fixstep::IndexLink& l = links[*link];
-    naming = fmt::format(
-        "{} link '{}'–'{}', {} = {:g} {}, ", r.damping_bound ? "strongest damper:" : "stiffest",
-        bodies[l.body_a].name, bodies[l.body_b].name, r.damping_bound ? "b" : "k",
-        r.damping_bound ? l.spring.damping : l.spring.stiffness, r.damping_bound ? "N·s/m" : "N/m");
-  }
-  naming += fmt::format("fastest body '{}'", bodies[r.fastest_body.slot()].name);
-  auto unstable = [&](double h) {
-    return std::any_of(modes.begin(), modes.end(),
-                       [&](const Mode& m) { return radius_at(m, h) > 1.0 + stability_tolerance; });
-  };
-  if (r.radius > 1.0 + stability_tolerance) {
-    r.verdict = Stability::unstable;
-    if (r.max_step > 0.0) {
-      r.min_substeps = static_cast<int>(std::clamp(std::ceil(dt / r.max_step), 1.0, 1e9));
-      while (r.min_substeps < 1000000000 && unstable(dt / r.min_substeps)) ++r.min_substeps;
-      // The rates that are not zero, and substeps only when there are several.
-      std::string rates;
-      if (r.omega_max > 0.0) rates += fmt::format("ω_max = {:.4g} rad/s, ", r.omega_max);
-      if (r.gamma > 0.0) rates += fmt::format("γ = {:.4g} 1/s, ", r.gamma);
-      if (r.damping_rate > 0.0) rates += fmt::format("λ_max(M⁻¹C) = {:.4g} 1/s, ", r.damping_rate);
-      r.message = fmt::format(
-          "{} is unstable with {} at dt = {:g} s{}: {} = {:.4g} exceeds the {} {:.4g} ({}; "
-          "{}{})",
-          network, method, dt,
-          substeps > 1 ? fmt::format(" and substeps = {}", substeps) : std::string(), what,
-          rate * r.h, bound_name, rate * b.max_step, naming, rates,
-          std::isinf(r.radius) ? std::string("it diverges beyond it")
-                               : fmt::format("growth {:.6g}x per step", r.radius));
-    } else {
-      r.message = fmt::format(
-          "{} is unstable with {} at every dt: its energy grows each step ({} = {:.4g}, growth "
-          "{:.6g}x per step; {})",
-          network, method, what, rate * r.h, r.radius, naming);
-    }
-  } else if (r.h > stability_margin * r.max_step) {
-    r.verdict = Stability::near_limit;
-    r.message = fmt::format("{} is within 10 % of {}'s {}: {} = {:.4g}, bound {:.4g} ({})", network,
-                            method, bound_name, what, rate * r.h, rate * b.max_step, naming);
-  }
+  judge_network(bodies, links, integrator, dt, substeps, tm, b, r);
   return r;
 }
 
