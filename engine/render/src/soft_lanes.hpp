@@ -1,6 +1,6 @@
 // Pixel arithmetic of the CPU rasteriser (soft_shapes.hpp): llvmpipe's 8-bit blending, and
-// the 4-lane vectors that hold one 2x2 quad of pixels. Lane by lane these are the same IEEE
-// operations as scalar code, so the pixels do not depend on the vector unit (SSE, NEON or
+// the 4-lane vectors that hold one 2x2 quad of pixels (Lanes4). Lane by lane these are the same
+// IEEE operations as scalar code, so the pixels do not depend on the vector unit (SSE, NEON or
 // none). Internal to fixstep::render (not installed).
 #pragma once
 
@@ -35,63 +35,72 @@ inline void blend(std::uint8_t* p, int r, int g, int b, int a) {
 using V4 = float __attribute__((vector_size(16)));
 using V4I = std::int32_t __attribute__((vector_size(16)));
 
-inline V4 splat(float x) {
-  return V4{x, x, x, x};
-}
-/// |x| in every lane: the sign bit cleared (|-0| = +0).
-inline V4 abs4(V4 x) {
-  return V4(V4I(x) & 0x7fffffff);
-}
-/// The larger (smaller) of a and b in every lane, for lanes that are not NaN (the rasteriser's
-/// never are); which zero a tie of -0 and +0 gives may differ, which no 8-bit value it feeds
-/// sees.
-inline V4 max4(V4 a, V4 b) {
+/// The 4-lane vectors of the quad loop (soft_quads.hpp): one 2x2 quad a vector, lanes (row 0,
+/// column 0), (0, 1), (1, 0), (1, 1). The 8-lane ones are in soft_piece_avx2.cpp.
+struct Lanes4 {
+  using V = V4;
+  using VI = V4I;
+  static constexpr int columns = 2;  ///< pixels of each row in a vector
+
+  static V splat(float x) { return V{x, x, x, x}; }
+  /// |x| in every lane: the sign bit cleared (|-0| = +0).
+  static V abs(V x) { return V(VI(x) & 0x7fffffff); }
+  /// The larger (smaller) of a and b in every lane, for lanes that are not NaN (the
+  /// rasteriser's never are); which zero a tie of -0 and +0 gives may differ, which no 8-bit
+  /// value it feeds sees.
+  static V max(V a, V b) {
 #if defined(__SSE__)
-  return _mm_max_ps(a, b);
+    return _mm_max_ps(a, b);
 #elif defined(__aarch64__)
-  return vmaxq_f32(a, b);
+    return vmaxq_f32(a, b);
 #else
-  return a < b ? b : a;
+    return a < b ? b : a;
 #endif
-}
-inline V4 min4(V4 a, V4 b) {
+  }
+  static V min(V a, V b) {
 #if defined(__SSE__)
-  return _mm_min_ps(a, b);
+    return _mm_min_ps(a, b);
 #elif defined(__aarch64__)
-  return vminq_f32(a, b);
+    return vminq_f32(a, b);
 #else
-  return a < b ? a : b;
+    return a < b ? a : b;
 #endif
-}
-inline V4 clamp01(V4 x) {
-  return max4(min4(x, splat(1.0f)), V4{});
-}
-/// Each lane's neighbour in the other column (row) of its quad.
-inline V4 other_column(V4 x) {
-  return __builtin_shufflevector(x, x, 1, 0, 3, 2);
-}
-inline V4 other_row(V4 x) {
-  return __builtin_shufflevector(x, x, 2, 3, 0, 1);
-}
-/// Square roots, correctly rounded in every lane.
-inline V4 sqrt4(V4 x) {
+  }
+  static V clamp01(V x) {
+    return max(min(x, splat(1.0f)), V{});
+  }
+  /// Each lane's neighbour in the other column (row) of its quad.
+  static V other_column(V x) {
+    return __builtin_shufflevector(x, x, 1, 0, 3, 2);
+  }
+  static V other_row(V x) {
+    return __builtin_shufflevector(x, x, 2, 3, 0, 1);
+  }
+  /// Square roots, correctly rounded in every lane.
+  static V sqrt(V x) {
 #if defined(__SSE__)
-  return _mm_sqrt_ps(x);
+    return _mm_sqrt_ps(x);
 #elif defined(__aarch64__)
-  return vsqrtq_f32(x);
+    return vsqrtq_f32(x);
 #else
-  for (int k = 0; k < 4; ++k) x[k] = std::sqrt(x[k]);
-  return x;
+    for (int k = 0; k < 4; ++k) x[k] = std::sqrt(x[k]);
+    return x;
 #endif
-}
-/// 8-bit values of x in [0, 1]: x 255 + 0.5 truncated (round to nearest, as llvmpipe converts
-/// its fragments).
-inline V4I to8(V4 x) {
-  return __builtin_convertvector(x * 255.0f + 0.5f, V4I);
-}
-/// to8() of one value (the vector's arithmetic, so that solid and shaded pixels round alike).
+  }
+  /// 8-bit values of x in [0, 1]: x 255 + 0.5 truncated (round to nearest, as llvmpipe
+  /// converts its fragments).
+  static VI to8(V x) {
+    return __builtin_convertvector(x * 255.0f + 0.5f, VI);
+  }
+  /// blend() over the quad's pixels: lanes 0, 1 over the two pixels from `top`, lanes 2, 3
+  /// over the two from `bottom` (blend_quad()).
+  static void blend(std::uint8_t* top, std::uint8_t* bottom, VI r, VI g, VI b, VI a);
+};
+
+/// Lanes4::to8() of one value (the vector's arithmetic, so that solid and shaded pixels round
+/// alike).
 inline int to8(float x) {
-  return to8(V4{x, x, x, x})[0];
+  return Lanes4::to8(Lanes4::splat(x))[0];
 }
 
 using V4U = std::uint32_t __attribute__((vector_size(16)));
@@ -133,6 +142,10 @@ inline void blend_quad(std::uint8_t* top, std::uint8_t* bottom, V4I r, V4I g, V4
   row[1] = out[1];
   std::memcpy(top, &row[0], 8);
   std::memcpy(bottom, &row[1], 8);
+}
+
+inline void Lanes4::blend(std::uint8_t* top, std::uint8_t* bottom, VI r, VI g, VI b, VI a) {
+  blend_quad(top, bottom, r, g, b, a);
 }
 
 /// blend() of one colour over `count` pixels from p, four at a time.

@@ -1,8 +1,9 @@
 // SoftPiece (soft_piece.hpp): set-up from the corners, each row's span from exact integer edge
 // functions, and the rows drawn: solid pieces a span at a time, the rest a 2x2 quad at a time
 // (one vector lane a pixel), so that the shader's derivatives are the differences llvmpipe
-// takes. Where the CPU has AVX2, shaded pieces are drawn two quads a vector instead
-// (soft_piece_avx2.cpp), with the same pixels.
+// takes. The quads' loop is soft_quads.hpp's, compiled here for 4 lanes (one quad a vector);
+// where the CPU has AVX2, shaded pieces are drawn by its 8-lane copy (two quads a vector,
+// soft_piece_avx2.cpp) instead, with the same pixels.
 #include "soft_piece.hpp"
 
 #include <algorithm>
@@ -11,6 +12,8 @@
 #include <cstdint>
 
 #include "soft_lanes.hpp"
+#define FIXSTEP_QUADS_FN  // the baseline instruction set: no attributes
+#include "soft_quads.hpp"
 
 namespace fixstep::detail {
 
@@ -244,22 +247,7 @@ void SoftPiece::draw_shaded(std::uint8_t* pixels, int width, int first, int last
     return;
   }
 #endif
-  const bool line = is_line(), hole = has_hole();
-  if (line) {
-    if (hole) {
-      flat_color ? draw_quads<true, true, true>(pixels, width, first, last)
-                 : draw_quads<true, true, false>(pixels, width, first, last);
-    } else {
-      flat_color ? draw_quads<true, false, true>(pixels, width, first, last)
-                 : draw_quads<true, false, false>(pixels, width, first, last);
-    }
-  } else if (hole) {
-    flat_color ? draw_quads<false, true, true>(pixels, width, first, last)
-               : draw_quads<false, true, false>(pixels, width, first, last);
-  } else {
-    flat_color ? draw_quads<false, false, true>(pixels, width, first, last)
-               : draw_quads<false, false, false>(pixels, width, first, last);
-  }
+  draw_shaded_lanes<lanes::Lanes4>(*this, pixels, width, first, last);
 }
 
 bool SoftPiece::quad_row(int top, int width, std::uint8_t* pixels, SoftQuadRow& q) const {
@@ -311,70 +299,6 @@ bool SoftPiece::quad_row(int top, int width, std::uint8_t* pixels, SoftQuadRow& 
     }
   }
   return q.x_begin <= q.x_last;
-}
-
-template <bool line, bool hole, bool flat>
-void SoftPiece::draw_quads(std::uint8_t* pixels, int width, int first, int last) const {
-  // A 2x2 quad is one vector of 4 lanes: (row 0, column 0), (0, 1), (1, 0), (1, 1).
-  const V4 column{0.0f, 1.0f, 0.0f, 1.0f}, row{0.0f, 0.0f, 1.0f, 1.0f};
-  const V4 u_step = splat(float(u.dx)), v_step = splat(float(v.dx));
-  SoftQuadRow q;
-  for (int top = first; top <= last; top += 2) {
-    if (!quad_row(top, width, pixels, q)) continue;
-    const V4I lo4{q.lo[0], q.lo[0], q.lo[1], q.lo[1]}, hi4{q.hi[0], q.hi[0], q.hi[1], q.hi[1]};
-    // Values at the centre of pixel (x_start, top), and their steps per px.
-    const V4 u_quad = line ? V4{} : splat(float(at(u, q.cx, q.cy))) + splat(float(u.dy)) * row;
-    const V4 v_quad = splat(float(at(v, q.cx, q.cy))) + splat(float(v.dy)) * row;
-    V4 c_quad[4], c_step[4];
-    for (int ch = 0; ch < 4; ++ch) {
-      if constexpr (flat) {
-        c_quad[ch] = splat(float(color[ch].at));  // its planes are flat: at() is `at`, exactly
-        c_step[ch] = V4{};
-      } else {
-        c_quad[ch] = splat(float(at(color[ch], q.cx, q.cy))) + splat(float(color[ch].dy)) * row;
-        c_step[ch] = splat(float(color[ch].dx));
-      }
-    }
-    // Each lane's column from x_start, a small whole number: stepping it by 2 is exact.
-    V4 s = splat(float(q.x_begin - q.x_start)) + column;
-    for (int x = q.x_begin; x <= q.x_last; x += 2, s += 2.0f) {
-      if (x >= q.skip_from && x < q.skip_to) {
-        x = q.skip_to;
-        s = splat(float(x - q.x_start)) + column;
-      }
-      if (x > q.x_last) break;
-      const V4 vv = v_quad + v_step * s;
-      V4 d;
-      if constexpr (line) {
-        d = abs4(vv);
-      } else {
-        const V4 uu = u_quad + u_step * s;
-        d = sqrt4(uu * uu + vv * vv);
-      }
-      const V4 w = max4(abs4(d - other_column(d)) + abs4(d - other_row(d)), splat(1e-6f));
-      V4 coverage = clamp01((splat(1.0f) - d) / w + splat(0.5f));
-      if constexpr (hole)
-        coverage = max4(coverage - clamp01((splat(fill) - d) / w + splat(0.5f)), V4{});
-      V4 c[4];  // the colour at each lane
-      for (int ch = 0; ch < 4; ++ch) c[ch] = flat ? c_quad[ch] : c_quad[ch] + c_step[ch] * s;
-      const V4 a = c[3] * coverage;
-      const V4I a8 = to8(a), r8 = to8(c[0] * a), g8 = to8(c[1] * a), b8 = to8(c[2] * a);
-      const V4I xs = V4I{x, x + 1, x, x + 1};
-      const V4I drawn = (xs >= lo4) & (xs <= hi4) & (a8 > 0);
-      // A quad with no lane drawn is blended too (a lane of alpha and colour 0 leaves its pixel
-      // exactly as it is): no branch to mispredict.
-      if (x + 1 < width && q.whole) {  // every lane's pixel is in the frame
-        blend_quad(q.rows[0] + std::size_t(x) * 4, q.rows[1] + std::size_t(x) * 4, r8 & drawn,
-                   g8 & drawn, b8 & drawn, a8 & drawn);
-        continue;
-      }
-      for (int lane = 0; lane < 4; ++lane) {  // the last column, or row -1: pixels beyond
-        if (!drawn[lane]) continue;
-        blend(q.rows[lane >> 1] + std::size_t(x + (lane & 1)) * 4, r8[lane], g8[lane], b8[lane],
-              a8[lane]);
-      }
-    }
-  }
 }
 
 }  // namespace fixstep::detail

@@ -105,11 +105,8 @@ struct SoftPiece {
   /// Rows [first, last] of a solid piece of one colour.
   void draw_solid(std::uint8_t* pixels, int width, int first, int last) const;
   /// Rows [first, last] of any piece, `first` the top row of one of the GL framebuffer's 2x2
-  /// quads.
+  /// quads (soft_quads.hpp's loop, in 4 or 8 lanes as soft_wide_lanes() says).
   void draw_shaded(std::uint8_t* pixels, int width, int first, int last) const;
-  /// draw_shaded() for a line's coordinates (u = 0), a hole or not, one colour or not.
-  template <bool line, bool hole, bool flat>
-  void draw_quads(std::uint8_t* pixels, int width, int first, int last) const;
   /// The quads of rows top and top + 1 of a frame `width` px wide: false when none is drawn.
   bool quad_row(int top, int width, std::uint8_t* pixels, SoftQuadRow& row) const;
 };
