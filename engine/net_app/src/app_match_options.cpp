@@ -77,6 +77,111 @@ void check(const MatchOptions& o, bool players_given) {
   if (o.window && !o.bot) throw UsageError("--window needs --bot (without it, the window shows)");
 }
 
+/// Refuses a flag of app::run's other modes (UsageError): a match is played live.
+void refuse_app_only_flags(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    for (const std::string_view flag : app_only_flags) {
+      const std::string_view arg(argv[i]);
+      if (arg == flag || arg.starts_with(std::string(flag) + "=")) {
+        throw UsageError(std::string(flag) +
+                         " is not a match option: a match is played live (--host / --join); "
+                         "replay its recording (--record FILE) afterwards with --replay FILE");
+      }
+    }
+  }
+}
+
+/// The values of the flags that parse_match checks or converts before they go into
+/// MatchOptions, and the options whose presence it asks about.
+struct MatchFlags {
+  std::uint16_t host_port = 0;
+  std::string join, spectate, session = "lockstep", scene;
+  unsigned players = 2;
+  CLI::Option *host_opt = nullptr, *join_opt = nullptr, *spectate_opt = nullptr,
+              *players_opt = nullptr, *delay_opt = nullptr, *rollback_opt = nullptr,
+              *scene_opt = nullptr;
+};
+
+/// --host, --join and --spectate: the peer's role.
+void add_role_options(CLI::App& cli, MatchFlags& f) {
+  f.host_opt = cli.add_option("--host", f.host_port, "host a match on PORT (0: any, printed)")
+                   ->type_name("PORT")
+                   ->check(in_range(0, 65535));
+  f.join_opt = cli.add_option("--join", f.join, "join the match hosted at HOST:PORT")
+                   ->type_name("HOST:PORT");
+  f.spectate_opt =
+      cli.add_option("--spectate", f.spectate, "watch the match hosted at HOST:PORT (no input)")
+          ->type_name("HOST:PORT");
+}
+
+/// A CLI11 check of --players: a whole number in 2-most, the game's seats.
+CLI::Validator players_check(std::uint64_t most) {
+  return CLI::Validator(
+      [most](std::string& text) -> std::string {
+        if (whole(text, 2, most)) return {};
+        if (whole(text, most + 1, 255)) {
+          return "this game seats at most " + std::to_string(most) +
+                 " players (its Settings::max_players), got '" + text + "'";
+        }
+        return "wants a whole number in 2-" + std::to_string(most) + ", got '" + text + "'";
+      },
+      "2-" + std::to_string(most));
+}
+
+/// --players, --session, --bind, --input-delay, --max-rollback and --ticks: how the match is
+/// played; a game seats at most max_players (clamped to 2 .. net::max_players).
+void add_session_options(CLI::App& cli, MatchFlags& f, MatchOptions& o, int max_players) {
+  const auto most =
+      static_cast<std::uint64_t>(std::clamp(max_players, 2, static_cast<int>(net::max_players)));
+  f.players_opt =
+      cli.add_option("--players", f.players,
+                     "a host: players in the match (2-" + std::to_string(most) + ", default 2)")
+          ->type_name("N")
+          ->check(players_check(most));
+  cli.add_option("--session", f.session, "lockstep (default) or rollback")
+      ->type_name("KIND")
+      ->check(CLI::IsMember({"lockstep", "rollback"}));
+  cli.add_option("--bind", o.bind, "the local IPv4 address (default 127.0.0.1)")->type_name("ADDR");
+  f.delay_opt = cli.add_option("--input-delay", o.input_delay,
+                               "ticks between an input and its tick (0-60; default 6, rollback 2)")
+                    ->type_name("N")
+                    ->check(in_range(0, 60));
+  f.rollback_opt =
+      cli.add_option("--max-rollback", o.max_rollback, "rollback: most ticks ahead (1-60)")
+          ->type_name("N")
+          ->check(in_range(1, 60));
+  cli.add_option("--ticks", o.ticks, "the match ends after N ticks")
+      ->type_name("N")
+      ->check(in_range(1, 100000000));
+}
+
+/// --scene, --record, --last-frame, --bot and --window: the level, the outputs and who plays.
+void add_output_options(CLI::App& cli, MatchFlags& f, MatchOptions& o) {
+  f.scene_opt = cli.add_option("--scene", f.scene, "play the level in FILE")->type_name("FILE");
+  cli.add_option("--record", o.record, "write the match's recording to FILE")->type_name("FILE");
+  cli.add_option("--last-frame", o.last_frame, "write the last frame as PNG")->type_name("PNG");
+  cli.add_flag("--bot", o.bot,
+               "the game's autopilot plays, a spectator just watches (headless unless --window)");
+  cli.add_flag("--window", o.window, "with --bot: show the window");
+}
+
+/// The parsed flags of f into o, then the checks of what does not fit together (UsageError).
+void take_flags(const MatchFlags& f, MatchOptions& o) {
+  if (f.host_opt->count() > 0) o.host_port = f.host_port;
+  if (f.join_opt->count() > 0) o.join = parse_host_port("--join", f.join);
+  if (f.spectate_opt->count() > 0) o.spectate = parse_host_port("--spectate", f.spectate);
+  o.players = static_cast<std::uint8_t>(f.players);
+  if (f.scene_opt->count() > 0) o.scene = f.scene;
+  o.rollback = f.session == "rollback";
+  // Rollback shows its own input at once and predicts the others': a short delay spares it
+  // re-simulation; lockstep waits for every input, so its default covers two send intervals.
+  if (f.delay_opt->count() == 0 && o.rollback) o.input_delay = rollback_input_delay;
+  if (f.rollback_opt->count() > 0 && !o.rollback) {
+    throw UsageError("--max-rollback needs --session rollback");
+  }
+  check(o, f.players_opt->count() > 0);
+}
+
 }  // namespace
 
 bool wants_match(int argc, char** argv) {
@@ -109,67 +214,13 @@ Address parse_host_port(const std::string& flag, const std::string& text) {
 
 std::optional<MatchOptions> parse_match(const std::string& program, int max_players, int argc,
                                         char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    for (const std::string_view flag : app_only_flags) {
-      const std::string_view arg(argv[i]);
-      if (arg == flag || arg.starts_with(std::string(flag) + "=")) {
-        throw UsageError(std::string(flag) +
-                         " is not a match option: a match is played live (--host / --join); "
-                         "replay its recording (--record FILE) afterwards with --replay FILE");
-      }
-    }
-  }
+  refuse_app_only_flags(argc, argv);
   MatchOptions o;
+  MatchFlags f;
   CLI::App cli(program + ": one peer of a networked match", program);
-  std::uint16_t host_port = 0;
-  std::string join, spectate, session = "lockstep", scene;
-  unsigned players = 2;
-  auto* host_opt = cli.add_option("--host", host_port, "host a match on PORT (0: any, printed)")
-                       ->type_name("PORT")
-                       ->check(in_range(0, 65535));
-  auto* join_opt =
-      cli.add_option("--join", join, "join the match hosted at HOST:PORT")->type_name("HOST:PORT");
-  auto* spectate_opt =
-      cli.add_option("--spectate", spectate, "watch the match hosted at HOST:PORT (no input)")
-          ->type_name("HOST:PORT");
-  const auto most =
-      static_cast<std::uint64_t>(std::clamp(max_players, 2, static_cast<int>(net::max_players)));
-  auto* players_opt =
-      cli.add_option("--players", players,
-                     "a host: players in the match (2-" + std::to_string(most) + ", default 2)")
-          ->type_name("N")
-          ->check(CLI::Validator(
-              [most](std::string& text) -> std::string {
-                if (whole(text, 2, most)) return {};
-                if (whole(text, most + 1, 255)) {
-                  return "this game seats at most " + std::to_string(most) +
-                         " players (its Settings::max_players), got '" + text + "'";
-                }
-                return "wants a whole number in 2-" + std::to_string(most) + ", got '" + text + "'";
-              },
-              "2-" + std::to_string(most)));
-  auto* session_opt = cli.add_option("--session", session, "lockstep (default) or rollback")
-                          ->type_name("KIND")
-                          ->check(CLI::IsMember({"lockstep", "rollback"}));
-  cli.add_option("--bind", o.bind, "the local IPv4 address (default 127.0.0.1)")->type_name("ADDR");
-  auto* delay_opt =
-      cli.add_option("--input-delay", o.input_delay,
-                     "ticks between an input and its tick (0-60; default 6, rollback 2)")
-          ->type_name("N")
-          ->check(in_range(0, 60));
-  auto* rollback_opt =
-      cli.add_option("--max-rollback", o.max_rollback, "rollback: most ticks ahead (1-60)")
-          ->type_name("N")
-          ->check(in_range(1, 60));
-  cli.add_option("--ticks", o.ticks, "the match ends after N ticks")
-      ->type_name("N")
-      ->check(in_range(1, 100000000));
-  auto* scene_opt = cli.add_option("--scene", scene, "play the level in FILE")->type_name("FILE");
-  cli.add_option("--record", o.record, "write the match's recording to FILE")->type_name("FILE");
-  cli.add_option("--last-frame", o.last_frame, "write the last frame as PNG")->type_name("PNG");
-  cli.add_flag("--bot", o.bot,
-               "the game's autopilot plays, a spectator just watches (headless unless --window)");
-  cli.add_flag("--window", o.window, "with --bot: show the window");
+  add_role_options(cli, f);
+  add_session_options(cli, f, o, max_players);
+  add_output_options(cli, f, o);
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -178,20 +229,7 @@ std::optional<MatchOptions> parse_match(const std::string& program, int max_play
   } catch (const CLI::ParseError& e) {
     throw UsageError(e.what());
   }
-  if (host_opt->count() > 0) o.host_port = host_port;
-  if (join_opt->count() > 0) o.join = parse_host_port("--join", join);
-  if (spectate_opt->count() > 0) o.spectate = parse_host_port("--spectate", spectate);
-  o.players = static_cast<std::uint8_t>(players);
-  if (scene_opt->count() > 0) o.scene = scene;
-  o.rollback = session == "rollback";
-  // Rollback shows its own input at once and predicts the others': a short delay spares it
-  // re-simulation; lockstep waits for every input, so its default covers two send intervals.
-  if (delay_opt->count() == 0 && o.rollback) o.input_delay = rollback_input_delay;
-  if (rollback_opt->count() > 0 && !o.rollback) {
-    throw UsageError("--max-rollback needs --session rollback");
-  }
-  (void)session_opt;
-  check(o, players_opt->count() > 0);
+  take_flags(f, o);
   return o;
 }
 
