@@ -133,19 +133,41 @@ template <class Field, class Real, class Coeff>
   return f;
 }
 
+/// The arrays a body pass works on (World's, by pointer, in dense order): the state, the
+/// dissipation account and each body's sum of link forces and 1/m. Distinct arrays, so the
+/// pointers are restrict: a kernel takes the struct by value, which is how GCC keeps their
+/// restrict (restrict locals copied from a reference are ignored, and the loops it then
+/// cannot prove independent are not vectorized; -fopt-info-vec-optimized shows it).
+template <class Real>
+struct BodyArrays {
+  Real* __restrict x, * __restrict y, * __restrict vx, * __restrict vy;  ///< m, m/s
+  Real* __restrict diss;                           ///< dissipated energy per unit mass, J/kg
+  const Real* __restrict accx, * __restrict accy;  ///< the link forces' sums, N
+  const Real* __restrict inv_m;                    ///< 1/kg (0 for static and kinematic bodies)
+};
+
+/// The bodies' own field (World::Coefficients, by pointer; see BodyField) and the tick's push;
+/// restrict and taken by value as BodyArrays.
+template <class Real>
+struct FieldArrays {
+  const Real* __restrict k, * __restrict anchor_x, * __restrict anchor_y;  ///< N/(kg·m), m, m
+  const Real* __restrict rest;                                             ///< m
+  const Real* __restrict gamma;                                            ///< damping, 1/s
+  const Real* __restrict cx, * __restrict cy;  ///< constant acceleration, m/s²
+  Real push_x, push_y;                         ///< the tick's push, m/s²
+};
+
 /// The body pass of semi-implicit (or, with Explicit, explicit) Euler on a linked world:
 /// a = field + (1/m)·acc, then the update, for bodies [j0, j1). A plain loop over restrict
-/// pointers with a branch-free range check (as the fused sweep), so the compiler vectorizes
-/// it. Returns true if some new state is out of range.
+/// pointers (the arrays' copies below) with a branch-free range check (as the fused sweep), so
+/// the compiler vectorizes it. Returns true if some new state is out of range.
 template <class Field, bool Explicit, bool Track, class Real>
-bool euler_bodies(std::size_t j0, std::size_t j1, Real* __restrict x, Real* __restrict y,
-                  Real* __restrict vx, Real* __restrict vy, Real* __restrict diss,
-                  const Real* __restrict accx, const Real* __restrict accy,
-                  const Real* __restrict inv_m, const Real* __restrict k,
-                  const Real* __restrict anchor_x, const Real* __restrict anchor_y,
-                  const Real* __restrict rest, const Real* __restrict gamma,
-                  const Real* __restrict cx, const Real* __restrict cy, Real push_x, Real push_y,
-                  Real h) {
+bool euler_bodies(std::size_t j0, std::size_t j1, BodyArrays<Real> b, FieldArrays<Real> c, Real h) {
+  Real* __restrict x = b.x, * __restrict y = b.y, * __restrict vx = b.vx, * __restrict vy = b.vy;
+  Real* __restrict diss = b.diss;
+  const Real* __restrict accx = b.accx, * __restrict accy = b.accy, * __restrict inv_m = b.inv_m;
+  const Real* __restrict k = c.k, * __restrict anchor_x = c.anchor_x, * __restrict anchor_y = c.anchor_y, * __restrict rest = c.rest, * __restrict gamma = c.gamma, * __restrict cx = c.cx, * __restrict cy = c.cy;
+  const Real push_x = c.push_x, push_y = c.push_y;
   const Real limit = static_cast<Real>(max_state_magnitude);
   Real out = 0;
   for (std::size_t j = j0; j < j1; ++j) {
@@ -197,6 +219,15 @@ struct Passes {
 
   void flag(bool out) {
     if (out) bad.store(true, std::memory_order_relaxed);
+  }
+  /// The body arrays with the link sums acc (N).
+  [[nodiscard]] BodyArrays<Real> body_arrays(const Real* accx, const Real* accy) const {
+    return {x, y, vx, vy, diss_body, accx, accy, net.inv_mass.data()};
+  }
+  /// The bodies' field arrays with the tick's push.
+  [[nodiscard]] FieldArrays<Real> field_arrays() const {
+    return {c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), c.gamma.data(),
+            c.accel_x.data(),   c.accel_y.data(),  push[0],           push[1]};
   }
   /// Adds weight (s) times the power, W, the links' static and kinematic ends deliver at state
   /// st to `work`: for each driven link, -F·v of the link's force F on an immovable end moving
@@ -280,14 +311,13 @@ struct Passes {
     Real *accx = d[0], *accy = d[1];
     drive({x, y, vx, vy}, double(h));  // the rectangle at the step's start, as diss_body
     accumulate({x, y, vx, vy}, Real(1), accx, accy);
-    with_field<Real, 0>(shape, c.damping, accel, [&](auto field) {
-      using Field = decltype(field);
+    const BodyArrays<Real> body = body_arrays(accx, accy);
+    const FieldArrays<Real> field = field_arrays();
+    with_field<Real, 0>(shape, c.damping, accel, [&](auto f) {
+      using Field = decltype(f);
       par(n, [&](std::size_t j0, std::size_t j1) {
         auto run = [&]<bool Track>() {
-          return euler_bodies<Field, Explicit, Track>(
-              j0, j1, x, y, vx, vy, diss_body, accx, accy, net.inv_mass.data(), c.stiffness.data(),
-              c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), c.gamma.data(), c.accel_x.data(),
-              c.accel_y.data(), push[0], push[1], h);
+          return euler_bodies<Field, Explicit, Track>(j0, j1, body, field, h);
         };
         flag(track ? run.template operator()<true>() : run.template operator()<false>());
       });

@@ -42,20 +42,33 @@ struct StrangStage {
 /// Smallest colour worth splitting between two threads (its links never share a body).
 constexpr std::size_t min_parallel_colour = 1024;
 
+/// What one kick pass of the chain applies besides the arrays (see StrangChain::kick): the
+/// bodies' decay factors of the ending stage (d0) and of the next (d1), null without body
+/// damping; the half steps of the two kicks, s (0 where there is none); and the weights (1 or
+/// 0) of the energy the link sweeps take, counted before (C↓) and after (C↑) this kick.
+/// Taken by value with restrict factors, as BodyArrays (link_passes.hpp).
+template <class Real>
+struct KickStep {
+  const Real* __restrict d0, * __restrict d1;
+  Real end_half, begin_half;
+  Real swept_before, swept_after;
+};
+
 /// The kick pass of the chain for bodies [j0, j1) (see StrangChain::kick): with End, the
 /// ending stage's K(h/2) then G (factor d0); with Begin, the next stage's G (factor d1) then
-/// K(h/2); a = field + (1/m)·acc. A plain loop over restrict pointers with a branch-free range
-/// check, like euler_bodies, so the compiler vectorizes it. Returns true if some state is out
-/// of range (checked with End).
+/// K(h/2); a = field + (1/m)·acc. A plain loop over restrict pointers (the arrays' copies
+/// below) with a branch-free range check, like euler_bodies, so the compiler vectorizes it.
+/// Returns true if some state is out of range (checked with End).
 template <class Field, bool End, bool Begin, bool Track, bool Bracket, class Real>
-bool kick_bodies(std::size_t j0, std::size_t j1, const Real* __restrict x, const Real* __restrict y,
-                 Real* __restrict vx, Real* __restrict vy, Real* __restrict diss,
-                 const Real* __restrict accx, const Real* __restrict accy,
-                 const Real* __restrict inv_m, const Real* __restrict k,
-                 const Real* __restrict anchor_x, const Real* __restrict anchor_y,
-                 const Real* __restrict rest, const Real* __restrict d0, const Real* __restrict d1,
-                 const Real* __restrict cx, const Real* __restrict cy, Real push_x, Real push_y,
-                 Real end_half, Real begin_half, Real swept_before, Real swept_after) {
+bool kick_bodies(std::size_t j0, std::size_t j1, BodyArrays<Real> b, FieldArrays<Real> c,
+                 KickStep<Real> s) {
+  const Real* __restrict x = b.x, * __restrict y = b.y;
+  Real* __restrict vx = b.vx, * __restrict vy = b.vy, * __restrict diss = b.diss;
+  const Real* __restrict accx = b.accx, * __restrict accy = b.accy, * __restrict inv_m = b.inv_m;
+  const Real* __restrict k = c.k, * __restrict anchor_x = c.anchor_x, * __restrict anchor_y = c.anchor_y, * __restrict rest = c.rest, * __restrict cx = c.cx, * __restrict cy = c.cy;
+  const Real* __restrict d0 = s.d0, * __restrict d1 = s.d1;
+  const Real push_x = c.push_x, push_y = c.push_y, end_half = s.end_half, begin_half = s.begin_half,
+             swept_before = s.swept_before, swept_after = s.swept_after;
   const Real limit = static_cast<Real>(max_state_magnitude);
   Real out = 0;
   for (std::size_t j = j0; j < j1; ++j) {
@@ -225,30 +238,28 @@ class StrangChain {
   /// At one position, stage `end`'s closing K(h/2) G(h/2) and stage `begin`'s opening
   /// G(h/2) K(h/2) (either may be null), on the field plus the link sums.
   void kick(const StrangStage<Real>* end, const StrangStage<Real>* begin) {
-    const Real* d0 = end ? end->decay : nullptr;
-    const Real* d1 = begin ? begin->decay : nullptr;
     // The kinetic energy the link sweeps take is counted around them (kick_bodies): from the
     // closing stage's C↓, ending at this kick, and into the opening stage's C↑, starting here.
-    const Real swept_before = end && end->down ? Real(1) : Real(0);
-    const Real swept_after = begin && begin->up ? Real(1) : Real(0);
-    const Real end_half = end ? end->h * Real(0.5) : Real(0);
-    const Real begin_half = begin ? begin->h * Real(0.5) : Real(0);
+    const KickStep<Real> step{.d0 = end ? end->decay : nullptr,
+                              .d1 = begin ? begin->decay : nullptr,
+                              .end_half = end ? end->h * Real(0.5) : Real(0),
+                              .begin_half = begin ? begin->h * Real(0.5) : Real(0),
+                              .swept_before = end && end->down ? Real(1) : Real(0),
+                              .swept_after = begin && begin->up ? Real(1) : Real(0)};
     // The work of static and kinematic ends through their links' springs, at this position
     // with the kicks' weights (the trapezoid of the step's two kicks; their dampers' share is
     // in the damping flows' account: World::external_work()).
     if (!p_.net.driven.empty()) {
-      p_.template drive_links<false>({p_.x, p_.y, p_.vx, p_.vy}, double(end_half + begin_half));
+      p_.template drive_links<false>({p_.x, p_.y, p_.vx, p_.vy},
+                                     double(step.end_half + step.begin_half));
     }
-    const auto& c = p_.c;
-    with_field<Real, 0>(p_.shape, c.damping, p_.accel, [&](auto field) {
-      using Field = decltype(field);
+    const BodyArrays<Real> body = p_.body_arrays(accx_, accy_);
+    const FieldArrays<Real> field = p_.field_arrays();
+    with_field<Real, 0>(p_.shape, p_.c.damping, p_.accel, [&](auto f) {
+      using Field = decltype(f);
       p_.par(p_.n, [&](std::size_t j0, std::size_t j1) {
         auto run = [&]<bool End, bool Begin, bool Track, bool Bracket>() {
-          return kick_bodies<Field, End, Begin, Track, Bracket>(
-              j0, j1, p_.x, p_.y, p_.vx, p_.vy, p_.diss_body, accx_, accy_, p_.net.inv_mass.data(),
-              c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(), c.rest.data(), d0, d1,
-              c.accel_x.data(), c.accel_y.data(), p_.push[0], p_.push[1], end_half, begin_half,
-              swept_before, swept_after);
+          return kick_bodies<Field, End, Begin, Track, Bracket>(j0, j1, body, field, step);
         };
         auto tracked = [&]<bool End, bool Begin>() {
           if (!p_.track) return run.template operator()<End, Begin, false, false>();
