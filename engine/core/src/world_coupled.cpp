@@ -42,6 +42,179 @@ namespace {
 /// Smallest range worth handing to the second thread.
 constexpr std::size_t min_parallel_range = 4096;
 
+/// The threads a tick of the multi-pass path on n bodies runs on: WorldSettings::threads
+/// (threads_for), and with 0 (automatic) two only from parallel_min_bodies bodies.
+int multipass_threads(int want, std::size_t n) {
+  return detail::threads_for(want) == 2 && (want >= 2 || n >= parallel_min_bodies) ? 2 : 1;
+}
+
+/// What a tick of the multi-pass path steps with: the push (m/s², Real), the step h = dt /
+/// substeps and Forest–Ruth's w1·h, w0·h (s), and the shape of the bodies' fields.
+template <class Real>
+struct MultipassPlan {
+  Real push[2];
+  StepSizes<Real> sizes;
+  SpringShape shape;
+  bool accel;  ///< some body has a constant acceleration, or the tick a push
+};
+
+/// The plan of a tick from the settings, the bodies' coefficients and the tick's input.
+template <class Real, class Coeff>
+MultipassPlan<Real> plan_multipass(const WorldSettings& settings, const Coeff& c,
+                                   const TickInput& input) {
+  const Real h = static_cast<Real>(settings.dt / settings.substeps);
+  MultipassPlan<Real> plan{
+      .push = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)},
+      .sizes = {h, static_cast<Real>(forest_ruth_w1 * double(h)),
+                static_cast<Real>(forest_ruth_w0 * double(h))},
+      .shape = !c.spring       ? SpringShape::none
+               : c.rest_length ? SpringShape::rest_length
+                               : SpringShape::linear,
+      .accel = c.accel};
+  plan.accel = plan.accel || plan.push[0] != Real(0) || plan.push[1] != Real(0);
+  return plan;
+}
+
+/// The stages of a Strang tick: one per velocity Verlet step, three (w1·h, w0·h, w1·h) per
+/// Forest–Ruth step; stage i of the tick is at(i).
+template <class Real>
+struct StrangStages {
+  StrangStage<Real> first, inner, last;
+  std::size_t per_step = 1;
+  [[nodiscard]] StrangStage<Real> at(std::size_t i) const {
+    const std::size_t k = i % per_step;
+    return k == 0 ? first : k == 1 ? inner : last;
+  }
+};
+
+/// The stages of a tick of velocity Verlet or Forest–Ruth on a linked world, with the bodies'
+/// exact decay over each stage's h/2 (decay(τ): World::damping_decay, with body damping) and
+/// the links' damping sweeps (flow(τ): World::link_flow as a SweepFlow, with link damping):
+/// around every stage's drift over its own h/2 (DampingSplit::per_stage), or once around the
+/// whole Forest–Ruth step over h/2 (per_step: the first stage's C↑ and the last stage's C↓
+/// only).
+template <class Real, class Decay, class Flow>
+StrangStages<Real> strang_stages(Integrator method, DampingSplit split, bool body_damping,
+                                 bool link_damping, const StepSizes<Real>& sizes, Decay&& decay,
+                                 Flow&& flow) {
+  const bool verlet = method == Integrator::velocity_verlet;
+  const bool split_per_step = !verlet && split == DampingSplit::per_step;
+  auto stage_of = [&](Real hh, bool up, bool down) {
+    StrangStage<Real> st{.h = hh};
+    if (body_damping) st.decay = decay(0.5 * double(hh));
+    if (link_damping && (up || down)) {
+      const SweepFlow<Real> f = flow(0.5 * double(split_per_step ? sizes.h : hh));
+      if (up) st.up = f;
+      if (down) st.down = f;
+    }
+    return st;
+  };
+  // Twice: a cache full of other steps' factors is cleared by the first look-up that
+  // misses, which could drop the other τ's; the second round finds them all.
+  if (!verlet) stage_of(sizes.h1, true, true), stage_of(sizes.h0, true, true);
+  const bool inner_flows = !split_per_step;
+  StrangStages<Real> stages;
+  stages.first = stage_of(verlet ? sizes.h : sizes.h1, true, inner_flows);
+  stages.inner = verlet ? stages.first : stage_of(sizes.h0, inner_flows, inner_flows);
+  stages.last = verlet ? stages.first : stage_of(sizes.h1, inner_flows, true);
+  stages.per_step = verlet ? 1 : 3;
+  return stages;
+}
+
+/// A tick of velocity Verlet or Forest–Ruth on a linked world: its stages as one Strang chain
+/// (strang_network.hpp) with the link sums in acc and the links' directions in (ux, uy);
+/// `cached`: the last tick's final force pass left them, and no position moved since.
+template <class P, class Real>
+void run_strang_chain(P& p, const StrangStages<Real>& stages, int substeps, Real* accx, Real* accy,
+                      Real* ux, Real* uy, bool cached) {
+  StrangChain<P, Real> chain(p, accx, accy, ux, uy);
+  chain.run(
+      stages.per_step * static_cast<std::size_t>(substeps),
+      [&](std::size_t i) { return stages.at(i); }, cached);
+}
+
+/// Whether a and b hold the same bits.
+template <class Real>
+bool same_positions(const std::vector<Real>& a, const std::vector<Real>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), same_bits<Real>);
+}
+
+/// The bodies' exact damping factors e^{-γτ} the fused step of a world without links uses (as
+/// the sweep): over h/2 for velocity Verlet, over w1·h/2 and w0·h/2 for Forest–Ruth; null
+/// for other methods and without body damping.
+template <class Real>
+struct BodyDecays {
+  const Real *h = nullptr, *h1 = nullptr, *h0 = nullptr;
+};
+
+/// BodyDecays from decay(τ) (World::damping_decay).
+template <class Real, class Decay>
+BodyDecays<Real> body_decays(Integrator method, bool damped, const StepSizes<Real>& sizes,
+                             Decay&& decay) {
+  BodyDecays<Real> d;
+  if (damped && method == Integrator::velocity_verlet) d.h = decay(0.5 * double(sizes.h));
+  if (damped && method == Integrator::forest_ruth) {
+    d.h1 = decay(0.5 * double(sizes.h1)), d.h0 = decay(0.5 * double(sizes.h0));
+  }
+  return d;
+}
+
+/// One step of a world without links (that keeps the dissipation account): each body's fused
+/// step, as in the sweep, with the account.
+template <class P, class Real>
+void fused_substep(P& p, Integrator method, const StepSizes<Real>& sizes,
+                   const BodyDecays<Real>& decays) {
+  auto fused = [&]<Integrator I, int Decays>(const Real* d0, const Real* d1) {
+    Real *x = p.x, *y = p.y, *vx = p.vx, *vy = p.vy, *diss = p.diss_body;
+    p.template bodies<Decays>(p.c.damping, d0, d1, [&](const auto& f, std::size_t j) {
+      Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j];
+      body_step<I, true>(X, Y, VX, VY, f, sizes, diss[j]);
+      x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
+      return out_of_range(X, Y, VX, VY);
+    });
+  };
+  dispatch(method, decays.h, decays.h1, decays.h0, fused);
+}
+
+/// One step h (s) of a linked world by Euler, RK4 or implicit Euler (implicit(h):
+/// World::step_implicit_network, true if the state left the range).
+template <class P, class Real, class Implicit>
+void linked_substep(P& p, Integrator method, Real h, Implicit&& implicit) {
+  switch (method) {
+    case Integrator::semi_implicit_euler:
+      p.template euler<false>(h);
+      break;
+    case Integrator::explicit_euler:
+      p.template euler<true>(h);
+      break;
+    case Integrator::rk4:
+      p.rk4(h);
+      break;
+    case Integrator::velocity_verlet:
+    case Integrator::forest_ruth:
+      break;  // the Strang chain (strang_network.hpp)
+    case Integrator::implicit_euler:
+      p.flag(implicit(h));
+      p.drive({p.x, p.y, p.vx, p.vy}, double(h));  // end of the step
+      break;
+  }
+}
+
+/// The substeps of a tick by every method but the Strang chain, polling for a stop request
+/// once a substep (on this thread, with the worker idle between passes).
+template <class P, class Real, class Implicit>
+void run_substeps(P& p, Integrator method, int substeps, const StepSizes<Real>& sizes,
+                  const BodyDecays<Real>& decays, Implicit&& implicit) {
+  for (int sub = 0; sub < substeps; ++sub) {
+    throw_if_stop_requested();
+    if (p.m == 0) {
+      fused_substep(p, method, sizes, decays);
+    } else {
+      linked_substep(p, method, sizes.h, implicit);
+    }
+  }
+}
+
 }  // namespace
 
 template <class Real>
@@ -156,26 +329,16 @@ const typename detail::WorldKernel<Real>::LinkFlow& detail::WorldKernel<Real>::l
 template <class Real>
 void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
   const std::size_t n = x_.size(), m = net_.a.size();
-  const int want = settings_.threads;
-  threads_used_ = detail::threads_for(want) == 2 && (want >= 2 || n >= parallel_min_bodies) ? 2 : 1;
+  threads_used_ = multipass_threads(settings_.threads, n);
   if (threads_used_ == 2 && !workers_) workers_.reset(new detail::Workers());
-  const Real push[2] = {static_cast<Real>(input.push.x), static_cast<Real>(input.push.y)};
-  const Real h = static_cast<Real>(settings_.dt / settings_.substeps);
-  const StepSizes<Real> sizes{h, static_cast<Real>(forest_ruth_w1 * double(h)),
-                              static_cast<Real>(forest_ruth_w0 * double(h))};
-  const Coefficients& c = coeff_;
-  const SpringShape shape = !c.spring       ? SpringShape::none
-                            : c.rest_length ? SpringShape::rest_length
-                                            : SpringShape::linear;
-  const bool accel = c.accel || push[0] != Real(0) || push[1] != Real(0);
-  const Integrator method = settings_.integrator;
+  const MultipassPlan<Real> plan = plan_multipass<Real>(settings_, coeff_, input);
   std::atomic<bool> bad{false};
   auto par = [this](std::size_t count, auto&& pass, std::size_t min_range = min_parallel_range) {
     this->parallel(count, pass, min_range);
   };
   Passes<Real, Network, Coefficients, decltype(par)> p{
       net_,
-      c,
+      coeff_,
       par,
       n,
       m,
@@ -193,107 +356,33 @@ void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
       dissipated_link_.data(),
       settings_.track_dissipation,
       threads_used_ < 2,
-      push,
-      shape,
-      accel,
+      plan.push,
+      plan.shape,
+      plan.accel,
       bad,
       external_work_};
-  // Exact per-body damping factors, as the fused sweep uses them (worlds without links).
-  const bool per_body_decay = c.damping && m == 0;
-  const Real* decay_h = per_body_decay && method == Integrator::velocity_verlet
-                            ? damping_decay(0.5 * double(h))
-                            : nullptr;
-  const bool fr = per_body_decay && method == Integrator::forest_ruth;
-  const Real* decay_h1 = fr ? damping_decay(0.5 * double(sizes.h1)) : nullptr;
-  const Real* decay_h0 = fr ? damping_decay(0.5 * double(sizes.h0)) : nullptr;
-  const bool strang =
-      m > 0 && (method == Integrator::velocity_verlet || method == Integrator::forest_ruth);
-  if (!strang) fsal_valid_ = false;  // d_ is other methods' scratch
-  if (strang) {
-    // One stage per Verlet step, three (w1·h, w0·h, w1·h) per Forest–Ruth step. The links'
-    // damping sweeps: around every stage's drift over its own h/2 (DampingSplit::per_stage),
-    // or once around the whole Forest–Ruth step over h/2 (per_step: the first stage's C↑ and
-    // the last stage's C↓ only).
-    const bool verlet = method == Integrator::velocity_verlet;
-    const bool split_per_step = !verlet && settings_.damping_split == DampingSplit::per_step;
-    auto sweep = [&](double tau) {
+  const Integrator method = settings_.integrator;
+  auto decay = [this](double tau) { return damping_decay(tau); };
+  if (m > 0 && (method == Integrator::velocity_verlet || method == Integrator::forest_ruth)) {
+    auto sweep = [this](double tau) {
       const LinkFlow& f = link_flow(tau);
       return SweepFlow<Real>{f.ca.data(), f.cb.data()};
     };
-    auto stage_of = [&](Real hh, bool up, bool down) {
-      StrangStage<Real> st{.h = hh};
-      if (c.damping) st.decay = damping_decay(0.5 * double(hh));
-      if (net_.damped && (up || down)) {
-        const SweepFlow<Real> flow = sweep(0.5 * double(split_per_step ? h : hh));
-        if (up) st.up = flow;
-        if (down) st.down = flow;
-      }
-      return st;
-    };
-    // Twice: a cache full of other steps' factors is cleared by the first look-up that
-    // misses, which could drop the other τ's; the second round finds them all.
-    if (!verlet) stage_of(sizes.h1, true, true), stage_of(sizes.h0, true, true);
-    const bool inner_flows = !split_per_step;
-    const StrangStage<Real> first = stage_of(verlet ? h : sizes.h1, true, inner_flows);
-    const StrangStage<Real> inner = verlet ? first : stage_of(sizes.h0, inner_flows, inner_flows);
-    const StrangStage<Real> last = verlet ? first : stage_of(sizes.h1, inner_flows, true);
-    const std::size_t per_step = verlet ? 1 : 3;
-    StrangChain<decltype(p), Real> chain(p, d_[0].data(), d_[1].data(), unit_x_.data(),
-                                         unit_y_.data());
+    const StrangStages<Real> stages = strang_stages(method, settings_.damping_split, coeff_.damping,
+                                                    net_.damped, plan.sizes, decay, sweep);
     // The last tick's final link sums still hold if no position moved since (contacts, drag
     // input, set_state and restore all move them or leave them bit for bit).
-    const bool same = fsal_valid_ &&
-                      std::equal(x_.begin(), x_.end(), fsal_x_.begin(), same_bits<Real>) &&
-                      std::equal(y_.begin(), y_.end(), fsal_y_.begin(), same_bits<Real>);
-    chain.run(
-        per_step * static_cast<std::size_t>(settings_.substeps),
-        [&](std::size_t i) {
-          const std::size_t k = i % per_step;
-          return k == 0 ? first : k == 1 ? inner : last;
-        },
-        same);
-    std::copy(x_.begin(), x_.end(), fsal_x_.begin()),
-        std::copy(y_.begin(), y_.end(), fsal_y_.begin());
+    const bool same = fsal_valid_ && same_positions(x_, fsal_x_) && same_positions(y_, fsal_y_);
+    run_strang_chain(p, stages, settings_.substeps, d_[0].data(), d_[1].data(), unit_x_.data(),
+                     unit_y_.data(), same);
+    std::copy(x_.begin(), x_.end(), fsal_x_.begin());
+    std::copy(y_.begin(), y_.end(), fsal_y_.begin());
     fsal_valid_ = true;
-    ++tick_;
-    if (bad.load(std::memory_order_relaxed) && !fault_) record_fault();
-    return;
-  }
-
-  for (int sub = 0; sub < settings_.substeps; ++sub) {
-    throw_if_stop_requested();  // on this thread, with the worker idle between passes
-    if (m == 0) {
-      // No links: each body's fused step, as in the sweep, with the dissipation account.
-      auto fused = [&]<Integrator I, int Decays>(const Real* d0, const Real* d1) {
-        Real* diss = dissipated_body_.data();
-        p.template bodies<Decays>(c.damping, d0, d1, [&](const auto& f, std::size_t j) {
-          Real X = x_[j], Y = y_[j], VX = vx_[j], VY = vy_[j];
-          body_step<I, true>(X, Y, VX, VY, f, sizes, diss[j]);
-          x_[j] = X, y_[j] = Y, vx_[j] = VX, vy_[j] = VY;
-          return out_of_range(X, Y, VX, VY);
-        });
-      };
-      dispatch(method, decay_h, decay_h1, decay_h0, fused);
-      continue;
-    }
-    switch (method) {
-      case Integrator::semi_implicit_euler:
-        p.template euler<false>(h);
-        break;
-      case Integrator::explicit_euler:
-        p.template euler<true>(h);
-        break;
-      case Integrator::rk4:
-        p.rk4(h);
-        break;
-      case Integrator::velocity_verlet:
-      case Integrator::forest_ruth:
-        break;  // the Strang chain above
-      case Integrator::implicit_euler:
-        if (step_implicit_network(h, push)) bad.store(true, std::memory_order_relaxed);
-        p.drive({x_.data(), y_.data(), vx_.data(), vy_.data()}, double(h));  // end of the step
-        break;
-    }
+  } else {
+    fsal_valid_ = false;  // d_ is other methods' scratch
+    run_substeps(p, method, settings_.substeps, plan.sizes,
+                 body_decays(method, coeff_.damping && m == 0, plan.sizes, decay),
+                 [&](Real h) { return step_implicit_network(h, plan.push); });
   }
   ++tick_;
   if (bad.load(std::memory_order_relaxed) && !fault_) record_fault();
