@@ -55,6 +55,19 @@ class ImplicitSolver {
   void build_linear(double h);
   bool step_linear(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2]);
   bool step_newton(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2]);
+  // The phases of step_newton, in the order they run.
+  void start_newton(const Real* x, const Real* y, const Real* vx, const Real* vy, double h);
+  void newton_bodies(const Real* x, const Real* y, const Real* vx, const Real* vy, double h,
+                     const Real push[2]);
+  void newton_springs(const Real* x, const Real* y, double h);
+  bool newton_update();
+  bool finish_newton(Real* x, Real* y, Real* vx, Real* vy, double h) const;
+  /// One spring's force on its end a (N) and its block of the Jacobian, h²K + hC (kg).
+  struct SpringJacobian {
+    double fx, fy, j00, j01, j11;
+  };
+  SpringJacobian spring_jacobian(const Spring& s, const Real* x, const Real* y, double h) const;
+  void add_block(Eigen::Index p, Eigen::Index q, double sign, double b00, double b01, double b11);
   void account(const Real* x, const Real* y, const Real* vx, const Real* vy, double h,
                Real* diss_body, Real* diss_link);
 
@@ -131,82 +144,128 @@ bool ImplicitSolver<Real>::step_linear(Real* x, Real* y, Real* vx, Real* vy, dou
 template <class Real>
 bool ImplicitSolver<Real>::step_newton(Real* x, Real* y, Real* vx, Real* vy, double h,
                                        const Real push[2]) {
-  // Eigen's vectors are indexed by Eigen::Index (signed).
-  const auto n = static_cast<Eigen::Index>(mass.size());
-  const Eigen::Index N = 2 * n;
-  r_.resize(N), g_.resize(N), delta_.resize(N);
-  for (Eigen::Index j = 0; j < n; ++j) {  // start from an explicit drift
-    r_[2 * j] = double(x[j]) + h * double(vx[j]);
-    r_[2 * j + 1] = double(y[j]) + h * double(vy[j]);
-  }
-  auto add = [&](Eigen::Index i, Eigen::Index k, double v) {
-    triplets_.emplace_back(static_cast<int>(i), static_cast<int>(k), v);
-  };
-  // 2×2 block B (symmetric: b00, b01, b11) at rows/columns of bodies p and q, sign s.
-  auto block = [&](Eigen::Index p, Eigen::Index q, double s, double b00, double b01, double b11) {
-    add(2 * p, 2 * q, s * b00), add(2 * p, 2 * q + 1, s * b01);
-    add(2 * p + 1, 2 * q, s * b01), add(2 * p + 1, 2 * q + 1, s * b11);
-  };
+  start_newton(x, y, vx, vy, h);
   for (int it = 0; it < 50; ++it) {
     throw_if_stop_requested();  // per Newton iteration: one sparse LU each
     triplets_.clear();
     // G = M (r - x - h v) - h² F(r, (r - x)/h),  J = M + h C + h² K.
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const double ux = (r_[2 * j] - double(x[j])) / h, uy = (r_[2 * j + 1] - double(y[j])) / h;
-      const double fx = mass[j] * (cx[j] + double(push[0])) - drag[j] * ux;
-      const double fy = mass[j] * (cy[j] + double(push[1])) - drag[j] * uy;
-      g_[2 * j] = mass[j] * (r_[2 * j] - double(x[j]) - h * double(vx[j])) - h * h * fx;
-      g_[2 * j + 1] = mass[j] * (r_[2 * j + 1] - double(y[j]) - h * double(vy[j])) - h * h * fy;
-      block(j, j, 1.0, mass[j] + h * drag[j], 0.0, mass[j] + h * drag[j]);
-    }
-    for (const Spring& s : springs) {
-      const Eigen::Index a = s.a, b = s.b;
-      const double rbx = s.anchored ? s.anchor_x : r_[2 * b];
-      const double rby = s.anchored ? s.anchor_y : r_[2 * b + 1];
-      const double dx = r_[2 * a] - rbx, dy = r_[2 * a + 1] - rby;
-      const double ubx = s.anchored ? 0.0 : (r_[2 * b] - double(x[b])) / h;
-      const double uby = s.anchored ? 0.0 : (r_[2 * b + 1] - double(y[b])) / h;
-      const double ux = (r_[2 * a] - double(x[a])) / h - ubx;
-      const double uy = (r_[2 * a + 1] - double(y[a])) / h - uby;
-      double fx, fy, k00, k01, k11, c00, c01, c11;
-      const double len = std::sqrt(dx * dx + dy * dy);
-      if (s.rest == 0.0 || !(len > 0.0)) {
-        fx = -s.k * dx - s.damping * ux, fy = -s.k * dy - s.damping * uy;
-        k00 = k11 = s.k, k01 = 0.0;
-        c00 = c11 = s.damping, c01 = 0.0;
-        if (s.rest != 0.0) fx = fy = 0.0, k00 = k11 = c00 = c11 = 0.0;  // no direction
-      } else {
-        const double nx = dx / len, ny = dy / len, q = s.rest / len;
-        const double un = ux * nx + uy * ny;
-        fx = -s.k * (len - s.rest) * nx - s.damping * un * nx;
-        fy = -s.k * (len - s.rest) * ny - s.damping * un * ny;
-        k00 = s.k * ((1.0 - q) + q * nx * nx), k01 = s.k * q * nx * ny;
-        k11 = s.k * ((1.0 - q) + q * ny * ny);
-        c00 = s.damping * nx * nx, c01 = s.damping * nx * ny, c11 = s.damping * ny * ny;
-      }
-      g_[2 * a] -= h * h * fx, g_[2 * a + 1] -= h * h * fy;
-      const double j00 = h * h * k00 + h * c00, j01 = h * h * k01 + h * c01;
-      const double j11 = h * h * k11 + h * c11;
-      block(a, a, 1.0, j00, j01, j11);
-      if (s.anchored) continue;
-      g_[2 * b] += h * h * fx, g_[2 * b + 1] += h * h * fy;
-      block(b, b, 1.0, j00, j01, j11);
-      block(a, b, -1.0, j00, j01, j11);
-      block(b, a, -1.0, j00, j01, j11);
-    }
-    jacobian_.resize(N, N);
-    jacobian_.setFromTriplets(triplets_.begin(), triplets_.end());
-    if (!lu_analyzed_) lu_.analyzePattern(jacobian_), lu_analyzed_ = true;
-    throw_if_stop_requested();  // again after the analysis, before the factorisation
-    lu_.factorize(jacobian_);
-    if (lu_.info() != Eigen::Success) break;
-    delta_ = lu_.solve(g_);
-    r_ -= delta_;
-    const double scale = r_.cwiseAbs().maxCoeff() + 1.0;
-    if (!(delta_.cwiseAbs().maxCoeff() > 4.0 * std::numeric_limits<double>::epsilon() * scale)) {
-      break;
-    }
+    newton_bodies(x, y, vx, vy, h, push);
+    newton_springs(x, y, h);
+    if (!newton_update()) break;
   }
+  return finish_newton(x, y, vx, vy, h);
+}
+
+/// Newton's first iterate: an explicit drift, r = x + h v.
+template <class Real>
+void ImplicitSolver<Real>::start_newton(const Real* x, const Real* y, const Real* vx,
+                                        const Real* vy, double h) {
+  // Eigen's vectors are indexed by Eigen::Index (signed).
+  const auto n = static_cast<Eigen::Index>(mass.size());
+  const Eigen::Index N = 2 * n;
+  r_.resize(N), g_.resize(N), delta_.resize(N);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    r_[2 * j] = double(x[j]) + h * double(vx[j]);
+    r_[2 * j + 1] = double(y[j]) + h * double(vy[j]);
+  }
+}
+
+/// The 2×2 block B (symmetric: b00, b01, b11) times sign at the rows of body p and the columns
+/// of body q of the Jacobian.
+template <class Real>
+void ImplicitSolver<Real>::add_block(Eigen::Index p, Eigen::Index q, double sign, double b00,
+                                     double b01, double b11) {
+  auto add = [&](Eigen::Index i, Eigen::Index k, double v) {
+    triplets_.emplace_back(static_cast<int>(i), static_cast<int>(k), v);
+  };
+  add(2 * p, 2 * q, sign * b00), add(2 * p, 2 * q + 1, sign * b01);
+  add(2 * p + 1, 2 * q, sign * b01), add(2 * p + 1, 2 * q + 1, sign * b11);
+}
+
+/// Each body's part of G at the iterate (its inertia, drag, constant forces and the push) and
+/// its diagonal block M + h·drag of J.
+template <class Real>
+void ImplicitSolver<Real>::newton_bodies(const Real* x, const Real* y, const Real* vx,
+                                         const Real* vy, double h, const Real push[2]) {
+  const auto n = static_cast<Eigen::Index>(mass.size());
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double ux = (r_[2 * j] - double(x[j])) / h, uy = (r_[2 * j + 1] - double(y[j])) / h;
+    const double fx = mass[j] * (cx[j] + double(push[0])) - drag[j] * ux;
+    const double fy = mass[j] * (cy[j] + double(push[1])) - drag[j] * uy;
+    g_[2 * j] = mass[j] * (r_[2 * j] - double(x[j]) - h * double(vx[j])) - h * h * fx;
+    g_[2 * j + 1] = mass[j] * (r_[2 * j + 1] - double(y[j]) - h * double(vy[j])) - h * h * fy;
+    add_block(j, j, 1.0, mass[j] + h * drag[j], 0.0, mass[j] + h * drag[j]);
+  }
+}
+
+template <class Real>
+typename ImplicitSolver<Real>::SpringJacobian ImplicitSolver<Real>::spring_jacobian(
+    const Spring& s, const Real* x, const Real* y, double h) const {
+  const Eigen::Index a = s.a, b = s.b;
+  const double rbx = s.anchored ? s.anchor_x : r_[2 * b];
+  const double rby = s.anchored ? s.anchor_y : r_[2 * b + 1];
+  const double dx = r_[2 * a] - rbx, dy = r_[2 * a + 1] - rby;
+  const double ubx = s.anchored ? 0.0 : (r_[2 * b] - double(x[b])) / h;
+  const double uby = s.anchored ? 0.0 : (r_[2 * b + 1] - double(y[b])) / h;
+  const double ux = (r_[2 * a] - double(x[a])) / h - ubx;
+  const double uy = (r_[2 * a + 1] - double(y[a])) / h - uby;
+  double fx, fy, k00, k01, k11, c00, c01, c11;
+  const double len = std::sqrt(dx * dx + dy * dy);
+  if (s.rest == 0.0 || !(len > 0.0)) {
+    fx = -s.k * dx - s.damping * ux, fy = -s.k * dy - s.damping * uy;
+    k00 = k11 = s.k, k01 = 0.0;
+    c00 = c11 = s.damping, c01 = 0.0;
+    if (s.rest != 0.0) fx = fy = 0.0, k00 = k11 = c00 = c11 = 0.0;  // no direction
+  } else {
+    const double nx = dx / len, ny = dy / len, q = s.rest / len;
+    const double un = ux * nx + uy * ny;
+    fx = -s.k * (len - s.rest) * nx - s.damping * un * nx;
+    fy = -s.k * (len - s.rest) * ny - s.damping * un * ny;
+    k00 = s.k * ((1.0 - q) + q * nx * nx), k01 = s.k * q * nx * ny;
+    k11 = s.k * ((1.0 - q) + q * ny * ny);
+    c00 = s.damping * nx * nx, c01 = s.damping * nx * ny, c11 = s.damping * ny * ny;
+  }
+  return {fx, fy, h * h * k00 + h * c00, h * h * k01 + h * c01, h * h * k11 + h * c11};
+}
+
+/// Each spring's force in G and its blocks of J ([B -B; -B B] on its two bodies, B alone on an
+/// anchored spring's body).
+template <class Real>
+void ImplicitSolver<Real>::newton_springs(const Real* x, const Real* y, double h) {
+  for (const Spring& s : springs) {
+    const Eigen::Index a = s.a, b = s.b;
+    const SpringJacobian t = spring_jacobian(s, x, y, h);
+    g_[2 * a] -= h * h * t.fx, g_[2 * a + 1] -= h * h * t.fy;
+    add_block(a, a, 1.0, t.j00, t.j01, t.j11);
+    if (s.anchored) continue;
+    g_[2 * b] += h * h * t.fx, g_[2 * b + 1] += h * h * t.fy;
+    add_block(b, b, 1.0, t.j00, t.j01, t.j11);
+    add_block(a, b, -1.0, t.j00, t.j01, t.j11);
+    add_block(b, a, -1.0, t.j00, t.j01, t.j11);
+  }
+}
+
+/// Solves J δ = G (a sparse LU) and steps r -= δ. False when the iteration is over: the
+/// factorisation failed or δ is within a few ulps of r.
+template <class Real>
+bool ImplicitSolver<Real>::newton_update() {
+  const Eigen::Index N = r_.size();
+  jacobian_.resize(N, N);
+  jacobian_.setFromTriplets(triplets_.begin(), triplets_.end());
+  if (!lu_analyzed_) lu_.analyzePattern(jacobian_), lu_analyzed_ = true;
+  throw_if_stop_requested();  // again after the analysis, before the factorisation
+  lu_.factorize(jacobian_);
+  if (lu_.info() != Eigen::Success) return false;
+  delta_ = lu_.solve(g_);
+  r_ -= delta_;
+  const double scale = r_.cwiseAbs().maxCoeff() + 1.0;
+  return delta_.cwiseAbs().maxCoeff() > 4.0 * std::numeric_limits<double>::epsilon() * scale;
+}
+
+/// The state at the last iterate, v = (r - x)/h; true if it is out of range.
+template <class Real>
+bool ImplicitSolver<Real>::finish_newton(Real* x, Real* y, Real* vx, Real* vy, double h) const {
+  const auto n = static_cast<Eigen::Index>(mass.size());
   bool out = false;
   const double limit = max_state_magnitude;
   for (Eigen::Index j = 0; j < n; ++j) {
