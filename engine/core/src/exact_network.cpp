@@ -35,6 +35,10 @@ struct LinearNetwork::Modes {
     std::vector<std::size_t> bodies;
     Eigen::MatrixXd phi;
     std::vector<double> omega2, gamma, qx, vx, qy, vy, fx, fy;
+    /// Decomposes this component, of bodies `all[bodies[j]]` joined by `links` (local[i]: body
+    /// i's place in it); false when its damping is not proportional.
+    bool decompose(std::span<const BodyDef> all, std::span<const fixstep::IndexLink* const> links,
+                   const std::vector<std::size_t>& local);
   };
   std::vector<double> mass;
   std::vector<Block> blocks;
@@ -129,97 +133,139 @@ std::size_t find(std::vector<std::size_t>& parent, std::size_t i) {
   return i;
 }
 
-}  // namespace
-
-std::optional<LinearNetwork> LinearNetwork::make(std::span<const BodyDef> bodies,
-                                                 std::span<const LinkDef> link_defs) {
-  const std::size_t n = bodies.size();
-  for (std::size_t i = 0; i < n; ++i) check_body(bodies[i], i);
-  const std::vector<fixstep::IndexLink> links = fixstep::index_links(link_defs, n);
+/// The links by place, after checking every body and link (fail names the first bad one).
+std::vector<fixstep::IndexLink> checked_links(std::span<const BodyDef> bodies,
+                                              std::span<const LinkDef> link_defs) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) check_body(bodies[i], i);
+  std::vector<fixstep::IndexLink> links = fixstep::index_links(link_defs, bodies.size());
   for (std::size_t l = 0; l < links.size(); ++l) check_link(links[l], l);
-  for (const BodyDef& b : bodies) {
-    if (b.spring && b.spring->rest_length > 0.0) return std::nullopt;  // nonlinear
-  }
-  for (const fixstep::IndexLink& l : links) {
-    if (l.spring.rest_length > 0.0) return std::nullopt;
-  }
+  return links;
+}
 
-  // Connected components (union-find), each listed in body order.
+/// Some spring or link has a rest length: the forces are not linear.
+bool has_rest_length(std::span<const BodyDef> bodies, std::span<const fixstep::IndexLink> links) {
+  return std::any_of(bodies.begin(), bodies.end(),
+                     [](const BodyDef& b) { return b.spring && b.spring->rest_length > 0.0; }) ||
+         std::any_of(links.begin(), links.end(),
+                     [](const fixstep::IndexLink& l) { return l.spring.rest_length > 0.0; });
+}
+
+/// The connected components of n bodies joined by links (union-find): each component's bodies
+/// in body order, each body's place in its component, each component's links in link order.
+struct Components {
+  std::vector<std::vector<std::size_t>> bodies;
+  std::vector<std::size_t> local;
+  std::vector<std::vector<const fixstep::IndexLink*>> links;
+};
+
+Components connected_components(std::size_t n, std::span<const fixstep::IndexLink> links) {
   std::vector<std::size_t> parent(n);
   std::iota(parent.begin(), parent.end(), std::size_t{0});
   for (const fixstep::IndexLink& l : links) parent[find(parent, l.body_a)] = find(parent, l.body_b);
-  std::vector<std::size_t> block_of(n, n), local(n);
-  auto modes = std::make_unique<Modes>();
+  Components c;
+  std::vector<std::size_t> block_of(n, n);
+  c.local.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t root = find(parent, i);
-    if (block_of[root] == n) block_of[root] = modes->blocks.size(), modes->blocks.emplace_back();
-    Modes::Block& blk = modes->blocks[block_of[root]];
-    local[i] = blk.bodies.size();
-    blk.bodies.push_back(i);
-    modes->mass.push_back(bodies[i].body.mass);
+    if (block_of[root] == n) block_of[root] = c.bodies.size(), c.bodies.emplace_back();
+    c.local[i] = c.bodies[block_of[root]].size();
+    c.bodies[block_of[root]].push_back(i);
   }
-  std::vector<std::vector<const fixstep::IndexLink*>> block_links(modes->blocks.size());
-  for (const fixstep::IndexLink& l : links)
-    block_links[block_of[find(parent, l.body_a)]].push_back(&l);
+  c.links.resize(c.bodies.size());
+  for (const fixstep::IndexLink& l : links) c.links[block_of[find(parent, l.body_a)]].push_back(&l);
+  return c;
+}
 
+/// One component's K, C (n×n, shared by x and y), M, loads f = F + m g + k·anchor and initial
+/// state, with one row {coefficient of α, of β, damping} per damper for proportional().
+struct BlockSystem {
+  Eigen::MatrixXd k, c;
+  Eigen::VectorXd m, fx, fy, x0, y0, vx0, vy0;
+  std::vector<std::array<double, 3>> rows;
+};
+
+BlockSystem assemble(std::span<const BodyDef> all, const std::vector<std::size_t>& members,
+                     std::span<const fixstep::IndexLink* const> links,
+                     const std::vector<std::size_t>& local) {
+  const auto nb = static_cast<Eigen::Index>(members.size());
+  BlockSystem s{
+      Eigen::MatrixXd::Zero(nb, nb), Eigen::MatrixXd::Zero(nb, nb), {}, {}, {}, {}, {}, {}, {}, {}};
+  for (Eigen::VectorXd* v : {&s.m, &s.fx, &s.fy, &s.x0, &s.y0, &s.vx0, &s.vy0}) v->resize(nb);
+  for (Eigen::Index j = 0; j < nb; ++j) {
+    const BodyDef& def = all[members[static_cast<std::size_t>(j)]];
+    const double mass = def.body.mass;
+    const double ka = def.spring ? def.spring->stiffness : 0.0;
+    const double damp =
+        (def.spring ? def.spring->damping : 0.0) + (def.drag ? def.drag->coefficient : 0.0);
+    s.m(j) = mass, s.k(j, j) = ka, s.c(j, j) = damp;
+    s.rows.push_back({ka, mass, damp});
+    const Vec2 anchor = def.spring ? def.spring->anchor : Vec2{};
+    const Vec2 force = def.constant_force ? def.constant_force->force : Vec2{};
+    const Vec2 g = def.gravity ? def.gravity->acceleration : Vec2{};
+    s.fx(j) = force.x + mass * g.x + ka * anchor.x;
+    s.fy(j) = force.y + mass * g.y + ka * anchor.y;
+    s.x0(j) = def.body.position.x, s.y0(j) = def.body.position.y;
+    s.vx0(j) = def.body.velocity.x, s.vy0(j) = def.body.velocity.y;
+  }
+  for (const fixstep::IndexLink* l : links) {
+    const auto a = static_cast<Eigen::Index>(local[l->body_a]);
+    const auto b = static_cast<Eigen::Index>(local[l->body_b]);
+    const double kl = l->spring.stiffness, bl = l->spring.damping;
+    s.k(a, a) += kl, s.k(b, b) += kl, s.k(a, b) -= kl, s.k(b, a) -= kl;
+    s.c(a, a) += bl, s.c(b, b) += bl, s.c(a, b) -= bl, s.c(b, a) -= bl;
+    s.rows.push_back({kl, 0.0, bl});
+  }
+  return s;
+}
+
+}  // namespace
+
+bool LinearNetwork::Modes::Block::decompose(std::span<const BodyDef> all,
+                                            std::span<const fixstep::IndexLink* const> links,
+                                            const std::vector<std::size_t>& local) {
+  const BlockSystem s = assemble(all, bodies, links, local);
+  if (!proportional(s.rows)) return false;
+  const auto nb = static_cast<Eigen::Index>(bodies.size());
+  // K φ = ω² M φ with φᵀMφ = 1 (Eigen reduces it with the Cholesky factor of M, here
+  // M^½, to the symmetric M^-½ K M^-½).
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(
+      s.k, Eigen::MatrixXd(s.m.asDiagonal()), Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+  if (solver.info() != Eigen::Success) {
+    throw std::runtime_error("fixstep::exact::LinearNetwork: eigen-decomposition failed");
+  }
+  phi = solver.eigenvectors();
+  const Eigen::VectorXd& w2 = solver.eigenvalues();
+  // K is positive semidefinite: eigenvalues below the round-off of the largest (a few ulps
+  // times the size) are the rigid motions of a free component, exactly 0.
+  const double top = w2.cwiseAbs().maxCoeff();
+  const double zero = 64.0 * static_cast<double>(nb) * std::numeric_limits<double>::epsilon() * top;
+  const Eigen::MatrixXd mphi = s.m.asDiagonal() * phi;
+  const Eigen::VectorXd q_x = mphi.transpose() * s.x0, q_y = mphi.transpose() * s.y0;
+  const Eigen::VectorXd v_x = mphi.transpose() * s.vx0, v_y = mphi.transpose() * s.vy0;
+  const Eigen::VectorXd p_x = phi.transpose() * s.fx, p_y = phi.transpose() * s.fy;
+  for (Eigen::Index j = 0; j < nb; ++j) {
+    omega2.push_back(w2(j) > zero ? w2(j) : 0.0);
+    // γ = φᵀCφ, which is α ω² + β for C = αK + βM, without the fit's round-off.
+    gamma.push_back(std::max(0.0, phi.col(j).dot(s.c * phi.col(j))));
+    qx.push_back(q_x(j)), qy.push_back(q_y(j));
+    vx.push_back(v_x(j)), vy.push_back(v_y(j));
+    fx.push_back(p_x(j)), fy.push_back(p_y(j));
+  }
+  return true;
+}
+
+std::optional<LinearNetwork> LinearNetwork::make(std::span<const BodyDef> bodies,
+                                                 std::span<const LinkDef> link_defs) {
+  const std::vector<fixstep::IndexLink> links = checked_links(bodies, link_defs);
+  if (has_rest_length(bodies, links)) return std::nullopt;  // nonlinear
+  const Components components = connected_components(bodies.size(), links);
+  auto modes = std::make_unique<Modes>();
+  for (const BodyDef& b : bodies) modes->mass.push_back(b.body.mass);
+  modes->blocks.resize(components.bodies.size());
   for (std::size_t bi = 0; bi < modes->blocks.size(); ++bi) {
     Modes::Block& blk = modes->blocks[bi];
-    const auto nb = static_cast<Eigen::Index>(blk.bodies.size());
-    Eigen::MatrixXd k = Eigen::MatrixXd::Zero(nb, nb), c = Eigen::MatrixXd::Zero(nb, nb);
-    Eigen::VectorXd m(nb), fx(nb), fy(nb), x0(nb), y0(nb), vx0(nb), vy0(nb);
-    std::vector<std::array<double, 3>> rows;  // {coefficient of α, of β, damping}
-    for (Eigen::Index j = 0; j < nb; ++j) {
-      const BodyDef& def = bodies[blk.bodies[static_cast<std::size_t>(j)]];
-      const double mass = def.body.mass;
-      const double ka = def.spring ? def.spring->stiffness : 0.0;
-      const double damp =
-          (def.spring ? def.spring->damping : 0.0) + (def.drag ? def.drag->coefficient : 0.0);
-      m(j) = mass, k(j, j) = ka, c(j, j) = damp;
-      rows.push_back({ka, mass, damp});
-      const Vec2 anchor = def.spring ? def.spring->anchor : Vec2{};
-      const Vec2 force = def.constant_force ? def.constant_force->force : Vec2{};
-      const Vec2 g = def.gravity ? def.gravity->acceleration : Vec2{};
-      fx(j) = force.x + mass * g.x + ka * anchor.x;
-      fy(j) = force.y + mass * g.y + ka * anchor.y;
-      x0(j) = def.body.position.x, y0(j) = def.body.position.y;
-      vx0(j) = def.body.velocity.x, vy0(j) = def.body.velocity.y;
-    }
-    for (const fixstep::IndexLink* l : block_links[bi]) {
-      const auto a = static_cast<Eigen::Index>(local[l->body_a]);
-      const auto b = static_cast<Eigen::Index>(local[l->body_b]);
-      const double kl = l->spring.stiffness, bl = l->spring.damping;
-      k(a, a) += kl, k(b, b) += kl, k(a, b) -= kl, k(b, a) -= kl;
-      c(a, a) += bl, c(b, b) += bl, c(a, b) -= bl, c(b, a) -= bl;
-      rows.push_back({kl, 0.0, bl});
-    }
-    if (!proportional(rows)) return std::nullopt;
-
-    // K φ = ω² M φ with φᵀMφ = 1 (Eigen reduces it with the Cholesky factor of M, here
-    // M^½, to the symmetric M^-½ K M^-½).
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(
-        k, Eigen::MatrixXd(m.asDiagonal()), Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
-    if (solver.info() != Eigen::Success) {
-      throw std::runtime_error("fixstep::exact::LinearNetwork: eigen-decomposition failed");
-    }
-    blk.phi = solver.eigenvectors();
-    const Eigen::VectorXd& w2 = solver.eigenvalues();
-    // K is positive semidefinite: eigenvalues below the round-off of the largest (a few ulps
-    // times the size) are the rigid motions of a free component, exactly 0.
-    const double top = w2.cwiseAbs().maxCoeff();
-    const double zero =
-        64.0 * static_cast<double>(nb) * std::numeric_limits<double>::epsilon() * top;
-    const Eigen::MatrixXd mphi = m.asDiagonal() * blk.phi;
-    const Eigen::VectorXd qx = mphi.transpose() * x0, qy = mphi.transpose() * y0;
-    const Eigen::VectorXd vx = mphi.transpose() * vx0, vy = mphi.transpose() * vy0;
-    const Eigen::VectorXd px = blk.phi.transpose() * fx, py = blk.phi.transpose() * fy;
-    for (Eigen::Index j = 0; j < nb; ++j) {
-      blk.omega2.push_back(w2(j) > zero ? w2(j) : 0.0);
-      // γ = φᵀCφ, which is α ω² + β for C = αK + βM, without the fit's round-off.
-      blk.gamma.push_back(std::max(0.0, blk.phi.col(j).dot(c * blk.phi.col(j))));
-      blk.qx.push_back(qx(j)), blk.qy.push_back(qy(j));
-      blk.vx.push_back(vx(j)), blk.vy.push_back(vy(j));
-      blk.fx.push_back(px(j)), blk.fy.push_back(py(j));
-    }
+    blk.bodies = components.bodies[bi];
+    if (!blk.decompose(bodies, components.links[bi], components.local)) return std::nullopt;
   }
   return LinearNetwork(std::move(modes));
 }
