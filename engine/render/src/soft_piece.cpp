@@ -33,26 +33,64 @@ inline std::int64_t floor_div(std::int64_t n, std::int64_t d) {
   return (n % d != 0 && n < 0) ? q - 1 : q;
 }
 
+/// The half-plane of the edge from corner `from` to corner `to` (SoftEdge), the tie rule folded
+/// into c; at and per_row are set only where the edge is not horizontal (a != 0).
+SoftEdge make_edge(const std::int64_t (&from)[2], const std::int64_t (&to)[2]) {
+  SoftEdge e;
+  e.a = from[1] - to[1];
+  e.b = to[0] - from[0];
+  e.c = -(e.a * from[0] + e.b * from[1]);
+  // A pixel centre on an edge shared by two pieces belongs to exactly one: the edge's
+  // direction is reversed in the other, and only one of (a, b), (-a, -b) passes this.
+  if (!(e.a > 0 || (e.a == 0 && e.b > 0))) e.c -= 1;
+  if (e.a == 0) return e;
+  // a (i sub + sub/2) + b (j sub + sub/2) + c = 0
+  const double inv_step = 1.0 / (double(e.a) * sub);
+  const double half = 0.5 * double(sub);
+  e.at = -(double(e.b) * half + double(e.c) + double(e.a) * half) * inv_step;
+  e.per_row = -double(e.b) * sub * inv_step;
+  return e;
+}
+
+/// The bounding box of corners p[0, corners).
+SoftCornerBox corner_box(const std::int64_t (*p)[2], int corners) {
+  SoftCornerBox b{p[0][0], p[0][0], p[0][1], p[0][1]};
+  for (int k = 1; k < corners; ++k) {
+    b.x_min = std::min(b.x_min, p[k][0]), b.x_max = std::max(b.x_max, p[k][0]);
+    b.top = std::min(b.top, p[k][1]), b.bottom = std::max(b.bottom, p[k][1]);
+  }
+  return b;
+}
+
 }  // namespace
 
 bool SoftPiece::set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2], int corners,
                        const PixelBox& cut) {
   const std::int64_t area = soft_cross(p[0], p[1], p[2]);
   if (area == 0) return false;
-  const bool flip = area < 0;  // one winding for the edges: inside is where all are >= 0
+  std::int64_t first_row = INT32_MIN, last_row = INT32_MAX;  // as the horizontal edges allow
+  set_edges(p, corners, area < 0, first_row, last_row);
+  set_planes(v, p);
+  set_coverage(v, corners);
+  box = cut;
+  const SoftCornerBox b = corner_box(p, corners);
+  set_rows_and_columns(b, first_row, last_row);
+  rect = solid && corners == 4;
+  for (int k = 0; k < corners && rect; ++k) {  // every corner on the bounding box's corners
+    rect = (p[k][0] == b.x_min || p[k][0] == b.x_max) && (p[k][1] == b.top || p[k][1] == b.bottom);
+  }
+  if (rect) return set_up_rect(*v[0], b.x_min, b.top, b.x_max, b.bottom, cut);
+  return row0 <= row1 && box.x0 < box.x1;
+}
+
+void SoftPiece::set_edges(const std::int64_t (*p)[2], int corners, bool flip,
+                          std::int64_t& first_row, std::int64_t& last_row) {
   SoftEdge left[4], right[4];
   lefts = rights = 0;
-  std::int64_t first_row = INT32_MIN, last_row = INT32_MAX;
   for (int k = 0; k < corners; ++k) {
     const int from = flip ? (corners - k) % corners : k;
     const int to = flip ? (corners - k - 1) % corners : (k + 1) % corners;
-    SoftEdge e;
-    e.a = p[from][1] - p[to][1];
-    e.b = p[to][0] - p[from][0];
-    e.c = -(e.a * p[from][0] + e.b * p[from][1]);
-    // A pixel centre on an edge shared by two pieces belongs to exactly one: the edge's
-    // direction is reversed in the other, and only one of (a, b), (-a, -b) passes this.
-    if (!(e.a > 0 || (e.a == 0 && e.b > 0))) e.c -= 1;
+    const SoftEdge e = make_edge(p[from], p[to]);
     if (e.a == 0) {  // rows j with b (j sub + sub/2) + c >= 0
       const std::int64_t n = e.b * (sub / 2) + e.c;
       if (e.b > 0) {
@@ -60,14 +98,7 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2],
       } else {
         last_row = std::min(last_row, floor_div(n, -e.b * sub));
       }
-      continue;
-    }
-    // a (i sub + sub/2) + b (j sub + sub/2) + c = 0
-    const double inv_step = 1.0 / (double(e.a) * sub);
-    const double half = 0.5 * double(sub);
-    e.at = -(double(e.b) * half + double(e.c) + double(e.a) * half) * inv_step;
-    e.per_row = -double(e.b) * sub * inv_step;
-    if (e.a > 0) {
+    } else if (e.a > 0) {
       left[lefts++] = e;
     } else {
       right[rights++] = e;
@@ -75,6 +106,9 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2],
   }
   for (int k = 0; k < lefts; ++k) edge[k] = left[k];
   for (int k = 0; k < rights; ++k) edge[lefts + k] = right[k];
+}
+
+void SoftPiece::set_planes(const CanvasVertex* const* v, const std::int64_t (*p)[2]) {
   // The planes, from the first three corners (a quad's fourth lies on them: add()).
   double x[3], y[3];
   for (int k = 0; k < 3; ++k) x[k] = double(p[k][0]) / sub, y[k] = double(p[k][1]) / sub;
@@ -96,31 +130,26 @@ bool SoftPiece::set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2],
     const auto value = [&](int k) { return double(float(c[k][ch]) / 255.0f); };
     color[ch] = flat_color ? SoftPlane{value(0), 0, 0} : plane(value(0), value(1), value(2));
   }
+}
+
+void SoftPiece::set_coverage(const CanvasVertex* const* v, int corners) {
   fill = v[corners - 1]->fill;  // flat: GL's provoking vertex is the last (one per shape)
   solid = flat_color && !has_hole();
   hole_r = reach_r = -1;
   if (!solid && !is_line()) find_round();
   for (int k = 0; k < corners && solid; ++k) solid = v[k]->u == 0.0f && v[k]->v == 0.0f;
-  box = cut;
-  std::int64_t top = p[0][1], bottom = p[0][1];
-  for (int k = 1; k < corners; ++k)
-    top = std::min(top, p[k][1]), bottom = std::max(bottom, p[k][1]);
+}
+
+void SoftPiece::set_rows_and_columns(const SoftCornerBox& c, std::int64_t first_row,
+                                     std::int64_t last_row) {
   // Rows whose centres lie within [top, bottom] (and within the horizontal edges' rows).
-  row0 =
-      static_cast<int>(std::max({std::int64_t(box.y0), floor_div(top - sub / 2, sub), first_row}));
+  row0 = static_cast<int>(
+      std::max({std::int64_t(box.y0), floor_div(c.top - sub / 2, sub), first_row}));
   row1 = static_cast<int>(
-      std::min({std::int64_t(box.y1 - 1), -floor_div(sub / 2 - bottom, sub), last_row}));
-  std::int64_t x_min = p[0][0], x_max = p[0][0];
-  for (int k = 1; k < corners; ++k)
-    x_min = std::min(x_min, p[k][0]), x_max = std::max(x_max, p[k][0]);
-  col0 = static_cast<int>(std::max(std::int64_t(box.x0), floor_div(x_min - sub / 2, sub)));
-  col1 = static_cast<int>(std::min(std::int64_t(box.x1 - 1), floor_div(x_max - sub / 2, sub) + 1));
-  rect = solid && corners == 4;
-  for (int k = 0; k < corners && rect; ++k) {  // every corner on the bounding box's corners
-    rect = (p[k][0] == x_min || p[k][0] == x_max) && (p[k][1] == top || p[k][1] == bottom);
-  }
-  if (rect) return set_up_rect(*v[0], x_min, top, x_max, bottom, cut);
-  return row0 <= row1 && box.x0 < box.x1;
+      std::min({std::int64_t(box.y1 - 1), -floor_div(sub / 2 - c.bottom, sub), last_row}));
+  col0 = static_cast<int>(std::max(std::int64_t(box.x0), floor_div(c.x_min - sub / 2, sub)));
+  col1 =
+      static_cast<int>(std::min(std::int64_t(box.x1 - 1), floor_div(c.x_max - sub / 2, sub) + 1));
 }
 
 bool SoftPiece::set_up_rect(const CanvasVertex& c, std::int64_t x_min, std::int64_t y_min,

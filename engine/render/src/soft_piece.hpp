@@ -53,6 +53,11 @@ inline std::int64_t soft_cross(const std::int64_t (&p)[2], const std::int64_t (&
   return (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]);
 }
 
+/// The bounding box of a piece's corners, subpixels.
+struct SoftCornerBox {
+  std::int64_t x_min = 0, x_max = 0, top = 0, bottom = 0;
+};
+
 /// One row of a piece's 2x2 quads (SoftPiece::quad_row()): the rows' spans, the columns to draw
 /// and the rows' pixels.
 struct SoftQuadRow {
@@ -89,6 +94,17 @@ struct SoftPiece {
   /// when it covers no pixel centre (no area, or outside the box).
   bool set_up(const CanvasVertex* const* v, const std::int64_t (*p)[2], int corners,
               const PixelBox& cut);
+  /// set_up()'s steps, in the order it takes them. The edges of corners p (reversed when
+  /// `flip`), left ones then right ones; horizontal edges narrow rows [first_row, last_row].
+  void set_edges(const std::int64_t (*p)[2], int corners, bool flip, std::int64_t& first_row,
+                 std::int64_t& last_row);
+  /// The planes (u, v, colours) from the first three corners, and flat_color.
+  void set_planes(const CanvasVertex* const* v, const std::int64_t (*p)[2]);
+  /// fill, solid, and a round shape's centre and radii (find_round()).
+  void set_coverage(const CanvasVertex* const* v, int corners);
+  /// Rows and columns within the box whose centres the corners' box `c` and rows [first_row,
+  /// last_row] may cover.
+  void set_rows_and_columns(const SoftCornerBox& c, std::int64_t first_row, std::int64_t last_row);
   /// Sets up a solid axis-aligned rectangle of colour c from subpixel corner (x0, y0) to
   /// (x1, y1) (x0 < x1, y0 < y1) without edges or planes; false when it covers no pixel centre.
   bool set_up_rect(const CanvasVertex& c, std::int64_t x0, std::int64_t y0, std::int64_t x1,
