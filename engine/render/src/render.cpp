@@ -16,6 +16,7 @@
 #include "aa_pad.hpp"
 #include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
 #include "gl_shaders.hpp"
+#include "occlusion.hpp"
 #include "renderer_gl.hpp"
 #include "soft_shapes.hpp"
 
@@ -154,7 +155,9 @@ void Renderer::triangle(float x0, float y0, float x1, float y1, float x2, float 
   for (std::uint32_t i = 0; i < 3; ++i) indices_.push_back(base + i);
 }
 
-float Renderer::hidden_under_disc(float outer, float width) {
+namespace detail {
+
+float hidden_under_disc(float outer, float width) {
   // The outlined disc (outline opaque) covers every pixel within outer - 1 px of its centre with
   // coverage 1 (the shader's coverage is 1 up to half a fwidth, at most 1 px, inside the edge), so
   // its colour replaces whatever lies below there. A line ending at the centre can stop `cut` px
@@ -164,7 +167,7 @@ float Renderer::hidden_under_disc(float outer, float width) {
   return opaque > pad ? std::sqrt(opaque * opaque - pad * pad) : 0.0f;
 }
 
-float Renderer::hidden_under_square(float half, float width, float ux, float uy) {
+float hidden_under_square(float half, float width, float ux, float uy) {
   // The square (solid, opaque) replaces every pixel whose centre lies strictly inside it. The
   // quad of a line leaving its centre in direction (ux, uy) (a unit vector) reaches s |ux| +
   // pad |uy| along x and s |uy| + pad |ux| along y over its first s px; both must stay inside.
@@ -195,17 +198,31 @@ void pull_towards(const Renderer::PolylinePoint& fixed, Renderer::PolylinePoint&
 
 }  // namespace
 
-void Renderer::shorten(std::span<PolylinePoint> points, float cut_start, float cut_end) {
+void shorten(std::span<Renderer::PolylinePoint> points, float cut_start, float cut_end) {
   const std::size_t n = points.size();
   if (n < 2) return;
   if (n == 2 && cut_start + cut_end > 0.0f) {  // one segment: both ends move along it
-    const PolylinePoint a = points[0], b = points[1];
+    const Renderer::PolylinePoint a = points[0], b = points[1];
     pull_towards(b, points[0], cut_start);
     pull_towards(a, points[1], cut_end);
     return;
   }
   pull_towards(points[1], points[0], cut_start);
   pull_towards(points[n - 2], points[n - 1], cut_end);
+}
+
+}  // namespace detail
+
+float Renderer::hidden_under_disc(float outer, float width) {
+  return detail::hidden_under_disc(outer, width);
+}
+
+float Renderer::hidden_under_square(float half, float width, float ux, float uy) {
+  return detail::hidden_under_square(half, width, ux, uy);
+}
+
+void Renderer::shorten(std::span<PolylinePoint> points, float cut_start, float cut_end) {
+  detail::shorten(points, cut_start, cut_end);
 }
 
 template <class Transform>

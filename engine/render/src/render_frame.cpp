@@ -1,6 +1,6 @@
 // Renderer::draw_scene: a RenderFrame as the scene view — grid, axes and scale bar, planes,
-// trails, links, springs and bodies — drawn with the canvas primitives of render.cpp (trails in
-// render_trails.cpp, the HUD in render_hud.cpp).
+// segments, trails, links, springs and bodies, in that order — drawn with the canvas primitives
+// of render.cpp (trails in render_trails.cpp, the HUD in render_hud.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/render/render.hpp"
+#include "occlusion.hpp"
 #include "scene_palette.hpp"
 
 namespace fixstep {
@@ -67,6 +68,104 @@ void draw_segments(Renderer& canvas, std::span<const SegmentDef> segments) {
     const auto a = canvas.to_pixel(s.a.x, s.a.y), b = canvas.to_pixel(s.b.x, s.b.y);
     canvas.line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 2.5f,
                 scene_palette::plane_line);
+  }
+}
+
+/// What the steps of the scene view after the backdrop share: the canvas, the frame, its scale
+/// and the canvas's polyline scratch (Renderer::polyline_scratch_, no allocation once warm).
+struct SceneView {
+  Renderer& canvas;
+  const RenderFrame& s;
+  double scale;  ///< px per m
+  std::vector<Renderer::PolylinePoint>& scratch;
+
+  [[nodiscard]] bool shown(std::size_t j) const { return scene_palette::body_visible(s, j); }
+  [[nodiscard]] float radius_px(std::size_t j) const {
+    return scene_palette::body_radius_px(s, j, scale);
+  }
+  /// px of a line `width` px wide ending at body j's centre that its disc hides.
+  [[nodiscard]] float under_body(std::size_t j, float width) const {
+    return detail::hidden_under_disc(radius_px(j) + scene_palette::outline_px, width);
+  }
+};
+
+/// A spring: a zigzag of 12 coils from (ax, ay) to (bx, by), with straight leads (a straight
+/// line when shorter than 24 px); the first cut_start px and the last cut_end px are hidden by
+/// what is drawn over them later.
+void draw_zigzag(SceneView& view, float ax, float ay, float bx, float by, float cut_start,
+                 float cut_end) {
+  const Rgba8 spring_color = scene_palette::spring_color;
+  const float dx = bx - ax, dy = by - ay, len = std::sqrt(dx * dx + dy * dy);
+  if (len < 24.0f) {
+    if (cut_start + cut_end + 0.01f >= len) return;  // wholly hidden
+    const float ux = len > 0.0f ? dx / len : 0.0f, uy = len > 0.0f ? dy / len : 0.0f;
+    view.canvas.line(ax + ux * cut_start, ay + uy * cut_start, bx - ux * cut_end, by - uy * cut_end,
+                     2.0f, spring_color);
+    return;
+  }
+  // One polyline: anchor, start of the coils, 2 * coils corners, the body.
+  constexpr int coils = 12;
+  const float nx = -dy / len * 7.0f, ny = dx / len * 7.0f;
+  std::vector<Renderer::PolylinePoint>& points = view.scratch;
+  points.clear();
+  points.push_back({ax, ay, spring_color});
+  points.push_back({ax + dx * 0.1f, ay + dy * 0.1f, spring_color});
+  for (int k = 1; k <= 2 * coils; ++k) {
+    const float f = 0.1f + 0.8f * float(k) / (2 * coils);
+    const float side = k == 2 * coils ? 0.0f : (k % 2 ? 1.0f : -1.0f);
+    points.push_back({ax + dx * f + nx * side, ay + dy * f + ny * side, spring_color});
+  }
+  points.push_back({bx, by, spring_color});
+  detail::shorten(points, cut_start, cut_end);
+  view.canvas.polyline(points, 2.0f);
+}
+
+/// Links (springs between bodies): zigzags like the anchored springs when there are few,
+/// thin straight lines when there are many (a cloth's zigzags would merge into felt).
+void draw_links(SceneView& view, bool few_links) {
+  const RenderFrame& s = view.s;
+  for (std::size_t i = 0; i < s.link_a.size(); ++i) {
+    const std::uint32_t la = s.link_a[i], lb = s.link_b[i];
+    if (!view.shown(la) || !view.shown(lb)) continue;
+    const auto a = view.canvas.to_pixel(s.x[la], s.y[la]);
+    const auto b = view.canvas.to_pixel(s.x[lb], s.y[lb]);
+    if (few_links) {
+      draw_zigzag(view, float(a[0]), float(a[1]), float(b[0]), float(b[1]),
+                  view.under_body(la, 2.0f), view.under_body(lb, 2.0f));
+    } else {
+      view.canvas.line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 1.25f,
+                       scene_palette::link_color);
+    }
+  }
+}
+
+/// Anchored springs, each with its anchor (a square drawn right over its start).
+void draw_springs(SceneView& view) {
+  const RenderFrame& s = view.s;
+  for (const RenderFrame::SpringLine& sp : s.springs) {
+    if (!view.shown(sp.body)) continue;
+    const auto a = view.canvas.to_pixel(sp.anchor_x, sp.anchor_y);
+    const auto b = view.canvas.to_pixel(s.x[sp.body], s.y[sp.body]);
+    const float ax = float(a[0]), ay = float(a[1]), bx = float(b[0]), by = float(b[1]);
+    // The anchor hides the start of the spring's lead, which points at the coils' start: the
+    // body, but for the coils' sideways offset on long springs (first lead: along (b - a)).
+    const float len = std::hypot(bx - ax, by - ay);
+    const float ux = len > 0.0f ? (bx - ax) / len : 0.0f, uy = len > 0.0f ? (by - ay) / len : 0.0f;
+    const float half = scene_palette::anchor_half_px;
+    draw_zigzag(view, ax, ay, bx, by, detail::hidden_under_square(half, 2.0f, ux, uy),
+                view.under_body(sp.body, 2.0f));
+    view.canvas.rect(ax - half, ay - half, ax + half, ay + half, scene_palette::anchor_color);
+  }
+}
+
+/// The visible bodies: outlined discs.
+void draw_bodies(SceneView& view) {
+  const RenderFrame& s = view.s;
+  for (std::size_t j = 0; j < s.x.size(); ++j) {
+    if (!view.shown(j)) continue;
+    const auto p = view.canvas.to_pixel(s.x[j], s.y[j]);
+    view.canvas.disc(float(p[0]), float(p[1]), view.radius_px(j), scene_palette::body_color(s, j),
+                     scene_palette::outline_px, scene_palette::outline);
   }
 }
 
@@ -184,81 +283,13 @@ void Renderer::draw_scene(const RenderFrame& s) {
     record_backdrop(s.planes);
   }
   draw_segments(*this, s.segments);
-
-  const std::size_t n = s.x.size();
   const double scale = width_ / camera_.width;
-  auto shown = [&](std::size_t j) { return scene_palette::body_visible(s, j); };
-  auto radius_px = [&](std::size_t j) { return scene_palette::body_radius_px(s, j, scale); };
-  auto under_body = [&](std::size_t j, float width) {
-    return hidden_under_disc(radius_px(j) + scene_palette::outline_px, width);
-  };
-  const Rgba8 spring_color = scene_palette::spring_color;
-
   if (few_links) draw_trails(s, scale);
-  // Springs: a zigzag of 12 coils from (ax, ay) to (bx, by), with straight leads; the first
-  // cut_start px and the last cut_end px are hidden by what is drawn over them later.
-  auto zigzag = [&](float ax, float ay, float bx, float by, float cut_start, float cut_end) {
-    const float dx = bx - ax, dy = by - ay, len = std::sqrt(dx * dx + dy * dy);
-    if (len < 24.0f) {
-      if (cut_start + cut_end + 0.01f >= len) return;  // wholly hidden
-      const float ux = len > 0.0f ? dx / len : 0.0f, uy = len > 0.0f ? dy / len : 0.0f;
-      line(ax + ux * cut_start, ay + uy * cut_start, bx - ux * cut_end, by - uy * cut_end, 2.0f,
-           spring_color);
-      return;
-    }
-    // One polyline: anchor, start of the coils, 2 * coils corners, the body.
-    constexpr int coils = 12;
-    const float nx = -dy / len * 7.0f, ny = dx / len * 7.0f;
-    polyline_scratch_.clear();
-    polyline_scratch_.push_back({ax, ay, spring_color});
-    polyline_scratch_.push_back({ax + dx * 0.1f, ay + dy * 0.1f, spring_color});
-    for (int k = 1; k <= 2 * coils; ++k) {
-      const float f = 0.1f + 0.8f * float(k) / (2 * coils);
-      const float side = k == 2 * coils ? 0.0f : (k % 2 ? 1.0f : -1.0f);
-      polyline_scratch_.push_back({ax + dx * f + nx * side, ay + dy * f + ny * side, spring_color});
-    }
-    polyline_scratch_.push_back({bx, by, spring_color});
-    shorten(polyline_scratch_, cut_start, cut_end);
-    polyline(polyline_scratch_, 2.0f);
-  };
-
-  // Links (springs between bodies): zigzags like the anchored springs when there are few,
-  // thin straight lines when there are many (a cloth's zigzags would merge into felt).
-  for (std::size_t i = 0; i < s.link_a.size(); ++i) {
-    const std::uint32_t la = s.link_a[i], lb = s.link_b[i];
-    if (!shown(la) || !shown(lb)) continue;
-    const auto a = to_pixel(s.x[la], s.y[la]);
-    const auto b = to_pixel(s.x[lb], s.y[lb]);
-    if (few_links) {
-      zigzag(float(a[0]), float(a[1]), float(b[0]), float(b[1]), under_body(la, 2.0f),
-             under_body(lb, 2.0f));
-    } else {
-      line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 1.25f, scene_palette::link_color);
-    }
-  }
-
-  // Anchored springs, each with its anchor (a square drawn right over its start).
-  for (const RenderFrame::SpringLine& sp : s.springs) {
-    if (!shown(sp.body)) continue;
-    const auto a = to_pixel(sp.anchor_x, sp.anchor_y);
-    const auto b = to_pixel(s.x[sp.body], s.y[sp.body]);
-    const float ax = float(a[0]), ay = float(a[1]), bx = float(b[0]), by = float(b[1]);
-    // The anchor hides the start of the spring's lead, which points at the coils' start: the
-    // body, but for the coils' sideways offset on long springs (first lead: along (b - a)).
-    const float len = std::hypot(bx - ax, by - ay);
-    const float ux = len > 0.0f ? (bx - ax) / len : 0.0f, uy = len > 0.0f ? (by - ay) / len : 0.0f;
-    const float half = scene_palette::anchor_half_px;
-    zigzag(ax, ay, bx, by, hidden_under_square(half, 2.0f, ux, uy), under_body(sp.body, 2.0f));
-    rect(ax - half, ay - half, ax + half, ay + half, scene_palette::anchor_color);
-  }
-
-  for (std::size_t j = 0; j < n; ++j) {
-    if (!shown(j)) continue;
-    const auto p = to_pixel(s.x[j], s.y[j]);
-    disc(float(p[0]), float(p[1]), radius_px(j), scene_palette::body_color(s, j),
-         scene_palette::outline_px, scene_palette::outline);
-  }
-  if (s.angle.size() == n) draw_spin_marks(s);
+  SceneView view{*this, s, scale, polyline_scratch_};
+  draw_links(view, few_links);
+  draw_springs(view);
+  draw_bodies(view);
+  if (s.angle.size() == s.x.size()) draw_spin_marks(s);
   // What follows (a game's overlay, the HUD) starts a batch of its own (finish()).
   batches_.push_back(
       Batch{indices_.size(), batches_.back().clip, batches_.back().program, batches_.back().ring});
