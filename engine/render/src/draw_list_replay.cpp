@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,85 @@ struct Scratch {
   std::string text;
 };
 
+/// A shape's `points` in px (double) into `px`: through the canvas's camera when they are in
+/// world space, as they are in screen space.
+void to_px(const Renderer& canvas, std::span<const Vec2> points, bool world,
+           std::vector<Vec2>& px) {
+  px.clear();
+  for (const Vec2 p : points) {
+    if (world) {
+      const std::array<double, 2> q = canvas.to_pixel(p.x, p.y);
+      px.push_back({q[0], q[1]});
+    } else {
+      px.push_back(p);
+    }
+  }
+}
+
+/// A line from a to b, `width` px wide, cut to `box`; an arrow (head `head` px) keeps its head
+/// only while its tip is in reach: beyond it, the shaft is all that shows.
+void draw_line(Renderer& canvas, const Box& box, Vec2 a, Vec2 b, bool arrow, float width,
+               float head, Rgba8 c) {
+  const Vec2 tip = b;
+  if (!clip(a, b, box)) return;
+  if (arrow && b.x == tip.x && b.y == tip.y) {
+    canvas.arrow(float(a.x), float(a.y), float(b.x), float(b.y), width, head, c);
+  } else {
+    canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), width, c);
+  }
+}
+
+/// A polyline through px, `width` px wide: one strip when every point is in `box`, else segment
+/// by segment, each cut to it.
+void draw_polyline(Renderer& canvas, const Box& box, const std::vector<Vec2>& px, float width,
+                   Rgba8 c, std::vector<Renderer::PolylinePoint>& strip) {
+  if (std::all_of(px.begin(), px.end(), [&](Vec2 p) { return box.holds(p); })) {
+    strip.clear();
+    for (const Vec2 p : px) strip.push_back({float(p.x), float(p.y), c});
+    canvas.polyline(strip, width);
+    return;
+  }
+  for (std::size_t i = 0; i + 1 < px.size(); ++i) {
+    Vec2 a = px[i], b = px[i + 1];
+    if (clip(a, b, box)) canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), width, c);
+  }
+}
+
+/// A disc of radius r px at o, or a circle (`circle`) of radius r and line width `ring` px;
+/// none when it reaches no pixel of the frame or is wider than max_round_px.
+void draw_round(Renderer& canvas, Vec2 o, double r, double ring, bool circle, Rgba8 c) {
+  const double reach = r + (circle ? ring : 0.0);
+  if (2.0 * reach > max_round_px || o.x + reach < 0.0 || o.y + reach < 0.0 ||
+      o.x - reach > canvas.width() || o.y - reach > canvas.height()) {
+    return;
+  }
+  if (!circle) {
+    if (r > 0.0) canvas.disc(float(o.x), float(o.y), float(r), c);
+  } else {
+    canvas.circle(float(o.x), float(o.y), float(r), float(ring), c);
+  }
+}
+
+/// The rectangle with corners a and b, cut to `box`.
+void draw_rect(Renderer& canvas, const Box& box, Vec2 a, Vec2 b, Rgba8 c) {
+  const double x0 = std::clamp(std::min(a.x, b.x), box.x0, box.x1);
+  const double x1 = std::clamp(std::max(a.x, b.x), box.x0, box.x1);
+  const double y0 = std::clamp(std::min(a.y, b.y), box.y0, box.y1);
+  const double y1 = std::clamp(std::max(a.y, b.y), box.y0, box.y1);
+  if (x1 > x0 && y1 > y0) canvas.rect(float(x0), float(y0), float(x1), float(y1), c);
+}
+
+/// The convex polygon px, cut to `box`.
+void draw_polygon(Renderer& canvas, const Box& box, const std::vector<Vec2>& px, Rgba8 c,
+                  Scratch& scratch) {
+  const bool inside = std::all_of(px.begin(), px.end(), [&](Vec2 p) { return box.holds(p); });
+  if (!inside) clip_polygon(px, box, scratch.clipped, scratch.spare);
+  const std::vector<Vec2>& shown = inside ? px : scratch.clipped;
+  scratch.points.clear();
+  for (const Vec2 p : shown) scratch.points.push_back({float(p.x), float(p.y)});
+  canvas.polygon(scratch.points, c);
+}
+
 }  // namespace
 
 void DrawList::draw(Renderer& canvas) const {
@@ -103,87 +183,33 @@ void DrawList::draw(Renderer& canvas) const {
   for (const Shape& s : shapes_) {
     const bool world = s.space == Space::world;
     const double unit = world ? scale : 1.0;  // px per size unit
-    // The shape's points in px (double).
-    scratch.px.clear();
-    for (const Vec2 p : points_of(s)) {
-      if (world) {
-        const std::array<double, 2> q = canvas.to_pixel(p.x, p.y);
-        scratch.px.push_back({q[0], q[1]});
-      } else {
-        scratch.px.push_back(p);
-      }
-    }
+    to_px(canvas, points_of(s), world, scratch.px);
     const std::vector<Vec2>& px = scratch.px;
     const auto c = s.color;
     switch (s.kind) {
       case Kind::line:
-      case Kind::arrow: {
-        Vec2 a = px[0], b = px[1];
-        const Vec2 tip = b;
-        if (!clip(a, b, box)) break;
-        const auto w = float(s.width * unit);
-        // An arrow whose tip is in reach has its head; beyond it, the shaft is all that shows.
-        const bool head = s.kind == Kind::arrow && b.x == tip.x && b.y == tip.y;
-        if (head) {
-          canvas.arrow(float(a.x), float(a.y), float(b.x), float(b.y), w, float(s.size * unit), c);
-        } else {
-          canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), w, c);
-        }
+      case Kind::arrow:
+        draw_line(canvas, box, px[0], px[1], s.kind == Kind::arrow, float(s.width * unit),
+                  float(s.size * unit), c);
         break;
-      }
-      case Kind::polyline: {
-        const auto w = float(s.width * unit);
-        if (std::all_of(px.begin(), px.end(), [&](Vec2 p) { return box.holds(p); })) {
-          scratch.strip.clear();
-          for (const Vec2 p : px) scratch.strip.push_back({float(p.x), float(p.y), c});
-          canvas.polyline(scratch.strip, w);
-          break;
-        }
-        for (std::size_t i = 0; i + 1 < px.size(); ++i) {  // some point far out: segment by segment
-          Vec2 a = px[i], b = px[i + 1];
-          if (clip(a, b, box)) canvas.line(float(a.x), float(a.y), float(b.x), float(b.y), w, c);
-        }
+      case Kind::polyline:
+        draw_polyline(canvas, box, px, float(s.width * unit), c, scratch.strip);
         break;
-      }
       case Kind::circle:
-      case Kind::disc: {
-        const double r = s.width * unit, reach = r + (s.kind == Kind::circle ? s.size * unit : 0.0);
-        const Vec2 o = px[0];
-        if (2.0 * reach > max_round_px || o.x + reach < 0.0 || o.y + reach < 0.0 ||
-            o.x - reach > canvas.width() || o.y - reach > canvas.height()) {
-          break;
-        }
-        if (s.kind == Kind::disc) {
-          if (r > 0.0) canvas.disc(float(o.x), float(o.y), float(r), c);
-        } else {
-          canvas.circle(float(o.x), float(o.y), float(r), float(s.size * unit), c);
-        }
+      case Kind::disc:
+        draw_round(canvas, px[0], s.width * unit, s.size * unit, s.kind == Kind::circle, c);
         break;
-      }
-      case Kind::rect: {
-        const double x0 = std::clamp(std::min(px[0].x, px[1].x), box.x0, box.x1);
-        const double x1 = std::clamp(std::max(px[0].x, px[1].x), box.x0, box.x1);
-        const double y0 = std::clamp(std::min(px[0].y, px[1].y), box.y0, box.y1);
-        const double y1 = std::clamp(std::max(px[0].y, px[1].y), box.y0, box.y1);
-        if (x1 > x0 && y1 > y0) canvas.rect(float(x0), float(y0), float(x1), float(y1), c);
+      case Kind::rect:
+        draw_rect(canvas, box, px[0], px[1], c);
         break;
-      }
-      case Kind::polygon: {
-        const bool inside = std::all_of(px.begin(), px.end(), [&](Vec2 p) { return box.holds(p); });
-        if (!inside) clip_polygon(px, box, scratch.clipped, scratch.spare);
-        const std::vector<Vec2>& shown = inside ? px : scratch.clipped;
-        scratch.points.clear();
-        for (const Vec2 p : shown) scratch.points.push_back({float(p.x), float(p.y)});
-        canvas.polygon(scratch.points, c);
+      case Kind::polygon:
+        draw_polygon(canvas, box, px, c, scratch);
         break;
-      }
-      case Kind::label: {
-        const Vec2 at = px[0];
-        if (!box.holds(at)) break;  // text reaches at most a few thousand px
+      case Kind::label:
+        if (!box.holds(px[0])) break;  // text reaches at most a few thousand px
         scratch.text.assign(text_, s.text_first, s.text_count);
-        canvas.text(float(at.x), float(at.y), scratch.text, float(s.width), c);
+        canvas.text(float(px[0].x), float(px[0].y), scratch.text, float(s.width), c);
         break;
-      }
     }
   }
 }
