@@ -226,7 +226,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 void longest_rollback(bool quick) {
   std::vector<Level> levels;
   levels.push_back({"ball_pit.toml (1000 discs)",
-                    world_def(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/ball_pit.toml")), 400});
+                    load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/ball_pit.toml").def, 400});
 #ifdef FIXSTEP_BENCH_GAMES
   levels.push_back({"airhockey (the two-player demo)", airhockey::make_level(), 60});
   levels.push_back({"slingshot", slingshot::make_level(), 60});

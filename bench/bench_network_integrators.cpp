@@ -58,8 +58,8 @@ pin_spring = { frequency = 10.0, damping_ratio = 1.0 }
 }
 
 std::vector<Case> cases() {
-  const WorldDef cloth = world_def(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/cloth.toml"));
-  const WorldDef big = world_def(parse_scene(big_cloth_toml(), "cloth 10^4"));
+  const WorldDef cloth = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/cloth.toml").def;
+  const WorldDef big = parse_scene(big_cloth_toml(), "cloth 10^4").def;
   return {{"cloth.toml", cloth, 400}, {"cloth 10^4", big, 10}};
 }
 

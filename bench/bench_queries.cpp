@@ -23,6 +23,7 @@
 #include "fixstep/core/query.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 
 namespace {
@@ -32,7 +33,7 @@ using fixstep::Vec2;
 fixstep::World gas(std::size_t n, int mode) {  // mode 0: plain, 1: filtered, 2: collide = false
   fixstep::WorldSettings s{.dt = 1.0 / 60.0};
   s.contacts = fixstep::ContactSettings{.restitution = 1.0};
-  fixstep::World w(fixstep::Precision::f64, s);
+  fixstep::World w(fixstep::WorldDef::empty(fixstep::Precision::f64, s));
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> radius(0.05, 0.1), velocity(-5, 5);
   const double side = std::sqrt(double(n) * 3.14159 * 0.075 * 0.075 / 0.1);

@@ -40,6 +40,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "flush_denormals.hpp"
 #include "median_run.hpp"
@@ -546,15 +547,15 @@ void bm_engine(benchmark::State& st, SceneKind s, Integrator i) {
   set_rates(st, n, w.bytes_per_body_step());
 }
 
-/// The same step through the public fixstep::World (the precision inside, chosen at creation):
-/// what a program holds. Against engine/ (the kernel it holds), in the same run, it measures
-/// what the public interface adds per tick.
+/// The same step through the public fixstep::World (the precision inside, chosen at
+/// creation): what a program holds. Against engine/ (the kernel it holds), in the same
+/// run, it measures what the public interface adds per tick.
 template <class Real>
 void bm_world(benchmark::State& st, SceneKind s) {
   const auto n = static_cast<std::size_t>(st.range(0));
   auto& w = cached<fixstep::World>(3, cache_key(s, sizeof(Real), n), [&] {
-    auto* world = new fixstep::World(sizeof(Real) == 4 ? Precision::f32 : Precision::f64,
-                                     WorldSettings{.dt = dt});
+    auto* world = new fixstep::World(fixstep::WorldDef::empty(
+        sizeof(Real) == 4 ? Precision::f32 : Precision::f64, WorldSettings{.dt = dt}));
     for (std::size_t j = 0; j < n; ++j) world->create_body(body_def(s, j));
     return world;
   });

@@ -19,8 +19,8 @@ namespace fixstep::bench {
 inline Scene many_bodies(int n) {
   Scene s;
   s.file = fmt::format("many_bodies({})", n);
-  s.settings.dt = 0.01;
-  s.precision = Precision::f64;
+  s.def.settings.dt = 0.01;
+  s.def.precision = Precision::f64;
   s.view.center = Vec2{0.0, 0.0};
   s.view.width = 160.0;
   constexpr int cols = 40;
@@ -45,7 +45,7 @@ inline Scene many_bodies(int n) {
       b.gravity = Gravity{};
       b.drag = LinearDrag{.coefficient = 0.02 * (i % 5)};
     }
-    s.bodies.push_back(b);
+    s.def.bodies.push_back(b);
   }
   return s;
 }

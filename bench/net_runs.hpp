@@ -147,7 +147,7 @@ inline std::vector<NetResult> run_cases(const std::vector<NetCase>& cases, doubl
   for (std::size_t i = 0; i < cases.size(); ++i) {
     detail::Running& r = runs[i];
     r.c = &cases[i];
-    const WorldDef def = world_def(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/billiards.toml"));
+    const WorldDef def = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/billiards.toml").def;
     r.host = std::make_unique<net::MatchPeer>(
         net::MatchPeer::host(def, cases[i].settings, {"127.0.0.1", 0}));
     r.link = std::make_unique<net::LinkConditioner>(net::Address{"127.0.0.1", r.host->port()},

@@ -83,38 +83,55 @@ std::pair<int, int> parse_frame_size(const std::string& value) {
 }
 
 Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warnings) {
-  // The generators and the guard: seconds for 10^6 bodies and their links. A caller that takes
-  // the warnings shows the progress itself: no scope of our own, the reports go to its scope.
+  // The generators: seconds for 10^6 bodies and their links. A caller that takes the warnings
+  // shows the progress itself: no scope of our own, the reports go to its scope.
   std::optional<WorkProgressLine> shown;
   if (!warnings) shown.emplace(!o.quiet);
   Scene scene = load_scene(o.scene);
-  report_work_progress("checking the scene", "", 0, 0);  // no count until the guard iterates
-  if (o.integrator) scene.settings.integrator = *parse_integrator(*o.integrator);
-  if (o.dt) scene.settings.dt = *o.dt;
-  if (o.precision) scene.precision = *parse_precision(*o.precision);
-  if (o.substeps) scene.settings.substeps = *o.substeps;
-  if (o.damping_split) scene.settings.damping_split = *parse_damping_split(*o.damping_split);
-  if (o.allow_unstable) scene.allow_unstable = true;
+  if (o.integrator) scene.def.settings.integrator = *parse_integrator(*o.integrator);
+  if (o.dt) scene.def.settings.dt = *o.dt;
+  if (o.precision) scene.def.precision = *parse_precision(*o.precision);
+  if (o.substeps) scene.def.settings.substeps = *o.substeps;
+  if (o.damping_split) scene.def.settings.damping_split = *parse_damping_split(*o.damping_split);
+  if (o.allow_unstable) scene.def.allow_unstable = true;
   try {  // the overrides may ask for more work per tick than the file did (limits.hpp)
-    check_world_limits(scene.bodies, scene.links, scene.planes, scene.settings);
+    check_world_limits(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings);
   } catch (const LimitError& e) {
     throw LimitError(fmt::format("{} with the command line's settings: {}", o.scene, e.what()));
   }
-  const std::vector<std::string> guard = enforce_stability(scene);  // throws when unstable
   if (shown) shown->finish();  // the warnings start on a clean line
   if (warnings) {
     warnings->insert(warnings->end(), scene.warnings.begin(), scene.warnings.end());
-    warnings->insert(warnings->end(), guard.begin(), guard.end());
   } else if (!o.quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    for (const std::string& w : guard) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
   return scene;
 }
 
+World build_world(const Scene& scene, bool quiet, std::vector<std::string>* warnings) {
+  // The guard: seconds for a network of 10^6 bodies.
+  std::optional<WorkProgressLine> shown;
+  if (!warnings) shown.emplace(!quiet);
+  report_work_progress("checking the scene", "", 0, 0);  // no count until the guard iterates
+  std::optional<World> world;
+  try {
+    world.emplace(scene.def);
+  } catch (const UnstableDefinition& e) {
+    throw located(scene, e);  // the line and key in the file, and what to change there
+  }
+  if (shown) shown->finish();  // the warnings start on a clean line
+  const std::vector<std::string> guard = located_warnings(scene, world->warnings());
+  if (warnings) {
+    warnings->insert(warnings->end(), guard.begin(), guard.end());
+  } else if (!quiet) {
+    for (const std::string& w : guard) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
+  return std::move(*world);
+}
+
 std::string dt_source(const SceneOptions& o, const Scene& scene) {
   return o.dt ? fmt::format("--dt {:g}", *o.dt)
-              : fmt::format("[world] dt = {:g} s in {}", scene.settings.dt, scene.file);
+              : fmt::format("[world] dt = {:g} s in {}", scene.def.settings.dt, scene.file);
 }
 
 std::string dt_fix(const SceneOptions& o) {
@@ -139,10 +156,10 @@ void check_frame_ticks(double frame_seconds, double dt, std::optional<double> fp
 
 std::string describe(const Scene& scene) {
   return fmt::format("scene={} integrator={} precision={} dt={}{}", scene.file,
-                     integrator_name(scene.settings.integrator), precision_name(scene.precision),
-                     scene.settings.dt,
-                     scene.settings.substeps > 1
-                         ? fmt::format(" substeps={}", scene.settings.substeps)
+                     integrator_name(scene.def.settings.integrator),
+                     precision_name(scene.def.precision), scene.def.settings.dt,
+                     scene.def.settings.substeps > 1
+                         ? fmt::format(" substeps={}", scene.def.settings.substeps)
                          : std::string());
 }
 
@@ -244,13 +261,15 @@ int sync_test_failed(const SyncTest& sync, int rollback) {
 int run_command(const RunOptions& o) {
   check_paths(run_paths(o));  // before any work: no output may be an input
   const Scene scene = load_with_overrides(o.scene);
-  const std::uint64_t ticks =
-      o.steps ? static_cast<std::uint64_t>(*o.steps) : ticks_for(*o.duration, scene.settings.dt);
-  const std::uint64_t work = tick_work(scene.bodies, scene.links, scene.planes, scene.settings);
+  const std::uint64_t ticks = o.steps ? static_cast<std::uint64_t>(*o.steps)
+                                      : ticks_for(*o.duration, scene.def.settings.dt);
+  const std::uint64_t work =
+      tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings);
   check_command_work(  // before the world is built (limits.hpp)
       ticks, work,
-      o.steps ? fmt::format("--steps {}", *o.steps)
-              : fmt::format("--duration {:g} (at dt = {:g} s)", *o.duration, scene.settings.dt));
+      o.steps
+          ? fmt::format("--steps {}", *o.steps)
+          : fmt::format("--duration {:g} (at dt = {:g} s)", *o.duration, scene.def.settings.dt));
   if (o.sync_test) {  // each tick re-simulates K more
     check_command_work(ticks * (1 + static_cast<std::uint64_t>(*o.sync_test)), work,
                        fmt::format("{} with --sync-test {} (every tick re-simulates {} more)",
@@ -259,7 +278,7 @@ int run_command(const RunOptions& o) {
                                    *o.sync_test, *o.sync_test));
   }
   if (o.record) check_recording_size(ticks, o.hash_every, *o.record);
-  World sim = World(world_def(scene));
+  World sim = build_world(scene, o.scene.quiet);
   if (o.sync_test) check_sync_test_memory(sim, *o.sync_test);
   const double e0 = sim.energy().total();
 
@@ -279,7 +298,7 @@ int run_command(const RunOptions& o) {
   std::optional<InputScript> script;
   std::optional<ScriptPlayer> player;
   if (o.input) {
-    script = load_input_script(*o.input, scene.bodies);
+    script = load_input_script(*o.input, scene.def.bodies);
     for (const std::string& w : script->warnings) {
       if (!o.scene.quiet) std::fprintf(stderr, "warning: %s\n", w.c_str());
     }
@@ -287,7 +306,7 @@ int run_command(const RunOptions& o) {
   }
   std::optional<RecordingWriter> recorder;  // streamed to its file: O(1) memory
   if (o.record) {  // carrying the scene's bytes: it replays without the file
-    recorder.emplace(world_def(scene), o.scene.scene, o.hash_every, *o.record, scene.text);
+    recorder.emplace(scene.def, o.scene.scene, o.hash_every, *o.record, scene.text);
   }
   const std::uint64_t initial_hash = o.record ? sim.state_hash() : 0;
   bool torn = false;       // a stop request abandoned a tick half-way: the state is not a tick's

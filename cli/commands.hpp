@@ -2,10 +2,10 @@
 #pragma once
 
 #include <cstdint>
+#include <fixstep/app/session.hpp>
 #include <fixstep/capture/capture.hpp>
 #include <fixstep/core/recording.hpp>
 #include <fixstep/scene/scene.hpp>
-#include <fixstep/app/session.hpp>
 #include <fixstep/window/window.hpp>
 #include <optional>
 #include <string>
@@ -103,15 +103,22 @@ std::pair<int, int> parse_frame_size(const std::string& value);
 /// subcommand prints.
 std::string describe(const Scene& scene);
 
-/// Loads the scene, applies the overrides, checks the work and memory limits (LimitError), runs
-/// the stability guard (throws SceneError for an unstable body) and prints the warnings of both
-/// to stderr. The generators' and the guard's progress is shown on a terminal unless --quiet
-/// (seconds for 10^6 bodies: WorkProgressLine); both poll stop requests (StopRequested). Given
-/// `warnings`, the warnings are appended there (whatever --quiet says) instead of printed and
-/// no progress line is made: the reports go to the caller's WorkProgressScope (a load on
+/// Loads the scene, applies the overrides, checks the work and memory limits (LimitError) and
+/// prints the scene's warnings to stderr. The generators' progress is shown on a terminal unless
+/// --quiet (seconds for 10^6 bodies: WorkProgressLine); they poll stop requests (StopRequested).
+/// Given `warnings`, the warnings are appended there (whatever --quiet says) instead of printed
+/// and no progress line is made: the reports go to the caller's WorkProgressScope (a load on
 /// another thread, whose caller prints).
 Scene load_with_overrides(const SceneOptions& options,
                           std::vector<std::string>* warnings = nullptr);
+
+/// The scene's world: World(scene.def), which checks it (the stability guard among the checks),
+/// with a refusal located in the file (SceneError naming the line, key and what to change:
+/// located, scene_stability.hpp) and the guard's warnings located too, printed to stderr
+/// unless `quiet`. The guard's progress is shown as load_with_overrides shows the generators';
+/// given `warnings`, they are appended there instead and no progress line is made.
+[[nodiscard]] World build_world(const Scene& scene, bool quiet,
+                                std::vector<std::string>* warnings = nullptr);
 
 /// Opens the window; without a display, the WindowError's message (the library's: the fault
 /// only) ends with the advice to capture headless with the command `headless`.

@@ -232,7 +232,7 @@ int compare_command(const CompareOptions& o) {
   }
   check_paths(compare_paths(o));  // before any work: no output may be an input
   Scene base = load_scene(o.scene);
-  if (o.allow_unstable) base.allow_unstable = true;
+  if (o.allow_unstable) base.def.allow_unstable = true;
   if (!o.quiet) {
     for (const std::string& w : base.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }

@@ -118,31 +118,31 @@ std::string tile_spec_validator(const std::string& value) {
 
 Scene tile_scene(const Scene& base, const TileSpec& spec) {
   Scene s = base;
-  s.settings.integrator = spec.integrator;
-  if (spec.dt) s.settings.dt = *spec.dt;
-  if (spec.substeps) s.settings.substeps = *spec.substeps;
-  if (spec.precision) s.precision = *spec.precision;
-  if (spec.damping_split) s.settings.damping_split = *spec.damping_split;
+  s.def.settings.integrator = spec.integrator;
+  if (spec.dt) s.def.settings.dt = *spec.dt;
+  if (spec.substeps) s.def.settings.substeps = *spec.substeps;
+  if (spec.precision) s.def.precision = *spec.precision;
+  if (spec.damping_split) s.def.settings.damping_split = *spec.damping_split;
   return s;
 }
 
 std::string tile_label(const TileSpec& spec, const Scene& scene) {
   const std::size_t at = spec.text.find('@');
   const std::string dt = at == std::string::npos
-                             ? fmt::format("{:g}", scene.settings.dt)
+                             ? fmt::format("{:g}", scene.def.settings.dt)
                              : spec.text.substr(at + 1, spec.text.find(':') - at - 1);
   return fmt::format(
-      "{} @ {} s{}{}{}", integrator_name(scene.settings.integrator), dt,
-      scene.settings.substeps > 1 ? fmt::format(" x{}", scene.settings.substeps) : "",
-      scene.precision == Precision::f32 ? " f32" : "",
-      scene.settings.damping_split == DampingSplit::per_step ? " per_step" : "");
+      "{} @ {} s{}{}{}", integrator_name(scene.def.settings.integrator), dt,
+      scene.def.settings.substeps > 1 ? fmt::format(" x{}", scene.def.settings.substeps) : "",
+      scene.def.precision == Precision::f32 ? " f32" : "",
+      scene.def.settings.damping_split == DampingSplit::per_step ? " per_step" : "");
 }
 
 std::size_t most_accurate(std::span<const Scene> tiles) {
   auto estimate = [](const Scene& s) {
-    const double h = s.settings.dt / s.settings.substeps;
-    const double e = std::pow(h, integrator_order(s.settings.integrator));
-    return s.precision == Precision::f32 ? std::max(e, 1e-7) : e;
+    const double h = s.def.settings.dt / s.def.settings.substeps;
+    const double e = std::pow(h, integrator_order(s.def.settings.integrator));
+    return s.def.precision == Precision::f32 ? std::max(e, 1e-7) : e;
   };
   std::size_t best = 0;
   for (std::size_t i = 1; i < tiles.size(); ++i) {

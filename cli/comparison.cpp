@@ -54,16 +54,17 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
                        bool quiet, double max_frame_time)
     : base_(base), exact_(base_), grid_(grid), max_frame_time_(max_frame_time) {
   std::vector<Scene> scenes;
+  std::vector<World> worlds;  // World(def) of each tile: checked once, here
   for (std::size_t i = 0; i < specs.size(); ++i) {
     scenes.push_back(tile_scene(base_, specs[i]));
     try {  // before the guard: a tile may ask for more work per tick than the scene (limits.hpp)
-      check_world_limits(scenes.back().bodies, scenes.back().links, scenes.back().planes,
-                         scenes.back().settings);
+      check_world_limits(scenes.back().def.bodies, scenes.back().def.links,
+                         scenes.back().def.planes, scenes.back().def.settings);
     } catch (const LimitError& e) {
       throw LimitError(fmt::format("--with '{}': {}", specs[i].text, e.what()));
     }
     // Before a Session refuses it: a dt too short for a frame, named by its --with.
-    const double dt = scenes.back().settings.dt;
+    const double dt = scenes.back().def.settings.dt;
     const std::optional<double> fps = max_frame_time_ > SessionSettings{}.max_frame_time
                                           ? std::optional(1.0 / max_frame_time_)
                                           : std::nullopt;
@@ -73,17 +74,16 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
             ? fmt::format("--with '{}'", specs[i].text)
             : fmt::format("--with '{}' (the scene's [world] dt = {:g} s)", specs[i].text, dt),
         fmt::format("give --with '{}@DT' a DT of", integrator_name(specs[i].integrator)));
-    std::vector<std::string> warnings;
     try {
-      const WorkProgressLine shown(!quiet);         // seconds on a network of 10^6 bodies
-      warnings = enforce_stability(scenes.back());  // throws when unstable
-    } catch (const std::exception& e) {
+      const WorkProgressLine shown(!quiet);  // seconds on a network of 10^6 bodies
+      worlds.emplace_back(scenes.back().def);
+    } catch (const UnstableDefinition& e) {
       throw std::invalid_argument(fmt::format(
           "--with '{}' is unstable on this scene: add the substeps the guard names "
           "(--with '{}:substeps=N') or pass --allow-unstable to watch it diverge. The guard: {}",
-          specs[i].text, specs[i].text, e.what()));
+          specs[i].text, specs[i].text, located(scenes.back(), e).what()));
     }
-    for (const std::string& w : warnings) {
+    for (const std::string& w : located_warnings(scenes.back(), worlds.back().warnings())) {
       if (!quiet)
         std::fprintf(stderr, "warning: --with '%s': %s\n", specs[i].text.c_str(), w.c_str());
     }
@@ -95,8 +95,9 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
   // With disc contacts an error line may say how many bodies a contact has touched, or that
   // it has touched them all (hud()): the widest of each fits too.
   std::vector<std::string> widest = labels;
-  if (base_.settings.contacts) {
-    widest.push_back(fmt::format("error 1.23e-14 m vs exact ({} touched)", base_.bodies.size()));
+  if (base_.def.settings.contacts) {
+    widest.push_back(
+        fmt::format("error 1.23e-14 m vs exact ({} touched)", base_.def.bodies.size()));
     widest.push_back(fmt::format("no exact: contact at tick {}", max_command_ticks));
   }
   hud_scale_ = hud_text_scale(widest, grid_.tile_width);
@@ -105,17 +106,18 @@ Comparison::Comparison(const Scene& base, std::span<const TileSpec> specs, const
     tile->spec = specs[i];
     tile->scene = std::move(scenes[i]);
     tile->label = labels[i];
-    tile->session = std::make_unique<Session>(world_def(tile->scene), tile_settings(tile->scene));
+    tile->cost = step_cost(worlds[i]);
+    tile->session = std::make_unique<Session>(tile->scene.def, std::move(worlds[i]),
+                                              tile_settings(tile->scene));
     tile->session->set_show_engine_hud(false);
     tile->touched.emplace(tile->scene);
-    tile->cost = step_cost(tile->session->definition());
     tiles_.push_back(std::move(tile));
   }
   {
     const World& sim0 = tiles_.front()->session->simulation();
     has_exact_ = exact_error(exact_, sim0).has_value();
   }
-  restart();
+  start();
 }
 
 SessionSettings Comparison::tile_settings(const Scene& scene) const {
@@ -128,7 +130,7 @@ SessionSettings Comparison::tile_settings(const Scene& scene) const {
   // The HUD covers the tile's top band: the scene is fitted into the part below it.
   const int band =
       std::min(int(std::ceil(Renderer::hud_height(hud_lines, s.hud_text_scale))), h / 2);
-  const Camera fit = fit_camera(world_def(scene), w, h - band);
+  const Camera fit = fit_camera(scene.def, w, h - band);
   const double width = scene.view.width ? *scene.view.width * h / (h - band) : fit.width;
   const Vec2 center = scene.view.center.value_or(fit.center);
   s.view_width = width;
@@ -137,9 +139,13 @@ SessionSettings Comparison::tile_settings(const Scene& scene) const {
 }
 
 void Comparison::restart() {
+  for (const auto& t : tiles_) t->session->restart();
+  start();
+}
+
+void Comparison::start() {
   for (std::size_t i = 0; i < tiles_.size(); ++i) {
     Tile& t = *tiles_[i];
-    t.session->restart();
     t.wall_seconds = 0.0;
     t.error.reset();
     t.error_time = 0.0;
@@ -147,9 +153,9 @@ void Comparison::restart() {
     t.touched->clear();
     t.shadow.reset();
     if (!has_exact_ && i != reference_) {
-      // Its tile passed the guard (or was allowed past it): the guard runs once per tile.
-      const WorldDef def = world_def(tiles_[reference_]->scene);
-      t.shadow = std::make_unique<World>(World(def));
+      // The reference tile's world at tick 0 (sessions restart before this loop), copied.
+      t.shadow = std::make_unique<World>(tiles_[reference_]->session->simulation());
+      t.shadow->set_keep_previous(false);  // never drawn
     }
     measure(i);
   }

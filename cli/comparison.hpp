@@ -4,9 +4,9 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <fixstep/scene/scene.hpp>
 #include <fixstep/app/session.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/scene/scene.hpp>
 #include <memory>
 #include <optional>
 #include <span>
@@ -77,6 +77,8 @@ class Comparison {
   [[nodiscard]] bool any_fault() const;
 
  private:
+  /// The measurements cleared and the shadows of the tiles at tick 0 (restart(), the start).
+  void start();
   /// Lines of a tile's HUD.
   static constexpr std::size_t hud_lines = 5;
 

@@ -13,10 +13,10 @@
 namespace fixstep::cli {
 
 TouchedBodies::TouchedBodies(const Scene& scene)
-    : since_(scene.bodies.size(), 0),
-      component_(scene.bodies.size()),
-      next_(scene.bodies.size()),
-      dynamic_(scene.bodies.size()) {
+    : since_(scene.def.bodies.size(), 0),
+      component_(scene.def.bodies.size()),
+      next_(scene.def.bodies.size()),
+      dynamic_(scene.def.bodies.size()) {
   // The links' connected components (union-find with path halving), each kept as a ring.
   std::iota(component_.begin(), component_.end(), std::size_t{0});
   auto root = [&](std::size_t j) {
@@ -24,14 +24,15 @@ TouchedBodies::TouchedBodies(const Scene& scene)
     return j;
   };
   std::iota(next_.begin(), next_.end(), std::size_t{0});
-  for (const fixstep::IndexLink& l : fixstep::index_links(scene.links, scene.bodies.size())) {
+  for (const fixstep::IndexLink& l :
+       fixstep::index_links(scene.def.links, scene.def.bodies.size())) {
     const std::size_t a = root(l.body_a), b = root(l.body_b);
     if (a == b) continue;
     component_[b] = a;
     std::swap(next_[l.body_a], next_[l.body_b]);  // splices the two rings into one
   }
-  for (std::size_t j = 0; j < scene.bodies.size(); ++j) {
-    dynamic_[j] = scene.bodies[j].type == BodyType::dynamic ? 1 : 0;
+  for (std::size_t j = 0; j < scene.def.bodies.size(); ++j) {
+    dynamic_[j] = scene.def.bodies[j].type == BodyType::dynamic ? 1 : 0;
     dynamic_count_ += dynamic_[j];
   }
 }
@@ -74,23 +75,23 @@ std::string touched_clause(const TouchedBodies& touched, std::size_t bodies) {
 }
 
 ExactReference::ExactReference(const Scene& scene) : scene_(scene) {
-  const bool bounces = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+  const bool bounces = std::any_of(scene.def.bodies.begin(), scene.def.bodies.end(),
                                    [&](const BodyDef& b) { return bouncing(b); });
-  if (!scene.links.empty() && !bounces) {
-    network_ = exact::LinearNetwork::make(scene.bodies, scene.links);
+  if (!scene.def.links.empty() && !bounces) {
+    network_ = exact::LinearNetwork::make(scene.def.bodies, scene.def.links);
   }
 }
 
 void ExactReference::at(double t, std::vector<std::optional<Body>>& out,
                         const TouchedBodies* touched) const {
-  out.assign(scene_.bodies.size(), std::nullopt);
+  out.assign(scene_.def.bodies.size(), std::nullopt);
   if (network_) {
-    states_.resize(scene_.bodies.size());
+    states_.resize(scene_.def.bodies.size());
     network_->state(t, states_);
     for (std::size_t j = 0; j < states_.size(); ++j) out[j] = states_[j];
-  } else if (scene_.links.empty()) {
+  } else if (scene_.def.links.empty()) {
     for (std::size_t j = 0; j < out.size(); ++j) {
-      if (!bouncing(scene_.bodies[j])) out[j] = exact::solve(scene_.bodies[j], t);
+      if (!bouncing(scene_.def.bodies[j])) out[j] = exact::solve(scene_.def.bodies[j], t);
     }
   }
   if (touched && touched->first()) {
@@ -101,7 +102,7 @@ void ExactReference::at(double t, std::vector<std::optional<Body>>& out,
 }
 
 bool ExactReference::bouncing(const BodyDef& b) const {
-  return b.collider && !scene_.planes.empty();
+  return b.collider && !scene_.def.planes.empty();
 }
 
 std::optional<double> exact_error(const ExactReference& reference, const World& sim,

@@ -60,22 +60,26 @@ int render_command(const RenderOptions& o) {
   check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
   const Scene scene = rec ? scene_for_recording(*rec, *o.replay, given, o.scene.quiet)
                           : load_with_overrides(o.scene);
+  // A scene's world is checked here, before any output, its guard's findings located in the
+  // file; a recording's is replayed whatever the guard says (scene_for_recording).
+  std::optional<World> checked;
+  if (!rec) checked.emplace(build_world(scene, o.scene.quiet));
   const VirtualClock clock(o.fps);
   // A virtual clock is not clamped (the clamp guards a real clock against stalls): every frame
   // is exactly 1/fps after the last, at any --fps.
   const double frame_time = std::max(SessionSettings{}.max_frame_time, clock.frame_seconds());
   // What set dt, named when a frame or the command would take too many ticks of it.
   const std::string dt_from =
-      rec ? fmt::format("the dt of --replay {} ({:g} s)", *o.replay, scene.settings.dt)
+      rec ? fmt::format("the dt of --replay {} ({:g} s)", *o.replay, scene.def.settings.dt)
           : dt_source(o.scene, scene);
-  check_frame_ticks(frame_time, scene.settings.dt, o.fps, dt_from,
+  check_frame_ticks(frame_time, scene.def.settings.dt, o.fps, dt_from,
                     rec ? "record it again with --dt" : dt_fix(o.scene));
-  const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.settings.dt);
+  const double ticks = std::ceil(double(o.frames - 1) / o.fps / scene.def.settings.dt);
   // With --replay the recording's ticks are stepped once more, to verify it first.
   const double verified = rec ? double(rec->ticks) : 0.0;
   check_command_work(
       static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)),
-      tick_work(scene.bodies, scene.links, scene.planes, scene.settings),
+      tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings),
       rec ? fmt::format("--frames {} at --fps {:g} with --replay {} (end {})", o.frames, o.fps,
                         *o.replay, rec->ticks)
           : fmt::format("--frames {} at --fps {:g} with {}", o.frames, o.fps, dt_from));
@@ -87,7 +91,8 @@ int render_command(const RenderOptions& o) {
       height, o.fps, ManifestLayout::frames);
   SessionSettings settings = session_settings(scene, width, height);
   settings.max_frame_time = frame_time;
-  Session session(world_def(scene), settings);
+  Session session =
+      checked ? Session(scene.def, std::move(*checked), settings) : Session(scene.def, settings);
   const auto frames = static_cast<std::uint64_t>(o.frames);
   std::uint64_t written = 0;
   const StopOnSignal signals;

@@ -108,13 +108,13 @@ Scene scene_for_recording(const Recording& rec, const std::string& recording_fil
   if (!quiet) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }
-  scene.precision = rec.settings.precision;
-  scene.settings.dt = rec.settings.dt;
-  scene.settings.integrator = rec.settings.integrator;
-  scene.settings.substeps = rec.settings.substeps;
-  if (rec.settings.damping_split) scene.settings.damping_split = *rec.settings.damping_split;
-  scene.allow_unstable = true;  // the recorded run ran: replay it whatever the guard says
-  const WorldDef def = world_def(scene);
+  scene.def.precision = rec.settings.precision;
+  scene.def.settings.dt = rec.settings.dt;
+  scene.def.settings.integrator = rec.settings.integrator;
+  scene.def.settings.substeps = rec.settings.substeps;
+  if (rec.settings.damping_split) scene.def.settings.damping_split = *rec.settings.damping_split;
+  scene.def.allow_unstable = true;  // the recorded run ran: replay it whatever the guard says
+  const WorldDef def = scene.def;
   const std::uint64_t actual = definition_hash(def);
   if (actual != rec.definition_hash && embedded) {
     throw RecordingError(
@@ -138,7 +138,7 @@ Scene scene_for_recording(const Recording& rec, const std::string& recording_fil
 }
 
 ReplayReport verify_recording(const Scene& scene, const Recording& rec, bool quiet) {
-  World sim = World(world_def(scene));
+  World sim = World(scene.def);
   const WorkProgressLine shown(!quiet);
   return replay(sim, rec);
 }
@@ -164,8 +164,9 @@ void report_divergence(const ReplayReport::Mismatch& m, const std::string& recor
 int replay_command(const ReplayOptions& o) {
   const Recording rec = read_recording(o.recording);
   const Scene scene = scene_for_recording(rec, o.recording, o.scene, o.quiet);
-  check_command_work(rec.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.settings),
-                     fmt::format("{}: end {}", o.recording, rec.ticks));
+  check_command_work(
+      rec.ticks, tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings),
+      fmt::format("{}: end {}", o.recording, rec.ticks));
   const ReplayReport report = verify_recording(scene, rec, o.quiet);
   fmt::print("{}\n", describe(scene));
   if (const auto& m = report.mismatch) {

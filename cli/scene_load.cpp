@@ -76,10 +76,10 @@ void BackgroundLoad::run(const SceneOptions& options) {
     std::vector<std::string> warnings;
     Scene scene = load_with_overrides(options, &warnings);
     set_phase("building the world");
-    WorldDef def = world_def(scene);
-    def.settings.track_dissipation = true;  // as Session's own build
+    scene.def.settings.track_dissipation = true;  // as Session's own build
+    WorldDef def = scene.def;
     throw_if_stop_requested();
-    World sim = World(def);
+    World sim = build_world(scene, options.quiet, &warnings);
     set_phase("measuring a state for rewind");
     const RewindPlan plan = plan_rewind(sim);
     promise_.set_value(LoadedWorld{.scene = std::move(scene),

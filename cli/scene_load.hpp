@@ -30,7 +30,7 @@ namespace fixstep::cli {
 struct LoadedWorld {
   Scene scene;                        ///< as load_with_overrides returned it
   std::vector<std::string> warnings;  ///< the scene's and the stability guard's, not yet printed
-  WorldDef def;                       ///< world_def(scene), dissipation tracked (as Session wants)
+  WorldDef def;                       ///< scene.def, dissipation tracked (as Session wants)
   World sim;                          ///< World(def), at tick 0
   RewindPlan plan;                    ///< plan_rewind(sim)
 };

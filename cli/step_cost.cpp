@@ -29,8 +29,8 @@ double sample(World& sim, const WorldSnapshot& start, std::uint64_t ticks, doubl
 
 }  // namespace
 
-double step_cost(const WorldDef& def) {
-  World sim = World(def);  // the caller's guard has decided already
+double step_cost(const World& world) {
+  World sim = world;  // a copy: the caller's world is not stepped
   WorldSnapshot start;
   sim.save(start);
   const double dt = sim.settings().dt;

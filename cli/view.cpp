@@ -116,9 +116,9 @@ void swap_in(ShownWorld& shown, LoadedWorld loaded, const SceneOptions& o) {
   const Scene& scene = loaded.scene;
   SessionSettings settings = session_settings(scene, r.width(), r.height());
   settings.max_frame_time = shown.session->loop().settings().max_frame_time;  // as --fps set it
-  check_frame_ticks(settings.max_frame_time, scene.settings.dt, fps_of(settings),
+  check_frame_ticks(settings.max_frame_time, scene.def.settings.dt, fps_of(settings),
                     dt_source(o, scene), dt_fix(o));
-  check_frame_ticks(settings.max_frame_time, scene.settings.dt, fps_of(settings),
+  check_frame_ticks(settings.max_frame_time, scene.def.settings.dt, fps_of(settings),
                     dt_source(o, scene), dt_fix(o));
   if (scene.view.center == shown.scene.view.center && scene.view.width == shown.scene.view.width) {
     settings.view_center = r.camera().center;
@@ -213,7 +213,7 @@ int view_command(const ViewOptions& o) {
   LoadedWorld first = load_first(o.scene);
   // --fps: a virtual clock, not clamped (frames exactly 1/fps apart).
   const double frame_time = std::max(SessionSettings{}.max_frame_time, o.fps ? 1.0 / *o.fps : 0.0);
-  check_frame_ticks(frame_time, first.scene.settings.dt, o.fps, dt_source(o.scene, first.scene),
+  check_frame_ticks(frame_time, first.scene.def.settings.dt, o.fps, dt_source(o.scene, first.scene),
                     dt_fix(o.scene));
   const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.

@@ -12,6 +12,7 @@
 #include <fixstep/core/input.hpp>
 #include <fixstep/core/loop.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/render/render.hpp>
 #include <string>
@@ -44,7 +45,8 @@ int main(int argc, char** argv) {
   const std::string png = argc > 1 ? argv[1] : "02_loop_interpolation.png";
   try {
     // A 1 kg bob on a spring k = 4π² N/m (1 Hz), released 1 m from its anchor.
-    World sim(Precision::f64, WorldSettings{.dt = 0.1});  // s: 10 ticks per second, on purpose
+    World sim(WorldDef::empty(Precision::f64,
+                              WorldSettings{.dt = 0.1}));  // s: 10 ticks per second, on purpose
     BodyDef bob;
     bob.body = Body{.mass = 1.0, .position = {1.0, 0.0}, .velocity = {}};
     bob.spring = SpringDamper{.anchor = {}, .stiffness = 4.0 * 3.14159265358979 * 3.14159265358979};

@@ -13,6 +13,7 @@
 #include <fixstep/core/exact.hpp>
 #include <fixstep/core/step_results.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/render/render.hpp>
 #include <string>
@@ -64,7 +65,7 @@ int main(int argc, char** argv) {
     const float band = (height - 40.0f) / 6.0f;
     int row = 0;
     for (const Integrator method : all_integrators) {
-      World world(Precision::f64, WorldSettings{.dt = dt, .integrator = method});
+      World world(WorldDef::empty(Precision::f64, WorldSettings{.dt = dt, .integrator = method}));
       const Entity body = world.create_body(bob);
       const double e0 = world.energy().total();
       std::vector<double> x{world.body(body).position.x};

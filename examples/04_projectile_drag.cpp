@@ -12,6 +12,7 @@
 #include <fixstep/core/components.hpp>
 #include <fixstep/core/exact.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/core/world_def.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/render/render.hpp>
 #include <string>
@@ -34,7 +35,7 @@ int main(int argc, char** argv) {
     const Rgba8 colors[] = {{76, 175, 240, 255}, {250, 200, 60, 255}};
     const char* names[] = {"vacuum", "drag c = 0.4 N*s/m"};
 
-    World sim(Precision::f64, WorldSettings{.dt = dt});
+    World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = dt}));
     for (const BodyDef& d : throws) sim.create_body(d);
     std::vector<std::vector<Vec2>> ticks(2);
     double worst[2] = {0.0, 0.0};

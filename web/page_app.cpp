@@ -49,9 +49,12 @@ PageApp::PageApp(PageOptions options)
   }
   if (o_.replay) return;  // the session waits for the recording (recording_fetched)
   scene_ = load_scene(scene_file_);
-  (void)enforce_stability(*scene_);  // throws for an unstable scene, as `fixstep run` does
-  WorldDef def = world_def(*scene_);
-  start_session(std::move(def), o_.scene);
+  WorldDef def = scene_->def;
+  try {
+    start_session(std::move(def), o_.scene);  // World(def) checks it, as `fixstep run` does
+  } catch (const UnstableDefinition& e) {
+    throw located(*scene_, e);
+  }
   if (o_.record)
     recorder_.emplace(session_->definition(), scene_file_, o_.hash_every, scene_->text);
   if (o_.frames || o_.ticks) return;

@@ -88,7 +88,7 @@ void PageApp::recording_fetched(std::string text) {
       rec.scene_text.empty()
           ? load_scene(scene_file_)
           : parse_scene(rec.scene_text, fmt::format("{} (embedded in {})", rec.scene, *o_.replay));
-  WorldDef def = world_def(*scene_);
+  WorldDef def = scene_->def;
   apply_settings(def, rec.settings);
   check_recorded_bodies(rec, def.bodies.size(), *o_.replay);
   check_command_work(rec.ticks, tick_work(def), fmt::format("{}: end {}", *o_.replay, rec.ticks));

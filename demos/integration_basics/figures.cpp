@@ -11,6 +11,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "fixstep/core/world_def.hpp"
+
 namespace fixstep::demo {
 
 double Oscillator::omega() const {
@@ -32,7 +34,7 @@ OscillatorRun::OscillatorRun(const Oscillator& system, Integrator integrator, Pr
                              double dt)
     : system_(system),
       integrator_(integrator),
-      sim_(precision, WorldSettings{.dt = dt, .integrator = integrator}) {
+      sim_(WorldDef::empty(precision, WorldSettings{.dt = dt, .integrator = integrator})) {
   // World itself runs any integrator at any dt; only the fixstep CLI's stability guard would
   // refuse explicit Euler on this spring, and showing that instability is the point here.
   BodyDef def;
@@ -475,8 +477,10 @@ std::vector<ForceRow> force_rows(double dt, std::uint64_t first, std::uint64_t l
   BodyDef def;
   def.body = Body{.mass = 1.0};
   def.constant_force = ConstantForce{.force = {10.0, 0.0}};
-  World ee(Precision::f32, WorldSettings{.dt = dt, .integrator = Integrator::explicit_euler});
-  World sie(Precision::f32, WorldSettings{.dt = dt, .integrator = Integrator::semi_implicit_euler});
+  World ee(WorldDef::empty(Precision::f32,
+                           WorldSettings{.dt = dt, .integrator = Integrator::explicit_euler}));
+  World sie(WorldDef::empty(
+      Precision::f32, WorldSettings{.dt = dt, .integrator = Integrator::semi_implicit_euler}));
   const Entity ee_body = ee.create_body(def), sie_body = sie.create_body(def);
   std::vector<ForceRow> rows;
   for (std::uint64_t tick = 0; tick <= last; ++tick) {

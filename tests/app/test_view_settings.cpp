@@ -98,7 +98,7 @@ TEST(SceneViewStyle, AppliedToASessionItShapesTheFrame) {
   EXPECT_TRUE(settings.show_hud);
   EXPECT_EQ(settings.hud_text_scale, 1.0f);
   EXPECT_EQ(settings.hud_lines, unsigned(hud_time));
-  Session session(world_def(s), settings);
+  Session session(s.def, settings);
   session.draw();
   const Renderer& r = session.renderer();
   EXPECT_TRUE(testing::near(testing::at(r, 190, 5), Rgba8{200, 200, 200, 255}, 0));

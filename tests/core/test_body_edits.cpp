@@ -11,6 +11,7 @@
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 
 namespace {
@@ -37,7 +38,7 @@ Entity scan(const World& w, const std::string& name) {
 TEST(FindByName, AgreesWithALinearScanThroughCreatesDestroysCopiesAndRestores) {
   // 2000 random edits over 40 names, several bodies sharing a name; every name is asked after
   // every edit, of the world, of a copy and after a restore.
-  World w(Precision::f64, WorldSettings{});
+  World w(WorldDef::empty(Precision::f64, WorldSettings{}));
   std::mt19937 rng(7);
   std::vector<Entity> live;
   WorldSnapshot snap;
@@ -73,7 +74,7 @@ TEST(FindByName, AgreesWithALinearScanThroughCreatesDestroysCopiesAndRestores) {
 
 TEST(FindByName, ABodyDestroyedAndItsNameReusedIsNeverFound) {
   // The new body takes the freed slot (a new generation) and the same name.
-  World w(Precision::f64, WorldSettings{});
+  World w(WorldDef::empty(Precision::f64, WorldSettings{}));
   const Entity old = w.create_body(named("ball", 0.0));
   ASSERT_EQ(w.find("ball"), old);
   w.destroy(old);
@@ -84,7 +85,7 @@ TEST(FindByName, ABodyDestroyedAndItsNameReusedIsNeverFound) {
 }
 
 TEST(UserData, StaysWithItsBodyAndInSnapshotsButNotInTheStateHash) {
-  World w(Precision::f32, WorldSettings{});
+  World w(WorldDef::empty(Precision::f32, WorldSettings{}));
   const Entity a = w.create_body(named("a", 0.0, 11));
   const Entity b = w.create_body(named("b", 1.0, 22));
   const Entity c = w.create_body(named("c", 2.0, 33));
@@ -104,7 +105,7 @@ TEST(UserData, StaysWithItsBodyAndInSnapshotsButNotInTheStateHash) {
 }
 
 TEST(BodyEdits, SetPositionKeepsVelocityAndMassAndSetVelocityKeepsPosition) {
-  World w(Precision::f64, WorldSettings{.dt = 0.5});
+  World w(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.5}));
   BodyDef d = named("ball", 1.0);
   d.body = {.mass = 2.0, .position = {1.0, 2.0}, .velocity = {3.0, 4.0}};
   const Entity e = w.create_body(d);
@@ -122,7 +123,7 @@ TEST(BodyEdits, SetPositionKeepsVelocityAndMassAndSetVelocityKeepsPosition) {
 }
 
 TEST(BodyEdits, AKinematicBodyMovesAtTheVelocitySetAndAStaticOneRefusesOne) {
-  World w(Precision::f64, WorldSettings{.dt = 0.1});
+  World w(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.1}));
   BodyDef k = named("bucket", 0.0);
   k.type = BodyType::kinematic;  // no mass given: kinematic bodies need none
   BodyDef s = named("peg", 3.0);
@@ -138,7 +139,7 @@ TEST(BodyEdits, AKinematicBodyMovesAtTheVelocitySetAndAStaticOneRefusesOne) {
 }
 
 TEST(BodyEdits, NonFiniteOrStaleIsRefusedNamingTheField) {
-  World w(Precision::f32, WorldSettings{});
+  World w(WorldDef::empty(Precision::f32, WorldSettings{}));
   const Entity e = w.create_body(named("ball", 0.0));
   try {
     w.set_position(e, {1e300, 0.0});  // not representable in f32

@@ -10,6 +10,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
@@ -25,7 +26,7 @@ constexpr Integrator all_integrators[] = {
 
 TEST(BodyInput, AnImpulseChangesTheVelocityByJOverMAtTheTicksStart) {
   // Semi-implicit Euler on a free body: v1 = v0 + J/m, x1 = x0 + v1 dt, exactly.
-  World sim(Precision::f64, WorldSettings{.dt = 0.25});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.25}));
   const Entity e = sim.create_body(ball("e", {1, 2}, {0.5, 0}, 4.0));
   TickInput in;
   in.bodies.push_back({e, BodyInputKind::impulse, {2.0, -1.0}});
@@ -41,7 +42,7 @@ TEST(BodyInput, AnImpulseChangesTheVelocityByJOverMAtTheTicksStart) {
 /// (by_input) or by a ConstantForce set before that tick and removed after it.
 std::vector<Body> forced_run(Integrator method, bool linked, bool by_input, Vec2 force) {
   WorldSettings s{.dt = 0.01, .integrator = method};
-  World sim(Precision::f64, s);
+  World sim(WorldDef::empty(Precision::f64, s));
   BodyDef a = ball("a", {0, 0}, {0.3, 0.1}, 2.0);
   a.gravity = Gravity{{0.0, -9.81}};
   a.spring = SpringDamper{.anchor = {0, 0}, .stiffness = 40.0, .damping = 0.5};
@@ -79,7 +80,7 @@ TEST(BodyInput, AForceForOneTickStepsAsAConstantForceForThatTickBitForBit) {
 }
 
 TEST(BodyInput, AKinematicBodyMovesAtTheVelocityItIsGivenAndKeepsIt) {
-  World sim(Precision::f64, WorldSettings{.dt = 0.5});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.5}));
   BodyDef k = ball("paddle", {0, 0});
   k.type = BodyType::kinematic;
   const Entity e = sim.create_body(k);
@@ -96,7 +97,7 @@ TEST(BodyInput, AKinematicBodyMovesAtTheVelocityItIsGivenAndKeepsIt) {
 }
 
 TEST(BodyInput, CheckInputNamesWhatStepWouldIgnore) {
-  World sim(Precision::f64, WorldSettings{.dt = 0.01});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.01}));
   const Entity d = sim.create_body(ball("d", {0, 0}));
   BodyDef s = ball("wall", {3, 0});
   s.type = BodyType::static_body;
@@ -120,7 +121,7 @@ TEST(BodyInput, CheckInputNamesWhatStepWouldIgnore) {
   EXPECT_NE(check({w, BodyInputKind::force, {1, 0}}).find("never moves"), std::string::npos);
   EXPECT_NE(check({d, BodyInputKind::force, {NAN, 0}}).find("finite"), std::string::npos);
   // What check_input refuses, step ignores: the world steps as without it.
-  World twin(Precision::f64, WorldSettings{.dt = 0.01});
+  World twin(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.01}));
   twin.create_body(ball("d", {0, 0}));
   TickInput bad;
   bad.bodies = {{gone, BodyInputKind::impulse, {1, 0}},

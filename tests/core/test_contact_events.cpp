@@ -9,6 +9,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
@@ -20,7 +21,7 @@ using test::ball;
 TEST(ContactEvents, TwoDiscsThatStrikeAndPartGiveOneBegunAndOneEndedWithTheClosingSpeed) {
   WorldSettings s{.dt = 0.01};
   s.contacts = ContactSettings{.restitution = 1.0, .friction = 0.0};
-  World sim(Precision::f64, s);
+  World sim(WorldDef::empty(Precision::f64, s));
   BodyDef a = ball("a", {-1, 0}, {2, 0});
   BodyDef b = ball("b", {1, 0}, {-1, 0});
   a.collider = b.collider = Collider{0.5};
@@ -42,7 +43,7 @@ TEST(ContactEvents, TwoDiscsThatStrikeAndPartGiveOneBegunAndOneEndedWithTheClosi
 TEST(ContactEvents, ADiscComingToRestOnAnotherBeginsOnceAndEndsWhenOneIsDestroyed) {
   WorldSettings s{.dt = 0.01};
   s.contacts = ContactSettings{.restitution = 0.0, .friction = 0.5};
-  World sim(Precision::f64, s);
+  World sim(WorldDef::empty(Precision::f64, s));
   BodyDef floor = ball("floor", {0, 0});
   floor.type = BodyType::static_body;
   floor.collider = Collider{1.0};

@@ -318,18 +318,18 @@ position = [0.0, 1.0]
 radius = 0.25
 )",
                               "planes.toml");
-  ASSERT_EQ(s.planes.size(), 2u);
-  EXPECT_EQ(s.planes[0].normal.y, 1.0);
-  EXPECT_EQ(s.planes[0].offset, 0.0);
-  EXPECT_EQ(s.planes[0].restitution, 0.5);
-  EXPECT_EQ(s.planes[1].offset, -4.0);
-  EXPECT_EQ(s.planes[1].friction, 0.3);
+  ASSERT_EQ(s.def.planes.size(), 2u);
+  EXPECT_EQ(s.def.planes[0].normal.y, 1.0);
+  EXPECT_EQ(s.def.planes[0].offset, 0.0);
+  EXPECT_EQ(s.def.planes[0].restitution, 0.5);
+  EXPECT_EQ(s.def.planes[1].offset, -4.0);
+  EXPECT_EQ(s.def.planes[1].friction, 0.3);
   EXPECT_EQ(s.source.plane_lines, (std::vector<std::size_t>{3, 6}));
-  ASSERT_TRUE(s.bodies[0].collider.has_value());
-  EXPECT_EQ(s.bodies[0].collider->radius, 0.25);
-  const WorldDef def = world_def(s);
+  ASSERT_TRUE(s.def.bodies[0].collider.has_value());
+  EXPECT_EQ(s.def.bodies[0].collider->radius, 0.25);
+  const WorldDef def = s.def;
   EXPECT_EQ(def.planes.size(), 2u);
-  EXPECT_EQ(make_world(s).planes().size(), 2u);
+  EXPECT_EQ(World(s.def).planes().size(), 2u);
 }
 
 TEST(ScenePlanes, BadValuesAreSceneErrorsWithFileLineAndKey) {

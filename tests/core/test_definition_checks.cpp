@@ -1,4 +1,4 @@
-// The checks a program makes on a WorldDef before building it (definition_checks.hpp): the
+// The checks World(def) makes on a WorldDef before building it (definition_checks.hpp): the
 // stability guard's warnings, the overlap of discs at tick 0.
 #include <gtest/gtest.h>
 
@@ -28,11 +28,15 @@ TEST(GuardWarnings, CheckStabilityReturnsANearLimitWarningWhereAProgramCanReadIt
   b.spring = SpringDamper{.stiffness = omega * omega};
   def.bodies.push_back(b);
   EXPECT_EQ(check_definition(def).size(), 1u);
+  const World near(def);  // built, its finding kept where a program reads its warnings
+  ASSERT_EQ(near.warnings().size(), 1u);
+  EXPECT_EQ(near.warnings()[0].verdict, Stability::near_limit);
   def.bodies[0].spring->stiffness = 1.0;
   EXPECT_TRUE(check_definition(def).empty());
+  EXPECT_TRUE(World(def).warnings().empty());
 }
 
-TEST(DefinitionChecks, OverlapsAreTheProgramsCallAndWorldBuildsWhatItIsGiven) {
+TEST(DefinitionChecks, WorldRefusesDiscsThatOverlapAtTickZero) {
   WorldDef def;
   def.settings.contacts = ContactSettings{};
   BodyDef left;
@@ -43,19 +47,20 @@ TEST(DefinitionChecks, OverlapsAreTheProgramsCallAndWorldBuildsWhatItIsGiven) {
   right.body.position = {1.5, 0.0};  // 0.5 m into the left disc
   (void)def.add_body(left);
   (void)def.add_body(right);
-  EXPECT_EQ(World(def).body_count(), 2u);
   try {
-    check_overlaps(def);
+    (void)World(def);  // World(def) makes the checks (check_definition)
     FAIL() << "overlapping discs accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("body 'left' and body 'right' overlap by 0.5 m at tick 0"),
               std::string::npos)
         << e.what();
   }
+  EXPECT_THROW(check_overlaps(def), std::invalid_argument);
   EXPECT_THROW((void)check_definition(def), std::invalid_argument);
   def.settings.contacts.reset();  // discs that never meet may start anywhere
   EXPECT_NO_THROW(check_overlaps(def));
   EXPECT_TRUE(check_definition(def).empty());
+  EXPECT_EQ(World(def).body_count(), 2u);
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ using determinism::ticks_for;
 /// `frame_seconds()` each (the loop decides how many ticks each frame runs).
 template <class FrameTime>
 std::uint64_t hash_through_loop(const Case& c, std::uint64_t ticks, FrameTime frame_seconds) {
-  World sim = make_world(scene_for(c));
+  World sim = World(scene_for(c).def);
   ticks = ticks_for(c.scene, ticks);
   FixedStepLoop loop(sim);
   while (sim.tick() < ticks) {
@@ -119,8 +119,8 @@ TEST(Determinism, SameStateAtEverySimdLevel) {
 TEST(Determinism, HeadlessSessionReachesTheSameState) {
   // The frame pipeline `render` and `view` share: drawing must not touch the physics.
   for (const char* file : {"default.toml", "projectile.toml", "spring_damper.toml"}) {
-    const Case c{file, load_scene(scenes_dir() / file).settings.integrator,
-                 load_scene(scenes_dir() / file).precision};
+    const Case c{file, load_scene(scenes_dir() / file).def.settings.integrator,
+                 load_scene(scenes_dir() / file).def.precision};
     Session session = testing::scene_session(scene_for(c), 64, 64);
     const VirtualClock clock(60.0);
     std::uint64_t frames = 0;
@@ -148,10 +148,10 @@ TEST(Determinism, OneBitOfInitialStateChangesTheHash) {
     for (int which = 0; which < 2; ++which) {
       Scene s = scene_for(c);
       if (which == 0)
-        s.bodies[0].body.position.x = flip(s.bodies[0].body.position.x, 40);
+        s.def.bodies[0].body.position.x = flip(s.def.bodies[0].body.position.x, 40);
       else
-        s.bodies[0].spring->stiffness = flip(s.bodies[0].spring->stiffness, 40);
-      World changed = make_world(s);
+        s.def.bodies[0].spring->stiffness = flip(s.def.bodies[0].spring->stiffness, 40);
+      World changed = World(s.def);
       for (std::uint64_t t = 0; t < golden_ticks; ++t) changed.step();
       EXPECT_NE(changed.state_hash(), reference)
           << precision_name(p) << (which == 0 ? ": x0" : ": stiffness") << " with bit 40 flipped";

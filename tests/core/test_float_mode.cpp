@@ -122,8 +122,8 @@ TEST(FloatHygiene, TheCallersFpuModeDoesNotReachTheState) {
 // narrows every double. Fails without the loader's or create_body's guard.
 std::uint64_t loaded_hash(const char* name, Precision precision) {
   Scene s = load_scene(std::string(FIXSTEP_SOURCE_DIR) + "/tests/scenes/cross/" + name);
-  s.precision = precision;
-  World sim = World(world_def(s));
+  s.def.precision = precision;
+  World sim = World(s.def);
   for (int i = 0; i < 300; ++i) sim.step({});
   return sim.state_hash();
 }

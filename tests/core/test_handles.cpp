@@ -8,6 +8,7 @@
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
@@ -17,7 +18,7 @@ namespace {
 using test::ball;
 
 TEST(Handles, EveryEditOfARunningWorldIsReachableOnSimulationWithoutVisit) {
-  World sim(Precision::f64, WorldSettings{.dt = 0.01});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.01}));
   const Entity a = sim.create_body(ball("a", {0, 0}));
   const Entity b = sim.create_body(ball("b", {1, 0}));
   const Entity c = sim.create_body(ball("c", {2, 0}));

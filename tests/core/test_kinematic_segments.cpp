@@ -55,7 +55,7 @@ Entity carrier(World& w, Vec2 at, Vec2 v) {
 TEST(KinematicSegments, ADiscOnAPlatformMovingSidewaysReachesItsSpeedAtMuG) {
   for (const bool contacts : {false, true}) {
     SCOPED_TRACE(contacts ? "disc solver" : "plane pass");
-    World w(Precision::f64, settings(contacts));
+    World w(WorldDef::empty(Precision::f64, settings(contacts)));
     const Entity body = carrier(w, {0.0, 0.0}, {1.0, 0.0});
     w.add_segment(SegmentDef{.a = {-20.0, 0.0}, .b = {20.0, 0.0}, .friction = 0.2, .body = body});
     const Entity d = w.create_body(disc({0.0, r}, {}));
@@ -80,11 +80,11 @@ TEST(KinematicSegments, ADiscOnAPlatformMovingSidewaysReachesItsSpeedAtMuG) {
 // against the moving segment; friction (μ = 0.5 between discs and on the platform) brings both
 // to the platform's 1 m/s (to 1e-6 m/s after 2 s), and the stack stands.
 TEST(KinematicSegments, AStackRidesAPlatform) {
-  World w(Precision::f64, [] {
+  World w(WorldDef::empty(Precision::f64, [] {
     WorldSettings s = settings(true);
     s.contacts->friction = 0.5;
     return s;
-  }());
+  }()));
   const Entity body = carrier(w, {0.0, 0.0}, {1.0, 0.0});
   w.add_segment(SegmentDef{.a = {-20.0, 0.0}, .b = {20.0, 0.0}, .friction = 0.5, .body = body});
   const Entity low = w.create_body(disc({0.0, r}, {}));
@@ -106,7 +106,7 @@ TEST(KinematicSegments, AStackRidesAPlatform) {
 TEST(KinematicSegments, AnElasticDiscMeetingAMovingSegmentHeadOnLeavesAtTwoUMinusV) {
   for (const bool contacts : {false, true}) {
     SCOPED_TRACE(contacts ? "disc solver" : "plane pass");
-    World w(Precision::f64, settings(contacts, Integrator::velocity_verlet));
+    World w(WorldDef::empty(Precision::f64, settings(contacts, Integrator::velocity_verlet)));
     const Entity body = carrier(w, {0.0, 0.0}, {2.0, 0.0});
     w.add_segment(SegmentDef{.a = {0.0, -5.0}, .b = {0.0, 5.0}, .restitution = 1.0, .body = body});
     const Entity d = w.create_body(disc({2.0, 0.0}, {-3.0, 0.0}, false));
@@ -124,7 +124,7 @@ TEST(KinematicSegments, AnElasticDiscMeetingAMovingSegmentHeadOnLeavesAtTwoUMinu
 TEST(KinematicSegments, ALiftCarriesADiscUp) {
   for (const bool contacts : {false, true}) {
     SCOPED_TRACE(contacts ? "disc solver" : "plane pass");
-    World w(Precision::f64, settings(contacts));
+    World w(WorldDef::empty(Precision::f64, settings(contacts)));
     const Entity body = carrier(w, {0.0, 0.0}, {0.0, 0.5});
     w.add_segment(SegmentDef{.a = {-2.0, 0.0}, .b = {2.0, 0.0}, .body = body});
     const Entity d = w.create_body(disc({0.0, r}, {}));
@@ -155,7 +155,7 @@ TEST(KinematicSegments, ALiftCarriesADiscUp) {
 TEST(KinematicSegments, APaddlePushingARowAlongAFloorKeepsTheBalance) {
   WorldSettings s = settings(true);
   s.contacts->restitution = 0.2, s.contacts->friction = 0.4;
-  World w(Precision::f64, s);
+  World w(WorldDef::empty(Precision::f64, s));
   w.add_plane(PlaneDef{.normal = {0, 1}, .offset = 0.0, .restitution = 0.2, .friction = 0.4});
   const Entity body = carrier(w, {2.0, 0.0}, {-0.6, 0.0});
   w.add_segment(SegmentDef{.a = {2.0, 0.0}, .b = {2.0, 1.0}, .friction = 0.1, .body = body});
@@ -167,7 +167,7 @@ TEST(KinematicSegments, APaddlePushingARowAlongAFloorKeepsTheBalance) {
 }
 
 TEST(KinematicSegments, OnlyALiveKinematicBodyCarriesASegment) {
-  World w(Precision::f64, settings(false));
+  World w(WorldDef::empty(Precision::f64, settings(false)));
   const Entity dynamic = w.create_body(disc({0.0, 5.0}, {}));
   EXPECT_THROW(w.add_segment(SegmentDef{.a = {0, 0}, .b = {1, 0}, .body = dynamic}),
                std::invalid_argument);

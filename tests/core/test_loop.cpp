@@ -112,7 +112,7 @@ TEST(Loop, EachTickReceivesTheFramesInputWithItsOwnIndex) {
 
 /// Physics state after exactly n ticks of the default scene, frames arriving at `fps`.
 std::uint64_t hash_after(std::uint64_t n, double fps) {
-  World sim = make_world(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml"));
+  World sim = World(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml").def);
   FixedStepLoop loop(sim);
   const VirtualClock clock(fps);
   while (sim.tick() < n) {
@@ -125,7 +125,7 @@ std::uint64_t hash_after(std::uint64_t n, double fps) {
 
 TEST(Loop, StateAfterNTicksIsBitIdenticalAtAnyFrameRate) {
   constexpr std::uint64_t n = 777;
-  World direct = make_world(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml"));
+  World direct = World(load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml").def);
   for (std::uint64_t i = 0; i < n; ++i) direct.step();
   EXPECT_EQ(hash_after(n, 30), direct.state_hash());
   EXPECT_EQ(hash_after(n, 60), direct.state_hash());

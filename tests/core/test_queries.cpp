@@ -14,6 +14,7 @@
 #include "fixstep/core/query.hpp"
 #include "fixstep/core/random.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
@@ -25,11 +26,11 @@ namespace fixstep {
 namespace query_tests {
 
 struct Scene {
-  World world{Precision::f64, [] {
-                WorldSettings s{.dt = 0.01};
-                s.contacts = ContactSettings{.restitution = 1.0};
-                return s;
-              }()};
+  World world{WorldDef::empty(Precision::f64, [] {
+    WorldSettings s{.dt = 0.01};
+    s.contacts = ContactSettings{.restitution = 1.0};
+    return s;
+  }())};
   std::vector<Entity> ids;
 };
 

@@ -123,7 +123,7 @@ TEST(WorldRandom, TheSeedIsInTheDefinitionHashAndTheSceneFileWhenSet) {
   EXPECT_NE(fixstep::definition_hash(def), unseeded);
   const std::string text = fixstep::format_scene(def);
   EXPECT_NE(text.find("seed = 1234567890123\n"), std::string::npos) << text;
-  EXPECT_EQ(fixstep::parse_scene(text, "seeded.toml").settings.seed, 1234567890123ull);
+  EXPECT_EQ(fixstep::parse_scene(text, "seeded.toml").def.settings.seed, 1234567890123ull);
   def.settings.seed = 1ull << 63;  // above TOML's largest integer
   EXPECT_THROW((void)fixstep::format_scene(def), std::invalid_argument);
 }

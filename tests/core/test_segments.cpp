@@ -47,7 +47,7 @@ WorldSettings settings(bool track = false) {
 // instead of its time of impact fails by the tick's fraction (~1e-2 s).
 TEST(Segments, DropOnASegmentBouncesAtItsTimeOfImpact) {
   const double h = 5.0;
-  World w(Precision::f64, settings());
+  World w(WorldDef::empty(Precision::f64, settings()));
   w.add_segment(SegmentDef{.a = {-3.0, 0.0}, .b = {4.0, 0.0}, .restitution = 1.0});
   const Entity b = w.create_body(ball({0.25, r + h}, {}));
   const double fall = std::sqrt(2.0 * h / g);
@@ -70,7 +70,8 @@ TEST(Segments, DropOnASegmentBouncesAtItsTimeOfImpact) {
 // plane of its line give the same states (to 1e-12 m, m/s) while the disc stays over it.
 TEST(Segments, InteriorIsThePlaneOfItsLine) {
   const double s = std::sin(0.3), c = std::cos(0.3);
-  World a(Precision::f64, settings()), p(Precision::f64, settings());
+  World a(WorldDef::empty(Precision::f64, settings())),
+      p(WorldDef::empty(Precision::f64, settings()));
   a.add_segment(SegmentDef{
       .a = {-20.0 * c, -20.0 * s}, .b = {20.0 * c, 20.0 * s}, .restitution = 0.6, .friction = 0.2});
   p.add_plane(PlaneDef{.normal = {-s, c}, .offset = 0.0, .restitution = 0.6, .friction = 0.2});
@@ -112,7 +113,8 @@ TEST(Segments, InteriorIsThePlaneOfItsLineInTheRestingSolver) {
         w.create_body(ball({u * c - rr * s, u * s + rr * c}, {}, true, rr));
       }
     };
-    World a(Precision::f64, ws), p(Precision::f64, ws), f(Precision::f64, ws);
+    World a(WorldDef::empty(Precision::f64, ws)), p(WorldDef::empty(Precision::f64, ws)),
+        f(WorldDef::empty(Precision::f64, ws));
     level(a, true, 0.3), level(p, false, 0.3), level(f, false, 0.0);
     for (int i = 0; i < 120; ++i) {
       a.step(), p.step(), f.step();
@@ -136,7 +138,7 @@ TEST(Segments, InteriorIsThePlaneOfItsLineInTheRestingSolver) {
 // at 2.5 s the centre is at (-0.3 - 0.96·0.9, 0.4 + 0.28·0.9). Asserted to 1e-12.
 // Deliberate bug checked: the end point's normal taken as the segment's (0, 1) fails.
 TEST(Segments, CornerBouncesAlongTheExactNormal) {
-  World w(Precision::f64, settings());
+  World w(WorldDef::empty(Precision::f64, settings()));
   w.add_segment(SegmentDef{.a = {0.0, 0.0}, .b = {2.0, 0.0}, .restitution = 1.0});
   const Entity b = w.create_body(ball({-0.3, 2.0}, {0.0, -1.0}, false));
   for (int i = 0; i < 150; ++i) w.step();
@@ -151,7 +153,7 @@ TEST(Segments, CornerBouncesAlongTheExactNormal) {
 // x = 1 - r exactly (e = 1), or stops there (e = 0), and is never past it.
 TEST(Segments, AFastDiscDoesNotTunnel) {
   for (const double e : {1.0, 0.0}) {
-    World w(Precision::f64, settings());
+    World w(WorldDef::empty(Precision::f64, settings()));
     w.add_segment(SegmentDef{.a = {1.0, -1.0}, .b = {1.0, 1.0}, .restitution = e});
     const Entity b = w.create_body(ball({0.0, 0.0}, {1000.0, 0.0}, false, 0.05));
     for (int i = 0; i < 3; ++i) {
@@ -174,7 +176,7 @@ struct Crossing {
 Crossing slide(const std::vector<Vec2>& floor, bool contacts, double y0) {
   WorldSettings ws = settings();
   if (contacts) ws.contacts = ContactSettings{};
-  World w(Precision::f64, ws);
+  World w(WorldDef::empty(Precision::f64, ws));
   w.add_polyline(floor, 0.0, 0.0);
   const Entity b = w.create_body(ball({-8.0, y0}, {4.0, 0.0}));
   Crossing out;
@@ -226,7 +228,7 @@ TEST(Segments, ANearlyCollinearPolylineFloorHasNoBumps) {
 // staircase polyline keeps E + E_dissipated within 1e-9 of its start (velocity Verlet is exact
 // for gravity, so what impacts take is all that changes).
 TEST(Segments, TheEnergyAccountBalances) {
-  World w(Precision::f64, settings(true));
+  World w(WorldDef::empty(Precision::f64, settings(true)));
   const std::vector<Vec2> stairs{{-4, 4}, {-2, 4}, {-2, 3}, {0, 3}, {0, 2},
                                  {2, 2},  {2, 1},  {4, 1},  {4, 0}, {9, 0}};
   w.add_polyline(stairs, 0.7, 0.3);
@@ -253,7 +255,7 @@ TEST(Segments, DefinitionHashOnlyWhereTheyExist) {
 
 // Bad segments and polylines are refused with the segment's index and field.
 TEST(Segments, BadDefinitionsAreRefused) {
-  World w(Precision::f64, settings());
+  World w(WorldDef::empty(Precision::f64, settings()));
   EXPECT_THROW(w.add_segment(SegmentDef{.a = {0, 0}, .b = {0, 0}}), std::invalid_argument);
   EXPECT_THROW(w.add_segment(SegmentDef{.a = {0, 0}, .b = {1, std::nan("")}}),
                std::invalid_argument);
@@ -277,7 +279,7 @@ TEST(Segments, BadDefinitionsAreRefused) {
 TEST(Segments, SyncTestHoldsOnALevel) {
   WorldSettings ws = settings(true);
   ws.contacts = ContactSettings{.restitution = 0.4, .friction = 0.1};
-  World w(Precision::f64, ws);
+  World w(WorldDef::empty(Precision::f64, ws));
   w.add_polyline(std::vector<Vec2>{{-6, 4}, {-3, 1}, {0, 0.5}, {3, 1}, {6, 4}}, 0.3, 0.2);
   w.add_segment(SegmentDef{.a = {-1.0, 3.0}, .b = {1.0, 3.2}, .restitution = 0.6});
   for (int i = 0; i < 8; ++i) w.create_body(ball({-4.5 + 0.5 * i, 5.0 + 0.3 * i}, {}, true, 0.2));
@@ -290,7 +292,7 @@ TEST(Segments, SyncTestHoldsOnALevel) {
 // a circle or box reaching it finds it, one short of it does not; planes = false keeps it.
 // Deliberate bug checked: the normal not turned to face the ray fails.
 TEST(Segments, QueriesSeeSegments) {
-  World w(Precision::f64, settings());
+  World w(WorldDef::empty(Precision::f64, settings()));
   w.add_segment(SegmentDef{.a = {0.0, 0.0}, .b = {4.0, 2.0}});
   const std::optional<RayHit> hit = w.cast_ray({1.0, 3.0}, {0.0, -6.0});
   ASSERT_TRUE(hit.has_value());

@@ -11,6 +11,7 @@
 #include "fixstep/core/disc_overlap.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "test_bodies.hpp"
 
@@ -59,7 +60,7 @@ TEST(CollisionFilter, ShouldCollideFollowsBox2DsRule) {
 
 /// Two discs 2 m apart closing at 2 m/s: whether they bounce (e = 1) or pass through.
 bool bounce(CollisionFilter fa, CollisionFilter fb) {
-  World sim(Precision::f64, contact_settings());
+  World sim(WorldDef::empty(Precision::f64, contact_settings()));
   BodyDef a = disc("a", {-1, 0}, {1, 0}, 0.25), b = disc("b", {1, 0}, {-1, 0}, 0.25);
   a.collider->filter = fa, b.collider->filter = fb;
   const Entity ea = sim.create_body(a);
@@ -87,7 +88,7 @@ TEST(CollisionFilter, FilteredPairsPassThroughAndOthersBounce) {
 
 TEST(CollisionFilter, AFilteredPairReachesNoNarrowphaseAndAGasImpactsOnlyAcceptedPairs) {
   // A dense gas: three categories, category 2 ignoring category 1, and a negative group.
-  World sim(Precision::f64, contact_settings());
+  World sim(WorldDef::empty(Precision::f64, contact_settings()));
   std::vector<Entity> ids;
   std::vector<CollisionFilter> filters;
   for (int i = 0; i < 20; ++i) {
@@ -115,7 +116,7 @@ TEST(CollisionFilter, AFilteredPairReachesNoNarrowphaseAndAGasImpactsOnlyAccepte
   EXPECT_GT(accepted_impacts, 100u);
 
   // Every pair filtered apart (one negative group): no candidate pair at all, on any tick.
-  World none(Precision::f64, contact_settings());
+  World none(WorldDef::empty(Precision::f64, contact_settings()));
   for (int i = 0; i < 10; ++i) {
     BodyDef b = disc("n", {i * 0.3, 0}, {i % 2 ? -1.0 : 1.0, 0}, 0.2);
     b.collider->filter.group = -7;
@@ -142,7 +143,7 @@ TEST(CollisionFilter, DiscsFilteredApartMayOverlapAtTheStart) {
 /// of a twin world without the sensors (whose ball must move bit for bit the same).
 void check_fall_through(BodyType sensor_type) {
   WorldSettings s = contact_settings();
-  World with(Precision::f64, s), twin(Precision::f64, s);
+  World with(WorldDef::empty(Precision::f64, s)), twin(WorldDef::empty(Precision::f64, s));
   BodyDef ball_def = disc("ball", {0.05, 3}, {}, 0.1);
   ball_def.gravity = Gravity{};
   const Entity b = with.create_body(ball_def), tb = twin.create_body(ball_def);
@@ -180,13 +181,13 @@ TEST(Sensors, StaticAndKinematicSensorsSeeABallFallThroughAndPushNothing) {
 }
 
 TEST(Sensors, ADynamicSensorFallsThroughTheGroundAndSeesStaticPegs) {
-  World sim(Precision::f64, contact_settings());
+  World sim(WorldDef::empty(Precision::f64, contact_settings()));
   BodyDef probe = sensor_disc("probe", {0, 2}, 0.1, BodyType::dynamic);
   probe.gravity = Gravity{};
   const Entity p = sim.create_body(probe);
   const Entity peg = sim.create_body(disc("peg", {0, 0}, {}, 0.2, BodyType::static_body));
   sim.add_plane(PlaneDef{.normal = {0, 1}, .offset = -1});
-  World free(Precision::f64, contact_settings());
+  World free(WorldDef::empty(Precision::f64, contact_settings()));
   BodyDef alone = ball("probe", {0, 2});
   alone.gravity = Gravity{};
   const Entity fp = free.create_body(alone);
@@ -201,7 +202,7 @@ TEST(Sensors, ADynamicSensorFallsThroughTheGroundAndSeesStaticPegs) {
 }
 
 TEST(Sensors, AFastBallCrossingWithinOneTickBeginsAndEndsInThatTick) {
-  World sim(Precision::f64, contact_settings());
+  World sim(WorldDef::empty(Precision::f64, contact_settings()));
   const Entity ball_e = sim.create_body(disc("ball", {-1, 0}, {150, 0}, 0.05));
   const Entity gate = sim.create_body(sensor_disc("gate", {0, 0}, 0.1, BodyType::static_body));
   sim.step();  // x: -1 -> 0.5, through the gate (|x| < 0.15) within the tick
@@ -215,7 +216,7 @@ TEST(Sensors, AFastBallCrossingWithinOneTickBeginsAndEndsInThatTick) {
 }
 
 TEST(Sensors, FiltersLinksAndOtherSensorsAreHonoured) {
-  World sim(Precision::f64, contact_settings());
+  World sim(WorldDef::empty(Precision::f64, contact_settings()));
   BodyDef s = sensor_disc("s", {0, 0}, 0.5, BodyType::static_body);
   s.collider->filter.mask = 0b10;  // sees category 2 only
   const Entity se = sim.create_body(s);
@@ -241,7 +242,7 @@ TEST(Sensors, FiltersLinksAndOtherSensorsAreHonoured) {
 }
 
 TEST(Sensors, EventsComeBackAfterARestoreAndADestroyedVisitorEnds) {
-  World sim(Precision::f64, contact_settings());
+  World sim(WorldDef::empty(Precision::f64, contact_settings()));
   BodyDef b = disc("ball", {0, 2}, {}, 0.1);
   b.gravity = Gravity{};
   const Entity ball_e = sim.create_body(b);
@@ -269,7 +270,7 @@ TEST(Sensors, EventsComeBackAfterARestoreAndADestroyedVisitorEnds) {
 }
 
 TEST(Sensors, ASlotReusedBetweenTicksEndsTheOldVisitorAndBeginsTheNew) {
-  World sim(Precision::f64, contact_settings());
+  World sim(WorldDef::empty(Precision::f64, contact_settings()));
   const Entity zone = sim.create_body(sensor_disc("zone", {0, 0}, 0.5, BodyType::static_body));
   const Entity old_ball = sim.create_body(disc("old", {0.1, 0}, {}, 0.1));
   sim.step();
@@ -301,7 +302,7 @@ TEST(Sensors, ASlotReusedBetweenTicksEndsTheOldVisitorAndBeginsTheNew) {
 }
 
 TEST(Sensors, ASensorNeedsDiscContacts) {
-  World sim(Precision::f64, WorldSettings{.dt = 0.01});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.01}));
   EXPECT_THROW(sim.create_body(sensor_disc("s", {0, 0}, 0.5, BodyType::static_body)),
                std::invalid_argument);
   const Entity e = sim.create_body(disc("d", {0, 0}, {}, 0.5));

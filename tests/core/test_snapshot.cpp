@@ -14,6 +14,7 @@
 #include "fixstep/app/session.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/core/pointer_drag.hpp"
@@ -148,8 +149,8 @@ TEST(InputPerTick, EveryPressAndReleaseOfARandomScriptReachesExactlyOneTick) {
 
 Scene scene_with(const std::string& file, Integrator integrator, Precision precision) {
   Scene s = load_scene(scenes_dir / file);
-  s.settings.integrator = integrator;
-  s.precision = precision;
+  s.def.settings.integrator = integrator;
+  s.def.precision = precision;
   return s;
 }
 
@@ -164,8 +165,8 @@ TEST(Snapshot, RestoringGivesTheSameBitsAsNeverHavingLeft) {
       for (Precision p : {Precision::f64, Precision::f32}) {
         SCOPED_TRACE(fmt::format("{} {} {}", file, integrator_name(integrator), precision_name(p)));
         Scene scene = scene_with(file, integrator, p);
-        scene.allow_unstable = true;
-        World sim = make_world(scene);
+        scene.def.allow_unstable = true;
+        World sim = World(scene.def);
         for (std::uint64_t t = 0; t < 100; ++t) sim.step(scripted_input(t));
         WorldSnapshot snap;
         EXPECT_TRUE(snap.empty());
@@ -187,7 +188,7 @@ TEST(Snapshot, RestoringGivesTheSameBitsAsNeverHavingLeft) {
 
 TEST(Snapshot, AStateTakenBeforeAComponentChangeComesBackWhole) {
   Scene scene = load_scene(scenes_dir / "default.toml");
-  World sim = make_world(scene);
+  World sim = World(scene.def);
   for (int t = 0; t < 30; ++t) sim.step();
   WorldSnapshot snap;
   sim.save(snap);
@@ -204,12 +205,12 @@ TEST(Snapshot, AStateTakenBeforeAComponentChangeComesBackWhole) {
 }
 
 TEST(Snapshot, RestoringAnEmptySnapshotIsRefused) {
-  World sim = make_world(load_scene(scenes_dir / "default.toml"));
+  World sim = World(load_scene(scenes_dir / "default.toml").def);
   EXPECT_THROW(sim.restore(WorldSnapshot{}), std::invalid_argument);
 }
 
 TEST(Snapshot, SessionSnapshotsKeepTheLoopsAccumulatorAndTick) {
-  Session session(world_def(load_scene(scenes_dir / "spring_damper.toml")));
+  Session session(load_scene(scenes_dir / "spring_damper.toml").def);
   session.advance(0.0371);  // leaves a part of a tick in the accumulator
   Session::Snapshot snap;
   session.save(snap);
@@ -226,7 +227,7 @@ TEST(Snapshot, SessionSnapshotsKeepTheLoopsAccumulatorAndTick) {
 }
 
 TEST(Rewind, StepsBackOneTickAtATimeThroughTheLastCapacityTicks) {
-  World sim = make_world(load_scene(scenes_dir / "default.toml"));
+  World sim = World(load_scene(scenes_dir / "default.toml").def);
   RewindBuffer rewind(5);
   std::vector<std::uint64_t> hashes;
   rewind.push(sim);
@@ -273,8 +274,8 @@ TEST(Snapshot, SnapshotBytesIsWhatACopyAllocates) {
   for (const char* file : {"cloth.toml", "default.toml", "bounce.toml", "chain.toml"}) {
     for (const Precision p : {Precision::f32, Precision::f64}) {
       Scene scene = load_scene(scenes_dir / file);
-      scene.precision = p;
-      World sim = make_world(scene);
+      scene.def.precision = p;
+      World sim = World(scene.def);
       sim.step();  // the force terms and scratch arrays are built at the first tick
       WorldSnapshot snap;
       counted_bytes = 0;
@@ -358,8 +359,8 @@ std::vector<SyncCase> sync_cases() {
     for (Integrator i : all_integrators) {
       for (Precision p : {Precision::f64, Precision::f32}) {
         try {
-          (void)make_world(scene_with(e.path().filename().string(), i, p));
-        } catch (const SceneError&) {
+          (void)World(scene_with(e.path().filename().string(), i, p).def);
+        } catch (const UnstableDefinition&) {
           continue;  // refused by the stability guard
         }
         cases.push_back({e.path().filename().string(), i, p});
@@ -379,15 +380,15 @@ TEST(SyncTest, EveryShippedSceneIntegratorAndPrecisionRollsBackBitExactly) {
     // Implicit Euler on a large network factorizes per Newton iteration (~7 ms a tick for
     // cloth.toml, a second in the Debug ASan build), and a thousand discs in contact
     // (ball_pit.toml) take ~1.5 ms a tick: fewer ticks there, every path still run.
-    const bool slow = (c.integrator == Integrator::implicit_euler && scene.links.size() > 40) ||
-                      (scene.settings.contacts && scene.bodies.size() > 1000);
+    const bool slow = (c.integrator == Integrator::implicit_euler && scene.def.links.size() > 40) ||
+                      (scene.def.settings.contacts && scene.def.bodies.size() > 1000);
 #ifdef NDEBUG
     const std::uint64_t ticks = slow ? 12 : 120;
 #else
     const std::uint64_t ticks = slow ? 3 : 40;
 #endif
-    World plain = make_world(scene);
-    World tested = make_world(scene);
+    World plain = World(scene.def);
+    World tested = World(scene.def);
     SyncTest sync(tested, 7);
     for (std::uint64_t t = 0; t < ticks; ++t) {
       plain.step(scripted_input(t));
@@ -403,7 +404,7 @@ TEST(SyncTest, EveryShippedSceneIntegratorAndPrecisionRollsBackBitExactly) {
 TEST(SyncTest, ARuleAppliedOutsideTheRollbackIsCaught) {
   // A program that changes the world between ticks without the sync test seeing it (here:
   // moving a body) breaks re-simulation; the sync test reports the first tick it shows.
-  World sim = make_world(load_scene(scenes_dir / "default.toml"));
+  World sim = World(load_scene(scenes_dir / "default.toml").def);
   SyncTest sync(sim, 4);
   for (std::uint64_t t = 0; t < 20; ++t) ASSERT_TRUE(sync.step(TickInput{.tick = t}));
   const Entity first = sim.bodies()[0];
@@ -423,8 +424,8 @@ TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
   // The cloth (400 bodies, 1540 links) at 20 000 substeps: a tick of a few tenths of a second
   // that ran to its end, without throwing, before the substeps polled the request.
   Scene scene = load_scene(scenes_dir / "cloth.toml");
-  scene.settings.substeps = 20000;
-  World sim = make_world(scene);
+  scene.def.settings.substeps = 20000;
+  World sim = World(scene.def);
   WorldSnapshot before;
   sim.save(before);
   clear_stop_request();
@@ -444,10 +445,10 @@ TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
   EXPECT_EQ(sim.tick(), 0u);  // the torn tick is not counted
   clear_stop_request();
   // A fresh world from the snapshot taken before the torn tick steps on as if nothing happened.
-  World fresh = make_world(scene);
+  World fresh = World(scene.def);
   fresh.restore(before);
   fresh.step(TickInput{.tick = 0});
-  World reference = make_world(scene);
+  World reference = World(scene.def);
   reference.step(TickInput{.tick = 0});
   EXPECT_EQ(fresh.tick(), 1u);
   EXPECT_EQ(fresh.state_hash(), reference.state_hash());
@@ -455,13 +456,13 @@ TEST(StopRequest, AStopFromAnotherThreadInterruptsATickAndASnapshotStepsOn) {
 
 TEST(StopRequest, APendingStopStopsImplicitEulerAndTheStabilityGuard) {
   Scene scene = load_scene(scenes_dir / "cloth.toml");
-  scene.settings.integrator = Integrator::implicit_euler;
-  World sim = make_world(scene);
+  scene.def.settings.integrator = Integrator::implicit_euler;
+  World sim = World(scene.def);
   request_stop(15);
   EXPECT_THROW(sim.step(TickInput{.tick = 0}), StopRequested);
   // The guard's power iteration (make_world checks the network) polls too.
-  scene.settings.integrator = Integrator::semi_implicit_euler;
-  EXPECT_THROW((void)make_world(scene), StopRequested);
+  scene.def.settings.integrator = Integrator::semi_implicit_euler;
+  EXPECT_THROW((void)World(scene.def), StopRequested);
   clear_stop_request();
   EXPECT_NO_THROW(sim.step(TickInput{.tick = 0}));  // the same world steps again once cleared
 }
@@ -470,8 +471,8 @@ TEST(StopRequest, AStopScopeStopsItsThreadOnlyAndAnotherThreadStepsOn) {
   // A background load stopped by its owner while the owner steps its own world: only the
   // thread under the scope sees the flag.
   Scene scene = load_scene(scenes_dir / "cloth.toml");
-  scene.settings.substeps = 20000;  // a tick of a few tenths of a second
-  World background = make_world(scene);
+  scene.def.settings.substeps = 20000;  // a tick of a few tenths of a second
+  World background = World(scene.def);
   clear_stop_request();
   std::atomic<int> flag{0};
   std::atomic<bool> started{false};
@@ -488,7 +489,7 @@ TEST(StopRequest, AStopScopeStopsItsThreadOnlyAndAnotherThreadStepsOn) {
   while (!started.load()) std::this_thread::yield();
   flag.store(7);
   Scene small = load_scene(scenes_dir / "cloth.toml");
-  World foreground = make_world(small);
+  World foreground = World(small.def);
   EXPECT_NO_THROW(foreground.step(TickInput{.tick = 0}));  // this thread has no scope
   worker.join();
   EXPECT_EQ(stopped_with, 7);

@@ -18,10 +18,14 @@
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_stability.hpp"
 #include "link_between.hpp"
+#include "scene_guard.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
+using test::check_stability;
+using test::enforce_stability;
+using test::located_world;
 
 /// Unit-mass undamped oscillator (ω = 1 rad/s) from x = 1 m, stepped at dt = omega_dt.
 detail::WorldKernel<double> oscillator(Integrator integrator, double omega_dt) {
@@ -164,7 +168,7 @@ TEST(Guard, RefusesWithTheSmallestStableSubstepCountWhichThenRuns) {
   // so the smallest stable substep count is ceil(5 / 2) = 3.
   const Scene scene = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler"), "stiff.toml");
   try {
-    (void)make_world(scene);
+    (void)located_world(scene);
     FAIL() << "unstable scene accepted";
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -179,7 +183,7 @@ TEST(Guard, RefusesWithTheSmallestStableSubstepCountWhichThenRuns) {
   EXPECT_EQ(report[0].min_substeps, 3);
 
   Scene fixed = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler", 3), "stiff.toml");
-  World sim = make_world(fixed);
+  World sim = located_world(fixed);
   const double e0 = sim.energy().total();
   for (int i = 0; i < 10'000; ++i) sim.step();
   // bounded: ω h = 5/3, so |E/E0 - 1| <= (ωh)/(1 - ωh/2) = 10 at most, far from blow-up
@@ -193,7 +197,7 @@ TEST(Guard, TheRefusalSaysWhatToDoBeforeTheNumbersThatExplainIt) {
   // growth per step follow.
   const Scene stiff = parse_scene(scene_text(400, 1, 0.25, "semi_implicit_euler"), "stiff.toml");
   try {
-    (void)make_world(stiff);
+    (void)located_world(stiff);
     FAIL() << "unstable scene accepted";
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -208,7 +212,7 @@ TEST(Guard, TheRefusalSaysWhatToDoBeforeTheNumbersThatExplainIt) {
   }
   const Scene euler = parse_scene(scene_text(1, 1, 0.01, "explicit_euler"), "e.toml");
   try {
-    (void)make_world(euler);
+    (void)located_world(euler);
     FAIL() << "unstable scene accepted";
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -223,9 +227,10 @@ TEST(Guard, TheRefusalSaysWhatToDoBeforeTheNumbersThatExplainIt) {
 }
 
 TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
-  // The same stiff body as above (ω·dt = 5 with symplectic Euler) as a WorldDef: the core's
-  // check_stability(def) refuses it, states the fault and the smallest stable substep count, and
-  // says nothing of scene files (no "[world]", no "allow_unstable"). World(def) itself builds it.
+  // The same stiff body as above (ω·dt = 5 with symplectic Euler) as a WorldDef: World(def)
+  // refuses it with the core's finding (UnstableDefinition), which states the fault and the
+  // smallest stable substep count and says nothing of scene files (no "[world]", no
+  // "allow_unstable"); with def.allow_unstable it builds and keeps the finding as a warning.
   WorldDef def;
   def.settings = {.dt = 0.25, .integrator = Integrator::semi_implicit_euler};
   BodyDef bob;
@@ -233,28 +238,33 @@ TEST(Guard, AWorldBuiltInCodeIsJudgedWithoutAScene) {
   bob.body.position = {1.0, 0.0};
   bob.spring = SpringDamper{.anchor = {}, .stiffness = 400.0};
   def.bodies.push_back(bob);
-  EXPECT_EQ(World(def).body_count(), 1u);  // the guard is the program's call, not World's
   try {
-    (void)check_stability(def);
+    (void)World(def);
     FAIL() << "unstable world accepted";
-  } catch (const std::invalid_argument& e) {
+  } catch (const UnstableDefinition& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("body 'bob' is unstable"), std::string::npos) << what;
     EXPECT_NE(what.find("ω·h = 5 "), std::string::npos) << what;
     EXPECT_NE(what.find("stable from substeps = 3"), std::string::npos) << what;
     EXPECT_EQ(what.find("[world]"), std::string::npos) << what;
     EXPECT_EQ(what.find("allow_unstable"), std::string::npos) << what;
+    ASSERT_TRUE(e.finding().body.has_value());
+    EXPECT_EQ(e.finding().body->min_substeps, 3);
+    EXPECT_EQ(e.finding().verdict, Stability::unstable);
   }
+  EXPECT_THROW((void)check_stability(def), UnstableDefinition);  // the same check, on its own
   def.settings.substeps = 3;
-  EXPECT_TRUE(check_stability(def).empty());
+  EXPECT_TRUE(World(def).warnings().empty());
   def.settings.substeps = 1;
-  const std::vector<std::string> allowed = check_stability(def, /*allow_unstable=*/true);
-  ASSERT_EQ(allowed.size(), 1u);
-  EXPECT_NE(allowed[0].find("body 'bob' is unstable"), std::string::npos) << allowed[0];
+  def.allow_unstable = true;
+  const World allowed(def);
+  ASSERT_EQ(allowed.warnings().size(), 1u);
+  EXPECT_NE(allowed.warnings()[0].message.find("body 'bob' is unstable"), std::string::npos)
+      << allowed.warnings()[0].message;
   // A link to a body the definition does not have is refused, by World and by the guard.
   def.links.push_back(fixstep::test::link_between(0, 1, {.stiffness = 1.0}));
   EXPECT_THROW((void)World(def), std::invalid_argument);
-  EXPECT_THROW((void)check_stability(def, true), std::invalid_argument);
+  EXPECT_THROW((void)check_stability(def), std::invalid_argument);
 }
 
 TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
@@ -274,7 +284,7 @@ TEST(Guard, AllowUnstableWarnsAndNearLimitWarns) {
   // explicit Euler on an undamped spring: no substep count helps
   const Scene euler = parse_scene(scene_text(1, 1, 0.01, "explicit_euler"), "e.toml");
   try {
-    (void)make_world(euler);
+    (void)located_world(euler);
     FAIL();
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("at every dt"), std::string::npos) << e.what();
@@ -297,7 +307,7 @@ TEST(Guard, ParameterExtremesRunBoundedOrAreRefusedNeverNaN) {
               parse_scene(scene_text(k, m, dt, name.c_str(), 1, false, 0.0), "x.toml");
           std::optional<World> sim;
           try {
-            sim.emplace(make_world(scene));
+            sim.emplace(located_world(scene));
           } catch (const SceneError& e) {
             ++refused;
             EXPECT_NE(std::string(e.what()).find("body 'bob'"), std::string::npos) << e.what();
@@ -306,7 +316,7 @@ TEST(Guard, ParameterExtremesRunBoundedOrAreRefusedNeverNaN) {
           ++ran;
           for (int i = 0; i < 2000; ++i) sim->step();
           const Body b = sim->body(sim->bodies()[0]);
-          const auto exact = exact::solve(scene.bodies[0], sim->time());
+          const auto exact = exact::solve(scene.def.bodies[0], sim->time());
           const std::string where = fmt::format("{} k={} m={} dt={}", name, k, m, dt);
           ASSERT_TRUE(std::isfinite(b.position.x) && std::isfinite(b.velocity.x)) << where;
           EXPECT_LE(std::abs(b.position.x), 3.3) << where;
@@ -371,7 +381,7 @@ TEST(Stability, ARateSoSmallItsBoundOverflowsIsStableAtEveryStep) {
     const Scene s = parse_scene(
         fmt::format("[world]\ndt = 0.01\n[[body]]\nposition = [0.0, 0.0]\n{}\n", body), "s.toml");
     EXPECT_NO_THROW((void)enforce_stability(s)) << body;
-    World sim = World(world_def(s));
+    World sim = World(s.def);
     sim.step({});
     EXPECT_EQ(sim.body(sim.defined_bodies()[0]).position, (Vec2{0.0, 0.0})) << body;
   }

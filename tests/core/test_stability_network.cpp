@@ -18,10 +18,15 @@
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_stability.hpp"
 #include "link_between.hpp"
+#include "scene_guard.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
+using test::check_scene_network;
+using test::check_stability;
+using test::enforce_stability;
+using test::located_world;
 
 enum class Masses { equal, alternating, graded };  // 1:1, 1:1000 alternating, 1 .. 1000 graded
 
@@ -304,21 +309,21 @@ TEST(NetworkAnchors, LinksBetweenTwoAnchorsAndAnchorsOwnSpringsDoNothing) {
 Scene network_scene(double dt, int substeps, bool allow = false) {
   Scene s;
   s.file = "chain.toml";
-  s.settings.dt = dt;
-  s.settings.substeps = substeps;
-  s.settings.integrator = Integrator::semi_implicit_euler;
-  s.allow_unstable = allow;
+  s.def.settings.dt = dt;
+  s.def.settings.substeps = substeps;
+  s.def.settings.integrator = Integrator::semi_implicit_euler;
+  s.def.allow_unstable = allow;
   for (const char* name : {"top", "mid", "tip", "solo"}) {
     BodyDef d;
     d.name = name;
     d.body.position = {1.0, 0.0};
-    s.bodies.push_back(d);
-    s.source.body_lines.push_back(4 * s.bodies.size());
+    s.def.bodies.push_back(d);
+    s.source.body_lines.push_back(4 * s.def.bodies.size());
   }
-  s.bodies[0].spring = SpringDamper{.anchor = {}, .stiffness = 100.0};
-  s.bodies[3].spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
-  s.links = {fixstep::test::link_between(0, 1, LinkSpring{100.0, 0.0, 0.0}),
-             fixstep::test::link_between(1, 2, LinkSpring{400.0, 0.0, 0.0})};
+  s.def.bodies[0].spring = SpringDamper{.anchor = {}, .stiffness = 100.0};
+  s.def.bodies[3].spring = SpringDamper{.anchor = {}, .stiffness = 1.0};
+  s.def.links = {fixstep::test::link_between(0, 1, LinkSpring{100.0, 0.0, 0.0}),
+                 fixstep::test::link_between(1, 2, LinkSpring{400.0, 0.0, 0.0})};
   s.source.link_lines = {30, 34};
   s.source.link_keys = {"spring[0]", "spring[1]"};
   return s;
@@ -337,7 +342,7 @@ TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
   EXPECT_EQ(net.fastest_body, fixstep::defined_entity(1));  // 'mid' swings hardest in the top mode
   EXPECT_NEAR(net.omega_max, 29.3543, 0.01);
   try {
-    (void)make_world(scene);
+    (void)located_world(scene);
     FAIL() << "unstable network accepted";
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -357,7 +362,7 @@ TEST(NetworkGuard, SceneWithAnUnstableNetworkIsRefusedNamingTheStiffestSpring) {
   EXPECT_EQ(net.min_substeps, 2);  // ω_max·dt = 2.94
   const Scene fixed = network_scene(0.1, net.min_substeps);
   EXPECT_TRUE(enforce_stability(fixed).empty());
-  World sim = make_world(fixed);
+  World sim = located_world(fixed);
   for (int i = 0; i < 5000; ++i) sim.step();
   EXPECT_FALSE(sim.fault().has_value());
 }
@@ -377,9 +382,9 @@ TEST(NetworkGuard, NearLimitWarnsAllowUnstableWarnsUnlinkedBodiesStayPerBody) {
       << allowed[0];
   // An unlinked body is still judged on its own, with its own line and key.
   Scene solo = network_scene(0.1, 4);
-  solo.bodies[3].spring->stiffness = 4e3;  // ω·h = 63 · 0.025 = 1.6: fine; at 1e5, 7.9: not
+  solo.def.bodies[3].spring->stiffness = 4e3;  // ω·h = 63 · 0.025 = 1.6: fine; at 1e5, 7.9: not
   EXPECT_TRUE(enforce_stability(solo).empty());
-  solo.bodies[3].spring->stiffness = 1e5;
+  solo.def.bodies[3].spring->stiffness = 1e5;
   try {
     (void)enforce_stability(solo);
     FAIL();
@@ -391,7 +396,7 @@ TEST(NetworkGuard, NearLimitWarnsAllowUnstableWarnsUnlinkedBodiesStayPerBody) {
 
 TEST(NetworkGuard, ExplainFaultUsesTheNetworkFinding) {
   const Scene scene = network_scene(0.1, 1, true);
-  World sim = make_world(scene);
+  World sim = located_world(scene);
   for (int i = 0; i < 2000 && !sim.fault(); ++i) sim.step();
   ASSERT_TRUE(sim.fault().has_value());
   const std::string m = explain_fault(scene, *sim.fault());

@@ -83,7 +83,7 @@ TEST(WorldDef, AddBodyGivesTheHandlesTheWorldGivesAndLinksUseThem) {
 }
 
 TEST(World, InterpolatedPositionsLieBetweenTheLastTwoTicks) {
-  World w(Precision::f64, WorldSettings{.dt = 0.5});
+  World w(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.5}));
   BodyDef b;
   b.body.velocity = {2.0, -4.0};  // m/s: 1 m and -2 m a tick, no forces
   (void)w.create_body(b);
@@ -148,7 +148,7 @@ TEST(World, RestLengthSpringPullsAlongTheSpring) {
 TEST(World, OnlyDeclaredForceTermsRun) {
   // A projectile scene declares no spring: the spring term must not exist.
   const Scene projectile = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/projectile.toml");
-  World sim = make_world(projectile);
+  World sim = World(projectile.def);
   const unsigned terms = sim.active_terms();
   EXPECT_EQ(terms & term_spring, 0u);
   EXPECT_NE(terms & term_gravity, 0u);
@@ -336,7 +336,7 @@ position = [0.0, 0.0]
 velocity = [2e13, 0.0]
 )",
                                   "fast.toml");
-  World sim = World(world_def(scene));
+  World sim = World(scene.def);
   sim.step();
   ASSERT_TRUE(sim.fault().has_value());
   const std::string m = explain_fault(scene, *sim.fault());

@@ -45,8 +45,8 @@ int golden_failures() {
 
 std::uint64_t loaded_hash(const std::string& file, Precision precision) {
   Scene s = load_scene(file);
-  s.precision = precision;
-  World sim = World(world_def(s));
+  s.def.precision = precision;
+  World sim = World(s.def);
   for (int i = 0; i < 300; ++i) sim.step({});
   return sim.state_hash();
 }

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_settings.hpp"
@@ -26,8 +27,8 @@ std::string Case::key() const {
 
 Scene scene_for(const Case& c) {
   Scene s = load_scene(scenes_dir() / c.scene);
-  s.settings.integrator = c.integrator;
-  s.precision = c.precision;
+  s.def.settings.integrator = c.integrator;
+  s.def.precision = c.precision;
   return s;
 }
 
@@ -68,11 +69,11 @@ std::vector<Case> all_cases() {
         const Case c{f, i, p};
         try {
           const Scene scene = scene_for(c);
-          if (i == Integrator::implicit_euler && scene.links.size() > max_links_for_implicit) {
+          if (i == Integrator::implicit_euler && scene.def.links.size() > max_links_for_implicit) {
             continue;
           }
-          (void)make_world(scene);
-        } catch (const SceneError&) {
+          (void)World(scene.def);
+        } catch (const UnstableDefinition&) {
           continue;  // refused by the stability guard: nothing to step
         }
         cases.push_back(c);
@@ -83,7 +84,7 @@ std::vector<Case> all_cases() {
 }
 
 std::uint64_t hash_direct(const Case& c, std::uint64_t ticks) {
-  World sim = make_world(scene_for(c));
+  World sim = World(scene_for(c).def);
   ticks = ticks_for(c.scene, ticks);
   for (std::uint64_t t = 0; t < ticks; ++t) sim.step();
   return sim.state_hash();

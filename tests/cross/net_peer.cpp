@@ -127,7 +127,7 @@ int play(const Options& o) {
   s.handshake_timeout_ms = 10000;
   s.scene_name = scene.file;
   s.scene_text = scene.text;
-  const WorldDef def = world_def(scene);
+  const WorldDef def = scene.def;
   net::MatchPeer peer = o.host ? net::MatchPeer::host(def, s, {"127.0.0.1", o.port})
                                : net::MatchPeer::join(def, s, {"127.0.0.1", o.port});
   using clock = std::chrono::steady_clock;

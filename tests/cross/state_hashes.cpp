@@ -118,12 +118,13 @@ void put(const std::string& text) {
 /// Steps the scene o.ticks ticks, printing the hash lines (buffered: one write per 4 KiB).
 void run(const Options& o) {
   Scene scene = load_scene(o.scene);
-  if (o.integrator) scene.settings.integrator = *o.integrator;
-  if (o.precision) scene.precision = *o.precision;
-  if (o.threads) scene.settings.threads = *o.threads;
-  check_command_work(o.ticks, tick_work(scene.bodies, scene.links, scene.planes, scene.settings),
-                     "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
-  World sim = make_world(scene);
+  if (o.integrator) scene.def.settings.integrator = *o.integrator;
+  if (o.precision) scene.def.precision = *o.precision;
+  if (o.threads) scene.def.settings.threads = *o.threads;
+  check_command_work(
+      o.ticks, tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings),
+      "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
+  World sim = World(scene.def);
   std::string out;
   auto line = [&] {
     out += std::to_string(sim.tick()) + ' ' + hex_hash(sim.state_hash()) + '\n';

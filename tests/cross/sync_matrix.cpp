@@ -10,9 +10,9 @@
 #include <string>
 
 #include "determinism_cases.hpp"
-#include "fixstep/io/summary.hpp"
 #include "fixstep/core/sync_test.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/io/summary.hpp"
 
 namespace {
 
@@ -23,8 +23,8 @@ using namespace fixstep::determinism;
 std::string check(const Case& c, std::uint64_t ticks) {
   const Scene scene = scene_for(c);
   ticks = ticks_for(c.scene, ticks);
-  World plain = make_world(scene);
-  World tested = make_world(scene);
+  World plain = World(scene.def);
+  World tested = World(scene.def);
   SyncTest sync(tested, 7);
   for (std::uint64_t t = 0; t < ticks; ++t) {
     plain.step(scripted_input(t));

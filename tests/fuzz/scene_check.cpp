@@ -15,6 +15,7 @@
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/scene_stability.hpp"
 
 namespace fixstep::fuzz {
 namespace {
@@ -49,15 +50,16 @@ bool small(const Vec2& v) {
 
 /// See bounded_max: a scene whose non-finite states are findings.
 bool bounded_scene(const Scene& scene) {
-  if (scene.allow_unstable) return false;
-  const bool links_ok = std::all_of(scene.links.begin(), scene.links.end(), [](const LinkDef& l) {
-    return small(l.spring.stiffness) && small(l.spring.damping) && small(l.spring.rest_length);
-  });
+  if (scene.def.allow_unstable) return false;
+  const bool links_ok =
+      std::all_of(scene.def.links.begin(), scene.def.links.end(), [](const LinkDef& l) {
+        return small(l.spring.stiffness) && small(l.spring.damping) && small(l.spring.rest_length);
+      });
   if (!links_ok) return false;
-  const bool planes_ok = std::all_of(scene.planes.begin(), scene.planes.end(),
+  const bool planes_ok = std::all_of(scene.def.planes.begin(), scene.def.planes.end(),
                                      [](const PlaneDef& p) { return small(p.offset); });
   if (!planes_ok) return false;
-  return std::all_of(scene.bodies.begin(), scene.bodies.end(), [](const BodyDef& d) {
+  return std::all_of(scene.def.bodies.begin(), scene.def.bodies.end(), [](const BodyDef& d) {
     const bool spring_ok = !d.spring || (small(d.spring->anchor) && small(d.spring->stiffness) &&
                                          small(d.spring->damping) && small(d.spring->rest_length));
     return d.body.mass >= bounded_min_mass && small(d.body.mass) && small(d.body.position) &&
@@ -83,22 +85,25 @@ Outcome check_scene_text(std::string_view text) {
   }
 
   // The work of one tick (see max_body_substeps); beyond the budget, the scene is only loaded.
-  const std::uint64_t size = scene.bodies.size() + scene.links.size();
-  const std::uint64_t discs = scene.settings.contacts
+  const std::uint64_t size = scene.def.bodies.size() + scene.def.links.size();
+  const std::uint64_t discs = scene.def.settings.contacts
                                   ? static_cast<std::uint64_t>(std::count_if(
-                                        scene.bodies.begin(), scene.bodies.end(),
+                                        scene.def.bodies.begin(), scene.def.bodies.end(),
                                         [](const BodyDef& d) { return d.collider.has_value(); }))
                                   : 0;
   const bool implicit_network =
-      scene.settings.integrator == Integrator::implicit_euler && !scene.links.empty();
-  const std::uint64_t per_tick = static_cast<std::uint64_t>(std::max(scene.settings.substeps, 1)) *
-                                 std::max<std::uint64_t>(size + disc_weight * discs, 1) *
-                                 (implicit_network ? scene.bodies.size() : 1);
+      scene.def.settings.integrator == Integrator::implicit_euler && !scene.def.links.empty();
+  const std::uint64_t per_tick =
+      static_cast<std::uint64_t>(std::max(scene.def.settings.substeps, 1)) *
+      std::max<std::uint64_t>(size + disc_weight * discs, 1) *
+      (implicit_network ? scene.def.bodies.size() : 1);
   if (size > max_built_size || per_tick > max_body_substeps) return {Verdict::accepted, {}};
 
   std::optional<World> sim;
   try {
-    sim.emplace(make_world(scene));
+    sim.emplace(World(scene.def));
+  } catch (const UnstableDefinition& e) {  // the stability guard: what every program locates
+    return {Verdict::rejected, located(scene, e).what()};
   } catch (const SceneError& e) {
     return {Verdict::rejected, e.what()};
   } catch (const std::invalid_argument& e) {
@@ -124,10 +129,11 @@ Outcome check_scene_text(std::string_view text) {
           return {bounded_scene(scene) || !caught ? Verdict::finding : Verdict::overflowed,
                   fmt::format("non-finite state at tick {} (dt {} s, {}, {}, substeps {}): "
                               "body[{}] \"{}\" position ({}, {}) velocity ({}, {}){}",
-                              tick, scene.settings.dt, integrator_name(scene.settings.integrator),
-                              scene.precision == Precision::f32 ? "f32" : "f64",
-                              scene.settings.substeps, i, sim->name(e), b.position.x, b.position.y,
-                              b.velocity.x, b.velocity.y,
+                              tick, scene.def.settings.dt,
+                              integrator_name(scene.def.settings.integrator),
+                              scene.def.precision == Precision::f32 ? "f32" : "f64",
+                              scene.def.settings.substeps, i, sim->name(e), b.position.x,
+                              b.position.y, b.velocity.x, b.velocity.y,
                               caught ? "" : "; the runtime guard did not report it")};
         }
       }

@@ -11,8 +11,9 @@ namespace fixstep::fuzz {
 
 enum class Verdict {
   accepted,           ///< loaded, built and stepped with every state finite
-  rejected,           ///< parse_scene or make_world threw SceneError: a clean rejection
-  rejected_by_world,  ///< make_world threw std::invalid_argument (documented, but the
+  rejected,           ///< parse_scene threw SceneError, or World(scene.def) refused it with the
+                      ///< stability guard (UnstableDefinition, located): a clean rejection
+  rejected_by_world,  ///< World(scene.def) threw std::invalid_argument (documented, but the
                       ///< loader is meant to catch these first; fatal with FIXSTEP_FUZZ_STRICT=1)
   overflowed,         ///< a state became non-finite in a scene outside the checked range
                       ///< (see bounded_scene): tolerated (fatal with FIXSTEP_FUZZ_STRICT=1)
@@ -53,7 +54,7 @@ inline constexpr std::uint64_t max_built_size = 200'000;
 inline constexpr double bounded_max = 1e9;
 inline constexpr double bounded_min_mass = 1e-9;
 
-/// parse_scene(text, "fuzz.toml"), make_world, then up to max_ticks ticks checking every
+/// parse_scene(text, "fuzz.toml"), World(scene.def), then up to max_ticks ticks checking every
 /// body's position and velocity after each tick. Crashes and sanitizer reports are left to
 /// the caller's process.
 [[nodiscard]] Outcome check_scene_text(std::string_view text);

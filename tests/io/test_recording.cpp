@@ -414,7 +414,7 @@ TEST(InputScript, TheShippedScriptLoadsForTheDefaultScene) {
   const std::string src = FIXSTEP_SOURCE_DIR;
   const Scene scene = load_scene(src + "/assets/scenes/default.toml");
   const InputScript script =
-      load_input_script(src + "/assets/inputs/default_push.toml", scene.bodies);
+      load_input_script(src + "/assets/inputs/default_push.toml", scene.def.bodies);
   EXPECT_TRUE(script.warnings.empty());
   EXPECT_GE(script.events.size(), 6u);
 }

@@ -195,7 +195,7 @@ inline Match start(const net::MatchSettings& s, int joiners, int spectators,
                    const net::LinkSettings& link, const std::vector<TickRules>& rules = {},
                    bool clean_handshake = true) {
   Match m;
-  const WorldDef def = world_def(billiards());
+  const WorldDef def = billiards().def;
   auto rules_of = [&](std::size_t i) { return i < rules.size() ? rules[i] : TickRules{}; };
   m.peers.push_back(std::make_unique<net::MatchPeer>(
       net::MatchPeer::host(def, s, {"127.0.0.1", 0}, rules_of(0))));

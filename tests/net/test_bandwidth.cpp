@@ -38,7 +38,7 @@ TEST(SlowLinks, LockstepCompletesAtHalfASecondAndAQuarterLost) {
   // The lost inputs were made good: as a gap run resent from the ack, a resend, or only in the
   // redundant copy the next packet carries, as the ticks happened to be batched (the machine's
   // load decides that, so no one of them is asserted). With resending off it does not finish.
-  World sim(world_def(billiards()));
+  World sim(billiards().def);
   EXPECT_TRUE(replay(sim, rec).ok());
 }
 

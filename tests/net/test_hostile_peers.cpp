@@ -23,7 +23,7 @@ struct Handshaken {
 };
 
 Handshaken handshaken(const net::MatchSettings& s) {
-  const WorldDef def = world_def(billiards());
+  const WorldDef def = billiards().def;
   MatchPeer host = MatchPeer::host(def, s, {"127.0.0.1", 0});
   net::Transport raw = connect_raw(host);
   raw.send(0, handshake_request(def), net::Channel::reliable);
@@ -111,7 +111,7 @@ TEST(HostilePeers, AnAcceptedJoinerNotHeardFromHasTheHandshakesTime) {
 TEST(HostilePeers, AConnectionThatNeverCompletesTheHandshakeIsDroppedSilently) {
   net::MatchSettings s = match(2, 0);
   s.handshake_timeout_ms = 150;
-  const WorldDef def = world_def(billiards());
+  const WorldDef def = billiards().def;
   MatchPeer host = MatchPeer::host(def, s, {"127.0.0.1", 0});
   net::Transport silent = connect_raw(host);
   // Past the timeout: the host dropped the connection and told it nothing.

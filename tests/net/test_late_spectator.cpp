@@ -28,8 +28,8 @@ bool play_to(Match& m, std::uint64_t tick) {
 }
 
 void add_spectator(Match& m, const net::MatchSettings& s) {
-  m.peers.push_back(std::make_unique<MatchPeer>(MatchPeer::join(
-      world_def(billiards()), s, {"127.0.0.1", m.link->port()}, /*spectator=*/true)));
+  m.peers.push_back(std::make_unique<MatchPeer>(
+      MatchPeer::join(billiards().def, s, {"127.0.0.1", m.link->port()}, /*spectator=*/true)));
 }
 
 TEST(LateSpectators, OneWhoComesMidMatchSeesAllOfItAndChecksEveryHash) {

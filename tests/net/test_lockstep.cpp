@@ -41,7 +41,7 @@ TEST(Lockstep, TwoPlayersThroughALossyLinkReplayWithFixstepReplay) {
   EXPECT_GT(m.link->stats().dropped, 0u);
   EXPECT_GT(m.link->stats().duplicated, 0u);
   // The recording replays bit for bit: the library's replay, and `fixstep replay` on the file.
-  World sim(world_def(billiards()));
+  World sim(billiards().def);
   const ReplayReport report = replay(sim, rec);
   EXPECT_TRUE(report.ok());
   EXPECT_EQ(report.verified, 301u);  // a hash every tick, and the final one
@@ -69,9 +69,9 @@ TEST(Lockstep, EightPlayersAndASpectatorWithRulesAgree) {
   EXPECT_GT(counters[0].presses, 0u);
   // Replayed with the rules, from their start: the same states; without them: not.
   PressCounter fresh;
-  World with(world_def(billiards()));
+  World with(billiards().def);
   EXPECT_TRUE(replay(with, rec, press_rules(fresh)).ok());
-  World without(world_def(billiards()));
+  World without(billiards().def);
   EXPECT_FALSE(replay(without, rec).ok());
 }
 
@@ -106,9 +106,9 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   EXPECT_EQ(m.peers[0]->desync()->ours, m.peers[1]->desync()->theirs);
   // Offline: the healthy peer's recording replays; the corrupted one's diverges right after
   // the nudge (a hash every tick: the state after tick 96 is the first the nudge changed).
-  World healthy(world_def(billiards()));
+  World healthy(billiards().def);
   EXPECT_TRUE(replay(healthy, m.peers[0]->recording()).ok());
-  World corrupted(world_def(billiards()));
+  World corrupted(billiards().def);
   const ReplayReport r = replay(corrupted, m.peers[1]->recording());
   ASSERT_FALSE(r.ok());
   EXPECT_GE(r.mismatch->tick, 96u);
@@ -127,9 +127,9 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   EXPECT_EQ(joiner_file.filename(), "game-desync-p1-t100.rec");
   EXPECT_EQ(net::write_desync_recording(*m.peers[1], dir, "game").filename(),
             "game-desync-p1-t100-2.rec");
-  World from_file(world_def(billiards()));
+  World from_file(billiards().def);
   EXPECT_TRUE(replay(from_file, read_recording(host_file)).ok());
-  World corrupted_from_file(world_def(billiards()));
+  World corrupted_from_file(billiards().def);
   EXPECT_EQ(replay(corrupted_from_file, read_recording(joiner_file)).mismatch->tick,
             r.mismatch->tick);
   std::filesystem::remove_all(dir);
@@ -158,11 +158,11 @@ TEST(Lockstep, ASilentPlayerTimesOutWithAClearMessage) {
 
 TEST(Lockstep, AJoinerWithAnotherWorldOrAFullMatchIsRefused) {
   const MatchSettings s = match(2, 50);
-  MatchPeer host = MatchPeer::host(world_def(billiards()), s, {"127.0.0.1", 0});
-  WorldDef other = world_def(billiards());
+  MatchPeer host = MatchPeer::host(billiards().def, s, {"127.0.0.1", 0});
+  WorldDef other = billiards().def;
   other.settings.dt *= 2.0;
   MatchPeer stranger = MatchPeer::join(other, s, {"127.0.0.1", host.port()});
-  MatchPeer first = MatchPeer::join(world_def(billiards()), s, {"127.0.0.1", host.port()});
+  MatchPeer first = MatchPeer::join(billiards().def, s, {"127.0.0.1", host.port()});
   const auto start_wait = std::chrono::steady_clock::now();
   while (std::chrono::steady_clock::now() - start_wait < std::chrono::seconds(5) &&
          (stranger.state() == MatchState::connecting || first.state() == MatchState::connecting)) {
@@ -175,7 +175,7 @@ TEST(Lockstep, AJoinerWithAnotherWorldOrAFullMatchIsRefused) {
       << "[" << stranger.error() << "]";
   ASSERT_EQ(first.state(), MatchState::playing) << first.error();
   EXPECT_EQ(first.slot(), 1);
-  MatchPeer third = MatchPeer::join(world_def(billiards()), s, {"127.0.0.1", host.port()});
+  MatchPeer third = MatchPeer::join(billiards().def, s, {"127.0.0.1", host.port()});
   const auto again = std::chrono::steady_clock::now();
   while (third.state() == MatchState::connecting &&
          std::chrono::steady_clock::now() - again < std::chrono::seconds(5)) {
@@ -241,7 +241,7 @@ TEST(Lockstep, APlayerPlaysTicksOutOnItsOwnInputsClock) {
 
 TEST(Lockstep, HostilePacketsAreDroppedAndCountedWithoutAmplification) {
   MatchSettings s = match(2, 0);
-  MatchPeer host = MatchPeer::host(world_def(billiards()), s, {"127.0.0.1", 0});
+  MatchPeer host = MatchPeer::host(billiards().def, s, {"127.0.0.1", 0});
   net::Transport raw = net::Transport::connect({"127.0.0.1", host.port()});
   for (int k = 0; k < 2000 && raw.poll(1).kind != net::TransportEvent::Kind::connected; ++k) {
     host.poll(0);
@@ -262,7 +262,7 @@ TEST(Lockstep, HostilePacketsAreDroppedAndCountedWithoutAmplification) {
   // The handshake: the answer is no larger than the request.
   std::vector<std::uint8_t> request;
   net::encode_handshake_request(
-      {}, {.nonce = 5, .definition_hash = definition_hash(world_def(billiards()))}, request);
+      {}, {.nonce = 5, .definition_hash = definition_hash(billiards().def)}, request);
   raw.send(0, request, net::Channel::reliable);
   raw.flush();
   const auto accept = answer(host, raw);

@@ -51,7 +51,7 @@ TEST(Rollback, TwoPlayersThroughALossyLinkLandOnTheConfirmedStates) {
   const Recording rec = expect_agreement(m, 300);
   expect_rollbacks(m, 2);
   EXPECT_GE(compared, 2);  // at least at the end, on each peer
-  World sim(world_def(billiards()));
+  World sim(billiards().def);
   EXPECT_TRUE(replay(sim, rec).ok());
 }
 
@@ -77,7 +77,7 @@ TEST(Rollback, EightPlayersAndASpectatorWithRulesAgree) {
   // The rules' state is the shown world's between calls; at the end, the confirmed one's too.
   for (const auto& c : counters) EXPECT_EQ(c.presses, counters[0].presses);
   PressCounter fresh;
-  World with(world_def(billiards()));
+  World with(billiards().def);
   EXPECT_TRUE(replay(with, rec, press_rules(fresh)).ok());
   EXPECT_EQ(fresh.presses, counters[0].presses);
 }
@@ -148,7 +148,7 @@ TEST(Rollback, AFasterPeerWaitsForTheSlowerOne) {
   s.input_delay = 1;
   s.max_rollback = 8;
   Match m;
-  const WorldDef def = world_def(billiards());
+  const WorldDef def = billiards().def;
   m.peers.push_back(
       std::make_unique<net::MatchPeer>(net::MatchPeer::host(def, s, {"127.0.0.1", 0})));
   m.link = std::make_unique<net::LinkConditioner>(net::Address{"127.0.0.1", m.peers[0]->port()},
@@ -189,7 +189,7 @@ TEST(Rollback, LongMatchesKeepBoundedInputs) {
       EXPECT_LE(p->stats().stored_inputs, 2u * 2 * 1024) << "max_rollback " << rollback;
       EXPECT_GE(p->stats().stored_inputs, 2u * 500) << "max_rollback " << rollback;
     }
-    World sim(world_def(billiards()));
+    World sim(billiards().def);
     EXPECT_TRUE(replay(sim, rec).ok()) << "max_rollback " << rollback;
   }
 }

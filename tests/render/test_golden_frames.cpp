@@ -25,11 +25,11 @@
 #define STB_IMAGE_IMPLEMENTATION
 #include <stb_image.h>
 
-#include "fixstep/capture/capture.hpp"
-#include "fixstep/render/draw_list.hpp"
-#include "fixstep/core/loop.hpp"
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/capture/capture.hpp"
+#include "fixstep/core/loop.hpp"
+#include "fixstep/render/draw_list.hpp"
+#include "fixstep/scene/scene.hpp"
 #include "overlay_card.hpp"
 #include "scene_session.hpp"
 
@@ -154,7 +154,7 @@ TEST(GoldenFrames, OneFlippedBitOfPhysicsFailsTheComparison) {
   // stiffness (mantissa bit 50: k = 15 N/m becomes 11.25 N/m) and frame 90 no longer matches.
   if (refreshing()) GTEST_SKIP();
   Scene scene = load_scene(scenes_dir / "default.toml");
-  auto& k = scene.bodies[0].spring->stiffness;
+  auto& k = scene.def.bodies[0].spring->stiffness;
   k = std::bit_cast<double>(std::bit_cast<std::uint64_t>(k) ^ (std::uint64_t{1} << 50));
   ASSERT_NE(k, 15.0);
   const auto frames = render(scene);
@@ -179,7 +179,7 @@ std::vector<std::uint8_t> render_overlay_card() {
                            .view_center = scene.view.center,
                            .view_width = scene.view.width};
   web::overlay_card_style(settings);
-  Session session(world_def(scene), settings);
+  Session session(scene.def, settings);
   const VirtualClock clock(60.0);
   DrawList card;
   for (int f = 0; f <= 60; ++f) {

@@ -42,7 +42,7 @@ TEST(Render, BodyIsDrawnWhereItsPositionMaps) {
   // the mirrored points (96, 132) (y flipped and x flipped) and (224, 132) (y flipped) are not red.
   Renderer r(320, 200);
   r.set_camera(Camera{.center = {0, 0}, .width = 10.0});
-  World sim(Precision::f64, WorldSettings{});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{}));
   BodyDef d;
   d.body.position = {2.0, 1.0};
   d.appearance = Appearance{.radius = 0.5, .color = {255, 0, 0, 255}};
@@ -68,7 +68,7 @@ TEST(Render, ASleepingDiscIsDrawnHalfwayToGrey) {
   r.set_camera(Camera{.center = {0, 0}, .width = 10.0});
   WorldSettings ws;
   ws.contacts = ContactSettings{.sleep = true, .sleep_time = 0.1};
-  World sim(Precision::f64, ws);
+  World sim(WorldDef::empty(Precision::f64, ws));
   sim.add_plane(PlaneDef{.normal = {0, 1}, .offset = 0.0});
   BodyDef d;
   d.body.position = {2.0, 0.5};
@@ -94,7 +94,7 @@ TEST(Render, ACarriedSegmentIsDrawnWhereItsBodyIsAtTheFramesMoment) {
   // A segment carried by a kinematic body moving right at 3 m/s: at alpha 1 the frame has it
   // where the body is after the tick, at alpha 0.25 three quarters of a tick (3/4 · 3 m/s · dt)
   // back, as the bodies' positions are interpolated.
-  World sim(Precision::f64, WorldSettings{.dt = 0.1});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.1}));
   BodyDef k;
   k.type = BodyType::kinematic;
   k.body = Body{.mass = 1.0, .position = {0.0, 0.0}, .velocity = {3.0, 0.0}};
@@ -111,7 +111,7 @@ TEST(Render, ACarriedSegmentIsDrawnWhereItsBodyIsAtTheFramesMoment) {
 }
 
 TEST(Render, InterpolatesBetweenTicksWithAlpha) {
-  World sim(Precision::f64, WorldSettings{.dt = 1.0});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = 1.0}));
   BodyDef d;
   d.body.velocity = {4.0, 0.0};
   sim.create_body(d);
@@ -242,15 +242,15 @@ pin = [0]
 pin_spring = { stiffness = 1000 }
 )",
                                  "rope.toml");
-  const Camera c = fit_camera(world_def(rope), 1600, 900);
+  const Camera c = fit_camera(rope.def, 1600, 900);
   EXPECT_NEAR(c.center.x, 0.0, 1e-9);
   EXPECT_NEAR(c.center.y, 0.0, 1e-9);
   EXPECT_NEAR(c.width, 20.0 * (16.0 / 9.0) * 1.15, 1e-9);  // the 20 m height sets the width
   // Pinned at both ends, the rope keeps to its bodies' box: x in [0, 10].
   Scene both = rope;
-  both.bodies[10].spring = both.bodies[0].spring;
-  both.bodies[10].spring->anchor = both.bodies[10].body.position;
-  const Camera b = fit_camera(world_def(both), 1600, 900);
+  both.def.bodies[10].spring = both.def.bodies[0].spring;
+  both.def.bodies[10].spring->anchor = both.def.bodies[10].body.position;
+  const Camera b = fit_camera(both.def, 1600, 900);
   EXPECT_NEAR(b.center.x, 5.0, 1e-9);
   EXPECT_NEAR(b.width, 10.0 * 1.15, 1e-9);
 }
@@ -279,7 +279,7 @@ TEST(Render, ASessionOfAWorldBuiltOnAnotherThreadIsTheSessionThatBuildsItsOwn) {
   // `fixstep view` builds a reloaded world on a thread of its own and hands it to a Session:
   // the same states and the same pixels, frame for frame; a world already stepped is refused.
   const Scene scene = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/default.toml");
-  WorldDef def = world_def(scene);
+  WorldDef def = scene.def;
   def.settings.track_dissipation = true;
   std::optional<World> built;
   std::thread builder([&] { built.emplace(World(def)); });
@@ -319,7 +319,7 @@ TEST(Render, ATrailBelongsToItsBodyNotToItsDenseIndex) {
   Renderer r(320, 200), fresh(320, 200);
   r.set_camera(camera);
   fresh.set_camera(camera);
-  World sim(Precision::f64, WorldSettings{});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{}));
   const Entity a = sim.create_body(disc({-3.1, 0.3}, {255, 0, 0, 255}));
   const Entity b = sim.create_body(disc({2.9, 0.3}, {0, 255, 0, 255}));
   RenderFrame s;

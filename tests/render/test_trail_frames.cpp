@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "fixstep/render/render.hpp"
 #include "fixstep/render/trails.hpp"
@@ -53,7 +54,7 @@ int streak_pixels(const std::vector<Vec2>& gone, const std::vector<Vec2>& born, 
                   int& green_trail) {
   Renderer r(frame_w, frame_h);
   r.set_camera(Camera{.center = {0, 0}, .width = frame_w / px_per_m});
-  World sim(Precision::f64, WorldSettings{.dt = 1.0 / 60});
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{.dt = 1.0 / 60}));
   sim.create_body(body_at({-8.0, -3.5}, green, {4.0, 0.0}));  // 1.33 px per frame
   std::vector<Entity> old;
   for (const Vec2 p : gone) old.push_back(sim.create_body(body_at(p, blue)));

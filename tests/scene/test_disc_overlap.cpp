@@ -256,15 +256,15 @@ spacing = [0.2, 0]
 body = { mass = 1, radius = 0.1 }
 )",
                               "pit.toml");
-  ASSERT_EQ(s.bodies.size(), 1000u + 50u + 5u);
-  EXPECT_TRUE(s.links.empty());           // no spring tables, and none between static pegs
-  EXPECT_EQ(s.bodies[0].name, "row[0]");  // chains come before grids
-  EXPECT_EQ(s.bodies[5].name, "ball[0,0]");
-  EXPECT_EQ(s.bodies[5].type, BodyType::dynamic);
-  EXPECT_EQ(s.bodies[5].collider->restitution, std::optional<double>(0.5));
-  EXPECT_EQ(s.bodies[5].collider->friction, std::optional<double>(0.4));
-  EXPECT_TRUE(s.bodies[5].gravity.has_value());
-  const BodyDef& peg = s.bodies[1005];
+  ASSERT_EQ(s.def.bodies.size(), 1000u + 50u + 5u);
+  EXPECT_TRUE(s.def.links.empty());           // no spring tables, and none between static pegs
+  EXPECT_EQ(s.def.bodies[0].name, "row[0]");  // chains come before grids
+  EXPECT_EQ(s.def.bodies[5].name, "ball[0,0]");
+  EXPECT_EQ(s.def.bodies[5].type, BodyType::dynamic);
+  EXPECT_EQ(s.def.bodies[5].collider->restitution, std::optional<double>(0.5));
+  EXPECT_EQ(s.def.bodies[5].collider->friction, std::optional<double>(0.4));
+  EXPECT_TRUE(s.def.bodies[5].gravity.has_value());
+  const BodyDef& peg = s.def.bodies[1005];
   EXPECT_EQ(peg.name, "peg[0,0]");
   EXPECT_EQ(peg.type, BodyType::static_body);
   EXPECT_EQ(peg.collider->radius, 0.05);

@@ -35,11 +35,11 @@ spring = { anchor = [0.0, 0.0], stiffness = 15.0, damping = 0.1 }  # N/m, N*s/m
 
 TEST(Scene, TheDocumentedSchemaLoads) {
   const Scene s = parse_scene(minimal, "minimal.toml");
-  EXPECT_EQ(s.settings.dt, 0.01);
-  EXPECT_EQ(s.settings.integrator, Integrator::semi_implicit_euler);
-  EXPECT_EQ(s.precision, Precision::f32);
-  ASSERT_EQ(s.bodies.size(), 1u);
-  const BodyDef& b = s.bodies[0];
+  EXPECT_EQ(s.def.settings.dt, 0.01);
+  EXPECT_EQ(s.def.settings.integrator, Integrator::semi_implicit_euler);
+  EXPECT_EQ(s.def.precision, Precision::f32);
+  ASSERT_EQ(s.def.bodies.size(), 1u);
+  const BodyDef& b = s.def.bodies[0];
   EXPECT_EQ(b.name, "bob");
   EXPECT_EQ(b.body.position, (Vec2{1000.0, 0.0}));
   ASSERT_TRUE(b.spring.has_value());
@@ -54,7 +54,7 @@ TEST(Scene, ShippedScenesLoadCleanly) {
        {"default", "spring_damper", "projectile", "rope", "soft_body", "cloth", "chain", "bounce",
         "ball_pit", "billiards", "newtons_cradle", "galton_board"}) {
     const Scene s = load_scene(std::string(FIXSTEP_SOURCE_DIR "/assets/scenes/") + name + ".toml");
-    EXPECT_FALSE(s.bodies.empty()) << name;
+    EXPECT_FALSE(s.def.bodies.empty()) << name;
     EXPECT_TRUE(s.warnings.empty()) << name << ": " << (s.warnings.empty() ? "" : s.warnings[0]);
   }
 }
@@ -63,14 +63,14 @@ TEST(Scene, ChainSceneIsLinearWithDampingProportionalToStiffness) {
   // chain.toml promises an exact solution (exact::LinearNetwork): every spring, the anchored
   // one included, has rest length 0 and b = α k with one α, and no body has drag.
   const Scene s = load_scene(FIXSTEP_SOURCE_DIR "/assets/scenes/chain.toml");
-  ASSERT_GE(s.bodies.size(), 5u);
-  ASSERT_EQ(s.links.size(), s.bodies.size() - 1);
-  ASSERT_TRUE(s.bodies[0].spring.has_value());
-  const double alpha = s.bodies[0].spring->damping / s.bodies[0].spring->stiffness;
+  ASSERT_GE(s.def.bodies.size(), 5u);
+  ASSERT_EQ(s.def.links.size(), s.def.bodies.size() - 1);
+  ASSERT_TRUE(s.def.bodies[0].spring.has_value());
+  const double alpha = s.def.bodies[0].spring->damping / s.def.bodies[0].spring->stiffness;
   EXPECT_GT(alpha, 0.0);
-  EXPECT_EQ(s.bodies[0].spring->rest_length, 0.0);
-  for (const BodyDef& b : s.bodies) EXPECT_FALSE(b.drag.has_value()) << b.name;
-  for (const LinkDef& l : s.links) {
+  EXPECT_EQ(s.def.bodies[0].spring->rest_length, 0.0);
+  for (const BodyDef& b : s.def.bodies) EXPECT_FALSE(b.drag.has_value()) << b.name;
+  for (const LinkDef& l : s.def.links) {
     EXPECT_EQ(l.spring.rest_length, 0.0);
     EXPECT_NEAR(l.spring.damping / l.spring.stiffness, alpha, 1e-12 * alpha);
     EXPECT_EQ(l.body_b.slot(), l.body_a.slot() + 1);  // a linear chain in body order
@@ -93,12 +93,12 @@ radius = 0.25
 color = "#ff000080"
 )",
                               "opt.toml");
-  EXPECT_EQ(s.precision, Precision::f64);  // default
-  EXPECT_EQ(s.settings.integrator, Integrator::semi_implicit_euler);
-  EXPECT_EQ(s.bodies[0].name, "body0");
-  EXPECT_EQ(s.bodies[0].appearance->color, (Rgba8{255, 0, 0, 128}));
+  EXPECT_EQ(s.def.precision, Precision::f64);  // default
+  EXPECT_EQ(s.def.settings.integrator, Integrator::semi_implicit_euler);
+  EXPECT_EQ(s.def.bodies[0].name, "body0");
+  EXPECT_EQ(s.def.bodies[0].appearance->color, (Rgba8{255, 0, 0, 128}));
   EXPECT_EQ(*s.view.width, 30.0);
-  EXPECT_EQ(s.bodies[0].drag->coefficient, 0.5);
+  EXPECT_EQ(s.def.bodies[0].drag->coefficient, 0.5);
 }
 
 TEST(Scene, ViewAtItsBoundsLoads) {
@@ -432,23 +432,23 @@ TEST(Scene, SpringTablesJoinNamedBodies) {
                              "rest_length = 0.75\n[[spring]]\nbodies = [\"a\", \"b\"]\n"
                              "stiffness = 3\n"),
                   "springs.toml");
-  ASSERT_EQ(s.links.size(), 2u);
+  ASSERT_EQ(s.def.links.size(), 2u);
   ASSERT_EQ(s.source.link_lines.size(), 2u);
-  EXPECT_EQ(s.links[0].body_a.slot(), 1u);  // "b"
-  EXPECT_EQ(s.links[0].body_b.slot(), 0u);  // "a"
-  EXPECT_EQ(s.links[0].spring.stiffness, 12.5);
-  EXPECT_EQ(s.links[0].spring.damping, 0.25);
-  EXPECT_EQ(s.links[0].spring.rest_length, 0.75);
+  EXPECT_EQ(s.def.links[0].body_a.slot(), 1u);  // "b"
+  EXPECT_EQ(s.def.links[0].body_b.slot(), 0u);  // "a"
+  EXPECT_EQ(s.def.links[0].spring.stiffness, 12.5);
+  EXPECT_EQ(s.def.links[0].spring.damping, 0.25);
+  EXPECT_EQ(s.def.links[0].spring.rest_length, 0.75);
   EXPECT_EQ(s.source.link_lines[0], 11u);
   // Defaults: damping 0, rest length 0.
-  EXPECT_EQ(s.links[1].spring.stiffness, 3.0);
-  EXPECT_EQ(s.links[1].spring.damping, 0.0);
-  EXPECT_EQ(s.links[1].spring.rest_length, 0.0);
+  EXPECT_EQ(s.def.links[1].spring.stiffness, 3.0);
+  EXPECT_EQ(s.def.links[1].spring.damping, 0.0);
+  EXPECT_EQ(s.def.links[1].spring.rest_length, 0.0);
   EXPECT_EQ(s.source.link_lines[1], 16u);
   // Two links between the same bodies: both act, with a warning.
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_NE(s.warnings[0].find("already joined by spring[0]"), std::string::npos) << s.warnings[0];
-  const World sim = make_world(s);
+  const World sim = World(s.def);
   EXPECT_EQ(sim.link_count(), 2u);
 }
 
@@ -460,20 +460,20 @@ TEST(Scene, FrequencyFormUsesTheReducedMassOfLinksAndTheMassOfAnchoredSprings) {
                  "[[body]]\nname = \"c\"\nmass = 4\nposition = [5, 5]\n"
                  "spring = { anchor = [1, 1], frequency = 1.5, damping_ratio = 0.3 }\n"),
       "freq.toml");
-  ASSERT_EQ(s.links.size(), 1u);
+  ASSERT_EQ(s.def.links.size(), 1u);
   const double mu = 1.0 * 2.0 / 3.0;
-  EXPECT_NEAR(s.links[0].spring.stiffness, mu * w * w, 1e-12 * mu * w * w);
-  EXPECT_NEAR(s.links[0].spring.damping, 2.0 * mu * zeta * w, 1e-12);
-  EXPECT_EQ(s.links[0].spring.rest_length, 2.0);
-  ASSERT_EQ(s.bodies.size(), 3u);
-  ASSERT_TRUE(s.bodies[2].spring.has_value());
-  EXPECT_NEAR(s.bodies[2].spring->stiffness, 4.0 * w * w, 1e-12 * 4.0 * w * w);
-  EXPECT_NEAR(s.bodies[2].spring->damping, 2.0 * 4.0 * zeta * w, 1e-12);
-  EXPECT_EQ(s.bodies[2].spring->anchor, (Vec2{1.0, 1.0}));
+  EXPECT_NEAR(s.def.links[0].spring.stiffness, mu * w * w, 1e-12 * mu * w * w);
+  EXPECT_NEAR(s.def.links[0].spring.damping, 2.0 * mu * zeta * w, 1e-12);
+  EXPECT_EQ(s.def.links[0].spring.rest_length, 2.0);
+  ASSERT_EQ(s.def.bodies.size(), 3u);
+  ASSERT_TRUE(s.def.bodies[2].spring.has_value());
+  EXPECT_NEAR(s.def.bodies[2].spring->stiffness, 4.0 * w * w, 1e-12 * 4.0 * w * w);
+  EXPECT_NEAR(s.def.bodies[2].spring->damping, 2.0 * 4.0 * zeta * w, 1e-12);
+  EXPECT_EQ(s.def.bodies[2].spring->anchor, (Vec2{1.0, 1.0}));
   // damping_ratio defaults to 0.
   const Scene u = parse_scene(two_bodies("bodies = [\"a\", \"b\"]\nfrequency = 2\n"), "u.toml");
-  EXPECT_EQ(u.links[0].spring.damping, 0.0);
-  EXPECT_GT(u.links[0].spring.stiffness, 0.0);
+  EXPECT_EQ(u.def.links[0].spring.damping, 0.0);
+  EXPECT_GT(u.def.links[0].spring.stiffness, 0.0);
 }
 
 TEST(Scene, ChainMakesNamedBodiesLinksAndPins) {
@@ -497,10 +497,10 @@ bodies = ["hook", "rope[0]"]
 stiffness = 7
 )",
                               "chain.toml");
-  ASSERT_EQ(s.bodies.size(), 5u);
+  ASSERT_EQ(s.def.bodies.size(), 5u);
   ASSERT_EQ(s.source.body_lines.size(), 5u);
   for (std::size_t i = 0; i < 4; ++i) {
-    const BodyDef& b = s.bodies[1 + i];
+    const BodyDef& b = s.def.bodies[1 + i];
     EXPECT_EQ(b.name, "rope[" + std::to_string(i) + "]");
     EXPECT_EQ(b.body.position, (Vec2{0.5 * double(i), 1.0 - 0.25 * double(i)}));
     EXPECT_EQ(b.body.velocity, (Vec2{1.0, 2.0}));
@@ -514,25 +514,25 @@ stiffness = 7
   }
   // The pins: anchored at the start position, frequency form on the body's own mass.
   const double w = 2.0 * std::numbers::pi * 10.0;
-  EXPECT_EQ(s.bodies[4].spring->anchor, s.bodies[4].body.position);
-  EXPECT_NEAR(s.bodies[4].spring->stiffness, 0.2 * w * w, 1e-9);
-  EXPECT_NEAR(s.bodies[4].spring->damping, 2.0 * 0.2 * w, 1e-12);
-  EXPECT_EQ(s.bodies[4].spring->rest_length, 0.0);
+  EXPECT_EQ(s.def.bodies[4].spring->anchor, s.def.bodies[4].body.position);
+  EXPECT_NEAR(s.def.bodies[4].spring->stiffness, 0.2 * w * w, 1e-9);
+  EXPECT_NEAR(s.def.bodies[4].spring->damping, 2.0 * 0.2 * w, 1e-12);
+  EXPECT_EQ(s.def.bodies[4].spring->rest_length, 0.0);
   // Links: consecutive bodies, rest length = the spacing's length, then the [[spring]].
-  ASSERT_EQ(s.links.size(), 4u);
+  ASSERT_EQ(s.def.links.size(), 4u);
   for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(s.links[i].body_a.slot(), 1 + i);
-    EXPECT_EQ(s.links[i].body_b.slot(), 2 + i);
-    EXPECT_EQ(s.links[i].spring.stiffness, 100.0);
-    EXPECT_EQ(s.links[i].spring.damping, 0.5);
-    EXPECT_NEAR(s.links[i].spring.rest_length, std::hypot(0.5, 0.25), 1e-15);
+    EXPECT_EQ(s.def.links[i].body_a.slot(), 1 + i);
+    EXPECT_EQ(s.def.links[i].body_b.slot(), 2 + i);
+    EXPECT_EQ(s.def.links[i].spring.stiffness, 100.0);
+    EXPECT_EQ(s.def.links[i].spring.damping, 0.5);
+    EXPECT_NEAR(s.def.links[i].spring.rest_length, std::hypot(0.5, 0.25), 1e-15);
     EXPECT_EQ(s.source.link_lines[i], 7u);
   }
-  EXPECT_EQ(s.links[3].body_a.slot(), 0u);
-  EXPECT_EQ(s.links[3].body_b.slot(), 1u);
+  EXPECT_EQ(s.def.links[3].body_a.slot(), 0u);
+  EXPECT_EQ(s.def.links[3].body_b.slot(), 1u);
   EXPECT_EQ(s.source.link_lines[3], 16u);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
-  EXPECT_EQ(make_world(s).link_count(), 4u);
+  EXPECT_EQ(World(s.def).link_count(), 4u);
 }
 
 TEST(Scene, ChainLinksInTheFrequencyFormUseTheReducedMassAndAnExplicitRestLength) {
@@ -542,11 +542,11 @@ TEST(Scene, ChainLinksInTheFrequencyFormUseTheReducedMassAndAnExplicitRestLength
                         "link = { frequency = 2, damping_ratio = 0.5, rest_length = 0 }\n"),
                   "c.toml");
   const double mu = 0.2, w = 2.0 * std::numbers::pi * 2.0;
-  ASSERT_EQ(s.links.size(), 2u);
-  EXPECT_NEAR(s.links[1].spring.stiffness, mu * w * w, 1e-12 * mu * w * w);
-  EXPECT_NEAR(s.links[1].spring.damping, 2.0 * mu * 0.5 * w, 1e-12);
-  EXPECT_EQ(s.links[1].spring.rest_length, 0.0);
-  EXPECT_EQ(s.bodies[2].name, "chain0[2]");  // the default name
+  ASSERT_EQ(s.def.links.size(), 2u);
+  EXPECT_NEAR(s.def.links[1].spring.stiffness, mu * w * w, 1e-12 * mu * w * w);
+  EXPECT_NEAR(s.def.links[1].spring.damping, 2.0 * mu * 0.5 * w, 1e-12);
+  EXPECT_EQ(s.def.links[1].spring.rest_length, 0.0);
+  EXPECT_EQ(s.def.bodies[2].name, "chain0[2]");  // the default name
 }
 
 TEST(Scene, GridMakesStructuralShearAndBendLinks) {
@@ -566,19 +566,19 @@ pin = [[0, 0], [3, 0]]
 pin_spring = { stiffness = 1000 }
 )",
                               "grid.toml");
-  ASSERT_EQ(s.bodies.size(), 12u);
+  ASSERT_EQ(s.def.bodies.size(), 12u);
   // Row by row: cloth[i,j] is body j * columns + i at origin + [i sx, j sy].
-  EXPECT_EQ(s.bodies[0].name, "cloth[0,0]");
-  EXPECT_EQ(s.bodies[6].name, "cloth[2,1]");
-  EXPECT_EQ(s.bodies[6].body.position, (Vec2{0.0, 1.75}));
-  EXPECT_EQ(s.bodies[11].name, "cloth[3,2]");
+  EXPECT_EQ(s.def.bodies[0].name, "cloth[0,0]");
+  EXPECT_EQ(s.def.bodies[6].name, "cloth[2,1]");
+  EXPECT_EQ(s.def.bodies[6].body.position, (Vec2{0.0, 1.75}));
+  EXPECT_EQ(s.def.bodies[11].name, "cloth[3,2]");
   // Structural: 3 per row x 3 rows + 4 per column pair x 2 = 17; shear: 2 x 3 x 2 = 12;
   // bend: 2 per row x 3 + 4 x 1 = 10.
-  ASSERT_EQ(s.links.size(), 17u + 12u + 10u);
+  ASSERT_EQ(s.def.links.size(), 17u + 12u + 10u);
   std::size_t structural = 0, shear = 0, bend = 0;
-  for (const LinkDef& l : s.links) {
-    const Vec2 a = s.bodies[l.body_a.slot()].body.position,
-               b = s.bodies[l.body_b.slot()].body.position;
+  for (const LinkDef& l : s.def.links) {
+    const Vec2 a = s.def.bodies[l.body_a.slot()].body.position,
+               b = s.def.bodies[l.body_b.slot()].body.position;
     const double d = std::hypot(a.x - b.x, a.y - b.y);
     if (l.spring.stiffness == 50.0) {
       ++structural;
@@ -600,16 +600,16 @@ pin_spring = { stiffness = 1000 }
   EXPECT_EQ(shear, 12u);
   EXPECT_EQ(bend, 10u);
   // The first links: cloth[0,0]-cloth[1,0], then cloth[0,0]-cloth[0,1].
-  EXPECT_EQ(s.links[0].body_a.slot(), 0u);
-  EXPECT_EQ(s.links[0].body_b.slot(), 1u);
-  EXPECT_EQ(s.links[1].body_b.slot(), 4u);
-  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-    EXPECT_EQ(s.bodies[i].spring.has_value(), i == 0 || i == 3) << i;
+  EXPECT_EQ(s.def.links[0].body_a.slot(), 0u);
+  EXPECT_EQ(s.def.links[0].body_b.slot(), 1u);
+  EXPECT_EQ(s.def.links[1].body_b.slot(), 4u);
+  for (std::size_t i = 0; i < s.def.bodies.size(); ++i) {
+    EXPECT_EQ(s.def.bodies[i].spring.has_value(), i == 0 || i == 3) << i;
   }
-  EXPECT_EQ(s.bodies[3].spring->anchor, (Vec2{0.5, 2.0}));
-  EXPECT_EQ(s.bodies[3].spring->stiffness, 1000.0);
+  EXPECT_EQ(s.def.bodies[3].spring->anchor, (Vec2{0.5, 2.0}));
+  EXPECT_EQ(s.def.bodies[3].spring->stiffness, 1000.0);
   EXPECT_TRUE(s.warnings.empty());
-  EXPECT_EQ(make_world(s).link_count(), 39u);
+  EXPECT_EQ(World(s.def).link_count(), 39u);
 }
 
 TEST(Scene, UnknownKeysOfTheNewTablesWarnWithASuggestion) {

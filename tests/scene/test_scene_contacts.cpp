@@ -19,9 +19,12 @@
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/scene_stability.hpp"
 #include "fixstep/scene/scene_writer.hpp"
+#include "scene_guard.hpp"
 
 namespace fixstep {
 namespace {
+using test::enforce_stability;
+using test::located_world;
 
 /// [world] (lines 1-2), then `rest` from line 3.
 std::string scene(std::string_view rest) {
@@ -65,74 +68,74 @@ TEST(SceneContacts, ContactsTableFillsTheWorldSettings) {
   const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
   const Scene on =
       parse_scene(scene("[contacts]\nrestitution = 0.5\nfriction = 0.3\n" + disc), "c.toml");
-  ASSERT_TRUE(on.settings.contacts.has_value());
-  EXPECT_EQ(on.settings.contacts->restitution, 0.5);
-  EXPECT_EQ(on.settings.contacts->friction, 0.3);
+  ASSERT_TRUE(on.def.settings.contacts.has_value());
+  EXPECT_EQ(on.def.settings.contacts->restitution, 0.5);
+  EXPECT_EQ(on.def.settings.contacts->friction, 0.3);
   EXPECT_TRUE(on.warnings.empty()) << on.warnings[0];
-  EXPECT_TRUE(world_def(on).settings.contacts.has_value());  // what Session and the CLI build
+  EXPECT_TRUE(on.def.settings.contacts.has_value());  // what Session and the CLI build
   const Scene defaults = parse_scene(scene("[contacts]\n" + disc), "c.toml");
-  ASSERT_TRUE(defaults.settings.contacts.has_value());
-  EXPECT_EQ(defaults.settings.contacts->restitution, 0.0);
-  EXPECT_EQ(defaults.settings.contacts->friction, 0.0);
-  EXPECT_FALSE(parse_scene(scene(disc), "c.toml").settings.contacts.has_value());
-  EXPECT_EQ(defaults.settings.contacts->velocity_iterations,
+  ASSERT_TRUE(defaults.def.settings.contacts.has_value());
+  EXPECT_EQ(defaults.def.settings.contacts->restitution, 0.0);
+  EXPECT_EQ(defaults.def.settings.contacts->friction, 0.0);
+  EXPECT_FALSE(parse_scene(scene(disc), "c.toml").def.settings.contacts.has_value());
+  EXPECT_EQ(defaults.def.settings.contacts->velocity_iterations,
             ContactSettings::default_velocity_iterations);
-  EXPECT_EQ(defaults.settings.contacts->position_iterations,
+  EXPECT_EQ(defaults.def.settings.contacts->position_iterations,
             ContactSettings::default_position_iterations);
   // The resting solver's iteration counts; format_scene writes them back (it checks that the
   // text loads to the same definition hash, which includes them when not the defaults).
   const Scene fast = parse_scene(
       scene("[contacts]\nvelocity_iterations = 8\nposition_iterations = 0\n" + disc), "c.toml");
-  EXPECT_EQ(fast.settings.contacts->velocity_iterations, 8);
-  EXPECT_EQ(fast.settings.contacts->position_iterations, 0);
-  const std::string text = format_scene(world_def(fast));
+  EXPECT_EQ(fast.def.settings.contacts->velocity_iterations, 8);
+  EXPECT_EQ(fast.def.settings.contacts->position_iterations, 0);
+  const std::string text = format_scene(fast.def);
   EXPECT_NE(text.find("velocity_iterations = 8\nposition_iterations = 0\n"), std::string::npos)
       << text;
-  EXPECT_EQ(format_scene(world_def(defaults)).find("iterations"), std::string::npos);
+  EXPECT_EQ(format_scene(defaults.def).find("iterations"), std::string::npos);
 }
 
 TEST(SceneContacts, SleepKeysFillTheContactSettingsAndWriteBack) {
   const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
   const Scene off = parse_scene(scene("[contacts]\n" + disc), "c.toml");
-  EXPECT_FALSE(off.settings.contacts->sleep);
-  EXPECT_EQ(off.settings.contacts->sleep_speed, ContactSettings::default_sleep_speed);
-  EXPECT_EQ(off.settings.contacts->sleep_time, ContactSettings::default_sleep_time);
-  EXPECT_EQ(format_scene(world_def(off)).find("sleep"), std::string::npos);
+  EXPECT_FALSE(off.def.settings.contacts->sleep);
+  EXPECT_EQ(off.def.settings.contacts->sleep_speed, ContactSettings::default_sleep_speed);
+  EXPECT_EQ(off.def.settings.contacts->sleep_time, ContactSettings::default_sleep_time);
+  EXPECT_EQ(format_scene(off.def).find("sleep"), std::string::npos);
 
   const Scene on = parse_scene(
       scene("[contacts]\nsleep = true\nsleep_speed = 0.02\nsleep_time = 1.25\n" + disc), "c.toml");
   EXPECT_TRUE(on.warnings.empty()) << on.warnings[0];  // known keys, no unknown-key warning
-  const ContactSettings& c = *on.settings.contacts;
+  const ContactSettings& c = *on.def.settings.contacts;
   EXPECT_TRUE(c.sleep);
   EXPECT_EQ(c.sleep_speed, 0.02);
   EXPECT_EQ(c.sleep_time, 1.25);
-  EXPECT_NO_THROW((void)make_world(on));
+  EXPECT_NO_THROW((void)located_world(on));
   // Written and read back: the same settings and definition hash (format_scene checks the hash,
   // which holds the three keys with sleep on, so a key left out would throw there).
-  const std::string text = format_scene(world_def(on));
+  const std::string text = format_scene(on.def);
   EXPECT_NE(text.find("sleep = true\nsleep_speed = 0.02\nsleep_time = 1.25\n"), std::string::npos)
       << text;
   const Scene again = parse_scene(text, "again.toml");
   EXPECT_TRUE(again.warnings.empty()) << again.warnings[0];
-  EXPECT_TRUE(again.settings.contacts->sleep);
-  EXPECT_EQ(again.settings.contacts->sleep_speed, 0.02);
-  EXPECT_EQ(again.settings.contacts->sleep_time, 1.25);
-  EXPECT_EQ(definition_hash(again), definition_hash(on));
-  EXPECT_NE(definition_hash(again), definition_hash(off));
+  EXPECT_TRUE(again.def.settings.contacts->sleep);
+  EXPECT_EQ(again.def.settings.contacts->sleep_speed, 0.02);
+  EXPECT_EQ(again.def.settings.contacts->sleep_time, 1.25);
+  EXPECT_EQ(definition_hash(again.def), definition_hash(on.def));
+  EXPECT_NE(definition_hash(again.def), definition_hash(off.def));
 
   // sleep = true with the default speed and time: only `sleep = true` is written.
   const Scene plain = parse_scene(scene("[contacts]\nsleep = true\n" + disc), "c.toml");
-  EXPECT_TRUE(plain.settings.contacts->sleep);
-  const std::string plain_text = format_scene(world_def(plain));
+  EXPECT_TRUE(plain.def.settings.contacts->sleep);
+  const std::string plain_text = format_scene(plain.def);
   EXPECT_NE(plain_text.find("sleep = true\n"), std::string::npos) << plain_text;
   EXPECT_EQ(plain_text.find("sleep_"), std::string::npos) << plain_text;
-  EXPECT_TRUE(parse_scene(plain_text, "again.toml").settings.contacts->sleep);
+  EXPECT_TRUE(parse_scene(plain_text, "again.toml").def.settings.contacts->sleep);
 
   // sleep_time = 0 (asleep after one tick) is allowed.
   const Scene zero =
       parse_scene(scene("[contacts]\nsleep = true\nsleep_time = 0\n" + disc), "c.toml");
-  EXPECT_EQ(zero.settings.contacts->sleep_time, 0.0);
-  EXPECT_NE(format_scene(world_def(zero)).find("sleep_time = 0.0\n"), std::string::npos);
+  EXPECT_EQ(zero.def.settings.contacts->sleep_time, 0.0);
+  EXPECT_NE(format_scene(zero.def).find("sleep_time = 0.0\n"), std::string::npos);
 }
 
 TEST(SceneContacts, SleepTimeIsRefusedWhereTheWorldRefusesIt) {
@@ -143,11 +146,11 @@ TEST(SceneContacts, SleepTimeIsRefusedWhereTheWorldRefusesIt) {
            "\n[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
   };
   const Scene most = parse_scene(text("499999999.5"), "c.toml");
-  EXPECT_EQ(most.settings.contacts->sleep_time, 499999999.5);
-  EXPECT_NO_THROW((void)make_world(most));
+  EXPECT_EQ(most.def.settings.contacts->sleep_time, 499999999.5);
+  EXPECT_NO_THROW((void)located_world(most));
   expect_error(text("499999999.75"), 5, "contacts.sleep_time",
                "must be under 1e9 ticks of dt = 0.5 s (got 5e+08 s, 1e+09 ticks)");
-  WorldDef over = world_def(most);
+  WorldDef over = most.def;
   over.settings.contacts->sleep_time = 499999999.75;
   EXPECT_THROW((void)World(over), std::invalid_argument);  // what the loader keeps out
 }
@@ -167,9 +170,9 @@ TEST(SceneContacts, SleepSpeedAndTimeWithoutSleepWarnAtTheirKeys) {
     EXPECT_EQ(w.rfind(fmt::format("c.toml:{}:15: ", first), 0), 0u) << w;  // at the value
     warning(s, first + 1, "contacts.sleep_time: ignored: islands fall asleep only with sleep on");
     // Still read and checked, as the rolling keys are without rolling.
-    EXPECT_FALSE(s.settings.contacts->sleep);
-    EXPECT_EQ(s.settings.contacts->sleep_speed, 0.1);
-    EXPECT_EQ(s.settings.contacts->sleep_time, 2.0);
+    EXPECT_FALSE(s.def.settings.contacts->sleep);
+    EXPECT_EQ(s.def.settings.contacts->sleep_speed, 0.1);
+    EXPECT_EQ(s.def.settings.contacts->sleep_time, 2.0);
   }
   // With sleep = true they act, and nothing is said.
   EXPECT_TRUE(
@@ -208,8 +211,8 @@ radius = 0.5
 )"),
                               "c.toml");
   EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
-  ASSERT_EQ(s.bodies.size(), 4u);
-  const BodyDef &ball = s.bodies[0], &peg = s.bodies[1], &paddle = s.bodies[2];
+  ASSERT_EQ(s.def.bodies.size(), 4u);
+  const BodyDef &ball = s.def.bodies[0], &peg = s.def.bodies[1], &paddle = s.def.bodies[2];
   EXPECT_EQ(ball.type, BodyType::dynamic);
   EXPECT_EQ(ball.collider->radius, 0.5);
   EXPECT_EQ(ball.collider->restitution, std::optional<double>(0.9));
@@ -220,7 +223,7 @@ radius = 0.5
   EXPECT_FALSE(peg.collider->restitution || peg.collider->friction);  // the [contacts] default
   EXPECT_EQ(paddle.type, BodyType::kinematic);
   EXPECT_EQ(paddle.body.velocity, (Vec2{1.0, 0.0}));  // a kinematic body keeps its velocity
-  EXPECT_EQ(s.bodies[3].type, BodyType::dynamic);
+  EXPECT_EQ(s.def.bodies[3].type, BodyType::dynamic);
 }
 
 TEST(SceneContacts, StaticAndKinematicBodiesDropWhatWouldMoveThemWithAWarning) {
@@ -244,7 +247,7 @@ gravity = [0, -9.81]
 spring = { frequency = 2 }
 )"),
                               "c.toml");
-  const BodyDef &wall = s.bodies[0], &lift = s.bodies[1];
+  const BodyDef &wall = s.def.bodies[0], &lift = s.def.bodies[1];
   EXPECT_FALSE(wall.spring || wall.gravity || wall.constant_force || wall.drag);
   EXPECT_EQ(wall.body.velocity, (Vec2{}));
   EXPECT_EQ(wall.body.mass, 1.0);  // the default: the mass given is ignored
@@ -285,7 +288,7 @@ stiffness = 1
   warning(s, 14,
           "spring[0].bodies: does nothing: \"a\" (static) and \"b\" (kinematic) are both "
           "immovable");
-  EXPECT_TRUE(s.settings.contacts.has_value());  // still on: code may add discs
+  EXPECT_TRUE(s.def.settings.contacts.has_value());  // still on: code may add discs
 }
 
 TEST(SceneContacts, DiscCoefficientsWithoutContactsWarnAtTheirKeys) {
@@ -315,7 +318,7 @@ body = { mass = 1.0, radius = 0.5, restitution = 0.4, friction = 0.1 }
   warning(s, 18, "grid[0].body.restitution: ignored");
   warning(s, 18, "grid[0].body.friction: ignored");
   // Still read: code that adds WorldSettings::contacts gets them.
-  EXPECT_EQ(s.bodies[0].collider->restitution, 0.9);
+  EXPECT_EQ(s.def.bodies[0].collider->restitution, 0.9);
   // With [contacts] they act, and nothing is said.
   EXPECT_TRUE(parse_scene(scene("[contacts]\n" + bodies), "c.toml").warnings.empty());
 }
@@ -335,8 +338,8 @@ frequency = 1.5
 )"),
                               "c.toml");
   const double w = 2.0 * std::numbers::pi * 1.5;
-  ASSERT_EQ(s.links.size(), 1u);
-  EXPECT_DOUBLE_EQ(s.links[0].spring.stiffness, 2.0 * w * w);  // not the reduced mass 2/3
+  ASSERT_EQ(s.def.links.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.def.links[0].spring.stiffness, 2.0 * w * w);  // not the reduced mass 2/3
 }
 
 TEST(SceneContacts, TheStabilityGuardTakesAStaticEndAsAnAnchor) {
@@ -391,7 +394,7 @@ trail_time = 2.5
 )"),
                               "c.toml");
   EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
-  const Collider &bucket = *s.bodies[0].collider, &ball = *s.bodies[1].collider;
+  const Collider &bucket = *s.def.bodies[0].collider, &ball = *s.def.bodies[1].collider;
   EXPECT_TRUE(bucket.sensor);
   EXPECT_EQ(bucket.filter.category, default_category);
   EXPECT_EQ(bucket.filter.mask, 2u);
@@ -399,24 +402,24 @@ trail_time = 2.5
   EXPECT_EQ(ball.filter.category, 2u);
   EXPECT_EQ(ball.filter.mask, all_categories);  // -1: every bit
   EXPECT_EQ(ball.filter.group, -3);
-  EXPECT_EQ(s.bodies[2].collider->filter.category, std::uint64_t{1} << 63);
-  const Appearance& marker = *s.bodies[2].appearance;
+  EXPECT_EQ(s.def.bodies[2].collider->filter.category, std::uint64_t{1} << 63);
+  const Appearance& marker = *s.def.bodies[2].appearance;
   EXPECT_FALSE(marker.visible);
   EXPECT_FALSE(marker.trail);
   EXPECT_EQ(marker.trail_time, 2.5);
   // Written and read back: the same definition (its hash holds the new keys).
-  const Scene again = parse_scene(format_scene(world_def(s)), "again.toml");
-  EXPECT_EQ(definition_hash(again), definition_hash(s));
-  EXPECT_EQ(again.bodies[2].collider->filter, s.bodies[2].collider->filter);
-  EXPECT_FALSE(again.bodies[2].appearance->visible);
-  EXPECT_EQ(again.bodies[2].appearance->trail_time, 2.5);
+  const Scene again = parse_scene(format_scene(s.def), "again.toml");
+  EXPECT_EQ(definition_hash(again.def), definition_hash(s.def));
+  EXPECT_EQ(again.def.bodies[2].collider->filter, s.def.bodies[2].collider->filter);
+  EXPECT_FALSE(again.def.bodies[2].appearance->visible);
+  EXPECT_EQ(again.def.bodies[2].appearance->trail_time, 2.5);
   // The hash tells a sensor from a disc and one filter from another.
-  WorldDef other = world_def(s);
+  WorldDef other = s.def;
   other.bodies[0].collider->sensor = false;
-  EXPECT_NE(definition_hash(other), definition_hash(s));
-  other = world_def(s);
+  EXPECT_NE(definition_hash(other), definition_hash(s.def));
+  other = s.def;
   other.bodies[1].collider->filter.group = 3;
-  EXPECT_NE(definition_hash(other), definition_hash(s));
+  EXPECT_NE(definition_hash(other), definition_hash(s.def));
 }
 
 TEST(SceneContacts, FilterKeysWithoutContactsWarnAndASensorIsRefused) {

@@ -30,14 +30,14 @@ const std::string& level = test::carried_level;
 std::vector<Entity> handles(const Scene& s) {
   WorldDef def;
   std::vector<Entity> out;
-  for (const BodyDef& b : s.bodies) out.push_back(def.add_body(b));
+  for (const BodyDef& b : s.def.bodies) out.push_back(def.add_body(b));
   return out;
 }
 
 /// The index of the body named `name`.
 std::size_t index_of(const Scene& s, std::string_view name) {
-  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-    if (s.bodies[i].name == name) return i;
+  for (std::size_t i = 0; i < s.def.bodies.size(); ++i) {
+    if (s.def.bodies[i].name == name) return i;
   }
   ADD_FAILURE() << "no body " << name;
   return 0;
@@ -50,30 +50,30 @@ TEST(SceneSegments, BodyKeySetsTheCarrierOfASegmentAndOfEveryPolylineSegment) {
   const Entity lift = h[index_of(s, "lift")], deck = h[index_of(s, "deck[1,0]")];
   ASSERT_FALSE(lift.is_null());
   ASSERT_NE(lift, deck);
-  ASSERT_EQ(s.segments.size(), 8u);
-  EXPECT_EQ(s.segments[0].body, lift);
-  EXPECT_EQ(s.segments[0].friction, 0.5);
-  EXPECT_TRUE(s.segments[1].body.is_null());  // no key: static, as before
+  ASSERT_EQ(s.def.segments.size(), 8u);
+  EXPECT_EQ(s.def.segments[0].body, lift);
+  EXPECT_EQ(s.def.segments[0].friction, 0.5);
+  EXPECT_TRUE(s.def.segments[1].body.is_null());  // no key: static, as before
   for (const std::size_t i : {2u, 3u}) {
     SCOPED_TRACE(i);
-    EXPECT_EQ(s.segments[i].body, lift);
-    EXPECT_EQ(s.segments[i].friction, 0.3);
+    EXPECT_EQ(s.def.segments[i].body, lift);
+    EXPECT_EQ(s.def.segments[i].friction, 0.3);
   }
   for (const std::size_t i : {4u, 5u, 6u}) {
     SCOPED_TRACE(i);
-    EXPECT_EQ(s.segments[i].body, deck);
+    EXPECT_EQ(s.def.segments[i].body, deck);
   }
-  EXPECT_TRUE(s.segments[7].body.is_null());
+  EXPECT_TRUE(s.def.segments[7].body.is_null());
   // The geometry is what the static forms give: the same table without `body`, the same
   // polyline_segments with body set.
-  EXPECT_EQ(s.segments[0],
+  EXPECT_EQ(s.def.segments[0],
             (SegmentDef{.a = {-1.0, 0.0}, .b = {1.0, 0.0}, .friction = 0.5, .body = lift}));
   const std::vector<Vec2> points{{-1.0, 1.0}, {0.0, 1.5}, {1.0, 1.0}};
   WorldDef def;
   def.add_polyline(points, 0.0, 0.3, false, lift);
   ASSERT_EQ(def.segments.size(), 2u);
-  EXPECT_EQ(s.segments[2], def.segments[0]);
-  EXPECT_EQ(s.segments[3], def.segments[1]);
+  EXPECT_EQ(s.def.segments[2], def.segments[0]);
+  EXPECT_EQ(s.def.segments[3], def.segments[1]);
   EXPECT_EQ(s.source.segment_lines, (std::vector<std::size_t>{28, 33, 36, 36, 40, 40, 40, 44}));
   // The same level without any body key loads as the static level it was.
   std::string unkeyed = level;
@@ -81,28 +81,28 @@ TEST(SceneSegments, BodyKeySetsTheCarrierOfASegmentAndOfEveryPolylineSegment) {
     unkeyed.erase(at, unkeyed.find('\n', at) - at + 1);
   }
   const Scene still = parse_scene(unkeyed, "k.toml");
-  ASSERT_EQ(still.segments.size(), s.segments.size());
-  for (std::size_t i = 0; i < s.segments.size(); ++i) {
-    SegmentDef expected = s.segments[i];
+  ASSERT_EQ(still.def.segments.size(), s.def.segments.size());
+  for (std::size_t i = 0; i < s.def.segments.size(); ++i) {
+    SegmentDef expected = s.def.segments[i];
     expected.body = Entity{};
-    EXPECT_EQ(still.segments[i], expected) << i;
+    EXPECT_EQ(still.def.segments[i], expected) << i;
   }
 }
 
 TEST(SceneSegments, CarriedSegmentsMoveWithTheirBody) {
   const Scene s = parse_scene(level, "k.toml");
-  World w = make_world(s);
+  World w = World(s.def);
   const Entity lift = w.defined_bodies()[index_of(s, "lift")];
   const Entity deck = w.defined_bodies()[index_of(s, "deck[1,0]")];
   const Vec2 lift0 = w.body(lift).position, deck0 = w.body(deck).position;
   const int ticks = 100;  // 1 s
   for (int t = 0; t < ticks; ++t) w.step();
-  const double time = ticks * s.settings.dt;
+  const double time = ticks * s.def.settings.dt;
   ASSERT_EQ(w.segments().size(), 8u);
   // Each carried segment is displaced by its body's velocity × time, as its body is.
   auto expect_moved = [&](std::size_t i, Vec2 v, Vec2 body_moved) {
     SCOPED_TRACE(i);
-    const SegmentDef &now = w.segments()[i], &then = s.segments[i];
+    const SegmentDef &now = w.segments()[i], &then = s.def.segments[i];
     for (const auto& [p, p0] : {std::pair{now.a, then.a}, std::pair{now.b, then.b}}) {
       EXPECT_NEAR(p.x - p0.x, v.x * time, 1e-9);
       EXPECT_NEAR(p.y - p0.y, v.y * time, 1e-9);
@@ -121,7 +121,7 @@ TEST(SceneSegments, CarriedSegmentsMoveWithTheirBody) {
   const Vec2 deck_moved{w.body(deck).position.x - deck0.x, w.body(deck).position.y - deck0.y};
   for (const std::size_t i : {0u, 2u, 3u}) expect_moved(i, {0.5, 2.0}, lift_moved);
   for (const std::size_t i : {4u, 5u, 6u}) expect_moved(i, {-1.0, 0.0}, deck_moved);
-  for (const std::size_t i : {1u, 7u}) EXPECT_EQ(w.segments()[i], s.segments[i]) << i;
+  for (const std::size_t i : {1u, 7u}) EXPECT_EQ(w.segments()[i], s.def.segments[i]) << i;
 }
 
 // A disc at rest on a platform that moves right at 1 m/s (friction 0.2, gravity 9.81 m/s²) is
@@ -148,7 +148,7 @@ friction = 0.2
 body = "platform"
 )",
                               "p.toml");
-  World w = make_world(s);
+  World w = World(s.def);
   const Entity disc = w.defined_bodies()[0];
   for (int t = 0; t < 60; ++t) w.step();
   EXPECT_NEAR(w.body(disc).velocity.x, 1.0, 1e-9);
@@ -215,7 +215,7 @@ TEST(SceneSegments, ABadBodyKeyIsRefusedAtItsKey) {
                                "`body`?)"),
             std::string::npos)
       << s.warnings[0];
-  EXPECT_TRUE(s.segments[0].body.is_null());
+  EXPECT_TRUE(s.def.segments[0].body.is_null());
 }
 
 }  // namespace scene_segments_test

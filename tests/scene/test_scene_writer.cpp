@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 WorldDef reload(const WorldDef& def) {
   const Scene back = parse_scene(format_scene(def), "written.toml");
   EXPECT_TRUE(back.warnings.empty()) << back.warnings.front();
-  return world_def(back);
+  return back.def;
 }
 
 TEST(SceneWriter, EveryShippedSceneRoundTrips) {
@@ -42,7 +42,7 @@ TEST(SceneWriter, EveryShippedSceneRoundTrips) {
   ASSERT_GE(files.size(), 12u);
   for (const fs::path& file : files) {
     SCOPED_TRACE(file.filename().string());
-    const WorldDef def = world_def(load_scene(file));
+    const WorldDef def = load_scene(file).def;
     const WorldDef back = reload(def);
     EXPECT_EQ(definition_hash(back), definition_hash(def));
     test::expect_same_world(def, back);
@@ -127,8 +127,8 @@ TEST(SceneWriter, AwkwardWorldRoundTripsForEveryIntegratorAndPrecision) {
       const Scene back = parse_scene(format_scene(def), "written.toml");
       ASSERT_EQ(back.warnings.size(), 1u);  // the link between two immovable bodies
       EXPECT_NE(back.warnings[0].find("spring[2].bodies: does nothing"), std::string::npos);
-      EXPECT_EQ(definition_hash(world_def(back)), definition_hash(def));
-      test::expect_same_world(def, world_def(back));
+      EXPECT_EQ(definition_hash(back.def), definition_hash(def));
+      test::expect_same_world(def, back.def);
     }
   }
 }
@@ -201,17 +201,17 @@ body = { mass = 1.0, draw_radius = 3.0 }
 )",
                               "keys.toml");
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
-  EXPECT_FALSE(s.settings.flush_denormals);
-  ASSERT_EQ(s.bodies.size(), 4u);
-  EXPECT_FALSE(s.bodies[0].collider);  // drawn, not a disc
-  EXPECT_EQ(s.bodies[0].appearance->radius, 2.0);
-  EXPECT_EQ(s.bodies[1].collider->radius, 0.5);
-  EXPECT_EQ(s.bodies[1].appearance->radius, 0.25);
-  EXPECT_EQ(s.bodies[1].appearance->color, (Rgba8{16, 32, 48, 255}));
-  EXPECT_EQ(s.bodies[3].appearance->radius, 3.0);
+  EXPECT_FALSE(s.def.settings.flush_denormals);
+  ASSERT_EQ(s.def.bodies.size(), 4u);
+  EXPECT_FALSE(s.def.bodies[0].collider);  // drawn, not a disc
+  EXPECT_EQ(s.def.bodies[0].appearance->radius, 2.0);
+  EXPECT_EQ(s.def.bodies[1].collider->radius, 0.5);
+  EXPECT_EQ(s.def.bodies[1].appearance->radius, 0.25);
+  EXPECT_EQ(s.def.bodies[1].appearance->color, (Rgba8{16, 32, 48, 255}));
+  EXPECT_EQ(s.def.bodies[3].appearance->radius, 3.0);
   EXPECT_TRUE(parse_scene("[world]\ndt = 0.01\n[[body]]\nmass = 1.0\nposition = [0.0, 0.0]\n",
                           "default.toml")
-                  .settings.flush_denormals);
+                  .def.settings.flush_denormals);
   EXPECT_THROW((void)parse_scene("[world]\ndt = 0.01\n[[body]]\nmass = 1.0\nposition = [0.0, "
                                  "0.0]\ndraw_radius = 0.0\n",
                                  "zero.toml"),
@@ -308,7 +308,7 @@ std::size_t count(const std::string& text, std::string_view part) {
 // gives it (as links do). A carrier that is not one of the bodies, or not kinematic, is refused.
 TEST(SceneWriter, CarriedSegmentsRoundTripByTheirBodysName) {
   const Scene scene = parse_scene(test::carried_level, "carried.toml");
-  const WorldDef def = world_def(scene);
+  const WorldDef def = scene.def;
   ASSERT_EQ(def.segments.size(), 8u);
   const std::string text = format_scene(def);
   EXPECT_EQ(count(text, "\nbody = \"lift\"\n"), 3u) << text;
@@ -360,13 +360,13 @@ TEST(SceneWriter, WritesTheFileWhole) {
   fs::create_directories(dir);
   const WorldDef def = awkward_world(Precision::f64, Integrator::velocity_verlet);
   write_scene(dir / "world.toml", def);
-  test::expect_same_world(def, world_def(load_scene(dir / "world.toml")));
+  test::expect_same_world(def, load_scene(dir / "world.toml").def);
 
   // A refused world writes nothing: the file keeps what it had.
   WorldDef bad = def;
   bad.bodies[0].body.mass = -1.0;
   EXPECT_THROW(write_scene(dir / "world.toml", bad), std::invalid_argument);
-  EXPECT_EQ(definition_hash(world_def(load_scene(dir / "world.toml"))), definition_hash(def));
+  EXPECT_EQ(definition_hash(load_scene(dir / "world.toml").def), definition_hash(def));
 
   // The target is a directory: refused before a temporary file is made.
   fs::create_directory(dir / "taken.toml");

@@ -74,9 +74,9 @@ struct ScriptRun {
 
 ScriptRun run_script() {
   const Scene scene = parse_scene(scene_text, "bodies.toml");
-  const InputScript script = parse_input_script(script_text, "s.toml", scene.bodies);
+  const InputScript script = parse_input_script(script_text, "s.toml", scene.def.bodies);
   EXPECT_TRUE(script.warnings.empty());
-  ScriptRun r{make_world(scene), {}, {}};
+  ScriptRun r{World(scene.def), {}, {}};
   for (const TickInput& in : script_inputs(script, ticks)) {
     r.sim.check_input(in);  // nothing World::step would ignore
     r.sim.step(in);
@@ -158,7 +158,7 @@ TEST(ScriptBodyInput, RunRecordsAndReplaysBitForBit) {
 std::string error_of(const std::string& script) {
   const Scene scene = parse_scene(scene_text, "bodies.toml");
   try {
-    (void)parse_input_script(script, "s.toml", scene.bodies);
+    (void)parse_input_script(script, "s.toml", scene.def.bodies);
   } catch (const SceneError& e) {
     return e.what();
   }
@@ -199,7 +199,7 @@ TEST(ScriptBodyInput, BadEntriesAreLocatedErrors) {
   const Scene scene = parse_scene(scene_text, "bodies.toml");
   const InputScript warned = parse_input_script(
       at + "impulse = { body = \"ball\", valu = [1.0, 0.0], value = [1.0, 0.0] }\n", "s.toml",
-      scene.bodies);
+      scene.def.bodies);
   ASSERT_EQ(warned.warnings.size(), 1u);
   EXPECT_EQ(warned.warnings[0],
             "s.toml:3:28: at[0].impulse.valu: unknown key ignored (did you mean `value`?)");

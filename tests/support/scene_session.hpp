@@ -4,9 +4,9 @@
 
 #include <filesystem>
 
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/app/scene_view_settings.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep::testing {
 
@@ -17,7 +17,7 @@ inline Session scene_session(const Scene& scene, int width, int height) {
                     .view_center = scene.view.center,
                     .view_width = scene.view.width};
   apply_scene_view_style(scene.view, s);
-  return Session(world_def(scene), s);
+  return Session(scene.def, s);
 }
 
 }  // namespace fixstep::testing

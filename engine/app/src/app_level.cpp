@@ -2,7 +2,6 @@
 #include <any>
 #include <cstdio>
 #include <fixstep/app/scene_view_settings.hpp>
-#include <fixstep/core/definition_checks.hpp>
 #include <fixstep/core/input.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/scene/scene.hpp>
@@ -35,7 +34,7 @@ Level from_scene(const AnyGame& game, const Settings& settings, const Scene* sce
   Level level;
   if (scene != nullptr) {
     for (const std::string& w : scene->warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    level.def = world_def(*scene);
+    level.def = scene->def;
     level.scene_name = scene->file;
     level.scene_text = scene->text;
   } else {
@@ -54,15 +53,9 @@ Level from_scene(const AnyGame& game, const Settings& settings, const Scene* sce
 }  // namespace
 
 Level load_level(const AnyGame& game, const Settings& settings, const std::string& file) {
-  if (file.empty()) {
-    Level level = from_scene(game, settings, nullptr);
-    level.warnings = check_definition(level.def);
-    return level;
-  }
+  if (file.empty()) return from_scene(game, settings, nullptr);
   const Scene scene = load_scene(file);  // throws SceneError naming file:line:column and key
-  Level level = from_scene(game, settings, &scene);
-  level.warnings = check_definition(level.def, scene.allow_unstable);
-  return level;
+  return from_scene(game, settings, &scene);
 }
 
 Level replay_level(const AnyGame& game, const Settings& settings, const Recording& rec,
@@ -75,7 +68,7 @@ Level replay_level(const AnyGame& game, const Settings& settings, const Recordin
     level = load_level(game, settings, scene.value_or(settings.scene_file));
   }
   apply_settings(level.def, rec.settings);  // the recorded dt, integrator, precision, substeps
-  level.warnings = check_definition(level.def, /*allow_unstable=*/true);
+  level.def.allow_unstable = true;  // the recorded run ran: World(def) checks its limits only
   return level;
 }
 

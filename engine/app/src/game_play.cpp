@@ -7,6 +7,7 @@
 #include <string_view>
 #include <utility>
 
+#include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/world_settings.hpp"
 
@@ -26,8 +27,8 @@ GamePlay::GamePlay(Level level, const Settings& settings, std::string record_fil
       session_(level_.def, level_.view),
       game_(level_.game->clone()) {
   session_.set_show_energy(settings.show_energy);
-  for (const std::string& w : level_.warnings) {  // the stability guard's
-    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const StabilityFinding& w : session_.simulation().warnings()) {  // the guard's (World)
+    std::fprintf(stderr, "warning: %s\n", w.message.c_str());
   }
   if (!record_file_.empty()) start_recording();
 }

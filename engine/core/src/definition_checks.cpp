@@ -9,35 +9,43 @@
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/stability.hpp"
+#include "stability_verdict.hpp"
 
 namespace fixstep {
 
-std::vector<std::string> check_stability(const WorldDef& def, bool allow_unstable) {
+UnstableDefinition::UnstableDefinition(StabilityFinding finding, int substeps)
+    : std::invalid_argument(finding.message + stable_from(finding, substeps)),
+      finding_(std::make_shared<const StabilityFinding>(std::move(finding))) {}
+
+std::string UnstableDefinition::stable_from(const StabilityFinding& f, int substeps) {
+  const int min_substeps = f.body ? f.body->min_substeps : f.network ? f.network->min_substeps : 0;
+  const double max_step = f.body ? f.body->max_step : f.network ? f.network->max_step : 0.0;
+  return detail::stable_from(min_substeps, max_step, substeps);
+}
+
+std::vector<StabilityFinding> check_stability(const WorldDef& def) {
   const IeeeFloatMode ieee;  // the same verdict whatever the caller's FPU mode
-  std::vector<std::string> warnings;
+  std::vector<StabilityFinding> findings;
   const WorldSettings& s = def.settings;
-  auto refuse = [&](const std::string& message, int min_substeps, double max_step) {
-    throw std::invalid_argument(min_substeps > 0
-                                    ? fmt::format("{}; stable from substeps = {} (dt <= {:.4g} s)",
-                                                  message, min_substeps, max_step * s.substeps)
-                                    : message);
+  auto judged = [&](StabilityFinding f) {
+    if (f.verdict == Stability::unstable && !def.allow_unstable) {
+      throw UnstableDefinition(std::move(f), s.substeps);
+    }
+    findings.push_back(std::move(f));
   };
   const std::vector<bool> linked = linked_bodies(def.bodies.size(), def.links);
   for (const BodyStability& r : check_stability(def.bodies, s.integrator, s.dt, s.substeps)) {
     if (linked[r.body.slot()] || r.verdict == Stability::stable) continue;
-    if (r.verdict == Stability::unstable && !allow_unstable) {
-      refuse(r.message, r.min_substeps, r.max_step);
-    }
-    warnings.push_back(r.message);
+    StabilityFinding f{.verdict = r.verdict, .message = r.message, .body = r, .network = {}};
+    judged(std::move(f));
   }
   const auto net = check_linked_stability(def.bodies, def.links, s.integrator, s.dt, s.substeps);
   if (net && net->verdict != Stability::stable) {
-    if (net->verdict == Stability::unstable && !allow_unstable) {
-      refuse(net->message, net->min_substeps, net->max_step);
-    }
-    warnings.push_back(net->message);
+    StabilityFinding f{
+        .verdict = net->verdict, .message = net->message, .body = {}, .network = net};
+    judged(std::move(f));
   }
-  return warnings;
+  return findings;
 }
 
 void check_limits(const WorldDef& def) {
@@ -58,10 +66,10 @@ void check_overlaps(const WorldDef& def) {
       disc_overlap_depth(def.bodies[pair->first], def.bodies[pair->second])));
 }
 
-std::vector<std::string> check_definition(const WorldDef& def, bool allow_unstable) {
+std::vector<StabilityFinding> check_definition(const WorldDef& def) {
   check_overlaps(def);
   check_limits(def);
-  return check_stability(def, allow_unstable);
+  return check_stability(def);
 }
 
 }  // namespace fixstep

@@ -10,6 +10,7 @@
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/fnv1a.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/random.hpp"
@@ -40,10 +41,6 @@ void copy_into(std::unique_ptr<T>& to, const std::unique_ptr<T>& from) {
   }
 }
 }  // namespace
-
-World::World(Precision precision, const WorldSettings& settings)
-    : state_(new detail::WorldState{
-          make_kernel(precision, settings), {}, Random(settings.seed), {}}) {}
 
 World::World(const World& other) {
   copy_into(state_, other.state_);
@@ -277,7 +274,22 @@ void World::restore(const WorldSnapshot& snapshot) {
   queries_changed();
 }
 
-World::World(const WorldDef& def) : World(def.precision, def.settings) {
+World::World(const WorldDef& def)
+    : state_(std::make_unique<detail::WorldState>(detail::WorldState{
+          .kernel = make_kernel(def.precision, def.settings),  // validates the settings
+          .defined = {},
+          .random = Random(def.settings.seed),
+          .warnings = {},
+          .queries = {}})) {
+  build(def);  // validates every body, link, plane and segment, naming it
+  state_->warnings = check_definition(def);
+}
+
+std::span<const StabilityFinding> World::warnings() const {
+  return state_->warnings;
+}
+
+void World::build(const WorldDef& def) {
   std::vector<Entity>& defined = state_->defined;
   defined.reserve(def.bodies.size());
   for (const BodyDef& body : def.bodies) defined.push_back(create_body(body));

@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/random.hpp"
 #include "fixstep/core/world.hpp"
 #include "world_kernel.hpp"
@@ -19,8 +20,9 @@ using AnyKernel = std::variant<WorldKernel<float>, WorldKernel<double>>;
 
 struct WorldState {
   AnyKernel kernel;
-  std::vector<Entity> defined;  ///< World::defined_bodies()
-  Random random;                ///< World::random()
+  std::vector<Entity> defined;             ///< World::defined_bodies()
+  Random random;                           ///< World::random()
+  std::vector<StabilityFinding> warnings;  ///< World::warnings()
   /// The queries' grid: a cache, empty in a copy (world_queries.cpp: query_grid).
   mutable CachePtr<QueryGrid, QueryGridDeleter> queries;
 };

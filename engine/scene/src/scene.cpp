@@ -205,7 +205,7 @@ void read_integrator(const Reader& r, const toml::table& world, Scene& scene) {
                          best ? fmt::format("; did you mean \"{}\"?", *best) : std::string(),
                          integrator_names()));
     }
-    scene.settings.integrator = *i;
+    scene.def.settings.integrator = *i;
   }
 }
 
@@ -217,7 +217,7 @@ void read_precision(const Reader& r, const toml::table& world, Scene& scene) {
       r.fail(world.get("precision")->source(), "world.precision",
              fmt::format("unknown precision \"{}\" (valid: f32, f64)", *name));
     }
-    scene.precision = *p;
+    scene.def.precision = *p;
   }
 }
 
@@ -225,17 +225,18 @@ void read_precision(const Reader& r, const toml::table& world, Scene& scene) {
 /// seed, allow_unstable, flush_denormals and damping_split.
 void read_world_options(const Reader& r, const toml::table& world, Scene& scene) {
   if (const toml::node* n = world.get("substeps")) {
-    scene.settings.substeps = static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
+    scene.def.settings.substeps =
+        static_cast<int>(r.integer_node(*n, "world.substeps", 1, 1000000));
   }
   if (const toml::node* n = world.get("seed")) {  // TOML integers: 0 .. 2^63 - 1
-    scene.settings.seed = static_cast<std::uint64_t>(
+    scene.def.settings.seed = static_cast<std::uint64_t>(
         r.integer_node(*n, "world.seed", 0, std::numeric_limits<std::int64_t>::max()));
   }
   if (auto b = r.boolean(world, "allow_unstable", "world.allow_unstable")) {
-    scene.allow_unstable = *b;
+    scene.def.allow_unstable = *b;
   }
   if (auto b = r.boolean(world, "flush_denormals", "world.flush_denormals")) {
-    scene.settings.flush_denormals = *b;
+    scene.def.settings.flush_denormals = *b;
   }
   if (auto name = r.string(world, "damping_split", "world.damping_split")) {
     const auto split = parse_damping_split(*name);
@@ -243,11 +244,11 @@ void read_world_options(const Reader& r, const toml::table& world, Scene& scene)
       r.fail(world.get("damping_split")->source(), "world.damping_split",
              fmt::format("unknown damping split \"{}\" (valid: per_stage, per_step)", *name));
     }
-    scene.settings.damping_split = *split;
+    scene.def.settings.damping_split = *split;
   }
 }
 
-/// The [world] table (required) into scene.settings, scene.precision and scene.allow_unstable;
+/// The [world] table (required) into scene.def's settings, precision and allow_unstable;
 /// returns it, for the errors of the limits that its keys set.
 const toml::table& parse_world(Reader& r, const toml::table& doc, Scene& scene) {
   const toml::table* world = r.table(doc, "world", "world");
@@ -258,10 +259,10 @@ const toml::table& parse_world(Reader& r, const toml::table& doc, Scene& scene) 
   r.check_keys(*world, "world",
                {"dt", "integrator", "precision", "substeps", "allow_unstable", "flush_denormals",
                 "damping_split", "seed"});
-  scene.settings.dt = r.required_number(
+  scene.def.settings.dt = r.required_number(
       *world, "world", "dt", "the fixed physics step in s, e.g. dt = 0.01 (100 ticks/s)");
-  r.require(scene.settings.dt > 0.0 && scene.settings.dt <= 1.0, *world, "dt", "world.dt",
-            "> 0 and <= 1 s", scene.settings.dt);
+  r.require(scene.def.settings.dt > 0.0 && scene.def.settings.dt <= 1.0, *world, "dt", "world.dt",
+            "> 0 and <= 1 s", scene.def.settings.dt);
   read_integrator(r, *world, scene);
   read_precision(r, *world, scene);
   read_world_options(r, *world, scene);
@@ -276,14 +277,14 @@ void parse_bodies(Reader& r, const toml::table& doc, Scene& scene, BodyNames& na
   for (std::size_t i = 0; i < list->size(); ++i) {
     const toml::table& t = *list->get(i)->as_table();
     const std::string path = fmt::format("body[{}]", i);
-    BodyDef def = parse_body(r, t, path, scene.precision);
+    BodyDef def = parse_body(r, t, path, scene.def.precision);
     if (def.name.empty()) def.name = fmt::format("body{}", i);
-    if (!names.index.emplace(def.name, scene.bodies.size()).second) {
+    if (!names.index.emplace(def.name, scene.def.bodies.size()).second) {
       const toml::node* n = t.get("name");
       r.fail(n ? n->source() : t.source(), path + ".name",
              fmt::format("duplicate body name \"{}\" (names must be unique)", def.name));
     }
-    scene.bodies.push_back(std::move(def));
+    scene.def.bodies.push_back(std::move(def));
     scene.source.body_lines.push_back(t.source().begin.line);
   }
 }
@@ -292,10 +293,11 @@ void parse_bodies(Reader& r, const toml::table& doc, Scene& scene, BodyNames& na
 /// per tick.
 void check_limits(const Reader& r, const Scene& scene, const toml::table& world) {
   try {
-    check_world_limits(scene.bodies, scene.links, scene.planes, scene.settings);
+    check_world_limits(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings);
   } catch (const LimitError& e) {
     // check_world_limits checks the implicit solve's size first, then the work per tick.
-    const bool memory = !implicit_solve_within_limits(scene.bodies, scene.links, scene.settings);
+    const bool memory =
+        !implicit_solve_within_limits(scene.def.bodies, scene.def.links, scene.def.settings);
     const std::string key = memory ? "integrator" : "substeps";
     const toml::node* at = world.get(key);
     r.fail(at ? at->source() : world.source(), at ? "world." + key : "world", e.what());
@@ -313,13 +315,13 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   using namespace scene_detail;
   Scene scene;
   scene.file = source_name;
-  scene.settings.track_dissipation = true;
+  scene.def.settings.track_dissipation = true;
   Reader r(scene.file);
 
   const toml::table doc = read_document(r, text, source_name);
   const toml::table& world = parse_world(r, doc, scene);
   // Every number first, so that a generated position beyond float range is the spacing's fault.
-  if (scene.precision == Precision::f32) check_f32(r, doc, "");
+  if (scene.def.precision == Precision::f32) check_f32(r, doc, "");
   parse_view(r, doc, scene);
 
   // Bodies: [[body]] tables, then the generators' bodies; links: the generators', then
@@ -327,7 +329,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   BodyNames names;
   parse_bodies(r, doc, scene, names);
   parse_generators(r, doc, scene, names);
-  if (scene.bodies.empty()) {
+  if (scene.def.bodies.empty()) {
     throw SceneError(source_name, 1, 1, "body",
                      "no [[body]], [[chain]] or [[grid]] tables: a scene needs at least one body; "
                      "add one, e.g. [[body]] with mass = 1.0 and position = [0.0, 0.0]");
@@ -346,11 +348,6 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
 Scene load_scene(const std::filesystem::path& file) {
   return parse_scene(scene_detail::read_text_file(file, max_scene_bytes, scene_file),
                      file.string());
-}
-
-World make_world(const Scene& scene) {
-  (void)enforce_stability(scene);  // throws for unstable bodies; callers print the warnings
-  return World(world_def(scene));  // limits and overlaps were checked as the scene loaded
 }
 
 }  // namespace fixstep

@@ -209,9 +209,9 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
   }
   if (auto v = r.boolean(*t, "rolling", "contacts.rolling")) contacts.rolling = *v;
   if (!contacts.rolling) warn_unused_rolling_keys(r, doc);
-  parse_sleep_keys(r, *t, scene.settings.dt, contacts);
-  scene.settings.contacts = contacts;
-  const bool discs = std::any_of(scene.bodies.begin(), scene.bodies.end(),
+  parse_sleep_keys(r, *t, scene.def.settings.dt, contacts);
+  scene.def.settings.contacts = contacts;
+  const bool discs = std::any_of(scene.def.bodies.begin(), scene.def.bodies.end(),
                                  [](const BodyDef& b) { return b.collider.has_value(); });
   if (!discs) {
     r.warn(t->source(), "contacts",
@@ -221,10 +221,10 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
 }
 
 void check_start_overlap(const Scene& scene, const BodyNames& names) {
-  if (!scene.settings.contacts) return;
+  if (!scene.def.settings.contacts) return;
   std::optional<std::pair<std::size_t, std::size_t>> pair;
   try {
-    pair = first_disc_overlap(scene.bodies, scene.links);
+    pair = first_disc_overlap(scene.def.bodies, scene.def.links);
   } catch (const std::invalid_argument& e) {
     throw SceneError(scene.file, 0, 0, "contacts", e.what());  // the loader checks first
   }
@@ -237,7 +237,7 @@ void check_start_overlap(const Scene& scene, const BodyNames& names) {
   for (const auto& [first, path] : names.generated) {
     if (later >= first) key = path;
   }
-  const BodyDef &da = scene.bodies[a], &db = scene.bodies[b];
+  const BodyDef &da = scene.def.bodies[a], &db = scene.def.bodies[b];
   const double reach = da.collider->radius + db.collider->radius;
   const double apart = reach - disc_overlap_depth(da, db);
   throw SceneError(

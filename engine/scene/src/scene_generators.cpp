@@ -46,27 +46,27 @@ class Generator {
 
   /// Refuses a generator that would take the scene beyond max_scene_bodies.
   void reserve_bodies(std::uint64_t count, const toml::node& at, const std::string& at_key) {
-    if (scene_.bodies.size() + count > max_scene_bodies) {
+    if (scene_.def.bodies.size() + count > max_scene_bodies) {
       r_.fail(at.source(), at_key,
               fmt::format("the scene would have {} bodies; at most {} are allowed",
-                          scene_.bodies.size() + count, max_scene_bodies));
+                          scene_.def.bodies.size() + count, max_scene_bodies));
     }
-    bodies_target_ = scene_.bodies.size() + count;
-    scene_.bodies.reserve(scene_.bodies.size() + count);
-    scene_.source.body_lines.reserve(scene_.bodies.size() + count);
+    bodies_target_ = scene_.def.bodies.size() + count;
+    scene_.def.bodies.reserve(scene_.def.bodies.size() + count);
+    scene_.source.body_lines.reserve(scene_.def.bodies.size() + count);
     names_.index.reserve(names_.index.size() + count);
   }
 
   /// Refuses links that would take the scene beyond max_scene_links.
   void reserve_links(std::uint64_t count, const toml::node& at, const std::string& at_key) {
-    if (scene_.links.size() + count > max_scene_links) {
+    if (scene_.def.links.size() + count > max_scene_links) {
       r_.fail(at.source(), at_key,
               fmt::format("the scene would have {} links; at most {} are allowed",
-                          scene_.links.size() + count, max_scene_links));
+                          scene_.def.links.size() + count, max_scene_links));
     }
-    links_target_ = scene_.links.size() + count;
-    scene_.links.reserve(scene_.links.size() + count);
-    scene_.source.link_lines.reserve(scene_.links.size() + count);
+    links_target_ = scene_.def.links.size() + count;
+    scene_.def.links.reserve(scene_.def.links.size() + count);
+    scene_.source.link_lines.reserve(scene_.def.links.size() + count);
   }
 
   /// The body template `body = { mass = ..., ... }`.
@@ -122,56 +122,57 @@ class Generator {
   /// spacing, so a position beyond the scene's precision is the spacing's fault). The name must
   /// be unused.
   void add_body(BodyDef def, std::string body_name, Vec2 position) {
-    if (!representable(position.x, scene_.precision) ||
-        !representable(position.y, scene_.precision)) {
+    if (!representable(position.x, scene_.def.precision) ||
+        !representable(position.y, scene_.def.precision)) {
       const toml::node& at = required("spacing");
       r_.fail(at.source(), key("spacing"),
               fmt::format("body {} would be at ({:g}, {:g}) m, beyond the range of {}", body_name,
-                          position.x, position.y, precision_text(scene_.precision)));
+                          position.x, position.y, precision_text(scene_.def.precision)));
     }
     def.name = std::move(body_name);
     def.body.position = position;
-    const auto [it, inserted] = names_.index.emplace(def.name, scene_.bodies.size());
+    const auto [it, inserted] = names_.index.emplace(def.name, scene_.def.bodies.size());
     if (!inserted) {
       r_.fail(name_node_ ? name_node_->source() : t_.source(), key("name"),
               fmt::format("body name \"{}\" is already taken by the body of line {} (names must "
                           "be unique)",
                           def.name, scene_.source.body_lines[it->second]));
     }
-    scene_.bodies.push_back(std::move(def));
+    scene_.def.bodies.push_back(std::move(def));
     scene_.source.body_lines.push_back(t_.source().begin.line);
-    checkpoint("body", scene_.bodies.size(), bodies_target_);
+    checkpoint("body", scene_.def.bodies.size(), bodies_target_);
   }
 
   /// Appends a link between bodies a and b (scene indices) with `spring`, whose rest length is
   /// the bodies' starting distance unless `spec` gives one.
   void add_link(std::size_t a, std::size_t b, LinkSpring spring, const SpringSpec& spec) {
-    const Vec2 pa = scene_.bodies[a].body.position, pb = scene_.bodies[b].body.position;
+    const Vec2 pa = scene_.def.bodies[a].body.position, pb = scene_.def.bodies[b].body.position;
     if (!spec.rest_length) spring.rest_length = det::hypot(pb.x - pa.x, pb.y - pa.y);
-    if (!representable(spring.rest_length, scene_.precision)) {
+    if (!representable(spring.rest_length, scene_.def.precision)) {
       r_.fail(required("spacing").source(), key("spacing"),
               fmt::format("bodies {} and {} start {:g} m apart, beyond the range of {}",
-                          scene_.bodies[a].name, scene_.bodies[b].name, spring.rest_length,
-                          precision_text(scene_.precision)));
+                          scene_.def.bodies[a].name, scene_.def.bodies[b].name, spring.rest_length,
+                          precision_text(scene_.def.precision)));
     }
-    if (spring.rest_length > 0.0 && same_point(pa, pb, scene_.precision)) {
-      r_.fail(
-          required("spacing").source(), key("spacing"),
-          fmt::format("bodies {} and {} start at the same point, so the direction of a link "
-                      "with rest length {:g} m ({}) is undefined; use a spacing that "
-                      "separates them or leave rest_length out",
-                      scene_.bodies[a].name, scene_.bodies[b].name, spring.rest_length, spec.path));
+    if (spring.rest_length > 0.0 && same_point(pa, pb, scene_.def.precision)) {
+      r_.fail(required("spacing").source(), key("spacing"),
+              fmt::format("bodies {} and {} start at the same point, so the direction of a link "
+                          "with rest length {:g} m ({}) is undefined; use a spacing that "
+                          "separates them or leave rest_length out",
+                          scene_.def.bodies[a].name, scene_.def.bodies[b].name, spring.rest_length,
+                          spec.path));
     }
-    scene_.links.push_back(LinkDef{fixstep::defined_entity(a), fixstep::defined_entity(b), spring});
+    scene_.def.links.push_back(
+        LinkDef{fixstep::defined_entity(a), fixstep::defined_entity(b), spring});
     scene_.source.link_lines.push_back(t_.source().begin.line);
     scene_.source.link_keys.push_back(spec.path);
-    checkpoint("link", scene_.links.size(), links_target_);
+    checkpoint("link", scene_.def.links.size(), links_target_);
   }
 
   /// Pins body i at its starting position with an anchored spring (rest length 0).
   void pin(std::size_t i, const SpringSpec& spec) {
-    BodyDef& def = scene_.bodies[i];
-    const LinkSpring k = resolve_spring(r_, spec, def.body.mass, 0.0, scene_.precision);
+    BodyDef& def = scene_.def.bodies[i];
+    const LinkSpring k = resolve_spring(r_, spec, def.body.mass, 0.0, scene_.def.precision);
     def.spring = SpringDamper{.anchor = def.body.position,
                               .stiffness = k.stiffness,
                               .damping = k.damping,
@@ -255,7 +256,7 @@ void parse_chain(Reader& r, const toml::table& t, std::size_t c, Scene& scene, B
       g.required("spacing", "the step [x, y] in m from one body to the next, e.g. [0.1, 0.0]"),
       g.key("spacing"));
   const BodyDef body = g.body_template();
-  const std::size_t first = scene.bodies.size();
+  const std::size_t first = scene.def.bodies.size();
   for (std::size_t i = 0; i < count; ++i) {
     const double s = static_cast<double>(i);
     g.add_body(body, fmt::format("{}[{}]", name, i),
@@ -266,7 +267,7 @@ void parse_chain(Reader& r, const toml::table& t, std::size_t c, Scene& scene, B
   // Without `link` the bodies are not linked: a row of discs.
   if (const std::optional<SpringSpec> link = g.spring("link", true)) {
     g.reserve_links(count - 1, *t.get("link"), g.key("link"));
-    const LinkSpring spring = pair_spring(r, *link, body.body.mass, scene.precision);
+    const LinkSpring spring = pair_spring(r, *link, body.body.mass, scene.def.precision);
     for (std::size_t i = 0; i + 1 < count; ++i) {
       g.add_link(first + i, first + i + 1, spring, *link);
     }
@@ -384,7 +385,7 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
                {"name", "columns", "rows", "origin", "spacing", "body", "link", "shear", "bend",
                 "pin", "pin_spring"});
   const std::string name = g.name(fmt::format("grid{}", c));
-  const GridShape shape = read_grid_shape(r, g, scene.bodies.size());
+  const GridShape shape = read_grid_shape(r, g, scene.def.bodies.size());
   const Vec2 origin = r.vec2_node(
       g.required("origin", "the position [x, y] in m of the first body, e.g. [0.0, 0.0]"),
       g.key("origin"));
@@ -396,7 +397,7 @@ void parse_grid(Reader& r, const toml::table& t, std::size_t c, Scene& scene, Bo
   const BodyDef body = g.body_template();
   add_grid_bodies(g, shape, name, body, origin, spacing);
   if (g.ignore_springs(body, {"link", "shear", "bend", "pin", "pin_spring"})) return;
-  add_grid_links(r, g, t, shape, body.body.mass, scene.precision);
+  add_grid_links(r, g, t, shape, body.body.mass, scene.def.precision);
   g.pins([&](const toml::node& n, const std::string& key) { return grid_pin(r, shape, n, key); });
 }
 

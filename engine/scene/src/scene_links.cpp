@@ -128,16 +128,17 @@ LinkSpring resolve_spring(const Reader& r, const SpringSpec& spec, double mass, 
 void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names) {
   const toml::array* list = r.tables(doc, "spring");
   if (!list) return;
-  if (scene.links.size() + list->size() > max_scene_links) {
+  if (scene.def.links.size() + list->size() > max_scene_links) {
     r.fail(doc.get("spring")->source(), "spring",
            fmt::format("the scene would have {} links; at most {} are allowed",
-                       scene.links.size() + list->size(), max_scene_links));
+                       scene.def.links.size() + list->size(), max_scene_links));
   }
   // The first link of each pair of bodies (generated links included, in either order): a second
   // one is allowed, as the forces of both add, but is most likely a mistake.
   std::unordered_map<std::uint64_t, std::size_t> first_link;
-  for (std::size_t l = 0; l < scene.links.size(); ++l) {
-    first_link.emplace(pair_key(scene.links[l].body_a.slot(), scene.links[l].body_b.slot()), l);
+  for (std::size_t l = 0; l < scene.def.links.size(); ++l) {
+    first_link.emplace(pair_key(scene.def.links[l].body_a.slot(), scene.def.links[l].body_b.slot()),
+                       l);
   }
   for (std::size_t i = 0; i < list->size(); ++i) {
     const toml::table& t = *list->get(i)->as_table();
@@ -158,7 +159,7 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
     }
     const std::size_t a = find_body(r, *pair->get(0), path + ".bodies[0]", names);
     const std::size_t b = find_body(r, *pair->get(1), path + ".bodies[1]", names);
-    const BodyDef &da = scene.bodies[a], &db = scene.bodies[b];
+    const BodyDef &da = scene.def.bodies[a], &db = scene.def.bodies[b];
     if (a == b) {
       r.fail(pair->get(1)->source(), path + ".bodies[1]",
              fmt::format("\"{}\" twice: a spring joins two different bodies", da.name));
@@ -175,9 +176,9 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
     const double mass = move_a && move_b ? reduced_mass(da.body.mass, db.body.mass)
                         : move_a         ? da.body.mass
                                          : db.body.mass;
-    const LinkSpring spring = resolve_spring(r, spec, mass, 0.0, scene.precision);
+    const LinkSpring spring = resolve_spring(r, spec, mass, 0.0, scene.def.precision);
     if (spring.rest_length > 0.0 &&
-        same_point(da.body.position, db.body.position, scene.precision)) {
+        same_point(da.body.position, db.body.position, scene.def.precision)) {
       r.fail(t.get("rest_length")->source(), path + ".rest_length",
              fmt::format("\"{}\" and \"{}\" both start at ({:g}, {:g}) m, so the direction of a "
                          "spring with rest length {:g} m is undefined; move one of them or use "
@@ -185,13 +186,15 @@ void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNa
                          da.name, db.name, da.body.position.x, da.body.position.y,
                          spring.rest_length));
     }
-    if (const auto [it, fresh] = first_link.emplace(pair_key(a, b), scene.links.size()); !fresh) {
+    if (const auto [it, fresh] = first_link.emplace(pair_key(a, b), scene.def.links.size());
+        !fresh) {
       r.warn(n->source(), path + ".bodies",
              fmt::format("\"{}\" and \"{}\" are already joined by {}: both links act (their "
                          "forces add); remove one, or merge them into one spring",
                          da.name, db.name, link_origin(scene, it->second)));
     }
-    scene.links.push_back(LinkDef{fixstep::defined_entity(a), fixstep::defined_entity(b), spring});
+    scene.def.links.push_back(
+        LinkDef{fixstep::defined_entity(a), fixstep::defined_entity(b), spring});
     scene.source.link_lines.push_back(t.source().begin.line);
     scene.source.link_keys.push_back(path);
   }

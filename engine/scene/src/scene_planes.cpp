@@ -53,7 +53,7 @@ void parse_planes(Reader& r, const toml::table& doc, Scene& scene) {
   if (!list) return;
   for (std::size_t i = 0; i < list->size(); ++i) {
     const toml::table& t = *list->get(i)->as_table();
-    scene.planes.push_back(parse_plane(r, t, fmt::format("plane[{}]", i)));
+    scene.def.planes.push_back(parse_plane(r, t, fmt::format("plane[{}]", i)));
     scene.source.plane_lines.push_back(t.source().begin.line);
   }
 }

@@ -46,7 +46,7 @@ Entity parse_carrier(const Reader& r, const toml::table& t, const std::string& p
   if (!n) return Entity{};
   const std::string key = path + ".body";
   const std::size_t i = find_body(r, *n, key, names);
-  const BodyDef& b = scene.bodies[i];
+  const BodyDef& b = scene.def.bodies[i];
   if (b.type != BodyType::kinematic) {
     r.fail(n->source(), key,
            fmt::format("\"{}\" (line {}) is a {} body: only a kinematic body can carry segments; "
@@ -111,7 +111,7 @@ void parse_polyline(Reader& r, const toml::table& t, const std::string& path, Sc
   double e = 0.0, mu = 0.0;
   parse_surface(r, t, path, e, mu);
   const Entity body = parse_carrier(r, t, path, scene, names, "polyline");
-  scene.add_polyline(points, e, mu, closed, body);
+  scene.def.add_polyline(points, e, mu, closed, body);
 }
 
 }  // namespace
@@ -120,7 +120,8 @@ void parse_segments(Reader& r, const toml::table& doc, Scene& scene, const BodyN
   if (const toml::array* list = r.tables(doc, "segment")) {
     for (std::size_t i = 0; i < list->size(); ++i) {
       const toml::table& t = *list->get(i)->as_table();
-      scene.segments.push_back(parse_segment(r, t, fmt::format("segment[{}]", i), scene, names));
+      scene.def.segments.push_back(
+          parse_segment(r, t, fmt::format("segment[{}]", i), scene, names));
       scene.source.segment_lines.push_back(t.source().begin.line);
     }
   }
@@ -128,7 +129,7 @@ void parse_segments(Reader& r, const toml::table& doc, Scene& scene, const BodyN
     for (std::size_t i = 0; i < list->size(); ++i) {
       const toml::table& t = *list->get(i)->as_table();
       parse_polyline(r, t, fmt::format("polyline[{}]", i), scene, names);
-      scene.source.segment_lines.resize(scene.segments.size(), t.source().begin.line);
+      scene.source.segment_lines.resize(scene.def.segments.size(), t.source().begin.line);
     }
   }
 }

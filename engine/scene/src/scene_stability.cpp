@@ -11,16 +11,6 @@
 
 namespace fixstep {
 
-std::vector<BodyStability> check_stability(const Scene& scene) {
-  return check_stability(scene.bodies, scene.settings.integrator, scene.settings.dt,
-                         scene.settings.substeps);
-}
-
-std::optional<NetworkStability> check_scene_network(const Scene& scene) {
-  return check_linked_stability(scene.bodies, scene.links, scene.settings.integrator,
-                                scene.settings.dt, scene.settings.substeps);
-}
-
 namespace {
 
 /// An unstable finding with what to change in the scene file: the substep count (or dt) that
@@ -67,59 +57,65 @@ std::string with_advice(const std::string& message, int min_substeps, double max
 
 }  // namespace
 
-std::vector<std::string> enforce_stability(const Scene& scene) {
-  const IeeeFloatMode ieee;  // the same verdict whatever the caller's FPU mode
+namespace {
+
+/// Where a finding stands in the scene: the line and key of the body, or of the link that binds
+/// a network (the stiffest link; the strongest damper when the damping flow binds; the fastest
+/// body without either).
+std::pair<std::size_t, std::string> place_of(const Scene& scene, const StabilityFinding& f) {
+  auto body_place = [&](Entity body) {
+    const std::size_t i = body.slot();
+    const std::size_t line =
+        i < scene.source.body_lines.size() ? scene.source.body_lines[i] : std::size_t{0};
+    return std::pair{line, fmt::format("body[{}]", i)};
+  };
+  if (f.body) return body_place(f.body->body);
+  const NetworkStability& net = *f.network;
+  const std::optional<std::size_t> link =
+      net.damping_bound ? net.strongest_damper : net.stiffest_link;
+  if (!link) return body_place(net.fastest_body);
+  const std::size_t line =
+      *link < scene.source.link_lines.size() ? scene.source.link_lines[*link] : 0;
+  const bool named =
+      *link < scene.source.link_keys.size() && !scene.source.link_keys[*link].empty();
+  return {line, named ? scene.source.link_keys[*link] : fmt::format("link[{}]", *link)};
+}
+
+/// The finding's message with what to change in the file (with_advice).
+std::string advised(const Scene& scene, const StabilityFinding& f) {
+  const int min_substeps = f.body ? f.body->min_substeps : f.network->min_substeps;
+  const double max_step = f.body ? f.body->max_step : f.network->max_step;
+  const double radius = f.body ? f.body->radius : f.network->radius;
+  return with_advice(f.message, min_substeps, max_step, radius, scene.def.settings.substeps,
+                     scene.def.allow_unstable);
+}
+
+}  // namespace
+
+SceneError located(const Scene& scene, const UnstableDefinition& e) {
+  const StabilityFinding& f = e.finding();
+  const auto [line, key] = place_of(scene, f);
+  return SceneError(scene.file, line, 0, key, advised(scene, f));
+}
+
+std::vector<std::string> located_warnings(const Scene& scene,
+                                          std::span<const StabilityFinding> findings) {
   std::vector<std::string> warnings;
-  const int substeps = scene.settings.substeps;
-  auto apply = [&](Stability verdict, std::size_t line, const std::string& key,
-                   const std::string& message, const std::string& advised) {
-    if (verdict == Stability::unstable && !scene.allow_unstable) {
-      throw SceneError(scene.file, line, 0, key, advised);
-    }
-    if (verdict != Stability::stable) {
-      warnings.push_back(fmt::format("{}:{}: {}: {}", scene.file, line, key,
-                                     verdict == Stability::unstable ? advised : message));
-    }
-  };
-  auto body_line = [&](std::size_t i) {
-    return i < scene.source.body_lines.size() ? scene.source.body_lines[i] : std::size_t{0};
-  };
-  // Bodies that links join are judged as a network below, not on their own.
-  const std::vector<bool> linked = linked_bodies(scene.bodies.size(), scene.links);
-  for (const BodyStability& r : check_stability(scene)) {
-    const std::size_t i = r.body.slot();
-    if (linked[i]) continue;
-    apply(r.verdict, body_line(i), fmt::format("body[{}]", i), r.message,
-          with_advice(r.message, r.min_substeps, r.max_step, r.radius, substeps,
-                      scene.allow_unstable));
-  }
-  if (const std::optional<NetworkStability> net = check_scene_network(scene)) {
-    const std::string advised = with_advice(net->message, net->min_substeps, net->max_step,
-                                            net->radius, substeps, scene.allow_unstable);
-    const std::optional<std::size_t> link =
-        net->damping_bound ? net->strongest_damper : net->stiffest_link;
-    if (link) {
-      const std::size_t line =
-          *link < scene.source.link_lines.size() ? scene.source.link_lines[*link] : 0;
-      const bool named =
-          *link < scene.source.link_keys.size() && !scene.source.link_keys[*link].empty();
-      apply(net->verdict, line,
-            named ? scene.source.link_keys[*link] : fmt::format("link[{}]", *link), net->message,
-            advised);
-    } else {
-      const std::size_t i = net->fastest_body.slot();
-      apply(net->verdict, body_line(i), fmt::format("body[{}]", i), net->message, advised);
-    }
+  for (const StabilityFinding& f : findings) {
+    const auto [line, key] = place_of(scene, f);
+    warnings.push_back(
+        fmt::format("{}:{}: {}: {}", scene.file, line, key,
+                    f.verdict == Stability::unstable ? advised(scene, f) : f.message));
   }
   return warnings;
 }
 
 std::string explain_fault(const Scene& scene, const StateFault& fault) {
-  const auto i = fixstep::defined_index(fault.body, scene.bodies.size());
+  const auto i = fixstep::defined_index(fault.body, scene.def.bodies.size());
   const std::size_t line =
       i && *i < scene.source.body_lines.size() ? scene.source.body_lines[*i] : 0;
   return fmt::format("{}{}: {}", scene.file, line ? fmt::format(":{}", line) : std::string(),
-                     explain_fault(scene.bodies, scene.links, scene.settings, fault));
+                     explain_fault(scene.def.bodies, scene.def.links, scene.def.settings, fault));
 }
 
 }  // namespace fixstep

@@ -169,6 +169,7 @@ void write_world(std::string& out, const WorldDef& def) {
                  num(s.dt), integrator_name(s.integrator), precision_name(def.precision),
                  s.substeps);
   if (!s.flush_denormals) out += "flush_denormals = false\n";
+  if (def.allow_unstable) out += "allow_unstable = true\n";
   if (s.seed > std::uint64_t{std::numeric_limits<std::int64_t>::max()}) {
     throw std::invalid_argument(fmt::format(
         "world.seed: {} is above 2^63 - 1, the largest TOML integer; a scene file cannot hold it",
@@ -330,7 +331,7 @@ void write_segments(std::string& out, const WorldDef& def, const std::vector<std
 void check_reloads(const std::string& text, const WorldDef& def) {
   WorldDef back;
   try {
-    back = world_def(parse_scene(text, "<scene text>"));
+    back = parse_scene(text, "<scene text>").def;
   } catch (const SceneError& e) {
     throw std::invalid_argument(fmt::format(
         "format_scene: the world does not load back from its scene text: {}", e.what()));

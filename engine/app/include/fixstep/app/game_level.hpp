@@ -39,19 +39,18 @@ struct Level {
   /// The game after its setup(): what a run plays, and what a restart, a replay and a rollback
   /// copy (so what setup() keeps in the game's members, handles and tags, is kept).
   std::unique_ptr<const AnyGame> game;
-  /// The checks' findings on def (check_definition): the stability guard's warnings.
-  std::vector<std::string> warnings;
 };
 
 /// Loads the scene file `file` (none when empty), prints its warnings, applies the setup() of
-/// a copy of `game` (kept as Level::game; `game` is not changed), then checks the level
-/// (check_definition, with the scene's allow_unstable). Throws SceneError for a bad scene, what
-/// check_definition throws for a level it refuses.
+/// a copy of `game` (kept as Level::game; `game` is not changed). Throws SceneError for a bad
+/// scene. The level is checked where its world is made (World(def): the stability guard, with
+/// the scene's allow_unstable, the limits and the overlaps).
 [[nodiscard]] Level load_level(const AnyGame& game, const Settings& settings,
                                const std::string& file);
 /// The level `rec` was recorded on: the scene it carries, else `scene` (--scene) or the game's
 /// scene file; the game's setup(), then the recorded settings (dt, integrator, precision). The
-/// recorded run ran, so an unstable level is replayed all the same (its limits are checked).
+/// recorded run ran, so an unstable level is replayed all the same (def.allow_unstable; its
+/// limits are checked).
 [[nodiscard]] Level replay_level(const AnyGame& game, const Settings& settings,
                                  const Recording& rec, const std::optional<std::string>& scene);
 /// TickRules that run `game`'s rules (held by reference) and save and restore it by copy.

@@ -80,10 +80,11 @@ inline constexpr double max_frame_ticks = 0x1p30;
 class Session {
  public:
   /// Builds the world (World(def), with WorldSettings::track_dissipation turned on, since the HUD
-  /// shows the energy balance), the loop (ticks of def.settings.dt) and the renderer. Judges
-  /// nothing: check the definition first (check_definition). Throws std::invalid_argument for an
-  /// invalid def (as World(def)), for a max_frame_time that is not finite and > 0 or
-  /// is more than max_frame_ticks ticks, RenderError when rendering cannot start.
+  /// shows the energy balance), the loop (ticks of def.settings.dt) and the renderer. Throws as
+  /// World(def) does (its checks: UnstableDefinition, LimitError, std::invalid_argument), and
+  /// std::invalid_argument for a max_frame_time that is not finite and > 0 or is more than
+  /// max_frame_ticks ticks, RenderError when rendering cannot start. restart() builds the world
+  /// again, checks included.
   explicit Session(WorldDef def, const SessionSettings& settings = {});
   /// As above, with the world already built: `sim` must be World(def) at tick 0, made
   /// with def.settings.track_dissipation on (so that a large world can be built on another

@@ -1,26 +1,53 @@
-// The checks a program makes on a WorldDef before building it: the stability guard, the work
-// limits and the overlap of discs at tick 0. World(def) makes none of them (it builds what it is
-// given, as Box2D's b2CreateWorld does); fixstep's programs and its scene loader call them on
-// every definition that comes from outside (a file, a command line, a game's setup).
+// The checks World(def) makes on a WorldDef before it builds anything: the overlap of discs at
+// tick 0, the work limits and the stability guard. They run on every world a program makes, in
+// that order (the limits bound the guard's power iteration); each is also callable on its own.
 #pragma once
 
+#include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "fixstep/core/world.hpp"
+#include "fixstep/core/stability.hpp"
 #include "fixstep/core/world_def.hpp"
 
 namespace fixstep {
 
+/// One finding of the stability guard on a definition that is not stable (near its bound, or
+/// unstable): a body on its own or the network links join, with the guard's numbers, so that a
+/// program can word what to change (a scene file's line, a game's setting).
+struct StabilityFinding {
+  Stability verdict = Stability::stable;
+  /// The finding, one line: the guard's message (stability.hpp), which states the fault only.
+  std::string message;
+  std::optional<BodyStability> body;        ///< a body no link joins (its index: body.body)
+  std::optional<NetworkStability> network;  ///< the bodies links join
+};
+
+/// What World(def) and check_stability(def) throw for a definition the stability guard finds
+/// unstable when def.allow_unstable is false. what() is the finding's message, then, when some
+/// substep count N makes the step stable, "; stable from substeps = N (dt <= H s)" (H the
+/// largest stable dt at the definition's substeps).
+class UnstableDefinition : public std::invalid_argument {
+ public:
+  /// `finding` unstable, of a definition stepped with `substeps` substeps a tick.
+  UnstableDefinition(StabilityFinding finding, int substeps);
+  /// The guard's finding (verdict unstable).
+  [[nodiscard]] const StabilityFinding& finding() const noexcept { return *finding_; }
+
+ private:
+  static std::string stable_from(const StabilityFinding& f, int substeps);
+  std::shared_ptr<const StabilityFinding> finding_;  // shared: an exception copies nothrow
+};
+
 /// The stability guard on a whole definition, at def.settings' dt, integrator and substeps:
 /// check_stability (stability.hpp) for the bodies no link joins and check_linked_stability for
-/// the rest. Returns its warnings, one message each (a body or network within 10 % of its bound;
-/// with allow_unstable, an unstable one). Throws std::invalid_argument with the guard's first
-/// finding of an unstable body or network and the smallest stable substep count ("...; stable
-/// from substeps = N (dt <= H s)"), unless allow_unstable (for demos that show a blow-up on
+/// the rest. Returns the findings that are not stable (a body or network within 10 % of its
+/// bound; with def.allow_unstable, an unstable one), bodies first. Throws UnstableDefinition
+/// for the first unstable finding unless def.allow_unstable (for demos that show a blow-up on
 /// purpose). Throws as check_linked_stability for links that are not def's.
-[[nodiscard]] std::vector<std::string> check_stability(const WorldDef& def,
-                                                       bool allow_unstable = false);
+[[nodiscard]] std::vector<StabilityFinding> check_stability(const WorldDef& def);
 
 /// Throws LimitError (limits.hpp) when one tick of def's world would exceed max_tick_work or its
 /// implicit solve max_implicit_bodies or max_implicit_solve_bytes: check_world_limits of def.
@@ -31,10 +58,9 @@ void check_limits(const WorldDef& def);
 /// (first_disc_overlap, disc_overlap.hpp); nothing without contacts.
 void check_overlaps(const WorldDef& def);
 
-/// The three checks in the order fixstep's programs make them: overlaps, limits (before the
-/// guard's power iteration, which they bound), then the stability guard. Returns the guard's
-/// warnings; throws as each check.
-[[nodiscard]] std::vector<std::string> check_definition(const WorldDef& def,
-                                                        bool allow_unstable = false);
+/// The three checks in the order World(def) makes them: overlaps, limits (before the guard's
+/// power iteration, which they bound), then the stability guard. Returns the guard's findings
+/// (World::warnings()); throws as each check.
+[[nodiscard]] std::vector<StabilityFinding> check_definition(const WorldDef& def);
 
 }  // namespace fixstep

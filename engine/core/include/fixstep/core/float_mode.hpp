@@ -5,7 +5,7 @@
 // World::step, accelerations, create_body, create_link, set_body, add_plane and the lazy
 // rebuild of the force terms after a component changed; the readers of scenes, recordings and
 // input scripts (strtod rounds by the mode); PointerDrag::apply; and the stability verdicts
-// (judge_stability, enforce_stability), so a scene is accepted or refused the same everywhere.
+// (judge_stability, check_stability), so a world is accepted or refused the same everywhere.
 // Subnormals are flushed in software instead, the same on every platform
 // (WorldSettings::flush_denormals, world_step.cpp). A game's own rules (TickRules), which run
 // between ticks in the caller's mode, can hold one too.

@@ -37,6 +37,7 @@ struct QueryFilter;                  // query.hpp
 struct QueryHit;                     // query.hpp
 struct RayHit;                       // query.hpp
 class Random;                        // random.hpp
+struct StabilityFinding;             // definition_checks.hpp
 
 namespace detail {
 struct WorldState;     // the kernel behind a World (engine/core/src/world_state.hpp)
@@ -77,16 +78,17 @@ class World {
   World& operator=(World&& other) noexcept;
   ~World();
 
-  /// An empty world of `precision` stepped with `settings`. Throws std::invalid_argument on
-  /// invalid settings (dt not finite and > 0, substeps < 1, ...).
-  World(Precision precision, const WorldSettings& settings);
-  /// Builds the world `def` describes: a World with def.precision and def.settings, then the
-  /// bodies in order, the links, the planes and the segments. Throws std::invalid_argument for
-  /// invalid settings, bodies, links, planes or segments (the message names the body and field;
-  /// for a plane, plane[i]; for a segment, segment[i]), and for a link whose end is not one of
-  /// def's bodies. It judges nothing else: the stability guard, the work limits and the overlap of
-  /// discs at tick 0 are the program's explicit calls (check_definition, definition_checks.hpp),
-  /// made before building.
+  /// The one way to make a world: checks `def` (check_definition, definition_checks.hpp: the
+  /// overlap of discs at tick 0, the work limits, the stability guard), then builds a World with
+  /// def.precision and def.settings and the bodies in order, the links, the planes and the
+  /// segments. The guard's findings that did not refuse the definition (near the bound, or
+  /// unstable with def.allow_unstable) are kept in warnings(). Throws UnstableDefinition (a
+  /// std::invalid_argument) for an unstable body or network unless def.allow_unstable,
+  /// std::invalid_argument for discs overlapping at tick 0 (naming both) and for invalid
+  /// settings, bodies, links, planes or segments (the message names the body and field; for a
+  /// plane, plane[i]; for a segment, segment[i]; for a link whose end is not one of def's
+  /// bodies, link[i]), LimitError (limits.hpp) when a tick would exceed the work limits, and
+  /// StopRequested (stop_request.hpp) when a stop is requested while the guard iterates.
   explicit World(const WorldDef& def);
 
   /// The precision the world steps in (WorldDef::precision).
@@ -103,6 +105,10 @@ class World {
   /// def.bodies[i]'s (a destroyed one stays listed, stale). Empty for a world built without a
   /// WorldDef.
   [[nodiscard]] std::span<const Entity> defined_bodies() const;
+  /// The stability guard's findings on the definition World(def) built (near the bound, or
+  /// unstable and allowed), bodies first: what a program shows as warnings. Kept by copies;
+  /// not part of a snapshot.
+  [[nodiscard]] std::span<const StabilityFinding> warnings() const;
   /// Destroys the body, its components and its links; throws std::invalid_argument if stale.
   void destroy(Entity e);
   /// Whether e names a live body (false for the null handle and destroyed bodies).
@@ -327,6 +333,8 @@ class World {
   decltype(auto) visit(F&& f) const;
   /// The queries' grid is out of date (a step or an edit of the discs).
   void queries_changed();
+  /// Adds def's bodies, links, planes and segments to this empty world (World(def)).
+  void build(const WorldDef& def);
 
   std::unique_ptr<detail::WorldState> state_;
 };

@@ -14,9 +14,9 @@
 
 namespace fixstep {
 
-/// Everything a world is built from: what a scene file describes (see scene.hpp), or what a
-/// program writes in code. The one definition the frame pipeline (Session, render library)
-/// and the command line start from.
+/// Everything a world is built from: what a scene file describes (Scene::def, scene.hpp), or
+/// what a program writes in code. World(def) is the one way to make a world: it checks the
+/// definition (definition_checks.hpp) and builds it.
 struct WorldDef {
   Precision precision = Precision::f64;
   WorldSettings settings;        ///< dt (s), integrator, substeps, ... (see WorldSettings)
@@ -27,6 +27,20 @@ struct WorldDef {
   /// handle add_body returned) colliders stay out of; polylines as their segments
   /// (polyline_segments, add_polyline). After the planes in every order.
   std::vector<SegmentDef> segments;
+  /// Whether the stability guard warns instead of refusing (World(def) then builds an unstable
+  /// world and reports the finding in World::warnings()): for demos that show a blow-up on
+  /// purpose.
+  bool allow_unstable = false;
+
+  /// A definition of no bodies, links, planes or segments in `precision` stepped with
+  /// `settings`: the start of a world a program fills after making it (World::create_body,
+  /// add_plane, ...), World(WorldDef::empty(precision, settings)).
+  [[nodiscard]] static WorldDef empty(Precision precision, const WorldSettings& settings) {
+    WorldDef def;
+    def.precision = precision;
+    def.settings = settings;
+    return def;
+  }
 
   /// Appends `body` and returns the handle World(def) will give it (World::defined_bodies()
   /// lists the same handles), for the links and per-body inputs a program writes before the

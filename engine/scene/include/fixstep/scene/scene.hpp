@@ -98,10 +98,11 @@ struct SceneSourceMap {
   std::vector<std::size_t> segment_lines;
 };
 
-/// A parsed, validated scene: the WorldDef it describes, plus its view and its source map.
-/// Being a WorldDef, it builds a world as one (World(scene), or make_world(scene) with the
-/// stability guard); its settings keep the dissipation account
+/// A parsed, validated scene: the WorldDef it describes (def: World(scene.def) builds its world,
+/// checking it; scene_stability.hpp locates the stability guard's findings in the file), plus
+/// its view and its source map. Its settings keep the dissipation account
 /// (WorldSettings::track_dissipation), so a scene's summaries and HUD show the energy balance.
+/// def holds:
 ///   - settings: [world] dt (s), integrator, substeps, ...; [contacts] (settings.contacts);
 ///   - bodies: [[body]] tables in file order, then the bodies of [[chain]] and [[grid]] tables
 ///     (in file order, each in its own order); names unique;
@@ -112,13 +113,13 @@ struct SceneSourceMap {
 ///   - segments: [[segment]] tables in file order, then the segments of [[polyline]] tables
 ///     (in file order, each joined by ghost vertices: SegmentDef); a table's `body` names the
 ///     kinematic body carrying its segments (SegmentDef::body, that body's handle).
-struct Scene : WorldDef {
+struct Scene {
+  /// What the file describes; [world] allow_unstable is def.allow_unstable (the stability guard
+  /// warns instead of refusing, for demos that show blow-ups on purpose).
+  WorldDef def;
   std::string file;  ///< where it came from (for messages)
   SceneView view;
   SceneSourceMap source;
-  /// [world] allow_unstable: the stability guard warns instead of refusing (for demos that
-  /// show blow-ups on purpose).
-  bool allow_unstable = false;
   std::vector<std::string> warnings;  ///< non-fatal findings (unknown keys, with suggestions)
   /// The bytes the scene was parsed from, exactly (at most max_scene_bytes): what a recording
   /// of its world embeds (Recording::scene_text), so that it replays without the file.
@@ -157,18 +158,5 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 [[nodiscard]] Scene load_scene(const std::filesystem::path& file);
 /// As load_scene, from text; `source_name` is used in messages.
 [[nodiscard]] Scene parse_scene(std::string_view text, const std::string& source_name);
-
-/// The scene's world as a WorldDef (precision, settings, bodies, links, planes): the
-/// definition the scene holds, copied.
-[[nodiscard]] inline WorldDef world_def(const Scene& scene) {
-  return scene;
-}
-
-/// Builds the world a scene describes, after the stability guard (enforce_stability,
-/// scene_stability.hpp): throws SceneError naming the body, ω·h, the bound and the smallest stable
-/// substep count when a body is unstable and the scene does not allow it. Throws
-/// std::invalid_argument if a value is not representable in the scene's precision (the loader
-/// checks this first).
-[[nodiscard]] World make_world(const Scene& scene);
 
 }  // namespace fixstep

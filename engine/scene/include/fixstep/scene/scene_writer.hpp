@@ -29,8 +29,8 @@ namespace fixstep {
 ///     radius differs from the collider's (or with no collider, from 0.5 m) is `draw_radius`.
 ///   - not written, as they change no state and the hash leaves them out: settings.threads
 ///     (reloads as 0, automatic) and settings.track_dissipation (a scene keeps the account:
-///     true). flush_denormals is written only when false; allow_unstable never (a WorldDef has
-///     none: the stability guard is the program's call, check_definition). The contacts'
+///     true). flush_denormals is written only when false, allow_unstable only when true
+///     (World(def) then warns instead of refusing; the hash leaves it out). The contacts'
 ///     sleep_speed and sleep_time are written only with sleep on, and only when not the
 ///     defaults: with sleep off they do nothing, the hash leaves them out, and they reload as
 ///     the defaults.
