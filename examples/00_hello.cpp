@@ -1,10 +1,7 @@
 // The smallest fixstep program: a world made in code, stepped at a fixed dt, its bodies'
 // positions printed. fixstep::core alone: no renderer, no window, no file.
 #include <cstdio>
-#include <fixstep/core/components.hpp>
-#include <fixstep/core/world.hpp>
-#include <fixstep/core/world_def.hpp>
-#include <fixstep/core/world_settings.hpp>
+#include <fixstep/core.hpp>  // all of fixstep::core
 
 int main() {
   using namespace fixstep;

@@ -7,12 +7,8 @@
 // does the rest: the window, headless frames, --record, --replay, --sync-test and --help.
 #include <algorithm>
 #include <cstdint>
-#include <fixstep/app/app.hpp>
-#include <fixstep/core/components.hpp>
-#include <fixstep/core/input.hpp>
-#include <fixstep/core/random.hpp>
-#include <fixstep/core/step_results.hpp>
-#include <fixstep/core/world_def.hpp>
+#include <fixstep/app.hpp>   // fixstep::app: app::run and what a game draws with
+#include <fixstep/core.hpp>  // fixstep::core: the world, its bodies and their input
 #include <string>
 #include <vector>
 
