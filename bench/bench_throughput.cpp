@@ -44,6 +44,7 @@
 #include "fixstep/core/world_settings.hpp"
 #include "flush_denormals.hpp"
 #include "median_run.hpp"
+#include "simd_targets.hpp"
 #include "world_kernel.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "simd_targets.hpp"
+
 namespace fixstep {
 
 namespace {

@@ -12,6 +12,7 @@
 #include "fixstep/core/simd.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "phase_clock.hpp"
+#include "simd_targets.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
