@@ -387,28 +387,4 @@ std::size_t DiscContacts<Real>::bytes() const {
          b(sw_);
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                                  \
-  template void DiscContacts<Real>::rebuild(std::vector<Disc>, std::vector<std::uint64_t>,         \
-                                            std::vector<CollisionFilter>, const ContactSettings&); \
-  template void DiscContacts<Real>::set_accelerations(std::span<const Real>,                       \
-                                                      std::span<const Real>);                      \
-  template void DiscContacts<Real>::save_start(const Real*, const Real*, const Real*, const Real*, \
-                                               const Real*);                                       \
-  template void DiscContacts<Real>::save_spin_start(const Real*);                                  \
-  template void DiscContacts<Real>::build_motions(const Tick&);                                    \
-  template void DiscContacts<Real>::build_motions(const Tick&, std::size_t, std::size_t);          \
-  template bool DiscContacts<Real>::find_candidates(const Tick&, ContactStats&);                   \
-  template void DiscContacts<Real>::predict(std::uint32_t, double, double);                        \
-  template bool DiscContacts<Real>::next_event(std::uint32_t, double, double, DiscEvent&) const;   \
-  template void DiscContacts<Real>::first_events(const Tick&);                                     \
-  template void DiscContacts<Real>::impact(std::uint32_t, double, double);                         \
-  template void DiscContacts<Real>::run_events(const Tick&, ContactStats&);                        \
-  template std::uint32_t DiscContacts<Real>::largest_box() const;                                  \
-  template bool DiscContacts<Real>::handed_over(std::uint32_t, double) const;                      \
-  template void DiscContacts<Real>::resolve(const Tick&, ContactStats&, StepProfile&);             \
-  template std::size_t DiscContacts<Real>::bytes() const;
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep::detail

@@ -143,16 +143,4 @@ RestContact DiscContacts<Real>::wall_contact(std::uint32_t k, std::uint32_t b, d
   return c;
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                             \
-  template void DiscContacts<Real>::gather_contacts(const Tick&);                             \
-  template bool DiscContacts<Real>::pair_contact(const Tick&, const DiscPair&, RestContact*)  \
-      const;                                                                                  \
-  template void DiscContacts<Real>::plane_contacts_of(const Tick&, std::uint32_t,             \
-                                                      std::vector<RestContact>&) const;       \
-  template RestContact DiscContacts<Real>::wall_contact(std::uint32_t, std::uint32_t, double, \
-                                                        double, double) const;
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep::detail

@@ -80,9 +80,4 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
   stats.across = count[2];
 }
 
-#define FIXSTEP_INSTANTIATE(Real) template void DiscContacts<Real>::split_contacts(ContactStats&);
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep::detail

@@ -323,19 +323,4 @@ void DiscContacts<Real>::finish(const Tick& tick, std::size_t begin, std::size_t
   }
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                              \
-  template void DiscContacts<Real>::match_warm();                                              \
-  template void DiscContacts<Real>::warm_start();                                              \
-  template void DiscContacts<Real>::solve_resting(const Tick&, ContactStats&);                 \
-  template void DiscContacts<Real>::solve_velocities(ContactStats&);                           \
-  template void DiscContacts<Real>::push_out(const Tick&, ContactStats&);                      \
-  template double DiscContacts<Real>::overlap_of(const Tick&, std::uint32_t, double&, double&) \
-      const;                                                                                   \
-  template void DiscContacts<Real>::keep_impulses();                                           \
-  template void DiscContacts<Real>::finish(const Tick&);                                       \
-  template void DiscContacts<Real>::finish(const Tick&, std::size_t, std::size_t);
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep::detail

@@ -110,11 +110,4 @@ void DiscContacts<Real>::scatter_rows(double kdt) {
   parts_pass(move);
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                 \
-  template void DiscContacts<Real>::build_rows(); \
-  template void DiscContacts<Real>::scatter_rows(double);
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep::detail

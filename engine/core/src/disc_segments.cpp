@@ -50,12 +50,4 @@ double DiscContacts<Real>::segment_overlap_of(const Tick& tick, const RestContac
   return c.radii - t.distance;
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                                  \
-  template void DiscContacts<Real>::gather_segment_contacts(const Tick&, std::uint32_t);           \
-  template double DiscContacts<Real>::segment_overlap_of(const Tick&, const RestContact&, double&, \
-                                                         double&) const;
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep::detail

@@ -59,9 +59,4 @@ void DiscContacts<Real>::detect_sensors(const Tick& tick) {
   }
 }
 
-template void DiscContacts<float>::sort_out_pairs();
-template void DiscContacts<double>::sort_out_pairs();
-template void DiscContacts<float>::detect_sensors(const Tick&);
-template void DiscContacts<double>::detect_sensors(const Tick&);
-
 }  // namespace fixstep::detail

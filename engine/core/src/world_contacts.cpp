@@ -318,24 +318,4 @@ void detail::WorldKernel<Real>::store_plane_way(std::size_t k, std::uint32_t j, 
   }
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                                 \
-  template std::size_t detail::WorldKernel<Real>::add_plane(const PlaneDef&);                     \
-  template void detail::WorldKernel<Real>::rebuild_contacts();                                    \
-  template void detail::WorldKernel<Real>::save_contact_start();                                  \
-  template std::size_t detail::WorldKernel<Real>::resolve_contacts();                             \
-  template void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t, PlaneTally&);       \
-  template void detail::WorldKernel<Real>::push_out_of_surfaces(PlaneWay&, double, double);       \
-  template void detail::WorldKernel<Real>::follow_plane_impacts(PlaneWay&, std::uint32_t, double, \
-                                                                PlaneTally&);                     \
-  template bool detail::WorldKernel<Real>::keep_bouncing(const PlaneWay&, std::uint32_t,          \
-                                                         const PlaneDef&, double, std::uint64_t,  \
-                                                         std::uint32_t, PlaneTally&);             \
-  template bool detail::WorldKernel<Real>::touch_at_tick_end(                                     \
-      PlaneWay&, plane_contact::V2, plane_contact::V2, plane_contact::V2, double);                \
-  template void detail::WorldKernel<Real>::store_plane_way(std::size_t, std::uint32_t, PlaneWay&, \
-                                                           PlaneTally&);
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep

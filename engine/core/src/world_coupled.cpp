@@ -388,12 +388,4 @@ void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
   if (bad.load(std::memory_order_relaxed) && !fault_) record_fault();
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                            \
-  template void detail::WorldKernel<Real>::step_multipass(const TickInput&); \
-  template void detail::WorldKernel<Real>::rebuild_network();                \
-  template const detail::WorldKernel<Real>::LinkFlow& detail::WorldKernel<Real>::link_flow(double);
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep

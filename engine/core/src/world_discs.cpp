@@ -223,15 +223,4 @@ std::span<const Impact> detail::WorldKernel<Real>::impacts() const {
   return impacts_;
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                              \
-  template std::span<const Impact> detail::WorldKernel<Real>::impacts() const; \
-  template void detail::WorldKernel<Real>::rebuild_discs();                    \
-  template void detail::WorldKernel<Real>::rebuild_immovable();                \
-  template void detail::WorldKernel<Real>::save_tick_start(bool);              \
-  template void detail::WorldKernel<Real>::restore_immovable();                \
-  template void detail::WorldKernel<Real>::resolve_discs();
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep

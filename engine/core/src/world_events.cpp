@@ -113,9 +113,4 @@ void detail::WorldKernel<Real>::end_disc_events() {
   }
 }
 
-template void detail::WorldKernel<float>::update_contact_events();
-template void detail::WorldKernel<double>::update_contact_events();
-template void detail::WorldKernel<float>::end_disc_events();
-template void detail::WorldKernel<double>::end_disc_events();
-
 }  // namespace fixstep

@@ -395,12 +395,6 @@ bool detail::WorldKernel<Real>::step_implicit_network(Real h, const Real push[2]
   }
 }
 
-template detail::ImplicitSolver<float>& detail::WorldKernel<float>::implicit_solver();
-template detail::ImplicitSolver<double>& detail::WorldKernel<double>::implicit_solver();
-template std::pair<double*, double*> detail::WorldKernel<float>::implicit_accelerations();
-template std::pair<double*, double*> detail::WorldKernel<double>::implicit_accelerations();
-template bool detail::WorldKernel<float>::step_implicit_network(float, const float[2]);
-template bool detail::WorldKernel<double>::step_implicit_network(double, const double[2]);
 template struct detail::ImplicitSolverDeleter<float>;
 template struct detail::ImplicitSolverDeleter<double>;
 

@@ -158,16 +158,4 @@ void detail::WorldKernel<Real>::integrate_with_input(const TickInput& input, boo
   if (immovable) restore_immovable();
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                              \
-  template void detail::WorldKernel<Real>::apply_input(const TickInput&);                      \
-  template void detail::WorldKernel<Real>::integrate_with_input(const TickInput&, bool, bool); \
-  template void detail::WorldKernel<Real>::apply_body_inputs(const TickInput&);                \
-  template bool detail::WorldKernel<Real>::add_input_forces(const TickInput&);                 \
-  template void detail::WorldKernel<Real>::remove_input_forces();                              \
-  template void detail::WorldKernel<Real>::fold_push(Vec2);                                    \
-  template void detail::WorldKernel<Real>::unfold_push();
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep

@@ -612,7 +612,5 @@ std::uint64_t detail::WorldKernel<Real>::state_hash() const {
 }
 
 // Force evaluation and the integrators are in world_step.cpp, instantiated there.
-template class detail::WorldKernel<float>;
-template class detail::WorldKernel<double>;
 
 }  // namespace fixstep

@@ -63,7 +63,4 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
   return n;
 }
 
-template std::size_t detail::WorldKernel<float>::snapshot_bytes() const;
-template std::size_t detail::WorldKernel<double>::snapshot_bytes() const;
-
 }  // namespace fixstep

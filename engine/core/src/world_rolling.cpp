@@ -33,9 +33,4 @@ void detail::WorldKernel<Real>::integrate_angles() {
   }
 }
 
-template void detail::WorldKernel<float>::rebuild_inertia();
-template void detail::WorldKernel<double>::rebuild_inertia();
-template void detail::WorldKernel<float>::integrate_angles();
-template void detail::WorldKernel<double>::integrate_angles();
-
 }  // namespace fixstep

@@ -135,16 +135,4 @@ double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion& m, doub
   return first;
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                                  \
-  template std::size_t detail::WorldKernel<Real>::add_segment(const SegmentDef&);                  \
-  template bool detail::WorldKernel<Real>::segment_overlap(double, double, double, double, double, \
-                                                           PlaneDef&, Vec2&);                      \
-  template void detail::WorldKernel<Real>::place_segments();                                       \
-  template double detail::WorldKernel<Real>::first_segment_hit(                                    \
-      const SegmentMotion&, double, double, double, double, double, PlaneDef&, Vec2&,              \
-      std::uint32_t&, std::uint64_t&);
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep

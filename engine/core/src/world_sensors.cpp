@@ -66,9 +66,4 @@ void detail::WorldKernel<Real>::update_sensor_events() {
   }
 }
 
-template void detail::WorldKernel<float>::check_sensor(const Collider&, const std::string&) const;
-template void detail::WorldKernel<double>::check_sensor(const Collider&, const std::string&) const;
-template void detail::WorldKernel<float>::update_sensor_events();
-template void detail::WorldKernel<double>::update_sensor_events();
-
 }  // namespace fixstep

@@ -327,25 +327,4 @@ void detail::WorldKernel<Real>::finish_sleep(const TickInput& input, bool discs)
   contact_stats_.sleeper_contacts = sleeper_contacts_;
 }
 
-#define FIXSTEP_INSTANTIATE(Real)                                                                \
-  template std::uint32_t detail::WorldKernel<Real>::sleep_ticks(const ContactSettings&, double); \
-  template void detail::WorldKernel<Real>::reset_sleep();                                        \
-  template void detail::WorldKernel<Real>::wake(std::size_t);                                    \
-  template bool detail::WorldKernel<Real>::mark_awake(std::size_t);                              \
-  template void detail::WorldKernel<Real>::wake_labelled();                                      \
-  template void detail::WorldKernel<Real>::wake_for_input(const TickInput&);                     \
-  template void detail::WorldKernel<Real>::wake_near_movers();                                   \
-  template void detail::WorldKernel<Real>::wake_by_segments();                                   \
-  template const detail::QueryGrid& detail::WorldKernel<Real>::sleeper_grid();                   \
-  template void detail::WorldKernel<Real>::quiet_discs();                                        \
-  template void detail::WorldKernel<Real>::finish_sleep(const TickInput&, bool);                 \
-  template bool detail::WorldKernel<Real>::discs_at_rest() const;                                \
-  template void detail::WorldKernel<Real>::join_islands();                                       \
-  template void detail::WorldKernel<Real>::fall_asleep(std::size_t, std::uint32_t);              \
-  template std::uint32_t detail::WorldKernel<Real>::take_island_number();                        \
-  template void detail::WorldKernel<Real>::update_sleep(const TickInput&);
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep

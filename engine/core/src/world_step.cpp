@@ -295,22 +295,4 @@ void detail::WorldKernel<Real>::record_cap_fault(std::size_t body, const char* c
                       .with = with};
 }
 
-// world.hpp declares `extern template class detail::WorldKernel<Real>`, so every member defined in
-// this file is instantiated here explicitly.
-#define FIXSTEP_INSTANTIATE(Real)                                                               \
-  template void detail::WorldKernel<Real>::keep_previous_positions();                           \
-  template void detail::WorldKernel<Real>::flush_state_subnormals();                            \
-  template void detail::WorldKernel<Real>::integrate(const TickInput&);                         \
-  template void detail::WorldKernel<Real>::apply_drag(const TickInput&);                        \
-  template void detail::WorldKernel<Real>::accelerations(std::span<Real>, std::span<Real>,      \
-                                                         const TickInput&);                     \
-  template std::size_t detail::WorldKernel<Real>::bytes_per_body_step();                        \
-  template void detail::WorldKernel<Real>::record_fault();                                      \
-  template void detail::WorldKernel<Real>::record_cap_fault(std::size_t, const char*,           \
-                                                            std::uint64_t, const std::string&); \
-  template const Real* detail::WorldKernel<Real>::damping_decay(double);
-FIXSTEP_INSTANTIATE(float)
-FIXSTEP_INSTANTIATE(double)
-#undef FIXSTEP_INSTANTIATE
-
 }  // namespace fixstep

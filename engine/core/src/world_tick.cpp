@@ -66,9 +66,4 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   flush_state_subnormals();  // world_step.cpp
 }
 
-template void detail::WorldKernel<float>::step(const TickInput&);
-template void detail::WorldKernel<double>::step(const TickInput&);
-template detail::WorldKernel<float>::TickPlan detail::WorldKernel<float>::plan_tick() const;
-template detail::WorldKernel<double>::TickPlan detail::WorldKernel<double>::plan_tick() const;
-
 }  // namespace fixstep

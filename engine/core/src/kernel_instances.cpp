@@ -1,0 +1,39 @@
+// The world's kernel, WorldKernel<Real> (world_kernel.hpp), and its disc contacts,
+// DiscContacts<Real> (disc_contacts.hpp), are class templates whose members are defined across
+// the files below, one concept a file. They are compiled here as one translation unit, so that
+// each class template is instantiated once, explicitly, for float and for double, instead of
+// each file listing its own members (world_kernel.hpp declares the instantiations extern).
+//
+// The unit is the per-tick hot path, built at -O3 (engine/CMakeLists.txt): GCC vectorizes the
+// sweeps' loops only there (at -O2 its "very cheap" cost model refuses loops that need a scalar
+// remainder). -ffp-contract=off holds as everywhere, so no level changes a result.
+#include "disc_events.cpp"     // discs: motions, candidates, impacts in time order
+#include "disc_gather.cpp"     // discs: the resting contacts gathered
+#include "disc_halves.cpp"     // discs: a pile in two halves
+#include "disc_rest.cpp"       // discs: the resting solver
+#include "disc_rows.cpp"       // discs: the solver's rows
+#include "disc_segments.cpp"   // discs: resting on segments
+#include "disc_sensors.cpp"    // discs: filters and sensors
+#include "world_contacts.cpp"  // planes
+#include "world_coupled.cpp"   // links: the multi-pass integration
+#include "world_discs.cpp"     // disc contacts, the world's side
+#include "world_events.cpp"    // contact events
+#include "world_implicit.cpp"  // links: implicit Euler's sparse solve
+#include "world_input.cpp"     // a tick's input
+#include "world_kernel.cpp"    // construction, bodies and components, the force terms
+#include "world_memory.cpp"    // what a snapshot holds
+#include "world_rolling.cpp"   // rolling discs' angles
+#include "world_segments.cpp"  // segments and polylines
+#include "world_sensors.cpp"   // sensors
+#include "world_sleep.cpp"     // sleeping islands
+#include "world_step.cpp"      // the fused sweep and the integrators
+#include "world_tick.cpp"      // a tick's phases in order
+
+namespace fixstep::detail {
+
+template class WorldKernel<float>;
+template class WorldKernel<double>;
+template class DiscContacts<float>;
+template class DiscContacts<double>;
+
+}  // namespace fixstep::detail
