@@ -169,7 +169,8 @@ void World::step(const TickInput& input) {
   queries_changed();
 }
 void World::step() {
-  step(TickInput{});
+  static const TickInput none{};  // made once: a tick without input costs no TickInput
+  step(none);
 }
 void World::set_keep_previous(bool keep) {
   visit([&](auto& w) { w.set_keep_previous(keep); });

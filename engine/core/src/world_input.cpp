@@ -134,7 +134,7 @@ void detail::WorldKernel<Real>::apply_input(const TickInput& input) {
     if (sleep_ && sleepers_ != 0) wake_by_segments();
   }
   if (immovable_dirty_) rebuild_immovable();  // sleepers woken above step from here on
-  if (bodies_.contains(input.drag_body) &&
+  if (!input.drag_body.is_null() && bodies_.contains(input.drag_body) &&
       types_[bodies_.index(input.drag_body)] == BodyType::dynamic) {
     apply_drag(input);  // world_step.cpp
   }

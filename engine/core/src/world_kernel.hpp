@@ -33,6 +33,15 @@
 #include "fixstep/core/world_settings.hpp"
 #include "segment_set.hpp"
 
+/// The small phases of a tick (world_tick.cpp): named functions in the files they belong to,
+/// inlined into WorldKernel::step (kernel_instances.cpp compiles them in one unit), so that a
+/// tick of a few bodies pays no call for a phase it does not need.
+#if defined(__GNUC__) || defined(__clang__)
+#define FIXSTEP_TICK_PHASE [[gnu::always_inline]] inline
+#else
+#define FIXSTEP_TICK_PHASE inline
+#endif
+
 namespace fixstep {
 
 namespace plane_contact {
@@ -529,16 +538,16 @@ class WorldKernel {
     bool own_worker = false;  ///< the integration has a worker thread of its own (links)
     int threads = 1;          ///< threads the disc phases may use
   };
-  [[nodiscard]] TickPlan plan_tick() const;
+  [[nodiscard]] FIXSTEP_TICK_PHASE TickPlan plan_tick() const;
   /// The tick's input at its start: islands woken, impulses, kinematic velocities, carried
   /// segments placed, the pointer's drag (world_input.cpp).
-  void apply_input(const TickInput& input);
+  FIXSTEP_TICK_PHASE void apply_input(const TickInput& input);
   /// The integration with the tick's per-body forces and push, the contacts' and the
   /// immovable bodies' start states saved before it and put back after (world_input.cpp).
-  void integrate_with_input(const TickInput& input, bool immovable, bool discs);
-  void keep_previous_positions();  ///< previous_x/y for interpolation (world_step.cpp)
+  FIXSTEP_TICK_PHASE void integrate_with_input(const TickInput& input, bool immovable, bool discs);
+  FIXSTEP_TICK_PHASE void keep_previous_positions();  ///< previous_x/y (world_step.cpp)
   /// WorldSettings::flush_denormals, every flush_denormals_every ticks (world_step.cpp).
-  void flush_state_subnormals();
+  FIXSTEP_TICK_PHASE void flush_state_subnormals();
 
   // Contacts with static half-planes (world_contacts.cpp). The scratch holds, for each body
   // with a Collider, its dense index, radius and start-of-tick state (SoA), sized in
@@ -671,10 +680,10 @@ class WorldKernel {
   void quiet_discs();
   /// The sleeping islands after a tick (update_sleep when the disc phases ran) and their
   /// counts in contact_stats_.
-  void finish_sleep(const TickInput& input, bool discs);
+  FIXSTEP_TICK_PHASE void finish_sleep(const TickInput& input, bool discs);
   /// A tick without disc phases: the last tick's pairs and sensor overlaps end
   /// (world_events.cpp).
-  void end_disc_events();
+  FIXSTEP_TICK_PHASE void end_disc_events();
   // Contact events (world_events.cpp): the touching pairs after the last tick and before it,
   // as handle pairs sorted by slot; part of a snapshot, so events after a restore are the same.
   std::vector<ContactEvent> touching_, touching_before_, hits_;  // normal_speed unused, hits_
