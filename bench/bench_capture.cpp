@@ -39,11 +39,11 @@
 #include <vector>
 
 #include "../tests/support/scene_session.hpp"
+#include "fixstep/app/session.hpp"
 #include "fixstep/capture/capture.hpp"
+#include "fixstep/capture/video.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/app/session.hpp"
-#include "fixstep/capture/video.hpp"
 #include "many_bodies.hpp"
 
 // The naive baseline: stb_image_write exactly as fixstep used it before libdeflate (built-in

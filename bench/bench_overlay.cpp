@@ -26,10 +26,10 @@
 
 #include "../tests/support/overlay_shapes.hpp"
 #include "../tests/support/scene_session.hpp"
-#include "fixstep/capture/capture.hpp"
-#include "fixstep/render/draw_list.hpp"
-#include "fixstep/core/loop.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/capture/capture.hpp"
+#include "fixstep/core/loop.hpp"
+#include "fixstep/render/draw_list.hpp"
 #include "many_bodies.hpp"
 
 namespace {

@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <fixstep/io/output_target.hpp>
 #include <fixstep/capture/video_limits.hpp>
+#include <fixstep/io/output_target.hpp>
 
 #include "capture_dir.hpp"
 

@@ -4,9 +4,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fixstep/app/session.hpp>
 #include <fixstep/capture/capture.hpp>
 #include <fixstep/capture/manifest.hpp>
-#include <fixstep/app/session.hpp>
 #include <fixstep/capture/video.hpp>
 #include <optional>
 #include <span>

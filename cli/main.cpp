@@ -17,8 +17,8 @@
 #include <cstdio>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/stop_request.hpp>
-#include <fixstep/scene/suggest.hpp>
 #include <fixstep/io/write_signals.hpp>
+#include <fixstep/scene/suggest.hpp>
 
 #include "capture_sink.hpp"
 #include "commands.hpp"

@@ -7,8 +7,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
-#include <fixstep/io/output_target.hpp>
 #include <fixstep/core/stop_request.hpp>
+#include <fixstep/io/output_target.hpp>
 #include <optional>
 #include <stdexcept>
 #include <system_error>

@@ -9,8 +9,8 @@
 #include <array>
 #include <cmath>
 
-#include "fixstep/render/draw_list.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/render/draw_list.hpp"
 
 namespace fixstep::web {
 

@@ -5,8 +5,8 @@
 
 #include <cstdint>
 #include <fixstep/core/integrators.hpp>
-#include <fixstep/plot.hpp>
 #include <fixstep/core/world.hpp>
+#include <fixstep/plot.hpp>
 #include <string>
 #include <vector>
 

@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/capture/video.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/scene/scene.hpp"
-#include "fixstep/capture/video.hpp"
 #include "scene_session.hpp"
 #include "video_decode.hpp"
 

@@ -13,8 +13,8 @@
 #include <string>
 
 #include "determinism_cases.hpp"
-#include "fixstep/io/summary.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/io/summary.hpp"
 
 int main(int argc, char** argv) {
   using namespace fixstep;

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "../../bench/many_bodies.hpp"  // bench_overlay's scene
-#include "fixstep/render/draw_list.hpp"
-#include "fixstep/core/loop.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/core/loop.hpp"
+#include "fixstep/render/draw_list.hpp"
 #include "overlay_shapes.hpp"
 #include "scene_session.hpp"
 #include "soft_shapes.hpp"

@@ -45,8 +45,7 @@ inline std::vector<BodyStability> check_stability(const Scene& scene) {
 /// check_linked_stability (stability.hpp) of the scene; nullopt without links.
 inline std::optional<NetworkStability> check_scene_network(const Scene& scene) {
   const WorldSettings& s = scene.def.settings;
-  return check_linked_stability(scene.def.bodies, scene.def.links, s.integrator, s.dt,
-                                s.substeps);
+  return check_linked_stability(scene.def.bodies, scene.def.links, s.integrator, s.dt, s.substeps);
 }
 
 }  // namespace fixstep::test

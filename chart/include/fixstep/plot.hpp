@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "fixstep/render/render.hpp"
 #include "fixstep/core/types.hpp"
+#include "fixstep/render/render.hpp"
 
 namespace fixstep {
 

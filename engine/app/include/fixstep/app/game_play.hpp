@@ -9,10 +9,10 @@
 #include <string_view>
 
 #include "fixstep/app/game_level.hpp"
-#include "fixstep/core/input.hpp"
 #include "fixstep/app/overlay.hpp"
-#include "fixstep/core/recording.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/recording.hpp"
 
 namespace fixstep::app::detail {
 

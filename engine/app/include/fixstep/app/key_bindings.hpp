@@ -1,5 +1,5 @@
-// What every fixstep loop does with its user's events (fixstep/render/user_events.hpp): the loop keys
-// (pause, single step, time scale) applied to the FixedStepLoop, the tick-input part (button
+// What every fixstep loop does with its user's events (fixstep/render/user_events.hpp): the loop
+// keys (pause, single step, time scale) applied to the FixedStepLoop, the tick-input part (button
 // edges, pointer) handed to the InputSampler, and the held arrow buttons as a push.
 #pragma once
 
@@ -8,8 +8,8 @@
 
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/loop.hpp"
-#include "fixstep/render/render.hpp"
 #include "fixstep/core/types.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/render/user_events.hpp"
 
 namespace fixstep {

@@ -10,9 +10,9 @@
 #include <string_view>
 #include <vector>
 
+#include "fixstep/core/world.hpp"
 #include "fixstep/render/draw_list.hpp"
 #include "fixstep/render/render.hpp"
-#include "fixstep/core/world.hpp"
 
 namespace fixstep {
 class Session;

@@ -3,8 +3,8 @@
 // of its own to link.
 #pragma once
 
-#include "fixstep/scene/scene.hpp"
 #include "fixstep/app/session.hpp"
+#include "fixstep/scene/scene.hpp"
 
 namespace fixstep {
 

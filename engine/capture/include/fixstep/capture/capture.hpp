@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "fixstep/io/atomic_output.hpp"
 #include "fixstep/capture/frame_pipeline.hpp"
+#include "fixstep/io/atomic_output.hpp"
 
 namespace fixstep {
 

@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
-#include "fixstep/render/frame_data.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/render/frame_data.hpp"
 
 namespace fixstep {
 

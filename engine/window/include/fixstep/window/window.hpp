@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/render/render.hpp"
 #include "fixstep/core/types.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/render/user_events.hpp"
 
 namespace fixstep {
