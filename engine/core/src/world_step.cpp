@@ -21,39 +21,44 @@ namespace fixstep {
 
 namespace {
 
-/// Runs step(x, y, vx, vy, field) on every body: one pass, each body's state loaded and stored
-/// once, each declared coefficient read once. The restrict-qualified parameters promise the
-/// compiler that the arrays do not overlap, so it can vectorize the loop (see the -O3 note in
-/// engine/CMakeLists.txt). Pointers of parts the Field leaves out may be null. Inlined into
-/// one function per SimdLevel (below), which the compiler vectorizes for that level.
-#define FIXSTEP_SWEEP_PARAMS                                                                       \
-  std::size_t n, Real *__restrict x, Real *__restrict y, Real *__restrict vx, Real *__restrict vy, \
-      const Real *__restrict k, const Real *__restrict anchor_x, const Real *__restrict anchor_y,  \
-      const Real *__restrict rest, const Real *__restrict gamma, const Real *__restrict cx,        \
-      const Real *__restrict cy, const Real *__restrict decay0, const Real *__restrict decay1,     \
-      const Real push[2], Step step
-#define FIXSTEP_SWEEP_ARGS \
-  n, x, y, vx, vy, k, anchor_x, anchor_y, rest, gamma, cx, cy, decay0, decay1, push, step
+/// What the fused sweep reads and writes, by pointer: the bodies' state (m, m/s), the field's
+/// coefficient arrays (World::Coefficients; BodyField names their units), the damping decay
+/// factors of velocity Verlet and Forest–Ruth, and the tick's push (m/s²). The pointers are
+/// restrict-qualified members of a struct taken by value, which GCC honours as it does restrict
+/// parameters: the arrays do not overlap, so it can vectorize the loop (see the -O3 note in
+/// engine/CMakeLists.txt). Pointers of parts the Field leaves out may be null.
+template <class Real>
+struct SweepArrays {
+  std::size_t n;
+  Real* __restrict x, * __restrict y, * __restrict vx, * __restrict vy;
+  const Real* __restrict k, * __restrict anchor_x, * __restrict anchor_y, * __restrict rest;
+  const Real* __restrict gamma, * __restrict cx, * __restrict cy;
+  const Real* __restrict decay0, * __restrict decay1;
+  Real push_x, push_y;
+};
 
-/// Returns true if some body's new state is out of range (NaN, ±inf or beyond
-/// max_state_magnitude): the runtime guard, an OR of compares on values still in registers.
+/// Runs step(x, y, vx, vy, field) on every body: one pass, each body's state loaded and stored
+/// once, each declared coefficient read once. Inlined into one function per SimdLevel (below),
+/// which the compiler vectorizes for that level. Returns true if some body's new state is out
+/// of range (NaN, ±inf or beyond max_state_magnitude): the runtime guard, an OR of compares on
+/// values still in registers.
 template <class Field, class Real, class Step>
-[[gnu::always_inline]] inline bool sweep_loop(FIXSTEP_SWEEP_PARAMS) {
-  const Real push_x = push[0], push_y = push[1];
+[[gnu::always_inline]] inline bool sweep_loop(SweepArrays<Real> a, Step step) {
+  Real* __restrict x = a.x, * __restrict y = a.y, * __restrict vx = a.vx, * __restrict vy = a.vy;
   const Real limit = static_cast<Real>(max_state_magnitude);
   // A conditional reduction in Real (GCC vectorizes this select at every level; an integer
   // OR of the compares is not vectorized for doubles on SSE2).
   Real out_of_range = 0;
-  for (std::size_t j = 0; j < n; ++j) {
+  for (std::size_t j = 0; j < a.n; ++j) {
     Field f;
     if constexpr (Field::shape != SpringShape::none) {
-      f.k = k[j], f.anchor_x = anchor_x[j], f.anchor_y = anchor_y[j];
+      f.k = a.k[j], f.anchor_x = a.anchor_x[j], f.anchor_y = a.anchor_y[j];
     }
-    if constexpr (Field::shape == SpringShape::rest_length) f.rest = rest[j];
-    if constexpr (Field::damped && Field::decays == 0) f.gamma = gamma[j];
-    if constexpr (Field::damped && Field::decays >= 1) f.decay[0] = decay0[j];
-    if constexpr (Field::damped && Field::decays >= 2) f.decay[1] = decay1[j];
-    if constexpr (Field::accel) f.cx = cx[j] + push_x, f.cy = cy[j] + push_y;
+    if constexpr (Field::shape == SpringShape::rest_length) f.rest = a.rest[j];
+    if constexpr (Field::damped && Field::decays == 0) f.gamma = a.gamma[j];
+    if constexpr (Field::damped && Field::decays >= 1) f.decay[0] = a.decay0[j];
+    if constexpr (Field::damped && Field::decays >= 2) f.decay[1] = a.decay1[j];
+    if constexpr (Field::accel) f.cx = a.cx[j] + a.push_x, f.cy = a.cy[j] + a.push_y;
     Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j];
     step(X, Y, VX, VY, f);
     x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
@@ -70,33 +75,31 @@ template <class Field, class Real, class Step>
 // linkage (anonymous namespace) and inline everything they call that is marked always_inline,
 // so no code compiled for a wider ISA can be picked by the linker for a baseline caller.
 template <class Field, class Real, class Step>
-[[gnu::noinline]] bool sweep_baseline(FIXSTEP_SWEEP_PARAMS) {
-  return sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+[[gnu::noinline]] bool sweep_baseline(SweepArrays<Real> a, Step step) {
+  return sweep_loop<Field>(a, step);
 }
 #if FIXSTEP_HAS_SIMD_CLONES
 template <class Field, class Real, class Step>
-FIXSTEP_TARGET_AVX2 bool sweep_avx2(FIXSTEP_SWEEP_PARAMS) {
-  return sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+FIXSTEP_TARGET_AVX2 bool sweep_avx2(SweepArrays<Real> a, Step step) {
+  return sweep_loop<Field>(a, step);
 }
 template <class Field, class Real, class Step>
-FIXSTEP_TARGET_AVX512 bool sweep_avx512(FIXSTEP_SWEEP_PARAMS) {
-  return sweep_loop<Field>(FIXSTEP_SWEEP_ARGS);
+FIXSTEP_TARGET_AVX512 bool sweep_avx512(SweepArrays<Real> a, Step step) {
+  return sweep_loop<Field>(a, step);
 }
 #endif
 
 /// The sweep at the level in use (simd_level(); chosen once per tick, not per body). Returns
 /// true if some body's state went out of range.
 template <class Field, class Real, class Step>
-bool sweep(SimdLevel level, FIXSTEP_SWEEP_PARAMS) {
+bool sweep(SimdLevel level, SweepArrays<Real> a, Step step) {
 #if FIXSTEP_HAS_SIMD_CLONES
-  if (level == SimdLevel::avx512) return sweep_avx512<Field>(FIXSTEP_SWEEP_ARGS);
-  if (level == SimdLevel::avx2) return sweep_avx2<Field>(FIXSTEP_SWEEP_ARGS);
+  if (level == SimdLevel::avx512) return sweep_avx512<Field>(a, step);
+  if (level == SimdLevel::avx2) return sweep_avx2<Field>(a, step);
 #endif
   (void)level;
-  return sweep_baseline<Field>(FIXSTEP_SWEEP_ARGS);
+  return sweep_baseline<Field>(a, step);
 }
-#undef FIXSTEP_SWEEP_PARAMS
-#undef FIXSTEP_SWEEP_ARGS
 
 /// Sets every subnormal value of v (0 < |v| < the least normal) to zero of its sign: the
 /// software flush of WorldSettings::flush_denormals. Plain compares and copies, so the same on
@@ -228,10 +231,23 @@ void detail::WorldKernel<Real>::integrate(const TickInput& input) {
   const SimdLevel level = simd_level();
   bool out_of_range = false;
   auto run = [&](auto field, const Real* decay0, const Real* decay1, auto step_fn) {
-    out_of_range |= sweep<decltype(field)>(level, n, x_.data(), y_.data(), vx_.data(), vy_.data(),
-                                           c.stiffness.data(), c.anchor_x.data(), c.anchor_y.data(),
-                                           c.rest.data(), c.gamma.data(), c.accel_x.data(),
-                                           c.accel_y.data(), decay0, decay1, push, step_fn);
+    const SweepArrays<Real> arrays{.n = n,
+                                   .x = x_.data(),
+                                   .y = y_.data(),
+                                   .vx = vx_.data(),
+                                   .vy = vy_.data(),
+                                   .k = c.stiffness.data(),
+                                   .anchor_x = c.anchor_x.data(),
+                                   .anchor_y = c.anchor_y.data(),
+                                   .rest = c.rest.data(),
+                                   .gamma = c.gamma.data(),
+                                   .cx = c.accel_x.data(),
+                                   .cy = c.accel_y.data(),
+                                   .decay0 = decay0,
+                                   .decay1 = decay1,
+                                   .push_x = push[0],
+                                   .push_y = push[1]};
+    out_of_range |= sweep<decltype(field)>(level, arrays, step_fn);
   };
 
   StepSizes<Real> sizes{h, static_cast<Real>(forest_ruth_w1 * double(h)),
