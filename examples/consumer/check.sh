@@ -27,6 +27,15 @@ check_program() {  # check_program HOW BINARY
 
 # 1. Installed package + find_package(fixstep 0.3 REQUIRED COMPONENTS core io).
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
+# The installed headers hold no kernel: no detail/ folder, no world_kernel.hpp; and a program
+# that includes fixstep/core/world.hpp compiles against fewer than 600 lines of fixstep headers.
+kernel=$(find "$work/prefix/include" \( -name detail -o -name world_kernel.hpp \) -print)
+[[ -z $kernel ]] || fail "the installed headers hold the kernel: $kernel"
+echo '#include <fixstep/core/world.hpp>' >"$work/world_only.cpp"
+lines=$(c++ -std=c++20 -M -I"$work/prefix/include" "$work/world_only.cpp" | tr ' \\' '\n\n' |
+        grep "^$work/prefix/include/fixstep/" | sort -u | xargs cat | wc -l)
+((lines < 600)) || fail "fixstep/core/world.hpp brings $lines lines of fixstep headers (at most 600)"
+echo "consumer: installed headers hold no kernel; fixstep/core/world.hpp brings $lines lines"
 cmake -S "$src/examples/consumer" -B "$work/installed" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$work/prefix" >/dev/null
 cmake --build "$work/installed" >/dev/null
