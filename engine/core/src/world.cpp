@@ -258,7 +258,8 @@ std::uint64_t WorldSnapshot::tick() const {
 
 void World::save(WorldSnapshot& out) const {
   if (!out.state_) {
-    out.state_.reset(new detail::SnapshotState{state_->kernel, state_->random});
+    out.state_ = std::make_unique<detail::SnapshotState>(
+        detail::SnapshotState{.kernel = state_->kernel, .random = state_->random});
     return;
   }
   // The kernel's copy-assignment keeps the vectors' storage when the precision matches.
