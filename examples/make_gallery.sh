@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's gallery: runs every example (ctest's example_* tests, which write
+# Regenerates the examples' gallery (docs/LIBRARY.md): runs every example (ctest's example_* tests, which write
 # their PNGs into BUILD_DIR/examples/gallery) and copies the PNGs to examples/gallery/.
 # Usage: bash examples/make_gallery.sh [BUILD_DIR]   (default build/ci; build it first)
 set -euo pipefail
