@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Regenerates the examples' gallery (docs/LIBRARY.md): runs every example (ctest's example_* tests, which write
-# their PNGs into BUILD_DIR/examples/gallery) and copies the PNGs to examples/gallery/.
+# Regenerates the examples' gallery (docs/LIBRARY.md): runs every example (ctest's example_*
+# tests, which write their PNGs into BUILD_DIR/examples/gallery) and copies the PNGs to
+# examples/gallery/.
 # Usage: bash examples/make_gallery.sh [BUILD_DIR]   (default build/ci; build it first)
 set -euo pipefail
 cd "$(dirname "$0")/.."
