@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <fixstep/core/step_results.hpp>
+#include <fixstep/core/world_settings.hpp>
 
 namespace fixstep::cli {
 

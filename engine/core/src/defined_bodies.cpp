@@ -5,6 +5,9 @@
 
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world_def.hpp"
+
 namespace fixstep {
 
 std::vector<IndexLink> index_links(std::span<const LinkDef> links, std::size_t bodies) {

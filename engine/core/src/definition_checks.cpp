@@ -9,6 +9,8 @@
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/stability.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "stability_verdict.hpp"
 
 namespace fixstep {

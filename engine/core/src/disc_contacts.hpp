@@ -55,6 +55,7 @@
 #include "disc_broadphase.hpp"
 #include "disc_records.hpp"
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep::detail {

@@ -6,8 +6,11 @@
 
 #include "disc_contacts.hpp"
 #include "disc_toi.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/limits.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "phase_clock.hpp"
 
 namespace fixstep::detail {

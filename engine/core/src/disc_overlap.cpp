@@ -12,8 +12,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/det_math.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

@@ -10,6 +10,8 @@
 #include <type_traits>
 
 #include "disc_contacts.hpp"
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 
 namespace fixstep::detail {

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
+
 namespace fixstep::exact {
 namespace {
 

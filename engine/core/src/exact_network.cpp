@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/exact.hpp"
 

@@ -6,8 +6,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/stability.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

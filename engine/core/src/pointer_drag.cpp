@@ -7,8 +7,10 @@
 #include <optional>
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/det_math.hpp"
 #include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/input.hpp"
 
 namespace fixstep {
 

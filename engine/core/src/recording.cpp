@@ -8,9 +8,14 @@
 #include <type_traits>
 
 #include "fixstep/core/bits.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/fnv1a.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/work_progress.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

@@ -9,7 +9,11 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "stability_internal.hpp"
 #include "stability_verdict.hpp"
 #include "world_kernel.hpp"

@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/stability.hpp"
 

@@ -25,10 +25,12 @@
 #include <limits>
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/det_math.hpp"
 #include "fixstep/core/stability.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/work_progress.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "stability_internal.hpp"
 #include "stability_verdict.hpp"
 #include "world_kernel.hpp"

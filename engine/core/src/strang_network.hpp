@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "link_damping.hpp"
 #include "link_passes.hpp"

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "fixstep/core/bits.hpp"
+#include "fixstep/core/input.hpp"
 
 namespace fixstep {
 

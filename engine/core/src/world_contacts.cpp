@@ -55,9 +55,11 @@
 #include <span>
 #include <stdexcept>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/det_math.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/limits.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "plane_contact.hpp"
 #include "world_kernel.hpp"

@@ -19,8 +19,11 @@
 
 #include "body_field.hpp"
 #include "fixstep/core/bits.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/det_math.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/stop_request.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "link_damping.hpp"
 #include "link_passes.hpp"
 #include "strang_network.hpp"

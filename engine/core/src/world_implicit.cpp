@@ -24,7 +24,9 @@
 #include <limits>
 #include <new>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/limits.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "world_kernel.hpp"
 

@@ -8,8 +8,11 @@
 #include <stdexcept>
 
 #include "fixstep/core/bits.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/fnv1a.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
 

@@ -29,6 +29,7 @@
 #include "fixstep/core/entity.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/integrators.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "segment_set.hpp"

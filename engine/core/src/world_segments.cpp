@@ -14,8 +14,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/limits.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {

@@ -7,9 +7,12 @@
 
 #include "body_field.hpp"
 #include "disc_contacts.hpp"
+#include "fixstep/core/components.hpp"
 #include "fixstep/core/det_math.hpp"
 #include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/simd.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "phase_clock.hpp"
 #include "simd_targets.hpp"

@@ -4,6 +4,8 @@
 
 #include "disc_contacts.hpp"
 #include "fixstep/core/float_mode.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "phase_clock.hpp"
 #include "second_thread.hpp"
 #include "workers.hpp"
