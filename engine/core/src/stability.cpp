@@ -86,17 +86,12 @@ void judge_body(const BodyDef& def, Integrator integrator, double dt, int subste
   r.max_step = max_stable_step(integrator, r.omega, r.gamma);
   r.radius = amplification(integrator, r.omega, r.gamma, r.h);
   const bool spring = r.omega > 0.0;
-  detail::GuardFinding f{.subject = fmt::format("body '{}'", def.name),
-                         .method = integrator_name(integrator),
-                         .dt = dt,
-                         .substeps = substeps,
-                         .h = r.h,
-                         .max_step = r.max_step,
-                         .radius = r.radius,
-                         .step_name = spring ? "ω·h" : "γ·h",
-                         .rate = spring ? r.omega : r.gamma,
-                         .named_max_step = r.max_step,
-                         .rates = {{{"ω", r.omega, "rad/s"}, {"γ", r.gamma, "1/s"}, {}}}};
+  detail::GuardFinding f =
+      detail::finding_of(fmt::format("body '{}'", def.name), integrator, dt, substeps, r);
+  f.step_name = spring ? "ω·h" : "γ·h";
+  f.rate = spring ? r.omega : r.gamma;
+  f.named_max_step = r.max_step;
+  f.rates = {{{"ω", r.omega, "rad/s"}, {"γ", r.gamma, "1/s"}, {}}};
   detail::Judgement j = detail::judge(f, [&](double h) {
     return amplification(integrator, r.omega, r.gamma, h) > 1.0 + detail::stability_tolerance;
   });

@@ -387,23 +387,17 @@ void judge_network(std::span<const BodyDef> bodies, std::span<const fixstep::Ind
                    Integrator integrator, double dt, int substeps, const TestModes& tm,
                    const TestModes::Mode& b, NetworkStability& r) {
   const bool swept = r.damping_bound && tm.damped_links && strang(integrator);
-  detail::GuardFinding f{
-      .subject = network_subject(bodies.size(), links.size()),
-      .method = integrator_name(integrator),
-      .dt = dt,
-      .substeps = substeps,
-      .h = r.h,
-      .max_step = r.max_step,
-      .radius = r.radius,
-      .step_name = r.damping_bound ? "λ_max(M⁻¹C)·h" : "ω_max·h",
-      .rate = r.damping_bound ? b.gamma : b.omega,
-      .named_max_step = b.max_step,
-      .bound_name = swept ? "bound of its swept link damping" : "stability bound",
-      .rates = {{{"ω_max", r.omega_max, "rad/s"},
-                 {"γ", r.gamma, "1/s"},
-                 {"λ_max(M⁻¹C)", r.damping_rate, "1/s"}}},
-      .naming = name_culprits(bodies, links, r),
-      .infinite_diverges = true};
+  detail::GuardFinding f =
+      detail::finding_of(network_subject(bodies.size(), links.size()), integrator, dt, substeps, r);
+  f.step_name = r.damping_bound ? "λ_max(M⁻¹C)·h" : "ω_max·h";
+  f.rate = r.damping_bound ? b.gamma : b.omega;
+  f.named_max_step = b.max_step;
+  f.bound_name = swept ? "bound of its swept link damping" : "stability bound";
+  f.rates = {{{"ω_max", r.omega_max, "rad/s"},
+              {"γ", r.gamma, "1/s"},
+              {"λ_max(M⁻¹C)", r.damping_rate, "1/s"}}};
+  f.naming = name_culprits(bodies, links, r);
+  f.infinite_diverges = true;
   detail::Judgement j = detail::judge(f, [&](double h) { return tm.unstable(h); });
   r.verdict = j.verdict, r.min_substeps = j.min_substeps, r.message = std::move(j.message);
 }

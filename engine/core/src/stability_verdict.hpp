@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "fixstep/core/stability.hpp"
 
@@ -86,6 +87,20 @@ struct GuardFinding {
   /// measure) instead of "growth infx per step".
   bool infinite_diverges = false;
 };
+
+/// A finding of `subject` at step dt / substeps (s) of `integrator`, its step, bound and radius
+/// taken from the guard's result `r` (BodyStability or NetworkStability: h, max_step, radius);
+/// the caller names the mode and its rates.
+template <class Result>
+[[nodiscard]] GuardFinding finding_of(std::string subject, Integrator integrator, double dt,
+                                      int substeps, const Result& r) {
+  GuardFinding f;
+  f.subject = std::move(subject);
+  f.method = integrator_name(integrator);
+  f.dt = dt, f.substeps = substeps;
+  f.h = r.h, f.max_step = r.max_step, f.radius = r.radius;
+  return f;
+}
 
 /// A guard's verdict, the smallest stable substep count for dt (0 = none: stable, or
 /// unstable at every step) and the message (empty when stable).
