@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fixstep/core/components.hpp>
 #include <fixstep/core/input.hpp>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/recording.hpp>
 #include <fixstep/core/work_progress.hpp>
+#include <fixstep/core/world.hpp>
 #include <fixstep/core/world_def.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/io/recording_writer.hpp>
@@ -119,6 +121,17 @@ TEST(Limits, CheckLimitsRefusesATickBeyondTheWorkLimitBeforeStepping) {
   }
   def.settings.substeps = 500'000;  // 9.995e8: within
   EXPECT_NO_THROW(check_limits(def));
+}
+
+TEST(Limits, WorldRefusesATickBeyondTheWorkLimitBeforeItBuilds) {
+  // World(def) checks the limits before it builds anything: a body with a NaN mass, which the
+  // build would name, is not reached.
+  WorldDef def = chain(1000);
+  def.settings.substeps = 1'000'000;
+  def.bodies.back().body.mass = std::nan("");
+  EXPECT_THROW((void)World(def), LimitError);
+  def.settings.substeps = 1;
+  EXPECT_THROW((void)World(def), std::invalid_argument);  // now the build names the body
 }
 
 TEST(Limits, TheSceneLoaderNamesTheSubstepsLine) {

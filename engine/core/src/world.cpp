@@ -283,8 +283,10 @@ World::World(const WorldDef& def)
           .random = Random(def.settings.seed),
           .warnings = {},
           .queries = {}})) {
-  build(def);  // validates every body, link, plane and segment, naming it
-  state_->warnings = check_definition(def);
+  check_limits(def);  // before anything is allocated for the bodies and links
+  build(def);         // validates every body, link, plane and segment, naming it
+  check_overlaps(def);
+  state_->warnings = check_stability(def);
 }
 
 std::span<const StabilityFinding> World::warnings() const {

@@ -58,8 +58,9 @@ void check_limits(const WorldDef& def);
 /// (first_disc_overlap, disc_overlap.hpp); nothing without contacts.
 void check_overlaps(const WorldDef& def);
 
-/// The three checks in the order World(def) makes them: overlaps, limits (before the guard's
-/// power iteration, which they bound), then the stability guard. Returns the guard's findings
+/// The three checks on their own: overlaps, limits (before the guard's power iteration, which
+/// they bound), then the stability guard (World(def) makes the same, the limits before it
+/// builds anything). Returns the guard's findings
 /// (World::warnings()); throws as each check.
 [[nodiscard]] std::vector<StabilityFinding> check_definition(const WorldDef& def);
 

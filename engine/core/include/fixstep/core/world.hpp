@@ -78,17 +78,18 @@ class World {
   World& operator=(World&& other) noexcept;
   ~World();
 
-  /// The one way to make a world: checks `def` (check_definition, definition_checks.hpp: the
-  /// overlap of discs at tick 0, the work limits, the stability guard), then builds a World with
-  /// def.precision and def.settings and the bodies in order, the links, the planes and the
-  /// segments. The guard's findings that did not refuse the definition (near the bound, or
-  /// unstable with def.allow_unstable) are kept in warnings(). Throws UnstableDefinition (a
-  /// std::invalid_argument) for an unstable body or network unless def.allow_unstable,
-  /// std::invalid_argument for discs overlapping at tick 0 (naming both) and for invalid
-  /// settings, bodies, links, planes or segments (the message names the body and field; for a
-  /// plane, plane[i]; for a segment, segment[i]; for a link whose end is not one of def's
-  /// bodies, link[i]), LimitError (limits.hpp) when a tick would exceed the work limits, and
-  /// StopRequested (stop_request.hpp) when a stop is requested while the guard iterates.
+  /// The one way to make a world, checked (definition_checks.hpp): the work limits first,
+  /// before anything is allocated for the bodies; then a World with def.precision and
+  /// def.settings and the bodies in order, the links, the planes and the segments, each
+  /// validated; then the overlap of discs at tick 0 and the stability guard. The guard's findings
+  /// that did not refuse the definition (near the bound, or unstable with def.allow_unstable) are
+  /// kept in warnings(). Throws UnstableDefinition (a std::invalid_argument) for an unstable body
+  /// or network unless def.allow_unstable, std::invalid_argument for discs overlapping at tick 0
+  /// (naming both) and for invalid settings, bodies, links, planes or segments (the message names
+  /// the body and field; for a plane, plane[i]; for a segment, segment[i]; for a link whose end is
+  /// not one of def's bodies, link[i]), LimitError (limits.hpp) when a tick would exceed the work
+  /// limits, and StopRequested (stop_request.hpp) when a stop is requested while the guard
+  /// iterates.
   explicit World(const WorldDef& def);
 
   /// The precision the world steps in (WorldDef::precision).
