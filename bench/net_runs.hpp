@@ -152,11 +152,13 @@ inline std::vector<NetResult> run_cases(const std::vector<NetCase>& cases, doubl
         net::MatchPeer::host(def, cases[i].settings, {"127.0.0.1", 0}));
     r.link = std::make_unique<net::LinkConditioner>(net::Address{"127.0.0.1", r.host->port()},
                                                     cases[i].link);
+    net::MatchSettings joining = cases[i].settings;
+    joining.token = r.host->token();
     r.joiner = std::make_unique<net::MatchPeer>(
-        net::MatchPeer::join(def, cases[i].settings, {"127.0.0.1", r.link->port()}));
+        net::MatchPeer::join(def, joining, {"127.0.0.1", r.link->port()}));
     for (int k = 2; k < cases[i].settings.players; ++k) {
       r.others.push_back(std::make_unique<net::MatchPeer>(
-          net::MatchPeer::join(def, cases[i].settings, {"127.0.0.1", r.link->port()})));
+          net::MatchPeer::join(def, joining, {"127.0.0.1", r.link->port()})));
     }
     r.started = r.next_frame = detail::now_ms();
   }

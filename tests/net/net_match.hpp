@@ -168,6 +168,9 @@ struct Match {
   std::vector<std::uint32_t> prev_held;
 };
 
+/// The match token of the tests' matches (host and joiners share their settings).
+inline constexpr const char* test_token = "00112233445566778899aabbccddeeff";
+
 inline net::MatchSettings match(std::uint8_t players, std::uint64_t ticks) {
   net::MatchSettings s;
   s.players = players;
@@ -180,6 +183,7 @@ inline net::MatchSettings match(std::uint8_t players, std::uint64_t ticks) {
   s.send_interval_ms = 0;
   s.scene_name = billiards().file;
   s.scene_text = billiards().text;
+  s.token = test_token;
   return s;
 }
 

@@ -49,9 +49,11 @@ inline std::uint64_t dropped(const net::MatchPeer& p, net::PacketError e) {
   return p.stats().dropped[static_cast<std::size_t>(e)];
 }
 
-/// A raw transport connected to `host` (ENet's handshake only; at most 2 s).
+/// A raw transport connected to `host` (the gate's cookie with the host's token, and ENet's
+/// handshake; at most 2 s).
 inline net::Transport connect_raw(net::MatchPeer& host) {
-  net::Transport raw = net::Transport::connect({"127.0.0.1", host.port()});
+  net::Transport raw =
+      net::Transport::connect({"127.0.0.1", host.port()}, {}, {}, net::parse_token(host.token()));
   for (int k = 0; k < 2000 && raw.poll(1).kind != net::TransportEvent::Kind::connected; ++k) {
     host.poll(0);
   }

@@ -242,10 +242,7 @@ TEST(Lockstep, APlayerPlaysTicksOutOnItsOwnInputsClock) {
 TEST(Lockstep, HostilePacketsAreDroppedAndCountedWithoutAmplification) {
   MatchSettings s = match(2, 0);
   MatchPeer host = MatchPeer::host(billiards().def, s, {"127.0.0.1", 0});
-  net::Transport raw = net::Transport::connect({"127.0.0.1", host.port()});
-  for (int k = 0; k < 2000 && raw.poll(1).kind != net::TransportEvent::Kind::connected; ++k) {
-    host.poll(0);
-  }
+  net::Transport raw = connect_raw(host);
   // Before the handshake: garbage, a foreign protocol, inputs; no answer at all.
   const std::vector<std::uint8_t> garbage(100, 0xab);
   raw.send(0, garbage, net::Channel::unreliable);

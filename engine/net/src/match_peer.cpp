@@ -21,6 +21,11 @@ void check_settings(const MatchSettings& s) {
         fmt::format("match: players must be 2 .. {} (got {})", max_players, s.players));
   }
   if (s.hash_every < 1) throw std::invalid_argument("match: hash_every must be >= 1 tick");
+  if (!s.token.empty() && !parse_token(s.token)) {
+    throw std::invalid_argument(
+        fmt::format("match: the token must be 32 hexadecimal digits (got {} characters)",
+                    s.token.size()));
+  }
 }
 
 std::unique_ptr<MatchPeer::Impl> make_impl(const WorldDef& def, const MatchSettings& settings,
@@ -88,18 +93,29 @@ MatchPeer MatchPeer::host(const WorldDef& def, const MatchSettings& settings, co
   check_settings(settings);
   auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
   impl->is_host = true;
-  impl->transport.emplace(
-      Transport::listen(bind, max_players - 1 + max_spectators, enet_timeouts(settings)));
+  impl->token = settings.token.empty() ? random_gate_key() : *parse_token(settings.token);
+  impl->transport.emplace(Transport::listen(bind, max_players - 1 + max_spectators,
+                                            enet_timeouts(settings), impl->token));
   impl->start(settings.players, 0);
   return MatchPeer(std::move(impl));
 }
 
 MatchPeer MatchPeer::join(const WorldDef& def, const MatchSettings& settings, const Address& host,
                           bool spectator, TickRules rules, InputMerge merge, const Address& bind) {
+  const std::optional<GateKey> token = parse_token(settings.token);
+  if (!token) {
+    throw std::invalid_argument(
+        settings.token.empty()
+            ? "match: joining needs the host's token (MatchSettings::token; a game's --token: "
+              "the 32 hexadecimal digits the host prints)"
+            : fmt::format("match: the token must be 32 hexadecimal digits (got {} characters)",
+                          settings.token.size()));
+  }
   auto impl = make_impl(def, settings, std::move(rules), std::move(merge));
   impl->spectator = spectator;
   impl->host_address = host;
-  impl->transport.emplace(Transport::connect(host, enet_timeouts(settings), bind));
+  impl->token = *token;
+  impl->transport.emplace(Transport::connect(host, enet_timeouts(settings), bind, *token));
   detail::Remote r;
   r.conn = 0;
   r.slot = 0;
@@ -333,6 +349,12 @@ std::uint8_t MatchPeer::players() const {
 }
 std::uint16_t MatchPeer::port() const {
   return impl_->transport->port();
+}
+std::string MatchPeer::token() const {
+  return format_token(impl_->token);
+}
+GateCounters MatchPeer::gate_counters() const {
+  return impl_->transport->gate_counters();
 }
 const World& MatchPeer::world() const {
   return *impl_->world;

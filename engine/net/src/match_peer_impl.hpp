@@ -100,6 +100,7 @@ struct MatchPeer::Impl {
   std::map<std::uint64_t, std::uint64_t> own_hashes;            ///< tick -> our state hash
   std::multimap<std::uint64_t, StateHashMessage> their_hashes;  ///< not compared yet
   std::uint32_t nonce = 0;
+  GateKey token{};  ///< the match's (net_gate.hpp)
   double started_at = 0.0;
   double stall_since = -1.0;
   std::uint8_t spectators = 0;

@@ -39,6 +39,15 @@ DecodeContext MatchPeer::Impl::context(const detail::Remote& r) const {
 
 void MatchPeer::Impl::handle(const TransportEvent& ev, double now) {
   using Kind = TransportEvent::Kind;
+  if (ev.kind == Kind::refused) {
+    if (state == MatchState::connecting) {
+      fail(fmt::format(
+          "the host at {}:{} refused our token: it is not this match's (MatchSettings::token, a "
+          "game's --token: the 32 hexadecimal digits the host printed)",
+          host_address.host, host_address.port));
+    }
+    return;
+  }
   if (ev.kind == Kind::connected) {
     if (is_host) {
       detail::Remote r;

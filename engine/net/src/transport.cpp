@@ -2,8 +2,11 @@
 #include <enet/enet.h>
 #include <fmt/format.h>
 
+#include <chrono>
 #include <mutex>
+#include <optional>
 
+#include "fixstep/net/net_gate.hpp"
 #include "fixstep/net/net_transport.hpp"
 
 namespace fixstep::net {
@@ -42,12 +45,55 @@ void compress(ENetHost* host) {
   }
 }
 
+double gate_clock_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+/// A datagram sent on the host's socket past ENet (the gate's).
+void send_raw(ENetHost* host, const ENetAddress& to, std::span<const std::uint8_t> bytes) {
+  ENetBuffer buffer;
+  buffer.data = const_cast<std::uint8_t*>(bytes.data());  // ENet's C API: not written
+  buffer.dataLength = bytes.size();
+  (void)enet_socket_send(host->socket, &to, &buffer, 1);
+}
+
+/// A joiner's resend interval of its cookie request while ENet's connection is not up.
+constexpr double gate_retry_ms = 500.0;
+
 }  // namespace
 
 struct Transport::Impl {
   ENetHost* host = nullptr;
   std::vector<ENetPeer*> peers;  ///< by id (ENet's incomingPeerID on a listening host)
   TimeoutSettings timeouts;
+  std::uint64_t raw_datagrams_sent = 0, raw_bytes_sent = 0;  ///< the gate's, past ENet
+  // A listening host with a token: the gate before ENet.
+  std::optional<HostGate> gate;
+  // A connecting transport with a token: the cookie exchange before ENet's connect.
+  std::optional<JoinerGate> joiner;
+  ENetAddress remote{};
+  double last_request_ms = -1e300;
+  bool connect_due = false, refused = false, refused_reported = false;
+  std::vector<std::uint8_t> scratch;
+
+  void send_gate(const ENetAddress& to, std::span<const std::uint8_t> bytes) {
+    send_raw(host, to, bytes);
+    ++raw_datagrams_sent;
+    raw_bytes_sent += bytes.size();
+  }
+  [[nodiscard]] bool has_peer_at(const ENetAddress& a) const {
+    for (std::size_t i = 0; i < host->peerCount; ++i) {
+      const ENetPeer& p = host->peers[i];
+      if (p.state != ENET_PEER_STATE_DISCONNECTED && p.address.host == a.host &&
+          p.address.port == a.port)
+        return true;
+    }
+    return false;
+  }
+  int intercept();
+  std::optional<TransportEvent> joiner_step();
   ~Impl() {
     if (host != nullptr) enet_host_destroy(host);
   }
@@ -61,12 +107,85 @@ struct Transport::Impl {
   }
 };
 
+namespace {
+
+/// The transport whose host is being serviced now (ENet's intercept callback has no user
+/// pointer; a transport is used from one thread).
+thread_local Transport::Impl* servicing = nullptr;
+
+int ENET_CALLBACK intercept(ENetHost* host, ENetEvent* /*event*/) {
+  Transport::Impl* impl = servicing;
+  return impl != nullptr && impl->host == host ? impl->intercept() : 0;
+}
+
+}  // namespace
+
+int Transport::Impl::intercept() {
+  const ENetAddress from = host->receivedAddress;
+  const std::span<const std::uint8_t> bytes(host->receivedData, host->receivedDataLength);
+  if (gate) {
+    switch (gate->on_datagram(from.host, from.port, bytes, gate_clock_ms(), has_peer_at(from), scratch)) {
+      case GateVerdict::to_enet:
+        return 0;
+      case GateVerdict::reply:
+        send_gate(from, scratch);
+        return 1;
+      case GateVerdict::drop:
+        return 1;
+    }
+  }
+  if (joiner) {
+    if (from.host != remote.host || from.port != remote.port) return 1;  // not the host's
+    switch (joiner->on_datagram(bytes, scratch)) {
+      case JoinerGate::Answer::cookie:
+        if (peers.empty() || peers[0]->state != ENET_PEER_STATE_CONNECTED) {
+          send_gate(remote, scratch);
+          connect_due = peers.empty();
+        }
+        return 1;
+      case JoinerGate::Answer::refused:
+        refused = true;
+        return 1;
+      case JoinerGate::Answer::none:
+        return 0;
+    }
+  }
+  return 0;
+}
+
+std::optional<TransportEvent> Transport::Impl::joiner_step() {
+  if (refused && !refused_reported) {
+    refused_reported = true;
+    TransportEvent ev;
+    ev.kind = TransportEvent::Kind::refused;
+    return ev;
+  }
+  if (refused) return std::nullopt;
+  if (connect_due) {
+    connect_due = false;
+    ENetPeer* peer = enet_host_connect(host, &remote, 2, 0);
+    if (peer != nullptr) {
+      enet_peer_timeout(peer, ENET_PEER_TIMEOUT_LIMIT, timeouts.minimum_ms, timeouts.maximum_ms);
+      peers = {peer};
+      enet_host_flush(host);
+    }
+  }
+  const bool up = !peers.empty() && peers[0]->state == ENET_PEER_STATE_CONNECTED;
+  const double now = gate_clock_ms();
+  if (!up && now - last_request_ms >= gate_retry_ms) {
+    last_request_ms = now;
+    send_gate(remote, joiner->request());
+  }
+  return std::nullopt;
+}
+
 Transport::Transport(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Transport::Transport(Transport&&) noexcept = default;
 Transport& Transport::operator=(Transport&&) noexcept = default;
 Transport::~Transport() = default;
 
-Transport Transport::listen(const Address& bind, std::size_t max_peers, TimeoutSettings timeouts) {
+Transport Transport::listen(const Address& bind, std::size_t max_peers, TimeoutSettings timeouts,
+                            std::optional<GateKey> token) {
   enet_once();
   const ENetAddress address = enet_address(bind);
   auto impl = std::make_unique<Impl>();
@@ -79,10 +198,15 @@ Transport Transport::listen(const Address& bind, std::size_t max_peers, TimeoutS
                     bind.host, bind.port));
   }
   compress(impl->host);
+  if (token) {
+    impl->gate.emplace(HostGateSettings{.token = *token});
+    impl->host->intercept = intercept;
+  }
   return Transport(std::move(impl));
 }
 
-Transport Transport::connect(const Address& host, TimeoutSettings timeouts, const Address& bind) {
+Transport Transport::connect(const Address& host, TimeoutSettings timeouts, const Address& bind,
+                             std::optional<GateKey> token) {
   enet_once();
   const ENetAddress local = enet_address(bind);
   const ENetAddress remote = enet_address(host);
@@ -95,6 +219,16 @@ Transport Transport::connect(const Address& host, TimeoutSettings timeouts, cons
                     bind.host, bind.port));
   }
   compress(impl->host);
+  if (token) {
+    // ENet connects once the host's gate has answered with a cookie (joiner_step).
+    const GateKey nonce = random_gate_key();
+    std::uint64_t n = 0;
+    for (std::size_t i = 0; i < 8; ++i) n |= std::uint64_t{nonce[i]} << (8 * i);
+    impl->joiner.emplace(*token, n);
+    impl->remote = remote;
+    impl->host->intercept = intercept;
+    return Transport(std::move(impl));
+  }
   ENetPeer* peer = enet_host_connect(impl->host, &remote, 2, 0);
   if (peer == nullptr) {
     throw TransportError(fmt::format("ENet: cannot connect to {}:{}", host.host, host.port));
@@ -106,8 +240,17 @@ Transport Transport::connect(const Address& host, TimeoutSettings timeouts, cons
 
 TransportEvent Transport::poll(std::uint32_t timeout_ms) {
   TransportEvent out;
+  if (impl_->joiner) {
+    if (auto ev = impl_->joiner_step()) return *ev;
+  }
   ENetEvent ev{};
-  if (enet_host_service(impl_->host, &ev, timeout_ms) <= 0) return out;
+  servicing = impl_.get();
+  const int got = enet_host_service(impl_->host, &ev, timeout_ms);
+  servicing = nullptr;
+  if (impl_->joiner && got <= 0) {
+    if (auto gate_ev = impl_->joiner_step()) return *gate_ev;
+  }
+  if (got <= 0) return out;
   out.peer = impl_->id_of(ev.peer);
   switch (ev.type) {
     case ENET_EVENT_TYPE_CONNECT:
@@ -160,7 +303,12 @@ std::uint32_t Transport::round_trip_ms(std::uint32_t peer) const {
 
 TransportCounters Transport::counters() const {
   const ENetHost* h = impl_->host;
-  return {h->totalSentPackets, h->totalSentData, h->totalReceivedPackets, h->totalReceivedData};
+  return {h->totalSentPackets + impl_->raw_datagrams_sent, h->totalSentData + impl_->raw_bytes_sent,
+          h->totalReceivedPackets, h->totalReceivedData};
+}
+
+GateCounters Transport::gate_counters() const {
+  return impl_->gate ? impl_->gate->counters() : GateCounters{};
 }
 
 std::uint16_t Transport::port() const {

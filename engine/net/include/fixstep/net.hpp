@@ -6,6 +6,7 @@
 #include "fixstep/net/desync_recording.hpp"
 #include "fixstep/net/link_conditioner.hpp"
 #include "fixstep/net/match_peer.hpp"
+#include "fixstep/net/net_gate.hpp"
 #include "fixstep/net/net_input_codec.hpp"
 #include "fixstep/net/net_packet.hpp"
 #include "fixstep/net/net_protocol.hpp"

@@ -91,6 +91,10 @@ struct MatchSettings {
   /// arrives after 1.5 s, three times after 3.5 s), and the handshake is four messages: raise
   /// this for lossy links (a joiner that gives up early retries nothing).
   std::uint32_t handshake_timeout_ms = 3000;
+  /// The match's token, 32 hexadecimal digits (net_gate.hpp: a joiner proves it on a cookie of
+  /// the host's before ENet reads a datagram of its). A host given none makes a random one
+  /// (MatchPeer::token); a joiner must give the host's.
+  std::string token;
   /// Recording: the scene name and text (Recorder), the state hash stored every this many
   /// ticks, and the rules' name and version when the match has rules (Recorder::set_rules).
   std::string scene_name = "network match";
@@ -166,7 +170,8 @@ struct MatchStats {
 class MatchPeer {
  public:
   /// Hosts a match of `def` as player 0, listening on `bind` (127.0.0.1 and a port; port 0
-  /// picks one: port()). `rules` run after every tick (held by reference: they must outlive
+  /// picks one: port()), behind the gate of settings.token (a random one when it is empty:
+  /// token()). `rules` run after every tick (held by reference: they must outlive
   /// the peer); `merge` makes each tick's input (merge_inputs when empty). Throws
   /// TransportError when the port cannot be bound, std::invalid_argument for bad settings.
   [[nodiscard]] static MatchPeer host(const WorldDef& def, const MatchSettings& settings,
@@ -174,9 +179,11 @@ class MatchPeer {
                                       InputMerge merge = {});
   /// Joins the match hosted at `host` as a player (or a spectator). players, input_delay and
   /// hash_every come from the host; the rest from `settings`. The host refuses a joiner whose
-  /// world differs (definition hash). The joiner's socket is bound to `bind` (127.0.0.1 and
+  /// world differs (definition hash), and its gate one without the host's token
+  /// (settings.token: the joiner fails "refused our token"). The joiner's socket is bound to `bind` (127.0.0.1 and
   /// any port by default, which reaches hosts on this machine only; 0.0.0.0 or an address of
-  /// this machine's to reach others). Throws TransportError when it cannot be bound.
+  /// this machine's to reach others). Throws TransportError when it cannot be bound,
+  /// std::invalid_argument when settings.token is not 32 hexadecimal digits.
   [[nodiscard]] static MatchPeer join(const WorldDef& def, const MatchSettings& settings,
                                       const Address& host, bool spectator = false,
                                       TickRules rules = {}, InputMerge merge = {},
@@ -213,6 +220,10 @@ class MatchPeer {
   [[nodiscard]] std::uint8_t slot() const;     ///< no_slot until the handshake completes
   [[nodiscard]] std::uint8_t players() const;  ///< 0 until the handshake completes
   [[nodiscard]] std::uint16_t port() const;    ///< the bound port
+  /// The match's token (32 hexadecimal digits): a joiner's MatchSettings::token.
+  [[nodiscard]] std::string token() const;
+  /// What the host's gate answered and dropped (zeros on a joiner).
+  [[nodiscard]] GateCounters gate_counters() const;
   /// The confirmed world: every tick stepped with every player's real input.
   [[nodiscard]] const World& world() const;
   /// What to show: the rollback world (ahead on predictions), or the confirmed one in lockstep.

@@ -6,10 +6,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "fixstep/net/net_gate.hpp"
 
 namespace fixstep::net {
 
@@ -27,7 +30,8 @@ enum class Channel : std::uint8_t {
 
 /// What Transport::poll reports.
 struct TransportEvent {
-  enum class Kind : std::uint8_t { none, connected, received, disconnected };
+  /// refused: the host's gate refused our token (a connecting transport with a token).
+  enum class Kind : std::uint8_t { none, connected, received, disconnected, refused };
   Kind kind = Kind::none;
   std::uint32_t peer = 0;  ///< the connection's id (Transport::send)
   Channel channel = Channel::unreliable;
@@ -64,12 +68,20 @@ class TransportError : public std::runtime_error {
 class Transport {
  public:
   /// Listens on `bind` (127.0.0.1 and a port, 0 for any) for up to max_peers connections.
+  /// With a token, the gate (net_gate.hpp) stands before ENet: ENet reads datagrams only from
+  /// an address that proved the token on a cookie of this host's, or that it has a peer at;
+  /// without one, anyone may connect (ENet's own handshake, which answers a connect with more
+  /// bytes than it carries, and resends).
   [[nodiscard]] static Transport listen(const Address& bind, std::size_t max_peers,
-                                        TimeoutSettings timeouts = {});
+                                        TimeoutSettings timeouts = {},
+                                        std::optional<GateKey> token = std::nullopt);
   /// Connects to `host`, from `bind` (127.0.0.1, any port). The connection's id is 0; a
-  /// `connected` event follows once ENet's handshake completes.
+  /// `connected` event follows once ENet's handshake completes. With a token, first the gate's
+  /// cookie exchange (its request resent every 500 ms until ENet's connection is up); a host
+  /// that holds another token answers `refused`.
   [[nodiscard]] static Transport connect(const Address& host, TimeoutSettings timeouts = {},
-                                         const Address& bind = {});
+                                         const Address& bind = {},
+                                         std::optional<GateKey> token = std::nullopt);
   Transport(Transport&&) noexcept;
   Transport& operator=(Transport&&) noexcept;
   ~Transport();
@@ -92,13 +104,17 @@ class Transport {
   /// ENet's counts of this host's datagrams and bytes since it was made (ENet keeps them in 32
   /// bits: they wrap after 2^32).
   [[nodiscard]] TransportCounters counters() const;
+  /// What the gate answered and dropped (a listening transport with a token; zeros otherwise).
+  [[nodiscard]] GateCounters gate_counters() const;
   /// The port this host is bound to.
   [[nodiscard]] std::uint16_t port() const;
   /// The remote address of `peer` as "a.b.c.d:port" ("" for an unknown peer).
   [[nodiscard]] std::string peer_address(std::uint32_t peer) const;
 
+ public:
+  struct Impl;  ///< internal (transport.cpp)
+
  private:
-  struct Impl;
   explicit Transport(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
