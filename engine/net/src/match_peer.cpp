@@ -22,9 +22,8 @@ void check_settings(const MatchSettings& s) {
   }
   if (s.hash_every < 1) throw std::invalid_argument("match: hash_every must be >= 1 tick");
   if (!s.token.empty() && !parse_token(s.token)) {
-    throw std::invalid_argument(
-        fmt::format("match: the token must be 32 hexadecimal digits (got {} characters)",
-                    s.token.size()));
+    throw std::invalid_argument(fmt::format(
+        "match: the token must be 32 hexadecimal digits (got {} characters)", s.token.size()));
   }
 }
 

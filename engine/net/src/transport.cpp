@@ -124,7 +124,8 @@ int Transport::Impl::intercept() {
   const ENetAddress from = host->receivedAddress;
   const std::span<const std::uint8_t> bytes(host->receivedData, host->receivedDataLength);
   if (gate) {
-    switch (gate->on_datagram(from.host, from.port, bytes, gate_clock_ms(), has_peer_at(from), scratch)) {
+    switch (gate->on_datagram(from.host, from.port, bytes, gate_clock_ms(), has_peer_at(from),
+                              scratch)) {
       case GateVerdict::to_enet:
         return 0;
       case GateVerdict::reply:

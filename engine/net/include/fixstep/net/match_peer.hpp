@@ -180,9 +180,9 @@ class MatchPeer {
   /// Joins the match hosted at `host` as a player (or a spectator). players, input_delay and
   /// hash_every come from the host; the rest from `settings`. The host refuses a joiner whose
   /// world differs (definition hash), and its gate one without the host's token
-  /// (settings.token: the joiner fails "refused our token"). The joiner's socket is bound to `bind` (127.0.0.1 and
-  /// any port by default, which reaches hosts on this machine only; 0.0.0.0 or an address of
-  /// this machine's to reach others). Throws TransportError when it cannot be bound,
+  /// (settings.token: the joiner fails "refused our token"). The joiner's socket is bound to `bind`
+  /// (127.0.0.1 and any port by default, which reaches hosts on this machine only; 0.0.0.0 or an
+  /// address of this machine's to reach others). Throws TransportError when it cannot be bound,
   /// std::invalid_argument when settings.token is not 32 hexadecimal digits.
   [[nodiscard]] static MatchPeer join(const WorldDef& def, const MatchSettings& settings,
                                       const Address& host, bool spectator = false,

@@ -80,9 +80,9 @@ enum class GateVerdict : std::uint8_t {
 };
 
 struct HostGateSettings {
-  GateKey token{};                      ///< the match's token (the joiners' proof)
-  std::uint32_t window_ms = 5000;       ///< a cookie is good for 1 to 2 windows
-  std::size_t max_admitted = 64;        ///< addresses admitted at once (each by a proof)
+  GateKey token{};                         ///< the match's token (the joiners' proof)
+  std::uint32_t window_ms = 5000;          ///< a cookie is good for 1 to 2 windows
+  std::size_t max_admitted = 64;           ///< addresses admitted at once (each by a proof)
   GateKey cookie_key = random_gate_key();  ///< the host's own, never sent
 };
 
