@@ -10,10 +10,10 @@
 // The rules and their state are unchanged: every peer runs them after each tick, and a match's
 // recording replays with them (--replay) like a single-player one.
 //
-//   11_networked_game --host 7777                     player 0 (in a window)
-//   11_networked_game --join 127.0.0.1:7777           player 1
+//   11_networked_game --host 7777                     player 0 (in a window); prints the token T
+//   11_networked_game --join 127.0.0.1:7777 --token T           player 1
 //   11_networked_game --host 7777 --players 4         a match of four (three join)
-//   11_networked_game --spectate 127.0.0.1:7777       watch it
+//   11_networked_game --spectate 127.0.0.1:7777 --token T       watch it
 //   11_networked_game --host 0 --bot --ticks 240 --record a.rec     scripted, headless
 //   11_networked_game --replay a.rec                  verify the match's recording
 #include <array>

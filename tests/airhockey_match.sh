@@ -24,20 +24,24 @@ cd "$work" || exit 1
 
 # wait_port FILE: the port a host printed ("hosting on 127.0.0.1:PORT"), waiting up to 10 s.
 wait_port() { wait_for "$1" 'hosting on [0-9.]+:[0-9]+' | grep -Eo '[0-9]+$'; }
+# wait_token FILE: the match's token a host printed ("token T", 32 hex digits).
+wait_token() { wait_for "$1" 'token [0-9a-f]{32}' | grep -Eo '[0-9a-f]{32}$'; }
 
 # match KIND DELAY: a bot match of KIND through the relay; checks (a).
 match() {
-  local kind=$1 delay=$2 hp rp host_status join_status
+  local kind=$1 delay=$2 hp rp tok host_status join_status
   "$game" --host 0 --session "$kind" --input-delay "$delay" --bot --ticks 600 \
     --record "$kind.host.rec" >"$kind.host.out" 2>&1 &
   local host_pid=$!
   hp=$(wait_port "$kind.host.out") || { fail "$kind: the host printed no port"; cat "$kind.host.out"; return; }
+  # The host made its token (none given) and printed it: the joiner gives it.
+  tok=$(wait_token "$kind.host.out") || { fail "$kind: the host printed no token"; cat "$kind.host.out"; return; }
   "$relay" --upstream "127.0.0.1:$hp" --latency-ms 6 --jitter-ms 4 --loss 0.1 --lossless-ms 1000 --duplicate 0.02 \
     --reorder 0.02 --seed 7 --port-file "$kind.relay.port" --seconds 60 >"$kind.relay.out" 2>&1 &
   local relay_pid=$!
   for _ in $(seq 100); do [ -s "$kind.relay.port" ] && break; sleep 0.05; done
   rp=$(cat "$kind.relay.port")
-  "$game" --join "127.0.0.1:$rp" --session "$kind" --bot --ticks 600 --record "$kind.join.rec" \
+  "$game" --join "127.0.0.1:$rp" --token "$tok" --session "$kind" --bot --ticks 600 --record "$kind.join.rec" \
     >"$kind.join.out" 2>&1
   join_status=$?
   wait "$host_pid"
@@ -81,8 +85,9 @@ match rollback 2
 
 # windows KIND: (b) for session KIND, two windows through the relay (latency, jitter, 5 % loss).
 windows() {
-  local kind=$1 hp rp host_pid relay_pid host_status join_status side
-  DISPLAY=$xvfb_display "$game" --host 0 --session "$kind" --bot --window --ticks 240 \
+  local kind=$1 hp rp host_pid relay_pid host_status join_status side tok
+  tok=$(od -An -N16 -tx1 /dev/urandom | tr -d ' \n')  # a token given to the host this time
+  DISPLAY=$xvfb_display "$game" --host 0 --token "$tok" --session "$kind" --bot --window --ticks 240 \
     --last-frame "$kind.host.png" >"win.$kind.host.out" 2>&1 &
   host_pid=$!
   if hp=$(wait_port "win.$kind.host.out"); then
@@ -91,7 +96,7 @@ windows() {
     relay_pid=$!
     for _ in $(seq 100); do [ -s "win.$kind.relay.port" ] && break; sleep 0.05; done
     rp=$(cat "win.$kind.relay.port")
-    DISPLAY=$xvfb_display "$game" --join "127.0.0.1:$rp" --session "$kind" --bot --window \
+    DISPLAY=$xvfb_display "$game" --join "127.0.0.1:$rp" --token "$tok" --session "$kind" --bot --window \
       --ticks 240 --last-frame "$kind.join.png" >"win.$kind.join.out" 2>&1
     join_status=$?
     kill "$relay_pid" 2>/dev/null

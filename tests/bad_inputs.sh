@@ -1226,7 +1226,10 @@ if [ -n "$net_peer" ]; then
   case_ "net_peer: a scene the loader refuses (dt = 0)" "[world]
 dt = 0
 $body" --host 40001 --scene scene.toml
-  case_ "net_peer: no host answers within --deadline-s" "" --join 9 --deadline-s 1
+  case_ "net_peer: no host answers within --deadline-s" "" --join 9 \
+    --token 00112233445566778899aabbccddeeff --deadline-s 1
+  case_ "net_peer: --join without --token" "" --join 40001
+  case_ "net_peer: a --token not of 32 hexadecimal digits" "" --join 40001 --token 0123
 fi
 # --- tests/cross/compare_hashes.sh: refused before any case runs ---
 tool=$tests_dir/cross/compare_hashes.sh tool_name=tests/cross/compare_hashes.sh
@@ -1315,7 +1318,7 @@ if [ -x "$game" ]; then
   case_ "a match: --input-delay over 60" "" --host 0 --input-delay 61
   case_ "a match: --bind not an IPv4 address" "" --host 0 --bind 1.2.3
   case_ "a match: --join from an address not on this machine" "" --join 127.0.0.1:9 \
-    --bind 192.0.2.1 --bot --ticks 10
+    --token 00112233445566778899aabbccddeeff --bind 192.0.2.1 --bot --ticks 10
   case_ "a match: --ticks 0" "" --host 0 --ticks 0
   case_ "a match: --bot without --ticks" "" --host 0 --bot
   case_ "a match: --window without --bot" "" --host 0 --window
@@ -1325,7 +1328,23 @@ if [ -x "$game" ]; then
     --record nodir/x.rec
   case_ "a match: --bind an address not on this machine" "" --host 0 --bind 192.0.2.1 --bot \
     --ticks 10
-  case_ "a match: --join where nobody hosts (3 s)" "" --join 127.0.0.1:9 --bot --ticks 10
+  case_ "a match: --join where nobody hosts (3 s)" "" --join 127.0.0.1:9 \
+    --token 00112233445566778899aabbccddeeff --bot --ticks 10
+  # The gate before the host (docs/NETWORK.md, "Connecting"): a joiner without the match's
+  # token is refused before any socket is opened; with another token, by the host's gate.
+  case_ "a match: --join without --token (an unauthenticated joiner)" "" --join 127.0.0.1:7777 \
+    --bot --ticks 10
+  case_ "a match: --spectate without --token" "" --spectate 127.0.0.1:7777 --bot --ticks 10
+  case_ "a match: --token not 32 hexadecimal digits" "" --host 0 --token secret
+  # A host on a fixed port (the row names it), waiting for a joiner that never comes.
+  "$game" --host 47917 --token 00112233445566778899aabbccddeeff --bot --ticks 100000 \
+    >gate_host.out 2>&1 &
+  gate_host=$!
+  for _ in $(seq 200); do grep -q 'hosting on' gate_host.out 2>/dev/null && break; sleep 0.05; done
+  case_ "a match: --join with a token that is not the host's" "" --join 127.0.0.1:47917 \
+    --token ffeeddccbbaa99887766554433221100 --bot --ticks 10
+  kill "$gate_host" 2>/dev/null
+  wait "$gate_host" 2>/dev/null
   case_ "a match in a window without a display" "" --host 0
 fi
 tool=$fixstep tool_name=fixstep
@@ -1369,3 +1388,17 @@ echo "| N12 | inputs or a hash before the handshake; another player's inputs fro
 echo "| N13 | a handshake from a joiner with another world, or to a full match | refused: a 13-byte disconnect (another_world / refused), then the connection closed |"
 echo "| N14 | a connection that never completes the handshake; an accepted joiner that never sends inputs | dropped after handshake_timeout_ms, nothing sent; the accepted one times the match out (\"player 1 (…) timed out: nothing received for N ms\") after the longer of handshake_timeout_ms and peer_timeout_ms (its accept may have been lost) |"
 echo "| N15 | a spectator joining after the host dropped the match's first inputs (it keeps a bounded window) | refused: a 13-byte disconnect (too_late); the spectator fails with \"the host at HOST:PORT refused us: too late to watch …\" (LateSpectators.*) |"
+echo
+echo "Before the handshake, the host's gate (fixstep/net/net_gate.hpp; docs/NETWORK.md, \"Connecting\")"
+echo "takes each datagram from an address ENet has no peer at: it answers a cookie request with a"
+echo "smaller cookie and drops everything else unless the address proved the match's token on a"
+echo "cookie of its own (GateCounters names each). Tried by tests/net/test_gate.cpp (the state"
+echo "machine), tests/net/test_host_gate.cpp (raw UDP sockets on 127.0.0.1) and the fuzz target"
+echo "fuzz_gate."
+echo
+echo "| # | before the handshake | what the host does |"
+echo "|---|---|---|"
+echo "| N16 | a flood of ENet connects (or any datagram) from addresses that have not proven the token | dropped unread by ENet, nothing sent, no peer slot taken (not_admitted): 64 connects from 32 ports draw 0 bytes and a joiner with the token joins at once (HostGate.AFloodOfEnetConnectsDrawsNothingAndBlocksNoJoiner) |"
+echo "| N17 | an unauthenticated joiner: cookie requests from anyone, a gate datagram of a wrong size, version or kind | a request gets one 28-byte cookie for its 40 bytes and no state is kept; a malformed one nothing (malformed); a joiner without a token fails before it sends (\"joining needs the host's token\", a game's \"--join needs --token T\", exit 2) |"
+echo "| N18 | an echo of a valid cookie with a wrong token proof (another match's token) | a 16-byte refusal for its 36 bytes (bad_token); the joiner fails \"the host at HOST:PORT refused our token: it is not this match's\" (HostGate.AJoinerWithoutTheTokenOrWithAnotherIsRefusedWithAMessage) |"
+echo "| N19 | a replayed cookie echo: again from its address, from another address or port, after two windows (10 s), or forged | dropped, nothing sent (replayed, bad_cookie, expired): a cookie admits its own address once, until it expires (Gate.ACookieIsGoodForItsAddressAndTwoWindowsOnceOnly) |"

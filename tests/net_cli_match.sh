@@ -19,24 +19,27 @@ ticks=300
 
 # match KIND: the match of eight and two spectators; checks all of the above.
 match() {
-  local kind=$1 hp rp pids=() names=() i status failed=0
+  local kind=$1 hp rp tok pids=() names=() i status failed=0
   "$game" --host 0 --players 8 --session "$kind" --bot --ticks $ticks \
     --record "$kind.p0.rec" >"$kind.p0.out" 2>&1 &
   pids+=($!) names+=(p0)
   hp=$(wait_for "$kind.p0.out" 'hosting on [0-9.]+:[0-9]+' | grep -Eo '[0-9]+$') ||
     { fail "$kind: the host printed no port"; cat "$kind.p0.out"; return; }
+  # The match's token, which the host made and printed: every joiner and spectator gives it.
+  tok=$(wait_for "$kind.p0.out" 'token [0-9a-f]{32}' | grep -Eo '[0-9a-f]{32}$') ||
+    { fail "$kind: the host printed no token"; cat "$kind.p0.out"; return; }
   "$relay" --upstream "127.0.0.1:$hp" --latency-ms 5 --jitter-ms 3 --loss 0.05 --lossless-ms 1000 --duplicate 0.02 \
     --reorder 0.02 --seed 11 --port-file "$kind.relay.port" --seconds 90 >"$kind.relay.out" 2>&1 &
   local relay_pid=$!
   for _ in $(seq 100); do [ -s "$kind.relay.port" ] && break; sleep 0.05; done
   rp=$(cat "$kind.relay.port")
   for i in 1 2 3 4 5 6 7; do
-    "$game" --join "127.0.0.1:$rp" --session "$kind" --bot --ticks $ticks \
+    "$game" --join "127.0.0.1:$rp" --token "$tok" --session "$kind" --bot --ticks $ticks \
       --record "$kind.p$i.rec" >"$kind.p$i.out" 2>&1 &
     pids+=($!) names+=("p$i")
   done
   for i in 1 2; do
-    "$game" --spectate "127.0.0.1:$rp" --session "$kind" --bot --ticks $ticks \
+    "$game" --spectate "127.0.0.1:$rp" --token "$tok" --session "$kind" --bot --ticks $ticks \
       --record "$kind.s$i.rec" >"$kind.s$i.out" 2>&1 &
     pids+=($!) names+=("s$i")
   done

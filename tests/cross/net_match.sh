@@ -13,13 +13,14 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 
 play() {  # play NAME HOST_COMMAND JOIN_COMMAND
-  local name=$1 port=$((20000 + RANDOM % 20000))
+  local name=$1 port=$((20000 + RANDOM % 20000)) token
+  token=$(od -An -N16 -tx1 /dev/urandom | tr -d ' \n')  # the match's (docs/NETWORK.md)
   # shellcheck disable=SC2086  # the commands are words (an emulator and its options)
-  $2 --host "$port" --ticks "$ticks" --record "$dir/$name.host.rec" >"$dir/$name.host.out" &
+  $2 --host "$port" --token "$token" --ticks "$ticks" --record "$dir/$name.host.rec" >"$dir/$name.host.out" &
   local host=$!
   sleep 1  # an emulated host binds its port a little later
   # shellcheck disable=SC2086
-  if ! $3 --join "$port" --ticks "$ticks" --record "$dir/$name.join.rec" >"$dir/$name.join.out"; then
+  if ! $3 --join "$port" --token "$token" --ticks "$ticks" --record "$dir/$name.join.rec" >"$dir/$name.join.out"; then
     kill "$host" 2>/dev/null || true
     echo "net_match: $name: the joiner failed" >&2
     exit 1

@@ -6,8 +6,10 @@
 // and write the recording; the two peers' lines' hashes and their recordings must be equal.
 //
 //   net_peer --host PORT [options]        listens on 127.0.0.1:PORT (player 0)
-//   net_peer --join PORT [options]        joins the match at 127.0.0.1:PORT (player 1)
-//   options: --scene FILE (a scene file; default billiards.toml of the source tree)
+//   net_peer --join PORT --token T [options]  joins the match at 127.0.0.1:PORT (player 1)
+//   options: --token T (the match's token, 32 hex digits: a host without one makes one and
+//            prints "net_peer: token T"; a joiner must give the host's)
+//            --scene FILE (a scene file; default billiards.toml of the source tree)
 //            --ticks N (1 .. 100000, default 600)  --record FILE  --deadline-s S (1 .. 3600,
 //            default 60: the match must finish within it)
 // Exit status: 0 finished; 1 failed, desynced or past the deadline (the reason on stderr);
@@ -28,6 +30,7 @@
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/net/match_peer.hpp"
+#include "fixstep/net/net_gate.hpp"
 #include "fixstep/scene/scene.hpp"
 
 using namespace fixstep;
@@ -40,6 +43,7 @@ struct Options {
   std::string scene = FIXSTEP_SOURCE_DIR "/assets/scenes/billiards.toml";
   std::uint64_t ticks = 600;
   std::string record;
+  std::string token;
   double deadline_s = 60.0;
 };
 
@@ -81,6 +85,11 @@ Options parse(int argc, char** argv) {
       o.ticks = number(flag, value, 1, 100000);
     } else if (flag == "--record") {
       o.record = value;
+    } else if (flag == "--token") {
+      if (!net::parse_token(value)) {
+        throw UsageError(fmt::format("--token: `{}` is not 32 hexadecimal digits", value));
+      }
+      o.token = value;
     } else if (flag == "--deadline-s") {
       o.deadline_s = static_cast<double>(number(flag, value, 1, 3600));
     } else {
@@ -88,6 +97,9 @@ Options parse(int argc, char** argv) {
     }
   }
   if (!role) throw UsageError("give --host PORT or --join PORT");
+  if (!o.host && o.token.empty()) {
+    throw UsageError("--join needs --token T (the 32 hexadecimal digits the host printed)");
+  }
   return o;
 }
 
@@ -127,9 +139,14 @@ int play(const Options& o) {
   s.handshake_timeout_ms = 10000;
   s.scene_name = scene.file;
   s.scene_text = scene.text;
+  s.token = o.token;
   const WorldDef def = scene.def;
   net::MatchPeer peer = o.host ? net::MatchPeer::host(def, s, {"127.0.0.1", o.port})
                                : net::MatchPeer::join(def, s, {"127.0.0.1", o.port});
+  if (o.host && o.token.empty()) {
+    std::printf("net_peer: token %s\n", peer.token().c_str());
+    std::fflush(stdout);
+  }
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   const auto deadline = start + std::chrono::duration_cast<clock::duration>(

@@ -44,6 +44,7 @@ MatchSettings match_settings(const app::Settings& settings, const Level& level,
                              const MatchOptions& o) {
   MatchSettings s;
   s.players = o.players;
+  s.token = o.token;
   s.input_delay = o.input_delay;
   s.match_ticks = o.ticks;
   s.max_rollback = o.rollback ? o.max_rollback : 0;
@@ -232,6 +233,8 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
     std::printf("%s: hosting on %s:%u (%u players, %s, input delay %u)\n", settings.name.c_str(),
                 o.bind.c_str(), static_cast<unsigned>(m.port()), static_cast<unsigned>(o.players),
                 o.rollback ? "rollback" : "lockstep", static_cast<unsigned>(o.input_delay));
+    std::printf("%s: token %s (joiners and spectators give --token %s)\n", settings.name.c_str(),
+                m.token().c_str(), m.token().c_str());
   } else {
     const Address& to = o.join ? *o.join : *o.spectate;
     std::printf("%s: %s %s:%u (%s)\n", settings.name.c_str(), o.join ? "joining" : "watching",

@@ -15,6 +15,7 @@
 #include <system_error>
 
 #include "app_match_error.hpp"
+#include "fixstep/net/net_gate.hpp"
 
 namespace fixstep::net::detail {
 
@@ -22,8 +23,8 @@ namespace {
 
 /// The flags only a match has: any of them asks for one.
 constexpr std::string_view match_flags[] = {
-    "--host", "--join",        "--spectate",     "--players", "--session",
-    "--bind", "--input-delay", "--max-rollback", "--ticks",   "--bot"};
+    "--host",        "--join",         "--spectate", "--players", "--session", "--bind",
+    "--input-delay", "--max-rollback", "--ticks",    "--bot",     "--token"};
 
 /// `text` as a whole number in [lo, hi], else nullopt.
 std::optional<std::uint64_t> whole(const std::string& text, std::uint64_t lo, std::uint64_t hi) {
@@ -66,6 +67,12 @@ void check(const MatchOptions& o, bool players_given) {
         "match options need --host PORT (host a match), --join HOST:PORT (play in one) or "
         "--spectate HOST:PORT (watch one)");
   }
+  if (!o.token.empty() && !parse_token(o.token)) {
+    throw UsageError(fmt::format(
+        "--token wants the match's 32 hexadecimal digits (the host prints them), got '{}' ({} "
+        "characters)",
+        o.token, o.token.size()));
+  }
   if (players_given && !o.host_port) {
     throw UsageError("--players is the host's choice (a joiner or spectator is told it)");
   }
@@ -75,6 +82,12 @@ void check(const MatchOptions& o, bool players_given) {
   }
   if (o.bot && o.ticks == 0) throw UsageError("--bot needs --ticks N (when the match ends)");
   if (o.window && !o.bot) throw UsageError("--window needs --bot (without it, the window shows)");
+  if (!o.host_port && o.token.empty()) {
+    throw UsageError(fmt::format(
+        "{} needs --token T: the match's token, 32 hexadecimal digits, which the host prints "
+        "(\"token T\") when it starts; without it the host's gate lets no joiner in",
+        o.join ? "--join" : "--spectate"));
+  }
 }
 
 /// Refuses a flag of app::run's other modes (UsageError): a match is played live.
@@ -103,7 +116,7 @@ struct MatchFlags {
 };
 
 /// --host, --join and --spectate: the peer's role.
-void add_role_options(CLI::App& cli, MatchFlags& f) {
+void add_role_options(CLI::App& cli, MatchFlags& f, MatchOptions& o) {
   f.host_opt = cli.add_option("--host", f.host_port, "host a match on PORT (0: any, printed)")
                    ->type_name("PORT")
                    ->check(in_range(0, 65535));
@@ -112,6 +125,10 @@ void add_role_options(CLI::App& cli, MatchFlags& f) {
   f.spectate_opt =
       cli.add_option("--spectate", f.spectate, "watch the match hosted at HOST:PORT (no input)")
           ->type_name("HOST:PORT");
+  cli.add_option("--token", o.token,
+                 "the match's token, 32 hex digits: a host's (default: a random one, printed), "
+                 "which every joiner and spectator gives")
+      ->type_name("T");
 }
 
 /// A CLI11 check of --players: a whole number in 2-most, the game's seats.
@@ -218,7 +235,7 @@ std::optional<MatchOptions> parse_match(const std::string& program, int max_play
   MatchOptions o;
   MatchFlags f;
   CLI::App cli(program + ": one peer of a networked match", program);
-  add_role_options(cli, f);
+  add_role_options(cli, f, o);
   add_session_options(cli, f, o, max_players);
   add_output_options(cli, f, o);
   try {

@@ -15,10 +15,11 @@ inline constexpr std::uint16_t rollback_input_delay = 2;
 
 /// What a match's command line asked for.
 struct MatchOptions {
-  std::optional<std::uint16_t> host_port;                        ///< --host PORT
-  std::optional<Address> join;                                   ///< --join HOST:PORT
-  std::optional<Address> spectate;                               ///< --spectate HOST:PORT
-  std::uint8_t players = 2;                                      ///< --players N (a host)
+  std::optional<std::uint16_t> host_port;  ///< --host PORT
+  std::optional<Address> join;             ///< --join HOST:PORT
+  std::optional<Address> spectate;         ///< --spectate HOST:PORT
+  std::string token;         ///< --token T: the match's (a host's: "" for a random one, printed)
+  std::uint8_t players = 2;  ///< --players N (a host)
   std::string bind = "127.0.0.1";                                ///< --bind ADDR
   bool rollback = false;                                         ///< --session rollback
   std::uint16_t input_delay = net::MatchSettings{}.input_delay;  ///< --input-delay N
@@ -35,7 +36,8 @@ struct MatchOptions {
 
 /// Parses a match's command line. Throws UsageError naming the flag and the bad value (a port
 /// outside 0-65535 or not a number, HOST:PORT without a port, not exactly one of --host, --join
-/// and --spectate, --players outside 2..max_players or without --host, --max-rollback without
+/// and --spectate, a --token not of 32 hexadecimal digits, --join or --spectate without
+/// --token, --players outside 2..max_players or without --host, --max-rollback without
 /// --session rollback, --bot without --ticks, a flag of app::run's other modes); prints the
 /// help and returns nullopt for --help.
 [[nodiscard]] std::optional<MatchOptions> parse_match(const std::string& program, int max_players,
