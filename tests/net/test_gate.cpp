@@ -5,9 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numeric>
+#include <random>
 #include <vector>
 
+#include "../fuzz/gate_check.hpp"
 #include "fixstep/net/net_gate.hpp"
 
 namespace fixstep::net_test {
@@ -155,6 +160,26 @@ TEST(Gate, AdmitsAtMostMaxAdmittedAddresses) {
   }
   EXPECT_EQ(host.admitted_count(), 3u);
   EXPECT_EQ(host.counters().full, 2u);
+}
+
+/// fuzz_gate's check (tests/fuzz/gate_check.hpp) on its seed corpus and on 3000 sequences of
+/// random records: each aborts on a finding.
+TEST(Gate, FuzzCheckHoldsOnTheCorpusAndRandomSequences) {
+  int files = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(FIXSTEP_SOURCE_DIR "/tests/fuzz/gate_corpus")) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+    fuzz::check_gate_datagrams(bytes);
+    ++files;
+  }
+  EXPECT_GE(files, 7);
+  std::mt19937_64 rng(58);
+  for (int k = 0; k < 3000; ++k) {
+    std::vector<std::uint8_t> bytes(rng() % 200);
+    for (auto& b : bytes) b = static_cast<std::uint8_t>(rng());
+    fuzz::check_gate_datagrams(bytes);
+  }
 }
 
 }  // namespace

@@ -115,11 +115,6 @@ GateVerdict HostGate::on_echo(std::uint32_t ipv4, std::uint16_t port,
     ++counters_.bad_cookie;
     return GateVerdict::drop;
   }
-  Admission* had = admission(ipv4, port);
-  if (had != nullptr && had->nonce == nonce && had->window == window) {
-    ++counters_.replayed;  // admitted with it already: nothing new
-    return GateVerdict::drop;
-  }
   if (proof != token_proof(s_.token, nonce, window, mac)) {
     ++counters_.bad_token;
     reply.clear();
@@ -127,6 +122,13 @@ GateVerdict HostGate::on_echo(std::uint32_t ipv4, std::uint16_t port,
     write_header(w, GateKind::refused);
     w.u64(nonce);
     return GateVerdict::reply;
+  }
+  Admission* had = admission(ipv4, port);
+  if (had != nullptr && window <= had->window) {
+    // Admitted with this cookie or a later one: a cookie admits its address once (a joiner
+    // still connecting echoes the next window's cookie, which extends its admission).
+    ++counters_.replayed;
+    return GateVerdict::drop;
   }
   const double expires = (static_cast<double>(window) + 2.0) * s_.window_ms;
   if (had != nullptr) {

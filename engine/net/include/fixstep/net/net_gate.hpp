@@ -64,7 +64,8 @@ struct GateCounters {
   std::uint64_t bad_cookie = 0;    ///< echoes whose cookie is not this address's, or forged
   std::uint64_t expired = 0;       ///< echoes of a cookie older than two windows
   std::uint64_t bad_token = 0;     ///< echoes with a valid cookie and a wrong proof (refused)
-  std::uint64_t replayed = 0;      ///< echoes of a cookie this address was admitted with
+  std::uint64_t replayed = 0;      ///< echoes of a cookie this address was admitted with, or
+                                   ///< of one older than that
   std::uint64_t full = 0;          ///< valid echoes dropped: max_admitted addresses admitted
   std::uint64_t malformed = 0;     ///< gate datagrams of a wrong size, version or kind
   std::uint64_t not_admitted = 0;  ///< other datagrams from an address neither admitted nor
