@@ -3,8 +3,9 @@
 // airhockey_app.hpp's; fixstep::net::run is app::run plus networked play:
 //
 //   airhockey                                   play the computer (mouse or arrows; esc quits)
-//   airhockey --host 7777                       host a match on 127.0.0.1:7777 (player 0, red)
-//   airhockey --join 127.0.0.1:7777             join it (player 1, blue)
+//   airhockey --host 7777                       host a match on 127.0.0.1:7777 (player 0, red);
+//                                               it prints the match's token T
+//   airhockey --join 127.0.0.1:7777 --token T   join it (player 1, blue)
 //   airhockey --host 7777 --session rollback    the shown world runs ahead of the network
 //   airhockey --host 0 --bot --ticks 600 --record a.rec
 //                                               a scripted bot plays, headless; the match's
