@@ -102,7 +102,8 @@ class Transport {
   /// ENet's mean round-trip time to `peer`, ms (0 for an unknown peer).
   [[nodiscard]] std::uint32_t round_trip_ms(std::uint32_t peer) const;
   /// ENet's counts of this host's datagrams and bytes since it was made (ENet keeps them in 32
-  /// bits: they wrap after 2^32).
+  /// bits: they wrap after 2^32), the gate's too: received, every datagram the socket got; sent,
+  /// ENet's and the gate's cookies, refusals and requests.
   [[nodiscard]] TransportCounters counters() const;
   /// What the gate answered and dropped (a listening transport with a token; zeros otherwise).
   [[nodiscard]] GateCounters gate_counters() const;
