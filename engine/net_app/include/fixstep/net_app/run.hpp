@@ -2,12 +2,17 @@
 // fixstep::net::run(game, settings, argc, argv) is app::run with two more ways to play,
 //
 //   NAME --host PORT [match options]        host a match as player 0 on PORT (0: any free port,
-//                                           printed) and play it
-//   NAME --join HOST:PORT [match options]   join the match hosted at HOST:PORT as the next
+//                                           printed) and play it; prints the match's token T
+//   NAME --join HOST:PORT --token T [match options]
+//                                           join the match hosted at HOST:PORT as the next
 //                                           free player (1, 2, ...)
-//   NAME --spectate HOST:PORT [options]     watch it (no input; up to 8 spectators)
+//   NAME --spectate HOST:PORT --token T [options]
+//                                           watch it (no input; up to 8 spectators)
 //
 //   match options:
+//     --token T                     the match's token, 32 hexadecimal digits: a host's (default
+//                                   a random one), which a joiner or spectator must give (the
+//                                   host's gate lets in no one else: docs/NETWORK.md)
 //     --players N                   a host: the match's players, 2 .. Settings::max_players
 //                                   (default 2); it starts when all have joined
 //     --session lockstep|rollback   lockstep (default): every peer shows the confirmed world;
