@@ -34,8 +34,9 @@ inline constexpr std::uint32_t max_run_ticks = 256;
 inline constexpr std::uint32_t max_gap_ticks = 2 * max_run_ticks;
 /// Most per-body inputs one player's tick may carry on the network (TickInput::bodies).
 inline constexpr std::size_t max_net_body_inputs = 16;
-/// Handshake requests are padded to this size, so that no reply to a peer that has not
-/// completed the handshake is larger than what it sent (no amplification).
+/// Handshake requests are padded to this size, so that no fixstep reply to a peer that has not
+/// completed the handshake is larger than what it sent (no amplification; before it, the
+/// host's gate answers only with less than it got: net_gate.hpp).
 inline constexpr std::size_t handshake_request_bytes = 64;
 
 /// Message kinds (the header's kind byte).
