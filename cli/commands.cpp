@@ -25,6 +25,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "command_memory.hpp"
 #include "csv_field.hpp"
 #include "exact_reference.hpp"
 #include "fixstep/io/command_limits.hpp"
@@ -278,6 +279,7 @@ int run_command(const RunOptions& o) {
                                    *o.sync_test, *o.sync_test));
   }
   if (o.record) check_recording_size(ticks, o.hash_every, *o.record);
+  check_memory("run", scene.file, run_memory(scene, o.sync_test));  // before the world is built
   World sim = build_world(scene, o.scene.quiet);
   if (o.sync_test) check_sync_test_memory(sim, *o.sync_test);
   const double e0 = sim.energy().total();

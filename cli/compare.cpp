@@ -22,8 +22,10 @@
 #include <vector>
 
 #include "capture_sink.hpp"
+#include "command_memory.hpp"
 #include "comparison.hpp"
 #include "csv_field.hpp"
+#include "exact_reference.hpp"
 #include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/summary.hpp"
 #include "output_paths.hpp"
@@ -113,6 +115,18 @@ void warn_repeated(std::span<const TileSpec> specs) {
       }
     }
   }
+}
+
+/// Whether a moving body of `scene` has an exact solution at t = 0 (ExactReference): else each
+/// tile but the reference is measured against a shadow world.
+bool has_exact_solution(const Scene& scene) {
+  const ExactReference reference(scene);
+  std::vector<std::optional<Body>> exact;
+  reference.at(0.0, exact);
+  for (std::size_t j = 0; j < exact.size(); ++j) {
+    if (exact[j] && scene.def.bodies[j].type != BodyType::static_body) return true;
+  }
+  return false;
 }
 
 /// Reports every tile the runtime guard stopped; exit_diverged if there is one, else 0.
@@ -241,6 +255,9 @@ int compare_command(const CompareOptions& o) {
   if (!o.quiet) warn_repeated(specs);
   const auto [width, height] = parse_frame_size(o.size);
   const TileGrid grid = tile_grid(static_cast<int>(specs.size()), width, height);
+  // Before any tile's world or frame buffer is allocated.
+  check_memory("compare", o.scene,
+               compare_memory(base, specs.size(), !has_exact_solution(base), width, height));
   const bool headless = o.out || o.video;
   // A virtual clock (capture, or --fps in the window) is not clamped: frames 1/fps apart.
   const bool virtual_clock = headless || o.fps;

@@ -14,6 +14,7 @@
 #include <fixstep/scene/scene_stability.hpp>
 
 #include "capture_sink.hpp"
+#include "command_memory.hpp"
 #include "commands.hpp"
 #include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/recording_file.hpp"
@@ -60,6 +61,9 @@ int render_command(const RenderOptions& o) {
   check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
   const Scene scene = rec ? scene_for_recording(*rec, *o.replay, given, o.scene.quiet)
                           : load_with_overrides(o.scene);
+  const auto [width, height] = parse_frame_size(o.size);
+  // Before the world and the frame buffers are allocated.
+  check_memory("render", scene.file, render_memory(scene, width, height, rec ? &*rec : nullptr));
   // A scene's world is checked here, before any output, its guard's findings located in the
   // file; a recording's is replayed whatever the guard says (scene_for_recording).
   std::optional<World> checked;
@@ -84,7 +88,6 @@ int render_command(const RenderOptions& o) {
                         *o.replay, rec->ticks)
           : fmt::format("--frames {} at --fps {:g} with {}", o.frames, o.fps, dt_from));
   if (rec && !verified_before_capture(scene, *rec, o)) return exit_replay_diverged;
-  const auto [width, height] = parse_frame_size(o.size);
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
   CaptureSink sink(
       {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,

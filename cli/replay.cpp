@@ -10,6 +10,7 @@
 #include <fixstep/core/world_settings.hpp>
 #include <stdexcept>
 
+#include "command_memory.hpp"
 #include "commands.hpp"
 #include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/recording_file.hpp"
@@ -167,6 +168,7 @@ int replay_command(const ReplayOptions& o) {
   check_command_work(
       rec.ticks, tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings),
       fmt::format("{}: end {}", o.recording, rec.ticks));
+  check_memory("replay", o.recording, replay_memory(scene, rec));  // before the world is built
   const ReplayReport report = verify_recording(scene, rec, o.quiet);
   fmt::print("{}\n", describe(scene));
   if (const auto& m = report.mismatch) {

@@ -17,13 +17,16 @@
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/window/window.hpp>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <thread>
 #include <utility>
+#include <vector>
 
+#include "command_memory.hpp"
 #include "commands.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/io/summary.hpp"
@@ -76,6 +79,22 @@ std::optional<double> fps_of(const SessionSettings& settings) {
              : std::nullopt;
 }
 
+/// The memory check of a load (view_memory) in a width x height window; on a reload, with the
+/// world shown meanwhile (`shown`, kept until the new one is ready).
+std::function<void(const Scene&)> memory_check(int width, int height, const Scene* shown) {
+  std::vector<MemoryTerm> kept;
+  if (shown) {
+    kept.push_back({.what = fmt::format("the world shown while the new one loads"),
+                    .bytes = total_bytes(view_memory(*shown, width, height)) - program_base_bytes,
+                    .way_out = "fewer bodies or links"});
+  }
+  return [width, height, kept](const Scene& scene) {
+    std::vector<MemoryTerm> terms = view_memory(scene, width, height);
+    terms.insert(terms.end(), kept.begin(), kept.end());
+    check_memory("view", scene.file, terms);
+  };
+}
+
 /// The load's warnings on standard error, unless --quiet.
 void print_warnings(const LoadedWorld& world, const SceneOptions& o) {
   if (o.quiet) return;
@@ -85,8 +104,8 @@ void print_warnings(const LoadedWorld& world, const SceneOptions& o) {
 /// The first world, loaded on a thread of its own while this one shows the load's progress on
 /// a terminal ("loading s.toml: stability guard: iteration 310/10000 (3 %), 4.2 s"). SIGINT
 /// ends the process at once, as before any window opened.
-LoadedWorld load_first(const SceneOptions& o) {
-  BackgroundLoad load(o);
+LoadedWorld load_first(const SceneOptions& o, int width, int height) {
+  BackgroundLoad load(o, memory_check(width, height, nullptr));
   StatusLine line(!o.quiet);
   while (!load.ready()) {
     line.show(fmt::format("loading {}: {}", o.scene, describe(load.status())));
@@ -153,7 +172,8 @@ void on_scene_saved(ShownWorld& shown, Reload& reload, const ViewOptions& o, boo
     reload.again = true;
     return;
   }
-  reload.load.emplace(o.scene);
+  reload.load.emplace(o.scene,
+                      memory_check(s.renderer().width(), s.renderer().height(), &shown.scene));
   fmt::print(
       "loading {} (at tick {}): the window shows the world before the save until it is "
       "ready\n",
@@ -177,7 +197,7 @@ void follow_reload(ShownWorld& shown, Reload& reload, const ViewOptions& o) {
     std::fprintf(stderr, "fixstep: %s was saved again while it loaded: that load was %s\n",
                  file.c_str(), reload.load->stop() ? "dropped" : "stopped");
     reload.load.reset();
-    reload.load.emplace(o.scene);
+    reload.load.emplace(o.scene, memory_check(width, s.renderer().height(), &shown.scene));
     reload.again = false;
     return;
   }
@@ -210,12 +230,12 @@ int view_command(const ViewOptions& o) {
   // The watch takes the file's stamp before the file is read: a save during the load is seen.
   std::optional<FileWatch> watch;
   if (!o.no_watch) watch.emplace(o.scene.scene);
-  LoadedWorld first = load_first(o.scene);
+  const auto [width, height] = parse_frame_size(o.size);
+  LoadedWorld first = load_first(o.scene, width, height);
   // --fps: a virtual clock, not clamped (frames exactly 1/fps apart).
   const double frame_time = std::max(SessionSettings{}.max_frame_time, o.fps ? 1.0 / *o.fps : 0.0);
   check_frame_ticks(frame_time, first.scene.def.settings.dt, o.fps, dt_source(o.scene, first.scene),
                     dt_fix(o.scene));
-  const auto [width, height] = parse_frame_size(o.size);
   // The window first: without a display it fails at once with a pointer to `render`.
   Window window = open_window(fmt::format("fixstep - {}", first.scene.file), width, height,
                               "fixstep render SCENE --out DIR");
