@@ -1172,6 +1172,9 @@ if [ -n "$state_hashes" ]; then
 fi
 tool=$work/limited2 tool_name="ulimit -f 2; fixstep"
 case_ "new past the file-size limit (nothing is left)" "" new deep/game
+printf '#!/bin/bash\nulimit -f 0\nexec "%s" "$@"\n' "$fixstep" > limited0 && chmod +x limited0
+tool=$work/limited0 tool_name="ulimit -f 0; fixstep"
+case_ "new past the file-size limit at its first small file (EFBIG at fclose, not a stale errno)" "" new deep/small
 tool=$fixstep tool_name=fixstep
 case_ "new \"\" (an empty DIR)" "" new ""
 case_ "new / (a DIR without a name)" "" new /

@@ -468,6 +468,16 @@ cmp -s "$work/rec_frames/frames.csv" "$work/rec_frames2/frames.csv" \
 [ $? -eq 2 ] && ok "render without SCENE or --replay exits 2" || fail "render without scene"
 expect "render without SCENE says what to give" 'give SCENE \(or --replay FILE' "$work/noscene.out"
 
+# --- fixstep new: the real cause of a write that fails -----------------------------------
+# Past `ulimit -f 0` every file's first flush fails with EFBIG; the small files are written at
+# fclose, and the message said "No such file or directory" (a stale errno) instead. Output goes
+# through a pipe: a file written under the limit would fail too.
+(cd "$work" && ulimit -f 0 && "$fixstep" new sized_out 2>&1; echo "exit=$?") | cat >"$work/new_efbig.out"
+expect "new past the file-size limit exits 1" '^exit=1$' "$work/new_efbig.out"
+expect "new past the file-size limit reports EFBIG, not a stale errno" \
+  'cannot write sized_out/[A-Za-z.]+: File too large \(fixstep new left nothing behind\)' "$work/new_efbig.out"
+[ ! -e "$work/sized_out" ] && ok "new past the file-size limit leaves nothing" || fail "new left sized_out"
+
 # --- the demo ----------------------------------------------------------------------------
 (cd "$work" && "$hello" demo_frames >"$work/hello.out" 2>&1)
 [ "$(ls "$work/demo_frames" | wc -l)" -eq 90 ] && ok "hello_fixstep writes 90 frames" || fail "hello_fixstep"
