@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "csv_field.hpp"
 #include "exact_reference.hpp"
 #include "fixstep/io/command_limits.hpp"
@@ -88,6 +89,7 @@ Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warni
   // shows the progress itself: no scope of our own, the reports go to its scope.
   std::optional<WorkProgressLine> shown;
   if (!warnings) shown.emplace(!o.quiet);
+  set_phase("loading the scene");
   Scene scene = load_scene(o.scene);
   if (o.integrator) scene.def.settings.integrator = *parse_integrator(*o.integrator);
   if (o.dt) scene.def.settings.dt = *o.dt;
@@ -114,6 +116,7 @@ World build_world(const Scene& scene, bool quiet, std::vector<std::string>* warn
   std::optional<WorkProgressLine> shown;
   if (!warnings) shown.emplace(!quiet);
   report_work_progress("checking the scene", "", 0, 0);  // no count until the guard iterates
+  set_phase("building the world");
   std::optional<World> world;
   try {
     world.emplace(scene.def);
@@ -316,6 +319,7 @@ int run_command(const RunOptions& o) {
   std::optional<SyncTest> sync;
   if (o.sync_test) sync.emplace(sim, *o.sync_test);
   const StopOnSignal signals;
+  set_phase("stepping the world");
   Progress progress("run", "tick", ticks, !o.scene.quiet);
   // A clock read about every 2^20 body-substeps: every tick of a large world, every 1024th of
   // a small one.

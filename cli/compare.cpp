@@ -23,6 +23,7 @@
 
 #include "capture_sink.hpp"
 #include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "comparison.hpp"
 #include "csv_field.hpp"
 #include "exact_reference.hpp"
@@ -172,6 +173,7 @@ int capture(const CompareOptions& o, Comparison& c, int width, int height) {
   CaptureSink sink(
       {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,
       height, fps, ManifestLayout::tiles);
+  set_phase("capturing the frames");
   std::vector<std::uint8_t> frame = blank_frame(width, height);
   const StopOnSignal signals;
   Progress progress("compare", "frame", frames, !o.quiet);
@@ -245,6 +247,7 @@ int compare_command(const CompareOptions& o) {
                                             min_tiles, max_tiles, o.with.size()));
   }
   check_paths(compare_paths(o));  // before any work: no output may be an input
+  set_phase("loading the scene");
   Scene base = load_scene(o.scene);
   if (o.allow_unstable) base.def.allow_unstable = true;
   if (!o.quiet) {
@@ -258,6 +261,7 @@ int compare_command(const CompareOptions& o) {
   // Before any tile's world or frame buffer is allocated.
   check_memory("compare", o.scene,
                compare_memory(base, specs.size(), !has_exact_solution(base), width, height));
+  set_phase("building the tiles");
   const bool headless = o.out || o.video;
   // A virtual clock (capture, or --fps in the window) is not clamped: frames 1/fps apart.
   const bool virtual_clock = headless || o.fps;

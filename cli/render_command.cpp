@@ -15,6 +15,7 @@
 
 #include "capture_sink.hpp"
 #include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "commands.hpp"
 #include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/recording_file.hpp"
@@ -53,6 +54,7 @@ bool verified_before_capture(const Scene& scene, const Recording& rec, const Ren
 
 int render_command(const RenderOptions& o) {
   std::optional<Recording> rec;
+  set_phase("reading the recording");
   if (o.replay) rec = read_recording(*o.replay);
   const std::optional<std::string> given =
       o.scene.scene.empty() ? std::nullopt : std::optional(o.scene.scene);
@@ -88,6 +90,7 @@ int render_command(const RenderOptions& o) {
                         *o.replay, rec->ticks)
           : fmt::format("--frames {} at --fps {:g} with {}", o.frames, o.fps, dt_from));
   if (rec && !verified_before_capture(scene, *rec, o)) return exit_replay_diverged;
+  set_phase("rendering the frames");
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
   CaptureSink sink(
       {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "commands.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/io/summary.hpp"
@@ -245,6 +246,7 @@ int view_command(const ViewOptions& o) {
   show(shown, std::move(first.scene),
        std::make_unique<Session>(std::move(first.def), std::move(first.sim), settings), first.plan);
   Reload reload;
+  set_phase("showing the world");
 
   InputSampler sampler;  // window events -> one input per tick
   // --record: every tick's input and state hash, following the kept timeline through rewinds

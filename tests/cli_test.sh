@@ -478,6 +478,23 @@ expect "new past the file-size limit reports EFBIG, not a stale errno" \
   'cannot write sized_out/[A-Za-z.]+: File too large \(fixstep new left nothing behind\)' "$work/new_efbig.out"
 [ ! -e "$work/sized_out" ] && ok "new past the file-size limit leaves nothing" || fail "new left sized_out"
 
+# --- memory: a std::bad_alloc past the estimate's check is located ---------------------------
+# With less address space than the 10^5-body grid needs (ulimit -v 80 MB, far under the estimate's
+# 4 GiB bound), the allocation fails inside the command: the message names the command and the
+# phase (it said only "std::bad_alloc"). Not under AddressSanitizer, which needs terabytes of
+# address space.
+if grep -qa __asan_init "$fixstep"; then
+  echo "skip - ulimit -v under AddressSanitizer"
+else
+  printf '[world]\ndt = 0.01\n[[grid]]\ncolumns = 100\nrows = 1000\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0 }\n' \
+    >"$work/grid_1e5.toml"
+  (ulimit -v 80000 && "$fixstep" run "$work/grid_1e5.toml" --steps 2 2>&1; echo "exit=$?") | cat >"$work/oom.out"
+  expect "an allocation that fails exits 1" '^exit=1$' "$work/oom.out"
+  expect "an allocation that fails names the command and its phase" \
+    '^fixstep: error: run: out of memory \(std::bad_alloc\) while (loading the scene|building the world|stepping the world): ' \
+    "$work/oom.out"
+fi
+
 # --- the demo ----------------------------------------------------------------------------
 (cd "$work" && "$hello" demo_frames >"$work/hello.out" 2>&1)
 [ "$(ls "$work/demo_frames" | wc -l)" -eq 90 ] && ok "hello_fixstep writes 90 frames" || fail "hello_fixstep"
