@@ -14,6 +14,7 @@
 #include <fixstep/core/recording.hpp>
 #include <fixstep/core/rewind.hpp>
 #include <fixstep/core/step_results.hpp>
+#include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/window/window.hpp>
@@ -35,6 +36,7 @@
 #include "progress.hpp"
 #include "scene_load.hpp"
 #include "scene_watch.hpp"
+#include "stop_signal.hpp"
 #include "view_rewind.hpp"
 
 namespace fixstep::cli {
@@ -237,6 +239,10 @@ int view_command(const ViewOptions& o) {
   const double frame_time = std::max(SessionSettings{}.max_frame_time, o.fps ? 1.0 / *o.fps : 0.0);
   check_frame_ticks(frame_time, first.scene.def.settings.dt, o.fps, dt_source(o.scene, first.scene),
                     dt_fix(o.scene));
+  // SIGINT and SIGTERM from here on stop the session as run's are (stop_signal.hpp): the tick in
+  // progress is abandoned, the recording kept up to the last complete tick. Installed before
+  // the window, so SDL keeps its own handler out (it installs one only over the default).
+  const StopOnSignal signals;
   // The window first: without a display it fails at once with a pointer to `render`.
   Window window = open_window(fmt::format("fixstep - {}", first.scene.file), width, height,
                               "fixstep render SCENE --out DIR");
@@ -255,6 +261,9 @@ int view_command(const ViewOptions& o) {
   if (o.record) {  // carrying the scene as loaded: saving an edit cannot break the recording
     recorder.emplace(shown.session->definition(), o.scene.scene, o.hash_every, shown.scene.text);
   }
+  const std::uint64_t initial_hash = shown.session->simulation().state_hash();
+  bool torn = false;       // a stop request abandoned a tick half-way: the state is not a tick's
+  std::uint64_t done = 0;  // the tick of the last complete state shown or stepped
   RealClock real_clock;
   // --fps: a virtual clock (validated by VirtualClock), else the real one.
   const double virtual_frame = o.fps ? VirtualClock(*o.fps).frame_seconds() : 0.0;
@@ -272,7 +281,7 @@ int view_command(const ViewOptions& o) {
     PointerDrag& drag = shown.drag;
     const Camera camera = session.renderer().camera();
     window.poll(ev);
-    if (ev.quit) break;
+    if (ev.quit || StopOnSignal::requested()) break;
     apply_loop_keys(ev, session.loop());
     if (ev.restart) {
       session.restart(), rewind.clear(), rewind.push(session.simulation());
@@ -290,18 +299,25 @@ int view_command(const ViewOptions& o) {
         if (recorder) recorder->truncate(past->tick());
       }
     } else if (frame > 0) {
-      session.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
-        TickInput input = sampler.sample(tick);
-        drag.apply(input, sim);
-        sim.step(input);
-        rewind.push(sim);
-        if (recorder) recorder->record(input, sim);
-      });
+      try {
+        session.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
+          TickInput input = sampler.sample(tick);
+          drag.apply(input, sim);
+          sim.step(input);
+          rewind.push(sim);
+          if (recorder) recorder->record(input, sim);
+          done = sim.tick();
+        });
+      } catch (const StopRequested&) {  // inside a tick: discard it, keep the ticks before
+        torn = true;
+        break;
+      }
     }
     if (const auto& fault = session.simulation().fault(); fault && !was_faulted) {
       // Session paused the loop; the HUD shows the message too ('r' restarts).
       std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(shown.scene, *fault).c_str());
     }
+    done = session.simulation().tick();
     session.show_drag(sampler.pointer(), drag.body());
     session.draw();
     window.present(session.renderer().pixels());
@@ -314,10 +330,18 @@ int view_command(const ViewOptions& o) {
   reload.load.reset();
   const Session& session = *shown.session;
   fmt::print("{} driver={}\n", describe(shown.scene), window.driver());
-  fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-  if (recorder) {
-    write_recording(*o.record, recorder->finish(session.simulation()));
+  if (!torn) fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
+  if (recorder) {  // after a torn tick, up to its last stored hash (every tick at --hash-every 1)
+    write_recording(*o.record, torn ? recorder->finish_at_last_hash(initial_hash)
+                                    : recorder->finish(session.simulation()));
     fmt::print("recording={}\n", *o.record);
+  }
+  if (const int sig = StopOnSignal::requested()) {
+    std::fprintf(stderr, "fixstep: stopped by %s after tick %llu%s%s\n", StopOnSignal::name(),
+                 static_cast<unsigned long long>(done),
+                 torn ? " (the tick in progress discarded)" : "",
+                 recorder ? "; recording written" : "");
+    return 128 + sig;
   }
   return session.simulation().fault() ? exit_diverged : 0;
 }

@@ -391,6 +391,41 @@ if have_xvfb && command -v xdotool >/dev/null; then
     || { fail "replay of the window's recording"; cat "$work/drag_replay.out"; }
   [ "$(hash_of "$work/drag_replay.out")" = "$(hash_of "$work/drag_view.out")" ] \
     && ok "the replay ends at the window's final state" || fail "window vs replay hash"
+  # A stop request (SIGINT) ends view as it ends run: exit 130, its recording written and
+  # verified by a replay. Between ticks (SDL's own handler made it a quit: exit 0), and inside a
+  # 1.2 s tick (long_tick.toml at 3000 substeps), which is discarded (SDL's quit waited for the
+  # frame's ticks to end).
+  # view_stopped NAME SCENE OUT REC ARGS...: view in the background, SIGINT 0.6 s after its window
+  # appears; its exit status.
+  view_stopped() {
+    with_xvfb bash -c '
+      "$1" view "$2" --size 320x180 --frames 100000 --fps 60 --record "$4" "${@:5}" >"$3" 2>&1 &
+      view=$!
+      for _ in $(seq 400); do
+        wid=$(xdotool search --name "fixstep - " 2>/dev/null | head -1); [ -n "$wid" ] && break; sleep 0.05
+      done
+      sleep 0.6
+      kill -INT "$view"
+      for _ in $(seq 600); do kill -0 "$view" 2>/dev/null || break; sleep 0.05; done
+      kill -0 "$view" 2>/dev/null && kill -9 "$view"
+      wait "$view"' _ "$fixstep" "$@"
+  }
+  for stop in between:"$scenes/default.toml" inside:"$src/tests/scenes/long_tick.toml"; do
+    where=${stop%%:*} scene=${stop#*:}
+    extra=()
+    [ "$where" = inside ] && extra=(--substeps 3000)
+    view_stopped "$scene" "$work/stop_$where.out" "$work/stop_$where.rec" "${extra[@]}"
+    code=$?
+    [ "$code" -eq 130 ] && ok "SIGINT $where ticks ends view with exit 130" \
+      || { fail "view SIGINT $where ticks: exit $code"; cat "$work/stop_$where.out"; }
+    expect "view says it was stopped ($where ticks)" \
+      '^fixstep: stopped by SIGINT after tick [0-9]+.*; recording written$' "$work/stop_$where.out"
+    "$fixstep" replay "$work/stop_$where.rec" >"$work/stop_${where}_replay.out" 2>&1 \
+      && ok "the recording of a view stopped $where ticks replays, every hash verified" \
+      || { fail "replay of the stopped view ($where)"; cat "$work/stop_${where}_replay.out"; }
+  done
+  expect "a tick stopped half-way is discarded" 'after tick [0-9]+ \(the tick in progress discarded\)' \
+    "$work/stop_inside.out"
 else
   echo "skip - Xvfb or xdotool not installed (bash .ci/install-deps installs them)"
 fi
