@@ -15,8 +15,17 @@ namespace {
 /// bodies, `compare`'s per-tile measures, a CSV row's scratch.
 constexpr std::uint64_t command_body_bytes = 128;
 /// Frames of width x height x 4 bytes a capture holds beside its renderers' buffers: the frame
-/// submitted, the frames queued for the PNG or video writers and their encoders' buffers.
-constexpr std::uint64_t capture_frames = 4;
+/// submitted, the frames queued for the PNG or video writers and their encoders' buffers. PNG:
+/// 4 (render --size 8192x8192 --out peaks at 6.3 frames with the renderer's); a video, MP4 or
+/// GIF: 11 (at 8192x8192, 12.5 and 13 frames with the renderer's).
+constexpr std::uint64_t png_capture_frames = 4, video_capture_frames = 11;
+
+/// Frames of buffers the tiles' renderers of `compare` hold together.
+constexpr std::uint64_t compare_renderer_frames = 3;
+
+std::uint64_t capture_frames(bool video) {
+  return video ? video_capture_frames : png_capture_frames;
+}
 
 /// "1000000 bodies, 1998000 links" of a definition, for the terms' names.
 std::string counts(const WorldDef& def) {
@@ -59,7 +68,7 @@ std::vector<MemoryTerm> run_memory(const Scene& scene, std::optional<int> sync_t
   return terms;
 }
 
-std::vector<MemoryTerm> render_memory(const Scene& scene, int width, int height,
+std::vector<MemoryTerm> render_memory(const Scene& scene, int width, int height, bool video,
                                       const Recording* replay) {
   const WorldDef& def = scene.def;
   std::vector<MemoryTerm> terms{program_term()};
@@ -69,9 +78,10 @@ std::vector<MemoryTerm> render_memory(const Scene& scene, int width, int height,
                 2 * definition_bytes_estimate(def) + renderer_bytes_estimate(def, 0, 0) +
                 def.bodies.size() * command_body_bytes,
        .way_out = fewer(scene)});
-  terms.push_back({.what = fmt::format("--size {} frame buffers", size_text(width, height)),
+  terms.push_back({.what = fmt::format("--size {} frame buffers{}", size_text(width, height),
+                                       video ? " and the --video encoder" : ""),
                    .bytes = renderer_bytes_estimate(WorldDef{}, width, height) +
-                            capture_frames * frame_bytes(width, height),
+                            capture_frames(video) * frame_bytes(width, height),
                    .way_out = "a smaller --size"});
   if (replay) {
     // The world that verifies it first is gone before the Session's is built.
@@ -81,7 +91,7 @@ std::vector<MemoryTerm> render_memory(const Scene& scene, int width, int height,
 }
 
 std::vector<MemoryTerm> compare_memory(const Scene& base, std::size_t tiles, bool shadows,
-                                       int width, int height) {
+                                       int width, int height, bool video) {
   const WorldDef& def = base.def;  // a tile's overrides change no count: each tile's is this
   std::vector<MemoryTerm> terms{program_term()};
   terms.push_back({.what = fmt::format("the scene of {}", counts(def)),
@@ -99,11 +109,14 @@ std::vector<MemoryTerm> compare_memory(const Scene& base, std::size_t tiles, boo
                                        tiles, counts(def), shadows ? "a shadow world, " : ""),
                    .bytes = per_tiles,
                    .way_out = fmt::format("fewer --with tiles, or {}", fewer(base))});
-  // The tiles' renderers share the frame: together about one frame of each buffer.
-  terms.push_back({.what = fmt::format("--size {} frame buffers", size_text(width, height)),
-                   .bytes = renderer_bytes_estimate(WorldDef{}, width, height) +
-                            (1 + capture_frames) * frame_bytes(width, height),
-                   .way_out = "a smaller --size"});
+  // The tiles' renderers share the frame (less the gaps): together 3 frames of buffers, fitted
+  // to six tiles at 8192x8192 (peaks 2.09 GB with --out, 3.76 GB with --video: 7.3 and 13.5
+  // frames in all), then the frame they are copied into and the capture's.
+  terms.push_back(
+      {.what = fmt::format("--size {} frame buffers{}", size_text(width, height),
+                           video ? " and the --video encoder" : ""),
+       .bytes = (compare_renderer_frames + 1 + capture_frames(video)) * frame_bytes(width, height),
+       .way_out = "a smaller --size"});
   return terms;
 }
 

@@ -23,17 +23,19 @@ namespace fixstep::cli {
 [[nodiscard]] std::vector<MemoryTerm> run_memory(const Scene& scene, std::optional<int> sync_test);
 /// `render` at width x height pixels: the definition (the scene's and the Session's), the world,
 /// the renderer (per body, its trail) and the frame buffers (the renderer's and the capture's
-/// frames in flight: 8 frames of width x height x 4 bytes), and with --replay the recording (the
+/// frames in flight: 8 frames of width x height x 4 bytes, 15 with `video`, an MP4 or GIF
+/// encoder), and with --replay the recording (the
 /// world that verifies it first is freed before the Session's is built).
 [[nodiscard]] std::vector<MemoryTerm> render_memory(const Scene& scene, int width, int height,
-                                                    const Recording* replay);
+                                                    bool video, const Recording* replay);
 /// `compare` of `tiles` tiles of `base` (a tile's overrides change no count) in a width x height
 /// frame: per tile two definitions,
 /// its world, a shadow world when `shadows` (the scene has no exact solution) and a renderer of
 /// its cell; one world's build or the copy step_cost times (a tile at a time); the frame, and the
-/// capture's frames in flight.
+/// capture's frames in flight (more with `video`).
 [[nodiscard]] std::vector<MemoryTerm> compare_memory(const Scene& base, std::size_t tiles,
-                                                     bool shadows, int width, int height);
+                                                     bool shadows, int width, int height,
+                                                     bool video);
 /// `view` at width x height: the definition (the scene's and the Session's), the world, the
 /// rewind buffer (at most rewind_max_bytes, and at least one state: more than the world's build
 /// and the copy the rewind plan steps, which come before it), the renderer and the window's frame.

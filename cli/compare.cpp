@@ -260,7 +260,8 @@ int compare_command(const CompareOptions& o) {
   const TileGrid grid = tile_grid(static_cast<int>(specs.size()), width, height);
   // Before any tile's world or frame buffer is allocated.
   check_memory("compare", o.scene,
-               compare_memory(base, specs.size(), !has_exact_solution(base), width, height));
+               compare_memory(base, specs.size(), !has_exact_solution(base), width, height,
+                              o.video.has_value()));
   set_phase("building the tiles");
   const bool headless = o.out || o.video;
   // A virtual clock (capture, or --fps in the window) is not clamped: frames 1/fps apart.

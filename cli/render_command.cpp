@@ -65,7 +65,8 @@ int render_command(const RenderOptions& o) {
                           : load_with_overrides(o.scene);
   const auto [width, height] = parse_frame_size(o.size);
   // Before the world and the frame buffers are allocated.
-  check_memory("render", scene.file, render_memory(scene, width, height, rec ? &*rec : nullptr));
+  check_memory("render", scene.file,
+               render_memory(scene, width, height, o.video.has_value(), rec ? &*rec : nullptr));
   // A scene's world is checked here, before any output, its guard's findings located in the
   // file; a recording's is replayed whatever the guard says (scene_for_recording).
   std::optional<World> checked;

@@ -49,14 +49,14 @@ std::string refusal(const std::vector<MemoryTerm>& terms, std::string_view comma
 
 TEST(CommandMemoryLimits, RefusesSixTilesOfAMillionBodiesAt8192Squared) {
   const Scene scene = row_scene(1'000'000, false);
-  const auto terms = compare_memory(scene, 6, false, 8192, 8192);
+  const auto terms = compare_memory(scene, 6, false, 8192, 8192, false);
   EXPECT_GT(total_bytes(terms), max_command_bytes);
   const std::string e = refusal(terms, "compare");
   EXPECT_NE(e.find("compare grid.toml: would need about"), std::string::npos) << e;
   EXPECT_NE(e.find("at most 4 GiB"), std::string::npos) << e;
   EXPECT_NE(e.find("6 tiles (--with) of 1000000 bodies"), std::string::npos) << e;
   EXPECT_NE(e.find("fewer --with tiles"), std::string::npos) << e;
-  EXPECT_NE(e.find("--size 8192x8192 frame buffers 2.25 GiB"), std::string::npos) << e;
+  EXPECT_NE(e.find("--size 8192x8192 frame buffers 2.00 GiB"), std::string::npos) << e;
 }
 
 TEST(CommandMemoryLimits, RefusesTheViewOfAMillionTouchingDiscs) {
@@ -77,8 +77,11 @@ TEST(CommandMemoryLimits, AcceptsTheLargestLinkedGridInViewAndAMillionDiscsInRun
   EXPECT_LE(total_bytes(run_memory(row_scene(1'000'000, true), std::nullopt)), max_command_bytes);
   // The frame alone at its largest, in each command that captures.
   const Scene small = row_scene(10, false);
-  EXPECT_LE(total_bytes(render_memory(small, 8192, 8192, nullptr)), max_command_bytes);
-  EXPECT_LE(total_bytes(compare_memory(small, 6, true, 8192, 8192)), max_command_bytes);
+  EXPECT_LE(total_bytes(render_memory(small, 8192, 8192, false, nullptr)), max_command_bytes);
+  // An MP4 or GIF encoder holds more (measured peaks 3.48 and 3.61 GB): still within the bound.
+  EXPECT_LE(total_bytes(render_memory(small, 8192, 8192, true, nullptr)), max_command_bytes);
+  EXPECT_LE(total_bytes(compare_memory(small, 6, true, 8192, 8192, false)), max_command_bytes);
+  EXPECT_LE(total_bytes(compare_memory(small, 6, true, 8192, 8192, true)), max_command_bytes);
 }
 
 TEST(CommandMemoryLimits, AcceptsEveryShippedScene) {
@@ -88,9 +91,10 @@ TEST(CommandMemoryLimits, AcceptsEveryShippedScene) {
     const Scene scene = load_scene(entry.path().string());
     SCOPED_TRACE(entry.path().string());
     EXPECT_NO_THROW(check_memory("run", scene.file, run_memory(scene, 10000)));
-    EXPECT_NO_THROW(check_memory("render", scene.file, render_memory(scene, 1920, 1080, nullptr)));
     EXPECT_NO_THROW(
-        check_memory("compare", scene.file, compare_memory(scene, 6, true, 1920, 1080)));
+        check_memory("render", scene.file, render_memory(scene, 1920, 1080, true, nullptr)));
+    EXPECT_NO_THROW(
+        check_memory("compare", scene.file, compare_memory(scene, 6, true, 1920, 1080, true)));
     EXPECT_NO_THROW(check_memory("view", scene.file, view_memory(scene, 1920, 1080)));
   }
 }
