@@ -528,6 +528,25 @@ else
   expect "an allocation that fails names the command and its phase" \
     '^fixstep: error: run: out of memory \(std::bad_alloc\) while (loading the scene|building the world|stepping the world): ' \
     "$work/oom.out"
+  # Beyond the 4 GiB bound, compare and view are refused from their estimate before they
+  # allocate: within 1 GB of address space the LimitError comes, not a std::bad_alloc (the
+  # scene's own load takes 0.15 and 0.4 GB; without the estimate the tiles would take ~5 GB).
+  printf '[world]\ndt = 0.01\n[[grid]]\ncolumns = 300\nrows = 1000\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0 }\n' \
+    >"$work/grid_3e5.toml"
+  (ulimit -v 1000000 && "$fixstep" compare "$work/grid_3e5.toml" --with rk4 --with semi_implicit_euler \
+    --with velocity_verlet --with rk4@0.005 --with semi_implicit_euler@0.005 \
+    --with velocity_verlet@0.005 --out "$work/tiles_3e5" --frames 2 2>&1; echo "exit=$?") | cat >"$work/mem_compare.out"
+  expect "compare of six tiles of 3*10^5 bodies is refused before it allocates" \
+    '^fixstep: error: compare .*grid_3e5\.toml: would need about [0-9.]+ GiB of memory .*a command may use at most 4 GiB .*dominates: fewer --with tiles' \
+    "$work/mem_compare.out"
+  expect "the refused compare exits 1" '^exit=1$' "$work/mem_compare.out"
+  printf '[world]\ndt = 0.01\n[contacts]\n[[grid]]\ncolumns = 750\nrows = 1000\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0, radius = 0.05 }\n' \
+    >"$work/discs_75e4.toml"
+  (ulimit -v 1000000 && env -u DISPLAY "$fixstep" view "$work/discs_75e4.toml" --frames 1 2>&1; echo "exit=$?") | cat >"$work/mem_view.out"
+  expect "view of 7.5*10^5 touching discs is refused before it allocates (or opens a window)" \
+    '^fixstep: error: view .*discs_75e4\.toml: would need about [0-9.]+ GiB of memory .*rewind buffer' \
+    "$work/mem_view.out"
+  expect "the refused view exits 1" '^exit=1$' "$work/mem_view.out"
 fi
 
 # --- the demo ----------------------------------------------------------------------------
