@@ -20,6 +20,7 @@
 #include <fixstep/window/window.hpp>
 #include <functional>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -212,11 +213,15 @@ void follow_reload(ShownWorld& shown, Reload& reload, const ViewOptions& o) {
     swap_in(shown, std::move(loaded), o.scene);
   } catch (const std::exception& e) {
     reload.load.reset();
+    // A std::bad_alloc past the memory check (less memory free than the estimate needs).
+    const std::string why = dynamic_cast<const std::bad_alloc*>(&e) != nullptr
+                                ? "out of memory (std::bad_alloc) while loading it"
+                                : std::string(e.what());
     std::fprintf(stderr,
                  "fixstep: reload failed: %s; the last good world keeps running (tick %llu)\n",
-                 e.what(), static_cast<unsigned long long>(tick));
+                 why.c_str(), static_cast<unsigned long long>(tick));
     s.set_status_lines(
-        reload_error_lines("RELOAD FAILED - the last good world runs on", e.what(), width, scale));
+        reload_error_lines("RELOAD FAILED - the last good world runs on", why, width, scale));
     return;
   }
   reload.load.reset();
