@@ -38,7 +38,7 @@ void check_command_work(std::uint64_t ticks, std::uint64_t work_per_tick, std::s
 inline constexpr std::uint64_t max_command_bytes = std::uint64_t{4} << 30;
 
 /// Bytes of the program before any input is read (its libraries: Mesa, FFmpeg, SDL), included in
-/// every command's estimate: measured 94 MB of resident memory; 128 MiB counted.
+/// every command's estimate: 128 MiB, above the resident size measured (docs/ROBUSTNESS.md).
 inline constexpr std::uint64_t program_base_bytes = std::uint64_t{128} << 20;
 
 /// An upper estimate of the bytes one World of `def` holds once it has stepped (its state
@@ -68,10 +68,11 @@ struct MemoryTerm {
   std::string way_out;  ///< how to ask for less, e.g. "fewer --with tiles or a smaller world"
 };
 
-/// Throws LimitError when the terms sum to more than max_command_bytes: "COMMAND: it would need
-/// about X GiB (TERM Y GiB + ...); a command may use at most 4 GiB: WAY OUT (the largest term,
-/// WHAT, dominates)". `command` names the command and where the claim was made, e.g. "fixstep
-/// compare scene.toml" or "--size 8192x8192". Sums without overflow (each term saturates).
+/// Throws LimitError when the terms sum to more than max_command_bytes: "COMMAND: would need
+/// about X GiB of memory (TERM Y GiB + ...; terms under 1 MiB left out); a command may use at
+/// most 4 GiB (max_command_bytes): WHAT dominates: WAY OUT", WHAT and WAY OUT those of the
+/// largest term. `command` names the command and its input, e.g. "compare scene.toml". The sum
+/// saturates at UINT64_MAX instead of overflowing.
 void check_command_memory(std::string_view command, std::span<const MemoryTerm> terms);
 /// The sum of the terms' bytes, saturating at UINT64_MAX.
 [[nodiscard]] std::uint64_t total_bytes(std::span<const MemoryTerm> terms);
