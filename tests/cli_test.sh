@@ -513,6 +513,21 @@ expect "new past the file-size limit reports EFBIG, not a stale errno" \
   'cannot write sized_out/[A-Za-z.]+: File too large \(fixstep new left nothing behind\)' "$work/new_efbig.out"
 [ ! -e "$work/sized_out" ] && ok "new past the file-size limit leaves nothing" || fail "new left sized_out"
 
+# --- the exact reference of a network is bounded: a dense eigen-decomposition --------------
+# A 100 x 100 grid of zero-rest-length links (linear, proportional damping) had an exact
+# solution: an eigen-decomposition of a dense 10^4 x 10^4 system, over a minute and 1.7 GB
+# (9*10^4 bodies would ask for 65 GB). Past max_exact_network_bodies (1000) it has none.
+printf '[world]\ndt = 0.01\n[[grid]]\ncolumns = 100\nrows = 100\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0 }\nlink = { stiffness = 10.0, damping = 0.1, rest_length = 0.0 }\n' \
+  >"$work/net_1e4.toml"
+timeout 60 "$fixstep" run "$work/net_1e4.toml" --steps 2 >"$work/net_1e4.out" 2>&1
+code=$?
+[ "$code" -eq 0 ] && ok "run of a 10^4-body linear network exits 0 (no dense exact solve; 60 s guard)" \
+  || { fail "run of a 10^4-body network: exit $code"; cat "$work/net_1e4.out"; }
+grep -q '^exact_error=' "$work/net_1e4.out" && fail "an exact error for a network past 1000 bodies" \
+  || ok "no exact error past max_exact_network_bodies"
+"$fixstep" run "$scenes/spring_damper.toml" --steps 10 >"$work/small_exact.out" 2>&1
+expect "a small scene keeps its exact error" '^exact_error=' "$work/small_exact.out"
+
 # --- memory: a std::bad_alloc past the estimate's check is located ---------------------------
 # With less address space than the 10^5-body grid needs (ulimit -v 80 MB, far under the estimate's
 # 4 GiB bound), the allocation fails inside the command: the message names the command and the
