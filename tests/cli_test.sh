@@ -528,6 +528,19 @@ grep -q '^exact_error=' "$work/net_1e4.out" && fail "an exact error for a networ
 "$fixstep" run "$scenes/spring_damper.toml" --steps 10 >"$work/small_exact.out" 2>&1
 expect "a small scene keeps its exact error" '^exact_error=' "$work/small_exact.out"
 
+# --- text drawn is bounded: a body name of 2 MB in the guard's message --------------------
+# The renderer's glyph scratch took 1 kB a character of a HUD line: the runtime guard's message
+# naming a body of a 2 MB name asked for 6.4 GB. Within 2 GB of address space the render ends
+# with the guard's located error (exit 3), not an allocation failure. Not under ASan.
+if ! grep -qa __asan_init "$fixstep"; then
+  { printf '[world]\ndt = 0.01\n[[body]]\nname = "'; head -c 2000000 /dev/zero | tr '\0' x
+    printf '"\ntype = "kinematic"\nposition = [0.0, 0.0]\nvelocity = [1e13, 0.0]\n'; } >"$work/long_name.toml"
+  (ulimit -v 2000000 && "$fixstep" render "$work/long_name.toml" --out "$work/long_name" --frames 3 \
+    --size 320x180 2>&1 >/dev/null; echo "exit=$?") | cut -c1-200 | cat >"$work/long_name.out"
+  expect "a 2 MB body name in the guard's HUD message: the located error, exit 3, within 2 GB" \
+    '^exit=3$' "$work/long_name.out"
+fi
+
 # --- memory: a std::bad_alloc past the estimate's check is located ---------------------------
 # With less address space than the 10^5-body grid needs (ulimit -v 80 MB, far under the estimate's
 # 4 GiB bound), the allocation fails inside the command: the message names the command and the
