@@ -1,3 +1,4 @@
+// What the running command is doing (command_phase.hpp).
 #include "command_phase.hpp"
 
 #include <atomic>
