@@ -25,6 +25,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "csv_field.hpp"
 #include "exact_reference.hpp"
 #include "fixstep/io/command_limits.hpp"
@@ -87,6 +89,7 @@ Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warni
   // shows the progress itself: no scope of our own, the reports go to its scope.
   std::optional<WorkProgressLine> shown;
   if (!warnings) shown.emplace(!o.quiet);
+  set_phase("loading the scene");
   Scene scene = load_scene(o.scene);
   if (o.integrator) scene.def.settings.integrator = *parse_integrator(*o.integrator);
   if (o.dt) scene.def.settings.dt = *o.dt;
@@ -113,6 +116,7 @@ World build_world(const Scene& scene, bool quiet, std::vector<std::string>* warn
   std::optional<WorkProgressLine> shown;
   if (!warnings) shown.emplace(!quiet);
   report_work_progress("checking the scene", "", 0, 0);  // no count until the guard iterates
+  set_phase("building the world");
   std::optional<World> world;
   try {
     world.emplace(scene.def);
@@ -278,6 +282,7 @@ int run_command(const RunOptions& o) {
                                    *o.sync_test, *o.sync_test));
   }
   if (o.record) check_recording_size(ticks, o.hash_every, *o.record);
+  check_memory("run", scene.file, run_memory(scene, o.sync_test));  // before the world is built
   World sim = build_world(scene, o.scene.quiet);
   if (o.sync_test) check_sync_test_memory(sim, *o.sync_test);
   const double e0 = sim.energy().total();
@@ -314,6 +319,7 @@ int run_command(const RunOptions& o) {
   std::optional<SyncTest> sync;
   if (o.sync_test) sync.emplace(sim, *o.sync_test);
   const StopOnSignal signals;
+  set_phase("stepping the world");
   Progress progress("run", "tick", ticks, !o.scene.quiet);
   // A clock read about every 2^20 body-substeps: every tick of a large world, every 1024th of
   // a small one.

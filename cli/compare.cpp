@@ -22,8 +22,11 @@
 #include <vector>
 
 #include "capture_sink.hpp"
+#include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "comparison.hpp"
 #include "csv_field.hpp"
+#include "exact_reference.hpp"
 #include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/summary.hpp"
 #include "output_paths.hpp"
@@ -115,6 +118,18 @@ void warn_repeated(std::span<const TileSpec> specs) {
   }
 }
 
+/// Whether a moving body of `scene` has an exact solution at t = 0 (ExactReference): else each
+/// tile but the reference is measured against a shadow world.
+bool has_exact_solution(const Scene& scene) {
+  const ExactReference reference(scene);
+  std::vector<std::optional<Body>> exact;
+  reference.at(0.0, exact);
+  for (std::size_t j = 0; j < exact.size(); ++j) {
+    if (exact[j] && scene.def.bodies[j].type != BodyType::static_body) return true;
+  }
+  return false;
+}
+
 /// Reports every tile the runtime guard stopped; exit_diverged if there is one, else 0.
 int report_faults(const Comparison& c) {
   int status = 0;
@@ -158,6 +173,7 @@ int capture(const CompareOptions& o, Comparison& c, int width, int height) {
   CaptureSink sink(
       {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,
       height, fps, ManifestLayout::tiles);
+  set_phase("capturing the frames");
   std::vector<std::uint8_t> frame = blank_frame(width, height);
   const StopOnSignal signals;
   Progress progress("compare", "frame", frames, !o.quiet);
@@ -231,6 +247,7 @@ int compare_command(const CompareOptions& o) {
                                             min_tiles, max_tiles, o.with.size()));
   }
   check_paths(compare_paths(o));  // before any work: no output may be an input
+  set_phase("loading the scene");
   Scene base = load_scene(o.scene);
   if (o.allow_unstable) base.def.allow_unstable = true;
   if (!o.quiet) {
@@ -241,6 +258,11 @@ int compare_command(const CompareOptions& o) {
   if (!o.quiet) warn_repeated(specs);
   const auto [width, height] = parse_frame_size(o.size);
   const TileGrid grid = tile_grid(static_cast<int>(specs.size()), width, height);
+  // Before any tile's world or frame buffer is allocated.
+  check_memory("compare", o.scene,
+               compare_memory(base, specs.size(), !has_exact_solution(base), width, height,
+                              o.video.has_value()));
+  set_phase("building the tiles");
   const bool headless = o.out || o.video;
   // A virtual clock (capture, or --fps in the window) is not clamped: frames 1/fps apart.
   const bool virtual_clock = headless || o.fps;

@@ -74,10 +74,28 @@ std::string touched_clause(const TouchedBodies& touched, std::size_t bodies) {
                      bodies, *touched.first());
 }
 
+namespace {
+
+/// Bodies at either end of some link of `def`.
+std::size_t linked_bodies(const WorldDef& def) {
+  std::vector<char> linked(def.bodies.size(), 0);
+  std::size_t n = 0;
+  for (const LinkDef& l : def.links) {
+    for (const Entity e : {l.body_a, l.body_b}) {
+      if (e.slot() < linked.size() && linked[e.slot()] == 0) linked[e.slot()] = 1, ++n;
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
 ExactReference::ExactReference(const Scene& scene) : scene_(scene) {
   const bool bounces = std::any_of(scene.def.bodies.begin(), scene.def.bodies.end(),
                                    [&](const BodyDef& b) { return bouncing(b); });
-  if (!scene.def.links.empty() && !bounces) {
+  // The network's solution is a dense eigen-decomposition: O(n^2) memory, O(n^3) time.
+  if (!scene.def.links.empty() && !bounces &&
+      linked_bodies(scene.def) <= max_exact_network_bodies) {
     network_ = exact::LinearNetwork::make(scene.def.bodies, scene.def.links);
   }
 }

@@ -56,12 +56,17 @@ class TouchedBodies {
   std::size_t dynamic_count_ = 0;
 };
 
+/// Most bodies joined by links that ExactReference solves exactly: the network's solution is a
+/// dense eigen-decomposition (O(n^2) memory, O(n^3) time: 10^4 bodies took over a minute and
+/// 1.7 GB, 9·10^4 would ask for 65 GB), so a larger network has no exact solution.
+inline constexpr std::size_t max_exact_network_bodies = 1000;
+
 /// The exact solution of a scene where one exists: per body (exact::solve) when the scene has
 /// no links, for the whole network (exact::LinearNetwork) when it has and they are linear
-/// with proportional damping. Bodies that bounce on the scene's planes have none (the exact
-/// solutions know no contacts), nor has a network holding one; a body a disc contact has
-/// touched has none from that tick on (TouchedBodies). Holds a reference to `scene`, which must
-/// outlive it.
+/// with proportional damping, of at most max_exact_network_bodies linked bodies. Bodies that bounce
+/// on the scene's planes have none (the exact solutions know no contacts), nor has a network
+/// holding one; a body a disc contact has touched has none from that tick on (TouchedBodies). Holds
+/// a reference to `scene`, which must outlive it.
 class ExactReference {
  public:
   explicit ExactReference(const Scene& scene);

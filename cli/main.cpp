@@ -17,10 +17,13 @@
 #include <cstdio>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/stop_request.hpp>
+#include <fixstep/io/command_limits.hpp>
 #include <fixstep/io/write_signals.hpp>
 #include <fixstep/scene/suggest.hpp>
+#include <new>
 
 #include "capture_sink.hpp"
+#include "command_phase.hpp"
 #include "commands.hpp"
 #include "compare.hpp"
 #include "compare_tiles.hpp"
@@ -291,6 +294,7 @@ int main(int argc, char** argv) try {
   }
   const auto command = [&]() -> int {
     if (run_cmd->parsed()) {
+      set_command("run");
       if (!steps->count() && !duration->count()) {
         std::fputs("fixstep run: give --steps N (ticks) or --duration S (simulated seconds)\n",
                    stderr);
@@ -299,6 +303,7 @@ int main(int argc, char** argv) try {
       return run_command(run);
     }
     if (render_cmd->parsed()) {
+      set_command("render");
       if (render.scene.scene.empty() && !render.replay) {
         std::fputs("fixstep render: give SCENE (or --replay FILE, which names its scene)\n",
                    stderr);
@@ -317,6 +322,7 @@ int main(int argc, char** argv) try {
       return render_command(render);
     }
     if (compare_cmd->parsed()) {
+      set_command("compare");
       if (compare.with.size() < min_tiles || compare.with.size() > max_tiles) {
         std::fprintf(stderr, "fixstep compare: give 2 to 6 --with configurations, got %zu\n",
                      compare.with.size());
@@ -333,9 +339,9 @@ int main(int argc, char** argv) try {
       }
       return compare_command(compare);
     }
-    if (replay_cmd->parsed()) return replay_command(replay);
-    if (new_cmd->parsed()) return new_command(new_dir);
-    return view_command(view);
+    if (replay_cmd->parsed()) return set_command("replay"), replay_command(replay);
+    if (new_cmd->parsed()) return set_command("new"), new_command(new_dir);
+    return set_command("view"), view_command(view);
   };
   try {
     return command();
@@ -354,6 +360,15 @@ int main(int argc, char** argv) try {
 } catch (const fixstep::RecordingError& e) {
   std::fprintf(stderr, "fixstep: error: %s\n", e.what());
   return fixstep::cli::exit_code(e);
+} catch (const std::bad_alloc&) {  // past the estimate's check: less memory free than it assumed
+  std::fprintf(stderr,
+               "fixstep: error: %s: out of memory (std::bad_alloc) while %s: less memory was free "
+               "than this command's estimate needs (it may plan up to %.0f GiB: docs/CLI.md, "
+               "\"Memory\"); free some, or ask for less: fewer bodies, tiles or frames, a smaller "
+               "--size\n",
+               fixstep::cli::command_name(), fixstep::cli::phase_name(),
+               double(fixstep::max_command_bytes) / double(std::uint64_t{1} << 30));
+  return 1;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "fixstep: error: %s\n", e.what());
   return 1;

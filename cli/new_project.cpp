@@ -57,9 +57,16 @@ void write_new_file(const fs::path& file, std::string_view text, const fs::path&
         fmt::format("cannot create {}: {}", shown.string(),
                     std::error_code(errno, std::generic_category()).message()));
   }
-  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size();
-  const int err = errno;
-  if (std::fclose(out) != 0 || !written) {
+  // The bytes reach the file at the flush (a full disk, `ulimit -f`: ENOSPC, EFBIG): the error
+  // reported is the errno of the call that failed, taken before any other call can change it.
+  errno = 0;
+  int err = 0;
+  if (std::fwrite(text.data(), 1, text.size(), out) != text.size() || std::fflush(out) != 0) {
+    err = errno != 0 ? errno : EIO;
+  }
+  errno = 0;
+  if (std::fclose(out) != 0 && err == 0) err = errno != 0 ? errno : EIO;
+  if (err != 0) {
     throw std::runtime_error(fmt::format("cannot write {}: {}", shown.string(),
                                          std::error_code(err, std::generic_category()).message()));
   }

@@ -14,6 +14,8 @@
 #include <fixstep/scene/scene_stability.hpp>
 
 #include "capture_sink.hpp"
+#include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "commands.hpp"
 #include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/recording_file.hpp"
@@ -52,6 +54,7 @@ bool verified_before_capture(const Scene& scene, const Recording& rec, const Ren
 
 int render_command(const RenderOptions& o) {
   std::optional<Recording> rec;
+  set_phase("reading the recording");
   if (o.replay) rec = read_recording(*o.replay);
   const std::optional<std::string> given =
       o.scene.scene.empty() ? std::nullopt : std::optional(o.scene.scene);
@@ -60,6 +63,10 @@ int render_command(const RenderOptions& o) {
   check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
   const Scene scene = rec ? scene_for_recording(*rec, *o.replay, given, o.scene.quiet)
                           : load_with_overrides(o.scene);
+  const auto [width, height] = parse_frame_size(o.size);
+  // Before the world and the frame buffers are allocated.
+  check_memory("render", scene.file,
+               render_memory(scene, width, height, o.video.has_value(), rec ? &*rec : nullptr));
   // A scene's world is checked here, before any output, its guard's findings located in the
   // file; a recording's is replayed whatever the guard says (scene_for_recording).
   std::optional<World> checked;
@@ -84,7 +91,7 @@ int render_command(const RenderOptions& o) {
                         *o.replay, rec->ticks)
           : fmt::format("--frames {} at --fps {:g} with {}", o.frames, o.fps, dt_from));
   if (rec && !verified_before_capture(scene, *rec, o)) return exit_replay_diverged;
-  const auto [width, height] = parse_frame_size(o.size);
+  set_phase("rendering the frames");
   // Frame f is encoded and written on the writers' threads while frame f + 1 renders here.
   CaptureSink sink(
       {.out = o.out, .video = o.video, .png_level = o.png_level, .overwrite = o.overwrite}, width,

@@ -10,6 +10,8 @@
 #include <fixstep/core/world_settings.hpp>
 #include <stdexcept>
 
+#include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "commands.hpp"
 #include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/recording_file.hpp"
@@ -162,11 +164,15 @@ void report_divergence(const ReplayReport::Mismatch& m, const std::string& recor
 }
 
 int replay_command(const ReplayOptions& o) {
+  set_phase("reading the recording");
   const Recording rec = read_recording(o.recording);
+  set_phase("loading the scene");
   const Scene scene = scene_for_recording(rec, o.recording, o.scene, o.quiet);
   check_command_work(
       rec.ticks, tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings),
       fmt::format("{}: end {}", o.recording, rec.ticks));
+  check_memory("replay", o.recording, replay_memory(scene, rec));  // before the world is built
+  set_phase("replaying the recording");
   const ReplayReport report = verify_recording(scene, rec, o.quiet);
   fmt::print("{}\n", describe(scene));
   if (const auto& m = report.mismatch) {

@@ -18,11 +18,11 @@ std::string describe(const LoadStatus& s) {
                      s.done * 100 / s.total, s.seconds);
 }
 
-BackgroundLoad::BackgroundLoad(SceneOptions options)
+BackgroundLoad::BackgroundLoad(SceneOptions options, std::function<void(const Scene&)> check)
     : start_(std::chrono::steady_clock::now()),
       status_{.phase = "reading the scene", .unit = {}},
       result_(promise_.get_future()),
-      thread_([this, o = std::move(options)] { run(o); }) {}
+      thread_([this, o = std::move(options), c = std::move(check)] { run(o, c); }) {}
 
 BackgroundLoad::~BackgroundLoad() {
   cancel();
@@ -67,7 +67,8 @@ void BackgroundLoad::report(std::string_view what, std::string_view unit, std::u
       .phase = std::string(what), .unit = std::string(unit), .done = done, .total = total};
 }
 
-void BackgroundLoad::run(const SceneOptions& options) {
+void BackgroundLoad::run(const SceneOptions& options,
+                         const std::function<void(const Scene&)>& check) {
   const StopScope stop(stop_);
   const WorkProgressScope progress(
       [this](std::string_view what, std::string_view unit, std::uint64_t done,
@@ -75,6 +76,7 @@ void BackgroundLoad::run(const SceneOptions& options) {
   try {
     std::vector<std::string> warnings;
     Scene scene = load_with_overrides(options, &warnings);
+    if (check) check(scene);  // before the world is built
     set_phase("building the world");
     scene.def.settings.track_dissipation = true;  // as Session's own build
     WorldDef def = scene.def;

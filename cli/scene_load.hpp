@@ -14,6 +14,7 @@
 #include <fixstep/core/world.hpp>
 #include <fixstep/core/world_def.hpp>
 #include <fixstep/scene/scene.hpp>
+#include <functional>
 #include <future>
 #include <mutex>
 #include <string>
@@ -52,7 +53,9 @@ class BackgroundLoad {
   /// Starts loading `options`' scene (load_with_overrides, without a terminal progress line; its
   /// warnings kept in LoadedWorld), then building its world and planning its rewind
   /// (plan_rewind), on a thread of its own.
-  explicit BackgroundLoad(SceneOptions options);
+  /// `check`, when given, is called with the loaded scene before its world is built (view's
+  /// memory estimate: a LimitError it throws is the load's error).
+  explicit BackgroundLoad(SceneOptions options, std::function<void(const Scene&)> check = nullptr);
   /// cancel(), then waits for the thread (at most about a second: see cancel).
   ~BackgroundLoad();
   BackgroundLoad(const BackgroundLoad&) = delete;
@@ -77,7 +80,7 @@ class BackgroundLoad {
   [[nodiscard]] bool stop();
 
  private:
-  void run(const SceneOptions& options);
+  void run(const SceneOptions& options, const std::function<void(const Scene&)>& check);
   void set_phase(std::string_view phase);
   void report(std::string_view what, std::string_view unit, std::uint64_t done,
               std::uint64_t total);

@@ -14,16 +14,22 @@
 #include <fixstep/core/recording.hpp>
 #include <fixstep/core/rewind.hpp>
 #include <fixstep/core/step_results.hpp>
+#include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/window/window.hpp>
+#include <functional>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <thread>
 #include <utility>
+#include <vector>
 
+#include "command_memory.hpp"
+#include "command_phase.hpp"
 #include "commands.hpp"
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/io/summary.hpp"
@@ -31,6 +37,7 @@
 #include "progress.hpp"
 #include "scene_load.hpp"
 #include "scene_watch.hpp"
+#include "stop_signal.hpp"
 #include "view_rewind.hpp"
 
 namespace fixstep::cli {
@@ -76,6 +83,22 @@ std::optional<double> fps_of(const SessionSettings& settings) {
              : std::nullopt;
 }
 
+/// The memory check of a load (view_memory) in a width x height window; on a reload, with the
+/// world shown meanwhile (`shown`, kept until the new one is ready).
+std::function<void(const Scene&)> memory_check(int width, int height, const Scene* shown) {
+  std::vector<MemoryTerm> kept;
+  if (shown) {
+    kept.push_back({.what = fmt::format("the world shown while the new one loads"),
+                    .bytes = total_bytes(view_memory(*shown, width, height)) - program_base_bytes,
+                    .way_out = "fewer bodies or links"});
+  }
+  return [width, height, kept](const Scene& scene) {
+    std::vector<MemoryTerm> terms = view_memory(scene, width, height);
+    terms.insert(terms.end(), kept.begin(), kept.end());
+    check_memory("view", scene.file, terms);
+  };
+}
+
 /// The load's warnings on standard error, unless --quiet.
 void print_warnings(const LoadedWorld& world, const SceneOptions& o) {
   if (o.quiet) return;
@@ -85,8 +108,8 @@ void print_warnings(const LoadedWorld& world, const SceneOptions& o) {
 /// The first world, loaded on a thread of its own while this one shows the load's progress on
 /// a terminal ("loading s.toml: stability guard: iteration 310/10000 (3 %), 4.2 s"). SIGINT
 /// ends the process at once, as before any window opened.
-LoadedWorld load_first(const SceneOptions& o) {
-  BackgroundLoad load(o);
+LoadedWorld load_first(const SceneOptions& o, int width, int height) {
+  BackgroundLoad load(o, memory_check(width, height, nullptr));
   StatusLine line(!o.quiet);
   while (!load.ready()) {
     line.show(fmt::format("loading {}: {}", o.scene, describe(load.status())));
@@ -153,7 +176,8 @@ void on_scene_saved(ShownWorld& shown, Reload& reload, const ViewOptions& o, boo
     reload.again = true;
     return;
   }
-  reload.load.emplace(o.scene);
+  reload.load.emplace(o.scene,
+                      memory_check(s.renderer().width(), s.renderer().height(), &shown.scene));
   fmt::print(
       "loading {} (at tick {}): the window shows the world before the save until it is "
       "ready\n",
@@ -177,7 +201,7 @@ void follow_reload(ShownWorld& shown, Reload& reload, const ViewOptions& o) {
     std::fprintf(stderr, "fixstep: %s was saved again while it loaded: that load was %s\n",
                  file.c_str(), reload.load->stop() ? "dropped" : "stopped");
     reload.load.reset();
-    reload.load.emplace(o.scene);
+    reload.load.emplace(o.scene, memory_check(width, s.renderer().height(), &shown.scene));
     reload.again = false;
     return;
   }
@@ -189,11 +213,15 @@ void follow_reload(ShownWorld& shown, Reload& reload, const ViewOptions& o) {
     swap_in(shown, std::move(loaded), o.scene);
   } catch (const std::exception& e) {
     reload.load.reset();
+    // A std::bad_alloc past the memory check (less memory free than the estimate needs).
+    const std::string why = dynamic_cast<const std::bad_alloc*>(&e) != nullptr
+                                ? "out of memory (std::bad_alloc) while loading it"
+                                : std::string(e.what());
     std::fprintf(stderr,
                  "fixstep: reload failed: %s; the last good world keeps running (tick %llu)\n",
-                 e.what(), static_cast<unsigned long long>(tick));
+                 why.c_str(), static_cast<unsigned long long>(tick));
     s.set_status_lines(
-        reload_error_lines("RELOAD FAILED - the last good world runs on", e.what(), width, scale));
+        reload_error_lines("RELOAD FAILED - the last good world runs on", why, width, scale));
     return;
   }
   reload.load.reset();
@@ -210,12 +238,16 @@ int view_command(const ViewOptions& o) {
   // The watch takes the file's stamp before the file is read: a save during the load is seen.
   std::optional<FileWatch> watch;
   if (!o.no_watch) watch.emplace(o.scene.scene);
-  LoadedWorld first = load_first(o.scene);
+  const auto [width, height] = parse_frame_size(o.size);
+  LoadedWorld first = load_first(o.scene, width, height);
   // --fps: a virtual clock, not clamped (frames exactly 1/fps apart).
   const double frame_time = std::max(SessionSettings{}.max_frame_time, o.fps ? 1.0 / *o.fps : 0.0);
   check_frame_ticks(frame_time, first.scene.def.settings.dt, o.fps, dt_source(o.scene, first.scene),
                     dt_fix(o.scene));
-  const auto [width, height] = parse_frame_size(o.size);
+  // SIGINT and SIGTERM from here on stop the session as run's are (stop_signal.hpp): the tick in
+  // progress is abandoned, the recording kept up to the last complete tick. Installed before
+  // the window, so SDL keeps its own handler out (it installs one only over the default).
+  const StopOnSignal signals;
   // The window first: without a display it fails at once with a pointer to `render`.
   Window window = open_window(fmt::format("fixstep - {}", first.scene.file), width, height,
                               "fixstep render SCENE --out DIR");
@@ -225,6 +257,7 @@ int view_command(const ViewOptions& o) {
   show(shown, std::move(first.scene),
        std::make_unique<Session>(std::move(first.def), std::move(first.sim), settings), first.plan);
   Reload reload;
+  set_phase("showing the world");
 
   InputSampler sampler;  // window events -> one input per tick
   // --record: every tick's input and state hash, following the kept timeline through rewinds
@@ -233,6 +266,9 @@ int view_command(const ViewOptions& o) {
   if (o.record) {  // carrying the scene as loaded: saving an edit cannot break the recording
     recorder.emplace(shown.session->definition(), o.scene.scene, o.hash_every, shown.scene.text);
   }
+  const std::uint64_t initial_hash = shown.session->simulation().state_hash();
+  bool torn = false;       // a stop request abandoned a tick half-way: the state is not a tick's
+  std::uint64_t done = 0;  // the tick of the last complete state shown or stepped
   RealClock real_clock;
   // --fps: a virtual clock (validated by VirtualClock), else the real one.
   const double virtual_frame = o.fps ? VirtualClock(*o.fps).frame_seconds() : 0.0;
@@ -250,7 +286,7 @@ int view_command(const ViewOptions& o) {
     PointerDrag& drag = shown.drag;
     const Camera camera = session.renderer().camera();
     window.poll(ev);
-    if (ev.quit) break;
+    if (ev.quit || StopOnSignal::requested()) break;
     apply_loop_keys(ev, session.loop());
     if (ev.restart) {
       session.restart(), rewind.clear(), rewind.push(session.simulation());
@@ -268,18 +304,25 @@ int view_command(const ViewOptions& o) {
         if (recorder) recorder->truncate(past->tick());
       }
     } else if (frame > 0) {
-      session.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
-        TickInput input = sampler.sample(tick);
-        drag.apply(input, sim);
-        sim.step(input);
-        rewind.push(sim);
-        if (recorder) recorder->record(input, sim);
-      });
+      try {
+        session.advance_with(seconds, [&](std::uint64_t tick, World& sim) {
+          TickInput input = sampler.sample(tick);
+          drag.apply(input, sim);
+          sim.step(input);
+          rewind.push(sim);
+          if (recorder) recorder->record(input, sim);
+          done = sim.tick();
+        });
+      } catch (const StopRequested&) {  // inside a tick: discard it, keep the ticks before
+        torn = true;
+        break;
+      }
     }
     if (const auto& fault = session.simulation().fault(); fault && !was_faulted) {
       // Session paused the loop; the HUD shows the message too ('r' restarts).
       std::fprintf(stderr, "fixstep: error: %s\n", explain_fault(shown.scene, *fault).c_str());
     }
+    done = session.simulation().tick();
     session.show_drag(sampler.pointer(), drag.body());
     session.draw();
     window.present(session.renderer().pixels());
@@ -292,10 +335,18 @@ int view_command(const ViewOptions& o) {
   reload.load.reset();
   const Session& session = *shown.session;
   fmt::print("{} driver={}\n", describe(shown.scene), window.driver());
-  fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
-  if (recorder) {
-    write_recording(*o.record, recorder->finish(session.simulation()));
+  if (!torn) fmt::print("{}\n", summary_line(session.simulation(), session.initial_energy()));
+  if (recorder) {  // after a torn tick, up to its last stored hash (every tick at --hash-every 1)
+    write_recording(*o.record, torn ? recorder->finish_at_last_hash(initial_hash)
+                                    : recorder->finish(session.simulation()));
     fmt::print("recording={}\n", *o.record);
+  }
+  if (const int sig = StopOnSignal::requested()) {
+    std::fprintf(stderr, "fixstep: stopped by %s after tick %llu%s%s\n", StopOnSignal::name(),
+                 static_cast<unsigned long long>(done),
+                 torn ? " (the tick in progress discarded)" : "",
+                 recorder ? "; recording written" : "");
+    return 128 + sig;
   }
   return session.simulation().fault() ? exit_diverged : 0;
 }

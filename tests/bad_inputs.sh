@@ -802,6 +802,20 @@ rows = 1000
 origin = [0.0, 0.0]
 spacing = [0.0, 0.0]
 body = { mass = 1.0, radius = 0.5 }"
+# --- memory of a command: estimated from the scene and the flags, refused before the worlds
+# and frame buffers are allocated (cli/command_memory.hpp; the scene's load comes first)
+grid_of() {  # COLUMNS ROWS [BODY]: a [[grid]] of unlinked bodies 0.1 m apart
+  printf '%s\n[[grid]]\ncolumns = %d\nrows = %d\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = %s\n' \
+    "$3" "$1" "$2" "${4:-{ mass = 1.0 \}}"
+}
+grid_of 300 1000 "$ok_world" > big_grid.toml
+case_ "compare: six tiles of 3*10^5 bodies (beyond max_command_bytes = 4 GiB)" "" compare big_grid.toml \
+  --with rk4 --with semi_implicit_euler --with velocity_verlet --with rk4@0.005 \
+  --with semi_implicit_euler@0.005 --with velocity_verlet@0.005 --out tiles --frames 2
+grid_of 750 1000 "$ok_world
+[contacts]" "{ mass = 1.0, radius = 0.05 }" > disc_grid.toml
+case_ "view of 7.5*10^5 touching discs (beyond max_command_bytes, before any window opens)" "" \
+  view disc_grid.toml --frames 1
 # --- contact caps and the work they bound: no physics dropped without a fault
 case_ "a disc radius of 9e307 under [contacts] (beyond 1e12 m)" "$ok_world
 [contacts]
@@ -1158,6 +1172,9 @@ if [ -n "$state_hashes" ]; then
 fi
 tool=$work/limited2 tool_name="ulimit -f 2; fixstep"
 case_ "new past the file-size limit (nothing is left)" "" new deep/game
+printf '#!/bin/bash\nulimit -f 0\nexec "%s" "$@"\n' "$fixstep" > limited0 && chmod +x limited0
+tool=$work/limited0 tool_name="ulimit -f 0; fixstep"
+case_ "new past the file-size limit at its first small file (EFBIG at fclose, not a stale errno)" "" new deep/small
 tool=$fixstep tool_name=fixstep
 case_ "new \"\" (an empty DIR)" "" new ""
 case_ "new / (a DIR without a name)" "" new /

@@ -391,6 +391,41 @@ if have_xvfb && command -v xdotool >/dev/null; then
     || { fail "replay of the window's recording"; cat "$work/drag_replay.out"; }
   [ "$(hash_of "$work/drag_replay.out")" = "$(hash_of "$work/drag_view.out")" ] \
     && ok "the replay ends at the window's final state" || fail "window vs replay hash"
+  # A stop request (SIGINT) ends view as it ends run: exit 130, its recording written and
+  # verified by a replay. Between ticks (SDL's own handler made it a quit: exit 0), and inside a
+  # 1.2 s tick (long_tick.toml at 3000 substeps), which is discarded (SDL's quit waited for the
+  # frame's ticks to end).
+  # view_stopped NAME SCENE OUT REC ARGS...: view in the background, SIGINT 0.6 s after its window
+  # appears; its exit status.
+  view_stopped() {
+    with_xvfb bash -c '
+      "$1" view "$2" --size 320x180 --frames 100000 --fps 60 --record "$4" "${@:5}" >"$3" 2>&1 &
+      view=$!
+      for _ in $(seq 400); do
+        wid=$(xdotool search --name "fixstep - " 2>/dev/null | head -1); [ -n "$wid" ] && break; sleep 0.05
+      done
+      sleep 0.6
+      kill -INT "$view"
+      for _ in $(seq 600); do kill -0 "$view" 2>/dev/null || break; sleep 0.05; done
+      kill -0 "$view" 2>/dev/null && kill -9 "$view"
+      wait "$view"' _ "$fixstep" "$@"
+  }
+  for stop in between:"$scenes/default.toml" inside:"$src/tests/scenes/long_tick.toml"; do
+    where=${stop%%:*} scene=${stop#*:}
+    extra=()
+    [ "$where" = inside ] && extra=(--substeps 3000)
+    view_stopped "$scene" "$work/stop_$where.out" "$work/stop_$where.rec" "${extra[@]}"
+    code=$?
+    [ "$code" -eq 130 ] && ok "SIGINT $where ticks ends view with exit 130" \
+      || { fail "view SIGINT $where ticks: exit $code"; cat "$work/stop_$where.out"; }
+    expect "view says it was stopped ($where ticks)" \
+      '^fixstep: stopped by SIGINT after tick [0-9]+.*; recording written$' "$work/stop_$where.out"
+    "$fixstep" replay "$work/stop_$where.rec" >"$work/stop_${where}_replay.out" 2>&1 \
+      && ok "the recording of a view stopped $where ticks replays, every hash verified" \
+      || { fail "replay of the stopped view ($where)"; cat "$work/stop_${where}_replay.out"; }
+  done
+  expect "a tick stopped half-way is discarded" 'after tick [0-9]+ \(the tick in progress discarded\)' \
+    "$work/stop_inside.out"
 else
   echo "skip - Xvfb or xdotool not installed (bash .ci/install-deps installs them)"
 fi
@@ -467,6 +502,80 @@ cmp -s "$work/rec_frames/frames.csv" "$work/rec_frames2/frames.csv" \
 "$fixstep" render --out "$work/noscene" >"$work/noscene.out" 2>&1
 [ $? -eq 2 ] && ok "render without SCENE or --replay exits 2" || fail "render without scene"
 expect "render without SCENE says what to give" 'give SCENE \(or --replay FILE' "$work/noscene.out"
+
+# --- fixstep new: the real cause of a write that fails -----------------------------------
+# Past `ulimit -f 0` every file's first flush fails with EFBIG; the small files are written at
+# fclose, and the message said "No such file or directory" (a stale errno) instead. Output goes
+# through a pipe: a file written under the limit would fail too.
+(cd "$work" && ulimit -f 0 && "$fixstep" new sized_out 2>&1; echo "exit=$?") | cat >"$work/new_efbig.out"
+expect "new past the file-size limit exits 1" '^exit=1$' "$work/new_efbig.out"
+expect "new past the file-size limit reports EFBIG, not a stale errno" \
+  'cannot write sized_out/[A-Za-z.]+: File too large \(fixstep new left nothing behind\)' "$work/new_efbig.out"
+[ ! -e "$work/sized_out" ] && ok "new past the file-size limit leaves nothing" || fail "new left sized_out"
+
+# --- the exact reference of a network is bounded: a dense eigen-decomposition --------------
+# A 100 x 100 grid of zero-rest-length links (linear, proportional damping) had an exact
+# solution: an eigen-decomposition of a dense 10^4 x 10^4 system, over a minute and 1.7 GB
+# (9*10^4 bodies would ask for 65 GB). Past max_exact_network_bodies (1000) it has none.
+printf '[world]\ndt = 0.01\n[[grid]]\ncolumns = 100\nrows = 100\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0 }\nlink = { stiffness = 10.0, damping = 0.1, rest_length = 0.0 }\n' \
+  >"$work/net_1e4.toml"
+timeout 60 "$fixstep" run "$work/net_1e4.toml" --steps 2 >"$work/net_1e4.out" 2>&1
+code=$?
+[ "$code" -eq 0 ] && ok "run of a 10^4-body linear network exits 0 (no dense exact solve; 60 s guard)" \
+  || { fail "run of a 10^4-body network: exit $code"; cat "$work/net_1e4.out"; }
+grep -q '^exact_error=' "$work/net_1e4.out" && fail "an exact error for a network past 1000 bodies" \
+  || ok "no exact error past max_exact_network_bodies"
+"$fixstep" run "$scenes/spring_damper.toml" --steps 10 >"$work/small_exact.out" 2>&1
+expect "a small scene keeps its exact error" '^exact_error=' "$work/small_exact.out"
+
+# --- text drawn is bounded: a body name of 2 MB in the guard's message --------------------
+# The renderer's glyph scratch took 1 kB a character of a HUD line: the runtime guard's message
+# naming a body of a 2 MB name asked for 6.4 GB. Within 2 GB of address space the render ends
+# with the guard's located error (exit 3), not an allocation failure. Not under ASan.
+if ! grep -qa __asan_init "$fixstep"; then
+  { printf '[world]\ndt = 0.01\n[[body]]\nname = "'; head -c 2000000 /dev/zero | tr '\0' x
+    printf '"\ntype = "kinematic"\nposition = [0.0, 0.0]\nvelocity = [1e13, 0.0]\n'; } >"$work/long_name.toml"
+  (ulimit -v 2000000 && "$fixstep" render "$work/long_name.toml" --out "$work/long_name" --frames 3 \
+    --size 320x180 2>&1 >/dev/null; echo "exit=$?") | cut -c1-200 | cat >"$work/long_name.out"
+  expect "a 2 MB body name in the guard's HUD message: the located error, exit 3, within 2 GB" \
+    '^exit=3$' "$work/long_name.out"
+fi
+
+# --- memory: a std::bad_alloc past the estimate's check is located ---------------------------
+# With less address space than the 10^5-body grid needs (ulimit -v 80 MB, far under the estimate's
+# 4 GiB bound), the allocation fails inside the command: the message names the command and the
+# phase (it said only "std::bad_alloc"). Not under AddressSanitizer, which needs terabytes of
+# address space.
+if grep -qa __asan_init "$fixstep"; then
+  echo "skip - ulimit -v under AddressSanitizer"
+else
+  printf '[world]\ndt = 0.01\n[[grid]]\ncolumns = 100\nrows = 1000\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0 }\n' \
+    >"$work/grid_1e5.toml"
+  (ulimit -v 80000 && "$fixstep" run "$work/grid_1e5.toml" --steps 2 2>&1; echo "exit=$?") | cat >"$work/oom.out"
+  expect "an allocation that fails exits 1" '^exit=1$' "$work/oom.out"
+  expect "an allocation that fails names the command and its phase" \
+    '^fixstep: error: run: out of memory \(std::bad_alloc\) while (loading the scene|building the world|stepping the world): ' \
+    "$work/oom.out"
+  # Beyond the 4 GiB bound, compare and view are refused from their estimate before they
+  # allocate: within 1 GB of address space the LimitError comes, not a std::bad_alloc (the
+  # scene's own load takes 0.15 and 0.4 GB; without the estimate the tiles would take ~5 GB).
+  printf '[world]\ndt = 0.01\n[[grid]]\ncolumns = 300\nrows = 1000\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0 }\n' \
+    >"$work/grid_3e5.toml"
+  (ulimit -v 1000000 && "$fixstep" compare "$work/grid_3e5.toml" --with rk4 --with semi_implicit_euler \
+    --with velocity_verlet --with rk4@0.005 --with semi_implicit_euler@0.005 \
+    --with velocity_verlet@0.005 --out "$work/tiles_3e5" --frames 2 2>&1; echo "exit=$?") | cat >"$work/mem_compare.out"
+  expect "compare of six tiles of 3*10^5 bodies is refused before it allocates" \
+    '^fixstep: error: compare .*grid_3e5\.toml: would need about [0-9.]+ GiB of memory .*a command may use at most 4 GiB .*dominates: fewer --with tiles' \
+    "$work/mem_compare.out"
+  expect "the refused compare exits 1" '^exit=1$' "$work/mem_compare.out"
+  printf '[world]\ndt = 0.01\n[contacts]\n[[grid]]\ncolumns = 750\nrows = 1000\norigin = [0.0, 0.0]\nspacing = [0.1, 0.1]\nbody = { mass = 1.0, radius = 0.05 }\n' \
+    >"$work/discs_75e4.toml"
+  (ulimit -v 1000000 && env -u DISPLAY "$fixstep" view "$work/discs_75e4.toml" --frames 1 2>&1; echo "exit=$?") | cat >"$work/mem_view.out"
+  expect "view of 7.5*10^5 touching discs is refused before it allocates (or opens a window)" \
+    '^fixstep: error: view .*discs_75e4\.toml: would need about [0-9.]+ GiB of memory .*rewind buffer' \
+    "$work/mem_view.out"
+  expect "the refused view exits 1" '^exit=1$' "$work/mem_view.out"
+fi
 
 # --- the demo ----------------------------------------------------------------------------
 (cd "$work" && "$hello" demo_frames >"$work/hello.out" 2>&1)

@@ -232,6 +232,9 @@ void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to
   // strings rather than letting it truncate them.
   std::string& copy = text_scratch_;  // kept: no allocation once it has held the longest text
   printable_into(s, copy);
+  // The scratch grows with the text: a body name of megabytes in a guard's message asked for
+  // gigabytes. Past max_text_chars the characters lie beyond any frame.
+  if (copy.size() > max_text_chars) copy.resize(max_text_chars);
   font_scratch_.resize(std::max(font_scratch_.size(), copy.size() * 1024));
   unsigned char rgba[4] = {c.r, c.g, c.b, c.a};
   const int quads = stb_easy_font_print(0, 0, copy.data(), rgba, font_scratch_.data(),

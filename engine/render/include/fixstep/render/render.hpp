@@ -258,8 +258,12 @@ class Renderer {
   /// Text in stb_easy_font's bitmap font (printable ASCII: any other character, e.g. a UTF-8
   /// "ω", is drawn as one '?'; '\n' starts a new line), `scale` px per font
   /// unit, with the top-left corner of the first glyph cell at (x, y). A line of capitals is
-  /// about 7·scale px tall; lines are 12·scale px apart.
+  /// about 7·scale px tall; lines are 12·scale px apart. At most max_text_chars characters of
+  /// `s` are drawn (the font's vertices take about 1 kB a character: the rest would lie far
+  /// beyond the largest frame at any scale >= 1/8).
   void text(float x, float y, const std::string& s, float scale, Rgba8 c);
+  /// Most characters text() draws of one string (its vertex scratch: 1024 bytes a character).
+  static constexpr std::size_t max_text_chars = 65536;
   /// The same text turned 90° counter-clockwise (reading upwards), the top-left corner of the
   /// unrotated glyph cell at (x, y): the text ends text_width() px above y and occupies
   /// [x, x + text_height()) horizontally.
