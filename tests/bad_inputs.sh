@@ -1045,7 +1045,7 @@ case_ "a recording given as the scene" "" run base.rec --steps 10
 head -c 300 base.rec > cut.rec
 case_ "recording: cut short (truncated)" "" replay cut.rec
 rec_case "recording: no end line (truncated)" '/^end /d'
-rec_case "recording: a newer format version" '1s/.*/fixstep-recording 5/'
+rec_case "recording: a newer format version" '1s/.*/fixstep-recording 6/'
 # Format 4 names the game rules a recording was made with; fixstep has none of a game's.
 rec_case "recording: needs a game's rules (rules slingshot 1)" '1s/ 3$/ 4/;/^hash_every /a rules slingshot 1'
 case_ "render --replay of a recording that needs a game's rules" "" render --replay bad.rec --out frames
