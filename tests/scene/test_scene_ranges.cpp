@@ -117,6 +117,13 @@ TEST(SceneRanges, MassPositionRadiusAndPlaneKeysAreBounded) {
        "[[plane]]\nnormal = [0.0, 1.0]\nfriction = 1e200\n",
        "plane[0].friction"},
       {"[world]\ndt = 5e-324\n[[body]]\nmass = 1.0\nposition = [0.0, 0.0]\n", "world.dt"},
+      // A generated body beyond the range is the spacing's (chain0[10] at 1e12 m is the edge).
+      {"[world]\ndt = 0.01\n[[chain]]\ncount = 11\nstart = [0, 0]\nspacing = [1e11, 0]\n"
+       "body = { mass = 1 }\n",
+       ""},
+      {"[world]\ndt = 0.01\n[[chain]]\ncount = 12\nstart = [0, 0]\nspacing = [1e11, 0]\n"
+       "body = { mass = 1 }\n",
+       "chain[0].spacing"},
   };
   for (const auto& [text, key] : cases) {
     std::size_t line = 0, column = 0;
