@@ -115,6 +115,7 @@ Scene scene_for_recording(const Recording& rec, const std::string& recording_fil
   scene.def.settings.integrator = rec.settings.integrator;
   scene.def.settings.substeps = rec.settings.substeps;
   if (rec.settings.damping_split) scene.def.settings.damping_split = *rec.settings.damping_split;
+  scene.def.settings.seeding = rec.settings.seeding;  // the recording's version's seeding
   scene.def.allow_unstable = true;  // the recorded run ran: replay it whatever the guard says
   const WorldDef def = scene.def;
   const std::uint64_t actual = definition_hash(def);

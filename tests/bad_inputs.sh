@@ -233,7 +233,7 @@ position = [1.0, 0.0]
 spring = { anchor = [0.0, 0.0], stiffness = 15.0 }'
 cp "$tests_dir/scenes/diverging.toml" diverging.toml
 case_ "unstable but allowed: the run diverges" "" run diverging.toml --steps 1000
-case_ "extreme but finite values (k = 1e300 N/m, m = 1e-300 kg)" "$ok_world"'
+case_ "extreme but finite values (k = 1e300 N/m, m = 1e-300 kg: beyond [1e-100, 1e100], refused)" "$ok_world"'
 [[body]]
 mass = 1e-300
 position = [1.0, 0.0]
@@ -317,16 +317,61 @@ printf '%s\n%s\n' "$ok_world" "$body" > depth_ok.toml
 printf '[[at]]\ntick = 0\n%s = 1\n' "$deep_key" > deep_script.toml
 case_ "script: dotted key of 50 000 parts" "" run depth_ok.toml --steps 1 --input deep_script.toml
 # Numbers whose derived quantities overflowed: a subnormal drag made the stability scan's step
-# infinite ("world: dt must be finite and > 0 s (got inf)", unlocated). Now the bound is
-# unlimited and the scene runs.
-case_ "drag = 1e-310 (subnormal; runs)" "$ok_world
+# infinite ("world: dt must be finite and > 0 s (got inf)", unlocated). Every number of a scene
+# is now 0 or within [1e-100, 1e100] in magnitude (value_ranges.hpp), refused at its key.
+case_ "drag = 1e-310 (subnormal: refused at its key)" "$ok_world
 $body
 drag = 1e-310"
-case_ "mass = 1e308 with drag = 1 (γ subnormal; runs)" "$ok_world
+case_ "mass = 1e308 with drag = 1 (beyond 1e100 kg: refused at its key)" "$ok_world
 [[body]]
 mass = 1e308
 position = [0.0, 0.0]
 drag = 1.0"
+# --- State the runtime guard could not see: a spin and a subnormal inertia ---
+# A disc spinning at 1e308 rad/s ran to exit 0 with energy=inf dissipated=-nan balance=-nan;
+# inertia = 5e-324 passed "> 0", turned the state to NaN and the guard blamed springs and
+# forces. Both are refused at their key now (angular velocity within 1e12 rad/s like v; inertia,
+# mass and radius at least 1e-100, a step divides by them).
+rolling_world="$ok_world
+[contacts]
+rolling = true
+friction = 0.5
+[[body]]
+mass = 1.0
+position = [0.0, 0.5]
+radius = 0.5"
+case_ "a disc spinning at 1e308 rad/s (rolling)" "$rolling_world
+angular_velocity = 1e308"
+case_ "the 1e308 rad/s disc rendered (each manifest row had energy=inf)" "$rolling_world
+angular_velocity = 1e308" render scene.toml --out spin_frames --frames 2 --size 64x64
+case_ "a disc's inertia = 5e-324 (subnormal)" "$rolling_world
+inertia = 5e-324"
+case_ "a disc's angle = 1e300 rad" "$rolling_world
+angle = 1e300"
+case_ "mass = 5e-324 (subnormal)" "$ok_world
+[[body]]
+mass = 5e-324
+position = [0.0, 0.0]"
+case_ "radius = 5e-324 (subnormal)" "$ok_world
+$body
+radius = 5e-324"
+case_ "position beyond 1e12 m" "$ok_world
+[[body]]
+mass = 1.0
+position = [2e12, 0.0]"
+case_ "a spring's stiffness of 1e200 N/m" "$ok_world
+$body
+spring = { anchor = [0.0, 0.0], stiffness = 1e200 }"
+case_ "a plane's friction of 1e300" "$ok_world
+$body
+radius = 0.5
+[[plane]]
+normal = [0.0, 1.0]
+offset = -1.0
+friction = 1e300"
+case_ "dt = 5e-324" "[world]
+dt = 5e-324
+$body"
 # Paths and fields with control characters are printed escaped, never raw or cut at a NUL.
 cp depth_ok.toml 'new
 line.toml'
@@ -845,12 +890,12 @@ restitution = 1.0
 normal = [0.0, -1.0]
 offset = -0.21
 restitution = 1.0"
-case_ "a kinematic body at 1e13 m/s (the guard names its velocity, not springs)" "$ok_world
+case_ "a kinematic body at 1e12 m/s leaving the range (the guard names its velocity, not springs)" "$ok_world
 [[body]]
 name = \"paddle\"
 type = \"kinematic\"
-position = [0.0, 0.0]
-velocity = [1e13, 0.0]"
+position = [9.99e11, 0.0]
+velocity = [1e12, 0.0]"
 { printf '%s\n' "$ok_world" '[[grid]]' 'columns = 200' 'rows = 200' 'origin = [0.0, 0.0]' \
     'spacing = [0.1, 0.1]' 'body = { mass = 1.0, radius = 0.04 }'
   for ((k = 0; k < 30000; ++k)); do printf '[[plane]]\nnormal = [0.0, 1.0]\noffset = -%d.0\n' $((k + 1)); done
@@ -1059,7 +1104,7 @@ case_ "a recording given as the scene" "" run base.rec --steps 10
 head -c 300 base.rec > cut.rec
 case_ "recording: cut short (truncated)" "" replay cut.rec
 rec_case "recording: no end line (truncated)" '/^end /d'
-rec_case "recording: a newer format version" '1s/.*/fixstep-recording 5/'
+rec_case "recording: a newer format version" '1s/.*/fixstep-recording 6/'
 # Format 4 names the game rules a recording was made with; fixstep has none of a game's.
 rec_case "recording: needs a game's rules (rules slingshot 1)" '1s/ 3$/ 4/;/^hash_every /a rules slingshot 1'
 case_ "render --replay of a recording that needs a game's rules" "" render --replay bad.rec --out frames

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fixstep/core/components.hpp>
 #include <fixstep/core/input.hpp>
+#include <fixstep/core/random.hpp>
 #include <fixstep/core/recording.hpp>
 #include <fixstep/core/world_def.hpp>
 #include <fixstep/core/world_settings.hpp>
@@ -129,6 +130,55 @@ Recording flip_push_bit(Recording rec, std::uint64_t tick, int bit) {
   std::sort(rec.inputs.begin(), rec.inputs.end(),
             [](const TickInput& a, const TickInput& b) { return a.tick < b.tick; });
   return rec;
+}
+
+/// A seeded world recorded for 30 ticks with rules that roll a die each tick (the roll enters
+/// the state hash), written and read back.
+Recording dice_recording(Seeding seeding) {
+  WorldDef def = small_world();
+  def.settings.seed = std::uint64_t{1} << 62;
+  def.settings.seeding = seeding;
+  World sim(def);
+  Recorder rec(def, "dice", 1);
+  rec.set_rules("dice", 1);
+  for (std::uint64_t t = 0; t < 30; ++t) {
+    sim.step(input_of(t));
+    (void)sim.random().below(6);
+    rec.record(input_of(t), sim);
+  }
+  return parse_recording(format_recording(rec.finish(sim)), "dice.rec");
+}
+
+ReplayReport replay_dice(const Recording& rec, std::optional<Seeding> force = {}) {
+  WorldDef def = small_world();
+  def.settings.seed = std::uint64_t{1} << 62;
+  apply_settings(def, rec.settings);  // the recording's seeding (from its version)
+  if (force) def.settings.seeding = *force;
+  EXPECT_EQ(definition_hash(def) == rec.definition_hash, !force.has_value());
+  World sim(def);
+  return replay(sim, rec,
+                TickRules{[](World& w, const TickInput&) { (void)w.random().below(6); }, {}, {}});
+}
+
+// A seeded world records as version 5 (SplitMix64 seeding); one of version 4 (the older
+// seeding, as assets/recordings/peggle.rec) reads back with that seeding and replays; each
+// replayed with the other seeding diverges at its first roll.
+TEST(Recording, TheVersionSelectsTheSeedingOfTheWorldsGenerator) {
+  const Recording mixed = dice_recording(Seeding::splitmix);
+  EXPECT_EQ(mixed.version, 5);
+  EXPECT_EQ(mixed.settings.seeding, Seeding::splitmix);
+  EXPECT_FALSE(replay_dice(mixed).mismatch);
+  EXPECT_EQ(replay_dice(mixed).verified, 31u);
+  const Recording older = dice_recording(Seeding::pcg32_srandom);
+  EXPECT_EQ(older.version, 4);
+  EXPECT_EQ(older.settings.seeding, Seeding::pcg32_srandom);
+  EXPECT_EQ(replay_dice(older).verified, 31u);
+  ASSERT_TRUE(replay_dice(older, Seeding::splitmix).mismatch);
+  EXPECT_EQ(replay_dice(older, Seeding::splitmix).mismatch->tick, 1u);
+  ASSERT_TRUE(replay_dice(mixed, Seeding::pcg32_srandom).mismatch);
+  // Seed 0: the same generator either way, so its recording keeps version 3 (older builds).
+  Recorder unseeded(small_world(), "scenes/small.toml", 10);
+  EXPECT_EQ(unseeded.finish(World(small_world())).version, 3);
 }
 
 TEST(Recording, OneFlippedInputBitIsReportedAtItsTick) {
@@ -322,11 +372,11 @@ TEST(Recording, TheFuzzCorpusIsValid) {
   int files = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     const Recording rec = read_recording(entry.path());
-    // format_recording writes the current version (3 without rules, 4 with): an older
+    // format_recording writes recording_version_of(rec) (3 without rules, 4 with, 5 for a
+    // seeded world of the mixed seeding): an older
     // recording comes back the same but for its version.
     Recording again = parse_recording(format_recording(rec), "again");
-    EXPECT_EQ(again.version,
-              rec.rules_name.empty() ? recording_version_without_rules : recording_version);
+    EXPECT_EQ(again.version, recording_version_of(rec));
     again.version = rec.version;
     EXPECT_EQ(again, rec) << entry.path();
     ++files;

@@ -379,7 +379,7 @@ INSTANTIATE_TEST_SUITE_P(
         Bad{"chain spacing overflowing a double",
             chain("count = 3\nstart = [0, 0]\nspacing = [1e308, 0]\nbody = { mass = 1 }\n"
                   "link = { stiffness = 1 }\n"),
-            6, "chain[0].spacing", "chain0[2] would be at (inf, 0) m"},
+            6, "chain[0].spacing", "chain0[1] would be at (1e+308, 0) m, beyond +-1e12 m"},
         Bad{"generated name taken",
             "[world]\ndt = 0.01\n[[body]]\nname = \"rope[1]\"\nmass = 1\nposition = [0, 0]\n"
             "[[chain]]\nname = \"rope\"\ncount = 3\nstart = [0, 0]\nspacing = [1, 0]\n"

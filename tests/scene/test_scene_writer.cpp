@@ -16,6 +16,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/segment.hpp"
+#include "fixstep/core/value_ranges.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
@@ -57,10 +58,13 @@ Vec2 unit(Vec2 n) {
 }
 
 /// Bodies of every type, with every component, names that need escaping and numbers that need
-/// all 17 digits, a sign on zero, subnormals and the ends of the precision's range.
+/// all 17 digits, a sign on zero, and the ends of the ranges a world takes (value_ranges.hpp:
+/// states within 1e12, coefficients within [1e-100, 1e100], and the precision's own range).
 WorldDef awkward_world(Precision precision, Integrator integrator) {
-  const double huge = precision == Precision::f32 ? 3.0e38 : 1.7976931348623157e308;
-  const double third = 1.0 / 3.0, tiny = 1e-300, sub = 4.9406564584124654e-324;
+  const double huge = precision == Precision::f32 ? 3.0e38 : max_coefficient;
+  const double far = std::nextafter(max_state_magnitude, 0.0);  // 17 digits
+  const double third = 1.0 / 3.0, tiny = min_coefficient,
+               sub = std::nextafter(min_coefficient, 1.0);
   WorldDef def;
   def.precision = precision;
   def.settings.dt = third;
@@ -77,10 +81,10 @@ WorldDef awkward_world(Precision precision, Integrator integrator) {
 
   BodyDef a;
   a.name = "quote\" back\\slash\nnew line\ttab \x01 \x7f ünïcødé ☃ 𝄞";
-  a.body = Body{.mass = third, .position = {third, -0.0}, .velocity = {tiny, -huge}};
+  a.body = Body{.mass = third, .position = {third, -0.0}, .velocity = {tiny, -far}};
   a.spring = SpringDamper{
       .anchor = {-0.0, 2.0 / 3.0}, .stiffness = 15.0, .damping = sub, .rest_length = 0.1};
-  a.constant_force = ConstantForce{{-huge, 1e-310}};
+  a.constant_force = ConstantForce{{-huge, 1e-99}};
   a.gravity = Gravity{{0.0, -9.81}};
   a.drag = LinearDrag{0.1 + 0.2};
   a.collider = Collider{.radius = 0.25, .restitution = 0.125, .friction = third, .collide = false};
@@ -95,23 +99,23 @@ WorldDef awkward_world(Precision precision, Integrator integrator) {
   BodyDef paddle;
   paddle.name = "paddle";
   paddle.type = BodyType::kinematic;
-  paddle.body.position = {huge, huge};
+  paddle.body.position = {far, far};
   paddle.body.velocity = {-0.0, 3.5};
   paddle.appearance = Appearance{.radius = 2.0, .color = {0, 0, 0, 0}};  // drawn, not a disc
   BodyDef bare;
   bare.name = "body0";  // the loader's default name of body 0, given to body 3
-  bare.body = Body{.mass = huge, .position = {-third, 1e-300}, .velocity = {}};
+  bare.body = Body{.mass = huge, .position = {-third, 1e-100}, .velocity = {}};
   BodyDef dot;
   dot.name = "dot";
   dot.body = Body{.mass = sub, .position = {5.0, 5.0}};
   dot.appearance = Appearance{.radius = 0.5, .color = {9, 8, 7, 255}};  // colour alone
   def.bodies = {a, wall, paddle, bare, dot};
-  def.links = {fixstep::test::link_between(0, 3, LinkSpring{third, 0.0, 1e-300}),
+  def.links = {fixstep::test::link_between(0, 3, LinkSpring{third, 0.0, 1e-100}),
                fixstep::test::link_between(4, 1, LinkSpring{huge, tiny, 0.0}),
                fixstep::test::link_between(
                    2, 1, LinkSpring{1.0, 1.0, 0.5})};  // two immovable ends: a warning
   def.planes = {PlaneDef{.normal = {0.0, 1.0}, .offset = -0.0, .restitution = third},
-                PlaneDef{.normal = {-1.0, -0.0}, .offset = -huge, .friction = 0.7},
+                PlaneDef{.normal = {-1.0, -0.0}, .offset = -far, .friction = 0.7},
                 PlaneDef{.normal = {0.6, 0.8}, .offset = tiny, .restitution = 1.0},
                 // n/|n| of these is not n/|n| again: the writer finds a normal that gives it
                 PlaneDef{.normal = unit({1.0, 1.0}), .offset = -1.0},
@@ -139,7 +143,7 @@ TEST(SceneWriter, NumbersAreFloatsThatKeepTheirSign) {
   EXPECT_NE(text.find("substeps = 7\n"), std::string::npos);  // the one integer key
   EXPECT_NE(text.find("flush_denormals = false\n"), std::string::npos);
   EXPECT_NE(text.find("draw_radius = 0.7\n"), std::string::npos);
-  EXPECT_NE(text.find("sleep = true\nsleep_speed = 0.3333333333333333\nsleep_time = 1e-300\n"),
+  EXPECT_NE(text.find("sleep = true\nsleep_speed = 0.3333333333333333\nsleep_time = 1e-100\n"),
             std::string::npos)
       << text;
   EXPECT_NE(text.find("bodies = [\"quote\\\" back\\\\slash\\nnew line\\u0009tab"),

@@ -111,7 +111,12 @@ std::uint64_t definition_hash(const WorldDef& def) {
     if (c.rolling) h.add(c.rolling);  // absent: the hash from before rolling discs
     if (c.sleep) h.add(c.sleep), h.add(c.sleep_speed), h.add(c.sleep_time);  // absent: before
   }
-  if (def.settings.seed != 0) h.add(def.settings.seed);  // 0: the hash from before seeds
+  if (def.settings.seed != 0) {  // 0: the hash from before seeds (both seedings agree on it)
+    h.add(def.settings.seed);
+    // Mixed seeding: a term of its own, so that a world of an older recording, seeded as it
+    // was (pcg32_srandom), keeps the hash it was recorded with.
+    if (def.settings.seeding == Seeding::splitmix) h.add(std::uint64_t{0x5eed});
+  }
   if (!def.segments.empty()) {  // absent: the hash of a world from before segments
     h.add(def.segments.size());
     for (const SegmentDef& s : def.segments) {
@@ -166,6 +171,7 @@ Recorder::Recorder(const WorldDef& def, std::string scene, std::uint64_t hash_ev
   rec_.definition_hash = definition_hash(def);
   rec_.settings = recorded_settings(def);
   rec_.hash_every = hash_every;
+  rec_.version = recording_version_of(rec_);
 }
 
 void Recorder::record(const TickInput& input, const World& after_the_tick) {
@@ -240,7 +246,7 @@ void Recorder::set_rules(std::string name, std::uint32_t version) {
   if (version == 0) throw std::invalid_argument("Recorder::set_rules: the version must be >= 1");
   rec_.rules_name = std::move(name);
   rec_.rules_version = version;
-  rec_.version = recording_version;
+  rec_.version = recording_version_of(rec_);
 }
 
 Recording Recorder::take() {
@@ -297,12 +303,20 @@ ReplayReport replay(World& sim, const Recording& rec, const TickRules& rules) {
   return report;
 }
 
+int recording_version_of(const Recording& rec) {
+  if (rec.settings.seeding == Seeding::splitmix) return recording_version;
+  return rec.rules_name.empty() ? recording_version_without_rules : recording_version_with_rules;
+}
+
 RecordedSettings recorded_settings(const WorldDef& def) {
   return {.integrator = def.settings.integrator,
           .precision = def.precision,
           .dt = def.settings.dt,
           .substeps = def.settings.substeps,
-          .damping_split = def.settings.damping_split};
+          .damping_split = def.settings.damping_split,
+          // Seed 0: the same generator either way (mix_seed(0) = 0); recorded as the older
+          // seeding so that its recording keeps the older version.
+          .seeding = def.settings.seed == 0 ? Seeding::pcg32_srandom : def.settings.seeding};
 }
 
 void apply_settings(WorldDef& def, const RecordedSettings& settings) {
@@ -311,6 +325,7 @@ void apply_settings(WorldDef& def, const RecordedSettings& settings) {
   def.settings.integrator = settings.integrator;
   def.settings.substeps = settings.substeps;
   if (settings.damping_split) def.settings.damping_split = *settings.damping_split;
+  def.settings.seeding = settings.seeding;
 }
 
 }  // namespace fixstep

@@ -21,6 +21,9 @@
 namespace fixstep {
 
 double amplification(Integrator integrator, double omega, double gamma, double h) {
+  if (const double c = detail::unit_scale(omega, gamma); c != 1.0) {  // within a world's ranges
+    return amplification(integrator, omega / c, gamma / c, h * c);
+  }
   detail::WorldKernel<double> w(
       WorldSettings{.dt = h, .integrator = integrator, .substeps = 1, .flush_denormals = false});
   auto unit = [&](Vec2 position, Vec2 velocity) {
@@ -200,20 +203,50 @@ std::string explain_kinematic(const std::string& head, const BodyDef& d) {
       head, d.body.velocity.x, d.body.velocity.y);
 }
 
+/// The unit of a StateFault field.
+const char* field_unit(const std::string& field) {
+  if (field == "x" || field == "y") return "m";
+  if (field == "angle") return "rad";
+  if (field == "angular_velocity") return "rad/s";
+  if (field == "dissipated") return "J";
+  return "m/s";
+}
+
+/// The likely cause of a disc's turn or its energy account leaving the range.
+std::string explain_account(const std::string& head, const BodyDef& d, const std::string& field) {
+  if (field == "dissipated") {
+    return fmt::format(
+        "{}. Likely cause: damping, drag or contacts took more energy than a number holds: the "
+        "body's mass ({:g} kg) and speed, or its damping and drag coefficients, are extreme",
+        head, d.body.mass);
+  }
+  const double r = d.collider ? d.collider->radius : 0.0;
+  const double inertia =
+      d.collider && d.collider->inertia ? *d.collider->inertia : 0.5 * d.body.mass * r * r;
+  return fmt::format(
+      "{}. Likely cause: friction turns the disc by r / I per unit impulse: its moment of inertia "
+      "{:g} kg*m^2 against m r^2 = {:g} kg*m^2 (mass {:g} kg, radius {:g} m), or its starting "
+      "angular velocity ({:g} rad/s); check them",
+      head, inertia, d.body.mass * r * r, d.body.mass, r, d.body.angular_velocity);
+}
+
 }  // namespace
 
 std::string explain_fault(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
                           const WorldSettings& settings, const StateFault& f) {
   if (!f.cap.empty()) return explain_cap(settings, f, bodies.size());
-  const bool position = f.field == "x" || f.field == "y";
   const std::string head = fmt::format(
-      "{} \"{}\": state left the finite range at tick {} (t = {:g} s): {} = {:g} {} "
-      "(allowed |value| <= {:g})",
+      "{} \"{}\": state left the finite range at tick {} (t = {:g} s): {} = {:g} {} ({})",
       body_label(f.body, bodies.size()), f.name, f.tick, f.time, f.field, f.value,
-      position ? "m" : "m/s", max_state_magnitude);
+      field_unit(f.field),
+      f.field == "dissipated" ? std::string("the energy account must stay finite")
+                              : fmt::format("allowed |value| <= {:g}", max_state_magnitude));
   const std::optional<std::size_t> defined = fixstep::defined_index(f.body, bodies.size());
   if (!defined) return head + ".";
   const std::size_t i = *defined;
+  if (f.field == "angle" || f.field == "angular_velocity" || f.field == "dissipated") {
+    return explain_account(head, bodies[i], f.field);
+  }
   if (bodies[i].type == BodyType::kinematic) return explain_kinematic(head, bodies[i]);
   if (bodies[i].type == BodyType::static_body) {
     return head +

@@ -409,6 +409,9 @@ double network_amplification(Integrator integrator, double omega, double gamma, 
   if (!(damped_links && gamma > 0.0 && strang(integrator))) {
     return amplification(integrator, omega, gamma, h);
   }
+  if (const double c = detail::unit_scale(omega, gamma); c != 1.0) {  // within a world's ranges
+    return network_amplification(integrator, omega / c, gamma / c, h * c, damped_links);
+  }
   detail::WorldKernel<double> w(WorldSettings{
       .dt = h, .integrator = integrator, .substeps = 1, .flush_denormals = false, .threads = 1});
   // Two pairs of unit masses; each pair's separation r = x_a - x_b obeys r'' = -2k r - 2b r'.

@@ -22,6 +22,19 @@ inline constexpr double stability_tolerance = 1e-14;
 inline constexpr double scan_from = 1e-4, scan_to = 1e6;  // dimensionless steps s = ω h (or γ h)
 inline constexpr double stability_margin = 0.9;  // warn above 90 % of the largest stable step
 
+/// A power of two c (1 when none is needed) such that a unit-mass test body of rate ω and
+/// damping rate γ, scaled to ω/c and γ/c with the step h·c, has a stiffness (ω/c)² and a
+/// damping γ/c within max_coefficient (value_ranges.hpp), which a world takes. Every product
+/// of the scaled step is the unscaled one times a power of two, exactly (state x the same, v
+/// divided by c), so its amplification matrix is D M D⁻¹ with D = diag(1, c) and the same
+/// spectral radius, bit for bit.
+[[nodiscard]] inline double unit_scale(double omega, double gamma) {
+  constexpr double most = 1e99;  // a factor of 10 below max_coefficient (1e100)
+  double c = 1.0;
+  while ((omega / c) * (omega / c) > most || gamma / c > most) c = std::ldexp(c, 32);
+  return c;
+}
+
 /// Spectral radius of the 2×2 step matrix [[a, b], [c, d]]: its eigenvalues are tr/2 ±
 /// sqrt(disc) with disc = tr²/4 - det, written as ((a - d)/2)² + bc, which does not cancel
 /// when both eigenvalues are near 1 (drag: 1 and 1 - γh). A complex pair has |λ|² = det exactly.

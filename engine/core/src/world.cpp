@@ -280,7 +280,9 @@ World::World(const WorldDef& def)
     : state_(std::make_unique<detail::WorldState>(detail::WorldState{
           .kernel = make_kernel(def.precision, def.settings),  // validates the settings
           .defined = {},
-          .random = Random(def.settings.seed),
+          .random = def.settings.seeding == Seeding::pcg32_srandom
+                        ? Random::pcg32(def.settings.seed, 0)
+                        : Random(def.settings.seed),
           .warnings = {},
           .queries = {}})) {
   check_limits(def);  // before anything is allocated for the bodies and links

@@ -61,6 +61,7 @@
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
+#include "fixstep/core/value_ranges.hpp"
 #include "plane_contact.hpp"
 #include "world_kernel.hpp"
 
@@ -85,10 +86,10 @@ std::size_t detail::WorldKernel<Real>::add_plane(const PlaneDef& def) {
     throw std::invalid_argument(fmt::format("{}: normal must be a non-zero vector (got [{}, {}])",
                                             who, def.normal.x, def.normal.y));
   }
-  check(def.offset, true, "offset", "finite (m)");
+  check(def.offset, within_state(def.offset), "offset", "finite with |value| <= 1e12 (m)");
   const double e = def.restitution, mu = def.friction;
   check(e, std::isfinite(e) && e >= 0.0 && e <= 1.0, "restitution", "in [0, 1]");
-  check(mu, std::isfinite(mu) && mu >= 0.0, "friction", "finite and >= 0");
+  check(mu, within_coefficient(mu) && mu >= 0.0, "friction", "in [0, 1e100]");
   PlaneDef p = def;
   p.normal = Vec2{def.normal.x / len, def.normal.y / len};
   planes_.push_back(p);

@@ -12,6 +12,7 @@
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/fnv1a.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "fixstep/core/value_ranges.hpp"
 #include "fixstep/core/world_settings.hpp"
 
 namespace fixstep {
@@ -56,10 +57,23 @@ void check_value(double v, bool ok_range, const std::string& who, const char* fi
   }
 }
 
+/// A position, velocity or anchor: each component within max_state_magnitude (value_ranges.hpp).
 template <class Real>
 void check_vec(const Vec2& v, const std::string& who, const char* field) {
-  check_value<Real>(v.x, true, who, field, "finite");
-  check_value<Real>(v.y, true, who, field, "finite");
+  check_value<Real>(v.x, within_state(v.x), who, field, "finite with |value| <= 1e12");
+  check_value<Real>(v.y, within_state(v.y), who, field, "finite with |value| <= 1e12");
+}
+
+/// A force or an acceleration: each component within max_coefficient (value_ranges.hpp).
+template <class Real>
+void check_coefficients(const Vec2& v, const std::string& who, const char* field) {
+  check_value<Real>(v.x, within_coefficient(v.x), who, field, "finite with |value| <= 1e100");
+  check_value<Real>(v.y, within_coefficient(v.y), who, field, "finite with |value| <= 1e100");
+}
+
+/// A stiffness, damping, drag or friction: in [0, max_coefficient].
+bool nonnegative_coefficient(double v) {
+  return within_coefficient(v) && v >= 0.0;
 }
 
 /// Swap-and-pop element i of every array in the pack (keeps SoA arrays aligned).
@@ -91,6 +105,14 @@ detail::WorldKernel<Real>::WorldKernel(const WorldSettings& settings) : settings
       throw std::invalid_argument(
           fmt::format("world: contacts.position_iterations must be in [0, {}] (got {})", most,
                       c->position_iterations));
+    }
+    if (!(std::isfinite(c->restitution) && c->restitution >= 0.0 && c->restitution <= 1.0)) {
+      throw std::invalid_argument(
+          fmt::format("world: contacts.restitution must be in [0, 1] (got {})", c->restitution));
+    }
+    if (!(nonnegative_coefficient(c->friction))) {  // √(μa μb) and μ·P stay finite
+      throw std::invalid_argument(
+          fmt::format("world: contacts.friction must be in [0, 1e100] (got {})", c->friction));
     }
     rolling_ = c->rolling;
     sleep_ = c->sleep;
@@ -155,52 +177,67 @@ std::size_t detail::WorldKernel<Real>::index_of(Entity e) const {
 
 template <class Real>
 void detail::WorldKernel<Real>::validate(const Body& b, const std::string& who) const {
-  check_value<Real>(b.mass, b.mass > 0.0, who, "mass", "finite and > 0 kg");
+  check_value<Real>(b.mass, divisor_in_range(b.mass), who, "mass", "in [1e-100, 1e100] kg");
   check_vec<Real>(b.position, who, "position");
   check_vec<Real>(b.velocity, who, "velocity");
-  check_value<Real>(b.angle, true, who, "angle", "finite (rad)");
-  check_value<Real>(b.angular_velocity, true, who, "angular_velocity", "finite (rad/s)");
+  check_value<Real>(b.angle, within_state(b.angle), who, "angle",
+                    "finite with |value| <= 1e12 rad");
+  check_value<Real>(b.angular_velocity, within_state(b.angular_velocity), who, "angular_velocity",
+                    "finite with |value| <= 1e12 rad/s");
 }
 
 template <class Real>
 void detail::WorldKernel<Real>::validate_component(const SpringDamper& c, const std::string& who) {
   check_vec<Real>(c.anchor, who, "spring.anchor");
-  check_value<Real>(c.stiffness, c.stiffness >= 0.0, who, "spring.stiffness",
-                    "finite and >= 0 N/m");
-  check_value<Real>(c.damping, c.damping >= 0.0, who, "spring.damping", "finite and >= 0 N*s/m");
-  check_value<Real>(c.rest_length, c.rest_length >= 0.0, who, "spring.rest_length",
-                    "finite and >= 0 m");
+  check_value<Real>(c.stiffness, nonnegative_coefficient(c.stiffness), who, "spring.stiffness",
+                    "in [0, 1e100] N/m");
+  check_value<Real>(c.damping, nonnegative_coefficient(c.damping), who, "spring.damping",
+                    "in [0, 1e100] N*s/m");
+  check_value<Real>(c.rest_length, within_state(c.rest_length) && c.rest_length >= 0.0, who,
+                    "spring.rest_length", "in [0, 1e12] m");
 }
 
 template <class Real>
 void detail::WorldKernel<Real>::validate_component(const ConstantForce& c, const std::string& who) {
-  check_vec<Real>(c.force, who, "force");
+  check_coefficients<Real>(c.force, who, "force");
 }
 
 template <class Real>
 void detail::WorldKernel<Real>::validate_component(const Gravity& c, const std::string& who) {
-  check_vec<Real>(c.acceleration, who, "gravity");
+  check_coefficients<Real>(c.acceleration, who, "gravity");
 }
 
 template <class Real>
 void detail::WorldKernel<Real>::validate_component(const LinearDrag& c, const std::string& who) {
-  check_value<Real>(c.coefficient, c.coefficient >= 0.0, who, "drag", "finite and >= 0 N*s/m");
+  check_value<Real>(c.coefficient, nonnegative_coefficient(c.coefficient), who, "drag",
+                    "in [0, 1e100] N*s/m");
 }
 
 template <class Real>
 void detail::WorldKernel<Real>::validate_component(const Appearance& c, const std::string& who) {
-  check_value<Real>(c.radius, c.radius > 0.0, who, "radius", "finite and > 0 m");
+  check_value<Real>(c.radius, c.radius > 0.0 && c.radius <= max_state_magnitude, who, "radius",
+                    "finite, > 0 and <= 1e12 m");
   check_value<Real>(c.trail_time, c.trail_time > 0.0 && c.trail_time <= max_trail_time, who,
                     "trail_time", "finite, > 0 and <= 10 s");
 }
 
 template <class Real>
 void detail::WorldKernel<Real>::validate_component(const Collider& c, const std::string& who) {
-  check_value<Real>(c.radius, c.radius > 0.0 && c.radius <= max_state_magnitude, who,
-                    "collider.radius", "finite, > 0 and <= 1e12 m");
+  // r / I and m r² / I turn a disc (world_rolling.cpp): r is divided into as well.
+  check_value<Real>(c.radius, c.radius >= min_coefficient && c.radius <= max_state_magnitude, who,
+                    "collider.radius", "in [1e-100, 1e12] m");
   if (c.inertia) {
-    check_value<Real>(*c.inertia, *c.inertia > 0.0, who, "collider.inertia",
-                      "finite and > 0 kg*m^2");
+    check_value<Real>(*c.inertia, divisor_in_range(*c.inertia), who, "collider.inertia",
+                      "in [1e-100, 1e100] kg*m^2");
+  }
+  if (c.friction) {
+    check_value<Real>(*c.friction, nonnegative_coefficient(*c.friction), who, "collider.friction",
+                      "in [0, 1e100]");
+  }
+  if (c.restitution) {
+    const double e = *c.restitution;
+    check_value<Real>(e, std::isfinite(e) && e >= 0.0 && e <= 1.0, who, "collider.restitution",
+                      "in [0, 1]");
   }
 }
 
@@ -294,11 +331,12 @@ void detail::WorldKernel<Real>::validate_link(const LinkDef& def, const std::str
   }
   const LinkSpring& s = def.spring;
   // isfinite first: an ordered comparison with NaN raises FE_INVALID (trapped in Debug tests).
-  auto nonnegative = [](double v) { return std::isfinite(v) && v >= 0.0; };
-  check_value<Real>(s.stiffness, nonnegative(s.stiffness), who, "stiffness", "finite and >= 0 N/m");
-  check_value<Real>(s.damping, nonnegative(s.damping), who, "damping", "finite and >= 0 N*s/m");
-  check_value<Real>(s.rest_length, nonnegative(s.rest_length), who, "rest_length",
-                    "finite and >= 0 m");
+  check_value<Real>(s.stiffness, nonnegative_coefficient(s.stiffness), who, "stiffness",
+                    "in [0, 1e100] N/m");
+  check_value<Real>(s.damping, nonnegative_coefficient(s.damping), who, "damping",
+                    "in [0, 1e100] N*s/m");
+  check_value<Real>(s.rest_length, within_state(s.rest_length) && s.rest_length >= 0.0, who,
+                    "rest_length", "in [0, 1e12] m");
   if (s.rest_length > 0.0) {
     const std::size_t a = bodies_.index(def.body_a), b = bodies_.index(def.body_b);
     if (x_[a] == x_[b] && y_[a] == y_[b]) {

@@ -405,6 +405,9 @@ class WorldKernel {
   void require(Entity e) const;
   void rebuild_terms();
   void record_fault();
+  /// Records a fault when a body's or link's dissipated energy is no longer finite (with
+  /// track_dissipation; world_step.cpp).
+  void check_energy_account();
   void record_cap_fault(std::size_t body, const char* cap, std::uint64_t limit,
                         const std::string& with);
   template <class Add>

@@ -19,6 +19,7 @@
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "fixstep/core/value_ranges.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -47,9 +48,9 @@ std::size_t detail::WorldKernel<Real>::add_segment(const SegmentDef& def) {
   if (!(std::isfinite(e) && e >= 0.0 && e <= 1.0)) {
     throw std::invalid_argument(fmt::format("{}: restitution must be in [0, 1] (got {})", who, e));
   }
-  if (!(std::isfinite(mu) && mu >= 0.0)) {
+  if (!(within_coefficient(mu) && mu >= 0.0)) {  // value_ranges.hpp
     throw std::invalid_argument(
-        fmt::format("{}: friction must be finite and >= 0 (got {})", who, mu));
+        fmt::format("{}: friction must be in [0, 1e100] (got {})", who, mu));
   }
   if (def.body.is_null()) {
     segments_.add(def);

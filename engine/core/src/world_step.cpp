@@ -277,27 +277,55 @@ void detail::WorldKernel<Real>::integrate(const TickInput& input) {
   if (out_of_range && !fault_) record_fault();
 }
 
-// Cold path: find the first body (dense order) and component out of range after this tick.
+// Cold path: find the first body (dense order) and field out of range after this tick: its
+// x, y, vx, vy; with rolling discs its angle and angular velocity; with the energy account its
+// dissipated energy (finite), then each link's (named by its first body).
 template <class Real>
 void detail::WorldKernel<Real>::record_fault() {
-  const std::span<const Real> fields[] = {x_, y_, vx_, vy_};
-  const char* names[] = {"x", "y", "vx", "vy"};
+  auto fault_at = [&](std::size_t j, const char* field, double v) {
+    fault_ = StateFault{.body = bodies_.dense[j],
+                        .name = names_[j],
+                        .tick = tick_,
+                        .time = time(),
+                        .field = field,
+                        .value = v,
+                        .cap = {},
+                        .with = {}};
+  };
+  const std::span<const Real> fields[] = {x_, y_, vx_, vy_, angle_, spin_};
+  const char* names[] = {"x", "y", "vx", "vy", "angle", "angular_velocity"};
+  const int count = rolling_ ? 6 : 4;
   for (std::size_t j = 0; j < x_.size(); ++j) {
-    for (int f = 0; f < 4; ++f) {
+    for (int f = 0; f < count; ++f) {
       const double v = static_cast<double>(fields[f][j]);
       if (!(std::abs(v) <= max_state_magnitude)) {
-        fault_ = StateFault{.body = bodies_.dense[j],
-                            .name = names_[j],
-                            .tick = tick_,
-                            .time = time(),
-                            .field = names[f],
-                            .value = v,
-                            .cap = {},
-                            .with = {}};
+        fault_at(j, names[f], v);
         return;
       }
     }
+    if (!std::isfinite(dissipated_body_[j])) {
+      fault_at(j, "dissipated", double(dissipated_body_[j]));
+      return;
+    }
   }
+  for (std::size_t i = 0; i < dissipated_link_.size(); ++i) {
+    if (!std::isfinite(dissipated_link_[i])) {
+      fault_at(bodies_.index(link_defs_[i].body_a), "dissipated", double(dissipated_link_[i]));
+      return;
+    }
+  }
+}
+
+// The energy account's terms: a dissipated energy that is no longer finite is a fault (the
+// balance E + E_dissipated - E0 would read NaN). One pass over the accounts a tick, only when
+// they are kept.
+template <class Real>
+void detail::WorldKernel<Real>::check_energy_account() {
+  if (!settings_.track_dissipation || fault_) return;
+  bool bad = false;
+  for (const Real d : dissipated_body_) bad = bad || !std::isfinite(d);
+  for (const Real d : dissipated_link_) bad = bad || !std::isfinite(d);
+  if (bad) record_fault();
 }
 
 // Cold path: a contact cap (limits.hpp) stopped part of this tick's contact work.

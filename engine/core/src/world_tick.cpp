@@ -66,6 +66,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (sleep_) finish_sleep(input, plan.discs);  // world_sleep.cpp
   if (plan.planes) contact_stats_.capped = (plan.discs ? contact_stats_.capped : 0) + plane_capped;
   flush_state_subnormals();  // world_step.cpp
+  check_energy_account();    // world_step.cpp: the guard's view of the dissipated energy
 }
 
 }  // namespace fixstep

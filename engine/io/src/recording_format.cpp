@@ -1,6 +1,6 @@
 // The recording file format: line-oriented text, written by format_recording and read by
 // parse_recording / read_recording. One line each:
-//   fixstep-recording 3
+//   fixstep-recording 5
 //   scene PATH
 //   [scene_text BYTES CHECKSUM, then the scene's lines, each as |LINE: recording_scene_text.cpp]
 //   definition HASH            integrator NAME          precision f32|f64
@@ -10,6 +10,11 @@
 //   tick N push=AX,AY held=HEX pressed=HEX released=HEX pointer=X,Y drag=SLOT:GEN|none
 //        [force=SLOT:GEN,X,Y | impulse=SLOT:GEN,X,Y | velocity=SLOT:GEN,X,Y]...
 // (one line; a body is named by its handle Entity{SLOT, GEN}, per-body inputs in order).
+// Version 5 changed no line: from it the world's random generator is seeded through SplitMix64
+// (Seeding::splitmix); a recording of version 4 or older replays with the seeding it was made
+// with (Seeding::pcg32_srandom). Only a world with a seed other than 0 is written as version 5:
+// with seed 0 both seedings give the same generator, and its recording stays 4 (3) for older
+// builds (recording_version_of).
 // Version 3 had no rules line (a recording without rules is still written as version 3).
 // Version 2 had no scene_text and damping_split lines (the scene was read from PATH, with its
 // own damping split); version 1 had no per-body
@@ -216,6 +221,8 @@ void read_version(Lines& in, Recording& rec) {
                         version, recording_version));
   }
   rec.version = version;
+  // Before version 5 the world's generator was seeded without SplitMix64 (random.hpp).
+  rec.settings.seeding = version >= recording_version ? Seeding::splitmix : Seeding::pcg32_srandom;
 }
 
 /// The embedded scene's section (recording_scene_text.cpp), from its `scene_text BYTES CHECKSUM`

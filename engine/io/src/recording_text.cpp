@@ -48,8 +48,8 @@ std::string header(const Recording& rec) {
                       printable(rec.scene)));
     }
   }
-  // Version 4 only for a recording that names its rules: one without reads in older builds.
-  const int version = rec.rules_name.empty() ? recording_version_without_rules : recording_version;
+  // Version 5 for the mixed seeding; 4 or 3 for a recording replayed with the older seeding.
+  const int version = recording_version_of(rec);
   std::string out = fmt::format("{} {}\nscene {}\n", recording_magic, version, rec.scene);
   // Optional sections follow the scene line, each announced by its own keyword.
   if (!rec.scene_text.empty()) append_scene_text(out, rec.scene_text);

@@ -89,13 +89,17 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
                    "the starting position [x, y] in m, e.g. position = [0.0, 0.0]");
   }
   def.body.position = *position;
+  r.require_state(t, "position", path + ".position", *position, "m");
 
   if (const toml::table* s = r.table(t, "spring", path + ".spring")) {
     const std::string sp = path + ".spring";
     r.check_keys(*s, sp,
                  {"anchor", "stiffness", "damping", "rest_length", "frequency", "damping_ratio"});
     SpringDamper spring;
-    if (auto a = r.vec2(*s, "anchor", sp + ".anchor")) spring.anchor = *a;
+    if (auto a = r.vec2(*s, "anchor", sp + ".anchor")) {
+      r.require_state(*s, "anchor", sp + ".anchor", *a, "m");
+      spring.anchor = *a;
+    }
     const SpringSpec spec = parse_spring_spec(r, *s, sp, true);
     // The frequency form acts on the body's own mass: k = m (2πf)², b = 2 m ζ (2πf).
     const LinkSpring k = resolve_spring(r, spec, def.body.mass, 0.0, precision);
@@ -106,6 +110,32 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
   }
   drop_moving_parts(r, t, path, def);
   return def;
+}
+
+/// Every number of a scene is 0 or between min_coefficient and max_coefficient in magnitude
+/// (value_ranges.hpp): beyond, a product or quotient a step forms (½ m v², 1/m, r/I) may leave
+/// double's range, and a subnormal divisor makes it infinite. Run after the keys' own checks,
+/// which name their ranges more precisely.
+void check_magnitudes(const Reader& r, const toml::node& node, const std::string& path) {
+  if (const toml::table* t = node.as_table()) {
+    for (auto&& [k, v] : *t) {
+      check_magnitudes(r, v,
+                       path.empty() ? std::string(k.str()) : path + "." + std::string(k.str()));
+    }
+  } else if (const toml::array* a = node.as_array()) {
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      check_magnitudes(r, *a->get(i), fmt::format("{}[{}]", path, i));
+    }
+  } else if (const toml::value<double>* f = node.as_floating_point()) {  // integers are exact
+    const double v = std::abs(f->get());
+    if (std::isfinite(v) && v != 0.0 && !(v >= min_coefficient && v <= max_coefficient)) {
+      r.fail(node.source(), path,
+             fmt::format("{:g} is beyond what a step's arithmetic holds: a scene's numbers are 0 "
+                         "or between 1e-100 and 1e100 in magnitude (products such as m v^2 and "
+                         "quotients such as 1/m must stay finite)",
+                         f->get()));
+    }
+  }
 }
 
 /// Every number of an f32 scene must stay finite as a float.
@@ -127,11 +157,14 @@ void check_f32(const Reader& r, const toml::node& node, const std::string& path)
 void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {
   def.type = parse_body_type(r, t, path);
   parse_body_mass(r, t, path, def);
-  if (auto v = r.vec2(t, "velocity", path + ".velocity")) def.body.velocity = *v;
+  if (auto v = r.vec2(t, "velocity", path + ".velocity")) {
+    r.require_state(t, "velocity", path + ".velocity", *v, "m/s");
+    def.body.velocity = *v;
+  }
   if (auto f = r.vec2(t, "force", path + ".force")) def.constant_force = ConstantForce{*f};
   if (auto g = r.vec2(t, "gravity", path + ".gravity")) def.gravity = Gravity{*g};
   if (auto c = r.number(t, "drag", path + ".drag")) {
-    r.require(*c >= 0.0, t, "drag", path + ".drag", ">= 0 N*s/m", *c);
+    r.require(*c >= 0.0, t, "drag", path + ".drag", ">= 0 N*s/m", *c);  // <= 1e100: magnitudes
     def.drag = LinearDrag{*c};
   }
   if (t.get("radius") || t.get("draw_radius") || t.get("color") || t.get("visible") ||
@@ -144,7 +177,8 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
       def.collider = Collider{.radius = *rad};  // a disc, for planes and [contacts]
     }
     if (auto rad = r.number(t, "draw_radius", path + ".draw_radius")) {
-      r.require(*rad > 0.0, t, "draw_radius", path + ".draw_radius", "> 0 m", *rad);
+      r.require(*rad > 0.0 && *rad <= max_state_magnitude, t, "draw_radius", path + ".draw_radius",
+                "> 0 m and <= 1e12 m", *rad);
       ap.radius = *rad;  // drawing only: no disc without `radius`
     }
     if (t.get("color")) ap.color = parse_color(r, t, "color", path + ".color");
@@ -338,6 +372,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   parse_planes(r, doc, scene);
   parse_segments(r, doc, scene, names);
   parse_contacts(r, doc, scene);
+  check_magnitudes(r, doc, "");  // every number, after the keys' own ranges
   check_start_overlap(scene, names);
   check_limits(r, scene, world);
   scene.warnings = r.take_warnings();

@@ -112,6 +112,8 @@ void parse_body_mass(Reader& r, const toml::table& t, const std::string& path, B
   if (def.type == BodyType::dynamic) {
     def.body.mass = r.required_number(t, path, "mass", "the mass in kg, e.g. mass = 1.0");
     r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
+    r.require(divisor_in_range(def.body.mass), t, "mass", path + ".mass",
+              "in [1e-100, 1e100] kg (a step divides by it)", def.body.mass);
     return;
   }
   if (r.number(t, "mass", path + ".mass")) {

@@ -122,12 +122,16 @@ class Generator {
   /// spacing, so a position beyond the scene's precision is the spacing's fault). The name must
   /// be unused.
   void add_body(BodyDef def, std::string body_name, Vec2 position) {
-    if (!representable(position.x, scene_.def.precision) ||
-        !representable(position.y, scene_.def.precision)) {
+    const bool fits = representable(position.x, scene_.def.precision) &&
+                      representable(position.y, scene_.def.precision);
+    if (!fits || !within_state(position.x) || !within_state(position.y)) {
       const toml::node& at = required("spacing");
-      r_.fail(at.source(), key("spacing"),
-              fmt::format("body {} would be at ({:g}, {:g}) m, beyond the range of {}", body_name,
-                          position.x, position.y, precision_text(scene_.def.precision)));
+      r_.fail(
+          at.source(), key("spacing"),
+          fmt::format("body {} would be at ({:g}, {:g}) m, beyond {}", body_name, position.x,
+                      position.y,
+                      fits ? std::string("+-1e12 m, the runtime guard's range")
+                           : fmt::format("the range of {}", precision_text(scene_.def.precision))));
     }
     def.name = std::move(body_name);
     def.body.position = position;
@@ -148,11 +152,14 @@ class Generator {
   void add_link(std::size_t a, std::size_t b, LinkSpring spring, const SpringSpec& spec) {
     const Vec2 pa = scene_.def.bodies[a].body.position, pb = scene_.def.bodies[b].body.position;
     if (!spec.rest_length) spring.rest_length = det::hypot(pb.x - pa.x, pb.y - pa.y);
-    if (!representable(spring.rest_length, scene_.def.precision)) {
-      r_.fail(required("spacing").source(), key("spacing"),
-              fmt::format("bodies {} and {} start {:g} m apart, beyond the range of {}",
-                          scene_.def.bodies[a].name, scene_.def.bodies[b].name, spring.rest_length,
-                          precision_text(scene_.def.precision)));
+    const bool fits = representable(spring.rest_length, scene_.def.precision);
+    if (!fits || !within_state(spring.rest_length)) {
+      r_.fail(
+          required("spacing").source(), key("spacing"),
+          fmt::format("bodies {} and {} start {:g} m apart, beyond {}", scene_.def.bodies[a].name,
+                      scene_.def.bodies[b].name, spring.rest_length,
+                      fits ? std::string("1e12 m, the largest rest length")
+                           : fmt::format("the range of {}", precision_text(scene_.def.precision))));
     }
     if (spring.rest_length > 0.0 && same_point(pa, pb, scene_.def.precision)) {
       r_.fail(required("spacing").source(), key("spacing"),

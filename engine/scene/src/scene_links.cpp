@@ -96,6 +96,7 @@ SpringSpec parse_spring_spec(const Reader& r, const toml::table& t, const std::s
   if (with_rest_length) {
     if (auto l = r.number(t, "rest_length", path + ".rest_length")) {
       r.require(*l >= 0.0, t, "rest_length", path + ".rest_length", ">= 0 m", *l);
+      r.require_state(t, "rest_length", path + ".rest_length", *l, "m");
       s.rest_length = *l;
     }
   }
@@ -115,11 +116,15 @@ LinkSpring resolve_spring(const Reader& r, const SpringSpec& spec, double mass, 
     r.fail(spec.frequency_node->source(), key,
            fmt::format("cannot be converted with mass {:g} kg: {}", mass, e.what()));
   }
-  if (!representable(out.stiffness, precision) || !representable(out.damping, precision)) {
+  const bool fits =
+      representable(out.stiffness, precision) && representable(out.damping, precision);
+  if (!fits || !within_coefficient(out.stiffness) || !within_coefficient(out.damping)) {
     r.fail(spec.frequency_node->source(), key,
            fmt::format("gives k = m (2πf)² = {:g} N/m and b = 2 m ζ (2πf) = {:g} N*s/m with "
-                       "m = {:g} kg, beyond the range of {}; use a lower frequency{}",
-                       out.stiffness, out.damping, mass, precision_text(precision),
+                       "m = {:g} kg, beyond {}; use a lower frequency{}",
+                       out.stiffness, out.damping, mass,
+                       fits ? std::string("1e100, the largest coefficient a step holds")
+                            : fmt::format("the range of {}", precision_text(precision)),
                        precision == Precision::f32 ? " or precision = \"f64\" in [world]" : ""));
   }
   return out;

@@ -29,8 +29,14 @@ PlaneDef parse_plane(Reader& r, const toml::table& t, const std::string& path) {
     r.fail(t.get("point")->source(), path + ".point",
            "`offset` and `point` both given: a plane takes one of them");
   }
-  if (offset) p.offset = *offset;
-  if (point) p.offset = p.normal.x * point->x + p.normal.y * point->y;
+  if (offset) {
+    r.require_state(t, "offset", path + ".offset", *offset, "m");
+    p.offset = *offset;
+  }
+  if (point) {
+    r.require_state(t, "point", path + ".point", *point, "m");
+    p.offset = p.normal.x * point->x + p.normal.y * point->y;
+  }
   if (!std::isfinite(p.offset)) {
     r.fail(t.get("point")->source(), path + ".point",
            fmt::format("gives a non-finite offset ({})", p.offset));

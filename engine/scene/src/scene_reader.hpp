@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/value_ranges.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/suggest.hpp"
 
@@ -303,6 +304,27 @@ class Reader {
     if (!ok) fail(t.get(key)->source(), path, fmt::format("must be {} (got {})", allowed, v));
   }
 
+  /// A starting state value or length (m, m/s, rad, rad/s: `unit`) at t[key] (path; `index`
+  /// 0 or 1 names a component of an [x, y] key, -1 a number) must be within
+  /// max_state_magnitude, the runtime guard's range (value_ranges.hpp).
+  void require_state(const toml::table& t, std::string_view key, const std::string& path, double v,
+                     std::string_view unit, int index = -1) const {
+    if (within_state(v)) return;
+    const toml::node* n = t.get(key);
+    if (index >= 0 && n->as_array()) n = n->as_array()->get(static_cast<std::size_t>(index));
+    fail(n->source(), index >= 0 ? fmt::format("{}[{}]", path, index) : path,
+         fmt::format("must be within +-{:g} {} (got {:g}): the runtime guard stops any state "
+                     "beyond it",
+                     max_state_magnitude, unit, v));
+  }
+
+  /// Both components of the [x, y] at t[key] (require_state).
+  void require_state(const toml::table& t, std::string_view key, const std::string& path, Vec2 v,
+                     std::string_view unit) const {
+    require_state(t, key, path, v.x, unit, 0);
+    require_state(t, key, path, v.y, unit, 1);
+  }
+
   /// Narrowing to f32 must keep the value finite.
   void require_f32(double v, const toml::node* n, const std::string& path) const {
     if (std::abs(v) > double(std::numeric_limits<float>::max())) {
@@ -374,8 +396,8 @@ void parse_body_mass(Reader& r, const toml::table& t, const std::string& path, B
 /// collide (boolean), restitution (in [0, 1]) and friction (>= 0) of t into def.collider;
 /// each is an error without a radius (def.collider unset).
 void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
-/// angle (rad), angular_velocity (rad/s) and inertia (> 0 kg*m^2, an error without a radius) of
-/// t into def, for rolling discs (scene_rolling.cpp).
+/// angle (rad), angular_velocity (rad/s) and inertia (in [1e-100, 1e100] kg*m^2, an error without a
+/// radius) of t into def, for rolling discs (scene_rolling.cpp).
 void parse_rolling_keys(const Reader& r, const toml::table& t, const std::string& path,
                         BodyDef& def);
 /// Warns at each body's (and generator template's) angle, angular_velocity and inertia: they act

@@ -17,8 +17,12 @@ constexpr std::string_view rolling_keys[] = {"angle", "angular_velocity", "inert
 
 void parse_rolling_keys(const Reader& r, const toml::table& t, const std::string& path,
                         BodyDef& def) {
-  if (auto a = r.number(t, "angle", path + ".angle")) def.body.angle = *a;
+  if (auto a = r.number(t, "angle", path + ".angle")) {
+    r.require_state(t, "angle", path + ".angle", *a, "rad");
+    def.body.angle = *a;
+  }
   if (auto w = r.number(t, "angular_velocity", path + ".angular_velocity")) {
+    r.require_state(t, "angular_velocity", path + ".angular_velocity", *w, "rad/s");
     def.body.angular_velocity = *w;
   }
   if (const toml::node* n = t.get("inertia")) {
@@ -27,7 +31,10 @@ void parse_rolling_keys(const Reader& r, const toml::table& t, const std::string
              "needs a radius: only a disc (a body with a radius) rolls; add radius = ... (m)");
     }
     const auto i = r.number(t, "inertia", path + ".inertia");
+    // 1/I, r/I and m r²/I turn the disc: a subnormal I made them infinite and the state NaN.
     r.require(*i > 0.0, t, "inertia", path + ".inertia", "> 0 kg*m^2", *i);
+    r.require(divisor_in_range(*i), t, "inertia", path + ".inertia",
+              "in [1e-100, 1e100] kg*m^2 (a step divides by it)", *i);
     def.collider->inertia = *i;
   }
 }

@@ -27,14 +27,15 @@ enum class BodyType : std::uint8_t { dynamic = 0, static_body = 1, kinematic = 2
 
 /// The rigid point body every other component acts on.
 struct Body {
-  double mass = 1.0;  ///< kg, finite and > 0
-  Vec2 position{};    ///< m
-  Vec2 velocity{};    ///< m/s
-  /// Orientation θ, rad, finite: read and stepped only in a world with rolling discs
+  /// kg, in [min_coefficient, max_coefficient] = [1e-100, 1e100] (value_ranges.hpp)
+  double mass = 1.0;
+  Vec2 position{};  ///< m, each component within max_state_magnitude (1e12)
+  Vec2 velocity{};  ///< m/s, each component within max_state_magnitude (1e12)
+  /// Orientation θ, rad, |θ| <= 1e12: read and stepped only in a world with rolling discs
   /// (ContactSettings::rolling), kept in [-π, π]; ignored elsewhere.
   double angle = 0.0;
-  /// Angular velocity ω, rad/s, finite (counter-clockwise positive): as angle, only with
-  /// rolling discs.
+  /// Angular velocity ω, rad/s, |ω| <= max_state_magnitude (1e12; counter-clockwise positive):
+  /// as angle, only with rolling discs. The runtime guard checks it after every tick.
   double angular_velocity = 0.0;
 };
 
@@ -46,25 +47,25 @@ struct Body {
 /// "Integration Basics" in each axis independently. The damping acts on the full velocity
 /// (not only along the spring), which keeps it linear in v.
 struct SpringDamper {
-  Vec2 anchor{};             ///< m
-  double stiffness = 0.0;    ///< k, N/m, finite and >= 0
-  double damping = 0.0;      ///< b, N*s/m, finite and >= 0
-  double rest_length = 0.0;  ///< L, m, finite and >= 0
+  Vec2 anchor{};             ///< m, each component within 1e12
+  double stiffness = 0.0;    ///< k, N/m, in [0, 1e100]
+  double damping = 0.0;      ///< b, N*s/m, in [0, 1e100]
+  double rest_length = 0.0;  ///< L, m, in [0, 1e12]
 };
 
 /// A constant force, e.g. the 10 N push of the article's first example.
 struct ConstantForce {
-  Vec2 force{};  ///< N
+  Vec2 force{};  ///< N, each component within max_coefficient (1e100)
 };
 
 /// A constant acceleration independent of mass: gravity on a projectile.
 struct Gravity {
-  Vec2 acceleration{0.0, -9.81};  ///< m/s^2
+  Vec2 acceleration{0.0, -9.81};  ///< m/s^2, each component within 1e100
 };
 
 /// Linear drag F = -c v (Stokes drag, valid at low Reynolds number).
 struct LinearDrag {
-  double coefficient = 0.0;  ///< c, N*s/m, finite and >= 0
+  double coefficient = 0.0;  ///< c, N*s/m, in [0, 1e100]
 };
 
 /// Seconds of past motion a trail shows by default (Appearance::trail_time).
@@ -117,11 +118,12 @@ struct CollisionFilter {
 /// with body contacts on (WorldSettings::contacts), with the other discs. Bodies without one
 /// pass through planes and discs; colliders cost nothing in a world without planes or contacts.
 struct Collider {
-  double radius = 0.5;  ///< m, > 0 and <= max_state_magnitude (10^12 m)
+  double radius = 0.5;  ///< m, in [min_coefficient, max_state_magnitude] = [1e-100, 1e12]
   /// e of this body in disc-disc contacts, in [0, 1]; unset: ContactSettings::restitution.
   /// A pair uses the larger of its two (Box2D's rule: a bouncy ball bounces off anything).
   std::optional<double> restitution = std::nullopt;
-  /// Coulomb μ of this body in disc-disc contacts, >= 0; unset: ContactSettings::friction.
+  /// Coulomb μ of this body in disc-disc contacts, in [0, 1e100]; unset:
+  /// ContactSettings::friction.
   /// A pair uses √(μ_a μ_b) (Box2D's b2MixFriction: either surface frictionless, no friction).
   std::optional<double> friction = std::nullopt;
   /// false: the disc takes part in no disc-disc contact and no sensor sees it (it still
@@ -133,7 +135,7 @@ struct Collider {
   bool sensor = false;
   /// Which discs this one may touch and sense (CollisionFilter).
   CollisionFilter filter{};
-  /// Moment of inertia about the centre, kg·m², finite and > 0, used only with rolling discs
+  /// Moment of inertia about the centre, kg·m², in [1e-100, 1e100], used only with rolling discs
   /// (ContactSettings::rolling); unset: a uniform disc's ½ m r².
   std::optional<double> inertia = std::nullopt;
 };
@@ -150,7 +152,7 @@ struct Collider {
 /// iterations cost proportionally more and settle a deep pile in fewer ticks.
 struct ContactSettings {
   double restitution = 0.0;  ///< e in [0, 1], every pair's default
-  double friction = 0.0;     ///< Coulomb μ >= 0, every pair's default
+  double friction = 0.0;     ///< Coulomb μ in [0, 1e100], every pair's default
   /// Velocity iterations a tick (normal and friction impulses), in [1, max_iterations].
   int velocity_iterations = default_velocity_iterations;
   /// Position iterations a tick (push-out of overlap beyond the slop), in [0, max_iterations].
@@ -190,9 +192,9 @@ struct ContactSettings {
 /// Coulomb friction μ |a_n| (sliding friction force μ N).
 struct PlaneDef {
   Vec2 normal{0.0, 1.0};     ///< n, points into free space; finite, != 0 (normalised by World)
-  double offset = 0.0;       ///< m, finite: the plane is n·x = offset (n normalised)
+  double offset = 0.0;       ///< m, within 1e12: the plane is n·x = offset (n normalised)
   double restitution = 0.0;  ///< e, finite, in [0, 1]
-  double friction = 0.0;     ///< μ, finite and >= 0
+  double friction = 0.0;     ///< μ, in [0, 1e100]
 };
 
 /// A spring-damper between two bodies (a link): a rope segment, a cloth edge, a suspension.

@@ -9,22 +9,43 @@
 
 namespace fixstep {
 
+/// SplitMix64's output function: z ^= z >> 30, z *= 0xbf58476d1ce4e5b9, z ^= z >> 27,
+/// z *= 0x94d049bb133111eb, z ^= z >> 31 (G. L. Steele, D. Lea, C. H. Flood, "Fast Splittable
+/// Pseudorandom Number Generators", OOPSLA 2014; these constants are D. Stafford's "Mix13" as
+/// S. Vigna's splitmix64.c uses them). A bijection of the 64-bit integers in which every input
+/// bit flips each output bit with probability close to 1/2; mix_seed(0) = 0.
+[[nodiscard]] constexpr std::uint64_t mix_seed(std::uint64_t z) {
+  z = (z ^ (z >> 30u)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27u)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31u);
+}
+
 /// PCG32 (PCG-XSH-RR 64/32): a 64-bit linear congruential state, each 32-bit output a
 /// permutation of it (xorshift high, random rotation). Period 2^64 per stream; 2^63 streams.
 /// Source: M. E. O'Neill, "PCG: A Family of Simple Fast Space-Efficient Statistically Good
 /// Algorithms for Random Number Generation", Harvey Mudd College HMC-CS-2014-0905 (2014); the
-/// multiplier is Knuth's MMIX one; seeding as the paper's pcg32_srandom. Integer arithmetic
-/// only: the same numbers everywhere. Not for cryptography.
+/// multiplier is Knuth's MMIX one. Integer arithmetic only: the same numbers everywhere. Not
+/// for cryptography.
+///
+/// Seeding: Random(seed, stream) is the paper's pcg32_srandom(mix_seed(seed), stream). The
+/// paper's seeding alone adds the seed to the state, and an LCG state that differs only in its
+/// top bits gives outputs that are bit rotations of each other (seeds 0 and 2^62 draw the same
+/// values rotated); through mix_seed every seed bit changes about half of the state's bits.
+/// Random::pcg32 is the paper's seeding itself (its published check vectors, and
+/// Seeding::pcg32_srandom for recordings made before the mixing).
 class Random {
  public:
   /// The generator seeded with `seed` on stream `stream` (any values; equal arguments give
-  /// equal sequences, different streams independent ones).
+  /// equal sequences, different seeds or streams independent ones; the top bit of `stream` is
+  /// not used, as in the paper). Seed 0 is the same generator as pcg32(0, stream).
   explicit constexpr Random(std::uint64_t seed = 0, std::uint64_t stream = 0)
-      : increment_((stream << 1u) | 1u) {
-    next_u32();
-    state_ += seed;
-    next_u32();
-    draws_ = 0;
+      : Random(Raw{}, mix_seed(seed), stream) {}
+
+  /// The paper's pcg32_srandom(initstate, initseq), without mix_seed: the generator of PCG's
+  /// published check vectors (pcg32(42, 54) first draws 0xa15c02b7) and the one a world with
+  /// Seeding::pcg32_srandom uses. Seeds differing only in high bits give related streams.
+  [[nodiscard]] static constexpr Random pcg32(std::uint64_t initstate, std::uint64_t initseq) {
+    return Random(Raw{}, initstate, initseq);
   }
 
   /// The next 32 uniformly distributed bits.
@@ -97,6 +118,15 @@ class Random {
   std::uint64_t state_ = 0;
   std::uint64_t increment_;
   std::uint64_t draws_ = 0;
+
+  struct Raw {};
+  constexpr Random(Raw /*unused*/, std::uint64_t initstate, std::uint64_t initseq)
+      : increment_((initseq << 1u) | 1u) {
+    next_u32();
+    state_ += initstate;
+    next_u32();
+    draws_ = 0;
+  }
 };
 
 }  // namespace fixstep

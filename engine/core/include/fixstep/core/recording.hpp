@@ -20,13 +20,16 @@
 
 namespace fixstep {
 
-/// The newest format version this build reads and writes. Version 4 names the rules a
-/// recording needs (Recording::rules_name); a recording without rules is still written as
-/// version 3, which older builds read. Version 3 may carry the scene the world was loaded from
-/// (Recording::scene_text); versions 1 and 2 still read.
-inline constexpr int recording_version = 4;
-/// The version a recording without rules is written as (and a Recording's until
-/// Recorder::set_rules).
+/// The newest format version this build reads and writes. Version 5: the world's random
+/// generator is seeded through SplitMix64 (Seeding::splitmix); a recording of an older version
+/// replays with the seeding it was made with (Seeding::pcg32_srandom: RecordedSettings::seeding).
+/// Version 4 names the rules a recording needs (Recording::rules_name). Version 3 may carry the
+/// scene the world was loaded from (Recording::scene_text); versions 1 and 2 still read.
+inline constexpr int recording_version = 5;
+/// The version a recording with rules and Seeding::pcg32_srandom is written as.
+inline constexpr int recording_version_with_rules = 4;
+/// The version a recording without rules and with Seeding::pcg32_srandom is written as (older
+/// builds read it).
 inline constexpr int recording_version_without_rules = 3;
 /// Most bytes of a rules name (Recording::rules_name).
 inline constexpr std::size_t max_rules_name_bytes = 64;
@@ -68,10 +71,23 @@ struct RecordedSettings {
   /// Forest-Ruth's damping split (WorldSettings::damping_split); nullopt when not recorded
   /// (versions 1 and 2): the scene's own then applies.
   std::optional<DampingSplit> damping_split;
+  /// How the world's generator was seeded (WorldSettings::seeding): not a line of the file but
+  /// its version's (splitmix from version 5, pcg32_srandom before). A world of seed 0 records
+  /// pcg32_srandom: both seedings give it the same generator, and its recording keeps the
+  /// version older builds read.
+  Seeding seeding = Seeding::pcg32_srandom;
   friend bool operator==(const RecordedSettings&, const RecordedSettings&) = default;
 };
 
-/// The settings of `def` a recording stores (damping_split included).
+struct Recording;
+
+/// The format version `rec` is written as: recording_version with Seeding::splitmix (a seeded
+/// world); with Seeding::pcg32_srandom (seed 0, or a world replaying an older recording) the
+/// version that seeding was last written with, 4 with rules and 3 without, which older builds
+/// read and which replays with that seeding.
+[[nodiscard]] int recording_version_of(const Recording& rec);
+
+/// The settings of `def` a recording stores (damping_split and seeding included).
 [[nodiscard]] RecordedSettings recorded_settings(const WorldDef& def);
 
 /// A recorded session: the world it ran (by definition hash and settings, and from version 3
@@ -82,7 +98,8 @@ struct RecordedSettings {
 /// a few lines may name 10^9 ticks). inputs[k] is the input of every tick from inputs[k].tick
 /// until the next entry's tick (its `tick` field then reads as that tick: see input_at()).
 struct Recording {
-  int version = recording_version_without_rules;  ///< recording_version once it names rules
+  /// The format version: recording_version_of(*this) for one recorded or written by this build.
+  int version = recording_version_without_rules;
   /// The scene's name: its file's path as given on the command line (or a label such as
   /// "demo (built in code)"). With scene_text present it is a label only, never read.
   std::string scene;

@@ -33,6 +33,18 @@ enum class DampingSplit {
 /// The DampingSplit named `name`, or nullopt.
 [[nodiscard]] std::optional<DampingSplit> parse_damping_split(std::string_view name);
 
+/// How a world seeds its random generator (World::random()) from WorldSettings::seed.
+enum class Seeding : std::uint8_t {
+  /// Random(seed): the seed through SplitMix64's mix, then PCG32 (random.hpp). Every seed bit
+  /// matters. The default, and every recording of format version 5 or later.
+  splitmix,
+  /// Random::pcg32(seed, 0): the seed added to PCG32's state unmixed, so that seeds differing
+  /// only in their top bits give rotated streams. For replaying recordings of format version 4
+  /// and older, made with it; a recording made with it is written as version 4 (3 without
+  /// rules). Seed 0 gives the same generator both ways.
+  pcg32_srandom,
+};
+
 /// World-wide simulation settings.
 struct WorldSettings {
   double dt = 1.0 / 60.0;  ///< fixed physics step (one tick), s; finite and > 0
@@ -71,6 +83,10 @@ struct WorldSettings {
   /// Seed of the world's random generator for game rules (World::random(); any value). Part
   /// of the definition hash only when not 0, so worlds that never set it hash as before.
   std::uint64_t seed = 0;
+  /// How `seed` seeds the generator (Seeding). Part of the definition hash only for a seed
+  /// other than 0 seeded by splitmix, so a world replaying an older recording
+  /// (pcg32_srandom) hashes as it did when it was recorded.
+  Seeding seeding = Seeding::splitmix;
 };
 
 /// Ticks between two software flushes of subnormal state (WorldSettings::flush_denormals).
