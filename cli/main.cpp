@@ -73,7 +73,7 @@ void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
       ->needs(rec);
 }
 
-/// --overwrite of render and compare (capture_dir.hpp).
+/// --overwrite of render and compare (fixstep/capture/capture_dir.hpp).
 constexpr const char* overwrite_help =
     "--out DIR may hold an older capture: remove its frames and CSVs first (without it, such "
     "a DIR is refused)";
@@ -348,7 +348,7 @@ int main(int argc, char** argv) try {
 } catch (const fixstep::StopRequested& e) {  // a command that does not catch it (none should)
   std::fprintf(stderr, "fixstep: %s\n", e.what());
   return 128 + e.signal();
-} catch (const fixstep::cli::PathRefused& e) {  // an output that is an input, a used --out DIR
+} catch (const fixstep::PathRefused& e) {  // an output that is an input, a used --out DIR
   std::fprintf(stderr, "%s\n", e.what());
   return 2;
 } catch (const fixstep::RecordingError& e) {
