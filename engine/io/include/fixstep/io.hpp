@@ -13,6 +13,7 @@
 #include "fixstep/io/recording_file.hpp"
 #include "fixstep/io/recording_writer.hpp"
 #include "fixstep/io/stale_temporaries.hpp"
+#include "fixstep/io/standard_output.hpp"
 #include "fixstep/io/stop_signal.hpp"
 #include "fixstep/io/summary.hpp"
 #include "fixstep/io/write_signals.hpp"
