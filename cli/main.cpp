@@ -17,8 +17,10 @@
 #include <cstdio>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/stop_request.hpp>
+#include <fixstep/io/standard_output.hpp>
 #include <fixstep/io/write_signals.hpp>
 #include <fixstep/scene/suggest.hpp>
+#include <string_view>
 
 #include "capture_sink.hpp"
 #include "commands.hpp"
@@ -140,7 +142,20 @@ std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
 
 // The whole of main is one try block: an exception from any step (CLI11's setup included)
 // becomes "fixstep: error: ..." and exit status 1, never std::terminate.
-int main(int argc, char** argv) try {
+namespace {
+
+/// Whether the command line asks for --quiet (-q): its results go nowhere, so a closed standard
+/// output loses nothing.
+bool quiet_asked(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg(argv[i]);
+    if (arg == "--") return false;
+    if (arg == "-q" || arg == "--quiet") return true;
+  }
+  return false;
+}
+
+int run_fixstep(int argc, char** argv) try {
   using namespace fixstep::cli;
   // A write past `ulimit -f` or into a closed pipe fails with an error fixstep reports (naming
   // the option and the file, temporaries removed) instead of killing it without a word.
@@ -357,4 +372,16 @@ int main(int argc, char** argv) try {
 } catch (const std::exception& e) {
   std::fprintf(stderr, "fixstep: error: %s\n", e.what());
   return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Every command prints its results (a summary, a verdict, the paths written) on standard
+  // output: a closed or full one is an error, not a silent loss (fixstep/io/standard_output.hpp).
+  if (quiet_asked(argc, argv) && !fixstep::standard_output_is_open()) {
+    return run_fixstep(argc, argv);  // --quiet reopens it on /dev/null
+  }
+  return fixstep::with_results_on_standard_output("fixstep",
+                                                  [&] { return run_fixstep(argc, argv); });
 }
