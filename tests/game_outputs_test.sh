@@ -9,8 +9,9 @@
 #  (b) bounds: --frames 10^12 and --sync-test 10^9 refused before the first tick, naming the flag;
 #  (c) a stop: SIGINT in a headless game with --record exits 130 and leaves a complete recording
 #      of every tick run that replays with every hash verified; while it runs, the recording's
-#      temporary file grows (streamed, not held in memory); SIGTERM stops a sync test, SIGINT a
-#      replay and a networked match (whose recording is written and replays);
+#      temporary file grows (streamed, not held in memory); SIGTERM stops a sync test and a game
+#      in its window (on Xvfb, when installed), SIGINT a replay and a networked match (whose
+#      recordings are written and replay);
 #  (d) results on standard output: every game mode and every fixstep command that prints a result
 #      exits non-zero with a message on standard error when standard output is full
 #      (>/dev/full) or closed (>&-).
@@ -86,7 +87,8 @@ fx() { timeout 20 "$peggle" "$@"; }
 # --- (c) a stop --------------------------------------------------------------------------------
 # size_of FILE: its size in bytes, or 0.
 size_of() { stat -c %s "$1" 2>/dev/null || echo 0; }
-# grows PID GLOB: waits (up to 10 s) until the file GLOB names has grown twice while PID runs.
+# grows PID GLOB: waits (up to 10 s) until the file GLOB names has grown twice while PID runs,
+# to more than 4 MB.
 grows() {
   local pid=$1 glob=$2 last=0 seen=0 size f
   for _ in $(seq 200); do
@@ -143,6 +145,27 @@ ended "$pid"
 status=$?
 [ "$status" -eq 143 ] && ok "SIGTERM: a sync test exits 143" || { fail "sync test exit $status"; cat sync.out; }
 expect "SIGTERM: the sync test says so" "stopped by SIGTERM after tick" sync.out
+# In the window (on a virtual X server): the recording streamed, and SIGTERM ends the game with
+# it written whole.
+if have_xvfb && start_xvfb; then
+  DISPLAY=$xvfb_display "$peggle" --record window.rec >window.out 2>&1 &
+  pid=$!
+  # (It buffers 64 kB, half a minute of a window's hash lines, before its first write.)
+  for _ in $(seq 100); do [ -e ".window.rec.tmp.$pid" ] && break; sleep 0.05; done
+  sleep 1  # a second of play
+  [ -e ".window.rec.tmp.$pid" ] && [ ! -e window.rec ] &&
+    ok "window --record: the recording's temporary file is open while the game plays" ||
+    fail "window --record: no .window.rec.tmp.$pid"
+  kill -TERM "$pid"
+  ended "$pid"
+  status=$?
+  [ "$status" -eq 143 ] && ok "SIGTERM: a game in its window exits 143" ||
+    { fail "window exit $status"; cat window.out; }
+  "$peggle" --replay window.rec >wreplay.out 2>&1 && ok "SIGTERM: the window's recording replays" ||
+    { fail "the window's recording"; cat wreplay.out; }
+else
+  echo "skip - the window (no Xvfb)"
+fi
 "$airhockey" --host 0 --bot --ticks 5000000 --record match.rec >host.out 2>&1 &
 hpid=$!
 port=$(wait_for host.out 'hosting on [0-9.]+:[0-9]+' | grep -Eo '[0-9]+$')
