@@ -29,7 +29,6 @@
 #include "fixstep/io/recording_file.hpp"
 #include "new_project.hpp"
 #include "output_paths.hpp"
-#include "standard_output.hpp"
 
 namespace {
 
@@ -295,7 +294,7 @@ int run_fixstep(int argc, char** argv) try {
                              : view_cmd->parsed()    ? view_paths(view)
                                                      : CommandPaths{};
   // `--csv -`: standard output carries the data alone; the summary goes to standard error.
-  if (data_on_standard_output(paths)) keep_standard_output_for_data();
+  if (fixstep::data_on_standard_output(paths)) fixstep::keep_standard_output_for_data();
   // --quiet: the summaries and paths go to standard output, which is emptied wholesale;
   // errors go to standard error (warnings and progress are skipped where they are made).
   if ((run.scene.quiet || render.scene.quiet || view.scene.quiet || replay.quiet ||

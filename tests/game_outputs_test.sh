@@ -69,6 +69,15 @@ refused "a match's --record and --last-frame one file" 2 "are the same file" \
   --host 0 --bot --ticks 10 --record m.png --last-frame m.png
 fx() { timeout 20 "$peggle" "$@"; }
 
+# --record -: standard output carries the recording alone, the summary goes to standard error.
+if "$peggle" --frames 30 --record - >piped.rec 2>piped.err && grep -q "^ticks=" piped.err &&
+  "$peggle" --replay piped.rec >piped.out 2>&1; then
+  ok "--record -: the recording alone on standard output (it replays), the summary on stderr"
+else
+  fail "--record -: mixed with the summary"
+  head -3 piped.rec piped.err piped.out
+fi
+
 # --- (b) bounds, before the first tick ---------------------------------------------------------
 refused "--frames 10^12" 1 "--frames 1000000000000 .*a command may step at most" \
   --frames 1000000000000

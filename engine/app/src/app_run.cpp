@@ -120,7 +120,8 @@ Options parse(const Settings& settings, int argc, char** argv) {
 /// descriptor not open for writing, a missing directory), that is one of the inputs or another
 /// output, or a --out DIR that holds a capture (without --overwrite): the checks of the fixstep
 /// command's outputs (fixstep/io/output_paths.hpp). A session is not played only to be lost.
-void check_outputs(const Settings& settings, const Options& o) {
+/// Returns the paths checked.
+OutputPaths check_outputs(const Settings& settings, const Options& o) {
   const std::string scene = o.scene.value_or(settings.scene_file);
   OutputPaths paths{.program = settings.name, .overwrite = o.overwrite, .capture_manifest = false};
   if (!scene.empty()) paths.inputs.push_back({"--scene", scene});
@@ -131,6 +132,7 @@ void check_outputs(const Settings& settings, const Options& o) {
   check_output_paths(paths);
   check_output_before_run("--record", o.record, {scene, o.replay});
   check_output_before_run("--last-frame", o.last_frame, {scene, o.replay});
+  return paths;
 }
 
 int run_mode(const AnyGame& game, const Settings& settings, const Options& o) {
@@ -180,7 +182,8 @@ int run_game_unchecked(const AnyGame& game, const Settings& settings, int argc, 
   const char* name = settings.name.c_str();
   try {
     const Options o = parse(settings, argc, argv);
-    check_outputs(settings, o);
+    // `--record -`: standard output carries the recording alone; the summary goes to stderr.
+    if (data_on_standard_output(check_outputs(settings, o))) keep_standard_output_for_data();
     const StopOnSignal signals;  // SIGINT / SIGTERM: the mode stops and writes what it has
     return run_mode(game, settings, o);
   } catch (const CLI::CallForHelp&) {

@@ -255,6 +255,8 @@ void check_match_outputs(const MatchOptions& o, const std::string& program,
   if (!o.record.empty()) paths.outputs.push_back({"--record", o.record});
   if (!o.last_frame.empty()) paths.outputs.push_back({"--last-frame", o.last_frame});
   check_output_paths(paths);  // PathRefused: the checks of the fixstep command's outputs
+  // `--record -`: standard output carries the recording alone; the summary goes to stderr.
+  if (data_on_standard_output(paths)) keep_standard_output_for_data();
   check_output_before_run("--record", o.record, {scene});
   check_output_before_run("--last-frame", o.last_frame, {scene});
 }
