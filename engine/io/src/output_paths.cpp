@@ -52,7 +52,7 @@ std::optional<FileId> id_of(const std::string& path, bool may_be_new) {
   return FileId{0, 0, resolved(path).string(), "", false};
 }
 
-std::string shown(const NamedPath& p) {
+std::string named(const NamedPath& p) {
   return fmt::format("{} {}", p.role, p.path);
 }
 
@@ -60,7 +60,7 @@ std::string shown(const NamedPath& p) {
   throw PathRefused(
       fmt::format("{}: {} is the same file as {}: an output may never overwrite an input (nothing "
                   "was written); give another path",
-                  c.program, shown(out), shown(in)));
+                  c.program, named(out), named(in)));
 }
 
 /// An input that is a capture file already in the capture directory (rewritten or removed).
@@ -88,7 +88,7 @@ void refuse_capture_names(const OutputPaths& c, const NamedPath& out) {
     throw PathRefused(
         fmt::format("{}: {} is a file the capture in --out {} writes: one output would overwrite "
                     "the other (nothing was written); give each its own path",
-                    c.program, shown(out), *c.capture_dir));
+                    c.program, named(out), *c.capture_dir));
   }
 }
 
@@ -113,12 +113,12 @@ void refuse_same_files(const OutputPaths& c) {
         throw PathRefused(
             fmt::format("{}: {} and {} both write into {}: their bytes would be mixed (nothing was "
                         "written); give each its own path",
-                        c.program, shown(seen[i].first), shown(out), id->stream));
+                        c.program, named(seen[i].first), named(out), id->stream));
       }
       throw PathRefused(
           fmt::format("{}: {} and {} are the same file: one output would overwrite the other "
                       "(nothing was written); give each its own path",
-                      c.program, shown(seen[i].first), shown(out)));
+                      c.program, named(seen[i].first), named(out)));
     }
     refuse_capture_names(c, out);
     seen.emplace_back(out, *id);
@@ -141,7 +141,7 @@ void refuse_kinds(const OutputPaths& c) {
     std::string why = output_refusal(target);
     if (why.empty() && target.fd >= 0) why = descriptor_refusal(target.fd, target.what);
     if (!why.empty()) {
-      throw PathRefused(fmt::format("{}: {} {}; nothing was written", c.program, shown(out), why));
+      throw PathRefused(fmt::format("{}: {} {}; nothing was written", c.program, named(out), why));
     }
   }
 }
