@@ -2,10 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <fixstep/capture/capture_dir.hpp>
 #include <fixstep/capture/video_limits.hpp>
 #include <fixstep/io/output_target.hpp>
-
-#include "capture_dir.hpp"
 
 namespace fixstep::cli {
 

@@ -20,6 +20,7 @@
 #include <fixstep/core/work_progress.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/io/recording_writer.hpp>
+#include <fixstep/io/stop_signal.hpp>
 #include <fixstep/scene/input_script.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <stdexcept>
@@ -34,7 +35,6 @@
 #include "fixstep/io/summary.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
-#include "stop_signal.hpp"
 
 namespace fixstep::cli {
 

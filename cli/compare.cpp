@@ -15,6 +15,7 @@
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/world_def.hpp>
 #include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/stop_signal.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/window/window.hpp>
 #include <span>
@@ -31,7 +32,6 @@
 #include "fixstep/io/summary.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
-#include "stop_signal.hpp"
 
 namespace fixstep::cli {
 

@@ -18,9 +18,11 @@
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/io/command_limits.hpp>
+#include <fixstep/io/standard_output.hpp>
 #include <fixstep/io/write_signals.hpp>
 #include <fixstep/scene/suggest.hpp>
 #include <new>
+#include <string_view>
 
 #include "capture_sink.hpp"
 #include "command_phase.hpp"
@@ -30,7 +32,6 @@
 #include "fixstep/io/recording_file.hpp"
 #include "new_project.hpp"
 #include "output_paths.hpp"
-#include "standard_output.hpp"
 
 namespace {
 
@@ -76,7 +77,7 @@ void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
       ->needs(rec);
 }
 
-/// --overwrite of render and compare (capture_dir.hpp).
+/// --overwrite of render and compare (fixstep/capture/capture_dir.hpp).
 constexpr const char* overwrite_help =
     "--out DIR may hold an older capture: remove its frames and CSVs first (without it, such "
     "a DIR is refused)";
@@ -143,7 +144,20 @@ std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
 
 // The whole of main is one try block: an exception from any step (CLI11's setup included)
 // becomes "fixstep: error: ..." and exit status 1, never std::terminate.
-int main(int argc, char** argv) try {
+namespace {
+
+/// Whether the command line asks for --quiet (-q): its results go nowhere, so a closed standard
+/// output loses nothing.
+bool quiet_asked(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg(argv[i]);
+    if (arg == "--") return false;
+    if (arg == "-q" || arg == "--quiet") return true;
+  }
+  return false;
+}
+
+int run_fixstep(int argc, char** argv) try {
   using namespace fixstep::cli;
   // A write past `ulimit -f` or into a closed pipe fails with an error fixstep reports (naming
   // the option and the file, temporaries removed) instead of killing it without a word.
@@ -283,7 +297,7 @@ int main(int argc, char** argv) try {
                              : view_cmd->parsed()    ? view_paths(view)
                                                      : CommandPaths{};
   // `--csv -`: standard output carries the data alone; the summary goes to standard error.
-  if (data_on_standard_output(paths)) keep_standard_output_for_data();
+  if (fixstep::data_on_standard_output(paths)) fixstep::keep_standard_output_for_data();
   // --quiet: the summaries and paths go to standard output, which is emptied wholesale;
   // errors go to standard error (warnings and progress are skipped where they are made).
   if ((run.scene.quiet || render.scene.quiet || view.scene.quiet || replay.quiet ||
@@ -354,7 +368,7 @@ int main(int argc, char** argv) try {
 } catch (const fixstep::StopRequested& e) {  // a command that does not catch it (none should)
   std::fprintf(stderr, "fixstep: %s\n", e.what());
   return 128 + e.signal();
-} catch (const fixstep::cli::PathRefused& e) {  // an output that is an input, a used --out DIR
+} catch (const fixstep::PathRefused& e) {  // an output that is an input, a used --out DIR
   std::fprintf(stderr, "%s\n", e.what());
   return 2;
 } catch (const fixstep::RecordingError& e) {
@@ -372,4 +386,16 @@ int main(int argc, char** argv) try {
 } catch (const std::exception& e) {
   std::fprintf(stderr, "fixstep: error: %s\n", e.what());
   return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Every command prints its results (a summary, a verdict, the paths written) on standard
+  // output: a closed or full one is an error, not a silent loss (fixstep/io/standard_output.hpp).
+  if (quiet_asked(argc, argv) && !fixstep::standard_output_is_open()) {
+    return run_fixstep(argc, argv);  // --quiet reopens it on /dev/null
+  }
+  return fixstep::with_results_on_standard_output("fixstep",
+                                                  [&] { return run_fixstep(argc, argv); });
 }

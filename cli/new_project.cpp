@@ -9,13 +9,13 @@
 #include <cstdlib>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/io/output_target.hpp>
+#include <fixstep/io/stop_signal.hpp>
 #include <optional>
 #include <stdexcept>
 #include <system_error>
 
 #include "output_paths.hpp"
 #include "staged_directory.hpp"
-#include "stop_signal.hpp"
 
 namespace fixstep::cli {
 

@@ -11,6 +11,7 @@
 #include <fixstep/core/step_results.hpp>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/stop_signal.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 
 #include "capture_sink.hpp"
@@ -22,7 +23,6 @@
 #include "fixstep/io/summary.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
-#include "stop_signal.hpp"
 
 namespace fixstep::cli {
 

@@ -951,6 +951,14 @@ case_ "compare --with rk4@1e-10" "" compare good.toml --with rk4@1e-10 --with rk
 printf '#!/bin/bash\nexec "%s" "$@" >&-\n' "$fixstep" > closed_stdout && chmod +x closed_stdout
 tool=$work/closed_stdout tool_name="exec >&-; fixstep"
 case_ "--csv /dev/stdout with standard output closed (was: cannot write /proc/self/fd/1)" "" run good.toml --steps 10 --csv /dev/stdout
+# Results lost on standard output: a closed or full one is an error, not exit 0 with the summary
+# gone.
+case_ "run with standard output closed (its summary would be lost)" "" run good.toml --steps 10
+printf '#!/bin/bash\nexec "%s" "$@" >/dev/full\n' "$fixstep" > full_stdout && chmod +x full_stdout
+tool=$work/full_stdout tool_name="exec >/dev/full; fixstep"
+"$fixstep" run good.toml --steps 10 --record full.rec -q
+case_ "run with standard output on a full disk (was: exit 0, the summary lost)" "" run good.toml --steps 10
+case_ "replay with standard output on a full disk (was: exit 0, the verdict lost)" "" replay full.rec
 tool=$fixstep tool_name=fixstep
 "$fixstep" run good.toml --steps 10 --record small.rec -q
 sed 's/^end 10 /end 1000000000 /' small.rec > claims.rec
@@ -1336,6 +1344,28 @@ if [ -x "$game" ]; then
   sed 's/^rules slingshot 1$/rules slingshot 2/' fresh.rec > newer_rules.rec
   case_ "a game: --replay of a recording of other rules (rules slingshot 2)" "" \
     --replay newer_rules.rec
+  # The fixstep command's checks on a game's outputs, and its bounds before the first tick.
+  echo old > same.png
+  case_ "a game: --record and --last-frame one file (was: exit 0, the PNG overwritten)" "" \
+    --frames 10 --record same.png --last-frame same.png
+  "$game" --frames 2 --out capture >/dev/null
+  case_ "a game: --out DIR holding an earlier capture (was: the two mixed)" "" --frames 5 \
+    --out capture
+  printf '[world]\ndt = 0.01\n' > level.toml
+  case_ "a game: --scene for a level built in code (was: replaced by the built-in level)" "" \
+    --scene level.toml --frames 5
+  case_ "a game: --frames 10^12 (was: ran until killed)" "" --frames 1000000000000
+  case_ "a game: --sync-test 10^9 (was: an unlocated std::bad_alloc)" "" --frames 10 \
+    --sync-test 1000000000
+  case_ "a game: --frames 10^8 --record (more hashes than a recording may hold)" "" \
+    --frames 100000000 --record big.rec
+  printf '#!/bin/bash\nexec "%s" "$@" >/dev/full\n' "$game" > game_full && chmod +x game_full
+  printf '#!/bin/bash\nexec "%s" "$@" >&-\n' "$game" > game_closed && chmod +x game_closed
+  tool=$work/game_full tool_name="exec >/dev/full; slingshot"
+  case_ "a game: --frames with standard output on a full disk (was: exit 0)" "" --frames 10
+  case_ "a game: --replay with standard output on a full disk (was: exit 0)" "" --replay sling.rec
+  tool=$work/game_closed tool_name="exec >&-; slingshot"
+  case_ "a game: --frames with standard output closed (was: exit 0)" "" --frames 10
 fi
 tool=$fixstep tool_name=fixstep
 # --- the web page: rows of tests/web/bad_inputs_page.tsv, which browser_check.py loads ---
@@ -1407,6 +1437,12 @@ if [ -x "$game" ]; then
     --token ffeeddccbbaa99887766554433221100 --bot --ticks 10
   kill "$gate_host" 2>/dev/null
   wait "$gate_host" 2>/dev/null
+  case_ "a match: --scene for a level built in code (was: replaced by the built-in level)" "" \
+    --join 127.0.0.1:9 --token 00112233445566778899aabbccddeeff --scene scene.toml --bot --ticks 10
+  case_ "a match: --record and --last-frame one file" "" --host 0 --bot --ticks 10 \
+    --record m.png --last-frame m.png
+  case_ "a match: --ticks 10^8 (its recording, held in memory: 29 GiB)" "" --host 0 --bot \
+    --ticks 100000000
   case_ "a match in a window without a display" "" --host 0
 fi
 tool=$fixstep tool_name=fixstep

@@ -12,6 +12,7 @@
 #include <fixstep/core/input.hpp>
 #include <fixstep/core/world_def.hpp>
 #include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/atomic_output.hpp>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>
@@ -110,6 +111,35 @@ TEST_F(AppRun, HeadlessRunsTheRulesEveryTick) {
   // 120 frames of 1/60 s = 2 s = 200 ticks of 0.01 s: the ball fell below 5 m after tick 100.
   EXPECT_NE(out.find("ticks=200 "), std::string::npos) << out;
   EXPECT_NE(out.find("above=100\n"), std::string::npos) << out;
+}
+
+// A stop request that tears a tick (StopRequested inside World::step) leaves the world in no
+// tick's state: finish_stopped(true) writes the recording up to the last complete tick, whose
+// hash it stored, never the torn state's, so the recording replays. While the game plays, the
+// recording is in its temporary file (streamed), not under its name.
+TEST_F(AppRun, AStoppedRecordingEndsAtTheLastCompleteTickAndReplays) {
+  const std::string rec = path("stopped.rec");
+  std::uint64_t ticks = 0;
+  {
+    app::detail::GamePlay play(
+        app::detail::load_level(app::detail::GameModel<Drop>(Drop{}), settings, ""), settings, rec);
+    for (int frame = 0; frame < 5; ++frame) play.advance(0.1);
+    World& world = play.session().simulation();
+    ticks = world.tick();
+    ASSERT_GT(ticks, 30u);
+    EXPECT_TRUE(std::filesystem::exists(temporary_file_for(rec)));
+    EXPECT_FALSE(std::filesystem::exists(rec));
+    world.set_velocity(world.find("ball"), {3.0, 0.0});  // a torn tick's state: no tick's
+    testing::internal::CaptureStdout();
+    play.finish_stopped(true);
+    const std::string out = testing::internal::GetCapturedStdout();
+    EXPECT_NE(out.find("recorded " + std::to_string(ticks) + " ticks"), std::string::npos) << out;
+    EXPECT_EQ(out.find("ticks="), std::string::npos) << "a torn state has no summary: " << out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(temporary_file_for(rec)));
+  std::string replayed;
+  EXPECT_EQ(run(Drop{}, {"--replay", rec}, &replayed), 0) << replayed;
+  EXPECT_NE(replayed.find("ticks=" + std::to_string(ticks) + " "), std::string::npos) << replayed;
 }
 
 TEST_F(AppRun, RecordingReplaysWithTheRulesAndRefusesATamperedCopy) {

@@ -29,6 +29,7 @@
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/io/recording_file.hpp"
+#include "fixstep/io/standard_output.hpp"
 #include "fixstep/net/match_peer.hpp"
 #include "fixstep/net/net_gate.hpp"
 #include "fixstep/scene/scene.hpp"
@@ -181,9 +182,7 @@ int play(const Options& o) {
   return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run_peer(int argc, char** argv) {
   Options o;
   try {
     o = parse(argc, argv);
@@ -200,4 +199,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "net_peer: %s\n", e.what());
     return 1;
   }
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Its result line is what .ci/cross compares: a closed or full standard output is an error.
+  return with_results_on_standard_output("net_peer", [&] { return run_peer(argc, argv); });
 }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "fixstep/app/app.hpp"
 #include "fixstep/app/game_level.hpp"
@@ -32,7 +33,25 @@ struct Options {
   int every = 1;            ///< --every K
   int sync_test = 0;        ///< --sync-test K (0: none)
   bool window = false;      ///< --window
+  bool overwrite = false;   ///< --overwrite: the old capture in --out DIR is removed first
 };
+
+/// Frames per second of a headless run's, a drawn replay's and a sync test's virtual clock.
+inline constexpr double virtual_fps = 60.0;
+
+/// Throws LimitError (command_limits.hpp) when `frames` frames of 1/virtual_fps s of `level`
+/// (each `per_tick` times the ticks of one: 1, or 1 + K for a sync test of K) exceed the work
+/// a command may do; `flag` names the claim ("--frames 1000000000000").
+void check_frames_work(const Level& level, std::int64_t frames, std::uint64_t per_tick,
+                       std::string_view flag);
+
+/// Throws LimitError when `frames` frames of `level` recorded into `file` (a state hash a tick,
+/// at most 33 bytes each) would pass max_recording_bytes, the most a recording may hold.
+void check_recorded_frames(const Level& level, std::int64_t frames, const std::string& file);
+
+/// After a stop request (StopOnSignal): "NAME: stopped by SIGINT after tick N (...); WRITTEN"
+/// on standard error; returns 128 + the signal, as a shell reports a signal's death.
+int stopped(const Settings& settings, std::uint64_t tick, bool torn, std::string_view written);
 
 /// Plays in the window (until quit, or o.frames frames) or headless (o.frames frames), recording
 /// into o.record when given; prints the summary. Returns the exit status.

@@ -2,6 +2,8 @@
 #include <chrono>
 #include <fixstep/app/key_bindings.hpp>
 #include <fixstep/capture/capture.hpp>
+#include <fixstep/capture/capture_dir.hpp>
+#include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <optional>
 #include <stdexcept>
@@ -17,10 +19,10 @@ namespace fixstep::app::detail {
 
 namespace {
 
-constexpr double headless_fps = 60.0;  // frames/s of a headless run's virtual clock
 constexpr auto window_frame = std::chrono::microseconds(16667);  // the window's pace, 60 Hz
 
-/// Plays in a window on the real clock until Esc or the close button (or `frames` frames).
+/// Plays in a window on the real clock until Esc, the close button, a stop request or
+/// `frames` frames (0: no limit).
 void play_window(GamePlay& play, const Settings& settings, std::int64_t frames) {
 #ifdef FIXSTEP_APP_WINDOW
   Window window(settings.name, settings.width, settings.height);
@@ -31,7 +33,7 @@ void play_window(GamePlay& play, const Settings& settings, std::int64_t frames) 
                                : settings.controls + "\nr: restart   esc: quit";
   RealClock clock;
   UserEvents ev;
-  for (std::int64_t frame = 0; frames == 0 || frame < frames; ++frame) {
+  for (std::int64_t frame = 0; (frames == 0 || frame < frames) && stop_requested() == 0; ++frame) {
     const auto frame_start = std::chrono::steady_clock::now();
     window.poll(ev);
     if (ev.quit) break;
@@ -52,43 +54,58 @@ void play_window(GamePlay& play, const Settings& settings, std::int64_t frames) 
 }
 
 /// Runs `frames` frames headless on a virtual 60 Hz clock (frame 0 is t = 0), the autopilot
-/// playing; writes every frame as DIR/frame_NNNNNN.png when `out_dir` is not empty, and draws
-/// the last frame when `last_frame` is asked for (trails are sampled every tick, drawn or not).
-void play_headless(GamePlay& play, const Settings& settings, std::int64_t frames,
-                   const std::string& out_dir, bool last_frame) {
-  std::optional<FrameWriter> writer;
-  if (!out_dir.empty()) {
-    prepare_output_dir(out_dir);
-    writer.emplace(out_dir, settings.width, settings.height);
-  }
-  const VirtualClock clock(headless_fps);
+/// playing, until a stop request; writes every frame into `writer` when given, and draws the
+/// last frame when `last_frame` is asked for (trails are sampled every tick, drawn or not).
+/// Returns whether every frame ran.
+bool play_headless(GamePlay& play, std::int64_t frames, FrameWriter* writer, bool last_frame) {
+  const VirtualClock clock(virtual_fps);
   for (std::int64_t frame = 0; frame < frames; ++frame) {
     if (frame > 0) {
       play.game().autopilot(frame, play.session().simulation(), play.sampler());
       play.advance(clock.frame_seconds());
     }
-    if (!writer && !(last_frame && frame + 1 == frames)) continue;
+    if (stop_requested() != 0) return false;  // the frame's ticks stopped: it is not drawn
+    if (writer == nullptr && !(last_frame && frame + 1 == frames)) continue;
     play.draw("autopilot");
-    if (writer) writer->submit(play.session().renderer().pixels());
+    if (writer != nullptr) writer->submit(play.session().renderer().pixels());
   }
-  if (writer) writer->finish();
+  return true;
 }
 
 }  // namespace
 
 int play(const AnyGame& game, const Settings& settings, const Options& o) {
-  GamePlay play(load_level(game, settings, o.scene.value_or(settings.scene_file)), settings,
-                o.record);
-  if (o.window || o.frames == 0) {
-    play_window(play, settings, o.frames);
-  } else {
-    play_headless(play, settings, o.frames, o.out, !o.last_frame.empty());
+  Level level = load_level(game, settings, o.scene.value_or(settings.scene_file));
+  if (o.frames > 0) {
+    check_frames_work(level, o.frames, 1, "--frames " + std::to_string(o.frames));
+    if (!o.record.empty()) check_recorded_frames(level, o.frames, o.record);
   }
-  if (!o.last_frame.empty()) {
+  GamePlay play(std::move(level), settings, o.record);
+  std::optional<FrameWriter> writer;
+  if (!o.out.empty()) {
+    prepare_capture_dir(o.out, o.overwrite);
+    writer.emplace(o.out, settings.width, settings.height);
+  }
+  bool torn = false;  // a stop request abandoned a tick half-way
+  bool whole = true;  // every frame asked for ran
+  try {
+    if (o.window || o.frames == 0) {
+      play_window(play, settings, o.frames);
+    } else {
+      whole = play_headless(play, o.frames, writer ? &*writer : nullptr, !o.last_frame.empty());
+    }
+  } catch (const StopRequested&) {
+    torn = true;
+  }
+  if (writer) writer->finish();  // the frames drawn before a stop are whole
+  const int signal = stop_requested();
+  if (signal == 0 && whole && !o.last_frame.empty()) {
     write_png(o.last_frame, settings.width, settings.height, play.session().renderer().pixels());
   }
-  play.finish();
-  return 0;
+  play.finish_stopped(torn);
+  if (signal == 0) return 0;
+  return stopped(settings, play.session().simulation().tick(), torn,
+                 o.record.empty() ? "" : "the recording written up to its last complete tick");
 }
 
 }  // namespace fixstep::app::detail

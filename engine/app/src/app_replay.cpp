@@ -1,11 +1,17 @@
 // fixstep::app: a recording replayed with the game's rules, verified, then drawn; the sync test.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <fixstep/capture/capture.hpp>
+#include <fixstep/capture/capture_dir.hpp>
 #include <fixstep/core/input.hpp>
+#include <fixstep/core/limits.hpp>
 #include <fixstep/core/step_results.hpp>
+#include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/sync_test.hpp>
 #include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/command_limits.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/io/summary.hpp>
 #include <optional>
@@ -17,28 +23,31 @@ namespace fixstep::app::detail {
 
 namespace {
 
-constexpr double replay_fps = 60.0;  // frames/s of a drawn replay's virtual clock
-
 /// Draws a verified recording through a Session at 60 frames/s of virtual time, its first
 /// `ticks` ticks with the game's rules: every o.every-th frame (and the last) into o.out, the
-/// last frame to o.last_frame.
-void draw_replay(const Settings& settings, const Level& level, const Recording& rec,
+/// last frame to o.last_frame. A stop request ends it after the frame in progress: the frames
+/// written are whole, the last frame is not written. Returns whether it drew to the end.
+bool draw_replay(const Settings& settings, const Level& level, const Recording& rec,
                  std::uint64_t ticks, const Options& o) {
   Session session(level.def, level.view);
   session.set_show_energy(settings.show_energy);
   const std::unique_ptr<AnyGame> game = level.game->clone();
   std::optional<FrameWriter> writer;
   if (!o.out.empty()) {
-    prepare_output_dir(o.out);
+    prepare_capture_dir(o.out, o.overwrite);
     writer.emplace(o.out, settings.width, settings.height);
   }
-  const VirtualClock clock(replay_fps);
+  const VirtualClock clock(virtual_fps);
   TickInput last;
   Overlay overlay;
   for (std::int64_t frame = 0;; ++frame) {
+    if (stop_requested() != 0) {
+      if (writer) writer->finish();
+      return false;
+    }
     if (frame > 0) {
       session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& world) {
-        if (t >= ticks) return;
+        if (t >= ticks || stop_requested() != 0) return;
         last = rec.input_at(t);
         world.step(last);
         game->rules(world, last);
@@ -59,6 +68,21 @@ void draw_replay(const Settings& settings, const Level& level, const Recording& 
     write_png(o.last_frame, settings.width, settings.height, session.renderer().pixels());
   }
   if (writer) writer->finish();
+  return true;
+}
+
+/// Throws LimitError when the sync test's K + 1 snapshots of `world` exceed max_sync_test_bytes
+/// (the game's copies beside them are not counted: a game's state is small beside its world).
+void check_sync_test_memory(const World& world, int rollback) {
+  const std::uint64_t bytes =
+      (static_cast<std::uint64_t>(rollback) + 1) * (world.snapshot_bytes() + sizeof(World));
+  if (bytes > max_sync_test_bytes) {
+    throw LimitError(fmt::format(
+        "--sync-test {}: {} snapshots of this world take about {:.3g} GiB; at most {:.3g} GiB "
+        "allowed: roll back fewer ticks",
+        rollback, rollback + 1, double(bytes) / double(std::uint64_t{1} << 30),
+        double(max_sync_test_bytes) / double(std::uint64_t{1} << 30)));
+  }
 }
 
 }  // namespace
@@ -79,8 +103,10 @@ int replay_file(const AnyGame& prototype, const Settings& settings, const Option
   const GameReplay r = replay_game(prototype, settings, rec, o.replay, o.scene);
   const ReplayReport& report = r.report;
   // Only a recording that verified is drawn: a diverging one leaves no frame behind.
-  if (report.ok() && (!o.out.empty() || !o.last_frame.empty())) {
-    draw_replay(settings, r.level, rec, report.ticks, o);
+  if (report.ok() && (!o.out.empty() || !o.last_frame.empty()) &&
+      !draw_replay(settings, r.level, rec, report.ticks, o)) {
+    return stopped(settings, report.ticks, false,
+                   "verified; the frames drawn before the stop written, no --last-frame");
   }
   std::printf("%s\n", summary_line(*r.world, r.initial_energy).c_str());
   if (const std::string s = r.game->summary(); !s.empty()) std::printf("%s\n", s.c_str());
@@ -101,21 +127,32 @@ int replay_file(const AnyGame& prototype, const Settings& settings, const Option
 
 int sync_test(const AnyGame& prototype, const Settings& settings, const Options& o) {
   const Level level = load_level(prototype, settings, o.scene.value_or(settings.scene_file));
+  check_frames_work(level, o.frames, 1 + static_cast<std::uint64_t>(o.sync_test),
+                    fmt::format("--frames {} with --sync-test {} (every tick re-simulates {} more)",
+                                o.frames, o.sync_test, o.sync_test));
   World world(level.def);
+  check_sync_test_memory(world, o.sync_test);
   const double initial_energy = world.energy().total();
   const std::unique_ptr<AnyGame> game = level.game->clone();
   SyncTest test(world, o.sync_test, game_rules(*game));
   InputSampler sampler;
   FixedStepLoop loop(world);
-  const VirtualClock clock(replay_fps);
-  for (std::int64_t frame = 1; frame < o.frames && !test.mismatch(); ++frame) {
+  const VirtualClock clock(virtual_fps);
+  bool torn = false;  // a stop request abandoned a tick half-way
+  for (std::int64_t frame = 1; frame < o.frames && !test.mismatch() && stop_requested() == 0;
+       ++frame) {
     game->autopilot(frame, world, sampler);
-    loop.advance_with(clock.frame_seconds(), [&](std::uint64_t t) {
-      if (test.mismatch()) return;
-      TickInput input = sampler.sample(t);
-      game->prepare(input, world);
-      test.step(input);
-    });
+    try {
+      loop.advance_with(clock.frame_seconds(), [&](std::uint64_t t) {
+        if (test.mismatch() || stop_requested() != 0) return;
+        TickInput input = sampler.sample(t);
+        game->prepare(input, world);
+        test.step(input);
+      });
+    } catch (const StopRequested&) {
+      torn = true;
+      break;
+    }
   }
   if (const auto& m = test.mismatch()) {
     std::fprintf(stderr,
@@ -126,6 +163,9 @@ int sync_test(const AnyGame& prototype, const Settings& settings, const Options&
                  hex_hash(m->expected).c_str(), hex_hash(m->actual).c_str(), o.sync_test,
                  m->dissipated_differs ? " (the dissipated energy differs)" : "");
     return exit_sync_mismatch;
+  }
+  if (stop_requested() != 0) {
+    return stopped(settings, world.tick(), torn, "every tick before it the same after a rollback");
   }
   std::printf("%s\n", summary_line(world, initial_energy).c_str());
   if (const std::string s = game->summary(); !s.empty()) std::printf("%s\n", s.c_str());

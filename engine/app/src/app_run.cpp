@@ -3,12 +3,20 @@
 
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fixstep/core/limits.hpp>
+#include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/command_limits.hpp>
+#include <fixstep/io/output_paths.hpp>
 #include <fixstep/io/output_target.hpp>
+#include <fixstep/io/recording_file.hpp>
+#include <fixstep/io/standard_output.hpp>
+#include <fixstep/io/stop_signal.hpp>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -34,6 +42,17 @@ const CLI::Validator at_least_one(
     },
     "N >= 1");
 
+/// --help's statement of what a run may cost, every bound checked before the first tick.
+constexpr const char* bounds_help =
+    "Work: --frames N steps at most 10^9 ticks (N / 60 s of the level's dt) and 10^13 "
+    "body-substeps in all (with --sync-test K, each tick counts 1 + K times); a --replay the "
+    "recording's ticks, the same bounds. Memory: the level's world and one frame; --record "
+    "streams the recording to its file (a few kB held, at most 256 MiB written); --replay holds "
+    "the recording read (at most 256 MiB); --sync-test K holds K + 1 snapshots of the world, at "
+    "most 2 GiB. Refused before the first tick, naming the flag. SIGINT or SIGTERM stops any mode "
+    "within a second: the recording is written up to its last complete tick, the frames drawn "
+    "are whole; exit 130 or 143.\n";
+
 /// The command line's options, refused (UsageError) when they do not fit together.
 Options parse(const Settings& settings, int argc, char** argv) {
   Options o;
@@ -50,6 +69,9 @@ Options parse(const Settings& settings, int argc, char** argv) {
   cli.add_flag("--window", o.window, "with --frames: in the window, then quit")->needs(frames_opt);
   auto* out_opt =
       cli.add_option("--out", o.out, "write every frame as a PNG into DIR")->type_name("DIR");
+  cli.add_flag("--overwrite", o.overwrite,
+               "with --out: remove the capture DIR already holds first (else refused)")
+      ->needs(out_opt);
   auto* record_opt =
       cli.add_option("--record", o.record, "record the session into FILE")->type_name("FILE");
   auto* replay_opt =
@@ -67,6 +89,7 @@ Options parse(const Settings& settings, int argc, char** argv) {
                        ->check(at_least_one)
                        ->needs(frames_opt);
   replay_opt->excludes(record_opt)->excludes(frames_opt);
+  cli.footer(bounds_help);
   sync_opt->excludes(record_opt)->excludes(out_opt)->excludes(last_opt);
   try {
     cli.parse(argc, argv);
@@ -76,7 +99,14 @@ Options parse(const Settings& settings, int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     throw UsageError(e.what());
   }
-  if (scene_opt->count() > 0) o.scene = scene;
+  if (scene_opt->count() > 0) {
+    if (settings.scene_file.empty()) {  // setup() builds the level: a scene would be replaced
+      throw UsageError("--scene " + scene + ": " + settings.name +
+                       " builds its level in code and plays no scene file, so the scene would "
+                       "not be the level played; run without --scene");
+    }
+    o.scene = scene;
+  }
   if (last_opt->count() > 0 && o.frames == 0 && o.replay.empty()) {
     throw UsageError("--last-frame PNG needs --frames N or --replay FILE");
   }
@@ -87,11 +117,22 @@ Options parse(const Settings& settings, int argc, char** argv) {
 }
 
 /// Refuses, before anything runs, an output that may not be written (a directory, a socket, a
-/// missing directory) or that is one of the inputs: a session is not played only to be lost.
-void check_outputs(const Settings& settings, const Options& o) {
+/// descriptor not open for writing, a missing directory), that is one of the inputs or another
+/// output, or a --out DIR that holds a capture (without --overwrite): the checks of the fixstep
+/// command's outputs (fixstep/io/output_paths.hpp). A session is not played only to be lost.
+/// Returns the paths checked.
+OutputPaths check_outputs(const Settings& settings, const Options& o) {
   const std::string scene = o.scene.value_or(settings.scene_file);
+  OutputPaths paths{.program = settings.name, .overwrite = o.overwrite, .capture_manifest = false};
+  if (!scene.empty()) paths.inputs.push_back({"--scene", scene});
+  if (!o.replay.empty()) paths.inputs.push_back({"--replay", o.replay});
+  if (!o.record.empty()) paths.outputs.push_back({"--record", o.record});
+  if (!o.last_frame.empty()) paths.outputs.push_back({"--last-frame", o.last_frame});
+  if (!o.out.empty()) paths.capture_dir = o.out;
+  check_output_paths(paths);
   check_output_before_run("--record", o.record, {scene, o.replay});
   check_output_before_run("--last-frame", o.last_frame, {scene, o.replay});
+  return paths;
 }
 
 int run_mode(const AnyGame& game, const Settings& settings, const Options& o) {
@@ -102,14 +143,57 @@ int run_mode(const AnyGame& game, const Settings& settings, const Options& o) {
 
 }  // namespace
 
-int run_game(const AnyGame& game, const Settings& settings, int argc, char** argv) {
+int stopped(const Settings& settings, std::uint64_t tick, bool torn, std::string_view written) {
+  std::fprintf(stderr, "%s: stopped by %s after tick %llu%s%s%s\n", settings.name.c_str(),
+               StopOnSignal::name(), static_cast<unsigned long long>(tick),
+               torn ? " (the tick in progress discarded)" : "", written.empty() ? "" : "; ",
+               std::string(written).c_str());
+  return 128 + StopOnSignal::requested();
+}
+
+void check_recorded_frames(const Level& level, std::int64_t frames, const std::string& file) {
+  const double ticks =
+      std::ceil(static_cast<double>(frames) / virtual_fps / level.def.settings.dt) + 1.0;
+  constexpr double hash_line_bytes = 33.0;  // "hash " + 10 digits + " " + 16 hex + "\n"
+  if (ticks * hash_line_bytes > static_cast<double>(max_recording_bytes)) {
+    const double most_frames = static_cast<double>(max_recording_bytes) / hash_line_bytes *
+                               level.def.settings.dt * virtual_fps;
+    throw LimitError(fmt::format(
+        "--record {}: --frames {} is about {:.3g} ticks, each with its state hash: about {:.0f} "
+        "MB of hashes; a recording may hold at most {} MiB: record at most {:.0f} frames",
+        file, frames, ticks, ticks * hash_line_bytes / 1e6, max_recording_bytes >> 20,
+        std::floor(most_frames) - 2.0));
+  }
+}
+
+void check_frames_work(const Level& level, std::int64_t frames, std::uint64_t per_tick,
+                       std::string_view flag) {
+  // Frame 0 runs no tick; each later one runs at most ceil(1 / (fps dt)) of them.
+  const double ticks =
+      std::ceil(static_cast<double>(frames) / virtual_fps / level.def.settings.dt) + 1.0;
+  const std::uint64_t claimed =
+      ticks >= 0x1p63 ? std::uint64_t{1} << 63 : static_cast<std::uint64_t>(ticks);
+  check_command_work(claimed, tick_work(level.def) * per_tick,
+                     fmt::format("{} (at {:g} frames/s and dt = {:g} s)", flag, virtual_fps,
+                                 level.def.settings.dt));
+}
+
+int run_game_unchecked(const AnyGame& game, const Settings& settings, int argc, char** argv) {
   const char* name = settings.name.c_str();
   try {
     const Options o = parse(settings, argc, argv);
-    check_outputs(settings, o);
+    // `--record -`: standard output carries the recording alone; the summary goes to stderr.
+    if (data_on_standard_output(check_outputs(settings, o))) keep_standard_output_for_data();
+    const StopOnSignal signals;  // SIGINT / SIGTERM: the mode stops and writes what it has
     return run_mode(game, settings, o);
   } catch (const CLI::CallForHelp&) {
     return 0;
+  } catch (const PathRefused& e) {  // an output that is an input, a --out DIR holding a capture
+    std::fprintf(stderr, "%s\n", e.what());
+    return exit_usage;
+  } catch (const StopRequested& e) {  // a stop while loading or verifying: nothing to keep
+    std::fprintf(stderr, "%s: stopped by %s; nothing was written\n", name, StopOnSignal::name());
+    return 128 + e.signal();
   } catch (const UsageError& e) {
     std::fprintf(stderr, "%s: %s\nRun with --help for more information.\n", name, e.what());
     return exit_usage;
@@ -123,6 +207,11 @@ int run_game(const AnyGame& game, const Settings& settings, int argc, char** arg
     std::fprintf(stderr, "%s: error: %s\n", name, e.what());
     return exit_error;
   }
+}
+
+int run_game(const AnyGame& game, const Settings& settings, int argc, char** argv) {
+  return with_results_on_standard_output(
+      settings.name, [&] { return run_game_unchecked(game, settings, argc, argv); });
 }
 
 }  // namespace fixstep::app::detail

@@ -2,6 +2,7 @@
 #include "fixstep/app/game_play.hpp"
 
 #include <cstdio>
+#include <fixstep/core/stop_request.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/io/summary.hpp>
 #include <string_view>
@@ -17,6 +18,9 @@ namespace {
 /// A recording stores the state hash after every tick, so a replay names the exact first tick
 /// that differs (about 25 bytes a tick).
 constexpr std::uint64_t hash_every = 1;
+/// Bytes short of max_recording_bytes at which a recording is finished: more than one tick's
+/// lines (a tick's input with every body's input is far less).
+constexpr std::size_t recording_margin = std::size_t{1} << 20;
 }  // namespace
 
 GamePlay::GamePlay(Level level, const Settings& settings, std::string record_file)
@@ -34,19 +38,41 @@ GamePlay::GamePlay(Level level, const Settings& settings, std::string record_fil
 }
 
 void GamePlay::start_recording() {
-  recorder_.emplace(session_.definition(), level_.scene_name, hash_every, level_.scene_text);
+  recorder_.reset();  // a restart's: its temporary file is removed
+  recorded_ticks_ = 0;
+  recorder_.emplace(session_.definition(), level_.scene_name, hash_every, record_file_,
+                    level_.scene_text);
   recorder_->set_rules(rules_name_of(name_), rules_version_);
+  initial_hash_ = session_.simulation().state_hash();
 }
 
 void GamePlay::advance(double seconds) {
   session_.advance_with(seconds, [&](std::uint64_t tick, World& world) {
+    if (stop_requested() != 0) return;  // the run ends after this frame (the caller checks)
     TickInput input = sampler_.sample(tick);
     game_->prepare(input, world);
     world.step(input);
     game_->rules(world, input);
-    if (recorder_) recorder_->record(input, world);
+    if (recorder_) record(input, world);
     last_ = input;
   });
+}
+
+void GamePlay::record(const TickInput& input, const World& world) {
+  recorder_->record(input, world);
+  // Near the most a recording may hold (max_recording_bytes, what --replay reads): the file is
+  // finished here, whole, rather than refused at the end; the session plays on unrecorded.
+  if (recorder_->bytes() + recording_margin > max_recording_bytes) {
+    const std::uint64_t ticks = recorder_->ticks();
+    recorder_->finish(world);
+    recorder_.reset();
+    std::fprintf(stderr,
+                 "%s: warning: the recording reached %zu MiB, the most a recording may hold, at "
+                 "tick %llu: %s is written up to there, the rest of the session is not recorded\n",
+                 name_.c_str(), max_recording_bytes >> 20, static_cast<unsigned long long>(ticks),
+                 record_file_.c_str());
+    recorded_ticks_ = ticks;
+  }
 }
 
 void GamePlay::draw(std::string_view hint) {
@@ -79,17 +105,32 @@ void GamePlay::restart() {
   game_ = level_.game->clone();
   sampler_ = {};
   last_ = {};
-  if (recorder_) start_recording();
+  if (!record_file_.empty()) start_recording();
 }
 
 void GamePlay::finish() {
+  finish_stopped(false);
+}
+
+void GamePlay::finish_stopped(bool torn) {
   const World& world = session_.simulation();
-  std::printf("%s\n", summary_line(world, session_.initial_energy()).c_str());
-  if (const std::string s = game_->summary(); !s.empty()) std::printf("%s\n", s.c_str());
-  if (!recorder_) return;
-  write_recording(record_file_, recorder_->finish(world));
+  if (!torn) {  // a torn state is no tick's: it has no summary
+    std::printf("%s\n", summary_line(world, session_.initial_energy()).c_str());
+    if (const std::string s = game_->summary(); !s.empty()) std::printf("%s\n", s.c_str());
+  }
+  if (record_file_.empty()) return;
+  std::uint64_t ticks = recorded_ticks_;  // a recording finished at its limit
+  if (recorder_) {
+    ticks = recorder_->ticks();
+    if (torn) {
+      recorder_->finish_at_last_hash(initial_hash_);  // every tick completed is hashed
+    } else {
+      recorder_->finish(world);
+    }
+    recorder_.reset();
+  }
   std::printf("recorded %llu ticks to %s (check it: %s --replay %s)\n",
-              static_cast<unsigned long long>(world.tick()), record_file_.c_str(), name_.c_str(),
+              static_cast<unsigned long long>(ticks), record_file_.c_str(), name_.c_str(),
               record_file_.c_str());
 }
 

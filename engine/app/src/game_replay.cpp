@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "fixstep/app/game_level.hpp"
+#include "fixstep/core/limits.hpp"
+#include "fixstep/io/command_limits.hpp"
 #include "fixstep/io/summary.hpp"
 
 namespace fixstep::app::detail {
@@ -17,6 +19,8 @@ GameReplay replay_game(const AnyGame& game, const Settings& settings, const Reco
                                          file, hex_hash(rec.definition_hash),
                                          hex_hash(definition_hash(r.level.def))));
   }
+  check_command_work(rec.ticks, tick_work(r.level.def),  // before a tick is stepped
+                     fmt::format("{}: end {}", file, rec.ticks));
   r.world = std::make_unique<World>(r.level.def);
   r.initial_energy = r.world->energy().total();
   r.game = r.level.game->clone();

@@ -24,13 +24,26 @@ RecordingWriter::RecordingWriter(const WorldDef& def, std::string scene, std::ui
     throw std::invalid_argument(fmt::format("RecordingWriter: hash_every must be 1 .. {} (got {})",
                                             max_hash_every, hash_every));
   }
-  Recording head;  // the header's fields only
-  head.scene = std::move(scene);
-  head.scene_text = scene_text;
-  head.definition_hash = definition_hash(def);
-  head.settings = recorded_settings(def);
-  head.hash_every = hash_every;
-  line_ = recording_text::header(head);
+  head_.scene = std::move(scene);  // the header's fields only
+  head_.scene_text = scene_text;
+  head_.definition_hash = definition_hash(def);
+  head_.settings = recorded_settings(def);
+  head_.hash_every = hash_every;
+  line_ = recording_text::header(head_);
+  kept_ = line_.size();
+}
+
+void RecordingWriter::set_rules(std::string name, std::uint32_t version) {
+  if (ticks_ != 0) throw std::logic_error("RecordingWriter::set_rules: after the first tick");
+  if (const std::string fault = rules_name_fault(name); !fault.empty()) {
+    throw std::invalid_argument("RecordingWriter::set_rules: the rules name " + fault);
+  }
+  if (version == 0) {
+    throw std::invalid_argument("RecordingWriter::set_rules: the version must be >= 1");
+  }
+  head_.rules_name = std::move(name);
+  head_.rules_version = version;
+  line_ = recording_text::header(head_);  // nothing is written before the first tick's flush
   kept_ = line_.size();
 }
 
@@ -52,6 +65,7 @@ void RecordingWriter::flush_if_full() {
 }
 
 void RecordingWriter::record(const TickInput& input, const World& after_the_tick) {
+  if (ticks_ == 0) head_ = Recording{};  // the header is written: its scene text is not kept
   if (after_the_tick.tick() != ticks_ + 1) {
     throw std::invalid_argument(fmt::format(
         "RecordingWriter::record: the simulation is at tick {}, the recording expects tick {}",

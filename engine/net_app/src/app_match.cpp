@@ -1,6 +1,7 @@
 // fixstep::net_app: a game of fixstep::app played as one peer of a networked match
 // (fixstep/net_app/run.hpp): the match set up from the command line, played in a window or by the
 // game's autopilot, drawn from the shown world, its recording written at the end.
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,9 +12,14 @@
 #include <fixstep/app/key_bindings.hpp>
 #include <fixstep/capture/capture.hpp>
 #include <fixstep/core/input.hpp>
+#include <fixstep/core/limits.hpp>
 #include <fixstep/core/step_results.hpp>
 #include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/command_limits.hpp>
+#include <fixstep/io/output_paths.hpp>
 #include <fixstep/io/recording_file.hpp>
+#include <fixstep/io/standard_output.hpp>
+#include <fixstep/io/stop_signal.hpp>
 #include <fixstep/io/summary.hpp>
 #include <fixstep/net/desync_recording.hpp>
 #include <fixstep/net/match_peer.hpp>
@@ -38,6 +44,28 @@ using app::detail::Level;
 /// After the last tick, a peer keeps answering this long (ms), so that the other gets what it
 /// still lacks (resent inputs, the last hash) before this one leaves.
 constexpr int linger_ms = 600;
+
+/// Most memory the match's recording may take: every peer records every confirmed tick (its
+/// input and state hash) in memory until the end, and copies it to write it (MatchPeer::
+/// recording).
+constexpr std::uint64_t max_match_recording_bytes = std::uint64_t{2} << 30;
+
+/// Throws LimitError when `ticks` ticks exceed the work a command may do on `def`, or when
+/// their recording, held in memory, would exceed max_match_recording_bytes.
+void check_match_bounds(const WorldDef& def, std::uint64_t ticks) {
+  check_command_work(ticks, tick_work(def), fmt::format("--ticks {}", ticks));
+  // Each tick: at most one input change and one hash, in vectors that grow by doubling (2x),
+  // copied once more at the end (3x in all).
+  const std::uint64_t per_tick = 3 * (sizeof(TickInput) + 2 * sizeof(std::uint64_t));
+  if (ticks > max_match_recording_bytes / per_tick) {
+    throw LimitError(fmt::format(
+        "--ticks {}: the match's recording, held in memory until the end, would take up to "
+        "{:.3g} GiB ({} bytes a tick); at most {:.3g} GiB: play at most {} ticks",
+        ticks, double(ticks) * double(per_tick) / double(std::uint64_t{1} << 30), per_tick,
+        double(max_match_recording_bytes) / double(std::uint64_t{1} << 30),
+        max_match_recording_bytes / per_tick));
+  }
+}
 
 /// The match's settings from the command line and the level (recorded as the game records).
 MatchSettings match_settings(const app::Settings& settings, const Level& level,
@@ -106,6 +134,7 @@ class Peer {
 
  private:
   MatchPeer start(const app::Settings& settings, const MatchOptions& o) {
+    if (o.ticks > 0) check_match_bounds(level_.def, o.ticks);  // before a port is bound
     const MatchSettings s = match_settings(settings, level_, o);
     if (o.host_port) {
       return MatchPeer::host(level_.def, s, Address{o.bind, *o.host_port},
@@ -124,14 +153,15 @@ class Peer {
   bool seated_ = false;
 };
 
-/// Plays headless as fast as the match goes: the autopilot gives every input wanted. On a
-/// terminal, a line of progress (tick of ticks, stalls) twice a second, on stderr.
+/// Plays headless as fast as the match goes: the autopilot gives every input wanted, until the
+/// match ends or a stop is asked for (StopOnSignal). On a terminal, a line of progress (tick of
+/// ticks, stalls) twice a second, on stderr.
 void play_bot(Peer& peer, const std::string& name, std::uint64_t ticks) {
   InputSampler sampler;
   MatchPeer& m = peer.match();
   const bool terminal = isatty(STDERR_FILENO) == 1;
   auto next_report = std::chrono::steady_clock::now();
-  while (peer.live()) {
+  while (peer.live() && StopOnSignal::requested() == 0) {
     m.poll(1);
     (void)peer.give_inputs(sampler, true, 1 << 30);
     (void)m.advance();
@@ -147,7 +177,8 @@ void play_bot(Peer& peer, const std::string& name, std::uint64_t ticks) {
 }
 
 /// Plays in the window on the real clock, an input a tick of the level's dt, until Esc, the
-/// close button or the match's end. Returns false when the player quit.
+/// close button, a stop request (StopOnSignal) or the match's end. Returns false when the player
+/// quit or a stop was asked for.
 bool play_window(Peer& peer, MatchView& view, const app::Settings& settings, bool bot) {
   const double dt = peer.level().def.settings.dt;
   InputSampler sampler;
@@ -156,6 +187,7 @@ bool play_window(Peer& peer, MatchView& view, const app::Settings& settings, boo
   RealClock clock;
   double owed = 0.0;  // s of real time not yet turned into inputs
   while (peer.live()) {
+    if (StopOnSignal::requested() != 0) return false;
     const auto frame_start = std::chrono::steady_clock::now();
     if (!view.poll_window(sampler, peer.player(), m.shown_world(), bot)) return false;
     m.poll(0);
@@ -255,7 +287,36 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
     m.leave();  // quit, a desync, a failure: the other player is told at once, not timed out
   }
   if (!o.last_frame.empty()) view.write_last_frame(peer.drawn_game(), m, o.last_frame);
-  return finish(peer, settings, o, quit);
+  const int status = finish(peer, settings, o, quit || StopOnSignal::requested() != 0);
+  if (StopOnSignal::requested() == 0 || status != 0) return status;
+  std::fprintf(stderr, "%s: stopped by %s after tick %llu%s\n", settings.name.c_str(),
+               StopOnSignal::name(), static_cast<unsigned long long>(m.world().tick()),
+               o.record.empty() ? "" : "; the recording written up to that tick");
+  return 128 + StopOnSignal::requested();
+}
+
+/// The match, its exit status or its error's.
+int match_checked(const AnyGame& game, const app::Settings& settings, int argc, char** argv) {
+  const char* name = settings.name.c_str();
+  try {
+    const std::optional<MatchOptions> o =
+        parse_match(settings.name, settings.max_players, argc, argv);
+    if (!o) return 0;  // --help
+    check_match_outputs(*o, settings.name, settings.scene_file);
+    // Ticks stay whole (a peer's bookkeeping follows each): the loops poll between them.
+    const StopOnSignal signals(false);
+    return play_match(game, settings, *o);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "%s: %s\nRun with --host 0 --help for more information.\n", name,
+                 e.what());
+    return exit_usage;
+  } catch (const PathRefused& e) {  // an output that is an input or the other output
+    std::fprintf(stderr, "%s\n", e.what());
+    return exit_usage;
+  } catch (const std::exception& e) {  // a bad scene, a port in use, no display
+    std::fprintf(stderr, "%s: error: %s\n", name, e.what());
+    return exit_error;
+  }
 }
 
 }  // namespace
@@ -263,32 +324,22 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
 int run_networked(const AnyGame& game, const app::Settings& settings, int argc, char** argv) {
   const char* name = settings.name.c_str();
   if (!wants_match(argc, argv)) {
-    const int status = app::detail::run_game(game, settings, argc, argv);
-    for (int i = 1; i < argc; ++i) {
-      const std::string arg(argv[i]);
-      if (arg == "--help" || arg == "-h") {
-        std::printf(
-            "\nNetworked play: %s --host PORT | --join HOST:PORT [--session "
-            "lockstep|rollback] ...\n(%s --host 0 --help lists the match options)\n",
-            name, name);
+    return with_results_on_standard_output(settings.name, [&] {
+      const int status = app::detail::run_game_unchecked(game, settings, argc, argv);
+      for (int i = 1; i < argc; ++i) {
+        const std::string arg(argv[i]);
+        if (arg == "--help" || arg == "-h") {
+          std::printf(
+              "\nNetworked play: %s --host PORT | --join HOST:PORT [--session "
+              "lockstep|rollback] ...\n(%s --host 0 --help lists the match options)\n",
+              name, name);
+        }
       }
-    }
-    return status;
+      return status;
+    });
   }
-  try {
-    const std::optional<MatchOptions> o =
-        parse_match(settings.name, settings.max_players, argc, argv);
-    if (!o) return 0;  // --help
-    check_match_outputs(*o, settings.scene_file);
-    return play_match(game, settings, *o);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "%s: %s\nRun with --host 0 --help for more information.\n", name,
-                 e.what());
-    return exit_usage;
-  } catch (const std::exception& e) {  // a bad scene, a port in use, no display
-    std::fprintf(stderr, "%s: error: %s\n", name, e.what());
-    return exit_error;
-  }
+  return with_results_on_standard_output(settings.name,
+                                         [&] { return match_checked(game, settings, argc, argv); });
 }
 
 }  // namespace fixstep::net::detail

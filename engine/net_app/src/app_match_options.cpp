@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <fixstep/io/output_paths.hpp>
 #include <fixstep/io/output_target.hpp>
 #include <stdexcept>
 #include <string_view>
@@ -238,6 +239,14 @@ std::optional<MatchOptions> parse_match(const std::string& program, int max_play
   add_role_options(cli, f, o);
   add_session_options(cli, f, o, max_players);
   add_output_options(cli, f, o);
+  cli.footer(
+      "Work: --ticks N at most 10^8 ticks and 10^13 body-substeps in all. Memory: the level's "
+      "world, the rollback window's snapshots (--max-rollback), and the match's recording, held "
+      "until the end (a few hundred bytes a tick at most): --ticks N at most 2 GiB of it. Both "
+      "refused before a port is bound; without --ticks a match runs until a player quits, its "
+      "recording growing as it goes. SIGINT or SIGTERM ends the match "
+      "within a second between two ticks: the other peers are told, the recording of the "
+      "ticks played is written; exit 130 or 143.\n");
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -250,8 +259,21 @@ std::optional<MatchOptions> parse_match(const std::string& program, int max_play
   return o;
 }
 
-void check_match_outputs(const MatchOptions& o, const std::string& default_scene) {
+void check_match_outputs(const MatchOptions& o, const std::string& program,
+                         const std::string& default_scene) {
+  if (o.scene && default_scene.empty()) {  // setup() builds the level: a scene would be replaced
+    throw UsageError("--scene " + *o.scene + ": " + program +
+                     " builds its level in code and plays no scene file, so the scene would not "
+                     "be the level played; run without --scene");
+  }
   const std::string scene = o.scene.value_or(default_scene);
+  OutputPaths paths{.program = program};
+  if (!scene.empty()) paths.inputs.push_back({"--scene", scene});
+  if (!o.record.empty()) paths.outputs.push_back({"--record", o.record});
+  if (!o.last_frame.empty()) paths.outputs.push_back({"--last-frame", o.last_frame});
+  check_output_paths(paths);  // PathRefused: the checks of the fixstep command's outputs
+  // `--record -`: standard output carries the recording alone; the summary goes to stderr.
+  if (data_on_standard_output(paths)) keep_standard_output_for_data();
   check_output_before_run("--record", o.record, {scene});
   check_output_before_run("--last-frame", o.last_frame, {scene});
 }

@@ -43,9 +43,13 @@ struct MatchOptions {
 [[nodiscard]] std::optional<MatchOptions> parse_match(const std::string& program, int max_players,
                                                       int argc, char** argv);
 
-/// Refuses (std::runtime_error, naming the flag and the path), before anything runs, an output
-/// that may not be written (a directory, a missing directory) or that is the scene file.
-void check_match_outputs(const MatchOptions& o, const std::string& default_scene);
+/// Refuses, before anything runs: --scene for a game that builds its level in code (no
+/// `default_scene`: its setup() would replace the scene; UsageError); an output that may not be
+/// written (a directory, a socket, a descriptor not open for writing), that is the scene file,
+/// or that is the other output (PathRefused, fixstep/io/output_paths.hpp); a new file in a
+/// missing directory (std::runtime_error). Messages begin with `program` or name the flag.
+void check_match_outputs(const MatchOptions& o, const std::string& program,
+                         const std::string& default_scene);
 
 /// "HOST:PORT" as an address: HOST a dotted IPv4 address (a name is refused: none is resolved),
 /// PORT 1-65535. Throws app::detail::UsageError naming `flag` and the text otherwise.

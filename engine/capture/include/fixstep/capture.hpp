@@ -3,6 +3,7 @@
 #pragma once
 
 #include "fixstep/capture/capture.hpp"
+#include "fixstep/capture/capture_dir.hpp"
 #include "fixstep/capture/frame_pipeline.hpp"
 #include "fixstep/capture/manifest.hpp"
 #include "fixstep/capture/video.hpp"

@@ -116,14 +116,29 @@ concept Game = std::copy_constructible<G> && std::is_copy_assignable_v<G> &&
 ///                                       stored hash, then draw it
 ///   NAME --frames N --sync-test K       N frames headless, each tick rolled back K ticks and
 ///                                       re-simulated (the game's state with the world's)
-///   --scene FILE                        another level (when the game has a scene file)
-///   --help                              the above
+///   --overwrite                         with --out: replace the capture DIR already holds
+///   --scene FILE                        another level (only when the game has a scene file:
+///                                       refused for a level built in code, which setup()
+///                                       would put in its place)
+///   --help                              the above, and the bounds below
+///
+/// Every output (--record, --last-frame, --out DIR) gets the fixstep command's checks before
+/// anything runs (check_output_paths, fixstep/io/output_paths.hpp): not an input, not another
+/// output, not a directory or socket, and a --out DIR holding an earlier capture only with
+/// --overwrite. Bounds, checked before the first tick (exit 1, naming the flag): --frames N
+/// within max_command_ticks and max_command_work (fixstep/io/command_limits.hpp; under
+/// --sync-test K each tick counts 1 + K times, and its K + 1 snapshots within
+/// max_sync_test_bytes), a --replay's ticks likewise, --frames N --record within
+/// max_recording_bytes of hashes. --record is streamed to its file (RecordingWriter). SIGINT and
+/// SIGTERM stop every mode within a second: the recording written up to its last complete
+/// tick, the frames drawn whole, exit 128 + the signal.
 ///
 /// Exit status: 0 success; 1 an error (a bad scene, an unreadable or cut recording, an
-/// unwritable output, no display), its message on standard error naming the file; 2 a bad
-/// command line; 4 a replay whose state differs from the recording's (naming the first tick,
-/// both hashes and the last tick that matched; nothing is drawn); 8 a sync test that found a
-/// difference. Never throws.
+/// unwritable output, a bound exceeded, no display, standard output closed or failing), its
+/// message on standard error naming the file or flag; 2 a bad command line or a refused output
+/// path; 4 a replay whose state differs from the recording's (naming the first tick, both hashes
+/// and the last tick that matched; nothing is drawn); 8 a sync test that found a difference;
+/// 130 / 143 stopped by SIGINT / SIGTERM. Never throws.
 template <Game G>
 int run(G game, const Settings& settings, int argc, char** argv) {
   return detail::run_game(detail::GameModel<G>(std::move(game)), settings, argc, argv);

@@ -69,7 +69,8 @@ struct GameReplay {
 /// with a copy of `game`'s rules, verifying every stored hash. Does not compare the rules name
 /// (the caller decides what a recording of other rules means). Throws std::runtime_error
 /// "FILE was recorded on another level (hash H, this one H')" when the level's definition hash
-/// is not the recording's, and what replay_level throws.
+/// is not the recording's, LimitError ("FILE: end N: ...") when its ticks exceed the command
+/// limits (check_command_work, before a tick is stepped), and what replay_level throws.
 [[nodiscard]] GameReplay replay_game(const AnyGame& game, const Settings& settings,
                                      const Recording& rec, const std::string& file,
                                      const std::optional<std::string>& scene);

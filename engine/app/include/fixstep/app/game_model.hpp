@@ -96,7 +96,13 @@ class GameModel final : public AnyGame {
   G game_;
 };
 
-/// app::run's body: parses the command line and runs the mode it names with copies of `game`.
+/// app::run's body: parses the command line and runs the mode it names with copies of `game`,
+/// its results on standard output checked (with_results_on_standard_output: a closed or full
+/// standard output is an error, not a silent loss).
 [[nodiscard]] int run_game(const AnyGame& game, const Settings& settings, int argc, char** argv);
+/// run_game without the check of standard output, for a caller that checks it around more
+/// (net::run).
+[[nodiscard]] int run_game_unchecked(const AnyGame& game, const Settings& settings, int argc,
+                                     char** argv);
 
 }  // namespace fixstep::app::detail

@@ -30,6 +30,11 @@ class RecordingWriter {
   RecordingWriter(const WorldDef& def, std::string scene, std::uint64_t hash_every,
                   std::filesystem::path file, std::string_view scene_text = {});
 
+  /// Names the rules the recording needs, as Recorder::set_rules (std::invalid_argument for a
+  /// name rules_name_fault refuses or version 0). Before the first tick only (std::logic_error
+  /// after it).
+  void set_rules(std::string name, std::uint32_t version);
+
   /// Appends one tick, as Recorder::record (std::invalid_argument when after_the_tick.tick()
   /// is not ticks() + 1). Throws RecordingError corrupt when the file would grow beyond
   /// max_recording_bytes (a recording the reader refuses), std::runtime_error on a write error;
@@ -52,6 +57,7 @@ class RecordingWriter {
  private:
   void flush_if_full();
   AtomicOutput out_;
+  Recording head_;  ///< the header's fields, until the first tick (set_rules rewrites it)
   std::uint64_t hash_every_;
   std::uint64_t ticks_ = 0;
   bool have_last_ = false;

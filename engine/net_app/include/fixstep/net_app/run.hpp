@@ -35,8 +35,12 @@
 // for single-player runs only), World::step, the game's rules(); the recording is
 // an ordinary recording of the game (NAME --replay FILE verifies it with the rules). Exit
 // status as app::run's: 0 the match played to its end (or the player quit), 1 an error (a
-// port that cannot be bound, refused, timed out, the other player left), 2 a bad command line,
-// 4 the peers' states differed (a desync: the message names the tick). Layering: net_app uses
+// port that cannot be bound, refused, timed out, the other player left, --ticks beyond the work
+// limit or beyond 2 GiB of the recording every peer holds until the end, standard output closed
+// or failing), 2 a bad command line or a refused output path (--record and --last-frame get
+// app::run's checks; --scene is refused for a level built in code), 4 the peers' states
+// differed (a desync: the message names the tick), 130 / 143 stopped by SIGINT / SIGTERM
+// (between two ticks; the recording of the ticks played written). Layering: net_app uses
 // fixstep::app and fixstep::net, and app never uses net; a program that calls this links
 // fixstep::net_app.
 #pragma once

@@ -1,13 +1,12 @@
-#include "capture_dir.hpp"
+// The files of a capture directory (fixstep/io/capture_files.hpp).
+#include "fixstep/io/capture_files.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fixstep/capture/capture.hpp>
-#include <fixstep/io/stale_temporaries.hpp>
 #include <system_error>
 
-namespace fixstep::cli {
+namespace fixstep {
 
 bool is_capture_file(std::string_view name) {
   if (name == "frames.csv" || name == "compare.csv") return true;
@@ -33,38 +32,22 @@ std::vector<std::filesystem::path> capture_files_in(const std::filesystem::path&
   return files;
 }
 
-std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite) {
+std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite, bool manifest) {
   if (overwrite) return {};
   const std::vector<std::filesystem::path> old = capture_files_in(dir);
   if (old.empty()) return {};
   const auto frames = std::count_if(old.begin(), old.end(), [](const auto& f) {
     return f.filename().string().starts_with("frame_");
   });
-  const bool manifest = std::any_of(old.begin(), old.end(),
-                                    [](const auto& f) { return f.filename() == "frames.csv"; });
+  const bool has_manifest = std::any_of(old.begin(), old.end(),
+                                        [](const auto& f) { return f.filename() == "frames.csv"; });
   return fmt::format(
       "--out {} already holds a capture ({} frames, {}): a new one would mix with it; give a "
       "new or empty directory, or --overwrite to remove the old capture's files first",
       dir.string(), frames,
-      manifest ? "its frames.csv" : "no frames.csv: an unfinished or killed run");
+      has_manifest ? "its frames.csv"
+      : manifest   ? "no frames.csv: an unfinished or killed run"
+                   : "the frames of an earlier run");
 }
 
-void prepare_capture_dir(const std::filesystem::path& dir, bool overwrite) {
-  prepare_output_dir(dir);
-  remove_stale_temporaries(dir, is_capture_file);
-  if (!overwrite) return;
-  std::vector<std::filesystem::path> old = capture_files_in(dir);
-  // The manifests first: a directory with frames and no frames.csv reads as unfinished.
-  std::stable_partition(old.begin(), old.end(),
-                        [](const auto& f) { return !f.filename().string().starts_with("frame_"); });
-  for (const std::filesystem::path& f : old) {
-    std::error_code ec;
-    std::filesystem::remove(f, ec);
-    if (ec) {
-      throw CaptureError(fmt::format("--overwrite: cannot remove {} of the old capture: {}",
-                                     f.string(), ec.message()));
-    }
-  }
-}
-
-}  // namespace fixstep::cli
+}  // namespace fixstep

@@ -1,11 +1,14 @@
-// `--out DIR` of render and compare: one capture per directory, never a mix of two runs.
+// `--out DIR` of a capture (fixstep render and compare, a game's frames): one capture per
+// directory, never a mix of two runs. The names a capture writes, and whether a directory
+// already holds one.
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
-namespace fixstep::cli {
+namespace fixstep {
 
 /// Whether `name` is a file a capture writes into its directory: frame_NNNNNN.png (six or more
 /// digits), frames.csv (the manifest, renamed into place after the last frame) or compare.csv.
@@ -19,13 +22,9 @@ namespace fixstep::cli {
 /// `overwrite` is set. Otherwise the refusal: "--out DIR already holds a capture (N frames, its
 /// frames.csv): a new one would mix with it; give a new or empty directory, or --overwrite".
 /// Other files in `dir` do not count: they cannot be taken for part of the capture.
-[[nodiscard]] std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite);
+/// `manifest` false: the program's captures write no frames.csv (a game's --out), so none
+/// missing is not taken for a sign of a killed run.
+[[nodiscard]] std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite,
+                                              bool manifest = true);
 
-/// Prepares `dir` for a new capture: creates it if missing (prepare_output_dir; CaptureError),
-/// removes the stale temporaries of capture files left by killed runs, and with `overwrite`
-/// removes the old capture's files, frames.csv first (so an interrupted removal never leaves a
-/// manifest naming frames that are gone). Files that are not capture files are left alone.
-/// Throws CaptureError naming a file that cannot be removed.
-void prepare_capture_dir(const std::filesystem::path& dir, bool overwrite);
-
-}  // namespace fixstep::cli
+}  // namespace fixstep
