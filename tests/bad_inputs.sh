@@ -842,6 +842,16 @@ velocity = [1e13, 0.0]"
   for ((k = 0; k < 30000; ++k)); do printf '[[plane]]\nnormal = [0.0, 1.0]\noffset = -%d.0\n' $((k + 1)); done
 } > planes.toml
 case_ "30000 planes over a 200x200 grid of discs (1.2e9 body-substeps a tick)" "$(cat planes.toml)"
+{ printf '%s\n' "$ok_world" '[[grid]]' 'columns = 100' 'rows = 100' 'origin = [0.0, 1.0]' \
+    'spacing = [0.3, 0.3]' 'body = { mass = 1.0, radius = 0.1 }'
+  for ((k = 0; k < 20000; ++k)); do printf '[[segment]]\na = [%d.0, 0.0]\nb = [%d.5, 0.0]\n' $k $k; done
+} > segments.toml
+case_ "20000 segments over a 100x100 grid of discs (3.2e9 body-substeps a tick)" "$(cat segments.toml)"
+{ printf '%s\n' "$ok_world" '[[grid]]' 'columns = 50' 'rows = 40' 'origin = [0.0, 1.0]' \
+    'spacing = [0.5, 0.5]' 'body = { mass = 1.0, radius = 0.1 }' '[[polyline]]'
+  printf 'points = ['; for ((k = 0; k < 40000; ++k)); do printf '[%d.0, %d.0],' $k $((k % 2)); done; printf ']\n'
+} > polyline.toml
+case_ "a 40000-point polyline over 2000 discs (1.3e9 body-substeps a tick)" "$(cat polyline.toml)"
 # --- command line ---
 printf '%s\n%s\n' "$ok_world" "$body" > good.toml
 case_ "--dt 5" "" run good.toml --steps 10 --dt 5

@@ -182,6 +182,25 @@ TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
   EXPECT_EQ(w.contact_stats().capped, 1u);
 }
 
+// A disc's segment query may return every segment (here all 2000 share the grid's cells), so
+// one collider of the plane pass can take a long time: the pass polls a stop request every
+// plane_poll_tests segment tests, not only every 1024 colliders (200 discs: never before).
+TEST(ContactCaps, TheSegmentPassPollsStopRequestsByTheTestsItDoes) {
+  detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
+  for (int i = 0; i < 2000; ++i) {
+    const double y = 50.0 - 0.001 * i;  // in the discs' cells of the grid (100 m)
+    (void)w.add_segment(SegmentDef{.a = {-50.0, y}, .b = {50.0, y}});
+  }
+  for (int i = 0; i < 200; ++i) {
+    (void)w.create_body(moving_disc({0.3 * (i % 20), 50.5 + 0.3 * (i / 20)}, {0.0, -1.0}, 0.1));
+  }
+  w.step();
+  // 200 discs × 2000 segments × at least 3 queries (push-out, impact search, end check)
+  const std::uint64_t tests = 200u * 2000u * 3u;
+  EXPECT_GE(w.plane_polls(), tests / detail::WorldKernel<double>::plane_poll_tests);
+  EXPECT_FALSE(w.fault().has_value());
+}
+
 TEST(ContactCaps, ARadiusBeyondTheStateRangeIsRefused) {
   detail::WorldKernel<double> w(elastic(0.01));
   EXPECT_NO_THROW((void)w.create_body(moving_disc({0.0, 0.0}, {0.0, 0.0}, 1e12)));

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
@@ -79,6 +80,13 @@ class LimitError : public std::runtime_error {
 /// tests each collider against every plane about three times a tick (push-out, the search for
 /// the first impact, the end check) and more after each impact (world_contacts.cpp).
 inline constexpr std::uint64_t plane_pair_work = 1;
+/// Weight of one (dynamic collider, segment) pair in a tick, in body-substeps: the plane pass
+/// queries the segment grid about three times a tick per collider and more after each impact,
+/// and a query may return every segment (a disc's reach wider than the grid, a segment over
+/// more than 64 cells, a segment a kinematic body carries); a segment test (closest feature and
+/// time of impact) costs about 16 body-substeps (docs/ROBUSTNESS.md, "Limits on work and
+/// memory"). A polyline of n points is n - 1 segments (n closed).
+inline constexpr std::uint64_t segment_pair_work = 16;
 /// Weight of one disc of a world with contacts in a tick, in body-substeps: its swept box in the
 /// broadphase, its candidate pairs' times of impact, and the resting solver's sweeps over its
 /// contacts (about three per disc in a pile; disc_contacts.hpp).
@@ -90,12 +98,14 @@ inline constexpr std::uint64_t disc_work = 128;
 ///  - bodies × 64·√n × substeps for implicit Euler on a world with links (its sparse solve over
 ///    n linked bodies: limits.cpp has the model and its measurements);
 ///  - dynamic colliders × planes × plane_pair_work (the plane contacts, once a tick);
+///  - dynamic colliders × segments × segment_pair_work (the segment contacts, once a tick);
 ///  - discs × disc_work when settings.contacts is set (every collider with collide = true).
 /// At most ~10^17 (the scene limits), never overflowing.
 [[nodiscard]] std::uint64_t tick_work(std::span<const BodyDef> bodies,
                                       std::span<const LinkDef> links,
                                       std::span<const PlaneDef> planes,
-                                      const WorldSettings& settings);
+                                      const WorldSettings& settings,
+                                      std::span<const SegmentDef> segments = {});
 /// tick_work of def's world.
 [[nodiscard]] std::uint64_t tick_work(const WorldDef& def);
 
@@ -113,14 +123,15 @@ inline constexpr std::uint64_t disc_work = 128;
                                                 std::span<const LinkDef> links,
                                                 const WorldSettings& settings);
 
-/// Throws LimitError when one tick of the world would exceed max_tick_work ("N bodies + M
-/// links × S substeps + ... = W body-substeps per tick; a tick may do at most 1e+09 ...", each
-/// term of tick_work named) or its implicit solve max_implicit_bodies or
+/// Throws LimitError when one tick of the world (with `segments`, a WorldDef's) would exceed
+/// max_tick_work ("N bodies + M links × S substeps + ... = W body-substeps per tick; a tick may do
+/// at most 1e+09 ...", each term of tick_work named) or its implicit solve max_implicit_bodies or
 /// max_implicit_solve_bytes (naming the integrator, the linked body count, the estimate and the
 /// way out: semi_implicit_euler with substeps). check_limits(def) calls it (definition_checks.hpp),
 /// the scene loader too (locating the message at [world] substeps). Throws std::invalid_argument
 /// for a link index out of range.
 void check_world_limits(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
-                        std::span<const PlaneDef> planes, const WorldSettings& settings);
+                        std::span<const PlaneDef> planes, const WorldSettings& settings,
+                        std::span<const SegmentDef> segments = {});
 
 }  // namespace fixstep
