@@ -151,7 +151,7 @@ TEST(ContactCaps, TooManyCandidatePairsStopTheRunWithALocatedFault) {
 
 // A disc between two planes 1 cm apart (centre free to move 1 cm): at 1e5 m/s it bounces 1e5
 // times in a 10 ms tick, all resolved (it stays between the planes at its speed, e = 1); at
-// 1e7 m/s it would bounce 1e7 times, past max_tick_predictions (2 plane tests a bounce).
+// 1e8 m/s it would bounce 1e8 times, past max_tick_predictions (2 plane tests a bounce).
 void add_channel(detail::WorldKernel<double>& w) {
   w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 1.0});
   w.add_plane(PlaneDef{.normal = {0.0, -1.0}, .offset = -0.21, .restitution = 1.0});
@@ -172,7 +172,7 @@ TEST(ContactCaps, ADiscBouncingBetweenClosePlanesStaysBetweenThem) {
 TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
   detail::WorldKernel<double> w(WorldSettings{.dt = 0.01});
   add_channel(w);
-  (void)w.create_body(moving_disc({0.0, 0.105}, {0.0, 1e7}, 0.1));
+  (void)w.create_body(moving_disc({0.0, 0.105}, {0.0, 1e8}, 0.1));
   w.step();
   ASSERT_TRUE(w.fault().has_value());
   const StateFault& f = *w.fault();
@@ -180,6 +180,78 @@ TEST(ContactCaps, ADiscBouncingPastThePredictionCapStopsTheRun) {
   EXPECT_EQ(f.body, w.entities()[0]);
   EXPECT_NE(f.with.find("plane["), std::string::npos) << f.with;
   EXPECT_EQ(w.contact_stats().capped, 1u);
+}
+
+// Legal worlds the caps stopped at tick 1. Discs a collision filter keeps apart never touch, so
+// the broadphase drops their pairs without counting them against max_candidate_pairs: 2000 at
+// one point (2·10^6 pairs, past the cap of 10^6) pass through one another.
+TEST(ContactCaps, FilteredDiscsAtOnePointPassThroughEachOther) {
+  detail::WorldKernel<double> w(elastic(0.01));
+  std::vector<Entity> discs;
+  for (int i = 0; i < 2000; ++i) {
+    BodyDef b = moving_disc({0.0, 0.0}, {std::cos(0.01 * i), std::sin(0.01 * i)}, 0.1);
+    b.collider->filter.group = -1;  // never with each other
+    discs.push_back(w.create_body(b));
+  }
+  w.step();
+  ASSERT_FALSE(w.fault().has_value()) << w.fault()->cap;
+  EXPECT_EQ(w.contact_stats().capped, 0u);
+  EXPECT_EQ(w.contact_stats().candidate_pairs, 0u);
+  for (int i = 0; i < 2000; ++i) {  // free flight
+    const Body b = w.body(discs[i]);
+    EXPECT_NEAR(b.position.x, 0.01 * std::cos(0.01 * i), 1e-15);
+    EXPECT_NEAR(b.position.y, 0.01 * std::sin(0.01 * i), 1e-15);
+  }
+}
+
+// A 20 × 20 formation moving together at 500 m/s (8.3 m a tick, its boxes overlapping along
+// its rows) flies on in formation.
+TEST(ContactCaps, AFormationMovingTogetherFliesOn) {
+  detail::WorldKernel<double> w(elastic(1.0 / 60.0));
+  for (int i = 0; i < 20; ++i) {
+    for (int j = 0; j < 20; ++j) {
+      (void)w.create_body(moving_disc({0.2 * i, 0.2 * j}, {500.0, 0.0}, 0.1));  // touching
+    }
+  }
+  for (int tick = 0; tick < 3; ++tick) w.step();
+  ASSERT_FALSE(w.fault().has_value());
+  EXPECT_EQ(w.contact_stats().impacts, 0u);
+  const auto all = w.entities();
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const Body b = w.body(all[k]);
+    EXPECT_NEAR(b.velocity.x, 500.0, 1e-9);
+    EXPECT_NEAR(b.position.x, 0.2 * double(k / 20) + 25.0, 1e-9);
+    EXPECT_NEAR(b.position.y, 0.2 * double(k % 20), 1e-12);
+  }
+}
+
+// Two 40 × 40 grids of touching discs meeting head-on at ±500 m/s: each row is a Newton's
+// cradle of 80 discs (elastic, equal masses: 1600 impacts a row), 64 000 impacts, each predicting
+// again a disc's ~230 pairs (most with discs of its own grid), 2.9·10^7 predictions: past the
+// old max_tick_predictions (2^24), within 2^26 (about max_tick_work). The grids swap their
+// velocities: A leaves at -500 m/s, B at +500 m/s, energy and momentum kept.
+TEST(ContactCaps, TwoGridsMeetingHeadOnBounceBack) {
+  detail::WorldKernel<double> w(elastic(1.0 / 60.0));
+  for (int side = 0; side < 2; ++side) {
+    for (int i = 0; i < 40; ++i) {
+      for (int j = 0; j < 40; ++j) {
+        const double x = side == 0 ? -8.0 + 0.2 * i : 0.2 + 0.2 * i;
+        (void)w.create_body(moving_disc({x, 0.2 * j}, {side == 0 ? 500.0 : -500.0, 0.0}, 0.1));
+      }
+    }
+  }
+  w.step();
+  ASSERT_FALSE(w.fault().has_value()) << w.fault()->cap;
+  double momentum = 0.0, energy = 0.0;
+  const auto all = w.entities();
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const Body b = w.body(all[k]);
+    momentum += b.velocity.x;
+    energy += 0.5 * (b.velocity.x * b.velocity.x + b.velocity.y * b.velocity.y);
+    EXPECT_NEAR(b.velocity.x, k < 1600 ? -500.0 : 500.0, 1e-6) << k;
+  }
+  EXPECT_NEAR(momentum, 0.0, 1e-6);
+  EXPECT_NEAR(energy, 3200 * 0.5 * 500.0 * 500.0, 1e-9 * energy);
 }
 
 // A disc's segment query may return every segment (here all 2000 share the grid's cells), so

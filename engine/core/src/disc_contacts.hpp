@@ -246,6 +246,9 @@ class DiscContacts {
   /// Grows disc k's box in grown_ over its motion from `now` to the tick's end (s), setting
   /// grew_ when that leaves the box.
   void grow_box(std::uint32_t k, double now, double dt);
+  /// The broadphase's pairs of `boxes` into out, without the linked and filtered-out pairs;
+  /// false past max_candidate_pairs (or max_vetoed_pairs dropped).
+  bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads);
   /// Whether the grown boxes (grown_) pair more discs than the round's boxes did.
   bool pairs_grow(const Tick& tick);
   /// Back to the tick's start for another round of impacts with the grown boxes.

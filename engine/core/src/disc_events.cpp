@@ -133,7 +133,7 @@ template <class Real>
 bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) {
   const std::size_t n = discs_.size();
   const std::size_t cap = max_candidate_pairs(n);  // limits.hpp; a pile: ~3 per disc
-  if (!broadphase_.find_pairs(boxes_, dynamic_, cap, pairs_, tick.threads)) {
+  if (!pairs_of(boxes_, pairs_, tick.threads)) {
     stats.candidate_pairs = cap, stats.capped = 1;
     pairs_.clear();
     cap_ = CapHit{"max_candidate_pairs", cap, largest_box(), CapHit::npos, 0.0};
@@ -309,11 +309,33 @@ void DiscContacts<Real>::grow_box(std::uint32_t k, double now, double dt) {
 }
 
 template <class Real>
+bool DiscContacts<Real>::pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out,
+                                  int threads) {
+  const std::size_t cap = max_candidate_pairs(discs_.size());
+  if (linked_.empty() && filters_.empty()) {
+    return broadphase_.find_pairs(boxes, dynamic_, cap, out, threads);
+  }
+  // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither: the
+  // broadphase drops them without counting them against the cap (discs a filter keeps apart
+  // may all be at one point), up to max_vetoed_pairs of them.
+  auto reject = [](const void* context, std::uint32_t a, std::uint32_t b) {
+    const auto& self = *static_cast<const DiscContacts*>(context);
+    if (!self.may_collide(a, b)) return true;
+    const std::uint64_t key = (std::uint64_t(a) << 32) | b;
+    return !self.linked_.empty() &&
+           std::binary_search(self.linked_.begin(), self.linked_.end(), key);
+  };
+  const DiscBroadphase::PairVeto veto{reject, this, max_vetoed_pairs(discs_.size())};
+  broadphase_.set_veto(&veto);
+  const bool ok = broadphase_.find_pairs(boxes, dynamic_, cap, out, threads);
+  broadphase_.set_veto(nullptr);
+  return ok;
+}
+
+template <class Real>
 bool DiscContacts<Real>::pairs_grow(const Tick& tick) {
   // Boxes only grow, so the pairs of the grown boxes hold the round's: more of them is new.
-  const std::size_t cap = max_candidate_pairs(discs_.size());
-  return !broadphase_.find_pairs(grown_, dynamic_, cap, grown_pairs_, tick.threads) ||
-         grown_pairs_.size() != box_pairs_;
+  return !pairs_of(grown_, grown_pairs_, tick.threads) || grown_pairs_.size() != box_pairs_;
 }
 
 template <class Real>
@@ -382,7 +404,8 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
   impact_log_.clear();
   first_events(tick);
-  std::uint64_t again = 0;  // predictions after impacts, at most max_tick_predictions
+  std::uint64_t again = 0;   // predictions after impacts, at most max_tick_predictions
+  std::uint64_t polled = 0;  // again / 2^16 at the last stop poll
   const std::uint64_t cap = max_tick_predictions(discs_.size());
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
@@ -398,7 +421,11 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
       break;
     }
     impact(ev.pair, ev.time, dt, past == plastic);
-    if (++stats.impacts % 4096 == 0) throw_if_stop_requested();  // a long tick stays stoppable
+    ++stats.impacts;
+    if (again >> 16 != polled) {  // a long tick stays stoppable: every 65 536 predictions
+      polled = again >> 16;
+      throw_if_stop_requested();
+    }
     for (const std::uint32_t k : {a, b}) {
       if (!discs_[k].dynamic) continue;
       again += offset_[k + 1] - offset_[k];

@@ -47,9 +47,19 @@ inline constexpr std::uint64_t max_implicit_bodies = 25'000;
 /// Past it the tick's disc contacts are not resolved: World::step records a StateFault naming
 /// this cap, the tick and the disc with the largest swept box, and ContactStats::capped counts it.
 [[nodiscard]] std::uint64_t max_candidate_pairs(std::uint64_t discs);
+/// Most pairs of overlapping swept boxes the broadphase may drop in one tick of a world of
+/// `discs` discs because they can never touch (linked discs, collision filters that keep them
+/// apart): 16 max_candidate_pairs(discs), a bound on its work only (dropped pairs take no
+/// memory and do not count against max_candidate_pairs). 2000 discs a filter keeps apart at one
+/// point drop 2·10^6. Past it World::step records a StateFault naming max_candidate_pairs.
+[[nodiscard]] inline std::uint64_t max_vetoed_pairs(std::uint64_t discs) {
+  return 16 * max_candidate_pairs(discs);
+}
 /// Most times of impact one tick of a world of `bodies` discs (or plane colliders) may predict
 /// again after impacts: a disc pair's after an impact of either disc, and a body's plane tests
-/// after its 8th plane event of the tick (one per plane). max(2^24, 256 n). Piles and gases
+/// after its 8th plane event of the tick (one per plane). max(2^26, 256 n): a disc pair's
+/// prediction (a quartic's roots) costs about 16 body-substeps, so 2^26 of them are about
+/// max_tick_work, and a tick is polled for stop requests every 2^16. Piles and gases
 /// stay far below it (docs/ROBUSTNESS.md, "No physics dropped by a cap"); a row of hundreds of
 /// fast elastic discs driven into a peg, or a disc bouncing between two planes millions of
 /// times a tick, reaches it. Past it World::step records a StateFault naming this cap, the
@@ -57,7 +67,7 @@ inline constexpr std::uint64_t max_implicit_bodies = 25'000;
 /// (A body coming to rest in a corner of two planes settles over ticks: that is not an impact
 /// and is not counted.)
 [[nodiscard]] constexpr std::uint64_t max_tick_predictions(std::uint64_t bodies) {
-  return std::max<std::uint64_t>(std::uint64_t{1} << 24, 256 * bodies);
+  return std::max<std::uint64_t>(std::uint64_t{1} << 26, 256 * bodies);
 }
 
 /// Most rounds of one tick's disc impacts. The broadphase pairs discs by the boxes their free
