@@ -85,6 +85,15 @@ TEST(Limits, TickWorkCountsPlanesAndDiscs) {
   def.settings.contacts = ContactSettings{};
   // + the 2 colliders that collide (body 2 does not) × disc_work
   EXPECT_EQ(tick_work(def), 4u * 2u + 2u * 5u * plane_pair_work + 2u * disc_work);
+  // The resting solver's iterations beyond the default 20 + 10 weigh in: 1000 + 1000 is 67
+  // times the sweeps (they counted as 20 + 10).
+  def.settings.contacts->velocity_iterations = 1000;
+  def.settings.contacts->position_iterations = 1000;
+  EXPECT_EQ(tick_work(def),
+            4u * 2u + 2u * 5u * plane_pair_work + 2u * ((disc_work * 2000 + 29) / 30));
+  def.settings.contacts->velocity_iterations = 5;  // fewer: the broadphase's share stays
+  def.settings.contacts->position_iterations = 1;
+  EXPECT_EQ(tick_work(def), 4u * 2u + 2u * 5u * plane_pair_work + 2u * disc_work);
 }
 
 TEST(Limits, PlanesTimesCollidersBeyondATickAreRefusedNamingThePlanes) {

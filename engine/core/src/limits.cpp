@@ -44,6 +44,17 @@ std::uint64_t implicit_body_weight(std::uint64_t linked) {
   return static_cast<std::uint64_t>(std::ceil(64.0 * std::sqrt(static_cast<double>(linked))));
 }
 
+/// disc_work, for the resting solver's default 20 + 10 iterations, times the settings' share of
+/// them beyond (ContactSettings allows up to 1000 + 1000: 67 times the sweeps).
+std::uint64_t disc_weight(const WorldSettings& settings) {
+  if (!settings.contacts) return disc_work;
+  constexpr int defaults =
+      ContactSettings::default_velocity_iterations + ContactSettings::default_position_iterations;
+  const int iterations = std::max(
+      settings.contacts->velocity_iterations + settings.contacts->position_iterations, defaults);
+  return (disc_work * static_cast<std::uint64_t>(iterations) + defaults - 1) / defaults;
+}
+
 /// The terms of tick_work (limits.hpp), in body-substeps.
 struct WorkTerms {
   std::uint64_t bodies_links = 0, implicit = 0, planes = 0, segments = 0, discs = 0;
@@ -66,7 +77,7 @@ WorkTerms work_terms(std::span<const BodyDef> bodies, std::span<const LinkDef> l
   }
   t.planes = t.colliders * planes.size() * plane_pair_work;
   t.segments = t.colliders * segments.size() * segment_pair_work;
-  t.discs = t.disc_count * disc_work;
+  t.discs = t.disc_count * disc_weight(settings);
   return t;
 }
 
@@ -154,7 +165,9 @@ void check_world_limits(std::span<const BodyDef> bodies, std::span<const LinkDef
       terms += fmt::format(" + {} colliders × {} segments × {}", t.colliders, segments.size(),
                            segment_pair_work);
     }
-    if (t.discs > 0) terms += fmt::format(" + {} discs × {} (contacts)", t.disc_count, disc_work);
+    if (t.discs > 0) {
+      terms += fmt::format(" + {} discs × {} (contacts)", t.disc_count, disc_weight(settings));
+    }
     const std::uint64_t most =
         std::max({t.bodies_links, t.implicit, t.planes, t.segments, t.discs});
     throw LimitError(fmt::format(

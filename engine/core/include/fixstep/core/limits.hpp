@@ -109,7 +109,9 @@ inline constexpr std::uint64_t disc_work = 128;
 ///    n linked bodies: limits.cpp has the model and its measurements);
 ///  - dynamic colliders × planes × plane_pair_work (the plane contacts, once a tick);
 ///  - dynamic colliders × segments × segment_pair_work (the segment contacts, once a tick);
-///  - discs × disc_work when settings.contacts is set (every collider with collide = true).
+///  - discs × disc_work when settings.contacts is set (every collider with collide = true),
+///    times (velocity_iterations + position_iterations) / 30 when those are more than the
+///    default 20 + 10 (rounded up).
 /// At most ~10^17 (the scene limits), never overflowing.
 [[nodiscard]] std::uint64_t tick_work(std::span<const BodyDef> bodies,
                                       std::span<const LinkDef> links,
