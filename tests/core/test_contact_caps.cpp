@@ -122,6 +122,26 @@ INSTANTIATE_TEST_SUITE_P(RestitutionAndSpeed, ContactCapsRow, ::testing::ValuesI
                                   std::to_string(int(info.param.speed));
                          });
 
+// A tick's second round of impacts (a disc knocked beyond its box) finds the sensor pairs again:
+// a sensor over the whole row reports each of its 8 discs once every tick, in every round.
+TEST(ContactCaps, ASensorSeesEachDiscOnceWhenTheImpactsRunAgain) {
+  WorldSettings s{.dt = 1.0 / 60.0};
+  s.contacts = ContactSettings{.restitution = 0.5, .friction = 0.0};
+  detail::WorldKernel<double> w(s);
+  (void)w.create_body(moving_disc({0.0, 0.0}, {0.0, 0.0}, 0.1, BodyType::static_body));
+  BodyDef sensor = moving_disc({-2.0, 0.0}, {0.0, 0.0}, 10.0, BodyType::static_body);
+  sensor.collider->sensor = true;
+  (void)w.create_body(sensor);
+  for (int i = 0; i < 8; ++i) {  // 30 cm apart at 50 m/s: disc 0 is knocked back at tick 2
+    (void)w.create_body(moving_disc({-0.3 - 0.5 * i, 0.0}, {50.0, 0.0}, 0.1));
+  }
+  for (int tick = 1; tick <= 3; ++tick) {
+    w.step();
+    ASSERT_FALSE(w.fault().has_value());
+    EXPECT_EQ(w.sensor_overlaps().size(), 8u) << "tick " << tick;
+  }
+}
+
 // The grids: two 100 × 100 grids of discs meeting at 1000 m/s sweep 16.7 m a tick, so
 // each disc's box meets hundreds of others: 2.3e6 candidate pairs, past max_candidate_pairs
 // (1.28e6 for 2e4 discs). Before, the tick's contacts were skipped without a word.

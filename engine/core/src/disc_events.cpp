@@ -140,6 +140,7 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) 
     return false;
   }
   box_pairs_ = pairs_.size();
+  sensor_pairs_.clear();  // a round after the first finds them again
   // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither, and
   // sensors only sense: none of them reaches the narrowphase.
   if (!linked_.empty() || !filters_.empty()) sort_out_pairs();
