@@ -1,6 +1,7 @@
 // The limits on work and memory (engine/core/src/limits.cpp), where they are checked (the scene
 // loader, check_limits, the recording reader), the guard run once per load, the engine's
 // progress reports, and the streaming recorder (engine/io/src/recording_writer.cpp).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -84,6 +85,15 @@ TEST(Limits, TickWorkCountsPlanesAndDiscs) {
   def.settings.contacts = ContactSettings{};
   // + the 2 colliders that collide (body 2 does not) × disc_work
   EXPECT_EQ(tick_work(def), 4u * 2u + 2u * 5u * plane_pair_work + 2u * disc_work);
+  // The resting solver's iterations beyond the default 20 + 10 weigh in: 1000 + 1000 is 67
+  // times the sweeps (they counted as 20 + 10).
+  def.settings.contacts->velocity_iterations = 1000;
+  def.settings.contacts->position_iterations = 1000;
+  EXPECT_EQ(tick_work(def),
+            4u * 2u + 2u * 5u * plane_pair_work + 2u * ((disc_work * 2000 + 29) / 30));
+  def.settings.contacts->velocity_iterations = 5;  // fewer: the broadphase's share stays
+  def.settings.contacts->position_iterations = 1;
+  EXPECT_EQ(tick_work(def), 4u * 2u + 2u * 5u * plane_pair_work + 2u * disc_work);
 }
 
 TEST(Limits, PlanesTimesCollidersBeyondATickAreRefusedNamingThePlanes) {
@@ -104,6 +114,60 @@ TEST(Limits, PlanesTimesCollidersBeyondATickAreRefusedNamingThePlanes) {
     EXPECT_NE(m.find("use fewer planes or fewer colliders"), std::string::npos) << m;
   }
   EXPECT_NO_THROW(check_world_limits(bodies, {}, std::span(planes).first(20'000), settings));
+}
+
+// Segments were not counted: 20 000 segments over 10^4 discs took 31 s a tick (a disc's query
+// may return every segment). Counted as planes are, at segment_pair_work each, they are
+// refused at load, by check_limits and by the scene loader at the first [[segment]] or
+// [[polyline]].
+TEST(Limits, SegmentsTimesCollidersBeyondATickAreRefusedNamingTheSegments) {
+  WorldDef def;
+  def.settings.dt = 0.01;
+  for (int i = 0; i < 10'000; ++i) {
+    BodyDef b;
+    b.body = {1.0, {0.3 * (i % 100), 1.0 + 0.3 * (i / 100)}, {}};
+    b.collider = Collider{.radius = 0.1};
+    def.bodies.push_back(b);
+  }
+  for (int i = 0; i < 20'000; ++i) {
+    def.segments.push_back(SegmentDef{.a = {0.01 * i, 0.0}, .b = {0.01 * i + 0.01, 0.0}});
+  }
+  // 10^4 bodies × 1 substep + 10^4 colliders × 2·10^4 segments × segment_pair_work
+  EXPECT_EQ(tick_work(def), 10'000u + 10'000u * 20'000u * segment_pair_work);
+  try {
+    check_limits(def);
+    FAIL() << "2e8 segment tests a tick accepted";
+  } catch (const LimitError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("10000 colliders × 20000 segments × 16 = 3200010000 body-substeps per tick"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("use fewer segments (a polyline's points) or fewer colliders"),
+              std::string::npos)
+        << m;
+  }
+  def.segments.resize(5'000);  // 8e8 + 10^4: within the limit
+  EXPECT_NO_THROW(check_limits(def));
+}
+
+TEST(Limits, ThePolylineBeyondATickIsRefusedAtItsTable) {
+  // 2000 discs and a polyline of 40 000 points: 2000 × 39 999 × 16 = 1.28e9.
+  std::string scene =
+      "[world]\ndt = 0.01\n[[grid]]\nname = \"g\"\ncolumns = 50\nrows = 40\n"
+      "origin = [0.0, 10.0]\nspacing = [0.5, 0.5]\n"
+      "body = { mass = 1.0, radius = 0.1 }\n"
+      "[[polyline]]\npoints = [";
+  for (int i = 0; i < 40'000; ++i) scene += fmt::format("[{}, {}],", 0.01 * i, (i % 2) * 0.01);
+  scene += "]\n";
+  try {
+    (void)parse_scene(scene, "long.toml");
+    FAIL() << "a polyline of 40 000 points over 2000 discs accepted";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("long.toml:"), std::string::npos) << m;
+    EXPECT_NE(m.find("polyline[0]: "), std::string::npos) << m;
+    EXPECT_NE(m.find("2000 colliders × 39999 segments"), std::string::npos) << m;
+  }
 }
 
 TEST(Limits, CheckLimitsRefusesATickBeyondTheWorkLimitBeforeStepping) {

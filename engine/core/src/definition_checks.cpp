@@ -51,7 +51,7 @@ std::vector<StabilityFinding> check_stability(const WorldDef& def) {
 }
 
 void check_limits(const WorldDef& def) {
-  check_world_limits(def.bodies, def.links, def.planes, def.settings);
+  check_world_limits(def.bodies, def.links, def.planes, def.settings, def.segments);
 }
 
 void check_overlaps(const WorldDef& def) {

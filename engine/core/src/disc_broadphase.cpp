@@ -164,75 +164,91 @@ void DiscBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
   }
 }
 
-void DiscBroadphase::scan_own_cell(std::size_t at, std::size_t h,
-                                   std::vector<DiscPair>& out) const {
+void DiscBroadphase::add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>& out,
+                         std::size_t& rejected) const {
+  const DiscPair p{std::min(a, b), std::max(a, b)};
+  if (veto_ && veto_->reject(veto_->context, p.a, p.b)) {
+    ++rejected;
+    return;
+  }
+  out.push_back(p);
+}
+
+void DiscBroadphase::scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out,
+                                   std::size_t& rejected) const {
   const Entry& q = entry_[at];  // dynamic: the dynamic boxes after it, then every static one
   for (std::size_t p = at + 1, end = start_[2 * h + 2]; p < end; ++p) {
     const Entry& e = entry_[p];
     if (e.cx != q.cx || e.cy != q.cy || !boxes_overlap(q.box, e.box)) continue;
-    out.push_back({std::min(q.index, e.index), std::max(q.index, e.index)});
+    add(q.index, e.index, out, rejected);
   }
 }
 
 void DiscBroadphase::scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx,
-                               std::int32_t cy, std::vector<DiscPair>& out) const {
+                               std::int32_t cy, std::vector<DiscPair>& out,
+                               std::size_t& rejected) const {
   const std::size_t h = bucket(level, cx, cy);
   for (std::size_t p = start_[2 * h], end = start_[2 * h + (act ? 2 : 1)]; p < end; ++p) {
     const Entry& e = entry_[p];
     if (e.cx != cx || e.cy != cy || !boxes_overlap(q.box, e.box)) continue;
-    out.push_back({std::min(q.index, e.index), std::max(q.index, e.index)});
+    add(q.index, e.index, out, rejected);
   }
 }
 
 void DiscBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
                                    std::span<const SweptBox> boxes,
-                                   std::span<const std::uint8_t> active,
-                                   std::vector<DiscPair>& out) const {
+                                   std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
+                                   std::size_t& rejected) const {
   const bool own = level_[q] == overflow;  // overflow boxes pair among themselves by index
   for (const std::uint32_t o : overflow_) {
     if ((own && o <= q) || (!act && active[o] == 0)) continue;
-    if (boxes_overlap(box, boxes[o])) out.push_back({std::min(q, o), std::max(q, o)});
+    if (boxes_overlap(box, boxes[o])) add(q, o, out, rejected);
   }
 }
 
 void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
                                 std::span<const SweptBox> boxes,
-                                std::span<const std::uint8_t> active,
-                                std::vector<DiscPair>& out) const {
+                                std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
+                                std::size_t& rejected) const {
   const Entry& q = entry_[at];
   const std::size_t h = bucket(level, q.cx, q.cy);
   const bool act = at < start_[2 * h + 1];
-  if (act) scan_own_cell(at, h, out);  // a static box finds its partners from the other side
-  for (const auto& d : half_stencil) scan_cell(q, act, level, q.cx + d[0], q.cy + d[1], out);
+  if (act)
+    scan_own_cell(at, h, out, rejected);  // a static box finds its partners from the other side
+  for (const auto& d : half_stencil)
+    scan_cell(q, act, level, q.cx + d[0], q.cy + d[1], out, rejected);
   // Coarser levels: their boxes whose home cell is one of the 3 x 3 around this one's.
   for (std::uint64_t m = level_mask_ & ((std::uint64_t{1} << level) - 1); m != 0; m &= m - 1) {
     const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
     const std::int32_t cx = cell_of(q.box.min_x, k), cy = cell_of(q.box.min_y, k);
     for (std::int32_t dy = -1; dy <= 1; ++dy) {
-      for (std::int32_t dx = -1; dx <= 1; ++dx) scan_cell(q, act, k, cx + dx, cy + dy, out);
+      for (std::int32_t dx = -1; dx <= 1; ++dx)
+        scan_cell(q, act, k, cx + dx, cy + dy, out, rejected);
     }
   }
-  if (!overflow_.empty()) scan_overflow(q.box, q.index, act, boxes, active, out);
+  if (!overflow_.empty()) scan_overflow(q.box, q.index, act, boxes, active, out, rejected);
 }
 
 bool DiscBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow,
                           std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
                           std::size_t max_pairs, std::vector<DiscPair>& out) const {
   out.clear();
+  std::size_t rejected = 0;
+  const std::size_t most_rejected = veto_ ? veto_->max_rejected : 0;
   for (std::uint64_t m = level_mask_; m != 0; m &= m - 1) {
     const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
     const std::size_t first = start_[2 * std::size_t{levels_[k].base}];
     const std::size_t last =
         start_[2 * (levels_[k].base + std::size_t{levels_[k].wmask + 1} * (levels_[k].hmask + 1))];
     for (std::size_t at = std::max(begin, first); at < std::min(end, last); ++at) {
-      scan_entry(at, k, boxes, active, out);
-      if (out.size() > max_pairs) return false;
+      scan_entry(at, k, boxes, active, out, rejected);
+      if (out.size() > max_pairs || rejected > most_rejected) return false;
     }
   }
   if (with_overflow) {  // the overflow boxes' own searches (on the first thread)
     for (const std::uint32_t o : overflow_) {
-      scan_overflow(boxes[o], o, active[o] != 0, boxes, active, out);
-      if (out.size() > max_pairs) return false;
+      scan_overflow(boxes[o], o, active[o] != 0, boxes, active, out, rejected);
+      if (out.size() > max_pairs || rejected > most_rejected) return false;
     }
   }
   return true;

@@ -105,6 +105,19 @@ class DiscBroadphase {
   bool find_pairs(std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
                   std::size_t max_pairs, std::vector<DiscPair>& pairs, int threads);
 
+  /// Pairs that can never touch, which find_pairs leaves out and does not count against its
+  /// max_pairs: reject(context, a, b) true drops the pair (a < b; called from both threads, so
+  /// it must only read). More than max_rejected dropped by one thread's share makes find_pairs
+  /// return false as max_pairs does, which bounds its work: O(n + max_pairs + max_rejected).
+  struct PairVeto {
+    bool (*reject)(const void* context, std::uint32_t a, std::uint32_t b) = nullptr;
+    const void* context = nullptr;
+    std::size_t max_rejected = 0;
+  };
+  /// The veto of the next find_pairs calls (null: none; then every overlapping pair counts).
+  /// It must outlive them.
+  void set_veto(const PairVeto* veto) { veto_ = veto; }
+
   /// Sets the n from which threads = 2 splits the work (min_parallel_boxes by default; 0 to
   /// split always, as the benchmark does to measure the hand-off).
   void set_parallel_min(std::size_t n) { parallel_min_ = n; }
@@ -168,14 +181,20 @@ class DiscBroadphase {
   bool scan(std::size_t begin, std::size_t end, bool with_overflow, std::span<const SweptBox> boxes,
             std::span<const std::uint8_t> active, std::size_t max_pairs,
             std::vector<DiscPair>& out) const;
+  /// Appends the pair (a, b) in (min, max) order to out, or counts it in `rejected` when the
+  /// veto rejects it.
+  void add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>& out,
+           std::size_t& rejected) const;
   void scan_entry(std::size_t at, std::uint32_t level, std::span<const SweptBox> boxes,
-                  std::span<const std::uint8_t> active, std::vector<DiscPair>& out) const;
+                  std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
+                  std::size_t& rejected) const;
   void scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx, std::int32_t cy,
-                 std::vector<DiscPair>& out) const;
-  void scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out) const;
+                 std::vector<DiscPair>& out, std::size_t& rejected) const;
+  void scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out,
+                     std::size_t& rejected) const;
   void scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
                      std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
-                     std::vector<DiscPair>& out) const;
+                     std::vector<DiscPair>& out, std::size_t& rejected) const;
 
   std::vector<std::uint32_t> level_;  // per box: its level, or `overflow`
   std::array<Level, max_levels> levels_;
@@ -191,6 +210,7 @@ class DiscBroadphase {
   std::array<std::vector<DiscPair>, 2> raw_;  // unsorted pairs found by each thread
   std::vector<std::uint32_t> offset_;         // order_pairs' scratch
   std::size_t parallel_min_ = min_parallel_boxes;
+  const PairVeto* veto_ = nullptr;
   SecondThread second_;
 };
 

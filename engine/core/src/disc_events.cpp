@@ -133,12 +133,14 @@ template <class Real>
 bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) {
   const std::size_t n = discs_.size();
   const std::size_t cap = max_candidate_pairs(n);  // limits.hpp; a pile: ~3 per disc
-  if (!broadphase_.find_pairs(boxes_, dynamic_, cap, pairs_, tick.threads)) {
+  if (!pairs_of(boxes_, pairs_, tick.threads)) {
     stats.candidate_pairs = cap, stats.capped = 1;
     pairs_.clear();
     cap_ = CapHit{"max_candidate_pairs", cap, largest_box(), CapHit::npos, 0.0};
     return false;
   }
+  box_pairs_ = pairs_.size();
+  sensor_pairs_.clear();  // a round after the first finds them again
   // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither, and
   // sensors only sense: none of them reaches the narrowphase.
   if (!linked_.empty() || !filters_.empty()) sort_out_pairs();
@@ -235,7 +237,7 @@ void DiscContacts<Real>::first_events(const Tick& tick) {
 }
 
 template <class Real>
-void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
+void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt, bool plastic) {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
   DiscMotion &ma = motion_[a], &mb = motion_[b];
   for (DiscMotion* m : {&ma, &mb}) {
@@ -250,7 +252,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   const double vn = std::min(wx * nx + wy * ny, 0.0);
   const double cn = (ma.ax - mb.ax) * nx + (ma.ay - mb.ay) * ny;
   const Disc &da = discs_[a], &db = discs_[b];
-  double e = std::max(da.restitution, db.restitution);
+  double e = plastic ? 0.0 : std::max(da.restitution, db.restitution);
   if (e * -vn <= std::max(-cn, 0.0) * dt) e = 0.0;  // it would hit again within the tick: rest
   const double mass = 1.0 / (da.inv_mass + db.inv_mass);
   const double jn = -(1.0 + e) * vn * mass;
@@ -283,7 +285,72 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   for (const std::uint32_t k : {a, b}) {
     if (!discs_[k].dynamic) continue;
     ++stamp_[k], ++impacts_[k], changed_[k] = 1;
+    grow_box(k, now, dt);
   }
+}
+
+template <class Real>
+void DiscContacts<Real>::grow_box(std::uint32_t k, double now, double dt) {
+  const DiscMotion& m = motion_[k];
+  const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
+  SweptBox piece;
+  extent(m.x, m.ux, m.ax, dt - now, pad, piece.min_x, piece.max_x);
+  extent(m.y, m.uy, m.ay, dt - now, pad, piece.min_y, piece.max_y);
+  // Beyond its box by at most the slop, a disc still meets none it was not paired with:
+  // boxes that do not overlap keep the paths (r_a + r_b)(1 + 2 slop) apart.
+  const double give = discs_[k].radius * slop;
+  SweptBox& b = grown_[k];
+  if (piece.min_x >= b.min_x - give && piece.max_x <= b.max_x + give &&
+      piece.min_y >= b.min_y - give && piece.max_y <= b.max_y + give) {
+    return;  // within the box the broadphase paired it by (NaN: the runtime guard's)
+  }
+  b.min_x = std::min(b.min_x, piece.min_x), b.max_x = std::max(b.max_x, piece.max_x);
+  b.min_y = std::min(b.min_y, piece.min_y), b.max_y = std::max(b.max_y, piece.max_y);
+  grew_ = true;
+}
+
+template <class Real>
+bool DiscContacts<Real>::pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out,
+                                  int threads) {
+  const std::size_t cap = max_candidate_pairs(discs_.size());
+  if (linked_.empty() && filters_.empty()) {
+    return broadphase_.find_pairs(boxes, dynamic_, cap, out, threads);
+  }
+  // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither: the
+  // broadphase drops them without counting them against the cap (discs a filter keeps apart
+  // may all be at one point), up to max_vetoed_pairs of them.
+  auto reject = [](const void* context, std::uint32_t a, std::uint32_t b) {
+    const auto& self = *static_cast<const DiscContacts*>(context);
+    if (!self.may_collide(a, b)) return true;
+    const std::uint64_t key = (std::uint64_t(a) << 32) | b;
+    return !self.linked_.empty() &&
+           std::binary_search(self.linked_.begin(), self.linked_.end(), key);
+  };
+  const DiscBroadphase::PairVeto veto{reject, this, max_vetoed_pairs(discs_.size())};
+  broadphase_.set_veto(&veto);
+  const bool ok = broadphase_.find_pairs(boxes, dynamic_, cap, out, threads);
+  broadphase_.set_veto(nullptr);
+  return ok;
+}
+
+template <class Real>
+bool DiscContacts<Real>::pairs_grow(const Tick& tick) {
+  // Boxes only grow, so the pairs of the grown boxes hold the round's: more of them is new.
+  return !pairs_of(grown_, grown_pairs_, tick.threads) || grown_pairs_.size() != box_pairs_;
+}
+
+template <class Real>
+void DiscContacts<Real>::restart_events(const Tick& tick) {
+  motion_ = motion0_;
+  for (std::size_t k = 0; k < discs_.size(); ++k) {
+    if (changed_[k]) {
+      const std::uint32_t j = discs_[k].body;
+      ex_[k] = tick.x[j], ey_[k] = tick.y[j], evx_[k] = tick.vx[j], evy_[k] = tick.vy[j];
+    }
+    if (!ew_.empty()) ew_[k] = double(tick.spin[discs_[k].body]);
+    stamp_[k] = 0, impacts_[k] = 0, changed_[k] = 0, external_[k] = 0;
+  }
+  boxes_ = grown_;
 }
 
 template <class Real>
@@ -300,14 +367,37 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 }
 
 template <class Real>
-bool DiscContacts<Real>::handed_over(std::uint32_t pair, double dt) const {
+std::uint32_t DiscContacts<Real>::escaped() const {
+  std::uint32_t best = 0;
+  double most = -1.0;
+  for (std::uint32_t k = 0; k < boxes_.size(); ++k) {
+    const SweptBox &b = boxes_[k], &g = grown_[k];
+    const double grew =
+        (b.min_x - g.min_x) + (g.max_x - b.max_x) + (b.min_y - g.min_y) + (g.max_y - b.max_y);
+    if (grew > most) most = grew, best = k;
+  }
+  return best;
+}
+
+template <class Real>
+int DiscContacts<Real>::past_impacts(std::uint32_t pair, double now, double dt) const {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
-  if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return false;
-  if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return false;
+  if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return resolve_it;
+  if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return resolve_it;
   const DiscMotion &ma = motion_[a], &mb = motion_[b];
-  const double gap =
-      length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - (discs_[a].radius + discs_[b].radius);
-  return gap <= 0.0;  // it ends the tick overlapping: the resting solver stops it approaching
+  // The overlap at the tick's end along the normal of now: where the centres would cross
+  // (through each other, or a disc through a static one), it is negative past the radii.
+  const double nx0 = ma.px(now) - mb.px(now), ny0 = ma.py(now) - mb.py(now);
+  const double len = length(nx0, ny0);
+  if (!(len > 0.0)) return plastic;
+  const double along = ((ma.px(dt) - mb.px(dt)) * nx0 + (ma.py(dt) - mb.py(dt)) * ny0) / len;
+  const double radii = discs_[a].radius + discs_[b].radius;
+  const double gap = length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - radii;
+  if (gap > 0.0) return resolve_it;  // apart at the end: it would pass through
+  // Closing by at most one push-out sweep until the end: the resting solver stops it
+  // approaching (e = 0) and pushes the overlap out.
+  const double reach = max_push_out * std::min(discs_[a].radius, discs_[b].radius);
+  return len - along <= reach ? hand_over : plastic;
 }
 
 template <class Real>
@@ -315,7 +405,8 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
   impact_log_.clear();
   first_events(tick);
-  std::uint64_t again = 0;  // predictions after impacts, at most max_tick_predictions
+  std::uint64_t again = 0;   // predictions after impacts, at most max_tick_predictions
+  std::uint64_t polled = 0;  // again / 2^16 at the last stop poll
   const std::uint64_t cap = max_tick_predictions(discs_.size());
   while (!heap_.empty()) {
     std::pop_heap(heap_.begin(), heap_.end(), later);
@@ -323,14 +414,19 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
     heap_.pop_back();
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
-    if (handed_over(ev.pair, dt)) continue;  // the resting solver's (see disc_contacts.hpp)
-    if (again > cap) {                       // an impact due that the cap leaves unresolved
+    const int past = past_impacts(ev.pair, ev.time, dt);
+    if (past == hand_over) continue;  // the resting solver's (see disc_contacts.hpp)
+    if (again > cap) {                // an impact due that the cap leaves unresolved
       cap_ = CapHit{"max_tick_predictions", cap, a, b, ev.time};
       stats.capped = 1;
       break;
     }
-    impact(ev.pair, ev.time, dt);
-    if (++stats.impacts % 4096 == 0) throw_if_stop_requested();  // a long tick stays stoppable
+    impact(ev.pair, ev.time, dt, past == plastic);
+    ++stats.impacts;
+    if (again >> 16 != polled) {  // a long tick stays stoppable: every 65 536 predictions
+      polled = again >> 16;
+      throw_if_stop_requested();
+    }
     for (const std::uint32_t k : {a, b}) {
       if (!discs_[k].dynamic) continue;
       again += offset_[k + 1] - offset_[k];
@@ -362,12 +458,28 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   build_motions(tick);
   if (tick.wake) tick.wake(tick.wake_context);
   for (std::size_t k = 0; k < ew_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);
-  const bool candidates = find_candidates(tick, stats);
-  profile.broadphase = clock.lap();
-  profile.impacts = profile.resting = 0.0;
-  if (!candidates) return;
-  run_events(tick, stats);
-  profile.impacts = clock.lap();
+  motion0_ = motion_, grown_ = boxes_;
+  profile.broadphase = profile.impacts = profile.resting = 0.0;
+  for (int round = 1;; ++round) {
+    const bool candidates = find_candidates(tick, stats);
+    profile.broadphase += clock.lap();
+    if (!candidates) return;
+    grew_ = false;
+    run_events(tick, stats);
+    profile.impacts += clock.lap();
+    // An impact sent a disc out of the box the broadphase paired it by: its new path may meet
+    // discs it was not paired with. If the boxes grown over the paths found pair more discs,
+    // the tick's impacts again, from its start, with those boxes (boxes only grow).
+    if (!grew_ || cap_.cap || !pairs_grow(tick)) break;
+    profile.broadphase += clock.lap();
+    if (round == max_box_rounds) {
+      cap_ = CapHit{"max_box_rounds", max_box_rounds, escaped(), CapHit::npos, 0.0};
+      stats.capped = 1;
+      return;
+    }
+    restart_events(tick);
+    stats.impacts = 0;
+  }
   gather_contacts(tick);
   split_contacts(stats);
   solve_resting(tick, stats);
@@ -381,13 +493,13 @@ template <class Real>
 std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
-         b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
-         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(touch_) + b(plane_half_[0]) +
-         b(plane_half_[1]) + b(heap_) + b(events_) + b(impact_log_) + b(contacts_) + b(order_) +
-         b(scratch_) + b(cut_) + b(warm_) + b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) +
-         b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) +
-         b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) +
-         b(sw_);
+         b(vx0_) + b(vy0_) + b(motion_) + b(motion0_) + b(boxes_) + b(grown_) + b(grown_pairs_) +
+         b(dynamic_) + b(pairs_) + b(offset_) + b(incident_) + b(stamp_) + b(impacts_) +
+         b(changed_) + b(touch_) + b(plane_half_[0]) + b(plane_half_[1]) + b(heap_) + b(events_) +
+         b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
+         b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
+         b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
+         b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
 }
 
 }  // namespace fixstep::detail

@@ -44,14 +44,26 @@ std::uint64_t implicit_body_weight(std::uint64_t linked) {
   return static_cast<std::uint64_t>(std::ceil(64.0 * std::sqrt(static_cast<double>(linked))));
 }
 
+/// disc_work, for the resting solver's default 20 + 10 iterations, times the settings' share of
+/// them beyond (ContactSettings allows up to 1000 + 1000: 67 times the sweeps).
+std::uint64_t disc_weight(const WorldSettings& settings) {
+  if (!settings.contacts) return disc_work;
+  constexpr int defaults =
+      ContactSettings::default_velocity_iterations + ContactSettings::default_position_iterations;
+  const int iterations = std::max(
+      settings.contacts->velocity_iterations + settings.contacts->position_iterations, defaults);
+  return (disc_work * static_cast<std::uint64_t>(iterations) + defaults - 1) / defaults;
+}
+
 /// The terms of tick_work (limits.hpp), in body-substeps.
 struct WorkTerms {
-  std::uint64_t bodies_links = 0, implicit = 0, planes = 0, discs = 0;
+  std::uint64_t bodies_links = 0, implicit = 0, planes = 0, segments = 0, discs = 0;
   std::uint64_t colliders = 0, disc_count = 0;  // dynamic colliders; discs in contacts
 };
 
 WorkTerms work_terms(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
-                     std::span<const PlaneDef> planes, const WorldSettings& settings) {
+                     std::span<const PlaneDef> planes, const WorldSettings& settings,
+                     std::span<const SegmentDef> segments) {
   WorkTerms t;
   const auto substeps = static_cast<std::uint64_t>(std::max(settings.substeps, 1));
   t.bodies_links = (bodies.size() + links.size()) * substeps;
@@ -64,7 +76,8 @@ WorkTerms work_terms(std::span<const BodyDef> bodies, std::span<const LinkDef> l
     t.disc_count += settings.contacts && b.collider->collide ? 1 : 0;
   }
   t.planes = t.colliders * planes.size() * plane_pair_work;
-  t.discs = t.disc_count * disc_work;
+  t.segments = t.colliders * segments.size() * segment_pair_work;
+  t.discs = t.disc_count * disc_weight(settings);
   return t;
 }
 
@@ -80,13 +93,14 @@ std::uint64_t max_candidate_pairs(std::uint64_t discs) {
 }
 
 std::uint64_t tick_work(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
-                        std::span<const PlaneDef> planes, const WorldSettings& settings) {
-  const WorkTerms t = work_terms(bodies, links, planes, settings);
-  return t.bodies_links + t.implicit + t.planes + t.discs;
+                        std::span<const PlaneDef> planes, const WorldSettings& settings,
+                        std::span<const SegmentDef> segments) {
+  const WorkTerms t = work_terms(bodies, links, planes, settings, segments);
+  return t.bodies_links + t.implicit + t.planes + t.segments + t.discs;
 }
 
 std::uint64_t tick_work(const WorldDef& def) {
-  return tick_work(def.bodies, def.links, def.planes, def.settings);
+  return tick_work(def.bodies, def.links, def.planes, def.settings, def.segments);
 }
 
 std::uint64_t implicit_solve_bytes(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
@@ -117,7 +131,8 @@ bool implicit_solve_within_limits(std::span<const BodyDef> bodies, std::span<con
 }
 
 void check_world_limits(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
-                        std::span<const PlaneDef> planes, const WorldSettings& settings) {
+                        std::span<const PlaneDef> planes, const WorldSettings& settings,
+                        std::span<const SegmentDef> segments) {
   if (implicit_with_links(links, settings) && linked_count(bodies, links) > max_implicit_bodies) {
     throw LimitError(fmt::format(
         "implicit_euler on {} linked bodies: at most {} may be solved together (one sparse "
@@ -134,8 +149,8 @@ void check_world_limits(std::span<const BodyDef> bodies, std::span<const LinkDef
         "stability guard says) for a network this large",
         linked_count(bodies, links), gib(bytes), gib(max_implicit_solve_bytes)));
   }
-  const WorkTerms t = work_terms(bodies, links, planes, settings);
-  const std::uint64_t work = t.bodies_links + t.implicit + t.planes + t.discs;
+  const WorkTerms t = work_terms(bodies, links, planes, settings, segments);
+  const std::uint64_t work = t.bodies_links + t.implicit + t.planes + t.segments + t.discs;
   if (work > max_tick_work) {
     std::string terms =
         fmt::format("{} bodies + {} links{} × {} substeps", bodies.size(), links.size(),
@@ -146,15 +161,23 @@ void check_world_limits(std::span<const BodyDef> bodies, std::span<const LinkDef
     if (t.planes > 0) {
       terms += fmt::format(" + {} colliders × {} planes", t.colliders, planes.size());
     }
-    if (t.discs > 0) terms += fmt::format(" + {} discs × {} (contacts)", t.disc_count, disc_work);
+    if (t.segments > 0) {
+      terms += fmt::format(" + {} colliders × {} segments × {}", t.colliders, segments.size(),
+                           segment_pair_work);
+    }
+    if (t.discs > 0) {
+      terms += fmt::format(" + {} discs × {} (contacts)", t.disc_count, disc_weight(settings));
+    }
+    const std::uint64_t most =
+        std::max({t.bodies_links, t.implicit, t.planes, t.segments, t.discs});
     throw LimitError(fmt::format(
         "{} = {} body-substeps per tick; a tick may do at most {:.0e} (about 10 s of CPU): use "
         "fewer {}",
         terms, work, double(max_tick_work),
-        t.planes > std::max({t.bodies_links, t.implicit, t.discs})
-            ? "planes or fewer colliders"
-            : (t.discs > std::max(t.bodies_links, t.implicit) ? "discs"
-                                                              : "substeps or fewer bodies")));
+        most == t.segments ? "segments (a polyline's points) or fewer colliders"
+        : most == t.planes ? "planes or fewer colliders"
+        : most == t.discs  ? "discs"
+                           : "substeps or fewer bodies"));
   }
 }
 

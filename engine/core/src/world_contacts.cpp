@@ -159,8 +159,13 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
   const ContactScratch& c = contact_;
   PlaneTally tally;
   if (segments_.moves()) plane_work_.assign(body_count(), 0.0);
+  segment_tests_ = polled_tests_ = 0;
   for (std::size_t k = 0; k < c.body.size(); ++k) {
-    if (k % 1024 == 1023) throw_if_stop_requested();  // many planes: a tick of seconds
+    if (k % 1024 == 1023) {  // many planes: a tick of seconds
+      ++plane_polls_;
+      throw_if_stop_requested();
+    }
+    poll_segment_work();  // many segments: a disc may test every one
     resolve_body_contacts(k, tally);
   }
   if (tally.out_of_range && !fault_) record_fault();
@@ -216,6 +221,7 @@ void detail::WorldKernel<Real>::follow_plane_impacts(PlaneWay& w, std::uint32_t 
   const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
   Motion& m = w.m;
   for (int i = 0;; ++i) {
+    poll_segment_work();
     const double horizon = dt - m.t;
     // Rounding of the offset (x1 - x0)/dt is up to about eps |x|/dt.
     const double vtol = rel * (norm(m.v) + norm(m.a) * dt + norm(m.x) / dt);

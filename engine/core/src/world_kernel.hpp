@@ -31,6 +31,7 @@
 #include "fixstep/core/integrators.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "segment_set.hpp"
 
@@ -352,6 +353,11 @@ class WorldKernel {
   /// Disc-disc contacts of the last tick (WorldSettings::contacts): what the broadphase and the
   /// solver did. Zero without contacts.
   [[nodiscard]] const ContactStats& contact_stats() const { return contact_stats_; }
+  /// How many times the plane passes (planes and segments) polled a stop request, over the
+  /// world's life: every 1024 colliders, and every plane_poll_tests segment tests.
+  [[nodiscard]] std::uint64_t plane_polls() const { return plane_polls_; }
+  /// Segment tests of a plane pass between two stop polls (a disc may test every segment).
+  static constexpr std::uint64_t plane_poll_tests = 1 << 16;
   /// Where the last tick's time went, with disc contacts (StepProfile); zero without.
   [[nodiscard]] const StepProfile& profile() const { return profile_; }
   /// The disc-disc impacts of the last tick in the order they were resolved (empty without
@@ -581,6 +587,16 @@ class WorldKernel {
   // Static segments (world_segments.cpp): the plane pass meets them as local planes.
   SegmentSet segments_;
   std::vector<std::uint32_t> segment_found_;  ///< a query's scratch
+  /// Segments tested in this tick's plane pass, and the count at its last stop poll: the pass
+  /// polls a stop request every plane_poll_tests tests (a disc may test every segment).
+  std::uint64_t segment_tests_ = 0, polled_tests_ = 0;
+  std::uint64_t plane_polls_ = 0;  ///< stop polls of the plane passes so far (plane_polls())
+  /// Polls a stop request when plane_poll_tests segments were tested since the last poll.
+  void poll_segment_work() {
+    if (segment_tests_ - polled_tests_ < plane_poll_tests) return;
+    polled_tests_ = segment_tests_, ++plane_polls_;
+    throw_if_stop_requested();
+  }
   /// Work of the moving segments on each body in this tick's plane pass, J/kg (dense order;
   /// empty while no segment moves): the resting solver's account of a disc takes it.
   std::vector<double> plane_work_;

@@ -88,6 +88,7 @@ template <class Real>
 bool detail::WorldKernel<Real>::segment_overlap(double x, double y, double r, double tol,
                                                 double time, PlaneDef& plane, Vec2& u) {
   segments_.query(x - r, y - r, x + r, y + r, segment_found_);
+  segment_tests_ += segment_found_.size();
   double deepest = -tol;
   bool found = false;
   for (const std::uint32_t i : segment_found_) {
@@ -119,6 +120,7 @@ double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion& m, doub
                        r * (1.0 + 1e-9);
   segments_.query(m.x - reach, m.y - reach, m.x + reach, m.y + reach, segment_found_);
   looked += segment_found_.size();
+  segment_tests_ += segment_found_.size();
   const double tol = rel * (std::abs(m.x) + std::abs(m.y) + r);
   double first = std::numeric_limits<double>::infinity();
   for (const std::uint32_t i : segment_found_) {

@@ -325,13 +325,23 @@ void parse_bodies(Reader& r, const toml::table& doc, Scene& scene, BodyNames& na
 
 /// The work and memory limits (limits.hpp), an error at the key of `world` that sets the work
 /// per tick.
-void check_limits(const Reader& r, const Scene& scene, const toml::table& world) {
+void check_limits(const Reader& r, const Scene& scene, const toml::table& doc,
+                  const toml::table& world) {
+  const WorldDef& def = scene.def;
   try {
-    check_world_limits(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings);
+    check_world_limits(def.bodies, def.links, def.planes, def.settings, def.segments);
   } catch (const LimitError& e) {
-    // check_world_limits checks the implicit solve's size first, then the work per tick.
-    const bool memory =
-        !implicit_solve_within_limits(scene.def.bodies, scene.def.links, scene.def.settings);
+    // check_world_limits checks the implicit solve's size first, then the work per tick. A
+    // world within the work without its segments is over it by them: at its first
+    // [[segment]] (or [[polyline]]).
+    if (!def.segments.empty() &&
+        tick_work(def.bodies, def.links, def.planes, def.settings) <= max_tick_work) {
+      const bool single = doc.get("segment") != nullptr;
+      const toml::array* list = doc.get_as<toml::array>(single ? "segment" : "polyline");
+      const toml::node* first = list && !list->empty() ? list->get(0) : nullptr;
+      if (first) r.fail(first->source(), single ? "segment[0]" : "polyline[0]", e.what());
+    }
+    const bool memory = !implicit_solve_within_limits(def.bodies, def.links, def.settings);
     const std::string key = memory ? "integrator" : "substeps";
     const toml::node* at = world.get(key);
     r.fail(at ? at->source() : world.source(), at ? "world." + key : "world", e.what());
@@ -374,7 +384,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   parse_contacts(r, doc, scene);
   check_magnitudes(r, doc, "");  // every number, after the keys' own ranges
   check_start_overlap(scene, names);
-  check_limits(r, scene, world);
+  check_limits(r, scene, doc, world);
   scene.warnings = r.take_warnings();
   scene.text = std::string(text);
   return scene;

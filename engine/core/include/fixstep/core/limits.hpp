@@ -19,6 +19,7 @@
 #include <string>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
@@ -46,9 +47,19 @@ inline constexpr std::uint64_t max_implicit_bodies = 25'000;
 /// Past it the tick's disc contacts are not resolved: World::step records a StateFault naming
 /// this cap, the tick and the disc with the largest swept box, and ContactStats::capped counts it.
 [[nodiscard]] std::uint64_t max_candidate_pairs(std::uint64_t discs);
+/// Most pairs of overlapping swept boxes the broadphase may drop in one tick of a world of
+/// `discs` discs because they can never touch (linked discs, collision filters that keep them
+/// apart): 16 max_candidate_pairs(discs), a bound on its work only (dropped pairs take no
+/// memory and do not count against max_candidate_pairs). 2000 discs a filter keeps apart at one
+/// point drop 2·10^6. Past it World::step records a StateFault naming max_candidate_pairs.
+[[nodiscard]] inline std::uint64_t max_vetoed_pairs(std::uint64_t discs) {
+  return 16 * max_candidate_pairs(discs);
+}
 /// Most times of impact one tick of a world of `bodies` discs (or plane colliders) may predict
 /// again after impacts: a disc pair's after an impact of either disc, and a body's plane tests
-/// after its 8th plane event of the tick (one per plane). max(2^24, 256 n). Piles and gases
+/// after its 8th plane event of the tick (one per plane). max(2^26, 256 n): a disc pair's
+/// prediction (a quartic's roots) costs about 16 body-substeps, so 2^26 of them are about
+/// max_tick_work, and a tick is polled for stop requests every 2^16. Piles and gases
 /// stay far below it (docs/ROBUSTNESS.md, "No physics dropped by a cap"); a row of hundreds of
 /// fast elastic discs driven into a peg, or a disc bouncing between two planes millions of
 /// times a tick, reaches it. Past it World::step records a StateFault naming this cap, the
@@ -56,8 +67,18 @@ inline constexpr std::uint64_t max_implicit_bodies = 25'000;
 /// (A body coming to rest in a corner of two planes settles over ticks: that is not an impact
 /// and is not counted.)
 [[nodiscard]] constexpr std::uint64_t max_tick_predictions(std::uint64_t bodies) {
-  return std::max<std::uint64_t>(std::uint64_t{1} << 24, 256 * bodies);
+  return std::max<std::uint64_t>(std::uint64_t{1} << 26, 256 * bodies);
 }
+
+/// Most rounds of one tick's disc impacts. The broadphase pairs discs by the boxes their free
+/// motions sweep over the tick; an impact can send a disc beyond its box (a disc knocked back
+/// the way it came, faster), where it may meet discs it was not paired with. The tick's impacts
+/// are then found again from its start with each box grown over the paths the impacts gave
+/// (boxes only grow), until no disc leaves its box: one round in a pile or a slow gas, two or
+/// three when fast discs bounce back through a crowd. Past this many rounds World::step
+/// records a StateFault naming this cap and the disc whose box grew most in the last round,
+/// and ContactStats::capped counts it.
+inline constexpr int max_box_rounds = 16;
 
 /// A claim beyond one of the limits above. what() names the claim, the limit and the way out.
 class LimitError : public std::runtime_error {
@@ -69,6 +90,13 @@ class LimitError : public std::runtime_error {
 /// tests each collider against every plane about three times a tick (push-out, the search for
 /// the first impact, the end check) and more after each impact (world_contacts.cpp).
 inline constexpr std::uint64_t plane_pair_work = 1;
+/// Weight of one (dynamic collider, segment) pair in a tick, in body-substeps: the plane pass
+/// queries the segment grid about three times a tick per collider and more after each impact,
+/// and a query may return every segment (a disc's reach wider than the grid, a segment over
+/// more than 64 cells, a segment a kinematic body carries); a segment test (closest feature and
+/// time of impact) costs about 16 body-substeps (docs/ROBUSTNESS.md, "Limits on work and
+/// memory"). A polyline of n points is n - 1 segments (n closed).
+inline constexpr std::uint64_t segment_pair_work = 16;
 /// Weight of one disc of a world with contacts in a tick, in body-substeps: its swept box in the
 /// broadphase, its candidate pairs' times of impact, and the resting solver's sweeps over its
 /// contacts (about three per disc in a pile; disc_contacts.hpp).
@@ -80,12 +108,16 @@ inline constexpr std::uint64_t disc_work = 128;
 ///  - bodies × 64·√n × substeps for implicit Euler on a world with links (its sparse solve over
 ///    n linked bodies: limits.cpp has the model and its measurements);
 ///  - dynamic colliders × planes × plane_pair_work (the plane contacts, once a tick);
-///  - discs × disc_work when settings.contacts is set (every collider with collide = true).
+///  - dynamic colliders × segments × segment_pair_work (the segment contacts, once a tick);
+///  - discs × disc_work when settings.contacts is set (every collider with collide = true),
+///    times (velocity_iterations + position_iterations) / 30 when those are more than the
+///    default 20 + 10 (rounded up).
 /// At most ~10^17 (the scene limits), never overflowing.
 [[nodiscard]] std::uint64_t tick_work(std::span<const BodyDef> bodies,
                                       std::span<const LinkDef> links,
                                       std::span<const PlaneDef> planes,
-                                      const WorldSettings& settings);
+                                      const WorldSettings& settings,
+                                      std::span<const SegmentDef> segments = {});
 /// tick_work of def's world.
 [[nodiscard]] std::uint64_t tick_work(const WorldDef& def);
 
@@ -103,14 +135,15 @@ inline constexpr std::uint64_t disc_work = 128;
                                                 std::span<const LinkDef> links,
                                                 const WorldSettings& settings);
 
-/// Throws LimitError when one tick of the world would exceed max_tick_work ("N bodies + M
-/// links × S substeps + ... = W body-substeps per tick; a tick may do at most 1e+09 ...", each
-/// term of tick_work named) or its implicit solve max_implicit_bodies or
+/// Throws LimitError when one tick of the world (with `segments`, a WorldDef's) would exceed
+/// max_tick_work ("N bodies + M links × S substeps + ... = W body-substeps per tick; a tick may do
+/// at most 1e+09 ...", each term of tick_work named) or its implicit solve max_implicit_bodies or
 /// max_implicit_solve_bytes (naming the integrator, the linked body count, the estimate and the
 /// way out: semi_implicit_euler with substeps). check_limits(def) calls it (definition_checks.hpp),
 /// the scene loader too (locating the message at [world] substeps). Throws std::invalid_argument
 /// for a link index out of range.
 void check_world_limits(std::span<const BodyDef> bodies, std::span<const LinkDef> links,
-                        std::span<const PlaneDef> planes, const WorldSettings& settings);
+                        std::span<const PlaneDef> planes, const WorldSettings& settings,
+                        std::span<const SegmentDef> segments = {});
 
 }  // namespace fixstep
