@@ -533,9 +533,9 @@ expect "a small scene keeps its exact error" '^exact_error=' "$work/small_exact.
 # naming a body of a 2 MB name asked for 6.4 GB. Within 2 GB of address space the render ends
 # with the guard's located error (exit 3), not an allocation failure. Not under ASan.
 if ! grep -qa __asan_init "$fixstep"; then
-  { printf '[world]\ndt = 0.01\n[[body]]\nname = "'; head -c 2000000 /dev/zero | tr '\0' x
-    printf '"\ntype = "kinematic"\nposition = [0.0, 0.0]\nvelocity = [1e13, 0.0]\n'; } >"$work/long_name.toml"
-  (ulimit -v 2000000 && "$fixstep" render "$work/long_name.toml" --out "$work/long_name" --frames 3 \
+  { printf '[world]\ndt = 0.5\n[[body]]\nname = "'; head -c 2000000 /dev/zero | tr '\0' x
+    printf '"\ntype = "kinematic"\nposition = [0.0, 0.0]\nvelocity = [9e11, 0.0]\n'; } >"$work/long_name.toml"
+  (ulimit -v 2000000 && "$fixstep" render "$work/long_name.toml" --out "$work/long_name" --frames 120 \
     --size 320x180 2>&1 >/dev/null; echo "exit=$?") | cut -c1-200 | cat >"$work/long_name.out"
   expect "a 2 MB body name in the guard's HUD message: the located error, exit 3, within 2 GB" \
     '^exit=3$' "$work/long_name.out"

@@ -64,7 +64,7 @@ refused "--scene for a game built in code" 2 "--scene level.toml: peggle builds 
   --scene level.toml --frames 5
 fx() { timeout 20 "$airhockey" "$@"; }
 refused "a match's --scene for a game built in code" 2 "--scene level.toml: airhockey builds" \
-  --join 127.0.0.1:9 --scene level.toml --bot --ticks 10
+  --join 127.0.0.1:9 --token 00112233445566778899aabbccddeeff --scene level.toml --bot --ticks 10
 refused "a match's --record and --last-frame one file" 2 "are the same file" \
   --host 0 --bot --ticks 10 --record m.png --last-frame m.png
 fx() { timeout 20 "$peggle" "$@"; }

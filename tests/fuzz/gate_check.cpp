@@ -19,7 +19,7 @@ namespace {
 
 constexpr net::GateKey token{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
 constexpr net::GateKey cookie_key{7, 7, 7, 7, 7, 7, 7, 7, 1, 1, 1, 1, 1, 1, 1, 1};
-constexpr double window_ms = 5000.0;
+constexpr double gate_window_ms = 5000.0;
 constexpr std::array<double, 8> steps{0, 1, 10, 100, 1000, 2500, 5000, 12000};
 
 struct Address {
@@ -59,7 +59,7 @@ class Run {
     if (gate_.counters().admitted > admitted_before) {
       if (!proves_token(d)) finding("an address admitted without a proof of the token");
       if (replay) finding("a replayed echo admitted again");
-      expires_[who] = (std::floor(now_ / window_ms) + 2.0) * window_ms;
+      expires_[who] = (std::floor(now_ / gate_window_ms) + 2.0) * gate_window_ms;
       last_admitted_.assign(d.begin(), d.end());
       last_admitted_by_ = who;
     }

@@ -24,7 +24,7 @@ std::string disc_scene(std::string_view extra) {
 }
 
 /// The SceneError parse_scene throws for text ("" when it loads and World(def) accepts it).
-std::string error_of(const std::string& text, std::size_t& line, std::size_t& column) {
+std::string range_error_of(const std::string& text, std::size_t& line, std::size_t& column) {
   try {
     Scene s = parse_scene(text, "r.toml");
     s.def.allow_unstable = true;  // the ranges, not the integrator's stability, are checked
@@ -47,12 +47,12 @@ struct Case {
 // ran the first to energy=inf and turned the second's state to NaN).
 TEST(SceneRanges, ASpinOf1e308AndASubnormalInertiaAreRefusedAtTheirKeys) {
   std::size_t line = 0, column = 0;
-  std::string e = error_of(disc_scene("angular_velocity = 1e308"), line, column);
+  std::string e = range_error_of(disc_scene("angular_velocity = 1e308"), line, column);
   EXPECT_EQ(line, 11u) << e;
   EXPECT_EQ(column, 20u) << e;
   EXPECT_EQ(e.rfind("body[0].angular_velocity: r.toml:11:20:", 0), 0u) << e;
   EXPECT_NE(e.find("must be within +-1e+12 rad/s"), std::string::npos) << e;
-  e = error_of(disc_scene("inertia = 5e-324"), line, column);
+  e = range_error_of(disc_scene("inertia = 5e-324"), line, column);
   EXPECT_EQ(line, 11u) << e;
   EXPECT_EQ(e.rfind("body[0].inertia: r.toml:11:", 0), 0u) << e;
   EXPECT_NE(e.find("in [1e-100, 1e100] kg*m^2"), std::string::npos) << e;
@@ -88,7 +88,7 @@ TEST(SceneRanges, EveryBoundaryLoadsAndTheValueBeyondIsRefusedAtItsKey) {
   };
   for (const Case& c : cases) {
     std::size_t line = 0, column = 0;
-    const std::string e = error_of(disc_scene(c.extra), line, column);
+    const std::string e = range_error_of(disc_scene(c.extra), line, column);
     if (c.key.empty()) {
       EXPECT_EQ(e, "") << c.extra;
       continue;
@@ -127,7 +127,7 @@ TEST(SceneRanges, MassPositionRadiusAndPlaneKeysAreBounded) {
   };
   for (const auto& [text, key] : cases) {
     std::size_t line = 0, column = 0;
-    const std::string e = error_of(text, line, column);
+    const std::string e = range_error_of(text, line, column);
     if (key.empty()) {
       EXPECT_EQ(e, "") << text;
       continue;

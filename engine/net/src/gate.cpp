@@ -11,7 +11,7 @@ namespace fixstep::net {
 namespace {
 
 /// The first 8 bytes of every gate datagram: magic, version, kind, two reserved zero bytes.
-void write_header(detail::ByteWriter& w, GateKind kind) {
+void write_gate_header(detail::ByteWriter& w, GateKind kind) {
   w.u32(gate_magic);
   w.u8(gate_version);
   w.u8(static_cast<std::uint8_t>(kind));
@@ -83,7 +83,7 @@ GateVerdict HostGate::on_datagram(std::uint32_t ipv4, std::uint16_t port,
     const auto window = static_cast<std::uint32_t>(std::floor(now_ms / s_.window_ms));
     reply.clear();
     detail::ByteWriter w(reply);
-    write_header(w, GateKind::cookie);
+    write_gate_header(w, GateKind::cookie);
     w.u64(nonce);
     w.u32(window);
     w.u64(cookie_mac(ipv4, port, nonce, window));
@@ -119,7 +119,7 @@ GateVerdict HostGate::on_echo(std::uint32_t ipv4, std::uint16_t port,
     ++counters_.bad_token;
     reply.clear();
     detail::ByteWriter w(reply);
-    write_header(w, GateKind::refused);
+    write_gate_header(w, GateKind::refused);
     w.u64(nonce);
     return GateVerdict::reply;
   }
@@ -146,7 +146,7 @@ GateVerdict HostGate::on_echo(std::uint32_t ipv4, std::uint16_t port,
 std::vector<std::uint8_t> JoinerGate::request() const {
   std::vector<std::uint8_t> out;
   detail::ByteWriter w(out);
-  write_header(w, GateKind::cookie_request);
+  write_gate_header(w, GateKind::cookie_request);
   w.u64(nonce_);
   w.zeros(cookie_request_bytes - w.size());
   return out;
@@ -164,7 +164,7 @@ JoinerGate::Answer JoinerGate::on_datagram(std::span<const std::uint8_t> bytes,
   const std::uint64_t mac = r.u64();
   echo.clear();
   detail::ByteWriter w(echo);
-  write_header(w, GateKind::echo);
+  write_gate_header(w, GateKind::echo);
   w.u64(nonce_);
   w.u32(window);
   w.u64(mac);

@@ -32,7 +32,7 @@ void sip_round(std::array<std::uint64_t, 4>& v) {
   v[2] = std::rotl(v[2], 32);
 }
 
-void compress(std::array<std::uint64_t, 4>& v, std::uint64_t m) {
+void sip_compress(std::array<std::uint64_t, 4>& v, std::uint64_t m) {
   v[3] ^= m;
   sip_round(v);
   sip_round(v);
@@ -47,11 +47,11 @@ std::uint64_t siphash24(const GateKey& key, std::span<const std::uint8_t> bytes)
   std::array<std::uint64_t, 4> v{k0 ^ 0x736f6d6570736575ull, k1 ^ 0x646f72616e646f6dull,
                                  k0 ^ 0x6c7967656e657261ull, k1 ^ 0x7465646279746573ull};
   const std::size_t whole = bytes.size() / 8 * 8;
-  for (std::size_t i = 0; i < whole; i += 8) compress(v, load_le(bytes.data() + i, 8));
+  for (std::size_t i = 0; i < whole; i += 8) sip_compress(v, load_le(bytes.data() + i, 8));
   // The last block: the remaining bytes, and the length mod 256 in the top byte.
   const std::uint64_t last =
       load_le(bytes.data() + whole, bytes.size() - whole) | (std::uint64_t{bytes.size()} << 56);
-  compress(v, last);
+  sip_compress(v, last);
   v[2] ^= 0xff;
   for (int i = 0; i < 4; ++i) sip_round(v);
   return v[0] ^ v[1] ^ v[2] ^ v[3];
