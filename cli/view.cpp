@@ -16,6 +16,7 @@
 #include <fixstep/core/step_results.hpp>
 #include <fixstep/core/stop_request.hpp>
 #include <fixstep/core/world_settings.hpp>
+#include <fixstep/io/stop_signal.hpp>
 #include <fixstep/scene/scene_stability.hpp>
 #include <fixstep/window/window.hpp>
 #include <functional>
@@ -37,7 +38,6 @@
 #include "progress.hpp"
 #include "scene_load.hpp"
 #include "scene_watch.hpp"
-#include "stop_signal.hpp"
 #include "view_rewind.hpp"
 
 namespace fixstep::cli {
