@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fixstep/io/atomic_output.hpp>
 #include <fixstep/io/recording_file.hpp>
+#include <fixstep/net/desync_recording.hpp>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -144,6 +145,16 @@ TEST(StreamedRecording, APeerLeavingOrADesyncKeepsEveryConfirmedTick) {
     (void)expect_streamed_equals_memory(m, dir);
     World healthy(billiards().def);
     EXPECT_TRUE(replay(healthy, read_recording(dir.path / "p0.rec")).ok());
+    // What net::run does without --record: the streamed file moved to a free desync name,
+    // never over a file or a link.
+    const std::string bytes = file_bytes(dir.path / "p1.rec");
+    std::filesystem::create_symlink(dir.path / "elsewhere.rec", dir.path / "g-desync-p1-t100.rec");
+    const auto moved = net::move_desync_recording(dir.path / "p1.rec", dir.path, "g", 1,
+                                                  m.peers[1]->desync()->tick);
+    EXPECT_EQ(moved.filename(), "g-desync-p1-t100-2.rec");
+    EXPECT_EQ(file_bytes(moved), bytes);
+    EXPECT_FALSE(std::filesystem::exists(dir.path / "p1.rec"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path / "elsewhere.rec"));
   }
 }
 

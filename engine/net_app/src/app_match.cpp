@@ -20,6 +20,7 @@
 #include <fixstep/io/output_paths.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/io/recording_writer.hpp>
+#include <fixstep/io/stale_temporaries.hpp>
 #include <fixstep/io/standard_output.hpp>
 #include <fixstep/io/stop_signal.hpp>
 #include <fixstep/io/summary.hpp>
@@ -30,6 +31,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <thread>
 
@@ -142,6 +144,9 @@ class Peer {
     if (o.ticks > 0) check_match_bounds(level_.def, o.ticks, o.record);  // before a port is bound
     MatchSettings s = match_settings(settings, level_, o);
     if (o.record.empty()) {  // the desync recording's file: the match plays on without it
+      const std::string ours =
+          "." + settings.name + "-desync.";  // a killed match's, not a live one's
+      remove_stale_temporaries(".", [&](std::string_view t) { return t.starts_with(ours); });
       try {
         (void)RecordingWriter(level_.def, s.scene_name, s.record_hash_every, s.record_file);
       } catch (const std::exception& e) {
