@@ -85,9 +85,9 @@ std::string expect_streamed_equals_memory(Match& m, const Dir& dir) {
   return first;
 }
 
-class StreamedRecording : public ::testing::TestWithParam<std::uint16_t> {};
+class MatchRecording : public ::testing::TestWithParam<std::uint16_t> {};
 
-TEST_P(StreamedRecording, IsByteForByteTheInMemoryRecordersOnEveryPeer) {
+TEST_P(MatchRecording, IsByteForByteTheInMemoryRecordersOnEveryPeer) {
   MatchSettings s = match(2, 400);
   s.max_rollback = GetParam();
   s.input_delay = GetParam() > 0 ? 2 : 6;
@@ -107,9 +107,9 @@ TEST_P(StreamedRecording, IsByteForByteTheInMemoryRecordersOnEveryPeer) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(LockstepAndRollback, StreamedRecording, ::testing::Values(0, 8));
+INSTANTIATE_TEST_SUITE_P(LockstepAndRollback, MatchRecording, ::testing::Values(0, 8));
 
-TEST(StreamedRecording, APeerLeavingOrADesyncKeepsEveryConfirmedTick) {
+TEST(MatchRecording, APeerLeavingOrADesyncKeepsEveryConfirmedTick) {
   {  // the host leaves at tick 150 of 300: the joiner fails; both keep what they confirmed
     const Dir dir("match_rec_left");
     Match m =
@@ -158,7 +158,7 @@ TEST(StreamedRecording, APeerLeavingOrADesyncKeepsEveryConfirmedTick) {
   }
 }
 
-TEST(StreamedRecording, HoldsBoundedMemoryOver30000TicksWhileItsFileGrows) {
+TEST(MatchRecording, HoldsBoundedMemoryOver30000TicksWhileItsFileGrows) {
   constexpr std::uint64_t ticks = 30'000;
   MatchSettings s = match(2, ticks);
   s.hash_every = 600;

@@ -251,7 +251,9 @@ class MatchPeer {
   /// so a rollback peer's predictions are never in it), whether the match finished, failed,
   /// desynced or is stopped between two ticks. Returns the ticks the file holds (those up to
   /// recording_cut() when it was finished at its size limit), nullopt when there is no file (none
-  /// asked for, or the match never started: its temporary file is removed with the peer).
+  /// asked for, or a joiner whose handshake never completed: its temporary file is removed with
+  /// the peer, as it is when this is never called; a host's match starts at once, so its file
+  /// may hold 0 ticks).
   /// Throws io's std::runtime_error when the file cannot be written. Once; nullopt after.
   std::optional<std::uint64_t> finish_recording();
   /// The tick at which the streamed recording was finished because it neared
