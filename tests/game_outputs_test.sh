@@ -11,7 +11,7 @@
 #      of every tick run that replays with every hash verified; while it runs, the recording's
 #      temporary file grows (streamed, not held in memory); SIGTERM stops a sync test and a game
 #      in its window (on Xvfb, when installed), SIGINT a replay and a networked match (whose
-#      recordings are written and replay);
+#      recordings are written and replay; a match's is in its temporary file while it runs);
 #  (d) results on standard output: every game mode and every fixstep command that prints a result
 #      exits non-zero with a message on standard error when standard output is full
 #      (>/dev/full) or closed (>&-).
@@ -88,9 +88,9 @@ refused "--frames 10^8 --record: more hashes than a recording may hold" 1 \
   "--record big.rec: --frames 100000000 .* record at most [0-9]+ frames" \
   --frames 100000000 --record big.rec
 fx() { timeout 20 "$airhockey" "$@"; }
-refused "a match's --ticks 10^8: its recording's memory" 1 \
-  "--ticks 100000000: the match's recording, held in memory .* play at most" \
-  --host 0 --bot --ticks 100000000
+refused "a match's --ticks 10^8 --record: more hashes than a recording may hold" 1 \
+  "--record big.rec: --ticks 100000000, .* record at most [0-9]+ ticks" \
+  --host 0 --bot --ticks 100000000 --record big.rec
 fx() { timeout 20 "$peggle" "$@"; }
 
 # --- (c) a stop --------------------------------------------------------------------------------
@@ -178,15 +178,25 @@ fi
 "$airhockey" --host 0 --bot --ticks 5000000 --record match.rec >host.out 2>&1 &
 hpid=$!
 port=$(wait_for host.out 'hosting on [0-9.]+:[0-9]+' | grep -Eo '[0-9]+$')
-"$airhockey" --join "127.0.0.1:${port:-9}" --bot --ticks 5000000 >join.out 2>&1 &
+token=$(wait_for host.out 'token [0-9a-f]{32}' | grep -Eo '[0-9a-f]{32}$')
+"$airhockey" --join "127.0.0.1:${port:-9}" --token "${token:-0}" --bot --ticks 5000000 \
+  >join.out 2>&1 &
 jpid=$!
-sleep 2  # the match under way (a bot match of 10^8 ticks runs for minutes)
+sleep 2  # the match under way (a bot match of 5·10^6 ticks runs for minutes)
+# Streamed: the host's recording is in its temporary file, not yet under its name; the joiner
+# (no --record) streams its desync recording beside ./.airhockey-desync.PID.rec.
+[ -e ".match.rec.tmp.$hpid" ] && [ ! -e match.rec ] && [ -e "..airhockey-desync.$jpid.rec.tmp.$jpid" ] &&
+  ok "a match streams its recording into a temporary file while it runs" ||
+  fail "a match's temporary files: $(ls -a)"
 kill -INT "$hpid"
 ended "$hpid"
 status=$?
 kill -INT "$jpid" 2>/dev/null
 ended "$jpid" >/dev/null
 [ "$status" -eq 130 ] && ok "SIGINT: a match's host exits 130" || { fail "host exit $status"; cat host.out; }
+[ -z "$(find . -name '.*.tmp.*')" ] && [ -z "$(find . -name '*desync*')" ] &&
+  ok "SIGINT: a match leaves no temporary (and no desync recording)" ||
+  fail "$(find . -name '.*.tmp.*' -o -name '*desync*')"
 if [ -f match.rec ] && "$airhockey" --replay match.rec >mreplay.out 2>&1; then
   ok "SIGINT: the match's recording is written and replays"
 else

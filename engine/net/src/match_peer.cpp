@@ -37,6 +37,12 @@ std::unique_ptr<MatchPeer::Impl> make_impl(const WorldDef& def, const MatchSetti
   impl->rules = std::move(rules);
   impl->merge = merge ? std::move(merge) : InputMerge(merge_inputs);
   impl->started_at = detail::clock_ms();
+  if (!settings.record_file.empty()) {  // before a port is bound: a bad path fails first
+    impl->writer.emplace(def, settings.scene_name, settings.record_hash_every, settings.record_file,
+                         settings.scene_text);
+    if (!settings.rules_name.empty())
+      impl->writer->set_rules(settings.rules_name, settings.rules_version);
+  }
   // A nonce that differs between runs and peers; only echoed, never trusted for security.
   impl->nonce = std::random_device{}();
   return impl;
@@ -136,9 +142,25 @@ void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
     shown = std::make_unique<World>(def);
     if (rules_have_state()) confirmed_rules = rules.save();
   }
+  if (!settings.record_in_memory) return;
   recorder.emplace(def, settings.scene_name, settings.record_hash_every, settings.scene_text);
   if (!settings.rules_name.empty())
     recorder->set_rules(settings.rules_name, settings.rules_version);
+}
+
+void MatchPeer::Impl::record_tick(const TickInput& merged) {
+  if (recorder) recorder->record(merged, *world);
+  if (!writer) return;
+  writer->record(merged, *world);
+  // Near the most a recording may hold (max_recording_bytes, what a replay reads): the file is
+  // finished here, whole, rather than refused at the end; the match plays on unrecorded. The
+  // margin is far more than one tick's lines.
+  constexpr std::uint64_t margin = std::uint64_t{1} << 20;
+  if (writer->bytes() + margin > max_recording_bytes) {
+    recording_cut = writer->ticks();
+    writer->finish(*world);
+    writer.reset();
+  }
 }
 
 void MatchPeer::Impl::fail(std::string why) {
@@ -269,7 +291,7 @@ int MatchPeer::Impl::step_confirmed() {
     merged.tick = next_step;
     world->step(merged);
     if (rules) rules.after_tick(*world, merged);
-    recorder->record(merged, *world);
+    record_tick(merged);
     ++next_step;
     ++stepped;
     if (next_step % settings.hash_every == 0) record_hash(next_step, world->state_hash());
@@ -366,9 +388,37 @@ World& MatchPeer::world_for_test() {
 }
 
 Recording MatchPeer::recording() const {
-  if (!impl_->recorder) throw std::logic_error("MatchPeer::recording: the match never started");
+  if (!impl_->recorder) {
+    throw std::logic_error(impl_->settings.record_in_memory
+                               ? "MatchPeer::recording: the match never started"
+                               : "MatchPeer::recording: not kept in memory (record_in_memory)");
+  }
   Recorder copy = *impl_->recorder;
   return copy.finish(*impl_->world);
+}
+
+std::optional<std::uint64_t> MatchPeer::finish_recording() {
+  Impl& m = *impl_;
+  if (m.recording_taken) return std::nullopt;
+  if (m.recording_cut) {
+    m.recording_taken = true;
+    return m.recording_cut;
+  }
+  if (!m.writer || m.players == 0) return std::nullopt;  // never started: removed with the peer
+  m.recording_taken = true;
+  const std::uint64_t ticks = m.writer->ticks();
+  // Only confirmed ticks are recorded, and each is whole (the world is between two ticks).
+  m.writer->finish(*m.world);
+  m.writer.reset();
+  return ticks;
+}
+
+std::optional<std::uint64_t> MatchPeer::recording_cut() const {
+  return impl_->recording_cut;
+}
+
+std::uint64_t MatchPeer::recording_bytes_held() const {
+  return impl_->writer ? impl_->writer->held() : 0;
 }
 
 void MatchPeer::leave() {

@@ -17,6 +17,7 @@
 
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/world_def.hpp"
+#include "fixstep/io/recording_writer.hpp"
 #include "fixstep/net/match_peer.hpp"
 #include "fixstep/net/net_packet.hpp"
 #include "sequence_window.hpp"
@@ -84,7 +85,12 @@ struct MatchPeer::Impl {
   TickRules rules;
   InputMerge merge;
   std::optional<Transport> transport;
-  std::optional<Recorder> recorder;
+  std::optional<Recorder> recorder;  ///< settings.record_in_memory
+  /// settings.record_file: created with the peer, reset once finished (finish_recording, or
+  /// near max_recording_bytes: recording_cut).
+  std::optional<RecordingWriter> writer;
+  std::optional<std::uint64_t> recording_cut;
+  bool recording_taken = false;  ///< finish_recording has answered
   MatchState state = MatchState::connecting;
   std::string error;
   std::optional<DesyncReport> desync;
@@ -134,6 +140,7 @@ struct MatchPeer::Impl {
     return inputs[player][tick - base[player]];
   }
   void trim_inputs();
+  void record_tick(const TickInput& merged);  ///< the confirmed tick just stepped
 
   // rollback.cpp
   [[nodiscard]] TickInput predict(std::size_t player, std::uint64_t tick) const;

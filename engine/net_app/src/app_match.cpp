@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <fixstep/app/game_play.hpp>
 #include <fixstep/app/key_bindings.hpp>
 #include <fixstep/capture/capture.hpp>
@@ -18,6 +19,8 @@
 #include <fixstep/io/command_limits.hpp>
 #include <fixstep/io/output_paths.hpp>
 #include <fixstep/io/recording_file.hpp>
+#include <fixstep/io/recording_writer.hpp>
+#include <fixstep/io/stale_temporaries.hpp>
 #include <fixstep/io/standard_output.hpp>
 #include <fixstep/io/stop_signal.hpp>
 #include <fixstep/io/summary.hpp>
@@ -28,6 +31,8 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
+#include <system_error>
 #include <thread>
 
 #include "app_match_error.hpp"
@@ -45,26 +50,26 @@ using app::detail::Level;
 /// still lacks (resent inputs, the last hash) before this one leaves.
 constexpr int linger_ms = 600;
 
-/// Most memory the match's recording may take: every peer records every confirmed tick (its
-/// input and state hash) in memory until the end, and copies it to write it (MatchPeer::
-/// recording).
-constexpr std::uint64_t max_match_recording_bytes = std::uint64_t{2} << 30;
-
 /// Throws LimitError when `ticks` ticks exceed the work a command may do on `def`, or when
-/// their recording, held in memory, would exceed max_match_recording_bytes.
-void check_match_bounds(const WorldDef& def, std::uint64_t ticks) {
+/// `record` is given and their state hashes (one a tick) exceed what a recording may hold
+/// (max_recording_bytes). The recording is streamed to its file (MatchSettings::record_file),
+/// so memory bounds no length.
+void check_match_bounds(const WorldDef& def, std::uint64_t ticks, const std::string& record) {
   check_command_work(ticks, tick_work(def), fmt::format("--ticks {}", ticks));
-  // Each tick: at most one input change and one hash, in vectors that grow by doubling (2x),
-  // copied once more at the end (3x in all).
-  const std::uint64_t per_tick = 3 * (sizeof(TickInput) + 2 * sizeof(std::uint64_t));
-  if (ticks > max_match_recording_bytes / per_tick) {
+  constexpr std::uint64_t hash_line_bytes = 33;  // "hash " + 10 digits + " " + 16 hex + "\n"
+  if (!record.empty() && ticks > max_recording_bytes / hash_line_bytes) {
     throw LimitError(fmt::format(
-        "--ticks {}: the match's recording, held in memory until the end, would take up to "
-        "{:.3g} GiB ({} bytes a tick); at most {:.3g} GiB: play at most {} ticks",
-        ticks, double(ticks) * double(per_tick) / double(std::uint64_t{1} << 30), per_tick,
-        double(max_match_recording_bytes) / double(std::uint64_t{1} << 30),
-        max_match_recording_bytes / per_tick));
+        "--record {}: --ticks {}, each with its state hash: about {:.0f} MB of hashes; a "
+        "recording may hold at most {} MiB: record at most {} ticks",
+        record, ticks, double(ticks) * double(hash_line_bytes) / 1e6, max_recording_bytes >> 20,
+        max_recording_bytes / hash_line_bytes));
   }
+}
+
+/// Where a match without --record streams its recording, in the working directory, to keep it
+/// if the match desyncs (moved then to NAME-desync-pSLOT-tTICK.rec; else never published).
+std::string desync_file(const std::string& program) {
+  return fmt::format(".{}-desync.{}.rec", program, static_cast<long>(getpid()));
 }
 
 /// The match's settings from the command line and the level (recorded as the game records).
@@ -80,6 +85,8 @@ MatchSettings match_settings(const app::Settings& settings, const Level& level,
   s.scene_text = level.scene_text;
   s.rules_name = app::detail::rules_name_of(settings.name);
   s.rules_version = settings.rules_version;
+  s.record_file = o.record.empty() ? desync_file(settings.name) : o.record;
+  s.record_in_memory = false;  // streamed: memory flat whatever the match's length
   return s;
 }
 
@@ -134,8 +141,20 @@ class Peer {
 
  private:
   MatchPeer start(const app::Settings& settings, const MatchOptions& o) {
-    if (o.ticks > 0) check_match_bounds(level_.def, o.ticks);  // before a port is bound
-    const MatchSettings s = match_settings(settings, level_, o);
+    if (o.ticks > 0) check_match_bounds(level_.def, o.ticks, o.record);  // before a port is bound
+    MatchSettings s = match_settings(settings, level_, o);
+    if (o.record.empty()) {  // the desync recording's file: the match plays on without it
+      const std::string ours =
+          "." + settings.name + "-desync.";  // a killed match's, not a live one's
+      remove_stale_temporaries(".", [&](std::string_view t) { return t.starts_with(ours); });
+      try {
+        (void)RecordingWriter(level_.def, s.scene_name, s.record_hash_every, s.record_file);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: warning: no recording is kept for a desync: %s\n",
+                     settings.name.c_str(), e.what());
+        s.record_file.clear();
+      }
+    }
     if (o.host_port) {
       return MatchPeer::host(level_.def, s, Address{o.bind, *o.host_port},
                              app::detail::game_rules(*rules_), game_merge(*level_.game));
@@ -213,6 +232,22 @@ void linger_and_leave(MatchPeer& m) {
   m.leave();
 }
 
+/// A match without --record that desynced: its streamed recording moved to
+/// NAME-desync-pSLOT-tTICK.rec in the working directory, to replay and compare offline.
+void keep_desync_recording(MatchPeer& m, const std::string& name) {
+  const std::string written = desync_file(name);
+  try {
+    if (!m.finish_recording()) return;  // none was kept (a warning said so at the start)
+    const std::uint64_t tick = m.desync() ? m.desync()->tick : m.world().tick();
+    const auto file = move_desync_recording(written, ".", name, m.slot(), tick);
+    std::fprintf(stderr, "%s: this peer's recording is in %s (%s --replay %s)\n", name.c_str(),
+                 file.c_str(), name.c_str(), file.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: the desync recording was not written: %s\n", name.c_str(),
+                 e.what());
+  }
+}
+
 /// What the match came to: the summary lines, the recording, the exit status.
 int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, bool quit) {
   MatchPeer& m = peer.match();
@@ -231,24 +266,26 @@ int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, boo
               static_cast<unsigned long long>(st.hashes_compared),
               static_cast<unsigned long long>(st.dropped_total()));
   if (!o.record.empty() && world.tick() > 0) {
-    write_recording(o.record, m.recording());
-    std::printf("recorded %llu ticks to %s (check it: %s --replay %s)\n",
-                static_cast<unsigned long long>(world.tick()), o.record.c_str(),
-                settings.name.c_str(), o.record.c_str());
+    if (const std::optional<std::uint64_t> ticks = m.finish_recording()) {
+      std::printf("recorded %llu ticks to %s (check it: %s --replay %s)\n",
+                  static_cast<unsigned long long>(*ticks), o.record.c_str(), settings.name.c_str(),
+                  o.record.c_str());
+    }
+  }
+  if (const std::optional<std::uint64_t> cut = m.recording_cut()) {
+    std::fprintf(stderr,
+                 "%s: warning: the recording reached %zu MiB, the most a recording may hold, at "
+                 "tick %llu: it is written up to there, the rest of the match is not recorded\n",
+                 settings.name.c_str(), max_recording_bytes >> 20,
+                 static_cast<unsigned long long>(*cut));
+    std::error_code ec;  // a match without --record: its desync file is not wanted
+    if (o.record.empty() && m.state() != MatchState::desynced)
+      std::filesystem::remove(desync_file(settings.name), ec);
   }
   std::fflush(stdout);
   if (m.state() == MatchState::desynced) {
     std::fprintf(stderr, "%s: error: %s\n", settings.name.c_str(), m.error().c_str());
-    if (o.record.empty() && world.tick() > 0) {  // kept to replay and compare offline
-      try {
-        const auto file = write_desync_recording(m, ".", settings.name);
-        std::fprintf(stderr, "%s: this peer's recording is in %s (%s --replay %s)\n",
-                     settings.name.c_str(), file.c_str(), settings.name.c_str(), file.c_str());
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s: error: the desync recording was not written: %s\n",
-                     settings.name.c_str(), e.what());
-      }
-    }
+    if (o.record.empty() && world.tick() > 0) keep_desync_recording(m, settings.name);
     return exit_desync;
   }
   if (m.state() == MatchState::failed && !quit) {

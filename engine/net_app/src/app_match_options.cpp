@@ -240,13 +240,15 @@ std::optional<MatchOptions> parse_match(const std::string& program, int max_play
   add_session_options(cli, f, o, max_players);
   add_output_options(cli, f, o);
   cli.footer(
-      "Work: --ticks N at most 10^8 ticks and 10^13 body-substeps in all. Memory: the level's "
-      "world, the rollback window's snapshots (--max-rollback), and the match's recording, held "
-      "until the end (a few hundred bytes a tick at most): --ticks N at most 2 GiB of it. Both "
-      "refused before a port is bound; without --ticks a match runs until a player quits, its "
-      "recording growing as it goes. SIGINT or SIGTERM ends the match "
-      "within a second between two ticks: the other peers are told, the recording of the "
-      "ticks played is written; exit 130 or 143.\n");
+      "Work: --ticks N at most 10^8 ticks and 10^13 body-substeps in all; with --record, at most "
+      "the ticks whose state hashes fit in a recording (256 MiB: about 8.1 million). Both "
+      "refused before a port is bound. Memory: the level's world and the rollback window's "
+      "snapshots (--max-rollback), whatever the match's length: the recording is streamed to a "
+      "temporary file beside FILE (without --record, beside ./.NAME-desync.PID.rec, kept only "
+      "on a desync) and renamed into place at the end; without --ticks a match runs until a "
+      "player quits, and a recording that nears 256 MiB is finished there, whole. SIGINT or "
+      "SIGTERM ends the match within a second between two ticks: the other peers are told, "
+      "the recording of every confirmed tick is written; exit 130 or 143.\n");
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -53,6 +53,9 @@ class RecordingWriter {
   [[nodiscard]] std::uint64_t ticks() const { return ticks_; }
   /// Bytes written so far (the header, tick and hash lines).
   [[nodiscard]] std::uint64_t bytes() const { return out_.size() + line_.size(); }
+  /// Bytes of lines held in memory, not yet handed to the file: below 64 KiB plus hash_every
+  /// ticks' lines.
+  [[nodiscard]] std::uint64_t held() const { return line_.size(); }
 
  private:
   void flush_if_full();

@@ -2,6 +2,7 @@
 // offline (docs/NETWORK.md, "Desync detection").
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -19,5 +20,15 @@ namespace fixstep::net {
 [[nodiscard]] std::filesystem::path write_desync_recording(const MatchPeer& peer,
                                                            const std::filesystem::path& dir,
                                                            const std::string& stem);
+
+/// Moves the recording file `written` (a peer's, streamed: MatchSettings::record_file, finished
+/// by MatchPeer::finish_recording) into `dir` under the name write_desync_recording would pick
+/// for a peer of slot `slot` desynced at `tick` (never over a file or a link) and returns that
+/// path. Throws std::runtime_error as write_desync_recording, or naming both files when the
+/// rename fails.
+[[nodiscard]] std::filesystem::path move_desync_recording(const std::filesystem::path& written,
+                                                          const std::filesystem::path& dir,
+                                                          const std::string& stem,
+                                                          std::uint8_t slot, std::uint64_t tick);
 
 }  // namespace fixstep::net

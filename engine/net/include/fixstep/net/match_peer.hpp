@@ -11,12 +11,14 @@
 // A host (player 0) relays the inputs of each player to the others (a star: a joining peer
 // knows only the host's address); spectators receive them all and send none. Peers exchange
 // state hashes of confirmed ticks every hash_every ticks; a mismatch stops the match with a
-// located report. Each peer records the confirmed inputs as a fixstep recording.
+// located report. Each peer records the confirmed inputs as a fixstep recording: streamed into
+// a file (MatchSettings::record_file), kept in memory (record_in_memory), or both.
 // docs/NETWORK.md.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
@@ -102,6 +104,17 @@ struct MatchSettings {
   std::uint64_t record_hash_every = 1;
   std::string rules_name;
   std::uint32_t rules_version = 0;
+  /// The recording streamed into this file as the confirmed ticks are stepped (io's
+  /// RecordingWriter: a temporary file beside it, renamed into place by
+  /// MatchPeer::finish_recording; memory O(1) whatever the match's length); empty: none. The
+  /// bytes are those format_recording writes of MatchPeer::recording() for the same ticks.
+  /// Near max_recording_bytes the file is finished there, whole, and the rest of the match is
+  /// not recorded into it (MatchPeer::recording_cut).
+  std::filesystem::path record_file;
+  /// Whether the peer also keeps the recording in memory for MatchPeer::recording() (its memory
+  /// grows with the match: a hash and up to one input change a tick). A long match sets false
+  /// and streams (record_file).
+  bool record_in_memory = true;
 };
 
 /// Where a peer's match is.
@@ -230,8 +243,25 @@ class MatchPeer {
   [[nodiscard]] const World& shown_world() const;
   /// The world, for a test that corrupts one peer's state on purpose (a desync).
   [[nodiscard]] World& world_for_test();
-  /// The recording of the ticks stepped so far (Recorder::finish at the current state).
+  /// The recording of the ticks stepped so far (Recorder::finish at the current state). Throws
+  /// std::logic_error when the match never started or MatchSettings::record_in_memory is false.
   [[nodiscard]] Recording recording() const;
+  /// Ends the streamed recording (MatchSettings::record_file) at the confirmed world's state and
+  /// renames it into place: every confirmed tick (each stepped with every player's real input,
+  /// so a rollback peer's predictions are never in it), whether the match finished, failed,
+  /// desynced or is stopped between two ticks. Returns the ticks the file holds (those up to
+  /// recording_cut() when it was finished at its size limit), nullopt when there is no file (none
+  /// asked for, or a joiner whose handshake never completed: its temporary file is removed with
+  /// the peer, as it is when this is never called; a host's match starts at once, so its file
+  /// may hold 0 ticks).
+  /// Throws io's std::runtime_error when the file cannot be written. Once; nullopt after.
+  std::optional<std::uint64_t> finish_recording();
+  /// The tick at which the streamed recording was finished because it neared
+  /// max_recording_bytes (nullopt: it was not).
+  [[nodiscard]] std::optional<std::uint64_t> recording_cut() const;
+  /// Bytes of the streamed recording held in memory now (not yet handed to the file): at most
+  /// about 64 KiB plus hash_every ticks' lines, whatever the match's length; 0 without a file.
+  [[nodiscard]] std::uint64_t recording_bytes_held() const;
   /// Leaves: tells the others (disconnect) and flushes. The peer is finished or failed after.
   void leave();
 

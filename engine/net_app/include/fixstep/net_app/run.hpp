@@ -22,7 +22,8 @@
 //     --max-rollback N              rollback: most ticks shown ahead (1-60, default 8)
 //     --bind ADDR                   the local IPv4 address (default 127.0.0.1)
 //     --ticks N                     the match ends after N ticks (default: until Esc)
-//     --record FILE                 write the match's confirmed recording at the end
+//     --record FILE                 record the match's confirmed ticks (streamed to a temporary
+//                                   file beside FILE, renamed into place at the end)
 //     --bot                         the game's autopilot plays (seat-aware, by tick), headless
 //                                   unless --window; needs --ticks (a spectator: watches
 //                                   headless)
@@ -36,11 +37,11 @@
 // an ordinary recording of the game (NAME --replay FILE verifies it with the rules). Exit
 // status as app::run's: 0 the match played to its end (or the player quit), 1 an error (a
 // port that cannot be bound, refused, timed out, the other player left, --ticks beyond the work
-// limit or beyond 2 GiB of the recording every peer holds until the end, standard output closed
+// limit, or with --record beyond the state hashes a recording may hold, standard output closed
 // or failing), 2 a bad command line or a refused output path (--record and --last-frame get
 // app::run's checks; --scene is refused for a level built in code), 4 the peers' states
 // differed (a desync: the message names the tick), 130 / 143 stopped by SIGINT / SIGTERM
-// (between two ticks; the recording of the ticks played written). Layering: net_app uses
+// (between two ticks; the recording of every confirmed tick written). Layering: net_app uses
 // fixstep::app and fixstep::net, and app never uses net; a program that calls this links
 // fixstep::net_app.
 #pragma once
