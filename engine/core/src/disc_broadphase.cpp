@@ -165,7 +165,7 @@ void DiscBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
 }
 
 void DiscBroadphase::add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>& out,
-                         std::size_t& rejected) const {
+                         std::uint64_t& rejected) const {
   const DiscPair p{std::min(a, b), std::max(a, b)};
   if (veto_ && veto_->reject(veto_->context, p.a, p.b)) {
     ++rejected;
@@ -175,7 +175,7 @@ void DiscBroadphase::add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>
 }
 
 void DiscBroadphase::scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out,
-                                   std::size_t& rejected) const {
+                                   std::uint64_t& rejected) const {
   const Entry& q = entry_[at];  // dynamic: the dynamic boxes after it, then every static one
   for (std::size_t p = at + 1, end = start_[2 * h + 2]; p < end; ++p) {
     const Entry& e = entry_[p];
@@ -186,7 +186,7 @@ void DiscBroadphase::scan_own_cell(std::size_t at, std::size_t h, std::vector<Di
 
 void DiscBroadphase::scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx,
                                std::int32_t cy, std::vector<DiscPair>& out,
-                               std::size_t& rejected) const {
+                               std::uint64_t& rejected) const {
   const std::size_t h = bucket(level, cx, cy);
   for (std::size_t p = start_[2 * h], end = start_[2 * h + (act ? 2 : 1)]; p < end; ++p) {
     const Entry& e = entry_[p];
@@ -198,7 +198,7 @@ void DiscBroadphase::scan_cell(const Entry& q, bool act, std::uint32_t level, st
 void DiscBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
                                    std::span<const SweptBox> boxes,
                                    std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
-                                   std::size_t& rejected) const {
+                                   std::uint64_t& rejected) const {
   const bool own = level_[q] == overflow;  // overflow boxes pair among themselves by index
   for (const std::uint32_t o : overflow_) {
     if ((own && o <= q) || (!act && active[o] == 0)) continue;
@@ -209,7 +209,7 @@ void DiscBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool ac
 void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
                                 std::span<const SweptBox> boxes,
                                 std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
-                                std::size_t& rejected) const {
+                                std::uint64_t& rejected) const {
   const Entry& q = entry_[at];
   const std::size_t h = bucket(level, q.cx, q.cy);
   const bool act = at < start_[2 * h + 1];
@@ -233,8 +233,8 @@ bool DiscBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow
                           std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
                           std::size_t max_pairs, std::vector<DiscPair>& out) const {
   out.clear();
-  std::size_t rejected = 0;
-  const std::size_t most_rejected = veto_ ? veto_->max_rejected : 0;
+  std::uint64_t rejected = 0;
+  const std::uint64_t most_rejected = veto_ ? veto_->max_rejected : 0;
   for (std::uint64_t m = level_mask_; m != 0; m &= m - 1) {
     const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
     const std::size_t first = start_[2 * std::size_t{levels_[k].base}];

@@ -112,7 +112,7 @@ class DiscBroadphase {
   struct PairVeto {
     bool (*reject)(const void* context, std::uint32_t a, std::uint32_t b) = nullptr;
     const void* context = nullptr;
-    std::size_t max_rejected = 0;
+    std::uint64_t max_rejected = 0;
   };
   /// The veto of the next find_pairs calls (null: none; then every overlapping pair counts).
   /// It must outlive them.
@@ -184,17 +184,17 @@ class DiscBroadphase {
   /// Appends the pair (a, b) in (min, max) order to out, or counts it in `rejected` when the
   /// veto rejects it.
   void add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>& out,
-           std::size_t& rejected) const;
+           std::uint64_t& rejected) const;
   void scan_entry(std::size_t at, std::uint32_t level, std::span<const SweptBox> boxes,
                   std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
-                  std::size_t& rejected) const;
+                  std::uint64_t& rejected) const;
   void scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx, std::int32_t cy,
-                 std::vector<DiscPair>& out, std::size_t& rejected) const;
+                 std::vector<DiscPair>& out, std::uint64_t& rejected) const;
   void scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out,
-                     std::size_t& rejected) const;
+                     std::uint64_t& rejected) const;
   void scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
                      std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
-                     std::vector<DiscPair>& out, std::size_t& rejected) const;
+                     std::vector<DiscPair>& out, std::uint64_t& rejected) const;
 
   std::vector<std::uint32_t> level_;  // per box: its level, or `overflow`
   std::array<Level, max_levels> levels_;
