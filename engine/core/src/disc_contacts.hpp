@@ -176,9 +176,9 @@ class DiscContacts {
   /// A cap of limits.hpp that the last resolve() reached, or null: the work it stopped is
   /// named in World::fault().
   struct CapHit {
-    const char* cap = nullptr;  ///< "max_candidate_pairs", "max_tick_predictions", "max_box_rounds"
-    std::uint64_t limit = 0;    ///< the cap's value for this world
-    std::uint32_t disc = 0;     ///< the impact's first disc, or the largest swept box's
+    const char* cap = nullptr;   ///< "max_candidate_pairs" or "max_tick_predictions"
+    std::uint64_t limit = 0;     ///< the cap's value for this world
+    std::uint32_t disc = 0;      ///< the impact's first disc, or the largest swept box's
     std::uint32_t other = npos;  ///< the impact's other disc (npos: none)
     double time = 0;             ///< s after the tick's start (the impact left unresolved)
     static constexpr std::uint32_t npos = 0xffffffffu;
@@ -243,18 +243,9 @@ class DiscContacts {
   void first_events(const Tick& tick);
   /// Resolves pair's impact at `now` (s); `plastic`: with e = 0 (past_impacts()).
   void impact(std::uint32_t pair, double now, double dt, bool plastic);
-  /// Grows disc k's box in grown_ over its motion from `now` to the tick's end (s), setting
-  /// grew_ when that leaves the box.
-  void grow_box(std::uint32_t k, double now, double dt);
   /// The broadphase's pairs of `boxes` into out, without the linked and filtered-out pairs;
   /// false past max_candidate_pairs (or max_vetoed_pairs dropped).
   bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads);
-  /// Whether the grown boxes (grown_) pair more discs than the round's boxes did.
-  bool pairs_grow(const Tick& tick);
-  /// Back to the tick's start for another round of impacts with the grown boxes.
-  void restart_events(const Tick& tick);
-  /// The disc whose box grew most in the last round (max_box_rounds' fault).
-  [[nodiscard]] std::uint32_t escaped() const;
   // phase 2 (disc_gather.cpp, then disc_rest.cpp)
   void gather_contacts(const Tick& tick);
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
@@ -354,11 +345,6 @@ class DiscContacts {
   std::vector<Real> x0_, y0_, vx0_, vy0_;
   std::vector<DiscMotion> motion_;
   std::vector<SweptBox> boxes_;
-  std::vector<SweptBox> grown_;        ///< boxes_ grown over the paths of this round's impacts
-  std::vector<DiscMotion> motion0_;    ///< the motions at the tick's start (a round's restart)
-  bool grew_ = false;                  ///< some impact of this round sent a disc out of its box
-  std::vector<DiscPair> grown_pairs_;  ///< pairs_grow()'s
-  std::size_t box_pairs_ = 0;          ///< the round's pairs before links and filters
   std::vector<std::uint8_t> dynamic_;
   std::vector<DiscPair> pairs_, sensor_pairs_;
   std::vector<SensorOverlap> sensed_;

@@ -139,8 +139,6 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) 
     cap_ = CapHit{"max_candidate_pairs", cap, largest_box(), CapHit::npos, 0.0};
     return false;
   }
-  box_pairs_ = pairs_.size();
-  sensor_pairs_.clear();  // a round after the first finds them again
   // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither, and
   // sensors only sense: none of them reaches the narrowphase.
   if (!linked_.empty() || !filters_.empty()) sort_out_pairs();
@@ -285,28 +283,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt, bool 
   for (const std::uint32_t k : {a, b}) {
     if (!discs_[k].dynamic) continue;
     ++stamp_[k], ++impacts_[k], changed_[k] = 1;
-    grow_box(k, now, dt);
   }
-}
-
-template <class Real>
-void DiscContacts<Real>::grow_box(std::uint32_t k, double now, double dt) {
-  const DiscMotion& m = motion_[k];
-  const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
-  SweptBox piece;
-  extent(m.x, m.ux, m.ax, dt - now, pad, piece.min_x, piece.max_x);
-  extent(m.y, m.uy, m.ay, dt - now, pad, piece.min_y, piece.max_y);
-  // Beyond its box by at most the slop, a disc still meets none it was not paired with:
-  // boxes that do not overlap keep the paths (r_a + r_b)(1 + 2 slop) apart.
-  const double give = discs_[k].radius * slop;
-  SweptBox& b = grown_[k];
-  if (piece.min_x >= b.min_x - give && piece.max_x <= b.max_x + give &&
-      piece.min_y >= b.min_y - give && piece.max_y <= b.max_y + give) {
-    return;  // within the box the broadphase paired it by (NaN: the runtime guard's)
-  }
-  b.min_x = std::min(b.min_x, piece.min_x), b.max_x = std::max(b.max_x, piece.max_x);
-  b.min_y = std::min(b.min_y, piece.min_y), b.max_y = std::max(b.max_y, piece.max_y);
-  grew_ = true;
 }
 
 template <class Real>
@@ -334,26 +311,6 @@ bool DiscContacts<Real>::pairs_of(std::span<const SweptBox> boxes, std::vector<D
 }
 
 template <class Real>
-bool DiscContacts<Real>::pairs_grow(const Tick& tick) {
-  // Boxes only grow, so the pairs of the grown boxes hold the round's: more of them is new.
-  return !pairs_of(grown_, grown_pairs_, tick.threads) || grown_pairs_.size() != box_pairs_;
-}
-
-template <class Real>
-void DiscContacts<Real>::restart_events(const Tick& tick) {
-  motion_ = motion0_;
-  for (std::size_t k = 0; k < discs_.size(); ++k) {
-    if (changed_[k]) {
-      const std::uint32_t j = discs_[k].body;
-      ex_[k] = tick.x[j], ey_[k] = tick.y[j], evx_[k] = tick.vx[j], evy_[k] = tick.vy[j];
-    }
-    if (!ew_.empty()) ew_[k] = double(tick.spin[discs_[k].body]);
-    stamp_[k] = 0, impacts_[k] = 0, changed_[k] = 0, external_[k] = 0;
-  }
-  boxes_ = grown_;
-}
-
-template <class Real>
 std::uint32_t DiscContacts<Real>::largest_box() const {
   std::uint32_t best = 0;
   double widest = -1.0;
@@ -362,19 +319,6 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
     const double w = std::max(b.max_x - b.min_x, b.max_y - b.min_y);
     if (std::isnan(w)) return k;  // a NaN box first
     if (w > widest) widest = w, best = k;
-  }
-  return best;
-}
-
-template <class Real>
-std::uint32_t DiscContacts<Real>::escaped() const {
-  std::uint32_t best = 0;
-  double most = -1.0;
-  for (std::uint32_t k = 0; k < boxes_.size(); ++k) {
-    const SweptBox &b = boxes_[k], &g = grown_[k];
-    const double grew =
-        (b.min_x - g.min_x) + (g.max_x - b.max_x) + (b.min_y - g.min_y) + (g.max_y - b.max_y);
-    if (grew > most) most = grew, best = k;
   }
   return best;
 }
@@ -458,28 +402,12 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   build_motions(tick);
   if (tick.wake) tick.wake(tick.wake_context);
   for (std::size_t k = 0; k < ew_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);
-  motion0_ = motion_, grown_ = boxes_;
-  profile.broadphase = profile.impacts = profile.resting = 0.0;
-  for (int round = 1;; ++round) {
-    const bool candidates = find_candidates(tick, stats);
-    profile.broadphase += clock.lap();
-    if (!candidates) return;
-    grew_ = false;
-    run_events(tick, stats);
-    profile.impacts += clock.lap();
-    // An impact sent a disc out of the box the broadphase paired it by: its new path may meet
-    // discs it was not paired with. If the boxes grown over the paths found pair more discs,
-    // the tick's impacts again, from its start, with those boxes (boxes only grow).
-    if (!grew_ || cap_.cap || !pairs_grow(tick)) break;
-    profile.broadphase += clock.lap();
-    if (round == max_box_rounds) {
-      cap_ = CapHit{"max_box_rounds", max_box_rounds, escaped(), CapHit::npos, 0.0};
-      stats.capped = 1;
-      return;
-    }
-    restart_events(tick);
-    stats.impacts = 0;
-  }
+  const bool candidates = find_candidates(tick, stats);
+  profile.broadphase = clock.lap();
+  profile.impacts = profile.resting = 0.0;
+  if (!candidates) return;
+  run_events(tick, stats);
+  profile.impacts = clock.lap();
   gather_contacts(tick);
   split_contacts(stats);
   solve_resting(tick, stats);
@@ -493,13 +421,13 @@ template <class Real>
 std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
-         b(vx0_) + b(vy0_) + b(motion_) + b(motion0_) + b(boxes_) + b(grown_) + b(grown_pairs_) +
-         b(dynamic_) + b(pairs_) + b(offset_) + b(incident_) + b(stamp_) + b(impacts_) +
-         b(changed_) + b(touch_) + b(plane_half_[0]) + b(plane_half_[1]) + b(heap_) + b(events_) +
-         b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
-         b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
-         b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
-         b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
+         b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
+         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(touch_) + b(plane_half_[0]) +
+         b(plane_half_[1]) + b(heap_) + b(events_) + b(impact_log_) + b(contacts_) + b(order_) +
+         b(scratch_) + b(cut_) + b(warm_) + b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) +
+         b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) +
+         b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) +
+         b(sw_);
 }
 
 }  // namespace fixstep::detail

@@ -186,14 +186,6 @@ std::string explain_cap(const WorldSettings& settings, const StateFault& f, std:
         "discs: a smaller dt (now {:g} s), slower or fewer discs",
         head, f.with, settings.dt);
   }
-  if (f.cap == "max_box_rounds") {
-    return fmt::format(
-        "{}: among {}, impacts kept sending discs beyond the boxes the broadphase paired them "
-        "by, so the tick's disc contacts were not resolved. Likely cause: discs moving many "
-        "radii per tick bouncing through a crowd: a smaller dt (now {:g} s), slower or fewer "
-        "discs",
-        head, f.with, settings.dt);
-  }
   return fmt::format(
       "{}: its impact with {} was not resolved. Likely cause: fast bodies driven into one "
       "another (a row of discs into a peg) or a body bouncing between close planes, each impact "

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
-#include <string_view>
 
 #include "disc_contacts.hpp"
 #include "workers.hpp"
@@ -196,9 +195,6 @@ void detail::WorldKernel<Real>::resolve_discs() {
       const std::uint32_t o = discs[hit->other].body;
       with = fmt::format("body[{}] \"{}\" (the impact due at {:g} s into the tick)", o, names_[o],
                          hit->time);
-    } else if (std::string_view(hit->cap) == "max_box_rounds") {
-      with = fmt::format("{} discs (this disc's impacts sent it furthest beyond its swept box)",
-                         discs.size());
     } else {
       const double r = discs[hit->disc].radius;
       with = fmt::format("{} discs (the largest swept box is this disc's, radius {:g} m)",

@@ -70,16 +70,6 @@ inline constexpr std::uint64_t max_implicit_bodies = 25'000;
   return std::max<std::uint64_t>(std::uint64_t{1} << 26, 256 * bodies);
 }
 
-/// Most rounds of one tick's disc impacts. The broadphase pairs discs by the boxes their free
-/// motions sweep over the tick; an impact can send a disc beyond its box (a disc knocked back
-/// the way it came, faster), where it may meet discs it was not paired with. The tick's impacts
-/// are then found again from its start with each box grown over the paths the impacts gave
-/// (boxes only grow), until no disc leaves its box: one round in a pile or a slow gas, two or
-/// three when fast discs bounce back through a crowd. Past this many rounds World::step
-/// records a StateFault naming this cap and the disc whose box grew most in the last round,
-/// and ContactStats::capped counts it.
-inline constexpr int max_box_rounds = 16;
-
 /// A claim beyond one of the limits above. what() names the claim, the limit and the way out.
 class LimitError : public std::runtime_error {
  public:

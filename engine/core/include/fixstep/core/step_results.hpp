@@ -30,7 +30,7 @@ struct ContactStats {
   std::size_t touching = 0;         ///< pairs in contact at the end of the tick (resting solver)
   double max_overlap = 0.0;         ///< deepest overlap r_a + r_b - |x_a - x_b| left, m (>= 0)
   /// Contact work a cap stopped in the last tick (limits.hpp: max_candidate_pairs,
-  /// max_tick_predictions, max_box_rounds): 0, or 1 when the tick reached one; World::fault() then
+  /// max_tick_predictions): 0, or 1 when the tick reached one; World::fault() then
   /// names it.
   std::size_t capped = 0;
   /// Iterations the resting solver ran over the touching pairs in the last tick: velocity
@@ -118,7 +118,7 @@ struct StateFault {
   double time = 0.0;       ///< simulated time after that tick, s
   std::string field;       ///< "x", "y" (m) or "vx", "vy" (m/s); "contacts" for a cap
   double value = 0.0;      ///< the offending value (NaN, ±inf or |value| > the limit); the cap
-  /// The cap reached ("max_candidate_pairs", "max_tick_predictions", "max_box_rounds"); empty for a
+  /// The cap reached ("max_candidate_pairs", "max_tick_predictions"); empty for a
   /// state out of range.
   std::string cap;
   /// With cap: the other party of the impact left unresolved ("body[7] \"peg\"", "plane[2]"),
