@@ -227,13 +227,7 @@ class DiscContacts {
   void detect_sensors(const Tick& tick);
   void run_events(const Tick& tick, ContactStats& stats);
   [[nodiscard]] std::uint32_t largest_box() const;
-  /// What becomes of pair's impact due at `now` (s) once either disc had max_impacts impacts
-  /// in the tick: resolved with its restitution (an elastic pair, or one that would end the
-  /// tick apart, having passed through), handed over to the resting solver (e < 1, ending the
-  /// tick within one push-out sweep of touching), or resolved as plastic (e = 0) now (e < 1,
-  /// ending deeper: the resting solver would push it out the wrong way, or not at all).
-  [[nodiscard]] int past_impacts(std::uint32_t pair, double now, double dt) const;
-  static constexpr int resolve_it = 0, hand_over = 1, plastic = 2;
+  [[nodiscard]] bool handed_over(std::uint32_t pair, double dt) const;
   /// Pushes pair's next impact after `now` (s) onto the event queue, if it has one this tick.
   void predict(std::uint32_t pair, double now, double dt);
   /// The pair's next impact after `now` into out; false when it has none this tick.
@@ -241,8 +235,7 @@ class DiscContacts {
   /// The event queue filled with every pair's first impact (two threads share the pairs within
   /// the tick's run of the second thread when there are min_parallel_pairs or more).
   void first_events(const Tick& tick);
-  /// Resolves pair's impact at `now` (s); `plastic`: with e = 0 (past_impacts()).
-  void impact(std::uint32_t pair, double now, double dt, bool plastic);
+  void impact(std::uint32_t pair, double now, double dt);
   /// The broadphase's pairs of `boxes` into out, without the linked and filtered-out pairs;
   /// false past max_candidate_pairs (or max_vetoed_pairs dropped).
   bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads);

@@ -235,7 +235,7 @@ void DiscContacts<Real>::first_events(const Tick& tick) {
 }
 
 template <class Real>
-void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt, bool plastic) {
+void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
   DiscMotion &ma = motion_[a], &mb = motion_[b];
   for (DiscMotion* m : {&ma, &mb}) {
@@ -250,7 +250,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt, bool 
   const double vn = std::min(wx * nx + wy * ny, 0.0);
   const double cn = (ma.ax - mb.ax) * nx + (ma.ay - mb.ay) * ny;
   const Disc &da = discs_[a], &db = discs_[b];
-  double e = plastic ? 0.0 : std::max(da.restitution, db.restitution);
+  double e = std::max(da.restitution, db.restitution);
   if (e * -vn <= std::max(-cn, 0.0) * dt) e = 0.0;  // it would hit again within the tick: rest
   const double mass = 1.0 / (da.inv_mass + db.inv_mass);
   const double jn = -(1.0 + e) * vn * mass;
@@ -324,24 +324,14 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 }
 
 template <class Real>
-int DiscContacts<Real>::past_impacts(std::uint32_t pair, double now, double dt) const {
+bool DiscContacts<Real>::handed_over(std::uint32_t pair, double dt) const {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
-  if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return resolve_it;
-  if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return resolve_it;
+  if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return false;
+  if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return false;
   const DiscMotion &ma = motion_[a], &mb = motion_[b];
-  // The overlap at the tick's end along the normal of now: where the centres would cross
-  // (through each other, or a disc through a static one), it is negative past the radii.
-  const double nx0 = ma.px(now) - mb.px(now), ny0 = ma.py(now) - mb.py(now);
-  const double len = length(nx0, ny0);
-  if (!(len > 0.0)) return plastic;
-  const double along = ((ma.px(dt) - mb.px(dt)) * nx0 + (ma.py(dt) - mb.py(dt)) * ny0) / len;
-  const double radii = discs_[a].radius + discs_[b].radius;
-  const double gap = length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - radii;
-  if (gap > 0.0) return resolve_it;  // apart at the end: it would pass through
-  // Closing by at most one push-out sweep until the end: the resting solver stops it
-  // approaching (e = 0) and pushes the overlap out.
-  const double reach = max_push_out * std::min(discs_[a].radius, discs_[b].radius);
-  return len - along <= reach ? hand_over : plastic;
+  const double gap =
+      length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - (discs_[a].radius + discs_[b].radius);
+  return gap <= 0.0;  // it ends the tick overlapping: the resting solver stops it approaching
 }
 
 template <class Real>
@@ -358,14 +348,13 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
     heap_.pop_back();
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
-    const int past = past_impacts(ev.pair, ev.time, dt);
-    if (past == hand_over) continue;  // the resting solver's (see disc_contacts.hpp)
-    if (again > cap) {                // an impact due that the cap leaves unresolved
+    if (handed_over(ev.pair, dt)) continue;  // the resting solver's (see disc_contacts.hpp)
+    if (again > cap) {                       // an impact due that the cap leaves unresolved
       cap_ = CapHit{"max_tick_predictions", cap, a, b, ev.time};
       stats.capped = 1;
       break;
     }
-    impact(ev.pair, ev.time, dt, past == plastic);
+    impact(ev.pair, ev.time, dt);
     ++stats.impacts;
     if (again >> 16 != polled) {  // a long tick stays stoppable: every 65 536 predictions
       polled = again >> 16;
