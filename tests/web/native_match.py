@@ -6,6 +6,7 @@ byte-identical: the one the check replays in the page is then the recording of e
 import filecmp
 import os
 import re
+import secrets
 import subprocess
 import time
 
@@ -38,7 +39,9 @@ def record_match(airhockey, out_dir, ticks=600, session="lockstep"):
     host_rec = os.path.join(out_dir, "airhockey_match.rec")
     join_rec = os.path.join(out_dir, "airhockey_match.join.rec")
     host_log = os.path.join(out_dir, "airhockey_match.host.out")
-    common = ["--session", session, "--bot", "--ticks", str(ticks)]
+    # The match's token (docs/NETWORK.md, "Connecting"): a random one, given to both peers.
+    token = secrets.token_hex(16)
+    common = ["--session", session, "--bot", "--ticks", str(ticks), "--token", token]
     with open(host_log, "w", encoding="utf-8") as log:
         host = subprocess.Popen([airhockey, "--host", "0", *common, "--record", host_rec],
                                 stdout=log, stderr=subprocess.STDOUT)
