@@ -131,7 +131,7 @@ INSTANTIATE_TEST_SUITE_P(RestitutionAndSpeed, ContactCapsRow, ::testing::ValuesI
 // disc impacts, and a disc an impact sends into a wall afterwards is not tested against it
 // again. On this code it fails 564 checks with the segment, 564 with the polyline and 7 with the
 // plane (discs past x = 0). docs/ROBUSTNESS.md ("Not yet: a row into a segment") has what a
-// merged event queue (branch h58-segrow-wip) reached.
+// merged event queue (a try, not kept; docs/ROBUSTNESS.md) reached.
 enum class Wall { segment, polyline, plane };
 
 template <class Real>
