@@ -233,18 +233,6 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Touched
 const std::string csv_header = "tick,t,body,x,y,vx,vy,energy,world_energy,world_dissipated,balance";
 
 namespace {
-/// Throws LimitError when the sync test's K + 1 snapshots of `sim` exceed max_sync_test_bytes.
-void check_sync_test_memory(const World& sim, int rollback) {
-  const std::uint64_t bytes =
-      (static_cast<std::uint64_t>(rollback) + 1) * (sim.snapshot_bytes() + sizeof(World));
-  if (bytes > max_sync_test_bytes) {
-    throw LimitError(fmt::format(
-        "--sync-test {}: {} snapshots of this world take about {:.3g} GiB; at most {:.3g} GiB "
-        "allowed: roll back fewer ticks",
-        rollback, rollback + 1, double(bytes) / double(std::uint64_t{1} << 30),
-        double(max_sync_test_bytes) / double(std::uint64_t{1} << 30)));
-  }
-}
 
 /// The message and exit status of a failed sync test.
 int sync_test_failed(const SyncTest& sync, int rollback) {

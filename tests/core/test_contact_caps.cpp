@@ -75,12 +75,12 @@ struct RowCase {
 
 class ContactCapsRow : public ::testing::TestWithParam<RowCase> {};
 
+// Drives a row of eight discs of radius 0.1 m, `gap` m apart, at `speed` m/s towards x = 0 in
+// `w` for five ticks: every disc stays at x < 0 (the obstacle `name` at the origin holds it), or
+// the run stops with a located fault naming a cap.
 template <class Real>
-void expect_row_stays_back(double e, double speed, double gap) {
-  WorldSettings s{.dt = 1.0 / 60.0};
-  s.contacts = ContactSettings{.restitution = e, .friction = 0.0};
-  detail::WorldKernel<Real> w(s);
-  (void)w.create_body(moving_disc({0.0, 0.0}, {0.0, 0.0}, 0.1, BodyType::static_body));
+void drive_row_into(detail::WorldKernel<Real>& w, const char* name, double e, double speed,
+                    double gap) {
   std::vector<Entity> row;
   for (int i = 0; i < 8; ++i) {
     row.push_back(w.create_body(moving_disc({-0.3 - (0.2 + gap) * i, 0.0}, {speed, 0.0}, 0.1)));
@@ -94,10 +94,19 @@ void expect_row_stays_back(double e, double speed, double gap) {
     }
     for (std::size_t i = 0; i < row.size(); ++i) {
       EXPECT_LT(w.body(row[i]).position.x, 0.0)
-          << "disc " << i << " went through the peg at tick " << tick << " (e = " << e << ", "
-          << speed << " m/s, gap " << gap << " m, " << sizeof(Real) * 8 << "-bit)";
+          << "disc " << i << " went through the " << name << " at tick " << tick << " (e = " << e
+          << ", " << speed << " m/s, gap " << gap << " m, " << sizeof(Real) * 8 << "-bit)";
     }
   }
+}
+
+template <class Real>
+void expect_row_stays_back(double e, double speed, double gap) {
+  WorldSettings s{.dt = 1.0 / 60.0};
+  s.contacts = ContactSettings{.restitution = e, .friction = 0.0};
+  detail::WorldKernel<Real> w(s);
+  (void)w.create_body(moving_disc({0.0, 0.0}, {0.0, 0.0}, 0.1, BodyType::static_body));
+  drive_row_into(w, "peg", e, speed, gap);
 }
 
 // Not yet held (docs/ROBUSTNESS.md, "Not yet: a row into a peg at every restitution"): disabled
@@ -150,23 +159,7 @@ void expect_row_stays_before(Wall wall, double e, double speed, double gap) {
     name = "plane";
     (void)w.add_plane(PlaneDef{.normal = {-1.0, 0.0}, .offset = 0.0, .restitution = e});
   }
-  std::vector<Entity> row;
-  for (int i = 0; i < 8; ++i) {
-    row.push_back(w.create_body(moving_disc({-0.3 - (0.2 + gap) * i, 0.0}, {speed, 0.0}, 0.1)));
-  }
-  for (int tick = 1; tick <= 5; ++tick) {
-    w.step();
-    if (w.fault()) {  // allowed, if located: a cap named, the contacts field
-      EXPECT_EQ(w.fault()->field, "contacts");
-      EXPECT_FALSE(w.fault()->cap.empty());
-      return;
-    }
-    for (std::size_t i = 0; i < row.size(); ++i) {
-      EXPECT_LT(w.body(row[i]).position.x, 0.0)
-          << "disc " << i << " went through the " << name << " at tick " << tick << " (e = " << e
-          << ", " << speed << " m/s, gap " << gap << " m, " << sizeof(Real) * 8 << "-bit)";
-    }
-  }
+  drive_row_into(w, name, e, speed, gap);
 }
 
 TEST_P(ContactCapsRow, DISABLED_ARowOfDiscsIntoAWallStaysOnItsSide) {

@@ -71,20 +71,6 @@ bool draw_replay(const Settings& settings, const Level& level, const Recording& 
   return true;
 }
 
-/// Throws LimitError when the sync test's K + 1 snapshots of `world` exceed max_sync_test_bytes
-/// (the game's copies beside them are not counted: a game's state is small beside its world).
-void check_sync_test_memory(const World& world, int rollback) {
-  const std::uint64_t bytes =
-      (static_cast<std::uint64_t>(rollback) + 1) * (world.snapshot_bytes() + sizeof(World));
-  if (bytes > max_sync_test_bytes) {
-    throw LimitError(fmt::format(
-        "--sync-test {}: {} snapshots of this world take about {:.3g} GiB; at most {:.3g} GiB "
-        "allowed: roll back fewer ticks",
-        rollback, rollback + 1, double(bytes) / double(std::uint64_t{1} << 30),
-        double(max_sync_test_bytes) / double(std::uint64_t{1} << 30)));
-  }
-}
-
 }  // namespace
 
 int replay_file(const AnyGame& prototype, const Settings& settings, const Options& o) {

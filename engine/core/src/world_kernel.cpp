@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -74,6 +75,17 @@ void check_coefficients(const Vec2& v, const std::string& who, const char* field
 /// A stiffness, damping, drag or friction: in [0, max_coefficient].
 bool nonnegative_coefficient(double v) {
   return within_coefficient(v) && v >= 0.0;
+}
+
+/// A spring-damper's stiffness k (N/m) and damping b (N·s/m) in [0, max_coefficient] and its
+/// rest length (m) in [0, max_state_magnitude]; `names` are the three fields' names in a message.
+template <class Real>
+void check_spring_terms(double k, double b, double rest, const std::string& who,
+                        const std::array<const char*, 3>& names) {
+  // isfinite first: an ordered comparison with NaN raises FE_INVALID (trapped in Debug tests).
+  check_value<Real>(k, nonnegative_coefficient(k), who, names[0], "in [0, 1e100] N/m");
+  check_value<Real>(b, nonnegative_coefficient(b), who, names[1], "in [0, 1e100] N*s/m");
+  check_value<Real>(rest, within_state(rest) && rest >= 0.0, who, names[2], "in [0, 1e12] m");
 }
 
 /// Swap-and-pop element i of every array in the pack (keeps SoA arrays aligned).
@@ -189,12 +201,8 @@ void detail::WorldKernel<Real>::validate(const Body& b, const std::string& who) 
 template <class Real>
 void detail::WorldKernel<Real>::validate_component(const SpringDamper& c, const std::string& who) {
   check_vec<Real>(c.anchor, who, "spring.anchor");
-  check_value<Real>(c.stiffness, nonnegative_coefficient(c.stiffness), who, "spring.stiffness",
-                    "in [0, 1e100] N/m");
-  check_value<Real>(c.damping, nonnegative_coefficient(c.damping), who, "spring.damping",
-                    "in [0, 1e100] N*s/m");
-  check_value<Real>(c.rest_length, within_state(c.rest_length) && c.rest_length >= 0.0, who,
-                    "spring.rest_length", "in [0, 1e12] m");
+  check_spring_terms<Real>(c.stiffness, c.damping, c.rest_length, who,
+                           {"spring.stiffness", "spring.damping", "spring.rest_length"});
 }
 
 template <class Real>
@@ -330,13 +338,8 @@ void detail::WorldKernel<Real>::validate_link(const LinkDef& def, const std::str
         "{}: both ends are {} (a link needs two different bodies)", who, describe(def.body_a)));
   }
   const LinkSpring& s = def.spring;
-  // isfinite first: an ordered comparison with NaN raises FE_INVALID (trapped in Debug tests).
-  check_value<Real>(s.stiffness, nonnegative_coefficient(s.stiffness), who, "stiffness",
-                    "in [0, 1e100] N/m");
-  check_value<Real>(s.damping, nonnegative_coefficient(s.damping), who, "damping",
-                    "in [0, 1e100] N*s/m");
-  check_value<Real>(s.rest_length, within_state(s.rest_length) && s.rest_length >= 0.0, who,
-                    "rest_length", "in [0, 1e12] m");
+  check_spring_terms<Real>(s.stiffness, s.damping, s.rest_length, who,
+                           {"stiffness", "damping", "rest_length"});
   if (s.rest_length > 0.0) {
     const std::size_t a = bodies_.index(def.body_a), b = bodies_.index(def.body_b);
     if (x_[a] == x_[b] && y_[a] == y_[b]) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <fixstep/core/components.hpp>
+#include <fixstep/core/world.hpp>
 #include <string>
 
 namespace fixstep {
@@ -21,6 +22,18 @@ void check_command_work(std::uint64_t ticks, std::uint64_t work_per_tick, std::s
         "most {:.0e} (about a day of CPU): step fewer ticks or a smaller world",
         what, ticks, work_per_tick, double(ticks) * double(work_per_tick),
         double(max_command_work)));
+  }
+}
+
+void check_sync_test_memory(const World& world, int rollback) {
+  const std::uint64_t bytes =
+      (static_cast<std::uint64_t>(rollback) + 1) * (world.snapshot_bytes() + sizeof(World));
+  if (bytes > max_sync_test_bytes) {
+    throw LimitError(fmt::format(
+        "--sync-test {}: {} snapshots of this world take about {:.3g} GiB; at most {:.3g} GiB "
+        "allowed: roll back fewer ticks",
+        rollback, rollback + 1, double(bytes) / double(std::uint64_t{1} << 30),
+        double(max_sync_test_bytes) / double(std::uint64_t{1} << 30)));
   }
 }
 

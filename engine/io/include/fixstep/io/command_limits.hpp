@@ -32,6 +32,11 @@ inline constexpr std::uint64_t max_sync_test_bytes = std::uint64_t{2} << 30;
 /// "x.rec: end 1000000000".
 void check_command_work(std::uint64_t ticks, std::uint64_t work_per_tick, std::string_view what);
 
+/// Throws LimitError when the sync test's `rollback` + 1 snapshots of `world` (each
+/// World::snapshot_bytes() plus a World) exceed max_sync_test_bytes; the message names
+/// --sync-test K, the estimate in GiB and the bound.
+void check_sync_test_memory(const World& world, int rollback);
+
 /// Most memory one command may plan to allocate, by its estimate (a sum of MemoryTerm): 4 GiB.
 /// The estimates are upper bounds of the measured peak resident memory (docs/ROBUSTNESS.md has
 /// the table), so a command refused here would have needed more, and one accepted needs less.
