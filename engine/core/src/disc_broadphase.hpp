@@ -45,6 +45,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -117,6 +118,14 @@ class DiscBroadphase {
   /// The veto of the next find_pairs calls (null: none; then every overlapping pair counts).
   /// It must outlive them.
   void set_veto(const PairVeto* veto) { veto_ = veto; }
+
+  /// Calls visit(i, box) for each box i of the last find_pairs call whose box as it was then
+  /// (`box`) overlaps q, static and dynamic, each once, in a fixed order. The overflow list's
+  /// boxes are left out: non-finite, they overlapped every box already, or none (NaN). Returns the
+  /// work it did: the cells and entries it looked at. O(min(cells q covers, buckets) per level +
+  /// entries seen).
+  template <class Visit>
+  std::uint64_t query(const SweptBox& q, Visit&& visit) const;
 
   /// Sets the n from which threads = 2 splits the work (min_parallel_boxes by default; 0 to
   /// split always, as the benchmark does to measure the hand-off).
@@ -213,5 +222,45 @@ class DiscBroadphase {
   const PairVeto* veto_ = nullptr;
   SecondThread second_;
 };
+
+template <class Visit>
+std::uint64_t DiscBroadphase::query(const SweptBox& q, Visit&& visit) const {
+  std::uint64_t work = 0;
+  for (std::uint64_t m = level_mask_; m != 0; m &= m - 1) {
+    const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
+    const Level& l = levels_[k];
+    // A box of level k is narrower than a cell: its home cell (lower-left corner) is at most
+    // one cell below and left of q's.
+    const std::int32_t x0 = cell_of(q.min_x, k) - 1, x1 = cell_of(q.max_x, k);
+    const std::int32_t y0 = cell_of(q.min_y, k) - 1, y1 = cell_of(q.max_y, k);
+    auto seen = [&](const Entry& e) {
+      return e.cx >= x0 && e.cx <= x1 && e.cy >= y0 && e.cy <= y1 && boxes_overlap(q, e.box);
+    };
+    const std::uint64_t cells =
+        std::uint64_t(std::int64_t{x1} - x0 + 1) * std::uint64_t(std::int64_t{y1} - y0 + 1);
+    const std::uint64_t buckets = std::uint64_t{l.wmask + 1} * (l.hmask + 1);
+    if (cells >= buckets) {  // every entry of the level once
+      const std::size_t first = start_[2 * std::size_t{l.base}];
+      const std::size_t last = start_[2 * (std::size_t{l.base} + buckets)];
+      work += buckets + (last - first);
+      for (std::size_t p = first; p < last; ++p) {
+        if (seen(entry_[p])) visit(entry_[p].index, entry_[p].box);
+      }
+      continue;
+    }
+    for (std::int32_t cy = y0; cy <= y1; ++cy) {
+      for (std::int32_t cx = x0; cx <= x1; ++cx) {
+        const std::size_t h = bucket(k, cx, cy);
+        ++work;
+        for (std::size_t p = start_[2 * h], end = start_[2 * h + 2]; p < end; ++p) {
+          const Entry& e = entry_[p];
+          ++work;
+          if (e.cx == cx && e.cy == cy && seen(e)) visit(e.index, e.box);
+        }
+      }
+    }
+  }
+  return work;
+}
 
 }  // namespace fixstep::detail

@@ -13,12 +13,20 @@
 //     is the first root of the quartic |d(s)|² - (r_a + r_b)² while approaching (disc_toi.hpp).
 //     Impacts are resolved in time order (ties by pair order) with Newton's restitution and a
 //     Coulomb-limited friction impulse on the linear velocities, and the pairs of the two discs are
-//     predicted again from that time on. Past max_impacts impacts of either disc in the tick, a
-//     pair with e < 1 that would end the tick overlapping is handed to the resting solver, which
-//     stops it approaching (e = 0, the limit of inelastic collapse: with e < 1 three or more
-//     discs can collide infinitely often in finite time, McNamara & Young, Phys. Fluids A 4,
-//     496 (1992); a packed pile's first tick does); every other impact is resolved: a pair that
-//     would pass through, and every elastic one (e = 1 gives finitely many collisions). The
+//     predicted again from that time on. A disc an impact sends beyond its swept box has the
+//     pairs of its new path added within the tick (disc_reach.cpp), so that no contact is
+//     missed. Past max_impacts impacts of either disc in the tick, a pair with e < 1 that would
+//     end the tick overlapping is handed to the resting solver, which stops it approaching
+//     (e = 0, the limit of inelastic collapse: with e < 1 three or more discs can collide
+//     infinitely often in finite time, McNamara & Young, Phys. Fluids A 4, 496 (1992); a packed
+//     pile's first tick does). If its centres would cross by then, or it would end deeper than
+//     hold_depth radii (more than the push-out can part the right way), its discs are instead
+//     held where they meet for the rest of the tick, keeping their velocities for the resting
+//     solver (they lose the rest of the tick's motion, as Box2D v3's b2SolveContinuous drops a
+//     fast body's step after its time of impact); a disc that then meets a held one below its cap
+//     bounces off it as off an immovable disc, and past its cap is held too. Every other impact
+//     is resolved: a pair that would pass through, and every elastic one (e = 1 gives finitely
+//     many collisions). The
 //     predictions after impacts count against max_tick_predictions (limits.hpp): past it the
 //     tick stops resolving impacts and reports the cap through cap_hit(). An impact that would
 //     bounce back by less than one tick of the pair's relative normal acceleration
@@ -56,6 +64,7 @@
 #include "disc_records.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "grown_grid.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep::detail {
@@ -66,6 +75,13 @@ inline double length(double x, double y) {
 }
 
 struct RestSweep;  // disc_rest.cpp
+
+/// A disc whose box grew within a tick (disc_reach.cpp), and its box as the broadphase paired it.
+struct GrownBox {
+  static constexpr std::uint32_t none = 0xffffffffu;
+  std::uint32_t disc = 0;
+  SweptBox first{};
+};
 
 template <class Real>
 class DiscContacts {
@@ -97,7 +113,8 @@ class DiscContacts {
     d.inv_inertia = asleep ? 0.0 : inv_inertia;
   }
   /// Each disc's swept box over the tick, as the broadphase pairs them (the motion from the
-  /// start state to the end state, padded by the radius and twice the slop), m.
+  /// start state to the end state, padded by the radius and twice the slop), grown
+  /// over its path where an impact sent it beyond (disc_reach.cpp), m.
   [[nodiscard]] std::span<const SweptBox> boxes() const { return boxes_; }
   /// The last resolve()'s candidate pairs (swept boxes overlapping; linked, filtered-out and
   /// sensor pairs dropped), by disc index.
@@ -173,6 +190,9 @@ class DiscContacts {
   /// Impacts of a disc in a tick past which its inelastic pairs that end the tick overlapping
   /// are left to the resting solver.
   static constexpr int max_impacts = 8;
+  /// Depth, as a fraction of the smaller radius, past which a pair handed to the resting solver
+  /// at the end of the tick has its discs held where they meet instead (see past_cap()).
+  static constexpr double hold_depth = 1.5;
   /// A cap of limits.hpp that the last resolve() reached, or null: the work it stopped is
   /// named in World::fault().
   struct CapHit {
@@ -227,7 +247,12 @@ class DiscContacts {
   void detect_sensors(const Tick& tick);
   void run_events(const Tick& tick, ContactStats& stats);
   [[nodiscard]] std::uint32_t largest_box() const;
-  [[nodiscard]] bool handed_over(std::uint32_t pair, double dt) const;
+  /// What becomes of a pair's impact due at `now` (s): resolved (both discs below
+  /// max_impacts, e = 1, or the pair would pass through), left to the resting solver (it ends
+  /// the tick overlapping), or its discs held where they meet (it would end the tick with its
+  /// centres crossed, or deeper than hold_depth).
+  enum class PastCap { impact, rest, hold };
+  [[nodiscard]] PastCap past_cap(std::uint32_t pair, double now, double dt) const;
   /// Pushes pair's next impact after `now` (s) onto the event queue, if it has one this tick.
   void predict(std::uint32_t pair, double now, double dt);
   /// The pair's next impact after `now` into out; false when it has none this tick.
@@ -236,6 +261,24 @@ class DiscContacts {
   /// the tick's run of the second thread when there are min_parallel_pairs or more).
   void first_events(const Tick& tick);
   void impact(std::uint32_t pair, double now, double dt);
+  // within a tick: pairs for a disc an impact sends beyond its box (disc_reach.cpp)
+  /// Forgets the last tick's extra pairs and grown boxes; the pairs found so far are the base.
+  void start_reach();
+  /// Disc k's motion from `now` (s) to the tick's end (dt, s): if it leaves k's box, the box
+  /// grows over it and the discs that piece may meet become new pairs, predicted from now.
+  /// Returns the work done, in units of a box test (a prediction counts 16).
+  std::uint64_t reach(std::uint32_t k, double now, double dt);
+  /// Whether a pair of discs k, j may collide at all: not both immovable, not kept apart by
+  /// their filters, neither a sensor, not linked.
+  [[nodiscard]] bool may_pair(std::uint32_t k, std::uint32_t j) const;
+  /// Puts pairs_ back in (a, b) order once extra pairs were added.
+  void finish_reach();
+  /// Holds the dynamic discs of a pair past the cap that would end the tick overlapping where
+  /// they are at `now` (s) for the rest of the tick, keeping their velocities for the resting
+  /// solver; how many it held (0 when a partner is kinematic or both are held already).
+  std::size_t hold_pair(std::uint32_t pair, double now);
+  /// Puts held disc k back on its motion from where it was held (a kinematic disc meets it).
+  void release(std::uint32_t k);
   /// The broadphase's pairs of `boxes` into out, without the linked and filtered-out pairs;
   /// false past max_candidate_pairs (or max_vetoed_pairs dropped).
   bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads);
@@ -343,6 +386,18 @@ class DiscContacts {
   std::vector<SensorOverlap> sensed_;
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
+  std::vector<HeldMotion> held_;          ///< per disc: held for the rest of the tick (hold_pair())
+  std::vector<std::uint32_t> held_list_;  ///< the discs held in the tick
+  // reach()'s: extra pairs, each disc's list of them (head per disc), the discs whose boxes
+  // grew in the tick (and where in that list, per disc), and how many pairs the broadphase
+  // found.
+  std::vector<ExtraPair> extra_;
+  std::vector<std::uint32_t> extra_head_, grown_of_;  ///< per disc: list head; index in grown_
+  std::vector<GrownBox> grown_;
+  std::vector<DiscPair> extra_sorted_;  ///< finish_reach()'s scratch
+  GrownGrid grown_grid_;                ///< the pieces the grown boxes grew by
+  double max_radius_ = 0;
+  std::size_t base_pairs_ = 0;
   std::array<std::vector<RestContact>, 2> plane_half_;  ///< gather_contacts()'s on two threads
   std::vector<std::uint8_t> touch_;       ///< gather_contacts()'s on two threads: pair i touches
   std::vector<DiscEvent> heap_, events_;  ///< the event queue; first_events()'s second half

@@ -24,20 +24,6 @@ bool later(const DiscEvent& l, const DiscEvent& r) {
   return l.time > r.time || (l.time == r.time && l.pair > r.pair);
 }
 
-/// The range of a + u s + ½ c s² over s in [0, h], widened by `pad`.
-void extent(double a, double u, double c, double h, double pad, double& lo, double& hi) {
-  const double end = a + h * (u + 0.5 * c * h);
-  lo = std::min(a, end), hi = std::max(a, end);
-  if (c != 0.0) {
-    const double s = -u / c;
-    if (s > 0.0 && s < h) {
-      const double turn = a + s * (u + 0.5 * c * s);
-      lo = std::min(lo, turn), hi = std::max(hi, turn);
-    }
-  }
-  lo -= pad, hi += pad;
-}
-
 }  // namespace
 
 template <class Real>
@@ -53,7 +39,12 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   settings_ = settings;
   const std::size_t n = discs_.size();
   min_radius_ = std::numeric_limits<double>::infinity();
-  for (const Disc& d : discs_) min_radius_ = std::min(min_radius_, d.radius);
+  max_radius_ = 0;
+  for (const Disc& d : discs_) {
+    min_radius_ = std::min(min_radius_, d.radius);
+    if (std::isfinite(d.radius)) max_radius_ = std::max(max_radius_, d.radius);
+  }
+  if (!(max_radius_ > 0.0)) max_radius_ = 1.0;
   for (auto* v : {&x0_, &y0_, &vx0_, &vy0_}) v->assign(n, Real(0));
   for (auto* v : {&ex_, &ey_, &evx_, &evy_, &lost_, &external_, &e_start_, &e_begin_, &d_begin_}) {
     v->assign(n, 0.0);
@@ -64,6 +55,11 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   for (std::size_t k = 0; k < n; ++k) dynamic_[k] = discs_[k].dynamic;
   offset_.assign(n + 1, 0);
   stamp_.assign(n, 0);
+  held_.assign(n, HeldMotion{});
+  held_list_.clear();
+  extra_.clear(), grown_.clear();
+  extra_head_.assign(n, ExtraPair::none);
+  grown_of_.assign(n, GrownBox::none);
   impacts_.assign(n, 0);
   changed_.assign(n, 0);
   warm_.clear();
@@ -120,8 +116,8 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
     const double pad = d.radius * (1.0 + 2.0 * slop);
     SweptBox& b = boxes_[k];
     // The box of the motion over the whole tick (extrapolated back to s = 0), and the start.
-    extent(m.px(0.0), m.ux - m.ax * m.t, m.ax, dt, pad, b.min_x, b.max_x);
-    extent(m.py(0.0), m.uy - m.ay * m.t, m.ay, dt, pad, b.min_y, b.max_y);
+    motion_extent(m.px(0.0), m.ux - m.ax * m.t, m.ax, dt, pad, b.min_x, b.max_x);
+    motion_extent(m.py(0.0), m.uy - m.ay * m.t, m.ay, dt, pad, b.min_y, b.max_y);
     b.min_x = std::min(b.min_x, x0 - pad), b.max_x = std::max(b.max_x, x0 + pad);
     b.min_y = std::min(b.min_y, y0 - pad), b.max_y = std::max(b.max_y, y0 + pad);
     stamp_[k] = 0, impacts_[k] = 0, changed_[k] = 0;
@@ -238,6 +234,8 @@ template <class Real>
 void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
   DiscMotion &ma = motion_[a], &mb = motion_[b];
+  if (held_[a].on && !discs_[b].dynamic) release(a);  // a kinematic disc pushes a held one on
+  if (held_[b].on && !discs_[a].dynamic) release(b);
   for (DiscMotion* m : {&ma, &mb}) {
     const double s = now - m->t;
     m->x += s * (m->ux + 0.5 * s * m->ax), m->y += s * (m->uy + 0.5 * s * m->ay);
@@ -252,7 +250,10 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   const Disc &da = discs_[a], &db = discs_[b];
   double e = std::max(da.restitution, db.restitution);
   if (e * -vn <= std::max(-cn, 0.0) * dt) e = 0.0;  // it would hit again within the tick: rest
-  const double mass = 1.0 / (da.inv_mass + db.inv_mass);
+  // A held disc stays where it is for the rest of the tick: immovable (infinite mass, at rest).
+  const double ia = held_[a].on ? 0.0 : da.inv_mass, ib = held_[b].on ? 0.0 : db.inv_mass;
+  const double ja = held_[a].on ? 0.0 : da.inv_inertia, jb = held_[b].on ? 0.0 : db.inv_inertia;
+  const double mass = 1.0 / (ia + ib);
   const double jn = -(1.0 + e) * vn * mass;
   impact_log_.push_back(DiscImpact{da.body, db.body, now, -vn});
   // Coulomb over the normal impulse: the tangential relative velocity loses at most μ jn/m.
@@ -269,19 +270,18 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
     const double scale = len > 0.0 ? len / (da.radius + db.radius) : 1.0;
     const double ra = da.radius * scale, rb = db.radius * scale;
     const double slip = -wx * ny + wy * nx - (ew_[a] * ra + ew_[b] * rb);
-    const double mass_t =
-        1.0 / (da.inv_mass + db.inv_mass + ra * ra * da.inv_inertia + rb * rb * db.inv_inertia);
+    const double mass_t = 1.0 / (ia + ib + ra * ra * ja + rb * rb * jb);
     const double lt = std::clamp(-slip * mass_t, -mu * jn, mu * jn);
     jx = jn * nx - lt * ny, jy = jn * ny + lt * nx;
-    ew_[a] -= ra * da.inv_inertia * lt, ew_[b] -= rb * db.inv_inertia * lt;
+    ew_[a] -= ra * ja * lt, ew_[b] -= rb * jb * lt;
   }
   // The work of a kinematic disc's impulse is external (J·V over the impulse).
   if (!da.dynamic) external_[b] -= jx * ma.ux + jy * ma.uy;
   if (!db.dynamic) external_[a] += jx * mb.ux + jy * mb.uy;
-  ma.ux += da.inv_mass * jx, ma.uy += da.inv_mass * jy;
-  mb.ux -= db.inv_mass * jx, mb.uy -= db.inv_mass * jy;
+  ma.ux += ia * jx, ma.uy += ia * jy;
+  mb.ux -= ib * jx, mb.uy -= ib * jy;
   for (const std::uint32_t k : {a, b}) {
-    if (!discs_[k].dynamic) continue;
+    if (!discs_[k].dynamic || held_[k].on) continue;
     ++stamp_[k], ++impacts_[k], changed_[k] = 1;
   }
 }
@@ -324,20 +324,32 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 }
 
 template <class Real>
-bool DiscContacts<Real>::handed_over(std::uint32_t pair, double dt) const {
+typename DiscContacts<Real>::PastCap DiscContacts<Real>::past_cap(std::uint32_t pair, double now,
+                                                                  double dt) const {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
-  if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return false;
-  if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return false;
+  if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return PastCap::impact;
+  if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return PastCap::impact;
   const DiscMotion &ma = motion_[a], &mb = motion_[b];
   const double gap =
       length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - (discs_[a].radius + discs_[b].radius);
-  return gap <= 0.0;  // it ends the tick overlapping: the resting solver stops it approaching
+  if (gap > 0.0) return PastCap::impact;  // it would pass through
+  // It ends the tick overlapping: the resting solver stops it approaching, unless its centres
+  // would cross (the push-out would then part them the wrong way) or it would end deeper than
+  // the push-out parts a pair in a tick's sweeps: its discs are then held where they meet.
+  const double cross = (ma.px(dt) - mb.px(dt)) * (ma.px(now) - mb.px(now)) +
+                       (ma.py(dt) - mb.py(dt)) * (ma.py(now) - mb.py(now));
+  const double r = std::min(discs_[a].radius, discs_[b].radius);
+  const bool deep = cross <= 0.0 || gap < -hold_depth * r;
+  return deep || held_[a].on || held_[b].on ? PastCap::hold : PastCap::rest;
 }
 
 template <class Real>
 void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
   impact_log_.clear();
+  for (const std::uint32_t k : held_list_) held_[k].on = 0;
+  held_list_.clear();
+  start_reach();
   first_events(tick);
   std::uint64_t again = 0;   // predictions after impacts, at most max_tick_predictions
   std::uint64_t polled = 0;  // again / 2^16 at the last stop poll
@@ -348,14 +360,21 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
     heap_.pop_back();
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
-    if (handed_over(ev.pair, dt)) continue;  // the resting solver's (see disc_contacts.hpp)
-    if (again > cap) {                       // an impact due that the cap leaves unresolved
+    const PastCap past = past_cap(ev.pair, ev.time, dt);
+    if (past == PastCap::rest) continue;  // the resting solver's (see disc_contacts.hpp)
+    if (again > cap) {                    // an impact due that the cap leaves unresolved
       cap_ = CapHit{"max_tick_predictions", cap, a, b, ev.time};
       stats.capped = 1;
       break;
     }
-    impact(ev.pair, ev.time, dt);
-    ++stats.impacts;
+    if (past == PastCap::hold) {
+      const std::size_t held = hold_pair(ev.pair, ev.time);
+      if (held == 0) continue;  // a kinematic partner, or both held: the resting solver's
+      stats.held += held;
+    } else {
+      impact(ev.pair, ev.time, dt);
+      ++stats.impacts;
+    }
     if (again >> 16 != polled) {  // a long tick stays stoppable: every 65 536 predictions
       polled = again >> 16;
       throw_if_stop_requested();
@@ -365,8 +384,13 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
       again += offset_[k + 1] - offset_[k];
       for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i)
         predict(incident_[i], ev.time, dt);
+      for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
+        ++again, predict(extra_[e].pair, ev.time, dt);
+      }
+      again += reach(k, ev.time, dt) / 16;  // the pairs of its path beyond its box
     }
   }
+  finish_reach();
   // The end of the tick on each disc's last motion; the integrator's velocity is the model's
   // minus the offset δ.
   for (std::size_t k = 0; k < discs_.size(); ++k) {
@@ -374,8 +398,45 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
     const DiscMotion& m = motion_[k];
     const double s = dt - m.t;
     ex_[k] = m.px(dt), ey_[k] = m.py(dt);
-    evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
+    if (held_[k].on) {  // where it was held, with the velocity it had there
+      evx_[k] = held_[k].ux - m.dx, evy_[k] = held_[k].uy - m.dy;
+    } else {
+      evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
+    }
   }
+}
+
+template <class Real>
+void DiscContacts<Real>::release(std::uint32_t k) {
+  HeldMotion& h = held_[k];
+  DiscMotion& m = motion_[k];
+  m.ux = h.ux, m.uy = h.uy, m.ax = h.ax, m.ay = h.ay;
+  h.on = 0;
+}
+
+template <class Real>
+std::size_t DiscContacts<Real>::hold_pair(std::uint32_t pair, double now) {
+  const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
+  for (const std::uint32_t k : {a, b}) {  // a kinematic partner would move on into it
+    const DiscMotion& m = motion_[k];
+    if (!discs_[k].dynamic && (m.ux != 0.0 || m.uy != 0.0 || m.ax != 0.0 || m.ay != 0.0)) {
+      return 0;
+    }
+  }
+  std::size_t held = 0;
+  for (const std::uint32_t k : {a, b}) {
+    if (!discs_[k].dynamic || held_[k].on) continue;
+    DiscMotion& m = motion_[k];
+    const double s = now - m.t;
+    m.x += s * (m.ux + 0.5 * s * m.ax), m.y += s * (m.uy + 0.5 * s * m.ay);
+    m.ux += s * m.ax, m.uy += s * m.ay, m.t = now;
+    held_[k] = HeldMotion{m.ux, m.uy, m.ax, m.ay, 1};
+    held_list_.push_back(k);
+    m.ux = m.uy = m.ax = m.ay = 0.0;
+    ++stamp_[k], changed_[k] = 1;
+    ++held;
+  }
+  return held;
 }
 
 template <class Real>
@@ -411,12 +472,13 @@ std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
-         b(incident_) + b(stamp_) + b(impacts_) + b(changed_) + b(touch_) + b(plane_half_[0]) +
-         b(plane_half_[1]) + b(heap_) + b(events_) + b(impact_log_) + b(contacts_) + b(order_) +
-         b(scratch_) + b(cut_) + b(warm_) + b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) +
-         b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) +
-         b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) +
-         b(sw_);
+         b(incident_) + b(stamp_) + b(held_) + b(held_list_) + b(extra_) + b(extra_sorted_) +
+         grown_grid_.bytes() + b(extra_head_) + b(grown_) + b(grown_of_) + b(impacts_) +
+         b(changed_) + b(touch_) + b(plane_half_[0]) + b(plane_half_[1]) + b(heap_) + b(events_) +
+         b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
+         b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
+         b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
+         b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
 }
 
 }  // namespace fixstep::detail

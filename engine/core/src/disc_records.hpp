@@ -4,6 +4,7 @@
 // overlap and an impact as logged. Plain data; internal to the engine: not installed.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 namespace fixstep::detail {
@@ -31,6 +32,35 @@ struct DiscMotion {
   [[nodiscard]] double py(double s) const {
     return y + uy * (s - t) + 0.5 * ay * (s - t) * (s - t);
   }
+};
+
+/// The range [lo, hi] of a + u s + ½ c s² over s in [0, h], widened by `pad`, m.
+inline void motion_extent(double a, double u, double c, double h, double pad, double& lo,
+                          double& hi) {
+  const double end = a + h * (u + 0.5 * c * h);
+  lo = std::min(a, end), hi = std::max(a, end);
+  if (c != 0.0) {
+    const double s = -u / c;
+    if (s > 0.0 && s < h) {
+      const double turn = a + s * (u + 0.5 * c * s);
+      lo = std::min(lo, turn), hi = std::max(hi, turn);
+    }
+  }
+  lo -= pad, hi += pad;
+}
+
+/// A pair found within a tick for a disc an impact sent beyond its box (disc_reach.cpp): one
+/// link of that disc's list of such pairs.
+struct ExtraPair {
+  static constexpr std::uint32_t none = 0xffffffffu;
+  std::uint32_t pair = 0, disc = 0, next = none;  ///< pair index; the disc; its next link
+};
+
+/// A disc held where it is for the rest of a tick: its motion's velocity (m/s) and acceleration
+/// (m/s²) when it was held; on = 0 when not held.
+struct HeldMotion {
+  double ux = 0, uy = 0, ax = 0, ay = 0;
+  std::uint8_t on = 0;
 };
 
 /// An impact waiting in the event queue: time, pair index and the two discs' versions.

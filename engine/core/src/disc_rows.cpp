@@ -100,7 +100,9 @@ void DiscContacts<Real>::scatter_rows(double kdt) {
         if (s < 3 || s >= 3 + n || slot_moved_[s] != 1) continue;  // not a disc's, or not moved
         const std::size_t k = s - 3;
         const SolveVelocity& v = sv_[s];
-        ex_[k] += kdt * (v.x - evx_[k]), ey_[k] += kdt * (v.y - evy_[k]);
+        if (!held_[k].on) {  // a held disc is where the contact stopped it already
+          ex_[k] += kdt * (v.x - evx_[k]), ey_[k] += kdt * (v.y - evy_[k]);
+        }
         evx_[k] = v.x, evy_[k] = v.y;
         if (rolling_) ew_[k] = sw_[s];
         slot_moved_[s] = 2;

@@ -1,0 +1,116 @@
+// Disc contacts, phase 1, continued: a disc an impact sends beyond the box the broadphase paired
+// it by (see disc_contacts.hpp) meets what lies on its new path. Its box grows over the rest of
+// its motion, and the discs whose boxes that piece overlaps and that it was not paired with
+// become new pairs of the tick, predicted from the impact on: the boxes as the broadphase stored
+// them (DiscBroadphase::query), and the boxes grown earlier in the tick, which the broadphase
+// never saw. Every disc's motion then stays inside its own box, and two discs whose boxes do not
+// overlap cannot touch (each box is padded by its disc's radius), so no contact is missed.
+#include <array>
+
+#include "disc_contacts.hpp"
+
+namespace fixstep::detail {
+
+template <class Real>
+void DiscContacts<Real>::start_reach() {
+  for (const ExtraPair& e : extra_) extra_head_[e.disc] = ExtraPair::none;
+  extra_.clear();
+  for (const GrownBox& g : grown_) grown_of_[g.disc] = GrownBox::none;
+  grown_.clear();
+  grown_grid_.reset(4.0 * (1.0 + 2.0 * slop) * max_radius_, discs_.size());
+  base_pairs_ = pairs_.size();
+}
+
+template <class Real>
+std::uint64_t DiscContacts<Real>::reach(std::uint32_t k, double now, double dt) {
+  const DiscMotion& m = motion_[k];
+  const double pad = discs_[k].radius * (1.0 + 2.0 * slop), h = dt - m.t;
+  SweptBox piece;
+  motion_extent(m.x, m.ux, m.ax, h, pad, piece.min_x, piece.max_x);
+  motion_extent(m.y, m.uy, m.ay, h, pad, piece.min_y, piece.max_y);
+  SweptBox& box = boxes_[k];
+  if (piece.min_x >= box.min_x && piece.max_x <= box.max_x && piece.min_y >= box.min_y &&
+      piece.max_y <= box.max_y) {
+    return 0;  // inside its box (false for NaN: a NaN piece is looked at, and overlaps nothing)
+  }
+  if (grown_of_[k] == GrownBox::none) {  // its box as the broadphase paired it
+    grown_of_[k] = static_cast<std::uint32_t>(grown_.size());
+    grown_.push_back(GrownBox{k, box});
+  }
+  const SweptBox& first = grown_[grown_of_[k]].first;
+  // What the piece covers beyond the box: up to four strips (closed, so they may share edges).
+  std::array<SweptBox, 4> strips;
+  std::size_t count = 0;
+  const double lo_x = std::max(piece.min_x, box.min_x), hi_x = std::min(piece.max_x, box.max_x);
+  if (piece.min_x < box.min_x) strips[count++] = {piece.min_x, piece.min_y, box.min_x, piece.max_y};
+  if (piece.max_x > box.max_x) strips[count++] = {box.max_x, piece.min_y, piece.max_x, piece.max_y};
+  if (piece.min_y < box.min_y) strips[count++] = {lo_x, piece.min_y, hi_x, box.min_y};
+  if (piece.max_y > box.max_y) strips[count++] = {lo_x, box.max_y, hi_x, piece.max_y};
+  if (count == 0) strips[count++] = piece;  // NaN
+  box.min_x = std::min(box.min_x, piece.min_x), box.max_x = std::max(box.max_x, piece.max_x);
+  box.min_y = std::min(box.min_y, piece.min_y), box.max_y = std::max(box.max_y, piece.max_y);
+  std::uint64_t work = 0;
+  // j, whose box the broadphase paired by is `paired_by`: a new pair if that box did not meet
+  // k's (else the broadphase paired them, or they may not collide) and j's box now meets the
+  // piece, unless an earlier piece paired them.
+  auto meet = [&](std::uint32_t j, const SweptBox& paired_by) {
+    ++work;
+    if (j == k || boxes_overlap(first, paired_by) || !boxes_overlap(piece, boxes_[j])) return;
+    if (!may_pair(k, j)) return;
+    const DiscPair p{std::min(k, j), std::max(k, j)};
+    for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
+      if (pairs_[extra_[e].pair] == p) return;
+    }
+    const auto index = static_cast<std::uint32_t>(pairs_.size());
+    pairs_.push_back(p);
+    for (const std::uint32_t q : {k, j}) {
+      extra_.push_back(ExtraPair{index, q, extra_head_[q]});
+      extra_head_[q] = static_cast<std::uint32_t>(extra_.size() - 1);
+    }
+    predict(index, now, dt);
+    work += 16;
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    work += broadphase_.query(strips[i], [&](std::uint32_t j, const SweptBox& paired_by) {
+      if (grown_of_[j] == GrownBox::none) meet(j, paired_by);  // (a grown box: below)
+    });
+  }
+  // The boxes grown earlier in the tick, which the broadphase never saw.
+  work += grown_grid_.query(piece, [&](std::uint32_t j) { meet(j, grown_[grown_of_[j]].first); });
+  grown_grid_.insert(k, piece);
+  return work;
+}
+
+template <class Real>
+bool DiscContacts<Real>::may_pair(std::uint32_t k, std::uint32_t j) const {
+  if (!dynamic_[k] && !dynamic_[j]) return false;
+  if (!filters_.empty()) {
+    if (!should_collide(filters_[k], filters_[j])) return false;
+    if (discs_[k].sensor || discs_[j].sensor) return false;  // sensors sense at the tick's end
+  }
+  if (linked_.empty()) return true;
+  const std::uint64_t key = (std::uint64_t(std::min(k, j)) << 32) | std::max(k, j);
+  return !std::binary_search(linked_.begin(), linked_.end(), key);
+}
+
+template <class Real>
+void DiscContacts<Real>::finish_reach() {
+  if (pairs_.size() == base_pairs_) return;
+  // The resting contacts are gathered from the pairs in (a, b) order (their keys' order): the
+  // few extra pairs sorted, then merged from the back into the broadphase's sorted ones.
+  auto before = [](const DiscPair& p, const DiscPair& q) {
+    return p.a < q.a || (p.a == q.a && p.b < q.b);
+  };
+  extra_sorted_.assign(pairs_.begin() + static_cast<std::ptrdiff_t>(base_pairs_), pairs_.end());
+  std::sort(extra_sorted_.begin(), extra_sorted_.end(), before);
+  std::size_t i = base_pairs_, j = extra_sorted_.size(), out = pairs_.size();
+  while (j > 0) {
+    if (i > 0 && before(extra_sorted_[j - 1], pairs_[i - 1])) {
+      pairs_[--out] = pairs_[--i];
+    } else {
+      pairs_[--out] = extra_sorted_[--j];
+    }
+  }
+}
+
+}  // namespace fixstep::detail
