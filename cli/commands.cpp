@@ -256,7 +256,7 @@ int run_command(const RunOptions& o) {
   const std::uint64_t ticks = o.steps ? static_cast<std::uint64_t>(*o.steps)
                                       : ticks_for(*o.duration, scene.def.settings.dt);
   const std::uint64_t work =
-      tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings);
+      tick_work(scene.def);
   check_command_work(  // before the world is built (limits.hpp)
       ticks, work,
       o.steps

@@ -86,7 +86,7 @@ int render_command(const RenderOptions& o) {
   const double verified = rec ? double(rec->ticks) : 0.0;
   check_command_work(
       static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)),
-      tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings),
+      tick_work(scene.def),
       rec ? fmt::format("--frames {} at --fps {:g} with --replay {} (end {})", o.frames, o.fps,
                         *o.replay, rec->ticks)
           : fmt::format("--frames {} at --fps {:g} with {}", o.frames, o.fps, dt_from));

@@ -945,6 +945,11 @@ case_ "--integrator implicit_euler on a 200x200 grid" "" run grid200.toml --step
 case_ "run --steps 10^12 (beyond the ticks a command may step)" "" run good.toml --steps 1000000000000
 grid_scene 100 100 > grid100.toml
 case_ "run --steps 10^9 of a 100x100 grid (3e13 body-substeps)" "" run grid100.toml --steps 1000000000
+{ printf '%s\n' "$ok_world" '[[grid]]' 'columns = 10' 'rows = 10' 'origin = [0.0, 1.0]' \
+    'spacing = [0.3, 0.3]' 'body = { mass = 1.0, radius = 0.1 }'
+  for ((k = 0; k < 10000; ++k)); do printf '[[segment]]\na = [%d.0, -5.0]\nb = [%d.5, -5.0]\n' $k $k; done
+} > segsteps.toml
+case_ "run --steps 10^8 of 100 discs over 10000 segments (1.6e15 body-substeps; the segments were not counted)" "" run segsteps.toml --steps 100000000
 case_ "run --steps 10^9 --record with a hash every tick (33 GB)" "" run good.toml --steps 1000000000 --record big.rec --hash-every 1
 case_ "--hash-every 1000000 (beyond 100000)" "" run good.toml --steps 10 --record out.rec --hash-every 1000000
 case_ "render --fps 0.000001 (10^14 ticks in 10^6 frames)" "" render good.toml --out frames --frames 1000000 --fps 0.000001

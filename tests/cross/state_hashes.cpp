@@ -122,7 +122,7 @@ void run(const Options& o) {
   if (o.precision) scene.def.precision = *o.precision;
   if (o.threads) scene.def.settings.threads = *o.threads;
   check_command_work(
-      o.ticks, tick_work(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings),
+      o.ticks, tick_work(scene.def),
       "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
   World sim = World(scene.def);
   std::string out;
