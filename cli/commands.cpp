@@ -255,8 +255,7 @@ int run_command(const RunOptions& o) {
   const Scene scene = load_with_overrides(o.scene);
   const std::uint64_t ticks = o.steps ? static_cast<std::uint64_t>(*o.steps)
                                       : ticks_for(*o.duration, scene.def.settings.dt);
-  const std::uint64_t work =
-      tick_work(scene.def);
+  const std::uint64_t work = tick_work(scene.def);
   check_command_work(  // before the world is built (limits.hpp)
       ticks, work,
       o.steps

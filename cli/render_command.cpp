@@ -85,8 +85,7 @@ int render_command(const RenderOptions& o) {
   // With --replay the recording's ticks are stepped once more, to verify it first.
   const double verified = rec ? double(rec->ticks) : 0.0;
   check_command_work(
-      static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)),
-      tick_work(scene.def),
+      static_cast<std::uint64_t>(std::min(ticks + verified, 1e18)), tick_work(scene.def),
       rec ? fmt::format("--frames {} at --fps {:g} with --replay {} (end {})", o.frames, o.fps,
                         *o.replay, rec->ticks)
           : fmt::format("--frames {} at --fps {:g} with {}", o.frames, o.fps, dt_from));

@@ -169,9 +169,8 @@ int replay_command(const ReplayOptions& o) {
   const Recording rec = read_recording(o.recording);
   set_phase("loading the scene");
   const Scene scene = scene_for_recording(rec, o.recording, o.scene, o.quiet);
-  check_command_work(
-      rec.ticks, tick_work(scene.def),
-      fmt::format("{}: end {}", o.recording, rec.ticks));
+  check_command_work(rec.ticks, tick_work(scene.def),
+                     fmt::format("{}: end {}", o.recording, rec.ticks));
   check_memory("replay", o.recording, replay_memory(scene, rec));  // before the world is built
   set_phase("replaying the recording");
   const ReplayReport report = verify_recording(scene, rec, o.quiet);

@@ -121,9 +121,8 @@ void run(const Options& o) {
   if (o.integrator) scene.def.settings.integrator = *o.integrator;
   if (o.precision) scene.def.precision = *o.precision;
   if (o.threads) scene.def.settings.threads = *o.threads;
-  check_command_work(
-      o.ticks, tick_work(scene.def),
-      "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
+  check_command_work(o.ticks, tick_work(scene.def),
+                     "--ticks " + std::to_string(o.ticks));  // limits.hpp, as `fixstep run`
   World sim = World(scene.def);
   std::string out;
   auto line = [&] {
