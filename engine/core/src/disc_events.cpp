@@ -324,26 +324,6 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 }
 
 template <class Real>
-typename DiscContacts<Real>::PastCap DiscContacts<Real>::past_cap(std::uint32_t pair, double now,
-                                                                  double dt) const {
-  const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
-  if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return PastCap::impact;
-  if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return PastCap::impact;
-  const DiscMotion &ma = motion_[a], &mb = motion_[b];
-  const double gap =
-      length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - (discs_[a].radius + discs_[b].radius);
-  if (gap > 0.0) return PastCap::impact;  // it would pass through
-  // It ends the tick overlapping: the resting solver stops it approaching, unless its centres
-  // would cross (the push-out would then part them the wrong way) or it would end deeper than
-  // the push-out parts a pair in a tick's sweeps: its discs are then held where they meet.
-  const double cross = (ma.px(dt) - mb.px(dt)) * (ma.px(now) - mb.px(now)) +
-                       (ma.py(dt) - mb.py(dt)) * (ma.py(now) - mb.py(now));
-  const double r = std::min(discs_[a].radius, discs_[b].radius);
-  const bool deep = cross <= 0.0 || gap < -hold_depth * r;
-  return deep || held_[a].on || held_[b].on ? PastCap::hold : PastCap::rest;
-}
-
-template <class Real>
 void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
   impact_log_.clear();
@@ -404,39 +384,6 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
       evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
     }
   }
-}
-
-template <class Real>
-void DiscContacts<Real>::release(std::uint32_t k) {
-  HeldMotion& h = held_[k];
-  DiscMotion& m = motion_[k];
-  m.ux = h.ux, m.uy = h.uy, m.ax = h.ax, m.ay = h.ay;
-  h.on = 0;
-}
-
-template <class Real>
-std::size_t DiscContacts<Real>::hold_pair(std::uint32_t pair, double now) {
-  const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
-  for (const std::uint32_t k : {a, b}) {  // a kinematic partner would move on into it
-    const DiscMotion& m = motion_[k];
-    if (!discs_[k].dynamic && (m.ux != 0.0 || m.uy != 0.0 || m.ax != 0.0 || m.ay != 0.0)) {
-      return 0;
-    }
-  }
-  std::size_t held = 0;
-  for (const std::uint32_t k : {a, b}) {
-    if (!discs_[k].dynamic || held_[k].on) continue;
-    DiscMotion& m = motion_[k];
-    const double s = now - m.t;
-    m.x += s * (m.ux + 0.5 * s * m.ax), m.y += s * (m.uy + 0.5 * s * m.ay);
-    m.ux += s * m.ax, m.uy += s * m.ay, m.t = now;
-    held_[k] = HeldMotion{m.ux, m.uy, m.ax, m.ay, 1};
-    held_list_.push_back(k);
-    m.ux = m.uy = m.ax = m.ay = 0.0;
-    ++stamp_[k], changed_[k] = 1;
-    ++held;
-  }
-  return held;
 }
 
 template <class Real>

@@ -10,6 +10,7 @@
 #include "disc_events.cpp"     // discs: motions, candidates, impacts in time order
 #include "disc_gather.cpp"     // discs: the resting contacts gathered
 #include "disc_halves.cpp"     // discs: a pile in two halves
+#include "disc_holds.cpp"      // discs: impacts past the cap, and holds
 #include "disc_reach.cpp"      // discs: pairs of a path beyond its box
 #include "disc_rest.cpp"       // discs: the resting solver
 #include "disc_rows.cpp"       // discs: the solver's rows
