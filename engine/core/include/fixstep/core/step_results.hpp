@@ -60,9 +60,10 @@ struct ContactStats {
   /// Islands woken in the tick: by an awake disc's motion coming near, a contact, input or an
   /// edit (ContactSettings::sleep).
   std::size_t woken = 0;
-  /// Impacts and resting contacts of an awake disc with a sleeping one in the tick, which
-  /// would have acted as a static disc (it then wakes at the tick's end). Always 0: an island
-  /// wakes before the broadphase pairs any of its discs with an awake one; kept as a check.
+  /// Impacts and resting contacts of an awake disc with a sleeping one in the tick, in which the
+  /// sleeper acted as a static disc (it then wakes at the tick's end). An island wakes before
+  /// the broadphase pairs any of its discs with an awake one, so this is 0 unless an impact sent
+  /// an awake disc beyond the box it was paired by and on into a sleeper within the tick.
   std::size_t sleeper_contacts = 0;
 };
 
