@@ -394,8 +394,10 @@ class DiscContacts {
   std::vector<ExtraPair> extra_;
   std::vector<std::uint32_t> extra_head_, grown_of_;  ///< per disc: list head; index in grown_
   std::vector<GrownBox> grown_;
-  std::vector<DiscPair> extra_sorted_;  ///< finish_reach()'s scratch
-  GrownGrid grown_grid_;                ///< the pieces the grown boxes grew by
+  std::vector<DiscPair> extra_sorted_;       ///< finish_reach()'s scratch
+  std::vector<std::uint32_t> partner_mark_;  ///< per disc: reach()'s mark when k's partner
+  std::uint32_t mark_ = 0;
+  GrownGrid grown_grid_;  ///< the pieces the grown boxes grew by
   double max_radius_ = 0;
   std::size_t base_pairs_ = 0;
   std::array<std::vector<RestContact>, 2> plane_half_;  ///< gather_contacts()'s on two threads

@@ -60,6 +60,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   extra_.clear(), grown_.clear();
   extra_head_.assign(n, ExtraPair::none);
   grown_of_.assign(n, GrownBox::none);
+  partner_mark_.assign(n, 0), mark_ = 0;
   impacts_.assign(n, 0);
   changed_.assign(n, 0);
   warm_.clear();
@@ -420,9 +421,9 @@ std::size_t DiscContacts<Real>::bytes() const {
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
          b(incident_) + b(stamp_) + b(held_) + b(held_list_) + b(extra_) + b(extra_sorted_) +
-         grown_grid_.bytes() + b(extra_head_) + b(grown_) + b(grown_of_) + b(impacts_) +
-         b(changed_) + b(touch_) + b(plane_half_[0]) + b(plane_half_[1]) + b(heap_) + b(events_) +
-         b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
+         b(partner_mark_) + grown_grid_.bytes() + b(extra_head_) + b(grown_) + b(grown_of_) +
+         b(impacts_) + b(changed_) + b(touch_) + b(plane_half_[0]) + b(plane_half_[1]) + b(heap_) +
+         b(events_) + b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
          b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
          b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
          b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);

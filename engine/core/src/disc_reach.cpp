@@ -50,6 +50,13 @@ std::uint64_t DiscContacts<Real>::reach(std::uint32_t k, double now, double dt) 
   box.min_x = std::min(box.min_x, piece.min_x), box.max_x = std::max(box.max_x, piece.max_x);
   box.min_y = std::min(box.min_y, piece.min_y), box.max_y = std::max(box.max_y, piece.max_y);
   std::uint64_t work = 0;
+  // k's extra pairs so far, marked by their partners (a fresh mark per call).
+  if (++mark_ == 0) std::fill(partner_mark_.begin(), partner_mark_.end(), 0u), mark_ = 1;
+  const std::uint32_t mark = mark_;
+  for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
+    const DiscPair& q = pairs_[extra_[e].pair];
+    partner_mark_[q.a == k ? q.b : q.a] = mark, ++work;
+  }
   // j, whose box the broadphase paired by is `paired_by`: a new pair if that box did not meet
   // k's (else the broadphase paired them, or they may not collide) and j's box now meets the
   // piece, unless an earlier piece paired them.
@@ -57,10 +64,9 @@ std::uint64_t DiscContacts<Real>::reach(std::uint32_t k, double now, double dt) 
     ++work;
     if (j == k || boxes_overlap(first, paired_by) || !boxes_overlap(piece, boxes_[j])) return;
     if (!may_pair(k, j)) return;
+    if (partner_mark_[j] == mark) return;  // an extra pair already, or met by this piece
+    partner_mark_[j] = mark;
     const DiscPair p{std::min(k, j), std::max(k, j)};
-    for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
-      if (pairs_[extra_[e].pair] == p) return;
-    }
     const auto index = static_cast<std::uint32_t>(pairs_.size());
     pairs_.push_back(p);
     for (const std::uint32_t q : {k, j}) {
