@@ -237,11 +237,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   DiscMotion &ma = motion_[a], &mb = motion_[b];
   if (held_[a].on && !discs_[b].dynamic) release(a);  // a kinematic disc pushes a held one on
   if (held_[b].on && !discs_[a].dynamic) release(b);
-  for (DiscMotion* m : {&ma, &mb}) {
-    const double s = now - m->t;
-    m->x += s * (m->ux + 0.5 * s * m->ax), m->y += s * (m->uy + 0.5 * s * m->ay);
-    m->ux += s * m->ax, m->uy += s * m->ay, m->t = now;
-  }
+  ma.advance(now), mb.advance(now);
   const double len = length(ma.x - mb.x, ma.y - mb.y);
   const double nx = len > 0.0 ? (ma.x - mb.x) / len : 0.0,
                ny = len > 0.0 ? (ma.y - mb.y) / len : 1.0;

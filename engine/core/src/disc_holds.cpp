@@ -16,14 +16,13 @@ typename DiscContacts<Real>::PastCap DiscContacts<Real>::past_cap(std::uint32_t 
   if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return PastCap::impact;
   if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return PastCap::impact;
   const DiscMotion &ma = motion_[a], &mb = motion_[b];
-  const double gap =
-      length(ma.px(dt) - mb.px(dt), ma.py(dt) - mb.py(dt)) - (discs_[a].radius + discs_[b].radius);
+  const double ex = ma.px(dt) - mb.px(dt), ey = ma.py(dt) - mb.py(dt);  // at the tick's end
+  const double gap = length(ex, ey) - (discs_[a].radius + discs_[b].radius);
   if (gap > 0.0) return PastCap::impact;  // it would pass through
   // It ends the tick overlapping: the resting solver stops it approaching, unless its centres
   // would cross (the push-out would then part them the wrong way) or it would end deeper than
   // hold_depth radii, or one of them is held already: its discs are then held where they meet.
-  const double cross = (ma.px(dt) - mb.px(dt)) * (ma.px(now) - mb.px(now)) +
-                       (ma.py(dt) - mb.py(dt)) * (ma.py(now) - mb.py(now));
+  const double cross = ex * (ma.px(now) - mb.px(now)) + ey * (ma.py(now) - mb.py(now));
   const double r = std::min(discs_[a].radius, discs_[b].radius);
   const bool deep = cross <= 0.0 || gap < -hold_depth * r;
   return deep || held_[a].on || held_[b].on ? PastCap::hold : PastCap::rest;
@@ -50,9 +49,7 @@ std::size_t DiscContacts<Real>::hold_pair(std::uint32_t pair, double now) {
   for (const std::uint32_t k : {a, b}) {
     if (!discs_[k].dynamic || held_[k].on) continue;
     DiscMotion& m = motion_[k];
-    const double s = now - m.t;
-    m.x += s * (m.ux + 0.5 * s * m.ax), m.y += s * (m.uy + 0.5 * s * m.ay);
-    m.ux += s * m.ax, m.uy += s * m.ay, m.t = now;
+    m.advance(now);
     held_[k] = HeldMotion{m.ux, m.uy, m.ax, m.ay, 1};
     held_list_.push_back(k);
     m.ux = m.uy = m.ax = m.ay = 0.0;

@@ -32,6 +32,12 @@ struct DiscMotion {
   [[nodiscard]] double py(double s) const {
     return y + uy * (s - t) + 0.5 * ay * (s - t) * (s - t);
   }
+  /// Moves the state on along the motion to time `now` (s), which becomes t.
+  void advance(double now) {
+    const double s = now - t;
+    x += s * (ux + 0.5 * s * ax), y += s * (uy + 0.5 * s * ay);
+    ux += s * ax, uy += s * ay, t = now;
+  }
 };
 
 /// The range [lo, hi] of a + u s + ½ c s² over s in [0, h], widened by `pad`, m.
