@@ -9,6 +9,7 @@
 #include <random>
 
 #include "disc_toi.hpp"
+#include "segment_set.hpp"
 
 namespace fixstep::detail {
 namespace {
@@ -82,6 +83,22 @@ TEST(TimeOfImpact, StraightLineMotionMeetsAtTheClosedFormTime) {
     }
   }
   EXPECT_GT(met, 2000);
+}
+
+
+// A disc touching a segment, closing on it within the tolerances (b = -1e-16 m/s, |b| <= vtol)
+// and pressed into it by less than the rounding of its acceleration (c = -1e-14 m/s² against a
+// tangential 10 m/s²): resting contact, no event. The leave-and-fall-back root -2b/c is then a
+// time before the present (-0.02 s), which segment_impact returned, and the plane pass moved the
+// disc's motion back in time with it.
+TEST(SegmentImpact, ADiscAtRestWithinTheTolerancesHasNoEventBeforeNow) {
+  SegmentDef def{.a = {-1.0, 0.0}, .b = {1.0, 0.0}};
+  SegmentSet set;
+  set.add(def);
+  const SegmentMotion m{0.0, 0.1, 0.0, -1e-16, 10.0, -1e-14};
+  SegmentTouch at;
+  const double s = segment_impact(set.shapes()[0], m, 0.1, 1.0 / 60.0, 1e-15, 1e-9, at);
+  EXPECT_TRUE(!std::isfinite(s) || (s >= 0.0 && s <= 1.0 / 60.0)) << s;
 }
 
 }  // namespace

@@ -7,30 +7,30 @@
 //     (x1, v1) define a motion of constant acceleration a = (v1 - v0)/dt through both end
 //     positions, as for planes: x(s) = x0 + u s + ½ a s², u = v0 + δ, with the integrator's
 //     velocity the model's minus δ = (x1 - x0)/dt - (v0 + v1)/2 (exact for free flight and
-//     gravity). A disc that hit a plane in the tick moves instead on its motion after its last
-//     plane impact (planes are resolved first; disc impacts before that time are missed). A
-//     broadphase pairs the discs whose boxes swept over the tick overlap; each pair's first contact
-//     is the first root of the quartic |d(s)|² - (r_a + r_b)² while approaching (disc_toi.hpp).
-//     Impacts are resolved in time order (ties by pair order) with Newton's restitution and a
-//     Coulomb-limited friction impulse on the linear velocities, and the pairs of the two discs are
-//     predicted again from that time on. A disc an impact sends beyond its swept box has the
-//     pairs of its new path added within the tick (disc_reach.cpp), so that no contact is
-//     missed. Past max_impacts impacts of either disc in the tick, a pair with e < 1 that would
-//     end the tick overlapping is handed to the resting solver, which stops it approaching
-//     (e = 0, the limit of inelastic collapse: with e < 1 three or more discs can collide
-//     infinitely often in finite time, McNamara & Young, Phys. Fluids A 4, 496 (1992); a packed
-//     pile's first tick does). If its centres would cross by then, or it would end deeper than
-//     hold_depth radii (more than the push-out can part the right way), its discs are instead
-//     held where they meet for the rest of the tick, keeping their velocities for the resting
-//     solver (they lose the rest of the tick's motion, as Box2D v3's b2SolveContinuous drops a
-//     fast body's step after its time of impact); a disc that then meets a held one below its cap
-//     bounces off it as off an immovable disc, and past its cap is held too. Every other impact
-//     is resolved: a pair that would pass through, and every elastic one (e = 1 gives finitely
-//     many collisions). The
-//     predictions after impacts count against max_tick_predictions (limits.hpp): past it the
-//     tick stops resolving impacts and reports the cap through cap_hit(). An impact that would
-//     bounce back by less than one tick of the pair's relative normal acceleration
-//     (e |v_n| <= |c_n| dt) is left to phase 2.
+//     gravity). A disc that met a plane or a segment in the plane pass moves so until its first
+//     plane event, and from there on that pass's motion after its last one, unless an impact
+//     changes its motion first; a disc whose motion an impact changes meets the walls on its new
+//     path among the impacts (disc_walls.cpp). A broadphase pairs the discs whose boxes swept over
+//     the tick overlap; each pair's first contact is the first root of the quartic |d(s)|² - (r_a +
+//     r_b)² while approaching (disc_toi.hpp). Impacts are resolved in time order (ties by pair
+//     order) with Newton's restitution and a Coulomb-limited friction impulse on the linear
+//     velocities, and the pairs of the two discs are predicted again from that time on. A disc an
+//     impact sends beyond its swept box has the pairs of its new path added within the tick
+//     (disc_reach.cpp), so that no contact is missed. Past max_impacts impacts of either disc in
+//     the tick, a pair with e < 1 that would end the tick overlapping is handed to the resting
+//     solver, which stops it approaching (e = 0, the limit of inelastic collapse: with e < 1 three
+//     or more discs can collide infinitely often in finite time, McNamara & Young, Phys. Fluids A
+//     4, 496 (1992); a packed pile's first tick does). If its centres would cross by then, or it
+//     would end deeper than hold_depth radii (more than the push-out can part the right way), its
+//     discs are instead held where they meet for the rest of the tick, keeping their velocities for
+//     the resting solver (they lose the rest of the tick's motion, as Box2D v3's b2SolveContinuous
+//     drops a fast body's step after its time of impact); a disc that then meets a held one below
+//     its cap bounces off it as off an immovable disc, and past its cap is held too. Every other
+//     impact is resolved: a pair that would pass through, and every elastic one (e = 1 gives
+//     finitely many collisions). The predictions after impacts count against max_tick_predictions
+//     (limits.hpp): past it the tick stops resolving impacts and reports the cap through cap_hit().
+//     An impact that would bounce back by less than one tick of the pair's relative normal
+//     acceleration (e |v_n| <= |c_n| dt) is left to phase 2.
 //  2. Resting contact (disc_gather.cpp, disc_rest.cpp). Pairs touching at the end of the tick, and
 //  discs on
 //     planes, are solved together by sequential impulses (Gauss–Seidel, warm-started from the
@@ -239,6 +239,13 @@ class DiscContacts {
   // phase 1 (disc_events.cpp)
   void build_motions(const Tick& tick);
   void build_motions(const Tick& tick, std::size_t begin, std::size_t end);
+  /// The swept box of a disc the plane pass bounced (p), on its free motion `free` until its
+  /// first plane event and on p's motion from then on, padded by `pad` (m).
+  static void plane_box(const PlaneMotion& p, const DiscMotion& free, double pad, double dt,
+                        SweptBox& b);
+  /// Disc k, which the plane pass bounced, takes that pass's motion after its last plane event
+  /// (its first plane event came before any disc impact changed its free motion).
+  void switch_to_plane_motion(const Tick& tick, std::uint32_t k);
   bool find_candidates(const Tick& tick, ContactStats& stats);
   /// Drops from pairs_ the linked pairs and the pairs filters reject, and moves the sensor
   /// pairs (one sensor, one not) to sensor_pairs_ (disc_sensors.cpp).
@@ -275,10 +282,33 @@ class DiscContacts {
   void finish_reach();
   /// Holds the dynamic discs of a pair past the cap that would end the tick overlapping where
   /// they are at `now` (s) for the rest of the tick, keeping their velocities for the resting
-  /// solver; how many it held (0 when a partner is kinematic or both are held already).
+  /// solver; how many it held (0 when a partner is kinematic, or both are held already or were
+  /// released by a kinematic disc in the tick).
   std::size_t hold_pair(std::uint32_t pair, double now);
   /// Puts held disc k back on its motion from where it was held (a kinematic disc meets it).
   void release(std::uint32_t k);
+  // walls within the impacts (disc_walls.cpp)
+  /// Disc k's first impact with a plane or a segment after `now` (s) on its motion, into out
+  /// (a wall event, see DiscEvent); false when it has none this tick. `looked` counts the walls
+  /// tested.
+  bool next_wall_event(const Tick& tick, std::uint32_t k, double now, double dt, DiscEvent& out,
+                       std::uint64_t& looked);
+  /// Pushes disc k's next wall event after `now` (s) onto the event queue, if it has one: a
+  /// disc the plane pass met (Disc::plane_slot), not held.
+  void predict_wall(const Tick& tick, std::uint32_t k, double now, double dt,
+                    std::uint64_t& looked);
+  /// Wall `wall` (DiscEvent::stamp_b) as the plane disc k meets at `now` (s), moving at u (m/s;
+  /// a segment's local plane at its closest feature); false when the ghost-vertex rule gives
+  /// that feature to a neighbour.
+  bool wall_plane(const Tick& tick, std::uint32_t k, std::uint32_t wall, double now,
+                  PlaneDef& plane, Vec2& u) const;
+  enum class WallOutcome { none, impact, held };
+  /// Disc k's impact with wall `wall` at `now` (s), resolved as the plane pass resolves it, or,
+  /// past max_impacts, the disc held where it meets an inelastic wall it would end the tick in.
+  WallOutcome wall_impact(const Tick& tick, std::uint32_t k, std::uint32_t wall, double now);
+  /// After disc k's motion changed at `now` (s): its pairs', its extra pairs' and its walls'
+  /// next events, and the pairs of its path beyond its box; adds the work to `again`.
+  void predict_after(const Tick& tick, std::uint32_t k, double now, std::uint64_t& again);
   /// The broadphase's pairs of `boxes` into out, without the linked and filtered-out pairs;
   /// false past max_candidate_pairs (or max_vetoed_pairs dropped).
   bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads);
@@ -386,6 +416,7 @@ class DiscContacts {
   std::vector<SensorOverlap> sensed_;
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
   std::vector<std::uint8_t> changed_;
+  std::vector<std::uint8_t> walled_;      ///< per disc: met a plane or a segment in the tick
   std::vector<HeldMotion> held_;          ///< per disc: held for the rest of the tick (hold_pair())
   std::vector<std::uint32_t> held_list_;  ///< the discs held in the tick
   // reach()'s: extra pairs, each disc's list of them (head per disc), the discs whose boxes
@@ -397,7 +428,8 @@ class DiscContacts {
   std::vector<DiscPair> extra_sorted_;       ///< finish_reach()'s scratch
   std::vector<std::uint32_t> partner_mark_;  ///< per disc: reach()'s mark when k's partner
   std::uint32_t mark_ = 0;
-  GrownGrid grown_grid_;  ///< the pieces the grown boxes grew by
+  GrownGrid grown_grid_;                   ///< the pieces the grown boxes grew by
+  std::vector<std::uint32_t> wall_found_;  ///< next_wall_event()'s segments near a path
   double max_radius_ = 0;
   std::size_t base_pairs_ = 0;
   std::array<std::vector<RestContact>, 2> plane_half_;  ///< gather_contacts()'s on two threads

@@ -19,11 +19,6 @@ namespace {
 
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
-/// Earlier event first; ties by pair index (a fixed order, so runs agree bit for bit).
-bool later(const DiscEvent& l, const DiscEvent& r) {
-  return l.time > r.time || (l.time == r.time && l.pair > r.pair);
-}
-
 }  // namespace
 
 template <class Real>
@@ -63,6 +58,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   partner_mark_.assign(n, 0), mark_ = 0;
   impacts_.assign(n, 0);
   changed_.assign(n, 0);
+  walled_.assign(n, 0);
   warm_.clear();
   rolling_ = settings.rolling;
   ew_.assign(rolling_ ? n : 0, 0.0), ew0_.assign(rolling_ ? n : 0, 0.0);
@@ -109,21 +105,49 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
     m.dx = (x1 - x0) / dt - 0.5 * (v0x + v1x), m.dy = (y1 - y0) / dt - 0.5 * (v0y + v1y);
     m.t = 0, m.x = x0, m.y = y0, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
     m.ax = (v1x - v0x) / dt, m.ay = (v1y - v0y) / dt;
-    if (d.plane_slot >= 0 && tick.after[d.plane_slot].t >= 0.0) {
-      const PlaneMotion& p = tick.after[d.plane_slot];  // after its last plane impact
-      m.t = p.t, m.x = p.x, m.y = p.y, m.ux = p.ux, m.uy = p.uy, m.ax = p.ax, m.ay = p.ay;
-      m.dx = p.dx, m.dy = p.dy;
-    }
     const double pad = d.radius * (1.0 + 2.0 * slop);
     SweptBox& b = boxes_[k];
-    // The box of the motion over the whole tick (extrapolated back to s = 0), and the start.
-    motion_extent(m.px(0.0), m.ux - m.ax * m.t, m.ax, dt, pad, b.min_x, b.max_x);
-    motion_extent(m.py(0.0), m.uy - m.ay * m.t, m.ay, dt, pad, b.min_y, b.max_y);
-    b.min_x = std::min(b.min_x, x0 - pad), b.max_x = std::max(b.max_x, x0 + pad);
-    b.min_y = std::min(b.min_y, y0 - pad), b.max_y = std::max(b.max_y, y0 + pad);
-    stamp_[k] = 0, impacts_[k] = 0, changed_[k] = 0;
+    if (d.plane_slot >= 0 && tick.after[d.plane_slot].t >= 0.0) {
+      // It bounced in the plane pass: on its free motion until its first plane event, and on
+      // its motion after the last one from then on (switch(); a disc impact before then
+      // changes its free motion instead, and it meets the walls in the disc pass).
+      const PlaneMotion& p = tick.after[d.plane_slot];
+      m.dx = p.free_dx, m.dy = p.free_dy, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
+      m.ax = p.free_ax, m.ay = p.free_ay;
+      plane_box(p, m, pad, dt, b);
+    } else {
+      // The box of the motion over the whole tick.
+      motion_extent(x0, m.ux, m.ax, dt, pad, b.min_x, b.max_x);
+      motion_extent(y0, m.uy, m.ay, dt, pad, b.min_y, b.max_y);
+    }
+    stamp_[k] = 0, impacts_[k] = 0, changed_[k] = 0, walled_[k] = 0;
     lost_[k] = 0, external_[k] = 0;
   }
+}
+
+template <class Real>
+void DiscContacts<Real>::plane_box(const PlaneMotion& p, const DiscMotion& free, double pad,
+                                   double dt, SweptBox& b) {
+  // The free motion up to the first plane event, and the motion after the last one from the
+  // first on (extrapolated back over the plane events between).
+  motion_extent(free.x, free.ux, free.ax, p.first, pad, b.min_x, b.max_x);
+  motion_extent(free.y, free.uy, free.ay, p.first, pad, b.min_y, b.max_y);
+  const double back = p.first - p.t;  // <= 0
+  const double ux = p.ux + back * p.ax, uy = p.uy + back * p.ay;
+  double lo = 0, hi = 0;
+  motion_extent(p.x + back * (p.ux + 0.5 * back * p.ax), ux, p.ax, dt - p.first, pad, lo, hi);
+  b.min_x = std::min(b.min_x, lo), b.max_x = std::max(b.max_x, hi);
+  motion_extent(p.y + back * (p.uy + 0.5 * back * p.ay), uy, p.ay, dt - p.first, pad, lo, hi);
+  b.min_y = std::min(b.min_y, lo), b.max_y = std::max(b.max_y, hi);
+}
+
+template <class Real>
+void DiscContacts<Real>::switch_to_plane_motion(const Tick& tick, std::uint32_t k) {
+  const PlaneMotion& p = tick.after[discs_[k].plane_slot];
+  DiscMotion& m = motion_[k];
+  m.t = p.t, m.x = p.x, m.y = p.y, m.ux = p.ux, m.uy = p.uy, m.ax = p.ax, m.ay = p.ay;
+  m.dx = p.dx, m.dy = p.dy;
+  ++stamp_[k];
 }
 
 template <class Real>
@@ -159,7 +183,7 @@ void DiscContacts<Real>::predict(std::uint32_t pair, double now, double dt) {
   DiscEvent ev;
   if (!next_event(pair, now, dt, ev)) return;
   heap_.push_back(ev);
-  std::push_heap(heap_.begin(), heap_.end(), later);
+  std::push_heap(heap_.begin(), heap_.end(), later_event);
 }
 
 template <class Real>
@@ -228,7 +252,14 @@ void DiscContacts<Real>::first_events(const Tick& tick) {
   } else {
     find(0, m, heap_);
   }
-  std::make_heap(heap_.begin(), heap_.end(), later);
+  if (!tick.planes.empty() || tick.segments) {  // the discs the plane pass bounced: switch()
+    for (std::uint32_t k = 0; k < discs_.size(); ++k) {
+      const std::int32_t slot = discs_[k].plane_slot;
+      if (slot < 0 || !(tick.after[slot].t >= 0.0)) continue;
+      heap_.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
+    }
+  }
+  std::make_heap(heap_.begin(), heap_.end(), later_event);
 }
 
 template <class Real>
@@ -321,10 +352,23 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 }
 
 template <class Real>
+void DiscContacts<Real>::predict_after(const Tick& tick, std::uint32_t k, double now,
+                                       std::uint64_t& again) {
+  const double dt = tick.dt;
+  again += offset_[k + 1] - offset_[k];
+  for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i) predict(incident_[i], now, dt);
+  for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
+    ++again, predict(extra_[e].pair, now, dt);
+  }
+  again += reach(k, now, dt) / 16;  // the pairs of its path beyond its box
+  if (!tick.planes.empty() || tick.segments) predict_wall(tick, k, now, dt, again);
+}
+
+template <class Real>
 void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
   impact_log_.clear();
-  for (const std::uint32_t k : held_list_) held_[k].on = 0;
+  for (const std::uint32_t k : held_list_) held_[k].on = held_[k].released = 0;
   held_list_.clear();
   start_reach();
   first_events(tick);
@@ -332,9 +376,36 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
   std::uint64_t polled = 0;  // again / 2^16 at the last stop poll
   const std::uint64_t cap = max_tick_predictions(discs_.size());
   while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), later);
+    std::pop_heap(heap_.begin(), heap_.end(), later_event);
     const DiscEvent ev = heap_.back();
     heap_.pop_back();
+    if (ev.pair & switch_event) {  // a disc met its first plane event on its free motion
+      const std::uint32_t k = ev.pair & ~switch_event;
+      if (ev.stamp_a != stamp_[k]) continue;  // an impact came first
+      switch_to_plane_motion(tick, k);
+      walled_[k] = 1;
+      const double from = motion_[k].t;
+      again += offset_[k + 1] - offset_[k];
+      for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i) predict(incident_[i], from, dt);
+      for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
+        ++again, predict(extra_[e].pair, from, dt);
+      }
+      continue;
+    }
+    if (ev.pair & wall_event) {  // a disc's impact with a wall (disc_walls.cpp)
+      const std::uint32_t k = ev.pair & ~wall_event;
+      if (ev.stamp_a != stamp_[k]) continue;  // superseded
+      if (again > cap) {
+        cap_ = CapHit{"max_tick_predictions", cap, k, CapHit::npos, ev.time};
+        stats.capped = 1;
+        break;
+      }
+      const WallOutcome out = wall_impact(tick, k, ev.stamp_b, ev.time);
+      if (out == WallOutcome::none) continue;
+      ++(out == WallOutcome::held ? stats.held : stats.wall_impacts);
+      predict_after(tick, k, ev.time, again);
+      continue;
+    }
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
     const PastCap past = past_cap(ev.pair, ev.time, dt);
@@ -357,14 +428,7 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
       throw_if_stop_requested();
     }
     for (const std::uint32_t k : {a, b}) {
-      if (!discs_[k].dynamic) continue;
-      again += offset_[k + 1] - offset_[k];
-      for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i)
-        predict(incident_[i], ev.time, dt);
-      for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
-        ++again, predict(extra_[e].pair, ev.time, dt);
-      }
-      again += reach(k, ev.time, dt) / 16;  // the pairs of its path beyond its box
+      if (discs_[k].dynamic) predict_after(tick, k, ev.time, again);
     }
   }
   finish_reach();
@@ -417,12 +481,13 @@ std::size_t DiscContacts<Real>::bytes() const {
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
          b(incident_) + b(stamp_) + b(held_) + b(held_list_) + b(extra_) + b(extra_sorted_) +
-         b(partner_mark_) + grown_grid_.bytes() + b(extra_head_) + b(grown_) + b(grown_of_) +
-         b(impacts_) + b(changed_) + b(touch_) + b(plane_half_[0]) + b(plane_half_[1]) + b(heap_) +
-         b(events_) + b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
-         b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
-         b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
-         b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
+         b(partner_mark_) + b(wall_found_) + grown_grid_.bytes() + b(extra_head_) + b(grown_) +
+         b(grown_of_) + b(impacts_) + b(changed_) + b(walled_) + b(touch_) + b(plane_half_[0]) +
+         b(plane_half_[1]) + b(heap_) + b(events_) + b(impact_log_) + b(contacts_) + b(order_) +
+         b(scratch_) + b(cut_) + b(warm_) + b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) +
+         b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) +
+         b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) +
+         b(sw_);
 }
 
 }  // namespace fixstep::detail

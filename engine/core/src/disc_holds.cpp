@@ -21,11 +21,15 @@ typename DiscContacts<Real>::PastCap DiscContacts<Real>::past_cap(std::uint32_t 
   if (gap > 0.0) return PastCap::impact;  // it would pass through
   // It ends the tick overlapping: the resting solver stops it approaching, unless its centres
   // would cross (the push-out would then part them the wrong way) or it would end deeper than
-  // hold_depth radii, or one of them is held already: its discs are then held where they meet.
+  // hold_depth radii, or one of them met a wall in the tick or is held already: its discs are
+  // then held where they meet.
   const double cross = ex * (ma.px(now) - mb.px(now)) + ey * (ma.py(now) - mb.py(now));
   const double r = std::min(discs_[a].radius, discs_[b].radius);
   const bool deep = cross <= 0.0 || gap < -hold_depth * r;
-  return deep || held_[a].on || held_[b].on ? PastCap::hold : PastCap::rest;
+  // A disc that met a wall in the tick may be pressed on into it: the resting solver sees a wall
+  // only where the disc ends the tick touching it.
+  const bool walled = walled_[a] != 0 || walled_[b] != 0;
+  return deep || walled || held_[a].on || held_[b].on ? PastCap::hold : PastCap::rest;
 }
 
 template <class Real>
@@ -33,7 +37,7 @@ void DiscContacts<Real>::release(std::uint32_t k) {
   HeldMotion& h = held_[k];
   DiscMotion& m = motion_[k];
   m.ux = h.ux, m.uy = h.uy, m.ax = h.ax, m.ay = h.ay;
-  h.on = 0;
+  h.on = 0, h.released = 1;
 }
 
 template <class Real>
@@ -47,7 +51,7 @@ std::size_t DiscContacts<Real>::hold_pair(std::uint32_t pair, double now) {
   }
   std::size_t held = 0;
   for (const std::uint32_t k : {a, b}) {
-    if (!discs_[k].dynamic || held_[k].on) continue;
+    if (!discs_[k].dynamic || held_[k].on || held_[k].released) continue;
     DiscMotion& m = motion_[k];
     m.advance(now);
     held_[k] = HeldMotion{m.ux, m.uy, m.ax, m.ay, 1};

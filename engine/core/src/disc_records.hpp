@@ -67,13 +67,31 @@ struct ExtraPair {
 struct HeldMotion {
   double ux = 0, uy = 0, ax = 0, ay = 0;
   std::uint8_t on = 0;
+  /// 1 once a kinematic disc released it in the tick: it is not held again in that tick (the
+  /// kinematic disc would release it again at the same instant, without end).
+  std::uint8_t released = 0;
 };
 
 /// An impact waiting in the event queue: time, pair index and the two discs' versions.
+/// A wall event (disc_walls.cpp) has pair = wall_event | disc, stamp_a the disc's version and
+/// stamp_b the wall: a plane's index, or the plane count plus a segment's; a switch event
+/// pair = switch_event | disc.
 struct DiscEvent {
   double time = 0;
   std::uint32_t pair = 0, stamp_a = 0, stamp_b = 0;
 };
+
+/// The bit of DiscEvent::pair that marks a disc's event with a wall.
+inline constexpr std::uint32_t wall_event = 0x80000000u;
+/// The bit of DiscEvent::pair that marks the first plane event of a disc the plane pass bounced
+/// (stamp_a its version): from there it moves on the plane pass's motion.
+inline constexpr std::uint32_t switch_event = 0x40000000u;
+
+/// Earlier event first; ties by pair index, a disc's wall events after every pair's (a fixed
+/// order, so runs agree bit for bit). The event queue's heap order.
+inline bool later_event(const DiscEvent& l, const DiscEvent& r) {
+  return l.time > r.time || (l.time == r.time && l.pair > r.pair);
+}
 
 /// A contact of the resting solver: disc a against disc b, or against plane p (b = disc count
 /// + p) or a segment (past the planes).

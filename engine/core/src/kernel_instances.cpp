@@ -16,6 +16,7 @@
 #include "disc_rows.cpp"       // discs: the solver's rows
 #include "disc_segments.cpp"   // discs: resting on segments
 #include "disc_sensors.cpp"    // discs: filters and sensors
+#include "disc_walls.cpp"      // discs: walls within the impacts
 #include "world_contacts.cpp"  // planes
 #include "world_coupled.cpp"   // links: the multi-pass integration
 #include "world_discs.cpp"     // disc contacts, the world's side

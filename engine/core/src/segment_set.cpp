@@ -56,7 +56,9 @@ double line_impact(double g0, double b, double c, double horizon, double tol, do
   constexpr double none = std::numeric_limits<double>::infinity();
   if (g0 <= tol) {
     if (b < -vtol || (b <= vtol && c < -atol)) return 0.0;
-    return c < 0.0 && -2.0 * b / c <= horizon ? -2.0 * b / c : none;
+    // Leaving (b > 0) and falling back; a rest (b <= 0 here) within the tolerances has no event
+    // (-2b/c would be a time before now).
+    return c < 0.0 && b > 0.0 && -2.0 * b / c <= horizon ? -2.0 * b / c : none;
   }
   double roots[2] = {none, none};
   const int n = quadratic_roots(g0, b, 0.5 * c, -1e-300, horizon * (1.0 + 1e-15), roots);

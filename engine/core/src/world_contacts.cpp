@@ -144,6 +144,8 @@ struct detail::PlaneWay {
   PlaneDef local;        ///< a segment's contact as a plane (world_segments.cpp)
   Vec2 local_u;          ///< its velocity (a kinematic body's segment; 0 static)
   bool touched = false;  ///< some plane or segment acted on the body this tick
+  double first = 0;      ///< when one first did, s
+  V2 free_offset;        ///< the free motion's offset δ
   bool bounced = false;  ///< some impact was a bounce (the disc phases start from it)
 };
 
@@ -189,6 +191,7 @@ void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t k, PlaneTally&
   PlaneWay w;
   w.m = Motion{x0, v0 + offset, (1.0 / dt) * (v1 - v0), offset};
   w.surfaces = Surfaces{.a_free = w.m.a};
+  w.free_offset = offset;
   if (rolling_ && inv_inertia_[j] > 0.0) {
     w.turn = Spin{double(spin_[j]), mass_[j] * r * r * inv_inertia_[j]};
     w.spin = &w.turn;
@@ -202,7 +205,7 @@ void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t k, PlaneTally&
 // A body that starts inside a plane is pushed out; its approaching velocity is dropped.
 template <class Real>
 void detail::WorldKernel<Real>::push_out_of_surfaces(PlaneWay& w, double r, double rel) {
-  for (const PlaneDef& p : planes_) w.touched = push_out(w.m, p, r, rel) || w.touched;
+  for (const PlaneDef& p : planes_) w.touched = push_out(w.m, p, r, rel) || w.touched;  // at 0
   for (int s = 0; s < 4 && !segments_.empty(); ++s) {
     const double tol = rel * (std::abs(w.m.x.x) + std::abs(w.m.x.y) + r);
     if (!segment_overlap(w.m.x.x, w.m.x.y, r, tol, w.m.t, w.local, w.local_u)) break;
@@ -250,6 +253,7 @@ void detail::WorldKernel<Real>::follow_plane_impacts(PlaneWay& w, std::uint32_t 
       return;
     }
     m.advance(first);
+    if (!w.touched) w.first = m.t;
     const bool bounce = resolve_event(m, *hit, hit == &w.local, u_hit, r, dt, w.spin, w.surfaces);
     w.bounced = bounce || w.bounced;
     w.touched = true;
@@ -288,6 +292,7 @@ template <class Real>
 bool detail::WorldKernel<Real>::touch_at_tick_end(PlaneWay& w, V2 x1, V2 u1, V2 offset, double r) {
   const double dt = settings_.dt;
   Motion& m = w.m;
+  if (!w.touched) w.first = dt;
   for (const PlaneDef& p : planes_) {
     const V2 n{p.normal.x, p.normal.y};
     if (dot(n, x1) - p.offset - r >= 0.0) continue;
@@ -309,10 +314,13 @@ template <class Real>
 void detail::WorldKernel<Real>::store_plane_way(std::size_t k, std::uint32_t j, PlaneWay& w,
                                                 PlaneTally& tally) {
   Motion& m = w.m;
-  // Disc contacts continue from a bounce's motion (a body at rest keeps its integrated one).
-  if (w.bounced) {
+  // Disc contacts continue from the motion after a bounce, or after a rest the body came to
+  // within the tick (a body at rest on a plane from the tick's start keeps its integrated one).
+  if (w.bounced || w.first > 0.0) {
+    const V2 a = w.surfaces.a_free, d = w.free_offset;
     contact_.after[k] =
-        detail::PlaneMotion{m.t, m.x.x, m.x.y, m.v.x, m.v.y, m.a.x, m.a.y, m.offset.x, m.offset.y};
+        detail::PlaneMotion{m.t,        m.x.x,      m.x.y,   m.v.x, m.v.y, m.a.x, m.a.y,
+                            m.offset.x, m.offset.y, w.first, a.x,   a.y,   d.x,   d.y};
   }
   m.advance(settings_.dt - m.t);
   x_[j] = static_cast<Real>(m.x.x), y_[j] = static_cast<Real>(m.x.y);

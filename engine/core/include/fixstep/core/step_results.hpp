@@ -27,11 +27,16 @@ struct EnergyReport {
 struct ContactStats {
   std::size_t candidate_pairs = 0;  ///< pairs of discs whose swept boxes overlap (broadphase)
   std::size_t impacts = 0;          ///< impacts resolved at their time within the tick
-  /// Discs held where they met another for the rest of the tick: past their 8th impact of the
-  /// tick, in a pair whose centres would cross by its end or that would end it deeper than 1.5
-  /// times the smaller radius (docs/ROBUSTNESS.md, "No physics dropped by a cap"); the resting
-  /// solver then stops them approaching.
+  /// Discs held where they met another or a wall for the rest of the tick: past their 8th impact
+  /// of the tick, in a pair whose centres would cross by its end or that would end it deeper than
+  /// 1.5 times the smaller radius, or against an inelastic wall they would end it inside
+  /// (docs/ROBUSTNESS.md, "No physics dropped by a cap"); the resting solver then stops them
+  /// approaching.
   std::size_t held = 0;
+  /// Impacts of discs with planes and segments resolved among the disc impacts: a disc whose
+  /// motion an impact changed meets the walls on its new path (the plane pass met those of its
+  /// free motion before).
+  std::size_t wall_impacts = 0;
   std::size_t touching = 0;  ///< pairs in contact at the end of the tick (resting solver)
   double max_overlap = 0.0;  ///< deepest overlap r_a + r_b - |x_a - x_b| left, m (>= 0)
   /// Contact work a cap stopped in the last tick (limits.hpp: max_candidate_pairs,
