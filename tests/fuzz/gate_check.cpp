@@ -75,9 +75,13 @@ class Run {
     const auto request = joiner.request();
     datagram(who, request, connected);
     std::vector<std::uint8_t> echo;
-    if (joiner.on_datagram(reply_, echo) != net::JoinerGate::Answer::cookie) {
-      finding("a cookie request drew no cookie");
+    const auto answer = joiner.on_datagram(reply_, echo);
+    if (answer !=
+        (right_token ? net::JoinerGate::Answer::cookie : net::JoinerGate::Answer::refused)) {
+      finding(right_token ? "a cookie request drew no cookie"
+                          : "a joiner echoed an unproven cookie");
     }
+    if (!right_token) echo = net::echo_of_cookie(key, reply_).value_or(std::vector<std::uint8_t>{});
     const std::uint64_t refused = gate_.counters().bad_token;
     datagram(who, echo, connected);
     if (!right_token && gate_.counters().bad_token != refused + 1) {

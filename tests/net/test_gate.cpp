@@ -64,7 +64,11 @@ struct Exchange {
     EXPECT_EQ(host.on_datagram(ip, port, request, t, false, reply), GateVerdict::reply);
     EXPECT_LT(reply.size(), request.size());
     std::vector<std::uint8_t> echo;
-    EXPECT_EQ(joiner.on_datagram(reply, echo), JoinerGate::Answer::cookie);
+    const bool ours = token == key_0_to_15();  // the host's token: its cookie proves it
+    EXPECT_EQ(joiner.on_datagram(reply, echo),
+              ours ? JoinerGate::Answer::cookie : JoinerGate::Answer::refused);
+    if (!ours) echo = *net::echo_of_cookie(token, reply);
+    EXPECT_EQ(echo, *net::echo_of_cookie(token, reply));
     last_echo = echo;
     return host.on_datagram(ip, port, echo, t, false, reply);
   }
@@ -87,6 +91,28 @@ TEST(Gate, OnlyAnAddressThatProvesTheTokenOnItsCookieReachesEnet) {
   EXPECT_EQ(x.host.on_datagram(ip, 4000, enet_connect, 2 * window_ms, false, x.reply),
             GateVerdict::drop);
   EXPECT_EQ(x.host.counters().not_admitted, 3u);
+}
+
+// The joiner authenticates the host: a cookie with its nonce that does not prove its token (a
+// host of another match, or a forger on the path) is refused, and no echo is made; one bit
+// flipped in the host's proof is enough.
+TEST(Gate, AJoinerEchoesOnlyACookieThatProvesItsToken) {
+  HostGate host{{.token = key_0_to_15()}};
+  std::vector<std::uint8_t> cookie, echo;
+  const JoinerGate ours(key_0_to_15(), 9);
+  ASSERT_EQ(host.on_datagram(ip, 4000, ours.request(), 0.0, false, cookie), GateVerdict::reply);
+  ASSERT_EQ(cookie.size(), net::cookie_bytes);
+  EXPECT_EQ(ours.on_datagram(cookie, echo), JoinerGate::Answer::cookie);
+  EXPECT_EQ(echo.size(), net::echo_bytes);
+  net::GateKey other = key_0_to_15();
+  other[15] ^= 0x40;
+  echo.clear();
+  EXPECT_EQ(JoinerGate(other, 9).on_datagram(cookie, echo), JoinerGate::Answer::refused);
+  EXPECT_TRUE(echo.empty());
+  std::vector<std::uint8_t> forged = cookie;
+  forged.back() ^= 0x01;  // the host's proof's last byte
+  EXPECT_EQ(ours.on_datagram(forged, echo), JoinerGate::Answer::refused);
+  EXPECT_TRUE(echo.empty());
 }
 
 TEST(Gate, AWrongTokenIsRefusedInFewerBytesThanItsEcho) {

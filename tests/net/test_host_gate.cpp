@@ -151,7 +151,9 @@ TEST(HostGate, NoUnauthenticatedExchangeDrawsMoreBytesThanItSent) {
     await_datagrams(host, socks, raw, 2 * nonce - 1);
     ASSERT_EQ(raw.last.size(), net::cookie_bytes);
     std::vector<std::uint8_t> echo;
-    ASSERT_EQ(joiner.on_datagram(raw.last, echo), net::JoinerGate::Answer::cookie);
+    // The host's cookie does not prove this token: a joiner refuses it; echo it regardless.
+    ASSERT_EQ(joiner.on_datagram(raw.last, echo), net::JoinerGate::Answer::refused);
+    echo = *net::echo_of_cookie(wrong, raw.last);
     raw.send_to(host.port(), echo);
     raw.send_to(host.port(), std::vector<std::uint8_t>(60, 0xab));  // garbage
     await_datagrams(host, socks, raw, 2 * nonce);

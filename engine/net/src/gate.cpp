@@ -45,6 +45,17 @@ std::uint64_t token_proof(const GateKey& token, std::uint64_t nonce, std::uint32
   return siphash24(token, m);
 }
 
+std::uint64_t host_proof(const GateKey& token, std::uint64_t nonce, std::uint32_t window,
+                         std::uint64_t cookie_mac) {
+  std::vector<std::uint8_t> m;
+  detail::ByteWriter w(m);
+  w.u8(3);
+  w.u64(nonce);
+  w.u32(window);
+  w.u64(cookie_mac);
+  return siphash24(token, m);
+}
+
 std::uint64_t HostGate::cookie_mac(std::uint32_t ipv4, std::uint16_t port, std::uint64_t nonce,
                                    std::uint32_t window) const {
   std::vector<std::uint8_t> m;
@@ -86,7 +97,9 @@ GateVerdict HostGate::on_datagram(std::uint32_t ipv4, std::uint16_t port,
     write_gate_header(w, GateKind::cookie);
     w.u64(nonce);
     w.u32(window);
-    w.u64(cookie_mac(ipv4, port, nonce, window));
+    const std::uint64_t mac = cookie_mac(ipv4, port, nonce, window);
+    w.u64(mac);
+    w.u64(host_proof(s_.token, nonce, window, mac));  // the joiner authenticates the host
     ++counters_.requests;
     verdict = GateVerdict::reply;
   } else if (*kind == static_cast<std::uint8_t>(GateKind::echo)) {
@@ -162,14 +175,28 @@ JoinerGate::Answer JoinerGate::on_datagram(std::span<const std::uint8_t> bytes,
   if (*kind != static_cast<std::uint8_t>(GateKind::cookie)) return Answer::none;
   const std::uint32_t window = r.u32();
   const std::uint64_t mac = r.u64();
-  echo.clear();
+  // A cookie with our nonce that does not prove our token: a host of another match (or a
+  // forger on the path): no echo, no connect.
+  if (r.u64() != host_proof(token_, nonce_, window, mac)) return Answer::refused;
+  echo = *echo_of_cookie(token_, bytes);
+  return Answer::cookie;
+}
+
+std::optional<std::vector<std::uint8_t>> echo_of_cookie(const GateKey& token,
+                                                        std::span<const std::uint8_t> cookie) {
+  if (gate_kind(cookie) != static_cast<std::uint8_t>(GateKind::cookie)) return std::nullopt;
+  detail::ByteReader r(cookie.subspan(8));
+  const std::uint64_t nonce = r.u64();
+  const std::uint32_t window = r.u32();
+  const std::uint64_t mac = r.u64();
+  std::vector<std::uint8_t> echo;
   detail::ByteWriter w(echo);
   write_gate_header(w, GateKind::echo);
-  w.u64(nonce_);
+  w.u64(nonce);
   w.u32(window);
   w.u64(mac);
-  w.u64(token_proof(token_, nonce_, window, mac));
-  return Answer::cookie;
+  w.u64(token_proof(token, nonce, window, mac));
+  return echo;
 }
 
 }  // namespace fixstep::net

@@ -42,8 +42,9 @@ void MatchPeer::Impl::handle(const TransportEvent& ev, double now) {
   if (ev.kind == Kind::refused) {
     if (state == MatchState::connecting) {
       fail(fmt::format(
-          "the host at {}:{} refused our token: it is not this match's (MatchSettings::token, a "
-          "game's --token: the 32 hexadecimal digits the host printed)",
+          "the host at {}:{} refused our token (or answered without proving it): it is not this "
+          "match's (MatchSettings::token, a game's --token: the 32 hexadecimal digits the host "
+          "printed)",
           host_address.host, host_address.port));
     }
     return;

@@ -47,11 +47,11 @@ using GateKey = std::array<std::uint8_t, 16>;
 /// First four bytes of every gate datagram ("FXSK" little-endian). As an ENet header they
 /// name peer 0x658 with the sent-time flag: no ENet host of fewer peers takes them.
 inline constexpr std::uint32_t gate_magic = 0x4b535846u;
-inline constexpr std::uint8_t gate_version = 1;
+inline constexpr std::uint8_t gate_version = 2;
 enum class GateKind : std::uint8_t { cookie_request = 1, cookie = 2, echo = 3, refused = 4 };
 /// Sizes, bytes: each reply is smaller than what it answers (no amplification).
 inline constexpr std::size_t cookie_request_bytes = 40;
-inline constexpr std::size_t cookie_bytes = 28;
+inline constexpr std::size_t cookie_bytes = 36;
 inline constexpr std::size_t echo_bytes = 36;
 inline constexpr std::size_t refused_bytes = 16;
 static_assert(cookie_bytes < cookie_request_bytes && refused_bytes < echo_bytes);
@@ -128,7 +128,9 @@ class JoinerGate {
   [[nodiscard]] std::vector<std::uint8_t> request() const;
   enum class Answer : std::uint8_t { none, cookie, refused };
   /// A datagram from the host: `cookie` fills `echo` (send it, then connect); `refused` the
-  /// host holds another token; `none` not a gate answer of ours (ENet's, or stale).
+  /// host holds another token: it refused ours, or its cookie does not prove ours (host_proof;
+  /// the joiner authenticates the host so); `none` not a gate answer of ours (ENet's, or
+  /// stale).
   [[nodiscard]] Answer on_datagram(std::span<const std::uint8_t> bytes,
                                    std::vector<std::uint8_t>& echo) const;
 
@@ -140,5 +142,14 @@ class JoinerGate {
 /// The proof of the token for a cookie: SipHash-2-4 under the token of (2, nonce, window, mac).
 [[nodiscard]] std::uint64_t token_proof(const GateKey& token, std::uint64_t nonce,
                                         std::uint32_t window, std::uint64_t cookie_mac);
+/// The host's proof of the token on its cookie: SipHash-2-4 under the token of (3, nonce,
+/// window, mac) (another first byte than the joiner's token_proof, so neither stands for the
+/// other).
+/// The echo of a well-formed cookie (cookie_bytes) with the proof of `token`, whether or not the
+/// cookie proves that token (JoinerGate echoes only one that does); nullopt for anything else.
+[[nodiscard]] std::optional<std::vector<std::uint8_t>> echo_of_cookie(
+    const GateKey& token, std::span<const std::uint8_t> cookie);
+[[nodiscard]] std::uint64_t host_proof(const GateKey& token, std::uint64_t nonce,
+                                       std::uint32_t window, std::uint64_t cookie_mac);
 
 }  // namespace fixstep::net
