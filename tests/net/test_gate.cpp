@@ -93,6 +93,27 @@ TEST(Gate, OnlyAnAddressThatProvesTheTokenOnItsCookieReachesEnet) {
   EXPECT_EQ(x.host.counters().not_admitted, 3u);
 }
 
+// A holder of the token on one machine is admitted on at most max_admitted_per_host (4) ports at
+// once, so it cannot take every ENet peer slot of the host; another machine is admitted, and the
+// first one's ports again once their admissions expire.
+TEST(Gate, OneMachineIsAdmittedOnAtMostFourPortsAtOnce) {
+  Exchange x;
+  for (std::uint16_t port = 5000; port < 5006; ++port) (void)x.join(port, key_0_to_15(), 0.0);
+  EXPECT_EQ(x.host.counters().admitted, 4u);
+  EXPECT_EQ(x.host.counters().host_full, 2u);
+  EXPECT_EQ(x.host.admitted_count(), 4u);
+  std::vector<std::uint8_t> reply, echo;
+  const JoinerGate other(key_0_to_15(), 8);
+  const std::uint32_t other_ip = ip + 1;
+  ASSERT_EQ(x.host.on_datagram(other_ip, 5000, other.request(), 1.0, false, reply),
+            GateVerdict::reply);
+  ASSERT_EQ(other.on_datagram(reply, echo), JoinerGate::Answer::cookie);
+  (void)x.host.on_datagram(other_ip, 5000, echo, 1.0, false, reply);
+  EXPECT_EQ(x.host.counters().admitted, 5u);
+  (void)x.join(5006, key_0_to_15(), 2 * window_ms);  // the first four have expired
+  EXPECT_EQ(x.host.counters().admitted, 6u);
+}
+
 // The joiner authenticates the host: a cookie with its nonce that does not prove its token (a
 // host of another match, or a forger on the path) is refused, and no echo is made; one bit
 // flipped in the host's proof is enough.

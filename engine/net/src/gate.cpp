@@ -79,6 +79,9 @@ GateVerdict HostGate::on_datagram(std::uint32_t ipv4, std::uint16_t port,
                                   std::span<const std::uint8_t> bytes, double now_ms,
                                   bool connected, std::vector<std::uint8_t>& reply) {
   std::erase_if(admitted_, [&](const Admission& a) { return now_ms >= a.expires_ms; });
+  if (connected) {  // ENet has a peer there: its admission no longer counts as a connection opening
+    if (Admission* a = admission(ipv4, port)) a->connected = true;
+  }
   const std::optional<std::uint8_t> kind = gate_kind(bytes);
   if (!kind) {
     if (connected || admission(ipv4, port) != nullptr) return GateVerdict::to_enet;
@@ -145,9 +148,15 @@ GateVerdict HostGate::on_echo(std::uint32_t ipv4, std::uint16_t port,
   }
   const double expires = (static_cast<double>(window) + 2.0) * s_.window_ms;
   if (had != nullptr) {
-    *had = {ipv4, port, nonce, window, expires};
+    *had = {ipv4, port, nonce, window, expires, had->connected};
   } else if (admitted_.size() >= s_.max_admitted) {
     ++counters_.full;
+    return GateVerdict::drop;
+  } else if (static_cast<std::size_t>(
+                 std::count_if(admitted_.begin(), admitted_.end(), [&](const Admission& a) {
+                   return a.ipv4 == ipv4 && !a.connected;
+                 })) >= s_.max_admitted_per_host) {
+    ++counters_.host_full;
     return GateVerdict::drop;
   } else {
     admitted_.push_back({ipv4, port, nonce, window, expires});

@@ -67,6 +67,8 @@ struct GateCounters {
   std::uint64_t replayed = 0;      ///< echoes of a cookie this address was admitted with, or
                                    ///< of one older than that
   std::uint64_t full = 0;          ///< valid echoes dropped: max_admitted addresses admitted
+  std::uint64_t host_full = 0;     ///< valid echoes dropped: max_admitted_per_host ports of
+                                   ///< that IPv4 address admitted
   std::uint64_t malformed = 0;     ///< gate datagrams of a wrong size, version or kind
   std::uint64_t not_admitted = 0;  ///< other datagrams from an address neither admitted nor
                                    ///< connected: dropped before ENet reads them
@@ -81,9 +83,14 @@ enum class GateVerdict : std::uint8_t {
 };
 
 struct HostGateSettings {
-  GateKey token{};                         ///< the match's token (the joiners' proof)
-  std::uint32_t window_ms = 5000;          ///< a cookie is good for 1 to 2 windows
-  std::size_t max_admitted = 64;           ///< addresses admitted at once (each by a proof)
+  GateKey token{};                 ///< the match's token (the joiners' proof)
+  std::uint32_t window_ms = 5000;  ///< a cookie is good for 1 to 2 windows
+  std::size_t max_admitted = 64;   ///< addresses admitted at once (each by a proof)
+  /// Ports of one IPv4 address admitted at once and not yet connected (an admitted address
+  /// counts until ENet has a peer there, or its cookie expires): a holder of the token on one
+  /// machine opens at most this many ENet connections at a time (each holds a peer slot until it
+  /// completes the match's handshake or handshake_timeout_ms passes), not all of the host's slots.
+  std::size_t max_admitted_per_host = 4;
   GateKey cookie_key = random_gate_key();  ///< the host's own, never sent
 };
 
@@ -109,6 +116,7 @@ class HostGate {
     std::uint64_t nonce = 0;
     std::uint32_t window = 0;
     double expires_ms = 0.0;
+    bool connected = false;  ///< ENet has a peer there (not counted by max_admitted_per_host)
   };
   [[nodiscard]] std::uint64_t cookie_mac(std::uint32_t ipv4, std::uint16_t port,
                                          std::uint64_t nonce, std::uint32_t window) const;
