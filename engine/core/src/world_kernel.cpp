@@ -3,18 +3,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 
-#include "fixstep/core/bits.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/fnv1a.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/value_ranges.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "value_checks.hpp"
 
 namespace fixstep {
 
@@ -42,51 +41,6 @@ std::size_t SparseSet::erase(Entity e) {
 }  // namespace detail
 
 namespace {
-
-/// A value is acceptable when it is finite in double and stays finite once narrowed to Real
-/// (1e39 is a fine double but +inf as a float).
-template <class Real>
-bool representable(double v) {
-  return std::isfinite(v) && std::isfinite(static_cast<Real>(v));
-}
-
-template <class Real>
-void check_value(double v, bool ok_range, const std::string& who, const char* field,
-                 const char* allowed) {
-  if (!representable<Real>(v) || !ok_range) {
-    throw std::invalid_argument(fmt::format("{}: {} must be {} (got {})", who, field, allowed, v));
-  }
-}
-
-/// A position, velocity or anchor: each component within max_state_magnitude (value_ranges.hpp).
-template <class Real>
-void check_vec(const Vec2& v, const std::string& who, const char* field) {
-  check_value<Real>(v.x, within_state(v.x), who, field, "finite with |value| <= 1e12");
-  check_value<Real>(v.y, within_state(v.y), who, field, "finite with |value| <= 1e12");
-}
-
-/// A force or an acceleration: each component within max_coefficient (value_ranges.hpp).
-template <class Real>
-void check_coefficients(const Vec2& v, const std::string& who, const char* field) {
-  check_value<Real>(v.x, within_coefficient(v.x), who, field, "finite with |value| <= 1e100");
-  check_value<Real>(v.y, within_coefficient(v.y), who, field, "finite with |value| <= 1e100");
-}
-
-/// A stiffness, damping, drag or friction: in [0, max_coefficient].
-bool nonnegative_coefficient(double v) {
-  return within_coefficient(v) && v >= 0.0;
-}
-
-/// A spring-damper's stiffness k (N/m) and damping b (N·s/m) in [0, max_coefficient] and its
-/// rest length (m) in [0, max_state_magnitude]; `names` are the three fields' names in a message.
-template <class Real>
-void check_spring_terms(double k, double b, double rest, const std::string& who,
-                        const std::array<const char*, 3>& names) {
-  // isfinite first: an ordered comparison with NaN raises FE_INVALID (trapped in Debug tests).
-  check_value<Real>(k, nonnegative_coefficient(k), who, names[0], "in [0, 1e100] N/m");
-  check_value<Real>(b, nonnegative_coefficient(b), who, names[1], "in [0, 1e100] N*s/m");
-  check_value<Real>(rest, within_state(rest) && rest >= 0.0, who, names[2], "in [0, 1e12] m");
-}
 
 /// Swap-and-pop element i of every array in the pack (keeps SoA arrays aligned).
 template <class... Vs>
@@ -188,68 +142,6 @@ std::size_t detail::WorldKernel<Real>::index_of(Entity e) const {
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::validate(const Body& b, const std::string& who) const {
-  check_value<Real>(b.mass, divisor_in_range(b.mass), who, "mass", "in [1e-100, 1e100] kg");
-  check_vec<Real>(b.position, who, "position");
-  check_vec<Real>(b.velocity, who, "velocity");
-  check_value<Real>(b.angle, within_state(b.angle), who, "angle",
-                    "finite with |value| <= 1e12 rad");
-  check_value<Real>(b.angular_velocity, within_state(b.angular_velocity), who, "angular_velocity",
-                    "finite with |value| <= 1e12 rad/s");
-}
-
-template <class Real>
-void detail::WorldKernel<Real>::validate_component(const SpringDamper& c, const std::string& who) {
-  check_vec<Real>(c.anchor, who, "spring.anchor");
-  check_spring_terms<Real>(c.stiffness, c.damping, c.rest_length, who,
-                           {"spring.stiffness", "spring.damping", "spring.rest_length"});
-}
-
-template <class Real>
-void detail::WorldKernel<Real>::validate_component(const ConstantForce& c, const std::string& who) {
-  check_coefficients<Real>(c.force, who, "force");
-}
-
-template <class Real>
-void detail::WorldKernel<Real>::validate_component(const Gravity& c, const std::string& who) {
-  check_coefficients<Real>(c.acceleration, who, "gravity");
-}
-
-template <class Real>
-void detail::WorldKernel<Real>::validate_component(const LinearDrag& c, const std::string& who) {
-  check_value<Real>(c.coefficient, nonnegative_coefficient(c.coefficient), who, "drag",
-                    "in [0, 1e100] N*s/m");
-}
-
-template <class Real>
-void detail::WorldKernel<Real>::validate_component(const Appearance& c, const std::string& who) {
-  check_value<Real>(c.radius, c.radius > 0.0 && c.radius <= max_state_magnitude, who, "radius",
-                    "finite, > 0 and <= 1e12 m");
-  check_value<Real>(c.trail_time, c.trail_time > 0.0 && c.trail_time <= max_trail_time, who,
-                    "trail_time", "finite, > 0 and <= 10 s");
-}
-
-template <class Real>
-void detail::WorldKernel<Real>::validate_component(const Collider& c, const std::string& who) {
-  // r / I and m r² / I turn a disc (world_rolling.cpp): r is divided into as well.
-  check_value<Real>(c.radius, c.radius >= min_coefficient && c.radius <= max_state_magnitude, who,
-                    "collider.radius", "in [1e-100, 1e12] m");
-  if (c.inertia) {
-    check_value<Real>(*c.inertia, divisor_in_range(*c.inertia), who, "collider.inertia",
-                      "in [1e-100, 1e100] kg*m^2");
-  }
-  if (c.friction) {
-    check_value<Real>(*c.friction, nonnegative_coefficient(*c.friction), who, "collider.friction",
-                      "in [0, 1e100]");
-  }
-  if (c.restitution) {
-    const double e = *c.restitution;
-    check_value<Real>(e, std::isfinite(e) && e >= 0.0 && e <= 1.0, who, "collider.restitution",
-                      "in [0, 1]");
-  }
-}
-
-template <class Real>
 Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   const std::string who = def.name.empty() ? std::string("body") : "body '" + def.name + "'";
@@ -326,32 +218,6 @@ void detail::WorldKernel<Real>::destroy(Entity e) {
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::validate_link(const LinkDef& def, const std::string& who) const {
-  for (const Entity e : {def.body_a, def.body_b}) {
-    if (!bodies_.contains(e)) {
-      throw std::invalid_argument(
-          fmt::format("{}: body {}:{} is null or was destroyed", who, e.index1, e.generation));
-    }
-  }
-  if (def.body_a == def.body_b) {
-    throw std::invalid_argument(fmt::format(
-        "{}: both ends are {} (a link needs two different bodies)", who, describe(def.body_a)));
-  }
-  const LinkSpring& s = def.spring;
-  check_spring_terms<Real>(s.stiffness, s.damping, s.rest_length, who,
-                           {"stiffness", "damping", "rest_length"});
-  if (s.rest_length > 0.0) {
-    const std::size_t a = bodies_.index(def.body_a), b = bodies_.index(def.body_b);
-    if (x_[a] == x_[b] && y_[a] == y_[b]) {
-      throw std::invalid_argument(fmt::format(
-          "{}: {} and {} are at the same point, so the direction of a link with rest length "
-          "{:g} m is undefined; move one of them or use rest_length = 0",
-          who, describe(def.body_a), describe(def.body_b), s.rest_length));
-    }
-  }
-}
-
-template <class Real>
 Link detail::WorldKernel<Real>::create_link(const LinkDef& def) {
   const IeeeFloatMode ieee;  // a state never depends on the caller's FPU mode (float_mode.hpp)
   validate_link(def, "link");
@@ -404,16 +270,6 @@ LinkDef detail::WorldKernel<Real>::link(Link link) const {
 template <class Real>
 std::pair<std::size_t, std::size_t> detail::WorldKernel<Real>::link_bodies(std::size_t i) const {
   return {bodies_.index(link_defs_[i].body_a), bodies_.index(link_defs_[i].body_b)};
-}
-
-template <class Real>
-double detail::WorldKernel<Real>::dissipated_energy() const {
-  double total = dissipated_gone_;
-  for (std::size_t j = 0; j < body_count(); ++j) {
-    total += mass_[j] * double(dissipated_body_[j]);
-  }
-  for (const Real e : dissipated_link_) total += double(e);
-  return total;
 }
 
 template <class Real>
@@ -559,100 +415,6 @@ unsigned detail::WorldKernel<Real>::active_terms() const {
   if (!drags_.data.empty()) bits |= term_drag;
   if (!link_defs_.empty()) bits |= term_link;
   return bits;
-}
-
-// Calls add(body index, kind, J) for every energy contribution: kinetic ½m|v|² per body, then
-// each potential (see EnergyReport). Shared by energy() and body_energies().
-template <class Real>
-template <class Add>
-void detail::WorldKernel<Real>::for_each_energy(Add&& add) const {
-  // Static and kinematic bodies are outside the account (their motion is imposed).
-  auto dynamic = [this](std::size_t j) { return types_[j] == BodyType::dynamic; };
-  for (std::size_t j = 0; j < body_count(); ++j) {
-    if (!dynamic(j)) continue;
-    const double vx = vx_[j], vy = vy_[j];
-    add(j, &EnergyReport::kinetic, 0.5 * mass_[j] * (vx * vx + vy * vy));
-  }
-  if (rolling_) {  // rotational ½ I ω² of rolling discs
-    for (std::size_t i = 0; i < colliders_.data.size(); ++i) {
-      const std::size_t j = bodies_.index(colliders_.set.dense[i]);
-      if (!dynamic(j)) continue;
-      const double w = spin_[j];
-      add(j, &EnergyReport::kinetic, 0.5 * inertia_of(mass_[j], colliders_.data[i]) * w * w);
-    }
-  }
-  for (std::size_t i = 0; i < springs_.data.size(); ++i) {
-    const SpringDamper& s = springs_.data[i];
-    const std::size_t j = bodies_.index(springs_.set.dense[i]);
-    if (!dynamic(j)) continue;
-    const double dx = double(x_[j]) - s.anchor.x, dy = double(y_[j]) - s.anchor.y;
-    const double d2 = dx * dx + dy * dy;
-    const double stretch = std::sqrt(d2) - s.rest_length;
-    add(j, &EnergyReport::spring,
-        0.5 * s.stiffness * (s.rest_length == 0.0 ? d2 : stretch * stretch));
-  }
-  for (const LinkDef& l : link_defs_) {
-    const std::size_t a = bodies_.index(l.body_a), b = bodies_.index(l.body_b);
-    const double dx = double(x_[a]) - double(x_[b]), dy = double(y_[a]) - double(y_[b]);
-    const double d2 = dx * dx + dy * dy;
-    const double stretch = std::sqrt(d2) - l.spring.rest_length;
-    const double e =
-        0.5 * l.spring.stiffness * (l.spring.rest_length == 0.0 ? d2 : stretch * stretch);
-    add(a, &EnergyReport::spring, 0.5 * e);
-    add(b, &EnergyReport::spring, 0.5 * e);
-  }
-  for (std::size_t i = 0; i < gravities_.data.size(); ++i) {
-    const Vec2 g = gravities_.data[i].acceleration;
-    const std::size_t j = bodies_.index(gravities_.set.dense[i]);
-    if (!dynamic(j)) continue;
-    add(j, &EnergyReport::gravity, -mass_[j] * (g.x * double(x_[j]) + g.y * double(y_[j])));
-  }
-  for (std::size_t i = 0; i < constant_forces_.data.size(); ++i) {
-    const Vec2 f = constant_forces_.data[i].force;
-    const std::size_t j = bodies_.index(constant_forces_.set.dense[i]);
-    if (!dynamic(j)) continue;
-    add(j, &EnergyReport::constant_force, -(f.x * double(x_[j]) + f.y * double(y_[j])));
-  }
-}
-
-template <class Real>
-void detail::WorldKernel<Real>::body_energies(std::span<double> out) const {
-  if (out.size() < body_count())
-    throw std::invalid_argument("World::body_energies: span too short");
-  std::fill_n(out.begin(), body_count(), 0.0);
-  for_each_energy([&](std::size_t j, double EnergyReport::*, double joules) { out[j] += joules; });
-}
-
-template <class Real>
-EnergyReport detail::WorldKernel<Real>::energy() const {
-  EnergyReport e;
-  for_each_energy(
-      [&](std::size_t, double EnergyReport::*kind, double joules) { e.*kind += joules; });
-  return e;
-}
-
-template <class Real>
-std::uint64_t detail::WorldKernel<Real>::state_hash() const {
-  // FNV-1a (fnv1a.hpp) of each value's bytes, least significant first (what memory holds on
-  // every platform fixstep runs on: x86-64, aarch64, wasm32).
-  std::uint64_t h = fnv1a_basis;
-  auto mix_bytes = [&h](std::uint64_t bits, std::size_t bytes) {
-    for (std::size_t i = 0; i < bytes; ++i) h = fnv1a_byte(h, (bits >> (8 * i)) & 0xffu);
-  };
-  auto mix = [&](Real v) { mix_bytes(bits_of(v), sizeof(Real)); };
-  for (std::size_t j = 0; j < body_count(); ++j) {
-    mix(x_[j]);
-    mix(y_[j]);
-    mix(vx_[j]);
-    mix(vy_[j]);
-  }
-  // Rolling discs (only in worlds that ask: every other world hashes as before).
-  for (std::size_t j = 0; j < angle_.size(); ++j) mix(angle_[j]), mix(spin_[j]);
-  // Sleeping islands (only in worlds that ask), as the bytes of two 32-bit counts.
-  for (std::size_t j = 0; j < asleep_.size(); ++j) {
-    mix_bytes(still_ticks_[j], sizeof(std::uint32_t)), mix_bytes(asleep_[j], sizeof(std::uint32_t));
-  }
-  return h;
 }
 
 // Force evaluation and the integrators are in world_step.cpp, instantiated there.
