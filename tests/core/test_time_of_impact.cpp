@@ -85,7 +85,6 @@ TEST(TimeOfImpact, StraightLineMotionMeetsAtTheClosedFormTime) {
   EXPECT_GT(met, 2000);
 }
 
-
 // A disc touching a segment, closing on it within the tolerances (b = -1e-16 m/s, |b| <= vtol)
 // and pressed into it by less than the rounding of its acceleration (c = -1e-14 m/s² against a
 // tangential 10 m/s²): resting contact, no event. The leave-and-fall-back root -2b/c is then a
