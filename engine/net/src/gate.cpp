@@ -34,26 +34,31 @@ std::optional<std::uint8_t> gate_kind(std::span<const std::uint8_t> bytes) {
 
 }  // namespace
 
-std::uint64_t token_proof(const GateKey& token, std::uint64_t nonce, std::uint32_t window,
-                          std::uint64_t cookie_mac) {
+namespace {
+
+/// SipHash-2-4 under `token` of (domain, nonce, window, mac): the joiner's proof (domain 2) and
+/// the host's (domain 3) of the same cookie differ, so neither stands for the other.
+std::uint64_t proof_of(const GateKey& token, std::uint8_t domain, std::uint64_t nonce,
+                       std::uint32_t window, std::uint64_t mac) {
   std::vector<std::uint8_t> m;
   detail::ByteWriter w(m);
-  w.u8(2);
+  w.u8(domain);
   w.u64(nonce);
   w.u32(window);
-  w.u64(cookie_mac);
+  w.u64(mac);
   return siphash24(token, m);
+}
+
+}  // namespace
+
+std::uint64_t token_proof(const GateKey& token, std::uint64_t nonce, std::uint32_t window,
+                          std::uint64_t cookie_mac) {
+  return proof_of(token, 2, nonce, window, cookie_mac);
 }
 
 std::uint64_t host_proof(const GateKey& token, std::uint64_t nonce, std::uint32_t window,
                          std::uint64_t cookie_mac) {
-  std::vector<std::uint8_t> m;
-  detail::ByteWriter w(m);
-  w.u8(3);
-  w.u64(nonce);
-  w.u32(window);
-  w.u64(cookie_mac);
-  return siphash24(token, m);
+  return proof_of(token, 3, nonce, window, cookie_mac);
 }
 
 std::uint64_t HostGate::cookie_mac(std::uint32_t ipv4, std::uint16_t port, std::uint64_t nonce,
