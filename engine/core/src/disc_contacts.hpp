@@ -306,8 +306,10 @@ class DiscContacts {
   /// Disc k's impact with wall `wall` at `now` (s), resolved as the plane pass resolves it, or,
   /// past max_impacts, the disc held where it meets an inelastic wall it would end the tick in.
   WallOutcome wall_impact(const Tick& tick, std::uint32_t k, std::uint32_t wall, double now);
-  /// After disc k's motion changed at `now` (s): its pairs', its extra pairs' and its walls'
-  /// next events, and the pairs of its path beyond its box; adds the work to `again`.
+  /// Disc k's pairs' and extra pairs' next events after `now` (s); adds the work to `again`.
+  void predict_pairs(std::uint32_t k, double now, double dt, std::uint64_t& again);
+  /// After disc k's motion changed at `now` (s): predict_pairs(), the pairs of its path beyond
+  /// its box, and its walls' next event; adds the work to `again`.
   void predict_after(const Tick& tick, std::uint32_t k, double now, std::uint64_t& again);
   /// The broadphase's pairs of `boxes` into out, without the linked and filtered-out pairs;
   /// false past max_candidate_pairs (or max_vetoed_pairs dropped).

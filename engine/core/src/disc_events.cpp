@@ -352,14 +352,20 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 }
 
 template <class Real>
-void DiscContacts<Real>::predict_after(const Tick& tick, std::uint32_t k, double now,
+void DiscContacts<Real>::predict_pairs(std::uint32_t k, double now, double dt,
                                        std::uint64_t& again) {
-  const double dt = tick.dt;
   again += offset_[k + 1] - offset_[k];
   for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i) predict(incident_[i], now, dt);
   for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
     ++again, predict(extra_[e].pair, now, dt);
   }
+}
+
+template <class Real>
+void DiscContacts<Real>::predict_after(const Tick& tick, std::uint32_t k, double now,
+                                       std::uint64_t& again) {
+  const double dt = tick.dt;
+  predict_pairs(k, now, dt, again);
   again += reach(k, now, dt) / 16;  // the pairs of its path beyond its box
   if (!tick.planes.empty() || tick.segments) predict_wall(tick, k, now, dt, again);
 }
@@ -384,12 +390,7 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
       if (ev.stamp_a != stamp_[k]) continue;  // an impact came first
       switch_to_plane_motion(tick, k);
       walled_[k] = 1;
-      const double from = motion_[k].t;
-      again += offset_[k + 1] - offset_[k];
-      for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i) predict(incident_[i], from, dt);
-      for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
-        ++again, predict(extra_[e].pair, from, dt);
-      }
+      predict_pairs(k, motion_[k].t, dt, again);  // within its box, clear of the walls
       continue;
     }
     if (ev.pair & wall_event) {  // a disc's impact with a wall (disc_walls.cpp)

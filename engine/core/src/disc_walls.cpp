@@ -69,9 +69,7 @@ bool DiscContacts<Real>::next_wall_event(const Tick& tick, std::uint32_t k, doub
   }
   if (tick.segments && !tick.segments->empty()) {
     const SegmentSet& set = *tick.segments;
-    const double reach =
-        (plane_contact::norm(v) + 0.5 * h * plane_contact::norm(a)) * h * (1.0 + 1e-9) +
-        r * (1.0 + 1e-9);
+    const double reach = disc_reach(plane_contact::norm(v), plane_contact::norm(a), h, r);
     set.query(x.x - reach, x.y - reach, x.x + reach, x.y + reach, wall_found_);
     looked += wall_found_.size();
     const double tol = rel * (std::abs(x.x) + std::abs(x.y) + r);

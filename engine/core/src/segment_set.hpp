@@ -42,6 +42,13 @@ struct SegmentMotion {
   double x = 0, y = 0, vx = 0, vy = 0, ax = 0, ay = 0;
 };
 
+/// How far from its centre a disc of radius r (m) moving at speed |v| (m/s) with acceleration
+/// |a| (m/s²) can reach within `horizon` (s), with a margin for rounding: the half-width of the
+/// box a segment query takes, m.
+inline double disc_reach(double speed, double accel, double horizon, double r) {
+  return (speed + 0.5 * horizon * accel) * horizon * (1.0 + 1e-9) + r * (1.0 + 1e-9);
+}
+
 /// The first time s in [0, horizon] at which a disc of radius r (m) moving as m comes into
 /// contact with s while approaching, or infinity; `at` gets the contact there. The interior is
 /// the disc's face of the line at distance r, its root taken only where the centre projects

@@ -114,10 +114,8 @@ double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion& m, doub
                                                     double horizon, double rel, double vtol,
                                                     PlaneDef& plane, Vec2& u, std::uint32_t& index,
                                                     std::uint64_t& looked) {
-  const double reach = (std::sqrt(m.vx * m.vx + m.vy * m.vy) +
-                        0.5 * horizon * std::sqrt(m.ax * m.ax + m.ay * m.ay)) *
-                           horizon * (1.0 + 1e-9) +
-                       r * (1.0 + 1e-9);
+  const double reach = disc_reach(std::sqrt(m.vx * m.vx + m.vy * m.vy),
+                                  std::sqrt(m.ax * m.ax + m.ay * m.ay), horizon, r);
   segments_.query(m.x - reach, m.y - reach, m.x + reach, m.y + reach, segment_found_);
   looked += segment_found_.size();
   segment_tests_ += segment_found_.size();
