@@ -189,6 +189,32 @@ TEST(ContactCaps, ADiscKnockedBeyondItsBoxMeetsWhatLiesThere) {
   EXPECT_NEAR(w.body(hitter).velocity.x, 60.0, 1e-9);
 }
 
+// A disc whose box grew in the tick turns back into what its grown box covers but neither its
+// first box nor its first path did. k rises at 10 m/s (its box: x within its radius, y from 0 to
+// 1 m); static peg S1 turns it right at t = 0.02 s (y = 0.2 m), static peg S2 turns it up again
+// at t = 0.06 s (x = 0.4 m), into disc j at rest at (0.4, 0.45), which neither k's first box
+// nor the band its right turn added reaches: elastic and equal in mass, k stops (t = 0.065 s)
+// and j leaves at 10 m/s. While only the path beyond the grown box was paired, k's turn inside
+// its grown box met nothing and went through j (j at rest, k ending 0.15 m from j's centre).
+TEST(ContactCaps, ADiscTurningInsideItsGrownBoxMeetsWhatLiesThere) {
+  detail::WorldKernel<double> w(elastic(0.1));
+  const double s = 0.2 / std::sqrt(2.0);  // (r_k + r_S) / sqrt(2): the pegs meet k at 45 degrees
+  (void)w.create_body(moving_disc({-s, 0.2 + s}, {0.0, 0.0}, 0.1, BodyType::static_body));
+  (void)w.create_body(moving_disc({0.4 + s, 0.2 - s}, {0.0, 0.0}, 0.1, BodyType::static_body));
+  const Entity k = w.create_body(moving_disc({0.0, 0.0}, {0.0, 10.0}, 0.1));
+  const Entity j = w.create_body(moving_disc({0.4, 0.45}, {0.0, 0.0}, 0.1));
+  w.step();
+  ASSERT_FALSE(w.fault().has_value());
+  EXPECT_EQ(w.contact_stats().impacts, 3u);
+  EXPECT_NEAR(w.body(k).velocity.x, 0.0, 1e-9);
+  EXPECT_NEAR(w.body(k).velocity.y, 0.0, 1e-9);
+  EXPECT_NEAR(w.body(j).velocity.x, 0.0, 1e-9);
+  EXPECT_NEAR(w.body(j).velocity.y, 10.0, 1e-9);
+  EXPECT_NEAR(w.body(k).position.x, 0.4, 1e-9);
+  EXPECT_NEAR(w.body(k).position.y, 0.25, 1e-9);
+  EXPECT_NEAR(w.body(j).position.y, 0.45 + 10.0 * 0.035, 1e-9);
+}
+
 // The row at e = 0.5 and 500 m/s, touching: its front discs collide without end in the tick
 // (inelastic collapse) until they pass their 8th impact; those whose pairs would then end the
 // tick deeper than the push-out parts them are held where they meet, and the resting solver

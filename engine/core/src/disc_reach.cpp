@@ -1,10 +1,12 @@
 // Disc contacts, phase 1, continued: a disc an impact sends beyond the box the broadphase paired
-// it by (see disc_contacts.hpp) meets what lies on its new path. Its box grows over the rest of
-// its motion, and the discs whose boxes that piece overlaps and that it was not paired with
-// become new pairs of the tick, predicted from the impact on: the boxes as the broadphase stored
-// them (DiscBroadphase::query), and the boxes grown earlier in the tick, which the broadphase
-// never saw. Every disc's motion then stays inside its own box, and two discs whose boxes do not
-// overlap cannot touch (each box is padded by its disc's radius), so no contact is missed.
+// it by (see disc_contacts.hpp) meets what lies on its new path. Its box grows to the bounding
+// box of the rest of its motion too, and the discs whose boxes meet what it grew by (up to four
+// bands) and that it was not paired with become new pairs of the tick, predicted from the impact
+// on: the boxes as the broadphase stored them (DiscBroadphase::query), and the bands grown
+// earlier in the tick, which the broadphase never saw (a grid of them, where its bands are
+// stored). A disc's box is then always its broadphase box and its bands, every pair of discs
+// whose boxes overlap is paired, and two discs whose boxes do not overlap cannot touch (each box
+// is padded by its disc's radius), so no contact is missed.
 #include <array>
 
 #include "disc_contacts.hpp"
@@ -38,17 +40,18 @@ std::uint64_t DiscContacts<Real>::reach(std::uint32_t k, double now, double dt) 
     grown_.push_back(GrownBox{k, box});
   }
   const SweptBox& first = grown_[grown_of_[k]].first;
-  // What the piece covers beyond the box: up to four strips (closed, so they may share edges).
-  std::array<SweptBox, 4> strips;
+  // What the grown box covers beyond the box: up to four bands (closed, so they may share edges).
+  SweptBox grown = box;
+  grown.min_x = std::min(box.min_x, piece.min_x), grown.max_x = std::max(box.max_x, piece.max_x);
+  grown.min_y = std::min(box.min_y, piece.min_y), grown.max_y = std::max(box.max_y, piece.max_y);
+  std::array<SweptBox, 4> bands;
   std::size_t count = 0;
-  const double lo_x = std::max(piece.min_x, box.min_x), hi_x = std::min(piece.max_x, box.max_x);
-  if (piece.min_x < box.min_x) strips[count++] = {piece.min_x, piece.min_y, box.min_x, piece.max_y};
-  if (piece.max_x > box.max_x) strips[count++] = {box.max_x, piece.min_y, piece.max_x, piece.max_y};
-  if (piece.min_y < box.min_y) strips[count++] = {lo_x, piece.min_y, hi_x, box.min_y};
-  if (piece.max_y > box.max_y) strips[count++] = {lo_x, box.max_y, hi_x, piece.max_y};
-  if (count == 0) strips[count++] = piece;  // NaN
-  box.min_x = std::min(box.min_x, piece.min_x), box.max_x = std::max(box.max_x, piece.max_x);
-  box.min_y = std::min(box.min_y, piece.min_y), box.max_y = std::max(box.max_y, piece.max_y);
+  if (grown.min_x < box.min_x) bands[count++] = {grown.min_x, grown.min_y, box.min_x, grown.max_y};
+  if (grown.max_x > box.max_x) bands[count++] = {box.max_x, grown.min_y, grown.max_x, grown.max_y};
+  if (grown.min_y < box.min_y) bands[count++] = {box.min_x, grown.min_y, box.max_x, box.min_y};
+  if (grown.max_y > box.max_y) bands[count++] = {box.min_x, box.max_y, box.max_x, grown.max_y};
+  if (count == 0) bands[count++] = piece;  // NaN
+  box = grown;
   std::uint64_t work = 0;
   // k's extra pairs so far, marked by their partners (a fresh mark per call).
   if (++mark_ == 0) std::fill(partner_mark_.begin(), partner_mark_.end(), 0u), mark_ = 1;
@@ -59,12 +62,13 @@ std::uint64_t DiscContacts<Real>::reach(std::uint32_t k, double now, double dt) 
   }
   // j, whose box the broadphase paired by is `paired_by`: a new pair if that box did not meet
   // k's (else the broadphase paired them, or they may not collide) and j's box now meets the
-  // piece, unless an earlier piece paired them.
+  // band, unless an earlier band paired them.
+  const SweptBox* band = nullptr;
   auto meet = [&](std::uint32_t j, const SweptBox& paired_by) {
     ++work;
-    if (j == k || boxes_overlap(first, paired_by) || !boxes_overlap(piece, boxes_[j])) return;
+    if (j == k || boxes_overlap(first, paired_by) || !boxes_overlap(*band, boxes_[j])) return;
     if (!may_pair(k, j)) return;
-    if (partner_mark_[j] == mark) return;  // an extra pair already, or met by this piece
+    if (partner_mark_[j] == mark) return;  // an extra pair already, or met by another band
     partner_mark_[j] = mark;
     const DiscPair p{std::min(k, j), std::max(k, j)};
     const auto index = static_cast<std::uint32_t>(pairs_.size());
@@ -77,13 +81,13 @@ std::uint64_t DiscContacts<Real>::reach(std::uint32_t k, double now, double dt) 
     work += 16;
   };
   for (std::size_t i = 0; i < count; ++i) {
-    work += broadphase_.query(strips[i], [&](std::uint32_t j, const SweptBox& paired_by) {
-      if (grown_of_[j] == GrownBox::none) meet(j, paired_by);  // (a grown box: below)
-    });
+    band = &bands[i];
+    // The boxes as the broadphase stored them (a grown disc's too: it may move inside it), and
+    // the bands grown earlier in the tick.
+    work += broadphase_.query(*band, meet);
+    work += grown_grid_.query(*band, [&](std::uint32_t j) { meet(j, grown_[grown_of_[j]].first); });
   }
-  // The boxes grown earlier in the tick, which the broadphase never saw.
-  work += grown_grid_.query(piece, [&](std::uint32_t j) { meet(j, grown_[grown_of_[j]].first); });
-  grown_grid_.insert(k, piece);
+  for (std::size_t i = 0; i < count; ++i) grown_grid_.insert(k, bands[i]);
   return work;
 }
 
