@@ -16,7 +16,10 @@
 //     order) with Newton's restitution and a Coulomb-limited friction impulse on the linear
 //     velocities, and the pairs of the two discs are predicted again from that time on. A disc an
 //     impact sends beyond its swept box has the pairs of its new path added within the tick
-//     (disc_reach.cpp), so that no contact is missed. Past max_impacts impacts of either disc in
+//     (disc_reach.cpp), so that no contact is missed. Where fast discs cross a crowd (the boxes
+//     over the whole tick overlap in more than crowded_pairs pairs a disc), the impacts run over
+//     up to max_windows equal windows of the tick in turn, each paired by the boxes over it
+//     (disc_windows.cpp). Past max_impacts impacts of either disc in
 //     the tick, a pair with e < 1 that would end the tick overlapping is handed to the resting
 //     solver, which stops it approaching (e = 0, the limit of inelastic collapse: with e < 1 three
 //     or more discs can collide infinitely often in finite time, McNamara & Young, Phys. Fluids A
@@ -226,6 +229,13 @@ class DiscContacts {
     return threads >= 2 && discs_.size() >= min_parallel_discs ? &broadphase_.second_thread()
                                                                : nullptr;
   }
+  /// Candidate pairs a disc over the whole tick past which the tick's impacts run in windows
+  /// (a pile has about 3, a gas a few radii a tick up to about 10).
+  static constexpr std::size_t crowded_pairs = 16;
+  /// Most windows a tick's impacts run over.
+  static constexpr int max_windows = 64;
+  /// Radii the fastest disc moves at most in one window (unless max_windows bounds them).
+  static constexpr double window_radii = 4.0;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
   static constexpr double slop = 0.005;
   /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
@@ -246,13 +256,29 @@ class DiscContacts {
   /// Disc k, which the plane pass bounced, takes that pass's motion after its last plane event
   /// (its first plane event came before any disc impact changed its free motion).
   void switch_to_plane_motion(const Tick& tick, std::uint32_t k);
-  bool find_candidates(const Tick& tick, ContactStats& stats);
+  /// The candidate pairs of boxes_ into pairs_ (and their CSR lists): false past max_pairs
+  /// (past max_candidate_pairs the cap is recorded in cap_ and stats; below it, a try).
+  bool find_candidates(const Tick& tick, ContactStats& stats, std::size_t max_pairs);
+  // windows of the tick (disc_windows.cpp)
+  /// How many windows the tick's disc impacts run over: 1 when the swept boxes over the whole
+  /// tick overlap in at most crowded_pairs pairs a disc or the discs move too little for windows
+  /// to part them (pairs_ then found), else motion_windows(); 0 past max_candidate_pairs.
+  int tick_windows(const Tick& tick, ContactStats& stats);
+  /// Windows that keep the fastest disc's motion in each within window_radii of its radius,
+  /// 1 to max_windows.
+  [[nodiscard]] int motion_windows() const;
+  /// Each disc's box over [t0, t1] (s) on its motion now (a disc the plane pass bounced, still on
+  /// its free motion: that until its first plane event, then the plane pass's motion), padded
+  /// as the tick's boxes are.
+  void window_boxes(const Tick& tick, double t0, double t1);
   /// Drops from pairs_ the linked pairs and the pairs filters reject, and moves the sensor
   /// pairs (one sensor, one not) to sensor_pairs_ (disc_sensors.cpp).
   void sort_out_pairs();
   /// Fills sensed_ from sensor_pairs_ at the tick's end state (disc_sensors.cpp).
   void detect_sensors(const Tick& tick);
-  void run_events(const Tick& tick, ContactStats& stats);
+  /// Phase 1 over `windows` equal windows of the tick in turn (each with its own pairs when more
+  /// than one), then each changed disc's end state.
+  void run_events(const Tick& tick, ContactStats& stats, int windows);
   [[nodiscard]] std::uint32_t largest_box() const;
   /// What becomes of a pair's impact due at `now` (s): resolved (both discs below
   /// max_impacts, e = 1, or the pair would pass through), left to the resting solver (it ends
@@ -266,7 +292,15 @@ class DiscContacts {
   bool next_event(std::uint32_t pair, double now, double dt, DiscEvent& out) const;
   /// The event queue filled with every pair's first impact (two threads share the pairs within
   /// the tick's run of the second thread when there are min_parallel_pairs or more).
-  void first_events(const Tick& tick);
+  void first_events(const Tick& tick, double from);
+  /// The predictions after impacts so far, at most cap (max_tick_predictions), and where the
+  /// last stop poll was (again / 2^16).
+  struct EventBudget {
+    std::uint64_t again = 0, polled = 0, cap = 0;
+  };
+  /// Resolves the queue's events up to horizon_ in time order; false once budget.cap stopped it
+  /// (cap_ and stats record it).
+  bool run_window(const Tick& tick, ContactStats& stats, EventBudget& budget);
   void impact(std::uint32_t pair, double now, double dt);
   // within a tick: pairs for a disc an impact sends beyond its box (disc_reach.cpp)
   /// Forgets the last tick's extra pairs and grown boxes; the pairs found so far are the base.
@@ -313,7 +347,8 @@ class DiscContacts {
   void predict_after(const Tick& tick, std::uint32_t k, double now, std::uint64_t& again);
   /// The broadphase's pairs of `boxes` into out, without the linked and filtered-out pairs;
   /// false past max_candidate_pairs (or max_vetoed_pairs dropped).
-  bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads);
+  bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads,
+                std::size_t cap);
   // phase 2 (disc_gather.cpp, then disc_rest.cpp)
   void gather_contacts(const Tick& tick);
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
@@ -417,6 +452,7 @@ class DiscContacts {
   std::vector<DiscPair> pairs_, sensor_pairs_;
   std::vector<SensorOverlap> sensed_;
   std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
+  std::vector<std::uint32_t> cursor_;  ///< find_candidates()'s fill cursors
   std::vector<std::uint8_t> changed_;
   std::vector<std::uint8_t> walled_;      ///< per disc: met a plane or a segment in the tick
   std::vector<HeldMotion> held_;          ///< per disc: held for the rest of the tick (hold_pair())
@@ -434,6 +470,7 @@ class DiscContacts {
   std::vector<std::uint32_t> wall_found_;  ///< next_wall_event()'s segments near a path
   double max_radius_ = 0;
   std::size_t base_pairs_ = 0;
+  double horizon_ = 0;  ///< s: the end of the window the impacts run in (the tick's by default)
   std::array<std::vector<RestContact>, 2> plane_half_;  ///< gather_contacts()'s on two threads
   std::vector<std::uint8_t> touch_;       ///< gather_contacts()'s on two threads: pair i touches
   std::vector<DiscEvent> heap_, events_;  ///< the event queue; first_events()'s second half

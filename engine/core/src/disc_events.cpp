@@ -1,5 +1,5 @@
-// Disc contacts, phase 1: the discs' motions in the tick, the broadphase, and impacts resolved
-// at their time of impact in time order (see disc_contacts.hpp for the model).
+// Disc contacts, phase 1: the discs' motions in the tick, the broadphase, a pair's next impact
+// and its resolution (see disc_contacts.hpp for the model; the queue: disc_queue.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -151,30 +151,32 @@ void DiscContacts<Real>::switch_to_plane_motion(const Tick& tick, std::uint32_t 
 }
 
 template <class Real>
-bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats) {
+bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
+                                         std::size_t max_pairs) {
   const std::size_t n = discs_.size();
   const std::size_t cap = max_candidate_pairs(n);  // limits.hpp; a pile: ~3 per disc
-  if (!pairs_of(boxes_, pairs_, tick.threads)) {
-    stats.candidate_pairs = cap, stats.capped = 1;
+  if (!pairs_of(boxes_, pairs_, tick.threads, std::min(max_pairs, cap))) {
     pairs_.clear();
+    if (max_pairs < cap) return false;  // a try (tick_windows())
+    stats.candidate_pairs = cap, stats.capped = 1;
     cap_ = CapHit{"max_candidate_pairs", cap, largest_box(), CapHit::npos, 0.0};
     return false;
   }
   // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither, and
   // sensors only sense: none of them reaches the narrowphase.
+  sensor_pairs_.clear();
   if (!linked_.empty() || !filters_.empty()) sort_out_pairs();
-  stats.candidate_pairs = pairs_.size();
+  stats.candidate_pairs = std::max(stats.candidate_pairs, pairs_.size());
   // Each disc's pairs (CSR, in pair order).
   std::fill(offset_.begin(), offset_.end(), 0u);
   for (const DiscPair& p : pairs_) ++offset_[p.a + 1], ++offset_[p.b + 1];
   for (std::size_t k = 0; k < n; ++k) offset_[k + 1] += offset_[k];
   incident_.resize(2 * pairs_.size());
-  for (std::size_t k = 0; k < n; ++k) stamp_[k] = offset_[k];  // fill cursors (reset below)
+  cursor_.assign(offset_.begin(), offset_.end() - 1);  // fill cursors
   for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
-    incident_[stamp_[pairs_[i].a]++] = i;
-    incident_[stamp_[pairs_[i].b]++] = i;
+    incident_[cursor_[pairs_[i].a]++] = i;
+    incident_[cursor_[pairs_[i].b]++] = i;
   }
-  std::fill(stamp_.begin(), stamp_.end(), 0u);
   return true;
 }
 
@@ -216,7 +218,7 @@ bool DiscContacts<Real>::next_event(std::uint32_t pair, double now, double dt,
     const double rest = slop * std::min(discs_[a].radius, discs_[b].radius) / dt;
     if (impact_speed(0.0, rest)) when = now;
   } else {
-    const double h = dt - now;
+    const double h = horizon_ - now;
     const double s = first_contact(r, h);
     if (s <= h && impact_speed(s, 0.0)) {
       when = now + s;
@@ -224,42 +226,12 @@ bool DiscContacts<Real>::next_event(std::uint32_t pair, double now, double dt,
       // Rounding may leave a pair that meets at the very end of the tick a hair apart: an
       // impact at the end of the tick.
       const double ex = r.px + h * (r.wx + 0.5 * h * r.cx), ey = r.py + h * (r.wy + 0.5 * h * r.cy);
-      if (length(ex, ey) - r.radius <= 16.0 * eps * scale && impact_speed(h, 0.0)) when = dt;
+      if (length(ex, ey) - r.radius <= 16.0 * eps * scale && impact_speed(h, 0.0)) when = horizon_;
     }
   }
-  if (when > dt) return false;
+  if (when > horizon_) return false;
   out = DiscEvent{when, pair, stamp_[a], stamp_[b]};
   return true;
-}
-
-template <class Real>
-void DiscContacts<Real>::first_events(const Tick& tick) {
-  // Each pair's first event from the tick's start: independent of the others, so two threads
-  // share the pairs; the heap pops them in (time, pair) order whatever order they are found in.
-  const auto m = static_cast<std::uint32_t>(pairs_.size());
-  auto find = [&](std::uint32_t begin, std::uint32_t end, std::vector<DiscEvent>& out) {
-    DiscEvent ev;
-    for (std::uint32_t i = begin; i < end; ++i) {
-      if (next_event(i, 0.0, tick.dt, ev)) out.push_back(ev);
-    }
-  };
-  heap_.clear();
-  if (broadphase_.second_thread().is_open() && m >= min_parallel_pairs) {
-    events_.clear();
-    auto halves = [&](int half) { half == 0 ? find(0, m / 2, heap_) : find(m / 2, m, events_); };
-    broadphase_.second_thread().both(halves);
-    heap_.insert(heap_.end(), events_.begin(), events_.end());
-  } else {
-    find(0, m, heap_);
-  }
-  if (!tick.planes.empty() || tick.segments) {  // the discs the plane pass bounced: switch()
-    for (std::uint32_t k = 0; k < discs_.size(); ++k) {
-      const std::int32_t slot = discs_[k].plane_slot;
-      if (slot < 0 || !(tick.after[slot].t >= 0.0)) continue;
-      heap_.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
-    }
-  }
-  std::make_heap(heap_.begin(), heap_.end(), later_event);
 }
 
 template <class Real>
@@ -316,8 +288,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
 
 template <class Real>
 bool DiscContacts<Real>::pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out,
-                                  int threads) {
-  const std::size_t cap = max_candidate_pairs(discs_.size());
+                                  int threads, std::size_t cap) {
   if (linked_.empty() && filters_.empty()) {
     return broadphase_.find_pairs(boxes, dynamic_, cap, out, threads);
   }
@@ -352,103 +323,6 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 }
 
 template <class Real>
-void DiscContacts<Real>::predict_pairs(std::uint32_t k, double now, double dt,
-                                       std::uint64_t& again) {
-  again += offset_[k + 1] - offset_[k];
-  for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i) predict(incident_[i], now, dt);
-  for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
-    ++again, predict(extra_[e].pair, now, dt);
-  }
-}
-
-template <class Real>
-void DiscContacts<Real>::predict_after(const Tick& tick, std::uint32_t k, double now,
-                                       std::uint64_t& again) {
-  const double dt = tick.dt;
-  predict_pairs(k, now, dt, again);
-  again += reach(k, now, dt) / 16;  // the pairs of its path beyond its box
-  if (!tick.planes.empty() || tick.segments) predict_wall(tick, k, now, dt, again);
-}
-
-template <class Real>
-void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats) {
-  const double dt = tick.dt;
-  impact_log_.clear();
-  for (const std::uint32_t k : held_list_) held_[k].on = held_[k].released = 0;
-  held_list_.clear();
-  start_reach();
-  first_events(tick);
-  std::uint64_t again = 0;   // predictions after impacts, at most max_tick_predictions
-  std::uint64_t polled = 0;  // again / 2^16 at the last stop poll
-  const std::uint64_t cap = max_tick_predictions(discs_.size());
-  while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), later_event);
-    const DiscEvent ev = heap_.back();
-    heap_.pop_back();
-    if (ev.pair & switch_event) {  // a disc met its first plane event on its free motion
-      const std::uint32_t k = ev.pair & ~switch_event;
-      if (ev.stamp_a != stamp_[k]) continue;  // an impact came first
-      switch_to_plane_motion(tick, k);
-      walled_[k] = 1;
-      predict_pairs(k, motion_[k].t, dt, again);  // within its box, clear of the walls
-      continue;
-    }
-    if (ev.pair & wall_event) {  // a disc's impact with a wall (disc_walls.cpp)
-      const std::uint32_t k = ev.pair & ~wall_event;
-      if (ev.stamp_a != stamp_[k]) continue;  // superseded
-      if (again > cap) {
-        cap_ = CapHit{"max_tick_predictions", cap, k, CapHit::npos, ev.time};
-        stats.capped = 1;
-        break;
-      }
-      const WallOutcome out = wall_impact(tick, k, ev.stamp_b, ev.time);
-      if (out == WallOutcome::none) continue;
-      ++(out == WallOutcome::held ? stats.held : stats.wall_impacts);
-      predict_after(tick, k, ev.time, again);
-      continue;
-    }
-    const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
-    if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
-    const PastCap past = past_cap(ev.pair, ev.time, dt);
-    if (past == PastCap::rest) continue;  // the resting solver's (see disc_contacts.hpp)
-    if (again > cap) {                    // an impact due that the cap leaves unresolved
-      cap_ = CapHit{"max_tick_predictions", cap, a, b, ev.time};
-      stats.capped = 1;
-      break;
-    }
-    if (past == PastCap::hold) {
-      const std::size_t held = hold_pair(ev.pair, ev.time);
-      if (held == 0) continue;  // a kinematic partner, or both held: the resting solver's
-      stats.held += held;
-    } else {
-      impact(ev.pair, ev.time, dt);
-      ++stats.impacts;
-    }
-    if (again >> 16 != polled) {  // a long tick stays stoppable: every 65 536 predictions
-      polled = again >> 16;
-      throw_if_stop_requested();
-    }
-    for (const std::uint32_t k : {a, b}) {
-      if (discs_[k].dynamic) predict_after(tick, k, ev.time, again);
-    }
-  }
-  finish_reach();
-  // The end of the tick on each disc's last motion; the integrator's velocity is the model's
-  // minus the offset δ.
-  for (std::size_t k = 0; k < discs_.size(); ++k) {
-    if (!changed_[k]) continue;
-    const DiscMotion& m = motion_[k];
-    const double s = dt - m.t;
-    ex_[k] = m.px(dt), ey_[k] = m.py(dt);
-    if (held_[k].on) {  // where it was held, with the velocity it had there
-      evx_[k] = held_[k].ux - m.dx, evy_[k] = held_[k].uy - m.dy;
-    } else {
-      evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
-    }
-  }
-}
-
-template <class Real>
 void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProfile& profile) {
   stats = ContactStats{};
   impact_log_.clear();
@@ -461,11 +335,12 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   build_motions(tick);
   if (tick.wake) tick.wake(tick.wake_context);
   for (std::size_t k = 0; k < ew_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);
-  const bool candidates = find_candidates(tick, stats);
+  const int windows = tick_windows(tick, stats);
+  stats.windows = static_cast<std::size_t>(windows);
   profile.broadphase = clock.lap();
   profile.impacts = profile.resting = 0.0;
-  if (!candidates) return;
-  run_events(tick, stats);
+  if (windows == 0) return;
+  run_events(tick, stats, windows);
   profile.impacts = clock.lap();
   gather_contacts(tick);
   split_contacts(stats);
@@ -481,14 +356,14 @@ std::size_t DiscContacts<Real>::bytes() const {
   auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
          b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
-         b(incident_) + b(stamp_) + b(held_) + b(held_list_) + b(extra_) + b(extra_sorted_) +
-         b(partner_mark_) + b(wall_found_) + grown_grid_.bytes() + b(extra_head_) + b(grown_) +
-         b(grown_of_) + b(impacts_) + b(changed_) + b(walled_) + b(touch_) + b(plane_half_[0]) +
-         b(plane_half_[1]) + b(heap_) + b(events_) + b(impact_log_) + b(contacts_) + b(order_) +
-         b(scratch_) + b(cut_) + b(warm_) + b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) +
-         b(lost_) + b(external_) + b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) +
-         b(rows_) + b(push_rows_) + b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) +
-         b(sw_);
+         b(incident_) + b(cursor_) + b(stamp_) + b(held_) + b(held_list_) + b(extra_) +
+         b(extra_sorted_) + b(partner_mark_) + b(wall_found_) + grown_grid_.bytes() +
+         b(extra_head_) + b(grown_) + b(grown_of_) + b(impacts_) + b(changed_) + b(walled_) +
+         b(touch_) + b(plane_half_[0]) + b(plane_half_[1]) + b(heap_) + b(events_) +
+         b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
+         b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
+         b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
+         b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
 }
 
 }  // namespace fixstep::detail

@@ -31,9 +31,15 @@ template <class Real>
 bool DiscContacts<Real>::next_wall_event(const Tick& tick, std::uint32_t k, double now, double dt,
                                          DiscEvent& out, std::uint64_t& looked) {
   using plane_contact::V2;
-  const SweptBox& box = boxes_[k];  // holds its path from now on (reach() grew it)
-  // The box's nearest corner clear of the plane (the box is padded by the radius and more): the
-  // path cannot meet it.
+  // The box of its path from now to the tick's end (beyond the window the impacts run in, whose
+  // boxes_ hold only that window's), padded by the radius and more.
+  const DiscMotion& d = motion_[k];
+  const double s0 = now - d.t;  // the motion at now
+  const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
+  SweptBox box;
+  motion_extent(d.px(now), d.ux + s0 * d.ax, d.ax, dt - now, pad, box.min_x, box.max_x);
+  motion_extent(d.py(now), d.uy + s0 * d.ay, d.ay, dt - now, pad, box.min_y, box.max_y);
+  // The box's nearest corner clear of the plane: the path cannot meet it.
   auto clear = [&box](const PlaneDef& pl) {
     const double nx = pl.normal.x, ny = pl.normal.y;
     return nx * (nx > 0.0 ? box.min_x : box.max_x) + ny * (ny > 0.0 ? box.min_y : box.max_y) >
@@ -43,9 +49,7 @@ bool DiscContacts<Real>::next_wall_event(const Tick& tick, std::uint32_t k, doub
   for (std::size_t p = 0; p < tick.planes.size() && !near; ++p) near = !clear(tick.planes[p]);
   looked += tick.planes.size();
   if (!near) return false;
-  const DiscMotion& d = motion_[k];
   const double r = discs_[k].radius, h = dt - now, rel = wall_rel<Real>;
-  const double s0 = now - d.t;  // the motion at now
   const V2 x{d.px(now), d.py(now)}, v{d.ux + s0 * d.ax, d.uy + s0 * d.ay}, a{d.ax, d.ay};
   const double vtol =
       rel * (plane_contact::norm(v) + plane_contact::norm(a) * dt + plane_contact::norm(x) / dt);

@@ -182,8 +182,9 @@ std::string explain_cap(const WorldSettings& settings, const StateFault& f, std:
   if (f.cap == "max_candidate_pairs") {
     return fmt::format(
         "{}: the broadphase found more candidate pairs among {}, so the tick's disc contacts "
-        "were not resolved. Likely cause: discs moving many radii per tick through a crowd of "
-        "discs: a smaller dt (now {:g} s), slower or fewer discs",
+        "were not resolved. Likely cause: discs overlapping one another in a crowd, or discs "
+        "moving many radii per tick through a crowd of discs (the tick's windows did not part "
+        "them): fewer or smaller discs, a smaller dt (now {:g} s), slower discs",
         head, f.with, settings.dt);
   }
   return fmt::format(

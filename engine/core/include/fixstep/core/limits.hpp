@@ -41,11 +41,14 @@ inline constexpr std::uint64_t max_implicit_solve_bytes = std::uint64_t{2} << 30
 /// requests inside a tick"). Far inside max_implicit_solve_bytes (about 0.2 GiB at this size).
 inline constexpr std::uint64_t max_implicit_bodies = 25'000;
 
-/// Most candidate pairs (discs whose boxes swept over the tick overlap) the broadphase may find
-/// in one tick of a world of `discs` discs: max(64 n, 10^6), and never more than n(n - 1)/2 (a
-/// settled pile has about 3 per disc; 64 per disc is a dense gas at several radii per tick).
-/// Past it the tick's disc contacts are not resolved: World::step records a StateFault naming
-/// this cap, the tick and the disc with the largest swept box, and ContactStats::capped counts it.
+/// Most candidate pairs (discs whose boxes swept over the tick, or over one of its windows,
+/// overlap) the broadphase may find at once in a world of `discs` discs: max(64 n, 10^6), and
+/// never more than n(n - 1)/2 (a settled pile has about 3 per disc; 64 per disc is a dense gas at
+/// several radii per tick). Fast discs through a crowd are paired over up to 64 windows of the
+/// tick, each disc's box covering its motion over one window (ContactStats::windows); a crowd
+/// moving hundreds of radii a window (two grids at 10^5 m/s) still reaches it. Past it the tick's
+/// disc contacts are not resolved: World::step records a StateFault naming this cap, the tick and
+/// the disc with the largest swept box, and ContactStats::capped counts it.
 [[nodiscard]] std::uint64_t max_candidate_pairs(std::uint64_t discs);
 /// Most pairs of overlapping swept boxes the broadphase may drop in one tick of a world of
 /// `discs` discs because they can never touch (linked discs, collision filters that keep them

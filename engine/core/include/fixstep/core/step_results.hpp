@@ -70,6 +70,11 @@ struct ContactStats {
   /// the broadphase pairs any of its discs with an awake one, so this is 0 unless an impact sent
   /// an awake disc beyond the box it was paired by and on into a sleeper within the tick.
   std::size_t sleeper_contacts = 0;
+  /// Windows (equal sub-intervals) of the tick the discs were paired over, each by its boxes
+  /// over that window: 1, or up to 64 when the boxes over the whole tick overlapped in more than
+  /// 16 pairs a disc (fast discs through a crowd; candidate_pairs is then the most of one
+  /// window); 0 without disc contacts or past max_candidate_pairs.
+  std::size_t windows = 0;
 };
 
 /// Where the last tick's time went in a world with disc contacts (World::profile()): seconds of

@@ -1,0 +1,162 @@
+// Disc contacts, phase 1: the event queue of a tick's impacts. Each pair's first impact, and each
+// bounced disc's switch to the plane pass's motion, go into one queue in time order (ties by
+// pair order, a disc's wall events after every pair's); impacts are resolved as they come, and
+// the pairs, the path beyond the box and the walls of a disc whose motion changed are predicted
+// again (see disc_contacts.hpp for the model). The queue runs over the tick's windows in turn
+// (disc_windows.cpp), each up to its end.
+#include <algorithm>
+
+#include "disc_contacts.hpp"
+#include "fixstep/core/limits.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/stop_request.hpp"
+
+namespace fixstep::detail {
+
+template <class Real>
+void DiscContacts<Real>::first_events(const Tick& tick, double from) {
+  // Each pair's first event from `from`: independent of the others, so two threads share the
+  // pairs; the heap pops them in (time, pair) order whatever order they are found in. Events
+  // left from an earlier window (walls, switches) stay.
+  const auto m = static_cast<std::uint32_t>(pairs_.size());
+  auto find = [&](std::uint32_t begin, std::uint32_t end, std::vector<DiscEvent>& out) {
+    DiscEvent ev;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      if (next_event(i, from, tick.dt, ev)) out.push_back(ev);
+    }
+  };
+  if (broadphase_.second_thread().is_open() && m >= min_parallel_pairs) {
+    events_.clear();
+    auto halves = [&](int half) { half == 0 ? find(0, m / 2, heap_) : find(m / 2, m, events_); };
+    broadphase_.second_thread().both(halves);
+    heap_.insert(heap_.end(), events_.begin(), events_.end());
+  } else {
+    find(0, m, heap_);
+  }
+  if (from == 0.0 && (!tick.planes.empty() || tick.segments)) {  // bounced by the plane pass
+    for (std::uint32_t k = 0; k < discs_.size(); ++k) {
+      const std::int32_t slot = discs_[k].plane_slot;
+      if (slot < 0 || !(tick.after[slot].t >= 0.0)) continue;
+      heap_.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
+    }
+  }
+  std::make_heap(heap_.begin(), heap_.end(), later_event);
+}
+
+template <class Real>
+void DiscContacts<Real>::predict_pairs(std::uint32_t k, double now, double dt,
+                                       std::uint64_t& again) {
+  again += offset_[k + 1] - offset_[k];
+  for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i) predict(incident_[i], now, dt);
+  for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
+    ++again, predict(extra_[e].pair, now, dt);
+  }
+}
+
+template <class Real>
+void DiscContacts<Real>::predict_after(const Tick& tick, std::uint32_t k, double now,
+                                       std::uint64_t& again) {
+  const double dt = tick.dt;
+  predict_pairs(k, now, dt, again);
+  again += reach(k, now, dt) / 16;  // the pairs of its path beyond its box
+  if (!tick.planes.empty() || tick.segments) predict_wall(tick, k, now, dt, again);
+}
+
+template <class Real>
+bool DiscContacts<Real>::run_window(const Tick& tick, ContactStats& stats, EventBudget& budget) {
+  const double dt = tick.dt;
+  std::uint64_t& again = budget.again;
+  while (!heap_.empty() && !(heap_.front().time > horizon_)) {
+    std::pop_heap(heap_.begin(), heap_.end(), later_event);
+    const DiscEvent ev = heap_.back();
+    heap_.pop_back();
+    if (ev.pair & switch_event) {  // a disc met its first plane event on its free motion
+      const std::uint32_t k = ev.pair & ~switch_event;
+      if (ev.stamp_a != stamp_[k]) continue;  // an impact came first
+      switch_to_plane_motion(tick, k);
+      walled_[k] = 1;
+      predict_pairs(k, motion_[k].t, dt, again);  // within its box, clear of the walls
+      continue;
+    }
+    if (ev.pair & wall_event) {  // a disc's impact with a wall (disc_walls.cpp)
+      const std::uint32_t k = ev.pair & ~wall_event;
+      if (ev.stamp_a != stamp_[k]) continue;  // superseded
+      if (again > budget.cap) {
+        cap_ = CapHit{"max_tick_predictions", budget.cap, k, CapHit::npos, ev.time};
+        stats.capped = 1;
+        return false;
+      }
+      const WallOutcome out = wall_impact(tick, k, ev.stamp_b, ev.time);
+      if (out == WallOutcome::none) continue;
+      ++(out == WallOutcome::held ? stats.held : stats.wall_impacts);
+      predict_after(tick, k, ev.time, again);
+      continue;
+    }
+    const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
+    if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
+    const PastCap past = past_cap(ev.pair, ev.time, dt);
+    if (past == PastCap::rest) continue;  // the resting solver's (see disc_contacts.hpp)
+    if (again > budget.cap) {             // an impact due that the cap leaves unresolved
+      cap_ = CapHit{"max_tick_predictions", budget.cap, a, b, ev.time};
+      stats.capped = 1;
+      return false;
+    }
+    if (past == PastCap::hold) {
+      const std::size_t held = hold_pair(ev.pair, ev.time);
+      if (held == 0) continue;  // a kinematic partner, or both held: the resting solver's
+      stats.held += held;
+    } else {
+      impact(ev.pair, ev.time, dt);
+      ++stats.impacts;
+    }
+    if (again >> 16 != budget.polled) {  // a long tick stays stoppable: every 65 536 predictions
+      budget.polled = again >> 16;
+      throw_if_stop_requested();
+    }
+    for (const std::uint32_t k : {a, b}) {
+      if (discs_[k].dynamic) predict_after(tick, k, ev.time, again);
+    }
+  }
+  return true;
+}
+
+template <class Real>
+void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats, int windows) {
+  const double dt = tick.dt;
+  impact_log_.clear();
+  for (const std::uint32_t k : held_list_) held_[k].on = held_[k].released = 0;
+  held_list_.clear();
+  heap_.clear();
+  EventBudget budget{0, 0, max_tick_predictions(discs_.size())};
+  for (int w = 0; w < windows; ++w) {
+    // Window w of the tick: [t0, horizon_] (the whole tick when windows = 1).
+    const double t0 = w == 0 ? 0.0 : dt * w / windows;
+    horizon_ = w + 1 == windows ? dt : dt * (w + 1) / windows;
+    if (windows > 1) {  // its pairs, by the discs' boxes over it (disc_windows.cpp)
+      throw_if_stop_requested();
+      window_boxes(tick, t0, horizon_);
+      if (!find_candidates(tick, stats, max_candidate_pairs(discs_.size()))) break;
+      if (w > 0) budget.again += pairs_.size();  // their first predictions
+    }
+    start_reach();
+    first_events(tick, t0);
+    const bool done = run_window(tick, stats, budget);
+    finish_reach();
+    if (!done) break;
+  }
+  // The end of the tick on each disc's last motion; the integrator's velocity is the model's
+  // minus the offset δ.
+  for (std::size_t k = 0; k < discs_.size(); ++k) {
+    if (!changed_[k]) continue;
+    const DiscMotion& m = motion_[k];
+    const double s = dt - m.t;
+    ex_[k] = m.px(dt), ey_[k] = m.py(dt);
+    if (held_[k].on) {  // where it was held, with the velocity it had there
+      evx_[k] = held_[k].ux - m.dx, evy_[k] = held_[k].uy - m.dy;
+    } else {
+      evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
+    }
+  }
+}
+
+}  // namespace fixstep::detail

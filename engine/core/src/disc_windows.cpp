@@ -1,0 +1,72 @@
+// Disc contacts, phase 1: the tick's impacts in windows. A box swept over the whole tick covers
+// a fast disc's whole path, so in a crowd of fast discs (two streams crossing, a formation, a
+// scattered burst) each box overlaps hundreds of others whose paths cross it at other times:
+// the candidate pairs and the predictions after every impact grow with the square of the speed.
+// When the tick's boxes overlap in more than crowded_pairs pairs a disc and the discs move far
+// enough that shorter boxes part them, the impacts run over equal windows of the tick in turn:
+// each window pairs the discs by their boxes over it (on their motions at its start, with what an
+// impact changes within it paired as in disc_reach.cpp), predicts their first events from its
+// start, and resolves the impacts due within it; events with walls carry over from window to
+// window. The events and their order are those of one window over the tick: a pair that meets
+// within a window overlaps in that window's boxes.
+#include <algorithm>
+#include <cmath>
+
+#include "disc_contacts.hpp"
+#include "fixstep/core/limits.hpp"
+
+namespace fixstep::detail {
+
+template <class Real>
+int DiscContacts<Real>::motion_windows() const {
+  double most = 0.0;  // the largest motion over the tick, in radii of its disc
+  for (std::size_t k = 0; k < discs_.size(); ++k) {
+    const SweptBox& b = boxes_[k];
+    const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
+    const double motion = std::max(b.max_x - b.min_x, b.max_y - b.min_y) - 2.0 * pad;
+    if (std::isfinite(motion)) most = std::max(most, motion / discs_[k].radius);
+  }
+  const double windows = std::ceil(most / window_radii);
+  return windows >= max_windows ? max_windows : std::max(1, static_cast<int>(windows));
+}
+
+template <class Real>
+int DiscContacts<Real>::tick_windows(const Tick& tick, ContactStats& stats) {
+  const std::size_t n = discs_.size();
+  const int windows = motion_windows();
+  if (windows > 1) return find_candidates(tick, stats, crowded_pairs * n) ? 1 : windows;
+  return find_candidates(tick, stats, max_candidate_pairs(n)) ? 1 : 0;
+}
+
+template <class Real>
+void DiscContacts<Real>::window_boxes(const Tick& tick, double t0, double t1) {
+  halves(discs_.size(), [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t k = begin; k < end; ++k) {
+      const DiscMotion& m = motion_[k];
+      const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
+      SweptBox& b = boxes_[k];
+      // A disc the plane pass bounced is on its free motion until its first plane event, while
+      // nothing changed its motion (disc_events.cpp, switch_to_plane_motion()).
+      const std::int32_t slot = discs_[k].plane_slot;
+      const bool free = slot >= 0 && tick.after[slot].t >= 0.0 && stamp_[k] == 0;
+      const double until = free ? std::clamp(tick.after[slot].first, t0, t1) : t1;
+      const double s = t0 - m.t;
+      motion_extent(m.px(t0), m.ux + s * m.ax, m.ax, until - t0, pad, b.min_x, b.max_x);
+      motion_extent(m.py(t0), m.uy + s * m.ay, m.ay, until - t0, pad, b.min_y, b.max_y);
+      if (!free || !(until < t1)) continue;
+      // From the first plane event on: the plane pass's motion after its last one, extrapolated
+      // back to the first (as plane_box() covers it over the whole tick).
+      const PlaneMotion& p = tick.after[slot];
+      const double back = until - p.t;
+      double lo = 0, hi = 0;
+      motion_extent(p.x + back * (p.ux + 0.5 * back * p.ax), p.ux + back * p.ax, p.ax, t1 - until,
+                    pad, lo, hi);
+      b.min_x = std::min(b.min_x, lo), b.max_x = std::max(b.max_x, hi);
+      motion_extent(p.y + back * (p.uy + 0.5 * back * p.ay), p.uy + back * p.ay, p.ay, t1 - until,
+                    pad, lo, hi);
+      b.min_y = std::min(b.min_y, lo), b.max_y = std::max(b.max_y, hi);
+    }
+  });
+}
+
+}  // namespace fixstep::detail
