@@ -2,6 +2,7 @@
 #include <enet/enet.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <mutex>
 #include <optional>
@@ -200,7 +201,11 @@ Transport Transport::listen(const Address& bind, std::size_t max_peers, TimeoutS
   }
   compress(impl->host);
   if (token) {
-    impl->gate.emplace(HostGateSettings{.token = *token});
+    // A party behind one address (a NAT, or one machine) may join all at once: the gate's bound
+    // on one address's connections still opening is the host's peer slots, not fewer.
+    impl->gate.emplace(HostGateSettings{
+        .token = *token,
+        .max_admitted_per_host = std::max(HostGateSettings{}.max_admitted_per_host, max_peers)});
     impl->host->intercept = intercept;
   }
   return Transport(std::move(impl));

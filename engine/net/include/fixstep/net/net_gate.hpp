@@ -89,7 +89,9 @@ struct HostGateSettings {
   /// Ports of one IPv4 address admitted at once and not yet connected (an admitted address
   /// counts until ENet has a peer there, or its cookie expires): a holder of the token on one
   /// machine opens at most this many ENet connections at a time (each holds a peer slot until it
-  /// completes the match's handshake or handshake_timeout_ms passes), not all of the host's slots.
+  /// completes the match's handshake or handshake_timeout_ms passes). A match's transport sets it
+  /// to its peer slots (at least 4), so that players behind one address (a NAT, a LAN party on
+  /// one machine) can all join at once.
   std::size_t max_admitted_per_host = 4;
   GateKey cookie_key = random_gate_key();  ///< the host's own, never sent
 };
