@@ -132,13 +132,7 @@ void DiscContacts<Real>::plane_box(const PlaneMotion& p, const DiscMotion& free,
   // first on (extrapolated back over the plane events between).
   motion_extent(free.x, free.ux, free.ax, p.first, pad, b.min_x, b.max_x);
   motion_extent(free.y, free.uy, free.ay, p.first, pad, b.min_y, b.max_y);
-  const double back = p.first - p.t;  // <= 0
-  const double ux = p.ux + back * p.ax, uy = p.uy + back * p.ay;
-  double lo = 0, hi = 0;
-  motion_extent(p.x + back * (p.ux + 0.5 * back * p.ax), ux, p.ax, dt - p.first, pad, lo, hi);
-  b.min_x = std::min(b.min_x, lo), b.max_x = std::max(b.max_x, hi);
-  motion_extent(p.y + back * (p.uy + 0.5 * back * p.ay), uy, p.ay, dt - p.first, pad, lo, hi);
-  b.min_y = std::min(b.min_y, lo), b.max_y = std::max(b.max_y, hi);
+  add_plane_motion(p, p.first, dt, pad, b);
 }
 
 template <class Real>

@@ -35,10 +35,7 @@ bool DiscContacts<Real>::next_wall_event(const Tick& tick, std::uint32_t k, doub
   // boxes_ hold only that window's), padded by the radius and more.
   const DiscMotion& d = motion_[k];
   const double s0 = now - d.t;  // the motion at now
-  const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
-  SweptBox box;
-  motion_extent(d.px(now), d.ux + s0 * d.ax, d.ax, dt - now, pad, box.min_x, box.max_x);
-  motion_extent(d.py(now), d.uy + s0 * d.ay, d.ay, dt - now, pad, box.min_y, box.max_y);
+  const SweptBox box = path_box(d, now, dt, discs_[k].radius * (1.0 + 2.0 * slop));
   // The box's nearest corner clear of the plane: the path cannot meet it.
   auto clear = [&box](const PlaneDef& pl) {
     const double nx = pl.normal.x, ny = pl.normal.y;

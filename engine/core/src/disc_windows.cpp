@@ -42,29 +42,15 @@ template <class Real>
 void DiscContacts<Real>::window_boxes(const Tick& tick, double t0, double t1) {
   halves(discs_.size(), [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t k = begin; k < end; ++k) {
-      const DiscMotion& m = motion_[k];
       const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
-      SweptBox& b = boxes_[k];
       // A disc the plane pass bounced is on its free motion until its first plane event, while
       // nothing changed its motion (disc_events.cpp, switch_to_plane_motion()).
       const std::int32_t slot = discs_[k].plane_slot;
       const bool free = slot >= 0 && tick.after[slot].t >= 0.0 && stamp_[k] == 0;
       const double until = free ? std::clamp(tick.after[slot].first, t0, t1) : t1;
-      const double s = t0 - m.t;
-      motion_extent(m.px(t0), m.ux + s * m.ax, m.ax, until - t0, pad, b.min_x, b.max_x);
-      motion_extent(m.py(t0), m.uy + s * m.ay, m.ay, until - t0, pad, b.min_y, b.max_y);
-      if (!free || !(until < t1)) continue;
-      // From the first plane event on: the plane pass's motion after its last one, extrapolated
-      // back to the first (as plane_box() covers it over the whole tick).
-      const PlaneMotion& p = tick.after[slot];
-      const double back = until - p.t;
-      double lo = 0, hi = 0;
-      motion_extent(p.x + back * (p.ux + 0.5 * back * p.ax), p.ux + back * p.ax, p.ax, t1 - until,
-                    pad, lo, hi);
-      b.min_x = std::min(b.min_x, lo), b.max_x = std::max(b.max_x, hi);
-      motion_extent(p.y + back * (p.uy + 0.5 * back * p.ay), p.uy + back * p.ay, p.ay, t1 - until,
-                    pad, lo, hi);
-      b.min_y = std::min(b.min_y, lo), b.max_y = std::max(b.max_y, hi);
+      boxes_[k] = path_box(motion_[k], t0, until, pad);
+      // From the first plane event on: the plane pass's motion (as plane_box() covers it).
+      if (free && until < t1) add_plane_motion(tick.after[slot], until, t1, pad, boxes_[k]);
     }
   });
 }

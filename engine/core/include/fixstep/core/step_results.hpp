@@ -73,7 +73,8 @@ struct ContactStats {
   /// Windows (equal sub-intervals) of the tick the discs were paired over, each by its boxes
   /// over that window: 1, or up to 64 when the boxes over the whole tick overlapped in more than
   /// 16 pairs a disc (fast discs through a crowd; candidate_pairs is then the most of one
-  /// window); 0 without disc contacts or past max_candidate_pairs.
+  /// window); 0 without disc contacts, or when the pairs over the whole tick reached
+  /// max_candidate_pairs before any window.
   std::size_t windows = 0;
 };
 
