@@ -194,12 +194,13 @@ inline net::MatchSettings match(std::uint8_t players, std::uint64_t ticks) {
 /// lossy link, HostilePeers times handshakes out).
 constexpr double lossless_handshake_ms = 1000.0;
 
-/// A host and `joiners` joining through `link` (spectators last).
+/// A host and `joiners` joining through `link` (spectators last), playing `world` (billiards
+/// when null).
 inline Match start(const net::MatchSettings& s, int joiners, int spectators,
                    const net::LinkSettings& link, const std::vector<TickRules>& rules = {},
-                   bool clean_handshake = true) {
+                   bool clean_handshake = true, const WorldDef* world = nullptr) {
   Match m;
-  const WorldDef def = billiards().def;
+  const WorldDef def = world ? *world : billiards().def;
   auto rules_of = [&](std::size_t i) { return i < rules.size() ? rules[i] : TickRules{}; };
   m.peers.push_back(std::make_unique<net::MatchPeer>(
       net::MatchPeer::host(def, s, {"127.0.0.1", 0}, rules_of(0))));

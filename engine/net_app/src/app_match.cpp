@@ -25,6 +25,7 @@
 #include <fixstep/io/stop_signal.hpp>
 #include <fixstep/io/summary.hpp>
 #include <fixstep/net/desync_recording.hpp>
+#include <fixstep/net/match_clock.hpp>
 #include <fixstep/net/match_peer.hpp>
 #include <fixstep/net_app/run.hpp>
 #include <memory>
@@ -49,6 +50,9 @@ using app::detail::Level;
 /// After the last tick, a peer keeps answering this long (ms), so that the other gets what it
 /// still lacks (resent inputs, the last hash) before this one leaves.
 constexpr int linger_ms = 600;
+
+/// A frame of the window's loop and of a paced bot's: 60 frames a second.
+constexpr auto frame_period = std::chrono::microseconds(16667);
 
 /// Throws LimitError when `ticks` ticks exceed the work a command may do on `def`, or when
 /// `record` is given and their state hashes (one a tick) exceed what a recording may hold
@@ -120,19 +124,21 @@ class Peer {
     return match_.state() == MatchState::connecting || match_.state() == MatchState::playing;
   }
 
-  /// Gives the match every input it wants now: the sampler's (after the game's autopilot,
-  /// when `bot`, called with the input's tick, so a bot's input depends on the tick only).
-  /// Returns the inputs given.
-  int give_inputs(InputSampler& sampler, bool bot, int most) {
+  /// The local player's input of `tick`: the sampler's (after the game's autopilot, when
+  /// `bot`, called with the input's tick, so a bot's input depends on the tick only).
+  TickInput input(InputSampler& sampler, bool bot, std::uint64_t tick) {
     if (!seated_ && match_.state() == MatchState::playing && match_.slot() < match_.players()) {
       player_->seat(match_.slot());
       seated_ = true;
     }
+    if (bot) player_->autopilot(static_cast<std::int64_t>(tick), match_.shown_world(), sampler);
+    return sampler.sample(tick);
+  }
+  /// Gives the match every input it wants now (input()). Returns the inputs given.
+  int give_inputs(InputSampler& sampler, bool bot) {
     int given = 0;
-    while (given < most && match_.wants_input()) {
-      const std::uint64_t tick = match_.next_input_tick();
-      if (bot) player_->autopilot(static_cast<std::int64_t>(tick), match_.shown_world(), sampler);
-      match_.add_input(sampler.sample(tick));
+    while (match_.wants_input()) {
+      match_.add_input(input(sampler, bot, match_.next_input_tick()));
       ++given;
     }
     return given;
@@ -172,52 +178,77 @@ class Peer {
   bool seated_ = false;
 };
 
-/// Plays headless as fast as the match goes: the autopilot gives every input wanted, until the
-/// match ends or a stop is asked for (StopOnSignal). On a terminal, a line of progress (tick of
-/// ticks, stalls) twice a second, on stderr.
-void play_bot(Peer& peer, const std::string& name, std::uint64_t ticks) {
+/// A line of progress (tick of ticks, stalls) on stderr, twice a second, when it is a terminal.
+class Progress {
+ public:
+  explicit Progress(std::string name) : name_(std::move(name)) {}
+  ~Progress() {
+    if (terminal_) std::fputs("\n", stderr);
+  }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  void show(const MatchPeer& m, std::uint64_t ticks) {
+    if (!terminal_ || std::chrono::steady_clock::now() < next_) return;
+    next_ += std::chrono::milliseconds(500);
+    std::fprintf(stderr, "\r%s: tick %llu of %llu, %llu stalls ", name_.c_str(),
+                 static_cast<unsigned long long>(m.world().tick()),
+                 static_cast<unsigned long long>(ticks),
+                 static_cast<unsigned long long>(m.stats().stalls));
+  }
+
+ private:
+  std::string name_;
+  bool terminal_ = isatty(STDERR_FILENO) == 1;
+  std::chrono::steady_clock::time_point next_ = std::chrono::steady_clock::now();
+};
+
+/// Plays headless, until the match ends or a stop is asked for (StopOnSignal): unpaced, the
+/// autopilot gives every input wanted and the match goes as fast as the network lets it;
+/// paced, on the real clock at 60 frames a second, as the window does (the game's clock:
+/// MatchClock).
+void play_bot(Peer& peer, const std::string& name, std::uint64_t ticks, bool paced) {
   InputSampler sampler;
   MatchPeer& m = peer.match();
-  const bool terminal = isatty(STDERR_FILENO) == 1;
-  auto next_report = std::chrono::steady_clock::now();
+  Progress progress(name);
+  MatchClock clock(peer.level().def.settings.dt);
+  const InputSource source = [&](std::uint64_t tick) { return peer.input(sampler, true, tick); };
+  RealClock real;
   while (peer.live() && StopOnSignal::requested() == 0) {
-    m.poll(1);
-    (void)peer.give_inputs(sampler, true, 1 << 30);
-    (void)m.advance();
-    if (terminal && std::chrono::steady_clock::now() >= next_report) {
-      next_report += std::chrono::milliseconds(500);
-      std::fprintf(stderr, "\r%s: tick %llu of %llu, %llu stalls ", name.c_str(),
-                   static_cast<unsigned long long>(m.world().tick()),
-                   static_cast<unsigned long long>(ticks),
-                   static_cast<unsigned long long>(m.stats().stalls));
+    if (paced) {
+      const auto frame_start = std::chrono::steady_clock::now();
+      m.poll(0);
+      (void)clock.frame(m, real.frame_seconds(), source);
+      m.poll(0);  // what this frame's ticks gave, sent now rather than a frame later
+      std::this_thread::sleep_until(frame_start + frame_period);
+    } else {
+      m.poll(1);
+      (void)peer.give_inputs(sampler, true);
+      (void)m.advance();
     }
+    progress.show(m, ticks);
   }
-  if (terminal) std::fputs("\n", stderr);
 }
 
-/// Plays in the window on the real clock, an input a tick of the level's dt, until Esc, the
-/// close button, a stop request (StopOnSignal) or the match's end. Returns false when the player
-/// quit or a stop was asked for.
+/// Plays in the window on the real clock (MatchClock: as many ticks a frame as real time asks),
+/// until Esc, the close button, a stop request (StopOnSignal) or the match's end. Returns false
+/// when the player quit or a stop was asked for.
 bool play_window(Peer& peer, MatchView& view, const app::Settings& settings, bool bot) {
-  const double dt = peer.level().def.settings.dt;
   InputSampler sampler;
   MatchPeer& m = peer.match();
   view.open_window(settings.name);
-  RealClock clock;
-  double owed = 0.0;  // s of real time not yet turned into inputs
+  MatchClock clock(peer.level().def.settings.dt);
+  const InputSource source = [&](std::uint64_t tick) { return peer.input(sampler, bot, tick); };
+  RealClock real;
   while (peer.live()) {
     if (StopOnSignal::requested() != 0) return false;
     const auto frame_start = std::chrono::steady_clock::now();
     if (!view.poll_window(sampler, peer.player(), m.shown_world(), bot)) return false;
     m.poll(0);
-    owed = std::min(owed + clock.frame_seconds(), 0.25);
-    const int due = static_cast<int>(owed / dt);
-    owed -= due * dt;  // time the match could not take (a stall) is not owed later
-    (void)peer.give_inputs(sampler, bot, due);
-    (void)m.advance();
+    (void)clock.frame(m, real.frame_seconds(), source);
+    m.poll(0);
     view.draw(peer.drawn_game(), m);
     view.present();
-    std::this_thread::sleep_until(frame_start + std::chrono::microseconds(16667));
+    std::this_thread::sleep_until(frame_start + frame_period);
   }
   return true;
 }
@@ -314,7 +345,7 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
   MatchView view(peer.level(), settings, o.rollback ? "rollback" : "lockstep");
   bool quit = false;
   if (o.bot && !o.window) {
-    play_bot(peer, settings.name, o.ticks);
+    play_bot(peer, settings.name, o.ticks, o.paced);
   } else {
     quit = !play_window(peer, view, settings, o.bot);
   }

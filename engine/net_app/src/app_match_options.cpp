@@ -25,7 +25,7 @@ namespace {
 /// The flags only a match has: any of them asks for one.
 constexpr std::string_view match_flags[] = {
     "--host",        "--join",         "--spectate", "--players", "--session", "--bind",
-    "--input-delay", "--max-rollback", "--ticks",    "--bot",     "--token"};
+    "--input-delay", "--max-rollback", "--ticks",    "--bot",     "--token",   "--paced"};
 
 /// `text` as a whole number in [lo, hi], else nullopt.
 std::optional<std::uint64_t> whole(const std::string& text, std::uint64_t lo, std::uint64_t hi) {
@@ -83,6 +83,9 @@ void check(const MatchOptions& o, bool players_given) {
   }
   if (o.bot && o.ticks == 0) throw UsageError("--bot needs --ticks N (when the match ends)");
   if (o.window && !o.bot) throw UsageError("--window needs --bot (without it, the window shows)");
+  if (o.paced && (!o.bot || o.window)) {
+    throw UsageError("--paced is for a headless --bot (a window always plays at real time)");
+  }
   if (!o.host_port && o.token.empty()) {
     throw UsageError(fmt::format(
         "{} needs --token T: the match's token, 32 hexadecimal digits, which the host prints "
@@ -181,6 +184,9 @@ void add_output_options(CLI::App& cli, MatchFlags& f, MatchOptions& o) {
   cli.add_flag("--bot", o.bot,
                "the game's autopilot plays, a spectator just watches (headless unless --window)");
   cli.add_flag("--window", o.window, "with --bot: show the window");
+  cli.add_flag("--paced", o.paced,
+               "with --bot, headless: play at real time, 60 frames a second (default: as fast as "
+               "the match goes)");
 }
 
 /// The parsed flags of f into o, then the checks of what does not fit together (UsageError).
