@@ -69,6 +69,7 @@ NetCase base_case(std::uint64_t ticks) {
   c.settings.match_ticks = ticks;
   c.settings.peer_timeout_ms = 20000;
   c.settings.handshake_timeout_ms = 20000;
+  c.settings.adapt_to_round_trip = false;  // the delays and windows each table gives
   c.settings.scene_name = scene.file;
   c.settings.scene_text = scene.text;
   return c;

@@ -134,6 +134,7 @@ int play(const Options& o) {
   net::MatchSettings s;
   s.players = 2;
   s.input_delay = 8;
+  s.adapt_to_round_trip = false;  // both peers at the delay given
   s.hash_every = 30;
   s.match_ticks = o.ticks;
   s.peer_timeout_ms = 10000;  // an emulated peer starts slowly

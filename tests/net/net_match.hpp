@@ -184,6 +184,7 @@ inline net::MatchSettings match(std::uint8_t players, std::uint64_t ticks) {
   s.scene_name = billiards().file;
   s.scene_text = billiards().text;
   s.token = test_token;
+  s.adapt_to_round_trip = false;  // the delays and timeouts as given (MatchPeer.* adapt)
   return s;
 }
 

@@ -25,7 +25,7 @@ using net::MatchSettings;
 using net::MatchState;
 
 TEST(Lockstep, TwoPlayersThroughALossyLinkReplayWithFixstepReplay) {
-  const MatchSettings s = match(2, 300);
+  const MatchSettings s = match(2, 600);
   const net::LinkSettings link{.latency_ms = 15.0,
                                .jitter_ms = 10.0,
                                .loss = 0.2,
@@ -36,7 +36,7 @@ TEST(Lockstep, TwoPlayersThroughALossyLinkReplayWithFixstepReplay) {
                                .seed = 21};
   Match m = start(s, 1, 0, link);
   ASSERT_TRUE(m.run(20000)) << m.peers[0]->error() << " / " << m.peers[1]->error();
-  const Recording rec = expect_agreement(m, 300);
+  const Recording rec = expect_agreement(m, 600);
   EXPECT_TRUE(every_player_played(rec, 2));
   EXPECT_GT(m.link->stats().dropped, 0u);
   EXPECT_GT(m.link->stats().duplicated, 0u);
@@ -44,7 +44,7 @@ TEST(Lockstep, TwoPlayersThroughALossyLinkReplayWithFixstepReplay) {
   World sim(billiards().def);
   const ReplayReport report = replay(sim, rec);
   EXPECT_TRUE(report.ok());
-  EXPECT_EQ(report.verified, 301u);  // a hash every tick, and the final one
+  EXPECT_EQ(report.verified, 601u);  // a hash every tick, and the final one
   const std::filesystem::path file = std::filesystem::temp_directory_path() /
                                      ("fixstep_net_" + std::to_string(::getpid()) + ".rec");
   write_recording(file, rec);

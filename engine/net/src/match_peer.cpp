@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -129,15 +130,62 @@ MatchPeer MatchPeer::join(const WorldDef& def, const MatchSettings& settings, co
   return MatchPeer(std::move(impl));
 }
 
+void MatchPeer::Impl::set_input_delay(std::uint16_t delay) {
+  settings.input_delay = delay;
+  for (std::size_t p = 0; p < players; ++p) {
+    inputs[p].clear();
+    base[p] = 0;
+    for (std::uint64_t t = 0; t < delay; ++t) inputs[p].push_back(TickInput{t});
+  }
+}
+
+std::uint16_t MatchPeer::Impl::input_delay_for(std::uint32_t rtt_ms) const {
+  // A remote input for tick t is given when its peer plays tick t - delay; it waits for that
+  // peer's next packet (up to a send interval and a frame) and crosses the link (half a round
+  // trip; the host's relay to a third player another half): it must arrive by tick t.
+  const double dt_ms = def.settings.dt * 1000.0;
+  const double ms = rtt_ms + static_cast<double>(settings.send_interval_ms) + 1000.0 / 60.0;
+  const double ticks = std::ceil(ms / dt_ms) + 1.0;
+  return static_cast<std::uint16_t>(std::clamp(ticks, static_cast<double>(settings.input_delay),
+                                               static_cast<double>(max_input_delay)));
+}
+
+std::uint16_t MatchPeer::Impl::rollback_window() const {
+  if (!shown) return 0;
+  if (!settings.adapt_to_round_trip) return settings.max_rollback;
+  // The remote inputs of the ticks shown ahead arrive a round trip, two send intervals (ours
+  // to be acknowledged... theirs to be sent) and a frame after we play them.
+  const double dt_ms = def.settings.dt * 1000.0;
+  const double ms =
+      static_cast<double>(stats.round_trip_ms) + 2.0 * settings.send_interval_ms + 1000.0 / 60.0;
+  const double ticks = std::ceil(ms / dt_ms) + 2.0;
+  return static_cast<std::uint16_t>(
+      std::clamp(ticks, static_cast<double>(settings.max_rollback),
+                 static_cast<double>(std::max(max_rollback_window, settings.max_rollback))));
+}
+
+double MatchPeer::Impl::peer_timeout_ms() const {
+  if (!settings.adapt_to_round_trip) return settings.peer_timeout_ms;
+  return std::max(static_cast<double>(settings.peer_timeout_ms),
+                  static_cast<double>(timeout_round_trips) * stats.round_trip_ms);
+}
+
+double MatchPeer::Impl::handshake_timeout_ms() const {
+  if (!settings.adapt_to_round_trip) return settings.handshake_timeout_ms;
+  std::uint32_t rtt = 0;  // the connections' (ENet's connect measured them)
+  for (const detail::Remote& r : remotes) rtt = std::max(rtt, transport->round_trip_ms(r.conn));
+  return std::max(static_cast<double>(settings.handshake_timeout_ms),
+                  static_cast<double>(timeout_round_trips) * rtt);
+}
+
 void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
   players = player_count;
   slot = own_slot;
   state = MatchState::playing;
-  for (std::size_t p = 0; p < players; ++p) {
-    inputs[p].clear();
-    base[p] = 0;
-    for (std::uint64_t t = 0; t < settings.input_delay; ++t) inputs[p].push_back(TickInput{t});
-  }
+  set_input_delay(settings.input_delay);
+  // A lockstep host adapting to the round trip picks its input delay when the first peer asks
+  // to join (on_request), before it takes an input.
+  delay_open = is_host && settings.adapt_to_round_trip && settings.max_rollback == 0;
   if (settings.max_rollback > 0 && slot < players) {
     shown = std::make_unique<World>(def);
     if (rules_have_state()) confirmed_rules = rules.save();
@@ -230,11 +278,19 @@ void MatchPeer::poll(std::uint32_t wait_ms) {
 
 bool MatchPeer::wants_input() const {
   const Impl& m = *impl_;
-  if (m.state != MatchState::playing || m.slot >= m.players) return false;
+  if (m.state != MatchState::playing || m.slot >= m.players || m.delay_open) return false;
   const std::uint64_t next = m.known(m.slot);
   if (m.settings.match_ticks != 0 && next >= m.settings.match_ticks) return false;
   const std::uint64_t stepping = m.shown ? m.shown->tick() : m.next_step;
   return next < stepping + m.settings.input_delay + 1;
+}
+
+std::uint16_t MatchPeer::input_delay() const {
+  return impl_->settings.input_delay;
+}
+
+std::uint16_t MatchPeer::rollback_window() const {
+  return impl_->rollback_window();
 }
 
 std::uint64_t MatchPeer::next_input_tick() const {
@@ -336,18 +392,23 @@ int MatchPeer::advance() {
   if (m.shown) m.advance_shown();
   m.trim_inputs();
   if (m.shown) return stepped;
-  const double now = detail::clock_ms();
   // A stall waits for another peer: this player's own input for the next tick is given (a
   // frame that gave no input, between two ticks, waits for nobody).
   const bool own_given = m.slot >= m.players || m.known(m.slot) > m.next_step;
-  if (stepped == 0 && own_given && m.state == MatchState::playing) {
-    ++m.stats.stalls;
-    if (m.stall_since < 0.0) m.stall_since = now;
-  } else if (m.stall_since >= 0.0) {
-    m.stats.stalled_ms += now - m.stall_since;
-    m.stall_since = -1.0;
-  }
+  const bool stalled = stepped == 0 && own_given && m.state == MatchState::playing;
+  if (stalled) ++m.stats.stalls;
+  m.note_stall(stalled);
   return stepped;
+}
+
+void MatchPeer::Impl::note_stall(bool stalled) {
+  const double now = detail::clock_ms();
+  if (stalled) {
+    if (stall_since < 0.0) stall_since = now;
+  } else if (stall_since >= 0.0) {
+    stats.stalled_ms += now - stall_since;
+    stall_since = -1.0;
+  }
 }
 
 MatchState MatchPeer::state() const {

@@ -122,6 +122,19 @@ struct MatchPeer::Impl {
   /// Time sync, per player heard directly (a joiner: the host; the host: each player): how
   /// many frames this peer is ahead of it, averaged (advance_shown).
   std::array<double, max_players> ahead_of{};
+  /// A lockstep host adapting its input delay: not picked yet (no one asked to join).
+  bool delay_open = false;
+
+  /// Rollback: the window now (MatchSettings::adapt_to_round_trip).
+  [[nodiscard]] std::uint16_t rollback_window() const;
+  /// The input delay a lockstep host picks for a round trip of rtt_ms.
+  [[nodiscard]] std::uint16_t input_delay_for(std::uint32_t rtt_ms) const;
+  /// Fixes the input delay at `delay`: every player's first `delay` ticks are empty.
+  void set_input_delay(std::uint16_t delay);
+  /// Stall time: a stall begins (stalled) or ends (MatchStats::stalled_ms).
+  void note_stall(bool stalled);
+  [[nodiscard]] double peer_timeout_ms() const;       ///< adapted to the round trip
+  [[nodiscard]] double handshake_timeout_ms() const;  ///< adapted to the round trip
 
   // match_peer.cpp
   void start(std::uint8_t players, std::uint8_t slot);  ///< the handshake done

@@ -158,6 +158,10 @@ void MatchPeer::Impl::on_request(detail::Remote& r, const Packet& p) {
     }
   }
   if (given == no_slot) return refuse(r, DisconnectReason::refused);
+  if (delay_open) {  // the first to ask: the input delay from the round trip to it
+    set_input_delay(input_delay_for(transport->round_trip_ms(r.conn)));
+    delay_open = false;
+  }
   r.handshaken = true;
   r.slot = given;
   r.dirty = true;
@@ -293,16 +297,14 @@ void MatchPeer::Impl::on_hash(detail::Remote& r, const StateHashMessage& m) {
 }
 
 void MatchPeer::Impl::check_timeouts(double now) {
-  if (!is_host && state == MatchState::connecting &&
-      now - started_at > settings.handshake_timeout_ms) {
-    fail(fmt::format("no answer from the host at {}:{} within {} ms", host_address.host,
-                     host_address.port, settings.handshake_timeout_ms));
+  if (!is_host && state == MatchState::connecting && now - started_at > handshake_timeout_ms()) {
+    fail(fmt::format("no answer from the host at {}:{} within {:.0f} ms", host_address.host,
+                     host_address.port, handshake_timeout_ms()));
     return;
   }
   // A peer that never completed the handshake is dropped (ENet tells it nothing).
   std::erase_if(remotes, [&](const detail::Remote& r) {
-    const bool expired =
-        is_host && !r.handshaken && now - r.connected_at > settings.handshake_timeout_ms;
+    const bool expired = is_host && !r.handshaken && now - r.connected_at > handshake_timeout_ms();
     if (expired) transport->drop(r.conn);
     return expired;
   });
@@ -312,8 +314,8 @@ void MatchPeer::Impl::check_timeouts(double now) {
     // A joiner the host accepted but has not heard inputs from may not have the accept yet
     // (ENet resends a lost one after 500 ms, doubling): it has the handshake's time too.
     const double limit = is_host && !r.heard_inputs
-                             ? std::max(settings.peer_timeout_ms, settings.handshake_timeout_ms)
-                             : settings.peer_timeout_ms;
+                             ? std::max(peer_timeout_ms(), handshake_timeout_ms())
+                             : peer_timeout_ms();
     if (matters && state == MatchState::playing && now - r.last_heard > limit) {
       fail(fmt::format("{} timed out: nothing received for {} ms (at tick {})", who(r),
                        static_cast<long long>(now - r.last_heard), next_step));

@@ -131,10 +131,12 @@ void MatchPeer::Impl::advance_shown() {
   stats.frame_advantage = advantage;
   if (settings.match_ticks != 0 && t >= settings.match_ticks) return;
   const double ahead = time_sync_ahead();
-  if (t - next_step >= settings.max_rollback) {
+  if (t - next_step >= rollback_window()) {
     ++stats.stalls;  // as far ahead as rollback may go
+    note_stall(true);
     return;
   }
+  note_stall(false);
   if (known(slot) <= t) return;  // the local input of the tick is not given yet
   if (ahead > sync_threshold) {
     for (double& a : ahead_of) a -= sync_wait_credit;

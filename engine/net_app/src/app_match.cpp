@@ -85,6 +85,9 @@ MatchSettings match_settings(const app::Settings& settings, const Level& level,
   s.input_delay = o.input_delay;
   s.match_ticks = o.ticks;
   s.max_rollback = o.rollback ? o.max_rollback : 0;
+  s.adapt_to_round_trip = o.adapt;
+  s.handshake_timeout_ms = o.handshake_timeout_ms;
+  s.peer_timeout_ms = o.peer_timeout_ms;
   s.scene_name = level.scene_name;
   s.scene_text = level.scene_text;
   s.rules_name = app::detail::rules_name_of(settings.name);
@@ -279,6 +282,21 @@ void keep_desync_recording(MatchPeer& m, const std::string& name) {
   }
 }
 
+/// The match's line of the summary: who this peer was and what the network did.
+std::string match_summary(const MatchPeer& m) {
+  const MatchStats& st = m.stats();
+  const std::string who = m.slot() < m.players() ? fmt::format("player={}", m.slot())
+                          : m.slot() == no_slot
+                              ? std::string("joining")
+                              : fmt::format("spectator={}", m.slot() - spectator_slot_base);
+  return fmt::format(
+      "match: {} ticks={} rtt={}ms input_delay={} rollback_window={} stalls={} stalled={:.0f}ms "
+      "rollbacks={} longest_rollback={} waits={} resends={} hashes={} dropped={}",
+      who, m.world().tick(), st.round_trip_ms, m.input_delay(), m.rollback_window(), st.stalls,
+      st.stalled_ms, st.rollbacks, st.max_rolled_back, st.waits, st.resends, st.hashes_compared,
+      st.dropped_total());
+}
+
 /// What the match came to: the summary lines, the recording, the exit status.
 int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, bool quit) {
   MatchPeer& m = peer.match();
@@ -289,13 +307,7 @@ int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, boo
   }
   std::printf("%s\n", summary_line(world, World(peer.level().def).energy().total()).c_str());
   if (const std::string s = peer.drawn_game().summary(); !s.empty()) std::printf("%s\n", s.c_str());
-  const MatchStats& st = m.stats();
-  std::printf("match: slot=%u ticks=%llu stalls=%llu rollbacks=%llu hashes=%llu dropped=%llu\n",
-              static_cast<unsigned>(m.slot()), static_cast<unsigned long long>(world.tick()),
-              static_cast<unsigned long long>(st.stalls),
-              static_cast<unsigned long long>(st.rollbacks),
-              static_cast<unsigned long long>(st.hashes_compared),
-              static_cast<unsigned long long>(st.dropped_total()));
+  std::printf("%s\n", match_summary(m).c_str());
   if (!o.record.empty() && world.tick() > 0) {
     if (const std::optional<std::uint64_t> ticks = m.finish_recording()) {
       std::printf("recorded %llu ticks to %s (check it: %s --replay %s)\n",
@@ -330,9 +342,12 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
   Peer peer(game, settings, o);
   MatchPeer& m = peer.match();
   if (o.host_port) {
-    std::printf("%s: hosting on %s:%u (%u players, %s, input delay %u)\n", settings.name.c_str(),
+    const std::string delay = o.adapt && !o.rollback
+                                  ? std::string("input delay from the round trip")
+                                  : fmt::format("input delay {}", o.input_delay);
+    std::printf("%s: hosting on %s:%u (%u players, %s, %s)\n", settings.name.c_str(),
                 o.bind.c_str(), static_cast<unsigned>(m.port()), static_cast<unsigned>(o.players),
-                o.rollback ? "rollback" : "lockstep", static_cast<unsigned>(o.input_delay));
+                o.rollback ? "rollback" : "lockstep", delay.c_str());
     std::printf("%s: token %s (joiners and spectators give --token %s)\n", settings.name.c_str(),
                 m.token().c_str(), m.token().c_str());
   } else {

@@ -164,13 +164,25 @@ void add_session_options(CLI::App& cli, MatchFlags& f, MatchOptions& o, int max_
       ->check(CLI::IsMember({"lockstep", "rollback"}));
   cli.add_option("--bind", o.bind, "the local IPv4 address (default 127.0.0.1)")->type_name("ADDR");
   f.delay_opt = cli.add_option("--input-delay", o.input_delay,
-                               "ticks between an input and its tick (0-60; default 6, rollback 2)")
+                               "ticks between an input and its tick (0-60; default: lockstep "
+                               "from the round trip, rollback 2)")
                     ->type_name("N")
                     ->check(in_range(0, 60));
   f.rollback_opt =
-      cli.add_option("--max-rollback", o.max_rollback, "rollback: most ticks ahead (1-60)")
+      cli.add_option("--max-rollback", o.max_rollback,
+                     "rollback: most ticks ahead (1-60; default: from the round trip, 8 to 120)")
           ->type_name("N")
           ->check(in_range(1, 60));
+  cli.add_option("--handshake-timeout", o.handshake_timeout_ms,
+                 "ms to connect and complete the handshake (100-600000; default 3000, and at "
+                 "least 8 round trips once one is measured)")
+      ->type_name("MS")
+      ->check(in_range(100, 600000));
+  cli.add_option("--peer-timeout", o.peer_timeout_ms,
+                 "ms without a packet before a peer is given up (100-600000; default 5000, and "
+                 "at least 8 round trips)")
+      ->type_name("MS")
+      ->check(in_range(100, 600000));
   cli.add_option("--ticks", o.ticks, "the match ends after N ticks")
       ->type_name("N")
       ->check(in_range(1, 100000000));
@@ -200,6 +212,7 @@ void take_flags(const MatchFlags& f, MatchOptions& o) {
   // Rollback shows its own input at once and predicts the others': a short delay spares it
   // re-simulation; lockstep waits for every input, so its default covers two send intervals.
   if (f.delay_opt->count() == 0 && o.rollback) o.input_delay = rollback_input_delay;
+  o.adapt = o.rollback ? f.rollback_opt->count() == 0 : f.delay_opt->count() == 0;
   if (f.rollback_opt->count() > 0 && !o.rollback) {
     throw UsageError("--max-rollback needs --session rollback");
   }

@@ -23,7 +23,13 @@ struct MatchOptions {
   std::string bind = "127.0.0.1";                                ///< --bind ADDR
   bool rollback = false;                                         ///< --session rollback
   std::uint16_t input_delay = net::MatchSettings{}.input_delay;  ///< --input-delay N
-  std::uint16_t max_rollback = 8;    ///< --max-rollback N (rollback only)
+  std::uint16_t max_rollback = 8;  ///< --max-rollback N (rollback only)
+  /// Neither --input-delay (lockstep) nor --max-rollback (rollback) given: picked from the
+  /// round trip (MatchSettings::adapt_to_round_trip).
+  bool adapt = true;
+  std::uint32_t handshake_timeout_ms =
+      net::MatchSettings{}.handshake_timeout_ms;                         ///< --handshake-timeout
+  std::uint32_t peer_timeout_ms = net::MatchSettings{}.peer_timeout_ms;  ///< --peer-timeout
   std::uint64_t ticks = 0;           ///< --ticks N (0: until quit)
   std::optional<std::string> scene;  ///< --scene FILE
   std::string record, last_frame;    ///< --record FILE, --last-frame PNG

@@ -73,8 +73,13 @@ std::string MatchView::status(const MatchPeer& match) const {
               ? fmt::format("player {} of {}", match.slot(), match.players())
               : fmt::format("spectator {} ({} players)", match.slot() - spectator_slot_base,
                             match.players());
-      return fmt::format("{}  {}  tick {}  rtt {} ms  stalls {}{}", who, kind_,
-                         match.shown_world().tick(), s.round_trip_ms, s.stalls,
+      const std::string lag =
+          match.rollback_window() > 0
+              ? fmt::format("delay {}  window {}  rollbacks {} (longest {})", match.input_delay(),
+                            match.rollback_window(), s.rollbacks, s.max_rolled_back)
+              : fmt::format("delay {}", match.input_delay());
+      return fmt::format("{}  {}  tick {}  rtt {} ms  {}  stalled {:.1f} s{}", who, kind_,
+                         match.shown_world().tick(), s.round_trip_ms, lag, s.stalled_ms / 1000.0,
                          match.state() == MatchState::finished ? "  (match over)" : "");
     }
     case MatchState::desynced:

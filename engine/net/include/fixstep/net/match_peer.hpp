@@ -66,11 +66,12 @@ struct MatchSettings {
   /// one). This peer's own choice: peers of either kind play one match.
   std::uint16_t max_rollback = 0;
   /// A player's inputs not yet acknowledged are sent again in every inputs packet (redundantly:
-  /// a lost packet is made good by the next one, no round trip lost) while they encode in at
-  /// most this many bytes (net_input_codec.hpp: unchanged ticks cost a byte per 128); beyond
-  /// it, ticks in flight are sent once and resent from the ack after a resend timeout (a busy
-  /// player stays within the bandwidth). 0: always once.
-  std::uint32_t redundant_bytes = 32;
+  /// a lost packet is made good by the next one, no round trip lost, as GGPO sends every
+  /// unacknowledged input) while they encode in at most this many bytes (net_input_codec.hpp:
+  /// unchanged ticks cost a byte per 128, a moving pointer 2–6 bytes a tick: the default holds
+  /// a round trip of busy play); beyond it, ticks in flight are sent once and resent from the
+  /// ack after a resend timeout. 0: always once.
+  std::uint32_t redundant_bytes = 256;
   /// Inputs in flight sent once (above) are resent from the receiver's ack when it has not
   /// moved for 1.25 round trips + send_interval_ms + this margin (ms).
   std::uint32_t resend_ms = 10;
@@ -84,6 +85,18 @@ struct MatchSettings {
   /// moving pointer costs 2–6 bytes a tick on the wire instead of 16. Every peer plays the
   /// rounded pointer, so the match stays deterministic either way; false sends it exactly.
   bool pointer_on_grid = true;
+  /// Latency hidden by the measured round trip (ENet's estimate, ms; docs/NETWORK.md):
+  /// - a lockstep host picks the input delay when the first peer asks to join, from the round
+  ///   trip to it: ceil((rtt + send_interval_ms + a 60 Hz frame) / dt) + 1 ticks, at least
+  ///   input_delay (then the floor) and at most max_input_delay; it takes no input of its own
+  ///   before (wants_input() is false);
+  /// - a rollback peer lets its shown world run ahead by up to
+  ///   ceil((rtt + 2 send_interval_ms + a 60 Hz frame) / dt) + 2 ticks, at least max_rollback
+  ///   and at most max_rollback_window, following the round trip as it is measured;
+  /// - the timeouts (peer_timeout_ms, handshake_timeout_ms) grow to at least
+  ///   timeout_round_trips round trips.
+  /// false: input_delay, max_rollback and the timeouts as given.
+  bool adapt_to_round_trip = true;
   /// A player (or the host) not heard from for this long stops the match ("timed out").
   /// ENet's own timeout of an unacknowledged reliable message is set to 4–8 times this, so
   /// that heavy loss on a live link does not cut it.
@@ -116,6 +129,13 @@ struct MatchSettings {
   /// and streams (record_file).
   bool record_in_memory = true;
 };
+
+/// The longest input delay a lockstep host picks (adapt_to_round_trip), ticks.
+inline constexpr std::uint16_t max_input_delay = 255;
+/// The longest rollback window a rollback peer grows to (adapt_to_round_trip), ticks.
+inline constexpr std::uint16_t max_rollback_window = 120;
+/// Round trips a peer is waited for at least before it times out (adapt_to_round_trip).
+inline constexpr std::uint32_t timeout_round_trips = 8;
 
 /// Where a peer's match is.
 enum class MatchState : std::uint8_t {
@@ -156,7 +176,8 @@ struct MatchStats {
   /// advance() calls that stepped nothing while this player's input for the next tick was
   /// given (a spectator: any that stepped nothing): waiting for another player's input
   std::uint64_t stalls = 0;
-  double stalled_ms = 0.0;          ///< time spent waiting so
+  /// Time spent waiting so (a rollback peer: at its rollback window), ms
+  double stalled_ms = 0.0;
   std::uint32_t round_trip_ms = 0;  ///< to the host (a joiner) or the slowest player (a host)
   std::uint64_t hashes_compared = 0;
   /// Players' inputs held now (all players): those no peer needs any more are dropped in
@@ -217,6 +238,12 @@ class MatchPeer {
   /// (check_input).
   void add_input(TickInput input);
   [[nodiscard]] std::uint64_t next_input_tick() const;
+  /// Ticks between a local input and its tick: the host's (MatchSettings::input_delay, or
+  /// picked from the round trip), known once the handshake is done.
+  [[nodiscard]] std::uint16_t input_delay() const;
+  /// Rollback: the most ticks the shown world may run ahead of the confirmed one now
+  /// (MatchSettings::max_rollback, or grown to the round trip); 0 in lockstep.
+  [[nodiscard]] std::uint16_t rollback_window() const;
   /// Steps every tick whose inputs have all arrived (none past match_ticks), running the
   /// merge, World::step and the rules, recording each; returns the ticks stepped. Nothing
   /// stepped while playing counts a stall. Rollback: then rolls the shown world back to the
