@@ -395,7 +395,9 @@ int MatchPeer::advance() {
   // A stall waits for another peer: this player's own input for the next tick is given (a
   // frame that gave no input, between two ticks, waits for nobody).
   const bool own_given = m.slot >= m.players || m.known(m.slot) > m.next_step;
-  const bool stalled = stepped == 0 && own_given && m.state == MatchState::playing;
+  // (Before the first tick, the players are still joining.)
+  const bool stalled =
+      stepped == 0 && own_given && m.state == MatchState::playing && m.next_step > 0;
   if (stalled) ++m.stats.stalls;
   m.note_stall(stalled);
   return stepped;
@@ -480,6 +482,21 @@ std::optional<std::uint64_t> MatchPeer::recording_cut() const {
 
 std::uint64_t MatchPeer::recording_bytes_held() const {
   return impl_->writer ? impl_->writer->held() : 0;
+}
+
+bool MatchPeer::settled() const {
+  const Impl& m = *impl_;
+  if (m.state != MatchState::finished) return false;
+  for (const detail::Remote& r : m.remotes) {
+    if (!r.handshaken || !r.hashes_due.empty()) {
+      if (r.handshaken) return false;
+      continue;
+    }
+    for (std::uint8_t p = 0; p < m.players; ++p) {
+      if (m.ours_to_send(r, p) && r.their_next[p] < m.known(p)) return false;
+    }
+  }
+  return true;
 }
 
 void MatchPeer::leave() {

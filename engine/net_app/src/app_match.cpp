@@ -114,9 +114,12 @@ class Peer {
       : level_(app::detail::load_level(game, settings, o.scene.value_or(settings.scene_file))),
         rules_(level_.game->clone()),
         player_(level_.game->clone()),
-        match_(start(settings, o)) {}
+        match_(start(settings, o)),
+        clock_(level_.def.settings.dt) {}
 
   MatchPeer& match() { return match_; }
+  /// The game's clock (paced play and the window).
+  MatchClock& clock() { return clock_; }
   const Level& level() const { return level_; }
   /// The rules' game (the shown world's state), seated as the local player for drawing.
   const AnyGame& drawn_game() {
@@ -178,6 +181,7 @@ class Peer {
   std::unique_ptr<AnyGame> rules_;   ///< runs the rules: the shown world's state between calls
   std::unique_ptr<AnyGame> player_;  ///< the local player's input() and autopilot()
   MatchPeer match_;
+  MatchClock clock_;
   bool seated_ = false;
 };
 
@@ -213,7 +217,7 @@ void play_bot(Peer& peer, const std::string& name, std::uint64_t ticks, bool pac
   InputSampler sampler;
   MatchPeer& m = peer.match();
   Progress progress(name);
-  MatchClock clock(peer.level().def.settings.dt);
+  MatchClock& clock = peer.clock();
   const InputSource source = [&](std::uint64_t tick) { return peer.input(sampler, true, tick); };
   RealClock real;
   while (peer.live() && StopOnSignal::requested() == 0) {
@@ -239,7 +243,7 @@ bool play_window(Peer& peer, MatchView& view, const app::Settings& settings, boo
   InputSampler sampler;
   MatchPeer& m = peer.match();
   view.open_window(settings.name);
-  MatchClock clock(peer.level().def.settings.dt);
+  MatchClock& clock = peer.clock();
   const InputSource source = [&](std::uint64_t tick) { return peer.input(sampler, bot, tick); };
   RealClock real;
   while (peer.live()) {
@@ -256,10 +260,24 @@ bool play_window(Peer& peer, MatchView& view, const app::Settings& settings, boo
   return true;
 }
 
-/// Keeps the match answering a little after its end, then leaves.
-void linger_and_leave(MatchPeer& m) {
-  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(linger_ms);
-  while (m.state() == MatchState::finished && std::chrono::steady_clock::now() < until) {
+/// Keeps the match answering after its end until every other peer has acknowledged every input
+/// it needs from this one (MatchPeer::settled: a peer that left early would leave another
+/// short of its last ticks, "timed out"), and linger_ms more for the acknowledgements of ours
+/// to arrive; at most `most_ms`. Then leaves.
+void linger_and_leave(MatchPeer& m, double most_ms) {
+  const auto start = std::chrono::steady_clock::now();
+  auto since = [&] {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+  };
+  while (m.state() == MatchState::finished && !m.settled() && since() < most_ms &&
+         StopOnSignal::requested() == 0) {
+    m.poll(1);
+    (void)m.advance();
+  }
+  const double settled_at = since();
+  while (m.state() == MatchState::finished && since() < settled_at + linger_ms &&
+         StopOnSignal::requested() == 0) {
     m.poll(1);
     (void)m.advance();
   }
@@ -308,6 +326,12 @@ int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, boo
   std::printf("%s\n", summary_line(world, World(peer.level().def).energy().total()).c_str());
   if (const std::string s = peer.drawn_game().summary(); !s.empty()) std::printf("%s\n", s.c_str());
   std::printf("%s\n", match_summary(m).c_str());
+  if (o.paced || !o.bot || o.window) {  // played on the game's clock: what a player saw
+    const Freezes& f = peer.clock().freezes();
+    std::printf("frames: freezes over 100 ms=%llu over 250 ms=%llu longest=%.0fms\n",
+                static_cast<unsigned long long>(f.over_100ms),
+                static_cast<unsigned long long>(f.over_250ms), f.longest_s * 1000.0);
+  }
   if (!o.record.empty() && world.tick() > 0) {
     if (const std::optional<std::uint64_t> ticks = m.finish_recording()) {
       std::printf("recorded %llu ticks to %s (check it: %s --replay %s)\n",
@@ -365,7 +389,7 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
     quit = !play_window(peer, view, settings, o.bot);
   }
   if (m.state() == MatchState::finished) {
-    linger_and_leave(m);
+    linger_and_leave(m, o.peer_timeout_ms);
   } else {
     m.leave();  // quit, a desync, a failure: the other player is told at once, not timed out
   }

@@ -289,6 +289,11 @@ class MatchPeer {
   /// Bytes of the streamed recording held in memory now (not yet handed to the file): at most
   /// about 64 KiB plus hash_every ticks' lines, whatever the match's length; 0 without a file.
   [[nodiscard]] std::uint64_t recording_bytes_held() const;
+  /// Whether the match is finished and every peer this one sends to has acknowledged every
+  /// input it needs from us (a joiner: its own; the host: every player's it relays) and has
+  /// been sent every state hash: leaving now leaves no peer short of a tick. Poll until it
+  /// holds (bounded by the peer timeout), then leave().
+  [[nodiscard]] bool settled() const;
   /// Leaves: tells the others (disconnect) and flushes. The peer is finished or failed after.
   void leave();
 
