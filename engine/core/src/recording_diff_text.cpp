@@ -43,8 +43,9 @@ std::string replay_line(const RecordingDiff::Replay& r) {
 
 std::string reproduced_line(std::string_view name, const Reproduced& r, std::uint64_t ticks) {
   if (!r.mismatch) {
-    return fmt::format("{}: its stored hashes are reproduced here ({} through tick {})", name,
-                       r.verified, ticks);
+    return fmt::format(
+        "{}: its stored hashes are reproduced here ({} stored hashes through tick {})", name,
+        r.verified, ticks);
   }
   const auto& m = *r.mismatch;
   return fmt::format(
