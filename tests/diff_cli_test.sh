@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # `fixstep diff A.rec B.rec`, end to end:
-#   diff_cli_test.sh FIXSTEP SOURCE_DIR
+#   diff_cli_test.sh FIXSTEP SOURCE_DIR [AIRHOCKEY]
 # - a recording against itself: exit 0, "identical";
 # - one push flipped at tick 60 (its hashes left as recorded): exit 4, inputs first differ at
 #   tick 60, the replayed states at tick 61, naming body 0 ("bob") and its field;
@@ -8,11 +8,13 @@
 #   hashes differ at 31 exactly, the verdict names the edited file's peer, either way round;
 # - hashes every 10 ticks: the window of ticks is given;
 # - another scene's recording: exit 6; recordings of a game's rules: compared without replay;
-# - a missing file, a directory, a cut file: exit 5 naming the file; one argument: exit 2.
+# - a missing file, a directory, a cut file: exit 5 naming the file; one argument: exit 2;
+# - a game's --diff (airhockey, when built): replayed with its rules, the mallet named.
 # Prints "ok - ..." / "FAIL - ...".
 set -u
 fixstep=$1
 src=$2
+airhockey=${3:-}
 . "$(dirname "$0")/lib.sh"
 
 diff_() {  # diff_ OUT A B: fixstep diff A B, stdout and stderr into OUT; returns its status
@@ -90,5 +92,22 @@ diff_ cut.out cut.rec a.rec
 expect "it names the cut file" '^fixstep: error: cut\.rec' cut.out
 diff_ one.out a.rec
 [ $? -eq 2 ] && ok "one recording only: exit 2" || { fail "one argument"; cat one.out; }
+
+if [ -n "$airhockey" ]; then
+  "$airhockey" --frames 100 --record ah.rec >/dev/null 2>&1 || fail "airhockey --record"
+  # body slot 3's kinematic velocity at tick 100 changed (bodies() index 2, "mallet1")
+  sed '/^tick 100 /s/velocity=3:1,[-0-9.e]*,/velocity=3:1,1.5,/' ah.rec >ah_input.rec
+  cmp -s ah.rec ah_input.rec && fail "ah_input.rec unchanged"
+  "$airhockey" --diff ah.rec ah_input.rec >ah.out 2>&1
+  [ $? -eq 4 ] && ok "airhockey --diff of recordings that differ: exit 4" || { fail "airhockey --diff"; cat ah.out; }
+  expect "airhockey --diff names the mallet" \
+    '^replayed here: the states first differ: body 2 \("mallet1"\) x: .* at tick 101$' ah.out
+  "$airhockey" --diff ah.rec ah.rec >ah_same.out 2>&1
+  [ $? -eq 0 ] && ok "airhockey --diff of a recording and itself: exit 0" || { fail "airhockey itself"; cat ah_same.out; }
+  expect "with the rules, the game's hashes are reproduced" \
+    '^ah\.rec: its stored hashes are reproduced here \([0-9]+ stored hashes through tick [0-9]+\)$' ah_same.out
+  "$airhockey" --diff ah.rec a.rec >ah_other.out 2>&1
+  [ $? -eq 1 ] && ok "airhockey --diff of fixstep's recording: exit 1" || { fail "airhockey other"; cat ah_other.out; }
+fi
 
 finish
