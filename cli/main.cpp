@@ -256,9 +256,8 @@ int run_fixstep(int argc, char** argv) try {
       "diff",
       "where two recordings first differ: inputs, stored hashes and, replayed side by side, the "
       "first tick, body and field (exit 0 identical, 4 different, 6 different worlds)");
-  diff_cmd->add_option("a", diff.a, "recording A (fixstep run --record, a match's recording)")
-      ->required();
-  diff_cmd->add_option("b", diff.b, "recording B")->required();
+  diff_cmd->add_option("A.rec", diff.a, "recording A (fixstep run --record, a match's recording)");
+  diff_cmd->add_option("B.rec", diff.b, "recording B");
   diff_cmd->add_flag("-q,--quiet", diff.quiet, "print errors only (the exit status says)");
 
   std::string new_dir;
@@ -365,7 +364,16 @@ int run_fixstep(int argc, char** argv) try {
       return compare_command(compare);
     }
     if (replay_cmd->parsed()) return set_command("replay"), replay_command(replay);
-    if (diff_cmd->parsed()) return set_command("diff"), diff_command(diff);
+    if (diff_cmd->parsed()) {
+      set_command("diff");
+      if (diff.a.empty() || diff.b.empty()) {
+        std::fprintf(stderr,
+                     "fixstep diff: give two recordings: fixstep diff A.rec B.rec (got %s)\n",
+                     diff.a.empty() ? "none" : "one");
+        return 2;
+      }
+      return diff_command(diff);
+    }
     if (new_cmd->parsed()) return set_command("new"), new_command(new_dir);
     return set_command("view"), view_command(view);
   };

@@ -170,7 +170,7 @@ const char* unit_of(const std::string& field) {
 
 namespace {
 
-std::string body_label(std::size_t body, const World* names) {
+std::string body_text(std::size_t body, const World* names) {
   if (names && body < names->body_count()) {
     const std::string& name = names->name(names->bodies()[body]);
     if (!name.empty()) return fmt::format("body {} (\"{}\")", body, name);
@@ -205,10 +205,10 @@ std::string describe(const StateDifference& d, const World* names) {
   const std::string unit = unit_of(d.field);
   const std::string suffix = unit.empty() ? "" : " " + unit;
   if (d.field == "sleep_ticks" || d.field == "island") {
-    return fmt::format("{} {}: {} against {}{} {}", body_label(d.body, names), d.field, d.bits_ours,
+    return fmt::format("{} {}: {} against {}{} {}", body_text(d.body, names), d.field, d.bits_ours,
                        d.bits_theirs, suffix, at);
   }
-  return fmt::format("{} {}: {} against {}{} ({}) {}", body_label(d.body, names), d.field, d.ours,
+  return fmt::format("{} {}: {} against {}{} ({}) {}", body_text(d.body, names), d.field, d.ours,
                      d.theirs, suffix, bits_text(d), at);
 }
 
