@@ -21,6 +21,8 @@ namespace fixstep::cli {
 inline constexpr int exit_diverged = 3;
 /// `replay`: a stored state hash differs from the replayed state's.
 inline constexpr int exit_replay_diverged = 4;
+/// `diff`: the two recordings differ (in inputs, stored hashes or length), as a diverged replay.
+inline constexpr int exit_recordings_differ = exit_replay_diverged;
 /// A recording that cannot be read: unreadable, truncated, corrupt or not a recording.
 inline constexpr int exit_bad_recording = 5;
 /// The scene no longer matches the recording (its definition hash differs).
@@ -83,6 +85,11 @@ struct ReplayOptions {
   /// the file it names (scene_for_recording).
   std::optional<std::string> scene;
   bool quiet = false;
+};
+
+struct DiffOptions {
+  std::string a, b;    ///< the two recording files
+  bool quiet = false;  ///< --quiet: the exit status alone (errors still printed)
 };
 
 /// Largest --steps, --every and view --frames: 10^12 ticks (over 500 years at 60 Hz).
@@ -149,6 +156,11 @@ int run_command(const RunOptions& options);
 int render_command(const RenderOptions& options);
 int view_command(const ViewOptions& options);
 int replay_command(const ReplayOptions& options);
+/// `fixstep diff A B`: the report of describe(RecordingDiff) on standard output; 0 when the
+/// recordings are identical, exit_recordings_differ when they differ, exit_scene_mismatch when
+/// their worlds (scene, settings or rules) differ; a recording that cannot be read throws
+/// RecordingError (naming its file).
+int diff_command(const DiffOptions& options);
 
 /// The exit status for a recording error: exit_bad_recording, exit_scene_mismatch or
 /// exit_unsupported_version.

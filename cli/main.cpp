@@ -8,6 +8,7 @@
 //   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [--no-watch]
 //                [overrides]
 //   fixstep replay FILE [--scene SCENE]
+//   fixstep diff A.rec B.rec
 //   fixstep new DIR
 #include <fmt/format.h>
 
@@ -136,7 +137,7 @@ std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
   const auto best = fixstep::closest(argv[1], names);
   return fmt::format(
       "fixstep: unknown command '{}'{}; the commands are run, render, compare, "
-      "view, replay and new (fixstep --help)",
+      "view, replay, diff and new (fixstep --help)",
       argv[1], best ? fmt::format(" (did you mean {}?)", *best) : "");
 }
 
@@ -250,6 +251,15 @@ int run_fixstep(int argc, char** argv) try {
                          "directory, then to the recording's)");
   replay_cmd->add_flag("-q,--quiet", replay.quiet, "print errors only");
 
+  DiffOptions diff;
+  CLI::App* diff_cmd = app.add_subcommand(
+      "diff",
+      "where two recordings first differ: inputs, stored hashes and, replayed side by side, the "
+      "first tick, body and field (exit 0 identical, 4 different, 6 different worlds)");
+  diff_cmd->add_option("A.rec", diff.a, "recording A (fixstep run --record, a match's recording)");
+  diff_cmd->add_option("B.rec", diff.b, "recording B");
+  diff_cmd->add_flag("-q,--quiet", diff.quiet, "print errors only (the exit status says)");
+
   std::string new_dir;
   CLI::App* new_cmd = app.add_subcommand(
       "new",
@@ -300,8 +310,8 @@ int run_fixstep(int argc, char** argv) try {
   if (fixstep::data_on_standard_output(paths)) fixstep::keep_standard_output_for_data();
   // --quiet: the summaries and paths go to standard output, which is emptied wholesale;
   // errors go to standard error (warnings and progress are skipped where they are made).
-  if ((run.scene.quiet || render.scene.quiet || view.scene.quiet || replay.quiet ||
-       compare.quiet) &&
+  if ((run.scene.quiet || render.scene.quiet || view.scene.quiet || replay.quiet || compare.quiet ||
+       diff.quiet) &&
       std::freopen("/dev/null", "w", stdout) == nullptr) {
     std::fputs("fixstep: error: --quiet: cannot open /dev/null for standard output\n", stderr);
     return 1;
@@ -354,6 +364,16 @@ int run_fixstep(int argc, char** argv) try {
       return compare_command(compare);
     }
     if (replay_cmd->parsed()) return set_command("replay"), replay_command(replay);
+    if (diff_cmd->parsed()) {
+      set_command("diff");
+      if (diff.a.empty() || diff.b.empty()) {
+        std::fprintf(stderr,
+                     "fixstep diff: give two recordings: fixstep diff A.rec B.rec (got %s)\n",
+                     diff.a.empty() ? "none" : "one");
+        return 2;
+      }
+      return diff_command(diff);
+    }
     if (new_cmd->parsed()) return set_command("new"), new_command(new_dir);
     return set_command("view"), view_command(view);
   };

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "fixstep/app/app.hpp"
 #include "fixstep/app/game_level.hpp"
@@ -29,11 +30,12 @@ struct UsageError : std::runtime_error {
 struct Options {
   std::optional<std::string> scene;  ///< --scene FILE
   std::string out, record, replay, last_frame;
-  std::int64_t frames = 0;  ///< 0: play in a window until quit
-  int every = 1;            ///< --every K
-  int sync_test = 0;        ///< --sync-test K (0: none)
-  bool window = false;      ///< --window
-  bool overwrite = false;   ///< --overwrite: the old capture in --out DIR is removed first
+  std::vector<std::string> diff;  ///< --diff A B: the two recordings (else empty)
+  std::int64_t frames = 0;        ///< 0: play in a window until quit
+  int every = 1;                  ///< --every K
+  int sync_test = 0;              ///< --sync-test K (0: none)
+  bool window = false;            ///< --window
+  bool overwrite = false;         ///< --overwrite: the old capture in --out DIR is removed first
 };
 
 /// Frames per second of a headless run's, a drawn replay's and a sync test's virtual clock.
@@ -58,6 +60,10 @@ int stopped(const Settings& settings, std::uint64_t tick, bool torn, std::string
 int play(const AnyGame& game, const Settings& settings, const Options& o);
 /// Replays o.replay, verifies it, draws it when asked. Returns the exit status.
 int replay_file(const AnyGame& game, const Settings& settings, const Options& o);
+/// Compares the recordings o.diff names, both replayed side by side with the game's rules
+/// (diff_recordings), printing where they first differ. Returns 0 when identical, exit_diverged
+/// when they differ, exit_error for recordings of other levels or rules.
+int diff_files(const AnyGame& game, const Settings& settings, const Options& o);
 /// Runs o.frames frames headless under a sync test of o.sync_test ticks. Returns the exit status.
 int sync_test(const AnyGame& game, const Settings& settings, const Options& o);
 

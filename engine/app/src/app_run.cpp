@@ -46,7 +46,8 @@ const CLI::Validator at_least_one(
 constexpr const char* bounds_help =
     "Work: --frames N steps at most 10^9 ticks (N / 60 s of the level's dt) and 10^13 "
     "body-substeps in all (with --sync-test K, each tick counts 1 + K times); a --replay the "
-    "recording's ticks, the same bounds. Memory: the level's world and one frame; --record "
+    "recording's ticks, the same bounds (--diff: both recordings' ticks up to where they differ). "
+    "Memory: the level's world and one frame; --record "
     "streams the recording to its file (a few kB held, at most 256 MiB written); --replay holds "
     "the recording read (at most 256 MiB); --sync-test K holds K + 1 snapshots of the world, at "
     "most 2 GiB. Refused before the first tick, naming the flag. SIGINT or SIGTERM stops any mode "
@@ -77,6 +78,13 @@ Options parse(const Settings& settings, int argc, char** argv) {
   auto* replay_opt =
       cli.add_option("--replay", o.replay, "replay FILE headless, verifying every state hash")
           ->type_name("FILE");
+  auto* diff_opt =
+      cli.add_option("--diff", o.diff,
+                     "where recordings A and B first differ: inputs, stored hashes and, replayed "
+                     "side by side with the rules, the first tick, body and field (exit 4: they "
+                     "differ)")
+          ->type_name("A B")
+          ->expected(2);
   cli.add_option("--every", o.every, "with --replay --out: every K-th frame (and the last)")
       ->type_name("K")
       ->check(at_least_one);
@@ -89,6 +97,8 @@ Options parse(const Settings& settings, int argc, char** argv) {
                        ->check(at_least_one)
                        ->needs(frames_opt);
   replay_opt->excludes(record_opt)->excludes(frames_opt);
+  diff_opt->excludes(replay_opt)->excludes(record_opt)->excludes(frames_opt)->excludes(out_opt);
+  diff_opt->excludes(last_opt);
   cli.footer(bounds_help);
   sync_opt->excludes(record_opt)->excludes(out_opt)->excludes(last_opt);
   try {
@@ -126,6 +136,7 @@ OutputPaths check_outputs(const Settings& settings, const Options& o) {
   OutputPaths paths{.program = settings.name, .overwrite = o.overwrite, .capture_manifest = false};
   if (!scene.empty()) paths.inputs.push_back({"--scene", scene});
   if (!o.replay.empty()) paths.inputs.push_back({"--replay", o.replay});
+  for (const std::string& file : o.diff) paths.inputs.push_back({"--diff", file});
   if (!o.record.empty()) paths.outputs.push_back({"--record", o.record});
   if (!o.last_frame.empty()) paths.outputs.push_back({"--last-frame", o.last_frame});
   if (!o.out.empty()) paths.capture_dir = o.out;
@@ -136,6 +147,7 @@ OutputPaths check_outputs(const Settings& settings, const Options& o) {
 }
 
 int run_mode(const AnyGame& game, const Settings& settings, const Options& o) {
+  if (!o.diff.empty()) return diff_files(game, settings, o);
   if (!o.replay.empty()) return replay_file(game, settings, o);
   if (o.sync_test > 0) return sync_test(game, settings, o);
   return play(game, settings, o);

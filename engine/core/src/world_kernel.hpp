@@ -322,6 +322,10 @@ class WorldKernel {
   /// a world without ContactSettings::rolling.
   [[nodiscard]] std::span<const Real> angle() const { return angle_; }
   [[nodiscard]] std::span<const Real> angular_velocity() const { return spin_; }
+  /// Each body's ticks below the sleep speed and its island's number while asleep (0 awake),
+  /// as state_hash() mixes them; empty in a world without ContactSettings::sleep.
+  [[nodiscard]] std::span<const std::uint32_t> still_ticks() const { return still_ticks_; }
+  [[nodiscard]] std::span<const std::uint32_t> islands() const { return asleep_; }
   [[nodiscard]] const std::string& name(std::size_t index) const { return names_[index]; }
   /// Whether the body at dense index i sleeps (ContactSettings::sleep): false in a world
   /// without sleeping.

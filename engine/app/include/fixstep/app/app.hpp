@@ -114,6 +114,9 @@ concept Game = std::copy_constructible<G> && std::is_copy_assignable_v<G> &&
 ///   NAME --replay FILE [--out DIR [--every K]] [--last-frame PNG]
 ///                                       re-simulate a recording with the rules, verify every
 ///                                       stored hash, then draw it
+///   NAME --diff A.rec B.rec             where two recordings first differ: inputs, stored
+///                                       hashes, and (both replayed side by side with the
+///                                       rules) the first tick, body and field
 ///   NAME --frames N --sync-test K       N frames headless, each tick rolled back K ticks and
 ///                                       re-simulated (the game's state with the world's)
 ///   --overwrite                         with --out: replace the capture DIR already holds
@@ -137,7 +140,8 @@ concept Game = std::copy_constructible<G> && std::is_copy_assignable_v<G> &&
 /// unwritable output, a bound exceeded, no display, standard output closed or failing), its
 /// message on standard error naming the file or flag; 2 a bad command line or a refused output
 /// path; 4 a replay whose state differs from the recording's (naming the first tick, both hashes
-/// and the last tick that matched; nothing is drawn); 8 a sync test that found a difference;
+/// and the last tick that matched; nothing is drawn) or a --diff of two recordings that differ;
+/// 8 a sync test that found a difference;
 /// 130 / 143 stopped by SIGINT / SIGTERM. Never throws.
 template <Game G>
 int run(G game, const Settings& settings, int argc, char** argv) {

@@ -38,6 +38,7 @@ struct QueryHit;                     // query.hpp
 struct RayHit;                       // query.hpp
 class Random;                        // random.hpp
 struct StabilityFinding;             // definition_checks.hpp
+struct StateFields;                  // state_difference.hpp
 
 namespace detail {
 struct WorldState;     // the kernel behind a World (engine/core/src/world_state.hpp)
@@ -326,6 +327,8 @@ class World {
   void restore(const WorldSnapshot& snapshot);
 
  private:
+  /// Reads the fields state_hash() mixes from the kernel, as state_hash() does.
+  friend StateFields state_fields(const World& world);
   /// Calls f on the kernel inside (WorldKernel<float> or <double>); defined with the state
   /// (engine/core/src/world_state.hpp), for World's own sources.
   template <class F>
