@@ -1436,6 +1436,10 @@ if [ -x "$game" ]; then
   case_ "a match: --max-rollback without --session rollback" "" --host 0 --max-rollback 8
   case_ "a match: --max-rollback 0" "" --host 0 --session rollback --max-rollback 0
   case_ "a match: --input-delay over 60" "" --host 0 --input-delay 61
+  case_ "a match: --handshake-timeout under 100 ms" "" --host 0 --handshake-timeout 99
+  case_ "a match: --peer-timeout not a number" "" --host 0 --peer-timeout 5s
+  case_ "a match: --paced without --bot" "" --host 0 --paced
+  case_ "a match: --paced with a window" "" --host 0 --bot --window --ticks 10 --paced
   case_ "a match: --bind not an IPv4 address" "" --host 0 --bind 1.2.3
   case_ "a match: --join from an address not on this machine" "" --join 127.0.0.1:9 \
     --token 00112233445566778899aabbccddeeff --bind 192.0.2.1 --bot --ticks 10

@@ -27,7 +27,11 @@ void MatchClock::note_freeze(bool advanced, double frame_s) {
 
 ClockFrame MatchClock::frame(MatchPeer& m, double frame_s, const InputSource& input) {
   const bool begun = m.shown_world().tick() > 0;  // before: waiting for the players to join
+  const bool over = m.state() != MatchState::playing;
   ClockFrame f = play(m, frame_s, input);
+  if ((begun || f.ticks > 0) && !over && std::isfinite(frame_s) && frame_s > 0.0) {
+    freezes_.played_s += frame_s;
+  }
   // A frame with a tick owed that played none stood still; the time it took counts.
   if (begun && (f.ticks > 0 || f.held_up || f.time_sync)) {
     note_freeze(f.ticks > 0, std::isfinite(frame_s) ? std::max(frame_s, 0.0) : 0.0);

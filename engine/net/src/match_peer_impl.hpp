@@ -161,7 +161,8 @@ struct MatchPeer::Impl {
   void step_shown();
   void roll_back();
   void advance_shown();
-  [[nodiscard]] double time_sync_ahead();  ///< frames ahead of the others, averaged
+  [[nodiscard]] bool all_players_joined() const;  ///< a host: every player slot handshaken
+  [[nodiscard]] double time_sync_ahead();         ///< frames ahead of the others, averaged
 
   // match_receive.cpp
   void handle(const TransportEvent& ev, double now);

@@ -11,6 +11,13 @@
 
 namespace fixstep::net {
 
+bool MatchPeer::Impl::all_players_joined() const {
+  const auto joined = std::count_if(remotes.begin(), remotes.end(), [&](const detail::Remote& r) {
+    return r.handshaken && r.slot < players;
+  });
+  return joined + 1 >= players;
+}
+
 TickInput MatchPeer::Impl::predict(std::size_t player, std::uint64_t tick) const {
   // The last input's levels (buttons held, push, pointer, drag), not its events: a press, a
   // release or an impulse happens once, so repeating it would be a worse guess.
@@ -118,6 +125,9 @@ double MatchPeer::Impl::time_sync_ahead() {
 void MatchPeer::Impl::advance_shown() {
   roll_back();
   if (state == MatchState::failed || state == MatchState::desynced) return;
+  // A host shows nothing ahead before every player has joined: there is no one to predict yet,
+  // and a shown world that ran ahead would stand at its window until they come.
+  if (is_host && !all_players_joined()) return;
   while (shown->tick() < next_step) step_shown();  // confirmed inputs: no prediction
   while (!frames.empty() && frames.front().tick < next_step) frames.pop_front();
   // How far ahead of the slowest player (by its last input) the shown world is (a statistic).

@@ -328,8 +328,8 @@ int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, boo
   std::printf("%s\n", match_summary(m).c_str());
   if (o.paced || !o.bot || o.window) {  // played on the game's clock: what a player saw
     const Freezes& f = peer.clock().freezes();
-    std::printf("frames: freezes over 100 ms=%llu over 250 ms=%llu longest=%.0fms\n",
-                static_cast<unsigned long long>(f.over_100ms),
+    std::printf("frames: played=%.3fs freezes over 100 ms=%llu over 250 ms=%llu longest=%.0fms\n",
+                f.played_s, static_cast<unsigned long long>(f.over_100ms),
                 static_cast<unsigned long long>(f.over_250ms), f.longest_s * 1000.0);
   }
   if (!o.record.empty() && world.tick() > 0) {

@@ -30,6 +30,9 @@ struct ClockFrame {
 struct Freezes {
   std::uint64_t over_100ms = 0, over_250ms = 0;  ///< freezes longer than that
   double longest_s = 0.0;                        ///< the longest, s
+  /// Real time from the frame that played the first tick to the match's end (or now), s: the
+  /// game's ticks over it are its pace (1/dt at real time).
+  double played_s = 0.0;
 };
 
 /// A peer's accumulator: owed real time, in seconds, turned into ticks of dt.
