@@ -2,6 +2,7 @@
 // spectator) with latency, jitter and 5-25 % loss finish with no desync and identical
 // recordings that replay; a peer corrupted on purpose is reported at the right tick; a silent
 // player times out with a clear message; a joiner with another world is refused.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,6 +14,7 @@
 #include <fixstep/io/recording_file.hpp>
 #include <fixstep/net/desync_recording.hpp>
 #include <fixstep/net/net_packet.hpp>
+#include <thread>
 
 #include "net_match.hpp"
 #include "raw_peer.hpp"
@@ -80,17 +82,23 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 2});
   // Player 1's world gets a nudge once it has stepped 95 ticks: the hashes of tick 100 differ.
   bool nudged = false;
+  std::uint64_t nudged_at = 0;
   EXPECT_FALSE(m.run(20000, [&](std::size_t i) {
     MatchPeer& p = *m.peers[i];
     if (i == 1 && !nudged && p.world().tick() >= 95) {
+      nudged_at = p.world().tick();
       World& w = p.world_for_test();
       w.set_velocity(w.bodies()[3], {1e-9, 0.0});
       nudged = true;
     }
   }));
   ASSERT_TRUE(nudged);
-  // Both peers stop (the second once the other's hash arrives).
+  // Both peers stop (the second once the other's hash arrives) and locate the desync.
   m.keep_playing(500);
+  for (int k = 0; k < 5000 && (m.peers[0]->locating() || m.peers[1]->locating()); ++k) {
+    m.round(false, {});
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
   const std::uint64_t corrupted_at = m.peers[1]->recording().ticks;
   for (const auto& p : m.peers) {
     ASSERT_EQ(p->state(), MatchState::desynced) << p->error();
@@ -100,7 +108,15 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
     EXPECT_NE(d.ours, d.theirs);
     EXPECT_EQ(d.our_slot, p->slot());
     EXPECT_EQ(d.their_slot, 1 - p->slot());
-    EXPECT_NE(p->error().find("desync at tick 100"), std::string::npos) << p->error();
+    // The first tick whose hashes differ: the one after the nudge (a hash of every tick of the
+    // window exchanged), on both peers. The nudge is outside the ticks, so the corrupted
+    // peer's re-simulation does not reproduce its hash, and both say so.
+    ASSERT_TRUE(d.first_tick) << p->error();
+    EXPECT_EQ(*d.first_tick, nudged_at + 1) << p->error();
+    EXPECT_NE(p->error().find(fmt::format("desync at tick {}", nudged_at + 1)), std::string::npos)
+        << p->error();
+    EXPECT_NE(p->error().find("changed outside its ticks"), std::string::npos) << p->error();
+    EXPECT_FALSE(p->locating());
   }
   EXPECT_GE(corrupted_at, 100u);
   EXPECT_EQ(m.peers[0]->desync()->ours, m.peers[1]->desync()->theirs);
@@ -135,6 +151,47 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
   std::filesystem::remove_all(dir);
 }
 
+// Rules that step differently on one peer (as code that is not deterministic across machines
+// does): after tick 95 they nudge body 3's vx on player 1 only. Both peers name tick 96, body
+// 3 and vx, and each re-simulation reproduces its own hashes (the rules run in it too).
+TEST(Lockstep, ADesyncIsLocatedToItsTickBodyAndFieldOnBothPeers) {
+  MatchSettings s = match(2, 300);
+  TickRules apart;
+  apart.after_tick = [](World& w, const TickInput& in) {
+    if (in.tick != 95) return;
+    const Vec2 v = w.body(w.bodies()[3]).velocity;
+    w.set_velocity(w.bodies()[3], {v.x + 1e-9, v.y});
+  };
+  TickRules plain;
+  plain.after_tick = [](World&, const TickInput&) {};
+  Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 2}, {plain, apart});
+  EXPECT_FALSE(m.run(20000));
+  for (int k = 0; k < 5000 && (m.peers[0]->locating() || m.peers[1]->locating() ||
+                               m.peers[0]->state() != MatchState::desynced ||
+                               m.peers[1]->state() != MatchState::desynced);
+       ++k) {
+    m.round(false, {});
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  for (const auto& p : m.peers) {
+    ASSERT_EQ(p->state(), MatchState::desynced) << p->error();
+    const net::DesyncReport& d = *p->desync();
+    EXPECT_EQ(d.tick, 100u);
+    ASSERT_TRUE(d.first_tick) << p->error();
+    EXPECT_EQ(*d.first_tick, 96u) << p->error();
+    ASSERT_TRUE(d.difference) << p->error();
+    EXPECT_EQ(d.difference->body, 3u);
+    EXPECT_EQ(d.difference->field, "vx");
+    EXPECT_NE(d.difference->bits_ours, d.difference->bits_theirs);
+    EXPECT_EQ(p->error().find("outside its ticks"), std::string::npos) << p->error();
+    EXPECT_NE(p->error().find("body 3"), std::string::npos) << p->error();
+    ASSERT_TRUE(p->desync_state());
+    EXPECT_EQ(p->desync_state()->tick, 96u);
+  }
+  // Each side's value is the other's "theirs".
+  EXPECT_EQ(m.peers[0]->desync()->difference->bits_ours,
+            m.peers[1]->desync()->difference->bits_theirs);
+}
 TEST(Lockstep, ASilentPlayerTimesOutWithAClearMessage) {
   MatchSettings s = match(2, 0);
   s.peer_timeout_ms = 300;

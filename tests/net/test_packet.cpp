@@ -86,7 +86,7 @@ TEST(NetPacket, HeaderRefusalsInOrder) {
     other.header(1, 0xff, 0, version).zeros(52);
     EXPECT_EQ(decode(other), PacketError::bad_version) << int{version};
   }
-  for (int kind : {0, 6, 255}) {
+  for (int kind : {0, 8, 255}) {
     Bytes k;
     k.header(static_cast<std::uint8_t>(kind), 0, 0).zeros(20);
     EXPECT_EQ(decode(k), PacketError::bad_kind) << kind;
@@ -280,6 +280,62 @@ TEST(NetPacket, StateHashAndDisconnect) {
     bad_reason.header(5, 1, 0).u8(reason);
     EXPECT_EQ(decode(bad_reason), PacketError::bad_field) << int(reason);
   }
+}
+
+// After a desync: a window's hashes, and a state body by body; hand-built bytes decode to them,
+// the encoders write those bytes, and every bound is refused.
+TEST(NetPacket, DesyncLocatingMessages) {
+  Bytes th;
+  th.header(6, 1, 4).u8(1).u32(61).u8(2).u64(11).u64(0xffffffffffffffffull);
+  net::Packet p;
+  ASSERT_EQ(decode(th, two_players(), p), PacketError::none);
+  EXPECT_EQ(p.tick_hashes.first_tick, 61u);
+  EXPECT_EQ(p.tick_hashes.hashes, (std::vector<std::uint64_t>{11, 0xffffffffffffffffull}));
+  std::vector<std::uint8_t> encoded;
+  net::encode_tick_hashes({.slot = 1, .sequence = 4}, p.tick_hashes, encoded);
+  EXPECT_EQ(encoded, th.v);
+  Bytes none, many, short_by_one;
+  none.header(6, 1, 4).u8(1).u32(61).u8(0);
+  EXPECT_EQ(decode(none), PacketError::bad_field);
+  many.header(6, 1, 4).u8(1).u32(61).u8(129).zeros(129 * 8);
+  EXPECT_EQ(decode(many), PacketError::bad_field);
+  short_by_one.header(6, 1, 4).u8(1).u32(61).u8(2).u64(11);
+  EXPECT_EQ(decode(short_by_one), PacketError::too_short);
+  Bytes stranger;
+  stranger.header(6, 1, 4).u8(5).u32(61).u8(1).u64(1);
+  EXPECT_EQ(decode(stranger), PacketError::bad_slot);
+
+  Bytes bs;
+  bs.header(7, 0, 9).u8(0).u32(96).u32(20).u32(18).u8(2).u8(4 | 8).u64(77);
+  for (int b = 0; b < 2; ++b) {
+    bs.f64(1.0 + b).f64(-0.0).f64(3.5).f64(4.0).f64(0.0).f64(0.0).u32(0).u32(0);
+  }
+  ASSERT_EQ(decode(bs, two_players(), p), PacketError::none);
+  const net::BodyStatesMessage& m = p.body_states;
+  EXPECT_EQ(m.tick, 96u);
+  EXPECT_EQ(m.body_count, 20u);
+  EXPECT_EQ(m.first, 18u);
+  EXPECT_TRUE(m.drawn);
+  EXPECT_FALSE(m.reproduced);
+  EXPECT_FALSE(m.rolling);
+  ASSERT_EQ(m.bodies.size(), 2u);
+  EXPECT_EQ(m.bodies[1].x, 2.0);
+  EXPECT_TRUE(std::signbit(m.bodies[0].y));
+  net::encode_body_states({.slot = 0, .sequence = 9}, m, encoded);
+  EXPECT_EQ(encoded, bs.v);
+  Bytes past_count, flag, over_limit;
+  past_count.header(7, 0, 9).u8(0).u32(96).u32(19).u32(18).u8(2).u8(0).u64(0).zeros(2 * 56);
+  EXPECT_EQ(decode(past_count), PacketError::bad_field);
+  flag.header(7, 0, 9).u8(0).u32(96).u32(20).u32(0).u8(1).u8(16).u64(0).zeros(56);
+  EXPECT_EQ(decode(flag), PacketError::bad_field);
+  over_limit.header(7, 0, 9).u8(0).u32(96).u32(net::max_state_bodies + 1).u32(0).u8(1).u8(0);
+  over_limit.u64(0).zeros(56);
+  EXPECT_EQ(decode(over_limit), PacketError::bad_field);
+  EXPECT_EQ(decode(bs, net::DecodeContext{}), PacketError::unexpected);
+  EXPECT_THROW(net::encode_body_states({}, net::BodyStatesMessage{}, encoded),
+               std::invalid_argument);
+  EXPECT_THROW(net::encode_tick_hashes({}, net::TickHashesMessage{}, encoded),
+               std::invalid_argument);
 }
 
 TEST(NetInputCodec, RoundTripsEveryFieldBitForBit) {

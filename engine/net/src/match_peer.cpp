@@ -190,6 +190,7 @@ void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
     shown = std::make_unique<World>(def);
     if (rules_have_state()) confirmed_rules = rules.save();
   }
+  checkpoint();  // tick 0: a desync in the first window is located from here
   if (!settings.record_in_memory) return;
   recorder.emplace(def, settings.scene_name, settings.record_hash_every, settings.scene_text);
   if (!settings.rules_name.empty())
@@ -245,13 +246,15 @@ void MatchPeer::Impl::compare_hashes() {
     }
     ++stats.hashes_compared;
     if (own->second != it->second.hash && !desync) {
-      desync = DesyncReport{it->first, slot, it->second.player, own->second, it->second.hash};
+      desync =
+          DesyncReport{it->first, slot, it->second.player, own->second, it->second.hash, {}, {}};
       state = MatchState::desynced;
       error = fmt::format(
           "desync at tick {}: our state (slot {}) hashes {:016x}, player {}'s {:016x}; the "
           "hashes of tick {} matched",
           it->first, slot, own->second, it->second.player, it->second.hash,
           it->first >= settings.hash_every ? it->first - settings.hash_every : 0);
+      begin_locating(it->first, it->second.player);
     }
     it = their_hashes.erase(it);
   }
@@ -350,7 +353,11 @@ int MatchPeer::Impl::step_confirmed() {
     record_tick(merged);
     ++next_step;
     ++stepped;
-    if (next_step % settings.hash_every == 0) record_hash(next_step, world->state_hash());
+    note_tick_hash();
+    if (next_step % settings.hash_every == 0) {
+      record_hash(next_step, tick_hashes.back());
+      checkpoint();
+    }
     if (settings.match_ticks != 0 && next_step >= settings.match_ticks) {
       state = MatchState::finished;
     }
@@ -370,6 +377,8 @@ void MatchPeer::Impl::trim_inputs() {
   for (std::size_t p = 0; p < players; ++p) {
     std::uint64_t keep = next_step;
     if (shown) keep = std::min<std::uint64_t>(keep, shown->tick());
+    // (A desync's first tick is re-simulated from the oldest checkpoint.)
+    if (!checkpoints.empty()) keep = std::min<std::uint64_t>(keep, checkpoints.front().tick + 1);
     for (const detail::Remote& r : remotes) {
       if (r.handshaken) keep = std::min<std::uint64_t>(keep, r.their_next[p]);
     }
@@ -421,6 +430,13 @@ const std::string& MatchPeer::error() const {
 }
 const std::optional<DesyncReport>& MatchPeer::desync() const {
   return impl_->desync;
+}
+bool MatchPeer::locating() const {
+  return impl_->state == MatchState::desynced && impl_->locating && !impl_->locating->done;
+}
+std::optional<StateFields> MatchPeer::desync_state() const {
+  if (!impl_->locating || !impl_->locating->done) return std::nullopt;
+  return impl_->locating->ours;
 }
 const MatchStats& MatchPeer::stats() const {
   return impl_->stats;
@@ -504,8 +520,11 @@ void MatchPeer::leave() {
   for (detail::Remote& r : m.remotes) {
     if (!r.handshaken) continue;
     std::vector<std::uint8_t> bytes;
-    encode_disconnect(m.header(r, MessageKind::disconnect, Channel::reliable),
-                      {DisconnectReason::leaving}, bytes);
+    // A desynced peer says so: the others stop desynced too and keep their recordings.
+    encode_disconnect(
+        m.header(r, MessageKind::disconnect, Channel::reliable),
+        {m.state == MatchState::desynced ? DisconnectReason::desync : DisconnectReason::leaving},
+        bytes);
     m.send_reliable(r, bytes);
     m.transport->disconnect(r.conn);
   }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "fixstep/core/input.hpp"
+#include "fixstep/core/state_difference.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/io/recording_writer.hpp"
 #include "fixstep/net/match_peer.hpp"
@@ -59,6 +60,28 @@ struct Remote {
   std::int64_t their_advantage = 0;
   std::uint64_t their_position = 0;
   std::optional<std::uint32_t> advantage_seq;
+};
+
+/// The confirmed world's state after `tick` ticks (a hash tick, or 0) and the rules' (TickRules
+/// save), from which a desync's first differing tick is re-simulated.
+struct Checkpoint {
+  std::uint64_t tick = 0;
+  WorldSnapshot snapshot;
+  std::any rules;
+};
+
+/// A desync being located with one other peer (the partner): both send the state hash of
+/// every tick of the window (from, to], find the first tick whose hashes differ, and send their
+/// state of that tick body by body (desync_locate.cpp).
+struct Locating {
+  std::uint64_t from = 0, to = 0;
+  std::uint8_t partner = 0;  ///< the partner's slot
+  std::optional<std::uint64_t> first_tick;
+  std::optional<StateFields> ours, theirs;
+  std::uint64_t received = 0;     ///< bodies of theirs received
+  bool reproduced = true;         ///< our re-simulation of first_tick hashes as the tick did
+  bool theirs_reproduced = true;  ///< the partner's did (body_states)
+  bool done = false;
 };
 
 /// Rollback: the shown world's state before tick `tick`, and the inputs it was stepped with.
@@ -122,6 +145,14 @@ struct MatchPeer::Impl {
   /// Time sync, per player heard directly (a joiner: the host; the host: each player): how
   /// many frames this peer is ahead of it, averaged (advance_shown).
   std::array<double, max_players> ahead_of{};
+  // Locating a desync (desync_locate.cpp): checkpoints at the last hash ticks, the state hash
+  // of every confirmed tick since the oldest (tick_hashes[i]: after tick hashes_from + i),
+  // the partner's tick hashes, the exchange.
+  std::deque<detail::Checkpoint> checkpoints;
+  std::deque<std::uint64_t> tick_hashes;
+  std::uint64_t hashes_from = 1;
+  std::map<std::uint64_t, std::uint64_t> partner_hashes;
+  std::optional<detail::Locating> locating;
   /// A lockstep host adapting its input delay: not picked yet (no one asked to join).
   bool delay_open = false;
 
@@ -163,6 +194,17 @@ struct MatchPeer::Impl {
   void advance_shown();
   [[nodiscard]] bool all_players_joined() const;  ///< a host: every player slot handshaken
   [[nodiscard]] double time_sync_ahead();         ///< frames ahead of the others, averaged
+
+  // desync_locate.cpp
+  void checkpoint();      ///< the confirmed world at a hash tick (or 0)
+  void note_tick_hash();  ///< the confirmed tick just stepped
+  void begin_locating(std::uint64_t tick, std::uint8_t partner);
+  void on_tick_hashes(detail::Remote& r, const TickHashesMessage& m);
+  void on_body_states(detail::Remote& r, const BodyStatesMessage& m);
+  void try_locate();
+  void finish_locating();
+  [[nodiscard]] std::optional<StateFields> state_at(std::uint64_t tick);
+  [[nodiscard]] detail::Remote* partner_remote(std::uint8_t slot);
 
   // match_receive.cpp
   void handle(const TransportEvent& ev, double now);

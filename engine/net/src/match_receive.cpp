@@ -122,6 +122,13 @@ void MatchPeer::Impl::receive(detail::Remote& r, const Packet& p, Channel channe
       if (!is_host && !r.handshaken) return on_refused(p.disconnect.reason);
       if (!r.handshaken) return drop(PacketError::unexpected);
       r.last_heard = now;
+      if (p.disconnect.reason == DisconnectReason::desync && state == MatchState::playing) {
+        state = MatchState::desynced;  // its recording and ours are to be compared
+        desync = DesyncReport{next_step, slot, r.slot, 0, 0, {}, {}};
+        error =
+            fmt::format("{} found a desync and left the match (at our tick {})", who(r), next_step);
+        return;
+      }
       if (state != MatchState::finished && (r.slot < players || !is_host)) {
         fail(p.disconnect.reason == DisconnectReason::refused
                  ? fmt::format("{} refused us", who(r))
@@ -136,6 +143,12 @@ void MatchPeer::Impl::receive(detail::Remote& r, const Packet& p, Channel channe
     case MessageKind::state_hash:
       r.last_heard = now;
       return on_hash(r, p.hash);
+    case MessageKind::tick_hashes:
+      r.last_heard = now;
+      return on_tick_hashes(r, p.tick_hashes);
+    case MessageKind::body_states:
+      r.last_heard = now;
+      return on_body_states(r, p.body_states);
   }
 }
 

@@ -2,6 +2,7 @@
 #include <stdexcept>
 
 #include "byte_io.hpp"
+#include "desync_packets.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/net/net_input_codec.hpp"
@@ -39,7 +40,7 @@ PacketError read_header(detail::ByteReader& r, std::size_t size, Header& h) {
   if (r.u32() != protocol_id) return PacketError::bad_protocol_id;
   if (r.u8() != protocol_version) return PacketError::bad_version;
   const std::uint8_t kind = r.u8();
-  if (kind < 1 || kind > 5) return PacketError::bad_kind;
+  if (kind < 1 || kind > max_message_kind) return PacketError::bad_kind;
   h.kind = static_cast<MessageKind>(kind);
   h.slot = r.u8();
   if (r.u8() != 0) return PacketError::bad_field;
@@ -153,6 +154,8 @@ PacketError decode_body(detail::ByteReader& r, std::span<const std::uint8_t> byt
     p.hash.hash = r.u64();
     return p.hash.player < ctx.players ? PacketError::none : PacketError::bad_slot;
   }
+  if (p.header.kind == MessageKind::tick_hashes) return detail::decode_tick_hashes(r, size, ctx, p);
+  if (p.header.kind == MessageKind::body_states) return detail::decode_body_states(r, size, ctx, p);
   return decode_inputs_message(r, bytes, ctx, p);
 }
 

@@ -30,6 +30,7 @@
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/rules.hpp"
+#include "fixstep/core/state_difference.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/net/net_protocol.hpp"
@@ -153,6 +154,11 @@ struct DesyncReport {
   std::uint64_t tick = 0;
   std::uint8_t our_slot = 0, their_slot = 0;
   std::uint64_t ours = 0, theirs = 0;
+  /// Once located (MatchPeer::locating() false): the first tick whose states differ (the
+  /// peers exchanged every tick's hash of the window), and the first body and field that
+  /// differ there (their states exchanged body by body; names: the confirmed world's bodies).
+  std::optional<std::uint64_t> first_tick;
+  std::optional<StateDifference> difference;
 };
 
 /// What a peer counted.
@@ -256,6 +262,14 @@ class MatchPeer {
   [[nodiscard]] MatchState state() const;
   [[nodiscard]] const std::string& error() const;  ///< why it failed ("" otherwise)
   [[nodiscard]] const std::optional<DesyncReport>& desync() const;
+  /// Whether a desync is still being located with the peer it was found against (their hashes
+  /// of every tick of the window, then their state of the first tick that differs): poll()
+  /// until false (bounded by peer_timeout_ms) before leave(), then desync() names the tick and
+  /// the body. A peer that leaves tells the others it desynced (they stop desynced too).
+  [[nodiscard]] bool locating() const;
+  /// This peer's state of the first tick that differs, once located (nullopt before, or when
+  /// it could not be re-simulated).
+  [[nodiscard]] std::optional<StateFields> desync_state() const;
   [[nodiscard]] const MatchStats& stats() const;
   [[nodiscard]] std::uint8_t slot() const;     ///< no_slot until the handshake completes
   [[nodiscard]] std::uint8_t players() const;  ///< 0 until the handshake completes

@@ -38,6 +38,8 @@ struct Packet {
   InputsMessage inputs{};
   StateHashMessage hash{};
   DisconnectMessage disconnect{};
+  TickHashesMessage tick_hashes{};
+  BodyStatesMessage body_states{};
 };
 
 /// Decodes `bytes` into `out` when every check passes (PacketError::none); otherwise returns
@@ -57,6 +59,13 @@ void encode_handshake_accept(const Header& h, const HandshakeAccept& m,
                              std::vector<std::uint8_t>& out);
 void encode_state_hash(const Header& h, const StateHashMessage& m, std::vector<std::uint8_t>& out);
 void encode_disconnect(const Header& h, const DisconnectMessage& m, std::vector<std::uint8_t>& out);
+/// Throws std::invalid_argument for 0 or more than max_tick_hashes hashes.
+void encode_tick_hashes(const Header& h, const TickHashesMessage& m,
+                        std::vector<std::uint8_t>& out);
+/// Throws std::invalid_argument for 0 or more than max_body_states bodies, or bodies beyond
+/// body_count.
+void encode_body_states(const Header& h, const BodyStatesMessage& m,
+                        std::vector<std::uint8_t>& out);
 
 /// A run to encode: `inputs` of player `player` from tick inputs.front().tick, each a delta
 /// against the one before, the first against `prev` (the input of the tick before, or an

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fixstep/core/input.hpp"
+#include "fixstep/core/state_difference.hpp"
 
 namespace fixstep::net {
 
@@ -16,7 +17,7 @@ namespace fixstep::net {
 /// fixstep's and is dropped before anything else is read.
 inline constexpr std::uint32_t protocol_id = 0x4e535846u;
 /// The protocol version this build speaks; a packet of another version is refused.
-inline constexpr std::uint8_t protocol_version = 3;
+inline constexpr std::uint8_t protocol_version = 4;
 /// Largest packet, bytes (under a 1280-byte IPv6 minimum MTU with UDP and ENet headers).
 inline constexpr std::size_t max_packet_bytes = 1200;
 /// Most players of one match, and most spectators.
@@ -46,7 +47,16 @@ enum class MessageKind : std::uint8_t {
   inputs = 3,             ///< input runs and acks (unreliable, resent until acknowledged)
   state_hash = 4,         ///< a confirmed tick's state hash (desync detection)
   disconnect = 5,         ///< a peer leaves, with a reason
+  tick_hashes = 6,        ///< after a desync: the state hash of every tick of its window
+  body_states = 7,        ///< after a desync: the bodies' state at its first differing tick
 };
+inline constexpr std::uint8_t max_message_kind = 7;
+
+/// Most tick hashes one tick_hashes message carries, and most bodies one body_states message.
+inline constexpr std::size_t max_tick_hashes = 128;
+inline constexpr std::size_t max_body_states = 18;
+/// Most bodies a body_states message may announce (a world's state sent after a desync).
+inline constexpr std::uint32_t max_state_bodies = 1u << 22;
 
 /// What the decoder found wrong with a packet (the caller counts them; none is ever used).
 enum class PacketError : std::uint8_t {
@@ -118,6 +128,30 @@ struct StateHashMessage {
   std::uint8_t player = 0;  ///< whose state it is (a host forwards others' hashes)
   std::uint32_t tick = 0;   ///< the state after this many ticks
   std::uint64_t hash = 0;   ///< World::state_hash()
+};
+
+/// After a desync: `player`'s state hashes of ticks first_tick .. first_tick + hashes.size() - 1
+/// (1..max_tick_hashes), so that the receiver finds the first tick whose states differ.
+struct TickHashesMessage {
+  std::uint8_t player = 0;
+  std::uint32_t first_tick = 0;
+  std::vector<std::uint64_t> hashes;
+};
+
+/// After a desync: part of `player`'s state after `tick` ticks (the first tick whose hashes
+/// differ): bodies first .. first + bodies.size() - 1 (1..max_body_states) of body_count, with
+/// the parts the hash covers (rolling, sleep) and random()'s state (drawn: has one).
+struct BodyStatesMessage {
+  std::uint8_t player = 0;
+  std::uint32_t tick = 0;
+  std::uint32_t body_count = 0;
+  std::uint32_t first = 0;
+  bool rolling = false, sleep = false, drawn = false;
+  /// The sender's re-simulation of `tick` hashes as its tick did (else its state changed
+  /// outside its ticks, or its stepping is not deterministic).
+  bool reproduced = true;
+  std::uint64_t random_state = 0;
+  std::vector<BodyState> bodies;
 };
 
 enum class DisconnectReason : std::uint8_t {
