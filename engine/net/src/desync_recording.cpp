@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cstdint>
+#include <fixstep/io/file_write.hpp>
 #include <fixstep/io/recording_file.hpp>
 #include <stdexcept>
 #include <system_error>
@@ -13,22 +14,43 @@ namespace fixstep::net {
 
 namespace {
 
-/// STEM-desync-pSLOT-tTICK.rec in `dir`, or -2 .. -99 added: the first name no file or link
+/// STEM-desync-pSLOT-tTICK.EXT in `dir`, or -2 .. -99 added: the first name no file or link
 /// has.
 std::filesystem::path free_desync_name(const std::filesystem::path& dir, const std::string& stem,
-                                       std::uint8_t slot, std::uint64_t tick) {
+                                       std::uint8_t slot, std::uint64_t tick,
+                                       const std::string& ext = ".rec") {
   const std::string base =
       fmt::format("{}-desync-p{}-t{}", stem, static_cast<unsigned>(slot), tick);
   for (int n = 1; n <= 99; ++n) {
-    std::filesystem::path file = dir / (n == 1 ? base + ".rec" : fmt::format("{}-{}.rec", base, n));
+    std::filesystem::path file = dir / (n == 1 ? base + ext : fmt::format("{}-{}{}", base, n, ext));
     std::error_code ec;
     // symlink_status: a dangling link is taken too (never written through).
     if (std::filesystem::symlink_status(file, ec).type() == std::filesystem::file_type::not_found)
       return file;
   }
   throw std::runtime_error(
-      fmt::format("{}: {}.rec and -2 to -99 are all taken: no name left for the desync recording",
-                  dir.string(), base));
+      fmt::format("{}: {}{} and -2 to -99 are all taken: no name left for the desync file",
+                  dir.string(), base, ext));
+}
+
+/// The state as text: a line per body, every value exact (shortest round-trip decimals).
+std::string state_text(const MatchPeer& peer, const StateFields& f) {
+  std::string out = fmt::format(
+      "# fixstep desync state: slot {} after tick {} (the first tick whose state hashes "
+      "differ)\n# body, name, x y (m), vx vy (m/s), theta (rad), omega (rad/s), sleep ticks, "
+      "island; exact\n",
+      static_cast<unsigned>(peer.slot()), f.tick);
+  out += f.random_state ? fmt::format("random 0x{:016x}\n", *f.random_state)
+                        : std::string("random not drawn\n");
+  const World& w = peer.world();  // the bodies' names (the same bodies in the same order)
+  const auto bodies = w.bodies();
+  for (std::size_t i = 0; i < f.bodies.size(); ++i) {
+    const BodyState& b = f.bodies[i];
+    const std::string name = i < bodies.size() ? w.name(bodies[i]) : std::string();
+    out += fmt::format("body {} \"{}\" {} {} {} {} {} {} {} {}\n", i, name, b.x, b.y, b.vx, b.vy,
+                       b.theta, b.omega, b.sleep_ticks, b.island);
+  }
+  return out;
 }
 
 }  // namespace
@@ -40,6 +62,16 @@ std::filesystem::path write_desync_recording(const MatchPeer& peer,
   const std::uint64_t tick = peer.desync() ? peer.desync()->tick : rec.ticks;
   std::filesystem::path file = free_desync_name(dir, stem, peer.slot(), tick);
   write_recording(file, rec);
+  return file;
+}
+
+std::optional<std::filesystem::path> write_desync_state(const MatchPeer& peer,
+                                                        const std::filesystem::path& dir,
+                                                        const std::string& stem) {
+  const std::optional<StateFields> f = peer.desync_state();
+  if (!f) return std::nullopt;
+  std::filesystem::path file = free_desync_name(dir, stem, peer.slot(), f->tick, ".state");
+  write_file_atomically(file, state_text(peer, *f));
   return file;
 }
 

@@ -284,13 +284,40 @@ void linger_and_leave(MatchPeer& m, double most_ms) {
   m.leave();
 }
 
+/// A desync found: keeps answering until it is located with the peer it was found against
+/// (MatchPeer::locating: the first differing tick, body and field), at most `most_ms`.
+void locate_desync(MatchPeer& m, double most_ms) {
+  const auto start = std::chrono::steady_clock::now();
+  while (
+      m.locating() && StopOnSignal::requested() == 0 &&
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() <
+          most_ms) {
+    m.poll(1);
+  }
+}
+
+/// A desync's state of its first differing tick, NAME-desync-pSLOT-tTICK.state in the working
+/// directory, to compare with the other peer's.
+void keep_desync_state(const MatchPeer& m, const std::string& name) {
+  try {
+    if (const auto file = write_desync_state(m, ".", name)) {
+      std::fprintf(stderr, "%s: this peer's state of the first tick that differs is in %s\n",
+                   name.c_str(), file->c_str());
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: the desync state was not written: %s\n", name.c_str(),
+                 e.what());
+  }
+}
+
 /// A match without --record that desynced: its streamed recording moved to
 /// NAME-desync-pSLOT-tTICK.rec in the working directory, to replay and compare offline.
 void keep_desync_recording(MatchPeer& m, const std::string& name) {
   const std::string written = desync_file(name);
   try {
     if (!m.finish_recording()) return;  // none was kept (a warning said so at the start)
-    const std::uint64_t tick = m.desync() ? m.desync()->tick : m.world().tick();
+    const std::uint64_t tick =
+        m.desync() ? m.desync()->first_tick.value_or(m.desync()->tick) : m.world().tick();
     const auto file = move_desync_recording(written, ".", name, m.slot(), tick);
     std::fprintf(stderr, "%s: this peer's recording is in %s (%s --replay %s)\n", name.c_str(),
                  file.c_str(), name.c_str(), file.c_str());
@@ -353,6 +380,7 @@ int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, boo
   if (m.state() == MatchState::desynced) {
     std::fprintf(stderr, "%s: error: %s\n", settings.name.c_str(), m.error().c_str());
     if (o.record.empty() && world.tick() > 0) keep_desync_recording(m, settings.name);
+    keep_desync_state(m, settings.name);
     return exit_desync;
   }
   if (m.state() == MatchState::failed && !quit) {
@@ -391,6 +419,7 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
   if (m.state() == MatchState::finished) {
     linger_and_leave(m, o.peer_timeout_ms);
   } else {
+    locate_desync(m, o.peer_timeout_ms);
     m.leave();  // quit, a desync, a failure: the other player is told at once, not timed out
   }
   if (!o.last_frame.empty()) view.write_last_frame(peer.drawn_game(), m, o.last_frame);

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "fixstep/net/match_peer.hpp"
@@ -20,6 +21,15 @@ namespace fixstep::net {
 [[nodiscard]] std::filesystem::path write_desync_recording(const MatchPeer& peer,
                                                            const std::filesystem::path& dir,
                                                            const std::string& stem);
+
+/// Writes `peer`'s state of a located desync's first differing tick (MatchPeer::desync_state)
+/// into `dir` as STEM-desync-pSLOT-tTICK.state (named as write_desync_recording names, never
+/// over a file or a link), a text of a line per body: index, name, x, y, vx, vy, θ, ω, sleep
+/// ticks and island, each exact (shortest round-trip decimals), and random()'s state. Compare
+/// two peers' files line by line. Returns nullopt when there is no such state (no desync
+/// located, or its state could not be re-simulated). Throws as write_desync_recording.
+[[nodiscard]] std::optional<std::filesystem::path> write_desync_state(
+    const MatchPeer& peer, const std::filesystem::path& dir, const std::string& stem);
 
 /// Moves the recording file `written` (a peer's, streamed: MatchSettings::record_file, finished
 /// by MatchPeer::finish_recording) into `dir` under the name write_desync_recording would pick
