@@ -1453,7 +1453,7 @@ if [ -x "$game" ]; then
   case_ "a match: --bind an address not on this machine" "" --host 0 --bind 192.0.2.1 --bot \
     --ticks 10
   case_ "a match: --join where nobody hosts (3 s)" "" --join 127.0.0.1:9 \
-    --token 00112233445566778899aabbccddeeff --bot --ticks 10
+    --token 00112233445566778899aabbccddeeff --bot --ticks 10 --handshake-timeout 3000
   # The gate before the host (docs/NETWORK.md, "Connecting"): a joiner without the match's
   # token is refused before any socket is opened; with another token, by the host's gate.
   case_ "a match: --join without --token (an unauthenticated joiner)" "" --join 127.0.0.1:7777 \

@@ -8,8 +8,8 @@
 #      a row that played no tick owed), at most one allowed for a loaded machine;
 #  (c) rollback at 75 ± 5 ms each way and 5 % loss, 30 s: no freeze over 250 ms;
 #  (d) lockstep at 1 s each way and 25 % loss from the first datagram (the handshake too), 600
-#      ticks: it connects (--handshake-timeout 60000), completes, both exit 0 and both
-#      recordings are equal.
+#      ticks: it connects (at the default timeouts: 10 s, then 8 round trips once the cookie
+#      exchange has measured one), completes, both exit 0 and both recordings are equal.
 # Every match: both peers exit 0 with the same final state.
 #
 #   net_latency.sh AIRHOCKEY LINK_RELAY SOURCE_DIR
@@ -31,7 +31,7 @@ field() { grep -E '^frames:' "$1" | grep -Eo "$2=[0-9.]+" | head -1 | cut -d= -f
 play() {
   local name=$1 kind=$2 ticks=$3 hp tok rp host_pid relay_pid hs js
   shift 3
-  "$game" --host 0 --session "$kind" --bot --paced --ticks "$ticks" --handshake-timeout 60000 \
+  "$game" --host 0 --session "$kind" --bot --paced --ticks "$ticks" \
     --record "$name.host.rec" >"$name.host.out" 2>&1 &
   host_pid=$!
   hp=$(wait_port "$name.host.out") || { fail "$name: no port"; cat "$name.host.out"; return 1; }
@@ -42,7 +42,7 @@ play() {
   for _ in $(seq 100); do [ -s "$name.relay.port" ] && break; sleep 0.05; done
   rp=$(cat "$name.relay.port")
   "$game" --join "127.0.0.1:$rp" --token "$tok" --session "$kind" --bot --paced --ticks "$ticks" \
-    --handshake-timeout 60000 --record "$name.join.rec" >"$name.join.out" 2>&1
+    --record "$name.join.rec" >"$name.join.out" 2>&1
   js=$?
   wait "$host_pid"
   hs=$?

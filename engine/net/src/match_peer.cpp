@@ -172,7 +172,8 @@ double MatchPeer::Impl::peer_timeout_ms() const {
 
 double MatchPeer::Impl::handshake_timeout_ms() const {
   if (!settings.adapt_to_round_trip) return settings.handshake_timeout_ms;
-  std::uint32_t rtt = 0;  // the connections' (ENet's connect measured them)
+  // The connections' (ENet's connect measured them); a joiner's cookie exchange before.
+  std::uint32_t rtt = transport->gate_round_trip_ms().value_or(0);
   for (const detail::Remote& r : remotes) rtt = std::max(rtt, transport->round_trip_ms(r.conn));
   return std::max(static_cast<double>(settings.handshake_timeout_ms),
                   static_cast<double>(timeout_round_trips) * rtt);

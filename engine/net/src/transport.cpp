@@ -76,6 +76,8 @@ struct Transport::Impl {
   std::optional<JoinerGate> joiner;
   ENetAddress remote{};
   double last_request_ms = -1e300;
+  double first_request_ms = -1.0;         ///< a joiner's first cookie request
+  std::optional<double> gate_round_trip;  ///< from it to the first cookie, ms
   bool connect_due = false, refused = false, refused_reported = false;
   std::vector<std::uint8_t> scratch;
 
@@ -140,6 +142,9 @@ int Transport::Impl::intercept() {
     if (from.host != remote.host || from.port != remote.port) return 1;  // not the host's
     switch (joiner->on_datagram(bytes, scratch)) {
       case JoinerGate::Answer::cookie:
+        if (!gate_round_trip && first_request_ms >= 0.0) {
+          gate_round_trip = gate_clock_ms() - first_request_ms;
+        }
         if (peers.empty() || peers[0]->state != ENET_PEER_STATE_CONNECTED) {
           send_gate(remote, scratch);
           connect_due = peers.empty();
@@ -176,6 +181,7 @@ std::optional<TransportEvent> Transport::Impl::joiner_step() {
   const double now = gate_clock_ms();
   if (!up && now - last_request_ms >= gate_retry_ms) {
     last_request_ms = now;
+    if (first_request_ms < 0.0) first_request_ms = now;
     send_gate(remote, joiner->request());
   }
   return std::nullopt;
@@ -300,6 +306,11 @@ void Transport::disconnect(std::uint32_t peer) {
 
 void Transport::drop(std::uint32_t peer) {
   if (ENetPeer* p = impl_->peer(peer)) enet_peer_reset(p);
+}
+
+std::optional<std::uint32_t> Transport::gate_round_trip_ms() const {
+  if (!impl_->gate_round_trip) return std::nullopt;
+  return static_cast<std::uint32_t>(std::min(*impl_->gate_round_trip, 4.0e9));
 }
 
 std::uint32_t Transport::round_trip_ms(std::uint32_t peer) const {

@@ -174,7 +174,7 @@ void add_session_options(CLI::App& cli, MatchFlags& f, MatchOptions& o, int max_
           ->type_name("N")
           ->check(in_range(1, 60));
   cli.add_option("--handshake-timeout", o.handshake_timeout_ms,
-                 "ms to connect and complete the handshake (100-600000; default 3000, and at "
+                 "ms to connect and complete the handshake (100-600000; default 10000, and at "
                  "least 8 round trips once one is measured)")
       ->type_name("MS")
       ->check(in_range(100, 600000));

@@ -27,8 +27,9 @@ struct MatchOptions {
   /// Neither --input-delay (lockstep) nor --max-rollback (rollback) given: picked from the
   /// round trip (MatchSettings::adapt_to_round_trip).
   bool adapt = true;
-  std::uint32_t handshake_timeout_ms =
-      net::MatchSettings{}.handshake_timeout_ms;                         ///< --handshake-timeout
+  /// --handshake-timeout: 10 s by default, so that a joiner at a 2 s round trip and 25 % loss
+  /// gets a cookie back before giving up (the round trip is not known before it)
+  std::uint32_t handshake_timeout_ms = 10000;
   std::uint32_t peer_timeout_ms = net::MatchSettings{}.peer_timeout_ms;  ///< --peer-timeout
   std::uint64_t ticks = 0;           ///< --ticks N (0: until quit)
   std::optional<std::string> scene;  ///< --scene FILE

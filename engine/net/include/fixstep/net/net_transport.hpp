@@ -101,6 +101,10 @@ class Transport {
   void drop(std::uint32_t peer);
   /// ENet's mean round-trip time to `peer`, ms (0 for an unknown peer).
   [[nodiscard]] std::uint32_t round_trip_ms(std::uint32_t peer) const;
+  /// A joiner with a token: the time from its first cookie request to the host's first cookie,
+  /// ms (a round trip, longer when requests were lost); nullopt before a cookie came (and on a
+  /// host, or a joiner without a token). Known before ENet connects.
+  [[nodiscard]] std::optional<std::uint32_t> gate_round_trip_ms() const;
   /// ENet's counts of this host's datagrams and bytes since it was made (ENet keeps them in 32
   /// bits: they wrap after 2^32), the gate's too: received, every datagram the socket got; sent,
   /// ENet's and the gate's cookies, refusals and requests.
