@@ -5,7 +5,8 @@
 #      in 10 s, within 5 %: the game's ticks over the real time from its first tick to its
 #      last, which each peer prints);
 #  (b) rollback at 50 ms each way and 2 % loss, 30 s: no freeze over 100 ms (a freeze: frames in
-#      a row that played no tick owed), at most one allowed for a loaded machine;
+#      a row that played no tick owed; time sync never waits two in a row, so one lasts a
+#      frame or two: the margin is in its length);
 #  (c) rollback at 75 ± 5 ms each way and 5 % loss, 30 s: no freeze over 250 ms;
 #  (d) lockstep at 1 s each way and 25 % loss from the first datagram (the handshake too), 600
 #      ticks: it connects (at the default timeouts: 10 s, then 8 round trips once the cookie
@@ -79,7 +80,7 @@ check_freezes() {
   done
 }
 play rtt100 rollback 3600 --latency-ms 50 --loss 0.02 --lossless-ms 1000 --seed 3 &&
-  check_freezes rtt100 "over 100 ms" 1
+  check_freezes rtt100 "over 100 ms" 0
 play rtt150 rollback 3600 --latency-ms 75 --jitter-ms 5 --loss 0.05 --lossless-ms 1000 --seed 5 &&
   check_freezes rtt150 "over 250 ms" 0
 

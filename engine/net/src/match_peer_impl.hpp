@@ -145,6 +145,7 @@ struct MatchPeer::Impl {
   /// Time sync, per player heard directly (a joiner: the host; the host: each player): how
   /// many frames this peer is ahead of it, averaged (advance_shown).
   std::array<double, max_players> ahead_of{};
+  bool waited_last = false;  ///< the last advance_shown waited for time sync
   // Locating a desync (desync_locate.cpp): checkpoints at the last hash ticks, the state hash
   // of every confirmed tick since the oldest (tick_hashes[i]: after tick hashes_from + i),
   // the partner's tick hashes, the exchange.

@@ -148,11 +148,16 @@ void MatchPeer::Impl::advance_shown() {
   }
   note_stall(false);
   if (known(slot) <= t) return;  // the local input of the tick is not given yet
-  if (ahead > sync_threshold) {
+  // Never two waits in a row: a peer ahead slows to half its pace, one repeated frame at a time,
+  // rather than standing still (seven waits in a row were a 117 ms freeze at a 100 ms round
+  // trip).
+  if (ahead > sync_threshold && !waited_last) {
     for (double& a : ahead_of) a -= sync_wait_credit;
     ++stats.waits;
+    waited_last = true;
     return;
   }
+  waited_last = false;
   step_shown();
 }
 
