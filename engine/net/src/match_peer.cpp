@@ -349,8 +349,10 @@ int MatchPeer::Impl::step_confirmed() {
     for (std::size_t p = 0; p < players; ++p) merge_scratch.push_back(input_at(p, next_step));
     TickInput merged = merge(merge_scratch, *world);
     merged.tick = next_step;
-    world->step(merged);
-    if (rules) rules.after_tick(*world, merged);
+    if (!confirm_from_shown(next_step, shown_rules)) {
+      world->step(merged);
+      if (rules) rules.after_tick(*world, merged);
+    }
     record_tick(merged);
     ++next_step;
     ++stepped;
@@ -398,6 +400,9 @@ int MatchPeer::advance() {
   Impl& m = *impl_;
   const bool shown_behind = m.shown && m.state == MatchState::finished;
   if (m.state != MatchState::playing && !shown_behind) return 0;
+  // Rollback: the shown world re-simulated first, so that the confirmed ticks it stepped with
+  // every real input are taken from its snapshots rather than stepped again.
+  if (m.shown) m.roll_back();
   const int stepped = m.step_confirmed();
   if (m.shown) m.advance_shown();
   m.trim_inputs();

@@ -142,6 +142,7 @@ struct MatchPeer::Impl {
   std::deque<detail::ShownFrame> frames;
   std::uint64_t wrong_from = std::numeric_limits<std::uint64_t>::max();
   std::any confirmed_rules;
+  WorldSnapshot confirm_scratch;  ///< the shown world's state, to confirm its last tick from
   /// Time sync, per player heard directly (a joiner: the host; the host: each player): how
   /// many frames this peer is ahead of it, averaged (advance_shown).
   std::array<double, max_players> ahead_of{};
@@ -192,6 +193,9 @@ struct MatchPeer::Impl {
   void check_prediction(std::size_t player, std::uint64_t tick);
   void step_shown();
   void roll_back();
+  /// Confirms tick t from the shown world's snapshot when it stepped t with every real input
+  /// (`shown_rules`: the shown world's rules state now). Returns whether it did.
+  bool confirm_from_shown(std::uint64_t t, const std::any& shown_rules);
   void advance_shown();
   [[nodiscard]] bool all_players_joined() const;  ///< a host: every player slot handshaken
   [[nodiscard]] double time_sync_ahead();         ///< frames ahead of the others, averaged

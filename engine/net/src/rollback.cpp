@@ -57,6 +57,33 @@ void MatchPeer::Impl::step_shown() {
   if (rules) rules.after_tick(*shown, merged);
 }
 
+bool MatchPeer::Impl::confirm_from_shown(std::uint64_t t, const std::any& shown_rules) {
+  // The shown world stepped tick t with every player's real input (a prediction that proved
+  // right is one), and no misprediction at or before t waits for re-simulation: its state after
+  // t is the confirmed one, bit for bit (the same state, input and stepping). Taken from the
+  // snapshot before t + 1 (or the shown world itself) instead of stepping t again: GGPO
+  // confirms from its saved frames so.
+  if (!shown || wrong_from <= t || frames.empty() || t < frames.front().tick ||
+      t >= shown->tick()) {
+    return false;
+  }
+  const detail::ShownFrame& f = frames[t - frames.front().tick];
+  for (std::size_t p = 0; p < players; ++p) {
+    if (((f.predicted >> p) & 1u) != 0 && !same_input(input_at(p, t), f.used[p])) return false;
+  }
+  if (t + 1 < shown->tick()) {
+    const detail::ShownFrame& after = frames[t + 1 - frames.front().tick];
+    world->restore(after.snapshot);
+    if (rules_have_state()) rules.restore(after.rules);
+  } else {
+    shown->save(confirm_scratch);
+    world->restore(confirm_scratch);
+    if (rules_have_state()) rules.restore(shown_rules);
+  }
+  ++stats.confirmed_from_shown;
+  return true;
+}
+
 void MatchPeer::Impl::roll_back() {
   stats.last_rolled_back = 0;
   if (wrong_from >= shown->tick()) {
@@ -123,7 +150,6 @@ double MatchPeer::Impl::time_sync_ahead() {
 }
 
 void MatchPeer::Impl::advance_shown() {
-  roll_back();
   if (state == MatchState::failed || state == MatchState::desynced) return;
   // A host shows nothing ahead before every player has joined: there is no one to predict yet,
   // and a shown world that ran ahead would stand at its window until they come.

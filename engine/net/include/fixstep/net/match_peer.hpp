@@ -195,6 +195,9 @@ struct MatchStats {
   std::uint64_t rolled_back_ticks = 0;  ///< ticks re-simulated, in all
   std::uint64_t max_rolled_back = 0;    ///< the most ticks one rollback re-simulated
   std::uint64_t last_rolled_back = 0;   ///< ticks the last advance() re-simulated
+  /// Confirmed ticks taken from the shown world's snapshot (it had stepped them with every
+  /// real input) instead of stepped a second time
+  std::uint64_t confirmed_from_shown = 0;
   /// advance() calls that waited for time sync: this peer ahead of another by over 2 frames,
   /// on average, the link's delay taken out (GGPO's frame advantage)
   std::uint64_t waits = 0;
