@@ -139,46 +139,6 @@ void MatchPeer::Impl::set_input_delay(std::uint16_t delay) {
   }
 }
 
-std::uint16_t MatchPeer::Impl::input_delay_for(std::uint32_t rtt_ms) const {
-  // A remote input for tick t is given when its peer plays tick t - delay; it waits for that
-  // peer's next packet (up to a send interval and a frame) and crosses the link (half a round
-  // trip; the host's relay to a third player another half): it must arrive by tick t.
-  const double dt_ms = def.settings.dt * 1000.0;
-  const double ms = rtt_ms + static_cast<double>(settings.send_interval_ms) + 1000.0 / 60.0;
-  const double ticks = std::ceil(ms / dt_ms) + 1.0;
-  return static_cast<std::uint16_t>(std::clamp(ticks, static_cast<double>(settings.input_delay),
-                                               static_cast<double>(max_input_delay)));
-}
-
-std::uint16_t MatchPeer::Impl::rollback_window() const {
-  if (!shown) return 0;
-  if (!settings.adapt_to_round_trip) return settings.max_rollback;
-  // The remote inputs of the ticks shown ahead arrive a round trip, two send intervals (ours
-  // to be acknowledged... theirs to be sent) and a frame after we play them.
-  const double dt_ms = def.settings.dt * 1000.0;
-  const double ms =
-      static_cast<double>(stats.round_trip_ms) + 2.0 * settings.send_interval_ms + 1000.0 / 60.0;
-  const double ticks = std::ceil(ms / dt_ms) + 2.0;
-  return static_cast<std::uint16_t>(
-      std::clamp(ticks, static_cast<double>(settings.max_rollback),
-                 static_cast<double>(std::max(max_rollback_window, settings.max_rollback))));
-}
-
-double MatchPeer::Impl::peer_timeout_ms() const {
-  if (!settings.adapt_to_round_trip) return settings.peer_timeout_ms;
-  return std::max(static_cast<double>(settings.peer_timeout_ms),
-                  static_cast<double>(timeout_round_trips) * stats.round_trip_ms);
-}
-
-double MatchPeer::Impl::handshake_timeout_ms() const {
-  if (!settings.adapt_to_round_trip) return settings.handshake_timeout_ms;
-  // The connections' (ENet's connect measured them); a joiner's cookie exchange before.
-  std::uint32_t rtt = transport->gate_round_trip_ms().value_or(0);
-  for (const detail::Remote& r : remotes) rtt = std::max(rtt, transport->round_trip_ms(r.conn));
-  return std::max(static_cast<double>(settings.handshake_timeout_ms),
-                  static_cast<double>(timeout_round_trips) * rtt);
-}
-
 void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
   players = player_count;
   slot = own_slot;
@@ -196,21 +156,6 @@ void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
   recorder.emplace(def, settings.scene_name, settings.record_hash_every, settings.scene_text);
   if (!settings.rules_name.empty())
     recorder->set_rules(settings.rules_name, settings.rules_version);
-}
-
-void MatchPeer::Impl::record_tick(const TickInput& merged) {
-  if (recorder) recorder->record(merged, *world);
-  if (!writer) return;
-  writer->record(merged, *world);
-  // Near the most a recording may hold (max_recording_bytes, what a replay reads): the file is
-  // finished here, whole, rather than refused at the end; the match plays on unrecorded. The
-  // margin is far more than one tick's lines.
-  constexpr std::uint64_t margin = std::uint64_t{1} << 20;
-  if (writer->bytes() + margin > max_recording_bytes) {
-    recording_cut = writer->ticks();
-    writer->finish(*world);
-    writer.reset();
-  }
 }
 
 void MatchPeer::Impl::fail(std::string why) {
@@ -470,40 +415,6 @@ const World& MatchPeer::shown_world() const {
 }
 World& MatchPeer::world_for_test() {
   return *impl_->world;
-}
-
-Recording MatchPeer::recording() const {
-  if (!impl_->recorder) {
-    throw std::logic_error(impl_->settings.record_in_memory
-                               ? "MatchPeer::recording: the match never started"
-                               : "MatchPeer::recording: not kept in memory (record_in_memory)");
-  }
-  Recorder copy = *impl_->recorder;
-  return copy.finish(*impl_->world);
-}
-
-std::optional<std::uint64_t> MatchPeer::finish_recording() {
-  Impl& m = *impl_;
-  if (m.recording_taken) return std::nullopt;
-  if (m.recording_cut) {
-    m.recording_taken = true;
-    return m.recording_cut;
-  }
-  if (!m.writer || m.players == 0) return std::nullopt;  // never started: removed with the peer
-  m.recording_taken = true;
-  const std::uint64_t ticks = m.writer->ticks();
-  // Only confirmed ticks are recorded, and each is whole (the world is between two ticks).
-  m.writer->finish(*m.world);
-  m.writer.reset();
-  return ticks;
-}
-
-std::optional<std::uint64_t> MatchPeer::recording_cut() const {
-  return impl_->recording_cut;
-}
-
-std::uint64_t MatchPeer::recording_bytes_held() const {
-  return impl_->writer ? impl_->writer->held() : 0;
 }
 
 bool MatchPeer::settled() const {
