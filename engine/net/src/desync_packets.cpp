@@ -21,7 +21,7 @@ bool is_peer_slot(std::uint8_t slot, std::uint8_t players) {
          (slot >= spectator_slot_base && slot < spectator_slot_base + max_spectators);
 }
 
-void write_header(detail::ByteWriter& w, MessageKind kind, const Header& h) {
+void write_desync_header(detail::ByteWriter& w, MessageKind kind, const Header& h) {
   w.u32(protocol_id);
   w.u8(protocol_version);
   w.u8(static_cast<std::uint8_t>(kind));
@@ -95,7 +95,7 @@ void encode_tick_hashes(const Header& h, const TickHashesMessage& m,
   }
   out.clear();
   detail::ByteWriter w(out);
-  write_header(w, MessageKind::tick_hashes, h);
+  write_desync_header(w, MessageKind::tick_hashes, h);
   w.u8(m.player);
   w.u32(m.first_tick);
   w.u8(static_cast<std::uint8_t>(m.hashes.size()));
@@ -111,7 +111,7 @@ void encode_body_states(const Header& h, const BodyStatesMessage& m,
   }
   out.clear();
   detail::ByteWriter w(out);
-  write_header(w, MessageKind::body_states, h);
+  write_desync_header(w, MessageKind::body_states, h);
   w.u8(m.player);
   w.u32(m.tick);
   w.u32(m.body_count);
