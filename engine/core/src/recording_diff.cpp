@@ -181,7 +181,9 @@ RecordingDiff diff_recordings(const WorldDef& def_a, const Recording& a, const W
   RecordingDiff diff = compare_recordings(a, b);
   if (!diff.world_difference.empty()) return diff;
   Replayer ra{a, rules_a, World(def_a)}, rb{b, rules_b, World(def_b)};
-  RecordingDiff::Replay& out = diff.replay.emplace();
+  // (Not emplace(): clang does not take the nested aggregate as default-constructible there.)
+  diff.replay = RecordingDiff::Replay{};
+  RecordingDiff::Replay& out = *diff.replay;
   const std::uint64_t end = replay_end(diff);
   auto compare = [&] {
     out.state = first_difference(state_fields(ra.world), state_fields(rb.world));
