@@ -33,6 +33,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "scratch_vector.hpp"
 #include "segment_set.hpp"
 
 /// The small phases of a tick (world_tick.cpp): named functions in the files they belong to,
@@ -575,8 +576,10 @@ class WorldKernel {
   struct ContactScratch {
     std::vector<std::uint32_t> body;
     std::vector<double> radius;
-    std::vector<Real> x0, y0, vx0, vy0;
-    std::vector<PlaneMotion> after;  ///< per collider, this tick
+    // Written for every collider by each tick with planes before it reads them
+    // (save_contact_start, resolve_body_contacts): a snapshot copies their sizes only.
+    ScratchVector<Real> x0, y0, vx0, vy0;
+    ScratchVector<PlaneMotion> after;  ///< per collider, this tick
     bool active = false;
   } contact_;
   void rebuild_contacts();
