@@ -421,16 +421,21 @@ class DiscContacts {
   /// Calls f(std::integral_constant<int, row_kind_>{}): one sweep's loop for each kind.
   template <class F>
   void with_row_kind(F&& f);
-  /// Row i's normal and friction impulses in a velocity iteration; out gathers the
+  /// Row i's (r = rows_[i]) normal and friction impulses in a velocity iteration, on the
+  /// solver velocities sv (sv_.data()), marking moved (row_moved_[i]); out gathers the
   /// iteration's largest change and largest normal impulse.
   template <int Kind>
-  void solve_row(std::uint32_t i, RestSweep& out);
-  /// Applies the impulse λ_n n + λ_t t (N·s) to row i's body a and its opposite to b.
+  void solve_row(std::uint32_t i, SolveRow& r, SolveVelocity* sv, std::uint8_t& moved,
+                 RestSweep& out);
+  /// Applies the impulse λ_n n + λ_t t (N·s) to row i's (r) body a and its opposite to b.
   template <int Kind>
-  void push_row(std::uint32_t i, SolveVelocity& va, SolveVelocity& vb, double ln, double lt);
+  void push_row(std::uint32_t i, const SolveRow& r, SolveVelocity& va, SolveVelocity& vb, double ln,
+                double lt);
   void push_out(const Tick& tick, ContactStats& stats);
-  /// The depth of push row i's overlap now (m) and its normal.
-  double overlap_of(const Tick& tick, std::uint32_t i, double& nx, double& ny) const;
+  /// The depth of push row i's (r) overlap now (m) and its normal, at the positions ex, ey
+  /// (ex_, ey_).
+  double overlap_of(const Tick& tick, std::uint32_t i, const PushRow& r, const double* ex,
+                    const double* ey, double& nx, double& ny) const;
   /// What storing the positions as Real can add to push row r's overlap, m: 0 in f64 (the
   /// solver's own precision); in f32 each coordinate rounds to the nearest float at the tick's
   /// end, which moves the pair's distance by up to 2 ε max|x| (ε = FLT_EPSILON), so that an
