@@ -39,8 +39,7 @@ template <int Kind>
     if (c.kinematic_b) external_[c.a] += jx * vb.x + jy * vb.y;
     if (c.kinematic_a) external_[c.b] -= jx * va.x + jy * va.y;
   }
-  const double ax = r.inv_a * r.nx, ay = r.inv_a * r.ny;
-  const double bx = r.inv_b * r.nx, by = r.inv_b * r.ny;
+  const double ax = r.ax, ay = r.ay, bx = r.bx, by = r.by;
   va.x += ln * ax - lt * ay, va.y += ln * ay + lt * ax;
   vb.x -= ln * bx - lt * by, vb.y -= ln * by + lt * bx;
 }
