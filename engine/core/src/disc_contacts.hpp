@@ -481,11 +481,13 @@ class DiscContacts {
   ScratchVector<DiscMotion> motion_;
   ScratchVector<SweptBox> boxes_;
   std::vector<std::uint8_t> dynamic_;
-  std::vector<DiscPair> pairs_, sensor_pairs_;
+  // The candidate pairs and their CSR lists by disc: found anew by every tick before the
+  // impacts (find_candidates()), read within it.
+  ScratchVector<DiscPair> pairs_, sensor_pairs_;
   std::vector<SensorOverlap> sensed_;
-  std::vector<std::uint32_t> offset_, incident_;
+  ScratchVector<std::uint32_t> offset_, incident_;
   ScratchVector<std::uint32_t> stamp_, impacts_;
-  std::vector<std::uint32_t> cursor_;  ///< find_candidates()'s fill cursors
+  ScratchVector<std::uint32_t> cursor_;  ///< find_candidates()'s fill cursors
   ScratchVector<std::uint8_t> changed_;
   ScratchVector<std::uint8_t> walled_;    ///< per disc: met a plane or a segment in the tick
   std::vector<HeldMotion> held_;          ///< per disc: held for the rest of the tick (hold_pair())
