@@ -79,8 +79,8 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
                  std::vector<std::uint32_t>& offset, std::vector<DiscPair>& out);
 
 /// The broadphase a World keeps between ticks. Its members are scratch only: a copy (a
-/// snapshot) or a fresh object gives the same pairs; copying it copies plain vectors and not
-/// its worker thread (a copy starts its own when first asked for two threads).
+/// snapshot) or a fresh object gives the same pairs; copying it copies its setting, neither the
+/// scratch nor its worker thread (a copy starts its own when first asked for two threads).
 class DiscBroadphase {
  public:
   /// Below this many boxes a call with threads = 2 runs on one thread: at 10^3 the second
@@ -89,6 +89,18 @@ class DiscBroadphase {
   /// Cell side of a level over the largest extent it holds: > 1 leaves room for rounding.
   static constexpr double cell_factor = 1.25;
   static constexpr unsigned max_levels = 48;
+
+  DiscBroadphase() = default;
+  /// A copy takes the settings (set_parallel_min) and none of the scratch, which every
+  /// find_pairs call builds anew, nor the thread. Assigning keeps the target's own scratch and
+  /// thread: a World's restore (a rollback, every frame) then neither copies the grid nor
+  /// stops a worker that its next tick would start again.
+  DiscBroadphase(const DiscBroadphase& other) : parallel_min_(other.parallel_min_) {}
+  DiscBroadphase& operator=(const DiscBroadphase& other) {
+    parallel_min_ = other.parallel_min_;
+    return *this;
+  }
+  ~DiscBroadphase() = default;
 
   /// Writes to `pairs` (cleared first) every pair (a, b), a < b, whose boxes overlap (closed
   /// intervals: touching counts) and of which at least one has active[i] != 0 (static discs

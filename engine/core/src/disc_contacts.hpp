@@ -68,6 +68,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "grown_grid.hpp"
+#include "scratch_vector.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep::detail {
@@ -420,16 +421,21 @@ class DiscContacts {
   /// Calls f(std::integral_constant<int, row_kind_>{}): one sweep's loop for each kind.
   template <class F>
   void with_row_kind(F&& f);
-  /// Row i's normal and friction impulses in a velocity iteration; out gathers the
+  /// Row i's (r = rows_[i]) normal and friction impulses in a velocity iteration, on the
+  /// solver velocities sv (sv_.data()), marking moved (row_moved_[i]); out gathers the
   /// iteration's largest change and largest normal impulse.
   template <int Kind>
-  void solve_row(std::uint32_t i, RestSweep& out);
-  /// Applies the impulse λ_n n + λ_t t (N·s) to row i's body a and its opposite to b.
+  void solve_row(std::uint32_t i, SolveRow& r, SolveVelocity* sv, std::uint8_t& moved,
+                 RestSweep& out);
+  /// Applies the impulse λ_n n + λ_t t (N·s) to row i's (r) body a and its opposite to b.
   template <int Kind>
-  void push_row(std::uint32_t i, SolveVelocity& va, SolveVelocity& vb, double ln, double lt);
+  void push_row(std::uint32_t i, const SolveRow& r, SolveVelocity& va, SolveVelocity& vb, double ln,
+                double lt);
   void push_out(const Tick& tick, ContactStats& stats);
-  /// The depth of push row i's overlap now (m) and its normal.
-  double overlap_of(const Tick& tick, std::uint32_t i, double& nx, double& ny) const;
+  /// The depth of push row i's (r) overlap now (m) and its normal, at the positions ex, ey
+  /// (ex_, ey_).
+  double overlap_of(const Tick& tick, std::uint32_t i, const PushRow& r, const double* ex,
+                    const double* ey, double& nx, double& ny) const;
   /// What storing the positions as Real can add to push row r's overlap, m: 0 in f64 (the
   /// solver's own precision); in f32 each coordinate rounds to the nearest float at the tick's
   /// end, which moves the pair's distance by up to 2 ε max|x| (ε = FLT_EPSILON), so that an
@@ -468,17 +474,22 @@ class DiscContacts {
   std::vector<CollisionFilter> filters_;  ///< per disc; empty: all default, no sensor
   ContactSettings settings_;
   double min_radius_ = 0;
-  // per tick (sized once; no allocation once warm)
-  std::vector<Real> x0_, y0_, vx0_, vy0_;
-  std::vector<DiscMotion> motion_;
-  std::vector<SweptBox> boxes_;
+  // per tick (sized once; no allocation once warm). A ScratchVector is written in full by
+  // every tick before it is read (save_start(), build_motions(), gather_contacts(),
+  // split_contacts(), build_rows()): a snapshot copies its size only (scratch_vector.hpp).
+  ScratchVector<Real> x0_, y0_, vx0_, vy0_;
+  ScratchVector<DiscMotion> motion_;
+  ScratchVector<SweptBox> boxes_;
   std::vector<std::uint8_t> dynamic_;
-  std::vector<DiscPair> pairs_, sensor_pairs_;
+  // The candidate pairs and their CSR lists by disc: found anew by every tick before the
+  // impacts (find_candidates()), read within it.
+  ScratchVector<DiscPair> pairs_, sensor_pairs_;
   std::vector<SensorOverlap> sensed_;
-  std::vector<std::uint32_t> offset_, incident_, stamp_, impacts_;
-  std::vector<std::uint32_t> cursor_;  ///< find_candidates()'s fill cursors
-  std::vector<std::uint8_t> changed_;
-  std::vector<std::uint8_t> walled_;      ///< per disc: met a plane or a segment in the tick
+  ScratchVector<std::uint32_t> offset_, incident_;
+  ScratchVector<std::uint32_t> stamp_, impacts_;
+  ScratchVector<std::uint32_t> cursor_;  ///< find_candidates()'s fill cursors
+  ScratchVector<std::uint8_t> changed_;
+  ScratchVector<std::uint8_t> walled_;    ///< per disc: met a plane or a segment in the tick
   std::vector<HeldMotion> held_;          ///< per disc: held for the rest of the tick (hold_pair())
   std::vector<std::uint32_t> held_list_;  ///< the discs held in the tick
   // reach()'s: extra pairs, each disc's list of them (head per disc), the discs whose boxes
@@ -495,42 +506,44 @@ class DiscContacts {
   double max_radius_ = 0;
   std::size_t base_pairs_ = 0;
   double horizon_ = 0;  ///< s: the end of the window the impacts run in (the tick's by default)
-  std::array<std::vector<RestContact>, 2> plane_half_;  ///< gather_contacts()'s on two threads
-  std::vector<std::uint8_t> touch_;       ///< gather_contacts()'s on two threads: pair i touches
-  std::vector<DiscEvent> heap_, events_;  ///< the event queue; first_events()'s second half
+  std::array<ScratchVector<RestContact>, 2> plane_half_;  ///< gather_contacts()'s on two threads
+  ScratchVector<std::uint8_t> touch_;       ///< gather_contacts()'s on two threads: pair i touches
+  ScratchVector<DiscEvent> heap_, events_;  ///< the event queue; first_events()'s second half
   std::vector<DiscImpact> impact_log_;
-  std::vector<RestContact> contacts_;  ///< disc pairs in key order, then planes in key order
-  std::uint32_t plane_contacts_ = 0;   ///< where contacts_'s plane contacts begin
-  std::vector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
+  /// Disc pairs in key order, then planes in key order: gathered anew by every tick, read
+  /// within it (touching(): the contact events, the sleeping islands).
+  ScratchVector<RestContact> contacts_;
+  std::uint32_t plane_contacts_ = 0;              ///< where contacts_'s plane contacts begin
+  ScratchVector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};
-  std::vector<double> cut_;        ///< split_contacts()'s
+  ScratchVector<double> cut_;      ///< split_contacts()'s
   bool team_on_ = false;           ///< set by solve_resting(): its parts' halves on two threads
   std::vector<WarmImpulse> warm_;  ///< by key
-  std::vector<WarmImpulse> warm_upper_;  ///< keep_impulses()'s upper keys on two threads
+  ScratchVector<WarmImpulse> warm_upper_;  ///< keep_impulses()'s upper keys on two threads
   // the velocity iterations' own state (disc_rows.cpp; sized once, no allocation once warm)
-  std::vector<SolveRow> rows_;
-  std::vector<PushRow> push_rows_;
-  std::vector<std::uint8_t> row_moved_;  ///< 1 once an impulse of row i moved its discs
+  ScratchVector<SolveRow> rows_;
+  ScratchVector<PushRow> push_rows_;
+  ScratchVector<std::uint8_t> row_moved_;  ///< 1 once an impulse of row i moved its discs
   /// Solver velocities by slot: the first three velocity 0, one per part of order_ (never
   /// written by two threads), then disc k's at 3 + k, then a moving kinematic partner's, one
   /// a row (see disc_rows.cpp).
-  std::vector<SolveVelocity> sv_;
+  ScratchVector<SolveVelocity> sv_;
   /// Per slot, for this tick's rows: 0, or 1 once an impulse changed it, 2 once scatter_rows()
   /// moved its disc by that (and for a disc's slot nonzero once the push-out moved the disc).
   /// The slots of discs in no row keep an earlier tick's marks, never read.
-  std::vector<std::uint8_t> slot_moved_;
-  bool kinematic_contacts_ = false;  ///< a contact of this tick has a kinematic partner
-  std::vector<RollRow> roll_rows_;   ///< with rolling discs (empty otherwise)
-  std::vector<double> sw_;           ///< angular velocities by slot with rolling discs, rad/s
-  int row_kind_ = 0;                 ///< kinematic_rows | rolling_rows, as the rows need
-  std::vector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
+  ScratchVector<std::uint8_t> slot_moved_;
+  bool kinematic_contacts_ = false;   ///< a contact of this tick has a kinematic partner
+  ScratchVector<RollRow> roll_rows_;  ///< with rolling discs (empty otherwise)
+  ScratchVector<double> sw_;          ///< angular velocities by slot with rolling discs, rad/s
+  int row_kind_ = 0;                  ///< kinematic_rows | rolling_rows, as the rows need
+  ScratchVector<double> ex_, ey_, evx_, evy_;  ///< end states in double, m and m/s
   /// Rolling discs (settings_.rolling; empty otherwise): ω in double during the tick and at
   /// its start, rad/s.
-  std::vector<double> ew_, ew0_;
+  ScratchVector<double> ew_, ew0_;
   bool rolling_ = false;
   // Energy per unit mass (J/kg: ½|v|² - a·x, a the constant acceleration) at the tick's start
   // and after the free step, and the dissipated account at the start.
-  std::vector<double> lost_, external_, e_start_, e_begin_, d_begin_;
+  ScratchVector<double> lost_, external_, e_start_, e_begin_, d_begin_;
   DiscBroadphase broadphase_;
   std::vector<std::uint32_t> segments_near_;  ///< gather_segment_contacts()'s scratch
   CapHit cap_;

@@ -118,7 +118,9 @@ struct RestContact {
 struct SolveRow {
   std::uint32_t a = 0, b = 0;  ///< slots of DiscContacts' solver velocities
   double nx = 0, ny = 0, mass = 0, mass_t = 0, friction = 0, lambda_n = 0, lambda_t = 0;
-  double inv_a = 0, inv_b = 0;  ///< 1/kg (0: the slot is not moved)
+  /// The normal over each body's mass, (1/m_a) n and (1/m_b) n (1/kg; 0: the slot is not
+  /// moved): an impulse's change of each velocity per N·s, the same products in every sweep.
+  double ax = 0, ay = 0, bx = 0, by = 0;
 };
 
 /// A resting contact as the push-out sees it (disc_rows.cpp), in order_'s order: its discs (b

@@ -29,18 +29,17 @@ struct RestSweep {
 // partner's work on the other disc goes to external_.
 template <class Real>
 template <int Kind>
-[[gnu::always_inline]] inline void DiscContacts<Real>::push_row(std::uint32_t i, SolveVelocity& va,
+[[gnu::always_inline]] inline void DiscContacts<Real>::push_row(std::uint32_t i, const SolveRow& r,
+                                                                SolveVelocity& va,
                                                                 SolveVelocity& vb, double ln,
                                                                 double lt) {
-  const SolveRow& r = rows_[i];
   if constexpr ((Kind & kinematic_rows) != 0) {
     const RestContact& c = contacts_[order_[i]];
     const double jx = ln * r.nx - lt * r.ny, jy = ln * r.ny + lt * r.nx;
     if (c.kinematic_b) external_[c.a] += jx * vb.x + jy * vb.y;
     if (c.kinematic_a) external_[c.b] -= jx * va.x + jy * va.y;
   }
-  const double ax = r.inv_a * r.nx, ay = r.inv_a * r.ny;
-  const double bx = r.inv_b * r.nx, by = r.inv_b * r.ny;
+  const double ax = r.ax, ay = r.ay, bx = r.bx, by = r.by;
   va.x += ln * ax - lt * ay, va.y += ln * ay + lt * ax;
   vb.x -= ln * bx - lt * by, vb.y -= ln * by + lt * bx;
 }
@@ -115,7 +114,7 @@ void DiscContacts<Real>::warm_start() {
         const SolveRow& r = rows_[i];
         if (r.lambda_n == 0.0 && r.lambda_t == 0.0) continue;
         row_moved_[i] = 1;
-        push_row<kind()>(i, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
+        push_row<kind()>(i, r, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
         if constexpr ((kind() & rolling_rows) != 0) turn(i, r.lambda_t);
       }
     });
@@ -129,12 +128,16 @@ void DiscContacts<Real>::warm_start() {
 // nor any turn: it acts through the centres), so both are found from the velocities as loaded
 // and applied as one impulse: the same step as normal then friction, with a dependency chain
 // through the discs' velocities half as long. The impulse is applied even when it is 0, so
-// that a sweep has no branch.
+// that a sweep has no branch. The sweep's arrays come as pointers held in registers and its
+// running maxima as locals (RestSweep): the byte stored in row_moved_ may alias anything in
+// memory, which made every row load them again through `this`.
 template <class Real>
 template <int Kind>
-[[gnu::always_inline]] inline void DiscContacts<Real>::solve_row(std::uint32_t i, RestSweep& out) {
-  SolveRow& r = rows_[i];
-  SolveVelocity va = sv_[r.a], vb = sv_[r.b];
+[[gnu::always_inline]] inline void DiscContacts<Real>::solve_row(std::uint32_t i, SolveRow& r,
+                                                                 SolveVelocity* sv,
+                                                                 std::uint8_t& moved,
+                                                                 RestSweep& out) {
+  SolveVelocity va = sv[r.a], vb = sv[r.b];
   // x - 0 is x, so a plane's relative velocity is a's own.
   const double rx = va.x - vb.x, ry = va.y - vb.y;
   const double vn = rx * r.nx + ry * r.ny;
@@ -146,10 +149,10 @@ template <int Kind>
   const double lt = std::clamp(r.lambda_t - vt * r.mass_t, -bound, bound);
   const double dn = ln - r.lambda_n, dt = lt - r.lambda_t;
   r.lambda_n = ln, r.lambda_t = lt;
-  push_row<Kind>(i, va, vb, dn, dt);
+  push_row<Kind>(i, r, va, vb, dn, dt);
   if constexpr ((Kind & rolling_rows) != 0) turn(i, dt);
-  sv_[r.a] = va, sv_[r.b] = vb;
-  row_moved_[i] |= std::uint8_t((dn != 0.0) | (dt != 0.0));
+  sv[r.a] = va, sv[r.b] = vb;
+  moved |= std::uint8_t((dn != 0.0) | (dt != 0.0));
   out.change = std::max({out.change, std::abs(dn), std::abs(dt)});
   out.largest = std::max(out.largest, ln);
 }
@@ -160,12 +163,16 @@ void DiscContacts<Real>::solve_velocities(ContactStats& stats) {
   stats.velocity_converged = false;
   RestSweep sweep[2];
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
-    RestSweep out;  // written to sweep[thread] once: the two threads' entries share a line
+    // Written to sweep[thread] once: the two threads' entries share a line.
     with_row_kind([&](auto kind) {
-      for (std::uint32_t i = begin; i < end; ++i) solve_row<kind()>(i, out);
+      RestSweep out;
+      SolveRow* const rows = rows_.data();
+      SolveVelocity* const sv = sv_.data();
+      std::uint8_t* const moved = row_moved_.data();
+      for (std::uint32_t i = begin; i < end; ++i) solve_row<kind()>(i, rows[i], sv, moved[i], out);
+      sweep[thread].change = std::max(sweep[thread].change, out.change);
+      sweep[thread].largest = std::max(sweep[thread].largest, out.largest);
     });
-    sweep[thread].change = std::max(sweep[thread].change, out.change);
-    sweep[thread].largest = std::max(sweep[thread].largest, out.largest);
   };
   for (int it = 0; it < settings_.velocity_iterations; ++it) {
     if (it % 16 == 15) throw_if_stop_requested();  // up to 1000 iterations: a long tick
@@ -182,17 +189,17 @@ void DiscContacts<Real>::solve_velocities(ContactStats& stats) {
 }
 
 template <class Real>
-double DiscContacts<Real>::overlap_of(const Tick& tick, std::uint32_t i, double& nx,
+double DiscContacts<Real>::overlap_of(const Tick& tick, std::uint32_t i, const PushRow& r,
+                                      const double* ex, const double* ey, double& nx,
                                       double& ny) const {
   const std::size_t n = discs_.size();
-  const PushRow& r = push_rows_[i];
   if (r.b >= n + tick.planes.size()) return segment_overlap_of(tick, contacts_[order_[i]], nx, ny);
   if (r.b >= n) {
     const PlaneDef& p = tick.planes[r.b - n];
     nx = p.normal.x, ny = p.normal.y;
-    return r.radii + p.offset - (nx * ex_[r.a] + ny * ey_[r.a]);
+    return r.radii + p.offset - (nx * ex[r.a] + ny * ey[r.a]);
   }
-  const double dx = ex_[r.a] - ex_[r.b], dy = ey_[r.a] - ey_[r.b];
+  const double dx = ex[r.a] - ex[r.b], dy = ey[r.a] - ey[r.b];
   const double dist = length(dx, dy);
   if (dist > 0.0) {
     nx = dx / dist, ny = dy / dist;
@@ -209,19 +216,23 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
   auto range = [&](std::uint32_t begin, std::uint32_t end, int thread) {
     bool any = false;  // written to pushed[thread] once (see solve_velocities)
     double most = deepest[thread];
+    // Pointers in registers: the bytes stored in slot_moved_ may alias anything in memory.
+    const PushRow* const rows = push_rows_.data();
+    double *const ex = ex_.data(), *const ey = ey_.data();
+    std::uint8_t* const moved = slot_moved_.data() + 3;  // by disc
     for (std::uint32_t i = begin; i < end; ++i) {
-      const PushRow& r = push_rows_[i];
+      const PushRow& r = rows[i];
       double nx = 0, ny = 0;
-      const double depth = overlap_of(tick, i, nx, ny);
+      const double depth = overlap_of(tick, i, r, ex, ey, nx, ny);
       most = std::max(most, depth);
       if (depth <= (slop + push_out_tolerance) * r.r_min + storage_rounding(r)) continue;
       any = true;
       const double push = std::min(depth - slop * r.r_min, max_push_out * r.r_min);
       const double pa = r.w_a * push, pb = r.w_b * push;
-      ex_[r.a] += pa * nx, ey_[r.a] += pa * ny;
-      if (r.w_a > 0.0) slot_moved_[3 + r.a] = 1;
-      if (pb > 0.0) ex_[r.b] -= pb * nx, ey_[r.b] -= pb * ny;
-      if (r.w_b > 0.0) slot_moved_[3 + r.b] = 1;
+      ex[r.a] += pa * nx, ey[r.a] += pa * ny;
+      if (r.w_a > 0.0) moved[r.a] = 1;
+      if (pb > 0.0) ex[r.b] -= pb * nx, ey[r.b] -= pb * ny;
+      if (r.w_b > 0.0) moved[r.b] = 1;
     }
     if (any) pushed[thread] = true;
     deepest[thread] = most;
@@ -245,9 +256,9 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
   }
   for (std::uint32_t i = 0; i < push_rows_.size(); ++i) {
     double nx = 0, ny = 0;
-    const double depth = overlap_of(tick, i, nx, ny);
-    stats.max_overlap = std::max(stats.max_overlap, depth);
     const PushRow& r = push_rows_[i];
+    const double depth = overlap_of(tick, i, r, ex_.data(), ey_.data(), nx, ny);
+    stats.max_overlap = std::max(stats.max_overlap, depth);
     if (std::isgreater(depth, (slop + push_out_tolerance) * r.r_min + storage_rounding(r))) {
       stats.positions_settled = false;
     }

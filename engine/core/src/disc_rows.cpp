@@ -60,15 +60,16 @@ void DiscContacts<Real>::build_rows() {
       if (rolling_) roll_rows_[i] = RollRow{c.arm_a, c.arm_b, c.turn_a, c.turn_b};
       r.nx = c.nx, r.ny = c.ny, r.mass = c.mass, r.mass_t = c.mass_t, r.friction = c.friction;
       r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
-      r.inv_a = c.inv_a, r.inv_b = c.b < n ? c.inv_b : 0.0;
+      const double inv_a = c.inv_a, inv_b = c.b < n ? c.inv_b : 0.0;
+      r.ax = inv_a * r.nx, r.ay = inv_a * r.ny, r.bx = inv_b * r.nx, r.by = inv_b * r.ny;
       row_moved_[i] = 0;
-      const double inv = r.inv_a + r.inv_b;
+      const double inv = inv_a + inv_b;
       push_rows_[i] = PushRow{.a = c.a,
                               .b = c.b,
                               .radii = c.radii,
                               .r_min = c.r_min,
-                              .w_a = r.inv_a / inv,
-                              .w_b = r.inv_b / inv};
+                              .w_a = inv_a / inv,
+                              .w_b = inv_b / inv};
     }
   };
   if (kinematic_contacts_) {  // rows that append slots: on this thread, part by part

@@ -11,14 +11,16 @@ namespace fixstep {
 
 namespace {
 
-bool slot_less(const ContactEvent& l, const ContactEvent& r) {
+// Function objects rather than functions, so that the sorts and searches inline them (a
+// function passed by pointer was called for every comparison).
+constexpr auto slot_less = [](const ContactEvent& l, const ContactEvent& r) {
   if (l.a.slot() != r.a.slot()) return l.a.slot() < r.a.slot();
   return l.b.slot() < r.b.slot();
-}
+};
 
-bool same(const ContactEvent& l, const ContactEvent& r) {
+constexpr auto same = [](const ContactEvent& l, const ContactEvent& r) {
   return l.a == r.a && l.b == r.b;
-}
+};
 
 /// Whether the sorted `list` holds the pair p.
 bool holds(const std::vector<ContactEvent>& list, const ContactEvent& p) {

@@ -33,6 +33,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "scratch_vector.hpp"
 #include "segment_set.hpp"
 
 /// The small phases of a tick (world_tick.cpp): named functions in the files they belong to,
@@ -575,8 +576,10 @@ class WorldKernel {
   struct ContactScratch {
     std::vector<std::uint32_t> body;
     std::vector<double> radius;
-    std::vector<Real> x0, y0, vx0, vy0;
-    std::vector<PlaneMotion> after;  ///< per collider, this tick
+    // Written for every collider by each tick with planes before it reads them
+    // (save_contact_start, resolve_body_contacts): a snapshot copies their sizes only.
+    ScratchVector<Real> x0, y0, vx0, vy0;
+    ScratchVector<PlaneMotion> after;  ///< per collider, this tick
     bool active = false;
   } contact_;
   void rebuild_contacts();
@@ -711,14 +714,19 @@ class WorldKernel {
   /// A tick without disc phases: the last tick's pairs and sensor overlaps end
   /// (world_events.cpp).
   FIXSTEP_TICK_PHASE void end_disc_events();
-  // Contact events (world_events.cpp): the touching pairs after the last tick and before it,
-  // as handle pairs sorted by slot; part of a snapshot, so events after a restore are the same.
-  std::vector<ContactEvent> touching_, touching_before_, hits_;  // normal_speed unused, hits_
+  // Contact events (world_events.cpp): the touching pairs after the last tick, as handle pairs
+  // sorted by slot; part of a snapshot, so events after a restore are the same. The pairs
+  // before it and the hits are the tick's own (touching_before_ is swapped with touching_ as
+  // the tick begins, hits_ cleared): a snapshot copies their sizes only.
+  std::vector<ContactEvent> touching_;  // normal_speed unused
+  ScratchVector<ContactEvent> touching_before_, hits_;
   std::vector<ContactEvent> begun_, ended_;
   std::vector<Impact> impacts_;  ///< the last tick's, by handle
   void update_contact_events();
-  // Sensor events (world_sensors.cpp), kept like the contact events: part of a snapshot.
-  std::vector<SensorEvent> sensed_, sensed_before_, sensor_crossed_;
+  // Sensor events (world_sensors.cpp), kept like the contact events: part of a snapshot
+  // (sensed_before_, swapped with sensed_ as the tick begins, only by its size).
+  std::vector<SensorEvent> sensed_, sensor_crossed_;
+  ScratchVector<SensorEvent> sensed_before_;
   std::vector<SensorEvent> sensor_begun_, sensor_ended_;
   void update_sensor_events();
   /// Throws std::invalid_argument naming `who` when c is a sensor and the world has no disc
