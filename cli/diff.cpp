@@ -8,7 +8,9 @@
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/recording_diff.hpp>
 #include <fixstep/io/command_limits.hpp>
+#include <fixstep/io/state_file.hpp>
 #include <fixstep/io/stop_signal.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +30,12 @@ int print_report(const RecordingDiff& diff, const DiffOptions& o) {
   const std::vector<std::string> lines = describe(diff, o.a, o.b);
   for (const std::string& line : lines) fmt::print("{}\n", line);
   if (diff.identical()) return 0;
+  // Two peers' desync files: their states of the first differing tick name the body when the
+  // recordings replay alike (the divergence happened on a peer, not in its inputs).
+  if (const std::optional<StatesBeside> states = compare_states_beside(o.a, o.b)) {
+    fmt::print("{}\n", states->text);
+    if (!states->read) std::fprintf(stderr, "fixstep: warning: %s\n", states->text.c_str());
+  }
   const std::string_view verdict =
       std::string_view(lines.back()).substr(lines.back().find(' ') + 1);
   std::fprintf(stderr, "fixstep: error: %s and %s differ: %.*s\n", o.a.c_str(), o.b.c_str(),

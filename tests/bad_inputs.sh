@@ -1194,6 +1194,11 @@ case_ "diff: recordings whose inputs differ (one input bit flipped at tick 3)" "
 case_ "diff: only one recording" "" diff base.rec
 case_ "diff: the same recording twice (identical: exit 0)" "" diff base.rec base.rec
 case_ "diff: a recording whose embedded scene builds another world" "" diff base.rec other_world.rec
+# Two peers' desync files: a state file beside each recording (io's state_file.hpp), one broken.
+printf '# a state\nstate tick 3 precision f64 rolling 0 sleep 0\nrandom not drawn\nbody 0 "bob" 1 2 3 x 0 0 0 0\n' > flipped.state
+printf '# a state\nstate tick 3 precision f64 rolling 0 sleep 0\nrandom not drawn\nbody 0 "bob" 1 2 3 4 0 0 0 0\n' > base.state
+case_ "diff: a state file beside a recording with a value that is not a number" "" diff base.rec flipped.rec
+rm -f flipped.state base.state
 # --- output locations ---
 case_ "--csv in a missing directory" "" run good.toml --steps 10 --csv nodir/out.csv
 case_ "--out is a file" "" render good.toml --out good.toml --frames 2

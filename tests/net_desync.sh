@@ -5,7 +5,8 @@
 # (the first whose states differ, not the hash tick 120), body 1 ("puck") and vx; each writes
 # its recording and its state of tick 96 (desync_game-desync-pSLOT-t96.rec and .state) in its
 # working directory; the two state files differ in the puck's line only; and `fixstep diff`
-# and the game's --diff name tick 96 from the two recordings.
+# and the game's --diff name tick 96 from the two recordings and the puck's vx from the state
+# files beside them (a state file that is not one is named with its line).
 #
 #   net_desync.sh DESYNC_GAME FIXSTEP SOURCE_DIR
 set -uo pipefail
@@ -49,11 +50,20 @@ differing=$(grep -c '^<' states.diff)
   fail "the state files differ in $differing lines"
 # Offline, from the two recordings: the stored hashes first differ at tick 96; replayed here
 # without the environment both step alike, so the joiner's peer diverged (not its inputs).
+# The peers' state files beside the recordings name the puck.
 "$game" --diff host/desync_game-desync-p0-t96.rec join/desync_game-desync-p1-t96.rec >diff.out 2>&1
-[ $? = 4 ] && grep -q 'tick 96' diff.out && ok "the game's --diff names tick 96" ||
-  { fail "--diff"; cat diff.out; }
+[ $? = 4 ] && grep -q 'stored hashes: first differ at tick 96 (exact' diff.out &&
+  grep -q 'first differ at body 1 ("puck") vx: 1 against 1.000000001 m/s' diff.out &&
+  ok "the game's --diff names tick 96, the puck and vx" || { fail "--diff"; cat diff.out; }
 "$fixstep" diff host/desync_game-desync-p0-t96.rec join/desync_game-desync-p1-t96.rec >fdiff.out 2>&1
-[ $? = 4 ] && grep -q 'tick 96' fdiff.out && ok "fixstep diff names tick 96" ||
-  { fail "fixstep diff"; cat fdiff.out; }
+[ $? = 4 ] && grep -q 'stored hashes: first differ at tick 96 (exact' fdiff.out &&
+  grep -q 'first differ at body 1 ("puck") vx' fdiff.out &&
+  ok "fixstep diff names tick 96, the puck and vx" || { fail "fixstep diff"; cat fdiff.out; }
+# A state file that is not one: named, with its line; the recordings' verdict stands (exit 4).
+cp host/desync_game-desync-p0-t96.rec bad.rec
+sed 's/^body 1 "puck" \([^ ]*\)/body 1 "puck" nope/' host/desync_game-desync-p0-t96.state >bad.state
+"$fixstep" diff bad.rec join/desync_game-desync-p1-t96.rec >bad.out 2>&1
+[ $? = 4 ] && grep -q 'were not compared: bad.state:6: body 1: x is not a number' bad.out &&
+  ok "a bad state file is named with its line" || { fail "a bad state file"; cat bad.out; }
 
 finish

@@ -51,6 +51,12 @@ void reencode(const net::Packet& p, const net::DecodeContext& ctx) {
     case net::MessageKind::disconnect:
       net::encode_disconnect(h, p.disconnect, bytes);
       break;
+    case net::MessageKind::tick_hashes:
+      net::encode_tick_hashes(h, p.tick_hashes, bytes);
+      break;
+    case net::MessageKind::body_states:
+      net::encode_body_states(h, p.body_states, bytes);
+      break;
     case net::MessageKind::inputs: {
       std::vector<std::vector<TickInput>> inputs;
       for (const net::InputRun& run : p.inputs.runs) inputs.push_back(applied(run));
@@ -82,7 +88,10 @@ void reencode(const net::Packet& p, const net::DecodeContext& ctx) {
   }
   if (again.header.sequence != h.sequence || again.header.slot != h.slot ||
       again.hash.hash != p.hash.hash || again.accept.definition_hash != p.accept.definition_hash ||
-      again.request.nonce != p.request.nonce) {
+      again.request.nonce != p.request.nonce || again.tick_hashes.hashes != p.tick_hashes.hashes ||
+      again.body_states.bodies.size() != p.body_states.bodies.size() ||
+      again.body_states.random_state != p.body_states.random_state ||
+      again.body_states.reproduced != p.body_states.reproduced) {
     finding("a message re-encoded decodes to another");
   }
 }

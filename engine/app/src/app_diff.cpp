@@ -7,8 +7,10 @@
 #include <fixstep/core/recording_diff.hpp>
 #include <fixstep/io/command_limits.hpp>
 #include <fixstep/io/recording_file.hpp>
+#include <fixstep/io/state_file.hpp>
 #include <fixstep/io/summary.hpp>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -49,6 +51,14 @@ int report(const Settings& settings, const RecordingDiff& diff, const Options& o
   const std::vector<std::string> lines = describe(diff, o.diff[0], o.diff[1]);
   for (const std::string& line : lines) std::printf("%s\n", line.c_str());
   if (diff.identical()) return 0;
+  // Two peers' desync files: their states of the first differing tick name the body when the
+  // recordings replay alike (the divergence happened on a peer, not in its inputs).
+  if (const std::optional<StatesBeside> states = compare_states_beside(o.diff[0], o.diff[1])) {
+    std::printf("%s\n", states->text.c_str());
+    if (!states->read) {
+      std::fprintf(stderr, "%s: warning: %s\n", settings.name.c_str(), states->text.c_str());
+    }
+  }
   std::fprintf(stderr, "%s: error: %s and %s differ: %s\n", settings.name.c_str(),
                o.diff[0].c_str(), o.diff[1].c_str(),
                lines.back().substr(lines.back().find(' ') + 1).c_str());

@@ -7,8 +7,10 @@
 #include <cstdint>
 #include <fixstep/io/file_write.hpp>
 #include <fixstep/io/recording_file.hpp>
+#include <fixstep/io/state_file.hpp>
 #include <stdexcept>
 #include <system_error>
+#include <vector>
 
 namespace fixstep::net {
 
@@ -33,24 +35,16 @@ std::filesystem::path free_desync_name(const std::filesystem::path& dir, const s
                   dir.string(), base, ext));
 }
 
-/// The state as text: a line per body, every value exact (shortest round-trip decimals).
+/// The state as text (io's state file): a line per body, every value exact.
 std::string state_text(const MatchPeer& peer, const StateFields& f) {
-  std::string out = fmt::format(
-      "# fixstep desync state: slot {} after tick {} (the first tick whose state hashes "
-      "differ)\n# body, name, x y (m), vx vy (m/s), theta (rad), omega (rad/s), sleep ticks, "
-      "island; exact\n",
-      static_cast<unsigned>(peer.slot()), f.tick);
-  out += f.random_state ? fmt::format("random 0x{:016x}\n", *f.random_state)
-                        : std::string("random not drawn\n");
   const World& w = peer.world();  // the bodies' names (the same bodies in the same order)
-  const auto bodies = w.bodies();
-  for (std::size_t i = 0; i < f.bodies.size(); ++i) {
-    const BodyState& b = f.bodies[i];
-    const std::string name = i < bodies.size() ? w.name(bodies[i]) : std::string();
-    out += fmt::format("body {} \"{}\" {} {} {} {} {} {} {} {}\n", i, name, b.x, b.y, b.vx, b.vy,
-                       b.theta, b.omega, b.sleep_ticks, b.island);
-  }
-  return out;
+  std::vector<std::string> names;
+  for (const Entity e : w.bodies()) names.push_back(w.name(e));
+  return format_state_file(
+      f, names,
+      fmt::format("fixstep desync state: slot {} after tick {} (the first tick whose state "
+                  "hashes differ)",
+                  static_cast<unsigned>(peer.slot()), f.tick));
 }
 
 }  // namespace
