@@ -97,7 +97,7 @@ class DiscBroadphase {
   /// stops a worker that its next tick would start again.
   DiscBroadphase(const DiscBroadphase& other) : parallel_min_(other.parallel_min_) {}
   DiscBroadphase& operator=(const DiscBroadphase& other) {
-    parallel_min_ = other.parallel_min_;
+    if (this != &other) parallel_min_ = other.parallel_min_;
     return *this;
   }
   ~DiscBroadphase() = default;
