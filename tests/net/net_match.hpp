@@ -216,6 +216,20 @@ inline Match start(const net::MatchSettings& s, int joiners, int spectators,
   return m;
 }
 
+/// Rules that step differently on player 1 (as code not deterministic across machines does):
+/// after tick 95 they add 1e-9 m/s to body 3's vx there only; player 0's do nothing.
+inline std::vector<TickRules> apart_rules() {
+  TickRules apart;
+  apart.after_tick = [](World& w, const TickInput& in) {
+    if (in.tick != 95) return;
+    const Vec2 v = w.body(w.bodies()[3]).velocity;
+    w.set_velocity(w.bodies()[3], {v.x + 1e-9, v.y});
+  };
+  TickRules plain;
+  plain.after_tick = [](World&, const TickInput&) {};
+  return {plain, apart};
+}
+
 /// Every peer finished with the same recording, every hash exchanged matched, nothing
 /// malformed was received; returns the host's recording.
 inline Recording expect_agreement(const Match& m, std::uint64_t ticks) {

@@ -156,15 +156,7 @@ TEST(Lockstep, ACorruptedPeerIsReportedAtTheFirstHashAfter) {
 // 3 and vx, and each re-simulation reproduces its own hashes (the rules run in it too).
 TEST(Lockstep, ADesyncIsLocatedToItsTickBodyAndFieldOnBothPeers) {
   MatchSettings s = match(2, 300);
-  TickRules apart;
-  apart.after_tick = [](World& w, const TickInput& in) {
-    if (in.tick != 95) return;
-    const Vec2 v = w.body(w.bodies()[3]).velocity;
-    w.set_velocity(w.bodies()[3], {v.x + 1e-9, v.y});
-  };
-  TickRules plain;
-  plain.after_tick = [](World&, const TickInput&) {};
-  Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 2}, {plain, apart});
+  Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 2}, apart_rules());
   EXPECT_FALSE(m.run(20000));
   for (int k = 0; k < 5000 && (m.peers[0]->locating() || m.peers[1]->locating() ||
                                m.peers[0]->state() != MatchState::desynced ||

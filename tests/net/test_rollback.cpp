@@ -95,15 +95,7 @@ TEST(Rollback, ADesyncIsReportedAtTheFirstHashAfterAndLocated) {
   // shown world and its confirmed one alike (a rollback peer confirms ticks from the shown
   // world's snapshots, so a nudge of the confirmed world alone would be overwritten): the first
   // hash after it (a hash every 10 ticks) differs, and the exchange names tick 96 and body 3.
-  TickRules apart;
-  apart.after_tick = [](World& w, const TickInput& in) {
-    if (in.tick != 95) return;
-    const Vec2 v = w.body(w.bodies()[3]).velocity;
-    w.set_velocity(w.bodies()[3], {v.x + 1e-9, v.y});
-  };
-  TickRules plain;
-  plain.after_tick = [](World&, const TickInput&) {};
-  Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 2}, {plain, apart});
+  Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 5.0, .seed = 2}, apart_rules());
   EXPECT_FALSE(m.run(20000));
   m.keep_playing(500);  // the other peer steps to that tick too
   for (int k = 0; k < 5000 && (m.peers[0]->locating() || m.peers[1]->locating()); ++k) {

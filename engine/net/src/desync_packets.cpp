@@ -21,15 +21,6 @@ bool is_peer_slot(std::uint8_t slot, std::uint8_t players) {
          (slot >= spectator_slot_base && slot < spectator_slot_base + max_spectators);
 }
 
-void write_desync_header(detail::ByteWriter& w, MessageKind kind, const Header& h) {
-  w.u32(protocol_id);
-  w.u8(protocol_version);
-  w.u8(static_cast<std::uint8_t>(kind));
-  w.u8(h.slot);
-  w.u8(0);
-  w.u32(h.sequence);
-}
-
 }  // namespace
 
 namespace detail {
@@ -95,7 +86,7 @@ void encode_tick_hashes(const Header& h, const TickHashesMessage& m,
   }
   out.clear();
   detail::ByteWriter w(out);
-  write_desync_header(w, MessageKind::tick_hashes, h);
+  detail::write_packet_header(w, MessageKind::tick_hashes, h);
   w.u8(m.player);
   w.u32(m.first_tick);
   w.u8(static_cast<std::uint8_t>(m.hashes.size()));
@@ -111,7 +102,7 @@ void encode_body_states(const Header& h, const BodyStatesMessage& m,
   }
   out.clear();
   detail::ByteWriter w(out);
-  write_desync_header(w, MessageKind::body_states, h);
+  detail::write_packet_header(w, MessageKind::body_states, h);
   w.u8(m.player);
   w.u32(m.tick);
   w.u32(m.body_count);

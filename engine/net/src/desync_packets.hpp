@@ -7,6 +7,9 @@
 
 namespace fixstep::net::detail {
 
+/// Every packet's 12-byte header, of kind `kind` (packet.cpp).
+void write_packet_header(ByteWriter& w, MessageKind kind, const Header& h);
+
 /// tick_hashes after the header: player a slot of the match, 1..max_tick_hashes hashes, exact
 /// size.
 [[nodiscard]] PacketError decode_tick_hashes(ByteReader& r, std::size_t size,

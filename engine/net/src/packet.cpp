@@ -161,6 +161,10 @@ PacketError decode_body(detail::ByteReader& r, std::span<const std::uint8_t> byt
 
 }  // namespace
 
+void detail::write_packet_header(detail::ByteWriter& w, MessageKind kind, const Header& h) {
+  write_header(w, {kind, h.slot, h.sequence});
+}
+
 std::string_view packet_error_name(PacketError e) {
   static constexpr std::string_view names[packet_error_count] = {
       "none",      "too_short",     "too_long",  "bad_protocol_id", "bad_version",
