@@ -4,6 +4,7 @@
 #pragma once
 
 #include "fixstep/core/bits.hpp"
+#include "fixstep/core/collision_filter.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/det_math.hpp"
@@ -24,6 +25,7 @@
 #include "fixstep/core/rewind.hpp"
 #include "fixstep/core/rules.hpp"
 #include "fixstep/core/segment.hpp"
+#include "fixstep/core/shape.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/core/stability.hpp"
 #include "fixstep/core/state_difference.hpp"

@@ -6,8 +6,11 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "fixstep/core/collision_filter.hpp"
 #include "fixstep/core/entity.hpp"
+#include "fixstep/core/shape.hpp"
 #include "fixstep/core/types.hpp"
 
 namespace fixstep {
@@ -29,13 +32,16 @@ enum class BodyType : std::uint8_t { dynamic = 0, static_body = 1, kinematic = 2
 struct Body {
   /// kg, in [min_coefficient, max_coefficient] = [1e-100, 1e100] (value_ranges.hpp)
   double mass = 1.0;
-  Vec2 position{};  ///< m, each component within max_state_magnitude (1e12)
-  Vec2 velocity{};  ///< m/s, each component within max_state_magnitude (1e12)
-  /// Orientation θ, rad, |θ| <= 1e12: read and stepped only in a world with rolling discs
-  /// (ContactSettings::rolling), kept in [-π, π]; ignored elsewhere.
+  /// m, each component within max_state_magnitude (1e12): the body's origin, the frame its
+  /// shapes are given in (the centre of mass of a body without shapes)
+  Vec2 position{};
+  Vec2 velocity{};  ///< m/s of the centre of mass, each component within 1e12
+  /// Orientation θ, rad, |θ| <= 1e12, counter-clockwise positive: stepped for a body with
+  /// shapes (BodyDef::shapes) and, in a world with rolling discs (ContactSettings::rolling),
+  /// for every dynamic body (kept in [-π, π] there); ignored elsewhere.
   double angle = 0.0;
   /// Angular velocity ω, rad/s, |ω| <= max_state_magnitude (1e12; counter-clockwise positive):
-  /// as angle, only with rolling discs. The runtime guard checks it after every tick.
+  /// as angle. The runtime guard checks it after every tick.
   double angular_velocity = 0.0;
 };
 
@@ -88,31 +94,6 @@ struct Appearance {
   /// max_trail_time].
   double trail_time = default_trail_time;
 };
-
-/// CollisionFilter::category of a disc that sets none (Box2D's B2_DEFAULT_CATEGORY_BITS).
-inline constexpr std::uint64_t default_category = 1;
-/// CollisionFilter::mask of a disc that sets none: every category (B2_DEFAULT_MASK_BITS).
-inline constexpr std::uint64_t all_categories = ~std::uint64_t{0};
-
-/// A disc's collision filter, Box2D's b2Filter: the categories it belongs to, the categories
-/// it collides with, and a group that overrides both (should_collide()).
-struct CollisionFilter {
-  std::uint64_t category = default_category;  ///< bits: the categories this disc is in
-  std::uint64_t mask = all_categories;        ///< bits: the categories it collides with
-  /// Two discs of the same non-zero group always collide when it is positive and never when
-  /// it is negative, whatever their bits; 0: no group.
-  std::int32_t group = 0;
-  friend bool operator==(const CollisionFilter&, const CollisionFilter&) = default;
-};
-
-/// Whether two discs' filters let them touch, Box2D's rule (b2ShouldShapesCollide): the same
-/// non-zero group decides alone (positive: always, negative: never); otherwise each disc's
-/// category must meet the other's mask. Disc contacts, sensors and the definition checks all
-/// apply it.
-[[nodiscard]] constexpr bool should_collide(const CollisionFilter& a, const CollisionFilter& b) {
-  if (a.group == b.group && a.group != 0) return a.group > 0;
-  return (a.category & b.mask) != 0 && (b.category & a.mask) != 0;
-}
 
 /// A disc the body occupies: for contacts with static half-planes (PlaneDef) and, in a world
 /// with body contacts on (WorldSettings::contacts), with the other discs. Bodies without one
@@ -244,6 +225,14 @@ struct BodyDef {
   std::optional<LinearDrag> drag;
   std::optional<Appearance> appearance;
   std::optional<Collider> collider;  ///< contacts with the world's planes (World::add_plane)
+  /// The shapes the body carries (shape.hpp), each at its pose in the body frame: a body with
+  /// shapes turns (Body::angle, Body::angular_velocity) and meets planes, segments, discs and
+  /// other shapes with contact manifolds. Empty: a point body or a disc (collider). A body has
+  /// shapes or a collider, not both.
+  std::vector<ShapeDef> shapes;
+  /// Moment of inertia about the centre of mass, kg·m², in [1e-100, 1e100], of a dynamic body
+  /// with shapes; unset: from the shapes (body_mass, shape.hpp).
+  std::optional<double> inertia = std::nullopt;
   /// The program's own 64-bit value for this body (an index into its tables, a tag, a
   /// pointer's bits): kept with the body, copied by snapshots, never read by the physics nor
   /// part of the state or definition hash.

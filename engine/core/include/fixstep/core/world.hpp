@@ -25,6 +25,7 @@ struct LinkDef;                      // components.hpp
 struct PlaneDef;                     // components.hpp
 enum class BodyType : std::uint8_t;  // components.hpp
 struct SegmentDef;                   // segment.hpp
+struct ShapeDef;                     // shape.hpp
 struct TickInput;                    // input.hpp
 struct EnergyReport;                 // step_results.hpp
 struct ContactStats;                 // step_results.hpp
@@ -133,6 +134,13 @@ class World {
   /// body's edit between ticks. Validated as create_body; a non-zero velocity for a static body
   /// throws std::invalid_argument (it never moves); throws if e is stale.
   void set_velocity(Entity e, Vec2 velocity);
+  /// e's shapes (BodyDef::shapes) in the body frame; empty for a point body or a disc; throws
+  /// std::invalid_argument if e is stale. Valid until the next create or destroy.
+  [[nodiscard]] std::span<const ShapeDef> shapes(Entity e) const;
+  /// e's centre of mass in the body frame, m ((0, 0) for a body without shapes): World::x()
+  /// and y() hold the centre of mass, Body::position the origin, position = centre − R(θ)·c;
+  /// throws std::invalid_argument if e is stale.
+  [[nodiscard]] Vec2 local_center(Entity e) const;
   /// The program's 64-bit value of e (BodyDef::user_data); throws std::invalid_argument if e
   /// is stale.
   [[nodiscard]] std::uint64_t user_data(Entity e) const;

@@ -1,0 +1,2 @@
+// shape: to be written.
+#include "shape_geom.hpp"

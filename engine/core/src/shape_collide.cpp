@@ -1,0 +1,2 @@
+// shape_collide: to be written.
+#include "shape_geom.hpp"

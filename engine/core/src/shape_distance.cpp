@@ -1,0 +1,2 @@
+// shape_distance: to be written.
+#include "shape_geom.hpp"

@@ -1,0 +1,2 @@
+// shape_mass: to be written.
+#include "shape_geom.hpp"
