@@ -29,6 +29,14 @@ void World::set_velocity(Entity e, Vec2 velocity) {
   visit([&](auto& w) { w.set_velocity(e, velocity); });
 }
 
+std::span<const ShapeDef> World::shapes(Entity e) const {
+  return visit([&](const auto& w) { return w.shapes(e); });
+}
+
+Vec2 World::local_center(Entity e) const {
+  return visit([&](const auto& w) { return w.local_center(e); });
+}
+
 std::uint64_t World::user_data(Entity e) const {
   return visit([&](const auto& w) { return w.user_data(e); });
 }
