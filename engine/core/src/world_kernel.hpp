@@ -646,12 +646,14 @@ class WorldKernel {
     Vec2 center{};
     double inertia = 0.0;
     double angle = 0.0, spin = 0.0;
+    double torque = 0.0;  ///< N·m: this tick's torque input (0 between ticks)
   };
   Store<ShapeSet> shape_sets_;
   ClonePtr<ShapeWorld> shape_world_;
   void check_shapes(const BodyDef& def, const std::string& who) const;
   void add_shapes(Entity e, const BodyDef& def, const std::string& who);
   void remove_shapes(Entity e);
+  void apply_angular_input(const BodyInput& in, std::size_t j);
   void rebuild_shapes();
   void save_shape_start();
   void resolve_shapes();

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "contact_kappa.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/shape.hpp"
 #include "shape_world.hpp"
 #include "world_kernel.hpp"
@@ -73,6 +75,29 @@ void detail::WorldKernel<Real>::check_shapes(const BodyDef& def, const std::stri
     if (!(std::abs(v) <= max_state_magnitude)) {
       throw std::invalid_argument(
           fmt::format("{}: angle and angular_velocity must be finite, within 1e12", who));
+    }
+  }
+}
+
+// Angular input at the tick's start (world_input.cpp calls it for the angular kinds; entries
+// of the wrong type or on a body without shapes are ignored, as World::check_input says).
+template <class Real>
+void detail::WorldKernel<Real>::apply_angular_input(const BodyInput& in, std::size_t j) {
+  const Entity e = bodies_.dense[j];
+  if (!shape_sets_.set.contains(e) || in.value.y != 0.0) return;
+  ShapeSet& set = shape_sets_.data[shape_sets_.set.index(e)];
+  const BodyType type = types_[j];
+  const double v = in.value.x;
+  if (type == BodyType::dynamic) {
+    if (in.kind == BodyInputKind::torque) set.torque += v;
+    if (in.kind == BodyInputKind::angular_impulse) {
+      set.spin = double(static_cast<Real>(set.spin + v / set.inertia));
+    }
+  } else if (type == BodyType::kinematic) {
+    if (in.kind == BodyInputKind::angular_velocity) set.spin = double(static_cast<Real>(v));
+    if (in.kind == BodyInputKind::target_angle) {  // the shorter way round, over one tick
+      const double turn = std::remainder(v - set.angle, 2.0 * std::numbers::pi);
+      set.spin = double(static_cast<Real>(turn / settings_.dt));
     }
   }
 }
@@ -168,18 +193,28 @@ template <class Real>
 void detail::WorldKernel<Real>::resolve_shapes() {
   ShapeWorld& w = *shape_world_;
   const double dt = settings_.dt;
+  const double kappa = contact_kappa(settings_.integrator, settings_.substeps);
   for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
     const ShapedBody& b = w.bodies_[i];
     ShapeState& s = w.state_[i];
     const std::uint32_t j = b.body;
     s.x = double(x_[j]), s.y = double(y_[j]), s.vx = double(vx_[j]), s.vy = double(vy_[j]);
-    s.w = b.set == ShapedBody::none ? 0.0 : shape_sets_.data[b.set].spin;
-    s.a = s.a0 + dt * s.w;  // θ1 = θ0 + dt ω: no torque but the contacts' acts on a shape
+    s.w = 0.0, s.a = s.a0;
+    if (b.set == ShapedBody::none) continue;
+    ShapeSet& set = shape_sets_.data[b.set];
+    // A torque input τ is a constant angular acceleration α = τ/I over the tick, stepped as
+    // the integrator steps a constant acceleration: ω1 = ω0 + α dt, θ1 = θ0 + dt ω0 + κ dt² α
+    // (κ as for a contact impulse: 1 for semi-implicit Euler, ½ for the methods exact for a
+    // constant force). Without one, θ1 = θ0 + dt ω0.
+    const double alpha = set.torque != 0.0 ? set.torque / set.inertia : 0.0;
+    s.w = set.spin + alpha * dt;
+    s.a = s.a0 + dt * set.spin + kappa * dt * dt * alpha;
+    set.torque = 0.0;
   }
   const ContactSettings cs = settings_.contacts.value_or(ContactSettings{});
   ShapeTick tick;
   tick.dt = dt;
-  tick.kappa = contact_kappa(settings_.integrator, settings_.substeps);
+  tick.kappa = kappa;
   tick.velocity_iterations = cs.velocity_iterations;
   tick.position_iterations = cs.position_iterations;
   tick.planes = planes_;
