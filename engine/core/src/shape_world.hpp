@@ -122,6 +122,8 @@ class ShapeWorld {
   /// One tick over `bodies_` with `state_` filled (start and free end); leaves the result in
   /// state_.
   ShapeTally solve(const ShapeTick& tick);
+  /// The last tick's manifold points with their impulses (N·s).
+  [[nodiscard]] std::span<const ShapeRow> rows() const { return rows_; }
 
  private:
   struct Candidate {

@@ -249,6 +249,8 @@ class WorldKernel {
   [[nodiscard]] std::span<const ShapeDef> shapes(Entity e) const;  // (world_shapes.cpp)
   [[nodiscard]] Vec2 local_center(Entity e) const;
   [[nodiscard]] bool has_shapes() const { return !shape_sets_.data.empty(); }
+  /// The shape contacts (null without shapes): for tests that read the solver's rows.
+  [[nodiscard]] const ShapeWorld* shape_world() const { return shape_world_.get(); }
   [[nodiscard]] std::uint64_t user_data(Entity e) const { return user_data_[index_of(e)]; }
   /// Sets e's user data (part of copies and snapshots, never of the state hash).
   void set_user_data(Entity e, std::uint64_t value) { user_data_[index_of(e)] = value; }
