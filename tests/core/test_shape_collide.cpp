@@ -247,4 +247,70 @@ TEST(ShapeCollide, FeatureIdsStayUnderSmallMotion) {
   }
 }
 
+fixstep::SegmentDef sc_segment(Vec2 a, Vec2 b, std::optional<Vec2> prev, std::optional<Vec2> next) {
+  fixstep::SegmentDef s;
+  s.a = a;
+  s.b = b;
+  s.prev = prev;
+  s.next = next;
+  return s;
+}
+
+TEST(ShapeCollideSegment, BoxSlidingAcrossAFlatJointSeesOnlyTheFloor) {
+  // The polyline (-3, 0) (0, 0) (3, 0): a unit box 0.01 deep slides across the joint, a little
+  // tilted either way; every contact of either segment pushes straight up.
+  const auto left = sc_segment({-3, 0}, {0, 0}, std::nullopt, Vec2{3, 0});
+  const auto right = sc_segment({0, 0}, {3, 0}, Vec2{-3, 0}, std::nullopt);
+  const Convex box = sc_box(0.5, 0.5);
+  int contacts = 0;
+  for (int i = 0; i <= 400; ++i) {
+    const double x = -2.0 + 0.01 * i;
+    for (const double angle : {-0.01, 0.0, 0.01}) {
+      const Pose at = sc_at(x, 0.49, angle);
+      int here = 0;
+      for (const auto& seg : {left, right}) {
+        const Manifold m = collide_segment(seg, box, at, 0.01);
+        here += m.count;
+        if (m.count == 0) continue;
+        EXPECT_NEAR(m.normal.x, 0.0, 1e-12) << x << " " << angle;
+        EXPECT_NEAR(m.normal.y, 1.0, 1e-12) << x << " " << angle;
+        for (int k = 0; k < m.count; ++k) {
+          EXPECT_GE(m.points[k].point.x, std::min(seg.a.x, seg.b.x) - 1e-12);
+          EXPECT_LE(m.points[k].point.x, std::max(seg.a.x, seg.b.x) + 1e-12);
+        }
+      }
+      EXPECT_GE(here, 1) << x << " " << angle;
+      contacts += here;
+    }
+  }
+  EXPECT_GT(contacts, 1000);
+  // Without the ghost vertices the box just past the joint catches on the left segment's end:
+  // its left face is the separating axis, the normal horizontal.
+  const Manifold snag = collide_segment(sc_segment({-3, 0}, {0, 0}, std::nullopt, std::nullopt),
+                                        box, sc_at(0.501, 0.49), 0.01);
+  ASSERT_EQ(snag.count, 1);
+  sc_expect_vec(snag.normal, {1, 0}, sc_exact);
+  EXPECT_EQ(collide_segment(left, box, sc_at(0.501, 0.49), 0.01).count, 0);
+}
+
+TEST(ShapeCollideSegment, ConvexJointVertexBelongsToTheSegmentStartingThere) {
+  // A roof (-1, -1) (0, 0) (1, -1); a circle on its ridge touches the joint vertex only, with the
+  // upward normal inside the joint's wedge: reported once, by the segment that starts there.
+  const auto up = sc_segment({-1, -1}, {0, 0}, std::nullopt, Vec2{1, -1});
+  const auto down = sc_segment({0, 0}, {1, -1}, Vec2{-1, -1}, std::nullopt);
+  const Pose at = sc_at(0, 0.45);
+  EXPECT_EQ(collide_segment(up, sc_circle(0.5), at, 0.01).count, 0);
+  const Manifold m = collide_segment(down, sc_circle(0.5), at, 0.01);
+  ASSERT_EQ(m.count, 1);
+  sc_expect_vec(m.normal, {0, 1}, sc_exact);
+  EXPECT_NEAR(m.points[0].separation, -0.05, sc_exact);
+  sc_expect_vec(m.points[0].anchor_a, m.points[0].point, 0.0);
+  // Both faces: a circle under a free segment is pushed down.
+  const Manifold below = collide_segment(sc_segment({-1, 0}, {1, 0}, std::nullopt, std::nullopt),
+                                         sc_circle(0.5), sc_at(0.2, -0.4), 0.01);
+  ASSERT_EQ(below.count, 1);
+  sc_expect_vec(below.normal, {0, -1}, sc_exact);
+  EXPECT_NEAR(below.points[0].separation, -0.1, sc_exact);
+}
+
 }  // namespace
