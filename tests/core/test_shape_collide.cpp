@@ -294,6 +294,34 @@ TEST(ShapeCollideSegment, BoxSlidingAcrossAFlatJointSeesOnlyTheFloor) {
   EXPECT_EQ(collide_segment(left, box, sc_at(0.501, 0.49), 0.01).count, 0);
 }
 
+TEST(ShapeCollideSegment, BoxAcrossBentJointsPushesAlongTheFacesOnly) {
+  // A hilltop (the floor then 10° down) and a valley (the floor then 10° up): every normal of
+  // either segment lies between the two faces' normals (within the 0.01 wedge tolerance), never
+  // the horizontal push of a box's side caught on the joint.
+  const double pi = 3.14159265358979323846, k = 10.0 * pi / 180.0;
+  for (const double bend : {-k, k}) {
+    const Vec2 far{3 * std::cos(bend), 3 * std::sin(bend)};
+    const auto left = sc_segment({-3, 0}, {0, 0}, std::nullopt, far);
+    const auto right = sc_segment({0, 0}, far, Vec2{-3, 0}, std::nullopt);
+    const double lo = std::min(0.0, bend) - 0.011, hi = std::max(0.0, bend) + 0.011;
+    int contacts = 0;
+    for (int i = 0; i <= 200; ++i) {
+      const double x = -1.0 + 0.01 * i * (bend < 0 ? 1.0 : 0.5);  // up a ramp: until 0.02 deep
+      for (const double angle : {-0.01, 0.0, 0.01}) {
+        for (const auto& seg : {left, right}) {
+          const Manifold m = collide_segment(seg, sc_box(0.5, 0.5), sc_at(x, 0.49, angle), 0.01);
+          contacts += m.count;
+          if (m.count == 0) continue;
+          const double tilt = std::atan2(-m.normal.x, m.normal.y);  // 0: straight up
+          EXPECT_GE(tilt, lo) << bend << " " << x << " " << angle;
+          EXPECT_LE(tilt, hi) << bend << " " << x << " " << angle;
+        }
+      }
+    }
+    EXPECT_GT(contacts, 300) << bend;
+  }
+}
+
 TEST(ShapeCollideSegment, ConvexJointVertexBelongsToTheSegmentStartingThere) {
   // A roof (-1, -1) (0, 0) (1, -1); a circle on its ridge touches the joint vertex only, with the
   // upward normal inside the joint's wedge: reported once, by the segment that starts there.
@@ -306,6 +334,31 @@ TEST(ShapeCollideSegment, ConvexJointVertexBelongsToTheSegmentStartingThere) {
   sc_expect_vec(m.normal, {0, 1}, sc_exact);
   EXPECT_NEAR(m.points[0].separation, -0.05, sc_exact);
   sc_expect_vec(m.points[0].anchor_a, m.points[0].point, 0.0);
+  // A hilltop of 10°: a circle over the floor near the top touches the falling segment's
+  // start along (-0.6, 0.8), beyond the joint's wedge ((0, 1) to (sin 10°, cos 10°)): dropped,
+  // the floor's face contact (0, 1) holds it.
+  const double k = 10.0 * 3.14159265358979323846 / 180.0;
+  const auto floor = sc_segment({-3, 0}, {0, 0}, std::nullopt, Vec2{std::cos(k), -std::sin(k)});
+  const auto fall = sc_segment({0, 0}, {std::cos(k), -std::sin(k)}, Vec2{-3, 0}, std::nullopt);
+  const Pose beside = sc_at(-0.24, 0.32);
+  EXPECT_EQ(collide_segment(fall, sc_circle(0.5), beside, 0.01).count, 0);
+  const Manifold face = collide_segment(floor, sc_circle(0.5), beside, 0.01);
+  ASSERT_EQ(face.count, 1);
+  sc_expect_vec(face.normal, {0, 1}, sc_exact);
+  EXPECT_NEAR(face.points[0].separation, -0.18, sc_exact);
+  // A box resting on a short segment before a hilltop, turned a little so that its own face
+  // is the reference and the normal leans towards the joint (within its wedge): kept, with the
+  // point at the joint left to the segment that starts there.
+  const auto shelf = sc_segment({-0.4, 0}, {0, 0}, std::nullopt, Vec2{3, -0.3});
+  const auto slope = sc_segment({0, 0}, {3, -0.3}, Vec2{-0.4, 0}, std::nullopt);
+  const Pose tilted = sc_at(-0.2, 0.49, -0.005);
+  const Manifold s1 = collide_segment(shelf, sc_box(0.5, 0.5), tilted, 0.01);
+  const Manifold s2 = collide_segment(slope, sc_box(0.5, 0.5), tilted, 0.01);
+  ASSERT_EQ(s1.count, 1);
+  ASSERT_EQ(s2.count, 1);
+  EXPECT_GT(s1.normal.x, 0.0);  // leaning towards the joint: B's face is the reference
+  EXPECT_NEAR(s1.points[0].point.x, -0.4, 1e-3);
+  EXPECT_NEAR(s2.points[0].point.x, 0.0, 1e-3);
   // Both faces: a circle under a free segment is pushed down.
   const Manifold below = collide_segment(sc_segment({-1, 0}, {1, 0}, std::nullopt, std::nullopt),
                                          sc_circle(0.5), sc_at(0.2, -0.4), 0.01);
