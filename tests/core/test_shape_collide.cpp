@@ -58,6 +58,48 @@ void sc_expect_vec(Vec2 got, Vec2 want, double tol) {
   EXPECT_NEAR(got.y, want.y, tol);
 }
 
+TEST(ShapeCollide, ConvexFormOfEachKind) {
+  // A box 1 × 0.5 (half) at offset (2, 1) turned 90° in the body, the body's centre of mass at
+  // (0.5, 0.5): counter-clockwise corners (2.5, 0), (2.5, 2), (1.5, 2), (1.5, 0) shifted by
+  // -(0.5, 0.5), outward unit normals.
+  ShapeDef d;
+  d.kind = ShapeKind::box;
+  d.half_extents = {1, 0.5};
+  d.offset = {2, 1};
+  d.angle = 1.5707963267948966;
+  d.radius = 0.1;
+  const Convex c = to_convex(d, {0.5, 0.5});
+  ASSERT_EQ(c.count, 4);
+  EXPECT_EQ(c.radius, 0.1);
+  const Vec2 want[4] = {{2.0, -0.5}, {2.0, 1.5}, {1.0, 1.5}, {1.0, -0.5}};
+  const Vec2 normal[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+  for (int i = 0; i < 4; ++i) {
+    sc_expect_vec(c.vertices[i], want[i], 1e-15);
+    sc_expect_vec(c.normals[i], normal[i], 1e-15);
+  }
+  EXPECT_NEAR(extent(c), std::sqrt(4.0 + 2.25) + 0.1, 1e-15);
+  const fixstep::Aabb box = convex_aabb(c, sc_at(10, 20), 0.05);
+  sc_expect_vec(box.lower, {10.85, 19.35}, 1e-12);
+  sc_expect_vec(box.upper, {12.15, 21.65}, 1e-12);
+  // A capsule: two vertices, the two sides' normals; a circle: its centre at the offset.
+  const Convex cap = sc_capsule({0, 0}, {3, 4}, 0.25);
+  ASSERT_EQ(cap.count, 2);
+  sc_expect_vec(cap.normals[0], {0.8, -0.6}, 1e-15);
+  sc_expect_vec(cap.normals[1], {-0.8, 0.6}, 1e-15);
+  EXPECT_NEAR(extent(cap), 5.25, 1e-15);
+  ShapeDef circle;
+  circle.radius = 0.3;
+  circle.offset = {1, -2};
+  const Convex dot1 = to_convex(circle, {1, 1});
+  ASSERT_EQ(dot1.count, 1);
+  sc_expect_vec(dot1.vertices[0], {0, -3}, 0.0);
+  EXPECT_NEAR(extent(dot1), 3.3, 1e-15);
+  // segment_convex: a..b as it is, radius 0.
+  const Convex seg = segment_convex({1, 1}, {1, 3});
+  sc_expect_vec(seg.normals[0], {1, 0}, 0.0);
+  EXPECT_EQ(seg.radius, 0.0);
+}
+
 TEST(ShapeCollide, BoxesFaceToFaceGiveTwoPointsMidway) {
   // Unit boxes, B 0.9 above A: faces at y = 0.5 and 0.4 overlap by 0.1; points midway at 0.45.
   const Pose ta = sc_at(0, 0), tb = sc_at(0, 0.9);
