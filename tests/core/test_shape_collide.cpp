@@ -432,6 +432,19 @@ TEST(ShapeDistance, AgainstAnalyticValues) {
   d = distance(sc_box(0.5, 0.5), sc_at(0, 0, 0.785398163397448), sc_capsule({-1, 0}, {1, 0}, 0.1),
                sc_at(0.2, 1.5));
   EXPECT_NEAR(d.distance, 1.5 - h - 0.1, 1e-12);
+  // Capsules end to end on one line and side by side: the simplex's points line up.
+  const Convex cap = sc_capsule({-1, 0}, {1, 0}, 0.1);
+  d = distance(cap, sc_at(0, 0), cap, sc_at(3, 0));
+  EXPECT_NEAR(d.distance, 0.8, sc_exact);
+  sc_expect_vec(d.normal, {1, 0}, sc_exact);
+  d = distance(cap, sc_at(0, 0), cap, sc_at(0.5, 1));
+  EXPECT_NEAR(d.distance, 0.8, sc_exact);
+  sc_expect_vec(d.normal, {0, 1}, sc_exact);
+  const Manifold ends = collide(cap, sc_at(0, 0), cap, sc_at(2.1, 0), 0.01);
+  ASSERT_EQ(ends.count, 1);
+  sc_expect_vec(ends.normal, {1, 0}, sc_exact);
+  EXPECT_NEAR(ends.points[0].separation, -0.1, sc_exact);
+  sc_expect_vec(ends.points[0].point, {1.05, 0}, sc_exact);
   d = distance(sc_box(0.5, 0.5), sc_at(0, 0), sc_box(0.5, 0.5), sc_at(0.7, 0.2));
   EXPECT_TRUE(d.overlap);
   EXPECT_EQ(d.distance, 0.0);

@@ -28,7 +28,15 @@ void convex_set_normals(Convex& c) {
   }
 }
 
-/// c with every vertex and normal carried by pose t.
+/// The pose of B in A's frame: ta⁻¹ · tb.
+Pose convex_relative(const Pose& ta, const Pose& tb) {
+  const Rot q{ta.q.c * tb.q.c + ta.q.s * tb.q.s, ta.q.c * tb.q.s - ta.q.s * tb.q.c};
+  return {unrotate(ta.q, tb.p - ta.p), q};
+}
+
+}  // namespace
+
+/// c with every vertex and normal carried by pose t (also used by shape_segment.cpp).
 Convex convex_placed(const Convex& c, const Pose& t) {
   Convex out = c;
   for (int i = 0; i < c.count; ++i) {
@@ -37,14 +45,6 @@ Convex convex_placed(const Convex& c, const Pose& t) {
   }
   return out;
 }
-
-/// The pose of B in A's frame: ta⁻¹ · tb.
-Pose convex_relative(const Pose& ta, const Pose& tb) {
-  const Rot q{ta.q.c * tb.q.c + ta.q.s * tb.q.s, ta.q.c * tb.q.s - ta.q.s * tb.q.c};
-  return {unrotate(ta.q, tb.p - ta.p), q};
-}
-
-}  // namespace
 
 Convex to_convex(const ShapeDef& shape, Vec2 center) {
   Convex c;

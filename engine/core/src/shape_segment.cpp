@@ -23,6 +23,8 @@ namespace fixstep::detail {
 Manifold collide_placed(const Convex& a, const Convex& b, double speculative);
 Manifold clip_reference(const Convex& ref, int edge, const Convex& inc, bool flip,
                         double speculative);
+// shape_collide.cpp
+Convex convex_placed(const Convex& c, const Pose& t);
 
 namespace {
 
@@ -70,21 +72,12 @@ Manifold ghost_without_b(Manifold m, const SegmentDef& seg, Vec2 u) {
   return m;
 }
 
-Convex ghost_placed(const Convex& c, const Pose& t) {
-  Convex out = c;
-  for (int i = 0; i < c.count; ++i) {
-    out.vertices[i] = transform(t, c.vertices[i]);
-    out.normals[i] = rotate(t.q, c.normals[i]);
-  }
-  return out;
-}
-
 }  // namespace
 
 Manifold collide_segment(const SegmentDef& seg, const Convex& b, const Pose& tb,
                          double speculative) {
   const Convex a = segment_convex(seg.a, seg.b);
-  const Convex bw = ghost_placed(b, tb);
+  const Convex bw = convex_placed(b, tb);
   Manifold m = collide_placed(a, bw, speculative);
   if (m.count > 0) {
     const Vec2 u = ghost_unit(seg.b - seg.a);
