@@ -208,8 +208,12 @@ Manifold clip_or_closest(const Convex& a, const Convex& b, int edge_a, int edge_
   if (all.count == 0 || (apart && clip_min_core(all, radius) > dist + clip_vertex_tolerance)) {
     return clip_single(c, ia, ib, a.radius, b.radius, fallback, speculative);
   }
-  return flip ? clip_reference(b, edge_b, a, true, speculative)
-              : clip_reference(a, edge_a, b, false, speculative);
+  Manifold m = all;
+  m.count = 0;
+  for (int i = 0; i < all.count; ++i) {
+    if (all.points[i].separation <= speculative) m.points[m.count++] = all.points[i];
+  }
+  return m;
 }
 
 /// The vertex of c nearest to fraction f along edge i (i when f < 1/2, else the next one).
