@@ -192,6 +192,45 @@ TEST(ShapeContinuous, AFastSpinningBoxDoesNotPassAOneCentimetreWall) {
   }
 }
 
+// --- events and sensors --------------------------------------------------------------------
+
+TEST(ShapeEvents, ABoxLandingOnABoxBeginsAContactAndASensorSeesItPass) {
+  World w(WorldDef::empty(Precision::f64, shape_world(0.5)));
+  BodyDef base;
+  base.type = BodyType::static_body;
+  base.shapes = {make_box(2.0, 0.5)};
+  const Entity floor = w.create_body(base);
+  BodyDef gate;  // a sensor box the falling box passes through on its way down
+  gate.type = BodyType::static_body;
+  gate.body.position = {0.0, 3.0};
+  gate.shapes = {make_box(1.0, 0.1)};
+  gate.shapes[0].sensor = true;
+  const Entity sensor = w.create_body(gate);
+  const Entity box = w.create_body(box_body(0.5, 0.5, {0.0, 5.0}));
+  int begun = 0, sensed_in = 0, sensed_out = 0;
+  double speed = 0.0;
+  for (int i = 0; i < 180; ++i) {
+    w.step();
+    for (const ContactEvent& e : w.contacts_begun()) {
+      EXPECT_TRUE((e.a == floor && e.b == box) || (e.a == box && e.b == floor));
+      ++begun, speed = e.normal_speed;
+    }
+    for (const SensorEvent& e : w.sensors_begun()) {
+      EXPECT_EQ(e.sensor, sensor);
+      EXPECT_EQ(e.visitor, box);
+      ++sensed_in;
+    }
+    sensed_out += static_cast<int>(w.sensors_ended().size());
+  }
+  EXPECT_EQ(begun, 1);
+  // It falls 4 m (from a centre at 5 m to its face on the floor at 0.5 m... 4 m) from rest:
+  // v = √(2 g h) within a tick's gain.
+  EXPECT_NEAR(speed, std::sqrt(2.0 * g * 4.0), g / 60.0 + 0.1);
+  EXPECT_EQ(sensed_in, 1);
+  EXPECT_EQ(sensed_out, 1);
+  EXPECT_TRUE(w.contacts_ended().empty());
+}
+
 // --- the same bits -------------------------------------------------------------------------
 
 WorldDef box_rain() {

@@ -27,7 +27,7 @@ Vec2 spin_cross(double w, Vec2 r) {
 
 void ShapeWorld::apply(const ShapeRow& r, double pn, double pt) {
   const Vec2 p = pn * r.n + pt * perp(r.n);
-  const double move = kappa_ * dt_;
+  const double move = dt_;
   if (r.a != none) {
     const ShapedBody& b = bodies_[r.a];
     ShapeState& s = state_[r.a];
@@ -53,7 +53,7 @@ Vec2 ShapeWorld::relative_velocity(const ShapeRow& r) const {
 }
 
 void ShapeWorld::prepare_rows(const ShapeTick& tick) {
-  dt_ = tick.dt, kappa_ = tick.kappa;
+  dt_ = tick.dt;
   for (ShapeRow& r : rows_) {
     const ShapedBody& bb = bodies_[r.b];
     double ma = 0.0, ia = 0.0;
@@ -69,10 +69,14 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
     // stops approaching, and one that meets fast enough bounces back (Newton's law).
     const double e = r.restitution;
     const double vn = dot(relative_velocity(r), r.n);
+    r.approach = std::max(-vn, 0.0);
     r.target = r.separation > 0.0 ? -r.separation / tick.dt : 0.0;
     if (e > 0.0 && vn < -restitution_threshold && r.separation + vn * tick.dt < 0.0) {
       r.target = std::max(r.target, -e * vn);
     }
+  }
+  // Warm starting, once every row's target is set from the free velocities.
+  for (ShapeRow& r : rows_) {
     const auto warm = std::lower_bound(warm_.begin(), warm_.end(), ShapeWarm{r.pair, r.id});
     if (warm != warm_.end() && warm->pair == r.pair && warm->id == r.id) {
       r.ln = warm->ln, r.lt = warm->lt;
@@ -164,17 +168,23 @@ void ShapeWorld::solve_velocities(const ShapeTick& tick) {
 }
 
 void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
-  // Each point's separation now, linearised about the poses its manifold was found at: the
-  // bodies' moves since (held in dx_, dy_, da_ from the poses kept at collect()) along n.
+  // Each point's separation now: its manifold's (at the start poses) changed by how far each
+  // body's copy of the point has moved since along the normal (the lever arm turned by the
+  // body's turn since the start).
+  auto moved = [&](std::uint32_t body, Vec2 r) {
+    const ShapeState& s = state_[body];
+    const Vec2 now = Vec2{s.x - s.x0, s.y - s.y0} + rotate(s.turn, r);
+    return now - r;
+  };
   auto separation = [&](const ShapeRow& r) {
-    Vec2 d = Vec2{state_[r.b].x - at_x_[r.b], state_[r.b].y - at_y_[r.b]} +
-             spin_cross(state_[r.b].a - at_a_[r.b], r.rb);
-    if (r.a != none) {
-      d = d - (Vec2{state_[r.a].x - at_x_[r.a], state_[r.a].y - at_y_[r.a]} +
-               spin_cross(state_[r.a].a - at_a_[r.a], r.ra));
-    }
+    Vec2 d = moved(r.b, r.rb);
+    if (r.a != none) d = d - moved(r.a, r.ra);
     return r.separation + dot(d, r.n);
   };
+  auto update_turns = [&] {
+    for (ShapeState& s : state_) s.turn = rot_of(s.a - s.a0);
+  };
+  update_turns();
   for (int it = 0; it < tick.position_iterations; ++it) {
     for (const ShapeRow& r : rows_) {
       const double c = std::clamp(push_fraction * (separation(r) + slop), -max_push, 0.0);
@@ -189,6 +199,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
       ShapeState& s = state_[r.b];
       s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
     }
+    update_turns();
   }
   for (const ShapeRow& r : rows_) tally.deepest = std::max(tally.deepest, -separation(r));
   for (ShapeState& s : state_) s.q = rot_of(s.a);

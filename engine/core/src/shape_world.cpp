@@ -16,7 +16,7 @@ bool boxes_overlap(const Aabb& a, const Aabb& b) {
          b.lower.y <= a.upper.y;
 }
 
-Aabb segment_box(const SegmentDef& s) {
+Aabb segment_bounds(const SegmentDef& s) {
   return {{std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)},
           {std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)}};
 }
@@ -57,45 +57,71 @@ Pose ShapeWorld::pose(std::uint32_t body) const {
   return {{s.x, s.y}, s.q};
 }
 
+Pose ShapeWorld::start_pose(std::uint32_t body) const {
+  const ShapeState& s = state_[body];
+  return {{s.x0, s.y0}, s.q0};
+}
+
+// How far a body's surface may move in the tick on its free motion, plus 4 slops (Box2D v3's
+// speculative distance): its start-of-tick boxes grow by this, and a pair's manifold keeps the
+// points closer than the sum of its bodies' margins.
+double ShapeWorld::margin(std::uint32_t body, double dt) const {
+  const ShapedBody& b = bodies_[body];
+  const ShapeState& s = state_[body];
+  if (b.type == BodyType::static_body) return 0.0;
+  return 2.0 * slop + dt * (std::hypot(s.vx, s.vy) + std::abs(s.w) * b.extent);
+}
+
 // --- continuous collision ----------------------------------------------------------------
 
 void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
     const ShapedBody& b = bodies_[i];
     if (b.type != BodyType::dynamic || b.disc) continue;
-    const ShapeState& s = state_[i];
+    ShapeState& s = state_[i];
     const double motion = std::hypot(s.x - s.x0, s.y - s.y0) + std::abs(s.a - s.a0) * b.extent;
-    if (!(motion > 2.0 * slop)) continue;
+    if (!(motion > 0.5 * b.thinnest)) continue;  // Box2D v3's test of a fast body
+    s.q = rot_of(s.a);
     const double t = first_static_touch(i, tick);
     if (t >= 1.0) continue;
     const Sweep sweep{{s.x0, s.y0}, {s.x, s.y}, s.a0, s.a};
     const Pose at = pose_at(sweep, t);
-    ShapeState& m = state_[i];
-    m.x = at.p.x, m.y = at.p.y, m.a = s.a0 + t * (s.a - s.a0), m.q = at.q;
+    s.x = at.p.x, s.y = at.p.y, s.a = s.a0 + t * (s.a - s.a0), s.q = at.q;
     ++tally.ccd_hits;
   }
+}
+
+bool ShapeWorld::has_row(std::uint32_t body, std::uint64_t pair) const {
+  for (const ShapeRow& r : rows_) {
+    if (r.pair == pair && (r.a == body || r.b == body)) return true;
+  }
+  return false;
 }
 
 double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick) {
   const ShapedBody& b = bodies_[body];
   const ShapeState& s = state_[body];
   const Sweep sweep{{s.x0, s.y0}, {s.x, s.y}, s.a0, s.a};
-  const Pose start{{s.x0, s.y0}, rot_of(s.a0)};
+  const Pose start = start_pose(body);
   const double target = slop;
   double first = 1.0;
   for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
     const ShapeEntry& e = shapes_[k];
     if (e.sensor) continue;
     const Aabb swept = merge(convex_aabb(e.convex, start), convex_aabb(e.convex, pose(body)));
-    for (const PlaneDef& p : tick.planes) {
-      const double len = std::hypot(p.normal.x, p.normal.y);
-      const Vec2 n = p.normal / len;
-      const double off = p.offset / len;
+    for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
+      if (has_row(body, std::uint64_t{0xF0000000u | p} << 32 | e.key)) continue;
+      const PlaneDef& pl = tick.planes[p];
+      const double len = std::hypot(pl.normal.x, pl.normal.y);
+      const Vec2 n = pl.normal / len;
+      const double off = pl.offset / len;
       if (plane_distance(n, off, e.convex, start) < 2.0 * target) continue;  // resting on it
       first = std::min(first, plane_toi(n, off, e.convex, sweep, target));
     }
-    for (const SegmentDef& seg : tick.segments) {
-      if (!boxes_overlap(swept, segment_box(seg))) continue;
+    for (std::uint32_t q = 0; q < tick.segments.size(); ++q) {
+      const SegmentDef& seg = tick.segments[q];
+      if (!boxes_overlap(swept, segment_bounds(seg))) continue;
+      if (has_row(body, std::uint64_t{0xE0000000u | q} << 32 | e.key)) continue;
       const Convex c = segment_convex(seg.a, seg.b);
       const Sweep still{{0, 0}, {0, 0}, 0, 0};
       if (distance(c, Pose{}, e.convex, start).distance < 2.0 * target) continue;
@@ -110,6 +136,8 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
         const ShapeEntry& f = shapes_[q];
         if (f.sensor || !should_collide(e.filter, f.filter)) continue;
         if (!boxes_overlap(swept, convex_aabb(f.convex, at))) continue;
+        const std::uint32_t lo = std::min(q, k), hi = std::max(q, k);
+        if (has_row(body, std::uint64_t{shapes_[lo].key} << 32 | shapes_[hi].key)) continue;
         if (distance(f.convex, at, e.convex, start).distance < 2.0 * target) continue;
         const Toi toi =
             time_of_impact(f.convex, still, e.convex, sweep, target, 0.25 * target, first);
@@ -122,12 +150,15 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
 
 // --- broadphase and manifolds --------------------------------------------------------------
 
-void ShapeWorld::broadphase(double margin) {
+void ShapeWorld::broadphase(double dt) {
   const std::size_t n = shapes_.size();
+  margin_.resize(bodies_.size());
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) margin_[i] = margin(i, dt);
   boxes_.resize(n);
   order_.resize(n);
   for (std::uint32_t k = 0; k < n; ++k) {
-    boxes_[k] = convex_aabb(shapes_[k].convex, pose(shapes_[k].owner), margin);
+    const std::uint32_t owner = shapes_[k].owner;
+    boxes_[k] = convex_aabb(shapes_[k].convex, start_pose(owner), margin_[owner]);
     order_[k] = k;
   }
   // Sort and sweep on the lower x bound; ties by index, so the order is the same everywhere.
@@ -135,7 +166,7 @@ void ShapeWorld::broadphase(double margin) {
     const double a = boxes_[l].lower.x, b = boxes_[r].lower.x;
     return a != b ? a < b : l < r;
   });
-  candidates_.clear();
+  candidates_.clear(), sensor_candidates_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t a = order_[i];
     const ShapeEntry& sa = shapes_[a];
@@ -148,7 +179,12 @@ void ShapeWorld::broadphase(double margin) {
       const ShapedBody& bb = bodies_[sb.owner];
       if (ba.type != BodyType::dynamic && bb.type != BodyType::dynamic) continue;
       if (ba.disc && bb.disc) continue;  // the disc phase's
-      if (sa.sensor || sb.sensor || !should_collide(sa.filter, sb.filter)) continue;
+      if (!should_collide(sa.filter, sb.filter)) continue;
+      if (sa.sensor || sb.sensor) {  // a sensor sees what is not one
+        if (sa.sensor != sb.sensor)
+          sensor_candidates_.push_back(sa.sensor ? Candidate{a, b} : Candidate{b, a});
+        continue;
+      }
       candidates_.push_back({std::min(a, b), std::max(a, b)});
     }
   }
@@ -169,17 +205,15 @@ void ShapeWorld::add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t 
   }
 }
 
-void ShapeWorld::collect(const ShapeTick& tick, double margin) {
+void ShapeWorld::collect(const ShapeTick& tick) {
   rows_.clear();
-  at_x_.resize(state_.size()), at_y_.resize(state_.size()), at_a_.resize(state_.size());
-  for (std::size_t i = 0; i < state_.size(); ++i) {
-    at_x_[i] = state_[i].x, at_y_[i] = state_[i].y, at_a_[i] = state_[i].a;
-  }
   auto mix_friction = [](double a, double b) { return std::sqrt(a * b); };
   for (const Candidate& c : candidates_) {
     const ShapeEntry& sa = shapes_[c.a];
     const ShapeEntry& sb = shapes_[c.b];
-    const Manifold m = collide(sa.convex, pose(sa.owner), sb.convex, pose(sb.owner), margin);
+    const double margin = margin_[sa.owner] + margin_[sb.owner];
+    const Manifold m =
+        collide(sa.convex, start_pose(sa.owner), sb.convex, start_pose(sb.owner), margin);
     if (m.count == 0) continue;
     const std::uint64_t pair = std::uint64_t{sa.key} << 32 | sb.key;
     add_manifold(m, sa.owner, sb.owner, mix_friction(sa.friction, sb.friction),
@@ -189,7 +223,8 @@ void ShapeWorld::collect(const ShapeTick& tick, double margin) {
     const ShapeEntry& e = shapes_[k];
     const ShapedBody& b = bodies_[e.owner];
     if (b.type != BodyType::dynamic || b.disc || e.sensor) continue;
-    const Pose at = pose(e.owner);
+    const Pose at = start_pose(e.owner);
+    const double margin = margin_[e.owner];
     for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
       const PlaneDef& pl = tick.planes[p];
       const double len = std::hypot(pl.normal.x, pl.normal.y);
@@ -201,7 +236,7 @@ void ShapeWorld::collect(const ShapeTick& tick, double margin) {
     }
     for (std::uint32_t s = 0; s < tick.segments.size(); ++s) {
       const SegmentDef& seg = tick.segments[s];
-      if (!boxes_overlap(boxes_[k], segment_box(seg))) continue;
+      if (!boxes_overlap(boxes_[k], segment_bounds(seg))) continue;
       const Manifold m = collide_segment(seg, e.convex, at, margin);
       if (m.count == 0) continue;
       add_manifold(m, none, e.owner, mix_friction(seg.friction, e.friction),
@@ -211,20 +246,34 @@ void ShapeWorld::collect(const ShapeTick& tick, double margin) {
   }
 }
 
+void ShapeWorld::detect_sensors() {
+  sensed_.clear();
+  std::sort(
+      sensor_candidates_.begin(), sensor_candidates_.end(),
+      [](const Candidate& l, const Candidate& r) { return l.a != r.a ? l.a < r.a : l.b < r.b; });
+  for (const Candidate& c : sensor_candidates_) {
+    const ShapeEntry& s = shapes_[c.a];
+    const ShapeEntry& v = shapes_[c.b];
+    const Distance d = distance(s.convex, pose(s.owner), v.convex, pose(v.owner));
+    if (!(d.overlap || d.distance < 0.0)) continue;
+    const Sensed e{s.owner, v.owner};
+    if (std::find(sensed_.begin(), sensed_.end(), e) == sensed_.end()) sensed_.push_back(e);
+  }
+}
+
 ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
-  for (ShapeState& s : state_) s.q = rot_of(s.a);
-  continuous(tick, tally);
-  // Speculative margin: a tick's relative motion at a few metres a second, at least 4 slops.
-  const double margin = 4.0 * slop;
-  broadphase(margin);
-  collect(tick, margin);
+  for (ShapeState& s : state_) s.q0 = rot_of(s.a0);
+  broadphase(tick.dt);
+  collect(tick);
   tally.pairs = candidates_.size();
   tally.points = rows_.size();
   prepare_rows(tick);
   solve_velocities(tick);
+  continuous(tick, tally);
   solve_positions(tick, tally);
   keep_impulses();
+  if (!sensor_candidates_.empty() || !sensed_.empty()) detect_sensors();
   throw_if_stop_requested();
   return tally;
 }

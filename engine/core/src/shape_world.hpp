@@ -3,22 +3,27 @@
 // solver. Internal; WorldKernel owns one when a body has shapes (world_shapes.cpp).
 //
 // A tick, after the integrator has moved every body freely (world_tick.cpp):
-//  1. each shaped body's angle moves on at its angular velocity, θ1 = θ0 + dt ω (contact
-//     impulses then turn it as they move it, by κ dt Δω);
-//  2. continuous collision: a body whose motion over the tick is longer than a fraction of its
-//     size is moved back to the first touch of anything that does not move (planes, segments,
-//     static bodies), found by conservative advancement (shape_distance.cpp): bounded, not
-//     exact — the rest of that tick's motion is lost, no shape passes through another;
-//  3. the broadphase (sort and sweep on the x extent of boxes grown by the speculative margin,
-//     in a fixed order) and the manifolds of each candidate pair, of each shape with the
-//     planes and segments, and of each shape with the discs (bodies with a Collider);
-//  4. sequential impulses (Catto, GDC 2005: accumulated impulses clamped at zero, Coulomb
-//     friction bounded by μ λ_n, warm starting from the last tick's impulses matched by feature
-//     ids), velocity targets from restitution (Newton's law above a threshold speed) and from
-//     speculative points (a gap s > 0 may close at s/dt); each impulse also moves its bodies
-//     this tick by κ dt Δv (the integrator's κ, world_discs.cpp), as the disc solver does;
+//  1. each shaped body's angle moves on at its angular velocity, θ1 = θ0 + dt ω (a torque
+//     input as a constant angular acceleration, world_shapes.cpp);
+//  2. the broadphase (sort and sweep on the x extent of each shape's box at the tick's start,
+//     grown by the speculative margin: 4 slops plus the distance its body's free motion can
+//     cover in the tick) and the manifolds at the tick's start poses of each candidate pair, of
+//     each shape with the planes and segments, and with the discs (bodies with a Collider):
+//     speculative contacts (Catto 2013), points that may not yet touch;
+//  3. sequential impulses (Catto, GDC 2005: accumulated impulses clamped at zero, Coulomb
+//     friction bounded by μ λ_n, a manifold's two normal impulses solved together, warm
+//     starting from the last tick's impulses matched by feature ids) on the free end
+//     velocities, with velocity targets: a gap s > 0 may close at s/dt, a touching point stops
+//     approaching, one that meets faster than the restitution threshold bounces back (Newton's
+//     law); each impulse also moves its bodies by dt Δv (as semi-implicit Euler's x1 = x0 +
+//     dt v1 would);
+//  4. continuous collision for a body whose motion over the tick is more than half its
+//     thinnest extent: moved back to its first touch of anything that does not move (planes,
+//     segments, static bodies) it has no speculative point with, found by conservative
+//     advancement (shape_distance.cpp), keeping its velocity: bounded, not exact — the rest of
+//     that tick's motion is lost, and no shape passes through a static one;
 //  5. the overlap left beyond the slop pushed out on positions only (non-linear Gauss-Seidel,
-//     Catto 2009 / Box2D v2.4's position solver), which adds no kinetic energy.
+//     Box2D v2.4's position solver), which adds no kinetic energy.
 // Everything runs on one thread in one order: the same bits on any thread count and platform.
 #pragma once
 
@@ -47,6 +52,7 @@ struct ShapedBody {
   double inv_mass = 0.0, inv_inertia = 0.0;  ///< 1/kg, 1/(kg·m²); 0 for static and kinematic
   std::uint32_t first = 0, count = 0;        ///< its shapes in ShapeWorld::shapes_
   double extent = 0.0;                       ///< m, the farthest point from its centre
+  double thinnest = 0.0;  ///< m, the least distance from its centre to a face of a shape
 };
 
 /// One shape in the kernel's form.
@@ -65,7 +71,7 @@ struct ShapeState {
   double x0 = 0, y0 = 0, a0 = 0;  ///< start of the tick (m, m, rad)
   double x = 0, y = 0, a = 0;     ///< now
   double vx = 0, vy = 0, w = 0;   ///< m/s, rad/s
-  Rot q{};                        ///< of a
+  Rot q{}, q0{}, turn{};          ///< of a, a0, a − a0
 };
 
 /// One manifold point's solver row.
@@ -80,6 +86,7 @@ struct ShapeRow {
   double k12 = 0.0;
   double friction = 0.0, restitution = 0.0;  ///< μ, e of the pair
   double target = 0.0;                       ///< the normal velocity it asks for, m/s
+  double approach = 0.0;                     ///< the closing speed before the solve, m/s (>= 0)
   double ln = 0.0, lt = 0.0;                 ///< accumulated impulses (N·s)
   std::uint64_t pair = 0;                    ///< the two shapes' keys, for warm starting
   std::uint32_t id = 0;                      ///< the manifold point's feature id
@@ -128,6 +135,13 @@ class ShapeWorld {
   ShapeTally solve(const ShapeTick& tick);
   /// The last tick's manifold points with their impulses (N·s).
   [[nodiscard]] std::span<const ShapeRow> rows() const { return rows_; }
+  /// A sensor shape's body and a body it overlaps at the tick's end (bodies_ indices), in
+  /// the broadphase's order; each pair once.
+  struct Sensed {
+    std::uint32_t sensor = 0, visitor = 0;
+    friend bool operator==(const Sensed&, const Sensed&) = default;
+  };
+  [[nodiscard]] std::span<const Sensed> sensed() const { return sensed_; }
 
  private:
   struct Candidate {
@@ -136,16 +150,21 @@ class ShapeWorld {
   std::vector<Aabb> boxes_;
   std::vector<std::uint32_t> order_;
   std::vector<Candidate> candidates_;
+  std::vector<Candidate> sensor_candidates_;  ///< a: the sensor shape
+  std::vector<Sensed> sensed_;
   std::vector<ShapeRow> rows_;
   std::vector<ShapeWarm> next_warm_;
-  std::vector<double> at_x_, at_y_, at_a_;  ///< each body's pose when the manifolds were found
-  double dt_ = 0.0, kappa_ = 1.0;
+  std::vector<double> margin_;  ///< each body's speculative margin this tick, m
+  double dt_ = 0.0;
 
   [[nodiscard]] Pose pose(std::uint32_t body) const;
+  [[nodiscard]] Pose start_pose(std::uint32_t body) const;
+  [[nodiscard]] double margin(std::uint32_t body, double dt) const;
   void continuous(const ShapeTick& tick, ShapeTally& tally);
   double first_static_touch(std::uint32_t body, const ShapeTick& tick);
-  void broadphase(double margin);
-  void collect(const ShapeTick& tick, double margin);
+  [[nodiscard]] bool has_row(std::uint32_t body, std::uint64_t pair) const;
+  void broadphase(double dt);
+  void collect(const ShapeTick& tick);
   void add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
                     double restitution, std::uint64_t pair);
   void prepare_rows(const ShapeTick& tick);
@@ -158,6 +177,7 @@ class ShapeWorld {
   void prepare_blocks();
   void solve_positions(const ShapeTick& tick, ShapeTally& tally);
   void keep_impulses();
+  void detect_sensors();
 };
 
 }  // namespace fixstep::detail

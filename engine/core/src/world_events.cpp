@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "disc_contacts.hpp"
+#include "shape_world.hpp"
 #include "sorted_diff.hpp"
 #include "world_kernel.hpp"
 
@@ -37,12 +38,41 @@ void sort_by_slots(std::vector<ContactEvent>& list) {
 }  // namespace
 
 template <class Real>
-void detail::WorldKernel<Real>::update_contact_events() {
+void detail::WorldKernel<Real>::update_contact_events(bool discs) {
   touching_before_.swap(touching_);
   begun_.clear();
   ended_.clear();
   hits_.clear();
   impacts_.clear();
+  touching_.clear();
+  if (discs) add_disc_touching();
+  if (shape_world_) add_shape_touching();
+  diff_contact_events();
+}
+
+// Bodies with shapes (world_shapes.cpp): the pairs of bodies whose manifold points carry an
+// impulse or overlap at the tick's end, each pair once, and as hits with the closing speed
+// their points had before the solve.
+template <class Real>
+void detail::WorldKernel<Real>::add_shape_touching() {
+  const ShapeWorld& w = *shape_world_;
+  const std::span<const Entity> ids = bodies_.dense;
+  const std::size_t first = touching_.size();
+  for (const ShapeRow& r : w.rows()) {
+    if (r.a == ShapeWorld::none || !(r.ln > 0.0 || r.separation <= 0.0)) continue;
+    Entity a = ids[w.bodies_[r.a].body], b = ids[w.bodies_[r.b].body];
+    if (b.slot() < a.slot()) std::swap(a, b);
+    touching_.push_back({a, b, 0.0});
+    if (r.approach > 0.0) hits_.push_back({a, b, r.approach});
+  }
+  std::sort(touching_.begin() + static_cast<std::ptrdiff_t>(first), touching_.end(), slot_less);
+  touching_.erase(
+      std::unique(touching_.begin() + static_cast<std::ptrdiff_t>(first), touching_.end(), same),
+      touching_.end());
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::add_disc_touching() {
   const detail::DiscContacts<Real>& dc = *discs_;
   const auto discs = dc.discs();
   const std::span<const Entity> ids = bodies_.dense;
@@ -53,11 +83,12 @@ void detail::WorldKernel<Real>::update_contact_events() {
   // The disc pairs come first among the touching contacts; by halves on the discs' second
   // thread within the tick's run of it (world_step.cpp).
   const auto touching = dc.touching();
-  touching_.resize(dc.disc_pair_contacts());
-  discs_->halves(touching_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+  const std::size_t first = touching_.size();
+  touching_.resize(first + dc.disc_pair_contacts());
+  discs_->halves(touching_.size() - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
     for (std::size_t i = begin; i < end; ++i) {
       const detail::RestContact& c = touching[i];
-      touching_[i] = pair_of(discs[c.a].body, discs[c.b].body, 0.0);
+      touching_[first + i] = pair_of(discs[c.a].body, discs[c.b].body, 0.0);
     }
   });
   if (sleepers_ != 0) {  // two sleepers are not solved, and stay in touch (ContactSettings::sleep)
@@ -68,11 +99,16 @@ void detail::WorldKernel<Real>::update_contact_events() {
       }
     }
   }
-  sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
   for (const DiscImpact& i : dc.impacts()) {
     hits_.push_back(pair_of(i.body_a, i.body_b, i.normal_speed));
     impacts_.push_back(Impact{ids[i.body_a], ids[i.body_b], i.time, i.normal_speed});
   }
+}
+
+// Both lists sorted by slots: one merge finds what began and what ended.
+template <class Real>
+void detail::WorldKernel<Real>::diff_contact_events() {
+  sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
   sort_by_slots(hits_);
   auto speed_of = [&](const ContactEvent& p) {
     double speed = 0.0;
@@ -80,7 +116,6 @@ void detail::WorldKernel<Real>::update_contact_events() {
     for (; at != hits_.end() && same(*at, p); ++at) speed = std::max(speed, at->normal_speed);
     return speed;
   };
-  // Both lists sorted by slots: one merge finds what began and what ended.
   detail::sorted_diff<ContactEvent>(
       touching_, touching_before_, slot_less, same,
       [&](const ContactEvent& p) {

@@ -749,13 +749,16 @@ class WorldKernel {
   ScratchVector<ContactEvent> touching_before_, hits_;
   std::vector<ContactEvent> begun_, ended_;
   std::vector<Impact> impacts_;  ///< the last tick's, by handle
-  void update_contact_events();
+  void update_contact_events(bool discs);  // discs: the disc phases ran this tick
+  void add_disc_touching();
+  void add_shape_touching();
+  void diff_contact_events();
   // Sensor events (world_sensors.cpp), kept like the contact events: part of a snapshot
   // (sensed_before_, swapped with sensed_ as the tick begins, only by its size).
   std::vector<SensorEvent> sensed_, sensor_crossed_;
   ScratchVector<SensorEvent> sensed_before_;
   std::vector<SensorEvent> sensor_begun_, sensor_ended_;
-  void update_sensor_events();
+  void update_sensor_events(bool discs);
   /// Throws std::invalid_argument naming `who` when c is a sensor and the world has no disc
   /// contacts (WorldSettings::contacts), where no sensor would ever see anything.
   void check_sensor(const Collider& c, const std::string& who) const;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "disc_contacts.hpp"
+#include "shape_world.hpp"
 #include "sorted_diff.hpp"
 #include "world_kernel.hpp"
 
@@ -38,13 +39,21 @@ void detail::WorldKernel<Real>::check_sensor(const Collider& c, const std::strin
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::update_sensor_events() {
+void detail::WorldKernel<Real>::update_sensor_events(bool discs) {
   sensed_before_.swap(sensed_);
   sensed_.clear(), sensor_crossed_.clear(), sensor_begun_.clear(), sensor_ended_.clear();
   const std::span<const Entity> ids = bodies_.dense;
-  for (const detail::SensorOverlap& o : discs_->sensed()) {
-    const SensorEvent e{ids[o.sensor], ids[o.visitor]};
-    (o.crossed ? sensor_crossed_ : sensed_).push_back(e);
+  if (discs) {
+    for (const detail::SensorOverlap& o : discs_->sensed()) {
+      const SensorEvent e{ids[o.sensor], ids[o.visitor]};
+      (o.crossed ? sensor_crossed_ : sensed_).push_back(e);
+    }
+  }
+  if (shape_world_) {  // sensor shapes, at the tick's end (world_shapes.cpp)
+    const ShapeWorld& w = *shape_world_;
+    for (const ShapeWorld::Sensed& o : w.sensed()) {
+      sensed_.push_back({ids[w.bodies_[o.sensor].body], ids[w.bodies_[o.visitor].body]});
+    }
   }
   if (sensed_.empty() && sensed_before_.empty() && sensor_crossed_.empty()) return;
   sort_sensor_events(sensed_);

@@ -20,6 +20,21 @@ template class ClonePtr<ShapeWorld>;
 
 namespace {
 
+/// The least distance from a shape's middle (its vertices' mean) to its surface, m: its
+/// radius for a circle or capsule, the nearest face plus the rounding for a polygon (Box2D's
+/// minExtent, b2ComputeShapeExtent).
+double thinnest(const detail::Convex& c) {
+  if (c.count <= 2) return c.radius;
+  Vec2 mid{};
+  for (int i = 0; i < c.count; ++i) mid = mid + c.vertices[i];
+  mid = mid / c.count;
+  double least = INFINITY;
+  for (int i = 0; i < c.count; ++i) {
+    least = std::min(least, dot(c.normals[i], c.vertices[i] - mid));
+  }
+  return least + c.radius;
+}
+
 /// θ kept in [-π, π] (std::remainder is exact, so the wrap is the same bits everywhere).
 double wrap_angle(double a) {
   return std::abs(a) <= std::numbers::pi ? a : std::remainder(a, 2.0 * std::numbers::pi);
@@ -154,6 +169,7 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
       const ShapeDef& s = set.defs[k];
       const Convex c = to_convex(s, set.center);
       b.extent = std::max(b.extent, extent(c));
+      b.thinnest = k == 0 ? thinnest(c) : std::min(b.thinnest, thinnest(c));
       add_shape(c, owner, s.friction, s.restitution, s.filter, s.sensor,
                 static_cast<std::uint32_t>(e.slot() << 6 | k));
     }
@@ -168,7 +184,8 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
     ShapedBody b;
     b.body = j, b.type = types_[j], b.disc = true, b.set = ShapedBody::none;
     if (b.type == BodyType::dynamic) b.inv_mass = 1.0 / mass_[j];
-    b.first = static_cast<std::uint32_t>(w.shapes_.size()), b.count = 1, b.extent = c.radius;
+    b.first = static_cast<std::uint32_t>(w.shapes_.size()), b.count = 1;
+    b.extent = b.thinnest = c.radius;
     Convex circle;
     circle.count = 1, circle.radius = c.radius;
     add_shape(circle, static_cast<std::uint32_t>(w.bodies_.size()), c.friction, c.restitution,

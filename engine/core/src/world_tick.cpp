@@ -50,9 +50,10 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   detail::SecondThreadRun run(disc_thread());  // nothing if `early` holds it open
   const std::size_t plane_capped = plan.planes ? resolve_contacts() : 0;  // world_contacts.cpp
   if (plan.discs) {
-    resolve_discs();          // broadphase, impacts, resting solver: world_discs.cpp
-    update_contact_events();  // world_events.cpp
-    update_sensor_events();   // world_sensors.cpp
+    resolve_discs();                     // broadphase, impacts, resting solver: world_discs.cpp
+    if (shape_world_) resolve_shapes();  // world_shapes.cpp
+    update_contact_events(true);         // world_events.cpp
+    update_sensor_events(true);          // world_sensors.cpp
     // The events: what the contacts' phases (broadphase, impacts, resting) leave of the lap.
     const StepProfile& p = profile_;
     profile_.events = std::max(clock.lap() - p.broadphase - p.impacts - p.resting, 0.0);
@@ -60,10 +61,15 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
     run.close(), early.close();  // the worker sleeps through the rest of the tick
   } else if (plan.quiet) {
     quiet_discs();  // world_sleep.cpp
+    if (shape_world_) resolve_shapes();
+  } else if (shape_world_) {
+    resolve_shapes();
+    if (profile_.step != 0.0) profile_ = StepProfile{};
+    update_contact_events(false);
+    update_sensor_events(false);
   } else {
     end_disc_events();  // world_events.cpp
   }
-  if (shape_world_) resolve_shapes();           // world_shapes.cpp
   if (rolling_) integrate_angles();             // world_rolling.cpp
   if (segments_.moves()) place_segments();      // where the tick left the carriers
   if (sleep_) finish_sleep(input, plan.discs);  // world_sleep.cpp
