@@ -1517,7 +1517,7 @@ echo "| N6 | a slot that is no player's or spectator's; a handshake request clai
 echo "| N7 | the header's reserved byte, a request's padding or flags, an unknown disconnect reason, a repeat past its run, a change with no field | bad_field |"
 echo "| N8 | bytes after the message's end | trailing_bytes |"
 echo "| N9 | an input run of 0 or over 256 ticks, starting after the receiver's next needed tick, or an ack of ticks never sent | bad_tick_range |"
-echo "| N10 | a NaN or infinite push, pointer or body value; a button bit outside all_buttons; over 16 body inputs; a body input kind over 2 | bad_input |"
+echo "| N10 | a NaN or infinite push, pointer or body value; a button bit outside all_buttons; over 16 body inputs; a body input kind over 6 (target_angle, the last) | bad_input |"
 echo "| N11 | a sequence number already received (a replay) or over 64 behind; inputs more than 512 ticks ahead | out_of_window |"
 echo "| N12 | inputs or a hash before the handshake; another player's inputs from a client; a second handshake | unexpected |"
 echo "| N13 | a handshake from a joiner with another world, or to a full match | refused: a 13-byte disconnect (another_world / refused), then the connection closed |"
