@@ -1087,7 +1087,7 @@ push = 3.0'
 script_case "script: misspelt key (a warning; the run goes on)" '[[at]]
 tick = 0
 presss = ["left"]'
-# Per-body input (force, impulse, velocity) against a world of a dynamic body0, a kinematic
+# Per-body input (force, impulse, velocity, the angular keys) against a world of a dynamic body0, a kinematic
 # paddle and a static post.
 printf '%s\n%s\n%s\n' "$ok_world" "$body" '[[body]]
 name = "paddle"
@@ -1110,6 +1110,12 @@ body_case "script: force value not [x, y]" 'force = { body = "body0", value = 3.
 body_case "script: impulse without body" 'impulse = { value = [1.0, 0.0] }'
 body_case "script: velocity without value (one of an array)" 'velocity = [{ body = "paddle", value = [1.0, 0.0] }, { body = "paddle" }]'
 body_case "script: force not a table" 'force = [1.0, 0.0]'
+# The angular keys (torque, angular_impulse, angular_velocity, target_angle) turn bodies with
+# shapes; these bodies have none, so the type is checked first, then the shapes.
+body_case "script: torque on a static body" 'torque = { body = "post", value = 1.0 }'
+body_case "script: target_angle for a dynamic body" 'target_angle = { body = "body0", value = 0.5 }'
+body_case "script: angular_impulse on a body without shapes" 'angular_impulse = { body = "body0", value = 0.5 }'
+body_case "script: angular_velocity not a table" 'angular_velocity = 3.0'
 body_case "script: misspelt key in an impulse (a warning; the run goes on)" 'impulse = { body = "body0", value = [1.0, 0.0], vale = [0.0, 0.0] }'
 case_ "script: missing file" "" run good.toml --steps 10 --input missing_script.toml
 case_ "script: a scene given instead" "" run good.toml --steps 10 --input good.toml
