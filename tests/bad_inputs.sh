@@ -1087,7 +1087,7 @@ push = 3.0'
 script_case "script: misspelt key (a warning; the run goes on)" '[[at]]
 tick = 0
 presss = ["left"]'
-# Per-body input (force, impulse, velocity) against a world of a dynamic body0, a kinematic
+# Per-body input (force, impulse, velocity, the angular keys) against a world of a dynamic body0, a kinematic
 # paddle and a static post.
 printf '%s\n%s\n%s\n' "$ok_world" "$body" '[[body]]
 name = "paddle"
@@ -1110,6 +1110,12 @@ body_case "script: force value not [x, y]" 'force = { body = "body0", value = 3.
 body_case "script: impulse without body" 'impulse = { value = [1.0, 0.0] }'
 body_case "script: velocity without value (one of an array)" 'velocity = [{ body = "paddle", value = [1.0, 0.0] }, { body = "paddle" }]'
 body_case "script: force not a table" 'force = [1.0, 0.0]'
+# The angular keys (torque, angular_impulse, angular_velocity, target_angle) turn bodies with
+# shapes; these bodies have none, so the type is checked first, then the shapes.
+body_case "script: torque on a static body" 'torque = { body = "post", value = 1.0 }'
+body_case "script: target_angle for a dynamic body" 'target_angle = { body = "body0", value = 0.5 }'
+body_case "script: angular_impulse on a body without shapes" 'angular_impulse = { body = "body0", value = 0.5 }'
+body_case "script: angular_velocity not a table" 'angular_velocity = 3.0'
 body_case "script: misspelt key in an impulse (a warning; the run goes on)" 'impulse = { body = "body0", value = [1.0, 0.0], vale = [0.0, 0.0] }'
 case_ "script: missing file" "" run good.toml --steps 10 --input missing_script.toml
 case_ "script: a scene given instead" "" run good.toml --steps 10 --input good.toml
@@ -1517,7 +1523,7 @@ echo "| N6 | a slot that is no player's or spectator's; a handshake request clai
 echo "| N7 | the header's reserved byte, a request's padding or flags, an unknown disconnect reason, a repeat past its run, a change with no field | bad_field |"
 echo "| N8 | bytes after the message's end | trailing_bytes |"
 echo "| N9 | an input run of 0 or over 256 ticks, starting after the receiver's next needed tick, or an ack of ticks never sent | bad_tick_range |"
-echo "| N10 | a NaN or infinite push, pointer or body value; a button bit outside all_buttons; over 16 body inputs; a body input kind over 2 | bad_input |"
+echo "| N10 | a NaN or infinite push, pointer or body value; a button bit outside all_buttons; over 16 body inputs; a body input kind over 6 (target_angle, the last) | bad_input |"
 echo "| N11 | a sequence number already received (a replay) or over 64 behind; inputs more than 512 ticks ahead | out_of_window |"
 echo "| N12 | inputs or a hash before the handshake; another player's inputs from a client; a second handshake | unexpected |"
 echo "| N13 | a handshake from a joiner with another world, or to a full match | refused: a 13-byte disconnect (another_world / refused), then the connection closed |"

@@ -448,9 +448,8 @@ TEST(InputScript, ErrorsNameFileLineAndKey) {
   // holds.
   EXPECT_EQ(script_error("[world]\ndt = 0.01\n[[body]]\nmass = 1\nposition = [0, 0]\n"),
             "s.toml:1:1: this is a scene file, not an input script: a script holds [[at]] tables "
-            "(tick, press, release, pointer, push, drag, force, impulse, velocity); see "
-            "docs/CLI.md, Input "
-            "scripts");
+            "(tick, press, release, pointer, push, drag, force, impulse, velocity, torque, "
+            "angular_impulse, angular_velocity, target_angle); see docs/CLI.md, Input scripts");
   EXPECT_EQ(script_error("[[at]]\ntick = 0\npush = 3.0\n"),
             "s.toml:3:8: at[0].push: expected [x, y], found a float (3.0)");
   const InputScript warned =

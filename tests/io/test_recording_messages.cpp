@@ -121,6 +121,17 @@ TEST(RecordingMessages, ABodyTheSceneDoesNotHaveIsABadRecording) {
   EXPECT_THROW(check_recorded_bodies(rec, 2, "edited.rec"), RecordingError);  // a stale handle
   rec.inputs[1].bodies.back().body = Entity{2, 1};
   EXPECT_NO_THROW(check_recorded_bodies(rec, 2, "ok.rec"));
+  // An angular input names its kind as the recording spells it.
+  rec.inputs[1].bodies.push_back({Entity{3, 1}, BodyInputKind::angular_velocity, {1.0, 0.0}});
+  try {
+    check_recorded_bodies(rec, 2, "edited.rec");
+    FAIL();
+  } catch (const RecordingError& e) {
+    EXPECT_NE(std::string_view(e.what()).find(
+                  "edited.rec: angular_velocity: the tick 1 line names body 3:1"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

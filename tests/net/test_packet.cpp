@@ -238,15 +238,20 @@ TEST(NetPacket, InputRangesRefused) {
   Bytes too_many_bodies;
   too_many_bodies.u8(0xa0).u8(17);
   EXPECT_EQ(decode(one_run(1, 10, 1, too_many_bodies)), PacketError::bad_input);
-  Bytes bad_kind;
-  bad_kind.u8(0xa0).u8(1).u32(1).u32(0).u8(3).f64(1.0).f64(1.0);
-  EXPECT_EQ(decode(one_run(1, 10, 1, bad_kind)), PacketError::bad_input);
-  Bytes body_ok;
-  body_ok.u8(0xa0).u8(1).u32(1).u32(0).u8(2).f64(1.0).f64(1.0);
+  // Kinds beyond the last (target_angle, 6) are refused; every kind up to it decodes.
+  for (const int kind : {static_cast<int>(last_body_input_kind) + 1, 255}) {
+    Bytes bad_kind;
+    bad_kind.u8(0xa0).u8(1).u32(1).u32(0).u8(static_cast<std::uint8_t>(kind)).f64(1.0).f64(1.0);
+    EXPECT_EQ(decode(one_run(1, 10, 1, bad_kind)), PacketError::bad_input) << kind;
+  }
   net::Packet p;
-  ASSERT_EQ(decode(one_run(1, 10, 1, body_ok), two_players(), p), PacketError::none);
-  ASSERT_EQ(p.inputs.runs[0].deltas[0].fields.bodies.size(), 1u);
-  EXPECT_EQ(p.inputs.runs[0].deltas[0].fields.bodies[0].kind, BodyInputKind::velocity);
+  for (int kind = 0; kind <= static_cast<int>(last_body_input_kind); ++kind) {
+    Bytes body_ok;
+    body_ok.u8(0xa0).u8(1).u32(1).u32(0).u8(static_cast<std::uint8_t>(kind)).f64(1.0).f64(0.0);
+    ASSERT_EQ(decode(one_run(1, 10, 1, body_ok), two_players(), p), PacketError::none) << kind;
+    ASSERT_EQ(p.inputs.runs[0].deltas[0].fields.bodies.size(), 1u);
+    EXPECT_EQ(p.inputs.runs[0].deltas[0].fields.bodies[0].kind, static_cast<BodyInputKind>(kind));
+  }
   Bytes body_short;
   body_short.u8(0xa0).u8(1).u32(1).u32(0).u8(2).f64(1.0);
   EXPECT_EQ(decode(one_run(1, 10, 1, body_short)), PacketError::too_short);
@@ -352,6 +357,12 @@ TEST(NetInputCodec, RoundTripsEveryFieldBitForBit) {
     if (t % 40 == 5) {
       in.bodies = {{{3, 1}, BodyInputKind::impulse, {1.0, -1.0}}};
     }
+    if (t % 40 == 25) {  // the angular kinds: one number in x, bit for bit (-0.0 too)
+      in.bodies = {{{3, 1}, BodyInputKind::torque, {5.0, 0.0}},
+                   {{3, 1}, BodyInputKind::angular_impulse, {-1.0 / 3, 0.0}},
+                   {{4, 2}, BodyInputKind::angular_velocity, {-0.0, 0.0}},
+                   {{4, 2}, BodyInputKind::target_angle, {1e-300, 0.0}}};
+    }
   }
   const TickInput prev{};
   std::vector<std::uint8_t> bytes;
@@ -362,11 +373,15 @@ TEST(NetInputCodec, RoundTripsEveryFieldBitForBit) {
   ASSERT_EQ(net::decode_inputs(bytes, 250, deltas, used), PacketError::none);
   EXPECT_EQ(used, bytes.size());
   TickInput at = prev;
+  std::size_t angular = 0;
   for (std::size_t t = 0; t < 250; ++t) {
     at = net::apply_delta(deltas[t], at, 40 + t);
     EXPECT_TRUE(net::same_input(at, ticks[t])) << t;
     EXPECT_EQ(std::signbit(at.push.x), std::signbit(ticks[t].push.x)) << t;
+    EXPECT_EQ(at.bodies, ticks[t].bodies) << t;
+    for (const BodyInput& b : at.bodies) angular += b.kind >= BodyInputKind::torque;
   }
+  EXPECT_GT(angular, 0u);
 }
 
 TEST(NetInputCodec, UnchangedTicksCostOneBytePer128) {
@@ -493,6 +508,14 @@ TEST(NetInputCodec, EncoderRefusesWhatTheDecoderWould) {
   std::vector<std::uint8_t> bytes;
   EXPECT_THROW(net::encode_inputs({&bad, 1}, TickInput{}, bytes), std::invalid_argument);
   EXPECT_EQ(net::check_input(bad), PacketError::bad_input);
+  TickInput turn{};
+  turn.bodies = {{{1, 1}, BodyInputKind::target_angle, {0.5, 0.0}}};
+  EXPECT_EQ(net::check_input(turn), PacketError::none);
+  turn.bodies[0].kind = static_cast<BodyInputKind>(static_cast<int>(last_body_input_kind) + 1);
+  EXPECT_EQ(net::check_input(turn), PacketError::bad_input);
+  EXPECT_THROW(net::encode_inputs({&turn, 1}, TickInput{}, bytes), std::invalid_argument);
+  turn.bodies[0] = {{1, 1}, BodyInputKind::torque, {std::numeric_limits<double>::quiet_NaN(), 0.0}};
+  EXPECT_EQ(net::check_input(turn), PacketError::bad_input);
 }
 
 /// The fuzz target's seeds (tests/fuzz/packet_corpus) are packets one of its receivers takes.

@@ -147,7 +147,7 @@ std::optional<std::string> polygon_problem(const ShapeDef& s) {
 
 std::optional<std::string> geometry_problem(const ShapeDef& s) {
   const bool rounded = s.kind == ShapeKind::box || s.kind == ShapeKind::polygon;
-  const bool radius_ok = within_extent(s.radius) && (s.radius >= 0.0);
+  const bool radius_ok = within_extent(s.radius) && (rounded ? s.radius >= 0.0 : s.radius > 0.0);
   if (!radius_ok) {
     return fmt::format("radius must be finite, {} 0 and <= {} m (got {})", rounded ? ">=" : ">",
                        max_shape_extent, s.radius);

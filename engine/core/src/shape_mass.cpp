@@ -118,7 +118,7 @@ Region rounded_region(std::span<const Vec2> v, double r) {
     const Vec2 n1 = normal[(i + n - 1) % n], n2 = normal[i];
     const double sector = disc_area * (theta[i] / turn);
     const Vec2 own = (r * r * r / 3.0) * Vec2{n2.y - n1.y, n1.x - n2.x};
-    moment += sector * w[i] + own;
+    moment += sector * w[i] + own;  // the `own` terms telescope to 0 over the polygon
     polar += sector * dot(w[i], w[i]) + 2.0 * dot(w[i], own);
   }
   const Vec2 shift = moment / area;

@@ -84,10 +84,7 @@ void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::
   for (const TickInput& in : rec.inputs) {
     check(in, in.drag_body, "drag");
     for (const BodyInput& b : in.bodies) {
-      check(in, b.body,
-            b.kind == BodyInputKind::force     ? "force"
-            : b.kind == BodyInputKind::impulse ? "impulse"
-                                               : "velocity");
+      check(in, b.body, body_input_kind_name(b.kind));
     }
   }
 }

@@ -8,8 +8,14 @@
 //   hash_every K
 //   [rules NAME VERSION]       (version 4: the game rules the ticks were stepped with)
 //   tick N push=AX,AY held=HEX pressed=HEX released=HEX pointer=X,Y drag=SLOT:GEN|none
-//        [force=SLOT:GEN,X,Y | impulse=SLOT:GEN,X,Y | velocity=SLOT:GEN,X,Y]...
-// (one line; a body is named by its handle Entity{SLOT, GEN}, per-body inputs in order).
+//        [KIND=SLOT:GEN,X,Y]...   KIND: force, impulse, velocity, torque, angular_impulse,
+//                                 angular_velocity or target_angle (body_input_kind_name)
+// (one line; a body is named by its handle Entity{SLOT, GEN}, per-body inputs in order; the
+// angular kinds carry their value in X, Y as recorded, 0 for input World::step applies).
+// The angular kinds came with bodies with shapes and changed no version: only a world with
+// shapes takes them, and a build before shapes refuses such a recording anyway (its scene's
+// definition hash differs, and the tick line's `torque=` is not a kind it knows: "expected
+// force=, impulse= or velocity=").
 // Version 5 changed no line: from it the world's random generator is seeded through SplitMix64
 // (Seeding::splitmix); a recording of version 4 or older replays with the seeding it was made
 // with (Seeding::pcg32_srandom). Only a world with a seed other than 0 is written as version 5:
@@ -348,15 +354,16 @@ BodyInput body_input(const Lines& in, std::string_view word) {
   const std::size_t eq = word.find('=');
   const std::string_view key = word.substr(0, eq);
   BodyInput b;
-  if (key == "force") {
-    b.kind = BodyInputKind::force;
-  } else if (key == "impulse") {
-    b.kind = BodyInputKind::impulse;
-  } else if (key == "velocity") {
-    b.kind = BodyInputKind::velocity;
-  } else {
+  bool known = false;
+  for (int k = 0; k <= static_cast<int>(last_body_input_kind) && !known; ++k) {
+    b.kind = static_cast<BodyInputKind>(k);
+    known = key == body_input_kind_name(b.kind);
+  }
+  if (!known) {
     in.fail(Kind::corrupt, "tick",
-            fmt::format("expected force=, impulse= or velocity=, found {}", shown(word)));
+            fmt::format("expected force=, impulse=, velocity=, torque=, angular_impulse=, "
+                        "angular_velocity= or target_angle=, found {}",
+                        shown(word)));
   }
   const std::string_view value = keyed(in, word, key);
   const std::size_t comma = value.find(',');

@@ -30,11 +30,8 @@ void append_tick(std::string& out, const TickInput& t) {
     fmt::format_to(std::back_inserter(out), "{}:{}", t.drag_body.index1, t.drag_body.generation);
   }
   for (const BodyInput& b : t.bodies) {
-    const char* kind = b.kind == BodyInputKind::force     ? "force"
-                       : b.kind == BodyInputKind::impulse ? "impulse"
-                                                          : "velocity";
-    fmt::format_to(std::back_inserter(out), " {}={}:{},{},{}", kind, b.body.index1,
-                   b.body.generation, b.value.x, b.value.y);
+    fmt::format_to(std::back_inserter(out), " {}={}:{},{},{}", body_input_kind_name(b.kind),
+                   b.body.index1, b.body.generation, b.value.x, b.value.y);
   }
   out += '\n';
 }

@@ -146,7 +146,7 @@ PacketError read_fields(detail::ByteReader& r, std::uint8_t wire_mask, InputDelt
     for (BodyInput& b : in.bodies) {
       b.body = read_entity(r);
       const std::uint8_t kind = r.u8();
-      if (kind > static_cast<std::uint8_t>(BodyInputKind::velocity)) return PacketError::bad_input;
+      if (kind > static_cast<std::uint8_t>(last_body_input_kind)) return PacketError::bad_input;
       b.kind = static_cast<BodyInputKind>(kind);
       b.value = {r.f64(), r.f64()};
     }
@@ -180,7 +180,7 @@ PacketError check_input(const TickInput& in) {
   }
   if (in.bodies.size() > max_net_body_inputs) return PacketError::bad_input;
   for (const BodyInput& b : in.bodies) {
-    if (!finite(b.value) || static_cast<std::uint8_t>(b.kind) > 2) return PacketError::bad_input;
+    if (!finite(b.value) || b.kind > last_body_input_kind) return PacketError::bad_input;
   }
   return PacketError::none;
 }

@@ -93,22 +93,76 @@ Entity drag_target(const Reader& r, const toml::node& n, const std::string& path
   return fixstep::defined_entity(body_index(r, n, path, bodies));
 }
 
-/// Why body b cannot take input `kind`, or "" when it can.
-std::string wrong_type(BodyInputKind kind, const BodyDef& b) {
-  if (kind == BodyInputKind::velocity) {
-    if (b.type == BodyType::kinematic) return {};
-    return fmt::format(
-        "\"{}\" is a {} body: velocity is for kinematic bodies only{}", b.name,
-        body_type_name(b.type),
-        b.type == BodyType::dynamic ? " (push a dynamic one with impulse or force)" : "");
-  }
-  if (b.type == BodyType::dynamic) return {};
-  return fmt::format("\"{}\" is a {} body: {} acts on dynamic bodies only{}", b.name,
-                     body_type_name(b.type), kind == BodyInputKind::force ? "force" : "impulse",
-                     b.type == BodyType::kinematic ? " (move a kinematic one with velocity)" : "");
+constexpr bool angular(BodyInputKind kind) {
+  return kind >= BodyInputKind::torque;
 }
 
-/// One `{ body = "NAME", value = [x, y] }` table at `path`.
+/// Whether `kind` sets what a kinematic body moves at (velocity, angular_velocity,
+/// target_angle) rather than pushing a dynamic one.
+constexpr bool kinematic_kind(BodyInputKind kind) {
+  return kind == BodyInputKind::velocity || kind == BodyInputKind::angular_velocity ||
+         kind == BodyInputKind::target_angle;
+}
+
+/// Why body b cannot take input `kind`, or "" when it can (World::check_input's rules).
+std::string wrong_type(BodyInputKind kind, const BodyDef& b) {
+  const char* name = body_input_kind_name(kind);
+  const bool turn = angular(kind);
+  if (kinematic_kind(kind)) {
+    if (b.type != BodyType::kinematic) {
+      return fmt::format("\"{}\" is a {} body: {} is for kinematic bodies only{}", b.name,
+                         body_type_name(b.type), name,
+                         b.type != BodyType::dynamic ? ""
+                         : turn ? " (turn a dynamic one with angular_impulse or torque)"
+                                : " (push a dynamic one with impulse or force)");
+    }
+  } else if (b.type != BodyType::dynamic) {
+    return fmt::format("\"{}\" is a {} body: {} acts on dynamic bodies only{}", b.name,
+                       body_type_name(b.type), name,
+                       b.type != BodyType::kinematic ? ""
+                       : turn ? " (turn a kinematic one with angular_velocity or target_angle)"
+                              : " (move a kinematic one with velocity)");
+  }
+  if (turn && b.shapes.empty()) {
+    return fmt::format("\"{}\" has no shapes: {} turns bodies with shapes only", b.name, name);
+  }
+  return {};
+}
+
+/// What `value` is for kind, in the words of a missing value's help.
+const char* value_help(BodyInputKind kind) {
+  switch (kind) {
+    case BodyInputKind::force:
+      return "the force [x, y] in N, e.g. value = [0.0, 40.0]";
+    case BodyInputKind::impulse:
+      return "the impulse [x, y] in N*s, e.g. value = [1.0, 0.5]";
+    case BodyInputKind::velocity:
+      return "the velocity [x, y] in m/s, e.g. value = [2.0, 0.0]";
+    case BodyInputKind::torque:
+      return "the torque in N*m (counter-clockwise positive), e.g. value = 5.0";
+    case BodyInputKind::angular_impulse:
+      return "the angular impulse in N*m*s (counter-clockwise positive), e.g. value = 0.5";
+    case BodyInputKind::angular_velocity:
+      return "the angular velocity in rad/s (counter-clockwise positive), e.g. value = 3.0";
+    case BodyInputKind::target_angle:
+      return "the angle in rad reached at the tick's end, e.g. value = 0.5";
+  }
+  return "";
+}
+
+/// The value of an angular kind: one number (stored as [x, 0]).
+Vec2 angular_value(const Reader& r, const toml::node& n, BodyInputKind kind,
+                   const std::string& path) {
+  if (n.is_array()) {
+    r.fail(n.source(), path,
+           fmt::format("expected one number, not [x, y]: {} (found {})", value_help(kind),
+                       scene_detail::found(n)));
+  }
+  return {r.number_node(n, path), 0.0};
+}
+
+/// One `{ body = "NAME", value = [x, y] }` table at `path` (value = NUMBER for the angular
+/// kinds).
 BodyInput body_input(Reader& r, const toml::table& t, BodyInputKind kind, const std::string& path,
                      std::span<const BodyDef> bodies) {
   r.check_keys(t, path, {"body", "value"});
@@ -126,39 +180,35 @@ BodyInput body_input(Reader& r, const toml::table& t, BodyInputKind kind, const 
     r.fail(name->source(), path + ".body", why);
   }
   const toml::node* value = t.get("value");
-  if (!value) {
-    r.fail_missing(t, path, {"value"}, "missing (required)",
-                   kind == BodyInputKind::force ? "the force [x, y] in N, e.g. value = [0.0, 40.0]"
-                   : kind == BodyInputKind::impulse
-                       ? "the impulse [x, y] in N*s, e.g. value = [1.0, 0.5]"
-                       : "the velocity [x, y] in m/s, e.g. value = [2.0, 0.0]");
-  }
-  return BodyInput{fixstep::defined_entity(i), kind, r.vec2_node(*value, path + ".value")};
+  if (!value) r.fail_missing(t, path, {"value"}, "missing (required)", value_help(kind));
+  const std::string at = path + ".value";
+  return BodyInput{fixstep::defined_entity(i), kind,
+                   angular(kind) ? angular_value(r, *value, kind, at) : r.vec2_node(*value, at)};
 }
 
-[[noreturn]] void not_body_input(const Reader& r, const toml::node& n, const std::string& path) {
+[[noreturn]] void not_body_input(const Reader& r, const toml::node& n, BodyInputKind kind,
+                                 const std::string& path) {
   r.fail(n.source(), path,
-         fmt::format("expected {{ body = \"NAME\", value = [x, y] }} or an array of them, found {}",
-                     scene_detail::found(n)));
+         fmt::format("expected {{ body = \"NAME\", value = {} }} or an array of them, found {}",
+                     angular(kind) ? "NUMBER" : "[x, y]", scene_detail::found(n)));
 }
 
-/// `force`, `impulse` or `velocity` of an [[at]] table: one inline table or an array of them,
-/// appended to out.
-void body_inputs(Reader& r, const toml::table& t, std::string_view key, BodyInputKind kind,
-                 const std::string& path, std::span<const BodyDef> bodies,
-                 std::vector<BodyInput>& out) {
-  const toml::node* n = t.get(key);
+/// A per-body input key of an [[at]] table (force, impulse, velocity, torque, angular_impulse,
+/// angular_velocity, target_angle): one inline table or an array of them, appended to out.
+void body_inputs(Reader& r, const toml::table& t, BodyInputKind kind, const std::string& path,
+                 std::span<const BodyDef> bodies, std::vector<BodyInput>& out) {
+  const toml::node* n = t.get(body_input_kind_name(kind));
   if (!n) return;
   if (const toml::table* one = n->as_table()) {
     out.push_back(body_input(r, *one, kind, path, bodies));
     return;
   }
   const toml::array* a = n->as_array();
-  if (!a) not_body_input(r, *n, path);
+  if (!a) not_body_input(r, *n, kind, path);
   for (std::size_t i = 0; i < a->size(); ++i) {
     const std::string at = fmt::format("{}[{}]", path, i);
     const toml::table* e = a->get(i)->as_table();
-    if (!e) not_body_input(r, *a->get(i), at);
+    if (!e) not_body_input(r, *a->get(i), kind, at);
     out.push_back(body_input(r, *e, kind, at, bodies));
   }
 }
@@ -166,9 +216,9 @@ void body_inputs(Reader& r, const toml::table& t, std::string_view key, BodyInpu
 ScriptEvent parse_event(Reader& r, const toml::table& t, std::size_t index,
                         std::span<const BodyDef> bodies) {
   const std::string path = fmt::format("at[{}]", index);
-  r.check_keys(
-      t, path,
-      {"tick", "press", "release", "pointer", "push", "drag", "force", "impulse", "velocity"});
+  r.check_keys(t, path,
+               {"tick", "press", "release", "pointer", "push", "drag", "force", "impulse",
+                "velocity", "torque", "angular_impulse", "angular_velocity", "target_angle"});
   ScriptEvent e;
   e.line = t.source().begin.line;
   const toml::node* tick = t.get("tick");
@@ -183,12 +233,16 @@ ScriptEvent parse_event(Reader& r, const toml::table& t, std::size_t index,
   e.pointer = r.vec2(t, "pointer", path + ".pointer");
   e.push = r.vec2(t, "push", path + ".push");
   if (const toml::node* d = t.get("drag")) e.drag = drag_target(r, *d, path + ".drag", bodies);
-  body_inputs(r, t, "force", BodyInputKind::force, path + ".force", bodies, e.bodies);
-  body_inputs(r, t, "impulse", BodyInputKind::impulse, path + ".impulse", bodies, e.bodies);
-  body_inputs(r, t, "velocity", BodyInputKind::velocity, path + ".velocity", bodies, e.bodies);
+  // In BodyInputKind order: forces, impulses, velocities, torques, angular impulses, angular
+  // velocities, target angles, each in file order.
+  for (int k = 0; k <= static_cast<int>(last_body_input_kind); ++k) {
+    const auto kind = static_cast<BodyInputKind>(k);
+    body_inputs(r, t, kind, path + "." + body_input_kind_name(kind), bodies, e.bodies);
+  }
   if (e.bodies.size() > max_body_inputs) {
     r.fail(t.source(), path,
-           fmt::format("{} per-body inputs (force, impulse, velocity) in one tick; at most {}",
+           fmt::format("{} per-body inputs (force, impulse, velocity, torque, angular_impulse, "
+                       "angular_velocity, target_angle) in one tick; at most {}",
                        e.bodies.size(), max_body_inputs));
   }
   return e;
@@ -211,10 +265,11 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
   if (!doc.get("at") && (doc.get("world") || doc.get("body"))) {
     // Without this, a scene given as the script would run with no input and two warnings.
     const toml::node* n = doc.get("world") ? doc.get("world") : doc.get("body");
-    r.fail(n->source(), "",
-           "this is a scene file, not an input script: a script holds [[at]] tables (tick, "
-           "press, release, pointer, push, drag, force, impulse, velocity); see docs/CLI.md, Input "
-           "scripts");
+    r.fail(
+        n->source(), "",
+        "this is a scene file, not an input script: a script holds [[at]] tables (tick, "
+        "press, release, pointer, push, drag, force, impulse, velocity, torque, angular_impulse, "
+        "angular_velocity, target_angle); see docs/CLI.md, Input scripts");
   }
   r.check_keys(doc, "", {"at"});
   if (const toml::array* list = r.tables(doc, "at")) {

@@ -27,9 +27,12 @@ struct ScriptEvent {
   std::optional<Vec2> push;     ///< m/s²; a level kept until changed
   std::optional<Entity>
       drag;  ///< the body's handle (World::defined_bodies()), or null_entity (`drag = false`)
-  /// `force` (N, this tick only), `impulse` (N·s, Δv = J/m at this tick) and `velocity` (m/s,
-  /// a kinematic body keeps it until changed), bodies by their handles (World::defined_bodies());
-  /// forces first, then impulses, then velocities, each in file order.
+  /// `force` (N, this tick only), `impulse` (N·s, Δv = J/m at this tick), `velocity` (m/s,
+  /// a kinematic body keeps it until changed), and for bodies with shapes `torque` (N·m, this
+  /// tick only), `angular_impulse` (N·m·s, Δω = L/I at this tick), `angular_velocity` (rad/s,
+  /// kept) and `target_angle` (rad, reached at this tick's end), their one number in value.x
+  /// (value.y 0); bodies by their handles (World::defined_bodies()); in BodyInputKind order
+  /// (forces first, then impulses, velocities, torques, ...), each kind in file order.
   std::vector<BodyInput> bodies;
   std::size_t line = 0;  ///< of the [[at]] table
 };
@@ -47,13 +50,15 @@ inline constexpr std::size_t max_script_bytes = 4u << 20;
 /// action, pointer_primary, pointer_secondary.
 [[nodiscard]] std::span<const std::pair<std::string_view, std::uint32_t>> button_names();
 
-/// Parses a script for a world of `bodies` (drag, force, impulse and velocity name a body; its
-/// its World::defined_bodies() handle is stored). Throws SceneError "FILE:LINE:COLUMN: KEY:
+/// Parses a script for a world of `bodies` (drag and the per-body inputs name a body; its
+/// World::defined_bodies() handle is stored). Throws SceneError "FILE:LINE:COLUMN: KEY:
 /// MESSAGE" for TOML syntax errors, an [[at]] without `tick`, ticks not strictly increasing or
 /// beyond max_recording_ticks, an unknown button (with a suggestion), a body name no body has (with
-/// a suggestion), a force or impulse on a body that is not dynamic, a velocity for one that is not
-/// kinematic, a per-body table without `body` or `value` or more than max_body_inputs of them in
-/// one tick, vectors that are not [x, y] of finite numbers, wrong types, binary or oversized text.
+/// a suggestion), a force, impulse, torque or angular impulse on a body that is not dynamic, a
+/// velocity, angular velocity or target angle for one that is not kinematic, an angular input for
+/// a body without shapes, a per-body table without `body` or `value` or more than
+/// max_body_inputs of them in one tick, vectors that are not [x, y] of finite numbers, an angular
+/// value that is not one finite number, wrong types, binary or oversized text.
 /// Unknown keys (also inside a per-body table) are warnings.
 [[nodiscard]] InputScript parse_input_script(std::string_view text, const std::string& source_name,
                                              std::span<const BodyDef> bodies);
@@ -63,8 +68,10 @@ inline constexpr std::size_t max_script_bytes = 4u << 20;
 
 /// Plays a script tick by tick through an InputSampler, as the window would: levels (push,
 /// pointer, drag) persist until changed; a press or release, a force and an impulse reach
-/// exactly their tick (InputSampler::apply_force, apply_impulse); a velocity is given at its
-/// tick (set_velocity) and the kinematic body keeps it.
+/// exactly their tick (InputSampler::apply_force, apply_impulse), as do a torque and an angular
+/// impulse (apply_torque, apply_angular_impulse); a velocity, angular velocity or target angle is
+/// given at its tick (set_velocity, set_angular_velocity, set_target_angle) and the kinematic
+/// body keeps what it sets.
 class ScriptPlayer {
  public:
   /// The script must outlive the player.
