@@ -848,6 +848,34 @@ rows = 1000
 origin = [0.0, 0.0]
 spacing = [0.0, 0.0]
 body = { mass = 1.0, radius = 0.5 }"
+# --- shapes: refused by the scene loader with shape_problem's words ---
+case_ "a concave polygon shape" "$ok_world
+$body
+shape = { polygon = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.5], [2.0, 2.0], [0.0, 2.0]] }"
+case_ "a polygon shape of 9 vertices (at most 8)" "$ok_world
+$body
+shape = { polygon = [[0,0],[1,0],[2,1],[2,2],[1,3],[0,3],[-1,2],[-1,1],[-0.5,0.2]] }"
+case_ "a polygon shape of no area (collinear)" "$ok_world
+$body
+shape = { polygon = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]] }"
+case_ "a box shape's half extent nan" "$ok_world
+$body
+shape = { box = [nan, 1.0] }"
+case_ "a capsule shape's radius 1e200 (beyond 1e6 m)" "$ok_world
+$body
+shape = { capsule = [[0.0, 0.0], [1.0, 0.0]], radius = 1e200 }"
+case_ "a capsule shape without its radius" "$ok_world
+$body
+shape = { capsule = [[0.0, 0.0], [1.0, 0.0]] }"
+case_ "a body with a radius and a shape" "$ok_world
+$body
+radius = 0.5
+shape = { circle = 0.5 }"
+case_ "a shape with two kinds (box and circle)" "$ok_world
+$body
+[[body.shape]]
+box = [1.0, 1.0]
+circle = 0.5"
 # --- memory of a command: estimated from the scene and the flags, refused before the worlds
 # and frame buffers are allocated (cli/command_memory.hpp; the scene's load comes first)
 grid_of() {  # COLUMNS ROWS [BODY]: a [[grid]] of unlinked bodies 0.1 m apart

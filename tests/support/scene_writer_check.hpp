@@ -71,6 +71,26 @@ inline void expect_same_body(const BodyDef& a, const BodyDef& b, const std::stri
     expect_bits(x.friction, y.friction, w + ".collider.friction");
     EXPECT_EQ(x.collide, y.collide) << w << ".collider.collide";
   });
+  expect_bits(a.inertia, b.inertia, w + ".inertia");
+  ASSERT_EQ(a.shapes.size(), b.shapes.size()) << w << ".shapes";
+  for (std::size_t i = 0; i < a.shapes.size(); ++i) {
+    const ShapeDef &x = a.shapes[i], &y = b.shapes[i];
+    const std::string s = w + ".shape[" + std::to_string(i) + "]";
+    EXPECT_EQ(x.kind, y.kind) << s;
+    expect_bits(x.radius, y.radius, s + ".radius");
+    expect_bits(x.half_extents, y.half_extents, s + ".half_extents");
+    ASSERT_EQ(x.count, y.count) << s << ".count";
+    for (std::size_t k = 0; k < x.vertices.size(); ++k) {
+      expect_bits(x.vertices[k], y.vertices[k], s + ".vertices[" + std::to_string(k) + "]");
+    }
+    expect_bits(x.offset, y.offset, s + ".offset");
+    expect_bits(x.angle, y.angle, s + ".angle");
+    expect_bits(x.density, y.density, s + ".density");
+    expect_bits(x.friction, y.friction, s + ".friction");
+    expect_bits(x.restitution, y.restitution, s + ".restitution");
+    EXPECT_EQ(x.filter, y.filter) << s << ".filter";
+    EXPECT_EQ(x.sensor, y.sensor) << s << ".sensor";
+  }
 }
 
 /// Every field of a and b, doubles bit for bit, names and appearances included.

@@ -79,7 +79,7 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
                 "force",   "gravity",  "drag",       "radius",   "draw_radius", "color",
                 "visible", "trail",    "trail_time", "collide",  "restitution", "friction",
                 "sensor",  "category", "mask",       "group",    "angle",       "angular_velocity",
-                "inertia"});
+                "inertia", "shape",    "density"});
   BodyDef def;
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
@@ -191,6 +191,7 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
     }
     def.appearance = ap;
   }
+  parse_body_shapes(r, t, path, def);
   parse_disc_keys(r, t, path, def);
   parse_rolling_keys(r, t, path, def);
 }

@@ -110,6 +110,7 @@ BodyType parse_body_type(const Reader& r, const toml::table& t, const std::strin
 
 void parse_body_mass(Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {
   if (def.type == BodyType::dynamic) {
+    if (!t.get("mass") && shapes_give_density(t)) return;  // the densities give the mass
     def.body.mass = r.required_number(t, path, "mass", "the mass in kg, e.g. mass = 1.0");
     r.require(def.body.mass > 0.0, t, "mass", path + ".mass", "> 0 kg", def.body.mass);
     r.require(divisor_in_range(def.body.mass), t, "mass", path + ".mass",
@@ -152,6 +153,12 @@ void parse_filter_keys(const Reader& r, const toml::table& t, const std::string&
 void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def) {
   for (const std::string_view k :
        {"collide", "restitution", "friction", "sensor", "category", "mask", "group"}) {
+    if (t.get(k) && !def.collider && !def.shapes.empty()) {
+      r.fail(t.get(k)->source(), path + "." + std::string(k),
+             fmt::format("a body with shapes gives it in each shape table; move it into "
+                         "shape = {{ ..., {} = ... }}",
+                         k));
+    }
     if (t.get(k) && !def.collider) {
       r.fail(t.get(k)->source(), path + "." + std::string(k),
              "needs a radius: only a disc (a body with a radius) takes part in contacts; add "
@@ -213,8 +220,9 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
   if (!contacts.rolling) warn_unused_rolling_keys(r, doc);
   parse_sleep_keys(r, *t, scene.def.settings.dt, contacts);
   scene.def.settings.contacts = contacts;
-  const bool discs = std::any_of(scene.def.bodies.begin(), scene.def.bodies.end(),
-                                 [](const BodyDef& b) { return b.collider.has_value(); });
+  const bool discs =
+      std::any_of(scene.def.bodies.begin(), scene.def.bodies.end(),
+                  [](const BodyDef& b) { return b.collider.has_value() || !b.shapes.empty(); });
   if (!discs) {
     r.warn(t->source(), "contacts",
            "no body has a radius, so there are no discs to collide: give bodies a radius (m) "

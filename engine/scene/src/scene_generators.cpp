@@ -81,7 +81,7 @@ class Generator {
         {"type",        "mass",   "velocity", "force", "gravity",    "drag",    "radius",
          "draw_radius", "color",  "visible",  "trail", "trail_time", "collide", "restitution",
          "friction",    "sensor", "category", "mask",  "group",      "angle",   "angular_velocity",
-         "inertia"});
+         "inertia",     "shape",  "density"});
     BodyDef def;
     parse_body_parts(r_, *b, key("body"), def);
     drop_moving_parts(r_, *b, key("body"), def);

@@ -390,18 +390,31 @@ void for_each_body_table(const toml::table& doc, Visit&& visit) {
 /// t.type ("dynamic", the default, "static" or "kinematic"); an unknown name is an error with
 /// the closest valid one.
 BodyType parse_body_type(const Reader& r, const toml::table& t, const std::string& path);
-/// t.mass into def: required and > 0 kg for a dynamic body; ignored with a warning for a
-/// static or kinematic one (which keeps the default).
+/// t.mass into def: required and > 0 kg for a dynamic body (unless its shapes have densities:
+/// shapes_give_density); ignored with a warning for a static or kinematic one (which keeps the
+/// default).
 void parse_body_mass(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
 /// collide (boolean), restitution (in [0, 1]) and friction (>= 0) of t into def.collider;
 /// each is an error without a radius (def.collider unset).
 void parse_disc_keys(const Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// t[key] as filter bits: an integer whose 64-bit two's complement is the bit set (-1: every
+/// category; hexadecimal allowed), nullopt when absent (scene_contacts.cpp).
+std::optional<std::uint64_t> filter_bits(const Reader& r, const toml::table& t,
+                                         std::string_view key, const std::string& path);
+/// t.shape (one shape table, or an array of them: [[body.shape]]) into def.shapes, each
+/// checked by shape_problem (its message at the key it names), with t.density (kg/m^2) for the
+/// shapes that give none. A shape on a body with a radius (a disc) is an error, and so is a
+/// density without a shape (scene_shapes.cpp).
+void parse_body_shapes(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// Whether body table t gives its shapes a density (t.density, or a density in a shape table):
+/// then their densities give the mass and `mass` may be left out (scene_shapes.cpp).
+[[nodiscard]] bool shapes_give_density(const toml::table& t);
 /// angle (rad), angular_velocity (rad/s) and inertia (in [1e-100, 1e100] kg*m^2, an error without a
-/// radius) of t into def, for rolling discs (scene_rolling.cpp).
+/// radius or a shape) of t into def, for rolling discs and bodies with shapes (scene_rolling.cpp).
 void parse_rolling_keys(const Reader& r, const toml::table& t, const std::string& path,
                         BodyDef& def);
-/// Warns at each body's (and generator template's) angle, angular_velocity and inertia: they act
-/// only with `[contacts] rolling = true`.
+/// Warns at each disc's and point body's (and generator template's) angle, angular_velocity and
+/// inertia: they act only with `[contacts] rolling = true` (a body with shapes always turns).
 void warn_unused_rolling_keys(Reader& r, const toml::table& doc);
 /// For a static or kinematic def: drops spring, gravity, force and drag with a warning at
 /// their keys in t (they would move it), and a static body's non-zero velocity.

@@ -25,10 +25,18 @@ void parse_rolling_keys(const Reader& r, const toml::table& t, const std::string
     r.require_state(t, "angular_velocity", path + ".angular_velocity", *w, "rad/s");
     def.body.angular_velocity = *w;
   }
-  if (const toml::node* n = t.get("inertia")) {
+  if (const toml::node* n = t.get("inertia"); n && !def.shapes.empty()) {
+    // A body with shapes: about its centre of mass, instead of body_mass's (shape.hpp).
+    const auto i = r.number(t, "inertia", path + ".inertia");
+    r.require(*i > 0.0, t, "inertia", path + ".inertia", "> 0 kg*m^2", *i);
+    r.require(divisor_in_range(*i), t, "inertia", path + ".inertia",
+              "in [1e-100, 1e100] kg*m^2 (a step divides by it)", *i);
+    def.inertia = *i;
+  } else if (n) {
     if (!def.collider) {
       r.fail(n->source(), path + ".inertia",
-             "needs a radius: only a disc (a body with a radius) rolls; add radius = ... (m)");
+             "needs a radius or a shape: only a disc (a body with a radius) rolls, and only a "
+             "body with shapes turns; add radius = ... (m) or shape = { ... }");
     }
     const auto i = r.number(t, "inertia", path + ".inertia");
     // 1/I, r/I and m r²/I turn the disc: a subnormal I made them infinite and the state NaN.
@@ -41,7 +49,7 @@ void parse_rolling_keys(const Reader& r, const toml::table& t, const std::string
 
 void warn_unused_rolling_keys(Reader& r, const toml::table& doc) {
   auto check = [&](const toml::table* t, const std::string& path) {
-    if (!t) return;
+    if (!t || t->get("shape")) return;  // a body with shapes turns without rolling
     for (const std::string_view k : rolling_keys) {
       if (const toml::node* n = t->get(k)) {
         r.warn(n->source(), path + "." + std::string(k),

@@ -25,6 +25,7 @@
 #include "fixstep/core/world_settings.hpp"
 #include "fixstep/io/file_write.hpp"
 #include "fixstep/scene/scene.hpp"
+#include "scene_values.hpp"
 
 namespace fixstep {
 
@@ -34,20 +35,9 @@ namespace {
   throw std::invalid_argument(fmt::format("format_scene: {}: {}", where, why));
 }
 
-/// v as a TOML float that reads back as the same double: fmt's shortest round-trip digits,
-/// with ".0" added to integral values ("-0" would read as the integer 0 and lose its sign).
-/// Non-finite values are written as TOML's nan/inf, which the loader refuses with their key.
-std::string num(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::string s = fmt::format("{}", v);
-  if (s.find_first_of(".e") == std::string::npos) s += ".0";
-  return s;
-}
-
-std::string vec(Vec2 v) {
-  return fmt::format("[{}, {}]", num(v.x), num(v.y));
-}
+using scene_detail::toml_filter_bits;
+using scene_detail::toml_number;
+using scene_detail::toml_point;
 
 /// s as a TOML basic string: quotes, backslashes and control characters escaped, every other
 /// byte as it is (a name must be UTF-8, as TOML requires; the loader refuses it otherwise).
@@ -166,7 +156,7 @@ void write_world(std::string& out, const WorldDef& def) {
   const WorldSettings& s = def.settings;
   auto it = std::back_inserter(out);
   fmt::format_to(it, "[world]\ndt = {}\nintegrator = \"{}\"\nprecision = \"{}\"\nsubsteps = {}\n",
-                 num(s.dt), integrator_name(s.integrator), precision_name(def.precision),
+                 toml_number(s.dt), integrator_name(s.integrator), precision_name(def.precision),
                  s.substeps);
   if (!s.flush_denormals) out += "flush_denormals = false\n";
   if (def.allow_unstable) out += "allow_unstable = true\n";
@@ -181,8 +171,8 @@ void write_world(std::string& out, const WorldDef& def) {
   }
   if (s.contacts) {
     const ContactSettings& c = *s.contacts;
-    fmt::format_to(it, "\n[contacts]\nrestitution = {}\nfriction = {}\n", num(c.restitution),
-                   num(c.friction));
+    fmt::format_to(it, "\n[contacts]\nrestitution = {}\nfriction = {}\n",
+                   toml_number(c.restitution), toml_number(c.friction));
     if (c.velocity_iterations != ContactSettings::default_velocity_iterations) {
       fmt::format_to(it, "velocity_iterations = {}\n", c.velocity_iterations);
     }
@@ -193,20 +183,13 @@ void write_world(std::string& out, const WorldDef& def) {
     if (c.sleep) {  // sleep_speed and sleep_time act (and are hashed) only with sleep on
       out += "sleep = true\n";
       if (!same_bits(c.sleep_speed, ContactSettings::default_sleep_speed)) {
-        fmt::format_to(it, "sleep_speed = {}\n", num(c.sleep_speed));
+        fmt::format_to(it, "sleep_speed = {}\n", toml_number(c.sleep_speed));
       }
       if (!same_bits(c.sleep_time, ContactSettings::default_sleep_time)) {
-        fmt::format_to(it, "sleep_time = {}\n", num(c.sleep_time));
+        fmt::format_to(it, "sleep_time = {}\n", toml_number(c.sleep_time));
       }
     }
   }
-}
-
-/// Filter bits as the loader reads them: hexadecimal, or the negative integer of the same 64-bit
-/// two's complement when the top bit is set (TOML integers are signed).
-std::string bits_text(std::uint64_t bits) {
-  if (bits >> 63) return fmt::format("{}", static_cast<std::int64_t>(bits));
-  return fmt::format("0x{:x}", bits);
 }
 
 /// The disc and drawing keys: radius (the collider's), its contact keys, then draw_radius
@@ -214,25 +197,27 @@ std::string bits_text(std::uint64_t bits) {
 void write_looks(std::string& out, const BodyDef& b) {
   auto it = std::back_inserter(out);
   if (const std::optional<Collider>& c = b.collider) {
-    fmt::format_to(it, "radius = {}\n", num(c->radius));
+    fmt::format_to(it, "radius = {}\n", toml_number(c->radius));
     if (!c->collide) out += "collide = false\n";
-    if (c->restitution) fmt::format_to(it, "restitution = {}\n", num(*c->restitution));
-    if (c->friction) fmt::format_to(it, "friction = {}\n", num(*c->friction));
+    if (c->restitution) fmt::format_to(it, "restitution = {}\n", toml_number(*c->restitution));
+    if (c->friction) fmt::format_to(it, "friction = {}\n", toml_number(*c->friction));
     if (c->sensor) out += "sensor = true\n";
     const CollisionFilter f = c->filter, none{};
-    if (f.category != none.category) fmt::format_to(it, "category = {}\n", bits_text(f.category));
-    if (f.mask != none.mask) fmt::format_to(it, "mask = {}\n", bits_text(f.mask));
+    if (f.category != none.category)
+      fmt::format_to(it, "category = {}\n", toml_filter_bits(f.category));
+    if (f.mask != none.mask) fmt::format_to(it, "mask = {}\n", toml_filter_bits(f.mask));
     if (f.group != none.group) fmt::format_to(it, "group = {}\n", f.group);
-    if (c->inertia) fmt::format_to(it, "inertia = {}\n", num(*c->inertia));
+    if (c->inertia) fmt::format_to(it, "inertia = {}\n", toml_number(*c->inertia));
   }
   if (const std::optional<Appearance>& a = b.appearance) {
     const double drawn = b.collider ? b.collider->radius : Appearance{}.radius;
-    if (!same_bits(a->radius, drawn)) fmt::format_to(it, "draw_radius = {}\n", num(a->radius));
+    if (!same_bits(a->radius, drawn))
+      fmt::format_to(it, "draw_radius = {}\n", toml_number(a->radius));
     fmt::format_to(it, "color = {}\n", color_text(a->color));
     if (!a->visible) out += "visible = false\n";
     if (!a->trail) out += "trail = false\n";
     if (!same_bits(a->trail_time, default_trail_time)) {
-      fmt::format_to(it, "trail_time = {}\n", num(a->trail_time));
+      fmt::format_to(it, "trail_time = {}\n", toml_number(a->trail_time));
     }
   }
 }
@@ -241,24 +226,26 @@ void write_body(std::string& out, const BodyDef& b, const std::string& name) {
   auto it = std::back_inserter(out);
   fmt::format_to(it, "\n[[body]]\nname = {}\n", toml_string(name));
   if (b.type != BodyType::dynamic) fmt::format_to(it, "type = \"{}\"\n", body_type_name(b.type));
-  if (b.type == BodyType::dynamic) fmt::format_to(it, "mass = {}\n", num(b.body.mass));
-  fmt::format_to(it, "position = {}\n", vec(b.body.position));
+  if (b.type == BodyType::dynamic) fmt::format_to(it, "mass = {}\n", toml_number(b.body.mass));
+  fmt::format_to(it, "position = {}\n", toml_point(b.body.position));
   if (!same_bits(b.body.velocity, Vec2{})) {
-    fmt::format_to(it, "velocity = {}\n", vec(b.body.velocity));
+    fmt::format_to(it, "velocity = {}\n", toml_point(b.body.velocity));
   }
-  if (b.body.angle != 0.0) fmt::format_to(it, "angle = {}\n", num(b.body.angle));
+  if (b.body.angle != 0.0) fmt::format_to(it, "angle = {}\n", toml_number(b.body.angle));
   if (b.body.angular_velocity != 0.0) {
-    fmt::format_to(it, "angular_velocity = {}\n", num(b.body.angular_velocity));
+    fmt::format_to(it, "angular_velocity = {}\n", toml_number(b.body.angular_velocity));
   }
   if (const std::optional<SpringDamper>& s = b.spring) {
     fmt::format_to(it,
                    "spring = {{ anchor = {}, stiffness = {}, damping = {}, rest_length = {} }}\n",
-                   vec(s->anchor), num(s->stiffness), num(s->damping), num(s->rest_length));
+                   toml_point(s->anchor), toml_number(s->stiffness), toml_number(s->damping),
+                   toml_number(s->rest_length));
   }
-  if (b.constant_force) fmt::format_to(it, "force = {}\n", vec(b.constant_force->force));
-  if (b.gravity) fmt::format_to(it, "gravity = {}\n", vec(b.gravity->acceleration));
-  if (b.drag) fmt::format_to(it, "drag = {}\n", num(b.drag->coefficient));
+  if (b.constant_force) fmt::format_to(it, "force = {}\n", toml_point(b.constant_force->force));
+  if (b.gravity) fmt::format_to(it, "gravity = {}\n", toml_point(b.gravity->acceleration));
+  if (b.drag) fmt::format_to(it, "drag = {}\n", toml_number(b.drag->coefficient));
   write_looks(out, b);
+  out += scene_detail::shapes_text(b);  // last: [[body.shape]] tables end the body's keys
 }
 
 /// "body[i]" for the handle WorldDef::add_body gives its i-th body, else "body S:G" (slot and
@@ -285,7 +272,8 @@ void write_links(std::string& out, const WorldDef& def, const std::vector<std::s
                    "\n[[spring]]\nbodies = [{}, {}]\nstiffness = {}\ndamping = {}\nrest_length = "
                    "{}\n",
                    toml_string(names[l.body_a]), toml_string(names[l.body_b]),
-                   num(l.spring.stiffness), num(l.spring.damping), num(l.spring.rest_length));
+                   toml_number(l.spring.stiffness), toml_number(l.spring.damping),
+                   toml_number(l.spring.rest_length));
   }
 }
 
@@ -294,8 +282,8 @@ void write_planes(std::string& out, const WorldDef& def) {
   for (std::size_t i = 0; i < def.planes.size(); ++i) {
     const PlaneDef& p = def.planes[i];
     fmt::format_to(it, "\n[[plane]]\nnormal = {}\noffset = {}\nrestitution = {}\nfriction = {}\n",
-                   vec(written_normal(p.normal, i)), num(p.offset), num(p.restitution),
-                   num(p.friction));
+                   toml_point(written_normal(p.normal, i)), toml_number(p.offset),
+                   toml_number(p.restitution), toml_number(p.friction));
   }
 }
 
@@ -305,10 +293,11 @@ void write_segments(std::string& out, const WorldDef& def, const std::vector<std
   auto it = std::back_inserter(out);
   for (std::size_t i = 0; i < def.segments.size(); ++i) {
     const SegmentDef& s = def.segments[i];
-    fmt::format_to(it, "\n[[segment]]\na = {}\nb = {}\nrestitution = {}\nfriction = {}\n", vec(s.a),
-                   vec(s.b), num(s.restitution), num(s.friction));
-    if (s.prev) fmt::format_to(it, "prev = {}\n", vec(*s.prev));
-    if (s.next) fmt::format_to(it, "next = {}\n", vec(*s.next));
+    fmt::format_to(it, "\n[[segment]]\na = {}\nb = {}\nrestitution = {}\nfriction = {}\n",
+                   toml_point(s.a), toml_point(s.b), toml_number(s.restitution),
+                   toml_number(s.friction));
+    if (s.prev) fmt::format_to(it, "prev = {}\n", toml_point(*s.prev));
+    if (s.next) fmt::format_to(it, "next = {}\n", toml_point(*s.next));
     if (s.body.is_null()) continue;
     const auto b = fixstep::defined_index(s.body, names.size());
     if (!b) {
