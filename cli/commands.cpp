@@ -197,9 +197,11 @@ std::uint64_t ticks_for(double duration, double dt) {
       std::abs(n - nearest) <= 1e-9 * std::max(1.0, n) ? nearest : std::ceil(n));
 }
 
+/// One row per body of `sim`'s state at its tick; with_angles: each body's angle (rad) and
+/// angular velocity (rad/s) after vy (a world with shapes, csv_columns).
 void append_rows(AtomicFile& csv, const ExactReference& reference, const TouchedBodies& touched,
-                 const World& sim, bool with_exact, double e0, std::vector<double>& energies,
-                 std::string& buffer) {
+                 const World& sim, bool with_exact, bool with_angles, double e0,
+                 std::vector<double>& energies, std::string& buffer) {
   std::vector<std::optional<Body>> exact;
   if (with_exact) reference.at(sim.time(), exact, &touched);
   energies.resize(sim.body_count());
@@ -211,9 +213,11 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Touched
   for (std::size_t j = 0; j < sim.body_count(); ++j) {
     const Body b = sim.body(sim.bodies()[j]);
     // {} prints the shortest text that reads back as the same double: exact, no lost bits.
-    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{}", sim.tick(), sim.time(),
+    fmt::format_to(out, "{},{},{},{},{},{},{}", sim.tick(), sim.time(),
                    csv_field(sim.name(sim.bodies()[j])), b.position.x, b.position.y, b.velocity.x,
-                   b.velocity.y, energies[j], world_energy, dissipated, balance);
+                   b.velocity.y);
+    if (with_angles) fmt::format_to(out, ",{},{}", b.angle, b.angular_velocity);
+    fmt::format_to(out, ",{},{},{},{}", energies[j], world_energy, dissipated, balance);
     if (with_exact) {
       if (const auto& e = exact[j]) {
         fmt::format_to(out, ",{},{},{}", e->position.x, e->position.y,
@@ -231,6 +235,18 @@ void append_rows(AtomicFile& csv, const ExactReference& reference, const Touched
 }  // namespace
 
 const std::string csv_header = "tick,t,body,x,y,vx,vy,energy,world_energy,world_dissipated,balance";
+
+namespace {
+
+/// The CSV's header line: csv_header, with angle,angular_velocity after vy for a world whose
+/// bodies carry shapes (they turn), and the exact solution's columns when there is one.
+std::string csv_columns(bool with_angles, bool with_exact) {
+  std::string h = csv_header;
+  if (with_angles) h.insert(h.find(",energy"), ",angle,angular_velocity");
+  return h + (with_exact ? ",x_exact,y_exact,error\n" : "\n");
+}
+
+}  // namespace
 
 namespace {
 
@@ -282,10 +298,12 @@ int run_command(const RunOptions& o) {
   // apply; nor to a body from the tick a disc contact touches it.
   const bool has_exact = !o.input && exact_error(reference, sim).has_value();
   TouchedBodies touched(scene);
+  const bool with_angles = std::any_of(scene.def.bodies.begin(), scene.def.bodies.end(),
+                                       [](const BodyDef& b) { return !b.shapes.empty(); });
   if (o.csv) {
     csv.emplace(*o.csv);
-    csv->append(has_exact ? csv_header + ",x_exact,y_exact,error\n" : csv_header + "\n");
-    append_rows(*csv, reference, touched, sim, has_exact, e0, energies, buffer);
+    csv->append(csv_columns(with_angles, has_exact));
+    append_rows(*csv, reference, touched, sim, has_exact, with_angles, e0, energies, buffer);
   }
   std::optional<InputScript> script;
   std::optional<ScriptPlayer> player;
@@ -330,7 +348,7 @@ int run_command(const RunOptions& o) {
     const bool diverged = sim.fault().has_value();  // the runtime guard (World::fault)
     const bool stop = StopOnSignal::requested() != 0;
     if (csv && (i % static_cast<std::uint64_t>(o.every) == 0 || i == ticks || diverged || stop)) {
-      append_rows(*csv, reference, touched, sim, has_exact, e0, energies, buffer);
+      append_rows(*csv, reference, touched, sim, has_exact, with_angles, e0, energies, buffer);
     }
     if (diverged || stop) break;
   }

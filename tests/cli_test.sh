@@ -23,6 +23,12 @@ expect "run reports the error against the exact solution" '^exact_error=[0-9.e+-
 # the vacuum body's semi-implicit error at t = 1 s is g t dt / 2 = 0.04905 m (see below)
 awk -F, '$1 == 100 && $3 == "vacuum" { ok = ($14 - 0.04905 < 1e-9 && 0.04905 - $14 < 1e-9) } END { exit !ok }' \
   "$work/p.csv" && ok "csv error column: vacuum at t = 1 s is off by g t dt / 2" || fail "csv error column"
+# A world whose bodies carry shapes adds angle,angular_velocity after vy (others: as above).
+printf '[world]\ndt = 0.01\n[[body]]\nposition = [0.0, 0.0]\nangle = 0.5\nangular_velocity = 2.0\nshape = { box = [0.5, 0.25], density = 2.0 }\n' >"$work/shaped.toml"
+"$fixstep" run "$work/shaped.toml" --steps 1 --csv "$work/shaped.csv" >/dev/null 2>&1
+head -1 "$work/shaped.csv" | grep -q '^tick,t,body,x,y,vx,vy,angle,angular_velocity,energy,world_energy,world_dissipated,balance' \
+  && awk -F, 'NR > 1 && NF != 16 { bad = 1 } END { exit bad }' "$work/shaped.csv" \
+  && ok "csv of a world with shapes: angle and angular_velocity after vy" || fail "csv angle columns"
 rows=$(($(wc -l <"$work/p.csv") - 1))
 [ "$rows" -eq 55 ] && ok "csv has 5 bodies x 11 recorded ticks" || fail "csv rows: $rows, want 55"
 grep -q '^0,0,vacuum,0,0,15,20,' "$work/p.csv" && ok "csv tick 0 is the initial state" || fail "csv tick 0"
