@@ -1,1 +1,227 @@
+// Bodies with shapes in a world: exact checks against closed forms (the incline, the tipping
+// box, free spin, the weight on a box's two corners), stacks that stand, a fast spinning box
+// that meets a thin wall, and the same bits after a snapshot and on two threads.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/shape.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "shape_world.hpp"
+#include "world_kernel.hpp"
+
+namespace fixstep {
+namespace {
+
+constexpr double g = 9.81;
+
+WorldSettings shape_world(double mu, double e = 0.0) {
+  WorldSettings s{.dt = 1.0 / 60.0};
+  s.contacts = ContactSettings{.restitution = e, .friction = mu};
+  return s;
+}
+
+BodyDef box_body(double hx, double hy, Vec2 at, double angle = 0.0, double mass = 1.0) {
+  BodyDef b;
+  b.body = Body{.mass = mass, .position = at, .angle = angle};
+  b.gravity = Gravity{{0.0, -g}};
+  b.shapes = {make_box(hx, hy)};
+  return b;
+}
+
+// --- the incline: a = g (sin θ − μ cos θ) when tan θ > μ, still when tan θ < μ --------------
+
+struct Slide {
+  double along = 0.0;   ///< m moved down the slope
+  double across = 0.0;  ///< m moved off the plane's line
+  double angle = 0.0;   ///< rad turned
+};
+
+Slide slide(double theta, double mu, int ticks) {
+  detail::WorldKernel<double> w(shape_world(mu));
+  const Vec2 n{-std::sin(theta), std::cos(theta)};
+  w.add_plane(PlaneDef{.normal = n, .offset = 0.0, .restitution = 0.0, .friction = mu});
+  const double hy = 0.25;
+  const Entity box = w.create_body(box_body(0.5, hy, hy * n, theta, 2.0));
+  w.step();  // settles onto the plane
+  const Body b0 = w.body(box);
+  for (int i = 1; i < ticks; ++i) w.step();
+  const Body b1 = w.body(box);
+  const Vec2 d = b1.position - b0.position;
+  const Vec2 down{-std::cos(theta), -std::sin(theta)};
+  return {dot(d, down), dot(d, n), b1.angle - b0.angle};
+}
+
+TEST(ShapeIncline, ABoxSlidesAtGTimesSinMinusMuCos) {
+  const double theta = 0.5, mu = 0.2, dt = 1.0 / 60.0;
+  const int ticks = 121;
+  const Slide s = slide(theta, mu, ticks);
+  // From rest after the first tick: semi-implicit Euler's x_n = a dt² n(n+1)/2 over the n
+  // ticks after it, with v1 = a dt already gained in the first.
+  const double a = g * (std::sin(theta) - mu * std::cos(theta));
+  const int n = ticks - 1;
+  const double exact = a * dt * dt * (n * (n + 1) / 2.0 + n);
+  EXPECT_NEAR(s.along, exact, 1e-3 * exact);
+  EXPECT_NEAR(s.across, 0.0, 1e-6);
+  EXPECT_NEAR(s.angle, 0.0, 1e-6);
+}
+
+TEST(ShapeIncline, ABoxStaysPutWhenTanThetaIsBelowMu) {
+  const Slide s = slide(0.3, 0.5, 121);  // tan 0.3 = 0.31 < 0.5; 2 s
+  EXPECT_LT(std::abs(s.along), 1e-6);
+  EXPECT_LT(std::abs(s.across), 1e-6);
+  EXPECT_LT(std::abs(s.angle), 1e-6);
+}
+
+// --- the tipping box: back upright below atan(w/h), over above it ----------------------------
+
+/// A box w × h (m) stood on its lower-left corner at the origin, turned by φ (rad) clockwise
+/// from upright... counter-clockwise here: its corner at the origin and its centre at
+/// R(φ)(w/2, h/2). Returns its angle after 3 s.
+double tip(double phi) {
+  detail::WorldKernel<double> w(shape_world(1.0));
+  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 0.0, .friction = 1.0});
+  const double hx = 0.2, hy = 0.5;
+  const Vec2 c{std::cos(phi) * hx - std::sin(phi) * hy, std::sin(phi) * hx + std::cos(phi) * hy};
+  const Entity box = w.create_body(box_body(hx, hy, c, phi));
+  for (int i = 0; i < 180; ++i) w.step();
+  return w.body(box).angle;
+}
+
+TEST(ShapeTipping, ABoxOnItsCornerTipsBackBelowTheCriticalAngleAndOverAboveIt) {
+  const double critical = std::atan(0.4 / 1.0);  // atan(w/h)
+  EXPECT_NEAR(tip(critical - 0.01), 0.0, 0.02);
+  EXPECT_NEAR(tip(critical + 0.01), std::numbers::pi / 2, 0.02);
+}
+
+// --- free spin ---------------------------------------------------------------------------
+
+TEST(ShapeSpin, ABoxSpinningFreelyKeepsItsAngularVelocityAndEnergy) {
+  detail::WorldKernel<double> w(shape_world(0.0));
+  BodyDef b = box_body(0.5, 0.2, {1.0, 2.0}, 0.3, 3.0);
+  b.gravity.reset();
+  b.body.angular_velocity = 7.0;
+  b.body.velocity = {0.5, -0.25};
+  const Entity box = w.create_body(b);
+  const double e0 = w.energy().total();
+  for (int i = 0; i < 600; ++i) w.step();
+  const Body after = w.body(box);
+  EXPECT_EQ(after.angular_velocity, 7.0);
+  EXPECT_NEAR(w.energy().total(), e0, 1e-12 * e0);
+  // θ = 0.3 + 600 dt ω, wrapped to [-π, π].
+  EXPECT_NEAR(std::remainder(after.angle - (0.3 + 70.0), 2 * std::numbers::pi), 0.0, 1e-9);
+  // I = m (w² + h²) / 12 for a box of 1.0 m × 0.4 m.
+  EXPECT_NEAR(w.energy().kinetic,
+              0.5 * 3.0 * (0.25 + 0.0625) + 0.5 * 3.0 * (1.0 + 0.16) / 12.0 * 49.0, 1e-12);
+}
+
+// --- a box dropped flat rests flat, half its weight on each corner -----------------------
+
+TEST(ShapeRest, ABoxDroppedFlatRestsOnBothCornersWithHalfItsWeightEach) {
+  detail::WorldKernel<double> w(shape_world(0.5));
+  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 0.0, .friction = 0.5});
+  const Entity box = w.create_body(box_body(0.5, 0.25, {0.0, 0.5}, 0.0, 2.0));
+  for (int i = 0; i < 120; ++i) w.step();
+  const detail::ShapeWorld* sw = w.shape_world();
+  ASSERT_NE(sw, nullptr);
+  ASSERT_EQ(sw->rows().size(), 2u);
+  const double weight_impulse = 2.0 * g * w.settings().dt;
+  for (const detail::ShapeRow& r : sw->rows())
+    EXPECT_NEAR(r.ln, 0.5 * weight_impulse, 0.01 * 0.5 * weight_impulse);
+  EXPECT_NEAR(w.body(box).angle, 0.0, 1e-9);
+  EXPECT_NEAR(w.body(box).position.y, 0.25, 0.006);  // within the slop
+}
+
+// --- stacks --------------------------------------------------------------------------------
+
+TEST(ShapeStack, ATowerOfTwentyBoxesStandsStillForTenSeconds) {
+  detail::WorldKernel<double> w(shape_world(0.6));
+  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 0.0, .friction = 0.6});
+  const double h = 0.5;
+  Entity top;
+  for (int i = 0; i < 20; ++i) top = w.create_body(box_body(h, h, {0.0, h + 2 * h * i}));
+  for (int i = 0; i < 60; ++i) w.step();
+  const Body b0 = w.body(top);
+  for (int i = 0; i < 600; ++i) w.step();
+  const Body b1 = w.body(top);
+  EXPECT_LT(std::hypot(b1.position.x - b0.position.x, b1.position.y - b0.position.y), 0.01 * 2 * h);
+  EXPECT_LT(w.contact_stats().deepest_shape_overlap, 0.01);
+}
+
+TEST(ShapeStack, ATwentyRowPyramidStandsStillForTenSeconds) {
+  detail::WorldKernel<double> w(shape_world(0.6));
+  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 0.0, .friction = 0.6});
+  const double h = 0.5;
+  Entity top;
+  for (int row = 0; row < 20; ++row) {
+    for (int i = 0; i < 20 - row; ++i) {
+      const double x = (i - (19 - row) * 0.5) * 2 * h;
+      top = w.create_body(box_body(h, h, {x, h + 2 * h * row}));
+    }
+  }
+  for (int i = 0; i < 60; ++i) w.step();
+  const Body b0 = w.body(top);
+  for (int i = 0; i < 600; ++i) w.step();
+  const Body b1 = w.body(top);
+  EXPECT_LT(std::hypot(b1.position.x - b0.position.x, b1.position.y - b0.position.y), 0.01 * 2 * h);
+}
+
+// --- a fast spinning box does not pass a thin wall ------------------------------------------
+
+TEST(ShapeContinuous, AFastSpinningBoxDoesNotPassAOneCentimetreWall) {
+  detail::WorldKernel<double> w(shape_world(0.3));
+  BodyDef wall;
+  wall.type = BodyType::static_body;
+  wall.body.position = {10.0, 0.0};
+  wall.shapes = {make_box(0.005, 5.0)};
+  w.create_body(wall);
+  BodyDef b = box_body(0.5, 0.25, {0.0, 0.0});
+  b.gravity.reset();
+  b.body.velocity = {500.0, 0.0};
+  b.body.angular_velocity = 100.0;
+  const Entity box = w.create_body(b);
+  for (int i = 0; i < 120; ++i) {
+    w.step();
+    ASSERT_LT(w.body(box).position.x, 10.0) << "tick " << i;
+  }
+}
+
+// --- the same bits -------------------------------------------------------------------------
+
+WorldDef box_rain() {
+  WorldDef def = WorldDef::empty(Precision::f64, shape_world(0.5, 0.2));
+  def.planes.push_back(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.5});
+  for (int i = 0; i < 40; ++i) {
+    BodyDef b =
+        box_body(0.3 + 0.01 * (i % 5), 0.2, {0.7 * (i % 8) - 2.5, 1.0 + 0.6 * (i / 8)}, 0.1 * i);
+    if (i % 3 == 0) b.shapes = {make_capsule({-0.3, 0.0}, {0.3, 0.0}, 0.15)};
+    def.add_body(b);
+  }
+  return def;
+}
+
+TEST(ShapeDeterminism, ASnapshotStepsOnToTheSameBitsAndTwoThreadsMatchOne) {
+  World a(box_rain());
+  for (int i = 0; i < 60; ++i) a.step();
+  WorldSnapshot snap;
+  a.save(snap);
+  for (int i = 0; i < 60; ++i) a.step();
+  const std::uint64_t h = a.state_hash();
+  a.restore(snap);
+  for (int i = 0; i < 60; ++i) a.step();
+  EXPECT_EQ(a.state_hash(), h);
+  WorldDef two = box_rain();
+  two.settings.threads = 2;
+  World b(two);
+  for (int i = 0; i < 120; ++i) b.step();
+  EXPECT_EQ(b.state_hash(), h);
+}
+
+}  // namespace
+}  // namespace fixstep

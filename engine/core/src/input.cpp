@@ -5,6 +5,26 @@
 
 namespace fixstep {
 
+const char* body_input_kind_name(BodyInputKind kind) {
+  switch (kind) {
+    case BodyInputKind::force:
+      return "force";
+    case BodyInputKind::impulse:
+      return "impulse";
+    case BodyInputKind::velocity:
+      return "velocity";
+    case BodyInputKind::torque:
+      return "torque";
+    case BodyInputKind::angular_impulse:
+      return "angular_impulse";
+    case BodyInputKind::angular_velocity:
+      return "angular_velocity";
+    case BodyInputKind::target_angle:
+      return "target_angle";
+  }
+  return "?";
+}
+
 void InputSampler::set_force(Entity body, Vec2 force) {
   const auto it = std::find_if(forces_.begin(), forces_.end(),
                                [&](const BodyInput& f) { return f.body == body; });

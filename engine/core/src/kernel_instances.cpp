@@ -31,6 +31,7 @@
 #include "world_rolling.cpp"     // rolling discs' angles
 #include "world_segments.cpp"    // segments and polylines
 #include "world_sensors.cpp"     // sensors
+#include "world_shapes.cpp"      // bodies with shapes, the kernel's side
 #include "world_sleep.cpp"       // sleeping islands
 #include "world_step.cpp"        // the fused sweep and the integrators
 #include "world_tick.cpp"        // a tick's phases in order

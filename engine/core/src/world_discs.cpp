@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numeric>
 
+#include "contact_kappa.hpp"
 #include "disc_contacts.hpp"
 #include "workers.hpp"
 #include "world_kernel.hpp"
@@ -36,27 +37,6 @@ void ClonePtr<T>::destroy(T* t) {
 template class ClonePtr<DiscContacts<float>>;
 template class ClonePtr<DiscContacts<double>>;
 }  // namespace detail
-
-namespace {
-
-/// How far an integrator moves a body under a constant force, per unit of the velocity that
-/// force gives it over one tick, in units of dt: x1 - x0 = κ dt Δv. With n substeps of h =
-/// dt/n, semi-implicit (and implicit) Euler move F/m h² n(n+1)/2 = F/m dt² (n+1)/2n, explicit
-/// Euler (n-1)/2n, and the methods exact for constant forces ½.
-double kappa(Integrator integrator, int substeps) {
-  const double n = substeps;
-  switch (integrator) {
-    case Integrator::semi_implicit_euler:
-    case Integrator::implicit_euler:
-      return (n + 1.0) / (2.0 * n);
-    case Integrator::explicit_euler:
-      return (n - 1.0) / (2.0 * n);
-    default:
-      return 0.5;
-  }
-}
-
-}  // namespace
 
 template <class Real>
 void detail::WorldKernel<Real>::rebuild_discs() {
@@ -177,7 +157,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       planes_,
       contact_.after,
       settings_.dt,
-      kappa(settings_.integrator, settings_.substeps),
+      detail::contact_kappa(settings_.integrator, settings_.substeps),
       detail::threads_for(settings_.threads)};  // the same states either way
   if (!segments_.empty()) t.segments = &segments_;
   if (rolling_) t.spin = spin_.data();

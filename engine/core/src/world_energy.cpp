@@ -41,6 +41,12 @@ void detail::WorldKernel<Real>::for_each_energy(Add&& add) const {
       add(j, &EnergyReport::kinetic, 0.5 * inertia_of(mass_[j], colliders_.data[i]) * w * w);
     }
   }
+  for (std::size_t i = 0; i < shape_sets_.data.size(); ++i) {  // ½ I ω² of bodies with shapes
+    const std::size_t j = bodies_.index(shape_sets_.set.dense[i]);
+    if (!dynamic(j)) continue;
+    const ShapeSet& set = shape_sets_.data[i];
+    add(j, &EnergyReport::kinetic, 0.5 * set.inertia * set.spin * set.spin);
+  }
   for (std::size_t i = 0; i < springs_.data.size(); ++i) {
     const SpringDamper& s = springs_.data[i];
     const std::size_t j = bodies_.index(springs_.set.dense[i]);
@@ -108,6 +114,10 @@ std::uint64_t detail::WorldKernel<Real>::state_hash() const {
   }
   // Rolling discs (only in worlds that ask: every other world hashes as before).
   for (std::size_t j = 0; j < angle_.size(); ++j) mix(angle_[j]), mix(spin_[j]);
+  // Bodies with shapes (only in worlds that have them), in their store's order.
+  for (const ShapeSet& set : shape_sets_.data) {
+    mix(static_cast<Real>(set.angle)), mix(static_cast<Real>(set.spin));
+  }
   // Sleeping islands (only in worlds that ask), as the bytes of two 32-bit counts.
   for (std::size_t j = 0; j < asleep_.size(); ++j) {
     mix_bytes(still_ticks_[j], sizeof(std::uint32_t)), mix_bytes(asleep_[j], sizeof(std::uint32_t));

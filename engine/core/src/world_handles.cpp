@@ -29,6 +29,14 @@ void World::set_velocity(Entity e, Vec2 velocity) {
   visit([&](auto& w) { w.set_velocity(e, velocity); });
 }
 
+std::span<const ShapeDef> World::shapes(Entity e) const {
+  return visit([&](const auto& w) { return w.shapes(e); });
+}
+
+Vec2 World::local_center(Entity e) const {
+  return visit([&](const auto& w) { return w.local_center(e); });
+}
+
 std::uint64_t World::user_data(Entity e) const {
   return visit([&](const auto& w) { return w.user_data(e); });
 }
@@ -87,21 +95,34 @@ std::span<const SensorEvent> World::sensor_overlaps() const {
   return visit([](const auto& w) { return w.sensor_overlaps(); });
 }
 
-namespace {
-
-std::string_view kind_name(BodyInputKind kind) {
-  switch (kind) {
-    case BodyInputKind::force:
-      return "force";
-    case BodyInputKind::impulse:
-      return "impulse";
-    case BodyInputKind::velocity:
-      return "velocity";
+void World::check_body_input(const BodyInput& in, const std::string& who) const {
+  const BodyType t = type(in.body);
+  const bool angular = in.kind >= BodyInputKind::torque;
+  if (angular && in.value.y != 0.0) {
+    throw std::invalid_argument(fmt::format("{}: an angular input's value is [x, 0] (got [{}, {}])",
+                                            who, in.value.x, in.value.y));
   }
-  return "?";
+  if (angular && shapes(in.body).empty()) {
+    throw std::invalid_argument(
+        fmt::format("{} ('{}'): angular input turns bodies with shapes only", who, name(in.body)));
+  }
+  const bool kinematic_kind = in.kind == BodyInputKind::velocity ||
+                              in.kind == BodyInputKind::angular_velocity ||
+                              in.kind == BodyInputKind::target_angle;
+  if (kinematic_kind && t != BodyType::kinematic) {
+    throw std::invalid_argument(fmt::format(
+        "{} ('{}'): a {} input moves kinematic bodies only; push a dynamic body with {}", who,
+        name(in.body), angular ? "turning" : "velocity",
+        angular ? "a torque or an angular impulse" : "a force or an impulse"));
+  }
+  if (!kinematic_kind && t != BodyType::dynamic) {
+    throw std::invalid_argument(fmt::format(
+        "{} ('{}'): {} move dynamic bodies only (a {} body {})", who, name(in.body),
+        angular ? "torques and angular impulses" : "forces and impulses",
+        t == BodyType::kinematic ? "kinematic" : "static",
+        t == BodyType::kinematic ? "moves at its velocity: give it one" : "never moves"));
+  }
 }
-
-}  // namespace
 
 void World::check_input(const TickInput& input) const {
   if (input.bodies.size() > max_body_inputs) {
@@ -110,8 +131,9 @@ void World::check_input(const TickInput& input) const {
   }
   for (std::size_t i = 0; i < input.bodies.size(); ++i) {
     const BodyInput& in = input.bodies[i];
-    const std::string who = fmt::format("tick {}: {} on body {}:{}", input.tick, kind_name(in.kind),
-                                        in.body.index1, in.body.generation);
+    const std::string who =
+        fmt::format("tick {}: {} on body {}:{}", input.tick, body_input_kind_name(in.kind),
+                    in.body.index1, in.body.generation);
     if (!contains(in.body)) {
       throw std::invalid_argument(who + ": no such body (null, or destroyed)");
     }
@@ -119,20 +141,7 @@ void World::check_input(const TickInput& input) const {
       throw std::invalid_argument(
           fmt::format("{}: must be finite (got [{}, {}])", who, in.value.x, in.value.y));
     }
-    const BodyType t = type(in.body);
-    const bool velocity = in.kind == BodyInputKind::velocity;
-    if (velocity && t != BodyType::kinematic) {
-      throw std::invalid_argument(fmt::format(
-          "{} ('{}'): a velocity input moves kinematic bodies only; push a dynamic body with "
-          "a force or an impulse",
-          who, name(in.body)));
-    }
-    if (!velocity && t != BodyType::dynamic) {
-      throw std::invalid_argument(fmt::format(
-          "{} ('{}'): forces and impulses move dynamic bodies only (a {} body {})", who,
-          name(in.body), t == BodyType::kinematic ? "kinematic" : "static",
-          t == BodyType::kinematic ? "moves at its velocity: give it one" : "never moves"));
-    }
+    check_body_input(in, who);
   }
 }
 

@@ -31,6 +31,8 @@ void detail::WorldKernel<Real>::apply_body_inputs(const TickInput& input) {
     } else if (in.kind == BodyInputKind::velocity && types_[j] == BodyType::kinematic) {
       vx_[j] = static_cast<Real>(in.value.x);
       vy_[j] = static_cast<Real>(in.value.y);
+    } else if (in.kind >= BodyInputKind::torque) {
+      apply_angular_input(in, j);  // world_shapes.cpp
     }
   }
 }

@@ -13,6 +13,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/value_ranges.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "shape_world.hpp"
 #include "value_checks.hpp"
 
 namespace fixstep {
@@ -152,6 +153,7 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   if (def.drag) validate_component(*def.drag, who);
   if (def.appearance) validate_component(*def.appearance, who);
   if (def.collider) validate_component(*def.collider, who), check_sensor(*def.collider, who);
+  check_shapes(def, who);  // world_shapes.cpp
 
   Entity e;
   if (!free_slots_.empty()) {
@@ -188,6 +190,7 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   if (def.drag) set(e, *def.drag);
   if (def.appearance) set(e, *def.appearance);
   if (def.collider) set(e, *def.collider);
+  if (!def.shapes.empty()) add_shapes(e, def, who);
   terms_dirty_ = true;
   return e;
 }
@@ -205,6 +208,7 @@ void detail::WorldKernel<Real>::destroy(Entity e) {
   remove<LinearDrag>(e);
   remove<Appearance>(e);
   remove<Collider>(e);
+  remove_shapes(e);
   unindex_name(e, names_[bodies_.index(e)]);
   const std::size_t i = bodies_.erase(e);
   dissipated_gone_ += mass_[i] * double(dissipated_body_[i]);  // stays in the account
@@ -277,6 +281,11 @@ Body detail::WorldKernel<Real>::body(Entity e) const {
   const std::size_t i = index_of(e);
   Body b{mass_[i], {double(x_[i]), double(y_[i])}, {double(vx_[i]), double(vy_[i])}};
   if (rolling_) b.angle = double(angle_[i]), b.angular_velocity = double(spin_[i]);
+  if (shape_sets_.set.contains(e)) {  // the origin, where the centre of mass lies off it
+    const ShapeSet& set = shape_sets_.data[shape_sets_.set.index(e)];
+    b.angle = set.angle, b.angular_velocity = set.spin;
+    b.position = b.position - rotate(rot_of(set.angle), set.center);
+  }
   return b;
 }
 
@@ -293,6 +302,15 @@ void detail::WorldKernel<Real>::set_body(Entity e, const Body& b) {
   if (rolling_) {
     angle_[i] = static_cast<Real>(std::remainder(b.angle, 2.0 * std::numbers::pi));
     spin_[i] = static_cast<Real>(b.angular_velocity);
+  }
+  if (shape_sets_.set.contains(e)) {
+    ShapeSet& set = shape_sets_.data[shape_sets_.set.index(e)];
+    set.angle = double(static_cast<Real>(std::remainder(b.angle, 2.0 * std::numbers::pi)));
+    set.spin =
+        types_[i] == BodyType::static_body ? 0.0 : double(static_cast<Real>(b.angular_velocity));
+    const Vec2 c = b.position + rotate(rot_of(set.angle), set.center);
+    x_[i] = prev_x_[i] = static_cast<Real>(c.x);
+    y_[i] = prev_y_[i] = static_cast<Real>(c.y);
   }
   if (segments_.moves()) place_segments();
   terms_dirty_ = true;  // 1/m enters the per-body coefficients
@@ -403,6 +421,7 @@ void detail::WorldKernel<Real>::rebuild_terms() {
   rebuild_contacts();
   if (sleep_) reset_sleep();  // a structural change wakes every island
   rebuild_discs();
+  rebuild_shapes();  // world_shapes.cpp
   terms_dirty_ = false;
 }
 

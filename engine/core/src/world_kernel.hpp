@@ -81,6 +81,8 @@ struct PlaneTally;
 /// Disc-disc contacts of a world with WorldSettings::contacts (disc_contacts.hpp).
 template <class Real>
 class DiscContacts;
+/// Contacts of bodies with shapes (shape_world.hpp).
+class ShapeWorld;
 /// The uniform grid of discs that World's queries and the sleeping islands' wake test use
 /// (query_grid.hpp).
 class QueryGrid;
@@ -244,6 +246,11 @@ class WorldKernel {
   /// of a static body (it never moves).
   void set_velocity(Entity e, Vec2 velocity);
   /// The program's 64-bit value of e (BodyDef::user_data); throws if e is stale.
+  [[nodiscard]] std::span<const ShapeDef> shapes(Entity e) const;  // (world_shapes.cpp)
+  [[nodiscard]] Vec2 local_center(Entity e) const;
+  [[nodiscard]] bool has_shapes() const { return !shape_sets_.data.empty(); }
+  /// The shape contacts (null without shapes): for tests that read the solver's rows.
+  [[nodiscard]] const ShapeWorld* shape_world() const { return shape_world_.get(); }
   [[nodiscard]] std::uint64_t user_data(Entity e) const { return user_data_[index_of(e)]; }
   /// Sets e's user data (part of copies and snapshots, never of the state hash).
   void set_user_data(Entity e, std::uint64_t value) { user_data_[index_of(e)] = value; }
@@ -632,6 +639,26 @@ class WorldKernel {
     std::vector<Real> x0, y0, vx0, vy0;
     std::vector<Real> d0;  ///< sleepers' dissipated J/kg (ContactSettings::sleep, tracked)
   } immovable_;
+  // Bodies with shapes (world_shapes.cpp; BodyDef::shapes), keyed by entity: their shapes,
+  // centre of mass in the body frame (m), inertia about it (kg·m²; dynamic bodies), and their
+  // angle θ (rad, in [-π, π]) and angular velocity ω (rad/s), each rounded to Real after every
+  // tick. The shape world (their contacts) is null in a world without shapes.
+  struct ShapeSet {
+    std::vector<ShapeDef> defs;
+    Vec2 center{};
+    double inertia = 0.0;
+    double angle = 0.0, spin = 0.0;
+    double torque = 0.0;  ///< N·m: this tick's torque input (0 between ticks)
+  };
+  Store<ShapeSet> shape_sets_;
+  ClonePtr<ShapeWorld> shape_world_;
+  void check_shapes(const BodyDef& def, const std::string& who) const;
+  void add_shapes(Entity e, const BodyDef& def, const std::string& who);
+  void remove_shapes(Entity e);
+  void apply_angular_input(const BodyInput& in, std::size_t j);
+  void rebuild_shapes();
+  void save_shape_start();
+  void resolve_shapes();
   // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.
   ClonePtr<DiscContacts<Real>> discs_;
   void rebuild_discs();

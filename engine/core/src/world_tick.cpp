@@ -8,6 +8,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "phase_clock.hpp"
 #include "second_thread.hpp"
+#include "shape_world.hpp"
 #include "workers.hpp"
 #include "world_kernel.hpp"
 
@@ -37,6 +38,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (terms_dirty_) rebuild_terms();  // world_kernel.cpp
   apply_input(input);                 // world_input.cpp
   if (keep_previous_) keep_previous_positions();  // world_step.cpp
+  if (shape_world_) save_shape_start();           // world_shapes.cpp
   const TickPlan plan = plan_tick();
   // Two threads: the discs' second thread spins between the disc phases' passes to the end of
   // the contact events (second_thread.hpp).
@@ -61,6 +63,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   } else {
     end_disc_events();  // world_events.cpp
   }
+  if (shape_world_) resolve_shapes();           // world_shapes.cpp
   if (rolling_) integrate_angles();             // world_rolling.cpp
   if (segments_.moves()) place_segments();      // where the tick left the carriers
   if (sleep_) finish_sleep(input, plan.discs);  // world_sleep.cpp

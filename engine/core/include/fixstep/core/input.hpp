@@ -43,7 +43,28 @@ enum class BodyInputKind : std::uint8_t {
   /// The velocity, m/s, a kinematic body moves at from this tick on (it keeps it until
   /// changed); kinematic bodies only.
   velocity = 2,
+  /// A torque τ, N·m, in value.x (value.y 0), acting through the whole tick: Δω = τ dt / I
+  /// over the tick, the angle stepped as the integrator steps a constant acceleration; dynamic
+  /// bodies with shapes only.
+  torque = 3,
+  /// An angular impulse L, N·m·s, in value.x (value.y 0), at the tick's start: Δω = L / I;
+  /// dynamic bodies with shapes only.
+  angular_impulse = 4,
+  /// The angular velocity ω, rad/s, in value.x (value.y 0), a kinematic body with shapes turns
+  /// at from this tick on (it keeps it until changed).
+  angular_velocity = 5,
+  /// The angle θ, rad, in value.x (value.y 0), a kinematic body with shapes reaches at this
+  /// tick's end: its angular velocity becomes (θ − θ_now)/dt, the shorter way round, and stays
+  /// (Box2D's b2Body_SetTargetTransform): a flipper driven towards its stop, a door swung.
+  target_angle = 6,
 };
+
+/// The last BodyInputKind (recordings and packets refuse larger values).
+inline constexpr BodyInputKind last_body_input_kind = BodyInputKind::target_angle;
+
+/// "force", "impulse", "velocity", "torque", "angular_impulse", "angular_velocity" or
+/// "target_angle" (the spelling of scripts and recordings).
+[[nodiscard]] const char* body_input_kind_name(BodyInputKind kind);
 
 /// Input addressed to one body by its handle (so it follows the body when others are
 /// destroyed), recorded and replayed with the rest of the tick's input. World::step ignores an
@@ -52,7 +73,9 @@ enum class BodyInputKind : std::uint8_t {
 struct BodyInput {
   Entity body{};
   BodyInputKind kind = BodyInputKind::force;
-  Vec2 value{};  ///< N (force), N·s (impulse) or m/s (velocity)
+  /// N (force), N·s (impulse), m/s (velocity); the angular kinds' value in x (N·m, N·m·s,
+  /// rad/s, rad), y 0
+  Vec2 value{};
   friend constexpr bool operator==(const BodyInput&, const BodyInput&) = default;
 };
 
@@ -122,6 +145,22 @@ class InputSampler {
   /// A force (N) on `body` in every tick sampled from now on, until set again; (0, 0) ends it
   /// (a thruster held down).
   void set_force(Entity body, Vec2 force);
+  /// A torque (N·m) on `body` in the next tick sampled only (an event: once).
+  void apply_torque(Entity body, double torque) {
+    events_.push_back({body, BodyInputKind::torque, {torque, 0.0}});
+  }
+  /// An angular impulse (N·m·s) on `body` in the next tick sampled (an event: once).
+  void apply_angular_impulse(Entity body, double impulse) {
+    events_.push_back({body, BodyInputKind::angular_impulse, {impulse, 0.0}});
+  }
+  /// The angular velocity (rad/s) kinematic `body` turns at from the next tick sampled on.
+  void set_angular_velocity(Entity body, double omega) {
+    events_.push_back({body, BodyInputKind::angular_velocity, {omega, 0.0}});
+  }
+  /// The angle (rad) kinematic `body` reaches at the end of the next tick sampled.
+  void set_target_angle(Entity body, double angle) {
+    events_.push_back({body, BodyInputKind::target_angle, {angle, 0.0}});
+  }
   [[nodiscard]] std::uint32_t held() const { return held_; }
   [[nodiscard]] Entity drag_body() const { return drag_body_; }
   [[nodiscard]] Vec2 pointer() const { return pointer_; }  ///< m

@@ -27,6 +27,7 @@ enum class BodyType : std::uint8_t;  // components.hpp
 struct SegmentDef;                   // segment.hpp
 struct ShapeDef;                     // shape.hpp
 struct TickInput;                    // input.hpp
+struct BodyInput;                    // input.hpp
 struct EnergyReport;                 // step_results.hpp
 struct ContactStats;                 // step_results.hpp
 struct StepProfile;                  // step_results.hpp
@@ -204,7 +205,9 @@ class World {
   void step(const TickInput& input);
   /// Throws std::invalid_argument naming the first entry of input.bodies World::step would
   /// ignore: a stale handle, a non-finite value, a force or impulse on a body that is not
-  /// dynamic, a velocity for one that is not kinematic, or more than max_body_inputs entries.
+  /// dynamic, a velocity for one that is not kinematic, an angular input (torque, angular
+  /// impulse, angular velocity, target angle) for a body without shapes or of the wrong type
+  /// or with a non-zero value.y, or more than max_body_inputs entries.
   void check_input(const TickInput& input) const;
   void set_keep_previous(bool keep);
 
@@ -335,6 +338,7 @@ class World {
   void restore(const WorldSnapshot& snapshot);
 
  private:
+  void check_body_input(const BodyInput& in, const std::string& who) const;
   /// Reads the fields state_hash() mixes from the kernel, as state_hash() does.
   friend StateFields state_fields(const World& world);
   /// Calls f on the kernel inside (WorldKernel<float> or <double>); defined with the state

@@ -1,0 +1,232 @@
+// Shape contacts, part 1: continuous collision against what does not move, the broadphase and
+// the manifolds of a tick (shape_world.hpp has the whole tick; the solver is shape_solver.cpp).
+#include "shape_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fixstep/core/stop_request.hpp"
+
+namespace fixstep::detail {
+
+namespace {
+
+bool boxes_overlap(const Aabb& a, const Aabb& b) {
+  return a.lower.x <= b.upper.x && b.lower.x <= a.upper.x && a.lower.y <= b.upper.y &&
+         b.lower.y <= a.upper.y;
+}
+
+Aabb segment_box(const SegmentDef& s) {
+  return {{std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)},
+          {std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)}};
+}
+
+Aabb merge(const Aabb& a, const Aabb& b) {
+  return {{std::min(a.lower.x, b.lower.x), std::min(a.lower.y, b.lower.y)},
+          {std::max(a.upper.x, b.upper.x), std::max(a.upper.y, b.upper.y)}};
+}
+
+/// The lowest value of n·x − offset over `c` at pose `t`, radius taken off: the distance of
+/// the shape from the plane (< 0: across it).
+double plane_distance(Vec2 n, double offset, const Convex& c, const Pose& t) {
+  double lowest = INFINITY;
+  for (int i = 0; i < c.count; ++i) lowest = std::min(lowest, dot(n, transform(t, c.vertices[i])));
+  return lowest - offset - c.radius;
+}
+
+/// First fraction in [0, 1] at which `c` on sweep `s` comes within `target` of the plane, by
+/// conservative advancement: the distance falls no faster than |n·Δc| + |Δa| · extent a unit
+/// of t. 1 when it does not.
+double plane_toi(Vec2 n, double offset, const Convex& c, const Sweep& s, double target) {
+  const double bound = std::abs(dot(n, s.c1 - s.c0)) + std::abs(s.a1 - s.a0) * extent(c);
+  if (!(bound > 0.0)) return 1.0;
+  double t = 0.0;
+  for (int i = 0; i < 64; ++i) {
+    const double d = plane_distance(n, offset, c, pose_at(s, t));
+    if (d <= target + 0.25 * target) return t;
+    t += (d - target) / bound;
+    if (t >= 1.0) return 1.0;
+  }
+  return t;
+}
+
+}  // namespace
+
+Pose ShapeWorld::pose(std::uint32_t body) const {
+  const ShapeState& s = state_[body];
+  return {{s.x, s.y}, s.q};
+}
+
+// --- continuous collision ----------------------------------------------------------------
+
+void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
+  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+    const ShapedBody& b = bodies_[i];
+    if (b.type != BodyType::dynamic || b.disc) continue;
+    const ShapeState& s = state_[i];
+    const double motion = std::hypot(s.x - s.x0, s.y - s.y0) + std::abs(s.a - s.a0) * b.extent;
+    if (!(motion > 2.0 * slop)) continue;
+    const double t = first_static_touch(i, tick);
+    if (t >= 1.0) continue;
+    const Sweep sweep{{s.x0, s.y0}, {s.x, s.y}, s.a0, s.a};
+    const Pose at = pose_at(sweep, t);
+    ShapeState& m = state_[i];
+    m.x = at.p.x, m.y = at.p.y, m.a = s.a0 + t * (s.a - s.a0), m.q = at.q;
+    ++tally.ccd_hits;
+  }
+}
+
+double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick) {
+  const ShapedBody& b = bodies_[body];
+  const ShapeState& s = state_[body];
+  const Sweep sweep{{s.x0, s.y0}, {s.x, s.y}, s.a0, s.a};
+  const Pose start{{s.x0, s.y0}, rot_of(s.a0)};
+  const double target = slop;
+  double first = 1.0;
+  for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
+    const ShapeEntry& e = shapes_[k];
+    if (e.sensor) continue;
+    const Aabb swept = merge(convex_aabb(e.convex, start), convex_aabb(e.convex, pose(body)));
+    for (const PlaneDef& p : tick.planes) {
+      const double len = std::hypot(p.normal.x, p.normal.y);
+      const Vec2 n = p.normal / len;
+      const double off = p.offset / len;
+      if (plane_distance(n, off, e.convex, start) < 2.0 * target) continue;  // resting on it
+      first = std::min(first, plane_toi(n, off, e.convex, sweep, target));
+    }
+    for (const SegmentDef& seg : tick.segments) {
+      if (!boxes_overlap(swept, segment_box(seg))) continue;
+      const Convex c = segment_convex(seg.a, seg.b);
+      const Sweep still{{0, 0}, {0, 0}, 0, 0};
+      if (distance(c, Pose{}, e.convex, start).distance < 2.0 * target) continue;
+      const Toi toi = time_of_impact(c, still, e.convex, sweep, target, 0.25 * target, first);
+      if (toi.hit) first = std::min(first, toi.t);
+    }
+    for (std::uint32_t o = 0; o < bodies_.size(); ++o) {
+      if (bodies_[o].type != BodyType::static_body || o == body) continue;
+      const Pose at = pose(o);
+      const Sweep still{{at.p.x, at.p.y}, {at.p.x, at.p.y}, state_[o].a, state_[o].a};
+      for (std::uint32_t q = bodies_[o].first; q < bodies_[o].first + bodies_[o].count; ++q) {
+        const ShapeEntry& f = shapes_[q];
+        if (f.sensor || !should_collide(e.filter, f.filter)) continue;
+        if (!boxes_overlap(swept, convex_aabb(f.convex, at))) continue;
+        if (distance(f.convex, at, e.convex, start).distance < 2.0 * target) continue;
+        const Toi toi =
+            time_of_impact(f.convex, still, e.convex, sweep, target, 0.25 * target, first);
+        if (toi.hit) first = std::min(first, toi.t);
+      }
+    }
+  }
+  return first;
+}
+
+// --- broadphase and manifolds --------------------------------------------------------------
+
+void ShapeWorld::broadphase(double margin) {
+  const std::size_t n = shapes_.size();
+  boxes_.resize(n);
+  order_.resize(n);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    boxes_[k] = convex_aabb(shapes_[k].convex, pose(shapes_[k].owner), margin);
+    order_[k] = k;
+  }
+  // Sort and sweep on the lower x bound; ties by index, so the order is the same everywhere.
+  std::sort(order_.begin(), order_.end(), [&](std::uint32_t l, std::uint32_t r) {
+    const double a = boxes_[l].lower.x, b = boxes_[r].lower.x;
+    return a != b ? a < b : l < r;
+  });
+  candidates_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t a = order_[i];
+    const ShapeEntry& sa = shapes_[a];
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const std::uint32_t b = order_[j];
+      if (boxes_[b].lower.x > boxes_[a].upper.x) break;
+      const ShapeEntry& sb = shapes_[b];
+      if (sa.owner == sb.owner || !boxes_overlap(boxes_[a], boxes_[b])) continue;
+      const ShapedBody& ba = bodies_[sa.owner];
+      const ShapedBody& bb = bodies_[sb.owner];
+      if (ba.type != BodyType::dynamic && bb.type != BodyType::dynamic) continue;
+      if (ba.disc && bb.disc) continue;  // the disc phase's
+      if (sa.sensor || sb.sensor || !should_collide(sa.filter, sb.filter)) continue;
+      candidates_.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& l, const Candidate& r) {
+    return l.a != r.a ? l.a < r.a : l.b < r.b;
+  });
+}
+
+void ShapeWorld::add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
+                              double restitution, std::uint64_t pair) {
+  for (int p = 0; p < m.count; ++p) {
+    const ManifoldPoint& mp = m.points[p];
+    ShapeRow r;
+    r.a = a, r.b = b, r.n = m.normal, r.ra = mp.anchor_a, r.rb = mp.anchor_b;
+    r.separation = mp.separation, r.friction = friction, r.restitution = restitution;
+    r.pair = pair, r.id = mp.id;
+    rows_.push_back(r);
+  }
+}
+
+void ShapeWorld::collect(const ShapeTick& tick, double margin) {
+  rows_.clear();
+  at_x_.resize(state_.size()), at_y_.resize(state_.size()), at_a_.resize(state_.size());
+  for (std::size_t i = 0; i < state_.size(); ++i) {
+    at_x_[i] = state_[i].x, at_y_[i] = state_[i].y, at_a_[i] = state_[i].a;
+  }
+  auto mix_friction = [](double a, double b) { return std::sqrt(a * b); };
+  for (const Candidate& c : candidates_) {
+    const ShapeEntry& sa = shapes_[c.a];
+    const ShapeEntry& sb = shapes_[c.b];
+    const Manifold m = collide(sa.convex, pose(sa.owner), sb.convex, pose(sb.owner), margin);
+    if (m.count == 0) continue;
+    const std::uint64_t pair = std::uint64_t{sa.key} << 32 | sb.key;
+    add_manifold(m, sa.owner, sb.owner, mix_friction(sa.friction, sb.friction),
+                 std::max(sa.restitution, sb.restitution), pair);
+  }
+  for (std::uint32_t k = 0; k < shapes_.size(); ++k) {
+    const ShapeEntry& e = shapes_[k];
+    const ShapedBody& b = bodies_[e.owner];
+    if (b.type != BodyType::dynamic || b.disc || e.sensor) continue;
+    const Pose at = pose(e.owner);
+    for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
+      const PlaneDef& pl = tick.planes[p];
+      const double len = std::hypot(pl.normal.x, pl.normal.y);
+      const Manifold m = collide_plane(pl.normal / len, pl.offset / len, e.convex, at, margin);
+      if (m.count == 0) continue;
+      add_manifold(m, none, e.owner, mix_friction(pl.friction, e.friction),
+                   std::max(pl.restitution, e.restitution),
+                   std::uint64_t{0xF0000000u | p} << 32 | e.key);
+    }
+    for (std::uint32_t s = 0; s < tick.segments.size(); ++s) {
+      const SegmentDef& seg = tick.segments[s];
+      if (!boxes_overlap(boxes_[k], segment_box(seg))) continue;
+      const Manifold m = collide_segment(seg, e.convex, at, margin);
+      if (m.count == 0) continue;
+      add_manifold(m, none, e.owner, mix_friction(seg.friction, e.friction),
+                   std::max(seg.restitution, e.restitution),
+                   std::uint64_t{0xE0000000u | s} << 32 | e.key);
+    }
+  }
+}
+
+ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
+  ShapeTally tally;
+  for (ShapeState& s : state_) s.q = rot_of(s.a);
+  continuous(tick, tally);
+  // Speculative margin: a tick's relative motion at a few metres a second, at least 4 slops.
+  const double margin = 4.0 * slop;
+  broadphase(margin);
+  collect(tick, margin);
+  tally.pairs = candidates_.size();
+  tally.points = rows_.size();
+  prepare_rows(tick);
+  solve_velocities(tick);
+  solve_positions(tick, tally);
+  keep_impulses();
+  throw_if_stop_requested();
+  return tally;
+}
+
+}  // namespace fixstep::detail

@@ -1,0 +1,155 @@
+// Contacts of bodies with shapes (BodyDef::shapes): the kernel's shaped bodies, their
+// broadphase, manifolds, continuous collision against what does not move, and the contact
+// solver. Internal; WorldKernel owns one when a body has shapes (world_shapes.cpp).
+//
+// A tick, after the integrator has moved every body freely (world_tick.cpp):
+//  1. each shaped body's angle moves on at its angular velocity, θ1 = θ0 + dt ω (contact
+//     impulses then turn it as they move it, by κ dt Δω);
+//  2. continuous collision: a body whose motion over the tick is longer than a fraction of its
+//     size is moved back to the first touch of anything that does not move (planes, segments,
+//     static bodies), found by conservative advancement (shape_distance.cpp): bounded, not
+//     exact — the rest of that tick's motion is lost, no shape passes through another;
+//  3. the broadphase (sort and sweep on the x extent of boxes grown by the speculative margin,
+//     in a fixed order) and the manifolds of each candidate pair, of each shape with the
+//     planes and segments, and of each shape with the discs (bodies with a Collider);
+//  4. sequential impulses (Catto, GDC 2005: accumulated impulses clamped at zero, Coulomb
+//     friction bounded by μ λ_n, warm starting from the last tick's impulses matched by feature
+//     ids), velocity targets from restitution (Newton's law above a threshold speed) and from
+//     speculative points (a gap s > 0 may close at s/dt); each impulse also moves its bodies
+//     this tick by κ dt Δv (the integrator's κ, world_discs.cpp), as the disc solver does;
+//  5. the overlap left beyond the slop pushed out on positions only (non-linear Gauss-Seidel,
+//     Catto 2009 / Box2D v2.4's position solver), which adds no kinetic energy.
+// Everything runs on one thread in one order: the same bits on any thread count and platform.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
+#include "fixstep/core/shape.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "shape_geom.hpp"
+
+namespace fixstep::detail {
+
+/// Most shapes one body may carry.
+inline constexpr std::size_t max_shapes_per_body = 64;
+
+/// A body with shapes (or a disc meeting them): its kernel index, mass properties and shapes.
+struct ShapedBody {
+  static constexpr std::uint32_t none = ~std::uint32_t{0};
+  std::uint32_t body = 0;    ///< dense index in the kernel
+  std::uint32_t set = none;  ///< its ShapeSet in the kernel's store (none: a disc)
+  BodyType type = BodyType::dynamic;
+  bool disc = false;  ///< a disc (Collider): its contacts with discs are the disc phase's
+  double inv_mass = 0.0, inv_inertia = 0.0;  ///< 1/kg, 1/(kg·m²); 0 for static and kinematic
+  std::uint32_t first = 0, count = 0;        ///< its shapes in ShapeWorld::shapes_
+  double extent = 0.0;                       ///< m, the farthest point from its centre
+};
+
+/// One shape in the kernel's form.
+struct ShapeEntry {
+  Convex convex;
+  std::uint32_t owner = 0;  ///< index into ShapeWorld::bodies_
+  double friction = 0.0, restitution = 0.0;
+  CollisionFilter filter{};
+  bool sensor = false;
+  std::uint32_t key = 0;  ///< (entity slot << 6) | shape index: stable across rebuilds
+};
+
+/// The start and running state of one shaped body in a tick (double; the kernel's Real state
+/// is read in and written back).
+struct ShapeState {
+  double x0 = 0, y0 = 0, a0 = 0;  ///< start of the tick (m, m, rad)
+  double x = 0, y = 0, a = 0;     ///< now
+  double vx = 0, vy = 0, w = 0;   ///< m/s, rad/s
+  Rot q{};                        ///< of a
+};
+
+/// One manifold point's solver row.
+struct ShapeRow {
+  std::uint32_t a = 0, b = 0;  ///< bodies_ indices (a may be `none`: a plane or segment)
+  Vec2 n{}, ra{}, rb{};        ///< normal A→B, lever arms (m)
+  double separation = 0.0;     ///< m, at the manifold's poses
+  double normal_mass = 0.0, tangent_mass = 0.0;
+  double friction = 0.0, restitution = 0.0;  ///< μ, e of the pair
+  double target = 0.0;                       ///< the normal velocity it asks for, m/s
+  double ln = 0.0, lt = 0.0;                 ///< accumulated impulses (N·s)
+  std::uint64_t pair = 0;                    ///< the two shapes' keys, for warm starting
+  std::uint32_t id = 0;                      ///< the manifold point's feature id
+};
+
+/// The impulses a manifold point carried last tick, by key.
+struct ShapeWarm {
+  std::uint64_t pair = 0;
+  std::uint32_t id = 0;
+  double ln = 0.0, lt = 0.0;
+  friend bool operator<(const ShapeWarm& l, const ShapeWarm& r) {
+    return l.pair != r.pair ? l.pair < r.pair : l.id < r.id;
+  }
+};
+
+/// Everything the solver reads of the world for one tick.
+struct ShapeTick {
+  double dt = 0.0, kappa = 1.0;
+  double friction = 0.0, restitution = 0.0;  ///< ContactSettings defaults
+  int velocity_iterations = 8, position_iterations = 3;
+  std::span<const PlaneDef> planes;
+  std::span<const SegmentDef> segments;
+};
+
+/// What one tick's shape contacts did, for the statistics and the energy account.
+struct ShapeTally {
+  std::size_t pairs = 0, points = 0, ccd_hits = 0;
+  double deepest = 0.0;  ///< m, the deepest overlap left after the solve
+};
+
+class ShapeWorld {
+ public:
+  static constexpr std::uint32_t none = ~std::uint32_t{0};
+  /// Separation below which a point is pushed out (m): Box2D's linear slop.
+  static constexpr double slop = 0.005;
+  /// Normal speed below which restitution does not act (m/s): Box2D's restitution threshold.
+  static constexpr double restitution_threshold = 1.0;
+
+  std::vector<ShapedBody> bodies_;
+  std::vector<ShapeEntry> shapes_;
+  std::vector<ShapeState> state_;
+  std::vector<ShapeWarm> warm_;  ///< sorted by (pair, id): last tick's impulses (state)
+
+  /// One tick over `bodies_` with `state_` filled (start and free end); leaves the result in
+  /// state_.
+  ShapeTally solve(const ShapeTick& tick);
+  /// The last tick's manifold points with their impulses (N·s).
+  [[nodiscard]] std::span<const ShapeRow> rows() const { return rows_; }
+
+ private:
+  struct Candidate {
+    std::uint32_t a, b;  ///< shapes_ indices, a < b
+  };
+  std::vector<Aabb> boxes_;
+  std::vector<std::uint32_t> order_;
+  std::vector<Candidate> candidates_;
+  std::vector<ShapeRow> rows_;
+  std::vector<ShapeWarm> next_warm_;
+  std::vector<double> at_x_, at_y_, at_a_;  ///< each body's pose when the manifolds were found
+  double dt_ = 0.0, kappa_ = 1.0;
+
+  [[nodiscard]] Pose pose(std::uint32_t body) const;
+  void continuous(const ShapeTick& tick, ShapeTally& tally);
+  double first_static_touch(std::uint32_t body, const ShapeTick& tick);
+  void broadphase(double margin);
+  void collect(const ShapeTick& tick, double margin);
+  void add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
+                    double restitution, std::uint64_t pair);
+  void prepare_rows(const ShapeTick& tick);
+  void apply(const ShapeRow& r, double pn, double pt);
+  [[nodiscard]] Vec2 relative_velocity(const ShapeRow& r) const;
+  void solve_velocities(const ShapeTick& tick);
+  void solve_positions(const ShapeTick& tick, ShapeTally& tally);
+  void keep_impulses();
+};
+
+}  // namespace fixstep::detail

@@ -1,0 +1,246 @@
+// Bodies with shapes (BodyDef::shapes), the kernel's side: their shapes, mass properties,
+// angle and angular velocity, the shape world rebuilt after a structural change, and the tick's
+// shape phase (shape_world.hpp has what it does). Included by kernel_instances.cpp.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "contact_kappa.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/shape.hpp"
+#include "shape_world.hpp"
+#include "world_kernel.hpp"
+
+namespace fixstep {
+
+namespace detail {
+template class ClonePtr<ShapeWorld>;
+}  // namespace detail
+
+namespace {
+
+/// θ kept in [-π, π] (std::remainder is exact, so the wrap is the same bits everywhere).
+double wrap_angle(double a) {
+  return std::abs(a) <= std::numbers::pi ? a : std::remainder(a, 2.0 * std::numbers::pi);
+}
+
+}  // namespace
+
+template <class Real>
+void detail::WorldKernel<Real>::add_shapes(Entity e, const BodyDef& def, const std::string& who) {
+  ShapeSet set;
+  set.defs = def.shapes;
+  set.angle = double(static_cast<Real>(wrap_angle(def.body.angle)));
+  set.spin = def.type == BodyType::static_body
+                 ? 0.0
+                 : double(static_cast<Real>(def.body.angular_velocity));
+  const std::size_t j = bodies_.index(e);
+  if (def.type == BodyType::dynamic) {
+    const MassProperties mp = body_mass(def.shapes, def.body.mass);
+    if (!(mp.mass > 0.0 && std::isfinite(mp.mass))) {
+      throw std::invalid_argument(fmt::format("{}: its shapes give no mass", who));
+    }
+    set.center = mp.center;
+    set.inertia = def.inertia ? *def.inertia : mp.inertia;
+    mass_[j] = mp.mass;
+  }
+  const Vec2 c = def.body.position + rotate(rot_of(set.angle), set.center);
+  x_[j] = prev_x_[j] = static_cast<Real>(c.x);
+  y_[j] = prev_y_[j] = static_cast<Real>(c.y);
+  shape_sets_.set.insert(e);
+  shape_sets_.data.push_back(std::move(set));
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::check_shapes(const BodyDef& def, const std::string& who) const {
+  if (def.shapes.empty()) return;
+  if (def.collider) {
+    throw std::invalid_argument(fmt::format("{}: has both a collider and shapes", who));
+  }
+  if (def.shapes.size() > max_shapes_per_body) {
+    throw std::invalid_argument(
+        fmt::format("{}: {} shapes, at most {}", who, def.shapes.size(), max_shapes_per_body));
+  }
+  for (std::size_t k = 0; k < def.shapes.size(); ++k) {
+    if (auto problem = shape_problem(def.shapes[k])) {
+      throw std::invalid_argument(fmt::format("{}: shapes[{}]: {}", who, k, *problem));
+    }
+  }
+  if (def.inertia && !(*def.inertia >= 1e-100 && *def.inertia <= 1e100)) {
+    throw std::invalid_argument(
+        fmt::format("{}: inertia must be in [1e-100, 1e100] kg·m² (got {})", who, *def.inertia));
+  }
+  for (double v : {def.body.angle, def.body.angular_velocity}) {
+    if (!(std::abs(v) <= max_state_magnitude)) {
+      throw std::invalid_argument(
+          fmt::format("{}: angle and angular_velocity must be finite, within 1e12", who));
+    }
+  }
+}
+
+// Angular input at the tick's start (world_input.cpp calls it for the angular kinds; entries
+// of the wrong type or on a body without shapes are ignored, as World::check_input says).
+template <class Real>
+void detail::WorldKernel<Real>::apply_angular_input(const BodyInput& in, std::size_t j) {
+  const Entity e = bodies_.dense[j];
+  if (!shape_sets_.set.contains(e) || in.value.y != 0.0) return;
+  ShapeSet& set = shape_sets_.data[shape_sets_.set.index(e)];
+  const BodyType type = types_[j];
+  const double v = in.value.x;
+  if (type == BodyType::dynamic) {
+    if (in.kind == BodyInputKind::torque) set.torque += v;
+    if (in.kind == BodyInputKind::angular_impulse) {
+      set.spin = double(static_cast<Real>(set.spin + v / set.inertia));
+    }
+  } else if (type == BodyType::kinematic) {
+    if (in.kind == BodyInputKind::angular_velocity) set.spin = double(static_cast<Real>(v));
+    if (in.kind == BodyInputKind::target_angle) {  // the shorter way round, over one tick
+      const double turn = std::remainder(v - set.angle, 2.0 * std::numbers::pi);
+      set.spin = double(static_cast<Real>(turn / settings_.dt));
+    }
+  }
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::remove_shapes(Entity e) {
+  if (!shape_sets_.set.contains(e)) return;
+  const std::size_t i = shape_sets_.set.erase(e);
+  if (i + 1 != shape_sets_.data.size()) shape_sets_.data[i] = std::move(shape_sets_.data.back());
+  shape_sets_.data.pop_back();
+}
+
+template <class Real>
+std::span<const ShapeDef> detail::WorldKernel<Real>::shapes(Entity e) const {
+  require(e);
+  if (!shape_sets_.set.contains(e)) return {};
+  return shape_sets_.data[shape_sets_.set.index(e)].defs;
+}
+
+template <class Real>
+Vec2 detail::WorldKernel<Real>::local_center(Entity e) const {
+  require(e);
+  if (!shape_sets_.set.contains(e)) return {};
+  return shape_sets_.data[shape_sets_.set.index(e)].center;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::rebuild_shapes() {
+  if (shape_sets_.data.empty()) {
+    shape_world_.reset();
+    return;
+  }
+  if (!shape_world_) shape_world_.reset(new ShapeWorld());
+  ShapeWorld& w = *shape_world_;
+  w.bodies_.clear(), w.shapes_.clear();
+  const ContactSettings cs = settings_.contacts.value_or(ContactSettings{});
+  auto add_shape = [&](const Convex& c, std::uint32_t owner, std::optional<double> mu,
+                       std::optional<double> e, const CollisionFilter& filter, bool sensor,
+                       std::uint32_t key) {
+    w.shapes_.push_back(
+        {c, owner, mu.value_or(cs.friction), e.value_or(cs.restitution), filter, sensor, key});
+  };
+  for (std::size_t i = 0; i < shape_sets_.data.size(); ++i) {
+    const Entity e = shape_sets_.set.dense[i];
+    const ShapeSet& set = shape_sets_.data[i];
+    const std::uint32_t j = static_cast<std::uint32_t>(bodies_.index(e));
+    ShapedBody b;
+    b.body = j, b.type = types_[j], b.set = static_cast<std::uint32_t>(i);
+    if (b.type == BodyType::dynamic) b.inv_mass = 1.0 / mass_[j], b.inv_inertia = 1.0 / set.inertia;
+    b.first = static_cast<std::uint32_t>(w.shapes_.size());
+    b.count = static_cast<std::uint32_t>(set.defs.size());
+    const auto owner = static_cast<std::uint32_t>(w.bodies_.size());
+    for (std::size_t k = 0; k < set.defs.size(); ++k) {
+      const ShapeDef& s = set.defs[k];
+      const Convex c = to_convex(s, set.center);
+      b.extent = std::max(b.extent, extent(c));
+      add_shape(c, owner, s.friction, s.restitution, s.filter, s.sensor,
+                static_cast<std::uint32_t>(e.slot() << 6 | k));
+    }
+    w.bodies_.push_back(b);
+  }
+  // Discs meet shapes here (and one another in the disc phase).
+  for (std::size_t i = 0; i < colliders_.data.size(); ++i) {
+    const Collider& c = colliders_.data[i];
+    if (!c.collide || c.sensor) continue;
+    const Entity e = colliders_.set.dense[i];
+    const std::uint32_t j = static_cast<std::uint32_t>(bodies_.index(e));
+    ShapedBody b;
+    b.body = j, b.type = types_[j], b.disc = true, b.set = ShapedBody::none;
+    if (b.type == BodyType::dynamic) b.inv_mass = 1.0 / mass_[j];
+    b.first = static_cast<std::uint32_t>(w.shapes_.size()), b.count = 1, b.extent = c.radius;
+    Convex circle;
+    circle.count = 1, circle.radius = c.radius;
+    add_shape(circle, static_cast<std::uint32_t>(w.bodies_.size()), c.friction, c.restitution,
+              c.filter, false, static_cast<std::uint32_t>(e.slot() << 6));
+    w.bodies_.push_back(b);
+  }
+  w.state_.assign(w.bodies_.size(), ShapeState{});
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::save_shape_start() {
+  ShapeWorld& w = *shape_world_;
+  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+    const ShapedBody& b = w.bodies_[i];
+    ShapeState& s = w.state_[i];
+    s.x0 = double(x_[b.body]), s.y0 = double(y_[b.body]);
+    s.a0 = b.set == ShapedBody::none ? 0.0 : shape_sets_.data[b.set].angle;
+  }
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::resolve_shapes() {
+  ShapeWorld& w = *shape_world_;
+  const double dt = settings_.dt;
+  const double kappa = contact_kappa(settings_.integrator, settings_.substeps);
+  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+    const ShapedBody& b = w.bodies_[i];
+    ShapeState& s = w.state_[i];
+    const std::uint32_t j = b.body;
+    s.x = double(x_[j]), s.y = double(y_[j]), s.vx = double(vx_[j]), s.vy = double(vy_[j]);
+    s.w = 0.0, s.a = s.a0;
+    if (b.set == ShapedBody::none) continue;
+    ShapeSet& set = shape_sets_.data[b.set];
+    // A torque input τ is a constant angular acceleration α = τ/I over the tick, stepped as
+    // the integrator steps a constant acceleration: ω1 = ω0 + α dt, θ1 = θ0 + dt ω0 + κ dt² α
+    // (κ as for a contact impulse: 1 for semi-implicit Euler, ½ for the methods exact for a
+    // constant force). Without one, θ1 = θ0 + dt ω0.
+    const double alpha = set.torque != 0.0 ? set.torque / set.inertia : 0.0;
+    s.w = set.spin + alpha * dt;
+    s.a = s.a0 + dt * set.spin + kappa * dt * dt * alpha;
+    set.torque = 0.0;
+  }
+  const ContactSettings cs = settings_.contacts.value_or(ContactSettings{});
+  ShapeTick tick;
+  tick.dt = dt;
+  tick.kappa = kappa;
+  tick.velocity_iterations = cs.velocity_iterations;
+  tick.position_iterations = cs.position_iterations;
+  tick.planes = planes_;
+  tick.segments = segments_.defs();
+  const ShapeTally tally = w.solve(tick);
+  contact_stats_.shape_points = tally.points;
+  contact_stats_.deepest_shape_overlap = tally.deepest;
+  bool out_of_range = false;
+  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+    const ShapedBody& b = w.bodies_[i];
+    const ShapeState& s = w.state_[i];
+    if (b.set != ShapedBody::none) {
+      ShapeSet& set = shape_sets_.data[b.set];
+      set.angle = double(static_cast<Real>(wrap_angle(s.a)));
+      set.spin = double(static_cast<Real>(s.w));
+      out_of_range = out_of_range || !(std::abs(set.spin) <= max_state_magnitude);
+    }
+    if (b.type != BodyType::dynamic) continue;
+    const std::uint32_t j = b.body;
+    x_[j] = static_cast<Real>(s.x), y_[j] = static_cast<Real>(s.y);
+    vx_[j] = static_cast<Real>(s.vx), vy_[j] = static_cast<Real>(s.vy);
+    for (const double v : {s.x, s.y, s.vx, s.vy}) {
+      out_of_range = out_of_range || !(std::abs(v) <= max_state_magnitude);
+    }
+  }
+  if (out_of_range && !fault_) record_fault();
+}
+
+}  // namespace fixstep
