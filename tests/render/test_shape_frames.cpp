@@ -12,6 +12,11 @@
 #include <span>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/shape.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
 #include "fixstep/render/render.hpp"
 #include "pixels.hpp"
 #include "scene_palette.hpp"
@@ -220,6 +225,58 @@ TEST(RoundedPolygon, ShadesEveryPixelOnceByItsDistanceToTheShape) {
   // Pixels whose centre lies within 1/4 px of a sharp polygon's edge are partly covered
   // (a polygon drawn as bare triangles would cover each wholly or not at all).
   EXPECT_GT(edge, 40) << edge;
+}
+
+TEST(ShapeFrames, AWorldsBoxBodyIsDrawnTurnedAboutItsCentreOfMass) {
+  // A box 2 x 0.5 m whose centre sits 0.5 m along its body's x axis from the body's origin,
+  // the origin at (0, 0) turned 90°: its centre of mass (World::x, y) is at (0, 0.5) and it
+  // covers x in [-0.25, 0.25], y in [-0.5, 1.5].
+  World sim(WorldDef::empty(Precision::f64, WorldSettings{}));
+  BodyDef d;
+  d.body.angle = std::numbers::pi / 2;
+  d.shapes = {ShapeDef{
+      .kind = ShapeKind::box, .radius = 0.0, .half_extents = {1.0, 0.25}, .offset = {0.5, 0.0}}};
+  d.appearance = Appearance{.color = testing::shape_red};
+  const Entity e = sim.create_body(d);
+  ASSERT_NEAR(sim.local_center(e).x, 0.5, 1e-12);
+  RenderFrame s;
+  fill_render_frame(sim, 1.0, s);
+  EXPECT_FALSE(s.spin_marks);  // no rolling discs
+  ASSERT_EQ(s.angle.size(), 1u);
+  EXPECT_NEAR(s.angle[0], std::numbers::pi / 2, 1e-6);
+  EXPECT_NEAR(s.x[0], 0.0, 1e-6);
+  EXPECT_NEAR(s.y[0], 0.5, 1e-6);
+  ASSERT_EQ(s.shapes.size(), 1u);
+  const RenderFrame::Shape& box = s.shapes[0];
+  EXPECT_EQ(box.body, 0u);
+  ASSERT_EQ(box.count, 4u);  // about the centre of mass, counter-clockwise from (-hx, -hy)
+  EXPECT_NEAR(box.px[0], -1.0f, 1e-6f);
+  EXPECT_NEAR(box.py[0], -0.25f, 1e-6f);
+  EXPECT_NEAR(box.px[2], 1.0f, 1e-6f);
+  EXPECT_NEAR(box.py[2], 0.25f, 1e-6f);
+  EXPECT_NEAR(box.mark_x, 0.25f, 1e-6f);  // min(hx, hy) along the box's x axis
+  EXPECT_NEAR(box.mark_y, 0.0f, 1e-6f);
+  const auto r = draw_shape_frame(s);
+  const Rgba8 bg = default_background;
+  EXPECT_TRUE(near(at_world(*r, -0.15, 1.3), testing::shape_red, 2));
+  EXPECT_TRUE(near(at_world(*r, 0.15, -0.3), testing::shape_red, 2));
+  EXPECT_TRUE(near(at_world(*r, 0.0, -0.8), bg, 2));  // unturned about the origin, it would be
+  EXPECT_TRUE(near(at_world(*r, 1.2, 0.0), bg, 2));   // red here
+  EXPECT_TRUE(near(at_world(*r, 0.45, 0.5), bg, 2));
+}
+
+TEST(ShapeFrames, AWorldWithoutShapesFillsNoShapesAndKeepsItsSpinMarks) {
+  WorldSettings settings;
+  settings.contacts = ContactSettings{.rolling = true};
+  World sim(WorldDef::empty(Precision::f64, settings));
+  BodyDef d;
+  d.collider = Collider{.radius = 0.5};
+  sim.create_body(d);
+  RenderFrame s;
+  fill_render_frame(sim, 1.0, s);
+  EXPECT_TRUE(s.shapes.empty());
+  EXPECT_TRUE(s.spin_marks);
+  EXPECT_EQ(s.angle.size(), 1u);
 }
 
 }  // namespace
