@@ -70,7 +70,12 @@ struct ManifoldPoint {
   Vec2 anchor_b{};          ///< m: point - centre of B
   double separation = 0.0;  ///< m, along the normal; < 0: overlap
   /// Which features meet (an edge of one and a vertex of the other), the same from tick to
-  /// tick while they do, for warm starting: (reference edge, incident vertex, side) packed.
+  /// tick while they do, for warm starting: (reference edge, incident vertex, side) packed as
+  /// bits 0-7 the reference edge, bits 8-15 the incident vertex the point comes from (clipped
+  /// or not), bits 16-17 the side: 0 A holds the reference edge, 1 B does, 2 a single contact
+  /// at the closest points of the two cores (then bits 0-7 A's nearest vertex, 8-15 B's). A
+  /// segment is A (vertex 0 = a, 1 = b; edge 0 its right side, 1 its left). collide_plane: B's
+  /// vertex index. A pair turning over from one reference face to the other changes its ids.
   std::uint32_t id = 0;
 };
 
@@ -85,6 +90,15 @@ struct Manifold {
 /// than `speculative` (m, >= 0), separations included (SAT over both shapes' edge normals and
 /// reference-face clipping, Catto's "Contact Manifolds", GDC 2007; a circle or capsule meets
 /// a polygon by its closest feature). count = 0 when they are farther apart.
+///
+/// Details: each point is kept while its own separation <= `speculative` (a box corner down
+/// gives one point, a box face down two). A's reference face is preferred unless B's separates
+/// by 0.5 mm more (no flip-flop between nearly equal axes). When the cores are apart and the
+/// clipped points are more than 0.5 mm farther than the cores' closest points (two vertices
+/// nearest), the one contact is at the closest points along their direction. Circles and
+/// capsules use the exact closest points of their core segments first (their edge normals miss
+/// the axis along a segment). Two concentric circles: the normal is A's +y. Computed in A's
+/// frame (shape_clip.cpp).
 [[nodiscard]] Manifold collide(const Convex& a, const Pose& ta, const Convex& b, const Pose& tb,
                                double speculative);
 
@@ -92,19 +106,29 @@ struct Manifold {
 /// chain segment with ghost vertices: a contact whose normal would point into the chain's
 /// neighbour (a joint's concave side, or a vertex not in its own region) is dropped, as the disc
 /// contacts do (segment.hpp), so a shape sliding along a polyline does not catch on a joint.
-/// The normal points from the segment towards B.
+/// The normal points from the segment towards B; anchor_a = point (a segment has no centre:
+/// the world origin, which a carrying kinematic body, not turning, does not need).
+///
+/// The verdict on the manifold's normal n (shape_segment.cpp), on the side of the segment n
+/// points to: the face normal is kept; leaning towards a free end (no ghost), kept; towards a
+/// straight or concave joint (bend under 0.01 rad), snapped to the face normal and B's incident
+/// edge clipped to the segment; towards a convex joint, kept within the joint's wedge (0.01
+/// tolerance) and dropped beyond it, and at b the point at the joint vertex itself is left to
+/// the next segment (the segment that starts at a joint owns its vertex).
 [[nodiscard]] Manifold collide_segment(const SegmentDef& seg, const Convex& b, const Pose& tb,
                                        double speculative);
 
 /// The manifold between B and the static half-plane n·x >= offset (n unit): up to two of B's
-/// deepest vertices. The normal is n.
+/// deepest vertices (the deepest and the deeper of its two neighbours). The normal is n;
+/// anchor_a = point (the plane has no centre: the world origin).
 [[nodiscard]] Manifold collide_plane(Vec2 n, double offset, const Convex& b, const Pose& tb,
                                      double speculative);
 
 /// Closest points of two convex shapes (GJK on their cores, radii then taken off).
 struct Distance {
-  double distance = 0.0;      ///< m, between the rounded surfaces; < 0 when the cores overlap is
-                              ///< not measured (then 0 and overlap = true)
+  double distance = 0.0;      ///< m, between the rounded surfaces: < 0 when only the radii
+                              ///< overlap; the cores' overlap is not measured (then 0, overlap
+                              ///< = true, point_a = point_b a point of A's core, normal zero)
   Vec2 point_a{}, point_b{};  ///< world, on each surface
   Vec2 normal{};              ///< from A to B
   bool overlap = false;       ///< the cores intersect
@@ -124,6 +148,11 @@ struct Sweep {
 /// the approach speed is |Δc| + |Δa| · extent for each body): exact to `tolerance` (m) in the
 /// distance, never beyond the first touch. Returns t_max when they do not meet, and the count
 /// of distance evaluations in `iterations` (at most 64; t is still conservative then).
+/// Details (shape_distance.cpp): the bound is refined to |Δc_b - Δc_a| + |Δa_a| extent(a) +
+/// |Δa_b| extent(b) (no more than the sum of the |Δc|); a hit has the distance at t in
+/// [target, target + tolerance], or t = 0 when the shapes start within it (overlapping too);
+/// out of evaluations before they meet: hit = true at the last t, which is still before the
+/// touch, so a caller stops there safely.
 struct Toi {
   double t = 1.0;
   bool hit = false;

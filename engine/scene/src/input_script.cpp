@@ -257,6 +257,18 @@ TickInput ScriptPlayer::next() {
         case BodyInputKind::velocity:
           sampler_.set_velocity(b.body, b.value);
           break;
+        case BodyInputKind::torque:
+          sampler_.apply_torque(b.body, b.value.x);
+          break;
+        case BodyInputKind::angular_impulse:
+          sampler_.apply_angular_impulse(b.body, b.value.x);
+          break;
+        case BodyInputKind::angular_velocity:
+          sampler_.set_angular_velocity(b.body, b.value.x);
+          break;
+        case BodyInputKind::target_angle:
+          sampler_.set_target_angle(b.body, b.value.x);
+          break;
       }
     }
   }
