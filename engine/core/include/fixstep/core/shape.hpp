@@ -37,7 +37,7 @@ enum class ShapeKind : std::uint8_t { circle = 0, capsule = 1, box = 2, polygon 
 ///   capsule: the segment vertices[0]..vertices[1] (count = 2, at least min_shape_edge long)
 ///            swept by a disc of radius `radius` > 0;
 ///   box:     the rectangle [-half_extents.x, half_extents.x] × [-half_extents.y,
-///            half_extents.y] (each > 0), rounded by `radius` >= 0;
+///            half_extents.y] (each >= min_shape_edge / 2), rounded by `radius` >= 0;
 ///   polygon: vertices[0 .. count) (3 <= count <= max_polygon_vertices), convex,
 ///            counter-clockwise, no three collinear, every edge at least min_shape_edge long,
 ///            rounded by `radius` >= 0 (a rounded polygon is its Minkowski sum with a disc).
