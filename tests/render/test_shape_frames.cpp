@@ -234,8 +234,8 @@ TEST(ShapeFrames, AWorldsBoxBodyIsDrawnTurnedAboutItsCentreOfMass) {
   World sim(WorldDef::empty(Precision::f64, WorldSettings{}));
   BodyDef d;
   d.body.angle = std::numbers::pi / 2;
-  d.shapes = {ShapeDef{
-      .kind = ShapeKind::box, .radius = 0.0, .half_extents = {1.0, 0.25}, .offset = {0.5, 0.0}}};
+  // 0.5 x 2 m turned 90° in the body: 2 m along the body's x axis.
+  d.shapes = {make_box(0.25, 1.0, {0.5, 0.0}, std::numbers::pi / 2)};
   d.appearance = Appearance{.color = testing::shape_red};
   const Entity e = sim.create_body(d);
   ASSERT_NEAR(sim.local_center(e).x, 0.5, 1e-12);
@@ -249,13 +249,14 @@ TEST(ShapeFrames, AWorldsBoxBodyIsDrawnTurnedAboutItsCentreOfMass) {
   ASSERT_EQ(s.shapes.size(), 1u);
   const RenderFrame::Shape& box = s.shapes[0];
   EXPECT_EQ(box.body, 0u);
-  ASSERT_EQ(box.count, 4u);  // about the centre of mass, counter-clockwise from (-hx, -hy)
-  EXPECT_NEAR(box.px[0], -1.0f, 1e-6f);
+  // About the centre of mass, counter-clockwise from (-hx, -hy) turned 90°: (1, -0.25).
+  ASSERT_EQ(box.count, 4u);
+  EXPECT_NEAR(box.px[0], 1.0f, 1e-6f);
   EXPECT_NEAR(box.py[0], -0.25f, 1e-6f);
-  EXPECT_NEAR(box.px[2], 1.0f, 1e-6f);
+  EXPECT_NEAR(box.px[2], -1.0f, 1e-6f);
   EXPECT_NEAR(box.py[2], 0.25f, 1e-6f);
-  EXPECT_NEAR(box.mark_x, 0.25f, 1e-6f);  // min(hx, hy) along the box's x axis
-  EXPECT_NEAR(box.mark_y, 0.0f, 1e-6f);
+  EXPECT_NEAR(box.mark_x, 0.0f, 1e-6f);  // min(hx, hy) along the box's x axis (turned: y)
+  EXPECT_NEAR(box.mark_y, 0.25f, 1e-6f);
   const auto r = draw_shape_frame(s);
   const Rgba8 bg = default_background;
   EXPECT_TRUE(near(at_world(*r, -0.15, 1.3), testing::shape_red, 2));

@@ -15,43 +15,27 @@ namespace fixstep {
 
 namespace {
 
-/// `shape` of body entry `body` as drawn (RenderFrame::Shape): its outline points (as
-/// shape_outline's) and mark in the body frame, less the body's centre of mass `center`. The
-/// mark: a circle's rim on its x axis; a box's point min(hx, hy) along its x axis (its side for
-/// a square, as short for a long box); a capsule's or polygon's first vertex.
+/// `shape` of body entry `body` as drawn (RenderFrame::Shape): its outline (shape_outline's
+/// points) and mark in the body frame, less the body's centre of mass `center`. The mark: a
+/// circle's rim on its x axis; a box's point min(hx, hy) along its x axis (its side for a
+/// square, as short for a long box); a capsule's or polygon's first vertex.
 RenderFrame::Shape drawn_shape(const ShapeDef& shape, Vec2 center, std::uint32_t body) {
   RenderFrame::Shape d;
   d.body = body;
   d.radius = static_cast<float>(shape.radius);
-  const double c = std::cos(shape.angle), s = std::sin(shape.angle);
-  auto put = [&](Vec2 p, float& x, float& y) {  // shape frame -> body frame, less the centre
-    x = static_cast<float>(shape.offset.x + (c * p.x - s * p.y) - center.x);
-    y = static_cast<float>(shape.offset.y + (s * p.x + c * p.y) - center.y);
-  };
-  Vec2 mark{};
-  switch (shape.kind) {
-    case ShapeKind::circle:
-      d.count = 1;
-      put(Vec2{}, d.px[0], d.py[0]);
-      mark = {shape.radius, 0.0};
-      break;
-    case ShapeKind::box: {
-      const double hx = shape.half_extents.x, hy = shape.half_extents.y;
-      const Vec2 corners[4] = {{-hx, -hy}, {hx, -hy}, {hx, hy}, {-hx, hy}};  // b2MakeBox's order
-      d.count = 4;
-      for (std::size_t k = 0; k < 4; ++k) put(corners[k], d.px[k], d.py[k]);
-      mark = {std::min(hx, hy), 0.0};
-      break;
-    }
-    case ShapeKind::capsule:
-    case ShapeKind::polygon:
-      d.count = static_cast<std::uint32_t>(
-          std::clamp(shape.count, shape.kind == ShapeKind::capsule ? 2 : 3, max_polygon_vertices));
-      for (std::size_t k = 0; k < d.count; ++k) put(shape.vertices[k], d.px[k], d.py[k]);
-      mark = shape.vertices[0];
-      break;
+  const ShapeOutline outline = shape_outline(shape, Vec2{-center.x, -center.y}, 0.0);
+  d.count = static_cast<std::uint32_t>(std::clamp(outline.count, 0, max_polygon_vertices));
+  for (std::size_t k = 0; k < d.count; ++k) {
+    d.px[k] = static_cast<float>(outline.points[k].x);
+    d.py[k] = static_cast<float>(outline.points[k].y);
   }
-  put(mark, d.mark_x, d.mark_y);
+  Vec2 mark = shape.vertices[0];  // in the shape's frame
+  if (shape.kind == ShapeKind::circle) mark = {shape.radius, 0.0};
+  if (shape.kind == ShapeKind::box)
+    mark = {std::min(shape.half_extents.x, shape.half_extents.y), 0.0};
+  const double c = std::cos(shape.angle), s = std::sin(shape.angle);
+  d.mark_x = static_cast<float>(shape.offset.x + (c * mark.x - s * mark.y) - center.x);
+  d.mark_y = static_cast<float>(shape.offset.y + (s * mark.x + c * mark.y) - center.y);
   return d;
 }
 
