@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "fixstep/app/session.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/world.hpp"
@@ -278,6 +279,26 @@ TEST(ShapeFrames, AWorldWithoutShapesFillsNoShapesAndKeepsItsSpinMarks) {
   EXPECT_TRUE(s.shapes.empty());
   EXPECT_TRUE(s.spin_marks);
   EXPECT_EQ(s.angle.size(), 1u);
+}
+
+TEST(ShapeFrames, TheAutomaticViewIncludesEveryShape) {
+  // A ground box 20 m wide (x in [-10, 10]) whose body's origin is at its left end, and a
+  // capsule turned upright reaching y = 6: the view's box is x in [-10, 10], y in [-0.5, 6].
+  WorldDef def = WorldDef::empty(Precision::f64, WorldSettings{});
+  BodyDef ground;
+  ground.type = BodyType::static_body;
+  ground.body.position = {-10.0, 0.0};
+  ground.shapes = {make_box(10.0, 0.5, {10.0, 0.0})};
+  def.add_body(ground);
+  BodyDef upright;
+  upright.body.position = {0.0, 3.0};
+  upright.body.angle = std::numbers::pi / 2;
+  upright.shapes = {make_capsule({-2.5, 0.0}, {2.5, 0.0}, 0.5)};
+  def.add_body(upright);
+  const Camera c = fit_camera(def, 1600, 800);
+  EXPECT_NEAR(c.center.x, 0.0, 1e-9);
+  EXPECT_NEAR(c.center.y, 2.75, 1e-9);
+  EXPECT_NEAR(c.width, 20.0 * 1.15, 1e-9);  // the width sets it: 6.5 m tall fits in 11.5
 }
 
 }  // namespace

@@ -55,7 +55,8 @@ struct RenderFrame {
   /// world of rolling discs only.
   bool spin_marks = true;
   /// The bodies' shapes, in body order (entry `body` ascending). A body with shapes is drawn
-  /// as them instead of a disc. Empty: every body is a disc.
+  /// as them instead of a disc. Empty: every body is a disc. An entry naming no body of the
+  /// frame, or with a count outside 1..max_polygon_vertices, is not drawn.
   std::vector<Shape> shapes;
   /// 1 for a body that sleeps (ContactSettings::sleep; World::asleep), drawn in its colour
   /// half greyed, as Box2D's debug draw greys sleeping bodies. Empty: none sleeps.

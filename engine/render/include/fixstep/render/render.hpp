@@ -124,7 +124,8 @@ class Renderer {
   /// pixels(): draw_scene(frame), draw_hud(hud_lines), finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
   /// Starts a picture (begin()) of the scene view of `frame`: background, grid, axes and scale
-  /// bar as view_style() says, the planes, trails, links, springs and the visible bodies. With
+  /// bar as view_style() says, the planes, trails, links, springs and the visible bodies (those
+  /// with shapes as their shapes, RenderFrame::shapes, the others as discs). With
   /// at most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
   /// cloth) they are thin straight lines and no trails are drawn. A body hidden by its
   /// Appearance (RenderFrame::visible 0) is not drawn, nor its trail, nor the springs and links
