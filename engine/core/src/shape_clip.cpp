@@ -135,8 +135,8 @@ Vec2 clip_to(Vec2 x, double sx, Vec2 y, double sy, double bound) {
   return x + ((bound - sx) / (sy - sx)) * (y - x);
 }
 
-/// The incident edge's ends that the ref edge's normal and tangent sees, after clipping to the
-/// ref edge's span; all the cores' separations along `n`.
+/// An end of the incident edge (moved onto the reference edge's span when it lay outside) and
+/// the incident vertex it comes from, which names the point's id.
 struct ClipEnd {
   Vec2 at{};
   int vertex = 0;
@@ -172,7 +172,8 @@ Manifold clip_reference(const Convex& ref, int edge, const Convex& inc, bool fli
     const double core = dot(e[k].at - v11, n);
     if (core - radius > speculative) continue;
     ManifoldPoint& p = m.points[m.count++];
-    // Midway between the surfaces: ref's at core - ref.radius behind, inc's at inc.radius.
+    // Midway between the surfaces: the reference one lies core - ref.radius behind e along n,
+    // the incident one inc.radius behind it.
     p.point = e[k].at + (0.5 * (ref.radius - inc.radius - core)) * n;
     p.separation = core - radius;
     p.id = clip_id(edge, e[k].vertex, flip ? 1 : 0);
@@ -208,8 +209,12 @@ Manifold clip_or_closest(const Convex& a, const Convex& b, int edge_a, int edge_
   if (all.count == 0 || (apart && clip_min_core(all, radius) > dist + clip_vertex_tolerance)) {
     return clip_single(c, ia, ib, a.radius, b.radius, fallback, speculative);
   }
-  return flip ? clip_reference(b, edge_b, a, true, speculative)
-              : clip_reference(a, edge_a, b, false, speculative);
+  Manifold m = all;
+  m.count = 0;
+  for (int i = 0; i < all.count; ++i) {
+    if (all.points[i].separation <= speculative) m.points[m.count++] = all.points[i];
+  }
+  return m;
 }
 
 /// The vertex of c nearest to fraction f along edge i (i when f < 1/2, else the next one).

@@ -81,21 +81,84 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   }
 }
 
+void ShapeWorld::solve_friction(ShapeRow& r) {
+  const double vt = dot(relative_velocity(r), perp(r.n));
+  const double bound = r.friction * r.ln;
+  const double lt = std::clamp(r.lt - vt * r.tangent_mass, -bound, bound);
+  const double d = lt - r.lt;
+  r.lt = lt;
+  if (d != 0.0) apply(r, 0.0, d);
+}
+
+void ShapeWorld::solve_normal(ShapeRow& r) {
+  const double vn = dot(relative_velocity(r), r.n);
+  const double ln = std::max(r.ln - (vn - r.target) * r.normal_mass, 0.0);
+  const double d = ln - r.ln;
+  r.ln = ln;
+  if (d != 0.0) apply(r, d, 0.0);
+}
+
+// A manifold's two normal impulses at once (Catto's block solver, Box2D v2.4
+// b2ContactSolver::SolveVelocityConstraints): the 2×2 linear complementarity problem
+// vn = K x + b, x >= 0, vn >= 0, x·vn = 0 for the accumulated impulses x, by trying its four
+// cases in turn. Solving the two points one after the other lets a box resting on its two
+// corners rock (each point's impulse turns it against the other), which a tall stack amplifies.
+void ShapeWorld::solve_block(ShapeRow& r1, ShapeRow& r2) {
+  const double k11 = 1.0 / r1.normal_mass, k22 = 1.0 / r2.normal_mass, k12 = r1.k12;
+  const double a1 = r1.ln, a2 = r2.ln;
+  const double vn1 = dot(relative_velocity(r1), r1.n) - r1.target;
+  const double vn2 = dot(relative_velocity(r2), r2.n) - r2.target;
+  const double b1 = vn1 - (k11 * a1 + k12 * a2), b2 = vn2 - (k12 * a1 + k22 * a2);
+  double x1 = 0.0, x2 = 0.0;
+  const double det = k11 * k22 - k12 * k12;
+  const double y1 = -(k22 * b1 - k12 * b2) / det, y2 = -(k11 * b2 - k12 * b1) / det;
+  if (y1 >= 0.0 && y2 >= 0.0) {
+    x1 = y1, x2 = y2;  // both points push
+  } else if (-b1 / k11 >= 0.0 && k12 * (-b1 / k11) + b2 >= 0.0) {
+    x1 = -b1 / k11;  // the first pushes, the second separates
+  } else if (-b2 / k22 >= 0.0 && k12 * (-b2 / k22) + b1 >= 0.0) {
+    x2 = -b2 / k22;                        // the second pushes
+  } else if (!(b1 >= 0.0 && b2 >= 0.0)) {  // no case holds (rounding): one at a time
+    solve_normal(r1);
+    solve_normal(r2);
+    return;
+  }
+  r1.ln = x1, r2.ln = x2;
+  if (x1 != a1) apply(r1, x1 - a1, 0.0);
+  if (x2 != a2) apply(r2, x2 - a2, 0.0);
+}
+
+void ShapeWorld::prepare_blocks() {
+  for (std::size_t i = 0; i + 1 < rows_.size(); ++i) {
+    ShapeRow& r1 = rows_[i];
+    const ShapeRow& r2 = rows_[i + 1];
+    r1.pair_first = false;
+    if (r1.pair != r2.pair || r1.a != r2.a || r1.b != r2.b) continue;
+    if (r1.normal_mass == 0.0 || r2.normal_mass == 0.0) continue;
+    double ma = 0.0, ia = 0.0;
+    if (r1.a != none) ma = bodies_[r1.a].inv_mass, ia = bodies_[r1.a].inv_inertia;
+    const ShapedBody& b = bodies_[r1.b];
+    const double k12 = ma + b.inv_mass + ia * cross(r1.ra, r1.n) * cross(r2.ra, r2.n) +
+                       b.inv_inertia * cross(r1.rb, r1.n) * cross(r2.rb, r2.n);
+    const double k11 = 1.0 / r1.normal_mass, k22 = 1.0 / r2.normal_mass;
+    // Box2D's condition number guard: a K this close to singular is solved point by point.
+    if (k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12)) r1.pair_first = true, r1.k12 = k12;
+    ++i;
+  }
+}
+
 void ShapeWorld::solve_velocities(const ShapeTick& tick) {
+  prepare_blocks();
   for (int it = 0; it < tick.velocity_iterations; ++it) {
-    for (ShapeRow& r : rows_) {
-      // Friction first, bounded by μ times this iteration's normal impulse (Box2D's order).
-      const double vt = dot(relative_velocity(r), perp(r.n));
-      const double bound = r.friction * r.ln;
-      const double lt = std::clamp(r.lt - vt * r.tangent_mass, -bound, bound);
-      const double dt = lt - r.lt;
-      r.lt = lt;
-      if (dt != 0.0) apply(r, 0.0, dt);
-      const double vn = dot(relative_velocity(r), r.n);
-      const double ln = std::max(r.ln - (vn - r.target) * r.normal_mass, 0.0);
-      const double dn = ln - r.ln;
-      r.ln = ln;
-      if (dn != 0.0) apply(r, dn, 0.0);
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      ShapeRow& r = rows_[i];
+      if (r.pair_first) {  // friction first, bounded by this iteration's normal impulse
+        solve_friction(r), solve_friction(rows_[i + 1]);
+        solve_block(r, rows_[i + 1]);
+        ++i;
+      } else {
+        solve_friction(r), solve_normal(r);
+      }
     }
   }
 }

@@ -74,6 +74,10 @@ struct ShapeRow {
   Vec2 n{}, ra{}, rb{};        ///< normal A→B, lever arms (m)
   double separation = 0.0;     ///< m, at the manifold's poses
   double normal_mass = 0.0, tangent_mass = 0.0;
+  /// The first of a manifold's two points, whose normal impulses are solved together (Box2D
+  /// v2.4's block solver): K = [[1/normal_mass, k12], [k12, 1/normal_mass of the next]].
+  bool pair_first = false;
+  double k12 = 0.0;
   double friction = 0.0, restitution = 0.0;  ///< μ, e of the pair
   double target = 0.0;                       ///< the normal velocity it asks for, m/s
   double ln = 0.0, lt = 0.0;                 ///< accumulated impulses (N·s)
@@ -148,6 +152,10 @@ class ShapeWorld {
   void apply(const ShapeRow& r, double pn, double pt);
   [[nodiscard]] Vec2 relative_velocity(const ShapeRow& r) const;
   void solve_velocities(const ShapeTick& tick);
+  void solve_friction(ShapeRow& r);
+  void solve_normal(ShapeRow& r);
+  void solve_block(ShapeRow& r1, ShapeRow& r2);
+  void prepare_blocks();
   void solve_positions(const ShapeTick& tick, ShapeTally& tally);
   void keep_impulses();
 };
