@@ -29,9 +29,11 @@
 #include "fixstep/capture/capture.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/render/draw_list.hpp"
+#include "fixstep/render/render.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "overlay_card.hpp"
 #include "scene_session.hpp"
+#include "shape_card.hpp"
 
 namespace fixstep {
 namespace {
@@ -194,6 +196,33 @@ std::vector<std::uint8_t> render_overlay_card() {
 TEST(GoldenFrames, TheOverlayCardMatchesItsReferenceFrame) {
   const std::string stem = "overlay_card_frame_000060";
   const auto frame = render_overlay_card();
+  const auto reference = golden_dir / (stem + ".png");
+  if (refreshing()) {
+    write_png(reference, width, height, frame);
+    GTEST_SKIP() << "rewrote " << reference;
+  }
+  const auto golden = read_png(reference);
+  ASSERT_FALSE(golden.empty()) << reference << " is missing; see the refresh command in this file";
+  const Comparison c = compare(frame, golden);
+  if (!matches(c)) {
+    const auto failures = std::filesystem::current_path() / "golden_failures";
+    std::filesystem::create_directories(failures);
+    write_png(failures / (stem + ".actual.png"), width, height, frame);
+    write_png(failures / (stem + ".diff.png"), width, height, c.diff);
+    ADD_FAILURE() << stem << ": " << c.beyond << " pixels differ by more than " << channel_tolerance
+                  << " (largest difference " << c.worst << ")";
+  }
+}
+
+// Bodies with shapes (tests/render/shape_card.hpp: boxes, capsules, a circle, a rounded
+// pentagon, a sharp triangle, a body of two shapes, one asleep, beside discs and a spring),
+// drawn from a hand-filled RenderFrame until a shipped scene has shapes.
+TEST(GoldenFrames, TheShapesCardMatchesItsReferenceFrame) {
+  const std::string stem = "shapes_card_frame";
+  Renderer r(width, height);
+  r.set_camera(Camera{.center = {0, 1}, .width = 16.0});
+  r.draw(testing::shape_card_frame(), {});
+  const std::vector<std::uint8_t> frame(r.pixels().begin(), r.pixels().end());
   const auto reference = golden_dir / (stem + ".png");
   if (refreshing()) {
     write_png(reference, width, height, frame);

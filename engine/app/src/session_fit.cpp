@@ -8,6 +8,7 @@
 #include "fixstep/app/session.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
+#include "fixstep/core/shape.hpp"
 #include "fixstep/core/world_def.hpp"
 
 namespace fixstep {
@@ -49,6 +50,11 @@ Camera fit_camera(const WorldDef& def, int width, int height) {
   };
   for (const BodyDef& b : def.bodies) {
     include(b.body.position.x, b.body.position.y, b.appearance ? b.appearance->radius : 0.0);
+    for (const ShapeDef& shape : b.shapes) {  // where the body starts, turned as it starts
+      const Aabb box = shape_aabb(shape, b.body.position, b.body.angle);
+      include(box.lower.x, box.lower.y, 0.0);
+      include(box.upper.x, box.upper.y, 0.0);
+    }
     if (b.spring) {
       const auto& s = *b.spring;
       const double dx = b.body.position.x - s.anchor.x, dy = b.body.position.y - s.anchor.y;

@@ -1,6 +1,7 @@
 // Renderer::draw_scene: a RenderFrame as the scene view — grid, axes and scale bar, planes,
-// segments, trails, links, springs and bodies, in that order — drawn with the canvas primitives
-// of render.cpp (trails in render_trails.cpp, the HUD in render_hud.cpp).
+// segments, trails, links, springs, bodies' shapes and discs, in that order — drawn with the
+// canvas primitives of render.cpp (trails in render_trails.cpp, shapes in
+// render_body_shapes.cpp, the HUD in render_hud.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -78,13 +80,18 @@ struct SceneView {
   const RenderFrame& s;
   double scale;  ///< px per m
   std::vector<Renderer::PolylinePoint>& scratch;
+  /// Per body, 1 when it is drawn as its shapes, not as a disc (empty: none is).
+  std::span<const std::uint8_t> shaped;
 
   [[nodiscard]] bool shown(std::size_t j) const { return scene_palette::body_visible(s, j); }
+  [[nodiscard]] bool has_shapes(std::size_t j) const { return !shaped.empty() && shaped[j]; }
   [[nodiscard]] float radius_px(std::size_t j) const {
     return scene_palette::body_radius_px(s, j, scale);
   }
-  /// px of a line `width` px wide ending at body j's centre that its disc hides.
+  /// px of a line `width` px wide ending at body j's centre that its disc hides (none for a
+  /// body drawn as its shapes, which need not cover its centre).
   [[nodiscard]] float under_body(std::size_t j, float width) const {
+    if (has_shapes(j)) return 0.0f;
     return detail::hidden_under_disc(radius_px(j) + scene_palette::outline_px, width);
   }
 };
@@ -158,11 +165,11 @@ void draw_springs(SceneView& view) {
   }
 }
 
-/// The visible bodies: outlined discs.
+/// The visible bodies without shapes: outlined discs.
 void draw_bodies(SceneView& view) {
   const RenderFrame& s = view.s;
   for (std::size_t j = 0; j < s.x.size(); ++j) {
-    if (!view.shown(j)) continue;
+    if (!view.shown(j) || view.has_shapes(j)) continue;
     const auto p = view.canvas.to_pixel(s.x[j], s.y[j]);
     view.canvas.disc(float(p[0]), float(p[1]), view.radius_px(j), scene_palette::body_color(s, j),
                      scene_palette::outline_px, scene_palette::outline);
@@ -285,11 +292,17 @@ void Renderer::draw_scene(const RenderFrame& s) {
   draw_segments(*this, s.segments);
   const double scale = width_ / camera_.width;
   if (few_links) draw_trails(s, scale);
-  SceneView view{*this, s, scale, polyline_scratch_};
+  // Bodies with shapes: drawn as them (before the discs), not as discs.
+  shaped_bodies_.assign(s.shapes.empty() ? 0 : s.x.size(), 0);
+  for (const RenderFrame::Shape& shape : s.shapes) {
+    if (shape.body < shaped_bodies_.size()) shaped_bodies_[shape.body] = 1;
+  }
+  SceneView view{*this, s, scale, polyline_scratch_, shaped_bodies_};
   draw_links(view, few_links);
   draw_springs(view);
+  draw_body_shapes(s);
   draw_bodies(view);
-  if (s.angle.size() == s.x.size()) draw_spin_marks(s);
+  if (s.spin_marks && s.angle.size() == s.x.size()) draw_spin_marks(s);
   // What follows (a game's overlay, the HUD) starts a batch of its own (finish()).
   batches_.push_back(
       Batch{indices_.size(), batches_.back().clip, batches_.back().program, batches_.back().ring});
@@ -303,6 +316,7 @@ void Renderer::draw_spin_marks(const RenderFrame& s) {
   const double scale = width_ / camera_.width;
   for (std::size_t j = 0; j < s.x.size(); ++j) {
     if (!scene_palette::body_visible(s, j)) continue;
+    if (!shaped_bodies_.empty() && shaped_bodies_[j]) continue;  // its shapes show its turn
     const float r = scene_palette::body_radius_px(s, j, scale);
     if (r < 3.0f) continue;  // too small for a mark to show
     const auto p = to_pixel(s.x[j], s.y[j]);

@@ -22,7 +22,8 @@
 
 namespace fixstep {
 
-/// A camera that shows a world's whole motion: a fit of every body's position, their anchors,
+/// A camera that shows a world's whole motion: a fit of every body's position (and the box
+/// round its shapes where it starts), their anchors,
 /// each spring's reach (|x0 - anchor| + |v0|/ω) and, for bodies held at a single anchor through
 /// links (a rope pinned at one end), the circle round that anchor through the farthest of them,
 /// with a 15 % margin. `width` and `height` are the frame size in pixels (for the aspect ratio).

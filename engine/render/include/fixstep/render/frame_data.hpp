@@ -1,11 +1,13 @@
 // What the renderer draws of one moment of a World (RenderFrame), and how it is taken from one.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/segment.hpp"
+#include "fixstep/core/shape.hpp"
 #include "fixstep/core/world.hpp"
 
 namespace fixstep {
@@ -18,6 +20,19 @@ struct RenderFrame {
   struct SpringLine {
     float anchor_x = 0, anchor_y = 0;  ///< m
     std::uint32_t body = 0;            ///< the body's entry in x / y
+  };
+  /// One shape of a body (BodyDef::shapes) as drawn: the points of its outline (ShapeOutline's:
+  /// a circle's centre, a capsule's segment ends, a polygon's or box's vertices
+  /// counter-clockwise) and its radius, in the body's frame relative to its centre of mass
+  /// (World::local_center), unturned: the body's entry `body` puts them at x / y turned by
+  /// angle. Drawn filled in the body's colour, outlined as discs are, with a line from the
+  /// shape's centre (the mean of its points) to `mark`, so that its turn shows.
+  struct Shape {
+    std::uint32_t body = 0;   ///< the body's entry in x / y / angle
+    std::uint32_t count = 0;  ///< points used: 1 circle, 2 capsule, 3..max_polygon_vertices
+    float radius = 0;         ///< m: circle's and capsule's radius, polygon's rounding (>= 0)
+    std::array<float, max_polygon_vertices> px{}, py{};  ///< m, as above
+    float mark_x = 0, mark_y = 0;  ///< m, as above: a circle's rim on its x axis, a vertex
   };
   std::vector<float> x, y;  ///< body positions, m (interpolated when taken with alpha)
   /// Each body's handle, so what a renderer keeps per body across frames (trails) follows the
@@ -32,9 +47,17 @@ struct RenderFrame {
   /// Empty: default_trail_time for every body.
   std::vector<float> trail_time;
   /// Each body's angle θ (rad, counter-clockwise from +x, interpolated like x / y) in a world of
-  /// rolling discs (ContactSettings::rolling), drawn as a line from the disc's centre to its
-  /// rim. Empty: no angles (no line).
+  /// rolling discs (ContactSettings::rolling) or with shapes: each shape turns with its body,
+  /// and a body without shapes is drawn with a line from its disc's centre to its rim when
+  /// spin_marks is set. Empty: no angles (no line; shapes unturned).
   std::vector<float> angle;
+  /// Whether bodies without shapes show their angle (above): fill_render_frame sets it for a
+  /// world of rolling discs only.
+  bool spin_marks = true;
+  /// The bodies' shapes, in body order (entry `body` ascending). A body with shapes is drawn
+  /// as them instead of a disc. Empty: every body is a disc. An entry naming no body of the
+  /// frame, or with a count outside 1..max_polygon_vertices, is not drawn.
+  std::vector<Shape> shapes;
   /// 1 for a body that sleeps (ContactSettings::sleep; World::asleep), drawn in its colour
   /// half greyed, as Box2D's debug draw greys sleeping bodies. Empty: none sleeps.
   std::vector<std::uint8_t> asleep;
@@ -56,8 +79,9 @@ struct RenderFrame {
 };
 
 /// Fills `out` from `world` at interpolation alpha (in [0, 1]; World::interpolate_positions):
-/// positions, handles, appearances (visibility and trails included), anchored springs, links,
-/// planes, segments, the tick, dt and alpha. Reuses out's storage: no
+/// positions, handles, appearances (visibility and trails included), angles and shapes (a
+/// world with rolling discs or shapes), anchored springs, links, planes, segments, the tick, dt
+/// and alpha. Reuses out's storage: no
 /// allocation once it has grown to the world's size.
 void fill_render_frame(const World& world, double alpha, RenderFrame& out);
 

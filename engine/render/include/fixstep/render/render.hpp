@@ -124,7 +124,8 @@ class Renderer {
   /// pixels(): draw_scene(frame), draw_hud(hud_lines), finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
   /// Starts a picture (begin()) of the scene view of `frame`: background, grid, axes and scale
-  /// bar as view_style() says, the planes, trails, links, springs and the visible bodies. With
+  /// bar as view_style() says, the planes, trails, links, springs and the visible bodies (those
+  /// with shapes as their shapes, RenderFrame::shapes, the others as discs). With
   /// at most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
   /// cloth) they are thin straight lines and no trails are drawn. A body hidden by its
   /// Appearance (RenderFrame::visible 0) is not drawn, nor its trail, nor the springs and links
@@ -250,6 +251,17 @@ class Renderer {
   /// A filled convex polygon (a triangle fan from points[0]; any winding), not smoothed. The
   /// caller ensures convexity; fewer than 3 points draw nothing.
   void polygon(std::span<const Point> points, Rgba8 c);
+  /// An anti-aliased filled convex polygon through `points` (either winding) rounded by
+  /// `radius` px: every pixel within `radius` of the polygon (its Minkowski sum with a disc),
+  /// so one point draws a disc and two a capsule. Drawn as one mesh that does not overlap
+  /// itself (the polygon, a band outside each edge and a wedge at each corner), whose shape
+  /// coordinates are the distance to the polygon over `radius`: the shapes program smooths
+  /// its edge as it does a disc's. A radius of 0 (a sharp polygon) draws the polygon shrunk by
+  /// 1 px and rounded by 1 px, smoothed alike (corners 1 px round), or, smaller than that, the
+  /// polygon unsmoothed. Points closer than 1e-3 px to the one before (and the last to the
+  /// first) are dropped; the caller ensures convexity; a negative or non-finite radius, or no
+  /// point, draws nothing.
+  void rounded_polygon(std::span<const Point> points, float radius, Rgba8 c);
   /// An arrow from (x0, y0) to (x1, y1): an anti-aliased shaft `width` px wide and a filled
   /// triangular head, not smoothed, `head` px long and as wide, whose tip is (x1, y1). An arrow
   /// shorter than its head is all head (scaled down to its length); shorter than 1e-3 px draws
@@ -275,8 +287,15 @@ class Renderer {
 
  private:
   /// Rolling discs' marks: a line from each visible disc's centre to its rim at its angle
-  /// (RenderFrame::angle), over the discs.
+  /// (RenderFrame::angle), over the discs; none for a body with shapes.
   void draw_spin_marks(const RenderFrame& frame);
+  /// The visible bodies' shapes (RenderFrame::shapes): each filled in its body's colour over
+  /// an outline as wide as the discs', and its mark (render_body_shapes.cpp). Marks
+  /// shaped_bodies_ for the frame's bodies (1: drawn as shapes, not as a disc).
+  void draw_body_shapes(const RenderFrame& frame);
+  /// rounded_polygon()'s mesh for the points in rounded_points_ (distinct, at least one):
+  /// the polygon and, for radius > 0, the bands and wedges reaching `radius` px beyond it.
+  void rounded_mesh(float radius, Rgba8 c);
   using Vertex = detail::CanvasVertex;
   // Fragment programs; each batch uses one.
   static constexpr int shapes = 0;  // triangles: solids, discs, circles, lines, polylines, text
@@ -372,6 +391,12 @@ class Renderer {
   std::vector<PolylinePoint> polyline_scratch_;  // one trail or spring, reused every frame
   std::vector<Point> point_scratch_;             // closed_polyline()'s distinct points
   std::vector<Point> circle_scratch_;            // circle()'s sides
+  std::vector<Point> rounded_points_;            // rounded_polygon()'s distinct points
+  std::vector<Point> rounded_normals_;           // rounded_polygon()'s outward edge normals
+  std::vector<Point> shape_scratch_;             // draw_body_shapes(): one shape's points, px
+  /// Per body of the frame drawn last: 1 when draw_body_shapes() drew it as its shapes (empty:
+  /// no body has shapes).
+  std::vector<std::uint8_t> shaped_bodies_;
   Trails trails_;  // world coordinates, m: drawn through the camera of each frame
 };
 
