@@ -3,47 +3,41 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "discs.hpp"
 
 namespace discs {
 
 namespace {
-// The fixstep keys first (the contact statistics' table takes the first 4).
-constexpr const char* all_keys[] = {"fixstep_f64_t1",   "fixstep_f64_t2",  "fixstep_f32_t1",
-                                    "fixstep_f64_off",  "fixstep_i8_t1",   "fixstep_i8_t2",
-                                    "fixstep_roll_t1",  "fixstep_roll_t2", "fixstep_sleep_t1",
-                                    "fixstep_sleep_t2", "chipmunk_hash",   "chipmunk_tree",
-                                    "chipmunk_hasty2",  "box2d",           "box2d3_w1",
-                                    "box2d3_w2"};
-const std::span<const char* const> keys(all_keys, box2d3_built() ? 16 : 14);
+// The fixstep keys first (the contact statistics' table takes the first 4); Box2D v3's last,
+// those of the releases built.
+std::vector<const char*> make_keys() {
+  std::vector<const char*> k = {"fixstep_f64_t1",   "fixstep_f64_t2",
+                                "fixstep_f32_t1",   "fixstep_f64_off",
+                                "fixstep_i8_t1",    "fixstep_i8_t2",
+                                "fixstep_roll_t1",  "fixstep_roll_t2",
+                                "fixstep_sleep_t1", "fixstep_sleep_t2",
+                                "chipmunk_hash",    "chipmunk_tree",
+                                "chipmunk_hasty2",  "box2d"};
+  if (box2d3_built(Box2d3Release::v3_1)) k.insert(k.end(), {"box2d3_w1", "box2d3_w2"});
+  if (box2d3_built(Box2d3Release::v3_2)) k.insert(k.end(), {"box2d32_w1", "box2d32_w2"});
+  return k;
+}
+const std::vector<const char*> key_list = make_keys();
+const std::span<const char* const> keys(key_list);
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large,
                                     SceneKind::pile_settled};
 constexpr SceneKind main_scenes[] = {SceneKind::pile, SceneKind::gas};
 }  // namespace
-
-#if !FIXSTEP_HAVE_BOX2D3
-// Box2D v3 is not built (bench/box2d3.cmake: its archive is absent): no steppers to make.
-bool box2d3_built() {
-  return false;
-}
-std::unique_ptr<Stepper> make_box2d3(const Scene&, int) {
-  throw std::logic_error("Box2D v3 is not built");
-}
-std::string box2d3_version() {
-  return "3 (not built)";
-}
-double box2d3_linear_slop() {
-  return nan;
-}
-#endif
 
 std::span<const char* const> stepper_keys() {
   return keys;
@@ -65,8 +59,11 @@ std::string stepper_label(const std::string& key) {
   if (key == "chipmunk_tree") return cp + ", bounding-box tree";
   if (key == "chipmunk_hasty2") return cp + ", cpHastySpace 2 threads";
   if (key == "box2d") return fmt::format("Box2D {} (f32)", box2d_version());
-  if (key == "box2d3_w1") return fmt::format("Box2D {} (f32), 1 worker", box2d3_version());
-  if (key == "box2d3_w2") return fmt::format("Box2D {} (f32), 2 workers", box2d3_version());
+  for (const Box2d3Release r : box2d3_releases) {
+    const std::string k = box2d3_key(r);
+    if (key == k + "_w1") return fmt::format("Box2D {} (f32), 1 worker", box2d3_version(r));
+    if (key == k + "_w2") return fmt::format("Box2D {} (f32), 2 workers", box2d3_version(r));
+  }
   return key;
 }
 
@@ -85,8 +82,11 @@ std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s) {
   if (key == "chipmunk_tree") return make_chipmunk(s, ChipmunkIndex::tree);
   if (key == "chipmunk_hasty2") return make_chipmunk(s, ChipmunkIndex::hasty);
   if (key == "box2d") return make_box2d(s);
-  if (key == "box2d3_w1" && box2d3_built()) return make_box2d3(s, 1);
-  if (key == "box2d3_w2" && box2d3_built()) return make_box2d3(s, 2);
+  for (const Box2d3Release r : box2d3_releases) {
+    const std::string k = box2d3_key(r);
+    if (key == k + "_w1" && box2d3_built(r)) return make_box2d3(s, 1, r);
+    if (key == k + "_w2" && box2d3_built(r)) return make_box2d3(s, 2, r);
+  }
   throw std::invalid_argument("no stepper " + key);
 }
 
@@ -177,7 +177,8 @@ void cost_tables(const View& v, const Line& line) {
   const std::pair<const char*, const char*> peers[] = {
       {"chipmunk_hash", "fixstep_f64_t1"},   {"chipmunk_tree", "fixstep_f64_t1"},
       {"chipmunk_hasty2", "fixstep_f64_t1"}, {"box2d", "fixstep_f64_t1"},
-      {"box2d3_w1", "fixstep_f64_t1"},       {"box2d3_w2", "fixstep_f64_t2"}};
+      {"box2d3_w1", "fixstep_f64_t1"},       {"box2d3_w2", "fixstep_f64_t2"},
+      {"box2d32_w1", "fixstep_f64_t1"},      {"box2d32_w2", "fixstep_f64_t2"}};
   for (SceneKind s : all_scenes) {
     for (const auto& [p, f] : peers) {
       if (!std::ranges::count(keys, std::string_view(p))) continue;
@@ -232,7 +233,7 @@ void quality_tables(const View& v, const Line& line) {
   const std::string head = header(v.r, rule);
   line("| scene |" + head.substr(head.find('|', 1) + 1)), line(rule);
   for (SceneKind s : all_scenes) {
-    for (const char* key : {"box2d", "box2d3_w1", "box2d3_w2"}) {
+    for (const char* key : {"box2d", "box2d3_w1", "box2d3_w2", "box2d32_w1", "box2d32_w2"}) {
       if (!std::ranges::count(keys, std::string_view(key))) continue;
       std::string row = fmt::format("| {}, {}: broadphase / narrow phase, share of the step |",
                                     scene_name(s), stepper_label(key));
@@ -312,58 +313,80 @@ void scaling_targets(const View& v, const Line& line) {
   }
 }
 
-/// The issue-33 table: fixstep on 1 and 2 threads beside Box2D v3 on 1 and 2 workers.
+/// The issue-33 table: fixstep on 1 and 2 threads beside Box2D v3.1.1 and v3.2 on 1 and 2
+/// workers (v3.2's columns where it was built).
 void box2d3_table(const View& v, const Line& line) {
   line(fmt::format(
-      "\n#### fixstep against Box2D {}: ns per body-step, median of {}; deepest disc-disc "
+      "\n#### fixstep against Box2D {}{}: ns per body-step, median of {}; deepest disc-disc "
       "overlap / r after the timed steps (fixstep f64 1 thread · Box2D v3 1 worker)\n",
-      box2d3_version(), repetitions_text(v.r)));
+      box2d3_version(),
+      box2d3_built(Box2d3Release::v3_2) ? " and " + box2d3_version(Box2d3Release::v3_2) : "",
+      repetitions_text(v.r)));
   if (!box2d3_built()) {
     line("Box2D v3 not built (bench/box2d3.cmake: its source archive was not found).");
     return;
   }
-  line(
+  const bool v32 = box2d3_built(Box2d3Release::v3_2);
+  line(fmt::format(
       "| scene | N | fixstep f64 1 thread | fixstep f64 2 threads | fixstep 8/3 iterations 1 "
-      "thread | fixstep 8/3 iterations 2 threads | Box2D v3 1 worker | Box2D v3 2 workers | "
-      "deepest overlap / r: fixstep · fixstep 8/3 · Box2D v3 |");
-  line("|---|---|---|---|---|---|---|---|---|");
-  const auto row = [&](const std::string& label, SceneKind s, std::int64_t n, bool fixstep) {
-    const CaseResult* f = fixstep ? v.at(s, "fixstep_f64_t1", n) : nullptr;
-    const CaseResult* f8 = fixstep ? v.at(s, "fixstep_i8_t1", n) : nullptr;
+      "thread | fixstep 8/3 iterations 2 threads | Box2D {0} 1 worker | Box2D {0} 2 workers |{1} "
+      "deepest overlap / r: fixstep · fixstep 8/3 · Box2D {0}{2} |",
+      box2d3_version(),
+      v32 ? fmt::format(" Box2D {0} 1 worker | Box2D {0} 2 workers |",
+                        box2d3_version(Box2d3Release::v3_2))
+          : "",
+      v32 ? " · Box2D " + box2d3_version(Box2d3Release::v3_2) : ""));
+  line(v32 ? "|---|---|---|---|---|---|---|---|---|---|---|"
+           : "|---|---|---|---|---|---|---|---|---|");
+  // keys: fixstep 1 and 2 threads, 8/3 iterations 1 and 2 (empty: none), the overlaps' keys.
+  const auto row = [&](const std::string& label, SceneKind s, std::int64_t n,
+                       const std::array<const char*, 4>& fixstep, const char* f_overlap,
+                       const char* f8_overlap) {
     const CaseResult* b = v.at(s, "box2d3_w1", n);
-    if (!b && !f) return;
-    const auto ns = [&](const char* key) { return fixstep ? num(v.ns(s, key, n)) : "–"; };
-    line(fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} · {} · {} |", label,
-                     size_text(n), ns("fixstep_f64_t1"), ns("fixstep_f64_t2"), ns("fixstep_i8_t1"),
-                     ns("fixstep_i8_t2"), num(v.ns(s, "box2d3_w1", n)),
-                     num(v.ns(s, "box2d3_w2", n)), f ? num(f->disc_overlap) : "–",
-                     f8 ? num(f8->disc_overlap) : "–", b ? num(b->disc_overlap) : "–"));
+    const CaseResult* b32 = v.at(s, "box2d32_w1", n);
+    const CaseResult* f = v.at(s, f_overlap, n);
+    const CaseResult* f8 = *f8_overlap ? v.at(s, f8_overlap, n) : nullptr;
+    if (!b && !f && !b32) return;
+    const auto ns = [&](const char* key) { return *key ? num(v.ns(s, key, n)) : "–"; };
+    const auto overlap = [](const CaseResult* c) { return c ? num(c->disc_overlap) : "–"; };
+    line(fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} |{} {} · {} · {}{} |", label,
+                     size_text(n), ns(fixstep[0]), ns(fixstep[1]), ns(fixstep[2]), ns(fixstep[3]),
+                     ns("box2d3_w1"), ns("box2d3_w2"),
+                     v32 ? fmt::format(" {} | {} |", ns("box2d32_w1"), ns("box2d32_w2")) : "",
+                     overlap(f), overlap(f8), overlap(b), v32 ? " · " + overlap(b32) : ""));
   };
-  for (auto n : v.r.sizes)
-    row(fmt::format("pile, r = {} m", small_radius), SceneKind::pile, n, true);
+  const std::array<const char*, 4> plain = {"fixstep_f64_t1", "fixstep_f64_t2", "fixstep_i8_t1",
+                                            "fixstep_i8_t2"};
+  for (auto n : v.r.sizes) {
+    row(fmt::format("pile, r = {} m", small_radius), SceneKind::pile, n, plain, plain[0], plain[2]);
+  }
   for (auto n : v.r.sizes) {
     row(fmt::format("settled pile (ticks {}–{}), r = {} m", pile_settled_warmup + 1,
                     pile_settled_warmup + 20, small_radius),
-        SceneKind::pile_settled, n, true);
+        SceneKind::pile_settled, n, plain, plain[0], plain[2]);
   }
   for (auto n : v.r.sizes)
-    row(fmt::format("pile, r = {} m", large_radius), SceneKind::pile_large, n, true);
-  for (auto n : v.r.sizes) row("gas", SceneKind::gas, n, true);
+    row(fmt::format("pile, r = {} m", large_radius), SceneKind::pile_large, n, plain, plain[0],
+        plain[2]);
+  for (auto n : v.r.sizes) row("gas", SceneKind::gas, n, plain, plain[0], plain[2]);
   // Box2D's circles rotate: its pile is a pile of rolling discs (the same cases as its pile
   // above), beside fixstep's rolling discs (fixstep_roll_*) on the same pile.
   for (auto n : v.r.sizes) {
-    const SceneKind s = SceneKind::pile;
-    const CaseResult* f = v.at(s, "fixstep_roll_t1", n);
-    const CaseResult* b = v.at(s, "box2d3_w1", n);
-    if (!f && !b) continue;
-    line(
-        fmt::format("| pile of rolling discs, r = {} m (fixstep: ContactSettings::rolling) | {} | "
-                    "{} | {} | – | – | {} | {} | {} · – · {} |",
-                    small_radius, size_text(n), num(v.ns(s, "fixstep_roll_t1", n)),
-                    num(v.ns(s, "fixstep_roll_t2", n)), num(v.ns(s, "box2d3_w1", n)),
-                    num(v.ns(s, "box2d3_w2", n)), f ? num(f->disc_overlap) : "–",
-                    b ? num(b->disc_overlap) : "–"));
+    row(fmt::format("pile of rolling discs, r = {} m (fixstep: ContactSettings::rolling)",
+                    small_radius),
+        SceneKind::pile, n, {"fixstep_roll_t1", "fixstep_roll_t2", "", ""}, "fixstep_roll_t1", "");
   }
+}
+
+/// The report's first line's part on Box2D v3: each release built, its substeps and slop.
+std::string box2d3_summary() {
+  std::string out;
+  for (const Box2d3Release r : box2d3_releases) {
+    if (!box2d3_built(r)) continue;
+    out += fmt::format("; Box2D {}: {} substeps, linear slop {:.3g} m, sleeping off",
+                       box2d3_version(r), box2d3_substeps, box2d3_linear_slop(r));
+  }
+  return out.empty() ? "; Box2D v3 not built" : out;
 }
 
 /// Issue 33's targets against Box2D v3, where it was built.
@@ -468,10 +491,7 @@ std::string report_markdown(const Results& r) {
       "slop {:.3g} m{}.",
       r.load_start, r.load_end, small_radius, large_radius, mass, chipmunk_iterations,
       chipmunk_slop, box2d_version(), box2d_velocity_iterations, box2d_position_iterations,
-      box2d_linear_slop(),
-      box2d3_built() ? fmt::format("; Box2D {}: {} substeps, linear slop {:.3g} m, sleeping off",
-                                   box2d3_version(), box2d3_substeps, box2d3_linear_slop())
-                     : std::string("; Box2D v3 not built")));
+      box2d_linear_slop(), box2d3_summary()));
   box2d3_table(v, line);
   cost_tables(v, line);
   quality_tables(v, line);
