@@ -1,4 +1,4 @@
-# Box2D v3.1.1 and v3.2 (C, MIT), peers of bench_discs only, never part of the
+# Box2D v3.1.1 and v3.2 (C, MIT), peers of bench_discs and bench_boxes only, never part of the
 # engine: each built from its source archive by its own CMakeLists (ExternalProject, offline: the
 # URL is the local file, its sha256 checked), Release (-O3 -DNDEBUG, CMake's default for C), its
 # default SIMD (SSE2 on x86-64), no samples, tests, benchmarks or validation. Where an archive is
@@ -6,7 +6,8 @@
 # message and the benchmarks run the other engines.
 #
 # Box2D 2.4 (Debian, C++) and v3 share header paths (box2d/box2d.h) and type names (b2Vec2,
-# b2BodyDef...): the v3 code lives in its own translation units (discs_box2d3.cpp), an OBJECT library per release whose include path is that release's and which
+# b2BodyDef...): the v3 code lives in its own translation units (discs_box2d3.cpp,
+# boxes_box2d3.cpp), an OBJECT library per release whose include path is that release's and which
 # does not see 2.4's target. v3's functions have C linkage (b2CreateWorld...), 2.4's are
 # C++-mangled. v3.1.1 and v3.2 define the same C names: v3.2's archive has every global symbol it
 # defines renamed with the prefix b232_ (box2d3_prefix.sh: objcopy --redefine-syms over the
@@ -32,8 +33,8 @@ get_target_property(box2d24_library box2d::box2d LOCATION)
 set_property(GLOBAL PROPERTY FIXSTEP_BOX2D24_LIBRARY ${box2d24_library})
 
 # fixstep_box2d_v3(NAME ARCHIVE SHA256 MINOR [PREFIX p]): the imported library fixstep_NAME
-# and the object library discs_NAME (the disc stepper of that release, compiled with
-# FIXSTEP_BOX2D3_MINOR = MINOR), linked into bench_discs; sets FIXSTEP_HAVE_NAME.
+# and the object library discs_NAME (the disc and box steppers of that release, compiled with
+# FIXSTEP_BOX2D3_MINOR = MINOR), linked into bench_discs and bench_boxes; sets FIXSTEP_HAVE_NAME.
 function(fixstep_box2d_v3 name archive sha256 minor)
   cmake_parse_arguments(PARSE_ARGV 4 arg "" "PREFIX" "")
   if(NOT EXISTS "${archive}")
@@ -98,9 +99,9 @@ function(fixstep_box2d_v3 name archive sha256 minor)
     INTERFACE_INCLUDE_DIRECTORIES ${source}/include)
   add_dependencies(fixstep_${name} ${name})
 
-  # The stepper (discs_box2d3.cpp; v3.1's task system): v3's headers only; discs.hpp needs
-  # fixstep's types.
-  set(sources discs_box2d3.cpp)
+  # The steppers (discs_box2d3.cpp, boxes_box2d3.cpp; v3.1's task system): v3's headers only;
+  # discs.hpp and boxes.hpp need fixstep's types.
+  set(sources discs_box2d3.cpp boxes_box2d3.cpp)
   if(minor EQUAL 1)
     list(APPEND sources discs_box2d3_tasks.cpp)  # v3.2 runs its own scheduler
   endif()
@@ -118,7 +119,7 @@ fixstep_box2d_v3(box2d32 "${FIXSTEP_BOX2D32_ARCHIVE}" ${FIXSTEP_BOX2D32_SHA256} 
 
 # The object libraries' private dependencies reach the executables' link lines only (LINK_ONLY):
 # v3's include paths stay out of the translation units that include Box2D 2.4's box2d/box2d.h.
-foreach(exe bench_discs)
+foreach(exe bench_discs bench_boxes)
   if(FIXSTEP_HAVE_box2d3)
     target_link_libraries(${exe} PRIVATE discs_box2d3)
     target_compile_definitions(${exe} PRIVATE FIXSTEP_HAVE_BOX2D3=1)

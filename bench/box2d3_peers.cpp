@@ -1,5 +1,5 @@
 // The Box2D v3 releases this build has (bench/box2d3.cmake defines FIXSTEP_HAVE_BOX2D3 for
-// v3.1.1 and FIXSTEP_HAVE_BOX2D32 for v3.2 where it built them), for bench_discs:
+// v3.1.1 and FIXSTEP_HAVE_BOX2D32 for v3.2 where it built them), for bench_discs and bench_boxes:
 // each release's steppers (box2d3_release.hpp), or an error where it was not built.
 #include <fmt/format.h>
 
@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "box2d3_release.hpp"
+#include "boxes.hpp"
 #include "discs.hpp"
 
 #ifndef FIXSTEP_HAVE_BOX2D3
@@ -64,3 +65,19 @@ double box2d3_linear_slop(Box2d3Release r) {
 }
 
 }  // namespace discs
+
+namespace boxes {
+
+std::unique_ptr<BoxStepper> make_box2d3_boxes(const BoxScene& s, int workers,
+                                              discs::Box2d3Release r) {
+#if FIXSTEP_HAVE_BOX2D3
+  if (r == discs::Box2d3Release::v3_1) return discs::box2d_v3_1::make_boxes(s, workers);
+#endif
+#if FIXSTEP_HAVE_BOX2D32
+  if (r == discs::Box2d3Release::v3_2) return discs::box2d_v3_2::make_boxes(s, workers);
+#endif
+  (void)s, (void)workers;
+  discs::not_built(r);
+}
+
+}  // namespace boxes

@@ -1,5 +1,5 @@
-// The functions of one Box2D v3 release's stepper (discs_box2d3.cpp), in a namespace per
-// release: the source is compiled once per release (bench/box2d3.cmake, with
+// The functions of one Box2D v3 release's steppers (discs_box2d3.cpp, boxes_box2d3.cpp), in a
+// namespace per release: both sources are compiled once per release (bench/box2d3.cmake, with
 // FIXSTEP_BOX2D3_MINOR 1 or 2) and defines the functions of FIXSTEP_BOX2D3_NS;
 // box2d3_peers.cpp calls the releases that were built. Internal to bench/.
 #pragma once
@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "boxes.hpp"
 #include "discs.hpp"
 
 #if FIXSTEP_BOX2D3_MINOR == 1
@@ -17,12 +18,14 @@
 
 namespace discs::box2d_v3_1 {
 [[nodiscard]] std::unique_ptr<Stepper> make_discs(const Scene& s, int workers);
+[[nodiscard]] std::unique_ptr<boxes::BoxStepper> make_boxes(const boxes::BoxScene& s, int workers);
 [[nodiscard]] std::string version();
 [[nodiscard]] double linear_slop();
 }  // namespace discs::box2d_v3_1
 
 namespace discs::box2d_v3_2 {
 [[nodiscard]] std::unique_ptr<Stepper> make_discs(const Scene& s, int workers);
+[[nodiscard]] std::unique_ptr<boxes::BoxStepper> make_boxes(const boxes::BoxScene& s, int workers);
 [[nodiscard]] std::string version();
 [[nodiscard]] double linear_slop();
 }  // namespace discs::box2d_v3_2
