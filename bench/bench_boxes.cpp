@@ -107,7 +107,8 @@ int run_checks(const std::optional<std::string>& fixstep_problem) {
       v3 += fmt::format("; Box2D {} {}", discs::box2d3_version(r),
                         discs::box2d3_built(r) ? "rests a dropped box, keeps the pyramid and is "
                                                  "the same on 1 and 2 workers"
-                                               : "not built: its checks skipped");
+                                               : "(its source archive was not found): its checks "
+                                                 "skipped");
     }
     std::printf(
         "checks: the scenes start without overlaps; the separating axis test and its grid agree "

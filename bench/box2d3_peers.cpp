@@ -51,7 +51,7 @@ std::string box2d3_version(Box2d3Release r) {
 #if FIXSTEP_HAVE_BOX2D32
   if (r == Box2d3Release::v3_2) return box2d_v3_2::version();
 #endif
-  return r == Box2d3Release::v3_1 ? "3.1 (not built)" : "3.2 (not built)";
+  return r == Box2d3Release::v3_1 ? "3.1.1 (not built)" : "3.2 (not built)";
 }
 
 double box2d3_linear_slop(Box2d3Release r) {
@@ -61,6 +61,7 @@ double box2d3_linear_slop(Box2d3Release r) {
 #if FIXSTEP_HAVE_BOX2D32
   if (r == Box2d3Release::v3_2) return box2d_v3_2::linear_slop();
 #endif
+  (void)r;
   return std::numeric_limits<double>::quiet_NaN();
 }
 

@@ -162,7 +162,7 @@ inline constexpr Box2d3Release box2d3_releases[] = {Box2d3Release::v3_1, Box2d3R
 /// task callbacks: it runs a thread of its own).
 [[nodiscard]] std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers,
                                                    Box2d3Release r = Box2d3Release::v3_1);
-/// "3.1.1", "3.2.0" (b2GetVersion), or "3.x (not built)".
+/// "3.1.1", "3.2.0" (b2GetVersion), or "3.1.1 (not built)" or "3.2 (not built)".
 [[nodiscard]] std::string box2d3_version(Box2d3Release r = Box2d3Release::v3_1);
 [[nodiscard]] double box2d3_linear_slop(Box2d3Release r = Box2d3Release::v3_1);  ///< m
 inline constexpr int box2d3_substeps = 4;  ///< b2World_Step's subStepCount: v3's default
