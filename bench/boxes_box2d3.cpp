@@ -74,9 +74,10 @@ class Box2d3Boxes final : public boxes::BoxStepper {
       bodies_.push_back({b});
     }
   }
+  // The world goes before the task system (v3.1's tasks_ is destroyed after the destructor).
   ~Box2d3Boxes() override {
     b2DestroyWorld(world_);
-  }  // before the task system
+  }
   Box2d3Boxes(const Box2d3Boxes&) = delete;
   Box2d3Boxes& operator=(const Box2d3Boxes&) = delete;
 

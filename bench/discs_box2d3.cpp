@@ -76,9 +76,10 @@ class Box2d3Stepper final : public Stepper {
       bodies_.push_back({b});
     }
   }
+  // The world goes before the task system (v3.1's tasks_ is destroyed after the destructor).
   ~Box2d3Stepper() override {
     b2DestroyWorld(world_);
-  }  // before the task system
+  }
   Box2d3Stepper(const Box2d3Stepper&) = delete;
   Box2d3Stepper& operator=(const Box2d3Stepper&) = delete;
 
