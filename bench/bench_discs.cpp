@@ -10,8 +10,8 @@
 //   chipmunk   Chipmunk2D 7 with its spatial hash, its default tree, and (N <= 10⁴)
 //              cpHastySpace on 2 threads (discs_chipmunk.cpp);
 //   box2d      Box2D 2.4, b2CircleShape, Step(dt, 8, 3) (discs_box2d.cpp);
-//   box2d3     Box2D v3 (where bench/box2d3.cmake built it), b2World_Step(dt, 4) on 1 and 2
-//              workers (discs_box2d3.cpp).
+//   box2d3     Box2D v3.1.1 and v3.2 (where bench/box2d3.cmake built them), b2World_Step(dt, 4)
+//              on 1 and 2 workers (discs_box2d3.cpp).
 // Every case is built and warmed up untimed, then the same ticks are timed for every engine and
 // every N (5 repetitions of 4 ticks, the median; --benchmark_min_time makes Google Benchmark
 // choose the ticks instead); after them, every engine's deepest overlap and kinetic energy are
@@ -112,16 +112,17 @@ void verify_drop() {
 
 /// Box2D v3 gives the same state on 1 and 2 workers (it is deterministic across thread counts,
 /// so the task system of its 2 workers hands it every piece once).
-void verify_box2d3_workers(std::size_t n, int ticks) {
+void verify_box2d3_workers(std::size_t n, int ticks, Box2d3Release r) {
   std::vector<Vec2> x1, v1, x2, v2;
+  const std::string key = box2d3_key(r);
   for (SceneKind kind : {SceneKind::pile, SceneKind::gas}) {
     const Scene s = make_scene(kind, n);
-    const auto one = make_stepper("box2d3_w1", s), two = make_stepper("box2d3_w2", s);
+    const auto one = make_stepper(key + "_w1", s), two = make_stepper(key + "_w2", s);
     for (int t = 0; t < ticks; ++t) one->step(), two->step();
     one->state(x1, v1), two->state(x2, v2);
     check(x1 == x2 && v1 == v2 && two->stats().threads == 2,
-          fmt::format("{}: Box2D v3's state after {} ticks differs between 1 and 2 workers",
-                      scene_name(kind), ticks));
+          fmt::format("{}: Box2D {}'s state after {} ticks differs between 1 and 2 workers",
+                      scene_name(kind), box2d3_version(r), ticks));
   }
 }
 
@@ -131,15 +132,23 @@ int run_checks(bool full) {
   verify_overlap_grid();
   verify_engines(1000, 60);
   verify_drop();
-  if (box2d3_built()) verify_box2d3_workers(1000, 60);
+  std::string v3;
+  for (const Box2d3Release r : box2d3_releases) {
+    if (box2d3_built(r)) verify_box2d3_workers(1000, 60, r);
+    v3 += fmt::format("{}{}", v3.empty() ? "" : "; ",
+                      box2d3_built(r) ? fmt::format("Box2D {}'s state is the same on 1 and 2 "
+                                                    "workers",
+                                                    box2d3_version(r))
+                                      : fmt::format("Box2D {}: its source archive was not found, "
+                                                    "its checks skipped",
+                                                    box2d3_version(r)));
+  }
   if (failures == 0) {
     std::printf(
         "checks: the scenes start without overlaps; the overlap grid agrees with all pairs; "
         "every engine starts from the scene and keeps its discs in the box for 60 ticks (N = "
         "10^3); every engine's dropped disc falls ½ g t² and rests on the ground; %s\n",
-        box2d3_built() ? "Box2D v3's state is the same on 1 and 2 workers"
-                       : "Box2D v3 not built (its source archive was not found): its checks "
-                         "skipped");
+        v3.c_str());
   }
   return failures;
 }

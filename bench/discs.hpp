@@ -124,7 +124,8 @@ class Stepper {
 // - chipmunk_tree: cpSpace with its default bounding-box tree;
 // - chipmunk_hasty2: cpHastySpace on 2 threads (its default tree);
 // - box2d: Box2D 2.4's b2World, b2CircleShape, Step(dt, 8, 3);
-// - box2d3_w1, box2d3_w2: Box2D v3's b2World_Step(dt, 4) on 1 and 2 workers (where built).
+// - box2d3_w1, box2d3_w2: Box2D v3.1.1's b2World_Step(dt, 4) on 1 and 2 workers (where built);
+// - box2d32_w1, box2d32_w2: Box2D v3.2's, the same (where built).
 /// The keys of the steppers this build has (Box2D v3's only where box2d3_built()).
 [[nodiscard]] std::span<const char* const> stepper_keys();
 [[nodiscard]] std::string stepper_label(const std::string& key);
@@ -148,14 +149,25 @@ inline constexpr double chipmunk_slop = 0.005;  ///< m
 [[nodiscard]] double box2d_linear_slop();  ///< m
 inline constexpr int box2d_velocity_iterations = 8;
 inline constexpr int box2d_position_iterations = 3;
-/// Box2D v3 (discs_box2d3.cpp), where bench/box2d3.cmake found its source archive (false
-/// otherwise: its steppers are absent and its checks skipped).
-[[nodiscard]] bool box2d3_built();
-/// Box2D v3 on `workers` threads (1: its own serial task functions; 2: Box2d3Tasks).
-[[nodiscard]] std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers);
-[[nodiscard]] std::string box2d3_version();
-[[nodiscard]] double box2d3_linear_slop();  ///< m
-inline constexpr int box2d3_substeps = 4;   ///< b2World_Step's subStepCount: v3's default
+/// The Box2D v3 releases bench/box2d3.cmake builds where their source archives are present:
+/// v3.1.1 (the newest release) and v3.2 (Box2D's main branch of 2026-08-20, which reports
+/// 3.2.0). Both are compiled from discs_box2d3.cpp and boxes_box2d3.cpp, once per release.
+enum class Box2d3Release { v3_1, v3_2 };
+inline constexpr Box2d3Release box2d3_releases[] = {Box2d3Release::v3_1, Box2d3Release::v3_2};
+/// Whether the release was built (false otherwise: its steppers are absent and its checks
+/// skipped; box2d3_peers.cpp).
+[[nodiscard]] bool box2d3_built(Box2d3Release r = Box2d3Release::v3_1);
+/// Box2D v3 on `workers` threads: 1, its own serial task functions; 2, for v3.1 Box2d3Tasks
+/// (discs_box2d3_tasks.hpp), for v3.2 its own scheduler (b2WorldDef::workerCount = 2 without
+/// task callbacks: it runs a thread of its own).
+[[nodiscard]] std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers,
+                                                   Box2d3Release r = Box2d3Release::v3_1);
+/// "3.1.1", "3.2.0" (b2GetVersion), or "3.1.1 (not built)" or "3.2 (not built)".
+[[nodiscard]] std::string box2d3_version(Box2d3Release r = Box2d3Release::v3_1);
+[[nodiscard]] double box2d3_linear_slop(Box2d3Release r = Box2d3Release::v3_1);  ///< m
+inline constexpr int box2d3_substeps = 4;  ///< b2World_Step's subStepCount: v3's default
+/// A release's stepper key prefix: "box2d3" (v3.1) and "box2d32" (v3.2), then _w1 or _w2.
+[[nodiscard]] const char* box2d3_key(Box2d3Release r);
 
 /// A disc dropped from rest onto the ground by the stepper `key`: falls ½ g t² and rests at
 /// y = r within tolerances (discs_checks.cpp); what failed, empty if nothing.

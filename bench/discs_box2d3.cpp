@@ -1,6 +1,8 @@
-// Box2D v3.1.1 (built from its source by bench/box2d3.cmake, float, its default SSE2) stepping
-// a disc scene, on 1 worker (Box2D's own serial task functions) or on 2 (Box2d3Tasks, the
-// caller and one helper thread).
+// Box2D v3 (built from its source by bench/box2d3.cmake, float, its default SSE2; this file is
+// compiled once per release, v3.1.1 and v3.2, FIXSTEP_BOX2D3_MINOR) stepping a disc scene, on 1
+// worker (Box2D's own serial task functions) or on 2: v3.1, Box2d3Tasks (the caller and one
+// helper thread); v3.2, its own scheduler (b2WorldDef::workerCount = 2 and no task callbacks:
+// Box2D starts one thread of its own, physics_world.c).
 //
 // As for Box2D 2.4 (discs_box2d.cpp): one dynamic body per disc (it rotates: Box2D's normal
 // circle) with one b2Circle of the scene's radius, density m / (π r²) so its mass is 1 kg; the
@@ -22,29 +24,42 @@
 #include <numbers>
 #include <vector>
 
+#include "box2d3_release.hpp"
 #include "discs.hpp"
+#if FIXSTEP_BOX2D3_MINOR == 1
 #include "discs_box2d3_tasks.hpp"
+#endif
 
-namespace discs {
+namespace discs::FIXSTEP_BOX2D3_NS {
 
 using fixstep::Vec2;
 
 namespace {
 
+/// A body's id in a type of this file only: the releases' b2BodyId may differ, and a std::vector
+/// of it would be one template instance (with external linkage) for both.
+struct BodyRef {
+  b2BodyId id;
+};
+
 class Box2d3Stepper final : public Stepper {
  public:
-  Box2d3Stepper(const Scene& s, int workers) {
-    if (workers > 1) tasks_ = std::make_unique<Box2d3Tasks>(workers);
+  Box2d3Stepper(const Scene& s, int workers) : workers_(workers) {
     b2WorldDef wd = b2DefaultWorldDef();
     wd.gravity = {0.0f, float(-s.gravity)};
     wd.enableSleep = false;
     wd.restitutionThreshold = 0.0f;
-    if (tasks_) {
+#if FIXSTEP_BOX2D3_MINOR == 1
+    if (workers > 1) {
+      tasks_ = std::make_unique<Box2d3Tasks>(workers);
       wd.workerCount = tasks_->workers();
       wd.enqueueTask = &Box2d3Tasks::enqueue;
       wd.finishTask = &Box2d3Tasks::finish;
       wd.userTaskContext = tasks_.get();
     }
+#else
+    wd.workerCount = workers;  // > 1 without task callbacks: Box2D's own scheduler
+#endif
     world_ = b2CreateWorld(&wd);
     add_walls(s);
     b2ShapeDef sd = shape_def(s);
@@ -58,10 +73,13 @@ class Box2d3Stepper final : public Stepper {
       bd.linearVelocity = {float(s.velocity[j].x), float(s.velocity[j].y)};
       const b2BodyId b = b2CreateBody(world_, &bd);
       b2CreateCircleShape(b, &sd, &circle);
-      bodies_.push_back(b);
+      bodies_.push_back({b});
     }
   }
-  ~Box2d3Stepper() override { b2DestroyWorld(world_); }  // before the task system
+  // The world goes before the task system (v3.1's tasks_ is destroyed after the destructor).
+  ~Box2d3Stepper() override {
+    b2DestroyWorld(world_);
+  }
   Box2d3Stepper(const Box2d3Stepper&) = delete;
   Box2d3Stepper& operator=(const Box2d3Stepper&) = delete;
 
@@ -73,19 +91,14 @@ class Box2d3Stepper final : public Stepper {
   void state(std::vector<Vec2>& x, std::vector<Vec2>& v) const override {
     x.resize(bodies_.size()), v.resize(bodies_.size());
     for (std::size_t j = 0; j < bodies_.size(); ++j) {
-      const b2Vec2 p = b2Body_GetPosition(bodies_[j]), u = b2Body_GetLinearVelocity(bodies_[j]);
+      const b2Vec2 p = b2Body_GetPosition(bodies_[j].id);
+      const b2Vec2 u = b2Body_GetLinearVelocity(bodies_[j].id);
       x[j] = {double(p.x), double(p.y)}, v[j] = {double(u.x), double(u.y)};
     }
   }
   [[nodiscard]] Stats stats() const override {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-    return {nan,
-            nan,
-            nan,
-            nan,
-            pairs_ms_ / step_ms_,
-            collide_ms_ / step_ms_,
-            tasks_ ? tasks_->workers() : 1};
+    return {nan, nan, nan, nan, pairs_ms_ / step_ms_, collide_ms_ / step_ms_, workers_};
   }
 
  private:
@@ -107,30 +120,30 @@ class Box2d3Stepper final : public Stepper {
       b2CreateSegmentShape(walls, &sd, &segment);
     }
   }
+  int workers_ = 1;
+#if FIXSTEP_BOX2D3_MINOR == 1
   std::unique_ptr<Box2d3Tasks> tasks_;  // destroyed after the world (declared first)
+#endif
   b2WorldId world_{};
-  std::vector<b2BodyId> bodies_;
+  std::vector<BodyRef> bodies_;
   double step_ms_ = 0.0, pairs_ms_ = 0.0, collide_ms_ = 0.0;
 };
 
 }  // namespace
 
-bool box2d3_built() {
-  return true;
-}
-
-std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers) {
+std::unique_ptr<Stepper> make_discs(const Scene& s, int workers) {
   return std::make_unique<Box2d3Stepper>(s, workers);
 }
 
-std::string box2d3_version() {
+std::string version() {
   const b2Version v = b2GetVersion();
   return fmt::format("{}.{}.{}", v.major, v.minor, v.revision);
 }
 
-double box2d3_linear_slop() {
-  // B2_LINEAR_SLOP (src/constants.h, internal): 0.005 length units per metre.
+double linear_slop() {
+  // B2_LINEAR_SLOP (v3.1: src/constants.h, internal; v3.2: include/box2d/constants.h): 0.005
+  // length units per metre.
   return 0.005 * double(b2GetLengthUnitsPerMeter());
 }
 
-}  // namespace discs
+}  // namespace discs::FIXSTEP_BOX2D3_NS

@@ -1,49 +1,47 @@
 // bench_discs' steppers by key and its report: the markdown of docs/perf/discs.md (cost per
-// body-step, overlaps, energy, fixstep's contact statistics, Box2D's broadphase share, targets).
+// body-step, overlaps, energy, fixstep's contact statistics, Box2D's broadphase share, targets;
+// the tables and targets against Box2D v3 in discs_report_box2d3.cpp).
+#include "discs_report.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "discs.hpp"
 
 namespace discs {
 
+using namespace report;
+
 namespace {
-// The fixstep keys first (the contact statistics' table takes the first 4).
-constexpr const char* all_keys[] = {"fixstep_f64_t1",   "fixstep_f64_t2",  "fixstep_f32_t1",
-                                    "fixstep_f64_off",  "fixstep_i8_t1",   "fixstep_i8_t2",
-                                    "fixstep_roll_t1",  "fixstep_roll_t2", "fixstep_sleep_t1",
-                                    "fixstep_sleep_t2", "chipmunk_hash",   "chipmunk_tree",
-                                    "chipmunk_hasty2",  "box2d",           "box2d3_w1",
-                                    "box2d3_w2"};
-const std::span<const char* const> keys(all_keys, box2d3_built() ? 16 : 14);
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+// The fixstep keys first (the contact statistics' table takes the first 4); Box2D v3's last,
+// those of the releases built.
+std::vector<const char*> make_keys() {
+  std::vector<const char*> k = {"fixstep_f64_t1",   "fixstep_f64_t2",
+                                "fixstep_f32_t1",   "fixstep_f64_off",
+                                "fixstep_i8_t1",    "fixstep_i8_t2",
+                                "fixstep_roll_t1",  "fixstep_roll_t2",
+                                "fixstep_sleep_t1", "fixstep_sleep_t2",
+                                "chipmunk_hash",    "chipmunk_tree",
+                                "chipmunk_hasty2",  "box2d"};
+  if (box2d3_built(Box2d3Release::v3_1)) k.insert(k.end(), {"box2d3_w1", "box2d3_w2"});
+  if (box2d3_built(Box2d3Release::v3_2)) k.insert(k.end(), {"box2d32_w1", "box2d32_w2"});
+  return k;
+}
+const std::vector<const char*> key_list = make_keys();
+const std::span<const char* const> keys(key_list);
 constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large,
                                     SceneKind::pile_settled};
 constexpr SceneKind main_scenes[] = {SceneKind::pile, SceneKind::gas};
 }  // namespace
-
-#if !FIXSTEP_HAVE_BOX2D3
-// Box2D v3 is not built (bench/box2d3.cmake: its archive is absent): no steppers to make.
-bool box2d3_built() {
-  return false;
-}
-std::unique_ptr<Stepper> make_box2d3(const Scene&, int) {
-  throw std::logic_error("Box2D v3 is not built");
-}
-std::string box2d3_version() {
-  return "3 (not built)";
-}
-double box2d3_linear_slop() {
-  return nan;
-}
-#endif
 
 std::span<const char* const> stepper_keys() {
   return keys;
@@ -65,8 +63,11 @@ std::string stepper_label(const std::string& key) {
   if (key == "chipmunk_tree") return cp + ", bounding-box tree";
   if (key == "chipmunk_hasty2") return cp + ", cpHastySpace 2 threads";
   if (key == "box2d") return fmt::format("Box2D {} (f32)", box2d_version());
-  if (key == "box2d3_w1") return fmt::format("Box2D {} (f32), 1 worker", box2d3_version());
-  if (key == "box2d3_w2") return fmt::format("Box2D {} (f32), 2 workers", box2d3_version());
+  for (const Box2d3Release r : box2d3_releases) {
+    const std::string k = box2d3_key(r);
+    if (key == k + "_w1") return fmt::format("Box2D {} (f32), 1 worker", box2d3_version(r));
+    if (key == k + "_w2") return fmt::format("Box2D {} (f32), 2 workers", box2d3_version(r));
+  }
   return key;
 }
 
@@ -85,17 +86,40 @@ std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s) {
   if (key == "chipmunk_tree") return make_chipmunk(s, ChipmunkIndex::tree);
   if (key == "chipmunk_hasty2") return make_chipmunk(s, ChipmunkIndex::hasty);
   if (key == "box2d") return make_box2d(s);
-  if (key == "box2d3_w1" && box2d3_built()) return make_box2d3(s, 1);
-  if (key == "box2d3_w2" && box2d3_built()) return make_box2d3(s, 2);
+  for (const Box2d3Release r : box2d3_releases) {
+    const std::string k = box2d3_key(r);
+    if (key == k + "_w1" && box2d3_built(r)) return make_box2d3(s, 1, r);
+    if (key == k + "_w2" && box2d3_built(r)) return make_box2d3(s, 2, r);
+  }
   throw std::invalid_argument("no stepper " + key);
 }
 
-namespace {
+// The helpers discs_report_box2d3.cpp shares (discs_report.hpp).
+namespace report {
 
 std::string size_text(std::int64_t n) {
   const int e = int(std::lround(std::log10(double(n))));
   return std::llround(std::pow(10.0, e)) == n ? fmt::format("10^{}", e) : fmt::format("{}", n);
 }
+
+std::string num(double v, const char* f) {
+  return std::isnan(v) ? "–" : fmt::format(fmt::runtime(f), v);
+}
+
+std::string repetitions_text(const Results& r) {
+  const auto reps = [](int k) { return fmt::format("{} repetition{}", k, k == 1 ? "" : "s"); };
+  const bool largest = std::find(r.sizes.begin(), r.sizes.end(), 100'000) != r.sizes.end();
+  if (!largest || r.repetitions_largest == r.repetitions) return reps(r.repetitions);
+  return fmt::format("{} ({} at N = 10^5)", reps(r.repetitions), r.repetitions_largest);
+}
+
+std::string verdict(bool measured, bool ok) {
+  return !measured ? "not measured" : ok ? "yes" : "**no**";
+}
+
+}  // namespace report
+
+namespace {
 
 std::string title(SceneKind s) {
   switch (s) {
@@ -112,24 +136,6 @@ std::string title(SceneKind s) {
   }
   return fmt::format("Settled pile of large discs (r = {} m)", large_radius);
 }
-
-std::string num(double v, const char* f = "{:.3g}") {
-  return std::isnan(v) ? "–" : fmt::format(fmt::runtime(f), v);
-}
-
-struct View {
-  const Results& r;
-  [[nodiscard]] const CaseResult* at(SceneKind s, const std::string& key, std::int64_t n) const {
-    const auto it = r.cases.find(fmt::format("{}/{}/{}", scene_name(s), key, n));
-    return it == r.cases.end() ? nullptr : &it->second;
-  }
-  [[nodiscard]] double ns(SceneKind s, const std::string& key, std::int64_t n) const {
-    const CaseResult* c = at(s, key, n);
-    return c ? c->ns_per_body_step : nan;
-  }
-};
-
-using Line = std::function<void(const std::string&)>;
 
 std::string header(const Results& r, std::string& rule) {
   std::string head = "| stepper |";
@@ -156,13 +162,6 @@ void table(const View& v, SceneKind s, const Line& line,
   }
 }
 
-std::string repetitions_text(const Results& r) {
-  const auto reps = [](int k) { return fmt::format("{} repetition{}", k, k == 1 ? "" : "s"); };
-  const bool largest = std::find(r.sizes.begin(), r.sizes.end(), 100'000) != r.sizes.end();
-  if (!largest || r.repetitions_largest == r.repetitions) return reps(r.repetitions);
-  return fmt::format("{} ({} at N = 10^5)", reps(r.repetitions), r.repetitions_largest);
-}
-
 void cost_tables(const View& v, const Line& line) {
   for (SceneKind s : all_scenes) {
     line(fmt::format("\n#### {}: ns per body-step (time of one step / discs), median of {}\n",
@@ -177,7 +176,8 @@ void cost_tables(const View& v, const Line& line) {
   const std::pair<const char*, const char*> peers[] = {
       {"chipmunk_hash", "fixstep_f64_t1"},   {"chipmunk_tree", "fixstep_f64_t1"},
       {"chipmunk_hasty2", "fixstep_f64_t1"}, {"box2d", "fixstep_f64_t1"},
-      {"box2d3_w1", "fixstep_f64_t1"},       {"box2d3_w2", "fixstep_f64_t2"}};
+      {"box2d3_w1", "fixstep_f64_t1"},       {"box2d3_w2", "fixstep_f64_t2"},
+      {"box2d32_w1", "fixstep_f64_t1"},      {"box2d32_w2", "fixstep_f64_t2"}};
   for (SceneKind s : all_scenes) {
     for (const auto& [p, f] : peers) {
       if (!std::ranges::count(keys, std::string_view(p))) continue;
@@ -232,7 +232,7 @@ void quality_tables(const View& v, const Line& line) {
   const std::string head = header(v.r, rule);
   line("| scene |" + head.substr(head.find('|', 1) + 1)), line(rule);
   for (SceneKind s : all_scenes) {
-    for (const char* key : {"box2d", "box2d3_w1", "box2d3_w2"}) {
+    for (const char* key : {"box2d", "box2d3_w1", "box2d3_w2", "box2d32_w1", "box2d32_w2"}) {
       if (!std::ranges::count(keys, std::string_view(key))) continue;
       std::string row = fmt::format("| {}, {}: broadphase / narrow phase, share of the step |",
                                     scene_name(s), stepper_label(key));
@@ -246,10 +246,6 @@ void quality_tables(const View& v, const Line& line) {
       line(row);
     }
   }
-}
-
-std::string verdict(bool measured, bool ok) {
-  return !measured ? "not measured" : ok ? "yes" : "**no**";
 }
 
 /// The issue's targets for the peers: ≥ 5× faster than both at N = 10⁴ with no deeper overlap.
@@ -312,104 +308,6 @@ void scaling_targets(const View& v, const Line& line) {
   }
 }
 
-/// The issue-33 table: fixstep on 1 and 2 threads beside Box2D v3 on 1 and 2 workers.
-void box2d3_table(const View& v, const Line& line) {
-  line(fmt::format(
-      "\n#### fixstep against Box2D {}: ns per body-step, median of {}; deepest disc-disc "
-      "overlap / r after the timed steps (fixstep f64 1 thread · Box2D v3 1 worker)\n",
-      box2d3_version(), repetitions_text(v.r)));
-  if (!box2d3_built()) {
-    line("Box2D v3 not built (bench/box2d3.cmake: its source archive was not found).");
-    return;
-  }
-  line(
-      "| scene | N | fixstep f64 1 thread | fixstep f64 2 threads | fixstep 8/3 iterations 1 "
-      "thread | fixstep 8/3 iterations 2 threads | Box2D v3 1 worker | Box2D v3 2 workers | "
-      "deepest overlap / r: fixstep · fixstep 8/3 · Box2D v3 |");
-  line("|---|---|---|---|---|---|---|---|---|");
-  const auto row = [&](const std::string& label, SceneKind s, std::int64_t n, bool fixstep) {
-    const CaseResult* f = fixstep ? v.at(s, "fixstep_f64_t1", n) : nullptr;
-    const CaseResult* f8 = fixstep ? v.at(s, "fixstep_i8_t1", n) : nullptr;
-    const CaseResult* b = v.at(s, "box2d3_w1", n);
-    if (!b && !f) return;
-    const auto ns = [&](const char* key) { return fixstep ? num(v.ns(s, key, n)) : "–"; };
-    line(fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} · {} · {} |", label,
-                     size_text(n), ns("fixstep_f64_t1"), ns("fixstep_f64_t2"), ns("fixstep_i8_t1"),
-                     ns("fixstep_i8_t2"), num(v.ns(s, "box2d3_w1", n)),
-                     num(v.ns(s, "box2d3_w2", n)), f ? num(f->disc_overlap) : "–",
-                     f8 ? num(f8->disc_overlap) : "–", b ? num(b->disc_overlap) : "–"));
-  };
-  for (auto n : v.r.sizes)
-    row(fmt::format("pile, r = {} m", small_radius), SceneKind::pile, n, true);
-  for (auto n : v.r.sizes) {
-    row(fmt::format("settled pile (ticks {}–{}), r = {} m", pile_settled_warmup + 1,
-                    pile_settled_warmup + 20, small_radius),
-        SceneKind::pile_settled, n, true);
-  }
-  for (auto n : v.r.sizes)
-    row(fmt::format("pile, r = {} m", large_radius), SceneKind::pile_large, n, true);
-  for (auto n : v.r.sizes) row("gas", SceneKind::gas, n, true);
-  // Box2D's circles rotate: its pile is a pile of rolling discs (the same cases as its pile
-  // above), beside fixstep's rolling discs (fixstep_roll_*) on the same pile.
-  for (auto n : v.r.sizes) {
-    const SceneKind s = SceneKind::pile;
-    const CaseResult* f = v.at(s, "fixstep_roll_t1", n);
-    const CaseResult* b = v.at(s, "box2d3_w1", n);
-    if (!f && !b) continue;
-    line(
-        fmt::format("| pile of rolling discs, r = {} m (fixstep: ContactSettings::rolling) | {} | "
-                    "{} | {} | – | – | {} | {} | {} · – · {} |",
-                    small_radius, size_text(n), num(v.ns(s, "fixstep_roll_t1", n)),
-                    num(v.ns(s, "fixstep_roll_t2", n)), num(v.ns(s, "box2d3_w1", n)),
-                    num(v.ns(s, "box2d3_w2", n)), f ? num(f->disc_overlap) : "–",
-                    b ? num(b->disc_overlap) : "–"));
-  }
-}
-
-/// Issue 33's targets against Box2D v3, where it was built.
-void box2d3_targets(const View& v, const Line& line) {
-  if (!box2d3_built()) return;
-  constexpr std::int64_t n4 = 10'000;
-  for (const SceneKind s : {SceneKind::pile, SceneKind::pile_settled}) {
-    for (const bool box2d_iterations : {false, true}) {
-      for (int threads : {1, 2}) {
-        const std::string f_key =
-            fmt::format("fixstep_{}_t{}", box2d_iterations ? "i8" : "f64", threads);
-        const std::string b_key = threads == 1 ? "box2d3_w1" : "box2d3_w2";
-        const CaseResult* f = v.at(s, f_key, n4);
-        const CaseResult* b = v.at(s, b_key, n4);
-        const bool measured = f && b;
-        const double ratio = measured ? b->ns_per_body_step / f->ns_per_body_step : nan;
-        const bool shallow = measured && f->disc_overlap <= b->disc_overlap / 5.0;
-        line(fmt::format(
-            "| {7}, N = 10^4: fixstep f64{6} ({0} thread{1}) ≥ 2× faster per body-step than "
-            "Box2D v3 ({0} worker{1}), at no more than a fifth of its overlap | {2}× (overlap / "
-            "r: fixstep {3}, Box2D v3 {4}) | {5} |",
-            threads, threads == 1 ? "" : "s", num(ratio, "{:.2f}"),
-            measured ? num(f->disc_overlap) : "–", measured ? num(b->disc_overlap) : "–",
-            verdict(measured, ratio >= 2.0 && shallow), box2d_iterations ? ", 8/3 iterations" : "",
-            s == SceneKind::pile ? "pile" : "settled pile"));
-      }
-    }
-  }
-  for (int threads : {1, 2}) {
-    const std::string f_key = threads == 1 ? "fixstep_f64_t1" : "fixstep_f64_t2";
-    const std::string b_key = threads == 1 ? "box2d3_w1" : "box2d3_w2";
-    std::string measured_text;
-    bool all = !v.r.sizes.empty(), ok = true;
-    for (auto n : v.r.sizes) {
-      const double q = v.ns(SceneKind::gas, b_key, n) / v.ns(SceneKind::gas, f_key, n);
-      all = all && !std::isnan(q), ok = ok && q >= 3.0;
-      measured_text += fmt::format("{}N = {}: {}", measured_text.empty() ? "" : ", ", size_text(n),
-                                   num(q, "{:.2f}×"));
-    }
-    line(fmt::format(
-        "| gas, every N: fixstep f64 ({0} thread{1}) ≥ 3× faster per body-step than Box2D v3 "
-        "({0} worker{1}) | {2} | {3} |",
-        threads, threads == 1 ? "" : "s", measured_text, verdict(all, ok)));
-  }
-}
-
 /// The sleeping target: a settled pile asleep costs at most 5 % of it awake.
 void sleep_targets(const View& v, const Line& line) {
   constexpr std::int64_t n4 = 10'000;
@@ -468,10 +366,7 @@ std::string report_markdown(const Results& r) {
       "slop {:.3g} m{}.",
       r.load_start, r.load_end, small_radius, large_radius, mass, chipmunk_iterations,
       chipmunk_slop, box2d_version(), box2d_velocity_iterations, box2d_position_iterations,
-      box2d_linear_slop(),
-      box2d3_built() ? fmt::format("; Box2D {}: {} substeps, linear slop {:.3g} m, sleeping off",
-                                   box2d3_version(), box2d3_substeps, box2d3_linear_slop())
-                     : std::string("; Box2D v3 not built")));
+      box2d_linear_slop(), box2d3_summary()));
   box2d3_table(v, line);
   cost_tables(v, line);
   quality_tables(v, line);

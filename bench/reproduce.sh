@@ -4,6 +4,9 @@
 #   bash bench/reproduce.sh coupled    (only section 6, coupled systems against peers: ~3 min)
 #   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers, with
 #                                       Box2D v3 where ../shared/peers has its source: ~6-9 min)
+#   bash bench/reproduce.sh shapes     (only section 7.1, boxes against Box2D v3.1.1 and v3.2:
+#                                       the 20-row pyramid and a settling pile of 10^4 boxes;
+#                                       fixstep's rows once World steps shapes: ~1-2 min)
 #   bash bench/reproduce.sh network    (only section 6.1: integrator costs and the trade on
 #                                       damped networks: ~3 min)
 #   bash bench/reproduce.sh net        (only section 8, networking: bandwidth, stalls and
@@ -16,8 +19,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 only="${1:-}"
 case "$only" in
-  "" | coupled | discs | network | net) ;;
-  *) echo "usage: bash bench/reproduce.sh [coupled|discs|network|net]" >&2; exit 2 ;;
+  "" | coupled | discs | shapes | network | net) ;;
+  *) echo "usage: bash bench/reproduce.sh [coupled|discs|shapes|network|net]" >&2; exit 2 ;;
 esac
 bash .ci/install-deps
 cmake --workflow --preset bench
@@ -61,11 +64,21 @@ if [ -z "$only" ] || [ "$only" = coupled ]; then
 fi
 # Disc contacts against Chipmunk2D, Box2D 2.4 and Box2D v3 (pile, gas; N = 10^3 ... 10^5): cost
 # per body-step, overlaps, energy, targets; its first line gives the load average during the
-# run. Box2D v3 is in it where bench/box2d3.cmake found ../shared/peers/box2d-3.1.1.tar.gz
-# (the configure step above says "Box2D v3 peer skipped: ..." otherwise).
+# run. Box2D v3.1.1 and v3.2 are in it where bench/box2d3.cmake found
+# ../shared/peers/box2d-3.1.1.tar.gz and box2d-main-617d32a.tar.gz (the configure step above
+# says "Box2D v3.x peer skipped: ..." otherwise).
 if [ -z "$only" ] || [ "$only" = discs ]; then
   "$bin/bench_discs" --report "$out" > "$out/discs.log"
   { measured_on; cat "$out/discs.md"; } > "$out/discs.section.md"
+fi
+
+# Boxes (the rotating-shapes work) against Box2D v3.1.1 and v3.2: the 20-row pyramid and a
+# settling pile of 10^4 boxes, ns per body-step and deepest overlap, 1 and 2 threads/workers.
+# Until World steps shapes its first lines say "fixstep: shapes not yet supported (why)" and
+# fixstep's rows are absent (bench/boxes_fixstep.cpp).
+if [ -z "$only" ] || [ "$only" = shapes ]; then
+  "$bin/bench_boxes" --report "$out" > "$out/boxes.log"
+  { measured_on; cat "$out/boxes.md"; } > "$out/boxes.section.md"
 fi
 
 # Each integrator's cost per tick on damped networks (cloth.toml and a 10^4-body cloth, f64
@@ -100,6 +113,7 @@ if [ -z "$only" ]; then
 fi
 if [ -z "$only" ] || [ "$only" = coupled ]; then splice coupled "$out/coupled.section.md"; fi
 if [ -z "$only" ] || [ "$only" = discs ]; then splice discs "$out/discs.section.md"; fi
+if [ -z "$only" ] || [ "$only" = shapes ]; then splice shapes "$out/boxes.section.md"; fi
 if [ -z "$only" ] || [ "$only" = network ]; then
   splice network_integrators "$out/network_integrators.section.md"
   splice network_trade "$out/network_trade.section.md"
