@@ -48,6 +48,16 @@ class Fnv1a {
   std::uint64_t hash_ = fnv1a_basis;
 };
 
+void hash_shape(Fnv1a& h, const ShapeDef& s) {
+  h.add(s.kind), h.add(s.radius), h.add(s.half_extents), h.add(s.count);
+  for (int i = 0; i < s.count && i < max_polygon_vertices; ++i) h.add(s.vertices[i]);
+  h.add(s.offset), h.add(s.angle);
+  h.add_optional(s.density, [&](double d) { h.add(d); });
+  h.add_optional(s.friction, [&](double mu) { h.add(mu); });
+  h.add_optional(s.restitution, [&](double e) { h.add(e); });
+  h.add(s.filter.category), h.add(s.filter.mask), h.add(s.filter.group), h.add(s.sensor);
+}
+
 void hash_body(Fnv1a& h, const BodyDef& b) {
   h.add(b.body.mass), h.add(b.body.position), h.add(b.body.velocity);
   h.add_optional(b.spring, [&](const SpringDamper& s) {
@@ -77,6 +87,12 @@ void hash_body(Fnv1a& h, const BodyDef& b) {
     h.add(b.body.angle), h.add(b.body.angular_velocity);
   }
   if (b.type != BodyType::dynamic) h.add(b.type);
+  // Shapes: only when the body has some (older definitions keep their hash).
+  if (!b.shapes.empty()) {
+    h.add(b.shapes.size());
+    for (const ShapeDef& s : b.shapes) hash_shape(h, s);
+    h.add_optional(b.inertia, [&](double i) { h.add(i); });
+  }
 }
 
 }  // namespace
