@@ -129,6 +129,9 @@ class ShapeWorld {
   std::vector<ShapeEntry> shapes_;
   std::vector<ShapeState> state_;
   std::vector<ShapeWarm> warm_;  ///< sorted by (pair, id): last tick's impulses (state)
+  /// Scratch of the energy account (world_shapes.cpp): each body's energy before and after the
+  /// solve and the kinematic work on it (J).
+  std::vector<double> energy_, energy_after_, work_;
 
   /// One tick over `bodies_` with `state_` filled (start and free end); leaves the result in
   /// state_.

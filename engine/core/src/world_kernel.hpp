@@ -659,6 +659,8 @@ class WorldKernel {
   void rebuild_shapes();
   void save_shape_start();
   void resolve_shapes();
+  void shape_energies(std::vector<double>& out) const;
+  void account_shape_contacts();
   // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.
   ClonePtr<DiscContacts<Real>> discs_;
   void rebuild_discs();
@@ -748,7 +750,7 @@ class WorldKernel {
   std::vector<ContactEvent> touching_;  // normal_speed unused
   ScratchVector<ContactEvent> touching_before_, hits_;
   std::vector<ContactEvent> begun_, ended_;
-  std::vector<Impact> impacts_;  ///< the last tick's, by handle
+  std::vector<Impact> impacts_;            ///< the last tick's, by handle
   void update_contact_events(bool discs);  // discs: the disc phases ran this tick
   void add_disc_touching();
   void add_shape_touching();

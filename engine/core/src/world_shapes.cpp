@@ -195,6 +195,62 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
   w.state_.assign(w.bodies_.size(), ShapeState{});
 }
 
+// The mechanical energy of each dynamic shaped body in the shape world's state (J): kinetic,
+// translational and rotational, and the potential of its constant acceleration (gravity and
+// ConstantForce, a = coefficient accel), −m a·x.
+template <class Real>
+void detail::WorldKernel<Real>::shape_energies(std::vector<double>& out) const {
+  const ShapeWorld& w = *shape_world_;
+  out.resize(w.bodies_.size());
+  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+    const ShapedBody& b = w.bodies_[i];
+    const ShapeState& s = w.state_[i];
+    if (b.type != BodyType::dynamic) {
+      out[i] = 0.0;
+      continue;
+    }
+    const double m = mass_[b.body];
+    const double ax = coeff_.accel_x.empty() ? 0.0 : double(coeff_.accel_x[b.body]);
+    const double ay = coeff_.accel_y.empty() ? 0.0 : double(coeff_.accel_y[b.body]);
+    const double turn = b.inv_inertia > 0.0 ? 0.5 * s.w * s.w / b.inv_inertia : 0.0;
+    out[i] = 0.5 * m * (s.vx * s.vx + s.vy * s.vy) + turn - m * (ax * s.x + ay * s.y);
+  }
+}
+
+// The energy account (WorldSettings::track_dissipation) of the tick's shape contacts: each
+// dynamic body's loss of mechanical energy over the solve plus the work kinematic bodies did
+// on it through their contact points (impulse · the kinematic point's velocity), per kg; the
+// kinematic work is external.
+template <class Real>
+void detail::WorldKernel<Real>::account_shape_contacts() {
+  ShapeWorld& w = *shape_world_;
+  std::vector<double>& work = w.work_;
+  work.assign(w.bodies_.size(), 0.0);
+  for (const ShapeRow& r : w.rows()) {
+    if (r.a == ShapeWorld::none) continue;
+    const ShapedBody& a = w.bodies_[r.a];
+    const ShapedBody& b = w.bodies_[r.b];
+    const Vec2 p = r.ln * r.n + r.lt * Vec2{-r.n.y, r.n.x};  // on B; −p on A
+    auto point_velocity = [&](std::uint32_t i, Vec2 arm) {
+      const ShapeState& s = w.state_[i];
+      return Vec2{s.vx - s.w * arm.y, s.vy + s.w * arm.x};
+    };
+    if (a.type == BodyType::kinematic && b.type == BodyType::dynamic) {
+      work[r.b] += dot(p, point_velocity(r.a, r.ra));
+    } else if (b.type == BodyType::kinematic && a.type == BodyType::dynamic) {
+      work[r.a] -= dot(p, point_velocity(r.b, r.rb));
+    }
+  }
+  shape_energies(w.energy_after_);
+  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+    const ShapedBody& b = w.bodies_[i];
+    if (b.type != BodyType::dynamic) continue;
+    const double lost = w.energy_[i] - w.energy_after_[i] + work[i];
+    dissipated_body_[b.body] += static_cast<Real>(lost / mass_[b.body]);
+    external_work_ += work[i];
+  }
+}
+
 template <class Real>
 void detail::WorldKernel<Real>::save_shape_start() {
   ShapeWorld& w = *shape_world_;
@@ -236,7 +292,10 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.position_iterations = cs.position_iterations;
   tick.planes = planes_;
   tick.segments = segments_.defs();
+  const bool account = settings_.track_dissipation;
+  if (account) shape_energies(w.energy_);
   const ShapeTally tally = w.solve(tick);
+  if (account) account_shape_contacts();
   contact_stats_.shape_points = tally.points;
   contact_stats_.deepest_shape_overlap = tally.deepest;
   bool out_of_range = false;
