@@ -904,6 +904,13 @@ dt = 0.016666666666666666
 restitution = 1.0
 $(disc_grid a -10.5 100000.0)
 $(disc_grid b 0.6 -100000.0)" run scene.toml --steps 2
+case_ "a 50x50 grid of boxes 1 mm apart, all overlapping (past max_candidate_pairs for shapes, a located fault)" "$ok_world
+[[grid]]
+columns = 50
+rows = 50
+origin = [0.0, 0.0]
+spacing = [0.001, 0.001]
+body = { mass = 1.0, shape = { box = [0.5, 0.5] } }" run scene.toml --steps 2
 case_ "a disc between planes 1 cm apart at 1e8 m/s (past max_tick_predictions: a located fault)" "$ok_world
 [[body]]
 name = \"puck\"

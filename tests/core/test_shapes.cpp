@@ -260,6 +260,18 @@ TEST(ShapeEnergy, TheAccountBalancesForATumblingPileAndAKinematicPaddle) {
   EXPECT_GT(std::abs(w.external_work()), 0.0);
 }
 
+// --- no silent caps -----------------------------------------------------------------------
+
+TEST(ShapeCaps, ACrowdOfOverlappingBoxesStopsWithALocatedFault) {
+  World w(WorldDef::empty(Precision::f64, shape_world(0.5)));
+  for (int i = 0; i < 2000; ++i) w.create_body(box_body(0.5, 0.5, {0.001 * i, 0.0}));
+  w.step();
+  ASSERT_TRUE(w.fault().has_value());
+  EXPECT_EQ(w.fault()->cap, "max_candidate_pairs");
+  EXPECT_EQ(w.fault()->field, "contacts");
+  EXPECT_NE(w.fault()->with.find("2000 shapes"), std::string::npos) << w.fault()->with;
+}
+
 // --- the same bits -------------------------------------------------------------------------
 
 WorldDef box_rain() {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fixstep/core/limits.hpp"
 #include "fixstep/core/stop_request.hpp"
 
 namespace fixstep::detail {
@@ -150,8 +151,13 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
 
 // --- broadphase and manifolds --------------------------------------------------------------
 
-void ShapeWorld::broadphase(double dt) {
+bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
   const std::size_t n = shapes_.size();
+  // The work limits (limits.hpp), as the disc broadphase's: candidate pairs kept, and box
+  // tests made (boxes overlapping in x, a tall column's), each bounded by the shape count.
+  const std::uint64_t most_pairs = max_candidate_pairs(n);
+  const std::uint64_t most_tests = max_vetoed_pairs(n);
+  std::uint64_t tests = 0;
   margin_.resize(bodies_.size());
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) margin_[i] = margin(i, dt);
   boxes_.resize(n);
@@ -173,6 +179,13 @@ void ShapeWorld::broadphase(double dt) {
     for (std::size_t j = i + 1; j < n; ++j) {
       const std::uint32_t b = order_[j];
       if (boxes_[b].lower.x > boxes_[a].upper.x) break;
+      if (++tests > most_tests || candidates_.size() >= most_pairs) {
+        const bool work = tests > most_tests;
+        tally.cap = work ? "max_vetoed_pairs" : "max_candidate_pairs";
+        tally.limit = work ? most_tests : most_pairs;
+        tally.cap_body = sa.owner;
+        return false;
+      }
       const ShapeEntry& sb = shapes_[b];
       if (sa.owner == sb.owner || !boxes_overlap(boxes_[a], boxes_[b])) continue;
       const ShapedBody& ba = bodies_[sa.owner];
@@ -191,6 +204,7 @@ void ShapeWorld::broadphase(double dt) {
   std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& l, const Candidate& r) {
     return l.a != r.a ? l.a < r.a : l.b < r.b;
   });
+  return true;
 }
 
 void ShapeWorld::add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
@@ -264,7 +278,10 @@ void ShapeWorld::detect_sensors() {
 ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
   for (ShapeState& s : state_) s.q0 = rot_of(s.a0);
-  broadphase(tick.dt);
+  if (!broadphase(tick.dt, tally)) {  // a work limit: the tick's shape contacts unresolved
+    rows_.clear();
+    return tally;
+  }
   collect(tick);
   tally.pairs = candidates_.size();
   tally.points = rows_.size();

@@ -115,6 +115,11 @@ struct ShapeTick {
 struct ShapeTally {
   std::size_t pairs = 0, points = 0, ccd_hits = 0;
   double deepest = 0.0;  ///< m, the deepest overlap left after the solve
+  /// A work limit the broadphase reached (its name in limits.hpp), its value and the body
+  /// (bodies_ index) whose shape was being paired; the tick's shape contacts were not solved.
+  const char* cap = nullptr;
+  std::uint64_t limit = 0;
+  std::uint32_t cap_body = 0;
 };
 
 class ShapeWorld {
@@ -166,7 +171,7 @@ class ShapeWorld {
   void continuous(const ShapeTick& tick, ShapeTally& tally);
   double first_static_touch(std::uint32_t body, const ShapeTick& tick);
   [[nodiscard]] bool has_row(std::uint32_t body, std::uint64_t pair) const;
-  void broadphase(double dt);
+  bool broadphase(double dt, ShapeTally& tally);
   void collect(const ShapeTick& tick);
   void add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
                     double restitution, std::uint64_t pair);
