@@ -11,8 +11,8 @@ game=$1
 src=$2
 out=$3
 rec=$src/assets/recordings/stacker.rec
-expected_hash=80d20ff2a4fe0b4d
-expected_game="score=14 targets=3 shots_left=0 down=11111000111111111 phase=over"
+expected_hash=ae901d6e179daca7
+expected_game="score=15 targets=3 shots_left=0 down=11111001111111111 phase=over"
 rm -rf "$out"
 mkdir -p "$out"
 fail() {

@@ -25,6 +25,7 @@ constexpr fixstep::Rgba8 ball_color{200, 40, 40, 255};
 constexpr fixstep::Rgba8 wood_color{196, 148, 92, 255};
 constexpr fixstep::Rgba8 target_color{110, 200, 70, 255};
 constexpr fixstep::Rgba8 down_color{120, 120, 130, 255};
+constexpr fixstep::Rgba8 stone_color{95, 100, 110, 255};
 
 // When a flight ends: the ball has moved slower than still_speed for still_limit ticks, left
 // the level, or flown for flight_limit ticks.
@@ -48,14 +49,14 @@ constexpr Piece pieces[piece_count] = {
     {{8.0, 1.5}, 0.5, 0.5},
     {{8.0, 2.15}, 1.3, 0.15},
     {{8.0, 2.7}, 0.4, 0.4, PieceKind::target},
-    // A two-storey house at x = 13, the target on its roof.
-    {{12.0, 1.0}, 0.15, 1.0},
-    {{14.0, 1.0}, 0.15, 1.0},
-    {{13.0, 2.15}, 1.3, 0.15},
-    {{12.4, 3.1}, 0.15, 0.8},
-    {{13.6, 3.1}, 0.15, 0.8},
-    {{13.0, 4.05}, 1.0, 0.15},
-    {{13.0, 4.6}, 0.4, 0.4, PieceKind::target},
+    // A two-storey house at x = 13 on the stone plinth, the target on its roof.
+    {{12.0, 3.0}, 0.15, 1.0},
+    {{14.0, 3.0}, 0.15, 1.0},
+    {{13.0, 4.15}, 1.3, 0.15},
+    {{12.4, 5.1}, 0.15, 0.8},
+    {{13.6, 5.1}, 0.15, 0.8},
+    {{13.0, 6.05}, 1.0, 0.15},
+    {{13.0, 6.6}, 0.4, 0.4, PieceKind::target},
 };
 
 // The band: a spring of rest length 0 from the anchor, band_frequency Hz on the ball's mass,
@@ -154,6 +155,15 @@ fixstep::WorldDef make_level() {
     b.user_data = piece_tag + std::uint64_t(i);
     def.bodies.push_back(b);
   }
+
+  // A plinth of stone under the house: a static body (it never moves) with a box shape.
+  fixstep::BodyDef plinth;
+  plinth.name = "plinth";
+  plinth.type = fixstep::BodyType::static_body;
+  plinth.body.position = {13.0, 1.0};
+  plinth.appearance = fixstep::Appearance{.radius = 0.01, .color = stone_color, .trail = false};
+  plinth.shapes = {fixstep::make_box(1.6, 1.0)};
+  def.bodies.push_back(plinth);
 
   // The ground, y >= 0: a half-plane everything rests on. (The slingshot's post is drawn by
   // the game: draw.hpp.)

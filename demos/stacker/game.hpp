@@ -1,6 +1,6 @@
 // stacker: a small Angry-Birds-like game on fixstep's public API. Three towers of wooden
-// blocks and planks stand on the ground, a green target box on each; drag the ball back on
-// its rubber band, let go, and knock them down.
+// blocks and planks stand on the ground and on a stone plinth, a green target box on each; drag the
+// ball back on its rubber band, let go, and knock them down.
 //
 // The whole game is two things:
 //   1. a level: a WorldDef built in code (make_level): bodies with box shapes (they turn and
@@ -30,7 +30,7 @@ inline constexpr double band_frequency = 1.2;   ///< Hz, the rubber band on the 
 inline constexpr double max_pull = 3.0;         ///< m, farthest the band stretches
 inline constexpr double min_pull = 0.5;         ///< m, a shorter pull is no shot
 inline constexpr double ball_radius = 0.4;      ///< m
-inline constexpr double ball_mass = 4.0;        ///< kg (a block of wood is 1 kg)
+inline constexpr double ball_mass = 2.0;        ///< kg (a block of wood is 1 kg)
 inline constexpr double wood_density = 1.0;     ///< kg/m²: a 1 m block weighs 1 kg
 inline constexpr int shots_per_game = 3;        ///< balls the player gets
 inline constexpr int piece_count = 17;          ///< blocks, planks and targets
@@ -59,8 +59,9 @@ inline constexpr std::uint64_t piece_tag = 100;
 [[nodiscard]] int piece_number(const fixstep::World& sim, fixstep::Entity e);
 
 /// The level: the ground (a half-plane), the towers (dynamic bodies of one box shape each,
-/// resting on the ground and on one another), the ball (a circle shape) resting on its band at
-/// `anchor`, gravity on everything, friction 0.6 and no bounce between wood and wood.
+/// resting on the ground, on one another and on a static stone plinth), the ball (a circle shape)
+/// resting on its band at `anchor`, gravity on everything, friction 0.6 and no bounce between wood
+/// and wood.
 [[nodiscard]] fixstep::WorldDef make_level();
 /// Where the ball rests on its band (the anchor, sagged by gravity), m.
 [[nodiscard]] fixstep::Vec2 ball_rest_position();

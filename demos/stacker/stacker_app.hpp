@@ -32,9 +32,9 @@ struct Stacker {
 
   /// Headless (60 frames a second): a player who, whenever the ball is loaded, waits 0.5 s,
   /// presses on it, drags it to the next of `pulls` over 0.5 s, holds 0.3 s and lets go: the
-  /// gate falls, then the top of the pyramid, then the house (assets/recordings/stacker.rec).
+  /// gate falls, then the pyramid, then (a lob) the house (assets/recordings/stacker.rec).
   static constexpr std::array<fixstep::Vec2, shots_per_game> pulls{
-      {{-14.0, 2.2}, {-14.2, 2.0}, {-14.4, 1.9}}};
+      {{-14.0, 2.2}, {-14.3, 2.0}, {-14.6, 1.6}}};
   int shot = 0;                 ///< autopilot: the pull it takes next
   std::int64_t loaded_at = -1;  ///< autopilot: the frame it saw the ball loaded
   void autopilot(std::int64_t frame, const fixstep::World& /*world*/,
@@ -67,8 +67,9 @@ struct Stacker {
 inline fixstep::app::Settings app_settings() {
   return {.name = "stacker",
           .description = "drag the ball back, let go, knock the towers of boxes down",
-          .view_center = fixstep::Vec2{1.5, 6.2},  // the slingshot to the last tower
-          .view_width = 30.0,                      // m
+          // From 4 m behind the slingshot (room to pull the ball back) to the last tower.
+          .view_center = fixstep::Vec2{0.0, 7.2},
+          .view_width = 32.0,  // m
           .controls = "mouse: drag the ball back and let go",
           .style = fixstep::ViewStyle{.axes = false}};
 }
