@@ -32,7 +32,7 @@ struct Stacker {
 
   /// Headless (60 frames a second): a player who, whenever the ball is loaded, waits 0.5 s,
   /// presses on it, drags it to the next of `pulls` over 0.5 s, holds 0.3 s and lets go: the
-  /// gate falls, then the pyramid, then (a lob) the house (assets/recordings/stacker.rec).
+  /// gate falls, then the pyramid, then the house (assets/recordings/stacker.rec).
   static constexpr std::array<fixstep::Vec2, shots_per_game> pulls{
       {{-14.0, 2.2}, {-14.3, 2.0}, {-14.6, 1.6}}};
   int shot = 0;                 ///< autopilot: the pull it takes next
