@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# The stacker game's recorded session (assets/recordings/stacker.rec: `stacker --frames 1500
+# The stacker game's recorded session (assets/recordings/stacker.rec: `stacker --frames 1300
 # --record`, the autopilot's three shots, demos/stacker/stacker_app.hpp) replayed headless:
 # every stored state hash verifies, the final state and the score are the ones below, and the
-# last frame is rendered. Then a copy with one input line taken out (in the first drag) must be
-# reported as diverging at the tick after it, with nothing drawn.
+# last frame is rendered; the autopilot's run under --sync-test 4 ends the same. Then a copy
+# with one input line taken out (in the first drag) must be reported as diverging at the tick
+# after it, with nothing drawn.
 #
 #   stacker_replay.sh STACKER SOURCE_DIR OUT_DIR
 set -euo pipefail
@@ -33,6 +34,13 @@ grep -qx "verified=$((stored + 1))" "$out/replay.txt" ||
   fail "last.png is not a PNG"
 [ "$(od -An -tu1 -j16 -N8 "$out/last.png" | tr -s ' ')" = " 0 0 5 0 0 0 2 208" ] ||
   fail "last.png is not 1280x720"
+
+# The autopilot's run under the sync test (every tick rolled back 4 ticks and re-simulated with
+# the rules) plays the recorded game: the same final state and score. (The autopilot and the
+# drag keep no state outside the rules', which the rollback restores.)
+"$game" --frames 1300 --sync-test 4 >"$out/sync.txt" || fail "sync test exited $? ($(cat "$out/sync.txt"))"
+grep -q "state_hash=$expected_hash " "$out/sync.txt" || fail "sync test run: not $expected_hash"
+grep -qx "$expected_game" "$out/sync.txt" || fail "sync test run: game state is not: $expected_game"
 
 # Drop the input of tick N (0-based) in the middle of the first drag: tick N keeps the previous
 # pointer, so the state after N + 1 ticks is the first that differs.

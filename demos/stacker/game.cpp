@@ -171,13 +171,14 @@ fixstep::WorldDef make_level() {
   return def;
 }
 
-void prepare_input(const GameState& game, fixstep::PointerDrag& drag, TickInput& input,
-                   const fixstep::World& sim) {
-  drag.apply(input, sim);  // picks on press, drops on release
-  if (game.phase != Phase::loaded || input.drag_body != ball(sim)) {
-    input.drag_body = fixstep::null_entity;  // the towers are not for dragging
-    return;
-  }
+void prepare_input(const GameState& game, TickInput& input, const fixstep::World& sim) {
+  input.drag_body = fixstep::null_entity;
+  const fixstep::Entity the_ball = ball(sim);
+  const bool held = (input.held & fixstep::button_pointer_primary) != 0;
+  const bool pressed = (input.pressed & fixstep::button_pointer_primary) != 0;
+  const bool on_ball = fixstep::length(input.pointer - sim.body(the_ball).position) <= grab_reach;
+  if (game.phase != Phase::loaded || !held || !(game.dragging || (pressed && on_ball))) return;
+  input.drag_body = the_ball;
   // The band stretches max_pull at most: hold the pointer the ball follows within reach.
   const Vec2 d = input.pointer - anchor;
   const double reach = fixstep::length(d);
@@ -218,6 +219,7 @@ void after_tick(GameState& game, const TickInput& input, fixstep::World& sim) {
       if (game.shots_left > 0 && game.targets_down < target_count) {
         reload(sim);
         game.phase = Phase::loaded;
+        game.loaded_at = input.tick + 1;
         game.dragging = false;
       } else {
         game.phase = Phase::over;

@@ -14,7 +14,6 @@
 #include <cstdint>
 #include <fixstep/core/components.hpp>
 #include <fixstep/core/input.hpp>
-#include <fixstep/core/pointer_drag.hpp>
 #include <fixstep/core/rules.hpp>
 #include <fixstep/core/world.hpp>
 #include <fixstep/core/world_def.hpp>
@@ -29,6 +28,7 @@ inline constexpr fixstep::Vec2 anchor{-12, 3};  ///< m, the band's fork: where t
 inline constexpr double band_frequency = 1.2;   ///< Hz, the rubber band on the ball's mass
 inline constexpr double max_pull = 3.0;         ///< m, farthest the band stretches
 inline constexpr double min_pull = 0.5;         ///< m, a shorter pull is no shot
+inline constexpr double grab_reach = 0.6;       ///< m from the ball's centre a press picks it
 inline constexpr double ball_radius = 0.4;      ///< m
 inline constexpr double ball_mass = 2.0;        ///< kg (a block of wood is 1 kg)
 inline constexpr double wood_density = 1.0;     ///< kg/m²: a 1 m block weighs 1 kg
@@ -86,14 +86,15 @@ struct GameState {
   fixstep::Vec2 release_point{};    ///< where the ball was let go, m
   int flight_ticks = 0;             ///< ticks since the band was cut
   int still_ticks = 0;              ///< consecutive slow ticks in flight
+  std::uint64_t loaded_at = 0;      ///< the tick the ball was last loaded (0: the start)
   friend bool operator==(const GameState&, const GameState&) = default;
 };
 
 /// Before a tick (live play only; a replay takes the recorded input as is): lets the pointer
 /// drag the ball, and only the ball, and only while it is loaded, never farther than max_pull
-/// from the anchor. `drag` holds the pick between ticks.
-void prepare_input(const GameState& game, fixstep::PointerDrag& drag, fixstep::TickInput& input,
-                   const fixstep::World& sim);
+/// from the anchor. A press within grab_reach of the ball picks it; holding the button keeps it
+/// (GameState::dragging, so a rollback of the rules' state rolls the pick back with them).
+void prepare_input(const GameState& game, fixstep::TickInput& input, const fixstep::World& sim);
 
 /// After a tick: the rules (see the top of this file). Changes the world through World's
 /// handle API only (remove, set, set_body).
