@@ -27,3 +27,10 @@ target_link_libraries(airhockey_game PUBLIC fixstep::core PRIVATE fixstep_option
 target_include_directories(airhockey_game PUBLIC ${CMAKE_CURRENT_LIST_DIR}/airhockey)
 add_library(airhockey_play STATIC ${CMAKE_CURRENT_LIST_DIR}/airhockey/draw.cpp)
 target_link_libraries(airhockey_play PUBLIC airhockey_game fixstep::app PRIVATE fixstep_options)
+
+# stacker: drag the ball back on its band, let go, knock the towers of boxes (box shapes) down.
+add_library(stacker_game STATIC ${CMAKE_CURRENT_LIST_DIR}/stacker/game.cpp)
+target_link_libraries(stacker_game PUBLIC fixstep::core PRIVATE fixstep_options)
+target_include_directories(stacker_game PUBLIC ${CMAKE_CURRENT_LIST_DIR}/stacker)
+add_library(stacker_play STATIC ${CMAKE_CURRENT_LIST_DIR}/stacker/draw.cpp)
+target_link_libraries(stacker_play PUBLIC stacker_game fixstep::app PRIVATE fixstep_options)

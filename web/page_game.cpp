@@ -18,6 +18,7 @@
 #include "page_dom.hpp"
 #include "peggle_app.hpp"
 #include "slingshot_app.hpp"
+#include "stacker_app.hpp"
 
 namespace fixstep::web {
 
@@ -43,6 +44,10 @@ std::pair<std::unique_ptr<const app::detail::AnyGame>, app::Settings> make_game(
   if (name == "slingshot") {
     return {std::make_unique<GameModel<slingshot::Slingshot>>(slingshot::Slingshot{}),
             slingshot::app_settings()};
+  }
+  if (name == "stacker") {
+    return {std::make_unique<GameModel<stacker::Stacker>>(stacker::Stacker{}),
+            stacker::app_settings()};
   }
   throw std::invalid_argument(fmt::format("game={}: not a game of the page", name));
 }

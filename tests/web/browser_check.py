@@ -18,7 +18,7 @@ own) drawn by the page over default.toml (overlay=card) against its native golde
 (tests/golden/frames/overlay_card_frame_000060.png), with the tolerance of (b).
 
 Then the games (--no-games skips them), the page's game=NAME, NAME being demos/airhockey,
-demos/peggle and demos/slingshot as their programs' fixstep::app::run plays them:
+demos/peggle, demos/slingshot and demos/stacker as their programs' fixstep::app::run plays them:
 game=NAME&frames=GAME_FRAMES headless (the autopilot playing; airhockey's against the
 computer, as the program without --host / --join) must end in the state hash and summary lines
 the native `NAME --frames GAME_FRAMES` prints, and airhockey's and peggle's last frames must
@@ -251,7 +251,8 @@ def check_overlay_card(args, site, out, failures):
 
 # Each game's frame size, px: its app::Settings' (the programs have no --size), which the page
 # takes too when given no size=.
-GAME_SIZES = {"airhockey": (960, 600), "peggle": (1280, 720), "slingshot": (1280, 720)}
+GAME_SIZES = {"airhockey": (960, 600), "peggle": (1280, 720), "slingshot": (1280, 720),
+              "stacker": (1280, 720)}
 
 
 def native_game(args, game, *options):
@@ -554,6 +555,10 @@ def main():
                    ("game=peggle", lambda: check_game_frames("peggle", args, site, out, failures)),
                    ("game=slingshot",
                     lambda: check_game_frames("slingshot", args, site, out, failures, False))]
+        # stacker (box shapes): its autopilot run, state and last frame; its recording's hashes.
+        checks += [("game=stacker", lambda: check_game_frames("stacker", args, site, out, failures)),
+                   ("game=stacker replay",
+                    lambda: check_game_replay("stacker", args, site, out, failures))]
         checks += [("game=peggle replay",
                     lambda: check_game_replay("peggle", args, site, out, failures)),
                    ("game=slingshot replay",
