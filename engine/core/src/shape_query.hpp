@@ -25,11 +25,12 @@ struct RayEntry {
 
 /// Where the ray o + s t (s in [0, 1]) enters `c` (world coordinates): its core polygon swept
 /// by a disc of c.radius, exactly. The surface of a rounded polygon is its edges pushed out by
-/// the radius along their normals and an arc of the radius about each vertex, so the entry is
-/// the first of the pushed edges crossed from outside within their length and the vertex
-/// circles entered (for radius 0 the edges themselves; a circle is its one vertex's disc, a
-/// capsule its two sides and two ends). A ray starting inside or on the surface does not enter
-/// (Box2D's rule, as ray_disc); s is NaN then.
+/// the radius along their normals and an arc of the radius about each vertex: the ray is
+/// clipped by the pushed edges' half-planes (the mitered polygon, a slab for a capsule); an
+/// entry within the entering edge's length is on its flat part, one beyond it lies in a
+/// corner's miter, and the ray then enters on that corner's circle or not at all (a circle is
+/// its one vertex's disc). A ray starting inside or on the surface does not enter (Box2D's
+/// rule, as ray_disc); s is NaN then.
 [[nodiscard]] RayEntry ray_convex(const Convex& c, Vec2 o, Vec2 t);
 
 /// The squared distance from p to c's core (the polygon without its radius), m²: 0 inside it.

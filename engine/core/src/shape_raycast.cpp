@@ -39,29 +39,52 @@ double ray_disc(Vec2 p, Vec2 t, Vec2 c, double r) {
 
 RayEntry ray_convex(const Convex& c, Vec2 o, Vec2 t) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  RayEntry best{nan, {}};
+  const RayEntry miss{nan, {}};
   const double r = c.radius;
-  if (!(dot(t, t) > 0.0) || convex_contains(c, o)) return best;
-  // The pushed edges, each crossed from its outer side while heading in, within its length.
-  for (int i = 0; c.count >= 2 && i < c.count; ++i) {
+  if (!(dot(t, t) > 0.0) || convex_contains(c, o)) return miss;
+  auto arc = [&](int v) {  // the ray against vertex v's circle
+    const double s = ray_disc(o, t, c.vertices[v], r);
+    return std::isnan(s) ? miss : RayEntry{s, (o + s * t - c.vertices[v]) / r};
+  };
+  if (c.count == 1) return arc(0);
+  // Clipped by the pushed edges' half-planes (Cyrus-Beck, as Box2D's b2RayCastPolygon): the
+  // ray enters the mitered polygon at `lower` through edge `entry`. Exact at a vertex of an
+  // unrounded polygon, where two edges meet.
+  double lower = 0.0, upper = 1.0;
+  int entry = -1;
+  for (int i = 0; i < c.count; ++i) {
     const Vec2 n = c.normals[i];
-    const Vec2 a = c.vertices[i] + r * n;
-    const Vec2 e = c.vertices[i + 1 < c.count ? i + 1 : 0] - c.vertices[i];
-    const double along = dot(n, t), start = dot(n, o - a);
-    if (!(along < 0.0) || !(start >= 0.0)) continue;
-    const double s = start / -along;
-    if (!(s <= 1.0) || !(std::isnan(best.s) || s < best.s)) continue;
-    const double u = dot(o + s * t - a, e);
-    if (u < 0.0 || u > dot(e, e)) continue;
-    best = {s, n};
+    const double num = dot(n, c.vertices[i] + r * n - o), den = dot(n, t);
+    if (den == 0.0) {
+      if (num < 0.0) return miss;
+    } else if (den < 0.0 && num < lower * den) {
+      lower = num / den, entry = i;
+    } else if (den > 0.0 && num < upper * den) {
+      upper = num / den;
+    }
+    if (upper < lower) return miss;
   }
-  // The vertex arcs (a circle's whole surface; none without a radius).
-  for (int i = 0; r > 0.0 && i < c.count; ++i) {
-    const double s = ray_disc(o, t, c.vertices[i], r);
-    if (std::isnan(s) || !(std::isnan(best.s) || s < best.s)) continue;
-    best = {s, (o + s * t - c.vertices[i]) / r};
+  if (r == 0.0) return entry < 0 ? miss : RayEntry{lower, c.normals[entry]};
+  if (entry < 0) {
+    // It starts in the miter of a corner, outside the shape: there the vertex is the core's
+    // nearest point, and the shape's surface ahead that vertex's circle.
+    int v = 0;
+    for (int i = 1; i < c.count; ++i) {
+      const Vec2 di = o - c.vertices[i], dv = o - c.vertices[v];
+      if (dot(di, di) < dot(dv, dv)) v = i;
+    }
+    return arc(v);
   }
-  return best;
+  // Within the pushed edge's length: on its flat part. Beyond an end: in that corner's miter,
+  // outside the shape, which the ray then enters on the corner's circle or not at all (the
+  // miter's border with a neighbouring edge's strip lies within the circle).
+  const Vec2 a = c.vertices[entry] + r * c.normals[entry];
+  const int next = entry + 1 < c.count ? entry + 1 : 0;
+  const Vec2 e = c.vertices[next] - c.vertices[entry];
+  const double u = dot(o + lower * t - a, e);
+  if (u < 0.0) return arc(entry);
+  if (u > dot(e, e)) return arc(next);
+  return {lower, c.normals[entry]};
 }
 
 double core_gap2(const Convex& c, Vec2 p) {
