@@ -14,6 +14,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/query.hpp"
 #include "fixstep/core/random.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
@@ -266,6 +267,34 @@ TEST(ShapeQueries, FiltersAndSensorsApplyToShapesAsToDiscs) {
   EXPECT_EQ(w.overlap_shape(make_circle(0.1), {10, -5}, 0, out, {.planes = false}), 0u);
   EXPECT_THROW(w.overlap_shape(make_circle(-1), {0, 0}, 0, out), std::invalid_argument);
   EXPECT_THROW(w.overlap_shape(make_circle(1), {0, 0}, NAN, out), std::invalid_argument);
+}
+
+TEST(ShapeQueries, AnEditedAngleMovesTheShapeAndSegmentsAndPlanesComeLast) {
+  World w = make_world();
+  const Entity bar = put(w, {make_box(2, 0.1)}, {0, 0}, 0);
+  std::vector<QueryHit> out(4);
+  EXPECT_EQ(w.query_point({0, 1.5}, out), 0u);
+  Body turned = w.body(bar);
+  turned.angle = 1.5707963267948966;  // upright: the edit marks the grid out of date
+  w.set_body(bar, turned);
+  ASSERT_EQ(w.query_point({0, 1.5}, out), 1u);
+  EXPECT_EQ(out[0], (QueryHit{bar, no_plane, no_plane, 0}));
+  // A segment and a plane beside it: the shape query finds all three (the plane by its
+  // radius alone), body first.
+  w.add_segment(SegmentDef{.a = {-1, 2.5}, .b = {1, 2.5}});
+  w.add_plane(PlaneDef{.normal = {0, 1}, .offset = -2});
+  ASSERT_EQ(w.overlap_shape(make_capsule({0, -1.8}, {0, 2.2}, 0.35), {0.2, 0}, 0.0, out), 3u);
+  EXPECT_EQ(out[0], (QueryHit{bar, no_plane, no_plane, 0}));
+  EXPECT_EQ(out[1], (QueryHit{Entity{}, 0}));
+  EXPECT_EQ(out[2], (QueryHit{Entity{}, no_plane, 0}));
+  EXPECT_EQ(w.overlap_shape(make_capsule({0, -1.8}, {0, 2.0}, 0.12), {0.2, 0}, 0.0, out), 1u);
+  std::vector<RayHit> hits(4);  // down through the segment, the bar, then the plane
+  ASSERT_EQ(w.cast_ray_all({0, 3}, {0, -6}, hits), 3u);
+  EXPECT_EQ(hits[0].segment, 0u);
+  EXPECT_EQ(hits[1].body, bar);
+  EXPECT_NEAR(hits[1].point.y, 2.0, 1e-12);
+  EXPECT_NEAR(hits[1].normal.y, 1.0, 1e-12);
+  EXPECT_EQ(hits[2].plane, 0u);
 }
 
 TEST(ShapeQueries, F32AndF64WorldsGiveTheSameHitsWhereTheirStatesAgree) {
