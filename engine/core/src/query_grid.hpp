@@ -1,6 +1,8 @@
 // The spatial index World's queries run through (query.hpp): the bodies' discs at their current
 // positions in a uniform grid, built on the first query after the world changed. Internal to
-// the engine: not installed.
+// the engine: not installed. A body's shape enters as the disc around its box at the body's
+// pose (centre the box's middle, radius its half diagonal), the shape itself placed in world
+// coordinates beside it (QueryShape) for the exact tests.
 //
 // Cells have side h = 2 r90, r90 being the radius 90 % of the discs do not exceed; each disc
 // with r <= h lives in the cell of its centre (a loose grid: a query widens its box by the
@@ -19,15 +21,27 @@
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/entity.hpp"
+#include "fixstep/core/shape.hpp"
+#include "shape_geom.hpp"
 
 namespace fixstep::detail {
 
-/// One disc as the queries see it: centre and radius (m), body, filter, sensor flag.
+/// One disc as the queries see it: centre and radius (m), body, filter, sensor flag; for a
+/// shape the disc around its box, its place in QueryGrid::shapes and its index in the body.
 struct QueryDisc {
+  static constexpr std::uint32_t none = ~std::uint32_t{0};
   double x = 0, y = 0, r = 0;
   Entity body{};
   CollisionFilter filter{};
   bool sensor = false;
+  std::uint32_t shape = none;  ///< index into QueryGrid::shapes; none: a disc
+  std::uint32_t index = 0;     ///< the shape's index in World::shapes(body)
+};
+
+/// A shape placed at its body's pose (world coordinates, m) and its box.
+struct QueryShape {
+  Convex convex;
+  Aabb box;
 };
 
 class QueryGrid {
@@ -36,6 +50,8 @@ class QueryGrid {
   bool stale = true;
   /// The discs to index, filled by the caller before build() (storage kept between builds).
   std::vector<QueryDisc> discs;
+  /// The shapes the discs name (QueryDisc::shape), filled with them.
+  std::vector<QueryShape> shapes;
 
   /// Indexes `discs`. Allocates only to grow (no allocation once warm for a steady count).
   void build();

@@ -1,5 +1,6 @@
 // World's spatial queries (query.hpp, world.hpp): ray casts, point, box and circle queries
-// through the grid of query_grid.hpp, results in a fixed order kept in the caller's span.
+// through the grid of query_grid.hpp, results in a fixed order kept in the caller's span; the
+// shape overlap query and the shapes' entries in the grid are in world_shape_queries.cpp.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -12,7 +13,9 @@
 #include "fixstep/core/query.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
+#include "query_collect.hpp"
 #include "query_grid.hpp"
+#include "shape_query.hpp"
 #include "world_state.hpp"
 
 namespace fixstep {
@@ -21,29 +24,11 @@ void detail::QueryGridDeleter::operator()(QueryGrid* grid) const {
   delete grid;
 }
 
+using detail::Collector;
+using detail::query_seen;
+using detail::require_finite_query;
+
 namespace {
-
-void require_finite_query(Vec2 v, const char* query, const char* what) {
-  if (!std::isfinite(v.x) || !std::isfinite(v.y)) {
-    throw std::invalid_argument(
-        fmt::format("{}: {} must be finite (got ({}, {}))", query, what, v.x, v.y));
-  }
-}
-
-/// The order of query results: bodies by slot, then planes by index, then segments by index.
-bool hit_less(const QueryHit& l, const QueryHit& r) {
-  if ((l.segment == no_plane) != (r.segment == no_plane)) return l.segment == no_plane;
-  if (l.segment != no_plane) return l.segment < r.segment;
-  if ((l.plane == no_plane) != (r.plane == no_plane)) return l.plane == no_plane;
-  if (l.plane != no_plane) return l.plane < r.plane;
-  return l.body.slot() < r.body.slot();
-}
-
-/// The order of ray hits: by fraction, then as hit_less.
-bool ray_less(const RayHit& l, const RayHit& r) {
-  if (l.fraction != r.fraction) return l.fraction < r.fraction;
-  return hit_less(QueryHit{l.body, l.plane, l.segment}, QueryHit{r.body, r.plane, r.segment});
-}
 
 /// The fraction s in [0, 1] at which the ray o + s t crosses segment (a, b), or NaN (parallel
 /// rays, a ray along the segment's line included, never hit it).
@@ -82,53 +67,6 @@ bool segment_box(const SegmentDef& seg, Vec2 lo, Vec2 hi) {
   return u0 <= u1;
 }
 
-/// Keeps the first out.size() results of `less` seen so far in `out` (a max-heap while
-/// collecting, sorted by finish()), and counts them all: no allocation.
-template <class T, class Less>
-class Collector {
- public:
-  Collector(std::span<T> out, Less less) : out_(out), less_(less) {}
-  void add(const T& hit) {
-    ++total_;
-    if (kept_ < out_.size()) {
-      out_[kept_++] = hit;
-      std::push_heap(out_.begin(), out_.begin() + std::ptrdiff_t(kept_), less_);
-    } else if (kept_ > 0 && less_(hit, out_[0])) {
-      std::pop_heap(out_.begin(), out_.begin() + std::ptrdiff_t(kept_), less_);
-      out_[kept_ - 1] = hit;
-      std::push_heap(out_.begin(), out_.begin() + std::ptrdiff_t(kept_), less_);
-    }
-  }
-  std::size_t finish() {
-    std::sort_heap(out_.begin(), out_.begin() + std::ptrdiff_t(kept_), less_);
-    return total_;
-  }
-
- private:
-  std::span<T> out_;
-  Less less_;
-  std::size_t kept_ = 0, total_ = 0;
-};
-
-bool seen(const QueryFilter& f, const detail::QueryDisc& d) {
-  return (f.sensors || !d.sensor) && query_sees(f, d.filter);
-}
-
-/// Where the ray p + s·t (s in [0, 1]) enters the disc (c, r), as s; NaN when it does not
-/// (or starts inside it): the smaller root of |p + s t - c|² = r².
-double ray_disc(Vec2 p, Vec2 t, double cx, double cy, double r) {
-  const double mx = p.x - cx, my = p.y - cy;
-  const double c = mx * mx + my * my - r * r;
-  const double a = t.x * t.x + t.y * t.y;
-  const double b = mx * t.x + my * t.y;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (!(c > 0.0) || !(b < 0.0) || !(a > 0.0)) return nan;  // inside, or heading away
-  const double disc = b * b - a * c;
-  if (disc < 0.0) return nan;
-  const double s = c / (-b + std::sqrt(disc));  // = (-b - √disc)/a, without cancellation
-  return s <= 1.0 ? s : nan;
-}
-
 }  // namespace
 
 void World::queries_changed() {
@@ -139,7 +77,7 @@ const detail::QueryGrid& detail::query_grid(const WorldState& state) {
   if (!state.queries) state.queries.reset(new QueryGrid());
   QueryGrid& g = *state.queries;
   if (!g.stale) return g;
-  g.discs.clear();
+  g.discs.clear(), g.shapes.clear();
   std::visit(
       [&](const auto& w) {
         const auto ids = w.entities();
@@ -154,6 +92,7 @@ const detail::QueryGrid& detail::query_grid(const WorldState& state) {
         }
       },
       state.kernel);
+  add_query_shapes(state, g);
   g.build();
   return g;
 }
@@ -169,12 +108,19 @@ std::size_t World::cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit>
         fmt::format("cast_ray: the ray from ({}, {}) over ({}, {}) reaches beyond {:g} m", origin.x,
                     origin.y, translation.x, translation.y, max_query_reach));
   }
-  Collector<RayHit, decltype(&ray_less)> hits(out, &ray_less);
+  Collector<RayHit, decltype(&detail::ray_hit_less)> hits(out, &detail::ray_hit_less);
   const detail::QueryGrid& g = detail::query_grid(*state_);
   auto disc_hit = [&](std::size_t i) {
     const detail::QueryDisc& d = g.discs[i];
-    if (!seen(filter, d)) return;
-    const double s = ray_disc(origin, translation, d.x, d.y, d.r);
+    if (!query_seen(filter, d)) return;
+    if (d.shape != detail::QueryDisc::none) {  // exact against the shape's surface
+      const detail::RayEntry e = detail::ray_convex(g.shapes[d.shape].convex, origin, translation);
+      if (std::isnan(e.s)) return;
+      const Vec2 at{origin.x + e.s * translation.x, origin.y + e.s * translation.y};
+      hits.add(RayHit{d.body, no_plane, e.s, at, e.normal, no_plane, d.index});
+      return;
+    }
+    const double s = detail::ray_disc(origin, translation, Vec2{d.x, d.y}, d.r);
     if (std::isnan(s)) return;
     const Vec2 at{origin.x + s * translation.x, origin.y + s * translation.y};
     hits.add(RayHit{d.body, no_plane, s, at, Vec2{(at.x - d.x) / d.r, (at.y - d.y) / d.r}});
@@ -242,6 +188,24 @@ bool disc_box(const detail::QueryDisc& d, Vec2 lo, Vec2 hi, double pad) {
   return dx * dx + dy * dy <= reach * reach;
 }
 
+/// The box [lo, hi] as a Convex: four vertices, or fewer where it is flat on an axis (a
+/// segment or a point; GJK needs no repeated vertices).
+detail::Convex box_convex(Vec2 lo, Vec2 hi) {
+  detail::Convex c;
+  if (lo.x == hi.x || lo.y == hi.y) {
+    c.vertices[0] = lo, c.vertices[1] = hi;
+    c.count = lo == hi ? 1 : 2;
+    const Vec2 e = hi - lo;
+    const double len = std::sqrt(dot(e, e));
+    if (c.count == 2) c.normals[0] = Vec2{e.y, -e.x} / len, c.normals[1] = -c.normals[0];
+    return c;
+  }
+  c.count = 4;
+  c.vertices = {lo, Vec2{hi.x, lo.y}, hi, Vec2{lo.x, hi.y}};
+  c.normals = {Vec2{0, -1}, Vec2{1, 0}, Vec2{0, 1}, Vec2{-1, 0}};
+  return c;
+}
+
 }  // namespace
 
 std::size_t World::overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
@@ -253,11 +217,20 @@ std::size_t World::overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
         fmt::format("overlap_aabb: lower ({}, {}) must not exceed upper ({}, {})", lower.x, lower.y,
                     upper.x, upper.y));
   }
-  Collector<QueryHit, decltype(&hit_less)> hits(out, &hit_less);
+  Collector<QueryHit, decltype(&detail::query_hit_less)> hits(out, &detail::query_hit_less);
   const detail::QueryGrid& g = detail::query_grid(*state_);
+  const detail::Convex box = box_convex(lower, upper);
   g.for_each_near(lower.x, lower.y, upper.x, upper.y, [&](std::size_t i) {
     const detail::QueryDisc& d = g.discs[i];
-    if (seen(filter, d) && disc_box(d, lower, upper, 0.0)) hits.add(QueryHit{d.body});
+    if (!query_seen(filter, d)) return;
+    if (d.shape == detail::QueryDisc::none) {
+      if (disc_box(d, lower, upper, 0.0)) hits.add(QueryHit{d.body});
+      return;
+    }
+    const detail::QueryShape& sh = g.shapes[d.shape];
+    if (detail::boxes_meet(lower, upper, sh.box) && detail::convex_overlap(box, sh.convex)) {
+      hits.add(detail::entry_hit(d));
+    }
   });
   if (filter.planes) {
     const std::span<const PlaneDef> ps = planes();
@@ -285,15 +258,24 @@ std::size_t World::overlap_circle(Vec2 center, double radius, std::span<QueryHit
     throw std::invalid_argument(
         fmt::format("overlap_circle: radius must be finite and >= 0 m (got {})", radius));
   }
-  Collector<QueryHit, decltype(&hit_less)> hits(out, &hit_less);
+  Collector<QueryHit, decltype(&detail::query_hit_less)> hits(out, &detail::query_hit_less);
   const detail::QueryGrid& g = detail::query_grid(*state_);
-  g.for_each_near(center.x - radius, center.y - radius, center.x + radius, center.y + radius,
-                  [&](std::size_t i) {
-                    const detail::QueryDisc& d = g.discs[i];
-                    if (!seen(filter, d)) return;
-                    const double dx = d.x - center.x, dy = d.y - center.y, reach = d.r + radius;
-                    if (dx * dx + dy * dy <= reach * reach) hits.add(QueryHit{d.body});
-                  });
+  g.for_each_near(
+      center.x - radius, center.y - radius, center.x + radius, center.y + radius,
+      [&](std::size_t i) {
+        const detail::QueryDisc& d = g.discs[i];
+        if (!query_seen(filter, d)) return;
+        if (d.shape != detail::QueryDisc::none) {  // the centre within reach of the core
+          const detail::Convex& c = g.shapes[d.shape].convex;
+          const double reach = c.radius + radius;
+          if (detail::core_gap2(c, center) <= reach * reach) {
+            hits.add(detail::entry_hit(d));
+          }
+          return;
+        }
+        const double dx = d.x - center.x, dy = d.y - center.y, reach = d.r + radius;
+        if (dx * dx + dy * dy <= reach * reach) hits.add(QueryHit{d.body});
+      });
   if (filter.planes) {
     const std::span<const PlaneDef> ps = planes();
     for (std::uint32_t i = 0; i < ps.size(); ++i) {

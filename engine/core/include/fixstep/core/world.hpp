@@ -280,18 +280,22 @@ class World {
   void link_ends(std::span<std::uint32_t> a, std::span<std::uint32_t> b) const;
 
   // --- spatial queries (query.hpp; each without a filter is the same with QueryFilter{}): the
-  // discs (Collider) at their positions after the last tick, and the planes. Each runs through a
-  // grid of the discs built on the first query after the world changed (a step, a body created,
+  // discs (Collider) at their positions after the last tick, the bodies' shapes (BodyDef::shapes)
+  // at their poses, each shape on its own (QueryHit::shape, RayHit::shape: its index in
+  // shapes(body)), and the planes and segments. Each runs through a grid of the discs and of the
+  // shapes' boxes, built on the first query after the world changed (a step, a body created,
   // destroyed or moved, a Collider set), in O(n) with no allocation once warm; a query then visits
-  // the grid cells its region covers (query_grid.hpp), at most every disc once. Not safe to call on
-  // one World from two threads at once (the grid is a cache). Every query throws
-  // std::invalid_argument naming the argument when a coordinate is not finite (or a radius not
-  // finite and >= 0).
+  // the grid cells its region covers (query_grid.hpp), at most every disc and shape once, and
+  // tests a shape exactly (its rounded surface, not its box). Not safe to call on one World from
+  // two threads at once (the grid is a cache). Every query throws std::invalid_argument naming
+  // the argument when a coordinate is not finite (or a radius not finite and >= 0).
 
   /// The first shape the ray origin + s · translation, s in [0, 1] (m), enters: the hit with
-  /// the least fraction, ties by handle slot and planes (by index) and segments (by index) last;
-  /// nullopt when it enters none. A ray starting inside a disc or on the solid side of a plane does
-  /// not hit that shape (Box2D's rule). A zero translation hits nothing. Throws
+  /// the least fraction, ties by handle slot (a body's shapes by index) and planes (by index) and
+  /// segments (by index) last; nullopt when it enters none. The point and normal lie on the
+  /// surface, exactly for circles, capsules and (rounded) polygons. A ray starting inside (or on)
+  /// a disc or shape or on the solid side of a plane does not hit that shape (Box2D's rule). A
+  /// zero translation hits nothing. Throws
   /// std::invalid_argument also for a ray reaching beyond max_query_reach.
   [[nodiscard]] std::optional<RayHit> cast_ray(Vec2 origin, Vec2 translation,
                                                const QueryFilter& filter) const;
@@ -302,24 +306,36 @@ class World {
   std::size_t cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out,
                            const QueryFilter& filter) const;
   std::size_t cast_ray_all(Vec2 origin, Vec2 translation, std::span<RayHit> out) const;
-  /// The discs containing `point` (|point - centre| <= r) and the planes it lies inside
-  /// (n·point < offset), in handle slot order, planes (by index) and segments (by index) last.
+  /// The discs containing `point` (|point - centre| <= r), the shapes containing it (their
+  /// surface included) and the planes it lies inside (n·point < offset), in handle slot order
+  /// (a body's shapes by index), planes (by index) and segments (by index) last.
   /// Writes the first min(total, out.size()) and returns the total.
   std::size_t query_point(Vec2 point, std::span<QueryHit> out, const QueryFilter& filter) const;
   std::size_t query_point(Vec2 point, std::span<QueryHit> out) const;
   /// The discs overlapping the box [lower, upper] (m; the box's closest point to the centre
-  /// within r) and the planes whose solid side it reaches, in handle slot order, planes and
+  /// within r), the shapes overlapping or touching it (the shape itself, not its box: GJK,
+  /// distance <= 0) and the planes whose solid side it reaches, in handle slot order, planes and
   /// segments last. Writes the first min(total, out.size()) and returns the total. Throws
   /// std::invalid_argument also when lower > upper on an axis.
   std::size_t overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out,
                            const QueryFilter& filter) const;
   std::size_t overlap_aabb(Vec2 lower, Vec2 upper, std::span<QueryHit> out) const;
-  /// The discs overlapping the circle (|c - center| <= r + radius, m) and the planes it
-  /// reaches, in handle slot order, planes and segments last. Writes the first min(total,
-  /// out.size()) and returns the total.
+  /// The discs overlapping the circle (|c - center| <= r + radius, m), the shapes within
+  /// `radius` of it, and the planes it reaches, in handle slot order, planes and segments last.
+  /// Writes the first min(total, out.size()) and returns the total.
   std::size_t overlap_circle(Vec2 center, double radius, std::span<QueryHit> out,
                              const QueryFilter& filter) const;
   std::size_t overlap_circle(Vec2 center, double radius, std::span<QueryHit> out) const;
+  /// The discs, shapes and segments overlapping or touching `shape` placed as a body's shape at
+  /// body origin `position` (m) and `angle` (rad) (a disc: its centre within reach of the
+  /// shape's core; a shape or segment: GJK distance <= 0), and the planes whose solid side it
+  /// reaches, in handle slot order, planes and segments last. Writes the first min(total,
+  /// out.size()) and returns the total. Throws std::invalid_argument also for a shape
+  /// shape_problem() refuses, or an angle not finite.
+  std::size_t overlap_shape(const ShapeDef& shape, Vec2 position, double angle,
+                            std::span<QueryHit> out, const QueryFilter& filter) const;
+  std::size_t overlap_shape(const ShapeDef& shape, Vec2 position, double angle,
+                            std::span<QueryHit> out) const;
 
   /// The world's random generator for game rules: seeded with WorldSettings::seed when the
   /// world is made, saved and restored with snapshots (so a restore, a rewind or a replay
