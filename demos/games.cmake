@@ -27,3 +27,10 @@ target_link_libraries(airhockey_game PUBLIC fixstep::core PRIVATE fixstep_option
 target_include_directories(airhockey_game PUBLIC ${CMAKE_CURRENT_LIST_DIR}/airhockey)
 add_library(airhockey_play STATIC ${CMAKE_CURRENT_LIST_DIR}/airhockey/draw.cpp)
 target_link_libraries(airhockey_play PUBLIC airhockey_game fixstep::app PRIVATE fixstep_options)
+
+# pinball: two flippers (kinematic shapes driven by target_angle input), bumpers, a plunger.
+add_library(pinball_game STATIC ${CMAKE_CURRENT_LIST_DIR}/pinball/game.cpp)
+target_link_libraries(pinball_game PUBLIC fixstep::core PRIVATE fixstep_options)
+target_include_directories(pinball_game PUBLIC ${CMAKE_CURRENT_LIST_DIR}/pinball)
+add_library(pinball_play STATIC ${CMAKE_CURRENT_LIST_DIR}/pinball/draw.cpp)
+target_link_libraries(pinball_play PUBLIC pinball_game fixstep::app PRIVATE fixstep_options)
