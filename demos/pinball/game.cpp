@@ -48,7 +48,7 @@ Vec2 kick_normal(double side) {
 }
 
 Vec2 ball_rest() {
-  return {lane_x, plunger_y + ball_radius + 0.01};
+  return {lane_x, plunger_y + ball_radius};  // touching the plunger's top
 }
 
 BodyDef static_body(std::string name, Vec2 at, fixstep::ShapeDef shape, fixstep::Rgba8 color,
@@ -140,9 +140,13 @@ void score_hits(GameState& game, fixstep::World& sim, Entity ball) {
 void plunger(GameState& game, const fixstep::TickInput& input, fixstep::World& sim, Entity ball) {
   if (!on_plunger(sim)) {
     game.pull = 0;
-    if (game.phase == Phase::launch) game.phase = Phase::play;
+    // Launched: the ball has left the plunger's foot of the lane.
+    if (game.phase == Phase::launch && sim.body(ball).position.y > plunger_y + 2.0) {
+      game.phase = Phase::play;
+    }
     return;
   }
+  game.phase = Phase::launch;  // back on the plunger (a launch too weak to leave the lane)
   if ((input.held & plunger_keys) != 0) {
     game.pull = std::min(game.pull + 1, full_pull_ticks);
   } else if (game.pull > 0) {
