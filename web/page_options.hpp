@@ -12,8 +12,8 @@
 namespace fixstep::web {
 
 /// The games the page plays (game=NAME): demos/airhockey (against the computer; no network),
-/// demos/peggle and demos/slingshot (page_game.hpp).
-inline constexpr std::array<std::string_view, 3> page_game_names{"airhockey", "peggle",
+/// demos/peggle, demos/pinball and demos/slingshot (page_game.hpp).
+inline constexpr std::array<std::string_view, 4> page_game_names{"airhockey", "peggle", "pinball",
                                                                  "slingshot"};
 
 /// The page's parameters. Without `frames`, `ticks` or `replay` the page is interactive: the

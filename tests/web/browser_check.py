@@ -251,7 +251,8 @@ def check_overlay_card(args, site, out, failures):
 
 # Each game's frame size, px: its app::Settings' (the programs have no --size), which the page
 # takes too when given no size=.
-GAME_SIZES = {"airhockey": (960, 600), "peggle": (1280, 720), "slingshot": (1280, 720)}
+GAME_SIZES = {"airhockey": (960, 600), "peggle": (1280, 720), "slingshot": (1280, 720),
+              "pinball": (1280, 720)}
 
 
 def native_game(args, game, *options):
@@ -489,7 +490,7 @@ def write_bad_recordings(args, rec_dir):
     # Format 4, naming the game rules it was recorded with: the page has no game of that name.
     with open(os.path.join(rec_dir, "rules.rec"), "w", encoding="utf-8") as f:
         f.write("".join(("fixstep-recording 4\n" if line.startswith("fixstep-recording ")
-                         else line) + ("rules pinball 1\n" if line.startswith("hash_every ")
+                         else line) + ("rules pong 1\n" if line.startswith("hash_every ")
                                        else "")
                         for line in lines))
     if os.path.exists(os.path.join(rec_dir, "missing.rec")):
@@ -560,6 +561,11 @@ def main():
                     lambda: check_game_replay("slingshot", args, site, out, failures, True)),
                    ("airhockey match replay",
                     lambda: check_match_replay(args, site, out, failures))]
+        # pinball: its autopilot run (state and frame) and its recording (flippers driven by
+        # target_angle input, shapes that turn).
+        checks += [("game=pinball", lambda: check_game_frames("pinball", args, site, out, failures)),
+                   ("game=pinball replay",
+                    lambda: check_game_replay("pinball", args, site, out, failures))]
     if not args.no_input:
         checks += [("input", lambda: check_input(args, site, failures)),
                    ("game input", lambda: check_game_input(args, site, failures)),
