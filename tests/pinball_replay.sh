@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The pinball demo's recorded session (assets/recordings/pinball.rec: 40 s of its autopilot,
-# `pinball --frames 2400 --record FILE`: one ball drained, four bumper hits) replayed headless
-# with its rules: every stored state hash verifies (the flippers' target_angle inputs, the
-# bumpers' kicks from contact events), the game ends where it did, and the last frame is
-# rendered; the sync test passes. Then the same recording through `fixstep replay`, which has no
-# pinball rules, must be refused naming the program (exit 5).
+# `pinball --frames 2400 --record FILE`: a whole game, three balls, twelve bumper hits)
+# replayed headless with its rules: every stored state hash verifies (the flippers'
+# target_angle inputs, the bumpers' kicks from contact events), the game ends where it did, and
+# the last frame is rendered; the sync test passes. Then the same recording through `fixstep
+# replay`, which has no pinball rules, must be refused naming the program (exit 5).
 #
 #   pinball_replay.sh PINBALL FIXSTEP SOURCE_DIR OUT_DIR
 set -euo pipefail
@@ -13,8 +13,8 @@ cli=$2
 src=$3
 out=$4
 rec=$src/assets/recordings/pinball.rec
-expected_hash=4540d55fad1b5d8c
-expected_game="score=450 balls=2 bumpers=4 slingshots=5 phase=play"
+expected_hash=2e5118156313e2cc
+expected_game="score=1260 balls=0 bumpers=12 slingshots=6 phase=over"
 rm -rf "$out"
 mkdir -p "$out"
 fail() {

@@ -105,9 +105,13 @@ void add_walls(fixstep::WorldDef& def) {
   def.add_polyline(plunger, 0.0, 0.5);
 }
 
-/// Adds `dv` (m/s) to the ball's velocity: a kick (Δv = J/m of an impulse J).
-void kick(fixstep::World& sim, Entity ball, Vec2 dv) {
-  sim.set_velocity(ball, sim.body(ball).velocity + dv);
+/// Kicks the ball off a surface of outward normal `n` (unit) at `speed` (m/s): an impulse along
+/// n that brings the ball's speed away from it up to `speed` (none if it leaves faster), so a
+/// kick gives the ball a set speed rather than adding to its bounce (two slingshots would
+/// otherwise keep a ball between them for ever).
+void kick(fixstep::World& sim, Entity ball, Vec2 n, double speed) {
+  const Vec2 v = sim.body(ball).velocity;
+  sim.set_velocity(ball, v + n * std::max(0.0, speed - dot(v, n)));
 }
 
 /// Scores and kicks the ball off what it began touching this tick.
@@ -119,7 +123,7 @@ void score_hits(GameState& game, fixstep::World& sim, Entity ball) {
     const Vec2 at = sim.body(ball).position;
     if (tag >= bumper_tag && tag < bumper_tag + bumper_count) {
       const Vec2 d = at - sim.body(other).position;
-      kick(sim, ball, d / fixstep::length(d) * bumper_kick);
+      kick(sim, ball, d / fixstep::length(d), bumper_kick);
       game.score += bumper_points;
       ++game.bumper_hits;
       game.lit[tag - bumper_tag] = lit_ticks;
@@ -128,7 +132,7 @@ void score_hits(GameState& game, fixstep::World& sim, Entity ball) {
       const Vec2 face = side < 0 ? left_slingshot[1] : mirror(left_slingshot[1]);
       const Vec2 n = kick_normal(side);
       if (dot(at - face, n) < 0.0) continue;  // on its short sides: no kick
-      kick(sim, ball, n * slingshot_kick);
+      kick(sim, ball, n, slingshot_kick);
       game.score += slingshot_points;
       ++game.slingshot_hits;
     }

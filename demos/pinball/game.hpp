@@ -8,8 +8,9 @@
 //     teleports, and the contact solver pushes the ball with the flipper's surface velocity;
 //   - contacts: the ball (a dynamic circle shape) bounces off the walls and lanes (static
 //     segments), the bumpers (static circles) and the slingshots (static triangles); the rules
-//     read World::contacts_begun() to score a hit and kick the ball away (a Δv: the bumpers'
-//     and slingshots' own push, which restitution <= 1 cannot give);
+//     read World::contacts_begun() to score a hit and kick the ball away (an impulse along the
+//     normal bringing it to a set speed: the bumpers' and slingshots' own push, which
+//     restitution <= 1 cannot give);
 //   - the plunger: held (down or Enter) it draws back, released it gives the ball resting on it
 //     a launch speed proportional to the pull.
 // The rules keep their state in GameState (plain data, copied with the game by app::run for
@@ -47,11 +48,11 @@ inline constexpr double flipper_raised = 0.45;             ///< rad, the left fl
 inline constexpr double flipper_speed = 32.0;              ///< rad/s, the most it turns
 
 inline constexpr double bumper_radius = 0.55;  ///< m
-inline constexpr double bumper_kick = 6.0;     ///< m/s the rules add away from a bumper
-inline constexpr double slingshot_kick = 5.0;  ///< m/s the rules add off a slingshot's face
-inline constexpr double launch_min = 16.0;     ///< m/s, the shortest pull's launch speed
-inline constexpr double launch_max = 30.0;     ///< m/s, a full pull's
-inline constexpr int full_pull_ticks = 90;     ///< ticks of holding for a full pull
+/// m/s: the speed away from a bumper, and off a slingshot's face, the rules kick the ball to.
+inline constexpr double bumper_kick = 9.0, slingshot_kick = 7.0;
+inline constexpr double launch_min = 16.0;  ///< m/s, the shortest pull's launch speed
+inline constexpr double launch_max = 30.0;  ///< m/s, a full pull's
+inline constexpr int full_pull_ticks = 90;  ///< ticks of holding for a full pull
 inline constexpr int balls_per_game = 3;
 inline constexpr int bumper_points = 100, slingshot_points = 10;
 inline constexpr int bumper_count = 3;

@@ -19,9 +19,6 @@ namespace pinball {
 /// The game app::run plays: left and right arrows flip, down (or Enter) pulls the plunger.
 struct Pinball {
   GameState state;
-  std::int64_t pulled_since = -1;             ///< autopilot: the frame it began pulling the plunger
-  std::int64_t flipped_at[2] = {-100, -100};  ///< autopilot: each flipper's last flip, frame
-
   void setup(fixstep::WorldDef& level) { level = make_table(); }
   void rules(fixstep::World& world, const fixstep::TickInput& input) {
     after_tick(state, input, world);
@@ -30,25 +27,36 @@ struct Pinball {
     prepare_input(input, world);
   }
 
-  /// Headless: pulls the plunger for most of a second and lets go; flips a flipper when the
-  /// ball comes down over it, holding it up for 0.2 s.
-  void autopilot(std::int64_t frame, const fixstep::World& world, fixstep::InputSampler& sampler) {
-    if (state.phase == Phase::over) return;
-    if (on_plunger(world)) {
-      if (pulled_since < 0) pulled_since = frame, sampler.press(fixstep::button_down);
-      if (frame - pulled_since >= 50) sampler.release(fixstep::button_down), pulled_since = -1;
+  /// Headless: pulls the plunger to 80 ticks and lets go; raises a flipper while the ball comes
+  /// down over it, lowering it once raised and the ball is gone. It keeps no state of its own
+  /// (the sync test rolls the game back, and the autopilot with it): it reads the world, the
+  /// rules' pull and the sampler's held keys.
+  void autopilot(std::int64_t /*frame*/, const fixstep::World& world,
+                 fixstep::InputSampler& sampler) {
+    if (state.phase == Phase::over) {  // hands off
+      sampler.release(left_flipper_key | right_flipper_key | fixstep::button_down);
+      return;
+    }
+    if (on_plunger(world) && state.pull < 80) {
+      sampler.press(fixstep::button_down);
+    } else {
+      sampler.release(fixstep::button_down);
     }
     const fixstep::Body b = world.body(world.find("ball"));
-    for (int k = 0; k < 2; ++k) {
-      const double side = k == 0 ? -1.0 : 1.0;
-      const std::uint32_t key = k == 0 ? left_flipper_key : right_flipper_key;
+    for (const double side : {-1.0, 1.0}) {
+      const std::uint32_t key = side < 0 ? left_flipper_key : right_flipper_key;
+      const fixstep::Body flipper =
+          world.body(world.find(side < 0 ? "flipper_left" : "flipper_right"));
       // Along the flipper from its pivot (m), and the height of its top there at rest.
       const double along = -side * (b.position.x - side * flipper_x);
       const double top = flipper_y + 0.2 - 0.5 * along;
-      const bool over = along > 0.3 && along < flipper_length && b.velocity.y < 0.0 &&
+      const bool over = along > 0.7 && along < flipper_length && b.velocity.y < 0.0 &&
                         b.position.y < top + ball_radius + 0.3;
-      if (over && frame - flipped_at[k] > 30) sampler.press(key), flipped_at[k] = frame;
-      if (frame - flipped_at[k] == 12) sampler.release(key);
+      if (over) {
+        sampler.press(key);
+      } else if (flipper.angle == -side * flipper_raised) {
+        sampler.release(key);
+      }
     }
   }
   void draw(fixstep::app::Overlay& overlay) const {
