@@ -17,6 +17,7 @@
 #include "fixstep/io/summary.hpp"
 #include "page_dom.hpp"
 #include "peggle_app.hpp"
+#include "pinball_app.hpp"
 #include "slingshot_app.hpp"
 #include "stacker_app.hpp"
 
@@ -40,6 +41,10 @@ std::pair<std::unique_ptr<const app::detail::AnyGame>, app::Settings> make_game(
   }
   if (name == "peggle") {
     return {std::make_unique<GameModel<peggle::Peggle>>(peggle::Peggle{}), peggle::app_settings()};
+  }
+  if (name == "pinball") {
+    return {std::make_unique<GameModel<pinball::Pinball>>(pinball::Pinball{}),
+            pinball::app_settings()};
   }
   if (name == "slingshot") {
     return {std::make_unique<GameModel<slingshot::Slingshot>>(slingshot::Slingshot{}),

@@ -18,7 +18,7 @@ own) drawn by the page over default.toml (overlay=card) against its native golde
 (tests/golden/frames/overlay_card_frame_000060.png), with the tolerance of (b).
 
 Then the games (--no-games skips them), the page's game=NAME, NAME being demos/airhockey,
-demos/peggle, demos/slingshot and demos/stacker as their programs' fixstep::app::run plays them:
+demos/peggle, demos/pinball, demos/slingshot and demos/stacker as their programs' fixstep::app::run plays them:
 game=NAME&frames=GAME_FRAMES headless (the autopilot playing; airhockey's against the
 computer, as the program without --host / --join) must end in the state hash and summary lines
 the native `NAME --frames GAME_FRAMES` prints, and airhockey's and peggle's last frames must
@@ -252,7 +252,7 @@ def check_overlay_card(args, site, out, failures):
 # Each game's frame size, px: its app::Settings' (the programs have no --size), which the page
 # takes too when given no size=.
 GAME_SIZES = {"airhockey": (960, 600), "peggle": (1280, 720), "slingshot": (1280, 720),
-              "stacker": (1280, 720)}
+              "stacker": (1280, 720), "pinball": (1280, 720)}
 
 
 def native_game(args, game, *options):
@@ -490,7 +490,7 @@ def write_bad_recordings(args, rec_dir):
     # Format 4, naming the game rules it was recorded with: the page has no game of that name.
     with open(os.path.join(rec_dir, "rules.rec"), "w", encoding="utf-8") as f:
         f.write("".join(("fixstep-recording 4\n" if line.startswith("fixstep-recording ")
-                         else line) + ("rules pinball 1\n" if line.startswith("hash_every ")
+                         else line) + ("rules pong 1\n" if line.startswith("hash_every ")
                                        else "")
                         for line in lines))
     if os.path.exists(os.path.join(rec_dir, "missing.rec")):
@@ -565,6 +565,11 @@ def main():
                     lambda: check_game_replay("slingshot", args, site, out, failures, True)),
                    ("airhockey match replay",
                     lambda: check_match_replay(args, site, out, failures))]
+        # pinball: its autopilot run (state and frame) and its recording (flippers driven by
+        # target_angle input, shapes that turn).
+        checks += [("game=pinball", lambda: check_game_frames("pinball", args, site, out, failures)),
+                   ("game=pinball replay",
+                    lambda: check_game_replay("pinball", args, site, out, failures))]
     if not args.no_input:
         checks += [("input", lambda: check_input(args, site, failures)),
                    ("game input", lambda: check_game_input(args, site, failures)),
