@@ -43,7 +43,8 @@ verified.
 Then the long "cause" runs (--long): the page steps a scene N ticks without drawing (ticks=N)
 and must report the native `fixstep run --steps N` summary: projectile.toml at 40 000 ticks and
 default.toml at 10^5 (subnormals), and the cross-platform cause scenes in tests/scenes/cross (exp's
-FMA/non-FMA difference, a loader input whose hypot differs between libms), cross/NAME.toml.
+FMA/non-FMA difference, a loader input whose hypot differs between libms, the shape solver's
+stress scene at 1200 ticks), cross/NAME.toml.
 
 Then the bad inputs (--no-bad-inputs skips them): every row of tests/web/bad_inputs_page.tsv,
 the page's rows of docs/BAD_INPUTS.md, loaded as index.html?QUERY must show exactly
@@ -526,7 +527,8 @@ def main():
     p.add_argument("--size", default="640x360")
     p.add_argument("--scenes", nargs="*", help="scene files (default: every shipped scene)")
     p.add_argument("--long", nargs="*", default=["projectile.toml:40000", "default.toml:100000",
-                            "cross/damped_exp.toml:2000", "cross/hypot_rest.toml:2000"],
+                            "cross/damped_exp.toml:2000", "cross/hypot_rest.toml:2000",
+                            "cross/shapes.toml:1200"],
                    help="SCENE:TICKS runs stepped without drawing")
     p.add_argument("--no-input", action="store_true", help="skip the input checks")
     p.add_argument("--no-games", action="store_true", help="skip the games (game=)")

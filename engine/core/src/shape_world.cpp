@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fixstep/core/det_math.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/stop_request.hpp"
 
@@ -70,7 +71,7 @@ double ShapeWorld::margin(std::uint32_t body, double dt) const {
   const ShapedBody& b = bodies_[body];
   const ShapeState& s = state_[body];
   if (b.type == BodyType::static_body) return 0.0;
-  return 2.0 * slop + dt * (std::hypot(s.vx, s.vy) + std::abs(s.w) * b.extent);
+  return 2.0 * slop + dt * (det::hypot(s.vx, s.vy) + std::abs(s.w) * b.extent);
 }
 
 // --- continuous collision ----------------------------------------------------------------
@@ -80,7 +81,7 @@ void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
     const ShapedBody& b = bodies_[i];
     if (b.type != BodyType::dynamic || b.disc) continue;
     ShapeState& s = state_[i];
-    const double motion = std::hypot(s.x - s.x0, s.y - s.y0) + std::abs(s.a - s.a0) * b.extent;
+    const double motion = det::hypot(s.x - s.x0, s.y - s.y0) + std::abs(s.a - s.a0) * b.extent;
     if (!(motion > 0.5 * b.thinnest)) continue;  // Box2D v3's test of a fast body
     s.q = rot_of(s.a);
     const double t = first_static_touch(i, tick);
@@ -113,7 +114,7 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
     for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
       if (has_row(body, std::uint64_t{0xF0000000u | p} << 32 | e.key)) continue;
       const PlaneDef& pl = tick.planes[p];
-      const double len = std::hypot(pl.normal.x, pl.normal.y);
+      const double len = det::hypot(pl.normal.x, pl.normal.y);
       const Vec2 n = pl.normal / len;
       const double off = pl.offset / len;
       if (plane_distance(n, off, e.convex, start) < 2.0 * target) continue;  // resting on it
@@ -241,7 +242,7 @@ void ShapeWorld::collect(const ShapeTick& tick) {
     const double margin = margin_[e.owner];
     for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
       const PlaneDef& pl = tick.planes[p];
-      const double len = std::hypot(pl.normal.x, pl.normal.y);
+      const double len = det::hypot(pl.normal.x, pl.normal.y);
       const Manifold m = collide_plane(pl.normal / len, pl.offset / len, e.convex, at, margin);
       if (m.count == 0) continue;
       add_manifold(m, none, e.owner, mix_friction(pl.friction, e.friction),

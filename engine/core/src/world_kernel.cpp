@@ -305,9 +305,8 @@ void detail::WorldKernel<Real>::set_body(Entity e, const Body& b) {
   }
   if (shape_sets_.set.contains(e)) {
     ShapeSet& set = shape_sets_.data[shape_sets_.set.index(e)];
-    set.angle = double(static_cast<Real>(std::remainder(b.angle, 2.0 * std::numbers::pi)));
-    set.spin =
-        types_[i] == BodyType::static_body ? 0.0 : double(static_cast<Real>(b.angular_velocity));
+    set.angle = rounded_to<Real>(std::remainder(b.angle, 2.0 * std::numbers::pi));
+    set.spin = types_[i] == BodyType::static_body ? 0.0 : rounded_to<Real>(b.angular_velocity);
     const Vec2 c = b.position + rotate(rot_of(set.angle), set.center);
     x_[i] = prev_x_[i] = static_cast<Real>(c.x);
     y_[i] = prev_y_[i] = static_cast<Real>(c.y);

@@ -53,6 +53,17 @@ struct V2;  // plane_contact.hpp
 
 namespace detail {
 
+/// `v` rounded to Real, as a double: a body with shapes keeps its angle and angular velocity
+/// in double, rounded to the world's precision. Through a volatile Real: GCC 12 on x86-64
+/// (-O2 and -O3) merges two adjacent `double(static_cast<float>(x))` stores into one vector
+/// store and drops the rounding (aarch64's GCC 12 keeps it), so an f32 world with shapes
+/// stepped to other bits on x86-64 than on aarch64 from its second tick (boxes.toml).
+template <class Real>
+[[nodiscard]] inline double rounded_to(double v) {
+  const volatile Real r = static_cast<Real>(v);
+  return double(r);
+}
+
 /// The second thread of a world with links (world_coupled.cpp).
 class Workers;
 struct WorkersDeleter {

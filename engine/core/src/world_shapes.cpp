@@ -46,10 +46,8 @@ template <class Real>
 void detail::WorldKernel<Real>::add_shapes(Entity e, const BodyDef& def, const std::string& who) {
   ShapeSet set;
   set.defs = def.shapes;
-  set.angle = double(static_cast<Real>(wrap_angle(def.body.angle)));
-  set.spin = def.type == BodyType::static_body
-                 ? 0.0
-                 : double(static_cast<Real>(def.body.angular_velocity));
+  set.angle = rounded_to<Real>(wrap_angle(def.body.angle));
+  set.spin = def.type == BodyType::static_body ? 0.0 : rounded_to<Real>(def.body.angular_velocity);
   const std::size_t j = bodies_.index(e);
   if (def.type == BodyType::dynamic) {
     const MassProperties mp = body_mass(def.shapes, def.body.mass);
@@ -106,13 +104,13 @@ void detail::WorldKernel<Real>::apply_angular_input(const BodyInput& in, std::si
   if (type == BodyType::dynamic) {
     if (in.kind == BodyInputKind::torque) set.torque += v;
     if (in.kind == BodyInputKind::angular_impulse) {
-      set.spin = double(static_cast<Real>(set.spin + v / set.inertia));
+      set.spin = rounded_to<Real>(set.spin + v / set.inertia);
     }
   } else if (type == BodyType::kinematic) {
-    if (in.kind == BodyInputKind::angular_velocity) set.spin = double(static_cast<Real>(v));
+    if (in.kind == BodyInputKind::angular_velocity) set.spin = rounded_to<Real>(v);
     if (in.kind == BodyInputKind::target_angle) {  // the shorter way round, over one tick
       const double turn = std::remainder(v - set.angle, 2.0 * std::numbers::pi);
-      set.spin = double(static_cast<Real>(turn / settings_.dt));
+      set.spin = rounded_to<Real>(turn / settings_.dt);
     }
   }
 }
@@ -311,8 +309,8 @@ void detail::WorldKernel<Real>::resolve_shapes() {
     const ShapeState& s = w.state_[i];
     if (b.set != ShapedBody::none) {
       ShapeSet& set = shape_sets_.data[b.set];
-      set.angle = double(static_cast<Real>(wrap_angle(s.a)));
-      set.spin = double(static_cast<Real>(s.w));
+      set.angle = rounded_to<Real>(wrap_angle(s.a));
+      set.spin = rounded_to<Real>(s.w);
       out_of_range = out_of_range || !(std::abs(set.spin) <= max_state_magnitude);
     }
     if (b.type != BodyType::dynamic) continue;
