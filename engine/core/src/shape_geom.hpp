@@ -54,6 +54,8 @@ struct Convex {
 /// `shape` in polygon form in its body's frame, shifted by -`center` (the body's local centre
 /// of mass), so that the body's state point is the origin.
 [[nodiscard]] Convex to_convex(const ShapeDef& shape, Vec2 center);
+/// c with every vertex and normal carried by pose t (shape_collide.cpp).
+[[nodiscard]] Convex convex_placed(const Convex& c, const Pose& t);
 /// A segment a..b (its own coordinates) as a Convex of two vertices and radius 0.
 [[nodiscard]] Convex segment_convex(Vec2 a, Vec2 b);
 

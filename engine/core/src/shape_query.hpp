@@ -9,9 +9,6 @@
 
 namespace fixstep::detail {
 
-/// c with every vertex and normal carried by pose t (shape_collide.cpp).
-[[nodiscard]] Convex convex_placed(const Convex& c, const Pose& t);
-
 /// Where the ray p + s t (s in [0, 1]) enters the disc (c, r), as s; NaN when it does not, or
 /// when it starts inside the disc or on its circle (Box2D's rule), or t is zero: the smaller
 /// root of |p + s t - c|² = r², written without cancellation.

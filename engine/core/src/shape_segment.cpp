@@ -23,8 +23,6 @@ namespace fixstep::detail {
 Manifold collide_placed(const Convex& a, const Convex& b, double speculative);
 Manifold clip_reference(const Convex& ref, int edge, const Convex& inc, bool flip,
                         double speculative);
-// shape_collide.cpp
-Convex convex_placed(const Convex& c, const Pose& t);
 
 namespace {
 
