@@ -92,7 +92,9 @@ ticks=$(awk -F, '$1 == 1 { print $7 }' "$work/r/compare.csv")
   --steps "$ticks" --every "$ticks" --csv "$work/r1.csv" >"$work/r1.out" 2>&1
 "$fixstep" run "$scenes/rope.toml" --integrator rk4 --dt 0.016666666666666666 --substeps 4 \
   --steps "$ticks" --every "$ticks" --csv "$work/r2.csv" >"$work/r2.out" 2>&1
-recomputed=$(awk -F, -v n="$ticks" 'FNR > 1 && $1 == n { if (FILENAME ~ /r1/) { x[$3] = $4; y[$3] = $5 }
+# (The first file is told apart by its name's end: the temporary folder's random name may hold
+# "r1" too, which once made both files the first and the distance 0.)
+recomputed=$(awk -F, -v n="$ticks" 'FNR > 1 && $1 == n { if (FILENAME ~ /\/r1\.csv$/) { x[$3] = $4; y[$3] = $5 }
     else { d = sqrt(($4 - x[$3])^2 + ($5 - y[$3])^2); if (d > m) m = d } } END { printf "%.6e", m }' \
   "$work/r1.csv" "$work/r2.csv")
 [ -n "$err" ] && [ "$err" = "$recomputed" ] \
