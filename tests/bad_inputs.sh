@@ -753,6 +753,10 @@ case_ "angular_velocity without rolling (a warning; ignored)" "$ok_world
 [contacts]
 $disc
 angular_velocity = 5.0"
+case_ "[contacts] negative restitution_threshold" "$ok_world
+[contacts]
+restitution_threshold = -1.0
+$disc"
 case_ "[contacts] sleep not a boolean" "$ok_world
 [contacts]
 sleep = \"yes\"

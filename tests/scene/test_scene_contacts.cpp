@@ -94,6 +94,20 @@ TEST(SceneContacts, ContactsTableFillsTheWorldSettings) {
   EXPECT_EQ(format_scene(defaults.def).find("iterations"), std::string::npos);
 }
 
+TEST(SceneContacts, RestitutionThresholdFillsTheSettingsAndWritesBackWhenNotTheDefault) {
+  const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
+  const Scene defaults = parse_scene(scene("[contacts]\n" + disc), "c.toml");
+  EXPECT_EQ(defaults.def.settings.contacts->restitution_threshold, 1.0);  // Box2D's
+  EXPECT_EQ(format_scene(defaults.def).find("restitution_threshold"), std::string::npos);
+  const Scene gas = parse_scene(scene("[contacts]\nrestitution_threshold = 0\n" + disc), "c.toml");
+  EXPECT_TRUE(gas.warnings.empty()) << gas.warnings[0];
+  EXPECT_EQ(gas.def.settings.contacts->restitution_threshold, 0.0);
+  const std::string text = format_scene(gas.def);  // checks the hash of what it wrote
+  EXPECT_NE(text.find("restitution_threshold = 0.0\n"), std::string::npos) << text;
+  EXPECT_NE(definition_hash(gas.def), definition_hash(defaults.def));
+  EXPECT_EQ(definition_hash(parse_scene(text, "again.toml").def), definition_hash(gas.def));
+}
+
 TEST(SceneContacts, SleepKeysFillTheContactSettingsAndWriteBack) {
   const std::string disc = "[[body]]\nmass = 1\nposition = [0, 0]\nradius = 0.5\n";
   const Scene off = parse_scene(scene("[contacts]\n" + disc), "c.toml");
@@ -458,6 +472,12 @@ INSTANTIATE_TEST_SUITE_P(
                "contacts.restitution", "must be in [0, 1] (got -0.1)"},
         BadKey{"contacts friction negative", scene("[contacts]\nfriction = -0.2\n" + body), 4,
                "contacts.friction", "must be >= 0 (got -0.2)"},
+        BadKey{"contacts restitution_threshold negative",
+               scene("[contacts]\nrestitution_threshold = -1\n" + body), 4,
+               "contacts.restitution_threshold", "must be >= 0 m/s (got -1)"},
+        BadKey{"contacts restitution_threshold nan",
+               scene("[contacts]\nrestitution_threshold = nan\n" + body), 4,
+               "contacts.restitution_threshold", "finite"},
         BadKey{"contacts velocity_iterations zero",
                scene("[contacts]\nvelocity_iterations = 0\n" + body), 4,
                "contacts.velocity_iterations", "must be 1 .. 1000 (got 0)"},

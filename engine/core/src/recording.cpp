@@ -125,6 +125,10 @@ std::uint64_t definition_hash(const WorldDef& def) {
       h.add(c.velocity_iterations), h.add(c.position_iterations);
     }
     if (c.rolling) h.add(c.rolling);  // absent: the hash from before rolling discs
+    // absent at its default: the hash from before the setting
+    if (c.restitution_threshold != ContactSettings::default_restitution_threshold) {
+      h.add(std::uint64_t{0x7e5}), h.add(c.restitution_threshold);
+    }
     if (c.sleep) h.add(c.sleep), h.add(c.sleep_speed), h.add(c.sleep_time);  // absent: before
   }
   if (def.settings.seed != 0) {  // 0: the hash from before seeds (both seedings agree on it)

@@ -77,6 +77,11 @@ detail::WorldKernel<Real>::WorldKernel(const WorldSettings& settings) : settings
       throw std::invalid_argument(
           fmt::format("world: contacts.restitution must be in [0, 1] (got {})", c->restitution));
     }
+    if (!(std::isfinite(c->restitution_threshold) && c->restitution_threshold >= 0.0)) {
+      throw std::invalid_argument(
+          fmt::format("world: contacts.restitution_threshold must be finite and >= 0 m/s (got {})",
+                      c->restitution_threshold));
+    }
     if (!(nonnegative_coefficient(c->friction))) {  // √(μa μb) and μ·P stay finite
       throw std::invalid_argument(
           fmt::format("world: contacts.friction must be in [0, 1e100] (got {})", c->friction));

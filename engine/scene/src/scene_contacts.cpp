@@ -202,11 +202,16 @@ void parse_contacts(Reader& r, const toml::table& doc, Scene& scene) {
     return;
   }
   r.check_keys(*t, "contacts",
-               {"restitution", "friction", "velocity_iterations", "position_iterations", "rolling",
-                "sleep", "sleep_speed", "sleep_time"});
+               {"restitution", "friction", "restitution_threshold", "velocity_iterations",
+                "position_iterations", "rolling", "sleep", "sleep_speed", "sleep_time"});
   ContactSettings contacts;
   contacts.restitution = restitution(r, *t, "contacts").value_or(0.0);
   contacts.friction = friction(r, *t, "contacts").value_or(0.0);
+  if (auto v = r.number(*t, "restitution_threshold", "contacts.restitution_threshold")) {
+    r.require(*v >= 0.0, *t, "restitution_threshold", "contacts.restitution_threshold", ">= 0 m/s",
+              *v);
+    contacts.restitution_threshold = *v;
+  }
   constexpr int most = ContactSettings::max_iterations;
   if (const toml::node* n = t->get("velocity_iterations")) {
     contacts.velocity_iterations =

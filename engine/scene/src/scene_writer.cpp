@@ -173,6 +173,9 @@ void write_world(std::string& out, const WorldDef& def) {
     const ContactSettings& c = *s.contacts;
     fmt::format_to(it, "\n[contacts]\nrestitution = {}\nfriction = {}\n",
                    toml_number(c.restitution), toml_number(c.friction));
+    if (!same_bits(c.restitution_threshold, ContactSettings::default_restitution_threshold)) {
+      fmt::format_to(it, "restitution_threshold = {}\n", toml_number(c.restitution_threshold));
+    }
     if (c.velocity_iterations != ContactSettings::default_velocity_iterations) {
       fmt::format_to(it, "velocity_iterations = {}\n", c.velocity_iterations);
     }

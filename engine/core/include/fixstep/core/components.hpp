@@ -134,6 +134,12 @@ struct Collider {
 struct ContactSettings {
   double restitution = 0.0;  ///< e in [0, 1], every pair's default
   double friction = 0.0;     ///< Coulomb μ in [0, 1e100], every pair's default
+  /// m/s, finite and >= 0: a shape contact point bounces (Newton's law, e above) only when it
+  /// approaches faster than this, else it stops without a bounce, so that a body resting with
+  /// e > 0 does not hop on gravity's speed each tick (Box2D's b2WorldDef::restitutionThreshold,
+  /// 1 m/s). 0: every approach bounces (an elastic gas). Disc-disc and disc-plane contacts meet
+  /// at their time of impact and bounce at any speed; this applies to shapes' manifolds only.
+  double restitution_threshold = default_restitution_threshold;
   /// Velocity iterations a tick (normal and friction impulses), in [1, max_iterations].
   int velocity_iterations = default_velocity_iterations;
   /// Position iterations a tick (push-out of overlap beyond the slop), in [0, max_iterations].
@@ -158,6 +164,7 @@ struct ContactSettings {
   double sleep_speed = default_sleep_speed;  ///< m/s, finite and > 0
   double sleep_time = default_sleep_time;    ///< s, finite and >= 0 (rounded up to ticks)
   static constexpr double default_sleep_speed = 0.05, default_sleep_time = 0.5;
+  static constexpr double default_restitution_threshold = 1.0;
   static constexpr int default_velocity_iterations = 20, default_position_iterations = 10;
   static constexpr int max_iterations = 1000;
 };
