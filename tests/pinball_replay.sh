@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The pinball demo's recorded session (assets/recordings/pinball.rec: 40 s of its autopilot,
-# `pinball --frames 2400 --record FILE`: a whole game, three balls, twelve bumper hits)
-# replayed headless with its rules: every stored state hash verifies (the flippers'
-# target_angle inputs, the bumpers' kicks from contact events), the game ends where it did, and
+# `pinball --frames 2400 --record FILE`: the first ball kept in play by the flippers, twelve
+# bumper hits) replayed headless with its rules: every stored state hash verifies (the
+# flippers' target_angle inputs, the bumpers' kicks from contact events), the game is where it was, and
 # the last frame is rendered; the sync test passes. Then the same recording through `fixstep
 # replay`, which has no pinball rules, must be refused naming the program (exit 5).
 #
@@ -13,8 +13,8 @@ cli=$2
 src=$3
 out=$4
 rec=$src/assets/recordings/pinball.rec
-expected_hash=2e5118156313e2cc
-expected_game="score=1260 balls=0 bumpers=12 slingshots=6 phase=over"
+expected_hash=25b3d3901d009dfd
+expected_game="score=1300 balls=3 bumpers=12 slingshots=10 phase=play"
 rm -rf "$out"
 mkdir -p "$out"
 fail() {

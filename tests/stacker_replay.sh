@@ -12,8 +12,8 @@ game=$1
 src=$2
 out=$3
 rec=$src/assets/recordings/stacker.rec
-expected_hash=ae901d6e179daca7
-expected_game="score=15 targets=3 shots_left=0 down=11111001111111111 phase=over"
+expected_hash=fa386fa984137d88
+expected_game="score=8 targets=2 shots_left=0 down=11111001110000000 phase=over"
 rm -rf "$out"
 mkdir -p "$out"
 fail() {

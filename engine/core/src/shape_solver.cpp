@@ -1,6 +1,6 @@
-// Shape contacts, part 2: the contact solver (shape_world.hpp has the whole tick): sequential
-// impulses with warm starting on the manifold points, then a push-out of the overlap left on
-// positions only.
+// Shape contacts, part 2: the contact solver (shape_world.hpp has the whole tick): the impact
+// pass (bounces), then sequential impulses with warm starting on the manifold points, then a
+// push-out of the overlap left on positions only.
 #include <algorithm>
 #include <cmath>
 
@@ -66,23 +66,98 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
     r.normal_mass = kn > 0.0 ? 1.0 / kn : 0.0;
     r.tangent_mass = kt > 0.0 ? 1.0 / kt : 0.0;
     // The normal velocity the row asks for: a gap may close within the tick, a touching point
-    // stops approaching, and one that meets fast enough bounces back (Newton's law).
-    const double e = r.restitution;
-    const double vn = dot(relative_velocity(r), r.n);
-    r.approach = std::max(-vn, 0.0);
+    // stops approaching (the bounces are the impact pass's).
+    r.approach = std::max(-dot(relative_velocity(r), r.n), 0.0);
     r.target = r.separation > 0.0 ? -r.separation / tick.dt : 0.0;
-    if (e > 0.0 && vn < -restitution_threshold && r.separation + vn * tick.dt < 0.0) {
-      r.target = std::max(r.target, -e * vn);
-    }
+    r.bn = 0.0, r.bt = 0.0;
+  }
+  prepare_blocks();
+  for (int pass = 0; pass < max_impact_passes && impact_pass(tick); ++pass) {
   }
   // Warm starting, once every row's target is set from the free velocities.
   for (ShapeRow& r : rows_) {
+    if (r.redundant) continue;
     const auto warm = std::lower_bound(warm_.begin(), warm_.end(), ShapeWarm{r.pair, r.id});
     if (warm != warm_.end() && warm->pair == r.pair && warm->id == r.id) {
       r.ln = warm->ln, r.lt = warm->lt;
       apply(r, r.ln, r.lt);
     }
   }
+}
+
+// Impacts, before the resting solve: every point that meets within the tick faster than the
+// restitution threshold, at the velocities the bounces before it left, gets the impulse that
+// gives it −e times its normal velocity (Newton's law; a manifold's two points together), and
+// the Coulomb-bounded tangential impulse that stops its sliding. Each bounce is a collision of
+// two bodies at one point (or one edge) that keeps their momentum and angular momentum, and
+// their energy when e = 1 and μ = 0: a body that meets two others within one tick bounces off
+// both in turn, as Guendelman, Bridson and Fedkiw's collision pass does (SIGGRAPH 2003), where
+// the resting solve alone would stop it at the second without a bounce. The passes end when no
+// point meets (bounded by max_impact_passes; what is left is stopped by the resting solve).
+bool ShapeWorld::impact_pass(const ShapeTick& tick) {
+  bool any = false;
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    ShapeRow& r = rows_[i];
+    if (r.pair_first) {
+      any = bounce_block(r, rows_[i + 1], tick) || any;
+      ++i;
+    } else if (!r.redundant) {
+      any = bounce(r, tick) || any;
+    }
+  }
+  return any;
+}
+
+namespace {
+
+/// Whether a point of separation s (m) and normal velocity vn (m/s) meets within the tick dt
+/// fast enough to bounce.
+bool meets(const ShapeRow& r, double vn, const ShapeTick& tick) {
+  return r.restitution > 0.0 && vn < -tick.restitution_threshold && vn < 0.0 &&
+         r.separation + vn * tick.dt < 0.0;
+}
+
+}  // namespace
+
+bool ShapeWorld::bounce(ShapeRow& r, const ShapeTick& tick) {
+  const double vn = dot(relative_velocity(r), r.n);
+  if (!meets(r, vn, tick)) return false;
+  const double pn = -(1.0 + r.restitution) * vn * r.normal_mass;
+  const double vt = dot(relative_velocity(r), perp(r.n));
+  const double pt = std::clamp(-vt * r.tangent_mass, -r.friction * pn, r.friction * pn);
+  r.bn += pn, r.bt += pt;
+  apply(r, pn, pt);
+  return true;
+}
+
+// A manifold's two points meeting at once: the 2×2 problem K x = −(1 + e) vn for the points
+// that meet (x >= 0; a point that would pull is left out and the other solved alone).
+bool ShapeWorld::bounce_block(ShapeRow& r1, ShapeRow& r2, const ShapeTick& tick) {
+  const double vn1 = dot(relative_velocity(r1), r1.n), vn2 = dot(relative_velocity(r2), r2.n);
+  const bool m1 = meets(r1, vn1, tick), m2 = meets(r2, vn2, tick);
+  if (!m1 && !m2) return false;
+  const double k11 = 1.0 / r1.normal_mass, k22 = 1.0 / r2.normal_mass, k12 = r1.k12;
+  const double d1 = m1 ? -(1.0 + r1.restitution) * vn1 : 0.0;
+  const double d2 = m2 ? -(1.0 + r2.restitution) * vn2 : 0.0;
+  double x1 = 0.0, x2 = 0.0;
+  const double det = k11 * k22 - k12 * k12;
+  if (m1 && m2) x1 = (k22 * d1 - k12 * d2) / det, x2 = (k11 * d2 - k12 * d1) / det;
+  if (!(m1 && m2 && x1 >= 0.0 && x2 >= 0.0)) {  // one point alone: the one that meets
+    const bool first = m1 && (!m2 || d1 / k11 >= d2 / k22);
+    x1 = first ? d1 / k11 : 0.0, x2 = first ? 0.0 : d2 / k22;
+  }
+  r1.bn += x1, r2.bn += x2;
+  if (x1 != 0.0) apply(r1, x1, 0.0);
+  if (x2 != 0.0) apply(r2, x2, 0.0);
+  for (ShapeRow* r : {&r1, &r2}) {  // sliding stopped within each point's Coulomb cone
+    const double bound = r->friction * (r == &r1 ? x1 : x2);
+    if (bound == 0.0) continue;
+    const double pt =
+        std::clamp(-dot(relative_velocity(*r), perp(r->n)) * r->tangent_mass, -bound, bound);
+    r->bt += pt;
+    apply(*r, 0.0, pt);
+  }
+  return true;
 }
 
 void ShapeWorld::solve_friction(ShapeRow& r) {
@@ -133,10 +208,10 @@ void ShapeWorld::solve_block(ShapeRow& r1, ShapeRow& r2) {
 }
 
 void ShapeWorld::prepare_blocks() {
+  for (ShapeRow& r : rows_) r.pair_first = false, r.redundant = false;
   for (std::size_t i = 0; i + 1 < rows_.size(); ++i) {
     ShapeRow& r1 = rows_[i];
-    const ShapeRow& r2 = rows_[i + 1];
-    r1.pair_first = false;
+    ShapeRow& r2 = rows_[i + 1];
     if (r1.pair != r2.pair || r1.a != r2.a || r1.b != r2.b) continue;
     if (r1.normal_mass == 0.0 || r2.normal_mass == 0.0) continue;
     double ma = 0.0, ia = 0.0;
@@ -145,14 +220,17 @@ void ShapeWorld::prepare_blocks() {
     const double k12 = ma + b.inv_mass + ia * cross(r1.ra, r1.n) * cross(r2.ra, r2.n) +
                        b.inv_inertia * cross(r1.rb, r1.n) * cross(r2.rb, r2.n);
     const double k11 = 1.0 / r1.normal_mass, k22 = 1.0 / r2.normal_mass;
-    // Box2D's condition number guard: a K this close to singular is solved point by point.
-    if (k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12)) r1.pair_first = true, r1.k12 = k12;
+    // Box2D's condition number guard: a K this close to singular keeps one point (the deeper).
+    if (k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12)) {
+      r1.pair_first = true, r1.k12 = k12;
+    } else {
+      (r2.separation < r1.separation ? r1 : r2).redundant = true;
+    }
     ++i;
   }
 }
 
 void ShapeWorld::solve_velocities(const ShapeTick& tick) {
-  prepare_blocks();
   for (int it = 0; it < tick.velocity_iterations; ++it) {
     for (std::size_t i = 0; i < rows_.size(); ++i) {
       ShapeRow& r = rows_[i];
@@ -160,7 +238,7 @@ void ShapeWorld::solve_velocities(const ShapeTick& tick) {
         solve_friction(r), solve_friction(rows_[i + 1]);
         solve_block(r, rows_[i + 1]);
         ++i;
-      } else {
+      } else if (!r.redundant) {
         solve_friction(r), solve_normal(r);
       }
     }

@@ -83,13 +83,19 @@ struct ShapeRow {
   /// The first of a manifold's two points, whose normal impulses are solved together (Box2D
   /// v2.4's block solver): K = [[1/normal_mass, k12], [k12, 1/normal_mass of the next]].
   bool pair_first = false;
+  /// A manifold point whose row all but repeats its partner's (K near singular: the two points
+  /// nearly coincide as constraints): left out of the velocity solve, which the partner (the
+  /// deeper of the two) does alone, as Box2D v2.4 keeps one point of such a manifold. Solving
+  /// both one after the other converges slowly here and leaves an elastic bounce unfinished.
+  bool redundant = false;
   double k12 = 0.0;
   double friction = 0.0, restitution = 0.0;  ///< μ, e of the pair
   double target = 0.0;                       ///< the normal velocity it asks for, m/s
   double approach = 0.0;                     ///< the closing speed before the solve, m/s (>= 0)
   double ln = 0.0, lt = 0.0;                 ///< accumulated impulses (N·s)
-  std::uint64_t pair = 0;                    ///< the two shapes' keys, for warm starting
-  std::uint32_t id = 0;                      ///< the manifold point's feature id
+  double bn = 0.0, bt = 0.0;  ///< the impact pass's impulses (N·s): its bounces, apart from ln
+  std::uint64_t pair = 0;     ///< the two shapes' keys, for warm starting
+  std::uint32_t id = 0;       ///< the manifold point's feature id
 };
 
 /// The impulses a manifold point carried last tick, by key.
@@ -106,6 +112,7 @@ struct ShapeWarm {
 struct ShapeTick {
   double dt = 0.0, kappa = 1.0;
   double friction = 0.0, restitution = 0.0;  ///< ContactSettings defaults
+  double restitution_threshold = 1.0;        ///< m/s, ContactSettings::restitution_threshold
   int velocity_iterations = 8, position_iterations = 3;
   std::span<const PlaneDef> planes;
   std::span<const SegmentDef> segments;
@@ -127,8 +134,9 @@ class ShapeWorld {
   static constexpr std::uint32_t none = ~std::uint32_t{0};
   /// Separation below which a point is pushed out (m): Box2D's linear slop.
   static constexpr double slop = 0.005;
-  /// Normal speed below which restitution does not act (m/s): Box2D's restitution threshold.
-  static constexpr double restitution_threshold = 1.0;
+  /// Passes of the impact pass a tick (ShapeWorld::impact_pass): a chain of bounces one body
+  /// passes on to the next within a tick is followed this many links deep.
+  static constexpr int max_impact_passes = 8;
 
   std::vector<ShapedBody> bodies_;
   std::vector<ShapeEntry> shapes_;
@@ -179,6 +187,9 @@ class ShapeWorld {
   void apply(const ShapeRow& r, double pn, double pt);
   [[nodiscard]] Vec2 relative_velocity(const ShapeRow& r) const;
   void solve_velocities(const ShapeTick& tick);
+  bool impact_pass(const ShapeTick& tick);
+  bool bounce(ShapeRow& r, const ShapeTick& tick);
+  bool bounce_block(ShapeRow& r1, ShapeRow& r2, const ShapeTick& tick);
   void solve_friction(ShapeRow& r);
   void solve_normal(ShapeRow& r);
   void solve_block(ShapeRow& r1, ShapeRow& r2);

@@ -59,7 +59,7 @@ void detail::WorldKernel<Real>::add_shape_touching() {
   const std::span<const Entity> ids = bodies_.dense;
   const std::size_t first = touching_.size();
   for (const ShapeRow& r : w.rows()) {
-    if (r.a == ShapeWorld::none || !(r.ln > 0.0 || r.separation <= 0.0)) continue;
+    if (r.a == ShapeWorld::none || !(r.ln > 0.0 || r.bn > 0.0 || r.separation <= 0.0)) continue;
     Entity a = ids[w.bodies_[r.a].body], b = ids[w.bodies_[r.b].body];
     if (b.slot() < a.slot()) std::swap(a, b);
     touching_.push_back({a, b, 0.0});

@@ -228,7 +228,7 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
     if (r.a == ShapeWorld::none) continue;
     const ShapedBody& a = w.bodies_[r.a];
     const ShapedBody& b = w.bodies_[r.b];
-    const Vec2 p = r.ln * r.n + r.lt * Vec2{-r.n.y, r.n.x};  // on B; −p on A
+    const Vec2 p = (r.ln + r.bn) * r.n + (r.lt + r.bt) * Vec2{-r.n.y, r.n.x};  // on B; −p on A
     auto point_velocity = [&](std::uint32_t i, Vec2 arm) {
       const ShapeState& s = w.state_[i];
       return Vec2{s.vx - s.w * arm.y, s.vy + s.w * arm.x};
@@ -287,6 +287,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.dt = dt;
   tick.kappa = kappa;
   tick.velocity_iterations = cs.velocity_iterations;
+  tick.restitution_threshold = cs.restitution_threshold;
   tick.position_iterations = cs.position_iterations;
   tick.planes = planes_;
   tick.segments = segments_.defs();
