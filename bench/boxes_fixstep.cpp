@@ -4,15 +4,14 @@
 // container's walls as static half-planes (PlaneDef, the same μ and e), WorldSettings::contacts
 // on (the scene's μ and e) and WorldSettings::threads 1 or 2.
 //
-// The kernel for shapes is being written (engine/core/src/shape*.cpp are stubs at b4e85af):
-// World(def) may refuse the shapes, or accept them and not collide them. fixstep_shapes_problem()
-// says which, and bench_boxes then reports "fixstep: shapes not yet supported" instead of
-// timing fixstep; nothing here needs changing once World steps shapes.
+// fixstep_shapes_problem() checks that World collides shapes (a dropped box comes to rest on the
+// ground) before anything is timed; bench_boxes reports the reason and leaves fixstep's rows out
+// when it does not.
 //
 // The deepest overlap is measured from the poses World::body() gives (position = the box's
 // centre: a centred box's centre of mass is its origin; angle) by boxes_scene.cpp's separating
-// axis test, as for Box2D. fixstep's own report of it (a ContactStats::max_overlap over shape
-// manifolds) is not read: TODO once the shape kernel says what it reports.
+// axis test, as for Box2D; fixstep's own report (ContactStats::deepest_shape_overlap, over the
+// manifold points of the last tick) is its own_overlap.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -30,17 +29,6 @@ namespace boxes {
 
 namespace {
 
-/// A centred, unrounded box of half-extents hx, hy: what fixstep::make_box(hx, hy) returns
-/// (shape.hpp). TODO: call make_box once engine/core/src/shape.cpp defines it (a stub at b4e85af:
-/// the call would not link).
-fixstep::ShapeDef box_shape(double hx, double hy) {
-  fixstep::ShapeDef d;
-  d.kind = fixstep::ShapeKind::box;
-  d.radius = 0.0;  // no rounding (ShapeDef's default radius is a circle's 0.5 m)
-  d.half_extents = {hx, hy};
-  return d;
-}
-
 fixstep::WorldDef world_def(const BoxScene& s, int threads) {
   fixstep::WorldSettings ws{.dt = tick, .threads = threads};
   ws.contacts = fixstep::ContactSettings{.restitution = restitution, .friction = friction};
@@ -54,7 +42,7 @@ fixstep::WorldDef world_def(const BoxScene& s, int threads) {
     wall({1.0, 0.0}, 0.0);        // x >= 0
     wall({-1.0, 0.0}, -s.width);  // x <= width
   }
-  fixstep::ShapeDef box = box_shape(half, half);
+  fixstep::ShapeDef box = fixstep::make_box(half, half);
   box.density = density;
   box.friction = friction;
   box.restitution = restitution;
@@ -81,7 +69,9 @@ class FixstepBoxes final : public BoxStepper {
       out[j] = {b.position, b.angle};
     }
   }
-  [[nodiscard]] double own_overlap() const override { return std::nan(""); }
+  [[nodiscard]] double own_overlap() const override {
+    return world_.contact_stats().deepest_shape_overlap;
+  }
   [[nodiscard]] int threads() const override { return threads_; }
 
  private:
