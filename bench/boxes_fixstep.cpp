@@ -21,6 +21,7 @@
 #include "boxes.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/shape.hpp"
+#include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
