@@ -3,13 +3,14 @@
 // (ticks 121-140, while it settles) (boxes.hpp), built by one generator and stepped at
 // dt = 1/60 s by
 //   fixstep    World with BodyDef::shapes (a box each), planes for ground and walls and
-//              WorldSettings::contacts, on 1 and 2 threads (boxes_fixstep.cpp), once World steps
-//              shapes: until then the run says "fixstep: shapes not yet supported" and why;
+//              WorldSettings::contacts, on 1 and 2 threads (boxes_fixstep.cpp); should World
+//              not collide shapes, the run says "fixstep: shapes not yet supported" and why;
 //   box2d3     Box2D v3.1.1 and v3.2 (where bench/box2d3.cmake built them), b2World_Step(dt, 4)
 //              on 1 and 2 workers (boxes_box2d3.cpp).
 // Every case is built and warmed up untimed, then the same ticks are timed for every engine (5
 // repetitions of 4 ticks, the median); after them the deepest overlap is measured on every
-// engine's poses the same way, beside Box2D's own from its manifolds. The report (stdout; with
+// engine's poses the same way, beside each engine's own from its manifolds. The report (stdout;
+// with
 // --report DIR also DIR/boxes.md) gives ns per body-step, the overlaps and the speed ratios.
 //
 //   build/bench/bin/bench_boxes --report docs/perf

@@ -96,9 +96,10 @@ std::string box_report_markdown(const BoxResults& r) {
                   r.repetitions, r.repetitions == 1 ? "" : "s"));
   line(
       "Box-box: the separating axis theorem on every engine's poses (the same code for every "
-      "engine); ground and walls: the deepest corner past them; own: Box2D's deepest "
-      "-separation over its contact manifolds (as of its last collide phase); pyramid: how far "
-      "its top box has dropped, pile: the boxes' mean height.\n");
+      "engine); ground and walls: the deepest corner past them; own: the engine's deepest "
+      "-separation over its contact manifolds (Box2D's as of its last collide phase, fixstep's "
+      "after its solve); pyramid: how far its top box has dropped, pile: the boxes' mean "
+      "height.\n");
   line(
       "| scene | N | stepper | ns per body-step | box-box overlap | into ground and walls | own "
       "(manifolds) | pyramid: top's drop, pile: mean height (m) |");

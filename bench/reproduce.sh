@@ -5,8 +5,8 @@
 #   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers, with
 #                                       Box2D v3 where ../shared/peers has its source: ~6-9 min)
 #   bash bench/reproduce.sh shapes     (only section 7.1, boxes against Box2D v3.1.1 and v3.2:
-#                                       the 20-row pyramid and a settling pile of 10^4 boxes;
-#                                       fixstep's rows once World steps shapes: ~1-2 min)
+#                                       the 20-row pyramid and a settling pile of 10^4 boxes,
+#                                       with fixstep's: ~20 s after the build)
 #   bash bench/reproduce.sh network    (only section 6.1: integrator costs and the trade on
 #                                       damped networks: ~3 min)
 #   bash bench/reproduce.sh net        (only section 8, networking: bandwidth, stalls and
@@ -74,8 +74,8 @@ fi
 
 # Boxes (the rotating-shapes work) against Box2D v3.1.1 and v3.2: the 20-row pyramid and a
 # settling pile of 10^4 boxes, ns per body-step and deepest overlap, 1 and 2 threads/workers.
-# Until World steps shapes its first lines say "fixstep: shapes not yet supported (why)" and
-# fixstep's rows are absent (bench/boxes_fixstep.cpp).
+# Should World stop colliding shapes, its first lines say "fixstep: shapes not yet supported
+# (why)" and fixstep's rows are absent (bench/boxes_fixstep.cpp).
 if [ -z "$only" ] || [ "$only" = shapes ]; then
   "$bin/bench_boxes" --report "$out" > "$out/boxes.log"
   { measured_on; cat "$out/boxes.md"; } > "$out/boxes.section.md"
