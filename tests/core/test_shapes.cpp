@@ -306,6 +306,46 @@ TEST(ShapeEvents, ABoxLandingOnABoxBeginsAContactAndASensorSeesItPass) {
   EXPECT_TRUE(w.contacts_ended().empty());
 }
 
+// A disc sensor sees bodies with shapes as a sensor shape sees discs: a box falling through a
+// static sensor disc begins and ends one overlap, at the ticks its faces cross the disc's
+// circle (it falls from rest at 5 m: its bottom face reaches the top of the disc, y = 3.25 m,
+// at t = √(2 · 1.25 m / g), its top face leaves the bottom, y = 2.75 m, at √(2 · 2.75 m / g)).
+TEST(ShapeEvents, ADiscSensorSeesABoxFallThroughIt) {
+  World w(WorldDef::empty(Precision::f64, shape_world(0.5)));
+  BodyDef ring;
+  ring.type = BodyType::static_body;
+  ring.body.position = {0.0, 3.0};
+  ring.collider = Collider{.radius = 0.25, .sensor = true};
+  const Entity sensor = w.create_body(ring);
+  BodyDef falling = box_body(0.5, 0.5, {0.0, 5.0});
+  const Entity box = w.create_body(falling);
+  std::vector<int> in, out;
+  for (int i = 1; i <= 120; ++i) {
+    w.step();
+    for (const SensorEvent& e : w.sensors_begun()) {
+      EXPECT_EQ(e.sensor, sensor);
+      EXPECT_EQ(e.visitor, box);
+      in.push_back(i);
+    }
+    for (const SensorEvent& e : w.sensors_ended()) {
+      EXPECT_EQ(e.visitor, box);
+      out.push_back(i);
+    }
+  }
+  ASSERT_EQ(in.size(), 1u);
+  ASSERT_EQ(out.size(), 1u);
+  // The first tick that ends with the faces past the circle: semi-implicit Euler's fall by
+  // tick n is g dt² n (n + 1) / 2.
+  auto first_tick_past = [](double drop) {
+    const double dt = 1.0 / 60.0;
+    int n = 0;
+    while (g * dt * dt * n * (n + 1) / 2.0 < drop) ++n;
+    return n;
+  };
+  EXPECT_EQ(in[0], first_tick_past(1.25));
+  EXPECT_EQ(out[0], first_tick_past(2.75));
+}
+
 // --- the energy account ------------------------------------------------------------------
 
 TEST(ShapeEnergy, TheAccountBalancesForATumblingPileAndAKinematicPaddle) {

@@ -173,10 +173,10 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
     }
     w.bodies_.push_back(b);
   }
-  // Discs meet shapes here (and one another in the disc phase).
+  // Discs meet shapes here (and one another in the disc phase); a sensor disc sees them here.
   for (std::size_t i = 0; i < colliders_.data.size(); ++i) {
     const Collider& c = colliders_.data[i];
-    if (!c.collide || c.sensor) continue;
+    if (!c.collide && !c.sensor) continue;
     const Entity e = colliders_.set.dense[i];
     const std::uint32_t j = static_cast<std::uint32_t>(bodies_.index(e));
     ShapedBody b;
@@ -187,7 +187,7 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
     Convex circle;
     circle.count = 1, circle.radius = c.radius;
     add_shape(circle, static_cast<std::uint32_t>(w.bodies_.size()), c.friction, c.restitution,
-              c.filter, false, static_cast<std::uint32_t>(e.slot() << 6));
+              c.filter, c.sensor, static_cast<std::uint32_t>(e.slot() << 6));
     w.bodies_.push_back(b);
   }
   w.state_.assign(w.bodies_.size(), ShapeState{});

@@ -111,8 +111,8 @@ struct Collider {
   /// meets planes).
   bool collide = true;
   /// true: a sensor (Box2D's isSensor, Godot's Area2D): the disc pushes nothing and is pushed
-  /// by nothing (no disc contact, no plane contact) but reports the discs it overlaps
-  /// (World::sensors_begun, sensors_ended). Needs WorldSettings::contacts.
+  /// by nothing (no disc contact, no plane contact) but reports the discs and the bodies with
+  /// shapes it overlaps (World::sensors_begun, sensors_ended). Needs WorldSettings::contacts.
   bool sensor = false;
   /// Which discs this one may touch and sense (CollisionFilter).
   CollisionFilter filter{};
