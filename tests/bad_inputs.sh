@@ -868,6 +868,9 @@ shape = { box = [nan, 1.0] }"
 case_ "a capsule shape's radius 1e200 (beyond 1e6 m)" "$ok_world
 $body
 shape = { capsule = [[0.0, 0.0], [1.0, 0.0]], radius = 1e200 }"
+case_ "a circle shape's rolling_resistance negative" "$ok_world
+$body
+shape = { circle = 0.5, rolling_resistance = -0.1 }"
 case_ "a capsule shape without its radius" "$ok_world
 $body
 shape = { capsule = [[0.0, 0.0], [1.0, 0.0]] }"

@@ -196,6 +196,34 @@ TEST(ShapeGas, AnElasticFrictionlessGasKeepsMomentumAngularMomentumAndEnergy) {
   EXPECT_LE(deepest, 0.0);  // speculative contacts: they bounce before they meet
 }
 
+// --- rolling resistance -----------------------------------------------------------------
+
+// A uniform disc (a circle shape, I = ½ m r²) rolling without slipping on flat ground with
+// rolling resistance c: the torque c r N against its turning and friction F at the ground give
+// m a = −F, I α = F r − c r N with a = α r, so a = −c g m r² / (I + m r²) = −(2/3) c g, until it
+// stops, and then it stays put.
+TEST(ShapeRolling, AUniformDiscSlowsAtTwoThirdsCGAndStops) {
+  detail::WorldKernel<double> w(shape_world(0.8));
+  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 0.0, .friction = 0.8});
+  const double r = 0.3, c = 0.05, v0 = 2.0;
+  BodyDef b;
+  b.body =
+      Body{.mass = 2.0, .position = {0.0, r}, .velocity = {v0, 0.0}, .angular_velocity = -v0 / r};
+  b.gravity = Gravity{{0.0, -g}};
+  b.shapes = {make_circle(r)};
+  b.shapes[0].rolling_resistance = c;
+  const Entity disc = w.create_body(b);
+  for (int i = 0; i < 60; ++i) w.step();  // 1 s
+  const double a = 2.0 / 3.0 * c * g;
+  EXPECT_NEAR(w.body(disc).velocity.x, v0 - a * 1.0, 1e-3 * v0);
+  EXPECT_NEAR(w.body(disc).angular_velocity * r, -w.body(disc).velocity.x, 1e-6);  // rolls
+  for (int i = 0; i < 600; ++i) w.step();  // it stops after v0 / a = 6.1 s
+  EXPECT_NEAR(w.body(disc).velocity.x, 0.0, 1e-9);
+  EXPECT_NEAR(w.body(disc).angular_velocity, 0.0, 1e-9);
+  // the distance rolled: v0² / (2a), within a tick's travel
+  EXPECT_NEAR(w.body(disc).position.x, v0 * v0 / (2.0 * a), v0 / 60.0);
+}
+
 // --- a box dropped flat rests flat, half its weight on each corner -----------------------
 
 TEST(ShapeRest, ABoxDroppedFlatRestsOnBothCornersWithHalfItsWeightEach) {

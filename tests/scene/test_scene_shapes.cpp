@@ -39,8 +39,8 @@ TEST(SceneShapes, EachFormIsRead) {
       "[world]\ndt = 0.01\n"
       "[[body]]\nname = \"crate\"\nmass = 2.0\nposition = [0.0, 0.0]\n"
       "shape = { box = [0.5, 0.25], radius = 0.01, offset = [0.1, -0.2], angle = 0.3, "
-      "density = 3.0, friction = 0.6, restitution = 0.2, sensor = true, category = 0x2, "
-      "mask = 0x5, group = -3 }\n"
+      "density = 3.0, friction = 0.6, restitution = 0.2, rolling_resistance = 0.1, sensor = true, "
+      "category = 0x2, mask = 0x5, group = -3 }\n"
       "[[body]]\nname = \"ball\"\nmass = 1.0\nposition = [3.0, 0.0]\nshape = { circle = 0.5 }\n"
       "[[body]]\nname = \"pill\"\nmass = 1.0\nposition = [6.0, 0.0]\n"
       "shape = { capsule = [[-0.5, 0.0], [0.5, 0.0]], radius = 0.2 }\n"
@@ -53,6 +53,7 @@ TEST(SceneShapes, EachFormIsRead) {
   box.density = 3.0;
   box.friction = 0.6;
   box.restitution = 0.2;
+  box.rolling_resistance = 0.1;
   box.sensor = true;
   box.filter = {.category = 2, .mask = 5, .group = -3};
   EXPECT_EQ(s.def.bodies[0].shapes, std::vector<ShapeDef>{box});
@@ -135,6 +136,7 @@ WorldDef shape_world() {
   ShapeDef poly = make_polygon(tri, 0.0);
   poly.offset = {0.1, 0.2};
   ShapeDef cap = make_capsule({-1.0 / 3.0, 0.0}, {1.0 / 3.0, 1e-3}, 0.1 + 0.2);
+  cap.rolling_resistance = 1.0 / 7.0;
   cap.angle = -0.0;  // written, so that it reads back as -0.0
   a.shapes = {box, poly, cap, make_circle(1.0 / 3.0, {2.0, 0.0})};
   BodyDef wall;
@@ -173,6 +175,9 @@ TEST(SceneShapes, RefusedWithFileLineColumnAndKey) {
        "s.toml:6:18: body[0].shape.box[0]: must be finite (got nan)"},
       {"shape = { box = [1.0, 1.0], friction = -1.0 }",
        "s.toml:6:40: body[0].shape.friction: friction must be in [0, 1e100] (got -1)"},
+      {"shape = { circle = 0.5, rolling_resistance = -0.1 }",
+       "s.toml:6:46: body[0].shape.rolling_resistance: rolling_resistance must be in [0, 1e100] "
+       "(got -0.1)"},
       {"shape = { circle = 0.5, offset = [2e6, 0.0] }",
        "s.toml:6:34: body[0].shape.offset: offset must be finite with |x|, |y| <= 1000000 m (got "
        "2000000, 0)"},

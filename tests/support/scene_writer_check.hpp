@@ -88,6 +88,7 @@ inline void expect_same_body(const BodyDef& a, const BodyDef& b, const std::stri
     expect_bits(x.density, y.density, s + ".density");
     expect_bits(x.friction, y.friction, s + ".friction");
     expect_bits(x.restitution, y.restitution, s + ".restitution");
+    expect_bits(x.rolling_resistance, y.rolling_resistance, s + ".rolling_resistance");
     EXPECT_EQ(x.filter, y.filter) << s << ".filter";
     EXPECT_EQ(x.sensor, y.sensor) << s << ".sensor";
   }
@@ -106,6 +107,7 @@ inline void expect_same_world(const WorldDef& a, const WorldDef& b) {
   expect_optional(s.contacts, t.contacts, "contacts", [&](const auto& x, const auto& y) {
     expect_bits(x.restitution, y.restitution, "contacts.restitution");
     expect_bits(x.friction, y.friction, "contacts.friction");
+    expect_bits(x.restitution_threshold, y.restitution_threshold, "contacts.restitution_threshold");
     EXPECT_EQ(x.velocity_iterations, y.velocity_iterations) << "contacts.velocity_iterations";
     EXPECT_EQ(x.position_iterations, y.position_iterations) << "contacts.position_iterations";
     EXPECT_EQ(x.rolling, y.rolling) << "contacts.rolling";

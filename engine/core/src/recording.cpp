@@ -56,6 +56,7 @@ void hash_shape(Fnv1a& h, const ShapeDef& s) {
   h.add_optional(s.friction, [&](double mu) { h.add(mu); });
   h.add_optional(s.restitution, [&](double e) { h.add(e); });
   h.add(s.filter.category), h.add(s.filter.mask), h.add(s.filter.group), h.add(s.sensor);
+  if (s.rolling_resistance != 0.0) h.add(std::uint64_t{0x4011}), h.add(s.rolling_resistance);
 }
 
 void hash_body(Fnv1a& h, const BodyDef& b) {

@@ -257,6 +257,10 @@ std::optional<std::string> shape_problem(const ShapeDef& s) {
       !(std::isfinite(*s.density) && *s.density >= 0.0 && *s.density <= max_coefficient)) {
     return fmt::format("density must be finite, >= 0 and <= 1e100 kg/m^2 (got {})", *s.density);
   }
+  if (!(std::isfinite(s.rolling_resistance) && s.rolling_resistance >= 0.0 &&
+        s.rolling_resistance <= max_coefficient)) {
+    return fmt::format("rolling_resistance must be in [0, 1e100] (got {})", s.rolling_resistance);
+  }
   if (s.friction &&
       !(std::isfinite(*s.friction) && *s.friction >= 0.0 && *s.friction <= max_coefficient)) {
     return fmt::format("friction must be in [0, 1e100] (got {})", *s.friction);

@@ -65,6 +65,9 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
     const double kt = ma + bb.inv_mass + ia * rta * rta + bb.inv_inertia * rtb * rtb;
     r.normal_mass = kn > 0.0 ? 1.0 / kn : 0.0;
     r.tangent_mass = kt > 0.0 ? 1.0 / kt : 0.0;
+    r.rolling_mass =
+        r.rolling > 0.0 && ia + bb.inv_inertia > 0.0 ? 1.0 / (ia + bb.inv_inertia) : 0.0;
+    r.lr = 0.0;
     // The normal velocity the row asks for: a gap may close within the tick, a touching point
     // stops approaching (the bounces are the impact pass's).
     r.approach = std::max(-dot(relative_velocity(r), r.n), 0.0);
@@ -81,6 +84,7 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
     if (warm != warm_.end() && warm->pair == r.pair && warm->id == r.id) {
       r.ln = warm->ln, r.lt = warm->lt;
       apply(r, r.ln, r.lt);
+      if (r.rolling_mass > 0.0) r.lr = warm->lr, turn(r, r.lr);
     }
   }
 }
@@ -230,6 +234,26 @@ void ShapeWorld::prepare_blocks() {
   }
 }
 
+// Rolling resistance (Box2D v3.1's b2SolveContact): an angular impulse that stops the two
+// bodies' relative turning, within ± c r times the manifold's normal impulse.
+void ShapeWorld::solve_rolling(ShapeRow& r, double normal_impulse) {
+  const double wa = r.a != none ? state_[r.a].w : 0.0;
+  const double bound = r.rolling * normal_impulse;
+  const double lr = std::clamp(r.lr - r.rolling_mass * (state_[r.b].w - wa), -bound, bound);
+  const double d = lr - r.lr;
+  r.lr = lr;
+  if (d != 0.0) turn(r, d);
+}
+
+void ShapeWorld::turn(const ShapeRow& r, double l) {
+  if (r.a != none) {
+    const double dw = bodies_[r.a].inv_inertia * l;
+    state_[r.a].w -= dw, state_[r.a].a -= dt_ * dw;
+  }
+  const double dw = bodies_[r.b].inv_inertia * l;
+  state_[r.b].w += dw, state_[r.b].a += dt_ * dw;
+}
+
 void ShapeWorld::solve_velocities(const ShapeTick& tick) {
   for (int it = 0; it < tick.velocity_iterations; ++it) {
     for (std::size_t i = 0; i < rows_.size(); ++i) {
@@ -237,9 +261,15 @@ void ShapeWorld::solve_velocities(const ShapeTick& tick) {
       if (r.pair_first) {  // friction first, bounded by this iteration's normal impulse
         solve_friction(r), solve_friction(rows_[i + 1]);
         solve_block(r, rows_[i + 1]);
+        if (r.rolling_mass > 0.0) solve_rolling(r, r.ln + rows_[i + 1].ln);
         ++i;
-      } else if (!r.redundant) {
-        solve_friction(r), solve_normal(r);
+      } else {
+        if (!r.redundant) solve_friction(r), solve_normal(r);
+        if (r.rolling_mass > 0.0) {  // a manifold's first row, maybe redundant: both its rows'
+          const bool pair = i + 1 < rows_.size() && rows_[i + 1].pair == r.pair &&
+                            rows_[i + 1].a == r.a && rows_[i + 1].b == r.b;
+          solve_rolling(r, r.ln + (pair ? rows_[i + 1].ln : 0.0));
+        }
       }
     }
   }
@@ -286,7 +316,9 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
 void ShapeWorld::keep_impulses() {
   next_warm_.clear();
   for (const ShapeRow& r : rows_) {
-    if (r.ln != 0.0 || r.lt != 0.0) next_warm_.push_back({r.pair, r.id, r.ln, r.lt});
+    if (r.ln != 0.0 || r.lt != 0.0 || r.lr != 0.0) {
+      next_warm_.push_back({r.pair, r.id, r.ln, r.lt, r.lr});
+    }
   }
   std::sort(next_warm_.begin(), next_warm_.end());
   warm_.swap(next_warm_);

@@ -209,12 +209,13 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
 }
 
 void ShapeWorld::add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
-                              double restitution, std::uint64_t pair) {
+                              double restitution, double rolling, std::uint64_t pair) {
   for (int p = 0; p < m.count; ++p) {
     const ManifoldPoint& mp = m.points[p];
     ShapeRow r;
     r.a = a, r.b = b, r.n = m.normal, r.ra = mp.anchor_a, r.rb = mp.anchor_b;
     r.separation = mp.separation, r.friction = friction, r.restitution = restitution;
+    r.rolling = p == 0 ? rolling : 0.0;
     r.pair = pair, r.id = mp.id;
     rows_.push_back(r);
   }
@@ -231,8 +232,12 @@ void ShapeWorld::collect(const ShapeTick& tick) {
         collide(sa.convex, start_pose(sa.owner), sb.convex, start_pose(sb.owner), margin);
     if (m.count == 0) continue;
     const std::uint64_t pair = std::uint64_t{sa.key} << 32 | sb.key;
+    const double rolling =
+        sa.rolling > 0.0 || sb.rolling > 0.0
+            ? std::max(sa.rolling, sb.rolling) * std::max(sa.convex.radius, sb.convex.radius)
+            : 0.0;
     add_manifold(m, sa.owner, sb.owner, mix_friction(sa.friction, sb.friction),
-                 std::max(sa.restitution, sb.restitution), pair);
+                 std::max(sa.restitution, sb.restitution), rolling, pair);
   }
   for (std::uint32_t k = 0; k < shapes_.size(); ++k) {
     const ShapeEntry& e = shapes_[k];
@@ -246,7 +251,7 @@ void ShapeWorld::collect(const ShapeTick& tick) {
       const Manifold m = collide_plane(pl.normal / len, pl.offset / len, e.convex, at, margin);
       if (m.count == 0) continue;
       add_manifold(m, none, e.owner, mix_friction(pl.friction, e.friction),
-                   std::max(pl.restitution, e.restitution),
+                   std::max(pl.restitution, e.restitution), e.rolling * e.convex.radius,
                    std::uint64_t{0xF0000000u | p} << 32 | e.key);
     }
     for (std::uint32_t s = 0; s < tick.segments.size(); ++s) {
@@ -255,7 +260,7 @@ void ShapeWorld::collect(const ShapeTick& tick) {
       const Manifold m = collide_segment(seg, e.convex, at, margin);
       if (m.count == 0) continue;
       add_manifold(m, none, e.owner, mix_friction(seg.friction, e.friction),
-                   std::max(seg.restitution, e.restitution),
+                   std::max(seg.restitution, e.restitution), e.rolling * e.convex.radius,
                    std::uint64_t{0xE0000000u | s} << 32 | e.key);
     }
   }

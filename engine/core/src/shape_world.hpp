@@ -60,6 +60,7 @@ struct ShapeEntry {
   Convex convex;
   std::uint32_t owner = 0;  ///< index into ShapeWorld::bodies_
   double friction = 0.0, restitution = 0.0;
+  double rolling = 0.0;  ///< ShapeDef::rolling_resistance
   CollisionFilter filter{};
   bool sensor = false;
   std::uint32_t key = 0;  ///< (entity slot << 6) | shape index: stable across rebuilds
@@ -93,6 +94,10 @@ struct ShapeRow {
   double target = 0.0;                       ///< the normal velocity it asks for, m/s
   double approach = 0.0;                     ///< the closing speed before the solve, m/s (>= 0)
   double ln = 0.0, lt = 0.0;                 ///< accumulated impulses (N·s)
+  /// Rolling resistance (on a manifold's first row only): c · r (m), the bound of the angular
+  /// impulse per unit of the manifold's normal impulse; its effective mass 1/(1/I_a + 1/I_b);
+  /// the accumulated angular impulse (N·m·s, on B; −lr on A).
+  double rolling = 0.0, rolling_mass = 0.0, lr = 0.0;
   double bn = 0.0, bt = 0.0;  ///< the impact pass's impulses (N·s): its bounces, apart from ln
   std::uint64_t pair = 0;     ///< the two shapes' keys, for warm starting
   std::uint32_t id = 0;       ///< the manifold point's feature id
@@ -102,7 +107,7 @@ struct ShapeRow {
 struct ShapeWarm {
   std::uint64_t pair = 0;
   std::uint32_t id = 0;
-  double ln = 0.0, lt = 0.0;
+  double ln = 0.0, lt = 0.0, lr = 0.0;
   friend bool operator<(const ShapeWarm& l, const ShapeWarm& r) {
     return l.pair != r.pair ? l.pair < r.pair : l.id < r.id;
   }
@@ -181,8 +186,10 @@ class ShapeWorld {
   [[nodiscard]] bool has_row(std::uint32_t body, std::uint64_t pair) const;
   bool broadphase(double dt, ShapeTally& tally);
   void collect(const ShapeTick& tick);
+  void solve_rolling(ShapeRow& r, double normal_impulse);
+  void turn(const ShapeRow& r, double l);  ///< an angular impulse l on B, −l on A
   void add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
-                    double restitution, std::uint64_t pair);
+                    double restitution, double rolling, std::uint64_t pair);
   void prepare_rows(const ShapeTick& tick);
   void apply(const ShapeRow& r, double pn, double pt);
   [[nodiscard]] Vec2 relative_velocity(const ShapeRow& r) const;

@@ -148,10 +148,10 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
   w.bodies_.clear(), w.shapes_.clear();
   const ContactSettings cs = settings_.contacts.value_or(ContactSettings{});
   auto add_shape = [&](const Convex& c, std::uint32_t owner, std::optional<double> mu,
-                       std::optional<double> e, const CollisionFilter& filter, bool sensor,
-                       std::uint32_t key) {
-    w.shapes_.push_back(
-        {c, owner, mu.value_or(cs.friction), e.value_or(cs.restitution), filter, sensor, key});
+                       std::optional<double> e, double rolling, const CollisionFilter& filter,
+                       bool sensor, std::uint32_t key) {
+    w.shapes_.push_back({c, owner, mu.value_or(cs.friction), e.value_or(cs.restitution), rolling,
+                         filter, sensor, key});
   };
   for (std::size_t i = 0; i < shape_sets_.data.size(); ++i) {
     const Entity e = shape_sets_.set.dense[i];
@@ -168,7 +168,7 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
       const Convex c = to_convex(s, set.center);
       b.extent = std::max(b.extent, extent(c));
       b.thinnest = k == 0 ? thinnest(c) : std::min(b.thinnest, thinnest(c));
-      add_shape(c, owner, s.friction, s.restitution, s.filter, s.sensor,
+      add_shape(c, owner, s.friction, s.restitution, s.rolling_resistance, s.filter, s.sensor,
                 static_cast<std::uint32_t>(e.slot() << 6 | k));
     }
     w.bodies_.push_back(b);
@@ -186,7 +186,7 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
     b.extent = b.thinnest = c.radius;
     Convex circle;
     circle.count = 1, circle.radius = c.radius;
-    add_shape(circle, static_cast<std::uint32_t>(w.bodies_.size()), c.friction, c.restitution,
+    add_shape(circle, static_cast<std::uint32_t>(w.bodies_.size()), c.friction, c.restitution, 0.0,
               c.filter, c.sensor, static_cast<std::uint32_t>(e.slot() << 6));
     w.bodies_.push_back(b);
   }
@@ -233,10 +233,11 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
       const ShapeState& s = w.state_[i];
       return Vec2{s.vx - s.w * arm.y, s.vy + s.w * arm.x};
     };
+    // (a rolling resistance's angular impulse lr on B, −lr on A, works against the other's ω)
     if (a.type == BodyType::kinematic && b.type == BodyType::dynamic) {
-      work[r.b] += dot(p, point_velocity(r.a, r.ra));
+      work[r.b] += dot(p, point_velocity(r.a, r.ra)) + r.lr * w.state_[r.a].w;
     } else if (b.type == BodyType::kinematic && a.type == BodyType::dynamic) {
-      work[r.a] -= dot(p, point_velocity(r.b, r.rb));
+      work[r.a] -= dot(p, point_velocity(r.b, r.rb)) + r.lr * w.state_[r.b].w;
     }
   }
   shape_energies(w.energy_after_);

@@ -114,8 +114,8 @@ ShapeDef read_geometry(const Reader& r, const toml::table& t, const std::string&
 }
 
 /// Where shape_problem's `message` points in shape table t: the key it starts with when the
-/// table has it (radius, offset, angle, density, friction, restitution), else the kind key; a
-/// density from the body (`body_density`) at the body's key.
+/// table has it (radius, offset, angle, density, friction, restitution, rolling_resistance), else
+/// the kind key; a density from the body (`body_density`) at the body's key.
 std::pair<const toml::node*, std::string> problem_key(const toml::table& t, const std::string& path,
                                                       const ShapeDef& s, std::string_view message,
                                                       const toml::node* body_density,
@@ -125,7 +125,7 @@ std::pair<const toml::node*, std::string> problem_key(const toml::table& t, cons
     return {body_density, body_path + ".density"};
   }
   for (const std::string_view k :
-       {"radius", "offset", "angle", "density", "friction", "restitution"}) {
+       {"radius", "offset", "angle", "density", "friction", "restitution", "rolling_resistance"}) {
     if (word == k && t.get(k)) return {t.get(k), path + "." + std::string(k)};
   }
   const std::string_view kind = shape_kind_name(s.kind);
@@ -135,9 +135,10 @@ std::pair<const toml::node*, std::string> problem_key(const toml::table& t, cons
 ShapeDef read_shape(Reader& r, const toml::table& t, const std::string& path,
                     std::optional<double> body_density, const toml::node* body_density_node,
                     const std::string& body_path) {
-  r.check_keys(t, path,
-               {"circle", "capsule", "box", "polygon", "radius", "offset", "angle", "density",
-                "friction", "restitution", "sensor", "category", "mask", "group"});
+  r.check_keys(
+      t, path,
+      {"circle", "capsule", "box", "polygon", "radius", "offset", "angle", "density", "friction",
+       "restitution", "rolling_resistance", "sensor", "category", "mask", "group"});
   ShapeDef s = read_geometry(r, t, path);
   if (auto v = r.vec2(t, "offset", path + ".offset")) s.offset = *v;
   if (auto v = r.number(t, "angle", path + ".angle")) s.angle = *v;
@@ -145,6 +146,9 @@ ShapeDef read_shape(Reader& r, const toml::table& t, const std::string& path,
   if (!s.density) s.density = body_density;
   s.friction = r.number(t, "friction", path + ".friction");
   s.restitution = r.number(t, "restitution", path + ".restitution");
+  if (auto v = r.number(t, "rolling_resistance", path + ".rolling_resistance")) {
+    s.rolling_resistance = *v;
+  }
   read_shape_filter(r, t, path, s);
   if (const std::optional<std::string> problem = shape_problem(s)) {
     const auto [node, key] = problem_key(t, path, s, *problem, body_density_node, body_path);
@@ -238,6 +242,9 @@ std::string shapes_text(const BodyDef& b) {
     if (s.density) fmt::format_to(it, "density = {}\n", toml_number(*s.density));
     if (s.friction) fmt::format_to(it, "friction = {}\n", toml_number(*s.friction));
     if (s.restitution) fmt::format_to(it, "restitution = {}\n", toml_number(*s.restitution));
+    if (!same_bits(s.rolling_resistance, 0.0)) {
+      fmt::format_to(it, "rolling_resistance = {}\n", toml_number(s.rolling_resistance));
+    }
     if (s.sensor) out += "sensor = true\n";
     const CollisionFilter f = s.filter, none{};
     if (f.category != none.category) {

@@ -57,6 +57,13 @@ struct ShapeDef {
   std::optional<double> friction = std::nullopt;
   /// e, in [0, 1]; unset: ContactSettings::restitution. A pair uses the larger.
   std::optional<double> restitution = std::nullopt;
+  /// Rolling resistance c, dimensionless, in [0, 1e100], default 0 (none): a contact of this
+  /// shape resists its two bodies' relative turning with an angular impulse of at most
+  /// c · r · λ_n, r the larger radius of the pair's shapes (a circle's or capsule's radius, a
+  /// box's or polygon's rounding) and λ_n the manifold's normal impulse; a pair uses the larger
+  /// c (Box2D v3.1's b2SurfaceMaterial::rollingResistance). A uniform disc rolling on flat
+  /// ground then slows at (2/3) c g.
+  double rolling_resistance = 0.0;
   CollisionFilter filter{};  ///< which shapes and discs this one may touch
   /// A sensor reports what it overlaps (World::sensors_begun) and pushes nothing.
   bool sensor = false;
