@@ -77,12 +77,22 @@ double ShapeWorld::margin(std::uint32_t body, double dt) const {
 // --- continuous collision ----------------------------------------------------------------
 
 void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
+  bool ready = false;
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
     const ShapedBody& b = bodies_[i];
     if (b.type != BodyType::dynamic || b.disc) continue;
     ShapeState& s = state_[i];
     const double motion = det::hypot(s.x - s.x0, s.y - s.y0) + std::abs(s.a - s.a0) * b.extent;
     if (!(motion > 0.5 * b.thinnest)) continue;  // Box2D v3's test of a fast body
+    if (!ready) {                                // once a tick, and only in a tick with a fast body
+      row_keys_.clear(), statics_.clear();
+      for (const ShapeRow& r : rows_) row_keys_.push_back(r.pair);
+      std::sort(row_keys_.begin(), row_keys_.end());
+      for (std::uint32_t o = 0; o < bodies_.size(); ++o) {
+        if (bodies_[o].type == BodyType::static_body) statics_.push_back(o);
+      }
+      ready = true;
+    }
     s.q = rot_of(s.a);
     const double t = first_static_touch(i, tick);
     if (t >= 1.0) continue;
@@ -93,11 +103,9 @@ void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
   }
 }
 
-bool ShapeWorld::has_row(std::uint32_t body, std::uint64_t pair) const {
-  for (const ShapeRow& r : rows_) {
-    if (r.pair == pair && (r.a == body || r.b == body)) return true;
-  }
-  return false;
+// Whether the tick has a row of this pair of shapes (a key names both, the body's among them).
+bool ShapeWorld::has_row(std::uint64_t pair) const {
+  return std::binary_search(row_keys_.begin(), row_keys_.end(), pair);
 }
 
 double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick) {
@@ -112,7 +120,7 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
     if (e.sensor) continue;
     const Aabb swept = merge(convex_aabb(e.convex, start), convex_aabb(e.convex, pose(body)));
     for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
-      if (has_row(body, std::uint64_t{0xF0000000u | p} << 32 | e.key)) continue;
+      if (has_row(std::uint64_t{0xF0000000u | p} << 32 | e.key)) continue;
       const PlaneDef& pl = tick.planes[p];
       const double len = det::hypot(pl.normal.x, pl.normal.y);
       const Vec2 n = pl.normal / len;
@@ -123,15 +131,14 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
     for (std::uint32_t q = 0; q < tick.segments.size(); ++q) {
       const SegmentDef& seg = tick.segments[q];
       if (!boxes_overlap(swept, segment_bounds(seg))) continue;
-      if (has_row(body, std::uint64_t{0xE0000000u | q} << 32 | e.key)) continue;
+      if (has_row(std::uint64_t{0xE0000000u | q} << 32 | e.key)) continue;
       const Convex c = segment_convex(seg.a, seg.b);
       const Sweep still{{0, 0}, {0, 0}, 0, 0};
       if (distance(c, Pose{}, e.convex, start).distance < 2.0 * target) continue;
       const Toi toi = time_of_impact(c, still, e.convex, sweep, target, 0.25 * target, first);
       if (toi.hit) first = std::min(first, toi.t);
     }
-    for (std::uint32_t o = 0; o < bodies_.size(); ++o) {
-      if (bodies_[o].type != BodyType::static_body || o == body) continue;
+    for (const std::uint32_t o : statics_) {
       const Pose at = pose(o);
       const Sweep still{{at.p.x, at.p.y}, {at.p.x, at.p.y}, state_[o].a, state_[o].a};
       for (std::uint32_t q = bodies_[o].first; q < bodies_[o].first + bodies_[o].count; ++q) {
@@ -139,7 +146,7 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
         if (f.sensor || !should_collide(e.filter, f.filter)) continue;
         if (!boxes_overlap(swept, convex_aabb(f.convex, at))) continue;
         const std::uint32_t lo = std::min(q, k), hi = std::max(q, k);
-        if (has_row(body, std::uint64_t{shapes_[lo].key} << 32 | shapes_[hi].key)) continue;
+        if (has_row(std::uint64_t{shapes_[lo].key} << 32 | shapes_[hi].key)) continue;
         if (distance(f.convex, at, e.convex, start).distance < 2.0 * target) continue;
         const Toi toi =
             time_of_impact(f.convex, still, e.convex, sweep, target, 0.25 * target, first);

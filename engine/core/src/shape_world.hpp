@@ -174,6 +174,10 @@ class ShapeWorld {
   std::vector<Candidate> sensor_candidates_;  ///< a: the sensor shape
   std::vector<Sensed> sensed_;
   std::vector<ShapeRow> rows_;
+  /// For the continuous check, made at the tick's first fast body: the rows' pair keys sorted
+  /// (what a fast body already has a row with) and the static bodies.
+  std::vector<std::uint64_t> row_keys_;
+  std::vector<std::uint32_t> statics_;
   std::vector<ShapeWarm> next_warm_;
   std::vector<double> margin_;  ///< each body's speculative margin this tick, m
   double dt_ = 0.0;
@@ -183,7 +187,7 @@ class ShapeWorld {
   [[nodiscard]] double margin(std::uint32_t body, double dt) const;
   void continuous(const ShapeTick& tick, ShapeTally& tally);
   double first_static_touch(std::uint32_t body, const ShapeTick& tick);
-  [[nodiscard]] bool has_row(std::uint32_t body, std::uint64_t pair) const;
+  [[nodiscard]] bool has_row(std::uint64_t pair) const;
   bool broadphase(double dt, ShapeTally& tally);
   void collect(const ShapeTick& tick);
   void solve_rolling(ShapeRow& r, double normal_impulse);
