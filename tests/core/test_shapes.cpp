@@ -23,18 +23,9 @@ namespace {
 constexpr double g = 9.81;
 
 WorldSettings shape_world(double mu, double e = 0.0) {
-  WorldSettings s{.dt = 1.0 / 60.0};
-  s.contacts = ContactSettings{.restitution = e, .friction = mu};
-  return s;
+  return shape_exact::shape_settings(mu, e);
 }
-
-BodyDef box_body(double hx, double hy, Vec2 at, double angle = 0.0, double mass = 1.0) {
-  BodyDef b;
-  b.body = Body{.mass = mass, .position = at, .angle = angle};
-  b.gravity = Gravity{{0.0, -g}};
-  b.shapes = {make_box(hx, hy)};
-  return b;
-}
+using shape_exact::box_body;
 
 // --- the exact checks (tests/cross/shape_exact.cpp, which the cross builds run too) ---------
 

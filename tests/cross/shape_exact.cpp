@@ -24,17 +24,7 @@ namespace {
 constexpr double g = 9.81;
 
 WorldSettings shape_world(double mu, double e = 0.0) {
-  WorldSettings s{.dt = 1.0 / 60.0};
-  s.contacts = ContactSettings{.restitution = e, .friction = mu};
-  return s;
-}
-
-BodyDef box_body(double hx, double hy, Vec2 at, double angle = 0.0, double mass = 1.0) {
-  BodyDef b;
-  b.body = Body{.mass = mass, .position = at, .angle = angle};
-  b.gravity = Gravity{{0.0, -g}};
-  b.shapes = {make_box(hx, hy)};
-  return b;
+  return shape_settings(mu, e);
 }
 
 PlaneDef ground(double mu) {
@@ -305,6 +295,20 @@ std::vector<Measure> rolling_resistance() {
 }
 
 }  // namespace
+
+WorldSettings shape_settings(double mu, double e) {
+  WorldSettings s{.dt = 1.0 / 60.0};
+  s.contacts = ContactSettings{.restitution = e, .friction = mu};
+  return s;
+}
+
+BodyDef box_body(double hx, double hy, Vec2 at, double angle, double mass) {
+  BodyDef b;
+  b.body = Body{.mass = mass, .position = at, .angle = angle};
+  b.gravity = Gravity{{0.0, -g}};
+  b.shapes = {make_box(hx, hy)};
+  return b;
+}
 
 std::vector<Check> checks() {
   return {

@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world_settings.hpp"
+
 namespace fixstep::shape_exact {
 
 /// One measured quantity and the closed interval [low, high] it must lie in (a closed form ±
@@ -37,6 +40,14 @@ inline void PrintTo(const Check& c, std::ostream* os) {
 /// boxes and discs, a box resting flat on two corners, a 20-box tower and a 20-row pyramid
 /// standing for 10 s, a fast spinning box against a thin wall, and rolling resistance.
 [[nodiscard]] std::vector<Check> checks();
+
+/// The checks' world: dt = 1/60 s, contacts with μ and e as every pair's default.
+[[nodiscard]] WorldSettings shape_settings(double mu, double e = 0.0);
+
+/// A dynamic box of half-extents hx, hy (m) at `at` turned by `angle` (rad), `mass` kg, under
+/// gravity 9.81 m/s² downwards.
+[[nodiscard]] BodyDef box_body(double hx, double hy, Vec2 at, double angle = 0.0,
+                               double mass = 1.0);
 
 /// `value` within `tolerance` of `expected`.
 [[nodiscard]] inline Measure near(std::string what, double value, double expected,
