@@ -80,7 +80,7 @@ void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
   bool ready = false;
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
     const ShapedBody& b = bodies_[i];
-    if (b.type != BodyType::dynamic || b.disc) continue;
+    if (!awake(b) || b.disc) continue;
     ShapeState& s = state_[i];
     const double motion = det::hypot(s.x - s.x0, s.y - s.y0) + std::abs(s.a - s.a0) * b.extent;
     if (!(motion > 0.5 * b.thinnest)) continue;  // Box2D v3's test of a fast body
@@ -180,7 +180,7 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
     const double a = boxes_[l].lower.x, b = boxes_[r].lower.x;
     return a != b ? a < b : l < r;
   });
-  candidates_.clear(), sensor_candidates_.clear();
+  candidates_.clear(), sensor_candidates_.clear(), wake_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t a = order_[i];
     const ShapeEntry& sa = shapes_[a];
@@ -201,11 +201,17 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
       if (ba.type != BodyType::dynamic && bb.type != BodyType::dynamic) continue;
       if (ba.disc && bb.disc) continue;  // the disc phase's
       if (!should_collide(sa.filter, sb.filter)) continue;
-      if (sa.sensor || sb.sensor) {  // a sensor sees what is not one
+      if (sa.sensor || sb.sensor) {  // a sensor sees what is not one, asleep or not
         if (sa.sensor != sb.sensor)
           sensor_candidates_.push_back(sa.sensor ? Candidate{a, b} : Candidate{b, a});
         continue;
       }
+      // A sleeper is solved as static: a pair of two that do not move is left out, and a
+      // sleeper paired with a moving body wakes (ShapeTick::wake).
+      const bool wake_a = ba.asleep && moving(sb.owner), wake_b = bb.asleep && moving(sa.owner);
+      if (!awake(ba) && !awake(bb) && !wake_a && !wake_b) continue;
+      if (wake_a) wake_.push_back(sa.owner);
+      if (wake_b) wake_.push_back(sb.owner);
       candidates_.push_back({std::min(a, b), std::max(a, b)});
     }
   }
@@ -249,7 +255,7 @@ void ShapeWorld::collect(const ShapeTick& tick) {
   for (std::uint32_t k = 0; k < shapes_.size(); ++k) {
     const ShapeEntry& e = shapes_[k];
     const ShapedBody& b = bodies_[e.owner];
-    if (b.type != BodyType::dynamic || b.disc || e.sensor) continue;
+    if (!awake(b) || b.disc || e.sensor) continue;
     const Pose at = start_pose(e.owner);
     const double margin = margin_[e.owner];
     for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
@@ -288,10 +294,22 @@ void ShapeWorld::detect_sensors() {
   }
 }
 
+bool ShapeWorld::moving(std::uint32_t body) const {
+  const ShapedBody& b = bodies_[body];
+  if (b.type != BodyType::kinematic) return awake(b);
+  const ShapeState& s = state_[body];
+  return s.vx != 0.0 || s.vy != 0.0 || s.w != 0.0;
+}
+
 ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
   for (ShapeState& s : state_) s.q0 = rot_of(s.a0);
-  if (!broadphase(tick.dt, tally)) {  // a work limit: the tick's shape contacts unresolved
+  bool paired = broadphase(tick.dt, tally);
+  if (paired && !wake_.empty() && tick.wake) {  // sleepers woken: paired again as they now are
+    tick.wake(tick.wake_context);
+    paired = broadphase(tick.dt, tally);
+  }
+  if (!paired) {  // a work limit: the tick's shape contacts unresolved
     rows_.clear();
     return tally;
   }

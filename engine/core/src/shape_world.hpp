@@ -49,6 +49,9 @@ struct ShapedBody {
   std::uint32_t set = none;  ///< its ShapeSet in the kernel's store (none: a disc)
   BodyType type = BodyType::dynamic;
   bool disc = false;  ///< a disc (Collider): its contacts with discs are the disc phase's
+  /// A dynamic body asleep this tick (ContactSettings::sleep): solved as a static one (its
+  /// inverse mass and inertia 0) unless a moving body pairs with it, which wakes its island.
+  bool asleep = false;
   double inv_mass = 0.0, inv_inertia = 0.0;  ///< 1/kg, 1/(kg·m²); 0 for static and kinematic
   std::uint32_t first = 0, count = 0;        ///< its shapes in ShapeWorld::shapes_
   double extent = 0.0;                       ///< m, the farthest point from its centre
@@ -121,6 +124,11 @@ struct ShapeTick {
   int velocity_iterations = 8, position_iterations = 3;
   std::span<const PlaneDef> planes;
   std::span<const SegmentDef> segments;
+  /// With sleeping bodies: called once the broadphase paired a sleeper with a moving body
+  /// (ShapeWorld::woken()); it wakes their islands and clears their `asleep` (and sets their
+  /// masses back), and the broadphase runs again.
+  void (*wake)(void* context) = nullptr;
+  void* wake_context = nullptr;
 };
 
 /// What one tick's shape contacts did, for the statistics and the energy account.
@@ -163,11 +171,22 @@ class ShapeWorld {
     friend bool operator==(const Sensed&, const Sensed&) = default;
   };
   [[nodiscard]] std::span<const Sensed> sensed() const { return sensed_; }
+  /// The broadphase's pairs of shapes (shapes_ indices, a < b) whose boxes overlap, sorted.
+  struct Candidate {
+    std::uint32_t a, b;
+  };
+  [[nodiscard]] std::span<const Candidate> candidates() const { return candidates_; }
+  /// The sleepers (bodies_ indices) the broadphase paired with a moving body this tick.
+  [[nodiscard]] std::span<const std::uint32_t> woken() const { return wake_; }
 
  private:
-  struct Candidate {
-    std::uint32_t a, b;  ///< shapes_ indices, a < b
-  };
+  std::vector<std::uint32_t> wake_;
+  /// Awake and dynamic: what the solver moves.
+  [[nodiscard]] bool awake(const ShapedBody& b) const {
+    return b.type == BodyType::dynamic && !b.asleep;
+  }
+  /// Awake and dynamic, or kinematic and moving (turning or not): what wakes a sleeper.
+  [[nodiscard]] bool moving(std::uint32_t body) const;
   std::vector<Aabb> boxes_;
   std::vector<std::uint32_t> order_;
   std::vector<Candidate> candidates_;

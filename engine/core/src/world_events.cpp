@@ -47,6 +47,14 @@ void detail::WorldKernel<Real>::update_contact_events(bool discs) {
   touching_.clear();
   if (discs) add_disc_touching();
   if (shape_world_) add_shape_touching();
+  if (sleepers_ != 0) {  // two sleepers are not solved, and stay in touch (ContactSettings::sleep)
+    for (const ContactEvent& p : touching_before_) {
+      if (bodies_.contains(p.a) && bodies_.contains(p.b) && asleep(bodies_.index(p.a)) &&
+          asleep(bodies_.index(p.b))) {
+        touching_.push_back(p);
+      }
+    }
+  }
   diff_contact_events();
 }
 
@@ -91,14 +99,6 @@ void detail::WorldKernel<Real>::add_disc_touching() {
       touching_[first + i] = pair_of(discs[c.a].body, discs[c.b].body, 0.0);
     }
   });
-  if (sleepers_ != 0) {  // two sleepers are not solved, and stay in touch (ContactSettings::sleep)
-    for (const ContactEvent& p : touching_before_) {
-      if (bodies_.contains(p.a) && bodies_.contains(p.b) && asleep(bodies_.index(p.a)) &&
-          asleep(bodies_.index(p.b))) {
-        touching_.push_back(p);
-      }
-    }
-  }
   for (const DiscImpact& i : dc.impacts()) {
     hits_.push_back(pair_of(i.body_a, i.body_b, i.normal_speed));
     impacts_.push_back(Impact{ids[i.body_a], ids[i.body_b], i.time, i.normal_speed});

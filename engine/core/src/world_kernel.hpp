@@ -703,6 +703,7 @@ class WorldKernel {
   std::uint32_t next_island_ = 1;
   std::uint32_t sleep_ticks_ = 0;               ///< ticks below the speed before an island sleeps
   std::size_t sleepers_ = 0;                    ///< bodies asleep
+  std::size_t disc_sleepers_ = 0;               ///< discs among them
   bool sleep_ = false;                          ///< ContactSettings::sleep
   bool immovable_dirty_ = false;                ///< the immovable list misses a change of sleepers
   std::vector<std::int32_t> disc_of_;           ///< body -> disc index, or -1 (rebuild_discs)
@@ -737,8 +738,21 @@ class WorldKernel {
   void wake_labelled();
   /// Puts the island of the body at dense index i in wake_labels_ (false when it is awake).
   bool mark_awake(std::size_t index);
-  /// After the tick: contacts with sleepers wake them; islands at rest fall asleep.
-  void update_sleep(const TickInput& input);
+  /// After the tick: contacts with sleepers wake them; islands at rest fall asleep. `discs`:
+  /// the disc phases ran this tick (their contacts are the tick's).
+  void update_sleep(const TickInput& input, bool discs);
+  // Bodies with shapes in the islands (world_shape_sleep.cpp).
+  /// Each shaped body's `asleep` flag and masses in the shape world from asleep_.
+  void mark_shape_sleepers();
+  /// ShapeTick::wake: the islands of the sleepers the shape broadphase paired with a mover.
+  static void wake_shape_sleepers(void* kernel);
+  /// Still ticks of the awake dynamic bodies with shapes (speed, and rim speed ω · extent);
+  /// true when one is ready to sleep.
+  bool count_still_shapes(double speed2);
+  /// The shape contacts' and pairs' part of join_islands.
+  void join_shape_islands();
+  /// Whether no body with shapes moves: every dynamic one asleep, every kinematic one still.
+  [[nodiscard]] bool shapes_at_rest() const;
   /// Joins the tick's awake islands (island_parent_); island_blocked_[root] for an island that
   /// may not sleep.
   void join_islands();

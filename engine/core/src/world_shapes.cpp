@@ -292,6 +292,10 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.position_iterations = cs.position_iterations;
   tick.planes = planes_;
   tick.segments = segments_.defs();
+  if (sleep_) {  // sleepers solved as static; one paired with a mover wakes its island
+    mark_shape_sleepers();
+    tick.wake = &WorldKernel::wake_shape_sleepers, tick.wake_context = this;
+  }
   const bool account = settings_.track_dissipation;
   if (account) shape_energies(w.energy_);
   const ShapeTally tally = w.solve(tick);

@@ -30,7 +30,9 @@
 #include <stdexcept>
 
 #include "disc_contacts.hpp"
+#include "island_union.hpp"
 #include "query_grid.hpp"
+#include "shape_world.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -38,17 +40,6 @@ namespace fixstep {
 namespace {
 
 constexpr std::uint32_t still_cap = 0xffffffffu;  // a saturating count of still ticks
-
-std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t j) {
-  while (parent[j] != j) j = parent[j] = parent[parent[j]];  // path halving
-  return j;
-}
-
-void join(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b) {
-  a = find_root(parent, a), b = find_root(parent, b);
-  if (a < b) parent[b] = a;
-  if (b < a) parent[a] = b;
-}
 
 }  // namespace
 
@@ -72,7 +63,7 @@ void detail::WorldKernel<Real>::reset_sleep() {
   const std::size_t n = body_count();
   still_ticks_.assign(n, 0);
   asleep_.assign(n, 0);
-  sleepers_ = 0;
+  sleepers_ = 0, disc_sleepers_ = 0;
   if (sleep_grid_) sleep_grid_->stale = true;
 }
 
@@ -102,9 +93,11 @@ void detail::WorldKernel<Real>::wake_labelled() {
       continue;
     }
     asleep_[j] = 0, still_ticks_[j] = 0, --sleepers_;
-    const std::int32_t k = disc_of_[j];
+    const std::int32_t k = disc_of_.empty() ? -1 : disc_of_[j];
+    if (k < 0) continue;  // a body with shapes: mark_shape_sleepers sets its masses back
     const double inv_i = rolling_ ? inv_inertia_[j] : 0.0;
     discs_->set_asleep(static_cast<std::uint32_t>(k), false, 1.0 / mass_[j], inv_i);
+    --disc_sleepers_;
   }
   wake_labels_.clear();
   immovable_dirty_ = true;
@@ -190,7 +183,7 @@ void detail::WorldKernel<Real>::wake_near_movers() {
 
 template <class Real>
 bool detail::WorldKernel<Real>::discs_at_rest() const {
-  if (sleepers_ < dynamic_discs_) return false;
+  if (disc_sleepers_ < dynamic_discs_) return false;
   return std::all_of(kinematic_discs_.begin(), kinematic_discs_.end(),
                      [&](std::uint32_t j) { return vx_[j] == Real(0) && vy_[j] == Real(0); });
 }
@@ -210,40 +203,43 @@ void detail::WorldKernel<Real>::join_islands() {
   for (std::uint32_t j = 0; j < n; ++j) island_parent_[j] = j;
   std::vector<std::uint8_t>& blocked = island_blocked_;
   blocked.assign(n, 0);
-  const auto discs = discs_->discs();
+  if (shape_world_) join_shape_islands();  // world_shape_sleep.cpp
+  const auto discs = discs_ ? discs_->discs() : std::span<const Disc>{};
   auto moving = [&](std::uint32_t j) {
     return types_[j] == BodyType::kinematic && (vx_[j] != Real(0) || vy_[j] != Real(0));
   };
   // Two awake dynamic bodies: a sleeper near an awake island stays an island of its own.
   auto awake = [&](std::uint32_t j) { return types_[j] == BodyType::dynamic && asleep_[j] == 0; };
-  for (const RestContact& c : discs_->touching()) {
+  const auto touching = discs_ ? discs_->touching() : std::span<const RestContact>{};
+  for (const RestContact& c : touching) {
     if (c.b >= discs.size()) {  // a plane or a segment: static, unless a kinematic body's
       if (c.kinematic_b) blocked[discs[c.a].body] = 1;
       continue;
     }
     const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
     const bool da = awake(a), db = awake(b);
-    if (da && db) join(island_parent_, a, b);
+    if (da && db) detail::join(island_parent_, a, b);
     if (da && moving(b)) blocked[a] = 1;
     if (db && moving(a)) blocked[b] = 1;
   }
   // Discs near enough to be paired by the broadphase share an island too: an awake one would
   // otherwise wake a sleeping neighbour every tick (Box2D links islands through contacts
   // within its speculative distance for the same reason).
-  for (const DiscPair& p : discs_->candidate_pairs()) {
+  const auto pairs = discs_ ? discs_->candidate_pairs() : std::span<const DiscPair>{};
+  for (const DiscPair& p : pairs) {
     const std::uint32_t a = discs[p.a].body, b = discs[p.b].body;
-    if (awake(a) && awake(b)) join(island_parent_, a, b);
+    if (awake(a) && awake(b)) detail::join(island_parent_, a, b);
   }
   for (std::size_t l = 0; l < net_.a.size(); ++l) {
     const std::uint32_t a = net_.a[l], b = net_.b[l];
     const bool da = awake(a), db = awake(b);
-    if (da && db) join(island_parent_, a, b);
+    if (da && db) detail::join(island_parent_, a, b);
     if (da && moving(b)) blocked[a] = 1;
     if (db && moving(a)) blocked[b] = 1;
   }
   for (std::uint32_t j = 0; j < n; ++j) {  // a body not ready, or blocked, keeps its island up
     const bool ready = still_ticks_[j] >= sleep_ticks_ && asleep_[j] == 0;
-    if (!ready || blocked[j]) blocked[find_root(island_parent_, j)] = 1;
+    if (!ready || blocked[j]) blocked[detail::find_root(island_parent_, j)] = 1;
   }
 }
 
@@ -256,10 +252,17 @@ void detail::WorldKernel<Real>::fall_asleep(std::size_t j, std::uint32_t label) 
     joules_per_kg += 0.5 * w * w / (inv_inertia_[j] * mass_[j]);
     spin_[j] = Real(0);
   }
+  const std::int32_t disc = disc_of_.empty() ? -1 : disc_of_[j];
+  if (disc < 0) {  // a body with shapes: its turn stops too
+    ShapeSet& set = shape_sets_.data[shape_sets_.set.index(bodies_.dense[j])];
+    joules_per_kg += 0.5 * set.inertia * set.spin * set.spin / mass_[j];
+    set.spin = 0.0;
+  }
   if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(joules_per_kg);
   vx_[j] = Real(0), vy_[j] = Real(0);
   asleep_[j] = label, ++sleepers_;
-  discs_->set_asleep(static_cast<std::uint32_t>(disc_of_[j]), true, 0.0, 0.0);
+  if (disc >= 0)
+    discs_->set_asleep(static_cast<std::uint32_t>(disc), true, 0.0, 0.0), ++disc_sleepers_;
 }
 
 template <class Real>
@@ -272,10 +275,12 @@ std::uint32_t detail::WorldKernel<Real>::take_island_number() {
 }
 
 template <class Real>
-void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
-  const auto discs = discs_->discs();
+void detail::WorldKernel<Real>::update_sleep(const TickInput& input, bool disc_phases) {
+  const auto discs = disc_phases ? discs_->discs() : std::span<const Disc>{};
+  const auto touching = disc_phases ? discs_->touching() : std::span<const RestContact>{};
+  const auto impacts = disc_phases ? discs_->impacts() : std::span<const DiscImpact>{};
   // Contacts and impacts that reached a sleeper: it acted as a static disc this tick.
-  for (const RestContact& c : discs_->touching()) {
+  for (const RestContact& c : touching) {
     if (c.b >= discs.size()) continue;
     const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
     if (asleep_[a] != 0 && asleep_[b] == 0 && types_[b] == BodyType::dynamic) {
@@ -285,7 +290,7 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
       wake_labels_.push_back(asleep_[b]), ++sleeper_contacts_;
     }
   }
-  for (const DiscImpact& i : discs_->impacts()) {
+  for (const DiscImpact& i : impacts) {
     for (const std::uint32_t j : {i.body_a, i.body_b}) {
       if (asleep_[j] != 0) wake_labels_.push_back(asleep_[j]), ++sleeper_contacts_;
     }
@@ -303,14 +308,17 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
     still = v2 < s2 ? std::min(still_cap - 1, still) + 1 : 0;
     ready = ready || still >= sleep_ticks_;
   }
+  if (shape_world_) ready = count_still_shapes(s2) || ready;  // world_shape_sleep.cpp
   for (const BodyInput& b : input.bodies) {
     if (bodies_.contains(b.body)) still_ticks_[bodies_.index(b.body)] = 0;
   }
   if (!ready) return;
   join_islands();
   for (std::uint32_t j = 0; j < body_count(); ++j) {
-    if (asleep_[j] != 0 || types_[j] != BodyType::dynamic || disc_of_[j] < 0) continue;
-    const std::uint32_t root = find_root(island_parent_, j);
+    if (asleep_[j] != 0 || types_[j] != BodyType::dynamic) continue;
+    const bool disc = !disc_of_.empty() && disc_of_[j] >= 0;
+    if (!disc && !shape_sets_.set.contains(bodies_.dense[j])) continue;  // a point body
+    const std::uint32_t root = detail::find_root(island_parent_, j);
     if (island_blocked_[root]) continue;
     // The root is the island's smallest index, so it is met first and takes the next number.
     fall_asleep(j, root == j ? take_island_number() : asleep_[root]);
@@ -321,7 +329,7 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input) {
 
 template <class Real>
 void detail::WorldKernel<Real>::finish_sleep(const TickInput& input, bool discs) {
-  if (discs) update_sleep(input);
+  if (discs || shape_world_) update_sleep(input, discs);
   contact_stats_.sleeping = sleepers_;
   contact_stats_.woken = woken_;
   contact_stats_.sleeper_contacts = sleeper_contacts_;

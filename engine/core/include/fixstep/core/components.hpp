@@ -151,12 +151,12 @@ struct ContactSettings {
   /// contacts alike. Off (the default): no angle is stored or stepped, friction acts on the
   /// centres' velocities, and nothing is paid for it.
   bool rolling = false;
-  /// Sleeping islands: bodies joined by resting disc contacts and links form an island; one
-  /// whose every body is a dynamic disc that has stayed slower than sleep_speed (its centre,
-  /// and with rolling discs its rim) for sleep_time, without input, falls asleep: its
-  /// velocities become 0 and it is neither stepped nor solved (it acts as a static body)
-  /// until an awake disc's motion over a tick comes near it, a resting contact or link joins
-  /// it to an awake body, or input or an edit touches one of its bodies (Box2D's
+  /// Sleeping islands: bodies joined by resting contacts (discs' and shapes') and links form an
+  /// island; one whose every body is a dynamic disc or body with shapes that has stayed slower
+  /// than sleep_speed (its centre, and its rim when it turns) for sleep_time, without input,
+  /// falls asleep: its velocities become 0 and it is neither stepped nor solved (it acts as a
+  /// static body) until an awake body's motion over a tick comes near it, a resting contact or
+  /// link joins it to an awake body, or input or an edit touches one of its bodies (Box2D's
   /// b2_timeToSleep rule, Catto 2006). Off (the default): every body is stepped every tick,
   /// as in a world from before sleeping; on, a sleeping island ignores the forces too small
   /// to wake it (a pile on a slowly tilting plane stays put).
