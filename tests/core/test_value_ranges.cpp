@@ -9,6 +9,8 @@
 #include <string>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/shape.hpp"
 #include "fixstep/core/stability.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/value_ranges.hpp"
@@ -139,6 +141,34 @@ TEST(ValueRanges, TheGuardSeesAnAngularVelocityBeyondTheRange) {
   EXPECT_NE(why.find("angular_velocity = "), std::string::npos) << why;
   EXPECT_NE(why.find(" rad/s ("), std::string::npos) << why;
   EXPECT_NE(why.find("moment of inertia"), std::string::npos) << why;
+}
+
+// A box (1 kg, 1 m, I = 1/6 kg*m^2) given an angular impulse of 1e12 N*m*s turns at 6e12 rad/s,
+// beyond the range: the guard stops the world there naming the body and angular_velocity, and
+// the explanation speaks of its moment of inertia (it looked at x, y, vx and vy only).
+TEST(ValueRanges, TheGuardSeesAShapedBodysAngularVelocityBeyondTheRange) {
+  WorldDef def = WorldDef::empty(Precision::f64, WorldSettings{.dt = 0.01});
+  BodyDef b;
+  b.name = "crate";
+  b.body.mass = 1.0;
+  b.shapes = {make_box(0.5, 0.5)};
+  def.add_body(b);
+  World world(def);
+  TickInput in;
+  in.bodies.push_back(BodyInput{.body = world.defined_bodies()[0],
+                                .kind = BodyInputKind::angular_impulse,
+                                .value = {1e12, 0.0}});
+  world.step(in);
+  ASSERT_TRUE(world.fault().has_value()) << "the box spins beyond 1e12 rad/s unseen";
+  const StateFault& f = *world.fault();
+  EXPECT_EQ(f.name, "crate");
+  EXPECT_EQ(f.field, "angular_velocity");
+  EXPECT_NEAR(f.value, 6e12, 1.0);
+  const std::string why = explain_fault(def.bodies, def.links, def.settings, f);
+  EXPECT_NE(why.find("body[0] \"crate\": state left the finite range at tick 1"), std::string::npos)
+      << why;
+  EXPECT_NE(why.find("moment of inertia 0.166667 kg*m^2 (from its shapes"), std::string::npos)
+      << why;
 }
 
 }  // namespace

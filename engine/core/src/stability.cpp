@@ -12,6 +12,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/defined_bodies.hpp"
 #include "fixstep/core/input.hpp"
+#include "fixstep/core/shape.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "stability_internal.hpp"
@@ -220,6 +221,14 @@ std::string explain_account(const std::string& head, const BodyDef& d, const std
         "{}. Likely cause: damping, drag or contacts took more energy than a number holds: the "
         "body's mass ({:g} kg) and speed, or its damping and drag coefficients, are extreme",
         head, d.body.mass);
+  }
+  if (!d.shapes.empty()) {
+    const double inertia = d.inertia ? *d.inertia : body_mass(d.shapes, d.body.mass).inertia;
+    return fmt::format(
+        "{}. Likely cause: a torque or angular impulse input, or a contact, turned the body by "
+        "1 / I per unit of angular impulse: its moment of inertia {:g} kg*m^2 (from its shapes, "
+        "or BodyDef::inertia), or its starting angular velocity ({:g} rad/s); check them",
+        head, inertia, d.body.angular_velocity);
   }
   const double r = d.collider ? d.collider->radius : 0.0;
   const double inertia =

@@ -278,8 +278,8 @@ void detail::WorldKernel<Real>::integrate(const TickInput& input) {
 }
 
 // Cold path: find the first body (dense order) and field out of range after this tick: its
-// x, y, vx, vy; with rolling discs its angle and angular velocity; with the energy account its
-// dissipated energy (finite), then each link's (named by its first body).
+// x, y, vx, vy; with rolling discs, or shapes, its angle and angular velocity; with the energy
+// account its dissipated energy (finite), then each link's (named by its first body).
 template <class Real>
 void detail::WorldKernel<Real>::record_fault() {
   auto fault_at = [&](std::size_t j, const char* field, double v) {
@@ -301,6 +301,13 @@ void detail::WorldKernel<Real>::record_fault() {
       if (!(std::abs(v) <= max_state_magnitude)) {
         fault_at(j, names[f], v);
         return;
+      }
+    }
+    if (!shape_sets_.data.empty() && shape_sets_.set.contains(bodies_.dense[j])) {
+      const ShapeSet& s = shape_sets_.data[shape_sets_.set.index(bodies_.dense[j])];
+      if (!(std::abs(s.angle) <= max_state_magnitude)) return fault_at(j, "angle", s.angle);
+      if (!(std::abs(s.spin) <= max_state_magnitude)) {
+        return fault_at(j, "angular_velocity", s.spin);
       }
     }
     if (!std::isfinite(dissipated_body_[j])) {
