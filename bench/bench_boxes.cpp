@@ -1,7 +1,7 @@
 // Boxes for the rotating-shapes work, in one run (Google Benchmark): Box2D's 20-row pyramid (210
-// boxes of 1 m on a static ground, ticks 61-80) and a pile of 10⁴ boxes dropped into a container
-// (ticks 121-140, while it settles) (boxes.hpp), built by one generator and stepped at
-// dt = 1/60 s by
+// boxes of 1 m on a static ground, ticks 61-80), a tower of 20 of them (the same ticks) and a pile
+// of 10⁴ boxes dropped into a container (ticks 121-140, while it settles) (boxes.hpp), built by one
+// generator and stepped at dt = 1/60 s by
 //   fixstep    World with BodyDef::shapes (a box each), planes for ground and walls and
 //              WorldSettings::contacts, on 1 and 2 threads (boxes_fixstep.cpp); should World
 //              not collide shapes, the run says "fixstep: shapes not yet supported" and why;
@@ -197,7 +197,8 @@ constexpr int ticks_per_repetition = 4;
 
 void register_all(const Options& o, bool fixstep) {
   std::vector<std::pair<BoxSceneKind, std::int64_t>> cases = {
-      {BoxSceneKind::pyramid, std::int64_t(make_pyramid().start.size())}};
+      {BoxSceneKind::pyramid, std::int64_t(make_pyramid().start.size())},
+      {BoxSceneKind::tower, std::int64_t(make_tower().start.size())}};
   for (const std::int64_t n : pile_sizes(o)) cases.emplace_back(BoxSceneKind::box_pile, n);
   for (const auto& [scene, n] : cases) {
     const BoxSceneKind kind = scene;  // a variable the lambda can capture (clang < 16)

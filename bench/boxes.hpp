@@ -36,6 +36,10 @@ inline constexpr double restitution = 0.0;  ///< e, every shape: b2DefaultShapeD
 // is y = 0. Warmed up for `pyramid_warmup` ticks, untimed, then timed.
 inline constexpr int pyramid_rows = 20;
 inline constexpr int pyramid_warmup = 60;
+// The tower: 20 boxes of 1 m stacked one on another, centred at x = 0, y = (2 i + 1) a
+// (touching), on the same ground; warmed up and timed as the pyramid (the shapes issue's
+// "20-box tower", against Box2D on the same scene).
+inline constexpr int tower_boxes = 20;
 // The box pile: N boxes dropped into a container (ground y = 0, walls x = 0 and x = width) from
 // a grid of columns = ⌈2 √N⌉ and as many rows as N needs, 1.3 m apart (the lowest row's centres
 // 1 m up), each turned by a random angle in [-0.25, 0.25] rad (a SplitMix64 stream; at 1.3 m no
@@ -45,7 +49,7 @@ inline constexpr double pile_spacing = 1.3;    ///< m
 inline constexpr double pile_max_tilt = 0.25;  ///< rad
 inline constexpr int pile_warmup = 120;
 
-enum class BoxSceneKind { pyramid, box_pile };
+enum class BoxSceneKind { pyramid, tower, box_pile };
 [[nodiscard]] const char* box_scene_name(BoxSceneKind k);
 
 /// A box's centre (m) and angle (rad, counter-clockwise).
@@ -66,8 +70,9 @@ struct BoxScene {
 };
 
 [[nodiscard]] BoxScene make_pyramid(int rows = pyramid_rows);
+[[nodiscard]] BoxScene make_tower(int boxes = tower_boxes);
 [[nodiscard]] BoxScene make_box_pile(std::size_t n, std::uint64_t seed = 23);
-/// The pyramid ignores n (always 210 boxes).
+/// The pyramid and the tower ignore n (always 210 and 20 boxes).
 [[nodiscard]] BoxScene make_box_scene(BoxSceneKind k, std::size_t n);
 
 /// The overlap of two 1 m boxes by the separating axis theorem: the smallest overlap of their

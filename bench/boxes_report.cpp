@@ -55,15 +55,20 @@ std::string num(double v, const char* f = "{:.3g}") {
   return std::isnan(v) ? "–" : fmt::format(fmt::runtime(f), v);
 }
 
-/// The scene's cases: the pyramid's one size, the pile's sizes.
+/// The scene's cases: the pyramid's and the tower's one size, the pile's sizes.
 std::vector<std::pair<BoxSceneKind, std::int64_t>> scene_cases(const BoxResults& r) {
   std::vector<std::pair<BoxSceneKind, std::int64_t>> out = {
-      {BoxSceneKind::pyramid, std::int64_t(make_pyramid().start.size())}};
+      {BoxSceneKind::pyramid, std::int64_t(make_pyramid().start.size())},
+      {BoxSceneKind::tower, std::int64_t(make_tower().start.size())}};
   for (const std::int64_t n : r.pile_sizes) out.emplace_back(BoxSceneKind::box_pile, n);
   return out;
 }
 
 std::string scene_text(BoxSceneKind k) {
+  if (k == BoxSceneKind::tower) {
+    return fmt::format("tower of {} boxes, ticks {}–{}", tower_boxes, pyramid_warmup + 1,
+                       pyramid_warmup + 20);
+  }
   return k == BoxSceneKind::pyramid
              ? fmt::format("pyramid of {} rows, ticks {}–{}", pyramid_rows, pyramid_warmup + 1,
                            pyramid_warmup + 20)
@@ -98,11 +103,11 @@ std::string box_report_markdown(const BoxResults& r) {
       "Box-box: the separating axis theorem on every engine's poses (the same code for every "
       "engine); ground and walls: the deepest corner past them; own: the engine's deepest "
       "-separation over its contact manifolds (Box2D's as of its last collide phase, fixstep's "
-      "after its solve); pyramid: how far its top box has dropped, pile: the boxes' mean "
+      "after its solve); pyramid and tower: how far the top box has dropped, pile: the boxes' mean "
       "height.\n");
   line(
       "| scene | N | stepper | ns per body-step | box-box overlap | into ground and walls | own "
-      "(manifolds) | pyramid: top's drop, pile: mean height (m) |");
+      "(manifolds) | pyramid, tower: top's drop, pile: mean height (m) |");
   line("|---|---|---|---|---|---|---|---|");
   for (const auto& [kind, n] : scene_cases(r)) {
     for (const std::string& key : box_stepper_keys()) {

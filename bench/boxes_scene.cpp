@@ -12,6 +12,7 @@
 namespace boxes {
 
 const char* box_scene_name(BoxSceneKind k) {
+  if (k == BoxSceneKind::tower) return "tower";
   return k == BoxSceneKind::pyramid ? "pyramid" : "box_pile";
 }
 
@@ -61,6 +62,12 @@ BoxScene make_pyramid(int rows) {
   return s;
 }
 
+BoxScene make_tower(int boxes) {
+  BoxScene s{.kind = BoxSceneKind::tower, .warmup = pyramid_warmup};
+  for (int i = 0; i < boxes; ++i) s.start.push_back({{0.0, (2 * i + 1) * half}, 0.0});
+  return s;
+}
+
 BoxScene make_box_pile(std::size_t n, std::uint64_t seed) {
   if (n == 0) throw std::invalid_argument("make_box_pile: no boxes");
   const auto columns = std::size_t(std::ceil(2.0 * std::sqrt(double(n))));
@@ -79,6 +86,7 @@ BoxScene make_box_pile(std::size_t n, std::uint64_t seed) {
 }
 
 BoxScene make_box_scene(BoxSceneKind k, std::size_t n) {
+  if (k == BoxSceneKind::tower) return make_tower();
   return k == BoxSceneKind::pyramid ? make_pyramid() : make_box_pile(n);
 }
 
@@ -132,7 +140,7 @@ BoxQuality measure_boxes(const BoxScene& s, std::span<const Pose> poses) {
       }
     }
   }
-  if (s.kind == BoxSceneKind::pyramid) {
+  if (s.kind != BoxSceneKind::box_pile) {  // the pyramid's or the tower's top box
     if (!poses.empty()) q.height = s.start.back().position.y - poses.back().position.y;
   } else {
     double sum = 0.0;

@@ -5,7 +5,8 @@
 #   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers, with
 #                                       Box2D v3 where ../shared/peers has its source: ~6-9 min)
 #   bash bench/reproduce.sh shapes     (only section 7.1, boxes against Box2D v3.1.1 and v3.2:
-#                                       the 20-row pyramid and a settling pile of 10^4 boxes,
+#                                       the 20-row pyramid, a 20-box tower and a settling
+#                                       pile of 10^4 boxes,
 #                                       with fixstep's: ~20 s after the build)
 #   bash bench/reproduce.sh network    (only section 6.1: integrator costs and the trade on
 #                                       damped networks: ~3 min)
