@@ -117,17 +117,19 @@ namespace {
 /// Whether a point of separation s (m) and normal velocity vn (m/s) meets within the tick dt
 /// fast enough to bounce.
 bool meets(const ShapeRow& r, double vn, const ShapeTick& tick) {
-  return r.restitution > 0.0 && vn < -tick.restitution_threshold && vn < 0.0 &&
+  // (the threshold is >= 0, so a point that meets approaches)
+  return r.restitution > 0.0 && vn < -tick.restitution_threshold &&
          r.separation + vn * tick.dt < 0.0;
 }
 
 }  // namespace
 
 bool ShapeWorld::bounce(ShapeRow& r, const ShapeTick& tick) {
-  const double vn = dot(relative_velocity(r), r.n);
+  const Vec2 v = relative_velocity(r);
+  const double vn = dot(v, r.n);
   if (!meets(r, vn, tick)) return false;
   const double pn = -(1.0 + r.restitution) * vn * r.normal_mass;
-  const double vt = dot(relative_velocity(r), perp(r.n));
+  const double vt = dot(v, perp(r.n));
   const double pt = std::clamp(-vt * r.tangent_mass, -r.friction * pn, r.friction * pn);
   r.bn += pn, r.bt += pt;
   apply(r, pn, pt);

@@ -567,12 +567,13 @@ class WorldKernel {
   void integrate(const TickInput& input);  // one tick of the integrator (world_step.cpp)
   /// What a tick runs besides the integration (world_tick.cpp: plan_tick).
   struct TickPlan {
-    bool planes = false;      ///< contacts with planes (world_contacts.cpp)
-    bool immovable = false;   ///< static, kinematic or sleeping bodies put back after the step
-    bool quiet = false;       ///< every disc sleeps: the disc phases are skipped
-    bool discs = false;       ///< the disc phases run (world_discs.cpp, world_events.cpp, ...)
-    bool own_worker = false;  ///< the integration has a worker thread of its own (links)
-    int threads = 1;          ///< threads the disc phases may use
+    bool planes = false;        ///< contacts with planes (world_contacts.cpp)
+    bool immovable = false;     ///< static, kinematic or sleeping bodies put back after the step
+    bool quiet = false;         ///< every disc sleeps: the disc phases are skipped
+    bool shapes_still = false;  ///< sleepers, and nothing with shapes moves: no shape phase
+    bool discs = false;         ///< the disc phases run (world_discs.cpp, world_events.cpp, ...)
+    bool own_worker = false;    ///< the integration has a worker thread of its own (links)
+    int threads = 1;            ///< threads the disc phases may use
   };
   [[nodiscard]] FIXSTEP_TICK_PHASE TickPlan plan_tick() const;
   /// The tick's input at its start: islands woken, impulses, kinematic velocities, carried

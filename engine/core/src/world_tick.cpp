@@ -24,8 +24,9 @@ typename detail::WorldKernel<Real>::TickPlan detail::WorldKernel<Real>::plan_tic
   // With sleeping islands, a tick in which every disc sleeps skips the disc phases (and no body
   // with shapes moves: their events are made with the discs').
   const bool active = discs_ && discs_->active();
+  plan.shapes_still = shape_world_ && sleep_ && sleepers_ != 0 && shapes_at_rest();
   plan.quiet =
-      sleep_ && sleepers_ != 0 && active && discs_at_rest() && (!shape_world_ || shapes_at_rest());
+      sleep_ && sleepers_ != 0 && active && discs_at_rest() && (!shape_world_ || plan.shapes_still);
   plan.discs = active && !plan.quiet;
   // The integration has a worker of its own with links or the dissipation account
   // (step_multipass); the discs' second thread then wakes after it, else during it.
@@ -61,7 +62,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
     profile_.events = std::max(clock.lap() - p.broadphase - p.impacts - p.resting, 0.0);
     profile_.step = clock.total();
     run.close(), early.close();  // the worker sleeps through the rest of the tick
-  } else if (plan.quiet || (shape_world_ && sleep_ && sleepers_ != 0 && shapes_at_rest())) {
+  } else if (plan.quiet || plan.shapes_still) {
     quiet_discs();  // world_sleep.cpp: nothing moves, so no contact phase runs
   } else if (shape_world_) {
     resolve_shapes();
