@@ -15,6 +15,7 @@
 #include "fixstep/core/fnv1a.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/integrators.hpp"
+#include "fixstep/core/joint.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/loop.hpp"
 #include "fixstep/core/pointer_drag.hpp"

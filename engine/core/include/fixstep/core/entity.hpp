@@ -17,6 +17,18 @@ struct Entity {
   friend constexpr bool operator==(const Entity&, const Entity&) = default;
 };
 
+/// A handle to a joint (JointDef: a hinge, slider, weld, rope, wheel or motor between two
+/// bodies with shapes) in a World: slot index plus one and generation, like Entity; zero is
+/// the null joint. Destroying either body destroys the joint, and the handle becomes stale.
+struct Joint {
+  std::uint32_t index1 = 0;
+  std::uint32_t generation = 0;
+
+  [[nodiscard]] constexpr bool is_null() const { return index1 == 0; }
+  [[nodiscard]] constexpr std::uint32_t slot() const { return index1 - 1; }
+  friend constexpr bool operator==(const Joint&, const Joint&) = default;
+};
+
 /// The null entity (all zeros).
 inline constexpr Entity null_entity{};
 

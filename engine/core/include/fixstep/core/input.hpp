@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fixstep/core/entity.hpp"
+#include "fixstep/core/joint.hpp"
 #include "fixstep/core/types.hpp"
 
 namespace fixstep {
@@ -98,6 +99,9 @@ struct TickInput {
   /// Per-body forces, impulses and kinematic velocities of this tick, applied in this order
   /// (at most max_body_inputs). Empty costs nothing.
   std::vector<BodyInput> bodies{};
+  /// Joint motors' speeds and limits, springs' and motor joints' targets of this tick, applied
+  /// in order after `bodies` (at most max_joint_inputs). Empty costs nothing.
+  std::vector<JointInput> joints{};
   friend bool operator==(const TickInput&, const TickInput&) = default;
 };
 

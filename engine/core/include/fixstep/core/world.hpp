@@ -26,6 +26,9 @@ struct PlaneDef;                     // components.hpp
 enum class BodyType : std::uint8_t;  // components.hpp
 struct SegmentDef;                   // segment.hpp
 struct ShapeDef;                     // shape.hpp
+struct JointDef;                     // joint.hpp
+struct JointState;                   // joint.hpp
+struct JointBreak;                   // joint.hpp
 struct TickInput;                    // input.hpp
 struct BodyInput;                    // input.hpp
 struct EnergyReport;                 // step_results.hpp
@@ -181,6 +184,36 @@ class World {
   /// A live link's definition; throws std::invalid_argument if null or stale.
   [[nodiscard]] LinkDef link(Link link) const;
   [[nodiscard]] std::size_t link_count() const;
+
+  // --- joints by handle (joint.hpp) ---------------------------------------------------------
+  /// Creates a joint between two bodies with shapes (or one and the world: a null handle),
+  /// its geometry taken from def in world coordinates now. Throws std::invalid_argument naming
+  /// the field for a stale body, a body without shapes, a joint of a body to itself or of the
+  /// world to the world, a value not finite, a negative maximum or frequency, lower > upper, a
+  /// revolute limit outside [−π, π], a zero axis or length, a field its type does not use, or
+  /// more joints than max_joints (joint.hpp).
+  Joint create_joint(const JointDef& def);
+  /// Destroys a joint (its bodies are woken); throws std::invalid_argument if null or stale.
+  void destroy_joint(Joint joint);
+  [[nodiscard]] bool contains(Joint joint) const;
+  /// A live joint's definition as created; throws std::invalid_argument if null or stale.
+  [[nodiscard]] JointDef joint(Joint joint) const;
+  /// A live joint's state after the last tick (angle or translation, reaction force and
+  /// torque, motor torque or force, broken); throws std::invalid_argument if null or stale.
+  [[nodiscard]] JointState joint_state(Joint joint) const;
+  [[nodiscard]] std::size_t joint_count() const;
+  /// Every live joint's handle in creation order while none is destroyed. Valid until the next
+  /// create or destroy.
+  [[nodiscard]] std::span<const Joint> joints() const;
+  /// The handles World(def) gave def.joints, in definition order (a destroyed one stays
+  /// listed, stale).
+  [[nodiscard]] std::span<const Joint> defined_joints() const;
+  /// The joint named `name` (the first in joints() order), or the null joint (also for "").
+  [[nodiscard]] Joint find_joint(std::string_view name) const;
+  /// The joints that broke in the last tick (JointDef::break_force, break_torque), in joints()
+  /// order; valid until the next step.
+  [[nodiscard]] std::span<const JointBreak> joints_broken() const;
+
   /// A static half-plane bodies with a Collider collide with (World::add_plane).
   std::size_t add_plane(const PlaneDef& def);
   [[nodiscard]] std::span<const PlaneDef> planes() const;

@@ -1,4 +1,4 @@
-// What a world is built from (WorldDef): the bodies, links, planes and segments, and the
+// What a world is built from (WorldDef): the bodies, links, planes, segments and joints, and the
 // settings and precision it steps with, written in code or read from a scene file
 // (fixstep/scene/scene.hpp). World(def) builds it (fixstep/core/world.hpp).
 #pragma once
@@ -8,6 +8,7 @@
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/entity.hpp"
+#include "fixstep/core/joint.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/types.hpp"
 #include "fixstep/core/world_settings.hpp"
@@ -27,6 +28,9 @@ struct WorldDef {
   /// handle add_body returned) colliders stay out of; polylines as their segments
   /// (polyline_segments, add_polyline). After the planes in every order.
   std::vector<SegmentDef> segments;
+  /// Joints between bodies with shapes (JointDef; bodies by the handles add_body returned),
+  /// created after the links, in order: World::defined_joints()[i] is joints[i]'s handle.
+  std::vector<JointDef> joints;
   /// Whether the stability guard warns instead of refusing (World(def) then builds an unstable
   /// world and reports the finding in World::warnings()): for demos that show a blow-up on
   /// purpose.
