@@ -107,6 +107,9 @@ struct JointState {
   double max_motor_torque = 0.0, max_motor_force = 0.0;  ///< N·m, N, as now set
   Vec2 target{};  ///< spring target (x) or a motor joint's target position in A's frame (m)
   double target_angle = 0.0;  ///< a motor joint's target angle (rad)
+  /// m, world coordinates: the anchor as carried by A and by B (apart by the joint's error;
+  /// a distance joint's two ends), and the axis as carried by A (unit; prismatic, wheel).
+  Vec2 anchor_a{}, anchor_b{}, axis{};
 };
 
 /// A joint that broke in the last tick (World::joints_broken()): its reaction exceeded
