@@ -1,13 +1,17 @@
-// The exact checks of bodies with shapes (shape_exact.hpp) without GoogleTest, for the builds
+// The exact checks of bodies with shapes and joints (shape_exact.hpp, joint_exact.hpp) without
+// GoogleTest, for the builds
 // that have none: the aarch64 build under qemu and the wasm32 build under node run them as
 // ctest cross_shape_checks. Prints each check's measures; exits 1 if any is out of its bounds.
 #include <cstdio>
 
+#include "joint_exact.hpp"
 #include "shape_exact.hpp"
 
 int main() {
   int failed = 0, measured = 0;
-  for (const fixstep::shape_exact::Check& c : fixstep::shape_exact::checks()) {
+  std::vector<fixstep::shape_exact::Check> all = fixstep::shape_exact::checks();
+  for (fixstep::shape_exact::Check& c : fixstep::joint_exact::checks()) all.push_back(std::move(c));
+  for (const fixstep::shape_exact::Check& c : all) {
     for (const fixstep::shape_exact::Measure& m : c.run()) {
       ++measured;
       const bool ok = m.holds();

@@ -25,6 +25,8 @@
 #include "world_energy.cpp"       // the energy account and the state hash
 #include "world_events.cpp"       // contact events
 #include "world_implicit.cpp"     // links: implicit Euler's sparse solve
+#include "world_joint_checks.cpp"  // joints: their definitions checked
+#include "world_joints.cpp"       // joints, the kernel's side
 #include "world_input.cpp"        // a tick's input
 #include "world_kernel.cpp"       // construction, bodies and components, the force terms
 #include "world_memory.cpp"       // what a snapshot holds

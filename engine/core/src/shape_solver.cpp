@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "joint_solver.hpp"
 #include "shape_world.hpp"
 
 namespace fixstep::detail {
@@ -258,6 +259,7 @@ void ShapeWorld::turn(const ShapeRow& r, double l) {
 
 void ShapeWorld::solve_velocities(const ShapeTick& tick) {
   for (int it = 0; it < tick.velocity_iterations; ++it) {
+    if (!joints_.empty()) solve_joint_velocities();
     for (std::size_t i = 0; i < rows_.size(); ++i) {
       ShapeRow& r = rows_[i];
       if (r.pair_first) {  // friction first, bounded by this iteration's normal impulse
@@ -294,6 +296,11 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
   auto update_turns = [&] {
     for (ShapeState& s : state_) s.turn = rot_of(s.a - s.a0);
   };
+  // The joints' errors of this tick's motion first, as constraint impulses (they move the
+  // velocities too), then every error left, the contacts' and the joints', on positions only.
+  for (int it = 0; it < tick.position_iterations && !joints_.empty(); ++it) {
+    solve_joint_positions(true);
+  }
   update_turns();
   for (int it = 0; it < tick.position_iterations; ++it) {
     for (const ShapeRow& r : rows_) {
@@ -309,10 +316,39 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
       ShapeState& s = state_[r.b];
       s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
     }
+    if (!joints_.empty()) solve_joint_positions(false);
     update_turns();
   }
   for (const ShapeRow& r : rows_) tally.deepest = std::max(tally.deepest, -separation(r));
   for (ShapeState& s : state_) s.q = rot_of(s.a);
+}
+
+void ShapeWorld::prepare_joints() {
+  JointSolver solver(bodies_, state_, dt_);
+  for (JointRecord& j : joints_) {
+    if (!j.broken) solver.prepare(j);
+  }
+}
+
+void ShapeWorld::solve_joint_velocities() {
+  JointSolver solver(bodies_, state_, dt_);
+  for (JointRecord& j : joints_) {
+    if (!j.broken) solver.solve_velocity(j);
+  }
+}
+
+void ShapeWorld::solve_joint_positions(bool keep) {
+  JointSolver solver(bodies_, state_, dt_);
+  for (JointRecord& j : joints_) {
+    if (!j.broken) solver.solve_position(j, keep);
+  }
+}
+
+void ShapeWorld::account_joints() {
+  JointSolver solver(bodies_, state_, dt_);
+  for (JointRecord& j : joints_) {
+    if (!j.broken) solver.account(j);
+  }
 }
 
 void ShapeWorld::keep_impulses() {

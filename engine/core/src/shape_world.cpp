@@ -201,6 +201,7 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
       if (ba.type != BodyType::dynamic && bb.type != BodyType::dynamic) continue;
       if (ba.disc && bb.disc) continue;  // the disc phase's
       if (!should_collide(sa.filter, sb.filter)) continue;
+      if (!unpaired_.empty() && unpaired(sa.owner, sb.owner)) continue;
       if (sa.sensor || sb.sensor) {  // a sensor sees what is not one, asleep or not
         if (sa.sensor != sb.sensor)
           sensor_candidates_.push_back(sa.sensor ? Candidate{a, b} : Candidate{b, a});
@@ -294,6 +295,11 @@ void ShapeWorld::detect_sensors() {
   }
 }
 
+bool ShapeWorld::unpaired(std::uint32_t a, std::uint32_t b) const {
+  const std::uint64_t key = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+  return std::binary_search(unpaired_.begin(), unpaired_.end(), key);
+}
+
 bool ShapeWorld::moving(std::uint32_t body) const {
   const ShapedBody& b = bodies_[body];
   if (b.type != BodyType::kinematic) return awake(b);
@@ -303,6 +309,7 @@ bool ShapeWorld::moving(std::uint32_t body) const {
 
 ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
+  joints_ = tick.joints, unpaired_ = tick.unpaired;
   for (ShapeState& s : state_) s.q0 = rot_of(s.a0);
   bool paired = broadphase(tick.dt, tally);
   if (paired && !wake_.empty() && tick.wake) {  // sleepers woken: paired again as they now are
@@ -317,7 +324,9 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   tally.pairs = candidates_.size();
   tally.points = rows_.size();
   prepare_rows(tick);
+  prepare_joints();
   solve_velocities(tick);
+  account_joints();
   continuous(tick, tally);
   solve_positions(tick, tally);
   keep_impulses();

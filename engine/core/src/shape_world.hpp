@@ -38,6 +38,10 @@
 #include "shape_geom.hpp"
 
 namespace fixstep::detail {
+struct JointRecord;
+}
+
+namespace fixstep::detail {
 
 /// Most shapes one body may carry.
 inline constexpr std::size_t max_shapes_per_body = 64;
@@ -129,6 +133,12 @@ struct ShapeTick {
   /// masses back), and the broadphase runs again.
   void (*wake)(void* context) = nullptr;
   void* wake_context = nullptr;
+  /// The joints (joint_solver.hpp), solved with the contacts: warm-started after them, each
+  /// velocity sweep before theirs, each position sweep after theirs. Broken ones are left out.
+  std::span<JointRecord> joints;
+  /// Pairs of bodies (bodies_ indices, lower << 32 | higher, sorted) whose shapes do not
+  /// collide: the two ends of a joint without JointDef::collide_connected.
+  std::span<const std::uint64_t> unpaired;
 };
 
 /// What one tick's shape contacts did, for the statistics and the energy account.
@@ -200,6 +210,8 @@ class ShapeWorld {
   std::vector<ShapeWarm> next_warm_;
   std::vector<double> margin_;  ///< each body's speculative margin this tick, m
   double dt_ = 0.0;
+  std::span<JointRecord> joints_;            ///< this tick's (ShapeTick::joints)
+  std::span<const std::uint64_t> unpaired_;  ///< this tick's (ShapeTick::unpaired)
 
   [[nodiscard]] Pose pose(std::uint32_t body) const;
   [[nodiscard]] Pose start_pose(std::uint32_t body) const;
@@ -217,6 +229,13 @@ class ShapeWorld {
   void apply(const ShapeRow& r, double pn, double pt);
   [[nodiscard]] Vec2 relative_velocity(const ShapeRow& r) const;
   void solve_velocities(const ShapeTick& tick);
+  /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
+  void prepare_joints();
+  void solve_joint_velocities();
+  void solve_joint_positions(bool keep);
+  void account_joints();
+  /// Whether a joint keeps the shapes of these two bodies from colliding.
+  [[nodiscard]] bool unpaired(std::uint32_t a, std::uint32_t b) const;
   bool impact_pass(const ShapeTick& tick);
   bool bounce(ShapeRow& r, const ShapeTick& tick);
   bool bounce_block(ShapeRow& r1, ShapeRow& r2, const ShapeTick& tick);

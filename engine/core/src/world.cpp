@@ -280,6 +280,7 @@ World::World(const WorldDef& def)
     : state_(std::make_unique<detail::WorldState>(detail::WorldState{
           .kernel = make_kernel(def.precision, def.settings),  // validates the settings
           .defined = {},
+          .defined_joints = {},
           .random = def.settings.seeding == Seeding::pcg32_srandom
                         ? Random::pcg32(def.settings.seed, 0)
                         : Random(def.settings.seed),
@@ -318,6 +319,7 @@ void World::build(const WorldDef& def) {
     }
     add_segment(s);
   }
+  build_joints(def);  // world_joint_handles.cpp
 }
 
 void WorldDef::add_polyline(std::span<const Vec2> points, double restitution, double friction,

@@ -1,5 +1,6 @@
 // A world's energy account (kinetic, the potentials of its force terms and links, and what
 // contacts and damping dissipated) and its state hash, the bits that determinism is checked by.
+#include <bit>
 #include <cstdint>
 #include <span>
 
@@ -121,6 +122,18 @@ std::uint64_t detail::WorldKernel<Real>::state_hash() const {
   // Sleeping islands (only in worlds that ask), as the bytes of two 32-bit counts.
   for (std::size_t j = 0; j < asleep_.size(); ++j) {
     mix_bytes(still_ticks_[j], sizeof(std::uint32_t)), mix_bytes(asleep_[j], sizeof(std::uint32_t));
+  }
+  // Joints (only in worlds that have them): what input set and the impulses they carry to the
+  // next tick, in double, and whether each broke.
+  for (const JointRecord& j : joint_records_) {
+    auto mix_double = [&](double v) { mix_bytes(std::bit_cast<std::uint64_t>(v), 8); };
+    const JointImpulses& im = j.impulses;
+    for (const double v : {im.linear.x, im.linear.y, im.angular, im.spring, im.motor, im.lower,
+                           im.upper, im.axial, j.motor_speed, j.max_torque, j.max_force,
+                           j.target.x, j.target.y, j.target_angle}) {
+      mix_double(v);
+    }
+    mix_bytes(std::uint64_t{j.motor_on} | std::uint64_t{j.broken} << 1, 1);
   }
   return h;
 }

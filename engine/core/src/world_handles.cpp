@@ -143,6 +143,7 @@ void World::check_input(const TickInput& input) const {
     }
     check_body_input(in, who);
   }
+  if (!input.joints.empty()) check_joint_inputs(input);  // world_joint_handles.cpp
 }
 
 }  // namespace fixstep

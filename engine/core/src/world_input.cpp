@@ -131,6 +131,7 @@ void detail::WorldKernel<Real>::apply_input(const TickInput& input) {
     if (sleepers_ != 0) wake_for_input(input);  // world_sleep.cpp
   }
   if (!input.bodies.empty()) apply_body_inputs(input);
+  for (const JointInput& in : input.joints) apply_joint_input(in);  // world_joints.cpp
   if (segments_.moves()) {
     place_segments();  // the carrying bodies' velocities for this tick (world_segments.cpp)
     if (sleep_ && sleepers_ != 0) wake_by_segments();

@@ -203,10 +203,11 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
 template <class Real>
 void detail::WorldKernel<Real>::destroy(Entity e) {
   require(e);
-  // Links attached to e go first (Box2D destroys a body's joints with it).
+  // Links and joints attached to e go first (Box2D destroys a body's joints with it).
   for (std::size_t i = link_defs_.size(); i-- > 0;) {
     if (link_defs_[i].body_a == e || link_defs_[i].body_b == e) destroy_link(link_at(i));
   }
+  if (!joint_records_.empty()) destroy_joints_of(e);  // world_joints.cpp
   remove<SpringDamper>(e);
   remove<ConstantForce>(e);
   remove<Gravity>(e);
@@ -426,6 +427,7 @@ void detail::WorldKernel<Real>::rebuild_terms() {
   if (sleep_) reset_sleep();  // a structural change wakes every island
   rebuild_discs();
   rebuild_shapes();  // world_shapes.cpp
+  rebuild_joints();  // world_joints.cpp
   terms_dirty_ = false;
 }
 

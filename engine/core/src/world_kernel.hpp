@@ -35,6 +35,7 @@
 #include "fixstep/core/world_settings.hpp"
 #include "scratch_vector.hpp"
 #include "segment_set.hpp"
+#include "joint_record.hpp"
 
 /// The small phases of a tick (world_tick.cpp): named functions in the files they belong to,
 /// inlined into WorldKernel::step (kernel_instances.cpp compiles them in one unit), so that a
@@ -260,6 +261,28 @@ class WorldKernel {
   [[nodiscard]] std::span<const ShapeDef> shapes(Entity e) const;  // (world_shapes.cpp)
   [[nodiscard]] Vec2 local_center(Entity e) const;
   [[nodiscard]] bool has_shapes() const { return !shape_sets_.data.empty(); }
+
+  // --- joints (world_joints.cpp, world_joint_checks.cpp; joint.hpp) -------------------------
+  /// Creates a joint from def (checked: check_joint), its geometry fixed in its bodies' frames
+  /// now; `who` names it in errors.
+  Joint create_joint(const JointDef& def, const std::string& who);
+  /// Throws std::invalid_argument if the joint is null or stale.
+  void destroy_joint(Joint joint);
+  [[nodiscard]] bool contains(Joint joint) const {
+    return joints_.contains(Entity{joint.index1, joint.generation});
+  }
+  [[nodiscard]] const JointDef& joint(Joint joint) const {
+    return joint_records_[joint_index(joint)].def;
+  }
+  [[nodiscard]] JointState joint_state(Joint joint) const;
+  [[nodiscard]] std::size_t joint_count() const { return joint_records_.size(); }
+  [[nodiscard]] std::span<const Joint> joint_handles() const { return joint_handles_; }
+  [[nodiscard]] Joint find_joint(std::string_view name) const;
+  [[nodiscard]] std::span<const JointBreak> joints_broken() const { return joints_broken_; }
+  /// Throws std::invalid_argument naming `who` when World::step would not apply `in`.
+  void check_joint_input(const JointInput& in, const std::string& who) const;
+  /// The kernel's joint records (for tests that read the solver's state).
+  [[nodiscard]] std::span<const JointRecord> joint_records() const { return joint_records_; }
   /// The shape contacts (null without shapes): for tests that read the solver's rows.
   [[nodiscard]] const ShapeWorld* shape_world() const { return shape_world_.get(); }
   [[nodiscard]] std::uint64_t user_data(Entity e) const { return user_data_[index_of(e)]; }
@@ -664,6 +687,27 @@ class WorldKernel {
   };
   Store<ShapeSet> shape_sets_;
   ClonePtr<ShapeWorld> shape_world_;
+  // Joints (world_joints.cpp), dense, keyed by Joint handles stored as Entity-shaped keys: each
+  // one's record (definition, geometry, input, accumulated impulses: state) and handle; the
+  // pairs of shape-world bodies they keep from colliding (rebuilt with the shapes); the
+  // joints that broke in the last tick.
+  SparseSet joints_;
+  std::vector<std::uint32_t> joint_generations_, joint_free_slots_;
+  std::vector<JointRecord> joint_records_;
+  std::vector<Joint> joint_handles_;
+  std::vector<std::uint64_t> joint_unpaired_;
+  std::vector<JointBreak> joints_broken_;
+  [[nodiscard]] std::size_t joint_index(Joint joint) const;
+  [[nodiscard]] std::pair<Vec2, double> joint_end_pose(Entity e) const;
+  [[nodiscard]] Vec2 local_center_or_zero(Entity e) const;
+  void check_joint(const JointDef& def, const std::string& who) const;
+  void check_joint_body(Entity e, const std::string& who, const char* field) const;
+  void check_joint_ranges(const JointDef& def, const std::string& who) const;
+  void wake_joint_bodies(const JointDef& def);
+  void destroy_joints_of(Entity e);
+  void rebuild_joints();
+  void apply_joint_input(const JointInput& in);
+  void break_joints();
   void check_shapes(const BodyDef& def, const std::string& who) const;
   void add_shapes(Entity e, const BodyDef& def, const std::string& who);
   void remove_shapes(Entity e);

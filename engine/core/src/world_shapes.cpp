@@ -240,6 +240,11 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
       work[r.a] -= dot(p, point_velocity(r.b, r.rb)) + r.lr * w.state_[r.b].w;
     }
   }
+  for (const JointRecord& j : joint_records_) {  // motors' and kinematic ends' work
+    if (j.broken) continue;
+    if (j.a != JointRecord::none) work[j.a] += j.work_a;
+    if (j.b != JointRecord::none) work[j.b] += j.work_b;
+  }
   shape_energies(w.energy_after_);
   for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
     const ShapedBody& b = w.bodies_[i];
@@ -292,6 +297,8 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.position_iterations = cs.position_iterations;
   tick.planes = planes_;
   tick.segments = segments_.defs();
+  tick.joints = joint_records_;
+  tick.unpaired = joint_unpaired_;
   if (sleep_) {  // sleepers solved as static; one paired with a mover wakes its island
     mark_shape_sleepers();
     tick.wake = &WorldKernel::wake_shape_sleepers, tick.wake_context = this;
@@ -300,6 +307,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   if (account) shape_energies(w.energy_);
   const ShapeTally tally = w.solve(tick);
   if (account) account_shape_contacts();
+  if (!joint_records_.empty()) break_joints();  // world_joints.cpp
   if (tally.cap && !fault_) {  // cold: a work limit stopped the tick's shape contacts
     const std::uint32_t j = w.bodies_[tally.cap_body].body;
     record_cap_fault(j, tally.cap, tally.limit,

@@ -115,6 +115,13 @@ void detail::WorldKernel<Real>::wake_for_input(const TickInput& input) {
     if (bodies_.contains(b.body)) mark_awake(bodies_.index(b.body));
   }
   if (bodies_.contains(input.drag_body)) mark_awake(bodies_.index(input.drag_body));
+  for (const JointInput& in : input.joints) {  // a joint's input wakes both its bodies
+    if (!contains(in.joint)) continue;
+    const JointDef& def = joint(in.joint);
+    for (const Entity e : {def.body_a, def.body_b}) {
+      if (!e.is_null()) mark_awake(bodies_.index(e));
+    }
+  }
   wake_labelled();
 }
 

@@ -21,6 +21,7 @@ using AnyKernel = std::variant<WorldKernel<float>, WorldKernel<double>>;
 struct WorldState {
   AnyKernel kernel;
   std::vector<Entity> defined;             ///< World::defined_bodies()
+  std::vector<Joint> defined_joints;       ///< World::defined_joints()
   Random random;                           ///< World::random()
   std::vector<StabilityFinding> warnings;  ///< World::warnings()
   /// The queries' grid: a cache, empty in a copy (world_queries.cpp: query_grid).

@@ -86,7 +86,7 @@ struct JointDef {
   std::optional<double> break_force = std::nullopt, break_torque = std::nullopt;
   /// Whether the two bodies' shapes still collide (false: they do not).
   bool collide_connected = false;
-  std::string name;  ///< shown in messages and events; may be empty
+  std::string name{};  ///< shown in messages and events; may be empty
   friend bool operator==(const JointDef&, const JointDef&) = default;
 };
 
@@ -103,7 +103,7 @@ struct JointState {
   double motor = 0.0;   ///< N·m or N: the motor's torque or force this tick
   bool broken = false;  ///< it broke (JointBreak) and no longer acts
   bool motor_enabled = true;
-  double motor_speed = 0.0;                     ///< rad/s or m/s, as now set
+  double motor_speed = 0.0;                              ///< rad/s or m/s, as now set
   double max_motor_torque = 0.0, max_motor_force = 0.0;  ///< N·m, N, as now set
   Vec2 target{};  ///< spring target (x) or a motor joint's target position in A's frame (m)
   double target_angle = 0.0;  ///< a motor joint's target angle (rad)

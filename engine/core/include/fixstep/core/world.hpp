@@ -240,7 +240,8 @@ class World {
   /// ignore: a stale handle, a non-finite value, a force or impulse on a body that is not
   /// dynamic, a velocity for one that is not kinematic, an angular input (torque, angular
   /// impulse, angular velocity, target angle) for a body without shapes or of the wrong type
-  /// or with a non-zero value.y, or more than max_body_inputs entries.
+  /// or with a non-zero value.y, or more than max_body_inputs entries; and the first entry of
+  /// input.joints it would not apply (JointInput says which).
   void check_input(const TickInput& input) const;
   void set_keep_previous(bool keep);
 
@@ -293,7 +294,9 @@ class World {
   /// FNV-1a (64-bit) hash of the exact bits of every body's x, y, vx, vy in bodies() order, then,
   /// with rolling discs (ContactSettings::rolling) only, every body's θ and ω, then, with
   /// sleeping (ContactSettings::sleep) only, every body's ticks below the sleep speed and its
-  /// island's number while asleep (0 awake); random()'s state is mixed in (FNV-1a over its
+  /// island's number while asleep (0 awake), then, with joints only, each joint's motor speed,
+  /// maxima, targets and accumulated impulses (double) and whether its motor is on and it broke;
+  /// random()'s state is mixed in (FNV-1a over its
   /// 64-bit state) once it has been drawn from, so a world whose rules never roll dice hashes as
   /// one without random(). Equal hashes mean bit-identical states.
   [[nodiscard]] std::uint64_t state_hash() const;
@@ -398,8 +401,10 @@ class World {
   decltype(auto) visit(F&& f) const;
   /// The queries' grid is out of date (a step or an edit of the discs).
   void queries_changed();
-  /// Adds def's bodies, links, planes and segments to this empty world (World(def)).
+  /// Adds def's bodies, links, planes, segments and joints to this empty world (World(def)).
   void build(const WorldDef& def);
+  void build_joints(const WorldDef& def);
+  void check_joint_inputs(const TickInput& input) const;
 
   std::unique_ptr<detail::WorldState> state_;
 };

@@ -1,0 +1,232 @@
+// Joints, part 2: the position sweeps (the error each rigid row has left, removed on positions
+// only, Box2D v2.4's SolvePositionConstraints) and the work motors and kinematic ends did.
+#include <algorithm>
+#include <cmath>
+
+#include "joint_solver.hpp"
+
+namespace fixstep::detail {
+
+namespace {
+
+/// An end's pose now: its centre of mass, angle and rotation (the world's: 0, 0, identity).
+struct Now {
+  Vec2 c{};
+  double angle = 0.0;
+  Rot q{};
+};
+Now now(const JointSolver::End& e) {
+  if (!e.s) return {};
+  return {{e.s->x, e.s->y}, e.s->a, rot_of(e.s->a)};
+}
+
+/// The correction of a one-sided error past a limit (Box2D v2.4's): past lower by more than
+/// the slop, the error less the slop; equal limits, the whole error; each within ± most.
+double limit_error(double value, double lower, double upper, bool has_lower, bool has_upper,
+                   double slop, double most) {
+  if (has_lower && has_upper && std::abs(upper - lower) < 2.0 * slop) {
+    return std::clamp(value - lower, -most, most);
+  }
+  if (has_lower && value <= lower) return std::clamp(value - lower + slop, -most, 0.0);
+  if (has_upper && value >= upper) return std::clamp(value - upper - slop, 0.0, most);
+  return 0.0;
+}
+
+}  // namespace
+
+void JointSolver::shift(End e, Vec2 p, double l) const {
+  if (keep_) {
+    if (e.b) {
+      current_->given_b += p / dt_, current_->turned_b += l / dt_;
+    } else {
+      current_->given_a += p / dt_, current_->turned_a += l / dt_;
+    }
+  }
+  if (!e.s) return;
+  e.s->x += e.m * p.x, e.s->y += e.m * p.y, e.s->a += e.i * l;
+  if (keep_) e.s->vx += e.m * p.x / dt_, e.s->vy += e.m * p.y / dt_, e.s->w += e.i * l / dt_;
+}
+
+void JointSolver::solve_position(JointRecord& j, bool keep) {
+  keep_ = keep, current_ = &j;
+  const End a = end(j.a, false), b = end(j.b, true);
+  switch (j.def.type) {
+    case JointType::revolute:
+      correct_angle_limit(j, a, b);
+      correct_point(j, a, b);
+      break;
+    case JointType::prismatic:
+    case JointType::wheel:
+      correct_axis(j, a, b);
+      break;
+    case JointType::weld:
+      correct_weld(j, a, b);
+      break;
+    case JointType::distance:
+      correct_distance(j, a, b);
+      break;
+    case JointType::motor:
+      break;  // its error is its motor's to remove, within its force
+  }
+}
+
+void JointSolver::correct_angle_limit(JointRecord& j, End a, End b) {
+  if (keep_ || (!j.def.lower && !j.def.upper) || j.angle_mass == 0.0) return;
+  const double angle = joint_wrap(now(b).angle - now(a).angle - j.reference);
+  const double c = limit_error(angle, j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
+                               j.def.lower.has_value(), j.def.upper.has_value(), joint_angular_slop,
+                               joint_max_angular_correction);
+  const double l = -j.angle_mass * c;
+  shift(a, {}, -l), shift(b, {}, l);
+}
+
+void JointSolver::correct_point(JointRecord& j, End a, End b) {
+  const Now pa = now(a), pb = now(b);
+  const Vec2 ra = rotate(pa.q, j.local_a), rb = rotate(pb.q, j.local_b);
+  const Vec2 c = (pb.c + rb) - (pa.c + ra) - (keep_ ? j.offset : Vec2{});
+  if (keep_) {  // along the start's gradient (SHAKE's): its K and arms
+    const Vec2 p = joint_solve22(j.k11, j.k12, j.k22, -c);
+    shift(a, -p, -cross(j.ra, p));
+    shift(b, p, cross(j.rb, p));
+    return;
+  }
+  const double m = a.m + b.m;
+  const double k11 = m + a.i * ra.y * ra.y + b.i * rb.y * rb.y;
+  const double k12 = -a.i * ra.x * ra.y - b.i * rb.x * rb.y;
+  const double k22 = m + a.i * ra.x * ra.x + b.i * rb.x * rb.x;
+  const Vec2 p = joint_solve22(k11, k12, k22, -c);
+  shift(a, -p, -cross(ra, p));
+  shift(b, p, cross(rb, p));
+}
+
+// A prismatic joint's perpendicular and angle errors (one 2×2 block) and a wheel's
+// perpendicular one, then the limits along the axis.
+void JointSolver::correct_axis(JointRecord& j, End a, End b) {
+  const Now pa = now(a), pb = now(b);
+  const Vec2 ra = rotate(pa.q, j.local_a), rb = rotate(pb.q, j.local_b);
+  const Vec2 d = (pb.c + rb) - (pa.c + ra);
+  const Vec2 axis = rotate(pa.q, j.axis_a);
+  // The gradient: the start's while keeping (SHAKE's), else now's.
+  const Vec2 perp = keep_ ? j.perp : joint_perp(axis);
+  const double a1 = cross(d + ra, axis), a2 = cross(rb, axis);
+  const double s1 = keep_ ? j.s1 : cross(d + ra, perp), s2 = keep_ ? j.s2 : cross(rb, perp);
+  const double m = a.m + b.m;
+  const double kp = m + a.i * s1 * s1 + b.i * s2 * s2;
+  if (j.def.type == JointType::prismatic) {
+    const Vec2 c{dot(joint_perp(axis), d) - (keep_ ? dot(j.perp, j.offset) : 0.0),
+                 joint_wrap(pb.angle - pa.angle - j.reference) - (keep_ ? j.angle0 : 0.0)};
+    double k22 = a.i + b.i;
+    if (k22 == 0.0) k22 = 1.0;
+    const Vec2 x = joint_solve22(kp, a.i * s1 + b.i * s2, k22, -c);
+    const Vec2 p = x.x * perp;
+    shift(a, -p, -(x.x * s1 + x.y));
+    shift(b, p, x.x * s2 + x.y);
+  } else if (kp > 0.0) {
+    const double l = -(dot(joint_perp(axis), d) - (keep_ ? dot(j.perp, j.offset) : 0.0)) / kp;
+    shift(a, -l * perp, -l * s1);
+    shift(b, l * perp, l * s2);
+  }
+  const double ka = m + a.i * a1 * a1 + b.i * a2 * a2;
+  if (keep_ || (!j.def.lower && !j.def.upper) || ka == 0.0) return;
+  const double c = limit_error(dot(axis, d), j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
+                               j.def.lower.has_value(), j.def.upper.has_value(), joint_linear_slop,
+                               joint_max_linear_correction);
+  const double l = -c / ka;
+  shift(a, -l * axis, -l * a1);
+  shift(b, l * axis, l * a2);
+}
+
+// A weld's point and angle errors as one 3×3 block (rigid), or its point alone (soft: the
+// angle is the spring's).
+void JointSolver::correct_weld(JointRecord& j, End a, End b) {
+  if (j.def.frequency > 0.0 || a.i + b.i == 0.0) {
+    correct_point(j, a, b);
+    return;
+  }
+  const Now pa = now(a), pb = now(b);
+  const Vec2 now_ra = rotate(pa.q, j.local_a), now_rb = rotate(pb.q, j.local_b);
+  const Vec2 c = (pb.c + now_rb) - (pa.c + now_ra) - (keep_ ? j.offset : Vec2{});
+  const double cw = joint_wrap(pb.angle - pa.angle - j.reference) - (keep_ ? j.angle0 : 0.0);
+  // The gradient: the start's while keeping (SHAKE's), else now's.
+  const Vec2 ra = keep_ ? j.ra : now_ra, rb = keep_ ? j.rb : now_rb;
+  const double m = a.m + b.m;
+  const double k11 = m + a.i * ra.y * ra.y + b.i * rb.y * rb.y;
+  const double k12 = -a.i * ra.x * ra.y - b.i * rb.x * rb.y;
+  const double k22 = m + a.i * ra.x * ra.x + b.i * rb.x * rb.x;
+  const double k13 = -a.i * ra.y - b.i * rb.y, k23 = a.i * ra.x + b.i * rb.x, k33 = a.i + b.i;
+  const double c0 = k22 * k33 - k23 * k23, c1 = k23 * k13 - k12 * k33, c2 = k12 * k23 - k22 * k13;
+  double det = k11 * c0 + k12 * c1 + k13 * c2;
+  if (det != 0.0) det = 1.0 / det;
+  const double bx = -c.x, by = -c.y, bz = -cw;
+  const Vec2 p{det * (bx * c0 + by * c1 + bz * c2),
+               det * (bx * c1 + by * (k11 * k33 - k13 * k13) + bz * (k12 * k13 - k11 * k23))};
+  const double l = det * (bx * c2 + by * (k12 * k13 - k11 * k23) + bz * (k11 * k22 - k12 * k12));
+  shift(a, -p, -(cross(ra, p) + l));
+  shift(b, p, cross(rb, p) + l);
+}
+
+void JointSolver::correct_distance(JointRecord& j, End a, End b) {
+  const bool rigid = !(j.def.frequency > 0.0) && !j.def.lower && !j.def.upper;
+  if (!rigid && (keep_ || (!j.def.lower && !j.def.upper))) return;  // no rigid row
+  const Now pa = now(a), pb = now(b);
+  const Vec2 ra = rotate(pa.q, j.local_a), rb = rotate(pb.q, j.local_b);
+  const Vec2 d = (pb.c + rb) - (pa.c + ra);
+  const double length = std::sqrt(dot(d, d));
+  if (!(length > joint_linear_slop) || (keep_ && j.axial_mass == 0.0)) return;
+  const Vec2 u = keep_ ? j.axis : d / length;  // the gradient: the start's while keeping
+  double c = 0.0;
+  if (rigid) {
+    c = std::clamp(length - (keep_ ? j.value : j.length), -joint_max_linear_correction,
+                   joint_max_linear_correction);
+  } else {
+    c = limit_error(length, j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
+                    j.def.lower.has_value(), j.def.upper.has_value(), 0.0,
+                    joint_max_linear_correction);
+  }
+  const Vec2 arm_a = keep_ ? j.ra : ra, arm_b = keep_ ? j.rb : rb;
+  const double ca = cross(arm_a, u), cb = cross(arm_b, u);
+  const double k = a.m + b.m + a.i * ca * ca + b.i * cb * cb;
+  if (c == 0.0 || k == 0.0) return;
+  const Vec2 p = (-c / k) * u;
+  shift(a, -p, -cross(arm_a, p));
+  shift(b, p, cross(arm_b, p));
+}
+
+// The work the motor did on each dynamic end, and everything the joint did on a dynamic end
+// whose other end is kinematic (the kinematic body's work), at the tick's end velocities: what
+// the energy account enters as external work.
+void JointSolver::account(JointRecord& j) const {
+  j.work_a = j.work_b = 0.0;
+  const End a = end(j.a, false), b = end(j.b, true);
+  const JointImpulses& im = j.impulses;
+  auto point_velocity = [](const End& e, Vec2 r) {
+    return e.s ? Vec2{e.s->vx, e.s->vy} + joint_spin_cross(e.s->w, r) : Vec2{};
+  };
+  const double wa = a.s ? a.s->w : 0.0, wb = b.s ? b.s->w : 0.0;
+  const auto kinematic = [&](std::uint32_t body) {
+    return body != JointRecord::none && bodies_[body].type == BodyType::kinematic;
+  };
+  if (kinematic(j.a) != kinematic(j.b)) {  // the kinematic end's work: all the joint gave
+    if (kinematic(j.a)) j.work_b = dot(j.given_b, point_velocity(b, {})) + j.turned_b * wb;
+    if (kinematic(j.b)) j.work_a = dot(j.given_a, point_velocity(a, {})) + j.turned_a * wa;
+    return;
+  }
+  switch (j.def.type) {  // the motor's: a torque about the angle, a force along the axis
+    case JointType::revolute:
+    case JointType::wheel:
+      j.work_a = -im.motor * wa, j.work_b = im.motor * wb;
+      break;
+    case JointType::prismatic:
+      j.work_a = -im.motor * (dot(j.axis, point_velocity(a, {})) + j.a1 * wa);
+      j.work_b = im.motor * (dot(j.axis, point_velocity(b, {})) + j.a2 * wb);
+      break;
+    case JointType::motor:  // a motor joint is all motor
+      j.work_a = dot(j.given_a, point_velocity(a, {})) + j.turned_a * wa;
+      j.work_b = dot(j.given_b, point_velocity(b, {})) + j.turned_b * wb;
+      break;
+    default:
+      break;
+  }
+}
+
+}  // namespace fixstep::detail

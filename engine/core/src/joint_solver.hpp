@@ -1,0 +1,111 @@
+// The joints' part of the shape phase (shape_world.hpp has the whole tick): each joint's lever
+// arms and effective masses at the tick's start poses, its warm start, one velocity sweep and
+// one position sweep at a time (interleaved with the contacts' by ShapeWorld), and its
+// reaction at the end. Box2D v2.4's joint solver is the model (b2RevoluteJoint,
+// b2PrismaticJoint, b2WeldJoint, b2DistanceJoint, b2WheelJoint, b2MotorJoint): velocity
+// constraints with accumulated, clamped impulses; limits as speculative one-sided rows; motors
+// as impulses bounded by the maximum torque or force times dt; springs as soft rows
+// (joint_record.hpp's Softness); position errors removed on positions only (non-linear
+// Gauss-Seidel), which adds no kinetic energy.
+#pragma once
+
+#include <span>
+
+#include "joint_record.hpp"
+#include "shape_world.hpp"
+
+namespace fixstep::detail {
+
+/// The solver over one tick's states. Every impulse moves velocities and, by dt times the
+/// change, positions (as contact impulses do: semi-implicit Euler's x1 = x0 + dt v1).
+class JointSolver {
+ public:
+  JointSolver(std::span<const ShapedBody> bodies, std::span<ShapeState> state, double dt)
+      : bodies_(bodies), state_(state), dt_(dt) {}
+
+  /// Arms, axes, effective masses and spring factors at the tick's start poses (ShapeState
+  /// x0, y0, a0, q0), then the warm start: last tick's impulses applied again.
+  void prepare(JointRecord& j);
+  /// One velocity sweep of the joint's rows.
+  void solve_velocity(JointRecord& j);
+  /// One position sweep of the joint's rigid rows at the current poses (ShapeState x, y, a).
+  /// `keep`: the error the tick's motion made is removed, the start's kept, and each
+  /// correction moves the velocities by itself over dt as well (a constraint impulse, as SHAKE
+  /// takes it: Ryckaert, Ciccotti, Berendsen 1977), which keeps momentum, angular momentum and,
+  /// over a swing, energy; otherwise: every error beyond the slop is removed on positions only
+  /// (Box2D v2.4's non-linear Gauss-Seidel), which adds no kinetic energy, and the limits too.
+  void solve_position(JointRecord& j, bool keep);
+  /// After the velocity sweeps: the motors' and kinematic ends' work (JointRecord::work_a,
+  /// work_b, J) at the tick's end velocities.
+  void account(JointRecord& j) const;
+
+  /// One end of a joint: inverse mass and inertia, and its state (null: the world).
+  struct End {
+    double m = 0.0, i = 0.0;
+    ShapeState* s = nullptr;
+    bool b = false;  ///< B's end (else A's)
+  };
+
+ private:
+  std::span<const ShapedBody> bodies_;
+  std::span<ShapeState> state_;
+  double dt_;
+
+  JointRecord* current_ = nullptr;  ///< the joint whose impulses push() adds up
+
+  [[nodiscard]] End end(std::uint32_t body, bool b) const;
+  /// An impulse p (N·s) and an angular impulse l (N·m·s) on e's velocity, dt times the
+  /// change on its position; added up in the current joint's given_ and turned_.
+  void push(End e, Vec2 p, double l) const;
+  /// A position correction: e moved by m p and turned by i l; while keep_, its velocity too by
+  /// that over dt (and the impulse p/dt added up in the current joint's given_ and turned_).
+  void shift(End e, Vec2 p, double l) const;
+  bool keep_ = false;
+
+  void prepare_geometry(JointRecord& j);
+  void warm_start(JointRecord& j);
+  void solve_point(JointRecord& j, End a, End b);
+  void solve_angle_rows(JointRecord& j, End a, End b, bool motor_turns);
+  void solve_axis_rows(JointRecord& j, End a, End b);
+  void solve_revolute(JointRecord& j, End a, End b);
+  void solve_prismatic(JointRecord& j, End a, End b);
+  void solve_weld(JointRecord& j, End a, End b);
+  void solve_distance(JointRecord& j, End a, End b);
+  void solve_wheel(JointRecord& j, End a, End b);
+  void solve_motor(JointRecord& j, End a, End b);
+  void correct_point(JointRecord& j, End a, End b);
+  void correct_angle_limit(JointRecord& j, End a, End b);
+  void correct_axis(JointRecord& j, End a, End b);
+  void correct_weld(JointRecord& j, End a, End b);
+  void correct_distance(JointRecord& j, End a, End b);
+};
+
+/// Box2D v2.4's position solver constants: the slop each error keeps (b2_linearSlop,
+/// b2_angularSlop) and the largest correction of one sweep (b2_maxLinearCorrection,
+/// b2_maxAngularCorrection).
+inline constexpr double joint_linear_slop = 0.005;                                  ///< m
+inline constexpr double joint_angular_slop = 2.0 / 180.0 * 3.14159265358979323846;  ///< rad
+inline constexpr double joint_max_linear_correction = 0.2;                          ///< m
+inline constexpr double joint_max_angular_correction = 8.0 / 180.0 * 3.14159265358979323846;
+/// A motor joint's fraction of its position error a tick removes (b2MotorJoint's default).
+inline constexpr double motor_joint_correction = 0.3;
+
+/// v turned by +90°.
+[[nodiscard]] inline Vec2 joint_perp(Vec2 v) {
+  return {-v.y, v.x};
+}
+/// ω × r for a scalar angular velocity ω about z.
+[[nodiscard]] inline Vec2 joint_spin_cross(double w, Vec2 r) {
+  return {-w * r.y, w * r.x};
+}
+/// x of the 2×2 system [[k11, k12], [k12, k22]] x = b (0 when singular).
+[[nodiscard]] inline Vec2 joint_solve22(double k11, double k12, double k22, Vec2 b) {
+  double det = k11 * k22 - k12 * k12;
+  if (det != 0.0) det = 1.0 / det;
+  return {det * (k22 * b.x - k12 * b.y), det * (k11 * b.y - k12 * b.x)};
+}
+
+/// θ wrapped into [−π, π] (std::remainder is exact: the same bits everywhere).
+[[nodiscard]] double joint_wrap(double angle);
+
+}  // namespace fixstep::detail

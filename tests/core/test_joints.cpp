@@ -1,0 +1,241 @@
+// Joints: the exact checks (tests/cross/joint_exact.cpp), definitions World refuses with the
+// field named, a tick's input to a motor, breaking, the shapes a joint keeps apart, and the
+// same bits after a snapshot and on two threads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
+#include "fixstep/core/joint.hpp"
+#include "fixstep/core/shape.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "joint_exact.hpp"
+#include "shape_exact.hpp"
+
+namespace fixstep {
+namespace {
+
+class JointExact : public ::testing::TestWithParam<shape_exact::Check> {};
+
+TEST_P(JointExact, Holds) {
+  for (const shape_exact::Measure& m : GetParam().run()) {
+    EXPECT_TRUE(m.holds()) << m.what << " = " << m.value << ", not in [" << m.low << ", " << m.high
+                           << "]";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Joints, JointExact, ::testing::ValuesIn(joint_exact::checks()),
+                         [](const auto& info) { return info.param.name; });
+
+World empty_world(double mu = 0.6) {
+  return World(WorldDef::empty(Precision::f64, shape_exact::shape_settings(mu)));
+}
+
+std::string refusal(World& w, const JointDef& def) {
+  try {
+    w.create_joint(def);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(JointDefinitions, AreRefusedWithTheFieldNamed) {
+  World w = empty_world();
+  const Entity a = w.create_body(shape_exact::box_body(0.5, 0.5, {0.0, 0.0}));
+  const Entity b = w.create_body(shape_exact::box_body(0.5, 0.5, {2.0, 0.0}));
+  BodyDef point;
+  point.body.mass = 1.0;
+  const Entity bare = w.create_body(point);
+  using T = JointType;
+  const double nan = std::nan("");
+  const std::pair<JointDef, const char*> cases[] = {
+      {{.type = T::revolute}, "both the world"},
+      {{.type = T::revolute, .body_a = a, .body_b = a}, "body_b is body_a"},
+      {{.type = T::revolute, .body_a = a, .body_b = bare}, "body_b (\"\") has no shapes"},
+      {{.type = T::revolute, .body_a = a, .body_b = b, .anchor = {nan, 0.0}}, "anchor"},
+      {{.type = T::revolute, .body_a = a, .body_b = b, .lower = 1.0, .upper = 0.5},
+       "lower (1) is above upper (0.5)"},
+      {{.type = T::revolute, .body_a = a, .body_b = b, .lower = -4.0}, "lower must be in [-pi"},
+      {{.type = T::revolute, .body_a = a, .body_b = b, .max_motor_torque = -1.0},
+       "max_motor_torque must be in [0"},
+      {{.type = T::revolute, .body_a = a, .body_b = b, .axis = {0.0, 1.0}},
+       "a revolute joint has no axis"},
+      {{.type = T::prismatic, .body_a = a, .body_b = b, .axis = {0.0, 0.0}},
+       "axis must not be zero"},
+      {{.type = T::wheel, .body_a = a, .body_b = b}, "needs frequency > 0"},
+      {{.type = T::distance,
+        .body_a = a,
+        .body_b = b,
+        .anchor = {0.0, 0.0},
+        .anchor_b = Vec2{0.0, 0.0}},
+       "length must be > 0"},
+      {{.type = T::distance, .body_a = a, .body_b = b, .anchor_b = Vec2{2.0, 0.0}, .lower = -1.0},
+       "lower must be >= 0"},
+      {{.type = T::weld, .body_a = a, .body_b = b, .frequency = -1.0}, "frequency must be in [0"},
+      {{.type = T::motor, .body_a = a, .body_b = b, .frequency = 1.0},
+       "a motor joint has no frequency"},
+      {{.type = T::revolute, .body_a = a, .body_b = b, .break_force = nan}, "break_force"},
+  };
+  for (const auto& [def, expected] : cases) {
+    const std::string message = refusal(w, def);
+    EXPECT_NE(message.find(expected), std::string::npos)
+        << message << " (expected: " << expected << ")";
+  }
+  EXPECT_EQ(w.joint_count(), 0u);
+}
+
+TEST(JointDefinitions, AWorldDefNamesTheJointAndItsBodiesAreTheDefinitions) {
+  WorldDef def = WorldDef::empty(Precision::f64, shape_exact::shape_settings(0.6));
+  const Entity a = def.add_body(shape_exact::box_body(0.5, 0.5, {0.0, 0.0}));
+  const Entity b = def.add_body(shape_exact::box_body(0.5, 0.5, {1.0, 0.0}));
+  def.joints.push_back({.type = JointType::revolute,
+                        .body_a = a,
+                        .body_b = b,
+                        .anchor = {0.5, 0.0},
+                        .name = "hinge"});
+  World w(def);
+  ASSERT_EQ(w.defined_joints().size(), 1u);
+  EXPECT_EQ(w.find_joint("hinge"), w.defined_joints()[0]);
+  EXPECT_EQ(w.joint(w.find_joint("hinge")).body_b, w.defined_bodies()[1]);
+  def.joints.push_back({.type = JointType::revolute, .body_a = a, .body_b = a, .name = "self"});
+  try {
+    World bad(def);
+    FAIL() << "a joint of a body to itself was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("joint[1] (\"self\")"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Joints, DestroyingABodyDestroysItsJoints) {
+  World w = empty_world();
+  const Entity a = w.create_body(shape_exact::box_body(0.5, 0.5, {0.0, 0.0}));
+  const Entity b = w.create_body(shape_exact::box_body(0.5, 0.5, {1.0, 0.0}));
+  const Joint j = w.create_joint({.type = JointType::weld, .body_a = a, .body_b = b});
+  w.destroy(b);
+  EXPECT_FALSE(w.contains(j));
+  EXPECT_EQ(w.joint_count(), 0u);
+  EXPECT_THROW((void)w.joint_state(j), std::invalid_argument);
+}
+
+// A motor's speed set by a tick's input (and recorded as input, not as an edit): the disc
+// turns at the new speed from that tick on.
+TEST(Joints, AMotorFollowsTheTicksInput) {
+  World w = empty_world();
+  BodyDef disc = shape_exact::box_body(0.1, 0.1, {});
+  disc.gravity.reset();
+  disc.shapes = {make_circle(0.5)};
+  const Entity e = w.create_body(disc);
+  const Joint j = w.create_joint(
+      {.type = JointType::revolute, .body_b = e, .motor_speed = 1.0, .max_motor_torque = 1e6});
+  w.step();
+  EXPECT_NEAR(w.body(e).angular_velocity, 1.0, 1e-12);
+  TickInput in;
+  in.joints.push_back({j, JointInputKind::motor_speed, {-3.0, 0.0}});
+  w.check_input(in);
+  w.step(in);
+  EXPECT_NEAR(w.body(e).angular_velocity, -3.0, 1e-12);
+  EXPECT_EQ(w.joint_state(j).motor_speed, -3.0);
+  in.joints = {{j, JointInputKind::enable_motor, {0.0, 0.0}}};
+  w.step(in);
+  w.step();
+  EXPECT_NEAR(w.body(e).angular_velocity, -3.0, 1e-12) << "a motor turned off holds nothing";
+  in.joints = {{j, JointInputKind::max_motor_force, {1.0, 0.0}}};
+  EXPECT_THROW(w.check_input(in), std::invalid_argument) << "a revolute joint has no force";
+  in.joints = {{j, JointInputKind::enable_motor, {0.5, 0.0}}};
+  EXPECT_THROW(w.check_input(in), std::invalid_argument);
+}
+
+// A joint whose reaction passes its break force breaks with an event, once, and stops acting.
+TEST(Joints, AJointBreaksAboveItsBreakForce) {
+  World w = empty_world();
+  const Entity box = w.create_body(shape_exact::box_body(0.5, 0.5, {0.0, -1.0}, 0.0, 10.0));
+  // 10 kg under gravity pulls 98.1 N: a 150 N joint holds until the box is struck.
+  const Joint j = w.create_joint(
+      {.type = JointType::revolute, .body_b = box, .anchor = {0.0, -0.5}, .break_force = 150.0});
+  for (int t = 0; t < 30; ++t) {
+    w.step();
+    ASSERT_TRUE(w.joints_broken().empty()) << "broke at rest, tick " << t;
+  }
+  EXPECT_NEAR(w.joint_state(j).force.y, 98.1, 0.5);
+  TickInput in;
+  in.bodies.push_back({box, BodyInputKind::impulse, {0.0, -20.0}});
+  w.step(in);
+  ASSERT_EQ(w.joints_broken().size(), 1u);
+  EXPECT_EQ(w.joints_broken()[0].joint, j);
+  EXPECT_GT(std::hypot(w.joints_broken()[0].force.x, w.joints_broken()[0].force.y), 150.0);
+  EXPECT_TRUE(w.joint_state(j).broken);
+  const double y = w.body(box).position.y;
+  for (int t = 0; t < 30; ++t) w.step();
+  EXPECT_TRUE(w.joints_broken().empty());
+  EXPECT_LT(w.body(box).position.y, y - 1.0) << "a broken joint holds nothing";
+}
+
+// Two boxes overlapping at a hinge: apart by default, colliding when asked.
+TEST(Joints, JointedShapesCollideOnlyWhenAsked) {
+  for (const bool collide : {false, true}) {
+    World w = empty_world();
+    BodyDef a = shape_exact::box_body(0.5, 0.5, {0.0, 0.0});
+    a.gravity.reset();
+    BodyDef b = a;
+    b.body.position = {0.8, 0.0};  // overlapping by 0.2 m
+    const Entity ea = w.create_body(a), eb = w.create_body(b);
+    w.create_joint({.type = JointType::distance,
+                    .body_a = ea,
+                    .body_b = eb,
+                    .anchor = {0.0, 0.0},
+                    .anchor_b = Vec2{0.8, 0.0},
+                    .upper = 5.0,
+                    .collide_connected = collide});
+    for (int t = 0; t < 60; ++t) w.step();
+    const double apart = w.body(eb).position.x - w.body(ea).position.x;
+    if (collide) {
+      EXPECT_GT(apart, 0.99) << "colliding shapes are pushed apart";
+    } else {
+      EXPECT_NEAR(apart, 0.8, 1e-12) << "jointed shapes do not collide";
+    }
+  }
+}
+
+/// A pile of ragdoll-like pairs: boxes hinged in twos with limits and a motor, falling on the
+/// ground, for the determinism checks below.
+WorldDef hinged_pile(int threads) {
+  WorldSettings s = shape_exact::shape_settings(0.6);
+  s.threads = threads;
+  WorldDef def = WorldDef::empty(Precision::f64, s);
+  def.planes.push_back(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  for (int i = 0; i < 6; ++i) {
+    const double x = 0.3 * (i % 3), y = 1.0 + 1.2 * i;
+    const Entity a = def.add_body(shape_exact::box_body(0.4, 0.1, {x, y}, 0.1 * i));
+    const Entity b = def.add_body(shape_exact::box_body(0.4, 0.1, {x + 0.8, y}, -0.1 * i));
+    def.joints.push_back({.type = JointType::revolute,
+                          .body_a = a,
+                          .body_b = b,
+                          .anchor = {x + 0.4, y},
+                          .lower = -1.0,
+                          .upper = 1.0,
+                          .motor_speed = 0.5,
+                          .max_motor_torque = 0.2});
+  }
+  return def;
+}
+
+TEST(Joints, StepToTheSameBitsAfterASnapshotAndOnTwoThreads) {
+  World one(hinged_pile(1)), two(hinged_pile(2));
+  WorldSnapshot snap;
+  for (int t = 0; t < 90; ++t) {
+    one.step(), two.step();
+    if (t == 40) one.save(snap);
+  }
+  const std::uint64_t at90 = one.state_hash();
+  EXPECT_EQ(two.state_hash(), at90);
+  one.restore(snap);
+  for (int t = 41; t < 90; ++t) one.step();
+  EXPECT_EQ(one.state_hash(), at90);
+}
+
+}  // namespace
+}  // namespace fixstep
