@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -507,6 +509,33 @@ TEST(SceneJoints, RefusesASingleTableAndMoreThanMaxJoints) {
               std::string::npos)
         << e.what();
   }
+}
+
+// The example of docs/SCENES.md, "Joints": a pendulum, a rope and a car's wheel.
+TEST(SceneJoints, TheExampleInScenesMdLoads) {
+  std::ifstream in(std::string(FIXSTEP_SOURCE_DIR) + "/docs/SCENES.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string md = doc.str();
+  const std::size_t section = md.find("## Joints: `[[joint]]`");
+  ASSERT_NE(section, std::string::npos);
+  const std::size_t begin = md.find("```toml\n", section) + 8;
+  const std::size_t end = md.find("```\n", begin);
+  ASSERT_LT(begin, end);
+  const Scene s = parse_scene(md.substr(begin, end - begin), "SCENES.md");
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  ASSERT_EQ(s.def.joints.size(), 3u);
+  const JointDef &pendulum = s.def.joints[0], &rope = s.def.joints[1], &wheel = s.def.joints[2];
+  EXPECT_EQ(pendulum.type, JointType::revolute);
+  EXPECT_EQ(pendulum.name, "pendulum");
+  EXPECT_TRUE(pendulum.body_a.is_null());
+  EXPECT_EQ(rope.type, JointType::distance);
+  EXPECT_EQ(rope.anchor_b, (Vec2{6.0, 2.3}));
+  EXPECT_FALSE(rope.lower.has_value());
+  EXPECT_EQ(rope.upper, 4.0);
+  EXPECT_EQ(wheel.type, JointType::wheel);
+  EXPECT_EQ(wheel.anchor, s.def.bodies[3].body.position);  // the hub: rear_wheel's position
+  EXPECT_EQ(wheel.frequency, 4.0);
 }
 
 }  // namespace scene_joints_test
