@@ -883,6 +883,99 @@ $body
 [[body.shape]]
 box = [1.0, 1.0]
 circle = 0.5"
+# --- joints: [[joint]] tables, refused by the scene loader at their key ---
+joint_bodies="$ok_world
+[[body]]
+name = \"post\"
+type = \"static\"
+position = [0.0, 5.0]
+shape = { box = [0.1, 0.1] }
+[[body]]
+name = \"bob\"
+mass = 1.0
+position = [2.0, 5.0]
+shape = { circle = 0.25 }
+[[body]]
+name = \"ball\"
+mass = 1.0
+position = [5.0, 0.0]
+radius = 0.5"
+joint_case() {  # DESCRIPTION TABLE: the bodies above, then one [[joint]] with TABLE
+  case_ "$1" "$joint_bodies
+[[joint]]
+$2"
+}
+joint_case "[[joint]] naming no body (a misspelt name)" 'type = "revolute"
+body_a = "post"
+body_b = "bbo"'
+joint_case "[[joint]] joining a body to itself" 'type = "weld"
+body_a = "bob"
+body_b = "bob"'
+joint_case "[[joint]] with neither body_a nor body_b" 'type = "revolute"
+anchor = [0.0, 5.0]'
+joint_case "[[joint]] on a body without shapes (a disc)" 'type = "revolute"
+body_b = "ball"'
+joint_case "[[joint]] of an unknown type" 'type = "hinge"
+body_b = "bob"'
+joint_case "[[joint]] without a type" 'body_b = "bob"'
+joint_case "[[joint]] key its type does not use (axis on a revolute joint)" 'type = "revolute"
+body_b = "bob"
+axis = [1.0, 0.0]'
+joint_case "[[joint]] lower > upper" 'type = "prismatic"
+body_b = "bob"
+lower = 1.0
+upper = -1.0'
+joint_case "[[joint]] revolute limit outside [-π, π]" 'type = "revolute"
+body_b = "bob"
+upper = 4.0'
+joint_case "[[joint]] lower = nan" 'type = "revolute"
+body_b = "bob"
+lower = nan'
+joint_case "[[joint]] motor_speed = inf" 'type = "revolute"
+body_b = "bob"
+motor_speed = inf'
+joint_case "[[joint]] frequency in quotes (a string)" 'type = "weld"
+body_b = "bob"
+frequency = "2.0"'
+joint_case "[[joint]] negative max_motor_torque" 'type = "revolute"
+body_b = "bob"
+max_motor_torque = -1.0'
+joint_case "[[joint]] negative max_motor_force" 'type = "motor"
+body_b = "bob"
+max_motor_force = -1.0'
+joint_case "[[joint]] negative frequency" 'type = "weld"
+body_b = "bob"
+frequency = -2.0'
+joint_case "[[joint]] negative damping_ratio" 'type = "weld"
+body_b = "bob"
+frequency = 2.0
+damping_ratio = -0.5'
+joint_case "[[joint]] negative break_force" 'type = "weld"
+body_b = "bob"
+break_force = -1.0'
+joint_case "[[joint]] negative break_torque" 'type = "revolute"
+body_b = "bob"
+break_torque = -1.0'
+joint_case "[[joint]] negative length" 'type = "distance"
+body_a = "post"
+body_b = "bob"
+length = -1.0'
+joint_case "[[joint]] rigid distance joint whose ends coincide" 'type = "distance"
+body_a = "post"
+body_b = "bob"
+anchor = [2.0, 5.0]'
+joint_case "[[joint]] zero axis" 'type = "prismatic"
+body_b = "bob"
+axis = [0.0, 0.0]'
+joint_case "[[joint]] wheel without frequency" 'type = "wheel"
+body_a = "post"
+body_b = "bob"
+axis = [0.0, 1.0]'
+joint_case "[[joint]] collide_connected not a boolean" 'type = "revolute"
+body_b = "bob"
+collide_connected = 1'
+{ printf 'joint = ['; yes '{},' | head -n 1000001 | tr -d '\n'; printf ']\n%s\n' "$joint_bodies"; } > joints.toml
+case_ "1000001 joints (inline tables; beyond max_joints = 10^6)" "" run joints.toml --steps 10
 # --- memory of a command: estimated from the scene and the flags, refused before the worlds
 # and frame buffers are allocated (cli/command_memory.hpp; the scene's load comes first)
 grid_of() {  # COLUMNS ROWS [BODY]: a [[grid]] of unlinked bodies 0.1 m apart

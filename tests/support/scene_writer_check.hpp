@@ -10,6 +10,7 @@
 #include <string>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/joint.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
@@ -149,6 +150,31 @@ inline void expect_same_world(const WorldDef& a, const WorldDef& b) {
     ASSERT_EQ(x.next.has_value(), y.next.has_value()) << w << ".next";
     if (x.next) expect_bits(*x.next, *y.next, w + ".next");
     EXPECT_EQ(x.body, y.body) << w << ".body";
+  }
+  ASSERT_EQ(a.joints.size(), b.joints.size());
+  for (std::size_t i = 0; i < a.joints.size(); ++i) {
+    const std::string w = "joint[" + std::to_string(i) + "]";
+    const JointDef &x = a.joints[i], &y = b.joints[i];
+    EXPECT_EQ(x.type, y.type) << w << ".type";
+    EXPECT_EQ(x.body_a, y.body_a) << w << ".body_a";
+    EXPECT_EQ(x.body_b, y.body_b) << w << ".body_b";
+    EXPECT_EQ(x.name, y.name) << w << ".name";
+    expect_bits(x.anchor, y.anchor, w + ".anchor");
+    expect_optional(x.anchor_b, y.anchor_b, w + ".anchor_b",
+                    [&](Vec2 p, Vec2 q) { expect_bits(p, q, w + ".anchor_b"); });
+    expect_bits(x.axis, y.axis, w + ".axis");
+    expect_bits(x.length, y.length, w + ".length");
+    expect_bits(x.lower, y.lower, w + ".lower");
+    expect_bits(x.upper, y.upper, w + ".upper");
+    expect_bits(x.motor_speed, y.motor_speed, w + ".motor_speed");
+    expect_bits(x.max_motor_torque, y.max_motor_torque, w + ".max_motor_torque");
+    expect_bits(x.max_motor_force, y.max_motor_force, w + ".max_motor_force");
+    expect_bits(x.frequency, y.frequency, w + ".frequency");
+    expect_bits(x.damping_ratio, y.damping_ratio, w + ".damping_ratio");
+    expect_bits(x.target, y.target, w + ".target");
+    expect_bits(x.break_force, y.break_force, w + ".break_force");
+    expect_bits(x.break_torque, y.break_torque, w + ".break_torque");
+    EXPECT_EQ(x.collide_connected, y.collide_connected) << w << ".collide_connected";
   }
 }
 

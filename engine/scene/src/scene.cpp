@@ -209,7 +209,7 @@ toml::table read_document(Reader& r, std::string_view text, const std::string& s
   }
   r.check_keys(doc, "",
                {"world", "view", "contacts", "body", "spring", "chain", "grid", "plane", "segment",
-                "polyline"});
+                "polyline", "joint"});
   return doc;
 }
 
@@ -382,6 +382,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   parse_springs(r, doc, scene, names);
   parse_planes(r, doc, scene);
   parse_segments(r, doc, scene, names);
+  parse_joints(r, doc, scene, names);
   parse_contacts(r, doc, scene);
   check_magnitudes(r, doc, "");  // every number, after the keys' own ranges
   check_start_overlap(scene, names);

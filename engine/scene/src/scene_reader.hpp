@@ -488,5 +488,9 @@ std::size_t find_body(const Reader& r, const toml::node& n, const std::string& k
 /// [[spring]] tables: appends their links to the scene, after every body is known
 /// (scene_links.cpp).
 void parse_springs(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names);
+/// [[joint]] tables: appends their joints (JointDef, bodies by the handles WorldDef::add_body
+/// gives them) and lines to the scene, after every body is known; each key the joint's type does
+/// not use, and each value out of its range, refused at its key (scene_joints.cpp).
+void parse_joints(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names);
 
 }  // namespace fixstep::scene_detail

@@ -1,6 +1,6 @@
 // How the scene writer spells values: every number the shortest text that reads back as the
-// same double, points, filter bits; and a body's shape keys (scene_shapes.cpp). Internal to the
-// engine: not installed.
+// same double, points, filter bits, strings; a body's shape keys (scene_shapes.cpp) and the
+// joints' tables (scene_joints.cpp). Internal to the engine: not installed.
 #pragma once
 
 #include <fmt/format.h>
@@ -8,8 +8,11 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/world_def.hpp"
 
 namespace fixstep::scene_detail {
 
@@ -36,10 +39,38 @@ inline std::string toml_filter_bits(std::uint64_t bits) {
   return fmt::format("0x{:x}", bits);
 }
 
+/// s as a TOML basic string: quotes, backslashes and control characters escaped, every other
+/// byte as it is (a name must be UTF-8, as TOML requires; the loader refuses it otherwise).
+inline std::string toml_string(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (u < 0x20 || u == 0x7f) {
+      out += fmt::format("\\u{:04x}", u);
+    } else {
+      out += c;
+    }
+  }
+  return out + '"';
+}
+
 /// The shape keys of body b for its [[body]] table: `inertia` when set, then a [[body.shape]]
 /// table for each shape with every key that is not the loader's default (so that it loads
 /// back with the same bits). Empty for a body without shapes. Goes last in the body's text:
 /// the keys after a [[body.shape]] header are the shape's.
 [[nodiscard]] std::string shapes_text(const BodyDef& b);
+
+/// A [[joint]] table for each of def's joints, in order (scene_joints.cpp): its type, its bodies
+/// by their names in the file (`names`, as the writer gives them; none for the world), its name
+/// when not empty, then every field that is not JointDef's default (the anchor and the axis
+/// always where the type uses them; a distance joint's anchor_b always, unset written as the
+/// anchor). Throws std::invalid_argument "format_scene: joint[i]: ..." for a body handle that
+/// is neither null nor one of def's bodies.
+[[nodiscard]] std::string joints_text(const WorldDef& def, const std::vector<std::string>& names);
 
 }  // namespace fixstep::scene_detail

@@ -1,7 +1,7 @@
 // Writing a WorldDef as a scene file (scene_writer.hpp): every body a [[body]] table, every link
-// a [[spring]], every segment a [[segment]] (naming the body that carries it), every number the
-// shortest text that reads back as the same double; the text is parsed back and its definition
-// hash compared before it is handed out.
+// a [[spring]], every segment a [[segment]] (naming the body that carries it), every joint a
+// [[joint]], every number the shortest text that reads back as the same double; the text is
+// parsed back and its definition hash (and joints) compared before it is handed out.
 #include "fixstep/scene/scene_writer.hpp"
 
 #include <fmt/format.h>
@@ -38,26 +38,7 @@ namespace {
 using scene_detail::toml_filter_bits;
 using scene_detail::toml_number;
 using scene_detail::toml_point;
-
-/// s as a TOML basic string: quotes, backslashes and control characters escaped, every other
-/// byte as it is (a name must be UTF-8, as TOML requires; the loader refuses it otherwise).
-std::string toml_string(std::string_view s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    const auto u = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (u < 0x20 || u == 0x7f) {
-      out += fmt::format("\\u{:04x}", u);
-    } else {
-      out += c;
-    }
-  }
-  return out + '"';
-}
+using scene_detail::toml_string;
 
 std::string color_text(Rgba8 c) {
   return c.a == 255 ? fmt::format("\"#{:02x}{:02x}{:02x}\"", c.r, c.g, c.b)
@@ -319,7 +300,19 @@ void write_segments(std::string& out, const WorldDef& def, const std::vector<std
   }
 }
 
-/// The text must load (else the loader's message) and give def's definition hash.
+/// def's joints as the loader gives them back: a distance joint's anchor_b equal to its anchor
+/// (bit for bit) unset, as unset means the anchor.
+std::vector<JointDef> reloaded_joints(const WorldDef& def) {
+  std::vector<JointDef> joints = def.joints;
+  for (JointDef& j : joints) {
+    if (j.type == JointType::distance && j.anchor_b && same_bits(*j.anchor_b, j.anchor)) {
+      j.anchor_b.reset();
+    }
+  }
+  return joints;
+}
+
+/// The text must load (else the loader's message) and give def's definition hash and joints.
 void check_reloads(const std::string& text, const WorldDef& def) {
   WorldDef back;
   try {
@@ -334,6 +327,11 @@ void check_reloads(const std::string& text, const WorldDef& def) {
         "format_scene: the scene text loads back with definition hash {:016x}, not the world's "
         "{:016x} (a bug of the scene writer)",
         got, want));
+  }
+  if (back.joints != reloaded_joints(def)) {
+    throw std::logic_error(
+        "format_scene: the scene text loads back with other joints than the world's (a bug of "
+        "the scene writer)");
   }
 }
 
@@ -351,12 +349,13 @@ std::string format_scene(const WorldDef& def) {
   write_links(out, def, names);
   write_planes(out, def);
   write_segments(out, def, names);
+  out += scene_detail::joints_text(def, names);
   if (out.size() > max_scene_bytes) {
     refuse("the world",
            fmt::format("its scene would be {} bytes, more than the {} a scene file may have ({} "
-                       "bodies, {} links, {} planes)",
+                       "bodies, {} links, {} planes, {} joints)",
                        out.size(), max_scene_bytes, def.bodies.size(), def.links.size(),
-                       def.planes.size()));
+                       def.planes.size(), def.joints.size()));
   }
   check_reloads(out, def);
   return out;

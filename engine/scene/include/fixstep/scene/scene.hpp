@@ -96,6 +96,7 @@ struct SceneSourceMap {
   std::vector<std::size_t> plane_lines;  ///< line of each [[plane]] table
   /// Line of each segment's table: its [[segment]], or the [[polyline]] that made it.
   std::vector<std::size_t> segment_lines;
+  std::vector<std::size_t> joint_lines;  ///< line of each [[joint]] table
 };
 
 /// A parsed, validated scene: the WorldDef it describes (def: World(scene.def) builds its world,
@@ -112,7 +113,9 @@ struct SceneSourceMap {
 ///     bodies with a radius (a Collider) bounce on;
 ///   - segments: [[segment]] tables in file order, then the segments of [[polyline]] tables
 ///     (in file order, each joined by ghost vertices: SegmentDef); a table's `body` names the
-///     kinematic body carrying its segments (SegmentDef::body, that body's handle).
+///     kinematic body carrying its segments (SegmentDef::body, that body's handle);
+///   - joints: [[joint]] tables in file order (JointDef; body_a and body_b the handles of the
+///     bodies they name, null for the world where one is left out).
 struct Scene {
   /// What the file describes; [world] allow_unstable is def.allow_unstable (the stability guard
   /// warns instead of refusing, for demos that show blow-ups on purpose).
@@ -143,13 +146,19 @@ inline constexpr std::size_t max_scene_links = 4'000'000;
 /// [[polyline]], [contacts] and bodies), a [[segment]] whose ends coincide, a [[polyline]]
 /// with fewer than 2 points (3 when closed) or a point repeating the one before it, a [[segment]]
 /// or [[polyline]] whose body is not a string, names no body (with the closest name) or names
-/// one that is not kinematic, an unknown body type (with the closest valid one),
+/// one that is not kinematic, [[joint]] tables with an unknown type (with the closest one), a key
+/// their type does not use, no body, one body twice, an unknown body (with the closest name) or
+/// one without shapes, limits outside their range (revolute: [-π, π]) or lower > upper, a
+/// negative maximum, frequency, damping ratio, break force or torque, a length <= 0, a zero
+/// axis, a wheel without frequency > 0, or more than max_joints of them (docs/SCENES.md,
+/// "Joints"), an unknown body type (with the closest valid one),
 /// collide/restitution/friction on a body without radius, discs overlapping where they start
 /// when [contacts] is on (naming both and the overlap in m; first_disc_overlap), generators beyond
 /// max_scene_bodies / max_scene_links, and unreadable, binary or oversized files. Warns
 /// (Scene::warnings) about unknown keys, a mass, spring, gravity, force or drag given to a static
-/// or kinematic body (dropped), a static body's velocity (set to zero), springs between two such
-/// bodies, and [contacts] in a scene without discs.
+/// or kinematic body (dropped), a static body's velocity (set to zero), springs and joints between
+/// two such bodies (or such a body and the world), a joint's damping_ratio without frequency, and
+/// [contacts] in a scene without discs.
 ///
 /// Generators of many bodies take time (seconds for 10^6 bodies and 2·10^6 links):
 /// every 65 536 bodies or links they report progress to the calling thread's WorkProgressScope

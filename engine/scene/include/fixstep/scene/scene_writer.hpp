@@ -17,7 +17,8 @@ namespace fixstep {
 /// its sign). Every body becomes a [[body]] table and every link a [[spring]] table, in order,
 /// so body i and link i keep their indices; generators are not reconstructed. Every segment
 /// becomes a [[segment]] table, in order (a polyline's segments with their ghost vertices as
-/// prev and next), one a kinematic body carries with `body` = that body's name.
+/// prev and next), one a kinematic body carries with `body` = that body's name. Every joint
+/// becomes a [[joint]] table, in order, its bodies by name (none for the world).
 ///
 /// What the format holds differently, documented and tested:
 ///   - names: every body is written with a name, and links name their bodies by it. A name is
@@ -34,10 +35,15 @@ namespace fixstep {
 ///     sleep_speed and sleep_time are written only with sleep on, and only when not the
 ///     defaults: with sleep off they do nothing, the hash leaves them out, and they reload as
 ///     the defaults.
+///   - joints: the anchor and the axis are always written where the type uses them (the
+///     loader's defaults are the bodies' positions); a distance joint's anchor_b always, an
+///     unset one as the anchor; one equal to its anchor (bit for bit) reloads unset (the same
+///     joint: unset means the anchor).
 ///
 /// Throws std::invalid_argument, "format_scene: WHERE: WHY", when `def` cannot be written so
 /// that it loads back exactly: a link naming a body that is not one of def's or one body twice; a
-/// segment carried by a body that is not one of def's or not kinematic; a
+/// segment carried by a body that is not one of def's or not kinematic; a joint's body that is
+/// neither null (the world) nor one of def's; a
 /// static or kinematic body with a mass other than the default 1 kg, a spring, constant force,
 /// gravity or drag (a scene gives such bodies none), or a static body with a non-zero
 /// velocity; a plane normal that the loader's normalisation (n/|n|) would change (a normal
