@@ -20,7 +20,7 @@ namespace {
 using shape_exact::Measure;
 using shape_exact::near;
 
-constexpr double g = 9.81;
+constexpr double g0 = 9.81;  // m/s², the bodies' gravity
 constexpr double dt = 1.0 / 60.0;
 constexpr double slop = 0.005;  // m, the joints' linear slop (Box2D's)
 
@@ -73,7 +73,7 @@ double measured_period(Pendulum& p, int periods, double expected) {
 
 std::vector<Measure> pendulum_small_angle() {
   Pendulum p = pendulum(0.02);
-  const double exact = 2.0 * std::numbers::pi * std::sqrt(p.inertia_pivot() / (g * p.d));
+  const double exact = 2.0 * std::numbers::pi * std::sqrt(p.inertia_pivot() / (g0 * p.d));
   return {near("period at 0.02 rad (s)", measured_period(p, 10, exact), exact, 1e-3 * exact)};
 }
 
@@ -81,7 +81,7 @@ std::vector<Measure> pendulum_released_horizontal() {
   const double theta0 = std::numbers::pi / 2.0;
   Pendulum p = pendulum(theta0);
   const double exact =
-      4.0 * std::sqrt(p.inertia_pivot() / (g * p.d)) * std::comp_ellint_1(std::sin(theta0 / 2.0));
+      4.0 * std::sqrt(p.inertia_pivot() / (g0 * p.d)) * std::comp_ellint_1(std::sin(theta0 / 2.0));
   return {
       near("period released horizontal (s)", measured_period(p, 5, exact), exact, 5e-3 * exact)};
 }
@@ -93,10 +93,10 @@ std::vector<Measure> pendulum_energy_bounded() {
     const Vec2 c = b.position;  // the box's centre is its origin
     return 0.5 * (dot(b.velocity, b.velocity) +
                   p.inertia_cm * b.angular_velocity * b.angular_velocity) +
-           g * c.y;
+           g0 * c.y;
   };
   const double e0 = energy();
-  const double period = 2.0 * std::numbers::pi * std::sqrt(p.inertia_pivot() / (g * p.d));
+  const double period = 2.0 * std::numbers::pi * std::sqrt(p.inertia_pivot() / (g0 * p.d));
   double worst = 0.0, end = 0.0;
   const int ticks = static_cast<int>(100 * period / dt);
   for (int t = 0; t < ticks; ++t) {
@@ -104,7 +104,7 @@ std::vector<Measure> pendulum_energy_bounded() {
     worst = std::max(worst, std::abs(energy() - e0));
   }
   end = energy() - e0;
-  const double scale = g * p.d;  // J: the swing's potential scale (m = 1 kg)
+  const double scale = g0 * p.d;  // J: the swing's potential scale (m = 1 kg)
   return {near("largest energy error over 100 periods / (m g d)", worst / scale, 0.0, 0.02),
           near("energy change after 100 periods / (m g d)", end / scale, 0.0, 0.02)};
 }
@@ -194,17 +194,17 @@ std::vector<Measure> motor_spins_up() {
 
 // --- a prismatic slide at θ to gravity: a = g sin θ along the axis, nothing across ------------
 
-struct Slide {
+struct AxisSlide {
   double along = 0.0, across = 0.0, turn = 0.0, lowest = 0.0;
 };
 
-Slide prismatic_slide(double theta, std::optional<double> lower, int ticks) {
+AxisSlide prismatic_slide(double theta, std::optional<double> lower, int ticks) {
   World w = empty_world();
   const Entity box = w.create_body(shape_exact::box_body(0.5, 0.25, {}, 0.0, 2.0));
   const Vec2 axis{std::cos(theta), std::sin(theta)};
   const Joint j = w.create_joint(JointDef{
       .type = JointType::prismatic, .body_b = box, .anchor = {}, .axis = axis, .lower = lower});
-  Slide s{.lowest = 0.0};
+  AxisSlide s{.lowest = 0.0};
   for (int t = 0; t < ticks; ++t) {
     w.step();
     s.lowest = std::min(s.lowest, w.joint_state(j).value);
@@ -217,16 +217,16 @@ Slide prismatic_slide(double theta, std::optional<double> lower, int ticks) {
 std::vector<Measure> prismatic_slides() {
   const double theta = 0.5;
   const int n = 120;
-  const Slide s = prismatic_slide(theta, std::nullopt, n);
+  const AxisSlide s = prismatic_slide(theta, std::nullopt, n);
   // Semi-implicit Euler from rest: x_n = a dt² n(n+1)/2 with a = −g sin θ along the axis.
-  const double exact = -g * std::sin(theta) * dt * dt * n * (n + 1) / 2.0;
+  const double exact = -g0 * std::sin(theta) * dt * dt * n * (n + 1) / 2.0;
   return {near("distance slid along the axis in 2 s (m)", s.along, exact, 1e-9 * std::abs(exact)),
           near("distance across the axis (m)", s.across, 0.0, 1e-9),
           near("turn (rad)", s.turn, 0.0, 1e-9)};
 }
 
 std::vector<Measure> prismatic_limit_stops() {
-  const Slide s = prismatic_slide(0.5, -1.0, 240);
+  const AxisSlide s = prismatic_slide(0.5, -1.0, 240);
   return {near("lowest translation (m)", s.lowest, -1.0, slop),
           near("translation at rest (m)", s.along, -1.0, slop)};
 }
@@ -287,7 +287,7 @@ std::vector<Measure> rope_slack_and_taut() {
   for (int t = 0; t < free_ticks; ++t) w.step();
   const double fallen = w.body(e).position.y;
   // Free fall while slack: y_n = −g dt² n(n+1)/2.
-  const double exact = -g * dt * dt * free_ticks * (free_ticks + 1) / 2.0;
+  const double exact = -g0 * dt * dt * free_ticks * (free_ticks + 1) / 2.0;
   double longest = 0.0;
   for (int t = free_ticks; t < 600; ++t) {
     w.step();

@@ -96,6 +96,31 @@ void hash_body(Fnv1a& h, const BodyDef& b) {
   }
 }
 
+/// Each joint's every field, its bodies by their places in def.bodies (the world: 0, a body
+/// i + 1), a distance joint's second anchor as World makes it (unset: the anchor).
+void hash_joints(Fnv1a& h, const WorldDef& def) {
+  h.add(std::uint64_t{0x701e7}), h.add(def.joints.size());
+  auto place = [&](Entity e) {
+    if (e.is_null()) return std::uint64_t{0};
+    return std::uint64_t{1} +
+           std::uint64_t{fixstep::defined_index(e, def.bodies.size()).value_or(def.bodies.size())};
+  };
+  for (const JointDef& j : def.joints) {
+    h.add(j.type), h.add(place(j.body_a)), h.add(place(j.body_b));
+    h.add(j.anchor), h.add(j.anchor_b.value_or(j.anchor)), h.add(j.axis);
+    h.add_optional(j.length, [&](double v) { h.add(v); });
+    h.add_optional(j.lower, [&](double v) { h.add(v); });
+    h.add_optional(j.upper, [&](double v) { h.add(v); });
+    h.add(j.motor_speed), h.add(j.max_motor_torque), h.add(j.max_motor_force);
+    h.add(j.frequency), h.add(j.damping_ratio), h.add(j.target);
+    h.add_optional(j.break_force, [&](double v) { h.add(v); });
+    h.add_optional(j.break_torque, [&](double v) { h.add(v); });
+    h.add(j.collide_connected);
+    h.add(j.name.size());
+    for (const char c : j.name) h.add(static_cast<std::uint8_t>(c));
+  }
+}
+
 }  // namespace
 
 std::uint64_t definition_hash(const WorldDef& def) {
@@ -152,6 +177,7 @@ std::uint64_t definition_hash(const WorldDef& def) {
       }
     }
   }
+  if (!def.joints.empty()) hash_joints(h, def);  // absent: the hash from before joints
   return h.value();
 }
 

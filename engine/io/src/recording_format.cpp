@@ -10,8 +10,10 @@
 //   tick N push=AX,AY held=HEX pressed=HEX released=HEX pointer=X,Y drag=SLOT:GEN|none
 //        [KIND=SLOT:GEN,X,Y]...   KIND: force, impulse, velocity, torque, angular_impulse,
 //                                 angular_velocity or target_angle (body_input_kind_name)
+//        [joint.KIND=SLOT:GEN,X,Y]...   a joint's input (joint_input_kind_name), after them
 // (one line; a body is named by its handle Entity{SLOT, GEN}, per-body inputs in order; the
 // angular kinds carry their value in X, Y as recorded, 0 for input World::step applies).
+// Joint inputs came with joints and changed no version, as the angular kinds did.
 // The angular kinds came with bodies with shapes and changed no version: only a world with
 // shapes takes them, and a build before shapes refuses such a recording anyway (its scene's
 // definition hash differs, and the tick line's `torque=` is not a kind it knows: "expected
@@ -375,13 +377,44 @@ BodyInput body_input(const Lines& in, std::string_view word) {
   return b;
 }
 
+/// `joint.KIND=SLOT:GEN,X,Y`: one joint input.
+JointInput joint_input(const Lines& in, std::string_view word) {
+  const std::size_t eq = word.find('=');
+  const std::string_view key = word.substr(0, eq);
+  JointInput j;
+  bool known = false;
+  for (int k = 0; k <= static_cast<int>(last_joint_input_kind) && !known; ++k) {
+    j.kind = static_cast<JointInputKind>(k);
+    known = key.substr(6) == joint_input_kind_name(j.kind);
+  }
+  if (!known) {
+    in.fail(Kind::corrupt, "tick",
+            fmt::format("expected joint.motor_speed=, joint.max_motor_torque=, "
+                        "joint.max_motor_force=, joint.enable_motor=, joint.target= or "
+                        "joint.target_angle=, found {}",
+                        shown(word)));
+  }
+  const std::string_view value = keyed(in, word, key);
+  const std::size_t comma = value.find(',');
+  if (comma == std::string_view::npos) {
+    in.fail(Kind::corrupt, key, fmt::format("expected SLOT:GEN,X,Y, found {}", shown(value)));
+  }
+  j.joint = [&] {
+    const Entity e = handle(in, value.substr(0, comma), key);
+    return Joint{e.index1, e.generation};
+  }();
+  j.value = vec2(in, value.substr(comma + 1), key);
+  return j;
+}
+
 TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec) {
   // Version 2 appends the per-body inputs to version 1's eight words.
   const std::size_t count = words(line).size();
   const bool v2 = rec.version >= 2;
-  if (v2 && count > 8 + max_body_inputs) {
+  if (v2 && count > 8 + max_body_inputs + max_joint_inputs) {
     in.fail(Kind::corrupt, "tick",
-            fmt::format("{} per-body inputs; at most {} per tick", count - 8, max_body_inputs));
+            fmt::format("{} per-body and joint inputs; at most {} per tick", count - 8,
+                        max_body_inputs + max_joint_inputs));
   }
   const std::vector<std::string_view> w = fields(in, line, "tick", v2 && count > 8 ? count : 8);
   TickInput t;
@@ -406,7 +439,21 @@ TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec
     t.drag_body =
         fixstep::defined_entity(integer<std::uint32_t>(in, drag, "drag", 10, 0xfffffffeu));
   }
-  for (std::size_t k = 8; k < w.size(); ++k) t.bodies.push_back(body_input(in, w[k]));
+  for (std::size_t k = 8; k < w.size(); ++k) {
+    if (w[k].starts_with("joint.")) {
+      t.joints.push_back(joint_input(in, w[k]));
+    } else if (!t.joints.empty()) {
+      in.fail(Kind::corrupt, "tick",
+              fmt::format("{} after a joint input: per-body inputs come first", shown(w[k])));
+    } else {
+      t.bodies.push_back(body_input(in, w[k]));
+    }
+  }
+  if (t.bodies.size() > max_body_inputs || t.joints.size() > max_joint_inputs) {
+    in.fail(Kind::corrupt, "tick",
+            fmt::format("{} per-body inputs and {} joint inputs; at most {} and {} per tick",
+                        t.bodies.size(), t.joints.size(), max_body_inputs, max_joint_inputs));
+  }
   return t;
 }
 

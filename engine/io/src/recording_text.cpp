@@ -33,6 +33,10 @@ void append_tick(std::string& out, const TickInput& t) {
     fmt::format_to(std::back_inserter(out), " {}={}:{},{},{}", body_input_kind_name(b.kind),
                    b.body.index1, b.body.generation, b.value.x, b.value.y);
   }
+  for (const JointInput& j : t.joints) {
+    fmt::format_to(std::back_inserter(out), " joint.{}={}:{},{},{}", joint_input_kind_name(j.kind),
+                   j.joint.index1, j.joint.generation, j.value.x, j.value.y);
+  }
   out += '\n';
 }
 
