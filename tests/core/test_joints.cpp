@@ -149,24 +149,27 @@ TEST(Joints, AMotorFollowsTheTicksInput) {
   EXPECT_THROW(w.check_input(in), std::invalid_argument);
 }
 
-// A joint whose reaction passes its break force breaks with an event, once, and stops acting.
+// A joint whose reaction passes its break force breaks with an event, once, and stops acting;
+// one below it holds.
 TEST(Joints, AJointBreaksAboveItsBreakForce) {
   World w = empty_world();
   const Entity box = w.create_body(shape_exact::box_body(0.5, 0.5, {0.0, -1.0}, 0.0, 10.0));
-  // 10 kg under gravity pulls 98.1 N: a 150 N joint holds until the box is struck.
+  // 10 kg under gravity pulls 98.1 N on a 120 N joint; a 15 N push makes 113.1 N, a 30 N one
+  // 128.1 N.
   const Joint j = w.create_joint(
-      {.type = JointType::revolute, .body_b = box, .anchor = {0.0, -0.5}, .break_force = 150.0});
-  for (int t = 0; t < 30; ++t) {
-    w.step();
-    ASSERT_TRUE(w.joints_broken().empty()) << "broke at rest, tick " << t;
+      {.type = JointType::revolute, .body_b = box, .anchor = {0.0, -0.5}, .break_force = 120.0});
+  TickInput push;
+  push.bodies.push_back({box, BodyInputKind::force, {0.0, -15.0}});
+  for (int t = 0; t < 60; ++t) {
+    w.step(t < 30 ? TickInput{} : push);
+    ASSERT_TRUE(w.joints_broken().empty()) << "broke below its bound, tick " << t;
   }
-  EXPECT_NEAR(w.joint_state(j).force.y, 98.1, 0.5);
-  TickInput in;
-  in.bodies.push_back({box, BodyInputKind::impulse, {0.0, -20.0}});
-  w.step(in);
+  EXPECT_NEAR(w.joint_state(j).force.y, 113.1, 0.5);
+  push.bodies[0].value.y = -30.0;
+  w.step(push);
   ASSERT_EQ(w.joints_broken().size(), 1u);
   EXPECT_EQ(w.joints_broken()[0].joint, j);
-  EXPECT_GT(std::hypot(w.joints_broken()[0].force.x, w.joints_broken()[0].force.y), 150.0);
+  EXPECT_NEAR(w.joints_broken()[0].force.y, 128.1, 0.5);
   EXPECT_TRUE(w.joint_state(j).broken);
   const double y = w.body(box).position.y;
   for (int t = 0; t < 30; ++t) w.step();
@@ -198,6 +201,64 @@ TEST(Joints, JointedShapesCollideOnlyWhenAsked) {
       EXPECT_NEAR(apart, 0.8, 1e-12) << "jointed shapes do not collide";
     }
   }
+}
+
+// The energy account: a motor's work enters as external work, so E + dissipated − external
+// stays E0 while the motor spins a disc up (a joint to a kinematic body likewise).
+TEST(Joints, AMotorsWorkIsExternalWorkInTheEnergyAccount) {
+  WorldSettings s = shape_exact::shape_settings(0.6);
+  s.track_dissipation = true;
+  World w(WorldDef::empty(Precision::f64, s));
+  BodyDef disc = shape_exact::box_body(0.1, 0.1, {});
+  disc.gravity.reset();
+  disc.shapes = {make_circle(0.5)};
+  disc.body.mass = 2.0;
+  const Entity e = w.create_body(disc);
+  w.create_joint(
+      {.type = JointType::revolute, .body_b = e, .motor_speed = 10.0, .max_motor_torque = 1.0});
+  const double e0 = w.energy().total();
+  for (int t = 0; t < 200; ++t) w.step();
+  const double kinetic = 0.5 * 0.25 * 10.0 * 10.0;
+  EXPECT_NEAR(w.external_work(), kinetic, 1e-9 * kinetic);
+  EXPECT_NEAR(energy_balance(w, e0), 0.0, 1e-9 * kinetic);
+}
+
+// A heavy box resting on a ledge with a light box swinging from it on a hinge: the two are
+// one island, so the still box stays awake while its partner swings; a joint's input wakes
+// a sleeping island.
+TEST(Joints, JointedBodiesAreOneIslandAndAJointsInputWakesThem) {
+  WorldSettings s = shape_exact::shape_settings(0.6);
+  s.contacts->sleep = true;
+  s.contacts->sleep_time = 0.25;
+  WorldDef def = WorldDef::empty(Precision::f64, s);
+  def.segments.push_back(SegmentDef{.a = {-2.0, 0.0}, .b = {0.3, 0.0}, .friction = 0.9});
+  const Entity heavy = def.add_body(shape_exact::box_body(0.5, 0.1, {0.0, 0.1}, 0.0, 100.0));
+  const Entity light = def.add_body(shape_exact::box_body(0.05, 0.4, {0.5, -0.3}, 0.0, 0.1));
+  def.joints.push_back(
+      {.type = JointType::revolute, .body_a = heavy, .body_b = light, .anchor = {0.5, 0.1}});
+  def.bodies[1].body.velocity = {1.0, 0.0};  // set swinging
+  World w(def);
+  for (int t = 1; t <= 120; ++t) {
+    w.step();
+    ASSERT_FALSE(w.asleep(heavy)) << "asleep while its partner swings, tick " << t;
+  }
+  // Held by its motor at speed 0, the light box stops, and the island falls asleep.
+  TickInput hold;
+  hold.joints.push_back({w.defined_joints()[0], JointInputKind::max_motor_torque, {5.0, 0.0}});
+  w.step(hold);
+  int asleep_at = -1;
+  for (int t = 1; t <= 240 && asleep_at < 0; ++t) {
+    w.step();
+    EXPECT_EQ(w.asleep(heavy), w.asleep(light)) << "one island, tick " << t;
+    if (w.asleep(heavy)) asleep_at = t;
+  }
+  ASSERT_GT(asleep_at, 0) << "never fell asleep";
+  TickInput in;
+  in.joints.push_back({w.defined_joints()[0], JointInputKind::motor_speed, {2.0, 0.0}});
+  w.step(in);
+  EXPECT_FALSE(w.asleep(heavy));
+  EXPECT_FALSE(w.asleep(light));
+  EXPECT_NE(w.body(light).angular_velocity, 0.0) << "the motor turns it";
 }
 
 /// A pile of ragdoll-like pairs: boxes hinged in twos with limits and a motor, falling on the

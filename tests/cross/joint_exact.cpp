@@ -109,6 +109,52 @@ std::vector<Measure> pendulum_energy_bounded() {
           near("energy change after 100 periods / (m g d)", end / scale, 0.0, 0.02)};
 }
 
+// The pendulum released horizontal with its hinge limited to ±0.5 rad of its start: it swings
+// down to the lower limit and stops there, within the angular slop (2°).
+std::vector<Measure> revolute_limit_stops() {
+  Pendulum p = pendulum(std::numbers::pi / 2.0);
+  const Joint j = p.world.joints()[0];
+  p.world.destroy_joint(j);
+  const Joint limited = p.world.create_joint(JointDef{
+      .type = JointType::revolute, .body_b = p.box, .anchor = {}, .lower = -0.5, .upper = 0.5});
+  double lowest = 0.0;
+  for (int t = 0; t < 240; ++t) {
+    p.world.step();
+    lowest = std::min(lowest, p.world.joint_state(limited).value);
+  }
+  const double slop_angle = 2.0 / 180.0 * std::numbers::pi;
+  return {near("lowest joint angle (rad)", lowest, -0.5, slop_angle),
+          near("joint angle at rest (rad)", p.world.joint_state(limited).value, -0.5, slop_angle)};
+}
+
+// --- springs: a body hung on a wheel joint's suspension or a distance spring rests where the
+// spring carries its weight, k x = m g with k = m ω² (ω = 2π f): x = g / ω² ------------------
+
+std::vector<Measure> springs_carry_the_weight() {
+  World w = empty_world();
+  const double f = 2.0, omega = 2.0 * std::numbers::pi * f, sag = g0 / (omega * omega);
+  BodyDef wheel = shape_exact::box_body(0.1, 0.1, {0.0, 0.0});
+  wheel.shapes = {make_circle(0.3)};
+  const Entity hub = w.create_body(wheel);
+  const Joint suspension = w.create_joint(JointDef{.type = JointType::wheel,
+                                                   .body_b = hub,
+                                                   .anchor = {0.0, 0.0},
+                                                   .axis = {0.0, 1.0},
+                                                   .frequency = f,
+                                                   .damping_ratio = 1.0});
+  const Entity bob = w.create_body(shape_exact::box_body(0.1, 0.1, {5.0, -1.0}, 0.0, 3.0));
+  const Joint spring = w.create_joint(JointDef{.type = JointType::distance,
+                                               .body_b = bob,
+                                               .anchor = {5.0, 0.0},
+                                               .anchor_b = Vec2{5.0, -1.0},
+                                               .frequency = f,
+                                               .damping_ratio = 1.0});
+  for (int t = 0; t < 600; ++t) w.step();
+  return {
+      near("wheel's sag on its suspension (m)", w.joint_state(suspension).value, -sag, 1e-4 * sag),
+      near("distance spring's stretch (m)", w.joint_state(spring).value - 1.0, sag, 1e-4 * sag)};
+}
+
 // --- the hanging chain ---------------------------------------------------------------------
 // 30 boxes 0.1 m × 0.5 m of 1 kg each, hinged end to end and to the world at the top, start
 // straight and at rest. The stretch: the bottom end's distance from the top hinge against the
@@ -304,6 +350,8 @@ std::vector<shape_exact::Check> checks() {
   return {{"PendulumSmallAngle", pendulum_small_angle},
           {"PendulumReleasedHorizontal", pendulum_released_horizontal},
           {"PendulumEnergyBounded", pendulum_energy_bounded},
+          {"RevoluteLimitStops", revolute_limit_stops},
+          {"SpringsCarryTheWeight", springs_carry_the_weight},
           {"ChainHangs", chain_hangs},
           {"ChainHoldsALoad", chain_holds_a_load},
           {"MotorSpinsUp", motor_spins_up},

@@ -193,22 +193,24 @@ void JointSolver::correct_distance(JointRecord& j, End a, End b) {
 }
 
 // The work the motor did on each dynamic end, and everything the joint did on a dynamic end
-// whose other end is kinematic (the kinematic body's work), at the tick's end velocities: what
+// whose other end is kinematic (the kinematic body's work), each impulse at the mean of its
+// end's velocities before and after the solve (exact for one impulse on a free body): what
 // the energy account enters as external work.
 void JointSolver::account(JointRecord& j) const {
   j.work_a = j.work_b = 0.0;
   const End a = end(j.a, false), b = end(j.b, true);
   const JointImpulses& im = j.impulses;
-  auto point_velocity = [](const End& e, Vec2 r) {
-    return e.s ? Vec2{e.s->vx, e.s->vy} + joint_spin_cross(e.s->w, r) : Vec2{};
+  auto mean_velocity = [](const End& e, Vec2 before) {
+    return e.s ? 0.5 * (Vec2{e.s->vx, e.s->vy} + before) : Vec2{};
   };
-  const double wa = a.s ? a.s->w : 0.0, wb = b.s ? b.s->w : 0.0;
+  const Vec2 va = mean_velocity(a, j.va0), vb = mean_velocity(b, j.vb0);
+  const double wa = a.s ? 0.5 * (a.s->w + j.wa0) : 0.0, wb = b.s ? 0.5 * (b.s->w + j.wb0) : 0.0;
   const auto kinematic = [&](std::uint32_t body) {
     return body != JointRecord::none && bodies_[body].type == BodyType::kinematic;
   };
   if (kinematic(j.a) != kinematic(j.b)) {  // the kinematic end's work: all the joint gave
-    if (kinematic(j.a)) j.work_b = dot(j.given_b, point_velocity(b, {})) + j.turned_b * wb;
-    if (kinematic(j.b)) j.work_a = dot(j.given_a, point_velocity(a, {})) + j.turned_a * wa;
+    if (kinematic(j.a)) j.work_b = dot(j.given_b, vb) + j.turned_b * wb;
+    if (kinematic(j.b)) j.work_a = dot(j.given_a, va) + j.turned_a * wa;
     return;
   }
   switch (j.def.type) {  // the motor's: a torque about the angle, a force along the axis
@@ -217,12 +219,12 @@ void JointSolver::account(JointRecord& j) const {
       j.work_a = -im.motor * wa, j.work_b = im.motor * wb;
       break;
     case JointType::prismatic:
-      j.work_a = -im.motor * (dot(j.axis, point_velocity(a, {})) + j.a1 * wa);
-      j.work_b = im.motor * (dot(j.axis, point_velocity(b, {})) + j.a2 * wb);
+      j.work_a = -im.motor * (dot(j.axis, va) + j.a1 * wa);
+      j.work_b = im.motor * (dot(j.axis, vb) + j.a2 * wb);
       break;
     case JointType::motor:  // a motor joint is all motor
-      j.work_a = dot(j.given_a, point_velocity(a, {})) + j.turned_a * wa;
-      j.work_b = dot(j.given_b, point_velocity(b, {})) + j.turned_b * wb;
+      j.work_a = dot(j.given_a, va) + j.turned_a * wa;
+      j.work_b = dot(j.given_b, vb) + j.turned_b * wb;
       break;
     default:
       break;

@@ -68,6 +68,10 @@ struct JointRecord {
   /// its centre of mass (N·m·s), warm start included (the kinematic ends' work).
   Vec2 given_a{}, given_b{};
   double turned_a = 0.0, turned_b = 0.0;
+  /// Each end's velocity (m/s) and angular velocity (rad/s) before the joints' solve: the
+  /// work of an impulse is taken at the mean of its end's velocities before and after.
+  Vec2 va0{}, vb0{};
+  double wa0 = 0.0, wb0 = 0.0;
 };
 
 }  // namespace fixstep::detail

@@ -219,8 +219,10 @@ JointState detail::WorldKernel<Real>::joint_state(Joint joint) const {
   const Vec2 rel =
       velocity(j.def.body_b, s.anchor_b - cb) - velocity(j.def.body_a, s.anchor_a - ca);
   s.value = detail::joint_wrap(tb - ta - j.reference);
-  s.speed = spin(j.def.body_b) - spin(j.def.body_a);
-  if (j.def.type == JointType::prismatic) s.value = dot(s.axis, d), s.speed = dot(s.axis, rel);
+  s.speed = s.spin = spin(j.def.body_b) - spin(j.def.body_a);
+  if (j.def.type == JointType::prismatic || j.def.type == JointType::wheel) {
+    s.value = dot(s.axis, d), s.speed = dot(s.axis, rel);
+  }
   if (j.def.type == JointType::distance) {
     s.value = std::sqrt(dot(d, d));
     s.speed = s.value > 0.0 ? dot(d, rel) / s.value : 0.0;

@@ -92,12 +92,14 @@ struct JointDef {
 
 /// A joint's state after the last tick (World::joint_state).
 struct JointState {
-  /// Revolute, wheel: the relative angle θ_b − θ_a − θ_ref wrapped into [−π, π] (rad);
-  /// prismatic: the translation along the axis (m); distance: the anchors' distance (m); weld,
-  /// motor: the relative angle (rad).
+  /// Revolute: the relative angle θ_b − θ_a − θ_ref wrapped into [−π, π] (rad); prismatic and
+  /// wheel: the translation along the axis (m; a wheel's suspension); distance: the anchors'
+  /// distance (m); weld, motor: the relative angle (rad).
   double value = 0.0;
-  /// Its rate: rad/s or m/s (revolute, wheel: ω_b − ω_a).
+  /// Its rate: rad/s or m/s.
   double speed = 0.0;
+  /// ω_b − ω_a (rad/s): a wheel's spin against its chassis.
+  double spin = 0.0;
   Vec2 force{};         ///< N: the constraint's force on B at the anchor (−force on A)
   double torque = 0.0;  ///< N·m: the constraint's torque on B (−torque on A)
   double motor = 0.0;   ///< N·m or N: the motor's torque or force this tick
