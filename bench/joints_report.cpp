@@ -3,6 +3,7 @@
 // the ragdoll pile and the car, for fixstep and Box2D v3.1.1 and v3.2).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -167,6 +168,10 @@ std::string joint_report_markdown(const JointResults& r) {
       "the engine's own deepest −separation over its contact manifolds.",
       r.rounds, r.rounds == 1 ? "" : "s"));
   for (const JointSceneKind k : joint_scene_kinds) {
+    const bool any = std::any_of(r.cases.begin(), r.cases.end(), [k](const auto& c) {
+      return c.first.starts_with(std::string(joint_scene_name(k)) + "/");
+    });
+    if (!any) continue;  // a run of other scenes only (--scene)
     const std::vector<Column> cols = columns(k);
     line(fmt::format("\n#### {}\n", scene_text(k)));
     std::string head = "| stepper |", rule = "|---|";
