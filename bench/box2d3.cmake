@@ -1,22 +1,22 @@
-# Box2D v3.1.1 and v3.2 (C, MIT), peers of bench_discs and bench_boxes only, never part of the
-# engine: each built from its source archive by its own CMakeLists (ExternalProject, offline: the
-# URL is the local file, its sha256 checked), Release (-O3 -DNDEBUG, CMake's default for C), its
-# default SIMD (SSE2 on x86-64), no samples, tests, benchmarks or validation. Where an archive is
-# absent (a user's checkout or CI's clean clone has no ../shared), that peer is skipped with a
-# message and the benchmarks run the other engines.
+# Box2D v3.1.1 and v3.2 (C, MIT), peers of bench_discs, bench_boxes and bench_joints only, never
+# part of the engine: each built from its source archive by its own CMakeLists (ExternalProject,
+# offline: the URL is the local file, its sha256 checked), Release (-O3 -DNDEBUG, CMake's default
+# for C), its default SIMD (SSE2 on x86-64), no samples, tests, benchmarks or validation. Where an
+# archive is absent (a user's checkout or CI's clean clone has no ../shared), that peer is skipped
+# with a message and the benchmarks run the other engines.
 #
 # Box2D 2.4 (Debian, C++) and v3 share header paths (box2d/box2d.h) and type names (b2Vec2,
-# b2BodyDef...): the v3 code lives in its own translation units (discs_box2d3.cpp,
-# boxes_box2d3.cpp), an OBJECT library per release whose include path is that release's and which
+# b2BodyDef...): the v3 code lives in its own translation units (discs_box2d3.cpp, boxes_box2d3.cpp,
+# joints_box2d3.cpp), an OBJECT library per release whose include path is that release's and which
 # does not see 2.4's target. v3's functions have C linkage (b2CreateWorld...), 2.4's are
 # C++-mangled. v3.1.1 and v3.2 define the same C names: v3.2's archive has every global symbol it
-# defines renamed with the prefix b232_ (box2d3_prefix.sh: objcopy --redefine-syms over the
-# archive, and a header of #defines, force-included before v3.2's headers, that renames the same
-# names where the stepper calls them), so both releases live in one executable. ctest
-# bench_discs_box2d3_symbols and bench_discs_box2d32_symbols check that no two of the three
-# libraries define or need a common symbol (an archive's definition would otherwise interpose on
-# the other's). Sources shared by both releases keep v3's types out of templates and inline
-# functions with external linkage (their layouts differ between releases).
+# defines renamed with the prefix b232_ (box2d3_prefix.sh: objcopy --redefine-syms over the archive,
+# and a header of #defines, force-included before v3.2's headers, that renames the same names where
+# the stepper calls them), so both releases live in one executable. ctest bench_discs_box2d3_symbols
+# and bench_discs_box2d32_symbols check that no two of the three libraries define or need a common
+# symbol (an archive's definition would otherwise interpose on the other's). Sources shared by both
+# releases keep v3's types out of templates and inline functions with external linkage (their
+# layouts differ between releases).
 set(FIXSTEP_BOX2D3_ARCHIVE "${PROJECT_SOURCE_DIR}/../shared/peers/box2d-3.1.1.tar.gz"
     CACHE FILEPATH "Box2D v3.1.1 source archive (git archive of tag v3.1.1) for bench_discs")
 set(FIXSTEP_BOX2D3_SHA256 354794158917d44bd6a8eb7d5565177a78bfd3117a227a5438ad6ec1b5edc276)
@@ -112,6 +112,15 @@ function(fixstep_box2d_v3 name archive sha256 minor)
   if(arg_PREFIX)
     target_compile_options(discs_${name} PRIVATE -include ${rename_header})
   endif()
+  # The joint stepper (joints_box2d3.cpp), bench_joints only: with discs_NAME (its version(), and
+  # v3.1's task system).
+  add_library(joints_${name} OBJECT joints_box2d3.cpp)
+  target_link_libraries(joints_${name} PRIVATE fixstep::core fmt::fmt fixstep_options
+                        fixstep_${name} Threads::Threads)
+  target_compile_definitions(joints_${name} PRIVATE FIXSTEP_BOX2D3_MINOR=${minor})
+  if(arg_PREFIX)
+    target_compile_options(joints_${name} PRIVATE -include ${rename_header})
+  endif()
 endfunction()
 
 fixstep_box2d_v3(box2d3 "${FIXSTEP_BOX2D3_ARCHIVE}" ${FIXSTEP_BOX2D3_SHA256} 1)
@@ -119,7 +128,7 @@ fixstep_box2d_v3(box2d32 "${FIXSTEP_BOX2D32_ARCHIVE}" ${FIXSTEP_BOX2D32_SHA256} 
 
 # The object libraries' private dependencies reach the executables' link lines only (LINK_ONLY):
 # v3's include paths stay out of the translation units that include Box2D 2.4's box2d/box2d.h.
-foreach(exe bench_discs bench_boxes)
+foreach(exe bench_discs bench_boxes bench_joints)
   if(FIXSTEP_HAVE_box2d3)
     target_link_libraries(${exe} PRIVATE discs_box2d3)
     target_compile_definitions(${exe} PRIVATE FIXSTEP_HAVE_BOX2D3=1)
@@ -129,3 +138,9 @@ foreach(exe bench_discs bench_boxes)
     target_compile_definitions(${exe} PRIVATE FIXSTEP_HAVE_BOX2D32=1)
   endif()
 endforeach()
+if(FIXSTEP_HAVE_box2d3)
+  target_link_libraries(bench_joints PRIVATE joints_box2d3)
+endif()
+if(FIXSTEP_HAVE_box2d32)
+  target_link_libraries(bench_joints PRIVATE joints_box2d32)
+endif()

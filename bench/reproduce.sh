@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates every table and figure of docs/PERFORMANCE.md on this machine, in one command:
-#   bash bench/reproduce.sh            (about 15 minutes on 2 cores)
+#   bash bench/reproduce.sh            (about 17 minutes on 2 cores)
 #   bash bench/reproduce.sh coupled    (only section 6, coupled systems against peers: ~3 min)
 #   bash bench/reproduce.sh discs      (only section 7, disc contacts against peers, with
 #                                       Box2D v3 where ../shared/peers has its source: ~6-9 min)
@@ -8,6 +8,9 @@
 #                                       the 20-row pyramid, a 20-box tower and a settling
 #                                       pile of 10^4 boxes,
 #                                       with fixstep's: ~20 s after the build)
+#   bash bench/reproduce.sh joints     (only section 7.2, joints against Box2D v3.1.1 and v3.2:
+#                                       a chain of 100 revolute joints, 100 ragdolls and a
+#                                       car on a terrain: ~1-2 min after the build)
 #   bash bench/reproduce.sh network    (only section 6.1: integrator costs and the trade on
 #                                       damped networks: ~3 min)
 #   bash bench/reproduce.sh net        (only section 8, networking: bandwidth, stalls and
@@ -20,8 +23,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 only="${1:-}"
 case "$only" in
-  "" | coupled | discs | shapes | network | net) ;;
-  *) echo "usage: bash bench/reproduce.sh [coupled|discs|shapes|network|net]" >&2; exit 2 ;;
+  "" | coupled | discs | shapes | joints | network | net) ;;
+  *) echo "usage: bash bench/reproduce.sh [coupled|discs|shapes|joints|network|net]" >&2; exit 2 ;;
 esac
 bash .ci/install-deps
 cmake --workflow --preset bench
@@ -82,6 +85,15 @@ if [ -z "$only" ] || [ "$only" = shapes ]; then
   { measured_on; cat "$out/boxes.md"; } > "$out/boxes.section.md"
 fi
 
+# Joints against Box2D v3.1.1 and v3.2: a chain of 100 boxes on revolute joints swinging down, a
+# pile of 100 ragdolls (revolute joints with angle limits) and a car on wheel joints over a
+# terrain; ns per body-step (median of 5 interleaved rounds), the joints' largest separation and
+# limit error, overlaps and the car's distance, 1 and 2 threads/workers (bench/bench_joints.cpp).
+if [ -z "$only" ] || [ "$only" = joints ]; then
+  "$bin/bench_joints" --report "$out" > "$out/joints.log"
+  { measured_on; cat "$out/joints.md"; } > "$out/joints.section.md"
+fi
+
 # Each integrator's cost per tick on damped networks (cloth.toml and a 10^4-body cloth, f64
 # and f32, 1 and 2 threads), side by side in one run (docs/perf/network_integrators.md).
 if [ -z "$only" ] || [ "$only" = network ]; then
@@ -115,6 +127,7 @@ fi
 if [ -z "$only" ] || [ "$only" = coupled ]; then splice coupled "$out/coupled.section.md"; fi
 if [ -z "$only" ] || [ "$only" = discs ]; then splice discs "$out/discs.section.md"; fi
 if [ -z "$only" ] || [ "$only" = shapes ]; then splice shapes "$out/boxes.section.md"; fi
+if [ -z "$only" ] || [ "$only" = joints ]; then splice joints "$out/joints.section.md"; fi
 if [ -z "$only" ] || [ "$only" = network ]; then
   splice network_integrators "$out/network_integrators.section.md"
   splice network_trade "$out/network_trade.section.md"
