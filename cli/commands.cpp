@@ -84,6 +84,13 @@ std::pair<int, int> parse_frame_size(const std::string& value) {
   return {w, h};
 }
 
+void apply_joint_view(const std::optional<std::string>& joints, Scene& scene) {
+  if (!joints) return;
+  constexpr SceneJoints values[] = {SceneJoints::off, SceneJoints::anchors, SceneJoints::limits};
+  for (std::size_t i = 0; i < joint_view_names.size(); ++i)
+    if (*joints == joint_view_names[i]) scene.view.joints = values[i];
+}
+
 Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warnings) {
   // The generators: seconds for 10^6 bodies and their links. A caller that takes the warnings
   // shows the progress itself: no scope of our own, the reports go to its scope.
@@ -97,6 +104,7 @@ Scene load_with_overrides(const SceneOptions& o, std::vector<std::string>* warni
   if (o.substeps) scene.def.settings.substeps = *o.substeps;
   if (o.damping_split) scene.def.settings.damping_split = *parse_damping_split(*o.damping_split);
   if (o.allow_unstable) scene.def.allow_unstable = true;
+  apply_joint_view(o.joints, scene);
   try {  // the overrides may ask for more work per tick than the file did (limits.hpp)
     check_world_limits(scene.def.bodies, scene.def.links, scene.def.planes, scene.def.settings);
   } catch (const LimitError& e) {

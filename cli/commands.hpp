@@ -1,6 +1,7 @@
 // The fixstep subcommands, separated from argument parsing.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <fixstep/app/session.hpp>
 #include <fixstep/capture/capture.hpp>
@@ -41,6 +42,8 @@ struct SceneOptions {
   std::optional<std::string> damping_split;  ///< per_stage | per_step (WorldSettings)
   bool allow_unstable = false;
   bool quiet = false;  ///< --quiet: errors only (no summary, warnings or progress)
+  /// --joints off|anchors|limits (render, view): overrides [view] joints.
+  std::optional<std::string> joints;
 };
 
 struct RunOptions {
@@ -110,8 +113,14 @@ std::pair<int, int> parse_frame_size(const std::string& value);
 /// subcommand prints.
 std::string describe(const Scene& scene);
 
-/// Loads the scene, applies the overrides, checks the work and memory limits (LimitError) and
-/// prints the scene's warnings to stderr. The generators' progress is shown on a terminal unless
+/// --joints' values, as [view] joints spells them.
+inline constexpr std::array<const char*, 3> joint_view_names{"off", "anchors", "limits"};
+/// Sets scene.view.joints as --joints `joints` (one of joint_view_names) says, if given.
+void apply_joint_view(const std::optional<std::string>& joints, Scene& scene);
+
+/// Loads the scene, applies the overrides (--joints' among them), checks the work and memory limits
+/// (LimitError) and prints the scene's warnings to stderr. The generators' progress is shown on a
+/// terminal unless
 /// --quiet (seconds for 10^6 bodies: WorkProgressLine); they poll stop requests (StopRequested).
 /// Given `warnings`, the warnings are appended there (whatever --quiet says) instead of printed
 /// and no progress line is made: the reports go to the caller's WorkProgressScope (a load on

@@ -250,6 +250,7 @@ int compare_command(const CompareOptions& o) {
   set_phase("loading the scene");
   Scene base = load_scene(o.scene);
   if (o.allow_unstable) base.def.allow_unstable = true;
+  apply_joint_view(o.joints, base);
   if (!o.quiet) {
     for (const std::string& w : base.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   }

@@ -25,6 +25,7 @@ struct CompareOptions {
   bool allow_unstable = false;
   bool quiet = false;
   bool overwrite = false;  ///< --overwrite: remove the old capture's files in --out DIR first
+  std::optional<std::string> joints;  ///< --joints off|anchors|limits: overrides [view] joints
 };
 
 /// Frames of a capture when --frames is not given (4 s at 60 frames/s).

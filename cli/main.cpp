@@ -2,11 +2,11 @@
 //   fixstep run SCENE (--steps N | --duration S) [--csv FILE] [--every K] [--input SCRIPT]
 //               [--record FILE] [--sync-test K] [overrides]
 //   fixstep render [SCENE] (--out DIR | --video FILE.mp4|.gif) [--frames N] [--fps F]
-//                  [--size WxH] [--png-level L] [overrides]
+//                  [--size WxH] [--png-level L] [--joints MODE] [overrides]
 //   fixstep compare SCENE --with SPEC --with SPEC ... [--out DIR] [--video FILE] [--csv FILE]
-//                   [--frames N] [--fps F] [--size WxH]
+//                   [--frames N] [--fps F] [--size WxH] [--joints MODE]
 //   fixstep view SCENE [--size WxH] [--frames N] [--fps F] [--record FILE] [--no-watch]
-//                [overrides]
+//                [--joints MODE] [overrides]
 //   fixstep replay FILE [--scene SCENE]
 //   fixstep diff A.rec B.rec
 //   fixstep new DIR
@@ -64,6 +64,16 @@ void add_scene_options(CLI::App* cmd, fixstep::cli::SceneOptions& o, bool scene_
                 "print errors only: no summary, warnings or progress (standard output is empty)");
 }
 
+/// --joints MODE of the commands that draw (render, view, compare): [view] joints' override.
+void add_joints_option(CLI::App* cmd, std::optional<std::string>& joints) {
+  cmd->add_option("--joints", joints,
+                  "override [view] joints, how joints are drawn: off, anchors (a mark at each "
+                  "anchor: a ring, an axis, a line; the default) or limits (the marks and each "
+                  "joint's limits: a revolute joint's arc, ticks along an axis)")
+      ->check(CLI::IsMember(std::vector<std::string>(fixstep::cli::joint_view_names.begin(),
+                                                     fixstep::cli::joint_view_names.end())));
+}
+
 /// --record FILE and --hash-every K (which needs --record).
 void add_record_options(CLI::App* cmd, std::optional<std::string>& record,
                         std::uint64_t& hash_every) {
@@ -118,6 +128,7 @@ void add_compare_options(CLI::App* cmd, fixstep::cli::CompareOptions& o) {
                 "show a tile even when the stability guard finds it unstable (warns instead)");
   cmd->add_flag("-q,--quiet", o.quiet, "print errors only");
   cmd->add_flag("--overwrite", o.overwrite, overwrite_help);
+  add_joints_option(cmd, o.joints);
 }
 
 /// CLI11 validator text: "" when value is a whole number (digits, an optional sign).
@@ -217,6 +228,7 @@ int run_fixstep(int argc, char** argv) try {
       "settings; verified whole before the first frame (exit 4 if it diverges); --dt, "
       "--integrator, --precision, --substeps and --damping-split are refused with it");
   render_cmd->add_flag("--overwrite", render.overwrite, overwrite_help);
+  add_joints_option(render_cmd, render.scene.joints);
 
   CompareOptions compare;
   CLI::App* compare_cmd = app.add_subcommand(
@@ -237,6 +249,7 @@ int run_fixstep(int argc, char** argv) try {
                    "use a virtual clock of F frames per second instead of the real clock")
       ->check(positive_finite);
   add_record_options(view_cmd, view.record, view.hash_every);
+  add_joints_option(view_cmd, view.scene.joints);
   view_cmd->add_flag("--no-watch", view.no_watch,
                      "do not reload the scene when its file is saved (reloading is the default)");
 

@@ -61,8 +61,9 @@ int render_command(const RenderOptions& o) {
   // The scene file a recording names is kept safe from the outputs too, read or not.
   const std::string scene_file = given ? *given : recorded_scene(*rec, *o.replay);
   check_paths(render_paths(o, scene_file));  // before any work: no output may be an input
-  const Scene scene = rec ? scene_for_recording(*rec, *o.replay, given, o.scene.quiet)
-                          : load_with_overrides(o.scene);
+  Scene scene = rec ? scene_for_recording(*rec, *o.replay, given, o.scene.quiet)
+                    : load_with_overrides(o.scene);
+  apply_joint_view(o.scene.joints, scene);  // a recording's scene too
   const auto [width, height] = parse_frame_size(o.size);
   // Before the world and the frame buffers are allocated.
   check_memory("render", scene.file,

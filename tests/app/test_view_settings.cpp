@@ -1,9 +1,10 @@
-// The scene's [view] look (background, grid, axes, scale_bar, hud, hud_scale, hud_lines): parsed
-// into SceneView, refused with file:line:column and the key, and applied to a Session's settings
-// (scene_view_settings.hpp) and so to its frames.
+// The scene's [view] look (background, grid, axes, scale_bar, hud, hud_scale, hud_lines, joints):
+// parsed into SceneView, refused with file:line:column and the key, and applied to a Session's
+// settings (scene_view_settings.hpp) and so to its frames.
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fixstep/app/scene_view_settings.hpp"
@@ -108,6 +109,25 @@ TEST(SceneViewStyle, AppliedToASessionItShapesTheFrame) {
   SessionSettings off;
   apply_scene_view_style(scene_with_view("hud = \"off\"\n").view, off);
   EXPECT_FALSE(off.show_hud);
+}
+
+TEST(SceneViewStyle, JointsAreDrawnAsTheViewSays) {
+  EXPECT_FALSE(scene_with_view("width = 10.0\n").view.joints);
+  const std::pair<const char*, JointView> cases[] = {
+      {"off", JointView::off}, {"anchors", JointView::anchors}, {"limits", JointView::limits}};
+  for (const auto& [name, view] : cases) {
+    const Scene s = scene_with_view(std::string("joints = \"") + name + "\"\n");
+    ASSERT_TRUE(s.view.joints) << name;
+    SessionSettings settings;
+    EXPECT_EQ(settings.style.joints, JointView::anchors) << "the default";
+    apply_scene_view_style(s.view, settings);
+    EXPECT_EQ(settings.style.joints, view) << name;
+  }
+  EXPECT_EQ(error_of("joints = \"all\"\n"),
+            "view.toml:8:10: view.joints: expected \"off\", \"anchors\" or \"limits\", found "
+            "\"all\"");
+  EXPECT_EQ(error_of("joints = true\n"),
+            "view.toml:8:10: view.joints: expected a string, found a boolean (true)");
 }
 
 }  // namespace view_settings_tests

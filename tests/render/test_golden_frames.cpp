@@ -44,6 +44,7 @@ constexpr double pixel_fraction_tolerance = 0.002;
 constexpr std::uint64_t golden_frame_numbers[] = {0, 30, 90};  // at 60 frames/s
 
 const std::filesystem::path scenes_dir = FIXSTEP_SOURCE_DIR "/assets/scenes";
+const std::filesystem::path test_scenes_dir = FIXSTEP_SOURCE_DIR "/tests/scenes";
 const std::filesystem::path golden_dir = FIXSTEP_SOURCE_DIR "/tests/golden/frames";
 
 bool refreshing() {
@@ -168,6 +169,49 @@ TEST(GoldenFrames, OneFlippedBitOfPhysicsFailsTheComparison) {
   const auto a = render(load_scene(scenes_dir / "default.toml"));
   const auto b = render(load_scene(scenes_dir / "default.toml"));
   EXPECT_EQ(a, b);
+}
+
+/// Compares `frame` with the reference `stem`.png (or, refreshing, writes it); a mismatch leaves
+/// the frame and the diff in golden_failures/.
+void expect_matches_reference(const std::vector<std::uint8_t>& frame, const std::string& stem) {
+  const auto reference = golden_dir / (stem + ".png");
+  if (refreshing()) {
+    write_png(reference, width, height, frame);
+    return;
+  }
+  const auto golden = read_png(reference);
+  ASSERT_FALSE(golden.empty()) << reference << " is missing; see the refresh command in this file";
+  const Comparison c = compare(frame, golden);
+  if (!matches(c)) {
+    const auto failures = std::filesystem::current_path() / "golden_failures";
+    std::filesystem::create_directories(failures);
+    write_png(failures / (stem + ".actual.png"), width, height, frame);
+    write_png(failures / (stem + ".diff.png"), width, height, c.diff);
+    ADD_FAILURE() << stem << ": " << c.beyond << " pixels differ by more than " << channel_tolerance
+                  << " (largest difference " << c.worst << ")";
+  }
+}
+
+// Joints (tests/scenes/joints_drawn.toml: a hinged rod with limits, a rope, a slider on a rail
+// with limits, a rigid distance joint, a car's wheels and a weld), with their limits as its
+// [view] joints = "limits" asks at the golden frame numbers, and at the last one with the
+// default marks only ("anchors"): the same bodies, without the arcs and ticks.
+TEST(GoldenFrames, TheJointsSceneMatchesItsReferenceFrames) {
+  Scene scene = load_scene(test_scenes_dir / "joints_drawn.toml");
+  ASSERT_EQ(scene.view.joints, SceneJoints::limits);
+  const auto frames = render(scene);
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    expect_matches_reference(frames[i],
+                             fmt::format("joints_drawn_frame_{:06}", golden_frame_numbers[i]));
+  scene.view.joints = SceneJoints::anchors;
+  const auto anchors = render(scene);
+  EXPECT_NE(anchors.back(), frames.back());  // the limits drew something
+  expect_matches_reference(anchors.back(),
+                           fmt::format("joints_drawn_anchors_frame_{:06}",
+                                       golden_frame_numbers[std::size(golden_frame_numbers) - 1]));
+  scene.view.joints = SceneJoints::off;
+  EXPECT_NE(render(scene).back(), anchors.back());  // the marks drew something
+  if (refreshing()) GTEST_SKIP() << "rewrote the joints' reference frames in " << golden_dir;
 }
 
 // The overlay test card (web/overlay_card.hpp: every DrawList shape in world and screen

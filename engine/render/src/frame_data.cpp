@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/joint.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/world_settings.hpp"
@@ -37,6 +38,110 @@ RenderFrame::Shape drawn_shape(const ShapeDef& shape, Vec2 center, std::uint32_t
   d.mark_x = static_cast<float>(shape.offset.x + (c * mark.x - s * mark.y) - center.x);
   d.mark_y = static_cast<float>(shape.offset.y + (s * mark.x + c * mark.y) - center.y);
   return d;
+}
+
+/// Where a joint's end is drawn: its body's centre of mass at the tick (`now`) and where x / y
+/// draw it (`drawn`), and the angle its shapes are turned back by, (1 - α) ω dt; the world's
+/// ends stay put.
+struct EndPose {
+  bool on_body = false;
+  Vec2 now{}, drawn{};
+  double back = 0.0;  ///< rad
+  [[nodiscard]] Vec2 turned(Vec2 v) const {
+    if (back == 0.0) return v;
+    const double c = std::cos(back), s = std::sin(back);
+    return {c * v.x + s * v.y, -s * v.x + c * v.y};
+  }
+  /// A point the body carries, at the frame's moment: its offset from the centre turned back.
+  [[nodiscard]] Vec2 moved(Vec2 p) const { return on_body ? drawn + turned(p - now) : p; }
+};
+
+/// The frame's joints (RenderFrame::JointMark), after its bodies: each joint's anchors, axis
+/// and value from World::joint_state, moved to the frame's moment with their bodies; its type
+/// and limits (World::joint) kept per handle.
+void fill_joints(const World& world, double alpha, RenderFrame& out) {
+  using Mark = RenderFrame::JointMark;
+  const std::span<const Joint> joints = world.joints();
+  const bool reread = world.tick() < out.tick;  // out.tick: the frame's previous tick
+  out.joints.resize(joints.size());
+  if (joints.empty()) return;
+  const double dt = world.settings().dt;
+  bool mapped = false;  // out.entry_of_slot built for this frame's bodies
+  auto entry_of = [&](Entity e, std::uint32_t cached) -> std::uint32_t {
+    if (e.is_null()) return Mark::world;
+    if (cached < out.ids.size() && out.ids[cached] == e) return cached;
+    if (!mapped) {  // a body created or destroyed since the joint's last frame
+      std::uint32_t slots = 0;
+      for (const Entity id : out.ids) slots = std::max(slots, id.index1);
+      out.entry_of_slot.assign(slots, Mark::world);
+      for (std::size_t j = 0; j < out.ids.size(); ++j)
+        out.entry_of_slot[out.ids[j].slot()] = static_cast<std::uint32_t>(j);
+      mapped = true;
+    }
+    const std::uint32_t j =
+        e.slot() < out.entry_of_slot.size() ? out.entry_of_slot[e.slot()] : Mark::world;
+    return j != Mark::world && out.ids[j] == e ? j : Mark::world;
+  };
+  auto pose = [&](Entity e, std::uint32_t j) {
+    EndPose p;
+    if (j == Mark::world) return p;
+    const Body b = world.body(e);
+    const Vec2 c = world.local_center(e);
+    const double cos_t = std::cos(b.angle), sin_t = std::sin(b.angle);
+    p.on_body = true;
+    p.now = {b.position.x + cos_t * c.x - sin_t * c.y, b.position.y + sin_t * c.x + cos_t * c.y};
+    p.drawn = {out.x[j], out.y[j]};
+    p.back = (1.0 - alpha) * b.angular_velocity * dt;
+    return p;
+  };
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    Mark& m = out.joints[i];
+    if (reread || m.joint != joints[i]) {
+      const JointDef def = world.joint(joints[i]);
+      m = Mark{};
+      m.joint = joints[i];
+      m.id_a = def.body_a, m.id_b = def.body_b;
+      m.type = def.type;
+      m.rope = def.type == JointType::distance && (def.lower || def.upper);
+      m.has_lower = def.lower.has_value(), m.has_upper = def.upper.has_value();
+      m.lower = static_cast<float>(def.lower.value_or(0.0));
+      m.upper = static_cast<float>(def.upper.value_or(0.0));
+    }
+    const JointState st = world.joint_state(joints[i]);
+    m.broken = st.broken;
+    if (m.broken) continue;
+    m.body_a = entry_of(m.id_a, m.body_a);
+    m.body_b = entry_of(m.id_b, m.body_b);
+    const EndPose pa = pose(m.id_a, m.body_a), pb = pose(m.id_b, m.body_b);
+    const Vec2 a = pa.moved(st.anchor_a), b = pb.moved(st.anchor_b), axis = pa.turned(st.axis);
+    m.ax = static_cast<float>(a.x), m.ay = static_cast<float>(a.y);
+    m.bx = static_cast<float>(b.x), m.by = static_cast<float>(b.y);
+    m.axis_x = static_cast<float>(axis.x), m.axis_y = static_cast<float>(axis.y);
+    double value = st.value;
+    if (m.type != JointType::revolute) {
+      m.value = static_cast<float>(value);
+      continue;
+    }
+    // Revolute: the relative angle θ_b − θ_a − θ_ref turns back with both bodies; the
+    // direction from the anchor to the turning body's centre (B's, or A's when B is the world,
+    // where the angle grows the other way) sets where the angle 0 lies, turning with the other.
+    value -= pb.back - pa.back;
+    const bool b_turns = pb.on_body;
+    const EndPose& mover = b_turns ? pb : pa;
+    const Vec2 pivot = b_turns ? b : a, d = mover.drawn - pivot;
+    const double sense = b_turns ? 1.0 : -1.0;
+    double direction = 0.0;  // rad: from the anchor to the mover's centre
+    if (std::hypot(d.x, d.y) > 1e-6 * (1.0 + std::hypot(pivot.x, pivot.y))) {
+      direction = std::atan2(d.y, d.x);
+    } else {  // its centre on the anchor (a wheel on an axle): its angle
+      const std::uint32_t j = b_turns ? m.body_b : m.body_a;
+      direction = j < out.angle.size() ? double(out.angle[j]) : 0.0;
+    }
+    m.value = static_cast<float>(value);
+    m.zero_angle =
+        static_cast<float>(std::remainder(direction - sense * value, 2 * std::numbers::pi));
+    m.sense = static_cast<float>(sense);
+  }
 }
 
 }  // namespace
@@ -112,6 +217,7 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
     if (s.prev) s.prev = moved(*s.prev);
     if (s.next) s.next = moved(*s.next);
   }
+  fill_joints(world, alpha, out);
   out.tick = world.tick();
   out.dt = world.settings().dt;
   out.alpha = alpha;

@@ -1,7 +1,7 @@
 // Renderer::draw_scene: a RenderFrame as the scene view — grid, axes and scale bar, planes,
-// segments, trails, links, springs, bodies' shapes and discs, in that order — drawn with the
-// canvas primitives of render.cpp (trails in render_trails.cpp, shapes in
-// render_body_shapes.cpp, the HUD in render_hud.cpp).
+// segments, trails, links, springs, bodies' shapes and discs, joints, in that order — drawn with
+// the canvas primitives of render.cpp (trails in render_trails.cpp, shapes in
+// render_body_shapes.cpp, joints in render_joints.cpp, the HUD in render_hud.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -303,6 +303,7 @@ void Renderer::draw_scene(const RenderFrame& s) {
   draw_body_shapes(s);
   draw_bodies(view);
   if (s.spin_marks && s.angle.size() == s.x.size()) draw_spin_marks(s);
+  if (!s.joints.empty()) draw_joints(s);
   // What follows (a game's overlay, the HUD) starts a batch of its own (finish()).
   batches_.push_back(
       Batch{indices_.size(), batches_.back().clip, batches_.back().program, batches_.back().ring});

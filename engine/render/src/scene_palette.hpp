@@ -29,6 +29,10 @@ inline constexpr float outline_px = 1.5f;      // bodies' outline, beyond their 
 inline constexpr float anchor_half_px = 5.0f;  // anchors are squares of twice this side
 
 inline constexpr Rgba8 sleep_grey{128, 132, 140, 255};
+// Joints (render_joints.cpp): light marks edged in `outline`, to read over bodies of any colour;
+// their limits in a warm red.
+inline constexpr Rgba8 joint_color{245, 248, 255, 255};
+inline constexpr Rgba8 joint_limit_color{255, 96, 80, 255};
 
 /// Body j's colour: its Appearance's, or a palette colour without one (alpha 0); halfway to
 /// sleep_grey while it sleeps (RenderFrame::asleep).

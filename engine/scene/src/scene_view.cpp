@@ -1,5 +1,6 @@
 // Scene files: the [view] table (what part of the world the frames show, and how: background,
-// grid, axes, scale bar, the HUD's corner, scale and lines). See README "Scene format".
+// grid, axes, scale bar, the HUD's corner, scale and lines, the joints). See README "Scene
+// format".
 #include <array>
 #include <cmath>
 #include <string_view>
@@ -27,6 +28,12 @@ constexpr std::array<std::pair<std::string_view, std::uint32_t>, 5> hud_line_nam
     {"controls", scene_hud_controls},
 }};
 
+constexpr std::array<std::pair<std::string_view, SceneJoints>, 3> joint_views{{
+    {"off", SceneJoints::off},
+    {"anchors", SceneJoints::anchors},
+    {"limits", SceneJoints::limits},
+}};
+
 /// "a", "b" and "c" for messages.
 template <std::size_t N, class T>
 std::string names_of(const std::array<std::pair<std::string_view, T>, N>& table) {
@@ -49,6 +56,20 @@ void parse_hud_place(const Reader& r, const toml::table& view, SceneView& out) {
   }
   r.fail(view.get("hud")->source(), "view.hud",
          fmt::format("expected {}, found \"{}\"", names_of(hud_places), *place));
+}
+
+/// joints = "off" | "anchors" | "limits".
+void parse_joint_view(const Reader& r, const toml::table& view, SceneView& out) {
+  const auto name = r.string(view, "joints", "view.joints");
+  if (!name) return;
+  for (const auto& [spelling, value] : joint_views) {
+    if (*name == spelling) {
+      out.joints = value;
+      return;
+    }
+  }
+  r.fail(view.get("joints")->source(), "view.joints",
+         fmt::format("expected {}, found \"{}\"", names_of(joint_views), *name));
 }
 
 /// hud_lines = ["title", "time", "integrator", "energy", "controls"] (any of them, once each).
@@ -81,7 +102,7 @@ void parse_hud_lines(const Reader& r, const toml::table& view, SceneView& out) {
   out.hud_lines = bits;
 }
 
-/// background, grid, axes, scale_bar, hud, hud_scale, hud_lines.
+/// background, grid, axes, scale_bar, hud, hud_scale, hud_lines, joints.
 void parse_view_style(const Reader& r, const toml::table& view, SceneView& out) {
   if (view.contains("background"))
     out.background = parse_color(r, view, "background", "view.background");
@@ -98,6 +119,7 @@ void parse_view_style(const Reader& r, const toml::table& view, SceneView& out) 
     out.hud_scale = *scale;
   }
   parse_hud_lines(r, view, out);
+  parse_joint_view(r, view, out);
 }
 
 }  // namespace
@@ -107,7 +129,7 @@ void parse_view(Reader& r, const toml::table& doc, Scene& scene) {
   if (!view) return;
   r.check_keys(*view, "view",
                {"center", "width", "background", "grid", "axes", "scale_bar", "hud", "hud_scale",
-                "hud_lines"});
+                "hud_lines", "joints"});
   parse_view_style(r, *view, scene.view);
   // Bounded before any frame is drawn (SceneView): a view of a point 10^300 m out, or
   // 10^-300 m wide, has no pixels to draw.

@@ -78,9 +78,9 @@ struct Settings {
   /// outside the world's account, so its balance would measure them, not the integrator.
   bool show_energy = false;
   // The view's look. Each, when set, replaces what the scene's [view] table says (background,
-  // grid, axes and scale_bar together; hud; hud_scale; hud_lines); unset, the scene's keys, else
-  // the defaults, apply (SessionSettings).
-  /// Background colour, grid, axes and scale bar.
+  // grid, axes, scale_bar and joints together; hud; hud_scale; hud_lines); unset, the scene's
+  // keys, else the defaults, apply (SessionSettings).
+  /// Background colour, grid, axes, scale bar and how joints are drawn.
   std::optional<ViewStyle> style{};
   /// The HUD's corner; `show_hud` false hides it all (the game's text() lines included).
   std::optional<HudCorner> hud_corner{};

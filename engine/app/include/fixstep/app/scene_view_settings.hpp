@@ -1,6 +1,6 @@
 // A scene's [view] look (SceneView: background, grid, axes, scale bar, HUD corner, scale and
-// lines) as a Session's settings. Header-only: the browser page's app library has no scene loader
-// of its own to link.
+// lines, joints) as a Session's settings. Header-only: the browser page's app library has no scene
+// loader of its own to link.
 #pragma once
 
 #include "fixstep/app/session.hpp"
@@ -27,6 +27,18 @@ static_assert(scene_hud_title == hud_title && scene_hud_time == hud_time &&
   }
 }
 
+/// The renderer's JointView of a [view] joints value.
+[[nodiscard]] inline JointView joint_view_of(SceneJoints joints) {
+  switch (joints) {
+    case SceneJoints::off:
+      return JointView::off;
+    case SceneJoints::limits:
+      return JointView::limits;
+    default:
+      return JointView::anchors;
+  }
+}
+
 /// Sets the fields of `s` that `view` names (its look only: centre and width are the caller's
 /// to apply, as programs give their own precedence), leaving the others as they are.
 inline void apply_scene_view_style(const SceneView& view, SessionSettings& s) {
@@ -34,6 +46,7 @@ inline void apply_scene_view_style(const SceneView& view, SessionSettings& s) {
   if (view.grid) s.style.grid = *view.grid;
   if (view.axes) s.style.axes = *view.axes;
   if (view.scale_bar) s.style.scale_bar = *view.scale_bar;
+  if (view.joints) s.style.joints = joint_view_of(*view.joints);
   if (view.hud) {
     s.show_hud = *view.hud != SceneHud::off;
     s.hud_corner = hud_corner_of(*view.hud);

@@ -57,7 +57,7 @@ struct SessionSettings {
   /// empty: none. The constructor throws std::invalid_argument when no body has that name.
   std::string follow{};
   float hud_text_scale = 2.0f;  ///< see Renderer::set_hud_text_scale (in [1, 4])
-  /// Background colour, grid, axes and scale bar (Renderer::set_view_style).
+  /// Background colour, grid, axes, scale bar and joints (Renderer::set_view_style).
   ViewStyle style{};
   /// The corner the HUD panel sits in; with the automatic view, the band reserved for it is at
   /// the top or the bottom of the frame accordingly.
@@ -159,7 +159,7 @@ class Session {
   /// empty list shows none. The bitmap font is ASCII only. The lines are copied into storage
   /// the session keeps: setting lines every frame allocates nothing once warm.
   void set_status_lines(std::span<const std::string> lines);
-  /// Background colour, grid, axes and scale bar (SessionSettings::style).
+  /// Background colour, grid, axes, scale bar and joints (SessionSettings::style).
   void set_view_style(const ViewStyle& style) { renderer_.set_view_style(style); }
   /// Who rasterises the overlay and the HUD (Renderer::set_overlay_path; the CPU by default).
   void set_overlay_path(OverlayPath path) { renderer_.set_overlay_path(path); }

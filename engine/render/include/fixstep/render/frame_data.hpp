@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/joint.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/world.hpp"
@@ -69,6 +70,36 @@ struct RenderFrame {
   /// Segments (level geometry), drawn as lines in the planes' colour; one a kinematic body
   /// carries where its body is at the frame's moment (interpolated like x / y).
   std::vector<SegmentDef> segments;
+  /// A joint as drawn (World::joints(), JointState): its anchors and axis at the frame's moment,
+  /// moved with their bodies as x / y and angle are; its type and limits as created.
+  struct JointMark {
+    /// An end on the world (a null body): no entry of x / y.
+    static constexpr std::uint32_t world = 0xffffffffu;
+    Joint joint{};          ///< its handle (fill_render_frame keeps type and limits per handle)
+    Entity id_a{}, id_b{};  ///< its bodies' handles (null: the world)
+    std::uint32_t body_a = world, body_b = world;  ///< their entries in x / y, or `world`
+    JointType type = JointType::revolute;
+    bool broken = false;  ///< JointState::broken: not drawn
+    /// A distance joint with a range (lower or upper: a rope), drawn dashed; a rigid or sprung
+    /// one is drawn solid.
+    bool rope = false;
+    bool has_lower = false, has_upper = false;  ///< which limits it has (JointDef::lower, upper)
+    float lower = 0, upper = 0;    ///< rad (revolute) or m (prismatic, wheel, distance)
+    float ax = 0, ay = 0;          ///< m: the anchor as body A carries it (JointState::anchor_a)
+    float bx = 0, by = 0;          ///< m: the anchor as body B carries it (a distance joint's end)
+    float axis_x = 1, axis_y = 0;  ///< unit: the axis as A carries it (prismatic, wheel)
+    /// Revolute: the direction (rad, counter-clockwise from +x) from the anchor in which the
+    /// relative angle is 0, and the sense in which it grows (+1 or -1): the direction from the
+    /// anchor to the centre of B (of A when B is the world) is zero_angle + sense · value, so
+    /// the limits' arc spans zero_angle + sense · [lower, upper].
+    float zero_angle = 0, sense = 1;
+    float value = 0;  ///< JointState::value at the frame's moment (revolute: rad)
+  };
+  /// The joints in World::joints() order (empty: none, and nothing is drawn for them).
+  std::vector<JointMark> joints;
+  /// fill_render_frame's scratch: each body slot's entry in x / y, built when a joint's body
+  /// has moved in World::bodies() (created or destroyed bodies).
+  std::vector<std::uint32_t> entry_of_slot;
   /// The world's tick when the frame was taken (World::tick()) and its dt (s; 0: unknown, a
   /// frame filled by hand, taken as 1/60 s), and the interpolation alpha of x / y: the frame
   /// shows the moment tick - (1 - alpha) ticks. Trails (Trails::prepare) sample a frame whose
@@ -80,9 +111,12 @@ struct RenderFrame {
 
 /// Fills `out` from `world` at interpolation alpha (in [0, 1]; World::interpolate_positions):
 /// positions, handles, appearances (visibility and trails included), angles and shapes (a
-/// world with rolling discs or shapes), anchored springs, links, planes, segments, the tick, dt
-/// and alpha. Reuses out's storage: no
-/// allocation once it has grown to the world's size.
+/// world with rolling discs or shapes), anchored springs, links, planes, segments, joints, the
+/// tick, dt and alpha. Reuses out's storage: no allocation once it has grown to the world's
+/// size. A joint's type and limits never change: they are read (World::joint) for a handle the
+/// frame did not hold at its place before, and for every joint when the world's tick is before
+/// the frame's (a restart, a snapshot restored, another world); a frame filled from two worlds
+/// in turn should be one frame each.
 void fill_render_frame(const World& world, double alpha, RenderFrame& out);
 
 }  // namespace fixstep

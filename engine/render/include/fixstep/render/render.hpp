@@ -45,6 +45,13 @@ struct Camera {
 /// The scene view's default background colour.
 inline constexpr Rgba8 default_background{18, 21, 28, 255};
 
+/// How the scene view draws the world's joints (ViewStyle::joints).
+enum class JointView : std::uint8_t {
+  off,      ///< not at all
+  anchors,  ///< a mark at each anchor: a ring, an axis, a distance joint's line (the default)
+  limits,   ///< the marks and each joint's limits: a revolute joint's arc, ticks along an axis
+};
+
 /// What the scene view draws besides the world (Renderer::set_view_style).
 struct ViewStyle {
   Rgba8 background = default_background;  ///< the frame's colour (its alpha is ignored: opaque)
@@ -53,6 +60,9 @@ struct ViewStyle {
   /// The scale bar (a length of 1, 2 or 5 times a power of ten metres), in the bottom corner
   /// the HUD does not take: bottom right, or bottom left when the HUD is there.
   bool scale_bar = true;
+  /// The joints (RenderFrame::joints), over the bodies: marks at their anchors by default; their
+  /// limits too with JointView::limits.
+  JointView joints = JointView::anchors;
   friend bool operator==(const ViewStyle&, const ViewStyle&) = default;
 };
 
@@ -124,8 +134,9 @@ class Renderer {
   /// pixels(): draw_scene(frame), draw_hud(hud_lines), finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
   /// Starts a picture (begin()) of the scene view of `frame`: background, grid, axes and scale
-  /// bar as view_style() says, the planes, trails, links, springs and the visible bodies (those
-  /// with shapes as their shapes, RenderFrame::shapes, the others as discs). With
+  /// bar as view_style() says, the planes, trails, links, springs, the visible bodies (those
+  /// with shapes as their shapes, RenderFrame::shapes, the others as discs) and, over them, the
+  /// joints as ViewStyle::joints says (none that broke, nor one whose body is hidden). With
   /// at most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
   /// cloth) they are thin straight lines and no trails are drawn. A body hidden by its
   /// Appearance (RenderFrame::visible 0) is not drawn, nor its trail, nor the springs and links
@@ -293,6 +304,9 @@ class Renderer {
   /// an outline as wide as the discs', and its mark (render_body_shapes.cpp). Marks
   /// shaped_bodies_ for the frame's bodies (1: drawn as shapes, not as a disc).
   void draw_body_shapes(const RenderFrame& frame);
+  /// The joints (RenderFrame::joints) as style_.joints says, over the bodies
+  /// (render_joints.cpp).
+  void draw_joints(const RenderFrame& frame);
   /// rounded_polygon()'s mesh for the points in rounded_points_ (distinct, at least one):
   /// the polygon and, for radius > 0, the bands and wedges reaching `radius` px beyond it.
   void rounded_mesh(float radius, Rgba8 c);

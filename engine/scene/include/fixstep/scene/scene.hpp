@@ -51,6 +51,10 @@ inline constexpr double min_view_width_ratio = 1e-9;
 /// Where the [view] table puts the HUD (hud = "top_left", ..., "off").
 enum class SceneHud : std::uint8_t { top_left, top_right, bottom_left, bottom_right, off };
 
+/// How the [view] table asks for joints to be drawn (joints = "off", "anchors", "limits"): not
+/// at all; a mark at each anchor (the default); the marks and each joint's limits.
+enum class SceneJoints : std::uint8_t { off, anchors, limits };
+
 /// The engine's HUD lines a [view] hud_lines array names, as bits (the app library's HudLine
 /// values): "title", "time", "integrator", "energy", "controls".
 inline constexpr std::uint32_t scene_hud_title = 1u << 0;
@@ -82,6 +86,8 @@ struct SceneView {
   /// hud_lines = ["title", "time", ...]: which engine lines the HUD may show (scene_hud_* bits;
   /// [] none: only a program's own lines).
   std::optional<std::uint32_t> hud_lines;
+  /// joints = "off" | "anchors" | "limits": how joints are drawn (default "anchors").
+  std::optional<SceneJoints> joints;
 };
 
 /// Where each part of a scene was declared, for messages: line numbers (0 if not from a file)
