@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The pinball demo's recorded session (assets/recordings/pinball.rec: 40 s of its autopilot,
-# `pinball --frames 2400 --record FILE`: the first ball kept in play by the flippers, twelve
+# `pinball --frames 2400 --record FILE`: the first ball kept in play by the flippers, 21
 # bumper hits) replayed headless with its rules: every stored state hash verifies (the
-# flippers' target_angle inputs, the bumpers' kicks from contact events), the game is where it was, and
+# flippers' motor speeds as joint inputs, the bumpers' kicks from contact events), the game is where it was, and
 # the last frame is rendered; the sync test passes. Then the same recording through `fixstep
 # replay`, which has no pinball rules, must be refused naming the program (exit 5).
 #
@@ -13,8 +13,8 @@ cli=$2
 src=$3
 out=$4
 rec=$src/assets/recordings/pinball.rec
-expected_hash=25b3d3901d009dfd
-expected_game="score=1300 balls=3 bumpers=12 slingshots=10 phase=play"
+expected_hash=ed7fb24b4f6b7931
+expected_game="score=2140 balls=3 bumpers=21 slingshots=4 phase=play"
 rm -rf "$out"
 mkdir -p "$out"
 fail() {
@@ -30,7 +30,7 @@ grep -qx "$expected_game" "$out/replay.txt" || fail "game state is not: $expecte
 stored=$(grep -c '^hash ' "$rec")
 grep -qx "verified=$((stored + 1))" "$out/replay.txt" ||
   fail "not every hash verified ($stored stored + the final one)"
-grep -q " target_angle" "$rec" || fail "the recording holds no flipper input (target_angle)"
+grep -q " joint.motor_speed=" "$rec" || fail "the recording holds no flipper input (joint.motor_speed)"
 [ "$(head -c 8 "$out/last.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] ||
   fail "last.png is not a PNG"
 

@@ -6,6 +6,7 @@
 #include <fixstep/core/components.hpp>
 #include <fixstep/core/det_math.hpp>
 #include <fixstep/core/input.hpp>
+#include <fixstep/core/joint.hpp>
 #include <fixstep/core/shape.hpp>
 #include <fixstep/core/step_results.hpp>
 #include <fixstep/core/world.hpp>
@@ -64,15 +65,14 @@ BodyDef static_body(std::string name, Vec2 at, fixstep::ShapeDef shape, fixstep:
 }
 
 /// A flipper (side -1 left, +1 right): a tapered, rounded polygon from its pivot to its tip,
-/// kinematic, at its rest angle.
+/// dynamic, at its rest angle (its joint: flipper_joint).
 BodyDef flipper(double side) {
   const double l = flipper_length, wide = 0.2, narrow = 0.08;
   std::array<Vec2, 4> pts{{{0, -wide}, {l, -narrow}, {l, narrow}, {0, wide}}};
   if (side > 0) pts = {{{0, wide}, {-l, narrow}, {-l, -narrow}, {0, -wide}}};  // mirrored
   BodyDef b;
   b.name = side < 0 ? "flipper_left" : "flipper_right";
-  b.type = BodyType::kinematic;
-  b.body.position = {side * flipper_x, flipper_y};
+  b.body = Body{.mass = flipper_mass, .position = {side * flipper_x, flipper_y}};
   b.body.angle = side < 0 ? flipper_rest : -flipper_rest;
   fixstep::ShapeDef s = fixstep::make_polygon(pts, 0.05);
   s.restitution = 0.2;
@@ -80,7 +80,22 @@ BodyDef flipper(double side) {
   b.shapes = {s};
   b.appearance = fixstep::Appearance{.color = flipper_color, .trail = false};
   b.user_data = flipper_tag;
+  b.gravity = fixstep::Gravity{{0.0, -gravity}};
   return b;
+}
+
+/// The revolute joint of a flipper (body `e`) to the table at its pivot: limited between its
+/// rest angle (the joint's 0) and its raised one, its motor holding it down at the start.
+fixstep::JointDef flipper_joint(double side, Entity e) {
+  const double swing = side * (flipper_rest - flipper_raised);  // raised, from rest
+  return {.type = fixstep::JointType::revolute,
+          .body_b = e,
+          .anchor = {side * flipper_x, flipper_y},
+          .lower = std::min(0.0, swing),
+          .upper = std::max(0.0, swing),
+          .motor_speed = side * flipper_speed,
+          .max_motor_torque = flipper_torque,
+          .name = side < 0 ? "flipper_left" : "flipper_right"};
 }
 
 void add_walls(fixstep::WorldDef& def) {
@@ -192,8 +207,10 @@ fixstep::WorldDef make_table() {
     def.bodies.push_back(static_body("bumper" + std::to_string(i), bumpers[i], s, bumper_color,
                                      bumper_tag + std::uint64_t(i)));
   }
-  def.bodies.push_back(flipper(-1.0));
-  def.bodies.push_back(flipper(1.0));
+  for (const double side : {-1.0, 1.0}) {
+    const Entity e = def.add_body(flipper(side));
+    def.joints.push_back(flipper_joint(side, e));
+  }
   BodyDef ball;
   ball.name = "ball";
   ball.body = Body{.mass = ball_mass, .position = ball_rest()};
@@ -209,15 +226,11 @@ fixstep::WorldDef make_table() {
 
 void prepare_input(fixstep::TickInput& input, const fixstep::World& sim) {
   for (const double side : {-1.0, 1.0}) {
-    const Entity e = sim.find(side < 0 ? "flipper_left" : "flipper_right");
-    if (!sim.contains(e)) continue;
+    const fixstep::Joint j = sim.find_joint(side < 0 ? "flipper_left" : "flipper_right");
+    if (!sim.contains(j)) continue;
     const bool up = (input.held & (side < 0 ? left_flipper_key : right_flipper_key)) != 0;
-    const double stop = -side * (up ? flipper_raised : flipper_rest);
-    const Body b = sim.body(e);
-    if (b.angle == stop && b.angular_velocity == 0.0) continue;  // resting on its stop
-    const double most = flipper_speed * dt;
-    const double target = b.angle + std::clamp(stop - b.angle, -most, most);
-    input.bodies.push_back({e, fixstep::BodyInputKind::target_angle, {target, 0.0}});
+    const double speed = (up ? -side : side) * flipper_speed;  // up: the left one turns +
+    input.joints.push_back({j, fixstep::JointInputKind::motor_speed, {speed, 0.0}});
   }
 }
 

@@ -2,10 +2,11 @@
 // it up with two flippers, score on the bumpers and slingshots; three balls.
 //
 // What the engine does for the game, and what the game does itself:
-//   - shapes that turn: each flipper is a kinematic body with a rounded polygon, pivoting about
-//     its origin; prepare_input() drives it each tick with a target_angle input towards its
-//     raised or rest stop, at most flipper_speed · dt a tick, so the flipper sweeps rather than
-//     teleports, and the contact solver pushes the ball with the flipper's surface velocity;
+//   - joints: each flipper is a dynamic body (a rounded polygon) on a revolute joint at its
+//     pivot, its limits the rest and raised angles, its motor (flipper_speed, at most
+//     flipper_torque) driven up while its key is held and down otherwise: prepare_input() sets
+//     the motor's speed with a joint input each tick, as a pinball programmer writes it in
+//     Box2D; the ball and the flipper push each other through the contact solver;
 //   - contacts: the ball (a dynamic circle shape) bounces off the walls and lanes (static
 //     segments), the bumpers (static circles) and the slingshots (static triangles); the rules
 //     read World::contacts_begun() to score a hit and kick the ball away (an impulse along the
@@ -45,7 +46,9 @@ inline constexpr double flipper_x = 1.9, flipper_y = 1.6;  ///< m
 inline constexpr double flipper_length = 1.5;              ///< m, pivot to tip
 inline constexpr double flipper_rest = -0.52;              ///< rad, the left flipper down
 inline constexpr double flipper_raised = 0.45;             ///< rad, the left flipper up
-inline constexpr double flipper_speed = 32.0;              ///< rad/s, the most it turns
+inline constexpr double flipper_speed = 32.0;              ///< rad/s, the motor's speed
+inline constexpr double flipper_torque = 600.0;            ///< N·m, the motor's most
+inline constexpr double flipper_mass = 1.0;                ///< kg
 
 inline constexpr double bumper_radius = 0.55;  ///< m
 /// m/s: the speed away from a bumper, and off a slingshot's face, the rules kick the ball to.
@@ -66,8 +69,9 @@ inline constexpr std::uint32_t right_flipper_key = fixstep::button_right;
 inline constexpr std::uint64_t ball_tag = 1, flipper_tag = 2, slingshot_tag = 3, bumper_tag = 100;
 
 /// The table: walls, the top arc and the plunger lane (static segments), two slingshots
-/// (static triangles), three bumpers (static circles), two flippers (kinematic polygons named
-/// "flipper_left" and "flipper_right") and the ball ("ball", on the plunger).
+/// (static triangles), three bumpers (static circles), two flippers (dynamic polygons named
+/// "flipper_left" and "flipper_right" on revolute joints of the same names) and the ball
+/// ("ball", on the plunger).
 [[nodiscard]] fixstep::WorldDef make_table();
 
 // --- the rules --------------------------------------------------------------------------------
@@ -89,9 +93,8 @@ struct GameState {
   friend bool operator==(const GameState&, const GameState&) = default;
 };
 
-/// Before a tick (live play; a recording holds the prepared input): each flipper's target
-/// angle this tick, one step of at most flipper_speed · dt from where it is towards its raised
-/// stop while its key is held, else towards its rest stop.
+/// Before a tick (live play; a recording holds the prepared input): each flipper's motor speed
+/// this tick, up (towards the raised limit) while its key is held, else down.
 void prepare_input(fixstep::TickInput& input, const fixstep::World& sim);
 
 /// After a tick: the rules (plunger, scoring and kicks, the drain, the next ball, game over).

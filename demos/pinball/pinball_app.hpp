@@ -5,6 +5,7 @@
 // replay the same game.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <fixstep/app/app.hpp>
 #include <fixstep/core/input.hpp>
@@ -54,7 +55,7 @@ struct Pinball {
                         b.position.y < top + ball_radius + 0.3;
       if (over) {
         sampler.press(key);
-      } else if (flipper.angle == -side * flipper_raised) {
+      } else if (std::abs(flipper.angle + side * flipper_raised) < 0.05) {  // at its limit
         sampler.release(key);
       }
     }

@@ -39,7 +39,7 @@ World world_of(const std::string& text) {
 
 /// Draws `s` on 320 x 200 px, 10 m wide on the origin (32 px per m; the origin on the corner of
 /// pixels (159, 99) and (160, 100)), no grid, axes or scale bar, joints as `joints` says.
-std::unique_ptr<Renderer> draw(const RenderFrame& s, JointView joints) {
+std::unique_ptr<Renderer> draw_with_joints(const RenderFrame& s, JointView joints) {
   auto r = std::make_unique<Renderer>(320, 200);
   r->set_camera(Camera{.center = {0, 0}, .width = 10.0});
   r->set_view_style(ViewStyle{.grid = false, .axes = false, .scale_bar = false, .joints = joints});
@@ -148,9 +148,9 @@ TEST(JointFrames, MarksAndLimitsAreDrawnWhereTheyBelong) {
   World w = world_of(hinge_scene(""));  // no gravity: the rod stays level
   RenderFrame s;
   fill_render_frame(w, 1.0, s);
-  const auto off = draw(s, JointView::off);
-  const auto anchors = draw(s, JointView::anchors);
-  const auto limits = draw(s, JointView::limits);
+  const auto off = draw_with_joints(s, JointView::off);
+  const auto anchors = draw_with_joints(s, JointView::anchors);
+  const auto limits = draw_with_joints(s, JointView::limits);
   // The ring round the hinge (5 px), left of the rod: the background without joints.
   const Rgba8 bg = default_background;
   EXPECT_TRUE(near(at(*off, 155, 99), bg, 2));
@@ -184,7 +184,8 @@ TEST(JointFrames, ABrokenJointIsNotDrawn) {
   // The weld's ring would be round (-2, 2.5) m: px (96, 20). Drawn as without the joint.
   RenderFrame without = s;
   without.joints.pop_back();
-  const auto a = draw(s, JointView::limits), b = draw(without, JointView::limits);
+  const auto a = draw_with_joints(s, JointView::limits),
+             b = draw_with_joints(without, JointView::limits);
   EXPECT_TRUE(std::equal(a->pixels().begin(), a->pixels().end(), b->pixels().begin()));
 }
 

@@ -168,6 +168,10 @@ class ShapeWorld {
   /// Scratch of the energy account (world_shapes.cpp): each body's energy before and after the
   /// solve and the kinematic work on it (J).
   std::vector<double> energy_, energy_after_, work_;
+  /// Each body's energy at the tick's start (before the free step, J) and its damping account
+  /// then (J/kg), and whether the solve touched it (a contact row or a joint).
+  std::vector<double> energy_start_, dissipated_start_;
+  std::vector<std::uint8_t> touched_;
 
   /// One tick over `bodies_` with `state_` filled (start and free end); leaves the result in
   /// state_.

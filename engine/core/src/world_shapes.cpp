@@ -246,10 +246,28 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
     if (j.b != JointRecord::none) work[j.b] += j.work_b;
   }
   shape_energies(w.energy_after_);
+  // A body the solve touched is measured against the tick's start (less what damping took in
+  // the free step), as a resting disc is (disc_rest.cpp): holding a body at rest undoes the
+  // free step's own energy error every tick (a semi-implicit Euler step from rest under
+  // gravity loses ½ m g² dt²), which would otherwise pile up in the account of a body at rest;
+  // one it did not touch lost nothing.
+  w.touched_.assign(w.bodies_.size(), 0);
+  for (const ShapeRow& r : w.rows()) {
+    if (r.a != ShapeWorld::none) w.touched_[r.a] = 1;
+    w.touched_[r.b] = 1;
+  }
+  for (const JointRecord& j : joint_records_) {
+    if (j.broken) continue;
+    if (j.a != JointRecord::none) w.touched_[j.a] = 1;
+    if (j.b != JointRecord::none) w.touched_[j.b] = 1;
+  }
   for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
     const ShapedBody& b = w.bodies_[i];
     if (b.type != BodyType::dynamic) continue;
-    const double lost = w.energy_[i] - w.energy_after_[i] + work[i];
+    const double damped =
+        mass_[b.body] * (double(dissipated_body_[b.body]) - w.dissipated_start_[i]);
+    const double before = w.touched_[i] ? w.energy_start_[i] - damped : w.energy_[i];
+    const double lost = before - w.energy_after_[i] + work[i];
     dissipated_body_[b.body] += static_cast<Real>(lost / mass_[b.body]);
     external_work_ += work[i];
   }
@@ -263,6 +281,23 @@ void detail::WorldKernel<Real>::save_shape_start() {
     ShapeState& s = w.state_[i];
     s.x0 = double(x_[b.body]), s.y0 = double(y_[b.body]);
     s.a0 = b.set == ShapedBody::none ? 0.0 : shape_sets_.data[b.set].angle;
+  }
+  if (!settings_.track_dissipation) return;
+  // The account's start (account_shape_contacts): each dynamic body's energy before the free
+  // step, and its damping account.
+  w.energy_start_.resize(w.bodies_.size()), w.dissipated_start_.resize(w.bodies_.size());
+  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+    const ShapedBody& b = w.bodies_[i];
+    const std::uint32_t j = b.body;
+    if (b.type != BodyType::dynamic) continue;
+    const double m = mass_[j], vx = double(vx_[j]), vy = double(vy_[j]);
+    const double ax = coeff_.accel_x.empty() ? 0.0 : double(coeff_.accel_x[j]);
+    const double ay = coeff_.accel_y.empty() ? 0.0 : double(coeff_.accel_y[j]);
+    const double spin = b.set == ShapedBody::none ? 0.0 : shape_sets_.data[b.set].spin;
+    const double turn = b.inv_inertia > 0.0 ? 0.5 * spin * spin / b.inv_inertia : 0.0;
+    w.energy_start_[i] =
+        0.5 * m * (vx * vx + vy * vy) + turn - m * (ax * double(x_[j]) + ay * double(y_[j]));
+    w.dissipated_start_[i] = double(dissipated_body_[j]);
   }
 }
 
