@@ -516,6 +516,17 @@ TEST(NetInputCodec, EncoderRefusesWhatTheDecoderWould) {
   EXPECT_THROW(net::encode_inputs({&turn, 1}, TickInput{}, bytes), std::invalid_argument);
   turn.bodies[0] = {{1, 1}, BodyInputKind::torque, {std::numeric_limits<double>::quiet_NaN(), 0.0}};
   EXPECT_EQ(net::check_input(turn), PacketError::bad_input);
+  // Joint inputs are not carried (a match's merge derives them on every peer): refused, with
+  // the reason, rather than dropped into a desync.
+  TickInput motor{};
+  motor.joints = {{{1, 1}, JointInputKind::motor_speed, {1.0, 0.0}}};
+  EXPECT_EQ(net::check_input(motor), PacketError::bad_input);
+  try {
+    net::encode_inputs({&motor, 1}, TickInput{}, bytes);
+    ADD_FAILURE() << "a joint input was encoded";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("joint inputs are not sent"), std::string::npos);
+  }
 }
 
 /// The fuzz target's seeds (tests/fuzz/packet_corpus) are packets one of its receivers takes.

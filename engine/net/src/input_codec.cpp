@@ -179,6 +179,7 @@ PacketError check_input(const TickInput& in) {
     return PacketError::bad_input;
   }
   if (in.bodies.size() > max_net_body_inputs) return PacketError::bad_input;
+  if (!in.joints.empty()) return PacketError::bad_input;  // not carried: the rules' to derive
   for (const BodyInput& b : in.bodies) {
     if (!finite(b.value) || b.kind > last_body_input_kind) return PacketError::bad_input;
   }
@@ -239,7 +240,11 @@ void encode_inputs(std::span<const TickInput> inputs, const TickInput& prev,
   };
   for (const TickInput& in : inputs) {
     if (check_input(in) != PacketError::none) {
-      throw std::invalid_argument("net::encode_inputs: an input the network refuses (check_input)");
+      throw std::invalid_argument(
+          in.joints.empty()
+              ? "net::encode_inputs: an input the network refuses (check_input)"
+              : "net::encode_inputs: a tick's joint inputs are not sent over the network: set a "
+                "networked game's motors from its rules (from the buttons every peer has)");
     }
     const std::uint8_t mask = changed_fields(*before, in);
     if (mask == 0) {

@@ -252,8 +252,8 @@ void MatchPeer::add_input(TickInput input) {
   if (check_input(input) != PacketError::none) {
     throw std::invalid_argument(
         "MatchPeer::add_input: an input the network refuses: a "
-        "non-finite value, an unknown button or body input kind, or more "
-        "than max_net_body_inputs body inputs");
+        "non-finite value, an unknown button or body input kind, more "
+        "than max_net_body_inputs body inputs, or a joint input (a match's merge sets joints)");
   }
   input.tick = m.known(m.slot);
   if (m.settings.pointer_on_grid) input.pointer = round_to_pointer_grid(input.pointer);

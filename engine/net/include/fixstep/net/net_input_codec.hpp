@@ -44,7 +44,8 @@ inline constexpr std::int64_t max_pointer_grid_units = std::int64_t{1} << 40;
 [[nodiscard]] bool same_input(const TickInput& a, const TickInput& b);
 /// What is wrong with `in` for the network (PacketError::none when nothing): a non-finite
 /// push, pointer or body value, a button bit outside all_buttons, more than
-/// max_net_body_inputs body inputs, a body input kind out of range.
+/// max_net_body_inputs body inputs, a body input kind out of range, any joint input (the
+/// network does not carry TickInput::joints: a networked game derives its motors in its rules).
 [[nodiscard]] PacketError check_input(const TickInput& in);
 /// The fields of `in` that differ from `prev` (InputField bits).
 [[nodiscard]] std::uint8_t changed_fields(const TickInput& prev, const TickInput& in);
