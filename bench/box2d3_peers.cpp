@@ -33,6 +33,28 @@ const char* box2d3_key(Box2d3Release r) {
   return r == Box2d3Release::v3_1 ? "box2d3" : "box2d32";
 }
 
+std::vector<std::string> shape_stepper_keys() {
+  std::vector<std::string> k = {"fixstep_t1", "fixstep_t2"};
+  for (const Box2d3Release r : box2d3_releases) {
+    if (!box2d3_built(r)) continue;
+    k.push_back(std::string(box2d3_key(r)) + "_w1");
+    k.push_back(std::string(box2d3_key(r)) + "_w2");
+  }
+  return k;
+}
+
+std::string shape_stepper_label(const std::string& key) {
+  if (key == "fixstep_t1") return "fixstep f64, 1 thread";
+  if (key == "fixstep_t2") return "fixstep f64, 2 threads";
+  for (const Box2d3Release r : box2d3_releases) {
+    const std::string k = box2d3_key(r);
+    const std::string v = box2d3_version(r);
+    if (key == k + "_w1") return fmt::format("Box2D {} (f32), 1 worker", v);
+    if (key == k + "_w2") return fmt::format("Box2D {} (f32), 2 workers", v);
+  }
+  return key;
+}
+
 std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers, Box2d3Release r) {
 #if FIXSTEP_HAVE_BOX2D3
   if (r == Box2d3Release::v3_1) return box2d_v3_1::make_discs(s, workers);

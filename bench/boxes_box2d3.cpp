@@ -29,17 +29,14 @@ namespace discs::FIXSTEP_BOX2D3_NS {
 
 namespace {
 
+#include "box2d3_contacts.hpp"  // inside the release's namespace: its own copy
+
 using boxes::Pose;
 
 /// A body's id in a type of this file only (see discs_box2d3.cpp's BodyRef).
 struct BoxRef {
   b2BodyId id;
 };
-/// Contact data in a type of this file only, for the same reason.
-struct ContactRef {
-  b2ContactData data;
-};
-static_assert(sizeof(ContactRef) == sizeof(b2ContactData));  // an array of one is one of other
 
 class Box2d3Boxes final : public boxes::BoxStepper {
  public:
@@ -93,20 +90,7 @@ class Box2d3Boxes final : public boxes::BoxStepper {
     }
   }
   [[nodiscard]] double own_overlap() const override {
-    double deepest = 0.0;
-    std::vector<ContactRef> contacts;
-    for (const BoxRef& b : bodies_) {
-      const int capacity = b2Body_GetContactCapacity(b.id);
-      if (capacity <= 0) continue;
-      contacts.resize(std::size_t(capacity));
-      const int n = b2Body_GetContactData(b.id, &contacts.data()->data, int(contacts.size()));
-      for (int c = 0; c < n; ++c) {
-        const b2Manifold& m = contacts[std::size_t(c)].data.manifold;
-        for (int k = 0; k < m.pointCount; ++k)
-          deepest = std::max(deepest, -double(m.points[k].separation));
-      }
-    }
-    return deepest;
+    return deepest_manifold_overlap(bodies_);
   }
   [[nodiscard]] int threads() const override {
     return workers_;

@@ -168,6 +168,12 @@ inline constexpr Box2d3Release box2d3_releases[] = {Box2d3Release::v3_1, Box2d3R
 inline constexpr int box2d3_substeps = 4;  ///< b2World_Step's subStepCount: v3's default
 /// A release's stepper key prefix: "box2d3" (v3.1) and "box2d32" (v3.2), then _w1 or _w2.
 [[nodiscard]] const char* box2d3_key(Box2d3Release r);
+/// The keys of a shapes or joints benchmark's steppers: fixstep on 1 and 2 threads
+/// ("fixstep_t1", "fixstep_t2"), then each built Box2D v3 release on 1 and 2 workers.
+[[nodiscard]] std::vector<std::string> shape_stepper_keys();
+/// "fixstep f64, 1 thread", "Box2D 3.2.0 (f32), 2 workers", ... for one of those keys (the key
+/// itself for another).
+[[nodiscard]] std::string shape_stepper_label(const std::string& key);
 
 /// A disc dropped from rest onto the ground by the stepper `key`: falls ½ g t² and rests at
 /// y = r within tolerances (discs_checks.cpp); what failed, empty if nothing.

@@ -37,17 +37,15 @@ namespace discs::FIXSTEP_BOX2D3_NS {
 
 namespace {
 
+#include "box2d3_contacts.hpp"  // inside the release's namespace: its own copy
+
 using joints::Pose;
 
 /// A body's id in a type of this file only (see discs_box2d3.cpp's BodyRef).
 struct JointBodyRef {
   b2BodyId id;
 };
-/// Contact data and points in types of this file only, for the same reason.
-struct JointContactRef {
-  b2ContactData data;
-};
-static_assert(sizeof(JointContactRef) == sizeof(b2ContactData));
+/// Chain points in a type of this file only, for the same reason.
 struct ChainPoint {
   b2Vec2 p;
 };
@@ -112,20 +110,7 @@ class Box2d3Joints final : public joints::JointStepper {
     }
   }
   [[nodiscard]] double own_overlap() const override {
-    double deepest = 0.0;
-    std::vector<JointContactRef> contacts;
-    for (const JointBodyRef& b : bodies_) {
-      const int capacity = b2Body_GetContactCapacity(b.id);
-      if (capacity <= 0) continue;
-      contacts.resize(std::size_t(capacity));
-      const int n = b2Body_GetContactData(b.id, &contacts.data()->data, int(contacts.size()));
-      for (int c = 0; c < n; ++c) {
-        const b2Manifold& m = contacts[std::size_t(c)].data.manifold;
-        for (int k = 0; k < m.pointCount; ++k)
-          deepest = std::max(deepest, -double(m.points[k].separation));
-      }
-    }
-    return deepest;
+    return deepest_manifold_overlap(bodies_);
   }
   [[nodiscard]] int threads() const override {
     return workers_;

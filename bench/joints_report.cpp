@@ -34,25 +34,11 @@ std::unique_ptr<JointStepper> make_box2d3_joints(const JointScene& s, int worker
 }
 
 std::vector<std::string> joint_stepper_keys() {
-  std::vector<std::string> k = {"fixstep_t1", "fixstep_t2"};
-  for (const Box2d3Release r : discs::box2d3_releases) {
-    if (!discs::box2d3_built(r)) continue;
-    k.push_back(std::string(discs::box2d3_key(r)) + "_w1");
-    k.push_back(std::string(discs::box2d3_key(r)) + "_w2");
-  }
-  return k;
+  return discs::shape_stepper_keys();
 }
 
 std::string joint_stepper_label(const std::string& key) {
-  if (key == "fixstep_t1") return "fixstep f64, 1 thread";
-  if (key == "fixstep_t2") return "fixstep f64, 2 threads";
-  for (const Box2d3Release r : discs::box2d3_releases) {
-    const std::string k = discs::box2d3_key(r);
-    const std::string v = discs::box2d3_version(r);
-    if (key == k + "_w1") return fmt::format("Box2D {} (f32), 1 worker", v);
-    if (key == k + "_w2") return fmt::format("Box2D {} (f32), 2 workers", v);
-  }
-  return key;
+  return discs::shape_stepper_label(key);
 }
 
 std::unique_ptr<JointStepper> make_joint_stepper(const std::string& key, const JointScene& s) {

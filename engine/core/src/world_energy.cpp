@@ -1,6 +1,5 @@
 // A world's energy account (kinetic, the potentials of its force terms and links, and what
 // contacts and damping dissipated) and its state hash, the bits that determinism is checked by.
-#include <bit>
 #include <cstdint>
 #include <span>
 
@@ -126,11 +125,11 @@ std::uint64_t detail::WorldKernel<Real>::state_hash() const {
   // Joints (only in worlds that have them): what input set and the impulses they carry to the
   // next tick, in double, and whether each broke.
   for (const JointRecord& j : joint_records_) {
-    auto mix_double = [&](double v) { mix_bytes(std::bit_cast<std::uint64_t>(v), 8); };
+    auto mix_double = [&](double v) { mix_bytes(bits_of(v), 8); };
     const JointImpulses& im = j.impulses;
-    for (const double v : {im.linear.x, im.linear.y, im.angular, im.spring, im.motor, im.lower,
-                           im.upper, im.axial, j.motor_speed, j.max_torque, j.max_force,
-                           j.target.x, j.target.y, j.target_angle}) {
+    for (const double v :
+         {im.linear.x, im.linear.y, im.angular, im.spring, im.motor, im.lower, im.upper, im.axial,
+          j.motor_speed, j.max_torque, j.max_force, j.target.x, j.target.y, j.target_angle}) {
       mix_double(v);
     }
     mix_bytes(std::uint64_t{j.motor_on} | std::uint64_t{j.broken} << 1, 1);
