@@ -33,9 +33,9 @@
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "joint_record.hpp"
 #include "scratch_vector.hpp"
 #include "segment_set.hpp"
-#include "joint_record.hpp"
 
 /// The small phases of a tick (world_tick.cpp): named functions in the files they belong to,
 /// inlined into WorldKernel::step (kernel_instances.cpp compiles them in one unit), so that a

@@ -40,7 +40,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   const IeeeFloatMode ieee;           // no state depends on the caller's FPU mode (float_mode.hpp)
   if (terms_dirty_) rebuild_terms();  // world_kernel.cpp
   if (!joints_broken_.empty()) joints_broken_.clear();
-  apply_input(input);                 // world_input.cpp
+  apply_input(input);                             // world_input.cpp
   if (keep_previous_) keep_previous_positions();  // world_step.cpp
   if (shape_world_) save_shape_start();           // world_shapes.cpp
   const TickPlan plan = plan_tick();
