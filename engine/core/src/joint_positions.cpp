@@ -72,7 +72,7 @@ void JointSolver::solve_position(JointRecord& j, bool keep) {
 
 void JointSolver::correct_angle_limit(JointRecord& j, End a, End b) {
   if (keep_ || (!j.def.lower && !j.def.upper) || j.angle_mass == 0.0) return;
-  const double angle = joint_wrap(now(b).angle - now(a).angle - j.reference);
+  const double angle = wrap_angle(now(b).angle - now(a).angle - j.reference);
   const double c = limit_error(angle, j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
                                j.def.lower.has_value(), j.def.upper.has_value(), joint_angular_slop,
                                joint_max_angular_correction);
@@ -90,11 +90,8 @@ void JointSolver::correct_point(JointRecord& j, End a, End b) {
     shift(b, p, cross(j.rb, p));
     return;
   }
-  const double m = a.m + b.m;
-  const double k11 = m + a.i * ra.y * ra.y + b.i * rb.y * rb.y;
-  const double k12 = -a.i * ra.x * ra.y - b.i * rb.x * rb.y;
-  const double k22 = m + a.i * ra.x * ra.x + b.i * rb.x * rb.x;
-  const Vec2 p = joint_solve22(k11, k12, k22, -c);
+  const PointMass k = point_mass(a.m, a.i, b.m, b.i, ra, rb);
+  const Vec2 p = joint_solve22(k.k11, k.k12, k.k22, -c);
   shift(a, -p, -cross(ra, p));
   shift(b, p, cross(rb, p));
 }
@@ -114,7 +111,7 @@ void JointSolver::correct_axis(JointRecord& j, End a, End b) {
   const double kp = m + a.i * s1 * s1 + b.i * s2 * s2;
   if (j.def.type == JointType::prismatic) {
     const Vec2 c{dot(joint_perp(axis), d) - (keep_ ? dot(j.perp, j.offset) : 0.0),
-                 joint_wrap(pb.angle - pa.angle - j.reference) - (keep_ ? j.angle0 : 0.0)};
+                 wrap_angle(pb.angle - pa.angle - j.reference) - (keep_ ? j.angle0 : 0.0)};
     double k22 = a.i + b.i;
     if (k22 == 0.0) k22 = 1.0;
     const Vec2 x = joint_solve22(kp, a.i * s1 + b.i * s2, k22, -c);
@@ -146,21 +143,12 @@ void JointSolver::correct_weld(JointRecord& j, End a, End b) {
   const Now pa = now(a), pb = now(b);
   const Vec2 now_ra = rotate(pa.q, j.local_a), now_rb = rotate(pb.q, j.local_b);
   const Vec2 c = (pb.c + now_rb) - (pa.c + now_ra) - (keep_ ? j.offset : Vec2{});
-  const double cw = joint_wrap(pb.angle - pa.angle - j.reference) - (keep_ ? j.angle0 : 0.0);
+  const double cw = wrap_angle(pb.angle - pa.angle - j.reference) - (keep_ ? j.angle0 : 0.0);
   // The gradient: the start's while keeping (SHAKE's), else now's.
   const Vec2 ra = keep_ ? j.ra : now_ra, rb = keep_ ? j.rb : now_rb;
-  const double m = a.m + b.m;
-  const double k11 = m + a.i * ra.y * ra.y + b.i * rb.y * rb.y;
-  const double k12 = -a.i * ra.x * ra.y - b.i * rb.x * rb.y;
-  const double k22 = m + a.i * ra.x * ra.x + b.i * rb.x * rb.x;
-  const double k13 = -a.i * ra.y - b.i * rb.y, k23 = a.i * ra.x + b.i * rb.x, k33 = a.i + b.i;
-  const double c0 = k22 * k33 - k23 * k23, c1 = k23 * k13 - k12 * k33, c2 = k12 * k23 - k22 * k13;
-  double det = k11 * c0 + k12 * c1 + k13 * c2;
-  if (det != 0.0) det = 1.0 / det;
-  const double bx = -c.x, by = -c.y, bz = -cw;
-  const Vec2 p{det * (bx * c0 + by * c1 + bz * c2),
-               det * (bx * c1 + by * (k11 * k33 - k13 * k13) + bz * (k12 * k13 - k11 * k23))};
-  const double l = det * (bx * c2 + by * (k12 * k13 - k11 * k23) + bz * (k11 * k22 - k12 * k12));
+  const auto x = joint_solve33(point_mass(a.m, a.i, b.m, b.i, ra, rb), -c.x, -c.y, -cw);
+  const Vec2 p{x[0], x[1]};
+  const double l = x[2];
   shift(a, -p, -(cross(ra, p) + l));
   shift(b, p, cross(rb, p) + l);
 }

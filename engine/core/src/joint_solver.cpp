@@ -39,11 +39,6 @@ double accumulate(double& acc, double impulse, double lo, double hi) {
 
 }  // namespace
 
-double joint_wrap(double angle) {
-  return std::abs(angle) <= std::numbers::pi ? angle
-                                             : std::remainder(angle, 2.0 * std::numbers::pi);
-}
-
 JointSolver::End JointSolver::end(std::uint32_t body, bool b) const {
   if (body == JointRecord::none) return {.b = b};
   const ShapedBody& d = bodies_[body];
@@ -73,12 +68,11 @@ void JointSolver::prepare_geometry(JointRecord& j) {
   j.rb = motor_joint ? Vec2{} : rotate(qb, j.local_b);
   j.offset = (cb + j.rb) - (ca + j.ra);
   j.angle_mass = inverse_or_zero(a.i + b.i);
-  j.value = joint_wrap(angle - (motor_joint ? j.target_angle : j.reference));
+  j.value = wrap_angle(angle - (motor_joint ? j.target_angle : j.reference));
   j.angle0 = j.value;
   const double m = a.m + b.m;
-  j.k11 = m + a.i * j.ra.y * j.ra.y + b.i * j.rb.y * j.rb.y;
-  j.k12 = -a.i * j.ra.x * j.ra.y - b.i * j.rb.x * j.rb.y;
-  j.k22 = m + a.i * j.ra.x * j.ra.x + b.i * j.rb.x * j.rb.x;
+  const PointMass k = point_mass(a.m, a.i, b.m, b.i, j.ra, j.rb);
+  j.k11 = k.k11, j.k12 = k.k12, j.k22 = k.k22;
   j.axial_mass = j.angle_mass;
   switch (j.def.type) {
     case JointType::prismatic:
@@ -199,7 +193,7 @@ void JointSolver::solve_angle_rows(JointRecord& j, End a, End b, bool motor_turn
   const double mass = j.angle_mass;
   if (mass == 0.0) return;
   if (j.def.frequency > 0.0 && j.def.type == JointType::revolute) {
-    const double c = joint_wrap(j.value - j.target.x);
+    const double c = wrap_angle(j.value - j.target.x);
     const double cdot = spin(b) - spin(a);
     const double l = -j.soft.mass_scale * mass * (cdot + j.soft.bias_rate * c) -
                      j.soft.impulse_scale * im.spring;
@@ -294,21 +288,13 @@ void JointSolver::solve_weld(JointRecord& j, End a, End b) {
   const Vec2 cdot =
       velocity(b) + joint_spin_cross(spin(b), j.rb) - velocity(a) - joint_spin_cross(spin(a), j.ra);
   const double cw = spin(b) - spin(a);
-  const double k13 = -a.i * j.ra.y - b.i * j.rb.y, k23 = a.i * j.ra.x + b.i * j.rb.x;
-  const double k33 = a.i + b.i;
   Vec2 p;
   double l = 0.0;
-  if (k33 == 0.0) {
+  if (a.i + b.i == 0.0) {
     p = joint_solve22(j.k11, j.k12, j.k22, -cdot);
-  } else {  // Cramer's rule on [[k11 k12 k13] [k12 k22 k23] [k13 k23 k33]] x = −(ċ, ċw)
-    const double c0 = j.k22 * k33 - k23 * k23, c1 = k23 * k13 - j.k12 * k33,
-                 c2 = j.k12 * k23 - j.k22 * k13;
-    double det = j.k11 * c0 + j.k12 * c1 + k13 * c2;
-    if (det != 0.0) det = 1.0 / det;
-    const double bx = -cdot.x, by = -cdot.y, bz = -cw;
-    p.x = det * (bx * c0 + by * c1 + bz * c2);
-    p.y = det * (bx * c1 + by * (j.k11 * k33 - k13 * k13) + bz * (j.k12 * k13 - j.k11 * k23));
-    l = det * (bx * c2 + by * (j.k12 * k13 - j.k11 * k23) + bz * (j.k11 * j.k22 - j.k12 * j.k12));
+  } else {
+    const auto x = joint_solve33(point_mass(a.m, a.i, b.m, b.i, j.ra, j.rb), -cdot.x, -cdot.y, -cw);
+    p = {x[0], x[1]}, l = x[2];
   }
   im.linear += p, im.angular += l;
   push(a, -p, -(cross(j.ra, p) + l));

@@ -9,6 +9,7 @@
 // Gauss-Seidel), which adds no kinetic energy.
 #pragma once
 
+#include <array>
 #include <span>
 
 #include "joint_record.hpp"
@@ -105,7 +106,35 @@ inline constexpr double motor_joint_correction = 0.3;
   return {det * (k22 * b.x - k12 * b.y), det * (k11 * b.y - k12 * b.x)};
 }
 
-/// θ wrapped into [−π, π] (std::remainder is exact: the same bits everywhere).
-[[nodiscard]] double joint_wrap(double angle);
+/// The effective mass matrix K of a point held by a joint with lever arms ra, rb (m) between
+/// bodies of inverse masses ma, mb and inverse inertias ia, ib: the 2×2 block of the point
+/// (k11, k12, k22) and the angle's row and column of the 3×3 one (k13, k23, k33).
+struct PointMass {
+  double k11 = 0, k12 = 0, k22 = 0, k13 = 0, k23 = 0, k33 = 0;
+};
+[[nodiscard]] inline PointMass point_mass(double ma, double ia, double mb, double ib, Vec2 ra,
+                                          Vec2 rb) {
+  const double m = ma + mb;
+  return {m + ia * ra.y * ra.y + ib * rb.y * rb.y,
+          -ia * ra.x * ra.y - ib * rb.x * rb.y,
+          m + ia * ra.x * ra.x + ib * rb.x * rb.x,
+          -ia * ra.y - ib * rb.y,
+          ia * ra.x + ib * rb.x,
+          ia + ib};
+}
+/// x of the symmetric 3×3 system K x = (bx, by, bz) by Cramer's rule (0 when singular): a
+/// weld's point (x[0], x[1]) and angle (x[2]) as one block.
+[[nodiscard]] inline std::array<double, 3> joint_solve33(const PointMass& k, double bx, double by,
+                                                         double bz) {
+  const double c0 = k.k22 * k.k33 - k.k23 * k.k23, c1 = k.k23 * k.k13 - k.k12 * k.k33,
+               c2 = k.k12 * k.k23 - k.k22 * k.k13;
+  double det = k.k11 * c0 + k.k12 * c1 + k.k13 * c2;
+  if (det != 0.0) det = 1.0 / det;
+  return {
+      det * (bx * c0 + by * c1 + bz * c2),
+      det * (bx * c1 + by * (k.k11 * k.k33 - k.k13 * k.k13) + bz * (k.k12 * k.k13 - k.k11 * k.k23)),
+      det *
+          (bx * c2 + by * (k.k12 * k.k13 - k.k11 * k.k23) + bz * (k.k11 * k.k22 - k.k12 * k.k12))};
+}
 
 }  // namespace fixstep::detail

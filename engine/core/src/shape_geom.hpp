@@ -8,7 +8,9 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/shape.hpp"
@@ -20,6 +22,10 @@ namespace fixstep::detail {
 struct Rot {
   double c = 1.0, s = 0.0;
 };
+/// θ (rad) kept in [−π, π]: std::remainder is exact, so the wrap is the same bits everywhere.
+[[nodiscard]] inline double wrap_angle(double a) {
+  return std::abs(a) <= std::numbers::pi ? a : std::remainder(a, 2.0 * std::numbers::pi);
+}
 /// Rot of `angle` (rad) through det::cos and det::sin.
 [[nodiscard]] Rot rot_of(double angle);
 [[nodiscard]] inline Vec2 rotate(Rot q, Vec2 v) {

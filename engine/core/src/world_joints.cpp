@@ -218,7 +218,7 @@ JointState detail::WorldKernel<Real>::joint_state(Joint joint) const {
   const Vec2 d = s.anchor_b - s.anchor_a;
   const Vec2 rel =
       velocity(j.def.body_b, s.anchor_b - cb) - velocity(j.def.body_a, s.anchor_a - ca);
-  s.value = detail::joint_wrap(tb - ta - j.reference);
+  s.value = detail::wrap_angle(tb - ta - j.reference);
   s.speed = s.spin = spin(j.def.body_b) - spin(j.def.body_a);
   if (j.def.type == JointType::prismatic || j.def.type == JointType::wheel) {
     s.value = dot(s.axis, d), s.speed = dot(s.axis, rel);

@@ -281,8 +281,6 @@ class WorldKernel {
   [[nodiscard]] std::span<const JointBreak> joints_broken() const { return joints_broken_; }
   /// Throws std::invalid_argument naming `who` when World::step would not apply `in`.
   void check_joint_input(const JointInput& in, const std::string& who) const;
-  /// The kernel's joint records (for tests that read the solver's state).
-  [[nodiscard]] std::span<const JointRecord> joint_records() const { return joint_records_; }
   /// The shape contacts (null without shapes): for tests that read the solver's rows.
   [[nodiscard]] const ShapeWorld* shape_world() const { return shape_world_.get(); }
   [[nodiscard]] std::uint64_t user_data(Entity e) const { return user_data_[index_of(e)]; }

@@ -35,18 +35,13 @@ double thinnest(const detail::Convex& c) {
   return least + c.radius;
 }
 
-/// θ kept in [-π, π] (std::remainder is exact, so the wrap is the same bits everywhere).
-double wrap_angle(double a) {
-  return std::abs(a) <= std::numbers::pi ? a : std::remainder(a, 2.0 * std::numbers::pi);
-}
-
 }  // namespace
 
 template <class Real>
 void detail::WorldKernel<Real>::add_shapes(Entity e, const BodyDef& def, const std::string& who) {
   ShapeSet set;
   set.defs = def.shapes;
-  set.angle = rounded_to<Real>(wrap_angle(def.body.angle));
+  set.angle = rounded_to<Real>(detail::wrap_angle(def.body.angle));
   set.spin = def.type == BodyType::static_body ? 0.0 : rounded_to<Real>(def.body.angular_velocity);
   const std::size_t j = bodies_.index(e);
   if (def.type == BodyType::dynamic) {
@@ -358,7 +353,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
     const ShapeState& s = w.state_[i];
     if (b.set != ShapedBody::none) {
       ShapeSet& set = shape_sets_.data[b.set];
-      set.angle = rounded_to<Real>(wrap_angle(s.a));
+      set.angle = rounded_to<Real>(detail::wrap_angle(s.a));
       set.spin = rounded_to<Real>(s.w);
       out_of_range = out_of_range || !(std::abs(set.spin) <= max_state_magnitude);
     }
