@@ -10,10 +10,13 @@
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/joint.hpp"
 #include "fixstep/core/shape.hpp"
+#include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "joint_exact.hpp"
 #include "shape_exact.hpp"
+#include "shape_world.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
@@ -259,6 +262,31 @@ TEST(Joints, JointedBodiesAreOneIslandAndAJointsInputWakesThem) {
   EXPECT_FALSE(w.asleep(heavy));
   EXPECT_FALSE(w.asleep(light));
   EXPECT_NE(w.body(light).angular_velocity, 0.0) << "the motor turns it";
+}
+
+// A tick of many joints stops within a second when asked: every joint sweep (20 velocity, 10
+// of the tick's own error, 10 on positions at the defaults) polls a stop request first, so a
+// request is seen within one sweep (a sweep of max_joints joints is a fraction of a second).
+TEST(Joints, EveryJointSweepPollsAStopRequest) {
+  detail::WorldKernel<double> w(shape_exact::shape_settings(0.6));
+  Entity above{};
+  for (int i = 0; i < 50; ++i) {
+    const Entity box = w.create_body(shape_exact::box_body(0.05, 0.25, {0.0, -0.25 - 0.5 * i}));
+    w.create_joint(
+        {.type = JointType::revolute, .body_a = above, .body_b = box, .anchor = {0.0, -0.5 * i}},
+        "link");
+    above = box;
+  }
+  w.step();
+  const std::uint64_t sweeps = ContactSettings::default_velocity_iterations +
+                               2 * ContactSettings::default_position_iterations;
+  EXPECT_EQ(w.shape_world()->stop_polls(), sweeps);
+  request_stop(2);
+  EXPECT_THROW(w.step(), StopRequested);
+  clear_stop_request();
+  w.step();
+  // (the tick that threw stopped at its own first poll, before the joints)
+  EXPECT_EQ(w.shape_world()->stop_polls(), 2 * sweeps);
 }
 
 /// A pile of ragdoll-like pairs: boxes hinged in twos with limits and a motor, falling on the

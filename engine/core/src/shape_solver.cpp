@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fixstep/core/stop_request.hpp"
 #include "joint_solver.hpp"
 #include "shape_world.hpp"
 
@@ -330,7 +331,15 @@ void ShapeWorld::prepare_joints() {
   }
 }
 
+// Each joint sweep polls a stop request first (one relaxed atomic load): a sweep of
+// max_joints joints is a fraction of a second, a tick of them tens of sweeps.
+void ShapeWorld::poll_stop() {
+  ++stop_polls_;
+  throw_if_stop_requested();
+}
+
 void ShapeWorld::solve_joint_velocities() {
+  poll_stop();
   JointSolver solver(bodies_, state_, dt_);
   for (JointRecord& j : joints_) {
     if (!j.broken) solver.solve_velocity(j);
@@ -338,6 +347,7 @@ void ShapeWorld::solve_joint_velocities() {
 }
 
 void ShapeWorld::solve_joint_positions(bool keep) {
+  poll_stop();
   JointSolver solver(bodies_, state_, dt_);
   for (JointRecord& j : joints_) {
     if (!j.broken) solver.solve_position(j, keep);

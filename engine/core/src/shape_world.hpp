@@ -190,6 +190,8 @@ class ShapeWorld {
     std::uint32_t a, b;
   };
   [[nodiscard]] std::span<const Candidate> candidates() const { return candidates_; }
+  /// Stop requests polled by the joint sweeps so far (each sweep polls once).
+  [[nodiscard]] std::uint64_t stop_polls() const { return stop_polls_; }
   /// The sleepers (bodies_ indices) the broadphase paired with a moving body this tick.
   [[nodiscard]] std::span<const std::uint32_t> woken() const { return wake_; }
 
@@ -237,6 +239,8 @@ class ShapeWorld {
   void prepare_joints();
   void solve_joint_velocities();
   void solve_joint_positions(bool keep);
+  void poll_stop();  ///< throw_if_stop_requested, counted in stop_polls_
+  std::uint64_t stop_polls_ = 0;
   void account_joints();
   /// Whether a joint keeps the shapes of these two bodies from colliding.
   [[nodiscard]] bool unpaired(std::uint32_t a, std::uint32_t b) const;
