@@ -119,30 +119,7 @@ void Renderer::draw_joints(const RenderFrame& s) {
     const float ux = m.axis_x, uy = -m.axis_y;  // the axis in px, y down
     switch (m.type) {
       case JointType::revolute:
-        if (limits && (m.has_lower || m.has_upper)) {
-          const double lo = m.has_lower ? m.lower : -std::numbers::pi;
-          const double hi = m.has_upper ? m.upper : std::numbers::pi;
-          const int sides = std::clamp(int(std::ceil((hi - lo) / (std::numbers::pi / 36))), 1, 72);
-          std::vector<PolylinePoint>& arc = polyline_scratch_;
-          arc.clear();
-          for (int k = 0; k <= sides; ++k) {
-            const double t = lo + (hi - lo) * k / sides;
-            const Point p = along(b, m.zero_angle + m.sense * t, arc_px);
-            arc.push_back({p.x, p.y, outline});
-          }
-          polyline(arc, 1.5f + 2 * edge_px);
-          for (PolylinePoint& p : arc) p.c = joint_limit_color;
-          polyline(arc, 1.5f);
-          for (const auto& [set, t] : {std::pair{m.has_lower, lo}, std::pair{m.has_upper, hi}}) {
-            const double angle = m.zero_angle + m.sense * t;
-            if (set)
-              edged_line(*this, along(b, angle, ring_px), along(b, angle, arc_px + 4.0f),
-                         mark_width_px, joint_limit_color);
-          }
-          const double now = m.zero_angle + m.sense * m.value;
-          edged_line(*this, along(b, now, ring_px), along(b, now, arc_px + 6.0f), mark_width_px,
-                     joint_color);
-        }
+        if (limits && (m.has_lower || m.has_upper)) draw_hinge_limits(m, b);
         edged_ring(*this, b, ring_px, joint_color);
         break;
       case JointType::weld:
@@ -181,6 +158,31 @@ void Renderer::draw_joints(const RenderFrame& s) {
         break;
     }
   }
+}
+
+void Renderer::draw_hinge_limits(const RenderFrame::JointMark& m, Point b) {
+  const double lo = m.has_lower ? m.lower : -std::numbers::pi;
+  const double hi = m.has_upper ? m.upper : std::numbers::pi;
+  const int sides = std::clamp(int(std::ceil((hi - lo) / (std::numbers::pi / 36))), 1, 72);
+  std::vector<PolylinePoint>& arc = polyline_scratch_;
+  arc.clear();
+  for (int k = 0; k <= sides; ++k) {
+    const double t = lo + (hi - lo) * k / sides;
+    const Point p = along(b, m.zero_angle + m.sense * t, arc_px);
+    arc.push_back({p.x, p.y, outline});
+  }
+  polyline(arc, 1.5f + 2 * edge_px);
+  for (PolylinePoint& p : arc) p.c = joint_limit_color;
+  polyline(arc, 1.5f);
+  for (const auto& [set, t] : {std::pair{m.has_lower, lo}, std::pair{m.has_upper, hi}}) {
+    const double angle = m.zero_angle + m.sense * t;
+    if (set)
+      edged_line(*this, along(b, angle, ring_px), along(b, angle, arc_px + 4.0f), mark_width_px,
+                 joint_limit_color);
+  }
+  const double now = m.zero_angle + m.sense * m.value;
+  edged_line(*this, along(b, now, ring_px), along(b, now, arc_px + 6.0f), mark_width_px,
+             joint_color);
 }
 
 }  // namespace fixstep

@@ -307,6 +307,9 @@ class Renderer {
   /// The joints (RenderFrame::joints) as style_.joints says, over the bodies
   /// (render_joints.cpp).
   void draw_joints(const RenderFrame& frame);
+  /// A revolute joint's limit arc round its anchor `at` (px), the limits' lines and the angle
+  /// now (render_joints.cpp).
+  void draw_hinge_limits(const RenderFrame::JointMark& m, Point at);
   /// rounded_polygon()'s mesh for the points in rounded_points_ (distinct, at least one):
   /// the polygon and, for radius > 0, the bands and wedges reaching `radius` px beyond it.
   void rounded_mesh(float radius, Rgba8 c);
