@@ -136,7 +136,7 @@ Scene scene_for_recording(const Recording& rec, const std::string& recording_fil
                     rec.scene, hex_hash(actual), hex_hash(rec.definition_hash),
                     rec.scene_text.empty() ? "" : " (without --scene: the recording carries it)"));
   }
-  check_recorded_bodies(rec, def.bodies.size(), recording_file);
+  check_recorded_bodies(rec, def.bodies.size(), def.joints.size(), recording_file);
   return scene;
 }
 

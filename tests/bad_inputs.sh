@@ -387,6 +387,8 @@ sed 's/drag=none/drag=2:1/' depth_ok.rec > nobody.rec
 case_ "recording: drag names a body the scene does not have" "" replay nobody.rec
 sed 's/drag=none$/drag=none impulse=7:1,1,0/' depth_ok.rec > nobody2.rec
 case_ "recording: an impulse on a body the scene does not have" "" replay nobody2.rec
+sed 's/drag=none$/drag=none joint.motor_speed=1:1,1,0/' depth_ok.rec > nojoint.rec
+case_ "recording: a joint input naming a joint the scene does not have" "" replay nojoint.rec
 # --- springs between bodies, the frequency form, generators ---
 two_bodies="$ok_world"'
 [[body]]

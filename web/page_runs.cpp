@@ -90,7 +90,7 @@ void PageApp::recording_fetched(std::string text) {
           : parse_scene(rec.scene_text, fmt::format("{} (embedded in {})", rec.scene, *o_.replay));
   WorldDef def = scene_->def;
   apply_settings(def, rec.settings);
-  check_recorded_bodies(rec, def.bodies.size(), *o_.replay);
+  check_recorded_bodies(rec, def.bodies.size(), def.joints.size(), *o_.replay);
   check_command_work(rec.ticks, tick_work(def), fmt::format("{}: end {}", *o_.replay, rec.ticks));
   const ReplayReport r = replay(def, rec);  // throws scene_mismatch
   if (!show_replay_verdict(r)) {            // a recording that diverges is not played back

@@ -64,7 +64,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       finding("format_recording then parse_recording does not give the same recording");
     }
     // A body the small world does not have is a clean rejection, as in `fixstep replay`.
-    fixstep::check_recorded_bodies(rec, small_world().bodies.size(), "fuzz.rec");
+    fixstep::check_recorded_bodies(rec, small_world().bodies.size(), small_world().joints.size(),
+                                   "fuzz.rec");
     if (rec.ticks <= 2000) {
       fixstep::World sim = fixstep::World(small_world());
       (void)fixstep::replay(sim, rec);  // a mismatch is expected; an exception is not

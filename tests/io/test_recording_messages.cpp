@@ -105,10 +105,10 @@ TEST(RecordingMessages, AScenePathWithANewlineIsRefusedWhenRecordingStartsAndLoc
 
 TEST(RecordingMessages, ABodyTheSceneDoesNotHaveIsABadRecording) {
   Recording rec = short_run(two_bodies());
-  EXPECT_NO_THROW(check_recorded_bodies(rec, 2, "ok.rec"));
+  EXPECT_NO_THROW(check_recorded_bodies(rec, 2, 0, "ok.rec"));
   rec.inputs[1].drag_body = Entity{3, 1};
   try {
-    check_recorded_bodies(rec, 2, "edited.rec");
+    check_recorded_bodies(rec, 2, 0, "edited.rec");
     FAIL();
   } catch (const RecordingError& e) {
     EXPECT_EQ(e.kind(), RecordingError::Kind::corrupt);
@@ -118,19 +118,35 @@ TEST(RecordingMessages, ABodyTheSceneDoesNotHaveIsABadRecording) {
   }
   rec.inputs[1].drag_body = null_entity;
   rec.inputs[1].bodies.push_back({Entity{1, 2}, BodyInputKind::impulse, {1.0, 0.0}});
-  EXPECT_THROW(check_recorded_bodies(rec, 2, "edited.rec"), RecordingError);  // a stale handle
+  EXPECT_THROW(check_recorded_bodies(rec, 2, 0, "edited.rec"), RecordingError);  // a stale handle
   rec.inputs[1].bodies.back().body = Entity{2, 1};
-  EXPECT_NO_THROW(check_recorded_bodies(rec, 2, "ok.rec"));
+  EXPECT_NO_THROW(check_recorded_bodies(rec, 2, 0, "ok.rec"));
   // An angular input names its kind as the recording spells it.
   rec.inputs[1].bodies.push_back({Entity{3, 1}, BodyInputKind::angular_velocity, {1.0, 0.0}});
   try {
-    check_recorded_bodies(rec, 2, "edited.rec");
+    check_recorded_bodies(rec, 2, 0, "edited.rec");
     FAIL();
   } catch (const RecordingError& e) {
     EXPECT_NE(std::string_view(e.what()).find(
                   "edited.rec: angular_velocity: the tick 1 line names body 3:1"),
               std::string::npos)
         << e.what();
+  }  // A joint input names a joint of the scene's (1:1 .. N:1), or the recording is bad.
+  rec.inputs[1].bodies.pop_back();
+  rec.inputs[1].joints.push_back({Joint{2, 1}, JointInputKind::motor_speed, {1.0, 0.0}});
+  EXPECT_NO_THROW(check_recorded_bodies(rec, 2, 2, "ok.rec"));
+  for (const Joint bad : {Joint{3, 1}, Joint{1, 2}, Joint{0, 1}}) {
+    rec.inputs[1].joints.back().joint = bad;
+    try {
+      check_recorded_bodies(rec, 2, 2, "edited.rec");
+      ADD_FAILURE() << "joint " << bad.index1 << ":" << bad.generation << " accepted";
+    } catch (const RecordingError& e) {
+      EXPECT_EQ(e.kind(), RecordingError::Kind::corrupt);
+      EXPECT_NE(std::string_view(e.what()).find("edited.rec: motor_speed: the tick 1 line names "
+                                                "joint"),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 

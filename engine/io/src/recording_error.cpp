@@ -70,7 +70,8 @@ ReplayReport replay(const WorldDef& def, const Recording& rec, const TickRules& 
   return replay(sim, rec, rules);
 }
 
-void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file) {
+void check_recorded_bodies(const Recording& rec, std::size_t bodies, std::size_t joints,
+                           const std::string& file) {
   auto check = [&](const TickInput& in, Entity e, std::string_view field) {
     if (e == null_entity || (e.index1 <= bodies && e == fixstep::defined_entity(e.index1 - 1)))
       return;
@@ -85,6 +86,17 @@ void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::
     check(in, in.drag_body, "drag");
     for (const BodyInput& b : in.bodies) {
       check(in, b.body, body_input_kind_name(b.kind));
+    }
+    for (const JointInput& j : in.joints) {  // a scene's joints are 1:1 .. N:1, as its bodies
+      if (j.joint.index1 >= 1 && j.joint.index1 <= joints && j.joint.generation == 1) continue;
+      const std::string has = joints == 0
+                                  ? std::string("it has no joints")
+                                  : fmt::format("its {} joints are 1:1 .. {}:1", joints, joints);
+      throw RecordingError(
+          RecordingError::Kind::corrupt, file, 0, joint_input_kind_name(j.kind),
+          fmt::format("the tick {} line names joint {}:{}, which the scene does not have ({}); "
+                      "the recording was edited or made with another scene",
+                      in.tick, j.joint.index1, j.joint.generation, has));
     }
   }
 }

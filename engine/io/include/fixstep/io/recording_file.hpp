@@ -61,9 +61,12 @@ class RecordingError : public std::runtime_error {
 /// Throws RecordingError (corrupt, naming `file` and the field) when an input of `rec` names a
 /// body (drag, force, impulse, velocity) that a world made from a definition of `bodies`
 /// bodies does not have: for worlds whose bodies are not created or destroyed during the run
-/// (scene files), whose handles are defined_bodies() of a world of `bodies` bodies. Called before
-/// replaying, so such a recording is a bad recording, not a diverged replay.
-void check_recorded_bodies(const Recording& rec, std::size_t bodies, const std::string& file);
+/// (scene files), whose handles are defined_bodies() of a world of `bodies` bodies; and likewise
+/// when a joint input names a joint such a world of `joints` joints does not have
+/// (defined_joints()). Called before replaying, so such a recording is a bad recording, not a
+/// diverged replay.
+void check_recorded_bodies(const Recording& rec, std::size_t bodies, std::size_t joints,
+                           const std::string& file);
 /// Throws RecordingError needs_rules, naming `file` and the rules, when `rec` was made with
 /// game rules (Recording::rules_name): a program that replays physics alone (`fixstep
 /// replay`, `render --replay`, the web page) would step a different game.
