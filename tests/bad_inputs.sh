@@ -1209,6 +1209,12 @@ script_case() {  # DESCRIPTION SCRIPT-TEXT: run good.toml with it as --input
 script_case "script: unknown button" '[[at]]
 tick = 1
 press = ["lft"]'
+script_case "script: an axis the program does not declare" '[[at]]
+tick = 1
+axes = { steer = 0.5 }'
+script_case "script: axes not a table" '[[at]]
+tick = 1
+axes = 0.5'
 script_case "script: drag names no body" '[[at]]
 tick = 1
 drag = "bdy0"'
@@ -1279,6 +1285,9 @@ case_ "render --replay of a recording that needs a game's rules" "" render --rep
 rec_case "recording: a rules name with a space" '1s/ 3$/ 4/;/^hash_every /a rules sling shot 1'
 rec_case "recording: rules version 0" '1s/ 3$/ 4/;/^hash_every /a rules slingshot 0'
 rec_case "recording: a button bit outside all_buttons" 's/^tick 3 push=2,0 held=0 /tick 3 push=2,0 held=800 /'
+rec_case "recording: an axis index beyond max_axes" 's/^tick 3 push=2,0 \(.*\)$/tick 3 push=2,0 \1 axis.4=0.5/'
+rec_case "recording: an axis reading outside [-1, 1]" 's/^tick 3 push=2,0 \(.*\)$/tick 3 push=2,0 \1 axis.0=2/'
+rec_case "recording: an axis before a per-body input" 's/^tick 3 push=2,0 \(.*\)$/tick 3 push=2,0 \1 axis.0=0.5 force=1:1,1,0/'
 rec_case "recording: push = inf" 's/^tick 3 push=2,0/tick 3 push=inf,0/'
 rec_case "recording: ticks out of order" 's/^tick 6 /tick 2 /'
 rec_case "recording: a hash beyond the end" 's/^hash 10 /hash 11 /'
@@ -1660,7 +1669,7 @@ echo "| N6 | a slot that is no player's or spectator's; a handshake request clai
 echo "| N7 | the header's reserved byte, a request's padding or flags, an unknown disconnect reason, a repeat past its run, a change with no field | bad_field |"
 echo "| N8 | bytes after the message's end | trailing_bytes |"
 echo "| N9 | an input run of 0 or over 256 ticks, starting after the receiver's next needed tick, or an ack of ticks never sent | bad_tick_range |"
-echo "| N10 | a NaN or infinite push, pointer or body value; a button bit outside all_buttons; over 16 body inputs; a body input kind over 6 (target_angle, the last) | bad_input |"
+echo "| N10 | a NaN or infinite push, pointer or body value; an axis outside [-1, 1] or a byte of axes with a bit over 3; an action bitset over 32 bits; over 16 body inputs; a body input kind over 6 (target_angle, the last) | bad_input |"
 echo "| N11 | a sequence number already received (a replay) or over 64 behind; inputs more than 512 ticks ahead | out_of_window |"
 echo "| N12 | inputs or a hash before the handshake; another player's inputs from a client; a second handshake | unexpected |"
 echo "| N13 | a handshake from a joiner with another world, or to a full match | refused: a 13-byte disconnect (another_world / refused), then the connection closed |"

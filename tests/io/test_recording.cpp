@@ -156,8 +156,9 @@ ReplayReport replay_dice(const Recording& rec, std::optional<Seeding> force = {}
   if (force) def.settings.seeding = *force;
   EXPECT_EQ(definition_hash(def) == rec.definition_hash, !force.has_value());
   World sim(def);
-  return replay(sim, rec,
-                TickRules{[](World& w, const TickInput&) { (void)w.random().below(6); }, {}, {}});
+  return replay(
+      sim, rec,
+      TickRules{[](World& w, const TickInput&) { (void)w.random().below(6); }, {}, {}, {}});
 }
 
 // A seeded world records as version 5 (SplitMix64 seeding); one of version 4 (the older

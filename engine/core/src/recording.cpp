@@ -327,8 +327,7 @@ ReplayReport replay(World& sim, const Recording& rec, const TickRules& rules) {
       in = rec.inputs[next_change++];
     }
     in.tick = t;
-    sim.step(in);
-    if (rules) rules.after_tick(sim, in);
+    rules.tick(sim, in);
     report.ticks = t + 1;
     if (report.ticks % 1024 == 0) report_work_progress("replay", "tick", report.ticks, rec.ticks);
     if (next_hash < rec.hashes.size() && rec.hashes[next_hash].first == t + 1) {

@@ -334,6 +334,20 @@ Entity WorldDef::add_body(BodyDef body) {
   return fixstep::defined_entity(bodies.size() - 1);
 }
 
+Entity WorldDef::find_body(std::string_view name) const {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].name == name) return fixstep::defined_entity(i);
+  }
+  return null_entity;
+}
+
+Joint WorldDef::find_joint(std::string_view name) const {
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    if (joints[i].name == name) return Joint{static_cast<std::uint32_t>(i + 1), 1};
+  }
+  return Joint{};
+}
+
 double energy_balance(const World& sim, double initial_energy) {
   const double residual =
       sim.energy().total() + sim.dissipated_energy() - sim.external_work() - initial_energy;
