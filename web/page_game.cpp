@@ -76,10 +76,13 @@ PageGame::PageGame(PageOptions o) : o_(std::move(o)) {
   show_text("renderer", play_->session().renderer().gl_renderer());
   set_title(fmt::format("fixstep: {}", settings_.name));
   if (o_.frames) return;
-  // As app::run's window, but for Esc (a page does not quit).
-  hint_ = settings_.controls.empty() ? "r: restart" : settings_.controls + "   r: restart";
+  // As app::run's window, but for quit (a page does not quit).
+  InputMap map = app::detail::game_input_map(settings_);
+  const std::string loop_keys = map.loop_help(false);
+  hint_ = settings_.controls.empty() ? loop_keys : settings_.controls + "\n" + loop_keys;
   show_text("help", hint_);
   input_ = std::make_unique<PageInput>("#canvas", o_.width, o_.height);
+  input_->set_input_map(std::move(map));
 }
 
 PageGame::~PageGame() = default;
@@ -174,6 +177,7 @@ void PageGame::recording_fetched(const std::string& text) {
   session_->set_show_energy(settings_.show_energy);
   show_text("renderer", session_->renderer().gl_renderer());
   game_ = r.level.game->clone();
+  replay_rules_ = app::detail::game_rules(*game_, settings_.rules_before_step);
   recording_ = std::move(rec);
   set_title("fixstep: done");
 }
@@ -192,8 +196,7 @@ bool PageGame::replay_frame(double now_ms) {
     session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& world) {
       if (t >= rec.ticks) return;
       last_ = rec.input_at(t);
-      world.step(last_);
-      game_->rules(world, last_);
+      replay_rules_.tick(world, last_);
     });
   } while (o_.headless && !done() && emscripten_get_now() - now_ms < game_budget_ms);
   if (!o_.headless || done()) {

@@ -17,6 +17,7 @@
 #include "fixstep/app/session.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/rules.hpp"
 #include "page_input.hpp"
 #include "page_options.hpp"
 
@@ -60,6 +61,7 @@ class PageGame {
   std::optional<Recording> recording_;
   std::unique_ptr<Session> session_;
   std::unique_ptr<app::detail::AnyGame> game_;
+  TickRules replay_rules_;  ///< game_'s rules, in the game's order (Settings::rules_before_step)
   TickInput last_;
   app::Overlay overlay_;
   bool replay_stopped_ = false;  ///< the recording diverged: nothing to play

@@ -12,6 +12,8 @@
 
 #include "fixstep/app/app.hpp"
 #include "fixstep/app/game_level.hpp"
+#include "fixstep/render/input_map.hpp"
+#include "fixstep/scene/input_script.hpp"
 
 namespace fixstep::app::detail {
 
@@ -30,6 +32,7 @@ struct UsageError : std::runtime_error {
 struct Options {
   std::optional<std::string> scene;  ///< --scene FILE
   std::string out, record, replay, last_frame;
+  std::string input;              ///< --input SCRIPT (empty: the autopilot or the window plays)
   std::vector<std::string> diff;  ///< --diff A B: the two recordings (else empty)
   std::int64_t frames = 0;        ///< 0: play in a window until quit
   int every = 1;                  ///< --every K
@@ -37,6 +40,11 @@ struct Options {
   bool window = false;            ///< --window
   bool overwrite = false;         ///< --overwrite: the old capture in --out DIR is removed first
 };
+
+/// Loads --input SCRIPT for `level`, its press / release / axes naming the game's actions and
+/// axes (SceneError naming the file, line and key).
+[[nodiscard]] InputScript game_script(const Settings& settings, const Level& level,
+                                      const std::string& file);
 
 /// Frames per second of a headless run's, a drawn replay's and a sync test's virtual clock.
 inline constexpr double virtual_fps = 60.0;

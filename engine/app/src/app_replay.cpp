@@ -32,6 +32,7 @@ bool draw_replay(const Settings& settings, const Level& level, const Recording& 
   Session session(level.def, level.view);
   session.set_show_energy(settings.show_energy);
   const std::unique_ptr<AnyGame> game = level.game->clone();
+  const TickRules rules = game_rules(*game, settings.rules_before_step);
   std::optional<FrameWriter> writer;
   if (!o.out.empty()) {
     prepare_capture_dir(o.out, o.overwrite);
@@ -49,8 +50,7 @@ bool draw_replay(const Settings& settings, const Level& level, const Recording& 
       session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& world) {
         if (t >= ticks || stop_requested() != 0) return;
         last = rec.input_at(t);
-        world.step(last);
-        game->rules(world, last);
+        rules.tick(world, last);
       });
     }
     const std::uint64_t tick = session.simulation().tick();
@@ -120,17 +120,22 @@ int sync_test(const AnyGame& prototype, const Settings& settings, const Options&
   check_sync_test_memory(world, o.sync_test);
   const double initial_energy = world.energy().total();
   const std::unique_ptr<AnyGame> game = level.game->clone();
-  SyncTest test(world, o.sync_test, game_rules(*game));
+  SyncTest test(world, o.sync_test, game_rules(*game, settings.rules_before_step));
   InputSampler sampler;
+  std::optional<InputScript> script;
+  if (!o.input.empty()) script = game_script(settings, level, o.input);
+  std::optional<ScriptPlayer> player;
+  if (script) player.emplace(*script);
   FixedStepLoop loop(world);
   const VirtualClock clock(virtual_fps);
   bool torn = false;  // a stop request abandoned a tick half-way
   for (std::int64_t frame = 1; frame < o.frames && !test.mismatch() && stop_requested() == 0;
        ++frame) {
-    game->autopilot(frame, world, sampler);
+    if (!player) game->autopilot(frame, world, sampler);
     try {
       loop.advance_with(clock.frame_seconds(), [&](std::uint64_t t) {
         if (test.mismatch() || stop_requested() != 0) return;
+        if (player) player->feed(t, sampler);
         TickInput input = sampler.sample(t);
         game->prepare(input, world);
         test.step(input);

@@ -160,12 +160,13 @@ class Peer {
     }
     if (o.host_port) {
       return MatchPeer::host(level_.def, s, Address{o.bind, *o.host_port},
-                             app::detail::game_rules(*rules_), game_merge(*level_.game));
+                             app::detail::game_rules(*rules_, settings.rules_before_step),
+                             game_merge(*level_.game));
     }
     const bool spectator = o.spectate.has_value();
     return MatchPeer::join(level_.def, s, spectator ? *o.spectate : *o.join, spectator,
-                           app::detail::game_rules(*rules_), game_merge(*level_.game),
-                           Address{o.bind, 0});
+                           app::detail::game_rules(*rules_, settings.rules_before_step),
+                           game_merge(*level_.game), Address{o.bind, 0});
   }
 
   Level level_;
