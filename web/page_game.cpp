@@ -117,9 +117,15 @@ bool PageGame::frames_frame(double now_ms) {
   // input and 1/60 s of virtual time; only the last frame is drawn (trails sample every tick).
   const VirtualClock clock(game_fps);
   const auto frames = static_cast<std::int64_t>(*o_.frames);
+  if (o_.input && !script_) {
+    show_text("result", "fetching the input script");
+    return true;
+  }
   while (frames_done_ < frames) {
     if (frames_done_ > 0) {
-      play_->game().autopilot(frames_done_, play_->session().simulation(), play_->sampler());
+      if (!script_) {
+        play_->game().autopilot(frames_done_, play_->session().simulation(), play_->sampler());
+      }
       play_->advance(clock.frame_seconds());
     }
     ++frames_done_;
@@ -129,9 +135,17 @@ bool PageGame::frames_frame(double now_ms) {
     show_text("result", fmt::format("running: frame {} of {}", frames_done_, frames));
     return true;
   }
-  play_->draw("autopilot");
+  play_->draw(script_ ? "input script" : "autopilot");
   report();
   return false;
+}
+
+void PageGame::script_fetched(const std::string& text) {
+  const app::detail::Level level =
+      app::detail::load_level(*prototype_, settings_, settings_.scene_file);
+  script_ = parse_input_script(text, *o_.input, level.def.bodies,
+                               app::detail::script_names(app::detail::game_input_map(settings_)));
+  play_->play_script(*script_);
 }
 
 void PageGame::show_summary(const World& world, double initial_energy,

@@ -20,7 +20,7 @@
 namespace fixstep {
 namespace {
 
-WorldDef one_ball() {
+WorldDef action_ball() {
   WorldDef def;
   def.settings.dt = 0.01;
   BodyDef ball;
@@ -46,7 +46,7 @@ Recording record(const WorldDef& def, bool with_rules) {
 }
 
 TEST(ActionRecording, EveryActionBitAndAxisRoundTripsExactly) {
-  const Recording rec = record(one_ball(), true);
+  const Recording rec = record(action_ball(), true);
   const std::string text = format_recording(rec);
   EXPECT_NE(text.find(" held=80001000 "), std::string::npos) << text;
   EXPECT_NE(text.find(" axis.2=-0.3333333333333333 axis.3=1\n"), std::string::npos) << text;
@@ -63,7 +63,7 @@ TEST(ActionRecording, EveryActionBitAndAxisRoundTripsExactly) {
 }
 
 TEST(ActionRecording, WithoutRulesOnlyTheDefaultButtons) {
-  const std::string text = format_recording(record(one_ball(), false));
+  const std::string text = format_recording(record(action_ball(), false));
   try {
     (void)parse_recording(text, "mem");
     FAIL() << "a recording without rules carrying a game's action bits was read";
@@ -85,7 +85,7 @@ TEST(ActionRecording, TheSamplerKeepsAxesAsLevelsAndReadsMinusZeroAsZero) {
 }
 
 TEST(ActionScript, ActionsAndAxesByTheProgramsNames) {
-  const WorldDef def = one_ball();
+  const WorldDef def = action_ball();
   const ScriptNames names{{{"jump", 1u << 5}, {"fire", 1u << 30}}, {{"walk", 2}}};
   const InputScript script = parse_input_script(R"([[at]]
 tick = 2
@@ -119,7 +119,7 @@ axes = { walk = 0.0 }
 }
 
 TEST(ActionScript, UnknownNamesAndValuesAreLocated) {
-  const WorldDef def = one_ball();
+  const WorldDef def = action_ball();
   const ScriptNames names{{{"jump", 1u << 5}}, {{"walk", 0}}};
   auto error = [&](const char* text) {
     try {

@@ -430,7 +430,7 @@ std::string script_error(const std::string& text) {
 
 TEST(InputScript, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(script_error("[[at]]\ntick = 1\npress = [\"lft\"]\n"),
-            "s.toml:3:10: at[0].press[0]: unknown button \"lft\"; did you mean \"left\"? (valid: "
+            "s.toml:3:10: at[0].press[0]: unknown action \"lft\"; did you mean \"left\"? (valid: "
             "left, right, up, down, action, pointer_primary, pointer_secondary)");
   EXPECT_EQ(script_error("[[at]]\ntick = 1\ndrag = \"bb\"\n"),
             "s.toml:3:8: at[0].drag: no body named \"bb\" (did you mean \"b\"?)");

@@ -134,7 +134,7 @@ TEST(NetPacket, InputsRunOfRepeatsAndChanges) {
   // (off the pointer grid: two doubles).
   Bytes b = inputs_header();
   Bytes items;
-  items.u8(0x80 | 0x02).u16(1).u8(2).u8(0x80 | 0x08).f64(0.1).f64(-2.0);
+  items.u8(0x80 | 0x02).u8(1).u8(2).u8(0x80 | 0x08).f64(0.1).f64(-2.0);  // held: a varint
   b.u8(1).u32(8).u16(5).u16(items.v.size());
   b.v.insert(b.v.end(), items.v.begin(), items.v.end());
   net::Packet p;
@@ -224,17 +224,20 @@ TEST(NetPacket, InputRangesRefused) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   Bytes push_nan;
-  push_nan.u8(0x81).f64(nan).f64(0.0);
+  push_nan.u8(0x81).f64(nan).f64(0.0).u8(0);
   EXPECT_EQ(decode(one_run(1, 10, 1, push_nan)), PacketError::bad_input);
   Bytes pointer_inf;
   pointer_inf.u8(0x88).f64(0.0).f64(-inf);
   EXPECT_EQ(decode(one_run(1, 10, 1, pointer_inf)), PacketError::bad_input);
-  Bytes unknown_button;
-  unknown_button.u8(0x82).u16(1u << 5);
-  EXPECT_EQ(decode(one_run(1, 10, 1, unknown_button)), PacketError::bad_input);
-  Bytes unknown_edge;
-  unknown_edge.u8(0x84).u16(0).u16(1u << 12);
-  EXPECT_EQ(decode(one_run(1, 10, 1, unknown_edge)), PacketError::bad_input);
+  Bytes axis_out;  // the levels: push (0, 0), axis 0 at 1.5
+  axis_out.u8(0x81).f64(0.0).f64(0.0).u8(1).f64(1.5);
+  EXPECT_EQ(decode(one_run(1, 10, 1, axis_out)), PacketError::bad_input);
+  Bytes held_over_32_bits;  // a varint of 2^32
+  held_over_32_bits.u8(0x82).u8(0x80).u8(0x80).u8(0x80).u8(0x80).u8(0x10);
+  EXPECT_EQ(decode(one_run(1, 10, 1, held_over_32_bits)), PacketError::bad_input);
+  Bytes edge_over_32_bits;
+  edge_over_32_bits.u8(0x84).u8(0).u8(0x80).u8(0x80).u8(0x80).u8(0x80).u8(0x10);
+  EXPECT_EQ(decode(one_run(1, 10, 1, edge_over_32_bits)), PacketError::bad_input);
   Bytes too_many_bodies;
   too_many_bodies.u8(0xa0).u8(17);
   EXPECT_EQ(decode(one_run(1, 10, 1, too_many_bodies)), PacketError::bad_input);

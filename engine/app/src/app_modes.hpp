@@ -41,11 +41,6 @@ struct Options {
   bool overwrite = false;         ///< --overwrite: the old capture in --out DIR is removed first
 };
 
-/// Loads --input SCRIPT for `level`, its press / release / axes naming the game's actions and
-/// axes (SceneError naming the file, line and key).
-[[nodiscard]] InputScript game_script(const Settings& settings, const Level& level,
-                                      const std::string& file);
-
 /// Frames per second of a headless run's, a drawn replay's and a sync test's virtual clock.
 inline constexpr double virtual_fps = 60.0;
 

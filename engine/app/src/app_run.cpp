@@ -207,12 +207,16 @@ InputMap game_input_map(const Settings& settings) {
   return map;
 }
 
-InputScript game_script(const Settings& settings, const Level& level, const std::string& file) {
-  const InputMap map = game_input_map(settings);
+ScriptNames script_names(const InputMap& map) {
   ScriptNames names;
   for (const ActionBinding& a : map.actions) names.actions.emplace_back(a.name, a.bit);
   for (const AxisBinding& a : map.axes) names.axes.emplace_back(a.name, a.index);
-  InputScript script = load_input_script(file, level.def.bodies, names);
+  return names;
+}
+
+InputScript game_script(const Settings& settings, const Level& level, const std::string& file) {
+  InputScript script =
+      load_input_script(file, level.def.bodies, script_names(game_input_map(settings)));
   for (const std::string& w : script.warnings) {
     std::fprintf(stderr, "%s: warning: %s\n", settings.name.c_str(), w.c_str());
   }

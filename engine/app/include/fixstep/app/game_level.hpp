@@ -15,6 +15,7 @@
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/render/input_map.hpp"
+#include "fixstep/scene/input_script.hpp"
 
 namespace fixstep::app::detail {
 
@@ -57,6 +58,12 @@ struct Level {
 /// The game's bindings: Settings::actions (fixstep's default actions when empty), axes and loop
 /// keys. Throws std::invalid_argument naming the fault (InputMap::problem).
 [[nodiscard]] InputMap game_input_map(const Settings& settings);
+/// Loads --input SCRIPT for `level`, its press / release / axes naming the game's actions and
+/// axes (SceneError naming the file, line and key); prints its warnings (unknown keys).
+[[nodiscard]] InputScript game_script(const Settings& settings, const Level& level,
+                                      const std::string& file);
+/// The names an input script may press and set: the map's actions and axes.
+[[nodiscard]] ScriptNames script_names(const InputMap& map);
 /// TickRules that run `game`'s rules (held by reference) after each step, or before it when
 /// `before_step` (Settings::rules_before_step), and save and restore the game by copy.
 [[nodiscard]] TickRules game_rules(AnyGame& game, bool before_step);
