@@ -139,14 +139,18 @@ Options parse(const Settings& settings, int argc, char** argv) {
 /// Returns the paths checked.
 OutputPaths check_outputs(const Settings& settings, const Options& o) {
   const std::string scene = o.scene.value_or(settings.scene_file);
-  OutputPaths paths{.program = settings.name, .overwrite = o.overwrite, .capture_manifest = false};
+  OutputPaths paths{.program = settings.name, .overwrite = o.overwrite};
   if (!scene.empty()) paths.inputs.push_back({"--scene", scene});
   if (!o.replay.empty()) paths.inputs.push_back({"--replay", o.replay});
   if (!o.input.empty()) paths.inputs.push_back({"--input", o.input});
   for (const std::string& file : o.diff) paths.inputs.push_back({"--diff", file});
   if (!o.record.empty()) paths.outputs.push_back({"--record", o.record});
   if (!o.last_frame.empty()) paths.outputs.push_back({"--last-frame", o.last_frame});
-  if (!o.out.empty()) paths.capture_dir = o.out;
+  if (!o.out.empty()) {
+    paths.capture_dir = o.out;
+    paths.outputs.push_back(
+        {"--out DIR's manifest", (std::filesystem::path(o.out) / "frames.csv").string()});
+  }
   check_output_paths(paths);
   check_output_before_run("--record", o.record, {scene, o.replay, o.input});
   check_output_before_run("--last-frame", o.last_frame, {scene, o.replay, o.input});

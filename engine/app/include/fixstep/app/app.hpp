@@ -128,7 +128,8 @@ concept Game = std::copy_constructible<G> && std::is_copy_assignable_v<G> &&
 ///
 ///   NAME                                play in a window until Esc or the close button
 ///   NAME --frames N [--out DIR]         N frames headless on a 60 Hz virtual clock, the
-///                                       autopilot playing; PNG frames into DIR
+///                                       autopilot playing; PNG frames into DIR, with
+///                                       DIR/frames.csv (each frame's tick, hash, energy)
 ///   NAME --frames N --input SCRIPT      ... the script playing instead (an input script,
 ///                                       docs/CLI.md: its press / release name the game's
 ///                                       actions, its axes the game's axes); also with
@@ -138,7 +139,10 @@ concept Game = std::copy_constructible<G> && std::is_copy_assignable_v<G> &&
 ///   NAME ... --record FILE              record the session (the input, a state hash a tick)
 ///   NAME --replay FILE [--out DIR [--every K]] [--last-frame PNG]
 ///                                       re-simulate a recording with the rules, verify every
-///                                       stored hash, then draw it
+///                                       stored hash, then draw it: frames 0, K, 2K, ... and
+///                                       the last, each named by its frame index
+///                                       (DIR/frame_000000.png, frame_00000K.png, ...) and
+///                                       listed with its tick in DIR/frames.csv
 ///   NAME --diff A.rec B.rec             where two recordings first differ: inputs, stored
 ///                                       hashes, and (both replayed side by side with the
 ///                                       rules) the first tick, body and field
