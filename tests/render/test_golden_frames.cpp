@@ -214,6 +214,37 @@ TEST(GoldenFrames, TheJointsSceneMatchesItsReferenceFrames) {
   if (refreshing()) GTEST_SKIP() << "rewrote the joints' reference frames in " << golden_dir;
 }
 
+// Sprites and styled levels (tests/scenes/sprites/sprites.toml: a tiled background, coloured
+// and wide segments, a crate and a ball drawn as images, a body of two coloured shapes) at the
+// golden frame numbers; then its frame 90 with a game's overlay images over it
+// (DrawList::image: world space, turned, and screen space), which the frame draws all by GL.
+TEST(GoldenFrames, TheSpritesSceneMatchesItsReferenceFrames) {
+  const Scene scene = load_scene(test_scenes_dir / "sprites" / "sprites.toml");
+  ASSERT_TRUE(scene.view.background_image);
+  const auto frames = render(scene);
+  for (std::size_t i = 0; i < frames.size(); ++i)
+    expect_matches_reference(frames[i],
+                             fmt::format("sprites_frame_{:06}", golden_frame_numbers[i]));
+  Session session = testing::scene_session(scene, width, height);
+  const VirtualClock clock(60.0);
+  const std::string crate = (test_scenes_dir / "sprites" / "crate.png").string();
+  const std::string ball = (test_scenes_dir / "sprites" / "ball.png").string();
+  DrawList overlay;
+  overlay.image(crate, {3.0, 5.0}, {1.2, 0.6}, 0.5);                     // world, turned
+  overlay.image(ball, {560.0, 60.0}, {64.0, 64.0}, 0.0, Space::screen);  // px
+  overlay.image(crate, {480.0, 60.0}, {48.0, 48.0}, 0.8, Space::screen);
+  for (std::uint64_t f = 0; f <= 90; ++f) {
+    if (f > 0) session.advance(clock.frame_seconds());
+    if (f < 90) session.draw();
+  }
+  session.draw(overlay);
+  const auto p = session.renderer().pixels();
+  const std::vector<std::uint8_t> with_overlay(p.begin(), p.end());
+  EXPECT_NE(with_overlay, frames.back());  // the images drew something
+  expect_matches_reference(with_overlay, "sprites_overlay_frame_000090");
+  if (refreshing()) GTEST_SKIP() << "rewrote the sprites' reference frames in " << golden_dir;
+}
+
 // The overlay test card (web/overlay_card.hpp: every DrawList shape in world and screen
 // coordinates, a view style of its own, the HUD bottom right) over default.toml at frame 60, as
 // the page draws it with frames=61&overlay=card (the browser checks compare the two).

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "fixstep/core/components.hpp"
@@ -34,6 +35,16 @@ struct RenderFrame {
     float radius = 0;         ///< m: circle's and capsule's radius, polygon's rounding (>= 0)
     std::array<float, max_polygon_vertices> px{}, py{};  ///< m, as above
     float mark_x = 0, mark_y = 0;  ///< m, as above: a circle's rim on its x axis, a vertex
+    Rgba8 color{0, 0, 0, 0};       ///< ShapeDef::color: its fill (alpha 0: the body's colour)
+  };
+  /// A body drawn as an image (Appearance::sprite) instead of its disc or shapes: a `width` x
+  /// `height` m rectangle centred on (cx, cy) in the body's frame relative to its centre of
+  /// mass (turned by its angle with it), the image stretched over it, top row up.
+  struct Sprite {
+    std::uint32_t body = 0;       ///< the body's entry in x / y / angle
+    float cx = 0, cy = 0;         ///< m, as above
+    float width = 0, height = 0;  ///< m, > 0
+    std::string path;             ///< the PNG file (Appearance::sprite)
   };
   std::vector<float> x, y;  ///< body positions, m (interpolated when taken with alpha)
   /// Each body's handle, so what a renderer keeps per body across frames (trails) follows the
@@ -59,6 +70,8 @@ struct RenderFrame {
   /// as them instead of a disc. Empty: every body is a disc. An entry naming no body of the
   /// frame, or with a count outside 1..max_polygon_vertices, is not drawn.
   std::vector<Shape> shapes;
+  /// The bodies drawn as images, in body order (entry `body` ascending). Empty: none.
+  std::vector<Sprite> sprites;
   /// 1 for a body that sleeps (ContactSettings::sleep; World::asleep), drawn in its colour
   /// half greyed, as Box2D's debug draw greys sleeping bodies. Empty: none sleeps.
   std::vector<std::uint8_t> asleep;
