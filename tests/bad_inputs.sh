@@ -886,7 +886,7 @@ $body
 box = [1.0, 1.0]
 circle = 0.5"
 # --- images and styles: sprites, a tiled background, segment and shape colours ---
-sprites=$tests_dir/scenes/sprites
+sprites=$tests_dir/../assets/scenes/sprites
 cp "$sprites/crate.png" crate.png
 # write_png FILE W H [IDAT-BYTES]: a PNG of W x H px (its IDAT the zlib stream of a blank RGBA
 # image, or the bytes given), every CRC right.

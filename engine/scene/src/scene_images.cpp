@@ -17,10 +17,15 @@ namespace fixstep::scene_detail {
 namespace {
 
 /// `written` (a path as the scene gives it) relative to the folder of the scene file `scene`,
-/// unless absolute or the scene has no folder.
+/// unless absolute or the scene has no folder. A scene embedded in a recording is parsed under
+/// the name "FILE (embedded in RECORDING)" (fixstep replay, the page, app::run): its folder is
+/// FILE's, where the recording's scene was when it was recorded.
 std::string resolved(const std::string& scene, const std::string& written) {
   const std::filesystem::path p(written);
-  const std::filesystem::path base = std::filesystem::path(scene).parent_path();
+  const std::size_t embedded = scene.find(" (embedded in ");
+  const std::string file =
+      embedded != std::string::npos && scene.ends_with(")") ? scene.substr(0, embedded) : scene;
+  const std::filesystem::path base = std::filesystem::path(file).parent_path();
   return p.is_absolute() || base.empty() ? written : (base / p).string();
 }
 

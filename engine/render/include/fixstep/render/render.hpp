@@ -141,8 +141,11 @@ class Renderer {
   /// pixels(): draw_scene(frame), draw_hud(hud_lines), finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
   /// Starts a picture (begin()) of the scene view of `frame`: background, grid, axes and scale
-  /// bar as view_style() says, the planes, trails, links, springs, the visible bodies (those
-  /// with shapes as their shapes, RenderFrame::shapes, the others as discs) and, over them, the
+  /// bar as view_style() says (over its background image, tiled), the planes, segments (in
+  /// their colours and widths), trails, links, springs, the visible bodies (those with a
+  /// sprite as their image, RenderFrame::sprites; those with shapes as their shapes,
+  /// RenderFrame::shapes, each in its own colour or the body's; the others as discs; an image
+  /// the cache refuses throws ImageError) and, over them, the
   /// joints as ViewStyle::joints says (none that broke, nor one whose body is hidden). With
   /// at most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
   /// cloth) they are thin straight lines and no trails are drawn. A body hidden by its

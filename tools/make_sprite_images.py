@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Writes the sprites scene's images (sprites.toml) with zlib and struct only: crate.png (16x16,
-opaque: planks, a dark frame and a light top-left corner so that its turn shows), ball.png
-(16x16: a striped disc, transparent outside it) and tiles.png (8x8: a two-tone checker with a
-dot in its top-left tile). Run it from this folder; the PNGs are committed."""
+"""Writes the images of assets/scenes/sprites.toml into assets/scenes/sprites/ (committed), with
+zlib and struct only: crate.png (16x16, opaque: planks, a dark frame and a light top-left corner
+so that its turn shows), ball.png (16x16: a striped disc, transparent outside it) and tiles.png
+(8x8: a two-tone checker with a dot in its top-left tile)."""
+import os
 import struct
 import zlib
 
@@ -47,6 +48,7 @@ def tiles(x, y):
     return (34, 40, 56, 255) if (x // 4 + y // 4) % 2 == 0 else (28, 33, 46, 255)
 
 
-png("crate.png", 16, 16, crate)
-png("ball.png", 16, 16, ball)
-png("tiles.png", 8, 8, tiles)
+out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "assets", "scenes", "sprites")
+png(os.path.join(out, "crate.png"), 16, 16, crate)
+png(os.path.join(out, "ball.png"), 16, 16, ball)
+png(os.path.join(out, "tiles.png"), 8, 8, tiles)
