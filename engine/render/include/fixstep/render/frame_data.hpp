@@ -123,13 +123,14 @@ struct RenderFrame {
 };
 
 /// Fills `out` from `world` at interpolation alpha (in [0, 1]; World::interpolate_positions):
-/// positions, handles, appearances (visibility and trails included), angles and shapes (a
-/// world with rolling discs or shapes), anchored springs, links, planes, segments, joints, the
+/// positions, handles, appearances (visibility, trails and sprites included), angles and shapes
+/// (a world with rolling discs or shapes), anchored springs, links, planes, segments, joints, the
 /// tick, dt and alpha. Reuses out's storage: no allocation once it has grown to the world's
-/// size. A joint's type and limits never change: they are read (World::joint) for a handle the
-/// frame did not hold at its place before, and for every joint when the world's tick is before
-/// the frame's (a restart, a snapshot restored, another world); a frame filled from two worlds
-/// in turn should be one frame each.
+/// size, but for a body with a sprite, whose Appearance (its path) World::get copies each frame. A
+/// joint's type and limits never change: they are read (World::joint) for a handle the frame did
+/// not hold at its place before, and for every joint when the world's tick is before the frame's (a
+/// restart, a snapshot restored, another world); a frame filled from two worlds in turn should be
+/// one frame each.
 void fill_render_frame(const World& world, double alpha, RenderFrame& out);
 
 }  // namespace fixstep
