@@ -885,6 +885,92 @@ $body
 [[body.shape]]
 box = [1.0, 1.0]
 circle = 0.5"
+# --- images and styles: sprites, a tiled background, segment and shape colours ---
+sprites=$tests_dir/../assets/scenes/sprites
+cp "$sprites/crate.png" crate.png
+# write_png FILE W H [IDAT-BYTES]: a PNG of W x H px (its IDAT the zlib stream of a blank RGBA
+# image, or the bytes given), every CRC right.
+write_png() { python3 -c 'import struct, sys, zlib
+path, w, h = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+data = sys.argv[4].encode() if len(sys.argv) > 4 else zlib.compress(bytes((4 * w + 1) * h), 9)
+def chunk(k, d): return struct.pack(">I", len(d)) + k + d + struct.pack(">I", zlib.crc32(k + d))
+open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+                       + chunk(b"IDAT", data) + chunk(b"IEND", b""))' "$@"; }
+sprite_body() {  # sprite_body IMAGE: a body drawn as IMAGE
+  printf '%s\nsprite = "%s"' "$body" "$1"
+}
+case_ "a body's sprite naming a missing file" "$ok_world
+$(sprite_body crat.png)"
+printf '\xff\xd8\xff\xe0\x00\x10JFIF\x00' > photo.jpg
+case_ "a body's sprite that is not a PNG (a JPEG)" "$ok_world
+$(sprite_body photo.jpg)"
+head -c 60 crate.png > truncated.png
+case_ "a body's sprite truncated (a PNG cut short)" "$ok_world
+$(sprite_body truncated.png)"
+cp crate.png corrupt.png
+printf '\x00' | dd of=corrupt.png bs=1 seek=50 conv=notrunc status=none
+case_ "a body's sprite corrupt (a byte changed: its CRC-32 does not match)" "$ok_world
+$(sprite_body corrupt.png)"
+write_png large.png 4097 16
+case_ "a body's sprite 4097 px wide (at most 4096)" "$ok_world
+$(sprite_body large.png)"
+mkdir images.png
+case_ "a body's sprite naming a directory" "$ok_world
+$(sprite_body images.png)"
+case_ "sprite_size without a sprite" "$ok_world
+$body
+sprite_size = [1.0, 1.0]"
+case_ "sprite_size with a zero side" "$ok_world
+$(sprite_body crate.png)
+sprite_size = [1.0, 0.0]"
+many="$ok_world"
+for i in $(seq 0 256); do
+  cp crate.png "crate$i.png"
+  many="$many
+[[body]]
+mass = 1.0
+position = [$i.0, 0.0]
+sprite = \"crate$i.png\""
+done
+case_ "257 distinct sprite images (at most 256)" "$many"
+write_png huge.png 4096 4096
+big="$ok_world"
+for i in 0 1 2 3 4; do
+  cp huge.png "huge$i.png"
+  big="$big
+[[body]]
+mass = 1.0
+position = [$i.0, 0.0]
+sprite = \"huge$i.png\""
+done
+case_ "five 4096 x 4096 sprite images (their pixels beyond 256 MiB)" "$big"
+case_ "[view] background_image not a PNG" "$ok_world
+[view]
+background_image = \"photo.jpg\"
+$body"
+case_ "[view] background_tile 0" "$ok_world
+[view]
+background_image = \"crate.png\"
+background_tile = 0.0
+$body"
+case_ "[[polyline]] width negative" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0], [1.0, 0.0]]
+width = -0.1"
+case_ "[[segment]] color not a colour" "$ok_world
+$body
+[[segment]]
+a = [0.0, 0.0]
+b = [1.0, 0.0]
+color = \"green\""
+case_ "a shape's color not a colour" "$ok_world
+$body
+shape = { box = [0.5, 0.5], color = \"#12345\" }"
+write_png inflate.png 16 16 'not a zlib stream'
+case_ "a sprite whose CRCs match but whose data does not inflate (found when drawn)" "$ok_world
+$(sprite_body inflate.png)
+gravity = [0.0, -9.81]" render scene.toml --frames 1 --out inflate_frames
 # --- joints: [[joint]] tables, refused by the scene loader at their key ---
 joint_bodies="$ok_world
 [[body]]

@@ -138,7 +138,7 @@ ShapeDef read_shape(Reader& r, const toml::table& t, const std::string& path,
   r.check_keys(
       t, path,
       {"circle", "capsule", "box", "polygon", "radius", "offset", "angle", "density", "friction",
-       "restitution", "rolling_resistance", "sensor", "category", "mask", "group"});
+       "restitution", "rolling_resistance", "sensor", "category", "mask", "group", "color"});
   ShapeDef s = read_geometry(r, t, path);
   if (auto v = r.vec2(t, "offset", path + ".offset")) s.offset = *v;
   if (auto v = r.number(t, "angle", path + ".angle")) s.angle = *v;
@@ -150,6 +150,7 @@ ShapeDef read_shape(Reader& r, const toml::table& t, const std::string& path,
     s.rolling_resistance = *v;
   }
   read_shape_filter(r, t, path, s);
+  if (t.get("color")) s.color = parse_color(r, t, "color", path + ".color");  // drawing only
   if (const std::optional<std::string> problem = shape_problem(s)) {
     const auto [node, key] = problem_key(t, path, s, *problem, body_density_node, body_path);
     r.fail(node->source(), key, *problem);
@@ -252,6 +253,7 @@ std::string shapes_text(const BodyDef& b) {
     }
     if (f.mask != none.mask) fmt::format_to(it, "mask = {}\n", toml_filter_bits(f.mask));
     if (f.group != none.group) fmt::format_to(it, "group = {}\n", f.group);
+    if (s.color != Rgba8{0, 0, 0, 0}) fmt::format_to(it, "color = {}\n", toml_color(s.color));
   }
   return out;
 }

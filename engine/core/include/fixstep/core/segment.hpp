@@ -48,6 +48,10 @@ struct SegmentDef {
   /// The kinematic body that carries it (null: static). For World::add_segment a live handle;
   /// in a WorldDef, a handle WorldDef::add_body returned.
   Entity body{};
+  /// Drawing only (not in the definition or state hash): the segment's colour (alpha 0: the
+  /// planes' colour) and line width, m (0: 2.5 px at any zoom), finite and >= 0.
+  Rgba8 color{0, 0, 0, 0};
+  double width = 0.0;
   friend bool operator==(const SegmentDef&, const SegmentDef&) = default;
 };
 

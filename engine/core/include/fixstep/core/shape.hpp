@@ -67,6 +67,9 @@ struct ShapeDef {
   CollisionFilter filter{};  ///< which shapes and discs this one may touch
   /// A sensor reports what it overlaps (World::sensors_begun) and pushes nothing.
   bool sensor = false;
+  /// Drawing only (not in the definition or state hash): the shape's fill colour; alpha 0
+  /// (the default): its body's colour.
+  Rgba8 color{0, 0, 0, 0};
   friend bool operator==(const ShapeDef&, const ShapeDef&) = default;
 };
 
