@@ -553,6 +553,17 @@ $body
 a = [0.0, 0.0]
 b = [1.0, 0.0]
 restitution = 2.0"
+case_ "[[segment]] one_way not a boolean" "$ok_world
+$body
+[[segment]]
+a = [0.0, 0.0]
+b = [1.0, 0.0]
+one_way = 1"
+case_ "[[polyline]] one_way not a boolean" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0], [1.0, 0.0]]
+one_way = \"yes\""
 case_ "[[segment]] unknown key (a warning; the run goes on)" "$ok_world
 $body
 [[segment]]
@@ -864,6 +875,9 @@ shape = { polygon = [[0,0],[1,0],[2,1],[2,2],[1,3],[0,3],[-1,2],[-1,1],[-0.5,0.2
 case_ "a polygon shape of no area (collinear)" "$ok_world
 $body
 shape = { polygon = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]] }"
+case_ "a shape's one_way not a boolean" "$ok_world
+$body
+shape = { box = [1.0, 1.0], one_way = 1 }"
 case_ "a box shape's half extent nan" "$ok_world
 $body
 shape = { box = [nan, 1.0] }"

@@ -95,6 +95,7 @@ inline void expect_same_body(const BodyDef& a, const BodyDef& b, const std::stri
     EXPECT_EQ(x.filter, y.filter) << s << ".filter";
     EXPECT_EQ(x.sensor, y.sensor) << s << ".sensor";
     EXPECT_EQ(x.color, y.color) << s << ".color";
+    EXPECT_EQ(x.one_way, y.one_way) << s << ".one_way";
   }
 }
 
@@ -155,6 +156,7 @@ inline void expect_same_world(const WorldDef& a, const WorldDef& b) {
     EXPECT_EQ(x.body, y.body) << w << ".body";
     EXPECT_EQ(x.color, y.color) << w << ".color";
     expect_bits(x.width, y.width, w + ".width");
+    EXPECT_EQ(x.one_way, y.one_way) << w << ".one_way";
   }
   ASSERT_EQ(a.joints.size(), b.joints.size());
   for (std::size_t i = 0; i < a.joints.size(); ++i) {

@@ -57,6 +57,7 @@ void hash_shape(Fnv1a& h, const ShapeDef& s) {
   h.add_optional(s.restitution, [&](double e) { h.add(e); });
   h.add(s.filter.category), h.add(s.filter.mask), h.add(s.filter.group), h.add(s.sensor);
   if (s.rolling_resistance != 0.0) h.add(std::uint64_t{0x4011}), h.add(s.rolling_resistance);
+  if (s.one_way) h.add(std::uint64_t{0x0e1a});  // absent: the hash from before one-way shapes
 }
 
 void hash_body(Fnv1a& h, const BodyDef& b) {
@@ -175,6 +176,7 @@ std::uint64_t definition_hash(const WorldDef& def) {
               std::uint64_t{
                   fixstep::defined_index(s.body, def.bodies.size()).value_or(def.bodies.size())});
       }
+      if (s.one_way) h.add(std::uint64_t{0x0e1a});  // absent: a two-sided segment, as before
     }
   }
   if (!def.joints.empty()) hash_joints(h, def);  // absent: the hash from before joints

@@ -140,10 +140,10 @@ std::size_t World::add_segment(const SegmentDef& def) {
   return visit([&](auto& w) { return w.add_segment(def); });
 }
 std::size_t World::add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                                bool closed, Entity body) {
+                                bool closed, Entity body, bool one_way) {
   std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
   const std::size_t first = segments().size();
-  for (SegmentDef& s : chain) s.body = body, add_segment(s);
+  for (SegmentDef& s : chain) s.body = body, s.one_way = one_way, add_segment(s);
   return first;
 }
 std::span<const SegmentDef> World::segments() const {
@@ -164,8 +164,15 @@ const StepProfile& World::profile() const {
 std::span<const Impact> World::impacts() const {
   return visit([](const auto& w) { return w.impacts(); });
 }
+void World::set_pre_solve(PreSolveFn fn, void* context) {
+  state_->pre_solve = fn, state_->pre_solve_context = fn ? context : nullptr;
+}
+
 void World::step(const TickInput& input) {
-  visit([&](auto& w) { w.step(input); });
+  visit([&](auto& w) {
+    w.set_pre_solve(state_->pre_solve, state_->pre_solve_context);
+    w.step(input);
+  });
   queries_changed();
 }
 void World::step() {
@@ -323,9 +330,9 @@ void World::build(const WorldDef& def) {
 }
 
 void WorldDef::add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                            bool closed, Entity body) {
+                            bool closed, Entity body, bool one_way) {
   std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
-  for (SegmentDef& s : chain) s.body = body;
+  for (SegmentDef& s : chain) s.body = body, s.one_way = one_way;
   segments.insert(segments.end(), chain.begin(), chain.end());
 }
 

@@ -274,8 +274,9 @@ void write_planes(std::string& out, const WorldDef& def) {
   }
 }
 
-/// Every segment a [[segment]] table, polylines' ghost vertices as prev and next, and the
-/// kinematic body carrying it (each segment of a carried polyline) as `body`, by its name.
+/// Every segment a [[segment]] table, polylines' ghost vertices as prev and next, one_way when
+/// true, and the kinematic body carrying it (each segment of a carried polyline) as `body`, by
+/// its name.
 void write_segments(std::string& out, const WorldDef& def, const std::vector<std::string>& names) {
   auto it = std::back_inserter(out);
   for (std::size_t i = 0; i < def.segments.size(); ++i) {
@@ -287,6 +288,7 @@ void write_segments(std::string& out, const WorldDef& def, const std::vector<std
     if (s.next) fmt::format_to(it, "next = {}\n", toml_point(*s.next));
     if (s.color != Rgba8{0, 0, 0, 0}) fmt::format_to(it, "color = {}\n", color_text(s.color));
     if (!same_bits(s.width, 0.0)) fmt::format_to(it, "width = {}\n", toml_number(s.width));
+    if (s.one_way) out += "one_way = true\n";
     if (s.body.is_null()) continue;
     const auto b = fixstep::defined_index(s.body, names.size());
     if (!b) {

@@ -63,9 +63,10 @@ struct WorldDef {
   }
   /// Appends the segments of a polyline through `points` (polyline_segments: throws
   /// std::invalid_argument for too few points or a zero-length segment), carried by `body`
-  /// (a handle add_body returned, of a kinematic body) or static (null).
+  /// (a handle add_body returned, of a kinematic body) or static (null), each one-way
+  /// (SegmentDef::one_way) when `one_way`.
   void add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                    bool closed = false, Entity body = {});
+                    bool closed = false, Entity body = {}, bool one_way = false);
 };
 
 }  // namespace fixstep
