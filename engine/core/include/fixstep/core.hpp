@@ -25,6 +25,7 @@
 #include "fixstep/core/recording_diff.hpp"
 #include "fixstep/core/rewind.hpp"
 #include "fixstep/core/rules.hpp"
+#include "fixstep/core/mover.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/simd.hpp"

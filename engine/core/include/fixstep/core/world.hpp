@@ -29,6 +29,7 @@ struct ShapeDef;                     // shape.hpp
 struct JointDef;                     // joint.hpp
 struct JointState;                   // joint.hpp
 struct JointBreak;                   // joint.hpp
+struct MoverState;                   // mover.hpp
 struct TickInput;                    // input.hpp
 struct BodyInput;                    // input.hpp
 struct EnergyReport;                 // step_results.hpp
@@ -151,6 +152,10 @@ class World {
   /// Sets e's user data: kept with the body, copied by snapshots, never part of the state
   /// hash; throws std::invalid_argument if e is stale.
   void set_user_data(Entity e, std::uint64_t value);
+  /// What mover e (BodyDef::mover) met in its last tick: floor, wall, ceiling, the body it
+  /// stands on, its slid velocity (mover.hpp). Throws std::invalid_argument if e is stale or
+  /// not a mover.
+  [[nodiscard]] MoverState mover_state(Entity e) const;
   /// e's name ("" if none); throws std::invalid_argument if stale.
   [[nodiscard]] const std::string& name(Entity e) const;
   /// e's type (dynamic, static or kinematic); throws std::invalid_argument if stale.
