@@ -5,7 +5,9 @@
 // threads, and the definitions refused.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -18,6 +20,10 @@
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
+
+// support/count_new.cpp: bytes the global operator new hands out while counting.
+extern std::atomic<bool> counting;
+extern std::atomic<std::size_t> counted_bytes;
 
 namespace fixstep {
 namespace mover_test {  // named: a unity batch shares anonymous namespaces
@@ -366,6 +372,27 @@ TEST(Mover, SnapshotsAndThreadsGiveTheSameBits) {
   play_busy(c, 240);
   EXPECT_EQ(c.state_hash(), end);
   EXPECT_GT(a.body(a.find("mover")).position.x, 6.0);
+}
+
+// Once warm, a tick of the busy world (a mover walking, stepping, jumping and pushing a crate)
+// allocates nothing.
+TEST(Mover, AWarmTickAllocatesNothing) {
+  World w = busy_world(1);
+  const Entity e = w.find("mover");
+  TickInput in;
+  in.bodies.push_back(BodyInput{e, BodyInputKind::velocity, {3.0, 0.0}});
+  auto tick = [&] {
+    const MoverState s = w.mover_state(e);
+    double vy = s.on_floor ? ((w.tick() % 70) == 60 ? 5.0 : 0.0) : s.velocity.y - g * dt;
+    in.bodies[0].value = {3.0, vy};
+    w.step(in);
+  };
+  for (int t = 0; t < 240; ++t) tick();
+  counted_bytes = 0;
+  counting = true;
+  for (int t = 0; t < 120; ++t) tick();
+  counting = false;
+  EXPECT_EQ(counted_bytes.load(), 0u);
 }
 
 TEST(Mover, DefinitionsRefused) {

@@ -300,7 +300,8 @@ class World {
   /// with rolling discs (ContactSettings::rolling) only, every body's θ and ω, then, with
   /// sleeping (ContactSettings::sleep) only, every body's ticks below the sleep speed and its
   /// island's number while asleep (0 awake), then, with joints only, each joint's motor speed,
-  /// maxima, targets and accumulated impulses (double) and whether its motor is on and it broke;
+  /// maxima, targets and accumulated impulses (double) and whether its motor is on and it broke,
+  /// then, with movers only, each mover's MoverState (flags, normals, displacement, floor body);
   /// random()'s state is mixed in (FNV-1a over its
   /// 64-bit state) once it has been drawn from, so a world whose rules never roll dice hashes as
   /// one without random(). Equal hashes mean bit-identical states.
