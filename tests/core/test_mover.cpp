@@ -332,6 +332,55 @@ TEST(Mover, SnapsToTheFloorWalkingDownASlope) {
   EXPECT_GT(w.body(e).position.x, 5.0);
 }
 
+// A crate dropped onto a standing mover's head rests there (the mover is a kinematic capsule in
+// the contact solver, its round top the crate's one support); the crate resting within the
+// contact solver's slop does not stop the mover walking on (a dynamic body is not pushed out
+// of, only not gone deeper into).
+TEST(Mover, ACrateRestsOnItsHead) {
+  World w(WorldDef::empty(Precision::f64, settings()));
+  w.add_segment(SegmentDef{.a = {-20.0, 0.0}, .b = {20.0, 0.0}});
+  const Entity e = w.create_body(mover_def({0.0, foot + skin}));
+  BodyDef crate;
+  crate.body.mass = 2.0;
+  crate.body.position = {0.0, 2.5};
+  crate.shapes = {make_box(0.2, 0.2)};
+  crate.shapes[0].friction = 1.0;
+  crate.gravity = Gravity{{0.0, -g}};
+  const Entity box = w.create_body(crate);
+  for (int t = 0; t < 120; ++t) play(w, e, 0.0);
+  const double top = w.body(e).position.y + half + radius;
+  EXPECT_NEAR(w.body(box).position.y, top + 0.2, 0.01);  // within the contact slop
+  EXPECT_NEAR(w.body(box).velocity.y, 0.0, 1e-3);
+  EXPECT_EQ(w.body(box).position.x, 0.0);
+  for (int t = 0; t < 30; ++t) play(w, e, 1.0);  // walking, it moves out from under the crate
+  EXPECT_GT(w.body(e).position.x, 0.45);
+}
+
+// A crate sliding down a 20° slope (μ 0.1) comes to lean on a mover standing at its foot and
+// stays pressed against it: the mover is not pushed away by it (it stays where it stood, to the
+// bit) and holds it (a kinematic capsule).
+TEST(Mover, ACrateLeaningOnItDoesNotPushItAway) {
+  World w(WorldDef::empty(Precision::f64, settings()));
+  const double a = 20.0 * std::numbers::pi / 180.0;
+  const std::vector<Vec2> ground{{-10.0, 0.0}, {0.35, 0.0}, {10.0, 9.65 * std::tan(a)}};
+  w.add_polyline(ground, 0.0, 0.1);
+  const Entity e = w.create_body(mover_def({0.0, foot + skin}));
+  BodyDef crate;
+  crate.body.mass = 5.0;
+  crate.body.position = {2.0, 1.65 * std::tan(a) + 0.25};
+  crate.body.angle = a;
+  crate.shapes = {make_box(0.2, 0.2)};
+  crate.shapes[0].friction = 0.1;
+  crate.gravity = Gravity{{0.0, -g}};
+  const Entity box = w.create_body(crate);
+  for (int t = 0; t < 60; ++t) play(w, e, 0.0);
+  const Vec2 stood = w.body(e).position;
+  for (int t = 0; t < 120; ++t) play(w, e, 0.0);
+  EXPECT_EQ(w.body(e).position, stood);
+  EXPECT_LT(w.body(box).position.x, 1.0);  // it came down to the mover
+  EXPECT_NEAR(w.body(box).velocity.x, 0.0, 1e-2);
+}
+
 /// A world with a mover walking over a step into a crate, and a platform going by.
 World busy_world(int threads) {
   World w(WorldDef::empty(Precision::f64, settings(threads)));

@@ -134,6 +134,8 @@ void MoverSlide::contacts(const MoverGeometry& g, std::span<const MoverObstacle>
       c.distance = d.distance;
       c.point = d.point_b;
     }
+    c.need = g.def.skin - c.distance;
+    if (o.dynamic) c.need = std::min(c.need, 0.0);
     mover_classify(g, o, foot, c);
     out.push_back(c);
   }
@@ -148,7 +150,10 @@ double MoverSlide::cast(const MoverGeometry& g, std::span<const MoverObstacle> o
   const Sweep still{};
   // Starting within skin of something, it may still move along it or away, as far as the
   // plane solver allows (n·delta >= skin - distance); deeper, it does not move at all.
-  auto deeper = [&](Vec2 n, double dist) { return dot(n, delta) < (skin - dist) - 1e-12; };
+  auto deeper = [&](Vec2 n, double dist, bool dynamic) {
+    const double need = dynamic ? std::min(skin - dist, 0.0) : skin - dist;
+    return dot(n, delta) < need - 1e-12;
+  };
   for (const MoverObstacle& o : obstacles) {
     if (!skip.is_null() && o.entity == skip) continue;
     if (o.plane) {
@@ -157,7 +162,7 @@ double MoverSlide::cast(const MoverGeometry& g, std::span<const MoverObstacle> o
         const Vec2 w = position + g.capsule.vertices[i];
         const double s = dot(o.plane_normal, w) - o.plane_offset - g.capsule.radius;
         if (s <= skin) {
-          if (deeper(o.plane_normal, s)) fraction = 0.0;
+          if (deeper(o.plane_normal, s, false)) fraction = 0.0;
         } else if (rate < 0.0) {
           fraction = std::min(fraction, (s - skin) / -rate);
         }
@@ -171,13 +176,12 @@ double MoverSlide::cast(const MoverGeometry& g, std::span<const MoverObstacle> o
       continue;
     }
     const Distance d = distance(g.capsule, Pose{position, Rot{}}, o.convex, Pose{});
-    if (!d.overlap && deeper(-d.normal, d.distance)) fraction = 0.0;
+    if (!d.overlap && deeper(-d.normal, d.distance, o.dynamic)) fraction = 0.0;
   }
   return fraction;
 }
 
-Vec2 MoverSlide::solve(std::span<const MoverContact> contacts, const MoverGeometry& g, Vec2 target,
-                       bool walking) const {
+Vec2 MoverSlide::solve(std::span<const MoverContact> contacts, Vec2 target, bool walking) const {
   double pushes[64] = {};
   const std::size_t n = std::min<std::size_t>(contacts.size(), 64);
   Vec2 delta = target;
@@ -188,7 +192,7 @@ Vec2 MoverSlide::solve(std::span<const MoverContact> contacts, const MoverGeomet
       Vec2 dir = mover_push_direction(c, walking);
       double along = dot(c.normal, dir);
       if (!(along > 1e-9)) dir = c.normal, along = 1.0;
-      const double separation = dot(c.normal, delta) - (g.def.skin - c.distance);
+      const double separation = dot(c.normal, delta) - c.need;
       const double next = std::max(pushes[k] - separation / along, 0.0);
       const double change = next - pushes[k];
       pushes[k] = next;
@@ -206,7 +210,7 @@ Vec2 MoverSlide::slide(const MoverGeometry& g, std::span<const MoverObstacle> ob
   Vec2 p = position;
   for (int round = 0; round < mover_slide_rounds; ++round) {
     contacts(g, obstacles, p, contacts_);
-    const Vec2 solved = solve(contacts_, g, target - p, walking);
+    const Vec2 solved = solve(contacts_, target - p, walking);
     if (dot(solved, solved) < 1e-24) break;
     const double f = cast(g, obstacles, p, solved, Entity{});
     p += f * solved;

@@ -50,6 +50,9 @@ struct MoverContact {
   Vec2 support{};  ///< the surface's own normal: a floor's, or a ledge's face
   Vec2 point{};    ///< m, on the obstacle's surface
   double distance = 0.0;
+  /// m: the least n·d a motion d must keep, skin − distance; a dynamic body's no more than 0
+  /// (the mover may stay as close as the contact solver left it, and not go deeper).
+  double need = 0.0;
   std::uint32_t obstacle = 0;
   MoverSurface surface = MoverSurface::wall;
 };
@@ -74,12 +77,11 @@ class MoverSlide {
   /// than the plane solver allows); obstacles of entity `skip` (not null) are left out.
   [[nodiscard]] double cast(const MoverGeometry& g, std::span<const MoverObstacle> obstacles,
                             Vec2 position, Vec2 delta, Entity skip) const;
-  /// The motion nearest `target` (m) that keeps the capsule skin away from every contact, each
+  /// The motion nearest `target` (m) that keeps every contact c at n·d >= c.need, each
   /// contact pushing along its own direction (a floor up, a wall too steep to climb
   /// horizontally while walking, anything else along its normal): projected Gauss-Seidel on
   /// the accumulated pushes, clamped at zero (b2SolvePlanes), at most 20 sweeps.
-  [[nodiscard]] Vec2 solve(std::span<const MoverContact> contacts, const MoverGeometry& g,
-                           Vec2 target, bool walking) const;
+  [[nodiscard]] Vec2 solve(std::span<const MoverContact> contacts, Vec2 target, bool walking) const;
   /// Moves `position` towards position + delta in at most 5 rounds of contacts, solve and cast
   /// (Box2D's Mover sample); returns the new position.
   Vec2 slide(const MoverGeometry& g, std::span<const MoverObstacle> obstacles, Vec2 position,
