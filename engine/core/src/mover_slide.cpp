@@ -169,14 +169,17 @@ double MoverSlide::cast(const MoverGeometry& g, std::span<const MoverObstacle> o
       }
       continue;
     }
-    const Toi toi = time_of_impact(g.capsule, sweep, o.convex, still, skin, tolerance, fraction);
-    if (!toi.hit) continue;
-    if (toi.t > 0.0) {
-      fraction = std::min(fraction, toi.t);
+    // What it touches (within 2·skin) the plane solver has already kept it from: it stops
+    // only if the motion still goes deeper (a sweep along a face it touches would crawl: the
+    // advancement's steps shrink with the gap). The rest by conservative advancement.
+    const Distance d = distance(g.capsule, Pose{position, Rot{}}, o.convex, Pose{});
+    if (d.overlap) continue;  // cores crossed: left alone, as by contacts()
+    if (d.distance <= 2.0 * skin) {
+      if (deeper(-d.normal, d.distance, o.dynamic)) fraction = 0.0;
       continue;
     }
-    const Distance d = distance(g.capsule, Pose{position, Rot{}}, o.convex, Pose{});
-    if (!d.overlap && deeper(-d.normal, d.distance, o.dynamic)) fraction = 0.0;
+    const Toi toi = time_of_impact(g.capsule, sweep, o.convex, still, skin, tolerance, fraction);
+    if (toi.hit) fraction = std::min(fraction, toi.t);
   }
   return fraction;
 }

@@ -73,8 +73,9 @@ class MoverSlide {
   void contacts(const MoverGeometry& g, std::span<const MoverObstacle> obstacles, Vec2 position,
                 std::vector<MoverContact>& out) const;
   /// The fraction in [0, 1] of `delta` the capsule at `position` moves before it comes within
-  /// skin of an obstacle (one it starts within skin of stops it only when `delta` goes deeper
-  /// than the plane solver allows); obstacles of entity `skip` (not null) are left out.
+  /// skin of an obstacle (one it starts within 2·skin of, a contact, stops it only when `delta`
+  /// goes deeper than the plane solver allows); obstacles of entity `skip` (not null) are left
+  /// out.
   [[nodiscard]] double cast(const MoverGeometry& g, std::span<const MoverObstacle> obstacles,
                             Vec2 position, Vec2 delta, Entity skip) const;
   /// The motion nearest `target` (m) that keeps every contact c at n·d >= c.need, each

@@ -171,7 +171,7 @@ void detail::WorldKernel<Real>::push_by_mover(const MoverContact& c, Vec2 veloci
 // What the mover met at its end position: floor (the one most nearly flat), wall, ceiling;
 // the velocity it keeps: on a floor its vertical part dropped (landing), otherwise clipped
 // against what it moved into (b2ClipVector); walls too steep to climb clip a walker
-// horizontally.
+// horizontally; dynamic bodies, which it pushes, clip nothing.
 template <class Real>
 void detail::WorldKernel<Real>::mover_outcome(MoverRecord& m, Vec2 v, Vec2 attempt,
                                               std::span<const MoverContact> cs) {
@@ -199,7 +199,8 @@ void detail::WorldKernel<Real>::mover_outcome(MoverRecord& m, Vec2 v, Vec2 attem
   Vec2 out = st.on_floor ? Vec2{v.x, 0.0} : v;
   for (const MoverContact& c : cs) {
     const bool floor = c.surface == MoverSurface::floor || c.surface == MoverSurface::ledge;
-    if (floor && st.on_floor) continue;
+    // A dynamic body is pushed, not slid along: the mover keeps pressing into it.
+    if ((floor && st.on_floor) || mover_obstacles_[c.obstacle].dynamic) continue;
     Vec2 n = c.normal;
     if (st.on_floor && n.y > 0.0) n = Vec2{n.x < 0.0 ? -1.0 : 1.0, 0.0};
     const double into = dot(out, n);
