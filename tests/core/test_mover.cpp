@@ -20,6 +20,7 @@
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "fixstep/scene/scene.hpp"
 
 // support/count_new.cpp: bytes the global operator new hands out while counting.
 extern std::atomic<bool> counting;
@@ -449,6 +450,31 @@ TEST(Mover, AWarmTickAllocatesNothing) {
   for (int t = 0; t < 120; ++t) tick();
   counting = false;
   EXPECT_EQ(counted_bytes.load(), 0u);
+}
+
+// tests/scenes/mover_walk.toml, with no rules: the mover walks at 2 m/s over the ground, up the
+// step (on its top by 2 s), up the 30° slope, pushes the crate down the 20° one, and ends
+// pressing it against the 60° wall; f64 and f32, 1 and 2 threads: the same bits each.
+TEST(Mover, TheWalkSceneInBothPrecisions) {
+  for (const Precision precision : {Precision::f64, Precision::f32}) {
+    std::uint64_t hash = 0;
+    for (const int threads : {1, 2}) {
+      Scene scene = load_scene(FIXSTEP_SOURCE_DIR "/tests/scenes/mover_walk.toml");
+      scene.def.precision = precision;
+      scene.def.settings.threads = threads;
+      World w(scene.def);
+      const Entity hero = w.find("hero"), crate = w.find("crate");
+      for (int t = 0; t < 240; ++t) w.step();
+      EXPECT_NEAR(w.body(hero).position.y, 0.805 + 0.15, 1e-3);  // on the step
+      for (int t = 0; t < 960; ++t) w.step();
+      EXPECT_FALSE(w.fault());
+      EXPECT_GT(w.body(crate).position.x, 7.5);  // pushed down to the 60° slope
+      EXPECT_GT(w.body(hero).position.x, 7.0);
+      EXPECT_LT(w.body(hero).position.x, w.body(crate).position.x);
+      if (threads == 1) hash = w.state_hash();
+      EXPECT_EQ(w.state_hash(), hash);
+    }
+  }
 }
 
 TEST(Mover, DefinitionsRefused) {
