@@ -75,6 +75,13 @@ inline void expect_same_body(const BodyDef& a, const BodyDef& b, const std::stri
     EXPECT_EQ(x.collide, y.collide) << w << ".collider.collide";
   });
   expect_bits(a.inertia, b.inertia, w + ".inertia");
+  expect_optional(a.mover, b.mover, w + ".mover", [&](const auto& x, const auto& y) {
+    expect_bits(x.max_floor_angle, y.max_floor_angle, w + ".mover.max_floor_angle");
+    expect_bits(x.step_height, y.step_height, w + ".mover.step_height");
+    expect_bits(x.snap_distance, y.snap_distance, w + ".mover.snap_distance");
+    expect_bits(x.push_force, y.push_force, w + ".mover.push_force");
+    expect_bits(x.skin, y.skin, w + ".mover.skin");
+  });
   ASSERT_EQ(a.shapes.size(), b.shapes.size()) << w << ".shapes";
   for (std::size_t i = 0; i < a.shapes.size(); ++i) {
     const ShapeDef &x = a.shapes[i], &y = b.shapes[i];

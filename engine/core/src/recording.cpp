@@ -95,6 +95,12 @@ void hash_body(Fnv1a& h, const BodyDef& b) {
     for (const ShapeDef& s : b.shapes) hash_shape(h, s);
     h.add_optional(b.inertia, [&](double i) { h.add(i); });
   }
+  // A mover: only when the body is one (older definitions keep their hash).
+  if (b.mover) {
+    const MoverDef& m = *b.mover;
+    h.add(std::uint64_t{0x307e5}), h.add(m.max_floor_angle), h.add(m.step_height);
+    h.add(m.snap_distance), h.add(m.push_force), h.add(m.skin);
+  }
 }
 
 /// Each joint's every field, its bodies by their places in def.bodies (the world: 0, a body

@@ -134,6 +134,18 @@ std::uint64_t detail::WorldKernel<Real>::state_hash() const {
     }
     mix_bytes(std::uint64_t{j.motor_on} | std::uint64_t{j.broken} << 1, 1);
   }
+  // Movers (only in worlds that have them): what the last tick met, which the next one reads.
+  for (const MoverRecord& m : movers_.data) {
+    const MoverState& s = m.state;
+    mix_bytes(std::uint64_t{s.on_floor} | std::uint64_t{s.on_wall} << 1 |
+                  std::uint64_t{s.on_ceiling} << 2,
+              1);
+    for (const double v : {s.floor_normal.x, s.floor_normal.y, s.wall_normal.x, s.wall_normal.y,
+                           s.displacement.x, s.displacement.y}) {
+      mix_bytes(bits_of(v), 8);
+    }
+    mix_bytes(s.floor_body.index1, 4), mix_bytes(s.floor_body.generation, 4);
+  }
   return h;
 }
 

@@ -37,6 +37,10 @@ Vec2 World::local_center(Entity e) const {
   return visit([&](const auto& w) { return w.local_center(e); });
 }
 
+MoverState World::mover_state(Entity e) const {
+  return visit([&](const auto& w) { return w.mover_state(e); });
+}
+
 std::uint64_t World::user_data(Entity e) const {
   return visit([&](const auto& w) { return w.user_data(e); });
 }

@@ -159,6 +159,7 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   if (def.appearance) validate_component(*def.appearance, who);
   if (def.collider) validate_component(*def.collider, who), check_sensor(*def.collider, who);
   check_shapes(def, who);  // world_shapes.cpp
+  check_mover(def, who);   // world_movers.cpp
 
   Entity e;
   if (!free_slots_.empty()) {
@@ -196,6 +197,10 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   if (def.appearance) set(e, *def.appearance);
   if (def.collider) set(e, *def.collider);
   if (!def.shapes.empty()) add_shapes(e, def, who);
+  if (def.mover) {
+    movers_.set.insert(e);
+    movers_.data.push_back(MoverRecord{*def.mover, MoverState{}, def.body.position});
+  }
   terms_dirty_ = true;
   return e;
 }
@@ -215,6 +220,11 @@ void detail::WorldKernel<Real>::destroy(Entity e) {
   remove<Appearance>(e);
   remove<Collider>(e);
   remove_shapes(e);
+  if (movers_.set.contains(e)) {
+    const std::size_t m = movers_.set.erase(e);
+    if (m + 1 != movers_.data.size()) movers_.data[m] = movers_.data.back();
+    movers_.data.pop_back();
+  }
   unindex_name(e, names_[bodies_.index(e)]);
   const std::size_t i = bodies_.erase(e);
   dissipated_gone_ += mass_[i] * double(dissipated_body_[i]);  // stays in the account

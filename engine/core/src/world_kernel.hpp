@@ -35,6 +35,7 @@
 #include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "joint_record.hpp"
+#include "mover_slide.hpp"
 #include "scratch_vector.hpp"
 #include "segment_set.hpp"
 
@@ -262,6 +263,8 @@ class WorldKernel {
   [[nodiscard]] std::span<const ShapeDef> shapes(Entity e) const;  // (world_shapes.cpp)
   [[nodiscard]] Vec2 local_center(Entity e) const;
   [[nodiscard]] bool has_shapes() const { return !shape_sets_.data.empty(); }
+  /// What mover e met in its last tick (world_movers.cpp); throws if e is stale or no mover.
+  [[nodiscard]] MoverState mover_state(Entity e) const;
 
   // --- joints (world_joints.cpp, world_joint_checks.cpp; joint.hpp) -------------------------
   /// Creates a joint from def (checked: check_joint), its geometry fixed in its bodies' frames
@@ -695,6 +698,27 @@ class WorldKernel {
   ClonePtr<ShapeWorld> shape_world_;
   PreSolveFn pre_solve_ = nullptr;  ///< set_pre_solve: not state
   void* pre_solve_context_ = nullptr;
+  // Character movers (world_movers.cpp; BodyDef::mover), keyed by entity: the definition, what
+  // the last tick met (state: hashed, copied by snapshots) and where this tick leaves the body
+  // (m); the obstacles near the one being moved and the slide's contacts (scratch).
+  struct MoverRecord {
+    MoverDef def;
+    MoverState state;
+    Vec2 target{};
+  };
+  Store<MoverRecord> movers_;
+  ScratchVector<MoverObstacle> mover_obstacles_;
+  ScratchVector<std::uint32_t> mover_segments_;
+  MoverSlide mover_slide_;
+  void check_mover(const BodyDef& def, const std::string& who) const;
+  void move_movers();
+  void move_mover(MoverRecord& m, Entity e);
+  void place_movers();
+  void finish_movers();
+  [[nodiscard]] MoverGeometry mover_geometry(const MoverRecord& m, Entity e) const;
+  void gather_mover_obstacles(std::size_t self, const Aabb& box, const CollisionFilter& filter);
+  void push_by_mover(const MoverContact& c, Vec2 velocity, double limit);
+  void mover_outcome(MoverRecord& m, Vec2 v, Vec2 attempt, std::span<const MoverContact> cs);
   // Joints (world_joints.cpp), dense, keyed by Joint handles stored as Entity-shaped keys: each
   // one's record (definition, geometry, input, accumulated impulses: state) and handle; the
   // pairs of shape-world bodies they keep from colliding (rebuilt with the shapes); the

@@ -41,6 +41,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (terms_dirty_) rebuild_terms();  // world_kernel.cpp
   if (!joints_broken_.empty()) joints_broken_.clear();
   apply_input(input);                             // world_input.cpp
+  if (!movers_.data.empty()) move_movers();       // world_movers.cpp: against the tick's start
   if (keep_previous_) keep_previous_positions();  // world_step.cpp
   if (shape_world_) save_shape_start();           // world_shapes.cpp
   const TickPlan plan = plan_tick();
@@ -50,6 +51,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   detail::SecondThreadRun early(plan.own_worker ? nullptr : disc_thread());
   detail::PhaseClock clock(plan.discs);  // World::profile(): read only with disc contacts
   integrate_with_input(input, plan.immovable, plan.discs);  // world_input.cpp, world_step.cpp
+  if (!movers_.data.empty()) place_movers();                // where their slides left them, exactly
   profile_.integrate = clock.lap();
   detail::SecondThreadRun run(disc_thread());  // nothing if `early` holds it open
   const std::size_t plane_capped = plan.planes ? resolve_contacts() : 0;  // world_contacts.cpp
@@ -73,6 +75,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   } else {
     end_disc_events();  // world_events.cpp
   }
+  if (!movers_.data.empty()) finish_movers();   // their slid velocities
   if (rolling_) integrate_angles();             // world_rolling.cpp
   if (segments_.moves()) place_segments();      // where the tick left the carriers
   if (sleep_) finish_sleep(input, plan.discs);  // world_sleep.cpp

@@ -79,10 +79,11 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
                 "force",   "gravity",  "drag",       "radius",   "draw_radius", "color",
                 "visible", "trail",    "trail_time", "collide",  "restitution", "friction",
                 "sensor",  "category", "mask",       "group",    "angle",       "angular_velocity",
-                "inertia", "shape",    "density",    "sprite",   "sprite_size"});
+                "inertia", "shape",    "density",    "sprite",   "sprite_size", "mover"});
   BodyDef def;
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
+  parse_body_mover(r, t, path, def);  // scene_mover.cpp
   auto position = r.vec2(t, "position", path + ".position");
   if (!position) {
     r.fail_missing(t, path, {"position"}, "missing (required)",

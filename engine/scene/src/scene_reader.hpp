@@ -408,6 +408,13 @@ std::optional<std::uint64_t> filter_bits(const Reader& r, const toml::table& t,
 /// shapes that give none. A shape on a body with a radius (a disc) is an error, and so is a
 /// density without a shape (scene_shapes.cpp).
 void parse_body_shapes(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// t.mover (an inline table: max_floor_angle, step_height, snap_distance, push_force, skin) into
+/// def.mover, each value checked at its key (mover_problem), and the body checked at t.mover: a
+/// kinematic body with one capsule, not turning, step_height below the capsule's radius and
+/// skin below half of it (scene_mover.cpp). Call after the shapes and the type are read.
+void parse_body_mover(Reader& r, const toml::table& t, const std::string& path, BodyDef& def);
+/// `mover = { ... }` with every field of b.mover, or "" without one (scene_mover.cpp).
+[[nodiscard]] std::string mover_text(const BodyDef& b);
 /// Whether body table t gives its shapes a density (t.density, or a density in a shape table):
 /// then their densities give the mass and `mass` may be left out (scene_shapes.cpp).
 [[nodiscard]] bool shapes_give_density(const toml::table& t);

@@ -232,6 +232,7 @@ void write_body(std::string& out, const BodyDef& b, const std::string& name) {
   if (b.gravity) fmt::format_to(it, "gravity = {}\n", toml_point(b.gravity->acceleration));
   if (b.drag) fmt::format_to(it, "drag = {}\n", toml_number(b.drag->coefficient));
   write_looks(out, b);
+  out += scene_detail::mover_text(b);
   out += scene_detail::shapes_text(b);  // last: [[body.shape]] tables end the body's keys
 }
 

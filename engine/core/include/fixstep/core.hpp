@@ -18,6 +18,7 @@
 #include "fixstep/core/joint.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/loop.hpp"
+#include "fixstep/core/mover.hpp"
 #include "fixstep/core/pointer_drag.hpp"
 #include "fixstep/core/pre_solve.hpp"
 #include "fixstep/core/query.hpp"

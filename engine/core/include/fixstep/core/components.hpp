@@ -10,6 +10,7 @@
 
 #include "fixstep/core/collision_filter.hpp"
 #include "fixstep/core/entity.hpp"
+#include "fixstep/core/mover.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/types.hpp"
 
@@ -260,6 +261,10 @@ struct BodyDef {
   /// Moment of inertia about the centre of mass, kg·m², in [1e-100, 1e100], of a dynamic body
   /// with shapes; unset: from the shapes (body_mass, shape.hpp).
   std::optional<double> inertia = std::nullopt;
+  /// Makes the body a character mover (mover.hpp): a kinematic body with one capsule shape that
+  /// each tick moves by collide-and-slide at the velocity the game wants. Unset: an ordinary
+  /// body, and a world without movers pays nothing for them.
+  std::optional<MoverDef> mover = std::nullopt;
   /// The program's own 64-bit value for this body (an index into its tables, a tag, a
   /// pointer's bits): kept with the body, copied by snapshots, never read by the physics nor
   /// part of the state or definition hash.

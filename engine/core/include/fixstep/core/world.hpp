@@ -30,6 +30,7 @@ struct ShapeDef;                     // shape.hpp
 struct JointDef;                     // joint.hpp
 struct JointState;                   // joint.hpp
 struct JointBreak;                   // joint.hpp
+struct MoverState;                   // mover.hpp
 struct TickInput;                    // input.hpp
 struct BodyInput;                    // input.hpp
 struct EnergyReport;                 // step_results.hpp
@@ -152,6 +153,10 @@ class World {
   /// Sets e's user data: kept with the body, copied by snapshots, never part of the state
   /// hash; throws std::invalid_argument if e is stale.
   void set_user_data(Entity e, std::uint64_t value);
+  /// What mover e (BodyDef::mover) met in its last tick: floor, wall, ceiling, the body it
+  /// stands on, its slid velocity (mover.hpp). Throws std::invalid_argument if e is stale or
+  /// not a mover.
+  [[nodiscard]] MoverState mover_state(Entity e) const;
   /// e's name ("" if none); throws std::invalid_argument if stale.
   [[nodiscard]] const std::string& name(Entity e) const;
   /// e's type (dynamic, static or kinematic); throws std::invalid_argument if stale.
@@ -303,7 +308,8 @@ class World {
   /// with rolling discs (ContactSettings::rolling) only, every body's θ and ω, then, with
   /// sleeping (ContactSettings::sleep) only, every body's ticks below the sleep speed and its
   /// island's number while asleep (0 awake), then, with joints only, each joint's motor speed,
-  /// maxima, targets and accumulated impulses (double) and whether its motor is on and it broke;
+  /// maxima, targets and accumulated impulses (double) and whether its motor is on and it broke,
+  /// then, with movers only, each mover's MoverState (flags, normals, displacement, floor body);
   /// random()'s state is mixed in (FNV-1a over its
   /// 64-bit state) once it has been drawn from, so a world whose rules never roll dice hashes as
   /// one without random(). Equal hashes mean bit-identical states.
