@@ -18,6 +18,7 @@
 #include "page_dom.hpp"
 #include "peggle_app.hpp"
 #include "pinball_app.hpp"
+#include "platformer_app.hpp"
 #include "slingshot_app.hpp"
 #include "stacker_app.hpp"
 
@@ -45,6 +46,10 @@ std::pair<std::unique_ptr<const app::detail::AnyGame>, app::Settings> make_game(
   if (name == "pinball") {
     return {std::make_unique<GameModel<pinball::Pinball>>(pinball::Pinball{}),
             pinball::app_settings()};
+  }
+  if (name == "platformer") {
+    return {std::make_unique<GameModel<platformer::Platformer>>(platformer::Platformer{}),
+            platformer::app_settings()};
   }
   if (name == "slingshot") {
     return {std::make_unique<GameModel<slingshot::Slingshot>>(slingshot::Slingshot{}),

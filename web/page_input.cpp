@@ -180,9 +180,12 @@ void PageInput::sample_pad() {
 
 PageEvents PageInput::take() {
   sample_pad();
+  map_.apply(ev_);  // the axes compared with the last take's
   PageEvents out = ev_;
-  map_.apply(out);
   ev_.keys.clear();
+  ev_.toggle_pause = ev_.single_step = ev_.restart = false;
+  ev_.time_scale_steps = 0;
+  ev_.edges.clear();
   return out;
 }
 

@@ -12,9 +12,10 @@
 namespace fixstep::web {
 
 /// The games the page plays (game=NAME): demos/airhockey (against the computer; no network),
-/// demos/peggle, demos/pinball, demos/slingshot and demos/stacker (page_game.hpp).
-inline constexpr std::array<std::string_view, 5> page_game_names{"airhockey", "peggle", "pinball",
-                                                                 "slingshot", "stacker"};
+/// demos/peggle, demos/pinball, demos/platformer, demos/slingshot and demos/stacker
+/// (page_game.hpp).
+inline constexpr std::array<std::string_view, 6> page_game_names{
+    "airhockey", "peggle", "pinball", "platformer", "slingshot", "stacker"};
 
 /// The page's parameters. Without `frames`, `ticks` or `replay` the page is interactive: the
 /// scene runs on the browser's clock, driven by requestAnimationFrame, with keys and pointer.

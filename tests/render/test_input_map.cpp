@@ -114,6 +114,11 @@ TEST(InputMap, AxesFromKeysAndTheGamepadBeyondItsDeadZone) {
   key(ev, true, Key::d);
   map.apply(ev);
   EXPECT_EQ(ev.axes[1], 1.0);
+  EXPECT_EQ(ev.axes_changed, 1u << 1);
+  ev.keys.clear();
+  map.apply(ev);  // nothing moved: no axis handed on (a script's level is kept)
+  EXPECT_EQ(ev.axes[1], 1.0);
+  EXPECT_EQ(ev.axes_changed, 0u);
   key(ev, true, Key::left);  // both ways: 0
   map.apply(ev);
   EXPECT_EQ(ev.axes[1], 0.0);

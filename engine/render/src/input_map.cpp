@@ -122,9 +122,12 @@ void InputMap::apply(UserEvents& ev) const {
       if (ev.keys_down[static_cast<std::size_t>(k)] && !action_key(*this, k)) ev.rewind = true;
     }
   }
-  ev.axes = {};
+  ev.axes_changed = 0;
   for (const AxisBinding& a : axes) {
-    if (a.index < max_axes) ev.axes[a.index] = axis_value(a, ev);
+    if (a.index >= max_axes) continue;
+    const double v = axis_value(a, ev);
+    if (v != ev.axes[a.index]) ev.axes_changed |= 1u << a.index;
+    ev.axes[a.index] = v;
   }
 }
 

@@ -57,7 +57,8 @@ struct InputMap {
   /// Fills `ev`'s mapped part from its raw part: the loop flags (quit also on
   /// ev.close_requested), an edge per action key press or release, in order (an action with
   /// another of its keys still down is not released; one already down is not pressed again),
-  /// rewind while a rewind key is held, and the axes.
+  /// rewind while a rewind key is held, and the axes (with the bits of those that changed since
+  /// the last apply to `ev`).
   void apply(UserEvents& ev) const;
   /// The bit of the action named `name`, or nothing.
   [[nodiscard]] std::optional<std::uint32_t> action_bit(std::string_view name) const;

@@ -46,8 +46,11 @@ struct UserEvents {
     std::uint32_t buttons = 0;
   };
   std::vector<ButtonEdge> edges{};
-  /// The map's axes (TickInput::axes), each in [-1, 1].
+  /// The map's axes (TickInput::axes), each in [-1, 1], and which of them (bit i: axis i)
+  /// changed in this poll: a program hands only those on (key_bindings.hpp's feed), so an
+  /// input script's axis levels are not reset by a window nobody touches.
   std::array<double, max_axes> axes{};
+  std::uint32_t axes_changed = 0;
   bool pointer_seen = false;                ///< the pointer has been over the frame
   double pointer_x = 0.0, pointer_y = 0.0;  ///< frame pixels from the top-left corner
 };
