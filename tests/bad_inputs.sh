@@ -553,6 +553,17 @@ $body
 a = [0.0, 0.0]
 b = [1.0, 0.0]
 restitution = 2.0"
+case_ "[[segment]] one_way not a boolean" "$ok_world
+$body
+[[segment]]
+a = [0.0, 0.0]
+b = [1.0, 0.0]
+one_way = 1"
+case_ "[[polyline]] one_way not a boolean" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0], [1.0, 0.0]]
+one_way = \"yes\""
 case_ "[[segment]] unknown key (a warning; the run goes on)" "$ok_world
 $body
 [[segment]]
@@ -864,6 +875,9 @@ shape = { polygon = [[0,0],[1,0],[2,1],[2,2],[1,3],[0,3],[-1,2],[-1,1],[-0.5,0.2
 case_ "a polygon shape of no area (collinear)" "$ok_world
 $body
 shape = { polygon = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]] }"
+case_ "a shape's one_way not a boolean" "$ok_world
+$body
+shape = { box = [1.0, 1.0], one_way = 1 }"
 case_ "a box shape's half extent nan" "$ok_world
 $body
 shape = { box = [nan, 1.0] }"
@@ -924,6 +938,92 @@ shape = { box = [0.3, 0.8] }"
 case_ "a mover that is not a table" "$ok_world
 $hero
 mover = 0.2"
+# --- images and styles: sprites, a tiled background, segment and shape colours ---
+sprites=$tests_dir/../assets/scenes/sprites
+cp "$sprites/crate.png" crate.png
+# write_png FILE W H [IDAT-BYTES]: a PNG of W x H px (its IDAT the zlib stream of a blank RGBA
+# image, or the bytes given), every CRC right.
+write_png() { python3 -c 'import struct, sys, zlib
+path, w, h = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+data = sys.argv[4].encode() if len(sys.argv) > 4 else zlib.compress(bytes((4 * w + 1) * h), 9)
+def chunk(k, d): return struct.pack(">I", len(d)) + k + d + struct.pack(">I", zlib.crc32(k + d))
+open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+                       + chunk(b"IDAT", data) + chunk(b"IEND", b""))' "$@"; }
+sprite_body() {  # sprite_body IMAGE: a body drawn as IMAGE
+  printf '%s\nsprite = "%s"' "$body" "$1"
+}
+case_ "a body's sprite naming a missing file" "$ok_world
+$(sprite_body crat.png)"
+printf '\xff\xd8\xff\xe0\x00\x10JFIF\x00' > photo.jpg
+case_ "a body's sprite that is not a PNG (a JPEG)" "$ok_world
+$(sprite_body photo.jpg)"
+head -c 60 crate.png > truncated.png
+case_ "a body's sprite truncated (a PNG cut short)" "$ok_world
+$(sprite_body truncated.png)"
+cp crate.png corrupt.png
+printf '\x00' | dd of=corrupt.png bs=1 seek=50 conv=notrunc status=none
+case_ "a body's sprite corrupt (a byte changed: its CRC-32 does not match)" "$ok_world
+$(sprite_body corrupt.png)"
+write_png large.png 4097 16
+case_ "a body's sprite 4097 px wide (at most 4096)" "$ok_world
+$(sprite_body large.png)"
+mkdir images.png
+case_ "a body's sprite naming a directory" "$ok_world
+$(sprite_body images.png)"
+case_ "sprite_size without a sprite" "$ok_world
+$body
+sprite_size = [1.0, 1.0]"
+case_ "sprite_size with a zero side" "$ok_world
+$(sprite_body crate.png)
+sprite_size = [1.0, 0.0]"
+many="$ok_world"
+for i in $(seq 0 256); do
+  cp crate.png "crate$i.png"
+  many="$many
+[[body]]
+mass = 1.0
+position = [$i.0, 0.0]
+sprite = \"crate$i.png\""
+done
+case_ "257 distinct sprite images (at most 256)" "$many"
+write_png huge.png 4096 4096
+big="$ok_world"
+for i in 0 1 2 3 4; do
+  cp huge.png "huge$i.png"
+  big="$big
+[[body]]
+mass = 1.0
+position = [$i.0, 0.0]
+sprite = \"huge$i.png\""
+done
+case_ "five 4096 x 4096 sprite images (their pixels beyond 256 MiB)" "$big"
+case_ "[view] background_image not a PNG" "$ok_world
+[view]
+background_image = \"photo.jpg\"
+$body"
+case_ "[view] background_tile 0" "$ok_world
+[view]
+background_image = \"crate.png\"
+background_tile = 0.0
+$body"
+case_ "[[polyline]] width negative" "$ok_world
+$body
+[[polyline]]
+points = [[0.0, 0.0], [1.0, 0.0]]
+width = -0.1"
+case_ "[[segment]] color not a colour" "$ok_world
+$body
+[[segment]]
+a = [0.0, 0.0]
+b = [1.0, 0.0]
+color = \"green\""
+case_ "a shape's color not a colour" "$ok_world
+$body
+shape = { box = [0.5, 0.5], color = \"#12345\" }"
+write_png inflate.png 16 16 'not a zlib stream'
+case_ "a sprite whose CRCs match but whose data does not inflate (found when drawn)" "$ok_world
+$(sprite_body inflate.png)
+gravity = [0.0, -9.81]" render scene.toml --frames 1 --out inflate_frames
 # --- joints: [[joint]] tables, refused by the scene loader at their key ---
 joint_bodies="$ok_world
 [[body]]
@@ -1248,6 +1348,12 @@ script_case() {  # DESCRIPTION SCRIPT-TEXT: run good.toml with it as --input
 script_case "script: unknown button" '[[at]]
 tick = 1
 press = ["lft"]'
+script_case "script: an axis the program does not declare" '[[at]]
+tick = 1
+axes = { steer = 0.5 }'
+script_case "script: axes not a table" '[[at]]
+tick = 1
+axes = 0.5'
 script_case "script: drag names no body" '[[at]]
 tick = 1
 drag = "bdy0"'
@@ -1318,6 +1424,9 @@ case_ "render --replay of a recording that needs a game's rules" "" render --rep
 rec_case "recording: a rules name with a space" '1s/ 3$/ 4/;/^hash_every /a rules sling shot 1'
 rec_case "recording: rules version 0" '1s/ 3$/ 4/;/^hash_every /a rules slingshot 0'
 rec_case "recording: a button bit outside all_buttons" 's/^tick 3 push=2,0 held=0 /tick 3 push=2,0 held=800 /'
+rec_case "recording: an axis index beyond max_axes" 's/^tick 3 push=2,0 \(.*\)$/tick 3 push=2,0 \1 axis.4=0.5/'
+rec_case "recording: an axis reading outside [-1, 1]" 's/^tick 3 push=2,0 \(.*\)$/tick 3 push=2,0 \1 axis.0=2/'
+rec_case "recording: an axis before a per-body input" 's/^tick 3 push=2,0 \(.*\)$/tick 3 push=2,0 \1 axis.0=0.5 force=1:1,1,0/'
 rec_case "recording: push = inf" 's/^tick 3 push=2,0/tick 3 push=inf,0/'
 rec_case "recording: ticks out of order" 's/^tick 6 /tick 2 /'
 rec_case "recording: a hash beyond the end" 's/^hash 10 /hash 11 /'
@@ -1699,7 +1808,7 @@ echo "| N6 | a slot that is no player's or spectator's; a handshake request clai
 echo "| N7 | the header's reserved byte, a request's padding or flags, an unknown disconnect reason, a repeat past its run, a change with no field | bad_field |"
 echo "| N8 | bytes after the message's end | trailing_bytes |"
 echo "| N9 | an input run of 0 or over 256 ticks, starting after the receiver's next needed tick, or an ack of ticks never sent | bad_tick_range |"
-echo "| N10 | a NaN or infinite push, pointer or body value; a button bit outside all_buttons; over 16 body inputs; a body input kind over 6 (target_angle, the last) | bad_input |"
+echo "| N10 | a NaN or infinite push, pointer or body value; an axis outside [-1, 1] or a byte of axes with a bit over 3; an action bitset over 32 bits; over 16 body inputs; a body input kind over 6 (target_angle, the last) | bad_input |"
 echo "| N11 | a sequence number already received (a replay) or over 64 behind; inputs more than 512 ticks ahead | out_of_window |"
 echo "| N12 | inputs or a hash before the handshake; another player's inputs from a client; a second handshake | unexpected |"
 echo "| N13 | a handshake from a joiner with another world, or to a full match | refused: a 13-byte disconnect (another_world / refused), then the connection closed |"

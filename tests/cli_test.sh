@@ -327,6 +327,18 @@ if have_xvfb; then
   [ $? -eq 0 ] && ok "view runs under Xvfb" || { fail "view under Xvfb"; cat "$work/view.out"; }
   [ "$(hash_of "$work/view.out")" = "$(hash_of "$work/render.out")" ] \
     && ok "window and headless reach the same state after 30 frames" || fail "view vs render hash"
+  # Sprites, a tiled background and styled segments in the window (the same renderer's pixels,
+  # presented): it runs, and reaches the headless run's state.
+  sprites_scene=$scenes/sprites.toml
+  with_xvfb "$fixstep" view "$sprites_scene" --frames 30 --fps 60 --size 320x180 \
+    >"$work/view_sprites.out" 2>&1
+  [ $? -eq 0 ] && ok "view of the sprites scene runs under Xvfb" \
+    || { fail "view of sprites under Xvfb"; cat "$work/view_sprites.out"; }
+  "$fixstep" render "$sprites_scene" --out "$work/sprite_frames" --frames 30 --size 320x180 \
+    >"$work/render_sprites.out" 2>&1
+  [ "$(hash_of "$work/view_sprites.out")" = "$(hash_of "$work/render_sprites.out")" ] \
+    && ok "window and headless draw the sprites scene to the same state" \
+    || fail "view vs render hash (sprites)"
   # the runtime guard in the window: it pauses, says why, and view exits 3
   with_xvfb "$fixstep" view "$work/blow.toml" --frames 120 --fps 60 \
     --size 320x180 >"$work/view_blow.out" 2>&1

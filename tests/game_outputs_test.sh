@@ -47,14 +47,17 @@ cmp -s small.rec small.before && ok "the recording replayed is untouched" || fai
 mkdir adir
 refused "--last-frame a directory" 2 "--last-frame adir is a directory" --frames 5 --last-frame adir
 "$peggle" --frames 3 --out cap >/dev/null 2>&1
-refused "--out DIR holding an earlier capture" 2 "--out cap already holds a capture \(3 frames" \
-  --frames 5 --out cap
-[ "$(ls cap | wc -l)" -eq 3 ] && ok "the earlier capture is untouched" || fail "cap: $(ls cap)"
+refused "--out DIR holding an earlier capture" 2 \
+  "--out cap already holds a capture \(3 frames, its frames.csv\)" --frames 5 --out cap
+[ "$(ls cap | wc -l)" -eq 4 ] && ok "the earlier capture is untouched" || fail "cap: $(ls cap)"
 refused "--replay --out DIR holding an earlier capture" 2 "already holds a capture" \
   --replay small.rec --out cap
 refused "--last-frame a frame of the capture in --out" 2 "is a file the capture in --out" \
   --replay small.rec --out cap2 --last-frame cap2/frame_000001.png
-if "$peggle" --frames 2 --out cap --overwrite >/dev/null 2>&1 && [ "$(ls cap | wc -l)" -eq 2 ]; then
+refused "--last-frame the manifest of the capture in --out" 2 "is a file the capture in --out" \
+  --frames 5 --out cap2 --last-frame cap2/frames.csv
+if "$peggle" --frames 2 --out cap --overwrite >/dev/null 2>&1 &&
+  [ "$(ls cap | tr '\n' ' ')" = "frame_000000.png frame_000001.png frames.csv " ]; then
   ok "--overwrite replaces the earlier capture"
 else
   fail "--overwrite: $(ls cap)"

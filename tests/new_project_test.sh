@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `fixstep new` as a new user meets it: the installed fixstep writes a
 # project, which builds against the installed package (found through PATH, as after an
-# install), renders headless, records the autopilot's per-body input, and replays it: a replay
+# install), renders headless, records the autopilot's actions, and replays it: a replay
 # verifies, a tampered recording is refused naming the tick where the states part, and `new`
 # refuses a directory that is not empty. Run by examples/consumer/check.sh (.ci/run) with the
 # prefix it installed into.
@@ -32,6 +32,20 @@ grep -q '^project(grabber LANGUAGES CXX)' grabber/CMakeLists.txt ||
 grep -q 'cmake -B build && cmake --build build' new.log || fail "new printed no build command"
 echo "new_project: fixstep new grabber: $(head -1 new.log)"
 
+# 1b. The template is as long as docs/LIBRARY.md says, and every member of its game type is used
+# somewhere besides its declaration (no member declared and left unused).
+lines=$(wc -l <"$src/cli/template/main.cpp")
+grep -q "a \`main.cpp\` ($lines lines)" "$src/docs/LIBRARY.md" ||
+  fail "docs/LIBRARY.md does not say main.cpp is $lines lines: $(grep -o 'main.cpp` ([0-9]* lines)' "$src/docs/LIBRARY.md")"
+members=$(sed -n '/^struct Catch {/,/^  void setup/p' "$src/cli/template/main.cpp" |
+  grep -E '^  [A-Za-z_:<>]+ [a-z_]' | grep -v '(' | sed -E 's/^  [A-Za-z_:<>]+ //; s/\/\/.*//; s/[{}=;]|[0-9]+//g; s/,/ /g')
+[[ -n $members ]] || fail "no members found in the template's game type"
+for m in $members; do
+  uses=$(grep -ow "$m" "$src/cli/template/main.cpp" | wc -l)
+  ((uses >= 2)) || fail "the template declares $m and never uses it"
+done
+echo "new_project: main.cpp $lines lines; members used: $(echo $members)"
+
 # 2. It builds against the installed package as its README says (cmake finds fixstep by PATH).
 (cd grabber && cmake -B build -G Ninja >cmake.log 2>&1 && cmake --build build >>cmake.log 2>&1) ||
   fail "the project does not build: $(tail -20 grabber/cmake.log)"
@@ -48,12 +62,13 @@ for f in frames/frame_000000.png frames/frame_000059.png; do
 done
 echo "new_project: grabber --out frames --frames 60: 60 PNGs"
 
-# 4. A headless recording of the autopilot holds per-body input: the hook's velocities, the
-# claw's held force and its impulses.
+# 4. A headless recording of the autopilot holds the game's actions: left (bit 0) and right
+# (bit 1) held, pull (bit 2) held, swing (bit 3) pressed.
 "$game" --frames 300 --record r.rec > record.log || fail "grabber --record: $(cat record.log)"
-for kind in velocity force impulse; do
-  grep -q " $kind=" r.rec || fail "the recording holds no $kind= input"
+for held in 1 2 6; do
+  grep -q " held=$held " r.rec || fail "the recording holds no held=$held (the actions)"
 done
+grep -Eq " pressed=[0-9a-f]*[89a-f] " r.rec || fail "the recording holds no press of swing"
 
 # 5. It replays: every stored hash verified, exit 0.
 "$game" --replay r.rec > replay.log || fail "grabber --replay r.rec: $(cat replay.log)"
@@ -67,11 +82,11 @@ grep -Fxq "$(grep '^ticks=' record.log)" sync.log || fail "the sync test's state
 "$game" --help | grep -q -- '--replay FILE' || fail "--help does not list --replay FILE"
 echo "new_project: $(tail -1 sync.log)"
 
-# 6. A tampered copy (the first hook velocity after tick 0 changed to 0.5 m/s) is refused,
-# naming the tick after the tampered one: the first state that differs.
-line=$(grep -m1 -E '^tick [1-9][0-9]* .*velocity=' r.rec) || fail "no velocity change after tick 0"
+# 6. A tampered copy (the first tick after tick 0 that holds right made to hold left) is
+# refused, naming the tick after the tampered one: the first state that differs.
+line=$(grep -m1 -E '^tick [1-9][0-9]* push=0,0 held=2 ' r.rec) || fail "no right held after tick 0"
 tick=$(awk '{print $2}' <<<"$line")
-sed "s/^tick $tick \(.*velocity=[0-9]*:[0-9]*\),[^,]*,/tick $tick \1,0.5,/" r.rec > tampered.rec
+sed "s/^tick $tick push=0,0 held=2 /tick $tick push=0,0 held=1 /" r.rec > tampered.rec
 cmp -s r.rec tampered.rec && fail "the tampering changed nothing"
 status=0
 "$game" --replay tampered.rec > /dev/null 2> tampered.log || status=$?

@@ -42,6 +42,18 @@ void fetch_failed(void*) {
   app->recording_failed("not found or not readable");
 }
 
+void script_fetched(void*, void* data, int size) {
+  try {
+    app->script_fetched(std::string(static_cast<const char*>(data), std::size_t(size)));
+  } catch (const std::exception& e) {
+    stop_with_error(e.what());
+  }
+}
+
+void script_failed(void*) {
+  stop_with_error("could not fetch the input script: not found or not readable");
+}
+
 }  // namespace
 
 int main() {
@@ -55,6 +67,9 @@ int main() {
   }
   if (options.replay)
     emscripten_async_wget_data(options.replay->c_str(), nullptr, fetched, fetch_failed);
+  if (options.input) {
+    emscripten_async_wget_data(options.input->c_str(), nullptr, script_fetched, script_failed);
+  }
   emscripten_set_main_loop(one_frame, 0, false);  // requestAnimationFrame
   if (options.headless && (options.frames || options.ticks || options.replay)) {
     emscripten_set_main_loop_timing(EM_TIMING_SETTIMEOUT, 0);

@@ -45,6 +45,8 @@ class PageApp {
 
   /// replay=: the fetched recording's text arrived (emscripten_async_wget_data), or failed.
   void recording_fetched(std::string text);
+  /// input=: the fetched input script's text (a game's frames= run waits for it).
+  void script_fetched(const std::string& text);
   void recording_failed(const std::string& why);
 
  private:

@@ -76,10 +76,13 @@ PageGame::PageGame(PageOptions o) : o_(std::move(o)) {
   show_text("renderer", play_->session().renderer().gl_renderer());
   set_title(fmt::format("fixstep: {}", settings_.name));
   if (o_.frames) return;
-  // As app::run's window, but for Esc (a page does not quit).
-  hint_ = settings_.controls.empty() ? "r: restart" : settings_.controls + "   r: restart";
+  // As app::run's window, but for quit (a page does not quit).
+  InputMap map = app::detail::game_input_map(settings_);
+  const std::string loop_keys = map.loop_help(false);
+  hint_ = settings_.controls.empty() ? loop_keys : settings_.controls + "\n" + loop_keys;
   show_text("help", hint_);
   input_ = std::make_unique<PageInput>("#canvas", o_.width, o_.height);
+  input_->set_input_map(std::move(map));
 }
 
 PageGame::~PageGame() = default;
@@ -114,9 +117,15 @@ bool PageGame::frames_frame(double now_ms) {
   // input and 1/60 s of virtual time; only the last frame is drawn (trails sample every tick).
   const VirtualClock clock(game_fps);
   const auto frames = static_cast<std::int64_t>(*o_.frames);
+  if (o_.input && !script_) {
+    show_text("result", "fetching the input script");
+    return true;
+  }
   while (frames_done_ < frames) {
     if (frames_done_ > 0) {
-      play_->game().autopilot(frames_done_, play_->session().simulation(), play_->sampler());
+      if (!script_) {
+        play_->game().autopilot(frames_done_, play_->session().simulation(), play_->sampler());
+      }
       play_->advance(clock.frame_seconds());
     }
     ++frames_done_;
@@ -126,9 +135,17 @@ bool PageGame::frames_frame(double now_ms) {
     show_text("result", fmt::format("running: frame {} of {}", frames_done_, frames));
     return true;
   }
-  play_->draw("autopilot");
+  play_->draw(script_ ? "input script" : "autopilot");
   report();
   return false;
+}
+
+void PageGame::script_fetched(const std::string& text) {
+  const app::detail::Level level =
+      app::detail::load_level(*prototype_, settings_, settings_.scene_file);
+  script_ = parse_input_script(text, *o_.input, level.def.bodies,
+                               app::detail::script_names(app::detail::game_input_map(settings_)));
+  play_->play_script(*script_);
 }
 
 void PageGame::show_summary(const World& world, double initial_energy,
@@ -174,6 +191,7 @@ void PageGame::recording_fetched(const std::string& text) {
   session_->set_show_energy(settings_.show_energy);
   show_text("renderer", session_->renderer().gl_renderer());
   game_ = r.level.game->clone();
+  replay_rules_ = app::detail::game_rules(*game_, settings_.rules_before_step);
   recording_ = std::move(rec);
   set_title("fixstep: done");
 }
@@ -192,8 +210,7 @@ bool PageGame::replay_frame(double now_ms) {
     session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& world) {
       if (t >= rec.ticks) return;
       last_ = rec.input_at(t);
-      world.step(last_);
-      game_->rules(world, last_);
+      replay_rules_.tick(world, last_);
     });
   } while (o_.headless && !done() && emscripten_get_now() - now_ms < game_budget_ms);
   if (!o_.headless || done()) {

@@ -17,6 +17,8 @@
 #include "fixstep/app/session.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/recording.hpp"
+#include "fixstep/core/rules.hpp"
+#include "fixstep/scene/input_script.hpp"
 #include "page_input.hpp"
 #include "page_options.hpp"
 
@@ -38,6 +40,9 @@ class PageGame {
   /// parse_recording and app::detail::replay_game throw; a recording that diverges is reported
   /// (id result) and not played back.
   void recording_fetched(const std::string& text);
+  /// input=: the script's text, parsed against the level's bodies and the game's actions and
+  /// axes (SceneError naming the script, line and key); the frames then play it.
+  void script_fetched(const std::string& text);
 
  private:
   void interactive_frame(double now_ms);
@@ -60,6 +65,8 @@ class PageGame {
   std::optional<Recording> recording_;
   std::unique_ptr<Session> session_;
   std::unique_ptr<app::detail::AnyGame> game_;
+  std::optional<InputScript> script_;  ///< input=, once fetched
+  TickRules replay_rules_;  ///< game_'s rules, in the game's order (Settings::rules_before_step)
   TickInput last_;
   app::Overlay overlay_;
   bool replay_stopped_ = false;  ///< the recording diverged: nothing to play

@@ -5,43 +5,88 @@
 
 #include <emscripten/html5.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string_view>
+#include <utility>
 
 namespace fixstep::web {
 
 namespace {
 
-/// The InputButton bit of a key, or 0.
-std::uint32_t key_button(std::string_view key) {
-  if (key == "ArrowLeft") return button_left;
-  if (key == "ArrowRight") return button_right;
-  if (key == "ArrowUp") return button_up;
-  if (key == "ArrowDown") return button_down;
-  if (key == "Enter") return button_action;
-  return 0;
+/// The Key of a KeyboardEvent.code (the physical key, as an SDL scancode), or Key::none.
+Key code_key(std::string_view code) {
+  if (code.size() == 4 && code.starts_with("Key") && code[3] >= 'A' && code[3] <= 'Z') {
+    return static_cast<Key>(static_cast<int>(Key::a) + (code[3] - 'A'));
+  }
+  if (code.size() == 6 && code.starts_with("Digit") && code[5] >= '0' && code[5] <= '9') {
+    return static_cast<Key>(static_cast<int>(Key::d0) + (code[5] - '0'));
+  }
+  static constexpr std::pair<std::string_view, Key> named[] = {
+      {"ArrowLeft", Key::left},
+      {"ArrowRight", Key::right},
+      {"ArrowUp", Key::up},
+      {"ArrowDown", Key::down},
+      {"Space", Key::space},
+      {"Enter", Key::enter},
+      {"Escape", Key::escape},
+      {"Backspace", Key::backspace},
+      {"Tab", Key::tab},
+      {"ShiftLeft", Key::left_shift},
+      {"ShiftRight", Key::right_shift},
+      {"ControlLeft", Key::left_ctrl},
+      {"ControlRight", Key::right_ctrl},
+      {"AltLeft", Key::left_alt},
+      {"AltRight", Key::right_alt},
+      {"Period", Key::period},
+      {"Comma", Key::comma},
+      {"Minus", Key::minus},
+      {"Equal", Key::equals},
+      {"Slash", Key::slash},
+      {"Semicolon", Key::semicolon},
+      {"Quote", Key::apostrophe},
+      {"BracketLeft", Key::left_bracket},
+      {"BracketRight", Key::right_bracket},
+      {"Backslash", Key::backslash},
+      {"IntlBackslash", Key::backslash},
+      {"Backquote", Key::grave},
+      {"Home", Key::home},
+      {"End", Key::end},
+      {"PageUp", Key::page_up},
+      {"PageDown", Key::page_down},
+      {"Insert", Key::insert},
+      {"Delete", Key::delete_key},
+      {"NumpadAdd", Key::keypad_plus},
+      {"NumpadSubtract", Key::keypad_minus},
+      {"NumpadEnter", Key::keypad_enter},
+      {"NumpadDecimal", Key::period}};
+  for (const auto& [name, key] : named) {
+    if (name == code) return key;
+  }
+  if (code.size() >= 2 && code.size() <= 3 && code[0] == 'F') {  // F1 .. F12
+    int n = 0;
+    for (char c : code.substr(1)) n = c >= '0' && c <= '9' ? n * 10 + (c - '0') : 99;
+    if (n >= 1 && n <= 12) return static_cast<Key>(static_cast<int>(Key::f1) + n - 1);
+  }
+  return Key::none;
 }
 
-/// The loop's own keys: whether `key` is one.
-bool loop_key(std::string_view key, PageEvents& ev) {
-  if (key == " ") {
-    ev.toggle_pause = true;
-  } else if (key == ".") {
-    ev.single_step = true;
-  } else if (key == "+" || key == "=") {
-    ++ev.time_scale_steps;
-  } else if (key == "-") {
-    --ev.time_scale_steps;
-  } else if (key == "r") {
-    ev.restart = true;
-  } else {
-    return false;
-  }
-  return true;
+/// Whether `map` gives `key` a meaning (the page then keeps it from the browser: no scrolling
+/// on the arrows or space, no "back" on Backspace).
+bool bound(const InputMap& map, Key key) {
+  auto has = [key](const std::vector<Key>& keys) {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+  };
+  return std::any_of(map.actions.begin(), map.actions.end(),
+                     [&](const ActionBinding& a) { return has(a.keys); }) ||
+         std::any_of(map.axes.begin(), map.axes.end(),
+                     [&](const AxisBinding& a) { return has(a.negative) || has(a.positive); }) ||
+         std::any_of(map.loop.begin(), map.loop.end(),
+                     [&](const LoopBinding& b) { return has(b.keys); });
 }
 
 EM_BOOL on_key(int type, const EmscriptenKeyboardEvent* e, void* input) {
-  return static_cast<PageInput*>(input)->key(type == EMSCRIPTEN_EVENT_KEYDOWN, e->key,
+  return static_cast<PageInput*>(input)->key(type == EMSCRIPTEN_EVENT_KEYDOWN, e->code,
                                              e->repeat != 0);
 }
 
@@ -79,17 +124,17 @@ void PageInput::listen(PageInput* input) const {
   emscripten_set_mouseup_callback(window, input, true, mouse);
 }
 
-bool PageInput::key(bool down, const char* key, bool repeat) {
-  const std::string_view k = key;
-  if (k == "Backspace") {
-    backspace_held_ = down;
-    return true;  // not the browser's "back"
-  }
-  if (const std::uint32_t b = key_button(k)) {
-    if (!repeat) ev_.edges.push_back({down, b});
-    return true;  // arrows do not scroll the page
-  }
-  return down && loop_key(k, ev_);
+bool PageInput::key(bool down, const char* code, bool repeat) {
+  const Key k = code_key(code);
+  if (k == Key::none) return false;
+  if (!repeat) add_key(down, k);
+  return bound(map_, k);
+}
+
+void PageInput::add_key(bool down, Key key) {
+  if (ev_.keys_down[static_cast<std::size_t>(key)] == down) return;
+  ev_.keys.push_back({down, key});
+  ev_.keys_down[static_cast<std::size_t>(key)] = down;
 }
 
 void PageInput::pointer(long x, long y) {
@@ -103,19 +148,41 @@ void PageInput::pointer(long x, long y) {
 }
 
 void PageInput::button(bool down, unsigned short button) {
-  // MouseEvent.button: 0 the main (left) button, 2 the secondary (right) one.
-  const std::uint32_t b = button == 0   ? button_pointer_primary
-                          : button == 2 ? button_pointer_secondary
-                                        : 0u;
-  if (b != 0) ev_.edges.push_back({down, b});
+  // MouseEvent.button: 0 the main (left) button, 1 the middle, 2 the secondary (right) one.
+  const Key k = button == 0   ? Key::mouse_left
+                : button == 1 ? Key::mouse_middle
+                : button == 2 ? Key::mouse_right
+                              : Key::none;
+  if (k != Key::none) add_key(down, k);
+}
+
+void PageInput::sample_pad() {
+  if (emscripten_sample_gamepad_data() != EMSCRIPTEN_RESULT_SUCCESS) return;
+  if (emscripten_get_num_gamepads() < 1) return;
+  EmscriptenGamepadEvent pad{};
+  if (emscripten_get_gamepad_status(0, &pad) != EMSCRIPTEN_RESULT_SUCCESS || !pad.connected) {
+    return;
+  }
+  // The "standard" mapping's buttons in Key order (pad_a .. pad_right); triggers are axes.
+  static constexpr int standard[] = {0, 1, 2, 3, 8, 16, 9, 10, 11, 4, 5, 12, 13, 14, 15};
+  for (int i = 0; i < 15; ++i) {
+    if (standard[i] < pad.numButtons) {
+      add_key(pad.digitalButton[standard[i]] != 0,
+              static_cast<Key>(static_cast<int>(Key::pad_a) + i));
+    }
+  }
+  for (int i = 0; i < 4 && i < pad.numAxes; ++i) ev_.pad_axes[i] = pad.axis[i];
+  if (pad.numButtons > 7) {
+    ev_.pad_axes[4] = pad.analogButton[6];
+    ev_.pad_axes[5] = pad.analogButton[7];
+  }
 }
 
 PageEvents PageInput::take() {
+  sample_pad();
   PageEvents out = ev_;
-  out.rewind = backspace_held_;
-  ev_.toggle_pause = ev_.single_step = ev_.restart = false;
-  ev_.time_scale_steps = 0;
-  ev_.edges.clear();
+  map_.apply(out);
+  ev_.keys.clear();
   return out;
 }
 

@@ -104,6 +104,8 @@ void set(PageOptions& o, const std::string& name, const std::string& value) {
     o.ticks = parse_count(name, value);
   } else if (name == "replay") {
     o.replay = value;
+  } else if (name == "input") {
+    o.input = value;
   } else if (name == "fps") {
     o.fps = parse_fps(value);
   } else if (name == "record") {
@@ -131,16 +133,16 @@ void set(PageOptions& o, const std::string& name, const std::string& value) {
     o.overlay_card = true;
   } else {
     throw std::invalid_argument(fmt::format(
-        "unknown parameter '{}' (known: scene, frames, ticks, replay, fps, record, hash_every, "
-        "size, headless, overlay, game)",
+        "unknown parameter '{}' (known: scene, frames, ticks, replay, input, fps, record, "
+        "hash_every, size, headless, overlay, game)",
         name));
   }
 }
 
 /// game=: what a game takes besides itself (its level is its own, its clock 60 Hz).
 bool applies_to_game(const std::string& name) {
-  return name == "game" || name == "frames" || name == "replay" || name == "size" ||
-         name == "headless";
+  return name == "game" || name == "frames" || name == "replay" || name == "input" ||
+         name == "size" || name == "headless";
 }
 
 }  // namespace
@@ -164,14 +166,17 @@ PageOptions parse_page_options(std::string_view query) {
     for (const std::string& name : given) {
       if (!applies_to_game(name)) {
         throw std::invalid_argument(
-            fmt::format("{}= does not apply to game={}: a game takes frames=, replay=, size= and "
-                        "headless= only",
+            fmt::format("{}= does not apply to game={}: a game takes frames=, replay=, input=, "
+                        "size= and headless= only",
                         name, *o.game));
       }
     }
   }
   if (int(o.frames.has_value()) + int(o.ticks.has_value()) + int(o.replay.has_value()) > 1) {
     throw std::invalid_argument("give at most one of frames=, ticks= and replay=");
+  }
+  if (o.input && !(o.game && o.frames)) {
+    throw std::invalid_argument("input= needs game= and frames= (a game's scripted run)");
   }
   if (o.record && !o.frames && !o.ticks) {
     throw std::invalid_argument("record=1 needs frames= or ticks=");

@@ -31,6 +31,9 @@ struct PageOptions {
   /// replay=URL: fetches a recording (fixstep's text format), replays it verifying every
   /// stored hash, reports, then plays it back on the canvas.
   std::optional<std::string> replay;
+  /// input=URL (game=, with frames=): fetches an input script (docs/CLI.md) that plays the
+  /// game's actions instead of its autopilot, as `NAME --frames N --input SCRIPT` does.
+  std::optional<std::string> input;
   double fps = 60.0;    ///< fps=F: the virtual clock's frames per second (frames=), > 0
   bool record = false;  ///< record=1: with frames= or ticks=, also shows the run's recording
   std::uint64_t hash_every = 60;  ///< hash_every=K: ticks between a recording's stored hashes

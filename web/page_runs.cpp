@@ -66,6 +66,10 @@ bool PageApp::ticks_frame(double now_ms) {
   return false;
 }
 
+void PageApp::script_fetched(const std::string& text) {
+  if (game_) game_->script_fetched(text);
+}
+
 void PageApp::recording_fetched(std::string text) {
   if (game_) {
     game_->recording_fetched(text);

@@ -60,7 +60,8 @@ inline constexpr int balls_per_game = 3;
 inline constexpr int bumper_points = 100, slingshot_points = 10;
 inline constexpr int bumper_count = 3;
 
-/// The plunger's keys (InputButton bits), and each flipper's.
+/// The plunger's actions (TickInput bits), and each flipper's (their keys: app_settings(); the
+/// bits are fixstep's default buttons', so recordings made before the game had actions replay).
 inline constexpr std::uint32_t plunger_keys = fixstep::button_down | fixstep::button_action;
 inline constexpr std::uint32_t left_flipper_key = fixstep::button_left;
 inline constexpr std::uint32_t right_flipper_key = fixstep::button_right;

@@ -11,13 +11,16 @@
 #include <fixstep/core/input.hpp>
 #include <fixstep/core/world_def.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "draw.hpp"
 #include "game.hpp"
 
 namespace pinball {
 
-/// The game app::run plays: left and right arrows flip, down (or Enter) pulls the plunger.
+/// The game app::run plays: Z / M (or the arrows, or the shift keys, or a gamepad's shoulders)
+/// flip, space (or down, Enter, a gamepad's A) pulls the plunger.
 struct Pinball {
   GameState state;
   void setup(fixstep::WorldDef& level) { level = make_table(); }
@@ -70,11 +73,25 @@ struct Pinball {
 /// What app::run (and the page) run Pinball with: its name (the rules name of its recordings),
 /// the whole table in view, a dark background and a larger HUD.
 inline fixstep::app::Settings app_settings() {
+  using fixstep::Key;
+  std::vector<fixstep::LoopBinding> loop = fixstep::default_loop_bindings();
+  for (fixstep::LoopBinding& b : loop) {  // space is the plunger's: pause on P
+    if (b.action == fixstep::LoopAction::pause) b.keys = {Key::p};
+  }
   return {.name = "pinball",
           .description = "flip the ball up the table, hit the bumpers; three balls",
           .view_center = fixstep::Vec2{0.5, 7.3},  // the drain to the top of the arc
           .view_width = 30.0,
-          .controls = "left/right: flippers   down or enter: plunger",
+          .controls = "z / m: flippers   space: plunger",
+          .actions = {{"left_flipper",
+                       left_flipper_key,
+                       {Key::z, Key::left, Key::left_shift, Key::pad_left_shoulder}},
+                      {"right_flipper",
+                       right_flipper_key,
+                       {Key::m, Key::right, Key::right_shift, Key::pad_right_shoulder}},
+                      {"plunger", fixstep::button_down, {Key::space, Key::down, Key::pad_a}},
+                      {"launch", fixstep::button_action, {Key::enter, Key::keypad_enter}}},
+          .loop_keys = std::move(loop),
           .style =
               fixstep::ViewStyle{
                   .background = {16, 18, 30, 255}, .grid = false, .axes = false, .scale_bar = true},

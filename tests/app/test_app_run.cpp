@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fixstep/app/app.hpp>
@@ -198,6 +199,59 @@ TEST_F(AppRun, LastFrameOfAHeadlessRunIsWritten) {
   EXPECT_EQ((head[22] << 8) | head[23], 90);
   EXPECT_EQ(run(Drop{}, {"--last-frame", png}), 2);  // a window until quit has no last frame
   EXPECT_EQ(run(Drop{}, {"--frames", "10", "--sync-test", "2", "--last-frame", png}), 2);
+}
+
+/// The files in `dir`, sorted.
+std::vector<std::string> names_in(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+/// The first two columns (frame, tick) of each row of the manifest `csv`, after its header.
+std::vector<std::string> frames_and_ticks(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "frame,tick,t,alpha,state_hash,energy,balance");
+  std::vector<std::string> rows;
+  while (std::getline(in, line)) rows.push_back(line.substr(0, line.find(',', line.find(',') + 1)));
+  return rows;
+}
+
+// --replay --out DIR --every K: each frame written is named by its frame index (0, K, 2K, ...,
+// and the last), not by how many were written before it, and frames.csv gives each its tick.
+// 10 frames of 1/60 s recorded: ticks of 0.01 s, so frame f is tick floor(100 f / 60): the
+// recording ends at tick 15, frame 9.
+TEST_F(AppRun, ReplayedFramesAreNamedByTheirFrameIndexAndListedWithTheirTicks) {
+  const std::string rec = path("ten.rec");
+  std::string recorded;
+  ASSERT_EQ(run(Drop{}, {"--frames", "10", "--record", rec}, &recorded), 0);
+  ASSERT_NE(recorded.find("ticks=15 "), std::string::npos) << recorded;
+  std::string replayed;
+  ASSERT_EQ(run(Drop{}, {"--replay", rec, "--out", path("every3"), "--every", "3"}, &replayed), 0)
+      << replayed;
+  EXPECT_EQ(names_in(path("every3")),
+            (std::vector<std::string>{"frame_000000.png", "frame_000003.png", "frame_000006.png",
+                                      "frame_000009.png", "frames.csv"}));
+  EXPECT_EQ(frames_and_ticks(dir_ / "every3" / "frames.csv"),
+            (std::vector<std::string>{"0,0", "3,5", "6,10", "9,15"}));
+  // The last frame is written when K does not divide it, under its own index.
+  ASSERT_EQ(run(Drop{}, {"--replay", rec, "--out", path("every4"), "--every", "4"}), 0);
+  EXPECT_EQ(names_in(path("every4")),
+            (std::vector<std::string>{"frame_000000.png", "frame_000004.png", "frame_000008.png",
+                                      "frame_000009.png", "frames.csv"}));
+  EXPECT_EQ(frames_and_ticks(dir_ / "every4" / "frames.csv"),
+            (std::vector<std::string>{"0,0", "4,6", "8,13", "9,15"}));
+  // A headless run's --out: every frame, each listed.
+  ASSERT_EQ(run(Drop{}, {"--frames", "4", "--out", path("all")}), 0);
+  EXPECT_EQ(names_in(path("all")),
+            (std::vector<std::string>{"frame_000000.png", "frame_000001.png", "frame_000002.png",
+                                      "frame_000003.png", "frames.csv"}));
+  EXPECT_EQ(frames_and_ticks(dir_ / "all" / "frames.csv"),
+            (std::vector<std::string>{"0,0", "1,1", "2,3", "3,5"}));
 }
 
 TEST_F(AppRun, BadCommandLinesExitTwo) {

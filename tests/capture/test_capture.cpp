@@ -295,6 +295,32 @@ TEST(FrameWriter, DestructorWritesWhatWasSubmitted) {
   std::filesystem::remove_all(dir);
 }
 
+// A capture of every 3rd frame names each file by its frame index, not by how many came before;
+// submit() without an index continues after the last.
+TEST(FrameWriter, EveryKthFrameIsNamedByItsFrameIndex) {
+  const auto dir = temp_dir("writer_every");
+  {
+    FrameWriter writer(dir, 24, 16);
+    for (std::uint64_t f = 0; f < 10; f += 3) {
+      EXPECT_EQ(writer.submit(test_picture(24, 16, unsigned(f)), f), frame_path(dir, f));
+    }
+    EXPECT_EQ(writer.frames_submitted(), 4u);
+    EXPECT_EQ(writer.next_frame(), 10u);
+    EXPECT_EQ(writer.submit(test_picture(24, 16, 10)), frame_path(dir, 10));
+    // Back to a name already written, or to an earlier one: refused, nothing queued.
+    EXPECT_THROW(writer.submit(test_picture(24, 16, 0), 10), std::invalid_argument);
+    EXPECT_THROW(writer.submit(test_picture(24, 16, 0), 4), std::invalid_argument);
+    writer.finish();
+  }
+  EXPECT_EQ(names_in(dir),
+            (std::vector<std::string>{"frame_000000.png", "frame_000003.png", "frame_000006.png",
+                                      "frame_000009.png", "frame_000010.png"}));
+  for (const std::uint64_t f : {0u, 3u, 6u, 9u, 10u}) {
+    EXPECT_EQ(decode(read_all(frame_path(dir, f)), 24, 16), test_picture(24, 16, unsigned(f))) << f;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(FrameWriter, WorkerErrorReachesTheCallerNamingTheFileAndKeepsEarlierFrames) {
   const auto dir = temp_dir("writer_fail");
   // A directory where frame 3 must go: the worker's rename onto it fails (EISDIR), even as

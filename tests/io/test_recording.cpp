@@ -156,8 +156,9 @@ ReplayReport replay_dice(const Recording& rec, std::optional<Seeding> force = {}
   if (force) def.settings.seeding = *force;
   EXPECT_EQ(definition_hash(def) == rec.definition_hash, !force.has_value());
   World sim(def);
-  return replay(sim, rec,
-                TickRules{[](World& w, const TickInput&) { (void)w.random().below(6); }, {}, {}});
+  return replay(
+      sim, rec,
+      TickRules{[](World& w, const TickInput&) { (void)w.random().below(6); }, {}, {}, {}});
 }
 
 // A seeded world records as version 5 (SplitMix64 seeding); one of version 4 (the older
@@ -429,7 +430,7 @@ std::string script_error(const std::string& text) {
 
 TEST(InputScript, ErrorsNameFileLineAndKey) {
   EXPECT_EQ(script_error("[[at]]\ntick = 1\npress = [\"lft\"]\n"),
-            "s.toml:3:10: at[0].press[0]: unknown button \"lft\"; did you mean \"left\"? (valid: "
+            "s.toml:3:10: at[0].press[0]: unknown action \"lft\"; did you mean \"left\"? (valid: "
             "left, right, up, down, action, pointer_primary, pointer_secondary)");
   EXPECT_EQ(script_error("[[at]]\ntick = 1\ndrag = \"bb\"\n"),
             "s.toml:3:8: at[0].drag: no body named \"bb\" (did you mean \"b\"?)");

@@ -134,7 +134,7 @@ TEST(NetPacket, InputsRunOfRepeatsAndChanges) {
   // (off the pointer grid: two doubles).
   Bytes b = inputs_header();
   Bytes items;
-  items.u8(0x80 | 0x02).u16(1).u8(2).u8(0x80 | 0x08).f64(0.1).f64(-2.0);
+  items.u8(0x80 | 0x02).u8(1).u8(2).u8(0x80 | 0x08).f64(0.1).f64(-2.0);  // held: a varint
   b.u8(1).u32(8).u16(5).u16(items.v.size());
   b.v.insert(b.v.end(), items.v.begin(), items.v.end());
   net::Packet p;
@@ -224,17 +224,20 @@ TEST(NetPacket, InputRangesRefused) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   Bytes push_nan;
-  push_nan.u8(0x81).f64(nan).f64(0.0);
+  push_nan.u8(0x81).f64(nan).f64(0.0).u8(0);
   EXPECT_EQ(decode(one_run(1, 10, 1, push_nan)), PacketError::bad_input);
   Bytes pointer_inf;
   pointer_inf.u8(0x88).f64(0.0).f64(-inf);
   EXPECT_EQ(decode(one_run(1, 10, 1, pointer_inf)), PacketError::bad_input);
-  Bytes unknown_button;
-  unknown_button.u8(0x82).u16(1u << 5);
-  EXPECT_EQ(decode(one_run(1, 10, 1, unknown_button)), PacketError::bad_input);
-  Bytes unknown_edge;
-  unknown_edge.u8(0x84).u16(0).u16(1u << 12);
-  EXPECT_EQ(decode(one_run(1, 10, 1, unknown_edge)), PacketError::bad_input);
+  Bytes axis_out;  // the levels: push (0, 0), axis 0 at 1.5
+  axis_out.u8(0x81).f64(0.0).f64(0.0).u8(1).f64(1.5);
+  EXPECT_EQ(decode(one_run(1, 10, 1, axis_out)), PacketError::bad_input);
+  Bytes held_over_32_bits;  // a varint of 2^32
+  held_over_32_bits.u8(0x82).u8(0x80).u8(0x80).u8(0x80).u8(0x80).u8(0x10);
+  EXPECT_EQ(decode(one_run(1, 10, 1, held_over_32_bits)), PacketError::bad_input);
+  Bytes edge_over_32_bits;
+  edge_over_32_bits.u8(0x84).u8(0).u8(0x80).u8(0x80).u8(0x80).u8(0x80).u8(0x10);
+  EXPECT_EQ(decode(one_run(1, 10, 1, edge_over_32_bits)), PacketError::bad_input);
   Bytes too_many_bodies;
   too_many_bodies.u8(0xa0).u8(17);
   EXPECT_EQ(decode(one_run(1, 10, 1, too_many_bodies)), PacketError::bad_input);
@@ -384,6 +387,38 @@ TEST(NetInputCodec, RoundTripsEveryFieldBitForBit) {
   EXPECT_GT(angular, 0u);
 }
 
+TEST(NetInputCodec, EveryActionBitAndTheAxesRoundTripBitForBit) {
+  std::vector<TickInput> ticks(40);
+  for (std::size_t t = 0; t < ticks.size(); ++t) {
+    TickInput& in = ticks[t];
+    in.held = t < 20 ? 0x80000001u << (t % 2) : 0x7fu;
+    in.pressed = t == 3 ? 0xffffffffu : 0u;
+    in.released = t == 4 ? 0x80000000u : 0u;
+    in.axes = {t * 0.025, t % 5 == 0 ? -0.0 : -1.0, 1.0 / 3.0, t == 7 ? 1e-300 : 0.0};
+  }
+  std::vector<std::uint8_t> bytes;
+  net::encode_inputs(ticks, TickInput{}, bytes);
+  EXPECT_EQ(bytes.size(), net::encoded_size(ticks, TickInput{}));
+  std::vector<net::InputDelta> deltas;
+  std::size_t used = 0;
+  ASSERT_EQ(net::decode_inputs(bytes, 40, deltas, used), PacketError::none);
+  TickInput at{};
+  for (std::size_t t = 0; t < ticks.size(); ++t) {
+    at = net::apply_delta(deltas[t], at, t);
+    EXPECT_TRUE(net::same_input(at, ticks[t])) << t;
+    EXPECT_EQ(at.held, ticks[t].held) << t;
+    EXPECT_EQ(std::signbit(at.axes[1]), std::signbit(ticks[t].axes[1])) << t;
+  }
+  // An axis outside [-1, 1] is no input.
+  TickInput bad{};
+  bad.axes[0] = 1.5;
+  EXPECT_EQ(net::check_input(bad), PacketError::bad_input);
+  // A byte of axes naming an axis past max_axes: refused.
+  Bytes items;
+  items.u8(0x80 | net::field_push).f64(0.0).f64(0.0).u8(0x10).f64(0.5);
+  ASSERT_EQ(net::decode_inputs(items.v, 1, deltas, used), PacketError::bad_input);
+}
+
 TEST(NetInputCodec, UnchangedTicksCostOneBytePer128) {
   std::vector<TickInput> ticks(1000);
   TickInput prev{};
@@ -391,8 +426,8 @@ TEST(NetInputCodec, UnchangedTicksCostOneBytePer128) {
   prev.pointer = {1.0, 2.0};
   for (auto& t : ticks) t = prev;
   EXPECT_EQ(net::encoded_size(ticks, prev), 8u);  // ceil(1000 / 128)
-  ticks[500].held = 0;                            // a release and back: two changes of 3 bytes
-  EXPECT_EQ(net::encoded_size(ticks, prev), 4u + 3u + 3u + 4u);
+  ticks[500].held = 0;  // a release and back: two changes of 2 bytes (mask, held as a varint)
+  EXPECT_EQ(net::encoded_size(ticks, prev), 4u + 2u + 2u + 4u);
   std::vector<std::uint8_t> bytes;
   net::encode_inputs(std::span(ticks).first(256), prev, bytes);
   EXPECT_EQ(bytes, (std::vector<std::uint8_t>{127, 127}));
@@ -504,7 +539,7 @@ TEST(NetInputCodec, GridPointerRefusals) {
 
 TEST(NetInputCodec, EncoderRefusesWhatTheDecoderWould) {
   TickInput bad{};
-  bad.held = 1u << 20;
+  bad.axes[2] = std::numeric_limits<double>::infinity();  // a game's action bits all go
   std::vector<std::uint8_t> bytes;
   EXPECT_THROW(net::encode_inputs({&bad, 1}, TickInput{}, bytes), std::invalid_argument);
   EXPECT_EQ(net::check_input(bad), PacketError::bad_input);

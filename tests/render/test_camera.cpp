@@ -11,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "fixstep/app/session.hpp"
@@ -18,6 +19,7 @@
 #include "fixstep/core/loop.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "fixstep/render/hud_layout.hpp"
 #include "fixstep/render/render.hpp"
 #include "pixels.hpp"
 
@@ -225,6 +227,26 @@ TEST(Camera, TheAutomaticViewKeepsTheBodiesItFitsOutFromUnderTheHud) {
   s.set_show_controls(true);
   s.draw();
   EXPECT_EQ(red_pixels_in_rows(r, int(std::ceil(Renderer::hud_height(6, 2.0f)))), 0);
+  // A line wrapped to the frame's width (a game's status line, three lines of it at 480 px):
+  // the band holds the lines as drawn, not as given.
+  Session narrow(def, SessionSettings{
+                          .width = 480, .height = 360, .title = "corners", .hud_lines = hud_title});
+  const std::string status =
+      "player 1 of 2  rollback  tick 123456  rtt 48 ms  delay 2  window 8  rollbacks 1234  "
+      "stalled 12.5 s";
+  narrow.set_status_lines(std::vector<std::string>{status});
+  narrow.draw();
+  const HudLayout drawn =
+      layout_hud(std::vector<std::string>{"fixstep  corners  (4 bodies)", status}, 2.0f,
+                 HudCorner::top_left, 480, 360);
+  ASSERT_EQ(drawn.lines.size(), 4u);
+  const int wrapped_band = int(std::ceil(drawn.y1));
+  EXPECT_EQ(wrapped_band, int(std::ceil(Renderer::hud_height(4, 2.0f))));
+  EXPECT_EQ(red_pixels_in_rows(narrow.renderer(), wrapped_band), 0);
+  for (const BodyDef& b : def.bodies) {
+    const auto p = narrow.renderer().to_pixel(b.body.position.x, b.body.position.y);
+    EXPECT_GT(p[1], wrapped_band + 5.0);
+  }
   // A view the program sets is left alone: the top-left ball under the HUD again.
   Session mine(def,
                SessionSettings{

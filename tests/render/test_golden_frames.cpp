@@ -214,6 +214,34 @@ TEST(GoldenFrames, TheJointsSceneMatchesItsReferenceFrames) {
   if (refreshing()) GTEST_SKIP() << "rewrote the joints' reference frames in " << golden_dir;
 }
 
+// A game's overlay images (DrawList::image: world space, turned, and screen space) over frame 90
+// of the sprites scene (assets/scenes/sprites.toml, whose own frames are shipped scenes'),
+// which the frame draws all by GL.
+TEST(GoldenFrames, OverlayImagesOverTheSpritesSceneMatchTheirReferenceFrame) {
+  const Scene scene = load_scene(scenes_dir / "sprites.toml");
+  ASSERT_TRUE(scene.view.background_image);
+  Session session = testing::scene_session(scene, width, height);
+  const VirtualClock clock(60.0);
+  const std::string crate = (scenes_dir / "sprites" / "crate.png").string();
+  const std::string ball = (scenes_dir / "sprites" / "ball.png").string();
+  DrawList overlay;
+  overlay.image(crate, {3.0, 5.0}, {1.2, 0.6}, 0.5);                     // world, turned
+  overlay.image(ball, {560.0, 60.0}, {64.0, 64.0}, 0.0, Space::screen);  // px
+  overlay.image(crate, {400.0, 60.0}, {48.0, 48.0}, 0.8, Space::screen);
+  std::vector<std::uint8_t> without;
+  for (std::uint64_t f = 0; f <= 90; ++f) {
+    if (f > 0) session.advance(clock.frame_seconds());
+    session.draw();
+  }
+  without.assign(session.renderer().pixels().begin(), session.renderer().pixels().end());
+  session.draw(overlay);
+  const auto p = session.renderer().pixels();
+  const std::vector<std::uint8_t> with_overlay(p.begin(), p.end());
+  EXPECT_NE(with_overlay, without);  // the images drew something
+  expect_matches_reference(with_overlay, "sprites_overlay_frame_000090");
+  if (refreshing()) GTEST_SKIP() << "rewrote " << golden_dir << "/sprites_overlay_frame_000090.png";
+}
+
 // The overlay test card (web/overlay_card.hpp: every DrawList shape in world and screen
 // coordinates, a view style of its own, the HUD bottom right) over default.toml at frame 60, as
 // the page draws it with frames=61&overlay=card (the browser checks compare the two).

@@ -136,34 +136,35 @@ void expect_pipeline_failure(const gl::ShaderSources& sources, std::uint8_t* pix
 
 TEST(RenderResources, MakeCurrentFailureReleasesTheContext) {
   // No pixel buffer: OSMesaMakeCurrent refuses it, after the context was created.
-  expect_pipeline_failure({vertex_ok, {fragment_ok, fragment_ok}}, nullptr,
+  expect_pipeline_failure({vertex_ok, {fragment_ok, fragment_ok, fragment_ok}}, nullptr,
                           "render: OSMesaMakeCurrent failed");
 }
 
 TEST(RenderResources, VertexShaderFailureReleasesTheContext) {
   std::vector<std::uint8_t> pixels(size * size * 4);
-  expect_pipeline_failure({does_not_compile, {fragment_ok, fragment_ok}}, pixels.data(),
-                          "render: shader compilation failed: ");
+  expect_pipeline_failure({does_not_compile, {fragment_ok, fragment_ok, fragment_ok}},
+                          pixels.data(), "render: shader compilation failed: ");
 }
 
 TEST(RenderResources, FragmentShaderFailureReleasesTheFirstProgram) {
   // Held when it fails: the context, the vertex shader, the first program.
   std::vector<std::uint8_t> pixels(size * size * 4);
-  expect_pipeline_failure({vertex_ok, {fragment_ok, does_not_compile}}, pixels.data(),
+  expect_pipeline_failure({vertex_ok, {fragment_ok, does_not_compile, fragment_ok}}, pixels.data(),
                           "render: shader compilation failed: ");
 }
 
 TEST(RenderResources, LinkFailureReleasesBothPrograms) {
   // Held when it fails: the context, both shaders, the first program and the second one.
   std::vector<std::uint8_t> pixels(size * size * 4);
-  expect_pipeline_failure({vertex_ok, {fragment_ok, does_not_link}}, pixels.data(),
+  expect_pipeline_failure({vertex_ok, {fragment_ok, does_not_link, fragment_ok}}, pixels.data(),
                           "render: shader program failed to link: ");
 }
 
 TEST(RenderResources, CompletePipelineReleasesEverything) {
   std::vector<std::uint8_t> pixels(size * size * 4);
   const double growth = heap_growth_per_call([&] {
-    gl::Pipeline pipeline(size, size, pixels.data(), {vertex_ok, {fragment_ok, fragment_ok}});
+    gl::Pipeline pipeline(size, size, pixels.data(),
+                          {vertex_ok, {fragment_ok, fragment_ok, fragment_ok}});
     EXPECT_NE(pipeline.vbo.get(), 0u);
   });
   EXPECT_LT(growth, max_pipeline_growth);
@@ -174,7 +175,8 @@ TEST(RenderResources, CompletePipelineReleasesEverything) {
 // program itself (the context would otherwise keep them until it is destroyed).
 TEST(RenderResources, ShaderBuilderFailuresLeaveNothingInALiveContext) {
   std::vector<std::uint8_t> pixels(size * size * 4);
-  gl::Pipeline live(size, size, pixels.data(), {vertex_ok, {fragment_ok, fragment_ok}});
+  gl::Pipeline live(size, size, pixels.data(),
+                    {vertex_ok, {fragment_ok, fragment_ok, fragment_ok}});
   const gl::Shader vertex = gl::compile_shader(GL_VERTEX_SHADER, vertex_ok);
   // A leaked shader is ~3 KB, a program ~15 KB. (glibc's counters include its per-thread cache
   // of freed chunks: over 100 calls what they add is below 100 B a call.)

@@ -14,11 +14,13 @@
 
 #include "carried_segments_scene.hpp"
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/recording.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "fixstep/scene/scene.hpp"
+#include "fixstep/scene/scene_writer.hpp"
 
 namespace fixstep {
 namespace scene_segments_test {  // named: a unity batch shares anonymous namespaces
@@ -216,6 +218,42 @@ TEST(SceneSegments, ABadBodyKeyIsRefusedAtItsKey) {
             std::string::npos)
       << s.warnings[0];
   EXPECT_TRUE(s.def.segments[0].body.is_null());
+}
+
+// `one_way = true` on a [[segment]] and a [[polyline]] makes the segment, and every segment of
+// the polyline, one-way; the writer writes it back (the same definition hash, the same flags);
+// a value that is not a boolean is refused at its key. Deliberate bug checked: the writer
+// leaving one_way out (the hash of the written scene differs).
+TEST(SceneSegments, OneWayIsReadForSegmentsAndPolylinesAndWrittenBack) {
+  const std::string tables =
+      "[[segment]]\na = [0.0, 0.0]\nb = [1.0, 0.0]\none_way = true\n"
+      "[[segment]]\na = [0.0, 1.0]\nb = [1.0, 1.0]\none_way = false\n"
+      "[[polyline]]\npoints = [[0.0, 2.0], [1.0, 2.0], [2.0, 2.5]]\none_way = true\n"
+      "[[polyline]]\npoints = [[0.0, 3.0], [1.0, 3.0]]\n";
+  const Scene s = parse_scene(std::string(carried_bodies) + tables, "k.toml");
+  ASSERT_EQ(s.def.segments.size(), 5u);
+  const std::vector<bool> want{true, false, true, true, false};
+  for (std::size_t i = 0; i < want.size(); ++i) EXPECT_EQ(s.def.segments[i].one_way, want[i]) << i;
+  const Scene back = parse_scene(format_scene(s.def), "written.toml");
+  EXPECT_EQ(definition_hash(back.def), definition_hash(s.def));
+  ASSERT_EQ(back.def.segments.size(), 5u);
+  for (std::size_t i = 0; i < want.size(); ++i) EXPECT_EQ(back.def.segments[i].one_way, want[i]);
+  const std::string segment = "[[segment]]\na = [0.0, 0.0]\nb = [1.0, 0.0]\n";       // lines 28-30
+  const std::string polyline = "[[polyline]]\npoints = [[0.0, 0.0], [1.0, 0.0]]\n";  // 28-29
+  const std::vector<BadCarrier> cases{
+      {segment + "one_way = 1\n", 31, 11, "segment[0].one_way",
+       "expected true or false, found an integer (1)"},
+      {polyline + "one_way = \"yes\"\n", 30, 11, "polyline[0].one_way",
+       "expected true or false, found a string"},
+  };
+  for (const BadCarrier& c : cases) {
+    SCOPED_TRACE(c.table);
+    const SceneError e = error_of(std::string(carried_bodies) + c.table);
+    EXPECT_EQ(e.line(), c.line) << e.what();
+    EXPECT_EQ(e.column(), c.column) << e.what();
+    EXPECT_EQ(e.key(), c.key) << e.what();
+    EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace scene_segments_test

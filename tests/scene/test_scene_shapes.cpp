@@ -137,6 +137,7 @@ WorldDef shape_world() {
   poly.offset = {0.1, 0.2};
   ShapeDef cap = make_capsule({-1.0 / 3.0, 0.0}, {1.0 / 3.0, 1e-3}, 0.1 + 0.2);
   cap.rolling_resistance = 1.0 / 7.0;
+  cap.one_way = true;
   cap.angle = -0.0;  // written, so that it reads back as -0.0
   a.shapes = {box, poly, cap, make_circle(1.0 / 3.0, {2.0, 0.0})};
   BodyDef wall;
@@ -194,6 +195,8 @@ TEST(SceneShapes, RefusedWithFileLineColumnAndKey) {
       {"shape = { circle = 0.5, radius = 0.5 }",
        "s.toml:6:34: body[0].shape.radius: a circle's radius is its `circle` key (circle = r); "
        "remove radius"},
+      {"shape = { box = [1.0, 1.0], one_way = 1 }",
+       "s.toml:6:39: body[0].shape.one_way: expected true or false, found an integer (1)"},
       {"shape = 3",
        "s.toml:6:9: body[0].shape: expected a shape table (shape = { box = [hx, hy] "
        "}) or an array of them ([[body.shape]] tables), found an integer (3)"},

@@ -65,6 +65,8 @@ inline void expect_same_body(const BodyDef& a, const BodyDef& b, const std::stri
   expect_optional(a.appearance, b.appearance, w + ".appearance", [&](const auto& x, const auto& y) {
     expect_bits(x.radius, y.radius, w + ".appearance.radius");
     EXPECT_EQ(x.color, y.color) << w << ".appearance.color";
+    EXPECT_EQ(x.sprite, y.sprite) << w << ".appearance.sprite";
+    expect_bits(x.sprite_size, y.sprite_size, w + ".appearance.sprite_size");
   });
   expect_optional(a.collider, b.collider, w + ".collider", [&](const auto& x, const auto& y) {
     expect_bits(x.radius, y.radius, w + ".collider.radius");
@@ -99,6 +101,8 @@ inline void expect_same_body(const BodyDef& a, const BodyDef& b, const std::stri
     expect_bits(x.rolling_resistance, y.rolling_resistance, s + ".rolling_resistance");
     EXPECT_EQ(x.filter, y.filter) << s << ".filter";
     EXPECT_EQ(x.sensor, y.sensor) << s << ".sensor";
+    EXPECT_EQ(x.color, y.color) << s << ".color";
+    EXPECT_EQ(x.one_way, y.one_way) << s << ".one_way";
   }
 }
 
@@ -157,6 +161,9 @@ inline void expect_same_world(const WorldDef& a, const WorldDef& b) {
     ASSERT_EQ(x.next.has_value(), y.next.has_value()) << w << ".next";
     if (x.next) expect_bits(*x.next, *y.next, w + ".next");
     EXPECT_EQ(x.body, y.body) << w << ".body";
+    EXPECT_EQ(x.color, y.color) << w << ".color";
+    expect_bits(x.width, y.width, w + ".width");
+    EXPECT_EQ(x.one_way, y.one_way) << w << ".one_way";
   }
   ASSERT_EQ(a.joints.size(), b.joints.size());
   for (std::size_t i = 0; i < a.joints.size(); ++i) {

@@ -81,8 +81,9 @@ int diff_files(const AnyGame& prototype, const Settings& settings, const Options
   check_command_work(end, tick_work(level_a.def) + tick_work(level_b.def),
                      fmt::format("--diff {} {}: {} ticks each, side by side", file_a, file_b, end));
   const std::unique_ptr<AnyGame> game_a = level_a.game->clone(), game_b = level_b.game->clone();
-  const RecordingDiff diff =
-      diff_recordings(level_a.def, a, level_b.def, b, game_rules(*game_a), game_rules(*game_b));
+  const RecordingDiff diff = diff_recordings(level_a.def, a, level_b.def, b,
+                                             game_rules(*game_a, settings.rules_before_step),
+                                             game_rules(*game_b, settings.rules_before_step));
   return report(settings, diff, o);
 }
 

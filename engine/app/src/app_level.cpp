@@ -72,12 +72,15 @@ Level replay_level(const AnyGame& game, const Settings& settings, const Recordin
   return level;
 }
 
-TickRules game_rules(AnyGame& game) {
-  return TickRules{[&game](World& world, const TickInput& input) { game.rules(world, input); },
-                   [&game] { return std::any(std::shared_ptr<const AnyGame>(game.clone())); },
-                   [&game](const std::any& saved) {
-                     game.assign(*std::any_cast<const std::shared_ptr<const AnyGame>&>(saved));
-                   }};
+TickRules game_rules(AnyGame& game, bool before_step) {
+  TickRules rules;
+  rules.save = [&game] { return std::any(std::shared_ptr<const AnyGame>(game.clone())); };
+  rules.restore = [&game](const std::any& saved) {
+    game.assign(*std::any_cast<const std::shared_ptr<const AnyGame>&>(saved));
+  };
+  auto run = [&game](World& world, const TickInput& input) { game.rules(world, input); };
+  (before_step ? rules.before_tick : rules.after_tick) = run;
+  return rules;
 }
 
 }  // namespace fixstep::app::detail

@@ -12,6 +12,8 @@
 
 #include "fixstep/app/app.hpp"
 #include "fixstep/app/game_level.hpp"
+#include "fixstep/render/input_map.hpp"
+#include "fixstep/scene/input_script.hpp"
 
 namespace fixstep::app::detail {
 
@@ -30,6 +32,7 @@ struct UsageError : std::runtime_error {
 struct Options {
   std::optional<std::string> scene;  ///< --scene FILE
   std::string out, record, replay, last_frame;
+  std::string input;              ///< --input SCRIPT (empty: the autopilot or the window plays)
   std::vector<std::string> diff;  ///< --diff A B: the two recordings (else empty)
   std::int64_t frames = 0;        ///< 0: play in a window until quit
   int every = 1;                  ///< --every K

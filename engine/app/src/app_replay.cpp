@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <fixstep/capture/capture.hpp>
-#include <fixstep/capture/capture_dir.hpp>
 #include <fixstep/core/input.hpp>
 #include <fixstep/core/limits.hpp>
 #include <fixstep/core/step_results.hpp>
@@ -18,56 +17,56 @@
 
 #include "app_modes.hpp"
 #include "fixstep/app/game_play.hpp"
+#include "game_capture.hpp"
 
 namespace fixstep::app::detail {
 
 namespace {
 
 /// Draws a verified recording through a Session at 60 frames/s of virtual time, its first
-/// `ticks` ticks with the game's rules: every o.every-th frame (and the last) into o.out, the
+/// `ticks` ticks with the game's rules: every o.every-th frame (and the last) into o.out, each
+/// named by its frame index (0, K, 2K, ...) and listed with its tick in o.out/frames.csv, the
 /// last frame to o.last_frame. A stop request ends it after the frame in progress: the frames
-/// written are whole, the last frame is not written. Returns whether it drew to the end.
+/// written are whole (and listed), the last frame is not written. Returns whether it drew to
+/// the end.
 bool draw_replay(const Settings& settings, const Level& level, const Recording& rec,
                  std::uint64_t ticks, const Options& o) {
   Session session(level.def, level.view);
   session.set_show_energy(settings.show_energy);
   const std::unique_ptr<AnyGame> game = level.game->clone();
-  std::optional<FrameWriter> writer;
-  if (!o.out.empty()) {
-    prepare_capture_dir(o.out, o.overwrite);
-    writer.emplace(o.out, settings.width, settings.height);
-  }
+  const TickRules rules = game_rules(*game, settings.rules_before_step);
+  std::optional<GameCapture> capture;
+  if (!o.out.empty()) capture.emplace(o.out, o.overwrite, settings.width, settings.height);
   const VirtualClock clock(virtual_fps);
   TickInput last;
   Overlay overlay;
   for (std::int64_t frame = 0;; ++frame) {
     if (stop_requested() != 0) {
-      if (writer) writer->finish();
+      if (capture) capture->finish();
       return false;
     }
     if (frame > 0) {
       session.advance_with(clock.frame_seconds(), [&](std::uint64_t t, World& world) {
         if (t >= ticks || stop_requested() != 0) return;
         last = rec.input_at(t);
-        world.step(last);
-        game->rules(world, last);
+        rules.tick(world, last);
       });
     }
     const std::uint64_t tick = session.simulation().tick();
     const bool end = tick >= ticks;
-    const bool write = writer && (frame % o.every == 0 || end);
+    const bool write = capture && (frame % o.every == 0 || end);
     // Trails are sampled every tick (Session), so only the frames kept are drawn.
     if (write || (end && !o.last_frame.empty())) {
       session.show_drag(last.pointer, last.drag_body);
       draw_game(session, *game, overlay, {});
     }
-    if (write) writer->submit(session.renderer().pixels());
+    if (write) capture->add(static_cast<std::uint64_t>(frame), session);
     if (end) break;
   }
   if (!o.last_frame.empty()) {
     write_png(o.last_frame, settings.width, settings.height, session.renderer().pixels());
   }
-  if (writer) writer->finish();
+  if (capture) capture->finish();
   return true;
 }
 
@@ -120,17 +119,22 @@ int sync_test(const AnyGame& prototype, const Settings& settings, const Options&
   check_sync_test_memory(world, o.sync_test);
   const double initial_energy = world.energy().total();
   const std::unique_ptr<AnyGame> game = level.game->clone();
-  SyncTest test(world, o.sync_test, game_rules(*game));
+  SyncTest test(world, o.sync_test, game_rules(*game, settings.rules_before_step));
   InputSampler sampler;
+  std::optional<InputScript> script;
+  if (!o.input.empty()) script = game_script(settings, level, o.input);
+  std::optional<ScriptPlayer> player;
+  if (script) player.emplace(*script);
   FixedStepLoop loop(world);
   const VirtualClock clock(virtual_fps);
   bool torn = false;  // a stop request abandoned a tick half-way
   for (std::int64_t frame = 1; frame < o.frames && !test.mismatch() && stop_requested() == 0;
        ++frame) {
-    game->autopilot(frame, world, sampler);
+    if (!player) game->autopilot(frame, world, sampler);
     try {
       loop.advance_with(clock.frame_seconds(), [&](std::uint64_t t) {
         if (test.mismatch() || stop_requested() != 0) return;
+        if (player) player->feed(t, sampler);
         TickInput input = sampler.sample(t);
         game->prepare(input, world);
         test.step(input);

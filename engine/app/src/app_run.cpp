@@ -91,12 +91,18 @@ Options parse(const Settings& settings, int argc, char** argv) {
   auto* last_opt = cli.add_option("--last-frame", o.last_frame,
                                   "with --frames or --replay: write the last frame as PNG")
                        ->type_name("PNG");
+  auto* input_opt =
+      cli.add_option("--input", o.input,
+                     "with --frames: the input script FILE plays (press / release the game's "
+                     "actions by name), not the autopilot")
+          ->type_name("SCRIPT")
+          ->needs(frames_opt);
   auto* sync_opt = cli.add_option("--sync-test", o.sync_test,
                                   "with --frames: roll every tick back K ticks and re-simulate")
                        ->type_name("K")
                        ->check(at_least_one)
                        ->needs(frames_opt);
-  replay_opt->excludes(record_opt)->excludes(frames_opt);
+  replay_opt->excludes(record_opt)->excludes(frames_opt)->excludes(input_opt);
   diff_opt->excludes(replay_opt)->excludes(record_opt)->excludes(frames_opt)->excludes(out_opt);
   diff_opt->excludes(last_opt);
   cli.footer(bounds_help);
@@ -133,20 +139,26 @@ Options parse(const Settings& settings, int argc, char** argv) {
 /// Returns the paths checked.
 OutputPaths check_outputs(const Settings& settings, const Options& o) {
   const std::string scene = o.scene.value_or(settings.scene_file);
-  OutputPaths paths{.program = settings.name, .overwrite = o.overwrite, .capture_manifest = false};
+  OutputPaths paths{.program = settings.name, .overwrite = o.overwrite};
   if (!scene.empty()) paths.inputs.push_back({"--scene", scene});
   if (!o.replay.empty()) paths.inputs.push_back({"--replay", o.replay});
+  if (!o.input.empty()) paths.inputs.push_back({"--input", o.input});
   for (const std::string& file : o.diff) paths.inputs.push_back({"--diff", file});
   if (!o.record.empty()) paths.outputs.push_back({"--record", o.record});
   if (!o.last_frame.empty()) paths.outputs.push_back({"--last-frame", o.last_frame});
-  if (!o.out.empty()) paths.capture_dir = o.out;
+  if (!o.out.empty()) {
+    paths.capture_dir = o.out;
+    paths.outputs.push_back(
+        {"--out DIR's manifest", (std::filesystem::path(o.out) / "frames.csv").string()});
+  }
   check_output_paths(paths);
-  check_output_before_run("--record", o.record, {scene, o.replay});
-  check_output_before_run("--last-frame", o.last_frame, {scene, o.replay});
+  check_output_before_run("--record", o.record, {scene, o.replay, o.input});
+  check_output_before_run("--last-frame", o.last_frame, {scene, o.replay, o.input});
   return paths;
 }
 
 int run_mode(const AnyGame& game, const Settings& settings, const Options& o) {
+  (void)game_input_map(settings);  // a game's bad bindings: before anything runs
   if (!o.diff.empty()) return diff_files(game, settings, o);
   if (!o.replay.empty()) return replay_file(game, settings, o);
   if (o.sync_test > 0) return sync_test(game, settings, o);
@@ -188,6 +200,31 @@ void check_frames_work(const Level& level, std::int64_t frames, std::uint64_t pe
   check_command_work(claimed, tick_work(level.def) * per_tick,
                      fmt::format("{} (at {:g} frames/s and dt = {:g} s)", flag, virtual_fps,
                                  level.def.settings.dt));
+}
+
+InputMap game_input_map(const Settings& settings) {
+  InputMap map{settings.actions.empty() ? default_actions() : settings.actions, settings.axes,
+               settings.loop_keys};
+  if (const auto problem = map.problem()) {
+    throw std::invalid_argument("Settings: " + *problem);
+  }
+  return map;
+}
+
+ScriptNames script_names(const InputMap& map) {
+  ScriptNames names;
+  for (const ActionBinding& a : map.actions) names.actions.emplace_back(a.name, a.bit);
+  for (const AxisBinding& a : map.axes) names.axes.emplace_back(a.name, a.index);
+  return names;
+}
+
+InputScript game_script(const Settings& settings, const Level& level, const std::string& file) {
+  InputScript script =
+      load_input_script(file, level.def.bodies, script_names(game_input_map(settings)));
+  for (const std::string& w : script.warnings) {
+    std::fprintf(stderr, "%s: warning: %s\n", settings.name.c_str(), w.c_str());
+  }
+  return script;
 }
 
 int run_game_unchecked(const AnyGame& game, const Settings& settings, int argc, char** argv) {

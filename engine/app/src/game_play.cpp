@@ -28,6 +28,7 @@ GamePlay::GamePlay(Level level, const Settings& settings, std::string record_fil
       name_(settings.name),
       record_file_(std::move(record_file)),
       rules_version_(settings.rules_version),
+      rules_before_step_(settings.rules_before_step),
       session_(level_.def, level_.view),
       game_(level_.game->clone()) {
   session_.set_show_energy(settings.show_energy);
@@ -49,10 +50,12 @@ void GamePlay::start_recording() {
 void GamePlay::advance(double seconds) {
   session_.advance_with(seconds, [&](std::uint64_t tick, World& world) {
     if (stop_requested() != 0) return;  // the run ends after this frame (the caller checks)
+    if (script_) script_->feed(tick, sampler_);  // --input: the script plays
     TickInput input = sampler_.sample(tick);
     game_->prepare(input, world);
+    if (rules_before_step_) game_->rules(world, input);
     world.step(input);
-    game_->rules(world, input);
+    if (!rules_before_step_) game_->rules(world, input);
     if (recorder_) record(input, world);
     last_ = input;
   });
@@ -105,6 +108,7 @@ void GamePlay::restart() {
   game_ = level_.game->clone();
   sampler_ = {};
   last_ = {};
+  if (script_) script_->restart();
   if (!record_file_.empty()) start_recording();
 }
 

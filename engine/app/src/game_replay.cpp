@@ -24,7 +24,7 @@ GameReplay replay_game(const AnyGame& game, const Settings& settings, const Reco
   r.world = std::make_unique<World>(r.level.def);
   r.initial_energy = r.world->energy().total();
   r.game = r.level.game->clone();
-  r.report = replay(*r.world, rec, game_rules(*r.game));
+  r.report = replay(*r.world, rec, game_rules(*r.game, settings.rules_before_step));
   return r;
 }
 

@@ -13,6 +13,7 @@ void feed(const UserEvents& ev, InputSampler& sampler, const Camera& camera, int
   for (const UserEvents::ButtonEdge& edge : ev.edges) {
     edge.press ? sampler.press(edge.buttons) : sampler.release(edge.buttons);
   }
+  for (std::size_t i = 0; i < max_axes; ++i) sampler.set_axis(i, ev.axes[i]);
   if (ev.pointer_seen) {
     sampler.set_pointer(screen_to_world(camera, ev.pointer_x, ev.pointer_y, width, height));
   }

@@ -13,6 +13,7 @@
 #include "fixstep/core/stability.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "fixstep/render/hud_layout.hpp"
 
 namespace fixstep {
 
@@ -109,7 +110,12 @@ void Session::render(const DrawList* overlay) {
     hud_.insert(hud_.end(), status_lines_.begin(),
                 status_lines_.begin() + static_cast<std::ptrdiff_t>(status_count_));
   }
-  reserve_hud(hud_.size());
+  // The band kept free of the world holds the lines as drawn, wrapped to the frame's width.
+  if (auto_view_ && show_hud_) {
+    reserve_hud(std::max(hud_.size(), layout_hud(hud_, renderer_.hud_text_scale(), hud_corner_,
+                                                 renderer_.width(), renderer_.height())
+                                          .lines.size()));
+  }
   renderer_.draw_scene(frame_);
   if (overlay != nullptr) overlay->draw(renderer_);
   renderer_.draw_hud(hud_);

@@ -264,14 +264,25 @@ FrameWriter::FrameWriter(std::filesystem::path dir, int width, int height, PngSe
           FramePipeline::Pending::consume) {}
 
 std::filesystem::path FrameWriter::submit(std::span<const std::uint8_t> rgba) {
+  return submit(rgba, next_frame_);
+}
+
+std::filesystem::path FrameWriter::submit(std::span<const std::uint8_t> rgba, std::uint64_t frame) {
   const std::size_t bytes =
       static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4;
   if (rgba.size() != bytes) {
     throw std::invalid_argument(fmt::format("FrameWriter: frame {} has {} bytes, {}x{} RGBA8 is {}",
-                                            submitted_, rgba.size(), width_, height_, bytes));
+                                            frame, rgba.size(), width_, height_, bytes));
   }
-  pipeline_.submit(rgba, submitted_);
-  return frame_path(dir_, submitted_++);
+  if (submitted_ > 0 && frame < next_frame_) {
+    throw std::invalid_argument(
+        fmt::format("FrameWriter: frame {} submitted after frame {}: frames go in increasing order",
+                    frame, next_frame_ - 1));
+  }
+  pipeline_.submit(rgba, frame);
+  ++submitted_;
+  next_frame_ = frame + 1;
+  return frame_path(dir_, frame);
 }
 
 void FrameWriter::finish() {

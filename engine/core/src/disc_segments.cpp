@@ -25,6 +25,7 @@ void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t
     if (!segment_touch(s, x - u.x * tick.dt, y - u.y * tick.dt, t)) continue;  // a neighbour's
     const double gap = t.distance - d.radius;
     if (gap > slop * d.radius) continue;
+    if (!segment_acts(s, x0_[k], y0_[k], d.radius, t.nx, t.ny, gap)) continue;  // one-way
     // Still apart and closing faster than a tick of acceleration: the next tick's impact.
     const double vn = (evx_[k] - u.x) * t.nx + (evy_[k] - u.y) * t.ny;
     const double cn = motion_[k].ax * t.nx + motion_[k].ay * t.ny;

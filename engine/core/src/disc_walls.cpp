@@ -79,7 +79,8 @@ bool DiscContacts<Real>::next_wall_event(const Tick& tick, std::uint32_t k, doub
       const SegmentMotion m{x.x - u.x * now, x.y - u.y * now, v.x - u.x, v.y - u.y, a.x, a.y};
       SegmentTouch at;
       const double s = segment_impact(set.shapes()[i], m, r, h, tol, vtol, at);
-      if (s < first && impact_speed(V2{at.nx, at.ny}, V2{u.x, u.y}, s)) {
+      if (s < first && impact_speed(V2{at.nx, at.ny}, V2{u.x, u.y}, s) &&
+          segment_acts(set.shapes()[i], x0_[k], y0_[k], r, at.nx, at.ny, 0.0)) {
         first = s, wall = static_cast<std::uint32_t>(tick.planes.size() + i);
       }
     }

@@ -45,6 +45,7 @@ void InputSampler::sample(std::uint64_t tick, TickInput& out) {
   out.pressed = pressed_;
   out.released = released_;
   out.pointer = pointer_;
+  out.axes = axes_;
   out.drag_body = drag_body_;
   out.bodies.assign(forces_.begin(), forces_.end());
   out.bodies.insert(out.bodies.end(), events_.begin(), events_.end());

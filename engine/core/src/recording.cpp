@@ -57,6 +57,7 @@ void hash_shape(Fnv1a& h, const ShapeDef& s) {
   h.add_optional(s.restitution, [&](double e) { h.add(e); });
   h.add(s.filter.category), h.add(s.filter.mask), h.add(s.filter.group), h.add(s.sensor);
   if (s.rolling_resistance != 0.0) h.add(std::uint64_t{0x4011}), h.add(s.rolling_resistance);
+  if (s.one_way) h.add(std::uint64_t{0x0e1a});  // absent: the hash from before one-way shapes
 }
 
 void hash_body(Fnv1a& h, const BodyDef& b) {
@@ -181,6 +182,7 @@ std::uint64_t definition_hash(const WorldDef& def) {
               std::uint64_t{
                   fixstep::defined_index(s.body, def.bodies.size()).value_or(def.bodies.size())});
       }
+      if (s.one_way) h.add(std::uint64_t{0x0e1a});  // absent: a two-sided segment, as before
     }
   }
   if (!def.joints.empty()) hash_joints(h, def);  // absent: the hash from before joints
@@ -333,8 +335,7 @@ ReplayReport replay(World& sim, const Recording& rec, const TickRules& rules) {
       in = rec.inputs[next_change++];
     }
     in.tick = t;
-    sim.step(in);
-    if (rules) rules.after_tick(sim, in);
+    rules.tick(sim, in);
     report.ticks = t + 1;
     if (report.ticks % 1024 == 0) report_work_progress("replay", "tick", report.ticks, rec.ticks);
     if (next_hash < rec.hashes.size() && rec.hashes[next_hash].first == t + 1) {

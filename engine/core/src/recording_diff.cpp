@@ -119,8 +119,7 @@ struct Replayer {
       input = rec.inputs[next_change++];
     }
     input.tick = t;
-    world.step(input);
-    if (rules) rules.after_tick(world, input);
+    rules.tick(world, input);
     if (reproduced.mismatch || next_hash >= hashes.size() || hashes[next_hash].first != t + 1) {
       return;
     }
@@ -150,7 +149,10 @@ bool same_input(const TickInput& a, const TickInput& b) {
   return same_vec(a.push, b.push) && a.held == b.held && a.pressed == b.pressed &&
          a.released == b.released && same_vec(a.pointer, b.pointer) && a.drag_body == b.drag_body &&
          std::equal(a.bodies.begin(), a.bodies.end(), b.bodies.begin(), b.bodies.end(),
-                    same_body_input);
+                    same_body_input) &&
+         std::equal(a.axes.begin(), a.axes.end(), b.axes.begin(),
+                    [](double x, double y) { return same_bits(x, y); }) &&
+         a.joints == b.joints;
 }
 
 RecordingDiff compare_recordings(const Recording& a, const Recording& b) {

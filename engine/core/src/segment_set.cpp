@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "disc_toi.hpp"
+#include "one_way.hpp"
 
 namespace fixstep {
 
@@ -150,6 +151,21 @@ double segment_impact(const SegmentShape& s, const SegmentMotion& m, double r, d
   return first;
 }
 
+bool segment_acts(const SegmentShape& s, double x0, double y0, double r, double nx, double ny,
+                  double separation) {
+  if (!s.one_way) return true;
+  const Vec2 up = one_way_segment_up(s.dx, s.dy);
+  const double slop = one_way_disc_slop * r;
+  // Where the disc was at the tick's start: its closest feature there (or, where a
+  // neighbour's feature holds it, the segment's line).
+  SegmentTouch start;
+  if (!segment_touch(s, x0, y0, start)) {
+    start = SegmentTouch{up.x, up.y, 0.0, (x0 - s.ax) * up.x + (y0 - s.ay) * up.y};
+  }
+  return one_way_blocks(up, Vec2{start.nx, start.ny}, start.distance - r, slop) &&
+         one_way_blocks(up, Vec2{nx, ny}, separation, slop);
+}
+
 namespace {
 SegmentShape shape_of(const SegmentDef& def) {
   SegmentShape s;
@@ -165,6 +181,7 @@ SegmentShape shape_of(const SegmentDef& def) {
   }
   s.has_next = def.next.has_value() && !(*def.next == def.b);
   s.restitution = def.restitution, s.friction = def.friction;
+  s.one_way = def.one_way;
   return s;
 }
 }  // namespace

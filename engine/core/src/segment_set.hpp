@@ -22,7 +22,19 @@ struct SegmentShape {
   double pdx = 0, pdy = 0;                ///< unit direction prev -> a (has_prev)
   double restitution = 0, friction = 0;
   bool has_prev = false, has_next = false;
+  bool one_way = false;  ///< SegmentDef::one_way: up is the normal (nx, ny)
 };
+
+/// Whether segment s acts on a disc of radius r (m) at a contact of unit normal (nx, ny) (from
+/// the segment towards the disc's centre) and `separation` (m, < 0: overlap; 0 at a time of
+/// impact), the disc's centre having been at (x0, y0) (m, in the segment's frame at the
+/// tick's start) when the tick began. Always for a two-sided segment; for a one-way one the
+/// rule of one_way.hpp (slop one_way_disc_slop r) holds both for the disc's closest feature
+/// at the tick's start (where a neighbour holds it: its height over the segment's line, as if
+/// on the face) and for this contact, so a disc that started below, beside an end or half-way
+/// through passes, and one that slipped past an end within the tick is not lifted out.
+[[nodiscard]] bool segment_acts(const SegmentShape& s, double x0, double y0, double r, double nx,
+                                double ny, double separation);
 
 /// Where a disc touches a segment: the contact's unit normal (from the segment to the disc's
 /// centre) and the plane through the closest point, n·x = offset (m); `distance` from the

@@ -105,7 +105,8 @@ void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
 
 // Whether the tick has a row of this pair of shapes (a key names both, the body's among them).
 bool ShapeWorld::has_row(std::uint64_t pair) const {
-  return std::binary_search(row_keys_.begin(), row_keys_.end(), pair);
+  return std::binary_search(row_keys_.begin(), row_keys_.end(), pair) ||
+         std::binary_search(disabled_.begin(), disabled_.end(), pair);
 }
 
 double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick) {
@@ -126,7 +127,11 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
       const Vec2 n = pl.normal / len;
       const double off = pl.offset / len;
       if (plane_distance(n, off, e.convex, start) < 2.0 * target) continue;  // resting on it
-      first = std::min(first, plane_toi(n, off, e.convex, sweep, target));
+      const double t = plane_toi(n, off, e.convex, sweep, target);
+      if (e.one_way && t < 1.0 && !(dot(-n, rotate(pose_at(sweep, t).q, e.up)) > one_way_min_dot)) {
+        continue;  // its one-way shape meets the plane from below: passes
+      }
+      first = std::min(first, t);
     }
     for (std::uint32_t q = 0; q < tick.segments.size(); ++q) {
       const SegmentDef& seg = tick.segments[q];
@@ -136,7 +141,14 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
       const Sweep still{{0, 0}, {0, 0}, 0, 0};
       if (distance(c, Pose{}, e.convex, start).distance < 2.0 * target) continue;
       const Toi toi = time_of_impact(c, still, e.convex, sweep, target, 0.25 * target, first);
-      if (toi.hit) first = std::min(first, toi.t);
+      if (!toi.hit) continue;
+      if (seg.one_way || e.one_way) {  // the first touch must lean up for each one-way side
+        const Pose hit = pose_at(sweep, toi.t);
+        const Manifold m = collide_segment(seg, e.convex, hit, 4.0 * slop);
+        if (seg.one_way && !one_way_touch(m, one_way_up_of(seg))) continue;
+        if (e.one_way && !one_way_touch(m, -rotate(hit.q, e.up))) continue;
+      }
+      first = std::min(first, toi.t);
     }
     for (const std::uint32_t o : statics_) {
       const Pose at = pose(o);
@@ -150,7 +162,14 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
         if (distance(f.convex, at, e.convex, start).distance < 2.0 * target) continue;
         const Toi toi =
             time_of_impact(f.convex, still, e.convex, sweep, target, 0.25 * target, first);
-        if (toi.hit) first = std::min(first, toi.t);
+        if (!toi.hit) continue;
+        if (f.one_way || e.one_way) {  // the first touch must lean up for each one-way side
+          const Pose hit = pose_at(sweep, toi.t);
+          const Manifold m = collide(f.convex, at, e.convex, hit, 4.0 * slop);
+          if (f.one_way && !one_way_touch(m, rotate(at.q, f.up))) continue;
+          if (e.one_way && !one_way_touch(m, -rotate(hit.q, e.up))) continue;
+        }
+        first = std::min(first, toi.t);
       }
     }
   }
@@ -236,7 +255,7 @@ void ShapeWorld::add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t 
 }
 
 void ShapeWorld::collect(const ShapeTick& tick) {
-  rows_.clear();
+  rows_.clear(), disabled_.clear();
   auto mix_friction = [](double a, double b) { return std::sqrt(a * b); };
   for (const Candidate& c : candidates_) {
     const ShapeEntry& sa = shapes_[c.a];
@@ -246,6 +265,11 @@ void ShapeWorld::collect(const ShapeTick& tick) {
         collide(sa.convex, start_pose(sa.owner), sb.convex, start_pose(sb.owner), margin);
     if (m.count == 0) continue;
     const std::uint64_t pair = std::uint64_t{sa.key} << 32 | sb.key;
+    if ((sa.one_way || sb.one_way || tick.pre_solve) &&
+        !contact_acts(tick, m, c.a, c.b, -1, -1, nullptr)) {
+      disabled_.push_back(pair);
+      continue;
+    }
     const double rolling =
         sa.rolling > 0.0 || sb.rolling > 0.0
             ? std::max(sa.rolling, sb.rolling) * std::max(sa.convex.radius, sb.convex.radius)
@@ -264,20 +288,33 @@ void ShapeWorld::collect(const ShapeTick& tick) {
       const double len = det::hypot(pl.normal.x, pl.normal.y);
       const Manifold m = collide_plane(pl.normal / len, pl.offset / len, e.convex, at, margin);
       if (m.count == 0) continue;
+      const std::uint64_t pair = std::uint64_t{0xF0000000u | p} << 32 | e.key;
+      if ((e.one_way || tick.pre_solve) &&
+          !contact_acts(tick, m, none, k, static_cast<int>(p), -1, nullptr)) {
+        disabled_.push_back(pair);
+        continue;
+      }
       add_manifold(m, none, e.owner, mix_friction(pl.friction, e.friction),
-                   std::max(pl.restitution, e.restitution), e.rolling * e.convex.radius,
-                   std::uint64_t{0xF0000000u | p} << 32 | e.key);
+                   std::max(pl.restitution, e.restitution), e.rolling * e.convex.radius, pair);
     }
     for (std::uint32_t s = 0; s < tick.segments.size(); ++s) {
       const SegmentDef& seg = tick.segments[s];
       if (!boxes_overlap(boxes_[k], segment_bounds(seg))) continue;
       const Manifold m = collide_segment(seg, e.convex, at, margin);
       if (m.count == 0) continue;
+      const std::uint64_t pair = std::uint64_t{0xE0000000u | s} << 32 | e.key;
+      if (e.one_way || seg.one_way || tick.pre_solve) {
+        const Vec2 up = seg.one_way ? one_way_up_of(seg) : Vec2{};
+        if (!contact_acts(tick, m, none, k, -1, static_cast<int>(s), seg.one_way ? &up : nullptr)) {
+          disabled_.push_back(pair);
+          continue;
+        }
+      }
       add_manifold(m, none, e.owner, mix_friction(seg.friction, e.friction),
-                   std::max(seg.restitution, e.restitution), e.rolling * e.convex.radius,
-                   std::uint64_t{0xE0000000u | s} << 32 | e.key);
+                   std::max(seg.restitution, e.restitution), e.rolling * e.convex.radius, pair);
     }
   }
+  std::sort(disabled_.begin(), disabled_.end());
 }
 
 void ShapeWorld::detect_sensors() {

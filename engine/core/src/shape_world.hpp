@@ -32,9 +32,11 @@
 #include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/pre_solve.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "one_way.hpp"
 #include "shape_geom.hpp"
 
 namespace fixstep::detail {
@@ -71,6 +73,8 @@ struct ShapeEntry {
   CollisionFilter filter{};
   bool sensor = false;
   std::uint32_t key = 0;  ///< (entity slot << 6) | shape index: stable across rebuilds
+  bool one_way = false;   ///< ShapeDef::one_way
+  Vec2 up{0.0, 1.0};      ///< a one-way shape's up in its body's frame (its frame's +y)
 };
 
 /// The start and running state of one shaped body in a tick (double; the kernel's Real state
@@ -139,6 +143,11 @@ struct ShapeTick {
   /// Pairs of bodies (bodies_ indices, lower << 32 | higher, sorted) whose shapes do not
   /// collide: the two ends of a joint without JointDef::collide_connected.
   std::span<const std::uint64_t> unpaired;
+  /// The pre-solve hook (World::set_pre_solve; null: none) and its context, and each body's
+  /// handle by dense index (the kernel's), for the contacts it is shown.
+  PreSolveFn pre_solve = nullptr;
+  void* pre_solve_context = nullptr;
+  std::span<const Entity> entities;
 };
 
 /// What one tick's shape contacts did, for the statistics and the energy account.
@@ -209,6 +218,9 @@ class ShapeWorld {
   std::vector<Candidate> sensor_candidates_;  ///< a: the sensor shape
   std::vector<Sensed> sensed_;
   std::vector<ShapeRow> rows_;
+  /// The pair keys (as ShapeRow::pair) of the manifolds a one-way rule or the pre-solve hook
+  /// disabled this tick, sorted: continuous collision leaves them alone as it does a row's.
+  std::vector<std::uint64_t> disabled_;
   /// For the continuous check, made at the tick's first fast body: the rows' pair keys sorted
   /// (what a fast body already has a row with) and the static bodies.
   std::vector<std::uint64_t> row_keys_;
@@ -227,6 +239,18 @@ class ShapeWorld {
   [[nodiscard]] bool has_row(std::uint64_t pair) const;
   bool broadphase(double dt, ShapeTally& tally);
   void collect(const ShapeTick& tick);
+  /// Whether manifold m between shapes_[a] and shapes_[b] (a may be `none`: a plane or
+  /// segment, `surface` its index) acts this tick: the one-way rule of each one-way shape
+  /// (one_way.hpp; `segment_up` the up of a one-way segment A, else null) and then the
+  /// pre-solve hook (shape_one_way.cpp).
+  [[nodiscard]] bool contact_acts(const ShapeTick& tick, const Manifold& m, std::uint32_t a,
+                                  std::uint32_t b, int plane, int segment,
+                                  const Vec2* segment_up) const;
+  /// Whether continuous collision stops a fast body at its first touch of a one-way shape or
+  /// segment of world up `up` (m: their manifold at the touch): the touch's normal leans up.
+  [[nodiscard]] static bool one_way_touch(const Manifold& m, Vec2 up) {
+    return m.count > 0 && dot(m.normal, up) > one_way_min_dot;
+  }
   void solve_rolling(ShapeRow& r, double normal_impulse);
   void turn(const ShapeRow& r, double l);  ///< an angular impulse l on B, −l on A
   void add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,

@@ -34,8 +34,7 @@ void SyncTest::remember(std::uint64_t tick) {
 }
 
 void SyncTest::tick_with_rules(const TickInput& input) {
-  sim_.step(input);
-  if (rules_) rules_.after_tick(sim_, input);
+  rules_.tick(sim_, input);
 }
 
 bool SyncTest::check(std::uint64_t tick) {

@@ -140,10 +140,10 @@ std::size_t World::add_segment(const SegmentDef& def) {
   return visit([&](auto& w) { return w.add_segment(def); });
 }
 std::size_t World::add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                                bool closed, Entity body) {
+                                bool closed, Entity body, bool one_way) {
   std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
   const std::size_t first = segments().size();
-  for (SegmentDef& s : chain) s.body = body, add_segment(s);
+  for (SegmentDef& s : chain) s.body = body, s.one_way = one_way, add_segment(s);
   return first;
 }
 std::span<const SegmentDef> World::segments() const {
@@ -164,8 +164,15 @@ const StepProfile& World::profile() const {
 std::span<const Impact> World::impacts() const {
   return visit([](const auto& w) { return w.impacts(); });
 }
+void World::set_pre_solve(PreSolveFn fn, void* context) {
+  state_->pre_solve = fn, state_->pre_solve_context = fn ? context : nullptr;
+}
+
 void World::step(const TickInput& input) {
-  visit([&](auto& w) { w.step(input); });
+  visit([&](auto& w) {
+    w.set_pre_solve(state_->pre_solve, state_->pre_solve_context);
+    w.step(input);
+  });
   queries_changed();
 }
 void World::step() {
@@ -323,15 +330,29 @@ void World::build(const WorldDef& def) {
 }
 
 void WorldDef::add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                            bool closed, Entity body) {
+                            bool closed, Entity body, bool one_way) {
   std::vector<SegmentDef> chain = polyline_segments(points, restitution, friction, closed);
-  for (SegmentDef& s : chain) s.body = body;
+  for (SegmentDef& s : chain) s.body = body, s.one_way = one_way;
   segments.insert(segments.end(), chain.begin(), chain.end());
 }
 
 Entity WorldDef::add_body(BodyDef body) {
   bodies.push_back(std::move(body));
   return fixstep::defined_entity(bodies.size() - 1);
+}
+
+Entity WorldDef::find_body(std::string_view name) const {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].name == name) return fixstep::defined_entity(i);
+  }
+  return null_entity;
+}
+
+Joint WorldDef::find_joint(std::string_view name) const {
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    if (joints[i].name == name) return Joint{static_cast<std::uint32_t>(i + 1), 1};
+  }
+  return Joint{};
 }
 
 double energy_balance(const World& sim, double initial_energy) {

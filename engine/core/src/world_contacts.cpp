@@ -147,6 +147,7 @@ struct detail::PlaneWay {
   double first = 0;      ///< when one first did, s
   V2 free_offset;        ///< the free motion's offset δ
   bool bounced = false;  ///< some impact was a bounce (the disc phases start from it)
+  Vec2 start;            ///< its centre at the tick's start (one-way segments), m
 };
 
 /// What resolve_contacts counts over the bodies of a tick.
@@ -192,6 +193,7 @@ void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t k, PlaneTally&
   w.m = Motion{x0, v0 + offset, (1.0 / dt) * (v1 - v0), offset};
   w.surfaces = Surfaces{.a_free = w.m.a};
   w.free_offset = offset;
+  w.start = Vec2{x0.x, x0.y};
   if (rolling_ && inv_inertia_[j] > 0.0) {
     w.turn = Spin{double(spin_[j]), mass_[j] * r * r * inv_inertia_[j]};
     w.spin = &w.turn;
@@ -208,7 +210,7 @@ void detail::WorldKernel<Real>::push_out_of_surfaces(PlaneWay& w, double r, doub
   for (const PlaneDef& p : planes_) w.touched = push_out(w.m, p, r, rel) || w.touched;  // at 0
   for (int s = 0; s < 4 && !segments_.empty(); ++s) {
     const double tol = rel * (std::abs(w.m.x.x) + std::abs(w.m.x.y) + r);
-    if (!segment_overlap(w.m.x.x, w.m.x.y, r, tol, w.m.t, w.local, w.local_u)) break;
+    if (!segment_overlap(w.m.x.x, w.m.x.y, r, tol, w.m.t, w.start, w.local, w.local_u)) break;
     const V2 u{w.local_u.x, w.local_u.y};
     if (!push_out_moving(w.m, w.local, r, rel, u, w.surfaces.work)) break;
     w.touched = true;
@@ -242,8 +244,8 @@ void detail::WorldKernel<Real>::follow_plane_impacts(PlaneWay& w, std::uint32_t 
     std::uint64_t looked = 0;
     if (!segments_.empty()) {
       const detail::SegmentMotion sm{m.x.x, m.x.y, m.v.x, m.v.y, m.a.x, m.a.y};
-      const double s =
-          first_segment_hit(sm, m.t, r, horizon, rel, vtol, w.local, w.local_u, segment, looked);
+      const double s = first_segment_hit(sm, m.t, r, horizon, rel, vtol, w.start, w.local,
+                                         w.local_u, segment, looked);
       if (s < first) first = s, hit = &w.local;
     }
     if (!hit) return;
@@ -300,7 +302,7 @@ bool detail::WorldKernel<Real>::touch_at_tick_end(PlaneWay& w, V2 x1, V2 u1, V2 
     w.bounced = impact(m, p, r, dt, w.spin) || w.bounced;
     w.touched = true;
   }
-  if (!segments_.empty() && segment_overlap(x1.x, x1.y, r, 0.0, dt, w.local, w.local_u)) {
+  if (!segments_.empty() && segment_overlap(x1.x, x1.y, r, 0.0, dt, w.start, w.local, w.local_u)) {
     if (!w.touched) m = Motion{x1, u1, m.a, offset, dt, 0.0};
     const V2 u{w.local_u.x, w.local_u.y};
     w.bounced = impact_moving(m, w.local, r, dt, w.spin, u, w.surfaces.work) || w.bounced;

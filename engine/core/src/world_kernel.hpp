@@ -29,6 +29,7 @@
 #include "fixstep/core/entity.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/integrators.hpp"
+#include "fixstep/core/pre_solve.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/stop_request.hpp"
@@ -323,6 +324,11 @@ class WorldKernel {
   /// work is not in the energy account (an external force, like push). A non-finite pointer
   /// leaves the velocity as it was.
   void step(const TickInput& input = {});
+  /// The pre-solve hook the shape phase calls (World::set_pre_solve; World::step sets it before
+  /// each tick, so a restored or copied kernel's is never stale). Not state.
+  void set_pre_solve(PreSolveFn fn, void* context) {
+    pre_solve_ = fn, pre_solve_context_ = context;
+  }
   /// Bytes one tick moves between memory and the core per body (STREAM's convention: each
   /// array element read or written counts once, write-allocate traffic is not counted):
   /// x, y, vx, vy read and written, plus each coefficient array the kernel reads, plus
@@ -655,15 +661,17 @@ class WorldKernel {
   std::vector<double> plane_work_;
   /// The deepest segment contact of a disc (x, y, m; radius r) at `time` (s into the tick)
   /// overlapping it by more than tol (m), as its local plane there (friction and restitution
-  /// the segment's) and the segment's velocity u (m/s; 0 static); false: none.
-  bool segment_overlap(double x, double y, double r, double tol, double time, PlaneDef& plane,
-                       Vec2& u);
+  /// the segment's) and the segment's velocity u (m/s; 0 static); false: none. `start` is the
+  /// disc's centre at the tick's start (m), for one-way segments (segment_acts).
+  bool segment_overlap(double x, double y, double r, double tol, double time, Vec2 start,
+                       PlaneDef& plane, Vec2& u);
   /// The first segment impact of a disc moving as m from `time` (s into the tick) over
   /// [0, horizon] (s), or infinity; plane gets the contact's local plane at that moment, u
-  /// the segment's velocity, index the segment; `looked` the segments tested.
+  /// the segment's velocity, index the segment; `looked` the segments tested; `start` the
+  /// disc's centre at the tick's start (m), for one-way segments (segment_acts).
   double first_segment_hit(const SegmentMotion& m, double time, double r, double horizon,
-                           double rel, double vtol, PlaneDef& plane, Vec2& u, std::uint32_t& index,
-                           std::uint64_t& looked);
+                           double rel, double vtol, Vec2 start, PlaneDef& plane, Vec2& u,
+                           std::uint32_t& index, std::uint64_t& looked);
   /// Puts every segment a kinematic body carries where its body is, at its velocity.
   void place_segments();
 
@@ -706,9 +714,12 @@ class WorldKernel {
   void place_movers();
   void finish_movers();
   [[nodiscard]] MoverGeometry mover_geometry(const MoverRecord& m, Entity e) const;
-  void gather_mover_obstacles(std::size_t self, const Aabb& box, const CollisionFilter& filter);
+  void gather_mover_obstacles(std::size_t self, const Aabb& box, const CollisionFilter& filter,
+                              const MoverGeometry& g, Vec2 start);
   void push_by_mover(const MoverContact& c, Vec2 velocity, double limit);
   void mover_outcome(MoverRecord& m, Vec2 v, Vec2 attempt, std::span<const MoverContact> cs);
+  PreSolveFn pre_solve_ = nullptr;  ///< set_pre_solve: not state
+  void* pre_solve_context_ = nullptr;
   // Joints (world_joints.cpp), dense, keyed by Joint handles stored as Entity-shaped keys: each
   // one's record (definition, geometry, input, accumulated impulses: state) and handle; the
   // pairs of shape-world bodies they keep from colliding (rebuilt with the shapes); the

@@ -86,7 +86,7 @@ void detail::WorldKernel<Real>::place_segments() {
 
 template <class Real>
 bool detail::WorldKernel<Real>::segment_overlap(double x, double y, double r, double tol,
-                                                double time, PlaneDef& plane, Vec2& u) {
+                                                double time, Vec2 start, PlaneDef& plane, Vec2& u) {
   segments_.query(x - r, y - r, x + r, y + r, segment_found_);
   segment_tests_ += segment_found_.size();
   double deepest = -tol;
@@ -95,7 +95,8 @@ bool detail::WorldKernel<Real>::segment_overlap(double x, double y, double r, do
     const SegmentShape& s = segments_.shapes()[i];
     const Vec2 v = segments_.velocity(i);  // the disc seen from the segment's frame
     SegmentTouch t;
-    if (!segment_touch(s, x - v.x * time, y - v.y * time, t) || !(t.distance - r < deepest)) {
+    if (!segment_touch(s, x - v.x * time, y - v.y * time, t) || !(t.distance - r < deepest) ||
+        !segment_acts(s, start.x, start.y, r, t.nx, t.ny, t.distance - r)) {
       continue;
     }
     deepest = t.distance - r;
@@ -112,8 +113,8 @@ bool detail::WorldKernel<Real>::segment_overlap(double x, double y, double r, do
 template <class Real>
 double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion& m, double time, double r,
                                                     double horizon, double rel, double vtol,
-                                                    PlaneDef& plane, Vec2& u, std::uint32_t& index,
-                                                    std::uint64_t& looked) {
+                                                    Vec2 start, PlaneDef& plane, Vec2& u,
+                                                    std::uint32_t& index, std::uint64_t& looked) {
   const double reach = disc_reach(std::sqrt(m.vx * m.vx + m.vy * m.vy),
                                   std::sqrt(m.ax * m.ax + m.ay * m.ay), horizon, r);
   segments_.query(m.x - reach, m.y - reach, m.x + reach, m.y + reach, segment_found_);
@@ -131,7 +132,7 @@ double detail::WorldKernel<Real>::first_segment_hit(const SegmentMotion& m, doub
     }
     SegmentTouch t;
     const double when = segment_impact(s, moving ? rel_m : m, r, horizon, tol, vtol, t);
-    if (!(when < first)) continue;
+    if (!(when < first) || !segment_acts(s, start.x, start.y, r, t.nx, t.ny, 0.0)) continue;
     first = when, index = i, u = v;
     const double offset = t.offset + (t.nx * v.x + t.ny * v.y) * (time + when);
     plane = PlaneDef{Vec2{t.nx, t.ny}, moving ? offset : t.offset, s.restitution, s.friction};

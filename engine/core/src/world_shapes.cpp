@@ -165,6 +165,10 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
       b.thinnest = k == 0 ? thinnest(c) : std::min(b.thinnest, thinnest(c));
       add_shape(c, owner, s.friction, s.restitution, s.rolling_resistance, s.filter, s.sensor,
                 static_cast<std::uint32_t>(e.slot() << 6 | k));
+      if (s.one_way) {  // its frame's +y in the body's frame
+        const Rot q = rot_of(s.angle);
+        w.shapes_.back().one_way = true, w.shapes_.back().up = rotate(q, Vec2{0.0, 1.0});
+      }
     }
     w.bodies_.push_back(b);
   }
@@ -329,6 +333,8 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.segments = segments_.defs();
   tick.joints = joint_records_;
   tick.unpaired = joint_unpaired_;
+  tick.pre_solve = pre_solve_, tick.pre_solve_context = pre_solve_context_;
+  tick.entities = bodies_.dense;
   if (sleep_) {  // sleepers solved as static; one paired with a mover wakes its island
     mark_shape_sleepers();
     tick.wake = &WorldKernel::wake_shape_sleepers, tick.wake_context = this;

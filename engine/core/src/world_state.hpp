@@ -26,6 +26,10 @@ struct WorldState {
   std::vector<StabilityFinding> warnings;  ///< World::warnings()
   /// The queries' grid: a cache, empty in a copy (world_queries.cpp: query_grid).
   mutable CachePtr<QueryGrid, QueryGridDeleter> queries;
+  /// World::set_pre_solve's hook and context: not state (no snapshot holds it), handed to the
+  /// kernel at each step.
+  PreSolveFn pre_solve = nullptr;
+  void* pre_solve_context = nullptr;
 };
 
 struct SnapshotState {

@@ -54,6 +54,10 @@ void detail::WorldKernel<Real>::validate_component(const Appearance& c, const st
                     "finite, > 0 and <= 1e12 m");
   check_value<Real>(c.trail_time, c.trail_time > 0.0 && c.trail_time <= max_trail_time, who,
                     "trail_time", "finite, > 0 and <= 10 s");
+  for (const double side : {c.sprite_size.x, c.sprite_size.y}) {  // drawing only
+    check_value<Real>(side, std::isfinite(side) && side >= 0.0 && side <= max_state_magnitude, who,
+                      "sprite_size", "finite, >= 0 and <= 1e12 m");
+  }
 }
 
 template <class Real>

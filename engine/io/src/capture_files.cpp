@@ -32,7 +32,7 @@ std::vector<std::filesystem::path> capture_files_in(const std::filesystem::path&
   return files;
 }
 
-std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite, bool manifest) {
+std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite) {
   if (overwrite) return {};
   const std::vector<std::filesystem::path> old = capture_files_in(dir);
   if (old.empty()) return {};
@@ -45,9 +45,7 @@ std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite
       "--out {} already holds a capture ({} frames, {}): a new one would mix with it; give a "
       "new or empty directory, or --overwrite to remove the old capture's files first",
       dir.string(), frames,
-      has_manifest ? "its frames.csv"
-      : manifest   ? "no frames.csv: an unfinished or killed run"
-                   : "the frames of an earlier run");
+      has_manifest ? "its frames.csv" : "no frames.csv: an unfinished or killed run");
 }
 
 }  // namespace fixstep

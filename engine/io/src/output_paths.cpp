@@ -152,8 +152,7 @@ void check_output_paths(const OutputPaths& c) {
   refuse_kinds(c);
   refuse_same_files(c);
   if (c.capture_dir) {
-    if (const std::string e = capture_dir_refusal(*c.capture_dir, c.overwrite, c.capture_manifest);
-        !e.empty()) {
+    if (const std::string e = capture_dir_refusal(*c.capture_dir, c.overwrite); !e.empty()) {
       throw PathRefused(fmt::format("{}: {}", c.program, e));
     }
   }

@@ -11,9 +11,12 @@
 //        [KIND=SLOT:GEN,X,Y]...   KIND: force, impulse, velocity, torque, angular_impulse,
 //                                 angular_velocity or target_angle (body_input_kind_name)
 //        [joint.KIND=SLOT:GEN,X,Y]...   a joint's input (joint_input_kind_name), after them
+//        [axis.I=V]...   a game's axis I reading V (TickInput::axes; 0 is not written), last
 // (one line; a body is named by its handle Entity{SLOT, GEN}, per-body inputs in order; the
 // angular kinds carry their value in X, Y as recorded, 0 for input World::step applies).
-// Joint inputs came with joints and changed no version, as the angular kinds did.
+// Joint inputs came with joints and changed no version, as the angular kinds did; so did the
+// axes and the actions: a recording with rules may set any of the 32 action bits (the game's
+// actions), one without rules only fixstep's default buttons (all_buttons).
 // The angular kinds came with bodies with shapes and changed no version: only a world with
 // shapes takes them, and a build before shapes refuses such a recording anyway (its scene's
 // definition hash differs, and the tick line's `torque=` is not a kind it knows: "expected
@@ -163,11 +166,15 @@ Vec2 vec2(const Lines& in, std::string_view text, std::string_view field) {
   return {real(in, text.substr(0, comma), field), real(in, text.substr(comma + 1), field)};
 }
 
-std::uint32_t buttons(const Lines& in, std::string_view text, std::string_view field) {
+/// Action bits: any of the 32 in a recording with rules (the game's actions), else fixstep's
+/// default ones only (all_buttons).
+std::uint32_t buttons(const Lines& in, std::string_view text, std::string_view field,
+                      const Recording& rec) {
   const auto v = integer<std::uint32_t>(in, text, field, 16, 0xffffffffu);
-  if ((v & ~all_buttons) != 0) {
+  if (rec.rules_name.empty() && (v & ~all_buttons) != 0) {
     in.fail(Kind::corrupt, field,
-            fmt::format("bits {:x} are not buttons (hexadecimal; the buttons are the bits of {:x})",
+            fmt::format("bits {:x} are not buttons (hexadecimal; the buttons of a recording "
+                        "without rules are the bits of {:x})",
                         v & ~all_buttons, all_buttons));
   }
   return v;
@@ -407,11 +414,32 @@ JointInput joint_input(const Lines& in, std::string_view word) {
   return j;
 }
 
+/// `axis.I=V`: axis I (< max_axes, after the axes already read: `seen` of them, the last one's
+/// index + 1) reads V, finite and in [-1, 1], not 0 (a 0 axis is not written).
+void axis_word(const Lines& in, std::string_view word, TickInput& t, std::size_t& seen) {
+  const std::size_t eq = word.find('=');
+  if (eq == std::string_view::npos) {
+    in.fail(Kind::corrupt, "axis", fmt::format("expected axis.I=V, found {}", shown(word)));
+  }
+  const auto index = integer<std::size_t>(in, word.substr(5, eq - 5), "axis", 10, max_axes - 1);
+  if (index < seen) {
+    in.fail(Kind::corrupt, "axis",
+            fmt::format("{}: the axes come in increasing index, each once", shown(word)));
+  }
+  const double v = real(in, word.substr(eq + 1), "axis");
+  if (!(v >= -1.0 && v <= 1.0) || v == 0.0) {
+    in.fail(Kind::corrupt, "axis",
+            fmt::format("{}: an axis reads a value in [-1, 1], and 0 is not written", shown(word)));
+  }
+  t.axes[index] = v;
+  seen = index + 1;
+}
+
 TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec) {
   // Version 2 appends the per-body inputs to version 1's eight words.
   const std::size_t count = words(line).size();
   const bool v2 = rec.version >= 2;
-  if (v2 && count > 8 + max_body_inputs + max_joint_inputs) {
+  if (v2 && count > 8 + max_body_inputs + max_joint_inputs + max_axes) {
     in.fail(Kind::corrupt, "tick",
             fmt::format("{} per-body and joint inputs; at most {} per tick", count - 8,
                         max_body_inputs + max_joint_inputs));
@@ -426,9 +454,9 @@ TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec
                 : fmt::format("ticks out of order: {} after {}", t.tick, rec.inputs.back().tick));
   }
   t.push = vec2(in, keyed(in, w[2], "push"), "push");
-  t.held = buttons(in, keyed(in, w[3], "held"), "held");
-  t.pressed = buttons(in, keyed(in, w[4], "pressed"), "pressed");
-  t.released = buttons(in, keyed(in, w[5], "released"), "released");
+  t.held = buttons(in, keyed(in, w[3], "held"), "held", rec);
+  t.pressed = buttons(in, keyed(in, w[4], "pressed"), "pressed", rec);
+  t.released = buttons(in, keyed(in, w[5], "released"), "released", rec);
   t.pointer = vec2(in, keyed(in, w[6], "pointer"), "pointer");
   const std::string_view drag = keyed(in, w[7], "drag");
   if (drag == "none") {
@@ -439,8 +467,14 @@ TickInput tick_line(const Lines& in, std::string_view line, const Recording& rec
     t.drag_body =
         fixstep::defined_entity(integer<std::uint32_t>(in, drag, "drag", 10, 0xfffffffeu));
   }
+  std::size_t axes_seen = 0;  // axis words come last, in increasing index
   for (std::size_t k = 8; k < w.size(); ++k) {
-    if (w[k].starts_with("joint.")) {
+    if (w[k].starts_with("axis.")) {
+      axis_word(in, w[k], t, axes_seen);
+    } else if (axes_seen != 0) {
+      in.fail(Kind::corrupt, "tick",
+              fmt::format("{} after an axis: the axes come last", shown(w[k])));
+    } else if (w[k].starts_with("joint.")) {
       t.joints.push_back(joint_input(in, w[k]));
     } else if (!t.joints.empty()) {
       in.fail(Kind::corrupt, "tick",

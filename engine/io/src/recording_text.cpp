@@ -37,6 +37,9 @@ void append_tick(std::string& out, const TickInput& t) {
     fmt::format_to(std::back_inserter(out), " joint.{}={}:{},{},{}", joint_input_kind_name(j.kind),
                    j.joint.index1, j.joint.generation, j.value.x, j.value.y);
   }
+  for (std::size_t i = 0; i < max_axes; ++i) {
+    if (t.axes[i] != 0.0) fmt::format_to(std::back_inserter(out), " axis.{}={}", i, t.axes[i]);
+  }
   out += '\n';
 }
 

@@ -126,8 +126,7 @@ std::optional<StateFields> MatchPeer::Impl::state_at(std::uint64_t tick) {
     for (std::size_t p = 0; p < players; ++p) merge_scratch.push_back(input_at(p, t));
     TickInput merged = merge(merge_scratch, scratch);
     merged.tick = t;
-    scratch.step(merged);
-    if (rules) rules.after_tick(scratch, merged);
+    rules.tick(scratch, merged);
   }
   if (rules_have_state()) rules.restore(held);
   return state_fields(scratch);

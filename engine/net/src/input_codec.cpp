@@ -16,8 +16,13 @@ namespace {
 bool finite(Vec2 v) {
   return std::isfinite(v.x) && std::isfinite(v.y);
 }
-bool buttons_ok(std::uint32_t bits) {
-  return (bits & ~all_buttons) == 0;
+/// The axes' bits: bit i set for a non-zero axis i (the wire carries only those).
+std::uint8_t axis_bits(const TickInput& in) {
+  std::uint8_t bits = 0;
+  for (std::size_t i = 0; i < max_axes; ++i) {
+    if (in.axes[i] != 0.0 || std::signbit(in.axes[i])) bits |= static_cast<std::uint8_t>(1u << i);
+  }
+  return bits;
 }
 
 /// A coordinate's grid units when it is on the pointer grid (round_to_pointer_grid's
@@ -60,9 +65,9 @@ std::size_t pointer_size(Vec2 p) {
 /// Bytes of the fields `mask` names in `in`.
 std::size_t fields_size(std::uint8_t mask, const TickInput& in) {
   std::size_t n = 1;
-  if (mask & field_push) n += 16;
-  if (mask & field_held) n += 2;
-  if (mask & field_edges) n += 4;
+  if (mask & field_push) n += 17 + 8 * static_cast<std::size_t>(std::popcount(axis_bits(in)));
+  if (mask & field_held) n += varint_size(in.held);
+  if (mask & field_edges) n += varint_size(in.pressed) + varint_size(in.released);
   if (mask & field_pointer) n += pointer_size(in.pointer);
   if (mask & field_drag) n += 8;
   if (mask & field_bodies) n += 1 + 25 * in.bodies.size();
@@ -86,14 +91,19 @@ void write_fields(detail::ByteWriter& w, std::uint8_t mask, const TickInput& in)
   const std::uint8_t wire_mask =
       units ? static_cast<std::uint8_t>((mask & ~field_pointer) | wire_pointer_grid) : mask;
   w.u8(static_cast<std::uint8_t>(0x80u | wire_mask));
-  if (mask & field_push) {
+  if (mask & field_push) {  // the levels: push, then the non-zero axes
     w.f64(in.push.x);
     w.f64(in.push.y);
+    const std::uint8_t axes = axis_bits(in);
+    w.u8(axes);
+    for (std::size_t i = 0; i < max_axes; ++i) {
+      if ((axes >> i) & 1u) w.f64(in.axes[i]);
+    }
   }
-  if (mask & field_held) w.u16(static_cast<std::uint16_t>(in.held));
+  if (mask & field_held) w.varint(in.held);
   if (mask & field_edges) {
-    w.u16(static_cast<std::uint16_t>(in.pressed));
-    w.u16(static_cast<std::uint16_t>(in.released));
+    w.varint(in.pressed);
+    w.varint(in.released);
   }
   if (units) {
     w.varint(zigzag((*units)[0]));
@@ -126,11 +136,23 @@ double read_grid_coordinate(detail::ByteReader& r, bool& in_range) {
 PacketError read_fields(detail::ByteReader& r, std::uint8_t wire_mask, InputDelta& d) {
   TickInput& in = d.fields;
   bool in_range = true;
-  if (d.mask & field_push) in.push = {r.f64(), r.f64()};
-  if (d.mask & field_held) in.held = r.u16();
+  if (d.mask & field_push) {
+    in.push = {r.f64(), r.f64()};
+    const std::uint8_t axes = r.u8();
+    if ((axes >> max_axes) != 0) return PacketError::bad_input;
+    for (std::size_t i = 0; i < max_axes; ++i) {
+      if ((axes >> i) & 1u) in.axes[i] = r.f64();
+    }
+  }
+  auto bits = [&](std::uint32_t& out) {
+    const std::uint64_t v = r.varint(5);
+    if (v > 0xffffffffu) in_range = false;
+    out = static_cast<std::uint32_t>(v);
+  };
+  if (d.mask & field_held) bits(in.held);
   if (d.mask & field_edges) {
-    in.pressed = r.u16();
-    in.released = r.u16();
+    bits(in.pressed);
+    bits(in.released);
   }
   if (d.mask & field_pointer) in.pointer = {r.f64(), r.f64()};
   if (wire_mask & wire_pointer_grid) {
@@ -175,8 +197,8 @@ bool same_input(const TickInput& a, const TickInput& b) {
 
 PacketError check_input(const TickInput& in) {
   if (!finite(in.push) || !finite(in.pointer)) return PacketError::bad_input;
-  if (!buttons_ok(in.held) || !buttons_ok(in.pressed) || !buttons_ok(in.released)) {
-    return PacketError::bad_input;
+  for (const double a : in.axes) {
+    if (!(a >= -1.0 && a <= 1.0)) return PacketError::bad_input;
   }
   if (in.bodies.size() > max_net_body_inputs) return PacketError::bad_input;
   if (!in.joints.empty()) return PacketError::bad_input;  // not carried: the rules' to derive
@@ -202,7 +224,11 @@ std::uint8_t changed_fields(const TickInput& prev, const TickInput& in) {
     return false;
   };
   std::uint8_t mask = 0;
-  if (bits_differ(prev.push, in.push)) mask |= field_push;
+  bool axes_differ = false;
+  for (std::size_t i = 0; i < max_axes; ++i) {
+    axes_differ |= bits_differ({prev.axes[i], 0.0}, {in.axes[i], 0.0});
+  }
+  if (bits_differ(prev.push, in.push) || axes_differ) mask |= field_push;
   if (prev.held != in.held) mask |= field_held;
   if (prev.pressed != in.pressed || prev.released != in.released) mask |= field_edges;
   if (bits_differ(prev.pointer, in.pointer)) mask |= field_pointer;
@@ -214,7 +240,7 @@ std::uint8_t changed_fields(const TickInput& prev, const TickInput& in) {
 TickInput apply_delta(const InputDelta& d, const TickInput& prev, std::uint64_t tick) {
   TickInput in = prev;
   in.tick = tick;
-  if (d.mask & field_push) in.push = d.fields.push;
+  if (d.mask & field_push) in.push = d.fields.push, in.axes = d.fields.axes;
   if (d.mask & field_held) in.held = d.fields.held;
   if (d.mask & field_edges) {
     in.pressed = d.fields.pressed;

@@ -295,8 +295,7 @@ int MatchPeer::Impl::step_confirmed() {
     TickInput merged = merge(merge_scratch, *world);
     merged.tick = next_step;
     if (!confirm_from_shown(next_step, shown_rules)) {
-      world->step(merged);
-      if (rules) rules.after_tick(*world, merged);
+      rules.tick(*world, merged);
     }
     record_tick(merged);
     ++next_step;

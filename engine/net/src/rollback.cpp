@@ -53,8 +53,7 @@ void MatchPeer::Impl::step_shown() {
   if (f.predicted != 0) ++stats.predicted_ticks;
   TickInput merged = merge(std::span<const TickInput>(f.used.data(), players), *shown);
   merged.tick = t;
-  shown->step(merged);
-  if (rules) rules.after_tick(*shown, merged);
+  rules.tick(*shown, merged);
 }
 
 bool MatchPeer::Impl::confirm_from_shown(std::uint64_t t, const std::any& shown_rules) {

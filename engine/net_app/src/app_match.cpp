@@ -106,7 +106,12 @@ class Peer {
         rules_(level_.game->clone()),
         player_(level_.game->clone()),
         match_(start(settings, o)),
-        clock_(level_.def.settings.dt) {}
+        clock_(level_.def.settings.dt) {
+    if (!o.input.empty()) {  // --input: the script plays in the bot's place
+      script_ = std::make_unique<InputScript>(app::detail::game_script(settings, level_, o.input));
+      script_player_.emplace(*script_);
+    }
+  }
 
   MatchPeer& match() { return match_; }
   /// The game's clock (paced play and the window).
@@ -128,7 +133,11 @@ class Peer {
       player_->seat(match_.slot());
       seated_ = true;
     }
-    if (bot) player_->autopilot(static_cast<std::int64_t>(tick), match_.shown_world(), sampler);
+    if (bot && script_player_) {
+      script_player_->feed(tick, sampler);
+    } else if (bot) {
+      player_->autopilot(static_cast<std::int64_t>(tick), match_.shown_world(), sampler);
+    }
     return sampler.sample(tick);
   }
   /// Gives the match every input it wants now (input()). Returns the inputs given.
@@ -160,12 +169,13 @@ class Peer {
     }
     if (o.host_port) {
       return MatchPeer::host(level_.def, s, Address{o.bind, *o.host_port},
-                             app::detail::game_rules(*rules_), game_merge(*level_.game));
+                             app::detail::game_rules(*rules_, settings.rules_before_step),
+                             game_merge(*level_.game));
     }
     const bool spectator = o.spectate.has_value();
     return MatchPeer::join(level_.def, s, spectator ? *o.spectate : *o.join, spectator,
-                           app::detail::game_rules(*rules_), game_merge(*level_.game),
-                           Address{o.bind, 0});
+                           app::detail::game_rules(*rules_, settings.rules_before_step),
+                           game_merge(*level_.game), Address{o.bind, 0});
   }
 
   Level level_;
@@ -174,6 +184,8 @@ class Peer {
   MatchPeer match_;
   MatchClock clock_;
   bool seated_ = false;
+  std::unique_ptr<InputScript> script_;        ///< --input
+  std::optional<ScriptPlayer> script_player_;  ///< plays script_, tick by tick
 };
 
 /// A line of progress (tick of ticks, stalls) on stderr, twice a second, when it is a terminal.

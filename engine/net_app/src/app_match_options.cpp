@@ -83,6 +83,9 @@ void check(const MatchOptions& o, bool players_given) {
   }
   if (o.bot && o.ticks == 0) throw UsageError("--bot needs --ticks N (when the match ends)");
   if (o.window && !o.bot) throw UsageError("--window needs --bot (without it, the window shows)");
+  if (!o.input.empty() && !o.bot) {
+    throw UsageError("--input SCRIPT needs --bot (the script plays in the bot's place)");
+  }
   if (o.paced && (!o.bot || o.window)) {
     throw UsageError("--paced is for a headless --bot (a window always plays at real time)");
   }
@@ -196,6 +199,10 @@ void add_output_options(CLI::App& cli, MatchFlags& f, MatchOptions& o) {
   cli.add_flag("--bot", o.bot,
                "the game's autopilot plays, a spectator just watches (headless unless --window)");
   cli.add_flag("--window", o.window, "with --bot: show the window");
+  cli.add_option("--input", o.input,
+                 "with --bot: the input script FILE plays this player's actions by name (tick by "
+                 "tick), not the autopilot")
+      ->type_name("SCRIPT");
   cli.add_flag("--paced", o.paced,
                "with --bot, headless: play at real time, 60 frames a second (default: as fast as "
                "the match goes)");
@@ -290,13 +297,14 @@ void check_match_outputs(const MatchOptions& o, const std::string& program,
   const std::string scene = o.scene.value_or(default_scene);
   OutputPaths paths{.program = program};
   if (!scene.empty()) paths.inputs.push_back({"--scene", scene});
+  if (!o.input.empty()) paths.inputs.push_back({"--input", o.input});
   if (!o.record.empty()) paths.outputs.push_back({"--record", o.record});
   if (!o.last_frame.empty()) paths.outputs.push_back({"--last-frame", o.last_frame});
   check_output_paths(paths);  // PathRefused: the checks of the fixstep command's outputs
   // `--record -`: standard output carries the recording alone; the summary goes to stderr.
   if (data_on_standard_output(paths)) keep_standard_output_for_data();
-  check_output_before_run("--record", o.record, {scene});
-  check_output_before_run("--last-frame", o.last_frame, {scene});
+  check_output_before_run("--record", o.record, {scene, o.input});
+  check_output_before_run("--last-frame", o.last_frame, {scene, o.input});
 }
 
 }  // namespace fixstep::net::detail

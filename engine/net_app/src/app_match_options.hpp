@@ -35,7 +35,8 @@ struct MatchOptions {
   std::optional<std::string> scene;  ///< --scene FILE
   std::string record, last_frame;    ///< --record FILE, --last-frame PNG
   bool bot = false, window = false;  ///< --bot, --window
-  bool paced = false;                ///< --paced: a headless bot on the real clock
+  std::string input;   ///< --input SCRIPT: with --bot, the script plays, not the autopilot
+  bool paced = false;  ///< --paced: a headless bot on the real clock
 };
 
 /// Whether the command line names a match option (then parse_match handles it all, else

@@ -39,6 +39,7 @@ Session& MatchView::session() {
 void MatchView::open_window(const std::string& title) {
 #ifdef FIXSTEP_NET_WINDOW
   window_ = std::make_unique<WindowHolder>(title, settings_.width, settings_.height);
+  window_->window.set_input_map(app::detail::game_input_map(settings_));  // the game's keys
 #else
   (void)title;
   throw std::runtime_error("this build of fixstep has no window (FIXSTEP_BUILD_WINDOW=OFF)");

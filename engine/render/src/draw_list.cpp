@@ -147,6 +147,31 @@ void DrawList::label(Vec2 at, std::string_view text, double scale, Rgba8 color, 
   text_.append(text);
 }
 
+void DrawList::image(std::string_view path, Vec2 center, Vec2 size, double angle, Space space) {
+  check_point(center, "image", "center");
+  check_size(size.x, "image", "size.x");
+  check_size(size.y, "image", "size.y");
+  if (!std::isfinite(angle))
+    throw std::invalid_argument(
+        fmt::format("DrawList::image: angle must be finite, got {}", angle));
+  if (text_.size() + path.size() > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("DrawList: more than 2^32 characters of text in one list");
+  // The corners, top-left first and clockwise as seen: turned counter-clockwise as seen, which
+  // in screen space (y down) is clockwise in its coordinates.
+  const double c = std::cos(angle), si = std::sin(angle), hw = 0.5 * size.x, hh = 0.5 * size.y;
+  const double up = space == Space::world ? 1.0 : -1.0;  // the coordinates' y per "up"
+  const double local[4][2] = {{-hw, hh}, {hw, hh}, {hw, -hh}, {-hw, -hh}};
+  Vec2 corners[4];
+  for (int k = 0; k < 4; ++k) {
+    const double x = c * local[k][0] - si * local[k][1], y = si * local[k][0] + c * local[k][1];
+    corners[k] = {center.x + x, center.y + up * y};
+  }
+  push(Kind::image, space, Rgba8{255, 255, 255, 255}, 0.0, 0.0, corners);
+  shapes_.back().text_first = static_cast<std::uint32_t>(text_.size());
+  shapes_.back().text_count = static_cast<std::uint32_t>(path.size());
+  text_.append(path);
+}
+
 void DrawList::clear() {
   shapes_.clear();
   points_.clear();

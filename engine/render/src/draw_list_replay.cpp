@@ -173,6 +173,22 @@ void draw_polygon(Renderer& canvas, const Box& box, const std::vector<Vec2>& px,
   canvas.polygon(scratch.points, c);
 }
 
+/// An image over the quad px (its corners, top-left first), when it reaches the frame and is
+/// at most max_round_px across.
+void draw_image(Renderer& canvas, const std::vector<Vec2>& px, const std::string& path, Rgba8 c) {
+  double x0 = px[0].x, x1 = px[0].x, y0 = px[0].y, y1 = px[0].y;
+  for (const Vec2 p : px) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  if (x1 < 0.0 || y1 < 0.0 || x0 > canvas.width() || y0 > canvas.height()) return;
+  if (!(x1 - x0 <= max_round_px && y1 - y0 <= max_round_px) || x1 - x0 + (y1 - y0) <= 0.0) return;
+  const Renderer::Point corners[4] = {{float(px[0].x), float(px[0].y)},
+                                      {float(px[1].x), float(px[1].y)},
+                                      {float(px[2].x), float(px[2].y)},
+                                      {float(px[3].x), float(px[3].y)}};
+  canvas.image(path, corners, c);
+}
+
 }  // namespace
 
 void DrawList::draw(Renderer& canvas) const {
@@ -209,6 +225,10 @@ void DrawList::draw(Renderer& canvas) const {
         if (!box.holds(px[0])) break;  // text reaches at most a few thousand px
         scratch.text.assign(text_, s.text_first, s.text_count);
         canvas.text(float(px[0].x), float(px[0].y), scratch.text, float(s.width), c);
+        break;
+      case Kind::image:
+        scratch.text.assign(text_, s.text_first, s.text_count);
+        draw_image(canvas, px, scratch.text, c);
         break;
     }
   }

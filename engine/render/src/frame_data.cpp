@@ -37,7 +37,41 @@ RenderFrame::Shape drawn_shape(const ShapeDef& shape, Vec2 center, std::uint32_t
   const double c = std::cos(shape.angle), s = std::sin(shape.angle);
   d.mark_x = static_cast<float>(shape.offset.x + (c * mark.x - s * mark.y) - center.x);
   d.mark_y = static_cast<float>(shape.offset.y + (s * mark.x + c * mark.y) - center.y);
+  d.color = shape.color;
   return d;
+}
+
+/// Body entry j's sprite (appearance `a`, its sprite set) as drawn: sprite_size, or else the
+/// bounds of its shapes in `shapes` (those of entry j, body frame less the centre of mass) or
+/// its disc's diameter; centred on those bounds or the body.
+void fill_sprite(const Appearance& a, std::span<const RenderFrame::Shape> shapes, std::uint32_t j,
+                 RenderFrame::Sprite& out) {
+  out.body = j;
+  out.path.assign(a.sprite);
+  float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool any = false;
+  // shapes are in body order: entry j's are one run
+  const auto first =
+      std::lower_bound(shapes.begin(), shapes.end(), j,
+                       [](const RenderFrame::Shape& s, std::uint32_t b) { return s.body < b; });
+  for (auto it = first; it != shapes.end() && it->body == j; ++it) {
+    const RenderFrame::Shape& s = *it;
+    for (std::size_t k = 0; k < s.count; ++k) {
+      const float lx = s.px[k] - s.radius, hx = s.px[k] + s.radius;
+      const float ly = s.py[k] - s.radius, hy = s.py[k] + s.radius;
+      x0 = any ? std::min(x0, lx) : lx, x1 = any ? std::max(x1, hx) : hx;
+      y0 = any ? std::min(y0, ly) : ly, y1 = any ? std::max(y1, hy) : hy;
+      any = true;
+    }
+  }
+  if (!any) {
+    const auto r = static_cast<float>(a.radius);
+    x0 = y0 = -r, x1 = y1 = r;
+  }
+  out.cx = 0.5f * (x0 + x1), out.cy = 0.5f * (y0 + y1);
+  const bool sized = a.sprite_size.x > 0.0 && a.sprite_size.y > 0.0;
+  out.width = sized ? static_cast<float>(a.sprite_size.x) : x1 - x0;
+  out.height = sized ? static_cast<float>(a.sprite_size.y) : y1 - y0;
 }
 
 /// Where a joint's end is drawn: its body's centre of mass at the tick (`now`) and where x / y
@@ -173,9 +207,14 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
   out.spin_marks = rolling;
   out.angle.resize(rolling || !out.shapes.empty() ? n : 0);
   out.asleep.resize(contacts && contacts->sleep ? n : 0);
+  std::size_t sprites = 0;  // out.sprites[0, sprites) are this frame's (their storage kept)
   for (std::size_t j = 0; j < n; ++j) {
     const Entity e = bodies[j];
     if (const std::optional<Appearance> a = world.get<Appearance>(e)) {
+      if (!a->sprite.empty()) {
+        if (sprites == out.sprites.size()) out.sprites.emplace_back();
+        fill_sprite(*a, out.shapes, static_cast<std::uint32_t>(j), out.sprites[sprites++]);
+      }
       out.radius[j] = static_cast<float>(a->radius);
       out.color[j] = a->color;
       out.visible[j] = a->visible ? 1 : 0;
@@ -202,6 +241,7 @@ void fill_render_frame(const World& world, double alpha, RenderFrame& out) {
                              static_cast<std::uint32_t>(j)});
     }
   }
+  out.sprites.resize(sprites);
   const std::size_t links = world.link_count();
   out.link_a.resize(links);
   out.link_b.resize(links);

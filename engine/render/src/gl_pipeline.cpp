@@ -36,9 +36,9 @@ std::string query_renderer_name() {
   return name;
 }
 
-std::array<Pipeline::LinkedProgram, 2> link_programs(const ShaderSources& sources) {
+std::array<Pipeline::LinkedProgram, 3> link_programs(const ShaderSources& sources) {
   const Shader vertex = compile_shader(GL_VERTEX_SHADER, sources.vertex);
-  std::array<Pipeline::LinkedProgram, 2> programs;
+  std::array<Pipeline::LinkedProgram, 3> programs;
   for (std::size_t i = 0; i < programs.size(); ++i) {
     const Shader fragment = compile_shader(GL_FRAGMENT_SHADER, sources.fragments[i]);
     Pipeline::LinkedProgram& p = programs[i];
@@ -168,6 +168,23 @@ void Pipeline::draw_into_backdrop() {
   backdrop = std::move(texture);
 }
 
+void Pipeline::bind_image(std::size_t index, int w, int h, const std::uint8_t* rgba) {
+  if (index < images.size() && images[index].get()) {
+    gl::api().glBindTexture(GL_TEXTURE_2D, images[index].get());
+    return;
+  }
+  if (images.size() <= index) images.resize(index + 1);
+  GLuint name = 0;
+  gl::api().glGenTextures(1, &name);
+  images[index] = Texture(name);
+  gl::api().glBindTexture(GL_TEXTURE_2D, name);
+  // Rows of 4-byte pixels: any row length meets the default unpack alignment (4).
+  gl::api().glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  // Complete without mipmaps (the shader reads texels with texelFetch: no filtering at all).
+  gl::api().glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  gl::api().glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
 void Pipeline::draw_into_frame() {
   gl::api().glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -193,6 +210,7 @@ Pipeline::~Pipeline() {
   ibo.abandon();
   backdrop.abandon();
   backdrop_framebuffer.abandon();
+  for (Texture& t : images) t.abandon();
 }
 
 }  // namespace gl

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "gl_context.hpp"
 #include "gl_objects.hpp"
@@ -18,7 +19,7 @@ namespace fixstep::gl {
 /// fragment shader per program.
 struct ShaderSources {
   const char* vertex = nullptr;
-  std::array<const char*, 2> fragments{};
+  std::array<const char*, 3> fragments{};
 };
 
 /// The GL context of one frame (gl_context.hpp) and the GL objects drawn with it. The members are
@@ -71,7 +72,7 @@ struct Pipeline {
   std::uint8_t* pixels;
   // --- resources, in acquisition order ---
   Context context;
-  std::array<LinkedProgram, 2> programs;
+  std::array<LinkedProgram, 3> programs;
   VertexArray vao;
   Buffer vbo, ibo;  // vertices; triangles (3 indices each), part of vao's state
   // --- state ---
@@ -86,6 +87,11 @@ struct Pipeline {
   // --- the backdrop, created by the first draw_into_backdrop() ---
   Texture backdrop;                  // RGBA8, width x height
   Framebuffer backdrop_framebuffer;  // its colour attachment: backdrop
+  // --- images (Renderer::image): texture i holds the renderer's image i, made on first use ---
+  std::vector<Texture> images;
+  /// Binds the texture of image `index` (of `width` x `height` RGBA8 pixels at `rgba`, top row
+  /// first), creating and filling it first when it is new (nearest texel, no mipmaps).
+  void bind_image(std::size_t index, int width, int height, const std::uint8_t* rgba);
 };
 
 }  // namespace fixstep::gl

@@ -112,8 +112,31 @@ void main() {
 }
 )";
 
-/// The programs, in the order of Renderer::shapes and Renderer::outlined_discs.
-inline constexpr ShaderSources shader_sources{vertex_shader,
-                                              {shapes_fragment_shader, ring_fragment_shader}};
+/// Images (Renderer::image, sprites, background tiles) on triangles: v_uv is the position in
+/// the image in image widths and heights from its top-left corner, and each fragment takes the
+/// one texel under its centre, by integer index (texelFetch: no filtering, no mipmaps, so
+/// llvmpipe and WebGL agree on every texel they pick). v_fill > 0 tiles the image beyond
+/// [0, 1) (the background); otherwise its edge texels stretch. The texel's colour times v_color
+/// (a tint), premultiplied as the other programs' output.
+inline constexpr const char* image_fragment_shader = FIXSTEP_GLSL_PROLOGUE R"(
+NOPERSPECTIVE in vec2 v_uv;
+NOPERSPECTIVE in vec4 v_color;
+flat in float v_fill;
+uniform sampler2D u_image;
+out vec4 frag;
+void main() {
+  vec2 size = vec2(textureSize(u_image, 0));
+  vec2 t = v_uv * size;
+  t = v_fill > 0.0 ? t - floor(t / size) * size : t;
+  t = clamp(t, vec2(0.0), size - 0.5);
+  vec4 c = texelFetch(u_image, ivec2(t), 0) * v_color;
+  frag = vec4(c.rgb * c.a, c.a);
+}
+)";
+
+/// The programs, in the order of Renderer::shapes, Renderer::outlined_discs and
+/// Renderer::images_program.
+inline constexpr ShaderSources shader_sources{
+    vertex_shader, {shapes_fragment_shader, ring_fragment_shader, image_fragment_shader}};
 
 }  // namespace fixstep::gl

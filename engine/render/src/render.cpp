@@ -135,15 +135,19 @@ void Renderer::disc(float cx, float cy, float r, Rgba8 c, float outline_width, R
   vertex(cx, cy, 2.0f * pad, pad / outer, c, r / outer);
 }
 
-void Renderer::use(int program, Rgba8 ring) {
+void Renderer::use(int program, Rgba8 ring, std::uint32_t texture) {
   if (batches_.empty()) batches_.push_back(Batch{});  // primitives before the first begin()
   Batch& b = batches_.back();
-  if (b.program == program && (program == shapes || b.ring == ring)) return;
+  if (b.program == program && (program == shapes || (program == outlined_discs && b.ring == ring) ||
+                               (program == images_program && b.texture == texture))) {
+    return;
+  }
   if (b.first == indices_.size()) {  // nothing recorded in this batch yet
     b.program = program;
     b.ring = ring;
+    b.texture = texture;
   } else {
-    batches_.push_back(Batch{indices_.size(), b.clip, program, ring});
+    batches_.push_back(Batch{indices_.size(), b.clip, program, ring, texture});
   }
 }
 
@@ -284,7 +288,8 @@ void Renderer::set_clip(std::optional<ClipRect> clip) {
   if (batches_.back().first == indices_.size()) {
     batches_.back().clip = clip;  // nothing drawn under the previous clip yet
   } else {
-    batches_.push_back(Batch{indices_.size(), clip, batches_.back().program, batches_.back().ring});
+    batches_.push_back(Batch{indices_.size(), clip, batches_.back().program, batches_.back().ring,
+                             batches_.back().texture});
   }
 }
 
@@ -408,6 +413,10 @@ void Renderer::draw_batches(std::size_t from, std::size_t to) {
       program = batches_[b].program;
       gl::api().glUseProgram(gl_->programs[program].program.get());
     }
+    if (program == images_program) {
+      const Image& im = images_.at(batches_[b].texture);
+      gl_->bind_image(batches_[b].texture, im.width, im.height, im.rgba.data());
+    }
     if (program == outlined_discs) {
       const Rgba8 r = batches_[b].ring;
       gl::api().glUniform4f(gl_->programs[program].ring, r.r / 255.0f, r.g / 255.0f, r.b / 255.0f,
@@ -422,7 +431,7 @@ void Renderer::draw_batches(std::size_t from, std::size_t to) {
     } else {
       gl::api().glDisable(GL_SCISSOR_TEST);
     }
-    gl::api().glDrawElements(program == shapes ? GL_TRIANGLES : GL_POINTS,
+    gl::api().glDrawElements(program == outlined_discs ? GL_POINTS : GL_TRIANGLES,
                              static_cast<GLsizei>(end - first), GL_UNSIGNED_INT,
                              reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   }

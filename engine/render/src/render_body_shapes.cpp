@@ -17,6 +17,7 @@ void Renderer::draw_body_shapes(const RenderFrame& s) {
     const std::size_t j = shape.body;
     if (j >= s.x.size() || shape.count < 1 || shape.count > max_polygon_vertices) continue;
     if (!scene_palette::body_visible(s, j)) continue;
+    if (j < shaped_bodies_.size() && shaped_bodies_[j] == 2) continue;  // drawn as its sprite
     // Body-local (relative to the centre of mass) to pixels: turned by the body's angle, moved
     // to its centre, through the camera.
     const double angle = turned ? double(s.angle[j]) : 0.0;
@@ -34,7 +35,7 @@ void Renderer::draw_body_shapes(const RenderFrame& s) {
     }
     const float radius = std::max(float(shape.radius * scale), 0.0f);
     rounded_polygon(shape_scratch_, radius + scene_palette::outline_px, scene_palette::outline);
-    rounded_polygon(shape_scratch_, radius, scene_palette::body_color(s, j));
+    rounded_polygon(shape_scratch_, radius, scene_palette::body_color(s, j, shape.color));
     // The mark: from the shape's centre to `mark`, as wide as a rolling disc's of its length
     // (at most 4 px); none on a shape too small for it to show.
     const Point mark = to_px(shape.mark_x, shape.mark_y);

@@ -63,13 +63,25 @@ void draw_planes(Renderer& canvas, std::span<const PlaneDef> planes) {
   }
 }
 
-/// Draws each segment as a line of the planes' colour, 2.5 px wide (above the backdrop: a
-/// level's segments are few beside its bodies).
-void draw_segments(Renderer& canvas, std::span<const SegmentDef> segments) {
+/// Draws each segment as a line of its colour (SegmentDef::color; alpha 0: the planes'), 2.5 px
+/// wide, or with a width (SegmentDef::width, m) as a capsule of that width (round ends, so a
+/// polyline's segments join without gaps) (above the backdrop: a level's segments are few
+/// beside its bodies).
+void draw_segments(Renderer& canvas, std::span<const SegmentDef> segments,
+                   std::vector<Renderer::Point>& scratch) {
+  const double scale = canvas.width() / canvas.camera().width;  // px per m
   for (const SegmentDef& s : segments) {
     const auto a = canvas.to_pixel(s.a.x, s.a.y), b = canvas.to_pixel(s.b.x, s.b.y);
-    canvas.line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), 2.5f,
-                scene_palette::plane_line);
+    const Rgba8 c = s.color.a != 0 ? s.color : scene_palette::plane_line;
+    const float width = s.width > 0.0 && std::isfinite(s.width)
+                            ? static_cast<float>(std::min(s.width * scale, 1e7))
+                            : 2.5f;
+    if (s.width > 0.0 && width >= 2.0f) {  // a capsule (rounded_polygon smooths from 1 px)
+      scratch.assign({{float(a[0]), float(a[1])}, {float(b[0]), float(b[1])}});
+      canvas.rounded_polygon(scratch, 0.5f * width, c);
+      continue;
+    }
+    canvas.line(float(a[0]), float(a[1]), float(b[0]), float(b[1]), width, c);
   }
 }
 
@@ -252,7 +264,8 @@ bool Renderer::reuse_backdrop(std::span<const PlaneDef> planes) {
 
 void Renderer::record_backdrop(std::span<const PlaneDef> planes) {
   batches_.push_back(Batch{indices_.size(), batches_.back().clip, batches_.back().program,
-                           batches_.back().ring});  // the backdrop ends on a batch boundary
+                           batches_.back().ring,
+                           batches_.back().texture});  // the backdrop ends on a batch boundary
   backdrop_batches_ = batches_.size() - 1;
   backdrop_ = Backdrop::record;
   backdrop_recorded_ = true;
@@ -285,11 +298,12 @@ void Renderer::draw_scene(const RenderFrame& s) {
   // backdrop, which every later frame starts from (a copy of 3.6 MB at 1280x720 instead of
   // clearing the frame and drawing the grid's long lines again).
   if (!reuse_backdrop(s.planes)) {
+    background_tiles();
     grid();
     draw_planes(*this, s.planes);
     record_backdrop(s.planes);
   }
-  draw_segments(*this, s.segments);
+  draw_segments(*this, s.segments, shape_scratch_);
   const double scale = width_ / camera_.width;
   if (few_links) draw_trails(s, scale);
   // Bodies with shapes: drawn as them (before the discs), not as discs.
@@ -297,16 +311,23 @@ void Renderer::draw_scene(const RenderFrame& s) {
   for (const RenderFrame::Shape& shape : s.shapes) {
     if (shape.body < shaped_bodies_.size()) shaped_bodies_[shape.body] = 1;
   }
+  if (!s.sprites.empty()) {  // drawn as their images: 2
+    shaped_bodies_.resize(s.x.size(), 0);
+    for (const RenderFrame::Sprite& sp : s.sprites) {
+      if (sp.body < shaped_bodies_.size()) shaped_bodies_[sp.body] = 2;
+    }
+  }
   SceneView view{*this, s, scale, polyline_scratch_, shaped_bodies_};
   draw_links(view, few_links);
   draw_springs(view);
   draw_body_shapes(s);
+  if (!s.sprites.empty()) draw_sprites(s);
   draw_bodies(view);
   if (s.spin_marks && s.angle.size() == s.x.size()) draw_spin_marks(s);
   if (!s.joints.empty()) draw_joints(s);
   // What follows (a game's overlay, the HUD) starts a batch of its own (finish()).
-  batches_.push_back(
-      Batch{indices_.size(), batches_.back().clip, batches_.back().program, batches_.back().ring});
+  batches_.push_back(Batch{indices_.size(), batches_.back().clip, batches_.back().program,
+                           batches_.back().ring, batches_.back().texture});
   overlay_batch_ = batches_.size() - 1;
   overlay_vertex_ = vertices_.size();
 }

@@ -1,11 +1,10 @@
 // Renderer's HUD: text lines on a translucent panel in a corner of the frame.
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "fixstep/render/hud_layout.hpp"
 #include "fixstep/render/render.hpp"
 #include "scene_palette.hpp"
 
@@ -34,26 +33,12 @@ float Renderer::hud_width(const std::string& line, float scale) {
 }
 
 void Renderer::draw_hud(std::span<const std::string> lines) {
-  if (lines.empty()) return;
-  const float scale = hud_text_scale_;
-  float widest = 0;
-  for (const std::string& l : lines) widest = std::max(widest, text_width(l, scale));
-  // The panel, hud_margin px from its corner's two edges (hud_height and hud_width include one
-  // margin).
-  const float w = widest + 2.0f * hud_pad * scale;
-  const float h = hud_height(lines.size(), scale) - hud_margin;
-  const bool right = hud_corner_ == HudCorner::top_right || hud_corner_ == HudCorner::bottom_right;
-  const bool bottom =
-      hud_corner_ == HudCorner::bottom_left || hud_corner_ == HudCorner::bottom_right;
-  // A panel wider (taller) than the frame keeps its left (top) edge in view.
-  const float x0 = right ? std::max(hud_margin, float(width_) - hud_margin - w) : hud_margin;
-  const float y0 = bottom ? std::max(hud_margin, float(height_) - hud_margin - h) : hud_margin;
-  rect(x0, y0, x0 + w, y0 + h, scene_palette::panel);
-  float y = y0 + hud_pad * scale;
-  for (const std::string& l : lines) {
-    text(x0 + hud_pad * scale, y, l, scale, scene_palette::text_color);
-    y += hud_line_h * scale;
-  }
+  // Wrapped to the frame's width, cut to its height (hud_layout.hpp): no text off the frame.
+  const HudLayout hud = layout_hud(lines, hud_text_scale_, hud_corner_, width_, height_);
+  if (hud.lines.empty()) return;
+  rect(hud.x0, hud.y0, hud.x1, hud.y1, scene_palette::panel);
+  for (const HudTextLine& l : hud.lines)
+    text(l.x, l.y, l.text, hud.scale, scene_palette::text_color);
 }
 
 }  // namespace fixstep

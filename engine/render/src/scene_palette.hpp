@@ -34,10 +34,13 @@ inline constexpr Rgba8 sleep_grey{128, 132, 140, 255};
 inline constexpr Rgba8 joint_color{245, 248, 255, 255};
 inline constexpr Rgba8 joint_limit_color{255, 96, 80, 255};
 
-/// Body j's colour: its Appearance's, or a palette colour without one (alpha 0); halfway to
-/// sleep_grey while it sleeps (RenderFrame::asleep).
-inline Rgba8 body_color(const RenderFrame& s, std::size_t j) {
-  const Rgba8 c = s.color[j].a == 0 ? palette[j % std::size(palette)] : s.color[j];
+/// Body j's colour: `own` (a shape's colour) unless its alpha is 0, else its Appearance's, or
+/// a palette colour without one (alpha 0); halfway to sleep_grey while it sleeps
+/// (RenderFrame::asleep).
+inline Rgba8 body_color(const RenderFrame& s, std::size_t j, Rgba8 own = {0, 0, 0, 0}) {
+  const Rgba8 c = own.a != 0          ? own
+                  : s.color[j].a == 0 ? palette[j % std::size(palette)]
+                                      : s.color[j];
   if (s.asleep.empty() || s.asleep[j] == 0) return c;
   auto mid = [](std::uint8_t a, std::uint8_t b) {
     return static_cast<std::uint8_t>((unsigned(a) + unsigned(b) + 1u) / 2u);

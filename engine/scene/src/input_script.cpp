@@ -2,6 +2,9 @@
 // COLUMN: KEY errors, unknown keys warned about with a suggestion).
 #include "fixstep/scene/input_script.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <array>
 
 #include "fixstep/core/components.hpp"
@@ -29,15 +32,16 @@ constexpr std::array<std::pair<std::string_view, std::uint32_t>, 7> buttons{{
     {"pointer_secondary", button_pointer_secondary},
 }};
 
-/// `press` / `release`: an array of button names, as InputButton bits.
+/// `press` / `release`: an array of action names, as their bits.
 std::uint32_t button_list(const Reader& r, const toml::table& t, std::string_view key,
-                          const std::string& path) {
+                          const std::string& path, const ScriptNames& known) {
   const toml::node* n = t.get(key);
   if (!n) return 0;
   const toml::array* a = n->as_array();
   if (!a)
     r.fail(n->source(), path,
-           fmt::format("expected an array of button names, e.g. [\"left\"], found {}",
+           fmt::format("expected an array of action names, e.g. [\"{}\"], found {}",
+                       known.actions.empty() ? "left" : known.actions.front().first,
                        scene_detail::found(*n)));
   std::uint32_t bits = 0;
   for (std::size_t i = 0; i < a->size(); ++i) {
@@ -45,24 +49,60 @@ std::uint32_t button_list(const Reader& r, const toml::table& t, std::string_vie
     const std::string at = fmt::format("{}[{}]", path, i);
     if (!e.is_string()) {
       r.fail(e.source(), at,
-             fmt::format("expected a button name (a string), found {}", scene_detail::found(e)));
+             fmt::format("expected an action name (a string), found {}", scene_detail::found(e)));
     }
     const std::string_view name = e.as_string()->get();
-    const auto found = std::find_if(buttons.begin(), buttons.end(),
+    const auto found = std::find_if(known.actions.begin(), known.actions.end(),
                                     [&](const auto& b) { return b.first == name; });
-    if (found == buttons.end()) {
+    if (found == known.actions.end()) {
       std::vector<std::string> names;
-      names.reserve(buttons.size());
-      for (const auto& b : buttons) names.emplace_back(b.first);
+      for (const auto& b : known.actions) names.push_back(b.first);
       const auto best = closest(name, names);
       r.fail(e.source(), at,
-             fmt::format("unknown button \"{}\"{} (valid: left, right, up, down, action, "
-                         "pointer_primary, pointer_secondary)",
-                         name, best ? fmt::format("; did you mean \"{}\"?", *best) : ""));
+             fmt::format("unknown action \"{}\"{} (valid: {})", name,
+                         best ? fmt::format("; did you mean \"{}\"?", *best) : "",
+                         fmt::join(names, ", ")));
     }
     bits |= found->second;
   }
   return bits;
+}
+
+/// `axes = { NAME = VALUE, ... }`: levels in [-1, 1], in the order of the table's keys.
+std::vector<std::pair<std::size_t, double>> axis_list(Reader& r, const toml::table& t,
+                                                      const std::string& path,
+                                                      const ScriptNames& known) {
+  std::vector<std::pair<std::size_t, double>> out;
+  const toml::node* n = t.get("axes");
+  if (!n) return out;
+  const toml::table* table = n->as_table();
+  if (!table) {
+    r.fail(n->source(), path,
+           fmt::format("expected a table of axis values, e.g. {{ {} = 0.5 }}, found {}",
+                       known.axes.empty() ? "steer" : known.axes.front().first,
+                       scene_detail::found(*n)));
+  }
+  for (const auto& [key, value] : *table) {
+    const std::string at = fmt::format("{}.{}", path, key.str());
+    const auto found = std::find_if(known.axes.begin(), known.axes.end(),
+                                    [&](const auto& a) { return a.first == key.str(); });
+    if (found == known.axes.end()) {
+      std::vector<std::string> names;
+      for (const auto& a : known.axes) names.push_back(a.first);
+      const auto best = closest(key.str(), names);
+      r.fail(value.source(), at,
+             fmt::format("unknown axis \"{}\"{} (valid: {})", key.str(),
+                         best ? fmt::format("; did you mean \"{}\"?", *best) : "",
+                         names.empty() ? std::string("none: the program declares no axes")
+                                       : fmt::format("{}", fmt::join(names, ", "))));
+    }
+    const double v = r.number_node(value, at);
+    if (!(v >= -1.0 && v <= 1.0)) {
+      r.fail(value.source(), at, fmt::format("must be in [-1, 1] (got {})", v));
+    }
+    out.emplace_back(found->second, v);
+  }
+  return out;
 }
 
 /// The index into `bodies` of the body named by string node n (the first of that name).
@@ -214,10 +254,10 @@ void body_inputs(Reader& r, const toml::table& t, BodyInputKind kind, const std:
 }
 
 ScriptEvent parse_event(Reader& r, const toml::table& t, std::size_t index,
-                        std::span<const BodyDef> bodies) {
+                        std::span<const BodyDef> bodies, const ScriptNames& known) {
   const std::string path = fmt::format("at[{}]", index);
   r.check_keys(t, path,
-               {"tick", "press", "release", "pointer", "push", "drag", "force", "impulse",
+               {"tick", "press", "release", "axes", "pointer", "push", "drag", "force", "impulse",
                 "velocity", "torque", "angular_impulse", "angular_velocity", "target_angle"});
   ScriptEvent e;
   e.line = t.source().begin.line;
@@ -228,8 +268,9 @@ ScriptEvent parse_event(Reader& r, const toml::table& t, std::size_t index,
   }
   e.tick = static_cast<std::uint64_t>(
       r.integer_node(*tick, path + ".tick", 0, static_cast<std::int64_t>(max_recording_ticks - 1)));
-  e.press = button_list(r, t, "press", path + ".press");
-  e.release = button_list(r, t, "release", path + ".release");
+  e.press = button_list(r, t, "press", path + ".press", known);
+  e.release = button_list(r, t, "release", path + ".release", known);
+  e.axes = axis_list(r, t, path + ".axes", known);
   e.pointer = r.vec2(t, "pointer", path + ".pointer");
   e.push = r.vec2(t, "push", path + ".push");
   if (const toml::node* d = t.get("drag")) e.drag = drag_target(r, *d, path + ".drag", bodies);
@@ -254,8 +295,14 @@ std::span<const std::pair<std::string_view, std::uint32_t>> button_names() {
   return buttons;
 }
 
+ScriptNames default_script_names() {
+  ScriptNames names;
+  for (const auto& [name, bit] : buttons) names.actions.emplace_back(std::string(name), bit);
+  return names;
+}
+
 InputScript parse_input_script(std::string_view text, const std::string& source_name,
-                               std::span<const BodyDef> bodies) {
+                               std::span<const BodyDef> bodies, const ScriptNames& known) {
   const IeeeFloatMode ieee;  // numbers read by strtod, which rounds in the current mode
   InputScript script;
   script.file = source_name;
@@ -275,7 +322,7 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
   if (const toml::array* list = r.tables(doc, "at")) {
     for (std::size_t i = 0; i < list->size(); ++i) {
       const toml::table& t = *list->get(i)->as_table();
-      ScriptEvent e = parse_event(r, t, i, bodies);
+      ScriptEvent e = parse_event(r, t, i, bodies, known);
       if (!script.events.empty() && e.tick <= script.events.back().tick) {
         r.fail(t.get("tick")->source(), fmt::format("at[{}].tick", i),
                fmt::format("ticks must increase from one [[at]] to the next ({} after {})", e.tick,
@@ -288,46 +335,53 @@ InputScript parse_input_script(std::string_view text, const std::string& source_
   return script;
 }
 
-InputScript load_input_script(const std::filesystem::path& file, std::span<const BodyDef> bodies) {
+InputScript load_input_script(const std::filesystem::path& file, std::span<const BodyDef> bodies,
+                              const ScriptNames& known) {
   return parse_input_script(scene_detail::read_text_file(file, max_script_bytes, script_file),
-                            file.string(), bodies);
+                            file.string(), bodies, known);
 }
 
 TickInput ScriptPlayer::next() {
-  if (event_ < script_.events.size() && script_.events[event_].tick == tick_) {
+  feed(tick_, sampler_);
+  return sampler_.sample(tick_++);
+}
+
+void ScriptPlayer::feed(std::uint64_t tick, InputSampler& sampler) {
+  while (event_ < script_.events.size() && script_.events[event_].tick < tick) ++event_;
+  if (event_ < script_.events.size() && script_.events[event_].tick == tick) {
     const ScriptEvent& e = script_.events[event_++];
-    if (e.press) sampler_.press(e.press);
-    if (e.release) sampler_.release(e.release);
-    if (e.pointer) sampler_.set_pointer(*e.pointer);
-    if (e.push) sampler_.set_push(*e.push);
-    if (e.drag) sampler_.set_drag_body(*e.drag);
+    if (e.press) sampler.press(e.press);
+    for (const auto& [index, value] : e.axes) sampler.set_axis(index, value);
+    if (e.release) sampler.release(e.release);
+    if (e.pointer) sampler.set_pointer(*e.pointer);
+    if (e.push) sampler.set_push(*e.push);
+    if (e.drag) sampler.set_drag_body(*e.drag);
     for (const BodyInput& b : e.bodies) {
       switch (b.kind) {
         case BodyInputKind::force:
-          sampler_.apply_force(b.body, b.value);
+          sampler.apply_force(b.body, b.value);
           break;
         case BodyInputKind::impulse:
-          sampler_.apply_impulse(b.body, b.value);
+          sampler.apply_impulse(b.body, b.value);
           break;
         case BodyInputKind::velocity:
-          sampler_.set_velocity(b.body, b.value);
+          sampler.set_velocity(b.body, b.value);
           break;
         case BodyInputKind::torque:
-          sampler_.apply_torque(b.body, b.value.x);
+          sampler.apply_torque(b.body, b.value.x);
           break;
         case BodyInputKind::angular_impulse:
-          sampler_.apply_angular_impulse(b.body, b.value.x);
+          sampler.apply_angular_impulse(b.body, b.value.x);
           break;
         case BodyInputKind::angular_velocity:
-          sampler_.set_angular_velocity(b.body, b.value.x);
+          sampler.set_angular_velocity(b.body, b.value.x);
           break;
         case BodyInputKind::target_angle:
-          sampler_.set_target_angle(b.body, b.value.x);
+          sampler.set_target_angle(b.body, b.value.x);
           break;
       }
     }
   }
-  return sampler_.sample(tick_++);
 }
 
 std::vector<TickInput> script_inputs(const InputScript& script, std::uint64_t ticks) {

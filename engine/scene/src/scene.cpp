@@ -79,7 +79,7 @@ BodyDef parse_body(Reader& r, const toml::table& t, const std::string& path, Pre
                 "force",   "gravity",  "drag",       "radius",   "draw_radius", "color",
                 "visible", "trail",    "trail_time", "collide",  "restitution", "friction",
                 "sensor",  "category", "mask",       "group",    "angle",       "angular_velocity",
-                "inertia", "shape",    "density",    "mover"});
+                "inertia", "shape",    "density",    "sprite",   "sprite_size", "mover"});
   BodyDef def;
   if (auto name = r.string(t, "name", path + ".name")) def.name = *name;
   parse_body_parts(r, t, path, def);
@@ -169,7 +169,7 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
     def.drag = LinearDrag{*c};
   }
   if (t.get("radius") || t.get("draw_radius") || t.get("color") || t.get("visible") ||
-      t.get("trail") || t.get("trail_time")) {
+      t.get("trail") || t.get("trail_time") || t.get("sprite") || t.get("sprite_size")) {
     Appearance ap;
     if (auto rad = r.number(t, "radius", path + ".radius")) {
       r.require(*rad > 0.0 && *rad <= max_state_magnitude, t, "radius", path + ".radius",
@@ -189,6 +189,19 @@ void parse_body_parts(Reader& r, const toml::table& t, const std::string& path, 
       r.require(*v > 0.0 && *v <= max_trail_time, t, "trail_time", path + ".trail_time",
                 "> 0 and <= 10 s", *v);
       ap.trail_time = *v;
+    }
+    if (t.get("sprite")) ap.sprite = parse_image(r, t, "sprite", path + ".sprite");
+    if (auto v = r.vec2(t, "sprite_size", path + ".sprite_size")) {
+      r.require(
+          v->x > 0.0 && v->y > 0.0 && v->x <= max_state_magnitude && v->y <= max_state_magnitude, t,
+          "sprite_size", path + ".sprite_size", "[width, height], each > 0 m and <= 1e12 m",
+          std::min(v->x, v->y));
+      if (!t.get("sprite")) {
+        r.fail(t.get("sprite_size")->source(), path + ".sprite_size",
+               "needs a sprite: the size (m) of the image drawn for the body; add sprite = "
+               "\"image.png\"");
+      }
+      ap.sprite_size = *v;
     }
     def.appearance = ap;
   }
@@ -388,6 +401,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   check_magnitudes(r, doc, "");  // every number, after the keys' own ranges
   check_start_overlap(scene, names);
   check_limits(r, scene, doc, world);
+  check_image_budget(r, doc, scene);
   scene.warnings = r.take_warnings();
   scene.text = std::string(text);
   return scene;

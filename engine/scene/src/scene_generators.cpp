@@ -78,10 +78,10 @@ class Generator {
     }
     r_.check_keys(
         *b, key("body"),
-        {"type",        "mass",   "velocity", "force", "gravity",    "drag",    "radius",
-         "draw_radius", "color",  "visible",  "trail", "trail_time", "collide", "restitution",
-         "friction",    "sensor", "category", "mask",  "group",      "angle",   "angular_velocity",
-         "inertia",     "shape",  "density"});
+        {"type",        "mass",   "velocity", "force",  "gravity",    "drag",    "radius",
+         "draw_radius", "color",  "visible",  "trail",  "trail_time", "collide", "restitution",
+         "friction",    "sensor", "category", "mask",   "group",      "angle",   "angular_velocity",
+         "inertia",     "shape",  "density",  "sprite", "sprite_size"});
     BodyDef def;
     parse_body_parts(r_, *b, key("body"), def);
     drop_moving_parts(r_, *b, key("body"), def);

@@ -16,12 +16,14 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/segment.hpp"
 #include "fixstep/core/value_ranges.hpp"
 #include "fixstep/scene/scene.hpp"
 #include "fixstep/scene/suggest.hpp"
@@ -483,6 +485,18 @@ void parse_planes(Reader& r, const toml::table& doc, Scene& scene);
 void parse_segments(Reader& r, const toml::table& doc, Scene& scene, const BodyNames& names);
 /// The [view] table into scene.view (scene_view.cpp).
 void parse_view(Reader& r, const toml::table& doc, Scene& scene);
+/// t[key] (a string naming a PNG file, relative to the scene file's folder unless absolute) as
+/// the path a renderer opens, checked (check_png_file: readable, a PNG, whole, at most
+/// max_image_side px a side). Errors at the key, naming the file. Defined in scene_images.cpp.
+std::string parse_image(const Reader& r, const toml::table& t, std::string_view key,
+                        const std::string& path);
+/// The drawing-only keys of a [[segment]] or [[polyline]] table: color ("#rrggbb[aa]") and width
+/// (m, > 0) into each of segments[first, end). Defined in scene_images.cpp.
+void parse_segment_looks(const Reader& r, const toml::table& t, const std::string& path,
+                         std::span<SegmentDef> segments);
+/// At most max_images distinct images, of at most max_image_bytes of pixels together, in the
+/// scene (the bodies' sprites and the view's background). Defined in scene_images.cpp.
+void check_image_budget(const Reader& r, const toml::table& doc, const Scene& scene);
 /// t[key] (which must be present), "#rrggbb" or "#rrggbbaa", as a colour; `path` names the key
 /// in errors (scene.cpp).
 Rgba8 parse_color(const Reader& r, const toml::table& t, std::string_view key,

@@ -60,7 +60,9 @@ Entity parse_carrier(const Reader& r, const toml::table& t, const std::string& p
 /// ghost vertices prev and next ([x, y] m, optional; SegmentDef) and the carrying body.
 SegmentDef parse_segment(Reader& r, const toml::table& t, const std::string& path,
                          const Scene& scene, const BodyNames& names) {
-  r.check_keys(t, path, {"a", "b", "restitution", "friction", "prev", "next", "body"});
+  r.check_keys(
+      t, path,
+      {"a", "b", "restitution", "friction", "prev", "next", "body", "color", "width", "one_way"});
   SegmentDef s;
   for (const char* key : {"a", "b"}) {
     const toml::node* n = t.get(key);
@@ -75,6 +77,8 @@ SegmentDef parse_segment(Reader& r, const toml::table& t, const std::string& pat
   if (const toml::node* n = t.get("next")) s.next = point_node(r, *n, path + ".next");
   parse_surface(r, t, path, s.restitution, s.friction);
   s.body = parse_carrier(r, t, path, scene, names, "segment");
+  parse_segment_looks(r, t, path, std::span(&s, 1));
+  s.one_way = r.boolean(t, "one_way", path + ".one_way").value_or(false);
   return s;
 }
 
@@ -83,7 +87,9 @@ SegmentDef parse_segment(Reader& r, const toml::table& t, const std::string& pat
 /// segment. Appends its segments to the scene.
 void parse_polyline(Reader& r, const toml::table& t, const std::string& path, Scene& scene,
                     const BodyNames& names) {
-  r.check_keys(t, path, {"points", "restitution", "friction", "closed", "body"});
+  r.check_keys(
+      t, path,
+      {"points", "restitution", "friction", "closed", "body", "color", "width", "one_way"});
   const toml::node* n = t.get("points");
   if (!n) r.fail_missing(t, path, {"points"}, "missing (required): [[x, y], [x, y], ...] in m");
   const toml::array* a = n->as_array();
@@ -111,7 +117,10 @@ void parse_polyline(Reader& r, const toml::table& t, const std::string& path, Sc
   double e = 0.0, mu = 0.0;
   parse_surface(r, t, path, e, mu);
   const Entity body = parse_carrier(r, t, path, scene, names, "polyline");
-  scene.def.add_polyline(points, e, mu, closed, body);
+  const bool one_way = r.boolean(t, "one_way", path + ".one_way").value_or(false);
+  const std::size_t first = scene.def.segments.size();
+  scene.def.add_polyline(points, e, mu, closed, body, one_way);
+  parse_segment_looks(r, t, path, std::span(scene.def.segments).subspan(first));
 }
 
 }  // namespace

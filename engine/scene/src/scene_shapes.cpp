@@ -135,10 +135,10 @@ std::pair<const toml::node*, std::string> problem_key(const toml::table& t, cons
 ShapeDef read_shape(Reader& r, const toml::table& t, const std::string& path,
                     std::optional<double> body_density, const toml::node* body_density_node,
                     const std::string& body_path) {
-  r.check_keys(
-      t, path,
-      {"circle", "capsule", "box", "polygon", "radius", "offset", "angle", "density", "friction",
-       "restitution", "rolling_resistance", "sensor", "category", "mask", "group"});
+  r.check_keys(t, path,
+               {"circle", "capsule", "box", "polygon", "radius", "offset", "angle", "density",
+                "friction", "restitution", "rolling_resistance", "sensor", "one_way", "category",
+                "mask", "group", "color"});
   ShapeDef s = read_geometry(r, t, path);
   if (auto v = r.vec2(t, "offset", path + ".offset")) s.offset = *v;
   if (auto v = r.number(t, "angle", path + ".angle")) s.angle = *v;
@@ -150,6 +150,8 @@ ShapeDef read_shape(Reader& r, const toml::table& t, const std::string& path,
     s.rolling_resistance = *v;
   }
   read_shape_filter(r, t, path, s);
+  if (t.get("color")) s.color = parse_color(r, t, "color", path + ".color");  // drawing only
+  if (auto v = r.boolean(t, "one_way", path + ".one_way")) s.one_way = *v;
   if (const std::optional<std::string> problem = shape_problem(s)) {
     const auto [node, key] = problem_key(t, path, s, *problem, body_density_node, body_path);
     r.fail(node->source(), key, *problem);
@@ -246,12 +248,14 @@ std::string shapes_text(const BodyDef& b) {
       fmt::format_to(it, "rolling_resistance = {}\n", toml_number(s.rolling_resistance));
     }
     if (s.sensor) out += "sensor = true\n";
+    if (s.one_way) out += "one_way = true\n";
     const CollisionFilter f = s.filter, none{};
     if (f.category != none.category) {
       fmt::format_to(it, "category = {}\n", toml_filter_bits(f.category));
     }
     if (f.mask != none.mask) fmt::format_to(it, "mask = {}\n", toml_filter_bits(f.mask));
     if (f.group != none.group) fmt::format_to(it, "group = {}\n", f.group);
+    if (s.color != Rgba8{0, 0, 0, 0}) fmt::format_to(it, "color = {}\n", toml_color(s.color));
   }
   return out;
 }

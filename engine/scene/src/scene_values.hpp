@@ -39,6 +39,12 @@ inline std::string toml_filter_bits(std::uint64_t bits) {
   return fmt::format("0x{:x}", bits);
 }
 
+/// A colour as the loader reads it: "#rrggbb" when opaque, else "#rrggbbaa".
+inline std::string toml_color(Rgba8 c) {
+  return c.a == 255 ? fmt::format("\"#{:02x}{:02x}{:02x}\"", c.r, c.g, c.b)
+                    : fmt::format("\"#{:02x}{:02x}{:02x}{:02x}\"", c.r, c.g, c.b, c.a);
+}
+
 /// s as a TOML basic string: quotes, backslashes and control characters escaped, every other
 /// byte as it is (a name must be UTF-8, as TOML requires; the loader refuses it otherwise).
 inline std::string toml_string(std::string_view s) {

@@ -120,6 +120,13 @@ void parse_view_style(const Reader& r, const toml::table& view, SceneView& out) 
   }
   parse_hud_lines(r, view, out);
   parse_joint_view(r, view, out);
+  if (view.contains("background_image"))
+    out.background_image = parse_image(r, view, "background_image", "view.background_image");
+  if (auto tile = r.number(view, "background_tile", "view.background_tile")) {
+    r.require(*tile > 0.0 && *tile <= max_view_width, view, "background_tile",
+              "view.background_tile", fmt::format("> 0 m and <= {:g} m", max_view_width), *tile);
+    out.background_tile = *tile;
+  }
 }
 
 }  // namespace
@@ -129,7 +136,7 @@ void parse_view(Reader& r, const toml::table& doc, Scene& scene) {
   if (!view) return;
   r.check_keys(*view, "view",
                {"center", "width", "background", "grid", "axes", "scale_bar", "hud", "hud_scale",
-                "hud_lines", "joints"});
+                "hud_lines", "joints", "background_image", "background_tile"});
   parse_view_style(r, *view, scene.view);
   // Bounded before any frame is drawn (SceneView): a view of a point 10^300 m out, or
   // 10^-300 m wide, has no pixels to draw.

@@ -41,8 +41,7 @@ using scene_detail::toml_point;
 using scene_detail::toml_string;
 
 std::string color_text(Rgba8 c) {
-  return c.a == 255 ? fmt::format("\"#{:02x}{:02x}{:02x}\"", c.r, c.g, c.b)
-                    : fmt::format("\"#{:02x}{:02x}{:02x}{:02x}\"", c.r, c.g, c.b, c.a);
+  return scene_detail::toml_color(c);
 }
 
 using fixstep::same_bits;  // of doubles (fixstep/core/bits.hpp); of points:
@@ -203,6 +202,10 @@ void write_looks(std::string& out, const BodyDef& b) {
     if (!same_bits(a->trail_time, default_trail_time)) {
       fmt::format_to(it, "trail_time = {}\n", toml_number(a->trail_time));
     }
+    if (!a->sprite.empty()) fmt::format_to(it, "sprite = {}\n", toml_string(a->sprite));
+    if (!a->sprite.empty() && a->sprite_size.x > 0.0 && a->sprite_size.y > 0.0) {
+      fmt::format_to(it, "sprite_size = {}\n", toml_point(a->sprite_size));
+    }
   }
 }
 
@@ -272,8 +275,9 @@ void write_planes(std::string& out, const WorldDef& def) {
   }
 }
 
-/// Every segment a [[segment]] table, polylines' ghost vertices as prev and next, and the
-/// kinematic body carrying it (each segment of a carried polyline) as `body`, by its name.
+/// Every segment a [[segment]] table, polylines' ghost vertices as prev and next, one_way when
+/// true, and the kinematic body carrying it (each segment of a carried polyline) as `body`, by
+/// its name.
 void write_segments(std::string& out, const WorldDef& def, const std::vector<std::string>& names) {
   auto it = std::back_inserter(out);
   for (std::size_t i = 0; i < def.segments.size(); ++i) {
@@ -283,6 +287,9 @@ void write_segments(std::string& out, const WorldDef& def, const std::vector<std
                    toml_number(s.friction));
     if (s.prev) fmt::format_to(it, "prev = {}\n", toml_point(*s.prev));
     if (s.next) fmt::format_to(it, "next = {}\n", toml_point(*s.next));
+    if (s.color != Rgba8{0, 0, 0, 0}) fmt::format_to(it, "color = {}\n", color_text(s.color));
+    if (!same_bits(s.width, 0.0)) fmt::format_to(it, "width = {}\n", toml_number(s.width));
+    if (s.one_way) out += "one_way = true\n";
     if (s.body.is_null()) continue;
     const auto b = fixstep::defined_index(s.body, names.size());
     if (!b) {

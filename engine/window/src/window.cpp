@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "fixstep/core/input.hpp"
+#include "sdl_keys.hpp"
 
 namespace fixstep {
 
@@ -137,13 +138,25 @@ struct Window::Impl {
         renderer(create_renderer(*window)),
         texture(create_texture(*renderer, width, height)),
         width(width),
-        height(height) {}
+        height(height) {
+    // Gamepads where SDL finds any: without the subsystem (or a device) there is none, which
+    // is no error. SDL reports each controller present now as an added device.
+    (void)SDL_InitSubSystem(SDL_INIT_GAMECONTROLLER);
+  }
 
   SdlVideo video;
   SdlWindow window;
   SdlRenderer renderer;
   SdlTexture texture;
   int width, height;
+  InputMap map = default_input_map();
+  SDL_GameController* pad = nullptr;  ///< the first game controller, or none
+
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+  ~Impl() {
+    if (pad != nullptr) SDL_GameControllerClose(pad);
+  }
 };
 
 Window::Window(const std::string& title, int width, int height)
@@ -158,62 +171,10 @@ std::string Window::driver() const {
 
 namespace {
 
-/// The InputButton bit of a key, or 0.
-std::uint32_t key_button(SDL_Keycode key) {
-  switch (key) {
-    case SDLK_LEFT:
-      return button_left;
-    case SDLK_RIGHT:
-      return button_right;
-    case SDLK_UP:
-      return button_up;
-    case SDLK_DOWN:
-      return button_down;
-    case SDLK_RETURN:
-    case SDLK_KP_ENTER:
-      return button_action;
-    default:
-      return 0;
-  }
-}
-
-std::uint32_t mouse_button(Uint8 button) {
-  if (button == SDL_BUTTON_LEFT) return button_pointer_primary;
-  if (button == SDL_BUTTON_RIGHT) return button_pointer_secondary;
-  return 0;
-}
-
-/// The window's own keys (pause, step, speed, restart, quit).
-void window_key(SDL_Keycode key, WindowEvents& ev) {
-  switch (key) {
-    case SDLK_ESCAPE:
-      ev.quit = true;
-      break;
-    case SDLK_SPACE:
-      ev.toggle_pause = true;
-      break;
-    case SDLK_PERIOD:
-      ev.single_step = true;
-      break;
-    case SDLK_PLUS:
-    case SDLK_EQUALS:
-    case SDLK_KP_PLUS:
-      ++ev.time_scale_steps;
-      break;
-    case SDLK_MINUS:
-    case SDLK_KP_MINUS:
-      --ev.time_scale_steps;
-      break;
-    case SDLK_r:
-      ev.restart = true;
-      break;
-    default:
-      break;
-  }
-}
-
-void add_edge(WindowEvents& ev, bool press, std::uint32_t buttons) {
-  if (buttons != 0) ev.edges.push_back({press, buttons});
+void add_key(WindowEvents& ev, bool press, Key key) {
+  if (key == Key::none) return;
+  ev.keys.push_back({press, key});
+  ev.keys_down[static_cast<std::size_t>(key)] = press;
 }
 
 }  // namespace
@@ -224,26 +185,33 @@ WindowEvents Window::poll() {
   return ev;
 }
 
+void Window::set_input_map(InputMap map) {
+  impl_->map = std::move(map);
+}
+
+void Window::open_pad(int device) {
+  if (impl_->pad != nullptr || !SDL_IsGameController(device)) return;
+  impl_->pad = SDL_GameControllerOpen(device);  // the first one only; nullptr: none
+}
+
 void Window::poll(WindowEvents& ev) {
-  ev.quit = ev.toggle_pause = ev.single_step = ev.restart = false;
-  ev.time_scale_steps = 0;
-  ev.edges.clear();
+  ev.close_requested = false;
+  ev.keys.clear();
   SDL_Event e;
   while (SDL_PollEvent(&e)) {
     switch (e.type) {
       case SDL_QUIT:
-        ev.quit = true;
+        ev.close_requested = true;
         break;
       case SDL_KEYDOWN:
-        if (!e.key.repeat) add_edge(ev, true, key_button(e.key.keysym.sym));
-        window_key(e.key.keysym.sym, ev);
-        break;
       case SDL_KEYUP:
-        add_edge(ev, false, key_button(e.key.keysym.sym));
+        if (!e.key.repeat) {
+          add_key(ev, e.type == SDL_KEYDOWN, detail::sdl_scancode_key(e.key.keysym.scancode));
+        }
         break;
       case SDL_MOUSEBUTTONDOWN:
       case SDL_MOUSEBUTTONUP:
-        add_edge(ev, e.type == SDL_MOUSEBUTTONDOWN, mouse_button(e.button.button));
+        add_key(ev, e.type == SDL_MOUSEBUTTONDOWN, detail::sdl_mouse_key(e.button.button));
         ev.pointer_seen = true;
         ev.pointer_x = e.button.x + 0.5, ev.pointer_y = e.button.y + 0.5;
         break;
@@ -251,12 +219,23 @@ void Window::poll(WindowEvents& ev) {
         ev.pointer_seen = true;
         ev.pointer_x = e.motion.x + 0.5, ev.pointer_y = e.motion.y + 0.5;
         break;
+      case SDL_CONTROLLERDEVICEADDED:
+        open_pad(e.cdevice.which);
+        break;
+      case SDL_CONTROLLERBUTTONDOWN:
+      case SDL_CONTROLLERBUTTONUP:
+        add_key(ev, e.type == SDL_CONTROLLERBUTTONDOWN, detail::sdl_pad_key(e.cbutton.button));
+        break;
+      case SDL_CONTROLLERAXISMOTION:
+        if (e.caxis.axis < pad_axis_count) {
+          ev.pad_axes[e.caxis.axis] = pad_axis_value(e.caxis.value);
+        }
+        break;
       default:
         break;
     }
   }
-  const Uint8* keys = SDL_GetKeyboardState(nullptr);
-  ev.rewind = keys[SDL_SCANCODE_BACKSPACE] != 0;
+  impl_->map.apply(ev);
 }
 
 void Window::present(std::span<const std::uint8_t> rgba) {

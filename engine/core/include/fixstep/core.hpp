@@ -20,6 +20,7 @@
 #include "fixstep/core/loop.hpp"
 #include "fixstep/core/mover.hpp"
 #include "fixstep/core/pointer_drag.hpp"
+#include "fixstep/core/pre_solve.hpp"
 #include "fixstep/core/query.hpp"
 #include "fixstep/core/random.hpp"
 #include "fixstep/core/recording.hpp"

@@ -14,21 +14,22 @@
 //   TickInput merge(std::span<const TickInput> players, const World& world) const;
 //
 // setup() completes the level: run() hands it the scene file's world (Settings::scene_file, or
-// --scene), or an empty WorldDef when the game builds its level in code. rules() runs after
-// every tick, live, in a replay and in the sync test alike, so it may change the world
-// (score, spawn, destroy) and keep state in the game's members: run() copies the game as
-// setup() left it to start afresh (restart, replay) and to roll back (sync test), so what setup()
-// keeps (the handles WorldDef::add_body returned, the bodies it tagged) every copy has. input()
-// turns a window's events into per-body input (the sampler carries it into the ticks and the
-// recording); autopilot() does the same for a headless frame; prepare() adjusts one live tick's
-// input before it is stepped (e.g. which body the pointer may drag); draw() draws shapes over the
-// world (lines, circles, polygons, arrows, labels: app::Overlay) and adds lines to the HUD;
-// summary() is the game's state in one line, printed after a run and a replay. seat() and
-// merge() are for networked play (fixstep::net::run, fixstep/net_app/run.hpp): seat() tells the
-// game which player its input(), autopilot() and draw() play (0 = the host; it may be called
-// again at any time, so it must not change what rules() do), and merge() makes each
-// tick's one input from every player's (index = player), on every peer, before the step (so,
-// like rules(), it must be deterministic; it replaces prepare() in a match).
+// --scene), or an empty WorldDef when the game builds its level in code; level.find_body(NAME)
+// and level.find_joint(NAME) give the handles the world will have, to keep in the game's
+// members. rules() runs after (Settings::rules_before_step: before) every tick, live, in a replay
+// and in the sync test alike, so it may change the world (score, spawn, destroy) and keep state in
+// the game's members: run() copies the game as setup() left it to start afresh (restart, replay)
+// and to roll back (sync test), so what setup() keeps (the handles WorldDef::add_body returned, the
+// bodies it tagged) every copy has. input() turns a window's events into per-body input (the
+// sampler carries it into the ticks and the recording); autopilot() does the same for a headless
+// frame; prepare() adjusts one live tick's input before it is stepped (e.g. which body the pointer
+// may drag); draw() draws shapes over the world (lines, circles, polygons, arrows, labels:
+// app::Overlay) and adds lines to the HUD; summary() is the game's state in one line, printed after
+// a run and a replay. seat() and merge() are for networked play (fixstep::net::run,
+// fixstep/net_app/run.hpp): seat() tells the game which player its input(), autopilot() and draw()
+// play (0 = the host; it may be called again at any time, so it must not change what rules() do),
+// and merge() makes each tick's one input from every player's (index = player), on every peer,
+// before the step (so, like rules(), it must be deterministic; it replaces prepare() in a match).
 #pragma once
 
 #include <concepts>
@@ -37,12 +38,14 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "fixstep/app/game_model.hpp"
 #include "fixstep/app/overlay.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/types.hpp"
 #include "fixstep/core/world_def.hpp"
+#include "fixstep/render/input_map.hpp"
 
 namespace fixstep::app {
 
@@ -74,6 +77,24 @@ struct Settings {
   std::string follow{};
   /// The game's keys, shown at the bottom of the window's HUD (e.g. "arrows: move  enter: jump").
   std::string controls{};
+  /// The game's actions: a name, a bit of TickInput::held / pressed / released, and the keys,
+  /// mouse buttons and gamepad buttons bound to it (fixstep/render/input_map.hpp). Empty:
+  /// fixstep's default actions (default_actions(): the arrows, Enter, the mouse buttons). A
+  /// game that drags with the pointer binds Key::mouse_left to button_pointer_primary itself.
+  /// --input scripts press and release actions by these names.
+  std::vector<ActionBinding> actions{};
+  /// The game's analogue axes (TickInput::axes): gamepad axes, and key pairs reading -1 / +1.
+  std::vector<AxisBinding> axes{};
+  /// The loop's keys: pause, step, faster, slower, restart, rewind, quit. A key the game's
+  /// actions bind is not a loop key (the game's jump on space leaves pause without a key:
+  /// rebind it here).
+  std::vector<LoopBinding> loop_keys = default_loop_bindings();
+  /// Run rules() before each tick's step instead of after it (input → rules → step): what a
+  /// key does in rules() then acts in the same tick (a flipper's motor set by a key moves it in
+  /// the tick the key went down). The same order live, in replay, the sync test and networked
+  /// play; a recording's hashes are taken after the step either way. Changing it changes what
+  /// a recording replays to: raise rules_version.
+  bool rules_before_step = false;
   /// Shows the HUD's energy line. Off by default: a game's input and rules add energy from
   /// outside the world's account, so its balance would measure them, not the integrator.
   bool show_energy = false;
@@ -107,13 +128,21 @@ concept Game = std::copy_constructible<G> && std::is_copy_assignable_v<G> &&
 ///
 ///   NAME                                play in a window until Esc or the close button
 ///   NAME --frames N [--out DIR]         N frames headless on a 60 Hz virtual clock, the
-///                                       autopilot playing; PNG frames into DIR
+///                                       autopilot playing; PNG frames into DIR, with
+///                                       DIR/frames.csv (each frame's tick, hash, energy)
+///   NAME --frames N --input SCRIPT      ... the script playing instead (an input script,
+///                                       docs/CLI.md: its press / release name the game's
+///                                       actions, its axes the game's axes); also with
+///                                       --window, --record and --sync-test
 ///   NAME --window --frames N            N frames in the window, then quit
 ///   NAME --frames N --last-frame PNG    ... and the last frame (headless or in the window)
 ///   NAME ... --record FILE              record the session (the input, a state hash a tick)
 ///   NAME --replay FILE [--out DIR [--every K]] [--last-frame PNG]
 ///                                       re-simulate a recording with the rules, verify every
-///                                       stored hash, then draw it
+///                                       stored hash, then draw it: frames 0, K, 2K, ... and
+///                                       the last, each named by its frame index
+///                                       (DIR/frame_000000.png, frame_00000K.png, ...) and
+///                                       listed with its tick in DIR/frames.csv
 ///   NAME --diff A.rec B.rec             where two recordings first differ: inputs, stored
 ///                                       hashes, and (both replayed side by side with the
 ///                                       rules) the first tick, body and field

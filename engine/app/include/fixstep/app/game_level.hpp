@@ -14,6 +14,8 @@
 #include "fixstep/app/session.hpp"
 #include "fixstep/core/recording.hpp"
 #include "fixstep/core/world_def.hpp"
+#include "fixstep/render/input_map.hpp"
+#include "fixstep/scene/input_script.hpp"
 
 namespace fixstep::app::detail {
 
@@ -53,8 +55,18 @@ struct Level {
 /// limits are checked).
 [[nodiscard]] Level replay_level(const AnyGame& game, const Settings& settings,
                                  const Recording& rec, const std::optional<std::string>& scene);
-/// TickRules that run `game`'s rules (held by reference) and save and restore it by copy.
-[[nodiscard]] TickRules game_rules(AnyGame& game);
+/// The game's bindings: Settings::actions (fixstep's default actions when empty), axes and loop
+/// keys. Throws std::invalid_argument naming the fault (InputMap::problem).
+[[nodiscard]] InputMap game_input_map(const Settings& settings);
+/// Loads --input SCRIPT for `level`, its press / release / axes naming the game's actions and
+/// axes (SceneError naming the file, line and key); prints its warnings (unknown keys).
+[[nodiscard]] InputScript game_script(const Settings& settings, const Level& level,
+                                      const std::string& file);
+/// The names an input script may press and set: the map's actions and axes.
+[[nodiscard]] ScriptNames script_names(const InputMap& map);
+/// TickRules that run `game`'s rules (held by reference) after each step, or before it when
+/// `before_step` (Settings::rules_before_step), and save and restore the game by copy.
+[[nodiscard]] TickRules game_rules(AnyGame& game, bool before_step);
 
 /// A recording replayed with a game's rules (replay_game).
 struct GameReplay {

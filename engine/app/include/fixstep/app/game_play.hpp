@@ -13,6 +13,7 @@
 #include "fixstep/app/session.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/io/recording_writer.hpp"
+#include "fixstep/scene/input_script.hpp"
 
 namespace fixstep::app::detail {
 
@@ -54,6 +55,10 @@ class GamePlay {
   /// printed (the state is no tick's). Otherwise as finish().
   void finish_stopped(bool torn);
 
+  /// Plays `script` (kept; it must outlive the play) as the input of every tick from now on,
+  /// before the game's prepare() (--input SCRIPT); a restart plays it from its start again.
+  void play_script(const InputScript& script) { script_.emplace(script); }
+
   [[nodiscard]] Session& session() { return session_; }
   [[nodiscard]] InputSampler& sampler() { return sampler_; }
   [[nodiscard]] AnyGame& game() { return *game_; }
@@ -65,7 +70,9 @@ class GamePlay {
 
   Level level_;
   std::string name_, record_file_;
-  std::uint32_t rules_version_;  ///< Settings::rules_version
+  std::uint32_t rules_version_;         ///< Settings::rules_version
+  bool rules_before_step_;              ///< Settings::rules_before_step
+  std::optional<ScriptPlayer> script_;  ///< --input
   Session session_;
   std::unique_ptr<AnyGame> game_;
   InputSampler sampler_;

@@ -22,8 +22,9 @@ inline constexpr std::string_view window_key_help =
 inline constexpr std::string_view page_key_help =
     "space pause  . step  +/- speed  r restart  arrows push  mouse drag  backspace rewind";
 
-/// Hands the tick-input part of `ev` to `sampler`: every button edge in order, and the pointer
-/// converted to world metres through `camera` for a width x height frame (screen_to_world).
+/// Hands the tick-input part of `ev` to `sampler`: every action edge in order, the axes, and
+/// the pointer converted to world metres through `camera` for a width x height frame
+/// (screen_to_world).
 void feed(const UserEvents& ev, InputSampler& sampler, const Camera& camera, int width, int height);
 
 /// Applies the loop keys of `ev` to `loop`, the same in every fixstep loop: space toggles

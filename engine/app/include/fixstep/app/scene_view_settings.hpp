@@ -53,6 +53,8 @@ inline void apply_scene_view_style(const SceneView& view, SessionSettings& s) {
   }
   if (view.hud_scale) s.hud_text_scale = static_cast<float>(*view.hud_scale);
   if (view.hud_lines) s.hud_lines = *view.hud_lines;
+  if (view.background_image) s.style.background_image = *view.background_image;
+  if (view.background_tile) s.style.background_tile = *view.background_tile;
 }
 
 }  // namespace fixstep

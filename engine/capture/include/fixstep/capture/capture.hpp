@@ -119,10 +119,12 @@ void write_png(const std::filesystem::path& file, int width, int height,
 [[nodiscard]] std::filesystem::path frame_path(const std::filesystem::path& dir,
                                                std::uint64_t frame);
 
-/// Writes a sequence of frames as DIR/frame_000000.png, frame_000001.png, ... (frame_path), in
-/// submission order, each exactly once, encoding and writing them on one worker thread while
-/// the caller renders the next frame. Every file is written atomically (write_file_atomic) with
-/// a PngEncoder at `options`, so the files are byte-identical to PngEncoder::write's.
+/// Writes a sequence of frames as DIR/frame_000000.png, frame_000001.png, ... (frame_path), each
+/// named by its frame index (every frame, or every K-th: frame_000000.png, frame_000003.png, ...
+/// when the caller submits frames 0, 3, ...), in submission order, each exactly once, encoding and
+/// writing them on one worker thread while the caller renders the next frame. Every file is written
+/// atomically (write_file_atomic) with a PngEncoder at `options`, so the files are byte-identical
+/// to PngEncoder::write's.
 ///
 /// Pipeline: submit() copies the pixels into one of `in_flight` buffers allocated up front
 /// (in_flight * width * height * 4 bytes; no allocation per frame) and returns at once; it
@@ -146,24 +148,31 @@ class FrameWriter {
   FrameWriter& operator=(const FrameWriter&) = delete;
 
   /// Queues `rgba` (height rows of width*4 bytes, RGBA8, top row first; copied before this
-  /// returns) as the next frame and returns the path it will be written to. Throws
-  /// std::invalid_argument if the size does not match, or the worker's CaptureError if a
-  /// frame has failed.
+  /// returns) as the frame after the last one submitted (frame 0 first) and returns the path it
+  /// will be written to. Throws std::invalid_argument if the size does not match, or the
+  /// worker's CaptureError if a frame has failed.
   std::filesystem::path submit(std::span<const std::uint8_t> rgba);
+  /// The same for frame index `frame` (frame_path(dir, frame)): a capture of every K-th frame
+  /// names each by its index. Throws std::invalid_argument as above, and when `frame` is not
+  /// past the last frame submitted (each name is written once, in order).
+  std::filesystem::path submit(std::span<const std::uint8_t> rgba, std::uint64_t frame);
   /// Blocks until every submitted frame is on disk. Throws the worker's CaptureError if one
   /// failed. More frames may be submitted afterwards.
   void finish();
 
-  /// Frames submitted so far (the next frame's number).
+  /// Frames submitted so far (the next frame's number when every frame is submitted).
   [[nodiscard]] std::uint64_t frames_submitted() const { return submitted_; }
+  /// The index submit(rgba) gives the next frame: the last frame's plus one (0 before any).
+  [[nodiscard]] std::uint64_t next_frame() const { return next_frame_; }
   [[nodiscard]] const std::filesystem::path& directory() const { return dir_; }
 
  private:
   std::filesystem::path dir_;
   int width_, height_;
-  PngEncoder encoder_;           // used by the worker only
-  std::uint64_t submitted_ = 0;  // producer only
-  FramePipeline pipeline_;       // last: its worker starts once everything above is ready
+  PngEncoder encoder_;            // used by the worker only
+  std::uint64_t submitted_ = 0;   // producer only
+  std::uint64_t next_frame_ = 0;  // producer only: the last frame's index + 1
+  FramePipeline pipeline_;        // last: its worker starts once everything above is ready
 };
 
 /// Creates `dir` (and parents) if needed and checks it is a writable directory.

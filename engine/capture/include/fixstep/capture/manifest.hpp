@@ -1,5 +1,6 @@
-// frames.csv: the manifest written beside a capture, one row per frame, so a CI job can diff a
-// run against an earlier one without decoding an image.
+// frames.csv: the manifest written beside a capture (fixstep render and compare, a game's
+// --out), one row per frame written, so a CI job can diff a run against an earlier one without
+// decoding an image.
 #pragma once
 
 #include <cstddef>
@@ -30,7 +31,8 @@ struct FrameState {
 
 /// frames.csv, written as the frames are (into an AtomicFile: complete under its name after
 /// commit(), absent before). Columns (header line first):
-///   frame       frame index (the PNG frame_NNNNNN.png, the video's frame)
+///   frame       frame index (the PNG frame_NNNNNN.png, the video's frame); a capture of
+///               every K-th frame (a game's --replay --every K) lists 0, K, 2K, ... and its last
 ///   tile        (ManifestLayout::tiles only) the tile's index, 0-based, row-major
 ///   tick        ticks taken when the frame was drawn
 ///   t           simulated time tick·dt, s (%.6f)

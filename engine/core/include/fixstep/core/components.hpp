@@ -94,7 +94,27 @@ struct Appearance {
   /// Seconds of past motion the trail shows (sampled every tick), finite, in (0,
   /// max_trail_time].
   double trail_time = default_trail_time;
+  /// A PNG image drawn for the body instead of its disc or shapes (empty: none): a path the
+  /// renderer opens (relative to the working directory; a scene's `sprite` key is resolved
+  /// against the scene file's folder), at most max_image_side px a side. Drawn textured
+  /// (nearest texel, the image's own alpha), centred on the body (a body with shapes: on the
+  /// middle of its shapes' bounds) and turned with its angle, interpolated like the body.
+  std::string sprite{};
+  /// The sprite's width and height, m, each finite and >= 0; 0 (either): the body's drawn
+  /// size, its shapes' bounds (unturned, in the body frame) or its disc's diameter.
+  Vec2 sprite_size{};
 };
+
+/// Largest width and height of an image a sprite, a background tile or an overlay's image
+/// may have, px.
+inline constexpr int max_image_side = 4096;
+/// Most distinct images (by path) a renderer or a scene loads.
+inline constexpr std::size_t max_images = 256;
+/// Most bytes of decoded pixels (4 a pixel) the images of a renderer or a scene take together.
+inline constexpr std::size_t max_image_bytes = std::size_t{256} << 20;
+/// Largest image file read, bytes (a max_image_side square PNG stored without compression is
+/// about 64 MiB).
+inline constexpr std::size_t max_image_file_bytes = std::size_t{80} << 20;
 
 /// A disc the body occupies: for contacts with static half-planes (PlaneDef) and, in a world
 /// with body contacts on (WorldSettings::contacts), with the other discs. Bodies without one

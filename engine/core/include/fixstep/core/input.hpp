@@ -3,6 +3,8 @@
 // bit.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -12,9 +14,11 @@
 
 namespace fixstep {
 
-/// Bits of TickInput::held, pressed and released. fixstep's window maps the arrow keys, Enter
-/// and the mouse buttons to them; what they mean is the program's (fixstep view pushes with
-/// the arrows and drags with the primary pointer button).
+/// fixstep's default actions: bits of TickInput::held, pressed and released. A program that
+/// declares no actions of its own has the arrow keys, Enter and the mouse buttons bound to
+/// them (default_input_map, fixstep/render/input_map.hpp); what they mean is the program's
+/// (fixstep view pushes with the arrows and drags with the primary pointer button). A game
+/// declares its own actions, any of the 32 bits (app::Settings::actions).
 enum InputButton : std::uint32_t {
   button_left = 1u << 0,
   button_right = 1u << 1,
@@ -24,8 +28,13 @@ enum InputButton : std::uint32_t {
   button_pointer_primary = 1u << 8,  ///< left mouse button
   button_pointer_secondary = 1u << 9,
 };
-/// Every bit a TickInput may carry (a recording with others is refused).
+/// Every bit of the default actions: what a recording without rules (physics alone) may carry
+/// (a recording with others is refused). A recording with rules may carry all 32 bits: they are
+/// the game's actions.
 inline constexpr std::uint32_t all_buttons = 0x31fu;
+
+/// How many analogue axes a TickInput carries (TickInput::axes).
+inline constexpr std::size_t max_axes = 4;
 
 /// The drag spring: the one of Box2D's samples (their mouse joint: 5 Hz, damping ratio 0.7),
 /// per unit mass, so light and heavy bodies follow the pointer alike. World::step applies it to
@@ -89,10 +98,13 @@ struct TickInput {
   /// moves light and heavy bodies alike); (0, 0) costs nothing. fixstep view maps the arrow
   /// keys to it.
   Vec2 push{};
-  std::uint32_t held = 0;      ///< InputButton bits down during this tick
+  std::uint32_t held = 0;      ///< action bits (InputButton by default) down during this tick
   std::uint32_t pressed = 0;   ///< bits that went down since the previous tick's sample
   std::uint32_t released = 0;  ///< bits that went up since the previous tick's sample
   Vec2 pointer{};              ///< pointer position in world coordinates, m
+  /// The program's analogue axes this tick (a stick, a trigger, or a pair of keys as -1 / +1),
+  /// each finite and in [-1, 1]; levels (every tick carries the latest), 0 unless bound.
+  std::array<double, max_axes> axes{};
   /// The body the pointer drags (a spring from `pointer` to it; see drag_frequency), or
   /// null_entity. A stale handle, or a body that is not dynamic, drags nothing.
   Entity drag_body = null_entity;
@@ -130,6 +142,11 @@ class InputSampler {
   }
   void set_pointer(Vec2 position) { pointer_ = position; }    ///< m, world coordinates
   void set_push(Vec2 acceleration) { push_ = acceleration; }  ///< m/s²
+  /// Axis `index` (< max_axes; others are ignored) reads `value` (in [-1, 1]) in every
+  /// following tick, until set again.
+  void set_axis(std::size_t index, double value) {
+    if (index < max_axes) axes_[index] = value == 0.0 ? 0.0 : value;  // -0 reads as 0
+  }
   /// The body every following tick drags (TickInput::drag_body), or null_entity; for programs that
   /// decide the drag outside the ticks (fixstep's own use PointerDrag at the tick).
   void set_drag_body(Entity body) { drag_body_ = body; }
@@ -181,6 +198,7 @@ class InputSampler {
  private:
   std::uint32_t held_ = 0, pressed_ = 0, released_ = 0;
   Vec2 pointer_{}, push_{};
+  std::array<double, max_axes> axes_{};
   Entity drag_body_ = null_entity;
   std::vector<BodyInput> forces_;  ///< levels, in the order first set
   std::vector<BodyInput> events_;  ///< one-tick inputs, in the order given

@@ -11,9 +11,10 @@
 
 namespace fixstep {
 
-/// What a program runs right after every tick: score a hit, cut a rope, spawn or destroy a
-/// body. A run with rules is "step(input), then after_tick(sim, input)" for every tick, live,
-/// in replay() and in SyncTest alike, so the state hashes a recording stores (taken after the
+/// What a program runs right after (or before) every tick: score a hit, cut a rope, spawn or
+/// destroy a body. A run with rules is "before_tick(sim, input), step(input), then
+/// after_tick(sim, input)" for every tick (TickRules::tick), live, in replay() and in SyncTest
+/// alike, so the state hashes a recording stores (taken after the
 /// rules) come back on replay.
 ///
 /// Rules that remember something between ticks outside the world (a score, a phase) give
@@ -28,9 +29,22 @@ struct TickRules {
   std::function<std::any()> save;
   /// Puts back a state save() returned.
   std::function<void(const std::any& state)> restore;
+  /// Called right before sim.step(input) (input → rules → step: what a key sets in the rules
+  /// acts in the same tick), under the same terms as after_tick. A program may give either or
+  /// both.
+  std::function<void(World& sim, const TickInput& input)> before_tick;
 
   /// Whether there is anything to run.
-  explicit operator bool() const { return static_cast<bool>(after_tick); }
+  explicit operator bool() const {
+    return static_cast<bool>(after_tick) || static_cast<bool>(before_tick);
+  }
+
+  /// One tick with the rules: before_tick, sim.step(input), after_tick (each when given).
+  void tick(World& sim, const TickInput& input) const {
+    if (before_tick) before_tick(sim, input);
+    sim.step(input);
+    if (after_tick) after_tick(sim, input);
+  }
 };
 
 /// Rules kept in `state` (copyable; held by reference, so it must outlive the rules) and run
@@ -39,7 +53,8 @@ template <class State, class Rule>
 [[nodiscard]] TickRules stateful_rules(State& state, Rule rule) {
   return TickRules{[&state, rule](World& sim, const TickInput& input) { rule(state, sim, input); },
                    [&state] { return std::any(state); },
-                   [&state](const std::any& saved) { state = std::any_cast<const State&>(saved); }};
+                   [&state](const std::any& saved) { state = std::any_cast<const State&>(saved); },
+                   {}};
 }
 
 }  // namespace fixstep

@@ -48,6 +48,26 @@ struct SegmentDef {
   /// The kinematic body that carries it (null: static). For World::add_segment a live handle;
   /// in a WorldDef, a handle WorldDef::add_body returned.
   Entity body{};
+  /// Drawing only (not in the definition or state hash): the segment's colour (alpha 0: the
+  /// planes' colour) and line width, m (0: 2.5 px at any zoom), finite and >= 0.
+  Rgba8 color{0, 0, 0, 0};
+  double width = 0.0;
+  /// One-way (a platform a body jumps up through): the segment blocks only what comes from
+  /// its up side, the left normal of a -> b, up = (-(b - a).y, (b - a).x)/|b - a| (a -> b
+  /// along +x: up = +y). A contact with it acts only when both
+  ///   (a) its normal n, from the segment towards the other body, leans up: n·up > 0.1
+  ///       (within about 84° of up; a touch at an end from the side or from below passes);
+  ///   (b) the other body was not crossing at the tick's start: a disc's closest feature of
+  ///       the segment then (the interior or an end) leaned up from it by (a) and it was no
+  ///       more than 0.01 r (twice the disc slop) inside it, as is the contact itself; a
+  ///       shape's manifold separation at the tick's start poses was at least -0.01 m (twice
+  ///       the shape slop).
+  /// Otherwise the body passes as if the segment were not there (its velocity the bits of
+  /// free flight). Being a rule on each tick's start, a body half-way through stays
+  /// unblocked until it is within that slop of clearing the surface: it is never snapped up.
+  /// Landing on it is caught at any speed, as any segment's contact is. Default false:
+  /// two-sided. docs/SHAPES.md, "One-way platforms".
+  bool one_way = false;
   friend bool operator==(const SegmentDef&, const SegmentDef&) = default;
 };
 

@@ -67,6 +67,23 @@ struct ShapeDef {
   CollisionFilter filter{};  ///< which shapes and discs this one may touch
   /// A sensor reports what it overlaps (World::sensors_begun) and pushes nothing.
   bool sensor = false;
+  /// Drawing only (not in the definition or state hash): the shape's fill colour; alpha 0
+  /// (the default): its body's colour.
+  Rgba8 color{0, 0, 0, 0};
+  /// One-way (a platform of any kind: box, polygon, capsule, circle): the shape blocks only
+  /// what comes from its up side, the shape frame's +y axis turned with its body,
+  /// up = R(body angle + angle)·(0, 1). A contact with it acts only when (a) its normal, from
+  /// this shape towards the other, has n·up > 0.1 (a box platform's top face blocks, its sides
+  /// (n·up = 0) and bottom let a body through; a capsule's or polygon's slanted faces block
+  /// within about 84° of up), and (b) the pair's manifold separation at the tick's start
+  /// poses was at least -0.01 m (twice the 5 mm slop): the other body was not already
+  /// crossing. Otherwise the pair has no contact that tick: no impulse, no push-out, no
+  /// continuous collision, no contact event. The rule holds against whatever the shape meets,
+  /// planes and segments included (a dynamic body's one-way shape passes down through the
+  /// ground). Two one-way shapes touch only when each one's rule lets the contact act (each
+  /// sees the other on its up side: two with the same up pass through each other).
+  /// docs/SHAPES.md, "One-way platforms". Default false.
+  bool one_way = false;
   friend bool operator==(const ShapeDef&, const ShapeDef&) = default;
 };
 

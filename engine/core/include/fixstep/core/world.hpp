@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "fixstep/core/entity.hpp"
+#include "fixstep/core/pre_solve.hpp"
 #include "fixstep/core/types.hpp"
 
 namespace fixstep {
@@ -227,10 +228,10 @@ class World {
   /// non-finite end, coinciding ends, or restitution or friction out of range.
   std::size_t add_segment(const SegmentDef& def);
   /// The segments of a polyline (polyline_segments), joined by ghost vertices, static or
-  /// carried by the kinematic `body`; returns the index of its first segment. Throws as
-  /// polyline_segments and add_segment do.
+  /// carried by the kinematic `body`, each one-way (SegmentDef::one_way) when `one_way`;
+  /// returns the index of its first segment. Throws as polyline_segments and add_segment do.
   std::size_t add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                           bool closed = false, Entity body = {});
+                           bool closed = false, Entity body = {}, bool one_way = false);
   [[nodiscard]] std::span<const SegmentDef> segments() const;
   /// Advances the world by one tick (WorldSettings::dt, s) with no input: step(TickInput{}).
   void step();
@@ -249,6 +250,13 @@ class World {
   /// input.joints it would not apply (JointInput says which).
   void check_input(const TickInput& input) const;
   void set_keep_previous(bool keep);
+  /// Installs the pre-solve hook (pre_solve.hpp): `fn(contact, context)` is called for every
+  /// contact manifold of the shape phase once per tick, before the solve, in a fixed order;
+  /// false disables that contact for the tick. nullptr (the default) removes it: a world
+  /// without a hook pays one branch a tick. The hook is not state: save and restore leave the
+  /// installed one in place (a snapshot neither holds nor replaces it), the state hash and the
+  /// definition hash leave it out, and a copy of the World gets the same function and context.
+  void set_pre_solve(PreSolveFn fn, void* context = nullptr);
 
   /// The runtime guard's finding: the first body whose state left the finite range (see
   /// World::fault()), or nullopt.

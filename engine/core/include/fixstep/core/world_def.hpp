@@ -4,6 +4,7 @@
 #pragma once
 
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "fixstep/core/components.hpp"
@@ -50,15 +51,22 @@ struct WorldDef {
   /// lists the same handles), for the links and per-body inputs a program writes before the
   /// world exists.
   Entity add_body(BodyDef body);
+  /// The handle World(def) will give the first body named `name` (World::find does the same in
+  /// the world), or null_entity when no body has that name: for a game's setup() to keep the
+  /// handles of a scene's bodies instead of finding them by name every tick.
+  [[nodiscard]] Entity find_body(std::string_view name) const;
+  /// The handle World(def) will give the first joint named `name`, or a null Joint.
+  [[nodiscard]] Joint find_joint(std::string_view name) const;
   /// Appends a link between two bodies add_body returned; World(def) validates it.
   void add_link(Entity a, Entity b, const LinkSpring& spring) {
     links.push_back(LinkDef{a, b, spring});
   }
   /// Appends the segments of a polyline through `points` (polyline_segments: throws
   /// std::invalid_argument for too few points or a zero-length segment), carried by `body`
-  /// (a handle add_body returned, of a kinematic body) or static (null).
+  /// (a handle add_body returned, of a kinematic body) or static (null), each one-way
+  /// (SegmentDef::one_way) when `one_way`.
   void add_polyline(std::span<const Vec2> points, double restitution, double friction,
-                    bool closed = false, Entity body = {});
+                    bool closed = false, Entity body = {}, bool one_way = false);
 };
 
 }  // namespace fixstep

@@ -21,10 +21,9 @@ namespace fixstep {
 /// "" when a capture may go into `dir`: it does not exist, holds no capture file, or
 /// `overwrite` is set. Otherwise the refusal: "--out DIR already holds a capture (N frames, its
 /// frames.csv): a new one would mix with it; give a new or empty directory, or --overwrite".
-/// Other files in `dir` do not count: they cannot be taken for part of the capture.
-/// `manifest` false: the program's captures write no frames.csv (a game's --out), so none
-/// missing is not taken for a sign of a killed run.
-[[nodiscard]] std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite,
-                                              bool manifest = true);
+/// Other files in `dir` do not count: they cannot be taken for part of the capture. Every
+/// capture (fixstep render and compare, a game's --out) writes its frames.csv last, so frames
+/// without one are named "an unfinished or killed run".
+[[nodiscard]] std::string capture_dir_refusal(const std::filesystem::path& dir, bool overwrite);
 
 }  // namespace fixstep

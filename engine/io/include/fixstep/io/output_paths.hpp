@@ -31,11 +31,9 @@ struct OutputPaths {
   std::string program;  ///< the messages' first words: "fixstep run", "peggle"
   std::vector<NamedPath> inputs{};
   std::vector<NamedPath> outputs{};
-  std::optional<std::string> capture_dir{};  ///< --out DIR of a capture (frame_NNNNNN.png)
-  bool overwrite = false;                    ///< --overwrite: the old capture in DIR goes
-  /// The capture writes a frames.csv manifest (fixstep render, compare); a game's --out
-  /// writes frames only (capture_dir_refusal's `manifest`).
-  bool capture_manifest = true;
+  /// --out DIR of a capture (frame_NNNNNN.png and its frames.csv manifest)
+  std::optional<std::string> capture_dir{};
+  bool overwrite = false;  ///< --overwrite: the old capture in DIR goes
 };
 
 /// Throws PathRefused when an output is a directory, a block device, a socket or another

@@ -14,9 +14,9 @@ namespace fixstep::net {
 
 /// Bits of InputDelta::mask: which fields of TickInput a changed tick carries.
 enum InputField : std::uint8_t {
-  field_push = 1u << 0,     ///< push.x, push.y (finite)
-  field_held = 1u << 1,     ///< held (bits of all_buttons only)
-  field_edges = 1u << 2,    ///< pressed, released (bits of all_buttons only)
+  field_push = 1u << 0,     ///< the levels: push.x, push.y (finite) and the axes ([-1, 1])
+  field_held = 1u << 1,     ///< held (the game's action bits, any of 32)
+  field_edges = 1u << 2,    ///< pressed, released
   field_pointer = 1u << 3,  ///< pointer.x, pointer.y (finite)
   field_drag = 1u << 4,     ///< drag_body
   field_bodies = 1u << 5,   ///< bodies (<= max_net_body_inputs, kinds 0..2, finite values)
@@ -43,7 +43,7 @@ inline constexpr std::int64_t max_pointer_grid_units = std::int64_t{1} << 40;
 /// aside.
 [[nodiscard]] bool same_input(const TickInput& a, const TickInput& b);
 /// What is wrong with `in` for the network (PacketError::none when nothing): a non-finite
-/// push, pointer or body value, a button bit outside all_buttons, more than
+/// push, pointer or body value, an axis outside [-1, 1], more than
 /// max_net_body_inputs body inputs, a body input kind out of range, any joint input (the
 /// network does not carry TickInput::joints: a networked game derives its motors in its rules).
 [[nodiscard]] PacketError check_input(const TickInput& in);

@@ -17,7 +17,7 @@ namespace fixstep::net {
 /// fixstep's and is dropped before anything else is read.
 inline constexpr std::uint32_t protocol_id = 0x4e535846u;
 /// The protocol version this build speaks; a packet of another version is refused.
-inline constexpr std::uint8_t protocol_version = 5;
+inline constexpr std::uint8_t protocol_version = 6;
 /// Largest packet, bytes (under a 1280-byte IPv6 minimum MTU with UDP and ENet headers).
 inline constexpr std::size_t max_packet_bytes = 1200;
 /// Most players of one match, and most spectators.

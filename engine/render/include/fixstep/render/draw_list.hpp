@@ -68,6 +68,15 @@ class DrawList {
   /// spaces (text stays readable at any zoom).
   void label(Vec2 at, std::string_view text, double scale, Rgba8 color, Space space = Space::world);
 
+  /// The PNG image at `path` (loaded once by the renderer, Renderer::image; an image it
+  /// refuses throws ImageError from draw()), `size` = (width, height) centred on `center` and
+  /// turned by `angle` rad counter-clockwise about it (as seen: in screen space too), its top
+  /// row up before the turn; each pixel takes the texel under its centre (nearest), its alpha
+  /// blended over. size in m (world) or px (screen), each finite and >= 0 (0: nothing drawn).
+  /// An image reaching no pixel of the frame, or more than 10^6 px across, is not drawn.
+  void image(std::string_view path, Vec2 center, Vec2 size, double angle = 0.0,
+             Space space = Space::world);
+
   /// Forgets every shape, keeping the storage.
   void clear();
   /// Shapes recorded since the last clear().
@@ -81,9 +90,20 @@ class DrawList {
   void draw(Renderer& canvas) const;
 
  private:
-  enum class Kind : std::uint8_t { line, polyline, circle, disc, rect, polygon, arrow, label };
-  /// One shape: its points (points_[first, first + count)), sizes and colour; a label's text is
-  /// text_[text_first, text_first + text_count).
+  enum class Kind : std::uint8_t {
+    line,
+    polyline,
+    circle,
+    disc,
+    rect,
+    polygon,
+    arrow,
+    label,
+    image
+  };
+  /// One shape: its points (points_[first, first + count)), sizes and colour; a label's text (an
+  /// image's path) is text_[text_first, text_first + text_count); an image's points are its
+  /// corners.
   struct Shape {
     Kind kind = Kind::line;
     Space space = Space::world;

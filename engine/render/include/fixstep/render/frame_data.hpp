@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "fixstep/core/components.hpp"
@@ -34,6 +35,16 @@ struct RenderFrame {
     float radius = 0;         ///< m: circle's and capsule's radius, polygon's rounding (>= 0)
     std::array<float, max_polygon_vertices> px{}, py{};  ///< m, as above
     float mark_x = 0, mark_y = 0;  ///< m, as above: a circle's rim on its x axis, a vertex
+    Rgba8 color{0, 0, 0, 0};       ///< ShapeDef::color: its fill (alpha 0: the body's colour)
+  };
+  /// A body drawn as an image (Appearance::sprite) instead of its disc or shapes: a `width` x
+  /// `height` m rectangle centred on (cx, cy) in the body's frame relative to its centre of
+  /// mass (turned by its angle with it), the image stretched over it, top row up.
+  struct Sprite {
+    std::uint32_t body = 0;       ///< the body's entry in x / y / angle
+    float cx = 0, cy = 0;         ///< m, as above
+    float width = 0, height = 0;  ///< m, > 0
+    std::string path;             ///< the PNG file (Appearance::sprite)
   };
   std::vector<float> x, y;  ///< body positions, m (interpolated when taken with alpha)
   /// Each body's handle, so what a renderer keeps per body across frames (trails) follows the
@@ -59,6 +70,8 @@ struct RenderFrame {
   /// as them instead of a disc. Empty: every body is a disc. An entry naming no body of the
   /// frame, or with a count outside 1..max_polygon_vertices, is not drawn.
   std::vector<Shape> shapes;
+  /// The bodies drawn as images, in body order (entry `body` ascending). Empty: none.
+  std::vector<Sprite> sprites;
   /// 1 for a body that sleeps (ContactSettings::sleep; World::asleep), drawn in its colour
   /// half greyed, as Box2D's debug draw greys sleeping bodies. Empty: none sleeps.
   std::vector<std::uint8_t> asleep;
@@ -110,13 +123,14 @@ struct RenderFrame {
 };
 
 /// Fills `out` from `world` at interpolation alpha (in [0, 1]; World::interpolate_positions):
-/// positions, handles, appearances (visibility and trails included), angles and shapes (a
-/// world with rolling discs or shapes), anchored springs, links, planes, segments, joints, the
+/// positions, handles, appearances (visibility, trails and sprites included), angles and shapes
+/// (a world with rolling discs or shapes), anchored springs, links, planes, segments, joints, the
 /// tick, dt and alpha. Reuses out's storage: no allocation once it has grown to the world's
-/// size. A joint's type and limits never change: they are read (World::joint) for a handle the
-/// frame did not hold at its place before, and for every joint when the world's tick is before
-/// the frame's (a restart, a snapshot restored, another world); a frame filled from two worlds
-/// in turn should be one frame each.
+/// size, but for a body with a sprite, whose Appearance (its path) World::get copies each frame. A
+/// joint's type and limits never change: they are read (World::joint) for a handle the frame did
+/// not hold at its place before, and for every joint when the world's tick is before the frame's (a
+/// restart, a snapshot restored, another world); a frame filled from two worlds in turn should be
+/// one frame each.
 void fill_render_frame(const World& world, double alpha, RenderFrame& out);
 
 }  // namespace fixstep

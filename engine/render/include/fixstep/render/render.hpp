@@ -18,6 +18,7 @@
 #include "fixstep/core/types.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/render/frame_data.hpp"
+#include "fixstep/render/image.hpp"
 #include "fixstep/render/trails.hpp"
 
 namespace fixstep {
@@ -63,6 +64,12 @@ struct ViewStyle {
   /// The joints (RenderFrame::joints), over the bodies: marks at their anchors by default; their
   /// limits too with JointView::limits.
   JointView joints = JointView::anchors;
+  /// A PNG image (a path, ImageCache) tiled over the background, under the grid (empty: none),
+  /// anchored to the world: tile (i, j) covers [i t, (i + 1) t] x [j t, (j + 1) t] m, t =
+  /// background_tile, so it scrolls and zooms with the camera; nearest texel, its alpha
+  /// blended over the background colour.
+  std::string background_image{};
+  double background_tile = 1.0;  ///< m, a tile's width and height, finite and > 0
   friend bool operator==(const ViewStyle&, const ViewStyle&) = default;
 };
 
@@ -134,8 +141,11 @@ class Renderer {
   /// pixels(): draw_scene(frame), draw_hud(hud_lines), finish().
   void draw(const RenderFrame& frame, std::span<const std::string> hud_lines);
   /// Starts a picture (begin()) of the scene view of `frame`: background, grid, axes and scale
-  /// bar as view_style() says, the planes, trails, links, springs, the visible bodies (those
-  /// with shapes as their shapes, RenderFrame::shapes, the others as discs) and, over them, the
+  /// bar as view_style() says (over its background image, tiled), the planes, segments (in
+  /// their colours and widths), trails, links, springs, the visible bodies (those with a
+  /// sprite as their image, RenderFrame::sprites; those with shapes as their shapes,
+  /// RenderFrame::shapes, each in its own colour or the body's; the others as discs; an image
+  /// the cache refuses throws ImageError) and, over them, the
   /// joints as ViewStyle::joints says (none that broke, nor one whose body is hidden). With
   /// at most max_zigzag_links links, links are zigzags like the anchored springs; with more (a
   /// cloth) they are thin straight lines and no trails are drawn. A body hidden by its
@@ -273,6 +283,17 @@ class Renderer {
   /// first) are dropped; the caller ensures convexity; a negative or non-finite radius, or no
   /// point, draws nothing.
   void rounded_polygon(std::span<const Point> points, float radius, Rgba8 c);
+  /// The PNG image at `path` (images(): loaded on first use) stretched over the quad with
+  /// corners `corners` (px): the image's top-left corner at corners[0], then its top-right,
+  /// bottom-right and bottom-left; each pixel takes the texel under its centre (nearest, no
+  /// smoothing, no mipmaps: the same pixels in every renderer), its alpha blended "over" and
+  /// multiplied by tint's (and its colour by tint's). Throws ImageError (image.hpp) for an
+  /// image the cache refuses. A frame with an image after its scene view (a game's overlay)
+  /// is drawn all by GL (OverlayPath::cpu falls back for it).
+  void image(const std::string& path, std::span<const Point, 4> corners,
+             Rgba8 tint = {255, 255, 255, 255});
+  /// The images loaded so far (image(), sprites, the background).
+  [[nodiscard]] const ImageCache& images() const { return images_; }
   /// An arrow from (x0, y0) to (x1, y1): an anti-aliased shaft `width` px wide and a filled
   /// triangular head, not smoothed, `head` px long and as wide, whose tip is (x1, y1). An arrow
   /// shorter than its head is all head (scaled down to its length); shorter than 1e-3 px draws
@@ -304,6 +325,16 @@ class Renderer {
   /// an outline as wide as the discs', and its mark (render_body_shapes.cpp). Marks
   /// shaped_bodies_ for the frame's bodies (1: drawn as shapes, not as a disc).
   void draw_body_shapes(const RenderFrame& frame);
+  /// The visible bodies' sprites (RenderFrame::sprites), after their shapes
+  /// (render_images.cpp). Marks them in shaped_bodies_ (2: drawn as an image).
+  void draw_sprites(const RenderFrame& frame);
+  /// style_.background_image tiled over the frame (render_images.cpp).
+  void background_tiles();
+  /// The quad of image `index` of images_ with corners `p` (px) and texture coordinates `uv`
+  /// (image widths and heights from its top-left corner); `repeat`: the image tiles beyond
+  /// [0, 1], else its edge texels stretch.
+  void image_quad(std::size_t index, const float (&p)[4][2], const float (&uv)[4][2], Rgba8 tint,
+                  bool repeat);
   /// The joints (RenderFrame::joints) as style_.joints says, over the bodies
   /// (render_joints.cpp).
   void draw_joints(const RenderFrame& frame);
@@ -317,12 +348,13 @@ class Renderer {
   // Fragment programs; each batch uses one.
   static constexpr int shapes = 0;  // triangles: solids, discs, circles, lines, polylines, text
   static constexpr int outlined_discs = 1;  // points: disc() with an outline
+  static constexpr int images_program = 2;  // triangles: image(), sprites, background tiles
   // A shapes vertex's `fill` when its shape has no hole (every shape but circle()'s rings): the
   // shader's hole coverage is 0 everywhere (gl_shaders.hpp).
   static constexpr float no_hole = -1e30f;
   /// Makes sure what is recorded next goes into a batch drawn with `program` (and, for
   /// outlined_discs, outline colour `ring`), starting a new batch if needed.
-  void use(int program, Rgba8 ring);
+  void use(int program, Rgba8 ring, std::uint32_t texture = 0);
   void quad(const float (&p)[4][2], const float (&uv)[4][2], Rgba8 c, float fill = no_hole);
   void vertex(float x, float y, float u, float v, Rgba8 c, float fill = no_hole) {
     vertices_.push_back({x, y, u, v, c.r, c.g, c.b, c.a, fill});
@@ -377,7 +409,8 @@ class Renderer {
     std::size_t first = 0;
     std::optional<ClipRect> clip;
     int program = shapes;
-    Rgba8 ring{};  // outline colour of outlined_discs
+    Rgba8 ring{};               // outline colour of outlined_discs
+    std::uint32_t texture = 0;  // images_program: the image's index in images_
   };
   std::vector<Batch> batches_;
   // What draw_scene() recorded ends where batches_[overlay_batch_] and vertices_[overlay_vertex_]
@@ -414,7 +447,8 @@ class Renderer {
   /// Per body of the frame drawn last: 1 when draw_body_shapes() drew it as its shapes (empty:
   /// no body has shapes).
   std::vector<std::uint8_t> shaped_bodies_;
-  Trails trails_;  // world coordinates, m: drawn through the camera of each frame
+  Trails trails_;      // world coordinates, m: drawn through the camera of each frame
+  ImageCache images_;  // each image's texture: gl_->images[index], made on first use
 };
 
 }  // namespace fixstep

@@ -88,6 +88,11 @@ struct SceneView {
   std::optional<std::uint32_t> hud_lines;
   /// joints = "off" | "anchors" | "limits": how joints are drawn (default "anchors").
   std::optional<SceneJoints> joints;
+  /// background_image = "tiles.png": a PNG tiled over the background, anchored to the world
+  /// (the path resolved against the scene file's folder, checked as a body's sprite).
+  std::optional<std::string> background_image;
+  /// background_tile = 2.0: a background tile's width and height, m (> 0; default 1).
+  std::optional<double> background_tile;
 };
 
 /// Where each part of a scene was declared, for messages: line numbers (0 if not from a file)

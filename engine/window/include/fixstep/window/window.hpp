@@ -9,6 +9,7 @@
 #include <string>
 
 #include "fixstep/core/types.hpp"
+#include "fixstep/render/input_map.hpp"
 #include "fixstep/render/render.hpp"
 #include "fixstep/render/user_events.hpp"
 
@@ -20,8 +21,9 @@ class WindowError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// A window's events: the keys, buttons and pointer of fixstep/render/user_events.hpp, with Esc and
-/// the close button as `quit`. The held arrow keys are tick-input buttons (arrow_push).
+/// A window's events: the keys, mouse buttons, first gamepad and pointer of
+/// fixstep/render/user_events.hpp, mapped by the window's InputMap (default_input_map() unless
+/// set_input_map), the close button as `quit`.
 using WindowEvents = UserEvents;
 
 class Window {
@@ -38,7 +40,10 @@ class Window {
   Window(const Window&) = delete;
   Window& operator=(const Window&) = delete;
 
-  /// Drains SDL's event queue.
+  /// The bindings every poll applies from now on (InputMap::apply).
+  void set_input_map(InputMap map);
+  /// Drains SDL's event queue: keys as physical keys (scancodes), mouse buttons, the first game
+  /// controller's buttons and axes; then the InputMap's actions, axes and loop commands.
   WindowEvents poll();
   /// Drains SDL's event queue into `ev`, reusing its storage (no allocation once its edge list
   /// has grown).
@@ -50,6 +55,7 @@ class Window {
   [[nodiscard]] std::string driver() const;
 
  private:
+  void open_pad(int device);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
