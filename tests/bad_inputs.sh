@@ -899,45 +899,6 @@ $body
 [[body.shape]]
 box = [1.0, 1.0]
 circle = 0.5"
-# --- movers: a body's mover = { ... }, refused by the scene loader at its key ---
-hero='[[body]]
-type = "kinematic"
-position = [0.0, 1.0]
-shape = { capsule = [[0.0, -0.5], [0.0, 0.5]], radius = 0.3 }'
-case_ "a mover's step_height not below the capsule radius" "$ok_world
-$hero
-mover = { step_height = 0.3 }"
-case_ "a mover's max_floor_angle of 2 rad (beyond pi/2)" "$ok_world
-$hero
-mover = { max_floor_angle = 2.0 }"
-case_ "a mover's skin 0" "$ok_world
-$hero
-mover = { skin = 0.0 }"
-case_ "a mover's skin half the capsule radius" "$ok_world
-$hero
-mover = { skin = 0.15 }"
-case_ "a mover's push_force negative" "$ok_world
-$hero
-mover = { push_force = -10.0 }"
-case_ "a mover's snap_distance nan" "$ok_world
-$hero
-mover = { snap_distance = nan }"
-case_ "a mover key it does not have (jump_speed): a warning" "$ok_world
-$hero
-mover = { jump_speed = 5.0 }"
-case_ "a mover on a dynamic body" "$ok_world
-$body
-mover = { }
-shape = { capsule = [[0.0, -0.5], [0.0, 0.5]], radius = 0.3 }"
-case_ "a mover whose shape is a box" "$ok_world
-[[body]]
-type = \"kinematic\"
-position = [0.0, 1.0]
-mover = { }
-shape = { box = [0.3, 0.8] }"
-case_ "a mover that is not a table" "$ok_world
-$hero
-mover = 0.2"
 # --- images and styles: sprites, a tiled background, segment and shape colours ---
 sprites=$tests_dir/../assets/scenes/sprites
 cp "$sprites/crate.png" crate.png
@@ -1024,6 +985,45 @@ write_png inflate.png 16 16 'not a zlib stream'
 case_ "a sprite whose CRCs match but whose data does not inflate (found when drawn)" "$ok_world
 $(sprite_body inflate.png)
 gravity = [0.0, -9.81]" render scene.toml --frames 1 --out inflate_frames
+# --- movers: a body's mover = { ... }, refused by the scene loader at its key ---
+hero='[[body]]
+type = "kinematic"
+position = [0.0, 1.0]
+shape = { capsule = [[0.0, -0.5], [0.0, 0.5]], radius = 0.3 }'
+case_ "a mover's step_height not below the capsule radius" "$ok_world
+$hero
+mover = { step_height = 0.3 }"
+case_ "a mover's max_floor_angle of 2 rad (beyond pi/2)" "$ok_world
+$hero
+mover = { max_floor_angle = 2.0 }"
+case_ "a mover's skin 0" "$ok_world
+$hero
+mover = { skin = 0.0 }"
+case_ "a mover's skin half the capsule radius" "$ok_world
+$hero
+mover = { skin = 0.15 }"
+case_ "a mover's push_force negative" "$ok_world
+$hero
+mover = { push_force = -10.0 }"
+case_ "a mover's snap_distance nan" "$ok_world
+$hero
+mover = { snap_distance = nan }"
+case_ "a mover key it does not have (jump_speed): a warning" "$ok_world
+$hero
+mover = { jump_speed = 5.0 }"
+case_ "a mover on a dynamic body" "$ok_world
+$body
+mover = { }
+shape = { capsule = [[0.0, -0.5], [0.0, 0.5]], radius = 0.3 }"
+case_ "a mover whose shape is a box" "$ok_world
+[[body]]
+type = \"kinematic\"
+position = [0.0, 1.0]
+mover = { }
+shape = { box = [0.3, 0.8] }"
+case_ "a mover that is not a table" "$ok_world
+$hero
+mover = 0.2"
 # --- joints: [[joint]] tables, refused by the scene loader at their key ---
 joint_bodies="$ok_world
 [[body]]

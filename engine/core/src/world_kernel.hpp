@@ -696,6 +696,8 @@ class WorldKernel {
   };
   Store<ShapeSet> shape_sets_;
   ClonePtr<ShapeWorld> shape_world_;
+  PreSolveFn pre_solve_ = nullptr;  ///< set_pre_solve: not state
+  void* pre_solve_context_ = nullptr;
   // Character movers (world_movers.cpp; BodyDef::mover), keyed by entity: the definition, what
   // the last tick met (state: hashed, copied by snapshots) and where this tick leaves the body
   // (m); the obstacles near the one being moved and the slide's contacts (scratch).
@@ -718,8 +720,6 @@ class WorldKernel {
                               const MoverGeometry& g, Vec2 start);
   void push_by_mover(const MoverContact& c, Vec2 velocity, double limit);
   void mover_outcome(MoverRecord& m, Vec2 v, Vec2 attempt, std::span<const MoverContact> cs);
-  PreSolveFn pre_solve_ = nullptr;  ///< set_pre_solve: not state
-  void* pre_solve_context_ = nullptr;
   // Joints (world_joints.cpp), dense, keyed by Joint handles stored as Entity-shaped keys: each
   // one's record (definition, geometry, input, accumulated impulses: state) and handle; the
   // pairs of shape-world bodies they keep from colliding (rebuilt with the shapes); the
