@@ -5,6 +5,7 @@
 // threads, and the definitions refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstddef>
@@ -387,6 +388,61 @@ TEST(Mover, ACrateLeaningOnItDoesNotPushItAway) {
   EXPECT_EQ(w.body(e).position, stood);
   EXPECT_LT(w.body(box).position.x, 1.0);  // it came down to the mover
   EXPECT_NEAR(w.body(box).velocity.x, 0.0, 1e-2);
+}
+
+// One-way platforms (SegmentDef::one_way, ShapeDef::one_way), 1.5 m up over the mover: it jumps
+// up through each from below (not stopped, no on_ceiling) and lands on it from above, standing
+// skin above its top, on_floor; a jump from there and a fall land on it again.
+TEST(Mover, JumpsUpThroughOneWayPlatformsAndLandsOnThem) {
+  for (const bool shape : {false, true}) {
+    SCOPED_TRACE(shape ? "a one-way box" : "a one-way segment");
+    World w(WorldDef::empty(Precision::f64, settings()));
+    w.add_segment(SegmentDef{.a = {-20.0, 0.0}, .b = {20.0, 0.0}});
+    double top = 1.5;
+    if (shape) {
+      BodyDef p = static_box({0.0, 1.4}, 2.0, 0.1);
+      p.shapes[0].one_way = true;
+      w.create_body(p);
+    } else {
+      w.add_segment(SegmentDef{.a = {-2.0, top}, .b = {2.0, top}, .one_way = true});
+    }
+    const Entity e = w.create_body(mover_def({0.0, foot + skin}));
+    play(w, e, 0.0);
+    bool ceiling = false;
+    for (int t = 0; t < 120; ++t) {
+      play(w, e, 0.0, t == 0 ? 7.0 : 0.0);  // up to 2.5 m
+      ceiling = ceiling || w.mover_state(e).on_ceiling;
+    }
+    EXPECT_FALSE(ceiling);
+    ASSERT_TRUE(w.mover_state(e).on_floor);
+    EXPECT_GE(gap(w, e, top), skin - 1e-9);
+    EXPECT_LE(gap(w, e, top), skin + 1e-5);
+    for (int t = 0; t < 120; ++t) play(w, e, 0.0, t == 0 ? 3.0 : 0.0);
+    EXPECT_TRUE(w.mover_state(e).on_floor);
+    EXPECT_LE(gap(w, e, top), skin + 1e-5);
+  }
+}
+
+// A jump whose top ends half-way up through a one-way box platform (its foot about 8 cm below
+// the top) falls back through it to the ground: a surface it started the tick crossing is not
+// met, so it is not lifted onto the platform from inside it.
+TEST(Mover, AJumpEndingHalfWayThroughAOneWayBoxFallsBack) {
+  World w(WorldDef::empty(Precision::f64, settings()));
+  w.add_segment(SegmentDef{.a = {-20.0, 0.0}, .b = {20.0, 0.0}});
+  BodyDef p = static_box({0.0, 1.4}, 2.0, 0.1);  // from 1.3 to 1.5 m
+  p.shapes[0].one_way = true;
+  w.create_body(p);
+  const Entity e = w.create_body(mover_def({0.0, foot + skin}));
+  play(w, e, 0.0);
+  double apex = 0.0;
+  for (int t = 0; t < 120; ++t) {
+    play(w, e, 0.0, t == 0 ? 5.2 : 0.0);
+    apex = std::max(apex, gap(w, e, 0.0));
+  }
+  EXPECT_GT(apex, 1.35);
+  EXPECT_LT(apex, 1.47);
+  EXPECT_TRUE(w.mover_state(e).on_floor);
+  EXPECT_LE(gap(w, e, 0.0), skin + 1e-5);  // back on the ground
 }
 
 /// A world with a mover walking over a step into a crate, and a platform going by.

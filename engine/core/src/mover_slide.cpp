@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "one_way.hpp"
+
 namespace fixstep::detail {
 
 namespace {
@@ -133,6 +135,7 @@ void MoverSlide::contacts(const MoverGeometry& g, std::span<const MoverObstacle>
       c.normal = -d.normal;
       c.distance = d.distance;
       c.point = d.point_b;
+      if (o.one_way && !(dot(c.normal, o.up) > one_way_min_dot)) continue;  // from below, aside
     }
     c.need = g.def.skin - c.distance;
     if (o.dynamic) c.need = std::min(c.need, 0.0);
@@ -174,6 +177,7 @@ double MoverSlide::cast(const MoverGeometry& g, std::span<const MoverObstacle> o
     // advancement's steps shrink with the gap). The rest by conservative advancement.
     const Distance d = distance(g.capsule, Pose{position, Rot{}}, o.convex, Pose{});
     if (d.overlap) continue;  // cores crossed: left alone, as by contacts()
+    if (o.one_way && !(dot(-d.normal, o.up) > one_way_min_dot)) continue;
     if (d.distance <= 2.0 * skin) {
       if (deeper(-d.normal, d.distance, o.dynamic)) fraction = 0.0;
       continue;

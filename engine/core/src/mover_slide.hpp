@@ -39,6 +39,11 @@ struct MoverObstacle {
   std::uint32_t body = none;  ///< dense index of a body (none: a plane or a static segment)
   Entity entity{};            ///< the body, or the kinematic body carrying the segment
   bool dynamic = false;       ///< pushed rather than stood against
+  /// A one-way surface (SegmentDef::one_way, ShapeDef::one_way) of unit `up`: met only by a
+  /// contact whose normal leans up (one_way.hpp); one the capsule was not above at the tick's
+  /// start is not gathered at all.
+  bool one_way = false;
+  Vec2 up{};
 };
 
 /// What a contact is to a walker.

@@ -716,7 +716,8 @@ class WorldKernel {
   void place_movers();
   void finish_movers();
   [[nodiscard]] MoverGeometry mover_geometry(const MoverRecord& m, Entity e) const;
-  void gather_mover_obstacles(std::size_t self, const Aabb& box, const CollisionFilter& filter);
+  void gather_mover_obstacles(std::size_t self, const Aabb& box, const CollisionFilter& filter,
+                              const MoverGeometry& g, Vec2 start);
   void push_by_mover(const MoverContact& c, Vec2 velocity, double limit);
   void mover_outcome(MoverRecord& m, Vec2 v, Vec2 attempt, std::span<const MoverContact> cs);
   // Joints (world_joints.cpp), dense, keyed by Joint handles stored as Entity-shaped keys: each

@@ -9,6 +9,7 @@
 #include "fixstep/core/det_math.hpp"
 #include "fixstep/core/mover.hpp"
 #include "mover_slide.hpp"
+#include "one_way.hpp"
 #include "shape_world.hpp"
 #include "world_kernel.hpp"
 
@@ -73,8 +74,16 @@ detail::MoverGeometry detail::WorldKernel<Real>::mover_geometry(const MoverRecor
 // by its body's velocity), and the planes.
 template <class Real>
 void detail::WorldKernel<Real>::gather_mover_obstacles(std::size_t self, const Aabb& box,
-                                                       const CollisionFilter& filter) {
+                                                       const CollisionFilter& filter,
+                                                       const MoverGeometry& g, Vec2 start) {
   mover_obstacles_.clear();
+  // A one-way surface is met this tick only when the capsule, where the tick starts it, is on
+  // its up side (one_way_blocks: its closest contact leans up, not crossing it by more than the
+  // shapes' slop): from below or half-way through, it passes as if the surface were not there.
+  auto above = [&](const MoverObstacle& o) {
+    const Distance d = distance(g.capsule, Pose{start, Rot{}}, o.convex, Pose{});
+    return !d.overlap && one_way_blocks(o.up, -d.normal, d.distance, one_way_shape_slop);
+  };
   const double dt = settings_.dt;
   auto outside = [&](const Aabb& b) {
     return b.upper.x < box.lower.x || b.lower.x > box.upper.x || b.upper.y < box.lower.y ||
@@ -95,12 +104,14 @@ void detail::WorldKernel<Real>::gather_mover_obstacles(std::size_t self, const A
     const Pose pose{c, rot_of(angle)};
     for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
       const ShapeEntry& s = w.shapes_[k];
-      // One-way shapes (the "oneway" branch's ShapeDef::one_way) are to be met from above only:
-      // the hook point is here, where each shape is taken in or left out.
       if (s.sensor || !should_collide(filter, s.filter)) continue;
       MoverObstacle o;
       o.convex = convex_placed(s.convex, pose);
       if (outside(convex_aabb(o.convex, Pose{}))) continue;
+      if (s.one_way) {
+        o.one_way = true, o.up = rotate(pose.q, s.up);
+        if (!above(o)) continue;
+      }
       o.body = j;
       o.entity = bodies_.dense[j];
       o.dynamic = b.type == BodyType::dynamic;
@@ -110,7 +121,6 @@ void detail::WorldKernel<Real>::gather_mover_obstacles(std::size_t self, const A
   if (!segments_.empty()) {
     segments_.query(box.lower.x, box.lower.y, box.upper.x, box.upper.y, mover_segments_);
     for (const std::uint32_t i : mover_segments_) {
-      // One-way segments (SegmentDef::one_way, "oneway" branch): the same hook point.
       const SegmentDef& d = segments_.defs()[i];
       const Vec2 shift = dt * segments_.velocity(i);
       MoverObstacle o;
@@ -123,6 +133,10 @@ void detail::WorldKernel<Real>::gather_mover_obstacles(std::size_t self, const A
       if (d.prev) o.ghost[0] = left(*d.prev, d.a), o.ghosts |= 1;
       if (d.next) o.ghost[1] = left(d.b, *d.next), o.ghosts |= 2;
       o.entity = d.body;
+      if (d.one_way) {
+        o.one_way = true, o.up = one_way_up_of(d);
+        if (!above(o)) continue;
+      }
       mover_obstacles_.push_back(o);
     }
   }
@@ -246,7 +260,7 @@ void detail::WorldKernel<Real>::move_mover(MoverRecord& m, Entity e) {
   const double reach = std::sqrt(dot(carry, carry)) + std::sqrt(dot(delta, delta)) +
                        m.def.snap_distance + m.def.step_height + 4.0 * m.def.skin;
   const Aabb box = convex_aabb(g.capsule, Pose{p0, Rot{}}, reach * (1.0 + 1e-9) + 1e-9);
-  gather_mover_obstacles(j, box, own.defs[0].filter);
+  gather_mover_obstacles(j, box, own.defs[0].filter, g, p0);
   const std::span<const MoverObstacle> obstacles = mover_obstacles_;
   Vec2 p = p0;
   if (carry.x != 0.0 || carry.y != 0.0)

@@ -19,7 +19,8 @@ namespace fixstep {
 /// until changed, as any kinematic body's) is the velocity the game WANTS. Gravity is the
 /// game's: like Godot, a game adds g·dt to v.y while MoverState::on_floor is false. The world
 /// moves the capsule by collide-and-slide (docs/MOVER.md) against the planes, segments and
-/// polylines, and the shapes and discs of every other body, and leaves in the body's velocity
+/// polylines, and the shapes and discs of every other body (one-way ones only from their up
+/// side: it jumps up through them and stands on them), and leaves in the body's velocity
 /// the slid velocity (MoverState::velocity): its component into what it met taken out, and on
 /// landing its vertical component zeroed, so the game's gravity sum starts again.
 struct MoverDef {
