@@ -1,5 +1,6 @@
 // fixstep::app::run: a game type given the headless run, record, replay with verification, the
 // sync test and the command line, checked through its outputs and exit statuses.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -11,9 +12,13 @@
 #include <fixstep/app/game_play.hpp>
 #include <fixstep/core/components.hpp>
 #include <fixstep/core/input.hpp>
+#include <fixstep/core/recording.hpp>
+#include <fixstep/core/rules.hpp>
+#include <fixstep/core/shape.hpp>
 #include <fixstep/core/world_def.hpp>
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/io/atomic_output.hpp>
+#include <fixstep/io/recording_file.hpp>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>
@@ -292,6 +297,118 @@ TEST(AppDraw, TheHintGivesAStatusLinePerLineOfIt) {
   EXPECT_EQ(overlay.lines().size(), 2u);
   app::detail::draw_game(session, model, overlay, {});
   EXPECT_EQ(overlay.lines().size(), 1u);
+}
+
+}  // namespace
+
+namespace {
+
+/// A box on a ground plane, whose pre_solve() (a game's hook) lets the box through the ground
+/// once `ghost` is on: it then falls through, in every mode the game is stepped in.
+struct Ghost {
+  bool ghost = false;
+  Entity box{};
+  void setup(WorldDef& level) {
+    level.settings.dt = dt;
+    level.settings.contacts = ContactSettings{};
+    level.planes.push_back(PlaneDef{});  // y = 0, normal +y
+    BodyDef def;
+    def.name = "box";
+    def.body = {.mass = 1.0, .position = {0.0, 0.5}};
+    def.gravity = Gravity{};
+    def.shapes = {make_box(0.5, 0.5)};
+    level.add_body(def);
+    box = level.find_body("box");
+  }
+  void rules(World& world, const TickInput&) {
+    if (world.tick() == 100) ghost = true;  // a rule: from tick 100 the box is a ghost
+  }
+  [[nodiscard]] bool pre_solve(const PreSolveContact& c) const { return !(ghost && c.b == box); }
+  [[nodiscard]] std::string summary() const { return ghost ? "ghost" : "solid"; }
+};
+
+/// Rules before the step (Settings::rules_before_step) moving a kinematic body from the tick's
+/// held action: it moves in the tick the action is pressed.
+struct Mover {
+  Entity body{};
+  double x_at_press = -1.0;
+  void setup(WorldDef& level) {
+    level.settings.dt = dt;
+    BodyDef def;
+    def.name = "slider";
+    def.type = BodyType::kinematic;
+    body = level.add_body(def);
+  }
+  void rules(World& world, const TickInput& in) {
+    world.set_velocity(body, {(in.held & (1u << 9)) != 0 ? 1.0 : 0.0, 0.0});
+  }
+  [[nodiscard]] std::string summary() const { return ""; }
+};
+
+TEST_F(AppRun, AGamesPreSolveActsLiveInReplayAndInTheSyncTest) {
+  // The hook itself: the box rests on the plane until tick 100, then falls through it.
+  Ghost game;
+  WorldDef def;
+  game.setup(def);
+  World world(def);
+  world.set_pre_solve(
+      [](const PreSolveContact& c, void* g) { return static_cast<Ghost*>(g)->pre_solve(c); },
+      &game);
+  for (int t = 0; t < 200; ++t) {
+    game.rules(world, TickInput{});
+    world.step();
+    if (t == 99) {
+      EXPECT_NEAR(world.body(game.box).position.y, 0.5, 0.01);  // resting
+    }
+  }
+  EXPECT_LT(world.body(game.box).position.y, -3.0);  // fell through once a ghost
+  // app::run installs it in every mode: the same final state live (200 ticks), in the replay
+  // of that run, and under the sync test, and it is that state.
+  const auto hash = [](const std::string& out) {
+    const auto at = out.find("state_hash=");
+    return at == std::string::npos ? std::string("none") : out.substr(at, 27);
+  };
+  std::string live, replayed, sync;
+  ASSERT_EQ(run(Ghost{}, {"--frames", "121", "--record", path("g.rec")}, &live), 0);
+  ASSERT_EQ(run(Ghost{}, {"--replay", path("g.rec")}, &replayed), 0) << replayed;
+  ASSERT_EQ(run(Ghost{}, {"--frames", "121", "--sync-test", "8"}, &sync), 0) << sync;
+  EXPECT_EQ(hash(live), fmt::format("state_hash={:016x}", world.state_hash()).substr(0, 27));
+  EXPECT_EQ(hash(replayed), hash(live));
+  EXPECT_EQ(hash(sync), hash(live));
+}
+
+TEST_F(AppRun, RulesBeforeTheStepActInTheTickOfTheirInput) {
+  // A script holds action bit 9 from tick 3: the slider moves in tick 3 (before the step), so
+  // after 10 ticks it has moved 7 ticks of 1 m/s.
+  const std::string script = path("s.toml");
+  std::ofstream(script) << "[[at]]\ntick = 3\npress = [\"pointer_secondary\"]\n";
+  app::Settings before = settings;
+  before.rules_before_step = true;
+  std::vector<std::string> words{"drop", "--frames", "7",          "--input",
+                                 script, "--record", path("m.rec")};
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  testing::internal::CaptureStdout();
+  ASSERT_EQ(app::run(Mover{}, before, int(argv.size()), argv.data()), 0);
+  (void)testing::internal::GetCapturedStdout();
+  const Recording rec = read_recording(path("m.rec"));
+  WorldDef def;
+  Mover m;
+  m.setup(def);
+  World world(def);
+  TickRules rules;
+  rules.before_tick = [&m](World& w, const TickInput& in) { m.rules(w, in); };
+  const ReplayReport report = replay(world, rec, rules);
+  ASSERT_TRUE(report.ok());
+  EXPECT_NEAR(world.body(m.body).position.x, (double(rec.ticks) - 3.0) * dt, 1e-12);
+  // With the rules after the step instead, the slider moves a tick later: the recording's
+  // hash after tick 3 (its 4th) is the first that differs.
+  World late(def);
+  TickRules after;
+  after.after_tick = [&m](World& w, const TickInput& in) { m.rules(w, in); };
+  const ReplayReport late_report = replay(late, rec, after);
+  ASSERT_TRUE(late_report.mismatch.has_value());
+  EXPECT_EQ(late_report.mismatch->tick, 4u);
 }
 
 }  // namespace

@@ -158,7 +158,7 @@ ReplayReport replay_dice(const Recording& rec, std::optional<Seeding> force = {}
   World sim(def);
   return replay(
       sim, rec,
-      TickRules{[](World& w, const TickInput&) { (void)w.random().below(6); }, {}, {}, {}});
+      TickRules{[](World& w, const TickInput&) { (void)w.random().below(6); }, {}, {}, {}, {}});
 }
 
 // A seeded world records as version 5 (SplitMix64 seeding); one of version 4 (the older

@@ -253,7 +253,7 @@ def check_overlay_card(args, site, out, failures):
 # Each game's frame size, px: its app::Settings' (the programs have no --size), which the page
 # takes too when given no size=.
 GAME_SIZES = {"airhockey": (960, 600), "peggle": (1280, 720), "slingshot": (1280, 720),
-              "stacker": (1280, 720), "pinball": (1280, 720)}
+              "stacker": (1280, 720), "pinball": (1280, 720), "platformer": (1280, 720)}
 
 
 def native_game(args, game, *options):
@@ -310,6 +310,28 @@ def check_game_frames(game, args, site, out, failures, frame=True):
     verdict = "frame: " + compare_frame(f"game={game}", shot, native_png, failures) if frame else ""
     print(f"game={game} frames={frames}: {result}; {summary.splitlines()[-1]}; {verdict}",
           flush=True)
+
+
+def check_game_script(game, script, frames, args, site, out, failures):
+    """game=GAME&frames=N&input= of an input script (assets/inputs/SCRIPT) against the native
+    `GAME --frames N --input SCRIPT --last-frame PNG`: the same state hash and summary lines (the
+    game's score among them), and the last frame within the tolerance of (b)."""
+    served = f"{game}_{os.path.basename(script)}"
+    shutil.copyfile(os.path.join(ROOT, script), os.path.join(site.rec_dir, served))
+    url = f"{site.url}/index.html?game={game}&frames={frames}&input=/rec/{served}&headless=1"
+    shot = os.path.join(out, f"game_{game}_script_browser.png")
+    dom = chromium(url, shot, *GAME_SIZES[game], args.budget_ms)
+    result, summary = element(dom, "result") or "", element(dom, "summary") or ""
+    native_png = os.path.join(out, f"game_{game}_script_native.png")
+    printed = native_game(args, game, "--frames", str(frames), "--input",
+                          os.path.join(ROOT, script), "--last-frame", native_png).strip()
+    native_hash = re.search(r"state_hash=([0-9a-f]{16})", printed)
+    if summary != printed or not native_hash or not result.endswith(native_hash.group(0)):
+        failures.append(f"game={game} input={script}: page {result!r} {summary!r} != native "
+                        f"{printed!r}")
+    verdict = compare_frame(f"game={game} input", shot, native_png, failures)
+    print(f"game={game} input={script}: {result}; {summary.splitlines()[-1] if summary else ''}; "
+          f"frame: {verdict}", flush=True)
 
 
 def check_game_replay(game, args, site, out, failures, frame=False, recording=None):
@@ -572,6 +594,13 @@ def main():
         checks += [("game=pinball", lambda: check_game_frames("pinball", args, site, out, failures)),
                    ("game=pinball replay",
                     lambda: check_game_replay("pinball", args, site, out, failures))]
+        # Scripted games (input=): the pinball launched and flipped, the platformer's coins.
+        checks += [("game=pinball input",
+                    lambda: check_game_script("pinball", "assets/inputs/pinball_launch.toml", 1200,
+                                              args, site, out, failures)),
+                   ("game=platformer input",
+                    lambda: check_game_script("platformer", "assets/inputs/platformer_run.toml",
+                                              900, args, site, out, failures))]
     if not args.no_input:
         checks += [("input", lambda: check_input(args, site, failures)),
                    ("game input", lambda: check_game_input(args, site, failures)),

@@ -79,6 +79,7 @@ TickRules game_rules(AnyGame& game, bool before_step) {
     game.assign(*std::any_cast<const std::shared_ptr<const AnyGame>&>(saved));
   };
   auto run = [&game](World& world, const TickInput& input) { game.rules(world, input); };
+  rules.attach = [&game](World& world) { game.attach(world); };
   (before_step ? rules.before_tick : rules.after_tick) = run;
   return rules;
 }

@@ -35,6 +35,7 @@ bool draw_replay(const Settings& settings, const Level& level, const Recording& 
   session.set_show_energy(settings.show_energy);
   const std::unique_ptr<AnyGame> game = level.game->clone();
   const TickRules rules = game_rules(*game, settings.rules_before_step);
+  rules.attach(session.simulation());
   std::optional<GameCapture> capture;
   if (!o.out.empty()) capture.emplace(o.out, o.overwrite, settings.width, settings.height);
   const VirtualClock clock(virtual_fps);

@@ -36,6 +36,7 @@ GamePlay::GamePlay(Level level, const Settings& settings, std::string record_fil
     std::fprintf(stderr, "warning: %s\n", w.message.c_str());
   }
   if (!record_file_.empty()) start_recording();
+  game_->attach(session_.simulation());  // its pre_solve(), if any
 }
 
 void GamePlay::start_recording() {
@@ -106,6 +107,7 @@ void draw_game(Session& session, const AnyGame& game, Overlay& overlay, std::str
 void GamePlay::restart() {
   session_.restart();
   game_ = level_.game->clone();
+  game_->attach(session_.simulation());
   sampler_ = {};
   last_ = {};
   if (script_) script_->restart();

@@ -319,6 +319,7 @@ Recording Recorder::take() {
 }
 
 ReplayReport replay(World& sim, const Recording& rec, const TickRules& rules) {
+  if (rules.attach) rules.attach(sim);
   if (sim.tick() != 0) {
     throw std::invalid_argument(
         fmt::format("replay: the simulation is at tick {}, not at its start", sim.tick()));

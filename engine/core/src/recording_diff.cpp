@@ -183,6 +183,8 @@ RecordingDiff diff_recordings(const WorldDef& def_a, const Recording& a, const W
   RecordingDiff diff = compare_recordings(a, b);
   if (!diff.world_difference.empty()) return diff;
   Replayer ra{a, rules_a, World(def_a)}, rb{b, rules_b, World(def_b)};
+  if (rules_a.attach) rules_a.attach(ra.world);
+  if (rules_b.attach) rules_b.attach(rb.world);
   // (Not emplace(): clang does not take the nested aggregate as default-constructible there.)
   diff.replay = RecordingDiff::Replay{};
   RecordingDiff::Replay& out = *diff.replay;

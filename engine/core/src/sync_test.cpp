@@ -21,6 +21,7 @@ SyncTest::SyncTest(World& sim, int rollback_ticks, TickRules rules)
     throw std::invalid_argument(
         fmt::format("sync test: rollback must be >= 1 tick (got {})", rollback_ticks));
   }
+  if (rules_.attach) rules_.attach(sim_);
   slots_.resize(rollback_ + 1);
   remember(first_tick_);
 }

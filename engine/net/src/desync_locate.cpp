@@ -115,6 +115,7 @@ std::optional<StateFields> MatchPeer::Impl::state_at(std::uint64_t tick) {
     if (base[p] > from->tick || known(p) < tick) return std::nullopt;
   }
   World scratch(def);
+  if (rules.attach) rules.attach(scratch);
   scratch.restore(from->snapshot);
   std::any held;  // the rules' state now, given back after
   if (rules_have_state()) {

@@ -36,6 +36,7 @@ std::unique_ptr<MatchPeer::Impl> make_impl(const WorldDef& def, const MatchSetti
   impl->def_hash = definition_hash(def);
   impl->world = std::make_unique<World>(def);
   impl->rules = std::move(rules);
+  if (impl->rules.attach) impl->rules.attach(*impl->world);
   impl->merge = merge ? std::move(merge) : InputMerge(merge_inputs);
   impl->started_at = detail::clock_ms();
   if (!settings.record_file.empty()) {  // before a port is bound: a bad path fails first
@@ -149,6 +150,7 @@ void MatchPeer::Impl::start(std::uint8_t player_count, std::uint8_t own_slot) {
   delay_open = is_host && settings.adapt_to_round_trip && settings.max_rollback == 0;
   if (settings.max_rollback > 0 && slot < players) {
     shown = std::make_unique<World>(def);
+    if (rules.attach) rules.attach(*shown);
     if (rules_have_state()) confirmed_rules = rules.save();
   }
   checkpoint();  // tick 0: a desync in the first window is located from here

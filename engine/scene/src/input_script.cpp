@@ -83,9 +83,10 @@ std::vector<std::pair<std::size_t, double>> axis_list(Reader& r, const toml::tab
                        scene_detail::found(*n)));
   }
   for (const auto& [key, value] : *table) {
-    const std::string at = fmt::format("{}.{}", path, key.str());
+    const std::string name(key.str());  // a structured binding no lambda may capture (clang 14)
+    const std::string at = fmt::format("{}.{}", path, name);
     const auto found = std::find_if(known.axes.begin(), known.axes.end(),
-                                    [&](const auto& a) { return a.first == key.str(); });
+                                    [&](const auto& a) { return a.first == name; });
     if (found == known.axes.end()) {
       std::vector<std::string> names;
       for (const auto& a : known.axes) names.push_back(a.first);

@@ -9,6 +9,7 @@
 //   void autopilot(std::int64_t frame, const World& world, InputSampler& sampler);
 //   void prepare(TickInput& input, const World& world);
 //   void draw(Overlay& overlay) const;
+//   bool pre_solve(const PreSolveContact& contact) const;  // false: the contact does not act
 //   std::string summary() const;
 //   void seat(int player);                                 // networked play only
 //   TickInput merge(std::span<const TickInput> players, const World& world) const;
@@ -30,6 +31,12 @@
 // play (0 = the host; it may be called again at any time, so it must not change what rules() do),
 // and merge() makes each tick's one input from every player's (index = player), on every peer,
 // before the step (so, like rules(), it must be deterministic; it replaces prepare() in a match).
+// pre_solve() is the world's pre-solve hook (fixstep/core/pre_solve.hpp: asked once a tick for
+// each contact of a body with shapes, before the solve; false disables it for the tick),
+// installed on every world the game is stepped in, live, in a replay, the sync test and
+// networked play, with the copy of the game whose rules step that world: it may read that
+// game's members (restored with the world on a rollback) and the contact, and must not change
+// anything.
 #pragma once
 
 #include <concepts>

@@ -2,6 +2,7 @@
 // compiled once in the library rather than in every game.
 #pragma once
 
+#include <concepts>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -34,6 +35,9 @@ class AnyGame {
   virtual void autopilot(std::int64_t frame, const World& world, InputSampler& sampler) = 0;
   virtual void prepare(TickInput& input, const World& world) = 0;
   virtual void draw(Overlay& overlay) const = 0;
+  /// The game's pre-solve hook (World::set_pre_solve) installed on `world` with this game as its
+  /// context, when the game has a pre_solve(); nothing otherwise.
+  virtual void attach(World& world) = 0;
   [[nodiscard]] virtual std::string summary() const = 0;
   /// Networked play: the player this program's input() and autopilot() play (0 = the host).
   virtual void seat(int player) = 0;
@@ -71,6 +75,17 @@ class GameModel final : public AnyGame {
   }
   void draw(Overlay& overlay) const override {
     if constexpr (requires { game_.draw(overlay); }) game_.draw(overlay);
+  }
+  void attach(World& world) override {
+    if constexpr (requires(const PreSolveContact& c) {
+                    { game_.pre_solve(c) } -> std::convertible_to<bool>;
+                  }) {
+      world.set_pre_solve(
+          [](const PreSolveContact& c, void* self) {
+            return static_cast<bool>(static_cast<const GameModel*>(self)->game_.pre_solve(c));
+          },
+          this);
+    }
   }
   [[nodiscard]] std::string summary() const override {
     if constexpr (requires { game_.summary(); }) {

@@ -33,6 +33,10 @@ struct TickRules {
   /// acts in the same tick), under the same terms as after_tick. A program may give either or
   /// both.
   std::function<void(World& sim, const TickInput& input)> before_tick;
+  /// Called once with every World these rules are about to step, before its first tick (by
+  /// replay(), SyncTest, diff_recordings and a network match's worlds): what the world needs
+  /// of the program that is not state, its pre-solve hook (World::set_pre_solve).
+  std::function<void(World& sim)> attach;
 
   /// Whether there is anything to run.
   explicit operator bool() const {
@@ -54,6 +58,7 @@ template <class State, class Rule>
   return TickRules{[&state, rule](World& sim, const TickInput& input) { rule(state, sim, input); },
                    [&state] { return std::any(state); },
                    [&state](const std::any& saved) { state = std::any_cast<const State&>(saved); },
+                   {},
                    {}};
 }
 
