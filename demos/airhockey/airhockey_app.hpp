@@ -57,6 +57,7 @@ inline fixstep::app::Settings app_settings() {
           .view_width = 10.0,
           .controls = "mouse (or arrows): move your mallet",
           .style = fixstep::ViewStyle{.grid = false, .axes = false, .scale_bar = false},
+          .hud_text_scale = 1.75f,  // the network line fits beside the score at 960 px
           .hud_lines = fixstep::hud_title};
 }
 
