@@ -6,6 +6,7 @@
 #include <fixstep/core/world_settings.hpp>
 #include <fixstep/scene/scene.hpp>
 #include <memory>
+#include <stdexcept>
 
 #include "fixstep/app/game_level.hpp"
 
@@ -70,6 +71,22 @@ Level replay_level(const AnyGame& game, const Settings& settings, const Recordin
   apply_settings(level.def, rec.settings);  // the recorded dt, integrator, precision, substeps
   level.def.allow_unstable = true;  // the recorded run ran: World(def) checks its limits only
   return level;
+}
+
+InputMap game_input_map(const Settings& settings) {
+  InputMap map{settings.actions.empty() ? default_actions() : settings.actions, settings.axes,
+               settings.loop_keys};
+  if (const auto problem = map.problem()) {
+    throw std::invalid_argument("Settings: " + *problem);
+  }
+  return map;
+}
+
+ScriptNames script_names(const InputMap& map) {
+  ScriptNames names;
+  for (const ActionBinding& a : map.actions) names.actions.emplace_back(a.name, a.bit);
+  for (const AxisBinding& a : map.axes) names.axes.emplace_back(a.name, a.index);
+  return names;
 }
 
 TickRules game_rules(AnyGame& game, bool before_step) {

@@ -202,22 +202,6 @@ void check_frames_work(const Level& level, std::int64_t frames, std::uint64_t pe
                                  level.def.settings.dt));
 }
 
-InputMap game_input_map(const Settings& settings) {
-  InputMap map{settings.actions.empty() ? default_actions() : settings.actions, settings.axes,
-               settings.loop_keys};
-  if (const auto problem = map.problem()) {
-    throw std::invalid_argument("Settings: " + *problem);
-  }
-  return map;
-}
-
-ScriptNames script_names(const InputMap& map) {
-  ScriptNames names;
-  for (const ActionBinding& a : map.actions) names.actions.emplace_back(a.name, a.bit);
-  for (const AxisBinding& a : map.axes) names.axes.emplace_back(a.name, a.index);
-  return names;
-}
-
 InputScript game_script(const Settings& settings, const Level& level, const std::string& file) {
   InputScript script =
       load_input_script(file, level.def.bodies, script_names(game_input_map(settings)));
