@@ -71,6 +71,38 @@ Key code_key(std::string_view code) {
   return Key::none;
 }
 
+/// The Key of a KeyboardEvent.key (what the key types), for an event without a code (one a
+/// script dispatched), or Key::none.
+Key typed_key(std::string_view key) {
+  if (key.size() == 1) {
+    const char c = key[0];
+    if (c >= 'a' && c <= 'z') return static_cast<Key>(static_cast<int>(Key::a) + (c - 'a'));
+    if (c >= 'A' && c <= 'Z') return static_cast<Key>(static_cast<int>(Key::a) + (c - 'A'));
+    if (c >= '0' && c <= '9') return static_cast<Key>(static_cast<int>(Key::d0) + (c - '0'));
+    switch (c) {
+      case ' ':
+        return Key::space;
+      case '.':
+        return Key::period;
+      case ',':
+        return Key::comma;
+      case '+':
+      case '=':
+        return Key::equals;
+      case '-':
+        return Key::minus;
+      case '/':
+        return Key::slash;
+      default:
+        return Key::none;
+    }
+  }
+  if (key == "Shift") return Key::left_shift;
+  if (key == "Control") return Key::left_ctrl;
+  if (key == "Alt") return Key::left_alt;
+  return code_key(key);  // "ArrowLeft", "Enter", "Escape", "Backspace", "Tab", "Home", ...
+}
+
 /// Whether `map` gives `key` a meaning (the page then keeps it from the browser: no scrolling
 /// on the arrows or space, no "back" on Backspace).
 bool bound(const InputMap& map, Key key) {
@@ -86,7 +118,7 @@ bool bound(const InputMap& map, Key key) {
 }
 
 EM_BOOL on_key(int type, const EmscriptenKeyboardEvent* e, void* input) {
-  return static_cast<PageInput*>(input)->key(type == EMSCRIPTEN_EVENT_KEYDOWN, e->code,
+  return static_cast<PageInput*>(input)->key(type == EMSCRIPTEN_EVENT_KEYDOWN, e->code, e->key,
                                              e->repeat != 0);
 }
 
@@ -124,8 +156,9 @@ void PageInput::listen(PageInput* input) const {
   emscripten_set_mouseup_callback(window, input, true, mouse);
 }
 
-bool PageInput::key(bool down, const char* code, bool repeat) {
-  const Key k = code_key(code);
+bool PageInput::key(bool down, const char* code, const char* typed, bool repeat) {
+  // The physical key (code); an event without one (dispatched by a script) by what it types.
+  const Key k = code[0] != '\0' ? code_key(code) : typed_key(typed);
   if (k == Key::none) return false;
   if (!repeat) add_key(down, k);
   return bound(map_, k);

@@ -33,7 +33,7 @@ class PageInput {
   [[nodiscard]] PageEvents take();
 
   // html5.h's callbacks (public so that the C callbacks can reach them).
-  bool key(bool down, const char* code, bool repeat);
+  bool key(bool down, const char* code, const char* typed, bool repeat);
   void pointer(long x, long y);
   void button(bool down, unsigned short button);
 
