@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "font_chars.hpp"
+
 namespace fixstep {
 
 namespace {
@@ -46,14 +48,7 @@ int hud_font_width(std::string_view s) {
 /// outside ' '..'~' becomes one '?', '\n' kept.
 std::string hud_font_chars(const std::string& s) {
   std::string out;
-  out.reserve(s.size());
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    if ((c >= 32 && c <= 126) || c == '\n')
-      out.push_back(ch);
-    else if ((c & 0xC0) != 0x80)
-      out.push_back('?');
-  }
+  detail::font_chars_into(s, out);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "aa_pad.hpp"
+#include "font_chars.hpp"
 #include "gl_pipeline.hpp"  // GL through OSMesa only, never libGL: see gl_api.hpp
 #include "gl_shaders.hpp"
 #include "occlusion.hpp"
@@ -30,24 +31,9 @@ Vec2 screen_to_world(const Camera& camera, double px, double py, int width, int 
 
 namespace {
 
-// stb_easy_font indexes its glyph table with (char - 32) and has glyphs for ' '..'~' only: any
-// other byte would read outside the table. Each UTF-8 sequence (or other byte) outside that
-// range becomes one '?'; '\n' is kept (a new line).
-void printable_into(const std::string& s, std::string& out) {
-  out.clear();
-  out.reserve(s.size());
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    if ((c >= 32 && c <= 126) || c == '\n')
-      out.push_back(ch);
-    else if ((c & 0xC0) != 0x80)
-      out.push_back('?');  // UTF-8 continuation bytes are dropped
-  }
-}
-
 std::string printable(const std::string& s) {
   std::string out;
-  printable_into(s, out);
+  detail::font_chars_into(s, out);
   return out;
 }
 
@@ -235,7 +221,7 @@ void Renderer::glyphs(const std::string& s, float scale, Rgba8 c, Transform&& to
   // at most ~270 bytes per character on average (its documentation); give it room for long
   // strings rather than letting it truncate them.
   std::string& copy = text_scratch_;  // kept: no allocation once it has held the longest text
-  printable_into(s, copy);
+  detail::font_chars_into(s, copy);
   // The scratch grows with the text: a body name of megabytes in a guard's message asked for
   // gigabytes. Past max_text_chars the characters lie beyond any frame.
   if (copy.size() > max_text_chars) copy.resize(max_text_chars);
