@@ -108,7 +108,7 @@ TEST(Images, TheCacheLoadsEachPathOnceAndStopsAtItsCount) {
   EXPECT_EQ(cache.size(), max_images);
 }
 
-constexpr ViewStyle plain{.grid = false, .axes = false, .scale_bar = false};
+const ViewStyle plain{.grid = false, .axes = false, .scale_bar = false};
 
 TEST(Images, EachPixelTakesTheTexelUnderItsCentreTopRowUp) {
   // 4 x 3 texels over a 32 x 24 px rectangle from (10, 20): 8 x 8 px a texel, exactly.

@@ -30,7 +30,7 @@ using testing::at;
 using testing::near;
 using testing::Rgb;
 
-constexpr ViewStyle plain{.grid = false, .axes = false, .scale_bar = false};
+const ViewStyle plain{.grid = false, .axes = false, .scale_bar = false};
 
 /// The pixel under world point (x, y) m.
 Rgb at_world(const Renderer& r, double x, double y) {
