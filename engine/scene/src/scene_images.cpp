@@ -53,7 +53,7 @@ std::string parse_image(const Reader& r, const toml::table& t, std::string_view 
   if (!written || written->empty()) {
     r.fail(n.source(), path, "expected the path of a PNG file, found an empty string");
   }
-  const std::string file = resolved(r.file(), *written);
+  std::string file = resolved(r.file(), *written);  // not const: returned by move
   PngSize size;
   if (const std::string why = image_problem(file, size); !why.empty()) {
     r.fail(n.source(), path, fmt::format("image {}: {}", file, why));
