@@ -103,20 +103,6 @@ Key typed_key(std::string_view key) {
   return code_key(key);  // "ArrowLeft", "Enter", "Escape", "Backspace", "Tab", "Home", ...
 }
 
-/// Whether `map` gives `key` a meaning (the page then keeps it from the browser: no scrolling
-/// on the arrows or space, no "back" on Backspace).
-bool bound(const InputMap& map, Key key) {
-  auto has = [key](const std::vector<Key>& keys) {
-    return std::find(keys.begin(), keys.end(), key) != keys.end();
-  };
-  return std::any_of(map.actions.begin(), map.actions.end(),
-                     [&](const ActionBinding& a) { return has(a.keys); }) ||
-         std::any_of(map.axes.begin(), map.axes.end(),
-                     [&](const AxisBinding& a) { return has(a.negative) || has(a.positive); }) ||
-         std::any_of(map.loop.begin(), map.loop.end(),
-                     [&](const LoopBinding& b) { return has(b.keys); });
-}
-
 EM_BOOL on_key(int type, const EmscriptenKeyboardEvent* e, void* input) {
   return static_cast<PageInput*>(input)->key(type == EMSCRIPTEN_EVENT_KEYDOWN, e->code, e->key,
                                              e->repeat != 0);
@@ -161,7 +147,7 @@ bool PageInput::key(bool down, const char* code, const char* typed, bool repeat)
   const Key k = code[0] != '\0' ? code_key(code) : typed_key(typed);
   if (k == Key::none) return false;
   if (!repeat) add_key(down, k);
-  return bound(map_, k);
+  return map_.binds(k);
 }
 
 void PageInput::add_key(bool down, Key key) {

@@ -9,7 +9,7 @@ namespace fixstep {
 
 namespace {
 
-bool binds(const std::vector<Key>& keys, Key key) {
+bool lists_key(const std::vector<Key>& keys, Key key) {
   return std::find(keys.begin(), keys.end(), key) != keys.end();
 }
 
@@ -20,7 +20,7 @@ bool any_down(const std::vector<Key>& keys, const std::bitset<key_count>& down) 
 
 bool action_key(const InputMap& map, Key key) {
   return std::any_of(map.actions.begin(), map.actions.end(),
-                     [&](const ActionBinding& a) { return binds(a.keys, key); });
+                     [&](const ActionBinding& a) { return lists_key(a.keys, key); });
 }
 
 /// The keys held before this poll's edges: keys_down with the edges undone, last first.
@@ -34,7 +34,7 @@ std::bitset<key_count> down_before(const UserEvents& ev) {
 
 void apply_loop_press(const InputMap& map, Key key, UserEvents& ev) {
   for (const LoopBinding& b : map.loop) {
-    if (!binds(b.keys, key)) continue;
+    if (!lists_key(b.keys, key)) continue;
     switch (b.action) {
       case LoopAction::quit:
         ev.quit = true;
@@ -68,7 +68,7 @@ void apply_key_edge(const InputMap& map, const UserEvents::KeyEdge& edge,
   down[k] = edge.press;
   if (was == edge.press) return;  // a repeat, or a release never pressed
   for (const ActionBinding& a : map.actions) {
-    if (!binds(a.keys, edge.key)) continue;
+    if (!lists_key(a.keys, edge.key)) continue;
     down[k] = false;
     const bool others = any_down(a.keys, down);
     down[k] = edge.press;
@@ -145,6 +145,14 @@ std::optional<std::size_t> InputMap::axis_index(std::string_view name) const {
   return std::nullopt;
 }
 
+bool InputMap::binds(Key key) const {
+  auto in = [key](const std::vector<Key>& keys) { return lists_key(keys, key); };
+  return action_key(*this, key) ||
+         std::any_of(axes.begin(), axes.end(),
+                     [&](const AxisBinding& a) { return in(a.negative) || in(a.positive); }) ||
+         std::any_of(loop.begin(), loop.end(), [&](const LoopBinding& b) { return in(b.keys); });
+}
+
 std::uint32_t InputMap::action_bits() const {
   std::uint32_t bits = 0;
   for (const ActionBinding& a : actions) bits |= a.bit;
@@ -181,7 +189,7 @@ std::optional<std::string> InputMap::problem() const {
     if (std::popcount(a.bit) != 1) return who + ": bit must be exactly one bit";
     if ((bits & a.bit) != 0) return who + ": its bit is another action's";
     bits |= a.bit;
-    if (binds(a.keys, Key::none)) return who + ": binds Key::none";
+    if (lists_key(a.keys, Key::none)) return who + ": binds Key::none";
   }
   std::uint32_t used = 0;
   for (const AxisBinding& a : axes) {
@@ -191,7 +199,7 @@ std::optional<std::string> InputMap::problem() const {
     if ((used >> a.index) & 1u) return who + ": its index is another axis's";
     used |= 1u << a.index;
     if (!(a.dead_zone >= 0.0 && a.dead_zone < 1.0)) return who + ": dead_zone must be in [0, 1)";
-    if (binds(a.negative, Key::none) || binds(a.positive, Key::none)) {
+    if (lists_key(a.negative, Key::none) || lists_key(a.positive, Key::none)) {
       return who + ": binds Key::none";
     }
   }

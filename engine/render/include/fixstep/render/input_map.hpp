@@ -64,6 +64,9 @@ struct InputMap {
   [[nodiscard]] std::optional<std::uint32_t> action_bit(std::string_view name) const;
   /// The index of the axis named `name`, or nothing.
   [[nodiscard]] std::optional<std::size_t> axis_index(std::string_view name) const;
+  /// Whether `key` means anything here: an action's, an axis's or a loop binding's key (a page
+  /// keeps such a key from the browser: no scrolling on the arrows, no "back" on Backspace).
+  [[nodiscard]] bool binds(Key key) const;
   /// Every action's bit.
   [[nodiscard]] std::uint32_t action_bits() const;
   /// The loop keys as a help line ("space pause  . step  ..."), quit left out when `can_quit`
