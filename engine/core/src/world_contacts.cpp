@@ -128,10 +128,15 @@ void detail::WorldKernel<Real>::rebuild_contacts() {
 template <class Real>
 void detail::WorldKernel<Real>::save_contact_start() {
   ContactScratch& c = contact_;
-  for (std::size_t k = 0; k < c.body.size(); ++k) {
+  auto save = [&](std::size_t k) {
     const std::uint32_t j = c.body[k];
     c.x0[k] = x_[j], c.y0[k] = y_[j], c.vx0[k] = vx_[j], c.vy0[k] = vy_[j];
+  };
+  if (awake_.skip()) {  // a sleeper's start is not read (resolve_body_contacts)
+    for_each_in_runs(awake_.colliders, save);
+    return;
   }
+  for (std::size_t k = 0; k < c.body.size(); ++k) save(k);
 }
 
 /// One body's way through a tick's planes and segments (resolve_contacts): its motion, what
@@ -163,13 +168,19 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
   PlaneTally tally;
   if (segments_.moves()) plane_work_.assign(body_count(), 0.0);
   segment_tests_ = polled_tests_ = 0;
-  for (std::size_t k = 0; k < c.body.size(); ++k) {
+  auto visit = [&](std::size_t k) {
     if (k % 1024 == 1023) {  // many planes: a tick of seconds
       ++plane_polls_;
       throw_if_stop_requested();
     }
     poll_segment_work();  // many segments: a disc may test every one
     resolve_body_contacts(k, tally);
+  };
+  if (awake_.skip()) {  // a sleeper's plane motion stays "none" (set when it was visited last)
+    plane_visited_ = for_each_in_runs(awake_.colliders, visit);
+  } else {
+    for (std::size_t k = 0; k < c.body.size(); ++k) visit(k);
+    plane_visited_ = c.body.size();
   }
   if (tally.out_of_range && !fault_) record_fault();
   return tally.capped;

@@ -102,13 +102,28 @@ template <class Real>
 void detail::WorldKernel<Real>::rebuild_immovable() {
   Immovable& m = immovable_;
   m.body.clear();
+  const bool skip = sleep_ && fused_step();
   for (std::size_t j = 0; j < body_count(); ++j) {
-    if (types_[j] != BodyType::dynamic || (sleep_ && asleep_[j] != 0)) {
+    const bool sleeps = sleep_ && asleep_[j] != 0;
+    if (types_[j] != BodyType::dynamic || sleeps) {
       m.body.push_back(static_cast<std::uint32_t>(j));
     }
   }
   for (auto* v : {&m.x0, &m.y0, &m.vx0, &m.vy0}) v->resize(m.body.size());
   immovable_dirty_ = false;
+  if (sleep_) rebuild_awake_runs(skip);
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::rebuild_awake_runs(bool on) {
+  AwakeRuns& a = awake_;
+  a.on = on, a.primed = false;
+  if (!on) return;
+  auto awake = [&](std::uint32_t j) { return asleep_[j] == 0; };
+  collect_runs(body_count(), awake, a.bodies);
+  const auto& body = contact_.body;  // dynamic colliders, in dense order
+  auto awake_collider = [&](std::uint32_t k) { return asleep_[body[k]] == 0; };
+  collect_runs(body.size(), awake_collider, a.colliders);
 }
 
 template <class Real>

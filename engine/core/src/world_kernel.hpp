@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "awake_runs.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/entity.hpp"
 #include "fixstep/core/input.hpp"
@@ -795,12 +796,22 @@ class WorldKernel {
   CachePtr<QueryGrid, QueryGridDeleter> sleep_grid_;        ///< the sleepers (a cache)
   std::size_t sleeper_contacts_ = 0;  ///< this tick's contacts with sleepers (ContactStats)
   std::size_t woken_ = 0;             ///< islands woken this tick (ContactStats)
+
+  /// The awake bodies' runs (awake_runs.hpp), built with the immovable list.
+  AwakeRuns awake_;
+  /// Bodies the last plane pass visited (ContactStats::plane_tested).
+  std::size_t plane_visited_ = 0;
+  /// Whether the free step is the fused sweep, which can skip the sleepers (world_step.cpp).
+  [[nodiscard]] bool fused_step() const { return net_.a.empty() && !settings_.track_dissipation; }
   /// Refuses (std::invalid_argument) sleep settings out of range; returns sleep_ticks_.
   static std::uint32_t sleep_ticks(const ContactSettings& c, double dt);
   /// Resizes the sleep state after a structural change: every island awake.
   void reset_sleep();
-  /// The immovable list: static and kinematic bodies, and sleepers.
+  /// The immovable list: static and kinematic bodies, and sleepers; with sleeping on, the
+  /// awake runs too.
   void rebuild_immovable();
+  /// awake_ from asleep_ (on: the passes skip the sleepers; off: the runs stay empty).
+  void rebuild_awake_runs(bool on);
   /// Wakes the islands of bodies with input this tick (before the free step).
   void wake_for_input(const TickInput& input);
   /// Wakes the islands that an awake disc's motion over the tick may reach (after the free

@@ -1,0 +1,81 @@
+// The awake bodies of a world with sleeping islands (ContactSettings::sleep) as runs of
+// consecutive dense indices, so that the per-body passes of a tick (the free step, the plane
+// pass, the previous positions) visit the awake bodies only and a world asleep costs a tick
+// nothing per body. Internal to the engine: not installed.
+//
+// A sleeper's position and velocity do not change while it sleeps (its velocity is 0, the
+// disc phases see it as a static disc, and every edit or input that would move it wakes it
+// first), so skipping it leaves its state exactly as putting it back after the free step did.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace fixstep::detail {
+
+/// [begin, end): indices begin, begin + 1, ..., end - 1.
+struct IndexRun {
+  std::uint32_t begin = 0, end = 0;
+};
+
+/// The runs of the indices i < n for which keep(i) holds, in increasing order.
+template <class Keep>
+void collect_runs(std::size_t n, Keep&& keep, std::vector<IndexRun>& out) {
+  out.clear();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!keep(i)) continue;
+    if (!out.empty() && out.back().end == i) {
+      ++out.back().end;
+    } else {
+      out.push_back(IndexRun{i, i + 1});
+    }
+  }
+}
+
+/// Calls f(i) for every index of the runs, in increasing order; returns how many.
+template <class F>
+std::size_t for_each_in_runs(std::span<const IndexRun> runs, F&& f) {
+  std::size_t count = 0;
+  for (const IndexRun& r : runs) {
+    for (std::uint32_t i = r.begin; i < r.end; ++i) f(i);
+    count += r.end - r.begin;
+  }
+  return count;
+}
+
+/// How many indices the runs hold.
+inline std::size_t count_in_runs(std::span<const IndexRun> runs) {
+  std::size_t count = 0;
+  for (const IndexRun& r : runs) count += r.end - r.begin;
+  return count;
+}
+
+/// The awake runs of the bodies (dense order) and of the plane pass's colliders (the indices
+/// of WorldKernel::ContactScratch::body), rebuilt with the immovable list whenever an island
+/// falls asleep or wakes, or the bodies change.
+struct AwakeRuns {
+  std::vector<IndexRun> bodies, colliders;
+  /// The passes skip the sleepers: sleeping is on and the free step is the fused sweep (the
+  /// passes of links and of the energy account step every body, and put the sleepers back).
+  bool on = false;
+  /// Every sleeper's previous position and plane motion are those of a body at rest where it
+  /// sleeps: a tick has passed over every body since the runs were built. A copy (a snapshot)
+  /// is not primed: the plane motions are scratch it does not copy (scratch_vector.hpp), so its
+  /// first tick passes over every body again.
+  bool primed = false;
+
+  AwakeRuns() = default;
+  AwakeRuns(const AwakeRuns& o) : bodies(o.bodies), colliders(o.colliders), on(o.on) {}
+  AwakeRuns& operator=(const AwakeRuns& o) {
+    bodies = o.bodies, colliders = o.colliders, on = o.on, primed = false;
+    return *this;
+  }
+  AwakeRuns(AwakeRuns&&) noexcept = default;
+  AwakeRuns& operator=(AwakeRuns&&) noexcept = default;
+  ~AwakeRuns() = default;
+
+  /// Whether a pass may visit the awake runs only.
+  [[nodiscard]] bool skip() const { return on && primed; }
+};
+
+}  // namespace fixstep::detail
