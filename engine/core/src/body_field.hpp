@@ -64,6 +64,39 @@ struct BodyField {
   }
 };
 
+/// The magnitude below which a damped body's x, y, vx and vy become a zero of their sign at the
+/// end of every integration step (WorldSettings::flush_denormals): 2^-55 in f32, 2^-503 in f64,
+/// 2^8 times the square root of the least normal number. A state at or above it keeps every
+/// intermediate of the next step normal: its products with the step's coefficients (h/6, k, γ,
+/// per unit mass) while those are above about 2^-60 (f32), and its squares (the dissipation
+/// account's ½|v|², γ|v|²) with a margin of 2^16 for the coefficients they are multiplied by.
+template <class Real>
+inline constexpr Real flush_below = std::numeric_limits<Real>::digits > 24 ? Real(0x1p-503)
+                                                                           : Real(0x1p-55);
+
+/// flush_below<Real> when WorldSettings::flush_denormals is on, else 0 (no value is flushed).
+template <class Real>
+Real flush_threshold(bool flush_denormals) {
+  return flush_denormals ? flush_below<Real> : Real(0);
+}
+
+/// v, or a zero of v's sign when |v| < below (below = 0: never). A compare and a select, so the
+/// sweeps stay vectorized and every SIMD level gives the same bits.
+template <class Real>
+[[gnu::always_inline]] inline Real flush_tiny(Real v, Real below) {
+  return std::abs(v) < below ? std::copysign(Real(0), v) : v;
+}
+
+/// |v|² (m²/s²) as the dissipation account squares a velocity: a component below flush_below in
+/// magnitude counts as 0, so no square is subnormal (what it leaves out is below 2^-110 m²/s² in
+/// f32). A stage velocity can fall that low by cancellation even when the state does not.
+template <class Real>
+[[gnu::always_inline]] inline Real account_square(Real vx, Real vy) {
+  constexpr Real t = flush_below<Real>;
+  const Real ux = std::abs(vx) < t ? Real(0) : vx, uy = std::abs(vy) < t ? Real(0) : vy;
+  return ux * ux + uy * uy;
+}
+
 /// Calls visit(field) with a default BodyField whose compile-time parts match the world's
 /// flags: 3 spring shapes x damped or not x constant acceleration or not.
 template <class Real, int Decays, class Visit>
@@ -105,9 +138,9 @@ template <bool Track = false, class Field, class Real>
   // The flow D removes ½|v|²(1 - decay²) per unit mass, exactly.
   auto damp = [&] {
     if constexpr (Field::damped) {
-      if constexpr (Track) diss += Real(0.5) * (vx * vx + vy * vy);
+      if constexpr (Track) diss += Real(0.5) * account_square(vx, vy);
       vx *= decay, vy *= decay;
-      if constexpr (Track) diss -= Real(0.5) * (vx * vx + vy * vy);
+      if constexpr (Track) diss -= Real(0.5) * account_square(vx, vy);
     }
   };
   damp();
@@ -175,7 +208,7 @@ template <class Field, class Real>
 /// Per-unit-mass damping power γ|v|² (W/kg) of one body at velocity (vx, vy).
 template <class Field, class Real>
 [[gnu::always_inline]] inline Real damping_power(const Field& f, Real vx, Real vy) {
-  return f.gamma * (vx * vx + vy * vy);
+  return f.gamma * account_square(vx, vy);
 }
 
 /// Step sizes of one integration step, s: h, and Forest–Ruth's w1·h and w0·h.

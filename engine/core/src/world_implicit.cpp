@@ -24,6 +24,7 @@
 #include <limits>
 #include <new>
 
+#include "body_field.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/step_results.hpp"
@@ -47,6 +48,10 @@ class ImplicitSolver {
   std::vector<double> mass, drag, cx, cy;  ///< kg; b + c of per-body dampers, N·s/m; m/s²
   std::vector<Spring> springs;
   bool linear = true;
+  /// A new state's value below this magnitude is written back as a zero of its sign (the
+  /// world's flush_below, body_field.hpp; 0: none): solved in double, a velocity (r - x)/h can
+  /// be far below the least normal Real while r and x are not.
+  double flush = 0;
 
   /// One step of h (s). Returns true if the new state is out of range.
   bool step(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2], bool track,
@@ -54,6 +59,10 @@ class ImplicitSolver {
 
  private:
   using Sparse = Eigen::SparseMatrix<double>;
+  /// v in the world's precision, flushed below `flush`.
+  [[nodiscard]] Real narrow(double v) const {
+    return static_cast<Real>(std::abs(v) < flush ? std::copysign(0.0, v) : v);
+  }
   void build_linear(double h);
   bool step_linear(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2]);
   bool step_newton(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2]);
@@ -135,7 +144,7 @@ bool ImplicitSolver<Real>::step_linear(Real* x, Real* y, Real* vx, Real* vy, dou
   bool out = false;
   const double limit = max_state_magnitude;
   for (Eigen::Index j = 0; j < n; ++j) {
-    vx[j] = static_cast<Real>(sol_x_[j]), vy[j] = static_cast<Real>(sol_y_[j]);
+    vx[j] = narrow(sol_x_[j]), vy[j] = narrow(sol_y_[j]);
     x[j] += hr * vx[j], y[j] += hr * vy[j];
     out = out || !(std::abs(double(x[j])) <= limit && std::abs(double(y[j])) <= limit &&
                    std::abs(double(vx[j])) <= limit && std::abs(double(vy[j])) <= limit);
@@ -272,8 +281,8 @@ bool ImplicitSolver<Real>::finish_newton(Real* x, Real* y, Real* vx, Real* vy, d
   const double limit = max_state_magnitude;
   for (Eigen::Index j = 0; j < n; ++j) {
     const double nvx = (r_[2 * j] - double(x[j])) / h, nvy = (r_[2 * j + 1] - double(y[j])) / h;
-    x[j] = static_cast<Real>(r_[2 * j]), y[j] = static_cast<Real>(r_[2 * j + 1]);
-    vx[j] = static_cast<Real>(nvx), vy[j] = static_cast<Real>(nvy);
+    x[j] = narrow(r_[2 * j]), y[j] = narrow(r_[2 * j + 1]);
+    vx[j] = narrow(nvx), vy[j] = narrow(nvy);
     out = out || !(std::abs(r_[2 * j]) <= limit && std::abs(r_[2 * j + 1]) <= limit &&
                    std::abs(nvx) <= limit && std::abs(nvy) <= limit);
   }
@@ -321,6 +330,7 @@ detail::ImplicitSolver<Real>& detail::WorldKernel<Real>::implicit_solver() {
     detail::ImplicitSolver<Real>& s = *implicit_;
     const std::size_t n = body_count();
     s.mass = mass_;
+    s.flush = double(flush_threshold<Real>(settings_.flush_denormals));
     s.drag.assign(n, 0.0), s.cx.assign(n, 0.0), s.cy.assign(n, 0.0);
     s.linear = true;
     for (std::size_t i = 0; i < springs_.data.size(); ++i) {

@@ -38,6 +38,7 @@ struct SweepArrays {
   const Real* __restrict gamma, * __restrict cx, * __restrict cy;
   const Real* __restrict decay0, * __restrict decay1;
   Real push_x, push_y;
+  Real flush_below;  ///< damped bodies' tiny values become 0 (body_field.hpp); 0: never
 };
 
 /// Runs step(x, y, vx, vy, field) on every body: one pass, each body's state loaded and stored
@@ -64,6 +65,10 @@ template <class Field, class Real, class Step>
     if constexpr (Field::accel) f.cx = a.cx[j] + a.push_x, f.cy = a.cy[j] + a.push_y;
     Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j];
     step(X, Y, VX, VY, f);
+    if constexpr (Field::damped) {
+      const Real t = a.flush_below;
+      X = flush_tiny(X, t), Y = flush_tiny(Y, t), VX = flush_tiny(VX, t), VY = flush_tiny(VY, t);
+    }
     x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
     // !(|v| <= limit) is true for NaN too (every comparison with NaN is false).
     // int & int, not &&: no branch in the loop body (it would stop the vectorizer).
@@ -249,7 +254,8 @@ void detail::WorldKernel<Real>::integrate(const TickInput& input) {
                                    .decay0 = decay0,
                                    .decay1 = decay1,
                                    .push_x = push[0],
-                                   .push_y = push[1]};
+                                   .push_y = push[1],
+                                   .flush_below = flush_threshold<Real>(settings_.flush_denormals)};
     out_of_range |= sweep<decltype(field)>(level, arrays, step_fn);
   };
 

@@ -25,6 +25,7 @@
 #include "fixstep/core/world_settings.hpp"
 #include "fixstep/io/file_write.hpp"
 #include "fixstep/scene/scene.hpp"
+#include "scene_reader.hpp"
 #include "scene_values.hpp"
 
 namespace fixstep {

@@ -51,15 +51,23 @@ struct WorldSettings {
   Integrator integrator = Integrator::semi_implicit_euler;
   /// Integration steps per tick, each of dt / substeps (>= 1). A tick is still dt.
   int substeps = 1;
-  /// Flush subnormal state to zero: at the end of every tick whose number is a multiple of
-  /// flush_denormals_every (64), each x, y, vx, vy with 0 < |v| < the least normal (1.2e-38
-  /// f32, 2.2e-308 f64) becomes a zero of its sign, in software, the same bits on every
-  /// platform (no FTZ/DAZ: World::step runs in the IEEE default FPU mode whatever the
-  /// caller set). A strongly damped f32 state decays into subnormals after some thousands of
-  /// ticks, and x86 then computes 24-145x slower; with this on, a decaying state pays that for
-  /// at most 63 ticks, then is 0, and the flush itself costs 1/64 of a pass over the state.
-  /// Within a tick arithmetic keeps IEEE gradual underflow. Off: subnormal states stay (same
-  /// bits everywhere too, slower on x86).
+  /// Keep a decaying state out of the subnormal numbers, in software, the same bits on every
+  /// platform (no FTZ/DAZ: World::step runs in the IEEE default FPU mode whatever the caller
+  /// set). A strongly damped state decays towards zero, and long before the state itself is
+  /// subnormal the tick's intermediates are (products such as γ v dt, squares in the energy
+  /// account); on CPUs where such an operation takes a microcode assist (Intel's) a tick then
+  /// costs many times a normal one. With this on:
+  ///  - at the end of every integration step, each x, y, vx, vy of a damped body (per-body
+  ///    damping or drag) whose magnitude is below 2^8 √(least normal) (2^-55 ≈ 2.8e-17 in f32,
+  ///    2^-503 ≈ 3.8e-152 in f64) becomes a zero of its sign, so every product of the next step
+  ///    and every square of the dissipation account stays normal; implicit Euler writes its
+  ///    solution back under the same rule;
+  ///  - a linked world with damped bodies or links flushes its whole state under the same
+  ///    rule at the end of every tick (two values above it can still differ by less, so a
+  ///    network at rest may produce a subnormal in a few ticks);
+  ///  - every flush_denormals_every (64) ticks, any remaining subnormal x, y, vx, vy (0 < |v| <
+  ///    the least normal: 1.2e-38 f32, 2.2e-308 f64) of any world becomes a zero of its sign.
+  /// Off: gradual underflow throughout (the same bits everywhere too, slower on such CPUs).
   bool flush_denormals = true;
   /// Keep account of the energy dissipated by damping and drag (dissipated_energy()), so that
   /// the energy balance E + E_dissipated - E0 measures the integrator alone. Off by default:
