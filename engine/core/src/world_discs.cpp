@@ -97,7 +97,8 @@ void detail::WorldKernel<Real>::rebuild_discs() {
   discs_->set_accelerations(coeff_.accel_x, coeff_.accel_y);
 }
 
-// Static and kinematic bodies, and with ContactSettings::sleep the sleepers.
+// Static and kinematic bodies, and with ContactSettings::sleep the sleepers, unless the free
+// step skips them (the awake runs).
 template <class Real>
 void detail::WorldKernel<Real>::rebuild_immovable() {
   Immovable& m = immovable_;
@@ -105,7 +106,7 @@ void detail::WorldKernel<Real>::rebuild_immovable() {
   const bool skip = sleep_ && fused_step();
   for (std::size_t j = 0; j < body_count(); ++j) {
     const bool sleeps = sleep_ && asleep_[j] != 0;
-    if (types_[j] != BodyType::dynamic || sleeps) {
+    if (types_[j] != BodyType::dynamic || (sleeps && !skip)) {
       m.body.push_back(static_cast<std::uint32_t>(j));
     }
   }

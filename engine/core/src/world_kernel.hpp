@@ -801,16 +801,17 @@ class WorldKernel {
 
   /// The awake bodies' runs (awake_runs.hpp), built with the immovable list.
   AwakeRuns awake_;
-  /// Bodies the last plane pass visited (ContactStats::plane_tested).
-  std::size_t plane_visited_ = 0;
+  /// Bodies the last free step and plane pass visited (ContactStats::free_stepped,
+  /// plane_tested).
+  std::size_t stepped_ = 0, plane_visited_ = 0;
   /// Whether the free step is the fused sweep, which can skip the sleepers (world_step.cpp).
   [[nodiscard]] bool fused_step() const { return net_.a.empty() && !settings_.track_dissipation; }
   /// Refuses (std::invalid_argument) sleep settings out of range; returns sleep_ticks_.
   static std::uint32_t sleep_ticks(const ContactSettings& c, double dt);
   /// Resizes the sleep state after a structural change: every island awake.
   void reset_sleep();
-  /// The immovable list: static and kinematic bodies, and sleepers; with sleeping on, the
-  /// awake runs too.
+  /// The immovable list: static and kinematic bodies, and sleepers unless the free step skips
+  /// them (AwakeRuns::on); with sleeping on, the awake runs too.
   void rebuild_immovable();
   /// awake_ from asleep_ (on: the passes skip the sleepers; off: the runs stay empty).
   void rebuild_awake_runs(bool on);

@@ -207,6 +207,13 @@ void detail::WorldKernel<Real>::apply_drag(const TickInput& input) {
 
 template <class Real>
 void detail::WorldKernel<Real>::keep_previous_positions() {
+  if (awake_.skip()) {  // a sleeper's previous position is where it sleeps (awake_runs.hpp)
+    for (const IndexRun& r : awake_.bodies) {
+      std::copy(x_.begin() + r.begin, x_.begin() + r.end, prev_x_.begin() + r.begin);
+      std::copy(y_.begin() + r.begin, y_.begin() + r.end, prev_y_.begin() + r.begin);
+    }
+    return;
+  }
   std::copy(x_.begin(), x_.end(), prev_x_.begin());
   std::copy(y_.begin(), y_.end(), prev_y_.begin());
 }
@@ -222,7 +229,8 @@ void detail::WorldKernel<Real>::flush_state_subnormals() {
 
 template <class Real>
 void detail::WorldKernel<Real>::integrate(const TickInput& input) {
-  if (!net_.a.empty() || settings_.track_dissipation) {
+  if (!fused_step()) {
+    stepped_ = x_.size();
     step_multipass(input);  // links or the dissipation account: world_coupled.cpp
     return;
   }
@@ -238,6 +246,17 @@ void detail::WorldKernel<Real>::integrate(const TickInput& input) {
   // Every sweep gets the same arrays; each Field reads only its own.
   const SimdLevel level = simd_level();
   bool out_of_range = false;
+  // The arrays from the run's first body on, for its bodies (null pointers stay null).
+  auto from = [](SweepArrays<Real> a, IndexRun r) {
+    auto at = [&](auto* p) { return p != nullptr ? p + r.begin : p; };
+    a.n = r.end - r.begin;
+    a.x = at(a.x), a.y = at(a.y), a.vx = at(a.vx), a.vy = at(a.vy);
+    a.k = at(a.k), a.anchor_x = at(a.anchor_x), a.anchor_y = at(a.anchor_y), a.rest = at(a.rest);
+    a.gamma = at(a.gamma), a.cx = at(a.cx), a.cy = at(a.cy);
+    a.decay0 = at(a.decay0), a.decay1 = at(a.decay1);
+    return a;
+  };
+  stepped_ = awake_.on ? count_in_runs(awake_.bodies) : n;
   auto run = [&](auto field, const Real* decay0, const Real* decay1, auto step_fn) {
     const SweepArrays<Real> arrays{.n = n,
                                    .x = x_.data(),
@@ -256,7 +275,13 @@ void detail::WorldKernel<Real>::integrate(const TickInput& input) {
                                    .push_x = push[0],
                                    .push_y = push[1],
                                    .flush_below = flush_threshold<Real>(settings_.flush_denormals)};
-    out_of_range |= sweep<decltype(field)>(level, arrays, step_fn);
+    if (!awake_.on) {
+      out_of_range |= sweep<decltype(field)>(level, arrays, step_fn);
+      return;
+    }
+    for (const IndexRun& r : awake_.bodies) {  // sleepers are not stepped (awake_runs.hpp)
+      out_of_range |= sweep<decltype(field)>(level, from(arrays, r), step_fn);
+    }
   };
 
   StepSizes<Real> sizes{h, static_cast<Real>(forest_ruth_w1 * double(h)),

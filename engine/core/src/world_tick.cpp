@@ -80,6 +80,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (segments_.moves()) place_segments();      // where the tick left the carriers
   if (sleep_) finish_sleep(input, plan.discs);  // world_sleep.cpp
   if (plan.planes) contact_stats_.capped = (plan.discs ? contact_stats_.capped : 0) + plane_capped;
+  contact_stats_.free_stepped = stepped_;
   contact_stats_.plane_tested = plan.planes ? plane_visited_ : 0;
   awake_.primed = awake_.on;  // a whole tick has passed over the sleepers (awake_runs.hpp)
 
