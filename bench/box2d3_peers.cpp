@@ -55,14 +55,14 @@ std::string shape_stepper_label(const std::string& key) {
   return key;
 }
 
-std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers, Box2d3Release r) {
+std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers, Box2d3Release r, bool sleep) {
 #if FIXSTEP_HAVE_BOX2D3
-  if (r == Box2d3Release::v3_1) return box2d_v3_1::make_discs(s, workers);
+  if (r == Box2d3Release::v3_1) return box2d_v3_1::make_discs(s, workers, sleep);
 #endif
 #if FIXSTEP_HAVE_BOX2D32
-  if (r == Box2d3Release::v3_2) return box2d_v3_2::make_discs(s, workers);
+  if (r == Box2d3Release::v3_2) return box2d_v3_2::make_discs(s, workers, sleep);
 #endif
-  (void)s, (void)workers;
+  (void)s, (void)workers, (void)sleep;
   not_built(r);
 }
 

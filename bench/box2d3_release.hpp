@@ -19,7 +19,7 @@
 #endif
 
 namespace discs::box2d_v3_1 {
-[[nodiscard]] std::unique_ptr<Stepper> make_discs(const Scene& s, int workers);
+[[nodiscard]] std::unique_ptr<Stepper> make_discs(const Scene& s, int workers, bool sleep);
 [[nodiscard]] std::unique_ptr<boxes::BoxStepper> make_boxes(const boxes::BoxScene& s, int workers);
 /// joints_box2d3.cpp (the object library joints_box2d3 or joints_box2d32, bench_joints only).
 [[nodiscard]] std::unique_ptr<joints::JointStepper> make_joints(const joints::JointScene& s,
@@ -29,7 +29,7 @@ namespace discs::box2d_v3_1 {
 }  // namespace discs::box2d_v3_1
 
 namespace discs::box2d_v3_2 {
-[[nodiscard]] std::unique_ptr<Stepper> make_discs(const Scene& s, int workers);
+[[nodiscard]] std::unique_ptr<Stepper> make_discs(const Scene& s, int workers, bool sleep);
 [[nodiscard]] std::unique_ptr<boxes::BoxStepper> make_boxes(const boxes::BoxScene& s, int workers);
 /// joints_box2d3.cpp (the object library joints_box2d3 or joints_box2d32, bench_joints only).
 [[nodiscard]] std::unique_ptr<joints::JointStepper> make_joints(const joints::JointScene& s,

@@ -122,6 +122,31 @@ std::string box_report_markdown(const BoxResults& r) {
                        num(ia->second.ns_per_body_step / ib->second.ns_per_body_step, "{:.2f}")));
     }
   }
+  // The targets against Box2D v3.2: the 20-row pyramid and the settling pile of 10^4 boxes ≥
+  // 1.5× faster per body-step, on 1 thread / worker and on 2, at no more box-box overlap.
+  line("\n#### Targets\n");
+  line("| target | measured | met |");
+  line("|---|---|---|");
+  for (const auto& [kind, n] : scene_cases(r)) {
+    if (kind == BoxSceneKind::tower || (kind == BoxSceneKind::box_pile && n != 10'000)) continue;
+    for (int threads : {1, 2}) {
+      const auto f =
+          r.cases.find(fmt::format("{}/fixstep_t{}/{}", box_scene_name(kind), threads, n));
+      const auto b =
+          r.cases.find(fmt::format("{}/box2d32_w{}/{}", box_scene_name(kind), threads, n));
+      const bool measured = f != r.cases.end() && b != r.cases.end();
+      const double q = measured ? b->second.ns_per_body_step / f->second.ns_per_body_step : NAN;
+      const bool ok = measured && q >= 1.5 && f->second.box_overlap <= b->second.box_overlap;
+      line(fmt::format(
+          "| {0}, N = {1}: fixstep ({2} thread{3}) ≥ 1.5× faster per body-step than Box2D v3.2 "
+          "({2} worker{3}) at no more box-box overlap | {4}{5} | {6} |",
+          scene_text(kind), size_text(n), threads, threads == 1 ? "" : "s", num(q, "{:.2f}×"),
+          measured ? fmt::format(" (overlap {} against {} m)", num(f->second.box_overlap),
+                                 num(b->second.box_overlap))
+                   : "",
+          measured ? (ok ? "yes" : "**no**") : "not measured"));
+    }
+  }
   return out;
 }
 

@@ -125,7 +125,8 @@ class Stepper {
 // - chipmunk_hasty2: cpHastySpace on 2 threads (its default tree);
 // - box2d: Box2D 2.4's b2World, b2CircleShape, Step(dt, 8, 3);
 // - box2d3_w1, box2d3_w2: Box2D v3.1.1's b2World_Step(dt, 4) on 1 and 2 workers (where built);
-// - box2d32_w1, box2d32_w2: Box2D v3.2's, the same (where built).
+// - box2d32_w1, box2d32_w2: Box2D v3.2's, the same (where built);
+// - box2d32_sleep_w1, box2d32_sleep_w2: Box2D v3.2 with its sleeping on (the settled pile only).
 /// The keys of the steppers this build has (Box2D v3's only where box2d3_built()).
 [[nodiscard]] std::span<const char* const> stepper_keys();
 [[nodiscard]] std::string stepper_label(const std::string& key);
@@ -160,8 +161,11 @@ inline constexpr Box2d3Release box2d3_releases[] = {Box2d3Release::v3_1, Box2d3R
 /// Box2D v3 on `workers` threads: 1, its own serial task functions; 2, for v3.1 Box2d3Tasks
 /// (discs_box2d3_tasks.hpp), for v3.2 its own scheduler (b2WorldDef::workerCount = 2 without
 /// task callbacks: it runs a thread of its own).
+/// sleep: Box2D's sleeping islands on (b2WorldDef::enableSleep at its defaults), for the
+/// asleep settled pile.
 [[nodiscard]] std::unique_ptr<Stepper> make_box2d3(const Scene& s, int workers,
-                                                   Box2d3Release r = Box2d3Release::v3_1);
+                                                   Box2d3Release r = Box2d3Release::v3_1,
+                                                   bool sleep = false);
 /// "3.1.1", "3.2.0" (b2GetVersion), or "3.1.1 (not built)" or "3.2 (not built)".
 [[nodiscard]] std::string box2d3_version(Box2d3Release r = Box2d3Release::v3_1);
 [[nodiscard]] double box2d3_linear_slop(Box2d3Release r = Box2d3Release::v3_1);  ///< m

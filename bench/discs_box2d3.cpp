@@ -10,7 +10,8 @@
 // friction and restitution (v3 mixes a pair as √(μ_a μ_b) and max(e_a, e_b), as 2.4 does: the
 // scene's values again) and the world's restitution threshold is 0 (its default, 1 m/s, makes
 // slower impacts perfectly inelastic and would cool the elastic gas; 2.4 sets it per fixture).
-// Gravity as the scene's, sleeping off (b2WorldDef::enableSleep; its default is on),
+// Gravity as the scene's, sleeping off (b2WorldDef::enableSleep; its default is on) except for
+// the asleep steppers (box2d32_sleep_w1/_w2: its defaults, b2_timeToSleep 0.5 s),
 // continuous collision, contact softness (30 Hz, damping ratio 10, push speed 3 m/s) and
 // everything else at v3's defaults; b2World_Step(world, dt, 4): its default 4 substeps
 // (types.h, b2World_Step's documentation; its samples' default). b2World_GetProfile() splits
@@ -44,10 +45,10 @@ struct BodyRef {
 
 class Box2d3Stepper final : public Stepper {
  public:
-  Box2d3Stepper(const Scene& s, int workers) : workers_(workers) {
+  Box2d3Stepper(const Scene& s, int workers, bool sleep) : workers_(workers) {
     b2WorldDef wd = b2DefaultWorldDef();
     wd.gravity = {0.0f, float(-s.gravity)};
-    wd.enableSleep = false;
+    wd.enableSleep = sleep;
     wd.restitutionThreshold = 0.0f;
 #if FIXSTEP_BOX2D3_MINOR == 1
     if (workers > 1) {
@@ -131,8 +132,8 @@ class Box2d3Stepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_discs(const Scene& s, int workers) {
-  return std::make_unique<Box2d3Stepper>(s, workers);
+std::unique_ptr<Stepper> make_discs(const Scene& s, int workers, bool sleep) {
+  return std::make_unique<Box2d3Stepper>(s, workers, sleep);
 }
 
 std::string version() {

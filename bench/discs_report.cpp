@@ -33,7 +33,9 @@ std::vector<const char*> make_keys() {
                                 "chipmunk_hash",    "chipmunk_tree",
                                 "chipmunk_hasty2",  "box2d"};
   if (box2d3_built(Box2d3Release::v3_1)) k.insert(k.end(), {"box2d3_w1", "box2d3_w2"});
-  if (box2d3_built(Box2d3Release::v3_2)) k.insert(k.end(), {"box2d32_w1", "box2d32_w2"});
+  if (box2d3_built(Box2d3Release::v3_2)) {
+    k.insert(k.end(), {"box2d32_w1", "box2d32_w2", "box2d32_sleep_w1", "box2d32_sleep_w2"});
+  }
   return k;
 }
 const std::vector<const char*> key_list = make_keys();
@@ -67,6 +69,12 @@ std::string stepper_label(const std::string& key) {
     const std::string k = box2d3_key(r);
     if (key == k + "_w1") return fmt::format("Box2D {} (f32), 1 worker", box2d3_version(r));
     if (key == k + "_w2") return fmt::format("Box2D {} (f32), 2 workers", box2d3_version(r));
+    if (key == k + "_sleep_w1") {
+      return fmt::format("Box2D {} (f32), sleeping on, 1 worker", box2d3_version(r));
+    }
+    if (key == k + "_sleep_w2") {
+      return fmt::format("Box2D {} (f32), sleeping on, 2 workers", box2d3_version(r));
+    }
   }
   return key;
 }
@@ -90,6 +98,8 @@ std::unique_ptr<Stepper> make_stepper(const std::string& key, const Scene& s) {
     const std::string k = box2d3_key(r);
     if (key == k + "_w1" && box2d3_built(r)) return make_box2d3(s, 1, r);
     if (key == k + "_w2" && box2d3_built(r)) return make_box2d3(s, 2, r);
+    if (key == k + "_sleep_w1" && box2d3_built(r)) return make_box2d3(s, 1, r, true);
+    if (key == k + "_sleep_w2" && box2d3_built(r)) return make_box2d3(s, 2, r, true);
   }
   throw std::invalid_argument("no stepper " + key);
 }
@@ -322,6 +332,18 @@ void sleep_targets(const View& v, const Line& line) {
         pile_settled_warmup + 1, pile_settled_warmup + 20, threads, threads == 1 ? "" : "s",
         num(100.0 * q, "{:.1f} %"), num(v.ns(SceneKind::pile_settled, asleep, n4)),
         num(v.ns(SceneKind::pile_settled, awake, n4)), verdict(!std::isnan(q), q <= 0.05)));
+    // Sleep that costs nothing: ≤ 0.5 ns a body-step asleep, and ≤ 10× Box2D v3.2's asleep.
+    const double ns = v.ns(SceneKind::pile_settled, asleep, n4);
+    line(fmt::format(
+        "| settled pile asleep, N = 10^4, {} thread{}: ≤ 0.5 ns per body-step | {} ns | {} |",
+        threads, threads == 1 ? "" : "s", num(ns), verdict(!std::isnan(ns), ns <= 0.5)));
+    const double peer =
+        v.ns(SceneKind::pile_settled, fmt::format("box2d32_sleep_w{}", threads), n4);
+    line(fmt::format(
+        "| settled pile asleep, N = 10^4, {0} thread{1}: ≤ 10× Box2D v3.2's asleep cost ({0} "
+        "worker{1}) | {2}× ({3} against {4} ns) | {5} |",
+        threads, threads == 1 ? "" : "s", num(ns / peer, "{:.1f}"), num(ns), num(peer),
+        verdict(!std::isnan(ns / peer), ns / peer <= 10.0)));
   }
 }
 
@@ -337,6 +359,7 @@ std::string targets_markdown(const Results& r) {
   peer_targets(v, line);
   scaling_targets(v, line);
   box2d3_targets(v, line);
+  box2d32_targets(v, line);
   sleep_targets(v, line);
   std::string costs;
   for (auto n : r.sizes) {

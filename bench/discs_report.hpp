@@ -44,5 +44,6 @@ void box2d3_table(const View& v, const Line& line);
 [[nodiscard]] std::string box2d3_summary();
 /// Issue 33's targets against Box2D v3.1.1, where it was built.
 void box2d3_targets(const View& v, const Line& line);
+void box2d32_targets(const View& v, const Line& line);
 
 }  // namespace discs::report

@@ -127,4 +127,53 @@ void box2d3_targets(const View& v, const Line& line) {
   }
 }
 
+/// The targets against Box2D v3.2 (its 1 and 2 workers against fixstep f64 on as many threads):
+/// the settling pile ≥ 1.5× at every N at no more than a fifth of its overlap, the settled pile
+/// ≥ 2× at 10^4, the gas ≥ 3× at every N.
+void box2d32_targets(const View& v, const Line& line) {
+  if (!box2d3_built(Box2d3Release::v3_2)) return;
+  const std::string peer = "Box2D " + box2d3_version(Box2d3Release::v3_2);
+  struct Target {
+    SceneKind scene;
+    const char* name;
+    double ratio;
+    bool shallow;  // at no more than a fifth of the peer's overlap
+    bool every_n;  // else N = 10^4 only
+  };
+  const Target targets[] = {{SceneKind::pile, "settling pile (ticks 41–60)", 1.5, true, true},
+                            {SceneKind::pile_settled, "settled pile", 2.0, true, false},
+                            {SceneKind::gas, "gas", 3.0, false, true}};
+  for (const Target& t : targets) {
+    for (int threads : {1, 2}) {
+      const std::string f_key = fmt::format("fixstep_f64_t{}", threads);
+      const std::string b_key = fmt::format("box2d32_w{}", threads);
+      std::string measured;
+      bool all = true, ok = true;
+      for (auto n : v.r.sizes) {
+        if (!t.every_n && n != 10'000) continue;
+        const CaseResult* f = v.at(t.scene, f_key, n);
+        const CaseResult* b = v.at(t.scene, b_key, n);
+        if (!f || !b) {
+          all = false;
+          continue;
+        }
+        const double q = b->ns_per_body_step / f->ns_per_body_step;
+        const bool shallow = !t.shallow || f->disc_overlap <= b->disc_overlap / 5.0;
+        ok = ok && q >= t.ratio && shallow;
+        measured += fmt::format("{}N = {}: {}{}", measured.empty() ? "" : ", ", size_text(n),
+                                num(q, "{:.2f}×"),
+                                t.shallow ? fmt::format(" (overlap / r {} against {})",
+                                                        num(f->disc_overlap), num(b->disc_overlap))
+                                          : "");
+      }
+      line(fmt::format(
+          "| {0}{1}: fixstep f64 ({2} thread{3}) ≥ {4}× faster per body-step than {5} ({2} "
+          "worker{3}){6} | {7} | {8} |",
+          t.name, t.every_n ? ", every N" : ", N = 10^4", threads, threads == 1 ? "" : "s", t.ratio,
+          peer, t.shallow ? ", at no more than a fifth of its overlap" : "",
+          measured.empty() ? "–" : measured, verdict(all && !measured.empty(), ok)));
+    }
+  }
+}
+
 }  // namespace discs::report

@@ -189,6 +189,31 @@ std::string joint_report_markdown(const JointResults& r) {
                        num(ia->second.ns_per_body_step / ib->second.ns_per_body_step, "{:.2f}")));
     }
   }
+  // The targets against Box2D v3.2: the chain of revolute joints and the ragdoll pile ≥ 1.5×
+  // faster per body-step, on 1 thread / worker and on 2, at no more joint error (the largest
+  // anchor separation and the largest limit violation over the window).
+  line("\n#### Targets\n");
+  line("| target | measured | met |");
+  line("|---|---|---|");
+  for (const JointSceneKind k : {JointSceneKind::chain, JointSceneKind::ragdoll_pile}) {
+    for (int threads : {1, 2}) {
+      const auto f = r.cases.find(fmt::format("{}/fixstep_t{}", joint_scene_name(k), threads));
+      const auto b = r.cases.find(fmt::format("{}/box2d32_w{}", joint_scene_name(k), threads));
+      const bool measured = f != r.cases.end() && b != r.cases.end();
+      const double q = measured ? b->second.ns_per_body_step / f->second.ns_per_body_step : NAN;
+      const bool ok = measured && q >= 1.5 && f->second.separation <= b->second.separation &&
+                      f->second.beyond_limit <= b->second.beyond_limit;
+      line(fmt::format(
+          "| {0}: fixstep ({1} thread{2}) ≥ 1.5× faster per body-step than Box2D v3.2 ({1} "
+          "worker{2}) at no more joint error | {3}{4} | {5} |",
+          joint_scene_name(k), threads, threads == 1 ? "" : "s", num(q, "{:.2f}×"),
+          measured ? fmt::format(" (separation {} against {} m, beyond a limit {} against {})",
+                                 num(f->second.separation), num(b->second.separation),
+                                 num(f->second.beyond_limit), num(b->second.beyond_limit))
+                   : "",
+          measured ? (ok ? "yes" : "**no**") : "not measured"));
+    }
+  }
   return out;
 }
 

@@ -66,6 +66,28 @@ long count_subnormal(std::span<const Real> v) {
   return n;
 }
 
+/// Steps w `ticks` times, counting after each tick what it produced (TickFlags, and the
+/// subnormal values of the state); largest_left from the state after the last.
+template <class Real>
+Produced step_counting(detail::WorldKernel<Real>& w, int ticks) {
+  Produced p;
+  for (int t = 1; t <= ticks; ++t) {
+    const TickFlags flags;
+    w.step();
+    const bool underflow = TickFlags::underflow(), denormal = TickFlags::denormal_operand();
+    const long values = count_subnormal(w.x()) + count_subnormal(w.y()) + count_subnormal(w.vx()) +
+                        count_subnormal(w.vy());
+    p.underflow_ticks += underflow ? 1 : 0;
+    p.denormal_operand_ticks += denormal ? 1 : 0;
+    p.subnormal_values += values;
+    if (p.first < 0 && (underflow || denormal || values > 0)) p.first = t;
+  }
+  for (auto s : {w.x(), w.y(), w.vx(), w.vy()}) {
+    for (const Real e : s) p.largest_left = std::max(p.largest_left, double(std::abs(e)));
+  }
+  return p;
+}
+
 /// `springs` bodies of 1 kg on springs of k = 100 N/m and dampers of b = 10 N·s/m (ζ = 0.5:
 /// the amplitude falls as e^{-5t}, below the least normal float after about 17 s, the least
 /// normal double after about 141 s) stepped at dt = 1/240 s for `ticks` ticks, each
@@ -85,22 +107,7 @@ Produced decay(Integrator integrator, bool track, int springs, int ticks, bool f
     d.spring = SpringDamper{.anchor = {}, .stiffness = 100.0, .damping = 10.0};
     w.create_body(d);
   }
-  Produced p;
-  for (int t = 1; t <= ticks; ++t) {
-    const TickFlags flags;
-    w.step();
-    const bool underflow = TickFlags::underflow(), denormal = TickFlags::denormal_operand();
-    const long values = count_subnormal(w.x()) + count_subnormal(w.y()) + count_subnormal(w.vx()) +
-                        count_subnormal(w.vy());
-    p.underflow_ticks += underflow ? 1 : 0;
-    p.denormal_operand_ticks += denormal ? 1 : 0;
-    p.subnormal_values += values;
-    if (p.first < 0 && (underflow || denormal || values > 0)) p.first = t;
-  }
-  for (auto s : {w.x(), w.y(), w.vx(), w.vy()}) {
-    for (const Real e : s) p.largest_left = std::max(p.largest_left, double(std::abs(e)));
-  }
-  return p;
+  return step_counting(w, ticks);
 }
 
 void expect_none(const Produced& p, const std::string& what) {
@@ -152,19 +159,7 @@ Produced chain(Integrator integrator, bool track, int ticks, bool flush = true) 
                           .spring = {.stiffness = 100.0, .damping = 20.0, .rest_length = 0.0}});
     previous = e;
   }
-  Produced p;
-  for (int t = 1; t <= ticks; ++t) {
-    const TickFlags flags;
-    w.step();
-    const bool underflow = TickFlags::underflow(), denormal = TickFlags::denormal_operand();
-    const long values = count_subnormal(w.x()) + count_subnormal(w.y()) + count_subnormal(w.vx()) +
-                        count_subnormal(w.vy());
-    p.underflow_ticks += underflow ? 1 : 0;
-    p.denormal_operand_ticks += denormal ? 1 : 0;
-    p.subnormal_values += values;
-    if (p.first < 0 && (underflow || denormal || values > 0)) p.first = t;
-  }
-  return p;
+  return step_counting(w, ticks);
 }
 
 // A linked world whose links are damped (the multi-pass path): its state is flushed at the end
