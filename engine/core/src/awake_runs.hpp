@@ -7,6 +7,7 @@
 // disc phases see it as a static disc, and every edit or input that would move it wakes it
 // first), so skipping it leaves its state exactly as putting it back after the free step did.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
