@@ -117,8 +117,8 @@ void expect_none(const Produced& p, const std::string& what) {
 }
 
 // The case that was measured on an Intel Xeon: 20 000 damped f32 springs, 20 000 ticks (the
-// state passes the least normal float around tick 4000). Every tick, not every 64th, must keep
-// its intermediates normal; and the state must still come to rest (zero, not held above it).
+// state passes the least normal float around tick 4000). Every tick, not only every 64th, must
+// keep its intermediates normal; and the state must still come to rest (zero, not held above).
 TEST(Subnormals, TwentyThousandDampedF32SpringsProduceNoSubnormalInAnyTick) {
   const Produced p = decay<float>(Integrator::semi_implicit_euler, false, 20'000, 20'000);
   expect_none(p, "semi-implicit Euler, f32");
@@ -162,11 +162,11 @@ Produced chain(Integrator integrator, bool track, int ticks, bool flush = true) 
   return step_counting(w, ticks);
 }
 
-// A linked world whose links are damped (the multi-pass path): its state is flushed at the end
-// of every tick. Two positions or velocities above flush_below can still differ by less (the
-// links' passes subtract them), so a few ticks of a chain at rest still produce a subnormal:
-// without the flush, 3200-7300 of these 8000 ticks do (the dissipation account, implicit
-// Euler); with it, at most about 60 (measured), bounded here at 100.
+// A linked world whose links are damped (the multi-pass path): its values below flush_below are
+// flushed every 64th tick, as any damped world's. Two positions or velocities above it can still
+// differ by less (the links' passes subtract them), so a few ticks of a chain at rest still
+// produce a subnormal: without the flush, 3200-7300 of these 8000 ticks do (the dissipation
+// account, implicit Euler); with it, at most 11 (measured), bounded here at 100.
 TEST(Subnormals, ADampedChainComesToRestWithFewTicksOfSubnormals) {
   for (const Integrator integrator :
        {Integrator::semi_implicit_euler, Integrator::implicit_euler}) {

@@ -64,12 +64,12 @@ struct BodyField {
   }
 };
 
-/// The magnitude below which a damped body's x, y, vx and vy become a zero of their sign at the
-/// end of every integration step (WorldSettings::flush_denormals): 2^-55 in f32, 2^-503 in f64,
-/// 2^8 times the square root of the least normal number. A state at or above it keeps every
-/// intermediate of the next step normal: its products with the step's coefficients (h/6, k, γ,
-/// per unit mass) while those are above about 2^-60 (f32), and its squares (the dissipation
-/// account's ½|v|², γ|v|²) with a margin of 2^16 for the coefficients they are multiplied by.
+/// The magnitude below which a damped world's x, y, vx and vy become a zero of their sign every
+/// flush_denormals_every ticks (WorldSettings::flush_denormals; world_step.cpp): 2^-55 in f32,
+/// 2^-503 in f64, 2^8 times the square root of the least normal number. A value at or above it,
+/// its sums (at least 2^-24 of it unless 0) and what 64 ticks of damping leave of it keep their
+/// products with a tick's coefficients normal; the dissipation account's squares of smaller
+/// velocity components count as 0 (account_square).
 template <class Real>
 inline constexpr Real flush_below = std::numeric_limits<Real>::digits > 24 ? Real(0x1p-503)
                                                                            : Real(0x1p-55);

@@ -163,20 +163,15 @@ BodyDecays<Real> body_decays(Integrator method, bool damped, const StepSizes<Rea
 }
 
 /// One step of a world without links (that keeps the dissipation account): each body's fused
-/// step, as in the sweep, with the account; a damped body's tiny values flushed below `flush`
-/// as the sweep flushes them (body_field.hpp).
+/// step, as in the sweep, with the account.
 template <class P, class Real>
 void fused_substep(P& p, Integrator method, const StepSizes<Real>& sizes,
-                   const BodyDecays<Real>& decays, Real flush) {
+                   const BodyDecays<Real>& decays) {
   auto fused = [&]<Integrator I, int Decays>(const Real* d0, const Real* d1) {
     Real *x = p.x, *y = p.y, *vx = p.vx, *vy = p.vy, *diss = p.diss_body;
     p.template bodies<Decays>(p.c.damping, d0, d1, [&](const auto& f, std::size_t j) {
       Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j];
       body_step<I, true>(X, Y, VX, VY, f, sizes, diss[j]);
-      if constexpr (std::remove_cvref_t<decltype(f)>::damped) {
-        X = flush_tiny(X, flush), Y = flush_tiny(Y, flush);
-        VX = flush_tiny(VX, flush), VY = flush_tiny(VY, flush);
-      }
       x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
       return out_of_range(X, Y, VX, VY);
     });
@@ -212,11 +207,11 @@ void linked_substep(P& p, Integrator method, Real h, Implicit&& implicit) {
 /// once a substep (on this thread, with the worker idle between passes).
 template <class P, class Real, class Implicit>
 void run_substeps(P& p, Integrator method, int substeps, const StepSizes<Real>& sizes,
-                  const BodyDecays<Real>& decays, Real flush, Implicit&& implicit) {
+                  const BodyDecays<Real>& decays, Implicit&& implicit) {
   for (int sub = 0; sub < substeps; ++sub) {
     throw_if_stop_requested();
     if (p.m == 0) {
-      fused_substep(p, method, sizes, decays, flush);
+      fused_substep(p, method, sizes, decays);
     } else {
       linked_substep(p, method, sizes.h, implicit);
     }
@@ -334,19 +329,6 @@ const typename detail::WorldKernel<Real>::LinkFlow& detail::WorldKernel<Real>::l
   return link_flows_.back();
 }
 
-// A linked world whose bodies or links are damped decays towards rest as a whole: its state is
-// flushed below flush_below at the end of every tick (a pass over the four arrays, small beside
-// the links' passes), so the next tick's intermediates stay normal, as a damped body's are in
-// the fused sweep.
-template <class Real>
-void detail::WorldKernel<Real>::flush_linked_state() {
-  if (!settings_.flush_denormals || !(coeff_.damping || net_.damped)) return;
-  const Real t = flush_below<Real>;
-  for (std::vector<Real>* v : {&x_, &y_, &vx_, &vy_}) {
-    for (Real& e : *v) e = flush_tiny(e, t);
-  }
-}
-
 template <class Real>
 void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
   const std::size_t n = x_.size(), m = net_.a.size();
@@ -396,7 +378,6 @@ void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
     const bool same = fsal_valid_ && same_positions(x_, fsal_x_) && same_positions(y_, fsal_y_);
     run_strang_chain(p, stages, settings_.substeps, d_[0].data(), d_[1].data(), unit_x_.data(),
                      unit_y_.data(), same);
-    flush_linked_state();
     std::copy(x_.begin(), x_.end(), fsal_x_.begin());
     std::copy(y_.begin(), y_.end(), fsal_y_.begin());
     fsal_valid_ = true;
@@ -404,9 +385,7 @@ void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
     fsal_valid_ = false;  // d_ is other methods' scratch
     run_substeps(p, method, settings_.substeps, plan.sizes,
                  body_decays(method, coeff_.damping && m == 0, plan.sizes, decay),
-                 flush_threshold<Real>(settings_.flush_denormals),
                  [&](Real h) { return step_implicit_network(h, plan.push); });
-    if (m > 0) flush_linked_state();
   }
   ++tick_;
   if (bad.load(std::memory_order_relaxed) && !fault_) record_fault();

@@ -616,8 +616,6 @@ class WorldKernel {
   FIXSTEP_TICK_PHASE void keep_previous_positions();  ///< previous_x/y (world_step.cpp)
   /// WorldSettings::flush_denormals, every flush_denormals_every ticks (world_step.cpp).
   FIXSTEP_TICK_PHASE void flush_state_subnormals();
-  /// WorldSettings::flush_denormals in a damped linked world: every tick (world_coupled.cpp).
-  FIXSTEP_TICK_PHASE void flush_linked_state();
 
   // Contacts with static half-planes (world_contacts.cpp). The scratch holds, for each body
   // with a Collider, its dense index, radius and start-of-tick state (SoA), sized in

@@ -38,7 +38,6 @@ struct SweepArrays {
   const Real* __restrict gamma, * __restrict cx, * __restrict cy;
   const Real* __restrict decay0, * __restrict decay1;
   Real push_x, push_y;
-  Real flush_below;  ///< damped bodies' tiny values become 0 (body_field.hpp); 0: never
 };
 
 /// Runs step(x, y, vx, vy, field) on every body: one pass, each body's state loaded and stored
@@ -65,10 +64,6 @@ template <class Field, class Real, class Step>
     if constexpr (Field::accel) f.cx = a.cx[j] + a.push_x, f.cy = a.cy[j] + a.push_y;
     Real X = x[j], Y = y[j], VX = vx[j], VY = vy[j];
     step(X, Y, VX, VY, f);
-    if constexpr (Field::damped) {
-      const Real t = a.flush_below;
-      X = flush_tiny(X, t), Y = flush_tiny(Y, t), VX = flush_tiny(VX, t), VY = flush_tiny(VY, t);
-    }
     x[j] = X, y[j] = Y, vx[j] = VX, vy[j] = VY;
     // !(|v| <= limit) is true for NaN too (every comparison with NaN is false).
     // int & int, not &&: no branch in the loop body (it would stop the vectorizer).
@@ -109,13 +104,12 @@ bool sweep(SimdLevel level, SweepArrays<Real> a, Step step) {
   return sweep_baseline<Field>(a, step);
 }
 
-/// Sets every subnormal value of v (0 < |v| < the least normal) to zero of its sign: the
-/// software flush of WorldSettings::flush_denormals. Plain compares and copies, so the same on
-/// every platform and FPU mode; vectorized (compare and blend) at -O3.
+/// Sets every value of v below `below` in magnitude to zero of its sign: the software flush of
+/// WorldSettings::flush_denormals. Plain compares and copies, so the same on every platform and
+/// FPU mode; vectorized (compare and blend) at -O3.
 template <class Real>
-void flush_subnormals(std::vector<Real>& v) {
-  constexpr Real least_normal = std::numeric_limits<Real>::min();
-  for (Real& e : v) e = std::abs(e) < least_normal ? std::copysign(Real(0), e) : e;
+void flush_below_to_zero(std::vector<Real>& v, Real below) {
+  for (Real& e : v) e = flush_tiny(e, below);
 }
 
 }  // namespace
@@ -219,12 +213,19 @@ void detail::WorldKernel<Real>::keep_previous_positions() {
 }
 
 // Every flush_denormals_every ticks: a separate pass over the four state arrays costs as much
-// memory traffic as a tick of the fused sweep, so it runs once in 64 ticks (a state that decays
-// into the subnormals meets subnormal arithmetic for at most 63 ticks, then is 0).
+// memory traffic as a tick of the fused sweep, so it runs once in 64 ticks. A damped world
+// (bodies or links) decays towards zero: its values below flush_below (body_field.hpp) become 0,
+// far above the subnormals, so that until the next flush every value of it is either 0 or (a
+// sum of values at least that large, rounded) at least 2^-24 of a value that large, less what
+// 64 ticks of damping take; its products with the tick's coefficients then stay normal while
+// that decay is below 2^27 and the coefficients above 2^-20 (docs/INTEGRATORS.md). Other
+// worlds, which do not decay, flush only what is subnormal.
 template <class Real>
 void detail::WorldKernel<Real>::flush_state_subnormals() {
   if (!settings_.flush_denormals || tick_ % flush_denormals_every != 0) return;
-  for (std::vector<Real>* v : {&x_, &y_, &vx_, &vy_}) flush_subnormals(*v);
+  const Real below =
+      coeff_.damping || net_.damped ? flush_below<Real> : std::numeric_limits<Real>::min();
+  for (std::vector<Real>* v : {&x_, &y_, &vx_, &vy_}) flush_below_to_zero(*v, below);
 }
 
 template <class Real>
@@ -273,8 +274,7 @@ void detail::WorldKernel<Real>::integrate(const TickInput& input) {
                                    .decay0 = decay0,
                                    .decay1 = decay1,
                                    .push_x = push[0],
-                                   .push_y = push[1],
-                                   .flush_below = flush_threshold<Real>(settings_.flush_denormals)};
+                                   .push_y = push[1]};
     if (!awake_.on) {
       out_of_range |= sweep<decltype(field)>(level, arrays, step_fn);
       return;

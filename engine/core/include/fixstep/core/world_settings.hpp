@@ -56,18 +56,19 @@ struct WorldSettings {
   /// set). A strongly damped state decays towards zero, and long before the state itself is
   /// subnormal the tick's intermediates are (products such as γ v dt, squares in the energy
   /// account); on CPUs where such an operation takes a microcode assist (Intel's) a tick then
-  /// costs many times a normal one. With this on:
-  ///  - at the end of every integration step, each x, y, vx, vy of a damped body (per-body
-  ///    damping or drag) whose magnitude is below 2^8 √(least normal) (2^-55 ≈ 2.8e-17 in f32,
-  ///    2^-503 ≈ 3.8e-152 in f64) becomes a zero of its sign, so every product of the next step
-  ///    and every square of the dissipation account stays normal; implicit Euler writes its
-  ///    solution back under the same rule;
-  ///  - a linked world with damped bodies or links flushes its whole state under the same
-  ///    rule at the end of every tick (two values above it can still differ by less, so a
-  ///    network at rest may produce a subnormal in a few ticks);
-  ///  - every flush_denormals_every (64) ticks, any remaining subnormal x, y, vx, vy (0 < |v| <
-  ///    the least normal: 1.2e-38 f32, 2.2e-308 f64) of any world becomes a zero of its sign.
-  /// Off: gradual underflow throughout (the same bits everywhere too, slower on such CPUs).
+  /// costs many times a normal one. With this on, at the end of every tick whose number is a
+  /// multiple of flush_denormals_every (64):
+  ///  - in a world with damping (a body's damper or drag, a damped link) every x, y, vx, vy
+  ///    whose magnitude is below 2^8 √(least normal) (2^-55 ≈ 2.8e-17 in f32, 2^-503 ≈
+  ///    3.8e-152 in f64) becomes a zero of its sign: what is left, its sums (at least 2^-24 of
+  ///    it unless 0) and what 64 ticks of damping leave of it keep every product with the
+  ///    tick's coefficients normal while the damping takes less than 2^27 in 64 ticks (γ dt
+  ///    below about 0.29) and the coefficients (dt, k dt/m, γ dt) are above 2^-20;
+  ///  - in any other world every subnormal x, y, vx, vy (0 < |v| < the least normal: 1.2e-38
+  ///    f32, 2.2e-308 f64) becomes a zero of its sign.
+  /// The dissipation account squares a velocity component below 2^-55 (f32) as 0, and implicit
+  /// Euler writes a value below it back as 0, in every tick. Off: gradual underflow throughout
+  /// (the same bits everywhere too, slower on such CPUs).
   bool flush_denormals = true;
   /// Keep account of the energy dissipated by damping and drag (dissipated_energy()), so that
   /// the energy balance E + E_dissipated - E0 measures the integrator alone. Off by default:
