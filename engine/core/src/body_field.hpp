@@ -74,12 +74,6 @@ template <class Real>
 inline constexpr Real flush_below = std::numeric_limits<Real>::digits > 24 ? Real(0x1p-503)
                                                                            : Real(0x1p-55);
 
-/// flush_below<Real> when WorldSettings::flush_denormals is on, else 0 (no value is flushed).
-template <class Real>
-Real flush_threshold(bool flush_denormals) {
-  return flush_denormals ? flush_below<Real> : Real(0);
-}
-
 /// v, or a zero of v's sign when |v| < below (below = 0: never). A compare and a select, so the
 /// sweeps stay vectorized and every SIMD level gives the same bits.
 template <class Real>

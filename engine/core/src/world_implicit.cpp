@@ -60,9 +60,7 @@ class ImplicitSolver {
  private:
   using Sparse = Eigen::SparseMatrix<double>;
   /// v in the world's precision, flushed below `flush`.
-  [[nodiscard]] Real narrow(double v) const {
-    return static_cast<Real>(std::abs(v) < flush ? std::copysign(0.0, v) : v);
-  }
+  [[nodiscard]] Real narrow(double v) const { return static_cast<Real>(flush_tiny(v, flush)); }
   void build_linear(double h);
   bool step_linear(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2]);
   bool step_newton(Real* x, Real* y, Real* vx, Real* vy, double h, const Real push[2]);
@@ -330,7 +328,7 @@ detail::ImplicitSolver<Real>& detail::WorldKernel<Real>::implicit_solver() {
     detail::ImplicitSolver<Real>& s = *implicit_;
     const std::size_t n = body_count();
     s.mass = mass_;
-    s.flush = double(flush_threshold<Real>(settings_.flush_denormals));
+    s.flush = settings_.flush_denormals ? double(flush_below<Real>) : 0.0;
     s.drag.assign(n, 0.0), s.cx.assign(n, 0.0), s.cy.assign(n, 0.0);
     s.linear = true;
     for (std::size_t i = 0; i < springs_.data.size(); ++i) {
