@@ -217,6 +217,7 @@ int trace(const std::string& scene, const std::string& key, std::size_t n, int t
   const SceneKind kind = scene == "pile"           ? SceneKind::pile
                          : scene == "gas"          ? SceneKind::gas
                          : scene == "pile_settled" ? SceneKind::pile_settled
+                         : scene == "pile_ball"    ? SceneKind::pile_ball
                                                    : SceneKind::pile_large;
   const Scene s = make_scene(kind, n);
   const auto start = std::chrono::steady_clock::now();
@@ -273,18 +274,18 @@ int repetitions(const Options& o) {
 constexpr int ticks_per_repetition = 4;
 
 void register_all(const Options& o) {
-  for (SceneKind kind :
-       {SceneKind::pile, SceneKind::gas, SceneKind::pile_large, SceneKind::pile_settled}) {
+  for (SceneKind kind : {SceneKind::pile, SceneKind::gas, SceneKind::pile_large,
+                         SceneKind::pile_settled, SceneKind::pile_ball}) {
     for (const std::int64_t n : sizes(o)) {  // the contenders at one N run one after another
-      if ((kind == SceneKind::pile_large || kind == SceneKind::pile_settled) && n > 10'000) {
-        continue;
-      }
+      if (kind != SceneKind::pile && kind != SceneKind::gas && n > 10'000) continue;
+      const bool asleep_only = kind == SceneKind::pile_ball;
       for (const char* key : stepper_keys()) {
         const std::string k = key;
         if (k == "fixstep_f64_off" && kind != SceneKind::gas) continue;
         if (k.starts_with("fixstep_i8") && kind == SceneKind::gas) continue;     // nothing rests
         if (k.starts_with("fixstep_roll") && kind != SceneKind::pile) continue;  // the peers' pile
-        if (k.find("_sleep") != std::string::npos && kind != SceneKind::pile_settled) continue;
+        const bool sleeps = k.find("_sleep") != std::string::npos;
+        if (sleeps ? kind != SceneKind::pile_settled && !asleep_only : asleep_only) continue;
         if (k == "chipmunk_hasty2" && n > 10'000) continue;  // optional; 40+ s at 10^5
         auto* b =
             benchmark::RegisterBenchmark(fmt::format("{}/{}", scene_name(kind), k).c_str(),

@@ -49,8 +49,10 @@ inline constexpr double gas_speed_min = 1.0, gas_speed_max = 3.0;  ///< m/s
 inline constexpr int gas_warmup = 5;
 
 /// pile_large: the pile with discs of large_radius (N = 10³ and 10⁴ only); pile_settled: the
-/// pile timed after pile_settled_warmup ticks (N = 10³ and 10⁴ only).
-enum class SceneKind { pile, gas, pile_large, pile_settled };
+/// pile timed after pile_settled_warmup ticks (N = 10³ and 10⁴ only); pile_ball: the settled
+/// pile and one more disc, a ball without gravity flying level above it (timed with sleeping
+/// islands only: the pile asleep and the ball awake, so the cost of a world mostly asleep).
+enum class SceneKind { pile, gas, pile_large, pile_settled, pile_ball };
 [[nodiscard]] const char* scene_name(SceneKind s);
 
 /// One scene as every engine builds it: discs of `radius` and `mass` in a box whose walls are
@@ -65,7 +67,12 @@ struct Scene {
   double gravity = 0.0;                   ///< m/s² along -y
   double restitution = 0.0, friction = 0.0;
   int warmup = 0;  ///< ticks stepped before timing
+  /// The last disc is a ball that no gravity acts on (pile_ball), else every disc falls.
+  bool ball = false;
 };
+/// The ball of pile_ball: its height above the pile's top and its speed along +x (m, m/s).
+/// It starts above the pile's first quarter and stays within the walls for 10 s.
+inline constexpr double ball_height = 1.0, ball_speed = 0.2;
 
 [[nodiscard]] Scene make_pile(std::size_t n, double radius = small_radius);
 [[nodiscard]] Scene make_gas(std::size_t n, std::uint64_t seed = 19);

@@ -72,6 +72,7 @@ class Box2d3Stepper final : public Stepper {
       bd.type = b2_dynamicBody;
       bd.position = {float(s.position[j].x), float(s.position[j].y)};
       bd.linearVelocity = {float(s.velocity[j].x), float(s.velocity[j].y)};
+      if (s.ball && j + 1 == s.position.size()) bd.gravityScale = 0.0f;
       const b2BodyId b = b2CreateBody(world_, &bd);
       b2CreateCircleShape(b, &sd, &circle);
       bodies_.push_back({b});

@@ -34,7 +34,8 @@ class FixstepStepper final : public Stepper {
     for (std::size_t j = 0; j < s.position.size(); ++j) {
       fixstep::BodyDef d;
       d.body = {.mass = mass, .position = s.position[j], .velocity = s.velocity[j]};
-      if (s.gravity != 0.0) d.gravity = fixstep::Gravity{{0.0, -s.gravity}};
+      const bool ball = s.ball && j + 1 == s.position.size();
+      if (s.gravity != 0.0 && !ball) d.gravity = fixstep::Gravity{{0.0, -s.gravity}};
       d.collider = fixstep::Collider{.radius = s.radius};
       w_->create_body(d);
     }

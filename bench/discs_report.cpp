@@ -43,6 +43,9 @@ const std::span<const char* const> keys(key_list);
 constexpr SceneKind all_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large,
                                     SceneKind::pile_settled};
 constexpr SceneKind main_scenes[] = {SceneKind::pile, SceneKind::gas};
+/// The scenes with cost and quality tables: every scene, and the asleep pile with a ball.
+constexpr SceneKind table_scenes[] = {SceneKind::pile, SceneKind::gas, SceneKind::pile_large,
+                                      SceneKind::pile_settled, SceneKind::pile_ball};
 }  // namespace
 
 std::span<const char* const> stepper_keys() {
@@ -141,6 +144,9 @@ std::string title(SceneKind s) {
     case SceneKind::pile_settled:
       return fmt::format("Settled pile, ticks {}–{} (r = {} m)", pile_settled_warmup + 1,
                          pile_settled_warmup + 20, small_radius);
+    case SceneKind::pile_ball:
+      return fmt::format("Settled pile asleep and a ball flying above it, ticks {}–{} (r = {} m)",
+                         pile_settled_warmup + 1, pile_settled_warmup + 20, small_radius);
     case SceneKind::pile_large:
       break;
   }
@@ -173,7 +179,7 @@ void table(const View& v, SceneKind s, const Line& line,
 }
 
 void cost_tables(const View& v, const Line& line) {
-  for (SceneKind s : all_scenes) {
+  for (SceneKind s : table_scenes) {
     line(fmt::format("\n#### {}: ns per body-step (time of one step / discs), median of {}\n",
                      title(s), repetitions_text(v.r)));
     table(v, s, line, [](const CaseResult& c) { return num(c.ns_per_body_step); });
@@ -209,7 +215,7 @@ void cost_tables(const View& v, const Line& line) {
 }
 
 void quality_tables(const View& v, const Line& line) {
-  for (SceneKind s : all_scenes) {
+  for (SceneKind s : table_scenes) {
     line(fmt::format(
         "\n#### {}: deepest overlap after the timed steps, disc-disc / disc-wall, as a fraction "
         "of r; {} (ticks stepped in brackets)\n",
@@ -344,6 +350,20 @@ void sleep_targets(const View& v, const Line& line) {
         "worker{1}) | {2}× ({3} against {4} ns) | {5} |",
         threads, threads == 1 ? "" : "s", num(ns / peer, "{:.1f}"), num(ns), num(peer),
         verdict(!std::isnan(ns / peer), ns / peer <= 10.0)));
+    // A world mostly asleep costs a small constant plus its awake bodies: the same targets
+    // with one ball awake above the asleep pile (N = 10^4 + 1 bodies).
+    const double ball = v.ns(SceneKind::pile_ball, asleep, n4);
+    const double ball_peer =
+        v.ns(SceneKind::pile_ball, fmt::format("box2d32_sleep_w{}", threads), n4);
+    line(fmt::format(
+        "| settled pile asleep and one ball awake above it, N = 10^4, {} thread{}: ≤ 0.5 ns per "
+        "body-step | {} ns | {} |",
+        threads, threads == 1 ? "" : "s", num(ball), verdict(!std::isnan(ball), ball <= 0.5)));
+    line(fmt::format(
+        "| settled pile asleep and one ball awake above it, N = 10^4, {0} thread{1}: ≤ 10× Box2D "
+        "v3.2's cost ({0} worker{1}) | {2}× ({3} against {4} ns) | {5} |",
+        threads, threads == 1 ? "" : "s", num(ball / ball_peer, "{:.1f}"), num(ball),
+        num(ball_peer), verdict(!std::isnan(ball / ball_peer), ball / ball_peer <= 10.0)));
   }
 }
 

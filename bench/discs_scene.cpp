@@ -21,9 +21,11 @@ const char* scene_name(SceneKind s) {
     case SceneKind::pile_large:
       return "pile_large";
     case SceneKind::pile_settled:
+      return "pile_settled";
+    case SceneKind::pile_ball:
       break;
   }
-  return "pile_settled";
+  return "pile_ball";
 }
 
 namespace {
@@ -102,10 +104,15 @@ Scene make_gas(std::size_t n, std::uint64_t seed) {
 
 Scene make_scene(SceneKind kind, std::size_t n) {
   if (kind == SceneKind::gas) return make_gas(n);
-  if (kind == SceneKind::pile_settled) {
+  if (kind == SceneKind::pile_settled || kind == SceneKind::pile_ball) {
     Scene sc = make_pile(n, small_radius);
-    sc.kind = SceneKind::pile_settled;
+    sc.kind = kind;
     sc.warmup = pile_settled_warmup;
+    if (kind == SceneKind::pile_ball) {  // one disc more: n + 1 bodies
+      sc.position.push_back({sc.width / 4.0, sc.position.back().y + ball_height});
+      sc.velocity.push_back({ball_speed, 0.0});
+      sc.ball = true;
+    }
     return sc;
   }
   return make_pile(n, kind == SceneKind::pile ? small_radius : large_radius);
