@@ -47,15 +47,44 @@ void detail::WorldKernel<Real>::update_contact_events(bool discs) {
   touching_.clear();
   if (discs) add_disc_touching();
   if (shape_world_) add_shape_touching();
-  if (sleepers_ != 0) {  // two sleepers are not solved, and stay in touch (ContactSettings::sleep)
-    for (const ContactEvent& p : touching_before_) {
-      if (bodies_.contains(p.a) && bodies_.contains(p.b) && asleep(bodies_.index(p.a)) &&
-          asleep(bodies_.index(p.b))) {
-        touching_.push_back(p);
-      }
+  if (sleep_ || !asleep_touching_.empty()) set_asleep_pairs_apart();
+  diff_contact_events();
+}
+
+// Two sleepers are not solved, and stay in touch (ContactSettings::sleep): their pairs are kept
+// apart in asleep_touching_, out of the per-tick lists, so that a tick costs what its awake
+// pairs do. A pair one of whose bodies woke since goes back among the pairs touching before
+// the tick (it touched then); a pair whose bodies both fell asleep after the last tick leaves
+// them, so that neither ends.
+template <class Real>
+void detail::WorldKernel<Real>::set_asleep_pairs_apart() {
+  auto sleeping = [&](const ContactEvent& p) {
+    return bodies_.contains(p.a) && bodies_.contains(p.b) && asleep(bodies_.index(p.a)) &&
+           asleep(bodies_.index(p.b));
+  };
+  if ((asleep_pairs_stale_ || sleepers_ == 0) && !asleep_touching_.empty()) {
+    const std::size_t before = touching_before_.size();
+    auto keep = std::stable_partition(asleep_touching_.begin(), asleep_touching_.end(), sleeping);
+    touching_before_.insert(touching_before_.end(), keep, asleep_touching_.end());
+    asleep_touching_.erase(keep, asleep_touching_.end());
+    if (touching_before_.size() != before) sort_by_slots(touching_before_);
+  }
+  asleep_pairs_stale_ = false;
+  if (sleepers_ == 0) return;
+  const std::size_t kept = asleep_touching_.size();
+  auto out = touching_before_.begin();
+  for (const ContactEvent& p : touching_before_) {
+    if (sleeping(p)) {
+      asleep_touching_.push_back(p);
+    } else {
+      *out++ = p;
     }
   }
-  diff_contact_events();
+  touching_before_.erase(out, touching_before_.end());
+  if (asleep_touching_.size() != kept) {  // both runs sorted by slots: merged in place
+    const auto middle = asleep_touching_.begin() + static_cast<std::ptrdiff_t>(kept);
+    std::inplace_merge(asleep_touching_.begin(), middle, asleep_touching_.end(), slot_less);
+  }
 }
 
 // Bodies with shapes (world_shapes.cpp): the pairs of bodies whose manifold points carry an
@@ -140,9 +169,13 @@ void detail::WorldKernel<Real>::diff_contact_events() {
 template <class Real>
 void detail::WorldKernel<Real>::end_disc_events() {
   if (profile_.step != 0.0) profile_ = StepProfile{};
-  if (!begun_.empty() || !ended_.empty() || !touching_.empty()) {
+  if (!begun_.empty() || !ended_.empty() || !touching_.empty() || !asleep_touching_.empty()) {
     ended_.assign(touching_.begin(), touching_.end());  // the last discs went: all end
-    begun_.clear(), touching_.clear();
+    if (!asleep_touching_.empty()) {
+      ended_.insert(ended_.end(), asleep_touching_.begin(), asleep_touching_.end());
+      sort_by_slots(ended_);
+    }
+    begun_.clear(), touching_.clear(), asleep_touching_.clear();
   }
   if (!sensed_.empty() || !sensor_begun_.empty() || !sensor_ended_.empty()) {
     sensor_ended_.assign(sensed_.begin(), sensed_.end());

@@ -863,6 +863,11 @@ class WorldKernel {
   // before it and the hits are the tick's own (touching_before_ is swapped with touching_ as
   // the tick begins, hits_ cleared): a snapshot copies their sizes only.
   std::vector<ContactEvent> touching_;  // normal_speed unused
+  /// The touching pairs whose bodies both sleep, sorted by slot, apart from touching_ (with
+  /// it, the pairs touching after the last tick); stale once an island woke.
+  std::vector<ContactEvent> asleep_touching_;
+  bool asleep_pairs_stale_ = false;
+  void set_asleep_pairs_apart();
   ScratchVector<ContactEvent> touching_before_, hits_;
   std::vector<ContactEvent> begun_, ended_;
   std::vector<Impact> impacts_;            ///< the last tick's, by handle

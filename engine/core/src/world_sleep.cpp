@@ -65,6 +65,7 @@ void detail::WorldKernel<Real>::reset_sleep() {
   asleep_.assign(n, 0);
   sleepers_ = 0, disc_sleepers_ = 0;
   if (sleep_grid_) sleep_grid_->stale = true;
+  asleep_pairs_stale_ = true;
 }
 
 template <class Real>
@@ -101,6 +102,7 @@ void detail::WorldKernel<Real>::wake_labelled() {
   }
   wake_labels_.clear();
   immovable_dirty_ = true;
+  asleep_pairs_stale_ = true;  // their touching pairs go back to the per-tick lists
   if (sleep_grid_) sleep_grid_->stale = true;
 }
 
