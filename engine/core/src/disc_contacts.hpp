@@ -68,6 +68,7 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "grown_grid.hpp"
+#include "query_grid.hpp"
 #include "scratch_vector.hpp"
 #include "world_kernel.hpp"
 
@@ -134,12 +135,33 @@ class DiscContacts {
   /// Disc k sleeps (ContactSettings::sleep): it acts as a static disc, of infinite mass and
   /// at rest, and the broadphase pairs it with no other sleeper; or wakes, with its body's
   /// 1/m (1/kg) and, with rolling discs, 1/I (1/(kg·m²)).
+  /// A disc woken within a tick (by Tick::wake) takes part in the rest of it from rest.
   void set_asleep(std::uint32_t k, bool asleep, double inv_mass, double inv_inertia) {
     Disc& d = discs_[k];
     d.dynamic = dynamic_[k] = asleep ? 0 : 1;
     d.inv_mass = asleep ? 0.0 : inv_mass;
     d.inv_inertia = asleep ? 0.0 : inv_inertia;
+    if (asleep_[k] == (asleep ? 1 : 0)) return;
+    asleep_[k] = asleep ? 1 : 0;
+    sleepers_ = asleep ? sleepers_ + 1 : sleepers_ - 1;
+    awake_dirty_ = sleeper_grid_stale_ = true;
+    if (!asleep && waking_) woken_.push_back(k);
   }
+  /// The discs not asleep, in index order (every disc when none sleeps).
+  std::span<const std::uint32_t> awake();
+  /// Calls f(k) for each disc k the last resolve() visited, in index order: every disc, or
+  /// with sleepers and few discs awake, the awake ones and the sleepers next to them
+  /// (disc_live.cpp). The others' lost() and external() are 0 and their states untouched.
+  template <class F>
+  void each_live(F&& f) const {
+    if (live_all_) {
+      for (std::uint32_t k = 0; k < discs_.size(); ++k) f(k);
+    } else {
+      for (const std::uint32_t k : live_) f(k);
+    }
+  }
+  /// How many discs the last resolve() visited (ContactStats::disc_visited).
+  [[nodiscard]] std::size_t live_count() const { return live_all_ ? discs_.size() : live_.size(); }
   /// Each disc's swept box over the tick, as the broadphase pairs them (the motion from the
   /// start state to the end state, padded by the radius and twice the slop), grown
   /// over its path where an impact sent it beyond (disc_reach.cpp), m.
@@ -250,10 +272,14 @@ class DiscContacts {
   static constexpr std::size_t min_parallel_discs = 1024;
   /// The second thread a tick on `threads` threads shares its passes with (SecondThreadRun
   /// keeps it spinning through them), or null: one thread, or fewer than min_parallel_discs.
+  /// With sleepers, the awake discs count instead of all of them.
   [[nodiscard]] SecondThread* second_thread(int threads) {
-    return threads >= 2 && discs_.size() >= min_parallel_discs ? &broadphase_.second_thread()
-                                                               : nullptr;
+    const std::size_t busy = sleepers_ != 0 ? awake().size() : discs_.size();
+    return threads >= 2 && busy >= min_parallel_discs ? &broadphase_.second_thread() : nullptr;
   }
+  /// A tick with sleepers visits only the live discs (each_live()) when at most this share of
+  /// the discs is awake, else every disc: both give the same states.
+  static constexpr std::size_t live_share = 4;
   /// Candidate pairs a disc over the whole tick past which the tick's impacts run in windows
   /// (a pile has about 3, a gas a few radii a tick up to about 10).
   static constexpr std::size_t crowded_pairs = 16;
@@ -271,6 +297,38 @@ class DiscContacts {
   static constexpr double push_out_tolerance = 1e-6;
 
  private:
+  // the discs a tick visits (disc_live.cpp)
+  /// Runs f(k) over live positions [begin, end) of the tick's discs (each_live()'s order).
+  template <class F>
+  void live_range(std::size_t begin, std::size_t end, F&& f) const {
+    if (live_all_) {
+      for (std::size_t k = begin; k < end; ++k) f(static_cast<std::uint32_t>(k));
+    } else {
+      for (std::size_t i = begin; i < end; ++i) f(live_[i]);
+    }
+  }
+  /// Whether this tick visits the live discs only: with sleepers and few discs awake.
+  [[nodiscard]] bool live_only() const {
+    return sleepers_ != 0 && awake_list_.size() * live_share <= discs_.size();
+  }
+  /// Starts the tick's live list: the awake discs (save_start() saved them).
+  void begin_live();
+  /// Disc k, not yet live, joins the tick: its start state is its state now (a sleeper's, or a
+  /// disc woken this tick: at rest where it slept), its motion and box built.
+  void add_live(const Tick& tick, std::uint32_t k);
+  /// The discs woken by Tick::wake, then the sleepers whose boxes overlap a dynamic live
+  /// disc's: what the broadphase would pair with them.
+  void add_woken_and_near(const Tick& tick);
+  /// Calls found(k) for each sleeper k, not live, whose box may overlap b (a superset).
+  template <class Found>
+  void sleepers_near(const Tick& tick, const SweptBox& b, Found&& found);
+  /// The live list in index order (after add_live()).
+  void sort_live();
+  /// The grid of the sleepers where they sleep, rebuilt after a disc fell asleep or woke.
+  void build_sleeper_grid(const Tick& tick);
+  /// The live discs' boxes and dynamic flags in live order (the broadphase's input in
+  /// live_only() ticks); pairs it finds are mapped back by live_[i].
+  void gather_live_boxes(std::span<const SweptBox> boxes);
   // phase 1 (disc_events.cpp)
   void build_motions(const Tick& tick);
   void build_motions(const Tick& tick, std::size_t begin, std::size_t end);
@@ -333,7 +391,8 @@ class DiscContacts {
   /// Disc k's motion from `now` (s) to the tick's end (dt, s): if it leaves k's box, the box
   /// grows over it and the discs that piece may meet become new pairs, predicted from now.
   /// Returns the work done, in units of a box test (a prediction counts 16).
-  std::uint64_t reach(std::uint32_t k, double now, double dt);
+  /// Within a live_only() tick, the sleepers that piece reaches join the tick.
+  std::uint64_t reach(const Tick& tick, std::uint32_t k, double now, double dt);
   /// Whether a pair of discs k, j may collide at all: not both immovable, not kept apart by
   /// their filters, neither a sensor, not linked.
   [[nodiscard]] bool may_pair(std::uint32_t k, std::uint32_t j) const;
@@ -374,6 +433,10 @@ class DiscContacts {
   /// false past max_candidate_pairs (or max_vetoed_pairs dropped).
   bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads,
                 std::size_t cap);
+  /// pairs_of() over boxes with their dynamic flags as given (a live_only() tick's: live
+  /// positions, which the veto maps back).
+  bool pairs_of_boxes(std::span<const SweptBox> boxes, std::span<const std::uint8_t> dynamic,
+                      std::vector<DiscPair>& out, int threads, std::size_t cap);
   // phase 2 (disc_gather.cpp, then disc_rest.cpp)
   void gather_contacts(const Tick& tick);
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
@@ -467,7 +530,8 @@ class DiscContacts {
     return sw_[rows_[i].a] * t.arm_a + sw_[rows_[i].b] * t.arm_b;
   }
   void finish(const Tick& tick);
-  void finish(const Tick& tick, std::size_t begin, std::size_t end);
+  /// Disc k's end state written back, and what the tick took from it (lost_).
+  void finish(const Tick& tick, std::uint32_t k);
 
   std::vector<Disc> discs_;
   std::vector<std::uint64_t> linked_;
@@ -546,6 +610,26 @@ class DiscContacts {
   ScratchVector<double> lost_, external_, e_start_, e_begin_, d_begin_;
   DiscBroadphase broadphase_;
   std::vector<std::uint32_t> segments_near_;  ///< gather_segment_contacts()'s scratch
+  // Sleeping discs (set_asleep(); disc_live.cpp). A tick with sleepers and few discs awake
+  // visits the live discs only (live_only()): live_ in index order, flagged in in_live_ (both
+  // kept, so that the next tick clears the flags it set).
+  std::vector<std::uint8_t> asleep_;  ///< per disc
+  std::size_t sleepers_ = 0;
+  std::vector<std::uint32_t> awake_list_;  ///< awake(), while !awake_dirty_
+  bool awake_dirty_ = true;
+  bool live_all_ = true;     ///< the tick visits every disc
+  bool saved_live_ = false;  ///< save_start() saved the awake discs only (live_only())
+  std::vector<std::uint32_t> live_;
+  std::vector<std::uint8_t> in_live_;
+  bool live_sorted_ = true;
+  bool waking_ = false;                    ///< within Tick::wake: set_asleep() lists the woken
+  std::vector<std::uint32_t> woken_;       ///< discs woken within the tick's Tick::wake
+  QueryGrid sleeper_grid_;                 ///< the sleepers where they sleep
+  std::vector<std::uint32_t> sleeper_of_;  ///< the grid's disc i is disc sleeper_of_[i]
+  bool sleeper_grid_stale_ = true;
+  ScratchVector<SweptBox> live_boxes_;
+  ScratchVector<std::uint8_t> live_dynamic_;
+  ScratchVector<std::uint32_t> degree_;  ///< per disc: its candidate pairs (find_candidates())
   CapHit cap_;
 };
 

@@ -62,6 +62,10 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   warm_.clear();
   rolling_ = settings.rolling;
   ew_.assign(rolling_ ? n : 0, 0.0), ew0_.assign(rolling_ ? n : 0, 0.0);
+  asleep_.assign(n, 0), sleepers_ = 0, awake_dirty_ = true;
+  live_all_ = true, live_.clear(), in_live_.assign(n, 0), live_sorted_ = true;
+  waking_ = false, woken_.clear(), sleeper_grid_stale_ = true, saved_live_ = false;
+  degree_.resize(n), cursor_.resize(n);
 }
 
 template <class Real>
@@ -72,22 +76,39 @@ void DiscContacts<Real>::set_accelerations(std::span<const Real> ax, std::span<c
 template <class Real>
 void DiscContacts<Real>::save_start(const Real* x, const Real* y, const Real* vx, const Real* vy,
                                     const Real* dissipated) {
-  for (std::size_t k = 0; k < discs_.size(); ++k) {
+  // A tick that visits the live discs only saves the awake ones (the rest join from rest).
+  auto save = [&](std::uint32_t k) {
     const std::uint32_t j = discs_[k].body;
     x0_[k] = x[j], y0_[k] = y[j], vx0_[k] = vx[j], vy0_[k] = vy[j];
     d_begin_[k] = dissipated ? double(dissipated[j]) : 0.0;
+  };
+  saved_live_ = sleepers_ != 0 && (awake(), live_only());
+  if (saved_live_) {
+    for (const std::uint32_t k : awake_list_) save(k);
+  } else {
+    for (std::uint32_t k = 0; k < discs_.size(); ++k) save(k);
   }
 }
 
 template <class Real>
 void DiscContacts<Real>::save_spin_start(const Real* spin) {
-  for (std::size_t k = 0; k < ew0_.size(); ++k) ew0_[k] = double(spin[discs_[k].body]);
+  if (saved_live_) {
+    for (const std::uint32_t k : awake_list_) ew0_[k] = double(spin[discs_[k].body]);
+  } else {
+    for (std::size_t k = 0; k < ew0_.size(); ++k) ew0_[k] = double(spin[discs_[k].body]);
+  }
 }
 
 template <class Real>
 void DiscContacts<Real>::build_motions(const Tick& tick) {
-  halves(discs_.size(),
-         [&](std::size_t begin, std::size_t end, int) { build_motions(tick, begin, end); });
+  if (live_all_) {
+    halves(discs_.size(),
+           [&](std::size_t begin, std::size_t end, int) { build_motions(tick, begin, end); });
+    return;
+  }
+  halves(live_.size(), [&](std::size_t begin, std::size_t end, int) {
+    live_range(begin, end, [&](std::uint32_t k) { build_motions(tick, k, k + 1); });
+  });
 }
 
 template <class Real>
@@ -161,12 +182,16 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
   sensor_pairs_.clear();
   if (!linked_.empty() || !filters_.empty()) sort_out_pairs();
   stats.candidate_pairs = std::max(stats.candidate_pairs, pairs_.size());
-  // Each disc's pairs (CSR, in pair order).
-  std::fill(offset_.begin(), offset_.end(), 0u);
-  for (const DiscPair& p : pairs_) ++offset_[p.a + 1], ++offset_[p.b + 1];
-  for (std::size_t k = 0; k < n; ++k) offset_[k + 1] += offset_[k];
+  // Each live disc's pairs (in pair order): incident_[offset_[k] .. offset_[k] + degree_[k]).
+  const std::size_t live = live_count();
+  live_range(0, live, [&](std::uint32_t k) { degree_[k] = 0; });
+  for (const DiscPair& p : pairs_) ++degree_[p.a], ++degree_[p.b];
+  std::uint32_t at = 0;
+  live_range(0, live, [&](std::uint32_t k) {
+    offset_[k] = cursor_[k] = at;  // fill cursors
+    at += degree_[k];
+  });
   incident_.resize(2 * pairs_.size());
-  cursor_.assign(offset_.begin(), offset_.end() - 1);  // fill cursors
   for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
     incident_[cursor_[pairs_[i].a]++] = i;
     incident_[cursor_[pairs_[i].b]++] = i;
@@ -283,14 +308,29 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
 template <class Real>
 bool DiscContacts<Real>::pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out,
                                   int threads, std::size_t cap) {
+  if (!live_all_) {  // the live discs' boxes, in index order; their pairs mapped back
+    sort_live();
+    gather_live_boxes(boxes);
+    const bool ok = pairs_of_boxes(live_boxes_, live_dynamic_, out, threads, cap);
+    for (DiscPair& p : out) p.a = live_[p.a], p.b = live_[p.b];
+    return ok;
+  }
+  return pairs_of_boxes(boxes, dynamic_, out, threads, cap);
+}
+
+template <class Real>
+bool DiscContacts<Real>::pairs_of_boxes(std::span<const SweptBox> boxes,
+                                        std::span<const std::uint8_t> dynamic,
+                                        std::vector<DiscPair>& out, int threads, std::size_t cap) {
   if (linked_.empty() && filters_.empty()) {
-    return broadphase_.find_pairs(boxes, dynamic_, cap, out, threads);
+    return broadphase_.find_pairs(boxes, dynamic, cap, out, threads);
   }
   // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither: the
   // broadphase drops them without counting them against the cap (discs a filter keeps apart
   // may all be at one point), up to max_vetoed_pairs of them.
   auto reject = [](const void* context, std::uint32_t a, std::uint32_t b) {
     const auto& self = *static_cast<const DiscContacts*>(context);
+    if (!self.live_all_) a = self.live_[a], b = self.live_[b];  // live positions
     if (!self.may_collide(a, b)) return true;
     const std::uint64_t key = (std::uint64_t(a) << 32) | b;
     return !self.linked_.empty() &&
@@ -298,22 +338,22 @@ bool DiscContacts<Real>::pairs_of(std::span<const SweptBox> boxes, std::vector<D
   };
   const DiscBroadphase::PairVeto veto{reject, this, max_vetoed_pairs(discs_.size())};
   broadphase_.set_veto(&veto);
-  const bool ok = broadphase_.find_pairs(boxes, dynamic_, cap, out, threads);
+  const bool ok = broadphase_.find_pairs(boxes, dynamic, cap, out, threads);
   broadphase_.set_veto(nullptr);
   return ok;
 }
 
 template <class Real>
 std::uint32_t DiscContacts<Real>::largest_box() const {
-  std::uint32_t best = 0;
+  std::uint32_t best = 0, nan = GrownBox::none;
   double widest = -1.0;
-  for (std::uint32_t k = 0; k < boxes_.size(); ++k) {
+  live_range(0, live_count(), [&](std::uint32_t k) {
     const SweptBox& b = boxes_[k];
     const double w = std::max(b.max_x - b.min_x, b.max_y - b.min_y);
-    if (std::isnan(w)) return k;  // a NaN box first
+    if (std::isnan(w) && nan == GrownBox::none) nan = k;  // a NaN box first
     if (w > widest) widest = w, best = k;
-  }
-  return best;
+  });
+  return nan != GrownBox::none ? nan : best;
 }
 
 template <class Real>
@@ -326,9 +366,20 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   // Two threads: the worker spins through the tick's passes (see SecondThread), if the
   // world has not opened its run already.
   const SecondThreadRun run(second_thread(tick.threads));
+  begin_live();
+  if (!live_all_ && asleep_[0]) {  // split_contacts() starts its bounds at disc 0's end position
+    ex_[0] = double(tick.x[discs_[0].body]), ey_[0] = double(tick.y[discs_[0].body]);
+  }
+  if (rolling_) {
+    live_range(0, live_count(),
+               [&](std::uint32_t k) { ew_[k] = double(tick.spin[discs_[k].body]); });
+  }
   build_motions(tick);
+  waking_ = !live_all_;
   if (tick.wake) tick.wake(tick.wake_context);
-  for (std::size_t k = 0; k < ew_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);
+  waking_ = false;
+  if (!live_all_) add_woken_and_near(tick);
+  stats.disc_visited = live_count();
   const int windows = tick_windows(tick, stats);
   stats.windows = static_cast<std::size_t>(windows);
   profile.broadphase = clock.lap();
@@ -343,6 +394,7 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   profile.resting = clock.lap();
   finish(tick);
   if (!sensor_pairs_.empty()) detect_sensors(tick);
+  stats.disc_visited = live_count();  // with the sleepers the impacts reached
 }
 
 template <class Real>

@@ -47,7 +47,6 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
 
 template <class Real>
 void DiscContacts<Real>::gather_contacts(const Tick& tick) {
-  const auto n = static_cast<std::uint32_t>(discs_.size());
   const std::size_t m = pairs_.size();
   bool kinematic[2] = {false, false};
   if (broadphase_.second_thread().is_open() && m >= min_parallel_pairs) {
@@ -89,14 +88,15 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   kinematic_contacts_ = kinematic[0] || kinematic[1];
   plane_contacts_ = static_cast<std::uint32_t>(contacts_.size());
   if (tick.planes.empty() && tick.segments == nullptr) return;  // nothing but disc pairs
+  sort_live();                                                  // the walls' contacts in key order
+  const std::size_t live = live_count();
   if (tick.segments == nullptr && broadphase_.second_thread().is_open()) {
     // Two threads: each half of the discs' plane contacts apart, then the first's and the
     // second's after the pairs (the same contacts in the same order).
     for (auto& half : plane_half_) half.clear();
-    halves(n, [&](std::size_t begin, std::size_t end, int half) {
-      for (std::size_t k = begin; k < end; ++k) {
-        plane_contacts_of(tick, static_cast<std::uint32_t>(k), plane_half_[half]);
-      }
+    halves(live, [&](std::size_t begin, std::size_t end, int half) {
+      live_range(begin, end,
+                 [&](std::uint32_t k) { plane_contacts_of(tick, k, plane_half_[half]); });
     });
     for (auto& half : plane_half_) {
       contacts_.insert(contacts_.end(), half.begin(), half.end());
@@ -104,10 +104,10 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     }
     return;
   }
-  for (std::uint32_t k = 0; k < n; ++k) {
+  live_range(0, live, [&](std::uint32_t k) {
     plane_contacts_of(tick, k, contacts_);
     if (tick.segments && discs_[k].dynamic && !discs_[k].sensor) gather_segment_contacts(tick, k);
-  }
+  });
 }
 
 template <class Real>

@@ -32,19 +32,22 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
   // The wider axis of the dynamic discs, and the median coordinate along it.
   double lo[2] = {ex_[0], ey_[0]}, hi[2] = {ex_[0], ey_[0]};
   cut_.clear();
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!discs_[k].dynamic) continue;
+  const std::size_t live = live_count();
+  live_range(0, live, [&](std::uint32_t k) {
+    if (!discs_[k].dynamic) return;
     lo[0] = std::min(lo[0], ex_[k]), hi[0] = std::max(hi[0], ex_[k]);
     lo[1] = std::min(lo[1], ey_[k]), hi[1] = std::max(hi[1], ey_[k]);
-  }
-  const std::vector<double>& along = hi[1] - lo[1] > hi[0] - lo[0] ? ey_ : ex_;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!discs_[k].dynamic) continue;
-    if (std::isnan(along[k])) {  // no order to cut by: one part (the world reports the NaN)
-      for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
-      return;
-    }
+  });
+  const auto& along = hi[1] - lo[1] > hi[0] - lo[0] ? ey_ : ex_;
+  bool nan = false;
+  live_range(0, live, [&](std::uint32_t k) {
+    if (!discs_[k].dynamic) return;
+    nan = nan || std::isnan(along[k]);
     cut_.push_back(along[k]);
+  });
+  if (nan) {  // no order to cut by: one part (the world reports the NaN)
+    for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
+    return;
   }
   const auto mid = cut_.begin() + std::ptrdiff_t(cut_.size() / 2);
   std::nth_element(cut_.begin(), mid, cut_.end());

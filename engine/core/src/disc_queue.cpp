@@ -34,11 +34,11 @@ void DiscContacts<Real>::first_events(const Tick& tick, double from) {
     find(0, m, heap_);
   }
   if (from == 0.0 && (!tick.planes.empty() || tick.segments)) {  // bounced by the plane pass
-    for (std::uint32_t k = 0; k < discs_.size(); ++k) {
+    live_range(0, live_count(), [&](std::uint32_t k) {
       const std::int32_t slot = discs_[k].plane_slot;
-      if (slot < 0 || !(tick.after[slot].t >= 0.0)) continue;
+      if (slot < 0 || !(tick.after[slot].t >= 0.0)) return;
       heap_.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
-    }
+    });
   }
   std::make_heap(heap_.begin(), heap_.end(), later_event);
 }
@@ -46,8 +46,9 @@ void DiscContacts<Real>::first_events(const Tick& tick, double from) {
 template <class Real>
 void DiscContacts<Real>::predict_pairs(std::uint32_t k, double now, double dt,
                                        std::uint64_t& again) {
-  again += offset_[k + 1] - offset_[k];
-  for (std::uint32_t i = offset_[k]; i < offset_[k + 1]; ++i) predict(incident_[i], now, dt);
+  again += degree_[k];
+  const std::uint32_t end = offset_[k] + degree_[k];
+  for (std::uint32_t i = offset_[k]; i < end; ++i) predict(incident_[i], now, dt);
   for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
     ++again, predict(extra_[e].pair, now, dt);
   }
@@ -58,7 +59,7 @@ void DiscContacts<Real>::predict_after(const Tick& tick, std::uint32_t k, double
                                        std::uint64_t& again) {
   const double dt = tick.dt;
   predict_pairs(k, now, dt, again);
-  again += reach(k, now, dt) / 16;  // the pairs of its path beyond its box
+  again += reach(tick, k, now, dt) / 16;  // the pairs of its path beyond its box
   if (!tick.planes.empty() || tick.segments) predict_wall(tick, k, now, dt, again);
 }
 
@@ -146,8 +147,8 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats, int w
   }
   // The end of the tick on each disc's last motion; the integrator's velocity is the model's
   // minus the offset δ.
-  for (std::size_t k = 0; k < discs_.size(); ++k) {
-    if (!changed_[k]) continue;
+  live_range(0, live_count(), [&](std::uint32_t k) {
+    if (!changed_[k]) return;
     const DiscMotion& m = motion_[k];
     const double s = dt - m.t;
     ex_[k] = m.px(dt), ey_[k] = m.py(dt);
@@ -156,7 +157,7 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats, int w
     } else {
       evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
     }
-  }
+  });
 }
 
 }  // namespace fixstep::detail

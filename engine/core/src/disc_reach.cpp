@@ -24,7 +24,7 @@ void DiscContacts<Real>::start_reach() {
 }
 
 template <class Real>
-std::uint64_t DiscContacts<Real>::reach(std::uint32_t k, double now, double dt) {
+std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, double now, double dt) {
   const DiscMotion& m = motion_[k];
   const double pad = discs_[k].radius * (1.0 + 2.0 * slop), h = horizon_ - m.t;
   SweptBox piece;
@@ -84,7 +84,16 @@ std::uint64_t DiscContacts<Real>::reach(std::uint32_t k, double now, double dt) 
     band = &bands[i];
     // The boxes as the broadphase stored them (a grown disc's too: it may move inside it), and
     // the bands grown earlier in the tick.
-    work += broadphase_.query(*band, meet);
+    if (live_all_) {
+      work += broadphase_.query(*band, meet);
+    } else {  // the broadphase holds the live discs by live position; a sleeper joins here
+      auto live_meet = [&](std::uint32_t i, const SweptBox& b) { meet(live_[i], b); };
+      work += broadphase_.query(*band, live_meet);
+      sleepers_near(tick, *band, [&](std::uint32_t j) {
+        add_live(tick, j);
+        meet(j, boxes_[j]);
+      });
+    }
     work += grown_grid_.query(*band, [&](std::uint32_t j) { meet(j, grown_[grown_of_[j]].first); });
   }
   for (std::size_t i = 0; i < count; ++i) grown_grid_.insert(k, bands[i]);

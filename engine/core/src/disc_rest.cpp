@@ -304,13 +304,15 @@ void DiscContacts<Real>::keep_impulses() {
 
 template <class Real>
 void DiscContacts<Real>::finish(const Tick& tick) {
-  halves(discs_.size(), [&](std::size_t begin, std::size_t end, int) { finish(tick, begin, end); });
+  halves(live_count(), [&](std::size_t begin, std::size_t end, int) {
+    live_range(begin, end, [&](std::uint32_t k) { finish(tick, k); });
+  });
 }
 
 template <class Real>
-void DiscContacts<Real>::finish(const Tick& tick, std::size_t begin, std::size_t end) {
-  for (std::size_t k = begin; k < end; ++k) {
-    if (!changed_[k]) continue;
+void DiscContacts<Real>::finish(const Tick& tick, std::uint32_t k) {
+  {
+    if (!changed_[k]) return;
     const Disc& d = discs_[k];
     const std::uint32_t j = d.body;
     tick.x[j] = static_cast<Real>(ex_[k]), tick.y[j] = static_cast<Real>(ey_[k]);

@@ -20,12 +20,12 @@ namespace fixstep::detail {
 template <class Real>
 int DiscContacts<Real>::motion_windows() const {
   double most = 0.0;  // the largest motion over the tick, in radii of its disc
-  for (std::size_t k = 0; k < discs_.size(); ++k) {
+  live_range(0, live_count(), [&](std::uint32_t k) {
     const SweptBox& b = boxes_[k];
     const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
     const double motion = std::max(b.max_x - b.min_x, b.max_y - b.min_y) - 2.0 * pad;
     if (std::isfinite(motion)) most = std::max(most, motion / discs_[k].radius);
-  }
+  });
   const double windows = std::ceil(most / window_radii);
   return windows >= max_windows ? max_windows : std::max(1, static_cast<int>(windows));
 }
@@ -40,8 +40,8 @@ int DiscContacts<Real>::tick_windows(const Tick& tick, ContactStats& stats) {
 
 template <class Real>
 void DiscContacts<Real>::window_boxes(const Tick& tick, double t0, double t1) {
-  halves(discs_.size(), [&](std::size_t begin, std::size_t end, int) {
-    for (std::size_t k = begin; k < end; ++k) {
+  halves(live_count(), [&](std::size_t begin, std::size_t end, int) {
+    live_range(begin, end, [&](std::uint32_t k) {
       const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
       // A disc the plane pass bounced is on its free motion until its first plane event, while
       // nothing changed its motion (disc_events.cpp, switch_to_plane_motion()).
@@ -51,7 +51,7 @@ void DiscContacts<Real>::window_boxes(const Tick& tick, double t0, double t1) {
       boxes_[k] = path_box(motion_[k], t0, until, pad);
       // From the first plane event on: the plane pass's motion (as plane_box() covers it).
       if (free && until < t1) add_plane_motion(tick.after[slot], until, t1, pad, boxes_[k]);
-    }
+    });
   });
 }
 

@@ -201,15 +201,15 @@ void detail::WorldKernel<Real>::resolve_discs() {
   const auto lost = dc.lost();
   const auto external = dc.external();
   bool out_of_range = false;
-  for (std::size_t k = 0; k < discs.size(); ++k) {
-    if (!discs[k].dynamic || (lost[k] == 0.0 && external[k] == 0.0)) continue;
+  dc.each_live([&](std::uint32_t k) {  // the others' are 0
+    if (!discs[k].dynamic || (lost[k] == 0.0 && external[k] == 0.0)) return;
     const std::uint32_t j = discs[k].body;
     if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(lost[k]);
     external_work_ += external[k];
     for (const Real value : {x_[j], y_[j], vx_[j], vy_[j]}) {
       out_of_range = out_of_range || !(std::abs(double(value)) <= max_state_magnitude);
     }
-  }
+  });
   if (out_of_range && !fault_) record_fault();
 }
 

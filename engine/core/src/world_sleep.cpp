@@ -174,7 +174,7 @@ void detail::WorldKernel<Real>::wake_near_movers() {
   const QueryGrid& g = sleeper_grid();
   const auto discs = discs_->discs();
   const auto boxes = discs_->boxes();
-  for (std::size_t k = 0; k < discs.size(); ++k) {
+  for (const std::uint32_t k : discs_->awake()) {
     const std::uint32_t j = discs[k].body;
     if (asleep_[j] != 0 || types_[j] == BodyType::static_body || discs[k].sensor) continue;
     const SweptBox& b = boxes[k];
@@ -308,7 +308,8 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input, bool disc_p
   // Still ticks: dynamic discs below the speed (and their rims, when they roll).
   const double s2 = settings_.contacts->sleep_speed * settings_.contacts->sleep_speed;
   bool ready = false;
-  for (const Disc& d : discs) {
+  for (const std::uint32_t k : disc_phases ? discs_->awake() : std::span<const std::uint32_t>{}) {
+    const Disc& d = discs[k];
     const std::uint32_t j = d.body;
     if (asleep_[j] != 0 || types_[j] != BodyType::dynamic || d.sensor) continue;
     double v2 = double(vx_[j]) * double(vx_[j]) + double(vy_[j]) * double(vy_[j]);

@@ -77,6 +77,11 @@ struct ContactStats {
   /// Bodies the last tick's pass over the planes and segments looked at: every dynamic
   /// collider (0 in a world without planes or segments), the sleepers skipped as above.
   std::size_t plane_tested = 0;
+  /// Discs the last tick's disc phases visited (their motions, the broadphase, the end of
+  /// the tick): every disc, or in a world with sleeping islands and at most a quarter of its
+  /// discs awake, the awake ones and the sleepers their swept boxes reach (0 when every disc
+  /// sleeps and no phase ran).
+  std::size_t disc_visited = 0;
   /// Windows (equal sub-intervals) of the tick the discs were paired over, each by its boxes
   /// over that window: 1, or up to 64 when the boxes over the whole tick overlapped in more than
   /// 16 pairs a disc (fast discs through a crowd; candidate_pairs is then the most of one
