@@ -73,24 +73,29 @@ bool step_until_sleeping(World& w, std::size_t sleepers) {
 }
 
 TEST(SleepWork, AWorldAsleepStepsNoBody) {
-  for (const Precision p : {Precision::f64, Precision::f32}) {
-    SCOPED_TRACE(precision_name(p));
-    World w(floor_row(8, p));
-    w.step();
-    EXPECT_EQ(w.contact_stats().free_stepped, 8u);  // awake: every body
-    EXPECT_EQ(w.contact_stats().plane_tested, 8u);
-    ASSERT_TRUE(step_until_sleeping(w, 8));
-    const std::vector<Vec2> at_sleep = positions_of(w);
-    for (int t = 0; t < 100; ++t) {
+  for (const bool account : {false, true}) {  // the energy account's pass skips them too
+    for (const Precision p : {Precision::f64, Precision::f32}) {
+      SCOPED_TRACE(precision_name(p));
+      SCOPED_TRACE(account ? "energy account" : "no account");
+      WorldDef def = floor_row(8, p);
+      def.settings.track_dissipation = account;
+      World w(def);
       w.step();
-      ASSERT_EQ(w.contact_stats().free_stepped, 0u) << t;
-      // The first tick after the islands fell asleep passes over every body once more.
-      if (t > 0) {
-        ASSERT_EQ(w.contact_stats().plane_tested, 0u) << t;
+      EXPECT_EQ(w.contact_stats().free_stepped, 8u);  // awake: every body
+      EXPECT_EQ(w.contact_stats().plane_tested, 8u);
+      ASSERT_TRUE(step_until_sleeping(w, 8));
+      const std::vector<Vec2> at_sleep = positions_of(w);
+      for (int t = 0; t < 100; ++t) {
+        w.step();
+        ASSERT_EQ(w.contact_stats().free_stepped, 0u) << t;
+        // The first tick after the islands fell asleep passes over every body once more.
+        if (t > 0) {
+          ASSERT_EQ(w.contact_stats().plane_tested, 0u) << t;
+        }
       }
+      EXPECT_EQ(positions_of(w), at_sleep);  // bit for bit
+      for (const Entity e : w.bodies()) EXPECT_EQ(w.body(e).velocity.y, 0.0);
     }
-    EXPECT_EQ(positions_of(w), at_sleep);  // bit for bit
-    for (const Entity e : w.bodies()) EXPECT_EQ(w.body(e).velocity.y, 0.0);
   }
 }
 
@@ -161,46 +166,51 @@ TEST(SleepWork, TheAwakeStepAsInAWorldWithoutSleeping) {
   // Sleeping discs and awake point bodies (no collider: they never sleep) in turn, so the free
   // step's runs start all over the arrays; each point body has its own spring (with and
   // without rest length), damping, drag and force, so a run that read another body's
-  // coefficients would step differently from the world that does not sleep.
-  for (const Integrator integrator : all_integrators) {
-    SCOPED_TRACE(integrator_name(integrator));
-    WorldDef def;
-    def.settings.dt = 1.0 / 60.0;
-    def.settings.integrator = integrator;
-    def.settings.contacts = ContactSettings{.restitution = 0.0, .friction = 0.0, .sleep = true};
-    def.settings.contacts->sleep_time = 0.25;
-    def.planes.push_back(PlaneDef{.normal = {0, 1}, .offset = 0.0});
-    for (int i = 0; i < 12; ++i) {
-      def.bodies.push_back(disc_at(0.15 * i, disc_radius, 0.0, 0.0));
-      for (int m = 0; m < i % 3 + 1; ++m) {
-        BodyDef b;
-        const double s = 1.0 + 0.1 * i + 0.37 * m;
-        b.body = Body{.mass = s, .position = {0.15 * i, 2.0 + m}, .velocity = {0.1 * m, -s}};
-        b.spring = SpringDamper{.anchor = {0.15 * i, 3.0 + s},
-                                .stiffness = 10.0 * s,
-                                .damping = 0.5 * s * (m + 1),
-                                .rest_length = (i + m) % 2 == 0 ? 0.0 : 0.5 * s};
-        if (m == 1) b.drag = LinearDrag{.coefficient = 0.2 * s};
-        b.constant_force = ConstantForce{.force = {0.1 * i, -0.2 * m}};
-        def.bodies.push_back(b);
+  // coefficients would step differently from the world that does not sleep. With the energy
+  // account, their dissipated energy too.
+  for (const bool account : {false, true}) {
+    for (const Integrator integrator : all_integrators) {
+      SCOPED_TRACE(integrator_name(integrator));
+      SCOPED_TRACE(account ? "energy account" : "no account");
+      WorldDef def;
+      def.settings.dt = 1.0 / 60.0;
+      def.settings.integrator = integrator;
+      def.settings.track_dissipation = account;
+      def.settings.contacts = ContactSettings{.restitution = 0.0, .friction = 0.0, .sleep = true};
+      def.settings.contacts->sleep_time = 0.25;
+      def.planes.push_back(PlaneDef{.normal = {0, 1}, .offset = 0.0});
+      for (int i = 0; i < 12; ++i) {
+        def.bodies.push_back(disc_at(0.15 * i, disc_radius, 0.0, 0.0));
+        for (int m = 0; m < i % 3 + 1; ++m) {
+          BodyDef b;
+          const double s = 1.0 + 0.1 * i + 0.37 * m;
+          b.body = Body{.mass = s, .position = {0.15 * i, 2.0 + m}, .velocity = {0.1 * m, -s}};
+          b.spring = SpringDamper{.anchor = {0.15 * i, 3.0 + s},
+                                  .stiffness = 10.0 * s,
+                                  .damping = 0.5 * s * (m + 1),
+                                  .rest_length = (i + m) % 2 == 0 ? 0.0 : 0.5 * s};
+          if (m == 1) b.drag = LinearDrag{.coefficient = 0.2 * s};
+          b.constant_force = ConstantForce{.force = {0.1 * i, -0.2 * m}};
+          def.bodies.push_back(b);
+        }
       }
-    }
-    WorldDef awake_def = def;
-    awake_def.settings.contacts->sleep = false;
-    World w(def), awake(awake_def);
-    std::size_t slept = 0;
-    for (int t = 0; t < 120; ++t) {
-      w.step(), awake.step();
-      slept = std::max(slept, w.contact_stats().sleeping);
-      for (std::size_t k = 0; k < w.body_count(); ++k) {
-        const Entity e = w.bodies()[k];
-        if (w.body(e).mass == 1.0) continue;  // a disc
-        ASSERT_EQ(w.body(e).position, awake.body(awake.bodies()[k]).position) << t << " " << k;
-        ASSERT_EQ(w.body(e).velocity, awake.body(awake.bodies()[k]).velocity) << t << " " << k;
+      WorldDef awake_def = def;
+      awake_def.settings.contacts->sleep = false;
+      World w(def), awake(awake_def);
+      std::size_t slept = 0;
+      for (int t = 0; t < 120; ++t) {
+        w.step(), awake.step();
+        slept = std::max(slept, w.contact_stats().sleeping);
+        for (std::size_t k = 0; k < w.body_count(); ++k) {
+          const Entity e = w.bodies()[k];
+          if (w.body(e).mass == 1.0) continue;  // a disc
+          ASSERT_EQ(w.body(e).position, awake.body(awake.bodies()[k]).position) << t << " " << k;
+          ASSERT_EQ(w.body(e).velocity, awake.body(awake.bodies()[k]).velocity) << t << " " << k;
+        }
       }
+      EXPECT_EQ(slept, 12u);  // every disc slept
+      EXPECT_LT(w.contact_stats().free_stepped, w.body_count());
     }
-    EXPECT_EQ(slept, 12u);  // every disc slept
-    EXPECT_LT(w.contact_stats().free_stepped, w.body_count());
   }
 }
 

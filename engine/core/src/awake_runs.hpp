@@ -56,8 +56,9 @@ inline std::size_t count_in_runs(std::span<const IndexRun> runs) {
 /// falls asleep or wakes, or the bodies change.
 struct AwakeRuns {
   std::vector<IndexRun> bodies, colliders;
-  /// The passes skip the sleepers: sleeping is on and the free step is the fused sweep (the
-  /// passes of links and of the energy account step every body, and put the sleepers back).
+  /// The passes skip the sleepers: sleeping is on and the world has no links (the fused sweep,
+  /// or the energy account's pass over the bodies; the passes of links step every body, and
+  /// put the sleepers back).
   bool on = false;
   /// Every sleeper's previous position and plane motion are those of a body at rest where it
   /// sleeps: a tick has passed over every body since the runs were built. A copy (a snapshot)

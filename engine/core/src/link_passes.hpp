@@ -10,7 +10,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <vector>
 
+#include "awake_runs.hpp"
 #include "body_field.hpp"
 #include "world_kernel.hpp"
 
@@ -216,6 +218,9 @@ struct Passes {
   bool accel;
   std::atomic<bool>& bad;
   double& work;  ///< J: the external work of static and kinematic link ends (World)
+  /// The bodies bodies() visits: the awake runs of a world without links whose sleepers the
+  /// free step skips (awake_runs.hpp), or null: every body.
+  const std::vector<detail::IndexRun>* runs;
 
   void flag(bool out) {
     if (out) bad.store(true, std::memory_order_relaxed);
@@ -274,13 +279,21 @@ struct Passes {
   void bodies(bool damped, const Real* d0, const Real* d1, Visit&& visit) {
     with_field<Real, Decays>(shape, damped, accel, [&](auto field) {
       using Field = decltype(field);
-      par(n, [&](std::size_t j0, std::size_t j1) {
+      auto range = [&](std::size_t j0, std::size_t j1) {
         bool out = false;
         for (std::size_t j = j0; j < j1; ++j) {
           out = visit(load_field<Field>(c, j, d0, d1, push), j) || out;
         }
         flag(out);
-      });
+      };
+      if (runs == nullptr) {
+        par(n, range);
+        return;
+      }
+      for (const detail::IndexRun& r : *runs) {  // each body's step is its own: the same bits
+        par(r.end - r.begin,
+            [&](std::size_t j0, std::size_t j1) { range(r.begin + j0, r.begin + j1); });
+      }
     });
   }
 

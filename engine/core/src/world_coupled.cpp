@@ -363,7 +363,8 @@ void detail::WorldKernel<Real>::step_multipass(const TickInput& input) {
       plan.shape,
       plan.accel,
       bad,
-      external_work_};
+      external_work_,
+      m == 0 && awake_.on ? &awake_.bodies : nullptr};  // sleepers skipped without links
   const Integrator method = settings_.integrator;
   auto decay = [this](double tau) { return damping_decay(tau); };
   if (m > 0 && (method == Integrator::velocity_verlet || method == Integrator::forest_ruth)) {

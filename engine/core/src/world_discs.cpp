@@ -98,12 +98,12 @@ void detail::WorldKernel<Real>::rebuild_discs() {
 }
 
 // Static and kinematic bodies, and with ContactSettings::sleep the sleepers, unless the free
-// step skips them (the awake runs).
+// step skips them (the awake runs: without links, with or without the energy account).
 template <class Real>
 void detail::WorldKernel<Real>::rebuild_immovable() {
   Immovable& m = immovable_;
   m.body.clear();
-  const bool skip = sleep_ && fused_step();
+  const bool skip = sleep_ && net_.a.empty();
   for (std::size_t j = 0; j < body_count(); ++j) {
     const bool sleeps = sleep_ && asleep_[j] != 0;
     if (types_[j] != BodyType::dynamic || (sleeps && !skip)) {

@@ -230,8 +230,8 @@ void detail::WorldKernel<Real>::flush_state_subnormals() {
 
 template <class Real>
 void detail::WorldKernel<Real>::integrate(const TickInput& input) {
-  if (!fused_step()) {
-    stepped_ = x_.size();
+  if (!fused_step()) {  // with the account only, the sleepers skipped too (awake_runs.hpp)
+    stepped_ = awake_.on ? count_in_runs(awake_.bodies) : x_.size();
     step_multipass(input);  // links or the dissipation account: world_coupled.cpp
     return;
   }
@@ -361,7 +361,12 @@ template <class Real>
 void detail::WorldKernel<Real>::check_energy_account() {
   if (!settings_.track_dissipation || fault_) return;
   bool bad = false;
-  for (const Real d : dissipated_body_) bad = bad || !std::isfinite(d);
+  if (awake_.on) {  // a sleeper's account has not changed since it was checked
+    for_each_in_runs(awake_.bodies,
+                     [&](std::uint32_t j) { bad = bad || !std::isfinite(dissipated_body_[j]); });
+  } else {
+    for (const Real d : dissipated_body_) bad = bad || !std::isfinite(d);
+  }
   for (const Real d : dissipated_link_) bad = bad || !std::isfinite(d);
   if (bad) record_fault();
 }
