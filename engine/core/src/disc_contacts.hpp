@@ -143,6 +143,7 @@ class DiscContacts {
     d.inv_inertia = asleep ? 0.0 : inv_inertia;
     if (asleep_[k] == (asleep ? 1 : 0)) return;
     asleep_[k] = asleep ? 1 : 0;
+    fat_.valid = false;  // its pairs change (a sleeper pairs with no other)
     sleepers_ = asleep ? sleepers_ + 1 : sleepers_ - 1;
     awake_dirty_ = sleeper_grid_stale_ = true;
     if (!asleep && waking_) woken_.push_back(k);
@@ -341,7 +342,21 @@ class DiscContacts {
   void switch_to_plane_motion(const Tick& tick, std::uint32_t k);
   /// The candidate pairs of boxes_ into pairs_ (and their CSR lists): false past max_pairs
   /// (past max_candidate_pairs the cap is recorded in cap_ and stats; below it, a try).
-  bool find_candidates(const Tick& tick, ContactStats& stats, std::size_t max_pairs);
+  /// whole_tick: boxes_ are the whole tick's (not a window's), and the pairs may be recycled
+  /// from the fat boxes (disc_fat.cpp).
+  bool find_candidates(const Tick& tick, ContactStats& stats, std::size_t max_pairs,
+                       bool whole_tick);
+  // candidate pairs recycled from fat boxes (disc_fat.cpp)
+  /// pairs_ from the fat boxes' pairs, rebuilt when a box left its fat box: 1 found, 0 past
+  /// max_pairs, -1 not used (the fat pairs past cap, or resting after a rebuild that lasted
+  /// one tick): the caller runs the broadphase on the boxes.
+  int recycled_pairs(int threads, std::size_t max_pairs, std::size_t cap);
+  /// The broadphase's grid of the fat boxes again (after a copy, whose broadphase has none).
+  void rebuild_fat_grid(int threads);
+  /// Disc j's box as the broadphase paired it (before reach() grew it), m.
+  [[nodiscard]] const SweptBox& paired_box(std::uint32_t j) const {
+    return grown_of_[j] == GrownBox::none ? boxes_[j] : grown_[grown_of_[j]].first;
+  }
   // windows of the tick (disc_windows.cpp)
   /// How many windows the tick's disc impacts run over: 1 when the swept boxes over the whole
   /// tick overlap in at most crowded_pairs pairs a disc or the discs move too little for windows
@@ -630,6 +645,37 @@ class DiscContacts {
   ScratchVector<SweptBox> live_boxes_;
   ScratchVector<std::uint8_t> live_dynamic_;
   ScratchVector<std::uint32_t> degree_;  ///< per disc: its candidate pairs (find_candidates())
+  /// Fat boxes (Box2D's enlarged AABBs, b2_aabbMargin): each disc's box widened by
+  /// fat_margin of its radius when the broadphase last ran on them, and their pairs, sorted.
+  /// While every disc's box over the tick stays inside its fat box, the tick's pairs are the
+  /// fat pairs whose boxes overlap: the broadphase's pairs, in its order, without running it.
+  struct FatBoxes {
+    bool valid = false;      ///< the pairs are those of `boxes` under today's flags and filters
+    std::uint32_t age = 0;   ///< ticks they served
+    std::uint32_t rest = 0;  ///< ticks left before another try (after one that served one tick)
+    std::uint32_t pause = fat_rest;  ///< the next rest: doubled by each such try in a row
+    std::vector<SweptBox> boxes;
+    std::vector<DiscPair> pairs;
+  };
+  FatBoxes fat_;
+  /// Whether the broadphase's grid holds fat_.boxes (reach() queries it): false in a copy,
+  /// whose broadphase keeps its own scratch.
+  struct GridHeld {
+    bool value = false;
+    GridHeld() = default;
+    GridHeld(const GridHeld& /*other*/) {}
+    GridHeld& operator=(const GridHeld& /*other*/) {
+      value = false;
+      return *this;
+    }
+    ~GridHeld() = default;
+  };
+  GridHeld fat_grid_;
+  /// Fat box margin, as a fraction of each disc's radius, and the ticks the fat boxes rest
+  /// after a rebuild that served a single tick (a gas: its boxes leave them every tick),
+  /// doubled for each such rebuild in a row up to fat_rest_most.
+  static constexpr double fat_margin = 0.25;
+  static constexpr std::uint32_t fat_rest = 8, fat_rest_most = 512;
   CapHit cap_;
 };
 

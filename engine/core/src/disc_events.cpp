@@ -65,6 +65,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   asleep_.assign(n, 0), sleepers_ = 0, awake_dirty_ = true;
   live_all_ = true, live_.clear(), in_live_.assign(n, 0), live_sorted_ = true;
   waking_ = false, woken_.clear(), sleeper_grid_stale_ = true, saved_live_ = false;
+  fat_ = FatBoxes{}, fat_grid_.value = false;
   degree_.resize(n), cursor_.resize(n);
 }
 
@@ -167,10 +168,18 @@ void DiscContacts<Real>::switch_to_plane_motion(const Tick& tick, std::uint32_t 
 
 template <class Real>
 bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
-                                         std::size_t max_pairs) {
+                                         std::size_t max_pairs, bool whole_tick) {
   const std::size_t n = discs_.size();
   const std::size_t cap = max_candidate_pairs(n);  // limits.hpp; a pile: ~3 per disc
-  if (!pairs_of(boxes_, pairs_, tick.threads, std::min(max_pairs, cap))) {
+  const std::size_t most = std::min(max_pairs, cap);
+  int recycled = -1;  // the fat boxes' pairs (disc_fat.cpp), or the broadphase on the boxes
+  if (whole_tick && live_all_) {
+    recycled = recycled_pairs(tick.threads, most, cap);
+  } else {
+    fat_.valid = false;  // the broadphase's grid is the window's or the live discs'
+  }
+  if (recycled == -1) fat_.valid = false;
+  if (recycled == -1 ? !pairs_of(boxes_, pairs_, tick.threads, most) : recycled == 0) {
     pairs_.clear();
     if (max_pairs < cap) return false;  // a try (tick_windows())
     stats.candidate_pairs = cap, stats.capped = 1;

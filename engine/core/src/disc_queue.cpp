@@ -136,7 +136,7 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats, int w
     if (windows > 1) {  // its pairs, by the discs' boxes over it (disc_windows.cpp)
       throw_if_stop_requested();
       window_boxes(tick, t0, horizon_);
-      if (!find_candidates(tick, stats, max_candidate_pairs(discs_.size()))) break;
+      if (!find_candidates(tick, stats, max_candidate_pairs(discs_.size()), false)) break;
       if (w > 0) budget.again += pairs_.size();  // their first predictions
     }
     start_reach();

@@ -84,8 +84,12 @@ std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, doubl
     band = &bands[i];
     // The boxes as the broadphase stored them (a grown disc's too: it may move inside it), and
     // the bands grown earlier in the tick.
-    if (live_all_) {
+    if (live_all_ && !fat_.valid) {
       work += broadphase_.query(*band, meet);
+    } else if (live_all_) {  // the grid holds the fat boxes (disc_fat.cpp): each disc's own box
+      if (!fat_grid_.value) rebuild_fat_grid(tick.threads);
+      auto own = [&](std::uint32_t j, const SweptBox& /*fat*/) { meet(j, paired_box(j)); };
+      work += broadphase_.query(*band, own);
     } else {  // the broadphase holds the live discs by live position; a sleeper joins here
       auto live_meet = [&](std::uint32_t i, const SweptBox& b) { meet(live_[i], b); };
       work += broadphase_.query(*band, live_meet);

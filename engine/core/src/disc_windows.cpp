@@ -34,8 +34,8 @@ template <class Real>
 int DiscContacts<Real>::tick_windows(const Tick& tick, ContactStats& stats) {
   const std::size_t n = discs_.size();
   const int windows = motion_windows();
-  if (windows > 1) return find_candidates(tick, stats, crowded_pairs * n) ? 1 : windows;
-  return find_candidates(tick, stats, max_candidate_pairs(n)) ? 1 : 0;
+  if (windows > 1) return find_candidates(tick, stats, crowded_pairs * n, true) ? 1 : windows;
+  return find_candidates(tick, stats, max_candidate_pairs(n), true) ? 1 : 0;
 }
 
 template <class Real>

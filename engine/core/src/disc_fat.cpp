@@ -1,0 +1,81 @@
+// Disc contacts, phase 1: a tick's candidate pairs recycled from fat boxes. Box2D keeps each
+// shape's box enlarged by a margin (b2_aabbMargin) in its tree, and its pairs while the shape's
+// box stays inside; fixstep's broadphase is rebuilt every tick instead (disc_broadphase.hpp),
+// about a sixth of a settled pile's tick. So the broadphase runs on each disc's box widened by
+// fat_margin of its radius, and while every disc's box over the tick stays inside its fat box,
+// the tick's pairs are the fat pairs whose boxes overlap: two boxes that overlap lie in fat
+// boxes that overlap, so the filter keeps exactly the broadphase's pairs (under the same flags
+// and filters: a disc falling asleep or waking forgets the fat boxes), in its order. A rebuild
+// that served a single tick rests the fat boxes for fat_rest ticks, twice as long for each such
+// rebuild in a row, and a tick in which some disc moves more than the margin builds none (a
+// gas: its discs move about their radius a tick). Windows of the tick
+// and ticks that visit the live discs only run the broadphase on their own boxes. Within the
+// tick, reach() asks the grid of the fat boxes, each disc there checked by its own box.
+#include <algorithm>
+
+#include "disc_contacts.hpp"
+
+namespace fixstep::detail {
+
+namespace {
+
+bool within(const SweptBox& inner, const SweptBox& outer) {
+  return inner.min_x >= outer.min_x && inner.max_x <= outer.max_x && inner.min_y >= outer.min_y &&
+         inner.max_y <= outer.max_y;  // false for NaN
+}
+
+}  // namespace
+
+template <class Real>
+int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::size_t cap) {
+  FatBoxes& f = fat_;
+  const std::size_t n = discs_.size();
+  bool inside = f.valid && f.boxes.size() == n;
+  for (std::size_t k = 0; inside && k < n; ++k) inside = within(boxes_[k], f.boxes[k]);
+  if (!inside) {
+    if (f.valid && f.age <= 1) {  // built for one tick: rest a while, longer each time
+      f.rest = f.pause, f.pause = std::min(2 * f.pause, fat_rest_most);
+    } else if (f.valid) {
+      f.pause = fat_rest;
+    }
+    f.valid = false;
+    if (f.rest > 0) {
+      --f.rest;
+      return -1;
+    }
+    // A disc that moves more than the margin in a tick leaves its fat box in the next one.
+    for (std::size_t k = 0; k < n; ++k) {
+      const SweptBox& b = boxes_[k];
+      const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
+      if (std::max(b.max_x - b.min_x, b.max_y - b.min_y) - 2.0 * pad >
+          fat_margin * discs_[k].radius) {
+        return -1;
+      }
+    }
+    f.boxes.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double m = fat_margin * discs_[k].radius;
+      const SweptBox& b = boxes_[k];
+      f.boxes[k] = SweptBox{b.min_x - m, b.min_y - m, b.max_x + m, b.max_y + m};
+    }
+    fat_grid_.value = true;
+    if (!pairs_of_boxes(f.boxes, dynamic_, f.pairs, threads, cap)) return -1;  // crowded
+    f.valid = true, f.age = 0;
+  }
+  ++f.age;
+  pairs_.clear();
+  for (const DiscPair& p : f.pairs) {
+    if (boxes_overlap(boxes_[p.a], boxes_[p.b])) pairs_.push_back(p);
+  }
+  return pairs_.size() <= max_pairs ? 1 : 0;
+}
+
+template <class Real>
+void DiscContacts<Real>::rebuild_fat_grid(int threads) {
+  // The same boxes, flags and filters as when the fat pairs were found: the same grid.
+  [[maybe_unused]] const bool ok =
+      pairs_of_boxes(fat_.boxes, dynamic_, fat_.pairs, threads, max_candidate_pairs(discs_.size()));
+  fat_grid_.value = true;
+}
+
+}  // namespace fixstep::detail
