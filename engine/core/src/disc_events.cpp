@@ -418,7 +418,10 @@ std::size_t DiscContacts<Real>::bytes() const {
          b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
          b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
          b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
-         b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_);
+         b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_) + b(asleep_) +
+         b(awake_list_) + b(live_) + b(in_live_) + b(woken_) + b(sleeper_grid_.discs) +
+         b(sleeper_of_) + b(live_boxes_) + b(live_dynamic_) + b(degree_) + b(fat_.boxes) +
+         b(fat_.pairs);
 }
 
 }  // namespace fixstep::detail
