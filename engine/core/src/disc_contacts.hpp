@@ -144,12 +144,17 @@ class DiscContacts {
     if (asleep_[k] == (asleep ? 1 : 0)) return;
     asleep_[k] = asleep ? 1 : 0;
     fat_.valid = false;  // its pairs change (a sleeper pairs with no other)
-    sleepers_ = asleep ? sleepers_ + 1 : sleepers_ - 1;
-    awake_dirty_ = sleeper_grid_stale_ = true;
+    sleeper_count_ = asleep ? sleeper_count_ + 1 : sleeper_count_ - 1;
+    awake_dirty_ = true, sleepers_.grid.stale = true;
     if (!asleep && waking_) woken_.push_back(k);
   }
   /// The discs not asleep, in index order (every disc when none sleeps).
   std::span<const std::uint32_t> awake();
+  /// Calls found(k) for each sleeping disc k whose box at rest (its disc padded as the
+  /// broadphase pads it, at its position in x, y: m, dense body order) may overlap b (m): a
+  /// superset, from a grid of the sleepers built when one fell asleep or woke since.
+  template <class Found>
+  void for_each_sleeper_near(const Real* x, const Real* y, const SweptBox& b, Found&& found);
   /// Calls f(k) for each disc k the last resolve() visited, in index order: every disc, or
   /// with sleepers and few discs awake, the awake ones and the sleepers next to them
   /// (disc_live.cpp). The others' lost() and external() are 0 and their states untouched.
@@ -275,7 +280,7 @@ class DiscContacts {
   /// keeps it spinning through them), or null: one thread, or fewer than min_parallel_discs.
   /// With sleepers, the awake discs count instead of all of them.
   [[nodiscard]] SecondThread* second_thread(int threads) {
-    const std::size_t busy = sleepers_ != 0 ? awake().size() : discs_.size();
+    const std::size_t busy = sleeper_count_ != 0 ? awake().size() : discs_.size();
     return threads >= 2 && busy >= min_parallel_discs ? &broadphase_.second_thread() : nullptr;
   }
   /// A tick with sleepers visits only the live discs (each_live()) when at most this share of
@@ -310,7 +315,7 @@ class DiscContacts {
   }
   /// Whether this tick visits the live discs only: with sleepers and few discs awake.
   [[nodiscard]] bool live_only() const {
-    return sleepers_ != 0 && awake_list_.size() * live_share <= discs_.size();
+    return sleeper_count_ != 0 && awake_list_.size() * live_share <= discs_.size();
   }
   /// Starts the tick's live list: the awake discs (save_start() saved them).
   void begin_live();
@@ -325,8 +330,8 @@ class DiscContacts {
   void sleepers_near(const Tick& tick, const SweptBox& b, Found&& found);
   /// The live list in index order (after add_live()).
   void sort_live();
-  /// The grid of the sleepers where they sleep, rebuilt after a disc fell asleep or woke.
-  void build_sleeper_grid(const Tick& tick);
+  /// The grid of the sleepers where they sleep (x, y: the bodies' positions, m).
+  void build_sleeper_grid(const Real* x, const Real* y);
   /// The live discs' boxes and dynamic flags in live order (the broadphase's input in
   /// live_only() ticks); pairs it finds are mapped back by live_[i].
   void gather_live_boxes(std::span<const SweptBox> boxes);
@@ -629,7 +634,7 @@ class DiscContacts {
   // visits the live discs only (live_only()): live_ in index order, flagged in in_live_ (both
   // kept, so that the next tick clears the flags it set).
   std::vector<std::uint8_t> asleep_;  ///< per disc
-  std::size_t sleepers_ = 0;
+  std::size_t sleeper_count_ = 0;
   std::vector<std::uint32_t> awake_list_;  ///< awake(), while !awake_dirty_
   bool awake_dirty_ = true;
   bool live_all_ = true;     ///< the tick visits every disc
@@ -637,11 +642,22 @@ class DiscContacts {
   std::vector<std::uint32_t> live_;
   std::vector<std::uint8_t> in_live_;
   bool live_sorted_ = true;
-  bool waking_ = false;                    ///< within Tick::wake: set_asleep() lists the woken
-  std::vector<std::uint32_t> woken_;       ///< discs woken within the tick's Tick::wake
-  QueryGrid sleeper_grid_;                 ///< the sleepers where they sleep
-  std::vector<std::uint32_t> sleeper_of_;  ///< the grid's disc i is disc sleeper_of_[i]
-  bool sleeper_grid_stale_ = true;
+  bool waking_ = false;               ///< within Tick::wake: set_asleep() lists the woken
+  std::vector<std::uint32_t> woken_;  ///< discs woken within the tick's Tick::wake
+  /// The sleepers where they sleep (for_each_sleeper_near()): a cache, which a copy (a
+  /// snapshot) does not take; it builds its own when first asked.
+  struct SleeperGrid {
+    QueryGrid grid;
+    std::vector<std::uint32_t> disc;  ///< the grid's disc i is disc disc[i]
+    SleeperGrid() = default;
+    SleeperGrid(const SleeperGrid& /*other*/) {}
+    SleeperGrid& operator=(const SleeperGrid& /*other*/) {
+      grid.stale = true;
+      return *this;
+    }
+    ~SleeperGrid() = default;
+  };
+  SleeperGrid sleepers_;
   ScratchVector<SweptBox> live_boxes_;
   ScratchVector<std::uint8_t> live_dynamic_;
   ScratchVector<std::uint32_t> degree_;  ///< per disc: its candidate pairs (find_candidates())

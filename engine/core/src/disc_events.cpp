@@ -62,9 +62,9 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   warm_.clear();
   rolling_ = settings.rolling;
   ew_.assign(rolling_ ? n : 0, 0.0), ew0_.assign(rolling_ ? n : 0, 0.0);
-  asleep_.assign(n, 0), sleepers_ = 0, awake_dirty_ = true;
+  asleep_.assign(n, 0), sleeper_count_ = 0, awake_dirty_ = true;
   live_all_ = true, live_.clear(), in_live_.assign(n, 0), live_sorted_ = true;
-  waking_ = false, woken_.clear(), sleeper_grid_stale_ = true, saved_live_ = false;
+  waking_ = false, woken_.clear(), sleepers_.grid.stale = true, saved_live_ = false;
   fat_ = FatBoxes{}, fat_grid_.value = false;
   degree_.resize(n), cursor_.resize(n);
 }
@@ -83,7 +83,7 @@ void DiscContacts<Real>::save_start(const Real* x, const Real* y, const Real* vx
     x0_[k] = x[j], y0_[k] = y[j], vx0_[k] = vx[j], vy0_[k] = vy[j];
     d_begin_[k] = dissipated ? double(dissipated[j]) : 0.0;
   };
-  saved_live_ = sleepers_ != 0 && (awake(), live_only());
+  saved_live_ = sleeper_count_ != 0 && (awake(), live_only());
   if (saved_live_) {
     for (const std::uint32_t k : awake_list_) save(k);
   } else {
@@ -178,7 +178,6 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
   } else {
     fat_.valid = false;  // the broadphase's grid is the window's or the live discs'
   }
-  if (recycled == -1) fat_.valid = false;
   if (recycled == -1 ? !pairs_of(boxes_, pairs_, tick.threads, most) : recycled == 0) {
     pairs_.clear();
     if (max_pairs < cap) return false;  // a try (tick_windows())
@@ -376,9 +375,6 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   // world has not opened its run already.
   const SecondThreadRun run(second_thread(tick.threads));
   begin_live();
-  if (!live_all_ && asleep_[0]) {  // split_contacts() starts its bounds at disc 0's end position
-    ex_[0] = double(tick.x[discs_[0].body]), ey_[0] = double(tick.y[discs_[0].body]);
-  }
   if (rolling_) {
     live_range(0, live_count(),
                [&](std::uint32_t k) { ew_[k] = double(tick.spin[discs_[k].body]); });
@@ -419,8 +415,8 @@ std::size_t DiscContacts<Real>::bytes() const {
          b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
          b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
          b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_) + b(asleep_) +
-         b(awake_list_) + b(live_) + b(in_live_) + b(woken_) + b(sleeper_grid_.discs) +
-         b(sleeper_of_) + b(live_boxes_) + b(live_dynamic_) + b(degree_) + b(fat_.boxes) +
+         b(awake_list_) + b(live_) + b(in_live_) + b(woken_) + b(sleepers_.grid.discs) +
+         b(sleepers_.disc) + b(live_boxes_) + b(live_dynamic_) + b(degree_) + b(fat_.boxes) +
          b(fat_.pairs);
 }
 

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "disc_contacts.hpp"
 
@@ -30,7 +31,8 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
     return;
   }
   // The wider axis of the dynamic discs, and the median coordinate along it.
-  double lo[2] = {ex_[0], ey_[0]}, hi[2] = {ex_[0], ey_[0]};
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double lo[2] = {inf, inf}, hi[2] = {-inf, -inf};
   cut_.clear();
   const std::size_t live = live_count();
   live_range(0, live, [&](std::uint32_t k) {

@@ -8,7 +8,7 @@
 // those it would have had all along, and the broadphase, given the live boxes in index order,
 // finds the same pairs in the same order: the states are the same as when every disc is
 // visited. The sleepers are found through a grid of them where they sleep (query_grid.hpp),
-// rebuilt only when a disc falls asleep or wakes.
+// rebuilt only when a disc falls asleep or wakes; the world's wake tests ask it too.
 #include <algorithm>
 #include <cassert>
 
@@ -55,29 +55,37 @@ void DiscContacts<Real>::add_live(const Tick& tick, std::uint32_t k) {
 }
 
 template <class Real>
-void DiscContacts<Real>::build_sleeper_grid(const Tick& tick) {
-  QueryGrid& g = sleeper_grid_;
-  g.discs.clear(), sleeper_of_.clear();
+void DiscContacts<Real>::build_sleeper_grid(const Real* x, const Real* y) {
+  QueryGrid& g = sleepers_.grid;
+  g.discs.clear(), sleepers_.disc.clear();
   for (std::uint32_t k = 0; k < discs_.size(); ++k) {
     if (!asleep_[k]) continue;
     const Disc& d = discs_[k];
     // A sleeper's box is its disc padded as build_motions() pads it (at rest).
-    g.discs.push_back({double(tick.x[d.body]), double(tick.y[d.body]),
-                       d.radius * (1.0 + 2.0 * slop), Entity{}, CollisionFilter{}, false});
-    sleeper_of_.push_back(k);
+    g.discs.push_back({double(x[d.body]), double(y[d.body]), d.radius * (1.0 + 2.0 * slop),
+                       Entity{}, CollisionFilter{}, false});
+    sleepers_.disc.push_back(k);
   }
-  g.build();
-  sleeper_grid_stale_ = false;
+  g.build();  // (not stale)
+}
+
+template <class Real>
+template <class Found>
+void DiscContacts<Real>::for_each_sleeper_near(const Real* x, const Real* y, const SweptBox& b,
+                                               Found&& found) {
+  if (sleepers_.grid.stale) build_sleeper_grid(x, y);
+  const QueryGrid& g = sleepers_.grid;
+  g.for_each_near(b.min_x, b.min_y, b.max_x, b.max_y, [&](std::size_t i) {
+    const std::uint32_t k = sleepers_.disc[i];
+    if (asleep_[k]) found(k);
+  });
 }
 
 template <class Real>
 template <class Found>
 void DiscContacts<Real>::sleepers_near(const Tick& tick, const SweptBox& b, Found&& found) {
-  if (sleeper_grid_stale_) build_sleeper_grid(tick);
-  const QueryGrid& g = sleeper_grid_;
-  g.for_each_near(b.min_x, b.min_y, b.max_x, b.max_y, [&](std::size_t i) {
-    const std::uint32_t k = sleeper_of_[i];
-    if (!in_live_[k] && asleep_[k]) found(k);
+  for_each_sleeper_near(tick.x, tick.y, b, [&](std::uint32_t k) {
+    if (!in_live_[k]) found(k);
   });
 }
 

@@ -793,7 +793,6 @@ class WorldKernel {
   [[nodiscard]] bool discs_at_rest() const;
   std::vector<std::uint32_t> island_parent_, wake_labels_;  ///< scratch of one tick
   std::vector<std::uint8_t> island_blocked_;                ///< scratch of one tick
-  CachePtr<QueryGrid, QueryGridDeleter> sleep_grid_;        ///< the sleepers (a cache)
   std::size_t sleeper_contacts_ = 0;  ///< this tick's contacts with sleepers (ContactStats)
   std::size_t woken_ = 0;             ///< islands woken this tick (ContactStats)
 
@@ -818,8 +817,6 @@ class WorldKernel {
   /// Wakes the islands that an awake disc's motion over the tick may reach (after the free
   /// step, before the sleepers are put back: a woken body keeps its free step).
   void wake_near_movers();
-  /// The grid of the sleeping discs, each padded as the broadphase pads it (built when stale).
-  const QueryGrid& sleeper_grid();
   /// Wakes the islands a segment carried by a moving kinematic body may reach in the tick
   /// (before the free step).
   void wake_by_segments();

@@ -31,7 +31,6 @@
 
 #include "disc_contacts.hpp"
 #include "island_union.hpp"
-#include "query_grid.hpp"
 #include "shape_world.hpp"
 #include "world_kernel.hpp"
 
@@ -64,7 +63,6 @@ void detail::WorldKernel<Real>::reset_sleep() {
   still_ticks_.assign(n, 0);
   asleep_.assign(n, 0);
   sleepers_ = 0, disc_sleepers_ = 0;
-  if (sleep_grid_) sleep_grid_->stale = true;
   asleep_pairs_stale_ = true;
 }
 
@@ -103,7 +101,6 @@ void detail::WorldKernel<Real>::wake_labelled() {
   wake_labels_.clear();
   immovable_dirty_ = true;
   asleep_pairs_stale_ = true;  // their touching pairs go back to the per-tick lists
-  if (sleep_grid_) sleep_grid_->stale = true;
 }
 
 template <class Real>
@@ -128,28 +125,11 @@ void detail::WorldKernel<Real>::wake_for_input(const TickInput& input) {
 }
 
 template <class Real>
-const detail::QueryGrid& detail::WorldKernel<Real>::sleeper_grid() {
-  if (!sleep_grid_) sleep_grid_.reset(new QueryGrid());
-  QueryGrid& g = *sleep_grid_;
-  if (g.stale) {  // a sleeper's reach is its disc padded as the broadphase pads it
-    g.discs.clear();
-    for (const Disc& d : discs_->discs()) {
-      if (asleep_[d.body] == 0) continue;
-      const double pad = d.radius * (1.0 + 2.0 * DiscContacts<Real>::slop);
-      g.discs.push_back({double(x_[d.body]), double(y_[d.body]), pad, bodies_.dense[d.body],
-                         CollisionFilter{}, false});
-    }
-    g.build();
-    g.stale = false;
-  }
-  return g;
-}
-
-template <class Real>
 void detail::WorldKernel<Real>::wake_by_segments() {
   // A segment a kinematic body carries sweeps, this tick, the box of where place_segments() put
   // it and where it will be after dt: an island it may reach wakes before the free step.
-  const QueryGrid& g = sleeper_grid();
+  if (!discs_) return;  // no disc, so no disc sleeps
+  const auto discs = discs_->discs();
   const double dt = settings_.dt;
   for (const std::uint32_t i : segments_.carried()) {
     const Vec2 u = segments_.velocity(i);
@@ -159,11 +139,13 @@ void detail::WorldKernel<Real>::wake_by_segments() {
     const double y0 = std::min(s.a.y, s.b.y), y1 = std::max(s.a.y, s.b.y);
     const double lx = std::min(x0, x0 + u.x * dt), hx = std::max(x1, x1 + u.x * dt);
     const double ly = std::min(y0, y0 + u.y * dt), hy = std::max(y1, y1 + u.y * dt);
-    g.for_each_near(lx, ly, hx, hy, [&](std::size_t k) {
-      const QueryDisc& d = g.discs[k];
-      if (d.x + d.r < lx || d.x - d.r > hx || d.y + d.r < ly || d.y - d.r > hy) return;
-      const std::size_t sleeper = bodies_.index(d.body);
-      if (asleep_[sleeper] != 0) wake_labels_.push_back(asleep_[sleeper]);
+    const SweptBox swept{lx, ly, hx, hy};
+    discs_->for_each_sleeper_near(x_.data(), y_.data(), swept, [&](std::uint32_t k) {
+      const std::uint32_t j = discs[k].body;
+      const double x = double(x_[j]), y = double(y_[j]);
+      const double r = discs[k].radius * (1.0 + 2.0 * DiscContacts<Real>::slop);
+      if (x + r < lx || x - r > hx || y + r < ly || y - r > hy) return;
+      if (asleep_[j] != 0) wake_labels_.push_back(asleep_[j]);
     });
   }
   wake_labelled();
@@ -171,7 +153,6 @@ void detail::WorldKernel<Real>::wake_by_segments() {
 
 template <class Real>
 void detail::WorldKernel<Real>::wake_near_movers() {
-  const QueryGrid& g = sleeper_grid();
   const auto discs = discs_->discs();
   const auto boxes = discs_->boxes();
   for (const std::uint32_t k : discs_->awake()) {
@@ -179,9 +160,8 @@ void detail::WorldKernel<Real>::wake_near_movers() {
     if (asleep_[j] != 0 || types_[j] == BodyType::static_body || discs[k].sensor) continue;
     const SweptBox& b = boxes[k];
     const auto mover = static_cast<std::uint32_t>(k);
-    g.for_each_near(b.min_x, b.min_y, b.max_x, b.max_y, [&](std::size_t i) {
-      const std::size_t sleeper = bodies_.index(g.discs[i].body);
-      const auto other = static_cast<std::uint32_t>(disc_of_[sleeper]);
+    discs_->for_each_sleeper_near(x_.data(), y_.data(), b, [&](std::uint32_t other) {
+      const std::uint32_t sleeper = discs[other].body;
       if (asleep_[sleeper] == 0 || !boxes_overlap(b, boxes[other])) return;
       if (!discs_->may_collide(mover, other)) return;
       wake_labels_.push_back(asleep_[sleeper]);
@@ -334,7 +314,6 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input, bool disc_p
     fall_asleep(j, root == j ? take_island_number() : asleep_[root]);
   }
   immovable_dirty_ = true;
-  if (sleep_grid_) sleep_grid_->stale = true;
 }
 
 template <class Real>
