@@ -72,6 +72,13 @@ inline bool boxes_overlap(const SweptBox& p, const SweptBox& q) {
   return p.min_x <= q.max_x && q.min_x <= p.max_x && p.min_y <= q.max_y && q.min_y <= p.max_y;
 }
 
+/// True when box `inner` lies within box `outer` (edges may touch); false if any coordinate
+/// is NaN.
+inline bool box_within(const SweptBox& inner, const SweptBox& outer) {
+  return inner.min_x >= outer.min_x && inner.max_x <= outer.max_x && inner.min_y >= outer.min_y &&
+         inner.max_y <= outer.max_y;
+}
+
 /// Writes into `out` (resized) the pairs of `first` then `second` (each pair once, a < b <
 /// n) sorted by (a, b): a counting sort on a (`offset`, n + 1 entries of scratch) and a sort of
 /// each a's list. O(n + pairs); allocates only to grow `offset` or `out`.

@@ -17,21 +17,12 @@
 
 namespace fixstep::detail {
 
-namespace {
-
-bool within(const SweptBox& inner, const SweptBox& outer) {
-  return inner.min_x >= outer.min_x && inner.max_x <= outer.max_x && inner.min_y >= outer.min_y &&
-         inner.max_y <= outer.max_y;  // false for NaN
-}
-
-}  // namespace
-
 template <class Real>
 int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::size_t cap) {
   FatBoxes& f = fat_;
   const std::size_t n = discs_.size();
   bool inside = f.valid && f.boxes.size() == n;
-  for (std::size_t k = 0; inside && k < n; ++k) inside = within(boxes_[k], f.boxes[k]);
+  for (std::size_t k = 0; inside && k < n; ++k) inside = box_within(boxes_[k], f.boxes[k]);
   if (!inside) {
     if (f.valid && f.age <= 1) {  // built for one tick: rest a while, longer each time
       f.rest = f.pause, f.pause = std::min(2 * f.pause, fat_rest_most);

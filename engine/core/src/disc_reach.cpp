@@ -31,8 +31,7 @@ std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, doubl
   motion_extent(m.x, m.ux, m.ax, h, pad, piece.min_x, piece.max_x);
   motion_extent(m.y, m.uy, m.ay, h, pad, piece.min_y, piece.max_y);
   SweptBox& box = boxes_[k];
-  if (piece.min_x >= box.min_x && piece.max_x <= box.max_x && piece.min_y >= box.min_y &&
-      piece.max_y <= box.max_y) {
+  if (box_within(piece, box)) {
     return 0;  // inside its box (false for NaN: a NaN piece is looked at, and overlaps nothing)
   }
   if (grown_of_[k] == GrownBox::none) {  // its box as the broadphase paired it
