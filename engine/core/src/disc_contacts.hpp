@@ -462,6 +462,8 @@ class DiscContacts {
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
   /// and not an impact of the next tick), and if so its contact into *out (when not null).
   bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out) const;
+  /// Pair p's normal impulse of the last tick's resting solver (N·s; 0 when it had none).
+  [[nodiscard]] double last_impulse(const DiscPair& p) const;
   /// Disc k's resting contact with a plane or segment b (b past the discs) along its normal
   /// (nx, ny), friction μ: its key, radii, masses and, with rolling discs, its turn.
   [[nodiscard]] RestContact wall_contact(std::uint32_t k, std::uint32_t b, double nx, double ny,

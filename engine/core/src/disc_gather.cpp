@@ -4,6 +4,7 @@
 // With the tick's run of the second thread open (world_step.cpp, disc_events.cpp), the pairs
 // are gathered in two passes over two halves of them, and the discs' plane contacts by halves,
 // with the same contacts in the same order.
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -20,11 +21,19 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
   if (gap > slop * std::min(da.radius, db.radius)) return false;
   const double nx = dist > 0.0 ? dx / dist : 0.0, ny = dist > 0.0 ? dy / dist : 1.0;
   // A pair still apart that closes faster than one tick of relative acceleration is an
-  // impact of the next tick, not a resting contact.
+  // impact of the next tick, not a resting contact. The acceleration counts the pair's own
+  // contact force of the last tick: its resting impulse λ_n, which changed the pair's relative
+  // velocity by λ_n (1/m_a + 1/m_b). Discs that fall together have no relative acceleration of
+  // their own, so without it a contact that carried a pile's load and closes by the tiny speeds
+  // its neighbours' shifts give it would be dropped, its load with it, and caught again as an
+  // impact: the pile's contacts would churn every tick.
   const double vn = (evx_[p.a] - evx_[p.b]) * nx + (evy_[p.a] - evy_[p.b]) * ny;
   const double cn =
       (motion_[p.a].ax - motion_[p.b].ax) * nx + (motion_[p.a].ay - motion_[p.b].ay) * ny;
-  if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) return false;
+  if (gap > 0.0 && -vn > std::abs(cn) * tick.dt &&
+      -vn > std::abs(cn) * tick.dt + last_impulse(p) * (da.inv_mass + db.inv_mass)) {
+    return false;
+  }
   if (out == nullptr) return true;
   RestContact& c = *out;
   c = RestContact{};
@@ -43,6 +52,14 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
     c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + c.arm_a * c.turn_a + c.arm_b * c.turn_b);
   }
   return true;
+}
+
+template <class Real>
+double DiscContacts<Real>::last_impulse(const DiscPair& p) const {
+  const std::uint64_t key = (std::uint64_t(p.a) << 32) | p.b;
+  const auto w = std::lower_bound(warm_.begin(), warm_.end(), key,
+                                  [](const WarmImpulse& h, std::uint64_t k) { return h.key < k; });
+  return w != warm_.end() && w->key == key ? w->lambda_n : 0.0;
 }
 
 template <class Real>
