@@ -64,53 +64,18 @@
 #include <vector>
 
 #include "disc_broadphase.hpp"
+#include "disc_caches.hpp"
+#include "disc_paths.hpp"
 #include "disc_records.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "grown_grid.hpp"
-#include "query_grid.hpp"
 #include "scratch_vector.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep::detail {
 
-/// |(x, y)|, m, by the correctly rounded sqrt (std::hypot's result differs between libms).
-inline double length(double x, double y) {
-  return std::sqrt(x * x + y * y);
-}
-
-/// The box of motion m over [from, to] (s, from >= m.t), widened by pad (m).
-inline SweptBox path_box(const DiscMotion& m, double from, double to, double pad) {
-  const double s = from - m.t;
-  SweptBox b;
-  motion_extent(m.px(from), m.ux + s * m.ax, m.ax, to - from, pad, b.min_x, b.max_x);
-  motion_extent(m.py(from), m.uy + s * m.ay, m.ay, to - from, pad, b.min_y, b.max_y);
-  return b;
-}
-
-/// Widens b (m) to hold the plane pass's motion after its last plane event p over [from, to]
-/// (s), extrapolated back from p.t (the disc pass follows it from the disc's first plane event
-/// on), widened by pad (m).
-inline void add_plane_motion(const PlaneMotion& p, double from, double to, double pad,
-                             SweptBox& b) {
-  const double back = from - p.t;  // <= 0
-  double lo = 0, hi = 0;
-  motion_extent(p.x + back * (p.ux + 0.5 * back * p.ax), p.ux + back * p.ax, p.ax, to - from, pad,
-                lo, hi);
-  b.min_x = std::min(b.min_x, lo), b.max_x = std::max(b.max_x, hi);
-  motion_extent(p.y + back * (p.uy + 0.5 * back * p.ay), p.uy + back * p.ay, p.ay, to - from, pad,
-                lo, hi);
-  b.min_y = std::min(b.min_y, lo), b.max_y = std::max(b.max_y, hi);
-}
-
 struct RestSweep;  // disc_rest.cpp
-
-/// A disc whose box grew within a tick (disc_reach.cpp), and its box as the broadphase paired it.
-struct GrownBox {
-  static constexpr std::uint32_t none = 0xffffffffu;
-  std::uint32_t disc = 0;
-  SweptBox first{};
-};
 
 template <class Real>
 class DiscContacts {
@@ -646,54 +611,12 @@ class DiscContacts {
   bool live_sorted_ = true;
   bool waking_ = false;               ///< within Tick::wake: set_asleep() lists the woken
   std::vector<std::uint32_t> woken_;  ///< discs woken within the tick's Tick::wake
-  /// The sleepers where they sleep (for_each_sleeper_near()): a cache, which a copy (a
-  /// snapshot) does not take; it builds its own when first asked.
-  struct SleeperGrid {
-    QueryGrid grid;
-    std::vector<std::uint32_t> disc;  ///< the grid's disc i is disc disc[i]
-    SleeperGrid() = default;
-    SleeperGrid(const SleeperGrid& /*other*/) {}
-    SleeperGrid& operator=(const SleeperGrid& /*other*/) {
-      grid.stale = true;
-      return *this;
-    }
-    ~SleeperGrid() = default;
-  };
   SleeperGrid sleepers_;
   ScratchVector<SweptBox> live_boxes_;
   ScratchVector<std::uint8_t> live_dynamic_;
   ScratchVector<std::uint32_t> degree_;  ///< per disc: its candidate pairs (find_candidates())
-  /// Fat boxes (Box2D's enlarged AABBs, b2_aabbMargin): each disc's box widened by
-  /// fat_margin of its radius when the broadphase last ran on them, and their pairs, sorted.
-  /// While every disc's box over the tick stays inside its fat box, the tick's pairs are the
-  /// fat pairs whose boxes overlap: the broadphase's pairs, in its order, without running it.
-  struct FatBoxes {
-    bool valid = false;      ///< the pairs are those of `boxes` under today's flags and filters
-    std::uint32_t age = 0;   ///< ticks they served
-    std::uint32_t rest = 0;  ///< ticks left before another try (after one that served one tick)
-    std::uint32_t pause = fat_rest;  ///< the next rest: doubled by each such try in a row
-    std::vector<SweptBox> boxes;
-    std::vector<DiscPair> pairs;
-  };
   FatBoxes fat_;
-  /// Whether the broadphase's grid holds fat_.boxes (reach() queries it): false in a copy,
-  /// whose broadphase keeps its own scratch.
-  struct GridHeld {
-    bool value = false;
-    GridHeld() = default;
-    GridHeld(const GridHeld& /*other*/) {}
-    GridHeld& operator=(const GridHeld& /*other*/) {
-      value = false;
-      return *this;
-    }
-    ~GridHeld() = default;
-  };
-  GridHeld fat_grid_;
-  /// Fat box margin, as a fraction of each disc's radius, and the ticks the fat boxes rest
-  /// after a rebuild that served a single tick (a gas: its boxes leave them every tick),
-  /// doubled for each such rebuild in a row up to fat_rest_most.
-  static constexpr double fat_margin = 0.25;
-  static constexpr std::uint32_t fat_rest = 8, fat_rest_most = 512;
+  FatGridHeld fat_grid_;
   CapHit cap_;
 };
 

@@ -2,15 +2,15 @@
 // shape's box enlarged by a margin (b2_aabbMargin) in its tree, and its pairs while the shape's
 // box stays inside; fixstep's broadphase is rebuilt every tick instead (disc_broadphase.hpp),
 // about a sixth of a settled pile's tick. So the broadphase runs on each disc's box widened by
-// fat_margin of its radius, and while every disc's box over the tick stays inside its fat box,
-// the tick's pairs are the fat pairs whose boxes overlap: two boxes that overlap lie in fat
+// FatBoxes::margin of its radius, and while every disc's box over the tick stays inside its fat
+// box, the tick's pairs are the fat pairs whose boxes overlap: two boxes that overlap lie in fat
 // boxes that overlap, so the filter keeps exactly the broadphase's pairs (under the same flags
 // and filters: a disc falling asleep or waking forgets the fat boxes), in its order. A rebuild
-// that served a single tick rests the fat boxes for fat_rest ticks, twice as long for each such
-// rebuild in a row, and a tick in which some disc moves more than the margin builds none (a
-// gas: its discs move about their radius a tick). Windows of the tick
-// and ticks that visit the live discs only run the broadphase on their own boxes. Within the
-// tick, reach() asks the grid of the fat boxes, each disc there checked by its own box.
+// that served a single tick rests the fat boxes for FatBoxes::rest_first ticks, twice as long for
+// each such rebuild in a row, and a tick in which some disc moves more than the margin builds none
+// (a gas: its discs move about their radius a tick). Windows of the tick and ticks that visit the
+// live discs only run the broadphase on their own boxes. Within the tick, reach() asks the grid of
+// the fat boxes, each disc there checked by its own box.
 #include <algorithm>
 
 #include "disc_contacts.hpp"
@@ -25,9 +25,9 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
   for (std::size_t k = 0; inside && k < n; ++k) inside = box_within(boxes_[k], f.boxes[k]);
   if (!inside) {
     if (f.valid && f.age <= 1) {  // built for one tick: rest a while, longer each time
-      f.rest = f.pause, f.pause = std::min(2 * f.pause, fat_rest_most);
+      f.rest = f.pause, f.pause = std::min(2 * f.pause, FatBoxes::rest_most);
     } else if (f.valid) {
-      f.pause = fat_rest;
+      f.pause = FatBoxes::rest_first;
     }
     f.valid = false;
     if (f.rest > 0) {
@@ -39,13 +39,13 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
       const SweptBox& b = boxes_[k];
       const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
       if (std::max(b.max_x - b.min_x, b.max_y - b.min_y) - 2.0 * pad >
-          fat_margin * discs_[k].radius) {
+          FatBoxes::margin * discs_[k].radius) {
         return -1;
       }
     }
     f.boxes.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
-      const double m = fat_margin * discs_[k].radius;
+      const double m = FatBoxes::margin * discs_[k].radius;
       const SweptBox& b = boxes_[k];
       f.boxes[k] = SweptBox{b.min_x - m, b.min_y - m, b.max_x + m, b.max_y + m};
     }
