@@ -426,9 +426,14 @@ class DiscContacts {
   void gather_contacts(const Tick& tick);
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
   /// and not an impact of the next tick), and if so its contact into *out (when not null).
-  bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out) const;
-  /// Pair p's normal impulse of the last tick's resting solver (N·s; 0 when it had none).
-  [[nodiscard]] double last_impulse(const DiscPair& p) const;
+  /// warm_at: where in warm_ the last pair asked looked (warm_from()).
+  bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out,
+                    const WarmImpulse*& warm_at) const;
+  /// Pair p's normal impulse of the last tick's resting solver (N·s; 0 when it had none),
+  /// looked up in warm_ from `at` on (a walk for pairs in key order), which it moves to p.
+  [[nodiscard]] double last_impulse(const DiscPair& p, const WarmImpulse*& at) const;
+  /// Where in warm_ pair i's key is, or would be.
+  [[nodiscard]] const WarmImpulse* warm_from(std::size_t i) const;
   /// Disc k's resting contact with a plane or segment b (b past the discs) along its normal
   /// (nx, ny), friction μ: its key, radii, masses and, with rolling discs, its turn.
   [[nodiscard]] RestContact wall_contact(std::uint32_t k, std::uint32_t b, double nx, double ny,

@@ -13,7 +13,8 @@
 namespace fixstep::detail {
 
 template <class Real>
-bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestContact* out) const {
+bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestContact* out,
+                                      const WarmImpulse*& warm_at) const {
   const Disc &da = discs_[p.a], &db = discs_[p.b];
   const double dx = ex_[p.a] - ex_[p.b], dy = ey_[p.a] - ey_[p.b];
   const double dist = length(dx, dy);
@@ -31,7 +32,7 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
   const double cn =
       (motion_[p.a].ax - motion_[p.b].ax) * nx + (motion_[p.a].ay - motion_[p.b].ay) * ny;
   if (gap > 0.0 && -vn > std::abs(cn) * tick.dt &&
-      -vn > std::abs(cn) * tick.dt + last_impulse(p) * (da.inv_mass + db.inv_mass)) {
+      -vn > std::abs(cn) * tick.dt + last_impulse(p, warm_at) * (da.inv_mass + db.inv_mass)) {
     return false;
   }
   if (out == nullptr) return true;
@@ -55,11 +56,21 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
 }
 
 template <class Real>
-double DiscContacts<Real>::last_impulse(const DiscPair& p) const {
+double DiscContacts<Real>::last_impulse(const DiscPair& p, const WarmImpulse*& at) const {
   const std::uint64_t key = (std::uint64_t(p.a) << 32) | p.b;
-  const auto w = std::lower_bound(warm_.begin(), warm_.end(), key,
-                                  [](const WarmImpulse& h, std::uint64_t k) { return h.key < k; });
-  return w != warm_.end() && w->key == key ? w->lambda_n : 0.0;
+  const WarmImpulse *const begin = warm_.data(), *const end = begin + warm_.size();
+  auto before = [](const WarmImpulse& h, std::uint64_t k) { return h.key < k; };
+  if (at != begin && (at - 1)->key >= key) at = std::lower_bound(begin, at, key, before);
+  while (at != end && at->key < key) ++at;  // pairs come in key order: a walk
+  return at != end && at->key == key ? at->lambda_n : 0.0;
+}
+
+template <class Real>
+const WarmImpulse* DiscContacts<Real>::warm_from(std::size_t i) const {
+  if (i >= pairs_.size()) return warm_.data();
+  const std::uint64_t key = (std::uint64_t(pairs_[i].a) << 32) | pairs_[i].b;
+  return std::lower_bound(warm_.data(), warm_.data() + warm_.size(), key,
+                          [](const WarmImpulse& h, std::uint64_t k) { return h.key < k; });
 }
 
 template <class Real>
@@ -73,8 +84,9 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     touch_.resize(m);
     halves(m, [&](std::size_t begin, std::size_t end, int half) {
       std::size_t count = 0;
+      const WarmImpulse* warm_at = warm_from(begin);
       for (std::size_t i = begin; i < end; ++i) {
-        touch_[i] = pair_contact(tick, pairs_[i], nullptr) ? 1 : 0;
+        touch_[i] = pair_contact(tick, pairs_[i], nullptr, warm_at) ? 1 : 0;
         count += touch_[i];
       }
       found[half] = count;
@@ -83,10 +95,11 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     halves(m, [&](std::size_t begin, std::size_t end, int half) {
       std::size_t at = half == 1 ? found[0] : 0;
       bool moving = false;
+      const WarmImpulse* warm_at = warm_from(begin);
       for (std::size_t i = begin; i < end; ++i) {
         if (!touch_[i]) continue;
         RestContact& c = contacts_[at++];
-        [[maybe_unused]] const bool touches = pair_contact(tick, pairs_[i], &c);
+        [[maybe_unused]] const bool touches = pair_contact(tick, pairs_[i], &c, warm_at);
         assert(touches);  // the same arithmetic as the first pass (no contraction)
         moving = moving || c.kinematic_a || c.kinematic_b;
       }
@@ -96,8 +109,9 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   } else {
     contacts_.clear();
     RestContact c;
+    const WarmImpulse* warm_at = warm_.data();
     for (const DiscPair& p : pairs_) {
-      if (!pair_contact(tick, p, &c)) continue;
+      if (!pair_contact(tick, p, &c, warm_at)) continue;
       kinematic[0] = kinematic[0] || c.kinematic_a || c.kinematic_b;
       contacts_.push_back(c);
     }
