@@ -86,6 +86,21 @@ with_xvfb() {
   start_xvfb || return 125
   DISPLAY=$xvfb_display "$@"
 }
+# window_with_keys GAME TITLE FRAMES RECORDING OUTPUT KEYS: runs GAME --window --frames FRAMES
+# --record RECORDING (its output into OUTPUT) under Xvfb, waits up to 5 s for its window
+# (titled TITLE), then runs KEYS, xdotool steps in bash with $wid the window, and waits for the
+# game to end; returns its exit status.
+window_with_keys() {
+  with_xvfb bash -c '
+    "$1" --window --frames "$3" --record "$4" >"$5" 2>&1 &
+    pid=$!
+    for _ in $(seq 100); do
+      wid=$(xdotool search --name "$2" 2>/dev/null | head -1); [ -n "$wid" ] && break; sleep 0.05
+    done
+    sleep 0.5
+    eval "$6"
+    wait "$pid"' _ "$@"
+}
 
 finish() {
   echo "$passes passed, $failures failed"

@@ -45,18 +45,11 @@ if have_xvfb && command -v xdotool >/dev/null; then
   [ $? -eq 0 ] && ok "scripted window run exits 0" || { fail "window run"; cat "$out/window.txt"; }
   grep -q "^score=[1-9]" "$out/window.txt" && ok "the window's scripted session scores" ||
     { fail "window score"; cat "$out/window.txt"; }
-  with_xvfb bash -c '
-    "$1" --window --frames 300 --record "$2" >"$3" 2>&1 &
-    pid=$!
-    for _ in $(seq 100); do
-      wid=$(xdotool search --name "pinball" 2>/dev/null | head -1); [ -n "$wid" ] && break; sleep 0.05
-    done
-    sleep 0.5
+  window_with_keys "$game" pinball 300 "$out/keys.rec" "$out/keys.txt" '
     xdotool keydown --window "$wid" space; sleep 0.6; xdotool keyup --window "$wid" space
     sleep 0.3
     xdotool keydown --window "$wid" z; sleep 0.3; xdotool keyup --window "$wid" z
-    xdotool keydown --window "$wid" m; sleep 0.3; xdotool keyup --window "$wid" m
-    wait "$pid"' _ "$game" "$out/keys.rec" "$out/keys.txt"
+    xdotool keydown --window "$wid" m; sleep 0.3; xdotool keyup --window "$wid" m'
   [ $? -eq 0 ] && ok "window with keys exits 0" || { fail "window keys"; cat "$out/keys.txt"; }
   for bit in 8 1 2; do  # plunger (space), left flipper (Z), right flipper (M)
     grep -q " pressed=$bit " "$out/keys.rec" && ok "a key pressed action bit $bit" ||

@@ -38,17 +38,10 @@ if have_xvfb && command -v xdotool >/dev/null; then
   [ $? -eq 0 ] && ok "scripted window run exits 0" || { fail "window run"; cat "$out/window.txt"; }
   grep -q "^$expected" "$out/window.txt" && ok "the window's scripted run collects the same" ||
     { fail "window coins"; cat "$out/window.txt"; }
-  with_xvfb bash -c '
-    "$1" --window --frames 240 --record "$2" >"$3" 2>&1 &
-    pid=$!
-    for _ in $(seq 100); do
-      wid=$(xdotool search --name "platformer" 2>/dev/null | head -1); [ -n "$wid" ] && break; sleep 0.05
-    done
-    sleep 0.5
+  window_with_keys "$game" platformer 240 "$out/keys.rec" "$out/keys.txt" '
     xdotool keydown --window "$wid" d; sleep 0.8
     xdotool keydown --window "$wid" space; sleep 0.2; xdotool keyup --window "$wid" space
-    sleep 0.5; xdotool keyup --window "$wid" d
-    wait "$pid"' _ "$game" "$out/keys.rec" "$out/keys.txt"
+    sleep 0.5; xdotool keyup --window "$wid" d'
   [ $? -eq 0 ] && ok "window with keys exits 0" || { fail "window keys"; cat "$out/keys.txt"; }
   grep -q " axis.0=1" "$out/keys.rec" && ok "D walked right (the walk axis at 1)" ||
     fail "no walk axis from D in the window's recording"
