@@ -232,16 +232,15 @@ class DiscContacts {
   static constexpr std::size_t min_split_contacts = 1024;
   /// Touching pairs from which a split pile's halves run on two threads in the resting solver's
   /// passes over its parts (below, one thread runs the same passes in the same order: handing
-  /// the halves over costs more than it saves; a settling pile of 10³ discs, 2 800 contacts,
-  /// gains a third on two).
-  static constexpr std::size_t min_parallel_contacts = 2048;
+  /// the halves over costs more than it saves).
+  static constexpr std::size_t min_parallel_contacts = 8192;
   /// Candidate pairs from which two threads share the first impact predictions and the
   /// gathering, within the tick's run of the second thread.
   static constexpr std::size_t min_parallel_pairs = 512;
   /// Discs from which a tick with two threads shares its passes with the second thread,
   /// which spins between them (SecondThread::open) rather than waking for each; below, every
   /// pass runs on the stepping thread.
-  static constexpr std::size_t min_parallel_discs = 512;
+  static constexpr std::size_t min_parallel_discs = 1024;
   /// The second thread a tick on `threads` threads shares its passes with (SecondThreadRun
   /// keeps it spinning through them), or null: one thread, or fewer than min_parallel_discs.
   /// With sleepers, the awake discs count instead of all of them.
