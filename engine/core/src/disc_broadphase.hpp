@@ -67,6 +67,11 @@ struct DiscPair {
   friend bool operator==(const DiscPair&, const DiscPair&) = default;
 };
 
+/// The pair's key a << 32 | b: pairs in (a, b) order are in key order.
+inline std::uint64_t pair_key(const DiscPair& p) {
+  return (std::uint64_t(p.a) << 32) | p.b;
+}
+
 /// True when the closed boxes overlap (touching counts); false if any coordinate is NaN.
 inline bool boxes_overlap(const SweptBox& p, const SweptBox& q) {
   return p.min_x <= q.max_x && q.min_x <= p.max_x && p.min_y <= q.max_y && q.min_y <= p.max_y;

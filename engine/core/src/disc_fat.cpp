@@ -12,6 +12,7 @@
 // live discs only run the broadphase on their own boxes. Within the tick, reach() asks the grid of
 // the fat boxes, each disc there checked by its own box.
 #include <algorithm>
+#include <cassert>
 
 #include "disc_contacts.hpp"
 
@@ -63,9 +64,11 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
 
 template <class Real>
 void DiscContacts<Real>::rebuild_fat_grid(int threads) {
-  // The same boxes, flags and filters as when the fat pairs were found: the same grid.
+  // The same boxes, flags and filters as when the fat pairs were found under this cap: the same
+  // grid and pairs, so it cannot stop at the cap.
   [[maybe_unused]] const bool ok =
       pairs_of_boxes(fat_.boxes, dynamic_, fat_.pairs, threads, max_candidate_pairs(discs_.size()));
+  assert(ok);
   fat_grid_.value = true;
 }
 

@@ -31,6 +31,7 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
   const double vn = (evx_[p.a] - evx_[p.b]) * nx + (evy_[p.a] - evy_[p.b]) * ny;
   const double cn =
       (motion_[p.a].ax - motion_[p.b].ax) * nx + (motion_[p.a].ay - motion_[p.b].ay) * ny;
+  // (The last impulse is looked up only for a pair that closes faster than the free part.)
   if (gap > 0.0 && -vn > std::abs(cn) * tick.dt &&
       -vn > std::abs(cn) * tick.dt + last_impulse(p, warm_at) * (da.inv_mass + db.inv_mass)) {
     return false;
@@ -39,7 +40,7 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
   RestContact& c = *out;
   c = RestContact{};
   c.nx = nx, c.ny = ny;
-  c.key = (std::uint64_t(p.a) << 32) | p.b;
+  c.key = pair_key(p);
   c.a = p.a, c.b = p.b;
   c.radii = da.radius + db.radius, c.r_min = std::min(da.radius, db.radius);
   c.inv_a = da.inv_mass, c.inv_b = db.inv_mass;
@@ -57,10 +58,9 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
 
 template <class Real>
 double DiscContacts<Real>::last_impulse(const DiscPair& p, const WarmImpulse*& at) const {
-  const std::uint64_t key = (std::uint64_t(p.a) << 32) | p.b;
+  const std::uint64_t key = pair_key(p);
   const WarmImpulse *const begin = warm_.data(), *const end = begin + warm_.size();
-  auto before = [](const WarmImpulse& h, std::uint64_t k) { return h.key < k; };
-  if (at != begin && (at - 1)->key >= key) at = std::lower_bound(begin, at, key, before);
+  if (at != begin && (at - 1)->key >= key) at = first_warm_from(begin, at, key);  // went back
   while (at != end && at->key < key) ++at;  // pairs come in key order: a walk
   return at != end && at->key == key ? at->lambda_n : 0.0;
 }
@@ -68,9 +68,7 @@ double DiscContacts<Real>::last_impulse(const DiscPair& p, const WarmImpulse*& a
 template <class Real>
 const WarmImpulse* DiscContacts<Real>::warm_from(std::size_t i) const {
   if (i >= pairs_.size()) return warm_.data();
-  const std::uint64_t key = (std::uint64_t(pairs_[i].a) << 32) | pairs_[i].b;
-  return std::lower_bound(warm_.data(), warm_.data() + warm_.size(), key,
-                          [](const WarmImpulse& h, std::uint64_t k) { return h.key < k; });
+  return first_warm_from(warm_.data(), warm_.data() + warm_.size(), pair_key(pairs_[i]));
 }
 
 template <class Real>
@@ -109,7 +107,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   } else {
     contacts_.clear();
     RestContact c;
-    const WarmImpulse* warm_at = warm_.data();
+    const WarmImpulse* warm_at = warm_from(0);
     for (const DiscPair& p : pairs_) {
       if (!pair_contact(tick, p, &c, warm_at)) continue;
       kinematic[0] = kinematic[0] || c.kinematic_a || c.kinematic_b;

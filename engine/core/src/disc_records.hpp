@@ -149,6 +149,13 @@ struct WarmImpulse {
   double lambda_n = 0, lambda_t = 0;
 };
 
+/// The first impulse of [first, last), in key order, whose key is not below `key`.
+inline const WarmImpulse* first_warm_from(const WarmImpulse* first, const WarmImpulse* last,
+                                          std::uint64_t key) {
+  return std::lower_bound(first, last, key,
+                          [](const WarmImpulse& h, std::uint64_t k) { return h.key < k; });
+}
+
 /// A disc overlapping a sensor after a tick, or crossing it within the tick (begun and ended
 /// in it), by dense body index.
 struct SensorOverlap {

@@ -75,13 +75,12 @@ void DiscContacts<Real>::match_warm() {
     const std::size_t first = bounds[run];
     halves(bounds[run + 1] - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
       if (begin == end) return;
-      auto w =
-          std::lower_bound(warm_.begin(), warm_.end(), contacts_[first + begin].key,
-                           [](const WarmImpulse& h, std::uint64_t key) { return h.key < key; });
+      const WarmImpulse* const last = warm_.data() + warm_.size();
+      const WarmImpulse* w = first_warm_from(warm_.data(), last, contacts_[first + begin].key);
       for (std::size_t i = first + begin; i < first + end; ++i) {
         RestContact& c = contacts_[i];
-        while (w != warm_.end() && w->key < c.key) ++w;
-        if (w != warm_.end() && w->key == c.key) c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
+        while (w != last && w->key < c.key) ++w;
+        if (w != last && w->key == c.key) c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
       }
     });
   }

@@ -18,8 +18,7 @@ void DiscContacts<Real>::sort_out_pairs() {
   std::size_t keep = 0;
   for (const DiscPair p : pairs_) {
     if (!linked_.empty()) {
-      const std::uint64_t key = (std::uint64_t(p.a) << 32) | p.b;
-      if (std::binary_search(linked_.begin(), linked_.end(), key)) continue;
+      if (std::binary_search(linked_.begin(), linked_.end(), pair_key(p))) continue;
     }
     if (!filters_.empty()) {
       if (!should_collide(filters_[p.a], filters_[p.b])) continue;
