@@ -260,6 +260,9 @@ class DiscContacts {
   static constexpr double window_radii = 4.0;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
   static constexpr double slop = 0.005;
+  /// How far a disc's box reaches beyond its centre's path: its radius and twice the slop of
+  /// it, m (so that pairs within the slop are candidates).
+  static double box_pad(const Disc& d) { return d.radius * (1.0 + 2.0 * slop); }
   /// Largest push-out of one pair in one sweep, as a fraction of the smaller radius.
   static constexpr double max_push_out = 0.2;
   /// Overlap beyond the slop that the push-out leaves, as a fraction of the smaller radius: a

@@ -127,7 +127,7 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
     m.dx = (x1 - x0) / dt - 0.5 * (v0x + v1x), m.dy = (y1 - y0) / dt - 0.5 * (v0y + v1y);
     m.t = 0, m.x = x0, m.y = y0, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
     m.ax = (v1x - v0x) / dt, m.ay = (v1y - v0y) / dt;
-    const double pad = d.radius * (1.0 + 2.0 * slop);
+    const double pad = box_pad(d);
     SweptBox& b = boxes_[k];
     if (d.plane_slot >= 0 && tick.after[d.plane_slot].t >= 0.0) {
       // It bounced in the plane pass: on its free motion until its first plane event, and on

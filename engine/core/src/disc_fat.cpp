@@ -38,7 +38,7 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
     // A disc that moves more than the margin in a tick leaves its fat box in the next one.
     for (std::size_t k = 0; k < n; ++k) {
       const SweptBox& b = boxes_[k];
-      const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
+      const double pad = box_pad(discs_[k]);
       if (std::max(b.max_x - b.min_x, b.max_y - b.min_y) - 2.0 * pad >
           FatBoxes::margin * discs_[k].radius) {
         return -1;

@@ -62,8 +62,8 @@ void DiscContacts<Real>::build_sleeper_grid(const Real* x, const Real* y) {
     if (!asleep_[k]) continue;
     const Disc& d = discs_[k];
     // A sleeper's box is its disc padded as build_motions() pads it (at rest).
-    g.discs.push_back({double(x[d.body]), double(y[d.body]), d.radius * (1.0 + 2.0 * slop),
-                       Entity{}, CollisionFilter{}, false});
+    g.discs.push_back(
+        {double(x[d.body]), double(y[d.body]), box_pad(d), Entity{}, CollisionFilter{}, false});
     sleepers_.disc.push_back(k);
   }
   g.build();  // (not stale)

@@ -26,7 +26,7 @@ void DiscContacts<Real>::start_reach() {
 template <class Real>
 std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, double now, double dt) {
   const DiscMotion& m = motion_[k];
-  const double pad = discs_[k].radius * (1.0 + 2.0 * slop), h = horizon_ - m.t;
+  const double pad = box_pad(discs_[k]), h = horizon_ - m.t;
   SweptBox piece;
   motion_extent(m.x, m.ux, m.ax, h, pad, piece.min_x, piece.max_x);
   motion_extent(m.y, m.uy, m.ay, h, pad, piece.min_y, piece.max_y);

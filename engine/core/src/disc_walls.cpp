@@ -35,7 +35,7 @@ bool DiscContacts<Real>::next_wall_event(const Tick& tick, std::uint32_t k, doub
   // boxes_ hold only that window's), padded by the radius and more.
   const DiscMotion& d = motion_[k];
   const double s0 = now - d.t;  // the motion at now
-  const SweptBox box = path_box(d, now, dt, discs_[k].radius * (1.0 + 2.0 * slop));
+  const SweptBox box = path_box(d, now, dt, box_pad(discs_[k]));
   // The box's nearest corner clear of the plane: the path cannot meet it.
   auto clear = [&box](const PlaneDef& pl) {
     const double nx = pl.normal.x, ny = pl.normal.y;

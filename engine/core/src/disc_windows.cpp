@@ -22,7 +22,7 @@ int DiscContacts<Real>::motion_windows() const {
   double most = 0.0;  // the largest motion over the tick, in radii of its disc
   live_range(0, live_count(), [&](std::uint32_t k) {
     const SweptBox& b = boxes_[k];
-    const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
+    const double pad = box_pad(discs_[k]);
     const double motion = std::max(b.max_x - b.min_x, b.max_y - b.min_y) - 2.0 * pad;
     if (std::isfinite(motion)) most = std::max(most, motion / discs_[k].radius);
   });
@@ -42,7 +42,7 @@ template <class Real>
 void DiscContacts<Real>::window_boxes(const Tick& tick, double t0, double t1) {
   halves(live_count(), [&](std::size_t begin, std::size_t end, int) {
     live_range(begin, end, [&](std::uint32_t k) {
-      const double pad = discs_[k].radius * (1.0 + 2.0 * slop);
+      const double pad = box_pad(discs_[k]);
       // A disc the plane pass bounced is on its free motion until its first plane event, while
       // nothing changed its motion (disc_events.cpp, switch_to_plane_motion()).
       const std::int32_t slot = discs_[k].plane_slot;

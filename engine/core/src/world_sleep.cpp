@@ -143,8 +143,8 @@ void detail::WorldKernel<Real>::wake_by_segments() {
     discs_->for_each_sleeper_near(x_.data(), y_.data(), swept, [&](std::uint32_t k) {
       const std::uint32_t j = discs[k].body;
       const double x = double(x_[j]), y = double(y_[j]);
-      const double r = discs[k].radius * (1.0 + 2.0 * DiscContacts<Real>::slop);
-      if (x + r < lx || x - r > hx || y + r < ly || y - r > hy) return;
+      const double r = DiscContacts<Real>::box_pad(discs[k]);
+      if (!boxes_overlap(SweptBox{x - r, y - r, x + r, y + r}, swept)) return;
       if (asleep_[j] != 0) wake_labels_.push_back(asleep_[j]);
     });
   }
