@@ -14,6 +14,7 @@
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "test_bodies.hpp"
 
 namespace fixstep {
 namespace {
@@ -34,12 +35,8 @@ WorldDef lattice(std::size_t wide) {
   for (std::size_t row = 0; row < 10; ++row) {
     const bool odd = row % 2 == 1;
     for (std::size_t i = 0; i < (odd ? wide - 1 : wide); ++i) {
-      BodyDef b;
-      b.body = Body{.mass = 1.0,
-                    .position = {(odd ? s : s / 2.0) + double(i) * s, s / 2.0 + double(row) * h}};
-      b.collider = Collider{.radius = lattice_r};
-      b.gravity = Gravity{};
-      def.bodies.push_back(b);
+      const Vec2 at{(odd ? s : s / 2.0) + double(i) * s, s / 2.0 + double(row) * h};
+      def.bodies.push_back(test::falling_disc(at, {}, lattice_r));
     }
   }
   return def;

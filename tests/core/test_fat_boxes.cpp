@@ -13,6 +13,7 @@
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "test_bodies.hpp"
 
 namespace fixstep {
 namespace {
@@ -28,12 +29,8 @@ WorldDef cradle(double speed) {
   def.settings.contacts = ContactSettings{.restitution = 1.0, .friction = 0.0};
   def.planes.push_back(PlaneDef{.normal = {0, 1}, .offset = 0.0, .restitution = 0.0});
   for (int i = 0; i <= 12; ++i) {
-    BodyDef b;
     const double x = i == 0 ? -0.5 : (i - 1) * 2.05 * cradle_r;
-    b.body = Body{.mass = 1.0, .position = {x, cradle_r}, .velocity = {i == 0 ? speed : 0.0, 0}};
-    b.collider = Collider{.radius = cradle_r};
-    b.gravity = Gravity{};
-    def.bodies.push_back(b);
+    def.bodies.push_back(test::falling_disc({x, cradle_r}, {i == 0 ? speed : 0.0, 0.0}, cradle_r));
   }
   return def;
 }
