@@ -1,10 +1,11 @@
 // The disc broadphase (engine/core/src/disc_broadphase.hpp): its pairs
 // against a brute-force O(n^2) reference on random sets, one and two threads, fresh, reused and
-// copied objects, the max_pairs cap on a million discs at one point, no allocation once warm;
-// and its second thread (second_thread.hpp): an exception on the worker reaches the caller, in a
-// run and outside one, and a nested run leaves the outer one open.
+// copied objects, its query() against every box, the max_pairs cap on a million discs at one point,
+// no allocation once warm; and its second thread (second_thread.hpp): an exception on the worker
+// reaches the caller, in a run and outside one, and a nested run leaves the outer one open.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -103,6 +104,65 @@ TEST(DiscBroadphase, MatchesBruteForceAtNegativeAndLargeCoordinates) {
     far.active.push_back(1);
   }
   expect_reference(far);
+}
+
+/// Boxes in one row of cells, and in two rows, of a level whose table is then one row of
+/// buckets: the rows above share their buckets with the boxes' own.
+BoxSet rows_of_boxes(int rows) {
+  BoxSet s;
+  for (int r = 0; r < rows; ++r) {
+    for (int i = 0; i < 40; ++i) {
+      const double x = 0.13 * i + 0.01 * r, y = 0.26 * r;
+      s.boxes.push_back({x, y, x + 0.2, y + 0.2});
+      s.active.push_back(i % 7 == 3 ? 0 : 1);
+    }
+  }
+  return s;
+}
+
+TEST(DiscBroadphase, MatchesBruteForceWhereRowsShareBuckets) {
+  expect_reference(rows_of_boxes(1));
+  expect_reference(rows_of_boxes(2));
+  expect_reference(rows_of_boxes(5));
+}
+
+/// Checks query() against every box that overlaps q, each once, after a find_pairs of s.
+void expect_query_reference(const BoxSet& s, const std::vector<SweptBox>& queries) {
+  DiscBroadphase bp;
+  find(bp, s, 1);
+  for (const SweptBox& q : queries) {
+    std::vector<std::uint32_t> got, want;
+    bp.query(q, [&](std::uint32_t i, const SweptBox& box) {
+      got.push_back(i);
+      EXPECT_EQ(box.min_x, s.boxes[i].min_x);
+    });
+    for (std::uint32_t i = 0; i < s.boxes.size(); ++i) {
+      if (boxes_overlap(q, s.boxes[i])) want.push_back(i);
+    }
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, want) << "query [" << q.min_x << ", " << q.max_x << "] x [" << q.min_y << ", "
+                         << q.max_y << "]";
+  }
+}
+
+TEST(DiscBroadphase, AQueryFindsEveryBoxThatOverlapsItOnce) {
+  std::vector<SweptBox> queries;
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 300; ++i) {  // points to boxes several cells wide
+    const double x = -1.0 + 10.0 * u(rng), y = -1.0 + 10.0 * u(rng), w = 0.6 * u(rng) * u(rng);
+    queries.push_back({x, y, x + w, y + w * u(rng)});
+  }
+  expect_query_reference(random_set(3000, 0.05, 0.1, 8.0, 0.0, 0.0, 0.02, 0.9, 19), queries);
+  expect_query_reference(random_set(3000, 0.01, 1.0, 8.0, 0.0, 0.0, 0.05, 0.8, 20), queries);
+  BoxSet far = random_set(3000, 0.05, 0.1, 8.0, 0.0, 0.0, 0.02, 0.9, 21);
+  for (int i = 0; i < 4; ++i) {  // outliers: a level's cells wrap into fewer buckets
+    far.boxes.push_back({1e5 * i - 0.1, 3e4, 1e5 * i + 0.1, 3e4 + 0.2});
+    far.active.push_back(1);
+  }
+  expect_query_reference(far, queries);
+  expect_query_reference(rows_of_boxes(1), queries);
+  expect_query_reference(rows_of_boxes(2), queries);
 }
 
 TEST(DiscBroadphase, BoxesThatTouchExactlyArePaired) {

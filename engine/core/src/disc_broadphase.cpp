@@ -20,9 +20,6 @@ bool box_finite(const SweptBox& b) {
          std::isfinite(b.max_y);
 }
 
-/// The half stencil of a cell's neighbours: each pair of neighbouring cells once.
-constexpr std::int32_t half_stencil[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
-
 }  // namespace
 
 void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> second, std::size_t n,
@@ -206,6 +203,25 @@ void DiscBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool ac
   }
 }
 
+bool DiscBroadphase::scan_row(const Entry& q, std::size_t from, std::uint32_t level,
+                              std::int32_t x0, std::int32_t x1, std::int32_t cy,
+                              std::vector<DiscPair>& out, std::uint64_t& rejected) const {
+  const Level& l = levels_[level];
+  const auto b0 = static_cast<std::uint32_t>(x0) & l.wmask;
+  if (b0 + static_cast<std::uint32_t>(x1 - x0) > l.wmask) return false;  // the row wraps
+  const std::size_t h = bucket(level, x0, cy);
+  const auto span = static_cast<std::uint32_t>(x1 - x0);
+  for (std::size_t p = std::max(from, std::size_t{start_[2 * h]}), end = start_[2 * (h + span) + 2];
+       p < end; ++p) {
+    const Entry& e = entry_[p];
+    if (e.cy != cy || static_cast<std::uint64_t>(std::int64_t{e.cx} - x0) > span ||
+        !boxes_overlap(q.box, e.box))
+      continue;
+    add(q.index, e.index, out, rejected);
+  }
+  return true;
+}
+
 void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
                                 std::span<const SweptBox> boxes,
                                 std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
@@ -213,15 +229,24 @@ void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
   const Entry& q = entry_[at];
   const std::size_t h = bucket(level, q.cx, q.cy);
   const bool act = at < start_[2 * h + 1];
-  if (act)
-    scan_own_cell(at, h, out, rejected);  // a static box finds its partners from the other side
-  for (const auto& d : half_stencil)
-    scan_cell(q, act, level, q.cx + d[0], q.cy + d[1], out, rejected);
+  // A dynamic box: its own cell after it and the next one in one run of entries, the three
+  // cells above in another (cells in a row of a level's table are adjacent buckets unless the
+  // row wraps); the same pairs in the same order as cell by cell. A static box finds its
+  // partners from the other side, and searches only the dynamic boxes, cell by cell.
+  if (!act || !scan_row(q, at + 1, level, q.cx, q.cx + 1, q.cy, out, rejected)) {
+    if (act) scan_own_cell(at, h, out, rejected);
+    scan_cell(q, act, level, q.cx + 1, q.cy, out, rejected);
+  }
+  if (!act || !scan_row(q, 0, level, q.cx - 1, q.cx + 1, q.cy + 1, out, rejected)) {
+    for (std::int32_t dx = -1; dx <= 1; ++dx)
+      scan_cell(q, act, level, q.cx + dx, q.cy + 1, out, rejected);
+  }
   // Coarser levels: their boxes whose home cell is one of the 3 x 3 around this one's.
   for (std::uint64_t m = level_mask_ & ((std::uint64_t{1} << level) - 1); m != 0; m &= m - 1) {
     const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
     const std::int32_t cx = cell_of(q.box.min_x, k), cy = cell_of(q.box.min_y, k);
     for (std::int32_t dy = -1; dy <= 1; ++dy) {
+      if (act && scan_row(q, 0, k, cx - 1, cx + 1, cy + dy, out, rejected)) continue;
       for (std::int32_t dx = -1; dx <= 1; ++dx)
         scan_cell(q, act, k, cx + dx, cy + dy, out, rejected);
     }

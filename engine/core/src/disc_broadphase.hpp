@@ -223,6 +223,12 @@ class DiscBroadphase {
                   std::uint64_t& rejected) const;
   void scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx, std::int32_t cy,
                  std::vector<DiscPair>& out, std::uint64_t& rejected) const;
+  /// For a dynamic box q: the entries of cells x0..x1 of row cy on a level (from entry `from`
+  /// on) that overlap it, dynamic and static, in the order cell by cell gives; false (nothing
+  /// done) when those cells' buckets are not one run (the row wraps).
+  bool scan_row(const Entry& q, std::size_t from, std::uint32_t level, std::int32_t x0,
+                std::int32_t x1, std::int32_t cy, std::vector<DiscPair>& out,
+                std::uint64_t& rejected) const;
   void scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out,
                      std::uint64_t& rejected) const;
   void scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
@@ -272,7 +278,19 @@ std::uint64_t DiscBroadphase::query(const SweptBox& q, Visit&& visit) const {
       }
       continue;
     }
+    const auto span = static_cast<std::uint32_t>(x1 - x0);
+    const bool rows = (static_cast<std::uint32_t>(x0) & l.wmask) + std::uint64_t{span} <= l.wmask;
     for (std::int32_t cy = y0; cy <= y1; ++cy) {
+      if (rows) {  // cells x0..x1 of the row are adjacent buckets: one run, in the same order
+        const std::size_t h = bucket(k, x0, cy);
+        work += std::uint64_t{span} + 1;
+        for (std::size_t p = start_[2 * h], end = start_[2 * (h + span) + 2]; p < end; ++p) {
+          const Entry& e = entry_[p];
+          ++work;
+          if (e.cy == cy && seen(e)) visit(e.index, e.box);
+        }
+        continue;
+      }
       for (std::int32_t cx = x0; cx <= x1; ++cx) {
         const std::size_t h = bucket(k, cx, cy);
         ++work;
