@@ -1,6 +1,7 @@
 // The time of impact of two discs (engine/core/src/disc_toi.hpp, internal): the quadratic
 // path taken without relative acceleration gives the quartic path's bits, and both find the
-// closed-form contact time of two discs in straight-line motion.
+// closed-form contact time of two discs in straight-line motion; the slope's root from its closed
+// form has the bisection's bits.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -55,6 +56,27 @@ TEST(TimeOfImpact, TheQuadraticPathGivesTheQuarticPathsBits) {
   // Enough of the cases bisect both f' and f for the comparison to mean something.
   EXPECT_GT(roots, 20000);
   EXPECT_GT(stationary, 20000);
+}
+
+TEST(TimeOfImpact, TheSlopesRootFromItsClosedFormHasTheBisectionsBits) {
+  // Quadratics whose slope's root lies anywhere from 2^-140 of the window to its end, over
+  // magnitudes from 2^-60 to 2^60: slope_root, where it answers, gives bisect_down's bits.
+  std::mt19937_64 rng(20261128);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int answered = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double horizon = std::ldexp(0.5 + unit(rng), i % 9 - 8);
+    const double root = horizon * std::ldexp(unit(rng), -static_cast<int>(140 * unit(rng)));
+    const double k2 = std::ldexp(0.5 + unit(rng), static_cast<int>(120 * unit(rng)) - 60);
+    const Quadratic f{1.0, -2.0 * k2 * root, k2};
+    if (!(f.slope(0.0) < 0.0 && f.slope(horizon) > 0.0)) continue;
+    const double want = bisect_down([&](double t) { return -f.slope(t); }, 0.0, horizon);
+    const double got = slope_root(f, horizon);
+    if (std::isnan(got)) continue;
+    ASSERT_EQ(bits(got), bits(want)) << "case " << i;
+    ++answered;
+  }
+  EXPECT_GT(answered, 120000);  // the rest: roots below 2^-100 of the window
 }
 
 TEST(TimeOfImpact, StraightLineMotionMeetsAtTheClosedFormTime) {

@@ -83,11 +83,35 @@ double bisect_down(const F& f, double lo, double hi) {
   return hi;
 }
 
+/// bisect_down(-f', 0, horizon)'s result for a Quadratic f with f'(0) < 0 < f'(horizon), or
+/// NaN where it is not found this way. f'(t) = k1 + t (2 k2) with k2 > 0 rounds to a value
+/// that never falls as t grows (each rounding is monotone), so the bisection, once its ends are
+/// adjacent doubles, stops at the one boundary: the least double t with f'(t) >= 0. That is
+/// found from the closed form -k1 / (2 k2) by stepping a few doubles, with the same bits. NaN
+/// (bisect instead) when the closed form is below horizon 2^-100, where 200 halvings may stop
+/// before the ends are adjacent, or when 64 steps do not reach the boundary.
+inline double slope_root(const Quadratic& f, double horizon) {
+  constexpr double none = std::numeric_limits<double>::quiet_NaN();
+  constexpr double up = std::numeric_limits<double>::infinity();
+  double t = -f.k1 / (2.0 * f.k2);
+  if (!(t >= std::ldexp(horizon, -100) && t <= horizon)) return none;
+  for (int i = 0; i < 64; ++i) {
+    if (!(f.slope(t) >= 0.0)) {
+      t = std::nextafter(t, up);
+      continue;
+    }
+    const double below = std::nextafter(t, 0.0);
+    if (!(below > 0.0 && f.slope(below) >= 0.0)) return t;
+    t = below;
+  }
+  return none;
+}
+
 /// The stationary points of f (roots of f', a cubic) in (0, horizon), ascending; returns
 /// their count. The cubic's own stationary points (roots of f'', a quadratic) split the window
 /// into intervals where f' is monotone, and each sign change is bisected. For a Quadratic f'
 /// is monotone on the whole window (f'' = 2 k2, constant: what the quartic's f'' gives when
-/// k3 = k4 = 0).
+/// k3 = k4 = 0), and its root is found from the closed form (slope_root).
 template <class Poly>
 int stationary_points(const Poly& f, double horizon, double* out) {
   const auto d1 = [&f](double t) { return f.slope(t); };
@@ -102,8 +126,14 @@ int stationary_points(const Poly& f, double horizon, double* out) {
     const double lo = cuts[i], hi = cuts[i + 1];
     const double flo = d1(lo), fhi = d1(hi);
     if ((flo > 0.0) == (fhi > 0.0) || flo == 0.0) continue;
-    const double root =
-        flo > 0.0 ? bisect_down(d1, lo, hi) : bisect_down([&](double t) { return -d1(t); }, lo, hi);
+    double root = std::numeric_limits<double>::quiet_NaN();
+    if constexpr (std::is_same_v<Poly, Quadratic>) {
+      if (flo < 0.0) root = slope_root(f, horizon);  // lo = 0, hi = horizon: no cuts
+    }
+    if (std::isnan(root)) {
+      root = flo > 0.0 ? bisect_down(d1, lo, hi)
+                       : bisect_down([&](double t) { return -d1(t); }, lo, hi);
+    }
     if (root > 0.0 && root < horizon) out[n++] = root;
   }
   return n;
