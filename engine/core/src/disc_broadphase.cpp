@@ -92,6 +92,7 @@ void DiscBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
     }
     level_[i] = k;
     const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
+    home_[i] = {cx, cy};
     if (s.count[k]++ == 0) s.lo_x[k] = s.hi_x[k] = cx, s.lo_y[k] = s.hi_y[k] = cy;
     s.lo_x[k] = std::min(s.lo_x[k], cx), s.hi_x[k] = std::max(s.hi_x[k], cx);
     s.lo_y[k] = std::min(s.lo_y[k], cy), s.hi_y[k] = std::max(s.hi_y[k], cy);
@@ -127,14 +128,12 @@ void DiscBroadphase::size_tables() {
   for (auto& c : cursor_) c.assign(2 * std::size_t{base}, 0);
 }
 
-void DiscBroadphase::count_keys(const Share& s, std::span<const SweptBox> boxes,
-                                std::span<const std::uint8_t> active,
+void DiscBroadphase::count_keys(const Share& s, std::span<const std::uint8_t> active,
                                 std::vector<std::uint32_t>& count) const {
   for (std::size_t i = s.begin; i < s.end; ++i) {  // the entries of each (bucket, static?) key
     const std::uint32_t k = level_[i];
     if (k == overflow) continue;
-    ++count[2 * bucket(k, cell_of(boxes[i].min_x, k), cell_of(boxes[i].min_y, k)) +
-            (active[i] == 0)];
+    ++count[2 * bucket(k, home_[i].cx, home_[i].cy) + (active[i] == 0)];
   }
 }
 
@@ -155,7 +154,7 @@ void DiscBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
   for (std::size_t i = s.begin; i < s.end; ++i) {  // in index order within each key
     const std::uint32_t k = level_[i];
     if (k == overflow) continue;
-    const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
+    const auto [cx, cy] = home_[i];
     entry_[cursor[2 * bucket(k, cx, cy) + (active[i] == 0)]++] = {
         boxes[i], static_cast<std::uint32_t>(i), cx, cy};
   }
@@ -289,13 +288,14 @@ bool DiscBroadphase::find_pairs(std::span<const SweptBox> boxes,
   const bool split = threads >= 2 && n >= parallel_min_ && n >= 2;
   share_[0].begin = 0, share_[0].end = share_[1].begin = split ? n / 2 : n, share_[1].end = n;
   level_.resize(n);
+  home_.resize(n);
   auto extents = [&](int t) { largest_extent(share_[t], boxes); };
   both(split, extents);
   set_levels(std::max(share_[0].e_top, share_[1].e_top));
   auto levels = [&](int t) { assign_levels(share_[t], boxes); };
   both(split, levels);
   size_tables();
-  auto count = [&](int t) { count_keys(share_[t], boxes, active, cursor_[t]); };
+  auto count = [&](int t) { count_keys(share_[t], active, cursor_[t]); };
   both(split, count);
   start_keys();
   auto fill = [&](int t) { fill_keys(share_[t], boxes, active, cursor_[t]); };

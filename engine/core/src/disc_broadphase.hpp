@@ -192,8 +192,8 @@ class DiscBroadphase {
   void set_levels(double e_top);
   void assign_levels(Share& s, std::span<const SweptBox> boxes);
   void size_tables();
-  void count_keys(const Share& s, std::span<const SweptBox> boxes,
-                  std::span<const std::uint8_t> active, std::vector<std::uint32_t>& count) const;
+  void count_keys(const Share& s, std::span<const std::uint8_t> active,
+                  std::vector<std::uint32_t>& count) const;
   void start_keys();
   void fill_keys(const Share& s, std::span<const SweptBox> boxes,
                  std::span<const std::uint8_t> active, std::vector<std::uint32_t>& cursor);
@@ -236,6 +236,10 @@ class DiscBroadphase {
                      std::vector<DiscPair>& out, std::uint64_t& rejected) const;
 
   std::vector<std::uint32_t> level_;  // per box: its level, or `overflow`
+  struct Cell {
+    std::int32_t cx, cy;
+  };
+  std::vector<Cell> home_;  // per box on a level: its home cell there
   std::array<Level, max_levels> levels_;
   double e_top_ = 1;              // the largest finite extent of the call, m
   std::uint64_t level_mask_ = 0;  // bit k: level k holds a box
