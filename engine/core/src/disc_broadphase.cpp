@@ -119,7 +119,9 @@ void DiscBroadphase::size_tables() {
     std::uint32_t wbits = bits(std::min(a.lo_x[k], b.lo_x[k]), std::max(a.hi_x[k], b.hi_x[k]));
     std::uint32_t hbits = bits(std::min(a.lo_y[k], b.lo_y[k]), std::max(a.hi_y[k], b.hi_y[k]));
     const auto budget = static_cast<std::uint32_t>(std::bit_width(2 * count - 1));
-    while (wbits + hbits > budget) (wbits >= hbits ? wbits : hbits) -= 1;
+    // Rows of cells wrap last: a row is then one run of buckets (scan_row). A level wider than
+    // tall by two binades or more wraps in x too.
+    while (wbits + hbits > budget) (hbits + 1 >= wbits ? hbits : wbits) -= 1;
     l.wmask = (std::uint32_t{1} << wbits) - 1, l.hmask = (std::uint32_t{1} << hbits) - 1;
     l.wshift = wbits;
     base += std::uint32_t{1} << (wbits + hbits);
