@@ -181,6 +181,61 @@ TEST(Discs, AFastDiscBouncesOffASmallStaticDisc) {
   }
 }
 
+/// The distance from point p to the segment from a to b, m.
+double to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const double ux = b.x - a.x, uy = b.y - a.y;
+  const double s =
+      std::clamp(((p.x - a.x) * ux + (p.y - a.y) * uy) / (ux * ux + uy * uy), 0.0, 1.0);
+  return std::hypot(p.x - a.x - s * ux, p.y - a.y - s * uy);
+}
+
+// A disc meets the floor, then the left wall, within one tick (a corner), and a static peg on
+// or off its way: it meets the peg exactly when its path, in three straight pieces, comes
+// within two radii of the peg (an independent reference), and where it is. The plane pass's
+// motion after its last wall, extrapolated back to its first, lies beyond the left wall (the
+// disc's mirror image); a disc pass that took that for the disc between its two walls passed
+// through pegs on its way and met pegs by its image. Elastic and frictionless: the disc keeps
+// its speed, 30 sqrt 2 m/s, and ends each tick inside the walls and clear of the peg (within
+// the slop, 0.5 % of a radius).
+TEST(Discs, ADiscBouncingInACornerMeetsAPegWhereItIs) {
+  const double r = 0.05, speed = 30.0 * std::sqrt(2.0), slop = 0.005 * r * (1.0 + 1e-9);
+  // From (0.5, 0.3) at (-30, -30) m/s: the floor at 1/120 s, the wall at 1/66.7 s, (0.1, 0.3)
+  // at the tick's end.
+  const Vec2 path[] = {{0.5, 0.3}, {0.25, 0.05}, {0.05, 0.25}, {0.1, 0.3}};
+  int met = 0, clear = 0;
+  for (int i = 0; i < 12; ++i) {
+    for (int j = 0; j < 12; ++j) {
+      detail::WorldKernel<double> w(
+          contact_settings(1.0 / 60.0, 1.0, 0.0, Integrator::semi_implicit_euler));
+      for (const Vec2 n : {Vec2{0.0, 1.0}, Vec2{1.0, 0.0}}) {  // the floor y = 0, the wall x = 0
+        (void)w.add_plane(PlaneDef{.normal = n, .offset = 0.0, .restitution = 1.0});
+      }
+      w.create_body(disc(1.0, path[0], {-30.0, -30.0}, r));
+      const Vec2 peg{0.06 + 0.03 * i, 0.06 + 0.03 * j};
+      w.create_body(disc(1.0, peg, {}, r, BodyType::static_body));
+      double nearest = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k)
+        nearest = std::min(nearest, to_segment(peg, path[k], path[k + 1]));
+      if (std::abs(nearest - 2.0 * r) < 1e-3) continue;  // grazing: either answer
+      for (int tick = 0; tick < 3; ++tick) {
+        w.step();
+        if (tick == 0) {
+          const bool hit = w.contact_stats().impacts > 0;
+          ASSERT_EQ(hit, nearest < 2.0 * r) << "peg (" << peg.x << ", " << peg.y << ")";
+          (hit ? met : clear) += 1;
+        }
+        const double x = w.x()[0], y = w.y()[0];
+        ASSERT_GE(x, r - slop) << "peg (" << peg.x << ", " << peg.y << ") tick " << tick;
+        ASSERT_GE(y, r - slop) << "peg (" << peg.x << ", " << peg.y << ") tick " << tick;
+        ASSERT_GE(std::hypot(x - peg.x, y - peg.y), 2.0 * r - slop) << "tick " << tick;
+        ASSERT_NEAR(std::hypot(w.vx()[0], w.vy()[0]), speed, 1e-9 * speed) << "tick " << tick;
+      }
+    }
+  }
+  EXPECT_GT(met, 30);  // pegs on the way
+  EXPECT_GT(clear, 30);
+}
+
 /// Discs of radius r in a box [-half, half] (ground at 0, walls) under gravity: a grid of
 /// `columns` × `rows` above the ground, jittered.
 detail::WorldKernel<double> pour(int columns, int rows, double r, double half,

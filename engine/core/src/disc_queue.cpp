@@ -74,6 +74,14 @@ bool DiscContacts<Real>::run_window(const Tick& tick, ContactStats& stats, Event
     if (ev.pair & switch_event) {  // a disc met its first plane event on its free motion
       const std::uint32_t k = ev.pair & ~switch_event;
       if (ev.stamp_a != stamp_[k]) continue;  // an impact came first
+      if (tick.after[discs_[k].plane_slot].t > ev.time) {
+        // Its plane events did not all fall at this time (a corner): the plane pass's motion
+        // after the last one, extrapolated back to this first one, lies beyond a wall until
+        // then, where a disc could meet it. Its walls are met here instead, from its free
+        // motion on, as after an impact.
+        predict_wall(tick, k, ev.time, dt, again);
+        continue;
+      }
       switch_to_plane_motion(tick, k);
       walled_[k] = 1;
       predict_pairs(k, motion_[k].t, dt, again);  // within its box, clear of the walls
