@@ -1,5 +1,6 @@
 // The time of impact of two discs (engine/core/src/disc_toi.hpp, internal): the quadratic
-// path taken without relative acceleration gives the quartic path's bits, and both find the
+// path taken without relative acceleration gives the quartic path's stationary points to the
+// bit and its roots to within a few doubles, each a sign change of the gap, and both find the
 // closed-form contact time of two discs in straight-line motion; the slope's root from its closed
 // form has the bisection's bits.
 #include <gtest/gtest.h>
@@ -34,7 +35,7 @@ std::uint64_t bits(double x) {
   return std::bit_cast<std::uint64_t>(x);
 }
 
-TEST(TimeOfImpact, TheQuadraticPathGivesTheQuarticPathsBits) {
+TEST(TimeOfImpact, TheQuadraticPathMeetsWhereTheQuarticPathDoes) {
   std::mt19937_64 rng(20261126);
   int roots = 0, stationary = 0;
   for (int i = 0; i < 200000; ++i) {
@@ -48,12 +49,21 @@ TEST(TimeOfImpact, TheQuadraticPathGivesTheQuarticPathsBits) {
     ASSERT_EQ(stationary_points(f, horizon, from_quadratic), n) << "case " << i;
     for (int k = 0; k < n; ++k) ASSERT_EQ(bits(from_quadratic[k]), bits(from_quartic[k]));
     stationary += n;
+    // The root: the quartic's bisected, the quadratic's from its closed form (falling_root),
+    // both where f changes sign: the same to within a few doubles, and each a sign change.
     const double t = first_root(q, horizon);
-    ASSERT_EQ(bits(first_root(f, horizon)), bits(t)) << "case " << i;
-    ASSERT_EQ(bits(first_contact(m, horizon)), bits(t)) << "case " << i;
+    const double tq = first_root(f, horizon);
+    ASSERT_EQ(bits(first_contact(m, horizon)), bits(tq)) << "case " << i;
+    ASSERT_EQ(t <= horizon, tq <= horizon) << "case " << i;
+    if (tq <= horizon) {
+      ASSERT_NEAR(tq, t, 1e-12 * horizon) << "case " << i;
+      ASSERT_LE(f(tq), 0.0) << "case " << i;
+      const double below = std::nextafter(tq, 0.0);
+      ASSERT_TRUE(below <= 0.0 || f(below) > 0.0) << "case " << i;
+    }
     roots += t <= horizon;
   }
-  // Enough of the cases bisect both f' and f for the comparison to mean something.
+  // Enough of the cases find both f' and f's roots for the comparison to mean something.
   EXPECT_GT(roots, 20000);
   EXPECT_GT(stationary, 20000);
 }

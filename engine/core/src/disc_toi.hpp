@@ -139,15 +139,44 @@ int stationary_points(const Poly& f, double horizon, double* out) {
   return n;
 }
 
+/// For a Quadratic f with f(lo) > 0 >= f(hi), f falling on [lo, hi]: a τ in (lo, hi] with
+/// f(τ) <= 0 < f at the double below τ (or that double is lo), found from the smaller root
+/// k0 / q, q = -(k1 - sqrt(k1² - 4 k0 k2)) / 2 (the cancellation-free form, Numerical Recipes
+/// §5.6), by stepping a few doubles. NaN (bisect instead) when the closed form has no real
+/// root or 64 steps do not reach a sign change.
+inline double falling_root(const Quadratic& f, double lo, double hi) {
+  constexpr double none = std::numeric_limits<double>::quiet_NaN();
+  const double disc = f.k1 * f.k1 - 4.0 * f.k0 * f.k2;
+  const double q = -0.5 * (f.k1 - std::sqrt(disc));
+  double t = std::clamp(f.k0 / q, std::nextafter(lo, hi), hi);
+  if (!(disc >= 0.0 && q > 0.0 && t > lo)) return none;
+  for (int i = 0; i < 64; ++i) {
+    if (f(t) > 0.0) {
+      t = std::nextafter(t, hi);
+      continue;
+    }
+    const double below = std::nextafter(t, lo);
+    if (!(below > lo && f(below) <= 0.0)) return t;
+    t = below;
+  }
+  return none;
+}
+
 /// The first τ in [0, horizon] at which f, positive at 0, falls through 0, or infinity: the
-/// window split at f's stationary points, and the first interval where f changes sign bisected.
+/// window split at f's stationary points, and the first interval where f changes sign bisected
+/// (a Quadratic's from its closed form, falling_root).
 template <class Poly>
 double first_root(const Poly& f, double horizon) {
   double cuts[5] = {0.0};
   const int nc = stationary_points(f, horizon, cuts + 1);
   cuts[nc + 1] = horizon;
   for (int i = 0; i <= nc; ++i) {
-    if (f(cuts[i + 1]) <= 0.0) return bisect_down(f, cuts[i], cuts[i + 1]);
+    if (!(f(cuts[i + 1]) <= 0.0)) continue;
+    if constexpr (std::is_same_v<Poly, Quadratic>) {
+      const double t = falling_root(f, cuts[i], cuts[i + 1]);
+      if (!std::isnan(t)) return t;
+    }
+    return bisect_down(f, cuts[i], cuts[i + 1]);
   }
   return std::numeric_limits<double>::infinity();
 }
