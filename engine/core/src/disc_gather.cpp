@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 #include "disc_contacts.hpp"
 
@@ -20,7 +21,11 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
   const double dist = length(dx, dy);
   const double gap = dist - (da.radius + db.radius);
   if (gap > slop * std::min(da.radius, db.radius)) return false;
-  const double nx = dist > 0.0 ? dx / dist : 0.0, ny = dist > 0.0 ? dy / dist : 1.0;
+  // Two discs at one point (dist 0) take n = (0, 1). The divisor is never 0: a compiler may
+  // divide before it selects, and Debug tests trap a division by zero (a divisor below the
+  // least normal double, never a contact's, is that least one).
+  const double safe = std::max(dist, std::numeric_limits<double>::min());
+  const double nx = dist > 0.0 ? dx / safe : 0.0, ny = dist > 0.0 ? dy / safe : 1.0;
   // A pair still apart that closes faster than one tick of relative acceleration is an
   // impact of the next tick, not a resting contact. The acceleration counts the pair's own
   // contact force of the last tick: its resting impulse λ_n, which changed the pair's relative

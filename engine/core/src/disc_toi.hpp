@@ -147,9 +147,11 @@ int stationary_points(const Poly& f, double horizon, double* out) {
 inline double falling_root(const Quadratic& f, double lo, double hi) {
   constexpr double none = std::numeric_limits<double>::quiet_NaN();
   const double disc = f.k1 * f.k1 - 4.0 * f.k0 * f.k2;
+  if (!(disc >= 0.0)) return none;  // (before the sqrt: Debug tests trap an invalid operation)
   const double q = -0.5 * (f.k1 - std::sqrt(disc));
+  if (!(q > 0.0)) return none;
   double t = std::clamp(f.k0 / q, std::nextafter(lo, hi), hi);
-  if (!(disc >= 0.0 && q > 0.0 && t > lo)) return none;
+  if (!(t > lo)) return none;
   for (int i = 0; i < 64; ++i) {
     if (f(t) > 0.0) {
       t = std::nextafter(t, hi);
