@@ -83,6 +83,23 @@ double bisect_down(const F& f, double lo, double hi) {
   return hi;
 }
 
+/// The least double t in (lo, hi] at which far(t) holds and does not at the double below it
+/// (or that double is lo), stepped a double at a time from t; NaN after 64 steps. Where `far`
+/// changes once across [lo, hi] (false at lo, true at hi) this is where it changes.
+template <class Far>
+double step_to_boundary(const Far& far, double t, double lo, double hi) {
+  for (int i = 0; i < 64; ++i) {
+    if (!far(t)) {
+      t = std::nextafter(t, hi);
+      continue;
+    }
+    const double below = std::nextafter(t, lo);
+    if (!(below > lo && far(below))) return t;
+    t = below;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 /// bisect_down(-f', 0, horizon)'s result for a Quadratic f with f'(0) < 0 < f'(horizon), or
 /// NaN where it is not found this way. f'(t) = k1 + t (2 k2) with k2 > 0 rounds to a value
 /// that never falls as t grows (each rounding is monotone), so the bisection, once its ends are
@@ -91,20 +108,11 @@ double bisect_down(const F& f, double lo, double hi) {
 /// (bisect instead) when the closed form is below horizon 2^-100, where 200 halvings may stop
 /// before the ends are adjacent, or when 64 steps do not reach the boundary.
 inline double slope_root(const Quadratic& f, double horizon) {
-  constexpr double none = std::numeric_limits<double>::quiet_NaN();
-  constexpr double up = std::numeric_limits<double>::infinity();
-  double t = -f.k1 / (2.0 * f.k2);
-  if (!(t >= std::ldexp(horizon, -100) && t <= horizon)) return none;
-  for (int i = 0; i < 64; ++i) {
-    if (!(f.slope(t) >= 0.0)) {
-      t = std::nextafter(t, up);
-      continue;
-    }
-    const double below = std::nextafter(t, 0.0);
-    if (!(below > 0.0 && f.slope(below) >= 0.0)) return t;
-    t = below;
+  const double t = -f.k1 / (2.0 * f.k2);
+  if (!(t >= std::ldexp(horizon, -100) && t <= horizon)) {
+    return std::numeric_limits<double>::quiet_NaN();
   }
-  return none;
+  return step_to_boundary([&f](double s) { return f.slope(s) >= 0.0; }, t, 0.0, horizon);
 }
 
 /// The stationary points of f (roots of f', a cubic) in (0, horizon), ascending; returns
@@ -150,18 +158,9 @@ inline double falling_root(const Quadratic& f, double lo, double hi) {
   if (!(disc >= 0.0)) return none;  // (before the sqrt: Debug tests trap an invalid operation)
   const double q = -0.5 * (f.k1 - std::sqrt(disc));
   if (!(q > 0.0)) return none;
-  double t = std::clamp(f.k0 / q, std::nextafter(lo, hi), hi);
+  const double t = std::clamp(f.k0 / q, std::nextafter(lo, hi), hi);
   if (!(t > lo)) return none;
-  for (int i = 0; i < 64; ++i) {
-    if (f(t) > 0.0) {
-      t = std::nextafter(t, hi);
-      continue;
-    }
-    const double below = std::nextafter(t, lo);
-    if (!(below > lo && f(below) <= 0.0)) return t;
-    t = below;
-  }
-  return none;
+  return step_to_boundary([&f](double s) { return f(s) <= 0.0; }, t, lo, hi);
 }
 
 /// The first τ in [0, horizon] at which f, positive at 0, falls through 0, or infinity: the
