@@ -215,11 +215,9 @@ bool DiscBroadphase::scan_row(const Entry& q, std::size_t from, std::uint32_t le
   for (std::size_t p = std::max(from, std::size_t{start_[2 * h]}), end = start_[2 * (h + span) + 2];
        p < end; ++p) {
     const Entry& e = entry_[p];
-    // Every test made (`&`, not `&&`): one branch a candidate, seldom taken, where the
-    // short-circuit gives four that a branch predictor cannot learn.
-    const bool hit = (e.cy == cy) & (static_cast<std::uint64_t>(std::int64_t{e.cx} - x0) <= span) &
-                     (q.box.min_x <= e.box.max_x) & (e.box.min_x <= q.box.max_x) &
-                     (q.box.min_y <= e.box.max_y) & (e.box.min_y <= q.box.max_y);
+    const bool overlap = boxes_overlap(q.box, e.box);
+    const bool hit =
+        (e.cy == cy) & (static_cast<std::uint64_t>(std::int64_t{e.cx} - x0) <= span) & overlap;
     if (hit) add(q.index, e.index, out, rejected);
   }
   return true;
