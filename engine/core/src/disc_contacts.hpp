@@ -354,9 +354,13 @@ class DiscContacts {
   /// What becomes of a pair's impact due at `now` (s): resolved (both discs below
   /// max_impacts, e = 1, or the pair would pass through), left to the resting solver (it ends
   /// the tick overlapping), or its discs held where they meet (it would end the tick with its
-  /// centres crossed, or deeper than hold_depth).
+  /// centres crossed, or deeper than hold_depth, or a disc of it that met a wall in the tick
+  /// would end it clear of every wall, or one is held already).
   enum class PastCap { impact, rest, hold };
-  [[nodiscard]] PastCap past_cap(std::uint32_t pair, double now, double dt) const;
+  [[nodiscard]] PastCap past_cap(const Tick& tick, std::uint32_t pair, double now);
+  /// True when disc k, on its motion, ends the tick touching a plane or a segment (within the
+  /// slop, as the resting solver gathers its wall contacts), m.
+  [[nodiscard]] bool ends_on_a_wall(const Tick& tick, std::uint32_t k);
   /// Pushes pair's next impact after `now` (s) onto the event queue, if it has one this tick.
   void predict(std::uint32_t pair, double now, double dt);
   /// The pair's next impact after `now` into out; false when it has none this tick.

@@ -4,14 +4,17 @@
 // the push-out can part never ends on the wrong side (docs/ROBUSTNESS.md, "No physics dropped
 // by a cap").
 #include <algorithm>
+#include <cmath>
 
 #include "disc_contacts.hpp"
+#include "segment_set.hpp"
 
 namespace fixstep::detail {
 
 template <class Real>
-typename DiscContacts<Real>::PastCap DiscContacts<Real>::past_cap(std::uint32_t pair, double now,
-                                                                  double dt) const {
+typename DiscContacts<Real>::PastCap DiscContacts<Real>::past_cap(const Tick& tick,
+                                                                  std::uint32_t pair, double now) {
+  const double dt = tick.dt;
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
   if (impacts_[a] < max_impacts && impacts_[b] < max_impacts) return PastCap::impact;
   if (std::max(discs_[a].restitution, discs_[b].restitution) >= 1.0) return PastCap::impact;
@@ -21,15 +24,47 @@ typename DiscContacts<Real>::PastCap DiscContacts<Real>::past_cap(std::uint32_t 
   if (gap > 0.0) return PastCap::impact;  // it would pass through
   // It ends the tick overlapping: the resting solver stops it approaching, unless its centres
   // would cross (the push-out would then part them the wrong way) or it would end deeper than
-  // hold_depth radii, or one of them met a wall in the tick or is held already: its discs are
-  // then held where they meet.
+  // hold_depth radii, or one of them met a wall in the tick and ends it clear of the walls, or
+  // one is held already: its discs are then held where they meet.
   const double cross = ex * (ma.px(now) - mb.px(now)) + ey * (ma.py(now) - mb.py(now));
   const double r = std::min(discs_[a].radius, discs_[b].radius);
   const bool deep = cross <= 0.0 || gap < -hold_depth * r;
-  // A disc that met a wall in the tick may be pressed on into it: the resting solver sees a wall
-  // only where the disc ends the tick touching it.
-  const bool walled = walled_[a] != 0 || walled_[b] != 0;
-  return deep || walled || held_[a].on || held_[b].on ? PastCap::hold : PastCap::rest;
+  if (deep || held_[a].on || held_[b].on) return PastCap::hold;
+  // A disc that met a wall in the tick may be pressed on into it. The resting solver sees a
+  // wall only where the disc ends the tick touching it; there it stops the disc approaching
+  // the wall as it stops the pair (a pile's bottom row on the floor, whose holds would spread
+  // up the pile through the held discs' pairs and freeze it mid-fall).
+  for (const std::uint32_t k : {a, b}) {
+    if (walled_[k] != 0 && !ends_on_a_wall(tick, k)) return PastCap::hold;
+  }
+  return PastCap::rest;
+}
+
+template <class Real>
+bool DiscContacts<Real>::ends_on_a_wall(const Tick& tick, std::uint32_t k) {
+  const DiscMotion& m = motion_[k];
+  const double r = discs_[k].radius, x = m.px(tick.dt), y = m.py(tick.dt);
+  for (const PlaneDef& p : tick.planes) {
+    if (p.normal.x * x + p.normal.y * y - p.offset - r <= slop * r) return true;
+  }
+  if (tick.segments == nullptr || tick.segments->empty()) return false;
+  const double reach = r * (1.0 + slop);
+  tick.segments->query(x - reach, y - reach, x + reach, y + reach, wall_found_);
+  for (const std::uint32_t i : wall_found_) {
+    const SegmentShape& s = tick.segments->shapes()[i];
+    const Vec2 u = tick.segments->velocity(i);
+    SegmentTouch t;
+    if (!segment_touch(s, x - u.x * tick.dt, y - u.y * tick.dt, t)) continue;
+    const double gap = t.distance - r;
+    if (gap > slop * r || !segment_acts(s, x0_[k], y0_[k], r, t.nx, t.ny, gap)) continue;
+    // Still apart and closing faster than a tick of acceleration, it is the next tick's impact
+    // (disc_segments.cpp), not a resting contact.
+    const double s_end = tick.dt - m.t;
+    const double vn =
+        (m.ux + s_end * m.ax - m.dx - u.x) * t.nx + (m.uy + s_end * m.ay - m.dy - u.y) * t.ny;
+    if (gap <= 0.0 || -vn <= std::abs(m.ax * t.nx + m.ay * t.ny) * tick.dt) return true;
+  }
+  return false;
 }
 
 template <class Real>

@@ -103,7 +103,7 @@ bool DiscContacts<Real>::run_window(const Tick& tick, ContactStats& stats, Event
     }
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
-    const PastCap past = past_cap(ev.pair, ev.time, dt);
+    const PastCap past = past_cap(tick, ev.pair, ev.time);
     if (past == PastCap::rest) continue;  // the resting solver's (see disc_contacts.hpp)
     if (again > budget.cap) {             // an impact due that the cap leaves unresolved
       cap_ = CapHit{"max_tick_predictions", budget.cap, a, b, ev.time};
