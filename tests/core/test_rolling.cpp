@@ -199,6 +199,33 @@ TEST(Rolling, AnElasticGasWithFrictionKeepsItsAngularMomentum) {
   EXPECT_NEAR(run.l1, run.l0, 1e-9 * std::abs(run.l0));
 }
 
+// Two discs fall side by side onto a rough floor (μ = 1, e = 0) at the same height and speed;
+// B, moving right at 3 m/s, meets A, at rest across, 4 ms into the tick, before either reaches
+// the floor (12 ms in): elastic and of equal mass, they swap their horizontal velocities with
+// no slip between them (their relative velocity lies along the line of centres), so B lands
+// with no horizontal velocity and does not turn, and A lands sliding at 3 m/s and ends rolling
+// (v = ω r at the end of the tick: its slip stopped within μ's bound). The plane pass, which
+// meets the floor before the disc impacts on each disc's own free motion, turned B by B's
+// slip; before the disc pass took a disc's spin from the plane pass only with its motion, B
+// landed with that turn and no velocity to match, and rolled off at 0.44 m/s (-4.4 rad/s).
+TEST(Rolling, ADiscKnockedBeforeItLandsTurnsByItsOwnLanding) {
+  WorldSettings s = rolling_world(1.0, 1.0, Integrator::semi_implicit_euler);
+  detail::WorldKernel<double> w(s);
+  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .restitution = 0.0, .friction = 1.0});
+  const double r = 0.1, u = 3.0, fall = 1.0, meet = 0.004, land = 0.012;
+  // Falling at `fall` m/s under g, they reach the floor `land` s into the tick.
+  const double y = r + fall * land + 0.5 * 9.81 * land * land;
+  w.create_body(rolling_disc({0.0, y}, {0.0, -fall}, r, 0.0));                // A
+  w.create_body(rolling_disc({-2.0 * r - u * meet, y}, {u, -fall}, r, 0.0));  // B
+  w.step();
+  ASSERT_FALSE(w.fault().has_value());
+  EXPECT_EQ(w.contact_stats().impacts, 1u);
+  EXPECT_NEAR(w.vx()[1], 0.0, 1e-9);
+  EXPECT_NEAR(w.angular_velocity()[1], 0.0, 1e-9);  // B lands without turning
+  EXPECT_GT(w.vx()[0], 1.0);                        // A slid on and now rolls
+  EXPECT_NEAR(w.vx()[0] + w.angular_velocity()[0] * r, 0.0, 1e-9);
+}
+
 // The pile of bench/discs_scene.cpp with rolling discs: 6 000 discs (r = 5 cm, 1 kg) packed
 // hexagonally 10 rows deep wall to wall, dropped from a millionth of a diameter apart, plastic
 // (e = 0, μ = 0.5). They settle within half a second as the discs without rolling do. Before a

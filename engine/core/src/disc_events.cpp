@@ -136,6 +136,10 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
       const PlaneMotion& p = tick.after[d.plane_slot];
       m.dx = p.free_dx, m.dy = p.free_dy, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
       m.ax = p.free_ax, m.ay = p.free_ay;
+      // Its spin too: the plane pass's friction turned it with the same impulse that changed
+      // its velocity, so the two go together (a disc pass taking the turn without the velocity
+      // change would make energy).
+      if (rolling_) ew_[k] = p.free_w;
       plane_box(p, m, pad, dt, b);
     } else {
       // The box of the motion over the whole tick.
@@ -163,6 +167,7 @@ void DiscContacts<Real>::switch_to_plane_motion(const Tick& tick, std::uint32_t 
   DiscMotion& m = motion_[k];
   m.t = p.t, m.x = p.x, m.y = p.y, m.ux = p.ux, m.uy = p.uy, m.ax = p.ax, m.ay = p.ay;
   m.dx = p.dx, m.dy = p.dy;
+  if (rolling_) ew_[k] = double(tick.spin[discs_[k].body]);  // the spin after its last event
   ++stamp_[k];
 }
 

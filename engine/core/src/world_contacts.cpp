@@ -151,6 +151,7 @@ struct detail::PlaneWay {
   bool touched = false;  ///< some plane or segment acted on the body this tick
   double first = 0;      ///< when one first did, s
   V2 free_offset;        ///< the free motion's offset δ
+  double free_w = 0;     ///< a rolling disc's spin before the planes turned it, rad/s
   bool bounced = false;  ///< some impact was a bounce (the disc phases start from it)
   Vec2 start;            ///< its centre at the tick's start (one-way segments), m
 };
@@ -208,6 +209,7 @@ void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t k, PlaneTally&
   if (rolling_ && inv_inertia_[j] > 0.0) {
     w.turn = Spin{double(spin_[j]), mass_[j] * r * r * inv_inertia_[j]};
     w.spin = &w.turn;
+    w.free_w = w.turn.w;
   }
   push_out_of_surfaces(w, r, rel);
   follow_plane_impacts(w, j, r, tally);
@@ -332,8 +334,8 @@ void detail::WorldKernel<Real>::store_plane_way(std::size_t k, std::uint32_t j, 
   if (w.bounced || w.first > 0.0) {
     const V2 a = w.surfaces.a_free, d = w.free_offset;
     contact_.after[k] =
-        detail::PlaneMotion{m.t,        m.x.x,      m.x.y,   m.v.x, m.v.y, m.a.x, m.a.y,
-                            m.offset.x, m.offset.y, w.first, a.x,   a.y,   d.x,   d.y};
+        detail::PlaneMotion{m.t,        m.x.x,   m.x.y, m.v.x, m.v.y, m.a.x, m.a.y,   m.offset.x,
+                            m.offset.y, w.first, a.x,   a.y,   d.x,   d.y,   w.free_w};
   }
   m.advance(settings_.dt - m.t);
   x_[j] = static_cast<Real>(m.x.x), y_[j] = static_cast<Real>(m.x.y);

@@ -84,10 +84,11 @@ struct ImplicitSolverDeleter {
 /// the disc-disc contacts continue: time t (s into the tick; < 0: no plane impact this tick),
 /// position, model velocity and acceleration at t, and the integrator's velocity offset; the
 /// time of its first plane event (s), before which it moves on its free motion, of acceleration
-/// free_a and offset free_d from its start state.
+/// free_a and offset free_d from its start state, and (a rolling disc) spin free_w (rad/s):
+/// the spin before the plane pass's friction turned it.
 struct PlaneMotion {
   double t = -1.0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;
-  double first = 0, free_ax = 0, free_ay = 0, free_dx = 0, free_dy = 0;
+  double first = 0, free_ax = 0, free_ay = 0, free_dx = 0, free_dy = 0, free_w = 0;
 };
 /// One body's way through a tick's planes and segments, and the tick's count of them
 /// (world_contacts.cpp).
