@@ -518,6 +518,15 @@ class DiscContacts {
   void gather_segment_contacts(const Tick& tick, std::uint32_t k);
   /// overlap_of() for a segment contact: the depth (m) and normal at the closest feature now.
   double segment_overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny) const;
+  /// Contact c's rolling turn: each disc's radius as its arm and radius / inertia as its turn
+  /// (a plane's or a segment's b: 0 and 0).
+  [[nodiscard]] RollRow roll_row(const RestContact& c) const {
+    const Disc& a = discs_[c.a];
+    RollRow t{a.radius, 0.0, a.radius * a.inv_inertia, 0.0};
+    if (c.b < discs_.size())
+      t.arm_b = discs_[c.b].radius, t.turn_b = t.arm_b * discs_[c.b].inv_inertia;
+    return t;
+  }
   /// Turns row i's rolling discs by the tangential impulse lt (N·s along t = (-n_y, n_x) on a).
   void turn(std::uint32_t i, double lt) {
     const RollRow& t = roll_rows_[i];

@@ -54,9 +54,8 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
   c.mass = c.mass_t = 1.0 / (da.inv_mass + db.inv_mass);
   c.friction = std::sqrt(da.friction * db.friction);
   if (rolling_) {
-    c.arm_a = da.radius, c.arm_b = db.radius;
-    c.turn_a = da.radius * da.inv_inertia, c.turn_b = db.radius * db.inv_inertia;
-    c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + c.arm_a * c.turn_a + c.arm_b * c.turn_b);
+    const RollRow t = roll_row(c);
+    c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + t.arm_a * t.turn_a + t.arm_b * t.turn_b);
   }
   return true;
 }
@@ -171,8 +170,8 @@ RestContact DiscContacts<Real>::wall_contact(std::uint32_t k, std::uint32_t b, d
   c.inv_a = d.inv_mass;
   c.friction = friction;
   if (rolling_) {
-    c.arm_a = d.radius, c.turn_a = d.radius * d.inv_inertia;
-    c.mass_t = 1.0 / (d.inv_mass + c.arm_a * c.turn_a);
+    const RollRow t = roll_row(c);
+    c.mass_t = 1.0 / (d.inv_mass + t.arm_a * t.turn_a);
   }
   return c;
 }

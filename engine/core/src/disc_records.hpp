@@ -103,9 +103,9 @@ struct RestContact {
   /// The radii r_a + r_b (r_a for a plane or a segment) and the smaller radius, m.
   double radii = 0, r_min = 0;
   /// Rolling discs: the mass along the tangent at the contact point, kg (1 / (1/m_a + 1/m_b +
-  /// r_a²/I_a + r_b²/I_b); `mass` without rolling), the radii r_a, r_b from the centres to the
-  /// contact point (m; 0 for a plane and without rolling) and r/I of each (rad/s per N·s).
-  double mass_t = 0, arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
+  /// r_a²/I_a + r_b²/I_b); `mass` without rolling). (The arms and turns the rows need are the
+  /// discs' own: roll_row().)
+  double mass_t = 0;
   bool kinematic_a = false;  ///< a is a moving kinematic disc (its work is external)
   bool kinematic_b = false;  ///< b is a moving kinematic disc or segment (its work is external)
   /// b's velocity when b is a plane or a segment (m/s): a kinematic body's segment moves.

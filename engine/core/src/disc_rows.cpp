@@ -57,7 +57,7 @@ void DiscContacts<Real>::build_rows() {
       } else {
         r.b = c.kinematic_b ? fixed(c.bvx, c.bvy, 0.0) : part;  // a moving segment, or still
       }
-      if (rolling_) roll_rows_[i] = RollRow{c.arm_a, c.arm_b, c.turn_a, c.turn_b};
+      if (rolling_) roll_rows_[i] = roll_row(c);
       r.nx = c.nx, r.ny = c.ny, r.mass = c.mass, r.mass_t = c.mass_t, r.friction = c.friction;
       r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
       const double inv_a = c.inv_a, inv_b = c.b < n ? c.inv_b : 0.0;
