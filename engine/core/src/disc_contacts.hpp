@@ -43,8 +43,8 @@
 //     velocity Verlet, RK4 and Forest–Ruth; (n+1)/2n for semi-implicit and implicit Euler at
 //     n substeps; (n-1)/2n for explicit Euler). A stack at rest is then held exactly by the
 //     integrator's own step. An overlap left beyond the slop is pushed out along the normal
-//     (positions only, split by inverse mass, at most max_push_out of the radius a sweep;
-//     an overlap within push_out_tolerance of the slop is left: rounding).
+//     to half the slop (positions only, split by inverse mass, at most max_push_out of the
+//     radius a sweep; an overlap within push_out_tolerance of the slop is left: rounding).
 // With rolling discs (ContactSettings::rolling) friction, in impacts and at rest, acts on the
 // slip at the contact point, (v_a - v_b)·t - ω_a r_a - ω_b r_b (t = (-n_y, n_x)), with the
 // tangential mass 1 / (1/m_a + 1/m_b + r_a²/I_a + r_b²/I_b), and its impulse λ t on a turns a by
@@ -269,6 +269,14 @@ class DiscContacts {
   /// pile pushed out to the slop stays within rounding of it, and without this margin those
   /// rounding-sized overlaps kept every push-out iteration busy on a pile at rest.
   static constexpr double push_out_tolerance = 1e-6;
+  /// Where the push-out leaves an overlap it pushes, as a fraction of the slop: half of it, so
+  /// that a pushed pair has room before it is pushed again. Pushed to the slop itself, a
+  /// settling pile's pairs were pushed back and forth for some 200 ticks (every push deepens
+  /// the neighbours' overlaps), the contacts' normals turned with them, and the velocity
+  /// iterations ran to their bound on every one of those ticks; with the room, the 5 cm pile
+  /// of 10³–10⁵ discs comes to rest (one sweep of each a tick) by tick 40
+  /// (docs/perf/contact_solver_plan.md).
+  static constexpr double push_target = 0.5;
 
  private:
   // the discs a tick visits (disc_live.cpp)

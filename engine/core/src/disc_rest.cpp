@@ -226,7 +226,7 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
       most = std::max(most, depth);
       if (depth <= (slop + push_out_tolerance) * r.r_min + storage_rounding(r)) continue;
       any = true;
-      const double push = std::min(depth - slop * r.r_min, max_push_out * r.r_min);
+      const double push = std::min(depth - push_target * slop * r.r_min, max_push_out * r.r_min);
       const double pa = r.w_a * push, pb = r.w_b * push;
       ex[r.a] += pa * nx, ey[r.a] += pa * ny;
       if (r.w_a > 0.0) moved[r.a] = 1;
