@@ -17,6 +17,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "packed_pile.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -238,25 +239,8 @@ TEST(Rolling, APileOfRollingDiscsSettles) {
   WorldSettings s{.dt = 1.0 / 60.0};
   s.contacts = ContactSettings{.restitution = 0.0, .friction = 0.5, .rolling = true};
   detail::WorldKernel<double> w(s);
-  const double r = 0.05, spacing = 2.0 * r * (1.0 + 1e-6), rise = std::sqrt(3.0) / 2.0 * spacing;
-  const int rows = 10, wide = 600;
-  const double width = wide * spacing;
-  for (const auto& [n, offset] : {std::pair{Vec2{0.0, 1.0}, 0.0}, std::pair{Vec2{1.0, 0.0}, 0.0},
-                                  std::pair{Vec2{-1.0, 0.0}, -width}}) {
-    w.add_plane(PlaneDef{.normal = n, .offset = offset, .restitution = 0.0, .friction = 0.5});
-  }
-  for (int row = 0; row < rows; ++row) {
-    const bool odd = row % 2 == 1;
-    for (int i = 0; i < (odd ? wide - 1 : wide); ++i) {
-      BodyDef b;
-      b.body = Body{
-          .mass = 1.0,
-          .position = {(odd ? spacing : spacing / 2.0) + i * spacing, spacing / 2.0 + row * rise}};
-      b.gravity = Gravity{{0.0, -9.81}};
-      b.collider = Collider{.radius = r};
-      w.create_body(b);
-    }
-  }
+  const double r = 0.05;
+  test::add_packed_pile(w, 10, 600, r, 0.5);
   auto kinetic = [&] {
     double e = 0.0;
     for (std::size_t k = 0; k < w.body_count(); ++k) {
