@@ -284,9 +284,9 @@ TEST(Discs, APileSettlesWithoutSinking) {
 
 // The pile of bench/discs_scene.cpp, 10 rows of 100 discs (r = 5 cm, e = 0, μ = 0.5) packed
 // wall to wall: it comes to rest within 40 ticks. Its ticks 41-60 (the benchmark's window) run
-// at most four velocity and two position sweeps each (1-3 and 1), its deepest overlap the slop. While the
-// push-out left the pairs it pushed at the slop itself, they were pushed back and forth and
-// every one of those ticks ran all 20 and 10 (until about tick 150).
+// at most four velocity and two position sweeps each (1-3 and 1), its deepest overlap the
+// slop. While the push-out left the pairs it pushed at the slop itself, they were pushed back
+// and forth and every one of those ticks ran all 20 and 10 (until about tick 150).
 TEST(Discs, APackedPileComesToRestWithinFortyTicks) {
   WorldSettings s{.dt = 1.0 / 60.0};
   s.contacts = ContactSettings{.restitution = 0.0, .friction = 0.5};
