@@ -260,6 +260,11 @@ class DiscContacts {
   static constexpr double window_radii = 4.0;
   /// Overlap left alone, as a fraction of the smaller radius (Box2D's linear slop).
   static constexpr double slop = 0.005;
+  /// True when a disc of radius r (m) centred at (x, y) (m) touches plane p within the slop:
+  /// a resting contact with it.
+  static bool on_plane(const PlaneDef& p, double x, double y, double r) {
+    return !(p.normal.x * x + p.normal.y * y - p.offset - r > slop * r);
+  }
   /// How far a disc's box reaches beyond its centre's path: its radius and twice the slop of
   /// it, m (so that pairs within the slop are candidates).
   static double box_pad(const Disc& d) { return d.radius * (1.0 + 2.0 * slop); }
@@ -524,6 +529,12 @@ class DiscContacts {
   /// Appends disc k's resting contacts with the segments near its end position, in segment
   /// order (key k << 32 | n + planes + segment), as gather_contacts() does for planes.
   void gather_segment_contacts(const Tick& tick, std::uint32_t k);
+  /// True when disc k at (x, y) (m), at the integrator's velocity (vx, vy) (m/s) at the tick's
+  /// end, rests on segment i: within the slop of its closest feature (into t), on a side where
+  /// it acts, and not closing faster than a tick of its acceleration (then it is the next
+  /// tick's impact).
+  bool rests_on_segment(const Tick& tick, std::uint32_t k, std::uint32_t i, double x, double y,
+                        double vx, double vy, SegmentTouch& t) const;
   /// overlap_of() for a segment contact: the depth (m) and normal at the closest feature now.
   double segment_overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny) const;
   /// Contact c's rolling turn: each disc's radius as its arm and radius / inertia as its turn

@@ -151,8 +151,7 @@ void DiscContacts<Real>::plane_contacts_of(const Tick& tick, std::uint32_t k,
   if (!d.dynamic || d.sensor) return;
   for (std::uint32_t i = 0; i < tick.planes.size(); ++i) {
     const PlaneDef& p = tick.planes[i];
-    const double gap = p.normal.x * ex_[k] + p.normal.y * ey_[k] - p.offset - d.radius;
-    if (gap > slop * d.radius) continue;
+    if (!on_plane(p, ex_[k], ey_[k], d.radius)) continue;
     out.push_back(wall_contact(k, n + i, p.normal.x, p.normal.y, p.friction));
   }
 }

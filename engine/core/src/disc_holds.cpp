@@ -4,7 +4,6 @@
 // the push-out can part never ends on the wrong side (docs/ROBUSTNESS.md, "No physics dropped
 // by a cap").
 #include <algorithm>
-#include <cmath>
 
 #include "disc_contacts.hpp"
 #include "segment_set.hpp"
@@ -42,27 +41,19 @@ typename DiscContacts<Real>::PastCap DiscContacts<Real>::past_cap(const Tick& ti
 
 template <class Real>
 bool DiscContacts<Real>::ends_on_a_wall(const Tick& tick, std::uint32_t k) {
+  // Where its motion ends the tick, tested as the gather tests the walls there.
   const DiscMotion& m = motion_[k];
   const double r = discs_[k].radius, x = m.px(tick.dt), y = m.py(tick.dt);
   for (const PlaneDef& p : tick.planes) {
-    if (p.normal.x * x + p.normal.y * y - p.offset - r <= slop * r) return true;
+    if (on_plane(p, x, y, r)) return true;
   }
   if (tick.segments == nullptr || tick.segments->empty()) return false;
-  const double reach = r * (1.0 + slop);
+  const double reach = r * (1.0 + slop), s = tick.dt - m.t;
+  const double vx = m.ux + s * m.ax - m.dx, vy = m.uy + s * m.ay - m.dy;  // the integrator's
   tick.segments->query(x - reach, y - reach, x + reach, y + reach, wall_found_);
+  SegmentTouch t;
   for (const std::uint32_t i : wall_found_) {
-    const SegmentShape& s = tick.segments->shapes()[i];
-    const Vec2 u = tick.segments->velocity(i);
-    SegmentTouch t;
-    if (!segment_touch(s, x - u.x * tick.dt, y - u.y * tick.dt, t)) continue;
-    const double gap = t.distance - r;
-    if (gap > slop * r || !segment_acts(s, x0_[k], y0_[k], r, t.nx, t.ny, gap)) continue;
-    // Still apart and closing faster than a tick of acceleration, it is the next tick's impact
-    // (disc_segments.cpp), not a resting contact.
-    const double s_end = tick.dt - m.t;
-    const double vn =
-        (m.ux + s_end * m.ax - m.dx - u.x) * t.nx + (m.uy + s_end * m.ay - m.dy - u.y) * t.ny;
-    if (gap <= 0.0 || -vn <= std::abs(m.ax * t.nx + m.ay * t.ny) * tick.dt) return true;
+    if (rests_on_segment(tick, k, i, x, y, vx, vy, t)) return true;
   }
   return false;
 }

@@ -22,20 +22,30 @@ void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t
     const SegmentShape& s = tick.segments->shapes()[i];
     const Vec2 u = tick.segments->velocity(i);
     SegmentTouch t;
-    if (!segment_touch(s, x - u.x * tick.dt, y - u.y * tick.dt, t)) continue;  // a neighbour's
-    const double gap = t.distance - d.radius;
-    if (gap > slop * d.radius) continue;
-    if (!segment_acts(s, x0_[k], y0_[k], d.radius, t.nx, t.ny, gap)) continue;  // one-way
-    // Still apart and closing faster than a tick of acceleration: the next tick's impact.
-    const double vn = (evx_[k] - u.x) * t.nx + (evy_[k] - u.y) * t.ny;
-    const double cn = motion_[k].ax * t.nx + motion_[k].ay * t.ny;
-    if (gap > 0.0 && -vn > std::abs(cn) * tick.dt) continue;
+    if (!rests_on_segment(tick, k, i, x, y, evx_[k], evy_[k], t)) continue;
     RestContact c = wall_contact(k, base + i, t.nx, t.ny, s.friction);
     c.bvx = u.x, c.bvy = u.y;
     c.kinematic_b = u.x != 0.0 || u.y != 0.0;
     kinematic_contacts_ = kinematic_contacts_ || c.kinematic_b;
     contacts_.push_back(c);
   }
+}
+
+template <class Real>
+bool DiscContacts<Real>::rests_on_segment(const Tick& tick, std::uint32_t k, std::uint32_t i,
+                                          double x, double y, double vx, double vy,
+                                          SegmentTouch& t) const {
+  const double r = discs_[k].radius;
+  const SegmentShape& s = tick.segments->shapes()[i];
+  const Vec2 u = tick.segments->velocity(i);
+  if (!segment_touch(s, x - u.x * tick.dt, y - u.y * tick.dt, t)) return false;  // a neighbour's
+  const double gap = t.distance - r;
+  if (gap > slop * r) return false;
+  if (!segment_acts(s, x0_[k], y0_[k], r, t.nx, t.ny, gap)) return false;  // one-way
+  // Still apart and closing faster than a tick of acceleration: the next tick's impact.
+  const double vn = (vx - u.x) * t.nx + (vy - u.y) * t.ny;
+  const double cn = motion_[k].ax * t.nx + motion_[k].ay * t.ny;
+  return !(gap > 0.0 && -vn > std::abs(cn) * tick.dt);
 }
 
 template <class Real>
