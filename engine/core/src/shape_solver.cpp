@@ -3,6 +3,7 @@
 // push-out of the overlap left on positions only.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "fixstep/core/stop_request.hpp"
 #include "joint_solver.hpp"
@@ -294,8 +295,14 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
     if (r.a != none) d = d - moved(r.a, r.ra);
     return r.separation + dot(d, r.n);
   };
+  // Each body's turn since the start, made again only where its angle has changed since
+  // (turned_at_: the angle it was made at; NaN at first, unequal to any).
+  turned_at_.assign(state_.size(), std::numeric_limits<double>::quiet_NaN());
   auto update_turns = [&] {
-    for (ShapeState& s : state_) s.turn = rot_of(s.a - s.a0);
+    for (std::size_t k = 0; k < state_.size(); ++k) {
+      ShapeState& s = state_[k];
+      if (s.a != turned_at_[k]) s.turn = rot_of(s.a - s.a0), turned_at_[k] = s.a;
+    }
   };
   // The joints' errors of this tick's motion first, as constraint impulses (they move the
   // velocities too), then every error left, the contacts' and the joints', on positions only.
@@ -304,9 +311,11 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
   }
   update_turns();
   for (int it = 0; it < tick.position_iterations; ++it) {
+    bool pushed = false;
     for (const ShapeRow& r : rows_) {
       const double c = std::clamp(push_fraction * (separation(r) + slop), -max_push, 0.0);
       if (c == 0.0 || r.normal_mass == 0.0) continue;
+      pushed = true;
       const Vec2 p = (-c * r.normal_mass) * r.n;
       if (r.a != none) {
         const ShapedBody& b = bodies_[r.a];
@@ -317,6 +326,9 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
       ShapeState& s = state_[r.b];
       s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
     }
+    // A sweep that pushes nothing leaves the poses as they were, and so would every sweep
+    // after it: without joints (whose sweeps may still correct) the push-out has ended.
+    if (!pushed && joints_.empty()) break;
     if (!joints_.empty()) solve_joint_positions(false);
     update_turns();
   }

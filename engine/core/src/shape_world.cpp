@@ -178,6 +178,37 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
 
 // --- broadphase and manifolds --------------------------------------------------------------
 
+// Sort and sweep on the lower x bound; ties by index, so the order is the same everywhere.
+// The shapes seldom change places between ticks: last tick's order is sorted again by
+// insertion, which costs a pass when nothing has passed anything (bounded: past a few moves
+// a shape, a full sort). Any sort gives the one order, so the result is the same either way.
+void ShapeWorld::sort_boxes() {
+  const std::size_t n = boxes_.size();
+  auto before = [&](std::uint32_t l, std::uint32_t r) {
+    const double a = boxes_[l].lower.x, b = boxes_[r].lower.x;
+    return a != b ? a < b : l < r;
+  };
+  bool sorted = order_.size() == n;
+  std::size_t budget = 8 * n;
+  for (std::size_t i = 1; sorted && i < n; ++i) {
+    const std::uint32_t k = order_[i];
+    if (k >= n) sorted = false;
+    std::size_t j = i;
+    for (; sorted && j > 0 && before(k, order_[j - 1]); --j) {
+      order_[j] = order_[j - 1];
+      if (--budget == 0) sorted = false;
+    }
+    order_[j] = k;
+  }
+  if (!sorted) {
+    order_.resize(n);
+    for (std::uint32_t k = 0; k < n; ++k) order_[k] = k;
+    std::sort(order_.begin(), order_.end(), before);
+  }
+  sorted_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) sorted_[i] = boxes_[order_[i]];
+}
+
 bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
   const std::size_t n = shapes_.size();
   // The work limits (limits.hpp), as the disc broadphase's: candidate pairs kept, and box
@@ -188,24 +219,18 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
   margin_.resize(bodies_.size());
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) margin_[i] = margin(i, dt);
   boxes_.resize(n);
-  order_.resize(n);
   for (std::uint32_t k = 0; k < n; ++k) {
     const std::uint32_t owner = shapes_[k].owner;
     boxes_[k] = convex_aabb(shapes_[k].convex, start_pose(owner), margin_[owner]);
-    order_[k] = k;
   }
-  // Sort and sweep on the lower x bound; ties by index, so the order is the same everywhere.
-  std::sort(order_.begin(), order_.end(), [&](std::uint32_t l, std::uint32_t r) {
-    const double a = boxes_[l].lower.x, b = boxes_[r].lower.x;
-    return a != b ? a < b : l < r;
-  });
+  sort_boxes();
   candidates_.clear(), sensor_candidates_.clear(), wake_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t a = order_[i];
     const ShapeEntry& sa = shapes_[a];
+    const Aabb box = sorted_[i];
     for (std::size_t j = i + 1; j < n; ++j) {
-      const std::uint32_t b = order_[j];
-      if (boxes_[b].lower.x > boxes_[a].upper.x) break;
+      if (sorted_[j].lower.x > box.upper.x) break;
       if (++tests > most_tests || candidates_.size() >= most_pairs) {
         const bool work = tests > most_tests;
         tally.cap = work ? "max_vetoed_pairs" : "max_candidate_pairs";
@@ -213,8 +238,10 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
         tally.cap_body = sa.owner;
         return false;
       }
+      if (!boxes_overlap(box, sorted_[j])) continue;
+      const std::uint32_t b = order_[j];
       const ShapeEntry& sb = shapes_[b];
-      if (sa.owner == sb.owner || !boxes_overlap(boxes_[a], boxes_[b])) continue;
+      if (sa.owner == sb.owner) continue;
       const ShapedBody& ba = bodies_[sa.owner];
       const ShapedBody& bb = bodies_[sb.owner];
       if (ba.type != BodyType::dynamic && bb.type != BodyType::dynamic) continue;

@@ -213,11 +213,14 @@ class ShapeWorld {
   /// Awake and dynamic, or kinematic and moving (turning or not): what wakes a sleeper.
   [[nodiscard]] bool moving(std::uint32_t body) const;
   std::vector<Aabb> boxes_;
-  std::vector<std::uint32_t> order_;
+  std::vector<std::uint32_t> order_;  ///< shapes_ by their boxes' lower x (sort_boxes)
+  std::vector<Aabb> sorted_;          ///< boxes_ in that order
+  void sort_boxes();
   std::vector<Candidate> candidates_;
   std::vector<Candidate> sensor_candidates_;  ///< a: the sensor shape
   std::vector<Sensed> sensed_;
   std::vector<ShapeRow> rows_;
+  std::vector<double> turned_at_;  ///< solve_positions' scratch
   /// The pair keys (as ShapeRow::pair) of the manifolds a one-way rule or the pre-solve hook
   /// disabled this tick, sorted: continuous collision leaves them alone as it does a row's.
   std::vector<std::uint64_t> disabled_;
