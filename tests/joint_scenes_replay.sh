@@ -16,7 +16,7 @@ fail() {
   echo "FAIL: $*" >&2
   exit 1
 }
-declare -A final=([car]=0bb5dd800f913346 [ragdoll]=62536615d93b2001)
+declare -A final=([car]=2e21e5a1e15f27a7 [ragdoll]=8325490ad8df1b30)
 for name in car ragdoll; do
   rec=$src/assets/recordings/$name.rec
   "$cli" replay "$rec" >"$out/$name.txt" 2>&1 || fail "$name: replay exited $? ($(cat "$out/$name.txt"))"

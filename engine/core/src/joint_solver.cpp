@@ -24,9 +24,11 @@ Softness softness(double frequency, double damping_ratio, double h) {
 }
 
 Vec2 velocity(const JointSolver::End& e) {
+  if (e.v) return {e.v->vx, e.v->vy};
   return e.s ? Vec2{e.s->vx, e.s->vy} : Vec2{};
 }
 double spin(const JointSolver::End& e) {
+  if (e.v) return e.v->w;
   return e.s ? e.s->w : 0.0;
 }
 
@@ -42,7 +44,8 @@ double accumulate(double& acc, double impulse, double lo, double hi) {
 JointSolver::End JointSolver::end(std::uint32_t body, bool b) const {
   if (body == JointRecord::none) return {.b = b};
   const ShapedBody& d = bodies_[body];
-  return {d.inv_mass, d.inv_inertia, &state_[body], b};
+  return {d.inv_mass, d.inv_inertia, &state_[body], b,
+          velocities_.empty() ? nullptr : &velocities_[body]};
 }
 
 void JointSolver::push(End e, Vec2 p, double l) const {
@@ -52,10 +55,8 @@ void JointSolver::push(End e, Vec2 p, double l) const {
     current_->given_a += p, current_->turned_a += l;
   }
   if (!e.s || (e.m == 0.0 && e.i == 0.0)) return;
-  ShapeState& s = *e.s;
-  const double dw = e.i * l;
-  s.vx += e.m * p.x, s.vy += e.m * p.y, s.w += dw;
-  s.x += dt_ * e.m * p.x, s.y += dt_ * e.m * p.y, s.a += dt_ * dw;
+  ShapeMotion& v = *e.v;  // (pushes are the velocity solve's)
+  v.vx += e.m * p.x, v.vy += e.m * p.y, v.w += e.i * l;
 }
 
 void JointSolver::prepare_geometry(JointRecord& j) {

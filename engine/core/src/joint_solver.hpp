@@ -17,12 +17,17 @@
 
 namespace fixstep::detail {
 
-/// The solver over one tick's states. Every impulse moves velocities and, by dt times the
-/// change, positions (as contact impulses do: semi-implicit Euler's x1 = x0 + dt v1).
+/// The solver over one tick's states. Every impulse moves velocities only; the poses follow
+/// by dt times the velocity change once the velocity solve is done (as the contacts' do:
+/// semi-implicit Euler's x1 = x0 + dt v1; ShapeWorld::follow_velocities).
 class JointSolver {
  public:
-  JointSolver(std::span<const ShapedBody> bodies, std::span<ShapeState> state, double dt)
-      : bodies_(bodies), state_(state), dt_(dt) {}
+  /// `velocities`: each body's velocity through the velocity solve (ShapeWorld::velocity_),
+  /// which prepare(), solve_velocity() and push() read and move; empty after it (the
+  /// position sweeps and the account read and move state's).
+  JointSolver(std::span<const ShapedBody> bodies, std::span<ShapeState> state, double dt,
+              std::span<ShapeMotion> velocities = {})
+      : bodies_(bodies), state_(state), velocities_(velocities), dt_(dt) {}
 
   /// Arms, axes, effective masses and spring factors at the tick's start poses (ShapeState
   /// x0, y0, a0, q0), then the warm start: last tick's impulses applied again.
@@ -44,19 +49,21 @@ class JointSolver {
   struct End {
     double m = 0.0, i = 0.0;
     ShapeState* s = nullptr;
-    bool b = false;  ///< B's end (else A's)
+    bool b = false;            ///< B's end (else A's)
+    ShapeMotion* v = nullptr;  ///< its velocity in the velocity solve (null after it)
   };
 
  private:
   std::span<const ShapedBody> bodies_;
   std::span<ShapeState> state_;
+  std::span<ShapeMotion> velocities_;
   double dt_;
 
   JointRecord* current_ = nullptr;  ///< the joint whose impulses push() adds up
 
   [[nodiscard]] End end(std::uint32_t body, bool b) const;
-  /// An impulse p (N·s) and an angular impulse l (N·m·s) on e's velocity, dt times the
-  /// change on its position; added up in the current joint's given_ and turned_.
+  /// An impulse p (N·s) and an angular impulse l (N·m·s) on e's velocity; added up in the
+  /// current joint's given_ and turned_.
   void push(End e, Vec2 p, double l) const;
   /// A position correction: e moved by m p and turned by i l; while keep_, its velocity too by
   /// that over dt (and the impulse p/dt added up in the current joint's given_ and turned_).

@@ -7,9 +7,12 @@
 
 #include "fixstep/core/stop_request.hpp"
 #include "joint_solver.hpp"
+#include "shape_rows.hpp"
 #include "shape_world.hpp"
 
 namespace fixstep::detail {
+
+using namespace shape_rows;
 
 namespace {
 
@@ -21,72 +24,78 @@ constexpr double max_push = 0.2;
 Vec2 perp(Vec2 n) {
   return {-n.y, n.x};
 }
-/// ω × r for a scalar angular velocity ω about z.
-Vec2 spin_cross(double w, Vec2 r) {
-  return {-w * r.y, w * r.x};
-}
 
 }  // namespace
 
-void ShapeWorld::apply(const ShapeRow& r, double pn, double pt) {
-  const Vec2 p = pn * r.n + pt * perp(r.n);
-  const double move = dt_;
-  if (r.a != none) {
-    const ShapedBody& b = bodies_[r.a];
-    ShapeState& s = state_[r.a];
-    const double dw = b.inv_inertia * cross(r.ra, p);
-    s.vx -= b.inv_mass * p.x, s.vy -= b.inv_mass * p.y, s.w -= dw;
-    s.x -= move * b.inv_mass * p.x, s.y -= move * b.inv_mass * p.y, s.a -= move * dw;
-  }
-  const ShapedBody& b = bodies_[r.b];
-  ShapeState& s = state_[r.b];
-  const double dw = b.inv_inertia * cross(r.rb, p);
-  s.vx += b.inv_mass * p.x, s.vy += b.inv_mass * p.y, s.w += dw;
-  s.x += move * b.inv_mass * p.x, s.y += move * b.inv_mass * p.y, s.a += move * dw;
+// A row's impulses change velocities only; the poses follow once, after the whole velocity
+// solve (follow_velocities), by dt times each body's velocity change.
+void ShapeWorld::apply(const ShapeSolveRow& h, double pn, double pt) {
+  Motion2 m = load(h);
+  push(h, pn, pt, m.a, m.b);
+  store(h, m);
 }
 
-Vec2 ShapeWorld::relative_velocity(const ShapeRow& r) const {
-  const ShapeState& sb = state_[r.b];
-  Vec2 v = Vec2{sb.vx, sb.vy} + spin_cross(sb.w, r.rb);
-  if (r.a != none) {
-    const ShapeState& sa = state_[r.a];
-    v = v - (Vec2{sa.vx, sa.vy} + spin_cross(sa.w, r.ra));
-  }
-  return v;
+double ShapeWorld::normal_velocity(const ShapeSolveRow& h) const {
+  const Motion2 m = load(h);
+  return normal_of(h, m.a, m.b);
+}
+
+double ShapeWorld::tangent_velocity(const ShapeSolveRow& h) const {
+  const Motion2 m = load(h);
+  return tangent_of(h, m.a, m.b);
+}
+
+ShapeSolveRow ShapeWorld::solve_row(const ShapeRow& r) const {
+  ShapeSolveRow h;
+  h.a = r.a, h.b = r.b, h.nx = r.n.x, h.ny = r.n.y;
+  const Vec2 t = perp(r.n);
+  h.rna = cross(r.ra, r.n), h.rnb = cross(r.rb, r.n);
+  h.rta = cross(r.ra, t), h.rtb = cross(r.rb, t);
+  if (r.a != none) h.ma = bodies_[r.a].inv_mass, h.ia = bodies_[r.a].inv_inertia;
+  h.mb = bodies_[r.b].inv_mass, h.ib = bodies_[r.b].inv_inertia;
+  h.kn = h.ma + h.mb + h.ia * h.rna * h.rna + h.ib * h.rnb * h.rnb;
+  const double kt = h.ma + h.mb + h.ia * h.rta * h.rta + h.ib * h.rtb * h.rtb;
+  h.normal_mass = h.kn > 0.0 ? 1.0 / h.kn : 0.0;
+  h.tangent_mass = kt > 0.0 ? 1.0 / kt : 0.0;
+  h.friction = r.friction;
+  return h;
 }
 
 void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   dt_ = tick.dt;
-  for (ShapeRow& r : rows_) {
-    const ShapedBody& bb = bodies_[r.b];
-    double ma = 0.0, ia = 0.0;
-    if (r.a != none) ma = bodies_[r.a].inv_mass, ia = bodies_[r.a].inv_inertia;
-    const double rna = cross(r.ra, r.n), rnb = cross(r.rb, r.n);
-    const Vec2 t = perp(r.n);
-    const double rta = cross(r.ra, t), rtb = cross(r.rb, t);
-    const double kn = ma + bb.inv_mass + ia * rna * rna + bb.inv_inertia * rnb * rnb;
-    const double kt = ma + bb.inv_mass + ia * rta * rta + bb.inv_inertia * rtb * rtb;
-    r.normal_mass = kn > 0.0 ? 1.0 / kn : 0.0;
-    r.tangent_mass = kt > 0.0 ? 1.0 / kt : 0.0;
-    r.rolling_mass =
-        r.rolling > 0.0 && ia + bb.inv_inertia > 0.0 ? 1.0 / (ia + bb.inv_inertia) : 0.0;
+  velocity_.resize(state_.size());
+  for (std::size_t k = 0; k < state_.size(); ++k) {
+    velocity_[k] = {state_[k].vx, state_[k].vy, state_[k].w};
+  }
+  solve_.resize(rows_.size());
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    ShapeRow& r = rows_[i];
+    ShapeSolveRow& h = solve_[i];
+    h = solve_row(r);
+    r.normal_mass = h.normal_mass, r.tangent_mass = h.tangent_mass;
+    const double ia = r.a != none ? bodies_[r.a].inv_inertia : 0.0;
+    const double ib = bodies_[r.b].inv_inertia;
+    r.rolling_mass = r.rolling > 0.0 && ia + ib > 0.0 ? 1.0 / (ia + ib) : 0.0;
     r.lr = 0.0;
     // The normal velocity the row asks for: a gap may close within the tick, a touching point
     // stops approaching (the bounces are the impact pass's).
-    r.approach = std::max(-dot(relative_velocity(r), r.n), 0.0);
+    r.approach = std::max(-normal_velocity(h), 0.0);
     r.target = r.separation > 0.0 ? -r.separation / tick.dt : 0.0;
+    h.target = r.target;
     r.bn = 0.0, r.bt = 0.0;
   }
   prepare_blocks();
   for (int pass = 0; pass < max_impact_passes && impact_pass(tick); ++pass) {
   }
   // Warm starting, once every row's target is set from the free velocities.
-  for (ShapeRow& r : rows_) {
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    ShapeRow& r = rows_[i];
+    ShapeSolveRow& h = solve_[i];
     if (r.redundant) continue;
     const auto warm = std::lower_bound(warm_.begin(), warm_.end(), ShapeWarm{r.pair, r.id});
     if (warm != warm_.end() && warm->pair == r.pair && warm->id == r.id) {
-      r.ln = warm->ln, r.lt = warm->lt;
-      apply(r, r.ln, r.lt);
+      h.ln = warm->ln, h.lt = warm->lt;
+      apply(h, h.ln, h.lt);
       if (r.rolling_mass > 0.0) r.lr = warm->lr, turn(r, r.lr);
     }
   }
@@ -104,12 +113,12 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
 bool ShapeWorld::impact_pass(const ShapeTick& tick) {
   bool any = false;
   for (std::size_t i = 0; i < rows_.size(); ++i) {
-    ShapeRow& r = rows_[i];
+    const ShapeRow& r = rows_[i];
     if (r.pair_first) {
-      any = bounce_block(r, rows_[i + 1], tick) || any;
+      any = bounce_block(i, tick) || any;
       ++i;
     } else if (!r.redundant) {
-      any = bounce(r, tick) || any;
+      any = bounce(i, tick) || any;
     }
   }
   return any;
@@ -127,25 +136,28 @@ bool meets(const ShapeRow& r, double vn, const ShapeTick& tick) {
 
 }  // namespace
 
-bool ShapeWorld::bounce(ShapeRow& r, const ShapeTick& tick) {
-  const Vec2 v = relative_velocity(r);
-  const double vn = dot(v, r.n);
+bool ShapeWorld::bounce(std::size_t i, const ShapeTick& tick) {
+  ShapeRow& r = rows_[i];
+  const ShapeSolveRow& h = solve_[i];
+  const double vn = normal_velocity(h);
   if (!meets(r, vn, tick)) return false;
-  const double pn = -(1.0 + r.restitution) * vn * r.normal_mass;
-  const double vt = dot(v, perp(r.n));
-  const double pt = std::clamp(-vt * r.tangent_mass, -r.friction * pn, r.friction * pn);
+  const double pn = -(1.0 + r.restitution) * vn * h.normal_mass;
+  const double vt = tangent_velocity(h);
+  const double pt = std::clamp(-vt * h.tangent_mass, -r.friction * pn, r.friction * pn);
   r.bn += pn, r.bt += pt;
-  apply(r, pn, pt);
+  apply(h, pn, pt);
   return true;
 }
 
 // A manifold's two points meeting at once: the 2×2 problem K x = −(1 + e) vn for the points
 // that meet (x >= 0; a point that would pull is left out and the other solved alone).
-bool ShapeWorld::bounce_block(ShapeRow& r1, ShapeRow& r2, const ShapeTick& tick) {
-  const double vn1 = dot(relative_velocity(r1), r1.n), vn2 = dot(relative_velocity(r2), r2.n);
+bool ShapeWorld::bounce_block(std::size_t i, const ShapeTick& tick) {
+  ShapeRow &r1 = rows_[i], &r2 = rows_[i + 1];
+  const ShapeSolveRow &h1 = solve_[i], &h2 = solve_[i + 1];
+  const double vn1 = normal_velocity(h1), vn2 = normal_velocity(h2);
   const bool m1 = meets(r1, vn1, tick), m2 = meets(r2, vn2, tick);
   if (!m1 && !m2) return false;
-  const double k11 = 1.0 / r1.normal_mass, k22 = 1.0 / r2.normal_mass, k12 = r1.k12;
+  const double k11 = h1.kn, k22 = h2.kn, k12 = h1.k12;
   const double d1 = m1 ? -(1.0 + r1.restitution) * vn1 : 0.0;
   const double d2 = m2 ? -(1.0 + r2.restitution) * vn2 : 0.0;
   double x1 = 0.0, x2 = 0.0;
@@ -156,64 +168,18 @@ bool ShapeWorld::bounce_block(ShapeRow& r1, ShapeRow& r2, const ShapeTick& tick)
     x1 = first ? d1 / k11 : 0.0, x2 = first ? 0.0 : d2 / k22;
   }
   r1.bn += x1, r2.bn += x2;
-  if (x1 != 0.0) apply(r1, x1, 0.0);
-  if (x2 != 0.0) apply(r2, x2, 0.0);
-  for (ShapeRow* r : {&r1, &r2}) {  // sliding stopped within each point's Coulomb cone
-    const double bound = r->friction * (r == &r1 ? x1 : x2);
+  if (x1 != 0.0) apply(h1, x1, 0.0);
+  if (x2 != 0.0) apply(h2, x2, 0.0);
+  for (int k = 0; k < 2; ++k) {  // sliding stopped within each point's Coulomb cone
+    ShapeRow& r = k == 0 ? r1 : r2;
+    const ShapeSolveRow& h = k == 0 ? h1 : h2;
+    const double bound = r.friction * (k == 0 ? x1 : x2);
     if (bound == 0.0) continue;
-    const double pt =
-        std::clamp(-dot(relative_velocity(*r), perp(r->n)) * r->tangent_mass, -bound, bound);
-    r->bt += pt;
-    apply(*r, 0.0, pt);
+    const double pt = std::clamp(-tangent_velocity(h) * h.tangent_mass, -bound, bound);
+    r.bt += pt;
+    apply(h, 0.0, pt);
   }
   return true;
-}
-
-void ShapeWorld::solve_friction(ShapeRow& r) {
-  const double vt = dot(relative_velocity(r), perp(r.n));
-  const double bound = r.friction * r.ln;
-  const double lt = std::clamp(r.lt - vt * r.tangent_mass, -bound, bound);
-  const double d = lt - r.lt;
-  r.lt = lt;
-  if (d != 0.0) apply(r, 0.0, d);
-}
-
-void ShapeWorld::solve_normal(ShapeRow& r) {
-  const double vn = dot(relative_velocity(r), r.n);
-  const double ln = std::max(r.ln - (vn - r.target) * r.normal_mass, 0.0);
-  const double d = ln - r.ln;
-  r.ln = ln;
-  if (d != 0.0) apply(r, d, 0.0);
-}
-
-// A manifold's two normal impulses at once (Catto's block solver, Box2D v2.4
-// b2ContactSolver::SolveVelocityConstraints): the 2×2 linear complementarity problem
-// vn = K x + b, x >= 0, vn >= 0, x·vn = 0 for the accumulated impulses x, by trying its four
-// cases in turn. Solving the two points one after the other lets a box resting on its two
-// corners rock (each point's impulse turns it against the other), which a tall stack amplifies.
-void ShapeWorld::solve_block(ShapeRow& r1, ShapeRow& r2) {
-  const double k11 = 1.0 / r1.normal_mass, k22 = 1.0 / r2.normal_mass, k12 = r1.k12;
-  const double a1 = r1.ln, a2 = r2.ln;
-  const double vn1 = dot(relative_velocity(r1), r1.n) - r1.target;
-  const double vn2 = dot(relative_velocity(r2), r2.n) - r2.target;
-  const double b1 = vn1 - (k11 * a1 + k12 * a2), b2 = vn2 - (k12 * a1 + k22 * a2);
-  double x1 = 0.0, x2 = 0.0;
-  const double det = k11 * k22 - k12 * k12;
-  const double y1 = -(k22 * b1 - k12 * b2) / det, y2 = -(k11 * b2 - k12 * b1) / det;
-  if (y1 >= 0.0 && y2 >= 0.0) {
-    x1 = y1, x2 = y2;  // both points push
-  } else if (-b1 / k11 >= 0.0 && k12 * (-b1 / k11) + b2 >= 0.0) {
-    x1 = -b1 / k11;  // the first pushes, the second separates
-  } else if (-b2 / k22 >= 0.0 && k12 * (-b2 / k22) + b1 >= 0.0) {
-    x2 = -b2 / k22;                        // the second pushes
-  } else if (!(b1 >= 0.0 && b2 >= 0.0)) {  // no case holds (rounding): one at a time
-    solve_normal(r1);
-    solve_normal(r2);
-    return;
-  }
-  r1.ln = x1, r2.ln = x2;
-  if (x1 != a1) apply(r1, x1 - a1, 0.0);
-  if (x2 != a2) apply(r2, x2 - a2, 0.0);
 }
 
 void ShapeWorld::prepare_blocks() {
@@ -222,62 +188,82 @@ void ShapeWorld::prepare_blocks() {
     ShapeRow& r1 = rows_[i];
     ShapeRow& r2 = rows_[i + 1];
     if (r1.pair != r2.pair || r1.a != r2.a || r1.b != r2.b) continue;
+    if (r1.rolling > 0.0) solve_[i].flags |= ShapeSolveRow::rolls_pair;
     if (r1.normal_mass == 0.0 || r2.normal_mass == 0.0) continue;
-    double ma = 0.0, ia = 0.0;
-    if (r1.a != none) ma = bodies_[r1.a].inv_mass, ia = bodies_[r1.a].inv_inertia;
-    const ShapedBody& b = bodies_[r1.b];
-    const double k12 = ma + b.inv_mass + ia * cross(r1.ra, r1.n) * cross(r2.ra, r2.n) +
-                       b.inv_inertia * cross(r1.rb, r1.n) * cross(r2.rb, r2.n);
-    const double k11 = 1.0 / r1.normal_mass, k22 = 1.0 / r2.normal_mass;
+    const ShapeSolveRow &h1 = solve_[i], &h2 = solve_[i + 1];
+    const double k12 = h1.ma + h1.mb + h1.ia * h1.rna * h2.rna + h1.ib * h1.rnb * h2.rnb;
+    const double k11 = h1.kn, k22 = h2.kn;
     // Box2D's condition number guard: a K this close to singular keeps one point (the deeper).
     if (k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12)) {
       r1.pair_first = true, r1.k12 = k12;
+      ShapeSolveRow& h = solve_[i];
+      const double det = k11 * k22 - k12 * k12;
+      h.flags |= ShapeSolveRow::block_first, h.k12 = k12;
+      h.block_mass = {k22 / det, -k12 / det, k11 / det};
     } else {
-      (r2.separation < r1.separation ? r1 : r2).redundant = true;
+      const bool second = r2.separation < r1.separation;
+      (second ? r1 : r2).redundant = true;
+      solve_[second ? i : i + 1].flags |= ShapeSolveRow::redundant;
     }
     ++i;
+  }
+  for (std::size_t i = 0; i < rows_.size(); ++i) {
+    if (rows_[i].rolling_mass > 0.0) solve_[i].flags |= ShapeSolveRow::rolls;
   }
 }
 
 // Rolling resistance (Box2D v3.1's b2SolveContact): an angular impulse that stops the two
 // bodies' relative turning, within ± c r times the manifold's normal impulse.
 void ShapeWorld::solve_rolling(ShapeRow& r, double normal_impulse) {
-  const double wa = r.a != none ? state_[r.a].w : 0.0;
+  const double wa = r.a != none ? velocity_[r.a].w : 0.0;
   const double bound = r.rolling * normal_impulse;
-  const double lr = std::clamp(r.lr - r.rolling_mass * (state_[r.b].w - wa), -bound, bound);
+  const double lr = std::clamp(r.lr - r.rolling_mass * (velocity_[r.b].w - wa), -bound, bound);
   const double d = lr - r.lr;
   r.lr = lr;
   if (d != 0.0) turn(r, d);
 }
 
 void ShapeWorld::turn(const ShapeRow& r, double l) {
-  if (r.a != none) {
-    const double dw = bodies_[r.a].inv_inertia * l;
-    state_[r.a].w -= dw, state_[r.a].a -= dt_ * dw;
-  }
-  const double dw = bodies_[r.b].inv_inertia * l;
-  state_[r.b].w += dw, state_[r.b].a += dt_ * dw;
+  if (r.a != none) velocity_[r.a].w -= bodies_[r.a].inv_inertia * l;
+  velocity_[r.b].w += bodies_[r.b].inv_inertia * l;
 }
 
 void ShapeWorld::solve_velocities(const ShapeTick& tick) {
+  ShapeSolveRow* const rows = solve_.data();
+  const std::size_t n = solve_.size();
   for (int it = 0; it < tick.velocity_iterations; ++it) {
     if (!joints_.empty()) solve_joint_velocities();
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-      ShapeRow& r = rows_[i];
-      if (r.pair_first) {  // friction first, bounded by this iteration's normal impulse
-        solve_friction(r), solve_friction(rows_[i + 1]);
-        solve_block(r, rows_[i + 1]);
-        if (r.rolling_mass > 0.0) solve_rolling(r, r.ln + rows_[i + 1].ln);
+    for (std::size_t i = 0; i < n; ++i) {
+      ShapeSolveRow& h = rows[i];
+      Motion2 m = load(h);  // the two bodies' velocities, carried through the manifold's rows
+      if (h.flags & ShapeSolveRow::block_first) {  // friction first, bounded by this
+        solve_friction(h, m.a, m.b);               // iteration's normal impulse
+        solve_friction(rows[i + 1], m.a, m.b);
+        solve_block(h, rows[i + 1], m.a, m.b);
+        store(h, m);
+        if (h.flags & ShapeSolveRow::rolls) solve_rolling(rows_[i], h.ln + rows[i + 1].ln);
         ++i;
       } else {
-        if (!r.redundant) solve_friction(r), solve_normal(r);
-        if (r.rolling_mass > 0.0) {  // a manifold's first row, maybe redundant: both its rows'
-          const bool pair = i + 1 < rows_.size() && rows_[i + 1].pair == r.pair &&
-                            rows_[i + 1].a == r.a && rows_[i + 1].b == r.b;
-          solve_rolling(r, r.ln + (pair ? rows_[i + 1].ln : 0.0));
+        if (!(h.flags & ShapeSolveRow::redundant)) {
+          solve_friction(h, m.a, m.b), solve_normal(h, m.a, m.b);
+          store(h, m);
+        }
+        if (h.flags & ShapeSolveRow::rolls) {  // a manifold's first row, maybe redundant:
+          const bool pair = h.flags & ShapeSolveRow::rolls_pair;  // both its rows'
+          solve_rolling(rows_[i], h.ln + (pair ? rows[i + 1].ln : 0.0));
         }
       }
     }
+  }
+  for (std::size_t i = 0; i < n; ++i) rows_[i].ln = rows[i].ln, rows_[i].lt = rows[i].lt;
+}
+
+void ShapeWorld::follow_velocities() {
+  for (std::size_t k = 0; k < state_.size(); ++k) {
+    ShapeState& s = state_[k];  // its velocities still the free ones
+    const ShapeMotion& v = velocity_[k];
+    s.x += dt_ * (v.vx - s.vx), s.y += dt_ * (v.vy - s.vy), s.a += dt_ * (v.w - s.w);
+    s.vx = v.vx, s.vy = v.vy, s.w = v.w;
   }
 }
 
@@ -337,7 +323,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
 }
 
 void ShapeWorld::prepare_joints() {
-  JointSolver solver(bodies_, state_, dt_);
+  JointSolver solver(bodies_, state_, dt_, velocity_);
   for (JointRecord& j : joints_) {
     if (!j.broken) solver.prepare(j);
   }
@@ -352,7 +338,7 @@ void ShapeWorld::poll_stop() {
 
 void ShapeWorld::solve_joint_velocities() {
   poll_stop();
-  JointSolver solver(bodies_, state_, dt_);
+  JointSolver solver(bodies_, state_, dt_, velocity_);
   for (JointRecord& j : joints_) {
     if (!j.broken) solver.solve_velocity(j);
   }

@@ -390,6 +390,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   prepare_rows(tick);
   prepare_joints();
   solve_velocities(tick);
+  follow_velocities();
   account_joints();
   continuous(tick, tally);
   solve_positions(tick, tally);

@@ -15,8 +15,8 @@
 //     starting from the last tick's impulses matched by feature ids) on the free end
 //     velocities, with velocity targets: a gap s > 0 may close at s/dt, a touching point stops
 //     approaching, one that meets faster than the restitution threshold bounces back (Newton's
-//     law); each impulse also moves its bodies by dt Δv (as semi-implicit Euler's x1 = x0 +
-//     dt v1 would);
+//     law); the impulses move velocities only, and once they are done each body moves by dt
+//     times its velocity change (as semi-implicit Euler's x1 = x0 + dt v1 would);
 //  4. continuous collision for a body whose motion over the tick is more than half its
 //     thinnest extent: moved back to its first touch of anything that does not move (planes,
 //     segments, static bodies) it has no speculative point with, found by conservative
@@ -27,6 +27,7 @@
 // Everything runs on one thread in one order: the same bits on any thread count and platform.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -112,6 +113,34 @@ struct ShapeRow {
   double bn = 0.0, bt = 0.0;  ///< the impact pass's impulses (N·s): its bounces, apart from ln
   std::uint64_t pair = 0;     ///< the two shapes' keys, for warm starting
   std::uint32_t id = 0;       ///< the manifold point's feature id
+};
+
+/// A manifold point's row as the velocity solve reads it (made from its ShapeRow by
+/// ShapeWorld::prepare_rows; its impulses are copied back after the sweeps): the normal n, the
+/// lever arms' moments r × n and r × t about each body's centre (t = perp(n), so that a point's
+/// relative normal velocity is (v_B − v_A)·n + ω_B (r_B × n) − ω_A (r_A × n)), and each body's
+/// inverse mass and inertia (0 for a plane or segment A), so that a sweep reads no more than
+/// the row and the two bodies' velocities.
+struct ShapeSolveRow {
+  static constexpr std::uint8_t block_first = 1, redundant = 2, rolls = 4, rolls_pair = 8;
+  std::uint32_t a = 0, b = 0;  ///< bodies_ indices (a may be ShapeWorld::none)
+  std::uint8_t flags = 0;      ///< ShapeRow::pair_first, ::redundant; rolling resistance
+  double nx = 0.0, ny = 0.0;
+  double rna = 0.0, rnb = 0.0, rta = 0.0, rtb = 0.0;  ///< m: r_A × n, r_B × n, r_A × t, r_B × t
+  double ma = 0.0, ia = 0.0, mb = 0.0, ib = 0.0;      ///< 1/kg, 1/(kg·m²)
+  double kn = 0.0;                                    ///< 1/kg: the normal row's K (1/normal_mass)
+  double normal_mass = 0.0, tangent_mass = 0.0;
+  double k12 = 0.0;  ///< a block's coupling (ShapeRow::k12)
+  /// A block's K⁻¹ (kg), on its first row: [[m11, m12], [m12, m22]] as {m11, m12, m22}.
+  std::array<double, 3> block_mass{};
+  double friction = 0.0, target = 0.0;
+  double ln = 0.0, lt = 0.0;  ///< accumulated impulses (N·s)
+};
+
+/// A body's velocity (m/s, m/s, rad/s) as the velocity solve carries it through a manifold's
+/// rows; zero for a plane or segment.
+struct ShapeMotion {
+  double vx = 0.0, vy = 0.0, w = 0.0;
 };
 
 /// The impulses a manifold point carried last tick, by key.
@@ -220,6 +249,11 @@ class ShapeWorld {
   std::vector<Candidate> sensor_candidates_;  ///< a: the sensor shape
   std::vector<Sensed> sensed_;
   std::vector<ShapeRow> rows_;
+  std::vector<ShapeSolveRow> solve_;  ///< rows_' velocity rows, in the same order
+  /// Each body's velocity through the velocity solve (prepare_rows copies it in; the solve's
+  /// impulses move it alone, and follow_velocities moves the poses by its change and copies
+  /// it out): a sweep reads 24 bytes a body.
+  std::vector<ShapeMotion> velocity_;
   std::vector<double> turned_at_;  ///< solve_positions' scratch
   /// The pair keys (as ShapeRow::pair) of the manifolds a one-way rule or the pre-solve hook
   /// disabled this tick, sorted: continuous collision leaves them alone as it does a row's.
@@ -259,8 +293,32 @@ class ShapeWorld {
   void add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
                     double restitution, double rolling, std::uint64_t pair);
   void prepare_rows(const ShapeTick& tick);
-  void apply(const ShapeRow& r, double pn, double pt);
-  [[nodiscard]] Vec2 relative_velocity(const ShapeRow& r) const;
+  /// The velocities of a row's two bodies (A's zero for a plane or segment), as a sweep
+  /// carries them through a manifold's rows; store() writes them back.
+  struct Motion2 {
+    ShapeMotion a, b;
+  };
+  [[nodiscard]] Motion2 load(const ShapeSolveRow& h) const {
+    Motion2 m;
+    if (h.a != none) m.a = velocity_[h.a];
+    m.b = velocity_[h.b];
+    return m;
+  }
+  void store(const ShapeSolveRow& h, const Motion2& m) {
+    if (h.a != none) velocity_[h.a] = m.a;
+    velocity_[h.b] = m.b;
+  }
+  /// Impulses pn along n and pt along t (N·s) on B, their opposite on A: velocities only.
+  void apply(const ShapeSolveRow& h, double pn, double pt);
+  /// B's velocity relative to A's at the row's point, along n and along t (m/s).
+  [[nodiscard]] double normal_velocity(const ShapeSolveRow& h) const;
+  [[nodiscard]] double tangent_velocity(const ShapeSolveRow& h) const;
+  /// The row of `r` (ShapeRow::normal_mass and the rest set) for the velocity solve.
+  [[nodiscard]] ShapeSolveRow solve_row(const ShapeRow& r) const;
+  /// After the velocity solve: each pose moved by dt times its body's velocity change in it
+  /// (semi-implicit Euler's x1 = x0 + dt v1, once, for every impulse of the solve), and the
+  /// velocities written back to state_.
+  void follow_velocities();
   void solve_velocities(const ShapeTick& tick);
   /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
   void prepare_joints();
@@ -272,11 +330,8 @@ class ShapeWorld {
   /// Whether a joint keeps the shapes of these two bodies from colliding.
   [[nodiscard]] bool unpaired(std::uint32_t a, std::uint32_t b) const;
   bool impact_pass(const ShapeTick& tick);
-  bool bounce(ShapeRow& r, const ShapeTick& tick);
-  bool bounce_block(ShapeRow& r1, ShapeRow& r2, const ShapeTick& tick);
-  void solve_friction(ShapeRow& r);
-  void solve_normal(ShapeRow& r);
-  void solve_block(ShapeRow& r1, ShapeRow& r2);
+  bool bounce(std::size_t i, const ShapeTick& tick);
+  bool bounce_block(std::size_t i, const ShapeTick& tick);
   void prepare_blocks();
   void solve_positions(const ShapeTick& tick, ShapeTally& tally);
   void keep_impulses();
