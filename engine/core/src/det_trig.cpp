@@ -2,7 +2,9 @@
 // compiled with -ffp-contract=off, so every operation rounds once, the same on every target.
 // The methods, their sources and the measured errors are in det_math.hpp; the polynomial
 // coefficients and the split constants of π/2 are fdlibm 5.3's (Sun Microsystems, 1993).
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -66,6 +68,13 @@ double cos_kernel(double x, double y) {
   return one_minus + (((1.0 - one_minus) - hz) + (z * r - x * y));
 }
 
+/// ilogb(y) for finite y ≠ 0: the exponent field of a normal number, less its bias (a
+/// subnormal's by std::ilogb).
+int binary_exponent(double y) {
+  const int field = static_cast<int>((std::bit_cast<std::uint64_t>(y) >> 52) & 0x7ff);
+  return field != 0 ? field - 1023 : std::ilogb(y);
+}
+
 /// n and x - nπ/2 = y0 + y1 (|y0| ≤ about π/4, |y1| ≤ ulp(y0)/2) for finite |x| ≤
 /// trig_max_argument; throws std::domain_error beyond it.
 int reduce_half_pi(double x, double& y0, double& y1) {
@@ -88,8 +97,8 @@ int reduce_half_pi(double x, double& y0, double& y1) {
   double r = t - fn * p1;
   double w = fn * p1_tail;
   y0 = r - w;
-  const int e = std::ilogb(t);
-  auto lost_bits = [e](double y) { return y == 0.0 ? 1000 : e - std::ilogb(y); };
+  const int e = binary_exponent(t);
+  auto lost_bits = [e](double y) { return y == 0.0 ? 1000 : e - binary_exponent(y); };
   if (lost_bits(y0) > 16) {  // a second step: good to 118 bits
     double s = r;
     w = fn * p2;
@@ -166,6 +175,18 @@ double cos(double x) {
     default:
       return sin_kernel(y0, y1);
   }
+}
+
+void sincos(double x, double& sine, double& cosine) {
+  if (x != x || std::isinf(x)) {
+    sine = sin(x), cosine = cos(x);
+    return;
+  }
+  double y0, y1;
+  const int n = reduce_half_pi(x, y0, y1) & 3;
+  const double s = sin_kernel(y0, y1), c = cos_kernel(y0, y1);
+  sine = n == 0 ? s : n == 1 ? c : n == 2 ? -s : -c;
+  cosine = n == 0 ? c : n == 1 ? -s : n == 2 ? -c : s;
 }
 
 double atan(double x) {

@@ -34,7 +34,7 @@ double limit_error(double value, double lower, double upper, bool has_lower, boo
 
 }  // namespace
 
-void JointSolver::shift(End e, Vec2 p, double l) const {
+[[gnu::always_inline]] inline void JointSolver::shift(End e, Vec2 p, double l) const {
   if (keep_) {
     if (e.b) {
       current_->given_b += p / dt_, current_->turned_b += l / dt_;

@@ -48,7 +48,7 @@ JointSolver::End JointSolver::end(std::uint32_t body, bool b) const {
           velocities_.empty() ? nullptr : &velocities_[body]};
 }
 
-void JointSolver::push(End e, Vec2 p, double l) const {
+[[gnu::always_inline]] inline void JointSolver::push(End e, Vec2 p, double l) const {
   if (e.b) {
     current_->given_b += p, current_->turned_b += l;
   } else {

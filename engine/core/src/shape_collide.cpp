@@ -18,7 +18,9 @@ Rot rot_of(double angle) {
   if (std::abs(angle) > det::trig_max_argument && std::isfinite(angle)) {
     angle = std::remainder(angle, 2.0 * std::numbers::pi);
   }
-  return {det::cos(angle), det::sin(angle)};
+  Rot q;
+  det::sincos(angle, q.s, q.c);
+  return q;
 }
 
 namespace {

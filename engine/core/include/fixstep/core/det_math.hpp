@@ -69,6 +69,10 @@ double sin(double x);
 /// Method: as sin.
 double cos(double x);
 
+/// sin x and cos x by one reduction of x: the same bits as sin(x) and cos(x), and the same
+/// errors and exceptions.
+void sincos(double x, double& sine, double& cosine);
+
 /// arctan x in rad, in [-π/2, π/2], for any double x. Error ≤ 1 ulp (measured, see sin).
 /// NaN → NaN, ±inf → ±π/2, ±0 → ±0.
 /// Method: fdlibm's s_atan.c: |x| reduced to [0, 7/16] by atan x = atan c + atan((x - c)/(1 + cx))
