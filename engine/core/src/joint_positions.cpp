@@ -19,6 +19,10 @@ Now now(const JointSolver::End& e) {
   if (!e.s) return {};
   return {{e.s->x, e.s->y}, e.s->a, rot_of(e.s->a)};
 }
+/// An end's angle now (rad; the world's 0).
+double angle_now(const JointSolver::End& e) {
+  return e.s ? e.s->a : 0.0;
+}
 
 /// The correction of a one-sided error past a limit (Box2D v2.4's): past lower by more than
 /// the slop, the error less the slop; equal limits, the whole error; each within ± most.
@@ -72,7 +76,7 @@ void JointSolver::solve_position(JointRecord& j, bool keep) {
 
 void JointSolver::correct_angle_limit(JointRecord& j, End a, End b) {
   if (keep_ || (!j.def.lower && !j.def.upper) || j.angle_mass == 0.0) return;
-  const double angle = wrap_angle(now(b).angle - now(a).angle - j.reference);
+  const double angle = wrap_angle(angle_now(b) - angle_now(a) - j.reference);
   const double c = limit_error(angle, j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
                                j.def.lower.has_value(), j.def.upper.has_value(), joint_angular_slop,
                                joint_max_angular_correction);
