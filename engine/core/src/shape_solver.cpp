@@ -87,12 +87,28 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   prepare_blocks();
   for (int pass = 0; pass < max_impact_passes && impact_pass(tick); ++pass) {
   }
-  // Warm starting, once every row's target is set from the free velocities.
+  // Warm starting, once every row's target is set from the free velocities. The rows come
+  // mostly in key order: each search starts where the last one ended, forward by doubling
+  // steps (the same match as a search of the whole list).
+  auto after = warm_.begin();
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     ShapeRow& r = rows_[i];
     ShapeSolveRow& h = solve_[i];
     if (r.redundant) continue;
-    const auto warm = std::lower_bound(warm_.begin(), warm_.end(), ShapeWarm{r.pair, r.id});
+    const ShapeWarm key{r.pair, r.id};
+    auto low = warm_.begin(), high = warm_.end();
+    if (after != warm_.end() && !(key < *after)) {  // at or past the last match
+      low = after;
+      for (std::size_t step = 1; high - low > static_cast<std::ptrdiff_t>(step); step *= 2) {
+        if (key < low[static_cast<std::ptrdiff_t>(step)]) {
+          high = low + static_cast<std::ptrdiff_t>(step);
+          break;
+        }
+        low += static_cast<std::ptrdiff_t>(step);
+      }
+    }
+    const auto warm = std::lower_bound(low, high, key);
+    after = warm;
     if (warm != warm_.end() && warm->pair == r.pair && warm->id == r.id) {
       h.ln = warm->ln, h.lt = warm->lt;
       apply(h, h.ln, h.lt);
