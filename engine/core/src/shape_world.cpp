@@ -209,6 +209,24 @@ void ShapeWorld::sort_boxes() {
   for (std::size_t i = 0; i < n; ++i) sorted_[i] = boxes_[order_[i]];
 }
 
+// The candidates by (a, b): counted into one run per a, then each run (a shape's few
+// partners) by b. Every pair appears once, so this is the one order any sort gives.
+void ShapeWorld::sort_candidates() {
+  const std::size_t n = shapes_.size();
+  first_.assign(n + 1, 0);
+  for (const Candidate& c : candidates_) ++first_[c.a + 1];
+  for (std::size_t k = 0; k < n; ++k) first_[k + 1] += first_[k];
+  by_a_.resize(candidates_.size());
+  for (const Candidate& c : candidates_) by_a_[first_[c.a]++] = c;  // first_[a]: run a's end
+  for (std::size_t k = n; k > 0; --k) first_[k] = first_[k - 1];    // back to its start
+  first_[0] = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto run = by_a_.begin() + first_[k], end = by_a_.begin() + first_[k + 1];
+    std::sort(run, end, [](const Candidate& l, const Candidate& r) { return l.b < r.b; });
+  }
+  candidates_.swap(by_a_);
+}
+
 bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
   const std::size_t n = shapes_.size();
   // The work limits (limits.hpp), as the disc broadphase's: candidate pairs kept, and box
@@ -262,9 +280,7 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally) {
       candidates_.push_back({std::min(a, b), std::max(a, b)});
     }
   }
-  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& l, const Candidate& r) {
-    return l.a != r.a ? l.a < r.a : l.b < r.b;
-  });
+  sort_candidates();
   return true;
 }
 
