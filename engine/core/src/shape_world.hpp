@@ -246,7 +246,7 @@ class ShapeWorld {
   std::vector<Aabb> sorted_;          ///< boxes_ in that order
   void sort_boxes();
   std::vector<Candidate> candidates_;
-  std::vector<Candidate> by_a_;        ///< sort_candidates' scratch
+  std::vector<Candidate> by_a_;       ///< sort_candidates' scratch
   std::vector<std::uint32_t> first_;  ///< sort_candidates' scratch: each run's start
   void sort_candidates();
   std::vector<Candidate> sensor_candidates_;  ///< a: the sensor shape
