@@ -192,6 +192,11 @@ struct ShapeTally {
 
 class ShapeWorld {
  public:
+  /// A plane with a unit normal: n·x = offset (m) on its surface.
+  struct UnitPlane {
+    Vec2 n{};
+    double offset = 0.0;
+  };
   static constexpr std::uint32_t none = ~std::uint32_t{0};
   /// Separation below which a point is pushed out (m): Box2D's linear slop.
   static constexpr double slop = 0.005;
@@ -246,8 +251,9 @@ class ShapeWorld {
   std::vector<Aabb> sorted_;          ///< boxes_ in that order
   void sort_boxes();
   std::vector<Candidate> candidates_;
-  std::vector<Candidate> by_a_;       ///< sort_candidates' scratch
-  std::vector<std::uint32_t> first_;  ///< sort_candidates' scratch: each run's start
+  std::vector<UnitPlane> unit_planes_;  ///< this tick's planes, their normals made unit
+  std::vector<Candidate> by_a_;         ///< sort_candidates' scratch
+  std::vector<std::uint32_t> first_;    ///< sort_candidates' scratch: each run's start
   void sort_candidates();
   std::vector<Candidate> sensor_candidates_;  ///< a: the sensor shape
   std::vector<Sensed> sensed_;
