@@ -2,13 +2,13 @@
 // compiled with -ffp-contract=off, so every operation rounds once, the same on every target.
 // The methods, their sources and the measured errors are in det_math.hpp; the polynomial
 // coefficients and the split constants of π/2 are fdlibm 5.3's (Sun Microsystems, 1993).
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "fixstep/core/bits.hpp"
 #include "fixstep/core/det_math.hpp"
 
 namespace fixstep::det {
@@ -71,7 +71,7 @@ double cos_kernel(double x, double y) {
 /// ilogb(y) for finite y ≠ 0: the exponent field of a normal number, less its bias (a
 /// subnormal's by std::ilogb).
 int binary_exponent(double y) {
-  const int field = static_cast<int>((std::bit_cast<std::uint64_t>(y) >> 52) & 0x7ff);
+  const int field = static_cast<int>((bits_of(y) >> 52) & 0x7ff);
   return field != 0 ? field - 1023 : std::ilogb(y);
 }
 
