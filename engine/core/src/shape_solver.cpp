@@ -72,16 +72,12 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
     ShapeRow& r = rows_[i];
     ShapeSolveRow& h = solve_[i];
     h = solve_row(r);
-    r.normal_mass = h.normal_mass, r.tangent_mass = h.tangent_mass;
-    const double ia = r.a != none ? bodies_[r.a].inv_inertia : 0.0;
-    const double ib = bodies_[r.b].inv_inertia;
-    r.rolling_mass = r.rolling > 0.0 && ia + ib > 0.0 ? 1.0 / (ia + ib) : 0.0;
+    r.rolling_mass = r.rolling > 0.0 && h.ia + h.ib > 0.0 ? 1.0 / (h.ia + h.ib) : 0.0;
     r.lr = 0.0;
     // The normal velocity the row asks for: a gap may close within the tick, a touching point
     // stops approaching (the bounces are the impact pass's).
     r.approach = std::max(-normal_velocity(h), 0.0);
-    r.target = r.separation > 0.0 ? -r.separation / tick.dt : 0.0;
-    h.target = r.target;
+    h.target = r.separation > 0.0 ? -r.separation / tick.dt : 0.0;
     r.bn = 0.0, r.bt = 0.0;
   }
   prepare_blocks();
@@ -94,7 +90,7 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     ShapeRow& r = rows_[i];
     ShapeSolveRow& h = solve_[i];
-    if (r.redundant) continue;
+    if (h.flags & ShapeSolveRow::redundant) continue;
     const ShapeWarm key{r.pair, r.id};
     auto low = warm_.begin(), high = warm_.end();
     if (after != warm_.end() && !(key < *after)) {  // at or past the last match
@@ -129,11 +125,11 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
 bool ShapeWorld::impact_pass(const ShapeTick& tick) {
   bool any = false;
   for (std::size_t i = 0; i < rows_.size(); ++i) {
-    const ShapeRow& r = rows_[i];
-    if (r.pair_first) {
+    const std::uint8_t flags = solve_[i].flags;
+    if (flags & ShapeSolveRow::block_first) {
       any = bounce_block(i, tick) || any;
       ++i;
-    } else if (!r.redundant) {
+    } else if (!(flags & ShapeSolveRow::redundant)) {
       any = bounce(i, tick) || any;
     }
   }
@@ -199,27 +195,22 @@ bool ShapeWorld::bounce_block(std::size_t i, const ShapeTick& tick) {
 }
 
 void ShapeWorld::prepare_blocks() {
-  for (ShapeRow& r : rows_) r.pair_first = false, r.redundant = false;
   for (std::size_t i = 0; i + 1 < rows_.size(); ++i) {
-    ShapeRow& r1 = rows_[i];
-    ShapeRow& r2 = rows_[i + 1];
+    const ShapeRow& r1 = rows_[i];
+    const ShapeRow& r2 = rows_[i + 1];
     if (r1.pair != r2.pair || r1.a != r2.a || r1.b != r2.b) continue;
-    if (r1.rolling > 0.0) solve_[i].flags |= ShapeSolveRow::rolls_pair;
-    if (r1.normal_mass == 0.0 || r2.normal_mass == 0.0) continue;
-    const ShapeSolveRow &h1 = solve_[i], &h2 = solve_[i + 1];
+    ShapeSolveRow &h1 = solve_[i], &h2 = solve_[i + 1];
+    if (r1.rolling > 0.0) h1.flags |= ShapeSolveRow::rolls_pair;
+    if (h1.normal_mass == 0.0 || h2.normal_mass == 0.0) continue;
     const double k12 = h1.ma + h1.mb + h1.ia * h1.rna * h2.rna + h1.ib * h1.rnb * h2.rnb;
     const double k11 = h1.kn, k22 = h2.kn;
     // Box2D's condition number guard: a K this close to singular keeps one point (the deeper).
     if (k11 * k11 < 1000.0 * (k11 * k22 - k12 * k12)) {
-      r1.pair_first = true, r1.k12 = k12;
-      ShapeSolveRow& h = solve_[i];
       const double det = k11 * k22 - k12 * k12;
-      h.flags |= ShapeSolveRow::block_first, h.k12 = k12;
-      h.block_mass = {k22 / det, -k12 / det, k11 / det};
+      h1.flags |= ShapeSolveRow::block_first, h1.k12 = k12;
+      h1.block_mass = {k22 / det, -k12 / det, k11 / det};
     } else {
-      const bool second = r2.separation < r1.separation;
-      (second ? r1 : r2).redundant = true;
-      solve_[second ? i : i + 1].flags |= ShapeSolveRow::redundant;
+      (r2.separation < r1.separation ? h1 : h2).flags |= ShapeSolveRow::redundant;
     }
     ++i;
   }
@@ -314,11 +305,13 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
   update_turns();
   for (int it = 0; it < tick.position_iterations; ++it) {
     bool pushed = false;
-    for (const ShapeRow& r : rows_) {
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      const ShapeRow& r = rows_[i];
+      const double normal_mass = solve_[i].normal_mass;
       const double c = std::clamp(push_fraction * (separation(r) + slop), -max_push, 0.0);
-      if (c == 0.0 || r.normal_mass == 0.0) continue;
+      if (c == 0.0 || normal_mass == 0.0) continue;
       pushed = true;
-      const Vec2 p = (-c * r.normal_mass) * r.n;
+      const Vec2 p = (-c * normal_mass) * r.n;
       if (r.a != none) {
         const ShapedBody& b = bodies_[r.a];
         ShapeState& s = state_[r.a];

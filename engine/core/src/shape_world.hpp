@@ -92,18 +92,7 @@ struct ShapeRow {
   std::uint32_t a = 0, b = 0;  ///< bodies_ indices (a may be `none`: a plane or segment)
   Vec2 n{}, ra{}, rb{};        ///< normal A→B, lever arms (m)
   double separation = 0.0;     ///< m, at the manifold's poses
-  double normal_mass = 0.0, tangent_mass = 0.0;
-  /// The first of a manifold's two points, whose normal impulses are solved together (Box2D
-  /// v2.4's block solver): K = [[1/normal_mass, k12], [k12, 1/normal_mass of the next]].
-  bool pair_first = false;
-  /// A manifold point whose row all but repeats its partner's (K near singular: the two points
-  /// nearly coincide as constraints): left out of the velocity solve, which the partner (the
-  /// deeper of the two) does alone, as Box2D v2.4 keeps one point of such a manifold. Solving
-  /// both one after the other converges slowly here and leaves an elastic bounce unfinished.
-  bool redundant = false;
-  double k12 = 0.0;
   double friction = 0.0, restitution = 0.0;  ///< μ, e of the pair
-  double target = 0.0;                       ///< the normal velocity it asks for, m/s
   double approach = 0.0;                     ///< the closing speed before the solve, m/s (>= 0)
   double ln = 0.0, lt = 0.0;                 ///< accumulated impulses (N·s)
   /// Rolling resistance (on a manifold's first row only): c · r (m), the bound of the angular
@@ -122,18 +111,29 @@ struct ShapeRow {
 /// inverse mass and inertia (0 for a plane or segment A), so that a sweep reads no more than
 /// the row and the two bodies' velocities.
 struct ShapeSolveRow {
+  /// flags:
+  /// - block_first: the first of a manifold's two points, whose normal impulses are solved
+  ///   together (Box2D v2.4's block solver): K = [[kn, k12], [k12, kn of the next]];
+  /// - redundant: a point whose row all but repeats its partner's (K near singular: the two
+  ///   points nearly coincide as constraints), left out of the velocity solve, which the
+  ///   partner (the deeper) does alone, as Box2D v2.4 keeps one point of such a manifold;
+  ///   solving both one after the other converges slowly here and leaves an elastic bounce
+  ///   unfinished;
+  /// - rolls: the manifold's first row, with rolling resistance (ShapeRow::rolling_mass > 0);
+  ///   rolls_pair: and the manifold has a second row.
   static constexpr std::uint8_t block_first = 1, redundant = 2, rolls = 4, rolls_pair = 8;
   std::uint32_t a = 0, b = 0;  ///< bodies_ indices (a may be ShapeWorld::none)
-  std::uint8_t flags = 0;      ///< ShapeRow::pair_first, ::redundant; rolling resistance
+  std::uint8_t flags = 0;
   double nx = 0.0, ny = 0.0;
   double rna = 0.0, rnb = 0.0, rta = 0.0, rtb = 0.0;  ///< m: r_A × n, r_B × n, r_A × t, r_B × t
   double ma = 0.0, ia = 0.0, mb = 0.0, ib = 0.0;      ///< 1/kg, 1/(kg·m²)
   double kn = 0.0;                                    ///< 1/kg: the normal row's K (1/normal_mass)
   double normal_mass = 0.0, tangent_mass = 0.0;
-  double k12 = 0.0;  ///< a block's coupling (ShapeRow::k12)
+  double k12 = 0.0;     ///< a block's coupling, 1/kg
+  double target = 0.0;  ///< the normal velocity the row asks for, m/s
   /// A block's K⁻¹ (kg), on its first row: [[m11, m12], [m12, m22]] as {m11, m12, m22}.
   std::array<double, 3> block_mass{};
-  double friction = 0.0, target = 0.0;
+  double friction = 0.0;
   double ln = 0.0, lt = 0.0;  ///< accumulated impulses (N·s)
 };
 
@@ -322,7 +322,8 @@ class ShapeWorld {
   /// B's velocity relative to A's at the row's point, along n and along t (m/s).
   [[nodiscard]] double normal_velocity(const ShapeSolveRow& h) const;
   [[nodiscard]] double tangent_velocity(const ShapeSolveRow& h) const;
-  /// The row of `r` (ShapeRow::normal_mass and the rest set) for the velocity solve.
+  /// The row of `r` for the velocity solve (its target and flags left to prepare_rows and
+  /// prepare_blocks).
   [[nodiscard]] ShapeSolveRow solve_row(const ShapeRow& r) const;
   /// After the velocity solve: each pose moved by dt times its body's velocity change in it
   /// (semi-implicit Euler's x1 = x0 + dt v1, once, for every impulse of the solve), and the
