@@ -9,6 +9,7 @@
 #include <limits>
 #include <utility>
 
+#include "binary_exponent.hpp"
 #include "fixstep/core/bits.hpp"
 #include "fixstep/core/types.hpp"
 
@@ -53,14 +54,6 @@ int reduce(double x, double& hi, double& lo) {
   hi = x - k * ln2_hi;
   lo = k * ln2_lo;
   return k;
-}
-
-/// Exponent e with |a| in [2^e, 2^(e+1)) for finite a > 0 (subnormals included).
-int exponent_of(double a) {
-  const int biased = static_cast<int>(bits_of(a) >> 52);
-  if (biased != 0) return biased - 1023;
-  const double normal = a * 0x1p64;  // exact
-  return static_cast<int>(bits_of(normal) >> 52) - 1023 - 64;
 }
 
 /// p = a·b and the exact error e = a·b - p (Dekker's product with Veltkamp's split; needs
@@ -149,9 +142,9 @@ double hypot(double x, double y) {
   if (a != a || b != b) return a + b;  // NaN
   if (a < b) std::swap(a, b);
   if (b == 0.0) return a;
-  const int e = exponent_of(a);
+  const int e = binary_exponent(a);
   // b/a < 2^-30: √(a² + b²) = a (1 + (b/a)²/2 + ...) rounds to a.
-  if (e - exponent_of(b) > 30) return a;
+  if (e - binary_exponent(b) > 30) return a;
   // Scale by 2^-e in two exact steps (e may be -1074 or 1023): a into [1, 2), b ≥ 2^-31.
   const int e1 = e / 2, e2 = e - e1;
   a = a * pow2(-e1) * pow2(-e2), b = b * pow2(-e1) * pow2(-e2);

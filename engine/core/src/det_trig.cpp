@@ -3,12 +3,11 @@
 // The methods, their sources and the measured errors are in det_math.hpp; the polynomial
 // coefficients and the split constants of π/2 are fdlibm 5.3's (Sun Microsystems, 1993).
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
-#include "fixstep/core/bits.hpp"
+#include "binary_exponent.hpp"
 #include "fixstep/core/det_math.hpp"
 
 namespace fixstep::det {
@@ -66,13 +65,6 @@ double cos_kernel(double x, double y) {
   const double r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
   const double hz = 0.5 * z, one_minus = 1.0 - hz;
   return one_minus + (((1.0 - one_minus) - hz) + (z * r - x * y));
-}
-
-/// ilogb(y) for finite y ≠ 0: the exponent field of a normal number, less its bias (a
-/// subnormal's by std::ilogb).
-int binary_exponent(double y) {
-  const int field = static_cast<int>((bits_of(y) >> 52) & 0x7ff);
-  return field != 0 ? field - 1023 : std::ilogb(y);
 }
 
 /// n and x - nπ/2 = y0 + y1 (|y0| ≤ about π/4, |y1| ≤ ulp(y0)/2) for finite |x| ≤

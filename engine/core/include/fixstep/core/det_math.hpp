@@ -69,8 +69,10 @@ double sin(double x);
 /// Method: as sin.
 double cos(double x);
 
-/// sin x and cos x by one reduction of x: the same bits as sin(x) and cos(x), and the same
-/// errors and exceptions.
+/// sin x and cos x for x in rad, |x| ≤ trig_max_argument, into `sine` and `cosine`: the same
+/// bits as sin(x) and cos(x), from one reduction of x. NaN or ±inf → NaN in both (no FP
+/// exception flag raised); |x| > trig_max_argument (finite) throws std::domain_error naming x,
+/// with neither output written. Method: as sin.
 void sincos(double x, double& sine, double& cosine);
 
 /// arctan x in rad, in [-π/2, π/2], for any double x. Error ≤ 1 ulp (measured, see sin).
