@@ -25,6 +25,25 @@ Vec2 perp(Vec2 n) {
   return {-n.y, n.x};
 }
 
+/// std::lower_bound(first, last, key) over a sorted range, searched from `hint` on by doubling
+/// steps when key is at or past *hint (else over the whole range): the same element, in
+/// O(log d) for a key d places past the hint.
+template <class It, class T>
+It lower_bound_from(It first, It last, It hint, const T& key) {
+  It low = first, high = last;
+  if (hint != last && !(key < *hint)) {
+    low = hint;
+    for (std::ptrdiff_t step = 1; high - low > step; step *= 2) {
+      if (key < low[step]) {
+        high = low + step;
+        break;
+      }
+      low += step;
+    }
+  }
+  return std::lower_bound(low, high, key);
+}
+
 }  // namespace
 
 // A row's impulses change velocities only; the poses follow once, after the whole velocity
@@ -84,26 +103,13 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   for (int pass = 0; pass < max_impact_passes && impact_pass(tick); ++pass) {
   }
   // Warm starting, once every row's target is set from the free velocities. The rows come
-  // mostly in key order: each search starts where the last one ended, forward by doubling
-  // steps (the same match as a search of the whole list).
+  // mostly in key order: each search starts where the last one ended.
   auto after = warm_.begin();
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     ShapeRow& r = rows_[i];
     ShapeSolveRow& h = solve_[i];
     if (h.flags & ShapeSolveRow::redundant) continue;
-    const ShapeWarm key{r.pair, r.id};
-    auto low = warm_.begin(), high = warm_.end();
-    if (after != warm_.end() && !(key < *after)) {  // at or past the last match
-      low = after;
-      for (std::size_t step = 1; high - low > static_cast<std::ptrdiff_t>(step); step *= 2) {
-        if (key < low[static_cast<std::ptrdiff_t>(step)]) {
-          high = low + static_cast<std::ptrdiff_t>(step);
-          break;
-        }
-        low += static_cast<std::ptrdiff_t>(step);
-      }
-    }
-    const auto warm = std::lower_bound(low, high, key);
+    const auto warm = lower_bound_from(warm_.begin(), warm_.end(), after, ShapeWarm{r.pair, r.id});
     after = warm;
     if (warm != warm_.end() && warm->pair == r.pair && warm->id == r.id) {
       h.ln = warm->ln, h.lt = warm->lt;
