@@ -1,8 +1,8 @@
 // Disc worlds step to the same bits on one thread and on two, tick by tick, at sizes on both
-// sides of every split: the broadphase (from 4096 discs), the second thread's run and the
-// passes by halves (from 1024 discs), the shared first impact predictions (from 512 candidate
-// pairs) and the resting solver's halves (cut from 1024 touching pairs, on two threads from
-// 8192). Each world here crosses the split it is there for (asserted): a gas of elastic
+// sides of every split: the broadphase (from 512 discs), the second thread's run and the
+// passes by halves (from 256 discs), the shared first impact predictions (from 512 candidate
+// pairs) and the resting solver's halves (cut from 1024 touching pairs, and on two threads
+// from there). Each world here crosses the split it is there for (asserted): a gas of elastic
 // impacts, a pile of rolling discs on a polyline floor, a pile that falls asleep, a pile
 // ploughed by a kinematic disc; f64 and f32.
 #include <gtest/gtest.h>
@@ -115,7 +115,8 @@ ContactStats same_bits(const WorldDef& def, int ticks, const std::string& what) 
 }
 
 TEST(DiscThreads, AGasStepsToTheSameBitsOnTwoThreads) {
-  for (const std::size_t n : {std::size_t{1500}, std::size_t{6000}}) {
+  // 400 discs: the second thread's run, without the broadphase's split.
+  for (const std::size_t n : {std::size_t{400}, std::size_t{1500}, std::size_t{6000}}) {
     const ContactStats most = same_bits(gas(n), 30, "gas of " + std::to_string(n));
     EXPECT_GT(most.impacts, n / 20) << n;  // impacts resolved at their time, many a tick
     if (n > 4096) {
@@ -138,7 +139,13 @@ TEST(DiscThreads, RollingDiscsOnAPolylineStepToTheSameBitsOnTwoThreads) {
   for (int i = 0; i <= 16; ++i) floor.push_back({-4.4 + 0.55 * i, i % 2 == 0 ? -0.02 : 0.02});
   def.add_polyline(floor, 0.0, 0.4);
   const ContactStats most = same_bits(def, 50, "rolling pile");
-  EXPECT_GT(most.touching, 8192u);  // the resting solver's halves on two threads
+  EXPECT_GT(most.touching, 1024u);  // the resting solver's halves on two threads
+}
+
+TEST(DiscThreads, ASmallPileStepsToTheSameBitsOnTwoThreads) {
+  // Just past the cut: the resting solver's halves on two threads, the broadphase split.
+  const ContactStats most = same_bits(pile(600, 30), 60, "pile of 600");
+  EXPECT_GT(most.touching, 1024u);
 }
 
 TEST(DiscThreads, APileThatFallsAsleepStepsToTheSameBitsOnTwoThreads) {
@@ -159,7 +166,7 @@ TEST(DiscThreads, APilePloughedByAKinematicDiscStepsToTheSameBitsOnTwoThreads) {
   plough.type = BodyType::kinematic;
   def.bodies.push_back(plough);
   const ContactStats most = same_bits(def, 50, "ploughed pile");
-  EXPECT_GT(most.touching, 8192u);
+  EXPECT_GT(most.touching, 1024u);
 }
 
 }  // namespace disc_thread_tests

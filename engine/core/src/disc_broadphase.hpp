@@ -39,8 +39,10 @@
 // EPYC VM): split, a call at 10^4 boxes takes 414-475 instead of 641-716 us (pile) and 651-657
 // instead of 892-961 us (gas); at 10^3 42-44 instead of 57-58 us (pile) but 63 or 120 instead
 // of 95-96 us (gas): the serial rest is the levels' sizing, the prefix sums and the final sort,
-// and the hand-over costs some microseconds. So threads = 2 splits from min_parallel_boxes =
-// 4096 boxes.
+// and the hand-over costs some microseconds when it wakes the worker. Within a tick's run of
+// the second thread (second_thread.hpp) the worker spins and the hand-over is cheap: there the
+// split pays from a few hundred boxes (docs/perf/contact_solver_plan.md has the measurements),
+// so threads = 2 splits from min_parallel_boxes = 512 boxes.
 #pragma once
 
 #include <algorithm>
@@ -99,7 +101,7 @@ class DiscBroadphase {
  public:
   /// Below this many boxes a call with threads = 2 runs on one thread: at 10^3 the second
   /// thread's gain is not consistent, at 10^4 it is (bench_broadphase, idle machine; see above).
-  static constexpr std::size_t min_parallel_boxes = 4096;
+  static constexpr std::size_t min_parallel_boxes = 512;
   /// Cell side of a level over the largest extent it holds: > 1 leaves room for rounding.
   static constexpr double cell_factor = 1.25;
   static constexpr unsigned max_levels = 48;

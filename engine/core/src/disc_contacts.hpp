@@ -228,19 +228,16 @@ class DiscContacts {
   /// Heap bytes a copy holds (World::snapshot_bytes).
   [[nodiscard]] std::size_t bytes() const;
 
-  /// Contacts from which the resting solver splits them into two halves (split_contacts()).
+  /// Contacts from which the resting solver splits them into two halves (split_contacts()),
+  /// which run on two threads within the tick's run of the second thread.
   static constexpr std::size_t min_split_contacts = 1024;
-  /// Touching pairs from which a split pile's halves run on two threads in the resting solver's
-  /// passes over its parts (below, one thread runs the same passes in the same order: handing
-  /// the halves over costs more than it saves).
-  static constexpr std::size_t min_parallel_contacts = 8192;
   /// Candidate pairs from which two threads share the first impact predictions and the
   /// gathering, within the tick's run of the second thread.
   static constexpr std::size_t min_parallel_pairs = 512;
   /// Discs from which a tick with two threads shares its passes with the second thread,
   /// which spins between them (SecondThread::open) rather than waking for each; below, every
   /// pass runs on the stepping thread.
-  static constexpr std::size_t min_parallel_discs = 1024;
+  static constexpr std::size_t min_parallel_discs = 256;
   /// The second thread a tick on `threads` threads shares its passes with (SecondThreadRun
   /// keeps it spinning through them), or null: one thread, or fewer than min_parallel_discs.
   /// With sleepers, the awake discs count instead of all of them.
@@ -478,7 +475,7 @@ class DiscContacts {
     range(p[2], p[3], 0);  // across the cut
   }
   /// Warm start, velocity iterations and push-out, on two threads when the contacts were
-  /// split and min_parallel_contacts or more within the tick's run of the second thread.
+  /// split, within the tick's run of the second thread.
   void solve_resting(const Tick& tick, ContactStats& stats);
   /// Each contact's impulses from last tick's by key (warm_), 0 for a new contact.
   void match_warm();

@@ -47,8 +47,7 @@ template <int Kind>
 template <class Real>
 void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   const auto& p = part_start_;
-  team_on_ =
-      tick.threads >= 2 && p[1] > p[0] && p[2] > p[1] && contacts_.size() >= min_parallel_contacts;
+  team_on_ = broadphase_.second_thread().is_open() && p[1] > p[0] && p[2] > p[1];
   match_warm();
   build_rows();
   warm_start();

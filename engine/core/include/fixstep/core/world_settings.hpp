@@ -78,7 +78,7 @@ struct WorldSettings {
   bool track_dissipation = false;
   /// Threads a tick of a world with links or disc contacts may use: 1, 2, or 0 = automatic (2
   /// when the machine has a second core, and for links the world has at least
-  /// parallel_min_bodies bodies; disc contacts share their passes from 1024 discs). The states
+  /// parallel_min_bodies bodies; disc contacts share their passes from 256 discs). The states
   /// are bit-identical for every thread count: each body gathers its link forces in a fixed
   /// order, the discs' passes split into halves whose items are independent, and no float is
   /// ever added atomically. Always 1 in a wasm32 build without pthreads (emscripten's
