@@ -245,6 +245,13 @@ class DiscContacts {
     const std::size_t busy = sleeper_count_ != 0 ? awake().size() : discs_.size();
     return threads >= 2 && busy >= min_parallel_discs ? &broadphase_.second_thread() : nullptr;
   }
+  /// The threads the broadphase may split a call over: the tick's within its run of the second
+  /// thread, else 1 (outside a run each hand-over would wake the worker by futex, which costs
+  /// more than the halves save below thousands of boxes; with sleepers the broadphase may see
+  /// more discs than the awake ones that open the run).
+  [[nodiscard]] int pass_threads(const Tick& tick) {
+    return broadphase_.second_thread().is_open() ? tick.threads : 1;
+  }
   /// A tick with sleepers visits only the live discs (each_live()) when at most this share of
   /// the discs is awake, else every disc: both give the same states.
   static constexpr std::size_t live_share = 4;

@@ -178,12 +178,13 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
   const std::size_t cap = max_candidate_pairs(n);  // limits.hpp; a pile: ~3 per disc
   const std::size_t most = std::min(max_pairs, cap);
   int recycled = -1;  // the fat boxes' pairs (disc_fat.cpp), or the broadphase on the boxes
+  const int threads = pass_threads(tick);
   if (whole_tick && live_all_) {
-    recycled = recycled_pairs(tick.threads, most, cap);
+    recycled = recycled_pairs(threads, most, cap);
   } else {
     fat_.valid = false;  // the broadphase's grid is the window's or the live discs'
   }
-  if (recycled == -1 ? !pairs_of(boxes_, pairs_, tick.threads, most) : recycled == 0) {
+  if (recycled == -1 ? !pairs_of(boxes_, pairs_, threads, most) : recycled == 0) {
     pairs_.clear();
     if (max_pairs < cap) return false;  // a try (tick_windows())
     stats.candidate_pairs = cap, stats.capped = 1;

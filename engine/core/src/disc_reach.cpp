@@ -86,7 +86,7 @@ std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, doubl
     if (live_all_ && !fat_.valid) {
       work += broadphase_.query(*band, meet);
     } else if (live_all_) {  // the grid holds the fat boxes (disc_fat.cpp): each disc's own box
-      if (!fat_grid_.value) rebuild_fat_grid(tick.threads);
+      if (!fat_grid_.value) rebuild_fat_grid(pass_threads(tick));
       auto own = [&](std::uint32_t j, const SweptBox& /*fat*/) { meet(j, paired_box(j)); };
       work += broadphase_.query(*band, own);
     } else {  // the broadphase holds the live discs by live position; a sleeper joins here
