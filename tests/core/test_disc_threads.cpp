@@ -2,9 +2,10 @@
 // sides of every split: the broadphase (from 512 discs), the second thread's run and the
 // passes by halves (from 256 discs), the shared first impact predictions (from 512 candidate
 // pairs) and the resting solver's halves (cut from 1024 touching pairs, and on two threads
-// from there). Each world here crosses the split it is there for (asserted): a gas of elastic
-// impacts, a pile of rolling discs on a polyline floor, a pile that falls asleep, a pile
-// ploughed by a kinematic disc; f64 and f32.
+// from there). Each world here crosses the split it is there for (the counts of discs by
+// construction, those of pairs asserted): a gas of elastic impacts, a pile of rolling discs on
+// a polyline floor, a pile that falls asleep, a pile ploughed by a kinematic disc; f64 and
+// f32.
 #include <gtest/gtest.h>
 
 #include <algorithm>

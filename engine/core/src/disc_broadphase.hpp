@@ -99,8 +99,8 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
 /// scratch nor its worker thread (a copy starts its own when first asked for two threads).
 class DiscBroadphase {
  public:
-  /// Below this many boxes a call with threads = 2 runs on one thread: at 10^3 the second
-  /// thread's gain is not consistent, at 10^4 it is (bench_broadphase, idle machine; see above).
+  /// Below this many boxes a call with threads = 2 runs on one thread (see above: the disc
+  /// contacts pass threads = 2 only within the tick's run of the second thread).
   static constexpr std::size_t min_parallel_boxes = 512;
   /// Cell side of a level over the largest extent it holds: > 1 leaves room for rounding.
   static constexpr double cell_factor = 1.25;
