@@ -82,10 +82,11 @@ ShapeSolveRow ShapeWorld::solve_row(const ShapeRow& r) const {
 
 void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   dt_ = tick.dt;
-  velocity_.resize(state_.size());
+  velocity_.resize(state_.size() + 2);  // and the sink and zero slots
   for (std::size_t k = 0; k < state_.size(); ++k) {
     velocity_[k] = {state_[k].vx, state_[k].vy, state_[k].w};
   }
+  velocity_[sink_slot()] = {}, velocity_[zero_slot()] = {};
   solve_.resize(rows_.size());
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     ShapeRow& r = rows_[i];
@@ -239,36 +240,6 @@ void ShapeWorld::solve_rolling(ShapeRow& r, double normal_impulse) {
 void ShapeWorld::turn(const ShapeRow& r, double l) {
   if (r.a != none) velocity_[r.a].w -= bodies_[r.a].inv_inertia * l;
   velocity_[r.b].w += bodies_[r.b].inv_inertia * l;
-}
-
-void ShapeWorld::solve_velocities(const ShapeTick& tick) {
-  ShapeSolveRow* const rows = solve_.data();
-  const std::size_t n = solve_.size();
-  for (int it = 0; it < tick.velocity_iterations; ++it) {
-    if (!joints_.empty()) solve_joint_velocities();
-    for (std::size_t i = 0; i < n; ++i) {
-      ShapeSolveRow& h = rows[i];
-      Motion2 m = load(h);  // the two bodies' velocities, carried through the manifold's rows
-      if (h.flags & ShapeSolveRow::block_first) {  // friction first, bounded by this
-        solve_friction(h, m.a, m.b);               // iteration's normal impulse
-        solve_friction(rows[i + 1], m.a, m.b);
-        solve_block(h, rows[i + 1], m.a, m.b);
-        store(h, m);
-        if (h.flags & ShapeSolveRow::rolls) solve_rolling(rows_[i], h.ln + rows[i + 1].ln);
-        ++i;
-      } else {
-        if (!(h.flags & ShapeSolveRow::redundant)) {
-          solve_friction(h, m.a, m.b), solve_normal(h, m.a, m.b);
-          store(h, m);
-        }
-        if (h.flags & ShapeSolveRow::rolls) {  // a manifold's first row, maybe redundant:
-          const bool pair = h.flags & ShapeSolveRow::rolls_pair;  // both its rows'
-          solve_rolling(rows_[i], h.ln + (pair ? rows[i + 1].ln : 0.0));
-        }
-      }
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) rows_[i].ln = rows[i].ln, rows_[i].lt = rows[i].lt;
 }
 
 void ShapeWorld::follow_velocities() {

@@ -13,7 +13,8 @@
 //  3. sequential impulses (Catto, GDC 2005: accumulated impulses clamped at zero, Coulomb
 //     friction bounded by μ λ_n, a manifold's two normal impulses solved together, warm
 //     starting from the last tick's impulses matched by feature ids) on the free end
-//     velocities, with velocity targets: a gap s > 0 may close at s/dt, a touching point stops
+//     velocities, the manifolds in colours of which no two move one body (shape_sweep.cpp),
+//     with velocity targets: a gap s > 0 may close at s/dt, a touching point stops
 //     approaching, one that meets faster than the restitution threshold bounces back (Newton's
 //     law); the impulses move velocities only, and once they are done each body moves by dt
 //     times its velocity change (as semi-implicit Euler's x1 = x0 + dt v1 would);
@@ -24,7 +25,9 @@
 //     that tick's motion is lost, and no shape passes through a static one;
 //  5. the overlap left beyond the slop pushed out on positions only (non-linear Gauss-Seidel,
 //     Box2D v2.4's position solver), which adds no kinetic energy.
-// Everything runs on one thread in one order: the same bits on any thread count and platform.
+// Everything runs on one thread in one order (a colour's manifolds four at a time in the lanes
+// of a vector, each lane as one alone): the same bits on any thread count, SIMD level and
+// platform.
 #pragma once
 
 #include <array>
@@ -39,6 +42,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "one_way.hpp"
 #include "shape_geom.hpp"
+#include "shape_lanes.hpp"
 
 namespace fixstep::detail {
 struct JointRecord;
@@ -135,12 +139,6 @@ struct ShapeSolveRow {
   std::array<double, 3> block_mass{};
   double friction = 0.0;
   double ln = 0.0, lt = 0.0;  ///< accumulated impulses (N·s)
-};
-
-/// A body's velocity (m/s, m/s, rad/s) as the velocity solve carries it through a manifold's
-/// rows; zero for a plane or segment.
-struct ShapeMotion {
-  double vx = 0.0, vy = 0.0, w = 0.0;
 };
 
 /// The impulses a manifold point carried last tick, by key.
@@ -329,7 +327,36 @@ class ShapeWorld {
   /// (semi-implicit Euler's x1 = x0 + dt v1, once, for every impulse of the solve), and the
   /// velocities written back to state_.
   void follow_velocities();
+  /// The velocity sweeps (shape_sweep.cpp): the joints' rows, then the contacts' colour by
+  /// colour, each colour's blocks and one-point manifolds four at a time (shape_lanes.hpp) and
+  /// the rest one at a time.
   void solve_velocities(const ShapeTick& tick);
+  /// A manifold (its first row in solve_) and its colour: no two manifolds of one colour move
+  /// the same body.
+  struct ColoredUnit {
+    std::uint32_t start = 0, color = 0;
+  };
+  /// Each colour's end in block_lanes_, point_lanes_ and units_.
+  struct ColorRun {
+    std::uint32_t blocks_end = 0, points_end = 0, units_end = 0;
+  };
+  std::vector<std::uint64_t> body_colors_;  ///< the colours each body's manifolds took
+  std::vector<ColoredUnit> colored_;
+  std::vector<std::uint32_t> by_color_;               ///< colored_ sorted by colour
+  std::vector<shape_lanes::BlockLanes> block_lanes_;  ///< each colour's blocks, four a group
+  std::vector<shape_lanes::PointLanes> point_lanes_;  ///< and its one-point manifolds
+  std::vector<std::uint32_t> units_;                  ///< and the rest, one at a time
+  std::vector<ColorRun> color_runs_;
+  void color_manifolds();
+  void pack_lanes();
+  void unpack_lanes();
+  void solve_unit(std::size_t i);
+  /// The spare slots of velocity_ past the bodies: one written by the lanes of bodies that do not
+  /// move, and always zero (a plane's or segment's A, a padding lane).
+  [[nodiscard]] std::uint32_t sink_slot() const {
+    return static_cast<std::uint32_t>(state_.size());
+  }
+  [[nodiscard]] std::uint32_t zero_slot() const { return sink_slot() + 1; }
   /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
   void prepare_joints();
   void solve_joint_velocities();

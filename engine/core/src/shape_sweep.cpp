@@ -1,0 +1,255 @@
+// Shape contacts, part 3: the velocity sweeps (shape_world.hpp has the whole tick). Each sweep
+// solves the joints' rows, then the manifolds colour by colour: a colour is a set of manifolds
+// of which no two move the same body (greedy graph colouring, as Box2D v3's constraint graph
+// does; the method of "High-Performance Physical Simulations on Next-Generation Architecture
+// with Many Cores", Intel Technology Journal 11(4), 2007), so the manifolds of a colour may be
+// solved in any order, or side by side, with the same result. A colour's two-point blocks and
+// its one-point manifolds go four at a time through the lanes of a vector (shape_lanes.hpp);
+// the rest (a redundant point, rolling resistance, the overflow colour) one at a time. Either
+// way each manifold's arithmetic is that of shape_rows.hpp, so the bits do not depend on the
+// vector width the CPU offers.
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <utility>
+
+#include "fixstep/core/simd.hpp"
+#include "shape_lane_rows.hpp"
+#include "shape_rows.hpp"
+#include "shape_world.hpp"
+#include "simd_targets.hpp"
+
+namespace fixstep::detail {
+
+namespace shape_lanes {
+namespace {
+std::atomic<bool> enabled{true};
+}  // namespace
+void set_lanes_enabled(bool on) {
+  enabled.store(on, std::memory_order_relaxed);
+}
+bool lanes_enabled() {
+  return enabled.load(std::memory_order_relaxed);
+}
+}  // namespace shape_lanes
+
+using namespace shape_rows;
+
+namespace {
+
+/// Colours a manifold may take (a bit each in a body's mask); a manifold that finds none free
+/// goes to the overflow colour, solved last and one at a time.
+constexpr int color_count = 64;
+constexpr int overflow = color_count;
+/// The highest colours are kept for manifolds against what does not move, which take the
+/// highest colour free: Box2D v3 solves them after those between two moving bodies, so that
+/// the supports, solved last in a sweep, hold.
+constexpr int dynamic_colors = color_count - 4;
+
+int color_of(std::uint64_t used, bool both_move) {
+  if (both_move) {
+    const int low = std::countr_zero(~(used | ~((std::uint64_t{1} << dynamic_colors) - 1)));
+    return low < dynamic_colors ? low : overflow;
+  }
+  const std::uint64_t free = ~used & ~std::uint64_t{1};
+  return free != 0 ? color_count - 1 - std::countl_zero(free) : overflow;
+}
+
+using shape_lanes::BlockLanes;
+using shape_lanes::LaneBodies;
+using shape_lanes::PointLanes;
+
+// The groups of one colour, compiled for each SimdLevel (fixstep/core/simd.hpp; internal
+// linkage and everything inlined, as world_step.cpp's sweeps).
+template <class Group>
+[[gnu::noinline]] void groups_baseline(Group* first, Group* last, ShapeMotion* v) {
+  for (; first != last; ++first) shape_lanes::solve_group(*first, v);
+}
+#if FIXSTEP_HAS_SIMD_CLONES
+template <class Group>
+FIXSTEP_TARGET_AVX2 void groups_avx2(Group* first, Group* last, ShapeMotion* v) {
+  for (; first != last; ++first) shape_lanes::solve_group(*first, v);
+}
+#endif
+
+template <class Group>
+void solve_groups(SimdLevel level, Group* first, Group* last, ShapeMotion* v) {
+  if (first == last) return;
+#if FIXSTEP_HAS_SIMD_CLONES
+  if (level != SimdLevel::baseline) return groups_avx2(first, last, v);
+#endif
+  (void)level;
+  groups_baseline(first, last, v);
+}
+
+/// A lane's bodies and shared fields from a manifold's first row `h` (row i of solve_).
+void fill_bodies(LaneBodies& g, int lane, const ShapeSolveRow& h, std::uint32_t i,
+                 std::uint32_t spare, std::uint32_t zero) {
+  const bool move_a = h.a != ShapeWorld::none && (h.ma > 0.0 || h.ia > 0.0);
+  const bool move_b = h.mb > 0.0 || h.ib > 0.0;
+  g.read_a[lane] = h.a != ShapeWorld::none ? h.a : zero, g.read_b[lane] = h.b;
+  g.write_a[lane] = move_a ? h.a : spare, g.write_b[lane] = move_b ? h.b : spare;
+  g.row[lane] = i;
+  g.nx[lane] = h.nx, g.ny[lane] = h.ny, g.ma[lane] = h.ma, g.ia[lane] = h.ia;
+  g.mb[lane] = h.mb, g.ib[lane] = h.ib, g.friction[lane] = h.friction;
+}
+
+void fill_point(shape_lanes::LanePoint& q, int lane, const ShapeSolveRow& h) {
+  q.rna[lane] = h.rna, q.rnb[lane] = h.rnb, q.rta[lane] = h.rta, q.rtb[lane] = h.rtb;
+  q.kn[lane] = h.kn, q.normal_mass[lane] = h.normal_mass;
+  q.tangent_mass[lane] = h.tangent_mass, q.target[lane] = h.target;
+  q.ln[lane] = h.ln, q.lt[lane] = h.lt;
+}
+
+/// The next free lane of a colour's groups in `groups`, `used` of the last group's lanes taken
+/// (a new group, its lanes empty, when it is full; a colour starts with `used` = width).
+template <class Group>
+std::pair<Group*, int> next_lane(std::vector<Group>& groups, int& used, std::uint32_t spare,
+                                 std::uint32_t zero) {
+  if (used == shape_lanes::width) {
+    Group& g = groups.emplace_back();
+    g.read_a.fill(zero), g.read_b.fill(zero), g.write_a.fill(spare), g.write_b.fill(spare);
+    g.row.fill(~std::uint32_t{0});
+    used = 0;
+  }
+  return {&groups.back(), used++};
+}
+
+template <class Group>
+void unpack(const std::vector<Group>& groups, std::vector<ShapeSolveRow>& solve) {
+  for (const Group& g : groups) {
+    for (int l = 0; l < shape_lanes::width && g.row[l] != ~std::uint32_t{0}; ++l) {
+      for (std::size_t p = 0; p < g.p.size(); ++p) {
+        solve[g.row[l] + p].ln = g.p[p].ln[l], solve[g.row[l] + p].lt = g.p[p].lt[l];
+      }
+    }
+  }
+}
+
+}  // namespace
+
+// Greedy, in row order: each manifold takes a colour none of its moving bodies has taken.
+void ShapeWorld::color_manifolds() {
+  const std::size_t n = solve_.size();
+  body_colors_.assign(bodies_.size(), 0);
+  colored_.clear();
+  std::array<std::uint32_t, color_count + 2> count{};
+  for (std::size_t i = 0; i < n;) {
+    const ShapeRow& r = rows_[i];
+    const bool two =
+        i + 1 < n && rows_[i + 1].pair == r.pair && rows_[i + 1].a == r.a && rows_[i + 1].b == r.b;
+    const ShapeSolveRow& h = solve_[i];
+    const bool move_a = h.a != none && (h.ma > 0.0 || h.ia > 0.0);
+    const bool move_b = h.mb > 0.0 || h.ib > 0.0;
+    const std::uint64_t used = (move_a ? body_colors_[h.a] : 0) | (move_b ? body_colors_[h.b] : 0);
+    const int c = move_a || move_b ? color_of(used, move_a && move_b) : 0;
+    if (c != overflow) {
+      if (move_a) body_colors_[h.a] |= std::uint64_t{1} << c;
+      if (move_b) body_colors_[h.b] |= std::uint64_t{1} << c;
+    }
+    colored_.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(c)});
+    ++count[c + 1];
+    i += two ? 2 : 1;
+  }
+  for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
+  by_color_.resize(colored_.size());
+  for (std::uint32_t u = 0; u < colored_.size(); ++u) by_color_[count[colored_[u].color]++] = u;
+}
+
+// Each colour's two-point blocks and one-point manifolds (without rolling resistance) into
+// groups of four, the last group of a colour padded with empty lanes; the rest into units_.
+void ShapeWorld::pack_lanes() {
+  block_lanes_.clear(), point_lanes_.clear(), units_.clear(), color_runs_.clear();
+  const std::uint32_t spare = sink_slot(), zero = zero_slot();
+  const std::size_t n = solve_.size();
+  const bool lanes = shape_lanes::lanes_enabled();
+  std::size_t k = 0;
+  for (std::uint32_t c = 0; c <= overflow; ++c) {
+    int blocks = shape_lanes::width, points = shape_lanes::width;  // a colour's groups its own
+    for (; k < by_color_.size() && colored_[by_color_[k]].color == c; ++k) {
+      const std::uint32_t i = colored_[by_color_[k]].start;
+      const ShapeSolveRow& h = solve_[i];
+      const ShapeRow& r = rows_[i];
+      const bool single = !(i + 1 < n && rows_[i + 1].pair == r.pair && rows_[i + 1].a == r.a &&
+                            rows_[i + 1].b == r.b);
+      const bool block = h.flags & ShapeSolveRow::block_first;
+      const bool plain = !(h.flags & (ShapeSolveRow::rolls | ShapeSolveRow::redundant));
+      if (!lanes || c == overflow || !plain || !(block || single)) {
+        units_.push_back(i);
+      } else if (block) {
+        const auto [g, lane] = next_lane(block_lanes_, blocks, spare, zero);
+        fill_bodies(*g, lane, h, i, spare, zero);
+        g->k12[lane] = h.k12, g->m11[lane] = h.block_mass[0];
+        g->m12[lane] = h.block_mass[1], g->m22[lane] = h.block_mass[2];
+        fill_point(g->p[0], lane, h), fill_point(g->p[1], lane, solve_[i + 1]);
+      } else {
+        const auto [g, lane] = next_lane(point_lanes_, points, spare, zero);
+        fill_bodies(*g, lane, h, i, spare, zero);
+        fill_point(g->p[0], lane, h);
+      }
+    }
+    color_runs_.push_back({static_cast<std::uint32_t>(block_lanes_.size()),
+                           static_cast<std::uint32_t>(point_lanes_.size()),
+                           static_cast<std::uint32_t>(units_.size())});
+  }
+}
+
+void ShapeWorld::unpack_lanes() {
+  unpack(block_lanes_, solve_);
+  unpack(point_lanes_, solve_);
+}
+
+// One manifold (its first row i): a block's friction and normal rows, or each row's.
+void ShapeWorld::solve_unit(std::size_t i) {
+  ShapeSolveRow* const rows = solve_.data();
+  const std::size_t n = solve_.size();
+  const ShapeRow& r = rows_[i];
+  const bool two =
+      i + 1 < n && rows_[i + 1].pair == r.pair && rows_[i + 1].a == r.a && rows_[i + 1].b == r.b;
+  const std::size_t end = two ? i + 2 : i + 1;
+  for (; i < end; ++i) {
+    ShapeSolveRow& h = rows[i];
+    Motion2 m = load(h);  // the two bodies' velocities, carried through the manifold's rows
+    if (h.flags & ShapeSolveRow::block_first) {  // friction first, bounded by this
+      solve_friction(h, m.a, m.b);               // iteration's normal impulse
+      solve_friction(rows[i + 1], m.a, m.b);
+      solve_block(h, rows[i + 1], m.a, m.b);
+      store(h, m);
+      if (h.flags & ShapeSolveRow::rolls) solve_rolling(rows_[i], h.ln + rows[i + 1].ln);
+      ++i;
+    } else {
+      if (!(h.flags & ShapeSolveRow::redundant)) {
+        solve_friction(h, m.a, m.b), solve_normal(h, m.a, m.b);
+        store(h, m);
+      }
+      if (h.flags & ShapeSolveRow::rolls) {  // a manifold's first row, maybe redundant:
+        const bool pair = h.flags & ShapeSolveRow::rolls_pair;  // both its rows'
+        solve_rolling(rows_[i], h.ln + (pair ? rows[i + 1].ln : 0.0));
+      }
+    }
+  }
+}
+
+void ShapeWorld::solve_velocities(const ShapeTick& tick) {
+  color_manifolds();
+  pack_lanes();
+  const SimdLevel level = simd_level();
+  for (int it = 0; it < tick.velocity_iterations; ++it) {
+    if (!joints_.empty()) solve_joint_velocities();
+    ColorRun from;
+    for (const ColorRun& run : color_runs_) {
+      solve_groups(level, block_lanes_.data() + from.blocks_end,
+                   block_lanes_.data() + run.blocks_end, velocity_.data());
+      solve_groups(level, point_lanes_.data() + from.points_end,
+                   point_lanes_.data() + run.points_end, velocity_.data());
+      for (std::uint32_t u = from.units_end; u < run.units_end; ++u) solve_unit(units_[u]);
+      from = run;
+    }
+  }
+  unpack_lanes();
+  for (std::size_t i = 0; i < solve_.size(); ++i) {
+    rows_[i].ln = solve_[i].ln, rows_[i].lt = solve_[i].lt;
+  }
+}
+
+}  // namespace fixstep::detail
