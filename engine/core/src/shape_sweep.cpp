@@ -163,8 +163,8 @@ void ShapeWorld::pack_lanes() {
   const std::uint32_t spare = sink_slot(), zero = zero_slot();
   const std::size_t n = solve_.size();
   const bool lanes = shape_lanes::lanes_enabled();
-  std::size_t k = 0;
-  for (std::uint32_t c = 0; c <= overflow; ++c) {
+  for (std::size_t k = 0; k < by_color_.size();) {  // each colour that has manifolds
+    const std::uint32_t c = colored_[by_color_[k]].color;
     int blocks = shape_lanes::width, points = shape_lanes::width;  // a colour's groups its own
     for (; k < by_color_.size() && colored_[by_color_[k]].color == c; ++k) {
       const std::uint32_t i = colored_[by_color_[k]].start;
@@ -188,10 +188,21 @@ void ShapeWorld::pack_lanes() {
         fill_point(g->p[0], lane, h);
       }
     }
+    // A colour's lone block or one-point manifold is solved alone: a group of one lane would
+    // cost four (few manifolds a colour: a car's wheels, a body on a plane).
+    lone_to_units(block_lanes_, blocks, color_runs_.empty() ? 0 : color_runs_.back().blocks_end);
+    lone_to_units(point_lanes_, points, color_runs_.empty() ? 0 : color_runs_.back().points_end);
     color_runs_.push_back({static_cast<std::uint32_t>(block_lanes_.size()),
                            static_cast<std::uint32_t>(point_lanes_.size()),
                            static_cast<std::uint32_t>(units_.size())});
   }
+}
+
+template <class Group>
+void ShapeWorld::lone_to_units(std::vector<Group>& groups, int used, std::uint32_t from) {
+  if (groups.size() != from + 1 || used != 1) return;
+  units_.push_back(groups.back().row[0]);
+  groups.pop_back();
 }
 
 void ShapeWorld::unpack_lanes() {

@@ -336,7 +336,7 @@ class ShapeWorld {
   struct ColoredUnit {
     std::uint32_t start = 0, color = 0;
   };
-  /// Each colour's end in block_lanes_, point_lanes_ and units_.
+  /// The end of each colour that has manifolds in block_lanes_, point_lanes_ and units_.
   struct ColorRun {
     std::uint32_t blocks_end = 0, points_end = 0, units_end = 0;
   };
@@ -350,6 +350,9 @@ class ShapeWorld {
   void color_manifolds();
   void pack_lanes();
   void unpack_lanes();
+  /// A colour's only group (from `from` on in `groups`) with one lane `used` back to units_.
+  template <class Group>
+  void lone_to_units(std::vector<Group>& groups, int used, std::uint32_t from);
   void solve_unit(std::size_t i);
   /// The spare slots of velocity_ past the bodies: one written by the lanes of bodies that do not
   /// move, and always zero (a plane's or segment's A, a padding lane).
