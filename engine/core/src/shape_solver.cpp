@@ -238,8 +238,9 @@ void ShapeWorld::solve_rolling(ShapeRow& r, double normal_impulse) {
 }
 
 void ShapeWorld::turn(const ShapeRow& r, double l) {
-  if (r.a != none) velocity_[r.a].w -= bodies_[r.a].inv_inertia * l;
-  velocity_[r.b].w += bodies_[r.b].inv_inertia * l;
+  if (r.a != none && bodies_[r.a].inv_inertia > 0.0)
+    velocity_[r.a].w -= bodies_[r.a].inv_inertia * l;
+  if (bodies_[r.b].inv_inertia > 0.0) velocity_[r.b].w += bodies_[r.b].inv_inertia * l;
 }
 
 void ShapeWorld::follow_velocities() {

@@ -241,19 +241,60 @@ void ShapeWorld::solve_unit(std::size_t i) {
   }
 }
 
+void ShapeWorld::sweep_color(const ColorRun& from, const ColorRun& run, SimdLevel level,
+                             SecondThread* thread) {
+  ShapeMotion* const v = velocity_.data();
+  auto part = [&](int half, int halves) {
+    auto cut = [&](std::uint32_t begin, std::uint32_t end, int k) {
+      return begin + static_cast<std::uint32_t>((std::uint64_t{end - begin} * k) / halves);
+    };
+    const std::uint32_t b0 = cut(from.blocks_end, run.blocks_end, half);
+    const std::uint32_t b1 = cut(from.blocks_end, run.blocks_end, half + 1);
+    const std::uint32_t p0 = cut(from.points_end, run.points_end, half);
+    const std::uint32_t p1 = cut(from.points_end, run.points_end, half + 1);
+    solve_groups(level, block_lanes_.data() + b0, block_lanes_.data() + b1, v);
+    solve_groups(level, point_lanes_.data() + p0, point_lanes_.data() + p1, v);
+    const std::uint32_t u1 = cut(from.units_end, run.units_end, half + 1);
+    for (std::uint32_t u = cut(from.units_end, run.units_end, half); u < u1; ++u) {
+      solve_unit(units_[u]);
+    }
+  };
+  const std::uint32_t manifolds =
+      shape_lanes::width * (run.blocks_end - from.blocks_end + run.points_end - from.points_end) +
+      run.units_end - from.units_end;
+  if (thread == nullptr || manifolds < min_split_manifolds) {
+    part(0, 1);
+    return;
+  }
+  auto job = [&](int half) { part(half, 2); };
+  thread->both(job);
+  ++split_colors_;
+}
+
 void ShapeWorld::solve_velocities(const ShapeTick& tick) {
   color_manifolds();
   pack_lanes();
   const SimdLevel level = simd_level();
+  split_colors_ = 0;
+  // Two threads only where some colour is worth splitting; the run keeps the worker spinning
+  // between the colours (nothing if the discs' run holds it open already).
+  SecondThread* thread = nullptr;
+  if (tick.threads >= 2) {
+    ColorRun from;
+    for (const ColorRun& run : color_runs_) {
+      const std::uint32_t manifolds = shape_lanes::width * (run.blocks_end - from.blocks_end +
+                                                            run.points_end - from.points_end) +
+                                      run.units_end - from.units_end;
+      if (manifolds >= min_split_manifolds) thread = tick.thread ? tick.thread : &second_;
+      from = run;
+    }
+  }
+  const SecondThreadRun team(thread);
   for (int it = 0; it < tick.velocity_iterations; ++it) {
     if (!joints_.empty()) solve_joint_velocities();
     ColorRun from;
     for (const ColorRun& run : color_runs_) {
-      solve_groups(level, block_lanes_.data() + from.blocks_end,
-                   block_lanes_.data() + run.blocks_end, velocity_.data());
-      solve_groups(level, point_lanes_.data() + from.points_end,
-                   point_lanes_.data() + run.points_end, velocity_.data());
-      for (std::uint32_t u = from.units_end; u < run.units_end; ++u) solve_unit(units_[u]);
+      sweep_color(from, run, level, thread);
       from = run;
     }
   }

@@ -39,8 +39,10 @@
 #include "fixstep/core/pre_solve.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/shape.hpp"
+#include "fixstep/core/simd.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "one_way.hpp"
+#include "second_thread.hpp"
 #include "shape_geom.hpp"
 #include "shape_lanes.hpp"
 
@@ -172,6 +174,12 @@ struct ShapeTick {
   std::span<const std::uint64_t> unpaired;
   /// The pre-solve hook (World::set_pre_solve; null: none) and its context, and each body's
   /// handle by dense index (the kernel's), for the contacts it is shown.
+  /// Threads the velocity sweeps may use (World's threads, 1 or 2): with 2, a colour with many
+  /// manifolds is solved by halves on two threads (its manifolds move no body in common, so
+  /// the bits are the same), on `thread` when given (the discs' second thread, whose run is
+  /// open through the shape phase), else on the shape world's own.
+  int threads = 1;
+  SecondThread* thread = nullptr;
   PreSolveFn pre_solve = nullptr;
   void* pre_solve_context = nullptr;
   std::span<const Entity> entities;
@@ -231,6 +239,9 @@ class ShapeWorld {
     std::uint32_t a, b;
   };
   [[nodiscard]] std::span<const Candidate> candidates() const { return candidates_; }
+  /// The colours of the last tick's velocity sweeps solved by halves on two threads (a colour
+  /// once per sweep).
+  [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
   /// Stop requests polled by the joint sweeps so far (each sweep polls once).
   [[nodiscard]] std::uint64_t stop_polls() const { return stop_polls_; }
   /// The sleepers (bodies_ indices) the broadphase paired with a moving body this tick.
@@ -311,9 +322,11 @@ class ShapeWorld {
     m.b = velocity_[h.b];
     return m;
   }
+  /// Writes back the bodies an impulse moves (not a static, kinematic or asleep one, whose
+  /// velocity it leaves as it was: two threads may read one such body in one colour).
   void store(const ShapeSolveRow& h, const Motion2& m) {
-    if (h.a != none) velocity_[h.a] = m.a;
-    velocity_[h.b] = m.b;
+    if (h.a != none && (h.ma > 0.0 || h.ia > 0.0)) velocity_[h.a] = m.a;
+    if (h.mb > 0.0 || h.ib > 0.0) velocity_[h.b] = m.b;
   }
   /// Impulses pn along n and pt along t (N·s) on B, their opposite on A: velocities only.
   void apply(const ShapeSolveRow& h, double pn, double pt);
@@ -347,6 +360,15 @@ class ShapeWorld {
   std::vector<shape_lanes::PointLanes> point_lanes_;  ///< and its one-point manifolds
   std::vector<std::uint32_t> units_;                  ///< and the rest, one at a time
   std::vector<ColorRun> color_runs_;
+  /// The manifolds of a colour from which its sweep is split over two threads: below, the
+  /// hand-over costs about what the half saves.
+  static constexpr std::uint32_t min_split_manifolds = 256;
+  SecondThread second_;  ///< the shape world's own, when the discs' is not running
+  std::uint64_t split_colors_ = 0;
+  /// One sweep of the colour from `from` to `run` (ColorRun ends), on `thread` by halves when
+  /// given.
+  void sweep_color(const ColorRun& from, const ColorRun& run, SimdLevel level,
+                   SecondThread* thread);
   void color_manifolds();
   void pack_lanes();
   void unpack_lanes();

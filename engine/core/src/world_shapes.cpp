@@ -335,6 +335,11 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.unpaired = joint_unpaired_;
   tick.pre_solve = pre_solve_, tick.pre_solve_context = pre_solve_context_;
   tick.entities = bodies_.dense;
+  tick.threads = detail::threads_for(settings_.threads);
+  // The discs' second thread where its run is open (it spins through the shape phase); else
+  // the shape world starts its own.
+  detail::SecondThread* discs = discs_ && tick.threads >= 2 ? discs_->second_thread(2) : nullptr;
+  tick.thread = discs != nullptr && discs->is_open() ? discs : nullptr;
   if (sleep_) {  // sleepers solved as static; one paired with a mover wakes its island
     mark_shape_sleepers();
     tick.wake = &WorldKernel::wake_shape_sleepers, tick.wake_context = this;
