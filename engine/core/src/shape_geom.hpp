@@ -69,6 +69,11 @@ struct Convex {
 [[nodiscard]] double extent(const Convex& c);
 /// The world box around `c` at pose `t`, grown by `margin` (m) on every side.
 [[nodiscard]] Aabb convex_aabb(const Convex& c, const Pose& t, double margin = 0.0);
+/// Whether two boxes overlap (touching counts).
+[[nodiscard]] inline bool boxes_overlap(const Aabb& a, const Aabb& b) {
+  return a.lower.x <= b.upper.x && b.lower.x <= a.upper.x && a.lower.y <= b.upper.y &&
+         b.lower.y <= a.upper.y;
+}
 
 /// One point of a contact manifold. Anchors are relative to the bodies' centres of mass, in
 /// world orientation (the lever arms of the impulses).
