@@ -4,7 +4,6 @@
 
 #include <cstdint>
 #include <cstring>
-#include <memory>
 #include <random>
 #include <vector>
 
@@ -17,8 +16,6 @@
 #include "shape_exact.hpp"
 #include "shape_lane_rows.hpp"
 #include "shape_rows.hpp"
-#include "shape_world.hpp"
-#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace {
@@ -101,38 +98,6 @@ TEST(ShapeLanes, EverySimdLevelMatchesBaselineBitForBit) {
     ++compared;
   }
   if (compared == 0) GTEST_SKIP() << "this CPU runs the baseline level only";
-}
-
-// --- two threads --------------------------------------------------------------------------
-
-/// 40 columns of 30 boxes of 1 m standing on a plane, a little apart: every box's manifolds
-/// exist from the first tick, two or three colours of hundreds of manifolds each.
-std::unique_ptr<detail::WorldKernel<double>> columns(int threads) {
-  WorldSettings settings = shape_exact::shape_settings(0.6);
-  settings.threads = threads;
-  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
-  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
-  for (int c = 0; c < 40; ++c) {
-    for (int r = 0; r < 30; ++r) {
-      w->create_body(box_body(0.5, 0.5, {1.05 * c + 0.01 * (r % 3), 0.5 + 1.0 * r}, 0.0));
-    }
-  }
-  return w;
-}
-
-TEST(ShapeLanes, TwoThreadsSplitTheLargeColoursAndStepToTheSameBits) {
-  auto one = columns(1);
-  auto two = columns(2);
-  std::uint64_t split = 0;
-  for (int t = 0; t < 60; ++t) {
-    one->step();
-    two->step();
-    ASSERT_EQ(one->state_hash(), two->state_hash()) << "first differs after tick " << t + 1;
-    EXPECT_EQ(one->shape_world()->split_colors(), 0u);
-    split += two->shape_world()->split_colors();
-  }
-  EXPECT_GT(split, 60u * 20u);  // at least one colour in every sweep of every tick
-  EXPECT_FALSE(two->fault().has_value());
 }
 
 // --- the kernel alone, on rows no world would make ----------------------------------------

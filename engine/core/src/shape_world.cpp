@@ -189,8 +189,9 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
 
 // --- broadphase and manifolds --------------------------------------------------------------
 
-void ShapeWorld::add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
-                              double restitution, double rolling, std::uint64_t pair) {
+void ShapeWorld::add_manifold(std::vector<ShapeRow>& rows, const Manifold& m, std::uint32_t a,
+                              std::uint32_t b, double friction, double restitution, double rolling,
+                              std::uint64_t pair) {
   for (int p = 0; p < m.count; ++p) {
     const ManifoldPoint& mp = m.points[p];
     ShapeRow r;
@@ -198,19 +199,24 @@ void ShapeWorld::add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t 
     r.separation = mp.separation, r.friction = friction, r.restitution = restitution;
     r.rolling = p == 0 ? rolling : 0.0;
     r.pair = pair, r.id = mp.id;
-    rows_.push_back(r);
+    rows.push_back(r);
   }
 }
 
-void ShapeWorld::collect(const ShapeTick& tick) {
-  rows_.clear(), disabled_.clear();
-  unit_planes_.clear();
-  for (const PlaneDef& pl : tick.planes) {
-    const double len = det::hypot(pl.normal.x, pl.normal.y);
-    unit_planes_.push_back({pl.normal / len, pl.offset / len});
-  }
-  auto mix_friction = [](double a, double b) { return std::sqrt(a * b); };
-  for (const Candidate& c : candidates_) {
+namespace {
+
+double mix_friction(double a, double b) {
+  return std::sqrt(a * b);
+}
+
+}  // namespace
+
+// The manifolds of candidates_ from `begin` to `end` into `rows`, those a one-way rule or the
+// pre-solve hook disables into `disabled`.
+void ShapeWorld::collect_pairs(const ShapeTick& tick, std::size_t begin, std::size_t end,
+                               std::vector<ShapeRow>& rows, std::vector<std::uint64_t>& disabled) {
+  for (std::size_t k = begin; k < end; ++k) {
+    const Candidate& c = candidates_[k];
     const ShapeEntry& sa = shapes_[c.a];
     const ShapeEntry& sb = shapes_[c.b];
     const double margin = margin_[sa.owner] + margin_[sb.owner];
@@ -220,15 +226,40 @@ void ShapeWorld::collect(const ShapeTick& tick) {
     const std::uint64_t pair = std::uint64_t{sa.key} << 32 | sb.key;
     if ((sa.one_way || sb.one_way || tick.pre_solve) &&
         !contact_acts(tick, m, c.a, c.b, -1, -1, nullptr)) {
-      disabled_.push_back(pair);
+      disabled.push_back(pair);
       continue;
     }
     const double rolling =
         sa.rolling > 0.0 || sb.rolling > 0.0
             ? std::max(sa.rolling, sb.rolling) * std::max(sa.convex.radius, sb.convex.radius)
             : 0.0;
-    add_manifold(m, sa.owner, sb.owner, mix_friction(sa.friction, sb.friction),
+    add_manifold(rows, m, sa.owner, sb.owner, mix_friction(sa.friction, sb.friction),
                  std::max(sa.restitution, sb.restitution), rolling, pair);
+  }
+}
+
+void ShapeWorld::collect(const ShapeTick& tick, SecondThread* thread) {
+  rows_.clear(), disabled_.clear();
+  unit_planes_.clear();
+  for (const PlaneDef& pl : tick.planes) {
+    const double len = det::hypot(pl.normal.x, pl.normal.y);
+    unit_planes_.push_back({pl.normal / len, pl.offset / len});
+  }
+  // By halves on two threads, the second's rows then put after the first's (the same rows in
+  // the same order), unless a pre-solve hook is set: the game's code runs on the caller's
+  // thread, in order.
+  const std::size_t n = candidates_.size();
+  if (thread != nullptr && !tick.pre_solve) {
+    half_rows_.clear(), half_disabled_.clear();
+    auto job = [&](int h) {
+      if (h == 0) collect_pairs(tick, 0, n / 2, rows_, disabled_);
+      if (h == 1) collect_pairs(tick, n / 2, n, half_rows_, half_disabled_);
+    };
+    thread->both(job);
+    rows_.insert(rows_.end(), half_rows_.begin(), half_rows_.end());
+    disabled_.insert(disabled_.end(), half_disabled_.begin(), half_disabled_.end());
+  } else {
+    collect_pairs(tick, 0, n, rows_, disabled_);
   }
   for (std::uint32_t k = 0; k < shapes_.size(); ++k) {
     const ShapeEntry& e = shapes_[k];
@@ -248,7 +279,7 @@ void ShapeWorld::collect(const ShapeTick& tick) {
         disabled_.push_back(pair);
         continue;
       }
-      add_manifold(m, none, e.owner, mix_friction(pl.friction, e.friction),
+      add_manifold(rows_, m, none, e.owner, mix_friction(pl.friction, e.friction),
                    std::max(pl.restitution, e.restitution), e.rolling * e.convex.radius, pair);
     }
     for (std::uint32_t s = 0; s < tick.segments.size(); ++s) {
@@ -264,7 +295,7 @@ void ShapeWorld::collect(const ShapeTick& tick) {
           continue;
         }
       }
-      add_manifold(m, none, e.owner, mix_friction(seg.friction, e.friction),
+      add_manifold(rows_, m, none, e.owner, mix_friction(seg.friction, e.friction),
                    std::max(seg.restitution, e.restitution), e.rolling * e.convex.radius, pair);
     }
   }
@@ -302,16 +333,24 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
   joints_ = tick.joints, unpaired_ = tick.unpaired;
   for (ShapeState& s : state_) s.q0 = rot_of(s.a0);
-  bool paired = broadphase(tick.dt, tally);
+  // Two threads for a large world: the broadphase and the manifolds by halves, the velocity
+  // sweeps' large colours too (the run keeps the worker spinning through the shape phase).
+  SecondThread* thread = nullptr;
+  if (tick.threads >= 2 && shapes_.size() >= min_split_shapes) {
+    thread = tick.thread != nullptr ? tick.thread : &second_;
+  }
+  const SecondThreadRun team(thread);
+  halved_ = thread != nullptr;
+  bool paired = broadphase(tick.dt, tally, thread);
   if (paired && !wake_.empty() && tick.wake) {  // sleepers woken: paired again as they now are
     tick.wake(tick.wake_context);
-    paired = broadphase(tick.dt, tally);
+    paired = broadphase(tick.dt, tally, thread);
   }
   if (!paired) {  // a work limit: the tick's shape contacts unresolved
     rows_.clear();
     return tally;
   }
-  collect(tick);
+  collect(tick, thread);
   tally.pairs = candidates_.size();
   tally.points = rows_.size();
   prepare_rows(tick);

@@ -209,6 +209,9 @@ class ShapeWorld {
   /// Passes of the impact pass a tick (ShapeWorld::impact_pass): a chain of bounces one body
   /// passes on to the next within a tick is followed this many links deep.
   static constexpr int max_impact_passes = 8;
+  /// The shapes from which the broadphase and the manifolds are made by halves on two
+  /// threads (ShapeTick::threads).
+  static constexpr std::size_t min_split_shapes = 2048;
 
   std::vector<ShapedBody> bodies_;
   std::vector<ShapeEntry> shapes_;
@@ -239,6 +242,8 @@ class ShapeWorld {
     std::uint32_t a, b;
   };
   [[nodiscard]] std::span<const Candidate> candidates() const { return candidates_; }
+  /// Whether the last tick's broadphase and manifolds were made by halves on two threads.
+  [[nodiscard]] bool halved() const { return halved_; }
   /// The colours of the last tick's velocity sweeps solved by halves on two threads (a colour
   /// once per sweep).
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
@@ -292,8 +297,28 @@ class ShapeWorld {
   void continuous(const ShapeTick& tick, ShapeTally& tally);
   double first_static_touch(std::uint32_t body, const ShapeTick& tick);
   [[nodiscard]] bool has_row(std::uint64_t pair) const;
-  bool broadphase(double dt, ShapeTally& tally);
-  void collect(const ShapeTick& tick);
+  /// The broadphase (shape_broadphase.cpp): the candidates, sensor candidates and sleepers to
+  /// wake of a stretch of the sorted boxes, and the box tests made.
+  struct Found {
+    std::vector<Candidate> candidates, sensors;
+    std::vector<std::uint32_t> wake;
+    std::uint64_t tests = 0;
+    void clear() { candidates.clear(), sensors.clear(), wake.clear(), tests = 0; }
+  };
+  std::array<Found, 2> found_;
+  bool sweep_boxes(std::size_t begin, std::size_t end, Found& out, std::uint64_t most_tests,
+                   std::uint64_t most_pairs, ShapeTally& tally) const;
+  /// Pairs the shapes (false: a work limit reached, named in `tally`); by halves of the sorted
+  /// boxes on `thread` when given (the same candidates, in the same order).
+  bool broadphase(double dt, ShapeTally& tally, SecondThread* thread);
+  /// The manifolds of the candidates, the planes and the segments into rows_; the
+  /// candidates' by halves on `thread` when given.
+  void collect(const ShapeTick& tick, SecondThread* thread);
+  void collect_pairs(const ShapeTick& tick, std::size_t begin, std::size_t end,
+                     std::vector<ShapeRow>& rows, std::vector<std::uint64_t>& disabled);
+  std::vector<ShapeRow> half_rows_;
+  std::vector<std::uint64_t> half_disabled_;
+  bool halved_ = false;
   /// Whether manifold m between shapes_[a] and shapes_[b] (a may be `none`: a plane or
   /// segment, `surface` its index) acts this tick: the one-way rule of each one-way shape
   /// (one_way.hpp; `segment_up` the up of a one-way segment A, else null) and then the
@@ -308,8 +333,9 @@ class ShapeWorld {
   }
   void solve_rolling(ShapeRow& r, double normal_impulse);
   void turn(const ShapeRow& r, double l);  ///< an angular impulse l on B, −l on A
-  void add_manifold(const Manifold& m, std::uint32_t a, std::uint32_t b, double friction,
-                    double restitution, double rolling, std::uint64_t pair);
+  void add_manifold(std::vector<ShapeRow>& rows, const Manifold& m, std::uint32_t a,
+                    std::uint32_t b, double friction, double restitution, double rolling,
+                    std::uint64_t pair);
   void prepare_rows(const ShapeTick& tick);
   /// The velocities of a row's two bodies (A's zero for a plane or segment), as a sweep
   /// carries them through a manifold's rows; store() writes them back.

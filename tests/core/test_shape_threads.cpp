@@ -1,0 +1,80 @@
+// The shape phase on two threads: the broadphase and the manifolds by halves and the velocity
+// sweeps' large colours split, with the bits of one thread; a work limit met by halves is the
+// fault one thread names.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <memory>
+
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "shape_exact.hpp"
+#include "shape_world.hpp"
+#include "world_kernel.hpp"
+
+namespace fixstep {
+namespace {
+
+using shape_exact::box_body;
+
+/// 60 columns of 36 boxes of 1 m standing on a plane, a little apart (2160 shapes, past the
+/// split of the broadphase and the manifolds): every box's manifolds exist from the first
+/// tick, two or three colours of hundreds of manifolds each.
+std::unique_ptr<detail::WorldKernel<double>> columns(int threads) {
+  WorldSettings settings = shape_exact::shape_settings(0.6);
+  settings.threads = threads;
+  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
+  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  for (int c = 0; c < 60; ++c) {
+    for (int r = 0; r < 36; ++r) {
+      w->create_body(box_body(0.5, 0.5, {1.05 * c + 0.01 * (r % 3), 0.5 + 1.0 * r}, 0.0));
+    }
+  }
+  return w;
+}
+
+TEST(ShapeThreads, TwoThreadsStepAPileToTheSameBitsAsOne) {
+  auto one = columns(1);
+  auto two = columns(2);
+  std::uint64_t split = 0;
+  for (int t = 0; t < 60; ++t) {
+    one->step();
+    two->step();
+    ASSERT_GE(two->shape_world()->shapes_.size(), detail::ShapeWorld::min_split_shapes);
+    ASSERT_EQ(one->state_hash(), two->state_hash()) << "first differs after tick " << t + 1;
+    EXPECT_EQ(one->shape_world()->split_colors(), 0u);
+    EXPECT_FALSE(one->shape_world()->halved());
+    EXPECT_TRUE(two->shape_world()->halved());
+    split += two->shape_world()->split_colors();
+  }
+  EXPECT_GT(split, 60u * 20u);  // at least one colour in every sweep of every tick
+  EXPECT_FALSE(two->fault().has_value());
+}
+
+TEST(ShapeThreads, ACapMetByHalvesIsTheFaultOneThreadNames) {
+  auto crowd = [](int threads) {
+    WorldSettings settings = shape_exact::shape_settings(0.5);
+    settings.threads = threads;
+    World w(WorldDef::empty(Precision::f64, settings));
+    // Two crowds of 1050 far apart, each a half of the sorted boxes: each half's pairs
+    // (551 775) are within max_candidate_pairs (10^6), both together are not.
+    for (int i = 0; i < 2100; ++i) {
+      w.create_body(box_body(0.5, 0.5, {(i < 1050 ? 0.0 : 1000.0) + 0.001 * i, 0.0}));
+    }
+    w.step();
+    return w.fault();
+  };
+  const auto one = crowd(1), two = crowd(2);
+  ASSERT_TRUE(one.has_value());
+  EXPECT_EQ(one->cap, "max_candidate_pairs");
+  ASSERT_TRUE(two.has_value());
+  EXPECT_EQ(two->cap, one->cap);
+  EXPECT_EQ(two->body, one->body);
+  EXPECT_EQ(two->value, one->value);
+  EXPECT_EQ(two->with, one->with);
+}
+
+}  // namespace
+}  // namespace fixstep
