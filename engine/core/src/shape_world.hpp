@@ -25,8 +25,9 @@
 //     that tick's motion is lost, and no shape passes through a static one;
 //  5. the overlap left beyond the slop pushed out on positions only (non-linear Gauss-Seidel,
 //     Box2D v2.4's position solver), which adds no kinetic energy.
-// Everything runs on one thread in one order (a colour's manifolds four at a time in the lanes
-// of a vector, each lane as one alone): the same bits on any thread count, SIMD level and
+// Everything runs in one order (a colour's manifolds four at a time in the lanes of a vector,
+// each lane as one alone; with two threads a large world's broadphase, manifolds and colours
+// by halves, joined in that order): the same bits on any thread count, SIMD level and
 // platform.
 #pragma once
 
@@ -174,10 +175,11 @@ struct ShapeTick {
   std::span<const std::uint64_t> unpaired;
   /// The pre-solve hook (World::set_pre_solve; null: none) and its context, and each body's
   /// handle by dense index (the kernel's), for the contacts it is shown.
-  /// Threads the velocity sweeps may use (World's threads, 1 or 2): with 2, a colour with many
-  /// manifolds is solved by halves on two threads (its manifolds move no body in common, so
-  /// the bits are the same), on `thread` when given (the discs' second thread, whose run is
-  /// open through the shape phase), else on the shape world's own.
+  /// Threads the shape phase may use (World's threads, 1 or 2): with 2, a world of
+  /// min_split_shapes shapes or more makes its broadphase and manifolds by halves, and a colour
+  /// of the velocity sweeps with many manifolds is solved by halves (its manifolds move no body
+  /// in common): the same bits as one thread. On `thread` when given (the discs' second
+  /// thread, whose run is open through the shape phase), else on the shape world's own.
   int threads = 1;
   SecondThread* thread = nullptr;
   PreSolveFn pre_solve = nullptr;
