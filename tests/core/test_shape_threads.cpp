@@ -53,6 +53,34 @@ TEST(ShapeThreads, TwoThreadsStepAPileToTheSameBitsAsOne) {
   EXPECT_FALSE(two->fault().has_value());
 }
 
+/// A plank of 400 m on a plane with 360 boxes resting on it: the plank's manifolds outnumber the
+/// colours, so most of them share the overflow colour, which moves the plank in every one of
+/// them and so is solved one at a time, in order, on one thread.
+std::unique_ptr<detail::WorldKernel<double>> loaded_plank(int threads) {
+  WorldSettings settings = shape_exact::shape_settings(0.6);
+  settings.threads = threads;
+  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
+  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  w->create_body(box_body(200.0, 0.25, {0.0, 0.25}, 0.0, 500.0));
+  for (int i = 0; i < 360; ++i) {
+    w->create_body(box_body(0.25, 0.25, {-198.0 + 1.1 * i, 0.75 + 0.002 * (i % 5)}, 0.0));
+  }
+  return w;
+}
+
+TEST(ShapeThreads, TheOverflowColourStaysOnOneThread) {
+  auto one = loaded_plank(1);
+  auto two = loaded_plank(2);
+  for (int t = 0; t < 60; ++t) {
+    one->step();
+    two->step();
+    ASSERT_EQ(one->state_hash(), two->state_hash()) << "first differs after tick " << t + 1;
+  }
+  // Most of the plank's 720 points are in the overflow colour: its manifolds were many.
+  EXPECT_GT(one->shape_world()->rows().size(), 700u);
+  EXPECT_FALSE(two->fault().has_value());
+}
+
 TEST(ShapeThreads, ACapMetByHalvesIsTheFaultOneThreadNames) {
   auto crowd = [](int threads) {
     WorldSettings settings = shape_exact::shape_settings(0.5);

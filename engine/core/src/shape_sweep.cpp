@@ -192,9 +192,15 @@ void ShapeWorld::pack_lanes() {
     // cost four (few manifolds a colour: a car's wheels, a body on a plane).
     lone_to_units(block_lanes_, blocks, color_runs_.empty() ? 0 : color_runs_.back().blocks_end);
     lone_to_units(point_lanes_, points, color_runs_.empty() ? 0 : color_runs_.back().points_end);
-    color_runs_.push_back({static_cast<std::uint32_t>(block_lanes_.size()),
-                           static_cast<std::uint32_t>(point_lanes_.size()),
-                           static_cast<std::uint32_t>(units_.size())});
+    const ColorRun from = color_runs_.empty() ? ColorRun{} : color_runs_.back();
+    ColorRun run{static_cast<std::uint32_t>(block_lanes_.size()),
+                 static_cast<std::uint32_t>(point_lanes_.size()),
+                 static_cast<std::uint32_t>(units_.size())};
+    const std::uint32_t manifolds =
+        shape_lanes::width * (run.blocks_end - from.blocks_end + run.points_end - from.points_end) +
+        run.units_end - from.units_end;
+    run.splits = c != overflow && manifolds >= min_split_manifolds;
+    color_runs_.push_back(run);
   }
 }
 
@@ -259,10 +265,7 @@ void ShapeWorld::sweep_color(const ColorRun& from, const ColorRun& run, SimdLeve
       solve_unit(units_[u]);
     }
   };
-  const std::uint32_t manifolds =
-      shape_lanes::width * (run.blocks_end - from.blocks_end + run.points_end - from.points_end) +
-      run.units_end - from.units_end;
-  if (thread == nullptr || manifolds < min_split_manifolds) {
+  if (thread == nullptr || !run.splits) {
     part(0, 1);
     return;
   }
@@ -271,24 +274,16 @@ void ShapeWorld::sweep_color(const ColorRun& from, const ColorRun& run, SimdLeve
   ++split_colors_;
 }
 
-void ShapeWorld::solve_velocities(const ShapeTick& tick) {
+void ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
   color_manifolds();
   pack_lanes();
   const SimdLevel level = simd_level();
   split_colors_ = 0;
   // Two threads only where some colour is worth splitting; the run keeps the worker spinning
   // between the colours (nothing if the discs' run holds it open already).
-  SecondThread* thread = nullptr;
-  if (tick.threads >= 2) {
-    ColorRun from;
-    for (const ColorRun& run : color_runs_) {
-      const std::uint32_t manifolds = shape_lanes::width * (run.blocks_end - from.blocks_end +
-                                                            run.points_end - from.points_end) +
-                                      run.units_end - from.units_end;
-      if (manifolds >= min_split_manifolds) thread = tick.thread ? tick.thread : &second_;
-      from = run;
-    }
-  }
+  const bool splits = std::any_of(color_runs_.begin(), color_runs_.end(),
+                                  [](const ColorRun& run) { return run.splits; });
+  SecondThread* const thread = splits ? second : nullptr;
   const SecondThreadRun team(thread);
   for (int it = 0; it < tick.velocity_iterations; ++it) {
     if (!joints_.empty()) solve_joint_velocities();

@@ -333,12 +333,13 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
   joints_ = tick.joints, unpaired_ = tick.unpaired;
   for (ShapeState& s : state_) s.q0 = rot_of(s.a0);
-  // Two threads for a large world: the broadphase and the manifolds by halves, the velocity
-  // sweeps' large colours too (the run keeps the worker spinning through the shape phase).
-  SecondThread* thread = nullptr;
-  if (tick.threads >= 2 && shapes_.size() >= min_split_shapes) {
-    thread = tick.thread != nullptr ? tick.thread : &second_;
-  }
+  // The second thread, with two: the discs' where its run is open, else the shape world's
+  // own. A large world makes its broadphase and manifolds by halves on it (the run keeps the
+  // worker spinning through the shape phase); the velocity sweeps split their large colours.
+  SecondThread* const second = tick.threads < 2         ? nullptr
+                               : tick.thread != nullptr ? tick.thread
+                                                        : &second_;
+  SecondThread* const thread = shapes_.size() >= min_split_shapes ? second : nullptr;
   const SecondThreadRun team(thread);
   halved_ = thread != nullptr;
   bool paired = broadphase(tick.dt, tally, thread);
@@ -355,7 +356,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   tally.points = rows_.size();
   prepare_rows(tick);
   prepare_joints();
-  solve_velocities(tick);
+  solve_velocities(tick, second);
   follow_velocities();
   account_joints();
   continuous(tick, tally);

@@ -370,8 +370,9 @@ class ShapeWorld {
   void follow_velocities();
   /// The velocity sweeps (shape_sweep.cpp): the joints' rows, then the contacts' colour by
   /// colour, each colour's blocks and one-point manifolds four at a time (shape_lanes.hpp) and
-  /// the rest one at a time.
-  void solve_velocities(const ShapeTick& tick);
+  /// the rest one at a time; the colours that split (ColorRun::splits) by halves on `second`
+  /// when given.
+  void solve_velocities(const ShapeTick& tick, SecondThread* second);
   /// A manifold (its first row in solve_) and its colour: no two manifolds of one colour move
   /// the same body.
   struct ColoredUnit {
@@ -380,6 +381,9 @@ class ShapeWorld {
   /// The end of each colour that has manifolds in block_lanes_, point_lanes_ and units_.
   struct ColorRun {
     std::uint32_t blocks_end = 0, points_end = 0, units_end = 0;
+    /// Whether two threads may solve it by halves: min_split_manifolds or more, and not the
+    /// overflow colour (whose manifolds may move one body).
+    bool splits = false;
   };
   std::vector<std::uint64_t> body_colors_;  ///< the colours each body's manifolds took
   std::vector<ColoredUnit> colored_;
