@@ -203,9 +203,9 @@ bool ShapeWorld::bounce_block(std::size_t i, const ShapeTick& tick) {
 
 void ShapeWorld::prepare_blocks() {
   for (std::size_t i = 0; i + 1 < rows_.size(); ++i) {
+    if (!pairs_next(i)) continue;
     const ShapeRow& r1 = rows_[i];
     const ShapeRow& r2 = rows_[i + 1];
-    if (r1.pair != r2.pair || r1.a != r2.a || r1.b != r2.b) continue;
     ShapeSolveRow &h1 = solve_[i], &h2 = solve_[i + 1];
     if (r1.rolling > 0.0) h1.flags |= ShapeSolveRow::rolls_pair;
     if (h1.normal_mass == 0.0 || h2.normal_mass == 0.0) continue;

@@ -135,9 +135,7 @@ void ShapeWorld::color_manifolds() {
   colored_.clear();
   std::array<std::uint32_t, color_count + 2> count{};
   for (std::size_t i = 0; i < n;) {
-    const ShapeRow& r = rows_[i];
-    const bool two =
-        i + 1 < n && rows_[i + 1].pair == r.pair && rows_[i + 1].a == r.a && rows_[i + 1].b == r.b;
+    const std::uint32_t rows = pairs_next(i) ? 2 : 1;
     const ShapeSolveRow& h = solve_[i];
     const bool move_a = h.a != none && (h.ma > 0.0 || h.ia > 0.0);
     const bool move_b = h.mb > 0.0 || h.ib > 0.0;
@@ -147,9 +145,9 @@ void ShapeWorld::color_manifolds() {
       if (move_a) body_colors_[h.a] |= std::uint64_t{1} << c;
       if (move_b) body_colors_[h.b] |= std::uint64_t{1} << c;
     }
-    colored_.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(c)});
+    colored_.push_back({{static_cast<std::uint32_t>(i), rows}, static_cast<std::uint32_t>(c)});
     ++count[c + 1];
-    i += two ? 2 : 1;
+    i += rows;
   }
   for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
   by_color_.resize(colored_.size());
@@ -161,21 +159,18 @@ void ShapeWorld::color_manifolds() {
 void ShapeWorld::pack_lanes() {
   block_lanes_.clear(), point_lanes_.clear(), units_.clear(), color_runs_.clear();
   const std::uint32_t spare = sink_slot(), zero = zero_slot();
-  const std::size_t n = solve_.size();
   const bool lanes = shape_lanes::lanes_enabled();
   for (std::size_t k = 0; k < by_color_.size();) {  // each colour that has manifolds
     const std::uint32_t c = colored_[by_color_[k]].color;
     int blocks = shape_lanes::width, points = shape_lanes::width;  // a colour's groups its own
     for (; k < by_color_.size() && colored_[by_color_[k]].color == c; ++k) {
-      const std::uint32_t i = colored_[by_color_[k]].start;
+      const Unit u = colored_[by_color_[k]].unit;
+      const std::uint32_t i = u.start;
       const ShapeSolveRow& h = solve_[i];
-      const ShapeRow& r = rows_[i];
-      const bool single = !(i + 1 < n && rows_[i + 1].pair == r.pair && rows_[i + 1].a == r.a &&
-                            rows_[i + 1].b == r.b);
       const bool block = h.flags & ShapeSolveRow::block_first;
       const bool plain = !(h.flags & (ShapeSolveRow::rolls | ShapeSolveRow::redundant));
-      if (!lanes || c == overflow || !plain || !(block || single)) {
-        units_.push_back(i);
+      if (!lanes || c == overflow || !plain || !(block || u.rows == 1)) {
+        units_.push_back(u);
       } else if (block) {
         const auto [g, lane] = next_lane(block_lanes_, blocks, spare, zero);
         fill_bodies(*g, lane, h, i, spare, zero);
@@ -207,7 +202,7 @@ void ShapeWorld::pack_lanes() {
 template <class Group>
 void ShapeWorld::lone_to_units(std::vector<Group>& groups, int used, std::uint32_t from) {
   if (groups.size() != from + 1 || used != 1) return;
-  units_.push_back(groups.back().row[0]);
+  units_.push_back({groups.back().row[0], static_cast<std::uint32_t>(groups.back().p.size())});
   groups.pop_back();
 }
 
@@ -216,15 +211,10 @@ void ShapeWorld::unpack_lanes() {
   unpack(point_lanes_, solve_);
 }
 
-// One manifold (its first row i): a block's friction and normal rows, or each row's.
-void ShapeWorld::solve_unit(std::size_t i) {
+// One manifold: a block's friction and normal rows, or each row's.
+void ShapeWorld::solve_unit(Unit u) {
   ShapeSolveRow* const rows = solve_.data();
-  const std::size_t n = solve_.size();
-  const ShapeRow& r = rows_[i];
-  const bool two =
-      i + 1 < n && rows_[i + 1].pair == r.pair && rows_[i + 1].a == r.a && rows_[i + 1].b == r.b;
-  const std::size_t end = two ? i + 2 : i + 1;
-  for (; i < end; ++i) {
+  for (std::size_t i = u.start, end = u.start + u.rows; i < end; ++i) {
     ShapeSolveRow& h = rows[i];
     Motion2 m = load(h);  // the two bodies' velocities, carried through the manifold's rows
     if (h.flags & ShapeSolveRow::block_first) {  // friction first, bounded by this

@@ -373,11 +373,20 @@ class ShapeWorld {
   /// the rest one at a time; the colours that split (ColorRun::splits) by halves on `second`
   /// when given.
   void solve_velocities(const ShapeTick& tick, SecondThread* second);
-  /// A manifold (its first row in solve_) and its colour: no two manifolds of one colour move
-  /// the same body.
-  struct ColoredUnit {
-    std::uint32_t start = 0, color = 0;
+  /// A manifold: its first row in solve_ and its rows (1 or 2).
+  struct Unit {
+    std::uint32_t start = 0, rows = 1;
   };
+  /// A manifold and its colour: no two manifolds of one colour move the same body.
+  struct ColoredUnit {
+    Unit unit;
+    std::uint32_t color = 0;
+  };
+  /// Whether row i + 1 is the second point of row i's manifold (the same pair and bodies).
+  [[nodiscard]] bool pairs_next(std::size_t i) const {
+    return i + 1 < rows_.size() && rows_[i + 1].pair == rows_[i].pair &&
+           rows_[i + 1].a == rows_[i].a && rows_[i + 1].b == rows_[i].b;
+  }
   /// The end of each colour that has manifolds in block_lanes_, point_lanes_ and units_.
   struct ColorRun {
     std::uint32_t blocks_end = 0, points_end = 0, units_end = 0;
@@ -390,7 +399,7 @@ class ShapeWorld {
   std::vector<std::uint32_t> by_color_;               ///< colored_ sorted by colour
   std::vector<shape_lanes::BlockLanes> block_lanes_;  ///< each colour's blocks, four a group
   std::vector<shape_lanes::PointLanes> point_lanes_;  ///< and its one-point manifolds
-  std::vector<std::uint32_t> units_;                  ///< and the rest, one at a time
+  std::vector<Unit> units_;                           ///< and the rest, one at a time
   std::vector<ColorRun> color_runs_;
   /// The manifolds of a colour from which its sweep is split over two threads: below, the
   /// hand-over costs about what the half saves.
@@ -407,7 +416,7 @@ class ShapeWorld {
   /// A colour's only group (from `from` on in `groups`) with one lane `used` back to units_.
   template <class Group>
   void lone_to_units(std::vector<Group>& groups, int used, std::uint32_t from);
-  void solve_unit(std::size_t i);
+  void solve_unit(Unit u);
   /// The spare slots of velocity_ past the bodies: one written by the lanes of bodies that do not
   /// move, and always zero (a plane's or segment's A, a padding lane).
   [[nodiscard]] std::uint32_t sink_slot() const {
