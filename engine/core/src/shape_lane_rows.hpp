@@ -127,8 +127,8 @@ using Point = LanePoint;
 [[gnu::always_inline]] inline void scatter(const LaneBodies& g, const Motion& a, const Motion& b,
                                            ShapeMotion* v) {
   for (int l = 0; l < width; ++l) {
-    v[g.write_a[l]] = {a.vx[l], a.vy[l], a.w[l]};
-    v[g.write_b[l]] = {b.vx[l], b.vy[l], b.w[l]};
+    if (g.write_a[l] != no_write) v[g.write_a[l]] = {a.vx[l], a.vy[l], a.w[l]};
+    if (g.write_b[l] != no_write) v[g.write_b[l]] = {b.vx[l], b.vy[l], b.w[l]};
   }
 }
 

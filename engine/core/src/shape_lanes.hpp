@@ -39,13 +39,16 @@ struct LanePoint {
   Lane rna{}, rnb{}, rta{}, rtb{}, kn{}, normal_mass{}, tangent_mass{}, target{}, ln{}, lt{};
 };
 
+/// A lane's write index for a body it must not write.
+inline constexpr std::uint32_t no_write = ~std::uint32_t{0};
+
 /// Four manifolds' bodies, lane by lane: what their points share. A lane without a manifold
-/// (the last group of a colour) has every mass 0 and reads and writes the spare velocity
-/// slots.
+/// (the last group of a colour) has every mass 0, reads the zero velocity slot and writes
+/// nothing.
 struct LaneBodies {
   /// velocity_ indices: where a lane reads each body's velocity and where it writes it back
-  /// (a body that does not move, a plane's or a static or kinematic body's, is written to the
-  /// spare slot, so that no two lanes of a colour write one slot that is read).
+  /// (no_write for a body that does not move, a plane's or a static, kinematic or asleep
+  /// body's: its velocity is unchanged, and lanes on two threads may read it).
   std::array<std::uint32_t, width> read_a{}, read_b{}, write_a{}, write_b{};
   std::array<std::uint32_t, width> row{};  ///< the manifold's first row in solve_ (padding: ~0)
   Lane nx{}, ny{}, ma{}, ia{}, mb{}, ib{}, friction{};

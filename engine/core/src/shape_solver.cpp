@@ -82,11 +82,11 @@ ShapeSolveRow ShapeWorld::solve_row(const ShapeRow& r) const {
 
 void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   dt_ = tick.dt;
-  velocity_.resize(state_.size() + 2);  // and the sink and zero slots
+  velocity_.resize(state_.size() + 1);  // and the zero slot
   for (std::size_t k = 0; k < state_.size(); ++k) {
     velocity_[k] = {state_[k].vx, state_[k].vy, state_[k].w};
   }
-  velocity_[sink_slot()] = {}, velocity_[zero_slot()] = {};
+  velocity_[zero_slot()] = {};
   solve_.resize(rows_.size());
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     ShapeRow& r = rows_[i];

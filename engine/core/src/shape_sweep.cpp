@@ -84,11 +84,12 @@ void solve_groups(SimdLevel level, Group* first, Group* last, ShapeMotion* v) {
 
 /// A lane's bodies and shared fields from a manifold's first row `h` (row i of solve_).
 void fill_bodies(LaneBodies& g, int lane, const ShapeSolveRow& h, std::uint32_t i,
-                 std::uint32_t spare, std::uint32_t zero) {
+                 std::uint32_t zero) {
   const bool move_a = h.a != ShapeWorld::none && (h.ma > 0.0 || h.ia > 0.0);
   const bool move_b = h.mb > 0.0 || h.ib > 0.0;
   g.read_a[lane] = h.a != ShapeWorld::none ? h.a : zero, g.read_b[lane] = h.b;
-  g.write_a[lane] = move_a ? h.a : spare, g.write_b[lane] = move_b ? h.b : spare;
+  g.write_a[lane] = move_a ? h.a : shape_lanes::no_write;
+  g.write_b[lane] = move_b ? h.b : shape_lanes::no_write;
   g.row[lane] = i;
   g.nx[lane] = h.nx, g.ny[lane] = h.ny, g.ma[lane] = h.ma, g.ia[lane] = h.ia;
   g.mb[lane] = h.mb, g.ib[lane] = h.ib, g.friction[lane] = h.friction;
@@ -104,11 +105,11 @@ void fill_point(shape_lanes::LanePoint& q, int lane, const ShapeSolveRow& h) {
 /// The next free lane of a colour's groups in `groups`, `used` of the last group's lanes taken
 /// (a new group, its lanes empty, when it is full; a colour starts with `used` = width).
 template <class Group>
-std::pair<Group*, int> next_lane(std::vector<Group>& groups, int& used, std::uint32_t spare,
-                                 std::uint32_t zero) {
+std::pair<Group*, int> next_lane(std::vector<Group>& groups, int& used, std::uint32_t zero) {
   if (used == shape_lanes::width) {
     Group& g = groups.emplace_back();
-    g.read_a.fill(zero), g.read_b.fill(zero), g.write_a.fill(spare), g.write_b.fill(spare);
+    g.read_a.fill(zero), g.read_b.fill(zero);
+    g.write_a.fill(shape_lanes::no_write), g.write_b.fill(shape_lanes::no_write);
     g.row.fill(~std::uint32_t{0});
     used = 0;
   }
@@ -158,7 +159,7 @@ void ShapeWorld::color_manifolds() {
 // groups of four, the last group of a colour padded with empty lanes; the rest into units_.
 void ShapeWorld::pack_lanes() {
   block_lanes_.clear(), point_lanes_.clear(), units_.clear(), color_runs_.clear();
-  const std::uint32_t spare = sink_slot(), zero = zero_slot();
+  const std::uint32_t zero = zero_slot();
   const bool lanes = shape_lanes::lanes_enabled();
   for (std::size_t k = 0; k < by_color_.size();) {  // each colour that has manifolds
     const std::uint32_t c = colored_[by_color_[k]].color;
@@ -172,14 +173,14 @@ void ShapeWorld::pack_lanes() {
       if (!lanes || c == overflow || !plain || !(block || u.rows == 1)) {
         units_.push_back(u);
       } else if (block) {
-        const auto [g, lane] = next_lane(block_lanes_, blocks, spare, zero);
-        fill_bodies(*g, lane, h, i, spare, zero);
+        const auto [g, lane] = next_lane(block_lanes_, blocks, zero);
+        fill_bodies(*g, lane, h, i, zero);
         g->k12[lane] = h.k12, g->m11[lane] = h.block_mass[0];
         g->m12[lane] = h.block_mass[1], g->m22[lane] = h.block_mass[2];
         fill_point(g->p[0], lane, h), fill_point(g->p[1], lane, solve_[i + 1]);
       } else {
-        const auto [g, lane] = next_lane(point_lanes_, points, spare, zero);
-        fill_bodies(*g, lane, h, i, spare, zero);
+        const auto [g, lane] = next_lane(point_lanes_, points, zero);
+        fill_bodies(*g, lane, h, i, zero);
         fill_point(g->p[0], lane, h);
       }
     }

@@ -417,12 +417,11 @@ class ShapeWorld {
   template <class Group>
   void lone_to_units(std::vector<Group>& groups, int used, std::uint32_t from);
   void solve_unit(Unit u);
-  /// The spare slots of velocity_ past the bodies: one written by the lanes of bodies that do not
-  /// move, and always zero (a plane's or segment's A, a padding lane).
-  [[nodiscard]] std::uint32_t sink_slot() const {
+  /// The slot of velocity_ past the bodies', always zero, that lanes read for a plane's or
+  /// segment's A and for a padding lane.
+  [[nodiscard]] std::uint32_t zero_slot() const {
     return static_cast<std::uint32_t>(state_.size());
   }
-  [[nodiscard]] std::uint32_t zero_slot() const { return sink_slot() + 1; }
   /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
   void prepare_joints();
   void solve_joint_velocities();
