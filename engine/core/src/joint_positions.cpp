@@ -47,6 +47,7 @@ double limit_error(double value, double lower, double upper, bool has_lower, boo
     }
   }
   if (!e.s) return;
+  moved_ = moved_ || p.x != 0.0 || p.y != 0.0 || l != 0.0;
   e.s->x += e.m * p.x, e.s->y += e.m * p.y, e.s->a += e.i * l;
   if (keep_) e.s->vx += e.m * p.x / dt_, e.s->vy += e.m * p.y / dt_, e.s->w += e.i * l / dt_;
 }
@@ -57,7 +58,7 @@ void JointSolver::solve_position(JointRecord& j, bool keep) {
   switch (j.def.type) {
     case JointType::revolute:
       correct_angle_limit(j, a, b);
-      correct_point(j, a, b);
+      if (!j.direct) correct_point(j, a, b);
       break;
     case JointType::prismatic:
     case JointType::wheel:
@@ -72,6 +73,24 @@ void JointSolver::solve_position(JointRecord& j, bool keep) {
     case JointType::motor:
       break;  // its error is its motor's to remove, within its force
   }
+}
+
+void JointSolver::shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb) {
+  keep_ = false, current_ = &j;
+  const End a = end(j.a, false), b = end(j.b, true);
+  shift(a, -p, -cross(ra, p));
+  shift(b, p, cross(rb, p));
+}
+
+void JointSolver::kick_point(JointRecord& j, Vec2 p) {
+  current_ = &j;
+  const End a = end(j.a, false), b = end(j.b, true);
+  const Vec2 q = p / dt_;
+  const double la = -cross(j.ra, q), lb = cross(j.rb, q);
+  j.given_a -= q, j.turned_a += la;
+  j.given_b += q, j.turned_b += lb;
+  if (a.s) a.s->vx -= a.m * q.x, a.s->vy -= a.m * q.y, a.s->w += a.i * la;
+  if (b.s) b.s->vx += b.m * q.x, b.s->vy += b.m * q.y, b.s->w += b.i * lb;
 }
 
 void JointSolver::correct_angle_limit(JointRecord& j, End a, End b) {

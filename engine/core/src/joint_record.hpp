@@ -64,6 +64,8 @@ struct JointRecord {
   double angle_mass = 0.0;                 ///< 1/(1/I_a + 1/I_b) (0 when neither turns)
   double k11 = 0.0, k12 = 0.0, k22 = 0.0;  ///< a 2×2 effective mass matrix K
   Softness soft{};
+  /// Its point rows are the direct solve's (joint_tree.hpp), not its own sweep's.
+  bool direct = false;
   /// Everything the joint gave each end this tick: impulse (N·s) and angular impulse about
   /// its centre of mass (N·m·s), warm start included (the kinematic ends' work).
   Vec2 given_a{}, given_b{};

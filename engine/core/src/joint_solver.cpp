@@ -221,7 +221,21 @@ void JointSolver::solve_angle_rows(JointRecord& j, End a, End b, bool motor_turn
 
 void JointSolver::solve_revolute(JointRecord& j, End a, End b) {
   solve_angle_rows(j, a, b, true);
-  solve_point(j, a, b);
+  if (!j.direct) solve_point(j, a, b);
+}
+
+Vec2 JointSolver::point_velocity(const JointRecord& j) const {
+  const End a = end(j.a, false), b = end(j.b, true);
+  return velocity(b) + joint_spin_cross(spin(b), j.rb) - velocity(a) -
+         joint_spin_cross(spin(a), j.ra);
+}
+
+void JointSolver::apply_point(JointRecord& j, Vec2 p) {
+  current_ = &j;
+  const End a = end(j.a, false), b = end(j.b, true);
+  j.impulses.linear += p;
+  push(a, -p, -cross(j.ra, p));
+  push(b, p, cross(j.rb, p));
 }
 
 // The rows along the axis of a prismatic or wheel joint: spring, motor (prismatic), limits.

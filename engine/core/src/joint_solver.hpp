@@ -6,7 +6,8 @@
 // constraints with accumulated, clamped impulses; limits as speculative one-sided rows; motors
 // as impulses bounded by the maximum torque or force times dt; springs as soft rows
 // (joint_record.hpp's Softness); position errors removed on positions only (non-linear
-// Gauss-Seidel), which adds no kinetic energy.
+// Gauss-Seidel), which adds no kinetic energy. A revolute joint of the forest
+// (joint_tree.hpp, JointRecord::direct) leaves its point rows to the forest's direct solve.
 #pragma once
 
 #include <array>
@@ -45,6 +46,18 @@ class JointSolver {
   /// work_b, J) at the tick's end velocities.
   void account(JointRecord& j) const;
 
+  /// A joint's point row in the direct solve (joint_tree.hpp). Its velocity error Ċ (m/s)
+  /// at the start arms; an impulse p (N·s) on it, added to its accumulated impulse.
+  [[nodiscard]] Vec2 point_velocity(const JointRecord& j) const;
+  void apply_point(JointRecord& j, Vec2 p);
+  /// A position correction p (kg·m) along the arms ra, rb (m), on positions only.
+  void shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb);
+  /// The constraint impulse p/dt (N·s) along the start's arms: what a correction p (kg·m) of
+  /// the tick's own error gives the velocities.
+  void kick_point(JointRecord& j, Vec2 p);
+  /// Whether a position sweep has moved a body since this solver was made.
+  [[nodiscard]] bool moved() const { return moved_; }
+
   /// One end of a joint: inverse mass and inertia, and its state (null: the world).
   struct End {
     double m = 0.0, i = 0.0;
@@ -69,6 +82,7 @@ class JointSolver {
   /// that over dt (and the impulse p/dt added up in the current joint's given_ and turned_).
   void shift(End e, Vec2 p, double l) const;
   bool keep_ = false;
+  mutable bool moved_ = false;
 
   void prepare_geometry(JointRecord& j);
   void warm_start(JointRecord& j);

@@ -275,8 +275,10 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
   };
   // The joints' errors of this tick's motion first, as constraint impulses (they move the
   // velocities too), then every error left, the contacts' and the joints', on positions only.
+  // A sweep that moves nothing leaves the poses as they were, and so would every sweep after
+  // it: the sweeps have ended.
   for (int it = 0; it < tick.position_iterations && !joints_.empty(); ++it) {
-    solve_joint_positions(true);
+    if (!solve_joint_positions(true)) break;
   }
   update_turns();
   for (int it = 0; it < tick.position_iterations; ++it) {
@@ -297,10 +299,11 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
       ShapeState& s = state_[r.b];
       s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
     }
-    // A sweep that pushes nothing leaves the poses as they were, and so would every sweep
-    // after it: without joints (whose sweeps may still correct) the push-out has ended.
+    // A sweep that pushes and corrects nothing leaves the poses as they were, and so would
+    // every sweep after it: the push-out has ended.
     if (!pushed && joints_.empty()) break;
-    if (!joints_.empty()) solve_joint_positions(false);
+    const bool corrected = !joints_.empty() && solve_joint_positions(false);
+    if (!pushed && !corrected) break;
     update_turns();
   }
   for (const ShapeRow& r : rows_) tally.deepest = std::max(tally.deepest, -separation(r));

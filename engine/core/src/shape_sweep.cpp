@@ -277,7 +277,9 @@ void ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
   SecondThread* const thread = splits ? second : nullptr;
   const SecondThreadRun team(thread);
   for (int it = 0; it < tick.velocity_iterations; ++it) {
-    if (!joints_.empty()) solve_joint_velocities();
+    // A sweep of joints alone that moves nothing ends the sweeps (contacts always move).
+    const bool moved = !joints_.empty() && solve_joint_velocities();
+    if (!moved && color_runs_.empty()) break;
     ColorRun from;
     for (const ColorRun& run : color_runs_) {
       sweep_color(from, run, level, thread);

@@ -17,14 +17,19 @@
 //     with velocity targets: a gap s > 0 may close at s/dt, a touching point stops
 //     approaching, one that meets faster than the restitution threshold bounces back (Newton's
 //     law); the impulses move velocities only, and once they are done each body moves by dt
-//     times its velocity change (as semi-implicit Euler's x1 = x0 + dt v1 would);
+//     times its velocity change (as semi-implicit Euler's x1 = x0 + dt v1 would); each sweep
+//     first solves the joints' rows (joint_solver.hpp), the point rows of the revolute joints
+//     that form a forest all at once (joint_tree.hpp), and a sweep that moves nothing (no
+//     contact, joints alone) ends the sweeps;
 //  4. continuous collision for a body whose motion over the tick is more than half its
 //     thinnest extent: moved back to its first touch of anything that does not move (planes,
 //     segments, static bodies) it has no speculative point with, found by conservative
 //     advancement (shape_distance.cpp), keeping its velocity: bounded, not exact — the rest of
 //     that tick's motion is lost, and no shape passes through a static one;
-//  5. the overlap left beyond the slop pushed out on positions only (non-linear Gauss-Seidel,
-//     Box2D v2.4's position solver), which adds no kinetic energy.
+//  5. the joints' error of the tick's motion removed (shape_joints.cpp), then the overlap left
+//     beyond the slop pushed out on positions only (non-linear Gauss-Seidel, Box2D v2.4's
+//     position solver, which adds no kinetic energy) with the joints' errors, until a sweep
+//     moves nothing.
 // Everything runs in one order (a colour's manifolds four at a time in the lanes of a vector,
 // each lane as one alone; with two threads a large world's broadphase, manifolds and colours
 // by halves, joined in that order): the same bits on any thread count, SIMD level and
@@ -42,6 +47,7 @@
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/simd.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "joint_tree.hpp"
 #include "one_way.hpp"
 #include "second_thread.hpp"
 #include "shape_geom.hpp"
@@ -291,6 +297,7 @@ class ShapeWorld {
   std::vector<double> margin_;  ///< each body's speculative margin this tick, m
   double dt_ = 0.0;
   std::span<JointRecord> joints_;            ///< this tick's (ShapeTick::joints)
+  JointTree tree_;                           ///< the joints' direct solve
   std::span<const std::uint64_t> unpaired_;  ///< this tick's (ShapeTick::unpaired)
 
   [[nodiscard]] Pose pose(std::uint32_t body) const;
@@ -424,9 +431,17 @@ class ShapeWorld {
   }
   /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
   void prepare_joints();
-  void solve_joint_velocities();
-  void solve_joint_positions(bool keep);
-  void poll_stop();  ///< throw_if_stop_requested, counted in stop_polls_
+  /// Each returns whether its sweep moved anything (a joint's own rows always count).
+  bool solve_joint_velocities();
+  bool solve_joint_positions(bool keep);
+  bool solve_tree_velocities();
+  bool solve_tree_positions(bool keep);
+  bool joint_rows_ = false;     ///< some joint has velocity rows of its own this tick
+  bool indirect_ = false;       ///< some joint is not all in the forest
+  bool direct_limits_ = false;  ///< some joint of the forest has a limit
+  double kept_error_ = 0.0;     ///< the forest's error at the last sweep that kept, m
+  std::vector<Rot> turned_;     ///< solve_tree_positions' scratch: each forest body's rotation
+  void poll_stop();             ///< throw_if_stop_requested, counted in stop_polls_
   std::uint64_t stop_polls_ = 0;
   void account_joints();
   /// Whether a joint keeps the shapes of these two bodies from colliding.

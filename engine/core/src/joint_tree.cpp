@@ -1,0 +1,250 @@
+// The joints' direct solve (joint_tree.hpp): the forest, its order and its block LDLᵀ.
+#include "joint_tree.hpp"
+
+#include <numeric>
+
+#include "shape_world.hpp"
+
+namespace fixstep::detail {
+
+namespace {
+
+using Block = std::array<double, 9>;
+using Vec3 = std::array<double, 3>;
+
+/// The inverse of a 3×3 block by its cofactors (zero when singular).
+Block inverse3(const Block& k) {
+  const double c0 = k[4] * k[8] - k[5] * k[7], c3 = k[5] * k[6] - k[3] * k[8],
+               c6 = k[3] * k[7] - k[4] * k[6];
+  double det = k[0] * c0 + k[1] * c3 + k[2] * c6;
+  if (det == 0.0) return {};
+  det = 1.0 / det;
+  return {det * c0, det * (k[2] * k[7] - k[1] * k[8]), det * (k[1] * k[5] - k[2] * k[4]),
+          det * c3, det * (k[0] * k[8] - k[2] * k[6]), det * (k[2] * k[3] - k[0] * k[5]),
+          det * c6, det * (k[1] * k[6] - k[0] * k[7]), det * (k[0] * k[4] - k[1] * k[3])};
+}
+
+bool moves(std::uint32_t body, std::span<const ShapedBody> bodies) {
+  return body != JointRecord::none &&
+         (bodies[body].inv_mass > 0.0 || bodies[body].inv_inertia > 0.0);
+}
+
+/// A body that turns but does not translate: a point on it moves along one line only.
+bool turns_only(std::uint32_t body, std::span<const ShapedBody> bodies) {
+  return body != JointRecord::none && bodies[body].inv_mass == 0.0 &&
+         bodies[body].inv_inertia > 0.0;
+}
+
+}  // namespace
+
+std::uint32_t JointTree::find(std::uint32_t k) {
+  while (root_[k] != k) {
+    root_[k] = root_[root_[k]];  // path halving
+    k = root_[k];
+  }
+  return k;
+}
+
+void JointTree::build(std::span<JointRecord> joints, std::span<const ShapedBody> bodies) {
+  members_.clear(), ends_.clear(), bodies_.clear();
+  const auto ground = static_cast<std::uint32_t>(bodies.size());
+  root_.resize(bodies.size() + 1);
+  std::iota(root_.begin(), root_.end(), 0U);
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    JointRecord& j = joints[i];
+    j.direct = false;
+    if (j.def.type != JointType::revolute || j.broken) continue;
+    if (turns_only(j.a, bodies) || turns_only(j.b, bodies)) continue;
+    const std::uint32_t a = moves(j.a, bodies) ? j.a : none;
+    const std::uint32_t b = moves(j.b, bodies) ? j.b : none;
+    if (a == none && b == none) continue;
+    const std::uint32_t ra = find(a == none ? ground : a), rb = find(b == none ? ground : b);
+    if (ra == rb) continue;  // it would close a loop
+    root_[ra] = rb;
+    j.direct = true;
+    members_.push_back(static_cast<std::uint32_t>(i));
+    ends_.push_back({a, b});
+  }
+  arms_.resize(members_.size());
+  rhs_.resize(members_.size());
+  if (!members_.empty()) order(bodies);
+}
+
+void JointTree::add_node(std::uint32_t parent, std::uint32_t member, std::uint32_t body,
+                         std::span<const ShapedBody> bodies) {
+  const auto k = static_cast<std::uint32_t>(nodes_.size());
+  nodes_.push_back({parent, member, body});
+  if (body != none) {
+    node_of_body_[body] = k;
+    bodies_.push_back(body);
+    inverse_mass_.push_back(
+        {bodies[body].inv_mass, bodies[body].inv_mass, bodies[body].inv_inertia});
+  } else {
+    node_of_member_[member] = k;
+    inverse_mass_.push_back({});
+  }
+  stack_.push_back(k);
+}
+
+// Depth first from the node on the stack: a joint's other body, a body's other joints.
+void JointTree::visit(std::span<const ShapedBody> bodies) {
+  while (!stack_.empty()) {
+    const std::uint32_t n = stack_.back();
+    stack_.pop_back();
+    const Node node = nodes_[n];
+    if (node.member != none) {
+      for (const std::uint32_t body : ends_[node.member]) {
+        if (body != none && node_of_body_[body] == none) add_node(n, none, body, bodies);
+      }
+      continue;
+    }
+    for (std::uint32_t e = first_[node.body]; e < first_[node.body + 1]; ++e) {
+      if (node_of_member_[joined_[e]] == none) add_node(n, joined_[e], none, bodies);
+    }
+  }
+}
+
+// Each tree from its joint to the ground where it has one (a joint must not be a leaf: its
+// pivot would be zero), else from its first joint's first moving body.
+void JointTree::order(std::span<const ShapedBody> bodies) {
+  first_.assign(bodies.size() + 1, 0);
+  for (const auto& e : ends_) {
+    for (const std::uint32_t body : e) {
+      if (body != none) ++first_[body + 1];
+    }
+  }
+  std::partial_sum(first_.begin(), first_.end(), first_.begin());
+  joined_.resize(first_.back());
+  stack_.assign(first_.begin(), first_.end() - 1);  // (each body's next free place)
+  for (std::uint32_t m = 0; m < ends_.size(); ++m) {
+    for (const std::uint32_t body : ends_[m]) {
+      if (body != none) joined_[stack_[body]++] = m;
+    }
+  }
+  stack_.clear();
+  nodes_.clear(), inverse_mass_.clear(), bodies_.clear();
+  node_of_body_.assign(bodies.size(), none);
+  node_of_member_.assign(members_.size(), none);
+  for (std::uint32_t m = 0; m < ends_.size(); ++m) {
+    if (ends_[m][0] != none && ends_[m][1] != none) continue;
+    add_node(none, m, none, bodies);
+    visit(bodies);
+  }
+  for (std::uint32_t m = 0; m < ends_.size(); ++m) {
+    if (node_of_member_[m] != none) continue;
+    add_node(none, none, ends_[m][0], bodies);
+    visit(bodies);
+  }
+  const std::size_t n = nodes_.size();
+  inverse_.resize(n), up_.resize(n), pivot_.resize(n), x_.resize(n);
+}
+
+// A node's link to its parent: the point row's Jacobian on the body's end, Ċ = v_b + ω_b × r_b
+// − v_a − ω_a × r_a, so ∂Ċ/∂(v, ω) = s [[1, 0, u_x], [0, 1, u_y]] with s = ±1 (B's end, A's)
+// and u = (−r_y, r_x), zero for a body that does not turn.
+JointTree::Link JointTree::link(std::size_t i) const {
+  const Node& node = nodes_[i];
+  const bool joint = node.member != none;
+  const std::uint32_t member = joint ? node.member : nodes_[node.parent].member;
+  const std::uint32_t body = joint ? nodes_[node.parent].body : node.body;
+  const int side = ends_[member][0] == body ? 0 : 1;
+  const Vec2 r = arms_[member][side];
+  const bool turns = inverse_mass_[joint ? node.parent : i][2] > 0.0;
+  return {side == 0 ? -1.0 : 1.0, turns ? Vec2{-r.y, r.x} : Vec2{}};
+}
+
+// Block LDLᵀ from the leaves: a node's pivot D is its H block less its children's D⁻¹ H
+// products; up_ holds D⁻¹ H of a node and its parent. A joint's pivot is 2×2 (its third row
+// and column void: 1 on the diagonal), a body's 3×3.
+void JointTree::factor() {
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].member != none) {
+      pivot_[i] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+      continue;
+    }
+    const Vec3& w = inverse_mass_[i];
+    const double m = 1.0 / w[0], inertia = w[2] > 0.0 ? 1.0 / w[2] : 1.0;
+    pivot_[i] = {m, 0.0, 0.0, 0.0, m, 0.0, 0.0, 0.0, inertia};
+  }
+  for (std::size_t i = nodes_.size(); i-- > 0;) {  // children before parents
+    const Node& node = nodes_[i];
+    const Block& k = pivot_[i];
+    Block& d = inverse_[i];
+    if (node.member != none) {
+      const double det = k[0] * k[4] - k[1] * k[3];
+      const double inv = det != 0.0 ? 1.0 / det : 0.0;
+      d = {inv * k[4], -inv * k[1], 0.0, -inv * k[3], inv * k[0], 0.0, 0.0, 0.0, 0.0};
+    } else {
+      d = inverse3(k);
+    }
+    if (node.parent == none) continue;
+    const auto [s, u] = link(i);
+    Block& up = up_[i];
+    Block& p = pivot_[node.parent];
+    if (node.member != none) {  // D⁻¹ J (2×3), and the body's pivot less Jᵀ D⁻¹ J
+      for (int r = 0; r < 2; ++r) {
+        up[3 * r] = s * d[3 * r], up[3 * r + 1] = s * d[3 * r + 1];
+        up[3 * r + 2] = s * (d[3 * r] * u.x + d[3 * r + 1] * u.y);
+      }
+      up[6] = up[7] = up[8] = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        p[c] -= s * up[c], p[3 + c] -= s * up[3 + c];
+        p[6 + c] -= s * (u.x * up[c] + u.y * up[3 + c]);
+      }
+    } else {  // D⁻¹ Jᵀ (3×2), and the joint's pivot less J D⁻¹ Jᵀ
+      for (int r = 0; r < 3; ++r) {
+        up[3 * r] = s * (d[3 * r] + u.x * d[3 * r + 2]);
+        up[3 * r + 1] = s * (d[3 * r + 1] + u.y * d[3 * r + 2]);
+        up[3 * r + 2] = 0.0;
+      }
+      for (int c = 0; c < 2; ++c) {
+        p[c] -= s * (up[c] + u.x * up[6 + c]);
+        p[3 + c] -= s * (up[3 + c] + u.y * up[6 + c]);
+      }
+    }
+  }
+}
+
+void JointTree::solve(std::span<Vec2> rhs) {
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const std::uint32_t m = nodes_[i].member;
+    x_[i] = m != none ? Vec3{-rhs[m].x, -rhs[m].y, 0.0} : Vec3{};
+  }
+  for (std::size_t i = nodes_.size(); i-- > 0;) {  // z_p −= (D_i⁻¹ H_ip)ᵀ z_i, children first
+    const std::uint32_t p = nodes_[i].parent;
+    if (p == none) continue;
+    const Block& g = up_[i];
+    const Vec3& z = x_[i];
+    Vec3& zp = x_[p];
+    if (nodes_[i].member != none) {  // (2×3)ᵀ
+      for (int c = 0; c < 3; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1];
+    } else {  // (3×2)ᵀ
+      for (int c = 0; c < 2; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1] + g[6 + c] * z[2];
+    }
+  }
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {  // x_i = D_i⁻¹ z_i − D_i⁻¹ H_ip x_p
+    const Block& d = inverse_[i];
+    const Block& g = up_[i];
+    const std::uint32_t p = nodes_[i].parent;
+    const Vec3 xp = p != none ? x_[p] : Vec3{};
+    Vec3& x = x_[i];
+    const Vec3 z = x;
+    if (nodes_[i].member != none) {  // a 2×2 pivot, a 2×3 link
+      for (int r = 0; r < 2; ++r) {
+        x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] -
+               (g[3 * r] * xp[0] + g[3 * r + 1] * xp[1] + g[3 * r + 2] * xp[2]);
+      }
+    } else {  // a 3×3 pivot, a 3×2 link
+      for (int r = 0; r < 3; ++r) {
+        x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] + d[3 * r + 2] * z[2] -
+               (g[3 * r] * xp[0] + g[3 * r + 1] * xp[1]);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const std::uint32_t m = nodes_[i].member;
+    if (m != none) rhs[m] = {x_[i][0], x_[i][1]};
+  }
+}
+
+}  // namespace fixstep::detail

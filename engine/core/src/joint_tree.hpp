@@ -1,0 +1,87 @@
+// The joints' direct solve: the point rows of the revolute joints that form a forest, solved
+// all at once (Baraff, "Linear-Time Dynamics using Lagrange Multipliers", SIGGRAPH 1996),
+// where a Gauss-Seidel sweep moves an error along a chain by one link. joint_solver.hpp's
+// rows keep everything else (limits, motors, springs, the other types and the joints that
+// close a loop); ShapeWorld interleaves the two.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "joint_record.hpp"
+
+namespace fixstep::detail {
+
+struct ShapedBody;
+
+/// The forest's errors left as they are (a sweep that finds no larger one moves nothing): a
+/// point's velocity error (m/s) and position error (m), each component.
+inline constexpr double direct_velocity_tolerance = 1e-9;
+inline constexpr double direct_position_tolerance = 1e-9;
+
+class JointTree {
+ public:
+  /// Which joints join the forest, in joint order: a revolute joint that is not broken, has
+  /// a body that moves (a non-zero inverse mass or inertia) and none that turns without
+  /// translating (its point could not follow both rows), and does not close a loop (the
+  /// world, static and kinematic bodies are one node: a second joint of one tree to them
+  /// closes a loop too). Sets each joint's `direct`; allocates only while the forest grows.
+  void build(std::span<JointRecord> joints, std::span<const ShapedBody> bodies);
+  /// The joints of the forest (indices into build's span), in joint order.
+  [[nodiscard]] std::span<const std::uint32_t> members() const { return members_; }
+  [[nodiscard]] bool empty() const { return members_.empty(); }
+  /// The bodies of the forest (indices into build's span), each once.
+  [[nodiscard]] std::span<const std::uint32_t> bodies() const { return bodies_; }
+
+  /// Each member's lever arms (m, world frame, from A's and B's centre of mass) for the next
+  /// factor(), by member index.
+  [[nodiscard]] std::span<std::array<Vec2, 2>> arms() { return arms_; }
+  /// A buffer of one Vec2 per member for solve()'s right-hand side.
+  [[nodiscard]] std::span<Vec2> rhs() { return rhs_; }
+  /// Factors H = [M Jᵀ; J 0] of the forest, J the point rows' Jacobian at arms() (block LDLᵀ,
+  /// children before parents: no fill, O(members)). A singular pivot is taken as zero (that
+  /// part moves nothing).
+  void factor();
+  /// Solves K λ = rhs for every member at once, K = J M⁻¹ Jᵀ of the last factor(): `rhs` (a
+  /// velocity, m/s, or a position error, m, per member) in, λ (N·s, or kg·m) out.
+  void solve(std::span<Vec2> rhs);
+
+ private:
+  using Block = std::array<double, 9>;  ///< 3×3, row-major
+  using Vec3 = std::array<double, 3>;
+  static constexpr std::uint32_t none = ~std::uint32_t{0};
+  struct Node {
+    std::uint32_t parent = none;
+    std::uint32_t member = none;  ///< a joint's member index; none for a body
+    std::uint32_t body = none;    ///< a body's index; none for a joint
+  };
+  std::vector<std::uint32_t> members_, bodies_;
+  std::vector<std::array<std::uint32_t, 2>> ends_;  ///< each member's bodies (none: ground)
+  std::vector<std::array<Vec2, 2>> arms_;
+  std::vector<Vec2> rhs_;
+  std::vector<Node> nodes_;          ///< in preorder: a parent before its children
+  std::vector<Vec3> inverse_mass_;   ///< each node's body's (1/kg, 1/kg, 1/(kg·m²))
+  std::vector<Block> inverse_;       ///< D⁻¹ of each node
+  std::vector<Block> up_;            ///< D⁻¹ H (the node's row, its parent's column)
+  std::vector<Block> pivot_;         ///< factor's scratch: D
+  std::vector<Vec3> x_;              ///< solve's scratch
+  std::vector<std::uint32_t> root_;  ///< union-find over bodies, ground last
+  std::vector<std::uint32_t> node_of_body_;
+  std::vector<std::uint32_t> first_, joined_;  ///< each body's members (CSR)
+  std::vector<std::uint32_t> node_of_member_, stack_;
+
+  std::uint32_t find(std::uint32_t k);
+  void order(std::span<const ShapedBody> bodies);
+  void add_node(std::uint32_t parent, std::uint32_t member, std::uint32_t body,
+                std::span<const ShapedBody> bodies);
+  void visit(std::span<const ShapedBody> bodies);
+  struct Link {
+    double s = 1.0;  ///< +1 on B's end, −1 on A's
+    Vec2 u{};        ///< (−r_y, r_x), zero for a body that does not turn
+  };
+  [[nodiscard]] Link link(std::size_t node) const;
+};
+
+}  // namespace fixstep::detail
