@@ -50,6 +50,7 @@ void ShapeWorld::prepare_joints() {
     arms[k] = {j.ra, j.rb};
   }
   tree_.factor();
+  rest_factored_ = false;
   kept_error_ = std::numeric_limits<double>::infinity();
 }
 
@@ -75,8 +76,9 @@ bool ShapeWorld::solve_tree_velocities() {
 // motion made (the start's kept), and the same correction over dt as a constraint impulse
 // along the start's gradient (the one the velocity sweeps made the motion tangent to, so it
 // takes nearly nothing from the motion along it); these sweeps go on only while that error
-// shrinks. Else all of it, on positions only. An error within direct_position_tolerance is
-// left: such a sweep moves nothing.
+// shrinks. Else all of it, on positions only, along the gradient of the first such sweep (a
+// chord step: these sweeps move the poses little, and factor once). An error within
+// direct_position_tolerance is left: such a sweep moves nothing.
 bool ShapeWorld::solve_tree_positions(bool keep) {
   JointSolver solver(bodies_, state_, dt_);
   const auto members = tree_.members();
@@ -100,12 +102,13 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
     constexpr double most = joint_max_linear_correction;
     const Vec2 e = keep ? j.offset - c : -c;
     rhs[k] = {std::clamp(e.x, -most, most), std::clamp(e.y, -most, most)};
-    arms[k] = {ra, rb};
+    if (keep || !rest_factored_) arms[k] = {ra, rb};
   }
   const double error = largest(rhs);
   if (error <= direct_position_tolerance || (keep && !(error < kept_error_))) return false;
   if (keep) kept_error_ = error;
-  tree_.factor();
+  if (keep || !rest_factored_) tree_.factor();
+  rest_factored_ = !keep;
   tree_.solve(rhs);
   for (std::size_t k = 0; k < members.size(); ++k) {
     JointRecord& j = joints_[members[k]];

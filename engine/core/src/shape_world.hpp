@@ -440,6 +440,7 @@ class ShapeWorld {
   bool indirect_ = false;       ///< some joint is not all in the forest
   bool direct_limits_ = false;  ///< some joint of the forest has a limit
   double kept_error_ = 0.0;     ///< the forest's error at the last sweep that kept, m
+  bool rest_factored_ = false;  ///< the forest factored for this tick's sweeps on positions
   std::vector<Rot> turned_;     ///< solve_tree_positions' scratch: each forest body's rotation
   void poll_stop();             ///< throw_if_stop_requested, counted in stop_polls_
   std::uint64_t stop_polls_ = 0;
