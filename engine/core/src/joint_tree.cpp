@@ -182,22 +182,22 @@ void JointTree::factor() {
     Block& up = up_[i];
     Block& p = pivot_[node.parent];
     if (node.member != none) {  // D⁻¹ J (2×3), and the body's pivot less Jᵀ D⁻¹ J
-      for (int r = 0; r < 2; ++r) {
+      for (std::size_t r = 0; r < 2; ++r) {
         up[3 * r] = s * d[3 * r], up[3 * r + 1] = s * d[3 * r + 1];
         up[3 * r + 2] = s * (d[3 * r] * u.x + d[3 * r + 1] * u.y);
       }
       up[6] = up[7] = up[8] = 0.0;
-      for (int c = 0; c < 3; ++c) {
+      for (std::size_t c = 0; c < 3; ++c) {
         p[c] -= s * up[c], p[3 + c] -= s * up[3 + c];
         p[6 + c] -= s * (u.x * up[c] + u.y * up[3 + c]);
       }
     } else {  // D⁻¹ Jᵀ (3×2), and the joint's pivot less J D⁻¹ Jᵀ
-      for (int r = 0; r < 3; ++r) {
+      for (std::size_t r = 0; r < 3; ++r) {
         up[3 * r] = s * (d[3 * r] + u.x * d[3 * r + 2]);
         up[3 * r + 1] = s * (d[3 * r + 1] + u.y * d[3 * r + 2]);
         up[3 * r + 2] = 0.0;
       }
-      for (int c = 0; c < 2; ++c) {
+      for (std::size_t c = 0; c < 2; ++c) {
         p[c] -= s * (up[c] + u.x * up[6 + c]);
         p[3 + c] -= s * (up[3 + c] + u.y * up[6 + c]);
       }
@@ -217,9 +217,9 @@ void JointTree::solve(std::span<Vec2> rhs) {
     const Vec3& z = x_[i];
     Vec3& zp = x_[p];
     if (nodes_[i].member != none) {  // (2×3)ᵀ
-      for (int c = 0; c < 3; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1];
+      for (std::size_t c = 0; c < 3; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1];
     } else {  // (3×2)ᵀ
-      for (int c = 0; c < 2; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1] + g[6 + c] * z[2];
+      for (std::size_t c = 0; c < 2; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1] + g[6 + c] * z[2];
     }
   }
   for (std::size_t i = 0; i < nodes_.size(); ++i) {  // x_i = D_i⁻¹ z_i − D_i⁻¹ H_ip x_p
@@ -230,12 +230,12 @@ void JointTree::solve(std::span<Vec2> rhs) {
     Vec3& x = x_[i];
     const Vec3 z = x;
     if (nodes_[i].member != none) {  // a 2×2 pivot, a 2×3 link
-      for (int r = 0; r < 2; ++r) {
+      for (std::size_t r = 0; r < 2; ++r) {
         x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] -
                (g[3 * r] * xp[0] + g[3 * r + 1] * xp[1] + g[3 * r + 2] * xp[2]);
       }
     } else {  // a 3×3 pivot, a 3×2 link
-      for (int r = 0; r < 3; ++r) {
+      for (std::size_t r = 0; r < 3; ++r) {
         x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] + d[3 * r + 2] * z[2] -
                (g[3 * r] * xp[0] + g[3 * r + 1] * xp[1]);
       }
