@@ -2,6 +2,9 @@
 // as each manifold solved alone through the scalar row kernels, and at every SIMD level.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -124,7 +127,8 @@ std::pair<detail::ShapeSolveRow, detail::ShapeSolveRow> random_block(std::mt1993
     h->rna = u(rng), h->rnb = u(rng), h->rta = u(rng), h->rtb = u(rng);
     h->kn = h->ma + h->mb + h->ia * h->rna * h->rna + h->ib * h->rnb * h->rnb;
     h->normal_mass = 1.0 / h->kn;
-    h->tangent_mass = 1.0 / (h->ma + h->mb + h->ia * h->rta * h->rta + h->ib * h->rtb * h->rtb);
+    h->kt = h->ma + h->mb + h->ia * h->rta * h->rta + h->ib * h->rtb * h->rtb;
+    h->tangent_mass = 1.0 / h->kt;
     h->target = u(rng) > 0.0 ? 0.0 : 2.0 * u(rng);
     h->ln = u(rng) > 0.0 ? 0.0 : 3.0 * (1.0 + u(rng)), h->lt = h->friction * h->ln * u(rng);
   }
@@ -158,13 +162,16 @@ TEST(ShapeLanes, TheBlockKernelGivesTheScalarBitsInEveryCaseAndItsFallback) {
         const detail::ShapeSolveRow& h = p == 0 ? h1 : h2;
         auto& q = g.p[p];
         q.rna[l] = h.rna, q.rnb[l] = h.rnb, q.rta[l] = h.rta, q.rtb[l] = h.rtb, q.kn[l] = h.kn;
-        q.normal_mass[l] = h.normal_mass, q.tangent_mass[l] = h.tangent_mass;
+        q.kt[l] = h.kt, q.normal_mass[l] = h.normal_mass, q.tangent_mass[l] = h.tangent_mass;
         q.target[l] = h.target, q.ln[l] = h.ln, q.lt[l] = h.lt;
       }
     }
-    detail::shape_lanes::solve_group(g, lanes.data());
+    detail::shape_lanes::Lane change{};
+    detail::shape_lanes::solve_group(g, lanes.data(), change);
+    double expected_change = 0.0;  // the largest |Δλ| K of any row (m/s)
     for (int l = 0; l < width; ++l) {
       auto& [h1, h2] = rows[l];
+      const std::array<double, 4> was{h1.ln, h1.lt, h2.ln, h2.lt};
       detail::ShapeMotion a = scalar[2 * l], b = scalar[2 * l + 1];
       detail::shape_rows::solve_friction(h1, a, b);
       detail::shape_rows::solve_friction(h2, a, b);
@@ -185,6 +192,8 @@ TEST(ShapeLanes, TheBlockKernelGivesTheScalarBitsInEveryCaseAndItsFallback) {
         const detail::ShapeSolveRow& h = p == 0 ? h1 : h2;
         ASSERT_TRUE(same_bits(g.p[p].ln[l], h.ln)) << "round " << round << " lane " << l;
         ASSERT_TRUE(same_bits(g.p[p].lt[l], h.lt)) << "round " << round << " lane " << l;
+        expected_change = std::max({expected_change, std::abs(h.ln - was[2 * p]) * h.kn,
+                                    std::abs(h.lt - was[2 * p + 1]) * h.kt});
       }
       for (int k = 0; k < 2; ++k) {
         const detail::ShapeMotion& s = k == 0 ? a : b;
@@ -193,6 +202,7 @@ TEST(ShapeLanes, TheBlockKernelGivesTheScalarBitsInEveryCaseAndItsFallback) {
             << "round " << round << " lane " << l << " body " << k;
       }
     }
+    ASSERT_EQ(detail::shape_lanes::largest(change), expected_change) << "round " << round;
   }
   EXPECT_GT(fallbacks, 100);  // the fallback ran, not only the four cases
 }

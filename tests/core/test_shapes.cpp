@@ -8,6 +8,7 @@
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/input.hpp"
+#include "fixstep/core/joint.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
@@ -159,6 +160,58 @@ TEST(ShapeCaps, ACrowdOfOverlappingBoxesStopsWithALocatedFault) {
   EXPECT_EQ(w.fault()->cap, "max_candidate_pairs");
   EXPECT_EQ(w.fault()->field, "contacts");
   EXPECT_NE(w.fault()->with.find("2000 shapes"), std::string::npos) << w.fault()->with;
+}
+
+// --- the velocity sweeps end once converged ----------------------------------------------
+
+/// A box of 1 m × 1 m resting on the ground, and beside it (6 m off) a pyramid of boxes
+/// `rows` high, each row one box shorter, dropped from 1 cm above their rests.
+WorldDef resting_boxes(int rows) {
+  WorldDef def = WorldDef::empty(Precision::f64, shape_world(0.6));
+  def.planes.push_back(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  def.add_body(box_body(0.5, 0.5, {0.0, 0.5}));
+  for (int r = 0; r < rows; ++r) {
+    for (int k = 0; k < rows - r; ++k) {
+      def.add_body(box_body(0.5, 0.5, {6.0 + k + 0.5 * r, 0.51 + 1.01 * r}));
+    }
+  }
+  return def;
+}
+
+TEST(ShapeSweeps, EndOnceASweepChangesNoVelocityAndNotBefore) {
+  // One box at rest: warm started with last tick's impulses, which hold it, its first sweep
+  // changes nothing.
+  World lone(resting_boxes(0));
+  for (int i = 0; i < 60; ++i) lone.step();
+  EXPECT_EQ(lone.contact_stats().shape_velocity_sweeps, 1);
+  const Body box = lone.body(lone.bodies()[0]);
+  EXPECT_NEAR(box.position.y, 0.5, 1e-9);
+  EXPECT_LT(std::hypot(box.velocity.x, box.velocity.y), 1e-9);
+  // A pyramid's sweeps keep changing its impulses (Gauss-Seidel on a stack): all of them run.
+  World pyramid(resting_boxes(5));
+  for (int i = 0; i < 60; ++i) pyramid.step();
+  EXPECT_EQ(pyramid.contact_stats().shape_velocity_sweeps,
+            ContactSettings::default_velocity_iterations);
+}
+
+TEST(ShapeSweeps, AFreelySwingingChainNeedsTwoSweepsOfItsForest) {
+  // Revolute joints alone, no contact: the forest's direct solve makes every anchor's velocity
+  // error zero in the first sweep; the second finds nothing left and ends the sweeps.
+  World w(WorldDef::empty(Precision::f64, shape_world(0.6)));
+  Entity last{};
+  for (int k = 0; k < 10; ++k) {
+    const Entity link = w.create_body(box_body(0.25, 0.0625, {0.25 + 0.5 * k, 0.0}));
+    JointDef j;
+    j.type = JointType::revolute;
+    j.body_a = last, j.body_b = link;
+    j.anchor = {0.5 * k, 0.0};
+    w.create_joint(j);
+    last = link;
+  }
+  for (int i = 0; i < 30; ++i) {
+    w.step();
+    EXPECT_EQ(w.contact_stats().shape_velocity_sweeps, 2) << "tick " << i + 1;
+  }
 }
 
 // --- the same bits -------------------------------------------------------------------------

@@ -56,7 +56,9 @@ JointSolver::End JointSolver::end(std::uint32_t body, bool b) const {
   }
   if (!e.s || (e.m == 0.0 && e.i == 0.0)) return;
   ShapeMotion& v = *e.v;  // (pushes are the velocity solve's)
-  v.vx += e.m * p.x, v.vy += e.m * p.y, v.w += e.i * l;
+  const double dx = e.m * p.x, dy = e.m * p.y, dw = e.i * l;
+  v.vx += dx, v.vy += dy, v.w += dw;
+  velocity_change_ = std::max({velocity_change_, std::abs(dx), std::abs(dy), std::abs(dw)});
 }
 
 void JointSolver::prepare_geometry(JointRecord& j) {

@@ -57,6 +57,9 @@ class JointSolver {
   void kick_point(JointRecord& j, Vec2 p);
   /// Whether a position sweep has moved a body since this solver was made.
   [[nodiscard]] bool moved() const { return moved_; }
+  /// The largest change of a body's velocity component (m/s, rad/s) any impulse made since
+  /// this solver was made.
+  [[nodiscard]] double velocity_change() const { return velocity_change_; }
 
   /// One end of a joint: inverse mass and inertia, and its state (null: the world).
   struct End {
@@ -83,6 +86,7 @@ class JointSolver {
   void shift(End e, Vec2 p, double l) const;
   bool keep_ = false;
   mutable bool moved_ = false;
+  mutable double velocity_change_ = 0.0;
 
   void prepare_geometry(JointRecord& j);
   void warm_start(JointRecord& j);

@@ -134,7 +134,7 @@ bool ShapeWorld::solve_joint_velocities() {
     }
   }
   const bool direct = !tree_.empty() && solve_tree_velocities();
-  return joint_rows_ || direct;
+  return solver.velocity_change() > velocity_sweep_tolerance || direct;
 }
 
 bool ShapeWorld::solve_joint_positions(bool keep) {

@@ -132,23 +132,49 @@ using Point = LanePoint;
   }
 }
 
-/// Four blocks: each point's friction, then the two normal impulses together.
-[[gnu::always_inline]] inline void solve_group(BlockLanes& g, ShapeMotion* v) {
+/// A point's impulses before its rows are solved.
+struct Before {
+  Lane ln, lt;
+};
+
+/// `change` raised to the change of the point's own normal and tangent velocity its impulses'
+/// change since `was` made (|Δλ| K, m/s), lane by lane.
+[[gnu::always_inline]] inline void note_change(const Point& h, Before was, Lane& change) {
+  const Lane dn = h.ln - was.ln, dt = h.lt - was.lt;
+  change = max_of(change, max_of(dn, -dn) * h.kn);
+  change = max_of(change, max_of(dt, -dt) * h.kt);
+}
+
+/// Four blocks: each point's friction, then the two normal impulses together; `change` as
+/// note_change.
+[[gnu::always_inline]] inline void solve_group(BlockLanes& g, ShapeMotion* v, Lane& change) {
+  const Before was0{g.p[0].ln, g.p[0].lt}, was1{g.p[1].ln, g.p[1].lt};
   Motion a, b;
   gather(g, v, a, b);
   solve_friction(g, g.p[0], a, b);
   solve_friction(g, g.p[1], a, b);
   solve_block(g, a, b);
   scatter(g, a, b, v);
+  note_change(g.p[0], was0, change);
+  note_change(g.p[1], was1, change);
 }
 
-/// Four one-point manifolds: friction, then the normal impulse.
-[[gnu::always_inline]] inline void solve_group(PointLanes& g, ShapeMotion* v) {
+/// Four one-point manifolds: friction, then the normal impulse; `change` as note_change.
+[[gnu::always_inline]] inline void solve_group(PointLanes& g, ShapeMotion* v, Lane& change) {
+  const Before was{g.p[0].ln, g.p[0].lt};
   Motion a, b;
   gather(g, v, a, b);
   solve_friction(g, g.p[0], a, b);
   solve_normal(g, g.p[0], a, b);
   scatter(g, a, b, v);
+  note_change(g.p[0], was, change);
+}
+
+/// The largest of a lane's values.
+[[gnu::always_inline]] inline double largest(Lane x) {
+  double most = x[0];
+  for (int l = 1; l < width; ++l) most = most < x[l] ? x[l] : most;
+  return most;
 }
 
 }  // namespace fixstep::detail::shape_lanes

@@ -36,7 +36,7 @@ using Mask = decltype(Lane{} < Lane{});
 
 /// One manifold point's rows in each lane (ShapeSolveRow's fields of a point).
 struct LanePoint {
-  Lane rna{}, rnb{}, rta{}, rtb{}, kn{}, normal_mass{}, tangent_mass{}, target{}, ln{}, lt{};
+  Lane rna{}, rnb{}, rta{}, rtb{}, kn{}, kt{}, normal_mass{}, tangent_mass{}, target{}, ln{}, lt{};
 };
 
 /// A lane's write index for a body it must not write.

@@ -71,9 +71,9 @@ ShapeSolveRow ShapeWorld::solve_row(const ShapeRow& r) const {
   if (r.a != none) h.ma = bodies_[r.a].inv_mass, h.ia = bodies_[r.a].inv_inertia;
   h.mb = bodies_[r.b].inv_mass, h.ib = bodies_[r.b].inv_inertia;
   h.kn = h.ma + h.mb + h.ia * h.rna * h.rna + h.ib * h.rnb * h.rnb;
-  const double kt = h.ma + h.mb + h.ia * h.rta * h.rta + h.ib * h.rtb * h.rtb;
+  h.kt = h.ma + h.mb + h.ia * h.rta * h.rta + h.ib * h.rtb * h.rtb;
   h.normal_mass = h.kn > 0.0 ? 1.0 / h.kn : 0.0;
-  h.tangent_mass = kt > 0.0 ? 1.0 / kt : 0.0;
+  h.tangent_mass = h.kt > 0.0 ? 1.0 / h.kt : 0.0;
   h.friction = r.friction;
   return h;
 }
@@ -225,14 +225,16 @@ void ShapeWorld::prepare_blocks() {
 }
 
 // Rolling resistance (Box2D v3.1's b2SolveContact): an angular impulse that stops the two
-// bodies' relative turning, within ± c r times the manifold's normal impulse.
-void ShapeWorld::solve_rolling(ShapeRow& r, double normal_impulse) {
+// bodies' relative turning, within ± c r times the manifold's normal impulse. Returns the
+// change of the relative turning rate it made (rad/s).
+double ShapeWorld::solve_rolling(ShapeRow& r, double normal_impulse) {
   const double wa = r.a != none ? velocity_[r.a].w : 0.0;
   const double bound = r.rolling * normal_impulse;
   const double lr = std::clamp(r.lr - r.rolling_mass * (velocity_[r.b].w - wa), -bound, bound);
   const double d = lr - r.lr;
   r.lr = lr;
   if (d != 0.0) turn(r, d);
+  return r.rolling_mass > 0.0 ? std::abs(d) / r.rolling_mass : 0.0;
 }
 
 void ShapeWorld::turn(const ShapeRow& r, double l) {

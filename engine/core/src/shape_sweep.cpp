@@ -9,8 +9,10 @@
 // way each manifold's arithmetic is that of shape_rows.hpp, so the bits do not depend on the
 // vector width the CPU offers.
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
+#include <cmath>
 #include <utility>
 
 #include "fixstep/core/simd.hpp"
@@ -61,25 +63,36 @@ using shape_lanes::PointLanes;
 
 // The groups of one colour, compiled for each SimdLevel (fixstep/core/simd.hpp; internal
 // linkage and everything inlined, as world_step.cpp's sweeps).
+// Each returns the largest change of a row's own velocity (shape_lanes::note_change).
 template <class Group>
-[[gnu::noinline]] void groups_baseline(Group* first, Group* last, ShapeMotion* v) {
-  for (; first != last; ++first) shape_lanes::solve_group(*first, v);
+[[gnu::noinline]] double groups_baseline(Group* first, Group* last, ShapeMotion* v) {
+  shape_lanes::Lane change{};
+  for (; first != last; ++first) shape_lanes::solve_group(*first, v, change);
+  return shape_lanes::largest(change);
 }
 #if FIXSTEP_HAS_SIMD_CLONES
 template <class Group>
-FIXSTEP_TARGET_AVX2 void groups_avx2(Group* first, Group* last, ShapeMotion* v) {
-  for (; first != last; ++first) shape_lanes::solve_group(*first, v);
+FIXSTEP_TARGET_AVX2 double groups_avx2(Group* first, Group* last, ShapeMotion* v) {
+  shape_lanes::Lane change{};
+  for (; first != last; ++first) shape_lanes::solve_group(*first, v, change);
+  return shape_lanes::largest(change);
 }
 #endif
 
 template <class Group>
-void solve_groups(SimdLevel level, Group* first, Group* last, ShapeMotion* v) {
-  if (first == last) return;
+double solve_groups(SimdLevel level, Group* first, Group* last, ShapeMotion* v) {
+  if (first == last) return 0.0;
 #if FIXSTEP_HAS_SIMD_CLONES
   if (level != SimdLevel::baseline) return groups_avx2(first, last, v);
 #endif
   (void)level;
-  groups_baseline(first, last, v);
+  return groups_baseline(first, last, v);
+}
+
+/// The change of a row's own normal and tangent velocity its impulses' change since ln, lt
+/// made (|Δλ| K, m/s): shape_lanes::note_change for one row.
+double row_change(const ShapeSolveRow& h, double ln, double lt) {
+  return std::max(std::abs(h.ln - ln) * h.kn, std::abs(h.lt - lt) * h.kt);
 }
 
 /// A lane's bodies and shared fields from a manifold's first row `h` (row i of solve_).
@@ -97,7 +110,7 @@ void fill_bodies(LaneBodies& g, int lane, const ShapeSolveRow& h, std::uint32_t 
 
 void fill_point(shape_lanes::LanePoint& q, int lane, const ShapeSolveRow& h) {
   q.rna[lane] = h.rna, q.rnb[lane] = h.rnb, q.rta[lane] = h.rta, q.rtb[lane] = h.rtb;
-  q.kn[lane] = h.kn, q.normal_mass[lane] = h.normal_mass;
+  q.kn[lane] = h.kn, q.kt[lane] = h.kt, q.normal_mass[lane] = h.normal_mass;
   q.tangent_mass[lane] = h.tangent_mass, q.target[lane] = h.target;
   q.ln[lane] = h.ln, q.lt[lane] = h.lt;
 }
@@ -213,34 +226,44 @@ void ShapeWorld::unpack_lanes() {
 }
 
 // One manifold: a block's friction and normal rows, or each row's.
-void ShapeWorld::solve_unit(Unit u) {
+double ShapeWorld::solve_unit(Unit u) {
   ShapeSolveRow* const rows = solve_.data();
+  double change = 0.0;
   for (std::size_t i = u.start, end = u.start + u.rows; i < end; ++i) {
     ShapeSolveRow& h = rows[i];
+    const double ln = h.ln, lt = h.lt;
     Motion2 m = load(h);  // the two bodies' velocities, carried through the manifold's rows
     if (h.flags & ShapeSolveRow::block_first) {  // friction first, bounded by this
-      solve_friction(h, m.a, m.b);               // iteration's normal impulse
-      solve_friction(rows[i + 1], m.a, m.b);
-      solve_block(h, rows[i + 1], m.a, m.b);
+      ShapeSolveRow& h2 = rows[i + 1];           // iteration's normal impulse
+      const double ln2 = h2.ln, lt2 = h2.lt;
+      solve_friction(h, m.a, m.b);
+      solve_friction(h2, m.a, m.b);
+      solve_block(h, h2, m.a, m.b);
       store(h, m);
-      if (h.flags & ShapeSolveRow::rolls) solve_rolling(rows_[i], h.ln + rows[i + 1].ln);
+      change = std::max({change, row_change(h, ln, lt), row_change(h2, ln2, lt2)});
+      if (h.flags & ShapeSolveRow::rolls) {
+        change = std::max(change, solve_rolling(rows_[i], h.ln + h2.ln));
+      }
       ++i;
     } else {
       if (!(h.flags & ShapeSolveRow::redundant)) {
         solve_friction(h, m.a, m.b), solve_normal(h, m.a, m.b);
         store(h, m);
+        change = std::max(change, row_change(h, ln, lt));
       }
       if (h.flags & ShapeSolveRow::rolls) {  // a manifold's first row, maybe redundant:
         const bool pair = h.flags & ShapeSolveRow::rolls_pair;  // both its rows'
-        solve_rolling(rows_[i], h.ln + (pair ? rows[i + 1].ln : 0.0));
+        change = std::max(change, solve_rolling(rows_[i], h.ln + (pair ? rows[i + 1].ln : 0.0)));
       }
     }
   }
+  return change;
 }
 
-void ShapeWorld::sweep_color(const ColorRun& from, const ColorRun& run, SimdLevel level,
-                             SecondThread* thread) {
+double ShapeWorld::sweep_color(const ColorRun& from, const ColorRun& run, SimdLevel level,
+                               SecondThread* thread) {
   ShapeMotion* const v = velocity_.data();
+  std::array<double, 2> change{};  // each half's
   auto part = [&](int half, int halves) {
     auto cut = [&](std::uint32_t begin, std::uint32_t end, int k) {
       return begin + static_cast<std::uint32_t>((std::uint64_t{end - begin} * k) / halves);
@@ -249,23 +272,26 @@ void ShapeWorld::sweep_color(const ColorRun& from, const ColorRun& run, SimdLeve
     const std::uint32_t b1 = cut(from.blocks_end, run.blocks_end, half + 1);
     const std::uint32_t p0 = cut(from.points_end, run.points_end, half);
     const std::uint32_t p1 = cut(from.points_end, run.points_end, half + 1);
-    solve_groups(level, block_lanes_.data() + b0, block_lanes_.data() + b1, v);
-    solve_groups(level, point_lanes_.data() + p0, point_lanes_.data() + p1, v);
+    double most = solve_groups(level, block_lanes_.data() + b0, block_lanes_.data() + b1, v);
+    most =
+        std::max(most, solve_groups(level, point_lanes_.data() + p0, point_lanes_.data() + p1, v));
     const std::uint32_t u1 = cut(from.units_end, run.units_end, half + 1);
     for (std::uint32_t u = cut(from.units_end, run.units_end, half); u < u1; ++u) {
-      solve_unit(units_[u]);
+      most = std::max(most, solve_unit(units_[u]));
     }
+    change[half] = most;
   };
   if (thread == nullptr || !run.splits) {
     part(0, 1);
-    return;
+    return change[0];
   }
   auto job = [&](int half) { part(half, 2); };
   thread->both(job);
   ++split_colors_;
+  return std::max(change[0], change[1]);
 }
 
-void ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
+int ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
   color_manifolds();
   pack_lanes();
   const SimdLevel level = simd_level();
@@ -276,20 +302,25 @@ void ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
                                   [](const ColorRun& run) { return run.splits; });
   SecondThread* const thread = splits ? second : nullptr;
   const SecondThreadRun team(thread);
-  for (int it = 0; it < tick.velocity_iterations; ++it) {
-    // A sweep of joints alone that moves nothing ends the sweeps (contacts always move).
+  const bool rows = !joints_.empty() || !color_runs_.empty();
+  int sweeps = 0;
+  while (rows && sweeps < tick.velocity_iterations) {
+    ++sweeps;
     const bool moved = !joints_.empty() && solve_joint_velocities();
     if (!moved && color_runs_.empty()) break;
     ColorRun from;
+    double change = 0.0;
     for (const ColorRun& run : color_runs_) {
-      sweep_color(from, run, level, thread);
+      change = std::max(change, sweep_color(from, run, level, thread));
       from = run;
     }
+    if (!moved && change <= velocity_sweep_tolerance) break;  // converged
   }
   unpack_lanes();
   for (std::size_t i = 0; i < solve_.size(); ++i) {
     rows_[i].ln = solve_[i].ln, rows_[i].lt = solve_[i].lt;
   }
+  return sweeps;
 }
 
 }  // namespace fixstep::detail

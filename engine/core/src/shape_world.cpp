@@ -356,7 +356,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   tally.points = rows_.size();
   prepare_rows(tick);
   prepare_joints();
-  solve_velocities(tick, second);
+  tally.velocity_sweeps = solve_velocities(tick, second);
   follow_velocities();
   account_joints();
   continuous(tick, tally);

@@ -141,6 +141,7 @@ struct ShapeSolveRow {
   double rna = 0.0, rnb = 0.0, rta = 0.0, rtb = 0.0;  ///< m: r_A × n, r_B × n, r_A × t, r_B × t
   double ma = 0.0, ia = 0.0, mb = 0.0, ib = 0.0;      ///< 1/kg, 1/(kg·m²)
   double kn = 0.0;                                    ///< 1/kg: the normal row's K (1/normal_mass)
+  double kt = 0.0;                                    ///< 1/kg: the tangent row's K
   double normal_mass = 0.0, tangent_mass = 0.0;
   double k12 = 0.0;     ///< a block's coupling, 1/kg
   double target = 0.0;  ///< the normal velocity the row asks for, m/s
@@ -196,7 +197,8 @@ struct ShapeTick {
 /// What one tick's shape contacts did, for the statistics and the energy account.
 struct ShapeTally {
   std::size_t pairs = 0, points = 0, ccd_hits = 0;
-  double deepest = 0.0;  ///< m, the deepest overlap left after the solve
+  double deepest = 0.0;     ///< m, the deepest overlap left after the solve
+  int velocity_sweeps = 0;  ///< the velocity sweeps the solve ran (ShapeWorld::solve_velocities)
   /// A work limit the broadphase reached (its name in limits.hpp), its value and the body
   /// (bodies_ index) whose shape was being paired; the tick's shape contacts were not solved.
   const char* cap = nullptr;
@@ -340,7 +342,8 @@ class ShapeWorld {
   [[nodiscard]] static bool one_way_touch(const Manifold& m, Vec2 up) {
     return m.count > 0 && dot(m.normal, up) > one_way_min_dot;
   }
-  void solve_rolling(ShapeRow& r, double normal_impulse);
+  /// Returns the change of the two bodies' relative turning rate it made (rad/s).
+  double solve_rolling(ShapeRow& r, double normal_impulse);
   void turn(const ShapeRow& r, double l);  ///< an angular impulse l on B, −l on A
   void add_manifold(std::vector<ShapeRow>& rows, const Manifold& m, std::uint32_t a,
                     std::uint32_t b, double friction, double restitution, double rolling,
@@ -378,8 +381,13 @@ class ShapeWorld {
   /// The velocity sweeps (shape_sweep.cpp): the joints' rows, then the contacts' colour by
   /// colour, each colour's blocks and one-point manifolds four at a time (shape_lanes.hpp) and
   /// the rest one at a time; the colours that split (ColorRun::splits) by halves on `second`
-  /// when given.
-  void solve_velocities(const ShapeTick& tick, SecondThread* second);
+  /// when given. The sweeps end at tick.velocity_iterations, or at the first that has
+  /// converged: its joints moved nothing and no contact row changed its own velocity by more
+  /// than velocity_sweep_tolerance. Returns the sweeps run.
+  int solve_velocities(const ShapeTick& tick, SecondThread* second);
+  /// m/s (rad/s for a turning rate): the largest change of a row's velocity in a sweep that
+  /// has converged, the joint forest's own (direct_velocity_tolerance).
+  static constexpr double velocity_sweep_tolerance = 1e-9;
   /// A manifold: its first row in solve_ and its rows (1 or 2).
   struct Unit {
     std::uint32_t start = 0, rows = 1;
@@ -414,16 +422,17 @@ class ShapeWorld {
   SecondThread second_;  ///< the shape world's own, when the discs' is not running
   std::uint64_t split_colors_ = 0;
   /// One sweep of the colour from `from` to `run` (ColorRun ends), on `thread` by halves when
-  /// given.
-  void sweep_color(const ColorRun& from, const ColorRun& run, SimdLevel level,
-                   SecondThread* thread);
+  /// given. Returns the largest change of a row's own velocity its impulse made (m/s, rad/s).
+  double sweep_color(const ColorRun& from, const ColorRun& run, SimdLevel level,
+                     SecondThread* thread);
   void color_manifolds();
   void pack_lanes();
   void unpack_lanes();
   /// A colour's only group (from `from` on in `groups`) with one lane `used` back to units_.
   template <class Group>
   void lone_to_units(std::vector<Group>& groups, int used, std::uint32_t from);
-  void solve_unit(Unit u);
+  /// One manifold's rows; returns the largest change of a row's own velocity (m/s, rad/s).
+  double solve_unit(Unit u);
   /// The slot of velocity_ past the bodies', always zero, that lanes read for a plane's or
   /// segment's A and for a padding lane.
   [[nodiscard]] std::uint32_t zero_slot() const {
@@ -431,7 +440,8 @@ class ShapeWorld {
   }
   /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
   void prepare_joints();
-  /// Each returns whether its sweep moved anything (a joint's own rows always count).
+  /// Each returns whether its sweep moved anything (the velocity sweep's own rows: a body's
+  /// velocity by more than velocity_sweep_tolerance).
   bool solve_joint_velocities();
   bool solve_joint_positions(bool keep);
   bool solve_tree_velocities();

@@ -358,6 +358,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   }
   contact_stats_.shape_points = tally.points;
   contact_stats_.deepest_shape_overlap = tally.deepest;
+  contact_stats_.shape_velocity_sweeps = tally.velocity_sweeps;
   bool out_of_range = false;
   for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
     const ShapedBody& b = w.bodies_[i];
