@@ -56,9 +56,7 @@ JointSolver::End JointSolver::end(std::uint32_t body, bool b) const {
   }
   if (!e.s || (e.m == 0.0 && e.i == 0.0)) return;
   ShapeMotion& v = *e.v;  // (pushes are the velocity solve's)
-  const double dx = e.m * p.x, dy = e.m * p.y, dw = e.i * l;
-  v.vx += dx, v.vy += dy, v.w += dw;
-  velocity_change_ = std::max({velocity_change_, std::abs(dx), std::abs(dy), std::abs(dw)});
+  v.vx += e.m * p.x, v.vy += e.m * p.y, v.w += e.i * l;
 }
 
 void JointSolver::prepare_geometry(JointRecord& j) {
@@ -155,6 +153,19 @@ void JointSolver::warm_start(JointRecord& j) {
 void JointSolver::solve_velocity(JointRecord& j) {
   current_ = &j;
   const End a = end(j.a, false), b = end(j.b, true);
+  const Vec2 given_a = j.given_a, given_b = j.given_b;  // what push() adds to, before
+  const double turned_a = j.turned_a, turned_b = j.turned_b;
+  solve_rows(j, a, b);
+  // The ends' velocity changes from the rows' impulses together (a static end's mass is 0).
+  auto most = [](const End& e, Vec2 p, double l) {
+    return std::max({std::abs(e.m * p.x), std::abs(e.m * p.y), std::abs(e.i * l)});
+  };
+  velocity_change_ =
+      std::max({velocity_change_, most(a, j.given_a - given_a, j.turned_a - turned_a),
+                most(b, j.given_b - given_b, j.turned_b - turned_b)});
+}
+
+void JointSolver::solve_rows(JointRecord& j, End a, End b) {
   switch (j.def.type) {
     case JointType::revolute:
       solve_revolute(j, a, b);

@@ -57,8 +57,9 @@ class JointSolver {
   void kick_point(JointRecord& j, Vec2 p);
   /// Whether a position sweep has moved a body since this solver was made.
   [[nodiscard]] bool moved() const { return moved_; }
-  /// The largest change of a body's velocity component (m/s, rad/s) any impulse made since
-  /// this solver was made.
+  /// The largest change of a body's velocity component (m/s, rad/s) that one joint's
+  /// solve_velocity() made (its rows' impulses together), over those since this solver was
+  /// made.
   [[nodiscard]] double velocity_change() const { return velocity_change_; }
 
   /// One end of a joint: inverse mass and inertia, and its state (null: the world).
@@ -90,6 +91,7 @@ class JointSolver {
 
   void prepare_geometry(JointRecord& j);
   void warm_start(JointRecord& j);
+  void solve_rows(JointRecord& j, End a, End b);  ///< solve_velocity's rows, by joint type
   void solve_point(JointRecord& j, End a, End b);
   void solve_angle_rows(JointRecord& j, End a, End b, bool motor_turns);
   void solve_axis_rows(JointRecord& j, End a, End b);
