@@ -75,11 +75,29 @@ void JointSolver::solve_position(JointRecord& j, bool keep) {
   }
 }
 
-void JointSolver::shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb) {
+void JointSolver::shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb, double l) {
   keep_ = false, current_ = &j;
   const End a = end(j.a, false), b = end(j.b, true);
-  shift(a, -p, -cross(ra, p));
-  shift(b, p, cross(rb, p));
+  shift(a, -p, -cross(ra, p) - l);
+  shift(b, p, cross(rb, p) + l);
+}
+
+double JointSolver::limit_margin(const JointRecord& j) const {
+  const End a = end(j.a, false), b = end(j.b, true);
+  const double angle = wrap_angle(angle_now(b) - angle_now(a) - j.reference);
+  double margin = INFINITY;
+  if (j.def.lower) margin = angle - *j.def.lower;
+  if (j.def.upper) margin = std::min(margin, *j.def.upper - angle);
+  return margin;
+}
+
+double JointSolver::limit_correction(const JointRecord& j) const {
+  if ((!j.def.lower && !j.def.upper) || j.angle_mass == 0.0) return 0.0;
+  const End a = end(j.a, false), b = end(j.b, true);
+  const double angle = wrap_angle(angle_now(b) - angle_now(a) - j.reference);
+  return limit_error(angle, j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
+                     j.def.lower.has_value(), j.def.upper.has_value(), joint_angular_slop,
+                     joint_max_angular_correction);
 }
 
 void JointSolver::kick_point(JointRecord& j, Vec2 p) {
@@ -93,12 +111,10 @@ void JointSolver::kick_point(JointRecord& j, Vec2 p) {
   if (b.s) b.s->vx += b.m * q.x, b.s->vy += b.m * q.y, b.s->w += b.i * lb;
 }
 
+// (A joint whose limit row is the forest's has it corrected with its point.)
 void JointSolver::correct_angle_limit(JointRecord& j, End a, End b) {
-  if (keep_ || (!j.def.lower && !j.def.upper) || j.angle_mass == 0.0) return;
-  const double angle = wrap_angle(angle_now(b) - angle_now(a) - j.reference);
-  const double c = limit_error(angle, j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
-                               j.def.lower.has_value(), j.def.upper.has_value(), joint_angular_slop,
-                               joint_max_angular_correction);
+  if (keep_ || j.limit_row) return;
+  const double c = limit_correction(j);
   const double l = -j.angle_mass * c;
   shift(a, {}, -l), shift(b, {}, l);
 }

@@ -107,6 +107,7 @@ void JointSolver::prepare_geometry(JointRecord& j) {
 void JointSolver::prepare(JointRecord& j) {
   current_ = &j;
   j.given_a = j.given_b = Vec2{}, j.turned_a = j.turned_b = 0.0;
+  j.limit_row = false;
   const End a = end(j.a, false), b = end(j.b, true);
   j.va0 = velocity(a), j.vb0 = velocity(b), j.wa0 = spin(a), j.wb0 = spin(b);
   prepare_geometry(j);

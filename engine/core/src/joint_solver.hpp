@@ -50,8 +50,16 @@ class JointSolver {
   /// at the start arms; an impulse p (N·s) on it, added to its accumulated impulse.
   [[nodiscard]] Vec2 point_velocity(const JointRecord& j) const;
   void apply_point(JointRecord& j, Vec2 p);
-  /// A position correction p (kg·m) along the arms ra, rb (m), on positions only.
-  void shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb);
+  /// A position correction p (kg·m) along the arms ra, rb (m), and l (kg·m²) about the
+  /// relative angle, on positions only.
+  void shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb, double l = 0.0);
+  /// The correction a revolute joint's limits ask of its relative angle at the poses now
+  /// (rad; Box2D v2.4's: past a limit by more than the slop, the excess, within ± the largest
+  /// correction; 0 within its limits or without any).
+  [[nodiscard]] double limit_correction(const JointRecord& j) const;
+  /// How far within its nearest limit a revolute joint's relative angle is at the poses now
+  /// (rad; negative past it; infinite without limits).
+  [[nodiscard]] double limit_margin(const JointRecord& j) const;
   /// The constraint impulse p/dt (N·s) along the start's arms: what a correction p (kg·m) of
   /// the tick's own error gives the velocities.
   void kick_point(JointRecord& j, Vec2 p);

@@ -1,6 +1,7 @@
 // The joints' direct solve (joint_tree.hpp): the forest, its order and its block LDLᵀ.
 #include "joint_tree.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 #include "shape_world.hpp"
@@ -67,6 +68,8 @@ void JointTree::build(std::span<JointRecord> joints, std::span<const ShapedBody>
   }
   arms_.resize(members_.size());
   rhs_.resize(members_.size());
+  angle_rows_.assign(members_.size(), 0);
+  angle_rhs_.resize(members_.size());
   if (!members_.empty()) order(bodies);
 }
 
@@ -150,16 +153,28 @@ JointTree::Link JointTree::link(std::size_t i) const {
   const int side = ends_[member][0] == body ? 0 : 1;
   const Vec2 r = arms_[member][side];
   const bool turns = inverse_mass_[joint ? node.parent : i][2] > 0.0;
-  return {side == 0 ? -1.0 : 1.0, turns ? Vec2{-r.y, r.x} : Vec2{}};
+  const bool angle = factored_angles_[member] != 0;
+  return {side == 0 ? -1.0 : 1.0, turns ? Vec2{-r.y, r.x} : Vec2{}, angle && turns ? 1.0 : 0.0,
+          angle};
 }
 
 // Block LDLᵀ from the leaves: a node's pivot D is its H block less its children's D⁻¹ H
 // products; up_ holds D⁻¹ H of a node and its parent. A joint's pivot is 2×2 (its third row
-// and column void: 1 on the diagonal), a body's 3×3.
+// and column void: 1 on the diagonal), or 3×3 with an angle row; a body's 3×3.
 void JointTree::factor() {
+  factored_angles_.assign(angle_rows_.begin(), angle_rows_.end());
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {  // (see angle_rows())
+    const std::uint32_t p = nodes_[i].parent;
+    if (nodes_[i].member == none && p != none && inverse_mass_[i][2] == 0.0) {
+      factored_angles_[nodes_[p].member] = 0;
+    }
+  }
+  any_angle_ =
+      std::find(factored_angles_.begin(), factored_angles_.end(), 1) != factored_angles_.end();
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     if (nodes_[i].member != none) {
-      pivot_[i] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+      const double void_row = factored_angles_[nodes_[i].member] != 0 ? 0.0 : 1.0;
+      pivot_[i] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, void_row};
       continue;
     }
     const Vec3& w = inverse_mass_[i];
@@ -170,7 +185,7 @@ void JointTree::factor() {
     const Node& node = nodes_[i];
     const Block& k = pivot_[i];
     Block& d = inverse_[i];
-    if (node.member != none) {
+    if (node.member != none && factored_angles_[node.member] == 0) {
       const double det = k[0] * k[4] - k[1] * k[3];
       const double inv = det != 0.0 ? 1.0 / det : 0.0;
       d = {inv * k[4], -inv * k[1], 0.0, -inv * k[3], inv * k[0], 0.0, 0.0, 0.0, 0.0};
@@ -178,37 +193,77 @@ void JointTree::factor() {
       d = inverse3(k);
     }
     if (node.parent == none) continue;
-    const auto [s, u] = link(i);
-    Block& up = up_[i];
-    Block& p = pivot_[node.parent];
-    if (node.member != none) {  // D⁻¹ J (2×3), and the body's pivot less Jᵀ D⁻¹ J
-      for (std::size_t r = 0; r < 2; ++r) {
-        up[3 * r] = s * d[3 * r], up[3 * r + 1] = s * d[3 * r + 1];
-        up[3 * r + 2] = s * (d[3 * r] * u.x + d[3 * r + 1] * u.y);
-      }
-      up[6] = up[7] = up[8] = 0.0;
-      for (std::size_t c = 0; c < 3; ++c) {
-        p[c] -= s * up[c], p[3 + c] -= s * up[3 + c];
-        p[6 + c] -= s * (u.x * up[c] + u.y * up[3 + c]);
-      }
-    } else {  // D⁻¹ Jᵀ (3×2), and the joint's pivot less J D⁻¹ Jᵀ
-      for (std::size_t r = 0; r < 3; ++r) {
-        up[3 * r] = s * (d[3 * r] + u.x * d[3 * r + 2]);
-        up[3 * r + 1] = s * (d[3 * r + 1] + u.y * d[3 * r + 2]);
-        up[3 * r + 2] = 0.0;
-      }
-      for (std::size_t c = 0; c < 2; ++c) {
-        p[c] -= s * (up[c] + u.x * up[6 + c]);
-        p[3 + c] -= s * (up[3 + c] + u.y * up[6 + c]);
-      }
+    if (node.member != none) {
+      eliminate_joint(i);
+    } else {
+      eliminate_body(i);
     }
   }
 }
 
-void JointTree::solve(std::span<Vec2> rhs) {
+// A joint node into its parent body: D⁻¹ J (its rows, 3×3), and the body's pivot less
+// Jᵀ D⁻¹ J.
+void JointTree::eliminate_joint(std::size_t i) {
+  const auto [s, u, t, angle] = link(i);
+  const Block& d = inverse_[i];
+  Block& up = up_[i];
+  Block& p = pivot_[nodes_[i].parent];
+  const std::size_t rows = angle ? 3 : 2;
+  for (std::size_t r = 0; r < rows; ++r) {
+    up[3 * r] = s * d[3 * r], up[3 * r + 1] = s * d[3 * r + 1];
+    up[3 * r + 2] = angle ? s * (d[3 * r] * u.x + d[3 * r + 1] * u.y + d[3 * r + 2] * t)
+                          : s * (d[3 * r] * u.x + d[3 * r + 1] * u.y);
+  }
+  if (!angle) up[6] = up[7] = up[8] = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    p[c] -= s * up[c], p[3 + c] -= s * up[3 + c];
+    p[6 + c] -= angle ? s * (u.x * up[c] + u.y * up[3 + c] + t * up[6 + c])
+                      : s * (u.x * up[c] + u.y * up[3 + c]);
+  }
+}
+
+// A body node into its parent joint: D⁻¹ Jᵀ (3×2, or 3×3 with the joint's angle row), and
+// the joint's pivot less J D⁻¹ Jᵀ.
+void JointTree::eliminate_body(std::size_t i) {
+  const auto [s, u, t, angle] = link(i);
+  const Block& d = inverse_[i];
+  Block& up = up_[i];
+  Block& p = pivot_[nodes_[i].parent];
+  for (std::size_t r = 0; r < 3; ++r) {
+    up[3 * r] = s * (d[3 * r] + u.x * d[3 * r + 2]);
+    up[3 * r + 1] = s * (d[3 * r + 1] + u.y * d[3 * r + 2]);
+    up[3 * r + 2] = angle ? s * (t * d[3 * r + 2]) : 0.0;
+  }
+  const std::size_t columns = angle ? 3 : 2;
+  for (std::size_t c = 0; c < columns; ++c) {
+    p[c] -= s * (up[c] + u.x * up[6 + c]);
+    p[3 + c] -= s * (up[3 + c] + u.y * up[6 + c]);
+    if (angle) p[6 + c] -= s * (t * up[6 + c]);
+  }
+}
+
+void JointTree::solve(std::span<Vec2> rhs, std::span<double> angle_rhs) {
+  if (any_angle_) {
+    solve_with<true>(rhs, angle_rhs);
+  } else {
+    solve_with<false>(rhs, angle_rhs);
+  }
+}
+
+// Angles: whether some member has an angle row (without, the loops test for none).
+template <bool Angles>
+void JointTree::solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs) {
+  auto angle = [&](std::size_t node) {  // whether a joint node has an angle row
+    if constexpr (Angles) {
+      return nodes_[node].member != none && factored_angles_[nodes_[node].member] != 0;
+    } else {
+      (void)node;
+      return false;
+    }
+  };
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const std::uint32_t m = nodes_[i].member;
-    x_[i] = m != none ? Vec3{-rhs[m].x, -rhs[m].y, 0.0} : Vec3{};
+    x_[i] = m != none ? Vec3{-rhs[m].x, -rhs[m].y, angle(i) ? -angle_rhs[m] : 0.0} : Vec3{};
   }
   for (std::size_t i = nodes_.size(); i-- > 0;) {  // z_p −= (D_i⁻¹ H_ip)ᵀ z_i, children first
     const std::uint32_t p = nodes_[i].parent;
@@ -216,34 +271,56 @@ void JointTree::solve(std::span<Vec2> rhs) {
     const Block& g = up_[i];
     const Vec3& z = x_[i];
     Vec3& zp = x_[p];
-    if (nodes_[i].member != none) {  // (2×3)ᵀ
+    if (nodes_[i].member == none) {  // (3×2)ᵀ, or (3×3)ᵀ below a joint's angle row
+      const std::size_t columns = angle(p) ? 3 : 2;
+      for (std::size_t c = 0; c < columns; ++c) {
+        zp[c] -= g[c] * z[0] + g[3 + c] * z[1] + g[6 + c] * z[2];
+      }
+    } else if (angle(i)) {  // (3×3)ᵀ
+      for (std::size_t c = 0; c < 3; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1] + g[6 + c] * z[2];
+    } else {  // (2×3)ᵀ
       for (std::size_t c = 0; c < 3; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1];
-    } else {  // (3×2)ᵀ
-      for (std::size_t c = 0; c < 2; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1] + g[6 + c] * z[2];
-    }
-  }
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {  // x_i = D_i⁻¹ z_i − D_i⁻¹ H_ip x_p
-    const Block& d = inverse_[i];
-    const Block& g = up_[i];
-    const std::uint32_t p = nodes_[i].parent;
-    const Vec3 xp = p != none ? x_[p] : Vec3{};
-    Vec3& x = x_[i];
-    const Vec3 z = x;
-    if (nodes_[i].member != none) {  // a 2×2 pivot, a 2×3 link
-      for (std::size_t r = 0; r < 2; ++r) {
-        x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] -
-               (g[3 * r] * xp[0] + g[3 * r + 1] * xp[1] + g[3 * r + 2] * xp[2]);
-      }
-    } else {  // a 3×3 pivot, a 3×2 link
-      for (std::size_t r = 0; r < 3; ++r) {
-        x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] + d[3 * r + 2] * z[2] -
-               (g[3 * r] * xp[0] + g[3 * r + 1] * xp[1]);
-      }
     }
   }
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const std::uint32_t p = nodes_[i].parent;
+    back_substitute(i, angle(i), p != none && angle(p));
+  }
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
     const std::uint32_t m = nodes_[i].member;
-    if (m != none) rhs[m] = {x_[i][0], x_[i][1]};
+    if (m == none) continue;
+    rhs[m] = {x_[i][0], x_[i][1]};
+    if (Angles && angle_rows_[m] != 0) angle_rhs[m] = angle(i) ? x_[i][2] : 0.0;
+  }
+}
+
+// x_i = D_i⁻¹ z_i − D_i⁻¹ H_ip x_p; `angle`: node i is a joint with an angle row;
+// `parent_angle`: its parent is.
+[[gnu::always_inline]] inline void JointTree::back_substitute(std::size_t i, bool angle,
+                                                              bool parent_angle) {
+  const Block& d = inverse_[i];
+  const Block& g = up_[i];
+  const std::uint32_t p = nodes_[i].parent;
+  const Vec3 xp = p != none ? x_[p] : Vec3{};
+  Vec3& x = x_[i];
+  const Vec3 z = x;
+  if (nodes_[i].member == none) {  // a 3×3 pivot, a 3×2 link (3×3 to an angle row)
+    for (std::size_t r = 0; r < 3; ++r) {
+      const double linked = parent_angle
+                                ? g[3 * r] * xp[0] + g[3 * r + 1] * xp[1] + g[3 * r + 2] * xp[2]
+                                : g[3 * r] * xp[0] + g[3 * r + 1] * xp[1];
+      x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] + d[3 * r + 2] * z[2] - linked;
+    }
+  } else if (angle) {  // a 3×3 pivot, a 3×3 link
+    for (std::size_t r = 0; r < 3; ++r) {
+      x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] + d[3 * r + 2] * z[2] -
+             (g[3 * r] * xp[0] + g[3 * r + 1] * xp[1] + g[3 * r + 2] * xp[2]);
+    }
+  } else {  // a 2×2 pivot, a 2×3 link
+    for (std::size_t r = 0; r < 2; ++r) {
+      x[r] = d[3 * r] * z[0] + d[3 * r + 1] * z[1] -
+             (g[3 * r] * xp[0] + g[3 * r + 1] * xp[1] + g[3 * r + 2] * xp[2]);
+    }
   }
 }
 

@@ -1,8 +1,9 @@
 // The joints' direct solve: the point rows of the revolute joints that form a forest, solved
 // all at once (Baraff, "Linear-Time Dynamics using Lagrange Multipliers", SIGGRAPH 1996),
-// where a Gauss-Seidel sweep moves an error along a chain by one link. joint_solver.hpp's
-// rows keep everything else (limits, motors, springs, the other types and the joints that
-// close a loop); ShapeWorld interleaves the two.
+// where a Gauss-Seidel sweep moves an error along a chain by one link; and, where asked, a
+// member's angle row with them (a limit it is past, on positions). joint_solver.hpp's rows
+// keep everything else (the limits' velocity rows, motors, springs, the other types and the
+// joints that close a loop); ShapeWorld interleaves the two.
 #pragma once
 
 #include <array>
@@ -40,13 +41,20 @@ class JointTree {
   [[nodiscard]] std::span<std::array<Vec2, 2>> arms() { return arms_; }
   /// A buffer of one Vec2 per member for solve()'s right-hand side.
   [[nodiscard]] std::span<Vec2> rhs() { return rhs_; }
-  /// Factors H = [M Jᵀ; J 0] of the forest, J the point rows' Jacobian at arms() (block LDLᵀ,
-  /// children before parents: no fill, O(members)). A singular pivot is taken as zero (that
-  /// part moves nothing).
+  /// Whether each member has a third row for the next factor(), by member index: its
+  /// relative angle θ_B − θ_A (0 after build(): none has). A row whose end away from the
+  /// tree's root does not turn is left out (its pivot would be singular): solve() gives it 0.
+  [[nodiscard]] std::span<std::uint8_t> angle_rows() { return angle_rows_; }
+  /// A buffer of one value per member for solve()'s angle rows (those without one: unread).
+  [[nodiscard]] std::span<double> angle_rhs() { return angle_rhs_; }
+  /// Factors H = [M Jᵀ; J 0] of the forest, J the point rows' Jacobian at arms() and the
+  /// angle rows' (block LDLᵀ, children before parents: no fill, O(members)). A singular pivot
+  /// is taken as zero (that part moves nothing).
   void factor();
   /// Solves K λ = rhs for every member at once, K = J M⁻¹ Jᵀ of the last factor(): `rhs` (a
-  /// velocity, m/s, or a position error, m, per member) in, λ (N·s, or kg·m) out.
-  void solve(std::span<Vec2> rhs);
+  /// velocity, m/s, or a position error, m, per member; with angle rows, `angle_rhs`: rad/s or
+  /// rad) in, λ (N·s, or kg·m; N·m·s or kg·m²) out.
+  void solve(std::span<Vec2> rhs, std::span<double> angle_rhs = {});
 
  private:
   using Block = std::array<double, 9>;  ///< 3×3, row-major
@@ -61,6 +69,9 @@ class JointTree {
   std::vector<std::array<std::uint32_t, 2>> ends_;  ///< each member's bodies (none: ground)
   std::vector<std::array<Vec2, 2>> arms_;
   std::vector<Vec2> rhs_;
+  std::vector<std::uint8_t> angle_rows_, factored_angles_;  ///< factored_: factor()'s
+  std::vector<double> angle_rhs_;
+  bool any_angle_ = false;           ///< some member of the last factor() has an angle row
   std::vector<Node> nodes_;          ///< in preorder: a parent before its children
   std::vector<Vec3> inverse_mass_;   ///< each node's body's (1/kg, 1/kg, 1/(kg·m²))
   std::vector<Block> inverse_;       ///< D⁻¹ of each node
@@ -80,8 +91,17 @@ class JointTree {
   struct Link {
     double s = 1.0;  ///< +1 on B's end, −1 on A's
     Vec2 u{};        ///< (−r_y, r_x), zero for a body that does not turn
+    /// The angle row's ∂/∂ω over s: 1 for a member with one (factored_angles_) on a body that
+    /// turns, else 0 (and the member's third row void).
+    double t = 0.0;
+    bool angle = false;  ///< the member has an angle row
   };
   [[nodiscard]] Link link(std::size_t node) const;
+  void eliminate_joint(std::size_t node);
+  void eliminate_body(std::size_t node);
+  template <bool Angles>
+  void solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs);
+  void back_substitute(std::size_t node, bool angle, bool parent_angle);
 };
 
 }  // namespace fixstep::detail

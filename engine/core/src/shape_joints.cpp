@@ -93,6 +93,10 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
     const ShapeState& s = state_[body];
     return {{s.x, s.y}, bodies_[body].inv_mass > 0.0 ? turned_[body] : rot_of(s.a)};
   };
+  const auto angle_rows = tree_.angle_rows();
+  const auto angle_rhs = tree_.angle_rhs();
+  bool rows_changed = false;  // which members have an angle row
+  double past_limit = 0.0;
   for (std::size_t k = 0; k < members.size(); ++k) {
     const JointRecord& j = joints_[members[k]];
     const auto [ca, qa] = pose(j.a);
@@ -103,16 +107,34 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
     const Vec2 e = keep ? j.offset - c : -c;
     rhs[k] = {std::clamp(e.x, -most, most), std::clamp(e.y, -most, most)};
     if (keep || !rest_factored_) arms[k] = {ra, rb};
+    // A limit the joint is past, or within the largest correction of at the first sweep on
+    // positions only: a row of the forest's solve in each sweep after (holding the angle
+    // within the limits).
+    const double limit = !keep && direct_limits_ ? solver.limit_correction(j) : 0.0;
+    const bool near = !keep && !rest_factored_ && direct_limits_ &&
+                      solver.limit_margin(j) < joint_max_angular_correction;
+    const std::uint8_t row = keep ? 0 : (limit != 0.0 || near || angle_rows[k] ? 1 : 0);
+    rows_changed = rows_changed || angle_rows[k] != row;
+    angle_rows[k] = row, angle_rhs[k] = -limit;
+    past_limit = std::max(past_limit, std::abs(limit));
   }
   const double error = largest(rhs);
-  if (error <= direct_position_tolerance || (keep && !(error < kept_error_))) return false;
+  if (past_limit == 0.0 &&
+      (error <= direct_position_tolerance || (keep && !(error < kept_error_)))) {
+    return false;
+  }
   if (keep) kept_error_ = error;
-  if (keep || !rest_factored_) tree_.factor();
+  if (keep || !rest_factored_ || rows_changed) {
+    tree_.factor();
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      joints_[members[k]].limit_row = angle_rows[k] != 0;
+    }
+  }
   rest_factored_ = !keep;
-  tree_.solve(rhs);
+  tree_.solve(rhs, angle_rhs);
   for (std::size_t k = 0; k < members.size(); ++k) {
     JointRecord& j = joints_[members[k]];
-    solver.shift_point(j, rhs[k], arms[k][0], arms[k][1]);
+    solver.shift_point(j, rhs[k], arms[k][0], arms[k][1], angle_rows[k] ? angle_rhs[k] : 0.0);
     if (keep) solver.kick_point(j, rhs[k]);
   }
   return true;
