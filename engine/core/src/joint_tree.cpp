@@ -158,6 +158,47 @@ JointTree::Link JointTree::link(std::size_t i) const {
           angle};
 }
 
+// A joint node into its parent body: D⁻¹ J (its rows, 3×3), and the body's pivot less
+// Jᵀ D⁻¹ J.
+[[gnu::always_inline]] inline void JointTree::eliminate_joint(std::size_t i) {
+  const auto [s, u, t, angle] = link(i);
+  const Block& d = inverse_[i];
+  Block& up = up_[i];
+  Block& p = pivot_[nodes_[i].parent];
+  const std::size_t rows = angle ? 3 : 2;
+  for (std::size_t r = 0; r < rows; ++r) {
+    up[3 * r] = s * d[3 * r], up[3 * r + 1] = s * d[3 * r + 1];
+    up[3 * r + 2] = angle ? s * (d[3 * r] * u.x + d[3 * r + 1] * u.y + d[3 * r + 2] * t)
+                          : s * (d[3 * r] * u.x + d[3 * r + 1] * u.y);
+  }
+  if (!angle) up[6] = up[7] = up[8] = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    p[c] -= s * up[c], p[3 + c] -= s * up[3 + c];
+    p[6 + c] -= angle ? s * (u.x * up[c] + u.y * up[3 + c] + t * up[6 + c])
+                      : s * (u.x * up[c] + u.y * up[3 + c]);
+  }
+}
+
+// A body node into its parent joint: D⁻¹ Jᵀ (3×2, or 3×3 with the joint's angle row), and
+// the joint's pivot less J D⁻¹ Jᵀ.
+[[gnu::always_inline]] inline void JointTree::eliminate_body(std::size_t i) {
+  const auto [s, u, t, angle] = link(i);
+  const Block& d = inverse_[i];
+  Block& up = up_[i];
+  Block& p = pivot_[nodes_[i].parent];
+  for (std::size_t r = 0; r < 3; ++r) {
+    up[3 * r] = s * (d[3 * r] + u.x * d[3 * r + 2]);
+    up[3 * r + 1] = s * (d[3 * r + 1] + u.y * d[3 * r + 2]);
+    up[3 * r + 2] = angle ? s * (t * d[3 * r + 2]) : 0.0;
+  }
+  const std::size_t columns = angle ? 3 : 2;
+  for (std::size_t c = 0; c < columns; ++c) {
+    p[c] -= s * (up[c] + u.x * up[6 + c]);
+    p[3 + c] -= s * (up[3 + c] + u.y * up[6 + c]);
+    if (angle) p[6 + c] -= s * (t * up[6 + c]);
+  }
+}
+
 // Block LDLᵀ from the leaves: a node's pivot D is its H block less its children's D⁻¹ H
 // products; up_ holds D⁻¹ H of a node and its parent. A joint's pivot is 2×2 (its third row
 // and column void: 1 on the diagonal), or 3×3 with an angle row; a body's 3×3.
@@ -198,47 +239,6 @@ void JointTree::factor() {
     } else {
       eliminate_body(i);
     }
-  }
-}
-
-// A joint node into its parent body: D⁻¹ J (its rows, 3×3), and the body's pivot less
-// Jᵀ D⁻¹ J.
-void JointTree::eliminate_joint(std::size_t i) {
-  const auto [s, u, t, angle] = link(i);
-  const Block& d = inverse_[i];
-  Block& up = up_[i];
-  Block& p = pivot_[nodes_[i].parent];
-  const std::size_t rows = angle ? 3 : 2;
-  for (std::size_t r = 0; r < rows; ++r) {
-    up[3 * r] = s * d[3 * r], up[3 * r + 1] = s * d[3 * r + 1];
-    up[3 * r + 2] = angle ? s * (d[3 * r] * u.x + d[3 * r + 1] * u.y + d[3 * r + 2] * t)
-                          : s * (d[3 * r] * u.x + d[3 * r + 1] * u.y);
-  }
-  if (!angle) up[6] = up[7] = up[8] = 0.0;
-  for (std::size_t c = 0; c < 3; ++c) {
-    p[c] -= s * up[c], p[3 + c] -= s * up[3 + c];
-    p[6 + c] -= angle ? s * (u.x * up[c] + u.y * up[3 + c] + t * up[6 + c])
-                      : s * (u.x * up[c] + u.y * up[3 + c]);
-  }
-}
-
-// A body node into its parent joint: D⁻¹ Jᵀ (3×2, or 3×3 with the joint's angle row), and
-// the joint's pivot less J D⁻¹ Jᵀ.
-void JointTree::eliminate_body(std::size_t i) {
-  const auto [s, u, t, angle] = link(i);
-  const Block& d = inverse_[i];
-  Block& up = up_[i];
-  Block& p = pivot_[nodes_[i].parent];
-  for (std::size_t r = 0; r < 3; ++r) {
-    up[3 * r] = s * (d[3 * r] + u.x * d[3 * r + 2]);
-    up[3 * r + 1] = s * (d[3 * r + 1] + u.y * d[3 * r + 2]);
-    up[3 * r + 2] = angle ? s * (t * d[3 * r + 2]) : 0.0;
-  }
-  const std::size_t columns = angle ? 3 : 2;
-  for (std::size_t c = 0; c < columns; ++c) {
-    p[c] -= s * (up[c] + u.x * up[6 + c]);
-    p[3 + c] -= s * (up[3 + c] + u.y * up[6 + c]);
-    if (angle) p[6 + c] -= s * (t * up[6 + c]);
   }
 }
 
