@@ -139,7 +139,7 @@ struct Before {
 
 /// `change` raised to the change of the point's own normal and tangent velocity its impulses'
 /// change since `was` made (|Δλ| K, m/s), lane by lane.
-[[gnu::always_inline]] inline void note_change(const Point& h, Before was, Lane& change) {
+[[gnu::always_inline]] inline void note_change(const Point& h, const Before& was, Lane& change) {
   const Lane dn = h.ln - was.ln, dt = h.lt - was.lt;
   change = max_of(change, max_of(dn, -dn) * h.kn);
   change = max_of(change, max_of(dt, -dt) * h.kt);
@@ -171,7 +171,7 @@ struct Before {
 }
 
 /// The largest of a lane's values.
-[[gnu::always_inline]] inline double largest(Lane x) {
+[[gnu::always_inline]] inline double largest(const Lane& x) {
   double most = x[0];
   for (int l = 1; l < width; ++l) most = most < x[l] ? x[l] : most;
   return most;
