@@ -137,6 +137,7 @@ double worst_residual(bool angles) {
     const JointRecord& r = j[members[k]];
     const Vec2 cdot = point(r.b, r.rb) - point(r.a, r.ra);
     worst = std::max({worst, std::abs(cdot.x - rhs[k].x), std::abs(cdot.y - rhs[k].y)});
+    EXPECT_EQ(tree.angle_row_kept(k), tree.angle_rows()[k] != 0 && r.a != 16) << "member " << k;
     if (tree.angle_rows()[k] != 0 && r.a == 16) {
       worst = std::max(worst, std::abs(turn[k]));
     } else if (tree.angle_rows()[k] != 0) {

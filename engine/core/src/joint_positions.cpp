@@ -82,9 +82,13 @@ void JointSolver::shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb, double l
   shift(b, p, cross(rb, p) + l);
 }
 
-double JointSolver::limit_margin(const JointRecord& j) const {
+double JointSolver::relative_angle(const JointRecord& j) const {
   const End a = end(j.a, false), b = end(j.b, true);
-  const double angle = wrap_angle(angle_now(b) - angle_now(a) - j.reference);
+  return wrap_angle(angle_now(b) - angle_now(a) - j.reference);
+}
+
+double JointSolver::limit_margin(const JointRecord& j) const {
+  const double angle = relative_angle(j);
   double margin = INFINITY;
   if (j.def.lower) margin = angle - *j.def.lower;
   if (j.def.upper) margin = std::min(margin, *j.def.upper - angle);
@@ -93,9 +97,7 @@ double JointSolver::limit_margin(const JointRecord& j) const {
 
 double JointSolver::limit_correction(const JointRecord& j) const {
   if ((!j.def.lower && !j.def.upper) || j.angle_mass == 0.0) return 0.0;
-  const End a = end(j.a, false), b = end(j.b, true);
-  const double angle = wrap_angle(angle_now(b) - angle_now(a) - j.reference);
-  return limit_error(angle, j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
+  return limit_error(relative_angle(j), j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
                      j.def.lower.has_value(), j.def.upper.has_value(), joint_angular_slop,
                      joint_max_angular_correction);
 }

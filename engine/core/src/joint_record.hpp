@@ -66,8 +66,8 @@ struct JointRecord {
   Softness soft{};
   /// Its point rows are the direct solve's (joint_tree.hpp), not its own sweep's.
   bool direct = false;
-  /// Its limits' position row too, in this tick's position sweeps on positions only (past a
-  /// limit at the first of them).
+  /// Its limit's row is the direct solve's too, on positions only, in the rest of this tick's
+  /// position sweeps (JointTree::angle_row_kept), not its own correction's.
   bool limit_row = false;
   /// Everything the joint gave each end this tick: impulse (N·s) and angular impulse about
   /// its centre of mass (N·m·s), warm start included (the kinematic ends' work).

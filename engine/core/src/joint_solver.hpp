@@ -87,6 +87,8 @@ class JointSolver {
   JointRecord* current_ = nullptr;  ///< the joint whose impulses push() adds up
 
   [[nodiscard]] End end(std::uint32_t body, bool b) const;
+  /// θ_B − θ_A − θ_ref at the poses now, wrapped into [−π, π) (rad).
+  [[nodiscard]] double relative_angle(const JointRecord& j) const;
   /// An impulse p (N·s) and an angular impulse l (N·m·s) on e's velocity; added up in the
   /// current joint's given_ and turned_.
   void push(End e, Vec2 p, double l) const;

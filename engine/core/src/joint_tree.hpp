@@ -47,13 +47,16 @@ class JointTree {
   [[nodiscard]] std::span<std::uint8_t> angle_rows() { return angle_rows_; }
   /// A buffer of one value per member for solve()'s angle rows (those without one: unread).
   [[nodiscard]] std::span<double> angle_rhs() { return angle_rhs_; }
+  /// Whether member k's angle row is in the last factor() (asked for, and not left out).
+  [[nodiscard]] bool angle_row_kept(std::size_t k) const { return factored_angles_[k] != 0; }
   /// Factors H = [M Jᵀ; J 0] of the forest, J the point rows' Jacobian at arms() and the
   /// angle rows' (block LDLᵀ, children before parents: no fill, O(members)). A singular pivot
   /// is taken as zero (that part moves nothing).
   void factor();
   /// Solves K λ = rhs for every member at once, K = J M⁻¹ Jᵀ of the last factor(): `rhs` (a
   /// velocity, m/s, or a position error, m, per member; with angle rows, `angle_rhs`: rad/s or
-  /// rad) in, λ (N·s, or kg·m; N·m·s or kg·m²) out.
+  /// rad) in, λ (N·s, or kg·m; N·m·s or kg·m²) out. `angle_rhs` (one per member) is needed
+  /// only when the last factor() had angle rows.
   void solve(std::span<Vec2> rhs, std::span<double> angle_rhs = {});
 
  private:

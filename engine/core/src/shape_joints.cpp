@@ -95,7 +95,7 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   };
   const auto angle_rows = tree_.angle_rows();
   const auto angle_rhs = tree_.angle_rhs();
-  bool rows_changed = false;  // which members have an angle row
+  bool rows_changed = false;  // whether a member's angle row came or went
   double past_limit = 0.0;
   for (std::size_t k = 0; k < members.size(); ++k) {
     const JointRecord& j = joints_[members[k]];
@@ -127,7 +127,7 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   if (keep || !rest_factored_ || rows_changed) {
     tree_.factor();
     for (std::size_t k = 0; k < members.size(); ++k) {
-      joints_[members[k]].limit_row = angle_rows[k] != 0;
+      joints_[members[k]].limit_row = tree_.angle_row_kept(k);
     }
   }
   rest_factored_ = !keep;

@@ -386,8 +386,8 @@ class ShapeWorld {
   /// than velocity_sweep_tolerance. Returns the sweeps run.
   int solve_velocities(const ShapeTick& tick, SecondThread* second);
   /// m/s (rad/s for a turning rate): the largest change of a row's velocity in a sweep that
-  /// has converged, the joint forest's own (direct_velocity_tolerance).
-  static constexpr double velocity_sweep_tolerance = 1e-9;
+  /// has converged, the joint forest's own.
+  static constexpr double velocity_sweep_tolerance = direct_velocity_tolerance;
   /// A manifold: its first row in solve_ and its rows (1 or 2).
   struct Unit {
     std::uint32_t start = 0, rows = 1;
