@@ -1,8 +1,7 @@
 // The disc broadphase (engine/core/src/disc_broadphase.hpp): its pairs
 // against a brute-force O(n^2) reference on random sets, one and two threads, fresh, reused and
 // copied objects, its query() against every box, the max_pairs cap on a million discs at one point,
-// no allocation once warm; and its second thread (second_thread.hpp): an exception on the worker
-// reaches the caller, in a run and outside one, and a nested run leaves the outer one open.
+// no allocation once warm (its second thread: test_second_thread.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +10,6 @@
 #include <cstdint>
 #include <limits>
 #include <random>
-#include <stdexcept>
 #include <vector>
 
 #include "disc_broadphase.hpp"
@@ -302,58 +300,6 @@ TEST(DiscBroadphase, AllocatesNothingOnceWarm) {
   counting = false;
   EXPECT_TRUE(ok);
   EXPECT_EQ(counted_bytes.load(), 0u);
-}
-
-// A pass whose second half throws (std::bad_alloc as a vector grows, say): both() returns the
-// exception to the caller once the first half is done, inside a run and outside one, and the
-// thread serves the next pass. Without the hand-back, the worker would end the program.
-TEST(SecondThread, AnExceptionOfTheWorkersHalfIsThrownOnTheCaller) {
-  SecondThread thread;
-  for (const bool run : {false, true}) {
-    if (run) thread.open();
-    int first = 0, second = 0;
-    auto failing = [&](int half) {
-      if (half == 1) throw std::runtime_error("half 1");
-      first = 1;
-    };
-    EXPECT_THROW(thread.both(failing), std::runtime_error) << "run " << run;
-    EXPECT_EQ(first, 1);  // the caller's half ran to its end
-    auto working = [&](int half) { (half == 0 ? first : second) = 2; };
-    thread.both(working);
-    EXPECT_EQ(first, 2);
-    EXPECT_EQ(second, 2);
-    EXPECT_EQ(thread.is_open(), run);
-  }
-  thread.close();
-  EXPECT_FALSE(thread.is_open());
-}
-
-// A world opens a run for its tick and the disc phase asks for one again: the inner scope
-// neither opens nor closes it; close() ends a run before its scope does.
-TEST(SecondThread, ANestedRunLeavesTheOuterOneOpen) {
-  SecondThread thread;
-  {
-    const SecondThreadRun outer(&thread);
-    EXPECT_TRUE(thread.is_open());
-    {
-      const SecondThreadRun inner(&thread);
-      EXPECT_TRUE(thread.is_open());
-    }
-    EXPECT_TRUE(thread.is_open());
-  }
-  EXPECT_FALSE(thread.is_open());
-  {  // closed before the scope ends (a tick after its contact events): once, and for good
-    SecondThreadRun run(&thread);
-    SecondThreadRun inner(&thread);
-    inner.close();
-    EXPECT_TRUE(thread.is_open());
-    run.close();
-    EXPECT_FALSE(thread.is_open());
-    run.close();
-  }
-  EXPECT_FALSE(thread.is_open());
-  const SecondThreadRun none(nullptr);
-  EXPECT_FALSE(thread.is_open());
 }
 
 }  // namespace

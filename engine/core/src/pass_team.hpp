@@ -1,69 +1,152 @@
-// Two threads through the many short passes of a tick's disc contacts (second_thread.hpp).
+// Two threads through the many short passes of a world's tick (second_thread.hpp).
 // Internal to the engine: not installed.
 #pragma once
 
 #include <atomic>
-#include <thread>
+#include <chrono>
+
+#include "spin_wait.hpp"
 
 namespace fixstep::detail {
 
-/// The second thread of a run of passes: the caller starts serve() on a worker, then posts one
-/// job per pass (post(), then wait() for it) and ends the run with finish(). Between passes the
-/// worker spins on an atomic counter instead of sleeping: the passes are tens to hundreds of
-/// microseconds apart, less than a futex wake-up costs on a virtual machine (a wake-up per
-/// pass made two threads slower than one). It yields the core after a few thousand spins.
+/// Two threads through a series of passes: the caller starts serve() on a worker once, then
+/// posts one job per pass (post(), then wait() for it), and ends the series with finish().
+///
+/// A posted job is run once, by whichever thread claims it first: the worker as soon as it sees
+/// it, or the caller in wait() when the worker has not started it yet (the worker still waking,
+/// or not running at all because both threads share one core while the other core is busy).
+/// Jobs are halves of a pass that may run in either order, so the result is the same; a worker
+/// that is late costs the caller the time of the job, not the wait for a core.
+///
+/// Between passes each side waits by wait_for_change (spin_wait.hpp). Within a run (set_run:
+/// one tick's passes, tens to hundreds of microseconds apart, less than a futex wake-up costs
+/// on a virtual machine) the worker spins, so that it stays on its own core; outside a run it
+/// sleeps after spin_budget. Spinning on the core the other thread needs only keeps it from
+/// running (a sched_yield() does not reliably hand the core over: on Linux 6.18 two such
+/// threads took turns of about a millisecond), so: the caller sleeps at once when it finds
+/// itself on the worker's core; the worker, on the caller's core within a run, moves to
+/// another core it is allowed (AllowedCores::leave: woken by the caller, the kernel may place
+/// it on the caller's core and leave the other idle) and sleeps where there is none, and it
+/// sleeps when it finds it was preempted while it spun.
 class PassTeam {
  public:
-  /// The worker's loop, until finish(): Workers::submit(&PassTeam::serve, team).
+  /// The worker's loop, until finish(): Workers::submit(&PassTeam::serve, team), once.
   static void serve(void* team) { static_cast<PassTeam*>(team)->loop(); }
-  /// Starts job(ctx) on the worker; the caller runs its own share, then wait().
+  /// Offers job(ctx) to the worker; the caller runs its own share, then wait().
   void post(void (*job)(void*), void* ctx) {
     job_ = job, ctx_ = ctx;
+    caller_cpu_.store(current_cpu(), std::memory_order_relaxed);
     posted_.fetch_add(1, std::memory_order_release);
+    posted_.notify_one();
   }
-  /// Returns when the last posted job has finished.
-  void wait() const {
+  /// Returns when the last posted job has run: here, if the worker has not claimed it yet.
+  void wait() {
     const unsigned want = posted_.load(std::memory_order_relaxed);
-    spin_until([&] { return done_.load(std::memory_order_acquire) == want; });
+    if (claim(want)) {
+      job_(ctx_);
+      ++run_here_;
+      return;
+    }
+    caller_until_ = std::chrono::steady_clock::now() + spin_budget;
+    for (unsigned d = done_.load(std::memory_order_acquire); d != want;) {
+      wait_for_change(done_, d, d, {&caller_gives_up, this});
+    }
+  }
+  /// Starts or ends a run: within one the worker spins between jobs (unless it shares the
+  /// caller's core); outside one it sleeps after spin_budget.
+  void set_run(bool on) {
+    if (on) caller_cpu_.store(current_cpu(), std::memory_order_relaxed);
+    run_.store(on, std::memory_order_relaxed);
   }
   /// Ends serve() (after the last job was waited for).
   void finish() {
     stop_.store(true, std::memory_order_relaxed);
     posted_.fetch_add(1, std::memory_order_release);
+    posted_.notify_one();
   }
+  /// For the tests, since the team was made: the worker's waits for a job that ended asleep,
+  /// and the jobs the caller ran itself (the worker had not claimed them).
+  [[nodiscard]] unsigned worker_slept() const {
+    return worker_slept_.load(std::memory_order_relaxed);
+  }
+  [[nodiscard]] unsigned run_here() const { return run_here_; }
+  /// For the tests: times the worker moved off the caller's core (read after finish()).
+  [[nodiscard]] unsigned moves() const { return moves_; }
 
  private:
-  template <class Ready>
-  static void spin_until(Ready ready) {
-    for (int i = 0; !ready(); ++i) {
-      if (i < 4096) {
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-      } else {
-        std::this_thread::yield();
+  /// Takes job `gen` (the gen-th posted) for this thread; false when the other has it. Every
+  /// job before it was claimed before it was posted, so claimed_ is before gen or gen itself
+  /// (counts compared modulo 2^32).
+  bool claim(unsigned gen) {
+    unsigned last = claimed_.load(std::memory_order_relaxed);
+    while (static_cast<int>(gen - last) > 0) {
+      if (claimed_.compare_exchange_weak(last, gen, std::memory_order_acq_rel,
+                                         std::memory_order_relaxed)) {
+        return true;
       }
     }
+    return false;
+  }
+  static bool on_cpu(const std::atomic<int>& cpu) {
+    const int here = current_cpu();
+    return here >= 0 && here == cpu.load(std::memory_order_relaxed);
+  }
+  static bool caller_gives_up(void* p) {
+    auto* t = static_cast<PassTeam*>(p);
+    const auto now = std::chrono::steady_clock::now();
+    return on_cpu(t->worker_cpu_) || now >= t->caller_until_;
+  }
+  static bool worker_gives_up(void* p) {
+    auto* t = static_cast<PassTeam*>(p);
+    const auto now = std::chrono::steady_clock::now();
+    const bool preempted = was_preempted(t->worker_checked_, now);
+    t->worker_checked_ = now;
+    const int caller = t->caller_cpu_.load(std::memory_order_relaxed);
+    if (caller >= 0 && caller == current_cpu()) {
+      // On the caller's core: move to another (the caller's wake-ups would bring it back
+      // here, and the kernel may leave both on one core while the other idles), else sleep.
+      if (!t->run_.load(std::memory_order_relaxed) || !t->cores_->leave(caller)) return true;
+      ++t->moves_;
+      return false;
+    }
+    if (preempted) return true;
+    return !t->run_.load(std::memory_order_relaxed) && now >= t->worker_until_;
   }
   void loop() {
-    unsigned seen = done_.load(std::memory_order_relaxed);
+    // The jobs come after the last claimed: the caller may have claimed some before this
+    // thread started, and finish() may have come already (posted_ then differs).
+    unsigned seen = claimed_.load(std::memory_order_acquire);
+    const AllowedCores cores;
+    cores_ = &cores;
     for (;;) {
-      spin_until([&] { return posted_.load(std::memory_order_acquire) != seen; });
-      seen = posted_.load(std::memory_order_acquire);
-      if (stop_.load(std::memory_order_relaxed)) {
-        stop_.store(false, std::memory_order_relaxed);
-        done_.store(seen, std::memory_order_release);
-        return;
+      worker_checked_ = std::chrono::steady_clock::now();
+      worker_until_ = worker_checked_ + spin_budget;
+      unsigned now = seen;
+      if (wait_for_change(posted_, seen, now, {&worker_gives_up, this}) == WaitEnd::slept) {
+        worker_slept_.fetch_add(1, std::memory_order_relaxed);
       }
+      seen = now;
+      if (stop_.load(std::memory_order_relaxed)) return;
+      if (!claim(seen)) continue;  // the caller ran it
+      worker_cpu_.store(current_cpu(), std::memory_order_relaxed);
       job_(ctx_);
       done_.store(seen, std::memory_order_release);
+      done_.notify_one();
     }
   }
 
   void (*job_)(void*) = nullptr;
   void* ctx_ = nullptr;
-  std::atomic<unsigned> posted_{0}, done_{0};
-  std::atomic<bool> stop_{false};
+  /// Jobs posted, the last claimed and the last the worker finished (generation counts).
+  std::atomic<unsigned> posted_{0}, claimed_{0}, done_{0}, worker_slept_{0};
+  /// The core each side last ran on (-1: unknown), as it posted or claimed a job.
+  std::atomic<int> caller_cpu_{-1}, worker_cpu_{-1};
+  std::atomic<bool> run_{false}, stop_{false};
+  /// When each side's spin ends by time (each written and read by its own thread only).
+  std::chrono::steady_clock::time_point caller_until_{}, worker_until_{}, worker_checked_{};
+  unsigned run_here_ = 0;
+  const AllowedCores* cores_ = nullptr;  // the worker's, while it serves
+  unsigned moves_ = 0;                   // times the worker moved off the caller's core
 };
 
 }  // namespace fixstep::detail

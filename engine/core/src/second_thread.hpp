@@ -12,42 +12,41 @@
 
 namespace fixstep::detail {
 
-/// A worker thread started on first use, and two ways to hand it half of a pass:
-/// - outside a run (open() not called), each both() wakes the worker (Workers: a futex wait
-///   between calls, so an idle world costs no CPU);
-/// - inside a run (open() ... close(), one tick's disc phases), the worker spins between passes
-///   (PassTeam), since a futex wake-up costs tens of microseconds on a virtual machine, more
-///   than many of a tick's passes take.
-/// A copy (a snapshot) starts without a thread and outside a run.
+/// A worker thread started on first use, serving one PassTeam for its whole life: both() posts
+/// half of a pass to it, and runs that half itself when the worker has not claimed it by the
+/// time the caller's own half is done.
+///
+/// A run (open() ... close(), one tick's disc phases) marks the passes that share their work
+/// (callers ask is_open() before they split a pass); within it the worker spins between
+/// passes, outside it sleeps after a short spin (PassTeam), so an idle world costs no CPU. A copy
+/// (a snapshot) starts without a thread and outside a run.
 class SecondThread {
  public:
   SecondThread() = default;
   SecondThread(const SecondThread& /*other*/) noexcept {}
   SecondThread& operator=(const SecondThread& other) noexcept {
-    if (this != &other) close(), state_.reset();
+    if (this != &other) stop(), open_ = false;
     return *this;
   }
-  ~SecondThread() { close(); }
+  ~SecondThread() { stop(); }
 
-  /// Starts a run: until close(), the worker waits for the next pass by spinning.
+  /// Starts a run (the worker started if it is not yet).
   void open() {
-    if (open_) return;
     start();
-    state_->workers.submit(&PassTeam::serve, &state_->team);
+    if (!open_) state_->team.set_run(true);
     open_ = true;
   }
-  /// Ends the run (the worker then sleeps between calls); nothing if none is open.
+  /// Ends the run; nothing if none is open.
   void close() noexcept {
-    if (!open_) return;
-    state_->team.finish();
-    state_->workers.wait();
+    if (open_) state_->team.set_run(false);
     open_ = false;
   }
   [[nodiscard]] bool is_open() const { return open_; }
 
-  /// Runs job(1) on the worker while this thread runs job(0), and returns when both have
-  /// finished (job(1) also when job(0) throws, before the exception leaves). An exception of
-  /// job(1) (std::bad_alloc as a vector grows) is thrown here, after job(0) has finished.
+  /// Runs job(1) on the worker (or here, if the worker has not started it when job(0) is done)
+  /// while this thread runs job(0), and returns when both have finished (job(1) also when
+  /// job(0) throws, before the exception leaves). An exception of job(1) (std::bad_alloc as a
+  /// vector grows) is thrown here, after job(0) has finished.
   template <class Job>
   void both(Job& job) {
     start();
@@ -63,35 +62,32 @@ class SecondThread {
         h->error = std::current_exception();
       }
     };
-    if (open_) {
-      state_->team.post(run, &half);
-    } else {
-      state_->workers.submit(run, &half);
-    }
+    state_->team.post(run, &half);
     try {
       job(0);
     } catch (...) {
-      wait();
+      state_->team.wait();
       throw;
     }
-    wait();
+    state_->team.wait();
     if (half.error) std::rethrow_exception(half.error);
   }
+  /// For the tests: the team the worker serves (nullptr before the first use).
+  [[nodiscard]] const PassTeam* team() const { return state_ ? &state_->team : nullptr; }
 
  private:
   struct State {
     PassTeam team;
-    Workers workers;  // last: its thread stops before the team it may serve goes
+    Workers workers;  // last: its thread stops before the team it serves goes
   };
   void start() {
-    if (!state_) state_ = std::make_unique<State>();
+    if (state_) return;
+    state_ = std::make_unique<State>();
+    state_->workers.submit(&PassTeam::serve, &state_->team);
   }
-  void wait() {
-    if (open_) {
-      state_->team.wait();
-    } else {
-      state_->workers.wait();
-    }
+  void stop() noexcept {
+    if (state_) state_->team.finish();
+    state_.reset();  // joins the worker, which leaves serve() at finish()
   }
   std::unique_ptr<State> state_;
   bool open_ = false;

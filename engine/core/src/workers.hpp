@@ -5,6 +5,7 @@
 #include <atomic>
 #include <thread>
 
+#include "spin_wait.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep::detail {
@@ -33,9 +34,10 @@ inline int threads_for(int want) {
   return want >= 2 || has_second_core() ? 2 : 1;
 }
 
-/// One worker thread that runs a job while the calling thread runs its own share: a spin on
-/// an atomic generation counter for the short waits between passes, a futex wait
-/// (std::atomic::wait) for the long ones between ticks, so an idle world costs no CPU.
+/// One worker thread that runs a job while the calling thread runs its own share. Each side
+/// waits for the other by wait_for_change (spin_wait.hpp): a spin on an atomic generation
+/// counter for the short waits between passes, a futex wait (std::atomic::wait) for the long
+/// ones between ticks, so an idle world costs no CPU.
 class Workers {
  public:
   Workers() : thread_([this] { loop(); }) {}
@@ -56,37 +58,20 @@ class Workers {
     start_.notify_one();
   }
   void wait() {
-    for (int i = 0; i < spin_limit && done_.load(std::memory_order_acquire) != pending_; ++i) {
-      pause();
-    }
-    for (unsigned d; (d = done_.load(std::memory_order_acquire)) != pending_;) {
-      done_.wait(d, std::memory_order_acquire);
+    for (unsigned d = done_.load(std::memory_order_acquire); d != pending_;) {
+      wait_for_change(done_, d, d);
     }
   }
 
  private:
-  static constexpr int spin_limit = 1 << 11;  // about 10-50 µs of pause instructions
-  static void pause() {
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();
-#endif
-  }
   void loop() {
-    unsigned seen = 0;
-    for (;;) {
-      unsigned s = start_.load(std::memory_order_acquire);
-      for (int i = 0; i < spin_limit && s == seen; ++i) {
-        pause();
-        s = start_.load(std::memory_order_acquire);
-      }
-      while (s == seen) {
-        start_.wait(seen, std::memory_order_acquire);
-        s = start_.load(std::memory_order_acquire);
-      }
-      seen = s;
+    for (unsigned seen = 0;;) {
+      unsigned now = seen;
+      wait_for_change(start_, seen, now);
+      seen = now;
       if (stop_.load(std::memory_order_relaxed)) return;
       job_(ctx_);
-      done_.store(s, std::memory_order_release);
+      done_.store(seen, std::memory_order_release);
       done_.notify_one();
     }
   }

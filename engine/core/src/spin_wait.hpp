@@ -1,0 +1,120 @@
+// Waiting for another thread to move an atomic counter: spin for a bounded time, then sleep in
+// the kernel. Used by the worker thread (workers.hpp) and by the runs of passes it serves
+// (pass_team.hpp). Internal to the engine: not installed.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
+namespace fixstep::detail {
+
+/// How long a waiting thread spins before it sleeps. Spinning pays while the other thread runs
+/// on another core and is about to move the counter: waking a sleeping thread (a futex) costs
+/// tens of microseconds on a virtual machine, more than many passes of a tick take. Spinning
+/// loses when both threads share one core (the other core busy, or the scheduler placed them
+/// there): the waiter then holds the core its partner needs, and a sched_yield() does not
+/// reliably hand it over (on Linux 6.18 the two threads took turns of about a millisecond).
+/// After this budget the waiter sleeps, so the partner runs within a context switch.
+inline constexpr std::chrono::microseconds spin_budget{50};
+
+/// One pause of a spin loop (the x86 PAUSE instruction; nothing elsewhere).
+inline void cpu_pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
+/// The CPU this thread runs on, or -1 where the system does not say (glibc's sched_getcpu: a
+/// read of the kernel's restartable-sequences area, no system call).
+inline int current_cpu() {
+#if defined(__linux__)
+  return sched_getcpu();
+#else
+  return -1;
+#endif
+}
+
+/// The cores a thread may run on, as the system allowed them when it was read (Linux; elsewhere
+/// nothing is known and nothing can be asked).
+class AllowedCores {
+ public:
+  /// Reads the calling thread's allowed cores.
+  AllowedCores() {
+#if defined(__linux__)
+    CPU_ZERO(&set_);
+    known_ = sched_getaffinity(0, sizeof(set_), &set_) == 0;
+#endif
+  }
+  /// Moves the calling thread off core `cpu` by allowing it every core it was allowed but that
+  /// one (the kernel migrates it within the call). False, and nothing changed, where `cpu` is
+  /// not known or is the only core allowed.
+  bool leave(int cpu) const {
+#if defined(__linux__)
+    if (!known_ || cpu < 0 || cpu >= CPU_SETSIZE || !CPU_ISSET(cpu, &set_) ||
+        CPU_COUNT(&set_) < 2) {
+      return false;
+    }
+    cpu_set_t others = set_;
+    CPU_CLR(cpu, &others);
+    return sched_setaffinity(0, sizeof(others), &others) == 0;
+#else
+    (void)cpu;
+    return false;
+#endif
+  }
+
+ private:
+#if defined(__linux__)
+  cpu_set_t set_{};
+#endif
+  bool known_ = false;
+};
+
+/// What a wait did, for the tests: whether it ended by sleeping (std::atomic::wait).
+enum class WaitEnd : unsigned char { spun, slept };
+
+/// When a spinning wait gives up and sleeps: after spin_budget (the default), or on the first
+/// check (every 64 pauses) where `give_up()` says so.
+struct SpinBudget {
+  bool (*give_up)(void*) = nullptr;  ///< nullptr: spin_budget
+  void* ctx = nullptr;
+};
+
+/// Whether a spinning thread was off its core between two of its checks `last` and `now`
+/// (64 pauses apart: microseconds): then another thread needed the core, which the spin holds
+/// whenever it runs.
+inline bool was_preempted(std::chrono::steady_clock::time_point last,
+                          std::chrono::steady_clock::time_point now) {
+  return now - last > spin_budget;
+}
+
+/// Returns once `word` no longer holds `old` (acquire), the value it then holds in `now`: spins
+/// on it, checking `budget` once every 64 pauses, then sleeps on it (std::atomic::wait: a futex
+/// on Linux) until another thread stores a new value and calls notify_one() or notify_all() on
+/// it. The storer must notify after every store a waiter may wait for (cheap when none sleeps).
+inline WaitEnd wait_for_change(const std::atomic<unsigned>& word, unsigned old, unsigned& now,
+                               SpinBudget budget = {}) {
+  now = word.load(std::memory_order_acquire);
+  if (now != old) return WaitEnd::spun;
+  const auto until = std::chrono::steady_clock::now() + spin_budget;
+  for (unsigned i = 1;; ++i) {
+    cpu_pause();
+    now = word.load(std::memory_order_acquire);
+    if (now != old) return WaitEnd::spun;
+    if (i % 64 != 0) continue;
+    if (budget.give_up ? budget.give_up(budget.ctx) : std::chrono::steady_clock::now() >= until) {
+      break;
+    }
+  }
+  do {
+    word.wait(old, std::memory_order_acquire);
+    now = word.load(std::memory_order_acquire);
+  } while (now == old);
+  return WaitEnd::slept;
+}
+
+}  // namespace fixstep::detail

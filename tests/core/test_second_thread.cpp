@@ -1,0 +1,179 @@
+// The second thread of a world's passes (engine/core/src/second_thread.hpp, pass_team.hpp,
+// spin_wait.hpp): an exception on the worker reaches the caller, in a run and outside one; a
+// nested run leaves the outer one open; a job the worker has not claimed is run by the caller;
+// on one core the two threads take turns by sleeping, not by spinning; and a thread asked to
+// leave a core does.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#if defined(__linux__)
+#include <sched.h>
+#endif
+
+#include "pass_team.hpp"
+#include "second_thread.hpp"
+
+namespace fixstep::detail {
+namespace {
+
+// A pass whose second half throws (std::bad_alloc as a vector grows, say): both() returns the
+// exception to the caller once the first half is done, inside a run and outside one, and the
+// thread serves the next pass. Without the hand-back, the worker would end the program.
+TEST(SecondThread, AnExceptionOfTheWorkersHalfIsThrownOnTheCaller) {
+  SecondThread thread;
+  for (const bool run : {false, true}) {
+    if (run) thread.open();
+    int first = 0, second = 0;
+    auto failing = [&](int half) {
+      if (half == 1) throw std::runtime_error("half 1");
+      first = 1;
+    };
+    EXPECT_THROW(thread.both(failing), std::runtime_error) << "run " << run;
+    EXPECT_EQ(first, 1);  // the caller's half ran to its end
+    auto working = [&](int half) { (half == 0 ? first : second) = 2; };
+    thread.both(working);
+    EXPECT_EQ(first, 2);
+    EXPECT_EQ(second, 2);
+    EXPECT_EQ(thread.is_open(), run);
+  }
+  thread.close();
+  EXPECT_FALSE(thread.is_open());
+}
+
+// A world opens a run for its tick and the disc phase asks for one again: the inner scope
+// neither opens nor closes it; close() ends a run before its scope does.
+TEST(SecondThread, ANestedRunLeavesTheOuterOneOpen) {
+  SecondThread thread;
+  {
+    const SecondThreadRun outer(&thread);
+    EXPECT_TRUE(thread.is_open());
+    {
+      const SecondThreadRun inner(&thread);
+      EXPECT_TRUE(thread.is_open());
+    }
+    EXPECT_TRUE(thread.is_open());
+  }
+  EXPECT_FALSE(thread.is_open());
+  {  // closed before the scope ends (a tick after its contact events): once, and for good
+    SecondThreadRun run(&thread);
+    SecondThreadRun inner(&thread);
+    inner.close();
+    EXPECT_TRUE(thread.is_open());
+    run.close();
+    EXPECT_FALSE(thread.is_open());
+    run.close();
+  }
+  EXPECT_FALSE(thread.is_open());
+  const SecondThreadRun none(nullptr);
+  EXPECT_FALSE(thread.is_open());
+}
+
+// A job posted to a team that no worker serves (the worker not started yet, or not running):
+// wait() runs it on the caller instead of waiting for a thread that would take it late.
+TEST(PassTeam, AJobTheWorkerHasNotClaimedRunsOnTheCaller) {
+  PassTeam team;
+  int runs = 0;
+  auto job = [](void* p) { ++*static_cast<int*>(p); };
+  for (int k = 0; k < 3; ++k) {
+    team.post(job, &runs);
+    team.wait();
+  }
+  EXPECT_EQ(runs, 3);
+  EXPECT_EQ(team.run_here(), 3u);
+  // A worker started late sees that the jobs were taken, and serves the next ones or ends.
+  std::thread worker(&PassTeam::serve, &team);
+  team.post(job, &runs);
+  team.wait();
+  EXPECT_EQ(runs, 4);
+  team.finish();
+  worker.join();
+}
+
+#if defined(__linux__)
+/// Pins this thread (and the threads it starts after) to one core for a scope.
+class OneCore {
+ public:
+  OneCore() {
+    pinned_ = sched_getaffinity(0, sizeof(old_), &old_) == 0;
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    for (int c = 0; c < CPU_SETSIZE && pinned_; ++c) {
+      if (CPU_ISSET(c, &old_)) {
+        CPU_SET(c, &one);
+        break;
+      }
+    }
+    pinned_ = pinned_ && sched_setaffinity(0, sizeof(one), &one) == 0;
+  }
+  ~OneCore() {
+    if (pinned_) sched_setaffinity(0, sizeof(old_), &old_);
+  }
+  OneCore(const OneCore&) = delete;
+  OneCore& operator=(const OneCore&) = delete;
+  [[nodiscard]] bool pinned() const { return pinned_; }
+
+ private:
+  cpu_set_t old_{};
+  bool pinned_ = false;
+};
+
+// Both threads on one core (the other core busy, or the scheduler's choice), inside a run:
+// every pass's halves run once, and the worker, given the core while the caller sleeps, gives
+// it up by sleeping while it waits for a pass. A worker that spun there (a yield does not reliably
+// hand the core over) kept the caller from running for a scheduler's time slice, about a
+// millisecond, at every pass: two threads then took twelve times as long as one on the 1000-disc
+// gas.
+TEST(SecondThread, OnOneCoreTheWorkerSleepsWhileItWaits) {
+  const OneCore one;
+  if (!one.pinned()) GTEST_SKIP() << "this system did not let the test pin itself to one core";
+  SecondThread thread;
+  const SecondThreadRun run(&thread);
+  constexpr int passes = 200;
+  std::vector<int> ran(2 * passes, 0);
+  for (int k = 0; k < passes; ++k) {
+    auto job = [&](int half) { ++ran[2 * k + half]; };
+    thread.both(job);
+    // The caller off the core for a moment, as between a tick's passes: the worker gets it.
+    if (k % 10 == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  for (int i = 0; i < 2 * passes; ++i)
+    ASSERT_EQ(ran[i], 1) << "half " << i % 2 << " of pass " << i / 2;
+  ASSERT_NE(thread.team(), nullptr);
+  EXPECT_GT(thread.team()->worker_slept(), 0u)
+      << "the worker never slept while it waited on the caller's core ("
+      << thread.team()->run_here() << " of " << passes << " halves ran on the caller)";
+}
+
+// A thread allowed two cores or more leaves the one it is asked to leave at once (the kernel
+// migrates it within the call), and is no longer allowed it; one allowed a single core stays.
+TEST(AllowedCores, LeaveMovesTheThreadOffTheCore) {
+  std::thread mover([] {
+    const AllowedCores cores;
+    const int here = current_cpu();
+    cpu_set_t allowed;
+    ASSERT_EQ(sched_getaffinity(0, sizeof(allowed), &allowed), 0);
+    if (CPU_COUNT(&allowed) < 2) {
+      EXPECT_FALSE(cores.leave(here));
+      return;
+    }
+    ASSERT_TRUE(cores.leave(here));
+    EXPECT_NE(current_cpu(), here);
+    ASSERT_EQ(sched_getaffinity(0, sizeof(allowed), &allowed), 0);
+    EXPECT_FALSE(CPU_ISSET(here, &allowed));
+    EXPECT_FALSE(cores.leave(-1));
+  });
+  mover.join();
+  const OneCore one;
+  if (!one.pinned()) return;
+  std::thread pinned([] { EXPECT_FALSE(AllowedCores().leave(current_cpu())); });
+  pinned.join();
+}
+#endif
+
+}  // namespace
+}  // namespace fixstep::detail
