@@ -70,8 +70,6 @@ class PassTeam {
     return worker_slept_.load(std::memory_order_relaxed);
   }
   [[nodiscard]] unsigned run_here() const { return run_here_; }
-  /// For the tests: times the worker moved off the caller's core (read after finish()).
-  [[nodiscard]] unsigned moves() const { return moves_; }
 
  private:
   /// Takes job `gen` (the gen-th posted) for this thread; false when the other has it. Every
@@ -105,9 +103,7 @@ class PassTeam {
     if (caller >= 0 && caller == current_cpu()) {
       // On the caller's core: move to another (the caller's wake-ups would bring it back
       // here, and the kernel may leave both on one core while the other idles), else sleep.
-      if (!t->run_.load(std::memory_order_relaxed) || !t->cores_->leave(caller)) return true;
-      ++t->moves_;
-      return false;
+      return !t->run_.load(std::memory_order_relaxed) || !t->cores_->leave(caller);
     }
     if (preempted) return true;
     return !t->run_.load(std::memory_order_relaxed) && now >= t->worker_until_;
@@ -146,7 +142,6 @@ class PassTeam {
   std::chrono::steady_clock::time_point caller_until_{}, worker_until_{}, worker_checked_{};
   unsigned run_here_ = 0;
   const AllowedCores* cores_ = nullptr;  // the worker's, while it serves
-  unsigned moves_ = 0;                   // times the worker moved off the caller's core
 };
 
 }  // namespace fixstep::detail
