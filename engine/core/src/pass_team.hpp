@@ -47,8 +47,10 @@ class PassTeam {
       ++run_here_;
       return;
     }
+    unsigned d = done_.load(std::memory_order_acquire);
+    if (d == want) return;  // the worker's half was done first: no clock to read
     caller_until_ = std::chrono::steady_clock::now() + spin_budget;
-    for (unsigned d = done_.load(std::memory_order_acquire); d != want;) {
+    while (d != want) {
       wait_for_change(done_, d, d, {&caller_gives_up, this});
     }
   }

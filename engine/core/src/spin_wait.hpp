@@ -100,13 +100,14 @@ inline WaitEnd wait_for_change(const std::atomic<unsigned>& word, unsigned old, 
                                SpinBudget budget = {}) {
   now = word.load(std::memory_order_acquire);
   if (now != old) return WaitEnd::spun;
-  const auto until = std::chrono::steady_clock::now() + spin_budget;
+  using Clock = std::chrono::steady_clock;  // read only without give_up: it keeps its own time
+  const auto until = budget.give_up ? Clock::time_point{} : Clock::now() + spin_budget;
   for (unsigned i = 1;; ++i) {
     cpu_pause();
     now = word.load(std::memory_order_acquire);
     if (now != old) return WaitEnd::spun;
     if (i % 64 != 0) continue;
-    if (budget.give_up ? budget.give_up(budget.ctx) : std::chrono::steady_clock::now() >= until) {
+    if (budget.give_up ? budget.give_up(budget.ctx) : Clock::now() >= until) {
       break;
     }
   }
