@@ -252,7 +252,7 @@ bool DiscContacts<Real>::next_event(std::uint32_t pair, double now, double dt,
   const double r_min = std::min(discs_[a].radius, discs_[b].radius);
   const double d2 = r.px * r.px + r.py * r.py;
   if (resting_without_root(r, d2, slop * r_min, dt)) return false;
-  const double dist = std::sqrt(d2);  // length(r.px, r.py)
+  const double dist = length(r.px, r.py);  // the root of d2 (the same sum, computed once)
   const double scale = std::abs(ma.px(now)) + std::abs(ma.py(now)) + r.radius + dist;
   // Approaching faster than one tick of relative acceleration: an impact (else resting).
   auto impact_speed = [&](double s, double rest) {
