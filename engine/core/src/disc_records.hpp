@@ -115,12 +115,15 @@ struct RestContact {
 /// A resting contact as the velocity iterations see it (disc_rows.cpp), in order_'s order:
 /// its two bodies as slots of the solver's own velocity array (a slot of velocity 0 for a
 /// static body or a plane), and what an impulse needs, from RestContact.
+/// A sweep streams every row (72 bytes): at 10^5 discs the rows of a settling pile fill most of
+/// the last-level cache, so a row holds only what the sweep reads (the tangent's mass of rolling
+/// discs is RollRow's; without rolling it is `mass`).
 struct SolveRow {
   std::uint32_t a = 0, b = 0;  ///< slots of DiscContacts' solver velocities
-  double nx = 0, ny = 0, mass = 0, mass_t = 0, friction = 0, lambda_n = 0, lambda_t = 0;
-  /// The normal over each body's mass, (1/m_a) n and (1/m_b) n (1/kg; 0: the slot is not
-  /// moved): an impulse's change of each velocity per N·s, the same products in every sweep.
-  double ax = 0, ay = 0, bx = 0, by = 0;
+  double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
+  /// Each body's inverse mass (1/kg; 0: the slot is not moved): an impulse changes its velocity
+  /// by the impulse's components times (1/m) n, the same products in every sweep.
+  double inv_a = 0, inv_b = 0;
 };
 
 /// A resting contact as the push-out sees it (disc_rows.cpp), in order_'s order: its discs (b
@@ -136,6 +139,7 @@ struct PushRow {
 /// point (m; 0 for a plane) and r/I of each disc (rad/s per N·s; 0: it does not turn).
 struct RollRow {
   double arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
+  double mass_t = 0;  ///< RestContact::mass_t, kg
 };
 
 /// A velocity in the solver's own array, m/s.

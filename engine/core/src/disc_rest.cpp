@@ -39,7 +39,7 @@ template <int Kind>
     if (c.kinematic_b) external_[c.a] += jx * vb.x + jy * vb.y;
     if (c.kinematic_a) external_[c.b] -= jx * va.x + jy * va.y;
   }
-  const double ax = r.ax, ay = r.ay, bx = r.bx, by = r.by;
+  const double ax = r.inv_a * r.nx, ay = r.inv_a * r.ny, bx = r.inv_b * r.nx, by = r.inv_b * r.ny;
   va.x += ln * ax - lt * ay, va.y += ln * ay + lt * ax;
   vb.x -= ln * bx - lt * by, vb.y -= ln * by + lt * bx;
 }
@@ -144,7 +144,9 @@ template <int Kind>
   if constexpr ((Kind & rolling_rows) != 0) vt -= turn_slip(i);
   const double ln = std::max(r.lambda_n - vn * r.mass, 0.0);
   const double bound = r.friction * ln;
-  const double lt = std::clamp(r.lambda_t - vt * r.mass_t, -bound, bound);
+  double mass_t = r.mass;
+  if constexpr ((Kind & rolling_rows) != 0) mass_t = roll_rows_[i].mass_t;
+  const double lt = std::clamp(r.lambda_t - vt * mass_t, -bound, bound);
   const double dn = ln - r.lambda_n, dt = lt - r.lambda_t;
   r.lambda_n = ln, r.lambda_t = lt;
   push_row<Kind>(i, r, va, vb, dn, dt);

@@ -57,11 +57,11 @@ void DiscContacts<Real>::build_rows() {
       } else {
         r.b = c.kinematic_b ? fixed(c.bvx, c.bvy, 0.0) : part;  // a moving segment, or still
       }
-      if (rolling_) roll_rows_[i] = roll_row(c);
-      r.nx = c.nx, r.ny = c.ny, r.mass = c.mass, r.mass_t = c.mass_t, r.friction = c.friction;
+      if (rolling_) roll_rows_[i] = roll_row(c), roll_rows_[i].mass_t = c.mass_t;
+      r.nx = c.nx, r.ny = c.ny, r.mass = c.mass, r.friction = c.friction;
       r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
       const double inv_a = c.inv_a, inv_b = c.b < n ? c.inv_b : 0.0;
-      r.ax = inv_a * r.nx, r.ay = inv_a * r.ny, r.bx = inv_b * r.nx, r.by = inv_b * r.ny;
+      r.inv_a = inv_a, r.inv_b = inv_b;
       row_moved_[i] = 0;
       const double inv = inv_a + inv_b;
       push_rows_[i] = PushRow{.a = c.a,
