@@ -194,12 +194,11 @@ void ShapeWorld::add_manifold(std::vector<ShapeRow>& rows, const Manifold& m, st
                               std::uint64_t pair) {
   for (int p = 0; p < m.count; ++p) {
     const ManifoldPoint& mp = m.points[p];
-    ShapeRow r;
+    ShapeRow& r = rows.emplace_back();  // made in place: a row is 3 cache lines
     r.a = a, r.b = b, r.n = m.normal, r.ra = mp.anchor_a, r.rb = mp.anchor_b;
     r.separation = mp.separation, r.friction = friction, r.restitution = restitution;
     r.rolling = p == 0 ? rolling : 0.0;
     r.pair = pair, r.id = mp.id;
-    rows.push_back(r);
   }
 }
 
