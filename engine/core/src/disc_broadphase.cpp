@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "binary_exponent.hpp"
+
 namespace fixstep::detail {
 
 namespace {
@@ -85,7 +87,8 @@ void DiscBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
     const double e = box_extent(boxes[i]);
     // Level k holds e in (e_top 2^-(k+1), e_top 2^-k], the last one everything smaller.
     std::uint32_t k = max_levels - 1;
-    if (e > e_bottom) k = static_cast<std::uint32_t>(std::ilogb(e_top_ / e));
+    // (e_top / e is in [1, 2^47): a normal number, whose exponent is ilogb's)
+    if (e > e_bottom) k = static_cast<std::uint32_t>(det::binary_exponent(e_top_ / e));
     if (!std::isfinite(levels_[k].inv_cell)) {
       level_[i] = overflow, ++s.overflow;
       continue;
