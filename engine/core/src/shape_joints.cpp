@@ -140,8 +140,10 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   return true;
 }
 
-// Each joint sweep polls a stop request first (one relaxed atomic load): a sweep of
-// max_joints joints is a fraction of a second, a tick of them tens of sweeps.
+// Each sweep polls a stop request first (one relaxed atomic load): the joints' sweeps here, the
+// contacts' velocity sweeps and push-out sweeps of a world without joints in theirs. A sweep of
+// max_joints joints, or of a large world's contacts, is a fraction of a second; a tick is tens
+// of sweeps (up to ContactSettings' largest iteration counts).
 void ShapeWorld::poll_stop() {
   ++stop_polls_;
   throw_if_stop_requested();

@@ -284,6 +284,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
   }
   update_turns();
   for (int it = 0; it < tick.position_iterations; ++it) {
+    if (joints_.empty()) poll_stop();  // (with joints, their sweep polls)
     bool pushed = false;
     for (std::size_t i = 0; i < rows_.size(); ++i) {
       const ShapeRow& r = rows_[i];
