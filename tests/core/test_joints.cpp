@@ -301,29 +301,6 @@ TEST(Joints, EveryJointSweepPollsAStopRequest) {
   }
 }
 
-// Without joints the contacts' sweeps poll: a large box world's tick (up to ContactSettings'
-// largest iteration counts) stops within a sweep of a stop request, not at the tick's end.
-TEST(Joints, EverySweepOfAWorldWithoutJointsPollsAStopRequest) {
-  detail::WorldKernel<double> w(shape_exact::shape_settings(0.6));
-  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
-  for (int row = 0; row < 5; ++row) {  // a pyramid: every velocity sweep runs (a stack)
-    for (int k = 0; k < 5 - row; ++k) {
-      w.create_body(shape_exact::box_body(0.5, 0.5, {k + 0.5 * row, 0.51 + 1.01 * row}));
-    }
-  }
-  for (int i = 0; i < 60; ++i) w.step();
-  const std::uint64_t before = w.shape_world()->stop_polls();
-  w.step();
-  const auto sweeps = static_cast<std::uint64_t>(w.contact_stats().shape_velocity_sweeps);
-  EXPECT_EQ(sweeps, std::uint64_t{ContactSettings::default_velocity_iterations});
-  const std::uint64_t polls = w.shape_world()->stop_polls() - before;
-  EXPECT_GE(polls, sweeps + 1) << "every velocity sweep and at least one push-out sweep";
-  EXPECT_LE(polls, sweeps + ContactSettings::default_position_iterations);
-  request_stop(2);
-  EXPECT_THROW(w.step(), StopRequested);
-  clear_stop_request();
-}
-
 /// A pile of ragdoll-like pairs: boxes hinged in twos with limits and a motor, falling on the
 /// ground, for the determinism checks below.
 WorldDef hinged_pile(int threads) {

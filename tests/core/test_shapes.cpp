@@ -11,6 +11,7 @@
 #include "fixstep/core/joint.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "fixstep/core/stop_request.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
@@ -192,6 +193,30 @@ TEST(ShapeSweeps, EndOnceASweepChangesNoVelocityAndNotBefore) {
   for (int i = 0; i < 60; ++i) pyramid.step();
   EXPECT_EQ(pyramid.contact_stats().shape_velocity_sweeps,
             ContactSettings::default_velocity_iterations);
+}
+
+// Without joints too every sweep polls (Joints.EveryJointSweepPollsAStopRequest has joints): a
+// large box world's tick (up to ContactSettings' largest iteration counts) stops within a sweep
+// of a stop request, not at the tick's end.
+TEST(ShapeSweeps, EverySweepOfAWorldWithoutJointsPollsAStopRequest) {
+  detail::WorldKernel<double> w(shape_exact::shape_settings(0.6));
+  w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  for (int row = 0; row < 5; ++row) {  // a pyramid: every velocity sweep runs (a stack)
+    for (int k = 0; k < 5 - row; ++k) {
+      w.create_body(shape_exact::box_body(0.5, 0.5, {k + 0.5 * row, 0.51 + 1.01 * row}));
+    }
+  }
+  for (int i = 0; i < 60; ++i) w.step();
+  const std::uint64_t before = w.shape_world()->stop_polls();
+  w.step();
+  const auto sweeps = static_cast<std::uint64_t>(w.contact_stats().shape_velocity_sweeps);
+  EXPECT_EQ(sweeps, std::uint64_t{ContactSettings::default_velocity_iterations});
+  const std::uint64_t polls = w.shape_world()->stop_polls() - before;
+  EXPECT_GE(polls, sweeps + 1) << "every velocity sweep and at least one push-out sweep";
+  EXPECT_LE(polls, sweeps + ContactSettings::default_position_iterations);
+  request_stop(2);
+  EXPECT_THROW(w.step(), StopRequested);
+  clear_stop_request();
 }
 
 TEST(ShapeSweeps, AFreelySwingingChainNeedsTwoSweepsOfItsForest) {

@@ -140,17 +140,16 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   return true;
 }
 
-// Each sweep polls a stop request first (one relaxed atomic load): the joints' sweeps here, the
-// contacts' velocity sweeps and push-out sweeps of a world without joints in theirs. A sweep of
-// max_joints joints, or of a large world's contacts, is a fraction of a second; a tick is tens
-// of sweeps (up to ContactSettings' largest iteration counts).
+// Each sweep, velocity or position, with or without joints, polls a stop request first (one
+// relaxed atomic load, in the sweeps' loops): a sweep of max_joints joints, or of a large world's
+// contacts, is a fraction of a second; a tick is tens of sweeps (up to ContactSettings' largest
+// iteration counts).
 void ShapeWorld::poll_stop() {
   ++stop_polls_;
   throw_if_stop_requested();
 }
 
 bool ShapeWorld::solve_joint_velocities() {
-  poll_stop();
   JointSolver solver(bodies_, state_, dt_, velocity_);
   if (joint_rows_) {
     for (JointRecord& j : joints_) {
@@ -162,7 +161,6 @@ bool ShapeWorld::solve_joint_velocities() {
 }
 
 bool ShapeWorld::solve_joint_positions(bool keep) {
-  poll_stop();
   JointSolver solver(bodies_, state_, dt_);
   if (indirect_ || (!keep && direct_limits_)) {
     for (JointRecord& j : joints_) {

@@ -280,11 +280,12 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
   // A sweep that moves nothing leaves the poses as they were, and so would every sweep after
   // it: the sweeps have ended.
   for (int it = 0; it < tick.position_iterations && !joints_.empty(); ++it) {
+    poll_stop();
     if (!solve_joint_positions(true)) break;
   }
   update_turns();
   for (int it = 0; it < tick.position_iterations; ++it) {
-    if (joints_.empty()) poll_stop();  // (with joints, their sweep polls)
+    poll_stop();
     bool pushed = false;
     for (std::size_t i = 0; i < rows_.size(); ++i) {
       const ShapeRow& r = rows_[i];

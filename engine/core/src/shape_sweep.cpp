@@ -306,7 +306,7 @@ int ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
   int sweeps = 0;
   while (rows && sweeps < tick.velocity_iterations) {
     ++sweeps;
-    if (joints_.empty()) poll_stop();  // (with joints, their sweep polls)
+    poll_stop();
     const bool moved = !joints_.empty() && solve_joint_velocities();
     if (!moved && color_runs_.empty()) break;
     ColorRun from;

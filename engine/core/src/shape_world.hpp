@@ -257,8 +257,7 @@ class ShapeWorld {
   /// The colours of the last tick's velocity sweeps solved by halves on two threads (a colour
   /// once per sweep).
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
-  /// Stop requests polled by the sweeps so far: each velocity and position sweep polls once
-  /// (with joints, in the joints' part of it).
+  /// Stop requests polled by the sweeps so far: each velocity and position sweep polls once.
   [[nodiscard]] std::uint64_t stop_polls() const { return stop_polls_; }
   /// The sleepers (bodies_ indices) the broadphase paired with a moving body this tick.
   [[nodiscard]] std::span<const std::uint32_t> woken() const { return wake_; }
