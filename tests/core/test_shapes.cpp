@@ -163,6 +163,23 @@ TEST(ShapeCaps, ACrowdOfOverlappingBoxesStopsWithALocatedFault) {
   EXPECT_NE(w.fault()->with.find("2000 shapes"), std::string::npos) << w.fault()->with;
 }
 
+TEST(ShapeCaps, AColumnOfBoxesPairsWithoutReachingAWorkLimit) {
+  // 6000 boxes 1 m wide, one above another 2 m apart, all falling alike (no pair forms), so
+  // that every box lies in every other's x-interval: a sweep and prune on x tests n(n - 1)/2 =
+  // 1.8·10^7 pairs of them, past max_vetoed_pairs (1.6·10^7), where the grid looks at each
+  // box's neighbours.
+  detail::WorldKernel<double> w(shape_world(0.5));
+  std::vector<Entity> boxes;
+  for (int i = 0; i < 6000; ++i) boxes.push_back(w.create_body(box_body(0.5, 0.5, {0.0, 2.0 * i})));
+  w.step();
+  ASSERT_FALSE(w.fault().has_value()) << w.fault()->cap;
+  EXPECT_TRUE(w.shape_world()->candidates().empty());
+  const double top = w.body(boxes.back()).position.y - 2.0 * 5999;
+  EXPECT_LT(top, 0.0);  // it fell
+  EXPECT_NEAR(top, w.body(boxes.front()).position.y,
+              1e-9);  // as the lowest did (rounding at 12 km)
+}
+
 // --- the velocity sweeps end once converged ----------------------------------------------
 
 /// A box of 1 m × 1 m resting on the ground, and beside it (6 m off) a pyramid of boxes

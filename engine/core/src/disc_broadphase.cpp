@@ -57,7 +57,7 @@ void DiscBroadphase::both(bool split, Job& job) {
     job(0), job(1);
     return;
   }
-  second_.both(job);
+  (lent_ != nullptr ? *lent_ : second_).both(job);
 }
 
 void DiscBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) const {
@@ -260,9 +260,10 @@ void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
 
 bool DiscBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow,
                           std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
-                          std::size_t max_pairs, std::vector<DiscPair>& out) const {
+                          std::size_t max_pairs, std::vector<DiscPair>& out,
+                          std::uint64_t& rejected) const {
   out.clear();
-  std::uint64_t rejected = 0;
+  rejected = 0;
   const std::uint64_t most_rejected = veto_ ? veto_->max_rejected : 0;
   for (std::uint64_t m = level_mask_; m != 0; m &= m - 1) {
     const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
@@ -285,8 +286,9 @@ bool DiscBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow
 
 bool DiscBroadphase::find_pairs(std::span<const SweptBox> boxes,
                                 std::span<const std::uint8_t> active, std::size_t max_pairs,
-                                std::vector<DiscPair>& pairs, int threads) {
+                                std::vector<DiscPair>& pairs, int threads, SecondThread* lent) {
   pairs.clear();
+  lent_ = lent;
   const std::size_t n = boxes.size();
   const bool split = threads >= 2 && n >= parallel_min_ && n >= 2;
   share_[0].begin = 0, share_[0].end = share_[1].begin = split ? n / 2 : n, share_[1].end = n;
@@ -309,11 +311,21 @@ bool DiscBroadphase::find_pairs(std::span<const SweptBox> boxes,
   }
   const std::size_t e = entry_.size(), mid = split ? e / 2 : e;
   bool ok[2] = {true, true};
+  std::uint64_t rejected[2] = {0, 0};
   auto search = [&](int t) {
-    ok[t] = scan(t == 0 ? 0 : mid, t == 0 ? mid : e, t == 0, boxes, active, max_pairs, raw_[t]);
+    ok[t] = scan(t == 0 ? 0 : mid, t == 0 ? mid : e, t == 0, boxes, active, max_pairs, raw_[t],
+                 rejected[t]);
   };
   both(split, search);
-  if (!ok[0] || !ok[1] || raw_[0].size() + raw_[1].size() > max_pairs) return false;
+  lent_ = nullptr;
+  // Both limits on the totals, so that one thread and two stop alike.
+  const bool too_many = raw_[0].size() + raw_[1].size() > max_pairs;
+  const bool vetoed = veto_ != nullptr && rejected[0] + rejected[1] > veto_->max_rejected;
+  if (!ok[0] || !ok[1] || too_many || vetoed) {
+    // A share stopped at max_pairs holds more than max_pairs; else the veto stopped one.
+    stopped_by_veto_ = !too_many;
+    return false;
+  }
   order_pairs(raw_[0], raw_[1], n, offset_, pairs);
   // Either thread may find them all next time (threads = 1, or a shifted split): room for it.
   raw_[0].reserve(pairs.size()), raw_[1].reserve(pairs.size());

@@ -130,14 +130,21 @@ class DiscBroadphase {
   /// searches) on a worker thread it keeps (started on first use; the sizing, prefix sums and
   /// the final sort stay on the calling thread).
   /// Allocates nothing once warm (the same or a smaller n and pair count as an earlier call).
+  /// `lent`, when given, is the second thread it splits on instead of its own (a caller that
+  /// keeps a run of its own thread open, as the shape world does: one worker a world).
   /// Preconditions: active.size() == boxes.size() < 2^32 - 1, max_pairs < 2^32.
   bool find_pairs(std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
-                  std::size_t max_pairs, std::vector<DiscPair>& pairs, int threads);
+                  std::size_t max_pairs, std::vector<DiscPair>& pairs, int threads,
+                  SecondThread* lent = nullptr);
+  /// After a find_pairs call that returned false: true when the veto's max_rejected stopped
+  /// it, false when max_pairs did.
+  [[nodiscard]] bool stopped_by_veto() const { return stopped_by_veto_; }
 
   /// Pairs that can never touch, which find_pairs leaves out and does not count against its
   /// max_pairs: reject(context, a, b) true drops the pair (a < b; called from both threads, so
-  /// it must only read). More than max_rejected dropped by one thread's share makes find_pairs
-  /// return false as max_pairs does, which bounds its work: O(n + max_pairs + max_rejected).
+  /// it must only read). More than max_rejected dropped in all makes find_pairs return false
+  /// as max_pairs does, on one thread or two alike, which bounds its work: O(n + max_pairs +
+  /// max_rejected).
   struct PairVeto {
     bool (*reject)(const void* context, std::uint32_t a, std::uint32_t b) = nullptr;
     const void* context = nullptr;
@@ -214,10 +221,11 @@ class DiscBroadphase {
            ((static_cast<std::uint32_t>(cy) & l.hmask) << l.wshift);
   }
   /// The searches of entries [begin, end) (and of the overflow boxes if with_overflow) into
-  /// `out`; false once out holds more than max_pairs.
+  /// `out`, the pairs the veto dropped counted in `rejected`; false once out holds more than
+  /// max_pairs or more than the veto's max_rejected were dropped.
   bool scan(std::size_t begin, std::size_t end, bool with_overflow, std::span<const SweptBox> boxes,
-            std::span<const std::uint8_t> active, std::size_t max_pairs,
-            std::vector<DiscPair>& out) const;
+            std::span<const std::uint8_t> active, std::size_t max_pairs, std::vector<DiscPair>& out,
+            std::uint64_t& rejected) const;
   /// Appends the pair (a, b) in (min, max) order to out, or counts it in `rejected` when the
   /// veto rejects it.
   void add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>& out,
@@ -258,6 +266,8 @@ class DiscBroadphase {
   std::vector<std::uint32_t> offset_;         // order_pairs' scratch
   std::size_t parallel_min_ = min_parallel_boxes;
   const PairVeto* veto_ = nullptr;
+  bool stopped_by_veto_ = false;
+  SecondThread* lent_ = nullptr;  // find_pairs' `lent` during the call
   SecondThread second_;
 };
 

@@ -1,157 +1,92 @@
 // Shape contacts, part 1b: the broadphase (shape_world.hpp has the whole tick): the shapes'
-// boxes at the tick's start, grown by each body's speculative margin, sorted by their lower x
-// and swept; the candidate pairs in one order.
+// boxes at the tick's start, grown by each body's speculative margin, paired by the
+// hierarchical grid the discs use (disc_broadphase.hpp: O(n + pairs), where a sweep and prune
+// on x scans every box of a column of boxes), in (a, b) order.
 #include <algorithm>
+#include <cmath>
 
 #include "fixstep/core/limits.hpp"
 #include "shape_world.hpp"
 
 namespace fixstep::detail {
 
-// Sort and sweep on the lower x bound; ties by index, so the order is the same everywhere.
-// The shapes seldom change places between ticks: last tick's order is sorted again by
-// insertion, which costs a pass when nothing has passed anything (bounded: past a few moves
-// a shape, a full sort). Any sort gives the one order, so the result is the same either way.
-void ShapeWorld::sort_boxes() {
-  const std::size_t n = boxes_.size();
-  auto before = [&](std::uint32_t l, std::uint32_t r) {
-    const double a = boxes_[l].lower.x, b = boxes_[r].lower.x;
-    return a != b ? a < b : l < r;
-  };
-  bool sorted = order_.size() == n;
-  std::size_t budget = 8 * n;
-  for (std::size_t i = 1; sorted && i < n; ++i) {
-    const std::uint32_t k = order_[i];
-    if (k >= n) sorted = false;
-    std::size_t j = i;
-    for (; sorted && j > 0 && before(k, order_[j - 1]); --j) {
-      order_[j] = order_[j - 1];
-      if (--budget == 0) sorted = false;
-    }
-    order_[j] = k;
+// The pairs the grid drops as it finds them (read only, from either thread): shapes of one
+// body, two discs (the disc phase's), those a collision filter or a joint keeps apart, and two
+// that neither move nor wake the other (a sleeper is solved as static). From the shapes' tags
+// (32 bytes each, made with the boxes), not from their entries.
+bool ShapeWorld::never_pair(const void* context, std::uint32_t a, std::uint32_t b) {
+  const auto& w = *static_cast<const ShapeWorld*>(context);
+  const PairTag &ta = w.tags_[a], &tb = w.tags_[b];
+  if (ta.owner == tb.owner || (ta.flags & tb.flags & PairTag::disc) != 0) return true;
+  if (!should_collide(ta.filter, tb.filter)) return true;
+  if (!w.unpaired_.empty() && w.unpaired(ta.owner, tb.owner)) return true;
+  if (((ta.flags | tb.flags) & PairTag::sensor) != 0) {  // a sensor sees what is not one
+    return (ta.flags & PairTag::sensor) == (tb.flags & PairTag::sensor);
   }
-  if (!sorted) {
-    order_.resize(n);
-    for (std::uint32_t k = 0; k < n; ++k) order_[k] = k;
-    std::sort(order_.begin(), order_.end(), before);
-  }
-  sorted_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) sorted_[i] = boxes_[order_[i]];
-}
-
-// The candidates by (a, b): counted into one run per a, then each run (a shape's few
-// partners) by b. Every pair appears once, so this is the one order any sort gives.
-void ShapeWorld::sort_candidates() {
-  const std::size_t n = shapes_.size();
-  first_.assign(n + 1, 0);
-  for (const Candidate& c : candidates_) ++first_[c.a + 1];
-  for (std::size_t k = 0; k < n; ++k) first_[k + 1] += first_[k];
-  by_a_.resize(candidates_.size());
-  for (const Candidate& c : candidates_) by_a_[first_[c.a]++] = c;  // first_[a]: run a's end
-  for (std::size_t k = n; k > 0; --k) first_[k] = first_[k - 1];    // back to its start
-  first_[0] = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto run = by_a_.begin() + first_[k], end = by_a_.begin() + first_[k + 1];
-    std::sort(run, end, [](const Candidate& l, const Candidate& r) { return l.b < r.b; });
-  }
-  candidates_.swap(by_a_);
-}
-
-// The pairs of the sorted boxes from position `begin` to `end` with the boxes after them, into
-// `out`: false, with the cap reached in `tally`, once more than `most_tests` boxes overlapping
-// in x were tested or `most_pairs` candidates kept (counted from `out`'s start).
-bool ShapeWorld::sweep_boxes(std::size_t begin, std::size_t end, Found& out,
-                             std::uint64_t most_tests, std::uint64_t most_pairs,
-                             ShapeTally& tally) const {
-  // (Local copies: `out` could alias the members, which the loops would then load again.)
-  const std::size_t n = sorted_.size();
-  const Aabb* const sorted = sorted_.data();
-  const std::uint32_t* const order = order_.data();
-  std::uint64_t tests = 0, kept = out.candidates.size();
-  for (std::size_t i = begin; i < end; ++i) {
-    const std::uint32_t a = order[i];
-    const ShapeEntry& sa = shapes_[a];
-    const Aabb box = sorted[i];
-    for (std::size_t j = i + 1; j < n; ++j) {
-      if (sorted[j].lower.x > box.upper.x) break;
-      if (++tests > most_tests || kept >= most_pairs) {
-        const bool work = tests > most_tests;
-        tally.cap = work ? "max_vetoed_pairs" : "max_candidate_pairs";
-        tally.limit = work ? most_tests : most_pairs;
-        tally.cap_body = sa.owner;
-        return false;
-      }
-      if (!boxes_overlap(box, sorted[j])) continue;
-      const std::uint32_t b = order[j];
-      const ShapeEntry& sb = shapes_[b];
-      if (sa.owner == sb.owner) continue;
-      const ShapedBody& ba = bodies_[sa.owner];
-      const ShapedBody& bb = bodies_[sb.owner];
-      if (ba.type != BodyType::dynamic && bb.type != BodyType::dynamic) continue;
-      if (ba.disc && bb.disc) continue;  // the disc phase's
-      if (!should_collide(sa.filter, sb.filter)) continue;
-      if (!unpaired_.empty() && unpaired(sa.owner, sb.owner)) continue;
-      if (sa.sensor || sb.sensor) {  // a sensor sees what is not one, asleep or not
-        if (sa.sensor != sb.sensor)
-          out.sensors.push_back(sa.sensor ? Candidate{a, b} : Candidate{b, a});
-        continue;
-      }
-      // A sleeper is solved as static: a pair of two that do not move is left out, and a
-      // sleeper paired with a moving body wakes (ShapeTick::wake).
-      const bool wake_a = ba.asleep && moving(sb.owner), wake_b = bb.asleep && moving(sa.owner);
-      if (!awake(ba) && !awake(bb) && !wake_a && !wake_b) continue;
-      if (wake_a) out.wake.push_back(sa.owner);
-      if (wake_b) out.wake.push_back(sb.owner);
-      out.candidates.push_back({std::min(a, b), std::max(a, b)});
-      ++kept;
-    }
-  }
-  out.tests = tests;
-  return true;
+  if (((ta.flags | tb.flags) & PairTag::awake) != 0) return false;
+  return !wakes(ta, tb) && !wakes(tb, ta);
 }
 
 bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) {
   const std::size_t n = shapes_.size();
-  // The work limits (limits.hpp), as the disc broadphase's: candidate pairs kept, and box
-  // tests made (boxes overlapping in x, a tall column's), each bounded by the shape count.
+  // The work limits (limits.hpp), as the disc broadphase's: candidate pairs kept, and pairs
+  // dropped by never_pair (a crowd a filter keeps apart), each bounded by the shape count.
   const std::uint64_t most_pairs = max_candidate_pairs(n);
-  const std::uint64_t most_tests = max_vetoed_pairs(n);
   margin_.resize(bodies_.size());
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) margin_[i] = margin(i, dt);
-  boxes_.resize(n);
+  boxes_.resize(n), grid_boxes_.resize(n), dynamic_.resize(n), tags_.resize(n);
   for (std::uint32_t k = 0; k < n; ++k) {
-    const std::uint32_t owner = shapes_[k].owner;
-    boxes_[k] = convex_aabb(shapes_[k].convex, start_pose(owner), margin_[owner]);
+    const ShapeEntry& e = shapes_[k];
+    const ShapedBody& body = bodies_[e.owner];
+    const Aabb b = convex_aabb(e.convex, start_pose(e.owner), margin_[e.owner]);
+    boxes_[k] = b;
+    grid_boxes_[k] = SweptBox{b.lower.x, b.lower.y, b.upper.x, b.upper.y};
+    dynamic_[k] = body.type == BodyType::dynamic ? 1 : 0;  // two others never pair
+    const std::uint32_t none = 0;
+    tags_[k] =
+        PairTag{e.filter, e.owner,
+                (e.sensor ? PairTag::sensor : none) | (body.disc ? PairTag::disc : none) |
+                    (awake(body) ? PairTag::awake : none) | (body.asleep ? PairTag::asleep : none) |
+                    (moving(e.owner) ? PairTag::moving : none)};
   }
-  sort_boxes();
-  found_[0].clear(), found_[1].clear();
-  bool whole = false;
-  if (thread != nullptr) {  // by halves of the sorted boxes, then joined in their order
-    ShapeTally halves[2];
-    bool done[2] = {false, false};
-    auto job = [&](int h) {
-      done[h] = sweep_boxes(h == 0 ? 0 : n / 2, h == 0 ? n / 2 : n, found_[h], most_tests,
-                            most_pairs, halves[h]);
-    };
-    thread->both(job);
-    // Within the limits together: the one result; else the cap as one sweep meets it.
-    whole = done[0] && done[1] && found_[0].tests + found_[1].tests <= most_tests &&
-            found_[0].candidates.size() + found_[1].candidates.size() < most_pairs;
-    if (whole) {
-      Found& f = found_[0];
-      const Found& g = found_[1];
-      f.candidates.insert(f.candidates.end(), g.candidates.begin(), g.candidates.end());
-      f.sensors.insert(f.sensors.end(), g.sensors.begin(), g.sensors.end());
-      f.wake.insert(f.wake.end(), g.wake.begin(), g.wake.end());
-    } else {
-      found_[0].clear();
+  const DiscBroadphase::PairVeto veto{&ShapeWorld::never_pair, this, max_vetoed_pairs(n)};
+  grid_.set_veto(&veto);
+  const bool found =
+      grid_.find_pairs(grid_boxes_, dynamic_, most_pairs, pairs_, thread ? 2 : 1, thread);
+  grid_.set_veto(nullptr);
+  candidates_.clear(), sensor_candidates_.clear(), wake_.clear();
+  if (!found) {
+    tally.cap = grid_.stopped_by_veto() ? "max_vetoed_pairs" : "max_candidate_pairs";
+    tally.limit = grid_.stopped_by_veto() ? max_vetoed_pairs(n) : most_pairs;
+    tally.cap_body = shapes_[largest_box()].owner;
+    return false;
+  }
+  for (const DiscPair& p : pairs_) {
+    const PairTag &ta = tags_[p.a], &tb = tags_[p.b];
+    if (((ta.flags | tb.flags) & PairTag::sensor) != 0) {
+      const bool a_senses = (ta.flags & PairTag::sensor) != 0;
+      sensor_candidates_.push_back(a_senses ? Candidate{p.a, p.b} : Candidate{p.b, p.a});
+      continue;
     }
+    // A sleeper paired with a moving body wakes (ShapeTick::wake).
+    if (wakes(tb, ta)) wake_.push_back(ta.owner);
+    if (wakes(ta, tb)) wake_.push_back(tb.owner);
+    candidates_.push_back({p.a, p.b});
   }
-  if (!whole && !sweep_boxes(0, n, found_[0], most_tests, most_pairs, tally)) return false;
-  candidates_.swap(found_[0].candidates), sensor_candidates_.swap(found_[0].sensors);
-  wake_.swap(found_[0].wake);
-  sort_candidates();
   return true;
+}
+
+// The shape with the widest box (the first of equals; a NaN box first): the one a fault names.
+std::uint32_t ShapeWorld::largest_box() const {
+  std::uint32_t best = 0;
+  double widest = -1.0;
+  for (std::uint32_t k = 0; k < grid_boxes_.size(); ++k) {
+    const SweptBox& b = grid_boxes_[k];
+    const double w = std::max(b.max_x - b.min_x, b.max_y - b.min_y);
+    if (std::isnan(w)) return k;
+    if (w > widest) widest = w, best = k;
+  }
+  return best;
 }
 
 }  // namespace fixstep::detail

@@ -41,6 +41,7 @@
 #include <span>
 #include <vector>
 
+#include "disc_broadphase.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/pre_solve.hpp"
 #include "fixstep/core/segment.hpp"
@@ -200,7 +201,7 @@ struct ShapeTally {
   double deepest = 0.0;     ///< m, the deepest overlap left after the solve
   int velocity_sweeps = 0;  ///< the velocity sweeps the solve ran (ShapeWorld::solve_velocities)
   /// A work limit the broadphase reached (its name in limits.hpp), its value and the body
-  /// (bodies_ index) whose shape was being paired; the tick's shape contacts were not solved.
+  /// (bodies_ index) with the widest box; the tick's shape contacts were not solved.
   const char* cap = nullptr;
   std::uint64_t limit = 0;
   std::uint32_t cap_body = 0;
@@ -271,14 +272,26 @@ class ShapeWorld {
   /// Awake and dynamic, or kinematic and moving (turning or not): what wakes a sleeper.
   [[nodiscard]] bool moving(std::uint32_t body) const;
   std::vector<Aabb> boxes_;
-  std::vector<std::uint32_t> order_;  ///< shapes_ by their boxes' lower x (sort_boxes)
-  std::vector<Aabb> sorted_;          ///< boxes_ in that order
-  void sort_boxes();
+  std::vector<SweptBox> grid_boxes_;   ///< boxes_ as the grid takes them
+  std::vector<std::uint8_t> dynamic_;  ///< per shape: its body is dynamic
+  std::vector<DiscPair> pairs_;        ///< the grid's pairs, (a, b) order
+  DiscBroadphase grid_;
+  /// What the broadphase's filter reads of a shape and its body this tick.
+  struct PairTag {
+    static constexpr std::uint32_t sensor = 1, disc = 2, awake = 4, asleep = 8, moving = 16;
+    CollisionFilter filter;
+    std::uint32_t owner = 0;
+    std::uint32_t flags = 0;
+  };
+  std::vector<PairTag> tags_;
+  /// Whether shape `mover`'s body wakes shape `sleeper`'s (asleep, the other moving).
+  static bool wakes(const PairTag& mover, const PairTag& sleeper) {
+    return (sleeper.flags & PairTag::asleep) != 0 && (mover.flags & PairTag::moving) != 0;
+  }
+  static bool never_pair(const void* context, std::uint32_t a, std::uint32_t b);
+  [[nodiscard]] std::uint32_t largest_box() const;
   std::vector<Candidate> candidates_;
-  std::vector<UnitPlane> unit_planes_;  ///< this tick's planes, their normals made unit
-  std::vector<Candidate> by_a_;         ///< sort_candidates' scratch
-  std::vector<std::uint32_t> first_;    ///< sort_candidates' scratch: each run's start
-  void sort_candidates();
+  std::vector<UnitPlane> unit_planes_;        ///< this tick's planes, their normals made unit
   std::vector<Candidate> sensor_candidates_;  ///< a: the sensor shape
   std::vector<Sensed> sensed_;
   std::vector<ShapeRow> rows_;
@@ -308,18 +321,7 @@ class ShapeWorld {
   void continuous(const ShapeTick& tick, ShapeTally& tally);
   double first_static_touch(std::uint32_t body, const ShapeTick& tick);
   [[nodiscard]] bool has_row(std::uint64_t pair) const;
-  /// The broadphase (shape_broadphase.cpp): the candidates, sensor candidates and sleepers to
-  /// wake of a stretch of the sorted boxes, and the box tests made.
-  struct Found {
-    std::vector<Candidate> candidates, sensors;
-    std::vector<std::uint32_t> wake;
-    std::uint64_t tests = 0;
-    void clear() { candidates.clear(), sensors.clear(), wake.clear(), tests = 0; }
-  };
-  std::array<Found, 2> found_;
-  bool sweep_boxes(std::size_t begin, std::size_t end, Found& out, std::uint64_t most_tests,
-                   std::uint64_t most_pairs, ShapeTally& tally) const;
-  /// Pairs the shapes (false: a work limit reached, named in `tally`); by halves of the sorted
+  /// Pairs the shapes (false: a work limit reached, named in `tally`); by halves of the
   /// boxes on `thread` when given (the same candidates, in the same order).
   bool broadphase(double dt, ShapeTally& tally, SecondThread* thread);
   /// The manifolds of the candidates, the planes and the segments into rows_; the

@@ -352,8 +352,9 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   if (tally.cap && !fault_) {  // cold: a work limit stopped the tick's shape contacts
     const std::uint32_t j = w.bodies_[tally.cap_body].body;
     record_cap_fault(j, tally.cap, tally.limit,
-                     fmt::format("{} shapes (the broadphase pairs their boxes at the tick's "
-                                 "start, grown by each body's motion over the tick)",
+                     fmt::format("{} shapes (the widest box is this body's; the broadphase "
+                                 "pairs their boxes at the tick's start, grown by each body's "
+                                 "motion over the tick)",
                                  w.shapes_.size()));
   }
   contact_stats_.shape_points = tally.points;
