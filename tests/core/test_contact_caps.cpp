@@ -342,6 +342,31 @@ TEST(ContactCaps, FilteredDiscsAtOnePointPassThroughEachOther) {
   }
 }
 
+// The pairs a filter drops are bounded too (max_vetoed_pairs, 1.6·10^7 here): 6000 discs at one
+// point kept apart drop 1.8·10^7, a located fault, on one thread and on two alike (the limit is
+// on both halves' drops together: each half's alone stays under it).
+TEST(ContactCaps, AFilteredCrowdPastTheVetoLimitFaultsAlikeOnOneThreadAndTwo) {
+  auto crowd = [](int threads) {
+    WorldSettings settings = elastic(0.01);
+    settings.threads = threads;
+    detail::WorldKernel<double> w(settings);
+    for (int i = 0; i < 6000; ++i) {
+      BodyDef b = moving_disc({0.0, 0.0}, {std::cos(0.001 * i), std::sin(0.001 * i)}, 0.1);
+      b.collider->filter.group = -1;  // never with each other
+      (void)w.create_body(b);
+    }
+    w.step();
+    return w.fault();
+  };
+  const auto one = crowd(1), two = crowd(2);
+  ASSERT_TRUE(one.has_value());
+  EXPECT_EQ(one->cap, "max_candidate_pairs");
+  ASSERT_TRUE(two.has_value());
+  EXPECT_EQ(two->cap, one->cap);
+  EXPECT_EQ(two->tick, one->tick);
+  EXPECT_EQ(two->body, one->body);
+}
+
 // A 20 × 20 formation moving together at 500 m/s (8.3 m a tick, its boxes overlapping along
 // its rows) flies on in formation.
 TEST(ContactCaps, AFormationMovingTogetherFliesOn) {

@@ -5,8 +5,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/limits.hpp"
+#include "fixstep/core/stability.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
@@ -102,6 +105,33 @@ TEST(ShapeThreads, ACapMetByHalvesIsTheFaultOneThreadNames) {
   EXPECT_EQ(two->body, one->body);
   EXPECT_EQ(two->value, one->value);
   EXPECT_EQ(two->with, one->with);
+}
+
+TEST(ShapeThreads, AFilteredCrowdPastTheVetoLimitFaultsAlike) {
+  // 6000 boxes at one point that a filter keeps apart: the broadphase drops their 1.8·10^7
+  // pairs, past max_vetoed_pairs (1.6·10^7), on one thread and on two alike.
+  auto crowd = [](int threads) {
+    WorldSettings settings = shape_exact::shape_settings(0.5);
+    settings.threads = threads;
+    World w(WorldDef::empty(Precision::f64, settings));
+    for (int i = 0; i < 6000; ++i) {
+      BodyDef b = box_body(0.5, 0.5, {0.0, 0.0});
+      b.shapes[0].filter.group = -1;  // never with each other
+      w.create_body(b);
+    }
+    w.step();
+    return w.fault();
+  };
+  const auto one = crowd(1), two = crowd(2);
+  ASSERT_TRUE(one.has_value());
+  EXPECT_EQ(one->cap, "max_vetoed_pairs");
+  EXPECT_EQ(one->value, double(max_vetoed_pairs(6000)));
+  ASSERT_TRUE(two.has_value());
+  EXPECT_EQ(two->cap, one->cap);
+  EXPECT_EQ(two->body, one->body);
+  const std::string m = explain_fault({}, {}, shape_exact::shape_settings(0.5), *one);
+  EXPECT_NE(m.find("dropped more pairs that can never touch"), std::string::npos) << m;
+  EXPECT_NE(m.find("6000 shapes"), std::string::npos) << m;
 }
 
 }  // namespace

@@ -182,11 +182,19 @@ std::string explain_cap(const WorldSettings& settings, const StateFault& f, std:
                   body_label(f.body, defined), f.name, f.tick, f.time, f.cap, f.value);
   if (f.cap == "max_candidate_pairs") {
     return fmt::format(
-        "{}: the broadphase found more candidate pairs among {}, so the tick's disc contacts "
-        "were not resolved. Likely cause: discs overlapping one another in a crowd, or discs "
-        "moving many radii per tick through a crowd of discs (the tick's windows did not part "
-        "them): fewer or smaller discs, a smaller dt (now {:g} s), slower discs",
+        "{}: the broadphase found more candidate pairs among {}, so the tick's contacts were "
+        "not resolved. Likely cause: bodies overlapping one another in a crowd, or discs moving "
+        "many radii per tick through a crowd of discs (the tick's windows did not part them): "
+        "fewer or smaller bodies, a smaller dt (now {:g} s), slower bodies",
         head, f.with, settings.dt);
+  }
+  if (f.cap == "max_vetoed_pairs") {
+    return fmt::format(
+        "{}: the broadphase dropped more pairs that can never touch (a collision filter's, a "
+        "joint's, two shapes of one body, two sleepers) among {}, so the tick's contacts were "
+        "not resolved. Likely cause: a crowd of bodies kept apart at one place: fewer of them, "
+        "or spread out",
+        head, f.with);
   }
   return fmt::format(
       "{}: its impact with {} was not resolved. Likely cause: fast bodies driven into one "
