@@ -1,7 +1,8 @@
 // Shape contacts, part 1b: the broadphase (shape_world.hpp has the whole tick): the shapes'
 // boxes at the tick's start, grown by each body's speculative margin, paired by the
 // hierarchical grid the discs use (disc_broadphase.hpp: O(n + pairs), where a sweep and prune
-// on x scans every box of a column of boxes), in (a, b) order.
+// on x scans every box of a column of boxes), in (a, b) order; a hundred or so by a sort and
+// sweep on x, whose work (n²/2 box tests at most) is then below the grid's fixed costs.
 #include <algorithm>
 #include <cmath>
 
@@ -49,11 +50,15 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) 
                     (awake(body) ? PairTag::awake : none) | (body.asleep ? PairTag::asleep : none) |
                     (moving(e.owner) ? PairTag::moving : none)};
   }
-  const DiscBroadphase::PairVeto veto{&ShapeWorld::never_pair, this, max_vetoed_pairs(n)};
-  grid_.set_veto(&veto);
-  const bool found =
-      grid_.find_pairs(grid_boxes_, dynamic_, most_pairs, pairs_, thread ? 2 : 1, thread);
-  grid_.set_veto(nullptr);
+  bool found = true;
+  if (n < min_grid_shapes) {
+    sweep_few();
+  } else {
+    const DiscBroadphase::PairVeto veto{&ShapeWorld::never_pair, this, max_vetoed_pairs(n)};
+    grid_.set_veto(&veto);
+    found = grid_.find_pairs(grid_boxes_, dynamic_, most_pairs, pairs_, thread ? 2 : 1, thread);
+    grid_.set_veto(nullptr);
+  }
   candidates_.clear(), sensor_candidates_.clear(), wake_.clear();
   if (!found) {
     tally.cap = grid_.stopped_by_veto() ? "max_vetoed_pairs" : "max_candidate_pairs";
@@ -74,6 +79,45 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) 
     candidates_.push_back({p.a, p.b});
   }
   return true;
+}
+
+// A few shapes: sorted by their boxes' lower x (from last tick's order, by insertion: a pass
+// when nothing passed anything; ties by index, so any sort gives this order) and swept, the
+// pairs then put in (a, b) order: the grid's pairs in the grid's order. Below min_grid_shapes
+// neither limit can be reached (n(n - 1)/2 pairs at most).
+void ShapeWorld::sweep_few() {
+  const auto n = static_cast<std::uint32_t>(shapes_.size());
+  const SweptBox* const box = grid_boxes_.data();
+  auto before = [&](std::uint32_t l, std::uint32_t r) {
+    return box[l].min_x != box[r].min_x ? box[l].min_x < box[r].min_x : l < r;
+  };
+  // A box with a NaN bound on x overlaps nothing, and would not sort.
+  auto sortable = [&](std::uint32_t k) { return !std::isnan(box[k].min_x + box[k].max_x); };
+  bool same = order_.size() == n;
+  for (std::uint32_t k = 0; same && k < n; ++k) same = sortable(k);
+  if (!same) {
+    order_.clear();
+    for (std::uint32_t k = 0; k < n; ++k) {
+      if (sortable(k)) order_.push_back(k);
+    }
+  }
+  for (std::size_t i = 1; i < order_.size(); ++i) {
+    const std::uint32_t k = order_[i];
+    std::size_t j = i;
+    for (; j > 0 && before(k, order_[j - 1]); --j) order_[j] = order_[j - 1];
+    order_[j] = k;
+  }
+  swept_.clear();
+  for (std::size_t i = 0; i < order_.size(); ++i) {
+    const std::uint32_t a = order_[i];
+    for (std::size_t j = i + 1; j < order_.size() && box[order_[j]].min_x <= box[a].max_x; ++j) {
+      const std::uint32_t b = order_[j];
+      if (!boxes_overlap(box[a], box[b]) || (dynamic_[a] == 0 && dynamic_[b] == 0)) continue;
+      const DiscPair p{std::min(a, b), std::max(a, b)};
+      if (!never_pair(this, p.a, p.b)) swept_.push_back(p);
+    }
+  }
+  order_pairs(swept_, {}, n, first_, pairs_);
 }
 
 // The shape with the widest box (the first of equals; a NaN box first): the one a fault names.
