@@ -35,13 +35,12 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) 
   const std::uint64_t most_pairs = max_candidate_pairs(n);
   margin_.resize(bodies_.size());
   for (std::uint32_t i = 0; i < bodies_.size(); ++i) margin_[i] = margin(i, dt);
-  boxes_.resize(n), grid_boxes_.resize(n), dynamic_.resize(n), tags_.resize(n);
+  boxes_.resize(n), dynamic_.resize(n), tags_.resize(n);
   for (std::uint32_t k = 0; k < n; ++k) {
     const ShapeEntry& e = shapes_[k];
     const ShapedBody& body = bodies_[e.owner];
     const Aabb b = convex_aabb(e.convex, start_pose(e.owner), margin_[e.owner]);
-    boxes_[k] = b;
-    grid_boxes_[k] = SweptBox{b.lower.x, b.lower.y, b.upper.x, b.upper.y};
+    boxes_[k] = SweptBox{b.lower.x, b.lower.y, b.upper.x, b.upper.y};
     dynamic_[k] = body.type == BodyType::dynamic ? 1 : 0;  // two others never pair
     const std::uint32_t none = 0;
     tags_[k] =
@@ -56,7 +55,7 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) 
   } else {
     const DiscBroadphase::PairVeto veto{&ShapeWorld::never_pair, this, max_vetoed_pairs(n)};
     grid_.set_veto(&veto);
-    found = grid_.find_pairs(grid_boxes_, dynamic_, most_pairs, pairs_, thread ? 2 : 1, thread);
+    found = grid_.find_pairs(boxes_, dynamic_, most_pairs, pairs_, thread ? 2 : 1, thread);
     grid_.set_veto(nullptr);
   }
   candidates_.clear(), sensor_candidates_.clear(), wake_.clear();
@@ -87,7 +86,7 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) 
 // neither limit can be reached (n(n - 1)/2 pairs at most).
 void ShapeWorld::sweep_few() {
   const auto n = static_cast<std::uint32_t>(shapes_.size());
-  const SweptBox* const box = grid_boxes_.data();
+  const SweptBox* const box = boxes_.data();
   auto before = [&](std::uint32_t l, std::uint32_t r) {
     return box[l].min_x != box[r].min_x ? box[l].min_x < box[r].min_x : l < r;
   };
@@ -124,8 +123,8 @@ void ShapeWorld::sweep_few() {
 std::uint32_t ShapeWorld::largest_box() const {
   std::uint32_t best = 0;
   double widest = -1.0;
-  for (std::uint32_t k = 0; k < grid_boxes_.size(); ++k) {
-    const SweptBox& b = grid_boxes_[k];
+  for (std::uint32_t k = 0; k < boxes_.size(); ++k) {
+    const SweptBox& b = boxes_[k];
     const double w = std::max(b.max_x - b.min_x, b.max_y - b.min_y);
     if (std::isnan(w)) return k;
     if (w > widest) widest = w, best = k;

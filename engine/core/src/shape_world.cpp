@@ -29,6 +29,11 @@ bool clear_of(const Aabb& box, const ShapeWorld::UnitPlane& u) {
   return gap > guard;
 }
 
+/// A shape's box as the broadphase keeps it (ShapeWorld::boxes_), as an Aabb.
+Aabb aabb_of(const SweptBox& b) {
+  return {{b.min_x, b.min_y}, {b.max_x, b.max_y}};
+}
+
 Aabb segment_bounds(const SegmentDef& s) {
   return {{std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)},
           {std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)}};
@@ -269,7 +274,7 @@ void ShapeWorld::collect(const ShapeTick& tick, SecondThread* thread) {
     for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
       const PlaneDef& pl = tick.planes[p];
       const UnitPlane& u = unit_planes_[p];
-      if (clear_of(boxes_[k], u)) continue;
+      if (clear_of(aabb_of(boxes_[k]), u)) continue;
       const Manifold m = collide_plane(u.n, u.offset, e.convex, at, margin);
       if (m.count == 0) continue;
       const std::uint64_t pair = std::uint64_t{0xF0000000u | p} << 32 | e.key;
@@ -283,7 +288,7 @@ void ShapeWorld::collect(const ShapeTick& tick, SecondThread* thread) {
     }
     for (std::uint32_t s = 0; s < tick.segments.size(); ++s) {
       const SegmentDef& seg = tick.segments[s];
-      if (!boxes_overlap(boxes_[k], segment_bounds(seg))) continue;
+      if (!boxes_overlap(aabb_of(boxes_[k]), segment_bounds(seg))) continue;
       const Manifold m = collide_segment(seg, e.convex, at, margin);
       if (m.count == 0) continue;
       const std::uint64_t pair = std::uint64_t{0xE0000000u | s} << 32 | e.key;

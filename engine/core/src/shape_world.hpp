@@ -271,8 +271,8 @@ class ShapeWorld {
   }
   /// Awake and dynamic, or kinematic and moving (turning or not): what wakes a sleeper.
   [[nodiscard]] bool moving(std::uint32_t body) const;
-  std::vector<Aabb> boxes_;
-  std::vector<SweptBox> grid_boxes_;   ///< boxes_ as the grid takes them
+  /// Each shape's box at the tick's start, grown by its body's speculative margin (m).
+  std::vector<SweptBox> boxes_;
   std::vector<std::uint8_t> dynamic_;  ///< per shape: its body is dynamic
   std::vector<DiscPair> pairs_;        ///< the grid's pairs, (a, b) order
   DiscBroadphase grid_;
