@@ -1159,6 +1159,14 @@ rows = 60
 origin = [0.0, 0.0]
 spacing = [1e-9, 1e-9]
 body = { mass = 1.0, shape = { box = [0.5, 0.5], group = -1 } }" run scene.toml --steps 2
+case_ "6000 discs at one point that a collision filter keeps apart (past max_vetoed_pairs, a located fault)" "$ok_world
+[contacts]
+[[grid]]
+columns = 100
+rows = 60
+origin = [0.0, 0.0]
+spacing = [1e-9, 1e-9]
+body = { mass = 1.0, radius = 0.1, group = -1 }" run scene.toml --steps 2
 case_ "a disc between planes 1 cm apart at 1e8 m/s (past max_tick_predictions: a located fault)" "$ok_world
 [[body]]
 name = \"puck\"

@@ -217,7 +217,8 @@ class DiscContacts {
   /// A cap of limits.hpp that the last resolve() reached, or null: the work it stopped is
   /// named in World::fault().
   struct CapHit {
-    const char* cap = nullptr;   ///< "max_candidate_pairs" or "max_tick_predictions"
+    const char* cap = nullptr;   ///< "max_candidate_pairs", "max_vetoed_pairs" or
+                                 ///< "max_tick_predictions"
     std::uint64_t limit = 0;     ///< the cap's value for this world
     std::uint32_t disc = 0;      ///< the impact's first disc, or the largest swept box's
     std::uint32_t other = npos;  ///< the impact's other disc (npos: none)

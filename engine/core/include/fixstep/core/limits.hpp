@@ -54,7 +54,8 @@ inline constexpr std::uint64_t max_implicit_bodies = 25'000;
 /// `discs` discs because they can never touch (linked discs, collision filters that keep them
 /// apart): 16 max_candidate_pairs(discs), a bound on its work only (dropped pairs take no
 /// memory and do not count against max_candidate_pairs). 2000 discs a filter keeps apart at one
-/// point drop 2·10^6. Past it World::step records a StateFault naming max_candidate_pairs.
+/// point drop 2·10^6. Past it World::step records a StateFault naming this cap, the tick
+/// and the disc with the largest swept box, and ContactStats::capped counts it.
 [[nodiscard]] inline std::uint64_t max_vetoed_pairs(std::uint64_t discs) {
   return 16 * max_candidate_pairs(discs);
 }
