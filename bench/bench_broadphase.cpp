@@ -1,5 +1,5 @@
 // The disc broadphase: the engine's hierarchical grid
-// (engine/core/src/disc_broadphase.hpp) on one and two threads against sweep-and-prune on x
+// (engine/core/src/grid_broadphase.hpp) on one and two threads against sweep-and-prune on x
 // (written here: sorted by (min_x, index) with std::sort every call, or kept in last call's
 // order and re-sorted by insertion sort, nearly sorted tick to tick), all giving the same
 // (a, b)-ordered pairs (checked before anything is timed), on two scenes:
@@ -24,10 +24,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "disc_broadphase.hpp"
+#include "grid_broadphase.hpp"
 
-using fixstep::detail::DiscBroadphase;
 using fixstep::detail::DiscPair;
+using fixstep::detail::GridBroadphase;
 using fixstep::detail::SweptBox;
 
 namespace {
@@ -189,7 +189,7 @@ void bm(benchmark::State& state, bool gas, Method method) {
   const Scene& s = scene(gas, static_cast<std::size_t>(state.range(0)));
   const std::size_t cap = 64 * s.active.size();
   if (method == Method::grid1 || method == Method::grid2) {
-    DiscBroadphase bp;
+    GridBroadphase bp;
     if (state.range(1) != 0) bp.set_parallel_min(0);  // split whatever n (to measure it)
     const int threads = method == Method::grid2 ? 2 : 1;
     run(state, s, [&](const std::vector<SweptBox>& b, std::vector<DiscPair>& p) {
@@ -208,7 +208,7 @@ void verify() {
   for (bool gas : {false, true}) {
     for (std::size_t n : {1000, 10000, 100000}) {
       const Scene& s = scene(gas, n);
-      DiscBroadphase bp;
+      GridBroadphase bp;
       SweepAndPrune sort(false), keep(true);
       for (const auto& boxes : s.frames) {
         std::vector<DiscPair> want, got;

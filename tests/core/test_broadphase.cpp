@@ -1,4 +1,4 @@
-// The disc broadphase (engine/core/src/disc_broadphase.hpp): its pairs
+// The disc broadphase (engine/core/src/grid_broadphase.hpp): its pairs
 // against a brute-force O(n^2) reference on random sets, one and two threads, fresh, reused and
 // copied objects, its query() against every box, the max_pairs cap on a million discs at one point,
 // no allocation once warm (its second thread: test_second_thread.cpp).
@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "disc_broadphase.hpp"
+#include "grid_broadphase.hpp"
 
 // count_new.cpp: this program's operator new, counting the bytes asked for while counting.
 extern std::atomic<bool> counting;
@@ -60,7 +60,7 @@ BoxSet random_set(std::size_t n, double r_min, double r_max, double side, double
   return s;
 }
 
-std::vector<DiscPair> find(DiscBroadphase& bp, const BoxSet& s, int threads,
+std::vector<DiscPair> find(GridBroadphase& bp, const BoxSet& s, int threads,
                            std::size_t max_pairs = 1u << 30) {
   std::vector<DiscPair> pairs;
   EXPECT_TRUE(bp.find_pairs(s.boxes, s.active, max_pairs, pairs, threads));
@@ -70,19 +70,19 @@ std::vector<DiscPair> find(DiscBroadphase& bp, const BoxSet& s, int threads,
 /// Checks the broadphase against the reference with one and two threads.
 void expect_reference(const BoxSet& s) {
   const std::vector<DiscPair> want = brute_force(s);
-  DiscBroadphase bp;
+  GridBroadphase bp;
   EXPECT_EQ(find(bp, s, 1), want);
   EXPECT_EQ(find(bp, s, 2), want);
 }
 
-TEST(DiscBroadphase, MatchesBruteForceOnUniformSizes) {
+TEST(GridBroadphase, MatchesBruteForceOnUniformSizes) {
   for (unsigned seed = 1; seed <= 3; ++seed) {  // a pile-like density, then a sparse gas
     expect_reference(random_set(3000, 0.05, 0.1, 8.0, 0.0, 0.0, 0.02, 0.9, seed));
     expect_reference(random_set(3000, 0.05, 0.05, 30.0, 0.0, 0.0, 0.2, 1.0, seed));
   }
 }
 
-TEST(DiscBroadphase, MatchesBruteForceOnMixedSizes1To100) {
+TEST(GridBroadphase, MatchesBruteForceOnMixedSizes1To100) {
   for (unsigned seed = 1; seed <= 3; ++seed) {
     expect_reference(random_set(3000, 0.01, 1.0, 20.0, 0.0, 0.0, 0.05, 0.8, seed));
   }
@@ -92,7 +92,7 @@ TEST(DiscBroadphase, MatchesBruteForceOnMixedSizes1To100) {
   expect_reference(s);
 }
 
-TEST(DiscBroadphase, MatchesBruteForceAtNegativeAndLargeCoordinates) {
+TEST(GridBroadphase, MatchesBruteForceAtNegativeAndLargeCoordinates) {
   expect_reference(random_set(3000, 0.05, 0.1, 8.0, -4.0, -4.0, 0.02, 0.9, 5));  // across 0
   expect_reference(random_set(3000, 0.05, 0.1, 8.0, -1e4, -3e4, 0.02, 0.9, 6));
   expect_reference(random_set(3000, 0.05, 0.1, 8.0, 1e9, -1e9, 0.02, 0.9, 7));
@@ -118,7 +118,7 @@ BoxSet rows_of_boxes(int rows) {
   return s;
 }
 
-TEST(DiscBroadphase, MatchesBruteForceWhereRowsShareBuckets) {
+TEST(GridBroadphase, MatchesBruteForceWhereRowsShareBuckets) {
   expect_reference(rows_of_boxes(1));
   expect_reference(rows_of_boxes(2));
   expect_reference(rows_of_boxes(5));
@@ -126,7 +126,7 @@ TEST(DiscBroadphase, MatchesBruteForceWhereRowsShareBuckets) {
 
 /// Checks query() against every box that overlaps q, each once, after a find_pairs of s.
 void expect_query_reference(const BoxSet& s, const std::vector<SweptBox>& queries) {
-  DiscBroadphase bp;
+  GridBroadphase bp;
   find(bp, s, 1);
   for (const SweptBox& q : queries) {
     std::vector<std::uint32_t> got, want;
@@ -143,7 +143,7 @@ void expect_query_reference(const BoxSet& s, const std::vector<SweptBox>& querie
   }
 }
 
-TEST(DiscBroadphase, AQueryFindsEveryBoxThatOverlapsItOnce) {
+TEST(GridBroadphase, AQueryFindsEveryBoxThatOverlapsItOnce) {
   std::vector<SweptBox> queries;
   std::mt19937_64 rng(18);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -163,7 +163,7 @@ TEST(DiscBroadphase, AQueryFindsEveryBoxThatOverlapsItOnce) {
   expect_query_reference(rows_of_boxes(2), queries);
 }
 
-TEST(DiscBroadphase, BoxesThatTouchExactlyArePaired) {
+TEST(GridBroadphase, BoxesThatTouchExactlyArePaired) {
   // Unit boxes on an integer lattice (x, y in -5..4) share edges and corners, on cell borders
   // of every level: each pairs with its 8 neighbours.
   BoxSet s;
@@ -176,7 +176,7 @@ TEST(DiscBroadphase, BoxesThatTouchExactlyArePaired) {
   }
   const std::vector<DiscPair> want = brute_force(s);
   EXPECT_EQ(want.size(), static_cast<std::size_t>(2 * k * (k - 1) + 2 * (k - 1) * (k - 1)));
-  DiscBroadphase bp;
+  GridBroadphase bp;
   EXPECT_EQ(find(bp, s, 1), want);
   // Unit boxes that touch at x = 1.25 j, the cell borders of level 0 (side 1.25 e_min).
   BoxSet t;
@@ -190,9 +190,9 @@ TEST(DiscBroadphase, BoxesThatTouchExactlyArePaired) {
   EXPECT_EQ(find(bp, t, 1), touching);
 }
 
-TEST(DiscBroadphase, StaticDiscsAreNotPairedWithEachOther) {
+TEST(GridBroadphase, StaticDiscsAreNotPairedWithEachOther) {
   BoxSet s = random_set(3000, 0.05, 0.1, 8.0, 0.0, 0.0, 0.02, 0.0, 8);  // all static
-  DiscBroadphase bp;
+  GridBroadphase bp;
   EXPECT_TRUE(find(bp, s, 1).empty());
   for (std::size_t i = 0; i < s.active.size(); i += 7) s.active[i] = 1;  // a few dynamic
   const std::vector<DiscPair> pairs = find(bp, s, 1);
@@ -200,7 +200,7 @@ TEST(DiscBroadphase, StaticDiscsAreNotPairedWithEachOther) {
   EXPECT_EQ(pairs, brute_force(s));
 }
 
-TEST(DiscBroadphase, NonFiniteAndHugeBoxesTakeTheOverflowPath) {
+TEST(GridBroadphase, NonFiniteAndHugeBoxesTakeTheOverflowPath) {
   BoxSet s = random_set(2000, 0.05, 0.1, 8.0, 0.0, 0.0, 0.02, 0.9, 9);
   const double inf = std::numeric_limits<double>::infinity();
   s.boxes[10] = {-inf, -inf, inf, inf};  // a blown-up disc: overlaps everything
@@ -219,34 +219,34 @@ TEST(DiscBroadphase, NonFiniteAndHugeBoxesTakeTheOverflowPath) {
   EXPECT_EQ(brute_force(all).size(), 2u);  // (0, 1), (0, 2)
 }
 
-TEST(DiscBroadphase, TwoThreadsGiveTheSameBitsAsOne) {
+TEST(GridBroadphase, TwoThreadsGiveTheSameBitsAsOne) {
   const BoxSet s = random_set(60000, 0.05, 0.1, 40.0, 0.0, 0.0, 0.02, 0.95, 10);
-  DiscBroadphase bp;
+  GridBroadphase bp;
   const std::vector<DiscPair> one = find(bp, s, 1);
   EXPECT_GT(one.size(), s.boxes.size() / 2);
   EXPECT_EQ(find(bp, s, 2), one);
-  DiscBroadphase other;
+  GridBroadphase other;
   EXPECT_EQ(find(other, s, 2), one);
 }
 
-TEST(DiscBroadphase, AReusedOrCopiedObjectGivesWhatAFreshOneGives) {
+TEST(GridBroadphase, AReusedOrCopiedObjectGivesWhatAFreshOneGives) {
   BoxSet first = random_set(20000, 0.001, 0.5, 30.0, -3.0, 0.0, 0.1, 0.5, 11);
   first.boxes[7] = {0.0, 0.0, std::numeric_limits<double>::infinity(), 1.0};  // overflow
   const BoxSet second = random_set(5000, 0.05, 0.1, 8.0, 2.0, 1.0, 0.02, 0.9, 12);
-  DiscBroadphase used;
+  GridBroadphase used;
   find(used, first, 2);
-  const DiscBroadphase copy = used;  // a snapshot of a world holding it
-  DiscBroadphase fresh, copied = copy;
+  const GridBroadphase copy = used;  // a snapshot of a world holding it
+  GridBroadphase fresh, copied = copy;
   const std::vector<DiscPair> want = find(fresh, second, 1);
   EXPECT_EQ(find(used, second, 1), want);
   EXPECT_EQ(find(copied, second, 2), want);
   EXPECT_EQ(want, brute_force(second));
 }
 
-TEST(DiscBroadphase, TheCapIsHonoured) {
+TEST(GridBroadphase, TheCapIsHonoured) {
   BoxSet s;  // 1000 discs at one point: 499500 pairs
   for (int i = 0; i < 1000; ++i) s.boxes.push_back({1.0, 1.0, 1.2, 1.2}), s.active.push_back(1);
-  DiscBroadphase bp;
+  GridBroadphase bp;
   std::vector<DiscPair> pairs;
   for (int threads : {1, 2}) {
     EXPECT_FALSE(bp.find_pairs(s.boxes, s.active, 100, pairs, threads));
@@ -256,11 +256,11 @@ TEST(DiscBroadphase, TheCapIsHonoured) {
   }
 }
 
-TEST(DiscBroadphase, AMillionDiscsAtOnePointStopAtTheCap) {
+TEST(GridBroadphase, AMillionDiscsAtOnePointStopAtTheCap) {
   BoxSet s;  // 5e11 pairs: returns false after about max_pairs of them
   s.boxes.assign(1000000, SweptBox{-0.1, -0.1, 0.1, 0.1});
   s.active.assign(s.boxes.size(), 1);
-  DiscBroadphase bp;
+  GridBroadphase bp;
   std::vector<DiscPair> pairs;
   EXPECT_FALSE(bp.find_pairs(s.boxes, s.active, 4000000, pairs, 1));
   EXPECT_FALSE(bp.find_pairs(s.boxes, s.active, 4000000, pairs, 2));
@@ -272,7 +272,7 @@ TEST(DiscBroadphase, AMillionDiscsAtOnePointStopAtTheCap) {
   EXPECT_EQ(pairs.size(), s.boxes.size() - 1);
 }
 
-TEST(DiscBroadphase, AllocatesNothingOnceWarm) {
+TEST(GridBroadphase, AllocatesNothingOnceWarm) {
   // n >= min_parallel_boxes, so that threads = 2 splits the work.
   const BoxSet big = random_set(40000, 0.05, 0.1, 25.0, 0.0, 0.0, 0.02, 0.9, 13);
   BoxSet moved = big;  // the same discs a tick later, off the cells' borders of before
@@ -281,13 +281,13 @@ TEST(DiscBroadphase, AllocatesNothingOnceWarm) {
   }
   const BoxSet small = random_set(5000, 0.05, 0.1, 10.0, 0.0, 0.0, 0.02, 0.9, 15);
   const BoxSet sparse = random_set(40000, 0.05, 0.1, 2000.0, 0.0, 0.0, 0.02, 0.9, 17);
-  ASSERT_GE(big.boxes.size(), DiscBroadphase::min_parallel_boxes);
-  DiscBroadphase bp;
+  ASSERT_GE(big.boxes.size(), GridBroadphase::min_parallel_boxes);
+  GridBroadphase bp;
   std::vector<DiscPair> pairs;
   ASSERT_TRUE(bp.find_pairs(sparse.boxes, sparse.active, 1u << 30, pairs, 2));  // the worker
   ASSERT_TRUE(bp.find_pairs(big.boxes, big.active, 1u << 30, pairs, 1));        // the pairs
   const std::size_t warm_pairs = pairs.size();
-  DiscBroadphase other;
+  GridBroadphase other;
   ASSERT_LE(find(other, moved, 1).size(), warm_pairs);  // "the same or a smaller pair count"
   bool ok = true;
   counted_bytes = 0;

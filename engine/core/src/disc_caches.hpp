@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "disc_broadphase.hpp"
+#include "grid_broadphase.hpp"
 #include "query_grid.hpp"
 
 namespace fixstep::detail {

@@ -63,12 +63,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "disc_broadphase.hpp"
 #include "disc_caches.hpp"
 #include "disc_paths.hpp"
 #include "disc_records.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "grid_broadphase.hpp"
 #include "grown_grid.hpp"
 #include "scratch_vector.hpp"
 #include "world_kernel.hpp"
@@ -640,7 +640,7 @@ class DiscContacts {
   // Energy per unit mass (J/kg: ½|v|² - a·x, a the constant acceleration) at the tick's start
   // and after the free step, and the dissipated account at the start.
   ScratchVector<double> lost_, external_, e_start_, e_begin_, d_begin_;
-  DiscBroadphase broadphase_;
+  GridBroadphase broadphase_;
   std::vector<std::uint32_t> segments_near_;  ///< gather_segment_contacts()'s scratch
   // Sleeping discs (set_asleep(); disc_live.cpp). A tick with sleepers and few discs awake
   // visits the live discs only (live_only()): live_ in index order, flagged in in_live_ (both

@@ -376,7 +376,7 @@ bool DiscContacts<Real>::pairs_of_boxes(std::span<const SweptBox> boxes,
     return !self.linked_.empty() &&
            std::binary_search(self.linked_.begin(), self.linked_.end(), key);
   };
-  const DiscBroadphase::PairVeto veto{reject, this, max_vetoed_pairs(discs_.size())};
+  const GridBroadphase::PairVeto veto{reject, this, max_vetoed_pairs(discs_.size())};
   broadphase_.set_veto(&veto);
   const bool ok = broadphase_.find_pairs(boxes, dynamic, cap, out, threads);
   broadphase_.set_veto(nullptr);

@@ -1,6 +1,6 @@
 // Disc contacts, phase 1: a tick's candidate pairs recycled from fat boxes. Box2D keeps each
 // shape's box enlarged by a margin (b2_aabbMargin) in its tree, and its pairs while the shape's
-// box stays inside; fixstep's broadphase is rebuilt every tick instead (disc_broadphase.hpp),
+// box stays inside; fixstep's broadphase is rebuilt every tick instead (grid_broadphase.hpp),
 // about a sixth of a settled pile's tick. So the broadphase runs on each disc's box widened by
 // FatBoxes::margin of its radius, and while every disc's box over the tick stays inside its fat
 // box, the tick's pairs are the fat pairs whose boxes overlap: two boxes that overlap lie in fat

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "disc_broadphase.hpp"
 #include "disc_records.hpp"
+#include "grid_broadphase.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep::detail {

@@ -2,7 +2,7 @@
 // it by (see disc_contacts.hpp) meets what lies on its new path. Its box grows to the bounding
 // box of the rest of its motion too, and the discs whose boxes meet what it grew by (up to four
 // bands) and that it was not paired with become new pairs of the tick, predicted from the impact
-// on: the boxes as the broadphase stored them (DiscBroadphase::query), and the bands grown
+// on: the boxes as the broadphase stored them (GridBroadphase::query), and the bands grown
 // earlier in the tick, which the broadphase never saw (a grid of them, where its bands are
 // stored). A disc's box is then always its broadphase box and its bands, every pair of discs
 // whose boxes overlap is paired, and two discs whose boxes do not overlap cannot touch (each box

@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "disc_broadphase.hpp"
+#include "grid_broadphase.hpp"
 
 namespace fixstep::detail {
 

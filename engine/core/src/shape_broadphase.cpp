@@ -1,6 +1,6 @@
 // Shape contacts, part 1b: the broadphase (shape_world.hpp has the whole tick): the shapes'
 // boxes at the tick's start, grown by each body's speculative margin, paired by the
-// hierarchical grid the discs use (disc_broadphase.hpp: O(n + pairs), where a sweep and prune
+// hierarchical grid the discs use (grid_broadphase.hpp: O(n + pairs), where a sweep and prune
 // on x scans every box of a column of boxes), in (a, b) order; a hundred or so by a sort and
 // sweep on x, whose work (n²/2 box tests at most) is then below the grid's fixed costs.
 #include <algorithm>
@@ -53,7 +53,7 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) 
   if (n < min_grid_shapes) {
     sweep_few();
   } else {
-    const DiscBroadphase::PairVeto veto{&ShapeWorld::never_pair, this, max_vetoed_pairs(n)};
+    const GridBroadphase::PairVeto veto{&ShapeWorld::never_pair, this, max_vetoed_pairs(n)};
     grid_.set_veto(&veto);
     found = grid_.find_pairs(boxes_, dynamic_, most_pairs, pairs_, thread ? 2 : 1, thread);
     grid_.set_veto(nullptr);

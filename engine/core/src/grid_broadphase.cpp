@@ -1,5 +1,5 @@
-// The hierarchical grid of disc_broadphase.hpp (see its header for the method and why).
-#include "disc_broadphase.hpp"
+// The hierarchical grid of grid_broadphase.hpp (see its header for the method and why).
+#include "grid_broadphase.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -52,7 +52,7 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
 }
 
 template <class Job>
-void DiscBroadphase::both(bool split, Job& job) {
+void GridBroadphase::both(bool split, Job& job) {
   if (!split) {
     job(0), job(1);
     return;
@@ -60,14 +60,14 @@ void DiscBroadphase::both(bool split, Job& job) {
   (lent_ != nullptr ? *lent_ : second_).both(job);
 }
 
-void DiscBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) const {
+void GridBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) const {
   s.e_top = 0;
   for (std::size_t i = s.begin; i < s.end; ++i) {
     if (box_finite(boxes[i])) s.e_top = std::max(s.e_top, box_extent(boxes[i]));
   }
 }
 
-void DiscBroadphase::set_levels(double e_top) {
+void GridBroadphase::set_levels(double e_top) {
   if (!(e_top > 0 && e_top < std::numeric_limits<double>::infinity())) e_top = 1.0;  // points
   for (unsigned k = 0; k < max_levels; ++k) {
     levels_[k].inv_cell = 1.0 / (cell_factor * std::ldexp(e_top, -static_cast<int>(k)));
@@ -75,7 +75,7 @@ void DiscBroadphase::set_levels(double e_top) {
   e_top_ = e_top;
 }
 
-void DiscBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
+void GridBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
   const double e_bottom = std::ldexp(e_top_, -static_cast<int>(max_levels - 1));
   std::fill(std::begin(s.count), std::end(s.count), 0u);
   s.overflow = 0;
@@ -102,7 +102,7 @@ void DiscBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
   }
 }
 
-void DiscBroadphase::size_tables() {
+void GridBroadphase::size_tables() {
   std::uint32_t base = 0;
   level_mask_ = 0;
   for (unsigned k = 0; k < max_levels; ++k) {
@@ -133,7 +133,7 @@ void DiscBroadphase::size_tables() {
   for (auto& c : cursor_) c.assign(2 * std::size_t{base}, 0);
 }
 
-void DiscBroadphase::count_keys(const Share& s, std::span<const std::uint8_t> active,
+void GridBroadphase::count_keys(const Share& s, std::span<const std::uint8_t> active,
                                 std::vector<std::uint32_t>& count) const {
   for (std::size_t i = s.begin; i < s.end; ++i) {  // the entries of each (bucket, static?) key
     const std::uint32_t k = level_[i];
@@ -142,7 +142,7 @@ void DiscBroadphase::count_keys(const Share& s, std::span<const std::uint8_t> ac
   }
 }
 
-void DiscBroadphase::start_keys() {
+void GridBroadphase::start_keys() {
   std::uint32_t next = 0;  // each key's entries: the first thread's, then the second's
   for (std::size_t key = 0; key + 1 < start_.size(); ++key) {
     const std::uint32_t c0 = cursor_[0][key], c1 = cursor_[1][key];
@@ -153,7 +153,7 @@ void DiscBroadphase::start_keys() {
   entry_.resize(next);
 }
 
-void DiscBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
+void GridBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
                                std::span<const std::uint8_t> active,
                                std::vector<std::uint32_t>& cursor) {
   for (std::size_t i = s.begin; i < s.end; ++i) {  // in index order within each key
@@ -165,7 +165,7 @@ void DiscBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
   }
 }
 
-void DiscBroadphase::add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>& out,
+void GridBroadphase::add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>& out,
                          std::uint64_t& rejected) const {
   const DiscPair p{std::min(a, b), std::max(a, b)};
   if (veto_ && veto_->reject(veto_->context, p.a, p.b)) {
@@ -175,7 +175,7 @@ void DiscBroadphase::add(std::uint32_t a, std::uint32_t b, std::vector<DiscPair>
   out.push_back(p);
 }
 
-void DiscBroadphase::scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out,
+void GridBroadphase::scan_own_cell(std::size_t at, std::size_t h, std::vector<DiscPair>& out,
                                    std::uint64_t& rejected) const {
   const Entry& q = entry_[at];  // dynamic: the dynamic boxes after it, then every static one
   for (std::size_t p = at + 1, end = start_[2 * h + 2]; p < end; ++p) {
@@ -185,7 +185,7 @@ void DiscBroadphase::scan_own_cell(std::size_t at, std::size_t h, std::vector<Di
   }
 }
 
-void DiscBroadphase::scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx,
+void GridBroadphase::scan_cell(const Entry& q, bool act, std::uint32_t level, std::int32_t cx,
                                std::int32_t cy, std::vector<DiscPair>& out,
                                std::uint64_t& rejected) const {
   const std::size_t h = bucket(level, cx, cy);
@@ -196,7 +196,7 @@ void DiscBroadphase::scan_cell(const Entry& q, bool act, std::uint32_t level, st
   }
 }
 
-void DiscBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
+void GridBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool act,
                                    std::span<const SweptBox> boxes,
                                    std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
                                    std::uint64_t& rejected) const {
@@ -207,7 +207,7 @@ void DiscBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool ac
   }
 }
 
-bool DiscBroadphase::scan_row(const Entry& q, std::size_t from, std::uint32_t level,
+bool GridBroadphase::scan_row(const Entry& q, std::size_t from, std::uint32_t level,
                               std::int32_t x0, std::int32_t x1, std::int32_t cy,
                               std::vector<DiscPair>& out, std::uint64_t& rejected) const {
   const Level& l = levels_[level];
@@ -226,7 +226,7 @@ bool DiscBroadphase::scan_row(const Entry& q, std::size_t from, std::uint32_t le
   return true;
 }
 
-void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
+void GridBroadphase::scan_entry(std::size_t at, std::uint32_t level,
                                 std::span<const SweptBox> boxes,
                                 std::span<const std::uint8_t> active, std::vector<DiscPair>& out,
                                 std::uint64_t& rejected) const {
@@ -258,7 +258,7 @@ void DiscBroadphase::scan_entry(std::size_t at, std::uint32_t level,
   if (!overflow_.empty()) scan_overflow(q.box, q.index, act, boxes, active, out, rejected);
 }
 
-bool DiscBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow,
+bool GridBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow,
                           std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
                           std::size_t max_pairs, std::vector<DiscPair>& out,
                           std::uint64_t& rejected) const {
@@ -284,7 +284,7 @@ bool DiscBroadphase::scan(std::size_t begin, std::size_t end, bool with_overflow
   return true;
 }
 
-bool DiscBroadphase::find_pairs(std::span<const SweptBox> boxes,
+bool GridBroadphase::find_pairs(std::span<const SweptBox> boxes,
                                 std::span<const std::uint8_t> active, std::size_t max_pairs,
                                 std::vector<DiscPair>& pairs, int threads, SecondThread* lent) {
   pairs.clear();

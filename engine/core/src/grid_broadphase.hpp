@@ -1,5 +1,6 @@
-// The broadphase of disc-disc contacts: which pairs of discs may touch
-// within a tick, from the boxes their discs sweep over it. Internal to the engine: not installed.
+// The broadphase of contacts: which pairs of bodies may touch within a tick, from the boxes they
+// sweep over it (the discs' swept boxes, disc_contacts.hpp; the shapes' boxes, shape_world.hpp).
+// Internal to the engine: not installed.
 //
 // A hierarchical uniform grid. Levels halve from the largest finite extent e_top (extent =
 // max(width, height)): level k holds the boxes with extent in (e_top 2^-(k+1), e_top 2^-k], in
@@ -58,7 +59,8 @@
 
 namespace fixstep::detail {
 
-/// A disc's box swept over one tick, in m (closed: min <= max on each axis).
+/// A body's box swept over one tick (a disc's, or a shape's), in m (closed: min <= max on each
+/// axis).
 struct SweptBox {
   double min_x, min_y, max_x, max_y;
 };
@@ -97,7 +99,7 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
 /// The broadphase a World keeps between ticks. Its members are scratch only: a copy (a
 /// snapshot) or a fresh object gives the same pairs; copying it copies its setting, neither the
 /// scratch nor its worker thread (a copy starts its own when first asked for two threads).
-class DiscBroadphase {
+class GridBroadphase {
  public:
   /// Below this many boxes a call with threads = 2 runs on one thread (see above: the disc
   /// contacts pass threads = 2 only within the tick's run of the second thread).
@@ -106,17 +108,17 @@ class DiscBroadphase {
   static constexpr double cell_factor = 1.25;
   static constexpr unsigned max_levels = 48;
 
-  DiscBroadphase() = default;
+  GridBroadphase() = default;
   /// A copy takes the settings (set_parallel_min) and none of the scratch, which every
   /// find_pairs call builds anew, nor the thread. Assigning keeps the target's own scratch and
   /// thread: a World's restore (a rollback, every frame) then neither copies the grid nor
   /// stops a worker that its next tick would start again.
-  DiscBroadphase(const DiscBroadphase& other) : parallel_min_(other.parallel_min_) {}
-  DiscBroadphase& operator=(const DiscBroadphase& other) {
+  GridBroadphase(const GridBroadphase& other) : parallel_min_(other.parallel_min_) {}
+  GridBroadphase& operator=(const GridBroadphase& other) {
     if (this != &other) parallel_min_ = other.parallel_min_;
     return *this;
   }
-  ~DiscBroadphase() = default;
+  ~GridBroadphase() = default;
 
   /// Writes to `pairs` (cleared first) every pair (a, b), a < b, whose boxes overlap (closed
   /// intervals: touching counts) and of which at least one has active[i] != 0 (static discs
@@ -272,7 +274,7 @@ class DiscBroadphase {
 };
 
 template <class Visit>
-std::uint64_t DiscBroadphase::query(const SweptBox& q, Visit&& visit) const {
+std::uint64_t GridBroadphase::query(const SweptBox& q, Visit&& visit) const {
   std::uint64_t work = 0;
   for (std::uint64_t m = level_mask_; m != 0; m &= m - 1) {
     const auto k = static_cast<std::uint32_t>(std::countr_zero(m));
