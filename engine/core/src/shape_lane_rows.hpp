@@ -181,11 +181,62 @@ struct Before {
   note_change(g.p[0], was, change);
 }
 
+/// Two groups of one colour (they move no body in common), their steps interleaved so that the
+/// processor overlaps their two chains of dependent arithmetic: the same results as
+/// solve_group on `g`, then on `k`, `change` raised in that order.
+[[gnu::always_inline]] inline void solve_two(BlockLanes& g, BlockLanes& k, ShapeMotion* v,
+                                             Lane& change) {
+  const Before g0{g.p[0].ln, g.p[0].lt}, g1{g.p[1].ln, g.p[1].lt};
+  const Before k0{k.p[0].ln, k.p[0].lt}, k1{k.p[1].ln, k.p[1].lt};
+  Motion ga, gb, ka, kb;
+  gather(g, v, ga, gb);
+  gather(k, v, ka, kb);
+  solve_friction(g, g.p[0], ga, gb);
+  solve_friction(k, k.p[0], ka, kb);
+  solve_friction(g, g.p[1], ga, gb);
+  solve_friction(k, k.p[1], ka, kb);
+  solve_block(g, ga, gb);
+  solve_block(k, ka, kb);
+  scatter(g, ga, gb, v);
+  scatter(k, ka, kb, v);
+  note_change(g.p[0], g0, change);
+  note_change(g.p[1], g1, change);
+  note_change(k.p[0], k0, change);
+  note_change(k.p[1], k1, change);
+}
+
+/// Two groups of one-point manifolds of one colour, as the blocks' solve_two.
+[[gnu::always_inline]] inline void solve_two(PointLanes& g, PointLanes& k, ShapeMotion* v,
+                                             Lane& change) {
+  const Before gw{g.p[0].ln, g.p[0].lt}, kw{k.p[0].ln, k.p[0].lt};
+  Motion ga, gb, ka, kb;
+  gather(g, v, ga, gb);
+  gather(k, v, ka, kb);
+  solve_friction(g, g.p[0], ga, gb);
+  solve_friction(k, k.p[0], ka, kb);
+  solve_normal(g, g.p[0], ga, gb);
+  solve_normal(k, k.p[0], ka, kb);
+  scatter(g, ga, gb, v);
+  scatter(k, ka, kb, v);
+  note_change(g.p[0], gw, change);
+  note_change(k.p[0], kw, change);
+}
+
 /// The largest of a lane's values.
 [[gnu::always_inline]] inline double largest(const Lane& x) {
   double most = x[0];
   for (int l = 1; l < width; ++l) most = most < x[l] ? x[l] : most;
   return most;
+}
+
+/// A colour's groups [first, last), two at a time, the last alone when their count is odd;
+/// the largest change of a row's own velocity (note_change).
+template <class Group>
+[[gnu::always_inline]] inline double solve_groups(Group* first, Group* last, ShapeMotion* v) {
+  Lane change{};
+  for (; last - first >= 2; first += 2) solve_two(first[0], first[1], v, change);
+  if (first != last) solve_group(*first, v, change);
+  return largest(change);
 }
 
 }  // namespace fixstep::detail::shape_lanes

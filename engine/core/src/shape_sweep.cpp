@@ -4,10 +4,11 @@
 // does; the method of "High-Performance Physical Simulations on Next-Generation Architecture
 // with Many Cores", Intel Technology Journal 11(4), 2007), so the manifolds of a colour may be
 // solved in any order, or side by side, with the same result. A colour's two-point blocks and
-// its one-point manifolds go four at a time through the lanes of a vector (shape_lanes.hpp);
-// the rest (a redundant point, rolling resistance, the overflow colour) one at a time. Either
-// way each manifold's arithmetic is that of shape_rows.hpp, so the bits do not depend on the
-// vector width the CPU offers.
+// its one-point manifolds go four at a time through the lanes of a vector (shape_lanes.hpp),
+// two such groups at once (their steps interleaved, so that the processor overlaps the two
+// chains of dependent arithmetic); the rest (a redundant point, rolling resistance, the overflow
+// colour) one at a time. Either way each manifold's arithmetic is that of shape_rows.hpp, so the
+// bits do not depend on the vector width the CPU offers.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -62,20 +63,21 @@ using shape_lanes::LaneBodies;
 using shape_lanes::PointLanes;
 
 // The groups of one colour, compiled for each SimdLevel (fixstep/core/simd.hpp; internal
-// linkage and everything inlined, as world_step.cpp's sweeps).
-// Each returns the largest change of a row's own velocity (shape_lanes::note_change).
+// linkage and everything inlined, as world_step.cpp's sweeps); at the AVX-512 level with
+// AVX-512VL, whose 32 vector registers hold the two groups solve_two interleaves. Each returns
+// the largest change of a row's own velocity (shape_lanes::note_change).
 template <class Group>
 [[gnu::noinline]] double groups_baseline(Group* first, Group* last, ShapeMotion* v) {
-  shape_lanes::Lane change{};
-  for (; first != last; ++first) shape_lanes::solve_group(*first, v, change);
-  return shape_lanes::largest(change);
+  return shape_lanes::solve_groups(first, last, v);
 }
 #if FIXSTEP_HAS_SIMD_CLONES
 template <class Group>
 FIXSTEP_TARGET_AVX2 double groups_avx2(Group* first, Group* last, ShapeMotion* v) {
-  shape_lanes::Lane change{};
-  for (; first != last; ++first) shape_lanes::solve_group(*first, v, change);
-  return shape_lanes::largest(change);
+  return shape_lanes::solve_groups(first, last, v);
+}
+template <class Group>
+FIXSTEP_TARGET_AVX512VL double groups_avx512(Group* first, Group* last, ShapeMotion* v) {
+  return shape_lanes::solve_groups(first, last, v);
 }
 #endif
 
@@ -83,6 +85,7 @@ template <class Group>
 double solve_groups(SimdLevel level, Group* first, Group* last, ShapeMotion* v) {
   if (first == last) return 0.0;
 #if FIXSTEP_HAS_SIMD_CLONES
+  if (level == SimdLevel::avx512 && simd_avx512vl()) return groups_avx512(first, last, v);
   if (level != SimdLevel::baseline) return groups_avx2(first, last, v);
 #endif
   (void)level;

@@ -13,6 +13,20 @@
 #else
 #define FIXSTEP_TARGET_AVX512 __attribute__((target("avx512f,prefer-vector-width=512")))
 #endif
+// AVX-512 with its 256-bit forms (AVX-512VL): 32 vector registers for code written in vectors of
+// four doubles (the shape sweep's lanes).
+#define FIXSTEP_TARGET_AVX512VL __attribute__((target("avx512f,avx512vl")))
 #else
 #define FIXSTEP_HAS_SIMD_CLONES 0
+#endif
+
+#if FIXSTEP_HAS_SIMD_CLONES
+namespace fixstep::detail {
+/// Whether the CPU and OS run AVX-512VL (checked once, as simd_supported checks a level): the
+/// shape sweep's clone for the AVX-512 level needs it, and takes AVX2's without it.
+[[nodiscard]] inline bool simd_avx512vl() {
+  static const bool yes = __builtin_cpu_supports("avx512vl");
+  return yes;
+}
+}  // namespace fixstep::detail
 #endif
