@@ -23,12 +23,6 @@ constexpr auto same = [](const ContactEvent& l, const ContactEvent& r) {
   return l.a == r.a && l.b == r.b;
 };
 
-/// Whether the sorted `list` holds the pair p.
-bool holds(const std::vector<ContactEvent>& list, const ContactEvent& p) {
-  const auto at = std::lower_bound(list.begin(), list.end(), p, slot_less);
-  return at != list.end() && same(*at, p);
-}
-
 void sort_by_slots(std::vector<ContactEvent>& list) {
   if (!std::is_sorted(list.begin(), list.end(), slot_less)) {
     std::sort(list.begin(), list.end(), slot_less);
@@ -102,10 +96,13 @@ void detail::WorldKernel<Real>::add_shape_touching() {
     touching_.push_back({a, b, 0.0});
     if (r.approach > 0.0) hits_.push_back({a, b, r.approach});
   }
-  std::sort(touching_.begin() + static_cast<std::ptrdiff_t>(first), touching_.end(), slot_less);
-  touching_.erase(
-      std::unique(touching_.begin() + static_cast<std::ptrdiff_t>(first), touching_.end(), same),
-      touching_.end());
+  // In row order the pairs come sorted by slots (rows follow the shapes' pairs, the shapes their
+  // bodies' dense order) until a destroy breaks dense = slot order.
+  const auto begin = touching_.begin() + static_cast<std::ptrdiff_t>(first);
+  if (!std::is_sorted(begin, touching_.end(), slot_less)) {
+    std::sort(begin, touching_.end(), slot_less);
+  }
+  touching_.erase(std::unique(begin, touching_.end(), same), touching_.end());
 }
 
 template <class Real>
@@ -151,12 +148,19 @@ void detail::WorldKernel<Real>::diff_contact_events() {
         begun_.push_back({p.a, p.b, speed_of(p)});
       },
       [&](const ContactEvent& p) { ended_.push_back(p); });
-  // Pairs that struck and parted within the tick: begun and ended at once.
+  // Pairs that struck and parted within the tick: begun and ended at once. The hits in slot
+  // order, each looked up in both sorted lists by a cursor that only moves on (the first entry
+  // of its slots, as a binary search finds it).
   bool struck = false;
+  auto now = touching_.cbegin(), before = touching_before_.cbegin();
+  auto held = [](auto& at, const std::vector<ContactEvent>& list, const ContactEvent& p) {
+    while (at != list.end() && slot_less(*at, p)) ++at;
+    return at != list.end() && same(*at, p);
+  };
   for (std::size_t h = 0; h < hits_.size(); ++h) {
     const ContactEvent& p = hits_[h];
     if (h > 0 && same(hits_[h - 1], p)) continue;
-    if (holds(touching_, p) || holds(touching_before_, p)) continue;
+    if (held(now, touching_, p) || held(before, touching_before_, p)) continue;
     begun_.push_back({p.a, p.b, speed_of(p)});
     ended_.push_back({p.a, p.b, 0.0});
     struck = true;
