@@ -155,6 +155,7 @@ bool meets(const ShapeRow& r, double vn, const ShapeTick& tick) {
 
 bool ShapeWorld::bounce(std::size_t i, const ShapeTick& tick) {
   ShapeRow& r = rows_[i];
+  if (!(r.restitution > 0.0)) return false;  // meets() never holds: no velocity to load
   const ShapeSolveRow& h = solve_[i];
   const double vn = normal_velocity(h);
   if (!meets(r, vn, tick)) return false;
@@ -170,6 +171,7 @@ bool ShapeWorld::bounce(std::size_t i, const ShapeTick& tick) {
 // that meet (x >= 0; a point that would pull is left out and the other solved alone).
 bool ShapeWorld::bounce_block(std::size_t i, const ShapeTick& tick) {
   ShapeRow &r1 = rows_[i], &r2 = rows_[i + 1];
+  if (!(r1.restitution > 0.0) && !(r2.restitution > 0.0)) return false;  // as bounce()
   const ShapeSolveRow &h1 = solve_[i], &h2 = solve_[i + 1];
   const double vn1 = normal_velocity(h1), vn2 = normal_velocity(h2);
   const bool m1 = meets(r1, vn1, tick), m2 = meets(r2, vn2, tick);
