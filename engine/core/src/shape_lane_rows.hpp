@@ -2,6 +2,8 @@
 // velocity sweep, shape_sweep.cpp, runs them): shape_rows.hpp's arithmetic, lane by lane.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include "shape_lanes.hpp"
@@ -181,45 +183,36 @@ struct Before {
   note_change(g.p[0], was, change);
 }
 
+// A group's normal impulses after its friction: a block's two together, a point's alone.
+[[gnu::always_inline]] inline void solve_normals(BlockLanes& g, Motion& a, Motion& b) {
+  solve_block(g, a, b);
+}
+[[gnu::always_inline]] inline void solve_normals(PointLanes& g, Motion& a, Motion& b) {
+  solve_normal(g, g.p[0], a, b);
+}
+
 /// Two groups of one colour (they move no body in common), their steps interleaved so that the
 /// processor overlaps their two chains of dependent arithmetic: the same results as
 /// solve_group on `g`, then on `k`, `change` raised in that order.
-[[gnu::always_inline]] inline void solve_two(BlockLanes& g, BlockLanes& k, ShapeMotion* v,
-                                             Lane& change) {
-  const Before g0{g.p[0].ln, g.p[0].lt}, g1{g.p[1].ln, g.p[1].lt};
-  const Before k0{k.p[0].ln, k.p[0].lt}, k1{k.p[1].ln, k.p[1].lt};
+template <class Group>
+[[gnu::always_inline]] inline void solve_two(Group& g, Group& k, ShapeMotion* v, Lane& change) {
+  constexpr std::size_t points = std::tuple_size_v<decltype(g.p)>;
+  std::array<Before, points> gw, kw;
+  for (std::size_t i = 0; i < points; ++i) gw[i] = {g.p[i].ln, g.p[i].lt};
+  for (std::size_t i = 0; i < points; ++i) kw[i] = {k.p[i].ln, k.p[i].lt};
   Motion ga, gb, ka, kb;
   gather(g, v, ga, gb);
   gather(k, v, ka, kb);
-  solve_friction(g, g.p[0], ga, gb);
-  solve_friction(k, k.p[0], ka, kb);
-  solve_friction(g, g.p[1], ga, gb);
-  solve_friction(k, k.p[1], ka, kb);
-  solve_block(g, ga, gb);
-  solve_block(k, ka, kb);
+  for (std::size_t i = 0; i < points; ++i) {
+    solve_friction(g, g.p[i], ga, gb);
+    solve_friction(k, k.p[i], ka, kb);
+  }
+  solve_normals(g, ga, gb);
+  solve_normals(k, ka, kb);
   scatter(g, ga, gb, v);
   scatter(k, ka, kb, v);
-  note_change(g.p[0], g0, change);
-  note_change(g.p[1], g1, change);
-  note_change(k.p[0], k0, change);
-  note_change(k.p[1], k1, change);
-}
-
-/// Two groups of one-point manifolds of one colour, as the blocks' solve_two.
-[[gnu::always_inline]] inline void solve_two(PointLanes& g, PointLanes& k, ShapeMotion* v,
-                                             Lane& change) {
-  const Before gw{g.p[0].ln, g.p[0].lt}, kw{k.p[0].ln, k.p[0].lt};
-  Motion ga, gb, ka, kb;
-  gather(g, v, ga, gb);
-  gather(k, v, ka, kb);
-  solve_friction(g, g.p[0], ga, gb);
-  solve_friction(k, k.p[0], ka, kb);
-  solve_normal(g, g.p[0], ga, gb);
-  solve_normal(k, k.p[0], ka, kb);
-  scatter(g, ga, gb, v);
-  scatter(k, ka, kb, v);
-  note_change(g.p[0], gw, change);
-  note_change(k.p[0], kw, change);
+  for (std::size_t i = 0; i < points; ++i) note_change(g.p[i], gw[i], change);
+  for (std::size_t i = 0; i < points; ++i) note_change(k.p[i], kw[i], change);
 }
 
 /// The largest of a lane's values.
