@@ -206,12 +206,10 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
     if (max_pairs < cap) return false;  // a try (tick_windows())
     stats.candidate_pairs = cap, stats.capped = 1;
     // The limit that stopped the broadphase: its candidates', or its dropped pairs' (a crowd a
-    // filter or a link keeps apart).
-    if (broadphase_.stopped_by_veto()) {
-      cap_ = CapHit{"max_vetoed_pairs", max_vetoed_pairs(n), largest_box(), CapHit::npos, 0.0};
-    } else {
-      cap_ = CapHit{"max_candidate_pairs", cap, largest_box(), CapHit::npos, 0.0};
-    }
+    // filter or a link keeps apart); the recycled pairs' count is the candidates'.
+    const bool vetoed = recycled == -1 && broadphase_.stopped_by_veto();
+    cap_ = CapHit{vetoed ? "max_vetoed_pairs" : "max_candidate_pairs",
+                  vetoed ? max_vetoed_pairs(n) : cap, largest_box(), CapHit::npos, 0.0};
     return false;
   }
   // Linked pairs never collide (Box2D's collideConnected = false), filtered ones neither, and

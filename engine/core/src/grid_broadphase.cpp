@@ -288,6 +288,7 @@ bool GridBroadphase::find_pairs(std::span<const SweptBox> boxes,
                                 std::span<const std::uint8_t> active, std::size_t max_pairs,
                                 std::vector<DiscPair>& pairs, int threads, SecondThread* lent) {
   pairs.clear();
+  stopped_by_veto_ = false;  // of this call only
   lent_ = lent;
   const std::size_t n = boxes.size();
   const bool split = threads >= 2 && n >= parallel_min_ && n >= 2;

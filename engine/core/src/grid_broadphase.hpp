@@ -138,8 +138,8 @@ class GridBroadphase {
   bool find_pairs(std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
                   std::size_t max_pairs, std::vector<DiscPair>& pairs, int threads,
                   SecondThread* lent = nullptr);
-  /// After a find_pairs call that returned false: true when the veto's max_rejected stopped
-  /// it, false when max_pairs did.
+  /// Whether the last find_pairs call stopped at the veto's max_rejected (false when it
+  /// found its pairs, or max_pairs stopped it).
   [[nodiscard]] bool stopped_by_veto() const { return stopped_by_veto_; }
 
   /// Pairs that can never touch, which find_pairs leaves out and does not count against its
