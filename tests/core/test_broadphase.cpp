@@ -256,6 +256,30 @@ TEST(GridBroadphase, TheCapIsHonoured) {
   }
 }
 
+// Which limit stopped a call is told of that call alone: a veto stop, then a call that finds
+// its pairs, then one stopped by max_pairs.
+TEST(GridBroadphase, StoppedByVetoTellsOfTheLastCallOnly) {
+  BoxSet s;  // 100 discs at one point: 4950 pairs, every one vetoed
+  for (int i = 0; i < 100; ++i) s.boxes.push_back({1.0, 1.0, 1.2, 1.2}), s.active.push_back(1);
+  const GridBroadphase::PairVeto veto{
+      [](const void*, std::uint32_t, std::uint32_t) { return true; }, nullptr, 1000};
+  GridBroadphase bp;
+  std::vector<DiscPair> pairs;
+  for (int threads : {1, 2}) {
+    bp.set_veto(&veto);
+    EXPECT_FALSE(bp.find_pairs(s.boxes, s.active, 10000, pairs, threads));
+    EXPECT_TRUE(bp.stopped_by_veto());
+    bp.set_veto(nullptr);
+    EXPECT_TRUE(bp.find_pairs(s.boxes, s.active, 10000, pairs, threads));
+    EXPECT_FALSE(bp.stopped_by_veto());
+    bp.set_veto(&veto);
+    EXPECT_FALSE(bp.find_pairs(s.boxes, s.active, 10000, pairs, threads));
+    bp.set_veto(nullptr);
+    EXPECT_FALSE(bp.find_pairs(s.boxes, s.active, 100, pairs, threads));
+    EXPECT_FALSE(bp.stopped_by_veto());
+  }
+}
+
 TEST(GridBroadphase, AMillionDiscsAtOnePointStopAtTheCap) {
   BoxSet s;  // 5e11 pairs: returns false after about max_pairs of them
   s.boxes.assign(1000000, SweptBox{-0.1, -0.1, 0.1, 0.1});
