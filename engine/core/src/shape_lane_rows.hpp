@@ -158,37 +158,27 @@ struct Before {
   change = max_of(change, max_of(dt, -dt) * h.kt);
 }
 
-/// Four blocks: each point's friction, then the two normal impulses together; `change` as
-/// note_change.
-[[gnu::always_inline]] inline void solve_group(BlockLanes& g, ShapeMotion* v, Lane& change) {
-  const Before was0{g.p[0].ln, g.p[0].lt}, was1{g.p[1].ln, g.p[1].lt};
-  Motion a, b;
-  gather(g, v, a, b);
-  solve_friction(g, g.p[0], a, b);
-  solve_friction(g, g.p[1], a, b);
-  solve_block(g, a, b);
-  scatter(g, a, b, v);
-  note_change(g.p[0], was0, change);
-  note_change(g.p[1], was1, change);
-}
-
-/// Four one-point manifolds: friction, then the normal impulse; `change` as note_change.
-[[gnu::always_inline]] inline void solve_group(PointLanes& g, ShapeMotion* v, Lane& change) {
-  const Before was{g.p[0].ln, g.p[0].lt};
-  Motion a, b;
-  gather(g, v, a, b);
-  solve_friction(g, g.p[0], a, b);
-  solve_normal(g, g.p[0], a, b);
-  scatter(g, a, b, v);
-  note_change(g.p[0], was, change);
-}
-
 // A group's normal impulses after its friction: a block's two together, a point's alone.
 [[gnu::always_inline]] inline void solve_normals(BlockLanes& g, Motion& a, Motion& b) {
   solve_block(g, a, b);
 }
 [[gnu::always_inline]] inline void solve_normals(PointLanes& g, Motion& a, Motion& b) {
   solve_normal(g, g.p[0], a, b);
+}
+
+/// Four manifolds: each point's friction, then the normal impulses (a block's two together);
+/// `change` as note_change.
+template <class Group>
+[[gnu::always_inline]] inline void solve_group(Group& g, ShapeMotion* v, Lane& change) {
+  constexpr std::size_t points = std::tuple_size_v<decltype(g.p)>;
+  std::array<Before, points> was;
+  for (std::size_t i = 0; i < points; ++i) was[i] = {g.p[i].ln, g.p[i].lt};
+  Motion a, b;
+  gather(g, v, a, b);
+  for (std::size_t i = 0; i < points; ++i) solve_friction(g, g.p[i], a, b);
+  solve_normals(g, a, b);
+  scatter(g, a, b, v);
+  for (std::size_t i = 0; i < points; ++i) note_change(g.p[i], was[i], change);
 }
 
 /// Two groups of one colour (they move no body in common), their steps interleaved so that the
