@@ -2,6 +2,7 @@
 // solver's touching pairs after the tick and before it, and the tick's impacts. O(touching +
 // impacts log impacts) per tick, only in worlds with disc contacts; no allocation once warm.
 #include <algorithm>
+#include <span>
 
 #include "disc_contacts.hpp"
 #include "shape_world.hpp"
@@ -23,7 +24,8 @@ constexpr auto same = [](const ContactEvent& l, const ContactEvent& r) {
   return l.a == r.a && l.b == r.b;
 };
 
-void sort_by_slots(std::vector<ContactEvent>& list) {
+/// `list` sorted by slots; most often it already is (a pass to tell).
+void sort_by_slots(std::span<ContactEvent> list) {
   if (!std::is_sorted(list.begin(), list.end(), slot_less)) {
     std::sort(list.begin(), list.end(), slot_less);
   }
@@ -98,10 +100,8 @@ void detail::WorldKernel<Real>::add_shape_touching() {
   }
   // In row order the pairs come sorted by slots (rows follow the shapes' pairs, the shapes their
   // bodies' dense order) until a destroy breaks dense = slot order.
+  sort_by_slots(std::span(touching_).subspan(first));
   const auto begin = touching_.begin() + static_cast<std::ptrdiff_t>(first);
-  if (!std::is_sorted(begin, touching_.end(), slot_less)) {
-    std::sort(begin, touching_.end(), slot_less);
-  }
   touching_.erase(std::unique(begin, touching_.end(), same), touching_.end());
 }
 
