@@ -11,12 +11,16 @@
 
 namespace fixstep::test {
 
-/// Expects `one` and `two` both present, naming `cap`, at the same tick, body, value and
-/// context.
+/// Expects `one` and `two` both present, naming `cap` (of `value` when given), at the same
+/// tick, body, value and context.
 inline void expect_same_cap_fault(const std::optional<StateFault>& one,
-                                  const std::optional<StateFault>& two, const std::string& cap) {
+                                  const std::optional<StateFault>& two, const std::string& cap,
+                                  std::optional<double> value = std::nullopt) {
   ASSERT_TRUE(one.has_value());
   EXPECT_EQ(one->cap, cap);
+  if (value) {
+    EXPECT_EQ(one->value, *value);
+  }
   ASSERT_TRUE(two.has_value());
   EXPECT_EQ(two->cap, one->cap);
   EXPECT_EQ(two->tick, one->tick);
