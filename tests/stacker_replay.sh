@@ -12,7 +12,7 @@ game=$1
 src=$2
 out=$3
 rec=$src/assets/recordings/stacker.rec
-expected_hash=83ee7eaf0a436968
+expected_hash=665a5478405fde13
 expected_game="score=8 targets=2 shots_left=0 down=11111001110000000 phase=over"
 rm -rf "$out"
 mkdir -p "$out"

@@ -218,15 +218,35 @@ double mix_friction(double a, double b) {
 // The manifolds of candidates_ from `begin` to `end` into `rows`, those a one-way rule or the
 // pre-solve hook disables into `disabled`.
 void ShapeWorld::collect_pairs(const ShapeTick& tick, std::size_t begin, std::size_t end,
-                               std::vector<ShapeRow>& rows, std::vector<std::uint64_t>& disabled) {
+                               std::vector<ShapeRow>& rows, std::vector<std::uint64_t>& disabled,
+                               std::vector<KeptManifold>& kept) {
+  auto cursor = kept_.cbegin();
+  if (begin < end) {
+    const std::uint64_t first = index_pair(candidates_[begin]);
+    cursor = std::lower_bound(kept_.cbegin(), kept_.cend(), first,
+                              [](const KeptManifold& k, std::uint64_t p) { return k.pair < p; });
+  }
   for (std::size_t k = begin; k < end; ++k) {
     const Candidate& c = candidates_[k];
     const ShapeEntry& sa = shapes_[c.a];
     const ShapeEntry& sb = shapes_[c.b];
     const double margin = margin_[sa.owner] + margin_[sb.owner];
-    const Manifold m =
-        collide(sa.convex, start_pose(sa.owner), sb.convex, start_pose(sb.owner), margin);
-    if (m.count == 0) continue;
+    const Pose ta = start_pose(sa.owner), tb = start_pose(sb.owner);
+    const double angle_a = state_[sa.owner].a0, angle_b = state_[sb.owner].a0;
+    const std::uint64_t index = index_pair(c);
+    while (cursor != kept_.cend() && cursor->pair < index) ++cursor;
+    const bool recycles = sharp(sa) && sharp(sb);
+    Manifold m;
+    if (recycles && cursor != kept_.cend() && cursor->pair == index &&
+        kept_holds(*cursor, ta, angle_a, tb, angle_b, bodies_[sb.owner].extent, margin,
+                   recycle_distance)) {
+      m = recycle(*cursor, ta, tb);
+      kept.push_back(*cursor);  // measured from where it was made, not from this tick
+    } else {
+      m = collide(sa.convex, ta, sb.convex, tb, margin);
+      if (m.count == 0) continue;
+      if (recycles) kept.push_back(keep_manifold(index, m, ta, angle_a, tb, angle_b, margin));
+    }
     const std::uint64_t pair = std::uint64_t{sa.key} << 32 | sb.key;
     if ((sa.one_way || sb.one_way || tick.pre_solve) &&
         !contact_acts(tick, m, c.a, c.b, -1, -1, nullptr)) {
@@ -253,18 +273,21 @@ void ShapeWorld::collect(const ShapeTick& tick, SecondThread* thread) {
   // the same order), unless a pre-solve hook is set: the game's code runs on the caller's
   // thread, in order.
   const std::size_t n = candidates_.size();
+  next_kept_.clear();
   if (thread != nullptr && !tick.pre_solve) {
-    half_rows_.clear(), half_disabled_.clear();
+    half_rows_.clear(), half_disabled_.clear(), half_kept_.clear();
     auto job = [&](int h) {
-      if (h == 0) collect_pairs(tick, 0, n / 2, rows_, disabled_);
-      if (h == 1) collect_pairs(tick, n / 2, n, half_rows_, half_disabled_);
+      if (h == 0) collect_pairs(tick, 0, n / 2, rows_, disabled_, next_kept_);
+      if (h == 1) collect_pairs(tick, n / 2, n, half_rows_, half_disabled_, half_kept_);
     };
     thread->both(job);
     rows_.insert(rows_.end(), half_rows_.begin(), half_rows_.end());
     disabled_.insert(disabled_.end(), half_disabled_.begin(), half_disabled_.end());
+    next_kept_.insert(next_kept_.end(), half_kept_.begin(), half_kept_.end());
   } else {
-    collect_pairs(tick, 0, n, rows_, disabled_);
+    collect_pairs(tick, 0, n, rows_, disabled_, next_kept_);
   }
+  kept_.swap(next_kept_);
   for (std::uint32_t k = 0; k < shapes_.size(); ++k) {
     const ShapeEntry& e = shapes_[k];
     const ShapedBody& b = bodies_[e.owner];
@@ -352,7 +375,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
     paired = broadphase(tick.dt, tally, thread);
   }
   if (!paired) {  // a work limit: the tick's shape contacts unresolved
-    rows_.clear();
+    rows_.clear(), kept_.clear();
     return tally;
   }
   collect(tick, thread);

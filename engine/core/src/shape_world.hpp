@@ -10,7 +10,9 @@
 //     tick, paired by the hierarchical grid of grid_broadphase.hpp, or below min_grid_shapes by
 //     a sort and sweep on x) and the manifolds at the tick's start poses of each candidate pair, of
 //     each shape with the planes and segments, and with the discs (bodies with a Collider):
-//     speculative contacts (Catto 2013), points that may not yet touch;
+//     speculative contacts (Catto 2013), points that may not yet touch; a pair of sharp
+//     polygons whose relative pose has moved less than recycle_distance since its manifold was
+//     made keeps that manifold, carried with the bodies (contact recycling, kept_manifold.hpp);
 //  3. sequential impulses (Catto, GDC 2005: accumulated impulses clamped at zero, Coulomb
 //     friction bounded by μ λ_n, a manifold's two normal impulses solved together, warm
 //     starting from the last tick's impulses matched by feature ids) on the free end
@@ -50,6 +52,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "grid_broadphase.hpp"
 #include "joint_tree.hpp"
+#include "kept_manifold.hpp"
 #include "one_way.hpp"
 #include "second_thread.hpp"
 #include "shape_geom.hpp"
@@ -79,6 +82,15 @@ class ShapeWorld {
   std::vector<ShapeEntry> shapes_;
   std::vector<ShapeState> state_;
   std::vector<ShapeWarm> warm_;  ///< sorted by (pair, id): last tick's impulses (state)
+  /// Last tick's manifolds of pairs of sharp polygons (sharp()), in candidate order, each as it
+  /// was made (state, which a snapshot copies): contact recycling (kept_manifold.hpp). The
+  /// shapes' indices key them, so the kernel clears them whenever it rebuilds the shapes.
+  std::vector<KeptManifold> kept_;
+  /// How far a pair's bodies may move relative to one another before its manifold is made
+  /// again (m): one slop, where Box2D v3.2 allows ten. A kept point's separation follows its
+  /// two bodies, and one clipped on a tilted edge can differ from a fresh one's by up to the
+  /// motion times the tilt's tangent: within the slop, the error a shape world accepts.
+  static constexpr double recycle_distance = slop;
   /// Scratch of the energy account (world_shapes.cpp): each body's energy before and after the
   /// solve and the kinematic work on it (J).
   std::vector<double> energy_, energy_after_, work_;
@@ -186,9 +198,23 @@ class ShapeWorld {
   /// candidates' by halves on `thread` when given.
   void collect(const ShapeTick& tick, SecondThread* thread);
   void collect_pairs(const ShapeTick& tick, std::size_t begin, std::size_t end,
-                     std::vector<ShapeRow>& rows, std::vector<std::uint64_t>& disabled);
+                     std::vector<ShapeRow>& rows, std::vector<std::uint64_t>& disabled,
+                     std::vector<KeptManifold>& kept);
   std::vector<ShapeRow> half_rows_;
   std::vector<std::uint64_t> half_disabled_;
+  std::vector<KeptManifold> next_kept_, half_kept_;
+  /// Whether a pair's manifold may be kept (contact recycling) for this shape: a polygon
+  /// without rounding, not one-way. A round shape's normal passes through its core, which a
+  /// kept normal no longer does once the pair has moved (a disc, which does not turn, would
+  /// then take a torque it cannot: the elastic gas's angular momentum drifted by 4e-6 of
+  /// itself); a one-way shape's rule is read from each tick's manifold.
+  [[nodiscard]] static bool sharp(const ShapeEntry& e) {
+    return e.convex.count >= 3 && e.convex.radius == 0.0 && !e.one_way;
+  }
+  /// A candidate's shapes as one key, a << 32 | b: KeptManifold::pair, in candidate order.
+  [[nodiscard]] static std::uint64_t index_pair(const Candidate& c) {
+    return std::uint64_t{c.a} << 32 | c.b;
+  }
   bool halved_ = false;
   /// Whether manifold m between shapes_[a] and shapes_[b] (a may be `none`: a plane or
   /// segment, `surface` its index) acts this tick: the one-way rule of each one-way shape

@@ -141,6 +141,7 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
   if (!shape_world_) shape_world_.reset(new ShapeWorld());
   ShapeWorld& w = *shape_world_;
   w.bodies_.clear(), w.shapes_.clear();
+  w.kept_.clear();  // keyed by the shapes' indices, which this may change
   const ContactSettings cs = settings_.contacts.value_or(ContactSettings{});
   auto add_shape = [&](const Convex& c, std::uint32_t owner, std::optional<double> mu,
                        std::optional<double> e, double rolling, const CollisionFilter& filter,
