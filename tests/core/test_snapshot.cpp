@@ -313,7 +313,9 @@ TEST(Rewind, CapacitySpansTheSecondsWithinTheMemoryBudget) {
 TEST(Snapshot, SnapshotBytesIsWhatACopyAllocates) {
   // The reference: the bytes operator new is asked for (counted below) while a snapshot is
   // taken into an empty WorldSnapshot.
-  for (const char* file : {"cloth.toml", "default.toml", "bounce.toml", "chain.toml"}) {
+  for (const char* file :
+       {"cloth.toml", "default.toml", "bounce.toml", "chain.toml", "boxes.toml", "car.toml",
+        "ragdoll.toml", "platforms.toml", "ball_pit.toml", "sleeping_pile.toml", "level.toml"}) {
     for (const Precision p : {Precision::f32, Precision::f64}) {
       Scene scene = load_scene(scenes_dir / file);
       scene.def.precision = p;

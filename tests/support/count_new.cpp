@@ -21,3 +21,18 @@ void operator delete(void* p) noexcept {
 void operator delete(void* p, std::size_t /*n*/) noexcept {
   std::free(p);
 }
+// Over-aligned types (alignas above the default new alignment, e.g. the contact solver's lanes)
+// come through the aligned forms: counted alike.
+void* operator new(std::size_t n, std::align_val_t align) {
+  if (counting) counted_bytes += n;
+  const auto a = static_cast<std::size_t>(align);
+  const std::size_t rounded = (n + a - 1) / a * a;  // aligned_alloc takes multiples of `a`
+  if (void* p = std::aligned_alloc(a, rounded == 0 ? a : rounded)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p, std::align_val_t /*align*/) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t /*n*/, std::align_val_t /*align*/) noexcept {
+  std::free(p);
+}

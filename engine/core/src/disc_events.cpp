@@ -447,7 +447,7 @@ std::size_t DiscContacts<Real>::bytes() const {
          b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_) + b(asleep_) +
          b(awake_list_) + b(live_) + b(in_live_) + b(woken_) + b(sleepers_.grid.discs) +
          b(sleepers_.disc) + b(live_boxes_) + b(live_dynamic_) + b(degree_) + b(fat_.boxes) +
-         b(fat_.pairs);
+         b(fat_.pairs) + b(segments_near_);
 }
 
 }  // namespace fixstep::detail

@@ -33,6 +33,8 @@ class JointTree {
   /// The joints of the forest (indices into build's span), in joint order.
   [[nodiscard]] std::span<const std::uint32_t> members() const { return members_; }
   [[nodiscard]] bool empty() const { return members_.empty(); }
+  /// Heap bytes a copy holds (World::snapshot_bytes).
+  [[nodiscard]] std::size_t bytes() const;
   /// The bodies of the forest (indices into build's span), each once.
   [[nodiscard]] std::span<const std::uint32_t> bodies() const { return bodies_; }
 

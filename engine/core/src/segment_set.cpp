@@ -278,11 +278,10 @@ void SegmentSet::query(double x0, double y0, double x1, double y1,
 }
 
 std::size_t SegmentSet::bytes() const {
-  return defs_.capacity() * sizeof(SegmentDef) + shapes_.capacity() * sizeof(SegmentShape) +
-         grid_.capacity() * sizeof(grid_[0]) + big_.capacity() * sizeof(std::uint32_t) +
-         carried_.capacity() * sizeof(std::uint32_t) +
-         carried_def_.capacity() * sizeof(SegmentDef) +
-         (carried_origin_.capacity() + velocity_.capacity()) * sizeof(Vec2);
+  // A copy of a vector allocates its size, not its capacity.
+  auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
+  return b(defs_) + b(shapes_) + b(grid_) + b(big_) + b(carried_) + b(carried_def_) +
+         b(carried_origin_) + b(velocity_);
 }
 
 }  // namespace detail

@@ -123,6 +123,8 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
   /// Stop requests polled by the sweeps so far: each velocity and position sweep polls once.
   [[nodiscard]] std::uint64_t stop_polls() const { return stop_polls_; }
+  /// Heap bytes a copy holds (World::snapshot_bytes): every array's elements (shape_memory.cpp).
+  [[nodiscard]] std::size_t bytes() const;
   /// The sleepers (bodies_ indices) the broadphase paired with a moving body this tick.
   [[nodiscard]] std::span<const std::uint32_t> woken() const { return wake_; }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "disc_contacts.hpp"
+#include "shape_world.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -61,6 +62,15 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
            saved_accel_);
   n += sum(sensed_, sensed_before_, sensor_crossed_, sensor_begun_, sensor_ended_);
   if (discs_) n += sizeof(*discs_.get()) + discs_->bytes();
+  n += sum(plane_work_, awake_.bodies, awake_.colliders, push_saved_, push_saved_implicit_);
+  // Bodies with shapes, and their contacts' state and scratch.
+  n += sum(shape_sets_);
+  for (const ShapeSet& set : shape_sets_.data) n += bytes_of(set.defs);
+  if (shape_world_) n += sizeof(*shape_world_.get()) + shape_world_->bytes();
+  // Joints and character movers.
+  n += sum(joints_, joint_generations_, joint_free_slots_, joint_records_, joint_handles_,
+           joint_unpaired_, joints_broken_, movers_, mover_obstacles_, mover_segments_,
+           mover_slide_.contacts_);
   return n;
 }
 
