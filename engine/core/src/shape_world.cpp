@@ -216,7 +216,8 @@ double mix_friction(double a, double b) {
 }  // namespace
 
 // The manifolds of candidates_ from `begin` to `end` into `rows`, those a one-way rule or the
-// pre-solve hook disables into `disabled`.
+// pre-solve hook disables into `disabled`; each sharp pair's manifold, kept from an earlier
+// tick while it holds (contact recycling, kept_manifold.hpp) or as made now, into `kept`.
 void ShapeWorld::collect_pairs(const ShapeTick& tick, std::size_t begin, std::size_t end,
                                std::vector<ShapeRow>& rows, std::vector<std::uint64_t>& disabled,
                                std::vector<KeptManifold>& kept) {
