@@ -135,9 +135,11 @@ TEST(KeptManifold, HoldsOnlyWhileTheRelativeMotionIsWithinTheTolerance) {
   EXPECT_TRUE(holds(a, b, km_speculative + 0.99 * km_tolerance));
   EXPECT_FALSE(holds(a, b, km_speculative + 1.01 * km_tolerance));
   EXPECT_FALSE(holds(a, km_at(p + Vec2{0.003, 0.0}, 0.0), km_speculative + 0.003));
+#ifndef FIXSTEP_FP_TRAPS  // (Debug builds trap the comparison of a NaN, as the engine's guard)
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(holds(a, km_at({nan, 0.749}, 0.0), km_speculative));
   EXPECT_FALSE(holds(a, b, nan));
+#endif
 }
 
 // A world keeps its pairs' manifolds by the shapes' indices: a box destroyed and another of
