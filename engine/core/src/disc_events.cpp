@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "copy_bytes.hpp"
 #include "disc_contacts.hpp"
 #include "disc_toi.hpp"
 #include "fixstep/core/components.hpp"
@@ -434,20 +435,17 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
 
 template <class Real>
 std::size_t DiscContacts<Real>::bytes() const {
-  auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
-  return b(discs_) + b(linked_) + b(filters_) + b(sensor_pairs_) + b(sensed_) + b(x0_) + b(y0_) +
-         b(vx0_) + b(vy0_) + b(motion_) + b(boxes_) + b(dynamic_) + b(pairs_) + b(offset_) +
-         b(incident_) + b(cursor_) + b(stamp_) + b(held_) + b(held_list_) + b(extra_) +
-         b(extra_sorted_) + b(partner_mark_) + b(wall_found_) + grown_grid_.bytes() +
-         b(extra_head_) + b(grown_) + b(grown_of_) + b(impacts_) + b(changed_) + b(walled_) +
-         b(touch_) + b(plane_half_[0]) + b(plane_half_[1]) + b(heap_) + b(events_) +
-         b(impact_log_) + b(contacts_) + b(order_) + b(scratch_) + b(cut_) + b(warm_) +
-         b(warm_upper_) + b(ex_) + b(ey_) + b(evx_) + b(evy_) + b(lost_) + b(external_) +
-         b(e_start_) + b(e_begin_) + b(d_begin_) + b(ew_) + b(ew0_) + b(rows_) + b(push_rows_) +
-         b(row_moved_) + b(sv_) + b(slot_moved_) + b(roll_rows_) + b(sw_) + b(asleep_) +
-         b(awake_list_) + b(live_) + b(in_live_) + b(woken_) + b(sleepers_.grid.discs) +
-         b(sleepers_.disc) + b(live_boxes_) + b(live_dynamic_) + b(degree_) + b(fat_.boxes) +
-         b(fat_.pairs) + b(segments_near_);
+  return copy_bytes(discs_, linked_, filters_, sensor_pairs_, sensed_, x0_, y0_, vx0_, vy0_,
+                    motion_, boxes_, dynamic_, pairs_, offset_, incident_, cursor_, stamp_, held_,
+                    held_list_, extra_, extra_sorted_, partner_mark_, wall_found_, extra_head_,
+                    grown_, grown_of_, impacts_, changed_, walled_, touch_, plane_half_[0],
+                    plane_half_[1], heap_, events_, impact_log_, contacts_, order_, scratch_, cut_,
+                    warm_, warm_upper_, ex_, ey_, evx_, evy_, lost_, external_, e_start_, e_begin_,
+                    d_begin_, ew_, ew0_, rows_, push_rows_, row_moved_, sv_, slot_moved_,
+                    roll_rows_, sw_, asleep_, awake_list_, live_, in_live_, woken_,
+                    sleepers_.grid.discs, sleepers_.disc, live_boxes_, live_dynamic_, degree_,
+                    fat_.boxes, fat_.pairs, segments_near_) +
+         grown_grid_.bytes();
 }
 
 }  // namespace fixstep::detail

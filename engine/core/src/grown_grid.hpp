@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "copy_bytes.hpp"
 #include "grid_broadphase.hpp"
 
 namespace fixstep::detail {
@@ -83,9 +84,7 @@ class GrownGrid {
   }
 
   /// Heap bytes held.
-  [[nodiscard]] std::size_t bytes() const {
-    return head_.size() * 4 + entries_.size() * sizeof(Entry) + wide_.size() * 4 + used_.size() * 4;
-  }
+  [[nodiscard]] std::size_t bytes() const { return copy_bytes(head_, entries_, wide_, used_); }
 
  private:
   static constexpr std::uint32_t none = 0xffffffffu;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "copy_bytes.hpp"
 #include "shape_world.hpp"
 
 namespace fixstep::detail {
@@ -325,11 +326,9 @@ void JointTree::solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs) {
 }
 
 std::size_t JointTree::bytes() const {
-  auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
-  return b(members_) + b(bodies_) + b(ends_) + b(arms_) + b(rhs_) + b(angle_rows_) +
-         b(factored_angles_) + b(angle_rhs_) + b(nodes_) + b(inverse_mass_) + b(inverse_) + b(up_) +
-         b(pivot_) + b(x_) + b(root_) + b(node_of_body_) + b(first_) + b(joined_) +
-         b(node_of_member_) + b(stack_);
+  return copy_bytes(members_, bodies_, ends_, arms_, rhs_, angle_rows_, factored_angles_,
+                    angle_rhs_, nodes_, inverse_mass_, inverse_, up_, pivot_, x_, root_,
+                    node_of_body_, first_, joined_, node_of_member_, stack_);
 }
 
 }  // namespace fixstep::detail

@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "copy_bytes.hpp"
 #include "disc_toi.hpp"
 #include "one_way.hpp"
 
@@ -278,10 +279,8 @@ void SegmentSet::query(double x0, double y0, double x1, double y1,
 }
 
 std::size_t SegmentSet::bytes() const {
-  // A copy of a vector allocates its size, not its capacity.
-  auto b = [](const auto& v) { return v.size() * sizeof(v[0]); };
-  return b(defs_) + b(shapes_) + b(grid_) + b(big_) + b(carried_) + b(carried_def_) +
-         b(carried_origin_) + b(velocity_);
+  return copy_bytes(defs_, shapes_, grid_, big_, carried_, carried_def_, carried_origin_,
+                    velocity_);
 }
 
 }  // namespace detail

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "copy_bytes.hpp"
 #include "disc_contacts.hpp"
 #include "shape_world.hpp"
 #include "world_kernel.hpp"
@@ -10,10 +11,9 @@
 namespace fixstep {
 namespace {
 
-// A copy of a vector allocates its size, not its capacity.
 template <class T>
 std::size_t bytes_of(const std::vector<T>& v) {
-  return v.size() * sizeof(T);
+  return detail::copy_bytes(v);
 }
 std::size_t bytes_of(const std::vector<std::string>& names) {
   const std::size_t in_place = std::string().capacity();  // the short-string buffer
