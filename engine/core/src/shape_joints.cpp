@@ -51,7 +51,7 @@ void ShapeWorld::prepare_joints() {
   }
   tree_.factor();
   rest_factored_ = false;
-  kept_error_ = std::numeric_limits<double>::infinity();
+  last_step_.clear(), halvings_ = 0;
 }
 
 // The forest's point rows at once: the impulses that make every one's Ċ zero together, at the
@@ -70,22 +70,17 @@ bool ShapeWorld::solve_tree_velocities() {
   return true;
 }
 
-// The forest's point errors at once, a Newton step of the projection onto C = target: the
-// error measured, and the positions moved, along the gradient at the poses now, each point's
-// error by at most joint_max_linear_correction a sweep. While keeping: the error the tick's
-// motion made (the start's kept), and the same correction over dt as a constraint impulse
-// along the start's gradient (the one the velocity sweeps made the motion tangent to, so it
-// takes nearly nothing from the motion along it); these sweeps go on only while that error
-// shrinks. Else all of it, on positions only, along the gradient of the first such sweep (a
-// chord step: these sweeps move the poses little, and factor once). An error within
-// direct_position_tolerance is left: such a sweep moves nothing.
-bool ShapeWorld::solve_tree_positions(bool keep) {
-  JointSolver solver(bodies_, state_, dt_);
+// The forest's point errors now into tree_.rhs() (m: while keeping, the error the tick's
+// motion made, the start's kept; else all of it) and each member's arms now into fresh_arms_;
+// and each member's angle row (a limit the joint is past, or, at the first sweep on positions
+// only, within the largest correction of: a row of the forest's solve in each sweep after,
+// holding the angle within the limits).
+ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSolver& solver) {
   const auto members = tree_.members();
   const auto rhs = tree_.rhs();
-  const auto arms = tree_.arms();
   turned_.resize(state_.size());
   for (const std::uint32_t body : tree_.bodies()) turned_[body] = rot_of(state_[body].a);
+  fresh_arms_.resize(members.size());
   // An end's centre and rotation now: the world's origin, a forest body's (made once a sweep:
   // every end that translates is one), or a static or kinematic body's.
   auto pose = [&](std::uint32_t body) -> std::pair<Vec2, Rot> {
@@ -95,36 +90,60 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   };
   const auto angle_rows = tree_.angle_rows();
   const auto angle_rhs = tree_.angle_rhs();
-  bool rows_changed = false;  // whether a member's angle row came or went
-  double past_limit = 0.0;
+  TreeErrors out;
   for (std::size_t k = 0; k < members.size(); ++k) {
     const JointRecord& j = joints_[members[k]];
     const auto [ca, qa] = pose(j.a);
     const auto [cb, qb] = pose(j.b);
     const Vec2 ra = rotate(qa, j.local_a), rb = rotate(qb, j.local_b);
     const Vec2 c = (cb + rb) - (ca + ra);
-    constexpr double most = joint_max_linear_correction;
-    const Vec2 e = keep ? j.offset - c : -c;
-    rhs[k] = {std::clamp(e.x, -most, most), std::clamp(e.y, -most, most)};
-    if (keep || !rest_factored_) arms[k] = {ra, rb};
-    // A limit the joint is past, or within the largest correction of at the first sweep on
-    // positions only: a row of the forest's solve in each sweep after (holding the angle
-    // within the limits).
+    rhs[k] = keep ? j.offset - c : -c;
+    fresh_arms_[k] = {ra, rb};
     const double limit = !keep && direct_limits_ ? solver.limit_correction(j) : 0.0;
     const bool near = !keep && !rest_factored_ && direct_limits_ &&
                       solver.limit_margin(j) < joint_max_angular_correction;
     const std::uint8_t row = keep ? 0 : (limit != 0.0 || near || angle_rows[k] ? 1 : 0);
-    rows_changed = rows_changed || angle_rows[k] != row;
+    out.rows_changed = out.rows_changed || angle_rows[k] != row;
+    out.any_row = out.any_row || row != 0;
     angle_rows[k] = row, angle_rhs[k] = -limit;
-    past_limit = std::max(past_limit, std::abs(limit));
+    out.past_limit = std::max(out.past_limit, std::abs(limit));
   }
-  const double error = largest(rhs);
-  if (past_limit == 0.0 &&
-      (error <= direct_position_tolerance || (keep && !(error < kept_error_)))) {
-    return false;
+  out.error = largest(rhs);
+  return out;
+}
+
+// The forest's point errors at once, a Newton step of the projection onto C = target: the
+// error measured, and the positions moved, along the gradient at the poses now; a step whose
+// largest point error is over joint_max_linear_correction is scaled down as a whole to it (a
+// damped Newton step: its direction kept, where clamping each error alone turns it). While
+// keeping, the same correction over dt also goes in as a constraint impulse along the start's
+// gradient (the one the velocity sweeps made the motion tangent to, so it takes nearly nothing
+// from the motion along it), and a step after which the error did not shrink is shortened
+// (back_off_tree_step). On positions only, the steps are chord steps (the factors of the first
+// such sweep: these sweeps move the poses little), made at the poses now again after a step
+// that did not shrink the error (the contacts' push-out moves bodies between these sweeps, so
+// such a step is not taken back). An error within direct_position_tolerance is left: such a
+// sweep moves nothing.
+bool ShapeWorld::solve_tree_positions(bool keep) {
+  JointSolver solver(bodies_, state_, dt_);
+  if (keep != step_keeps_) last_step_.clear(), step_keeps_ = keep;  // a phase begins
+  const TreeErrors now = measure_tree_errors(keep, solver);
+  if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
+  const bool stalled = !last_step_.empty() && !(now.error < step_error_);
+  if (stalled && keep) return back_off_tree_step(solver, keep);
+  const auto members = tree_.members();
+  const auto rhs = tree_.rhs();
+  const auto arms = tree_.arms();
+  const auto angle_rows = tree_.angle_rows();
+  const auto angle_rhs = tree_.angle_rhs();
+  const bool arms_now = keep || !rest_factored_ || stalled || halvings_ > 0;
+  step_error_ = now.error, halvings_ = 0;
+  if (now.error > joint_max_linear_correction) {
+    const double scale = joint_max_linear_correction / now.error;
+    for (Vec2& e : rhs) e = scale * e;
   }
-  if (keep) kept_error_ = error;
-  if (keep || !rest_factored_ || rows_changed) {
+  if (arms_now) std::copy(fresh_arms_.begin(), fresh_arms_.end(), arms.begin());
+  if (arms_now || now.rows_changed) {
     tree_.factor();
     for (std::size_t k = 0; k < members.size(); ++k) {
       joints_[members[k]].limit_row = tree_.angle_row_kept(k);
@@ -132,11 +151,41 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   }
   rest_factored_ = !keep;
   tree_.solve(rhs, angle_rhs);
+  // Only a step without angle rows is checked and shortened (a limit's row is one-sided).
+  last_step_.clear();
+  if (!now.any_row) last_step_.assign(rhs.begin(), rhs.end());
   for (std::size_t k = 0; k < members.size(); ++k) {
     JointRecord& j = joints_[members[k]];
     solver.shift_point(j, rhs[k], arms[k][0], arms[k][1], angle_rows[k] ? angle_rhs[k] : 0.0);
     if (keep) solver.kick_point(j, rhs[k]);
   }
+  return true;
+}
+
+// The last step of the forest's sweeps on positions, after which the error did not shrink:
+// half of it taken back (its shifts along the arms it was made at and, while keeping, its
+// impulses, each linear in the step's impulses), for the next sweep to measure; after
+// max_step_halvings, all that is left of it, and the sweeps of this phase end (a backtracking
+// line search on the largest point error, Nocedal and Wright, Numerical Optimization, §3.1).
+// A Newton step that overshoots is what a long chain whipping a radian a tick takes: applied
+// whole, or with its impulse, it tore the chain apart.
+bool ShapeWorld::back_off_tree_step(JointSolver& solver, bool keep) {
+  const auto members = tree_.members();
+  const auto arms = tree_.arms();
+  const bool last = halvings_ == max_step_halvings;
+  const double share = last ? 1.0 : 0.5;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    JointRecord& j = joints_[members[k]];
+    const Vec2 back = -share * last_step_[k];
+    solver.shift_point(j, back, arms[k][0], arms[k][1], 0.0);
+    if (keep) solver.kick_point(j, back);
+    last_step_[k] = last_step_[k] + back;
+  }
+  if (last) {
+    last_step_.clear(), halvings_ = 0;
+    return false;
+  }
+  ++halvings_;
   return true;
 }
 

@@ -61,6 +61,8 @@
 
 namespace fixstep::detail {
 
+class JointSolver;
+
 class ShapeWorld {
  public:
   /// A plane with a unit normal: n·x = offset (m) on its surface.
@@ -337,10 +339,27 @@ class ShapeWorld {
   bool joint_rows_ = false;     ///< some joint has velocity rows of its own this tick
   bool indirect_ = false;       ///< some joint is not all in the forest
   bool direct_limits_ = false;  ///< some joint of the forest has a limit
-  double kept_error_ = 0.0;     ///< the forest's error at the last sweep that kept, m
   bool rest_factored_ = false;  ///< the forest factored for this tick's sweeps on positions
   std::vector<Rot> turned_;     ///< solve_tree_positions' scratch: each forest body's rotation
-  void poll_stop();             ///< throw_if_stop_requested, counted in stop_polls_
+  /// solve_tree_positions' scratch: each member's arms at the poses now (m).
+  std::vector<std::array<Vec2, 2>> fresh_arms_;
+  /// The forest's last step on positions (each member's impulse, N·s; empty: none to check),
+  /// the largest point error it started from (m), whether it kept, and how often it was
+  /// halved (back_off_tree_step).
+  std::vector<Vec2> last_step_;
+  double step_error_ = 0.0;
+  bool step_keeps_ = false;
+  int halvings_ = 0;
+  static constexpr int max_step_halvings = 3;
+  bool back_off_tree_step(JointSolver& solver, bool keep);
+  /// What measure_tree_errors found: the largest point error (m), the largest limit
+  /// correction (rad), whether a member's angle row came or went, and whether any has one.
+  struct TreeErrors {
+    double error = 0.0, past_limit = 0.0;
+    bool rows_changed = false, any_row = false;
+  };
+  TreeErrors measure_tree_errors(bool keep, const JointSolver& solver);
+  void poll_stop();  ///< throw_if_stop_requested, counted in stop_polls_
   std::uint64_t stop_polls_ = 0;
   void account_joints();
   /// Whether a joint keeps the shapes of these two bodies from colliding.
