@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The pinball demo's recorded session (assets/recordings/pinball.rec: 40 s of its autopilot,
-# `pinball --frames 2400 --record FILE`: the flippers in play, no ball lost, 23 bumper
+# `pinball --frames 2400 --record FILE`: the flippers in play, two balls lost, 30 bumper
 # hits) replayed headless with its rules: every stored state hash verifies (the
 # flippers' motor speeds as joint inputs, the bumpers' kicks from contact events), the game is where it was, and
 # the last frame is rendered; the sync test passes. Then the same recording through `fixstep
@@ -13,8 +13,8 @@ cli=$2
 src=$3
 out=$4
 rec=$src/assets/recordings/pinball.rec
-expected_hash=002c3aea19058a6a
-expected_game="score=2340 balls=3 bumpers=23 slingshots=4 phase=play"
+expected_hash=e34bd12158f74ac8
+expected_game="score=3030 balls=1 bumpers=30 slingshots=3 phase=play"
 rm -rf "$out"
 mkdir -p "$out"
 fail() {

@@ -102,11 +102,17 @@ double JointSolver::limit_correction(const JointRecord& j) const {
                      joint_max_angular_correction);
 }
 
-void JointSolver::kick_point(JointRecord& j, Vec2 p) {
+double JointSolver::tick_turn(const JointRecord& j) const {
+  const End a = end(j.a, false), b = end(j.b, true);
+  auto turn = [](const End& e) { return e.s ? std::abs(e.s->a - e.s->a0) : 0.0; };
+  return std::max(turn(a), turn(b));
+}
+
+void JointSolver::kick_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb) {
   current_ = &j;
   const End a = end(j.a, false), b = end(j.b, true);
   const Vec2 q = p / dt_;
-  const double la = -cross(j.ra, q), lb = cross(j.rb, q);
+  const double la = -cross(ra, q), lb = cross(rb, q);
   j.given_a -= q, j.turned_a += la;
   j.given_b += q, j.turned_b += lb;
   if (a.s) a.s->vx -= a.m * q.x, a.s->vy -= a.m * q.y, a.s->w += a.i * la;

@@ -60,9 +60,11 @@ class JointSolver {
   /// How far within its nearest limit a revolute joint's relative angle is at the poses now
   /// (rad; negative past it; infinite without limits).
   [[nodiscard]] double limit_margin(const JointRecord& j) const;
-  /// The constraint impulse p/dt (N·s) along the start's arms: what a correction p (kg·m) of
+  /// The constraint impulse p/dt (N·s) at arms ra and rb (m): what a correction p (kg·m) of
   /// the tick's own error gives the velocities.
-  void kick_point(JointRecord& j, Vec2 p);
+  void kick_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb);
+  /// How far the joint's bodies have turned since the tick's start, the larger (rad).
+  [[nodiscard]] double tick_turn(const JointRecord& j) const;
   /// Whether a position sweep has moved a body since this solver was made.
   [[nodiscard]] bool moved() const { return moved_; }
   /// The largest change of a body's velocity component (m/s, rad/s) that one joint's
@@ -125,6 +127,9 @@ inline constexpr double joint_linear_slop = 0.005;                              
 inline constexpr double joint_angular_slop = 2.0 / 180.0 * 3.14159265358979323846;  ///< rad
 inline constexpr double joint_max_linear_correction = 0.2;                          ///< m
 inline constexpr double joint_max_angular_correction = 8.0 / 180.0 * 3.14159265358979323846;
+/// A turn within a tick (rad) past which the sweeps that keep give a joint's impulses along
+/// the gradient at the poses now, not the start's (ShapeWorld::solve_tree_positions).
+inline constexpr double fast_joint_turn = 0.2;
 /// A motor joint's fraction of its position error a tick removes (b2MotorJoint's default).
 inline constexpr double motor_joint_correction = 0.3;
 

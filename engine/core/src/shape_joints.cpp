@@ -51,7 +51,7 @@ void ShapeWorld::prepare_joints() {
   }
   tree_.factor();
   rest_factored_ = false;
-  last_step_.clear(), halvings_ = 0;
+  last_step_.clear(), halvings_ = 0, step_keeps_ = false;
 }
 
 // The forest's point rows at once: the impulses that make every one's Ċ zero together, at the
@@ -118,7 +118,9 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // damped Newton step: its direction kept, where clamping each error alone turns it). While
 // keeping, the same correction over dt also goes in as a constraint impulse along the start's
 // gradient (the one the velocity sweeps made the motion tangent to, so it takes nearly nothing
-// from the motion along it), and a step after which the error did not shrink is shortened
+// from the motion along it), or, for a joint whose bodies turned more than fast_joint_turn
+// within the tick, along the gradient at the step's poses (kick), and a step after which the
+// error did not shrink is shortened
 // (back_off_tree_step). On positions only, the steps are chord steps (the factors of the first
 // such sweep: these sweeps move the poses little), made at the poses now again after a step
 // that did not shrink the error (the contacts' push-out moves bodies between these sweeps, so
@@ -126,7 +128,14 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // sweep moves nothing.
 bool ShapeWorld::solve_tree_positions(bool keep) {
   JointSolver solver(bodies_, state_, dt_);
-  if (keep != step_keeps_) last_step_.clear(), step_keeps_ = keep;  // a phase begins
+  if (keep != step_keeps_) {  // a phase begins: while keeping, which joints turn fast
+    last_step_.clear(), step_keeps_ = keep;
+    const auto members = tree_.members();
+    fast_.resize(members.size());
+    for (std::size_t k = 0; keep && k < members.size(); ++k) {
+      fast_[k] = solver.tick_turn(joints_[members[k]]) > fast_joint_turn ? 1 : 0;
+    }
+  }
   const TreeErrors now = measure_tree_errors(keep, solver);
   if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
   const bool stalled = !last_step_.empty() && !(now.error < step_error_);
@@ -157,9 +166,26 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   for (std::size_t k = 0; k < members.size(); ++k) {
     JointRecord& j = joints_[members[k]];
     solver.shift_point(j, rhs[k], arms[k][0], arms[k][1], angle_rows[k] ? angle_rhs[k] : 0.0);
-    if (keep) solver.kick_point(j, rhs[k]);
+    if (keep) kick(solver, k, rhs[k]);
   }
   return true;
+}
+
+// Member k's share of a step that keeps, p (kg·m), as a constraint impulse p/dt: at the
+// start's arms, or, for a joint that turns fast, at the arms the step was made at (the forest's
+// arms: the same ones when the step is halved or taken back). Along the start's gradient, a
+// link that turned a radian in the tick gained energy: a whipping chain rose by half its
+// kinetic energy for a few ticks, and a 100-link one came apart with the shorter steps below 7
+// position iterations. Along now's gradient for every joint, a pendulum lost 42 % of its energy
+// over 100 periods: the start's is what the velocity sweeps made the motion tangent to.
+void ShapeWorld::kick(JointSolver& solver, std::size_t k, Vec2 p) {
+  JointRecord& j = joints_[tree_.members()[k]];
+  const auto arms = tree_.arms();
+  if (fast_[k]) {
+    solver.kick_point(j, p, arms[k][0], arms[k][1]);
+  } else {
+    solver.kick_point(j, p, j.ra, j.rb);
+  }
 }
 
 // The last step of the forest's sweeps on positions, after which the error did not shrink:
@@ -178,7 +204,7 @@ bool ShapeWorld::back_off_tree_step(JointSolver& solver, bool keep) {
     JointRecord& j = joints_[members[k]];
     const Vec2 back = -share * last_step_[k];
     solver.shift_point(j, back, arms[k][0], arms[k][1], 0.0);
-    if (keep) solver.kick_point(j, back);
+    if (keep) kick(solver, k, back);
     last_step_[k] = last_step_[k] + back;
   }
   if (last) {

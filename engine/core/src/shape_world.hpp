@@ -343,6 +343,9 @@ class ShapeWorld {
   std::vector<Rot> turned_;     ///< solve_tree_positions' scratch: each forest body's rotation
   /// solve_tree_positions' scratch: each member's arms at the poses now (m).
   std::vector<std::array<Vec2, 2>> fresh_arms_;
+  /// Whether each member's bodies turned more than fast_joint_turn by the sweeps that keep.
+  std::vector<std::uint8_t> fast_;
+  void kick(JointSolver& solver, std::size_t k, Vec2 p);
   /// The forest's last step on positions (each member's impulse, N·s; empty: none to check),
   /// the largest point error it started from (m), whether it kept, and how often it was
   /// halved (back_off_tree_step).
