@@ -120,12 +120,11 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // gradient (the one the velocity sweeps made the motion tangent to, so it takes nearly nothing
 // from the motion along it), or, for a joint whose bodies turned more than fast_joint_turn
 // within the tick, along the gradient at the step's poses (kick), and a step after which the
-// error did not shrink is shortened
-// (back_off_tree_step). On positions only, the steps are chord steps (the factors of the first
-// such sweep: these sweeps move the poses little), made at the poses now again after a step
-// that did not shrink the error (the contacts' push-out moves bodies between these sweeps, so
-// such a step is not taken back). An error within direct_position_tolerance is left: such a
-// sweep moves nothing.
+// error did not shrink is shortened (back_off_tree_step). On positions only, the steps are
+// chord steps (the factors of the first such sweep: these sweeps move the poses little), made
+// at the poses now again after a step that did not shrink the error (the contacts' push-out
+// moves bodies between these sweeps, so such a step is not taken back). An error within
+// direct_position_tolerance is left: such a sweep moves nothing.
 bool ShapeWorld::solve_tree_positions(bool keep) {
   JointSolver solver(bodies_, state_, dt_);
   if (keep != step_keeps_) {  // a phase begins: while keeping, which joints turn fast
@@ -139,7 +138,7 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   const TreeErrors now = measure_tree_errors(keep, solver);
   if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
   const bool stalled = !last_step_.empty() && !(now.error < step_error_);
-  if (stalled && keep) return back_off_tree_step(solver, keep);
+  if (stalled && keep) return back_off_tree_step(solver);
   const auto members = tree_.members();
   const auto rhs = tree_.rhs();
   const auto arms = tree_.arms();
@@ -188,14 +187,14 @@ void ShapeWorld::kick(JointSolver& solver, std::size_t k, Vec2 p) {
   }
 }
 
-// The last step of the forest's sweeps on positions, after which the error did not shrink:
-// half of it taken back (its shifts along the arms it was made at and, while keeping, its
-// impulses, each linear in the step's impulses), for the next sweep to measure; after
+// The last step of the forest's sweeps that keep, after which the error did not shrink: half
+// of it taken back (its shifts along the arms it was made at and its impulses, each linear in
+// the step's impulses), for the next sweep to measure; after
 // max_step_halvings, all that is left of it, and the sweeps of this phase end (a backtracking
 // line search on the largest point error, Nocedal and Wright, Numerical Optimization, §3.1).
 // A Newton step that overshoots is what a long chain whipping a radian a tick takes: applied
 // whole, or with its impulse, it tore the chain apart.
-bool ShapeWorld::back_off_tree_step(JointSolver& solver, bool keep) {
+bool ShapeWorld::back_off_tree_step(JointSolver& solver) {
   const auto members = tree_.members();
   const auto arms = tree_.arms();
   const bool last = halvings_ == max_step_halvings;
@@ -204,7 +203,7 @@ bool ShapeWorld::back_off_tree_step(JointSolver& solver, bool keep) {
     JointRecord& j = joints_[members[k]];
     const Vec2 back = -share * last_step_[k];
     solver.shift_point(j, back, arms[k][0], arms[k][1], 0.0);
-    if (keep) kick(solver, k, back);
+    kick(solver, k, back);
     last_step_[k] = last_step_[k] + back;
   }
   if (last) {

@@ -354,7 +354,7 @@ class ShapeWorld {
   bool step_keeps_ = false;
   int halvings_ = 0;
   static constexpr int max_step_halvings = 3;
-  bool back_off_tree_step(JointSolver& solver, bool keep);
+  bool back_off_tree_step(JointSolver& solver);
   /// What measure_tree_errors found: the largest point error (m), the largest limit
   /// correction (rad), whether a member's angle row came or went, and whether any has one.
   struct TreeErrors {
