@@ -215,13 +215,12 @@ TEST(JointTree, ASwingingChainOfAHundredLinksHoldsItsJointsToAMicrometre) {
   EXPECT_LT(tip, -10.0) << "the chain swung down";
 }
 
-// Run on, the same chain whips: its last links turn about a radian a tick. A Newton step of
-// the forest's projection then overshoots, and one whose every error was clamped on its own,
-// taken whole with its impulse, tore the chain apart (anchors 24 m apart at tick 589, its
-// energy growing from there). With each step shortened until the error shrinks, the chain
-// holds; with the impulses of a joint that turns fast along the gradient now, its energy never
-// rises over its start's (along the start's, it rose by up to half its kinetic energy for a few
-// ticks in each whip: 12.7 kJ).
+// Run on, the same chain whips: its last links turn about a radian a tick. The sweeps that
+// keep gave their impulses along the start's gradient, which raised its energy in each whip,
+// and their chord steps on positions only diverged: the chain came apart (anchors 24 m apart
+// at tick 589, its energy growing from there). With the impulses of a joint that turns fast
+// along the gradient now, and a chord step that did not shrink the error followed by one
+// factored at the poses now, it holds and its energy never rises over its start's.
 TEST(JointTree, ASwingingChainOfAHundredLinksHoldsThroughItsWhip) {
   SwingingChain chain(100);
   const double start = chain.world->energy().total();

@@ -51,7 +51,7 @@ void ShapeWorld::prepare_joints() {
   }
   tree_.factor();
   rest_factored_ = false;
-  last_step_.clear(), halvings_ = 0, step_keeps_ = false;
+  step_error_ = no_step, step_keeps_ = false;
 }
 
 // The forest's point rows at once: the impulses that make every one's Ċ zero together, at the
@@ -115,37 +115,36 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // The forest's point errors at once, a Newton step of the projection onto C = target: the
 // error measured, and the positions moved, along the gradient at the poses now; a step whose
 // largest point error is over joint_max_linear_correction is scaled down as a whole to it (a
-// damped Newton step: its direction kept, where clamping each error alone turns it). While
-// keeping, the same correction over dt also goes in as a constraint impulse along the start's
-// gradient (the one the velocity sweeps made the motion tangent to, so it takes nearly nothing
-// from the motion along it), or, for a joint whose bodies turned more than fast_joint_turn
-// within the tick, along the gradient at the step's poses (kick), and a step after which the
-// error did not shrink is shortened (back_off_tree_step). On positions only, the steps are
-// chord steps (the factors of the first such sweep: these sweeps move the poses little), made
-// at the poses now again after a step that did not shrink the error (the contacts' push-out
-// moves bodies between these sweeps, so such a step is not taken back). An error within
+// damped Newton step: its direction kept, where clamping each error alone turns it, and the
+// error measured before it, so that a sweep sees whether it shrinks). While keeping, the same
+// correction over dt also goes in as a constraint impulse along the start's gradient (the one
+// the velocity sweeps made the motion tangent to, so it takes nearly nothing from the motion
+// along it), or, for a joint whose bodies turned more than fast_joint_turn within the tick,
+// along the gradient at the step's poses (kick); these sweeps end when the error did not
+// shrink. On positions only, the steps are chord steps (the factors of the first such sweep:
+// these sweeps move the poses little), made at the poses now again after a step that did not
+// shrink the error (the contacts' push-out moves bodies between these sweeps). An error within
 // direct_position_tolerance is left: such a sweep moves nothing.
 bool ShapeWorld::solve_tree_positions(bool keep) {
   JointSolver solver(bodies_, state_, dt_);
   if (keep != step_keeps_) {  // a phase begins: while keeping, which joints turn fast
-    last_step_.clear(), step_keeps_ = keep;
+    step_error_ = no_step, step_keeps_ = keep;
     const auto members = tree_.members();
-    fast_.resize(members.size());
+    if (keep) fast_.resize(members.size());
     for (std::size_t k = 0; keep && k < members.size(); ++k) {
       fast_[k] = solver.tick_turn(joints_[members[k]]) > fast_joint_turn ? 1 : 0;
     }
   }
   const TreeErrors now = measure_tree_errors(keep, solver);
   if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
-  const bool stalled = !last_step_.empty() && !(now.error < step_error_);
-  if (stalled && keep) return back_off_tree_step(solver);
+  const bool stalled = step_error_ < no_step && !(now.error < step_error_);
+  if (stalled && keep) return false;  // the sweeps that keep have ended
   const auto members = tree_.members();
   const auto rhs = tree_.rhs();
   const auto arms = tree_.arms();
   const auto angle_rows = tree_.angle_rows();
   const auto angle_rhs = tree_.angle_rhs();
-  const bool arms_now = keep || !rest_factored_ || stalled || halvings_ > 0;
-  step_error_ = now.error, halvings_ = 0;
+  const bool arms_now = keep || !rest_factored_ || stalled;
   if (now.error > joint_max_linear_correction) {
     const double scale = joint_max_linear_correction / now.error;
     for (Vec2& e : rhs) e = scale * e;
@@ -159,9 +158,9 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
   }
   rest_factored_ = !keep;
   tree_.solve(rhs, angle_rhs);
-  // Only a step without angle rows is checked and shortened (a limit's row is one-sided).
-  last_step_.clear();
-  if (!now.any_row) last_step_.assign(rhs.begin(), rhs.end());
+  // Only a step without angle rows is checked (a limit's row is one-sided).
+  step_error_ = now.error;
+  if (now.any_row) step_error_ = no_step;
   for (std::size_t k = 0; k < members.size(); ++k) {
     JointRecord& j = joints_[members[k]];
     solver.shift_point(j, rhs[k], arms[k][0], arms[k][1], angle_rows[k] ? angle_rhs[k] : 0.0);
@@ -171,12 +170,11 @@ bool ShapeWorld::solve_tree_positions(bool keep) {
 }
 
 // Member k's share of a step that keeps, p (kg·m), as a constraint impulse p/dt: at the
-// start's arms, or, for a joint that turns fast, at the arms the step was made at (the forest's
-// arms: the same ones when the step is halved or taken back). Along the start's gradient, a
-// link that turned a radian in the tick gained energy: a whipping chain rose by half its
-// kinetic energy for a few ticks, and a 100-link one came apart with the shorter steps below 7
-// position iterations. Along now's gradient for every joint, a pendulum lost 42 % of its energy
-// over 100 periods: the start's is what the velocity sweeps made the motion tangent to.
+// start's arms, or, for a joint that turns fast, at the arms the step was made at. Along the
+// start's gradient, a link that turned a radian in the tick gained energy: a whipping chain
+// rose by half its kinetic energy for a few ticks, and a 100-link one came apart. Along now's
+// gradient for every joint, a pendulum lost 42 % of its energy over 100 periods: the start's is
+// what the velocity sweeps made the motion tangent to.
 void ShapeWorld::kick(JointSolver& solver, std::size_t k, Vec2 p) {
   JointRecord& j = joints_[tree_.members()[k]];
   const auto arms = tree_.arms();
@@ -185,33 +183,6 @@ void ShapeWorld::kick(JointSolver& solver, std::size_t k, Vec2 p) {
   } else {
     solver.kick_point(j, p, j.ra, j.rb);
   }
-}
-
-// The last step of the forest's sweeps that keep, after which the error did not shrink: half
-// of it taken back (its shifts along the arms it was made at and its impulses, each linear in
-// the step's impulses), for the next sweep to measure; after
-// max_step_halvings, all that is left of it, and the sweeps of this phase end (a backtracking
-// line search on the largest point error, Nocedal and Wright, Numerical Optimization, §3.1).
-// A Newton step that overshoots is what a long chain whipping a radian a tick takes: applied
-// whole, or with its impulse, it tore the chain apart.
-bool ShapeWorld::back_off_tree_step(JointSolver& solver) {
-  const auto members = tree_.members();
-  const auto arms = tree_.arms();
-  const bool last = halvings_ == max_step_halvings;
-  const double share = last ? 1.0 : 0.5;
-  for (std::size_t k = 0; k < members.size(); ++k) {
-    JointRecord& j = joints_[members[k]];
-    const Vec2 back = -share * last_step_[k];
-    solver.shift_point(j, back, arms[k][0], arms[k][1], 0.0);
-    kick(solver, k, back);
-    last_step_[k] = last_step_[k] + back;
-  }
-  if (last) {
-    last_step_.clear(), halvings_ = 0;
-    return false;
-  }
-  ++halvings_;
-  return true;
 }
 
 // Each sweep, velocity or position, with or without joints, polls a stop request first (one

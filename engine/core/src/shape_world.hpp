@@ -41,6 +41,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -346,15 +347,11 @@ class ShapeWorld {
   /// Whether each member's bodies turned more than fast_joint_turn by the sweeps that keep.
   std::vector<std::uint8_t> fast_;
   void kick(JointSolver& solver, std::size_t k, Vec2 p);
-  /// The forest's last step on positions (each member's impulse, N·s; empty: none to check),
-  /// the largest point error it started from (m), whether it kept, and how often it was
-  /// halved (back_off_tree_step).
-  std::vector<Vec2> last_step_;
-  double step_error_ = 0.0;
+  /// The largest point error the forest's last step on positions in this phase started from
+  /// (m; no_step: none to check), and the phase: keeping or not.
+  static constexpr double no_step = std::numeric_limits<double>::infinity();
+  double step_error_ = no_step;
   bool step_keeps_ = false;
-  int halvings_ = 0;
-  static constexpr int max_step_halvings = 3;
-  bool back_off_tree_step(JointSolver& solver);
   /// What measure_tree_errors found: the largest point error (m), the largest limit
   /// correction (rad), whether a member's angle row came or went, and whether any has one.
   struct TreeErrors {
