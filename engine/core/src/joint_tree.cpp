@@ -67,6 +67,8 @@ void JointTree::build(std::span<JointRecord> joints, std::span<const ShapedBody>
     members_.push_back(static_cast<std::uint32_t>(i));
     ends_.push_back({a, b});
   }
+  all_members_.resize(members_.size());
+  std::iota(all_members_.begin(), all_members_.end(), 0U);
   arms_.resize(members_.size());
   rhs_.resize(members_.size());
   angle_rows_.assign(members_.size(), 0);
@@ -141,6 +143,24 @@ void JointTree::order(std::span<const ShapedBody> bodies) {
   }
   const std::size_t n = nodes_.size();
   inverse_.resize(n), up_.resize(n), pivot_.resize(n), x_.resize(n);
+  all_nodes_.resize(n);
+  std::iota(all_nodes_.begin(), all_nodes_.end(), 0U);
+}
+
+void JointTree::split(std::span<const std::uint8_t> half_of_body) {
+  for (int h = 0; h < 2; ++h) part_nodes_[h].clear(), part_members_[h].clear();
+  for (int h = 0; h < 2; ++h) part_bodies_[h].clear();
+  auto half_of_member = [&](std::uint32_t m) {
+    return half_of_body[ends_[m][0] != none ? ends_[m][0] : ends_[m][1]];
+  };
+  for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
+    const Node& node = nodes_[i];
+    const std::uint8_t h =
+        node.body != none ? half_of_body[node.body] : half_of_member(node.member);
+    part_nodes_[h].push_back(i);
+    if (node.body != none) part_bodies_[h].push_back(node.body);
+  }
+  for (std::uint32_t m = 0; m < members_.size(); ++m) part_members_[half_of_member(m)].push_back(m);
 }
 
 // A node's link to its parent: the point row's Jacobian on the body's end, Ċ = v_b + ω_b × r_b
@@ -204,6 +224,11 @@ JointTree::Link JointTree::link(std::size_t i) const {
 // products; up_ holds D⁻¹ H of a node and its parent. A joint's pivot is 2×2 (its third row
 // and column void: 1 on the diagonal), or 3×3 with an angle row; a body's 3×3.
 void JointTree::factor() {
+  factor_angles();
+  factor_part(whole);
+}
+
+void JointTree::factor_angles() {
   factored_angles_.assign(angle_rows_.begin(), angle_rows_.end());
   for (std::size_t i = 0; i < nodes_.size(); ++i) {  // (see angle_rows())
     const std::uint32_t p = nodes_[i].parent;
@@ -213,7 +238,11 @@ void JointTree::factor() {
   }
   any_angle_ =
       std::find(factored_angles_.begin(), factored_angles_.end(), 1) != factored_angles_.end();
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+}
+
+void JointTree::factor_part(int part) {
+  const auto nodes = nodes_of(part);
+  for (const std::uint32_t i : nodes) {
     if (nodes_[i].member != none) {
       const double void_row = factored_angles_[nodes_[i].member] != 0 ? 0.0 : 1.0;
       pivot_[i] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, void_row};
@@ -223,7 +252,8 @@ void JointTree::factor() {
     const double m = 1.0 / w[0], inertia = w[2] > 0.0 ? 1.0 / w[2] : 1.0;
     pivot_[i] = {m, 0.0, 0.0, 0.0, m, 0.0, 0.0, 0.0, inertia};
   }
-  for (std::size_t i = nodes_.size(); i-- > 0;) {  // children before parents
+  for (std::size_t at = nodes.size(); at-- > 0;) {  // children before parents
+    const std::uint32_t i = nodes[at];
     const Node& node = nodes_[i];
     const Block& k = pivot_[i];
     Block& d = inverse_[i];
@@ -243,17 +273,18 @@ void JointTree::factor() {
   }
 }
 
-void JointTree::solve(std::span<Vec2> rhs, std::span<double> angle_rhs) {
+void JointTree::solve(std::span<Vec2> rhs, std::span<double> angle_rhs, int part) {
   if (any_angle_) {
-    solve_with<true>(rhs, angle_rhs);
+    solve_with<true>(rhs, angle_rhs, nodes_of(part));
   } else {
-    solve_with<false>(rhs, angle_rhs);
+    solve_with<false>(rhs, angle_rhs, nodes_of(part));
   }
 }
 
 // Angles: whether some member has an angle row (without, the loops test for none).
 template <bool Angles>
-void JointTree::solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs) {
+void JointTree::solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs,
+                           std::span<const std::uint32_t> nodes) {
   auto angle = [&](std::size_t node) {  // whether a joint node has an angle row
     if constexpr (Angles) {
       return nodes_[node].member != none && factored_angles_[nodes_[node].member] != 0;
@@ -262,11 +293,12 @@ void JointTree::solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs) {
       return false;
     }
   };
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+  for (const std::uint32_t i : nodes) {
     const std::uint32_t m = nodes_[i].member;
     x_[i] = m != none ? Vec3{-rhs[m].x, -rhs[m].y, angle(i) ? -angle_rhs[m] : 0.0} : Vec3{};
   }
-  for (std::size_t i = nodes_.size(); i-- > 0;) {  // z_p −= (D_i⁻¹ H_ip)ᵀ z_i, children first
+  for (std::size_t at = nodes.size(); at-- > 0;) {  // z_p −= (D_i⁻¹ H_ip)ᵀ z_i, children first
+    const std::uint32_t i = nodes[at];
     const std::uint32_t p = nodes_[i].parent;
     if (p == none) continue;
     const Block& g = up_[i];
@@ -283,11 +315,11 @@ void JointTree::solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs) {
       for (std::size_t c = 0; c < 3; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1];
     }
   }
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+  for (const std::uint32_t i : nodes) {
     const std::uint32_t p = nodes_[i].parent;
     back_substitute(i, angle(i), p != none && angle(p));
   }
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+  for (const std::uint32_t i : nodes) {
     const std::uint32_t m = nodes_[i].member;
     if (m == none) continue;
     rhs[m] = {x_[i][0], x_[i][1]};
@@ -328,7 +360,10 @@ void JointTree::solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs) {
 std::size_t JointTree::bytes() const {
   return copy_bytes(members_, bodies_, ends_, arms_, rhs_, angle_rows_, factored_angles_,
                     angle_rhs_, nodes_, inverse_mass_, inverse_, up_, pivot_, x_, root_,
-                    node_of_body_, first_, joined_, node_of_member_, stack_);
+                    node_of_body_, first_, joined_, node_of_member_, stack_, all_nodes_,
+                    all_members_) +
+         copy_bytes(part_nodes_[0], part_nodes_[1], part_members_[0], part_members_[1],
+                    part_bodies_[0], part_bodies_[1]);
 }
 
 }  // namespace fixstep::detail

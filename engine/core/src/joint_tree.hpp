@@ -53,13 +53,35 @@ class JointTree {
   [[nodiscard]] bool angle_row_kept(std::size_t k) const { return factored_angles_[k] != 0; }
   /// Factors H = [M Jᵀ; J 0] of the forest, J the point rows' Jacobian at arms() and the
   /// angle rows' (block LDLᵀ, children before parents: no fill, O(members)). A singular pivot
-  /// is taken as zero (that part moves nothing).
+  /// is taken as zero (that part moves nothing). The same as factor_angles() then
+  /// factor_part(whole).
   void factor();
-  /// Solves K λ = rhs for every member at once, K = J M⁻¹ Jᵀ of the last factor(): `rhs` (a
-  /// velocity, m/s, or a position error, m, per member; with angle rows, `angle_rhs`: rad/s or
-  /// rad) in, λ (N·s, or kg·m; N·m·s or kg·m²) out. `angle_rhs` (one per member) is needed
-  /// only when the last factor() had angle rows.
-  void solve(std::span<Vec2> rhs, std::span<double> angle_rhs = {});
+  /// Solves K λ = rhs for the members of `part` at once (every member: whole), K = J M⁻¹ Jᵀ of
+  /// the last factor: `rhs` (a velocity, m/s, or a position error, m, per member; with angle
+  /// rows, `angle_rhs`: rad/s or rad) in, λ (N·s, or kg·m; N·m·s or kg·m²) out, the other
+  /// part's members' entries untouched. `angle_rhs` (one per member) is needed only when the
+  /// last factor had angle rows.
+  void solve(std::span<Vec2> rhs, std::span<double> angle_rhs = {}, int part = whole);
+
+  /// The forest by halves (joint_halves.hpp): part 0 and 1 are the trees whose bodies are in
+  /// that half; `whole` is every tree. The trees are independent, so factoring or solving
+  /// each part gives every member the same bits as the whole forest at once.
+  static constexpr int whole = 2;
+  /// Splits the trees by `half_of_body` (0 or 1 for each of the forest's bodies; every body
+  /// of a tree in the same half). Until the next build(), parts 0 and 1 are those trees.
+  void split(std::span<const std::uint8_t> half_of_body);
+  /// A part's members (member indices, ascending) and bodies (body indices, in the forest's
+  /// order).
+  [[nodiscard]] std::span<const std::uint32_t> members_of(int part) const {
+    return part == whole ? std::span<const std::uint32_t>(all_members_) : part_members_[part];
+  }
+  [[nodiscard]] std::span<const std::uint32_t> bodies_of(int part) const {
+    return part == whole ? std::span<const std::uint32_t>(bodies_) : part_bodies_[part];
+  }
+  /// factor() in two steps: which members' angle rows are factored (every member's, on one
+  /// thread), then each part's blocks (each part on its own thread, after the first step).
+  void factor_angles();
+  void factor_part(int part);
 
  private:
   using Block = std::array<double, 9>;  ///< 3×3, row-major
@@ -87,6 +109,11 @@ class JointTree {
   std::vector<std::uint32_t> node_of_body_;
   std::vector<std::uint32_t> first_, joined_;  ///< each body's members (CSR)
   std::vector<std::uint32_t> node_of_member_, stack_;
+  std::vector<std::uint32_t> all_nodes_, all_members_;  ///< 0, 1, 2, ...: the whole forest
+  std::array<std::vector<std::uint32_t>, 2> part_nodes_, part_members_, part_bodies_;
+  [[nodiscard]] std::span<const std::uint32_t> nodes_of(int part) const {
+    return part == whole ? std::span<const std::uint32_t>(all_nodes_) : part_nodes_[part];
+  }
 
   std::uint32_t find(std::uint32_t k);
   void order(std::span<const ShapedBody> bodies);
@@ -105,7 +132,8 @@ class JointTree {
   void eliminate_joint(std::size_t node);
   void eliminate_body(std::size_t node);
   template <bool Angles>
-  void solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs);
+  void solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs,
+                  std::span<const std::uint32_t> nodes);
   void back_substitute(std::size_t node, bool angle, bool parent_angle);
 };
 

@@ -1,7 +1,10 @@
 // Shape contacts, part 3: the joints' sweeps as the shape phase runs them (shape_world.hpp has
 // the whole tick): each joint's own rows (joint_solver.hpp), then the point rows of the
-// revolute joints that form a forest, all at once (joint_tree.hpp).
+// revolute joints that form a forest, all at once (joint_tree.hpp). With two threads and
+// enough joints, each pass runs by halves (joint_halves.hpp: each thread its half's joints and
+// trees), with what decides a sweep (its largest error, whether it moved) taken over both.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -21,12 +24,6 @@ bool angle_rows(const JointRecord& j) {
   return motor || j.def.frequency > 0.0 || j.def.lower || j.def.upper;
 }
 
-double largest(std::span<const Vec2> v) {
-  double most = 0.0;
-  for (const Vec2 e : v) most = std::max({most, std::abs(e.x), std::abs(e.y)});
-  return most;
-}
-
 }  // namespace
 
 void ShapeWorld::prepare_joints() {
@@ -35,6 +32,9 @@ void ShapeWorld::prepare_joints() {
     if (!j.broken) solver.prepare(j);
   }
   tree_.build(joints_, bodies_);
+  joints_halved_ = joint_thread_ != nullptr && joints_.size() >= min_split_joints &&
+                   halves_.split(joints_, bodies_.size());
+  if (joints_halved_ && !tree_.empty()) tree_.split(halves_.half_of_body());
   joint_rows_ = false, indirect_ = false, direct_limits_ = false;
   for (const JointRecord& j : joints_) {
     if (j.broken) continue;
@@ -54,20 +54,17 @@ void ShapeWorld::prepare_joints() {
   step_error_ = no_step, step_keeps_ = false;
 }
 
-// The forest's point rows at once: the impulses that make every one's Ċ zero together, at the
-// start's arms (the velocity rows' own). A velocity error within direct_velocity_tolerance is
-// left: such a sweep moves nothing.
-bool ShapeWorld::solve_tree_velocities() {
-  JointSolver solver(bodies_, state_, dt_, velocity_);
+// The forest's point rows of `part`: each member's velocity error, Ċ at the start's arms (the
+// velocity rows' own), into tree_.rhs(); returns the largest component.
+double ShapeWorld::tree_point_velocities(const JointSolver& solver, int part) {
   const auto members = tree_.members();
   const auto rhs = tree_.rhs();
-  for (std::size_t k = 0; k < members.size(); ++k) {
+  double most = 0.0;
+  for (const std::uint32_t k : tree_.members_of(part)) {
     rhs[k] = -solver.point_velocity(joints_[members[k]]);
+    most = std::max({most, std::abs(rhs[k].x), std::abs(rhs[k].y)});
   }
-  if (largest(rhs) <= direct_velocity_tolerance) return false;
-  tree_.solve(rhs);
-  for (std::size_t k = 0; k < members.size(); ++k) solver.apply_point(joints_[members[k]], rhs[k]);
-  return true;
+  return most;
 }
 
 // The forest's point errors now into tree_.rhs() (m: while keeping, the error the tick's
@@ -75,12 +72,11 @@ bool ShapeWorld::solve_tree_velocities() {
 // and each member's angle row (a limit the joint is past, or, at the first sweep on positions
 // only, within the largest correction of: a row of the forest's solve in each sweep after,
 // holding the angle within the limits).
-ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSolver& solver) {
+ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSolver& solver,
+                                                       int part) {
   const auto members = tree_.members();
   const auto rhs = tree_.rhs();
-  turned_.resize(state_.size());
-  for (const std::uint32_t body : tree_.bodies()) turned_[body] = rot_of(state_[body].a);
-  fresh_arms_.resize(members.size());
+  for (const std::uint32_t body : tree_.bodies_of(part)) turned_[body] = rot_of(state_[body].a);
   // An end's centre and rotation now: the world's origin, a forest body's (made once a sweep:
   // every end that translates is one), or a static or kinematic body's.
   auto pose = [&](std::uint32_t body) -> std::pair<Vec2, Rot> {
@@ -91,7 +87,7 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
   const auto angle_rows = tree_.angle_rows();
   const auto angle_rhs = tree_.angle_rhs();
   TreeErrors out;
-  for (std::size_t k = 0; k < members.size(); ++k) {
+  for (const std::uint32_t k : tree_.members_of(part)) {
     const JointRecord& j = joints_[members[k]];
     const auto [ca, qa] = pose(j.a);
     const auto [cb, qb] = pose(j.b);
@@ -107,8 +103,8 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
     out.any_row = out.any_row || row != 0;
     angle_rows[k] = row, angle_rhs[k] = -limit;
     out.past_limit = std::max(out.past_limit, std::abs(limit));
+    out.error = std::max({out.error, std::abs(rhs[k].x), std::abs(rhs[k].y)});
   }
-  out.error = largest(rhs);
   return out;
 }
 
@@ -125,47 +121,42 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // these sweeps move the poses little), made at the poses now again after a step that did not
 // shrink the error (the contacts' push-out moves bodies between these sweeps). An error within
 // direct_position_tolerance is left: such a sweep moves nothing.
-bool ShapeWorld::solve_tree_positions(bool keep) {
-  JointSolver solver(bodies_, state_, dt_);
-  if (keep != step_keeps_) {  // a phase begins: while keeping, which joints turn fast
-    step_error_ = no_step, step_keeps_ = keep;
-    const auto members = tree_.members();
-    if (keep) fast_.resize(members.size());
-    for (std::size_t k = 0; keep && k < members.size(); ++k) {
-      fast_[k] = solver.tick_turn(joints_[members[k]]) > fast_joint_turn ? 1 : 0;
-    }
-  }
-  const TreeErrors now = measure_tree_errors(keep, solver);
+bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
   if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
   const bool stalled = step_error_ < no_step && !(now.error < step_error_);
   if (stalled && keep) return false;  // the sweeps that keep have ended
-  const auto members = tree_.members();
-  const auto rhs = tree_.rhs();
-  const auto arms = tree_.arms();
-  const auto angle_rows = tree_.angle_rows();
-  const auto angle_rhs = tree_.angle_rhs();
   const bool arms_now = keep || !rest_factored_ || stalled;
-  if (now.error > joint_max_linear_correction) {
-    const double scale = joint_max_linear_correction / now.error;
-    for (Vec2& e : rhs) e = scale * e;
-  }
-  if (arms_now) std::copy(fresh_arms_.begin(), fresh_arms_.end(), arms.begin());
-  if (arms_now || now.rows_changed) {
-    tree_.factor();
-    for (std::size_t k = 0; k < members.size(); ++k) {
-      joints_[members[k]].limit_row = tree_.angle_row_kept(k);
+  const bool refactor = arms_now || now.rows_changed;
+  const bool scaled = now.error > joint_max_linear_correction;
+  const double scale = scaled ? joint_max_linear_correction / now.error : 1.0;
+  if (refactor) tree_.factor_angles();
+  auto step = [&](int part) {
+    const auto members = tree_.members();
+    const auto rhs = tree_.rhs();
+    const auto arms = tree_.arms();
+    const auto angle_rows = tree_.angle_rows();
+    const auto own = tree_.members_of(part);
+    for (const std::uint32_t k : own) {
+      if (scaled) rhs[k] = scale * rhs[k];
+      if (arms_now) arms[k] = fresh_arms_[k];
     }
-  }
+    if (refactor) {
+      tree_.factor_part(part);
+      for (const std::uint32_t k : own) joints_[members[k]].limit_row = tree_.angle_row_kept(k);
+    }
+    tree_.solve(rhs, tree_.angle_rhs(), part);
+    JointSolver solver(bodies_, state_, dt_);
+    for (const std::uint32_t k : own) {
+      JointRecord& j = joints_[members[k]];
+      solver.shift_point(j, rhs[k], arms[k][0], arms[k][1],
+                         angle_rows[k] ? tree_.angle_rhs()[k] : 0.0);
+      if (keep) kick(solver, k, rhs[k]);
+    }
+  };
+  run_joint_parts(step);
   rest_factored_ = !keep;
-  tree_.solve(rhs, angle_rhs);
   // Only a step without angle rows is checked (a limit's row is one-sided).
-  step_error_ = now.error;
-  if (now.any_row) step_error_ = no_step;
-  for (std::size_t k = 0; k < members.size(); ++k) {
-    JointRecord& j = joints_[members[k]];
-    solver.shift_point(j, rhs[k], arms[k][0], arms[k][1], angle_rows[k] ? angle_rhs[k] : 0.0);
-    if (keep) kick(solver, k, rhs[k]);
-  }
+  step_error_ = now.any_row ? no_step : now.error;
   return true;
 }
 
@@ -195,25 +186,68 @@ void ShapeWorld::poll_stop() {
 }
 
 bool ShapeWorld::solve_joint_velocities() {
-  JointSolver solver(bodies_, state_, dt_, velocity_);
-  if (joint_rows_) {
-    for (JointRecord& j : joints_) {
-      if (!j.broken) solver.solve_velocity(j);
-    }
+  std::array<double, 3> change{}, error{};  // by part (0, 1, or JointTree::whole)
+  auto rows = [&](int part) {
+    JointSolver solver(bodies_, state_, dt_, velocity_);
+    if (joint_rows_) for_joints(part, [&](JointRecord& j) { solver.solve_velocity(j); });
+    change[part] = solver.velocity_change();
+    if (!tree_.empty()) error[part] = tree_point_velocities(solver, part);
+  };
+  run_joint_parts(rows);
+  // The forest's point rows at once: the impulses that make every one's Ċ zero together, at
+  // the start's arms. A velocity error within direct_velocity_tolerance is left: such a sweep
+  // moves nothing.
+  const bool direct = std::max({error[0], error[1], error[2]}) > direct_velocity_tolerance;
+  if (direct) {
+    auto solve = [&](int part) {
+      const auto members = tree_.members();
+      const auto rhs = tree_.rhs();
+      tree_.solve(rhs, {}, part);
+      JointSolver solver(bodies_, state_, dt_, velocity_);
+      for (const std::uint32_t k : tree_.members_of(part)) {
+        solver.apply_point(joints_[members[k]], rhs[k]);
+      }
+    };
+    run_joint_parts(solve);
   }
-  const bool direct = !tree_.empty() && solve_tree_velocities();
-  return solver.velocity_change() > velocity_sweep_tolerance || direct;
+  return std::max({change[0], change[1], change[2]}) > velocity_sweep_tolerance || direct;
 }
 
 bool ShapeWorld::solve_joint_positions(bool keep) {
-  JointSolver solver(bodies_, state_, dt_);
-  if (indirect_ || (!keep && direct_limits_)) {
-    for (JointRecord& j : joints_) {
-      if (!j.broken) solver.solve_position(j, keep);
-    }
+  const bool rows = indirect_ || (!keep && direct_limits_);
+  const bool tree = !tree_.empty();
+  const bool phase = tree && keep != step_keeps_;  // a phase begins: its first step unchecked
+  if (phase) step_error_ = no_step, step_keeps_ = keep;
+  if (tree) {
+    turned_.resize(state_.size());
+    fresh_arms_.resize(tree_.members().size());
+    fast_.resize(tree_.members().size());
   }
-  const bool direct = !tree_.empty() && solve_tree_positions(keep);
-  return solver.moved() || direct;
+  std::array<std::uint8_t, 3> moved{};  // by part
+  std::array<TreeErrors, 3> errors{};
+  auto measure = [&](int part) {
+    JointSolver solver(bodies_, state_, dt_);
+    if (rows) for_joints(part, [&](JointRecord& j) { solver.solve_position(j, keep); });
+    moved[part] = solver.moved() ? 1 : 0;
+    if (!tree) return;
+    if (phase && keep) {  // while keeping, which joints turn fast
+      const auto members = tree_.members();
+      for (const std::uint32_t k : tree_.members_of(part)) {
+        fast_[k] = solver.tick_turn(joints_[members[k]]) > fast_joint_turn ? 1 : 0;
+      }
+    }
+    errors[part] = measure_tree_errors(keep, solver, part);
+  };
+  run_joint_parts(measure);
+  TreeErrors now;
+  for (const TreeErrors& e : errors) {  // the parts' together (a part not run: all zero)
+    now.error = std::max(now.error, e.error);
+    now.past_limit = std::max(now.past_limit, e.past_limit);
+    now.rows_changed = now.rows_changed || e.rows_changed;
+    now.any_row = now.any_row || e.any_row;
+  }
+  const bool direct = tree && step_tree_positions(keep, now);
+  return moved[0] != 0 || moved[1] != 0 || moved[2] != 0 || direct;
 }
 
 void ShapeWorld::account_joints() {

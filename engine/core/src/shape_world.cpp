@@ -383,7 +383,9 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   tally.pairs = candidates_.size();
   tally.points = rows_.size();
   prepare_rows(tick);
+  joint_thread_ = second;  // the joints' passes by halves where prepare_joints splits them
   prepare_joints();
+  const SecondThreadRun joints_team(joints_halved_ ? joint_thread_ : nullptr);
   tally.velocity_sweeps = solve_velocities(tick, second);
   follow_velocities();
   account_joints();

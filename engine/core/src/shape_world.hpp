@@ -52,6 +52,7 @@
 #include "fixstep/core/simd.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "grid_broadphase.hpp"
+#include "joint_halves.hpp"
 #include "joint_tree.hpp"
 #include "kept_manifold.hpp"
 #include "one_way.hpp"
@@ -80,6 +81,9 @@ class ShapeWorld {
   /// The shapes from which the broadphase and the manifolds are made by halves on two
   /// threads (ShapeTick::threads).
   static constexpr std::size_t min_split_shapes = 2048;
+  /// The joints (broken ones too) from which a tick with two threads sweeps them by halves
+  /// (joint_halves.hpp), where they make two.
+  static constexpr std::size_t min_split_joints = 64;
 
   std::vector<ShapedBody> bodies_;
   std::vector<ShapeEntry> shapes_;
@@ -124,6 +128,8 @@ class ShapeWorld {
   /// The colours of the last tick's velocity sweeps solved by halves on two threads (a colour
   /// once per sweep).
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
+  /// For the tests: the joints' passes run by halves on two threads (joint_halves.hpp) so far.
+  [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
   /// Stop requests polled by the sweeps so far: each velocity and position sweep polls once.
   [[nodiscard]] std::uint64_t stop_polls() const { return stop_polls_; }
   /// Heap bytes a copy holds (World::snapshot_bytes): every array's elements (shape_memory.cpp).
@@ -335,8 +341,34 @@ class ShapeWorld {
   /// velocity by more than velocity_sweep_tolerance).
   bool solve_joint_velocities();
   bool solve_joint_positions(bool keep);
-  bool solve_tree_velocities();
-  bool solve_tree_positions(bool keep);
+  double tree_point_velocities(const JointSolver& solver, int part);
+  /// The joints by halves (joint_halves.hpp): from min_split_joints joints, when the tick has
+  /// a second thread (joint_thread_) and the joints make two halves, each joint pass runs
+  /// job(0) and job(1) on the two threads; else job(JointTree::whole) here. A part's passes
+  /// see its joints (for_joints, in joint order) and its members of the forest.
+  template <class Job>
+  void run_joint_parts(Job& job) {
+    if (joints_halved_) {
+      joint_thread_->both(job);
+      ++halved_joint_passes_;
+    } else {
+      job(JointTree::whole);
+    }
+  }
+  template <class F>
+  void for_joints(int part, F&& f) {
+    if (part == JointTree::whole) {
+      for (JointRecord& j : joints_) {
+        if (!j.broken) f(j);
+      }
+      return;
+    }
+    for (const std::uint32_t i : halves_.joints(part)) f(joints_[i]);
+  }
+  JointHalves halves_;
+  bool joints_halved_ = false;
+  SecondThread* joint_thread_ = nullptr;
+  std::uint64_t halved_joint_passes_ = 0;
   bool joint_rows_ = false;     ///< some joint has velocity rows of its own this tick
   bool indirect_ = false;       ///< some joint is not all in the forest
   bool direct_limits_ = false;  ///< some joint of the forest has a limit
@@ -358,7 +390,9 @@ class ShapeWorld {
     double error = 0.0, past_limit = 0.0;
     bool rows_changed = false, any_row = false;
   };
-  TreeErrors measure_tree_errors(bool keep, const JointSolver& solver);
+  TreeErrors measure_tree_errors(bool keep, const JointSolver& solver, int part);
+  /// The forest's step on positions from the errors measured (solve_tree_positions' step).
+  bool step_tree_positions(bool keep, const TreeErrors& now);
   void poll_stop();  ///< throw_if_stop_requested, counted in stop_polls_
   std::uint64_t stop_polls_ = 0;
   void account_joints();

@@ -1,0 +1,119 @@
+// The joints by halves on two threads (joint_halves.hpp): which joints go together, and a pile
+// of hinged trees, chains from one static beam and two trees tied by a slider stepped to the
+// same bits on one thread and two.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "fixstep/core/world.hpp"
+#include "joint_halves.hpp"
+#include "shape_exact.hpp"
+#include "shape_world.hpp"
+#include "world_kernel.hpp"
+
+namespace fixstep {
+namespace {
+
+using detail::JointHalves;
+using detail::JointRecord;
+constexpr std::uint32_t no_body = JointRecord::none;
+
+JointRecord joint(std::uint32_t a, std::uint32_t b) {
+  JointRecord j;
+  j.a = a, j.b = b;
+  return j;
+}
+
+TEST(JointHalves, JointsThatShareABodyOfAnyTypeGoTogetherAndTheHalvesHoldHalfTheJoints) {
+  // Groups, in the order of their first joint: {0, 1, 2} by joints 0, 1 and 6; {3, 4};
+  // {5} (to the world only); {6, 7, 8}, 7 held by both of its joints (a static beam's body is
+  // written by their position sweeps too); joint 5 broken (joins nothing, in no half).
+  std::vector<JointRecord> joints = {joint(0, 1), joint(1, 2), joint(3, 4), joint(5, no_body),
+                                     joint(6, 7), joint(9, 4), joint(2, 0), joint(8, 7)};
+  joints[5].broken = true;
+  JointHalves h;
+  ASSERT_TRUE(h.split(joints, 10));
+  // 7 joints: the first half takes groups while it holds under 3.5 of them, {0, 1, 2} (3), then
+  // {3, 4} (1 more: 4); {5} and {6, 7, 8} go to the second.
+  EXPECT_EQ(std::vector<std::uint32_t>(h.joints(0).begin(), h.joints(0).end()),
+            (std::vector<std::uint32_t>{0, 1, 2, 6}));
+  EXPECT_EQ(std::vector<std::uint32_t>(h.joints(1).begin(), h.joints(1).end()),
+            (std::vector<std::uint32_t>{3, 4, 7}));
+  const std::vector<std::uint8_t> half(h.half_of_body().begin(), h.half_of_body().end());
+  EXPECT_EQ(half, (std::vector<std::uint8_t>{0, 0, 0, 0, 0, 1, 1, 1, 1, 0}));
+  // Joined by one body, they are one group: no halves.
+  const std::vector<JointRecord> star = {joint(0, 1), joint(2, 1), joint(3, 1), joint(1, no_body)};
+  EXPECT_FALSE(h.split(star, 4));
+  EXPECT_FALSE(h.split({}, 4));
+}
+
+/// 32 trees of three boxes hinged in a row (limits, a motor on one hinge), dropped in a heap;
+/// 4 chains of 4 links from one static beam; and two of the trees tied by a slider. More than
+/// ShapeWorld::min_split_joints joints, in many groups.
+std::unique_ptr<detail::WorldKernel<double>> hinged_heap(int threads) {
+  WorldSettings s = shape_exact::shape_settings(0.6);
+  s.threads = threads;
+  auto w = std::make_unique<detail::WorldKernel<double>>(s);
+  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  std::vector<Entity> first;
+  std::vector<Vec2> at;
+  for (int i = 0; i < 32; ++i) {
+    const double x = 0.9 * (i % 4) - 1.4, y = 0.6 + 0.5 * (i / 4);
+    Entity last{};
+    for (int k = 0; k < 3; ++k) {
+      const Entity e =
+          w->create_body(shape_exact::box_body(0.15, 0.05, {x + 0.3 * k, y}, 0.02 * i));
+      if (k == 0) first.push_back(e), at.push_back({x, y});
+      if (k > 0) {
+        w->create_joint({.type = JointType::revolute,
+                         .body_a = last,
+                         .body_b = e,
+                         .anchor = {x + 0.3 * k - 0.15, y},
+                         .lower = -0.8,
+                         .upper = 0.8,
+                         .motor_speed = k == 1 ? 1.0 : 0.0,
+                         .max_motor_torque = k == 1 ? 0.05 : 0.0},
+                        "hinge");
+      }
+      last = e;
+    }
+  }
+  BodyDef beam = shape_exact::box_body(3.0, 0.1, {0.0, 9.0});
+  beam.type = BodyType::static_body;
+  const Entity b = w->create_body(beam);
+  for (int c = 0; c < 4; ++c) {
+    Entity last = b;
+    for (int k = 0; k < 4; ++k) {
+      const double x = -2.4 + 1.6 * c + 0.3 * k;
+      const Entity e = w->create_body(shape_exact::box_body(0.15, 0.04, {x + 0.15, 8.9}));
+      w->create_joint(
+          {.type = JointType::revolute, .body_a = last, .body_b = e, .anchor = {x, 8.9}}, "link");
+      last = e;
+    }
+  }
+  w->create_joint({.type = JointType::prismatic,
+                   .body_a = first[0],
+                   .body_b = first[21],
+                   .anchor = at[0],
+                   .axis = {0.0, 1.0}},
+                  "slider");
+  return w;
+}
+
+TEST(JointHalves, TwoThreadsStepAHingedHeapToTheSameBitsAsOne) {
+  auto one = hinged_heap(1), two = hinged_heap(2);
+  for (int t = 0; t < 150; ++t) {
+    one->step(), two->step();
+    ASSERT_EQ(one->state_hash(), two->state_hash()) << "first differs after tick " << t + 1;
+  }
+  EXPECT_EQ(one->shape_world()->halved_joint_passes(), 0u);
+  // 81 joints (64 hinges, 16 links, a slider): every velocity and position sweep of every
+  // tick by halves, two passes each at most.
+  EXPECT_GT(two->shape_world()->halved_joint_passes(), 150u * 20u);
+  EXPECT_FALSE(two->fault().has_value());
+}
+
+}  // namespace
+}  // namespace fixstep
