@@ -80,7 +80,7 @@ class ShapeWorld {
   static constexpr int max_impact_passes = 8;
   /// The shapes from which the broadphase and the manifolds are made by halves on two
   /// threads (ShapeTick::threads).
-  static constexpr std::size_t min_split_shapes = 2048;
+  static constexpr std::size_t min_split_shapes = 1024;
   /// The joints (broken ones too) from which a tick with two threads sweeps them by halves
   /// (joint_halves.hpp), where they make two.
   static constexpr std::size_t min_split_joints = 64;
