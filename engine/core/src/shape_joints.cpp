@@ -156,7 +156,8 @@ bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
   run_joint_parts(step);
   rest_factored_ = !keep;
   // Only a step without angle rows is checked (a limit's row is one-sided).
-  step_error_ = now.any_row ? no_step : now.error;
+  step_error_ = now.error;
+  if (now.any_row) step_error_ = no_step;
   return true;
 }
 
