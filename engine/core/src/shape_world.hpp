@@ -83,7 +83,7 @@ class ShapeWorld {
   static constexpr std::size_t min_split_shapes = 1024;
   /// The joints (broken ones too) from which a tick with two threads sweeps them by halves
   /// (joint_halves.hpp), where they make two.
-  static constexpr std::size_t min_split_joints = 64;
+  static constexpr std::size_t min_split_joints = 256;
 
   std::vector<ShapedBody> bodies_;
   std::vector<ShapeEntry> shapes_;
