@@ -5,16 +5,9 @@
 #include <numeric>
 
 #include "copy_bytes.hpp"
+#include "island_union.hpp"
 
 namespace fixstep::detail {
-
-std::uint32_t JointHalves::find(std::uint32_t k) {
-  while (root_[k] != k) {
-    root_[k] = root_[root_[k]];  // path halving
-    k = root_[k];
-  }
-  return k;
-}
 
 bool JointHalves::split(std::span<const JointRecord> joints, std::size_t bodies) {
   constexpr std::uint32_t none = JointRecord::none;
@@ -24,16 +17,13 @@ bool JointHalves::split(std::span<const JointRecord> joints, std::size_t bodies)
   for (const JointRecord& j : joints) {
     if (j.broken) continue;
     ++total;
-    if (j.a != none && j.b != none) {
-      const std::uint32_t ra = find(j.a), rb = find(j.b);
-      if (ra != rb) root_[std::max(ra, rb)] = std::min(ra, rb);
-    }
+    if (j.a != none && j.b != none) join(root_, j.a, j.b);
   }
   count_.assign(bodies, 0);
   half_of_.assign(bodies, unset);
   // A joint to the world alone at both ends holds no body: a group of its own, kept in the
   // first half (it moves nothing).
-  auto group = [&](const JointRecord& j) { return find(j.a != none ? j.a : j.b); };
+  auto group = [&](const JointRecord& j) { return find_root(root_, j.a != none ? j.a : j.b); };
   for (const JointRecord& j : joints) {
     if (!j.broken && (j.a != none || j.b != none)) ++count_[group(j)];
   }
@@ -55,7 +45,7 @@ bool JointHalves::split(std::span<const JointRecord> joints, std::size_t bodies)
   }
   half_of_body_.assign(bodies, 0);
   for (std::uint32_t k = 0; k < bodies; ++k) {
-    const std::uint32_t h = half_of_[find(k)];
+    const std::uint32_t h = half_of_[find_root(root_, k)];
     if (h != unset) half_of_body_[k] = static_cast<std::uint8_t>(h);
   }
   return !joints_[0].empty() && !joints_[1].empty();

@@ -35,8 +35,7 @@ class JointHalves {
 
  private:
   static constexpr std::uint32_t unset = ~std::uint32_t{0};
-  std::uint32_t find(std::uint32_t k);
-  std::vector<std::uint32_t> root_;     ///< union-find over bodies
+  std::vector<std::uint32_t> root_;     ///< union-find over bodies (island_union.hpp)
   std::vector<std::uint32_t> count_;    ///< per group root: its joints
   std::vector<std::uint32_t> half_of_;  ///< per group root: its half, or unset
   std::vector<std::uint8_t> half_of_body_;

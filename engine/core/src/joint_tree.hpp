@@ -35,8 +35,6 @@ class JointTree {
   [[nodiscard]] bool empty() const { return members_.empty(); }
   /// Heap bytes a copy holds (World::snapshot_bytes).
   [[nodiscard]] std::size_t bytes() const;
-  /// The bodies of the forest (indices into build's span), each once.
-  [[nodiscard]] std::span<const std::uint32_t> bodies() const { return bodies_; }
 
   /// Each member's lever arms (m, world frame, from A's and B's centre of mass) for the next
   /// factor(), by member index.
@@ -70,8 +68,8 @@ class JointTree {
   /// Splits the trees by `half_of_body` (0 or 1 for each of the forest's bodies; every body
   /// of a tree in the same half). Until the next build(), parts 0 and 1 are those trees.
   void split(std::span<const std::uint8_t> half_of_body);
-  /// A part's members (member indices, ascending) and bodies (body indices, in the forest's
-  /// order).
+  /// A part's members (member indices, ascending) and bodies (indices into build's span, each
+  /// once, in the forest's order).
   [[nodiscard]] std::span<const std::uint32_t> members_of(int part) const {
     return part == whole ? std::span<const std::uint32_t>(all_members_) : part_members_[part];
   }

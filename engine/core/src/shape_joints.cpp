@@ -135,6 +135,7 @@ bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
     const auto rhs = tree_.rhs();
     const auto arms = tree_.arms();
     const auto angle_rows = tree_.angle_rows();
+    const auto angle_rhs = tree_.angle_rhs();
     const auto own = tree_.members_of(part);
     for (const std::uint32_t k : own) {
       if (scaled) rhs[k] = scale * rhs[k];
@@ -144,12 +145,11 @@ bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
       tree_.factor_part(part);
       for (const std::uint32_t k : own) joints_[members[k]].limit_row = tree_.angle_row_kept(k);
     }
-    tree_.solve(rhs, tree_.angle_rhs(), part);
+    tree_.solve(rhs, angle_rhs, part);
     JointSolver solver(bodies_, state_, dt_);
     for (const std::uint32_t k : own) {
       JointRecord& j = joints_[members[k]];
-      solver.shift_point(j, rhs[k], arms[k][0], arms[k][1],
-                         angle_rows[k] ? tree_.angle_rhs()[k] : 0.0);
+      solver.shift_point(j, rhs[k], arms[k][0], arms[k][1], angle_rows[k] ? angle_rhs[k] : 0.0);
       if (keep) kick(solver, k, rhs[k]);
     }
   };
