@@ -70,6 +70,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "grid_broadphase.hpp"
 #include "grown_grid.hpp"
+#include "impact_lane.hpp"
 #include "scratch_vector.hpp"
 #include "world_kernel.hpp"
 
@@ -204,8 +205,12 @@ class DiscContacts {
     }
     broadphase_.second_thread().both(job);
   }
+  /// For the tests: the ticks whose impacts ran in two lanes, and those whose lanes met and
+  /// ran again in one (disc_lanes.cpp), since the discs were set.
+  [[nodiscard]] std::uint64_t lane_ticks() const { return lane_ticks_; }
+  [[nodiscard]] std::uint64_t lanes_undone() const { return lanes_undone_; }
   /// The impacts of the last resolve(), in order.
-  [[nodiscard]] std::span<const DiscImpact> impacts() const { return impact_log_; }
+  [[nodiscard]] std::span<const DiscImpact> impacts() const { return lanes_[0].log; }
   /// The sensors' overlaps after the last resolve(), by (sensor, visitor) disc pair order.
   [[nodiscard]] std::span<const SensorOverlap> sensed() const { return sensed_; }
   /// Impacts of a disc in a tick past which its inelastic pairs that end the tick overlapping
@@ -235,6 +240,9 @@ class DiscContacts {
   /// Candidate pairs from which two threads share the first impact predictions and the
   /// gathering, within the tick's run of the second thread.
   static constexpr std::size_t min_parallel_pairs = 512;
+  /// Candidate pairs from which a tick's impacts may run in two lanes (disc_lanes.cpp), within
+  /// the tick's run of the second thread.
+  static constexpr std::size_t min_lane_pairs = 1024;
   /// Discs from which a tick with two threads shares its passes with the second thread,
   /// which spins between them (SecondThread::open) rather than waking for each; below, every
   /// pass runs on the stepping thread.
@@ -345,8 +353,8 @@ class DiscContacts {
   /// The broadphase's grid of the fat boxes again (after a copy, whose broadphase has none).
   void rebuild_fat_grid(int threads);
   /// Disc j's box as the broadphase paired it (before reach() grew it), m.
-  [[nodiscard]] const SweptBox& paired_box(std::uint32_t j) const {
-    return grown_of_[j] == GrownBox::none ? boxes_[j] : grown_[grown_of_[j]].first;
+  [[nodiscard]] const SweptBox& paired_box(const ImpactLane& q, std::uint32_t j) const {
+    return grown_of_[j] == GrownBox::none ? boxes_[j] : q.grown[grown_of_[j]].first;
   }
   // windows of the tick (disc_windows.cpp)
   /// How many windows the tick's disc impacts run over: 1 when the swept boxes over the whole
@@ -379,40 +387,79 @@ class DiscContacts {
   /// True when disc k, on its motion, ends the tick touching a plane or a segment (within the
   /// slop, as the resting solver gathers its wall contacts), m.
   [[nodiscard]] bool ends_on_a_wall(const Tick& tick, std::uint32_t k);
-  /// Pushes pair's next impact after `now` (s) onto the event queue, if it has one this tick.
-  void predict(std::uint32_t pair, double now, double dt);
+  /// Pushes pair's next impact after `now` (s) onto q's event queue, if it has one this tick.
+  void predict(ImpactLane& q, std::uint32_t pair, double now, double dt);
   /// The pair's next impact after `now` into out; false when it has none this tick.
   bool next_event(std::uint32_t pair, double now, double dt, DiscEvent& out) const;
   /// The event queue filled with every pair's first impact (two threads share the pairs within
   /// the tick's run of the second thread when there are min_parallel_pairs or more).
   void first_events(const Tick& tick, double from);
-  /// The predictions after impacts so far, at most cap (max_tick_predictions), and where the
-  /// last stop poll was (again / 2^16).
-  struct EventBudget {
-    std::uint64_t again = 0, polled = 0, cap = 0;
-  };
-  /// Resolves the queue's events up to horizon_ in time order; false once budget.cap stopped it
-  /// (cap_ and stats record it).
-  bool run_window(const Tick& tick, ContactStats& stats, EventBudget& budget);
-  void impact(std::uint32_t pair, double now, double dt);
+  /// Resolves q's events up to horizon_ in time order; false once q.budget.cap stopped it
+  /// (cap_ and stats record it), or, in one of two lanes, where it met the other (q.met).
+  bool run_window(ImpactLane& q, const Tick& tick, ContactStats& stats);
+  /// The cap reached at `now` (s) before the impact of a and b (b = npos: a's wall): cap_ and
+  /// stats record it, or, in one of two lanes, the lanes meet. False.
+  bool over_budget(ImpactLane& q, ContactStats& stats, std::uint32_t a, std::uint32_t b,
+                   double now);
+  /// The tick's impacts in lane 0 over `windows` windows.
+  void run_lane(const Tick& tick, ContactStats& stats, int windows);
+  // the impacts in two lanes (disc_lanes.cpp)
+  /// The tick's impacts in two lanes on two threads; false where they did not run or met (the
+  /// motions then as at the tick's start, for run_lane()).
+  bool run_lanes(const Tick& tick, ContactStats& stats);
+  [[nodiscard]] bool lanes_may_run(const Tick& tick);
+  /// lane_of_ for every disc; false when a lane would hold a quarter of the pairs or less.
+  bool assign_lanes();
+  /// Disc k's centre at the tick's start on `axis` (0: x, 1: y), m.
+  [[nodiscard]] double centre(std::uint32_t k, int axis) const;
+  /// Disc k's lane in a split tick: its group's (lane_of_), or, in no pair, its own side.
+  [[nodiscard]] std::uint8_t lane(std::uint32_t k) const {
+    return degree_[k] != 0 ? lane_of_[k] : (centre(k, lane_axis_) >= lane_cut_ ? 1 : 0);
+  }
+  void start_lanes(const Tick& tick);
+  /// q's first events: its pairs' and its bounced discs' (as first_events()).
+  void first_lane_events(ImpactLane& q, const Tick& tick);
+  /// Whether either lane stopped where it met the other (read while they run).
+  [[nodiscard]] bool lanes_met();
+  /// q stops: it met the other lane, and the other stops at its next event. False.
+  bool meet_other_lane(ImpactLane& q);
+  /// After both ran: their bands against the other's grown boxes, and the one lane's count of
+  /// predictions bounded against the cap; lanes_[0].met where either fails.
+  void check_lanes();
+  /// An upper bound of what one lane would have counted against max_tick_predictions.
+  [[nodiscard]] std::uint64_t one_lane_count() const;
+  /// Both lanes' impact logs into lane 0's, by time; false at a tie between them.
+  bool merge_lane_logs();
+  void merge_lanes(ContactStats& stats);
+  /// Back to the motions at the tick's start after lanes that met.
+  void undo_lanes(const Tick& tick);
+  /// The lanes' held discs, extra pairs and grown boxes forgotten.
+  void forget_lanes();
+  void end_lanes();
+  void impact(ImpactLane& q, std::uint32_t pair, double now, double dt);
   // within a tick: pairs for a disc an impact sends beyond its box (disc_reach.cpp)
   /// Forgets the last tick's extra pairs and grown boxes; the pairs found so far are the base.
-  void start_reach();
+  void start_reach(ImpactLane& q);
   /// Disc k's motion from `now` (s) to the tick's end (dt, s): if it leaves k's box, the box
   /// grows over it and the discs that piece may meet become new pairs, predicted from now.
   /// Returns the work done, in units of a box test (a prediction counts 16).
   /// Within a live_only() tick, the sleepers that piece reaches join the tick.
-  std::uint64_t reach(const Tick& tick, std::uint32_t k, double now, double dt);
+  std::uint64_t reach(ImpactLane& q, const Tick& tick, std::uint32_t k, double now, double dt);
   /// Whether a pair of discs k, j may collide at all: not both immovable, not kept apart by
   /// their filters, neither a sensor, not linked.
   [[nodiscard]] bool may_pair(std::uint32_t k, std::uint32_t j) const;
   /// Puts pairs_ back in (a, b) order once extra pairs were added.
   void finish_reach();
+  /// q's next partner mark for reach().
+  std::uint32_t next_mark(ImpactLane& q);
+  /// Pair p as q's next extra pair, linked to both discs; its index, or ExtraPair::none where
+  /// a lane's slots ran out (the lanes meet).
+  std::uint32_t add_extra_pair(ImpactLane& q, DiscPair p);
   /// Holds the dynamic discs of a pair past the cap that would end the tick overlapping where
   /// they are at `now` (s) for the rest of the tick, keeping their velocities for the resting
   /// solver; how many it held (0 when a partner is kinematic, or both are held already or were
   /// released by a kinematic disc in the tick).
-  std::size_t hold_pair(std::uint32_t pair, double now);
+  std::size_t hold_pair(ImpactLane& q, std::uint32_t pair, double now);
   /// Puts held disc k back on its motion from where it was held (a kinematic disc meets it).
   void release(std::uint32_t k);
   // walls within the impacts (disc_walls.cpp)
@@ -423,7 +470,7 @@ class DiscContacts {
                        std::uint64_t& looked);
   /// Pushes disc k's next wall event after `now` (s) onto the event queue, if it has one: a
   /// disc the plane pass met (Disc::plane_slot), not held.
-  void predict_wall(const Tick& tick, std::uint32_t k, double now, double dt,
+  void predict_wall(ImpactLane& q, const Tick& tick, std::uint32_t k, double now, double dt,
                     std::uint64_t& looked);
   /// Wall `wall` (DiscEvent::stamp_b) as the plane disc k meets at `now` (s), moving at u (m/s;
   /// a segment's local plane at its closest feature); false when the ghost-vertex rule gives
@@ -433,12 +480,14 @@ class DiscContacts {
   enum class WallOutcome { none, impact, held };
   /// Disc k's impact with wall `wall` at `now` (s), resolved as the plane pass resolves it, or,
   /// past max_impacts, the disc held where it meets an inelastic wall it would end the tick in.
-  WallOutcome wall_impact(const Tick& tick, std::uint32_t k, std::uint32_t wall, double now);
+  WallOutcome wall_impact(ImpactLane& q, const Tick& tick, std::uint32_t k, std::uint32_t wall,
+                          double now);
   /// Disc k's pairs' and extra pairs' next events after `now` (s); adds the work to `again`.
-  void predict_pairs(std::uint32_t k, double now, double dt, std::uint64_t& again);
+  void predict_pairs(ImpactLane& q, std::uint32_t k, double now, double dt, std::uint64_t& again);
   /// After disc k's motion changed at `now` (s): predict_pairs(), the pairs of its path beyond
   /// its box, and its walls' next event; adds the work to `again`.
-  void predict_after(const Tick& tick, std::uint32_t k, double now, std::uint64_t& again);
+  void predict_after(ImpactLane& q, const Tick& tick, std::uint32_t k, double now,
+                     std::uint64_t& again);
   /// The broadphase's pairs of `boxes` into out, without the linked and filtered-out pairs;
   /// false past max_candidate_pairs (or max_vetoed_pairs dropped).
   bool pairs_of(std::span<const SweptBox> boxes, std::vector<DiscPair>& out, int threads,
@@ -585,27 +634,32 @@ class DiscContacts {
   ScratchVector<std::uint32_t> stamp_, impacts_;
   ScratchVector<std::uint32_t> cursor_;  ///< find_candidates()'s fill cursors
   ScratchVector<std::uint8_t> changed_;
-  ScratchVector<std::uint8_t> walled_;    ///< per disc: met a plane or a segment in the tick
-  std::vector<HeldMotion> held_;          ///< per disc: held for the rest of the tick (hold_pair())
-  std::vector<std::uint32_t> held_list_;  ///< the discs held in the tick
+  ScratchVector<std::uint8_t> walled_;  ///< per disc: met a plane or a segment in the tick
+  std::vector<HeldMotion> held_;        ///< per disc: held for the rest of the tick (hold_pair())
   // reach()'s: extra pairs, each disc's list of them (head per disc), the discs whose boxes
   // grew in the tick (and where in that list, per disc), and how many pairs the broadphase
   // found.
-  std::vector<ExtraPair> extra_;
-  std::vector<std::uint32_t> extra_head_, grown_of_;  ///< per disc: list head; index in grown_
-  std::vector<GrownBox> grown_;
-  std::vector<DiscPair> extra_sorted_;       ///< finish_reach()'s scratch
-  std::vector<std::uint32_t> partner_mark_;  ///< per disc: reach()'s mark when k's partner
-  std::uint32_t mark_ = 0;
-  GrownGrid grown_grid_;                   ///< the pieces the grown boxes grew by
-  std::vector<std::uint32_t> wall_found_;  ///< next_wall_event()'s segments near a path
+  std::vector<std::uint32_t> extra_head_, grown_of_;  ///< per disc: list head; index in grown
+  std::vector<DiscPair> extra_sorted_;                ///< finish_reach()'s scratch
+  std::vector<std::uint32_t> partner_mark_;           ///< per disc: reach()'s mark when k's partner
+  std::vector<std::uint32_t> wall_found_;             ///< next_wall_event()'s segments near a path
   double max_radius_ = 0;
   std::size_t base_pairs_ = 0;
   double horizon_ = 0;  ///< s: the end of the window the impacts run in (the tick's by default)
   std::array<ScratchVector<RestContact>, 2> plane_half_;  ///< gather_contacts()'s on two threads
-  ScratchVector<std::uint8_t> touch_;       ///< gather_contacts()'s on two threads: pair i touches
-  ScratchVector<DiscEvent> heap_, events_;  ///< the event queue; first_events()'s second half
-  std::vector<DiscImpact> impact_log_;
+  ScratchVector<std::uint8_t> touch_;  ///< gather_contacts()'s on two threads: pair i touches
+  ScratchVector<DiscEvent> events_;    ///< first_events()'s second half
+  /// The tick's impacts: lane 0 alone, or both (disc_lanes.cpp) and then merged into lane 0.
+  std::array<ImpactLane, 2> lanes_;
+  std::vector<std::uint8_t> lane_of_;                ///< per disc: its lane in a split tick
+  std::vector<std::uint32_t> lane_parent_;           ///< assign_lanes()'s union-find
+  std::vector<DiscImpact> lane_log_;                 ///< merge_lane_logs()'s scratch
+  LanesMet lanes_met_;                               ///< set where a lane stopped
+  std::uint64_t lane_ticks_ = 0, lanes_undone_ = 0;  ///< lane_ticks(), lanes_undone()
+  int lane_axis_ = 0;                                ///< the cut's axis (0: x, 1: y)
+  double lane_cut_ = 0;                              ///< where it cuts, m
+  std::uint32_t lanes_met_in_a_row_ = 0;             ///< ticks in a row whose lanes met
+  std::uint32_t lane_rest_ = 0;                      ///< ticks left before lanes are tried again
   /// Disc pairs in key order, then planes in key order: gathered anew by every tick, read
   /// within it (touching(): the contact events, the sleeping islands).
   ScratchVector<RestContact> contacts_;

@@ -69,11 +69,11 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   offset_.assign(n + 1, 0);
   stamp_.assign(n, 0);
   held_.assign(n, HeldMotion{});
-  held_list_.clear();
-  extra_.clear(), grown_.clear();
+  for (ImpactLane& q : lanes_) q.held.clear(), q.extra.clear(), q.grown.clear(), q.mark = 0;
+  lanes_met_in_a_row_ = lane_rest_ = 0, lane_ticks_ = lanes_undone_ = 0;
   extra_head_.assign(n, ExtraPair::none);
   grown_of_.assign(n, GrownBox::none);
-  partner_mark_.assign(n, 0), mark_ = 0;
+  partner_mark_.assign(n, 0);
   impacts_.assign(n, 0);
   changed_.assign(n, 0);
   walled_.assign(n, 0);
@@ -236,11 +236,11 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
 }
 
 template <class Real>
-void DiscContacts<Real>::predict(std::uint32_t pair, double now, double dt) {
+void DiscContacts<Real>::predict(ImpactLane& q, std::uint32_t pair, double now, double dt) {
   DiscEvent ev;
   if (!next_event(pair, now, dt, ev)) return;
-  heap_.push_back(ev);
-  std::push_heap(heap_.begin(), heap_.end(), later_event);
+  q.heap.push_back(ev);
+  std::push_heap(q.heap.begin(), q.heap.end(), later_event);
 }
 
 template <class Real>
@@ -293,7 +293,7 @@ bool DiscContacts<Real>::next_event(std::uint32_t pair, double now, double dt,
 }
 
 template <class Real>
-void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
+void DiscContacts<Real>::impact(ImpactLane& q, std::uint32_t pair, double now, double dt) {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
   DiscMotion &ma = motion_[a], &mb = motion_[b];
   if (held_[a].on && !discs_[b].dynamic) release(a);  // a kinematic disc pushes a held one on
@@ -313,7 +313,7 @@ void DiscContacts<Real>::impact(std::uint32_t pair, double now, double dt) {
   const double ja = held_[a].on ? 0.0 : da.inv_inertia, jb = held_[b].on ? 0.0 : db.inv_inertia;
   const double mass = 1.0 / (ia + ib);
   const double jn = -(1.0 + e) * vn * mass;
-  impact_log_.push_back(DiscImpact{da.body, db.body, now, -vn});
+  q.log.push_back(DiscImpact{da.body, db.body, now, -vn});
   // Coulomb over the normal impulse: the tangential relative velocity loses at most μ jn/m.
   const double tx = wx - (wx * nx + wy * ny) * nx, ty = wy - (wx * nx + wy * ny) * ny;
   const double speed = length(tx, ty);
@@ -398,7 +398,7 @@ std::uint32_t DiscContacts<Real>::largest_box() const {
 template <class Real>
 void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProfile& profile) {
   stats = ContactStats{};
-  impact_log_.clear();
+  lanes_[0].log.clear();
   sensor_pairs_.clear(), sensed_.clear();
   cap_ = CapHit{};
   PhaseClock clock(true);
@@ -437,15 +437,14 @@ template <class Real>
 std::size_t DiscContacts<Real>::bytes() const {
   return copy_bytes(discs_, linked_, filters_, sensor_pairs_, sensed_, x0_, y0_, vx0_, vy0_,
                     motion_, boxes_, dynamic_, pairs_, offset_, incident_, cursor_, stamp_, held_,
-                    held_list_, extra_, extra_sorted_, partner_mark_, wall_found_, extra_head_,
-                    grown_, grown_of_, impacts_, changed_, walled_, touch_, plane_half_[0],
-                    plane_half_[1], heap_, events_, impact_log_, contacts_, order_, scratch_, cut_,
-                    warm_, warm_upper_, ex_, ey_, evx_, evy_, lost_, external_, e_start_, e_begin_,
-                    d_begin_, ew_, ew0_, rows_, push_rows_, row_moved_, sv_, slot_moved_,
-                    roll_rows_, sw_, asleep_, awake_list_, live_, in_live_, woken_,
-                    sleepers_.grid.discs, sleepers_.disc, live_boxes_, live_dynamic_, degree_,
-                    fat_.boxes, fat_.pairs, segments_near_) +
-         grown_grid_.bytes();
+                    extra_sorted_, partner_mark_, wall_found_, extra_head_, grown_of_, impacts_,
+                    changed_, walled_, touch_, plane_half_[0], plane_half_[1], events_, contacts_,
+                    order_, scratch_, cut_, lane_of_, lane_parent_, lane_log_, warm_, warm_upper_,
+                    ex_, ey_, evx_, evy_, lost_, external_, e_start_, e_begin_, d_begin_, ew_, ew0_,
+                    rows_, push_rows_, row_moved_, sv_, slot_moved_, roll_rows_, sw_, asleep_,
+                    awake_list_, live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc,
+                    live_boxes_, live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
+         lanes_[0].bytes() + lanes_[1].bytes();
 }
 
 }  // namespace fixstep::detail

@@ -67,7 +67,7 @@ void DiscContacts<Real>::release(std::uint32_t k) {
 }
 
 template <class Real>
-std::size_t DiscContacts<Real>::hold_pair(std::uint32_t pair, double now) {
+std::size_t DiscContacts<Real>::hold_pair(ImpactLane& q, std::uint32_t pair, double now) {
   const std::uint32_t a = pairs_[pair].a, b = pairs_[pair].b;
   for (const std::uint32_t k : {a, b}) {  // a kinematic partner would move on into it
     const DiscMotion& m = motion_[k];
@@ -81,7 +81,7 @@ std::size_t DiscContacts<Real>::hold_pair(std::uint32_t pair, double now) {
     DiscMotion& m = motion_[k];
     m.advance(now);
     held_[k] = HeldMotion{m.ux, m.uy, m.ax, m.ay, 1};
-    held_list_.push_back(k);
+    q.held.push_back(k);
     m.ux = m.uy = m.ax = m.ay = 0.0;
     ++stamp_[k], changed_[k] = 1;
     ++held;

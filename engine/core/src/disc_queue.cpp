@@ -25,52 +25,56 @@ void DiscContacts<Real>::first_events(const Tick& tick, double from) {
       if (next_event(i, from, tick.dt, ev)) out.push_back(ev);
     }
   };
+  ScratchVector<DiscEvent>& heap = lanes_[0].heap;
   if (broadphase_.second_thread().is_open() && m >= min_parallel_pairs) {
     events_.clear();
-    auto halves = [&](int half) { half == 0 ? find(0, m / 2, heap_) : find(m / 2, m, events_); };
+    auto halves = [&](int half) { half == 0 ? find(0, m / 2, heap) : find(m / 2, m, events_); };
     broadphase_.second_thread().both(halves);
-    heap_.insert(heap_.end(), events_.begin(), events_.end());
+    heap.insert(heap.end(), events_.begin(), events_.end());
   } else {
-    find(0, m, heap_);
+    find(0, m, heap);
   }
   if (from == 0.0 && (!tick.planes.empty() || tick.segments)) {  // bounced by the plane pass
     live_range(0, live_count(), [&](std::uint32_t k) {
       const std::int32_t slot = discs_[k].plane_slot;
       if (slot < 0 || !(tick.after[slot].t >= 0.0)) return;
-      heap_.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
+      heap.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
     });
   }
-  std::make_heap(heap_.begin(), heap_.end(), later_event);
+  std::make_heap(heap.begin(), heap.end(), later_event);
 }
 
 template <class Real>
-void DiscContacts<Real>::predict_pairs(std::uint32_t k, double now, double dt,
+void DiscContacts<Real>::predict_pairs(ImpactLane& q, std::uint32_t k, double now, double dt,
                                        std::uint64_t& again) {
   again += degree_[k];
   const std::uint32_t end = offset_[k] + degree_[k];
-  for (std::uint32_t i = offset_[k]; i < end; ++i) predict(incident_[i], now, dt);
-  for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
-    ++again, predict(extra_[e].pair, now, dt);
+  for (std::uint32_t i = offset_[k]; i < end; ++i) predict(q, incident_[i], now, dt);
+  for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = q.extra[e].next) {
+    ++again, predict(q, q.extra[e].pair, now, dt);
   }
 }
 
 template <class Real>
-void DiscContacts<Real>::predict_after(const Tick& tick, std::uint32_t k, double now,
+void DiscContacts<Real>::predict_after(ImpactLane& q, const Tick& tick, std::uint32_t k, double now,
                                        std::uint64_t& again) {
   const double dt = tick.dt;
-  predict_pairs(k, now, dt, again);
-  again += reach(tick, k, now, dt) / 16;  // the pairs of its path beyond its box
-  if (!tick.planes.empty() || tick.segments) predict_wall(tick, k, now, dt, again);
+  predict_pairs(q, k, now, dt, again);
+  again += reach(q, tick, k, now, dt) / 16;  // the pairs of its path beyond its box
+  if (!tick.planes.empty() || tick.segments) predict_wall(q, tick, k, now, dt, again);
 }
 
 template <class Real>
-bool DiscContacts<Real>::run_window(const Tick& tick, ContactStats& stats, EventBudget& budget) {
+bool DiscContacts<Real>::run_window(ImpactLane& q, const Tick& tick, ContactStats& stats) {
   const double dt = tick.dt;
+  EventBudget& budget = q.budget;
   std::uint64_t& again = budget.again;
-  while (!heap_.empty() && !(heap_.front().time > horizon_)) {
-    std::pop_heap(heap_.begin(), heap_.end(), later_event);
-    const DiscEvent ev = heap_.back();
-    heap_.pop_back();
+  ScratchVector<DiscEvent>& heap = q.heap;
+  while (!heap.empty() && !(heap.front().time > horizon_)) {
+    if (q.split && lanes_met()) return false;  // the tick's impacts run again in one lane
+    std::pop_heap(heap.begin(), heap.end(), later_event);
+    const DiscEvent ev = heap.back();
+    heap.pop_back();
     if (ev.pair & switch_event) {  // a disc met its first plane event on its free motion
       const std::uint32_t k = ev.pair & ~switch_event;
       if (ev.stamp_a != stamp_[k]) continue;  // an impact came first
@@ -79,43 +83,36 @@ bool DiscContacts<Real>::run_window(const Tick& tick, ContactStats& stats, Event
         // after the last one, extrapolated back to this first one, lies beyond a wall until
         // then, where a disc could meet it. Its walls are met here instead, from its free
         // motion on, as after an impact.
-        predict_wall(tick, k, ev.time, dt, again);
+        predict_wall(q, tick, k, ev.time, dt, again);
         continue;
       }
       switch_to_plane_motion(tick, k);
       walled_[k] = 1;
-      predict_pairs(k, motion_[k].t, dt, again);  // within its box, clear of the walls
+      predict_pairs(q, k, motion_[k].t, dt, again);  // within its box, clear of the walls
       continue;
     }
     if (ev.pair & wall_event) {  // a disc's impact with a wall (disc_walls.cpp)
       const std::uint32_t k = ev.pair & ~wall_event;
       if (ev.stamp_a != stamp_[k]) continue;  // superseded
-      if (again > budget.cap) {
-        cap_ = CapHit{"max_tick_predictions", budget.cap, k, CapHit::npos, ev.time};
-        stats.capped = 1;
-        return false;
-      }
-      const WallOutcome out = wall_impact(tick, k, ev.stamp_b, ev.time);
+      if (again > budget.cap) return over_budget(q, stats, k, CapHit::npos, ev.time);
+      const WallOutcome out = wall_impact(q, tick, k, ev.stamp_b, ev.time);
       if (out == WallOutcome::none) continue;
       ++(out == WallOutcome::held ? stats.held : stats.wall_impacts);
-      predict_after(tick, k, ev.time, again);
+      predict_after(q, tick, k, ev.time, again);
       continue;
     }
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
     const PastCap past = past_cap(tick, ev.pair, ev.time);
     if (past == PastCap::rest) continue;  // the resting solver's (see disc_contacts.hpp)
-    if (again > budget.cap) {             // an impact due that the cap leaves unresolved
-      cap_ = CapHit{"max_tick_predictions", budget.cap, a, b, ev.time};
-      stats.capped = 1;
-      return false;
-    }
+    // An impact due that the cap leaves unresolved.
+    if (again > budget.cap) return over_budget(q, stats, a, b, ev.time);
     if (past == PastCap::hold) {
-      const std::size_t held = hold_pair(ev.pair, ev.time);
+      const std::size_t held = hold_pair(q, ev.pair, ev.time);
       if (held == 0) continue;  // a kinematic partner, or both held: the resting solver's
       stats.held += held;
     } else {
-      impact(ev.pair, ev.time, dt);
+      impact(q, ev.pair, ev.time, dt);
       ++stats.impacts;
     }
     if (again >> 16 != budget.polled) {  // a long tick stays stoppable: every 65 536 predictions
@@ -123,36 +120,28 @@ bool DiscContacts<Real>::run_window(const Tick& tick, ContactStats& stats, Event
       throw_if_stop_requested();
     }
     for (const std::uint32_t k : {a, b}) {
-      if (discs_[k].dynamic) predict_after(tick, k, ev.time, again);
+      if (discs_[k].dynamic) predict_after(q, tick, k, ev.time, again);
     }
   }
   return true;
 }
 
 template <class Real>
+bool DiscContacts<Real>::over_budget(ImpactLane& q, ContactStats& stats, std::uint32_t a,
+                                     std::uint32_t b, double now) {
+  if (q.split) return meet_other_lane(q);  // its share of the cap: the one lane decides
+  cap_ = CapHit{"max_tick_predictions", q.budget.cap, a, b, now};
+  stats.capped = 1;
+  return false;
+}
+
+template <class Real>
 void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats, int windows) {
   const double dt = tick.dt;
-  impact_log_.clear();
-  for (const std::uint32_t k : held_list_) held_[k].on = held_[k].released = 0;
-  held_list_.clear();
-  heap_.clear();
-  EventBudget budget{0, 0, max_tick_predictions(discs_.size())};
-  for (int w = 0; w < windows; ++w) {
-    // Window w of the tick: [t0, horizon_] (the whole tick when windows = 1).
-    const double t0 = w == 0 ? 0.0 : dt * w / windows;
-    horizon_ = w + 1 == windows ? dt : dt * (w + 1) / windows;
-    if (windows > 1) {  // its pairs, by the discs' boxes over it (disc_windows.cpp)
-      throw_if_stop_requested();
-      window_boxes(tick, t0, horizon_);
-      if (!find_candidates(tick, stats, max_candidate_pairs(discs_.size()), false)) break;
-      if (w > 0) budget.again += pairs_.size();  // their first predictions
-    }
-    start_reach();
-    first_events(tick, t0);
-    const bool done = run_window(tick, stats, budget);
-    finish_reach();
-    if (!done) break;
-  }
+  ImpactLane& q = lanes_[0];
+  for (const std::uint32_t k : q.held) held_[k].on = held_[k].released = 0;
+  q.held.clear();
+  if (windows > 1 || !run_lanes(tick, stats)) run_lane(tick, stats, windows);
   // The end of the tick on each disc's last motion; the integrator's velocity is the model's
   // minus the offset δ.
   live_range(0, live_count(), [&](std::uint32_t k) {
@@ -166,6 +155,32 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats, int w
       evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
     }
   });
+}
+
+template <class Real>
+void DiscContacts<Real>::run_lane(const Tick& tick, ContactStats& stats, int windows) {
+  const double dt = tick.dt;
+  ImpactLane& q = lanes_[0];
+  q.log.clear();
+  q.heap.clear();
+  q.split = false;
+  q.budget = EventBudget{0, 0, max_tick_predictions(discs_.size())};
+  for (int w = 0; w < windows; ++w) {
+    // Window w of the tick: [t0, horizon_] (the whole tick when windows = 1).
+    const double t0 = w == 0 ? 0.0 : dt * w / windows;
+    horizon_ = w + 1 == windows ? dt : dt * (w + 1) / windows;
+    if (windows > 1) {  // its pairs, by the discs' boxes over it (disc_windows.cpp)
+      throw_if_stop_requested();
+      window_boxes(tick, t0, horizon_);
+      if (!find_candidates(tick, stats, max_candidate_pairs(discs_.size()), false)) break;
+      if (w > 0) q.budget.again += pairs_.size();  // their first predictions
+    }
+    start_reach(q);
+    first_events(tick, t0);
+    const bool done = run_window(q, tick, stats);
+    finish_reach();
+    if (!done) break;
+  }
 }
 
 }  // namespace fixstep::detail

@@ -14,17 +14,19 @@
 namespace fixstep::detail {
 
 template <class Real>
-void DiscContacts<Real>::start_reach() {
-  for (const ExtraPair& e : extra_) extra_head_[e.disc] = ExtraPair::none;
-  extra_.clear();
-  for (const GrownBox& g : grown_) grown_of_[g.disc] = GrownBox::none;
-  grown_.clear();
-  grown_grid_.reset(4.0 * (1.0 + 2.0 * slop) * max_radius_, discs_.size());
+void DiscContacts<Real>::start_reach(ImpactLane& q) {
+  for (const ExtraPair& e : q.extra) extra_head_[e.disc] = ExtraPair::none;
+  q.extra.clear();
+  for (const GrownBox& g : q.grown) grown_of_[g.disc] = GrownBox::none;
+  q.grown.clear();
+  q.grid.reset(4.0 * (1.0 + 2.0 * slop) * max_radius_, discs_.size());
+  q.bands.clear();
   base_pairs_ = pairs_.size();
 }
 
 template <class Real>
-std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, double now, double dt) {
+std::uint64_t DiscContacts<Real>::reach(ImpactLane& q, const Tick& tick, std::uint32_t k,
+                                        double now, double dt) {
   const DiscMotion& m = motion_[k];
   const double pad = box_pad(discs_[k]), h = horizon_ - m.t;
   SweptBox piece;
@@ -35,10 +37,10 @@ std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, doubl
     return 0;  // inside its box (false for NaN: a NaN piece is looked at, and overlaps nothing)
   }
   if (grown_of_[k] == GrownBox::none) {  // its box as the broadphase paired it
-    grown_of_[k] = static_cast<std::uint32_t>(grown_.size());
-    grown_.push_back(GrownBox{k, box});
+    grown_of_[k] = static_cast<std::uint32_t>(q.grown.size());
+    q.grown.push_back(GrownBox{k, box});
   }
-  const SweptBox& first = grown_[grown_of_[k]].first;
+  const SweptBox& first = q.grown[grown_of_[k]].first;
   // What the grown box covers beyond the box: up to four bands (closed, so they may share edges).
   SweptBox grown = box;
   grown.min_x = std::min(box.min_x, piece.min_x), grown.max_x = std::max(box.max_x, piece.max_x);
@@ -53,11 +55,10 @@ std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, doubl
   box = grown;
   std::uint64_t work = 0;
   // k's extra pairs so far, marked by their partners (a fresh mark per call).
-  if (++mark_ == 0) std::fill(partner_mark_.begin(), partner_mark_.end(), 0u), mark_ = 1;
-  const std::uint32_t mark = mark_;
-  for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = extra_[e].next) {
-    const DiscPair& q = pairs_[extra_[e].pair];
-    partner_mark_[q.a == k ? q.b : q.a] = mark, ++work;
+  const std::uint32_t mark = next_mark(q);
+  for (std::uint32_t e = extra_head_[k]; e != ExtraPair::none; e = q.extra[e].next) {
+    const DiscPair& p = pairs_[q.extra[e].pair];
+    partner_mark_[p.a == k ? p.b : p.a] = mark, ++work;
   }
   // j, whose box the broadphase paired by is `paired_by`: a new pair if that box did not meet
   // k's (else the broadphase paired them, or they may not collide) and j's box now meets the
@@ -65,18 +66,17 @@ std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, doubl
   const SweptBox* band = nullptr;
   auto meet = [&](std::uint32_t j, const SweptBox& paired_by) {
     ++work;
+    if (q.split && lane(j) != q.id) {  // the other lane's: only where they may pair
+      if (j != k && boxes_overlap(*band, paired_by) && may_pair(k, j)) meet_other_lane(q);
+      return;
+    }
     if (j == k || boxes_overlap(first, paired_by) || !boxes_overlap(*band, boxes_[j])) return;
     if (!may_pair(k, j)) return;
     if (partner_mark_[j] == mark) return;  // an extra pair already, or met by another band
     partner_mark_[j] = mark;
-    const DiscPair p{std::min(k, j), std::max(k, j)};
-    const auto index = static_cast<std::uint32_t>(pairs_.size());
-    pairs_.push_back(p);
-    for (const std::uint32_t q : {k, j}) {
-      extra_.push_back(ExtraPair{index, q, extra_head_[q]});
-      extra_head_[q] = static_cast<std::uint32_t>(extra_.size() - 1);
-    }
-    predict(index, now, dt);
+    const std::uint32_t index = add_extra_pair(q, DiscPair{std::min(k, j), std::max(k, j)});
+    if (index == ExtraPair::none) return;  // its slots are full (q.met)
+    predict(q, index, now, dt);
     work += 16;
   };
   for (std::size_t i = 0; i < count; ++i) {
@@ -87,7 +87,9 @@ std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, doubl
       work += broadphase_.query(*band, meet);
     } else if (live_all_) {  // the grid holds the fat boxes (disc_fat.cpp): each disc's own box
       if (!fat_grid_.value) rebuild_fat_grid(pass_threads(tick));
-      auto own = [&](std::uint32_t j, const SweptBox& /*fat*/) { meet(j, paired_box(j)); };
+      auto own = [&](std::uint32_t j, const SweptBox& fat) {
+        meet(j, q.split && lane(j) != q.id ? fat : paired_box(q, j));
+      };
       work += broadphase_.query(*band, own);
     } else {  // the broadphase holds the live discs by live position; a sleeper joins here
       auto live_meet = [&](std::uint32_t i, const SweptBox& b) { meet(live_[i], b); };
@@ -97,9 +99,12 @@ std::uint64_t DiscContacts<Real>::reach(const Tick& tick, std::uint32_t k, doubl
         meet(j, boxes_[j]);
       });
     }
-    work += grown_grid_.query(*band, [&](std::uint32_t j) { meet(j, grown_[grown_of_[j]].first); });
+    work += q.grid.query(*band, [&](std::uint32_t j) { meet(j, q.grown[grown_of_[j]].first); });
   }
-  for (std::size_t i = 0; i < count; ++i) grown_grid_.insert(k, bands[i]);
+  for (std::size_t i = 0; i < count; ++i) {
+    q.grid.insert(k, bands[i]);
+    if (q.split) q.bands.emplace_back(k, bands[i]);
+  }
   return work;
 }
 
@@ -113,6 +118,37 @@ bool DiscContacts<Real>::may_pair(std::uint32_t k, std::uint32_t j) const {
   if (linked_.empty()) return true;
   const std::uint64_t key = (std::uint64_t(std::min(k, j)) << 32) | std::max(k, j);
   return !std::binary_search(linked_.begin(), linked_.end(), key);
+}
+
+template <class Real>
+std::uint32_t DiscContacts<Real>::next_mark(ImpactLane& q) {
+  // Two lanes mark their own discs only, each with its own count: a lane's marks start past
+  // every mark made before (disc_lanes.cpp sets both to the larger after a split tick).
+  if (++q.mark == 0) std::fill(partner_mark_.begin(), partner_mark_.end(), 0u), q.mark = 1;
+  return q.mark;
+}
+
+template <class Real>
+std::uint32_t DiscContacts<Real>::add_extra_pair(ImpactLane& q, DiscPair p) {
+  std::uint32_t index = 0;
+  if (!q.split) {
+    index = static_cast<std::uint32_t>(pairs_.size());
+    pairs_.push_back(p);
+  } else {  // its slot among the extra pairs: base + 2 i + id (disc_lanes.cpp)
+    const std::size_t slot = base_pairs_ + 2 * std::size_t{q.next_extra} + q.id;
+    if (slot >= pairs_.size()) {
+      meet_other_lane(q);
+      return ExtraPair::none;
+    }
+    ++q.next_extra;
+    index = static_cast<std::uint32_t>(slot);
+    pairs_[slot] = p;
+  }
+  for (const std::uint32_t d : {p.a, p.b}) {
+    q.extra.push_back(ExtraPair{index, d, extra_head_[d]});
+    extra_head_[d] = static_cast<std::uint32_t>(q.extra.size() - 1);
+  }
+  return index;
 }
 
 template <class Real>

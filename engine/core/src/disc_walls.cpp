@@ -91,13 +91,13 @@ bool DiscContacts<Real>::next_wall_event(const Tick& tick, std::uint32_t k, doub
 }
 
 template <class Real>
-void DiscContacts<Real>::predict_wall(const Tick& tick, std::uint32_t k, double now, double dt,
-                                      std::uint64_t& looked) {
+void DiscContacts<Real>::predict_wall(ImpactLane& q, const Tick& tick, std::uint32_t k, double now,
+                                      double dt, std::uint64_t& looked) {
   if (discs_[k].plane_slot < 0 || held_[k].on) return;
   DiscEvent ev;
   if (!next_wall_event(tick, k, now, dt, ev, looked)) return;
-  heap_.push_back(ev);
-  std::push_heap(heap_.begin(), heap_.end(), later_event);
+  q.heap.push_back(ev);
+  std::push_heap(q.heap.begin(), q.heap.end(), later_event);
 }
 
 template <class Real>
@@ -120,10 +120,8 @@ bool DiscContacts<Real>::wall_plane(const Tick& tick, std::uint32_t k, std::uint
 }
 
 template <class Real>
-typename DiscContacts<Real>::WallOutcome DiscContacts<Real>::wall_impact(const Tick& tick,
-                                                                         std::uint32_t k,
-                                                                         std::uint32_t wall,
-                                                                         double now) {
+typename DiscContacts<Real>::WallOutcome DiscContacts<Real>::wall_impact(
+    ImpactLane& q, const Tick& tick, std::uint32_t k, std::uint32_t wall, double now) {
   using plane_contact::V2;
   const double dt = tick.dt;
   PlaneDef plane;
@@ -149,7 +147,7 @@ typename DiscContacts<Real>::WallOutcome DiscContacts<Real>::wall_impact(const T
     if (inside && held_[k].released) return WallOutcome::none;  // the resting solver's
     if (inside) {
       held_[k] = HeldMotion{d.ux, d.uy, d.ax, d.ay, 1};
-      held_list_.push_back(k);
+      q.held.push_back(k);
       d.ux = d.uy = d.ax = d.ay = 0.0;
       ++stamp_[k], changed_[k] = 1;
       return WallOutcome::held;

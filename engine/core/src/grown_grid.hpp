@@ -85,6 +85,24 @@ class GrownGrid {
 
   /// Heap bytes held.
   [[nodiscard]] std::size_t bytes() const { return copy_bytes(head_, entries_, wide_, used_); }
+  /// Wide boxes: a query looks at each.
+  [[nodiscard]] std::uint64_t wide() const { return wide_.size(); }
+  /// The longest list of entries in one bucket: a query's cell looks at most at that many.
+  [[nodiscard]] std::uint64_t longest_bucket() const {
+    std::uint64_t most = 0;
+    for (const std::uint32_t b : used_) {
+      std::uint64_t length = 0;
+      for (std::uint32_t i = head_[b]; i != none; i = entries_[i].next) ++length;
+      most = std::max(most, length);
+    }
+    return most;
+  }
+  /// The cells query(q) looks at (0 for a NaN box), before it looks at every entry instead.
+  [[nodiscard]] std::uint64_t cells(const SweptBox& q) const {
+    std::int64_t x0, y0, x1, y1;
+    if (!cells_of(q, x0, y0, x1, y1)) return 0;
+    return std::uint64_t(x1 - x0 + 1) * std::uint64_t(y1 - y0 + 1);
+  }
 
  private:
   static constexpr std::uint32_t none = 0xffffffffu;

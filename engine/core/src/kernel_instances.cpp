@@ -12,6 +12,7 @@
 #include "disc_gather.cpp"         // discs: the resting contacts gathered
 #include "disc_halves.cpp"         // discs: a pile in two halves
 #include "disc_holds.cpp"          // discs: impacts past the cap, and holds
+#include "disc_lanes.cpp"          // discs: a tick's impacts in two lanes
 #include "disc_live.cpp"           // discs: the ones a tick visits, with sleepers
 #include "disc_queue.cpp"          // discs: the event queue of a tick's impacts
 #include "disc_reach.cpp"          // discs: pairs of a path beyond its box

@@ -289,6 +289,8 @@ class WorldKernel {
   void check_joint_input(const JointInput& in, const std::string& who) const;
   /// The shape contacts (null without shapes): for tests that read the solver's rows.
   [[nodiscard]] const ShapeWorld* shape_world() const { return shape_world_.get(); }
+  /// The discs' contacts (null in a world without them), for the tests.
+  [[nodiscard]] const DiscContacts<Real>* disc_contacts() const { return discs_.get(); }
   [[nodiscard]] std::uint64_t user_data(Entity e) const { return user_data_[index_of(e)]; }
   /// Sets e's user data (part of copies and snapshots, never of the state hash).
   void set_user_data(Entity e, std::uint64_t value) { user_data_[index_of(e)] = value; }

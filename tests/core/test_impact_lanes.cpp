@@ -1,0 +1,131 @@
+// A tick's disc impacts in two lanes on two threads (disc_lanes.cpp) against one lane: the same
+// state, impacts and contact counts after every tick, for gases with elastic and inelastic
+// walls, rolling discs and a kinematic disc ploughing through, with the lanes used and, where
+// a path crosses the cut, run again in one lane.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "disc_contacts.hpp"
+#include "fixstep/core/world.hpp"
+#include "world_kernel.hpp"
+
+namespace fixstep {
+namespace {
+
+using Kernel = detail::WorldKernel<double>;
+
+struct GasOptions {
+  std::size_t n = 6000;
+  double wall_restitution = 1.0;
+  bool rolling = false;
+  bool plough = false;  ///< a kinematic disc crossing the box
+  double speed = 1.0;   ///< the speeds' scale: 1-3 m/s times it
+  double spread = 1.0;  ///< the cells' side's scale (1: 10 % of the area covered)
+};
+
+/// n discs of radius 5 cm at 10 % of a square box's area, one a cell, 1-3 m/s in random
+/// directions (the benchmark's gas), on `threads` threads.
+std::unique_ptr<Kernel> gas(const GasOptions& o, int threads) {
+  WorldSettings s{.dt = 1.0 / 60.0, .threads = threads};
+  s.contacts = ContactSettings{.restitution = 1.0, .friction = o.rolling ? 0.3 : 0.0};
+  s.contacts->rolling = o.rolling;
+  auto w = std::make_unique<Kernel>(s);
+  const double r = 0.05, cell = o.spread * r * std::sqrt(3.14159265358979 / 0.1);
+  const auto side = static_cast<std::size_t>(std::ceil(std::sqrt(double(o.n))));
+  const double width = cell * double(side);
+  auto wall = [&](Vec2 normal, double offset) {
+    w->add_plane({.normal = normal,
+                  .offset = offset,
+                  .restitution = o.wall_restitution,
+                  .friction = o.rolling ? 0.3 : 0.0});
+  };
+  wall({0.0, 1.0}, 0.0), wall({1.0, 0.0}, 0.0), wall({-1.0, 0.0}, -width),
+      wall({0.0, -1.0}, -width);
+  std::uint64_t seed = o.n;
+  auto unit = [&] {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return double(seed >> 11) * 0x1p-53;
+  };
+  for (std::size_t i = 0; i < o.n; ++i) {
+    const double x = (double(i % side) + 0.5) * cell + (unit() - 0.5) * (cell - 2.2 * r);
+    const double y = (double(i / side) + 0.5) * cell + (unit() - 0.5) * (cell - 2.2 * r);
+    const double speed = o.speed * (1.0 + 2.0 * unit()), angle = 6.283185307179586 * unit();
+    BodyDef d;
+    d.body = {.mass = 1.0,
+              .position = {x, y},
+              .velocity = {speed * std::cos(angle), speed * std::sin(angle)}};
+    d.collider = Collider{.radius = r};
+    w->create_body(d);
+  }
+  if (o.plough) {
+    BodyDef d;
+    d.type = BodyType::kinematic;
+    d.body = {.mass = 1.0, .position = {0.3 * width, 0.5 * width}, .velocity = {4.0, 0.5}};
+    d.collider = Collider{.radius = 0.3};
+    w->create_body(d);
+  }
+  return w;
+}
+
+/// Steps both `ticks` ticks: the same state hash, impacts (time, bodies, speed) and contact
+/// counts after each; then the lanes' counts of the two-thread world.
+void same_as_one_lane(const GasOptions& o, int ticks, const std::string& what,
+                      std::uint64_t& lane_ticks, std::uint64_t& undone) {
+  auto one = gas(o, 1), two = gas(o, 2);
+  for (int t = 0; t < ticks; ++t) {
+    one->step(), two->step();
+    ASSERT_EQ(one->state_hash(), two->state_hash()) << what << ": differs after tick " << t + 1;
+    const auto a = one->impacts(), b = two->impacts();
+    ASSERT_EQ(a.size(), b.size()) << what << ", tick " << t + 1;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ASSERT_TRUE(a[i].a == b[i].a && a[i].b == b[i].b && a[i].time == b[i].time &&
+                  a[i].normal_speed == b[i].normal_speed)
+          << what << ", tick " << t + 1 << ", impact " << i;
+    }
+    const ContactStats &p = one->contact_stats(), &q = two->contact_stats();
+    ASSERT_EQ(p.touching, q.touching) << what << ", tick " << t + 1;
+    ASSERT_EQ(p.wall_impacts, q.wall_impacts) << what << ", tick " << t + 1;
+    ASSERT_EQ(p.held, q.held) << what << ", tick " << t + 1;
+  }
+  EXPECT_EQ(one->disc_contacts()->lane_ticks(), 0u) << what;  // one thread: one lane
+  lane_ticks = two->disc_contacts()->lane_ticks();
+  undone = two->disc_contacts()->lanes_undone();
+}
+
+TEST(ImpactLanes, AGasInTwoLanesStepsToTheBitsOfOne) {
+  std::uint64_t lanes = 0, undone = 0;
+  same_as_one_lane(GasOptions{}, 120, "gas of 6000", lanes, undone);
+  // 1100 pairs a tick or so (from 1024 the lanes run): most ticks in two lanes, some run again
+  // where a disc's new path crossed the cut.
+  EXPECT_GT(lanes, 60u);
+  EXPECT_GT(undone, 0u);
+}
+
+TEST(ImpactLanes, InelasticWallsRollingDiscsAndAKinematicPloughStepToTheBitsOfOneLane) {
+  std::uint64_t lanes = 0, undone = 0;
+  GasOptions o;
+  o.wall_restitution = 0.5, o.rolling = true;
+  same_as_one_lane(o, 90, "rolling gas, inelastic walls", lanes, undone);
+  EXPECT_GT(lanes, 10u);
+  o = GasOptions{}, o.plough = true;
+  same_as_one_lane(o, 90, "gas with a plough", lanes, undone);
+  EXPECT_GT(lanes, 10u);
+}
+
+TEST(ImpactLanes, AFastSparseGasStepsToTheBitsOfOneLane) {
+  // Paths of 13-40 cm a tick (8-24 m/s) in a gas at a quarter of the density: discs sent far
+  // across the cut, where the lanes meet.
+  std::uint64_t lanes = 0, undone = 0;
+  GasOptions o;
+  o.n = 8000, o.speed = 8.0, o.spread = 2.0;
+  same_as_one_lane(o, 60, "fast sparse gas", lanes, undone);
+  EXPECT_GT(lanes, 0u);
+  EXPECT_GT(undone, 0u);
+}
+
+}  // namespace
+}  // namespace fixstep
