@@ -92,8 +92,11 @@ bool DiscContacts<Real>::assign_lanes() {
 
 template <class Real>
 void DiscContacts<Real>::start_lanes(const Tick& tick) {
+  // Both lanes mark on from the larger count: every mark left in partner_mark_ (by either lane,
+  // or by lane 0 alone in the ticks since) is at most that, so no new mark equals a stale one.
   // A lane's marks stay below 2^31 in a tick (the cap), so neither wraps while they run.
-  if (std::max(lanes_[0].mark, lanes_[1].mark) >= 0x80000000u) {
+  lanes_[0].mark = lanes_[1].mark = std::max(lanes_[0].mark, lanes_[1].mark);
+  if (lanes_[0].mark >= 0x80000000u) {
     std::fill(partner_mark_.begin(), partner_mark_.end(), 0u);
     lanes_[0].mark = lanes_[1].mark = 0;
   }
