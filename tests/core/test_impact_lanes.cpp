@@ -127,5 +127,37 @@ TEST(ImpactLanes, AFastSparseGasStepsToTheBitsOfOneLane) {
   EXPECT_GT(undone, 0u);
 }
 
+TEST(ImpactLanes, APileIsNotCutIntoLanesEveryTick) {
+  // 1200 touching discs resting on the ground: their pairs (over 1024) make one group, which no
+  // cut splits. Finding that costs a union-find over every pair: after four ticks in a row
+  // without lanes they rest 16 ticks, then 32, then 64. Tried in 200 ticks at ticks 1-4, 21,
+  // 54, 119 and 184: 8 (every tick without the rest).
+  WorldSettings s{.dt = 1.0 / 60.0, .threads = 2};
+  s.contacts = ContactSettings{.restitution = 0.0, .friction = 0.5};
+  Kernel w(s);
+  s.threads = 1;
+  Kernel one(s);
+  const double r = 0.05;
+  for (Kernel* k : {&w, &one}) {
+    k->add_plane({.normal = {0.0, 1.0}, .offset = 0.0});
+    for (int row = 0; row < 30; ++row) {
+      for (int col = 0; col < 40; ++col) {
+        BodyDef d;
+        d.body = {.mass = 1.0, .position = {r + 2.0 * r * col, r + 2.0 * r * row}};
+        d.collider = Collider{.radius = r};
+        d.gravity = Gravity{};
+        k->create_body(d);
+      }
+    }
+  }
+  for (int t = 0; t < 200; ++t) {
+    w.step(), one.step();
+    ASSERT_EQ(w.state_hash(), one.state_hash()) << "tick " << t + 1;
+  }
+  EXPECT_GE(w.contact_stats().candidate_pairs, 1024u);
+  EXPECT_EQ(w.disc_contacts()->lane_ticks(), 0u);
+  EXPECT_EQ(w.disc_contacts()->lane_cuts(), 8u);
+}
+
 }  // namespace
 }  // namespace fixstep

@@ -205,10 +205,12 @@ class DiscContacts {
     }
     broadphase_.second_thread().both(job);
   }
-  /// For the tests: the ticks whose impacts ran in two lanes, and those whose lanes met and
-  /// ran again in one (disc_lanes.cpp), since the discs were set.
+  /// For the tests: the ticks whose impacts ran in two lanes, those whose lanes met and ran
+  /// again in one, and those that cut the discs into lanes at all (disc_lanes.cpp), since the
+  /// discs were set.
   [[nodiscard]] std::uint64_t lane_ticks() const { return lane_ticks_; }
   [[nodiscard]] std::uint64_t lanes_undone() const { return lanes_undone_; }
+  [[nodiscard]] std::uint64_t lane_cuts() const { return lane_cuts_; }
   /// The impacts of the last resolve(), in order.
   [[nodiscard]] std::span<const DiscImpact> impacts() const { return lanes_[0].log; }
   /// The sensors' overlaps after the last resolve(), by (sensor, visitor) disc pair order.
@@ -433,6 +435,9 @@ class DiscContacts {
   void merge_lanes(ContactStats& stats);
   /// Back to the motions at the tick's start after lanes that met.
   void undo_lanes(const Tick& tick);
+  /// A tick the lanes did not pay for (they met, or one lane would hold nearly every pair):
+  /// after four in a row the lanes rest for 16 ticks, doubling up to 64.
+  void rest_lanes();
   /// The lanes' held discs, extra pairs and grown boxes forgotten.
   void forget_lanes();
   void end_lanes();
@@ -656,9 +661,10 @@ class DiscContacts {
   std::vector<DiscImpact> lane_log_;                 ///< merge_lane_logs()'s scratch
   LanesMet lanes_met_;                               ///< set where a lane stopped
   std::uint64_t lane_ticks_ = 0, lanes_undone_ = 0;  ///< lane_ticks(), lanes_undone()
+  std::uint64_t lane_cuts_ = 0;                      ///< lane_cuts()
   int lane_axis_ = 0;                                ///< the cut's axis (0: x, 1: y)
   double lane_cut_ = 0;                              ///< where it cuts, m
-  std::uint32_t lanes_met_in_a_row_ = 0;             ///< ticks in a row whose lanes met
+  std::uint32_t lane_misses_in_a_row_ = 0;           ///< ticks in a row without lanes
   std::uint32_t lane_rest_ = 0;                      ///< ticks left before lanes are tried again
   /// Disc pairs in key order, then planes in key order: gathered anew by every tick, read
   /// within it (touching(): the contact events, the sleeping islands).

@@ -43,7 +43,7 @@ bool DiscContacts<Real>::lanes_may_run(const Tick& tick) {
       tick.segments != nullptr || pairs_.size() < min_lane_pairs) {
     return false;
   }
-  if (lane_rest_ > 0) {  // after ticks in a row whose lanes met
+  if (lane_rest_ > 0) {  // after ticks in a row without lanes (rest_lanes())
     --lane_rest_;
     return false;
   }
@@ -229,7 +229,14 @@ void DiscContacts<Real>::undo_lanes(const Tick& tick) {
     for (std::size_t k = 0; k < discs_.size(); ++k) ew_[k] = double(tick.spin[discs_[k].body]);
   }
   build_motions(tick);
-  lane_rest_ = ++lanes_met_in_a_row_ < 4 ? 0 : 1u << std::min(lanes_met_in_a_row_, 6u);
+  rest_lanes();
+}
+
+template <class Real>
+void DiscContacts<Real>::rest_lanes() {
+  // A pile stays one group tick after tick: its union-find would cost as much as its
+  // impacts phase, every tick, for no lanes.
+  lane_rest_ = ++lane_misses_in_a_row_ < 4 ? 0 : 1u << std::min(lane_misses_in_a_row_, 6u);
 }
 
 template <class Real>
@@ -254,12 +261,17 @@ void DiscContacts<Real>::merge_lanes(ContactStats& stats) {
   pairs_.insert(pairs_.end(), extras.begin(), extras.end());
   end_lanes();
   finish_reach();
-  lanes_met_in_a_row_ = 0;
+  lane_misses_in_a_row_ = 0;
 }
 
 template <class Real>
 bool DiscContacts<Real>::run_lanes(const Tick& tick, ContactStats& stats) {
-  if (!lanes_may_run(tick) || !assign_lanes()) return false;
+  if (!lanes_may_run(tick)) return false;
+  ++lane_cuts_;
+  if (!assign_lanes()) {
+    rest_lanes();
+    return false;
+  }
   start_lanes(tick);
   auto job = [&](int h) {
     ImpactLane& q = lanes_[h];
