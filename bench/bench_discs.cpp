@@ -13,11 +13,11 @@
 //   box2d3     Box2D v3.1.1 and v3.2 (where bench/box2d3.cmake built them), b2World_Step(dt, 4)
 //              on 1 and 2 workers (discs_box2d3.cpp).
 // Every case is built and warmed up untimed, then the same ticks are timed for every engine and
-// every N (5 repetitions of 4 ticks, the median; --benchmark_min_time makes Google Benchmark
-// choose the ticks instead); after them, every engine's deepest overlap and kinetic energy are
-// measured on its state the same way. The report (stdout; with --report DIR also DIR/discs.md)
-// gives ns per body-step, the overlaps, fixstep's contact statistics, Box2D's broadphase share
-// and the targets as ratios measured side by side.
+// every N (5 rounds of 4 ticks, the contenders at one N taking their rounds in turn, the median;
+// --benchmark_min_time makes Google Benchmark choose the ticks instead); after them, every engine's
+// deepest overlap and kinetic energy are measured on its state the same way. The report (stdout;
+// with --report DIR also DIR/discs.md) gives ns per body-step, the overlaps, fixstep's contact
+// statistics, Box2D's broadphase share and the targets as ratios measured side by side.
 //
 //   build/bench/bin/bench_discs --report docs/perf
 //   build/bench/bin/bench_discs --quick --benchmark_min_time=0.01   (N = 10³: a smoke run)
@@ -32,8 +32,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "discs.hpp"
@@ -155,44 +157,53 @@ int run_checks(bool full) {
 
 // --- benchmarks -----------------------------------------------------------------------------
 
-/// The case being timed: built and warmed up once, then stepped by all its repetitions
-/// (Google Benchmark calls the function again for each): a 10⁵-disc world takes seconds to
-/// build and warm up, and a settled pile stays settled.
+/// The contenders at one scene and N, each built and warmed up once on its first round, then
+/// stepped by its rounds in turn with the others' (a 10⁵-disc world takes seconds to build and
+/// warm up, and a settled pile stays settled). Interleaved rounds let a slow span of the
+/// machine (on a shared VM: the host's other load, which two threads feel most) fall on every
+/// contender alike, not on one case's consecutive repetitions.
 struct Live {
-  std::string id;
-  Scene scene;
   std::unique_ptr<Stepper> stepper;
   std::int64_t ticks = 0;
 };
 
-Live& live(SceneKind kind, const std::string& key, std::size_t n) {
-  static Live current;
-  const std::string id = fmt::format("{}/{}/{}", scene_name(kind), key, n);
-  if (current.id != id) {
-    current.stepper.reset();  // the previous engine's memory first
-    current.scene = make_scene(kind, n);
-    current.stepper = make_stepper(key, current.scene);
-    for (int t = 0; t < current.scene.warmup; ++t) current.stepper->step();
-    current.ticks = current.scene.warmup;
-    current.id = id;
+struct Contenders {
+  std::string group;  // "<scene>/<N>"
+  Scene scene;
+  std::map<std::string, Live> live;
+};
+
+std::pair<const Scene&, Live&> live(SceneKind kind, const std::string& key, std::size_t n) {
+  static Contenders c;
+  const std::string group = fmt::format("{}/{}", scene_name(kind), n);
+  if (c.group != group) {
+    c.live.clear();  // the previous contenders' memory first
+    c.scene = make_scene(kind, n);
+    c.group = group;
   }
-  return current;
+  Live& l = c.live[key];
+  if (!l.stepper) {
+    l.stepper = make_stepper(key, c.scene);
+    for (int t = 0; t < c.scene.warmup; ++t) l.stepper->step();
+    l.ticks = c.scene.warmup;
+  }
+  return {c.scene, l};
 }
 
 void bm_step(benchmark::State& st, SceneKind kind, const std::string& key) {
-  Live& c = live(kind, key, static_cast<std::size_t>(st.range(0)));
+  const auto [scene, c] = live(kind, key, static_cast<std::size_t>(st.range(0)));
   for (auto _ : st) {
     c.stepper->step();
     benchmark::ClobberMemory();
   }
   c.ticks += static_cast<std::int64_t>(st.iterations());
-  const double n = double(c.scene.position.size()), r = c.scene.radius;
+  const double n = double(scene.position.size()), r = scene.radius;
   st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * std::int64_t(n));
   std::vector<Vec2> x, v;
   c.stepper->state(x, v);
-  const Quality q = measure(c.scene, x, v);
+  const Quality q = measure(scene, x, v);
   const Stats s = c.stepper->stats();
-  const double energy = kind == SceneKind::gas ? q.kinetic / initial_kinetic(c.scene)
+  const double energy = kind == SceneKind::gas ? q.kinetic / initial_kinetic(scene)
                                                : std::sqrt(2.0 * q.kinetic / (mass * n));
   st.counters = {{"bodies", n},
                  {"ticks", double(c.ticks)},
@@ -264,47 +275,53 @@ std::vector<std::int64_t> sizes(const Options& o) {
   return {1000, 10'000, 100'000};
 }
 
-/// Repetitions of a case, each of `ticks_per_repetition` ticks: every engine and every N times
-/// the same ticks (the pile's ticks 41-60, the settled pile's 361-380, the gas's 6-25), so that
-/// costs compare like with like (a pile still settling costs more per tick than a settled one).
-int repetitions(const Options& o) {
+/// Rounds of a case, each of `ticks_per_round` ticks: every engine and every N times the same
+/// ticks (the pile's ticks 41-60, the settled pile's 361-380, the gas's 6-25), so that costs
+/// compare like with like (a pile still settling costs more per tick than a settled one). The
+/// contenders at one N take their rounds in turn.
+int rounds(const Options& o) {
   if (o.reps_given || o.quick) return 1;
   return 5;
 }
-constexpr int ticks_per_repetition = 4;
+constexpr int ticks_per_round = 4;
+
+/// Whether `key` is timed on `kind`.
+bool contends(SceneKind kind, const std::string& k, std::int64_t n) {
+  if (k == "fixstep_f64_off" && kind != SceneKind::gas) return false;
+  if (k.starts_with("fixstep_i8") && kind == SceneKind::gas) return false;     // nothing rests
+  if (k.starts_with("fixstep_roll") && kind != SceneKind::pile) return false;  // the peers' pile
+  const bool sleeps = k.find("_sleep") != std::string::npos;
+  const bool asleep_only = kind == SceneKind::pile_ball;
+  if (sleeps ? kind != SceneKind::pile_settled && !asleep_only : asleep_only) return false;
+  return k != "chipmunk_hasty2" || n <= 10'000;  // optional; 40+ s at 10^5
+}
 
 void register_all(const Options& o) {
   for (SceneKind kind : {SceneKind::pile, SceneKind::gas, SceneKind::pile_large,
                          SceneKind::pile_settled, SceneKind::pile_ball}) {
-    for (const std::int64_t n : sizes(o)) {  // the contenders at one N run one after another
+    for (const std::int64_t n : sizes(o)) {
       if (kind != SceneKind::pile && kind != SceneKind::gas && n > 10'000) continue;
-      const bool asleep_only = kind == SceneKind::pile_ball;
-      for (const char* key : stepper_keys()) {
-        const std::string k = key;
-        if (k == "fixstep_f64_off" && kind != SceneKind::gas) continue;
-        if (k.starts_with("fixstep_i8") && kind == SceneKind::gas) continue;     // nothing rests
-        if (k.starts_with("fixstep_roll") && kind != SceneKind::pile) continue;  // the peers' pile
-        const bool sleeps = k.find("_sleep") != std::string::npos;
-        if (sleeps ? kind != SceneKind::pile_settled && !asleep_only : asleep_only) continue;
-        if (k == "chipmunk_hasty2" && n > 10'000) continue;  // optional; 40+ s at 10^5
-        auto* b =
-            benchmark::RegisterBenchmark(fmt::format("{}/{}", scene_name(kind), k).c_str(),
-                                         [kind, k](benchmark::State& st) { bm_step(st, kind, k); });
-        b->Arg(n)->Unit(benchmark::kMicrosecond)->UseRealTime();
-        if (!o.min_time_given) b->Iterations(ticks_per_repetition);
-        const int reps = repetitions(o);
-        if (reps > 1) b->Repetitions(reps)->ReportAggregatesOnly(true);
+      for (int round = 1; round <= rounds(o); ++round) {
+        for (const char* key : stepper_keys()) {
+          const std::string k = key;
+          if (!contends(kind, k, n)) continue;
+          auto* b = benchmark::RegisterBenchmark(
+              fmt::format("{}/{}/round:{}", scene_name(kind), k, round).c_str(),
+              [kind, k](benchmark::State& st) { bm_step(st, kind, k); });
+          b->Arg(n)->Unit(benchmark::kMicrosecond)->UseRealTime();
+          if (!o.min_time_given) b->Iterations(ticks_per_round);
+        }
       }
     }
   }
 }
 
-/// Keeps the median of every case, keyed "<scene>/<stepper>/<N>".
+/// Keeps every round of every case, keyed "<scene>/<stepper>/<N>"; results() takes the median
+/// time over the rounds and the quality after the last.
 class Collector : public benchmark::ConsoleReporter {
  public:
   // Colours only on a terminal: reproduce.sh keeps the console output as docs/perf/discs.log.
   Collector() : ConsoleReporter(isatty(fileno(stdout)) ? OO_ColorTabular : OO_Tabular) {}
-  Results results;
   void ReportRuns(const std::vector<Run>& runs) override {
     ConsoleReporter::ReportRuns(runs);
     for (const Run& r : runs) {
@@ -317,22 +334,38 @@ class Collector : public benchmark::ConsoleReporter {
       if (std::isnan(n)) continue;
       const double ns =
           r.GetAdjustedRealTime() * (r.time_unit == benchmark::kMicrosecond ? 1e3 : 1);
-      results.cases[r.run_name.function_name + "/" + r.run_name.args] = {
-          .ns_per_body_step = ns / n,
-          .bodies = n,
-          .ticks = c("ticks"),
-          .disc_overlap = c("overlap_r"),
-          .wall_overlap = c("wall_r"),
-          .kinetic_ratio = c("energy"),
-          .stats = {c("pairs"), c("touching"), c("impacts"), c("self_r"), c("bp"), c("narrow"),
-                    int(c("threads"))}};
-      const int reps = std::max<int>(1, int(r.repetitions));
-      if (n >= 100'000)
-        results.repetitions_largest = std::max(results.repetitions_largest, reps);
-      else
-        results.repetitions = std::max(results.repetitions, reps);
+      std::string name = r.run_name.function_name;
+      name = name.substr(0, name.rfind("/round:"));
+      rounds_[name + "/" + r.run_name.args].push_back(
+          {.ns_per_body_step = ns / n,
+           .bodies = n,
+           .ticks = c("ticks"),
+           .disc_overlap = c("overlap_r"),
+           .wall_overlap = c("wall_r"),
+           .kinetic_ratio = c("energy"),
+           .stats = {c("pairs"), c("touching"), c("impacts"), c("self_r"), c("bp"), c("narrow"),
+                     int(c("threads"))}});
     }
   }
+  [[nodiscard]] Results results() const {
+    Results res;
+    for (const auto& [key, rounds] : rounds_) {
+      std::vector<double> ns;
+      for (const CaseResult& c : rounds) ns.push_back(c.ns_per_body_step);
+      std::sort(ns.begin(), ns.end());
+      const std::size_t m = ns.size() / 2;
+      CaseResult last = rounds.back();
+      last.ns_per_body_step = ns.size() % 2 == 1 ? ns[m] : 0.5 * (ns[m - 1] + ns[m]);
+      res.cases[key] = last;
+      const int k = static_cast<int>(rounds.size());
+      int& kept = last.bodies >= 100'000 ? res.repetitions_largest : res.repetitions;
+      kept = std::max(kept, k);
+    }
+    return res;
+  }
+
+ private:
+  std::map<std::string, std::vector<CaseResult>> rounds_;
 };
 
 double load_average() {
@@ -375,7 +408,7 @@ int main(int argc, char** argv) {
     Collector collector;
     benchmark::RunSpecifiedBenchmarks(&collector);
     benchmark::Shutdown();
-    Results res = collector.results;
+    Results res = collector.results();
     res.sizes = sizes(o);
     res.load_start = load_start, res.load_end = load_average();
 

@@ -120,7 +120,9 @@ std::string num(double v, const char* f) {
 }
 
 std::string repetitions_text(const Results& r) {
-  const auto reps = [](int k) { return fmt::format("{} repetition{}", k, k == 1 ? "" : "s"); };
+  const auto reps = [](int k) {
+    return k == 1 ? std::string("1 round") : fmt::format("{} interleaved rounds", k);
+  };
   const bool largest = std::find(r.sizes.begin(), r.sizes.end(), 100'000) != r.sizes.end();
   if (!largest || r.repetitions_largest == r.repetitions) return reps(r.repetitions);
   return fmt::format("{} ({} at N = 10^5)", reps(r.repetitions), r.repetitions_largest);
