@@ -1,6 +1,7 @@
 // The second thread of a world's passes (engine/core/src/second_thread.hpp, pass_team.hpp,
 // spin_wait.hpp): an exception on the worker reaches the caller, in a run and outside one; a
 // nested run leaves the outer one open; a job the worker has not claimed is run by the caller;
+// opening a run wakes a sleeping worker;
 // on one core the two threads take turns by sleeping, not by spinning; and a thread asked to
 // leave a core does.
 #include <gtest/gtest.h>
@@ -92,6 +93,27 @@ TEST(PassTeam, AJobTheWorkerHasNotClaimedRunsOnTheCaller) {
   EXPECT_EQ(runs, 4);
   team.finish();
   worker.join();
+}
+
+// A tick opens its run before its first split pass (the integration, the planes run first):
+// opening wakes a worker that slept since the last tick, so that it spins by that pass instead
+// of waking at it. At 60 ticks a second the worker sleeps between ticks, and a wake-up at the
+// first pass (a futex on a virtual machine) cost the 10^4-disc gas's tick more than the second
+// thread saved.
+TEST(SecondThread, OpeningARunWakesASleepingWorker) {
+  SecondThread thread;
+  auto nothing = [](int) {};
+  thread.both(nothing);  // starts the worker
+  // Outside a run the worker sleeps spin_budget after the last pass.
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_NE(thread.team(), nullptr);
+  const unsigned slept = thread.team()->worker_slept();  // its waits that ended asleep
+  const SecondThreadRun run(&thread);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (thread.team()->worker_slept() == slept && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  EXPECT_GT(thread.team()->worker_slept(), slept) << "the worker slept on after the run opened";
 }
 
 #if defined(__linux__)

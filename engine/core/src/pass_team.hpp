@@ -55,10 +55,16 @@ class PassTeam {
     }
   }
   /// Starts or ends a run: within one the worker spins between jobs (unless it shares the
-  /// caller's core); outside one it sleeps after spin_budget.
+  /// caller's core); outside one it sleeps after spin_budget. Starting one wakes a sleeping
+  /// worker (an empty job posted, which either thread runs): a tick opens its run before its
+  /// first split pass, and the worker then spins by it instead of waking at it.
   void set_run(bool on) {
     if (on) caller_cpu_.store(current_cpu(), std::memory_order_relaxed);
     run_.store(on, std::memory_order_relaxed);
+    if (on) {
+      post([](void*) {}, nullptr);
+      wait();
+    }
   }
   /// Ends serve() (after the last job was waited for).
   void finish() {
