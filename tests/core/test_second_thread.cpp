@@ -1,7 +1,7 @@
 // The second thread of a world's passes (engine/core/src/second_thread.hpp, pass_team.hpp,
 // spin_wait.hpp): an exception on the worker reaches the caller, in a run and outside one; a
 // nested run leaves the outer one open; a job the worker has not claimed is run by the caller;
-// opening a run wakes a sleeping worker;
+// a wait with nothing posted returns; opening a run wakes a sleeping worker;
 // on one core the two threads take turns by sleeping, not by spinning; and a thread asked to
 // leave a core does.
 #include <gtest/gtest.h>
@@ -93,6 +93,27 @@ TEST(PassTeam, AJobTheWorkerHasNotClaimedRunsOnTheCaller) {
   EXPECT_EQ(runs, 4);
   team.finish();
   worker.join();
+}
+
+// wait() with nothing posted since the last one returns at once. It waited for the worker to
+// finish the last job, which the caller had run itself: forever.
+TEST(PassTeam, AWaitWithNothingPostedSinceTheLastReturns) {
+  static PassTeam team;                      // outlives a waiter that hangs
+  static std::atomic<bool> returned{false};  // set by that waiter
+  int runs = 0;
+  team.post([](void* p) { ++*static_cast<int*>(p); }, &runs);
+  team.wait();  // no worker: run here
+  EXPECT_EQ(runs, 1);
+  std::thread([] {
+    team.wait();
+    returned = true;
+  }).detach();
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!returned && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_TRUE(returned) << "a second wait() did not return";
+  EXPECT_EQ(runs, 1);
 }
 
 // A tick opens its run before its first split pass (the integration, the planes run first):

@@ -39,9 +39,12 @@ class PassTeam {
     posted_.fetch_add(1, std::memory_order_release);
     posted_.notify_one();
   }
-  /// Returns when the last posted job has run: here, if the worker has not claimed it yet.
+  /// Returns when the last posted job has run: here, if the worker has not claimed it yet; at
+  /// once when nothing was posted since the last wait().
   void wait() {
     const unsigned want = posted_.load(std::memory_order_relaxed);
+    if (want == waited_) return;  // else a job the caller ran would be waited for forever
+    waited_ = want;
     if (claim(want)) {
       job_(ctx_);
       ++run_here_;
@@ -149,6 +152,7 @@ class PassTeam {
   /// When each side's spin ends by time (each written and read by its own thread only).
   std::chrono::steady_clock::time_point caller_until_{}, worker_until_{}, worker_checked_{};
   unsigned run_here_ = 0;
+  unsigned waited_ = 0;                  ///< the last job wait() returned for (the caller's only)
   const AllowedCores* cores_ = nullptr;  // the worker's, while it serves
 };
 
