@@ -15,10 +15,10 @@
 // Every case is built and warmed up untimed, then the same ticks are timed for every engine and
 // every N (5 rounds of 4 ticks, the contenders at one N taking their rounds in turn, but for
 // the asleep worlds', the median; --benchmark_min_time makes Google Benchmark choose the ticks
-// instead); after them, every engine's
-// deepest overlap and kinetic energy are measured on its state the same way. The report (stdout;
-// with --report DIR also DIR/discs.md) gives ns per body-step, the overlaps, fixstep's contact
-// statistics, Box2D's broadphase share and the targets as ratios measured side by side.
+// instead); after the last, every engine's deepest overlap and kinetic energy are measured on
+// its state the same way. The report (stdout; with --report DIR also DIR/discs.md) gives ns per
+// body-step, the overlaps, fixstep's contact statistics, Box2D's broadphase share and the
+// targets as ratios measured side by side.
 //
 //   build/bench/bin/bench_discs --report docs/perf
 //   build/bench/bin/bench_discs --quick --benchmark_min_time=0.01   (N = 10³: a smoke run)
@@ -41,6 +41,7 @@
 
 #include "discs.hpp"
 #include "fixstep/capture/capture.hpp"
+#include "median.hpp"
 #include "median_run.hpp"
 
 using namespace discs;
@@ -302,9 +303,8 @@ bool contends(SceneKind kind, const std::string& k, std::int64_t n) {
   if (k == "fixstep_f64_off" && kind != SceneKind::gas) return false;
   if (k.starts_with("fixstep_i8") && kind == SceneKind::gas) return false;     // nothing rests
   if (k.starts_with("fixstep_roll") && kind != SceneKind::pile) return false;  // the peers' pile
-  const bool sleeps = k.find("_sleep") != std::string::npos;
   const bool asleep_only = kind == SceneKind::pile_ball;
-  if (sleeps ? kind != SceneKind::pile_settled && !asleep_only : asleep_only) return false;
+  if (asleep(k) ? kind != SceneKind::pile_settled && !asleep_only : asleep_only) return false;
   return k != "chipmunk_hasty2" || n <= 10'000;  // optional; 40+ s at 10^5
 }
 
@@ -371,10 +371,8 @@ class Collector : public benchmark::ConsoleReporter {
     for (const auto& [key, rounds] : rounds_) {
       std::vector<double> ns;
       for (const CaseResult& c : rounds) ns.push_back(c.ns_per_body_step);
-      std::sort(ns.begin(), ns.end());
-      const std::size_t m = ns.size() / 2;
       CaseResult last = rounds.back();
-      last.ns_per_body_step = ns.size() % 2 == 1 ? ns[m] : 0.5 * (ns[m - 1] + ns[m]);
+      last.ns_per_body_step = fixstep::bench::median(ns);
       res.cases[key] = last;
       const int k = static_cast<int>(rounds.size());
       int& kept = last.bodies >= 100'000 ? res.repetitions_largest : res.repetitions;

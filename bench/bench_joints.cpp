@@ -34,6 +34,7 @@
 
 #include "fixstep/capture/capture.hpp"
 #include "joints.hpp"
+#include "median.hpp"
 
 using namespace joints;
 
@@ -242,13 +243,12 @@ JointResults run_all(const Options& o) {
   for (const JointScene& s : scenes) {
     for (const std::string& key : keys) {
       const std::string id = fmt::format("{}/{}", joint_scene_name(s.kind), key);
-      std::vector<double> t = times[id];
-      std::sort(t.begin(), t.end());
-      const double median =
-          t.size() % 2 ? t[t.size() / 2] : 0.5 * (t[t.size() / 2 - 1] + t[t.size() / 2]);
+      const std::vector<double>& t = times[id];
+      const double median = fixstep::bench::median(t);
+      const auto [low, high] = std::minmax_element(t.begin(), t.end());
       const Round& r = last[id];
       res.cases[id] = {.ns_per_body_step = median,
-                       .spread = (t.back() - t.front()) / median,
+                       .spread = (*high - *low) / median,
                        .bodies = double(s.bodies.size()),
                        .joints = double(s.joints.size()),
                        .separation = r.worst.separation,
