@@ -156,6 +156,7 @@ class DiscContacts {
     const Real* dissipated;  ///< J/kg per body so far (null: no account)
     std::span<const PlaneDef> planes;
     std::span<const PlaneMotion> after;  ///< plane colliders' motions after a plane impact
+    std::span<const double> after_t;     ///< their times, s (< 0: none this tick)
     double dt = 0, kappa = 0.5;          ///< s; κ (see above)
     int threads = 1;
     const SegmentSet* segments = nullptr;  ///< static segments (null: none); contacts with
@@ -334,10 +335,11 @@ class DiscContacts {
   // phase 1 (disc_events.cpp)
   void build_motions(const Tick& tick);
   void build_motions(const Tick& tick, std::size_t begin, std::size_t end);
-  /// The swept box of a disc the plane pass bounced (p), on its free motion `free` until its
-  /// first plane event and on p's motion from then on, padded by `pad` (m).
-  static void plane_box(const PlaneMotion& p, const DiscMotion& free, double pad, double dt,
-                        SweptBox& b);
+  /// The swept box of a disc the plane pass bounced (p, its state at time t, s), on its free
+  /// motion `free` until its first plane event and on p's motion from then on, padded by `pad`
+  /// (m).
+  static void plane_box(const PlaneMotion& p, double t, const DiscMotion& free, double pad,
+                        double dt, SweptBox& b);
   /// Disc k, which the plane pass bounced, takes that pass's motion after its last plane event
   /// (its first plane event came before any disc impact changed its free motion).
   void switch_to_plane_motion(const Tick& tick, std::uint32_t k);

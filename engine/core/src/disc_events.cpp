@@ -147,7 +147,7 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
     m.ax = (v1x - v0x) / dt, m.ay = (v1y - v0y) / dt;
     const double pad = box_pad(d);
     SweptBox& b = boxes_[k];
-    if (d.plane_slot >= 0 && tick.after[d.plane_slot].t >= 0.0) {
+    if (d.plane_slot >= 0 && tick.after_t[d.plane_slot] >= 0.0) {
       // It bounced in the plane pass: on its free motion until its first plane event, and on
       // its motion after the last one from then on (switch(); a disc impact before then
       // changes its free motion instead, and it meets the walls in the disc pass).
@@ -158,7 +158,7 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
       // its velocity, so the two go together (a disc pass taking the turn without the velocity
       // change would make energy).
       if (rolling_) ew_[k] = p.free_w;
-      plane_box(p, m, pad, dt, b);
+      plane_box(p, tick.after_t[d.plane_slot], m, pad, dt, b);
     } else {
       // The box of the motion over the whole tick.
       motion_extent(x0, m.ux, m.ax, dt, pad, b.min_x, b.max_x);
@@ -170,20 +170,21 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
 }
 
 template <class Real>
-void DiscContacts<Real>::plane_box(const PlaneMotion& p, const DiscMotion& free, double pad,
-                                   double dt, SweptBox& b) {
+void DiscContacts<Real>::plane_box(const PlaneMotion& p, double t, const DiscMotion& free,
+                                   double pad, double dt, SweptBox& b) {
   // The free motion up to the first plane event, and the motion after the last one from the
   // first on (extrapolated back over the plane events between).
   motion_extent(free.x, free.ux, free.ax, p.first, pad, b.min_x, b.max_x);
   motion_extent(free.y, free.uy, free.ay, p.first, pad, b.min_y, b.max_y);
-  add_plane_motion(p, p.first, dt, pad, b);
+  add_plane_motion(p, t, p.first, dt, pad, b);
 }
 
 template <class Real>
 void DiscContacts<Real>::switch_to_plane_motion(const Tick& tick, std::uint32_t k) {
   const PlaneMotion& p = tick.after[discs_[k].plane_slot];
   DiscMotion& m = motion_[k];
-  m.t = p.t, m.x = p.x, m.y = p.y, m.ux = p.ux, m.uy = p.uy, m.ax = p.ax, m.ay = p.ay;
+  m.t = tick.after_t[discs_[k].plane_slot], m.x = p.x, m.y = p.y, m.ux = p.ux, m.uy = p.uy,
+  m.ax = p.ax, m.ay = p.ay;
   m.dx = p.dx, m.dy = p.dy;
   if (rolling_) ew_[k] = double(tick.spin[discs_[k].body]);  // the spin after its last event
   ++stamp_[k];

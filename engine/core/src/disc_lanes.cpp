@@ -125,7 +125,7 @@ void DiscContacts<Real>::first_lane_events(ImpactLane& q, const Tick& tick) {
   if (!tick.planes.empty()) {  // bounced by the plane pass
     for (std::uint32_t k = 0; k < discs_.size(); ++k) {
       const std::int32_t slot = discs_[k].plane_slot;
-      if (slot < 0 || !(tick.after[slot].t >= 0.0) || lane(k) != q.id) continue;
+      if (slot < 0 || !(tick.after_t[slot] >= 0.0) || lane(k) != q.id) continue;
       q.heap.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
     }
   }

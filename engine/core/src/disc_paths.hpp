@@ -26,12 +26,12 @@ inline SweptBox path_box(const DiscMotion& m, double from, double to, double pad
   return b;
 }
 
-/// Widens b (m) to hold the plane pass's motion after its last plane event p over [from, to]
-/// (s), extrapolated back from p.t (the disc pass follows it from the disc's first plane event
-/// on), widened by pad (m).
-inline void add_plane_motion(const PlaneMotion& p, double from, double to, double pad,
+/// Widens b (m) to hold the plane pass's motion after its last plane event p (at time t, s)
+/// over [from, to] (s), extrapolated back from t (the disc pass follows it from the disc's first
+/// plane event on), widened by pad (m).
+inline void add_plane_motion(const PlaneMotion& p, double t, double from, double to, double pad,
                              SweptBox& b) {
-  const double back = from - p.t;  // <= 0
+  const double back = from - t;  // <= 0
   double lo = 0, hi = 0;
   motion_extent(p.x + back * (p.ux + 0.5 * back * p.ax), p.ux + back * p.ax, p.ax, to - from, pad,
                 lo, hi);

@@ -37,7 +37,7 @@ void DiscContacts<Real>::first_events(const Tick& tick, double from) {
   if (from == 0.0 && (!tick.planes.empty() || tick.segments)) {  // bounced by the plane pass
     live_range(0, live_count(), [&](std::uint32_t k) {
       const std::int32_t slot = discs_[k].plane_slot;
-      if (slot < 0 || !(tick.after[slot].t >= 0.0)) return;
+      if (slot < 0 || !(tick.after_t[slot] >= 0.0)) return;
       heap.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
     });
   }
@@ -78,7 +78,7 @@ bool DiscContacts<Real>::run_window(ImpactLane& q, const Tick& tick, ContactStat
     if (ev.pair & switch_event) {  // a disc met its first plane event on its free motion
       const std::uint32_t k = ev.pair & ~switch_event;
       if (ev.stamp_a != stamp_[k]) continue;  // an impact came first
-      if (tick.after[discs_[k].plane_slot].t > ev.time) {
+      if (tick.after_t[discs_[k].plane_slot] > ev.time) {
         // Its plane events did not all fall at this time (a corner): the plane pass's motion
         // after the last one, extrapolated back to this first one, lies beyond a wall until
         // then, where a disc could meet it. Its walls are met here instead, from its free

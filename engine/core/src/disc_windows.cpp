@@ -46,11 +46,12 @@ void DiscContacts<Real>::window_boxes(const Tick& tick, double t0, double t1) {
       // A disc the plane pass bounced is on its free motion until its first plane event, while
       // nothing changed its motion (disc_events.cpp, switch_to_plane_motion()).
       const std::int32_t slot = discs_[k].plane_slot;
-      const bool free = slot >= 0 && tick.after[slot].t >= 0.0 && stamp_[k] == 0;
+      const bool free = slot >= 0 && tick.after_t[slot] >= 0.0 && stamp_[k] == 0;
       const double until = free ? std::clamp(tick.after[slot].first, t0, t1) : t1;
       boxes_[k] = path_box(motion_[k], t0, until, pad);
       // From the first plane event on: the plane pass's motion (as plane_box() covers it).
-      if (free && until < t1) add_plane_motion(tick.after[slot], until, t1, pad, boxes_[k]);
+      if (free && until < t1)
+        add_plane_motion(tick.after[slot], tick.after_t[slot], until, t1, pad, boxes_[k]);
     });
   });
 }

@@ -120,6 +120,7 @@ void detail::WorldKernel<Real>::rebuild_contacts() {
     c.radius[k] = colliders_.data[order[k]].radius;
   }
   for (auto* v : {&c.x0, &c.y0, &c.vx0, &c.vy0}) v->resize(order.size());
+  c.after_t.assign(order.size(), -1.0);
   c.after.assign(order.size(), detail::PlaneMotion{});
   c.active = (!planes_.empty() || !segments_.empty()) && !order.empty();
   segments_.build();
@@ -194,7 +195,7 @@ void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t k, PlaneTally&
   const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
   const std::uint32_t j = c.body[k];
   const double r = c.radius[k];
-  contact_.after[k].t = -1.0;
+  contact_.after_t[k] = -1.0;
   if (sleep_ && asleep_[j] != 0) return;  // a sleeper stays where it is
   const V2 v0{double(c.vx0[k]), double(c.vy0[k])};
   const V2 v1{double(vx_[j]), double(vy_[j])};
@@ -333,8 +334,9 @@ void detail::WorldKernel<Real>::store_plane_way(std::size_t k, std::uint32_t j, 
   // within the tick (a body at rest on a plane from the tick's start keeps its integrated one).
   if (w.bounced || w.first > 0.0) {
     const V2 a = w.surfaces.a_free, d = w.free_offset;
+    contact_.after_t[k] = m.t;
     contact_.after[k] =
-        detail::PlaneMotion{m.t,        m.x.x,   m.x.y, m.v.x, m.v.y, m.a.x, m.a.y,   m.offset.x,
+        detail::PlaneMotion{m.x.x,      m.x.y,   m.v.x, m.v.y, m.a.x, m.a.y, m.offset.x,
                             m.offset.y, w.first, a.x,   a.y,   d.x,   d.y,   w.free_w};
   }
   m.advance(settings_.dt - m.t);

@@ -172,6 +172,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       settings_.track_dissipation ? dissipated_body_.data() : nullptr,
       planes_,
       contact_.after,
+      contact_.after_t,
       settings_.dt,
       detail::contact_kappa(settings_.integrator, settings_.substeps),
       detail::threads_for(settings_.threads)};  // the same states either way

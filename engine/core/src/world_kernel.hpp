@@ -81,13 +81,13 @@ struct ImplicitSolverDeleter {
   void operator()(ImplicitSolver<Real>* s) const;
 };
 /// A collider's motion after its last plane impact in a tick (world_contacts.cpp), from which
-/// the disc-disc contacts continue: time t (s into the tick; < 0: no plane impact this tick),
-/// position, model velocity and acceleration at t, and the integrator's velocity offset; the
-/// time of its first plane event (s), before which it moves on its free motion, of acceleration
-/// free_a and offset free_d from its start state, and (a rolling disc) spin free_w (rad/s):
-/// the spin before the plane pass's friction turned it.
+/// the disc-disc contacts continue (its time, s into the tick, is kept apart: ContactScratch's
+/// after_t): position, model velocity and acceleration at that time, and the integrator's
+/// velocity offset; the time of its first plane event (s), before which it moves on its free
+/// motion, of acceleration free_a and offset free_d from its start state, and (a rolling disc)
+/// spin free_w (rad/s): the spin before the plane pass's friction turned it.
 struct PlaneMotion {
-  double t = -1.0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;
+  double x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;
   double first = 0, free_ax = 0, free_ay = 0, free_dx = 0, free_dy = 0, free_w = 0;
 };
 /// One body's way through a tick's planes and segments, and the tick's count of them
@@ -632,7 +632,11 @@ class WorldKernel {
     // Written for every collider by each tick with planes before it reads them
     // (save_contact_start, resolve_body_contacts): a snapshot copies their sizes only.
     ScratchVector<Real> x0, y0, vx0, vy0;
-    ScratchVector<PlaneMotion> after;  ///< per collider, this tick
+    /// Per collider, this tick: the time of its motion in `after` (s into the tick), < 0 when
+    /// no plane or segment acted on it and `after` is not written. Dense, apart from `after`,
+    /// since every tick writes it for every collider and the disc passes read it for every disc.
+    ScratchVector<double> after_t;
+    ScratchVector<PlaneMotion> after;  ///< per collider, this tick, where after_t >= 0
     bool active = false;
   } contact_;
   void rebuild_contacts();
