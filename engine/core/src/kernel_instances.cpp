@@ -34,6 +34,7 @@
 #include "world_kernel.cpp"        // construction, bodies and components, the force terms
 #include "world_memory.cpp"        // what a snapshot holds
 #include "world_movers.cpp"        // character movers, the kernel's side
+#include "world_plane_blocks.cpp"  // planes: the first look, in blocks
 #include "world_rolling.cpp"       // rolling discs' angles
 #include "world_segments.cpp"      // segments and polylines
 #include "world_sensors.cpp"       // sensors

@@ -89,17 +89,27 @@ inline double first_impact(double g0, double b, double c, double horizon, double
 /// the chord by at most |n·(v1 - v0)| dt/8 along n, so its gap to a plane is at least
 /// min(n·x0, n·x1) - that - offset - r. Then no push-out, impact or end-of-tick contact can
 /// touch it, and its integrated state stands, as those tests would leave it.
+/// The scale of clear_of_planes' rounding margin for one body, once for every plane
+/// (|n·u| <= |u_x| + |u_y| for a unit n), m.
+inline double clearance_scale(V2 x0, V2 x1, V2 v0, V2 v1, double r, double dt) {
+  const auto l1 = [](V2 u) { return std::abs(u.x) + std::abs(u.y); };
+  return l1(x0) + l1(x1) + r + 2.0 * (l1(v0) + l1(v1)) * dt;
+}
+
+/// clear_of_planes' test for one plane p, with dv = v1 - v0 and body = clearance_scale().
+inline bool clear_of_plane(const PlaneDef& p, V2 x0, V2 x1, V2 dv, double r, double dt, double rel,
+                           double body) {
+  const V2 n{p.normal.x, p.normal.y};
+  const double n0 = dot(n, x0), n1 = dot(n, x1);
+  const double low = std::min(n0, n1) - 0.125 * std::abs(dot(n, dv)) * dt - p.offset - r;
+  return low > (rel + 1e-12) * (body + std::abs(p.offset));
+}
+
 inline bool clear_of_planes(std::span<const PlaneDef> planes, V2 x0, V2 x1, V2 v0, V2 v1, double r,
                             double dt, double rel) {
-  // The margin's scale, once for every plane: |n·u| <= |u_x| + |u_y| for a unit n.
-  const auto l1 = [](V2 u) { return std::abs(u.x) + std::abs(u.y); };
-  const double body = l1(x0) + l1(x1) + r + 2.0 * (l1(v0) + l1(v1)) * dt;
-  const double k = rel + 1e-12;
+  const double body = clearance_scale(x0, x1, v0, v1, r, dt);
   for (const PlaneDef& p : planes) {
-    const V2 n{p.normal.x, p.normal.y};
-    const double n0 = dot(n, x0), n1 = dot(n, x1);
-    const double low = std::min(n0, n1) - 0.125 * std::abs(dot(n, v1 - v0)) * dt - p.offset - r;
-    if (!(low > k * (body + std::abs(p.offset)))) return false;
+    if (!clear_of_plane(p, x0, x1, v1 - v0, r, dt, rel, body)) return false;
   }
   return true;
 }

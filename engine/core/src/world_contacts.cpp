@@ -180,6 +180,18 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
   };
   if (awake_.skip()) {  // a sleeper's plane motion stays "none" (set when it was visited last)
     plane_visited_ = for_each_in_runs(awake_.colliders, visit);
+  } else if (segments_.empty()) {
+    // Most bodies are clear of every plane: one pass over all tells them from those near one,
+    // and only those go the whole way (in order, so the cap's count is the same).
+    find_near_planes();
+    std::size_t i = 0;
+    for (const auto& near : contact_.near) {
+      for (const std::uint32_t k : near) {
+        if (i++ % 1024 == 1023) ++plane_polls_, throw_if_stop_requested();
+        resolve_body_contacts(k, tally);
+      }
+    }
+    plane_visited_ = c.body.size();
   } else {
     for (std::size_t k = 0; k < c.body.size(); ++k) visit(k);
     plane_visited_ = c.body.size();

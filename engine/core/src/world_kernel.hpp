@@ -637,6 +637,8 @@ class WorldKernel {
     /// since every tick writes it for every collider and the disc passes read it for every disc.
     ScratchVector<double> after_t;
     ScratchVector<PlaneMotion> after;  ///< per collider, this tick, where after_t >= 0
+    /// This tick's colliders not clear of every plane, by halves (find_near_planes).
+    ScratchVector<std::uint32_t> near[2];
     bool active = false;
   } contact_;
   void rebuild_contacts();
@@ -644,6 +646,9 @@ class WorldKernel {
   std::size_t resolve_contacts();  // returns ContactStats::capped of the planes
   // Its steps for one body (world_contacts.cpp).
   void resolve_body_contacts(std::size_t k, PlaneTally& tally);
+  static constexpr std::size_t near_block = 64;  ///< bodies find_near_planes tests at once
+  void find_near_planes();
+  void near_block_of(std::size_t begin, std::size_t m, std::vector<std::uint32_t>& near);
   void push_out_of_surfaces(PlaneWay& w, double r, double rel);
   void follow_plane_impacts(PlaneWay& w, std::uint32_t j, double r, PlaneTally& tally);
   bool keep_bouncing(const PlaneWay& w, std::uint32_t j, const PlaneDef& hit, double first,

@@ -53,7 +53,7 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
   for (const LinkFlow& f : link_flows_) n += sum(f.ca, f.cb);
   for (std::size_t i = 0; i < s_.size(); ++i) n += bytes_of(s_[i]) + bytes_of(d_[i]);
   n += sum(contact_.body, contact_.radius, contact_.x0, contact_.y0, contact_.vx0, contact_.vy0,
-           contact_.after_t, contact_.after);
+           contact_.after_t, contact_.after, contact_.near[0], contact_.near[1]);
   n += sum(immovable_.body, immovable_.x0, immovable_.y0, immovable_.vx0, immovable_.vy0,
            immovable_.d0);
   n += sum(still_ticks_, asleep_, disc_of_, kinematic_discs_, island_parent_, wake_labels_,
