@@ -157,13 +157,6 @@ struct detail::PlaneWay {
   Vec2 start;            ///< its centre at the tick's start (one-way segments), m
 };
 
-/// What resolve_contacts counts over the bodies of a tick.
-struct detail::PlaneTally {
-  std::uint64_t again = 0;  ///< plane tests after a body's max_impacts-th event (limits.hpp)
-  std::size_t capped = 0;   ///< ContactStats::capped of the planes
-  bool out_of_range = false;
-};
-
 template <class Real>
 std::size_t detail::WorldKernel<Real>::resolve_contacts() {
   const ContactScratch& c = contact_;
@@ -184,13 +177,7 @@ std::size_t detail::WorldKernel<Real>::resolve_contacts() {
     // Most bodies are clear of every plane: one pass over all tells them from those near one,
     // and only those go the whole way (in order, so the cap's count is the same).
     find_near_planes();
-    std::size_t i = 0;
-    for (const auto& near : contact_.near) {
-      for (const std::uint32_t k : near) {
-        if (i++ % 1024 == 1023) ++plane_polls_, throw_if_stop_requested();
-        resolve_body_contacts(k, tally);
-      }
-    }
+    resolve_near_planes(tally);
     plane_visited_ = c.body.size();
   } else {
     for (std::size_t k = 0; k < c.body.size(); ++k) visit(k);
@@ -226,6 +213,7 @@ void detail::WorldKernel<Real>::resolve_body_contacts(std::size_t k, PlaneTally&
   }
   push_out_of_surfaces(w, r, rel);
   follow_plane_impacts(w, j, r, tally);
+  if (tally.deferred) return;
   if (!w.touched && !touch_at_tick_end(w, x1, v1 + offset, offset, r)) return;
   store_plane_way(k, j, w, tally);
 }
@@ -296,6 +284,10 @@ bool detail::WorldKernel<Real>::keep_bouncing(const PlaneWay& w, std::uint32_t j
                                               const PlaneDef& hit, double first,
                                               std::uint64_t tests, std::uint32_t segment,
                                               PlaneTally& tally) {
+  if (tally.defer) {  // the count is the first half's and this one's (PlaneTally)
+    tally.deferred = true;
+    return false;
+  }
   const bool on_segment = &hit == &w.local;
   Motion seen = w.m;  // from the surface's frame
   seen.v = seen.v - (on_segment ? V2{w.local_u.x, w.local_u.y} : V2{});
@@ -341,6 +333,10 @@ bool detail::WorldKernel<Real>::touch_at_tick_end(PlaneWay& w, V2 x1, V2 u1, V2 
 template <class Real>
 void detail::WorldKernel<Real>::store_plane_way(std::size_t k, std::uint32_t j, PlaneWay& w,
                                                 PlaneTally& tally) {
+  if (tally.defer && w.surfaces.work != 0.0) {  // external_work_ is summed in body order
+    tally.deferred = true;
+    return;
+  }
   Motion& m = w.m;
   // Disc contacts continue from the motion after a bounce, or after a rest the body came to
   // within the tick (a body at rest on a plane from the tick's start keeps its integrated one).

@@ -90,10 +90,18 @@ struct PlaneMotion {
   double x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;
   double first = 0, free_ax = 0, free_ay = 0, free_dx = 0, free_dy = 0, free_w = 0;
 };
-/// One body's way through a tick's planes and segments, and the tick's count of them
-/// (world_contacts.cpp).
+/// One body's way through a tick's planes and segments (world_contacts.cpp).
 struct PlaneWay;
-struct PlaneTally;
+/// What resolve_contacts counts over the bodies of a tick.
+struct PlaneTally {
+  std::uint64_t again = 0;  ///< plane tests after a body's max_impacts-th event (limits.hpp)
+  std::size_t capped = 0;   ///< ContactStats::capped of the planes
+  bool out_of_range = false;
+  /// The second half of the bodies on two threads (world_plane_blocks.cpp): a body that would
+  /// count against the cap or add to the world's external work is left whole (`deferred`
+  /// set) for this thread to redo after the first half, in order, as one thread would.
+  bool defer = false, deferred = false;
+};
 /// Disc-disc contacts of a world with WorldSettings::contacts (disc_contacts.hpp).
 template <class Real>
 class DiscContacts;
@@ -646,8 +654,10 @@ class WorldKernel {
   std::size_t resolve_contacts();  // returns ContactStats::capped of the planes
   // Its steps for one body (world_contacts.cpp).
   void resolve_body_contacts(std::size_t k, PlaneTally& tally);
-  static constexpr std::size_t near_block = 64;  ///< bodies find_near_planes tests at once
+  static constexpr std::size_t near_block = 64;   ///< bodies find_near_planes tests at once
+  static constexpr std::size_t near_split = 256;  ///< near bodies from which two threads share
   void find_near_planes();
+  void resolve_near_planes(PlaneTally& tally);
   void near_block_of(std::size_t begin, std::size_t m, std::vector<std::uint32_t>& near);
   void push_out_of_surfaces(PlaneWay& w, double r, double rel);
   void follow_plane_impacts(PlaneWay& w, std::uint32_t j, double r, PlaneTally& tally);

@@ -2,8 +2,10 @@
 // colliders are clear of every plane all the tick (plane_contact.hpp, clear_of_planes). They
 // are told from the others in blocks of near_block colliders, plane by plane, so that the test
 // runs on SIMD lanes, and by halves on the discs' second thread; only the others go the whole
-// way (resolve_body_contacts), in index order, as before. The same bits: a collider that the
-// whole way finds clear keeps its integrated state, as here.
+// way (resolve_body_contacts), by halves too when they are many (a pile's bottom row). The same
+// bits: a collider that the whole way finds clear keeps its integrated state, as here, and the
+// bodies are independent but for the cap's count and the external work, which the second half
+// leaves to this thread (PlaneTally::defer).
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -74,6 +76,34 @@ void detail::WorldKernel<Real>::near_block_of(std::size_t begin, std::size_t m,
     contact_.after_t[begin + i] = -1.0;
     if (clear[i] == 0.0) near.push_back(static_cast<std::uint32_t>(begin + i));
   }
+}
+
+// The near colliders the whole way, in index order: by halves on the discs' second thread
+// when there are near_split or more. The first half counts into `tally` as one thread would;
+// the second defers the bodies that would count against the cap or do external work, and this
+// thread redoes them after the first half (the second half's others added nothing to either).
+template <class Real>
+void detail::WorldKernel<Real>::resolve_near_planes(PlaneTally& tally) {
+  auto& near = contact_.near[0];
+  auto& deferred = contact_.near[1];
+  near.insert(near.end(), deferred.begin(), deferred.end());  // one list, in index order
+  deferred.clear();
+  PlaneTally second{.defer = true};
+  auto pass = [&](std::size_t begin, std::size_t end, int half) {
+    PlaneTally& t = half == 0 ? tally : second;
+    for (std::size_t i = begin; i < end; ++i) {
+      if (half == 0 && i % 1024 == 1023) ++plane_polls_, throw_if_stop_requested();
+      resolve_body_contacts(near[i], t);
+      if (t.deferred) t.deferred = false, deferred.push_back(near[i]);
+    }
+  };
+  if (discs_ && near.size() >= near_split) {
+    discs_->halves(near.size(), pass);
+  } else {
+    pass(0, near.size(), 0);
+  }
+  tally.out_of_range = tally.out_of_range || second.out_of_range;
+  for (const std::uint32_t k : deferred) resolve_body_contacts(k, tally);
 }
 
 }  // namespace fixstep
