@@ -5,8 +5,10 @@
 #include <span>
 
 #include "disc_contacts.hpp"
+#include "second_thread.hpp"
 #include "shape_world.hpp"
 #include "sorted_diff.hpp"
+#include "workers.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -131,23 +133,63 @@ void detail::WorldKernel<Real>::add_disc_touching() {
   }
 }
 
-// Both lists sorted by slots: one merge finds what began and what ended.
+namespace {
+
+// The largest closing speed among the sorted hits of pair p, or 0.
+double speed_of(std::span<const ContactEvent> hits, const ContactEvent& p) {
+  double speed = 0.0;
+  auto at = std::lower_bound(hits.begin(), hits.end(), p, slot_less);
+  for (; at != hits.end() && same(*at, p); ++at) speed = std::max(speed, at->normal_speed);
+  return speed;
+}
+
+}  // namespace
+
+// One merge of a part of touching_ and the part of touching_before_ that holds the same slots.
+template <class Real>
+void detail::WorldKernel<Real>::diff_touching(std::size_t now_begin, std::size_t now_end,
+                                              std::size_t before_begin, std::size_t before_end,
+                                              std::vector<ContactEvent>& begun,
+                                              std::vector<ContactEvent>& ended) const {
+  const std::span<const ContactEvent> now(touching_), before(touching_before_);
+  detail::sorted_diff<ContactEvent>(
+      now.subspan(now_begin, now_end - now_begin),
+      before.subspan(before_begin, before_end - before_begin), slot_less, same,
+      [&](const ContactEvent& p) {
+        begun.push_back({p.a, p.b, speed_of(hits_, p)});
+      },
+      [&](const ContactEvent& p) { ended.push_back(p); });
+}
+
+// Both lists sorted by slots: one merge finds what began and what ended. With many pairs and
+// the discs' second thread in its run, by halves: the sorts side by side, then the pairs below
+// the middle pair's slots and those from it on, each half's events in slot order.
 template <class Real>
 void detail::WorldKernel<Real>::diff_contact_events() {
-  sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
-  sort_by_slots(hits_);
-  auto speed_of = [&](const ContactEvent& p) {
-    double speed = 0.0;
-    auto at = std::lower_bound(hits_.begin(), hits_.end(), p, slot_less);
-    for (; at != hits_.end() && same(*at, p); ++at) speed = std::max(speed, at->normal_speed);
-    return speed;
-  };
-  detail::sorted_diff<ContactEvent>(
-      touching_, touching_before_, slot_less, same,
-      [&](const ContactEvent& p) {
-        begun_.push_back({p.a, p.b, speed_of(p)});
-      },
-      [&](const ContactEvent& p) { ended_.push_back(p); });
+  const std::size_t n = touching_.size(), m = touching_before_.size();
+  detail::SecondThread* second =
+      discs_ ? discs_->second_thread(detail::threads_for(settings_.threads)) : nullptr;
+  if (second == nullptr || !second->is_open() || n < events_split) {
+    sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
+    sort_by_slots(hits_);
+    diff_touching(0, n, 0, m, begun_, ended_);
+  } else {
+    auto sorts = [&](int half) { half == 0 ? sort_by_slots(touching_) : sort_by_slots(hits_); };
+    second->both(sorts);
+    std::size_t mid = n / 2;  // touching_[mid - 1] before touching_[mid] (pairs may repeat)
+    while (mid < n && !slot_less(touching_[mid - 1], touching_[mid])) ++mid;
+    const auto cut = std::lower_bound(touching_before_.begin(), touching_before_.end(),
+                                      touching_[std::min(mid, n - 1)], slot_less);
+    const std::size_t b = mid == n ? m : static_cast<std::size_t>(cut - touching_before_.begin());
+    begun_half_.clear(), ended_half_.clear();
+    auto halves = [&](int half) {
+      half == 0 ? diff_touching(0, mid, 0, b, begun_, ended_)
+                : diff_touching(mid, n, b, m, begun_half_, ended_half_);
+    };
+    second->both(halves);
+    begun_.insert(begun_.end(), begun_half_.begin(), begun_half_.end());
+    ended_.insert(ended_.end(), ended_half_.begin(), ended_half_.end());
+  }
   // Pairs that struck and parted within the tick: begun and ended at once. The hits in slot
   // order, each looked up in both sorted lists by a cursor that only moves on (the first entry
   // of its slots, as a binary search finds it).
@@ -161,7 +203,7 @@ void detail::WorldKernel<Real>::diff_contact_events() {
     const ContactEvent& p = hits_[h];
     if (h > 0 && same(hits_[h - 1], p)) continue;
     if (held(now, touching_, p) || held(before, touching_before_, p)) continue;
-    begun_.push_back({p.a, p.b, speed_of(p)});
+    begun_.push_back({p.a, p.b, speed_of(hits_, p)});
     ended_.push_back({p.a, p.b, 0.0});
     struck = true;
   }

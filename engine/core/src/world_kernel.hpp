@@ -889,11 +889,19 @@ class WorldKernel {
   void set_asleep_pairs_apart();
   ScratchVector<ContactEvent> touching_before_, hits_;
   std::vector<ContactEvent> begun_, ended_;
+  /// The second half's begun and ended pairs on two threads, appended to begun_ and ended_.
+  ScratchVector<ContactEvent> begun_half_, ended_half_;
   std::vector<Impact> impacts_;            ///< the last tick's, by handle
   void update_contact_events(bool discs);  // discs: the disc phases ran this tick
   void add_disc_touching();
   void add_shape_touching();
   void diff_contact_events();
+  /// Pairs of touching_ from which diff_contact_events goes by halves on the discs' second
+  /// thread (when its run is open).
+  static constexpr std::size_t events_split = 4096;
+  void diff_touching(std::size_t now_begin, std::size_t now_end, std::size_t before_begin,
+                     std::size_t before_end, std::vector<ContactEvent>& begun,
+                     std::vector<ContactEvent>& ended) const;
   // Sensor events (world_sensors.cpp), kept like the contact events: part of a snapshot
   // (sensed_before_, swapped with sensed_ as the tick begins, only by its size).
   std::vector<SensorEvent> sensed_, sensor_crossed_;

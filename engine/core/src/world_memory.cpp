@@ -58,8 +58,8 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
            immovable_.d0);
   n += sum(still_ticks_, asleep_, disc_of_, kinematic_discs_, island_parent_, wake_labels_,
            island_blocked_);
-  n += sum(touching_, asleep_touching_, touching_before_, hits_, begun_, ended_, impacts_,
-           saved_accel_);
+  n += sum(touching_, asleep_touching_, touching_before_, hits_, begun_, ended_, begun_half_,
+           ended_half_, impacts_, saved_accel_);
   n += sum(sensed_, sensed_before_, sensor_crossed_, sensor_begun_, sensor_ended_);
   if (discs_) n += sizeof(*discs_.get()) + discs_->bytes();
   n += sum(plane_work_, awake_.bodies, awake_.colliders, push_saved_, push_saved_implicit_);
