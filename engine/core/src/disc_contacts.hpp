@@ -521,6 +521,9 @@ class DiscContacts {
                                          double friction) const;
   /// Appends dynamic disc k's contacts with the planes (within the slop) to out, in plane order.
   void plane_contacts_of(const Tick& tick, std::uint32_t k, std::vector<RestContact>& out) const;
+  static constexpr std::size_t wall_block = 64;  ///< discs plane_contacts_in tests at once
+  void plane_contacts_in(const Tick& tick, std::size_t begin, std::size_t end,
+                         std::vector<RestContact>& out) const;
   /// Splits contacts_ into two halves of the discs and the contacts across the cut: order_
   /// lists them part by part (key order within a part), part_start_[p] where part p begins
   /// (disc_halves.cpp). Below min_split_contacts everything is part 0.

@@ -128,8 +128,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     // second's after the pairs (the same contacts in the same order).
     for (auto& half : plane_half_) half.clear();
     halves(live, [&](std::size_t begin, std::size_t end, int half) {
-      live_range(begin, end,
-                 [&](std::uint32_t k) { plane_contacts_of(tick, k, plane_half_[half]); });
+      plane_contacts_in(tick, begin, end, plane_half_[half]);
     });
     for (auto& half : plane_half_) {
       contacts_.insert(contacts_.end(), half.begin(), half.end());
@@ -137,10 +136,45 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     }
     return;
   }
+  if (tick.segments == nullptr) {
+    plane_contacts_in(tick, 0, live, contacts_);
+    return;
+  }
   live_range(0, live, [&](std::uint32_t k) {
     plane_contacts_of(tick, k, contacts_);
-    if (tick.segments && discs_[k].dynamic && !discs_[k].sensor) gather_segment_contacts(tick, k);
+    if (discs_[k].dynamic && !discs_[k].sensor) gather_segment_contacts(tick, k);
   });
+}
+
+// The walls' contacts of live positions [begin, end), in disc then plane order. With every
+// disc live, in blocks of wall_block discs, plane by plane (on_plane's test on SIMD lanes):
+// most discs touch no wall.
+template <class Real>
+void DiscContacts<Real>::plane_contacts_in(const Tick& tick, std::size_t begin, std::size_t end,
+                                           std::vector<RestContact>& out) const {
+  if (!live_all_) {
+    live_range(begin, end, [&](std::uint32_t k) { plane_contacts_of(tick, k, out); });
+    return;
+  }
+  const std::size_t planes = tick.planes.size();
+  alignas(64) double x[wall_block], y[wall_block], r[wall_block];
+  alignas(64) double near[wall_block];  // 1 where a wall is within the slop (doubles: SIMD)
+  for (std::size_t b = begin; b < end; b += wall_block) {
+    const std::size_t m = std::min(wall_block, end - b);
+    for (std::size_t i = 0; i < wall_block; ++i) {  // past m, the block's first disc again
+      const std::size_t k = b + (i < m ? i : 0);
+      x[i] = ex_[k], y[i] = ey_[k], r[i] = discs_[k].radius, near[i] = 0.0;
+    }
+    for (std::size_t p = 0; p < planes; ++p) {
+      const PlaneDef& plane = tick.planes[p];
+      for (std::size_t i = 0; i < wall_block; ++i) {
+        near[i] = on_plane(plane, x[i], y[i], r[i]) ? 1.0 : near[i];
+      }
+    }
+    for (std::size_t i = 0; i < m; ++i) {
+      if (near[i] != 0.0) plane_contacts_of(tick, static_cast<std::uint32_t>(b + i), out);
+    }
+  }
 }
 
 template <class Real>
