@@ -646,7 +646,7 @@ class WorldKernel {
     ScratchVector<double> after_t;
     ScratchVector<PlaneMotion> after;  ///< per collider, this tick, where after_t >= 0
     /// This tick's colliders not clear of every plane, by halves (find_near_planes).
-    ScratchVector<std::uint32_t> near[2];
+    std::array<ScratchVector<std::uint32_t>, 2> near;
     bool active = false;
   } contact_;
   void rebuild_contacts();
