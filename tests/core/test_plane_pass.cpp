@@ -93,8 +93,8 @@ void same_as_every_body_tested(int threads, const std::string& what) {
 }
 
 // Deliberate bugs checked: the blocks' end position read as the start position (a disc that
-// reaches a wall from afar within a tick passes through: differs after tick 1), and the blocks
-// telling every body clear (differs after tick 1).
+// reaches a wall from afar within a tick passes through: differs after tick 1, f32 after tick 2),
+// and the blocks telling every body clear (differs after tick 1).
 TEST(PlanePass, TestingInBlocksGivesTheBitsOfTestingEveryBodyWhole) {
   same_as_every_body_tested<double>(1, "f64, one thread");
   same_as_every_body_tested<double>(2, "f64, two threads");
