@@ -1,7 +1,9 @@
 // A tick's disc impacts in two lanes on two threads (disc_lanes.cpp) against one lane: the same
 // state, impacts and contact counts after every tick, for gases with elastic and inelastic
 // walls, rolling discs and a kinematic disc ploughing through, with the lanes used and, where
-// a path crosses the cut, run again in one lane.
+// a path crosses the cut, run again in one lane. And which worlds share their disc passes
+// with a second thread at all: on threads = 2 from 256 awake discs, on 0 (automatic) from
+// parallel_min_discs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +13,8 @@
 
 #include "disc_contacts.hpp"
 #include "fixstep/core/world.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "workers.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -157,6 +161,31 @@ TEST(ImpactLanes, APileIsNotCutIntoLanesEveryTick) {
   EXPECT_GE(w.contact_stats().candidate_pairs, 1024u);
   EXPECT_EQ(w.disc_contacts()->lane_ticks(), 0u);
   EXPECT_EQ(w.disc_contacts()->lane_cuts(), 8u);
+}
+
+TEST(DiscThreadChoice, AnAutomaticWorldSharesItsDiscPassesFromParallelMinDiscs) {
+  // threads = 0: one thread below parallel_min_discs discs (the same bits as threads = 1), a
+  // second from there when the machine has a second core; threads = 2 shares from 256.
+  const bool two_cores = detail::threads_for(0) == 2;
+  struct Case {
+    std::size_t n;
+    int threads;
+    bool shares;
+  };
+  for (const Case c : {Case{parallel_min_discs - 1, 0, false},
+                       Case{parallel_min_discs, 0, two_cores},
+                       Case{300, 2, detail::threads_for(2) == 2}}) {
+    GasOptions o;
+    o.n = c.n;
+    auto w = gas(o, c.threads), one = gas(o, 1);
+    for (int t = 0; t < 5; ++t) {
+      w->step(), one->step();
+      ASSERT_EQ(w->state_hash(), one->state_hash()) << c.n << " discs, tick " << t + 1;
+    }
+    EXPECT_EQ(w->disc_contacts()->second_thread_started(), c.shares)
+        << c.n << " discs, threads = " << c.threads;
+    EXPECT_FALSE(one->disc_contacts()->second_thread_started());
+  }
 }
 
 }  // namespace

@@ -250,12 +250,17 @@ class DiscContacts {
   /// which spins between them (SecondThread::open) rather than waking for each; below, every
   /// pass runs on the stepping thread.
   static constexpr std::size_t min_parallel_discs = 256;
+  /// The discs a tick steps: the awake ones (all of them when none sleeps).
+  [[nodiscard]] std::size_t busy() const { return discs_.size() - sleeper_count_; }
   /// The second thread a tick on `threads` threads shares its passes with (SecondThreadRun
-  /// keeps it spinning through them), or null: one thread, or fewer than min_parallel_discs.
-  /// With sleepers, the awake discs count instead of all of them.
+  /// keeps it spinning through them), or null: one thread, or fewer than min_parallel_discs
+  /// busy discs (busy()).
   [[nodiscard]] SecondThread* second_thread(int threads) {
-    const std::size_t busy = sleeper_count_ != 0 ? awake().size() : discs_.size();
-    return threads >= 2 && busy >= min_parallel_discs ? &broadphase_.second_thread() : nullptr;
+    return threads >= 2 && busy() >= min_parallel_discs ? &broadphase_.second_thread() : nullptr;
+  }
+  /// For the tests: whether a second thread was ever started (a tick shared its passes).
+  [[nodiscard]] bool second_thread_started() const {
+    return broadphase_.second_thread().team() != nullptr;
   }
   /// The threads the broadphase may split a call over: the tick's within its run of the second
   /// thread, else 1 (outside a run each hand-over would wake the worker by futex, which costs

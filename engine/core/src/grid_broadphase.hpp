@@ -172,6 +172,7 @@ class GridBroadphase {
   /// predictions and the resting solver so that a world's discs keep one second thread; a
   /// tick's disc phase keeps a run of it open (SecondThread::open) around all of them.
   SecondThread& second_thread() { return second_; }
+  [[nodiscard]] const SecondThread& second_thread() const { return second_; }
 
  private:
   /// A box as the grid stores it, in its home cell (the cell of its lower-left corner) and

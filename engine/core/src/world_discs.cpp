@@ -162,6 +162,13 @@ void detail::WorldKernel<Real>::restore_immovable() {
 }
 
 template <class Real>
+int detail::WorldKernel<Real>::disc_threads() const {
+  const int threads = detail::threads_for(settings_.threads);
+  const bool small = !discs_ || discs_->busy() < parallel_min_discs;
+  return threads == 2 && settings_.threads < 2 && small ? 1 : threads;
+}
+
+template <class Real>
 void detail::WorldKernel<Real>::resolve_discs() {
   detail::DiscContacts<Real>& dc = *discs_;
   typename detail::DiscContacts<Real>::Tick t{
@@ -175,7 +182,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       contact_.after_t,
       settings_.dt,
       detail::contact_kappa(settings_.integrator, settings_.substeps),
-      detail::threads_for(settings_.threads)};  // the same states either way
+      disc_threads()};  // the same states either way
   if (!segments_.empty()) t.segments = &segments_;
   if (rolling_) t.spin = spin_.data();
   if (!plane_work_.empty()) t.plane_work = plane_work_.data();

@@ -8,7 +8,6 @@
 #include "second_thread.hpp"
 #include "shape_world.hpp"
 #include "sorted_diff.hpp"
-#include "workers.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -168,7 +167,7 @@ template <class Real>
 void detail::WorldKernel<Real>::diff_contact_events() {
   const std::size_t n = touching_.size(), m = touching_before_.size();
   detail::SecondThread* second =
-      discs_ ? discs_->second_thread(detail::threads_for(settings_.threads)) : nullptr;
+      discs_ ? discs_->second_thread(disc_threads()) : nullptr;
   if (second == nullptr || !second->is_open() || n < events_split) {
     sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
     sort_by_slots(hits_);

@@ -794,6 +794,9 @@ class WorldKernel {
   void save_tick_start(bool discs);
   void restore_immovable();
   void resolve_discs();
+  /// The threads the disc phases may use: WorldSettings::threads (threads_for), and with 0
+  /// (automatic) two only from parallel_min_discs awake discs (world_discs.cpp).
+  [[nodiscard]] int disc_threads() const;
   // Sleeping islands (world_sleep.cpp; ContactSettings::sleep). Per body in dense order: the
   // ticks it has stayed below the sleep speed (saturating) and its island's number while
   // asleep (0: awake); empty in a world without sleeping. A sleeping body is in the

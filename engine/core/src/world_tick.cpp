@@ -9,7 +9,6 @@
 #include "phase_clock.hpp"
 #include "second_thread.hpp"
 #include "shape_world.hpp"
-#include "workers.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -31,7 +30,7 @@ typename detail::WorldKernel<Real>::TickPlan detail::WorldKernel<Real>::plan_tic
   // The integration has a worker of its own with links or the dissipation account
   // (step_multipass); the discs' second thread then wakes after it, else during it.
   plan.own_worker = !net_.a.empty() || settings_.track_dissipation;
-  plan.threads = detail::threads_for(settings_.threads);
+  plan.threads = disc_threads();  // world_discs.cpp
   return plan;
 }
 

@@ -78,15 +78,15 @@ struct WorldSettings {
   bool track_dissipation = false;
   /// Threads a tick of a world with links, disc contacts, shapes or joints may use: 1, 2, or 0 =
   /// automatic (2 when the machine has a second core, and for links the world has at least
-  /// parallel_min_bodies bodies; disc contacts share their passes from 256 discs and run a
-  /// tick's impacts in two lanes of the candidate pairs' groups from 1024 pairs, shapes from
-  /// 1024 shapes or a sweep's colour of 256 manifolds, joints from 256 joints in two groups that
-  /// share no body). The states are bit-identical for every thread count: each body gathers its
-  /// link forces in a fixed order, the passes split into halves whose items are independent
-  /// (docs/JOINTS.md: joints that share a body stay together; two impact lanes whose discs'
-  /// paths would meet run the tick's impacts again in one), and no float is ever added
-  /// atomically. Always 1 in a wasm32 build without pthreads (emscripten's
-  /// default), which cannot start a thread.
+  /// parallel_min_bodies bodies, for disc contacts parallel_min_discs awake discs). On two,
+  /// disc contacts share their passes from 256 awake discs and run a tick's impacts in two
+  /// lanes of the candidate pairs' groups from 1024 pairs, shapes from 1024 shapes or a sweep's
+  /// colour of 256 manifolds, joints from 256 joints in two groups that share no body. The states
+  /// are bit-identical for every thread count: each body gathers its link forces in a fixed order,
+  /// the passes split into halves whose items are independent (docs/JOINTS.md: joints that share a
+  /// body stay together; two impact lanes whose discs' paths would meet run the tick's impacts
+  /// again in one), and no float is ever added atomically. Always 1 in a wasm32 build without
+  /// pthreads (emscripten's default), which cannot start a thread.
   int threads = 0;
   /// Where velocity Verlet and Forest–Ruth apply damped links' flows (see DampingSplit).
   DampingSplit damping_split = DampingSplit::per_stage;
@@ -107,6 +107,11 @@ inline constexpr std::uint64_t flush_denormals_every = 64;
 
 /// Bodies from which an automatic (threads = 0) world with links steps on two threads.
 inline constexpr std::size_t parallel_min_bodies = 16384;
+
+/// Awake discs from which an automatic (threads = 0) world's disc contacts share a tick's
+/// passes with a second thread; below, a second thread saves nothing a tick and would spin a
+/// core through it (docs/perf/contact_solver_plan.md).
+inline constexpr std::size_t parallel_min_discs = 2048;
 
 /// Bits of World::active_terms(): which force terms run each tick.
 enum ForceTermBits : unsigned {
