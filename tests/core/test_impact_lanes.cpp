@@ -172,9 +172,9 @@ TEST(DiscThreadChoice, AnAutomaticWorldSharesItsDiscPassesFromParallelMinDiscs) 
     int threads;
     bool shares;
   };
-  for (const Case c : {Case{parallel_min_discs - 1, 0, false},
-                       Case{parallel_min_discs, 0, two_cores},
-                       Case{300, 2, detail::threads_for(2) == 2}}) {
+  for (const Case c :
+       {Case{parallel_min_discs - 1, 0, false}, Case{parallel_min_discs, 0, two_cores},
+        Case{300, 2, detail::threads_for(2) == 2}}) {
     GasOptions o;
     o.n = c.n;
     auto w = gas(o, c.threads), one = gas(o, 1);

@@ -166,8 +166,7 @@ void detail::WorldKernel<Real>::diff_touching(std::size_t now_begin, std::size_t
 template <class Real>
 void detail::WorldKernel<Real>::diff_contact_events() {
   const std::size_t n = touching_.size(), m = touching_before_.size();
-  detail::SecondThread* second =
-      discs_ ? discs_->second_thread(disc_threads()) : nullptr;
+  detail::SecondThread* second = discs_ ? discs_->second_thread(disc_threads()) : nullptr;
   if (second == nullptr || !second->is_open() || n < events_split) {
     sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
     sort_by_slots(hits_);
