@@ -654,7 +654,6 @@ class WorldKernel {
   std::size_t resolve_contacts();  // returns ContactStats::capped of the planes
   // Its steps for one body (world_contacts.cpp).
   void resolve_body_contacts(std::size_t k, PlaneTally& tally);
-  static constexpr std::size_t near_block = 64;   ///< bodies find_near_planes tests at once
   static constexpr std::size_t near_split = 256;  ///< near bodies from which two threads share
   void find_near_planes();
   void resolve_near_planes(PlaneTally& tally);

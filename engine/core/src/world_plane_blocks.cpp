@@ -1,7 +1,7 @@
 // The plane pass's first look (resolve_contacts): in a tick of planes without segments, most
 // colliders are clear of every plane all the tick (plane_contact.hpp, clear_of_planes). They
 // are told from the others in blocks of near_block colliders, plane by plane, so that the test
-// runs on SIMD lanes, and by halves on the discs' second thread; only the others go the whole
+// runs on SIMD lanes (compiled for each SimdLevel), and by halves on the discs' second thread; only the others go the whole
 // way (resolve_body_contacts), by halves too when they are many (a pile's bottom row). The same
 // bits: a collider that the whole way finds clear keeps its integrated state, as here, and the
 // bodies are independent but for the cap's count and the external work, which the second half
@@ -9,14 +9,111 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "disc_contacts.hpp"
+#include "fixstep/core/simd.hpp"
 #include "fixstep/core/stop_request.hpp"
 #include "plane_contact.hpp"
+#include "simd_targets.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
+
+namespace {
+
+/// The colliders find_near_planes tests at once.
+constexpr std::size_t near_block = 64;
+
+/// A block of colliders as near_block_of gathers them (m, m/s, s as plane_contact's), and
+/// `clear`: 1 while a collider is clear of every plane tested so far, else 0.
+struct NearBlock {
+  alignas(64) double x0[near_block], y0[near_block], x1[near_block], y1[near_block];
+  alignas(64) double dvx[near_block], dvy[near_block], r[near_block], scale[near_block];
+  alignas(64) double clear[near_block];
+};
+
+/// Where a block's colliders are read from: per collider k its body, radius (m) and start
+/// state (m, m/s); per body j its integrated state.
+template <class Real>
+struct BlockSource {
+  const std::uint32_t* body;
+  const double* radius;
+  const Real *x0, *y0, *vx0, *vy0;
+  const Real *x, *y, *vx, *vy;
+};
+
+/// Gathers colliders begin..begin+m (past m, the block's first again, so that the loops have
+/// a constant trip count, which the compiler vectorizes), then tests them against every plane:
+/// clear_of_plane per collider and plane, in its order of operations.
+template <class Real>
+[[gnu::always_inline]] inline void test_block(NearBlock& b, const BlockSource<Real>& s,
+                                              std::size_t begin, std::size_t m,
+                                              std::span<const PlaneDef> planes, double dt,
+                                              double rel) {
+  using plane_contact::V2;
+  for (std::size_t i = 0; i < near_block; ++i) {
+    const std::size_t k = begin + (i < m ? i : 0);
+    const std::uint32_t j = s.body[k];
+    const V2 a0{double(s.x0[k]), double(s.y0[k])}, a1{double(s.x[j]), double(s.y[j])};
+    const V2 v0{double(s.vx0[k]), double(s.vy0[k])}, v1{double(s.vx[j]), double(s.vy[j])};
+    b.x0[i] = a0.x, b.y0[i] = a0.y, b.x1[i] = a1.x, b.y1[i] = a1.y;
+    b.dvx[i] = v1.x - v0.x, b.dvy[i] = v1.y - v0.y;
+    b.r[i] = s.radius[k];
+    b.scale[i] = plane_contact::clearance_scale(a0, a1, v0, v1, b.r[i], dt);
+    b.clear[i] = 1.0;
+  }
+  for (const PlaneDef& p : planes) {
+    for (std::size_t i = 0; i < near_block; ++i) {
+      const bool ok =
+          plane_contact::clear_of_plane(p, V2{b.x0[i], b.y0[i]}, V2{b.x1[i], b.y1[i]},
+                                        V2{b.dvx[i], b.dvy[i]}, b.r[i], dt, rel, b.scale[i]);
+      b.clear[i] = ok ? b.clear[i] : 0.0;
+    }
+  }
+}
+
+// The same block compiled for each SimdLevel (fixstep/core/simd.hpp), with internal linkage and
+// everything it calls inlined (flatten), as world_step.cpp's sweeps. The tests are comparisons of
+// sums and products, each rounded alone (no contraction), so every level decides the same.
+template <class Real>
+[[gnu::noinline]] void test_block_baseline(NearBlock& b, const BlockSource<Real>& s,
+                                           std::size_t begin, std::size_t m,
+                                           std::span<const PlaneDef> planes, double dt,
+                                           double rel) {
+  test_block(b, s, begin, m, planes, dt, rel);
+}
+#if FIXSTEP_HAS_SIMD_CLONES
+template <class Real>
+[[gnu::flatten]] FIXSTEP_TARGET_AVX2 void test_block_avx2(NearBlock& b, const BlockSource<Real>& s,
+                                                          std::size_t begin, std::size_t m,
+                                                          std::span<const PlaneDef> planes,
+                                                          double dt, double rel) {
+  test_block(b, s, begin, m, planes, dt, rel);
+}
+template <class Real>
+[[gnu::flatten]] FIXSTEP_TARGET_AVX512 void test_block_avx512(NearBlock& b,
+                                                              const BlockSource<Real>& s,
+                                                              std::size_t begin, std::size_t m,
+                                                              std::span<const PlaneDef> planes,
+                                                              double dt, double rel) {
+  test_block(b, s, begin, m, planes, dt, rel);
+}
+#endif
+
+template <class Real>
+void test_block(SimdLevel level, NearBlock& b, const BlockSource<Real>& s, std::size_t begin,
+                std::size_t m, std::span<const PlaneDef> planes, double dt, double rel) {
+#if FIXSTEP_HAS_SIMD_CLONES
+  if (level == SimdLevel::avx512) return test_block_avx512(b, s, begin, m, planes, dt, rel);
+  if (level == SimdLevel::avx2) return test_block_avx2(b, s, begin, m, planes, dt, rel);
+#endif
+  (void)level;
+  test_block_baseline(b, s, begin, m, planes, dt, rel);
+}
+
+}  // namespace
 
 // The colliders that are not clear of every plane (clear_of_planes), into contact_.near in
 // index order; the others' plane motion is "none". By halves on the discs' second thread within
@@ -44,37 +141,16 @@ void detail::WorldKernel<Real>::find_near_planes() {
 template <class Real>
 void detail::WorldKernel<Real>::near_block_of(std::size_t begin, std::size_t m,
                                               std::vector<std::uint32_t>& near) {
-  using plane_contact::V2;
   const ContactScratch& c = contact_;
-  const double dt = settings_.dt;
+  const BlockSource<Real> source{c.body.data(), c.radius.data(), c.x0.data(), c.y0.data(),
+                                 c.vx0.data(),  c.vy0.data(),    x_.data(),   y_.data(),
+                                 vx_.data(),    vy_.data()};
   const double rel = 8.0 * double(std::numeric_limits<Real>::epsilon());
-  // Gathered into a block of fixed length (past m, the block's first body again), so that the
-  // plane-by-plane loop has a constant trip count, which the compiler vectorizes. The test
-  // per body and plane is clear_of_plane's, in its order of operations.
-  alignas(64) double x0[near_block], y0[near_block], x1[near_block], y1[near_block];
-  alignas(64) double dvx[near_block], dvy[near_block], r[near_block], scale[near_block];
-  alignas(64) double clear[near_block];
-  for (std::size_t i = 0; i < near_block; ++i) {
-    const std::size_t k = begin + (i < m ? i : 0);
-    const std::uint32_t j = c.body[k];
-    const V2 a0{double(c.x0[k]), double(c.y0[k])}, a1{double(x_[j]), double(y_[j])};
-    const V2 v0{double(c.vx0[k]), double(c.vy0[k])}, v1{double(vx_[j]), double(vy_[j])};
-    x0[i] = a0.x, y0[i] = a0.y, x1[i] = a1.x, y1[i] = a1.y;
-    dvx[i] = v1.x - v0.x, dvy[i] = v1.y - v0.y;
-    r[i] = c.radius[k];
-    scale[i] = plane_contact::clearance_scale(a0, a1, v0, v1, r[i], dt);
-    clear[i] = 1.0;
-  }
-  for (const PlaneDef& p : planes_) {
-    for (std::size_t i = 0; i < near_block; ++i) {
-      const bool ok = plane_contact::clear_of_plane(p, V2{x0[i], y0[i]}, V2{x1[i], y1[i]},
-                                                    V2{dvx[i], dvy[i]}, r[i], dt, rel, scale[i]);
-      clear[i] = ok ? clear[i] : 0.0;
-    }
-  }
+  NearBlock b;
+  test_block(simd_level(), b, source, begin, m, planes_, settings_.dt, rel);
   for (std::size_t i = 0; i < m; ++i) {
     contact_.after_t[begin + i] = -1.0;
-    if (clear[i] == 0.0) near.push_back(static_cast<std::uint32_t>(begin + i));
+    if (b.clear[i] == 0.0) near.push_back(static_cast<std::uint32_t>(begin + i));
   }
 }
 
