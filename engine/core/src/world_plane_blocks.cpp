@@ -1,11 +1,11 @@
 // The plane pass's first look (resolve_contacts): in a tick of planes without segments, most
 // colliders are clear of every plane all the tick (plane_contact.hpp, clear_of_planes). They
 // are told from the others in blocks of near_block colliders, plane by plane, so that the test
-// runs on SIMD lanes (compiled for each SimdLevel), and by halves on the discs' second thread; only the others go the whole
-// way (resolve_body_contacts), by halves too when they are many (a pile's bottom row). The same
-// bits: a collider that the whole way finds clear keeps its integrated state, as here, and the
-// bodies are independent but for the cap's count and the external work, which the second half
-// leaves to this thread (PlaneTally::defer).
+// runs on SIMD lanes (compiled for each SimdLevel), and by halves on the discs' second thread; only
+// the others go the whole way (resolve_body_contacts), by halves too when they are many (a pile's
+// bottom row). The same bits: a collider that the whole way finds clear keeps its integrated state,
+// as here, and the bodies are independent but for the cap's count and the external work, which the
+// second half leaves to this thread (PlaneTally::defer).
 #include <algorithm>
 #include <cstdint>
 #include <limits>
