@@ -48,10 +48,10 @@ struct BlockSource {
 /// a constant trip count, which the compiler vectorizes), then tests them against every plane:
 /// clear_of_plane per collider and plane, in its order of operations.
 template <class Real>
-[[gnu::always_inline]] inline void test_block(NearBlock& b, const BlockSource<Real>& s,
-                                              std::size_t begin, std::size_t m,
-                                              std::span<const PlaneDef> planes, double dt,
-                                              double rel) {
+[[gnu::always_inline]] inline void gather_and_test(NearBlock& b, const BlockSource<Real>& s,
+                                                   std::size_t begin, std::size_t m,
+                                                   std::span<const PlaneDef> planes, double dt,
+                                                   double rel) {
   using plane_contact::V2;
   for (std::size_t i = 0; i < near_block; ++i) {
     const std::size_t k = begin + (i < m ? i : 0);
@@ -82,7 +82,7 @@ template <class Real>
                                            std::size_t begin, std::size_t m,
                                            std::span<const PlaneDef> planes, double dt,
                                            double rel) {
-  test_block(b, s, begin, m, planes, dt, rel);
+  gather_and_test(b, s, begin, m, planes, dt, rel);
 }
 #if FIXSTEP_HAS_SIMD_CLONES
 template <class Real>
@@ -90,7 +90,7 @@ template <class Real>
                                                           std::size_t begin, std::size_t m,
                                                           std::span<const PlaneDef> planes,
                                                           double dt, double rel) {
-  test_block(b, s, begin, m, planes, dt, rel);
+  gather_and_test(b, s, begin, m, planes, dt, rel);
 }
 template <class Real>
 [[gnu::flatten]] FIXSTEP_TARGET_AVX512 void test_block_avx512(NearBlock& b,
@@ -98,7 +98,7 @@ template <class Real>
                                                               std::size_t begin, std::size_t m,
                                                               std::span<const PlaneDef> planes,
                                                               double dt, double rel) {
-  test_block(b, s, begin, m, planes, dt, rel);
+  gather_and_test(b, s, begin, m, planes, dt, rel);
 }
 #endif
 
