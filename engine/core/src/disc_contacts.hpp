@@ -184,12 +184,15 @@ class DiscContacts {
   /// How many of touching()'s contacts, the first ones, are disc pairs (the rest: planes and
   /// segments).
   [[nodiscard]] std::size_t disc_pair_contacts() const { return plane_contacts_; }
+  /// Whether the tick's run of the second thread is open (SecondThreadRun): halves() and
+  /// both_halves() then run their halves on two threads.
+  [[nodiscard]] bool sharing() const { return broadphase_.second_thread().is_open(); }
   /// Runs pass(begin, end, half) over [0, n): as two halves (0 and 1) on two threads when
   /// the tick's run of the second thread is open (SecondThreadRun), else as one (half 0) here. For
   /// passes whose items are independent (one disc, one pair): the same result either way.
   template <class Pass>
   void halves(std::size_t n, Pass&& pass) {
-    if (!broadphase_.second_thread().is_open() || n < 2) {
+    if (!sharing() || n < 2) {
       pass(std::size_t{0}, n, 0);
       return;
     }
@@ -200,7 +203,7 @@ class DiscContacts {
   /// else one after the other here. For jobs that write nothing the other reads or writes.
   template <class Job>
   void both_halves(Job& job) {
-    if (!broadphase_.second_thread().is_open()) {
+    if (!sharing()) {
       job(0), job(1);
       return;
     }
@@ -266,9 +269,7 @@ class DiscContacts {
   /// thread, else 1 (outside a run each hand-over would wake the worker by futex, which costs
   /// more than the halves save below thousands of boxes; with sleepers the broadphase may see
   /// more discs than the awake ones that open the run).
-  [[nodiscard]] int pass_threads(const Tick& tick) {
-    return broadphase_.second_thread().is_open() ? tick.threads : 1;
-  }
+  [[nodiscard]] int pass_threads(const Tick& tick) { return sharing() ? tick.threads : 1; }
   /// A tick with sleepers visits only the live discs (each_live()) when at most this share of
   /// the discs is awake, else every disc: both give the same states.
   static constexpr std::size_t live_share = 4;

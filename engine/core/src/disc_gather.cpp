@@ -79,7 +79,7 @@ template <class Real>
 void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   const std::size_t m = pairs_.size();
   bool kinematic[2] = {false, false};
-  if (broadphase_.second_thread().is_open() && m >= min_parallel_pairs) {
+  if (sharing() && m >= min_parallel_pairs) {
     // Two threads: which pairs touch, by halves of the pairs; then each half's contacts,
     // the second half's after the first's (the same contacts in the same order as one pass).
     std::size_t found[2] = {0, 0};
@@ -123,7 +123,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   if (tick.planes.empty() && tick.segments == nullptr) return;  // nothing but disc pairs
   sort_live();                                                  // the walls' contacts in key order
   const std::size_t live = live_count();
-  if (tick.segments == nullptr && broadphase_.second_thread().is_open()) {
+  if (tick.segments == nullptr && sharing()) {
     // Two threads: each half of the discs' plane contacts apart, then the first's and the
     // second's after the pairs (the same contacts in the same order).
     for (auto& half : plane_half_) half.clear();

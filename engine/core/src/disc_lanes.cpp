@@ -39,8 +39,8 @@ bool DiscContacts<Real>::meet_other_lane(ImpactLane& q) {
 
 template <class Real>
 bool DiscContacts<Real>::lanes_may_run(const Tick& tick) {
-  if (!broadphase_.second_thread().is_open() || !live_all_ || sleeper_count_ != 0 ||
-      tick.segments != nullptr || pairs_.size() < min_lane_pairs) {
+  if (!sharing() || !live_all_ || sleeper_count_ != 0 || tick.segments != nullptr ||
+      pairs_.size() < min_lane_pairs) {
     return false;
   }
   if (lane_rest_ > 0) {  // after ticks in a row without lanes (rest_lanes())

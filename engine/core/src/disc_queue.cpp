@@ -26,7 +26,7 @@ void DiscContacts<Real>::first_events(const Tick& tick, double from) {
     }
   };
   ScratchVector<DiscEvent>& heap = lanes_[0].heap;
-  if (broadphase_.second_thread().is_open() && m >= min_parallel_pairs) {
+  if (sharing() && m >= min_parallel_pairs) {
     events_.clear();
     auto halves = [&](int half) { half == 0 ? find(0, m / 2, heap) : find(m / 2, m, events_); };
     broadphase_.second_thread().both(halves);

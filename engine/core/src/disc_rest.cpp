@@ -47,7 +47,7 @@ template <int Kind>
 template <class Real>
 void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   const auto& p = part_start_;
-  team_on_ = broadphase_.second_thread().is_open() && p[1] > p[0] && p[2] > p[1];
+  team_on_ = sharing() && p[1] > p[0] && p[2] > p[1];
   match_warm();
   build_rows();
   warm_start();
@@ -279,7 +279,7 @@ void DiscContacts<Real>::keep_impulses() {
     }
   };
   warm_.clear();
-  if (!broadphase_.second_thread().is_open() || mid < 2) {
+  if (!sharing() || mid < 2) {
     merge(0, mid, mid, end, warm_);
     return;
   }

@@ -5,7 +5,6 @@
 #include <span>
 
 #include "disc_contacts.hpp"
-#include "second_thread.hpp"
 #include "shape_world.hpp"
 #include "sorted_diff.hpp"
 #include "world_kernel.hpp"
@@ -166,14 +165,13 @@ void detail::WorldKernel<Real>::diff_touching(std::size_t now_begin, std::size_t
 template <class Real>
 void detail::WorldKernel<Real>::diff_contact_events() {
   const std::size_t n = touching_.size(), m = touching_before_.size();
-  detail::SecondThread* second = discs_ ? discs_->second_thread(disc_threads()) : nullptr;
-  if (second == nullptr || !second->is_open() || n < events_split) {
+  if (!discs_ || !discs_->sharing() || n < events_split) {
     sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
     sort_by_slots(hits_);
     diff_touching(0, n, 0, m, begun_, ended_);
   } else {
     auto sorts = [&](int half) { half == 0 ? sort_by_slots(touching_) : sort_by_slots(hits_); };
-    second->both(sorts);
+    discs_->both_halves(sorts);
     std::size_t mid = n / 2;  // touching_[mid - 1] before touching_[mid] (pairs may repeat)
     while (mid < n && !slot_less(touching_[mid - 1], touching_[mid])) ++mid;
     const auto cut = std::lower_bound(touching_before_.begin(), touching_before_.end(),
@@ -184,7 +182,7 @@ void detail::WorldKernel<Real>::diff_contact_events() {
       half == 0 ? diff_touching(0, mid, 0, b, begun_, ended_)
                 : diff_touching(mid, n, b, m, begun_half_, ended_half_);
     };
-    second->both(halves);
+    discs_->both_halves(halves);
     begun_.insert(begun_.end(), begun_half_.begin(), begun_half_.end());
     ended_.insert(ended_.end(), ended_half_.begin(), ended_half_.end());
   }
