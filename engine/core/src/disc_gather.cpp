@@ -13,9 +13,12 @@
 
 namespace fixstep::detail {
 
+// Inlined into its callers, so that a contact is made in registers and stored once where it
+// goes (a call wrote it to the stack field by field, and the copy after read it back in wider
+// loads than the stores: each load waited for the stores to retire).
 template <class Real>
-bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestContact* out,
-                                      const WarmImpulse*& warm_at) const {
+[[gnu::always_inline]] inline bool DiscContacts<Real>::pair_contact(
+    const Tick& tick, const DiscPair& p, RestContact* out, const WarmImpulse*& warm_at) const {
   const Disc &da = discs_[p.a], &db = discs_[p.b];
   const double dx = ex_[p.a] - ex_[p.b], dy = ey_[p.a] - ey_[p.b];
   const double dist = length(dx, dy);
@@ -42,17 +45,24 @@ bool DiscContacts<Real>::pair_contact(const Tick& tick, const DiscPair& p, RestC
     return false;
   }
   if (out == nullptr) return true;
+  // Every field written once, in one initializer: assigning the fields over a zeroed contact
+  // (RestContact{}) cleared its 128 bytes with a string instruction first, per contact.
+  const double mass = 1.0 / (da.inv_mass + db.inv_mass);
   RestContact& c = *out;
-  c = RestContact{};
-  c.nx = nx, c.ny = ny;
-  c.key = pair_key(p);
-  c.a = p.a, c.b = p.b;
-  c.radii = da.radius + db.radius, c.r_min = std::min(da.radius, db.radius);
-  c.inv_a = da.inv_mass, c.inv_b = db.inv_mass;
-  c.kinematic_a = !da.dynamic && (motion_[p.a].ux != 0.0 || motion_[p.a].uy != 0.0);
-  c.kinematic_b = !db.dynamic && (motion_[p.b].ux != 0.0 || motion_[p.b].uy != 0.0);
-  c.mass = c.mass_t = 1.0 / (da.inv_mass + db.inv_mass);
-  c.friction = std::sqrt(da.friction * db.friction);
+  c = RestContact{.key = pair_key(p),
+                  .a = p.a,
+                  .b = p.b,
+                  .nx = nx,
+                  .ny = ny,
+                  .mass = mass,
+                  .friction = std::sqrt(da.friction * db.friction),
+                  .inv_a = da.inv_mass,
+                  .inv_b = db.inv_mass,
+                  .radii = da.radius + db.radius,
+                  .r_min = std::min(da.radius, db.radius),
+                  .mass_t = mass,
+                  .kinematic_a = !da.dynamic && (motion_[p.a].ux != 0.0 || motion_[p.a].uy != 0.0),
+                  .kinematic_b = !db.dynamic && (motion_[p.b].ux != 0.0 || motion_[p.b].uy != 0.0)};
   if (rolling_) {
     const RollRow t = roll_row(c);
     c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + t.arm_a * t.turn_a + t.arm_b * t.turn_b);
