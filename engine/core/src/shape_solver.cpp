@@ -62,20 +62,24 @@ double ShapeWorld::tangent_velocity(const ShapeSolveRow& h) const {
   return tangent_of(h, m.a, m.b);
 }
 
-ShapeSolveRow ShapeWorld::solve_row(const ShapeRow& r) const {
-  ShapeSolveRow h;
-  h.a = r.a, h.b = r.b, h.nx = r.n.x, h.ny = r.n.y;
+// Every field assigned, none cleared first: a row value-initialized and then assigned (or made
+// by an initializer with fields left out) was cleared whole with a string instruction, per row.
+void ShapeWorld::make_solve_row(const ShapeRow& r, ShapeSolveRow& h) const {
   const Vec2 t = perp(r.n);
-  h.rna = cross(r.ra, r.n), h.rnb = cross(r.rb, r.n);
-  h.rta = cross(r.ra, t), h.rtb = cross(r.rb, t);
-  if (r.a != none) h.ma = bodies_[r.a].inv_mass, h.ia = bodies_[r.a].inv_inertia;
-  h.mb = bodies_[r.b].inv_mass, h.ib = bodies_[r.b].inv_inertia;
-  h.kn = h.ma + h.mb + h.ia * h.rna * h.rna + h.ib * h.rnb * h.rnb;
-  h.kt = h.ma + h.mb + h.ia * h.rta * h.rta + h.ib * h.rtb * h.rtb;
-  h.normal_mass = h.kn > 0.0 ? 1.0 / h.kn : 0.0;
-  h.tangent_mass = h.kt > 0.0 ? 1.0 / h.kt : 0.0;
-  h.friction = r.friction;
-  return h;
+  const double rna = cross(r.ra, r.n), rnb = cross(r.rb, r.n);
+  const double rta = cross(r.ra, t), rtb = cross(r.rb, t);
+  const double ma = r.a != none ? bodies_[r.a].inv_mass : 0.0;
+  const double ia = r.a != none ? bodies_[r.a].inv_inertia : 0.0;
+  const double mb = bodies_[r.b].inv_mass, ib = bodies_[r.b].inv_inertia;
+  const double kn = ma + mb + ia * rna * rna + ib * rnb * rnb;
+  const double kt = ma + mb + ia * rta * rta + ib * rtb * rtb;
+  h.a = r.a, h.b = r.b, h.flags = 0, h.nx = r.n.x, h.ny = r.n.y;
+  h.rna = rna, h.rnb = rnb, h.rta = rta, h.rtb = rtb;
+  h.ma = ma, h.ia = ia, h.mb = mb, h.ib = ib, h.kn = kn, h.kt = kt;
+  h.normal_mass = kn > 0.0 ? 1.0 / kn : 0.0;
+  h.tangent_mass = kt > 0.0 ? 1.0 / kt : 0.0;
+  h.k12 = 0.0, h.target = 0.0, h.block_mass = {0.0, 0.0, 0.0};
+  h.friction = r.friction, h.ln = 0.0, h.lt = 0.0;
 }
 
 void ShapeWorld::prepare_rows(const ShapeTick& tick) {
@@ -89,7 +93,7 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     ShapeRow& r = rows_[i];
     ShapeSolveRow& h = solve_[i];
-    h = solve_row(r);
+    make_solve_row(r, h);
     r.rolling_mass = r.rolling > 0.0 && h.ia + h.ib > 0.0 ? 1.0 / (h.ia + h.ib) : 0.0;
     r.lr = 0.0;
     // The normal velocity the row asks for: a gap may close within the tick, a touching point

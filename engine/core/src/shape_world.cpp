@@ -199,11 +199,19 @@ void ShapeWorld::add_manifold(std::vector<ShapeRow>& rows, const Manifold& m, st
                               std::uint64_t pair) {
   for (int p = 0; p < m.count; ++p) {
     const ManifoldPoint& mp = m.points[p];
-    ShapeRow& r = rows.emplace_back();  // made in place: a row is 3 cache lines
-    r.a = a, r.b = b, r.n = m.normal, r.ra = mp.anchor_a, r.rb = mp.anchor_b;
-    r.separation = mp.separation, r.friction = friction, r.restitution = restitution;
-    r.rolling = p == 0 ? rolling : 0.0;
-    r.pair = pair, r.id = mp.id;
+    // One initializer that names what it sets (the rest zero), copied in: a row made in place
+    // by emplace_back() was cleared whole with a string instruction before its fields were set.
+    rows.push_back(ShapeRow{.a = a,
+                            .b = b,
+                            .n = m.normal,
+                            .ra = mp.anchor_a,
+                            .rb = mp.anchor_b,
+                            .separation = mp.separation,
+                            .friction = friction,
+                            .restitution = restitution,
+                            .rolling = p == 0 ? rolling : 0.0,
+                            .pair = pair,
+                            .id = mp.id});
   }
 }
 
@@ -237,14 +245,15 @@ void ShapeWorld::collect_pairs(const ShapeTick& tick, std::size_t begin, std::si
     const std::uint64_t index = index_pair(c);
     while (cursor != kept_.cend() && cursor->pair < index) ++cursor;
     const bool recycles = sharp(sa) && sharp(sb);
-    Manifold m;
-    if (recycles && cursor != kept_.cend() && cursor->pair == index &&
-        kept_holds(*cursor, ta, angle_a, tb, angle_b, bodies_[sb.owner].extent, margin,
-                   recycle_distance)) {
-      m = recycle(*cursor, ta, tb);
+    const bool held = recycles && cursor != kept_.cend() && cursor->pair == index &&
+                      kept_holds(*cursor, ta, angle_a, tb, angle_b, bodies_[sb.owner].extent,
+                                 margin, recycle_distance);
+    // Made where it lives (a manifold declared first was cleared whole, then assigned).
+    const Manifold m =
+        held ? recycle(*cursor, ta, tb) : collide(sa.convex, ta, sb.convex, tb, margin);
+    if (held) {
       kept.push_back(*cursor);  // measured from where it was made, not from this tick
     } else {
-      m = collide(sa.convex, ta, sb.convex, tb, margin);
       if (m.count == 0) continue;
       if (recycles) kept.push_back(keep_manifold(index, m, ta, angle_a, tb, angle_b, margin));
     }

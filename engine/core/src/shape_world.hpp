@@ -268,9 +268,9 @@ class ShapeWorld {
   /// B's velocity relative to A's at the row's point, along n and along t (m/s).
   [[nodiscard]] double normal_velocity(const ShapeSolveRow& h) const;
   [[nodiscard]] double tangent_velocity(const ShapeSolveRow& h) const;
-  /// The row of `r` for the velocity solve (its target and flags left to prepare_rows and
-  /// prepare_blocks).
-  [[nodiscard]] ShapeSolveRow solve_row(const ShapeRow& r) const;
+  /// Makes `h` the row of `r` for the velocity solve, every field (its target and flags left
+  /// zero for prepare_rows and prepare_blocks).
+  void make_solve_row(const ShapeRow& r, ShapeSolveRow& h) const;
   /// After the velocity solve: each pose moved by dt times its body's velocity change in it
   /// (semi-implicit Euler's x1 = x0 + dt v1, once, for every impulse of the solve), and the
   /// velocities written back to state_.
