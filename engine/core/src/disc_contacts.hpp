@@ -517,9 +517,10 @@ class DiscContacts {
   bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out,
                     const WarmImpulse*& warm_at) const;
   /// Pair p's normal impulse of the last tick's resting solver (N·s; 0 when it had none),
-  /// looked up in warm_ from `at` on (a walk for pairs in key order), which it moves to p.
+  /// looked up in warm_'s disc pairs from `at` on (a walk for pairs in key order), which it
+  /// moves to p.
   [[nodiscard]] double last_impulse(const DiscPair& p, const WarmImpulse*& at) const;
-  /// Where in warm_ pair i's key is, or would be.
+  /// Where in warm_'s disc pairs pair i's key is, or would be.
   [[nodiscard]] const WarmImpulse* warm_from(std::size_t i) const;
   /// Disc k's resting contact with a plane or segment b (b past the discs) along its normal
   /// (nx, ny), friction μ: its key, radii, masses and, with rolling discs, its turn.
@@ -550,13 +551,15 @@ class DiscContacts {
   /// Warm start, velocity iterations and push-out, on two threads when the contacts were
   /// split, within the tick's run of the second thread.
   void solve_resting(const Tick& tick, ContactStats& stats);
-  /// Each contact's impulses from last tick's by key (warm_), 0 for a new contact.
+  /// Each contact's impulses from last tick's by key (warm_, each run of contacts_ against the
+  /// same run of warm_), 0 for a new contact or one that carried no normal impulse.
   void match_warm();
   // velocity iterations on rows (disc_rows.cpp)
   /// rows_ from contacts_ in order_'s order, with the solver velocities of their discs.
   void build_rows();
-  /// Writes the velocities and impulses back, and moves each disc an impulse changed by
-  /// κ dt times its velocity's change (kdt = κ dt, s): the contact forces over the tick.
+  /// Writes the velocities back and each contact's impulses to warm_ (for the next tick), and
+  /// moves each disc an impulse changed by κ dt times its velocity's change (kdt = κ dt, s):
+  /// the contact forces over the tick.
   void scatter_rows(double kdt);
   void warm_start();
   void solve_velocities(ContactStats& stats);
@@ -594,7 +597,6 @@ class DiscContacts {
       return 2.0 * double(std::numeric_limits<float>::epsilon()) * most;
     }
   }
-  void keep_impulses();
   // segments (disc_segments.cpp)
   /// Appends disc k's resting contacts with the segments near its end position, in segment
   /// order (key k << 32 | n + planes + segment), as gather_contacts() does for planes.
@@ -683,10 +685,14 @@ class DiscContacts {
   std::uint32_t plane_contacts_ = 0;              ///< where contacts_'s plane contacts begin
   ScratchVector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};
-  ScratchVector<double> cut_;      ///< split_contacts()'s
-  bool team_on_ = false;           ///< set by solve_resting(): its parts' halves on two threads
-  std::vector<WarmImpulse> warm_;  ///< by key
-  ScratchVector<WarmImpulse> warm_upper_;  ///< keep_impulses()'s upper keys on two threads
+  ScratchVector<double> cut_;  ///< split_contacts()'s
+  bool team_on_ = false;       ///< set by solve_resting(): its parts' halves on two threads
+  /// The last solved tick's impulses, one per contact of contacts_ as it was then, in its
+  /// order: the disc pairs [0, warm_pairs_) and the planes and segments after, each run in key
+  /// order. Written in place by scatter_rows(), so that no pass after the solve gathers them
+  /// (an entry with λ_n = 0 carries nothing: match_warm() and last_impulse() skip it).
+  std::vector<WarmImpulse> warm_;
+  std::uint32_t warm_pairs_ = 0;
   // the velocity iterations' own state (disc_rows.cpp; sized once, no allocation once warm)
   ScratchVector<SolveRow> rows_;
   ScratchVector<PushRow> push_rows_;

@@ -77,7 +77,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   impacts_.assign(n, 0);
   changed_.assign(n, 0);
   walled_.assign(n, 0);
-  warm_.clear();
+  warm_.clear(), warm_pairs_ = 0;
   rolling_ = settings.rolling;
   ew_.assign(rolling_ ? n : 0, 0.0), ew0_.assign(rolling_ ? n : 0, 0.0);
   asleep_.assign(n, 0), sleeper_count_ = 0, awake_dirty_ = true;
@@ -426,8 +426,7 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
   profile.impacts = clock.lap();
   gather_contacts(tick);
   split_contacts(stats);
-  solve_resting(tick, stats);
-  keep_impulses();
+  solve_resting(tick, stats);  // and the impulses kept for the next tick (scatter_rows)
   profile.resting = clock.lap();
   finish(tick);
   if (!sensor_pairs_.empty()) detect_sensors(tick);
@@ -440,11 +439,11 @@ std::size_t DiscContacts<Real>::bytes() const {
                     motion_, boxes_, dynamic_, pairs_, offset_, incident_, cursor_, stamp_, held_,
                     extra_sorted_, partner_mark_, wall_found_, extra_head_, grown_of_, impacts_,
                     changed_, walled_, touch_, plane_half_[0], plane_half_[1], events_, contacts_,
-                    order_, scratch_, cut_, lane_of_, lane_parent_, lane_log_, warm_, warm_upper_,
-                    ex_, ey_, evx_, evy_, lost_, external_, e_start_, e_begin_, d_begin_, ew_, ew0_,
-                    rows_, push_rows_, row_moved_, sv_, slot_moved_, roll_rows_, sw_, asleep_,
-                    awake_list_, live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc,
-                    live_boxes_, live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
+                    order_, scratch_, cut_, lane_of_, lane_parent_, lane_log_, warm_, ex_, ey_,
+                    evx_, evy_, lost_, external_, e_start_, e_begin_, d_begin_, ew_, ew0_, rows_,
+                    push_rows_, row_moved_, sv_, slot_moved_, roll_rows_, sw_, asleep_, awake_list_,
+                    live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc, live_boxes_,
+                    live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
          lanes_[0].bytes() + lanes_[1].bytes();
 }
 

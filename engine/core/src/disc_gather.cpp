@@ -73,16 +73,16 @@ template <class Real>
 template <class Real>
 double DiscContacts<Real>::last_impulse(const DiscPair& p, const WarmImpulse*& at) const {
   const std::uint64_t key = pair_key(p);
-  const WarmImpulse *const begin = warm_.data(), *const end = begin + warm_.size();
+  const WarmImpulse *const begin = warm_.data(), *const end = begin + warm_pairs_;
   if (at != begin && (at - 1)->key >= key) at = first_warm_from(begin, at, key);  // went back
   while (at != end && at->key < key) ++at;  // pairs come in key order: a walk
-  return at != end && at->key == key ? at->lambda_n : 0.0;
+  return at != end && at->key == key && at->lambda_n > 0.0 ? at->lambda_n : 0.0;
 }
 
 template <class Real>
 const WarmImpulse* DiscContacts<Real>::warm_from(std::size_t i) const {
   if (i >= pairs_.size()) return warm_.data();
-  return first_warm_from(warm_.data(), warm_.data() + warm_.size(), pair_key(pairs_[i]));
+  return first_warm_from(warm_.data(), warm_.data() + warm_pairs_, pair_key(pairs_[i]));
 }
 
 template <class Real>

@@ -98,6 +98,8 @@ inline bool later_event(const DiscEvent& l, const DiscEvent& r) {
 struct RestContact {
   std::uint64_t key = 0;  ///< a << 32 | b (b = disc count + plane index for planes)
   std::uint32_t a = 0, b = 0;
+  /// The normal n (unit, from b to a), the effective mass (kg), μ; the impulses the solve starts
+  /// from (N·s: last tick's, matched by key), its own are kept in DiscContacts::warm_.
   double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
   double inv_a = 0, inv_b = 0;  ///< 1/kg of a and b (0: static, kinematic or a plane)
   /// The radii r_a + r_b (r_a for a plane or a segment) and the smaller radius, m.

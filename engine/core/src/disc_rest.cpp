@@ -67,19 +67,24 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
 
 template <class Real>
 void DiscContacts<Real>::match_warm() {
-  // contacts_ is two runs in key order (disc pairs, then planes), warm_ one, so each run is
-  // matched in one walk (each half of it in one, from its first key on).
+  // contacts_ and warm_ are each two runs in key order (disc pairs, then planes and segments),
+  // so each run is matched against its like in one walk (each half of it in one, from its
+  // first key on).
   const std::size_t bounds[3] = {0, plane_contacts_, contacts_.size()};
+  const std::size_t warm_bounds[3] = {0, warm_pairs_, warm_.size()};
   for (int run = 0; run < 2; ++run) {
     const std::size_t first = bounds[run];
+    const WarmImpulse* const from = warm_.data() + warm_bounds[run];
+    const WarmImpulse* const last = warm_.data() + warm_bounds[run + 1];
     halves(bounds[run + 1] - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
       if (begin == end) return;
-      const WarmImpulse* const last = warm_.data() + warm_.size();
-      const WarmImpulse* w = first_warm_from(warm_.data(), last, contacts_[first + begin].key);
+      const WarmImpulse* w = first_warm_from(from, last, contacts_[first + begin].key);
       for (std::size_t i = first + begin; i < first + end; ++i) {
         RestContact& c = contacts_[i];
         while (w != last && w->key < c.key) ++w;
-        if (w != last && w->key == c.key) c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
+        if (w != last && w->key == c.key && w->lambda_n > 0.0) {
+          c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
+        }
       }
     });
   }
@@ -263,43 +268,6 @@ void DiscContacts<Real>::push_out(const Tick& tick, ContactStats& stats) {
       stats.positions_settled = false;
     }
   }
-}
-
-template <class Real>
-void DiscContacts<Real>::keep_impulses() {
-  // The two key-ordered runs of contacts_ (disc pairs [0, mid), planes and segments [mid, end))
-  // merged into one key-ordered list of the impulses that push.
-  const std::size_t mid = plane_contacts_, end = contacts_.size();
-  auto merge = [&](std::size_t i, std::size_t i_end, std::size_t j, std::size_t j_end,
-                   std::vector<WarmImpulse>& out) {
-    while (i < i_end || j < j_end) {
-      const bool disc = j == j_end || (i < i_end && contacts_[i].key < contacts_[j].key);
-      const RestContact& c = contacts_[disc ? i++ : j++];
-      if (c.lambda_n > 0.0) out.push_back(WarmImpulse{c.key, c.lambda_n, c.lambda_t});
-    }
-  };
-  warm_.clear();
-  if (!sharing() || mid < 2) {
-    merge(0, mid, mid, end, warm_);
-    return;
-  }
-  // Two threads: the keys below the middle disc pair's, and the rest, each merged apart.
-  const std::size_t h = mid / 2;
-  const auto split =
-      std::lower_bound(contacts_.begin() + std::ptrdiff_t(mid), contacts_.end(), contacts_[h].key,
-                       [](const RestContact& c, std::uint64_t key) { return c.key < key; });
-  const auto j = static_cast<std::size_t>(split - contacts_.begin());
-  auto job = [&](int half) {
-    if (half == 0) {
-      merge(0, h, mid, j, warm_);
-    } else {
-      warm_upper_.clear();
-      merge(h, mid, j, end, warm_upper_);
-    }
-  };
-  both_halves(job);
-  warm_.insert(warm_.end(), warm_upper_.begin(), warm_upper_.end());
-  warm_upper_.clear();  // scratch: a snapshot need not copy it
 }
 
 template <class Real>

@@ -9,6 +9,8 @@
 // and the two halves' rows are built and scattered on the two threads (on one when a row has a
 // moving kinematic partner: its slot is appended). The push-out's rows hold what it needs of a
 // contact and nothing else, in the same order.
+#include <cassert>
+
 #include "disc_contacts.hpp"
 
 namespace fixstep::detail {
@@ -82,11 +84,19 @@ void DiscContacts<Real>::build_rows() {
 
 template <class Real>
 void DiscContacts<Real>::scatter_rows(double kdt) {
+  // Each row's impulses go where its contact is in contacts_ (order_ is a permutation of it),
+  // in warm_: the next tick's warm start, in contacts_' two runs in key order.
+  warm_.resize(contacts_.size());
+  warm_pairs_ = plane_contacts_;
   auto rows = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
     for (std::uint32_t i = begin; i < end; ++i) {
-      RestContact& c = contacts_[order_[i]];
+      const std::uint32_t j = order_[i];
       const SolveRow& r = rows_[i];
-      c.lambda_n = r.lambda_n, c.lambda_t = r.lambda_t;
+      // Every contact's key is a << 32 | b (pair_key, wall_contact): from the row's push-out
+      // half, read in row order, rather than from the contact, read out of it.
+      const std::uint64_t key = (std::uint64_t(push_rows_[i].a) << 32) | push_rows_[i].b;
+      assert(key == contacts_[j].key);
+      warm_[j] = WarmImpulse{key, r.lambda_n, r.lambda_t};
       if (row_moved_[i]) slot_moved_[r.a] = slot_moved_[r.b] = 1;
     }
   };
