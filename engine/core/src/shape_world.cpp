@@ -199,19 +199,11 @@ void ShapeWorld::add_manifold(std::vector<ShapeRow>& rows, const Manifold& m, st
                               std::uint64_t pair) {
   for (int p = 0; p < m.count; ++p) {
     const ManifoldPoint& mp = m.points[p];
-    // One initializer that names what it sets (the rest zero), copied in: a row made in place
-    // by emplace_back() was cleared whole with a string instruction before its fields were set.
-    rows.push_back(ShapeRow{.a = a,
-                            .b = b,
-                            .n = m.normal,
-                            .ra = mp.anchor_a,
-                            .rb = mp.anchor_b,
-                            .separation = mp.separation,
-                            .friction = friction,
-                            .restitution = restitution,
-                            .rolling = p == 0 ? rolling : 0.0,
-                            .pair = pair,
-                            .id = mp.id});
+    ShapeRow& r = rows.emplace_back();  // made in place: a row is 3 cache lines
+    r.a = a, r.b = b, r.n = m.normal, r.ra = mp.anchor_a, r.rb = mp.anchor_b;
+    r.separation = mp.separation, r.friction = friction, r.restitution = restitution;
+    r.rolling = p == 0 ? rolling : 0.0;
+    r.pair = pair, r.id = mp.id;
   }
 }
 
