@@ -75,7 +75,8 @@ void JointSolver::solve_position(JointRecord& j, bool keep) {
   }
 }
 
-void JointSolver::shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb, double l) {
+void JointSolver::shift_point(JointRecord& j, const Vec2& p, const Vec2& ra, const Vec2& rb,
+                              double l) {
   keep_ = false, current_ = &j;
   const End a = end(j.a, false), b = end(j.b, true);
   shift(a, -p, -cross(ra, p) - l);
@@ -120,14 +121,14 @@ void JointSolver::kick_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb) {
 }
 
 // (A joint whose limit row is the forest's has it corrected with its point.)
-void JointSolver::correct_angle_limit(JointRecord& j, End a, End b) {
+void JointSolver::correct_angle_limit(JointRecord& j, const End& a, const End& b) {
   if (keep_ || j.limit_row) return;
   const double c = limit_correction(j);
   const double l = -j.angle_mass * c;
   shift(a, {}, -l), shift(b, {}, l);
 }
 
-void JointSolver::correct_point(JointRecord& j, End a, End b) {
+void JointSolver::correct_point(JointRecord& j, const End& a, const End& b) {
   const Now pa = now(a), pb = now(b);
   const Vec2 ra = rotate(pa.q, j.local_a), rb = rotate(pb.q, j.local_b);
   const Vec2 c = (pb.c + rb) - (pa.c + ra) - (keep_ ? j.offset : Vec2{});
@@ -145,7 +146,7 @@ void JointSolver::correct_point(JointRecord& j, End a, End b) {
 
 // A prismatic joint's perpendicular and angle errors (one 2×2 block) and a wheel's
 // perpendicular one, then the limits along the axis.
-void JointSolver::correct_axis(JointRecord& j, End a, End b) {
+void JointSolver::correct_axis(JointRecord& j, const End& a, const End& b) {
   const Now pa = now(a), pb = now(b);
   const Vec2 ra = rotate(pa.q, j.local_a), rb = rotate(pb.q, j.local_b);
   const Vec2 d = (pb.c + rb) - (pa.c + ra);
@@ -182,7 +183,7 @@ void JointSolver::correct_axis(JointRecord& j, End a, End b) {
 
 // A weld's point and angle errors as one 3×3 block (rigid), or its point alone (soft: the
 // angle is the spring's).
-void JointSolver::correct_weld(JointRecord& j, End a, End b) {
+void JointSolver::correct_weld(JointRecord& j, const End& a, const End& b) {
   if (j.def.frequency > 0.0 || a.i + b.i == 0.0) {
     correct_point(j, a, b);
     return;
@@ -200,7 +201,7 @@ void JointSolver::correct_weld(JointRecord& j, End a, End b) {
   shift(b, p, cross(rb, p) + l);
 }
 
-void JointSolver::correct_distance(JointRecord& j, End a, End b) {
+void JointSolver::correct_distance(JointRecord& j, const End& a, const End& b) {
   const bool rigid = !(j.def.frequency > 0.0) && !j.def.lower && !j.def.upper;
   if (!rigid && (keep_ || (!j.def.lower && !j.def.upper))) return;  // no rigid row
   const Now pa = now(a), pb = now(b);

@@ -41,13 +41,6 @@ double accumulate(double& acc, double impulse, double lo, double hi) {
 
 }  // namespace
 
-JointSolver::End JointSolver::end(std::uint32_t body, bool b) const {
-  if (body == JointRecord::none) return {.b = b};
-  const ShapedBody& d = bodies_[body];
-  return {d.inv_mass, d.inv_inertia, &state_[body], b,
-          velocities_.empty() ? nullptr : &velocities_[body]};
-}
-
 [[gnu::always_inline]] inline void JointSolver::push(End e, Vec2 p, double l) const {
   if (e.b) {
     current_->given_b += p, current_->turned_b += l;
@@ -166,7 +159,7 @@ void JointSolver::solve_velocity(JointRecord& j) {
                 most(b, j.given_b - given_b, j.turned_b - turned_b)});
 }
 
-void JointSolver::solve_rows(JointRecord& j, End a, End b) {
+void JointSolver::solve_rows(JointRecord& j, const End& a, const End& b) {
   switch (j.def.type) {
     case JointType::revolute:
       solve_revolute(j, a, b);
@@ -191,7 +184,7 @@ void JointSolver::solve_rows(JointRecord& j, End a, End b) {
 
 // The anchor kept one point of both bodies (revolute, and a soft weld's point): the 2×2 K
 // from the arms, Ċ = v_b + ω_b × r_b − v_a − ω_a × r_a driven to zero.
-void JointSolver::solve_point(JointRecord& j, End a, End b) {
+void JointSolver::solve_point(JointRecord& j, const End& a, const End& b) {
   const Vec2 cdot =
       velocity(b) + joint_spin_cross(spin(b), j.rb) - velocity(a) - joint_spin_cross(spin(a), j.ra);
   const Vec2 p = joint_solve22(j.k11, j.k12, j.k22, -cdot);
@@ -202,7 +195,7 @@ void JointSolver::solve_point(JointRecord& j, End a, End b) {
 
 // The rows about the relative angle: the spring towards its target, the motor, and the lower
 // and upper limits (speculative: a gap of C may close within the tick, C/dt).
-void JointSolver::solve_angle_rows(JointRecord& j, End a, End b, bool motor_turns) {
+void JointSolver::solve_angle_rows(JointRecord& j, const End& a, const End& b, bool motor_turns) {
   JointImpulses& im = j.impulses;
   auto turn = [&](double l) { push(a, {}, -l), push(b, {}, l); };
   const double mass = j.angle_mass;
@@ -233,18 +226,18 @@ void JointSolver::solve_angle_rows(JointRecord& j, End a, End b, bool motor_turn
   }
 }
 
-void JointSolver::solve_revolute(JointRecord& j, End a, End b) {
+void JointSolver::solve_revolute(JointRecord& j, const End& a, const End& b) {
   solve_angle_rows(j, a, b, true);
   if (!j.direct) solve_point(j, a, b);
 }
 
-Vec2 JointSolver::point_velocity(const JointRecord& j) const {
+void JointSolver::point_velocity_error(const JointRecord& j, Vec2& rhs) const {
   const End a = end(j.a, false), b = end(j.b, true);
-  return velocity(b) + joint_spin_cross(spin(b), j.rb) - velocity(a) -
-         joint_spin_cross(spin(a), j.ra);
+  rhs = -(velocity(b) + joint_spin_cross(spin(b), j.rb) - velocity(a) -
+          joint_spin_cross(spin(a), j.ra));
 }
 
-void JointSolver::apply_point(JointRecord& j, Vec2 p) {
+void JointSolver::apply_point(JointRecord& j, const Vec2& p) {
   current_ = &j;
   const End a = end(j.a, false), b = end(j.b, true);
   j.impulses.linear += p;
@@ -253,7 +246,7 @@ void JointSolver::apply_point(JointRecord& j, Vec2 p) {
 }
 
 // The rows along the axis of a prismatic or wheel joint: spring, motor (prismatic), limits.
-void JointSolver::solve_axis_rows(JointRecord& j, End a, End b) {
+void JointSolver::solve_axis_rows(JointRecord& j, const End& a, const End& b) {
   JointImpulses& im = j.impulses;
   auto axial_speed = [&] {
     return dot(j.axis, velocity(b) - velocity(a)) + j.a2 * spin(b) - j.a1 * spin(a);
@@ -288,7 +281,7 @@ void JointSolver::solve_axis_rows(JointRecord& j, End a, End b) {
 }
 
 // A slider: the axis rows, then B kept on the axis and unturned against A as one 2×2 block.
-void JointSolver::solve_prismatic(JointRecord& j, End a, End b) {
+void JointSolver::solve_prismatic(JointRecord& j, const End& a, const End& b) {
   solve_axis_rows(j, a, b);
   const Vec2 cdot{dot(j.perp, velocity(b) - velocity(a)) + j.s2 * spin(b) - j.s1 * spin(a),
                   spin(b) - spin(a)};
@@ -301,7 +294,7 @@ void JointSolver::solve_prismatic(JointRecord& j, End a, End b) {
 
 // A weld: rigid, the point and the angle as one 3×3 block (exact for two bodies in one
 // sweep); soft, the angle as a spring and then the point.
-void JointSolver::solve_weld(JointRecord& j, End a, End b) {
+void JointSolver::solve_weld(JointRecord& j, const End& a, const End& b) {
   JointImpulses& im = j.impulses;
   if (j.def.frequency > 0.0) {
     if (j.angle_mass > 0.0) {
@@ -332,7 +325,7 @@ void JointSolver::solve_weld(JointRecord& j, End a, End b) {
 
 // A distance joint: rigid at its length, or a spring towards it within its range (a rope:
 // only an upper limit).
-void JointSolver::solve_distance(JointRecord& j, End a, End b) {
+void JointSolver::solve_distance(JointRecord& j, const End& a, const End& b) {
   JointImpulses& im = j.impulses;
   auto axial_speed = [&] {
     const Vec2 vb = velocity(b) + joint_spin_cross(spin(b), j.rb);
@@ -371,7 +364,7 @@ void JointSolver::solve_distance(JointRecord& j, End a, End b) {
 
 // A wheel: the suspension's rows along the axis, the motor turning B, B's anchor kept on the
 // axis (one row along its perpendicular).
-void JointSolver::solve_wheel(JointRecord& j, End a, End b) {
+void JointSolver::solve_wheel(JointRecord& j, const End& a, const End& b) {
   solve_axis_rows(j, a, b);
   solve_angle_rows(j, a, b, true);
   if (j.perp_mass == 0.0) return;
@@ -385,7 +378,7 @@ void JointSolver::solve_wheel(JointRecord& j, End a, End b) {
 
 // A motor joint: B's angle and centre driven towards their targets in A's frame, the error
 // removed at motor_joint_correction of itself a tick, within the maximum torque and force.
-void JointSolver::solve_motor(JointRecord& j, End a, End b) {
+void JointSolver::solve_motor(JointRecord& j, const End& a, const End& b) {
   JointImpulses& im = j.impulses;
   const double correction = motor_joint_correction / dt_;
   if (j.angle_mass > 0.0) {

@@ -47,12 +47,15 @@ class JointSolver {
   void account(JointRecord& j) const;
 
   /// A joint's point row in the direct solve (joint_tree.hpp). Its velocity error Ċ (m/s)
-  /// at the start arms; an impulse p (N·s) on it, added to its accumulated impulse.
-  [[nodiscard]] Vec2 point_velocity(const JointRecord& j) const;
-  void apply_point(JointRecord& j, Vec2 p);
+  /// at the start arms, negated, into `rhs` (the solve's right-hand side); an impulse p (N·s)
+  /// on it, added to its accumulated impulse.
+  /// (The vectors by reference: passed or returned by value, each went through two registers,
+  /// to the stack in halves and back in one load, which waited on the two stores.)
+  void point_velocity_error(const JointRecord& j, Vec2& rhs) const;
+  void apply_point(JointRecord& j, const Vec2& p);
   /// A position correction p (kg·m) along the arms ra, rb (m), and l (kg·m²) about the
   /// relative angle, on positions only.
-  void shift_point(JointRecord& j, Vec2 p, Vec2 ra, Vec2 rb, double l = 0.0);
+  void shift_point(JointRecord& j, const Vec2& p, const Vec2& ra, const Vec2& rb, double l = 0.0);
   /// The correction a revolute joint's limits ask of its relative angle at the poses now
   /// (rad; Box2D v2.4's: past a limit by more than the slop, the excess, within ± the largest
   /// correction; 0 within its limits or without any).
@@ -88,7 +91,14 @@ class JointSolver {
 
   JointRecord* current_ = nullptr;  ///< the joint whose impulses push() adds up
 
-  [[nodiscard]] End end(std::uint32_t body, bool b) const;
+  /// Defined here, so that every caller inlines it: a call in between made the caller keep its
+  /// vectors on the stack in halves and load them back whole, a load that waited on the stores.
+  [[nodiscard]] End end(std::uint32_t body, bool b) const {
+    if (body == JointRecord::none) return {.b = b};
+    const ShapedBody& d = bodies_[body];
+    return {d.inv_mass, d.inv_inertia, &state_[body], b,
+            velocities_.empty() ? nullptr : &velocities_[body]};
+  }
   /// θ_B − θ_A − θ_ref at the poses now, wrapped into [−π, π) (rad).
   [[nodiscard]] double relative_angle(const JointRecord& j) const;
   /// An impulse p (N·s) and an angular impulse l (N·m·s) on e's velocity; added up in the
@@ -103,21 +113,22 @@ class JointSolver {
 
   void prepare_geometry(JointRecord& j);
   void warm_start(JointRecord& j);
-  void solve_rows(JointRecord& j, End a, End b);  ///< solve_velocity's rows, by joint type
-  void solve_point(JointRecord& j, End a, End b);
-  void solve_angle_rows(JointRecord& j, End a, End b, bool motor_turns);
-  void solve_axis_rows(JointRecord& j, End a, End b);
-  void solve_revolute(JointRecord& j, End a, End b);
-  void solve_prismatic(JointRecord& j, End a, End b);
-  void solve_weld(JointRecord& j, End a, End b);
-  void solve_distance(JointRecord& j, End a, End b);
-  void solve_wheel(JointRecord& j, End a, End b);
-  void solve_motor(JointRecord& j, End a, End b);
-  void correct_point(JointRecord& j, End a, End b);
-  void correct_angle_limit(JointRecord& j, End a, End b);
-  void correct_axis(JointRecord& j, End a, End b);
-  void correct_weld(JointRecord& j, End a, End b);
-  void correct_distance(JointRecord& j, End a, End b);
+  void solve_rows(JointRecord& j, const End& a,
+                  const End& b);  ///< solve_velocity's rows, by joint type
+  void solve_point(JointRecord& j, const End& a, const End& b);
+  void solve_angle_rows(JointRecord& j, const End& a, const End& b, bool motor_turns);
+  void solve_axis_rows(JointRecord& j, const End& a, const End& b);
+  void solve_revolute(JointRecord& j, const End& a, const End& b);
+  void solve_prismatic(JointRecord& j, const End& a, const End& b);
+  void solve_weld(JointRecord& j, const End& a, const End& b);
+  void solve_distance(JointRecord& j, const End& a, const End& b);
+  void solve_wheel(JointRecord& j, const End& a, const End& b);
+  void solve_motor(JointRecord& j, const End& a, const End& b);
+  void correct_point(JointRecord& j, const End& a, const End& b);
+  void correct_angle_limit(JointRecord& j, const End& a, const End& b);
+  void correct_axis(JointRecord& j, const End& a, const End& b);
+  void correct_weld(JointRecord& j, const End& a, const End& b);
+  void correct_distance(JointRecord& j, const End& a, const End& b);
 };
 
 /// Box2D v2.4's position solver constants: the slop each error keeps (b2_linearSlop,

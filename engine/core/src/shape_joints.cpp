@@ -61,7 +61,7 @@ double ShapeWorld::tree_point_velocities(const JointSolver& solver, int part) {
   const auto rhs = tree_.rhs();
   double most = 0.0;
   for (const std::uint32_t k : tree_.members_of(part)) {
-    rhs[k] = -solver.point_velocity(joints_[members[k]]);
+    solver.point_velocity_error(joints_[members[k]], rhs[k]);
     most = std::max({most, std::abs(rhs[k].x), std::abs(rhs[k].y)});
   }
   return most;
@@ -79,20 +79,23 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
   for (const std::uint32_t body : tree_.bodies_of(part)) turned_[body] = rot_of(state_[body].a);
   // An end's centre and rotation now: the world's origin, a forest body's (made once a sweep:
   // every end that translates is one), or a static or kinematic body's.
-  auto pose = [&](std::uint32_t body) -> std::pair<Vec2, Rot> {
-    if (body == JointRecord::none) return {};
-    const ShapeState& s = state_[body];
-    return {{s.x, s.y}, bodies_[body].inv_mass > 0.0 ? turned_[body] : rot_of(s.a)};
+  // (Each end's arm turned in its own branch: a pose chosen whole went through the stack in
+  // narrow stores and one wide load, which waited for the stores to retire.)
+  auto centre = [&](std::uint32_t body) {
+    return body == JointRecord::none ? Vec2{} : Vec2{state_[body].x, state_[body].y};
+  };
+  auto arm = [&](std::uint32_t body, Vec2 local) {
+    if (body == JointRecord::none) return rotate(Rot{}, local);
+    if (!(bodies_[body].inv_mass > 0.0)) return rotate(rot_of(state_[body].a), local);
+    return rotate(turned_[body], local);
   };
   const auto angle_rows = tree_.angle_rows();
   const auto angle_rhs = tree_.angle_rhs();
   TreeErrors out;
   for (const std::uint32_t k : tree_.members_of(part)) {
     const JointRecord& j = joints_[members[k]];
-    const auto [ca, qa] = pose(j.a);
-    const auto [cb, qb] = pose(j.b);
-    const Vec2 ra = rotate(qa, j.local_a), rb = rotate(qb, j.local_b);
-    const Vec2 c = (cb + rb) - (ca + ra);
+    const Vec2 ra = arm(j.a, j.local_a), rb = arm(j.b, j.local_b);
+    const Vec2 c = (centre(j.b) + rb) - (centre(j.a) + ra);
     rhs[k] = keep ? j.offset - c : -c;
     fresh_arms_[k] = {ra, rb};
     const double limit = !keep && direct_limits_ ? solver.limit_correction(j) : 0.0;
