@@ -113,8 +113,8 @@ class JointSolver {
 
   void prepare_geometry(JointRecord& j);
   void warm_start(JointRecord& j);
-  void solve_rows(JointRecord& j, const End& a,
-                  const End& b);  ///< solve_velocity's rows, by joint type
+  /// solve_velocity's rows, by joint type.
+  void solve_rows(JointRecord& j, const End& a, const End& b);
   void solve_point(JointRecord& j, const End& a, const End& b);
   void solve_angle_rows(JointRecord& j, const End& a, const End& b, bool motor_turns);
   void solve_axis_rows(JointRecord& j, const End& a, const End& b);
