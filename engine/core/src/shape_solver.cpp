@@ -64,6 +64,9 @@ double ShapeWorld::tangent_velocity(const ShapeSolveRow& h) const {
 
 // Every field assigned, none cleared first: a row value-initialized and then assigned (or made
 // by an initializer with fields left out) was cleared whole with a string instruction, per row.
+// The rows are reused from tick to tick, so a field added to ShapeSolveRow must be assigned here
+// too (the size below stops a build that forgets).
+static_assert(sizeof(ShapeSolveRow) == 192, "make_solve_row assigns every field: add the new one");
 void ShapeWorld::make_solve_row(const ShapeRow& r, ShapeSolveRow& h) const {
   const Vec2 t = perp(r.n);
   const double rna = cross(r.ra, r.n), rnb = cross(r.rb, r.n);
