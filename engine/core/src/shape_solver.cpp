@@ -23,41 +23,46 @@ Vec2 perp(Vec2 n) {
   return {-n.y, n.x};
 }
 
-/// std::lower_bound(first, last, key) over a sorted range, searched from `hint` on by doubling
-/// steps when key is at or past *hint (else over the whole range): the same element, in
-/// O(log d) for a key d places past the hint.
-template <class It, class T>
-It lower_bound_from(It first, It last, It hint, const T& key) {
+/// std::lower_bound(first, last, key, less) over a range sorted by `less`, searched from `hint`
+/// on by doubling steps when key is at or past *hint (else over the whole range): the same
+/// element, in O(log d) for a key d places past the hint. `hint` must not be past the first
+/// element equal to key (a lower bound of a key at or before this one is not).
+template <class It, class T, class Less>
+It lower_bound_from(It first, It last, It hint, const T& key, Less less) {
   It low = first, high = last;
-  if (hint != last && !(key < *hint)) {
+  if (hint != last && !less(key, *hint)) {
     low = hint;
     for (std::ptrdiff_t step = 1; high - low > step; step *= 2) {
-      if (key < low[step]) {
+      if (!less(low[step], key)) {
         high = low + step;
         break;
       }
       low += step;
     }
   }
-  return std::lower_bound(low, high, key);
+  return std::lower_bound(low, high, key, less);
+}
+
+bool pair_less(const ShapeWarm& l, const ShapeWarm& r) {
+  return l.pair < r.pair;
 }
 
 }  // namespace
 
 // A row's impulses change velocities only; the poses follow once, after the whole velocity
 // solve (follow_velocities), by dt times each body's velocity change.
-void ShapeWorld::apply(const ShapeSolveRow& h, double pn, double pt) {
+[[gnu::always_inline]] inline void ShapeWorld::apply(const ShapeSolveRow& h, double pn, double pt) {
   Motion2 m = load(h);
   push(h, pn, pt, m.a, m.b);
   store(h, m);
 }
 
-double ShapeWorld::normal_velocity(const ShapeSolveRow& h) const {
+[[gnu::always_inline]] inline double ShapeWorld::normal_velocity(const ShapeSolveRow& h) const {
   const Motion2 m = load(h);
   return normal_of(h, m.a, m.b);
 }
 
-double ShapeWorld::tangent_velocity(const ShapeSolveRow& h) const {
+[[gnu::always_inline]] inline double ShapeWorld::tangent_velocity(const ShapeSolveRow& h) const {
   const Motion2 m = load(h);
   return tangent_of(h, m.a, m.b);
 }
@@ -67,7 +72,8 @@ double ShapeWorld::tangent_velocity(const ShapeSolveRow& h) const {
 // The rows are reused from tick to tick, so a field added to ShapeSolveRow must be assigned here
 // too (the size below stops a build that forgets).
 static_assert(sizeof(ShapeSolveRow) == 192, "make_solve_row assigns every field: add the new one");
-void ShapeWorld::make_solve_row(const ShapeRow& r, ShapeSolveRow& h) const {
+[[gnu::always_inline]] inline void ShapeWorld::make_solve_row(const ShapeRow& r,
+                                                              ShapeSolveRow& h) const {
   const Vec2 t = perp(r.n);
   const double rna = cross(r.ra, r.n), rnb = cross(r.rb, r.n);
   const double rta = cross(r.ra, t), rtb = cross(r.rb, t);
@@ -109,18 +115,20 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   for (int pass = 0; pass < max_impact_passes && impact_pass(tick); ++pass) {
   }
   // Warm starting, once every row's target is set from the free velocities. The rows come
-  // mostly in key order: each search starts where the last one ended.
+  // mostly in pair order: each search starts where the last one ended, and finds the point
+  // among its pair's (warm_ is sorted by pair, keep_impulses).
   auto after = warm_.begin();
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     ShapeRow& r = rows_[i];
     ShapeSolveRow& h = solve_[i];
     if (h.flags & ShapeSolveRow::redundant) continue;
-    const auto warm = lower_bound_from(warm_.begin(), warm_.end(), after, ShapeWarm{r.pair, r.id});
-    after = warm;
-    if (warm != warm_.end() && warm->pair == r.pair && warm->id == r.id) {
+    after = lower_bound_from(warm_.begin(), warm_.end(), after, ShapeWarm{r.pair, r.id}, pair_less);
+    for (auto warm = after; warm != warm_.end() && warm->pair == r.pair; ++warm) {
+      if (warm->id != r.id) continue;
       h.ln = warm->ln, h.lt = warm->lt;
       apply(h, h.ln, h.lt);
       if (r.rolling_mass > 0.0) r.lr = warm->lr, turn(r, r.lr);
+      break;
     }
   }
 }
@@ -330,7 +338,12 @@ void ShapeWorld::keep_impulses() {
       next_warm_.push_back({r.pair, r.id, r.ln, r.lt, r.lr});
     }
   }
-  std::sort(next_warm_.begin(), next_warm_.end());
+  // Sorted by pair, a pair's points in any order (prepare_rows looks for a point among its
+  // pair's). The rows come in pair order unless destroyed slots were reused, or a shape touches
+  // more than one plane or segment: sorted only then.
+  if (!std::is_sorted(next_warm_.begin(), next_warm_.end(), pair_less)) {
+    std::sort(next_warm_.begin(), next_warm_.end());
+  }
   warm_.swap(next_warm_);
 }
 

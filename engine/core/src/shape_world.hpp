@@ -88,7 +88,7 @@ class ShapeWorld {
   std::vector<ShapedBody> bodies_;
   std::vector<ShapeEntry> shapes_;
   std::vector<ShapeState> state_;
-  std::vector<ShapeWarm> warm_;  ///< sorted by (pair, id): last tick's impulses (state)
+  std::vector<ShapeWarm> warm_;  ///< sorted by pair: last tick's impulses (state)
   /// Last tick's manifolds of pairs of sharp polygons (sharp()), in candidate order, each as it
   /// was made (state, which a snapshot copies): contact recycling (kept_manifold.hpp). The
   /// shapes' indices key them, so the kernel clears them whenever it rebuilds the shapes.
@@ -264,13 +264,13 @@ class ShapeWorld {
     if (h.mb > 0.0 || h.ib > 0.0) velocity_[h.b] = m.b;
   }
   /// Impulses pn along n and pt along t (N·s) on B, their opposite on A: velocities only.
-  void apply(const ShapeSolveRow& h, double pn, double pt);
+  inline void apply(const ShapeSolveRow& h, double pn, double pt);
   /// B's velocity relative to A's at the row's point, along n and along t (m/s).
-  [[nodiscard]] double normal_velocity(const ShapeSolveRow& h) const;
-  [[nodiscard]] double tangent_velocity(const ShapeSolveRow& h) const;
+  [[nodiscard]] inline double normal_velocity(const ShapeSolveRow& h) const;
+  [[nodiscard]] inline double tangent_velocity(const ShapeSolveRow& h) const;
   /// Makes `h` the row of `r` for the velocity solve, every field (its target and flags left
   /// zero for prepare_rows and prepare_blocks).
-  void make_solve_row(const ShapeRow& r, ShapeSolveRow& h) const;
+  inline void make_solve_row(const ShapeRow& r, ShapeSolveRow& h) const;
   /// After the velocity solve: each pose moved by dt times its body's velocity change in it
   /// (semi-implicit Euler's x1 = x0 + dt v1, once, for every impulse of the solve), and the
   /// velocities written back to state_.
