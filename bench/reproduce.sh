@@ -56,9 +56,15 @@ if [ -z "$only" ]; then
   # docs/perf/capture.md quotes its medians.
   [ -n "${SKIP_CAPTURE:-}" ] || "$bin/bench_capture" > "$out/capture.log"
 fi
-# Where a section's numbers were measured (sections 6 and 7 can be regenerated alone).
+# Where a section's numbers were measured (sections 6 and 7 can be regenerated alone): the CPU
+# with its family and model (a virtual machine may name only the vendor's line, which spans
+# generations) and the SIMD level fixstep's sweeps run at on it.
 measured_on() {
-  echo "Measured on $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) cores, $(date -u +%Y-%m-%d), by \`bash bench/reproduce.sh${only:+ $only}\`."
+  local family model level
+  family=$(lscpu | sed -n 's/^CPU family: *//p' | head -1)
+  model=$(lscpu | sed -n 's/^Model: *//p' | head -1)
+  level=$("$bin/bench_throughput" --verify-only | sed -n 's/.*Timing at level \([a-z0-9]*\).*/\1/p')
+  echo "Measured on $(lscpu | sed -n 's/^Model name: *//p' | head -1) (family ${family:-?}, model ${model:-?}; SIMD level ${level:-?}), $(nproc) cores, $(date -u +%Y-%m-%d), by \`bash bench/reproduce.sh${only:+ $only}\`."
 }
 # Coupled systems against the edge-list loop, Chipmunk2D and Box2D: tables, targets and the
 # work-precision plot, headed by the machine and date they come from.
