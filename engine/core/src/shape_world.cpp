@@ -204,13 +204,20 @@ void ShapeWorld::add_manifold(std::vector<ShapeRow>& rows, const Manifold& m, st
                               std::uint64_t pair) {
   for (int p = 0; p < m.count; ++p) {
     const ManifoldPoint& mp = m.points[p];
+    const double roll = p == 0 ? rolling : 0.0;
+#if defined(__cpp_aggregate_paren_init)
     // Made in place, every field given in ShapeRow's order (a row is 3 cache lines, and one
     // made by emplace_back() and then assigned was first cleared whole with a string
     // instruction).
     rows.emplace_back(a, b, m.normal, mp.anchor_a, mp.anchor_b, mp.separation, friction,
-                      restitution, /*approach*/ 0.0, /*ln*/ 0.0, /*lt*/ 0.0,
-                      /*rolling*/ p == 0 ? rolling : 0.0, /*rolling_mass*/ 0.0, /*lr*/ 0.0,
-                      /*bn*/ 0.0, /*bt*/ 0.0, pair, mp.id);
+                      restitution, /*approach*/ 0.0, /*ln*/ 0.0, /*lt*/ 0.0, roll,
+                      /*rolling_mass*/ 0.0, /*lr*/ 0.0, /*bn*/ 0.0, /*bt*/ 0.0, pair, mp.id);
+#else  // a compiler without parenthesized aggregate initialization (Clang before 16)
+    ShapeRow& r = rows.emplace_back();
+    r.a = a, r.b = b, r.n = m.normal, r.ra = mp.anchor_a, r.rb = mp.anchor_b;
+    r.separation = mp.separation, r.friction = friction, r.restitution = restitution;
+    r.rolling = roll, r.pair = pair, r.id = mp.id;
+#endif
   }
 }
 
