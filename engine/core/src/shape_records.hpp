@@ -62,7 +62,8 @@ struct ShapeState {
   Rot q{}, q0{}, turn{};          ///< of a, a0, a − a0
 };
 
-/// One manifold point's solver row.
+/// One manifold point's solver row. ShapeWorld::add_manifold gives every field in this order
+/// (parenthesized aggregate initialization): a field moved or added here is moved or added there.
 struct ShapeRow {
   std::uint32_t a = 0, b = 0;  ///< bodies_ indices (a may be `none`: a plane or segment)
   Vec2 n{}, ra{}, rb{};        ///< normal A→B, lever arms (m)

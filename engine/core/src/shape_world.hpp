@@ -263,6 +263,8 @@ class ShapeWorld {
     if (h.a != none && (h.ma > 0.0 || h.ia > 0.0)) velocity_[h.a] = m.a;
     if (h.mb > 0.0 || h.ib > 0.0) velocity_[h.b] = m.b;
   }
+  // apply, normal_velocity, tangent_velocity and make_solve_row are defined in
+  // shape_solver.cpp, the one file that calls them, and inlined into its loops.
   /// Impulses pn along n and pt along t (N·s) on B, their opposite on A: velocities only.
   inline void apply(const ShapeSolveRow& h, double pn, double pt);
   /// B's velocity relative to A's at the row's point, along n and along t (m/s).
