@@ -414,12 +414,15 @@ if have_xvfb && command -v xdotool >/dev/null; then
   # 1.2 s tick (long_tick.toml at 3000 substeps), which is discarded (SDL's quit waited for the
   # frame's ticks to end).
   # view_stopped NAME SCENE OUT REC ARGS...: view in the background, SIGINT 0.6 s after its window
-  # appears; its exit status.
+  # appears; its exit status. A job started with & by a shell without job control ignores SIGINT
+  # until view installs its own handler, just before its window, so the signal must wait for
+  # the window: up to 60 s (long_tick.toml's load took 24 s under AddressSanitizer on a slow
+  # 2-core machine).
   view_stopped() {
     with_xvfb bash -c '
       "$1" view "$2" --size 320x180 --frames 100000 --fps 60 --record "$4" "${@:5}" >"$3" 2>&1 &
       view=$!
-      for _ in $(seq 400); do
+      for _ in $(seq 1200); do
         wid=$(xdotool search --name "fixstep - " 2>/dev/null | head -1); [ -n "$wid" ] && break; sleep 0.05
       done
       sleep 0.6
