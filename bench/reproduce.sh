@@ -32,18 +32,24 @@ cmake --workflow --preset bench
 out=docs/perf
 bin=build/bench/bin
 mkdir -p "$out"
+# The CPU as lscpu names it, with its family and model (a virtual machine may name only the
+# vendor's line, which spans generations), and the SIMD level fixstep's sweeps run at on it.
+cpu=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
+cpu_family=$(lscpu | sed -n 's/^CPU family: *//p' | head -1)
+cpu_model=$(lscpu | sed -n 's/^Model: *//p' | head -1)
+simd_level=$("$bin/bench_throughput" --verify-only | sed -n 's/.*Timing at level \([a-z0-9]*\).*/\1/p')
 
 # The machine the numbers come from (the full run's table).
 if [ -z "$only" ]; then
   {
     echo "| | |"
     echo "|---|---|"
-    echo "| CPU | $(lscpu | sed -n 's/^Model name: *//p' | head -1) |"
+    echo "| CPU | $cpu (family ${cpu_family:-?}, model ${cpu_model:-?}) |"
     echo "| cores | $(nproc) |"
     echo "| caches | $(lscpu | sed -n 's/^L\([123][a-z]*\) cache: *\(.*\)/L\1 \2/p' | paste -sd ',' | sed 's/,/, /g') |"
     echo "| memory | $(free -g | awk '/^Mem:/ {print $2 " GiB"}') |"
     echo "| compiler | $(c++ --version | head -1) |"
-    echo "| build | CMake preset \`bench\` (Release, -O3 on the sweep, -ffp-contract=off; sweeps at SIMD level $(build/bench/bin/bench_throughput --verify-only | sed -n 's/.*Timing at level \([a-z0-9]*\).*/\1/p')) |"
+    echo "| build | CMake preset \`bench\` (Release, -O3 on the sweep, -ffp-contract=off; sweeps at SIMD level $simd_level) |"
     echo "| date | $(date -u +%Y-%m-%d) |"
   } > "$out/machine.md"
 fi
@@ -56,15 +62,9 @@ if [ -z "$only" ]; then
   # docs/perf/capture.md quotes its medians.
   [ -n "${SKIP_CAPTURE:-}" ] || "$bin/bench_capture" > "$out/capture.log"
 fi
-# Where a section's numbers were measured (sections 6 and 7 can be regenerated alone): the CPU
-# with its family and model (a virtual machine may name only the vendor's line, which spans
-# generations) and the SIMD level fixstep's sweeps run at on it.
+# Where a section's numbers were measured (sections 6 and 7 can be regenerated alone).
 measured_on() {
-  local family model level
-  family=$(lscpu | sed -n 's/^CPU family: *//p' | head -1)
-  model=$(lscpu | sed -n 's/^Model: *//p' | head -1)
-  level=$("$bin/bench_throughput" --verify-only | sed -n 's/.*Timing at level \([a-z0-9]*\).*/\1/p')
-  echo "Measured on $(lscpu | sed -n 's/^Model name: *//p' | head -1) (family ${family:-?}, model ${model:-?}; SIMD level ${level:-?}), $(nproc) cores, $(date -u +%Y-%m-%d), by \`bash bench/reproduce.sh${only:+ $only}\`."
+  echo "Measured on $cpu (family ${cpu_family:-?}, model ${cpu_model:-?}; SIMD level ${simd_level:-?}), $(nproc) cores, $(date -u +%Y-%m-%d), by \`bash bench/reproduce.sh${only:+ $only}\`."
 }
 # Coupled systems against the edge-list loop, Chipmunk2D and Box2D: tables, targets and the
 # work-precision plot, headed by the machine and date they come from.
