@@ -20,6 +20,7 @@ namespace fixstep::detail {
 
 struct JointRecord;
 class SecondThread;
+class SegmentSet;
 
 /// Most shapes one body may carry.
 inline constexpr std::size_t max_shapes_per_body = 64;
@@ -132,6 +133,9 @@ struct ShapeTick {
   int velocity_iterations = 8, position_iterations = 3;
   std::span<const PlaneDef> planes;
   std::span<const SegmentDef> segments;
+  /// The same segments with their grid (SegmentSet::query), so that a shape meets only those
+  /// near it; null: every segment is tested.
+  const SegmentSet* segment_grid = nullptr;
   /// With sleeping bodies: called once the broadphase paired a sleeper with a moving body
   /// (ShapeWorld::woken()); it wakes their islands and clears their `asleep` (and sets their
   /// masses back), and the broadphase runs again.

@@ -9,6 +9,7 @@
 #include "fixstep/core/det_math.hpp"
 #include "fixstep/core/limits.hpp"
 #include "fixstep/core/stop_request.hpp"
+#include "segment_set.hpp"
 
 namespace fixstep::detail {
 
@@ -130,6 +131,40 @@ bool ShapeWorld::has_row(std::uint64_t pair) const {
          std::binary_search(disabled_.begin(), disabled_.end(), pair);
 }
 
+std::span<const std::uint32_t> ShapeWorld::near_segments(const ShapeTick& tick, const Aabb& box) {
+  near_segments_.clear();
+  if (tick.segments.empty()) return {};
+  if (tick.segment_grid != nullptr) {
+    tick.segment_grid->query(box.lower.x, box.lower.y, box.upper.x, box.upper.y, near_segments_);
+  } else {
+    for (std::uint32_t q = 0; q < tick.segments.size(); ++q) near_segments_.push_back(q);
+  }
+  return near_segments_;
+}
+
+// From the broadphase's grid where it made one this tick (its boxes hold the shapes' at the
+// start, grown by a margin), else every static body's; in the order of the static bodies and
+// their shapes, so that each time of impact is bounded by the same earlier ones.
+std::span<const std::uint32_t> ShapeWorld::static_shapes_near(const Aabb& box) {
+  near_statics_.clear();
+  if (shapes_.size() >= min_grid_shapes) {
+    const SweptBox q{box.lower.x, box.lower.y, box.upper.x, box.upper.y};
+    grid_.query(q, [&](std::uint32_t k, const SweptBox&) {
+      if (bodies_[shapes_[k].owner].type == BodyType::static_body) near_statics_.push_back(k);
+    });
+    std::sort(near_statics_.begin(), near_statics_.end(), [&](std::uint32_t l, std::uint32_t r) {
+      return shapes_[l].owner != shapes_[r].owner ? shapes_[l].owner < shapes_[r].owner : l < r;
+    });
+    return near_statics_;
+  }
+  for (const std::uint32_t o : statics_) {
+    for (std::uint32_t q = bodies_[o].first; q < bodies_[o].first + bodies_[o].count; ++q) {
+      near_statics_.push_back(q);
+    }
+  }
+  return near_statics_;
+}
+
 double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick) {
   const ShapedBody& b = bodies_[body];
   const ShapeState& s = state_[body];
@@ -154,7 +189,7 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
       }
       first = std::min(first, t);
     }
-    for (std::uint32_t q = 0; q < tick.segments.size(); ++q) {
+    for (const std::uint32_t q : near_segments(tick, swept)) {
       const SegmentDef& seg = tick.segments[q];
       if (!boxes_overlap(swept, segment_bounds(seg))) continue;
       if (has_row(std::uint64_t{0xE0000000u | q} << 32 | e.key)) continue;
@@ -171,27 +206,26 @@ double ShapeWorld::first_static_touch(std::uint32_t body, const ShapeTick& tick)
       }
       first = std::min(first, toi.t);
     }
-    for (const std::uint32_t o : statics_) {
+    for (const std::uint32_t q : static_shapes_near(swept)) {
+      const ShapeEntry& f = shapes_[q];
+      const std::uint32_t o = f.owner;
       const Pose at = pose(o);
       const Sweep still{{at.p.x, at.p.y}, {at.p.x, at.p.y}, state_[o].a, state_[o].a};
-      for (std::uint32_t q = bodies_[o].first; q < bodies_[o].first + bodies_[o].count; ++q) {
-        const ShapeEntry& f = shapes_[q];
-        if (f.sensor || !should_collide(e.filter, f.filter)) continue;
-        if (!boxes_overlap(swept, convex_aabb(f.convex, at))) continue;
-        const std::uint32_t lo = std::min(q, k), hi = std::max(q, k);
-        if (has_row(std::uint64_t{shapes_[lo].key} << 32 | shapes_[hi].key)) continue;
-        if (distance(f.convex, at, e.convex, start).distance < 2.0 * target) continue;
-        const Toi toi =
-            time_of_impact(f.convex, still, e.convex, sweep, target, 0.25 * target, first);
-        if (!toi.hit) continue;
-        if (f.one_way || e.one_way) {  // the first touch must lean up for each one-way side
-          const Pose hit = pose_at(sweep, toi.t);
-          const Manifold m = collide(f.convex, at, e.convex, hit, 4.0 * slop);
-          if (f.one_way && !one_way_touch(m, rotate(at.q, f.up))) continue;
-          if (e.one_way && !one_way_touch(m, -rotate(hit.q, e.up))) continue;
-        }
-        first = std::min(first, toi.t);
+      if (f.sensor || !should_collide(e.filter, f.filter)) continue;
+      if (!boxes_overlap(swept, convex_aabb(f.convex, at))) continue;
+      const std::uint32_t lo = std::min(q, k), hi = std::max(q, k);
+      if (has_row(std::uint64_t{shapes_[lo].key} << 32 | shapes_[hi].key)) continue;
+      if (distance(f.convex, at, e.convex, start).distance < 2.0 * target) continue;
+      const Toi toi =
+          time_of_impact(f.convex, still, e.convex, sweep, target, 0.25 * target, first);
+      if (!toi.hit) continue;
+      if (f.one_way || e.one_way) {  // the first touch must lean up for each one-way side
+        const Pose hit = pose_at(sweep, toi.t);
+        const Manifold m = collide(f.convex, at, e.convex, hit, 4.0 * slop);
+        if (f.one_way && !one_way_touch(m, rotate(at.q, f.up))) continue;
+        if (e.one_way && !one_way_touch(m, -rotate(hit.q, e.up))) continue;
       }
+      first = std::min(first, toi.t);
     }
   }
   return first;
@@ -325,9 +359,10 @@ void ShapeWorld::collect(const ShapeTick& tick, SecondThread* thread) {
       add_manifold(rows_, m, none, e.owner, mix_friction(pl.friction, e.friction),
                    std::max(pl.restitution, e.restitution), e.rolling * e.convex.radius, pair);
     }
-    for (std::uint32_t s = 0; s < tick.segments.size(); ++s) {
+    const Aabb box = aabb_of(boxes_[k]);
+    for (const std::uint32_t s : near_segments(tick, box)) {
       const SegmentDef& seg = tick.segments[s];
-      if (!boxes_overlap(aabb_of(boxes_[k]), segment_bounds(seg))) continue;
+      if (!boxes_overlap(box, segment_bounds(seg))) continue;
       const Manifold m = collide_segment(seg, e.convex, at, margin);
       if (m.count == 0) continue;
       const std::uint64_t pair = std::uint64_t{0xE0000000u | s} << 32 | e.key;

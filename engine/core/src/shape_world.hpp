@@ -67,6 +67,9 @@ class JointSolver;
 
 class ShapeWorld {
  public:
+  /// Shapes from which the grid pairs them; below, sweep_few (its levels and tables cost a
+  /// 20-box tower more than its whole sweep; from a 210-box pyramid on the two are even).
+  static constexpr std::size_t min_grid_shapes = 128;
   /// A plane with a unit normal: n·x = offset (m) on its surface.
   struct UnitPlane {
     Vec2 n{};
@@ -150,9 +153,6 @@ class ShapeWorld {
   std::vector<std::uint8_t> dynamic_;  ///< per shape: its body is dynamic
   std::vector<DiscPair> pairs_;        ///< the grid's pairs, (a, b) order
   GridBroadphase grid_;
-  /// Shapes from which the grid pairs them; below, sweep_few (its levels and tables cost a
-  /// 20-box tower more than its whole sweep; from a 210-box pyramid on the two are even).
-  static constexpr std::size_t min_grid_shapes = 128;
   std::vector<std::uint32_t> order_;  ///< sweep_few's: the shapes by their boxes' lower x
   std::vector<DiscPair> swept_;       ///< sweep_few's pairs as found
   std::vector<std::uint32_t> first_;  ///< order_pairs' scratch
@@ -189,6 +189,8 @@ class ShapeWorld {
   /// (what a fast body already has a row with) and the static bodies.
   std::vector<std::uint64_t> row_keys_;
   std::vector<std::uint32_t> statics_;
+  std::vector<std::uint32_t> near_segments_;  ///< near_segments' answer
+  std::vector<std::uint32_t> near_statics_;   ///< static_shapes_near's answer
   std::vector<ShapeWarm> next_warm_;
   std::vector<double> margin_;  ///< each body's speculative margin this tick, m
   double dt_ = 0.0;
@@ -202,6 +204,10 @@ class ShapeWorld {
   void continuous(const ShapeTick& tick, ShapeTally& tally);
   double first_static_touch(std::uint32_t body, const ShapeTick& tick);
   [[nodiscard]] bool has_row(std::uint64_t pair) const;
+  /// The indices of the tick's segments whose boxes may meet `box`, ascending.
+  std::span<const std::uint32_t> near_segments(const ShapeTick& tick, const Aabb& box);
+  /// The static bodies' shapes whose boxes may meet `box`, in body order, then shape order.
+  std::span<const std::uint32_t> static_shapes_near(const Aabb& box);
   /// Pairs the shapes (false: a work limit reached, named in `tally`); by halves of the
   /// boxes on `thread` when given (the same candidates, in the same order).
   bool broadphase(double dt, ShapeTally& tally, SecondThread* thread);

@@ -332,6 +332,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.position_iterations = cs.position_iterations;
   tick.planes = planes_;
   tick.segments = segments_.defs();
+  tick.segment_grid = &segments_;
   tick.joints = joint_records_;
   tick.unpaired = joint_unpaired_;
   tick.pre_solve = pre_solve_, tick.pre_solve_context = pre_solve_context_;
