@@ -89,6 +89,37 @@ TEST(ShapeSleep, AThrownBoxWakesASleepingStackAndKnocksItsMiddleBoxAway) {
   EXPECT_GT(w.body(middle).position.x - x0, 0.5);
 }
 
+// The work is counted, not timed (ContactStats::shape_visited): asleep, the stack's bodies are
+// passed over by no pass of the shape phase, tick after tick, until input wakes one; a
+// kinematic box with shapes that moves, far from the stack, keeps the phase running.
+TEST(ShapeSleep, AStackAsleepIsVisitedByNoShapePassUntilWokenOrAKinematicBodyMoves) {
+  for (const bool kinematic : {false, true}) {
+    SCOPED_TRACE(kinematic ? "a kinematic box moving 20 m away" : "the stack alone");
+    WorldDef def = stack(false);
+    if (kinematic) {
+      BodyDef k = shape_exact::box_body(0.5, 0.5, {20.0, 5.0});
+      k.type = BodyType::kinematic;
+      k.gravity.reset();
+      k.body.velocity = {1.0, 0.0};
+      def.add_body(k);
+    }
+    World w(def);
+    int t = 0;
+    for (; t < 120 && w.contact_stats().sleeping < 3; ++t) w.step();
+    ASSERT_EQ(w.contact_stats().sleeping, 3u) << "the stack never fell asleep in 2 s";
+    const std::size_t bodies = kinematic ? 4 : 3;
+    for (int i = 0; i < 60; ++i) {
+      w.step();
+      ASSERT_EQ(w.contact_stats().shape_visited, kinematic ? bodies : 0u) << "tick " << t + i;
+    }
+    const Entity top = w.defined_bodies()[2];
+    TickInput in;
+    in.bodies.push_back(BodyInput{.body = top, .kind = BodyInputKind::impulse, .value = {0, 2}});
+    w.step(in);
+    EXPECT_EQ(w.contact_stats().shape_visited, bodies) << "woken: every body with shapes";
+  }
+}
+
 TEST(ShapeSleep, InputWakesASleepingBox) {
   World w(stack(false));
   for (int t = 0; t < 90; ++t) w.step();

@@ -436,8 +436,9 @@ void detail::WorldKernel<Real>::rebuild_terms() {
   rebuild_contacts();
   if (sleep_) reset_sleep();  // a structural change wakes every island
   rebuild_discs();
-  rebuild_shapes();  // world_shapes.cpp
-  rebuild_joints();  // world_joints.cpp
+  rebuild_shapes();       // world_shapes.cpp
+  count_shaped_bodies();  // world_shape_sleep.cpp
+  rebuild_joints();       // world_joints.cpp
   terms_dirty_ = false;
 }
 

@@ -807,11 +807,19 @@ class WorldKernel {
   std::uint32_t sleep_ticks_ = 0;               ///< ticks below the speed before an island sleeps
   std::size_t sleepers_ = 0;                    ///< bodies asleep
   std::size_t disc_sleepers_ = 0;               ///< discs among them
+  std::size_t shape_sleepers_ = 0;              ///< bodies of shaped_dynamic_ among them
   bool sleep_ = false;                          ///< ContactSettings::sleep
   bool immovable_dirty_ = false;                ///< the immovable list misses a change of sleepers
   std::vector<std::int32_t> disc_of_;           ///< body -> disc index, or -1 (rebuild_discs)
   std::vector<std::uint32_t> kinematic_discs_;  ///< their bodies (rebuild_discs)
   std::size_t dynamic_discs_ = 0;               ///< dynamic discs (rebuild_discs)
+  /// By body: 1 for a dynamic body with shapes (the shape world's bodies that are not discs),
+  /// their count, and the shape world's kinematic bodies that are not discs (its indices), so
+  /// that a world whose bodies with shapes all sleep is known without a pass over them
+  /// (rebuild_shapes; empty without sleeping).
+  std::vector<std::uint8_t> shaped_dynamic_;
+  std::size_t dynamic_shaped_ = 0;
+  std::vector<std::uint32_t> kinematic_shaped_;
   /// Whether every disc sleeps or is static, or is kinematic and still: the disc phases have
   /// nothing to do.
   [[nodiscard]] bool discs_at_rest() const;
@@ -864,6 +872,9 @@ class WorldKernel {
   void join_shape_islands();
   /// Whether no body with shapes moves: every dynamic one asleep, every kinematic one still.
   [[nodiscard]] bool shapes_at_rest() const;
+  /// Makes shaped_dynamic_, dynamic_shaped_ and kinematic_shaped_ (after rebuild_shapes, with
+  /// every island awake).
+  void count_shaped_bodies();
   /// Joins the tick's awake islands (island_parent_); island_blocked_[root] for an island that
   /// may not sleep.
   void join_islands();

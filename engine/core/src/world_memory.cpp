@@ -57,7 +57,7 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
   n += sum(immovable_.body, immovable_.x0, immovable_.y0, immovable_.vx0, immovable_.vy0,
            immovable_.d0);
   n += sum(still_ticks_, asleep_, disc_of_, kinematic_discs_, island_parent_, wake_labels_,
-           island_blocked_);
+           island_blocked_, shaped_dynamic_, kinematic_shaped_);
   n += sum(touching_, asleep_touching_, touching_before_, hits_, begun_, ended_, begun_half_,
            ended_half_, impacts_, saved_accel_);
   n += sum(sensed_, sensed_before_, sensor_crossed_, sensor_begun_, sensor_ended_);

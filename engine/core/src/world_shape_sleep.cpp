@@ -42,6 +42,7 @@ void detail::WorldKernel<Real>::wake_shape_sleepers(void* kernel) {
 
 template <class Real>
 bool detail::WorldKernel<Real>::count_still_shapes(double speed2) {
+  if (shape_sleepers_ == dynamic_shaped_) return false;  // every one asleep: none to count
   const ShapeWorld& w = *shape_world_;
   bool ready = false;
   for (const ShapedBody& b : w.bodies_) {
@@ -103,15 +104,31 @@ void detail::WorldKernel<Real>::join_shape_islands() {
 
 template <class Real>
 bool detail::WorldKernel<Real>::shapes_at_rest() const {
+  if (shape_sleepers_ < dynamic_shaped_) return false;
   const ShapeWorld& w = *shape_world_;
-  for (const ShapedBody& b : w.bodies_) {
+  for (const std::uint32_t i : kinematic_shaped_) {
+    const ShapedBody& b = w.bodies_[i];
     const std::uint32_t j = b.body;
-    if (b.type == BodyType::dynamic && !b.disc && asleep_[j] == 0) return false;
-    if (b.type != BodyType::kinematic) continue;
     const bool turns = b.set != ShapedBody::none && shape_sets_.data[b.set].spin != 0.0;
     if (vx_[j] != Real(0) || vy_[j] != Real(0) || turns) return false;
   }
   return true;
+}
+
+template <class Real>
+void detail::WorldKernel<Real>::count_shaped_bodies() {
+  shaped_dynamic_.clear(), kinematic_shaped_.clear(), dynamic_shaped_ = 0;
+  if (!sleep_ || !shape_world_) return;
+  const ShapeWorld& w = *shape_world_;
+  shaped_dynamic_.assign(body_count(), 0);
+  for (std::uint32_t i = 0; i < w.bodies_.size(); ++i) {
+    const ShapedBody& b = w.bodies_[i];
+    if (b.disc) continue;
+    if (b.type == BodyType::kinematic) kinematic_shaped_.push_back(i);
+    if (b.type == BodyType::dynamic && shaped_dynamic_[b.body] == 0) {
+      shaped_dynamic_[b.body] = 1, ++dynamic_shaped_;
+    }
+  }
 }
 
 }  // namespace fixstep

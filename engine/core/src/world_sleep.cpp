@@ -62,7 +62,7 @@ void detail::WorldKernel<Real>::reset_sleep() {
   const std::size_t n = body_count();
   still_ticks_.assign(n, 0);
   asleep_.assign(n, 0);
-  sleepers_ = 0, disc_sleepers_ = 0;
+  sleepers_ = 0, disc_sleepers_ = 0, shape_sleepers_ = 0;
   asleep_pairs_stale_ = true;
 }
 
@@ -92,6 +92,7 @@ void detail::WorldKernel<Real>::wake_labelled() {
       continue;
     }
     asleep_[j] = 0, still_ticks_[j] = 0, --sleepers_;
+    if (!shaped_dynamic_.empty() && shaped_dynamic_[j] != 0) --shape_sleepers_;
     const std::int32_t k = disc_of_.empty() ? -1 : disc_of_[j];
     if (k < 0) continue;  // a body with shapes: mark_shape_sleepers sets its masses back
     const double inv_i = rolling_ ? inv_inertia_[j] : 0.0;
@@ -250,6 +251,7 @@ void detail::WorldKernel<Real>::fall_asleep(std::size_t j, std::uint32_t label) 
   if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(joules_per_kg);
   vx_[j] = Real(0), vy_[j] = Real(0);
   asleep_[j] = label, ++sleepers_;
+  if (!shaped_dynamic_.empty() && shaped_dynamic_[j] != 0) ++shape_sleepers_;
   if (disc >= 0)
     discs_->set_asleep(static_cast<std::uint32_t>(disc), true, 0.0, 0.0), ++disc_sleepers_;
 }

@@ -42,8 +42,11 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   apply_input(input);                             // world_input.cpp
   if (!movers_.data.empty()) move_movers();       // world_movers.cpp: against the tick's start
   if (keep_previous_) keep_previous_positions();  // world_step.cpp
-  if (shape_world_) save_shape_start();           // world_shapes.cpp
   const TickPlan plan = plan_tick();
+  // The shape contacts' start (world_shapes.cpp), unless this tick runs no shape phase: then
+  // no body with shapes moves, and the next tick that runs one saves its own.
+  const bool shapes_run = shape_world_ && (plan.discs || !(plan.quiet || plan.shapes_still));
+  if (shapes_run) save_shape_start();
   // Two threads: the discs' second thread spins between the disc phases' passes to the end of
   // the contact events (second_thread.hpp).
   auto disc_thread = [&] { return plan.discs ? discs_->second_thread(plan.threads) : nullptr; };
@@ -81,6 +84,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (plan.planes) contact_stats_.capped = (plan.discs ? contact_stats_.capped : 0) + plane_capped;
   contact_stats_.free_stepped = stepped_;
   contact_stats_.plane_tested = plan.planes ? plane_visited_ : 0;
+  contact_stats_.shape_visited = shapes_run ? shape_world_->bodies_.size() : 0;
   awake_.primed = awake_.on;  // a whole tick has passed over the sleepers (awake_runs.hpp)
 
   flush_state_subnormals();  // world_step.cpp
