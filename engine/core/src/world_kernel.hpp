@@ -814,9 +814,9 @@ class WorldKernel {
   std::vector<std::uint32_t> kinematic_discs_;  ///< their bodies (rebuild_discs)
   std::size_t dynamic_discs_ = 0;               ///< dynamic discs (rebuild_discs)
   /// By body: 1 for a dynamic body with shapes (the shape world's bodies that are not discs),
-  /// their count, and the shape world's kinematic bodies that are not discs (its indices), so
+  /// their count, and the shape world's kinematic bodies, discs among them (its indices), so
   /// that a world whose bodies with shapes all sleep is known without a pass over them
-  /// (rebuild_shapes; empty without sleeping).
+  /// (count_shaped_bodies; empty without sleeping).
   std::vector<std::uint8_t> shaped_dynamic_;
   std::size_t dynamic_shaped_ = 0;
   std::vector<std::uint32_t> kinematic_shaped_;

@@ -123,9 +123,8 @@ void detail::WorldKernel<Real>::count_shaped_bodies() {
   shaped_dynamic_.assign(body_count(), 0);
   for (std::uint32_t i = 0; i < w.bodies_.size(); ++i) {
     const ShapedBody& b = w.bodies_[i];
-    if (b.disc) continue;
-    if (b.type == BodyType::kinematic) kinematic_shaped_.push_back(i);
-    if (b.type == BodyType::dynamic && shaped_dynamic_[b.body] == 0) {
+    if (b.type == BodyType::kinematic) kinematic_shaped_.push_back(i);  // a disc's too
+    if (b.type == BodyType::dynamic && !b.disc && shaped_dynamic_[b.body] == 0) {
       shaped_dynamic_[b.body] = 1, ++dynamic_shaped_;
     }
   }
