@@ -93,7 +93,8 @@ void MatchPeer::Impl::on_tick_hashes(detail::Remote& r, const TickHashesMessage&
       if (t < hashes_from || t - hashes_from >= tick_hashes.size()) continue;
       if (tick_hashes[t - hashes_from] == m.hashes[t - m.first_tick]) continue;
       if (!desync) {
-        desync = DesyncReport{last, slot, m.player, tick_hashes[last - hashes_from], 0, {}, {}};
+        desync = DesyncReport{
+            last, slot, m.player, tick_hashes[last - hashes_from], m.hashes.back(), {}, {}};
         state = MatchState::desynced;
         error = fmt::format("desync: player {}'s state hashes differ from ours at tick {}",
                             m.player, t);
