@@ -134,7 +134,7 @@ struct ShapeTick {
   std::span<const PlaneDef> planes;
   std::span<const SegmentDef> segments;
   /// The same segments with their grid (SegmentSet::query), so that a shape meets only those
-  /// near it; null: every segment is tested.
+  /// near it; set whenever `segments` is not empty.
   const SegmentSet* segment_grid = nullptr;
   /// With sleeping bodies: called once the broadphase paired a sleeper with a moving body
   /// (ShapeWorld::woken()); it wakes their islands and clears their `asleep` (and sets their

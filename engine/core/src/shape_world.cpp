@@ -134,17 +134,14 @@ bool ShapeWorld::has_row(std::uint64_t pair) const {
 std::span<const std::uint32_t> ShapeWorld::near_segments(const ShapeTick& tick, const Aabb& box) {
   near_segments_.clear();
   if (tick.segments.empty()) return {};
-  if (tick.segment_grid != nullptr) {
-    tick.segment_grid->query(box.lower.x, box.lower.y, box.upper.x, box.upper.y, near_segments_);
-  } else {
-    for (std::uint32_t q = 0; q < tick.segments.size(); ++q) near_segments_.push_back(q);
-  }
+  tick.segment_grid->query(box.lower.x, box.lower.y, box.upper.x, box.upper.y, near_segments_);
   return near_segments_;
 }
 
 // From the broadphase's grid where it made one this tick (its boxes hold the shapes' at the
 // start, grown by a margin), else every static body's; in the order of the static bodies and
-// their shapes, so that each time of impact is bounded by the same earlier ones.
+// their shapes (shapes_ holds each body's shapes together, in body order: ascending indices),
+// so that each time of impact is bounded by the same earlier ones.
 std::span<const std::uint32_t> ShapeWorld::static_shapes_near(const Aabb& box) {
   near_statics_.clear();
   if (shapes_.size() >= min_grid_shapes) {
@@ -152,9 +149,7 @@ std::span<const std::uint32_t> ShapeWorld::static_shapes_near(const Aabb& box) {
     grid_.query(q, [&](std::uint32_t k, const SweptBox&) {
       if (bodies_[shapes_[k].owner].type == BodyType::static_body) near_statics_.push_back(k);
     });
-    std::sort(near_statics_.begin(), near_statics_.end(), [&](std::uint32_t l, std::uint32_t r) {
-      return shapes_[l].owner != shapes_[r].owner ? shapes_[l].owner < shapes_[r].owner : l < r;
-    });
+    std::sort(near_statics_.begin(), near_statics_.end());
     return near_statics_;
   }
   for (const std::uint32_t o : statics_) {
