@@ -289,9 +289,44 @@ bool GridBroadphase::find_pairs(std::span<const SweptBox> boxes,
                                 std::vector<DiscPair>& pairs, int threads, SecondThread* lent) {
   pairs.clear();
   stopped_by_veto_ = false;  // of this call only
+  rejected_ = 0;
   lent_ = lent;
   const std::size_t n = boxes.size();
   const bool split = threads >= 2 && n >= parallel_min_ && n >= 2;
+  build(boxes, active, split);
+  const std::size_t e = entry_.size(), mid = split ? e / 2 : e;
+  bool ok[2] = {true, true};
+  std::uint64_t rejected[2] = {0, 0};
+  auto search = [&](int t) {
+    ok[t] = scan(t == 0 ? 0 : mid, t == 0 ? mid : e, t == 0, boxes, active, max_pairs, raw_[t],
+                 rejected[t]);
+  };
+  both(split, search);
+  lent_ = nullptr;
+  rejected_ = rejected[0] + rejected[1];
+  // Both limits on the totals, so that one thread and two stop alike.
+  const bool too_many = raw_[0].size() + raw_[1].size() > max_pairs;
+  const bool vetoed = veto_ != nullptr && rejected_ > veto_->max_rejected;
+  if (!ok[0] || !ok[1] || too_many || vetoed) {
+    // A share stopped at max_pairs holds more than max_pairs; else the veto stopped one.
+    stopped_by_veto_ = !too_many;
+    return false;
+  }
+  order_pairs(raw_[0], raw_[1], n, offset_, pairs);
+  // Either thread may find them all next time (threads = 1, or a shifted split): room for it.
+  raw_[0].reserve(pairs.size()), raw_[1].reserve(pairs.size());
+  return true;
+}
+
+void GridBroadphase::index(std::span<const SweptBox> boxes) {
+  idle_.assign(boxes.size(), 0);
+  lent_ = nullptr;
+  build(boxes, idle_, false);
+}
+
+void GridBroadphase::build(std::span<const SweptBox> boxes, std::span<const std::uint8_t> active,
+                           bool split) {
+  const std::size_t n = boxes.size();
   share_[0].begin = 0, share_[0].end = share_[1].begin = split ? n / 2 : n, share_[1].end = n;
   level_.resize(n);
   home_.resize(n);
@@ -310,27 +345,6 @@ bool GridBroadphase::find_pairs(std::span<const SweptBox> boxes,
   for (std::size_t i = 0; share_[0].overflow + share_[1].overflow > 0 && i < n; ++i) {
     if (level_[i] == overflow) overflow_.push_back(static_cast<std::uint32_t>(i));
   }
-  const std::size_t e = entry_.size(), mid = split ? e / 2 : e;
-  bool ok[2] = {true, true};
-  std::uint64_t rejected[2] = {0, 0};
-  auto search = [&](int t) {
-    ok[t] = scan(t == 0 ? 0 : mid, t == 0 ? mid : e, t == 0, boxes, active, max_pairs, raw_[t],
-                 rejected[t]);
-  };
-  both(split, search);
-  lent_ = nullptr;
-  // Both limits on the totals, so that one thread and two stop alike.
-  const bool too_many = raw_[0].size() + raw_[1].size() > max_pairs;
-  const bool vetoed = veto_ != nullptr && rejected[0] + rejected[1] > veto_->max_rejected;
-  if (!ok[0] || !ok[1] || too_many || vetoed) {
-    // A share stopped at max_pairs holds more than max_pairs; else the veto stopped one.
-    stopped_by_veto_ = !too_many;
-    return false;
-  }
-  order_pairs(raw_[0], raw_[1], n, offset_, pairs);
-  // Either thread may find them all next time (threads = 1, or a shifted split): room for it.
-  raw_[0].reserve(pairs.size()), raw_[1].reserve(pairs.size());
-  return true;
 }
 
 }  // namespace fixstep::detail

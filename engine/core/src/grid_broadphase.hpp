@@ -141,6 +141,16 @@ class GridBroadphase {
   /// Whether the last find_pairs call stopped at the veto's max_rejected (false when it
   /// found its pairs, or max_pairs stopped it).
   [[nodiscard]] bool stopped_by_veto() const { return stopped_by_veto_; }
+  /// The pairs the veto dropped in the last find_pairs call (where it stopped, those up to
+  /// then).
+  [[nodiscard]] std::uint64_t rejected() const { return rejected_; }
+
+  /// Makes the table of `boxes` for query() alone, pairing none: O(n). Allocates nothing once
+  /// warm. Preconditions: boxes.size() < 2^32 - 1.
+  void index(std::span<const SweptBox> boxes);
+  /// The boxes of the last find_pairs or index call that no level holds (a coordinate not
+  /// finite, or cells too small to represent), ascending: query() leaves them out.
+  [[nodiscard]] std::span<const std::uint32_t> unindexed() const { return overflow_; }
 
   /// Pairs that can never touch, which find_pairs leaves out and does not count against its
   /// max_pairs: reject(context, a, b) true drops the pair (a < b; called from both threads, so
@@ -202,6 +212,9 @@ class GridBroadphase {
   /// Runs job(0) here and job(1) on the worker when it splits, else both here in order.
   template <class Job>
   void both(bool split, Job& job);
+  /// The levels, the tables and the overflow list of `boxes` (the searches' input), by halves
+  /// when split.
+  void build(std::span<const SweptBox> boxes, std::span<const std::uint8_t> active, bool split);
   void largest_extent(Share& s, std::span<const SweptBox> boxes) const;
   void set_levels(double e_top);
   void assign_levels(Share& s, std::span<const SweptBox> boxes);
@@ -270,7 +283,9 @@ class GridBroadphase {
   std::size_t parallel_min_ = min_parallel_boxes;
   const PairVeto* veto_ = nullptr;
   bool stopped_by_veto_ = false;
-  SecondThread* lent_ = nullptr;  // find_pairs' `lent` during the call
+  std::uint64_t rejected_ = 0;
+  std::vector<std::uint8_t> idle_;  // index()'s activity: none
+  SecondThread* lent_ = nullptr;    // find_pairs' `lent` during the call
   SecondThread second_;
 };
 
