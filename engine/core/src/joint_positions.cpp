@@ -48,6 +48,7 @@ double limit_error(double value, double lower, double upper, bool has_lower, boo
   }
   if (!e.s) return;
   moved_ = moved_ || p.x != 0.0 || p.y != 0.0 || l != 0.0;
+  if (e.m == 0.0 && e.i == 0.0) return;  // an end that does not move keeps its state as it is
   e.s->x += e.m * p.x, e.s->y += e.m * p.y, e.s->a += e.i * l;
   if (keep_) e.s->vx += e.m * p.x / dt_, e.s->vy += e.m * p.y / dt_, e.s->w += e.i * l / dt_;
 }

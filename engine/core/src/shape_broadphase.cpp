@@ -2,7 +2,9 @@
 // boxes at the tick's start, grown by each body's speculative margin, paired by the
 // hierarchical grid the discs use (grid_broadphase.hpp: O(n + pairs), where a sweep and prune
 // on x scans every box of a column of boxes), in (a, b) order; a hundred or so by a sort and
-// sweep on x, whose work (n²/2 box tests at most) is then below the grid's fixed costs.
+// sweep on x, whose work (n²/2 box tests at most) is then below the grid's fixed costs. Of a
+// large world's shapes only the live ones are boxed and paired each tick, the resting ones
+// found through their own grid (shape_rest.hpp, shape_rest.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -28,41 +30,35 @@ bool ShapeWorld::never_pair(const void* context, std::uint32_t a, std::uint32_t 
   return !wakes(ta, tb) && !wakes(tb, ta);
 }
 
-bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) {
+void ShapeWorld::box_shape(std::uint32_t k) {
+  const ShapeEntry& e = shapes_[k];
+  const ShapedBody& body = bodies_[e.owner];
+  const Aabb b = convex_aabb(e.convex, start_pose(e.owner), margin_[e.owner]);
+  boxes_[k] = SweptBox{b.lower.x, b.lower.y, b.upper.x, b.upper.y};
+  dynamic_[k] = body.type == BodyType::dynamic ? 1 : 0;  // two others never pair
+  const std::uint32_t none = 0;
+  tags_[k] =
+      PairTag{e.filter, e.owner,
+              (e.sensor ? PairTag::sensor : none) | (body.disc ? PairTag::disc : none) |
+                  (awake(body) ? PairTag::awake : none) | (body.asleep ? PairTag::asleep : none) |
+                  (moving(e.owner) ? PairTag::moving : none)};
+}
+
+void ShapeWorld::name_cap(ShapeTally& tally, bool by_veto) const {
   const std::size_t n = shapes_.size();
-  // The work limits (limits.hpp), as the disc broadphase's: candidate pairs kept, and pairs
-  // dropped by never_pair (a crowd a filter keeps apart), each bounded by the shape count.
-  const std::uint64_t most_pairs = max_candidate_pairs(n);
-  margin_.resize(bodies_.size());
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) margin_[i] = margin(i, dt);
-  boxes_.resize(n), dynamic_.resize(n), tags_.resize(n);
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const ShapeEntry& e = shapes_[k];
-    const ShapedBody& body = bodies_[e.owner];
-    const Aabb b = convex_aabb(e.convex, start_pose(e.owner), margin_[e.owner]);
-    boxes_[k] = SweptBox{b.lower.x, b.lower.y, b.upper.x, b.upper.y};
-    dynamic_[k] = body.type == BodyType::dynamic ? 1 : 0;  // two others never pair
-    const std::uint32_t none = 0;
-    tags_[k] =
-        PairTag{e.filter, e.owner,
-                (e.sensor ? PairTag::sensor : none) | (body.disc ? PairTag::disc : none) |
-                    (awake(body) ? PairTag::awake : none) | (body.asleep ? PairTag::asleep : none) |
-                    (moving(e.owner) ? PairTag::moving : none)};
-  }
-  bool found = true;
-  if (n < min_grid_shapes) {
-    sweep_few();
-  } else {
-    const GridBroadphase::PairVeto veto{&ShapeWorld::never_pair, this, max_vetoed_pairs(n)};
-    grid_.set_veto(&veto);
-    found = grid_.find_pairs(boxes_, dynamic_, most_pairs, pairs_, thread ? 2 : 1, thread);
-    grid_.set_veto(nullptr);
-  }
+  tally.cap = by_veto ? "max_vetoed_pairs" : "max_candidate_pairs";
+  tally.limit = by_veto ? max_vetoed_pairs(n) : max_candidate_pairs(n);
+  tally.cap_body = shapes_[largest_box()].owner;
+}
+
+bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) {
+  // The live bodies' margins and shapes' boxes; the resting ones' hold (shape_rest.hpp).
+  for (const std::uint32_t i : rest_.live) margin_[i] = margin(i, dt);
+  for (const std::uint32_t k : rest_.live_shapes) box_shape(k);
   candidates_.clear(), sensor_candidates_.clear(), wake_.clear();
-  if (!found) {
-    tally.cap = grid_.stopped_by_veto() ? "max_vetoed_pairs" : "max_candidate_pairs";
-    tally.limit = grid_.stopped_by_veto() ? max_vetoed_pairs(n) : most_pairs;
-    tally.cap_body = shapes_[largest_box()].owner;
+  if (!rest_.split) {
+    sweep_few();
+  } else if (!pair_live(tally, thread)) {
     return false;
   }
   for (const DiscPair& p : pairs_) {

@@ -93,10 +93,9 @@ static_assert(sizeof(ShapeSolveRow) == 192, "make_solve_row assigns every field:
 
 void ShapeWorld::prepare_rows(const ShapeTick& tick) {
   dt_ = tick.dt;
-  velocity_.resize(state_.size() + 1);  // and the zero slot
-  for (std::size_t k = 0; k < state_.size(); ++k) {
-    velocity_[k] = {state_[k].vx, state_[k].vy, state_[k].w};
-  }
+  // The live bodies' (velocity_ has a slot for each body and the zero slot; a resting
+  // body's holds its velocity, none, from rebuild_rest on).
+  for (const std::uint32_t k : rest_.live) velocity_[k] = {state_[k].vx, state_[k].vy, state_[k].w};
   velocity_[zero_slot()] = {};
   solve_.resize(rows_.size());
   for (std::size_t i = 0; i < rows_.size(); ++i) {
@@ -261,7 +260,7 @@ void ShapeWorld::turn(const ShapeRow& r, double l) {
 }
 
 void ShapeWorld::follow_velocities() {
-  for (std::size_t k = 0; k < state_.size(); ++k) {
+  for (const std::uint32_t k : rest_.live) {
     ShapeState& s = state_[k];  // its velocities still the free ones
     const ShapeMotion& v = velocity_[k];
     s.x += dt_ * (v.vx - s.vx), s.y += dt_ * (v.vy - s.vy), s.a += dt_ * (v.w - s.w);
@@ -285,9 +284,10 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
   };
   // Each body's turn since the start, made again only where its angle has changed since
   // (turned_at_: the angle it was made at; NaN at first, unequal to any).
-  turned_at_.assign(state_.size(), std::numeric_limits<double>::quiet_NaN());
+  // (A resting body's turn, none, is made by rebuild_rest.)
+  for (const std::uint32_t k : rest_.live) turned_at_[k] = std::numeric_limits<double>::quiet_NaN();
   auto update_turns = [&] {
-    for (std::size_t k = 0; k < state_.size(); ++k) {
+    for (const std::uint32_t k : rest_.live) {
       ShapeState& s = state_[k];
       if (s.a != turned_at_[k]) s.turn = rot_of(s.a - s.a0), turned_at_[k] = s.a;
     }
@@ -311,14 +311,16 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
       if (c == 0.0 || normal_mass == 0.0) continue;
       pushed = true;
       const Vec2 p = (-c * normal_mass) * r.n;
-      if (r.a != none) {
+      if (r.a != none && movable(bodies_[r.a])) {
         const ShapedBody& b = bodies_[r.a];
         ShapeState& s = state_[r.a];
         s.x -= b.inv_mass * p.x, s.y -= b.inv_mass * p.y, s.a -= b.inv_inertia * cross(r.ra, p);
       }
-      const ShapedBody& b = bodies_[r.b];
-      ShapeState& s = state_[r.b];
-      s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
+      if (movable(bodies_[r.b])) {
+        const ShapedBody& b = bodies_[r.b];
+        ShapeState& s = state_[r.b];
+        s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
+      }
     }
     // A sweep that pushes and corrects nothing leaves the poses as they were, and so would
     // every sweep after it: the push-out has ended.
@@ -328,7 +330,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
     update_turns();
   }
   for (const ShapeRow& r : rows_) tally.deepest = std::max(tally.deepest, -separation(r));
-  for (ShapeState& s : state_) s.q = rot_of(s.a);
+  for (const std::uint32_t k : rest_.live) state_[k].q = rot_of(state_[k].a);
 }
 
 void ShapeWorld::keep_impulses() {

@@ -148,7 +148,7 @@ void unpack(const std::vector<Group>& groups, std::vector<ShapeSolveRow>& solve)
 // Greedy, in row order: each manifold takes a colour none of its moving bodies has taken.
 void ShapeWorld::color_manifolds() {
   const std::size_t n = solve_.size();
-  body_colors_.assign(bodies_.size(), 0);
+  for (const std::uint32_t k : rest_.live) body_colors_[k] = 0;  // a resting body takes none
   colored_.clear();
   std::array<std::uint32_t, color_count + 2> count{};
   for (std::size_t i = 0; i < n;) {

@@ -95,7 +95,7 @@ double ShapeWorld::margin(std::uint32_t body, double dt) const {
 
 void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
   bool ready = false;
-  for (std::uint32_t i = 0; i < bodies_.size(); ++i) {
+  for (const std::uint32_t i : rest_.live) {
     const ShapedBody& b = bodies_[i];
     if (!awake(b) || b.disc) continue;
     ShapeState& s = state_[i];
@@ -107,12 +107,9 @@ void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
     const double motion = det::hypot(dx, dy) + turned;
     if (!(motion > 0.5 * b.thinnest)) continue;  // Box2D v3's test of a fast body
     if (!ready) {                                // once a tick, and only in a tick with a fast body
-      row_keys_.clear(), statics_.clear();
+      row_keys_.clear();
       for (const ShapeRow& r : rows_) row_keys_.push_back(r.pair);
       std::sort(row_keys_.begin(), row_keys_.end());
-      for (std::uint32_t o = 0; o < bodies_.size(); ++o) {
-        if (bodies_[o].type == BodyType::static_body) statics_.push_back(o);
-      }
       ready = true;
     }
     s.q = rot_of(s.a);
@@ -144,15 +141,16 @@ std::span<const std::uint32_t> ShapeWorld::near_segments(const ShapeTick& tick, 
 // so that each time of impact is bounded by the same earlier ones.
 std::span<const std::uint32_t> ShapeWorld::static_shapes_near(const Aabb& box) {
   near_statics_.clear();
-  if (shapes_.size() >= min_grid_shapes) {
+  if (rest_.split) {  // the resting grid holds every static shape but the sensors
     const SweptBox q{box.lower.x, box.lower.y, box.upper.x, box.upper.y};
-    grid_.query(q, [&](std::uint32_t k, const SweptBox&) {
+    rest_.grid.query(q, [&](std::uint32_t g, const SweptBox&) {
+      const std::uint32_t k = rest_.resting[g];
       if (bodies_[shapes_[k].owner].type == BodyType::static_body) near_statics_.push_back(k);
     });
     std::sort(near_statics_.begin(), near_statics_.end());
     return near_statics_;
   }
-  for (const std::uint32_t o : statics_) {
+  for (const std::uint32_t o : rest_.statics) {
     for (std::uint32_t q = bodies_[o].first; q < bodies_[o].first + bodies_[o].count; ++q) {
       near_statics_.push_back(q);
     }
@@ -333,46 +331,52 @@ void ShapeWorld::collect(const ShapeTick& tick, SecondThread* thread) {
     collect_pairs(tick, 0, n, rows_, disabled_, next_kept_);
   }
   kept_.swap(next_kept_);
-  for (std::uint32_t k = 0; k < shapes_.size(); ++k) {
-    const ShapeEntry& e = shapes_[k];
-    const ShapedBody& b = bodies_[e.owner];
-    if (!awake(b) || b.disc || e.sensor) continue;
-    const Pose at = start_pose(e.owner);
-    const double margin = margin_[e.owner];
-    for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
-      const PlaneDef& pl = tick.planes[p];
-      const UnitPlane& u = unit_planes_[p];
-      if (clear_of(aabb_of(boxes_[k]), u)) continue;
-      const Manifold m = collide_plane(u.n, u.offset, e.convex, at, margin);
-      if (m.count == 0) continue;
-      const std::uint64_t pair = std::uint64_t{0xF0000000u | p} << 32 | e.key;
-      if ((e.one_way || tick.pre_solve) &&
-          !contact_acts(tick, m, none, k, static_cast<int>(p), -1, nullptr)) {
+  for (const std::uint32_t i : rest_.live) {  // the awake bodies' shapes, in shape order
+    const ShapedBody& b = bodies_[i];
+    if (!awake(b) || b.disc) continue;
+    for (std::uint32_t k = b.first; k < b.first + b.count; ++k) collect_surfaces(tick, k);
+  }
+  std::sort(disabled_.begin(), disabled_.end());
+}
+
+// The manifolds of an awake body's shape k with the planes and segments.
+void ShapeWorld::collect_surfaces(const ShapeTick& tick, std::uint32_t k) {
+  const ShapeEntry& e = shapes_[k];
+  if (e.sensor) return;
+  const Pose at = start_pose(e.owner);
+  const double margin = margin_[e.owner];
+  for (std::uint32_t p = 0; p < tick.planes.size(); ++p) {
+    const PlaneDef& pl = tick.planes[p];
+    const UnitPlane& u = unit_planes_[p];
+    if (clear_of(aabb_of(boxes_[k]), u)) continue;
+    const Manifold m = collide_plane(u.n, u.offset, e.convex, at, margin);
+    if (m.count == 0) continue;
+    const std::uint64_t pair = std::uint64_t{0xF0000000u | p} << 32 | e.key;
+    if ((e.one_way || tick.pre_solve) &&
+        !contact_acts(tick, m, none, k, static_cast<int>(p), -1, nullptr)) {
+      disabled_.push_back(pair);
+      continue;
+    }
+    add_manifold(rows_, m, none, e.owner, mix_friction(pl.friction, e.friction),
+                 std::max(pl.restitution, e.restitution), e.rolling * e.convex.radius, pair);
+  }
+  const Aabb box = aabb_of(boxes_[k]);
+  for (const std::uint32_t s : near_segments(tick, box)) {
+    const SegmentDef& seg = tick.segments[s];
+    if (!boxes_overlap(box, segment_bounds(seg))) continue;
+    const Manifold m = collide_segment(seg, e.convex, at, margin);
+    if (m.count == 0) continue;
+    const std::uint64_t pair = std::uint64_t{0xE0000000u | s} << 32 | e.key;
+    if (e.one_way || seg.one_way || tick.pre_solve) {
+      const Vec2 up = seg.one_way ? one_way_up_of(seg) : Vec2{};
+      if (!contact_acts(tick, m, none, k, -1, static_cast<int>(s), seg.one_way ? &up : nullptr)) {
         disabled_.push_back(pair);
         continue;
       }
-      add_manifold(rows_, m, none, e.owner, mix_friction(pl.friction, e.friction),
-                   std::max(pl.restitution, e.restitution), e.rolling * e.convex.radius, pair);
     }
-    const Aabb box = aabb_of(boxes_[k]);
-    for (const std::uint32_t s : near_segments(tick, box)) {
-      const SegmentDef& seg = tick.segments[s];
-      if (!boxes_overlap(box, segment_bounds(seg))) continue;
-      const Manifold m = collide_segment(seg, e.convex, at, margin);
-      if (m.count == 0) continue;
-      const std::uint64_t pair = std::uint64_t{0xE0000000u | s} << 32 | e.key;
-      if (e.one_way || seg.one_way || tick.pre_solve) {
-        const Vec2 up = seg.one_way ? one_way_up_of(seg) : Vec2{};
-        if (!contact_acts(tick, m, none, k, -1, static_cast<int>(s), seg.one_way ? &up : nullptr)) {
-          disabled_.push_back(pair);
-          continue;
-        }
-      }
-      add_manifold(rows_, m, none, e.owner, mix_friction(seg.friction, e.friction),
-                   std::max(seg.restitution, e.restitution), e.rolling * e.convex.radius, pair);
-    }
+    add_manifold(rows_, m, none, e.owner, mix_friction(seg.friction, e.friction),
+                 std::max(seg.restitution, e.restitution), e.rolling * e.convex.radius, pair);
   }
-  std::sort(disabled_.begin(), disabled_.end());
 }
 
 void ShapeWorld::detect_sensors() {
@@ -405,7 +409,12 @@ bool ShapeWorld::moving(std::uint32_t body) const {
 ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
   joints_ = tick.joints, unpaired_ = tick.unpaired;
-  for (ShapeState& s : state_) s.q0 = rot_of(s.a0);
+  visited_ = rest_.stale ? bodies_.size() : rest_.live.size();
+  if (rest_.stale) {
+    rebuild_rest(tick.dt);
+  } else {
+    for (const std::uint32_t i : rest_.live) state_[i].q0 = rot_of(state_[i].a0);
+  }
   // The second thread, with two: the discs' where its run is open, else the shape world's
   // own. A large world makes its broadphase and manifolds by halves on it (the run keeps the
   // worker spinning through the shape phase); the velocity sweeps split their large colours.
@@ -418,6 +427,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   bool paired = broadphase(tick.dt, tally, thread);
   if (paired && !wake_.empty() && tick.wake) {  // sleepers woken: paired again as they now are
     tick.wake(tick.wake_context);
+    if (rest_.stale) rebuild_rest(tick.dt), visited_ = bodies_.size();  // (the wake makes it so)
     paired = broadphase(tick.dt, tally, thread);
   }
   if (!paired) {  // a work limit: the tick's shape contacts unresolved

@@ -60,6 +60,7 @@
 #include "shape_geom.hpp"
 #include "shape_lanes.hpp"
 #include "shape_records.hpp"
+#include "shape_rest.hpp"
 
 namespace fixstep::detail {
 
@@ -139,12 +140,43 @@ class ShapeWorld {
   [[nodiscard]] std::size_t bytes() const;
   /// The sleepers (bodies_ indices) the broadphase paired with a moving body this tick.
   [[nodiscard]] std::span<const std::uint32_t> woken() const { return wake_; }
+  /// Makes the resting lists stale (shape_rest.hpp): the kernel's call whenever a body that
+  /// the ticks leave alone may change (it falls asleep or wakes, an edit, a rebuild).
+  void unsettle() { rest_.stale = true; }
+  /// Whether the next tick makes the resting lists again: the kernel then gives every body its
+  /// state, else the live ones.
+  [[nodiscard]] bool rest_stale() const { return rest_.stale; }
+  /// The bodies a tick visits (bodies_ indices, ascending; shape_rest.hpp), as the last tick
+  /// left them: valid while !rest_stale().
+  [[nodiscard]] std::span<const std::uint32_t> live() const { return rest_.live; }
+  /// The bodies the last tick visited: every one when it made the resting lists again, else
+  /// the live ones.
+  [[nodiscard]] std::size_t visited() const { return visited_; }
 
  private:
+  ShapeRest rest_;
+  std::size_t visited_ = 0;
+  /// Makes the resting lists and the resting shapes' grid from state_ (every body's filled),
+  /// and each resting body's rotations, margin, velocity and box.
+  void rebuild_rest(double dt);
+  /// Shape k's box at the tick's start grown by its body's margin_, its activity and its tag.
+  void box_shape(std::uint32_t k);
+  /// The pairs of the live shapes among themselves and with the resting ones into pairs_
+  /// (false: a work limit reached, named in `tally`).
+  bool pair_live(ShapeTally& tally, SecondThread* thread);
+  /// never_pair of two live shapes by their places in rest_.live_shapes.
+  static bool never_pair_live(const void* context, std::uint32_t a, std::uint32_t b);
+  /// Fills `tally` with the broadphase's work limit `cap` reached.
+  void name_cap(ShapeTally& tally, bool by_veto) const;
   std::vector<std::uint32_t> wake_;
   /// Awake and dynamic: what the solver moves.
   [[nodiscard]] bool awake(const ShapedBody& b) const {
     return b.type == BodyType::dynamic && !b.asleep;
+  }
+  /// Whether an impulse moves the body: a pass leaves the others' state as it is (a resting
+  /// body's, shape_rest.hpp, from one tick to the next).
+  [[nodiscard]] static bool movable(const ShapedBody& b) {
+    return b.inv_mass > 0.0 || b.inv_inertia > 0.0;
   }
   /// Awake and dynamic, or kinematic and moving (turning or not): what wakes a sleeper.
   [[nodiscard]] bool moving(std::uint32_t body) const;
@@ -186,9 +218,8 @@ class ShapeWorld {
   /// disabled this tick, sorted: continuous collision leaves them alone as it does a row's.
   std::vector<std::uint64_t> disabled_;
   /// For the continuous check, made at the tick's first fast body: the rows' pair keys sorted
-  /// (what a fast body already has a row with) and the static bodies.
+  /// (what a fast body already has a row with).
   std::vector<std::uint64_t> row_keys_;
-  std::vector<std::uint32_t> statics_;
   std::vector<std::uint32_t> near_segments_;  ///< near_segments' answer
   std::vector<std::uint32_t> near_statics_;   ///< static_shapes_near's answer
   std::vector<ShapeWarm> next_warm_;
@@ -214,6 +245,8 @@ class ShapeWorld {
   /// The manifolds of the candidates, the planes and the segments into rows_; the
   /// candidates' by halves on `thread` when given.
   void collect(const ShapeTick& tick, SecondThread* thread);
+  /// The manifolds of an awake body's shape k with the planes and segments into rows_.
+  void collect_surfaces(const ShapeTick& tick, std::uint32_t k);
   void collect_pairs(const ShapeTick& tick, std::size_t begin, std::size_t end,
                      std::vector<ShapeRow>& rows, std::vector<std::uint64_t>& disabled,
                      std::vector<KeptManifold>& kept);

@@ -328,6 +328,7 @@ void detail::WorldKernel<Real>::set_body(Entity e, const Body& b) {
     y_[i] = prev_y_[i] = static_cast<Real>(c.y);
   }
   if (segments_.moves()) place_segments();
+  unsettle_shapes();
   terms_dirty_ = true;  // 1/m enters the per-body coefficients
 }
 
@@ -339,6 +340,7 @@ void detail::WorldKernel<Real>::set_position(Entity e, Vec2 position) {
   x_[i] = prev_x_[i] = static_cast<Real>(position.x);
   y_[i] = prev_y_[i] = static_cast<Real>(position.y);
   if (sleep_) wake(i);
+  unsettle_shapes();
   if (segments_.moves()) place_segments();
 }
 
@@ -355,6 +357,7 @@ void detail::WorldKernel<Real>::set_velocity(Entity e, Vec2 velocity) {
   vx_[i] = static_cast<Real>(velocity.x);
   vy_[i] = static_cast<Real>(velocity.y);
   if (sleep_) wake(i);
+  unsettle_shapes();
   if (segments_.moves()) place_segments();
 }
 

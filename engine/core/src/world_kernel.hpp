@@ -770,6 +770,13 @@ class WorldKernel {
   void rebuild_shapes();
   void save_shape_start();
   void resolve_shapes();
+  /// Makes the shape world's resting lists stale (shape_rest.hpp): whenever a static body or a
+  /// sleeper may change (an edit, a body falling asleep or waking, a rebuild).
+  void unsettle_shapes();
+  /// Calls f(i) for each body of the shape world a tick gives its state: every one when the
+  /// resting lists are stale, else the live ones (ShapeWorld::live).
+  template <class F>
+  void for_shape_bodies(F&& f);
   void shape_energies(std::vector<double>& out) const;
   void account_shape_contacts();
   // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.

@@ -45,16 +45,17 @@ bool detail::WorldKernel<Real>::count_still_shapes(double speed2) {
   if (shape_sleepers_ == dynamic_shaped_) return false;  // every one asleep: none to count
   const ShapeWorld& w = *shape_world_;
   bool ready = false;
-  for (const ShapedBody& b : w.bodies_) {
+  for_shape_bodies([&](std::uint32_t i) {  // the awake ones are live
+    const ShapedBody& b = w.bodies_[i];
     const std::uint32_t j = b.body;
-    if (b.disc || b.type != BodyType::dynamic || asleep_[j] != 0) continue;
+    if (b.disc || b.type != BodyType::dynamic || asleep_[j] != 0) return;
     const double spin = shape_sets_.data[b.set].spin * b.extent;
     const double v2 =
         std::max(double(vx_[j]) * double(vx_[j]) + double(vy_[j]) * double(vy_[j]), spin * spin);
     std::uint32_t& still = still_ticks_[j];
     still = v2 < speed2 ? std::min(0xfffffffeu, still) + 1 : 0;
     ready = ready || still >= sleep_ticks_;
-  }
+  });
   return ready;
 }
 

@@ -140,6 +140,7 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
   }
   if (!shape_world_) shape_world_.reset(new ShapeWorld());
   ShapeWorld& w = *shape_world_;
+  w.unsettle();
   w.bodies_.clear(), w.shapes_.clear();
   w.kept_.clear();  // keyed by the shapes' indices, which this may change
   const ContactSettings cs = settings_.contacts.value_or(ContactSettings{});
@@ -274,14 +275,31 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
 }
 
 template <class Real>
+void detail::WorldKernel<Real>::unsettle_shapes() {
+  if (shape_world_) shape_world_->unsettle();
+}
+
+template <class Real>
+template <class F>
+void detail::WorldKernel<Real>::for_shape_bodies(F&& f) {
+  ShapeWorld& w = *shape_world_;
+  if (!w.rest_stale()) {
+    for (const std::uint32_t i : w.live()) f(i);
+    return;
+  }
+  for (std::uint32_t i = 0; i < w.bodies_.size(); ++i) f(i);
+}
+
+// A resting body's start is its state already (shape_rest.hpp): it has not moved since.
+template <class Real>
 void detail::WorldKernel<Real>::save_shape_start() {
   ShapeWorld& w = *shape_world_;
-  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+  for_shape_bodies([&](std::uint32_t i) {
     const ShapedBody& b = w.bodies_[i];
     ShapeState& s = w.state_[i];
     s.x0 = double(x_[b.body]), s.y0 = double(y_[b.body]);
     s.a0 = b.set == ShapedBody::none ? 0.0 : shape_sets_.data[b.set].angle;
-  }
+  });
   if (!settings_.track_dissipation) return;
   // The account's start (account_shape_contacts): each dynamic body's energy before the free
   // step, and its damping account.
@@ -306,13 +324,15 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   ShapeWorld& w = *shape_world_;
   const double dt = settings_.dt;
   const double kappa = contact_kappa(settings_.integrator, settings_.substeps);
-  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+  // Sleepers solved as static, their flags set where they changed (the lists are then stale).
+  if (sleep_ && w.rest_stale()) mark_shape_sleepers();
+  for_shape_bodies([&](std::uint32_t i) {
     const ShapedBody& b = w.bodies_[i];
     ShapeState& s = w.state_[i];
     const std::uint32_t j = b.body;
     s.x = double(x_[j]), s.y = double(y_[j]), s.vx = double(vx_[j]), s.vy = double(vy_[j]);
     s.w = 0.0, s.a = s.a0;
-    if (b.set == ShapedBody::none) continue;
+    if (b.set == ShapedBody::none) return;
     ShapeSet& set = shape_sets_.data[b.set];
     // A torque input τ is a constant angular acceleration α = τ/I over the tick, stepped as
     // the integrator steps a constant acceleration: ω1 = ω0 + α dt, θ1 = θ0 + dt ω0 + κ dt² α
@@ -322,7 +342,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
     s.w = set.spin + alpha * dt;
     s.a = s.a0 + dt * set.spin + kappa * dt * dt * alpha;
     set.torque = 0.0;
-  }
+  });
   const ContactSettings cs = settings_.contacts.value_or(ContactSettings{});
   ShapeTick tick;
   tick.dt = dt;
@@ -342,8 +362,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   // the shape world starts its own.
   detail::SecondThread* discs = discs_ && tick.threads >= 2 ? discs_->second_thread(2) : nullptr;
   tick.thread = discs != nullptr && discs->is_open() ? discs : nullptr;
-  if (sleep_) {  // sleepers solved as static; one paired with a mover wakes its island
-    mark_shape_sleepers();
+  if (sleep_) {  // one paired with a mover wakes its island
     tick.wake = &WorldKernel::wake_shape_sleepers, tick.wake_context = this;
   }
   const bool account = settings_.track_dissipation;
@@ -362,8 +381,9 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   contact_stats_.shape_points = tally.points;
   contact_stats_.deepest_shape_overlap = tally.deepest;
   contact_stats_.shape_velocity_sweeps = tally.velocity_sweeps;
+  // The live bodies' state back (a resting body's is unchanged: shape_rest.hpp).
   bool out_of_range = false;
-  for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
+  for (const std::uint32_t i : w.live()) {
     const ShapedBody& b = w.bodies_[i];
     const ShapeState& s = w.state_[i];
     if (b.set != ShapedBody::none) {

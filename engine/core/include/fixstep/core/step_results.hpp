@@ -77,9 +77,11 @@ struct ContactStats {
   /// Bodies the last tick's pass over the planes and segments looked at: every dynamic
   /// collider (0 in a world without planes or segments), the sleepers skipped as above.
   std::size_t plane_tested = 0;
-  /// Bodies with shapes (and discs that meet them) the last tick's shape phase visited: every
-  /// one, or 0 in a tick in which every dynamic body with shapes sleeps, no kinematic one
-  /// moves and the disc phases do not run, so that a world asleep passes over none of them.
+  /// Bodies with shapes (and discs that meet them) the last tick's shape phase visited: 0 in
+  /// a tick in which every dynamic body with shapes sleeps, no kinematic one moves and the
+  /// disc phases do not run, so that a world asleep passes over none of them; in a world of
+  /// 128 shapes or more, the awake dynamic and the kinematic ones, but in a tick after a body
+  /// fell asleep or woke, or an edit, which visits every one; in a smaller world every one.
   std::size_t shape_visited = 0;
   /// Discs the last tick's disc phases visited (their motions, the broadphase, the end of
   /// the tick): every disc, or in a world with sleeping islands and at most a quarter of its

@@ -1,0 +1,105 @@
+// The resting lists of a shape world (shape_rest.hpp): made again when stale, and the
+// broadphase of a large world over them.
+#include <algorithm>
+
+#include "fixstep/core/limits.hpp"
+#include "shape_world.hpp"
+
+namespace fixstep::detail {
+
+void ShapeWorld::rebuild_rest(double dt) {
+  ShapeRest& r = rest_;
+  r.stale = false;
+  r.split = shapes_.size() >= min_grid_shapes;
+  r.live.clear(), r.live_shapes.clear(), r.statics.clear(), r.resting.clear();
+  const std::size_t n = bodies_.size();
+  margin_.resize(n), turned_at_.resize(n), body_colors_.resize(n);
+  velocity_.resize(n + 1);  // and the zero slot (prepare_rows)
+  boxes_.resize(shapes_.size()), dynamic_.resize(shapes_.size()), tags_.resize(shapes_.size());
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const ShapedBody& b = bodies_[i];
+    ShapeState& s = state_[i];
+    s.q0 = rot_of(s.a0);
+    if (b.type == BodyType::static_body) r.statics.push_back(i);
+    const bool rests =
+        r.split && (b.type == BodyType::static_body || (b.type == BodyType::dynamic && b.asleep));
+    if (!rests) {
+      r.live.push_back(i);
+      for (std::uint32_t k = b.first; k < b.first + b.count; ++k) r.live_shapes.push_back(k);
+      continue;
+    }
+    // What the tick's passes would make of it, which none changes while it rests.
+    s.q = s.q0, s.turn = rot_of(s.a - s.a0), turned_at_[i] = s.a;
+    margin_[i] = margin(i, dt);
+    velocity_[i] = {s.vx, s.vy, s.w};
+    body_colors_[i] = 0;
+    for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
+      box_shape(k);
+      (shapes_[k].sensor ? r.live_shapes : r.resting).push_back(k);
+    }
+  }
+  r.boxes.clear();
+  for (const std::uint32_t k : r.resting) r.boxes.push_back(boxes_[k]);
+  r.grid.index(r.boxes);
+}
+
+bool ShapeWorld::never_pair_live(const void* context, std::uint32_t a, std::uint32_t b) {
+  const auto& w = *static_cast<const ShapeWorld*>(context);
+  return never_pair(context, w.rest_.live_shapes[a], w.rest_.live_shapes[b]);
+}
+
+// The grid's pairs among the live shapes (the activity and veto of every shape's, in their
+// places), then each live shape's pairs with the resting shapes its box overlaps: a pair
+// needs a dynamic shape (a sleeper's is), as the grid's does. Both limits count the totals.
+bool ShapeWorld::pair_live(ShapeTally& tally, SecondThread* thread) {
+  ShapeRest& r = rest_;
+  const std::size_t n = shapes_.size();
+  const std::uint64_t most_pairs = max_candidate_pairs(n), most_vetoed = max_vetoed_pairs(n);
+  r.boxes.resize(r.live_shapes.size()), r.active.resize(r.live_shapes.size());
+  for (std::size_t i = 0; i < r.live_shapes.size(); ++i) {
+    r.boxes[i] = boxes_[r.live_shapes[i]], r.active[i] = dynamic_[r.live_shapes[i]];
+  }
+  const GridBroadphase::PairVeto veto{&ShapeWorld::never_pair_live, this, most_vetoed};
+  grid_.set_veto(&veto);
+  const bool found =
+      grid_.find_pairs(r.boxes, r.active, most_pairs, r.pairs, thread ? 2 : 1, thread);
+  grid_.set_veto(nullptr);
+  if (!found) {
+    name_cap(tally, grid_.stopped_by_veto());
+    return false;
+  }
+  for (DiscPair& p : r.pairs) p = {r.live_shapes[p.a], r.live_shapes[p.b]};
+  r.cross.clear();
+  std::uint64_t vetoed = grid_.rejected();
+  bool over = false;
+  auto meet = [&](std::uint32_t l, std::uint32_t g) {
+    const std::uint32_t k = r.resting[g];
+    if (over || (dynamic_[l] == 0 && dynamic_[k] == 0)) return;
+    const DiscPair p{std::min(l, k), std::max(l, k)};
+    if (never_pair(this, p.a, p.b)) {
+      over = ++vetoed > most_vetoed;
+      if (over) name_cap(tally, true);
+      return;
+    }
+    r.cross.push_back(p);
+    over = r.pairs.size() + r.cross.size() > most_pairs;
+    if (over) name_cap(tally, false);
+  };
+  for (const std::uint32_t l : r.live_shapes) {
+    r.grid.query(boxes_[l], [&](std::uint32_t g, const SweptBox&) { meet(l, g); });
+    for (const std::uint32_t g : r.grid.unindexed()) {
+      if (boxes_overlap(boxes_[l], boxes_[r.resting[g]])) meet(l, g);
+    }
+    if (over) return false;
+  }
+  // Both in (a, b) order, merged: O(pairs + c log c) for c live-resting pairs, where a sort
+  // by a over every shape would cost each tick O(shapes).
+  auto key_less = [](const DiscPair& p, const DiscPair& q) { return pair_key(p) < pair_key(q); };
+  std::sort(r.cross.begin(), r.cross.end(), key_less);
+  pairs_.resize(r.pairs.size() + r.cross.size());
+  std::merge(r.pairs.begin(), r.pairs.end(), r.cross.begin(), r.cross.end(), pairs_.begin(),
+             key_less);
+  return true;
+}
+
+}  // namespace fixstep::detail

@@ -1,0 +1,107 @@
+// The bodies a shape world's tick leaves alone (shape_rest.hpp): static bodies and sleepers.
+// A large world steps to the same bits, events and sleep as the same world made to visit every
+// body every tick, while its ticks visit only the bodies that move.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "fixstep/core/components.hpp"
+#include "fixstep/core/shape.hpp"
+#include "fixstep/core/step_results.hpp"
+#include "fixstep/core/world.hpp"
+#include "fixstep/core/world_def.hpp"
+#include "fixstep/core/world_settings.hpp"
+#include "shape_exact.hpp"
+
+namespace fixstep {
+namespace {
+
+constexpr int rest_tiles = 64;    // static, 1 m wide, their tops at y = 0
+constexpr int rest_columns = 40;  // of two boxes each, 1.5 m apart, on the tiles
+
+struct RestScene {
+  WorldDef def;
+  std::size_t shaped = 0;  // bodies with shapes
+};
+
+/// Static tiles under 40 columns of two boxes that settle and fall asleep; a static sensor
+/// over the first columns; a kinematic box that reaches the pile at about 2.5 s, pushing
+/// through the sleepers at 1 m/s; a box dropped from 8 m onto column 20, which lands at about
+/// 1.2 s. 147 shapes: the resting lists' world (ShapeWorld::min_grid_shapes).
+RestScene rest_scene() {
+  WorldSettings s = shape_exact::shape_settings(0.6);
+  s.contacts->sleep = true;
+  s.contacts->sleep_time = 0.25;
+  RestScene scene{WorldDef::empty(Precision::f64, s)};
+  for (int i = 0; i < rest_tiles; ++i) {
+    BodyDef t;
+    t.type = BodyType::static_body;
+    t.body.position = {i * 1.0, -0.5};
+    t.shapes.push_back(make_box(0.5, 0.5));
+    scene.def.add_body(t);
+  }
+  for (int c = 0; c < rest_columns; ++c) {
+    for (int r = 0; r < 2; ++r) {
+      scene.def.add_body(shape_exact::box_body(0.4, 0.25, {2.0 + 1.5 * c, 0.25 + 0.5 * r}));
+    }
+  }
+  BodyDef sensor;
+  sensor.type = BodyType::static_body;
+  sensor.body.position = {4.0, 0.5};
+  ShapeDef zone = make_box(3.0, 0.6);
+  zone.sensor = true;
+  sensor.shapes.push_back(zone);
+  scene.def.add_body(sensor);
+  BodyDef pusher = shape_exact::box_body(0.3, 0.3, {-1.0, 0.32});
+  pusher.type = BodyType::kinematic;
+  pusher.gravity.reset();
+  pusher.body.velocity = {1.0, 0.0};
+  scene.def.add_body(pusher);
+  scene.def.add_body(shape_exact::box_body(0.4, 0.25, {2.0 + 1.5 * 20, 8.0}));
+  scene.shaped = rest_tiles + 2 * rest_columns + 3;
+  return scene;
+}
+
+// The reference visits every body every tick: an edit between ticks (a static tile's velocity
+// set to zero, which changes nothing) makes the resting lists stale, and a stale tick gives
+// every body its state and makes them again. At 2.5 s, as the pusher drives the first column,
+// the tile under it rises 10 cm in both: a static body's edit, which the lean world's lists
+// must take in (the column's lower box rises with it).
+TEST(ShapeRest, ALargeWorldStepsAsOneThatVisitsEveryBodyWhileItsTicksVisitTheMovingOnes) {
+  const RestScene scene = rest_scene();
+  World lean(scene.def), full(scene.def);
+  const Entity tile = lean.defined_bodies()[0];
+  const Entity under = lean.defined_bodies()[2];
+  const Entity lower = lean.defined_bodies()[rest_tiles];  // the first column's
+  std::size_t least_visited = scene.shaped, woken = 0, most_asleep = 0;
+  for (int t = 1; t <= 360; ++t) {
+    if (t == 150) {
+      for (World* w : {&lean, &full}) w->set_position(under, {2.0, -0.4});
+    }
+    full.set_velocity(tile, {0.0, 0.0});
+    lean.step(), full.step();
+    ASSERT_EQ(lean.state_hash(), full.state_hash()) << "tick " << t;
+    const ContactStats& a = lean.contact_stats();
+    const ContactStats& b = full.contact_stats();
+    ASSERT_EQ(a.sleeping, b.sleeping) << "tick " << t;
+    ASSERT_EQ(a.shape_points, b.shape_points) << "tick " << t;
+    ASSERT_EQ(lean.sensor_overlaps().size(), full.sensor_overlaps().size()) << "tick " << t;
+    EXPECT_EQ(b.shape_visited, scene.shaped) << "tick " << t;
+    if (a.shape_visited != 0) least_visited = std::min(least_visited, a.shape_visited);
+    if (t == 100) {  // every box asleep: the zone still holds the first four columns' eight
+      EXPECT_EQ(lean.sensor_overlaps().size(), 8u) << "the sensor sees the sleepers in it";
+    }
+    if (t == 170) {
+      EXPECT_NEAR(lean.body(lower).position.y, 0.35, 0.01) << "on the raised tile";
+    }
+    woken += a.woken, most_asleep = std::max(most_asleep, a.sleeping);
+  }
+  // What the run went through: every box asleep (the dropped one too), woken by the dropped
+  // box and the pusher, and ticks that visited the pusher alone.
+  EXPECT_EQ(most_asleep, 2u * rest_columns + 1);
+  EXPECT_GT(woken, 0u);
+  EXPECT_EQ(least_visited, 1u) << "the pusher alone, while every box sleeps";
+}
+
+}  // namespace
+}  // namespace fixstep
