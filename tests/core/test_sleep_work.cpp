@@ -51,9 +51,12 @@ BodyDef disc_at(double x, double y, double vx, double vy) {
   return b;
 }
 
+/// The bodies the free step moves: awake, and not static.
 std::size_t awake_count(const World& w) {
   std::size_t n = 0;
-  for (const Entity e : w.bodies()) n += w.asleep(e) ? 0 : 1;
+  for (const Entity e : w.bodies()) {
+    n += w.asleep(e) || w.type(e) == BodyType::static_body ? 0 : 1;
+  }
   return n;
 }
 
@@ -103,7 +106,7 @@ TEST(SleepWork, HalfAsleepTheFreeStepAndThePlanePassVisitTheAwakeOnly) {
   WorldDef def = floor_row(8);
   def.bodies.push_back(disc_at(-5.0, disc_radius, -1.0, 0.0));  // slides on, never sleeps
   BodyDef wall = disc_at(-3.0, disc_radius, 0.0, 0.0);
-  wall.type = BodyType::static_body;  // stepped and put back, as ever
+  wall.type = BodyType::static_body;  // never stepped: it never moves
   wall.gravity.reset();
   def.bodies.push_back(wall);
   World w(def);
@@ -111,8 +114,8 @@ TEST(SleepWork, HalfAsleepTheFreeStepAndThePlanePassVisitTheAwakeOnly) {
   const std::vector<Vec2> at_sleep = positions_of(w);
   for (int t = 0; t < 60; ++t) {
     w.step();
-    EXPECT_EQ(w.contact_stats().free_stepped, awake_count(w)) << t;  // the slider and the wall
-    EXPECT_EQ(w.contact_stats().free_stepped, 2u) << t;
+    EXPECT_EQ(w.contact_stats().free_stepped, awake_count(w)) << t;  // the slider
+    EXPECT_EQ(w.contact_stats().free_stepped, 1u) << t;
     if (t > 0) {
       EXPECT_EQ(w.contact_stats().plane_tested, 1u) << t;  // the slider
     }
@@ -120,17 +123,58 @@ TEST(SleepWork, HalfAsleepTheFreeStepAndThePlanePassVisitTheAwakeOnly) {
   const std::vector<Vec2> now = positions_of(w);
   for (std::size_t k = 0; k < 8; ++k) EXPECT_EQ(now[k], at_sleep[k]) << k;
   EXPECT_NE(now[8], at_sleep[8]);  // the slider moved on
+  EXPECT_EQ(now[9], at_sleep[9]);  // the wall did not
   // Input wakes one disc's island: from its tick on, the free step steps it as well.
   const Entity struck = w.bodies()[3];
   TickInput in;
   in.bodies.push_back(BodyInput{.body = struck, .kind = BodyInputKind::impulse, .value = {0, 1}});
   w.step(in);
-  EXPECT_EQ(awake_count(w), 3u);
-  EXPECT_EQ(w.contact_stats().free_stepped, 3u);
+  EXPECT_EQ(awake_count(w), 2u);
+  EXPECT_EQ(w.contact_stats().free_stepped, 2u);
   EXPECT_GT(w.body(struck).position.y, at_sleep[3].y);
   w.step();
-  EXPECT_EQ(w.contact_stats().free_stepped, 3u);
+  EXPECT_EQ(w.contact_stats().free_stepped, 2u);
   EXPECT_EQ(w.contact_stats().plane_tested, 2u);
+}
+
+// A static body never moves, with sleeping or without: the free step leaves it alone (it was
+// stepped and put back), so it costs the step nothing. One defined with a velocity and gravity
+// rests all the same, its velocity zero from the start.
+TEST(SleepWork, StaticBodiesAreNeverStepped) {
+  for (const bool sleep : {false, true}) {
+    SCOPED_TRACE(sleep ? "sleeping on" : "sleeping off");
+    WorldDef def = floor_row(3);
+    def.settings.contacts->sleep = sleep;
+    for (const double x : {-0.5, 0.8}) {
+      BodyDef post = disc_at(x, 0.3, 1.0, 2.0);  // a velocity and gravity, which it ignores
+      post.type = BodyType::static_body;
+      def.bodies.push_back(post);
+    }
+    def.bodies.push_back(disc_at(-0.5, 1.0, 0.0, 0.0));  // falls onto the first post
+    World w(def);
+    const std::vector<Vec2> start = positions_of(w);
+    for (const Entity e : w.bodies()) {
+      if (w.type(e) == BodyType::static_body) {
+        EXPECT_EQ(w.body(e).velocity, (Vec2{0.0, 0.0}));
+      }
+    }
+    for (int t = 0; t < 120; ++t) {
+      w.step();
+      // Every disc but the posts (asleep, fewer: a tick's sleepers fall asleep after its step).
+      if (sleep) {
+        ASSERT_LE(w.contact_stats().free_stepped, 4u) << t;
+      } else {
+        ASSERT_EQ(w.contact_stats().free_stepped, 4u) << t;
+      }
+    }
+    const std::vector<Vec2> now = positions_of(w);
+    for (std::size_t k = 3; k < 5; ++k) {
+      EXPECT_EQ(now[k], start[k]) << k;
+      EXPECT_EQ(w.body(w.bodies()[k]).velocity, (Vec2{0.0, 0.0})) << k;
+    }
+    EXPECT_LT(now[5].y, 0.3 + 3 * disc_radius) << "the falling disc rests on the post";
+    EXPECT_GT(now[5].y, 0.3 + disc_radius) << "the falling disc rests on the post";
+  }
 }
 
 TEST(SleepWork, ASleepersPreviousPositionIsWhereItSleeps) {

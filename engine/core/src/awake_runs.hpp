@@ -1,11 +1,14 @@
-// The awake bodies of a world with sleeping islands (ContactSettings::sleep) as runs of
-// consecutive dense indices, so that the per-body passes of a tick (the free step, the plane
-// pass, the previous positions) visit the awake bodies only and a world asleep costs a tick
-// nothing per body. Internal to the engine: not installed.
+// The bodies that move in a world with sleeping islands (ContactSettings::sleep) or static
+// bodies, as runs of consecutive dense indices, so that the per-body passes of a tick (the free
+// step, the plane pass, the previous positions) visit the awake bodies only, not the sleepers
+// nor the static ones: a world asleep costs a tick nothing per body, and a level's static
+// bodies none. Internal to the engine: not installed.
 //
 // A sleeper's position and velocity do not change while it sleeps (its velocity is 0, the
 // disc phases see it as a static disc, and every edit or input that would move it wakes it
 // first), so skipping it leaves its state exactly as putting it back after the free step did.
+// A static body never moves and its velocity is 0 (WorldKernel::create_body, set_body and
+// set_velocity keep it so): the same holds for it.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -56,9 +59,9 @@ inline std::size_t count_in_runs(std::span<const IndexRun> runs) {
 /// falls asleep or wakes, or the bodies change.
 struct AwakeRuns {
   std::vector<IndexRun> bodies, colliders;
-  /// The passes skip the sleepers: sleeping is on and the world has no links (the fused sweep,
-  /// or the energy account's pass over the bodies; the passes of links step every body, and
-  /// put the sleepers back).
+  /// The passes skip the sleepers and the static bodies: sleeping is on or a body is static,
+  /// and the world has no links (the fused sweep, or the energy account's pass over the
+  /// bodies; the passes of links step every body, and put those back).
   bool on = false;
   /// Every sleeper's previous position and plane motion are those of a body at rest where it
   /// sleeps: a tick has passed over every body since the runs were built. A copy (a snapshot)

@@ -97,22 +97,26 @@ void detail::WorldKernel<Real>::rebuild_discs() {
   discs_->set_accelerations(coeff_.accel_x, coeff_.accel_y);
 }
 
-// Static and kinematic bodies, and with ContactSettings::sleep the sleepers, unless the free
-// step skips them (the awake runs: without links, with or without the energy account).
+// Kinematic bodies, and static ones and with ContactSettings::sleep the sleepers unless the
+// free step skips them (the awake runs: without links, with or without the energy account,
+// in a world with sleeping or with a static body).
 template <class Real>
 void detail::WorldKernel<Real>::rebuild_immovable() {
   Immovable& m = immovable_;
   m.body.clear();
-  const bool skip = sleep_ && net_.a.empty();
+  const bool statics =
+      std::find(types_.begin(), types_.end(), BodyType::static_body) != types_.end();
+  const bool skip = (sleep_ || statics) && net_.a.empty();
   for (std::size_t j = 0; j < body_count(); ++j) {
     const bool sleeps = sleep_ && asleep_[j] != 0;
-    if (types_[j] != BodyType::dynamic || (sleeps && !skip)) {
+    const bool rests = types_[j] == BodyType::static_body || sleeps;
+    if (types_[j] == BodyType::kinematic || (rests && !skip)) {
       m.body.push_back(static_cast<std::uint32_t>(j));
     }
   }
   for (auto* v : {&m.x0, &m.y0, &m.vx0, &m.vy0}) v->resize(m.body.size());
   immovable_dirty_ = false;
-  if (sleep_) rebuild_awake_runs(skip);
+  rebuild_awake_runs(skip);
 }
 
 template <class Real>
@@ -120,10 +124,12 @@ void detail::WorldKernel<Real>::rebuild_awake_runs(bool on) {
   AwakeRuns& a = awake_;
   a.on = on, a.primed = false;
   if (!on) return;
-  auto awake = [&](std::uint32_t j) { return asleep_[j] == 0; };
+  auto asleep = [&](std::uint32_t j) { return sleep_ && asleep_[j] != 0; };
+  // A static body never moves: the free step leaves it where it is, as putting it back did.
+  auto awake = [&](std::uint32_t j) { return !asleep(j) && types_[j] != BodyType::static_body; };
   collect_runs(body_count(), awake, a.bodies);
   const auto& body = contact_.body;  // dynamic colliders, in dense order
-  auto awake_collider = [&](std::uint32_t k) { return asleep_[body[k]] == 0; };
+  auto awake_collider = [&](std::uint32_t k) { return !asleep(body[k]); };
   collect_runs(body.size(), awake_collider, a.colliders);
 }
 

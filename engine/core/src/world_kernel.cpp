@@ -175,8 +175,10 @@ Entity detail::WorldKernel<Real>::create_body(const BodyDef& def) {
   types_.push_back(def.type);
   x_.push_back(static_cast<Real>(def.body.position.x));
   y_.push_back(static_cast<Real>(def.body.position.y));
-  vx_.push_back(static_cast<Real>(def.body.velocity.x));
-  vy_.push_back(static_cast<Real>(def.body.velocity.y));
+  // A static body rests (the free step leaves it alone): its velocity is zero from the start.
+  const bool rests = def.type == BodyType::static_body;
+  vx_.push_back(rests ? Real(0) : static_cast<Real>(def.body.velocity.x));
+  vy_.push_back(rests ? Real(0) : static_cast<Real>(def.body.velocity.y));
   prev_x_.push_back(x_.back());
   prev_y_.push_back(y_.back());
   names_.push_back(def.name);
@@ -313,8 +315,9 @@ void detail::WorldKernel<Real>::set_body(Entity e, const Body& b) {
   mass_[i] = b.mass;
   x_[i] = prev_x_[i] = static_cast<Real>(b.position.x);
   y_[i] = prev_y_[i] = static_cast<Real>(b.position.y);
-  vx_[i] = static_cast<Real>(b.velocity.x);
-  vy_[i] = static_cast<Real>(b.velocity.y);
+  const bool rests = types_[i] == BodyType::static_body;  // its velocity zero (create_body)
+  vx_[i] = rests ? Real(0) : static_cast<Real>(b.velocity.x);
+  vy_[i] = rests ? Real(0) : static_cast<Real>(b.velocity.y);
   if (rolling_) {
     angle_[i] = static_cast<Real>(std::remainder(b.angle, 2.0 * std::numbers::pi));
     spin_[i] = static_cast<Real>(b.angular_velocity);
@@ -354,8 +357,9 @@ void detail::WorldKernel<Real>::set_velocity(Entity e, Vec2 velocity) {
         fmt::format("{}: velocity: a static body never moves (got ({}, {}) m/s); make it kinematic",
                     describe(e), velocity.x, velocity.y));
   }
-  vx_[i] = static_cast<Real>(velocity.x);
-  vy_[i] = static_cast<Real>(velocity.y);
+  const bool rests = types_[i] == BodyType::static_body;  // (-0.0 kept as 0: create_body)
+  vx_[i] = rests ? Real(0) : static_cast<Real>(velocity.x);
+  vy_[i] = rests ? Real(0) : static_cast<Real>(velocity.y);
   if (sleep_) wake(i);
   unsettle_shapes();
   if (segments_.moves()) place_segments();

@@ -697,9 +697,10 @@ class WorldKernel {
   /// Puts every segment a kinematic body carries where its body is, at its velocity.
   void place_segments();
 
-  // Static and kinematic bodies (dense indices) and their start-of-tick states: after the
-  // integrator, a static body is put back and a kinematic one moved on at its velocity, so
-  // nothing (forces, links, push) moves them otherwise. Empty in a world of dynamic bodies.
+  // Kinematic bodies, and static ones unless the free step skips them (AwakeRuns::on), by
+  // dense index, and their start-of-tick states: after the integrator, a static body is put
+  // back and a kinematic one moved on at its velocity, so nothing (forces, links, push) moves
+  // them otherwise. Empty in a world of dynamic bodies.
   struct Immovable {
     std::vector<std::uint32_t> body;
     std::vector<Real> x0, y0, vx0, vy0;
@@ -846,10 +847,11 @@ class WorldKernel {
   static std::uint32_t sleep_ticks(const ContactSettings& c, double dt);
   /// Resizes the sleep state after a structural change: every island awake.
   void reset_sleep();
-  /// The immovable list: static and kinematic bodies, and sleepers unless the free step skips
-  /// them (AwakeRuns::on); with sleeping on, the awake runs too.
+  /// The immovable list: kinematic bodies, and static ones and sleepers unless the free step
+  /// skips them (AwakeRuns::on), and the awake runs.
   void rebuild_immovable();
-  /// awake_ from asleep_ (on: the passes skip the sleepers; off: the runs stay empty).
+  /// awake_ from asleep_ and the types (on: the passes skip the sleepers and the static bodies;
+  /// off: the runs stay empty).
   void rebuild_awake_runs(bool on);
   /// Wakes the islands of bodies with input this tick (before the free step).
   void wake_for_input(const TickInput& input);

@@ -70,9 +70,9 @@ struct ContactStats {
   /// the broadphase pairs any of its discs with an awake one, so this is 0 unless an impact sent
   /// an awake disc beyond the box it was paired by and on into a sleeper within the tick.
   std::size_t sleeper_contacts = 0;
-  /// Bodies the last tick's free step (the integrator) stepped: every body, except that with
-  /// sleeping islands and neither links nor the energy account (WorldSettings::
-  /// track_dissipation) the sleepers are skipped, so a world asleep steps none.
+  /// Bodies the last tick's free step (the integrator) stepped: every body, except that in a
+  /// world without links the static bodies are skipped (they never move), and with sleeping
+  /// islands the sleepers too, so a world asleep steps none.
   std::size_t free_stepped = 0;
   /// Bodies the last tick's pass over the planes and segments looked at: every dynamic
   /// collider (0 in a world without planes or segments), the sleepers skipped as above.
