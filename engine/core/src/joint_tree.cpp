@@ -49,6 +49,10 @@ std::uint32_t JointTree::find(std::uint32_t k) {
 
 void JointTree::build(std::span<JointRecord> joints, std::span<const ShapedBody> bodies) {
   members_.clear(), ends_.clear(), bodies_.clear();
+  if (joints.empty()) {  // no forest, and no pass over the bodies (a world without joints)
+    all_members_.clear(), arms_.clear(), rhs_.clear(), angle_rows_.clear(), angle_rhs_.clear();
+    return;
+  }
   const auto ground = static_cast<std::uint32_t>(bodies.size());
   root_.resize(bodies.size() + 1);
   std::iota(root_.begin(), root_.end(), 0U);
