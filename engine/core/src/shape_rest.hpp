@@ -47,8 +47,9 @@ struct ShapeRest {
   std::vector<std::uint32_t> statics;      ///< the static bodies, ascending
   std::vector<std::uint32_t> resting;      ///< the resting grid's shapes, by its index
   GridBroadphase grid;                     ///< the resting shapes' boxes (index() only)
-  // The broadphase's scratch: the live shapes' boxes and activity by their place in
-  // live_shapes, their pairs in those places, and the live-resting pairs.
+  // Scratch: the live shapes' boxes and activity by their place in live_shapes (the
+  // broadphase's; rebuild_rest first lends `boxes` the resting shapes' boxes for the grid,
+  // which copies them), their pairs in those places, and the live-resting pairs.
   std::vector<SweptBox> boxes;
   std::vector<std::uint8_t> active;
   std::vector<DiscPair> pairs, cross;
