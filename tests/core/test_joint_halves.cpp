@@ -34,19 +34,36 @@ TEST(JointHalves, JointsThatShareABodyOfAnyTypeGoTogetherAndTheHalvesHoldHalfThe
                                      joint(6, 7), joint(9, 4), joint(2, 0), joint(8, 7)};
   joints[5].broken = true;
   JointHalves h;
-  ASSERT_TRUE(h.split(joints, 10));
+  JointBodies numbered;
+  auto split = [&](const std::vector<JointRecord>& js, std::vector<std::uint32_t> listed) {
+    numbered.build(js, listed, 10);
+    return h.split(js, listed, numbered);
+  };
+  ASSERT_TRUE(split(joints, {0, 1, 2, 3, 4, 5, 6, 7}));
   // 7 joints: the first half takes groups while it holds under 3.5 of them, {0, 1, 2} (3), then
   // {3, 4} (1 more: 4); {5} and {6, 7, 8} go to the second.
   EXPECT_EQ(std::vector<std::uint32_t>(h.joints(0).begin(), h.joints(0).end()),
             (std::vector<std::uint32_t>{0, 1, 2, 6}));
   EXPECT_EQ(std::vector<std::uint32_t>(h.joints(1).begin(), h.joints(1).end()),
             (std::vector<std::uint32_t>{3, 4, 7}));
-  const std::vector<std::uint8_t> half(h.half_of_body().begin(), h.half_of_body().end());
-  EXPECT_EQ(half, (std::vector<std::uint8_t>{0, 0, 0, 0, 0, 1, 1, 1, 1, 0}));
+  // By the bodies' numbers, in the order the joints name them (body 9 only in the broken one):
+  // bodies 0 to 8 here.
+  std::vector<std::uint8_t> half;
+  for (std::uint32_t body = 0; body < 9; ++body)
+    half.push_back(h.half_of_body()[numbered.local(body)]);
+  EXPECT_EQ(half, (std::vector<std::uint8_t>{0, 0, 0, 0, 0, 1, 1, 1, 1}));
+  EXPECT_EQ(numbered.size(), 9u);
+  // Of a list, those alone: without joints 0 and 1, the groups come as {3, 4}, {5}, {6, 7, 8}
+  // (4 of the 5 joints, the first half taking each while under 2.5) and {2, 0}.
+  ASSERT_TRUE(split(joints, {2, 3, 4, 6, 7}));
+  EXPECT_EQ(std::vector<std::uint32_t>(h.joints(0).begin(), h.joints(0).end()),
+            (std::vector<std::uint32_t>{2, 3, 4, 7}));
+  EXPECT_EQ(std::vector<std::uint32_t>(h.joints(1).begin(), h.joints(1).end()),
+            (std::vector<std::uint32_t>{6}));
   // Joined by one body, they are one group: no halves.
   const std::vector<JointRecord> star = {joint(0, 1), joint(2, 1), joint(3, 1), joint(1, no_body)};
-  EXPECT_FALSE(h.split(star, 4));
-  EXPECT_FALSE(h.split({}, 4));
+  EXPECT_FALSE(split(star, {0, 1, 2, 3}));
+  EXPECT_FALSE(split({}, {}));
 }
 
 /// 128 trees of three boxes hinged in a row (limits, a motor on one hinge), dropped in a heap;

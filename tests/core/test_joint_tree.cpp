@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <optional>
 #include <random>
 #include <vector>
@@ -19,6 +20,7 @@
 namespace fixstep {
 namespace {
 
+using detail::JointBodies;
 using detail::JointRecord;
 using detail::JointTree;
 using detail::ShapedBody;
@@ -65,11 +67,21 @@ std::vector<JointRecord> joints() {
   return j;
 }
 
+/// The forest of every joint of `j` (the list 0, 1, 2, ...; the numbers in `numbered`).
+void build_all(JointTree& tree, std::vector<JointRecord>& j, std::span<const ShapedBody> b,
+               JointBodies& numbered) {
+  std::vector<std::uint32_t> all(j.size());
+  std::iota(all.begin(), all.end(), 0U);
+  numbered.build(j, all, b.size());
+  tree.build(j, all, b, numbered);
+}
+
 TEST(JointTree, TakesTheRevoluteJointsOfAForestAndLeavesTheLoopsToTheirOwnRows) {
   std::vector<ShapedBody> b = bodies();
   std::vector<JointRecord> j = joints();
   JointTree tree;
-  tree.build(j, b);
+  JointBodies numbered;
+  build_all(tree, j, b, numbered);
   std::vector<std::uint32_t> expected;
   for (std::uint32_t k = 0; k < j.size(); ++k) {
     const bool loop = k == 10 || k == 11, still = k == 12, other = k == 16 || k >= 18;
@@ -77,6 +89,14 @@ TEST(JointTree, TakesTheRevoluteJointsOfAForestAndLeavesTheLoopsToTheirOwnRows) 
     if (j[k].direct) expected.push_back(k);
   }
   EXPECT_EQ(std::vector<std::uint32_t>(tree.members().begin(), tree.members().end()), expected);
+  // Of a list of joints, the forest of those alone: joint 11 closed a loop with 10, which is
+  // not listed; those not listed keep their flag. The numbers are made again for the list.
+  const std::vector<std::uint32_t> listed = {2, 3, 11, 13};
+  for (JointRecord& r : j) r.direct = true;
+  numbered.build(j, listed, b.size());
+  tree.build(j, listed, b, numbered);
+  EXPECT_EQ(std::vector<std::uint32_t>(tree.members().begin(), tree.members().end()), listed);
+  EXPECT_TRUE(j[10].direct && j[12].direct) << "not listed: left as they were";
 }
 
 /// The largest component of K λ − rhs over the forest of joints(), K assembled independently:
@@ -89,7 +109,8 @@ double worst_residual(bool angles) {
   std::vector<ShapedBody> b = bodies();
   std::vector<JointRecord> j = joints();
   JointTree tree;
-  tree.build(j, b);
+  JointBodies numbered;
+  build_all(tree, j, b, numbered);
   std::mt19937_64 random(11);
   std::uniform_real_distribution<double> arm(-0.7, 0.7), value(-3.0, 3.0);
   const auto members = tree.members();

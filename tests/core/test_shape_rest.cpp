@@ -1,11 +1,14 @@
-// The bodies a shape world's tick leaves alone (shape_rest.hpp): static bodies and sleepers.
-// A large world steps to the same bits, events and sleep as the same world made to visit every
-// body every tick, while its ticks visit only the bodies that move.
+// The bodies a shape world's tick leaves alone (shape_rest.hpp): static bodies and sleepers,
+// and the joints whose ends they all are. A large world steps to the same bits, events and
+// sleep as the same world made to visit every body every tick, while its ticks visit only the
+// bodies and joints that move.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/joint.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/step_results.hpp"
 #include "fixstep/core/world.hpp"
@@ -101,6 +104,90 @@ TEST(ShapeRest, ALargeWorldStepsAsOneThatVisitsEveryBodyWhileItsTicksVisitTheMov
   EXPECT_EQ(most_asleep, 2u * rest_columns + 1);
   EXPECT_GT(woken, 0u);
   EXPECT_EQ(least_visited, 1u) << "the pusher alone, while every box sleeps";
+}
+
+constexpr int hinged_pairs = 34;  // of two boxes each, hinged where they meet, on the tiles
+
+/// Static tiles under 34 pairs of boxes lying end to end, each pair hinged where its boxes
+/// meet (revolute, within ±0.5 rad), that settle and fall asleep; a pendulum hinged to the
+/// world at (-5, 5), released horizontal, that swings on awake; a box dropped from 8 m onto
+/// pair 20, which lands at about 1.2 s. 134 shapes: the resting lists' world.
+WorldDef hinged_scene() {
+  WorldSettings s = shape_exact::shape_settings(0.6);
+  s.contacts->sleep = true;
+  s.contacts->sleep_time = 0.25;
+  WorldDef def = WorldDef::empty(Precision::f64, s);
+  for (int i = 0; i < rest_tiles; ++i) {
+    BodyDef t;
+    t.type = BodyType::static_body;
+    t.body.position = {i * 1.0, -0.5};
+    t.shapes.push_back(make_box(0.5, 0.5));
+    def.add_body(t);
+  }
+  for (int p = 0; p < hinged_pairs; ++p) {
+    const double x = 2.0 + 1.8 * p;
+    const Entity a = def.add_body(shape_exact::box_body(0.4, 0.1, {x, 0.1}));
+    const Entity b = def.add_body(shape_exact::box_body(0.4, 0.1, {x + 0.8, 0.1}));
+    def.joints.push_back(
+        JointDef{.body_a = a, .body_b = b, .anchor = {x + 0.4, 0.1}, .lower = -0.5, .upper = 0.5});
+  }
+  BodyDef bob = shape_exact::box_body(0.5, 0.1, {-4.5, 5.0});
+  const Entity pendulum = def.add_body(bob);
+  def.joints.push_back(JointDef{.body_b = pendulum, .anchor = {-5.0, 5.0}});
+  def.add_body(shape_exact::box_body(0.4, 0.25, {2.0 + 1.8 * 20 + 0.4, 8.0}));
+  return def;
+}
+
+// The reference visits every body every tick, as above. At 3 s both worlds hinge the
+// pendulum's far end to the world too (a joint created between two ticks: a structural change,
+// which wakes every island), which stops it; at 4 s they destroy its first hinge, the second
+// taking its place in the world's list, and it swings again from the far end. Each hinge holds
+// while it is there, and every pair's, asleep or woken, within its limits.
+TEST(ShapeRest, JointsWhoseEndsRestAreLeftAloneWhileTheMovingOnesAreSolvedAsInAWorldVisitedWhole) {
+  const WorldDef def = hinged_scene();
+  World lean(def), full(def);
+  const Entity tile = lean.defined_bodies()[0];
+  const Entity pendulum = lean.defined_bodies()[rest_tiles + 2 * hinged_pairs];
+  std::size_t least_joints = hinged_pairs + 1, most_asleep = 0, woken = 0;
+  double hinge_error = 0.0, pair_error = 0.0, past_limit = 0.0, still = 1.0;
+  for (int t = 1; t <= 300; ++t) {
+    if (t == 180) {
+      for (World* w : {&lean, &full}) {
+        const Vec2 far = w->body(pendulum).position * 2.0 - Vec2{-5.0, 5.0};
+        w->create_joint(JointDef{.body_b = pendulum, .anchor = far});
+      }
+    }
+    if (t == 240) {
+      for (World* w : {&lean, &full}) w->destroy_joint(w->defined_joints()[hinged_pairs]);
+    }
+    full.set_velocity(tile, {0.0, 0.0});
+    lean.step(), full.step();
+    ASSERT_EQ(lean.state_hash(), full.state_hash()) << "tick " << t;
+    const ContactStats& a = lean.contact_stats();
+    ASSERT_EQ(a.sleeping, full.contact_stats().sleeping) << "tick " << t;
+    ASSERT_EQ(a.joint_visited, full.contact_stats().joint_visited) << "tick " << t;
+    if (a.joint_visited != 0) least_joints = std::min(least_joints, a.joint_visited);
+    for (const Joint j : lean.joints()) {
+      const JointState s = lean.joint_state(j);
+      const double error = std::hypot(s.anchor_a.x - s.anchor_b.x, s.anchor_a.y - s.anchor_b.y);
+      const bool hinge = lean.joint(j).body_a.is_null();
+      (hinge ? hinge_error : pair_error) = std::max(hinge ? hinge_error : pair_error, error);
+      if (!hinge) past_limit = std::max(past_limit, std::abs(s.value) - 0.5);
+    }
+    if (t == 239)
+      still = std::hypot(lean.body(pendulum).velocity.x, lean.body(pendulum).velocity.y);
+    woken += a.woken, most_asleep = std::max(most_asleep, a.sleeping);
+  }
+  // What the run went through: every pair asleep (and the dropped box), woken by the box;
+  // ticks that solved the pendulum's hinge alone; the pendulum asleep once it hung still from
+  // both ends, woken as its first hinge went.
+  EXPECT_EQ(most_asleep, 2u * hinged_pairs + 2);
+  EXPECT_GT(woken, 0u);
+  EXPECT_EQ(least_joints, 1u) << "the pendulum's hinge alone, while every pair sleeps";
+  EXPECT_LT(hinge_error, 1e-6) << "m: a hinge to the world";
+  EXPECT_LT(pair_error, 1e-3) << "m: a pair's hinge";
+  EXPECT_LT(past_limit, 0.02) << "rad";
+  EXPECT_LT(still, 1e-3) << "m/s: the pendulum hinged at both ends";
 }
 
 }  // namespace

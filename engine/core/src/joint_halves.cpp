@@ -9,27 +9,32 @@
 
 namespace fixstep::detail {
 
-bool JointHalves::split(std::span<const JointRecord> joints, std::size_t bodies) {
+bool JointHalves::split(std::span<const JointRecord> joints, std::span<const std::uint32_t> listed,
+                        const JointBodies& numbered) {
   constexpr std::uint32_t none = JointRecord::none;
+  const std::size_t bodies = numbered.size();
+  auto at = [&](std::uint32_t body) { return numbered.local(body); };
   root_.resize(bodies);
   std::iota(root_.begin(), root_.end(), 0U);
   std::uint32_t total = 0;
-  for (const JointRecord& j : joints) {
+  for (const std::uint32_t i : listed) {
+    const JointRecord& j = joints[i];
     if (j.broken) continue;
     ++total;
-    if (j.a != none && j.b != none) join(root_, j.a, j.b);
+    if (j.a != none && j.b != none) join(root_, at(j.a), at(j.b));
   }
   count_.assign(bodies, 0);
   half_of_.assign(bodies, unset);
   // A joint to the world alone at both ends holds no body: a group of its own, kept in the
   // first half (it moves nothing).
-  auto group = [&](const JointRecord& j) { return find_root(root_, j.a != none ? j.a : j.b); };
-  for (const JointRecord& j : joints) {
+  auto group = [&](const JointRecord& j) { return find_root(root_, at(j.a != none ? j.a : j.b)); };
+  for (const std::uint32_t i : listed) {
+    const JointRecord& j = joints[i];
     if (!j.broken && (j.a != none || j.b != none)) ++count_[group(j)];
   }
   joints_[0].clear(), joints_[1].clear();
   std::uint32_t first = 0;  // the joints of the groups given to the first half so far
-  for (std::size_t i = 0; i < joints.size(); ++i) {
+  for (const std::uint32_t i : listed) {
     const JointRecord& j = joints[i];
     if (j.broken) continue;
     std::uint32_t half = 0;
@@ -41,7 +46,7 @@ bool JointHalves::split(std::span<const JointRecord> joints, std::size_t bodies)
       }
       half = h;
     }
-    joints_[half].push_back(static_cast<std::uint32_t>(i));
+    joints_[half].push_back(i);
   }
   half_of_body_.assign(bodies, 0);
   for (std::uint32_t k = 0; k < bodies; ++k) {

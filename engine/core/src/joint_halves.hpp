@@ -16,26 +16,29 @@
 #include <span>
 #include <vector>
 
+#include "joint_bodies.hpp"
 #include "joint_record.hpp"
 
 namespace fixstep::detail {
 
 class JointHalves {
  public:
-  /// Groups `joints` (those not broken) over `bodies` bodies as above. Returns whether both
-  /// halves have joints (false: one group, or none; the halves then unset). Allocates only
-  /// while the world grows.
-  bool split(std::span<const JointRecord> joints, std::size_t bodies);
+  /// Groups the `listed` joints (indices into `joints`, ascending; those not broken) as above,
+  /// over the bodies `numbered` numbers (built from the same list): O(listed joints). Returns
+  /// whether both halves have joints (false: one group, or none; the halves then unset).
+  /// Allocates only while the world grows.
+  bool split(std::span<const JointRecord> joints, std::span<const std::uint32_t> listed,
+             const JointBodies& numbered);
   /// Half h's joints (indices into split's span, not broken), in joint order.
   [[nodiscard]] std::span<const std::uint32_t> joints(int h) const { return joints_[h]; }
-  /// Each body's half (0 or 1; 0 for a body no joint holds), by body index.
+  /// Each numbered body's half (0 or 1), by its number in split's `numbered`.
   [[nodiscard]] std::span<const std::uint8_t> half_of_body() const { return half_of_body_; }
   /// Heap bytes a copy holds (World::snapshot_bytes).
   [[nodiscard]] std::size_t bytes() const;
 
  private:
   static constexpr std::uint32_t unset = ~std::uint32_t{0};
-  std::vector<std::uint32_t> root_;     ///< union-find over bodies (island_union.hpp)
+  std::vector<std::uint32_t> root_;     ///< union-find over the numbered bodies (island_union.hpp)
   std::vector<std::uint32_t> count_;    ///< per group root: its joints
   std::vector<std::uint32_t> half_of_;  ///< per group root: its half, or unset
   std::vector<std::uint8_t> half_of_body_;

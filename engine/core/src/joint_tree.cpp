@@ -47,16 +47,17 @@ std::uint32_t JointTree::find(std::uint32_t k) {
   return k;
 }
 
-void JointTree::build(std::span<JointRecord> joints, std::span<const ShapedBody> bodies) {
+void JointTree::build(std::span<JointRecord> joints, std::span<const std::uint32_t> listed,
+                      std::span<const ShapedBody> bodies, const JointBodies& numbered) {
   members_.clear(), ends_.clear(), bodies_.clear();
-  if (joints.empty()) {  // no forest, and no pass over the bodies (a world without joints)
+  if (listed.empty()) {  // no forest, and no pass over the bodies
     all_members_.clear(), arms_.clear(), rhs_.clear(), angle_rows_.clear(), angle_rhs_.clear();
     return;
   }
-  const auto ground = static_cast<std::uint32_t>(bodies.size());
-  root_.resize(bodies.size() + 1);
+  const auto ground = static_cast<std::uint32_t>(numbered.size());
+  root_.resize(numbered.size() + 1);
   std::iota(root_.begin(), root_.end(), 0U);
-  for (std::size_t i = 0; i < joints.size(); ++i) {
+  for (const std::uint32_t i : listed) {
     JointRecord& j = joints[i];
     j.direct = false;
     if (j.def.type != JointType::revolute || j.broken) continue;
@@ -64,11 +65,12 @@ void JointTree::build(std::span<JointRecord> joints, std::span<const ShapedBody>
     const std::uint32_t a = moves(j.a, bodies) ? j.a : none;
     const std::uint32_t b = moves(j.b, bodies) ? j.b : none;
     if (a == none && b == none) continue;
-    const std::uint32_t ra = find(a == none ? ground : a), rb = find(b == none ? ground : b);
+    const std::uint32_t ra = find(a == none ? ground : numbered.local(a));
+    const std::uint32_t rb = find(b == none ? ground : numbered.local(b));
     if (ra == rb) continue;  // it would close a loop
     root_[ra] = rb;
     j.direct = true;
-    members_.push_back(static_cast<std::uint32_t>(i));
+    members_.push_back(i);
     ends_.push_back({a, b});
   }
   all_members_.resize(members_.size());
@@ -77,15 +79,15 @@ void JointTree::build(std::span<JointRecord> joints, std::span<const ShapedBody>
   rhs_.resize(members_.size());
   angle_rows_.assign(members_.size(), 0);
   angle_rhs_.resize(members_.size());
-  if (!members_.empty()) order(bodies);
+  if (!members_.empty()) order(bodies, numbered);
 }
 
 void JointTree::add_node(std::uint32_t parent, std::uint32_t member, std::uint32_t body,
-                         std::span<const ShapedBody> bodies) {
+                         std::span<const ShapedBody> bodies, const JointBodies& numbered) {
   const auto k = static_cast<std::uint32_t>(nodes_.size());
   nodes_.push_back({parent, member, body});
   if (body != none) {
-    node_of_body_[body] = k;
+    node_of_body_[numbered.local(body)] = k;
     bodies_.push_back(body);
     inverse_mass_.push_back(
         {bodies[body].inv_mass, bodies[body].inv_mass, bodies[body].inv_inertia});
@@ -97,30 +99,33 @@ void JointTree::add_node(std::uint32_t parent, std::uint32_t member, std::uint32
 }
 
 // Depth first from the node on the stack: a joint's other body, a body's other joints.
-void JointTree::visit(std::span<const ShapedBody> bodies) {
+void JointTree::visit(std::span<const ShapedBody> bodies, const JointBodies& numbered) {
   while (!stack_.empty()) {
     const std::uint32_t n = stack_.back();
     stack_.pop_back();
     const Node node = nodes_[n];
     if (node.member != none) {
       for (const std::uint32_t body : ends_[node.member]) {
-        if (body != none && node_of_body_[body] == none) add_node(n, none, body, bodies);
+        if (body != none && node_of_body_[numbered.local(body)] == none) {
+          add_node(n, none, body, bodies, numbered);
+        }
       }
       continue;
     }
-    for (std::uint32_t e = first_[node.body]; e < first_[node.body + 1]; ++e) {
-      if (node_of_member_[joined_[e]] == none) add_node(n, joined_[e], none, bodies);
+    const std::uint32_t at = numbered.local(node.body);
+    for (std::uint32_t e = first_[at]; e < first_[at + 1]; ++e) {
+      if (node_of_member_[joined_[e]] == none) add_node(n, joined_[e], none, bodies, numbered);
     }
   }
 }
 
 // Each tree from its joint to the ground where it has one (a joint must not be a leaf: its
 // pivot would be zero), else from its first joint's first moving body.
-void JointTree::order(std::span<const ShapedBody> bodies) {
-  first_.assign(bodies.size() + 1, 0);
+void JointTree::order(std::span<const ShapedBody> bodies, const JointBodies& numbered) {
+  first_.assign(numbered.size() + 1, 0);
   for (const auto& e : ends_) {
     for (const std::uint32_t body : e) {
-      if (body != none) ++first_[body + 1];
+      if (body != none) ++first_[numbered.local(body) + 1];
     }
   }
   std::partial_sum(first_.begin(), first_.end(), first_.begin());
@@ -128,22 +133,22 @@ void JointTree::order(std::span<const ShapedBody> bodies) {
   stack_.assign(first_.begin(), first_.end() - 1);  // (each body's next free place)
   for (std::uint32_t m = 0; m < ends_.size(); ++m) {
     for (const std::uint32_t body : ends_[m]) {
-      if (body != none) joined_[stack_[body]++] = m;
+      if (body != none) joined_[stack_[numbered.local(body)]++] = m;
     }
   }
   stack_.clear();
   nodes_.clear(), inverse_mass_.clear(), bodies_.clear();
-  node_of_body_.assign(bodies.size(), none);
+  node_of_body_.assign(numbered.size(), none);
   node_of_member_.assign(members_.size(), none);
   for (std::uint32_t m = 0; m < ends_.size(); ++m) {
     if (ends_[m][0] != none && ends_[m][1] != none) continue;
-    add_node(none, m, none, bodies);
-    visit(bodies);
+    add_node(none, m, none, bodies, numbered);
+    visit(bodies, numbered);
   }
   for (std::uint32_t m = 0; m < ends_.size(); ++m) {
     if (node_of_member_[m] != none) continue;
-    add_node(none, none, ends_[m][0], bodies);
-    visit(bodies);
+    add_node(none, none, ends_[m][0], bodies, numbered);
+    visit(bodies, numbered);
   }
   const std::size_t n = nodes_.size();
   inverse_.resize(n), up_.resize(n), pivot_.resize(n), x_.resize(n);
@@ -151,16 +156,16 @@ void JointTree::order(std::span<const ShapedBody> bodies) {
   std::iota(all_nodes_.begin(), all_nodes_.end(), 0U);
 }
 
-void JointTree::split(std::span<const std::uint8_t> half_of_body) {
+void JointTree::split(std::span<const std::uint8_t> half_of_body, const JointBodies& numbered) {
   for (int h = 0; h < 2; ++h) part_nodes_[h].clear(), part_members_[h].clear();
   for (int h = 0; h < 2; ++h) part_bodies_[h].clear();
   auto half_of_member = [&](std::uint32_t m) {
-    return half_of_body[ends_[m][0] != none ? ends_[m][0] : ends_[m][1]];
+    return half_of_body[numbered.local(ends_[m][0] != none ? ends_[m][0] : ends_[m][1])];
   };
   for (std::uint32_t i = 0; i < nodes_.size(); ++i) {
     const Node& node = nodes_[i];
     const std::uint8_t h =
-        node.body != none ? half_of_body[node.body] : half_of_member(node.member);
+        node.body != none ? half_of_body[numbered.local(node.body)] : half_of_member(node.member);
     part_nodes_[h].push_back(i);
     if (node.body != none) part_bodies_[h].push_back(node.body);
   }

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "joint_bodies.hpp"
 #include "joint_record.hpp"
 
 namespace fixstep::detail {
@@ -28,8 +29,12 @@ class JointTree {
   /// a body that moves (a non-zero inverse mass or inertia) and none that turns without
   /// translating (its point could not follow both rows), and does not close a loop (the
   /// world, static and kinematic bodies are one node: a second joint of one tree to them
-  /// closes a loop too). Sets each joint's `direct`; allocates only while the forest grows.
-  void build(std::span<JointRecord> joints, std::span<const ShapedBody> bodies);
+  /// closes a loop too). Of the `listed` joints only (indices into `joints`, ascending; the
+  /// others keep their `direct`), whose bodies `numbered` numbers (built from the same list):
+  /// O(listed joints), whatever the world holds. Sets each listed joint's `direct`; allocates
+  /// only while the forest grows.
+  void build(std::span<JointRecord> joints, std::span<const std::uint32_t> listed,
+             std::span<const ShapedBody> bodies, const JointBodies& numbered);
   /// The joints of the forest (indices into build's span), in joint order.
   [[nodiscard]] std::span<const std::uint32_t> members() const { return members_; }
   [[nodiscard]] bool empty() const { return members_.empty(); }
@@ -65,9 +70,10 @@ class JointTree {
   /// that half; `whole` is every tree. The trees are independent, so factoring or solving
   /// each part gives every member the same bits as the whole forest at once.
   static constexpr int whole = 2;
-  /// Splits the trees by `half_of_body` (0 or 1 for each of the forest's bodies; every body
-  /// of a tree in the same half). Until the next build(), parts 0 and 1 are those trees.
-  void split(std::span<const std::uint8_t> half_of_body);
+  /// Splits the trees by `half_of_body` (0 or 1 for each of the forest's bodies, by its number
+  /// in `numbered`, build's; every body of a tree in the same half). Until the next build(),
+  /// parts 0 and 1 are those trees.
+  void split(std::span<const std::uint8_t> half_of_body, const JointBodies& numbered);
   /// A part's members (member indices, ascending) and bodies (indices into build's span, each
   /// once, in the forest's order).
   [[nodiscard]] std::span<const std::uint32_t> members_of(int part) const {
@@ -96,14 +102,15 @@ class JointTree {
   std::vector<Vec2> rhs_;
   std::vector<std::uint8_t> angle_rows_, factored_angles_;  ///< factored_: factor()'s
   std::vector<double> angle_rhs_;
-  bool any_angle_ = false;           ///< some member of the last factor() has an angle row
-  std::vector<Node> nodes_;          ///< in preorder: a parent before its children
-  std::vector<Vec3> inverse_mass_;   ///< each node's body's (1/kg, 1/kg, 1/(kg·m²))
-  std::vector<Block> inverse_;       ///< D⁻¹ of each node
-  std::vector<Block> up_;            ///< D⁻¹ H (the node's row, its parent's column)
-  std::vector<Block> pivot_;         ///< factor's scratch: D
-  std::vector<Vec3> x_;              ///< solve's scratch
-  std::vector<std::uint32_t> root_;  ///< union-find over bodies, ground last
+  bool any_angle_ = false;          ///< some member of the last factor() has an angle row
+  std::vector<Node> nodes_;         ///< in preorder: a parent before its children
+  std::vector<Vec3> inverse_mass_;  ///< each node's body's (1/kg, 1/kg, 1/(kg·m²))
+  std::vector<Block> inverse_;      ///< D⁻¹ of each node
+  std::vector<Block> up_;           ///< D⁻¹ H (the node's row, its parent's column)
+  std::vector<Block> pivot_;        ///< factor's scratch: D
+  std::vector<Vec3> x_;             ///< solve's scratch
+  // By a body's number (JointBodies): the union-find (ground last), its node, its members.
+  std::vector<std::uint32_t> root_;
   std::vector<std::uint32_t> node_of_body_;
   std::vector<std::uint32_t> first_, joined_;  ///< each body's members (CSR)
   std::vector<std::uint32_t> node_of_member_, stack_;
@@ -114,10 +121,10 @@ class JointTree {
   }
 
   std::uint32_t find(std::uint32_t k);
-  void order(std::span<const ShapedBody> bodies);
+  void order(std::span<const ShapedBody> bodies, const JointBodies& numbered);
   void add_node(std::uint32_t parent, std::uint32_t member, std::uint32_t body,
-                std::span<const ShapedBody> bodies);
-  void visit(std::span<const ShapedBody> bodies);
+                std::span<const ShapedBody> bodies, const JointBodies& numbered);
+  void visit(std::span<const ShapedBody> bodies, const JointBodies& numbered);
   struct Link {
     double s = 1.0;  ///< +1 on B's end, −1 on A's
     Vec2 u{};        ///< (−r_y, r_x), zero for a body that does not turn

@@ -28,16 +28,18 @@ bool angle_rows(const JointRecord& j) {
 
 void ShapeWorld::prepare_joints() {
   JointSolver solver(bodies_, state_, dt_, velocity_);
-  for (JointRecord& j : joints_) {
-    if (!j.broken) solver.prepare(j);
-  }
-  tree_.build(joints_, bodies_);
-  joints_halved_ = joint_thread_ != nullptr && joints_.size() >= min_split_joints &&
-                   halves_.split(joints_, bodies_.size());
-  if (joints_halved_ && !tree_.empty()) tree_.split(halves_.half_of_body());
+  for_joints(JointTree::whole, [&](JointRecord& j) { solver.prepare(j); });
+  const std::span<const std::uint32_t> live = rest_.live_joints;
+  joint_bodies_.build(joints_, live, bodies_.size());
+  tree_.build(joints_, live, bodies_, joint_bodies_);
+  joints_halved_ = joint_thread_ != nullptr && live.size() >= min_split_joints &&
+                   halves_.split(joints_, live, joint_bodies_);
+  if (joints_halved_ && !tree_.empty()) tree_.split(halves_.half_of_body(), joint_bodies_);
   joint_rows_ = false, indirect_ = false, direct_limits_ = false;
-  for (const JointRecord& j : joints_) {
+  for (const std::uint32_t i : live) {
+    const JointRecord& j = joints_[i];
     if (j.broken) continue;
+    ++joints_visited_;
     indirect_ = indirect_ || !j.direct;
     joint_rows_ = joint_rows_ || !j.direct || angle_rows(j);
     direct_limits_ = direct_limits_ || (j.direct && (j.def.lower || j.def.upper));
@@ -256,9 +258,7 @@ bool ShapeWorld::solve_joint_positions(bool keep) {
 
 void ShapeWorld::account_joints() {
   JointSolver solver(bodies_, state_, dt_);
-  for (JointRecord& j : joints_) {
-    if (!j.broken) solver.account(j);
-  }
+  for_joints(JointTree::whole, [&](JointRecord& j) { solver.account(j); });
 }
 
 }  // namespace fixstep::detail

@@ -41,6 +41,20 @@ void ShapeWorld::rebuild_rest(double dt) {
   r.boxes.clear();
   for (const std::uint32_t k : r.resting) r.boxes.push_back(boxes_[k]);
   r.grid.index(r.boxes);
+  rebuild_live_joints();
+}
+
+// The joints with a live end (shape_rest.hpp), from rebuild_rest's bodies.
+void ShapeWorld::rebuild_live_joints() {
+  ShapeRest& r = rest_;
+  r.live_joints.clear();
+  r.rests.assign(bodies_.size(), 1);
+  for (const std::uint32_t i : r.live) r.rests[i] = 0;
+  auto live = [&](std::uint32_t body) { return body != JointRecord::none && r.rests[body] == 0; };
+  for (std::uint32_t i = 0; i < joints_.size(); ++i) {
+    const JointRecord& j = joints_[i];
+    if (!r.split || live(j.a) || live(j.b)) r.live_joints.push_back(i);
+  }
 }
 
 bool ShapeWorld::never_pair_live(const void* context, std::uint32_t a, std::uint32_t b) {

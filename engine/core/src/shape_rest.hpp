@@ -18,6 +18,11 @@
 // nor wakes the other (ShapeWorld::never_pair). A sensor is live wherever its body is, so that
 // what it senses at rest stays sensed. Below ShapeWorld::min_grid_shapes shapes nothing rests:
 // every body is live, as before the lists.
+//
+// A joint is live where one of its ends is (live_joints): one whose two ends rest, asleep or
+// static, would move neither, and its rows, its forest and the account of it are left as its
+// last live tick left them (its impulses, for the warm start when its island wakes). Creating
+// or destroying a joint rebuilds the shapes, which makes the lists stale.
 #pragma once
 
 #include <cstdint>
@@ -46,6 +51,8 @@ struct ShapeRest {
   std::vector<std::uint32_t> live_shapes;  ///< the shapes boxed each tick, ascending
   std::vector<std::uint32_t> statics;      ///< the static bodies, ascending
   std::vector<std::uint32_t> resting;      ///< the resting grid's shapes, by its index
+  std::vector<std::uint32_t> live_joints;  ///< the tick's joints (indices), ascending
+  std::vector<std::uint8_t> rests;         ///< by body: 1 where it rests (scratch)
   GridBroadphase grid;                     ///< the resting shapes' boxes (index() only)
   // Scratch: the live shapes' boxes and activity by their place in live_shapes (the
   // broadphase's; rebuild_rest first lends `boxes` the resting shapes' boxes for the grid,

@@ -296,7 +296,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
   // velocities too), then every error left, the contacts' and the joints', on positions only.
   // A sweep that moves nothing leaves the poses as they were, and so would every sweep after
   // it: the sweeps have ended.
-  for (int it = 0; it < tick.position_iterations && !joints_.empty(); ++it) {
+  for (int it = 0; it < tick.position_iterations && !rest_.live_joints.empty(); ++it) {
     poll_stop();
     if (!solve_joint_positions(true)) break;
   }
@@ -324,8 +324,8 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
     }
     // A sweep that pushes and corrects nothing leaves the poses as they were, and so would
     // every sweep after it: the push-out has ended.
-    if (!pushed && joints_.empty()) break;
-    const bool corrected = !joints_.empty() && solve_joint_positions(false);
+    if (!pushed && rest_.live_joints.empty()) break;
+    const bool corrected = !rest_.live_joints.empty() && solve_joint_positions(false);
     if (!pushed && !corrected) break;
     update_turns();
   }

@@ -305,12 +305,12 @@ int ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
                                   [](const ColorRun& run) { return run.splits; });
   SecondThread* const thread = splits ? second : nullptr;
   const SecondThreadRun team(thread);
-  const bool rows = !joints_.empty() || !color_runs_.empty();
+  const bool rows = !rest_.live_joints.empty() || !color_runs_.empty();
   int sweeps = 0;
   while (rows && sweeps < tick.velocity_iterations) {
     ++sweeps;
     poll_stop();
-    const bool moved = !joints_.empty() && solve_joint_velocities();
+    const bool moved = !rest_.live_joints.empty() && solve_joint_velocities();
     if (!moved && color_runs_.empty()) break;
     ColorRun from;
     double change = 0.0;

@@ -410,6 +410,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
   joints_ = tick.joints, unpaired_ = tick.unpaired;
   visited_ = rest_.stale ? bodies_.size() : rest_.live.size();
+  joints_visited_ = 0;
   if (rest_.stale) {
     rebuild_rest(tick.dt);
   } else {

@@ -149,16 +149,22 @@ class ShapeWorld {
   /// The bodies a tick visits (bodies_ indices, ascending; shape_rest.hpp), as the last tick
   /// left them: valid while !rest_stale().
   [[nodiscard]] std::span<const std::uint32_t> live() const { return rest_.live; }
+  /// The joints a tick visits (ShapeTick::joints indices, ascending; those with a live end),
+  /// as the last tick left them: valid while !rest_stale().
+  [[nodiscard]] std::span<const std::uint32_t> live_joints() const { return rest_.live_joints; }
   /// The bodies the last tick visited: every one when it made the resting lists again, else
   /// the live ones.
   [[nodiscard]] std::size_t visited() const { return visited_; }
+  /// The joints (not broken) the last tick's joint passes visited: those with a live end.
+  [[nodiscard]] std::size_t joints_visited() const { return joints_visited_; }
 
  private:
   ShapeRest rest_;
-  std::size_t visited_ = 0;
+  std::size_t visited_ = 0, joints_visited_ = 0;
   /// Makes the resting lists and the resting shapes' grid from state_ (every body's filled),
   /// and each resting body's rotations, margin, velocity and box.
   void rebuild_rest(double dt);
+  void rebuild_live_joints();
   /// Shape k's box at the tick's start grown by its body's margin_, its activity and its tag.
   void box_shape(std::uint32_t k);
   /// The pairs of the live shapes among themselves and with the resting ones into pairs_
@@ -226,6 +232,7 @@ class ShapeWorld {
   std::vector<double> margin_;  ///< each body's speculative margin this tick, m
   double dt_ = 0.0;
   std::span<JointRecord> joints_;            ///< this tick's (ShapeTick::joints)
+  JointBodies joint_bodies_;                 ///< the live joints' bodies, numbered
   JointTree tree_;                           ///< the joints' direct solve
   std::span<const std::uint64_t> unpaired_;  ///< this tick's (ShapeTick::unpaired)
 
@@ -399,8 +406,8 @@ class ShapeWorld {
   template <class F>
   void for_joints(int part, F&& f) {
     if (part == JointTree::whole) {
-      for (JointRecord& j : joints_) {
-        if (!j.broken) f(j);
+      for (const std::uint32_t i : rest_.live_joints) {
+        if (!joints_[i].broken) f(joints_[i]);
       }
       return;
     }

@@ -180,18 +180,25 @@ template <class Real>
 void detail::WorldKernel<Real>::break_joints() {
   joints_broken_.clear();
   const double dt = settings_.dt;
-  for (std::size_t i = 0; i < joint_records_.size(); ++i) {
+  // The joints the tick visited: one whose ends rest keeps its last reaction, under its bound.
+  auto visit = [&](std::size_t i) {
     JointRecord& j = joint_records_[i];
-    if (j.broken || (!j.def.break_force && !j.def.break_torque)) continue;
+    if (j.broken || (!j.def.break_force && !j.def.break_torque)) return;
     const Vec2 force = j.given_b / dt;
     const double torque = (j.turned_b - cross(j.rb, j.given_b)) / dt;
     const bool over = (j.def.break_force && std::sqrt(dot(force, force)) > *j.def.break_force) ||
                       (j.def.break_torque && std::abs(torque) > *j.def.break_torque);
-    if (!over) continue;
+    if (!over) return;
     j.broken = true;
     j.impulses = JointImpulses{};
     j.given_a = j.given_b = Vec2{}, j.turned_a = j.turned_b = 0.0;
     joints_broken_.push_back({joint_handles_[i], force, torque});
+  };
+  const ShapeWorld& w = *shape_world_;
+  if (w.rest_stale()) {
+    for (std::size_t i = 0; i < joint_records_.size(); ++i) visit(i);
+  } else {
+    for (const std::uint32_t i : w.live_joints()) visit(i);
   }
 }
 

@@ -778,6 +778,10 @@ class WorldKernel {
   /// resting lists are stale, else the live ones (ShapeWorld::live).
   template <class F>
   void for_shape_bodies(F&& f);
+  /// Calls f(j) for each joint record of the last shape phase, not broken: every one when the
+  /// resting lists are stale, else those with a live end (ShapeWorld::live_joints).
+  template <class F>
+  void for_shape_joints(F&& f);
   void shape_energies(std::vector<double>& out) const;
   void account_shape_contacts();
   // Disc-disc contacts (world_discs.cpp, disc_*.cpp); null without WorldSettings::contacts.

@@ -87,14 +87,15 @@ void detail::WorldKernel<Real>::join_shape_islands() {
     if (db && moving(r.a)) blocked[b] = 1;
   }
   // Jointed bodies share an island (a joint to a moving kinematic body keeps its body awake).
-  for (const JointRecord& j : joint_records_) {
-    if (j.broken || j.a == JointRecord::none || j.b == JointRecord::none) continue;
+  // (A joint whose two ends rest joins no awake body: ShapeWorld::live_joints.)
+  for_shape_joints([&](const JointRecord& j) {
+    if (j.a == JointRecord::none || j.b == JointRecord::none) return;
     const std::uint32_t a = w.bodies_[j.a].body, b = w.bodies_[j.b].body;
     const bool da = awake(a), db = awake(b);
     if (da && db) detail::join(island_parent_, a, b);
     if (da && moving(j.b)) blocked[a] = 1;
     if (db && moving(j.a)) blocked[b] = 1;
-  }
+  });
   // Bodies the broadphase pairs share an island (as discs do; see join_islands).
   for (const ShapeWorld::Candidate& c : w.candidates()) {
     const std::uint32_t a = w.bodies_[w.shapes_[c.a].owner].body;

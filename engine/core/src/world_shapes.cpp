@@ -241,11 +241,10 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
       work[r.a] -= dot(p, point_velocity(r.b, r.rb)) + r.lr * w.state_[r.b].w;
     }
   }
-  for (const JointRecord& j : joint_records_) {  // motors' and kinematic ends' work
-    if (j.broken) continue;
+  for_shape_joints([&](const JointRecord& j) {  // motors' and kinematic ends' work
     if (j.a != JointRecord::none) work[j.a] += j.work_a;
     if (j.b != JointRecord::none) work[j.b] += j.work_b;
-  }
+  });
   shape_energies(w.energy_after_);
   // A body the solve touched is measured against the tick's start (less what damping took in
   // the free step), as a resting disc is (disc_rest.cpp): holding a body at rest undoes the
@@ -257,11 +256,10 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
     if (r.a != ShapeWorld::none) w.touched_[r.a] = 1;
     w.touched_[r.b] = 1;
   }
-  for (const JointRecord& j : joint_records_) {
-    if (j.broken) continue;
+  for_shape_joints([&](const JointRecord& j) {
     if (j.a != JointRecord::none) w.touched_[j.a] = 1;
     if (j.b != JointRecord::none) w.touched_[j.b] = 1;
-  }
+  });
   for (std::size_t i = 0; i < w.bodies_.size(); ++i) {
     const ShapedBody& b = w.bodies_[i];
     if (b.type != BodyType::dynamic) continue;
@@ -288,6 +286,20 @@ void detail::WorldKernel<Real>::for_shape_bodies(F&& f) {
     return;
   }
   for (std::uint32_t i = 0; i < w.bodies_.size(); ++i) f(i);
+}
+
+template <class Real>
+template <class F>
+void detail::WorldKernel<Real>::for_shape_joints(F&& f) {
+  const ShapeWorld& w = *shape_world_;
+  auto each = [&](JointRecord& j) {
+    if (!j.broken) f(j);
+  };
+  if (!w.rest_stale()) {
+    for (const std::uint32_t i : w.live_joints()) each(joint_records_[i]);
+    return;
+  }
+  for (JointRecord& j : joint_records_) each(j);
 }
 
 // A resting body's start is its state already (shape_rest.hpp): it has not moved since.

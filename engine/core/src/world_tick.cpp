@@ -85,6 +85,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   contact_stats_.free_stepped = stepped_;
   contact_stats_.plane_tested = plan.planes ? plane_visited_ : 0;
   contact_stats_.shape_visited = shapes_run ? shape_world_->visited() : 0;
+  contact_stats_.joint_visited = shapes_run ? shape_world_->joints_visited() : 0;
   awake_.primed = awake_.on;  // a whole tick has passed over the sleepers (awake_runs.hpp)
 
   flush_state_subnormals();  // world_step.cpp

@@ -90,7 +90,9 @@ struct JointDef {
   friend bool operator==(const JointDef&, const JointDef&) = default;
 };
 
-/// A joint's state after the last tick (World::joint_state).
+/// A joint's state after the last tick (World::joint_state). A joint whose two bodies are
+/// asleep or static (ContactStats::joint_visited) reports the force, torque and motor of the
+/// last tick that solved it.
 struct JointState {
   /// Revolute: the relative angle θ_b − θ_a − θ_ref wrapped into [−π, π] (rad); prismatic and
   /// wheel: the translation along the axis (m; a wheel's suspension); distance: the anchors'

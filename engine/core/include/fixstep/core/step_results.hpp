@@ -83,6 +83,12 @@ struct ContactStats {
   /// 128 shapes or more, the awake dynamic and the kinematic ones, but in a tick after a body
   /// fell asleep or woke, or an edit, which visits every one; in a smaller world every one.
   std::size_t shape_visited = 0;
+  /// Joints (not broken) the last tick's shape phase solved: every one, but in a world of 128
+  /// shapes or more, where a tick visits the moving bodies alone (shape_visited), only those
+  /// with an end among them; a joint whose two ends are asleep or static is left as its last
+  /// tick left it (its impulses kept for the warm start when its island wakes). 0 in a tick
+  /// without a shape phase.
+  std::size_t joint_visited = 0;
   /// Discs the last tick's disc phases visited (their motions, the broadphase, the end of
   /// the tick): every disc, or in a world with sleeping islands and at most a quarter of its
   /// discs awake, the awake ones and the sleepers their swept boxes reach (0 when every disc
