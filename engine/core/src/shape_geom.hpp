@@ -7,6 +7,7 @@
 // the results are the same bits on every platform.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -73,6 +74,11 @@ struct Convex {
 [[nodiscard]] inline bool boxes_overlap(const Aabb& a, const Aabb& b) {
   return a.lower.x <= b.upper.x && b.lower.x <= a.upper.x && a.lower.y <= b.upper.y &&
          b.lower.y <= a.upper.y;
+}
+/// The world box of a segment.
+[[nodiscard]] inline Aabb segment_bounds(const SegmentDef& s) {
+  return {{std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)},
+          {std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)}};
 }
 
 /// One point of a contact manifold. Anchors are relative to the bodies' centres of mass, in
