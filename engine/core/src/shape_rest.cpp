@@ -7,6 +7,15 @@
 
 namespace fixstep::detail {
 
+namespace {
+
+/// Whether a body rests in a world whose lists split: a static body, or a sleeper.
+bool rests(const ShapedBody& b, bool split) {
+  return split && (b.type == BodyType::static_body || (b.type == BodyType::dynamic && b.asleep));
+}
+
+}  // namespace
+
 void ShapeWorld::rebuild_rest(double dt) {
   ShapeRest& r = rest_;
   r.stale = false;
@@ -21,9 +30,7 @@ void ShapeWorld::rebuild_rest(double dt) {
     ShapeState& s = state_[i];
     s.q0 = rot_of(s.a0);
     if (b.type == BodyType::static_body) r.statics.push_back(i);
-    const bool rests =
-        r.split && (b.type == BodyType::static_body || (b.type == BodyType::dynamic && b.asleep));
-    if (!rests) {
+    if (!rests(b, r.split)) {
       r.live.push_back(i);
       for (std::uint32_t k = b.first; k < b.first + b.count; ++k) r.live_shapes.push_back(k);
       continue;
@@ -48,12 +55,12 @@ void ShapeWorld::rebuild_rest(double dt) {
 void ShapeWorld::rebuild_live_joints() {
   ShapeRest& r = rest_;
   r.live_joints.clear();
-  r.rests.assign(bodies_.size(), 1);
-  for (const std::uint32_t i : r.live) r.rests[i] = 0;
-  auto live = [&](std::uint32_t body) { return body != JointRecord::none && r.rests[body] == 0; };
+  auto live = [&](std::uint32_t body) {
+    return body != JointRecord::none && !rests(bodies_[body], r.split);
+  };
   for (std::uint32_t i = 0; i < joints_.size(); ++i) {
     const JointRecord& j = joints_[i];
-    if (!r.split || live(j.a) || live(j.b)) r.live_joints.push_back(i);
+    if (live(j.a) || live(j.b)) r.live_joints.push_back(i);
   }
 }
 

@@ -52,7 +52,6 @@ struct ShapeRest {
   std::vector<std::uint32_t> statics;      ///< the static bodies, ascending
   std::vector<std::uint32_t> resting;      ///< the resting grid's shapes, by its index
   std::vector<std::uint32_t> live_joints;  ///< the tick's joints (indices), ascending
-  std::vector<std::uint8_t> rests;         ///< by body: 1 where it rests (scratch)
   GridBroadphase grid;                     ///< the resting shapes' boxes (index() only)
   // Scratch: the live shapes' boxes and activity by their place in live_shapes (the
   // broadphase's; rebuild_rest first lends `boxes` the resting shapes' boxes for the grid,

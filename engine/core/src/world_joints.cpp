@@ -181,9 +181,8 @@ void detail::WorldKernel<Real>::break_joints() {
   joints_broken_.clear();
   const double dt = settings_.dt;
   // The joints the tick visited: one whose ends rest keeps its last reaction, under its bound.
-  auto visit = [&](std::size_t i) {
-    JointRecord& j = joint_records_[i];
-    if (j.broken || (!j.def.break_force && !j.def.break_torque)) return;
+  for_shape_joints([&](JointRecord& j, std::size_t i) {
+    if (!j.def.break_force && !j.def.break_torque) return;
     const Vec2 force = j.given_b / dt;
     const double torque = (j.turned_b - cross(j.rb, j.given_b)) / dt;
     const bool over = (j.def.break_force && std::sqrt(dot(force, force)) > *j.def.break_force) ||
@@ -193,13 +192,7 @@ void detail::WorldKernel<Real>::break_joints() {
     j.impulses = JointImpulses{};
     j.given_a = j.given_b = Vec2{}, j.turned_a = j.turned_b = 0.0;
     joints_broken_.push_back({joint_handles_[i], force, torque});
-  };
-  const ShapeWorld& w = *shape_world_;
-  if (w.rest_stale()) {
-    for (std::size_t i = 0; i < joint_records_.size(); ++i) visit(i);
-  } else {
-    for (const std::uint32_t i : w.live_joints()) visit(i);
-  }
+  });
 }
 
 template <class Real>

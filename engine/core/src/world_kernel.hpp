@@ -778,8 +778,9 @@ class WorldKernel {
   /// resting lists are stale, else the live ones (ShapeWorld::live).
   template <class F>
   void for_shape_bodies(F&& f);
-  /// Calls f(j) for each joint record of the last shape phase, not broken: every one when the
-  /// resting lists are stale, else those with a live end (ShapeWorld::live_joints).
+  /// Calls f(record, index) for each joint of the last shape phase, not broken, in index
+  /// order: every one when the resting lists are stale, else those with a live end
+  /// (ShapeWorld::live_joints).
   template <class F>
   void for_shape_joints(F&& f);
   void shape_energies(std::vector<double>& out) const;

@@ -88,7 +88,7 @@ void detail::WorldKernel<Real>::join_shape_islands() {
   }
   // Jointed bodies share an island (a joint to a moving kinematic body keeps its body awake).
   // (A joint whose two ends rest joins no awake body: ShapeWorld::live_joints.)
-  for_shape_joints([&](const JointRecord& j) {
+  for_shape_joints([&](const JointRecord& j, std::size_t) {
     if (j.a == JointRecord::none || j.b == JointRecord::none) return;
     const std::uint32_t a = w.bodies_[j.a].body, b = w.bodies_[j.b].body;
     const bool da = awake(a), db = awake(b);

@@ -241,7 +241,7 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
       work[r.a] -= dot(p, point_velocity(r.b, r.rb)) + r.lr * w.state_[r.b].w;
     }
   }
-  for_shape_joints([&](const JointRecord& j) {  // motors' and kinematic ends' work
+  for_shape_joints([&](const JointRecord& j, std::size_t) {  // motors' and kinematic ends' work
     if (j.a != JointRecord::none) work[j.a] += j.work_a;
     if (j.b != JointRecord::none) work[j.b] += j.work_b;
   });
@@ -256,7 +256,7 @@ void detail::WorldKernel<Real>::account_shape_contacts() {
     if (r.a != ShapeWorld::none) w.touched_[r.a] = 1;
     w.touched_[r.b] = 1;
   }
-  for_shape_joints([&](const JointRecord& j) {
+  for_shape_joints([&](const JointRecord& j, std::size_t) {
     if (j.a != JointRecord::none) w.touched_[j.a] = 1;
     if (j.b != JointRecord::none) w.touched_[j.b] = 1;
   });
@@ -292,14 +292,14 @@ template <class Real>
 template <class F>
 void detail::WorldKernel<Real>::for_shape_joints(F&& f) {
   const ShapeWorld& w = *shape_world_;
-  auto each = [&](JointRecord& j) {
-    if (!j.broken) f(j);
+  auto each = [&](std::size_t i) {
+    if (!joint_records_[i].broken) f(joint_records_[i], i);
   };
   if (!w.rest_stale()) {
-    for (const std::uint32_t i : w.live_joints()) each(joint_records_[i]);
+    for (const std::uint32_t i : w.live_joints()) each(i);
     return;
   }
-  for (JointRecord& j : joint_records_) each(j);
+  for (std::size_t i = 0; i < joint_records_.size(); ++i) each(i);
 }
 
 // A resting body's start is its state already (shape_rest.hpp): it has not moved since.
