@@ -67,12 +67,16 @@ RestScene rest_scene() {
 
 // The reference visits every body every tick: an edit between ticks (a static tile's velocity
 // set to zero, which changes nothing) makes the resting lists stale, and a stale tick gives
-// every body its state and makes them again. At 2.5 s, as the pusher drives the first column,
+// every body its state and makes them again; and a restore of its own snapshot each tick
+// forgets what the last lists made of each resting body (ShapeRest::Key), so that it makes
+// every box and rotation afresh, where the lean world keeps those of the bodies that rested
+// at its last lists and still do. At 2.5 s, as the pusher drives the first column,
 // the tile under it rises 10 cm in both: a static body's edit, which the lean world's lists
 // must take in (the column's lower box rises with it).
 TEST(ShapeRest, ALargeWorldStepsAsOneThatVisitsEveryBodyWhileItsTicksVisitTheMovingOnes) {
   const RestScene scene = rest_scene();
   World lean(scene.def), full(scene.def);
+  WorldSnapshot snapshot;
   const Entity tile = lean.defined_bodies()[0];
   const Entity under = lean.defined_bodies()[2];
   const Entity lower = lean.defined_bodies()[rest_tiles];  // the first column's
@@ -82,6 +86,7 @@ TEST(ShapeRest, ALargeWorldStepsAsOneThatVisitsEveryBodyWhileItsTicksVisitTheMov
       for (World* w : {&lean, &full}) w->set_position(under, {2.0, -0.4});
     }
     full.set_velocity(tile, {0.0, 0.0});
+    full.save(snapshot), full.restore(snapshot);
     lean.step(), full.step();
     ASSERT_EQ(lean.state_hash(), full.state_hash()) << "tick " << t;
     const ContactStats& a = lean.contact_stats();
@@ -146,6 +151,7 @@ WorldDef hinged_scene() {
 TEST(ShapeRest, JointsWhoseEndsRestAreLeftAloneWhileTheMovingOnesAreSolvedAsInAWorldVisitedWhole) {
   const WorldDef def = hinged_scene();
   World lean(def), full(def);
+  WorldSnapshot snapshot;  // (as the test above: the reference forgets the keys)
   const Entity tile = lean.defined_bodies()[0];
   const Entity pendulum = lean.defined_bodies()[rest_tiles + 2 * hinged_pairs];
   std::size_t least_joints = hinged_pairs + 1, most_asleep = 0, woken = 0;
@@ -161,6 +167,7 @@ TEST(ShapeRest, JointsWhoseEndsRestAreLeftAloneWhileTheMovingOnesAreSolvedAsInAW
       for (World* w : {&lean, &full}) w->destroy_joint(w->defined_joints()[hinged_pairs]);
     }
     full.set_velocity(tile, {0.0, 0.0});
+    full.save(snapshot), full.restore(snapshot);
     lean.step(), full.step();
     ASSERT_EQ(lean.state_hash(), full.state_hash()) << "tick " << t;
     const ContactStats& a = lean.contact_stats();
@@ -191,4 +198,48 @@ TEST(ShapeRest, JointsWhoseEndsRestAreLeftAloneWhileTheMovingOnesAreSolvedAsInAW
 }
 
 }  // namespace
+// A static body swapped for another of a new shape at the same pose (destroyed, and the new one
+// created in its place, the last body both times): the same index and the same state bits as
+// the one the resting lists last kept, so only the rebuild of the shapes tells the lists to
+// make its box afresh (ShapeWorld::reshape). A box dropped onto it then lands on the new, taller
+// top (y = 1.0), in the lean world as in one that forgets every tick.
+TEST(ShapeRest, AStaticBodySwappedForAnotherShapeAtTheSamePoseIsBoxedAfresh) {
+  WorldSettings s = shape_exact::shape_settings(0.6);
+  s.contacts->sleep = true;
+  WorldDef def = WorldDef::empty(Precision::f64, s);
+  auto tile = [](double half_height) {
+    BodyDef t;
+    t.type = BodyType::static_body;
+    t.body.position = {200.0, -0.5};
+    t.shapes.push_back(make_box(0.5, half_height));
+    return t;
+  };
+  for (int i = 0; i < 140; ++i) {  // the resting lists' world: tiles far from the drop
+    BodyDef t = tile(0.5);
+    t.body.position = {i * 1.0, -0.5};
+    def.add_body(t);
+  }
+  def.add_body(tile(0.5));  // the one swapped, its top at y = 0, the last body
+  World lean(def), full(def);
+  WorldSnapshot snapshot;
+  double top = 0.0;
+  for (int t = 1; t <= 180; ++t) {
+    if (t == 10) {
+      for (World* w : {&lean, &full}) {
+        w->destroy(w->defined_bodies().back());
+        w->create_body(tile(1.5));  // the same centre: its top at y = 1.0
+      }
+    }
+    if (t == 20) {
+      for (World* w : {&lean, &full})
+        w->create_body(shape_exact::box_body(0.25, 0.25, {200.0, 3.0}));
+    }
+    full.save(snapshot), full.restore(snapshot);
+    lean.step(), full.step();
+    ASSERT_EQ(lean.state_hash(), full.state_hash()) << "tick " << t;
+    if (t == 180) top = lean.body(lean.bodies().back()).position.y;
+  }
+  EXPECT_NEAR(top, 1.25, 0.01) << "m: the dropped box's centre on the new top";
+}
+
 }  // namespace fixstep

@@ -1,6 +1,7 @@
 // The resting lists of a shape world (shape_rest.hpp): made again when stale, and the
 // broadphase of a large world over them.
 #include <algorithm>
+#include <bit>
 
 #include "fixstep/core/limits.hpp"
 #include "shape_world.hpp"
@@ -14,6 +15,12 @@ bool rests(const ShapedBody& b, bool split) {
   return split && (b.type == BodyType::static_body || (b.type == BodyType::dynamic && b.asleep));
 }
 
+ShapeRest::Key key_of(const ShapeState& s) {
+  auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  return {{bits(s.x0), bits(s.y0), bits(s.a0), bits(s.x), bits(s.y), bits(s.a), bits(s.vx),
+           bits(s.vy), bits(s.w)}};
+}
+
 }  // namespace
 
 void ShapeWorld::rebuild_rest(double dt) {
@@ -25,23 +32,33 @@ void ShapeWorld::rebuild_rest(double dt) {
   margin_.resize(n), turned_at_.resize(n), body_colors_.resize(n);
   velocity_.resize(n + 1);  // and the zero slot (prepare_rows)
   boxes_.resize(shapes_.size()), dynamic_.resize(shapes_.size()), tags_.resize(shapes_.size());
+  if (r.keyed_dt != dt) r.forget();
+  r.keys.resize(n), r.keyed.resize(n), r.keyed_dt = dt;
   for (std::uint32_t i = 0; i < n; ++i) {
     const ShapedBody& b = bodies_[i];
     ShapeState& s = state_[i];
-    s.q0 = rot_of(s.a0);
     if (b.type == BodyType::static_body) r.statics.push_back(i);
     if (!rests(b, r.split)) {
+      s.q0 = rot_of(s.a0);
+      r.keyed[i] = 0;
       r.live.push_back(i);
       for (std::uint32_t k = b.first; k < b.first + b.count; ++k) r.live_shapes.push_back(k);
       continue;
     }
-    // What the tick's passes would make of it, which none changes while it rests.
-    s.q = s.q0, s.turn = rot_of(s.a - s.a0), turned_at_[i] = s.a;
-    margin_[i] = margin(i, dt);
+    // What the tick's passes would make of it, which none changes while it rests: made again
+    // only where the last rebuild did not find it resting with the same state.
+    const ShapeRest::Key key = key_of(s);
+    const bool kept = r.keyed[i] != 0 && r.keys[i] == key;
+    if (!kept) {
+      s.q0 = rot_of(s.a0), s.turn = rot_of(s.a - s.a0);
+      margin_[i] = margin(i, dt);
+      r.keys[i] = key, r.keyed[i] = 1;
+    }
+    s.q = s.q0, turned_at_[i] = s.a;
     velocity_[i] = {s.vx, s.vy, s.w};
     body_colors_[i] = 0;
     for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
-      box_shape(k);
+      if (!kept) box_shape(k);
       (shapes_[k].sensor ? r.live_shapes : r.resting).push_back(k);
     }
   }

@@ -10,7 +10,12 @@
 // a body falls asleep or wakes, an edit (set_body, set_position, set_velocity), the shapes
 // rebuilt; a copy (a snapshot, a rollback) is stale too. The next tick then fills every
 // body's state and makes the lists again (ShapeWorld::rebuild_rest), O(bodies + shapes); the
-// ticks between visit O(live bodies + the resting shapes their boxes meet).
+// ticks between visit O(live bodies + the resting shapes their boxes meet). In that rebuild a
+// body that rested at the last one and rests again with the same state, bit for bit (Key),
+// keeps the rotations, margin and shapes' boxes made then: a body falling asleep or an island
+// waking costs the other resting bodies a comparison each, not their geometry again (the grid
+// of the resting boxes is still indexed again, O(resting shapes)). Rebuilding the shapes, or
+// assigning the world from a copy, forgets the keys (ShapeWorld::reshape, forget).
 //
 // The broadphase's pairs are the same, in the same order: the pairs of live shapes from the
 // grid of their boxes, and each live shape's pairs with resting ones from the resting grid
@@ -25,6 +30,8 @@
 // or destroying a joint rebuilds the shapes, which makes the lists stale.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +46,7 @@ struct ShapeRest {
   ShapeRest(const ShapeRest&) {}
   ShapeRest& operator=(const ShapeRest&) {
     stale = true;
+    forget();
     return *this;
   }
   ~ShapeRest() = default;
@@ -59,6 +67,25 @@ struct ShapeRest {
   std::vector<SweptBox> boxes;
   std::vector<std::uint8_t> active;
   std::vector<DiscPair> pairs, cross;
+
+  /// A body's state as the last rebuild found it resting (start, pose and velocity, each by
+  /// its bits), and the tick's dt then: a body that rests again with the same bits still holds
+  /// what that rebuild made of it (its rotations, margin and shapes' boxes), which no pass
+  /// writes while it rests. `keyed[i]` is 0 for a body that was live or not yet seen.
+  struct Key {
+    std::array<std::uint64_t, 9> bits{};
+    friend bool operator==(const Key& l, const Key& r) {  // (inline: a call to memcmp was not)
+      std::uint64_t differ = 0;
+      for (std::size_t i = 0; i < l.bits.size(); ++i) differ |= l.bits[i] ^ r.bits[i];
+      return differ == 0;
+    }
+  };
+  std::vector<Key> keys;
+  std::vector<std::uint8_t> keyed;
+  double keyed_dt = 0.0;
+  /// Drops every key: the shapes were rebuilt (their indices, owners and definitions may have
+  /// changed), or the world was assigned from a copy.
+  void forget() { keyed.clear(); }
 };
 
 }  // namespace fixstep::detail

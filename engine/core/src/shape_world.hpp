@@ -143,6 +143,9 @@ class ShapeWorld {
   /// Makes the resting lists stale (shape_rest.hpp): the kernel's call whenever a body that
   /// the ticks leave alone may change (it falls asleep or wakes, an edit, a rebuild).
   void unsettle() { rest_.stale = true; }
+  /// Unsettles and forgets what each resting body's state was made into (ShapeRest::Key): the
+  /// kernel's call when it rebuilds the bodies and shapes, whose indices may then name others.
+  void reshape() { rest_.stale = true, rest_.forget(); }
   /// Whether the next tick makes the resting lists again: the kernel then gives every body its
   /// state, else the live ones.
   [[nodiscard]] bool rest_stale() const { return rest_.stale; }

@@ -140,7 +140,7 @@ void detail::WorldKernel<Real>::rebuild_shapes() {
   }
   if (!shape_world_) shape_world_.reset(new ShapeWorld());
   ShapeWorld& w = *shape_world_;
-  w.unsettle();
+  w.reshape();
   w.bodies_.clear(), w.shapes_.clear();
   w.kept_.clear();  // keyed by the shapes' indices, which this may change
   const ContactSettings cs = settings_.contacts.value_or(ContactSettings{});
