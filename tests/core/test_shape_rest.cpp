@@ -197,7 +197,6 @@ TEST(ShapeRest, JointsWhoseEndsRestAreLeftAloneWhileTheMovingOnesAreSolvedAsInAW
   EXPECT_LT(still, 1e-3) << "m/s: the pendulum hinged at both ends";
 }
 
-}  // namespace
 // A static body swapped for another of a new shape at the same pose (destroyed, and the new one
 // created in its place, the last body both times): the same index and the same state bits as
 // the one the resting lists last kept, so only the rebuild of the shapes tells the lists to
@@ -242,4 +241,5 @@ TEST(ShapeRest, AStaticBodySwappedForAnotherShapeAtTheSamePoseIsBoxedAfresh) {
   EXPECT_NEAR(top, 1.25, 0.01) << "m: the dropped box's centre on the new top";
 }
 
+}  // namespace
 }  // namespace fixstep

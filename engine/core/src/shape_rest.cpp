@@ -1,8 +1,8 @@
 // The resting lists of a shape world (shape_rest.hpp): made again when stale, and the
 // broadphase of a large world over them.
 #include <algorithm>
-#include <bit>
 
+#include "fixstep/core/bits.hpp"
 #include "fixstep/core/limits.hpp"
 #include "shape_world.hpp"
 
@@ -16,9 +16,8 @@ bool rests(const ShapedBody& b, bool split) {
 }
 
 ShapeRest::Key key_of(const ShapeState& s) {
-  auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
-  return {{bits(s.x0), bits(s.y0), bits(s.a0), bits(s.x), bits(s.y), bits(s.a), bits(s.vx),
-           bits(s.vy), bits(s.w)}};
+  return {{bits_of(s.x0), bits_of(s.y0), bits_of(s.a0), bits_of(s.x), bits_of(s.y), bits_of(s.a),
+           bits_of(s.vx), bits_of(s.vy), bits_of(s.w)}};
 }
 
 }  // namespace
