@@ -12,8 +12,6 @@
 #      ticks: it connects (at the default timeouts: 10 s, then 8 round trips once the cookie
 #      exchange has measured one), completes, both exit 0 and both recordings are equal.
 # Every match: both peers exit 0 with the same final state.
-# The five matches play at once: each peer is paced by its own clock and takes about 2 % of a
-# core, so the test lasts as long as its longest match, not the five in turn.
 #
 #   net_latency.sh AIRHOCKEY LINK_RELAY SOURCE_DIR
 set -uo pipefail
@@ -37,8 +35,11 @@ play() {
   "$game" --host 0 --session "$kind" --bot --paced --ticks "$ticks" \
     --record "$name.host.rec" >"$name.host.out" 2>&1 &
   host_pid=$!
-  hp=$(wait_port "$name.host.out") || { fail "$name: no port"; cat "$name.host.out"; return 1; }
-  tok=$(wait_token "$name.host.out") || { fail "$name: no token"; return 1; }
+  # (a host that never printed its port or token is stopped, not left to wait for a joiner)
+  hp=$(wait_port "$name.host.out") ||
+    { kill "$host_pid" 2>/dev/null; fail "$name: no port"; cat "$name.host.out"; return 1; }
+  tok=$(wait_token "$name.host.out") ||
+    { kill "$host_pid" 2>/dev/null; fail "$name: no token"; return 1; }
   "$relay" --upstream "127.0.0.1:$hp" "$@" --port-file "$name.relay.port" --seconds 120 \
     >"$name.relay.out" 2>&1 &
   relay_pid=$!
@@ -68,32 +69,9 @@ play() {
   ok "$name: both finished, the same state; $(grep -h '^frames:' "$name.host.out" "$name.join.out" | tr '\n' ' ')"
 }
 
-# start NAME KIND TICKS RELAY-FLAGS...: `play` in the background, its verdicts into NAME.log.
-declare -A pids
-start() {
-  play "$@" >"$1.log" 2>&1 &
-  pids[$1]=$!
-}
-# played NAME: waits for the match NAME, prints its verdicts and counts them here; 0 when it
-# passed.
-played() {
-  local status
-  wait "${pids[$1]}"
-  status=$?
-  cat "$1.log"
-  passes=$((passes + $(grep -c '^ok - ' "$1.log")))
-  failures=$((failures + $(grep -c '^FAIL - ' "$1.log")))
-  return "$status"
-}
-
-for kind in lockstep rollback; do start "perfect-$kind" "$kind" 1200 --latency-ms 0; done
-start rtt100 rollback 3600 --latency-ms 50 --loss 0.02 --lossless-ms 1000 --seed 3
-start rtt150 rollback 3600 --latency-ms 75 --jitter-ms 5 --loss 0.05 --lossless-ms 1000 --seed 5
-start rtt2000 lockstep 600 --latency-ms 1000 --loss 0.25 --seed 11
-
 # (a) real time on a perfect link
 for kind in lockstep rollback; do
-  played "perfect-$kind" || continue
+  play "perfect-$kind" "$kind" 1200 --latency-ms 0 || continue
   for side in host join; do
     secs=$(field "perfect-$kind.$side.out" played)
     awk -v p="$secs" 'BEGIN { r = 1200 / 120 / p; exit !(r > 0.95 && r < 1.05) }' &&
@@ -111,11 +89,13 @@ check_freezes() {
       fail "$name $side: $n freezes $key (at most $most)"
   done
 }
-played rtt100 && check_freezes rtt100 "over 100 ms" 0
-played rtt150 && check_freezes rtt150 "over 250 ms" 0
+play rtt100 rollback 3600 --latency-ms 50 --loss 0.02 --lossless-ms 1000 --seed 3 &&
+  check_freezes rtt100 "over 100 ms" 0
+play rtt150 rollback 3600 --latency-ms 75 --jitter-ms 5 --loss 0.05 --lossless-ms 1000 --seed 5 &&
+  check_freezes rtt150 "over 250 ms" 0
 
 # (d) lockstep at 2 s round trip and 25 % loss, the handshake included
-played rtt2000 &&
+play rtt2000 lockstep 600 --latency-ms 1000 --loss 0.25 --seed 11 &&
   { cmp -s rtt2000.host.rec rtt2000.join.rec && ok "rtt2000: the recordings are equal" ||
     fail "rtt2000: the recordings differ"; }
 
