@@ -4,6 +4,7 @@
 // checked is the clock's arithmetic and the match's pacing, not the machine's speed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fixstep/net/match_clock.hpp>
 #include <stdexcept>
 #include <thread>
@@ -21,10 +22,17 @@ WorldDef at_120_hz() {
   return def;
 }
 
+/// What play_frames saw: each peer's shown tick at the end, and the most ticks one frame of
+/// any peer played.
+struct Played {
+  std::vector<std::uint64_t> ticks;
+  int most_a_frame = 0;
+};
+
 /// Plays `frames` frames of 1/60 s on every peer of a 2-player match (at_120_hz) over a clean
 /// link; between two frames the packets are pumped until each peer has heard of the other's
-/// ticks. Returns each peer's shown tick.
-std::vector<std::uint64_t> play_frames(const net::MatchSettings& s, int frames) {
+/// ticks.
+Played play_frames(const net::MatchSettings& s, int frames) {
   const WorldDef def = at_120_hz();
   Match m = start(s, 1, 0, net::LinkSettings{}, {}, true, &def);
   for (int k = 0; k < 400 && m.peers[1]->state() != net::MatchState::playing; ++k) {
@@ -33,19 +41,22 @@ std::vector<std::uint64_t> play_frames(const net::MatchSettings& s, int frames) 
   }
   EXPECT_EQ(m.peers[1]->state(), net::MatchState::playing) << m.describe();
   std::vector<net::MatchClock> clocks(2, net::MatchClock(def.settings.dt));
+  Played played;
   for (int f = 0; f < frames; ++f) {
     for (std::size_t i = 0; i < 2; ++i) {
       net::MatchPeer& p = *m.peers[i];
-      (void)clocks[i].frame(p, 1.0 / 60.0, [&](std::uint64_t tick) {
+      const net::ClockFrame frame = clocks[i].frame(p, 1.0 / 60.0, [&](std::uint64_t tick) {
         return scripted_input(p.world(), p.slot(), tick);
       });
+      played.most_a_frame = std::max(played.most_a_frame, frame.ticks);
     }
     for (int k = 0; k < 5; ++k) {  // the ticks' inputs across, and acknowledged
       m.round(false, {});
       std::this_thread::sleep_for(std::chrono::microseconds(300));
     }
   }
-  return {m.peers[0]->shown_world().tick(), m.peers[1]->shown_world().tick()};
+  played.ticks = {m.peers[0]->shown_world().tick(), m.peers[1]->shown_world().tick()};
+  return played;
 }
 
 // 300 frames of 1/60 s are 5 s: 600 ticks. A peer may be behind by what the link has not
@@ -55,7 +66,7 @@ std::vector<std::uint64_t> play_frames(const net::MatchSettings& s, int frames) 
 // one input and one advance() a frame, as the window's loop did before the clock, steps 300.
 TEST(MatchClock, LockstepPlaysTheTicksThatRealTimeAsks) {
   net::MatchSettings s = match(2, 0);
-  const auto ticks = play_frames(s, 300);
+  const auto ticks = play_frames(s, 300).ticks;
   for (const std::uint64_t t : ticks) {
     EXPECT_LE(t, 600u);
     EXPECT_GE(t, 600u - 2u * 2u);
@@ -66,11 +77,23 @@ TEST(MatchClock, RollbackPlaysTheTicksThatRealTimeAsks) {
   net::MatchSettings s = match(2, 0);
   s.input_delay = 2;
   s.max_rollback = 16;
-  const auto ticks = play_frames(s, 300);
+  const auto ticks = play_frames(s, 300).ticks;
   for (const std::uint64_t t : ticks) {
     EXPECT_LE(t, 600u + 2u + 1u);  // its own inputs are given up to input_delay + 1 ahead
     EXPECT_GE(t, 600u - 2u * 2u);
   }
+}
+
+// A lockstep player plays tick t out when it gives its input for t + input_delay; the match's
+// last input_delay ticks have no later input. They play at real time too, two a frame of
+// 1/60 s, not all in the frame after the last input (which made the last 16 ticks here, and
+// 130 ms of a real match on a 50 ms round trip, one jump).
+TEST(MatchClock, LockstepPlaysTheMatchsLastTicksAtRealTime) {
+  net::MatchSettings s = match(2, 120);
+  s.input_delay = 16;
+  const Played played = play_frames(s, 90);  // 1.5 s: the match's 1 s and the input delay
+  EXPECT_EQ(played.ticks, (std::vector<std::uint64_t>{120, 120}));
+  EXPECT_LE(played.most_a_frame, 3);  // 2, or 3 where the owed time's rounding carries one
 }
 
 TEST(MatchClock, RefusesATickOrAClampThatIsNotPositive) {

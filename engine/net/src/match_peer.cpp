@@ -268,15 +268,18 @@ int MatchPeer::Impl::step_confirmed() {
   // playout delay): one tick per local input, on the player's clock, however the other
   // players' inputs arrive (in bursts of a send interval); a rollback peer's confirmed world
   // and a spectator's step as soon as every input is there. The match's last input_delay
-  // ticks have no later local input: they step once every own input is given.
+  // ticks have no later local input: once every own input is given, each call steps one, as
+  // a given input would have (a clock calling once a tick owed plays them at real time).
   const bool paced = !shown && slot < players;
+  int stepped = 0;
   auto ready = [&] {
     for (std::size_t p = 0; p < players; ++p) {
       if (known(p) <= next_step) return false;
     }
     if (!paced) return true;  // (a spectator's slot has no inputs of its own)
     const bool all_given = settings.match_ticks != 0 && known(slot) >= settings.match_ticks;
-    return all_given || known(slot) > next_step + settings.input_delay;
+    if (all_given) return stepped == 0;
+    return known(slot) > next_step + settings.input_delay;
   };
   if (settings.match_ticks != 0 && next_step >= settings.match_ticks) {
     state = MatchState::finished;
@@ -290,7 +293,6 @@ int MatchPeer::Impl::step_confirmed() {
     shown_rules = rules.save();
     rules.restore(confirmed_rules);
   }
-  int stepped = 0;
   while (state == MatchState::playing && ready()) {
     merge_scratch.clear();
     for (std::size_t p = 0; p < players; ++p) merge_scratch.push_back(input_at(p, next_step));

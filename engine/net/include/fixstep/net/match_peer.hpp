@@ -254,8 +254,10 @@ class MatchPeer {
   /// (MatchSettings::max_rollback, or grown to the round trip); 0 in lockstep.
   [[nodiscard]] std::uint16_t rollback_window() const;
   /// Steps every tick whose inputs have all arrived (none past match_ticks), running the
-  /// merge, World::step and the rules, recording each; returns the ticks stepped. Nothing
-  /// stepped while playing counts a stall. Rollback: then rolls the shown world back to the
+  /// merge, World::step and the rules, recording each; returns the ticks stepped. A lockstep
+  /// player steps tick t once its own input for t + input_delay is given, and the match's last
+  /// input_delay ticks, which have no later input, one a call. Nothing stepped while playing
+  /// counts a stall. Rollback: then rolls the shown world back to the
   /// first tick whose prediction was wrong and re-simulates, and steps it one tick ahead when
   /// the local input for it is there, it is less than max_rollback ticks ahead of the confirmed
   /// world and time sync allows. The rules' state (TickRules save and restore, which rollback
