@@ -84,13 +84,14 @@ bool ShapeWorld::has_row(std::uint64_t pair) const {
 // so that each time of impact is bounded by the same earlier ones.
 std::span<const std::uint32_t> ShapeWorld::static_shapes_near(const Aabb& box) {
   near_statics_.clear();
-  if (rest_.split) {  // the resting grid holds every static shape but the sensors
+  if (rest_.split) {  // the resting shapes hold every static shape but the sensors
     const SweptBox q{box.lower.x, box.lower.y, box.upper.x, box.upper.y};
-    rest_.grid.query(q, [&](std::uint32_t g, const SweptBox&) {
-      const std::uint32_t k = rest_.resting[g];
-      if (bodies_[shapes_[k].owner].type == BodyType::static_body) near_statics_.push_back(k);
-    });
-    std::sort(near_statics_.begin(), near_statics_.end());
+    rest_.near(q, boxes_, near_statics_);  // ascending
+    auto moves = [&](std::uint32_t k) {
+      return bodies_[shapes_[k].owner].type != BodyType::static_body;
+    };
+    near_statics_.erase(std::remove_if(near_statics_.begin(), near_statics_.end(), moves),
+                        near_statics_.end());
     return near_statics_;
   }
   for (const std::uint32_t o : rest_.statics) {

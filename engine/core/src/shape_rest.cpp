@@ -26,7 +26,8 @@ void ShapeWorld::rebuild_rest(double dt) {
   ShapeRest& r = rest_;
   r.stale = false;
   r.split = shapes_.size() >= min_grid_shapes;
-  r.live.clear(), r.live_shapes.clear(), r.statics.clear(), r.resting.clear();
+  r.live.clear(), r.live_shapes.clear(), r.statics.clear();
+  r.order.clear(), r.order_kept.clear();
   const std::size_t n = bodies_.size();
   margin_.resize(n), turned_at_.resize(n), body_colors_.resize(n);
   velocity_.resize(n + 1);  // and the zero slot (prepare_rows)
@@ -58,13 +59,63 @@ void ShapeWorld::rebuild_rest(double dt) {
     body_colors_[i] = 0;
     for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
       if (!kept) box_shape(k);
-      (shapes_[k].sensor ? r.live_shapes : r.resting).push_back(k);
+      if (shapes_[k].sensor) {
+        r.live_shapes.push_back(k);
+        continue;
+      }
+      r.order.push_back(k), r.order_kept.push_back(kept ? 1 : 0);
     }
   }
-  r.boxes.clear();
-  for (const std::uint32_t k : r.resting) r.boxes.push_back(boxes_[k]);
-  r.grid.index(r.boxes);
+  r.settle_grid(boxes_, r.live_shapes.size());
   rebuild_live_joints();
+}
+
+void ShapeRest::settle_grid(std::span<const SweptBox> all, std::size_t live_shapes) {
+  extras.clear();
+  std::size_t gone_count = 0;
+  if (indexed) {
+    std::fill(gone.begin(), gone.end(), std::uint8_t{1});
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const std::uint32_t k = order[i];
+      const std::uint32_t g = k < slot.size() ? slot[k] : none;
+      if (order_kept[i] != 0 && g != none) {
+        gone[g] = 0;
+      } else {
+        extras.push_back(k);
+      }
+    }
+    for (std::uint32_t g = 0; g < resting.size(); ++g) {
+      if (gone[g] == 0) continue;
+      ++gone_count;
+      if (slot[resting[g]] == g) slot[resting[g]] = none;  // it left: it comes back an extra
+    }
+  }
+  const std::size_t n = order.size();
+  if (indexed && extras.size() * live_shapes <= n && gone_count * 4 <= resting.size()) return;
+  resting.assign(order.begin(), order.end());
+  boxes.clear();  // (the broadphase's scratch, lent: the grid copies the boxes)
+  for (const std::uint32_t k : resting) boxes.push_back(all[k]);
+  grid.index(boxes);
+  slot.assign(all.size(), none);
+  for (std::uint32_t g = 0; g < resting.size(); ++g) slot[resting[g]] = g;
+  gone.assign(n, 0);
+  extras.clear();
+  indexed = true;
+}
+
+void ShapeRest::near(const SweptBox& q, std::span<const SweptBox> all,
+                     std::vector<std::uint32_t>& out) const {
+  out.clear();
+  grid.query(q, [&](std::uint32_t g, const SweptBox&) {
+    if (gone[g] == 0) out.push_back(resting[g]);
+  });
+  for (const std::uint32_t g : grid.unindexed()) {
+    if (gone[g] == 0 && boxes_overlap(q, all[resting[g]])) out.push_back(resting[g]);
+  }
+  for (const std::uint32_t k : extras) {
+    if (boxes_overlap(q, all[k])) out.push_back(k);
+  }
+  std::sort(out.begin(), out.end());
 }
 
 // The joints with a live end (shape_rest.hpp), from rebuild_rest's bodies.
@@ -109,8 +160,7 @@ bool ShapeWorld::pair_live(ShapeTally& tally, SecondThread* thread) {
   r.cross.clear();
   std::uint64_t vetoed = grid_.rejected();
   bool over = false;
-  auto meet = [&](std::uint32_t l, std::uint32_t g) {
-    const std::uint32_t k = r.resting[g];
+  auto meet = [&](std::uint32_t l, std::uint32_t k) {
     if (over || (dynamic_[l] == 0 && dynamic_[k] == 0)) return;
     const DiscPair p{std::min(l, k), std::max(l, k)};
     if (never_pair(this, p.a, p.b)) {
@@ -123,10 +173,8 @@ bool ShapeWorld::pair_live(ShapeTally& tally, SecondThread* thread) {
     if (over) name_cap(tally, false);
   };
   for (const std::uint32_t l : r.live_shapes) {
-    r.grid.query(boxes_[l], [&](std::uint32_t g, const SweptBox&) { meet(l, g); });
-    for (const std::uint32_t g : r.grid.unindexed()) {
-      if (boxes_overlap(boxes_[l], boxes_[r.resting[g]])) meet(l, g);
-    }
+    r.near(boxes_[l], boxes_, r.around);
+    for (const std::uint32_t k : r.around) meet(l, k);
     if (over) return false;
   }
   // Both in (a, b) order, merged: O(pairs + c log c) for c live-resting pairs, where a sort

@@ -13,13 +13,16 @@
 // ticks between visit O(live bodies + the resting shapes their boxes meet). In that rebuild a
 // body that rested at the last one and rests again with the same state, bit for bit (Key),
 // keeps the rotations, margin and shapes' boxes made then: a body falling asleep or an island
-// waking costs the other resting bodies a comparison each, not their geometry again (the grid
-// of the resting boxes is still indexed again, O(resting shapes)). Rebuilding the shapes, or
-// assigning the world from a copy, forgets the keys (ShapeWorld::reshape, forget).
+// waking costs the other resting bodies a comparison each, not their geometry again. The grid
+// of the resting boxes is kept too (settle_grid): an entry whose shape woke or changed is
+// skipped, a shape that came to rest since is tested box by box (an extra), until those
+// extras would cost a tick more than indexing the grid again. Rebuilding the shapes, or
+// assigning the world from a copy, forgets the keys and the grid (ShapeWorld::reshape, forget).
 //
 // The broadphase's pairs are the same, in the same order: the pairs of live shapes from the
-// grid of their boxes, and each live shape's pairs with resting ones from the resting grid
-// (GridBroadphase::query), merged by (a, b). Two resting shapes are never a pair: neither moves
+// grid of their boxes, and each live shape's pairs with resting ones (near: from the resting
+// grid, GridBroadphase::query, and the extras, in ascending order whatever the grid's history),
+// merged by (a, b). Two resting shapes are never a pair: neither moves
 // nor wakes the other (ShapeWorld::never_pair). A sensor is live wherever its body is, so that
 // what it senses at rest stays sensed. Below ShapeWorld::min_grid_shapes shapes nothing rests:
 // every body is live, as before the lists.
@@ -33,6 +36,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "grid_broadphase.hpp"
@@ -58,15 +62,29 @@ struct ShapeRest {
   std::vector<std::uint32_t> live;         ///< bodies the tick visits, ascending
   std::vector<std::uint32_t> live_shapes;  ///< the shapes boxed each tick, ascending
   std::vector<std::uint32_t> statics;      ///< the static bodies, ascending
-  std::vector<std::uint32_t> resting;      ///< the resting grid's shapes, by its index
   std::vector<std::uint32_t> live_joints;  ///< the tick's joints (indices), ascending
-  GridBroadphase grid;                     ///< the resting shapes' boxes (index() only)
+  /// The resting shapes, in body order, and 1 for each whose body kept its key (Key: the box
+  /// it had at the last rebuild): rebuild_rest fills them, settle_grid reads them.
+  std::vector<std::uint32_t> order;
+  std::vector<std::uint8_t> order_kept;
+  // The grid of the resting shapes' boxes (index() only), kept from one rebuild to the next:
+  // `resting[g]` is entry g's shape, `gone[g]` 1 once that shape no longer rests with the box
+  // indexed; `slot[k]` shape k's entry while it has rested there since (none otherwise);
+  // `extras` the resting shapes the grid does not hold, ascending.
+  GridBroadphase grid;
+  std::vector<std::uint32_t> resting;
+  std::vector<std::uint8_t> gone;
+  std::vector<std::uint32_t> slot;
+  std::vector<std::uint32_t> extras;
+  bool indexed = false;  ///< whether the grid holds a past rebuild's shapes (else made afresh)
+  static constexpr std::uint32_t none = 0xffffffffu;
   // Scratch: the live shapes' boxes and activity by their place in live_shapes (the
   // broadphase's; rebuild_rest first lends `boxes` the resting shapes' boxes for the grid,
   // which copies them), their pairs in those places, and the live-resting pairs.
   std::vector<SweptBox> boxes;
   std::vector<std::uint8_t> active;
   std::vector<DiscPair> pairs, cross;
+  std::vector<std::uint32_t> around;  ///< one live shape's resting neighbours (near)
 
   /// A body's state as the last rebuild found it resting (start, pose and velocity, each by
   /// its bits), and the tick's dt then: a body that rests again with the same bits still holds
@@ -83,9 +101,23 @@ struct ShapeRest {
   std::vector<Key> keys;
   std::vector<std::uint8_t> keyed;
   double keyed_dt = 0.0;
-  /// Drops every key: the shapes were rebuilt (their indices, owners and definitions may have
-  /// changed), or the world was assigned from a copy.
-  void forget() { keyed.clear(); }
+  /// Drops every key and the grid: the shapes were rebuilt (their indices, owners and
+  /// definitions may have changed), or the world was assigned from a copy.
+  void forget() {
+    keyed.clear();
+    indexed = false;
+  }
+
+  /// Called by rebuild_rest once `order` and `order_kept` are made. Keeps the grid, marking
+  /// gone the entries whose shapes no longer rest with their boxes and taking the other
+  /// resting shapes as extras; or indexes `order` afresh: where no grid is kept, or where the
+  /// extras would cost a tick of `live_shapes` queries more than an index (O(order)), or a
+  /// quarter of the entries are gone. `boxes`: every shape's box, by shape index. O(order).
+  void settle_grid(std::span<const SweptBox> boxes, std::size_t live_shapes);
+  /// The resting shapes whose boxes may meet q, ascending, into `out` (cleared first): the
+  /// grid's entries not gone (query, then its unindexed ones by their boxes) and the extras.
+  void near(const SweptBox& q, std::span<const SweptBox> boxes,
+            std::vector<std::uint32_t>& out) const;
 };
 
 }  // namespace fixstep::detail
