@@ -241,5 +241,36 @@ TEST(ShapeRest, AStaticBodySwappedForAnotherShapeAtTheSamePoseIsBoxedAfresh) {
   EXPECT_NEAR(top, 1.25, 0.01) << "m: the dropped box's centre on the new top";
 }
 
+// Sleepers woken by input (an impulse up on one column's upper box, a torque on another's):
+// the tick that wakes them makes the lists again from the bodies that woke and fell asleep
+// alone (ShapeRest::flipped), and its passes give those bodies their state, which the input
+// has just changed. Both move as in the reference, which makes the lists from every body.
+TEST(ShapeRest, SleepersWokenByInputTakeTheirImpulseAndTorqueInALargeWorld) {
+  const RestScene scene = rest_scene();
+  World lean(scene.def), full(scene.def);
+  WorldSnapshot snapshot;
+  const Entity lifted = lean.defined_bodies()[rest_tiles + 2 * 30 + 1];
+  const Entity turned = lean.defined_bodies()[rest_tiles + 2 * 35 + 1];
+  double y0 = 0.0, a0 = 0.0;
+  for (int t = 1; t <= 150; ++t) {
+    TickInput in;
+    if (t == 120) {
+      ASSERT_TRUE(lean.asleep(lifted) && lean.asleep(turned)) << "asleep by 2 s";
+      y0 = lean.body(lifted).position.y, a0 = lean.body(turned).angle;
+      in.bodies.push_back(
+          BodyInput{.body = lifted, .kind = BodyInputKind::impulse, .value = {0.0, 3.0}});
+      in.bodies.push_back(
+          BodyInput{.body = turned, .kind = BodyInputKind::torque, .value = {40.0, 0.0}});
+    }
+    full.save(snapshot), full.restore(snapshot);
+    lean.step(in), full.step(in);
+    ASSERT_EQ(lean.state_hash(), full.state_hash()) << "tick " << t;
+    if (t == 126) {
+      EXPECT_GT(lean.body(lifted).position.y - y0, 0.1) << "m: thrown up";
+      EXPECT_GT(std::abs(lean.body(turned).angle - a0), 0.01) << "rad: turned";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fixstep

@@ -1,6 +1,7 @@
 // The resting lists of a shape world (shape_rest.hpp): made again when stale, and the
 // broadphase of a large world over them.
 #include <algorithm>
+#include <iterator>
 
 #include "fixstep/core/bits.hpp"
 #include "fixstep/core/limits.hpp"
@@ -20,11 +21,61 @@ ShapeRest::Key key_of(const ShapeState& s) {
            bits_of(s.vx), bits_of(s.vy), bits_of(s.w)}};
 }
 
+/// a := a without the values of b (both ascending), through `scratch`.
+void remove_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
+                   std::vector<std::uint32_t>& scratch) {
+  if (b.empty()) return;
+  scratch.clear();
+  std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(scratch));
+  a.swap(scratch);
+}
+
+/// a := a with the values of b (both ascending, none in both), through `scratch`.
+void insert_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
+                   std::vector<std::uint32_t>& scratch) {
+  if (b.empty()) return;
+  scratch.clear();
+  std::merge(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(scratch));
+  a.swap(scratch);
+}
+
 }  // namespace
 
 void ShapeWorld::rebuild_rest(double dt) {
   ShapeRest& r = rest_;
-  r.stale = false;
+  if (!r.whole && r.indexed && r.split && r.keyed_dt == dt) {
+    rebuild_flipped(dt);
+  } else {
+    rebuild_whole(dt);
+  }
+  r.stale = false, r.whole = false;
+  r.flipped.clear();
+  rebuild_live_joints();
+}
+
+// What the tick's passes would make of a resting body, which none changes while it rests: made
+// again only where the last rebuild did not find it resting with the same state. Returns
+// whether it kept what that rebuild made (its shapes' boxes among it).
+bool ShapeWorld::settle_body(std::uint32_t i, double dt) {
+  ShapeRest& r = rest_;
+  const ShapedBody& b = bodies_[i];
+  ShapeState& s = state_[i];
+  const ShapeRest::Key key = key_of(s);
+  const bool kept = r.keyed[i] != 0 && r.keys[i] == key;
+  if (!kept) {
+    s.q0 = rot_of(s.a0), s.turn = rot_of(s.a - s.a0);
+    margin_[i] = margin(i, dt);
+    r.keys[i] = key, r.keyed[i] = 1;
+    for (std::uint32_t k = b.first; k < b.first + b.count; ++k) box_shape(k);
+  }
+  s.q = s.q0, turned_at_[i] = s.a;
+  velocity_[i] = {s.vx, s.vy, s.w};
+  body_colors_[i] = 0;
+  return kept;
+}
+
+void ShapeWorld::rebuild_whole(double dt) {
+  ShapeRest& r = rest_;
   r.split = shapes_.size() >= min_grid_shapes;
   r.live.clear(), r.live_shapes.clear(), r.statics.clear();
   r.order.clear(), r.order_kept.clear();
@@ -34,31 +85,20 @@ void ShapeWorld::rebuild_rest(double dt) {
   boxes_.resize(shapes_.size()), dynamic_.resize(shapes_.size()), tags_.resize(shapes_.size());
   if (r.keyed_dt != dt) r.forget();
   r.keys.resize(n), r.keyed.resize(n), r.keyed_dt = dt;
+  std::uint32_t kernel_bodies = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
     const ShapedBody& b = bodies_[i];
-    ShapeState& s = state_[i];
+    kernel_bodies = std::max(kernel_bodies, b.body + 1);
     if (b.type == BodyType::static_body) r.statics.push_back(i);
     if (!rests(b, r.split)) {
-      s.q0 = rot_of(s.a0);
+      state_[i].q0 = rot_of(state_[i].a0);
       r.keyed[i] = 0;
       r.live.push_back(i);
       for (std::uint32_t k = b.first; k < b.first + b.count; ++k) r.live_shapes.push_back(k);
       continue;
     }
-    // What the tick's passes would make of it, which none changes while it rests: made again
-    // only where the last rebuild did not find it resting with the same state.
-    const ShapeRest::Key key = key_of(s);
-    const bool kept = r.keyed[i] != 0 && r.keys[i] == key;
-    if (!kept) {
-      s.q0 = rot_of(s.a0), s.turn = rot_of(s.a - s.a0);
-      margin_[i] = margin(i, dt);
-      r.keys[i] = key, r.keyed[i] = 1;
-    }
-    s.q = s.q0, turned_at_[i] = s.a;
-    velocity_[i] = {s.vx, s.vy, s.w};
-    body_colors_[i] = 0;
+    const bool kept = settle_body(i, dt);
     for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
-      if (!kept) box_shape(k);
       if (shapes_[k].sensor) {
         r.live_shapes.push_back(k);
         continue;
@@ -67,12 +107,100 @@ void ShapeWorld::rebuild_rest(double dt) {
     }
   }
   r.settle_grid(boxes_, r.live_shapes.size());
-  rebuild_live_joints();
+  r.of_body.assign(2 * std::size_t{kernel_bodies}, ShapeRest::none);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::size_t at = 2 * std::size_t{bodies_[i].body};
+    r.of_body[r.of_body[at] == ShapeRest::none ? at : at + 1] = i;
+  }
+}
+
+void ShapeWorld::unsettle_body(std::uint32_t body) {
+  ShapeRest& r = rest_;
+  if (r.stale && r.whole) return;
+  const std::size_t at = 2 * std::size_t{body};
+  if (at + 1 >= r.of_body.size() || r.flipped.size() > bodies_.size()) {
+    unsettle();  // (a body the last whole rebuild did not know, or flips past counting)
+    return;
+  }
+  for (const std::size_t slot : {at, at + 1}) {
+    const std::uint32_t i = r.of_body[slot];
+    if (i == ShapeRest::none) continue;
+    if (!r.stale) r.stale = true, r.whole = false;
+    r.flipped.push_back(i);
+  }
+}
+
+std::span<const std::uint32_t> ShapeWorld::visit_few() {
+  ShapeRest& r = rest_;
+  r.merged.assign(r.flipped.begin(), r.flipped.end());
+  std::sort(r.merged.begin(), r.merged.end());
+  r.merged.erase(std::unique(r.merged.begin(), r.merged.end()), r.merged.end());
+  r.visit.clear();
+  std::set_union(r.live.begin(), r.live.end(), r.merged.begin(), r.merged.end(),
+                 std::back_inserter(r.visit));
+  return r.visit;
+}
+
+// The lists made again where only the bodies in `flipped` fell asleep or woke, the others'
+// state, boxes and places holding: a body that came to rest leaves the live ones and its shapes
+// become extras; one that woke joins them and its shapes leave the grid (entries gone) or the
+// extras; one that rests again with another state has its entries gone and is an extra with
+// its new boxes. O(live + flipped + extras), and the grid indexed again once spent.
+void ShapeWorld::rebuild_flipped(double dt) {
+  ShapeRest& r = rest_;
+  std::sort(r.flipped.begin(), r.flipped.end());
+  r.flipped.erase(std::unique(r.flipped.begin(), r.flipped.end()), r.flipped.end());
+  r.leave.clear(), r.join.clear(), r.to_extras.clear(), r.join_shapes.clear();
+  r.from_extras.clear();
+  auto leave_grid = [&](std::uint32_t k) {  // false: it is an extra
+    const std::uint32_t g = r.slot[k];
+    if (g == ShapeRest::none) return false;
+    r.gone[g] = 1, r.slot[k] = ShapeRest::none, ++r.gone_count;
+    return true;
+  };
+  for (const std::uint32_t i : r.flipped) {
+    const ShapedBody& b = bodies_[i];
+    const bool was_live = std::binary_search(r.live.begin(), r.live.end(), i);
+    if (!rests(b, r.split)) {
+      r.keyed[i] = 0;
+      if (was_live) continue;
+      r.join.push_back(i);
+      for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
+        if (shapes_[k].sensor) continue;
+        r.join_shapes.push_back(k);
+        if (!leave_grid(k)) r.from_extras.push_back(k);
+      }
+      continue;
+    }
+    const bool kept = settle_body(i, dt);
+    if (was_live) r.leave.push_back(i);
+    if (!was_live && kept) continue;
+    for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
+      if (shapes_[k].sensor) continue;
+      // (An extra that rests again with another state keeps its place: its box is new.)
+      if (was_live || leave_grid(k)) r.to_extras.push_back(k);
+    }
+  }
+  // Every list ascending: the flipped bodies are, and each body's shapes follow one another.
+  remove_sorted(r.live, r.leave, r.merged);
+  insert_sorted(r.live, r.join, r.merged);
+  remove_sorted(r.live_shapes, r.to_extras, r.merged);  // (those not live are not there)
+  insert_sorted(r.live_shapes, r.join_shapes, r.merged);
+  remove_sorted(r.extras, r.from_extras, r.merged);
+  insert_sorted(r.extras, r.to_extras, r.merged);
+  for (const std::uint32_t i : r.live) state_[i].q0 = rot_of(state_[i].a0);
+  if (!r.grid_spent(r.live_shapes.size())) return;
+  r.order.clear();
+  for (std::uint32_t g = 0; g < r.resting.size(); ++g) {
+    if (r.gone[g] == 0) r.order.push_back(r.resting[g]);
+  }
+  insert_sorted(r.order, r.extras, r.merged);
+  r.index_grid(boxes_);
 }
 
 void ShapeRest::settle_grid(std::span<const SweptBox> all, std::size_t live_shapes) {
   extras.clear();
-  std::size_t gone_count = 0;
+  gone_count = 0;
   if (indexed) {
     std::fill(gone.begin(), gone.end(), std::uint8_t{1});
     for (std::size_t i = 0; i < order.size(); ++i) {
@@ -90,15 +218,23 @@ void ShapeRest::settle_grid(std::span<const SweptBox> all, std::size_t live_shap
       if (slot[resting[g]] == g) slot[resting[g]] = none;  // it left: it comes back an extra
     }
   }
-  const std::size_t n = order.size();
-  if (indexed && extras.size() * live_shapes <= n && gone_count * 4 <= resting.size()) return;
+  if (!indexed || grid_spent(live_shapes)) index_grid(all);
+}
+
+bool ShapeRest::grid_spent(std::size_t live_shapes) const {
+  const std::size_t n = resting.size() - gone_count + extras.size();
+  return extras.size() * live_shapes > n || gone_count * 4 > resting.size();
+}
+
+void ShapeRest::index_grid(std::span<const SweptBox> all) {
   resting.assign(order.begin(), order.end());
   boxes.clear();  // (the broadphase's scratch, lent: the grid copies the boxes)
   for (const std::uint32_t k : resting) boxes.push_back(all[k]);
   grid.index(boxes);
   slot.assign(all.size(), none);
   for (std::uint32_t g = 0; g < resting.size(); ++g) slot[resting[g]] = g;
-  gone.assign(n, 0);
+  gone.assign(resting.size(), 0);
+  gone_count = 0;
   extras.clear();
   indexed = true;
 }

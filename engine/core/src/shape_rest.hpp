@@ -6,11 +6,13 @@
 // the kernel gives it (WorldKernel::resolve_shapes): its position, zero velocity, its angle, the
 // rotations of that angle, and the margin and box of its motion, which is none.
 //
-// The kernel makes the lists stale (ShapeWorld::unsettle) whenever a resting body may change:
-// a body falls asleep or wakes, an edit (set_body, set_position, set_velocity), the shapes
-// rebuilt; a copy (a snapshot, a rollback) is stale too. The next tick then fills every
-// body's state and makes the lists again (ShapeWorld::rebuild_rest), O(bodies + shapes); the
-// ticks between visit O(live bodies + the resting shapes their boxes meet). In that rebuild a
+// The kernel makes the lists stale whenever a resting body may change. Where one body alone
+// changes (it falls asleep or wakes, set_position, set_velocity: ShapeWorld::unsettle_body),
+// the next tick gives the live and those bodies their state and moves those between the lists
+// (rebuild_flipped), O(live + changed + extras). Otherwise (set_body, the shapes rebuilt; a
+// copy, for a snapshot or a rollback, is stale too: ShapeWorld::unsettle) it fills every
+// body's state and makes the lists again (rebuild_whole), O(bodies + shapes); the ticks
+// between visit O(live bodies + the resting shapes their boxes meet). In a whole rebuild a
 // body that rested at the last one and rests again with the same state, bit for bit (Key),
 // keeps the rotations, margin and shapes' boxes made then: a body falling asleep or an island
 // waking costs the other resting bodies a comparison each, not their geometry again. The grid
@@ -56,6 +58,18 @@ struct ShapeRest {
   ~ShapeRest() = default;
 
   bool stale = true;
+  /// Whether the stale lists are made again from every body (a rebuild, a copy, set_body);
+  /// else only the bodies in `flipped` changed, each fallen asleep, woken or with its position
+  /// or velocity set (ShapeWorld::unsettle_body, rebuild_flipped).
+  bool whole = true;
+  std::vector<std::uint32_t> flipped;  ///< bodies_ indices, in the order they flipped
+  /// Each kernel body's bodies_ indices, two slots a body (none: fewer), as the last whole
+  /// rebuild found them: a flip names a kernel body.
+  std::vector<std::uint32_t> of_body;
+  std::vector<std::uint32_t> visit;  ///< live and flipped bodies merged (visit_few)
+  // Scratch of rebuild_flipped: the bodies that leave the live ones and join them, the shapes
+  // that become extras, join the live ones and leave the extras; and of the merges.
+  std::vector<std::uint32_t> leave, join, to_extras, join_shapes, from_extras, merged;
   /// Whether resting shapes have their own grid (ShapeWorld::min_grid_shapes shapes or more);
   /// otherwise every body is live.
   bool split = false;
@@ -77,6 +91,7 @@ struct ShapeRest {
   std::vector<std::uint32_t> slot;
   std::vector<std::uint32_t> extras;
   bool indexed = false;  ///< whether the grid holds a past rebuild's shapes (else made afresh)
+  std::size_t gone_count = 0;  ///< entries gone
   static constexpr std::uint32_t none = 0xffffffffu;
   // Scratch: the live shapes' boxes and activity by their place in live_shapes (the
   // broadphase's; rebuild_rest first lends `boxes` the resting shapes' boxes for the grid,
@@ -106,6 +121,7 @@ struct ShapeRest {
   void forget() {
     keyed.clear();
     indexed = false;
+    whole = true;
   }
 
   /// Called by rebuild_rest once `order` and `order_kept` are made. Keeps the grid, marking
@@ -114,6 +130,10 @@ struct ShapeRest {
   /// extras would cost a tick of `live_shapes` queries more than an index (O(order)), or a
   /// quarter of the entries are gone. `boxes`: every shape's box, by shape index. O(order).
   void settle_grid(std::span<const SweptBox> boxes, std::size_t live_shapes);
+  /// Whether the grid holds too many extras or gone entries to keep (settle_grid's rule).
+  [[nodiscard]] bool grid_spent(std::size_t live_shapes) const;
+  /// Indexes `order` afresh.
+  void index_grid(std::span<const SweptBox> boxes);
   /// The resting shapes whose boxes may meet q, ascending, into `out` (cleared first): the
   /// grid's entries not gone (query, then its unindexed ones by their boxes) and the extras.
   void near(const SweptBox& q, std::span<const SweptBox> boxes,

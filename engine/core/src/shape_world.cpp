@@ -249,7 +249,7 @@ bool ShapeWorld::moving(std::uint32_t body) const {
 ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
   joints_ = tick.joints, unpaired_ = tick.unpaired;
-  visited_ = rest_.stale ? bodies_.size() : rest_.live.size();
+  visited_ = !rest_.stale ? rest_.live.size() : rest_.whole ? bodies_.size() : visit_few().size();
   joints_visited_ = 0;
   if (rest_.stale) {
     rebuild_rest(tick.dt);
@@ -268,7 +268,10 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   bool paired = broadphase(tick.dt, tally, thread);
   if (paired && !wake_.empty() && tick.wake) {  // sleepers woken: paired again as they now are
     tick.wake(tick.wake_context);
-    if (rest_.stale) rebuild_rest(tick.dt), visited_ = bodies_.size();  // (the wake makes it so)
+    if (rest_.stale) {  // (the wake makes it so)
+      if (rest_.whole) visited_ = bodies_.size();
+      rebuild_rest(tick.dt);
+    }
     paired = broadphase(tick.dt, tally, thread);
   }
   if (!paired) {  // a work limit: the tick's shape contacts unresolved

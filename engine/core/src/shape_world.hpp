@@ -142,13 +142,22 @@ class ShapeWorld {
   [[nodiscard]] std::span<const std::uint32_t> woken() const { return wake_; }
   /// Makes the resting lists stale (shape_rest.hpp): the kernel's call whenever a body that
   /// the ticks leave alone may change (it falls asleep or wakes, an edit, a rebuild).
-  void unsettle() { rest_.stale = true; }
+  void unsettle() { rest_.stale = true, rest_.whole = true; }
+  /// Unsettles for kernel body `body` alone, which fell asleep, woke or had its position or
+  /// velocity set (its own state alone changed): the next lists are made again from such
+  /// bodies (ShapeRest::flipped, rebuild_flipped), unless something makes them stale whole.
+  void unsettle_body(std::uint32_t body);
   /// Unsettles and forgets what each resting body's state was made into (ShapeRest::Key): the
   /// kernel's call when it rebuilds the bodies and shapes, whose indices may then name others.
   void reshape() { rest_.stale = true, rest_.forget(); }
   /// Whether the next tick makes the resting lists again: the kernel then gives every body its
   /// state, else the live ones.
   [[nodiscard]] bool rest_stale() const { return rest_.stale; }
+  /// Whether stale lists are made from every body: the kernel then gives every body its state;
+  /// else the live ones and the flipped ones (visit_few, ascending, each once; flipped).
+  [[nodiscard]] bool rest_whole() const { return rest_.whole; }
+  std::span<const std::uint32_t> visit_few();
+  [[nodiscard]] std::span<const std::uint32_t> flipped() const { return rest_.flipped; }
   /// The bodies a tick visits (bodies_ indices, ascending; shape_rest.hpp), as the last tick
   /// left them: valid while !rest_stale().
   [[nodiscard]] std::span<const std::uint32_t> live() const { return rest_.live; }
@@ -167,6 +176,9 @@ class ShapeWorld {
   /// Makes the resting lists and the resting shapes' grid from state_ (every body's filled),
   /// and each resting body's rotations, margin, velocity and box.
   void rebuild_rest(double dt);
+  void rebuild_whole(double dt);
+  void rebuild_flipped(double dt);
+  bool settle_body(std::uint32_t i, double dt);
   void rebuild_live_joints();
   /// Shape k's box at the tick's start grown by its body's margin_, its activity and its tag.
   void box_shape(std::uint32_t k);

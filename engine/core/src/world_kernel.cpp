@@ -343,7 +343,7 @@ void detail::WorldKernel<Real>::set_position(Entity e, Vec2 position) {
   x_[i] = prev_x_[i] = static_cast<Real>(position.x);
   y_[i] = prev_y_[i] = static_cast<Real>(position.y);
   if (sleep_) wake(i);
-  unsettle_shapes();
+  if (shape_world_) shape_world_->unsettle_body(static_cast<std::uint32_t>(i));
   if (segments_.moves()) place_segments();
 }
 
@@ -361,7 +361,7 @@ void detail::WorldKernel<Real>::set_velocity(Entity e, Vec2 velocity) {
   vx_[i] = rests ? Real(0) : static_cast<Real>(velocity.x);
   vy_[i] = rests ? Real(0) : static_cast<Real>(velocity.y);
   if (sleep_) wake(i);
-  unsettle_shapes();
+  if (shape_world_) shape_world_->unsettle_body(static_cast<std::uint32_t>(i));
   if (segments_.moves()) place_segments();
 }
 

@@ -18,14 +18,19 @@ namespace fixstep {
 template <class Real>
 void detail::WorldKernel<Real>::mark_shape_sleepers() {
   ShapeWorld& w = *shape_world_;
-  for (ShapedBody& b : w.bodies_) {
+  auto mark = [&](ShapedBody& b) {
     const bool asleep = asleep_[b.body] != 0;
     b.asleep = asleep;
-    if (b.type != BodyType::dynamic) continue;
+    if (b.type != BodyType::dynamic) return;
     b.inv_mass = asleep ? 0.0 : 1.0 / mass_[b.body];
     const bool turns = !asleep && b.set != ShapedBody::none;
     b.inv_inertia = turns ? 1.0 / shape_sets_.data[b.set].inertia : 0.0;
+  };
+  if (w.rest_stale() && !w.rest_whole()) {  // the others are as the last marking left them
+    for (const std::uint32_t i : w.flipped()) mark(w.bodies_[i]);
+    return;
   }
+  for (ShapedBody& b : w.bodies_) mark(b);
 }
 
 template <class Real>

@@ -283,9 +283,11 @@ void detail::WorldKernel<Real>::for_shape_bodies(F&& f) {
   ShapeWorld& w = *shape_world_;
   if (!w.rest_stale()) {
     for (const std::uint32_t i : w.live()) f(i);
-    return;
+  } else if (!w.rest_whole()) {  // only bodies that fell asleep or woke changed
+    for (const std::uint32_t i : w.visit_few()) f(i);
+  } else {
+    for (std::uint32_t i = 0; i < w.bodies_.size(); ++i) f(i);
   }
-  for (std::uint32_t i = 0; i < w.bodies_.size(); ++i) f(i);
 }
 
 template <class Real>

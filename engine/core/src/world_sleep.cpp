@@ -87,13 +87,13 @@ void detail::WorldKernel<Real>::wake_labelled() {
   std::sort(wake_labels_.begin(), wake_labels_.end());
   wake_labels_.erase(std::unique(wake_labels_.begin(), wake_labels_.end()), wake_labels_.end());
   woken_ += wake_labels_.size();
-  unsettle_shapes();
   for (std::size_t j = 0; j < asleep_.size(); ++j) {
     if (asleep_[j] == 0 ||
         !std::binary_search(wake_labels_.begin(), wake_labels_.end(), asleep_[j])) {
       continue;
     }
     asleep_[j] = 0, still_ticks_[j] = 0, --sleepers_;
+    if (shape_world_) shape_world_->unsettle_body(static_cast<std::uint32_t>(j));
     if (!shaped_dynamic_.empty() && shaped_dynamic_[j] != 0) --shape_sleepers_;
     const std::int32_t k = disc_of_.empty() ? -1 : disc_of_[j];
     if (k < 0) continue;  // a body with shapes: mark_shape_sleepers sets its masses back
@@ -253,7 +253,7 @@ void detail::WorldKernel<Real>::fall_asleep(std::size_t j, std::uint32_t label) 
   if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(joules_per_kg);
   vx_[j] = Real(0), vy_[j] = Real(0);
   asleep_[j] = label, ++sleepers_;
-  unsettle_shapes();
+  if (shape_world_) shape_world_->unsettle_body(static_cast<std::uint32_t>(j));
   if (!shaped_dynamic_.empty() && shaped_dynamic_[j] != 0) ++shape_sleepers_;
   if (disc >= 0)
     discs_->set_asleep(static_cast<std::uint32_t>(disc), true, 0.0, 0.0), ++disc_sleepers_;
