@@ -141,11 +141,12 @@ std::span<const std::uint32_t> ShapeWorld::visit_few() {
   return r.visit;
 }
 
-// The lists made again where only the bodies in `flipped` fell asleep or woke, the others'
-// state, boxes and places holding: a body that came to rest leaves the live ones and its shapes
-// become extras; one that woke joins them and its shapes leave the grid (entries gone) or the
-// extras; one that rests again with another state has its entries gone and is an extra with
-// its new boxes. O(live + flipped + extras), and the grid indexed again once spent.
+// The lists made again where only the bodies in `flipped` changed (fell asleep, woke, or had
+// their position or velocity set), the others' state, boxes and places holding: a body that
+// came to rest leaves the live ones and its shapes become extras; one that woke joins them and
+// its shapes leave the grid (entries gone) or the extras; one that rests with another state
+// (a static body moved) has its entries gone and is an extra with its new boxes.
+// O(live + flipped + extras), and the grid indexed again once spent.
 void ShapeWorld::rebuild_flipped(double dt) {
   ShapeRest& r = rest_;
   std::sort(r.flipped.begin(), r.flipped.end());
