@@ -21,22 +21,27 @@ ShapeRest::Key key_of(const ShapeState& s) {
            bits_of(s.vx), bits_of(s.vy), bits_of(s.w)}};
 }
 
-/// a := a without the values of b (both ascending), through `scratch`.
-void remove_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
-                   std::vector<std::uint32_t>& scratch) {
+/// a := what `op` (std::set_difference or std::merge) makes of a and b, both ascending, through
+/// `scratch`.
+template <class Op>
+void combine_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
+                    std::vector<std::uint32_t>& scratch, Op op) {
   if (b.empty()) return;
   scratch.clear();
-  std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(scratch));
+  op(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(scratch));
   a.swap(scratch);
 }
 
-/// a := a with the values of b (both ascending, none in both), through `scratch`.
+/// a := a without the values of b.
+void remove_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
+                   std::vector<std::uint32_t>& scratch) {
+  combine_sorted(a, b, scratch, [](auto... args) { return std::set_difference(args...); });
+}
+
+/// a := a with the values of b (none in both).
 void insert_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
                    std::vector<std::uint32_t>& scratch) {
-  if (b.empty()) return;
-  scratch.clear();
-  std::merge(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(scratch));
-  a.swap(scratch);
+  combine_sorted(a, b, scratch, [](auto... args) { return std::merge(args...); });
 }
 
 }  // namespace
