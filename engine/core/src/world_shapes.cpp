@@ -283,7 +283,7 @@ void detail::WorldKernel<Real>::for_shape_bodies(F&& f) {
   ShapeWorld& w = *shape_world_;
   if (!w.rest_stale()) {
     for (const std::uint32_t i : w.live()) f(i);
-  } else if (!w.rest_whole()) {  // only bodies that fell asleep or woke changed
+  } else if (!w.rest_whole()) {  // only bodies that fell asleep, woke or were moved changed
     for (const std::uint32_t i : w.visit_few()) f(i);
   } else {
     for (std::uint32_t i = 0; i < w.bodies_.size(); ++i) f(i);
