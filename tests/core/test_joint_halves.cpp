@@ -16,6 +16,7 @@
 namespace fixstep {
 namespace {
 
+using detail::JointBodies;
 using detail::JointHalves;
 using detail::JointRecord;
 constexpr std::uint32_t no_body = JointRecord::none;

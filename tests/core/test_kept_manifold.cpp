@@ -10,6 +10,7 @@
 #include "../../engine/core/src/kept_manifold.hpp"
 #include "../../engine/core/src/shape_geom.hpp"
 #include "../cross/shape_exact.hpp"
+#include "shape_world.hpp"
 #include "world_kernel.hpp"
 
 namespace {

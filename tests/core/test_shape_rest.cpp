@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fixstep/core/components.hpp"
+#include "fixstep/core/input.hpp"
 #include "fixstep/core/joint.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/step_results.hpp"
