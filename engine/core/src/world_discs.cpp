@@ -102,6 +102,11 @@ void detail::WorldKernel<Real>::rebuild_discs() {
 // in a world with sleeping or with a static body).
 template <class Real>
 void detail::WorldKernel<Real>::rebuild_immovable() {
+  if (awake_.on && !awake_.whole) {  // the list is the kinematic bodies, which did not change
+    update_awake_runs();
+    immovable_dirty_ = false;
+    return;
+  }
   Immovable& m = immovable_;
   m.body.clear();
   const bool statics =
@@ -123,6 +128,7 @@ template <class Real>
 void detail::WorldKernel<Real>::rebuild_awake_runs(bool on) {
   AwakeRuns& a = awake_;
   a.on = on, a.primed = false;
+  a.flipped.clear(), a.whole = !on || !sleep_;
   if (!on) return;
   auto asleep = [&](std::uint32_t j) { return sleep_ && asleep_[j] != 0; };
   // A static body never moves: the free step leaves it where it is, as putting it back did.
@@ -131,6 +137,44 @@ void detail::WorldKernel<Real>::rebuild_awake_runs(bool on) {
   const auto& body = contact_.body;  // dynamic colliders, in dense order
   auto awake_collider = [&](std::uint32_t k) { return !asleep(body[k]); };
   collect_runs(body.size(), awake_collider, a.colliders);
+}
+
+// The runs less the bodies that fell asleep since they were built, and with those that woke:
+// O(runs + flips), the same runs as rebuild_awake_runs makes from every body. A body that fell
+// asleep is left as a tick over every body would leave a sleeper, so the runs stay primed: its
+// previous position is where it sleeps, and its plane motion none.
+template <class Real>
+void detail::WorldKernel<Real>::update_awake_runs() {
+  AwakeRuns& a = awake_;
+  std::vector<std::uint32_t>& flipped = a.flipped;
+  std::sort(flipped.begin(), flipped.end());
+  flipped.erase(std::unique(flipped.begin(), flipped.end()), flipped.end());
+  std::vector<std::uint32_t>& woke = run_scratch_.woke;
+  std::vector<std::uint32_t>& slept = run_scratch_.slept;
+  woke.clear(), slept.clear();
+  for (const std::uint32_t j : flipped) (asleep_[j] == 0 ? woke : slept).push_back(j);
+  std::vector<IndexRun>& out = run_scratch_.runs;
+  update_runs(a.bodies, woke, slept, out);
+  std::swap(a.bodies, out);
+  // The colliders' runs: ContactScratch::body is in increasing body order.
+  const std::vector<std::uint32_t>& body = contact_.body;
+  auto slots = [&](std::span<const std::uint32_t> bodies, std::vector<std::uint32_t>& to) {
+    to.clear();
+    for (const std::uint32_t j : bodies) {
+      const auto at = std::lower_bound(body.begin(), body.end(), j);
+      if (at != body.end() && *at == j) to.push_back(static_cast<std::uint32_t>(at - body.begin()));
+    }
+  };
+  slots(woke, run_scratch_.woke_slots), slots(slept, run_scratch_.slept_slots);
+  update_runs(a.colliders, run_scratch_.woke_slots, run_scratch_.slept_slots, out);
+  std::swap(a.colliders, out);
+  for (const std::uint32_t j : slept) {
+    if (keep_previous_) prev_x_[j] = x_[j], prev_y_[j] = y_[j];
+  }
+  for (const std::uint32_t k : run_scratch_.slept_slots) {
+    if (k < contact_.after_t.size()) contact_.after_t[k] = -1.0;
+  }
+  flipped.clear();
 }
 
 template <class Real>

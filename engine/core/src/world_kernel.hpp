@@ -836,13 +836,28 @@ class WorldKernel {
   /// Whether every disc sleeps or is static, or is kinematic and still: the disc phases have
   /// nothing to do.
   [[nodiscard]] bool discs_at_rest() const;
-  std::vector<std::uint32_t> island_parent_, wake_labels_;  ///< scratch of one tick
-  std::vector<std::uint8_t> island_blocked_;                ///< scratch of one tick
+  /// Per sleeper, the next body of its island, round a ring through them all (update_sleep),
+  /// so that waking an island visits its bodies only.
+  std::vector<std::uint32_t> island_next_;
+  /// Scratch of one tick: the union-find of the awake bodies (island_union.hpp), a body's
+  /// entry read only when it is awake, and island_blocked_[j] == blocked_stamp_ for a body
+  /// that keeps its island awake this time (a new stamp each time: no pass to clear them).
+  std::vector<std::uint32_t> island_parent_, island_blocked_;
+  std::uint32_t blocked_stamp_ = 0;
+  /// Scratch of one tick: bodies whose islands wake (wake_labelled), and the bodies of a
+  /// change (those woken, or those falling asleep).
+  std::vector<std::uint32_t> wake_bodies_, flip_scratch_;
   std::size_t sleeper_contacts_ = 0;  ///< this tick's contacts with sleepers (ContactStats)
   std::size_t woken_ = 0;             ///< islands woken this tick (ContactStats)
 
   /// The awake bodies' runs (awake_runs.hpp), built with the immovable list.
   AwakeRuns awake_;
+  /// update_awake_runs' scratch: the bodies flipped that woke and that slept, their
+  /// colliders' slots, and the runs made.
+  struct RunScratch {
+    std::vector<std::uint32_t> woke, slept, woke_slots, slept_slots;
+    std::vector<IndexRun> runs;
+  } run_scratch_;
   /// Bodies the last free step and plane pass visited (ContactStats::free_stepped,
   /// plane_tested).
   std::size_t stepped_ = 0, plane_visited_ = 0;
@@ -866,11 +881,19 @@ class WorldKernel {
   /// Wakes the islands a segment carried by a moving kinematic body may reach in the tick
   /// (before the free step).
   void wake_by_segments();
-  /// Wakes the islands whose numbers are in wake_labels_ (then clears it): one pass over the
-  /// bodies, however many islands.
+  /// Wakes the islands of the bodies in wake_bodies_ (then clears it), each round its ring:
+  /// the cost of the bodies woken, in increasing order.
   void wake_labelled();
-  /// Puts the island of the body at dense index i in wake_labels_ (false when it is awake).
+  /// Puts the body at dense index i in wake_bodies_ (false when it is awake).
   bool mark_awake(std::size_t index);
+  /// Notes that body j fell asleep or woke (AwakeRuns::flipped).
+  void flip_sleep(std::uint32_t j);
+  /// Calls f(j) for every awake body j that is not static, in increasing order, and for some
+  /// static ones: from the awake runs and the bodies flipped since, or else every body.
+  template <class F>
+  void for_each_awake_body(F&& f);
+  /// The awake runs updated from the bodies flipped since they were built (rebuild_immovable).
+  void update_awake_runs();
   /// After the tick: contacts with sleepers wake them; islands at rest fall asleep. `discs`:
   /// the disc phases ran this tick (their contacts are the tick's).
   void update_sleep(const TickInput& input, bool discs);

@@ -56,13 +56,15 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
            contact_.after_t, contact_.after, contact_.near[0], contact_.near[1]);
   n += sum(immovable_.body, immovable_.x0, immovable_.y0, immovable_.vx0, immovable_.vy0,
            immovable_.d0);
-  n += sum(still_ticks_, asleep_, disc_of_, kinematic_discs_, island_parent_, wake_labels_,
-           island_blocked_, shaped_dynamic_, kinematic_shaped_);
+  n += sum(still_ticks_, asleep_, disc_of_, kinematic_discs_, island_next_, island_parent_,
+           island_blocked_, wake_bodies_, flip_scratch_, shaped_dynamic_, kinematic_shaped_);
   n += sum(touching_, asleep_touching_, touching_before_, hits_, begun_, ended_, begun_half_,
            ended_half_, impacts_, saved_accel_);
   n += sum(sensed_, sensed_before_, sensor_crossed_, sensor_begun_, sensor_ended_);
   if (discs_) n += sizeof(*discs_.get()) + discs_->bytes();
-  n += sum(plane_work_, awake_.bodies, awake_.colliders, push_saved_, push_saved_implicit_);
+  n += sum(plane_work_, awake_.bodies, awake_.colliders, awake_.flipped, run_scratch_.woke,
+           run_scratch_.slept, run_scratch_.woke_slots, run_scratch_.slept_slots, run_scratch_.runs,
+           push_saved_, push_saved_implicit_);
   // Bodies with shapes, and their contacts' state and scratch.
   n += sum(shape_sets_);
   for (const ShapeSet& set : shape_sets_.data) n += bytes_of(set.defs);

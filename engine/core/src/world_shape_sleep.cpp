@@ -39,7 +39,7 @@ void detail::WorldKernel<Real>::wake_shape_sleepers(void* kernel) {
   const ShapeWorld& w = *k.shape_world_;
   for (const std::uint32_t i : w.woken()) {
     const std::uint32_t j = w.bodies_[i].body;
-    if (k.asleep_[j] != 0) k.wake_labels_.push_back(k.asleep_[j]);
+    if (k.asleep_[j] != 0) k.wake_bodies_.push_back(j);
   }
   k.wake_labelled();
   k.mark_shape_sleepers();
@@ -67,7 +67,8 @@ bool detail::WorldKernel<Real>::count_still_shapes(double speed2) {
 template <class Real>
 void detail::WorldKernel<Real>::join_shape_islands() {
   const ShapeWorld& w = *shape_world_;
-  std::vector<std::uint8_t>& blocked = island_blocked_;
+  std::vector<std::uint32_t>& blocked = island_blocked_;
+  const std::uint32_t stamp = blocked_stamp_;
   auto awake = [&](std::uint32_t j) { return types_[j] == BodyType::dynamic && asleep_[j] == 0; };
   auto moving = [&](std::uint32_t i) {  // a kinematic body of the shape world in motion
     const ShapedBody& b = w.bodies_[i];
@@ -82,14 +83,14 @@ void detail::WorldKernel<Real>::join_shape_islands() {
       const auto high = static_cast<std::uint32_t>(r.pair >> 32);
       const bool segment = (high & 0xF0000000u) == 0xE0000000u;
       const Vec2 u = segment ? segments_.velocity(high & 0x0FFFFFFFu) : Vec2{};
-      if (u.x != 0.0 || u.y != 0.0) blocked[b] = 1;
+      if (u.x != 0.0 || u.y != 0.0) blocked[b] = stamp;
       continue;
     }
     const std::uint32_t a = w.bodies_[r.a].body;
     const bool da = awake(a), db = awake(b);
     if (da && db) detail::join(island_parent_, a, b);
-    if (da && moving(r.b)) blocked[a] = 1;
-    if (db && moving(r.a)) blocked[b] = 1;
+    if (da && moving(r.b)) blocked[a] = stamp;
+    if (db && moving(r.a)) blocked[b] = stamp;
   }
   // Jointed bodies share an island (a joint to a moving kinematic body keeps its body awake).
   // (A joint whose two ends rest joins no awake body: ShapeWorld::live_joints.)
@@ -98,8 +99,8 @@ void detail::WorldKernel<Real>::join_shape_islands() {
     const std::uint32_t a = w.bodies_[j.a].body, b = w.bodies_[j.b].body;
     const bool da = awake(a), db = awake(b);
     if (da && db) detail::join(island_parent_, a, b);
-    if (da && moving(j.b)) blocked[a] = 1;
-    if (db && moving(j.a)) blocked[b] = 1;
+    if (da && moving(j.b)) blocked[a] = stamp;
+    if (db && moving(j.a)) blocked[b] = stamp;
   });
   // Bodies the broadphase pairs share an island (as discs do; see join_islands).
   for (const ShapeWorld::Candidate& c : w.candidates()) {

@@ -62,7 +62,9 @@ void detail::WorldKernel<Real>::reset_sleep() {
   const std::size_t n = body_count();
   still_ticks_.assign(n, 0);
   asleep_.assign(n, 0);
+  island_next_.assign(n, 0);
   sleepers_ = 0, disc_sleepers_ = 0, shape_sleepers_ = 0;
+  awake_.flipped.clear(), awake_.whole = true;
   asleep_pairs_stale_ = true;
   unsettle_shapes();
 }
@@ -72,7 +74,7 @@ bool detail::WorldKernel<Real>::mark_awake(std::size_t index) {
   if (!still_ticks_.empty()) still_ticks_[index] = 0;
   // After a structural change the rebuild at the next step wakes every island anyway.
   if (asleep_.empty() || asleep_[index] == 0 || terms_dirty_) return false;
-  wake_labels_.push_back(asleep_[index]);
+  wake_bodies_.push_back(static_cast<std::uint32_t>(index));
   return true;
 }
 
@@ -83,17 +85,24 @@ void detail::WorldKernel<Real>::wake(std::size_t index) {
 
 template <class Real>
 void detail::WorldKernel<Real>::wake_labelled() {
-  if (wake_labels_.empty()) return;
-  std::sort(wake_labels_.begin(), wake_labels_.end());
-  wake_labels_.erase(std::unique(wake_labels_.begin(), wake_labels_.end()), wake_labels_.end());
-  woken_ += wake_labels_.size();
-  for (std::size_t j = 0; j < asleep_.size(); ++j) {
-    if (asleep_[j] == 0 ||
-        !std::binary_search(wake_labels_.begin(), wake_labels_.end(), asleep_[j])) {
-      continue;
-    }
-    asleep_[j] = 0, still_ticks_[j] = 0, --sleepers_;
-    if (shape_world_) shape_world_->unsettle_body(static_cast<std::uint32_t>(j));
+  if (wake_bodies_.empty()) return;
+  std::vector<std::uint32_t>& woken = flip_scratch_;
+  woken.clear();
+  for (const std::uint32_t b : wake_bodies_) {
+    if (asleep_[b] == 0) continue;  // awake, or its island woken already
+    ++woken_;
+    std::uint32_t j = b;
+    do {
+      asleep_[j] = 0, woken.push_back(j);
+      j = island_next_[j];
+    } while (j != b);
+  }
+  wake_bodies_.clear();
+  std::sort(woken.begin(), woken.end());  // in increasing order, as a pass over the bodies
+  for (const std::uint32_t j : woken) {
+    still_ticks_[j] = 0, --sleepers_;
+    flip_sleep(j);
+    if (shape_world_) shape_world_->unsettle_body(j);
     if (!shaped_dynamic_.empty() && shaped_dynamic_[j] != 0) --shape_sleepers_;
     const std::int32_t k = disc_of_.empty() ? -1 : disc_of_[j];
     if (k < 0) continue;  // a body with shapes: mark_shape_sleepers sets its masses back
@@ -101,16 +110,56 @@ void detail::WorldKernel<Real>::wake_labelled() {
     discs_->set_asleep(static_cast<std::uint32_t>(k), false, 1.0 / mass_[j], inv_i);
     --disc_sleepers_;
   }
-  wake_labels_.clear();
   immovable_dirty_ = true;
   asleep_pairs_stale_ = true;  // their touching pairs go back to the per-tick lists
 }
 
 template <class Real>
+void detail::WorldKernel<Real>::flip_sleep(std::uint32_t j) {
+  AwakeRuns& a = awake_;
+  if (a.whole) return;
+  if (a.flipped.size() >= asleep_.size()) {
+    a.flipped.clear(), a.whole = true;
+    return;
+  }
+  a.flipped.push_back(j);
+}
+
+template <class Real>
+template <class F>
+void detail::WorldKernel<Real>::for_each_awake_body(F&& f) {
+  const AwakeRuns& a = awake_;
+  if (!a.on || a.whole) {
+    for (std::uint32_t j = 0; j < asleep_.size(); ++j) {
+      if (asleep_[j] == 0) f(j);
+    }
+    return;
+  }
+  // The runs as they were built, and the bodies flipped since (those woken are in no run).
+  std::vector<std::uint32_t>& flipped = awake_.flipped;
+  std::sort(flipped.begin(), flipped.end());
+  flipped.erase(std::unique(flipped.begin(), flipped.end()), flipped.end());
+  std::size_t x = 0;
+  auto flipped_before = [&](std::uint32_t i) {
+    for (; x < flipped.size() && flipped[x] < i; ++x) {
+      if (asleep_[flipped[x]] == 0) f(flipped[x]);
+    }
+  };
+  for (const IndexRun& r : a.bodies) {
+    flipped_before(r.begin);
+    for (std::uint32_t j = r.begin; j < r.end; ++j) {
+      if (x < flipped.size() && flipped[x] == j) ++x;  // in a run: met here
+      if (asleep_[j] == 0) f(j);
+    }
+  }
+  flipped_before(0xffffffffu);
+}
+
+template <class Real>
 void detail::WorldKernel<Real>::wake_for_input(const TickInput& input) {
   if (input.push.x != 0.0 || input.push.y != 0.0) {  // a push moves every body
-    for (const std::uint32_t label : asleep_) {
-      if (label != 0) wake_labels_.push_back(label);
+    for (std::uint32_t j = 0; j < asleep_.size(); ++j) {
+      if (asleep_[j] != 0) wake_bodies_.push_back(j);
     }
   }
   for (const BodyInput& b : input.bodies) {  // marked, then woken in one pass
@@ -148,7 +197,7 @@ void detail::WorldKernel<Real>::wake_by_segments() {
       const double x = double(x_[j]), y = double(y_[j]);
       const double r = DiscContacts<Real>::box_pad(discs[k]);
       if (!boxes_overlap(SweptBox{x - r, y - r, x + r, y + r}, swept)) return;
-      if (asleep_[j] != 0) wake_labels_.push_back(asleep_[j]);
+      if (asleep_[j] != 0) wake_bodies_.push_back(j);
     });
   }
   wake_labelled();
@@ -167,7 +216,7 @@ void detail::WorldKernel<Real>::wake_near_movers() {
       const std::uint32_t sleeper = discs[other].body;
       if (asleep_[sleeper] == 0 || !boxes_overlap(b, boxes[other])) return;
       if (!discs_->may_collide(mover, other)) return;
-      wake_labels_.push_back(asleep_[sleeper]);
+      wake_bodies_.push_back(sleeper);
     });
   }
   wake_labelled();
@@ -191,10 +240,14 @@ void detail::WorldKernel<Real>::quiet_discs() {
 template <class Real>
 void detail::WorldKernel<Real>::join_islands() {
   const std::size_t n = body_count();
-  island_parent_.resize(n);
-  for (std::uint32_t j = 0; j < n; ++j) island_parent_[j] = j;
-  std::vector<std::uint8_t>& blocked = island_blocked_;
-  blocked.assign(n, 0);
+  island_parent_.resize(n), island_blocked_.resize(n, 0);
+  if (++blocked_stamp_ == 0) {  // the stamps wrapped: every entry is older than the next one
+    std::fill(island_blocked_.begin(), island_blocked_.end(), 0u);
+    blocked_stamp_ = 1;
+  }
+  for_each_awake_body([&](std::uint32_t j) { island_parent_[j] = j; });
+  const std::uint32_t stamp = blocked_stamp_;
+  std::vector<std::uint32_t>& blocked = island_blocked_;
   if (shape_world_) join_shape_islands();  // world_shape_sleep.cpp
   const auto discs = discs_ ? discs_->discs() : std::span<const Disc>{};
   auto moving = [&](std::uint32_t j) {
@@ -205,14 +258,14 @@ void detail::WorldKernel<Real>::join_islands() {
   const auto touching = discs_ ? discs_->touching() : std::span<const RestContact>{};
   for (const RestContact& c : touching) {
     if (c.b >= discs.size()) {  // a plane or a segment: static, unless a kinematic body's
-      if (c.kinematic_b) blocked[discs[c.a].body] = 1;
+      if (c.kinematic_b) blocked[discs[c.a].body] = stamp;
       continue;
     }
     const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
     const bool da = awake(a), db = awake(b);
     if (da && db) detail::join(island_parent_, a, b);
-    if (da && moving(b)) blocked[a] = 1;
-    if (db && moving(a)) blocked[b] = 1;
+    if (da && moving(b)) blocked[a] = stamp;
+    if (db && moving(a)) blocked[b] = stamp;
   }
   // Discs near enough to be paired by the broadphase share an island too: an awake one would
   // otherwise wake a sleeping neighbour every tick (Box2D links islands through contacts
@@ -226,13 +279,13 @@ void detail::WorldKernel<Real>::join_islands() {
     const std::uint32_t a = net_.a[l], b = net_.b[l];
     const bool da = awake(a), db = awake(b);
     if (da && db) detail::join(island_parent_, a, b);
-    if (da && moving(b)) blocked[a] = 1;
-    if (db && moving(a)) blocked[b] = 1;
+    if (da && moving(b)) blocked[a] = stamp;
+    if (db && moving(a)) blocked[b] = stamp;
   }
-  for (std::uint32_t j = 0; j < n; ++j) {  // a body not ready, or blocked, keeps its island up
-    const bool ready = still_ticks_[j] >= sleep_ticks_ && asleep_[j] == 0;
-    if (!ready || blocked[j]) blocked[detail::find_root(island_parent_, j)] = 1;
-  }
+  for_each_awake_body([&](std::uint32_t j) {  // one not ready, or blocked, keeps its island up
+    const bool ready = still_ticks_[j] >= sleep_ticks_;
+    if (!ready || blocked[j] == stamp) blocked[detail::find_root(island_parent_, j)] = stamp;
+  });
 }
 
 template <class Real>
@@ -253,6 +306,7 @@ void detail::WorldKernel<Real>::fall_asleep(std::size_t j, std::uint32_t label) 
   if (settings_.track_dissipation) dissipated_body_[j] += static_cast<Real>(joules_per_kg);
   vx_[j] = Real(0), vy_[j] = Real(0);
   asleep_[j] = label, ++sleepers_;
+  flip_sleep(static_cast<std::uint32_t>(j));
   if (shape_world_) shape_world_->unsettle_body(static_cast<std::uint32_t>(j));
   if (!shaped_dynamic_.empty() && shaped_dynamic_[j] != 0) ++shape_sleepers_;
   if (disc >= 0)
@@ -261,8 +315,9 @@ void detail::WorldKernel<Real>::fall_asleep(std::size_t j, std::uint32_t label) 
 
 template <class Real>
 std::uint32_t detail::WorldKernel<Real>::take_island_number() {
-  // Numbers wrap after 2^32 - 1 islands (0 means awake and is skipped): two islands that then
-  // share a number wake together, which is safe (a needless wake), never a lost one.
+  // Numbers wrap after 2^32 - 1 islands (0 means awake and is skipped): two islands may then
+  // share a number, which is safe: an island wakes round its ring (island_next_), not by its
+  // number.
   const std::uint32_t n = next_island_;
   next_island_ = n == 0xffffffffu ? 1u : n + 1u;
   return n;
@@ -278,15 +333,15 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input, bool disc_p
     if (c.b >= discs.size()) continue;
     const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
     if (asleep_[a] != 0 && asleep_[b] == 0 && types_[b] == BodyType::dynamic) {
-      wake_labels_.push_back(asleep_[a]), ++sleeper_contacts_;
+      wake_bodies_.push_back(a), ++sleeper_contacts_;
     }
     if (asleep_[b] != 0 && asleep_[a] == 0 && types_[a] == BodyType::dynamic) {
-      wake_labels_.push_back(asleep_[b]), ++sleeper_contacts_;
+      wake_bodies_.push_back(b), ++sleeper_contacts_;
     }
   }
   for (const DiscImpact& i : impacts) {
     for (const std::uint32_t j : {i.body_a, i.body_b}) {
-      if (asleep_[j] != 0) wake_labels_.push_back(asleep_[j]), ++sleeper_contacts_;
+      if (asleep_[j] != 0) wake_bodies_.push_back(j), ++sleeper_contacts_;
     }
   }
   wake_labelled();
@@ -309,14 +364,26 @@ void detail::WorldKernel<Real>::update_sleep(const TickInput& input, bool disc_p
   }
   if (!ready) return;
   join_islands();
-  for (std::uint32_t j = 0; j < body_count(); ++j) {
-    if (asleep_[j] != 0 || types_[j] != BodyType::dynamic) continue;
+  std::vector<std::uint32_t>& falling = flip_scratch_;
+  falling.clear();
+  for_each_awake_body([&](std::uint32_t j) {
+    if (types_[j] != BodyType::dynamic) return;
     const bool disc = !disc_of_.empty() && disc_of_[j] >= 0;
-    if (!disc && !shape_sets_.set.contains(bodies_.dense[j])) continue;  // a point body
+    if (!disc && !shape_sets_.set.contains(bodies_.dense[j])) return;  // a point body
+    if (island_blocked_[detail::find_root(island_parent_, j)] != blocked_stamp_) {
+      falling.push_back(j);
+    }
+  });
+  for (const std::uint32_t j : falling) {
+    // The root is the island's smallest index, so it is met first and takes the next number,
+    // and the ring of its island (island_next_) starts at it.
     const std::uint32_t root = detail::find_root(island_parent_, j);
-    if (island_blocked_[root]) continue;
-    // The root is the island's smallest index, so it is met first and takes the next number.
     fall_asleep(j, root == j ? take_island_number() : asleep_[root]);
+    if (root == j) {
+      island_next_[j] = j;
+    } else {
+      island_next_[j] = island_next_[root], island_next_[root] = j;
+    }
   }
   immovable_dirty_ = true;
 }
