@@ -12,10 +12,39 @@
 namespace fixstep::detail {
 
 /// The sleepers where they sleep (for_each_sleeper_near()): a cache, which a copy (a
-/// snapshot) does not take; it builds its own when first asked.
+/// snapshot) does not take; it builds its own when first asked. It is kept across changes of
+/// sleep: an entry whose disc woke since is skipped, and a disc that fell asleep since is an
+/// extra, tested alone by every query, until the grid is built again: once the extras' tests
+/// since the last build cost more than a build (a ski rental: never more than twice the work
+/// of the better choice made in hindsight), or a quarter of the entries are gone.
 struct SleeperGrid {
   QueryGrid grid;
   std::vector<std::uint32_t> disc;  ///< the grid's disc i is disc disc[i]
+  /// Per disc: 1 while its entry is where it sleeps (asleep since the grid was built); 1 while
+  /// it is in `extras`.
+  std::vector<std::uint8_t> indexed, extra;
+  /// The discs that fell asleep since the grid was built (some may have woken again since).
+  std::vector<std::uint32_t> extras;
+  std::size_t gone = 0;    ///< entries whose disc woke since the grid was built
+  std::size_t tested = 0;  ///< the extras' tests since the grid was built
+  /// A build's work per entry, in box tests of an extra (it hashes, counts and sorts it).
+  static constexpr std::size_t build_tests = 8;
+
+  /// Disc k fell asleep.
+  void fell_asleep(std::uint32_t k) {
+    if (grid.stale || extra[k] != 0) return;
+    extra[k] = 1, extras.push_back(k);
+  }
+  /// Disc k woke.
+  void woke(std::uint32_t k) {
+    if (grid.stale || indexed[k] == 0) return;
+    indexed[k] = 0, ++gone;
+  }
+  /// Whether the grid is to be built (again) before the next query.
+  [[nodiscard]] bool spent() const {
+    return grid.stale || tested > build_tests * (disc.size() + 8) || gone * 4 > disc.size();
+  }
+
   SleeperGrid() = default;
   SleeperGrid(const SleeperGrid& /*other*/) {}
   SleeperGrid& operator=(const SleeperGrid& /*other*/) {

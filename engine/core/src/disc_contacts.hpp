@@ -111,14 +111,20 @@ class DiscContacts {
     asleep_[k] = asleep ? 1 : 0;
     fat_.valid = false;  // its pairs change (a sleeper pairs with no other)
     sleeper_count_ = asleep ? sleeper_count_ + 1 : sleeper_count_ - 1;
-    awake_dirty_ = true, sleepers_.grid.stale = true;
+    awake_dirty_ = true;
+    if (asleep) {
+      sleepers_.fell_asleep(k);
+    } else {
+      sleepers_.woke(k);
+    }
     if (!asleep && waking_) woken_.push_back(k);
   }
   /// The discs not asleep, in index order (every disc when none sleeps).
   std::span<const std::uint32_t> awake();
   /// Calls found(k) for each sleeping disc k whose box at rest (its disc padded as the
   /// broadphase pads it, at its position in x, y: m, dense body order) may overlap b (m): a
-  /// superset, from a grid of the sleepers built when one fell asleep or woke since.
+  /// superset, from a grid of the sleepers (SleeperGrid) and those that fell asleep since it
+  /// was built.
   template <class Found>
   void for_each_sleeper_near(const Real* x, const Real* y, const SweptBox& b, Found&& found);
   /// Calls f(k) for each disc k the last resolve() visited, in index order: every disc, or

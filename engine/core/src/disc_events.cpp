@@ -442,7 +442,8 @@ std::size_t DiscContacts<Real>::bytes() const {
                     order_, scratch_, cut_, lane_of_, lane_parent_, lane_log_, warm_, ex_, ey_,
                     evx_, evy_, lost_, external_, e_start_, e_begin_, d_begin_, ew_, ew0_, rows_,
                     push_rows_, row_moved_, sv_, slot_moved_, roll_rows_, sw_, asleep_, awake_list_,
-                    live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc, live_boxes_,
+                    live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc,
+                    sleepers_.indexed, sleepers_.extra, sleepers_.extras, live_boxes_,
                     live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
          lanes_[0].bytes() + lanes_[1].bytes();
 }

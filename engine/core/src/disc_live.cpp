@@ -8,7 +8,8 @@
 // those it would have had all along, and the broadphase, given the live boxes in index order,
 // finds the same pairs in the same order: the states are the same as when every disc is
 // visited. The sleepers are found through a grid of them where they sleep (query_grid.hpp),
-// rebuilt only when a disc falls asleep or wakes; the world's wake tests ask it too.
+// kept across changes of sleep (SleeperGrid, disc_caches.hpp); the world's wake tests ask it
+// too.
 #include <algorithm>
 #include <cassert>
 
@@ -56,15 +57,17 @@ void DiscContacts<Real>::add_live(const Tick& tick, std::uint32_t k) {
 
 template <class Real>
 void DiscContacts<Real>::build_sleeper_grid(const Real* x, const Real* y) {
-  QueryGrid& g = sleepers_.grid;
-  g.discs.clear(), sleepers_.disc.clear();
+  SleeperGrid& s = sleepers_;
+  QueryGrid& g = s.grid;
+  g.discs.clear(), s.disc.clear(), s.extras.clear(), s.gone = 0, s.tested = 0;
+  s.indexed.assign(discs_.size(), 0), s.extra.assign(discs_.size(), 0);
   for (std::uint32_t k = 0; k < discs_.size(); ++k) {
     if (!asleep_[k]) continue;
     const Disc& d = discs_[k];
     // A sleeper's box is its disc padded as build_motions() pads it (at rest).
     g.discs.push_back(
         {double(x[d.body]), double(y[d.body]), box_pad(d), Entity{}, CollisionFilter{}, false});
-    sleepers_.disc.push_back(k);
+    s.disc.push_back(k), s.indexed[k] = 1;
   }
   g.build();  // (not stale)
 }
@@ -73,12 +76,19 @@ template <class Real>
 template <class Found>
 void DiscContacts<Real>::for_each_sleeper_near(const Real* x, const Real* y, const SweptBox& b,
                                                Found&& found) {
-  if (sleepers_.grid.stale) build_sleeper_grid(x, y);
-  const QueryGrid& g = sleepers_.grid;
-  g.for_each_near(b.min_x, b.min_y, b.max_x, b.max_y, [&](std::size_t i) {
-    const std::uint32_t k = sleepers_.disc[i];
-    if (asleep_[k]) found(k);
+  SleeperGrid& s = sleepers_;
+  if (s.spent()) build_sleeper_grid(x, y);
+  s.grid.for_each_near(b.min_x, b.min_y, b.max_x, b.max_y, [&](std::size_t i) {
+    const std::uint32_t k = s.disc[i];
+    if (s.indexed[k] != 0) found(k);
   });
+  s.tested += s.extras.size();
+  for (const std::uint32_t k : s.extras) {
+    if (!asleep_[k]) continue;  // woke again since
+    const Disc& d = discs_[k];
+    const double px = double(x[d.body]), py = double(y[d.body]), r = box_pad(d);
+    if (boxes_overlap(SweptBox{px - r, py - r, px + r, py + r}, b)) found(k);
+  }
 }
 
 template <class Real>
