@@ -54,6 +54,29 @@ struct SleeperGrid {
   ~SleeperGrid() = default;
 };
 
+/// The discs that fell asleep or woke since DiscContacts::awake() made its list, by which it
+/// updates the list, unless `whole`: after a rebuild, past as many flips as discs, and in a
+/// copy (a snapshot), which so makes its next list from every disc: a reference for the lean
+/// update.
+struct AwakeFlips {
+  std::vector<std::uint32_t> discs, scratch;
+  bool whole = true;
+  AwakeFlips() = default;
+  AwakeFlips(const AwakeFlips& /*other*/) {}
+  AwakeFlips& operator=(const AwakeFlips& /*other*/) {
+    discs.clear(), whole = true;
+    return *this;
+  }
+  AwakeFlips(AwakeFlips&&) noexcept = default;
+  AwakeFlips& operator=(AwakeFlips&&) noexcept = default;
+  ~AwakeFlips() = default;
+  /// Disc k fell asleep or woke (n: the discs).
+  void flip(std::uint32_t k, std::size_t n) {
+    if (discs.size() >= n) whole = true, discs.clear();
+    if (!whole) discs.push_back(k);
+  }
+};
+
 /// Fat boxes (Box2D's enlarged AABBs, b2_aabbMargin): each disc's box widened by
 /// `margin` of its radius when the broadphase last ran on them, and their pairs, sorted.
 /// While every disc's box over the tick stays inside its fat box, the tick's pairs are the

@@ -112,6 +112,7 @@ class DiscContacts {
     fat_.valid = false;  // its pairs change (a sleeper pairs with no other)
     sleeper_count_ = asleep ? sleeper_count_ + 1 : sleeper_count_ - 1;
     awake_dirty_ = true;
+    awake_flips_.flip(k, discs_.size());
     if (asleep) {
       sleepers_.fell_asleep(k);
     } else {
@@ -732,6 +733,7 @@ class DiscContacts {
   std::size_t sleeper_count_ = 0;
   std::vector<std::uint32_t> awake_list_;  ///< awake(), while !awake_dirty_
   bool awake_dirty_ = true;
+  AwakeFlips awake_flips_;   ///< by which awake() updates awake_list_
   bool live_all_ = true;     ///< the tick visits every disc
   bool saved_live_ = false;  ///< save_start() saved the awake discs only (live_only())
   std::vector<std::uint32_t> live_;

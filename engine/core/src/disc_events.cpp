@@ -81,6 +81,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   rolling_ = settings.rolling;
   ew_.assign(rolling_ ? n : 0, 0.0), ew0_.assign(rolling_ ? n : 0, 0.0);
   asleep_.assign(n, 0), sleeper_count_ = 0, awake_dirty_ = true;
+  awake_flips_.whole = true, awake_flips_.discs.clear();
   live_all_ = true, live_.clear(), in_live_.assign(n, 0), live_sorted_ = true;
   waking_ = false, woken_.clear(), sleepers_.grid.stale = true, saved_live_ = false;
   fat_ = FatBoxes{}, fat_grid_.value = false;
@@ -442,9 +443,10 @@ std::size_t DiscContacts<Real>::bytes() const {
                     order_, scratch_, cut_, lane_of_, lane_parent_, lane_log_, warm_, ex_, ey_,
                     evx_, evy_, lost_, external_, e_start_, e_begin_, d_begin_, ew_, ew0_, rows_,
                     push_rows_, row_moved_, sv_, slot_moved_, roll_rows_, sw_, asleep_, awake_list_,
-                    live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc,
-                    sleepers_.indexed, sleepers_.extra, sleepers_.extras, live_boxes_,
-                    live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
+                    awake_flips_.discs, awake_flips_.scratch, live_, in_live_, woken_,
+                    sleepers_.grid.discs, sleepers_.disc, sleepers_.indexed, sleepers_.extra,
+                    sleepers_.extras, live_boxes_, live_dynamic_, degree_, fat_.boxes, fat_.pairs,
+                    segments_near_) +
          lanes_[0].bytes() + lanes_[1].bytes();
 }
 

@@ -17,15 +17,37 @@
 
 namespace fixstep::detail {
 
+// Made from every disc after a rebuild, else updated from the discs flipped since by a merge:
+// O(awake + flips), until the flips pass a quarter of the discs.
 template <class Real>
 std::span<const std::uint32_t> DiscContacts<Real>::awake() {
-  if (awake_dirty_) {
+  if (!awake_dirty_) return awake_list_;
+  std::vector<std::uint32_t>& flips = awake_flips_.discs;
+  if (awake_flips_.whole || flips.size() * 4 > discs_.size()) {
     awake_list_.clear();
     for (std::uint32_t k = 0; k < discs_.size(); ++k) {
       if (!asleep_[k]) awake_list_.push_back(k);
     }
-    awake_dirty_ = false;
+  } else {
+    std::sort(flips.begin(), flips.end());
+    flips.erase(std::unique(flips.begin(), flips.end()), flips.end());
+    std::vector<std::uint32_t>& out = awake_flips_.scratch;
+    out.clear();
+    std::size_t f = 0;
+    for (const std::uint32_t k : awake_list_) {
+      for (; f < flips.size() && flips[f] < k; ++f) {  // flipped, not in the list: woken?
+        if (!asleep_[flips[f]]) out.push_back(flips[f]);
+      }
+      if (f < flips.size() && flips[f] == k) ++f;  // in the list and flipped: still awake?
+      if (!asleep_[k]) out.push_back(k);
+    }
+    for (; f < flips.size(); ++f) {
+      if (!asleep_[flips[f]]) out.push_back(flips[f]);
+    }
+    std::swap(awake_list_, out);
   }
+  flips.clear();
+  awake_flips_.whole = false, awake_dirty_ = false;
   return awake_list_;
 }
 
