@@ -1,6 +1,7 @@
 // What DiscContacts keeps beyond a tick's state to save work: the grid of the sleepers where
-// they sleep, and the fat boxes with their pairs (disc_live.cpp, disc_fat.cpp). The grids are
-// caches a copy (a snapshot) does not take: a copy builds its own when it first needs them.
+// they sleep, the discs flipped since the awake list was made, and the fat boxes with their
+// pairs (disc_live.cpp, disc_fat.cpp). The grids are caches a copy (a snapshot) does not take:
+// a copy builds its own when it first needs them, and makes its awake list from every disc.
 #pragma once
 
 #include <cstdint>
