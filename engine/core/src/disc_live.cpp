@@ -14,6 +14,7 @@
 #include <cassert>
 
 #include "disc_contacts.hpp"
+#include "sorted_lists.hpp"
 
 namespace fixstep::detail {
 
@@ -29,22 +30,10 @@ std::span<const std::uint32_t> DiscContacts<Real>::awake() {
       if (!asleep_[k]) awake_list_.push_back(k);
     }
   } else {
-    std::sort(flips.begin(), flips.end());
-    flips.erase(std::unique(flips.begin(), flips.end()), flips.end());
-    std::vector<std::uint32_t>& out = awake_flips_.scratch;
-    out.clear();
-    std::size_t f = 0;
-    for (const std::uint32_t k : awake_list_) {
-      for (; f < flips.size() && flips[f] < k; ++f) {  // flipped, not in the list: woken?
-        if (!asleep_[flips[f]]) out.push_back(flips[f]);
-      }
-      if (f < flips.size() && flips[f] == k) ++f;  // in the list and flipped: still awake?
-      if (!asleep_[k]) out.push_back(k);
-    }
-    for (; f < flips.size(); ++f) {
-      if (!asleep_[flips[f]]) out.push_back(flips[f]);
-    }
-    std::swap(awake_list_, out);
+    sort_unique(flips);  // every flipped disc out, then those awake now back in
+    remove_sorted(awake_list_, flips, awake_flips_.scratch);
+    std::erase_if(flips, [&](std::uint32_t k) { return asleep_[k] != 0; });
+    insert_sorted(awake_list_, flips, awake_flips_.scratch);
   }
   flips.clear();
   awake_flips_.whole = false, awake_dirty_ = false;

@@ -6,6 +6,7 @@
 #include "fixstep/core/bits.hpp"
 #include "fixstep/core/limits.hpp"
 #include "shape_world.hpp"
+#include "sorted_lists.hpp"
 
 namespace fixstep::detail {
 
@@ -19,29 +20,6 @@ bool rests(const ShapedBody& b, bool split) {
 ShapeRest::Key key_of(const ShapeState& s) {
   return {{bits_of(s.x0), bits_of(s.y0), bits_of(s.a0), bits_of(s.x), bits_of(s.y), bits_of(s.a),
            bits_of(s.vx), bits_of(s.vy), bits_of(s.w)}};
-}
-
-/// a := what `op` (std::set_difference or std::merge) makes of a and b, both ascending, through
-/// `scratch`.
-template <class Op>
-void combine_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
-                    std::vector<std::uint32_t>& scratch, Op op) {
-  if (b.empty()) return;
-  scratch.clear();
-  op(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(scratch));
-  a.swap(scratch);
-}
-
-/// a := a without the values of b.
-void remove_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
-                   std::vector<std::uint32_t>& scratch) {
-  combine_sorted(a, b, scratch, [](auto... args) { return std::set_difference(args...); });
-}
-
-/// a := a with the values of b (none in both).
-void insert_sorted(std::vector<std::uint32_t>& a, std::span<const std::uint32_t> b,
-                   std::vector<std::uint32_t>& scratch) {
-  combine_sorted(a, b, scratch, [](auto... args) { return std::merge(args...); });
 }
 
 }  // namespace
@@ -154,8 +132,7 @@ std::span<const std::uint32_t> ShapeWorld::visit_few() {
 // O(live + flipped + extras), and the grid indexed again once spent.
 void ShapeWorld::rebuild_flipped(double dt) {
   ShapeRest& r = rest_;
-  std::sort(r.flipped.begin(), r.flipped.end());
-  r.flipped.erase(std::unique(r.flipped.begin(), r.flipped.end()), r.flipped.end());
+  sort_unique(r.flipped);
   r.leave.clear(), r.join.clear(), r.to_extras.clear(), r.join_shapes.clear();
   r.from_extras.clear();
   auto leave_grid = [&](std::uint32_t k) {  // false: it is an extra

@@ -9,6 +9,7 @@
 
 #include "contact_kappa.hpp"
 #include "disc_contacts.hpp"
+#include "sorted_lists.hpp"
 #include "workers.hpp"
 #include "world_kernel.hpp"
 
@@ -147,8 +148,7 @@ template <class Real>
 void detail::WorldKernel<Real>::update_awake_runs() {
   AwakeRuns& a = awake_;
   std::vector<std::uint32_t>& flipped = a.flipped;
-  std::sort(flipped.begin(), flipped.end());
-  flipped.erase(std::unique(flipped.begin(), flipped.end()), flipped.end());
+  sort_unique(flipped);
   std::vector<std::uint32_t>& woke = run_scratch_.woke;
   std::vector<std::uint32_t>& slept = run_scratch_.slept;
   woke.clear(), slept.clear();

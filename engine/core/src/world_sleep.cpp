@@ -32,6 +32,7 @@
 #include "disc_contacts.hpp"
 #include "island_union.hpp"
 #include "shape_world.hpp"
+#include "sorted_lists.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -137,8 +138,7 @@ void detail::WorldKernel<Real>::for_each_awake_body(F&& f) {
   }
   // The runs as they were built, and the bodies flipped since (those woken are in no run).
   std::vector<std::uint32_t>& flipped = awake_.flipped;
-  std::sort(flipped.begin(), flipped.end());
-  flipped.erase(std::unique(flipped.begin(), flipped.end()), flipped.end());
+  sort_unique(flipped);
   std::size_t x = 0;
   auto flipped_before = [&](std::uint32_t i) {
     for (; x < flipped.size() && flipped[x] < i; ++x) {
