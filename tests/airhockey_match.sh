@@ -120,7 +120,7 @@ windows() {
   # The game's clock: 240 ticks of 1/120 s take 2 s of real time in the window, not the 4 s of
   # one tick a 60 Hz frame (1.95-2.6 s: never faster, as the time owed carries at most a tick,
   # the match's last ticks included; 5 % loss and a loaded machine cost a stall or two, and
-  # the other tests of ctest -j2 run beside this one).
+  # the other tests of ctest -j 4 run beside this one).
   for side in host join; do
     played=$(grep -E '^frames:' "win.$kind.$side.out" | grep -Eo 'played=[0-9.]+' | cut -d= -f2)
     awk -v p="${played:-0}" 'BEGIN { exit !(p > 1.95 && p < 2.6) }' &&
