@@ -84,6 +84,7 @@ perfect() {
 perfect_lockstep() { perfect lockstep; }
 perfect_rollback() { perfect rollback; }
 
+# (b), (c) freezes under latency and loss, rollback
 check_freezes() {
   local name=$1 key=$2 most=$3 side n
   for side in host join; do
@@ -100,6 +101,7 @@ rtt150() {
   play rtt150 rollback 3600 --latency-ms 75 --jitter-ms 5 --loss 0.05 --lossless-ms 1000 \
     --seed 5 && check_freezes rtt150 "over 250 ms" 0
 }
+# (d) lockstep at 2 s round trip and 25 % loss, the handshake included
 rtt2000() {
   play rtt2000 lockstep 600 --latency-ms 1000 --loss 0.25 --seed 11 &&
     { cmp -s rtt2000.host.rec rtt2000.join.rec && ok "rtt2000: the recordings are equal" ||
