@@ -56,9 +56,9 @@ struct SleeperGrid {
 };
 
 /// The discs that fell asleep or woke since DiscContacts::awake() made its list, by which it
-/// updates the list, unless `whole`: after a rebuild, past as many flips as discs, and in a
-/// copy (a snapshot), which so makes its next list from every disc: a reference for the lean
-/// update.
+/// updates the list, unless `whole`: after a rebuild, once the flips pass a quarter of the
+/// discs (a merge would then cost what a pass over every disc does), and in a copy (a
+/// snapshot), which so makes its next list from every disc: a reference for the lean update.
 struct AwakeFlips {
   std::vector<std::uint32_t> discs, scratch;
   bool whole = true;
@@ -73,8 +73,12 @@ struct AwakeFlips {
   ~AwakeFlips() = default;
   /// Disc k fell asleep or woke (n: the discs).
   void flip(std::uint32_t k, std::size_t n) {
-    if (discs.size() >= n) whole = true, discs.clear();
-    if (!whole) discs.push_back(k);
+    if (whole) return;
+    if (discs.size() * 4 >= n) {
+      whole = true, discs.clear();
+      return;
+    }
+    discs.push_back(k);
   }
 };
 

@@ -24,7 +24,7 @@ template <class Real>
 std::span<const std::uint32_t> DiscContacts<Real>::awake() {
   if (!awake_dirty_) return awake_list_;
   std::vector<std::uint32_t>& flips = awake_flips_.discs;
-  if (awake_flips_.whole || flips.size() * 4 > discs_.size()) {
+  if (awake_flips_.whole) {
     awake_list_.clear();
     for (std::uint32_t k = 0; k < discs_.size(); ++k) {
       if (!asleep_[k]) awake_list_.push_back(k);
