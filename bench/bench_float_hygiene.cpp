@@ -4,15 +4,20 @@
 // pay little), those ticks cost many times a normal one. This benchmark steps 20 000 f32
 // springs (k = 100 N/m, m = 1 kg, dt = 1/240 s) through a whole 20 000-tick run, damped
 // (b = 10 N·s/m, ζ = 0.5: the state passes the least normal float near tick 4000) and undamped,
-// with WorldSettings::flush_denormals on and off. Counters: ns per body-step over the run, and
-// the ticks that raised the IEEE underflow flag or (x86) the denormal-operand flag, the cause,
-// counted because its cost depends on the CPU. Expected everywhere: damped with the flush
-// raises no flag in any tick; damped without it raises them for thousands of ticks. On an
-// Intel CPU, damped/undamped with the flush ≤ 1.2 (the run without it several times slower).
+// with WorldSettings::flush_denormals on and off. Counters: ns per body-step over the run; the
+// µs a tick of the slowest and of the fastest window of 1000 ticks (a cliff is a slow span of
+// the run: the slowest window many times the fastest); and the ticks that raised the IEEE
+// underflow flag or (x86) the denormal-operand flag, the cause, counted because its cost
+// depends on the CPU. Expected everywhere: damped with the flush raises no flag in any tick;
+// damped without it raises them for thousands of ticks. On an Intel CPU, damped/undamped with
+// the flush ≤ 1.2 (the run without it several times slower, its slowest window far above its
+// fastest).
 //   build/bench/bin/bench_float_hygiene
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cfenv>
+#include <chrono>
 #include <cmath>
 
 #include "fixstep/core/components.hpp"
@@ -27,6 +32,8 @@ namespace {
 
 constexpr int springs = 20'000;
 constexpr int ticks = 20'000;
+constexpr int window = 1000;  ///< ticks a window of the run's time profile
+static_assert(ticks % window == 0, "the windows cover the run");
 
 fixstep::detail::WorldKernel<float> spring_scene(bool damped, bool flush) {
   using namespace fixstep;
@@ -62,11 +69,20 @@ bool flags_raised() {
 void BM_DampedF32Run(benchmark::State& state) {
   const bool damped = state.range(0) != 0, flush = state.range(1) != 0;
   int flagged = 0;
+  double slowest = 0.0, fastest = 0.0;  // µs a tick, over the windows of the last run
   for (auto _ : state) {
     state.PauseTiming();
     auto w = spring_scene(damped, flush);
     state.ResumeTiming();
-    for (int t = 0; t < ticks; ++t) w.step();
+    slowest = 0.0, fastest = 0.0;
+    for (int t0 = 0; t0 < ticks; t0 += window) {
+      const auto start = std::chrono::steady_clock::now();
+      for (int t = t0; t < t0 + window; ++t) w.step();
+      const std::chrono::duration<double, std::micro> spent =
+          std::chrono::steady_clock::now() - start;
+      const double us = spent.count() / window;
+      slowest = std::max(slowest, us), fastest = t0 == 0 ? us : std::min(fastest, us);
+    }
     benchmark::DoNotOptimize(w.x().data());
     benchmark::ClobberMemory();
     // The cause, counted in an untimed second run of the same world (the flags are sticky).
@@ -84,6 +100,8 @@ void BM_DampedF32Run(benchmark::State& state) {
       benchmark::Counter(double(state.iterations()) * springs * ticks * 1e-9,
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["ticks_with_subnormals"] = flagged;
+  state.counters["slowest_window_us_a_tick"] = slowest;
+  state.counters["fastest_window_us_a_tick"] = fastest;
 }
 BENCHMARK(BM_DampedF32Run)
     ->ArgsProduct({{0, 1}, {1, 0}})
