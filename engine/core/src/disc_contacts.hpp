@@ -191,6 +191,10 @@ class DiscContacts {
   /// How many of touching()'s contacts, the first ones, are disc pairs (the rest: planes and
   /// segments).
   [[nodiscard]] std::size_t disc_pair_contacts() const { return plane_contacts_; }
+  /// The dense body indices of touching()'s disc pairs (the first disc_pair_contacts()), in
+  /// its order: the contact events read 8 bytes a pair here, not a whole RestContact and the
+  /// discs' records.
+  [[nodiscard]] std::span<const DiscPair> touching_bodies() const { return touching_bodies_; }
   /// Whether the tick's run of the second thread is open (SecondThreadRun): halves() and
   /// both_halves() then run their halves on two threads.
   [[nodiscard]] bool sharing() const { return broadphase_.second_thread().is_open(); }
@@ -689,6 +693,7 @@ class DiscContacts {
   /// Disc pairs in key order, then planes in key order: gathered anew by every tick, read
   /// within it (touching(): the contact events, the sleeping islands).
   ScratchVector<RestContact> contacts_;
+  ScratchVector<DiscPair> touching_bodies_;       ///< touching_bodies()
   std::uint32_t plane_contacts_ = 0;              ///< where contacts_'s plane contacts begin
   ScratchVector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};

@@ -48,7 +48,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   filters_ = std::move(filters);
   sensor_pairs_.clear(), sensed_.clear();
   // The last tick's contacts name discs of the old set (touching() until the next gather).
-  contacts_.clear(), plane_contacts_ = 0;
+  contacts_.clear(), touching_bodies_.clear(), plane_contacts_ = 0;
   settings_ = settings;
   const std::size_t n = discs_.size();
   min_radius_ = std::numeric_limits<double>::infinity();

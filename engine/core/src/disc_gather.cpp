@@ -104,14 +104,17 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
       found[half] = count;
     });
     contacts_.resize(found[0] + found[1]);
+    touching_bodies_.resize(contacts_.size());
     halves(m, [&](std::size_t begin, std::size_t end, int half) {
       std::size_t at = half == 1 ? found[0] : 0;
       bool moving = false;
       const WarmImpulse* warm_at = warm_from(begin);
       for (std::size_t i = begin; i < end; ++i) {
         if (!touch_[i]) continue;
+        const DiscPair& p = pairs_[i];
+        touching_bodies_[at] = {discs_[p.a].body, discs_[p.b].body};
         RestContact& c = contacts_[at++];
-        [[maybe_unused]] const bool touches = pair_contact(tick, pairs_[i], &c, warm_at);
+        [[maybe_unused]] const bool touches = pair_contact(tick, p, &c, warm_at);
         assert(touches);  // the same arithmetic as the first pass (no contraction)
         moving = moving || c.kinematic_a || c.kinematic_b;
       }
@@ -120,12 +123,14 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     touch_.clear();  // scratch: a snapshot need not copy it
   } else {
     contacts_.clear();
+    touching_bodies_.clear();
     RestContact c;
     const WarmImpulse* warm_at = warm_from(0);
     for (const DiscPair& p : pairs_) {
       if (!pair_contact(tick, p, &c, warm_at)) continue;
       kinematic[0] = kinematic[0] || c.kinematic_a || c.kinematic_b;
       contacts_.push_back(c);
+      touching_bodies_.push_back({discs_[p.a].body, discs_[p.b].body});
     }
   }
   kinematic_contacts_ = kinematic[0] || kinematic[1];

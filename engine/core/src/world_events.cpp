@@ -108,7 +108,6 @@ void detail::WorldKernel<Real>::add_shape_touching() {
 template <class Real>
 void detail::WorldKernel<Real>::add_disc_touching() {
   const detail::DiscContacts<Real>& dc = *discs_;
-  const auto discs = dc.discs();
   const std::span<const Entity> ids = bodies_.dense;
   auto pair_of = [&](std::uint32_t ja, std::uint32_t jb, double speed) {
     const Entity a = ids[ja], b = ids[jb];
@@ -116,13 +115,12 @@ void detail::WorldKernel<Real>::add_disc_touching() {
   };
   // The disc pairs come first among the touching contacts; by halves on the discs' second
   // thread within the tick's run of it (world_step.cpp).
-  const auto touching = dc.touching();
+  const auto touching = dc.touching_bodies();
   const std::size_t first = touching_.size();
   touching_.resize(first + dc.disc_pair_contacts());
   discs_->halves(touching_.size() - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
     for (std::size_t i = begin; i < end; ++i) {
-      const detail::RestContact& c = touching[i];
-      touching_[first + i] = pair_of(discs[c.a].body, discs[c.b].body, 0.0);
+      touching_[first + i] = pair_of(touching[i].a, touching[i].b, 0.0);
     }
   });
   for (const DiscImpact& i : dc.impacts()) {
