@@ -523,14 +523,20 @@ class DiscContacts {
   // phase 2 (disc_gather.cpp, then disc_rest.cpp)
   void gather_contacts(const Tick& tick);
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
-  /// and not an impact of the next tick), and if so its contact into *out (when not null).
+  /// and not an impact of the next tick), and if so its contact into *out (when not null),
+  /// with the impulses of the last tick's solve as its warm start (warm()).
   /// warm_at: where in warm_ the last pair asked looked (warm_from()).
   bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out,
                     const WarmImpulse*& warm_at) const;
-  /// Pair p's normal impulse of the last tick's resting solver (N·s; 0 when it had none),
-  /// looked up in warm_'s disc pairs from `at` on (a walk for pairs in key order), which it
-  /// moves to p.
-  [[nodiscard]] double last_impulse(const DiscPair& p, const WarmImpulse*& at) const;
+  /// Pair p's impulses of the last tick's resting solver, or null when it had no normal
+  /// impulse, looked up in warm_'s disc pairs from `at` on (a walk for pairs in key order),
+  /// which it moves to p.
+  [[nodiscard]] const WarmImpulse* warm(const DiscPair& p, const WarmImpulse*& at) const;
+  /// warm()'s normal impulse (N·s), or 0.
+  [[nodiscard]] double last_impulse(const DiscPair& p, const WarmImpulse*& at) const {
+    const WarmImpulse* const w = warm(p, at);
+    return w != nullptr ? w->lambda_n : 0.0;
+  }
   /// Where in warm_'s disc pairs pair i's key is, or would be.
   [[nodiscard]] const WarmImpulse* warm_from(std::size_t i) const;
   /// Disc k's resting contact with a plane or segment b (b past the discs) along its normal

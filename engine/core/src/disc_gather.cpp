@@ -67,16 +67,20 @@ template <class Real>
     const RollRow t = roll_row(c);
     c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + t.arm_a * t.turn_a + t.arm_b * t.turn_b);
   }
+  // The warm start, matched here while the contact is in the cache (a pass over the contacts
+  // after the gather read each one again; match_warm() does the planes' and segments').
+  if (const WarmImpulse* const w = warm(p, warm_at))
+    c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
   return true;
 }
 
 template <class Real>
-double DiscContacts<Real>::last_impulse(const DiscPair& p, const WarmImpulse*& at) const {
+const WarmImpulse* DiscContacts<Real>::warm(const DiscPair& p, const WarmImpulse*& at) const {
   const std::uint64_t key = pair_key(p);
   const WarmImpulse *const begin = warm_.data(), *const end = begin + warm_pairs_;
   if (at != begin && (at - 1)->key >= key) at = first_warm_from(begin, at, key);  // went back
   while (at != end && at->key < key) ++at;  // pairs come in key order: a walk
-  return at != end && at->key == key && at->lambda_n > 0.0 ? at->lambda_n : 0.0;
+  return at != end && at->key == key && at->lambda_n > 0.0 ? at : nullptr;
 }
 
 template <class Real>
