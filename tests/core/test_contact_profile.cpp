@@ -3,12 +3,15 @@
 // StepProfile): a resting disc converges in an iteration or two, a column that the iterations
 // cannot settle in one tick says so and settles over the next ticks, a world without touching
 // discs runs none, the profile is measured only with disc contacts; the iteration counts are
-// settings (checked), and a pile split in halves for two threads steps to the same bits on one.
+// settings (checked), a pile split in halves for two threads steps to the same bits on one, and
+// the warm start matched as the contacts are gathered or by a pass after it gives the same bits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -21,6 +24,7 @@
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "gather_warm.hpp"
 
 namespace fixstep {
 namespace contact_profile_tests {
@@ -149,6 +153,35 @@ TEST(ContactSweeps, APileSplitForTwoThreadsStepsToTheSameBitsOnOne) {
   EXPECT_GT(touching, 8192u);                              // split, on two threads
   EXPECT_GT(one->contact_stats().candidate_pairs, 4096u);  // predictions shared
   EXPECT_GT(across, 0u);
+}
+
+// The disc pairs' warm start is matched as they are gathered in a large world and by a pass of
+// its own after the gather in a small one (gather_warm.hpp): the same pile, stepped both ways
+// side by side, keeps the same bits on every tick.
+TEST(ContactSweeps, TheWarmStartMatchedInTheGatherOrAfterItGivesTheSameBits) {
+  struct Restore {
+    ~Restore() { detail::set_gather_warm_pairs(detail::min_gather_warm_pairs); }
+  } restore;
+  WorldDef def = ground_world();
+  def.planes.push_back(PlaneDef{.normal = {1, 0}, .offset = -1.0, .friction = 0.3});
+  def.planes.push_back(PlaneDef{.normal = {-1, 0}, .offset = -1.0, .friction = 0.3});
+  for (int i = 0; i < 30; ++i) {
+    for (int j = 0; j < 20; ++j) {
+      const double jitter = 0.001 * double((i * 7 + j * 3) % 5);
+      def.bodies.push_back(falling_disc({-0.95 + 0.1 * j + jitter, 0.05 + 0.1 * i}, 0.049));
+    }
+  }
+  World gathered(def), after(def);
+  std::size_t touching = 0;
+  for (int t = 0; t < 90; ++t) {
+    detail::set_gather_warm_pairs(0);
+    gathered.step();
+    detail::set_gather_warm_pairs(std::numeric_limits<std::size_t>::max());
+    after.step();
+    ASSERT_EQ(gathered.state_hash(), after.state_hash()) << "tick " << t;
+    touching = std::max(touching, gathered.contact_stats().touching);
+  }
+  EXPECT_GT(touching, 1000u);  // a pile whose warm start carries it
 }
 
 // A stop request (SIGINT) reaches a long resting solve (up to 1000 iterations a tick) on two

@@ -68,6 +68,7 @@
 #include "disc_records.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/step_results.hpp"
+#include "gather_warm.hpp"
 #include "grid_broadphase.hpp"
 #include "grown_grid.hpp"
 #include "impact_lane.hpp"
@@ -699,8 +700,9 @@ class DiscContacts {
   /// Disc pairs in key order, then planes in key order: gathered anew by every tick, read
   /// within it (touching(): the contact events, the sleeping islands).
   ScratchVector<RestContact> contacts_;
-  ScratchVector<DiscPair> touching_bodies_;       ///< touching_bodies()
-  std::uint32_t plane_contacts_ = 0;              ///< where contacts_'s plane contacts begin
+  ScratchVector<DiscPair> touching_bodies_;  ///< touching_bodies()
+  bool warm_gathered_ = false;        ///< the disc pairs' warm start made as they were gathered
+  std::uint32_t plane_contacts_ = 0;  ///< where contacts_'s plane contacts begin
   ScratchVector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};
   ScratchVector<double> cut_;  ///< split_contacts()'s

@@ -5,6 +5,7 @@
 // are gathered in two passes over two halves of them, and the discs' plane contacts by halves,
 // with the same contacts in the same order.
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -12,6 +13,18 @@
 #include "disc_contacts.hpp"
 
 namespace fixstep::detail {
+
+namespace {
+std::atomic<std::size_t> gather_warm_from{min_gather_warm_pairs};
+}  // namespace
+
+void set_gather_warm_pairs(std::size_t pairs) {
+  gather_warm_from.store(pairs, std::memory_order_relaxed);
+}
+
+std::size_t gather_warm_pairs() {
+  return gather_warm_from.load(std::memory_order_relaxed);
+}
 
 // Inlined into its callers, so that a contact is made in registers and stored once where it
 // goes (a call wrote it to the stack field by field, and the copy after read it back in wider
@@ -67,10 +80,13 @@ template <class Real>
     const RollRow t = roll_row(c);
     c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + t.arm_a * t.turn_a + t.arm_b * t.turn_b);
   }
-  // The warm start, matched here while the contact is in the cache (a pass over the contacts
-  // after the gather read each one again; match_warm() does the planes' and segments').
-  if (const WarmImpulse* const w = warm(p, warm_at))
-    c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
+  // In a large world the warm start is matched here, while the contact is in the cache (a
+  // pass over the contacts after the gather read each one again from memory).
+  if (warm_gathered_) {
+    if (const WarmImpulse* const w = warm(p, warm_at)) {
+      c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
+    }
+  }
   return true;
 }
 
@@ -92,6 +108,7 @@ const WarmImpulse* DiscContacts<Real>::warm_from(std::size_t i) const {
 template <class Real>
 void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   const std::size_t m = pairs_.size();
+  warm_gathered_ = m >= gather_warm_pairs();
   bool kinematic[2] = {false, false};
   if (sharing() && m >= min_parallel_pairs) {
     // Two threads: which pairs touch, by halves of the pairs; then each half's contacts,

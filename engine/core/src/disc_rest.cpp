@@ -67,24 +67,28 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
 
 template <class Real>
 void DiscContacts<Real>::match_warm() {
-  // contacts_ and warm_ are each two runs in key order (disc pairs, then planes and segments).
-  // The disc pairs were matched as they were gathered (pair_contact); the planes' and
-  // segments' run is matched against warm_'s in one walk (each half of it in one, from its
-  // first key on).
-  const std::size_t first = plane_contacts_;
-  const WarmImpulse* const from = warm_.data() + warm_pairs_;
-  const WarmImpulse* const last = warm_.data() + warm_.size();
-  halves(contacts_.size() - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
-    if (begin == end) return;
-    const WarmImpulse* w = first_warm_from(from, last, contacts_[first + begin].key);
-    for (std::size_t i = first + begin; i < first + end; ++i) {
-      RestContact& c = contacts_[i];
-      while (w != last && w->key < c.key) ++w;
-      if (w != last && w->key == c.key && w->lambda_n > 0.0) {
-        c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
+  // contacts_ and warm_ are each two runs in key order (disc pairs, then planes and segments),
+  // so each run is matched against its like in one walk (each half of it in one, from its
+  // first key on). In a large world the disc pairs were matched as they were gathered
+  // (pair_contact, gather_warm_pairs()).
+  const std::size_t bounds[3] = {0, plane_contacts_, contacts_.size()};
+  const std::size_t warm_bounds[3] = {0, warm_pairs_, warm_.size()};
+  for (int run = warm_gathered_ ? 1 : 0; run < 2; ++run) {
+    const std::size_t first = bounds[run];
+    const WarmImpulse* const from = warm_.data() + warm_bounds[run];
+    const WarmImpulse* const last = warm_.data() + warm_bounds[run + 1];
+    halves(bounds[run + 1] - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
+      if (begin == end) return;
+      const WarmImpulse* w = first_warm_from(from, last, contacts_[first + begin].key);
+      for (std::size_t i = first + begin; i < first + end; ++i) {
+        RestContact& c = contacts_[i];
+        while (w != last && w->key < c.key) ++w;
+        if (w != last && w->key == c.key && w->lambda_n > 0.0) {
+          c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
+        }
       }
-    }
-  });
+    });
+  }
 }
 
 template <class Real>
