@@ -45,6 +45,23 @@ BodyDef falling_disc(Vec2 x, double r) {
   return b;
 }
 
+/// `rows` rows of `columns` discs (r = 4.9 cm, 10 cm apart, each shifted by up to 4 mm) on the
+/// ground between two walls 10 cm a column apart: a pile that settles within two seconds.
+WorldDef walled_pile(int rows, int columns) {
+  WorldDef def = ground_world();
+  const double half_width = 0.05 * columns;
+  def.planes.push_back(PlaneDef{.normal = {1, 0}, .offset = -half_width, .friction = 0.3});
+  def.planes.push_back(PlaneDef{.normal = {-1, 0}, .offset = -half_width, .friction = 0.3});
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < columns; ++j) {
+      const double jitter = 0.001 * double((i * 7 + j * 3) % 5);
+      const double x = -half_width + 0.05 + 0.1 * j + jitter;
+      def.bodies.push_back(falling_disc({x, 0.05 + 0.1 * i}, 0.049));
+    }
+  }
+  return def;
+}
+
 // One disc resting on the ground: a single contact, warm started, is solved by the first sweep
 // and the second finds nothing left to change (converged at 2, or at 1 when the warm start was
 // already exact); nothing is deeper than the slop.
@@ -129,16 +146,8 @@ TEST(ContactSweeps, IterationCountsOutOfRangeAreRefused) {
 // after the first second).
 TEST(ContactSweeps, APileSplitForTwoThreadsStepsToTheSameBitsOnOne) {
   auto make = [](int threads) {
-    WorldDef def = ground_world();
+    WorldDef def = walled_pile(90, 40);
     def.settings.threads = threads;
-    def.planes.push_back(PlaneDef{.normal = {1, 0}, .offset = -2.0, .friction = 0.3});
-    def.planes.push_back(PlaneDef{.normal = {-1, 0}, .offset = -2.0, .friction = 0.3});
-    for (int i = 0; i < 90; ++i) {
-      for (int j = 0; j < 40; ++j) {
-        const double jitter = 0.001 * double((i * 7 + j * 3) % 5);
-        def.bodies.push_back(falling_disc({-1.95 + 0.1 * j + jitter, 0.05 + 0.1 * i}, 0.049));
-      }
-    }
     return std::make_unique<World>(def);
   };
   auto one = make(1), two = make(2);
@@ -162,15 +171,7 @@ TEST(ContactSweeps, TheWarmStartMatchedInTheGatherOrAfterItGivesTheSameBits) {
   struct Restore {
     ~Restore() { detail::set_gather_warm_pairs(detail::min_gather_warm_pairs); }
   } restore;
-  WorldDef def = ground_world();
-  def.planes.push_back(PlaneDef{.normal = {1, 0}, .offset = -1.0, .friction = 0.3});
-  def.planes.push_back(PlaneDef{.normal = {-1, 0}, .offset = -1.0, .friction = 0.3});
-  for (int i = 0; i < 30; ++i) {
-    for (int j = 0; j < 20; ++j) {
-      const double jitter = 0.001 * double((i * 7 + j * 3) % 5);
-      def.bodies.push_back(falling_disc({-0.95 + 0.1 * j + jitter, 0.05 + 0.1 * i}, 0.049));
-    }
-  }
+  const WorldDef def = walled_pile(30, 20);
   World gathered(def), after(def);
   std::size_t touching = 0;
   for (int t = 0; t < 90; ++t) {
