@@ -524,8 +524,8 @@ class DiscContacts {
   // phase 2 (disc_gather.cpp, then disc_rest.cpp)
   void gather_contacts(const Tick& tick);
   /// Whether candidate pair p touches at the tick's end as a resting contact (within the slop,
-  /// and not an impact of the next tick), and if so its contact into *out (when not null),
-  /// with the impulses of the last tick's solve as its warm start (warm()).
+  /// and not an impact of the next tick), and if so its contact into *out (when not null); in
+  /// a large world (gather_warm.hpp) with the last tick's impulses as its warm start (warm()).
   /// warm_at: where in warm_ the last pair asked looked (warm_from()).
   bool pair_contact(const Tick& tick, const DiscPair& p, RestContact* out,
                     const WarmImpulse*& warm_at) const;
