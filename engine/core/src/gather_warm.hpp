@@ -8,8 +8,9 @@ namespace fixstep::detail {
 
 /// Candidate pairs from which the disc pairs take their warm start as they are gathered
 /// (DiscContacts::pair_contact): their contacts, past the caches, are then not read again by
-/// DiscContacts::match_warm(). With fewer, match_warm()'s own pass is the cheaper (measured: 3 %
-/// of a 10³ pile's tick). Either way the same impulses: the same bits.
+/// DiscContacts::match_warm(). With fewer, match_warm()'s own pass over contacts still in the
+/// cache is the cheaper (docs/perf/contact_solver_plan.md). Either way the same impulses: the
+/// same bits.
 inline constexpr std::size_t min_gather_warm_pairs = 16384;
 
 /// For tests: the candidate pairs from which every world matches the warm start in the gather
