@@ -164,25 +164,34 @@ TEST(ContactSweeps, APileSplitForTwoThreadsStepsToTheSameBitsOnOne) {
   EXPECT_GT(across, 0u);
 }
 
-// The disc pairs' warm start is matched as they are gathered in a large world and by a pass of
-// its own after the gather in a small one (gather_warm.hpp): the same pile, stepped both ways
-// side by side, keeps the same bits on every tick.
-TEST(ContactSweeps, TheWarmStartMatchedInTheGatherOrAfterItGivesTheSameBits) {
+// The disc pairs' warm start is matched, and their parts of the split pile found, as they are
+// gathered in a large world and by passes of their own after the gather in a small one
+// (gather_warm.hpp): the same pile, stepped both ways side by side on one thread and on two,
+// keeps the same bits and the same contacts across the cut on every tick.
+TEST(ContactSweeps, TheWarmStartAndThePartsFoundInTheGatherOrAfterItGiveTheSameBits) {
   struct Restore {
     ~Restore() { detail::set_gather_warm_pairs(detail::min_gather_warm_pairs); }
   } restore;
-  const WorldDef def = walled_pile(30, 20);
-  World gathered(def), after(def);
-  std::size_t touching = 0;
-  for (int t = 0; t < 90; ++t) {
-    detail::set_gather_warm_pairs(0);
-    gathered.step();
-    detail::set_gather_warm_pairs(std::numeric_limits<std::size_t>::max());
-    after.step();
-    ASSERT_EQ(gathered.state_hash(), after.state_hash()) << "tick " << t;
-    touching = std::max(touching, gathered.contact_stats().touching);
+  for (const int threads : {1, 2}) {
+    WorldDef def = walled_pile(30, 20);
+    def.settings.threads = threads;
+    World gathered(def), after(def);
+    std::size_t touching = 0, across = 0;
+    for (int t = 0; t < 90; ++t) {
+      detail::set_gather_warm_pairs(0);
+      gathered.step();
+      detail::set_gather_warm_pairs(std::numeric_limits<std::size_t>::max());
+      after.step();
+      ASSERT_EQ(gathered.state_hash(), after.state_hash())
+          << "threads " << threads << ", tick " << t;
+      ASSERT_EQ(gathered.contact_stats().across, after.contact_stats().across)
+          << "threads " << threads << ", tick " << t;
+      touching = std::max(touching, gathered.contact_stats().touching);
+      across = std::max(across, gathered.contact_stats().across);
+    }
+    EXPECT_GT(touching, 1024u);  // a pile whose warm start carries it, split in halves
+    EXPECT_GT(across, 0u);
   }
-  EXPECT_GT(touching, 1000u);  // a pile whose warm start carries it
 }
 
 // A stop request (SIGINT) reaches a long resting solve (up to 1000 iterations a tick) on two

@@ -553,6 +553,23 @@ class DiscContacts {
   /// lists them part by part (key order within a part), part_start_[p] where part p begins
   /// (disc_halves.cpp). Below min_split_contacts everything is part 0.
   void split_contacts(ContactStats& stats);
+  /// The cut between the halves: the axis along which the live dynamic discs spread the most
+  /// and their median coordinate along it (cut_along_y_, median_); false when one is NaN.
+  bool cut_pile();
+  /// Makes the cut before the gather (cut_state_) in a large world (warm_gathered_), so that
+  /// gather_contacts() finds each pair's part (part_) while the contact is in the cache.
+  void cut_before_gather();
+  /// A disc's side of the cut (side_): below the median, not below it, or not moved by the
+  /// solver (static, kinematic).
+  static constexpr std::uint8_t side_low = 0, side_high = 1, side_none = 2;
+  /// The part of a contact between discs on sides a and b (b side_none for a plane or a
+  /// segment): the half of the discs it moves, or 2 when they are in both halves.
+  static std::uint32_t part_of(std::uint8_t a, std::uint8_t b) {
+    static constexpr std::uint32_t parts[3][3] = {{0, 2, 0}, {2, 1, 1}, {0, 1, 1}};
+    return parts[a][b];
+  }
+  /// cut_state_: no cut made yet this tick, the cut made (side_), or no cut (a NaN).
+  static constexpr std::uint8_t cut_none = 0, cut_made = 1, cut_failed = 2;
   /// Runs range(begin, end, thread) over order_'s parts: the two halves, on two threads within
   /// solve_resting() when it shares them, then the contacts across the cut on this thread.
   template <class Range>
@@ -701,12 +718,19 @@ class DiscContacts {
   /// within it (touching(): the contact events, the sleeping islands).
   ScratchVector<RestContact> contacts_;
   ScratchVector<DiscPair> touching_bodies_;  ///< touching_bodies()
-  bool warm_gathered_ = false;        ///< the disc pairs' warm start made as they were gathered
-  std::uint32_t plane_contacts_ = 0;  ///< where contacts_'s plane contacts begin
-  ScratchVector<std::uint32_t> order_, scratch_;  ///< see split_contacts()
+  bool warm_gathered_ = false;          ///< the disc pairs' warm start made as they were gathered
+  std::uint32_t plane_contacts_ = 0;    ///< where contacts_'s plane contacts begin
+  ScratchVector<std::uint32_t> order_;  ///< see split_contacts()
   std::array<std::uint32_t, 4> part_start_{};
-  ScratchVector<double> cut_;  ///< split_contacts()'s
-  bool team_on_ = false;       ///< set by solve_resting(): its parts' halves on two threads
+  ScratchVector<double> cut_;         ///< cut_pile()'s
+  ScratchVector<std::uint8_t> side_;  ///< per disc: side_low, side_high or side_none
+  /// Per contact of contacts_: its part (split_contacts()). (Not bytes: a byte stored may alias
+  /// anything, and the gather's loop would load its arrays again after each.)
+  ScratchVector<std::uint32_t> part_;
+  std::uint8_t cut_state_ = cut_none;
+  bool cut_along_y_ = false;  ///< cut_pile()'s axis: y, else x
+  double median_ = 0.0;       ///< cut_pile()'s median coordinate along it, m
+  bool team_on_ = false;      ///< set by solve_resting(): its parts' halves on two threads
   /// The last solved tick's impulses, one per contact of contacts_ as it was then, in its
   /// order: the disc pairs [0, warm_pairs_) and the planes and segments after, each run in key
   /// order. Written in place by scatter_rows(), so that no pass after the solve gathers them

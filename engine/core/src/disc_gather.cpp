@@ -109,6 +109,8 @@ template <class Real>
 void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   const std::size_t m = pairs_.size();
   warm_gathered_ = m >= gather_warm_pairs();
+  cut_before_gather();
+  const bool cut = cut_state_ == cut_made;  // each pair's part found here (split_contacts())
   bool kinematic[2] = {false, false};
   if (sharing() && m >= min_parallel_pairs) {
     // Two threads: which pairs touch, by halves of the pairs; then each half's contacts,
@@ -126,6 +128,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     });
     contacts_.resize(found[0] + found[1]);
     touching_bodies_.resize(contacts_.size());
+    part_.resize(cut ? contacts_.size() : 0);
     halves(m, [&](std::size_t begin, std::size_t end, int half) {
       std::size_t at = half == 1 ? found[0] : 0;
       bool moving = false;
@@ -134,6 +137,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
         if (!touch_[i]) continue;
         const DiscPair& p = pairs_[i];
         touching_bodies_[at] = {discs_[p.a].body, discs_[p.b].body};
+        if (cut) part_[at] = part_of(side_[p.a], side_[p.b]);
         RestContact& c = contacts_[at++];
         [[maybe_unused]] const bool touches = pair_contact(tick, p, &c, warm_at);
         assert(touches);  // the same arithmetic as the first pass (no contraction)
@@ -145,6 +149,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   } else {
     contacts_.clear();
     touching_bodies_.clear();
+    part_.clear();
     RestContact c;
     const WarmImpulse* warm_at = warm_from(0);
     for (const DiscPair& p : pairs_) {
@@ -152,6 +157,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
       kinematic[0] = kinematic[0] || c.kinematic_a || c.kinematic_b;
       contacts_.push_back(c);
       touching_bodies_.push_back({discs_[p.a].body, discs_[p.b].body});
+      if (cut) part_.push_back(part_of(side_[p.a], side_[p.b]));
     }
   }
   kinematic_contacts_ = kinematic[0] || kinematic[1];

@@ -5,11 +5,12 @@
 // The cut is the median of the dynamic discs' coordinate along the axis on which they spread
 // the most. A contact belongs to a half when every dynamic disc it moves lies in that half
 // (static and kinematic discs and planes are never moved by the solver, so they do not count);
-// the others, across the cut, are solved after both halves. Within each part the contacts keep
-// their key order, so an iteration runs through a pile as Gauss–Seidel in key order does
-// (measured: graph colouring, as Box2D v3 does it, spreads each colour over the whole pile
-// and left a deep pile of rigid contacts far from converged after a few iterations; see
-// docs/perf/contact_solver_plan.md).
+// the others, across the cut, are solved after both halves. In a large pile the cut is made
+// before the contacts are gathered, and each disc pair's part found as it is gathered, while
+// the contact is in the cache. Within each part the contacts keep their key order, so an
+// iteration runs through a pile as Gauss–Seidel in key order does (measured: graph colouring,
+// as Box2D v3 does it, spreads each colour over the whole pile and left a deep pile of rigid
+// contacts far from converged after a few iterations; see docs/perf/contact_solver_plan.md).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -20,16 +21,7 @@
 namespace fixstep::detail {
 
 template <class Real>
-void DiscContacts<Real>::split_contacts(ContactStats& stats) {
-  const std::size_t n = discs_.size(), m = contacts_.size();
-  order_.resize(m);
-  part_start_ = {0, std::uint32_t(m), std::uint32_t(m), std::uint32_t(m)};
-  // Within a part the contacts keep contacts_'s order: disc pairs, then planes, each in key
-  // order.
-  if (m < min_split_contacts) {
-    for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
-    return;
-  }
+bool DiscContacts<Real>::cut_pile() {
   // The wider axis of the dynamic discs, and the median coordinate along it.
   constexpr double inf = std::numeric_limits<double>::infinity();
   double lo[2] = {inf, inf}, hi[2] = {-inf, -inf};
@@ -40,35 +32,80 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
     lo[0] = std::min(lo[0], ex_[k]), hi[0] = std::max(hi[0], ex_[k]);
     lo[1] = std::min(lo[1], ey_[k]), hi[1] = std::max(hi[1], ey_[k]);
   });
-  const auto& along = hi[1] - lo[1] > hi[0] - lo[0] ? ey_ : ex_;
+  cut_along_y_ = hi[1] - lo[1] > hi[0] - lo[0];
+  const auto& along = cut_along_y_ ? ey_ : ex_;
   bool nan = false;
   live_range(0, live, [&](std::uint32_t k) {
     if (!discs_[k].dynamic) return;
     nan = nan || std::isnan(along[k]);
     cut_.push_back(along[k]);
   });
-  if (nan) {  // no order to cut by: one part (the world reports the NaN)
-    for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
-    return;
-  }
+  if (nan) return false;  // no order to cut by: one part (the world reports the NaN)
   const auto mid = cut_.begin() + std::ptrdiff_t(cut_.size() / 2);
   std::nth_element(cut_.begin(), mid, cut_.end());
-  const double median = *mid;  // the same value whatever the algorithm's order
+  median_ = *mid;  // the same value whatever the algorithm's order
+  return true;
+}
+
+template <class Real>
+void DiscContacts<Real>::cut_before_gather() {
+  // In a large world (warm_gathered_, gather_warm.hpp); a smaller one takes the cut after the
+  // gather, and only when its contacts are enough to split. The same parts either way.
+  cut_state_ = cut_none;
+  if (!warm_gathered_) return;
+  if (!cut_pile()) {
+    cut_state_ = cut_failed;
+    return;
+  }
+  // Each live disc's side: a disc the solver moves (1/m > 0, as in its contacts) by its
+  // coordinate, any other none.
+  const auto& along = cut_along_y_ ? ey_ : ex_;
+  side_.resize(discs_.size());
+  live_range(0, live_count(), [&](std::uint32_t k) {
+    side_[k] = discs_[k].inv_mass > 0.0 ? (along[k] < median_ ? side_low : side_high) : side_none;
+  });
+  cut_state_ = cut_made;
+}
+
+template <class Real>
+void DiscContacts<Real>::split_contacts(ContactStats& stats) {
+  const std::size_t n = discs_.size(), m = contacts_.size();
+  order_.resize(m);
+  part_start_ = {0, std::uint32_t(m), std::uint32_t(m), std::uint32_t(m)};
+  // Within a part the contacts keep contacts_'s order: disc pairs, then planes, each in key
+  // order.
+  auto one_part = [&] {
+    for (std::size_t i = 0; i < m; ++i) order_[i] = static_cast<std::uint32_t>(i);
+  };
+  if (m < min_split_contacts) return one_part();
+  // The disc pairs' parts were found as they were gathered when the cut was made before the
+  // gather (cut_before_gather()): then only the planes' and segments' are found here.
+  std::size_t first = 0;
+  if (cut_state_ == cut_made) {
+    first = plane_contacts_;
+  } else if (cut_state_ == cut_none) {
+    cut_state_ = cut_pile() ? cut_made : cut_failed;
+  }
+  if (cut_state_ == cut_failed) return one_part();
   // Each contact's part (0, 1: a half; 2: across the cut), then a stable counting sort, both
   // over two halves of the contacts (on two threads within the tick's run of the second
   // thread; the first half's contacts go before the second's in each part).
+  const auto& along = cut_along_y_ ? ey_ : ex_;
+  const double median = median_;
+  part_.resize(m);
   std::array<std::array<std::uint32_t, 3>, 2> in_half{};
-  scratch_.resize(m);
   halves(m, [&](std::size_t begin, std::size_t end, int half) {
     std::array<std::uint32_t, 3> count{};
-    for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t found = std::clamp(first, begin, end);  // [begin, found): found already
+    for (std::size_t i = begin; i < found; ++i) ++count[part_[i]];
+    for (std::size_t i = found; i < end; ++i) {
       const RestContact& c = contacts_[i];
-      const bool a_moves = c.inv_a > 0.0, b_moves = c.b < n && c.inv_b > 0.0;
-      const std::uint32_t sa = along[c.a] < median ? 0 : 1;
-      const std::uint32_t sb = b_moves && along[c.b] < median ? 0 : 1;
-      const std::uint32_t part = !a_moves ? sb : !b_moves ? sa : sa == sb ? sa : 2;
-      scratch_[i] = part;
-      ++count[part];
+      const bool b_moves = c.b < n && c.inv_b > 0.0;
+      const std::uint8_t sa =
+          c.inv_a > 0.0 ? (along[c.a] < median ? side_low : side_high) : side_none;
+      const std::uint8_t sb = b_moves ? (along[c.b] < median ? side_low : side_high) : side_none;
+      part_[i] = part_of(sa, sb);
+      ++count[part_[i]];
     }
     in_half[half] = count;
   });
@@ -80,7 +117,7 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
     for (int part = 0; part < 3; ++part) {
       cursor[part] = part_start_[part] + (half == 1 ? in_half[0][part] : 0);
     }
-    for (std::size_t i = begin; i < end; ++i) order_[cursor[scratch_[i]]++] = std::uint32_t(i);
+    for (std::size_t i = begin; i < end; ++i) order_[cursor[part_[i]]++] = std::uint32_t(i);
   });
   stats.across = count[2];
 }
