@@ -255,17 +255,20 @@ void detail::WorldKernel<Real>::join_islands() {
   };
   // Two awake dynamic bodies: a sleeper near an awake island stays an island of its own.
   auto awake = [&](std::uint32_t j) { return types_[j] == BodyType::dynamic && asleep_[j] == 0; };
-  const auto touching = discs_ ? discs_->touching() : std::span<const RestContact>{};
-  for (const RestContact& c : touching) {
-    if (c.b >= discs.size()) {  // a plane or a segment: static, unless a kinematic body's
-      if (c.kinematic_b) blocked[discs[c.a].body] = stamp;
-      continue;
-    }
-    const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
+  // The touching disc pairs by their bodies (8 bytes a pair, not the contacts), then the
+  // planes' and segments' contacts: contacts_'s order.
+  const auto pair_bodies = discs_ ? discs_->touching_bodies() : std::span<const DiscPair>{};
+  for (const DiscPair& p : pair_bodies) {
+    const std::uint32_t a = p.a, b = p.b;
     const bool da = awake(a), db = awake(b);
     if (da && db) detail::join(island_parent_, a, b);
     if (da && moving(b)) blocked[a] = stamp;
     if (db && moving(a)) blocked[b] = stamp;
+  }
+  const auto touching = discs_ ? discs_->touching() : std::span<const RestContact>{};
+  for (const RestContact& c : touching.subspan(pair_bodies.size())) {
+    // a plane or a segment: static, unless a kinematic body's
+    if (c.kinematic_b) blocked[discs[c.a].body] = stamp;
   }
   // Discs near enough to be paired by the broadphase share an island too: an awake one would
   // otherwise wake a sleeping neighbour every tick (Box2D links islands through contacts
@@ -326,12 +329,12 @@ std::uint32_t detail::WorldKernel<Real>::take_island_number() {
 template <class Real>
 void detail::WorldKernel<Real>::update_sleep(const TickInput& input, bool disc_phases) {
   const auto discs = disc_phases ? discs_->discs() : std::span<const Disc>{};
-  const auto touching = disc_phases ? discs_->touching() : std::span<const RestContact>{};
+  const auto pair_bodies = disc_phases ? discs_->touching_bodies() : std::span<const DiscPair>{};
   const auto impacts = disc_phases ? discs_->impacts() : std::span<const DiscImpact>{};
-  // Contacts and impacts that reached a sleeper: it acted as a static disc this tick.
-  for (const RestContact& c : touching) {
-    if (c.b >= discs.size()) continue;
-    const std::uint32_t a = discs[c.a].body, b = discs[c.b].body;
+  // Contacts and impacts that reached a sleeper: it acted as a static disc this tick. (The
+  // touching disc pairs by their bodies: a plane or a segment never wakes a sleeper.)
+  for (const DiscPair& p : pair_bodies) {
+    const std::uint32_t a = p.a, b = p.b;
     if (asleep_[a] != 0 && asleep_[b] == 0 && types_[b] == BodyType::dynamic) {
       wake_bodies_.push_back(a), ++sleeper_contacts_;
     }
