@@ -193,8 +193,8 @@ class DiscContacts {
   /// segments).
   [[nodiscard]] std::size_t disc_pair_contacts() const { return plane_contacts_; }
   /// The dense body indices of touching()'s disc pairs (the first disc_pair_contacts()), in
-  /// its order: the contact events read 8 bytes a pair here, not a whole RestContact and the
-  /// discs' records.
+  /// its order: the contact events and the sleeping islands read 8 bytes a pair here, not a
+  /// whole RestContact and the discs' records.
   [[nodiscard]] std::span<const DiscPair> touching_bodies() const { return touching_bodies_; }
   /// Whether the tick's run of the second thread is open (SecondThreadRun): halves() and
   /// both_halves() then run their halves on two threads.
