@@ -3,7 +3,9 @@
 // from the discs on planes and segments, in key order: disc pairs, then planes and segments.
 // With the tick's run of the second thread open (world_step.cpp, disc_events.cpp), the pairs
 // are gathered in two passes over two halves of them, and the discs' plane contacts by halves,
-// with the same contacts in the same order.
+// with the same contacts in the same order. In a large world (gather_warm.hpp) each disc pair
+// also takes its warm start and its part of the split pile here (disc_halves.cpp), while its
+// contact is in the cache.
 #include <algorithm>
 #include <atomic>
 #include <cassert>
