@@ -3,9 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/float_mode.hpp"
@@ -435,6 +438,12 @@ void detail::WorldKernel<Real>::rebuild_terms() {
   c.spring = !springs_.data.empty();
   c.rest_length = std::any_of(c.rest.begin(), c.rest.end(), [](Real r) { return r != Real(0); });
   c.damping = std::any_of(c.gamma.begin(), c.gamma.end(), [](Real g) { return g != Real(0); });
+  // The same bits, not only equal values (+0 and -0 are equal), so that the fused sweep's one
+  // value is every body's own.
+  using Bits = std::conditional_t<sizeof(Real) == 4, std::uint32_t, std::uint64_t>;
+  c.gamma_uniform = std::all_of(c.gamma.begin(), c.gamma.end(), [&](Real g) {
+    return std::bit_cast<Bits>(g) == std::bit_cast<Bits>(c.gamma.front());
+  });
   c.accel = false;
   for (std::size_t j = 0; j < n; ++j) c.accel = c.accel || c.accel_x[j] != 0 || c.accel_y[j] != 0;
   flows_.clear();

@@ -537,6 +537,7 @@ class WorldKernel {
     bool rest_length = false;  ///< some spring has L > 0 (rest is read; |d| needs a sqrt)
     bool damping = false;      ///< some body has γ > 0 (gamma or the damping-flow decay)
     bool accel = false;        ///< some body has c != 0 (accel_x, accel_y are read)
+    bool gamma_uniform = false;  ///< every body has the same γ, gamma[0] (the fused sweep's)
   } coeff_;
   // Exact damping flow D(τ) factors e^{-γτ} per body (1 where γ = 0), cached per τ: a Verlet
   // tick needs one τ, Forest–Ruth two.

@@ -38,15 +38,19 @@ struct SweepArrays {
   const Real* __restrict gamma, * __restrict cx, * __restrict cy;
   const Real* __restrict decay0, * __restrict decay1;
   Real push_x, push_y;
+  /// Every body's γ is gamma_value (Coefficients::gamma_uniform): the sweep takes it as one
+  /// value instead of loading it per body (the same values, so the same bits).
+  bool gamma_uniform;
+  Real gamma_value;
 };
 
 /// Runs step(x, y, vx, vy, field) on every body: one pass, each body's state loaded and stored
 /// once, each declared coefficient read once. Inlined into one function per SimdLevel (below),
 /// which the compiler vectorizes for that level. Returns true if some body's new state is out
 /// of range (NaN, ±inf or beyond max_state_magnitude): the runtime guard, an OR of compares on
-/// values still in registers.
-template <class Field, class Real, class Step>
-[[gnu::always_inline]] inline bool sweep_loop(SweepArrays<Real> a, Step step) {
+/// values still in registers. UniformGamma: every body's γ is a.gamma_value, not loaded.
+template <class Field, bool UniformGamma, class Real, class Step>
+[[gnu::always_inline]] inline bool sweep_bodies(SweepArrays<Real> a, Step step) {
   Real* __restrict x = a.x, * __restrict y = a.y, * __restrict vx = a.vx, * __restrict vy = a.vy;
   const Real limit = static_cast<Real>(max_state_magnitude);
   // A conditional reduction in Real (GCC vectorizes this select at every level; an integer
@@ -58,7 +62,8 @@ template <class Field, class Real, class Step>
       f.k = a.k[j], f.anchor_x = a.anchor_x[j], f.anchor_y = a.anchor_y[j];
     }
     if constexpr (Field::shape == SpringShape::rest_length) f.rest = a.rest[j];
-    if constexpr (Field::damped && Field::decays == 0) f.gamma = a.gamma[j];
+    if constexpr (Field::damped && Field::decays == 0)
+      f.gamma = UniformGamma ? a.gamma_value : a.gamma[j];
     if constexpr (Field::damped && Field::decays >= 1) f.decay[0] = a.decay0[j];
     if constexpr (Field::damped && Field::decays >= 2) f.decay[1] = a.decay1[j];
     if constexpr (Field::accel) f.cx = a.cx[j] + a.push_x, f.cy = a.cy[j] + a.push_y;
@@ -72,6 +77,16 @@ template <class Field, class Real, class Step>
     out_of_range = in_range ? out_of_range : Real(1);
   }
   return out_of_range != Real(0);
+}
+
+/// sweep_bodies(), with a uniform γ as one value when the field reads γ (a loop of its own: a
+/// choice within the loop stops the vectorizer).
+template <class Field, class Real, class Step>
+[[gnu::always_inline]] inline bool sweep_loop(SweepArrays<Real> a, Step step) {
+  if constexpr (Field::damped && Field::decays == 0) {
+    if (a.gamma_uniform) return sweep_bodies<Field, true>(a, step);
+  }
+  return sweep_bodies<Field, false>(a, step);
 }
 
 // The same loop compiled for each SimdLevel (fixstep/core/simd.hpp). These templates have internal
@@ -274,7 +289,9 @@ void detail::WorldKernel<Real>::integrate(const TickInput& input) {
                                    .decay0 = decay0,
                                    .decay1 = decay1,
                                    .push_x = push[0],
-                                   .push_y = push[1]};
+                                   .push_y = push[1],
+                                   .gamma_uniform = c.gamma_uniform,
+                                   .gamma_value = c.gamma.empty() ? Real(0) : c.gamma[0]};
     if (!awake_.on) {
       out_of_range |= sweep<decltype(field)>(level, arrays, step_fn);
       return;
