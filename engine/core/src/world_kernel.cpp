@@ -3,13 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <numbers>
 #include <stdexcept>
-#include <type_traits>
 
+#include "fixstep/core/bits.hpp"
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/float_mode.hpp"
 #include "fixstep/core/fnv1a.hpp"
@@ -440,10 +438,8 @@ void detail::WorldKernel<Real>::rebuild_terms() {
   c.damping = std::any_of(c.gamma.begin(), c.gamma.end(), [](Real g) { return g != Real(0); });
   // The same bits, not only equal values (+0 and -0 are equal), so that the fused sweep's one
   // value is every body's own.
-  using Bits = std::conditional_t<sizeof(Real) == 4, std::uint32_t, std::uint64_t>;
-  c.gamma_uniform = std::all_of(c.gamma.begin(), c.gamma.end(), [&](Real g) {
-    return std::bit_cast<Bits>(g) == std::bit_cast<Bits>(c.gamma.front());
-  });
+  c.gamma_uniform = std::all_of(c.gamma.begin(), c.gamma.end(),
+                                [&](Real g) { return same_bits(g, c.gamma.front()); });
   c.accel = false;
   for (std::size_t j = 0; j < n; ++j) c.accel = c.accel || c.accel_x[j] != 0 || c.accel_y[j] != 0;
   flows_.clear();
