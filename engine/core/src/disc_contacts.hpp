@@ -196,6 +196,11 @@ class DiscContacts {
   /// its order: the contact events and the sleeping islands read 8 bytes a pair here, not a
   /// whole RestContact and the discs' records.
   [[nodiscard]] std::span<const DiscPair> touching_bodies() const { return touching_bodies_; }
+  /// The discs (disc indices, as touching()'s a) of touching()'s contacts with a segment that
+  /// moves this tick, one per such contact.
+  [[nodiscard]] std::span<const std::uint32_t> on_moving_segment() const {
+    return on_moving_segment_;
+  }
   /// Whether the tick's run of the second thread is open (SecondThreadRun): halves() and
   /// both_halves() then run their halves on two threads.
   [[nodiscard]] bool sharing() const { return broadphase_.second_thread().is_open(); }
@@ -591,7 +596,7 @@ class DiscContacts {
   void match_warm();
   // velocity iterations on rows (disc_rows.cpp)
   /// rows_ from contacts_ in order_'s order, with the solver velocities of their discs.
-  void build_rows();
+  void build_rows(const Tick& tick);
   /// Writes the velocities back and each contact's impulses to warm_ (for the next tick), and
   /// moves each disc an impulse changed by κ dt times its velocity's change (kdt = κ dt, s):
   /// the contact forces over the tick.
@@ -644,6 +649,17 @@ class DiscContacts {
                         double vx, double vy, SegmentTouch& t) const;
   /// overlap_of() for a segment contact: the depth (m) and normal at the closest feature now.
   double segment_overlap_of(const Tick& tick, const RestContact& c, double& nx, double& ny) const;
+  /// Whether disc k is a kinematic disc that moves this tick (its contacts' partner's work is
+  /// external, and its rows give it a slot of its own).
+  [[nodiscard]] bool moving_kinematic(std::uint32_t k) const {
+    return !discs_[k].dynamic && (motion_[k].ux != 0.0 || motion_[k].uy != 0.0);
+  }
+  /// The velocity (m/s) of contact c's wall b this tick: a segment's (its carrier's), 0 for a
+  /// plane.
+  [[nodiscard]] Vec2 wall_velocity(const Tick& tick, const RestContact& c) const {
+    const std::size_t walls = discs_.size() + tick.planes.size();
+    return c.b >= walls ? tick.segments->velocity(std::uint32_t(c.b - walls)) : Vec2{};
+  }
   /// Contact c's rolling turn: each disc's radius as its arm and radius / inertia as its turn
   /// (a plane's or a segment's b: 0 and 0).
   [[nodiscard]] RollRow roll_row(const RestContact& c) const {
@@ -717,7 +733,8 @@ class DiscContacts {
   /// Disc pairs in key order, then planes in key order: gathered anew by every tick, read
   /// within it (touching(): the contact events, the sleeping islands).
   ScratchVector<RestContact> contacts_;
-  ScratchVector<DiscPair> touching_bodies_;  ///< touching_bodies()
+  ScratchVector<DiscPair> touching_bodies_;         ///< touching_bodies()
+  ScratchVector<std::uint32_t> on_moving_segment_;  ///< on_moving_segment()
   bool warm_gathered_ = false;          ///< the disc pairs' warm start made as they were gathered
   std::uint32_t plane_contacts_ = 0;    ///< where contacts_'s plane contacts begin
   ScratchVector<std::uint32_t> order_;  ///< see split_contacts()

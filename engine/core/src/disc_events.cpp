@@ -440,13 +440,13 @@ std::size_t DiscContacts<Real>::bytes() const {
                     motion_, boxes_, dynamic_, pairs_, offset_, incident_, cursor_, stamp_, held_,
                     extra_sorted_, partner_mark_, wall_found_, extra_head_, grown_of_, impacts_,
                     changed_, walled_, touch_, plane_half_[0], plane_half_[1], events_, contacts_,
-                    order_, cut_, side_, part_, lane_of_, lane_parent_, lane_log_, warm_, ex_, ey_,
-                    evx_, evy_, lost_, external_, e_start_, e_begin_, d_begin_, ew_, ew0_, rows_,
-                    push_rows_, row_moved_, sv_, slot_moved_, roll_rows_, sw_, asleep_, awake_list_,
-                    awake_flips_.discs, awake_flips_.scratch, live_, in_live_, woken_,
-                    sleepers_.grid.discs, sleepers_.disc, sleepers_.indexed, sleepers_.extra,
-                    sleepers_.extras, live_boxes_, live_dynamic_, degree_, fat_.boxes, fat_.pairs,
-                    segments_near_) +
+                    touching_bodies_, on_moving_segment_, order_, cut_, side_, part_, lane_of_,
+                    lane_parent_, lane_log_, warm_, ex_, ey_, evx_, evy_, lost_, external_,
+                    e_start_, e_begin_, d_begin_, ew_, ew0_, rows_, push_rows_, row_moved_, sv_,
+                    slot_moved_, roll_rows_, sw_, asleep_, awake_list_, awake_flips_.discs,
+                    awake_flips_.scratch, live_, in_live_, woken_, sleepers_.grid.discs,
+                    sleepers_.disc, sleepers_.indexed, sleepers_.extra, sleepers_.extras,
+                    live_boxes_, live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
          lanes_[0].bytes() + lanes_[1].bytes();
 }
 

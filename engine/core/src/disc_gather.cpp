@@ -61,27 +61,17 @@ template <class Real>
   }
   if (out == nullptr) return true;
   // Every field written once, in one initializer: assigning the fields over a zeroed contact
-  // (RestContact{}) cleared its 128 bytes with a string instruction first, per contact.
-  const double mass = 1.0 / (da.inv_mass + db.inv_mass);
+  // (RestContact{}) cleared it with a string instruction first, per contact.
   RestContact& c = *out;
-  c = RestContact{.key = pair_key(p),
-                  .a = p.a,
+  c = RestContact{.a = p.a,
                   .b = p.b,
                   .nx = nx,
                   .ny = ny,
-                  .mass = mass,
                   .friction = std::sqrt(da.friction * db.friction),
                   .inv_a = da.inv_mass,
                   .inv_b = db.inv_mass,
                   .radii = da.radius + db.radius,
-                  .r_min = std::min(da.radius, db.radius),
-                  .mass_t = mass,
-                  .kinematic_a = !da.dynamic && (motion_[p.a].ux != 0.0 || motion_[p.a].uy != 0.0),
-                  .kinematic_b = !db.dynamic && (motion_[p.b].ux != 0.0 || motion_[p.b].uy != 0.0)};
-  if (rolling_) {
-    const RollRow t = roll_row(c);
-    c.mass_t = 1.0 / (da.inv_mass + db.inv_mass + t.arm_a * t.turn_a + t.arm_b * t.turn_b);
-  }
+                  .r_min = std::min(da.radius, db.radius)};
   // In a large world the warm start is matched here, while the contact is in the cache (a
   // pass over the contacts after the gather read each one again from memory).
   if (warm_gathered_) {
@@ -111,6 +101,7 @@ template <class Real>
 void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   const std::size_t m = pairs_.size();
   warm_gathered_ = m >= gather_warm_pairs();
+  on_moving_segment_.clear();
   cut_before_gather();
   const bool cut = cut_state_ == cut_made;  // each pair's part found here (split_contacts())
   bool kinematic[2] = {false, false};
@@ -143,7 +134,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
         RestContact& c = contacts_[at++];
         [[maybe_unused]] const bool touches = pair_contact(tick, p, &c, warm_at);
         assert(touches);  // the same arithmetic as the first pass (no contraction)
-        moving = moving || c.kinematic_a || c.kinematic_b;
+        moving = moving || moving_kinematic(p.a) || moving_kinematic(p.b);
       }
       kinematic[half] = moving;
     });
@@ -156,7 +147,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     const WarmImpulse* warm_at = warm_from(0);
     for (const DiscPair& p : pairs_) {
       if (!pair_contact(tick, p, &c, warm_at)) continue;
-      kinematic[0] = kinematic[0] || c.kinematic_a || c.kinematic_b;
+      kinematic[0] = kinematic[0] || moving_kinematic(p.a) || moving_kinematic(p.b);
       contacts_.push_back(c);
       touching_bodies_.push_back({discs_[p.a].body, discs_[p.b].body});
       if (cut) part_.push_back(part_of(side_[p.a], side_[p.b]));
@@ -239,17 +230,11 @@ RestContact DiscContacts<Real>::wall_contact(std::uint32_t k, std::uint32_t b, d
                                              double friction) const {
   const Disc& d = discs_[k];
   RestContact c;
-  c.key = (std::uint64_t(k) << 32) | b;
   c.a = k, c.b = b;
   c.radii = c.r_min = d.radius;
   c.nx = nx, c.ny = ny;
-  c.mass = c.mass_t = 1.0 / d.inv_mass;
   c.inv_a = d.inv_mass;
   c.friction = friction;
-  if (rolling_) {
-    const RollRow t = roll_row(c);
-    c.mass_t = 1.0 / (d.inv_mass + t.arm_a * t.turn_a);
-  }
   return c;
 }
 

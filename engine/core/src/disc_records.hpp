@@ -94,24 +94,21 @@ inline bool later_event(const DiscEvent& l, const DiscEvent& r) {
 }
 
 /// A contact of the resting solver: disc a against disc b, or against plane p (b = disc count
-/// + p) or a segment (past the planes).
+/// + p) or a segment (past the planes). The gather writes one per touching pair and
+/// build_rows() reads it back, so it holds only what its rows cannot make from its other fields
+/// (80 bytes): the effective masses are 1 / (1/m_a + 1/m_b) (build_rows()), whether a partner
+/// is a moving kinematic disc is its disc's (moving_kinematic()), and a moving segment's
+/// velocity is the segment's for the tick.
 struct RestContact {
-  std::uint64_t key = 0;  ///< a << 32 | b (b = disc count + plane index for planes)
   std::uint32_t a = 0, b = 0;
-  /// The normal n (unit, from b to a), the effective mass (kg), μ; the impulses the solve starts
-  /// from (N·s: last tick's, matched by key), its own are kept in DiscContacts::warm_.
-  double nx = 0, ny = 0, mass = 0, friction = 0, lambda_n = 0, lambda_t = 0;
+  /// The normal n (unit, from b to a), μ; the impulses the solve starts from (N·s: last tick's,
+  /// matched by key), its own are kept in DiscContacts::warm_.
+  double nx = 0, ny = 0, friction = 0, lambda_n = 0, lambda_t = 0;
   double inv_a = 0, inv_b = 0;  ///< 1/kg of a and b (0: static, kinematic or a plane)
   /// The radii r_a + r_b (r_a for a plane or a segment) and the smaller radius, m.
   double radii = 0, r_min = 0;
-  /// Rolling discs: the mass along the tangent at the contact point, kg (1 / (1/m_a + 1/m_b +
-  /// r_a²/I_a + r_b²/I_b); `mass` without rolling). (The arms and turns the rows need are the
-  /// discs' own: roll_row().)
-  double mass_t = 0;
-  bool kinematic_a = false;  ///< a is a moving kinematic disc (its work is external)
-  bool kinematic_b = false;  ///< b is a moving kinematic disc or segment (its work is external)
-  /// b's velocity when b is a plane or a segment (m/s): a kinematic body's segment moves.
-  double bvx = 0, bvy = 0;
+  /// a << 32 | b: the contacts' order, and the warm start's match.
+  [[nodiscard]] std::uint64_t key() const { return (std::uint64_t(a) << 32) | b; }
 };
 
 /// A resting contact as the velocity iterations see it (disc_rows.cpp), in order_'s order:
@@ -141,7 +138,9 @@ struct PushRow {
 /// point (m; 0 for a plane) and r/I of each disc (rad/s per N·s; 0: it does not turn).
 struct RollRow {
   double arm_a = 0, arm_b = 0, turn_a = 0, turn_b = 0;
-  double mass_t = 0;  ///< RestContact::mass_t, kg
+  /// The mass along the tangent at the contact point, kg: 1 / (1/m_a + 1/m_b + r_a²/I_a +
+  /// r_b²/I_b).
+  double mass_t = 0;
 };
 
 /// A velocity in the solver's own array, m/s.

@@ -34,10 +34,12 @@ template <int Kind>
                                                                 SolveVelocity& vb, double ln,
                                                                 double lt) {
   if constexpr ((Kind & kinematic_rows) != 0) {
-    const RestContact& c = contacts_[order_[i]];
+    // A moving kinematic partner has a slot past the discs' (build_rows()).
+    const PushRow& d = push_rows_[i];
+    const std::uint32_t fixed_slots = 3 + std::uint32_t(discs_.size());
     const double jx = ln * r.nx - lt * r.ny, jy = ln * r.ny + lt * r.nx;
-    if (c.kinematic_b) external_[c.a] += jx * vb.x + jy * vb.y;
-    if (c.kinematic_a) external_[c.b] -= jx * va.x + jy * va.y;
+    if (r.b >= fixed_slots) external_[d.a] += jx * vb.x + jy * vb.y;
+    if (r.a >= fixed_slots) external_[d.b] -= jx * va.x + jy * va.y;
   }
   const double ax = r.inv_a * r.nx, ay = r.inv_a * r.ny, bx = r.inv_b * r.nx, by = r.inv_b * r.ny;
   va.x += ln * ax - lt * ay, va.y += ln * ay + lt * ax;
@@ -49,7 +51,7 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   const auto& p = part_start_;
   team_on_ = sharing() && p[1] > p[0] && p[2] > p[1];
   match_warm();
-  build_rows();
+  build_rows(tick);
   warm_start();
   solve_velocities(stats);
   scatter_rows(tick.kappa * tick.dt);
@@ -79,11 +81,12 @@ void DiscContacts<Real>::match_warm() {
     const WarmImpulse* const last = warm_.data() + warm_bounds[run + 1];
     halves(bounds[run + 1] - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
       if (begin == end) return;
-      const WarmImpulse* w = first_warm_from(from, last, contacts_[first + begin].key);
+      const WarmImpulse* w = first_warm_from(from, last, contacts_[first + begin].key());
       for (std::size_t i = first + begin; i < first + end; ++i) {
         RestContact& c = contacts_[i];
-        while (w != last && w->key < c.key) ++w;
-        if (w != last && w->key == c.key && w->lambda_n > 0.0) {
+        const std::uint64_t key = c.key();
+        while (w != last && w->key < key) ++w;
+        if (w != last && w->key == key && w->lambda_n > 0.0) {
           c.lambda_n = w->lambda_n, c.lambda_t = w->lambda_t;
         }
       }

@@ -16,7 +16,7 @@
 namespace fixstep::detail {
 
 template <class Real>
-void DiscContacts<Real>::build_rows() {
+void DiscContacts<Real>::build_rows(const Tick& tick) {
   const std::size_t n = discs_.size(), m = contacts_.size();
   rows_.resize(m);
   push_rows_.resize(m);
@@ -37,6 +37,7 @@ void DiscContacts<Real>::build_rows() {
     return std::uint32_t(sv_.size() - 1);
   };
   auto spin = [&](std::uint32_t k) { return rolling_ ? ew_[k] : 0.0; };
+  const bool any_kinematic = kinematic_contacts_;
   const auto& p = part_start_;
   auto fill = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
     const std::uint32_t part = begin >= p[2] ? 2 : begin >= p[1] ? 1 : 0;
@@ -53,16 +54,31 @@ void DiscContacts<Real>::build_rows() {
     for (std::uint32_t i = begin; i < end; ++i) {
       const RestContact& c = contacts_[order_[i]];
       SolveRow& r = rows_[i];
-      r.a = slot(c.a, c.inv_a > 0.0, c.kinematic_a);
-      if (c.b < n) {
-        r.b = slot(c.b, c.inv_b > 0.0, c.kinematic_b);
+      // Which partner is a moving kinematic one: asked only when some contact has one.
+      const bool pair = c.b < n;
+      const bool kinematic_a = any_kinematic && moving_kinematic(c.a);
+      const bool kinematic_b = any_kinematic && pair && moving_kinematic(c.b);
+      r.a = slot(c.a, c.inv_a > 0.0, kinematic_a);
+      if (pair) {
+        r.b = slot(c.b, c.inv_b > 0.0, kinematic_b);
+      } else if (const Vec2 u = any_kinematic ? wall_velocity(tick, c) : Vec2{};
+                 u.x != 0.0 || u.y != 0.0) {
+        r.b = fixed(u.x, u.y, 0.0);  // a moving segment
       } else {
-        r.b = c.kinematic_b ? fixed(c.bvx, c.bvy, 0.0) : part;  // a moving segment, or still
+        r.b = part;  // a plane or a still segment
       }
-      if (rolling_) roll_rows_[i] = roll_row(c), roll_rows_[i].mass_t = c.mass_t;
-      r.nx = c.nx, r.ny = c.ny, r.mass = c.mass, r.friction = c.friction;
+      const double inv_a = c.inv_a, inv_b = pair ? c.inv_b : 0.0;
+      // The effective masses as the gather made them: 1 / (1/m_a + 1/m_b), and along the
+      // tangent with the rolling discs' turns.
+      const double mass = 1.0 / (inv_a + inv_b);
+      if (rolling_) {
+        RollRow t = roll_row(c);
+        t.mass_t = 1.0 / (pair ? inv_a + inv_b + t.arm_a * t.turn_a + t.arm_b * t.turn_b
+                               : inv_a + t.arm_a * t.turn_a);
+        roll_rows_[i] = t;
+      }
+      r.nx = c.nx, r.ny = c.ny, r.mass = mass, r.friction = c.friction;
       r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
-      const double inv_a = c.inv_a, inv_b = c.b < n ? c.inv_b : 0.0;
       r.inv_a = inv_a, r.inv_b = inv_b;
       row_moved_[i] = 0;
       const double inv = inv_a + inv_b;
@@ -95,7 +111,7 @@ void DiscContacts<Real>::scatter_rows(double kdt) {
       // Every contact's key is a << 32 | b (pair_key, wall_contact): from the row's push-out
       // half, read in row order, rather than from the contact, read out of it.
       const std::uint64_t key = (std::uint64_t(push_rows_[i].a) << 32) | push_rows_[i].b;
-      assert(key == contacts_[j].key);
+      assert(key == contacts_[j].key());
       warm_[j] = WarmImpulse{key, r.lambda_n, r.lambda_t};
       if (row_moved_[i]) slot_moved_[r.a] = slot_moved_[r.b] = 1;
     }

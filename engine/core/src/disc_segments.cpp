@@ -23,11 +23,10 @@ void DiscContacts<Real>::gather_segment_contacts(const Tick& tick, std::uint32_t
     const Vec2 u = tick.segments->velocity(i);
     SegmentTouch t;
     if (!rests_on_segment(tick, k, i, x, y, evx_[k], evy_[k], t)) continue;
-    RestContact c = wall_contact(k, base + i, t.nx, t.ny, s.friction);
-    c.bvx = u.x, c.bvy = u.y;
-    c.kinematic_b = u.x != 0.0 || u.y != 0.0;
-    kinematic_contacts_ = kinematic_contacts_ || c.kinematic_b;
-    contacts_.push_back(c);
+    const bool moves = u.x != 0.0 || u.y != 0.0;  // its velocity is wall_velocity()'s
+    kinematic_contacts_ = kinematic_contacts_ || moves;
+    if (moves) on_moving_segment_.push_back(k);
+    contacts_.push_back(wall_contact(k, base + i, t.nx, t.ny, s.friction));
   }
 }
 
@@ -53,7 +52,8 @@ double DiscContacts<Real>::segment_overlap_of(const Tick& tick, const RestContac
                                               double& ny) const {
   const auto base = discs_.size() + tick.planes.size();
   const SegmentShape& s = tick.segments->shapes()[c.b - base];
-  const double x = ex_[c.a] - c.bvx * tick.dt, y = ey_[c.a] - c.bvy * tick.dt;
+  const Vec2 u = wall_velocity(tick, c);
+  const double x = ex_[c.a] - u.x * tick.dt, y = ey_[c.a] - u.y * tick.dt;
   SegmentTouch t;
   nx = c.nx, ny = c.ny;
   if (!segment_touch(s, x, y, t)) return 0.0;  // moved where a neighbour holds it

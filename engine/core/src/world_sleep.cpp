@@ -255,8 +255,7 @@ void detail::WorldKernel<Real>::join_islands() {
   };
   // Two awake dynamic bodies: a sleeper near an awake island stays an island of its own.
   auto awake = [&](std::uint32_t j) { return types_[j] == BodyType::dynamic && asleep_[j] == 0; };
-  // The touching disc pairs by their bodies (8 bytes a pair, not the contacts), then the
-  // planes' and segments' contacts: contacts_'s order.
+  // The touching disc pairs by their bodies (8 bytes a pair, not the contacts).
   const auto pair_bodies = discs_ ? discs_->touching_bodies() : std::span<const DiscPair>{};
   for (const DiscPair& p : pair_bodies) {
     const std::uint32_t a = p.a, b = p.b;
@@ -265,11 +264,9 @@ void detail::WorldKernel<Real>::join_islands() {
     if (da && moving(b)) blocked[a] = stamp;
     if (db && moving(a)) blocked[b] = stamp;
   }
-  const auto touching = discs_ ? discs_->touching() : std::span<const RestContact>{};
-  for (const RestContact& c : touching.subspan(pair_bodies.size())) {
-    // a plane or a segment: static, unless a kinematic body's
-    if (c.kinematic_b) blocked[discs[c.a].body] = stamp;
-  }
+  // The planes' and segments' contacts: a wall is static, unless a kinematic body's segment.
+  const auto on_moving = discs_ ? discs_->on_moving_segment() : std::span<const std::uint32_t>{};
+  for (const std::uint32_t k : on_moving) blocked[discs[k].body] = stamp;
   // Discs near enough to be paired by the broadphase share an island too: an awake one would
   // otherwise wake a sleeping neighbour every tick (Box2D links islands through contacts
   // within its speculative distance for the same reason).
