@@ -764,7 +764,7 @@ class DiscContacts {
   ScratchVector<SolveVelocity> sv_;
   /// Per slot, for this tick's rows: 0, or 1 once an impulse changed it, 2 once scatter_rows()
   /// moved its disc by that (and for a disc's slot nonzero once the push-out moved the disc).
-  /// The slots of discs in no row keep an earlier tick's marks, never read.
+  /// build_rows() clears every live disc's; the others keep an earlier tick's marks, never read.
   ScratchVector<std::uint8_t> slot_moved_;
   bool kinematic_contacts_ = false;   ///< a contact of this tick has a kinematic partner
   ScratchVector<RollRow> roll_rows_;  ///< with rolling discs (empty otherwise)

@@ -56,15 +56,13 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   solve_velocities(stats);
   scatter_rows(tick.kappa * tick.dt);
   push_out(tick, stats);
-  // The discs the passes moved (their slots' marks), through the rows: only discs in contact.
-  auto marks = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const PushRow& r = push_rows_[i];
-      if (r.w_a > 0.0 && slot_moved_[3 + r.a]) changed_[r.a] |= 2;
-      if (r.w_b > 0.0 && slot_moved_[3 + r.b]) changed_[r.b] |= 2;
-    }
-  };
-  parts_pass(marks);
+  // The discs the passes moved: their slots' marks, by disc (build_rows() cleared every live
+  // disc's; only a disc a row moves, 1/m > 0, is marked).
+  halves(live_count(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+    live_range(begin, end, [&](std::uint32_t k) {
+      if (slot_moved_[3 + k] != 0) changed_[k] |= 2;
+    });
+  });
 }
 
 template <class Real>

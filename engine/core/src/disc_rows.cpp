@@ -30,6 +30,9 @@ void DiscContacts<Real>::build_rows(const Tick& tick) {
     sv_[s] = SolveVelocity{}, slot_moved_[s] = 0;
     if (rolling_) sw_[s] = 0.0;
   }
+  // Every live disc's mark cleared, in disc order: the passes after the sweeps find the discs
+  // they moved by disc (scatter_rows(), solve_resting()), not through the rows again.
+  live_range(0, live_count(), [&](std::uint32_t k) { slot_moved_[3 + k] = 0; });
   // A moving kinematic partner's slot: its velocity for the tick (appended: one thread only).
   auto fixed = [&](double vx, double vy, double w) {
     sv_.push_back({vx, vy});
@@ -47,7 +50,7 @@ void DiscContacts<Real>::build_rows(const Tick& tick) {
       if (kinematic) return fixed(evx_[k], evy_[k], spin(k));
       if (!moves) return part;
       const std::uint32_t s = 3 + k;
-      sv_[s] = {evx_[k], evy_[k]}, slot_moved_[s] = 0;
+      sv_[s] = {evx_[k], evy_[k]};
       if (rolling_) sw_[s] = ew_[k];
       return s;
     };
@@ -117,26 +120,21 @@ void DiscContacts<Real>::scatter_rows(double kdt) {
     }
   };
   parts_pass(rows);
-  // Each moved disc once, at the first of its rows (its slot's mark goes from 1 to 2): a disc's
-  // rows are in its half's part and across the cut, which runs after both halves. Its slot
-  // started at evx_, evy_ (untouched since build_rows()).
-  const std::size_t n = discs_.size();
-  auto move = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
-    for (std::uint32_t i = begin; i < end; ++i) {
-      for (const std::uint32_t s : {rows_[i].a, rows_[i].b}) {
-        if (s < 3 || s >= 3 + n || slot_moved_[s] != 1) continue;  // not a disc's, or not moved
-        const std::size_t k = s - 3;
-        const SolveVelocity& v = sv_[s];
-        if (!held_[k].on) {  // a held disc is where the contact stopped it already
-          ex_[k] += kdt * (v.x - evx_[k]), ey_[k] += kdt * (v.y - evy_[k]);
-        }
-        evx_[k] = v.x, evy_[k] = v.y;
-        if (rolling_) ew_[k] = sw_[s];
-        slot_moved_[s] = 2;
+  // Each moved disc once (its mark goes from 1 to 2), by disc: its slot started at evx_, evy_
+  // (untouched since build_rows()).
+  halves(live_count(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+    live_range(begin, end, [&](std::uint32_t k) {
+      std::uint8_t& mark = slot_moved_[3 + k];
+      if (mark != 1) return;
+      const SolveVelocity& v = sv_[3 + k];
+      if (!held_[k].on) {  // a held disc is where the contact stopped it already
+        ex_[k] += kdt * (v.x - evx_[k]), ey_[k] += kdt * (v.y - evy_[k]);
       }
-    }
-  };
-  parts_pass(move);
+      evx_[k] = v.x, evy_[k] = v.y;
+      if (rolling_) ew_[k] = sw_[3 + k];
+      mark = 2;
+    });
+  });
 }
 
 }  // namespace fixstep::detail
