@@ -3,8 +3,9 @@
 // StepProfile): a resting disc converges in an iteration or two, a column that the iterations
 // cannot settle in one tick says so and settles over the next ticks, a world without touching
 // discs runs none, the profile is measured only with disc contacts; the iteration counts are
-// settings (checked), a pile split in halves for two threads steps to the same bits on one, and
-// the warm start matched as the contacts are gathered or by a pass after it gives the same bits.
+// settings (checked), a pile split in halves for two threads steps to the same bits on one, the
+// warm start matched as the contacts are gathered or by a pass after it gives the same bits, and
+// so does the cut's median sought near the last one or among every coordinate.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,6 +26,7 @@
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "gather_warm.hpp"
+#include "median_window.hpp"
 
 namespace fixstep {
 namespace contact_profile_tests {
@@ -192,6 +194,36 @@ TEST(ContactSweeps, TheWarmStartAndThePartsFoundInTheGatherOrAfterItGiveTheSameB
     EXPECT_GT(touching, 1024u);  // a pile whose warm start carries it, split in halves
     EXPECT_GT(across, 0u);
   }
+}
+
+// The cut's median sought first near the last tick's (DiscContacts::cut_pile()) is the median
+// of every coordinate: the same pile stepped both ways side by side keeps the same bits and
+// the same contacts across the cut on every tick, while it settles (the median near the last)
+// and after a shove sideways moves it past the window in one tick (every coordinate again).
+TEST(ContactSweeps, TheMedianSoughtNearTheLastOneIsTheMedianOfThemAll) {
+  struct Restore {
+    ~Restore() { detail::set_median_window(true); }
+  } restore;
+  WorldDef def = walled_pile(30, 20);
+  // Room to the right for the shove: the pile spreads from its left wall.
+  def.planes.back().offset = -4.0;
+  World windowed(def), whole(def);
+  std::size_t across = 0;
+  for (int t = 0; t < 120; ++t) {
+    if (t == 60) {
+      for (World* w : {&windowed, &whole}) {
+        for (const Entity e : w->bodies()) w->set_velocity(e, w->body(e).velocity + Vec2{6.0, 0.0});
+      }
+    }
+    detail::set_median_window(true);
+    windowed.step();
+    detail::set_median_window(false);
+    whole.step();
+    ASSERT_EQ(windowed.state_hash(), whole.state_hash()) << "tick " << t;
+    ASSERT_EQ(windowed.contact_stats().across, whole.contact_stats().across) << "tick " << t;
+    across = std::max(across, windowed.contact_stats().across);
+  }
+  EXPECT_GT(across, 0u);  // a pile split in halves
 }
 
 // A stop request (SIGINT) reaches a long resting solve (up to 1000 iterations a tick) on two

@@ -13,37 +13,76 @@
 // contacts far from converged after a few iterations; see docs/perf/contact_solver_plan.md).
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
 #include "disc_contacts.hpp"
+#include "median_window.hpp"
 
 namespace fixstep::detail {
 
+namespace {
+std::atomic<bool> median_window_on{true};
+}  // namespace
+
+void set_median_window(bool on) {
+  median_window_on.store(on, std::memory_order_relaxed);
+}
+
+bool median_window() {
+  return median_window_on.load(std::memory_order_relaxed);
+}
+
 template <class Real>
 bool DiscContacts<Real>::cut_pile() {
-  // The wider axis of the dynamic discs, and the median coordinate along it.
+  // The wider axis of the dynamic discs (their flags, not their records), and the median
+  // coordinate along it.
   constexpr double inf = std::numeric_limits<double>::infinity();
   double lo[2] = {inf, inf}, hi[2] = {-inf, -inf};
-  cut_.clear();
+  std::size_t count = 0;
   const std::size_t live = live_count();
   live_range(0, live, [&](std::uint32_t k) {
-    if (!discs_[k].dynamic) return;
+    if (!dynamic_[k]) return;
+    ++count;
     lo[0] = std::min(lo[0], ex_[k]), hi[0] = std::max(hi[0], ex_[k]);
     lo[1] = std::min(lo[1], ey_[k]), hi[1] = std::max(hi[1], ey_[k]);
   });
-  cut_along_y_ = hi[1] - lo[1] > hi[0] - lo[0];
-  const auto& along = cut_along_y_ ? ey_ : ex_;
+  const bool along_y = hi[1] - lo[1] > hi[0] - lo[0];
+  const auto& along = along_y ? ey_ : ex_;
+  // The median is the count/2-th smallest coordinate. A pile moves little from one tick to the
+  // next, so it is sought first among the coordinates within a sixty-fourth of the pile's span
+  // of the last tick's median: those below the window are counted, and when the rank falls
+  // within it, only the window's are ordered. The same value as ordering them all (it is the
+  // same order statistic); otherwise they all are.
+  const std::size_t rank = count / 2;
+  const double span = along_y ? hi[1] - lo[1] : hi[0] - lo[0];
+  const bool hint = median_window() && along_y == cut_along_y_ && std::isfinite(median_);
+  const double low = hint ? median_ - span / 64 : inf, high = hint ? median_ + span / 64 : -inf;
+  std::size_t below = 0;
   bool nan = false;
+  cut_.clear();
   live_range(0, live, [&](std::uint32_t k) {
-    if (!discs_[k].dynamic) return;
-    nan = nan || std::isnan(along[k]);
-    cut_.push_back(along[k]);
+    if (!dynamic_[k]) return;
+    const double v = along[k];
+    nan = nan || std::isnan(v);
+    below += v < low ? 1 : 0;
+    if (v >= low && v <= high) cut_.push_back(v);
   });
-  if (nan) return false;  // no order to cut by: one part (the world reports the NaN)
-  const auto mid = cut_.begin() + std::ptrdiff_t(cut_.size() / 2);
+  // No order to cut by (the world reports the NaN), or nothing to cut: one part.
+  if (nan || count == 0) return false;
+  std::size_t at = rank - below;
+  if (rank < below || at >= cut_.size()) {  // not within the window: every coordinate
+    cut_.clear();
+    live_range(0, live, [&](std::uint32_t k) {
+      if (dynamic_[k]) cut_.push_back(along[k]);
+    });
+    at = rank;
+  }
+  const auto mid = cut_.begin() + std::ptrdiff_t(at);
   std::nth_element(cut_.begin(), mid, cut_.end());
   median_ = *mid;  // the same value whatever the algorithm's order
+  cut_along_y_ = along_y;
   return true;
 }
 
@@ -57,12 +96,13 @@ void DiscContacts<Real>::cut_before_gather() {
     cut_state_ = cut_failed;
     return;
   }
-  // Each live disc's side: a disc the solver moves (1/m > 0, as in its contacts) by its
-  // coordinate, any other none.
+  // Each live disc's side: a disc the solver moves by its coordinate, any other none. The
+  // solver moves a contact's disc when its 1/m > 0, which is when it is dynamic and awake
+  // (dynamic_: a mass is at most 1e100 kg), so the flags are read, not the discs' records.
   const auto& along = cut_along_y_ ? ey_ : ex_;
   side_.resize(discs_.size());
   live_range(0, live_count(), [&](std::uint32_t k) {
-    side_[k] = discs_[k].inv_mass > 0.0 ? (along[k] < median_ ? side_low : side_high) : side_none;
+    side_[k] = dynamic_[k] ? (along[k] < median_ ? side_low : side_high) : side_none;
   });
   cut_state_ = cut_made;
 }
