@@ -140,18 +140,24 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
     });
     touch_.clear();  // scratch: a snapshot need not copy it
   } else {
+    // The pairs' bodies and parts written in place, at most one a pair (a push_back of a part
+    // was a call per contact), then cut to the count.
     contacts_.clear();
-    touching_bodies_.clear();
-    part_.clear();
+    touching_bodies_.resize(m);
+    part_.resize(cut ? m : 0);
+    std::size_t count = 0;
     RestContact c;
     const WarmImpulse* warm_at = warm_from(0);
     for (const DiscPair& p : pairs_) {
       if (!pair_contact(tick, p, &c, warm_at)) continue;
       kinematic[0] = kinematic[0] || moving_kinematic(p.a) || moving_kinematic(p.b);
       contacts_.push_back(c);
-      touching_bodies_.push_back({discs_[p.a].body, discs_[p.b].body});
-      if (cut) part_.push_back(part_of(side_[p.a], side_[p.b]));
+      touching_bodies_[count] = {discs_[p.a].body, discs_[p.b].body};
+      if (cut) part_[count] = part_of(side_[p.a], side_[p.b]);
+      ++count;
     }
+    touching_bodies_.resize(count);
+    part_.resize(cut ? count : 0);
   }
   kinematic_contacts_ = kinematic[0] || kinematic[1];
   plane_contacts_ = static_cast<std::uint32_t>(contacts_.size());
