@@ -137,7 +137,11 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
   halves(m, [&](std::size_t begin, std::size_t end, int half) {
     std::array<std::uint32_t, 3> count{};
     const std::size_t found = std::clamp(first, begin, end);  // [begin, found): found already
-    for (std::size_t i = begin; i < found; ++i) ++count[part_[i]];
+    // Counted in registers (an indexed count is a store each contact that the next may wait
+    // on).
+    std::uint32_t c0 = 0, c1 = 0;
+    for (std::size_t i = begin; i < found; ++i) c0 += part_[i] == 0, c1 += part_[i] == 1;
+    count = {c0, c1, std::uint32_t(found - begin) - c0 - c1};
     for (std::size_t i = found; i < end; ++i) {
       const RestContact& c = contacts_[i];
       const bool b_moves = c.b < n && c.inv_b > 0.0;
@@ -153,11 +157,15 @@ void DiscContacts<Real>::split_contacts(ContactStats& stats) {
   for (int part = 0; part < 3; ++part) count[part] = in_half[0][part] + in_half[1][part];
   part_start_ = {0, count[0], count[0] + count[1], std::uint32_t(m)};
   halves(m, [&](std::size_t begin, std::size_t end, int half) {
-    std::uint32_t cursor[3];
-    for (int part = 0; part < 3; ++part) {
-      cursor[part] = part_start_[part] + (half == 1 ? in_half[0][part] : 0);
+    // The cursors in registers, as the counts.
+    std::uint32_t c0 = part_start_[0] + (half == 1 ? in_half[0][0] : 0);
+    std::uint32_t c1 = part_start_[1] + (half == 1 ? in_half[0][1] : 0);
+    std::uint32_t c2 = part_start_[2] + (half == 1 ? in_half[0][2] : 0);
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::uint32_t part = part_[i];
+      order_[part == 0 ? c0 : part == 1 ? c1 : c2] = std::uint32_t(i);
+      c0 += part == 0, c1 += part == 1, c2 += part == 2;
     }
-    for (std::size_t i = begin; i < end; ++i) order_[cursor[part_[i]]++] = std::uint32_t(i);
   });
   stats.across = count[2];
 }
