@@ -108,15 +108,22 @@ void DiscContacts<Real>::scatter_rows(double kdt) {
   warm_.resize(contacts_.size());
   warm_pairs_ = plane_contacts_;
   auto rows = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
+    // Pointers in registers: the bytes stored in slot_moved_ may alias anything in memory.
+    const std::uint32_t* const order = order_.data();
+    const SolveRow* const solved = rows_.data();
+    const PushRow* const pushed = push_rows_.data();
+    const std::uint8_t* const moved = row_moved_.data();
+    std::uint8_t* const marks = slot_moved_.data();
+    WarmImpulse* const warm = warm_.data();
     for (std::uint32_t i = begin; i < end; ++i) {
-      const std::uint32_t j = order_[i];
-      const SolveRow& r = rows_[i];
+      const std::uint32_t j = order[i];
+      const SolveRow& r = solved[i];
       // Every contact's key is a << 32 | b (pair_key, wall_contact): from the row's push-out
       // half, read in row order, rather than from the contact, read out of it.
-      const std::uint64_t key = (std::uint64_t(push_rows_[i].a) << 32) | push_rows_[i].b;
+      const std::uint64_t key = (std::uint64_t(pushed[i].a) << 32) | pushed[i].b;
       assert(key == contacts_[j].key());
-      warm_[j] = WarmImpulse{key, r.lambda_n, r.lambda_t};
-      if (row_moved_[i]) slot_moved_[r.a] = slot_moved_[r.b] = 1;
+      warm[j] = WarmImpulse{key, r.lambda_n, r.lambda_t};
+      if (moved[i]) marks[r.a] = marks[r.b] = 1;
     }
   };
   parts_pass(rows);
