@@ -733,8 +733,10 @@ class DiscContacts {
   /// Disc pairs in key order, then planes in key order: gathered anew by every tick, read
   /// within it (touching(): the contact events, the sleeping islands).
   ScratchVector<RestContact> contacts_;
-  ScratchVector<DiscPair> touching_bodies_;         ///< touching_bodies()
-  ScratchVector<std::uint32_t> on_moving_segment_;  ///< on_moving_segment()
+  ScratchVector<DiscPair> touching_bodies_;  ///< touching_bodies()
+  /// on_moving_segment(): a vector a snapshot copies, since the sleeping islands read it after
+  /// the tick (a few entries, only with moving segments).
+  std::vector<std::uint32_t> on_moving_segment_;
   bool warm_gathered_ = false;          ///< the disc pairs' warm start made as they were gathered
   std::uint32_t plane_contacts_ = 0;    ///< where contacts_'s plane contacts begin
   ScratchVector<std::uint32_t> order_;  ///< see split_contacts()
