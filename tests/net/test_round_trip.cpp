@@ -57,5 +57,31 @@ TEST(RoundTrip, ARollbackWindowFollowsTheRoundTrip) {
   }
 }
 
+// The timeouts grow with the round trip: at 150 ms each way, a peer timeout given as 500 ms
+// becomes at least 8 round trips (about 2.4 s) on both peers, while a match that does not adapt
+// keeps the 500 ms. A finished program answers for this long (linger_and_leave): a host that
+// left after the 500 ms given could leave its joiner short of its last ticks on a lossy link,
+// and the joiner, which waits the 8 round trips, then times out.
+TEST(RoundTrip, ThePeerTimeoutGrowsToEightRoundTrips) {
+  for (const bool adapt : {true, false}) {
+    net::MatchSettings s = match(2, 100);
+    s.adapt_to_round_trip = adapt;
+    s.peer_timeout_ms = 500;
+    s.handshake_timeout_ms = 10000;
+    Match m = start(s, 1, 0, net::LinkSettings{.latency_ms = 150.0, .seed = 7});
+    ASSERT_TRUE(m.run(30000)) << m.describe();
+    for (const auto& p : m.peers) {
+      const double rtt = p->stats().round_trip_ms;
+      ASSERT_GE(rtt, 300.0) << "slot " << int(p->slot());
+      if (adapt) {
+        EXPECT_EQ(p->peer_timeout_ms(), net::timeout_round_trips * rtt)
+            << "slot " << int(p->slot());
+      } else {
+        EXPECT_EQ(p->peer_timeout_ms(), 500.0) << "slot " << int(p->slot());
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fixstep::net_test

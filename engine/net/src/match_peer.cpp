@@ -244,6 +244,10 @@ std::uint16_t MatchPeer::rollback_window() const {
   return impl_->rollback_window();
 }
 
+double MatchPeer::peer_timeout_ms() const {
+  return impl_->peer_timeout_ms();
+}
+
 std::uint64_t MatchPeer::next_input_tick() const {
   return impl_->slot < impl_->players ? impl_->known(impl_->slot) : 0;
 }

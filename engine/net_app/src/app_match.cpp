@@ -338,9 +338,9 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
     quit = !play_window(peer, view, settings, o.bot);
   }
   if (m.state() == MatchState::finished) {
-    linger_and_leave(m, o.peer_timeout_ms);
+    linger_and_leave(m);
   } else {
-    locate_desync(m, o.peer_timeout_ms);
+    locate_desync(m);
     m.leave();  // quit, a desync, a failure: the other player is told at once, not timed out
   }
   if (!o.last_frame.empty()) view.write_last_frame(peer.drawn_game(), m, o.last_frame);

@@ -29,8 +29,10 @@ std::string desync_file(const std::string& program) {
 /// Keeps the match answering after its end until every other peer has acknowledged every input
 /// it needs from this one (MatchPeer::settled: a peer that left early would leave another
 /// short of its last ticks, "timed out"), and linger_ms more for the acknowledgements of ours
-/// to arrive; at most `most_ms`. Then leaves.
-void linger_and_leave(MatchPeer& m, double most_ms) {
+/// to arrive; at most the peer timeout (MatchPeer::peer_timeout_ms: the others wait as long
+/// for this one). Then leaves.
+void linger_and_leave(MatchPeer& m) {
+  const double most_ms = m.peer_timeout_ms();
   const auto start = std::chrono::steady_clock::now();
   auto since = [&] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -51,8 +53,9 @@ void linger_and_leave(MatchPeer& m, double most_ms) {
 }
 
 /// A desync found: keeps answering until it is located with the peer it was found against
-/// (MatchPeer::locating: the first differing tick, body and field), at most `most_ms`.
-void locate_desync(MatchPeer& m, double most_ms) {
+/// (MatchPeer::locating: the first differing tick, body and field), at most the peer timeout.
+void locate_desync(MatchPeer& m) {
+  const double most_ms = m.peer_timeout_ms();
   const auto start = std::chrono::steady_clock::now();
   while (
       m.locating() && StopOnSignal::requested() == 0 &&

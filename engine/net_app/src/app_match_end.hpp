@@ -13,11 +13,13 @@ namespace fixstep::net::detail {
 [[nodiscard]] std::string desync_file(const std::string& program);
 
 /// Keeps the match answering after its end until every other peer has acknowledged every input
-/// it needs from this one (MatchPeer::settled), and 600 ms more; at most `most_ms`. Then leaves.
-void linger_and_leave(MatchPeer& m, double most_ms);
+/// it needs from this one (MatchPeer::settled), and 600 ms more; at most the peer timeout
+/// (MatchPeer::peer_timeout_ms, grown with the round trip). Then leaves.
+void linger_and_leave(MatchPeer& m);
 
-/// A desync found: keeps answering until it is located (MatchPeer::locating), at most `most_ms`.
-void locate_desync(MatchPeer& m, double most_ms);
+/// A desync found: keeps answering until it is located (MatchPeer::locating), at most the peer
+/// timeout (MatchPeer::peer_timeout_ms).
+void locate_desync(MatchPeer& m);
 
 /// A desync's state of its first differing tick, NAME-desync-pSLOT-tTICK.state in the working
 /// directory (net::write_desync_state); says where on stderr, or why it was not written.

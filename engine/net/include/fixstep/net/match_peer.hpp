@@ -253,6 +253,11 @@ class MatchPeer {
   /// Rollback: the most ticks the shown world may run ahead of the confirmed one now
   /// (MatchSettings::max_rollback, or grown to the round trip); 0 in lockstep.
   [[nodiscard]] std::uint16_t rollback_window() const;
+  /// How long a peer not heard from is waited for now, ms: MatchSettings::peer_timeout_ms, or
+  /// at least timeout_round_trips times the round trip measured (adapt_to_round_trip). The
+  /// others wait for this one as long, so it also bounds how long a finished peer answers
+  /// (settled) or a desynced one locates (locating) before leave().
+  [[nodiscard]] double peer_timeout_ms() const;
   /// Steps every tick whose inputs have all arrived (none past match_ticks), running the
   /// merge, World::step and the rules, recording each; returns the ticks stepped. A lockstep
   /// player steps tick t once its own input for t + input_delay is given, and the match's last
@@ -269,7 +274,7 @@ class MatchPeer {
   [[nodiscard]] const std::optional<DesyncReport>& desync() const;
   /// Whether a desync is still being located with the peer it was found against (their hashes
   /// of every tick of the window, then their state of the first tick that differs): poll()
-  /// until false (bounded by peer_timeout_ms) before leave(), then desync() names the tick and
+  /// until false (bounded by peer_timeout_ms()) before leave(), then desync() names the tick and
   /// the body. A peer that leaves tells the others it desynced (they stop desynced too).
   [[nodiscard]] bool locating() const;
   /// This peer's state of the first tick that differs, once located (nullopt before, or when
@@ -311,7 +316,7 @@ class MatchPeer {
   /// Whether the match is finished and every peer this one sends to has acknowledged every
   /// input it needs from us (a joiner: its own; the host: every player's it relays) and has
   /// been sent every state hash: leaving now leaves no peer short of a tick. Poll until it
-  /// holds (bounded by the peer timeout), then leave().
+  /// holds (bounded by peer_timeout_ms()), then leave().
   [[nodiscard]] bool settled() const;
   /// Leaves: tells the others (disconnect) and flushes. The peer is finished or failed after.
   void leave();
