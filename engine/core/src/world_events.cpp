@@ -31,6 +31,18 @@ void sort_by_slots(std::span<ContactEvent> list) {
   }
 }
 
+/// `list`'s two runs in slot order, [0, first) and [first, end), merged into one in place
+/// from the back (the second run copied to `scratch` first; no allocation once warm). On equal
+/// slots the first run's pair goes first.
+void merge_runs(std::vector<ContactEvent>& list, std::size_t first,
+                std::vector<ContactEvent>& scratch) {
+  scratch.assign(list.begin() + static_cast<std::ptrdiff_t>(first), list.end());
+  std::size_t i = first, j = scratch.size(), out = list.size();
+  while (j > 0) {
+    list[--out] = i > 0 && slot_less(scratch[j - 1], list[i - 1]) ? list[--i] : scratch[--j];
+  }
+}
+
 }  // namespace
 
 template <class Real>
@@ -187,6 +199,7 @@ void detail::WorldKernel<Real>::diff_contact_events() {
   // Pairs that struck and parted within the tick: begun and ended at once. The hits in slot
   // order, each looked up in both sorted lists by a cursor that only moves on (the first entry
   // of its slots, as a binary search finds it).
+  const std::size_t begun_diffed = begun_.size(), ended_diffed = ended_.size();
   bool struck = false;
   auto now = touching_.cbegin(), before = touching_before_.cbegin();
   auto held = [](auto& at, const std::vector<ContactEvent>& list, const ContactEvent& p) {
@@ -201,7 +214,12 @@ void detail::WorldKernel<Real>::diff_contact_events() {
     ended_.push_back({p.a, p.b, 0.0});
     struck = true;
   }
-  if (struck) sort_by_slots(begun_), sort_by_slots(ended_);
+  // Each list is two runs in slot order, the diff's and the struck pairs' (no pair in both: a
+  // struck pair touched neither before nor after), so one merge orders it.
+  if (struck) {
+    merge_runs(begun_, begun_diffed, begun_half_);
+    merge_runs(ended_, ended_diffed, ended_half_);
+  }
 }
 
 // A tick without disc phases (no active discs): the pairs and sensor overlaps of the last tick

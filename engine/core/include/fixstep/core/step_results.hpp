@@ -137,7 +137,8 @@ struct Impact {
 
 /// A pair of discs that began or stopped touching in the last tick (World::contacts_begun(),
 /// World::contacts_ended()): what a game's rules read to start a sound, score a hit or end a
-/// grab. Touching is the resting solver's test (centres within r_a + r_b plus its slop).
+/// grab. Touching is the resting solver's test (centres within r_a + r_b plus its slop). Each
+/// list is in slot order: by a.slot(), then b.slot().
 struct ContactEvent {
   Entity a{}, b{};  ///< the two bodies, a.slot() < b.slot()
   /// Begun: the closing speed of the impact that began it, m/s (the largest, if several), or 0
