@@ -14,6 +14,7 @@
 #include "disc_contacts.hpp"
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "gather_warm.hpp"
 #include "workers.hpp"
 #include "world_kernel.hpp"
 
@@ -131,6 +132,21 @@ TEST(ImpactLanes, AFastSparseGasStepsToTheBitsOfOneLane) {
   EXPECT_GT(undone, 0u);
 }
 
+/// 1200 touching discs of radius 5 cm, 30 rows of 40, resting on the ground (y = 0).
+void resting_block(Kernel& k) {
+  k.add_plane({.normal = {0.0, 1.0}, .offset = 0.0});
+  const double r = 0.05;
+  for (int row = 0; row < 30; ++row) {
+    for (int col = 0; col < 40; ++col) {
+      BodyDef d;
+      d.body = {.mass = 1.0, .position = {r + 2.0 * r * col, r + 2.0 * r * row}};
+      d.collider = Collider{.radius = r};
+      d.gravity = Gravity{};
+      k.create_body(d);
+    }
+  }
+}
+
 TEST(ImpactLanes, APileIsNotCutIntoLanesEveryTick) {
   // 1200 touching discs resting on the ground: their pairs (over 1024) make one group, which no
   // cut splits. Finding that costs a union-find over every pair: after four ticks in a row
@@ -141,19 +157,7 @@ TEST(ImpactLanes, APileIsNotCutIntoLanesEveryTick) {
   Kernel w(s);
   s.threads = 1;
   Kernel one(s);
-  const double r = 0.05;
-  for (Kernel* k : {&w, &one}) {
-    k->add_plane({.normal = {0.0, 1.0}, .offset = 0.0});
-    for (int row = 0; row < 30; ++row) {
-      for (int col = 0; col < 40; ++col) {
-        BodyDef d;
-        d.body = {.mass = 1.0, .position = {r + 2.0 * r * col, r + 2.0 * r * row}};
-        d.collider = Collider{.radius = r};
-        d.gravity = Gravity{};
-        k->create_body(d);
-      }
-    }
-  }
+  for (Kernel* k : {&w, &one}) resting_block(*k);
   for (int t = 0; t < 200; ++t) {
     w.step(), one.step();
     ASSERT_EQ(w.state_hash(), one.state_hash()) << "tick " << t + 1;
@@ -161,6 +165,39 @@ TEST(ImpactLanes, APileIsNotCutIntoLanesEveryTick) {
   EXPECT_GE(w.contact_stats().candidate_pairs, 1024u);
   EXPECT_EQ(w.disc_contacts()->lane_ticks(), 0u);
   EXPECT_EQ(w.disc_contacts()->lane_cuts(), 8u);
+}
+
+TEST(ImpactLanes, AGasOfFewRestingContactsIsNotCutInHalves) {
+  // Every world matching its warm start in the gather (as one of min_gather_warm_pairs
+  // candidate pairs does), a gas of 2000 discs, whose resting contacts stay under the 1024 a
+  // split takes, is never cut: not after the gather, nor before it (where the cut went unused,
+  // a pass over every disc and a median a tick). The resting block, with more, is cut every
+  // tick (before its gather from the second on; the same bits as after it: ContactSweeps).
+  struct Restore {
+    ~Restore() { detail::set_gather_warm_pairs(detail::min_gather_warm_pairs); }
+  } restore;
+  detail::set_gather_warm_pairs(0);
+  GasOptions o;
+  o.n = 2000;
+  auto w = gas(o, 1);
+  std::size_t touching = 0;
+  for (int t = 0; t < 60; ++t) {
+    w->step();
+    touching = std::max(touching, w->contact_stats().touching);
+  }
+  EXPECT_GT(touching, 0u);
+  EXPECT_LT(touching, 1024u);
+  EXPECT_EQ(w->disc_contacts()->pile_cuts(), 0u);
+  // A pile whose every tick has contacts enough to split.
+  WorldSettings s{.dt = 1.0 / 60.0, .threads = 1};
+  s.contacts = ContactSettings{.restitution = 0.0, .friction = 0.5};
+  Kernel pile(s);
+  resting_block(pile);
+  for (int t = 0; t < 30; ++t) {
+    pile.step();
+    ASSERT_GE(pile.contact_stats().touching, 1024u) << "tick " << t + 1;
+  }
+  EXPECT_EQ(pile.disc_contacts()->pile_cuts(), 30u);
 }
 
 TEST(DiscThreadChoice, AnAutomaticWorldSharesItsDiscPassesFromParallelMinDiscs) {

@@ -232,6 +232,9 @@ class DiscContacts {
   [[nodiscard]] std::uint64_t lane_ticks() const { return lane_ticks_; }
   [[nodiscard]] std::uint64_t lanes_undone() const { return lanes_undone_; }
   [[nodiscard]] std::uint64_t lane_cuts() const { return lane_cuts_; }
+  /// For the tests: the resting contacts' cuts into two halves (cut_pile()) since the discs
+  /// were set, before the gather or after it.
+  [[nodiscard]] std::uint64_t pile_cuts() const { return pile_cuts_; }
   /// The impacts of the last resolve(), in order.
   [[nodiscard]] std::span<const DiscImpact> impacts() const { return lanes_[0].log; }
   /// The sensors' overlaps after the last resolve(), by (sensor, visitor) disc pair order.
@@ -726,6 +729,7 @@ class DiscContacts {
   LanesMet lanes_met_;                               ///< set where a lane stopped
   std::uint64_t lane_ticks_ = 0, lanes_undone_ = 0;  ///< lane_ticks(), lanes_undone()
   std::uint64_t lane_cuts_ = 0;                      ///< lane_cuts()
+  std::uint64_t pile_cuts_ = 0;                      ///< pile_cuts()
   int lane_axis_ = 0;                                ///< the cut's axis (0: x, 1: y)
   double lane_cut_ = 0;                              ///< where it cuts, m
   std::uint32_t lane_misses_in_a_row_ = 0;           ///< ticks in a row without lanes

@@ -70,7 +70,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   stamp_.assign(n, 0);
   held_.assign(n, HeldMotion{});
   for (ImpactLane& q : lanes_) q.held.clear(), q.extra.clear(), q.grown.clear(), q.mark = 0;
-  lane_misses_in_a_row_ = lane_rest_ = 0, lane_ticks_ = lanes_undone_ = lane_cuts_ = 0;
+  lane_misses_in_a_row_ = lane_rest_ = 0, lane_ticks_ = lanes_undone_ = lane_cuts_ = pile_cuts_ = 0;
   extra_head_.assign(n, ExtraPair::none);
   grown_of_.assign(n, GrownBox::none);
   partner_mark_.assign(n, 0);

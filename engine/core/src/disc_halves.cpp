@@ -38,6 +38,7 @@ template <class Real>
 bool DiscContacts<Real>::cut_pile() {
   // The wider axis of the dynamic discs (their flags, not their records), and the median
   // coordinate along it.
+  ++pile_cuts_;
   constexpr double inf = std::numeric_limits<double>::infinity();
   double lo[2] = {inf, inf}, hi[2] = {-inf, -inf};
   std::size_t count = 0;
@@ -88,10 +89,12 @@ bool DiscContacts<Real>::cut_pile() {
 
 template <class Real>
 void DiscContacts<Real>::cut_before_gather() {
-  // In a large world (warm_gathered_, gather_warm.hpp); a smaller one takes the cut after the
-  // gather, and only when its contacts are enough to split. The same parts either way.
+  // In a large world (warm_gathered_, gather_warm.hpp) whose last tick had contacts enough to
+  // split (a gas of many candidate pairs has few: its cut would go unused); else the cut is
+  // taken after the gather, and only when its contacts are enough to split. The same parts
+  // either way. (contacts_ holds the last tick's contacts until the gather.)
   cut_state_ = cut_none;
-  if (!warm_gathered_) return;
+  if (!warm_gathered_ || contacts_.size() < min_split_contacts) return;
   if (!cut_pile()) {
     cut_state_ = cut_failed;
     return;
