@@ -269,6 +269,10 @@ class DiscContacts {
   /// Candidate pairs from which a tick's impacts may run in two lanes (disc_lanes.cpp), within
   /// the tick's run of the second thread.
   static constexpr std::size_t min_lane_pairs = 1024;
+  /// Items from which a pass that only copies each one's values (the tick's start: save_start(),
+  /// the plane contacts' start) shares them with the second thread: below, the hand-off costs
+  /// about what the half saves.
+  static constexpr std::size_t min_parallel_copies = 8192;
   /// Discs from which a tick with two threads shares its passes with the second thread,
   /// which spins between them (SecondThread::open) rather than waking for each; below, every
   /// pass runs on the stepping thread.

@@ -102,11 +102,21 @@ void DiscContacts<Real>::save_start(const Real* x, const Real* y, const Real* vx
     x0_[k] = x[j], y0_[k] = y[j], vx0_[k] = vx[j], vy0_[k] = vy[j];
     d_begin_[k] = dissipated ? double(dissipated[j]) : 0.0;
   };
+  // By halves within the tick's run of the second thread (each disc's copy its own), from
+  // min_parallel_copies discs.
+  auto copies = [&](std::size_t n, auto&& range) {
+    if (n >= min_parallel_copies) return halves(n, range);
+    range(std::size_t{0}, n, 0);
+  };
   saved_live_ = sleeper_count_ != 0 && (awake(), live_only());
   if (saved_live_) {
-    for (const std::uint32_t k : awake_list_) save(k);
+    copies(awake_list_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+      for (std::size_t i = begin; i < end; ++i) save(awake_list_[i]);
+    });
   } else {
-    for (std::uint32_t k = 0; k < discs_.size(); ++k) save(k);
+    copies(discs_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+      for (std::size_t k = begin; k < end; ++k) save(static_cast<std::uint32_t>(k));
+    });
   }
 }
 

@@ -137,7 +137,16 @@ void detail::WorldKernel<Real>::save_contact_start() {
     for_each_in_runs(awake_.colliders, save);
     return;
   }
-  for (std::size_t k = 0; k < c.body.size(); ++k) save(k);
+  // By halves within the tick's run of the discs' second thread (each body's copy its own),
+  // from DiscContacts::min_parallel_copies bodies.
+  auto range = [&](std::size_t begin, std::size_t end, int /*half*/) {
+    for (std::size_t k = begin; k < end; ++k) save(k);
+  };
+  if (discs_ && c.body.size() >= DiscContacts<Real>::min_parallel_copies) {
+    discs_->halves(c.body.size(), range);
+  } else {
+    range(0, c.body.size(), 0);
+  }
 }
 
 /// One body's way through a tick's planes and segments (resolve_contacts): its motion, what
