@@ -129,8 +129,7 @@ void GridBroadphase::size_tables() {
     l.wshift = wbits;
     base += std::uint32_t{1} << (wbits + hbits);
   }
-  start_.resize(2 * std::size_t{base} + 1);
-  for (auto& c : cursor_) c.assign(2 * std::size_t{base}, 0);
+  start_.resize(2 * std::size_t{base} + 1);  // each thread clears its own counts (build())
 }
 
 void GridBroadphase::count_keys(const Share& s, std::span<const std::uint8_t> active,
@@ -142,15 +141,43 @@ void GridBroadphase::count_keys(const Share& s, std::span<const std::uint8_t> ac
   }
 }
 
-void GridBroadphase::start_keys() {
-  std::uint32_t next = 0;  // each key's entries: the first thread's, then the second's
-  for (std::size_t key = 0; key + 1 < start_.size(); ++key) {
-    const std::uint32_t c0 = cursor_[0][key], c1 = cursor_[1][key];
-    start_[key] = next, cursor_[0][key] = next, cursor_[1][key] = next + c0;
-    next += c0 + c1;
+std::uint32_t GridBroadphase::start_keys(std::size_t begin, std::size_t end, std::uint32_t next) {
+  std::uint32_t* const c0 = cursor_[0].data();
+  std::uint32_t* const c1 = cursor_[1].data();
+  std::uint32_t* const start = start_.data();
+  for (std::size_t key = begin; key < end;
+       ++key) {  // the first thread's entries, then the second's
+    const std::uint32_t n0 = c0[key], n1 = c1[key];
+    start[key] = next, c0[key] = next, c1[key] = next + n0;
+    next += n0 + n1;
   }
-  start_.back() = next;
-  entry_.resize(next);
+  return next;
+}
+
+void GridBroadphase::start_keys(bool split) {
+  const std::size_t keys = start_.size() - 1;
+  if (!split || keys < min_parallel_keys) {
+    start_.back() = start_keys(0, keys, 0);
+  } else {
+    // Each half of the keys counted, then each started after the entries before it: the same
+    // starts as one pass.
+    const std::size_t mid = keys / 2;
+    std::uint32_t in_half[2] = {0, 0};
+    auto count = [&](int t) {
+      std::uint32_t n = 0;
+      for (std::size_t key = t == 0 ? 0 : mid; key < (t == 0 ? mid : keys); ++key) {
+        n += cursor_[0][key] + cursor_[1][key];
+      }
+      in_half[t] = n;
+    };
+    both(true, count);
+    auto start = [&](int t) {
+      (void)(t == 0 ? start_keys(0, mid, 0) : start_keys(mid, keys, in_half[0]));
+    };
+    both(true, start);
+    start_.back() = in_half[0] + in_half[1];
+  }
+  entry_.resize(start_.back());
 }
 
 void GridBroadphase::fill_keys(const Share& s, std::span<const SweptBox> boxes,
@@ -336,9 +363,12 @@ void GridBroadphase::build(std::span<const SweptBox> boxes, std::span<const std:
   auto levels = [&](int t) { assign_levels(share_[t], boxes); };
   both(split, levels);
   size_tables();
-  auto count = [&](int t) { count_keys(share_[t], active, cursor_[t]); };
+  auto count = [&](int t) {
+    cursor_[t].assign(start_.size() - 1, 0);
+    count_keys(share_[t], active, cursor_[t]);
+  };
   both(split, count);
-  start_keys();
+  start_keys(split);
   auto fill = [&](int t) { fill_keys(share_[t], boxes, active, cursor_[t]); };
   both(split, fill);
   overflow_.clear();

@@ -104,6 +104,8 @@ class GridBroadphase {
   /// Below this many boxes a call with threads = 2 runs on one thread (see above: the disc
   /// contacts pass threads = 2 only within the tick's run of the second thread).
   static constexpr std::size_t min_parallel_boxes = 512;
+  /// Keys (two a bucket) from which a split build starts them by halves (start_keys()).
+  static constexpr std::size_t min_parallel_keys = 16384;
   /// Cell side of a level over the largest extent it holds: > 1 leaves room for rounding.
   static constexpr double cell_factor = 1.25;
   static constexpr unsigned max_levels = 48;
@@ -221,7 +223,11 @@ class GridBroadphase {
   void size_tables();
   void count_keys(const Share& s, std::span<const std::uint8_t> active,
                   std::vector<std::uint32_t>& count) const;
-  void start_keys();
+  /// Each key's first entry (start_) and each thread's next slot in it (cursor_), from the
+  /// counts: by halves of the keys when split, from min_parallel_keys keys.
+  void start_keys(bool split);
+  /// Keys [begin, end) started from entry `next`; returns the entry after their last.
+  std::uint32_t start_keys(std::size_t begin, std::size_t end, std::uint32_t next);
   void fill_keys(const Share& s, std::span<const SweptBox> boxes,
                  std::span<const std::uint8_t> active, std::vector<std::uint32_t>& cursor);
   /// The cell of coordinate x (m) on a level, clamped to +-2^30 (monotone: neighbours stay
