@@ -145,8 +145,8 @@ std::uint32_t GridBroadphase::start_keys(std::size_t begin, std::size_t end, std
   std::uint32_t* const c0 = cursor_[0].data();
   std::uint32_t* const c1 = cursor_[1].data();
   std::uint32_t* const start = start_.data();
-  for (std::size_t key = begin; key < end;
-       ++key) {  // the first thread's entries, then the second's
+  // Each key's entries: the first thread's, then the second's.
+  for (std::size_t key = begin; key < end; ++key) {
     const std::uint32_t n0 = c0[key], n1 = c1[key];
     start[key] = next, c0[key] = next, c1[key] = next + n0;
     next += n0 + n1;
