@@ -216,6 +216,16 @@ class DiscContacts {
     auto job = [&](int half) { half == 0 ? pass(std::size_t{0}, n / 2, 0) : pass(n / 2, n, 1); };
     broadphase_.second_thread().both(job);
   }
+  /// halves() from `least` items; below, pass(0, n, 0) here (a pass too small to pay for the
+  /// hand-off to the second thread).
+  template <class Pass>
+  void halves_from(std::size_t n, std::size_t least, Pass&& pass) {
+    if (n < least) {
+      pass(std::size_t{0}, n, 0);
+      return;
+    }
+    halves(n, pass);
+  }
   /// Runs job(0) and job(1): on two threads when the tick's run of the second thread is open,
   /// else one after the other here. For jobs that write nothing the other reads or writes.
   template <class Job>

@@ -104,19 +104,17 @@ void DiscContacts<Real>::save_start(const Real* x, const Real* y, const Real* vx
   };
   // By halves within the tick's run of the second thread (each disc's copy its own), from
   // min_parallel_copies discs.
-  auto copies = [&](std::size_t n, auto&& range) {
-    if (n >= min_parallel_copies) return halves(n, range);
-    range(std::size_t{0}, n, 0);
-  };
   saved_live_ = sleeper_count_ != 0 && (awake(), live_only());
   if (saved_live_) {
-    copies(awake_list_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
-      for (std::size_t i = begin; i < end; ++i) save(awake_list_[i]);
-    });
+    halves_from(awake_list_.size(), min_parallel_copies,
+                [&](std::size_t begin, std::size_t end, int /*half*/) {
+                  for (std::size_t i = begin; i < end; ++i) save(awake_list_[i]);
+                });
   } else {
-    copies(discs_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
-      for (std::size_t k = begin; k < end; ++k) save(static_cast<std::uint32_t>(k));
-    });
+    halves_from(discs_.size(), min_parallel_copies,
+                [&](std::size_t begin, std::size_t end, int /*half*/) {
+                  for (std::size_t k = begin; k < end; ++k) save(static_cast<std::uint32_t>(k));
+                });
   }
 }
 

@@ -142,8 +142,8 @@ void detail::WorldKernel<Real>::save_contact_start() {
   auto range = [&](std::size_t begin, std::size_t end, int /*half*/) {
     for (std::size_t k = begin; k < end; ++k) save(k);
   };
-  if (discs_ && c.body.size() >= DiscContacts<Real>::min_parallel_copies) {
-    discs_->halves(c.body.size(), range);
+  if (discs_) {
+    discs_->halves_from(c.body.size(), DiscContacts<Real>::min_parallel_copies, range);
   } else {
     range(0, c.body.size(), 0);
   }
