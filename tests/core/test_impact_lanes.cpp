@@ -132,6 +132,18 @@ TEST(ImpactLanes, AFastSparseGasStepsToTheBitsOfOneLane) {
   EXPECT_GT(undone, 0u);
 }
 
+TEST(ImpactLanes, AGasOfMoreDiscsThanMinParallelCopiesStepsToTheBitsOfOneThread) {
+  // From DiscContacts::min_parallel_copies discs (8192) the tick's start copies (the discs'
+  // and the walls' contacts') go by halves on two threads: 9000 discs, the same state,
+  // impacts and contact counts after every tick as on one.
+  std::uint64_t lanes = 0, undone = 0;
+  GasOptions o;
+  o.n = 9000;
+  ASSERT_GE(o.n, detail::DiscContacts<double>::min_parallel_copies);
+  same_as_one_lane(o, 30, "gas of 9000", lanes, undone);
+  EXPECT_GT(lanes, 0u);
+}
+
 /// 1200 touching discs of radius 5 cm, 30 rows of 40, resting on the ground (y = 0).
 void resting_block(Kernel& k) {
   k.add_plane({.normal = {0.0, 1.0}, .offset = 0.0});
