@@ -338,7 +338,7 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
     quit = !play_window(peer, view, settings, o.bot);
   }
   if (m.state() == MatchState::finished) {
-    linger_and_leave(m);
+    linger_and_leave(m, settings.name);
   } else {
     locate_desync(m);
     m.leave();  // quit, a desync, a failure: the other player is told at once, not timed out

@@ -30,18 +30,27 @@ std::string desync_file(const std::string& program) {
 /// it needs from this one (MatchPeer::settled: a peer that left early would leave another
 /// short of its last ticks, "timed out"), and linger_ms more for the acknowledgements of ours
 /// to arrive; at most the peer timeout (MatchPeer::peer_timeout_ms: the others wait as long
-/// for this one). Then leaves.
-void linger_and_leave(MatchPeer& m) {
+/// for this one). Then leaves. A wait past a second says so on stderr when it is a terminal
+/// (a long round trip makes it up to 8 of them).
+void linger_and_leave(MatchPeer& m, const std::string& name) {
   const double most_ms = m.peer_timeout_ms();
   const auto start = std::chrono::steady_clock::now();
   auto since = [&] {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
   };
+  bool told = isatty(STDERR_FILENO) != 1;
   while (m.state() == MatchState::finished && !m.settled() && since() < most_ms &&
          StopOnSignal::requested() == 0) {
     m.poll(1);
     (void)m.advance();
+    if (!told && since() >= 1000.0) {
+      std::fprintf(stderr,
+                   "%s: the match is over; waiting up to %.0f s more for the other players to "
+                   "acknowledge its last ticks (Ctrl+C leaves now)\n",
+                   name.c_str(), (most_ms - since()) / 1000.0);
+      told = true;
+    }
   }
   const double settled_at = since();
   while (m.state() == MatchState::finished && since() < settled_at + linger_ms &&

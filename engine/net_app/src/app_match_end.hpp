@@ -14,8 +14,9 @@ namespace fixstep::net::detail {
 
 /// Keeps the match answering after its end until every other peer has acknowledged every input
 /// it needs from this one (MatchPeer::settled), and 600 ms more; at most the peer timeout
-/// (MatchPeer::peer_timeout_ms, grown with the round trip). Then leaves.
-void linger_and_leave(MatchPeer& m);
+/// (MatchPeer::peer_timeout_ms, grown with the round trip). Then leaves. A wait past a second
+/// says so on stderr, as program `name`, when stderr is a terminal.
+void linger_and_leave(MatchPeer& m, const std::string& name);
 
 /// A desync found: keeps answering until it is located (MatchPeer::locating), at most the peer
 /// timeout (MatchPeer::peer_timeout_ms).
