@@ -2,8 +2,9 @@
 // spin_wait.hpp): an exception on the worker reaches the caller, in a run and outside one; a
 // nested run leaves the outer one open; a job the worker has not claimed is run by the caller;
 // a wait with nothing posted returns; opening a run wakes a sleeping worker;
-// on one core the two threads take turns by sleeping, not by spinning; and a thread asked to
-// leave a core does.
+// on one core the two threads take turns by sleeping, not by spinning; a thread asked to leave a
+// core does, and is not pinned by it; a thread held off a core wakes elsewhere; and a worker woken
+// after a frame's sleep runs off the stepping thread's core.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -192,22 +193,30 @@ TEST(SecondThread, OnOneCoreTheWorkerSleepsWhileItWaits) {
       << thread.team()->run_here() << " of " << passes << " halves ran on the caller)";
 }
 
+/// The number of cores the calling thread is allowed, or -1 where the system does not say.
+int allowed_count() {
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  return sched_getaffinity(0, sizeof(allowed), &allowed) == 0 ? CPU_COUNT(&allowed) : -1;
+}
+
 // A thread allowed two cores or more leaves the one it is asked to leave at once (the kernel
-// migrates it within the call), and is no longer allowed it; one allowed a single core stays.
-TEST(AllowedCores, LeaveMovesTheThreadOffTheCore) {
+// migrates it within the call), and is allowed every core again after: a move, not a pin. A
+// worker held to the one other core of two stayed there, and the stepping thread, woken there
+// after a frame's sleep, shared it with the worker through the tick while its own core idled.
+// One allowed a single core stays.
+TEST(AllowedCores, LeaveMovesTheThreadOffTheCoreWithoutPinningIt) {
   std::thread mover([] {
     const AllowedCores cores;
     const int here = current_cpu();
-    cpu_set_t allowed;
-    ASSERT_EQ(sched_getaffinity(0, sizeof(allowed), &allowed), 0);
-    if (CPU_COUNT(&allowed) < 2) {
+    const int count = allowed_count();
+    if (count < 2) {
       EXPECT_FALSE(cores.leave(here));
       return;
     }
     ASSERT_TRUE(cores.leave(here));
     EXPECT_NE(current_cpu(), here);
-    ASSERT_EQ(sched_getaffinity(0, sizeof(allowed), &allowed), 0);
-    EXPECT_FALSE(CPU_ISSET(here, &allowed));
+    EXPECT_EQ(allowed_count(), count) << "the thread was left held off core " << here;
     EXPECT_FALSE(cores.leave(-1));
   });
   mover.join();
@@ -216,7 +225,113 @@ TEST(AllowedCores, LeaveMovesTheThreadOffTheCore) {
   std::thread pinned([] { EXPECT_FALSE(AllowedCores().leave(current_cpu())); });
   pinned.join();
 }
+
+// hold_off keeps another thread off a core (a sleeping thread wakes elsewhere) until that
+// thread calls restore().
+TEST(AllowedCores, HoldOffKeepsAnotherThreadOffTheCoreUntilItRestores) {
+  if (allowed_count() < 2) GTEST_SKIP() << "one core allowed: nowhere else to hold a thread";
+  std::atomic<int> ready{0}, go{0};
+  ThreadHandle handle{};
+  int woke_on = -1, held_count = -1, restored_count = -1;
+  std::thread sleeper([&] {
+    const AllowedCores cores;
+    handle = current_thread();
+    ready = 1;
+    ready.notify_one();
+    go.wait(0);
+    woke_on = current_cpu(), held_count = allowed_count();
+    cores.restore();
+    restored_count = allowed_count();
+  });
+  ready.wait(0);
+  const int here = current_cpu();
+  const AllowedCores cores;  // this thread's cores: the sleeper's, inherited
+  ASSERT_TRUE(cores.hold_off(handle, here));
+  go = 1;
+  go.notify_one();
+  sleeper.join();
+  const int count = allowed_count();
+  EXPECT_NE(woke_on, here);
+  EXPECT_EQ(held_count, count - 1);
+  EXPECT_EQ(restored_count, count);
+}
+
+// A game steps its world once a frame: the worker sleeps between ticks, and the tick's first
+// pass wakes it. Woken from a frame's sleep on a virtual machine, it landed on the stepping
+// thread's core in most ticks (the other core idle) and waited there for the tick to end, the
+// stepping thread running every half itself. Each of 12 frames here: this thread and the worker
+// asleep for a frame, then a pass whose first half waits for the second: the worker must run
+// the second half on another core, allowed every core again.
+TEST(SecondThread, AWorkerWokenAfterAFrameRunsOffTheCallersCoreUnpinned) {
+  if (allowed_count() < 2) GTEST_SKIP() << "one core allowed: the two threads share it";
+  SecondThread thread;
+  auto nothing = [](int) {};
+  thread.both(nothing);  // starts the worker
+  ASSERT_NE(thread.team(), nullptr);
+  const int count = allowed_count();
+  constexpr int frames = 12;
+  int shared = 0;
+  for (int f = 0; f < frames; ++f) {
+    const unsigned slept = thread.team()->worker_slept();
+    // A frame's sleep: the worker sleeps spin_budget after the last pass.
+    std::this_thread::sleep_for(std::chrono::milliseconds(16));
+    const SecondThreadRun run(&thread);
+    std::atomic<bool> second_done{false};
+    int caller_cpu = -1, worker_cpu = -1, worker_count = -1;
+    auto pass = [&](int half) {
+      if (half == 1) {
+        worker_cpu = current_cpu(), worker_count = allowed_count();
+        second_done = true;
+        return;
+      }
+      caller_cpu = current_cpu();
+      const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+      while (!second_done && std::chrono::steady_clock::now() < end) cpu_pause();
+    };
+    thread.both(pass);
+    ASSERT_TRUE(second_done) << "frame " << f << ": the worker never ran its half";
+    ASSERT_GT(thread.team()->worker_slept(), slept) << "frame " << f << ": the worker never slept";
+    shared += worker_cpu == caller_cpu ? 1 : 0;
+    EXPECT_EQ(worker_count, count) << "frame " << f << ": the worker ran held off a core";
+  }
+  EXPECT_EQ(shared, 0) << "of " << frames << " frames, the worker ran its half on the caller's "
+                       << "core in " << shared;
+}
 #endif
+
+// Within a run the caller waits for a worker's half on another core by spinning, up to
+// run_spin_budget: woken from a sleep by the worker on a virtual machine, it landed on the
+// worker's core and waited there for it, the second thread's work lost. Twelve passes whose
+// second half takes a millisecond: the caller sleeps through fewer than half of them (it may
+// when the machine is busy and preempts it), where with spin_budget it slept through all.
+TEST(SecondThread, WithinARunTheCallerSpinsForTheWorkersLongHalf) {
+  if (threads_for(0) < 2) GTEST_SKIP() << "one core: the caller rightly sleeps";
+  SecondThread thread;
+  const SecondThreadRun run(&thread);
+  constexpr int passes = 12;
+  std::atomic<bool> started{false};
+  // The first half returns once the worker has started the second, which takes a millisecond.
+  auto pass = [&](int half) {
+    const auto now = std::chrono::steady_clock::now();
+    if (half == 0) {
+      while (!started && std::chrono::steady_clock::now() < now + std::chrono::seconds(5)) {
+        cpu_pause();
+      }
+      return;
+    }
+    started = true;
+    while (std::chrono::steady_clock::now() < now + std::chrono::milliseconds(1)) cpu_pause();
+  };
+  ASSERT_NE(thread.team(), nullptr);
+  const unsigned slept = thread.team()->caller_slept(), here = thread.team()->run_here();
+  for (int k = 0; k < passes; ++k) {
+    started = false;
+    thread.both(pass);
+  }
+  ASSERT_EQ(thread.team()->run_here(), here) << "the caller ran a second half";
+  EXPECT_LT(thread.team()->caller_slept() - slept, passes / 2u)
+      << "the caller slept through the worker's halves";
+}
 
 }  // namespace
 }  // namespace fixstep::detail

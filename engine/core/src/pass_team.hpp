@@ -28,6 +28,15 @@ namespace fixstep::detail {
 /// another core it is allowed (AllowedCores::leave: woken by the caller, the kernel may place
 /// it on the caller's core and leave the other idle) and sleeps where there is none, and it
 /// sleeps when it finds it was preempted while it spun.
+///
+/// A thread woken on a virtual machine tends to land on the core of the thread that woke it,
+/// even with the other core idle (a halted virtual CPU is not offered to it), and then waits
+/// there until that thread stops: a game's tick at 60 Hz, whose worker sleeps between ticks,
+/// lost its second thread that way in most ticks. So each wake-up is steered: post() holds a
+/// worker that gave up spinning off the caller's core until it is awake, and the caller within
+/// a run waits for the worker's half by spinning up to run_spin_budget rather than sleeping
+/// (woken by the worker, it would land on the worker's core), unless it finds itself on the
+/// worker's core or preempted.
 class PassTeam {
  public:
   /// The worker's loop, until finish(): Workers::submit(&PassTeam::serve, team), once.
@@ -35,7 +44,16 @@ class PassTeam {
   /// Offers job(ctx) to the worker; the caller runs its own share, then wait().
   void post(void (*job)(void*), void* ctx) {
     job_ = job, ctx_ = ctx;
-    caller_cpu_.store(current_cpu(), std::memory_order_relaxed);
+    const int here = current_cpu();
+    caller_cpu_.store(here, std::memory_order_relaxed);
+    // A worker that gave up spinning wakes where the kernel puts it, and on a virtual machine
+    // that was the caller's core while the other idled (its halted CPU not offered): there it
+    // waited out the caller's whole tick. Held off this core, it wakes on another one, and
+    // allows itself every core again once awake (loop()).
+    if (dozing_.load(std::memory_order_acquire) && !held_.load(std::memory_order_relaxed) &&
+        cores_->hold_off(worker_, here)) {
+      held_.store(true, std::memory_order_relaxed);
+    }
     posted_.fetch_add(1, std::memory_order_release);
     posted_.notify_one();
   }
@@ -52,9 +70,13 @@ class PassTeam {
     }
     unsigned d = done_.load(std::memory_order_acquire);
     if (d == want) return;  // the worker's half was done first: no clock to read
-    caller_until_ = std::chrono::steady_clock::now() + spin_budget;
+    caller_checked_ = std::chrono::steady_clock::now();
+    caller_until_ =
+        caller_checked_ + (run_.load(std::memory_order_relaxed) ? run_spin_budget : spin_budget);
     while (d != want) {
-      wait_for_change(done_, d, d, {&caller_gives_up, this});
+      if (wait_for_change(done_, d, d, {&caller_gives_up, this}) == WaitEnd::slept) {
+        ++caller_slept_;
+      }
     }
   }
   /// Starts or ends a run: within one the worker spins between jobs (unless it shares the
@@ -76,11 +98,13 @@ class PassTeam {
     posted_.notify_one();
   }
   /// For the tests, since the team was made: the worker's waits for a job that ended asleep,
-  /// and the jobs the caller ran itself (the worker had not claimed them).
+  /// the jobs the caller ran itself (the worker had not claimed them), and the caller's waits
+  /// for the worker's job that ended asleep.
   [[nodiscard]] unsigned worker_slept() const {
     return worker_slept_.load(std::memory_order_relaxed);
   }
   [[nodiscard]] unsigned run_here() const { return run_here_; }
+  [[nodiscard]] unsigned caller_slept() const { return caller_slept_; }
 
  private:
   /// Takes job `gen` (the gen-th posted) for this thread; false when the other has it. Every
@@ -103,7 +127,9 @@ class PassTeam {
   static bool caller_gives_up(void* p) {
     auto* t = static_cast<PassTeam*>(p);
     const auto now = std::chrono::steady_clock::now();
-    return on_cpu(t->worker_cpu_) || now >= t->caller_until_;
+    const bool preempted = was_preempted(t->caller_checked_, now);
+    t->caller_checked_ = now;
+    return on_cpu(t->worker_cpu_) || preempted || now >= t->caller_until_;
   }
   static bool worker_gives_up(void* p) {
     auto* t = static_cast<PassTeam*>(p);
@@ -114,10 +140,16 @@ class PassTeam {
     if (caller >= 0 && caller == current_cpu()) {
       // On the caller's core: move to another (the caller's wake-ups would bring it back
       // here, and the kernel may leave both on one core while the other idles), else sleep.
-      return !t->run_.load(std::memory_order_relaxed) || !t->cores_->leave(caller);
+      return (!t->run_.load(std::memory_order_relaxed) || !t->cores_->leave(caller)) && t->doze();
     }
-    if (preempted) return true;
-    return !t->run_.load(std::memory_order_relaxed) && now >= t->worker_until_;
+    if (preempted) return t->doze();
+    return !t->run_.load(std::memory_order_relaxed) && now >= t->worker_until_ && t->doze();
+  }
+  /// The worker gives up spinning (it sleeps unless a job comes first): post() may then hold it
+  /// off the caller's core. True.
+  bool doze() {
+    dozing_.store(true, std::memory_order_release);
+    return true;
   }
   void loop() {
     // The jobs come after the last claimed: the caller may have claimed some before this
@@ -125,12 +157,18 @@ class PassTeam {
     unsigned seen = claimed_.load(std::memory_order_acquire);
     const AllowedCores cores;
     cores_ = &cores;
+    worker_ = current_thread();  // both published to post() by dozing_
     for (;;) {
       worker_checked_ = std::chrono::steady_clock::now();
       worker_until_ = worker_checked_ + spin_budget;
       unsigned now = seen;
       if (wait_for_change(posted_, seen, now, {&worker_gives_up, this}) == WaitEnd::slept) {
         worker_slept_.fetch_add(1, std::memory_order_relaxed);
+      }
+      dozing_.store(false, std::memory_order_relaxed);
+      if (held_.load(std::memory_order_acquire)) {  // post() held it off a core for its wake-up
+        cores.restore();
+        held_.store(false, std::memory_order_relaxed);
       }
       seen = now;
       if (stop_.load(std::memory_order_relaxed)) return;
@@ -149,9 +187,14 @@ class PassTeam {
   /// The core each side last ran on (-1: unknown), as it posted or claimed a job.
   std::atomic<int> caller_cpu_{-1}, worker_cpu_{-1};
   std::atomic<bool> run_{false}, stop_{false};
+  /// The worker gave up spinning (set by it, cleared as its wait ends); post() held it off the
+  /// caller's core (set by the caller, cleared by the worker once it allows itself every core).
+  std::atomic<bool> dozing_{false}, held_{false};
+  ThreadHandle worker_{};  ///< the worker (current_thread()), read after dozing_
   /// When each side's spin ends by time (each written and read by its own thread only).
-  std::chrono::steady_clock::time_point caller_until_{}, worker_until_{}, worker_checked_{};
-  unsigned run_here_ = 0;
+  std::chrono::steady_clock::time_point caller_until_{}, caller_checked_{}, worker_until_{},
+      worker_checked_{};
+  unsigned run_here_ = 0, caller_slept_ = 0;  // the caller's only
   unsigned waited_ = 0;                  ///< the last job wait() returned for (the caller's only)
   const AllowedCores* cores_ = nullptr;  // the worker's, while it serves
 };

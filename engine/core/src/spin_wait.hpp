@@ -7,6 +7,7 @@
 #include <chrono>
 
 #if defined(__linux__)
+#include <pthread.h>
 #include <sched.h>
 #endif
 
@@ -20,6 +21,11 @@ namespace fixstep::detail {
 /// reliably hand it over (on Linux 6.18 the two threads took turns of about a millisecond).
 /// After this budget the waiter sleeps, so the partner runs within a context switch.
 inline constexpr std::chrono::microseconds spin_budget{50};
+/// How long the stepping thread spins for the worker's half of a pass within a tick's run
+/// (PassTeam) while the worker runs on another core: a half can take milliseconds at 10^5
+/// bodies, and a sleeping caller woken by the worker lands on the worker's core on a virtual
+/// machine (pass_team.hpp). Past it, the sleep's wake-up costs little against the wait.
+inline constexpr std::chrono::microseconds run_spin_budget{2000};
 
 /// One pause of a spin loop (the x86 PAUSE instruction; nothing elsewhere).
 inline void cpu_pause() {
@@ -38,6 +44,19 @@ inline int current_cpu() {
 #endif
 }
 
+/// A thread as hold_off() names it (pthread_t on Linux; elsewhere nothing can be held).
+#if defined(__linux__)
+using ThreadHandle = pthread_t;
+inline ThreadHandle current_thread() {
+  return pthread_self();
+}
+#else
+using ThreadHandle = int;
+inline ThreadHandle current_thread() {
+  return 0;
+}
+#endif
+
 /// The cores a thread may run on, as the system allowed them when it was read (Linux; elsewhere
 /// nothing is known and nothing can be asked).
 class AllowedCores {
@@ -49,10 +68,21 @@ class AllowedCores {
     known_ = sched_getaffinity(0, sizeof(set_), &set_) == 0;
 #endif
   }
-  /// Moves the calling thread off core `cpu` by allowing it every core it was allowed but that
-  /// one (the kernel migrates it within the call). False, and nothing changed, where `cpu` is
-  /// not known or is the only core allowed.
+  /// Moves the calling thread off core `cpu`: allows it every core it was allowed but that one
+  /// (the kernel migrates it within the call), then every core again (the kernel keeps a thread
+  /// on a core it is allowed, so it stays where it moved). A move, not a pin: a thread kept off
+  /// one core of two is held to the other, and a caller that wakes there later would share it
+  /// while the first core idled. False, and nothing changed, where `cpu` is not known or is the
+  /// only core allowed.
   bool leave(int cpu) const {
+    if (!hold_off(current_thread(), cpu)) return false;
+    restore();  // failing, it stays held off `cpu`: moved all the same
+    return true;
+  }
+  /// Holds `thread` off core `cpu` until it calls restore(): a sleeping thread woken after this
+  /// call wakes on another core. False, and nothing changed, where `cpu` is not known or is the
+  /// only core allowed.
+  bool hold_off(ThreadHandle thread, int cpu) const {
 #if defined(__linux__)
     if (!known_ || cpu < 0 || cpu >= CPU_SETSIZE || !CPU_ISSET(cpu, &set_) ||
         CPU_COUNT(&set_) < 2) {
@@ -60,10 +90,16 @@ class AllowedCores {
     }
     cpu_set_t others = set_;
     CPU_CLR(cpu, &others);
-    return sched_setaffinity(0, sizeof(others), &others) == 0;
+    return pthread_setaffinity_np(thread, sizeof(others), &others) == 0;
 #else
-    (void)cpu;
+    (void)thread, (void)cpu;
     return false;
+#endif
+  }
+  /// Allows the calling thread every core it was allowed when this was made.
+  void restore() const {
+#if defined(__linux__)
+    if (known_) sched_setaffinity(0, sizeof(set_), &set_);
 #endif
   }
 
