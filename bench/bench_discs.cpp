@@ -24,6 +24,7 @@
 //   build/bench/bin/bench_discs --quick --benchmark_min_time=0.01   (N = 10³: a smoke run)
 //   build/bench/bin/bench_discs --verify-only  (the checks alone; ctest bench_discs_checks)
 //   build/bench/bin/bench_discs --trace pile box2d 1000 300  (one case, untimed, every 10 ticks)
+//   build/bench/bin/bench_discs --paced gas 10000 120  (one tick a frame at 60 Hz, as a game)
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 #include <unistd.h>
@@ -35,11 +36,13 @@
 #include <cstdlib>
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "discs.hpp"
+#include "discs_paced.hpp"
 #include "fixstep/capture/capture.hpp"
 #include "median.hpp"
 #include "median_run.hpp"
@@ -274,6 +277,7 @@ int trace(const std::string& scene, const std::string& key, std::size_t n, int t
 struct Options {
   bool quick = false, verify_only = false, min_time_given = false, reps_given = false;
   std::optional<std::string> report;
+  std::vector<std::string> paced;  ///< --paced SCENE N TICKS
 };
 
 std::vector<std::int64_t> sizes(const Options& o) {
@@ -407,6 +411,8 @@ int main(int argc, char** argv) {
       o.report = argv[++a];
     else if (arg == "--trace" && a + 4 < argc)
       return trace(argv[a + 1], argv[a + 2], std::stoul(argv[a + 3]), std::stoi(argv[a + 4]));
+    else if (arg == "--paced" && a + 3 < argc)
+      o.paced = {argv[a + 1], argv[a + 2], argv[a + 3]}, a += 3;
     else {
       o.min_time_given = o.min_time_given || arg.starts_with("--benchmark_min_time");
       o.reps_given = o.reps_given || arg.starts_with("--benchmark_repetitions");
@@ -414,6 +420,25 @@ int main(int argc, char** argv) {
     }
   }
   try {
+    if (!o.paced.empty()) {
+      const auto whole = [](const std::string& text, const char* what) {
+        std::size_t used = 0;
+        long value = -1;
+        try {
+          value = std::stol(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size() || value < 0) {
+          throw std::invalid_argument(
+              fmt::format("--paced: {} '{}' is not a whole number", what, text));
+        }
+        return value;
+      };
+      const long n = whole(o.paced[1], "N"), ticks = whole(o.paced[2], "TICKS");
+      return paced(o.paced[0], static_cast<std::size_t>(n),
+                   static_cast<int>(std::min(ticks, 1'000'000L)));
+    }
     if (run_checks(!o.quick && !o.verify_only) != 0) return 1;
     if (o.verify_only) return 0;
 
