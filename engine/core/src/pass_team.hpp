@@ -29,14 +29,10 @@ namespace fixstep::detail {
 /// it on the caller's core and leave the other idle) and sleeps where there is none, and it
 /// sleeps when it finds it was preempted while it spun.
 ///
-/// A thread woken on a virtual machine tends to land on the core of the thread that woke it,
-/// even with the other core idle (a halted virtual CPU is not offered to it), and then waits
-/// there until that thread stops: a game's tick at 60 Hz, whose worker sleeps between ticks,
-/// lost its second thread that way in most ticks. So each wake-up is steered: post() holds a
-/// worker that gave up spinning off the caller's core until it is awake, and the caller within
-/// a run waits for the worker's half by spinning up to run_spin_budget rather than sleeping
-/// (woken by the worker, it would land on the worker's core), unless it finds itself on the
-/// worker's core or preempted.
+/// Each wake-up of the worker is steered off the caller's core (WakeSteering: on a virtual
+/// machine a woken thread lands on its waker's core), and the caller within a run waits for the
+/// worker's half by spinning up to run_spin_budget rather than sleeping (woken by the worker, it
+/// would land on the worker's core), unless it finds itself on the worker's core or preempted.
 class PassTeam {
  public:
   /// The worker's loop, until finish(): Workers::submit(&PassTeam::serve, team), once.
@@ -46,14 +42,7 @@ class PassTeam {
     job_ = job, ctx_ = ctx;
     const int here = current_cpu();
     caller_cpu_.store(here, std::memory_order_relaxed);
-    // A worker that gave up spinning wakes where the kernel puts it, and on a virtual machine
-    // that was the caller's core while the other idled (its halted CPU not offered): there it
-    // waited out the caller's whole tick. Held off this core, it wakes on another one, and
-    // allows itself every core again once awake (loop()).
-    if (dozing_.load(std::memory_order_acquire) && !held_.load(std::memory_order_relaxed) &&
-        cores_->hold_off(worker_, here)) {
-      held_.store(true, std::memory_order_relaxed);
-    }
+    steer_.before_wake(here);  // a worker that gave up spinning wakes off this core
     posted_.fetch_add(1, std::memory_order_release);
     posted_.notify_one();
   }
@@ -140,16 +129,11 @@ class PassTeam {
     if (caller >= 0 && caller == current_cpu()) {
       // On the caller's core: move to another (the caller's wake-ups would bring it back
       // here, and the kernel may leave both on one core while the other idles), else sleep.
-      return (!t->run_.load(std::memory_order_relaxed) || !t->cores_->leave(caller)) && t->doze();
+      return (!t->run_.load(std::memory_order_relaxed) || !t->cores_->leave(caller)) &&
+             t->steer_.doze();
     }
-    if (preempted) return t->doze();
-    return !t->run_.load(std::memory_order_relaxed) && now >= t->worker_until_ && t->doze();
-  }
-  /// The worker gives up spinning (it sleeps unless a job comes first): post() may then hold it
-  /// off the caller's core. True.
-  bool doze() {
-    dozing_.store(true, std::memory_order_release);
-    return true;
+    if (preempted) return t->steer_.doze();
+    return !t->run_.load(std::memory_order_relaxed) && now >= t->worker_until_ && t->steer_.doze();
   }
   void loop() {
     // The jobs come after the last claimed: the caller may have claimed some before this
@@ -157,7 +141,7 @@ class PassTeam {
     unsigned seen = claimed_.load(std::memory_order_acquire);
     const AllowedCores cores;
     cores_ = &cores;
-    worker_ = current_thread();  // both published to post() by dozing_
+    steer_.serve(cores);
     for (;;) {
       worker_checked_ = std::chrono::steady_clock::now();
       worker_until_ = worker_checked_ + spin_budget;
@@ -165,11 +149,7 @@ class PassTeam {
       if (wait_for_change(posted_, seen, now, {&worker_gives_up, this}) == WaitEnd::slept) {
         worker_slept_.fetch_add(1, std::memory_order_relaxed);
       }
-      dozing_.store(false, std::memory_order_relaxed);
-      if (held_.load(std::memory_order_acquire)) {  // post() held it off a core for its wake-up
-        cores.restore();
-        held_.store(false, std::memory_order_relaxed);
-      }
+      steer_.awake();
       seen = now;
       if (stop_.load(std::memory_order_relaxed)) return;
       if (!claim(seen)) continue;  // the caller ran it
@@ -187,10 +167,7 @@ class PassTeam {
   /// The core each side last ran on (-1: unknown), as it posted or claimed a job.
   std::atomic<int> caller_cpu_{-1}, worker_cpu_{-1};
   std::atomic<bool> run_{false}, stop_{false};
-  /// The worker gave up spinning (set by it, cleared as its wait ends); post() held it off the
-  /// caller's core (set by the caller, cleared by the worker once it allows itself every core).
-  std::atomic<bool> dozing_{false}, held_{false};
-  ThreadHandle worker_{};  ///< the worker (current_thread()), read after dozing_
+  WakeSteering steer_;  // the worker's wake-ups, off the caller's core
   /// When each side's spin ends by time (each written and read by its own thread only).
   std::chrono::steady_clock::time_point caller_until_{}, caller_checked_{}, worker_until_{},
       worker_checked_{};

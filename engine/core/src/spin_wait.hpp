@@ -110,6 +110,50 @@ class AllowedCores {
   bool known_ = false;
 };
 
+/// A worker's wake-ups steered off the core of the thread that wakes it. A thread woken on a
+/// virtual machine tends to land on its waker's core even with the other core idle (a halted
+/// virtual CPU is not offered to it), and there it waits until the waker stops: a game's tick
+/// at 60 Hz, whose worker sleeps between ticks, lost its second thread that way in most ticks.
+/// The worker names itself (serve()), says when it gives up spinning (doze()) and when its wait
+/// ended (awake()); the waker, before each wake-up, holds a dozing worker off its own core
+/// (before_wake()) until the worker is awake and allows itself every core again.
+class WakeSteering {
+ public:
+  /// Worker: the calling thread is the one steered, allowed `cores` (which outlive its use).
+  void serve(const AllowedCores& cores) {
+    cores_ = &cores;
+    worker_ = current_thread();  // both published to the waker by doze()
+  }
+  /// Worker: it gives up spinning and sleeps unless woken first. True.
+  bool doze() {
+    dozing_.store(true, std::memory_order_release);
+    return true;
+  }
+  /// Worker: its wait ended; it allows itself every core again if it was held off one.
+  void awake() {
+    dozing_.store(false, std::memory_order_relaxed);
+    if (held_.load(std::memory_order_acquire)) {
+      cores_->restore();
+      held_.store(false, std::memory_order_relaxed);
+    }
+  }
+  /// Waker, on core `cpu`, before it wakes the worker: a worker that dozed is held off `cpu`.
+  /// (Its release store that wakes the worker publishes this to awake().)
+  void before_wake(int cpu) {
+    if (dozing_.load(std::memory_order_acquire) && !held_.load(std::memory_order_relaxed) &&
+        cores_->hold_off(worker_, cpu)) {
+      held_.store(true, std::memory_order_relaxed);
+    }
+  }
+
+ private:
+  /// The worker gave up spinning (set by it, cleared as its wait ends); the waker held it off
+  /// its core (set by the waker, cleared by the worker once it allows itself every core).
+  std::atomic<bool> dozing_{false}, held_{false};
+  const AllowedCores* cores_ = nullptr;
+  ThreadHandle worker_{};
+};
+
 /// What a wait did, for the tests: whether it ended by sleeping (std::atomic::wait).
 enum class WaitEnd : unsigned char { spun, slept };
 
