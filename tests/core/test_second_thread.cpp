@@ -4,7 +4,7 @@
 // a wait with nothing posted returns; opening a run wakes a sleeping worker;
 // on one core the two threads take turns by sleeping, not by spinning; a thread asked to leave a
 // core does, and is not pinned by it; a thread held off a core wakes elsewhere; and a worker woken
-// after a frame's sleep runs off the stepping thread's core.
+// after a frame's sleep (the disc contacts' and the links') runs off the stepping thread's core.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -19,6 +19,7 @@
 
 #include "pass_team.hpp"
 #include "second_thread.hpp"
+#include "workers.hpp"
 
 namespace fixstep::detail {
 namespace {
@@ -297,6 +298,41 @@ TEST(SecondThread, AWorkerWokenAfterAFrameRunsOffTheCallersCoreUnpinned) {
   }
   EXPECT_EQ(shared, 0) << "of " << frames << " frames, the worker ran its half on the caller's "
                        << "core in " << shared;
+}
+
+// The links' worker (Workers) is woken for each pass: after a frame's sleep it must also wake
+// off the caller's core, and allowed every core again. Without the hold it ran on the caller's
+// core, where the caller, spinning on its own share, kept it waiting.
+TEST(Workers, AWorkerWokenAfterAFrameRunsOffTheCallersCoreUnpinned) {
+  if (allowed_count() < 2) GTEST_SKIP() << "one core allowed: the two threads share it";
+  Workers workers;
+  struct Job {
+    std::atomic<bool> done{false};
+    int cpu = -1, count = -1;
+  } job;
+  auto run = [](void* p) {
+    auto* j = static_cast<Job*>(p);
+    j->cpu = current_cpu(), j->count = allowed_count();
+    j->done = true;
+  };
+  const int count = allowed_count();
+  constexpr int frames = 12;
+  int shared = 0;
+  for (int f = 0; f < frames; ++f) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(16));  // the worker sleeps
+    job.done = false;
+    const int here = current_cpu();
+    workers.submit(run, &job);
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (!job.done && std::chrono::steady_clock::now() < end) cpu_pause();  // the caller's share
+    workers.wait();
+    ASSERT_TRUE(job.done) << "frame " << f;
+    if (here < 0 || job.cpu < 0) GTEST_SKIP() << "this system does not say which core";
+    shared += job.cpu == here ? 1 : 0;
+    EXPECT_EQ(job.count, count) << "frame " << f << ": the worker ran held off a core";
+  }
+  EXPECT_EQ(shared, 0) << "of " << frames << " frames, the worker ran on the caller's core in "
+                       << shared;
 }
 #endif
 

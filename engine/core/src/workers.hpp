@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <thread>
 
 #include "spin_wait.hpp"
@@ -37,7 +38,11 @@ inline int threads_for(int want) {
 /// One worker thread that runs a job while the calling thread runs its own share. Each side
 /// waits for the other by wait_for_change (spin_wait.hpp): a spin on an atomic generation
 /// counter for the short waits between passes, a futex wait (std::atomic::wait) for the long
-/// ones between ticks, so an idle world costs no CPU.
+/// ones between ticks, so an idle world costs no CPU. The worker's wake-ups are steered off the
+/// caller's core (WakeSteering), and the caller spins for the worker's job up to
+/// run_spin_budget while the worker runs on another core (woken from a sleep by the worker, it
+/// would land on the worker's core on a virtual machine); it sleeps at once on the worker's
+/// core, and when it finds it was preempted.
 class Workers {
  public:
   Workers() : thread_([this] { loop(); }) {}
@@ -53,23 +58,44 @@ class Workers {
   /// Starts job(ctx) on the worker; wait() returns when it has finished.
   void submit(void (*job)(void*), void* ctx) {
     job_ = job, ctx_ = ctx;
+    steer_.before_wake(current_cpu());
     const unsigned gen = start_.fetch_add(1, std::memory_order_release) + 1;
     pending_ = gen;
     start_.notify_one();
   }
   void wait() {
-    for (unsigned d = done_.load(std::memory_order_acquire); d != pending_;) {
-      wait_for_change(done_, d, d);
-    }
+    unsigned d = done_.load(std::memory_order_acquire);
+    if (d == pending_) return;
+    caller_checked_ = std::chrono::steady_clock::now();
+    caller_until_ = caller_checked_ + run_spin_budget;
+    while (d != pending_) wait_for_change(done_, d, d, {&caller_gives_up, this});
   }
 
  private:
+  static bool caller_gives_up(void* p) {
+    auto* w = static_cast<Workers*>(p);
+    const auto now = std::chrono::steady_clock::now();
+    const bool preempted = was_preempted(w->caller_checked_, now);
+    w->caller_checked_ = now;
+    const int here = current_cpu();
+    const bool shared = here >= 0 && here == w->worker_cpu_.load(std::memory_order_relaxed);
+    return shared || preempted || now >= w->caller_until_;
+  }
+  static bool worker_gives_up(void* p) {
+    auto* w = static_cast<Workers*>(p);
+    return std::chrono::steady_clock::now() >= w->worker_until_ && w->steer_.doze();
+  }
   void loop() {
+    const AllowedCores cores;
+    steer_.serve(cores);
     for (unsigned seen = 0;;) {
+      worker_until_ = std::chrono::steady_clock::now() + spin_budget;
       unsigned now = seen;
-      wait_for_change(start_, seen, now);
+      wait_for_change(start_, seen, now, {&worker_gives_up, this});
+      steer_.awake();
       seen = now;
       if (stop_.load(std::memory_order_relaxed)) return;
+      worker_cpu_.store(current_cpu(), std::memory_order_relaxed);
       job_(ctx_);
       done_.store(seen, std::memory_order_release);
       done_.notify_one();
@@ -80,7 +106,11 @@ class Workers {
   void* ctx_ = nullptr;
   unsigned pending_ = 0;
   std::atomic<unsigned> start_{0}, done_{0};
+  std::atomic<int> worker_cpu_{-1};  ///< the core the worker last started a job on
   std::atomic<bool> stop_{false};
+  /// When each side's spin ends by time (each written and read by its own thread only).
+  std::chrono::steady_clock::time_point caller_until_{}, caller_checked_{}, worker_until_{};
+  WakeSteering steer_;  // the worker's wake-ups, off the caller's core
   std::thread thread_;  // last: starts after every other member is initialised
 };
 
