@@ -339,13 +339,14 @@ TEST(Workers, AWorkerWokenAfterAFrameRunsOffTheCallersCoreUnpinned) {
 // Within a run the caller waits for a worker's half on another core by spinning, up to
 // run_spin_budget: woken from a sleep by the worker on a virtual machine, it landed on the
 // worker's core and waited there for it, the second thread's work lost. Twelve passes whose
-// second half takes a millisecond: the caller sleeps through fewer than half of them (it may
-// when the machine is busy and preempts it), where with spin_budget it slept through all.
+// second half takes a millisecond: the caller sleeps through fewer than half of them, where
+// with spin_budget it slept through all. A busy machine (other tests beside this one) preempts
+// the caller, which then rightly sleeps: up to five tries of twelve passes, one must pass.
 TEST(SecondThread, WithinARunTheCallerSpinsForTheWorkersLongHalf) {
   if (threads_for(0) < 2) GTEST_SKIP() << "one core: the caller rightly sleeps";
   SecondThread thread;
   const SecondThreadRun run(&thread);
-  constexpr int passes = 12;
+  constexpr unsigned passes = 12;
   std::atomic<bool> started{false};
   // The first half returns once the worker has started the second, which takes a millisecond.
   auto pass = [&](int half) {
@@ -360,14 +361,20 @@ TEST(SecondThread, WithinARunTheCallerSpinsForTheWorkersLongHalf) {
     while (std::chrono::steady_clock::now() < now + std::chrono::milliseconds(1)) cpu_pause();
   };
   ASSERT_NE(thread.team(), nullptr);
-  const unsigned slept = thread.team()->caller_slept(), here = thread.team()->run_here();
-  for (int k = 0; k < passes; ++k) {
-    started = false;
-    thread.both(pass);
+  std::vector<unsigned> slept_in;
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    const unsigned slept = thread.team()->caller_slept(), here = thread.team()->run_here();
+    for (unsigned k = 0; k < passes; ++k) {
+      started = false;
+      thread.both(pass);
+    }
+    ASSERT_EQ(thread.team()->run_here(), here) << "the caller ran a second half";
+    slept_in.push_back(thread.team()->caller_slept() - slept);
+    if (slept_in.back() < passes / 2) return;
   }
-  ASSERT_EQ(thread.team()->run_here(), here) << "the caller ran a second half";
-  EXPECT_LT(thread.team()->caller_slept() - slept, passes / 2u)
-      << "the caller slept through the worker's halves";
+  ADD_FAILURE() << "the caller slept through " << slept_in[0] << ", " << slept_in[1] << ", "
+                << slept_in[2] << ", " << slept_in[3] << " and " << slept_in[4] << " of " << passes
+                << " of the worker's halves";
 }
 
 }  // namespace
