@@ -59,9 +59,7 @@ class PassTeam {
     }
     unsigned d = done_.load(std::memory_order_acquire);
     if (d == want) return;  // the worker's half was done first: no clock to read
-    caller_checked_ = std::chrono::steady_clock::now();
-    caller_until_ =
-        caller_checked_ + (run_.load(std::memory_order_relaxed) ? run_spin_budget : spin_budget);
+    caller_wait_.start(run_.load(std::memory_order_relaxed) ? run_spin_budget : spin_budget);
     while (d != want) {
       if (wait_for_change(done_, d, d, {&caller_gives_up, this}) == WaitEnd::slept) {
         ++caller_slept_;
@@ -109,16 +107,9 @@ class PassTeam {
     }
     return false;
   }
-  static bool on_cpu(const std::atomic<int>& cpu) {
-    const int here = current_cpu();
-    return here >= 0 && here == cpu.load(std::memory_order_relaxed);
-  }
   static bool caller_gives_up(void* p) {
     auto* t = static_cast<PassTeam*>(p);
-    const auto now = std::chrono::steady_clock::now();
-    const bool preempted = was_preempted(t->caller_checked_, now);
-    t->caller_checked_ = now;
-    return on_cpu(t->worker_cpu_) || preempted || now >= t->caller_until_;
+    return t->caller_wait_.gives_up(t->worker_cpu_.load(std::memory_order_relaxed));
   }
   static bool worker_gives_up(void* p) {
     auto* t = static_cast<PassTeam*>(p);
@@ -169,8 +160,8 @@ class PassTeam {
   std::atomic<bool> run_{false}, stop_{false};
   WakeSteering steer_;  // the worker's wake-ups, off the caller's core
   /// When each side's spin ends by time (each written and read by its own thread only).
-  std::chrono::steady_clock::time_point caller_until_{}, caller_checked_{}, worker_until_{},
-      worker_checked_{};
+  std::chrono::steady_clock::time_point worker_until_{}, worker_checked_{};
+  CallerWait caller_wait_;                    // the caller's only
   unsigned run_here_ = 0, caller_slept_ = 0;  // the caller's only
   unsigned waited_ = 0;                  ///< the last job wait() returned for (the caller's only)
   const AllowedCores* cores_ = nullptr;  // the worker's, while it serves

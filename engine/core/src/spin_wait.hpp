@@ -172,6 +172,30 @@ inline bool was_preempted(std::chrono::steady_clock::time_point last,
   return now - last > spin_budget;
 }
 
+/// A caller's wait for its worker's job (PassTeam, Workers): it spins until its budget ends,
+/// but gives up (and sleeps) at once on the worker's core, and when it finds it was preempted
+/// (a busy machine). For SpinBudget::give_up, through the owner's own function.
+class CallerWait {
+ public:
+  /// Starts a wait that may spin for `budget`.
+  void start(std::chrono::microseconds budget) {
+    checked_ = std::chrono::steady_clock::now();
+    until_ = checked_ + budget;
+  }
+  /// Whether the waiting caller sleeps now, the worker last seen on core `worker_cpu` (-1:
+  /// unknown).
+  bool gives_up(int worker_cpu) {
+    const auto now = std::chrono::steady_clock::now();
+    const bool preempted = was_preempted(checked_, now);
+    checked_ = now;
+    const int here = current_cpu();
+    return (here >= 0 && here == worker_cpu) || preempted || now >= until_;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point until_{}, checked_{};
+};
+
 /// Returns once `word` no longer holds `old` (acquire), the value it then holds in `now`: spins
 /// on it, checking `budget` once every 64 pauses, then sleeps on it (std::atomic::wait: a futex
 /// on Linux) until another thread stores a new value and calls notify_one() or notify_all() on

@@ -66,20 +66,14 @@ class Workers {
   void wait() {
     unsigned d = done_.load(std::memory_order_acquire);
     if (d == pending_) return;
-    caller_checked_ = std::chrono::steady_clock::now();
-    caller_until_ = caller_checked_ + run_spin_budget;
+    caller_wait_.start(run_spin_budget);
     while (d != pending_) wait_for_change(done_, d, d, {&caller_gives_up, this});
   }
 
  private:
   static bool caller_gives_up(void* p) {
     auto* w = static_cast<Workers*>(p);
-    const auto now = std::chrono::steady_clock::now();
-    const bool preempted = was_preempted(w->caller_checked_, now);
-    w->caller_checked_ = now;
-    const int here = current_cpu();
-    const bool shared = here >= 0 && here == w->worker_cpu_.load(std::memory_order_relaxed);
-    return shared || preempted || now >= w->caller_until_;
+    return w->caller_wait_.gives_up(w->worker_cpu_.load(std::memory_order_relaxed));
   }
   static bool worker_gives_up(void* p) {
     auto* w = static_cast<Workers*>(p);
@@ -108,8 +102,8 @@ class Workers {
   std::atomic<unsigned> start_{0}, done_{0};
   std::atomic<int> worker_cpu_{-1};  ///< the core the worker last started a job on
   std::atomic<bool> stop_{false};
-  /// When each side's spin ends by time (each written and read by its own thread only).
-  std::chrono::steady_clock::time_point caller_until_{}, caller_checked_{}, worker_until_{};
+  std::chrono::steady_clock::time_point worker_until_{};  ///< the worker's spin ends (its own)
+  CallerWait caller_wait_;                                // the caller's only
   WakeSteering steer_;  // the worker's wake-ups, off the caller's core
   std::thread thread_;  // last: starts after every other member is initialised
 };
