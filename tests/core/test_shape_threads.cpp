@@ -1,6 +1,6 @@
-// The shape phase on two threads: the broadphase and the manifolds by halves and the velocity
-// sweeps' large colours split, with the bits of one thread; a work limit met by halves is the
-// fault one thread names.
+// The shape phase on two threads: the broadphase and the manifolds by halves, the velocity
+// sweeps' large colours split and the push-out by halves, with the bits of one thread; a work limit
+// met by halves is the fault one thread names.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -54,6 +54,43 @@ TEST(ShapeThreads, TwoThreadsStepAPileToTheSameBitsAsOne) {
     split += two->shape_world()->split_colors();
   }
   EXPECT_GT(split, 60u * 20u);  // at least one colour in every sweep of every tick
+  EXPECT_FALSE(two->fault().has_value());
+}
+
+/// A wall of 60 columns of 36 boxes of 1 m, each box 1 cm into the one below and 5 mm into its
+/// neighbours on each side (4000 and more manifold points, past the push-out's split): the
+/// push-out pushes in every sweep of the first ticks, on both sides of the line at the mean x
+/// (between columns 29 and 30) and across it.
+std::unique_ptr<detail::WorldKernel<double>> pressed_wall(int threads) {
+  WorldSettings settings = shape_exact::shape_settings(0.6);
+  settings.threads = threads;
+  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
+  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  for (int c = 0; c < 60; ++c) {
+    for (int r = 0; r < 36; ++r) {
+      w->create_body(box_body(0.5, 0.5, {0.995 * c, 0.49 + 0.99 * r}, 0.0));
+    }
+  }
+  return w;
+}
+
+TEST(ShapeThreads, ThePushOutByHalvesStepsToTheSameBitsAsOne) {
+  auto one = pressed_wall(1);
+  auto two = pressed_wall(2);
+  for (int t = 0; t < 30; ++t) {
+    one->step();
+    two->step();
+    ASSERT_EQ(one->state_hash(), two->state_hash()) << "first differs after tick " << t + 1;
+  }
+  const detail::ShapeWorld::PushSplit& split = two->shape_world()->push_split();
+  ASSERT_GE(two->shape_world()->rows().size(), detail::ShapeWorld::min_split_push_rows);
+  EXPECT_TRUE(one->shape_world()->push_split().on);
+  EXPECT_TRUE(split.on);
+  EXPECT_GT(split.ends[0], 0u);                                 // half 0 has rows,
+  EXPECT_GT(split.ends[1], split.ends[0]);                      // so has half 1,
+  EXPECT_GT(two->shape_world()->rows().size(), split.ends[1]);  // and the cut
+  EXPECT_EQ(one->shape_world()->split_pushes(), 0u);
+  EXPECT_GT(two->shape_world()->split_pushes(), 30u);  // more than a sweep a tick
   EXPECT_FALSE(two->fault().has_value());
 }
 

@@ -1,9 +1,8 @@
 // Shape contacts, part 2: the contact solver (shape_world.hpp has the whole tick): the impact
-// pass (bounces), then sequential impulses with warm starting on the manifold points, then a
-// push-out of the overlap left on positions only.
+// pass (bounces), then sequential impulses with warm starting on the manifold points (the
+// push-out of the overlap left, on positions only: shape_push_out.cpp).
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "shape_rows.hpp"
 #include "shape_world.hpp"
@@ -13,11 +12,6 @@ namespace fixstep::detail {
 using namespace shape_rows;
 
 namespace {
-
-/// Box2D v2.4's position solver: the fraction of the overlap beyond the slop one iteration
-/// removes (b2_baumgarte) and the largest push of one point (b2_maxLinearCorrection, m).
-constexpr double push_fraction = 0.2;
-constexpr double max_push = 0.2;
 
 Vec2 perp(Vec2 n) {
   return {-n.y, n.x};
@@ -266,71 +260,6 @@ void ShapeWorld::follow_velocities() {
     s.x += dt_ * (v.vx - s.vx), s.y += dt_ * (v.vy - s.vy), s.a += dt_ * (v.w - s.w);
     s.vx = v.vx, s.vy = v.vy, s.w = v.w;
   }
-}
-
-void ShapeWorld::solve_positions(const ShapeTick& tick, ShapeTally& tally) {
-  // Each point's separation now: its manifold's (at the start poses) changed by how far each
-  // body's copy of the point has moved since along the normal (the lever arm turned by the
-  // body's turn since the start).
-  auto moved = [&](std::uint32_t body, Vec2 r) {
-    const ShapeState& s = state_[body];
-    const Vec2 now = Vec2{s.x - s.x0, s.y - s.y0} + rotate(s.turn, r);
-    return now - r;
-  };
-  auto separation = [&](const ShapeRow& r) {
-    Vec2 d = moved(r.b, r.rb);
-    if (r.a != none) d = d - moved(r.a, r.ra);
-    return r.separation + dot(d, r.n);
-  };
-  // Each body's turn since the start, made again only where its angle has changed since
-  // (turned_at_: the angle it was made at; NaN at first, unequal to any).
-  // (A resting body's turn, none, is made by rebuild_rest.)
-  for (const std::uint32_t k : rest_.live) turned_at_[k] = std::numeric_limits<double>::quiet_NaN();
-  auto update_turns = [&] {
-    for (const std::uint32_t k : rest_.live) {
-      ShapeState& s = state_[k];
-      if (s.a != turned_at_[k]) s.turn = rot_of(s.a - s.a0), turned_at_[k] = s.a;
-    }
-  };
-  // The joints' errors of this tick's motion first, as constraint impulses (they move the
-  // velocities too), then every error left, the contacts' and the joints', on positions only.
-  // A sweep that moves nothing leaves the poses as they were, and so would every sweep after
-  // it: the sweeps have ended.
-  for (int it = 0; it < tick.position_iterations && !rest_.live_joints.empty(); ++it) {
-    poll_stop();
-    if (!solve_joint_positions(true)) break;
-  }
-  update_turns();
-  for (int it = 0; it < tick.position_iterations; ++it) {
-    poll_stop();
-    bool pushed = false;
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-      const ShapeRow& r = rows_[i];
-      const double normal_mass = solve_[i].normal_mass;
-      const double c = std::clamp(push_fraction * (separation(r) + slop), -max_push, 0.0);
-      if (c == 0.0 || normal_mass == 0.0) continue;
-      pushed = true;
-      const Vec2 p = (-c * normal_mass) * r.n;
-      if (r.a != none && movable(bodies_[r.a])) {
-        const ShapedBody& b = bodies_[r.a];
-        ShapeState& s = state_[r.a];
-        s.x -= b.inv_mass * p.x, s.y -= b.inv_mass * p.y, s.a -= b.inv_inertia * cross(r.ra, p);
-      }
-      if (movable(bodies_[r.b])) {
-        const ShapedBody& b = bodies_[r.b];
-        ShapeState& s = state_[r.b];
-        s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
-      }
-    }
-    // A sweep that pushes and corrects nothing leaves the poses as they were, and so would
-    // every sweep after it: the push-out has ended.
-    if (!pushed && rest_.live_joints.empty()) break;
-    const bool corrected = !rest_.live_joints.empty() && solve_joint_positions(false);
-    if (!pushed && !corrected) break;
-    update_turns();
-  }
-  for (const ShapeRow& r : rows_) tally.deepest = std::max(tally.deepest, -separation(r));
-  for (const std::uint32_t k : rest_.live) state_[k].q = rot_of(state_[k].a);
 }
 
 void ShapeWorld::keep_impulses() {

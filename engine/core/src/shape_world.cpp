@@ -289,7 +289,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   follow_velocities();
   account_joints();
   continuous(tick, tally);
-  solve_positions(tick, tally);
+  solve_positions(tick, second, tally);
   keep_impulses();
   if (!sensor_candidates_.empty() || !sensed_.empty()) detect_sensors();
   throw_if_stop_requested();

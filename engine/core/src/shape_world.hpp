@@ -88,6 +88,22 @@ class ShapeWorld {
   /// The joints (broken ones too) from which a tick with two threads sweeps them by halves
   /// (joint_halves.hpp), where they make two.
   static constexpr std::size_t min_split_joints = 256;
+  /// The push-out's rows by halves: each live movable body on one side of a line across the
+  /// wider extent of their start positions, at their mean; a row whose movable bodies lie on
+  /// one side goes to that half, the rest to the cut. From min_split_push_rows rows, when
+  /// both halves have rows and the cut holds a quarter of them or fewer, each sweep pushes
+  /// half 0's rows and half 1's (each in row order: on two threads at once, or one after the
+  /// other), then the cut's: the same bits on one thread and two. Else the rows in row order.
+  struct PushSplit {
+    static constexpr std::uint8_t any = 3, no_side = 2;
+    std::vector<std::uint8_t> side;       ///< per body: 0, 1, or no_side (not live this tick)
+    std::vector<std::uint8_t> part;       ///< per row: 0, 1 (its half) or 2 (the cut)
+    std::vector<std::uint32_t> order;     ///< rows_ indices: half 0's, half 1's, the cut's
+    std::array<std::uint32_t, 2> ends{};  ///< where half 0's and half 1's end in order
+    bool on = false;
+  };
+  /// The manifold points from which the push-out is split (PushSplit).
+  static constexpr std::size_t min_split_push_rows = 2048;
 
   std::vector<ShapedBody> bodies_;
   std::vector<ShapeEntry> shapes_;
@@ -134,6 +150,10 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
   /// For the tests: the joints' passes run by halves on two threads (joint_halves.hpp) so far.
   [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
+  /// The last tick's push-out split.
+  [[nodiscard]] const PushSplit& push_split() const { return push_split_; }
+  /// For the tests: the push-out's sweeps run by halves on two threads so far.
+  [[nodiscard]] std::uint64_t split_pushes() const { return split_pushes_; }
   /// Stop requests polled by the sweeps so far: each velocity and position sweep polls once.
   [[nodiscard]] std::uint64_t stop_polls() const { return stop_polls_; }
   /// Heap bytes a copy holds (World::snapshot_bytes): every array's elements (shape_memory.cpp).
@@ -465,7 +485,20 @@ class ShapeWorld {
   bool bounce(std::size_t i, const ShapeTick& tick);
   bool bounce_block(std::size_t i, const ShapeTick& tick);
   void prepare_blocks();
-  void solve_positions(const ShapeTick& tick, ShapeTally& tally);
+  /// The push-out (shape_push_out.cpp): sweeps over the rows until one moves nothing, on
+  /// `second` by halves where push_split_ is on.
+  void solve_positions(const ShapeTick& tick, SecondThread* second, ShapeTally& tally);
+  struct Pusher;  ///< one row's push (shape_push_out.cpp)
+  PushSplit push_split_;
+  std::uint64_t split_pushes_ = 0;
+  void split_push_out();
+  /// Rows push_split_.order[from, to) pushed in that order; whether any pushed.
+  bool push_rows(std::uint32_t from, std::uint32_t to);
+  /// One sweep of the push-out (by halves on `thread` when given); whether any row pushed.
+  bool push_sweep(SecondThread* thread);
+  /// Each live body's turn since the start made again where its angle changed (by halves of
+  /// the live list on `thread` when given).
+  void update_turns(SecondThread* thread);
   void keep_impulses();
   void detect_sensors();
 };

@@ -1,0 +1,191 @@
+// Shape contacts, part 3: the push-out of the overlap left after the velocity solve, on
+// positions only (non-linear Gauss-Seidel, Box2D v2.4's position solver), with the joints'
+// errors; a large world's rows by halves (ShapeWorld::PushSplit).
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <span>
+
+#include "shape_world.hpp"
+
+namespace fixstep::detail {
+
+namespace {
+
+/// Box2D v2.4's position solver: the fraction of the overlap beyond the slop one iteration
+/// removes (b2_baumgarte) and the largest push of one point (b2_maxLinearCorrection, m).
+constexpr double push_fraction = 0.2;
+constexpr double max_push = 0.2;
+
+}  // namespace
+
+/// A row's push (Box2D v2.4's b2PositionSolverManifold over one point): its separation now,
+/// from its manifold's at the start poses changed by how far each body's copy of the point has
+/// moved since along the normal (the lever arm turned by the body's turn since the start).
+struct ShapeWorld::Pusher {
+  ShapeState* state;
+  const ShapedBody* bodies;
+
+  [[nodiscard]] Vec2 moved(std::uint32_t body, Vec2 r) const {
+    const ShapeState& s = state[body];
+    const Vec2 now = Vec2{s.x - s.x0, s.y - s.y0} + rotate(s.turn, r);
+    return now - r;
+  }
+  [[nodiscard]] double separation(const ShapeRow& r) const {
+    Vec2 d = moved(r.b, r.rb);
+    if (r.a != none) d = d - moved(r.a, r.ra);
+    return r.separation + dot(d, r.n);
+  }
+  /// Pushes the row's bodies apart by its share of the overlap beyond the slop; whether it did.
+  bool push(const ShapeRow& r, double normal_mass) const {
+    const double c = std::clamp(push_fraction * (separation(r) + slop), -max_push, 0.0);
+    if (c == 0.0 || normal_mass == 0.0) return false;
+    const Vec2 p = (-c * normal_mass) * r.n;
+    if (r.a != none && movable(bodies[r.a])) {
+      const ShapedBody& b = bodies[r.a];
+      ShapeState& s = state[r.a];
+      s.x -= b.inv_mass * p.x, s.y -= b.inv_mass * p.y, s.a -= b.inv_inertia * cross(r.ra, p);
+    }
+    if (movable(bodies[r.b])) {
+      const ShapedBody& b = bodies[r.b];
+      ShapeState& s = state[r.b];
+      s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
+    }
+    return true;
+  }
+};
+
+void ShapeWorld::split_push_out() {
+  PushSplit& s = push_split_;
+  s.on = false;
+  if (rows_.size() < min_split_push_rows) return;
+  // The live movable bodies' start positions: their extent on each axis and their mean.
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double lo_x = inf, hi_x = -inf, lo_y = inf, hi_y = -inf, sum_x = 0.0, sum_y = 0.0;
+  std::size_t n = 0;
+  for (const std::uint32_t k : rest_.live) {
+    if (!movable(bodies_[k])) continue;
+    const ShapeState& b = state_[k];
+    lo_x = std::min(lo_x, b.x0), hi_x = std::max(hi_x, b.x0), sum_x += b.x0;
+    lo_y = std::min(lo_y, b.y0), hi_y = std::max(hi_y, b.y0), sum_y += b.y0;
+    ++n;
+  }
+  if (n < 2) return;
+  const bool along_x = hi_x - lo_x >= hi_y - lo_y;
+  const double line = (along_x ? sum_x : sum_y) / static_cast<double>(n);
+  if (s.side.size() < bodies_.size()) s.side.resize(bodies_.size(), PushSplit::no_side);
+  for (const std::uint32_t k : rest_.live) {
+    if (!movable(bodies_[k])) continue;
+    s.side[k] = (along_x ? state_[k].x0 : state_[k].y0) < line ? 0 : 1;
+  }
+  // A row's part: the side of its movable bodies (0 with none), the cut where they differ or
+  // one has no side.
+  auto part = [&](const ShapeRow& r) -> std::uint8_t {
+    std::uint8_t sa = PushSplit::any, sb = PushSplit::any;
+    if (r.a != none && movable(bodies_[r.a])) sa = s.side[r.a];
+    if (movable(bodies_[r.b])) sb = s.side[r.b];
+    if (sa == PushSplit::any) sa = sb;
+    if (sb == PushSplit::any) sb = sa;
+    if (sa == PushSplit::any) return 0;
+    return sa == sb && sa != PushSplit::no_side ? sa : 2;
+  };
+  std::array<std::uint32_t, 3> count{};
+  s.part.resize(rows_.size());
+  for (std::size_t i = 0; i < rows_.size(); ++i) ++count[s.part[i] = part(rows_[i])];
+  const bool worth = count[0] > 0 && count[1] > 0 && 4 * std::size_t{count[2]} <= rows_.size();
+  if (worth) {
+    s.order.resize(rows_.size());
+    std::array<std::uint32_t, 3> next{0, count[0], count[0] + count[1]};
+    for (std::uint32_t i = 0; i < rows_.size(); ++i) s.order[next[s.part[i]]++] = i;
+    s.ends = {count[0], count[0] + count[1]};
+    s.on = true;
+  }
+  for (const std::uint32_t k : rest_.live) s.side[k] = PushSplit::no_side;
+}
+
+bool ShapeWorld::push_rows(std::uint32_t from, std::uint32_t to) {
+  const Pusher pusher{state_.data(), bodies_.data()};
+  bool pushed = false;
+  for (std::uint32_t j = from; j < to; ++j) {
+    const std::uint32_t i = push_split_.order[j];
+    pushed |= pusher.push(rows_[i], solve_[i].normal_mass);
+  }
+  return pushed;
+}
+
+bool ShapeWorld::push_sweep(SecondThread* thread) {
+  if (!push_split_.on) {
+    const Pusher pusher{state_.data(), bodies_.data()};
+    bool pushed = false;
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      pushed |= pusher.push(rows_[i], solve_[i].normal_mass);
+    }
+    return pushed;
+  }
+  // Each half's rows move only that half's bodies: on two threads at once or one after the
+  // other, the same bits. Then the cut's, on this thread.
+  const std::array<std::uint32_t, 2> ends = push_split_.ends;
+  std::array<bool, 2> pushed{};
+  auto half = [&](int h) { pushed[h] = push_rows(h == 0 ? 0 : ends[0], ends[h]); };
+  if (thread != nullptr) {
+    thread->both(half);
+    ++split_pushes_;
+  } else {
+    half(0), half(1);
+  }
+  const bool cut = push_rows(ends[1], static_cast<std::uint32_t>(rows_.size()));
+  return pushed[0] || pushed[1] || cut;
+}
+
+void ShapeWorld::update_turns(SecondThread* thread) {
+  const std::span<const std::uint32_t> live = rest_.live;
+  const std::size_t parts = thread != nullptr ? 2 : 1;
+  auto part = [&](int h) {
+    const auto u = static_cast<std::size_t>(h);
+    for (std::size_t j = live.size() * u / parts; j < live.size() * (u + 1) / parts; ++j) {
+      ShapeState& s = state_[live[j]];
+      if (s.a != turned_at_[live[j]]) s.turn = rot_of(s.a - s.a0), turned_at_[live[j]] = s.a;
+    }
+  };
+  if (thread != nullptr) {
+    thread->both(part);
+  } else {
+    part(0);
+  }
+}
+
+void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, ShapeTally& tally) {
+  // Each point's separation now: its manifold's (at the start poses) changed by how far each
+  // body's copy of the point has moved since along the normal (the lever arm turned by the
+  // body's turn since the start, made again only where its angle has changed since:
+  // turned_at_ holds the angle it was made at, NaN at first, unequal to any; a resting body's
+  // turn, none, is made by rebuild_rest).
+  for (const std::uint32_t k : rest_.live) turned_at_[k] = std::numeric_limits<double>::quiet_NaN();
+  // The joints' errors of this tick's motion first, as constraint impulses (they move the
+  // velocities too), then every error left, the contacts' and the joints', on positions only.
+  // A sweep that moves nothing leaves the poses as they were, and so would every sweep after
+  // it: the sweeps have ended.
+  for (int it = 0; it < tick.position_iterations && !rest_.live_joints.empty(); ++it) {
+    poll_stop();
+    if (!solve_joint_positions(true)) break;
+  }
+  split_push_out();
+  SecondThread* const thread = push_split_.on ? second : nullptr;
+  const SecondThreadRun team(thread);
+  update_turns(thread);
+  for (int it = 0; it < tick.position_iterations; ++it) {
+    poll_stop();
+    const bool pushed = push_sweep(thread);
+    // A sweep that pushes and corrects nothing leaves the poses as they were, and so would
+    // every sweep after it: the push-out has ended.
+    if (!pushed && rest_.live_joints.empty()) break;
+    const bool corrected = !rest_.live_joints.empty() && solve_joint_positions(false);
+    if (!pushed && !corrected) break;
+    update_turns(thread);
+  }
+  const Pusher pusher{state_.data(), bodies_.data()};
+  for (const ShapeRow& r : rows_) tally.deepest = std::max(tally.deepest, -pusher.separation(r));
+  for (const std::uint32_t k : rest_.live) state_[k].q = rot_of(state_[k].a);
+}
+
+}  // namespace fixstep::detail
