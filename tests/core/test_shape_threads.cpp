@@ -3,8 +3,10 @@
 // met by halves is the fault one thread names.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 
 #include "fixstep/core/components.hpp"
@@ -83,12 +85,23 @@ TEST(ShapeThreads, ThePushOutByHalvesStepsToTheSameBitsAsOne) {
     ASSERT_EQ(one->state_hash(), two->state_hash()) << "first differs after tick " << t + 1;
   }
   const detail::ShapeWorld::PushSplit& split = two->shape_world()->push_split();
-  ASSERT_GE(two->shape_world()->rows().size(), detail::ShapeWorld::min_split_push_rows);
+  ASSERT_GE(two->shape_world()->rows().size(), detail::ShapeWorld::min_split_rows);
   EXPECT_TRUE(one->shape_world()->push_split().on);
   EXPECT_TRUE(split.on);
   EXPECT_GT(split.ends[0], 0u);                                 // half 0 has rows,
   EXPECT_GT(split.ends[1], split.ends[0]);                      // so has half 1,
   EXPECT_GT(two->shape_world()->rows().size(), split.ends[1]);  // and the cut
+  // The pushed rows are the tick's manifold points: half 0's, half 1's, the cut's, each in
+  // row order.
+  const std::span<const detail::ShapeRow> rows = two->shape_world()->rows();
+  ASSERT_EQ(split.rows.size(), rows.size());
+  std::array<std::size_t, 3> next{0, split.ends[0], split.ends[1]};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const detail::ShapeWorld::PushRow& p = split.rows[next[split.part[i]]++];
+    ASSERT_TRUE(p.a == rows[i].a && p.b == rows[i].b && p.separation == rows[i].separation &&
+                p.n.x == rows[i].n.x && p.rb.y == rows[i].rb.y)
+        << "row " << i << " of part " << int{split.part[i]};
+  }
   EXPECT_EQ(one->shape_world()->split_pushes(), 0u);
   EXPECT_GT(two->shape_world()->split_pushes(), 30u);  // more than a sweep a tick
   EXPECT_FALSE(two->fault().has_value());

@@ -31,16 +31,16 @@ struct ShapeWorld::Pusher {
     const Vec2 now = Vec2{s.x - s.x0, s.y - s.y0} + rotate(s.turn, r);
     return now - r;
   }
-  [[nodiscard]] double separation(const ShapeRow& r) const {
+  [[nodiscard]] double separation(const PushRow& r) const {
     Vec2 d = moved(r.b, r.rb);
     if (r.a != none) d = d - moved(r.a, r.ra);
     return r.separation + dot(d, r.n);
   }
   /// Pushes the row's bodies apart by its share of the overlap beyond the slop; whether it did.
-  bool push(const ShapeRow& r, double normal_mass) const {
+  bool push(const PushRow& r) const {
     const double c = std::clamp(push_fraction * (separation(r) + slop), -max_push, 0.0);
-    if (c == 0.0 || normal_mass == 0.0) return false;
-    const Vec2 p = (-c * normal_mass) * r.n;
+    if (c == 0.0 || r.normal_mass == 0.0) return false;
+    const Vec2 p = (-c * r.normal_mass) * r.n;
     if (r.a != none && movable(bodies[r.a])) {
       const ShapedBody& b = bodies[r.a];
       ShapeState& s = state[r.a];
@@ -58,7 +58,7 @@ struct ShapeWorld::Pusher {
 void ShapeWorld::split_push_out() {
   PushSplit& s = push_split_;
   s.on = false;
-  if (rows_.size() < min_split_push_rows) return;
+  if (rows_.size() < min_split_rows) return;
   // The live movable bodies' start positions: their extent on each axis and their mean.
   constexpr double inf = std::numeric_limits<double>::infinity();
   double lo_x = inf, hi_x = -inf, lo_y = inf, hi_y = -inf, sum_x = 0.0, sum_y = 0.0;
@@ -92,39 +92,53 @@ void ShapeWorld::split_push_out() {
   std::array<std::uint32_t, 3> count{};
   s.part.resize(rows_.size());
   for (std::size_t i = 0; i < rows_.size(); ++i) ++count[s.part[i] = part(rows_[i])];
-  const bool worth = count[0] > 0 && count[1] > 0 && 4 * std::size_t{count[2]} <= rows_.size();
-  if (worth) {
-    s.order.resize(rows_.size());
-    std::array<std::uint32_t, 3> next{0, count[0], count[0] + count[1]};
-    for (std::uint32_t i = 0; i < rows_.size(); ++i) s.order[next[s.part[i]]++] = i;
+  for (const std::uint32_t k : rest_.live) s.side[k] = PushSplit::no_side;
+  if (count[0] > 0 && count[1] > 0 && 4 * std::size_t{count[2]} <= rows_.size()) {
     s.ends = {count[0], count[0] + count[1]};
     s.on = true;
   }
-  for (const std::uint32_t k : rest_.live) s.side[k] = PushSplit::no_side;
 }
 
-bool ShapeWorld::push_rows(std::uint32_t from, std::uint32_t to) {
-  const Pusher pusher{state_.data(), bodies_.data()};
-  bool pushed = false;
-  for (std::uint32_t j = from; j < to; ++j) {
-    const std::uint32_t i = push_split_.order[j];
-    pushed |= pusher.push(rows_[i], solve_[i].normal_mass);
+void ShapeWorld::make_push_rows(SecondThread* thread) {
+  PushSplit& s = push_split_;
+  s.rows.resize(rows_.size());
+  auto copy = [&](std::size_t i, std::size_t j) {
+    const ShapeRow& r = rows_[i];
+    s.rows[j] = {r.a, r.b, r.n, r.ra, r.rb, r.separation, solve_[i].normal_mass};
+  };
+  if (!s.on) {
+    for (std::size_t i = 0; i < rows_.size(); ++i) copy(i, i);
+    return;
   }
+  // Half 0's rows, then half 1's, then the cut's, each in row order: half 0's and the cut's
+  // on this thread, half 1's on `thread` at once when given.
+  auto fill = [&](int h) {
+    std::array<std::size_t, 3> next{0, s.ends[0], s.ends[1]};
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      const std::uint8_t part = s.part[i];
+      if ((part == 1) == (h == 1)) copy(i, next[part]++);
+    }
+  };
+  if (thread != nullptr) {
+    thread->both(fill);
+  } else {
+    fill(0), fill(1);
+  }
+}
+
+bool ShapeWorld::push_rows(std::size_t from, std::size_t to) {
+  const Pusher pusher{state_.data(), bodies_.data()};
+  const PushRow* const rows = push_split_.rows.data();
+  bool pushed = false;
+  for (std::size_t j = from; j < to; ++j) pushed |= pusher.push(rows[j]);
   return pushed;
 }
 
 bool ShapeWorld::push_sweep(SecondThread* thread) {
-  if (!push_split_.on) {
-    const Pusher pusher{state_.data(), bodies_.data()};
-    bool pushed = false;
-    for (std::size_t i = 0; i < rows_.size(); ++i) {
-      pushed |= pusher.push(rows_[i], solve_[i].normal_mass);
-    }
-    return pushed;
-  }
+  if (!push_split_.on) return push_rows(0, rows_.size());
   // Each half's rows move only that half's bodies: on two threads at once or one after the
   // other, the same bits. Then the cut's, on this thread.
-  const std::array<std::uint32_t, 2> ends = push_split_.ends;
+  const std::array<std::size_t, 2> ends = push_split_.ends;
   std::array<bool, 2> pushed{};
   auto half = [&](int h) { pushed[h] = push_rows(h == 0 ? 0 : ends[0], ends[h]); };
   if (thread != nullptr) {
@@ -133,7 +147,7 @@ bool ShapeWorld::push_sweep(SecondThread* thread) {
   } else {
     half(0), half(1);
   }
-  const bool cut = push_rows(ends[1], static_cast<std::uint32_t>(rows_.size()));
+  const bool cut = push_rows(ends[1], rows_.size());
   return pushed[0] || pushed[1] || cut;
 }
 
@@ -172,6 +186,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
   split_push_out();
   SecondThread* const thread = push_split_.on ? second : nullptr;
   const SecondThreadRun team(thread);
+  make_push_rows(thread);
   update_turns(thread);
   for (int it = 0; it < tick.position_iterations; ++it) {
     poll_stop();
@@ -184,7 +199,9 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
     update_turns(thread);
   }
   const Pusher pusher{state_.data(), bodies_.data()};
-  for (const ShapeRow& r : rows_) tally.deepest = std::max(tally.deepest, -pusher.separation(r));
+  for (const PushRow& r : push_split_.rows) {
+    tally.deepest = std::max(tally.deepest, -pusher.separation(r));
+  }
   for (const std::uint32_t k : rest_.live) state_[k].q = rot_of(state_[k].a);
 }
 

@@ -85,24 +85,34 @@ static_assert(sizeof(ShapeSolveRow) == 192, "make_solve_row assigns every field:
   h.friction = r.friction, h.ln = 0.0, h.lt = 0.0;
 }
 
-void ShapeWorld::prepare_rows(const ShapeTick& tick) {
+void ShapeWorld::prepare_rows(const ShapeTick& tick, SecondThread* thread) {
   dt_ = tick.dt;
   // The live bodies' (velocity_ has a slot for each body and the zero slot; a resting
   // body's holds its velocity, none, from rebuild_rest on).
   for (const std::uint32_t k : rest_.live) velocity_[k] = {state_[k].vx, state_[k].vy, state_[k].w};
   velocity_[zero_slot()] = {};
   solve_.resize(rows_.size());
-  for (std::size_t i = 0; i < rows_.size(); ++i) {
-    ShapeRow& r = rows_[i];
-    ShapeSolveRow& h = solve_[i];
-    make_solve_row(r, h);
-    r.rolling_mass = r.rolling > 0.0 && h.ia + h.ib > 0.0 ? 1.0 / (h.ia + h.ib) : 0.0;
-    r.lr = 0.0;
-    // The normal velocity the row asks for: a gap may close within the tick, a touching point
-    // stops approaching (the bounces are the impact pass's).
-    r.approach = std::max(-normal_velocity(h), 0.0);
-    h.target = r.separation > 0.0 ? -r.separation / tick.dt : 0.0;
-    r.bn = 0.0, r.bt = 0.0;
+  // Each row's own: by halves of the rows on `thread` in a large world.
+  const std::size_t parts = thread != nullptr && rows_.size() >= min_split_rows ? 2 : 1;
+  auto make = [&](int part) {
+    const auto p = static_cast<std::size_t>(part);
+    for (std::size_t i = rows_.size() * p / parts; i < rows_.size() * (p + 1) / parts; ++i) {
+      ShapeRow& r = rows_[i];
+      ShapeSolveRow& h = solve_[i];
+      make_solve_row(r, h);
+      r.rolling_mass = r.rolling > 0.0 && h.ia + h.ib > 0.0 ? 1.0 / (h.ia + h.ib) : 0.0;
+      r.lr = 0.0;
+      // The normal velocity the row asks for: a gap may close within the tick, a touching
+      // point stops approaching (the bounces are the impact pass's).
+      r.approach = std::max(-normal_velocity(h), 0.0);
+      h.target = r.separation > 0.0 ? -r.separation / tick.dt : 0.0;
+      r.bn = 0.0, r.bt = 0.0;
+    }
+  };
+  if (parts == 2) {
+    thread->both(make);
+  } else {
+    make(0);
   }
   prepare_blocks();
   for (int pass = 0; pass < max_impact_passes && impact_pass(tick); ++pass) {

@@ -281,7 +281,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   collect(tick, thread);
   tally.pairs = candidates_.size();
   tally.points = rows_.size();
-  prepare_rows(tick);
+  prepare_rows(tick, thread);
   joint_thread_ = second;  // the joints' passes by halves where prepare_joints splits them
   prepare_joints();
   const SecondThreadRun joints_team(joints_halved_ ? joint_thread_ : nullptr);

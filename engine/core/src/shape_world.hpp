@@ -88,22 +88,31 @@ class ShapeWorld {
   /// The joints (broken ones too) from which a tick with two threads sweeps them by halves
   /// (joint_halves.hpp), where they make two.
   static constexpr std::size_t min_split_joints = 256;
+  /// What a push-out sweep reads of a manifold point: its ShapeRow's bodies, normal, lever
+  /// arms and separation, and its velocity row's normal mass, packed so that a sweep streams
+  /// a fraction of the bytes of the two rows.
+  struct PushRow {
+    std::uint32_t a = 0, b = 0;
+    Vec2 n{}, ra{}, rb{};
+    double separation = 0.0, normal_mass = 0.0;
+  };
   /// The push-out's rows by halves: each live movable body on one side of a line across the
   /// wider extent of their start positions, at their mean; a row whose movable bodies lie on
-  /// one side goes to that half, the rest to the cut. From min_split_push_rows rows, when
+  /// one side goes to that half, the rest to the cut. From min_split_rows rows, when
   /// both halves have rows and the cut holds a quarter of them or fewer, each sweep pushes
   /// half 0's rows and half 1's (each in row order: on two threads at once, or one after the
   /// other), then the cut's: the same bits on one thread and two. Else the rows in row order.
   struct PushSplit {
     static constexpr std::uint8_t any = 3, no_side = 2;
-    std::vector<std::uint8_t> side;       ///< per body: 0, 1, or no_side (not live this tick)
-    std::vector<std::uint8_t> part;       ///< per row: 0, 1 (its half) or 2 (the cut)
-    std::vector<std::uint32_t> order;     ///< rows_ indices: half 0's, half 1's, the cut's
-    std::array<std::uint32_t, 2> ends{};  ///< where half 0's and half 1's end in order
+    std::vector<std::uint8_t> side;     ///< per body: 0, 1, or no_side (not live this tick)
+    std::vector<std::uint8_t> part;     ///< per row: 0, 1 (its half) or 2 (the cut)
+    std::vector<PushRow> rows;          ///< the tick's: half 0's, half 1's, the cut's
+    std::array<std::size_t, 2> ends{};  ///< where half 0's and half 1's end in rows
     bool on = false;
   };
-  /// The manifold points from which the push-out is split (PushSplit).
-  static constexpr std::size_t min_split_push_rows = 2048;
+  /// The manifold points from which the push-out is split (PushSplit) and, with two
+  /// threads, the rows are made by halves.
+  static constexpr std::size_t min_split_rows = 2048;
 
   std::vector<ShapedBody> bodies_;
   std::vector<ShapeEntry> shapes_;
@@ -326,7 +335,9 @@ class ShapeWorld {
   void add_manifold(std::vector<ShapeRow>& rows, const Manifold& m, std::uint32_t a,
                     std::uint32_t b, double friction, double restitution, double rolling,
                     std::uint64_t pair);
-  void prepare_rows(const ShapeTick& tick);
+  /// The velocity rows from the manifold points (each row's own by halves on `thread` from
+  /// min_split_rows), the impact pass, then the warm start.
+  void prepare_rows(const ShapeTick& tick, SecondThread* thread);
   /// The velocities of a row's two bodies (A's zero for a plane or segment), as a sweep
   /// carries them through a manifold's rows; store() writes them back.
   struct Motion2 {
@@ -492,8 +503,10 @@ class ShapeWorld {
   PushSplit push_split_;
   std::uint64_t split_pushes_ = 0;
   void split_push_out();
-  /// Rows push_split_.order[from, to) pushed in that order; whether any pushed.
-  bool push_rows(std::uint32_t from, std::uint32_t to);
+  /// push_split_.rows from rows_ and solve_: in row order, or by halves where split.
+  void make_push_rows(SecondThread* thread);
+  /// push_split_.rows[from, to) pushed in that order; whether any pushed.
+  bool push_rows(std::size_t from, std::size_t to);
   /// One sweep of the push-out (by halves on `thread` when given); whether any row pushed.
   bool push_sweep(SecondThread* thread);
   /// Each live body's turn since the start made again where its angle changed (by halves of
