@@ -11,10 +11,10 @@ std::size_t ShapeWorld::bytes() const {
                     energy_start_, dissipated_start_, touched_, wake_, boxes_, dynamic_, pairs_,
                     order_, swept_, first_, tags_, candidates_, unit_planes_, sensor_candidates_,
                     sensed_, rows_, solve_, velocity_, turned_at_, push_split_.side,
-                    push_split_.rows, disabled_, row_keys_, near_segments_, near_statics_,
-                    next_warm_, margin_, half_rows_, half_disabled_, next_kept_, half_kept_,
-                    body_colors_, colored_, by_color_, block_lanes_, point_lanes_, units_,
-                    color_runs_, turned_, fresh_arms_, fast_) +
+                    push_split_.rows, push_split_.moved_at, disabled_, row_keys_, near_segments_,
+                    near_statics_, next_warm_, margin_, half_rows_, half_disabled_, next_kept_,
+                    half_kept_, body_colors_, colored_, by_color_, block_lanes_, point_lanes_,
+                    units_, color_runs_, turned_, fresh_arms_, fast_) +
          tree_.bytes() + halves_.bytes() + joint_bodies_.bytes();
 }
 

@@ -25,6 +25,11 @@ constexpr double max_push = 0.2;
 struct ShapeWorld::Pusher {
   ShapeState* state;
   const ShapedBody* bodies;
+  /// Per body: the evaluation (PushRow::idle's clock) that last moved it, 0 for none.
+  std::uint64_t* moved_at;
+  /// Whether rows are marked idle: only where nothing but the rows moves the bodies (no joint
+  /// corrections between sweeps).
+  bool track;
 
   [[nodiscard]] Vec2 moved(std::uint32_t body, Vec2 r) const {
     const ShapeState& s = state[body];
@@ -36,8 +41,9 @@ struct ShapeWorld::Pusher {
     if (r.a != none) d = d - moved(r.a, r.ra);
     return r.separation + dot(d, r.n);
   }
-  /// Pushes the row's bodies apart by its share of the overlap beyond the slop; whether it did.
-  bool push(const PushRow& r) const {
+  /// Pushes the row's bodies apart by its share of the overlap beyond the slop (evaluation
+  /// `at`); whether it did.
+  bool push(const PushRow& r, std::uint64_t at) const {
     const double c = std::clamp(push_fraction * (separation(r) + slop), -max_push, 0.0);
     if (c == 0.0 || r.normal_mass == 0.0) return false;
     const Vec2 p = (-c * r.normal_mass) * r.n;
@@ -45,13 +51,30 @@ struct ShapeWorld::Pusher {
       const ShapedBody& b = bodies[r.a];
       ShapeState& s = state[r.a];
       s.x -= b.inv_mass * p.x, s.y -= b.inv_mass * p.y, s.a -= b.inv_inertia * cross(r.ra, p);
+      moved_at[r.a] = at;
     }
     if (movable(bodies[r.b])) {
       const ShapedBody& b = bodies[r.b];
       ShapeState& s = state[r.b];
       s.x += b.inv_mass * p.x, s.y += b.inv_mass * p.y, s.a += b.inv_inertia * cross(r.rb, p);
+      moved_at[r.b] = at;
     }
     return true;
+  }
+  /// Whether the row found nothing to push when last evaluated and neither body has moved
+  /// since: its separation, and so its push of zero, would be the same.
+  [[nodiscard]] bool unchanged(const PushRow& r) const {
+    return r.idle != 0 && moved_at[r.b] < r.idle && (r.a == none || moved_at[r.a] < r.idle);
+  }
+  /// The row's push as evaluation `at`, marking it idle where it pushed nothing; whether it
+  /// pushed.
+  bool visit(PushRow& r, std::uint64_t at) const {
+    if (push(r, at)) {
+      r.idle = 0;
+      return true;
+    }
+    if (track) r.idle = at;
+    return false;
   }
 };
 
@@ -102,6 +125,7 @@ void ShapeWorld::split_push_out() {
 void ShapeWorld::make_push_rows(SecondThread* thread) {
   PushSplit& s = push_split_;
   s.rows.resize(rows_.size());
+  if (s.moved_at.size() < bodies_.size()) s.moved_at.resize(bodies_.size(), 0);
   auto copy = [&](std::size_t i, std::size_t j) {
     const ShapeRow& r = rows_[i];
     s.rows[j] = {r.a, r.b, r.n, r.ra, r.rb, r.separation, solve_[i].normal_mass};
@@ -126,28 +150,41 @@ void ShapeWorld::make_push_rows(SecondThread* thread) {
   }
 }
 
-bool ShapeWorld::push_rows(std::size_t from, std::size_t to) {
-  const Pusher pusher{state_.data(), bodies_.data()};
-  const PushRow* const rows = push_split_.rows.data();
+bool ShapeWorld::push_rows(std::size_t from, std::size_t to, std::uint64_t first, int part) {
+  PushSplit& s = push_split_;
+  const bool track = s.skip_idle && rest_.live_joints.empty();
+  const Pusher pusher{state_.data(), bodies_.data(), s.moved_at.data(), track};
+  PushRow* const rows = s.rows.data();
   bool pushed = false;
-  for (std::size_t j = from; j < to; ++j) pushed |= pusher.push(rows[j]);
+  std::uint64_t skipped = 0;
+  for (std::size_t j = from; j < to; ++j) {
+    if (pusher.unchanged(rows[j])) {
+      ++skipped;
+    } else {
+      pushed |= pusher.visit(rows[j], first + j);
+    }
+  }
+  s.skipped[static_cast<std::size_t>(part)] += skipped;
   return pushed;
 }
 
 bool ShapeWorld::push_sweep(SecondThread* thread) {
-  if (!push_split_.on) return push_rows(0, rows_.size());
+  // This sweep's evaluations are first + j for row j: after every earlier one.
+  const std::uint64_t first = push_split_.clock + 1;
+  push_split_.clock += rows_.size();
+  if (!push_split_.on) return push_rows(0, rows_.size(), first, 0);
   // Each half's rows move only that half's bodies: on two threads at once or one after the
   // other, the same bits. Then the cut's, on this thread.
   const std::array<std::size_t, 2> ends = push_split_.ends;
   std::array<bool, 2> pushed{};
-  auto half = [&](int h) { pushed[h] = push_rows(h == 0 ? 0 : ends[0], ends[h]); };
+  auto half = [&](int h) { pushed[h] = push_rows(h == 0 ? 0 : ends[0], ends[h], first, h); };
   if (thread != nullptr) {
     thread->both(half);
     ++split_pushes_;
   } else {
     half(0), half(1);
   }
-  const bool cut = push_rows(ends[1], rows_.size());
+  const bool cut = push_rows(ends[1], rows_.size(), first, 2);
   return pushed[0] || pushed[1] || cut;
 }
 
@@ -198,7 +235,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
     if (!pushed && !corrected) break;
     update_turns(thread);
   }
-  const Pusher pusher{state_.data(), bodies_.data()};
+  const Pusher pusher{state_.data(), bodies_.data(), nullptr, false};
   for (const PushRow& r : push_split_.rows) {
     tally.deepest = std::max(tally.deepest, -pusher.separation(r));
   }

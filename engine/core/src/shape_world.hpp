@@ -95,6 +95,9 @@ class ShapeWorld {
     std::uint32_t a = 0, b = 0;
     Vec2 n{}, ra{}, rb{};
     double separation = 0.0, normal_mass = 0.0;
+    /// The evaluation at which the row last found nothing to push, 0 when it pushed (or was
+    /// not yet evaluated): while neither body has moved since, a sweep skips it.
+    std::uint64_t idle = 0;
   };
   /// The push-out's rows by halves: each live movable body on one side of a line across the
   /// wider extent of their start positions, at their mean; a row whose movable bodies lie on
@@ -108,6 +111,14 @@ class ShapeWorld {
     std::vector<std::uint8_t> part;     ///< per row: 0, 1 (its half) or 2 (the cut)
     std::vector<PushRow> rows;          ///< the tick's: half 0's, half 1's, the cut's
     std::array<std::size_t, 2> ends{};  ///< where half 0's and half 1's end in rows
+    /// The evaluations of rows counted over every sweep of every tick (row j of a sweep is its
+    /// first + j), and per body the one that last moved it (PushRow::idle).
+    std::uint64_t clock = 0;
+    std::vector<std::uint64_t> moved_at;
+    /// Whether idle rows are skipped (the same bits either way), and the evaluations skipped
+    /// so far in half 0, half 1 and the cut (all in half 0 where not split).
+    bool skip_idle = true;
+    std::array<std::uint64_t, 3> skipped{};
     bool on = false;
   };
   /// The manifold points from which the push-out is split (PushSplit) and, with two
@@ -161,6 +172,9 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
   /// The last tick's push-out split.
   [[nodiscard]] const PushSplit& push_split() const { return push_split_; }
+  /// Whether the push-out skips rows that would push nothing (PushRow::idle): on unless
+  /// turned off to compare.
+  void skip_idle_rows(bool on) { push_split_.skip_idle = on; }
   /// For the tests: the push-out's sweeps run by halves on two threads so far.
   [[nodiscard]] std::uint64_t split_pushes() const { return split_pushes_; }
   /// Stop requests polled by the sweeps so far: each velocity and position sweep polls once.
@@ -505,8 +519,9 @@ class ShapeWorld {
   void split_push_out();
   /// push_split_.rows from rows_ and solve_: in row order, or by halves where split.
   void make_push_rows(SecondThread* thread);
-  /// push_split_.rows[from, to) pushed in that order; whether any pushed.
-  bool push_rows(std::size_t from, std::size_t to);
+  /// push_split_.rows[from, to) (of `part`: a half or the cut) pushed in that order, row j as
+  /// evaluation first + j; whether any pushed.
+  bool push_rows(std::size_t from, std::size_t to, std::uint64_t first, int part);
   /// One sweep of the push-out (by halves on `thread` when given); whether any row pushed.
   bool push_sweep(SecondThread* thread);
   /// Each live body's turn since the start made again where its angle changed (by halves of

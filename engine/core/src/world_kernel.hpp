@@ -295,8 +295,10 @@ class WorldKernel {
   [[nodiscard]] std::span<const JointBreak> joints_broken() const { return joints_broken_; }
   /// Throws std::invalid_argument naming `who` when World::step would not apply `in`.
   void check_joint_input(const JointInput& in, const std::string& who) const;
-  /// The shape contacts (null without shapes): for tests that read the solver's rows.
+  /// The shape contacts (null without shapes): for tests that read the solver's rows or set
+  /// its switches (ShapeWorld::skip_idle_rows).
   [[nodiscard]] const ShapeWorld* shape_world() const { return shape_world_.get(); }
+  [[nodiscard]] ShapeWorld* shape_world() { return shape_world_.get(); }
   /// The discs' contacts (null in a world without them), for the tests.
   [[nodiscard]] const DiscContacts<Real>* disc_contacts() const { return discs_.get(); }
   [[nodiscard]] std::uint64_t user_data(Entity e) const { return user_data_[index_of(e)]; }
