@@ -10,8 +10,8 @@
 #include "fixstep/core/components.hpp"
 #include "fixstep/core/joint.hpp"
 #include "fixstep/core/world_def.hpp"
-#include "fixstep/core/world_settings.hpp"
 #include "shape_exact.hpp"
+#include "shape_walls.hpp"
 #include "shape_world.hpp"
 #include "world_kernel.hpp"
 
@@ -24,10 +24,7 @@ using shape_exact::box_body;
 /// static shelf among them: rows against planes (A is none), against a static body and between
 /// two boxes, which push for a while and then rest.
 std::unique_ptr<detail::WorldKernel<double>> tumbling_boxes(int threads) {
-  WorldSettings settings = shape_exact::shape_settings(0.6);
-  settings.threads = threads;
-  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
-  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  auto w = shape_walls::floor_world(threads);
   w->add_plane(PlaneDef{.normal = {1.0, 0.0}, .offset = -3.0, .friction = 0.6});
   w->add_plane(PlaneDef{.normal = {-1.0, 0.0}, .offset = -3.0, .friction = 0.6});
   for (int i = 0; i < 150; ++i) {
@@ -42,23 +39,10 @@ std::unique_ptr<detail::WorldKernel<double>> tumbling_boxes(int threads) {
   return w;
 }
 
-/// A wall of 60 columns of 36 boxes of 1 m: the lower 18 rows pressed 1 cm into the row below
-/// and 5 mm into their neighbours (past the push-out's split), the upper 18 touching their
-/// neighbours without overlap. The push-out pushes from the bottom up while the upper rows'
-/// points, pushing nothing, wait.
+/// The wall of shape_walls::box_wall with its lower 18 rows pressed (past the push-out's split):
+/// the push-out pushes from the bottom up while the upper rows' points, pushing nothing, wait.
 std::unique_ptr<detail::WorldKernel<double>> half_pressed_wall(int threads) {
-  WorldSettings settings = shape_exact::shape_settings(0.6);
-  settings.threads = threads;
-  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
-  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
-  for (int c = 0; c < 60; ++c) {
-    for (int r = 0; r < 36; ++r) {
-      const bool pressed = r < 18;
-      const Vec2 at{(pressed ? 0.995 : 1.0) * c, pressed ? 0.49 + 0.99 * r : 17.32 + (r - 17)};
-      w->create_body(box_body(0.5, 0.5, at, 0.0));
-    }
-  }
-  return w;
+  return shape_walls::box_wall(threads, 18);
 }
 
 /// The tumbling boxes with a chain of 10 links of 0.5 m hinged end to end above them, the first

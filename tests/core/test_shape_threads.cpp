@@ -17,6 +17,7 @@
 #include "fixstep/core/world_settings.hpp"
 #include "same_fault.hpp"
 #include "shape_exact.hpp"
+#include "shape_walls.hpp"
 #include "shape_world.hpp"
 #include "world_kernel.hpp"
 
@@ -29,10 +30,7 @@ using shape_exact::box_body;
 /// split of the broadphase and the manifolds): every box's manifolds exist from the first
 /// tick, two or three colours of hundreds of manifolds each.
 std::unique_ptr<detail::WorldKernel<double>> columns(int threads) {
-  WorldSettings settings = shape_exact::shape_settings(0.6);
-  settings.threads = threads;
-  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
-  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  auto w = shape_walls::floor_world(threads);
   for (int c = 0; c < 60; ++c) {
     for (int r = 0; r < 36; ++r) {
       w->create_body(box_body(0.5, 0.5, {1.05 * c + 0.01 * (r % 3), 0.5 + 1.0 * r}, 0.0));
@@ -59,21 +57,11 @@ TEST(ShapeThreads, TwoThreadsStepAPileToTheSameBitsAsOne) {
   EXPECT_FALSE(two->fault().has_value());
 }
 
-/// A wall of 60 columns of 36 boxes of 1 m, each box 1 cm into the one below and 5 mm into its
-/// neighbours on each side (4000 and more manifold points, past the push-out's split): the
-/// push-out pushes in every sweep of the first ticks, on both sides of the line at the mean x
-/// (between columns 29 and 30) and across it.
+/// The wall of shape_walls::box_wall with every row pressed: the push-out pushes in every sweep
+/// of the first ticks, on both sides of the line at the mean x (between columns 29 and 30) and
+/// across it.
 std::unique_ptr<detail::WorldKernel<double>> pressed_wall(int threads) {
-  WorldSettings settings = shape_exact::shape_settings(0.6);
-  settings.threads = threads;
-  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
-  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
-  for (int c = 0; c < 60; ++c) {
-    for (int r = 0; r < 36; ++r) {
-      w->create_body(box_body(0.5, 0.5, {0.995 * c, 0.49 + 0.99 * r}, 0.0));
-    }
-  }
-  return w;
+  return shape_walls::box_wall(threads, 36);
 }
 
 TEST(ShapeThreads, ThePushOutByHalvesStepsToTheSameBitsAsOne) {
@@ -111,10 +99,7 @@ TEST(ShapeThreads, ThePushOutByHalvesStepsToTheSameBitsAsOne) {
 /// colours, so most of them share the overflow colour, which moves the plank in every one of
 /// them and so is solved one at a time, in order, on one thread.
 std::unique_ptr<detail::WorldKernel<double>> loaded_plank(int threads) {
-  WorldSettings settings = shape_exact::shape_settings(0.6);
-  settings.threads = threads;
-  auto w = std::make_unique<detail::WorldKernel<double>>(settings);
-  w->add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
+  auto w = shape_walls::floor_world(threads);
   w->create_body(box_body(200.0, 0.25, {0.0, 0.25}, 0.0, 500.0));
   for (int i = 0; i < 360; ++i) {
     w->create_body(box_body(0.25, 0.25, {-198.0 + 1.1 * i, 0.75 + 0.002 * (i % 5)}, 0.0));
