@@ -189,20 +189,10 @@ bool ShapeWorld::push_sweep(SecondThread* thread) {
 }
 
 void ShapeWorld::update_turns(SecondThread* thread) {
-  const std::span<const std::uint32_t> live = rest_.live;
-  const std::size_t parts = thread != nullptr ? 2 : 1;
-  auto part = [&](int h) {
-    const auto u = static_cast<std::size_t>(h);
-    for (std::size_t j = live.size() * u / parts; j < live.size() * (u + 1) / parts; ++j) {
-      ShapeState& s = state_[live[j]];
-      if (s.a != turned_at_[live[j]]) s.turn = rot_of(s.a - s.a0), turned_at_[live[j]] = s.a;
-    }
-  };
-  if (thread != nullptr) {
-    thread->both(part);
-  } else {
-    part(0);
-  }
+  each_live(thread, [&](std::uint32_t k) {
+    ShapeState& s = state_[k];
+    if (s.a != turned_at_[k]) s.turn = rot_of(s.a - s.a0), turned_at_[k] = s.a;
+  });
 }
 
 void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, ShapeTally& tally) {
@@ -239,7 +229,9 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
   for (const PushRow& r : push_split_.rows) {
     tally.deepest = std::max(tally.deepest, -pusher.separation(r));
   }
-  for (const std::uint32_t k : rest_.live) state_[k].q = rot_of(state_[k].a);
+  // (By halves where the shape phase's run holds the second thread: the same rotations.)
+  each_live(halved_ ? second : nullptr,
+            [&](std::uint32_t k) { state_[k].q = rot_of(state_[k].a); });
 }
 
 }  // namespace fixstep::detail

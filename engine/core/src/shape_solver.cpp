@@ -2,6 +2,7 @@
 // pass (bounces), then sequential impulses with warm starting on the manifold points (the
 // push-out of the overlap left, on positions only: shape_push_out.cpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "shape_rows.hpp"
@@ -87,16 +88,24 @@ static_assert(sizeof(ShapeSolveRow) == 192, "make_solve_row assigns every field:
 
 void ShapeWorld::prepare_rows(const ShapeTick& tick, SecondThread* thread) {
   dt_ = tick.dt;
-  // The live bodies' (velocity_ has a slot for each body and the zero slot; a resting
-  // body's holds its velocity, none, from rebuild_rest on).
-  for (const std::uint32_t k : rest_.live) velocity_[k] = {state_[k].vx, state_[k].vy, state_[k].w};
+  // By halves on `thread` in a large world: the live bodies' velocities (velocity_ has a slot
+  // for each body and the zero slot; a resting body's holds its velocity, none, from
+  // rebuild_rest on), then each row's own and each manifold's block, the halves cut between
+  // two manifolds.
+  const std::size_t parts = thread != nullptr && rows_.size() >= min_split_rows ? 2 : 1;
+  each_live(parts == 2 ? thread : nullptr, [&](std::uint32_t k) {
+    velocity_[k] = {state_[k].vx, state_[k].vy, state_[k].w};
+  });
   velocity_[zero_slot()] = {};
   solve_.resize(rows_.size());
-  // Each row's own: by halves of the rows on `thread` in a large world.
-  const std::size_t parts = thread != nullptr && rows_.size() >= min_split_rows ? 2 : 1;
+  std::size_t cut = rows_.size() / 2;
+  if (cut > 0 && pairs_next(cut - 1)) ++cut;  // a manifold has at most two rows
+  const std::array<std::size_t, 3> ends{0, parts == 2 ? cut : rows_.size(), rows_.size()};
+  std::array<bool, 2> bounces{};  // whether each part has a row with restitution
   auto make = [&](int part) {
     const auto p = static_cast<std::size_t>(part);
-    for (std::size_t i = rows_.size() * p / parts; i < rows_.size() * (p + 1) / parts; ++i) {
+    bool any = false;
+    for (std::size_t i = ends[p]; i < ends[p + 1]; ++i) {
       ShapeRow& r = rows_[i];
       ShapeSolveRow& h = solve_[i];
       make_solve_row(r, h);
@@ -107,15 +116,19 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick, SecondThread* thread) {
       r.approach = std::max(-normal_velocity(h), 0.0);
       h.target = r.separation > 0.0 ? -r.separation / tick.dt : 0.0;
       r.bn = 0.0, r.bt = 0.0;
+      any = any || r.restitution > 0.0;
     }
+    prepare_blocks(ends[p], ends[p + 1]);
+    bounces[p] = any;
   };
   if (parts == 2) {
     thread->both(make);
   } else {
     make(0);
   }
-  prepare_blocks();
-  for (int pass = 0; pass < max_impact_passes && impact_pass(tick); ++pass) {
+  // (Without restitution no point bounces: the pass would find none.)
+  for (int pass = 0; pass < max_impact_passes && (bounces[0] || bounces[1]) && impact_pass(tick);
+       ++pass) {
   }
   // Warm starting, once every row's target is set from the free velocities. The rows come
   // mostly in pair order: each search starts where the last one ended, and finds the point
@@ -219,8 +232,8 @@ bool ShapeWorld::bounce_block(std::size_t i, const ShapeTick& tick) {
   return true;
 }
 
-void ShapeWorld::prepare_blocks() {
-  for (std::size_t i = 0; i + 1 < rows_.size(); ++i) {
+void ShapeWorld::prepare_blocks(std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i + 1 < end; ++i) {
     if (!pairs_next(i)) continue;
     const ShapeRow& r1 = rows_[i];
     const ShapeRow& r2 = rows_[i + 1];
@@ -239,7 +252,7 @@ void ShapeWorld::prepare_blocks() {
     }
     ++i;
   }
-  for (std::size_t i = 0; i < rows_.size(); ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     if (rows_[i].rolling_mass > 0.0) solve_[i].flags |= ShapeSolveRow::rolls;
   }
 }

@@ -251,20 +251,21 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   joints_ = tick.joints, unpaired_ = tick.unpaired;
   visited_ = !rest_.stale ? rest_.live.size() : rest_.whole ? bodies_.size() : visit_few().size();
   joints_visited_ = 0;
-  if (rest_.stale) {
-    rebuild_rest(tick.dt);
-  } else {
-    for (const std::uint32_t i : rest_.live) state_[i].q0 = rot_of(state_[i].a0);
-  }
   // The second thread, with two: the discs' where its run is open, else the shape world's
-  // own. A large world makes its broadphase and manifolds by halves on it (the run keeps the
-  // worker spinning through the shape phase); the velocity sweeps split their large colours.
+  // own. A large world makes its rotations, broadphase and manifolds by halves on it (the run
+  // keeps the worker spinning through the shape phase); the velocity sweeps split their large
+  // colours.
   SecondThread* const second = tick.threads < 2         ? nullptr
                                : tick.thread != nullptr ? tick.thread
                                                         : &second_;
   SecondThread* const thread = shapes_.size() >= min_split_shapes ? second : nullptr;
   const SecondThreadRun team(thread);
   halved_ = thread != nullptr;
+  if (rest_.stale) {
+    rebuild_rest(tick.dt);
+  } else {
+    each_live(thread, [&](std::uint32_t i) { state_[i].q0 = rot_of(state_[i].a0); });
+  }
   bool paired = broadphase(tick.dt, tally, thread);
   if (paired && !wake_.empty() && tick.wake) {  // sleepers woken: paired again as they now are
     tick.wake(tick.wake_context);

@@ -443,6 +443,24 @@ class ShapeWorld {
   [[nodiscard]] std::uint32_t zero_slot() const {
     return static_cast<std::uint32_t>(state_.size());
   }
+  /// f(k) for each live body k, by halves of the live list on `thread` when given: f may touch
+  /// only body k's own state.
+  template <class F>
+  void each_live(SecondThread* thread, F&& f) {
+    const std::span<const std::uint32_t> live = rest_.live;
+    const std::size_t parts = thread != nullptr ? 2 : 1;
+    auto part = [&](int h) {
+      const auto u = static_cast<std::size_t>(h);
+      for (std::size_t j = live.size() * u / parts; j < live.size() * (u + 1) / parts; ++j) {
+        f(live[j]);
+      }
+    };
+    if (thread != nullptr) {
+      thread->both(part);
+    } else {
+      part(0);
+    }
+  }
   /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
   void prepare_joints();
   /// Each returns whether its sweep moved anything (the velocity sweep's own rows: a body's
@@ -509,7 +527,9 @@ class ShapeWorld {
   bool impact_pass(const ShapeTick& tick);
   bool bounce(std::size_t i, const ShapeTick& tick);
   bool bounce_block(std::size_t i, const ShapeTick& tick);
-  void prepare_blocks();
+  /// The two-point manifolds' blocks of rows [begin, end), which start and end between two
+  /// manifolds.
+  void prepare_blocks(std::size_t begin, std::size_t end);
   /// The push-out (shape_push_out.cpp): sweeps over the rows until one moves nothing, on
   /// `second` by halves where push_split_ is on.
   void solve_positions(const ShapeTick& tick, SecondThread* second, ShapeTally& tally);
