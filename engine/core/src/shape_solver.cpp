@@ -294,9 +294,13 @@ void ShapeWorld::keep_impulses() {
   }
   // Sorted by pair, a pair's points in any order (prepare_rows looks for a point among its
   // pair's). The rows come in pair order unless destroyed slots were reused, or a shape touches
-  // more than one plane or segment: sorted only then.
-  if (!std::is_sorted(next_warm_.begin(), next_warm_.end(), pair_less)) {
-    std::sort(next_warm_.begin(), next_warm_.end());
+  // more than one plane or segment (the surfaces' rows come last, shape by shape): then only
+  // what follows the sorted start's last entry not past the rest's least is sorted.
+  const auto begin = next_warm_.begin(), end = next_warm_.end();
+  const auto rest = std::is_sorted_until(begin, end, pair_less);
+  if (rest != end) {
+    const ShapeWarm least = *std::min_element(rest, end, pair_less);
+    std::sort(std::upper_bound(begin, rest, least, pair_less), end);
   }
   warm_.swap(next_warm_);
 }
