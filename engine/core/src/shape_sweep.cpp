@@ -14,6 +14,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <span>
 #include <utility>
 
 #include "fixstep/core/simd.hpp"
@@ -132,9 +133,14 @@ std::pair<Group*, int> next_lane(std::vector<Group>& groups, int& used, std::uin
   return {&groups.back(), used++};
 }
 
+/// Part `part` of `parts` of the groups' impulses back into their rows of solve_.
 template <class Group>
-void unpack(const std::vector<Group>& groups, std::vector<ShapeSolveRow>& solve) {
-  for (const Group& g : groups) {
+void unpack(const std::vector<Group>& groups, std::vector<ShapeSolveRow>& solve, int part,
+            int parts) {
+  const auto u = static_cast<std::size_t>(part), n = static_cast<std::size_t>(parts);
+  const std::span<const Group> mine(groups.data() + groups.size() * u / n,
+                                    groups.data() + groups.size() * (u + 1) / n);
+  for (const Group& g : mine) {
     for (int l = 0; l < shape_lanes::width && g.row[l] != ~std::uint32_t{0}; ++l) {
       for (std::size_t p = 0; p < g.p.size(); ++p) {
         solve[g.row[l] + p].ln = g.p[p].ln[l], solve[g.row[l] + p].lt = g.p[p].lt[l];
@@ -223,9 +229,26 @@ void ShapeWorld::lone_to_units(std::vector<Group>& groups, int used, std::uint32
   groups.pop_back();
 }
 
-void ShapeWorld::unpack_lanes() {
-  unpack(block_lanes_, solve_);
-  unpack(point_lanes_, solve_);
+void ShapeWorld::unpack_lanes(SecondThread* thread) {
+  const int parts = thread != nullptr ? 2 : 1;
+  auto lanes = [&](int part) {
+    unpack(block_lanes_, solve_, part, parts);
+    unpack(point_lanes_, solve_, part, parts);
+  };
+  // Then each row's impulses back into rows_ (once every lane's are in solve_).
+  auto rows = [&](int part) {
+    const auto u = static_cast<std::size_t>(part), n = static_cast<std::size_t>(parts);
+    for (std::size_t i = solve_.size() * u / n; i < solve_.size() * (u + 1) / n; ++i) {
+      rows_[i].ln = solve_[i].ln, rows_[i].lt = solve_[i].lt;
+    }
+  };
+  if (thread != nullptr) {
+    thread->both(lanes);
+    thread->both(rows);
+  } else {
+    lanes(0);
+    rows(0);
+  }
 }
 
 // One manifold: a block's friction and normal rows, or each row's.
@@ -320,10 +343,8 @@ int ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
     }
     if (!moved && change <= velocity_sweep_tolerance) break;  // converged
   }
-  unpack_lanes();
-  for (std::size_t i = 0; i < solve_.size(); ++i) {
-    rows_[i].ln = solve_[i].ln, rows_[i].lt = solve_[i].lt;
-  }
+  // (By halves where the shape phase's run holds the second thread.)
+  unpack_lanes(halved_ ? second : nullptr);
   return sweeps;
 }
 

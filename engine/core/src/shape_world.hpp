@@ -432,7 +432,9 @@ class ShapeWorld {
                      SecondThread* thread);
   void color_manifolds();
   void pack_lanes();
-  void unpack_lanes();
+  /// The lanes' impulses back into solve_, then solve_'s into rows_: by halves on `thread`
+  /// when given.
+  void unpack_lanes(SecondThread* thread);
   /// A colour's only group (from `from` on in `groups`) with one lane `used` back to units_.
   template <class Group>
   void lone_to_units(std::vector<Group>& groups, int used, std::uint32_t from);
