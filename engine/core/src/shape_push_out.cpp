@@ -78,7 +78,7 @@ struct ShapeWorld::Pusher {
   }
 };
 
-void ShapeWorld::split_push_out() {
+void ShapeWorld::split_push_out(SecondThread* thread) {
   PushSplit& s = push_split_;
   s.on = false;
   if (rows_.size() < min_split_rows) return;
@@ -97,10 +97,9 @@ void ShapeWorld::split_push_out() {
   const bool along_x = hi_x - lo_x >= hi_y - lo_y;
   const double line = (along_x ? sum_x : sum_y) / static_cast<double>(n);
   if (s.side.size() < bodies_.size()) s.side.resize(bodies_.size(), PushSplit::no_side);
-  for (const std::uint32_t k : rest_.live) {
-    if (!movable(bodies_[k])) continue;
-    s.side[k] = (along_x ? state_[k].x0 : state_[k].y0) < line ? 0 : 1;
-  }
+  each_live(thread, [&](std::uint32_t k) {
+    if (movable(bodies_[k])) s.side[k] = (along_x ? state_[k].x0 : state_[k].y0) < line ? 0 : 1;
+  });
   // A row's part: the side of its movable bodies (0 with none), the cut where they differ or
   // one has no side.
   auto part = [&](const ShapeRow& r) -> std::uint8_t {
@@ -112,10 +111,24 @@ void ShapeWorld::split_push_out() {
     if (sa == PushSplit::any) return 0;
     return sa == sb && sa != PushSplit::no_side ? sa : 2;
   };
-  std::array<std::uint32_t, 3> count{};
+  // Each row's part, by halves of the rows on `thread`, each half counting its own.
+  std::array<std::array<std::uint32_t, 3>, 2> counts{};
   s.part.resize(rows_.size());
-  for (std::size_t i = 0; i < rows_.size(); ++i) ++count[s.part[i] = part(rows_[i])];
-  for (const std::uint32_t k : rest_.live) s.side[k] = PushSplit::no_side;
+  const std::size_t halves = thread != nullptr ? 2 : 1;
+  auto rows = [&](int h) {
+    const auto u = static_cast<std::size_t>(h);
+    for (std::size_t i = rows_.size() * u / halves; i < rows_.size() * (u + 1) / halves; ++i) {
+      ++counts[u][s.part[i] = part(rows_[i])];
+    }
+  };
+  if (thread != nullptr) {
+    thread->both(rows);
+  } else {
+    rows(0);
+  }
+  const std::array<std::uint32_t, 3> count{counts[0][0] + counts[1][0], counts[0][1] + counts[1][1],
+                                           counts[0][2] + counts[1][2]};
+  each_live(thread, [&](std::uint32_t k) { s.side[k] = PushSplit::no_side; });
   if (count[0] > 0 && count[1] > 0 && 4 * std::size_t{count[2]} <= rows_.size()) {
     s.ends = {count[0], count[0] + count[1]};
     s.on = true;
@@ -210,7 +223,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
     poll_stop();
     if (!solve_joint_positions(true)) break;
   }
-  split_push_out();
+  split_push_out(halved_ ? second : nullptr);
   SecondThread* const thread = push_split_.on ? second : nullptr;
   const SecondThreadRun team(thread);
   make_push_rows(thread);

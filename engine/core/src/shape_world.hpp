@@ -538,7 +538,7 @@ class ShapeWorld {
   struct Pusher;  ///< one row's push (shape_push_out.cpp)
   PushSplit push_split_;
   std::uint64_t split_pushes_ = 0;
-  void split_push_out();
+  void split_push_out(SecondThread* thread);
   /// push_split_.rows from rows_ and solve_: in row order, or by halves where split.
   void make_push_rows(SecondThread* thread);
   /// push_split_.rows[from, to) (of `part`: a half or the cut) pushed in that order, row j as
