@@ -401,6 +401,7 @@ class ShapeWorld {
   struct ColoredUnit {
     Unit unit;
     std::uint32_t color = 0;
+    std::uint8_t kind = 0;  ///< its place in the colour (shape_colors.cpp): block, point, unit
   };
   /// Whether row i + 1 is the second point of row i's manifold (the same pair and bodies).
   [[nodiscard]] bool pairs_next(std::size_t i) const {
@@ -421,6 +422,20 @@ class ShapeWorld {
   std::vector<shape_lanes::PointLanes> point_lanes_;  ///< and its one-point manifolds
   std::vector<Unit> units_;                           ///< and the rest, one at a time
   std::vector<ColorRun> color_runs_;
+  /// Each colour's manifolds by kind (block lanes, point lanes, units), counted as coloured.
+  struct ColorKinds {
+    std::array<std::uint32_t, 3> count{};
+  };
+  std::vector<ColorKinds> color_kinds_;
+  /// A colour that has manifolds: its manifolds in by_color_ [first, end), where its groups and
+  /// units start, its units but a lone block or point, and whether it has one of each.
+  struct ColorPlace {
+    std::uint32_t first = 0, end = 0;
+    ColorRun start;
+    std::uint32_t units = 0;
+    bool lone_block = false, lone_point = false;
+  };
+  std::vector<ColorPlace> color_places_;
   /// The manifolds of a colour from which its sweep is split over two threads: below, the
   /// hand-over costs about what the half saves.
   static constexpr std::uint32_t min_split_manifolds = 256;
@@ -431,13 +446,14 @@ class ShapeWorld {
   double sweep_color(const ColorRun& from, const ColorRun& run, SimdLevel level,
                      SecondThread* thread);
   void color_manifolds();
-  void pack_lanes();
+  /// color_places_ and color_runs_ from color_kinds_.
+  void place_colors();
+  /// The colours' groups and units, by halves of the colours on `thread` when given.
+  void pack_lanes(SecondThread* thread);
+  void pack_color(std::size_t k, std::uint32_t zero);
   /// The lanes' impulses back into solve_, then solve_'s into rows_: by halves on `thread`
   /// when given.
   void unpack_lanes(SecondThread* thread);
-  /// A colour's only group (from `from` on in `groups`) with one lane `used` back to units_.
-  template <class Group>
-  void lone_to_units(std::vector<Group>& groups, int used, std::uint32_t from);
   /// One manifold's rows; returns the largest change of a row's own velocity (m/s, rad/s).
   double solve_unit(Unit u);
   /// The slot of velocity_ past the bodies', always zero, that lanes read for a plane's or
