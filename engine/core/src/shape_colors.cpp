@@ -203,7 +203,10 @@ void ShapeWorld::pack_lanes(SecondThread* thread) {
   const std::uint32_t zero = zero_slot();
   // By halves of the colours: the first half's colours up to half the manifolds.
   std::size_t cut = 0;
-  while (cut < color_places_.size() && 2 * color_places_[cut].end <= by_color_.size()) ++cut;
+  while (cut < color_places_.size() &&
+         2 * std::size_t{color_places_[cut].end} <= by_color_.size()) {
+    ++cut;
+  }
   auto part = [&](int h) {
     const std::size_t from = h == 0 ? 0 : cut, to = h == 0 ? cut : color_places_.size();
     for (std::size_t k = from; k < to; ++k) pack_color(k, zero);
