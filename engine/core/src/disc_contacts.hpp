@@ -209,12 +209,7 @@ class DiscContacts {
   /// passes whose items are independent (one disc, one pair): the same result either way.
   template <class Pass>
   void halves(std::size_t n, Pass&& pass) {
-    if (!sharing() || n < 2) {
-      pass(std::size_t{0}, n, 0);
-      return;
-    }
-    auto job = [&](int half) { half == 0 ? pass(std::size_t{0}, n / 2, 0) : pass(n / 2, n, 1); };
-    broadphase_.second_thread().both(job);
+    run_halves(sharing() ? &broadphase_.second_thread() : nullptr, n, pass);
   }
   /// halves() from `least` items; below, pass(0, n, 0) here (a pass too small to pay for the
   /// hand-off to the second thread).

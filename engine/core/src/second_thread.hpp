@@ -4,6 +4,7 @@
 // to the engine: not installed.
 #pragma once
 
+#include <cstddef>
 #include <exception>
 #include <memory>
 
@@ -92,6 +93,19 @@ class SecondThread {
   std::unique_ptr<State> state_;
   bool open_ = false;
 };
+
+/// Runs pass(begin, end, half) over [0, n): as two halves (0 and 1) on `thread` when given and
+/// n >= 2, else as one (half 0) here. For passes whose items are independent: the same result
+/// either way.
+template <class Pass>
+void run_halves(SecondThread* thread, std::size_t n, Pass&& pass) {
+  if (thread == nullptr || n < 2) {
+    pass(std::size_t{0}, n, 0);
+    return;
+  }
+  auto job = [&](int half) { half == 0 ? pass(std::size_t{0}, n / 2, 0) : pass(n / 2, n, 1); };
+  thread->both(job);
+}
 
 /// Keeps a SecondThread's run open for a scope (a tick's disc phases), and closes it on the way
 /// out (or at close()), by return or by exception; nothing when given no thread, or one whose run

@@ -224,20 +224,16 @@ void ShapeWorld::unpack_lanes(SecondThread* thread) {
     unpack(block_lanes_, solve_, part, parts);
     unpack(point_lanes_, solve_, part, parts);
   };
-  // Then each row's impulses back into rows_ (once every lane's are in solve_).
-  auto rows = [&](int part) {
-    const auto u = static_cast<std::size_t>(part), n = static_cast<std::size_t>(parts);
-    for (std::size_t i = solve_.size() * u / n; i < solve_.size() * (u + 1) / n; ++i) {
-      rows_[i].ln = solve_[i].ln, rows_[i].lt = solve_[i].lt;
-    }
-  };
   if (thread != nullptr) {
     thread->both(lanes);
-    thread->both(rows);
   } else {
     lanes(0);
-    rows(0);
   }
+  // Then each row's impulses back into rows_ (once every lane's are in solve_).
+  run_halves(thread, solve_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+    for (std::size_t i = begin; i < end; ++i)
+      rows_[i].ln = solve_[i].ln, rows_[i].lt = solve_[i].lt;
+  });
 }
 
 }  // namespace fixstep::detail

@@ -114,18 +114,11 @@ void ShapeWorld::split_push_out(SecondThread* thread) {
   // Each row's part, by halves of the rows on `thread`, each half counting its own.
   std::array<std::array<std::uint32_t, 3>, 2> counts{};
   s.part.resize(rows_.size());
-  const std::size_t halves = thread != nullptr ? 2 : 1;
-  auto rows = [&](int h) {
-    const auto u = static_cast<std::size_t>(h);
-    for (std::size_t i = rows_.size() * u / halves; i < rows_.size() * (u + 1) / halves; ++i) {
-      ++counts[u][s.part[i] = part(rows_[i])];
+  run_halves(thread, rows_.size(), [&](std::size_t begin, std::size_t end, int half) {
+    for (std::size_t i = begin; i < end; ++i) {
+      ++counts[static_cast<std::size_t>(half)][s.part[i] = part(rows_[i])];
     }
-  };
-  if (thread != nullptr) {
-    thread->both(rows);
-  } else {
-    rows(0);
-  }
+  });
   const std::array<std::uint32_t, 3> count{counts[0][0] + counts[1][0], counts[0][1] + counts[1][1],
                                            counts[0][2] + counts[1][2]};
   each_live(thread, [&](std::uint32_t k) { s.side[k] = PushSplit::no_side; });

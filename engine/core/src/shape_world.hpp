@@ -466,18 +466,9 @@ class ShapeWorld {
   template <class F>
   void each_live(SecondThread* thread, F&& f) {
     const std::span<const std::uint32_t> live = rest_.live;
-    const std::size_t parts = thread != nullptr ? 2 : 1;
-    auto part = [&](int h) {
-      const auto u = static_cast<std::size_t>(h);
-      for (std::size_t j = live.size() * u / parts; j < live.size() * (u + 1) / parts; ++j) {
-        f(live[j]);
-      }
-    };
-    if (thread != nullptr) {
-      thread->both(part);
-    } else {
-      part(0);
-    }
+    run_halves(thread, live.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+      for (std::size_t j = begin; j < end; ++j) f(live[j]);
+    });
   }
   /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
   void prepare_joints();
