@@ -168,6 +168,63 @@ double worst_residual(bool angles) {
   return worst;
 }
 
+/// λ of `tree`'s forest for arms and a right-hand side drawn from one seed (the same for the
+/// same members).
+std::vector<Vec2> solved(JointTree& tree) {
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> arm(-0.7, 0.7), value(-3.0, 3.0);
+  const auto members = tree.members();
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    tree.arms()[k] = {Vec2{arm(random), arm(random)}, Vec2{arm(random), arm(random)}};
+    tree.rhs()[k] = {value(random), value(random)};
+  }
+  tree.factor();
+  tree.solve(tree.rhs());
+  return {tree.rhs().begin(), tree.rhs().end()};
+}
+
+// A build that finds the members' ends as the last one left them keeps its nodes and takes
+// the bodies' masses now; one that finds them changed orders the forest again. Either way the
+// forest solves as one built afresh, bit for bit.
+TEST(JointTree, ABuildKeepsItsOrderOnlyWhileTheEndsStay) {
+  std::vector<ShapedBody> b = bodies();
+  std::vector<JointRecord> j = joints();
+  JointTree kept;
+  JointBodies numbered;
+  build_all(kept, j, b, numbered);
+  (void)solved(kept);
+  auto against_fresh = [&](const char* what) {
+    build_all(kept, j, b, numbered);
+    const std::vector<Vec2> lambda = solved(kept);
+    std::vector<JointRecord> j2 = j;
+    JointTree fresh;
+    JointBodies numbered2;
+    build_all(fresh, j2, b, numbered2);
+    ASSERT_TRUE(std::equal(kept.members().begin(), kept.members().end(), fresh.members().begin(),
+                           fresh.members().end()))
+        << what;
+    const std::vector<Vec2> expected = solved(fresh);
+    for (std::size_t k = 0; k < lambda.size(); ++k) {
+      EXPECT_EQ(lambda[k].x, expected[k].x) << what << ", member " << k;
+      EXPECT_EQ(lambda[k].y, expected[k].y) << what << ", member " << k;
+    }
+  };
+  b[3].inv_mass *= 3.0, b[7].inv_inertia *= 0.25;  // the same ends, other masses
+  against_fresh("masses changed");
+  j[4].broken = true;  // the chain cut between bodies 3 and 4: body 4 on starts a tree
+  against_fresh("a joint broken");
+  j[4].broken = false;
+  against_fresh("the joint mended");
+  j[13].b = 12;  // as many members, but joint 13 from body 10 to 12 where it held 11
+  against_fresh("an end moved");
+  for (JointRecord& r : j) r.broken = true;  // no forest, then the same again
+  against_fresh("every joint broken");
+  for (JointRecord& r : j) r.broken = false;
+  j[joints().size() - 1].broken = true;
+  j[13].b = 11;
+  against_fresh("as at first");
+}
+
 TEST(JointTree, SolvesTheForestsPointRowsAsTheAssembledSystemDoes) {
   EXPECT_LT(worst_residual(false), 1e-12) << "K λ − rhs, the largest component (m/s)";
 }

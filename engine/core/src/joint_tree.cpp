@@ -49,8 +49,9 @@ std::uint32_t JointTree::find(std::uint32_t k) {
 
 void JointTree::build(std::span<JointRecord> joints, std::span<const std::uint32_t> listed,
                       std::span<const ShapedBody> bodies, const JointBodies& numbered) {
-  members_.clear(), ends_.clear(), bodies_.clear();
+  members_.clear(), ends_.clear();
   if (listed.empty()) {  // no forest, and no pass over the bodies
+    bodies_.clear(), ordered_ends_.clear();
     all_members_.clear(), arms_.clear(), rhs_.clear(), angle_rows_.clear(), angle_rhs_.clear();
     return;
   }
@@ -79,7 +80,23 @@ void JointTree::build(std::span<JointRecord> joints, std::span<const std::uint32
   rhs_.resize(members_.size());
   angle_rows_.assign(members_.size(), 0);
   angle_rhs_.resize(members_.size());
-  if (!members_.empty()) order(bodies, numbered);
+  if (members_.empty()) {
+    bodies_.clear(), ordered_ends_.clear();
+  } else if (ends_ == ordered_ends_) {
+    reweigh(bodies);
+  } else {
+    order(bodies, numbered);
+    ordered_ends_ = ends_;
+  }
+}
+
+// The nodes order() made from the same ends: the same, but for the bodies' masses now.
+void JointTree::reweigh(std::span<const ShapedBody> bodies) {
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const std::uint32_t body = nodes_[i].body;
+    if (body == none) continue;
+    inverse_mass_[i] = {bodies[body].inv_mass, bodies[body].inv_mass, bodies[body].inv_inertia};
+  }
 }
 
 void JointTree::add_node(std::uint32_t parent, std::uint32_t member, std::uint32_t body,
@@ -370,7 +387,7 @@ std::size_t JointTree::bytes() const {
   return copy_bytes(members_, bodies_, ends_, arms_, rhs_, angle_rows_, factored_angles_,
                     angle_rhs_, nodes_, inverse_mass_, inverse_, up_, pivot_, x_, root_,
                     node_of_body_, first_, joined_, node_of_member_, stack_, all_nodes_,
-                    all_members_) +
+                    all_members_, ordered_ends_) +
          copy_bytes(part_nodes_[0], part_nodes_[1], part_members_[0], part_members_[1],
                     part_bodies_[0], part_bodies_[1]);
 }

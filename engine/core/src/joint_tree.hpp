@@ -98,6 +98,9 @@ class JointTree {
   };
   std::vector<std::uint32_t> members_, bodies_;
   std::vector<std::array<std::uint32_t, 2>> ends_;  ///< each member's bodies (none: ground)
+  /// The ends the nodes were last ordered from: order() depends on nothing else but the
+  /// bodies' masses, so a build() finding the same ends keeps its nodes (reweigh()).
+  std::vector<std::array<std::uint32_t, 2>> ordered_ends_;
   std::vector<std::array<Vec2, 2>> arms_;
   std::vector<Vec2> rhs_;
   std::vector<std::uint8_t> angle_rows_, factored_angles_;  ///< factored_: factor()'s
@@ -122,6 +125,7 @@ class JointTree {
 
   std::uint32_t find(std::uint32_t k);
   void order(std::span<const ShapedBody> bodies, const JointBodies& numbered);
+  void reweigh(std::span<const ShapedBody> bodies);
   void add_node(std::uint32_t parent, std::uint32_t member, std::uint32_t body,
                 std::span<const ShapedBody> bodies, const JointBodies& numbered);
   void visit(std::span<const ShapedBody> bodies, const JointBodies& numbered);
