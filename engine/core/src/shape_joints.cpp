@@ -44,6 +44,12 @@ void ShapeWorld::prepare_joints() {
     joint_rows_ = joint_rows_ || !j.direct || angle_rows(j);
     direct_limits_ = direct_limits_ || (j.direct && (j.def.lower || j.def.upper));
   }
+  packed_limits_ = joint_rows_ && JointLimitRows::serve(joints_, live);
+  if (packed_limits_ && joints_halved_) {
+    for (int h = 0; h < 2; ++h) limit_rows_.pack(h, joints_, halves_.joints(h), bodies_, dt_);
+  } else if (packed_limits_) {
+    limit_rows_.pack(JointTree::whole, joints_, live, bodies_, dt_);
+  }
   if (tree_.empty()) return;
   const auto members = tree_.members();
   const auto arms = tree_.arms();
@@ -195,8 +201,12 @@ bool ShapeWorld::solve_joint_velocities() {
   std::array<double, 3> change{}, error{};  // by part (0, 1, or JointTree::whole)
   auto rows = [&](int part) {
     JointSolver solver(bodies_, state_, dt_, velocity_);
-    if (joint_rows_) for_joints(part, [&](JointRecord& j) { solver.solve_velocity(j); });
-    change[part] = solver.velocity_change();
+    if (packed_limits_) {
+      change[part] = limit_rows_.sweep(part, velocity_);
+    } else {
+      if (joint_rows_) for_joints(part, [&](JointRecord& j) { solver.solve_velocity(j); });
+      change[part] = solver.velocity_change();
+    }
     if (!tree_.empty()) error[part] = tree_point_velocities(solver, part);
   };
   run_joint_parts(rows);

@@ -53,6 +53,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "grid_broadphase.hpp"
 #include "joint_halves.hpp"
+#include "joint_limit_rows.hpp"
 #include "joint_tree.hpp"
 #include "kept_manifold.hpp"
 #include "one_way.hpp"
@@ -504,7 +505,11 @@ class ShapeWorld {
   bool joints_halved_ = false;
   SecondThread* joint_thread_ = nullptr;
   std::uint64_t halved_joint_passes_ = 0;
-  bool joint_rows_ = false;     ///< some joint has velocity rows of its own this tick
+  bool joint_rows_ = false;  ///< some joint has velocity rows of its own this tick
+  /// Every joint's velocity rows this tick are packed limit rows (joint_limit_rows.hpp), made
+  /// by prepare_joints for this tick alone (they point into the tick's joints).
+  bool packed_limits_ = false;
+  JointLimitRows limit_rows_;
   bool indirect_ = false;       ///< some joint is not all in the forest
   bool direct_limits_ = false;  ///< some joint of the forest has a limit
   bool rest_factored_ = false;  ///< the forest factored for this tick's sweeps on positions

@@ -1,0 +1,57 @@
+// The velocity rows of a world whose joints with rows are all revolute joints of the forest
+// (joint_tree.hpp) with angle limits alone (no spring, no motor: a ragdoll's): each joint's
+// lower and upper limit rows packed in one record, made once a tick, so that a velocity
+// sweep reads that record and the impulses it accumulates instead of the whole JointRecord.
+// The arithmetic is JointSolver::solve_velocity's for such a joint, operation for operation
+// (so the same bits): Box2D v2.4's speculative one-sided rows, λ accumulated and clamped to
+// [0, ∞). Internal to the engine: not installed.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "joint_record.hpp"
+#include "shape_lanes.hpp"
+#include "shape_records.hpp"
+
+namespace fixstep::detail {
+
+class JointLimitRows {
+ public:
+  /// Whether every joint of `live` (indices into `joints`; the broken ones skipped) that has
+  /// velocity rows of its own is a revolute joint of the forest (JointRecord::direct) with
+  /// limits alone: then its rows are these, else JointSolver's. After JointSolver::prepare
+  /// (each joint's effective mass and angle at the tick's start) and JointTree::build.
+  [[nodiscard]] static bool serve(std::span<const JointRecord> joints,
+                                  std::span<const std::uint32_t> live);
+  /// Packs the rows of `part`'s joints (`listed`, in the order JointSolver would sweep them;
+  /// part 0, 1 or 2, JointTree's parts) at the tick's start, `dt` the tick (s). Allocates
+  /// only while the world grows.
+  void pack(int part, std::span<JointRecord> joints, std::span<const std::uint32_t> listed,
+            std::span<const ShapedBody> bodies, double dt);
+  /// One sweep of `part`'s rows over `velocities` (each body's, m/s and rad/s); returns the
+  /// largest change of a body's velocity component that one joint's rows made (as
+  /// JointSolver::velocity_change()).
+  double sweep(int part, std::span<ShapeMotion> velocities) const;
+  /// Heap bytes a copy holds (World::snapshot_bytes).
+  [[nodiscard]] std::size_t bytes() const;
+
+ private:
+  static constexpr std::uint32_t none = JointRecord::none;
+  /// One joint's limit rows: its ends' inverse mass and inertia (1/kg, 1/(kg·m²)), whether
+  /// an impulse moves each end's velocity (a body with either non-zero), its effective mass
+  /// about the angle (kg·m²) and each limit's speculative bias max(C, 0)/dt (rad/s).
+  struct Row {
+    JointRecord* joint = nullptr;
+    std::uint32_t a = none, b = none;  ///< the ends' bodies (none: the world)
+    bool push_a = false, push_b = false, lower = false, upper = false;
+    double ma = 0.0, ia = 0.0, mb = 0.0, ib = 0.0;
+    double mass = 0.0;
+    double lower_bias = 0.0, upper_bias = 0.0;
+  };
+  std::array<std::vector<Row>, 3> rows_;
+};
+
+}  // namespace fixstep::detail

@@ -1,0 +1,142 @@
+// The forest's limit rows packed for the velocity sweeps (joint_limit_rows.hpp): which worlds
+// they serve, and a sweep of them against JointSolver::solve_velocity, bit for bit.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <numeric>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "joint_limit_rows.hpp"
+#include "joint_solver.hpp"
+#include "joint_tree.hpp"
+
+namespace fixstep::limit_rows_test {
+namespace {
+
+using detail::JointLimitRows;
+using detail::JointRecord;
+using detail::ShapedBody;
+using detail::ShapeMotion;
+using detail::ShapeState;
+constexpr std::uint32_t world = JointRecord::none;
+
+JointRecord limited(std::uint32_t a, std::uint32_t b, std::optional<double> lower,
+                    std::optional<double> upper) {
+  JointRecord j;
+  j.def.type = JointType::revolute;
+  j.def.lower = lower, j.def.upper = upper;
+  j.a = a, j.b = b;
+  j.direct = true;
+  return j;
+}
+
+std::vector<std::uint32_t> every(const std::vector<JointRecord>& j) {
+  std::vector<std::uint32_t> all(j.size());
+  std::iota(all.begin(), all.end(), 0U);
+  return all;
+}
+
+TEST(JointLimitRows, ServeOnlyWorldsWhoseRowsAreAllLimitsOfTheForest) {
+  std::vector<JointRecord> j = {limited(0, 1, -0.5, 0.5), limited(1, 2, {}, {})};
+  EXPECT_TRUE(JointLimitRows::serve(j, every(j)));
+  const auto refused = [&](JointRecord other, const char* what) {
+    std::vector<JointRecord> with = j;
+    with.push_back(other);
+    EXPECT_FALSE(JointLimitRows::serve(with, every(with))) << what;
+    with.back().broken = true;
+    EXPECT_TRUE(JointLimitRows::serve(with, every(with))) << what << ", broken";
+  };
+  JointRecord motor = limited(2, 3, {}, {});
+  motor.max_torque = 1.0;
+  refused(motor, "a motor");
+  JointRecord spring = limited(2, 3, {}, {});
+  spring.def.frequency = 2.0;
+  refused(spring, "a spring");
+  JointRecord loop = limited(2, 3, {}, {});
+  loop.direct = false;
+  refused(loop, "a joint closing a loop (its point rows its own)");
+  JointRecord prismatic = limited(2, 3, -1.0, 1.0);
+  prismatic.def.type = JointType::prismatic;
+  prismatic.direct = false;
+  refused(prismatic, "a prismatic joint");
+}
+
+/// Each double of a state, as bits (so that −0 and +0 differ).
+std::uint64_t bits(double v) {
+  return std::bit_cast<std::uint64_t>(v);
+}
+
+// Ends of every kind (the world, a static body, a body that spins but neither translates nor
+// is pushed, dynamic ones), each limit alone and both, angles within, at and past them, the
+// impulses and velocities starting from values that include −0: six sweeps of the packed rows
+// and of JointSolver over copies of one state move every velocity, impulse and given and
+// turned impulse, and report the change, to the same bits.
+TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> unit(0.2, 3.0), signed_unit(-2.0, 2.0);
+  std::vector<ShapedBody> bodies(7);
+  for (ShapedBody& b : bodies) b.inv_mass = unit(random), b.inv_inertia = unit(random);
+  bodies[4].inv_mass = bodies[4].inv_inertia = 0.0;  // static
+  bodies[5].inv_mass = bodies[5].inv_inertia = 0.0;  // kinematic: spins, never pushed
+  bodies[6].inv_mass = 0.0;                          // turns only
+  std::vector<ShapeState> state(bodies.size());
+  std::vector<ShapeMotion> velocity(bodies.size());
+  for (ShapeMotion& v : velocity)
+    v = {signed_unit(random), signed_unit(random), signed_unit(random)};
+  velocity[4] = {};
+  velocity[5] = {0.0, 0.0, 1.5};
+  velocity[1].vx = -0.0, velocity[2].vy = -0.0;
+  std::vector<JointRecord> joints = {
+      limited(world, 0, -0.3, {}), limited(0, 1, -0.4, 0.4), limited(1, 2, {}, 0.2),
+      limited(2, 4, -0.1, 0.1),    limited(5, 3, -0.6, 0.6), limited(3, world, -1.0, 1.0),
+      limited(1, 3, {}, {}),       limited(2, 6, -0.2, 0.3), limited(4, world, -0.5, 0.5)};
+  for (JointRecord& j : joints) {
+    const double ia = j.a == world ? 0.0 : bodies[j.a].inv_inertia;
+    const double ib = j.b == world ? 0.0 : bodies[j.b].inv_inertia;
+    j.angle_mass = ia + ib > 0.0 ? 1.0 / (ia + ib) : 0.0;
+    j.value = signed_unit(random) * 0.5;
+    j.impulses.lower = unit(random) - 1.0 > 0.0 ? unit(random) : 0.0;
+    j.impulses.upper = unit(random) - 1.0 > 0.0 ? unit(random) : 0.0;
+    j.given_a = {-0.0, signed_unit(random)}, j.given_b = {signed_unit(random), -0.0};
+    j.turned_a = signed_unit(random), j.turned_b = -0.0;
+  }
+  joints[1].value = 0.4, joints[3].value = -0.35;  // at a limit, and past one
+  const double dt = 1.0 / 60.0;
+  const std::vector<std::uint32_t> all = every(joints);
+  ASSERT_TRUE(JointLimitRows::serve(joints, all));
+
+  std::vector<JointRecord> packed_joints = joints;
+  std::vector<ShapeMotion> packed_velocity = velocity;
+  JointLimitRows rows;
+  rows.pack(detail::JointTree::whole, packed_joints, all, bodies, dt);
+  for (int sweep = 0; sweep < 6; ++sweep) {
+    detail::JointSolver solver(bodies, state, dt, velocity);
+    for (JointRecord& j : joints) solver.solve_velocity(j);
+    const double change = rows.sweep(detail::JointTree::whole, packed_velocity);
+    EXPECT_EQ(bits(change), bits(solver.velocity_change())) << "sweep " << sweep;
+    for (std::size_t k = 0; k < velocity.size(); ++k) {
+      EXPECT_EQ(bits(packed_velocity[k].vx), bits(velocity[k].vx)) << "body " << k;
+      EXPECT_EQ(bits(packed_velocity[k].vy), bits(velocity[k].vy)) << "body " << k;
+      EXPECT_EQ(bits(packed_velocity[k].w), bits(velocity[k].w)) << "body " << k;
+    }
+    for (std::size_t k = 0; k < joints.size(); ++k) {
+      const JointRecord &p = packed_joints[k], &j = joints[k];
+      EXPECT_EQ(bits(p.impulses.lower), bits(j.impulses.lower)) << "joint " << k;
+      EXPECT_EQ(bits(p.impulses.upper), bits(j.impulses.upper)) << "joint " << k;
+      EXPECT_EQ(bits(p.given_a.x), bits(j.given_a.x)) << "joint " << k;
+      EXPECT_EQ(bits(p.given_a.y), bits(j.given_a.y)) << "joint " << k;
+      EXPECT_EQ(bits(p.given_b.x), bits(j.given_b.x)) << "joint " << k;
+      EXPECT_EQ(bits(p.given_b.y), bits(j.given_b.y)) << "joint " << k;
+      EXPECT_EQ(bits(p.turned_a), bits(j.turned_a)) << "joint " << k;
+      EXPECT_EQ(bits(p.turned_b), bits(j.turned_b)) << "joint " << k;
+    }
+  }
+  // The rows did something: some limit pushed in every sweep or the test proves nothing.
+  EXPECT_GT(joints[3].impulses.lower + joints[1].impulses.upper, 0.0);
+}
+
+}  // namespace
+}  // namespace fixstep::limit_rows_test
