@@ -21,7 +21,7 @@ using detail::JointRecord;
 using detail::ShapedBody;
 using detail::ShapeMotion;
 using detail::ShapeState;
-constexpr std::uint32_t world = JointRecord::none;
+constexpr std::uint32_t the_world = JointRecord::none;
 
 JointRecord limited(std::uint32_t a, std::uint32_t b, std::optional<double> lower,
                     std::optional<double> upper) {
@@ -90,12 +90,12 @@ TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
   velocity[5] = {0.0, 0.0, 1.5};
   velocity[1].vx = -0.0, velocity[2].vy = -0.0;
   std::vector<JointRecord> joints = {
-      limited(world, 0, -0.3, {}), limited(0, 1, -0.4, 0.4), limited(1, 2, {}, 0.2),
-      limited(2, 4, -0.1, 0.1),    limited(5, 3, -0.6, 0.6), limited(3, world, -1.0, 1.0),
-      limited(1, 3, {}, {}),       limited(2, 6, -0.2, 0.3), limited(4, world, -0.5, 0.5)};
+      limited(the_world, 0, -0.3, {}), limited(0, 1, -0.4, 0.4), limited(1, 2, {}, 0.2),
+      limited(2, 4, -0.1, 0.1),        limited(5, 3, -0.6, 0.6), limited(3, the_world, -1.0, 1.0),
+      limited(1, 3, {}, {}),           limited(2, 6, -0.2, 0.3), limited(4, the_world, -0.5, 0.5)};
   for (JointRecord& j : joints) {
-    const double ia = j.a == world ? 0.0 : bodies[j.a].inv_inertia;
-    const double ib = j.b == world ? 0.0 : bodies[j.b].inv_inertia;
+    const double ia = j.a == the_world ? 0.0 : bodies[j.a].inv_inertia;
+    const double ib = j.b == the_world ? 0.0 : bodies[j.b].inv_inertia;
     j.angle_mass = ia + ib > 0.0 ? 1.0 / (ia + ib) : 0.0;
     j.value = signed_unit(random) * 0.5;
     j.impulses.lower = unit(random) - 1.0 > 0.0 ? unit(random) : 0.0;
