@@ -22,6 +22,12 @@ struct ShapedBody;
 /// point's velocity error (m/s) and position error (m), each component.
 inline constexpr double direct_velocity_tolerance = 1e-9;
 inline constexpr double direct_position_tolerance = 1e-9;
+/// The forest's Newton steps on the error a tick's motion made (the sweeps that keep, before
+/// the push-out) are at most the larger of this and ContactSettings::position_iterations; they
+/// end sooner once the error is within direct_position_tolerance or stops shrinking (three or
+/// four steps while a chain swings). Cut to the push-out's count, a whipping 100-link chain
+/// came apart with three or four.
+inline constexpr int direct_position_steps = 10;
 
 class JointTree {
  public:

@@ -212,7 +212,8 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
   // velocities too), then every error left, the contacts' and the joints', on positions only.
   // A sweep that moves nothing leaves the poses as they were, and so would every sweep after
   // it: the sweeps have ended.
-  for (int it = 0; it < tick.position_iterations && !rest_.live_joints.empty(); ++it) {
+  const int keeping = std::max(tick.position_iterations, direct_position_steps);
+  for (int it = 0; it < keeping && !rest_.live_joints.empty(); ++it) {
     poll_stop();
     if (!solve_joint_positions(true)) break;
   }
