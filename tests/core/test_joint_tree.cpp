@@ -316,6 +316,7 @@ TEST(JointTree, ASwingingChainOfAHundredLinksHoldsThroughItsWhip) {
 // With fewer position iterations than the default (Box2D v2.4's 8 and 3, or none), the joints'
 // own projection of the tick's error still runs until it converges: cut to three or four
 // steps, the chain came apart as its last links whipped (anchors 0.19 m apart at tick 195).
+// (At three it still parts at its second whip, tick 962: docs/JOINTS.md, limits.)
 // Without position iterations the errors the projection leaves (within its tolerance each
 // tick, a chord's worth) are not removed on positions: millimetres, not metres.
 TEST(JointTree, ASwingingChainHoldsWithFewPositionIterations) {
