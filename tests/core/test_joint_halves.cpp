@@ -70,8 +70,9 @@ TEST(JointHalves, JointsThatShareABodyOfAnyTypeGoTogetherAndTheHalvesHoldHalfThe
 /// 128 trees of three boxes hinged in a row (limits, a motor on one hinge), dropped in a heap;
 /// 4 chains of 4 links from one static beam; and two trees tied by a slider, the first and one
 /// the second half would take without it. More than ShapeWorld::min_split_joints joints, in
-/// many groups.
-std::unique_ptr<detail::WorldKernel<double>> hinged_heap(int threads) {
+/// many groups. `limits_alone`: no motor and no slider (every joint's own rows its limits: a
+/// ragdoll's kind, swept packed).
+std::unique_ptr<detail::WorldKernel<double>> hinged_heap(int threads, bool limits_alone = false) {
   WorldSettings s = shape_exact::shape_settings(0.6);
   s.threads = threads;
   auto w = std::make_unique<detail::WorldKernel<double>>(s);
@@ -92,8 +93,8 @@ std::unique_ptr<detail::WorldKernel<double>> hinged_heap(int threads) {
                          .anchor = {x + 0.3 * k - 0.15, y},
                          .lower = -0.8,
                          .upper = 0.8,
-                         .motor_speed = k == 1 ? 1.0 : 0.0,
-                         .max_motor_torque = k == 1 ? 0.05 : 0.0},
+                         .motor_speed = k == 1 && !limits_alone ? 1.0 : 0.0,
+                         .max_motor_torque = k == 1 && !limits_alone ? 0.05 : 0.0},
                         "hinge");
       }
       last = e;
@@ -112,6 +113,7 @@ std::unique_ptr<detail::WorldKernel<double>> hinged_heap(int threads) {
       last = e;
     }
   }
+  if (limits_alone) return w;
   w->create_joint({.type = JointType::prismatic,
                    .body_a = first[0],
                    .body_b = first[100],
@@ -132,6 +134,19 @@ TEST(JointHalves, TwoThreadsStepAHingedHeapToTheSameBitsAsOne) {
   // tick by halves, two passes each at most.
   EXPECT_GT(two->shape_world()->halved_joint_passes(), 120u * 20u);
   EXPECT_FALSE(two->fault().has_value());
+}
+
+// The same heap with its hinges' limits as their only rows: those rows swept packed, each half's
+// on its own thread.
+TEST(JointHalves, TwoThreadsStepAHeapOfLimitedHingesToTheSameBitsAsOne) {
+  auto one = hinged_heap(1, true), two = hinged_heap(2, true);
+  for (int t = 0; t < 120; ++t) {
+    one->step(), two->step();
+    ASSERT_EQ(one->state_hash(), two->state_hash()) << "first differs after tick " << t + 1;
+    ASSERT_TRUE(one->shape_world()->limit_rows_packed() && two->shape_world()->limit_rows_packed())
+        << "tick " << t + 1;
+  }
+  EXPECT_GT(two->shape_world()->halved_joint_passes(), 120u * 20u);
 }
 
 }  // namespace

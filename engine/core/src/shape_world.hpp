@@ -171,6 +171,8 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
   /// For the tests: the joints' passes run by halves on two threads (joint_halves.hpp) so far.
   [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
+  /// Whether the last tick swept its joints' rows packed (joint_limit_rows.hpp).
+  [[nodiscard]] bool limit_rows_packed() const { return packed_limits_; }
   /// The last tick's push-out split.
   [[nodiscard]] const PushSplit& push_split() const { return push_split_; }
   /// Whether the push-out skips rows that would push nothing (PushRow::idle): on unless
