@@ -130,6 +130,8 @@ TEST(JointHalves, TwoThreadsStepAHingedHeapToTheSameBitsAsOne) {
     ASSERT_EQ(one->state_hash(), two->state_hash()) << "first differs after tick " << t + 1;
   }
   EXPECT_EQ(one->shape_world()->halved_joint_passes(), 0u);
+  EXPECT_FALSE(one->shape_world()->limit_rows_packed())
+      << "a motor and a slider: rows of their own";
   // 273 joints (256 hinges, 16 links, a slider): every velocity and position sweep of every
   // tick by halves, two passes each at most.
   EXPECT_GT(two->shape_world()->halved_joint_passes(), 120u * 20u);

@@ -9,30 +9,6 @@
 
 namespace fixstep::detail {
 
-namespace {
-
-/// Rows of its own beside the forest's point rows: JointSolver's test (shape_joints.cpp).
-bool has_rows(const JointRecord& j) {
-  const bool motor = j.motor_on && (j.max_torque > 0.0 || j.max_force > 0.0);
-  return !j.direct || motor || j.def.frequency > 0.0 || j.def.lower || j.def.upper;
-}
-
-/// A revolute joint of the forest whose rows are its limits alone.
-bool limits_alone(const JointRecord& j) {
-  const bool motor = j.motor_on && (j.max_torque > 0.0 || j.max_force > 0.0);
-  return j.def.type == JointType::revolute && j.direct && !motor && !(j.def.frequency > 0.0);
-}
-
-}  // namespace
-
-bool JointLimitRows::serve(std::span<const JointRecord> joints,
-                           std::span<const std::uint32_t> live) {
-  return std::all_of(live.begin(), live.end(), [&](std::uint32_t i) {
-    const JointRecord& j = joints[i];
-    return j.broken || !has_rows(j) || limits_alone(j);
-  });
-}
-
 void JointLimitRows::pack(int part, std::span<JointRecord> joints,
                           std::span<const std::uint32_t> listed, std::span<const ShapedBody> bodies,
                           double dt) {
@@ -78,18 +54,14 @@ double JointLimitRows::sweep(int part, std::span<ShapeMotion> velocities) const 
       push(j.given_a, j.turned_a, r.push_a, r.a, r.ma, r.ia, -l);
       push(j.given_b, j.turned_b, r.push_b, r.b, r.mb, r.ib, l);
     };
-    auto accumulate = [](double& acc, double impulse) {
-      const double old = acc;
-      acc = std::clamp(old + impulse, 0.0, std::numeric_limits<double>::infinity());
-      return acc - old;
-    };
+    constexpr double unbounded = std::numeric_limits<double>::infinity();
     if (r.lower) {
       const double l = -r.mass * (spin(r.b) - spin(r.a) + r.lower_bias);
-      turn(accumulate(j.impulses.lower, l));
+      turn(accumulate(j.impulses.lower, l, 0.0, unbounded));
     }
     if (r.upper) {
       const double l = -r.mass * (spin(r.a) - spin(r.b) + r.upper_bias);
-      turn(-accumulate(j.impulses.upper, l));
+      turn(-accumulate(j.impulses.upper, l, 0.0, unbounded));
     }
     auto most = [](double m, double i, Vec2 p, double l) {
       return std::max({std::abs(m * p.x), std::abs(m * p.y), std::abs(i * l)});

@@ -20,15 +20,17 @@ namespace fixstep::detail {
 
 class JointLimitRows {
  public:
-  /// Whether every joint of `live` (indices into `joints`; the broken ones skipped) that has
-  /// velocity rows of its own is a revolute joint of the forest (JointRecord::direct) with
-  /// limits alone: then its rows are these, else JointSolver's. After JointSolver::prepare
-  /// (each joint's effective mass and angle at the tick's start) and JointTree::build.
-  [[nodiscard]] static bool serve(std::span<const JointRecord> joints,
-                                  std::span<const std::uint32_t> live);
+  /// Whether a joint's own velocity rows (if any) are these: a revolute joint of the forest
+  /// (JointRecord::direct, after JointTree::build) without a motor or a spring. A tick packs
+  /// its rows only when every joint with rows of its own is one.
+  [[nodiscard]] static bool serves(const JointRecord& j) {
+    return j.def.type == JointType::revolute && j.direct && !j.motor_acts() &&
+           !(j.def.frequency > 0.0);
+  }
   /// Packs the rows of `part`'s joints (`listed`, in the order JointSolver would sweep them;
-  /// part 0, 1 or 2, JointTree's parts) at the tick's start, `dt` the tick (s). Allocates
-  /// only while the world grows.
+  /// part 0, 1 or 2, JointTree's parts) at the tick's start, after JointSolver::prepare (each
+  /// joint's effective mass and angle), `dt` the tick (s). Allocates only while the world
+  /// grows.
   void pack(int part, std::span<JointRecord> joints, std::span<const std::uint32_t> listed,
             std::span<const ShapedBody> bodies, double dt);
   /// One sweep of `part`'s rows over `velocities` (each body's, m/s and rad/s); returns the

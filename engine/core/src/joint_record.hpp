@@ -4,6 +4,7 @@
 // Internal; the kernel's side is world_joints.cpp, the solver's joint_solver.cpp.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "fixstep/core/joint.hpp"
@@ -77,6 +78,24 @@ struct JointRecord {
   /// work of an impulse is taken at the mean of its end's velocities before and after.
   Vec2 va0{}, vb0{};
   double wa0 = 0.0, wb0 = 0.0;
+
+  /// Whether its motor acts: on, with a torque (N·m) or force (N) bound above 0.
+  [[nodiscard]] bool motor_acts() const {
+    return motor_on && (max_torque > 0.0 || max_force > 0.0);
+  }
+  /// Whether it has velocity rows about its angle or axis: a spring, a motor or a limit
+  /// (a revolute joint of the forest has none else of its own).
+  [[nodiscard]] bool angle_rows() const {
+    return motor_acts() || def.frequency > 0.0 || def.lower || def.upper;
+  }
 };
+
+/// An impulse (a limit's or a motor's) added to its accumulated `acc` and the sum clamped to
+/// [lo, hi]; returns the change of `acc`, the impulse to apply (Box2D's accumulated impulses).
+inline double accumulate(double& acc, double impulse, double lo, double hi) {
+  const double old = acc;
+  acc = std::clamp(old + impulse, lo, hi);
+  return acc - old;
+}
 
 }  // namespace fixstep::detail

@@ -32,13 +32,6 @@ double spin(const JointSolver::End& e) {
   return e.s ? e.s->w : 0.0;
 }
 
-/// A limit or motor impulse accumulated into `acc` and clamped to [lo, hi]; returns the change.
-double accumulate(double& acc, double impulse, double lo, double hi) {
-  const double old = acc;
-  acc = std::clamp(old + impulse, lo, hi);
-  return acc - old;
-}
-
 }  // namespace
 
 [[gnu::always_inline]] inline void JointSolver::push(End e, Vec2 p, double l) const {

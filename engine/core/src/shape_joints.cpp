@@ -15,17 +15,6 @@
 
 namespace fixstep::detail {
 
-namespace {
-
-/// Whether a revolute joint has rows about its angle (a spring, a motor or a limit): Gauss-
-/// Seidel rows beside its point's direct solve.
-bool angle_rows(const JointRecord& j) {
-  const bool motor = j.motor_on && (j.max_torque > 0.0 || j.max_force > 0.0);
-  return motor || j.def.frequency > 0.0 || j.def.lower || j.def.upper;
-}
-
-}  // namespace
-
 void ShapeWorld::prepare_joints() {
   JointSolver solver(bodies_, state_, dt_, velocity_);
   for_joints(JointTree::whole, [&](JointRecord& j) { solver.prepare(j); });
@@ -36,15 +25,19 @@ void ShapeWorld::prepare_joints() {
                    halves_.split(joints_, live, joint_bodies_);
   if (joints_halved_ && !tree_.empty()) tree_.split(halves_.half_of_body(), joint_bodies_);
   joint_rows_ = false, indirect_ = false, direct_limits_ = false;
+  bool packable = true;  // every joint's own rows ones JointLimitRows packs
   for (const std::uint32_t i : live) {
     const JointRecord& j = joints_[i];
     if (j.broken) continue;
     ++joints_visited_;
     indirect_ = indirect_ || !j.direct;
-    joint_rows_ = joint_rows_ || !j.direct || angle_rows(j);
+    // A revolute joint of the forest: its angle's Gauss-Seidel rows beside the direct solve.
+    const bool rows = !j.direct || j.angle_rows();
+    joint_rows_ = joint_rows_ || rows;
+    packable = packable && (!rows || JointLimitRows::serves(j));
     direct_limits_ = direct_limits_ || (j.direct && (j.def.lower || j.def.upper));
   }
-  packed_limits_ = joint_rows_ && JointLimitRows::serve(joints_, live);
+  packed_limits_ = joint_rows_ && packable;
   if (packed_limits_ && joints_halved_) {
     for (int h = 0; h < 2; ++h) limit_rows_.pack(h, joints_, halves_.joints(h), bodies_, dt_);
   } else if (packed_limits_) {
