@@ -122,7 +122,7 @@ void ShapeWorld::color_manifolds() {
       if (move_b) body_colors_[h.b] |= std::uint64_t{1} << c;
     }
     const ColorKind kind = kind_of(h, rows, c, lanes);
-    ++color_kinds_[static_cast<std::size_t>(c)].count[kind];
+    ++color_kinds_[static_cast<std::size_t>(c)][kind];
     colored_.push_back(
         {{static_cast<std::uint32_t>(i), rows}, static_cast<std::uint32_t>(c), kind});
     ++count[c + 1];
@@ -141,7 +141,7 @@ void ShapeWorld::place_colors() {
   ColorRun end;
   std::uint32_t first = 0;
   for (std::size_t c = 0; c < color_kinds_.size(); ++c) {
-    const auto& k = color_kinds_[c].count;
+    const auto& k = color_kinds_[c];
     const std::uint32_t manifolds = k[block_kind] + k[point_kind] + k[unit_kind];
     if (manifolds == 0) continue;
     const ColorPlace place{first,        first + manifolds,  end,

@@ -426,10 +426,7 @@ class ShapeWorld {
   std::vector<Unit> units_;                           ///< and the rest, one at a time
   std::vector<ColorRun> color_runs_;
   /// Each colour's manifolds by kind (block lanes, point lanes, units), counted as coloured.
-  struct ColorKinds {
-    std::array<std::uint32_t, 3> count{};
-  };
-  std::vector<ColorKinds> color_kinds_;
+  std::vector<std::array<std::uint32_t, 3>> color_kinds_;
   /// A colour that has manifolds: its manifolds in by_color_ [first, end), where its groups and
   /// units start, its units but a lone block or point, and whether it has one of each.
   struct ColorPlace {
