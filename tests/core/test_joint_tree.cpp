@@ -234,19 +234,30 @@ TEST(JointTree, SolvesAngleRowsWithThePointRowsAsTheAssembledSystemDoes) {
   EXPECT_LT(worst_residual(true), 1e-12) << "K λ − rhs, the largest component (m/s, rad/s)";
 }
 
-/// A horizontal chain of `links` boxes 0.5 m long hinged end to end, the first to the world at
-/// the origin, released to swing down under gravity.
+/// A chain's links: boxes 0.5 m long and 2 · `half_width` m across, `mass` kg each, under
+/// gravity `g` m/s² downwards.
+struct ChainLinks {
+  double half_width = 0.05, mass = 1.0, g = 9.81;
+};
+/// bench/joints_scene.cpp's chain (Box2D's density, 1 kg/m², and its gravity).
+constexpr ChainLinks bench_links{.half_width = 0.0625, .mass = 0.0625, .g = 10.0};
+
+/// A horizontal chain of `n` boxes hinged end to end, the first to the world at the
+/// origin, released to swing down under gravity.
 struct SwingingChain {
   std::unique_ptr<detail::WorldKernel<double>> world;
   std::vector<Entity> links;
   /// `limit` (rad): each joint's relative angle held within ± it (none: free).
   explicit SwingingChain(int n, std::optional<double> limit = std::nullopt,
-                         const WorldSettings& settings = shape_exact::shape_settings(0.6))
+                         const WorldSettings& settings = shape_exact::shape_settings(0.6),
+                         ChainLinks kind = {})
       : world(std::make_unique<detail::WorldKernel<double>>(settings)) {
     Entity before{};
     for (int i = 0; i < n; ++i) {
-      const Entity box =
-          world->create_body(shape_exact::box_body(0.25, 0.05, {0.25 + 0.5 * i, 0.0}));
+      BodyDef link =
+          shape_exact::box_body(0.25, kind.half_width, {0.25 + 0.5 * i, 0.0}, 0.0, kind.mass);
+      link.gravity = Gravity{{0.0, -kind.g}};
+      const Entity box = world->create_body(link);
       JointDef def{
           .type = JointType::revolute, .body_a = before, .body_b = box, .anchor = {0.5 * i, 0.0}};
       if (limit) def.lower = -*limit, def.upper = *limit;
@@ -314,25 +325,25 @@ TEST(JointTree, ASwingingChainOfAHundredLinksHoldsThroughItsWhip) {
 }
 
 // With fewer position iterations than the default (Box2D v2.4's 8 and 3, or none), the joints'
-// own projection of the tick's error still runs until it converges: cut to three or four
-// steps, the chain came apart as its last links whipped (anchors 0.19 m apart at tick 195).
-// (At three it still parts at its second whip, tick 962: docs/JOINTS.md, limits.)
-// Without position iterations the errors the projection leaves (within its tolerance each
-// tick, a chord's worth) are not removed on positions: millimetres, not metres.
+// own projection of the tick's error still runs until it converges, up to ten steps: cut to
+// three or four, the chain came apart as its last links whipped (anchors 0.19 m apart at tick
+// 195). Past its second whip (tick 962), nearly straight, a full Newton step of that
+// projection can grow the error instead: it is taken back and made shorter (a line search).
+// Ended there instead, the chain came apart at 3 (6.9 m) and held within 0.2 to 1.6 mm at the
+// others: the push-out's few chord steps carried the rest into the next tick.
 TEST(JointTree, ASwingingChainHoldsWithFewPositionIterations) {
-  for (const int position : {0, 1, 3, 4}) {
+  for (const int position : {0, 1, 2, 3, 4}) {
     WorldSettings settings = shape_exact::shape_settings(0.6);
     settings.contacts->velocity_iterations = 8;
     settings.contacts->position_iterations = position;
-    SwingingChain chain(100, std::nullopt, settings);
+    SwingingChain chain(100, std::nullopt, settings, bench_links);
     double worst = 0.0;
-    for (int t = 0; t < 300; ++t) {
+    for (int t = 0; t < 1200; ++t) {
       chain.world->step();
       worst = std::max(worst, chain.separation());
     }
-    EXPECT_LT(worst, position == 0 ? 5e-3 : 1e-6)
-        << "the largest anchor separation over 300 ticks (m), " << position
-        << " position iterations";
+    EXPECT_LT(worst, 1e-6) << "the largest anchor separation over 1200 ticks (m), " << position
+                           << " position iterations";
   }
 }
 

@@ -120,20 +120,24 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // correction over dt also goes in as a constraint impulse along the start's gradient (the one
 // the velocity sweeps made the motion tangent to, so it takes nearly nothing from the motion
 // along it), or, for a joint whose bodies turned more than fast_joint_turn within the tick,
-// along the gradient at the step's poses (kick); these sweeps end when the error did not
-// shrink. On positions only, the steps are chord steps (the factors of the first such sweep:
-// these sweeps move the poses little), made at the poses now again after a step that did not
-// shrink the error (the contacts' push-out moves bodies between these sweeps). An error within
-// direct_position_tolerance is left: such a sweep moves nothing.
+// along the gradient at the step's poses (kick). Where the forest alone keeps (searches_), a
+// step gives that impulse only once the next measure shows it shrank the error, and one that
+// did not is made again shorter (cut_kept_step); otherwise these sweeps end when the error
+// did not shrink. On positions only, the steps are chord steps (the factors of the first such
+// sweep: these sweeps move the poses little), made at the poses now again after a step that
+// did not shrink the error (the contacts' push-out moves bodies between these sweeps). An
+// error within direct_position_tolerance is left: such a sweep moves nothing.
 bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
   if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
   const bool stalled = step_error_ < no_step && !(now.error < step_error_);
-  if (stalled && keep) return false;  // the sweeps that keep have ended
+  if (stalled && keep) return searches_ && cut_kept_step();  // else these sweeps have ended
   const bool arms_now = keep || !rest_factored_ || stalled;
   const bool refactor = arms_now || now.rows_changed;
   const bool scaled = now.error > joint_max_linear_correction;
   const double scale = scaled ? joint_max_linear_correction / now.error : 1.0;
   if (refactor) tree_.factor_angles();
+  const bool search = keep && searches_;
+  const bool give = search && keep_search_.pending;  // the last step shrank the error
   auto step = [&](int part) {
     const auto members = tree_.members();
     const auto rhs = tree_.rhs();
@@ -141,6 +145,8 @@ bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
     const auto angle_rows = tree_.angle_rows();
     const auto angle_rhs = tree_.angle_rhs();
     const auto own = tree_.members_of(part);
+    if (give) give_kept_step(part);  // at its own arms, before they are made again
+    if (search) keep_search_.save(tree_.bodies_of(part), state_);
     for (const std::uint32_t k : own) {
       if (scaled) rhs[k] = scale * rhs[k];
       if (arms_now) arms[k] = fresh_arms_[k];
@@ -154,10 +160,15 @@ bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
     for (const std::uint32_t k : own) {
       JointRecord& j = joints_[members[k]];
       solver.shift_point(j, rhs[k], arms[k][0], arms[k][1], angle_rows[k] ? angle_rhs[k] : 0.0);
-      if (keep) kick(solver, k, rhs[k]);
+      if (search) {
+        keep_search_.step[k] = rhs[k];
+      } else if (keep) {
+        kick(solver, k, rhs[k]);
+      }
     }
   };
   run_joint_parts(step);
+  keep_search_.pending = search, keep_search_.cuts = 0;
   rest_factored_ = !keep;
   // Only a step without angle rows is checked (a limit's row is one-sided).
   step_error_ = now.error;
@@ -222,6 +233,44 @@ bool ShapeWorld::solve_joint_velocities() {
   return std::max({change[0], change[1], change[2]}) > velocity_sweep_tolerance || direct;
 }
 
+// The step waiting (keep_search_) given as impulses by `part`'s members, at the arms it was
+// made at.
+void ShapeWorld::give_kept_step(int part) {
+  JointSolver solver(bodies_, state_, dt_);
+  for (const std::uint32_t k : tree_.members_of(part)) kick(solver, k, keep_search_.step[k]);
+}
+
+// A step that did not shrink the error taken back: made again at half its length from the
+// poses before it (the same arms and direction), or, after JointKeepSearch::most_cuts
+// halvings, not at all; then the sweeps that keep end (returns false).
+bool ShapeWorld::cut_kept_step() {
+  if (!keep_search_.pending) return false;
+  const bool again = keep_search_.cuts < JointKeepSearch::most_cuts;
+  auto cut = [&](int part) {
+    keep_search_.take_back(tree_.bodies_of(part), state_);
+    if (!again) return;
+    const auto members = tree_.members();
+    const auto arms = tree_.arms();
+    JointSolver solver(bodies_, state_, dt_);
+    for (const std::uint32_t k : tree_.members_of(part)) {
+      Vec2& p = keep_search_.step[k];
+      p = 0.5 * p;
+      solver.shift_point(joints_[members[k]], p, arms[k][0], arms[k][1]);
+    }
+  };
+  run_joint_parts(cut);
+  keep_search_.pending = again;
+  keep_search_.cuts += 1, keep_search_.cuts_made += 1;
+  return again;
+}
+
+void ShapeWorld::end_keeping() {
+  if (!keep_search_.pending) return;
+  auto give = [&](int part) { give_kept_step(part); };
+  run_joint_parts(give);
+  keep_search_.pending = false;
+}
+
 bool ShapeWorld::solve_joint_positions(bool keep) {
   const bool rows = indirect_ || (!keep && direct_limits_);
   const bool tree = !tree_.empty();
@@ -231,6 +280,11 @@ bool ShapeWorld::solve_joint_positions(bool keep) {
     turned_.resize(state_.size());
     fresh_arms_.resize(tree_.members().size());
     fast_.resize(tree_.members().size());
+  }
+  if (phase && keep) {
+    searches_ = !indirect_;
+    keep_search_.pending = false;
+    if (searches_) keep_search_.size(tree_.members().size(), state_.size());
   }
   std::array<std::uint8_t, 3> moved{};  // by part
   std::array<TreeErrors, 3> errors{};

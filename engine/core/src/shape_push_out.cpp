@@ -217,6 +217,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
     poll_stop();
     if (!solve_joint_positions(true)) break;
   }
+  end_keeping();
   split_push_out(halved_ ? second : nullptr);
   SecondThread* const thread = push_split_.on ? second : nullptr;
   const SecondThreadRun team(thread);

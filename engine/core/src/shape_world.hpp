@@ -53,6 +53,7 @@
 #include "fixstep/core/step_results.hpp"
 #include "grid_broadphase.hpp"
 #include "joint_halves.hpp"
+#include "joint_keep_search.hpp"
 #include "joint_limit_rows.hpp"
 #include "joint_tree.hpp"
 #include "kept_manifold.hpp"
@@ -171,6 +172,9 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
   /// For the tests: the joints' passes run by halves on two threads (joint_halves.hpp) so far.
   [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
+  /// For the tests: the forest's steps that keep taken back and made shorter so far
+  /// (joint_keep_search.hpp).
+  [[nodiscard]] std::uint64_t kept_step_cuts() const { return keep_search_.cuts_made; }
   /// Whether the last tick swept its joints' rows packed (joint_limit_rows.hpp).
   [[nodiscard]] bool limit_rows_packed() const { return packed_limits_; }
   /// The last tick's push-out split.
@@ -518,6 +522,15 @@ class ShapeWorld {
   /// Whether each member's bodies turned more than fast_joint_turn by the sweeps that keep.
   std::vector<std::uint8_t> fast_;
   void kick(JointSolver& solver, std::size_t k, Vec2 p);
+  /// The sweeps that keep as a line search (joint_keep_search.hpp), where the forest alone
+  /// keeps: a joint outside it corrects its bodies in the same sweeps, which a step taken
+  /// back would undo.
+  JointKeepSearch keep_search_;
+  bool searches_ = false;  ///< this phase's steps are searched (set as it begins)
+  void give_kept_step(int part);
+  bool cut_kept_step();
+  /// After the sweeps that keep: the step still waiting given (its error was not measured).
+  void end_keeping();
   /// The largest point error the forest's last step on positions in this phase started from
   /// (m; no_step: none to check), and the phase: keeping or not.
   static constexpr double no_step = std::numeric_limits<double>::infinity();

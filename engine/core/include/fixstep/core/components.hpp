@@ -165,7 +165,8 @@ struct ContactSettings {
   int velocity_iterations = default_velocity_iterations;
   /// Position iterations a tick (push-out of overlap beyond the slop), in [0, max_iterations].
   /// The joints' own projection of the tick's error runs up to 10 steps however few these are
-  /// (it ends as soon as it converges): fewer let a whipping chain of joints come apart.
+  /// (it ends as soon as it converges, a step that grows the error made shorter): fewer let a
+  /// whipping chain of joints come apart.
   int position_iterations = default_position_iterations;
   /// Rolling discs: every dynamic body keeps an angle and an angular velocity (Body::angle,
   /// Body::angular_velocity), friction acts at the contact point (the relative tangential
