@@ -2,7 +2,8 @@
 // search: each damped Newton step on positions waits to give its impulse until the next
 // measure shows that it shrank the largest point error. A step that did not is taken back
 // (the forest bodies' poses as they were before it) and made again at half its length, up to
-// `most_cuts` times; then the sweeps end at the poses before it. A step may fail to shrink the
+// `most_cuts` times; then the sweeps end at the poses before it. (A step made as the sweeps
+// reach their count is kept unmeasured, as before the search.) A step may fail to shrink the
 // error where the linearization is poor: a chain that whips, nearly straight, is near a
 // singular Jacobian, where a full Newton step overshoots (Nocedal and Wright, Numerical
 // Optimization, 2nd ed., section 3.1 and chapter 11: backtracking on a merit function, here the

@@ -120,13 +120,14 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // correction over dt also goes in as a constraint impulse along the start's gradient (the one
 // the velocity sweeps made the motion tangent to, so it takes nearly nothing from the motion
 // along it), or, for a joint whose bodies turned more than fast_joint_turn within the tick,
-// along the gradient at the step's poses (kick). Where the forest alone keeps (searches_), a
-// step gives that impulse only once the next measure shows it shrank the error, and one that
-// did not is made again shorter (cut_kept_step); otherwise these sweeps end when the error
-// did not shrink. On positions only, the steps are chord steps (the factors of the first such
-// sweep: these sweeps move the poses little), made at the poses now again after a step that
-// did not shrink the error (the contacts' push-out moves bodies between these sweeps). An
-// error within direct_position_tolerance is left: such a sweep moves nothing.
+// along the gradient at the step's poses (kick). Where every joint is the forest's
+// (searches_), a step gives that impulse only once the next measure shows it shrank the error
+// (or the sweeps reach their count), and one that did not is made again shorter
+// (cut_kept_step); otherwise these sweeps end when the error did not shrink. On positions
+// only, the steps are chord steps (the factors of the first such sweep: these sweeps move the
+// poses little), made at the poses now again after a step that did not shrink the error (the
+// contacts' push-out moves bodies between these sweeps). An error within
+// direct_position_tolerance is left: such a sweep moves nothing.
 bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
   if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
   const bool stalled = step_error_ < no_step && !(now.error < step_error_);
@@ -283,7 +284,6 @@ bool ShapeWorld::solve_joint_positions(bool keep) {
   }
   if (phase && keep) {
     searches_ = !indirect_;
-    keep_search_.pending = false;
     if (searches_) keep_search_.size(tree_.members().size(), state_.size());
   }
   std::array<std::uint8_t, 3> moved{};  // by part

@@ -213,6 +213,7 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
   // A sweep that moves nothing leaves the poses as they were, and so would every sweep after
   // it: the sweeps have ended.
   const int keeping = std::max(tick.position_iterations, direct_position_steps);
+  keep_search_.pending = false;  // (a tick that a stop request ended may have left one)
   for (int it = 0; it < keeping && !rest_.live_joints.empty(); ++it) {
     poll_stop();
     if (!solve_joint_positions(true)) break;

@@ -172,8 +172,8 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
   /// For the tests: the joints' passes run by halves on two threads (joint_halves.hpp) so far.
   [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
-  /// For the tests: the forest's steps that keep taken back and made shorter so far
-  /// (joint_keep_search.hpp).
+  /// For the tests: the forest's steps that keep taken back so far, each halving and each
+  /// step dropped after the last halving (joint_keep_search.hpp).
   [[nodiscard]] std::uint64_t kept_step_cuts() const { return keep_search_.cuts_made; }
   /// Whether the last tick swept its joints' rows packed (joint_limit_rows.hpp).
   [[nodiscard]] bool limit_rows_packed() const { return packed_limits_; }
@@ -522,9 +522,10 @@ class ShapeWorld {
   /// Whether each member's bodies turned more than fast_joint_turn by the sweeps that keep.
   std::vector<std::uint8_t> fast_;
   void kick(JointSolver& solver, std::size_t k, Vec2 p);
-  /// The sweeps that keep as a line search (joint_keep_search.hpp), where the forest alone
-  /// keeps: a joint outside it corrects its bodies in the same sweeps, which a step taken
-  /// back would undo.
+  /// The sweeps that keep as a line search (joint_keep_search.hpp), in a world whose every
+  /// joint is the forest's: any joint outside it (indirect_) turns the search off for the
+  /// whole world, since such a joint's rows correct its bodies in the same sweeps and a step
+  /// taken back would undo that.
   JointKeepSearch keep_search_;
   bool searches_ = false;  ///< this phase's steps are searched (set as it begins)
   void give_kept_step(int part);
