@@ -351,6 +351,45 @@ TEST(JointTree, ASwingingChainHoldsWithFewPositionIterations) {
   }
 }
 
+// The same chain at 8 and 3 iterations beside two boxes held apart by a distance joint, a
+// joint outside the forest: it holds, its steps searched as above, while that joint holds no
+// forest body. (Joined to the chain's last link instead, the joint turns the search off:
+// taking a step back would undo its own corrections of that link.)
+TEST(JointTree, AChainBesideAJointOutsideTheForestStillHoldsWithFewIterations) {
+  WorldSettings settings = shape_exact::shape_settings(0.6);
+  settings.contacts->velocity_iterations = 8;
+  settings.contacts->position_iterations = 3;
+  SwingingChain chain(100, std::nullopt, settings, bench_links);
+  auto& w = *chain.world;
+  const Entity a = w.create_body(shape_exact::box_body(0.25, 0.25, {-200.0, 0.0}));
+  const Entity b = w.create_body(shape_exact::box_body(0.25, 0.25, {-198.0, 0.0}));
+  w.create_joint({.type = JointType::distance,
+                  .body_a = a,
+                  .body_b = b,
+                  .anchor = {-200.0, 0.0},
+                  .anchor_b = Vec2{-198.0, 0.0}},
+                 "strut");
+  double worst = 0.0;
+  for (int t = 0; t < 1200; ++t) {
+    w.step();
+    worst = std::max(worst, chain.separation());
+  }
+  EXPECT_LT(worst, 1e-6) << "the chain's largest anchor separation over 1200 ticks (m)";
+  EXPECT_GT(w.shape_world()->kept_step_cuts(), 0u) << "no step was taken back";
+
+  SwingingChain joined(100, std::nullopt, settings, bench_links);
+  const Entity c = joined.world->create_body(shape_exact::box_body(0.25, 0.25, {52.0, 0.0}));
+  joined.world->create_joint({.type = JointType::distance,
+                              .body_a = joined.links.back(),
+                              .body_b = c,
+                              .anchor = {50.0, 0.0},
+                              .anchor_b = Vec2{52.0, 0.0}},
+                             "strut");
+  for (int t = 0; t < 1200; ++t) joined.world->step();
+  EXPECT_EQ(joined.world->shape_world()->kept_step_cuts(), 0u)
+      << "a step taken back where a joint outside the forest holds a forest body";
+}
+
 // A chain held out from a wall by its joints' limits (each ±0.05 rad): gravity bends every
 // joint against its limit, hardest near the wall. The limits past which a joint is are solved
 // on positions with the forest's anchors, so that correcting one does not undo the other; one

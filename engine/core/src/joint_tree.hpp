@@ -44,6 +44,10 @@ class JointTree {
   /// The joints of the forest (indices into build's span), in joint order.
   [[nodiscard]] std::span<const std::uint32_t> members() const { return members_; }
   [[nodiscard]] bool empty() const { return members_.empty(); }
+  /// Whether the body numbered `local` (build's JointBodies numbering) is one of the forest's.
+  [[nodiscard]] bool holds(std::uint32_t local) const {
+    return local < node_of_body_.size() && node_of_body_[local] != none;
+  }
   /// Heap bytes a copy holds (World::snapshot_bytes).
   [[nodiscard]] std::size_t bytes() const;
 

@@ -24,13 +24,16 @@ void ShapeWorld::prepare_joints() {
   joints_halved_ = joint_thread_ != nullptr && live.size() >= min_split_joints &&
                    halves_.split(joints_, live, joint_bodies_);
   if (joints_halved_ && !tree_.empty()) tree_.split(halves_.half_of_body(), joint_bodies_);
-  joint_rows_ = false, indirect_ = false, direct_limits_ = false;
+  joint_rows_ = false, indirect_ = false, direct_limits_ = false, searches_ = true;
   bool packable = true;  // every joint's own rows ones JointLimitRows packs
   for (const std::uint32_t i : live) {
     const JointRecord& j = joints_[i];
     if (j.broken) continue;
     ++joints_visited_;
     indirect_ = indirect_ || !j.direct;
+    // (A joint outside the forest that holds a forest body corrects it in the sweeps that
+    // keep, which taking a forest step back would undo.)
+    if (!j.direct && searches_) searches_ = !in_forest(j.a) && !in_forest(j.b);
     // A revolute joint of the forest: its angle's Gauss-Seidel rows beside the direct solve.
     const bool rows = !j.direct || j.angle_rows();
     joint_rows_ = joint_rows_ || rows;
@@ -53,6 +56,10 @@ void ShapeWorld::prepare_joints() {
   tree_.factor();
   rest_factored_ = false;
   step_error_ = no_step, step_keeps_ = false;
+}
+
+bool ShapeWorld::in_forest(std::uint32_t body) const {
+  return body != JointRecord::none && tree_.holds(joint_bodies_.local(body));
 }
 
 // The forest's point rows of `part`: each member's velocity error, Ċ at the start's arms (the
@@ -120,13 +127,13 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // correction over dt also goes in as a constraint impulse along the start's gradient (the one
 // the velocity sweeps made the motion tangent to, so it takes nearly nothing from the motion
 // along it), or, for a joint whose bodies turned more than fast_joint_turn within the tick,
-// along the gradient at the step's poses (kick). Where every joint is the forest's
-// (searches_), a step gives that impulse only once the next measure shows it shrank the error
-// (or the sweeps reach their count), and one that did not is made again shorter
-// (cut_kept_step); otherwise these sweeps end when the error did not shrink. On positions
-// only, the steps are chord steps (the factors of the first such sweep: these sweeps move the
-// poses little), made at the poses now again after a step that did not shrink the error (the
-// contacts' push-out moves bodies between these sweeps). An error within
+// along the gradient at the step's poses (kick). Where no joint outside the forest holds a
+// forest body (searches_), a step gives that impulse only once the next measure shows it
+// shrank the error (or the sweeps reach their count), and one that did not is made again
+// shorter (cut_kept_step); otherwise these sweeps end when the error did not shrink. On
+// positions only, the steps are chord steps (the factors of the first such sweep: these
+// sweeps move the poses little), made at the poses now again after a step that did not shrink
+// the error (the contacts' push-out moves bodies between these sweeps). An error within
 // direct_position_tolerance is left: such a sweep moves nothing.
 bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
   if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
@@ -282,10 +289,7 @@ bool ShapeWorld::solve_joint_positions(bool keep) {
     fresh_arms_.resize(tree_.members().size());
     fast_.resize(tree_.members().size());
   }
-  if (phase && keep) {
-    searches_ = !indirect_;
-    if (searches_) keep_search_.size(tree_.members().size(), state_.size());
-  }
+  if (phase && keep && searches_) keep_search_.size(tree_.members().size(), state_.size());
   std::array<std::uint8_t, 3> moved{};  // by part
   std::array<TreeErrors, 3> errors{};
   auto measure = [&](int part) {

@@ -522,12 +522,13 @@ class ShapeWorld {
   /// Whether each member's bodies turned more than fast_joint_turn by the sweeps that keep.
   std::vector<std::uint8_t> fast_;
   void kick(JointSolver& solver, std::size_t k, Vec2 p);
-  /// The sweeps that keep as a line search (joint_keep_search.hpp), in a world whose every
-  /// joint is the forest's: any joint outside it (indirect_) turns the search off for the
-  /// whole world, since such a joint's rows correct its bodies in the same sweeps and a step
-  /// taken back would undo that.
+  /// The sweeps that keep as a line search (joint_keep_search.hpp), in a tick where no joint
+  /// outside the forest holds a forest body (searches_, set by prepare_joints): such a
+  /// joint's rows correct its bodies in the same sweeps, and a step taken back would undo
+  /// that, so one turns the search off for the whole world.
   JointKeepSearch keep_search_;
-  bool searches_ = false;  ///< this phase's steps are searched (set as it begins)
+  bool searches_ = false;
+  [[nodiscard]] bool in_forest(std::uint32_t body) const;  ///< a body index or JointRecord::none
   void give_kept_step(int part);
   bool cut_kept_step();
   /// After the sweeps that keep: the step still waiting given (its error was not measured).
