@@ -17,6 +17,7 @@
 
 #include "copy_bytes.hpp"
 #include "fixstep/core/types.hpp"
+#include "joint_bodies.hpp"
 #include "shape_records.hpp"
 
 namespace fixstep::detail {
@@ -27,25 +28,32 @@ struct JointKeepSearch {
   /// Each member's step not yet given as an impulse (kg·m: the position change times the
   /// effective mass, JointTree::solve's solution), by member index.
   std::vector<Vec2> step;
-  /// Each forest body's pose (x m, y m, a rad) before that step, by body index.
+  /// Each forest body's pose (x m, y m, a rad) before that step, by its JointBodies number
+  /// (so sized by the bodies the joints hold, not by the world).
   std::vector<std::array<double, 3>> from;
   bool pending = false;         ///< a step waits in `step`
   int cuts = 0;                 ///< halvings of the step waiting
   std::uint64_t cuts_made = 0;  ///< steps taken back so far (the tests')
 
-  /// Sizes for `members` and `bodies` (allocates only while the world grows).
+  /// Sizes for `members` and the `bodies` numbered (allocates only while the world grows).
   void size(std::size_t members, std::size_t bodies) {
     step.resize(members);
     from.resize(bodies);
   }
-  /// Keeps the poses of `part_bodies` before a step.
-  void save(std::span<const std::uint32_t> part_bodies, std::span<const ShapeState> state) {
-    for (const std::uint32_t b : part_bodies) from[b] = {state[b].x, state[b].y, state[b].a};
+  /// Keeps the poses of `part_bodies` (body indices, each numbered by `numbered`) before a
+  /// step.
+  void save(std::span<const std::uint32_t> part_bodies, std::span<const ShapeState> state,
+            const JointBodies& numbered) {
+    for (const std::uint32_t b : part_bodies) {
+      from[numbered.local(b)] = {state[b].x, state[b].y, state[b].a};
+    }
   }
   /// Puts the poses of `part_bodies` back as save() found them.
-  void take_back(std::span<const std::uint32_t> part_bodies, std::span<ShapeState> state) const {
+  void take_back(std::span<const std::uint32_t> part_bodies, std::span<ShapeState> state,
+                 const JointBodies& numbered) const {
     for (const std::uint32_t b : part_bodies) {
-      state[b].x = from[b][0], state[b].y = from[b][1], state[b].a = from[b][2];
+      const auto& p = from[numbered.local(b)];
+      state[b].x = p[0], state[b].y = p[1], state[b].a = p[2];
     }
   }
   [[nodiscard]] std::size_t bytes() const { return copy_bytes(step, from); }

@@ -154,7 +154,7 @@ bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
     const auto angle_rhs = tree_.angle_rhs();
     const auto own = tree_.members_of(part);
     if (give) give_kept_step(part);  // at its own arms, before they are made again
-    if (search) keep_search_.save(tree_.bodies_of(part), state_);
+    if (search) keep_search_.save(tree_.bodies_of(part), state_, joint_bodies_);
     for (const std::uint32_t k : own) {
       if (scaled) rhs[k] = scale * rhs[k];
       if (arms_now) arms[k] = fresh_arms_[k];
@@ -255,7 +255,7 @@ bool ShapeWorld::cut_kept_step() {
   if (!keep_search_.pending) return false;
   const bool again = keep_search_.cuts < JointKeepSearch::most_cuts;
   auto cut = [&](int part) {
-    keep_search_.take_back(tree_.bodies_of(part), state_);
+    keep_search_.take_back(tree_.bodies_of(part), state_, joint_bodies_);
     if (!again) return;
     const auto members = tree_.members();
     const auto arms = tree_.arms();
@@ -289,7 +289,9 @@ bool ShapeWorld::solve_joint_positions(bool keep) {
     fresh_arms_.resize(tree_.members().size());
     fast_.resize(tree_.members().size());
   }
-  if (phase && keep && searches_) keep_search_.size(tree_.members().size(), state_.size());
+  if (phase && keep && searches_) {
+    keep_search_.size(tree_.members().size(), joint_bodies_.size());
+  }
   std::array<std::uint8_t, 3> moved{};  // by part
   std::array<TreeErrors, 3> errors{};
   auto measure = [&](int part) {
