@@ -60,7 +60,7 @@ using Point = LanePoint;
 
 [[gnu::always_inline]] inline void solve_friction(const LaneBodies& g, Point& h, Motion& a,
                                                   Motion& b) {
-  const Lane bound = g.friction * h.ln;
+  const Lane bound = max_of(g.friction * h.ln, Lane{});  // shape_rows::solve_friction's
   const Lane lt = clamp_of(h.lt - tangent_of(g, h, a, b) * h.tangent_mass, -bound, bound);
   const Lane d = lt - h.lt;
   h.lt = lt;

@@ -45,7 +45,9 @@ namespace fixstep::detail::shape_rows {
 
 [[gnu::always_inline]] inline void solve_friction(ShapeSolveRow& h, ShapeMotion& a,
                                                   ShapeMotion& b) {
-  const double bound = h.friction * h.ln;
+  // (A normal impulse a conjugate step left below 0 bounds the friction at 0: std::clamp's
+  // bounds must be ordered.)
+  const double bound = std::max(h.friction * h.ln, 0.0);
   const double lt = std::clamp(h.lt - tangent_of(h, a, b) * h.tangent_mass, -bound, bound);
   const double d = lt - h.lt;
   h.lt = lt;

@@ -262,7 +262,7 @@ void ShapeWorld::prepare_blocks(std::size_t begin, std::size_t end) {
 // change of the relative turning rate it made (rad/s).
 double ShapeWorld::solve_rolling(ShapeRow& r, double normal_impulse) {
   const double wa = r.a != none ? velocity_[r.a].w : 0.0;
-  const double bound = r.rolling * normal_impulse;
+  const double bound = std::max(r.rolling * normal_impulse, 0.0);  // as solve_friction's
   const double lr = std::clamp(r.lr - r.rolling_mass * (velocity_[r.b].w - wa), -bound, bound);
   const double d = lr - r.lr;
   r.lr = lr;
