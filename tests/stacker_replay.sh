@@ -13,8 +13,8 @@ game=$1
 src=$2
 out=$3
 rec=$src/assets/recordings/stacker.rec
-expected_hash=665a5478405fde13
-expected_game="score=8 targets=2 shots_left=0 down=11111001110000000 phase=over"
+expected_hash=be29e6d2bc56ddc2
+expected_game="score=12 targets=2 shots_left=0 down=11111000001111111 phase=over"
 fresh_out "$out"
 
 replay_verified "$game" "$rec" "$out" "$expected_hash" "$expected_game"

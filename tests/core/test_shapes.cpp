@@ -15,6 +15,7 @@
 #include "fixstep/core/world.hpp"
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
+#include "plain_sweeps.hpp"
 #include "shape_exact.hpp"
 #include "shape_world.hpp"
 #include "world_kernel.hpp"
@@ -205,7 +206,9 @@ TEST(ShapeSweeps, EndOnceASweepChangesNoVelocityAndNotBefore) {
   const Body box = lone.body(lone.bodies()[0]);
   EXPECT_NEAR(box.position.y, 0.5, 1e-9);
   EXPECT_LT(std::hypot(box.velocity.x, box.velocity.y), 1e-9);
-  // A pyramid's sweeps keep changing its impulses (Gauss-Seidel on a stack): all of them run.
+  // A pyramid's plain sweeps keep changing its impulses (Gauss-Seidel on a stack): all of them
+  // run. (Its conjugate steps settle it, and then its sweeps end: ShapeConjugate.)
+  const test::PlainSweeps plain;
   World pyramid(resting_boxes(5));
   for (int i = 0; i < 60; ++i) pyramid.step();
   EXPECT_EQ(pyramid.contact_stats().shape_velocity_sweeps,
@@ -216,6 +219,7 @@ TEST(ShapeSweeps, EndOnceASweepChangesNoVelocityAndNotBefore) {
 // large box world's tick (up to ContactSettings' largest iteration counts) stops within a sweep
 // of a stop request, not at the tick's end.
 TEST(ShapeSweeps, EverySweepOfAWorldWithoutJointsPollsAStopRequest) {
+  const test::PlainSweeps plain;  // (so that a pyramid runs every sweep)
   detail::WorldKernel<double> w(shape_exact::shape_settings(0.6));
   w.add_plane(PlaneDef{.normal = {0.0, 1.0}, .offset = 0.0, .friction = 0.6});
   for (int row = 0; row < 5; ++row) {  // a pyramid: every velocity sweep runs (a stack)

@@ -23,7 +23,7 @@ namespace stacker_tests {
 using namespace stacker;
 
 constexpr const char* recorded_game =
-    "score=8 targets=2 shots_left=0 down=11111001110000000 phase=over";
+    "score=12 targets=2 shots_left=0 down=11111000001111111 phase=over";
 
 // Ten seconds untouched: every piece stays within a millimetre of where the level put it (the
 // boxes start exactly touching) and turns less than a thousandth of a radian; none scores.

@@ -159,6 +159,12 @@ int ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
   SecondThread* const thread = splits ? second : nullptr;
   const SecondThreadRun team(thread);
   const bool rows = !rest_.live_joints.empty() || !color_runs_.empty();
+  // Accelerated (sweep_conjugate.hpp) where the contacts' rows are the only ones: a step after
+  // every sweep but the last, so that the impulses the tick keeps are a sweep's, within their
+  // bounds.
+  const bool conjugate =
+      sweeps_conjugate() && rest_.live_joints.empty() && tick.velocity_iterations > 1;
+  if (conjugate && !color_runs_.empty()) start_conjugate(thread);
   int sweeps = 0;
   while (rows && sweeps < tick.velocity_iterations) {
     ++sweeps;
@@ -172,6 +178,7 @@ int ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
       from = run;
     }
     if (!moved && change <= velocity_sweep_tolerance) break;  // converged
+    if (conjugate && sweeps < tick.velocity_iterations) step_conjugate(change, sweeps == 1, thread);
   }
   // (By halves where the shape phase's run holds the second thread.)
   unpack_lanes(halved_ ? second : nullptr);

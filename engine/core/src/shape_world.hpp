@@ -63,6 +63,7 @@
 #include "shape_lanes.hpp"
 #include "shape_records.hpp"
 #include "shape_rest.hpp"
+#include "sweep_conjugate.hpp"
 
 namespace fixstep::detail {
 
@@ -460,6 +461,14 @@ class ShapeWorld {
   void unpack_lanes(SecondThread* thread);
   /// One manifold's rows; returns the largest change of a row's own velocity (m/s, rad/s).
   double solve_unit(Unit u);
+  /// The velocity sweeps' conjugate steps (sweep_conjugate.hpp, shape_conjugate.cpp).
+  SweepConjugate conjugate_;
+  /// Each lane's and unit's impulses and each live body's velocity, as the warm start left
+  /// them, as the first sweep's start.
+  void start_conjugate(SecondThread* thread);
+  /// The step after a sweep whose largest change of a row's own velocity was `change` (m/s,
+  /// rad/s), the tick's first when `first`; by halves on `thread` when given.
+  void step_conjugate(double change, bool first, SecondThread* thread);
   /// The slot of velocity_ past the bodies', always zero, that lanes read for a plane's or
   /// segment's A and for a padding lane.
   [[nodiscard]] std::uint32_t zero_slot() const {
