@@ -2,13 +2,16 @@
 // (sweep_conjugate.hpp says what it is and why the velocities may follow the impulses body by
 // body). Every value's step is element-wise arithmetic, the same for a lane and a scalar, so the
 // bits do not depend on the vector width, on whether the manifolds go through the lanes, or on
-// how the passes are split between two threads.
+// how the passes are split between two threads. The lanes' pass is compiled for each SimdLevel
+// (as shape_sweep.cpp's sweeps are).
 #include <atomic>
 #include <cstddef>
 #include <tuple>
 #include <vector>
 
+#include "fixstep/core/simd.hpp"
 #include "shape_world.hpp"
+#include "simd_targets.hpp"
 
 namespace fixstep::detail {
 
@@ -29,37 +32,80 @@ namespace {
 using shape_lanes::Lane;
 using Mode = SweepConjugate::Mode;
 
-/// Lanes [begin, end) of the groups' impulses, each group's points' ln and lt in turn, from
-/// `first` in `before` and `direction`.
-template <class Group, class F>
-void each_lane(std::vector<Group>& groups, std::size_t begin, std::size_t end, std::size_t first,
-               F&& f) {
-  constexpr std::size_t per = 2 * std::tuple_size_v<decltype(Group::p)>;
-  for (std::size_t g = begin; g < end; ++g) {
-    std::size_t k = first + g * per;
-    for (auto& point : groups[g].p) f(point.ln, k), f(point.lt, k + 1), k += 2;
+using Values = SweepConjugate::LanePoint;
+
+/// The points each group holds.
+template <class Group>
+constexpr std::size_t points_per_group = std::tuple_size_v<decltype(Group::p)>;
+
+/// The step of every lane of groups [first, last), their points' values from `before` and
+/// `direction` on, in order.
+template <Mode M, class Group>
+[[gnu::always_inline]] inline void step_lanes(Group* first, Group* last, Values* before,
+                                              Values* direction, double beta) {
+  const Lane b = Lane{} + beta;
+  for (Group* g = first; g != last; ++g) {
+    for (auto& point : g->p) {
+      SweepConjugate::step<M>(point.ln, before->ln, direction->ln, b);
+      SweepConjugate::step<M>(point.lt, before->lt, direction->lt, b);
+      ++before, ++direction;
+    }
   }
+}
+
+template <Mode M, class Group>
+[[gnu::noinline]] void lanes_baseline(Group* first, Group* last, Values* before, Values* direction,
+                                      double beta) {
+  step_lanes<M>(first, last, before, direction, beta);
+}
+#if FIXSTEP_HAS_SIMD_CLONES
+template <Mode M, class Group>
+FIXSTEP_TARGET_AVX2 void lanes_avx2(Group* first, Group* last, Values* before, Values* direction,
+                                    double beta) {
+  step_lanes<M>(first, last, before, direction, beta);
+}
+template <Mode M, class Group>
+FIXSTEP_TARGET_AVX512VL void lanes_avx512(Group* first, Group* last, Values* before,
+                                          Values* direction, double beta) {
+  step_lanes<M>(first, last, before, direction, beta);
+}
+#endif
+
+template <Mode M, class Group>
+void lanes(SimdLevel level, Group* first, Group* last, Values* before, Values* direction,
+           double beta) {
+  if (first == last) return;
+#if FIXSTEP_HAS_SIMD_CLONES
+  if (level == SimdLevel::avx512 && simd_avx512vl()) {
+    return lanes_avx512<M>(first, last, before, direction, beta);
+  }
+  if (level != SimdLevel::baseline) return lanes_avx2<M>(first, last, before, direction, beta);
+#endif
+  (void)level;
+  lanes_baseline<M>(first, last, before, direction, beta);
 }
 
 }  // namespace
 
 void ShapeWorld::start_conjugate(SecondThread* thread) {
   SweepConjugate& c = conjugate_;
-  const std::size_t lanes = 4 * block_lanes_.size() + 2 * point_lanes_.size();
-  c.before.resize(lanes), c.direction.resize(lanes);
+  c.before.resize(points_per_group<shape_lanes::BlockLanes> * block_lanes_.size() +
+                  points_per_group<shape_lanes::PointLanes> * point_lanes_.size());
+  c.direction.resize(c.before.size());
   std::size_t rows = 0;
   for (const Unit u : units_) rows += u.rows;
   c.unit_before.resize(3 * rows), c.unit_direction.resize(3 * rows);
   c.v_before.resize(velocity_.size()), c.v_direction.resize(velocity_.size());
   c.last = 0.0;
-  const std::size_t points = 4 * block_lanes_.size();
-  run_halves(thread, block_lanes_.size(), [&](std::size_t begin, std::size_t end, int) {
-    each_lane(block_lanes_, begin, end, 0, [&](Lane& x, std::size_t k) { c.before[k] = x; });
-  });
-  run_halves(thread, point_lanes_.size(), [&](std::size_t begin, std::size_t end, int) {
-    each_lane(point_lanes_, begin, end, points, [&](Lane& x, std::size_t k) { c.before[k] = x; });
-  });
+  // The tick's first step (Mode::first) sets every direction; here only what comes before.
   std::size_t k = 0;
+  for (const auto& g : block_lanes_) {
+    for (const auto& point : g.p) c.before[k++] = {point.ln, point.lt};
+  }
+  for (const auto& g : point_lanes_) {
+    for (const auto& point : g.p) c.before[k++] = {point.ln, point.lt};
+  }
+  k = 0;
   for (const Unit u : units_) {
     for (std::size_t i = u.start; i < u.start + u.rows; ++i, k += 3) {
       c.unit_before[k] = solve_[i].ln, c.unit_before[k + 1] = solve_[i].lt;
@@ -69,39 +115,61 @@ void ShapeWorld::start_conjugate(SecondThread* thread) {
   each_live(thread, [&](std::uint32_t b) { c.v_before[b] = velocity_[b]; });
 }
 
-void ShapeWorld::step_conjugate(double change, bool first, SecondThread* thread) {
+template <SweepConjugate::Mode M>
+void ShapeWorld::step_conjugate_as(double beta, SecondThread* thread) {
   SweepConjugate& c = conjugate_;
-  const double ratio = change / c.last;
-  const double beta = ratio * ratio;
-  // (A NaN, or a last change of 0, restarts as a growing change does.)
-  const Mode mode = first ? Mode::first : beta <= 1.0 ? Mode::move : Mode::restart;
-  c.last = change;
-  const Lane lane_beta = Lane{} + beta;
-  auto lane = [&](Lane& x, std::size_t k) {
-    SweepConjugate::step(x, c.before[k], c.direction[k], lane_beta, mode);
-  };
-  const std::size_t points = 4 * block_lanes_.size();
+  const SimdLevel level = simd_level();
+  constexpr std::size_t per_block = points_per_group<shape_lanes::BlockLanes>;
+  constexpr std::size_t per_point = points_per_group<shape_lanes::PointLanes>;
+  Values* const points = c.before.data() + per_block * block_lanes_.size();
+  Values* const point_directions = c.direction.data() + per_block * block_lanes_.size();
   run_halves(thread, block_lanes_.size(), [&](std::size_t begin, std::size_t end, int) {
-    each_lane(block_lanes_, begin, end, 0, lane);
+    lanes<M>(level, block_lanes_.data() + begin, block_lanes_.data() + end,
+             c.before.data() + per_block * begin, c.direction.data() + per_block * begin, beta);
   });
   run_halves(thread, point_lanes_.size(), [&](std::size_t begin, std::size_t end, int) {
-    each_lane(point_lanes_, begin, end, points, lane);
+    lanes<M>(level, point_lanes_.data() + begin, point_lanes_.data() + end,
+             points + per_point * begin, point_directions + per_point * begin, beta);
   });
-  std::size_t k = 0;
+  double* before = c.unit_before.data();
+  double* p = c.unit_direction.data();
   for (const Unit u : units_) {
-    for (std::size_t i = u.start; i < u.start + u.rows; ++i, k += 3) {
-      ShapeSolveRow& h = solve_[i];
-      SweepConjugate::step(h.ln, c.unit_before[k], c.unit_direction[k], beta, mode);
-      SweepConjugate::step(h.lt, c.unit_before[k + 1], c.unit_direction[k + 1], beta, mode);
-      SweepConjugate::step(rows_[i].lr, c.unit_before[k + 2], c.unit_direction[k + 2], beta, mode);
+    for (std::size_t i = u.start; i < u.start + u.rows; ++i, before += 3, p += 3) {
+      SweepConjugate::step<M>(solve_[i].ln, before[0], p[0], beta);
+      SweepConjugate::step<M>(solve_[i].lt, before[1], p[1], beta);
+      SweepConjugate::step<M>(rows_[i].lr, before[2], p[2], beta);
     }
   }
+  if (rest_.live.size() == state_.size()) {  // every body live, in order: the velocities flat
+    static_assert(sizeof(ShapeMotion) == 3 * sizeof(double));
+    double* const v = &velocity_.data()->vx;
+    double* const was = &c.v_before.data()->vx;
+    double* const d = &c.v_direction.data()->vx;
+    run_halves(thread, 3 * state_.size(), [&](std::size_t begin, std::size_t end, int) {
+      for (std::size_t i = begin; i < end; ++i) SweepConjugate::step<M>(v[i], was[i], d[i], beta);
+    });
+    return;
+  }
   each_live(thread, [&](std::uint32_t b) {
-    ShapeMotion &v = velocity_[b], &before = c.v_before[b], &p = c.v_direction[b];
-    SweepConjugate::step(v.vx, before.vx, p.vx, beta, mode);
-    SweepConjugate::step(v.vy, before.vy, p.vy, beta, mode);
-    SweepConjugate::step(v.w, before.w, p.w, beta, mode);
+    ShapeMotion &v = velocity_[b], &was = c.v_before[b], &d = c.v_direction[b];
+    SweepConjugate::step<M>(v.vx, was.vx, d.vx, beta);
+    SweepConjugate::step<M>(v.vy, was.vy, d.vy, beta);
+    SweepConjugate::step<M>(v.w, was.w, d.w, beta);
   });
+}
+
+void ShapeWorld::step_conjugate(double change, bool first, SecondThread* thread) {
+  const double ratio = change / conjugate_.last;
+  const double beta = ratio * ratio;
+  conjugate_.last = change;
+  // (A NaN, or a last change of 0, restarts as a growing change does.)
+  if (first) {
+    step_conjugate_as<Mode::first>(beta, thread);
+  } else if (beta <= 1.0) {
+    step_conjugate_as<Mode::move>(beta, thread);
+  } else {
+    step_conjugate_as<Mode::restart>(beta, thread);
+  }
 }
 
 }  // namespace fixstep::detail

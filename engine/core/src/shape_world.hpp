@@ -469,6 +469,8 @@ class ShapeWorld {
   /// The step after a sweep whose largest change of a row's own velocity was `change` (m/s,
   /// rad/s), the tick's first when `first`; by halves on `thread` when given.
   void step_conjugate(double change, bool first, SecondThread* thread);
+  template <SweepConjugate::Mode M>
+  void step_conjugate_as(double beta, SecondThread* thread);
   /// The slot of velocity_ past the bodies', always zero, that lanes read for a plane's or
   /// segment's A and for a padding lane.
   [[nodiscard]] std::uint32_t zero_slot() const {

@@ -33,9 +33,14 @@ struct SweepConjugate {
   /// What a step does: the first after the tick's first sweep sets the direction to the
   /// sweep's change; a restart clears it; a move goes on along it, then turns it.
   enum class Mode { first, restart, move };
-  /// The lanes' impulses (ln, lt of each point) before the sweep and their direction: the
-  /// block groups' four lanes each, then the point groups' two.
-  std::vector<shape_lanes::Lane> before, direction;
+  /// One lane point's two impulses (aligned as the groups are: a Lane alone is aligned to 16
+  /// bytes where the build's baseline has no wider vectors, and the AVX clones need 32).
+  struct alignas(32) LanePoint {
+    shape_lanes::Lane ln, lt;
+  };
+  /// The lanes' impulses before the sweep and their direction, point by point: the block
+  /// groups' two each, then the point groups' one.
+  std::vector<LanePoint> before, direction;
   /// The units' rows: ln, lt and the rolling impulse of each row, in units_ order.
   std::vector<double> unit_before, unit_direction;
   /// Each body's velocity before the sweep and its direction, indexed as velocity_.
@@ -48,12 +53,19 @@ struct SweepConjugate {
     return copy_bytes(before, direction, unit_before, unit_direction, v_before, v_direction);
   }
 
-  /// One value's step: its change in the sweep (x − before) is the negative gradient.
-  template <class T>
-  static void step(T& x, T& before, T& p, T beta, Mode mode) {
-    const T d = x - before;
-    if (mode == Mode::move) x += beta * p;
-    p = mode == Mode::move ? beta * p + d : mode == Mode::first ? d : T{};
+  /// One value's step in mode M: its change in the sweep (x − before) is the negative
+  /// gradient. The same expressions for a lane of four and a scalar.
+  template <Mode M, class T>
+  [[gnu::always_inline]] static void step(T& x, T& before, T& p, const T& beta) {
+    if constexpr (M == Mode::move) {
+      const T d = x - before;
+      x += beta * p;
+      p = beta * p + d;
+    } else if constexpr (M == Mode::first) {
+      p = x - before;
+    } else {
+      p = T{};
+    }
     before = x;
   }
 };
