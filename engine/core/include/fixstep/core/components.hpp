@@ -161,7 +161,10 @@ struct ContactSettings {
   /// 1 m/s). 0: every approach bounces (an elastic gas). Disc-disc and disc-plane contacts meet
   /// at their time of impact and bounce at any speed; this applies to shapes' manifolds only.
   double restitution_threshold = default_restitution_threshold;
-  /// Velocity iterations a tick (normal and friction impulses), in [1, max_iterations].
+  /// Velocity iterations a tick (normal and friction impulses), in [1, max_iterations]. The
+  /// shapes' sweeps in a tick without joints take a conjugate step after each (a nonsmooth
+  /// nonlinear conjugate gradient, Silcowitz, Niebe and Erleben 2010: docs/SHAPES.md), so a
+  /// settled stack converges and its sweeps end before the count.
   int velocity_iterations = default_velocity_iterations;
   /// Position iterations a tick (push-out of overlap beyond the slop), in [0, max_iterations].
   /// The joints' own projection of the tick's error runs up to 10 steps however few these are
