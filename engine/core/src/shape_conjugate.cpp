@@ -159,17 +159,15 @@ void ShapeWorld::step_conjugate_as(double beta, SecondThread* thread) {
 }
 
 void ShapeWorld::step_conjugate(double change, bool first, SecondThread* thread) {
-  const double ratio = change / conjugate_.last;
-  const double beta = ratio * ratio;
+  const double last = conjugate_.last;
   conjugate_.last = change;
-  // (A NaN, or a last change of 0, restarts as a growing change does.)
-  if (first) {
-    step_conjugate_as<Mode::first>(beta, thread);
-  } else if (beta <= 1.0) {
-    step_conjugate_as<Mode::move>(beta, thread);
-  } else {
-    step_conjugate_as<Mode::restart>(beta, thread);
-  }
+  if (first) return step_conjugate_as<Mode::first>(0.0, thread);
+  // β ≤ 1 exactly when the change did not grow; it is formed only then, from a last change
+  // above 0 (no division by 0, no overflow), and only where it is a normal number. A change
+  // that grew, or a NaN, restarts.
+  const double ratio = last > 0.0 && change <= last ? change / last : 0.0;
+  if (ratio >= 1e-100) return step_conjugate_as<Mode::move>(ratio * ratio, thread);
+  step_conjugate_as<Mode::restart>(0.0, thread);
 }
 
 }  // namespace fixstep::detail

@@ -16,7 +16,7 @@ std::size_t ShapeWorld::bytes() const {
                     half_kept_, body_colors_, colored_, by_color_, block_lanes_, point_lanes_,
                     units_, color_runs_, color_kinds_, color_places_, turned_, fresh_arms_, fast_) +
          tree_.bytes() + halves_.bytes() + joint_bodies_.bytes() + limit_rows_.bytes() +
-         keep_search_.bytes() + conjugate_.bytes();
+         keep_search_.bytes();  // (conjugate_'s copy holds nothing)
 }
 
 }  // namespace fixstep::detail

@@ -159,11 +159,12 @@ int ShapeWorld::solve_velocities(const ShapeTick& tick, SecondThread* second) {
   SecondThread* const thread = splits ? second : nullptr;
   const SecondThreadRun team(thread);
   const bool rows = !rest_.live_joints.empty() || !color_runs_.empty();
-  // Accelerated (sweep_conjugate.hpp) where the contacts' rows are the only ones: a step after
-  // every sweep but the last, so that the impulses the tick keeps are a sweep's, within their
-  // bounds.
+  // Accelerated (sweep_conjugate.hpp) where the contacts' rows are the only ones (no live
+  // joint): a step after every sweep but the last, so that the normal impulses the tick keeps
+  // are a sweep's (>= 0; a friction impulse was bounded by the normal one before that sweep's,
+  // as in every sweep). With 2 sweeps the one step would only set the direction: none.
   const bool conjugate =
-      sweeps_conjugate() && rest_.live_joints.empty() && tick.velocity_iterations > 1;
+      sweeps_conjugate() && rest_.live_joints.empty() && tick.velocity_iterations > 2;
   if (conjugate && !color_runs_.empty()) start_conjugate(thread);
   int sweeps = 0;
   while (rows && sweeps < tick.velocity_iterations) {

@@ -18,7 +18,6 @@
 #include <cstddef>
 #include <vector>
 
-#include "copy_bytes.hpp"
 #include "shape_lanes.hpp"
 
 namespace fixstep::detail {
@@ -48,10 +47,14 @@ struct SweepConjugate {
   /// The last sweep's largest change of a row's own velocity (m/s).
   double last = 0.0;
 
-  /// What a copy holds in heap memory (World::snapshot_bytes).
-  [[nodiscard]] std::size_t bytes() const {
-    return copy_bytes(before, direction, unit_before, unit_direction, v_before, v_direction);
-  }
+  SweepConjugate() = default;
+  /// Every tick's first sweep makes it again: a copy (a snapshot) holds nothing, and assigning
+  /// keeps the target's storage.
+  SweepConjugate(const SweepConjugate& /*other*/) {}
+  SweepConjugate& operator=(const SweepConjugate& /*other*/) { return *this; }
+  SweepConjugate(SweepConjugate&&) noexcept = default;
+  SweepConjugate& operator=(SweepConjugate&&) noexcept = default;
+  ~SweepConjugate() = default;
 
   /// One value's step in mode M: its change in the sweep (x − before) is the negative
   /// gradient. The same expressions for a lane of four and a scalar.

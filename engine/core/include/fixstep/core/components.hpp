@@ -162,7 +162,8 @@ struct ContactSettings {
   /// at their time of impact and bounce at any speed; this applies to shapes' manifolds only.
   double restitution_threshold = default_restitution_threshold;
   /// Velocity iterations a tick (normal and friction impulses), in [1, max_iterations]. The
-  /// shapes' sweeps in a tick without joints take a conjugate step after each (a nonsmooth
+  /// shapes' sweeps in a tick in which no joint is solved take a conjugate step after each but
+  /// the last (from 3 iterations; a nonsmooth
   /// nonlinear conjugate gradient, Silcowitz, Niebe and Erleben 2010: docs/SHAPES.md), so a
   /// settled stack converges and its sweeps end before the count.
   int velocity_iterations = default_velocity_iterations;
