@@ -97,22 +97,9 @@ void ShapeWorld::start_conjugate(SecondThread* thread) {
   c.unit_before.resize(3 * rows), c.unit_direction.resize(3 * rows);
   c.v_before.resize(velocity_.size()), c.v_direction.resize(velocity_.size());
   c.last = 0.0;
-  // The tick's first step (Mode::first) sets every direction; here only what comes before.
-  std::size_t k = 0;
-  for (const auto& g : block_lanes_) {
-    for (const auto& point : g.p) c.before[k++] = {point.ln, point.lt};
-  }
-  for (const auto& g : point_lanes_) {
-    for (const auto& point : g.p) c.before[k++] = {point.ln, point.lt};
-  }
-  k = 0;
-  for (const Unit u : units_) {
-    for (std::size_t i = u.start; i < u.start + u.rows; ++i, k += 3) {
-      c.unit_before[k] = solve_[i].ln, c.unit_before[k + 1] = solve_[i].lt;
-      c.unit_before[k + 2] = rows_[i].lr;
-    }
-  }
-  each_live(thread, [&](std::uint32_t b) { c.v_before[b] = velocity_[b]; });
+  // A restart's pass keeps every value as the sweep's start (the tick's first step, Mode::first,
+  // sets every direction).
+  step_conjugate_as<Mode::restart>(0.0, thread);
 }
 
 template <SweepConjugate::Mode M>
