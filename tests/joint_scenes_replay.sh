@@ -16,7 +16,7 @@ fail() {
   echo "FAIL: $*" >&2
   exit 1
 }
-declare -A final=([car]=8f30eaab3373eccc [ragdoll]=1b0e6f137eb01722)
+declare -A final=([car]=e0843dd27ebaa435 [ragdoll]=1b0e6f137eb01722)
 for name in car ragdoll; do
   rec=$src/assets/recordings/$name.rec
   "$cli" replay "$rec" >"$out/$name.txt" 2>&1 || fail "$name: replay exited $? ($(cat "$out/$name.txt"))"

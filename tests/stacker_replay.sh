@@ -13,7 +13,7 @@ game=$1
 src=$2
 out=$3
 rec=$src/assets/recordings/stacker.rec
-expected_hash=be29e6d2bc56ddc2
+expected_hash=1b2ded91ca809a2f
 expected_game="score=12 targets=2 shots_left=0 down=11111000001111111 phase=over"
 fresh_out "$out"
 

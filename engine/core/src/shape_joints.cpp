@@ -238,7 +238,7 @@ bool ShapeWorld::solve_joint_velocities() {
     };
     run_joint_parts(solve);
   }
-  return std::max({change[0], change[1], change[2]}) > velocity_sweep_tolerance || direct;
+  return std::max({change[0], change[1], change[2]}) > direct_velocity_tolerance || direct;
 }
 
 // The step waiting (keep_search_) given as impulses by `part`'s members, at the arms it was

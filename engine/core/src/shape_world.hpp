@@ -398,9 +398,12 @@ class ShapeWorld {
   /// converged: its joints moved nothing and no contact row changed its own velocity by more
   /// than velocity_sweep_tolerance. Returns the sweeps run.
   int solve_velocities(const ShapeTick& tick, SecondThread* second);
-  /// m/s (rad/s for a turning rate): the largest change of a row's velocity in a sweep that
-  /// has converged, the joint forest's own.
-  static constexpr double velocity_sweep_tolerance = direct_velocity_tolerance;
+  /// m/s (rad/s for a turning rate): the largest change of a contact row's velocity in a sweep
+  /// that has converged (the joints' rows and forest keep direct_velocity_tolerance). A
+  /// hundredth of a millimetre a second: a tick of 1/60 s moves a point 0.2 µm by it, well
+  /// within the push-out's 5 mm slop, where 1e-9 m/s ran every sweep of a stack still
+  /// settling (docs/perf/contact_solver_plan.md, "Where the sweeps end").
+  static constexpr double velocity_sweep_tolerance = 1e-5;
   /// A manifold: its first row in solve_ and its rows (1 or 2).
   struct Unit {
     std::uint32_t start = 0, rows = 1;

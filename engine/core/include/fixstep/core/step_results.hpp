@@ -108,8 +108,9 @@ struct ContactStats {
   double deepest_shape_overlap = 0.0;
   /// Velocity sweeps of the shapes' and joints' solver in the last tick, at most
   /// ContactSettings::velocity_iterations: fewer once a sweep has converged (its joints moved
-  /// no body's velocity, and its contacts changed no point's normal or tangent velocity, by
-  /// more than 1e-9 m/s or rad/s); 0 without shapes and joints, or when nothing touched.
+  /// no body's velocity by more than 1e-9 m/s or rad/s, and its contacts changed no point's
+  /// normal or tangent velocity by more than 1e-5 m/s or rad/s); 0 without shapes and joints,
+  /// or when nothing touched.
   int shape_velocity_sweeps = 0;
 };
 
