@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The pinball demo's recorded session (assets/recordings/pinball.rec: 40 s of its autopilot,
-# `pinball --frames 2400 --record FILE`: the flippers in play, 18 bumper hits; from about
-# 25 s on the ball lies in the notch where the left inlane meets its flipper's pivot) replayed headless with its rules: every stored state hash verifies (the
+# `pinball --frames 2400 --record FILE`: the flippers in play, 6 bumper hits, all three balls
+# lost and the game over) replayed headless with its rules: every stored state hash verifies (the
 # flippers' motor speeds as joint inputs, the bumpers' kicks from contact events), the game is where it was, and
 # the last frame is rendered; the sync test passes. Then the same recording through `fixstep
 # replay`, which has no pinball rules, must be refused naming the program (exit 5).
@@ -14,8 +14,8 @@ cli=$2
 src=$3
 out=$4
 rec=$src/assets/recordings/pinball.rec
-expected_hash=e7bf29dfd592026d
-expected_game="score=1840 balls=3 bumpers=18 slingshots=4 phase=play"
+expected_hash=eec8fcfeacfa8b92
+expected_game="score=630 balls=0 bumpers=6 slingshots=3 phase=over"
 fresh_out "$out"
 
 replay_verified "$game" "$rec" "$out" "$expected_hash" "$expected_game"

@@ -15,7 +15,7 @@ game=$1
 src=$2
 out=$3
 script=$src/assets/inputs/pinball_launch.toml
-expected="score=510 balls=2 bumpers=5 slingshots=1 phase=launch"
+expected="score=530 balls=1 bumpers=5 slingshots=3 phase=play"
 source "$src/tests/lib.sh"
 rm -rf "$out"
 mkdir -p "$out"

@@ -100,8 +100,10 @@ fixstep::JointDef flipper_joint(double side, Entity e) {
 
 void add_walls(fixstep::WorldDef& def) {
   // The outer wall: from the left inlane's foot up the left side, over the top arc (centre
-  // (0.5, 10.5), radius 5) and down the lane's outer side to the floor.
-  std::vector<Vec2> outer{{-flipper_x - 0.15, flipper_y + 0.2}, {-half_width, 3.4}};
+  // (0.5, 10.5), radius 5) and down the lane's outer side to the floor. Each inlane's foot
+  // lies on its flipper's top at rest, so a ball rolls from one onto the other: a foot lower
+  // than the flipper's back end made a notch in which a ball lay for ever.
+  std::vector<Vec2> outer{{-flipper_x - 0.15, flipper_y + 0.4}, {-half_width, 3.4}};
   constexpr double pi = 3.141592653589793;
   for (int k = 0; k <= 12; ++k) {
     const double a = pi - pi * k / 12.0;
@@ -111,7 +113,7 @@ void add_walls(fixstep::WorldDef& def) {
   def.add_polyline(outer, wall_restitution, wall_friction);
   // The right inlane's slope to the right flipper, and the wall between field and lane.
   const std::array<Vec2, 3> right{
-      {{flipper_x + 0.15, flipper_y + 0.2}, {half_width, 3.4}, {half_width, 9.5}}};
+      {{flipper_x + 0.15, flipper_y + 0.4}, {half_width, 3.4}, {half_width, 9.5}}};
   def.add_polyline(right, wall_restitution, wall_friction);
   const std::array<Vec2, 2> lane_foot{{{half_width, 0.0}, {half_width, 3.4}}};
   def.add_polyline(lane_foot, wall_restitution, wall_friction);
