@@ -163,9 +163,9 @@ struct ContactSettings {
   double restitution_threshold = default_restitution_threshold;
   /// Velocity iterations a tick (normal and friction impulses), in [1, max_iterations]. The
   /// shapes' sweeps in a tick in which no joint is solved take a conjugate step after each but
-  /// the last (from 3 iterations; a nonsmooth
-  /// nonlinear conjugate gradient, Silcowitz, Niebe and Erleben 2010: docs/SHAPES.md), so a
-  /// settled stack converges and its sweeps end before the count.
+  /// the last (from 3 iterations; a nonsmooth nonlinear conjugate gradient, Silcowitz, Niebe
+  /// and Erleben 2010: docs/SHAPES.md), so a settled stack converges and its sweeps end before
+  /// the count.
   int velocity_iterations = default_velocity_iterations;
   /// Position iterations a tick (push-out of overlap beyond the slop), in [0, max_iterations].
   /// The joints' own projection of the tick's error runs up to 10 steps however few these are
