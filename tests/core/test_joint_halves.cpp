@@ -12,6 +12,7 @@
 #include "joint_halves.hpp"
 #include "shape_exact.hpp"
 #include "shape_world.hpp"
+#include "workers.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -196,6 +197,25 @@ TEST(JointHalves, TwoThreadsTakeBackTheSameStepsAsOne) {
   EXPECT_GT(one->shape_world()->kept_step_cuts(), 0u) << "no step was taken back";
   EXPECT_EQ(one->shape_world()->kept_step_cuts(), two->shape_world()->kept_step_cuts());
   EXPECT_GT(two->shape_world()->halved_joint_passes(), 400u * 8u);
+}
+
+// An automatic world (threads = 0) of 273 joints tries two threads and one, tick by tick, and
+// holds its choice between trials (thread_choice.hpp): the joints' passes by halves in some
+// ticks and not in others, with the bits of one thread in every tick.
+TEST(JointHalves, AnAutomaticWorldStepsItsTrialsToTheSameBitsAsOneThread) {
+  auto one = hinged_heap(1), automatic = hinged_heap(0);
+  bool halved = false, whole = false;
+  std::uint64_t passes = 0;
+  for (int t = 0; t < 120; ++t) {
+    one->step(), automatic->step();
+    ASSERT_EQ(one->state_hash(), automatic->state_hash()) << "first differs after tick " << t + 1;
+    const std::uint64_t now = automatic->shape_world()->halved_joint_passes();
+    (now > passes ? halved : whole) = true;
+    passes = now;
+  }
+  if (detail::threads_for(0) < 2) GTEST_SKIP() << "one core: an automatic world runs one thread";
+  EXPECT_TRUE(halved && whole) << "the trials ran " << (halved ? "two threads" : "one thread")
+                               << " only";
 }
 
 }  // namespace

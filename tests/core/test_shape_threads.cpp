@@ -1,5 +1,6 @@
 // The shape phase on two threads: the broadphase and the manifolds by halves, the velocity
-// sweeps' large colours split and the push-out by halves, with the bits of one thread; a work limit
+// sweeps' large colours split and the push-out by halves, with the bits of one thread, also in
+// an automatic world that switches between two threads and one as it tries them; a work limit
 // met by halves is the fault one thread names.
 #include <gtest/gtest.h>
 
@@ -19,6 +20,7 @@
 #include "shape_exact.hpp"
 #include "shape_walls.hpp"
 #include "shape_world.hpp"
+#include "workers.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {
@@ -55,6 +57,24 @@ TEST(ShapeThreads, TwoThreadsStepAPileToTheSameBitsAsOne) {
   }
   EXPECT_GT(split, 60u * 20u);  // at least one colour in every sweep of every tick
   EXPECT_FALSE(two->fault().has_value());
+}
+
+TEST(ShapeThreads, AnAutomaticWorldStepsItsTrialsToTheSameBitsAsOneThread) {
+  // threads = 0: the world tries two threads and one, tick by tick (thread_choice.hpp), then
+  // holds its choice and tries again: 60 ticks hold two trials and the start of a third.
+  auto one = columns(1);
+  auto automatic = columns(0);
+  bool halved = false, whole = false;
+  for (int t = 0; t < 60; ++t) {
+    one->step();
+    automatic->step();
+    ASSERT_EQ(one->state_hash(), automatic->state_hash()) << "first differs after tick " << t + 1;
+    (automatic->shape_world()->halved() ? halved : whole) = true;
+  }
+  if (detail::threads_for(0) < 2) GTEST_SKIP() << "one core: an automatic world runs one thread";
+  EXPECT_TRUE(halved && whole) << "the trial ran " << (halved ? "two threads" : "one thread")
+                               << " only";
+  EXPECT_FALSE(automatic->fault().has_value());
 }
 
 /// The wall of shape_walls::box_wall with every row pressed: the push-out pushes in every sweep

@@ -39,6 +39,7 @@
 #include "mover_slide.hpp"
 #include "scratch_vector.hpp"
 #include "segment_set.hpp"
+#include "thread_choice.hpp"
 
 /// The small phases of a tick (world_tick.cpp): named functions in the files they belong to,
 /// inlined into WorldKernel::step (kernel_instances.cpp compiles them in one unit), so that a
@@ -722,6 +723,9 @@ class WorldKernel {
   };
   Store<ShapeSet> shape_sets_;
   ClonePtr<ShapeWorld> shape_world_;
+  /// An automatic world's thread count for its shape phase, by trial (not state: the phase's
+  /// bits are the same on either count).
+  ThreadChoice shape_threads_;
   PreSolveFn pre_solve_ = nullptr;  ///< set_pre_solve: not state
   void* pre_solve_context_ = nullptr;
   // Character movers (world_movers.cpp; BodyDef::mover), keyed by entity: the definition, what

@@ -371,7 +371,12 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.unpaired = joint_unpaired_;
   tick.pre_solve = pre_solve_, tick.pre_solve_context = pre_solve_context_;
   tick.entities = bodies_.dense;
-  tick.threads = detail::threads_for(settings_.threads);
+  // An automatic world of a few hundred shapes or joints times its shape phase on two threads
+  // and on one now and then, and keeps the faster (thread_choice.hpp).
+  const bool choose =
+      settings_.threads == 0 && (w.shapes_.size() >= detail::ThreadChoice::min_shapes ||
+                                 joint_records_.size() >= detail::ThreadChoice::min_shapes);
+  tick.threads = shape_threads_.threads(detail::threads_for(settings_.threads), choose);
   // The discs' second thread where its run is open (it spins through the shape phase); else
   // the shape world starts its own.
   detail::SecondThread* discs = discs_ && tick.threads >= 2 ? discs_->second_thread(2) : nullptr;
@@ -381,7 +386,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   }
   const bool account = settings_.track_dissipation;
   if (account) shape_energies(w.energy_);
-  const ShapeTally tally = w.solve(tick);
+  const ShapeTally tally = shape_threads_.timed([&] { return w.solve(tick); });
   if (account) account_shape_contacts();
   if (!joint_records_.empty()) break_joints();  // world_joints.cpp
   if (tally.cap && !fault_) {  // cold: a work limit stopped the tick's shape contacts
