@@ -4,6 +4,8 @@
 // test_shape_threads.cpp's.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <stdexcept>
 #include <vector>
 
