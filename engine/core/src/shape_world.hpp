@@ -91,6 +91,9 @@ class ShapeWorld {
   /// The joints (broken ones too) from which a tick with two threads sweeps them by halves
   /// (joint_halves.hpp), where they make two.
   static constexpr std::size_t min_split_joints = 256;
+  /// The manifolds of a colour from which its sweep is split over two threads: below, the
+  /// hand-over costs about what the half saves.
+  static constexpr std::uint32_t min_split_manifolds = 256;
   /// What a push-out sweep reads of a manifold point: its ShapeRow's bodies, normal, lever
   /// arms and separation, and its velocity row's normal mass, packed so that a sweep streams
   /// a fraction of the bytes of the two rows.
@@ -444,9 +447,6 @@ class ShapeWorld {
     bool lone_block = false, lone_point = false;
   };
   std::vector<ColorPlace> color_places_;
-  /// The manifolds of a colour from which its sweep is split over two threads: below, the
-  /// hand-over costs about what the half saves.
-  static constexpr std::uint32_t min_split_manifolds = 256;
   SecondThread second_;  ///< the shape world's own, when the discs' is not running
   std::uint64_t split_colors_ = 0;
   /// One sweep of the colour from `from` to `run` (ColorRun ends), on `thread` by halves when

@@ -12,17 +12,15 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstddef>
 #include <limits>
+
+#include "phase_clock.hpp"
 
 namespace fixstep::detail {
 
 class ThreadChoice {
  public:
-  /// Shapes (or joints) from which an automatic world chooses: below, no pass of the shape
-  /// phase splits (its least split is a colour of 256 manifolds), so nothing is timed.
-  static constexpr std::size_t min_shapes = 256;
   /// Ticks of a trial: two threads, one, two, one, ...
   static constexpr int trial_ticks = 8;
   /// Ticks a choice holds before the next trial: first_hold_ticks after a world's first trial,
@@ -36,16 +34,16 @@ class ThreadChoice {
   static constexpr double two_threads_at_most = 0.95;
 
   /// The shape phase's thread count this tick: `most` (threads_for's: 1 or 2) where the world
-  /// does not choose (`choose`: an automatic world of min_shapes shapes or joints) or has one
-  /// thread; else the trial's count, or the one the last trial chose. Call once a tick, before
-  /// timed().
+  /// does not choose (`choose`: an automatic world in which some pass of the phase could
+  /// split) or has one thread; else the trial's count, or the one the last trial chose. Call
+  /// once a tick, before timed().
   int threads(int most, bool choose) {
     timing_ = 0;
     if (!choose || most < 2) return most;
     if (at_ >= trial_ticks + hold_) at_ = 0, hold_ = std::min(2 * hold_, hold_ticks);
     const int at = at_++;
     if (at >= trial_ticks) return chosen_;
-    if (at == 0) fastest_ = {unmeasured, unmeasured};  // (a trial cut short by a throw)
+    if (at == 0) fastest_ = {unmeasured, unmeasured};  // (also a trial cut short by a throw)
     timing_ = at % 2 == 0 ? 2 : 1;
     return timing_;
   }
@@ -54,12 +52,10 @@ class ThreadChoice {
   /// is not counted).
   template <class Phase>
   auto timed(Phase&& phase) {
-    if (timing_ == 0) return phase();
     const int count = timing_;
-    const auto start = std::chrono::steady_clock::now();
+    PhaseClock clock(count != 0);  // (not read otherwise)
     auto out = phase();
-    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
-    record(count, took.count());
+    if (count != 0) record(count, clock.lap());
     return out;
   }
   /// A trial's tick on `count` threads (1 or 2) took `seconds`; the trial's last tick decides
@@ -70,7 +66,6 @@ class ThreadChoice {
     if (at_ != trial_ticks) return;
     const double one = fastest_[0], two = fastest_[1];
     if (one < unmeasured && two < unmeasured) chosen_ = two <= two_threads_at_most * one ? 2 : 1;
-    fastest_ = {unmeasured, unmeasured};
   }
   /// The count the last trial chose (2 before the first).
   [[nodiscard]] int chosen() const { return chosen_; }

@@ -778,6 +778,8 @@ class WorldKernel {
   void rebuild_shapes();
   void save_shape_start();
   void resolve_shapes();
+  /// The shape phase's thread count this tick (shape_threads_: by trial in an automatic world).
+  int shape_phase_threads();
   /// Makes the shape world's resting lists stale (shape_rest.hpp): whenever a static body or a
   /// sleeper may change (an edit, a body falling asleep or waking, a rebuild).
   void unsettle_shapes();

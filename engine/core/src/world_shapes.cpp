@@ -333,6 +333,17 @@ void detail::WorldKernel<Real>::save_shape_start() {
   }
 }
 
+// An automatic world in which a pass of the phase could split (a colour of as many manifolds
+// needs as many shapes) times the phase on two threads and on one now and then, and keeps the
+// faster (thread_choice.hpp).
+template <class Real>
+int detail::WorldKernel<Real>::shape_phase_threads() {
+  const bool choose =
+      settings_.threads == 0 && (shape_world_->shapes_.size() >= ShapeWorld::min_split_manifolds ||
+                                 joint_records_.size() >= ShapeWorld::min_split_joints);
+  return shape_threads_.threads(detail::threads_for(settings_.threads), choose);
+}
+
 template <class Real>
 void detail::WorldKernel<Real>::resolve_shapes() {
   ShapeWorld& w = *shape_world_;
@@ -371,12 +382,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.unpaired = joint_unpaired_;
   tick.pre_solve = pre_solve_, tick.pre_solve_context = pre_solve_context_;
   tick.entities = bodies_.dense;
-  // An automatic world of a few hundred shapes or joints times its shape phase on two threads
-  // and on one now and then, and keeps the faster (thread_choice.hpp).
-  const bool choose =
-      settings_.threads == 0 && (w.shapes_.size() >= detail::ThreadChoice::min_shapes ||
-                                 joint_records_.size() >= detail::ThreadChoice::min_shapes);
-  tick.threads = shape_threads_.threads(detail::threads_for(settings_.threads), choose);
+  tick.threads = shape_phase_threads();
   // The discs' second thread where its run is open (it spins through the shape phase); else
   // the shape world starts its own.
   detail::SecondThread* discs = discs_ && tick.threads >= 2 ? discs_->second_thread(2) : nullptr;
