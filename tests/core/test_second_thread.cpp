@@ -1,6 +1,7 @@
 // The second thread of a world's passes (engine/core/src/second_thread.hpp, pass_team.hpp,
 // spin_wait.hpp): an exception on the worker reaches the caller, in a run and outside one; a
-// nested run leaves the outer one open; a job the worker has not claimed is run by the caller;
+// nested run leaves the outer one open; copying into one keeps its worker; a job the worker has
+// not claimed is run by the caller;
 // a wait with nothing posted returns; opening a run wakes a sleeping worker;
 // on one core the two threads take turns by sleeping, not by spinning; a thread asked to leave a
 // core does, and is not pinned by it; a thread held off a core wakes elsewhere; and a worker woken
@@ -74,6 +75,34 @@ TEST(SecondThread, ANestedRunLeavesTheOuterOneOpen) {
   EXPECT_FALSE(thread.is_open());
   const SecondThreadRun none(nullptr);
   EXPECT_FALSE(thread.is_open());
+}
+
+// A snapshot copies a world's SecondThread without its worker; a restore copies into the
+// world's own, which keeps its worker (a rollback restores every frame: stopping the worker
+// there started a thread a frame) and ends its run; the worker serves the next pass.
+TEST(SecondThread, CopyingIntoOneKeepsItsWorkerAndEndsItsRun) {
+  SecondThread thread;
+  thread.open();
+  int halves = 0;
+  auto count = [&](int half) {
+    if (half == 0) halves += 1;
+  };
+  thread.both(count);
+  const PassTeam* team = thread.team();
+  ASSERT_NE(team, nullptr);
+  const SecondThread copy(thread);
+  EXPECT_EQ(copy.team(), nullptr);
+  EXPECT_FALSE(copy.is_open());
+  thread = copy;
+  EXPECT_EQ(thread.team(), team);
+  EXPECT_FALSE(thread.is_open());
+  int second = 0;
+  auto mark = [&](int half) {
+    if (half == 1) second = 1;
+  };
+  thread.both(mark);
+  EXPECT_EQ(second, 1);
+  EXPECT_EQ(halves, 1);
 }
 
 // A job posted to a team that no worker serves (the worker not started yet, or not running):

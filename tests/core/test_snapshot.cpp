@@ -246,6 +246,44 @@ TEST(Snapshot, AStateTakenBeforeAComponentChangeComesBackWhole) {
   EXPECT_EQ(sim.state_hash(), expected);
 }
 
+#if defined(__linux__)
+/// This process's threads (Linux: /proc/self/task), by id.
+std::vector<std::string> thread_ids() {
+  std::vector<std::string> ids;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/task")) {
+    ids.push_back(entry.path().filename().string());
+  }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+// A rollback restores a snapshot every frame. A world's worker threads (the integration's and
+// the links' Workers, the discs' and the shapes' SecondThread) hold nothing a tick's result
+// depends on, so restoring keeps them: the same threads step on, with the same bits. Each
+// restore used to stop them, and the next tick started new ones (51 threads for 50 rollbacks).
+TEST(Snapshot, RestoringKeepsTheWorldsWorkerThreads) {
+  for (const char* file : {"ball_pit.toml", "boxes.toml", "cloth.toml", "ragdoll.toml"}) {
+    SCOPED_TRACE(file);
+    Scene scene = load_scene(scenes_dir / file);
+    scene.def.settings.threads = 2;
+    World sim = World(scene.def);
+    for (int t = 0; t < 5; ++t) sim.step();
+    WorldSnapshot snap;
+    sim.save(snap);
+    for (int t = 0; t < 3; ++t) sim.step();
+    const std::uint64_t expected = sim.state_hash();
+    const std::vector<std::string> before = thread_ids();
+    ASSERT_GT(before.size(), 1u);  // a worker runs beside this thread
+    for (int k = 0; k < 3; ++k) {
+      sim.restore(snap);
+      for (int t = 0; t < 3; ++t) sim.step();
+      EXPECT_EQ(sim.state_hash(), expected);
+    }
+    EXPECT_EQ(thread_ids(), before);
+  }
+}
+#endif
+
 TEST(Snapshot, RestoringAnEmptySnapshotIsRefused) {
   World sim = World(load_scene(scenes_dir / "default.toml").def);
   EXPECT_THROW(sim.restore(WorldSnapshot{}), std::invalid_argument);

@@ -20,13 +20,15 @@ namespace fixstep::detail {
 /// A run (open() ... close(), one tick's disc phases) marks the passes that share their work
 /// (callers ask is_open() before they split a pass); within it the worker spins between
 /// passes, outside it sleeps after a short spin (PassTeam), so an idle world costs no CPU. A copy
-/// (a snapshot) starts without a thread and outside a run.
+/// (a snapshot) starts without a thread and outside a run; copying into one (a snapshot
+/// restored) keeps its worker and ends its run: a thread holds no state a tick's result
+/// depends on, and a rollback restores every frame.
 class SecondThread {
  public:
   SecondThread() = default;
   SecondThread(const SecondThread& /*other*/) noexcept {}
   SecondThread& operator=(const SecondThread& other) noexcept {
-    if (this != &other) stop(), open_ = false;
+    if (this != &other) close();
     return *this;
   }
   ~SecondThread() { stop(); }

@@ -150,8 +150,8 @@ class ClonePtr {
 
 /// Owns a cache that a copy of its owner does not share: a copy starts empty (the owner
 /// rebuilds the cache on demand) and copying into an owner drops its cache; moving moves it.
-/// For parts that hold no state a tick's result depends on: the worker thread and the implicit
-/// solver's factorisation, so a World can be copied (a snapshot) and stays bit-exact.
+/// For parts that hold no state a tick's result depends on: the implicit solver's
+/// factorisation and the name index, so a World can be copied (a snapshot) and stays bit-exact.
 template <class T, class Deleter>
 class CachePtr : public std::unique_ptr<T, Deleter> {
  public:
@@ -164,6 +164,21 @@ class CachePtr : public std::unique_ptr<T, Deleter> {
   CachePtr(CachePtr&&) noexcept = default;
   CachePtr& operator=(CachePtr&&) noexcept = default;
   ~CachePtr() = default;
+};
+
+/// Owns a worker (Workers) that a copy of its owner does not share: a copy starts without one
+/// (its first parallel pass starts it), and copying into an owner keeps the owner's own, since
+/// a thread holds no state a tick's result depends on and a rollback restores every frame;
+/// moving moves it.
+template <class T, class Deleter>
+class KeptPtr : public std::unique_ptr<T, Deleter> {
+ public:
+  KeptPtr() = default;
+  KeptPtr(const KeptPtr& /*other*/) noexcept : std::unique_ptr<T, Deleter>() {}
+  KeptPtr& operator=(const KeptPtr& /*other*/) noexcept { return *this; }
+  KeptPtr(KeptPtr&&) noexcept = default;
+  KeptPtr& operator=(KeptPtr&&) noexcept = default;
+  ~KeptPtr() = default;
 };
 
 /// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
@@ -600,7 +615,7 @@ class WorldKernel {
   void index_name(Entity e, const std::string& name) const;
   void unindex_name(Entity e, const std::string& name) const;
   mutable CachePtr<NameIndex, std::default_delete<NameIndex>> name_index_;
-  CachePtr<Workers, WorkersDeleter> workers_;
+  KeptPtr<Workers, WorkersDeleter> workers_;
   CachePtr<ImplicitSolver<Real>, ImplicitSolverDeleter<Real>> implicit_;
   // (world_coupled.cpp)
   void step_multipass(const TickInput& input);
