@@ -400,7 +400,9 @@ class World {
   void save(WorldSnapshot& out) const;
   /// Puts back a saved state: every later step gives the same bits as after the save. The
   /// snapshot may come from another World (it replaces this one's world, precision
-  /// included). Throws std::invalid_argument for an empty snapshot.
+  /// included). This world keeps its worker threads (WorldSettings::threads), so a rollback
+  /// that restores every frame starts none. Throws std::invalid_argument for an empty
+  /// snapshot.
   void restore(const WorldSnapshot& snapshot);
 
  private:
