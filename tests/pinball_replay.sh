@@ -14,7 +14,7 @@ cli=$2
 src=$3
 out=$4
 rec=$src/assets/recordings/pinball.rec
-expected_hash=eec8fcfeacfa8b92
+expected_hash=fd7f15705767c2fe
 expected_game="score=630 balls=0 bumpers=6 slingshots=3 phase=over"
 fresh_out "$out"
 

@@ -1,5 +1,6 @@
 // The joints' direct solve (joint_tree.hpp): which joints join the forest, its solution against
-// K = J M⁻¹ Jᵀ assembled row by row, and a swinging chain held to its tolerance.
+// K = J M⁻¹ Jᵀ assembled row by row, its trees solved alone, and a swinging chain held to its
+// tolerance.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -168,9 +169,9 @@ double worst_residual(bool angles) {
   return worst;
 }
 
-/// λ of `tree`'s forest for arms and a right-hand side drawn from one seed (the same for the
-/// same members).
-std::vector<Vec2> solved(JointTree& tree) {
+/// Arms and a right-hand side for `tree`'s forest drawn from one seed (the same for the same
+/// members), factored.
+void draw(JointTree& tree) {
   std::mt19937_64 random(5);
   std::uniform_real_distribution<double> arm(-0.7, 0.7), value(-3.0, 3.0);
   const auto members = tree.members();
@@ -179,6 +180,11 @@ std::vector<Vec2> solved(JointTree& tree) {
     tree.rhs()[k] = {value(random), value(random)};
   }
   tree.factor();
+}
+
+/// λ of `tree`'s forest for draw()'s arms and right-hand side.
+std::vector<Vec2> solved(JointTree& tree) {
+  draw(tree);
   tree.solve(tree.rhs());
   return {tree.rhs().begin(), tree.rhs().end()};
 }
@@ -223,6 +229,32 @@ TEST(JointTree, ABuildKeepsItsOrderOnlyWhileTheEndsStay) {
   j[joints().size() - 1].broken = true;
   j[13].b = 11;
   against_fresh("as at first");
+}
+
+// Solving the trees flagged active gives each of their members the bits of the whole forest's
+// solve and leaves the other trees' entries as they were: a tree within its tolerance is left
+// alone while another is solved.
+TEST(JointTree, SolvesTheActiveTreesAloneWithTheWholeSolvesBits) {
+  std::vector<ShapedBody> b = bodies();
+  std::vector<JointRecord> j = joints();
+  JointTree tree;
+  JointBodies numbered;
+  build_all(tree, j, b, numbered);
+  ASSERT_EQ(tree.trees(), 2u);  // bodies 0–9 from the world, 10–13 and 16 free
+  const std::vector<Vec2> whole = solved(tree);
+  for (const int pattern : {0, 1, 2, 3}) {  // which of the two trees are active
+    SCOPED_TRACE(pattern);
+    const std::vector<std::uint8_t> active{static_cast<std::uint8_t>(pattern & 1),
+                                           static_cast<std::uint8_t>(pattern >> 1)};
+    draw(tree);
+    const std::vector<Vec2> given(tree.rhs().begin(), tree.rhs().end());
+    tree.solve(tree.rhs(), {}, JointTree::whole, active);
+    for (std::size_t k = 0; k < given.size(); ++k) {
+      const Vec2 expected = active[tree.tree_of(k)] != 0 ? whole[k] : given[k];
+      EXPECT_EQ(tree.rhs()[k].x, expected.x) << "member " << k;
+      EXPECT_EQ(tree.rhs()[k].y, expected.y) << "member " << k;
+    }
+  }
 }
 
 TEST(JointTree, SolvesTheForestsPointRowsAsTheAssembledSystemDoes) {

@@ -103,6 +103,7 @@ void JointTree::add_node(std::uint32_t parent, std::uint32_t member, std::uint32
                          std::span<const ShapedBody> bodies, const JointBodies& numbered) {
   const auto k = static_cast<std::uint32_t>(nodes_.size());
   nodes_.push_back({parent, member, body});
+  tree_of_node_.push_back(parent == none ? trees_++ : tree_of_node_[parent]);
   if (body != none) {
     node_of_body_[numbered.local(body)] = k;
     bodies_.push_back(body);
@@ -154,7 +155,8 @@ void JointTree::order(std::span<const ShapedBody> bodies, const JointBodies& num
     }
   }
   stack_.clear();
-  nodes_.clear(), inverse_mass_.clear(), bodies_.clear();
+  nodes_.clear(), inverse_mass_.clear(), bodies_.clear(), tree_of_node_.clear();
+  trees_ = 0;
   node_of_body_.assign(numbered.size(), none);
   node_of_member_.assign(members_.size(), none);
   for (std::uint32_t m = 0; m < ends_.size(); ++m) {
@@ -171,6 +173,11 @@ void JointTree::order(std::span<const ShapedBody> bodies, const JointBodies& num
   inverse_.resize(n), up_.resize(n), pivot_.resize(n), x_.resize(n);
   all_nodes_.resize(n);
   std::iota(all_nodes_.begin(), all_nodes_.end(), 0U);
+  tree_of_member_.resize(members_.size());
+  for (std::size_t m = 0; m < members_.size(); ++m) {
+    tree_of_member_[m] = tree_of_node_[node_of_member_[m]];
+  }
+  for (auto& nodes : active_nodes_) nodes.reserve(n);
 }
 
 void JointTree::split(std::span<const std::uint8_t> half_of_body, const JointBodies& numbered) {
@@ -300,10 +307,25 @@ void JointTree::factor_part(int part) {
 }
 
 void JointTree::solve(std::span<Vec2> rhs, std::span<double> angle_rhs, int part) {
+  solve_nodes(rhs, angle_rhs, nodes_of(part));
+}
+
+void JointTree::solve(std::span<Vec2> rhs, std::span<double> angle_rhs, int part,
+                      std::span<const std::uint8_t> active) {
+  std::vector<std::uint32_t>& nodes = active_nodes_[part];
+  nodes.clear();
+  for (const std::uint32_t i : nodes_of(part)) {
+    if (active[tree_of_node_[i]] != 0) nodes.push_back(i);
+  }
+  solve_nodes(rhs, angle_rhs, nodes);
+}
+
+void JointTree::solve_nodes(std::span<Vec2> rhs, std::span<double> angle_rhs,
+                            std::span<const std::uint32_t> nodes) {
   if (any_angle_) {
-    solve_with<true>(rhs, angle_rhs, nodes_of(part));
+    solve_with<true>(rhs, angle_rhs, nodes);
   } else {
-    solve_with<false>(rhs, angle_rhs, nodes_of(part));
+    solve_with<false>(rhs, angle_rhs, nodes);
   }
 }
 
@@ -387,9 +409,10 @@ std::size_t JointTree::bytes() const {
   return copy_bytes(members_, bodies_, ends_, arms_, rhs_, angle_rows_, factored_angles_,
                     angle_rhs_, nodes_, inverse_mass_, inverse_, up_, pivot_, x_, root_,
                     node_of_body_, first_, joined_, node_of_member_, stack_, all_nodes_,
-                    all_members_, ordered_ends_) +
+                    all_members_, ordered_ends_, tree_of_node_, tree_of_member_) +
          copy_bytes(part_nodes_[0], part_nodes_[1], part_members_[0], part_members_[1],
-                    part_bodies_[0], part_bodies_[1]);
+                    part_bodies_[0], part_bodies_[1], active_nodes_[0], active_nodes_[1],
+                    active_nodes_[2]);
 }
 
 }  // namespace fixstep::detail

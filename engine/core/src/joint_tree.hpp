@@ -75,6 +75,14 @@ class JointTree {
   /// part's members' entries untouched. `angle_rhs` (one per member) is needed only when the
   /// last factor had angle rows.
   void solve(std::span<Vec2> rhs, std::span<double> angle_rhs = {}, int part = whole);
+  /// solve() for the trees of `part` whose entry of `active` (one per tree: tree_of()) is not
+  /// 0; the other trees' members' entries untouched. The trees are independent, so each
+  /// solved member gets the same bits as from solve().
+  void solve(std::span<Vec2> rhs, std::span<double> angle_rhs, int part,
+             std::span<const std::uint8_t> active);
+  /// The forest's trees: how many, and member k's (0 ... trees() − 1, by the last build()).
+  [[nodiscard]] std::size_t trees() const { return trees_; }
+  [[nodiscard]] std::uint32_t tree_of(std::size_t member) const { return tree_of_member_[member]; }
 
   /// The forest by halves (joint_halves.hpp): part 0 and 1 are the trees whose bodies are in
   /// that half; `whole` is every tree. The trees are independent, so factoring or solving
@@ -127,6 +135,11 @@ class JointTree {
   std::vector<std::uint32_t> node_of_body_;
   std::vector<std::uint32_t> first_, joined_;  ///< each body's members (CSR)
   std::vector<std::uint32_t> node_of_member_, stack_;
+  // Each node's and member's tree (a tree's nodes are one run of the preorder), and the
+  // nodes of the active trees of a part (solve() with `active`; 0, 1, whole).
+  std::vector<std::uint32_t> tree_of_node_, tree_of_member_;
+  std::uint32_t trees_ = 0;
+  std::array<std::vector<std::uint32_t>, 3> active_nodes_;
   std::vector<std::uint32_t> all_nodes_, all_members_;  ///< 0, 1, 2, ...: the whole forest
   std::array<std::vector<std::uint32_t>, 2> part_nodes_, part_members_, part_bodies_;
   [[nodiscard]] std::span<const std::uint32_t> nodes_of(int part) const {
@@ -150,6 +163,8 @@ class JointTree {
   [[nodiscard]] Link link(std::size_t node) const;
   void eliminate_joint(std::size_t node);
   void eliminate_body(std::size_t node);
+  void solve_nodes(std::span<Vec2> rhs, std::span<double> angle_rhs,
+                   std::span<const std::uint32_t> nodes);
   template <bool Angles>
   void solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs,
                   std::span<const std::uint32_t> nodes);

@@ -54,6 +54,7 @@ void ShapeWorld::prepare_joints() {
     arms[k] = {j.ra, j.rb};
   }
   tree_.factor();
+  tree_active_.assign(tree_.trees(), 1);
   rest_factored_ = false;
   step_error_ = no_step, step_keeps_ = false;
 }
@@ -68,11 +69,18 @@ double ShapeWorld::tree_point_velocities(const JointSolver& solver, int part) {
   const auto members = tree_.members();
   const auto rhs = tree_.rhs();
   double most = 0.0;
+  clear_active(part);
   for (const std::uint32_t k : tree_.members_of(part)) {
     solver.point_velocity_error(joints_[members[k]], rhs[k]);
-    most = std::max({most, std::abs(rhs[k].x), std::abs(rhs[k].y)});
+    const double error = std::max(std::abs(rhs[k].x), std::abs(rhs[k].y));
+    most = std::max(most, error);
+    if (error > direct_velocity_tolerance) tree_active_[tree_.tree_of(k)] = 1;
   }
   return most;
+}
+
+void ShapeWorld::clear_active(int part) {
+  for (const std::uint32_t k : tree_.members_of(part)) tree_active_[tree_.tree_of(k)] = 0;
 }
 
 // The forest's point errors now into tree_.rhs() (m: while keeping, the error the tick's
@@ -100,6 +108,7 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
   const auto angle_rows = tree_.angle_rows();
   const auto angle_rhs = tree_.angle_rhs();
   TreeErrors out;
+  clear_active(part);
   for (const std::uint32_t k : tree_.members_of(part)) {
     const JointRecord& j = joints_[members[k]];
     const Vec2 ra = arm(j.a, j.local_a), rb = arm(j.b, j.local_b);
@@ -114,7 +123,9 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
     out.any_row = out.any_row || row != 0;
     angle_rows[k] = row, angle_rhs[k] = -limit;
     out.past_limit = std::max(out.past_limit, std::abs(limit));
-    out.error = std::max({out.error, std::abs(rhs[k].x), std::abs(rhs[k].y)});
+    const double error = std::max(std::abs(rhs[k].x), std::abs(rhs[k].y));
+    out.error = std::max(out.error, error);
+    if (error > direct_position_tolerance || limit != 0.0) tree_active_[tree_.tree_of(k)] = 1;
   }
   return out;
 }
@@ -163,9 +174,13 @@ bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
       tree_.factor_part(part);
       for (const std::uint32_t k : own) joints_[members[k]].limit_row = tree_.angle_row_kept(k);
     }
-    tree_.solve(rhs, angle_rhs, part);
+    tree_.solve(rhs, angle_rhs, part, tree_active_);
     JointSolver solver(bodies_, state_, dt_);
     for (const std::uint32_t k : own) {
+      if (tree_active_[tree_.tree_of(k)] == 0) {  // a tree within tolerance: no step
+        if (search) keep_search_.step[k] = {};
+        continue;
+      }
       JointRecord& j = joints_[members[k]];
       solver.shift_point(j, rhs[k], arms[k][0], arms[k][1], angle_rows[k] ? angle_rhs[k] : 0.0);
       if (search) {
@@ -230,10 +245,10 @@ bool ShapeWorld::solve_joint_velocities() {
     auto solve = [&](int part) {
       const auto members = tree_.members();
       const auto rhs = tree_.rhs();
-      tree_.solve(rhs, {}, part);
+      tree_.solve(rhs, {}, part, tree_active_);
       JointSolver solver(bodies_, state_, dt_, velocity_);
       for (const std::uint32_t k : tree_.members_of(part)) {
-        solver.apply_point(joints_[members[k]], rhs[k]);
+        if (tree_active_[tree_.tree_of(k)] != 0) solver.apply_point(joints_[members[k]], rhs[k]);
       }
     };
     run_joint_parts(solve);

@@ -14,7 +14,8 @@ std::size_t ShapeWorld::bytes() const {
                     push_split_.rows, push_split_.moved_at, disabled_, row_keys_, near_segments_,
                     near_statics_, next_warm_, margin_, half_rows_, half_disabled_, next_kept_,
                     half_kept_, body_colors_, colored_, by_color_, block_lanes_, point_lanes_,
-                    units_, color_runs_, color_kinds_, color_places_, turned_, fresh_arms_, fast_) +
+                    units_, color_runs_, color_kinds_, color_places_, turned_, fresh_arms_, fast_,
+                    tree_active_) +
          tree_.bytes() + halves_.bytes() + joint_bodies_.bytes() + limit_rows_.bytes() +
          keep_search_.bytes();  // (conjugate_'s copy holds nothing)
 }

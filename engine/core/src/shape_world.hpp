@@ -535,6 +535,11 @@ class ShapeWorld {
   std::vector<std::array<Vec2, 2>> fresh_arms_;
   /// Whether each member's bodies turned more than fast_joint_turn by the sweeps that keep.
   std::vector<std::uint8_t> fast_;
+  /// Whether each tree of the forest has an error over its tolerance in the last measure
+  /// (velocity or position): a tree within it is left as it is, each tree by itself (a
+  /// settled island stops sweeping while a moving one goes on).
+  std::vector<std::uint8_t> tree_active_;
+  void clear_active(int part);
   void kick(JointSolver& solver, std::size_t k, Vec2 p);
   /// The sweeps that keep as a line search (joint_keep_search.hpp), in a tick where no joint
   /// outside the forest holds a forest body (searches_, set by prepare_joints): such a
