@@ -18,7 +18,7 @@ namespace fixstep::detail {
 
 struct ShapedBody;
 
-/// The forest's errors left as they are (a sweep that finds no larger one moves nothing): a
+/// The forest's errors left as they are (a tree with no larger one is not solved): a
 /// point's velocity error (m/s) and position error (m), each component.
 inline constexpr double direct_velocity_tolerance = 1e-9;
 inline constexpr double direct_position_tolerance = 1e-9;

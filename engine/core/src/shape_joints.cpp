@@ -144,8 +144,8 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
 // shorter (cut_kept_step); otherwise these sweeps end when the error did not shrink. On
 // positions only, the steps are chord steps (the factors of the first such sweep: these
 // sweeps move the poses little), made at the poses now again after a step that did not shrink
-// the error (the contacts' push-out moves bodies between these sweeps). An error within
-// direct_position_tolerance is left: such a sweep moves nothing.
+// the error (the contacts' push-out moves bodies between these sweeps). A tree whose errors
+// are within direct_position_tolerance (and past no limit) is left: the step moves none of it.
 bool ShapeWorld::step_tree_positions(bool keep, const TreeErrors& now) {
   if (now.past_limit == 0.0 && now.error <= direct_position_tolerance) return false;
   const bool stalled = step_error_ < no_step && !(now.error < step_error_);
@@ -238,8 +238,8 @@ bool ShapeWorld::solve_joint_velocities() {
   };
   run_joint_parts(rows);
   // The forest's point rows at once: the impulses that make every one's Ċ zero together, at
-  // the start's arms. A velocity error within direct_velocity_tolerance is left: such a sweep
-  // moves nothing.
+  // the start's arms. A tree whose velocity errors are within direct_velocity_tolerance is
+  // left (tree_active_): the solve moves none of it.
   const bool direct = std::max({error[0], error[1], error[2]}) > direct_velocity_tolerance;
   if (direct) {
     auto solve = [&](int part) {
