@@ -77,12 +77,18 @@ void build_all(JointTree& tree, std::vector<JointRecord>& j, std::span<const Sha
   tree.build(j, all, b, numbered);
 }
 
-TEST(JointTree, TakesTheRevoluteJointsOfAForestAndLeavesTheLoopsToTheirOwnRows) {
+/// bodies() and joints(), and the forest of every joint built.
+struct Forest {
   std::vector<ShapedBody> b = bodies();
   std::vector<JointRecord> j = joints();
   JointTree tree;
   JointBodies numbered;
-  build_all(tree, j, b, numbered);
+  Forest() { build_all(tree, j, b, numbered); }
+};
+
+TEST(JointTree, TakesTheRevoluteJointsOfAForestAndLeavesTheLoopsToTheirOwnRows) {
+  Forest f;
+  auto& [b, j, tree, numbered] = f;
   std::vector<std::uint32_t> expected;
   for (std::uint32_t k = 0; k < j.size(); ++k) {
     const bool loop = k == 10 || k == 11, still = k == 12, other = k == 16 || k >= 18;
@@ -107,11 +113,8 @@ TEST(JointTree, TakesTheRevoluteJointsOfAForestAndLeavesTheLoopsToTheirOwnRows) 
 /// row asked of the member from body 16, which does not turn, to body 10 is left out: its
 /// angular impulse must be 0.
 double worst_residual(bool angles) {
-  std::vector<ShapedBody> b = bodies();
-  std::vector<JointRecord> j = joints();
-  JointTree tree;
-  JointBodies numbered;
-  build_all(tree, j, b, numbered);
+  Forest f;
+  auto& [b, j, tree, numbered] = f;
   std::mt19937_64 random(11);
   std::uniform_real_distribution<double> arm(-0.7, 0.7), value(-3.0, 3.0);
   const auto members = tree.members();
@@ -235,11 +238,8 @@ TEST(JointTree, ABuildKeepsItsOrderOnlyWhileTheEndsStay) {
 // solve and leaves the other trees' entries as they were: a tree within its tolerance is left
 // alone while another is solved.
 TEST(JointTree, SolvesTheActiveTreesAloneWithTheWholeSolvesBits) {
-  std::vector<ShapedBody> b = bodies();
-  std::vector<JointRecord> j = joints();
-  JointTree tree;
-  JointBodies numbered;
-  build_all(tree, j, b, numbered);
+  Forest f;
+  auto& [b, j, tree, numbered] = f;
   ASSERT_EQ(tree.trees(), 2u);  // bodies 0–9 from the world, 10–13 and 16 free
   const std::vector<Vec2> whole = solved(tree);
   for (const int pattern : {0, 1, 2, 3}) {  // which of the two trees are active
