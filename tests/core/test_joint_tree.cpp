@@ -88,7 +88,10 @@ struct Forest {
 
 TEST(JointTree, TakesTheRevoluteJointsOfAForestAndLeavesTheLoopsToTheirOwnRows) {
   Forest f;
-  auto& [b, j, tree, numbered] = f;
+  std::vector<ShapedBody>& b = f.b;
+  std::vector<JointRecord>& j = f.j;
+  JointTree& tree = f.tree;
+  JointBodies& numbered = f.numbered;
   std::vector<std::uint32_t> expected;
   for (std::uint32_t k = 0; k < j.size(); ++k) {
     const bool loop = k == 10 || k == 11, still = k == 12, other = k == 16 || k >= 18;
@@ -114,7 +117,9 @@ TEST(JointTree, TakesTheRevoluteJointsOfAForestAndLeavesTheLoopsToTheirOwnRows) 
 /// angular impulse must be 0.
 double worst_residual(bool angles) {
   Forest f;
-  auto& [b, j, tree, numbered] = f;
+  std::vector<ShapedBody>& b = f.b;
+  std::vector<JointRecord>& j = f.j;
+  JointTree& tree = f.tree;
   std::mt19937_64 random(11);
   std::uniform_real_distribution<double> arm(-0.7, 0.7), value(-3.0, 3.0);
   const auto members = tree.members();
@@ -239,7 +244,7 @@ TEST(JointTree, ABuildKeepsItsOrderOnlyWhileTheEndsStay) {
 // alone while another is solved.
 TEST(JointTree, SolvesTheActiveTreesAloneWithTheWholeSolvesBits) {
   Forest f;
-  auto& [b, j, tree, numbered] = f;
+  JointTree& tree = f.tree;
   ASSERT_EQ(tree.trees(), 2u);  // bodies 0–9 from the world, 10–13 and 16 free
   const std::vector<Vec2> whole = solved(tree);
   for (const int pattern : {0, 1, 2, 3}) {  // which of the two trees are active
