@@ -8,6 +8,7 @@
 #include <string>
 
 #include "binary_exponent.hpp"
+#include "det_trig_kernels.hpp"
 #include "fixstep/core/det_math.hpp"
 
 namespace fixstep::det {
@@ -16,26 +17,7 @@ namespace {
 constexpr double pi = 3.14159265358979311600e+00;     // π rounded
 constexpr double pi_lo = 1.22464679914735317720e-16;  // π - pi
 constexpr double pi_2 = 1.57079632679489655800e+00;   // π/2 rounded
-constexpr double pi_4 = 7.85398163397448278999e-01;   // π/4 rounded
-
-// 2/π rounded, and π/2 = p1 + p2 + p3 + p3_tail with p1, p2, p3 of 33 significant bits each,
-// so n·p1, n·p2 and n·p3 are exact for the n < 2^20 of |x| ≤ trig_max_argument.
-constexpr double two_over_pi = 6.36619772367581382433e-01;
-constexpr double p1 = 1.57079632673412561417e+00;
-constexpr double p1_tail = 6.07710050650619224932e-11;  // π/2 - p1
-constexpr double p2 = 6.07710050630396597660e-11;
-constexpr double p2_tail = 2.02226624879595063154e-21;  // π/2 - (p1 + p2)
-constexpr double p3 = 2.02226624871116645580e-21;
-constexpr double p3_tail = 8.47842766036889956997e-32;  // π/2 - (p1 + p2 + p3)
-
-// sin r ≈ r + S1 r³ + ... + S6 r¹³ and cos r ≈ 1 - r²/2 + C1 r⁴ + ... + C6 r¹⁴ on [-π/4, π/4]
-// (fdlibm k_sin.c, k_cos.c: relative error of the polynomial < 2^-58).
-constexpr double S1 = -1.66666666666666324348e-01, S2 = 8.33333333332248946124e-03,
-                 S3 = -1.98412698298579493134e-04, S4 = 2.75573137070700676789e-06,
-                 S5 = -2.50507602534068634195e-08, S6 = 1.58969099521155010221e-10;
-constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.38888888888741095749e-03,
-                 C3 = 2.48015872894767294178e-05, C4 = -2.75573143513906633035e-07,
-                 C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
+using namespace trig;  // π/4, the reduction's constants and the kernels' polynomials
 
 // atan c as a double-double for the reduction points c = 1/2, 1, 3/2, ∞, and the odd
 // polynomial's coefficients: atan t ≈ t - t³(a0 + a1 t² + ... + a10 t²⁰) on [0, 7/16]
@@ -53,18 +35,12 @@ constexpr double aT[] = {
 /// sin(x + y) for |x| ≤ about π/4 and |y| ≤ ulp(x)/2 (y: the tail of a reduced argument).
 double sin_kernel(double x, double y) {
   if (std::fabs(x) < 0x1p-27) return x;  // x³/6 < half an ulp of x
-  const double z = x * x, v = z * x;
-  const double r = S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)));
-  return x - ((z * (0.5 * y - v * r) - y) - v * S1);
+  return sin_poly(x, y);
 }
 
-/// cos(x + y) for |x| ≤ about π/4 and |y| ≤ ulp(x)/2: 1 - x²/2 rounded apart from the rest
-/// so that its rounding error is added back (fdlibm k_cos.c, 2004 revision).
+/// cos(x + y) for |x| ≤ about π/4 and |y| ≤ ulp(x)/2.
 double cos_kernel(double x, double y) {
-  const double z = x * x, w = z * z;
-  const double r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
-  const double hz = 0.5 * z, one_minus = 1.0 - hz;
-  return one_minus + (((1.0 - one_minus) - hz) + (z * r - x * y));
+  return cos_poly(x, y);
 }
 
 /// n and x - nπ/2 = y0 + y1 (|y0| ≤ about π/4, |y1| ≤ ulp(y0)/2) for finite |x| ≤
