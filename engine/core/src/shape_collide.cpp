@@ -2,9 +2,9 @@
 // between a shape and a half-plane. The SAT and clipping live in shape_clip.cpp, a static
 // segment with ghost vertices in shape_segment.cpp.
 #include <cmath>
-#include <numbers>
 
 #include "fixstep/core/det_math.hpp"
+#include "rot_batch.hpp"
 #include "shape_geom.hpp"
 
 namespace fixstep::detail {
@@ -13,13 +13,8 @@ namespace fixstep::detail {
 Manifold collide_placed(const Convex& a, const Convex& b, double speculative);
 
 Rot rot_of(double angle) {
-  // Beyond det's trig range (a body turning near the 1e12 rad/s limit over a tick, which the
-  // guard then stops): first reduced by 2π (IEEE remainder, exact); within it, the same bits.
-  if (std::abs(angle) > det::trig_max_argument && std::isfinite(angle)) {
-    angle = std::remainder(angle, 2.0 * std::numbers::pi);
-  }
   Rot q;
-  det::sincos(angle, q.s, q.c);
+  det::sincos(trig_angle(angle), q.s, q.c);
   return q;
 }
 

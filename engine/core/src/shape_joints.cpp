@@ -92,7 +92,9 @@ ShapeWorld::TreeErrors ShapeWorld::measure_tree_errors(bool keep, const JointSol
                                                        int part) {
   const auto members = tree_.members();
   const auto rhs = tree_.rhs();
-  for (const std::uint32_t body : tree_.bodies_of(part)) turned_[body] = rot_of(state_[body].a);
+  rot_of_each(
+      tree_.bodies_of(part), [&](std::uint32_t body) { return state_[body].a; },
+      [&](std::uint32_t body, Rot q) { turned_[body] = q; });
   // An end's centre and rotation now: the world's origin, a forest body's (made once a sweep:
   // every end that translates is one), or a static or kinematic body's.
   // (Each end's arm turned in its own branch: a pose chosen whole went through the stack in

@@ -195,9 +195,16 @@ bool ShapeWorld::push_sweep(SecondThread* thread) {
 }
 
 void ShapeWorld::update_turns(SecondThread* thread) {
-  each_live(thread, [&](std::uint32_t k) {
-    ShapeState& s = state_[k];
-    if (s.a != turned_at_[k]) s.turn = rot_of(s.a - s.a0), turned_at_[k] = s.a;
+  const std::span<const std::uint32_t> live = rest_.live;
+  run_halves(thread, live.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+    RotBatch batch;  // (the rotations in batches: the same bits as rot_of)
+    auto store = [&](std::uint32_t k, Rot q) { state_[k].turn = q; };
+    for (std::size_t j = begin; j < end; ++j) {
+      const std::uint32_t k = live[j];
+      ShapeState& s = state_[k];
+      if (s.a != turned_at_[k]) batch.add(k, s.a - s.a0, store), turned_at_[k] = s.a;
+    }
+    batch.flush(store);
   });
 }
 
@@ -239,8 +246,9 @@ void ShapeWorld::solve_positions(const ShapeTick& tick, SecondThread* second, Sh
     tally.deepest = std::max(tally.deepest, -pusher.separation(r));
   }
   // (By halves where the shape phase's run holds the second thread: the same rotations.)
-  each_live(halved_ ? second : nullptr,
-            [&](std::uint32_t k) { state_[k].q = rot_of(state_[k].a); });
+  rot_each_live(
+      halved_ ? second : nullptr, [&](std::uint32_t k) { return state_[k].a; },
+      [&](std::uint32_t k, Rot q) { state_[k].q = q; });
 }
 
 }  // namespace fixstep::detail

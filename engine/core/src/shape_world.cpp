@@ -264,7 +264,9 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   if (rest_.stale) {
     rebuild_rest(tick.dt);
   } else {
-    each_live(thread, [&](std::uint32_t i) { state_[i].q0 = rot_of(state_[i].a0); });
+    rot_each_live(
+        thread, [&](std::uint32_t i) { return state_[i].a0; },
+        [&](std::uint32_t i, Rot q) { state_[i].q0 = q; });
   }
   bool paired = broadphase(tick.dt, tally, thread);
   if (paired && !wake_.empty() && tick.wake) {  // sleepers woken: paired again as they now are

@@ -58,6 +58,7 @@
 #include "joint_tree.hpp"
 #include "kept_manifold.hpp"
 #include "one_way.hpp"
+#include "rot_batch.hpp"
 #include "second_thread.hpp"
 #include "shape_geom.hpp"
 #include "shape_lanes.hpp"
@@ -486,6 +487,15 @@ class ShapeWorld {
     const std::span<const std::uint32_t> live = rest_.live;
     run_halves(thread, live.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
       for (std::size_t j = begin; j < end; ++j) f(live[j]);
+    });
+  }
+  /// store(k, rot_of(angle(k))) for every live body k, by halves as each_live, the rotations
+  /// made in batches (rot_batch.hpp: the same bits).
+  template <class Angle, class Store>
+  void rot_each_live(SecondThread* thread, Angle&& angle, Store&& store) {
+    const std::span<const std::uint32_t> live = rest_.live;
+    run_halves(thread, live.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+      rot_of_each(live.subspan(begin, end - begin), angle, store);
     });
   }
   /// The joints' warm start, velocity sweep, position sweep and account (joint_solver.hpp).
