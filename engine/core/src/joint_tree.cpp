@@ -199,7 +199,7 @@ void JointTree::split(std::span<const std::uint8_t> half_of_body, const JointBod
 // A node's link to its parent: the point row's Jacobian on the body's end, Ċ = v_b + ω_b × r_b
 // − v_a − ω_a × r_a, so ∂Ċ/∂(v, ω) = s [[1, 0, u_x], [0, 1, u_y]] with s = ±1 (B's end, A's)
 // and u = (−r_y, r_x), zero for a body that does not turn.
-JointTree::Link JointTree::link(std::size_t i) const {
+[[gnu::always_inline]] inline JointTree::Link JointTree::link(std::size_t i) const {
   const Node& node = nodes_[i];
   const bool joint = node.member != none;
   const std::uint32_t member = joint ? node.member : nodes_[node.parent].member;
@@ -213,9 +213,11 @@ JointTree::Link JointTree::link(std::size_t i) const {
 }
 
 // A joint node into its parent body: D⁻¹ J (its rows, 3×3), and the body's pivot less
-// Jᵀ D⁻¹ J.
-[[gnu::always_inline]] inline void JointTree::eliminate_joint(std::size_t i) {
-  const auto [s, u, t, angle] = link(i);
+// Jᵀ D⁻¹ J. `angle`: l.angle, as a constant (the loops without its tests).
+template <bool angle>
+[[gnu::always_inline]] inline void JointTree::eliminate_joint(std::size_t i, const Link& l) {
+  const double s = l.s, t = l.t;
+  const Vec2 u = l.u;
   const Block& d = inverse_[i];
   Block& up = up_[i];
   Block& p = pivot_[nodes_[i].parent];
@@ -234,9 +236,11 @@ JointTree::Link JointTree::link(std::size_t i) const {
 }
 
 // A body node into its parent joint: D⁻¹ Jᵀ (3×2, or 3×3 with the joint's angle row), and
-// the joint's pivot less J D⁻¹ Jᵀ.
-[[gnu::always_inline]] inline void JointTree::eliminate_body(std::size_t i) {
-  const auto [s, u, t, angle] = link(i);
+// the joint's pivot less J D⁻¹ Jᵀ. `angle`: l.angle, as a constant.
+template <bool angle>
+[[gnu::always_inline]] inline void JointTree::eliminate_body(std::size_t i, const Link& l) {
+  const double s = l.s, t = l.t;
+  const Vec2 u = l.u;
   const Block& d = inverse_[i];
   Block& up = up_[i];
   Block& p = pivot_[nodes_[i].parent];
@@ -298,10 +302,11 @@ void JointTree::factor_part(int part) {
       d = inverse3(k);
     }
     if (node.parent == none) continue;
+    const Link l = link(i);
     if (node.member != none) {
-      eliminate_joint(i);
+      l.angle ? eliminate_joint<true>(i, l) : eliminate_joint<false>(i, l);
     } else {
-      eliminate_body(i);
+      l.angle ? eliminate_body<true>(i, l) : eliminate_body<false>(i, l);
     }
   }
 }
@@ -312,6 +317,10 @@ void JointTree::solve(std::span<Vec2> rhs, std::span<double> angle_rhs, int part
 
 void JointTree::solve(std::span<Vec2> rhs, std::span<double> angle_rhs, int part,
                       std::span<const std::uint8_t> active) {
+  if (std::find(active.begin(), active.end(), 0) == active.end()) {  // every tree: no list
+    solve_nodes(rhs, angle_rhs, nodes_of(part));
+    return;
+  }
   std::vector<std::uint32_t>& nodes = active_nodes_[part];
   nodes.clear();
   for (const std::uint32_t i : nodes_of(part)) {

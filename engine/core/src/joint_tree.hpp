@@ -161,8 +161,10 @@ class JointTree {
     bool angle = false;  ///< the member has an angle row
   };
   [[nodiscard]] Link link(std::size_t node) const;
-  void eliminate_joint(std::size_t node);
-  void eliminate_body(std::size_t node);
+  template <bool angle>
+  void eliminate_joint(std::size_t node, const Link& link);
+  template <bool angle>
+  void eliminate_body(std::size_t node, const Link& link);
   void solve_nodes(std::span<Vec2> rhs, std::span<double> angle_rhs,
                    std::span<const std::uint32_t> nodes);
   template <bool Angles>
