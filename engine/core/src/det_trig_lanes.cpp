@@ -6,17 +6,23 @@
 // comparison's mask with bitwise operations, never a branch.
 #include "det_trig_lanes.hpp"
 
-#include <bit>
 #include <cstdint>
 #include <cstring>
 
 #include "det_trig_kernels.hpp"
+#include "fixstep/core/bits.hpp"
 #include "fixstep/core/det_math.hpp"
 #include "simd_targets.hpp"
 
 namespace fixstep::det {
 namespace {
 
+void one_by_one(std::span<const double> x, double* sine, double* cosine) {
+  for (std::size_t i = 0; i < x.size(); ++i) sincos(x[i], sine[i], cosine[i]);
+}
+
+// The lanes: on x86-64, for the AVX2 clone (elsewhere every angle goes one by one).
+#if FIXSTEP_HAS_SIMD_CLONES
 using Lane = double __attribute__((vector_size(4 * sizeof(double))));
 using Mask = decltype(Lane{} < Lane{});
 
@@ -47,8 +53,8 @@ using Mask = decltype(Lane{} < Lane{});
   Lane x;
   std::memcpy(&x, in, sizeof x);
   const Lane t = magnitude(x);
-  const Mask beyond = reinterpret_cast<Mask>(t) >
-                      static_cast<std::int64_t>(std::bit_cast<std::uint64_t>(trig_max_argument));
+  const Mask beyond =
+      reinterpret_cast<Mask>(t) > static_cast<std::int64_t>(bits_of(trig_max_argument));
   if ((beyond[0] | beyond[1] | beyond[2] | beyond[3]) != 0) return false;
   const Lane n = floor_of(t * two_over_pi + 0.5);
   const Lane r = t - n * p1;
@@ -74,11 +80,6 @@ using Mask = decltype(Lane{} < Lane{});
   return true;
 }
 
-void one_by_one(std::span<const double> x, double* sine, double* cosine) {
-  for (std::size_t i = 0; i < x.size(); ++i) sincos(x[i], sine[i], cosine[i]);
-}
-
-#if FIXSTEP_HAS_SIMD_CLONES
 FIXSTEP_TARGET_AVX2 void fours_avx2(std::span<const double> x, double* sine, double* cosine) {
   std::size_t i = 0;
   for (; i + 4 <= x.size(); i += 4) {
