@@ -372,11 +372,9 @@ void JointTree::solve_with(std::span<Vec2> rhs, std::span<double> angle_rhs,
       for (std::size_t c = 0; c < 3; ++c) zp[c] -= g[c] * z[0] + g[3 + c] * z[1];
     }
   }
-  for (const std::uint32_t i : nodes) {
+  for (const std::uint32_t i : nodes) {  // parents first: x_i is final once made
     const std::uint32_t p = nodes_[i].parent;
     back_substitute(i, angle(i), p != none && angle(p));
-  }
-  for (const std::uint32_t i : nodes) {
     const std::uint32_t m = nodes_[i].member;
     if (m == none) continue;
     rhs[m] = {x_[i][0], x_[i][1]};

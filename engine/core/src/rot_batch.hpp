@@ -36,12 +36,17 @@ class RotBatch {
 
   template <class Store>
   void add(std::uint32_t id, double angle, Store&& store) {
-    ids_[count_] = id, angles_[count_] = trig_angle(angle);
+    ids_[count_] = id, angles_[count_] = angle;
+    beyond_ = beyond_ || !(std::abs(angle) <= det::trig_max_argument);  // (NaN too: rare)
     if (++count_ == size) flush(store);
   }
 
   template <class Store>
   void flush(Store&& store) {
+    if (beyond_) {
+      for (std::size_t i = 0; i < count_; ++i) angles_[i] = trig_angle(angles_[i]);
+      beyond_ = false;
+    }
     det::sincos_each({angles_.data(), count_}, sines_, cosines_, level_);
     for (std::size_t i = 0; i < count_; ++i) store(ids_[i], Rot{cosines_[i], sines_[i]});
     count_ = 0;
@@ -50,6 +55,7 @@ class RotBatch {
  private:
   SimdLevel level_ = simd_level();
   std::size_t count_ = 0;
+  bool beyond_ = false;  ///< some angle kept is beyond det's trig range, or not a number
   std::array<std::uint32_t, size> ids_;
   std::array<double, size> angles_, sines_, cosines_;
 };
