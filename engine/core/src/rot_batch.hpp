@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <numbers>
 
 #include "det_trig_lanes.hpp"
 #include "fixstep/core/det_math.hpp"
@@ -15,16 +14,6 @@
 #include "shape_geom.hpp"
 
 namespace fixstep::detail {
-
-/// An angle (rad) as rot_of takes it to det's trig: beyond trig_max_argument (a body turning
-/// near the 1e12 rad/s limit over a tick, which the guard then stops), reduced by 2π (IEEE
-/// remainder, exact); within it, itself.
-[[nodiscard]] inline double trig_angle(double angle) {
-  if (std::abs(angle) > det::trig_max_argument && std::isfinite(angle)) {
-    return std::remainder(angle, 2.0 * std::numbers::pi);
-  }
-  return angle;
-}
 
 /// Rotations asked for by id and made a batch at a time: add(id, angle, store) keeps the
 /// angle and, once `size` are kept, calls store(id, rot_of(angle)) for each kept (in the order

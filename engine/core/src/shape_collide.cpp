@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "fixstep/core/det_math.hpp"
-#include "rot_batch.hpp"
 #include "shape_geom.hpp"
 
 namespace fixstep::detail {

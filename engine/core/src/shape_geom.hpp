@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <numbers>
 
+#include "fixstep/core/det_math.hpp"
 #include "fixstep/core/segment.hpp"
 #include "fixstep/core/shape.hpp"
 #include "fixstep/core/types.hpp"
@@ -27,7 +28,17 @@ struct Rot {
 [[nodiscard]] inline double wrap_angle(double a) {
   return std::abs(a) <= std::numbers::pi ? a : std::remainder(a, 2.0 * std::numbers::pi);
 }
-/// Rot of `angle` (rad) through det::cos and det::sin.
+/// An angle (rad) as rot_of takes it to det's trig: beyond trig_max_argument (a body turning
+/// near the 1e12 rad/s limit over a tick, which the guard then stops), reduced by 2π (IEEE
+/// remainder, exact); within it, itself.
+[[nodiscard]] inline double trig_angle(double angle) {
+  if (std::abs(angle) > det::trig_max_argument && std::isfinite(angle)) {
+    return std::remainder(angle, 2.0 * std::numbers::pi);
+  }
+  return angle;
+}
+
+/// Rot of `angle` (rad) through det::cos and det::sin, of trig_angle(angle).
 [[nodiscard]] Rot rot_of(double angle);
 [[nodiscard]] inline Vec2 rotate(Rot q, Vec2 v) {
   return {q.c * v.x - q.s * v.y, q.s * v.x + q.c * v.y};
