@@ -12,6 +12,7 @@
 #include "det_trig_kernels.hpp"
 #include "fixstep/core/bits.hpp"
 #include "fixstep/core/det_math.hpp"
+#include "lane_ops.hpp"
 #include "simd_targets.hpp"
 
 namespace fixstep::det {
@@ -23,13 +24,10 @@ void one_by_one(std::span<const double> x, double* sine, double* cosine) {
 
 // The lanes: on x86-64, for the AVX2 clone (elsewhere every angle goes one by one).
 #if FIXSTEP_HAS_SIMD_CLONES
-using Lane = double __attribute__((vector_size(4 * sizeof(double))));
-using Mask = decltype(Lane{} < Lane{});
-
-[[gnu::always_inline]] inline Lane choose(Mask m, Lane yes, Lane no) {
-  return reinterpret_cast<Lane>((reinterpret_cast<Mask>(yes) & m) |
-                                (reinterpret_cast<Mask>(no) & ~m));
-}
+using detail::four_lanes::any;
+using detail::four_lanes::choose;
+using detail::four_lanes::Lane;
+using detail::four_lanes::Mask;
 
 [[gnu::always_inline]] inline Lane magnitude(Lane x) {
   return reinterpret_cast<Lane>(reinterpret_cast<Mask>(x) & INT64_MAX);
@@ -55,14 +53,14 @@ using Mask = decltype(Lane{} < Lane{});
   const Lane t = magnitude(x);
   const Mask beyond =
       reinterpret_cast<Mask>(t) > static_cast<std::int64_t>(bits_of(trig_max_argument));
-  if ((beyond[0] | beyond[1] | beyond[2] | beyond[3]) != 0) return false;
+  if (any(beyond)) return false;
   const Lane n = floor_of(t * two_over_pi + 0.5);
   const Lane r = t - n * p1;
   const Lane w = n * p1_tail;
   const Lane y0_reduced = r - w;
   const Mask small = t <= pi_4;
   const Mask cancelled = ~small & (magnitude(y0_reduced) < t * 0x1p-15);
-  if ((cancelled[0] | cancelled[1] | cancelled[2] | cancelled[3]) != 0) return false;
+  if (any(cancelled)) return false;
   const Mask negative = x < 0.0;
   const Lane y1_reduced = (r - y0_reduced) - w;
   const Lane y0 = choose(small, x, choose(negative, -y0_reduced, y0_reduced));

@@ -6,20 +6,13 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "lane_ops.hpp"
 #include "shape_lanes.hpp"
 
 namespace fixstep::detail::shape_lanes {
 
-[[gnu::always_inline]] inline Lane choose(Mask m, Lane yes, Lane no) {
-  return reinterpret_cast<Lane>((reinterpret_cast<Mask>(yes) & m) |
-                                (reinterpret_cast<Mask>(no) & ~m));
-}
-
-[[gnu::always_inline]] inline bool any(Mask m) {
-  std::int64_t all = 0;
-  for (int l = 0; l < width; ++l) all |= m[l];
-  return all != 0;
-}
+using four_lanes::any;
+using four_lanes::choose;
 
 /// std::max(x, lo) and std::clamp(x, lo, hi) as libstdc++ defines them ((x < lo) ? lo : x, and
 /// (x < lo) ? lo : (hi < x) ? hi : x): the same result for every x, a signed zero and a NaN

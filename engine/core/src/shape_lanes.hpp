@@ -13,6 +13,8 @@
 #include <array>
 #include <cstdint>
 
+#include "lane_types.hpp"
+
 namespace fixstep::detail {
 
 /// A body's velocity (m/s, m/s, rad/s) as the velocity solve carries it through a manifold's
@@ -30,9 +32,9 @@ namespace fixstep::detail::shape_lanes {
 void set_lanes_enabled(bool on);
 [[nodiscard]] bool lanes_enabled();
 
-inline constexpr int width = 4;
-using Lane = double __attribute__((vector_size(width * sizeof(double))));
-using Mask = decltype(Lane{} < Lane{});
+using four_lanes::Lane;
+using four_lanes::Mask;
+using four_lanes::width;
 
 /// One manifold point's rows in each lane (ShapeSolveRow's fields of a point).
 struct LanePoint {
