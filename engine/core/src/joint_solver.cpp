@@ -224,20 +224,6 @@ void JointSolver::solve_revolute(JointRecord& j, const End& a, const End& b) {
   if (!j.direct) solve_point(j, a, b);
 }
 
-void JointSolver::point_velocity_error(const JointRecord& j, Vec2& rhs) const {
-  const End a = end(j.a, false), b = end(j.b, true);
-  rhs = -(velocity(b) + joint_spin_cross(spin(b), j.rb) - velocity(a) -
-          joint_spin_cross(spin(a), j.ra));
-}
-
-void JointSolver::apply_point(JointRecord& j, const Vec2& p) {
-  current_ = &j;
-  const End a = end(j.a, false), b = end(j.b, true);
-  j.impulses.linear += p;
-  push(a, -p, -cross(j.ra, p));
-  push(b, p, cross(j.rb, p));
-}
-
 // The rows along the axis of a prismatic or wheel joint: spring, motor (prismatic), limits.
 void JointSolver::solve_axis_rows(JointRecord& j, const End& a, const End& b) {
   JointImpulses& im = j.impulses;

@@ -46,13 +46,8 @@ class JointSolver {
   /// work_b, J) at the tick's end velocities.
   void account(JointRecord& j) const;
 
-  /// A joint's point row in the direct solve (joint_tree.hpp). Its velocity error Ċ (m/s)
-  /// at the start arms, negated, into `rhs` (the solve's right-hand side); an impulse p (N·s)
-  /// on it, added to its accumulated impulse.
-  /// (The vectors by reference: passed or returned by value, each went through two registers,
-  /// to the stack in halves and back in one load, which waited on the two stores.)
-  void point_velocity_error(const JointRecord& j, Vec2& rhs) const;
-  void apply_point(JointRecord& j, const Vec2& p);
+  // (A joint's point row in the forest's direct solve, joint_tree.hpp: its velocity error
+  // and impulse are joint_point_rows.hpp's.)
   /// A position correction p (kg·m) along the arms ra, rb (m), and l (kg·m²) about the
   /// relative angle, on positions only.
   void shift_point(JointRecord& j, const Vec2& p, const Vec2& ra, const Vec2& rb, double l = 0.0);

@@ -55,28 +55,17 @@ void ShapeWorld::prepare_joints() {
   }
   tree_.factor();
   tree_active_.assign(tree_.trees(), 1);
+  if (joints_halved_) {
+    for (int h = 0; h < 2; ++h) point_rows_.pack(h, joints_, tree_, bodies_, zero_slot());
+  } else {
+    point_rows_.pack(JointTree::whole, joints_, tree_, bodies_, zero_slot());
+  }
   rest_factored_ = false;
   step_error_ = no_step, step_keeps_ = false;
 }
 
 bool ShapeWorld::in_forest(std::uint32_t body) const {
   return body != JointRecord::none && tree_.holds(joint_bodies_.local(body));
-}
-
-// The forest's point rows of `part`: each member's velocity error, Ċ at the start's arms (the
-// velocity rows' own), into tree_.rhs(); returns the largest component.
-double ShapeWorld::tree_point_velocities(const JointSolver& solver, int part) {
-  const auto members = tree_.members();
-  const auto rhs = tree_.rhs();
-  double most = 0.0;
-  clear_active(part);
-  for (const std::uint32_t k : tree_.members_of(part)) {
-    solver.point_velocity_error(joints_[members[k]], rhs[k]);
-    const double error = std::max(std::abs(rhs[k].x), std::abs(rhs[k].y));
-    most = std::max(most, error);
-    if (error > direct_velocity_tolerance) tree_active_[tree_.tree_of(k)] = 1;
-  }
-  return most;
 }
 
 void ShapeWorld::clear_active(int part) {
@@ -236,7 +225,11 @@ bool ShapeWorld::solve_joint_velocities() {
       if (joint_rows_) for_joints(part, [&](JointRecord& j) { solver.solve_velocity(j); });
       change[part] = solver.velocity_change();
     }
-    if (!tree_.empty()) error[part] = tree_point_velocities(solver, part);
+    // The forest's point rows: each member's velocity error, Ċ at the start's arms.
+    if (!tree_.empty()) {
+      error[part] =
+          point_rows_.errors(part, velocity_, tree_.rhs(), tree_active_, direct_velocity_tolerance);
+    }
   };
   run_joint_parts(rows);
   // The forest's point rows at once: the impulses that make every one's Ċ zero together, at
@@ -245,13 +238,8 @@ bool ShapeWorld::solve_joint_velocities() {
   const bool direct = std::max({error[0], error[1], error[2]}) > direct_velocity_tolerance;
   if (direct) {
     auto solve = [&](int part) {
-      const auto members = tree_.members();
-      const auto rhs = tree_.rhs();
-      tree_.solve(rhs, {}, part, tree_active_);
-      JointSolver solver(bodies_, state_, dt_, velocity_);
-      for (const std::uint32_t k : tree_.members_of(part)) {
-        if (tree_active_[tree_.tree_of(k)] != 0) solver.apply_point(joints_[members[k]], rhs[k]);
-      }
+      tree_.solve(tree_.rhs(), {}, part, tree_active_);
+      point_rows_.apply(part, velocity_, tree_.rhs(), tree_active_);
     };
     run_joint_parts(solve);
   }

@@ -55,6 +55,7 @@
 #include "joint_halves.hpp"
 #include "joint_keep_search.hpp"
 #include "joint_limit_rows.hpp"
+#include "joint_point_rows.hpp"
 #include "joint_tree.hpp"
 #include "kept_manifold.hpp"
 #include "one_way.hpp"
@@ -504,7 +505,6 @@ class ShapeWorld {
   /// velocity by more than velocity_sweep_tolerance).
   bool solve_joint_velocities();
   bool solve_joint_positions(bool keep);
-  double tree_point_velocities(const JointSolver& solver, int part);
   /// The joints by halves (joint_halves.hpp): from min_split_joints joints, when the tick has
   /// a second thread (joint_thread_) and the joints make two halves, each joint pass runs
   /// job(0) and job(1) on the two threads; else job(JointTree::whole) here. A part's passes
@@ -537,6 +537,8 @@ class ShapeWorld {
   /// by prepare_joints for this tick alone (they point into the tick's joints).
   bool packed_limits_ = false;
   JointLimitRows limit_rows_;
+  /// The forest's point rows, packed by prepare_joints for this tick alone (joint_point_rows.hpp).
+  JointPointRows point_rows_;
   bool indirect_ = false;       ///< some joint is not all in the forest
   bool direct_limits_ = false;  ///< some joint of the forest has a limit
   bool rest_factored_ = false;  ///< the forest factored for this tick's sweeps on positions
