@@ -75,22 +75,28 @@ std::uint64_t bits(double v) {
 TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
   std::mt19937_64 random(3);
   std::uniform_real_distribution<double> unit(0.2, 3.0), signed_unit(-2.0, 2.0);
-  std::vector<ShapedBody> bodies(7);
-  for (ShapedBody& b : bodies) b.inv_mass = unit(random), b.inv_inertia = unit(random);
-  bodies[4].inv_mass = bodies[4].inv_inertia = 0.0;  // static
-  bodies[5].inv_mass = bodies[5].inv_inertia = 0.0;  // kinematic: spins, never pushed
-  bodies[6].inv_mass = 0.0;                          // turns only
+  std::vector<ShapedBody> bodies(8);
+  for (std::size_t k = 0; k < 7; ++k) {
+    bodies[k].inv_mass = unit(random), bodies[k].inv_inertia = unit(random);
+  }
+  bodies[7].inv_mass = 0.5, bodies[7].inv_inertia = 2.0;  // turning into its limit to the world
+  bodies[4].inv_mass = bodies[4].inv_inertia = 0.0;       // static
+  bodies[5].inv_mass = bodies[5].inv_inertia = 0.0;       // kinematic: spins, never pushed
+  bodies[6].inv_mass = 0.0;                               // turns only
   std::vector<ShapeState> state(bodies.size());
-  std::vector<ShapeMotion> velocity(bodies.size());
-  for (ShapeMotion& v : velocity)
-    v = {signed_unit(random), signed_unit(random), signed_unit(random)};
+  std::vector<ShapeMotion> velocity(bodies.size() + 1);  // and past them the zero slot
+  for (std::size_t k = 0; k < 7; ++k) {
+    velocity[k] = {signed_unit(random), signed_unit(random), signed_unit(random)};
+  }
+  velocity[7] = {0.25, -0.0, -1.5};
   velocity[4] = {};
   velocity[5] = {0.0, 0.0, 1.5};
   velocity[1].vx = -0.0, velocity[2].vy = -0.0;
   std::vector<JointRecord> joints = {
       limited(the_world, 0, -0.3, {}), limited(0, 1, -0.4, 0.4), limited(1, 2, {}, 0.2),
       limited(2, 4, -0.1, 0.1),        limited(5, 3, -0.6, 0.6), limited(3, the_world, -1.0, 1.0),
-      limited(1, 3, {}, {}),           limited(2, 6, -0.2, 0.3), limited(4, the_world, -0.5, 0.5)};
+      limited(1, 3, {}, {}),           limited(2, 6, -0.2, 0.3), limited(4, the_world, -0.5, 0.5),
+      limited(the_world, 7, -0.3, {})};
   for (JointRecord& j : joints) {
     const double ia = j.a == the_world ? 0.0 : bodies[j.a].inv_inertia;
     const double ib = j.b == the_world ? 0.0 : bodies[j.b].inv_inertia;
@@ -101,7 +107,8 @@ TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
     j.given_a = {-0.0, signed_unit(random)}, j.given_b = {signed_unit(random), -0.0};
     j.turned_a = signed_unit(random), j.turned_b = -0.0;
   }
-  joints[1].value = 0.4, joints[3].value = -0.35;  // at a limit, and past one
+  joints[1].value = 0.4, joints[3].value = -0.35;          // at a limit, and past one
+  joints[9].value = -0.3, joints[9].impulses.lower = 0.0;  // at its limit, no impulse yet
   const double dt = 1.0 / 60.0;
   const std::vector<std::uint32_t> all = every(joints);
   ASSERT_TRUE(std::all_of(joints.begin(), joints.end(), JointLimitRows::serves));
@@ -109,7 +116,8 @@ TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
   std::vector<JointRecord> packed_joints = joints;
   std::vector<ShapeMotion> packed_velocity = velocity;
   JointLimitRows rows;
-  rows.pack(detail::JointTree::whole, packed_joints, all, bodies, dt);
+  rows.pack(detail::JointTree::whole, packed_joints, all, bodies, dt,
+            static_cast<std::uint32_t>(bodies.size()));
   for (int sweep = 0; sweep < 6; ++sweep) {
     detail::JointSolver solver(bodies, state, dt, velocity);
     for (JointRecord& j : joints) solver.solve_velocity(j);
@@ -134,6 +142,7 @@ TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
   }
   // The rows did something: some limit pushed in every sweep or the test proves nothing.
   EXPECT_GT(joints[3].impulses.lower + joints[1].impulses.upper, 0.0);
+  EXPECT_GT(joints[9].impulses.lower, 0.0) << "the joint to the world, A's end";
 }
 
 }  // namespace

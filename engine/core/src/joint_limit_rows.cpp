@@ -11,14 +11,17 @@ namespace fixstep::detail {
 
 void JointLimitRows::pack(int part, std::span<JointRecord> joints,
                           std::span<const std::uint32_t> listed, std::span<const ShapedBody> bodies,
-                          double dt) {
+                          double dt, std::uint32_t zero) {
   std::vector<Row>& rows = rows_[static_cast<std::size_t>(part)];
   rows.clear();
   for (const std::uint32_t i : listed) {
     JointRecord& j = joints[i];
     // A joint without a limit, or whose angle nothing turns, has no row that moves anything.
     if (j.broken || !(j.def.lower || j.def.upper) || j.angle_mass == 0.0) continue;
-    Row r{.joint = &j, .a = j.a, .b = j.b, .mass = j.angle_mass};
+    Row r{.joint = &j,
+          .a = j.a != none ? j.a : zero,
+          .b = j.b != none ? j.b : zero,
+          .mass = j.angle_mass};
     if (j.a != none) r.ma = bodies[j.a].inv_mass, r.ia = bodies[j.a].inv_inertia;
     if (j.b != none) r.mb = bodies[j.b].inv_mass, r.ib = bodies[j.b].inv_inertia;
     r.push_a = j.a != none && !(r.ma == 0.0 && r.ia == 0.0);
@@ -33,26 +36,26 @@ void JointLimitRows::pack(int part, std::span<JointRecord> joints,
 // JointSolver::solve_velocity for a revolute joint of the forest with limits alone: each
 // limit's λ = −m (ω_b − ω_a + bias) (upper: ω_a − ω_b), accumulated into [0, ∞); the ends
 // turned by ∓λ (a pure turn: (0, 0) added to their linear velocity and impulse, as push()
-// does), the joint's given and turned impulses added up; the change is the largest of
-// |m Δp| and |i Δl| over both ends.
+// does: m · 0 is +0 for an inverse mass m, finite and not negative), the joint's given and
+// turned impulses added up; the change is the largest of |m Δp| and |i Δl| over both ends.
+// The world's end reads the zero slot (a spin of 0, as JointSolver reads the world).
 double JointLimitRows::sweep(int part, std::span<ShapeMotion> velocities) const {
   double change = 0.0;
-  auto spin = [&](std::uint32_t body) { return body == none ? 0.0 : velocities[body].w; };
-  auto push = [&](Vec2& given, double& turned, bool moves, std::uint32_t body, double m, double i,
-                  double l) {
+  auto spin = [&](std::uint32_t slot) { return velocities[slot].w; };
+  auto push = [&](Vec2& given, double& turned, bool moves, std::uint32_t body, double i, double l) {
     given += Vec2{};
     turned += l;
     if (!moves) return;
     ShapeMotion& v = velocities[body];
-    v.vx += m * 0.0, v.vy += m * 0.0, v.w += i * l;
+    v.vx += 0.0, v.vy += 0.0, v.w += i * l;
   };
   for (const Row& r : rows_[static_cast<std::size_t>(part)]) {
     JointRecord& j = *r.joint;
     const Vec2 given_a = j.given_a, given_b = j.given_b;
     const double turned_a = j.turned_a, turned_b = j.turned_b;
     auto turn = [&](double l) {
-      push(j.given_a, j.turned_a, r.push_a, r.a, r.ma, r.ia, -l);
-      push(j.given_b, j.turned_b, r.push_b, r.b, r.mb, r.ib, l);
+      push(j.given_a, j.turned_a, r.push_a, r.a, r.ia, -l);
+      push(j.given_b, j.turned_b, r.push_b, r.b, r.ib, l);
     };
     constexpr double unbounded = std::numeric_limits<double>::infinity();
     if (r.lower) {

@@ -29,10 +29,11 @@ class JointLimitRows {
   }
   /// Packs the rows of `part`'s joints (`listed`, in the order JointSolver would sweep them;
   /// part 0, 1 or 2, JointTree's parts) at the tick's start, after JointSolver::prepare (each
-  /// joint's effective mass and angle), `dt` the tick (s). Allocates only while the world
-  /// grows.
+  /// joint's effective mass and angle), `dt` the tick (s). `zero`: a slot of the velocities
+  /// the sweeps are given that holds zero, read for the world's end. Allocates only while the
+  /// world grows.
   void pack(int part, std::span<JointRecord> joints, std::span<const std::uint32_t> listed,
-            std::span<const ShapedBody> bodies, double dt);
+            std::span<const ShapedBody> bodies, double dt, std::uint32_t zero);
   /// One sweep of `part`'s rows over `velocities` (each body's, m/s and rad/s); returns the
   /// largest change of a body's velocity component that one joint's rows made (as
   /// JointSolver::velocity_change()).
@@ -47,7 +48,7 @@ class JointLimitRows {
   /// about the angle (kg·m²) and each limit's speculative bias max(C, 0)/dt (rad/s).
   struct Row {
     JointRecord* joint = nullptr;
-    std::uint32_t a = none, b = none;  ///< the ends' bodies (none: the world)
+    std::uint32_t a = none, b = none;  ///< the ends' velocity slots (the world's: the zero slot)
     bool push_a = false, push_b = false, lower = false, upper = false;
     double ma = 0.0, ia = 0.0, mb = 0.0, ib = 0.0;
     double mass = 0.0;

@@ -42,9 +42,10 @@ void ShapeWorld::prepare_joints() {
   }
   packed_limits_ = joint_rows_ && packable;
   if (packed_limits_ && joints_halved_) {
-    for (int h = 0; h < 2; ++h) limit_rows_.pack(h, joints_, halves_.joints(h), bodies_, dt_);
+    for (int h = 0; h < 2; ++h)
+      limit_rows_.pack(h, joints_, halves_.joints(h), bodies_, dt_, zero_slot());
   } else if (packed_limits_) {
-    limit_rows_.pack(JointTree::whole, joints_, live, bodies_, dt_);
+    limit_rows_.pack(JointTree::whole, joints_, live, bodies_, dt_, zero_slot());
   }
   if (tree_.empty()) return;
   const auto members = tree_.members();
