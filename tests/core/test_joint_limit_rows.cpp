@@ -3,19 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <numeric>
 #include <optional>
 #include <random>
 #include <vector>
 
+#include "joint_checks.hpp"
 #include "joint_limit_rows.hpp"
 #include "joint_solver.hpp"
 #include "joint_tree.hpp"
 
 namespace fixstep::limit_rows_test {
 namespace {
+
+using joint_checks::bits;
 
 using detail::JointLimitRows;
 using detail::JointRecord;
@@ -60,11 +62,6 @@ TEST(JointLimitRows, ServeRevoluteJointsOfTheForestWithoutMotorOrSpring) {
   JointRecord prismatic = limited(2, 3, -1.0, 1.0);
   prismatic.def.type = JointType::prismatic;
   EXPECT_FALSE(JointLimitRows::serves(prismatic)) << "a prismatic joint";
-}
-
-/// Each double of a state, as bits (so that −0 and +0 differ).
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
 }
 
 // Ends of every kind (the world, a static body, a body that spins but neither translates nor
@@ -124,20 +121,13 @@ TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
     const double change = rows.sweep(detail::JointTree::whole, packed_velocity);
     EXPECT_EQ(bits(change), bits(solver.velocity_change())) << "sweep " << sweep;
     for (std::size_t k = 0; k < velocity.size(); ++k) {
-      EXPECT_EQ(bits(packed_velocity[k].vx), bits(velocity[k].vx)) << "body " << k;
-      EXPECT_EQ(bits(packed_velocity[k].vy), bits(velocity[k].vy)) << "body " << k;
-      EXPECT_EQ(bits(packed_velocity[k].w), bits(velocity[k].w)) << "body " << k;
+      joint_checks::expect_same_motion(packed_velocity[k], velocity[k], k);
     }
     for (std::size_t k = 0; k < joints.size(); ++k) {
       const JointRecord &p = packed_joints[k], &j = joints[k];
       EXPECT_EQ(bits(p.impulses.lower), bits(j.impulses.lower)) << "joint " << k;
       EXPECT_EQ(bits(p.impulses.upper), bits(j.impulses.upper)) << "joint " << k;
-      EXPECT_EQ(bits(p.given_a.x), bits(j.given_a.x)) << "joint " << k;
-      EXPECT_EQ(bits(p.given_a.y), bits(j.given_a.y)) << "joint " << k;
-      EXPECT_EQ(bits(p.given_b.x), bits(j.given_b.x)) << "joint " << k;
-      EXPECT_EQ(bits(p.given_b.y), bits(j.given_b.y)) << "joint " << k;
-      EXPECT_EQ(bits(p.turned_a), bits(j.turned_a)) << "joint " << k;
-      EXPECT_EQ(bits(p.turned_b), bits(j.turned_b)) << "joint " << k;
+      joint_checks::expect_same_given(p, j, k);
     }
   }
   // The rows did something: some limit pushed in every sweep or the test proves nothing.

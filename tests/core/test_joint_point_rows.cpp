@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -13,12 +12,16 @@
 #include <vector>
 
 #include "joint_bodies.hpp"
+#include "joint_checks.hpp"
 #include "joint_point_rows.hpp"
 #include "joint_tree.hpp"
 #include "shape_records.hpp"
 
 namespace fixstep::point_rows_test {
 namespace {
+
+using joint_checks::bits;
+using joint_checks::revolute;
 
 using detail::JointBodies;
 using detail::JointPointRows;
@@ -28,23 +31,13 @@ using detail::ShapedBody;
 using detail::ShapeMotion;
 constexpr std::uint32_t ground_end = JointRecord::none;
 
-std::uint64_t bits_of(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
-
-JointRecord pin(std::uint32_t a, std::uint32_t b) {
-  JointRecord j;
-  j.def.type = JointType::revolute;
-  j.a = a, j.b = b;
-  return j;
-}
-
 /// Three trees: bodies 0–3 hang from the world (a chain 0–1–2 and a branch 1–3); 4 and 7 from
 /// kinematic body 6 (B's end of its joint); 8 from static body 5.
 struct Hanging {
   std::vector<ShapedBody> bodies = std::vector<ShapedBody>(9);
-  std::vector<JointRecord> joints = {pin(ground_end, 0), pin(0, 1), pin(1, 2), pin(3, 1),
-                                     pin(4, 6),          pin(4, 7), pin(8, 5)};
+  std::vector<JointRecord> joints = {revolute(ground_end, 0), revolute(0, 1), revolute(1, 2),
+                                     revolute(3, 1),          revolute(4, 6), revolute(4, 7),
+                                     revolute(8, 5)};
   JointTree tree;
   JointBodies numbered;
   /// Each body's velocity, and past them the zero slot the world's end reads.
@@ -81,12 +74,6 @@ ShapeMotion motion(const std::vector<ShapeMotion>& velocity, std::uint32_t body)
   return body == ground_end ? ShapeMotion{} : velocity[body];
 }
 
-void expect_same(const ShapeMotion& a, const ShapeMotion& b, std::size_t body) {
-  EXPECT_EQ(bits_of(a.vx), bits_of(b.vx)) << "body " << body;
-  EXPECT_EQ(bits_of(a.vy), bits_of(b.vy)) << "body " << body;
-  EXPECT_EQ(bits_of(a.w), bits_of(b.w)) << "body " << body;
-}
-
 TEST(JointPointRows, GiveEachMembersErrorAndImpulseBitForBit) {
   Hanging f;
   ASSERT_EQ(f.tree.members().size(), f.joints.size()) << "every joint a member";
@@ -108,13 +95,13 @@ TEST(JointPointRows, GiveEachMembersErrorAndImpulseBitForBit) {
     const ShapeMotion a = motion(f.velocity, j.a), b = motion(f.velocity, j.b);
     const Vec2 cdot = Vec2{b.vx, b.vy} + Vec2{-b.w * j.rb.y, b.w * j.rb.x} - Vec2{a.vx, a.vy} -
                       Vec2{-a.w * j.ra.y, a.w * j.ra.x};
-    EXPECT_EQ(bits_of(rhs[k].x), bits_of(-cdot.x)) << "member " << k;
-    EXPECT_EQ(bits_of(rhs[k].y), bits_of(-cdot.y)) << "member " << k;
+    EXPECT_EQ(bits(rhs[k].x), bits(-cdot.x)) << "member " << k;
+    EXPECT_EQ(bits(rhs[k].y), bits(-cdot.y)) << "member " << k;
     const double error = std::max(std::abs(cdot.x), std::abs(cdot.y));
     expected_most = std::max(expected_most, error);
     if (error > tolerance) expected_active[f.tree.tree_of(k)] = 1;
   }
-  EXPECT_EQ(bits_of(most), bits_of(expected_most));
+  EXPECT_EQ(bits(most), bits(expected_most));
   EXPECT_EQ(active, expected_active);
   EXPECT_EQ(active[f.tree.tree_of(6)], 0) << "the tree of 8 is within the tolerance";
   EXPECT_GT(most, 0.1) << "the velocities are far from the rows' own";
@@ -147,21 +134,16 @@ TEST(JointPointRows, GiveEachMembersErrorAndImpulseBitForBit) {
   }
   rows.apply(JointTree::whole, f.velocity, impulses, some);
   for (std::size_t body = 0; body < f.velocity.size(); ++body) {
-    expect_same(f.velocity[body], expected_velocity[body], body);
+    joint_checks::expect_same_motion(f.velocity[body], expected_velocity[body], body);
   }
   for (std::size_t k = 0; k < f.joints.size(); ++k) {
     const JointRecord &p = f.joints[k], &e = expected_joints[k];
-    EXPECT_EQ(bits_of(p.impulses.linear.x), bits_of(e.impulses.linear.x)) << "joint " << k;
-    EXPECT_EQ(bits_of(p.impulses.linear.y), bits_of(e.impulses.linear.y)) << "joint " << k;
-    EXPECT_EQ(bits_of(p.given_a.x), bits_of(e.given_a.x)) << "joint " << k;
-    EXPECT_EQ(bits_of(p.given_a.y), bits_of(e.given_a.y)) << "joint " << k;
-    EXPECT_EQ(bits_of(p.given_b.x), bits_of(e.given_b.x)) << "joint " << k;
-    EXPECT_EQ(bits_of(p.given_b.y), bits_of(e.given_b.y)) << "joint " << k;
-    EXPECT_EQ(bits_of(p.turned_a), bits_of(e.turned_a)) << "joint " << k;
-    EXPECT_EQ(bits_of(p.turned_b), bits_of(e.turned_b)) << "joint " << k;
+    EXPECT_EQ(bits(p.impulses.linear.x), bits(e.impulses.linear.x)) << "joint " << k;
+    EXPECT_EQ(bits(p.impulses.linear.y), bits(e.impulses.linear.y)) << "joint " << k;
+    joint_checks::expect_same_given(p, e, k);
   }
-  EXPECT_EQ(bits_of(f.velocity[6].vy), bits_of(-0.0)) << "the kinematic body is never pushed";
-  EXPECT_EQ(bits_of(f.velocity[zero].w), bits_of(0.0)) << "nor the world's zero slot";
+  EXPECT_EQ(bits(f.velocity[6].vy), bits(-0.0)) << "the kinematic body is never pushed";
+  EXPECT_EQ(bits(f.velocity[zero].w), bits(0.0)) << "nor the world's zero slot";
 }
 
 // By halves: each half's rows are its trees' members, and the two halves give every member
@@ -182,17 +164,17 @@ TEST(JointPointRows, ByHalvesGiveWhatTheWholeForestGives) {
       whole_rows.errors(JointTree::whole, whole.velocity, rhs_whole, active_whole, 1e-9);
   const double most_0 = half_rows.errors(0, halves.velocity, rhs_halves, active_halves, 1e-9);
   const double most_1 = half_rows.errors(1, halves.velocity, rhs_halves, active_halves, 1e-9);
-  EXPECT_EQ(bits_of(std::max(most_0, most_1)), bits_of(most));
+  EXPECT_EQ(bits(std::max(most_0, most_1)), bits(most));
   EXPECT_EQ(active_halves, active_whole);
   for (std::size_t k = 0; k < rhs_whole.size(); ++k) {
-    EXPECT_EQ(bits_of(rhs_halves[k].x), bits_of(rhs_whole[k].x)) << "member " << k;
-    EXPECT_EQ(bits_of(rhs_halves[k].y), bits_of(rhs_whole[k].y)) << "member " << k;
+    EXPECT_EQ(bits(rhs_halves[k].x), bits(rhs_whole[k].x)) << "member " << k;
+    EXPECT_EQ(bits(rhs_halves[k].y), bits(rhs_whole[k].y)) << "member " << k;
   }
   whole_rows.apply(JointTree::whole, whole.velocity, rhs_whole, active_whole);
   half_rows.apply(1, halves.velocity, rhs_halves, active_halves);
   half_rows.apply(0, halves.velocity, rhs_halves, active_halves);
   for (std::size_t body = 0; body < whole.velocity.size(); ++body) {
-    expect_same(halves.velocity[body], whole.velocity[body], body);
+    joint_checks::expect_same_motion(halves.velocity[body], whole.velocity[body], body);
   }
 }
 

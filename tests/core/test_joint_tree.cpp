@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fixstep/core/world.hpp"
+#include "joint_checks.hpp"
 #include "joint_solver.hpp"
 #include "joint_tree.hpp"
 #include "shape_exact.hpp"
@@ -25,14 +26,8 @@ using detail::JointBodies;
 using detail::JointRecord;
 using detail::JointTree;
 using detail::ShapedBody;
+using joint_checks::revolute;
 constexpr std::uint32_t world = JointRecord::none;
-
-JointRecord revolute(std::uint32_t a, std::uint32_t b) {
-  JointRecord j;
-  j.def.type = JointType::revolute;
-  j.a = a, j.b = b;
-  return j;
-}
 
 /// Bodies 0–9 a chain from the world with a branch at body 2; 10–13 a chain of their own,
 /// free; 14 does not move; 15 turns but does not translate (its joint's point would have one
