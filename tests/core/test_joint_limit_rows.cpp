@@ -11,6 +11,7 @@
 
 #include "joint_checks.hpp"
 #include "joint_limit_rows.hpp"
+#include "joint_limit_shifts.hpp"
 #include "joint_solver.hpp"
 #include "joint_tree.hpp"
 
@@ -133,6 +134,55 @@ TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
   // The rows did something: some limit pushed in every sweep or the test proves nothing.
   EXPECT_GT(joints[3].impulses.lower + joints[1].impulses.upper, 0.0);
   EXPECT_GT(joints[9].impulses.lower, 0.0) << "the joint to the world, A's end";
+}
+
+// The same worlds' limits on positions (a push-out sweep): each joint's correction as
+// JointSolver::solve_position makes it, bit for bit, over sweeps that move the angles; a
+// joint whose limit the forest holds (limit_row) left alone; one without limits adding its +0.
+TEST(JointLimitShifts, CorrectAsJointSolverDoesBitForBit) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> unit(0.2, 3.0), signed_unit(-2.0, 2.0);
+  std::vector<ShapedBody> bodies(7);
+  for (ShapedBody& b : bodies) b.inv_mass = unit(random), b.inv_inertia = unit(random);
+  bodies[4].inv_mass = bodies[4].inv_inertia = 0.0;  // static
+  bodies[6].inv_mass = 0.0;                          // turns only
+  std::vector<ShapeState> state(bodies.size());
+  for (ShapeState& s : state) s.x = signed_unit(random), s.y = signed_unit(random), s.a = 0.0;
+  state[1].x = -0.0, state[2].y = -0.0;  // a +0 added shows (and body 3's angle is −0)
+  std::vector<JointRecord> joints = {
+      limited(the_world, 0, -0.3, {}), limited(0, 1, -0.4, 0.4), limited(1, 2, {}, 0.2),
+      limited(2, 4, -0.1, 0.1),        limited(1, 3, {}, {}),    limited(3, the_world, -1.0, 1.0),
+      limited(2, 6, -0.2, 0.3),        limited(5, 6, 0.1, 0.1)};
+  for (JointRecord& j : joints) {
+    const double ia = j.a == the_world ? 0.0 : bodies[j.a].inv_inertia;
+    const double ib = j.b == the_world ? 0.0 : bodies[j.b].inv_inertia;
+    j.angle_mass = ia + ib > 0.0 ? 1.0 / (ia + ib) : 0.0;
+    j.reference = signed_unit(random) * 0.1;
+  }
+  joints[5].limit_row = true;  // held by the forest's solve
+  // Angles past the limits: 0 below joint 0's lower, 1 past joint 1's upper, 2 past 2's, ...
+  const double angles[] = {-0.9, 0.2, 0.8, -0.0, 3.1, 0.4, 1.2};
+  for (std::size_t k = 0; k < state.size(); ++k) state[k].a = angles[k];
+  const std::vector<std::uint32_t> all = every(joints);
+  std::vector<JointRecord> packed_joints = joints;
+  std::vector<ShapeState> packed_state = state;
+  detail::JointLimitShifts shifts;
+  shifts.pack(detail::JointTree::whole, packed_joints, all, bodies);
+  bool moved_any = false;
+  for (int sweep = 0; sweep < 4; ++sweep) {
+    detail::JointSolver solver(bodies, state, 1.0 / 60.0);
+    for (JointRecord& j : joints) solver.solve_position(j, false);
+    const bool moved = shifts.correct(detail::JointTree::whole, packed_state);
+    EXPECT_EQ(moved, solver.moved()) << "sweep " << sweep;
+    moved_any = moved_any || moved;
+    for (std::size_t k = 0; k < state.size(); ++k) {
+      EXPECT_EQ(bits(packed_state[k].x), bits(state[k].x)) << "body " << k;
+      EXPECT_EQ(bits(packed_state[k].y), bits(state[k].y)) << "body " << k;
+      EXPECT_EQ(bits(packed_state[k].a), bits(state[k].a)) << "body " << k;
+    }
+  }
+  EXPECT_TRUE(moved_any) << "some limit corrected or the test proves nothing";
+  EXPECT_EQ(bits(state[1].x), bits(0.0)) << "a moving end's position given +0";
 }
 
 }  // namespace

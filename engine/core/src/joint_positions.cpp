@@ -97,11 +97,16 @@ double JointSolver::limit_margin(const JointRecord& j) const {
   return margin;
 }
 
-double JointSolver::limit_correction(const JointRecord& j) const {
+double revolute_limit_correction(const JointRecord& j, double angle_a, double angle_b) {
   if ((!j.def.lower && !j.def.upper) || j.angle_mass == 0.0) return 0.0;
-  return limit_error(relative_angle(j), j.def.lower.value_or(0.0), j.def.upper.value_or(0.0),
-                     j.def.lower.has_value(), j.def.upper.has_value(), joint_angular_slop,
-                     joint_max_angular_correction);
+  return limit_error(wrap_angle(angle_b - angle_a - j.reference), j.def.lower.value_or(0.0),
+                     j.def.upper.value_or(0.0), j.def.lower.has_value(), j.def.upper.has_value(),
+                     joint_angular_slop, joint_max_angular_correction);
+}
+
+double JointSolver::limit_correction(const JointRecord& j) const {
+  const End a = end(j.a, false), b = end(j.b, true);
+  return revolute_limit_correction(j, angle_now(a), angle_now(b));
 }
 
 double JointSolver::tick_turn(const JointRecord& j) const {

@@ -139,6 +139,12 @@ inline constexpr double fast_joint_turn = 0.2;
 /// A motor joint's fraction of its position error a tick removes (b2MotorJoint's default).
 inline constexpr double motor_joint_correction = 0.3;
 
+/// JointSolver::limit_correction of a revolute joint whose ends' angles are angle_a and
+/// angle_b (rad; the world's 0): the correction its limits ask of its relative angle
+/// θ_B − θ_A − θ_ref wrapped into [−π, π) (rad; 0 without limits, or where nothing turns it).
+[[nodiscard]] double revolute_limit_correction(const JointRecord& j, double angle_a,
+                                               double angle_b);
+
 /// v turned by +90°.
 [[nodiscard]] inline Vec2 joint_perp(Vec2 v) {
   return {-v.y, v.x};

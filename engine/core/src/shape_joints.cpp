@@ -42,10 +42,13 @@ void ShapeWorld::prepare_joints() {
   }
   packed_limits_ = joint_rows_ && packable;
   if (packed_limits_ && joints_halved_) {
-    for (int h = 0; h < 2; ++h)
+    for (int h = 0; h < 2; ++h) {
       limit_rows_.pack(h, joints_, halves_.joints(h), bodies_, dt_, zero_slot());
+      limit_shifts_.pack(h, joints_, halves_.joints(h), bodies_);
+    }
   } else if (packed_limits_) {
     limit_rows_.pack(JointTree::whole, joints_, live, bodies_, dt_, zero_slot());
+    limit_shifts_.pack(JointTree::whole, joints_, live, bodies_);
   }
   if (tree_.empty()) return;
   const auto members = tree_.members();
@@ -302,8 +305,12 @@ bool ShapeWorld::solve_joint_positions(bool keep) {
   std::array<TreeErrors, 3> errors{};
   auto measure = [&](int part) {
     JointSolver solver(bodies_, state_, dt_);
-    if (rows) for_joints(part, [&](JointRecord& j) { solver.solve_position(j, keep); });
-    moved[part] = solver.moved() ? 1 : 0;
+    if (rows && packed_limits_) {  // (every joint a forest's revolute joint: its limits alone)
+      moved[part] = limit_shifts_.correct(part, state_) ? 1 : 0;
+    } else {
+      if (rows) for_joints(part, [&](JointRecord& j) { solver.solve_position(j, keep); });
+      moved[part] = solver.moved() ? 1 : 0;
+    }
     if (!tree) return;
     if (phase && keep) {  // while keeping, which joints turn fast
       const auto members = tree_.members();

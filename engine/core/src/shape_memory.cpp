@@ -17,7 +17,8 @@ std::size_t ShapeWorld::bytes() const {
                     units_, color_runs_, color_kinds_, color_places_, turned_, fresh_arms_, fast_,
                     tree_active_) +
          tree_.bytes() + halves_.bytes() + joint_bodies_.bytes() + limit_rows_.bytes() +
-         point_rows_.bytes() + keep_search_.bytes();  // (conjugate_'s copy holds nothing)
+         limit_shifts_.bytes() + point_rows_.bytes() +
+         keep_search_.bytes();  // (conjugate_'s copy holds nothing)
 }
 
 }  // namespace fixstep::detail

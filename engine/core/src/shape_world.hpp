@@ -55,6 +55,7 @@
 #include "joint_halves.hpp"
 #include "joint_keep_search.hpp"
 #include "joint_limit_rows.hpp"
+#include "joint_limit_shifts.hpp"
 #include "joint_point_rows.hpp"
 #include "joint_tree.hpp"
 #include "kept_manifold.hpp"
@@ -537,6 +538,8 @@ class ShapeWorld {
   /// by prepare_joints for this tick alone (they point into the tick's joints).
   bool packed_limits_ = false;
   JointLimitRows limit_rows_;
+  /// The same worlds' limit corrections on positions, packed with them (joint_limit_shifts.hpp).
+  JointLimitShifts limit_shifts_;
   /// The forest's point rows, packed by prepare_joints for this tick alone (joint_point_rows.hpp).
   JointPointRows point_rows_;
   bool indirect_ = false;       ///< some joint is not all in the forest
