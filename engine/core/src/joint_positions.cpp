@@ -84,9 +84,18 @@ void JointSolver::shift_point(JointRecord& j, const Vec2& p, const Vec2& ra, con
   shift(b, p, cross(rb, p) + l);
 }
 
+namespace {
+
+/// θ_B − θ_A − θ_ref wrapped into [−π, π) (rad).
+double relative_angle_of(const JointRecord& j, double angle_a, double angle_b) {
+  return wrap_angle(angle_b - angle_a - j.reference);
+}
+
+}  // namespace
+
 double JointSolver::relative_angle(const JointRecord& j) const {
   const End a = end(j.a, false), b = end(j.b, true);
-  return wrap_angle(angle_now(b) - angle_now(a) - j.reference);
+  return relative_angle_of(j, angle_now(a), angle_now(b));
 }
 
 double JointSolver::limit_margin(const JointRecord& j) const {
@@ -99,7 +108,7 @@ double JointSolver::limit_margin(const JointRecord& j) const {
 
 double revolute_limit_correction(const JointRecord& j, double angle_a, double angle_b) {
   if ((!j.def.lower && !j.def.upper) || j.angle_mass == 0.0) return 0.0;
-  return limit_error(wrap_angle(angle_b - angle_a - j.reference), j.def.lower.value_or(0.0),
+  return limit_error(relative_angle_of(j, angle_a, angle_b), j.def.lower.value_or(0.0),
                      j.def.upper.value_or(0.0), j.def.lower.has_value(), j.def.upper.has_value(),
                      joint_angular_slop, joint_max_angular_correction);
 }
