@@ -67,17 +67,19 @@ TEST(JointLimitRows, ServeRevoluteJointsOfTheForestWithoutMotorOrSpring) {
 
 // Ends of every kind (the world, a static body, a body that spins but neither translates nor
 // is pushed, dynamic ones), each limit alone and both, angles within, at and past them, the
-// impulses and velocities starting from values that include −0: six sweeps of the packed rows
-// and of JointSolver over copies of one state move every velocity, impulse and given and
-// turned impulse, and report the change, to the same bits.
+// impulses and velocities starting from values that include −0 (on ends first swept as B and
+// as A, where the first push makes it +0): six sweeps of the packed rows and of JointSolver
+// over copies of one state move every velocity, impulse and given and turned impulse, and
+// report the change, to the same bits.
 TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
   std::mt19937_64 random(3);
   std::uniform_real_distribution<double> unit(0.2, 3.0), signed_unit(-2.0, 2.0);
-  std::vector<ShapedBody> bodies(8);
+  std::vector<ShapedBody> bodies(9);
   for (std::size_t k = 0; k < 7; ++k) {
     bodies[k].inv_mass = unit(random), bodies[k].inv_inertia = unit(random);
   }
   bodies[7].inv_mass = 0.5, bodies[7].inv_inertia = 2.0;  // turning into its limit to the world
+  bodies[8].inv_mass = 1.5, bodies[8].inv_inertia = 0.8;  // an A end first: its −0 made +0 there
   bodies[4].inv_mass = bodies[4].inv_inertia = 0.0;       // static
   bodies[5].inv_mass = bodies[5].inv_inertia = 0.0;       // kinematic: spins, never pushed
   bodies[6].inv_mass = 0.0;                               // turns only
@@ -87,14 +89,21 @@ TEST(JointLimitRows, SweepAsJointSolverDoesBitForBit) {
     velocity[k] = {signed_unit(random), signed_unit(random), signed_unit(random)};
   }
   velocity[7] = {0.25, -0.0, -1.5};
+  velocity[8] = {-0.0, -0.0, 0.75};
   velocity[4] = {};
   velocity[5] = {0.0, 0.0, 1.5};
   velocity[1].vx = -0.0, velocity[2].vy = -0.0;
-  std::vector<JointRecord> joints = {
-      limited(the_world, 0, -0.3, {}), limited(0, 1, -0.4, 0.4), limited(1, 2, {}, 0.2),
-      limited(2, 4, -0.1, 0.1),        limited(5, 3, -0.6, 0.6), limited(3, the_world, -1.0, 1.0),
-      limited(1, 3, {}, {}),           limited(2, 6, -0.2, 0.3), limited(4, the_world, -0.5, 0.5),
-      limited(the_world, 7, -0.3, {})};
+  std::vector<JointRecord> joints = {limited(the_world, 0, -0.3, {}),
+                                     limited(0, 1, -0.4, 0.4),
+                                     limited(1, 2, {}, 0.2),
+                                     limited(2, 4, -0.1, 0.1),
+                                     limited(5, 3, -0.6, 0.6),
+                                     limited(3, the_world, -1.0, 1.0),
+                                     limited(1, 3, {}, {}),
+                                     limited(2, 6, -0.2, 0.3),
+                                     limited(4, the_world, -0.5, 0.5),
+                                     limited(the_world, 7, -0.3, {}),
+                                     limited(8, the_world, -0.2, 0.2)};
   for (JointRecord& j : joints) {
     const double ia = j.a == the_world ? 0.0 : bodies[j.a].inv_inertia;
     const double ib = j.b == the_world ? 0.0 : bodies[j.b].inv_inertia;

@@ -43,14 +43,15 @@ class JointLimitRows {
 
  private:
   static constexpr std::uint32_t none = JointRecord::none;
-  /// One joint's limit rows: its ends' inverse mass and inertia (1/kg, 1/(kg·m²)), whether
-  /// an impulse moves each end's velocity (a body with either non-zero), its effective mass
-  /// about the angle (kg·m²) and each limit's speculative bias max(C, 0)/dt (rad/s).
+  /// One joint's limit rows (64 bytes): whether an impulse moves each end's velocity (a body
+  /// with a non-zero inverse mass or inertia), its ends' inverse inertia (1/(kg·m²)), its
+  /// effective mass about the angle (kg·m²) and each limit's speculative bias max(C, 0)/dt
+  /// (rad/s).
   struct Row {
     JointRecord* joint = nullptr;
     std::uint32_t a = none, b = none;  ///< the ends' velocity slots (the world's: the zero slot)
     bool push_a = false, push_b = false, lower = false, upper = false;
-    double ma = 0.0, ia = 0.0, mb = 0.0, ib = 0.0;
+    double ia = 0.0, ib = 0.0;
     double mass = 0.0;
     double lower_bias = 0.0, upper_bias = 0.0;
   };
