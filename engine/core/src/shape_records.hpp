@@ -145,8 +145,10 @@ struct ShapeTick {
   /// velocity sweep before theirs, each position sweep after theirs. Broken ones are left out.
   std::span<JointRecord> joints;
   /// Pairs of bodies (bodies_ indices, lower << 32 | higher, sorted) whose shapes do not
-  /// collide: the two ends of a joint without JointDef::collide_connected.
+  /// collide: the two ends of a joint without JointDef::collide_connected; and by body a, the
+  /// first pair whose lower end is a or after (a body past its end is in none).
   std::span<const std::uint64_t> unpaired;
+  std::span<const std::uint32_t> unpaired_start;
   /// Threads the shape phase may use (World's threads, 1 or 2): with 2, a world of
   /// min_split_shapes shapes or more makes its broadphase and manifolds by halves, and a colour
   /// of the velocity sweeps with many manifolds is solved by halves (its manifolds move no body

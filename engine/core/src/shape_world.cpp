@@ -234,9 +234,15 @@ void ShapeWorld::detect_sensors() {
   }
 }
 
+// The few pairs whose lower end is the lower body (a body's joints), searched in turn.
 bool ShapeWorld::unpaired(std::uint32_t a, std::uint32_t b) const {
-  const std::uint64_t key = std::uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-  return std::binary_search(unpaired_.begin(), unpaired_.end(), key);
+  const std::uint32_t low = std::min(a, b);
+  if (std::size_t{low} + 1 >= unpaired_start_.size()) return false;
+  const std::uint64_t key = std::uint64_t{low} << 32 | std::max(a, b);
+  for (std::uint32_t k = unpaired_start_[low], end = unpaired_start_[low + 1]; k < end; ++k) {
+    if (unpaired_[k] == key) return true;
+  }
+  return false;
 }
 
 bool ShapeWorld::moving(std::uint32_t body) const {
@@ -248,7 +254,7 @@ bool ShapeWorld::moving(std::uint32_t body) const {
 
 ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   ShapeTally tally;
-  joints_ = tick.joints, unpaired_ = tick.unpaired;
+  joints_ = tick.joints, unpaired_ = tick.unpaired, unpaired_start_ = tick.unpaired_start;
   visited_ = !rest_.stale ? rest_.live.size() : rest_.whole ? bodies_.size() : visit_few().size();
   joints_visited_ = 0;
   // The second thread, with two: the discs' where its run is open, else the shape world's

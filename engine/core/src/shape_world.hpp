@@ -303,10 +303,11 @@ class ShapeWorld {
   std::vector<ShapeWarm> next_warm_;
   std::vector<double> margin_;  ///< each body's speculative margin this tick, m
   double dt_ = 0.0;
-  std::span<JointRecord> joints_;            ///< this tick's (ShapeTick::joints)
-  JointBodies joint_bodies_;                 ///< the live joints' bodies, numbered
-  JointTree tree_;                           ///< the joints' direct solve
-  std::span<const std::uint64_t> unpaired_;  ///< this tick's (ShapeTick::unpaired)
+  std::span<JointRecord> joints_;                  ///< this tick's (ShapeTick::joints)
+  JointBodies joint_bodies_;                       ///< the live joints' bodies, numbered
+  JointTree tree_;                                 ///< the joints' direct solve
+  std::span<const std::uint64_t> unpaired_;        ///< this tick's (ShapeTick::unpaired)
+  std::span<const std::uint32_t> unpaired_start_;  ///< (ShapeTick::unpaired_start)
 
   [[nodiscard]] Pose pose(std::uint32_t body) const;
   [[nodiscard]] Pose start_pose(std::uint32_t body) const;

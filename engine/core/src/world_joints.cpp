@@ -137,6 +137,12 @@ void detail::WorldKernel<Real>::rebuild_joints() {
   std::sort(joint_unpaired_.begin(), joint_unpaired_.end());
   joint_unpaired_.erase(std::unique(joint_unpaired_.begin(), joint_unpaired_.end()),
                         joint_unpaired_.end());
+  // Each body's run of pairs it is the lower end of (the pairs are sorted by it).
+  joint_unpaired_start_.assign(shape_sets_.set.dense.size() + 1, 0);
+  for (const std::uint64_t key : joint_unpaired_) ++joint_unpaired_start_[(key >> 32) + 1];
+  for (std::size_t a = 1; a < joint_unpaired_start_.size(); ++a) {
+    joint_unpaired_start_[a] += joint_unpaired_start_[a - 1];
+  }
 }
 
 // A tick's input to one joint (World::check_input refused what does not apply; its bodies

@@ -774,6 +774,9 @@ class WorldKernel {
   std::vector<JointRecord> joint_records_;
   std::vector<Joint> joint_handles_;
   std::vector<std::uint64_t> joint_unpaired_;
+  /// By shape-world body a: the first of joint_unpaired_'s pairs whose lower end is a or
+  /// after (one entry more than the bodies: the last is their count).
+  std::vector<std::uint32_t> joint_unpaired_start_;
   std::vector<JointBreak> joints_broken_;
   [[nodiscard]] std::size_t joint_index(Joint joint) const;
   [[nodiscard]] std::pair<Vec2, double> joint_end_pose(Entity e) const;

@@ -71,8 +71,8 @@ std::size_t detail::WorldKernel<Real>::snapshot_bytes() const {
   if (shape_world_) n += sizeof(*shape_world_.get()) + shape_world_->bytes();
   // Joints and character movers.
   n += sum(joints_, joint_generations_, joint_free_slots_, joint_records_, joint_handles_,
-           joint_unpaired_, joints_broken_, movers_, mover_obstacles_, mover_segments_,
-           mover_slide_.contacts_);
+           joint_unpaired_, joint_unpaired_start_, joints_broken_, movers_, mover_obstacles_,
+           mover_segments_, mover_slide_.contacts_);
   return n;
 }
 

@@ -379,7 +379,7 @@ void detail::WorldKernel<Real>::resolve_shapes() {
   tick.segments = segments_.defs();
   tick.segment_grid = &segments_;
   tick.joints = joint_records_;
-  tick.unpaired = joint_unpaired_;
+  tick.unpaired = joint_unpaired_, tick.unpaired_start = joint_unpaired_start_;
   tick.pre_solve = pre_solve_, tick.pre_solve_context = pre_solve_context_;
   tick.entities = bodies_.dense;
   tick.threads = shape_phase_threads();
