@@ -177,7 +177,7 @@ void JointTree::order(std::span<const ShapedBody> bodies, const JointBodies& num
   for (std::size_t m = 0; m < members_.size(); ++m) {
     tree_of_member_[m] = tree_of_node_[node_of_member_[m]];
   }
-  for (auto& nodes : active_nodes_) nodes.reserve(n);
+  make_runs(whole);
 }
 
 void JointTree::split(std::span<const std::uint8_t> half_of_body, const JointBodies& numbered) {
@@ -194,6 +194,18 @@ void JointTree::split(std::span<const std::uint8_t> half_of_body, const JointBod
     if (node.body != none) part_bodies_[h].push_back(node.body);
   }
   for (std::uint32_t m = 0; m < members_.size(); ++m) part_members_[half_of_member(m)].push_back(m);
+  make_runs(0), make_runs(1);
+}
+
+void JointTree::make_runs(int part) {
+  std::vector<Run>& runs = runs_[static_cast<std::size_t>(part)];
+  runs.clear();
+  const auto nodes = nodes_of(part);
+  for (std::uint32_t at = 0; at < nodes.size(); ++at) {
+    const std::uint32_t tree = tree_of_node_[nodes[at]];
+    if (runs.empty() || runs.back().tree != tree) runs.push_back({tree, at, 0});
+    ++runs.back().count;
+  }
 }
 
 // A node's link to its parent: the point row's Jacobian on the body's end, Ċ = v_b + ω_b × r_b
@@ -321,12 +333,19 @@ void JointTree::solve(std::span<Vec2> rhs, std::span<double> angle_rhs, int part
     solve_nodes(rhs, angle_rhs, nodes_of(part));
     return;
   }
-  std::vector<std::uint32_t>& nodes = active_nodes_[part];
-  nodes.clear();
-  for (const std::uint32_t i : nodes_of(part)) {
-    if (active[tree_of_node_[i]] != 0) nodes.push_back(i);
+  // The active trees' runs, those next to one another in one solve (the trees are
+  // independent: each node's arithmetic is the same however they are grouped).
+  const auto nodes = nodes_of(part);
+  std::size_t begin = 0, end = 0;
+  for (const Run& r : runs_[static_cast<std::size_t>(part)]) {
+    if (active[r.tree] == 0) continue;
+    if (r.first != end) {
+      if (end > begin) solve_nodes(rhs, angle_rhs, nodes.subspan(begin, end - begin));
+      begin = r.first;
+    }
+    end = std::size_t{r.first} + r.count;
   }
-  solve_nodes(rhs, angle_rhs, nodes);
+  if (end > begin) solve_nodes(rhs, angle_rhs, nodes.subspan(begin, end - begin));
 }
 
 void JointTree::solve_nodes(std::span<Vec2> rhs, std::span<double> angle_rhs,
@@ -418,8 +437,7 @@ std::size_t JointTree::bytes() const {
                     node_of_body_, first_, joined_, node_of_member_, stack_, all_nodes_,
                     all_members_, ordered_ends_, tree_of_node_, tree_of_member_) +
          copy_bytes(part_nodes_[0], part_nodes_[1], part_members_[0], part_members_[1],
-                    part_bodies_[0], part_bodies_[1], active_nodes_[0], active_nodes_[1],
-                    active_nodes_[2]);
+                    part_bodies_[0], part_bodies_[1], runs_[0], runs_[1], runs_[2]);
 }
 
 }  // namespace fixstep::detail

@@ -135,11 +135,16 @@ class JointTree {
   std::vector<std::uint32_t> node_of_body_;
   std::vector<std::uint32_t> first_, joined_;  ///< each body's members (CSR)
   std::vector<std::uint32_t> node_of_member_, stack_;
-  // Each node's and member's tree (a tree's nodes are one run of the preorder), and the
-  // nodes of the active trees of a part (solve() with `active`; 0, 1, whole).
+  // Each node's and member's tree (a tree's nodes are one run of the preorder, and so of a
+  // part's nodes), and each part's runs (0, 1, whole): a tree and where its nodes are in
+  // nodes_of(part), for solve() with `active`.
   std::vector<std::uint32_t> tree_of_node_, tree_of_member_;
   std::uint32_t trees_ = 0;
-  std::array<std::vector<std::uint32_t>, 3> active_nodes_;
+  struct Run {
+    std::uint32_t tree, first, count;
+  };
+  std::array<std::vector<Run>, 3> runs_;
+  void make_runs(int part);
   std::vector<std::uint32_t> all_nodes_, all_members_;  ///< 0, 1, 2, ...: the whole forest
   std::array<std::vector<std::uint32_t>, 2> part_nodes_, part_members_, part_bodies_;
   [[nodiscard]] std::span<const std::uint32_t> nodes_of(int part) const {
