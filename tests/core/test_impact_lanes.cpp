@@ -2,8 +2,8 @@
 // state, impacts and contact counts after every tick, for gases with elastic and inelastic
 // walls, rolling discs and a kinematic disc ploughing through, with the lanes used and, where
 // a path crosses the cut, run again in one lane. And which worlds share their disc passes
-// with a second thread at all: on threads = 2 from 256 awake discs, on 0 (automatic) from
-// parallel_min_discs.
+// with a second thread at all: from 256 awake discs, on threads = 2 always, on 0 (automatic)
+// in the ticks its trials of two threads and one give two.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -212,18 +212,18 @@ TEST(ImpactLanes, AGasOfFewRestingContactsIsNotCutInHalves) {
   EXPECT_EQ(pile.disc_contacts()->pile_cuts(), 30u);
 }
 
-TEST(DiscThreadChoice, AnAutomaticWorldSharesItsDiscPassesFromParallelMinDiscs) {
-  // threads = 0: one thread below parallel_min_discs discs (the same bits as threads = 1), a
-  // second from there when the machine has a second core; threads = 2 shares from 256.
+TEST(DiscThreadChoice, WorldsShareTheirDiscPassesFromMinParallelDiscs) {
+  // Below 256 busy discs one thread on any setting (the same bits as threads = 1); from there
+  // threads = 2 shares, and an automatic world's first tick is its trial's first, on two.
   const bool two_cores = detail::threads_for(0) == 2;
+  constexpr std::size_t least = detail::DiscContacts<double>::min_parallel_discs;
   struct Case {
     std::size_t n;
     int threads;
     bool shares;
   };
-  for (const Case c :
-       {Case{parallel_min_discs - 1, 0, false}, Case{parallel_min_discs, 0, two_cores},
-        Case{300, 2, detail::threads_for(2) == 2}}) {
+  for (const Case c : {Case{least - 1, 0, false}, Case{least - 1, 2, false},
+                       Case{least, 0, two_cores}, Case{300, 2, detail::threads_for(2) == 2}}) {
     GasOptions o;
     o.n = c.n;
     auto w = gas(o, c.threads), one = gas(o, 1);
@@ -235,6 +235,29 @@ TEST(DiscThreadChoice, AnAutomaticWorldSharesItsDiscPassesFromParallelMinDiscs) 
         << c.n << " discs, threads = " << c.threads;
     EXPECT_FALSE(one->disc_contacts()->second_thread_started());
   }
+}
+
+TEST(DiscThreadChoice, AnAutomaticWorldStepsItsTrialsToTheSameBitsAsOneThread) {
+  // threads = 0 with 1000 discs: the world tries two threads and one, tick by tick
+  // (thread_choice.hpp), then holds its choice and tries again; 60 ticks hold two trials and
+  // the start of a third. Every tick the bits of one thread, the impacts' lanes used where
+  // two threads ran.
+  GasOptions o;
+  o.n = 1000;
+  auto one = gas(o, 1), automatic = gas(o, 0);
+  int on_two = 0, on_one = 0;
+  for (int t = 0; t < 60; ++t) {
+    one->step(), automatic->step();
+    ASSERT_EQ(one->state_hash(), automatic->state_hash()) << "first differs after tick " << t + 1;
+    ASSERT_EQ(one->impacts().size(), automatic->impacts().size()) << "tick " << t + 1;
+    ++(automatic->disc_phase_count() == 2 ? on_two : on_one);
+  }
+  if (detail::threads_for(0) < 2) GTEST_SKIP() << "one core: an automatic world runs one thread";
+  // Each trial's eight ticks are four on each count.
+  EXPECT_GE(on_two, 8);
+  EXPECT_GE(on_one, 8);
+  EXPECT_TRUE(automatic->disc_contacts()->second_thread_started());
+  EXPECT_FALSE(automatic->fault().has_value());
 }
 
 }  // namespace

@@ -211,11 +211,17 @@ void detail::WorldKernel<Real>::restore_immovable() {
   }
 }
 
+// An automatic world with discs enough to share a pass (DiscContacts::min_parallel_discs)
+// times its disc phases on two threads and on one now and then, and keeps the faster
+// (thread_choice.hpp): what the second core saves depends on the machine and on how far apart
+// its cores are at the time, and on whether ticks run back to back or paced (a worker woken
+// each tick). Below that size the passes run on one thread in any case.
 template <class Real>
-int detail::WorldKernel<Real>::disc_threads() const {
-  const int threads = detail::threads_for(settings_.threads);
-  const bool small = !discs_ || discs_->busy() < parallel_min_discs;
-  return threads == 2 && settings_.threads < 2 && small ? 1 : threads;
+int detail::WorldKernel<Real>::disc_phase_threads() {
+  const bool choose =
+      settings_.threads == 0 && discs_->busy() >= detail::DiscContacts<Real>::min_parallel_discs;
+  disc_count_ = disc_threads_.threads(detail::threads_for(settings_.threads), choose);
+  return disc_count_;
 }
 
 template <class Real>
@@ -232,7 +238,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
       contact_.after_t,
       settings_.dt,
       detail::contact_kappa(settings_.integrator, settings_.substeps),
-      disc_threads()};  // the same states either way
+      disc_count_};  // the same states either way
   if (!segments_.empty()) t.segments = &segments_;
   if (rolling_) t.spin = spin_.data();
   if (!plane_work_.empty()) t.plane_work = plane_work_.data();
@@ -240,7 +246,7 @@ void detail::WorldKernel<Real>::resolve_discs() {
     t.wake = [](void* kernel) { static_cast<WorldKernel*>(kernel)->wake_near_movers(); };
     t.wake_context = this;
   }
-  dc.resolve(t, contact_stats_, profile_);
+  disc_threads_.timed([&] { return dc.resolve(t, contact_stats_, profile_), 0; });
   const auto discs = dc.discs();
   if (const auto* hit = dc.cap_hit(); hit && !fault_) {  // cold: a cap stopped the tick's work
     const std::uint32_t body = discs[hit->disc].body;

@@ -388,6 +388,9 @@ class WorldKernel {
   [[nodiscard]] unsigned active_terms() const;
   /// Threads the last step used (1 or 2).
   [[nodiscard]] int threads_used() const { return threads_used_; }
+  /// The thread count the disc phases were given in the last tick that ran them (1 or 2;
+  /// below DiscContacts::min_parallel_discs busy discs they run on one either way).
+  [[nodiscard]] int disc_phase_count() const { return disc_count_; }
 
   // --- state (dense body order) -----------------------------------------------------------
   [[nodiscard]] std::span<const Real> x() const { return x_; }
@@ -634,9 +637,10 @@ class WorldKernel {
     bool shapes_still = false;  ///< sleepers, and nothing with shapes moves: no shape phase
     bool discs = false;         ///< the disc phases run (world_discs.cpp, world_events.cpp, ...)
     bool own_worker = false;    ///< the integration has a worker thread of its own (links)
-    int threads = 1;            ///< threads the disc phases may use
+    int threads = 1;            ///< threads the disc phases may use (disc_phase_threads())
   };
-  [[nodiscard]] FIXSTEP_TICK_PHASE TickPlan plan_tick() const;
+  /// The tick's plan, its disc phases' thread count taken where they run.
+  [[nodiscard]] FIXSTEP_TICK_PHASE TickPlan plan_tick();
   /// The tick's input at its start: islands woken, impulses, kinematic velocities, carried
   /// segments placed, the pointer's drag (world_input.cpp).
   FIXSTEP_TICK_PHASE void apply_input(const TickInput& input);
@@ -833,9 +837,15 @@ class WorldKernel {
   void save_tick_start(bool discs);
   void restore_immovable();
   void resolve_discs();
-  /// The threads the disc phases may use: WorldSettings::threads (threads_for), and with 0
-  /// (automatic) two only from parallel_min_discs awake discs (world_discs.cpp).
-  [[nodiscard]] int disc_threads() const;
+  /// The threads the disc phases may use this tick: WorldSettings::threads (threads_for), and
+  /// with 0 (automatic) from DiscContacts::min_parallel_discs awake discs by trial
+  /// (disc_threads_: thread_choice.hpp), below on one (world_discs.cpp). Call once a tick, in
+  /// a tick whose disc phases run, before resolve_discs() (which times the trial's ticks).
+  int disc_phase_threads();
+  int disc_count_ = 1;  ///< disc_phase_threads()'s count for this tick
+  /// An automatic world's thread count for its disc phases, by trial (not state: the phases'
+  /// bits are the same on either count).
+  ThreadChoice disc_threads_;
   // Sleeping islands (world_sleep.cpp; ContactSettings::sleep). Per body in dense order: the
   // ticks it has stayed below the sleep speed (saturating) and its island's number while
   // asleep (0: awake); empty in a world without sleeping. A sleeping body is in the

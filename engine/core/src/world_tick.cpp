@@ -14,7 +14,7 @@
 namespace fixstep {
 
 template <class Real>
-typename detail::WorldKernel<Real>::TickPlan detail::WorldKernel<Real>::plan_tick() const {
+typename detail::WorldKernel<Real>::TickPlan detail::WorldKernel<Real>::plan_tick() {
   TickPlan plan;
   // Contacts with planes only when the world has planes and colliders; static and kinematic
   // bodies and disc-disc contacts only when declared: one branch each per tick otherwise.
@@ -30,7 +30,7 @@ typename detail::WorldKernel<Real>::TickPlan detail::WorldKernel<Real>::plan_tic
   // The integration has a worker of its own with links or the dissipation account
   // (step_multipass); the discs' second thread then wakes after it, else during it.
   plan.own_worker = !net_.a.empty() || settings_.track_dissipation;
-  plan.threads = disc_threads();  // world_discs.cpp
+  if (plan.discs) plan.threads = disc_phase_threads();  // world_discs.cpp
   return plan;
 }
 

@@ -78,10 +78,11 @@ struct WorldSettings {
   bool track_dissipation = false;
   /// Threads a tick of a world with links, disc contacts, shapes or joints may use: 1, 2, or 0 =
   /// automatic (2 when the machine has a second core, and for links the world has at least
-  /// parallel_min_bodies bodies, for disc contacts parallel_min_discs awake discs; for shapes
-  /// and joints, from 256 shapes or joints, whichever of 1 and 2 stepped the shape phase faster
-  /// in the last trial: every few seconds the world times the phase on each, alternately, for a
-  /// few ticks, since what a second core saves depends on the machine). On two,
+  /// parallel_min_bodies bodies; for disc contacts from 256 awake discs, and for shapes and
+  /// joints from 256 shapes or joints, whichever of 1 and 2 stepped that phase faster in the
+  /// last trial: every few seconds the world times the phase on each, alternately, for a few
+  /// ticks, since what a second core saves depends on the machine and on whether its ticks
+  /// run back to back or paced by frames). On two,
   /// disc contacts share their passes from 256 awake discs and run a tick's impacts in two
   /// lanes of the candidate pairs' groups from 1024 pairs, shapes from 1024 shapes or a sweep's
   /// colour of 256 manifolds, joints from 256 joints in two groups that share no body. The states
@@ -110,11 +111,6 @@ inline constexpr std::uint64_t flush_denormals_every = 64;
 
 /// Bodies from which an automatic (threads = 0) world with links steps on two threads.
 inline constexpr std::size_t parallel_min_bodies = 16384;
-
-/// Awake discs from which an automatic (threads = 0) world's disc contacts share a tick's
-/// passes with a second thread; below, a second thread saves nothing a tick and would spin a
-/// core through it (docs/perf/contact_solver_plan.md).
-inline constexpr std::size_t parallel_min_discs = 2048;
 
 /// Bits of World::active_terms(): which force terms run each tick.
 enum ForceTermBits : unsigned {
