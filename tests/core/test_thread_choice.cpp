@@ -1,7 +1,7 @@
-// An automatic world's choice of one or two threads for its shape phase (thread_choice.hpp),
-// driven by given tick times: the trial's order, the rule that decides, the holds between
-// trials, and the worlds that do not choose. (That either count gives the same bits is
-// test_shape_threads.cpp's.)
+// An automatic world's choice of one or two threads for its shape or disc phases
+// (thread_choice.hpp), driven by given tick times: the trial's order, the rule that decides,
+// the holds between trials, and the worlds that do not choose. (That either count gives the
+// same bits is test_shape_threads.cpp's and test_impact_lanes.cpp's.)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,20 +29,30 @@ std::vector<int> run(ThreadChoice& choice, int ticks, Time&& time) {
   return counts;
 }
 
-TEST(ThreadChoice, ATrialAlternatesTwoThreadsAndOneThenHoldsItsChoice) {
+TEST(ThreadChoice, ATrialAlternatesPairsOfTwoThreadsAndOneThenHoldsItsChoice) {
+  // Two threads, two, one, one, ...: only the second tick of each pair is timed.
   ThreadChoice choice;
-  const auto counts = run(choice, ThreadChoice::trial_ticks + ThreadChoice::first_hold_ticks + 2,
-                          [](int count) { return count == 2 ? 0.5 : 1.0; });
+  std::vector<int> timed;
+  const auto counts =
+      run(choice, ThreadChoice::trial_ticks + ThreadChoice::first_hold_ticks + 3,
+          [&](int count) { return timed.push_back(count), count == 2 ? 0.5 : 1.0; });
   for (int t = 0; t < ThreadChoice::trial_ticks; ++t) {
-    EXPECT_EQ(counts[t], t % 2 == 0 ? 2 : 1) << "trial tick " << t;
+    EXPECT_EQ(counts[t], (t / 2) % 2 == 0 ? 2 : 1) << "trial tick " << t;
+  }
+  // (The last is the next trial's first, on two threads.)
+  ASSERT_EQ(timed.size(), std::size_t{ThreadChoice::trial_ticks / 2 + 1});
+  for (std::size_t k = 0; k < timed.size(); ++k) {
+    EXPECT_EQ(timed[k], k % 2 == 0 ? 2 : 1) << "timed tick " << k;
   }
   for (int t = ThreadChoice::trial_ticks;
        t < ThreadChoice::trial_ticks + ThreadChoice::first_hold_ticks; ++t) {
     EXPECT_EQ(counts[t], 2) << "held tick " << t;
   }
-  // The next trial begins with two threads, then one.
-  EXPECT_EQ(counts[ThreadChoice::trial_ticks + ThreadChoice::first_hold_ticks], 2);
-  EXPECT_EQ(counts[ThreadChoice::trial_ticks + ThreadChoice::first_hold_ticks + 1], 1);
+  // The next trial begins with two threads twice, then one.
+  const int next = ThreadChoice::trial_ticks + ThreadChoice::first_hold_ticks;
+  EXPECT_EQ(counts[next], 2);
+  EXPECT_EQ(counts[next + 1], 2);
+  EXPECT_EQ(counts[next + 2], 1);
 }
 
 TEST(ThreadChoice, TwoThreadsAreKeptOnlyWhereTheyAreFasterByTheMargin) {
@@ -57,10 +67,10 @@ TEST(ThreadChoice, TwoThreadsAreKeptOnlyWhereTheyAreFasterByTheMargin) {
   }
 }
 
-TEST(ThreadChoice, EachCountsFastestTickDecides) {
+TEST(ThreadChoice, EachCountsMedianTickDecides) {
   // One thread's ticks 1.0 s but for a preempted one of 5 s; two threads' 0.9 s but for one
-  // of 0.2 s: the fastest of each, 1.0 and 0.2, choose two threads; then two threads' ticks
-  // 1.2 s but one of 0.1 s, and one thread's 1.0 s: two again (the fastest, not a mean).
+  // of 0.2 s: the medians, 1.0 and 0.9, choose two threads; then two threads' ticks 1.2 s but
+  // one of 0.1 s, and one thread's 1.0 s: one thread (the median, not the fastest).
   ThreadChoice choice;
   int n = 0;
   run(choice, ThreadChoice::trial_ticks, [&](int count) {
@@ -76,27 +86,26 @@ TEST(ThreadChoice, EachCountsFastestTickDecides) {
     if (count == 1) return 1.0;
     return n == 5 ? 0.1 : 1.2;
   });
-  EXPECT_EQ(slower.chosen(), 2);
+  EXPECT_EQ(slower.chosen(), 1);
 }
 
 TEST(ThreadChoice, EachTrialDecidesAloneAndTheHoldsDoubleToTheLongest) {
   // Two threads faster in the first trial, slower in every later one: the second trial
   // chooses one thread from its own ticks alone; the holds between trials double from
   // first_hold_ticks to hold_ticks and stay there.
+  // (A trial's first timed tick is its second; a timed tick more than two after the last
+  // begins a trial.)
   ThreadChoice choice;
-  int trial = 0, in_trial = 0;
+  int trial = 0, in_trial = 0, last_timed = -100;
   std::vector<int> trial_starts;
-  int tick = 0;
-  for (; tick < 2000; ++tick) {
+  for (int tick = 0; tick < 3000; ++tick) {
     choice.threads(2, true);
-    if (choice.timing() == 0) {
-      in_trial = 0;
-      continue;
-    }
-    if (in_trial++ == 0) trial_starts.push_back(tick), ++trial;
+    if (choice.timing() == 0) continue;
+    if (tick - last_timed > 2) trial_starts.push_back(tick - 1), ++trial, in_trial = 0;
+    last_timed = tick, ++in_trial;
     const int count = choice.timing();
     choice.record(count, count == 2 ? (trial == 1 ? 0.5 : 2.0) : 1.0);
-    if (in_trial == ThreadChoice::trial_ticks) {
+    if (in_trial == ThreadChoice::trial_ticks / 2) {
       EXPECT_EQ(choice.chosen(), trial == 1 ? 2 : 1) << "after trial " << trial;
     }
   }
@@ -116,7 +125,9 @@ TEST(ThreadChoice, ATrialCutShortByAThrowLeavesNothingToTheNext) {
   ThreadChoice choice;
   for (int t = 0; t < ThreadChoice::trial_ticks; ++t) {
     const int count = choice.threads(2, true);
-    if (t + 1 < ThreadChoice::trial_ticks) choice.record(count, count == 2 ? 0.1 : 1.0);
+    if (choice.timing() != 0 && t + 1 < ThreadChoice::trial_ticks) {
+      choice.record(count, count == 2 ? 0.1 : 1.0);
+    }
   }
   EXPECT_EQ(choice.chosen(), 2);  // (no trial has decided yet)
   for (int t = 0; t < ThreadChoice::first_hold_ticks; ++t) choice.threads(2, true);
@@ -130,7 +141,10 @@ TEST(ThreadChoice, AWorldThatDoesNotChooseKeepsItsCountAndIsNotTimed) {
   EXPECT_EQ(choice.timing(), 0);
   EXPECT_EQ(choice.threads(1, true), 1);  // one thread (a machine of one core, a wasm32 build)
   EXPECT_EQ(choice.timing(), 0);
-  // Neither began a trial: the first chosen tick is the trial's first, on two threads.
+  // Neither began a trial: the first chosen tick is the trial's first, on two threads, and
+  // the second is its first timed one.
+  EXPECT_EQ(choice.threads(2, true), 2);
+  EXPECT_EQ(choice.timing(), 0);
   EXPECT_EQ(choice.threads(2, true), 2);
   EXPECT_EQ(choice.timing(), 2);
 }
@@ -138,7 +152,10 @@ TEST(ThreadChoice, AWorldThatDoesNotChooseKeepsItsCountAndIsNotTimed) {
 TEST(ThreadChoice, TimedReturnsThePhasesResultAndLetsItsExceptionOut) {
   ThreadChoice choice;
   choice.threads(2, true);
-  EXPECT_EQ(choice.timed([] { return 42; }), 42);
+  EXPECT_EQ(choice.timed([] { return 42; }), 42);  // untimed
+  choice.threads(2, true);
+  EXPECT_EQ(choice.timed([] { return 43; }), 43);  // timed
+  choice.threads(2, true);
   choice.threads(2, true);
   EXPECT_THROW(choice.timed([]() -> int { throw std::runtime_error("stop"); }), std::runtime_error);
   choice.threads(2, false);
