@@ -39,7 +39,7 @@ class ThreadChoice {
   /// on two took 1.4 times as long as on one.)
   static constexpr double two_threads_at_most = 0.95;
 
-  /// The shape phase's thread count this tick: `most` (threads_for's: 1 or 2) where the world
+  /// The phase's thread count this tick: `most` (threads_for's: 1 or 2) where the world
   /// does not choose (`choose`: an automatic world in which some pass of the phase could
   /// split) or has one thread; else the trial's count, or the one the last trial chose. Call
   /// once a tick, before timed().
@@ -54,7 +54,7 @@ class ThreadChoice {
     if (at % 2 == 1) timing_ = count;
     return count;
   }
-  /// Runs phase() (the shape phase of the tick threads() was asked for) and returns what it
+  /// Runs phase() (the phase of the tick threads() was asked for) and returns what it
   /// returns, timed on the steady clock where that count was a trial's (a phase that throws
   /// is not counted).
   template <class Phase>
