@@ -416,8 +416,8 @@ if have_xvfb && command -v xdotool >/dev/null; then
   # view_stopped WAIT SCENE OUT REC ARGS...: view in the background, SIGINT WAIT seconds after
   # its window appears; its exit status. A job started with & by a shell without job control
   # ignores SIGINT until view installs its own handler, just before its window, so the signal
-  # must wait for the window: up to 60 s (long_tick.toml's load took 24 s under AddressSanitizer on a slow
-  # 2-core machine).
+  # must wait for the window: up to 60 s (long_tick.toml's load took 24 s under
+  # AddressSanitizer on a slow 2-core machine).
   view_stopped() {
     with_xvfb bash -c '
       "$1" view "$2" --size 320x180 --frames 100000 --fps 60 --record "$4" "${@:6}" >"$3" 2>&1 &

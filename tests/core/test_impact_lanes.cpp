@@ -238,10 +238,10 @@ TEST(DiscThreadChoice, WorldsShareTheirDiscPassesFromMinParallelDiscs) {
 }
 
 TEST(DiscThreadChoice, AnAutomaticWorldStepsItsTrialsToTheSameBitsAsOneThread) {
-  // threads = 0 with 1000 discs: the world tries two threads and one, tick by tick
-  // (thread_choice.hpp), then holds its choice and tries again; 60 ticks hold two trials and
-  // the start of a third. Every tick the bits of one thread, the impacts' lanes used where
-  // two threads ran.
+  // threads = 0 with 1000 discs: the world tries two threads and one, two ticks each
+  // (thread_choice.hpp), then holds its choice and tries again; 60 ticks hold two trials (ticks
+  // 1-12 and 29-40). Every tick the state hash and the number of impacts of one thread,
+  // and over the ticks both counts used.
   GasOptions o;
   o.n = 1000;
   auto one = gas(o, 1), automatic = gas(o, 0);

@@ -60,8 +60,8 @@ TEST(ShapeThreads, TwoThreadsStepAPileToTheSameBitsAsOne) {
 }
 
 TEST(ShapeThreads, AnAutomaticWorldStepsItsTrialsToTheSameBitsAsOneThread) {
-  // threads = 0: the world tries two threads and one, tick by tick (thread_choice.hpp), then
-  // holds its choice and tries again: 60 ticks hold two trials and the start of a third.
+  // threads = 0: the world tries two threads and one, two ticks each (thread_choice.hpp), then
+  // holds its choice and tries again: 60 ticks hold two trials (ticks 1-12 and 29-40).
   auto one = columns(1);
   auto automatic = columns(0);
   bool halved = false, whole = false;
