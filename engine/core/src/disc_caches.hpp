@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "fat_boxes.hpp"
 #include "grid_broadphase.hpp"
 #include "query_grid.hpp"
 
@@ -80,24 +81,6 @@ struct AwakeFlips {
     }
     discs.push_back(k);
   }
-};
-
-/// Fat boxes (Box2D's enlarged AABBs, b2_aabbMargin): each disc's box widened by
-/// `margin` of its radius when the broadphase last ran on them, and their pairs, sorted.
-/// While every disc's box over the tick stays inside its fat box, the tick's pairs are the
-/// fat pairs whose boxes overlap: the broadphase's pairs, in its order, without running it.
-struct FatBoxes {
-  /// The margin, as a fraction of each disc's radius, and the ticks the fat boxes rest after a
-  /// rebuild that served a single tick (a gas: its boxes leave them every tick), doubled for
-  /// each such rebuild in a row up to rest_most.
-  static constexpr double margin = 0.25;
-  static constexpr std::uint32_t rest_first = 8, rest_most = 512;
-  bool valid = false;      ///< the pairs are those of `boxes` under today's flags and filters
-  std::uint32_t age = 0;   ///< ticks they served
-  std::uint32_t rest = 0;  ///< ticks left before another try (after one that served one tick)
-  std::uint32_t pause = rest_first;  ///< the next rest: doubled by each such try in a row
-  std::vector<SweptBox> boxes;
-  std::vector<DiscPair> pairs;
 };
 
 /// Whether the broadphase's grid holds fat_.boxes (reach() queries it): false in a copy,

@@ -25,16 +25,7 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
   bool inside = f.valid && f.boxes.size() == n;
   for (std::size_t k = 0; inside && k < n; ++k) inside = box_within(boxes_[k], f.boxes[k]);
   if (!inside) {
-    if (f.valid && f.age <= 1) {  // built for one tick: rest a while, longer each time
-      f.rest = f.pause, f.pause = std::min(2 * f.pause, FatBoxes::rest_most);
-    } else if (f.valid) {
-      f.pause = FatBoxes::rest_first;
-    }
-    f.valid = false;
-    if (f.rest > 0) {
-      --f.rest;
-      return -1;
-    }
+    if (!f.left()) return -1;  // built for one tick: rest a while, longer each time
     // A disc that moves more than the margin in a tick leaves its fat box in the next one.
     for (std::size_t k = 0; k < n; ++k) {
       const SweptBox& b = boxes_[k];
@@ -55,10 +46,7 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
     f.valid = true, f.age = 0;
   }
   ++f.age;
-  pairs_.clear();
-  for (const DiscPair& p : f.pairs) {
-    if (boxes_overlap(boxes_[p.a], boxes_[p.b])) pairs_.push_back(p);
-  }
+  f.overlapping(boxes_, pairs_);
   return pairs_.size() <= max_pairs ? 1 : 0;
 }
 
