@@ -256,8 +256,9 @@ bool ShapeWorld::never_pair_live(const void* context, std::uint32_t a, std::uint
 }
 
 // The grid's pairs among the live shapes (the activity and veto of every shape's, in their
-// places), then each live shape's pairs with the resting shapes its box overlaps: a pair
-// needs a dynamic shape (a sleeper's is), as the grid's does. Both limits count the totals.
+// places; from the fat boxes while they hold, shape_fat_pairs.cpp), then each live shape's pairs
+// with the resting shapes its box overlaps: a pair needs a dynamic shape (a sleeper's is), as the
+// grid's does. Both limits count the totals.
 bool ShapeWorld::pair_live(ShapeTally& tally, SecondThread* thread) {
   ShapeRest& r = rest_;
   const std::size_t n = shapes_.size();
@@ -266,18 +267,21 @@ bool ShapeWorld::pair_live(ShapeTally& tally, SecondThread* thread) {
   for (std::size_t i = 0; i < r.live_shapes.size(); ++i) {
     r.boxes[i] = boxes_[r.live_shapes[i]], r.active[i] = dynamic_[r.live_shapes[i]];
   }
-  const GridBroadphase::PairVeto veto{&ShapeWorld::never_pair_live, this, most_vetoed};
-  grid_.set_veto(&veto);
-  const bool found =
-      grid_.find_pairs(r.boxes, r.active, most_pairs, r.pairs, thread ? 2 : 1, thread);
-  grid_.set_veto(nullptr);
-  if (!found) {
-    name_cap(tally, grid_.stopped_by_veto());
-    return false;
+  std::uint64_t vetoed = 0;
+  if (!recycle_live_pairs(most_pairs, most_vetoed, vetoed, thread)) {
+    const GridBroadphase::PairVeto veto{&ShapeWorld::never_pair_live, this, most_vetoed};
+    grid_.set_veto(&veto);
+    const bool found =
+        grid_.find_pairs(r.boxes, r.active, most_pairs, r.pairs, thread ? 2 : 1, thread);
+    grid_.set_veto(nullptr);
+    if (!found) {
+      name_cap(tally, grid_.stopped_by_veto());
+      return false;
+    }
+    vetoed = grid_.rejected();
   }
   for (DiscPair& p : r.pairs) p = {r.live_shapes[p.a], r.live_shapes[p.b]};
   r.cross.clear();
-  std::uint64_t vetoed = grid_.rejected();
   bool over = false;
   auto meet = [&](std::uint32_t l, std::uint32_t k) {
     if (over || (dynamic_[l] == 0 && dynamic_[k] == 0)) return;

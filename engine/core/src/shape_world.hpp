@@ -62,6 +62,7 @@
 #include "one_way.hpp"
 #include "rot_batch.hpp"
 #include "second_thread.hpp"
+#include "shape_fat_pairs.hpp"
 #include "shape_geom.hpp"
 #include "shape_lanes.hpp"
 #include "shape_records.hpp"
@@ -179,6 +180,9 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
   /// For the tests: the joints' passes run by halves on two threads (joint_halves.hpp) so far.
   [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
+  /// Ticks whose live shapes' pairs came from fat boxes made in an earlier tick
+  /// (shape_fat_pairs.cpp; a copy counts from 0).
+  [[nodiscard]] std::uint64_t fat_pair_ticks() const { return fat_.kept_ticks; }
   /// For the tests: the forest's steps that keep taken back so far, each halving and each
   /// step dropped after the last halving (joint_keep_search.hpp).
   [[nodiscard]] std::uint64_t kept_step_cuts() const { return keep_search_.cuts_made; }
@@ -244,6 +248,16 @@ class ShapeWorld {
   bool pair_live(ShapeTally& tally, SecondThread* thread);
   /// never_pair of two live shapes by their places in rest_.live_shapes.
   static bool never_pair_live(const void* context, std::uint32_t a, std::uint32_t b);
+  /// The live shapes' pairs among themselves (places in live_shapes, not vetoed) into
+  /// rest_.pairs from the fat boxes, and the pairs vetoed into `vetoed`, as the grid would
+  /// find them from rest_.boxes: false where the fat boxes do not hold (and are not made
+  /// again) or a limit is passed (the grid then finds the pairs, and names the limit).
+  bool recycle_live_pairs(std::uint64_t most_pairs, std::uint64_t most_vetoed,
+                          std::uint64_t& vetoed, SecondThread* thread);
+  /// The fat boxes of the live shapes and their pairs made again from rest_.boxes (false: a
+  /// body moves more than its margin in a tick, or the pairs pass `most_pairs`).
+  bool make_fat_pairs(std::uint64_t most_pairs, SecondThread* thread);
+  ShapeFatPairs fat_;
   /// Fills `tally` with the broadphase's work limit `cap` reached.
   void name_cap(ShapeTally& tally, bool by_veto) const;
   std::vector<std::uint32_t> wake_;
