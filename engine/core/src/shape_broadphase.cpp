@@ -4,7 +4,8 @@
 // on x scans every box of a column of boxes), in (a, b) order; a hundred or so by a sort and
 // sweep on x, whose work (n²/2 box tests at most) is then below the grid's fixed costs. Of a
 // large world's shapes only the live ones are boxed and paired each tick, the resting ones
-// found through their own grid (shape_rest.hpp, shape_rest.cpp).
+// found through their own grid (shape_rest.hpp, shape_rest.cpp). Either way, while every box
+// lies in its fat box the pairs come from the fat boxes instead (shape_fat_pairs.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -82,6 +83,10 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) 
 // neither limit can be reached (n(n - 1)/2 pairs at most).
 void ShapeWorld::sweep_few() {
   const auto n = static_cast<std::uint32_t>(shapes_.size());
+  std::uint64_t vetoed = 0;  // (neither limit can be reached)
+  if (recycle_pairs(false, max_candidate_pairs(n), max_vetoed_pairs(n), vetoed, pairs_, nullptr)) {
+    return;  // from the fat boxes (shape_fat_pairs.cpp)
+  }
   const SweptBox* const box = boxes_.data();
   auto before = [&](std::uint32_t l, std::uint32_t r) {
     return box[l].min_x != box[r].min_x ? box[l].min_x < box[r].min_x : l < r;

@@ -1,5 +1,6 @@
-// Shape contacts, part 1b: the live shapes' pairs among themselves from fat boxes
-// (fat_boxes.hpp), as the discs' are (disc_fat.cpp). A shape's box is its body's pose at the
+// Shape contacts, part 1b: the live shapes' pairs among themselves (or, in a world of fewer
+// than min_grid_shapes shapes, every shape's: sweep_few) from fat boxes (fat_boxes.hpp), as the
+// discs' are (disc_fat.cpp). A shape's box is its body's pose at the
 // tick's start grown by the body's speculative margin (ShapeWorld::margin), so a stack that
 // settles or a level that rests around a few movers moves its boxes by less than a fat box's
 // margin, FatBoxes::margin of the body's extent, for many ticks; while every live box lies in
@@ -10,51 +11,70 @@
 // shape) are those the fat pairs were made with. The veto (never_pair) is applied to them as the
 // grid applies it, since what it reads changes from tick to tick (a body's sleep and motion). The
 // fat pairs are made without the veto, under the grid's memory limit, max_candidate_pairs.
+#include <algorithm>
+
 #include "shape_world.hpp"
 
 namespace fixstep::detail {
 
-bool ShapeWorld::recycle_live_pairs(std::uint64_t most_pairs, std::uint64_t most_vetoed,
-                                    std::uint64_t& vetoed, SecondThread* thread) {
-  ShapeRest& r = rest_;
-  ShapeFatPairs& f = fat_;
-  const std::size_t n = r.live_shapes.size();
-  bool inside = f.fat.valid && f.fat.boxes.size() == n && f.active == r.active;
-  for (std::size_t k = 0; inside && k < n; ++k) inside = box_within(r.boxes[k], f.fat.boxes[k]);
-  if (!inside && !(f.fat.left() && make_fat_pairs(most_pairs, thread))) return false;
-  if (inside) ++f.kept_ticks;
-  ++f.fat.age;
-  f.fat.overlapping(r.boxes, f.found);
-  r.pairs.clear();
-  vetoed = 0;
-  for (const DiscPair& p : f.found) {
-    if (never_pair_live(this, p.a, p.b)) {
-      ++vetoed;
-    } else {
-      r.pairs.push_back(p);
-    }
-  }
-  return r.pairs.size() <= most_pairs && vetoed <= most_vetoed;
+// The places the broadphase pairs: the live shapes' (rest_.boxes and rest_.active by place in
+// live_shapes, vetoed by never_pair_live) or every shape's (boxes_, dynamic_, never_pair).
+struct ShapeWorld::FatPlaces {
+  std::span<const SweptBox> boxes;
+  std::span<const std::uint8_t> active;
+  std::span<const std::uint32_t> shapes;  ///< each place's shape (empty: place k is shape k)
+  bool (*veto)(const void*, std::uint32_t, std::uint32_t);
+};
+
+ShapeWorld::FatPlaces ShapeWorld::fat_places(bool live) const {
+  if (live) return {rest_.boxes, rest_.active, rest_.live_shapes, &ShapeWorld::never_pair_live};
+  return {boxes_, dynamic_, {}, &ShapeWorld::never_pair};
 }
 
-bool ShapeWorld::make_fat_pairs(std::uint64_t most_pairs, SecondThread* thread) {
-  ShapeRest& r = rest_;
+bool ShapeWorld::recycle_pairs(bool live, std::uint64_t most_pairs, std::uint64_t most_vetoed,
+                               std::uint64_t& vetoed, std::vector<DiscPair>& out,
+                               SecondThread* thread) {
+  const FatPlaces at = fat_places(live);
   ShapeFatPairs& f = fat_;
-  const std::size_t n = r.live_shapes.size();
+  const std::size_t n = at.boxes.size();
+  bool inside = f.fat.valid && f.fat.boxes.size() == n &&
+                std::equal(f.active.begin(), f.active.end(), at.active.begin(), at.active.end());
+  for (std::size_t k = 0; inside && k < n; ++k) inside = box_within(at.boxes[k], f.fat.boxes[k]);
+  if (!inside && !(f.fat.left() && make_fat_pairs(at, most_pairs, thread))) return false;
+  if (inside) ++f.kept_ticks;
+  ++f.fat.age;
+  f.fat.overlapping(at.boxes, f.found);
+  out.clear();
+  vetoed = 0;
+  for (const DiscPair& p : f.found) {
+    if (at.veto(this, p.a, p.b)) {
+      ++vetoed;
+    } else {
+      out.push_back(p);
+    }
+  }
+  return out.size() <= most_pairs && vetoed <= most_vetoed;
+}
+
+bool ShapeWorld::make_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs,
+                                SecondThread* thread) {
+  ShapeFatPairs& f = fat_;
+  const std::size_t n = at.boxes.size();
   f.fat.boxes.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t body = shapes_[r.live_shapes[k]].owner;
+    const std::uint32_t shape = at.shapes.empty() ? static_cast<std::uint32_t>(k) : at.shapes[k];
+    const std::uint32_t body = shapes_[shape].owner;
     const double m = FatBoxes::margin * bodies_[body].extent;
     // A body that moves more than m in a tick leaves its fat box in the next one.
     if (margin_[body] - 2.0 * slop > m) return false;
-    const SweptBox& b = r.boxes[k];
+    const SweptBox& b = at.boxes[k];
     f.fat.boxes[k] = SweptBox{b.min_x - m, b.min_y - m, b.max_x + m, b.max_y + m};
   }
-  if (!grid_.find_pairs(f.fat.boxes, r.active, most_pairs, f.fat.pairs, thread ? 2 : 1, thread)) {
+  if (!grid_.find_pairs(f.fat.boxes, at.active, most_pairs, f.fat.pairs, thread ? 2 : 1, thread)) {
     f.fat.rest_longer();  // crowded: the grid of the fat boxes cost a tick's broadphase
     return false;
   }
-  f.active.assign(r.active.begin(), r.active.end());
+  f.active.assign(at.active.begin(), at.active.end());
   f.fat.valid = true, f.fat.age = 0;
   return true;
 }

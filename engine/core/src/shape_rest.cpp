@@ -268,7 +268,7 @@ bool ShapeWorld::pair_live(ShapeTally& tally, SecondThread* thread) {
     r.boxes[i] = boxes_[r.live_shapes[i]], r.active[i] = dynamic_[r.live_shapes[i]];
   }
   std::uint64_t vetoed = 0;
-  if (!recycle_live_pairs(most_pairs, most_vetoed, vetoed, thread)) {
+  if (!recycle_pairs(true, most_pairs, most_vetoed, vetoed, r.pairs, thread)) {
     const GridBroadphase::PairVeto veto{&ShapeWorld::never_pair_live, this, most_vetoed};
     grid_.set_veto(&veto);
     const bool found =

@@ -180,7 +180,7 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t split_colors() const { return split_colors_; }
   /// For the tests: the joints' passes run by halves on two threads (joint_halves.hpp) so far.
   [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
-  /// Ticks whose live shapes' pairs came from fat boxes made in an earlier tick
+  /// For the tests: the ticks whose shapes' pairs came from fat boxes made in an earlier tick
   /// (shape_fat_pairs.cpp; a copy counts from 0).
   [[nodiscard]] std::uint64_t fat_pair_ticks() const { return fat_.kept_ticks; }
   /// For the tests: the forest's steps that keep taken back so far, each halving and each
@@ -248,15 +248,17 @@ class ShapeWorld {
   bool pair_live(ShapeTally& tally, SecondThread* thread);
   /// never_pair of two live shapes by their places in rest_.live_shapes.
   static bool never_pair_live(const void* context, std::uint32_t a, std::uint32_t b);
-  /// The live shapes' pairs among themselves (places in live_shapes, not vetoed) into
-  /// rest_.pairs from the fat boxes, and the pairs vetoed into `vetoed`, as the grid would
-  /// find them from rest_.boxes: false where the fat boxes do not hold (and are not made
-  /// again) or a limit is passed (the grid then finds the pairs, and names the limit).
-  bool recycle_live_pairs(std::uint64_t most_pairs, std::uint64_t most_vetoed,
-                          std::uint64_t& vetoed, SecondThread* thread);
-  /// The fat boxes of the live shapes and their pairs made again from rest_.boxes (false: a
-  /// body moves more than its margin in a tick, or the pairs pass `most_pairs`).
-  bool make_fat_pairs(std::uint64_t most_pairs, SecondThread* thread);
+  /// The pairs among the live shapes (`live`: places in live_shapes, into rest_.pairs) or
+  /// among every shape (into pairs_), not vetoed, from the fat boxes, and the pairs vetoed into
+  /// `vetoed`, as the grid would find them: false where the fat boxes do not hold (and are not
+  /// made again) or a limit is passed (the grid or the sweep then finds the pairs).
+  bool recycle_pairs(bool live, std::uint64_t most_pairs, std::uint64_t most_vetoed,
+                     std::uint64_t& vetoed, std::vector<DiscPair>& out, SecondThread* thread);
+  struct FatPlaces;
+  [[nodiscard]] FatPlaces fat_places(bool live) const;
+  /// The fat boxes of `at` and their pairs made again (false: a body moves more than its fat
+  /// margin in a tick, or the pairs pass `most_pairs`).
+  bool make_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs, SecondThread* thread);
   ShapeFatPairs fat_;
   /// Fills `tally` with the broadphase's work limit `cap` reached.
   void name_cap(ShapeTally& tally, bool by_veto) const;
