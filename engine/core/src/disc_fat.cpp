@@ -6,11 +6,12 @@
 // box, the tick's pairs are the fat pairs whose boxes overlap: two boxes that overlap lie in fat
 // boxes that overlap, so the filter keeps exactly the broadphase's pairs (under the same flags
 // and filters: a disc falling asleep or waking forgets the fat boxes), in its order. A rebuild
-// that served a single tick rests the fat boxes for FatBoxes::rest_first ticks, twice as long for
-// each such rebuild in a row, and a tick in which some disc moves more than the margin builds none
-// (a gas: its discs move about their radius a tick). Windows of the tick and ticks that visit the
-// live discs only run the broadphase on their own boxes. Within the tick, reach() asks the grid of
-// the fat boxes, each disc there checked by its own box.
+// that served a single tick, or whose pairs passed the limit, rests the fat boxes for
+// FatBoxes::rest_first ticks, twice as long for each such rebuild in a row, and a tick in which
+// some disc moves more than the margin builds none (a gas: its discs move about their radius a
+// tick). Windows of the tick and ticks that visit the live discs only run the broadphase on their
+// own boxes. Within the tick, reach() asks the grid of the fat boxes, each disc there checked by
+// its own box.
 #include <algorithm>
 #include <cassert>
 
@@ -42,7 +43,10 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
       f.boxes[k] = SweptBox{b.min_x - m, b.min_y - m, b.max_x + m, b.max_y + m};
     }
     fat_grid_.value = true;
-    if (!pairs_of_boxes(f.boxes, dynamic_, f.pairs, threads, cap)) return -1;  // crowded
+    if (!pairs_of_boxes(f.boxes, dynamic_, f.pairs, threads, cap)) {
+      f.rest_longer();  // crowded: the grid of the fat boxes cost a tick's broadphase
+      return -1;
+    }
     f.valid = true, f.age = 0;
   }
   ++f.age;
