@@ -1,16 +1,16 @@
 // Shape contacts, part 1b: the live shapes' pairs among themselves (or, in a world of fewer
 // than min_grid_shapes shapes, every shape's: sweep_few) from fat boxes (fat_boxes.hpp), as the
-// discs' are (disc_fat.cpp). A shape's box is its body's pose at the
-// tick's start grown by the body's speculative margin (ShapeWorld::margin), so a stack that
-// settles or a level that rests around a few movers moves its boxes by less than a fat box's
-// margin, FatBoxes::margin of the body's extent, for many ticks; while every live box lies in
-// its fat box, the grid's pairs of the live boxes are the fat pairs whose boxes overlap, in the
-// grid's order, without building the grid. That holds whichever shape is at each place: two
-// places whose boxes overlap have fat boxes that overlap, so the fat boxes serve while the live
-// shapes come and go, as long as their count and each place's activity (a pair needs an active
-// shape) are those the fat pairs were made with. The veto (never_pair) is applied to them as the
-// grid applies it, since what it reads changes from tick to tick (a body's sleep and motion). The
-// fat pairs are made without the veto, under the grid's memory limit, max_candidate_pairs.
+// discs' are (disc_fat.cpp). A shape's box is its body's pose at the tick's start grown by the
+// body's speculative margin (ShapeWorld::margin), so a stack that settles or a level that rests
+// around a few movers moves its boxes by less than a fat box's margin, FatBoxes::margin of the
+// body's extent, for many ticks; while every live box lies in its fat box, the grid's pairs of
+// the live boxes are the fat pairs whose boxes overlap, in the grid's order, without building
+// the grid. That holds whichever shape is at each place: two places whose boxes overlap have fat
+// boxes that overlap, so the fat boxes serve while the live shapes come and go, as long as their
+// count and each place's activity (a pair needs an active shape) are those the fat pairs were
+// made with. The veto (never_pair) is applied to them as the grid applies it, since what it
+// reads changes from tick to tick (a body's sleep and motion). The fat pairs are made without
+// the veto, under the grid's memory limit, max_candidate_pairs.
 #include <algorithm>
 
 #include "shape_world.hpp"
