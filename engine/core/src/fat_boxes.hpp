@@ -2,7 +2,7 @@
 // broadphase last ran on them, and their pairs. Two boxes that overlap lie in fat boxes that
 // overlap, so while every box of the tick stays inside its fat box, the tick's pairs are the
 // fat pairs whose boxes overlap: the broadphase's pairs, in its order, without running it. The
-// discs keep one (disc_fat.cpp), the shape world another for its live shapes
+// discs keep one (disc_fat.cpp), the shape world another for the shapes its broadphase pairs
 // (shape_fat_pairs.cpp).
 #pragma once
 

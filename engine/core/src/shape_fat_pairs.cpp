@@ -43,10 +43,10 @@ bool ShapeWorld::recycle_pairs(bool live, std::uint64_t most_pairs, std::uint64_
   if (!inside && !(f.fat.left() && make_fat_pairs(at, most_pairs, thread))) return false;
   if (inside) ++f.kept_ticks;
   ++f.fat.age;
-  f.fat.overlapping(at.boxes, f.found);
   out.clear();
   vetoed = 0;
-  for (const DiscPair& p : f.found) {
+  for (const DiscPair& p : f.fat.pairs) {  // those whose boxes overlap, then the veto
+    if (!boxes_overlap(at.boxes[p.a], at.boxes[p.b])) continue;
     if (at.veto(this, p.a, p.b)) {
       ++vetoed;
     } else {

@@ -181,7 +181,7 @@ class ShapeWorld {
   /// For the tests: the joints' passes run by halves on two threads (joint_halves.hpp) so far.
   [[nodiscard]] std::uint64_t halved_joint_passes() const { return halved_joint_passes_; }
   /// For the tests: the ticks whose shapes' pairs came from fat boxes made in an earlier tick
-  /// (shape_fat_pairs.cpp; a copy counts from 0).
+  /// (shape_fat_pairs.cpp; a copy counts from 0, an assigned world keeps its own count).
   [[nodiscard]] std::uint64_t fat_pair_ticks() const { return fat_.kept_ticks; }
   /// For the tests: the forest's steps that keep taken back so far, each halving and each
   /// step dropped after the last halving (joint_keep_search.hpp).
@@ -254,6 +254,8 @@ class ShapeWorld {
   /// made again) or a limit is passed (the grid or the sweep then finds the pairs).
   bool recycle_pairs(bool live, std::uint64_t most_pairs, std::uint64_t most_vetoed,
                      std::uint64_t& vetoed, std::vector<DiscPair>& out, SecondThread* thread);
+  /// What recycle_pairs reads of the places it pairs: their boxes, activity, shapes and veto
+  /// (shape_fat_pairs.cpp).
   struct FatPlaces;
   [[nodiscard]] FatPlaces fat_places(bool live) const;
   /// The fat boxes of `at` and their pairs made again (false: a body moves more than its fat
