@@ -64,7 +64,9 @@ bool ShapeWorld::make_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs,
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t shape = at.shapes.empty() ? static_cast<std::uint32_t>(k) : at.shapes[k];
     const std::uint32_t body = shapes_[shape].owner;
-    const double m = FatBoxes::margin * bodies_[body].extent;
+    // (A static body's box moves only when the body is placed again: no margin.)
+    const ShapedBody& owner = bodies_[body];
+    const double m = owner.type == BodyType::static_body ? 0.0 : FatBoxes::margin * owner.extent;
     // A body that moves more than m in a tick leaves its fat box in the next one.
     if (margin_[body] - 2.0 * slop > m) return false;
     const SweptBox& b = at.boxes[k];
