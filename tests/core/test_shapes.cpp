@@ -83,6 +83,34 @@ TEST(ShapeEvents, ABoxLandingOnABoxBeginsAContactAndASensorSeesItPass) {
   EXPECT_TRUE(w.contacts_ended().empty());
 }
 
+// A begun contact's closing speed is its fastest point's. A level box turning as it comes down
+// 1 cm above the floor meets it at the first tick with both bottom corners, one closing faster
+// by 2 ω h: each point's closing speed is −(v_y − g dt ± ω h), at the free velocities and the
+// corners' arms ±h. Turned either way, so that the faster point is the manifold's first in one
+// and its second in the other.
+TEST(ShapeEvents, ABegunContactsSpeedIsItsFastestPointsForATurningBoxEitherWay) {
+  for (const double omega : {1.0, -1.0}) {
+    const WorldSettings settings = shape_world(0.5);
+    World w(WorldDef::empty(Precision::f64, settings));
+    BodyDef base;
+    base.type = BodyType::static_body;
+    base.shapes = {make_box(2.0, 0.5)};
+    w.create_body(base);
+    const double h = 0.5, vy = -3.0;
+    BodyDef falling = box_body(h, h, {0.0, 0.5 + h + 0.01});
+    falling.body.velocity = {0.0, vy};
+    falling.body.angular_velocity = omega;
+    const Entity box = w.create_body(falling);
+    w.step();
+    ASSERT_EQ(w.contacts_begun().size(), 1u) << "ω " << omega;
+    EXPECT_EQ(w.contacts_begun()[0].b == box || w.contacts_begun()[0].a == box, true);
+    const double free = vy - g * settings.dt;
+    const double right = -(free + omega * h), left = -(free - omega * h);
+    EXPECT_NEAR(w.contacts_begun()[0].normal_speed, std::max(right, left), 1e-9)
+        << "ω " << omega << ": the corners close at " << left << " and " << right << " m/s";
+  }
+}
+
 // A disc sensor sees bodies with shapes as a sensor shape sees discs: a box falling through a
 // static sensor disc begins and ends one overlap, at the ticks its faces cross the disc's
 // circle (it falls from rest at 5 m: its bottom face reaches the top of the disc, y = 3.25 m,

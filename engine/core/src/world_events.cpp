@@ -56,7 +56,7 @@ void detail::WorldKernel<Real>::update_contact_events(bool discs) {
   if (discs) add_disc_touching();
   if (shape_world_) add_shape_touching();
   if (sleep_ || !asleep_touching_.empty()) set_asleep_pairs_apart();
-  diff_contact_events();
+  diff_contact_events(!discs);  // without discs, touching_ is the shapes' sorted run alone
 }
 
 // Two sleepers are not solved, and stay in touch (ContactSettings::sleep): their pairs are kept
@@ -102,9 +102,24 @@ template <class Real>
 void detail::WorldKernel<Real>::add_shape_touching() {
   const ShapeWorld& w = *shape_world_;
   const std::span<const Entity> ids = bodies_.dense;
-  const std::size_t first = touching_.size();
+  const std::size_t first = touching_.size(), first_hit = hits_.size();
+  // A manifold's rows (and a pair's manifolds, where its shapes' pairs are adjacent) follow one
+  // another: a row of the pair just added adds nothing but its closing speed, of which a hit
+  // keeps the largest (what speed_of reads).
+  std::uint32_t last_a = ShapeWorld::none, last_b = ShapeWorld::none;
   for (const ShapeRow& r : w.rows()) {
     if (r.a == ShapeWorld::none || !(r.ln > 0.0 || r.bn > 0.0 || r.separation <= 0.0)) continue;
+    if (r.a == last_a && r.b == last_b) {  // (r.a is never none here: the first row adds)
+      const ContactEvent& p = touching_.back();
+      if (r.approach <= 0.0) continue;
+      if (hits_.size() > first_hit && same(hits_.back(), p)) {
+        hits_.back().normal_speed = std::max(hits_.back().normal_speed, r.approach);
+      } else {
+        hits_.push_back({p.a, p.b, r.approach});
+      }
+      continue;
+    }
+    last_a = r.a, last_b = r.b;
     Entity a = ids[w.bodies_[r.a].body], b = ids[w.bodies_[r.b].body];
     if (b.slot() < a.slot()) std::swap(a, b);
     touching_.push_back({a, b, 0.0});
@@ -173,10 +188,11 @@ void detail::WorldKernel<Real>::diff_touching(std::size_t now_begin, std::size_t
 // the discs' second thread in its run, by halves: the sorts side by side, then the pairs below
 // the middle pair's slots and those from it on, each half's events in slot order.
 template <class Real>
-void detail::WorldKernel<Real>::diff_contact_events() {
+void detail::WorldKernel<Real>::diff_contact_events(bool touching_sorted) {
   const std::size_t n = touching_.size(), m = touching_before_.size();
   if (!discs_ || !discs_->sharing() || n < events_split) {
-    sort_by_slots(touching_);  // already sorted until a destroy breaks dense = slot order
+    // Already sorted until a destroy breaks dense = slot order.
+    if (!touching_sorted) sort_by_slots(touching_);
     sort_by_slots(hits_);
     diff_touching(0, n, 0, m, begun_, ended_);
   } else {

@@ -982,7 +982,7 @@ class WorldKernel {
   void update_contact_events(bool discs);  // discs: the disc phases ran this tick
   void add_disc_touching();
   void add_shape_touching();
-  void diff_contact_events();
+  void diff_contact_events(bool touching_sorted);  // touching_ known sorted by slots
   /// Pairs of touching_ from which diff_contact_events goes by halves on the discs' second
   /// thread (when its run is open).
   static constexpr std::size_t events_split = 4096;
