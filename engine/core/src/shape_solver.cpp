@@ -132,15 +132,24 @@ void ShapeWorld::prepare_rows(const ShapeTick& tick, SecondThread* thread) {
   }
   // Warm starting, once every row's target is set from the free velocities. The rows come
   // mostly in pair order: each search starts where the last one ended, and finds the point
-  // among its pair's (warm_ is sorted by pair, keep_impulses).
-  auto after = warm_.begin();
+  // among its pair's (warm_ is sorted by pair, keep_impulses). `after` is the first entry of
+  // the last row's pair, or where it would be; `next` follows the last entry taken. Most rows
+  // are last tick's in its order, so the first entry of a row's pair is most often one of
+  // those two, known without a search.
+  const auto begin = warm_.begin(), end = warm_.end();
+  auto after = begin, next = begin;
   for (std::size_t i = 0; i < rows_.size(); ++i) {
     ShapeRow& r = rows_[i];
     ShapeSolveRow& h = solve_[i];
     if (h.flags & ShapeSolveRow::redundant) continue;
-    after = lower_bound_from(warm_.begin(), warm_.end(), after, ShapeWarm{r.pair, r.id}, pair_less);
-    for (auto warm = after; warm != warm_.end() && warm->pair == r.pair; ++warm) {
+    if (next != end && next->pair == r.pair && (next == begin || next[-1].pair < r.pair)) {
+      after = next;
+    } else if (after == end || after->pair != r.pair) {
+      after = lower_bound_from(begin, end, after, ShapeWarm{r.pair, r.id}, pair_less);
+    }
+    for (auto warm = after; warm != end && warm->pair == r.pair; ++warm) {
       if (warm->id != r.id) continue;
+      next = warm + 1;
       h.ln = warm->ln, h.lt = warm->lt;
       apply(h, h.ln, h.lt);
       if (r.rolling_mass > 0.0) r.lr = warm->lr, turn(r, r.lr);
