@@ -46,13 +46,18 @@ struct FatBoxes {
   /// Rests the fat boxes for `pause` ticks (a rebuild that served a single tick, or one the
   /// pairs' limit stopped), and doubles the next rest.
   void rest_longer() { rest = pause, pause = std::min(2 * pause, rest_most); }
-  /// The fat pairs whose `boxes` overlap (closed intervals), in their order, into `out`
-  /// (cleared first): the broadphase's pairs of `boxes` while each lies in its fat box.
+  /// `f(pair)` for each fat pair whose `now` boxes overlap (closed intervals), in their order:
+  /// the broadphase's pairs of `now` while each lies in its fat box.
+  template <class F>
+  void each_overlapping(std::span<const SweptBox> now, F&& f) const {
+    for (const DiscPair& p : pairs) {
+      if (boxes_overlap(now[p.a], now[p.b])) f(p);
+    }
+  }
+  /// Those pairs into `out` (cleared first).
   void overlapping(std::span<const SweptBox> now, std::vector<DiscPair>& out) const {
     out.clear();
-    for (const DiscPair& p : pairs) {
-      if (boxes_overlap(now[p.a], now[p.b])) out.push_back(p);
-    }
+    each_overlapping(now, [&](const DiscPair& p) { out.push_back(p); });
   }
 };
 

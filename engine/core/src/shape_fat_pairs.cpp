@@ -45,14 +45,13 @@ bool ShapeWorld::recycle_pairs(bool live, std::uint64_t most_pairs, std::uint64_
   ++f.fat.age;
   out.clear();
   vetoed = 0;
-  for (const DiscPair& p : f.fat.pairs) {  // those whose boxes overlap, then the veto
-    if (!boxes_overlap(at.boxes[p.a], at.boxes[p.b])) continue;
+  f.fat.each_overlapping(at.boxes, [&](const DiscPair& p) {  // then the veto, in one pass
     if (at.veto(this, p.a, p.b)) {
       ++vetoed;
     } else {
       out.push_back(p);
     }
-  }
+  });
   return out.size() <= most_pairs && vetoed <= most_vetoed;
 }
 
