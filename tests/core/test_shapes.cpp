@@ -103,7 +103,7 @@ TEST(ShapeEvents, ABegunContactsSpeedIsItsFastestPointsForATurningBoxEitherWay) 
     const Entity box = w.create_body(falling);
     w.step();
     ASSERT_EQ(w.contacts_begun().size(), 1u) << "ω " << omega;
-    EXPECT_EQ(w.contacts_begun()[0].b == box || w.contacts_begun()[0].a == box, true);
+    EXPECT_TRUE(w.contacts_begun()[0].a == box || w.contacts_begun()[0].b == box);
     const double free = vy - g * settings.dt;
     const double right = -(free + omega * h), left = -(free - omega * h);
     EXPECT_NEAR(w.contacts_begun()[0].normal_speed, std::max(right, left), 1e-9)
