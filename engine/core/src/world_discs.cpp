@@ -217,11 +217,10 @@ void detail::WorldKernel<Real>::restore_immovable() {
 // its cores are at the time, and on whether ticks run back to back or paced (a worker woken
 // each tick). Below that size the passes run on one thread in any case.
 template <class Real>
-int detail::WorldKernel<Real>::disc_phase_threads() {
+void detail::WorldKernel<Real>::choose_disc_threads() {
   const bool choose =
       settings_.threads == 0 && discs_->busy() >= detail::DiscContacts<Real>::min_parallel_discs;
   disc_count_ = disc_threads_.threads(detail::threads_for(settings_.threads), choose);
-  return disc_count_;
 }
 
 template <class Real>

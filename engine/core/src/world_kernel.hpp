@@ -637,9 +637,8 @@ class WorldKernel {
     bool shapes_still = false;  ///< sleepers, and nothing with shapes moves: no shape phase
     bool discs = false;         ///< the disc phases run (world_discs.cpp, world_events.cpp, ...)
     bool own_worker = false;    ///< the integration has a worker thread of its own (links)
-    int threads = 1;            ///< threads the disc phases may use (disc_phase_threads())
   };
-  /// The tick's plan, its disc phases' thread count taken where they run.
+  /// The tick's plan; where its disc phases run, their thread count (disc_count_) chosen.
   [[nodiscard]] FIXSTEP_TICK_PHASE TickPlan plan_tick();
   /// The tick's input at its start: islands woken, impulses, kinematic velocities, carried
   /// segments placed, the pointer's drag (world_input.cpp).
@@ -837,12 +836,13 @@ class WorldKernel {
   void save_tick_start(bool discs);
   void restore_immovable();
   void resolve_discs();
-  /// The threads the disc phases may use this tick: WorldSettings::threads (threads_for), and
-  /// with 0 (automatic) from DiscContacts::min_parallel_discs awake discs by trial
-  /// (disc_threads_: thread_choice.hpp), below on one (world_discs.cpp). Call once a tick, in
-  /// a tick whose disc phases run, before resolve_discs() (which times the trial's ticks).
-  int disc_phase_threads();
-  int disc_count_ = 1;  ///< disc_phase_threads()'s count for this tick
+  /// Chooses the threads the disc phases may use this tick, into disc_count_:
+  /// WorldSettings::threads (threads_for), and with 0 (automatic) from
+  /// DiscContacts::min_parallel_discs awake discs by trial (disc_threads_: thread_choice.hpp),
+  /// below on one (world_discs.cpp). Call once a tick, in a tick whose disc phases run, before
+  /// resolve_discs() (which times the trial's ticks).
+  void choose_disc_threads();
+  int disc_count_ = 1;  ///< choose_disc_threads()'s count: this tick's, or the last that had one
   /// An automatic world's thread count for its disc phases, by trial (not state: the phases'
   /// bits are the same on either count).
   ThreadChoice disc_threads_;

@@ -30,7 +30,7 @@ typename detail::WorldKernel<Real>::TickPlan detail::WorldKernel<Real>::plan_tic
   // The integration has a worker of its own with links or the dissipation account
   // (step_multipass); the discs' second thread then wakes after it, else during it.
   plan.own_worker = !net_.a.empty() || settings_.track_dissipation;
-  if (plan.discs) plan.threads = disc_phase_threads();  // world_discs.cpp
+  if (plan.discs) choose_disc_threads();  // world_discs.cpp
   return plan;
 }
 
@@ -49,7 +49,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (shapes_run) save_shape_start();
   // Two threads: the discs' second thread spins between the disc phases' passes to the end of
   // the contact events (second_thread.hpp).
-  auto disc_thread = [&] { return plan.discs ? discs_->second_thread(plan.threads) : nullptr; };
+  auto disc_thread = [&] { return plan.discs ? discs_->second_thread(disc_count_) : nullptr; };
   detail::SecondThreadRun early(plan.own_worker ? nullptr : disc_thread());
   detail::PhaseClock clock(plan.discs);  // World::profile(): read only with disc contacts
   integrate_with_input(input, plan.immovable, plan.discs);  // world_input.cpp, world_step.cpp
