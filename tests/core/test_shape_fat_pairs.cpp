@@ -54,9 +54,8 @@ bool same_candidates(const detail::WorldKernel<double>& a, const detail::WorldKe
 /// Steps a pushed pyramid of `rows` rows that keeps its fat boxes beside one made again from it
 /// every tick, failing at the first tick their state hashes, candidate pairs (a fat pair whose
 /// boxes do not overlap must not reach the narrowphase, though its shapes would not touch) or
-/// manifold points differ; then
-/// checks what the run went through: fat boxes kept for many ticks and made again, the pyramid
-/// asleep, and the pusher waking it.
+/// manifold points differ; then checks what the run went through: fat boxes kept for many
+/// ticks and made again, the pyramid asleep, and the pusher waking it.
 void keeps_its_bits(int rows) {
   auto kept = pushed_pyramid(rows), fresh = pushed_pyramid(rows);
   std::size_t most_asleep = 0, woken = 0;
