@@ -2,10 +2,14 @@
 // shapes, by their places in ShapeRest::live_shapes, or in a world below min_grid_shapes every
 // shape): the fat boxes and their pairs hold while the places' count and activity are the ones
 // they were made for and each place's box lies in its fat box (ShapeWorld::recycle_pairs,
-// shape_fat_pairs.cpp). A cache: a copy (a snapshot) holds none, and assigning drops the
-// target's; its next tick builds them again when they pay.
+// shape_fat_pairs.cpp). A place whose box leaves its fat box is refitted alone while few have
+// (a fresh fat box, its pairs found again through the grid of the fat boxes: `grid`, whose
+// entries of the refitted places, `stale`, are out of date and checked one by one instead). A
+// cache: a copy (a snapshot) holds none, and assigning drops the target's; its next tick builds
+// them again when they pay.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -22,9 +26,25 @@ struct ShapeFatPairs {
   }
   ~ShapeFatPairs() = default;
 
-  FatBoxes fat;                      ///< by place
-  std::vector<std::uint8_t> active;  ///< each place's activity then (the grid's `active`)
-  std::uint64_t kept_ticks = 0;      ///< ticks served by fat boxes made in an earlier tick (tests)
+  /// The places refitted since the fat boxes were made, at most this many (beyond it they are
+  /// made again): each refitted place is checked against every other, in a tick the grid of
+  /// the whole world costs O(n).
+  static std::size_t most_stale(std::size_t places) { return 8 + places / 16; }
+  /// The ticks of its present motion a fat box reaches ahead of its box, as Box2D v2.4's
+  /// tree reaches b2_aabbMultiplier (4) displacements ahead: a body in flight keeps its fat box
+  /// for some ticks. 2 made fewer instructions than 0 or 4 on the ragdoll and box piles.
+  static constexpr double ahead_ticks = 2.0;
+
+  FatBoxes fat;                         ///< by place
+  std::vector<std::uint8_t> active;     ///< each place's activity then (the grid's `active`)
+  GridBroadphase grid;                  ///< the grid of the fat boxes as they were made
+  std::vector<std::uint32_t> stale;     ///< the places refitted since then, in that order
+  std::vector<std::uint8_t> mark;       ///< by place: 1 stale, 2 refitted this tick (and stale)
+  std::vector<std::uint32_t> moved;     ///< this tick's places outside their fat boxes (scratch)
+  std::vector<DiscPair> fresh, merged;  ///< their pairs, and the whole list (scratch)
+  double dt = 0.0;                      ///< the tick's dt (s), for the motion ahead
+  std::uint64_t kept_ticks = 0;   ///< ticks served by fat boxes made in an earlier tick (tests)
+  std::uint64_t refit_ticks = 0;  ///< of those, ticks that refitted some places (tests)
 };
 
 }  // namespace fixstep::detail

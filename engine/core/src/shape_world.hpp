@@ -183,6 +183,8 @@ class ShapeWorld {
   /// For the tests: the ticks whose shapes' pairs came from fat boxes made in an earlier tick
   /// (shape_fat_pairs.cpp; a copy counts from 0, an assigned world keeps its own count).
   [[nodiscard]] std::uint64_t fat_pair_ticks() const { return fat_.kept_ticks; }
+  /// For the tests: of those, the ticks that refitted the fat boxes of some places.
+  [[nodiscard]] std::uint64_t fat_refit_ticks() const { return fat_.refit_ticks; }
   /// For the tests: the forest's steps that keep taken back so far, each halving and each
   /// step dropped after the last halving (joint_keep_search.hpp).
   [[nodiscard]] std::uint64_t kept_step_cuts() const { return keep_search_.cuts_made; }
@@ -258,9 +260,15 @@ class ShapeWorld {
   /// (shape_fat_pairs.cpp).
   struct FatPlaces;
   [[nodiscard]] FatPlaces fat_places(bool live) const;
-  /// The fat boxes of `at` and their pairs made again (false: a body moves more than its fat
-  /// margin in a tick, or the pairs pass `most_pairs`).
+  /// The fat boxes of `at` and their pairs made again (false: the pairs pass `most_pairs`).
   bool make_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs, SecondThread* thread);
+  /// The fat boxes of the places in fat_.moved made again from `at` and their pairs found
+  /// again (false: too many refitted since the fat boxes were made, a box not finite, or the
+  /// pairs pass `most_pairs`; the fat boxes are then made again whole).
+  bool refit_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs);
+  /// Place k's fat box: its box grown by FatBoxes::margin of its body's extent and reaching
+  /// ShapeFatPairs::ahead_ticks of its body's motion ahead (a static body's: its box).
+  [[nodiscard]] SweptBox fat_box(const FatPlaces& at, std::size_t k) const;
   ShapeFatPairs fat_;
   /// Fills `tally` with the broadphase's work limit `cap` reached.
   void name_cap(ShapeTally& tally, bool by_veto) const;
