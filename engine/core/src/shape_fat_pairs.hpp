@@ -27,8 +27,8 @@ struct ShapeFatPairs {
   ~ShapeFatPairs() = default;
 
   /// The places refitted since the fat boxes were made, at most this many (beyond it they are
-  /// made again): each refitted place is checked against every other, in a tick the grid of
-  /// the whole world costs O(n).
+  /// made again whole): a refit checks each place that left against every stale one, work that
+  /// grows as the square of their count where a rebuild's grows as n.
   static std::size_t most_stale(std::size_t places) { return 8 + places / 16; }
   /// The ticks of its present motion a fat box reaches ahead of its box, as Box2D v2.4's
   /// tree reaches b2_aabbMultiplier (4) displacements ahead: a body in flight keeps its fat box

@@ -260,7 +260,8 @@ class ShapeWorld {
   /// (shape_fat_pairs.cpp).
   struct FatPlaces;
   [[nodiscard]] FatPlaces fat_places(bool live) const;
-  /// The fat boxes of `at` and their pairs made again (false: the pairs pass `most_pairs`).
+  /// The fat boxes of `at` and their pairs made again (false: among few shapes, a body moves
+  /// more than its fat margin in a tick; or the pairs pass `most_pairs`).
   bool make_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs, SecondThread* thread);
   /// The fat boxes of the places in fat_.moved made again from `at` and their pairs found
   /// again (false: too many refitted since the fat boxes were made, a box not finite, or the
