@@ -98,5 +98,30 @@ TEST(ShapeFatPairs, AFastBodyIsRefittedAloneAsTheOthersKeepTheirFatBoxes) {
   keeps_its_bits(16, true);  // and its pairs found again as it crosses the pyramid
 }
 
+// Two kinematic boxes rising at 10 km/s beside the pushed pyramid: boxes 334 m tall and fat
+// boxes reaching 333 m further, refitted in some ticks (the grid of the fat boxes asked for
+// boxes far larger than its cells) and made again whole in others: the same bits and pairs as
+// a world that makes them every tick.
+TEST(ShapeFatPairs, BodiesFarFasterThanTheirFatMarginsKeepTheBits) {
+  auto kept = pushed_pyramid(16), fresh = pushed_pyramid(16);
+  for (auto* w : {kept.get(), fresh.get()}) {
+    for (int i = 0; i < 2; ++i) {
+      BodyDef b = shape_exact::box_body(0.3, 0.3, {40.0 + 1.0 * i, 1.0}, 0.0);
+      b.type = BodyType::kinematic;
+      b.gravity.reset();
+      b.body.velocity = {0.0, 1.0e4};
+      w->create_body(b);
+    }
+  }
+  for (int t = 1; t <= 120; ++t) {
+    *fresh = *kept;
+    kept->step(), fresh->step();
+    ASSERT_EQ(kept->state_hash(), fresh->state_hash()) << "first differs after tick " << t;
+    ASSERT_TRUE(same_candidates(*kept, *fresh)) << "tick " << t;
+  }
+  EXPECT_GE(kept->shape_world()->fat_refit_ticks(), 5u);
+  EXPECT_FALSE(kept->fault().has_value());
+}
+
 }  // namespace
 }  // namespace fixstep

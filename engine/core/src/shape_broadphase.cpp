@@ -56,7 +56,6 @@ bool ShapeWorld::broadphase(double dt, ShapeTally& tally, SecondThread* thread) 
   // The live bodies' margins and shapes' boxes; the resting ones' hold (shape_rest.hpp).
   for (const std::uint32_t i : rest_.live) margin_[i] = margin(i, dt);
   for (const std::uint32_t k : rest_.live_shapes) box_shape(k);
-  fat_.dt = dt;  // (the fat boxes reach ahead by the motion of some ticks)
   candidates_.clear(), sensor_candidates_.clear(), wake_.clear();
   if (!rest_.split) {
     sweep_few();

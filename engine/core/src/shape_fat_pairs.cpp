@@ -81,7 +81,7 @@ SweptBox ShapeWorld::fat_box(const FatPlaces& at, std::size_t k) const {
   // (A static body's box moves only when the body is placed again.)
   if (owner.type == BodyType::static_body) return b;
   const double m = FatBoxes::margin * owner.extent;
-  const double ahead = ShapeFatPairs::ahead_ticks * fat_.dt;
+  const double ahead = ShapeFatPairs::ahead_ticks * dt_;
   const double dx = ahead * state_[body].vx, dy = ahead * state_[body].vy;
   // (Written so that a NaN motion reaches nowhere ahead.)
   return SweptBox{b.min_x - m + (dx < 0.0 ? dx : 0.0), b.min_y - m + (dy < 0.0 ? dy : 0.0),
@@ -114,26 +114,30 @@ bool ShapeWorld::make_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs,
 }
 
 // The pairs of the moved places, from the grid of the fat boxes as they were made (its
-// entries of stale places skipped) and the stale places' fat boxes as they are now; each pair once
-// (two moved places' by the first). The other pairs hold: neither fat box changed. Sorted and
-// merged with them, the list is the grid's of today's fat boxes, in its (a, b) order.
+// entries of stale places skipped) and the stale places' fat boxes as they are now; each pair
+// once (two moved places' by the first). The other pairs hold: neither fat box changed. Merged
+// with them, the list is the grid's of today's fat boxes, in its (a, b) order. Bounded: past
+// `most_work` (the grid's entries and the stale places looked at) or `most_pairs` found it
+// stops, and the fat boxes are made again whole by the grid, whose own bound holds.
 bool ShapeWorld::refit_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs) {
   ShapeFatPairs& f = fat_;
+  const std::size_t n = at.boxes.size();
   // (A box no level of the grid holds, not finite, is left to the grid made again.)
-  if (f.stale.size() + f.moved.size() > ShapeFatPairs::most_stale(at.boxes.size()) ||
+  if (f.stale.size() + f.moved.size() > ShapeFatPairs::most_stale(n) ||
       !f.grid.unindexed().empty()) {
     return false;
   }
   for (const std::uint32_t k : f.moved) {
-    // (The grid's query needs finite bounds.)
+    // (The grid's query needs finite bounds. Stopping here leaves the marks and fat boxes to
+    // make_fat_pairs, which makes both again.)
     const SweptBox fat = fat_box(at, k);
     if (!std::isfinite(fat.min_x + fat.min_y + fat.max_x + fat.max_y)) return false;
-  }
-  for (const std::uint32_t k : f.moved) {
-    f.fat.boxes[k] = fat_box(at, k);
+    f.fat.boxes[k] = fat;
     if (f.mark[k] == 0) f.stale.push_back(k);
     f.mark[k] = 2;
   }
+  const std::uint64_t most_work = 4 * std::uint64_t{n} + 256;
+  std::uint64_t work = 0;
   f.fresh.clear();
   for (const std::uint32_t k : f.moved) {
     const SweptBox& q = f.fat.boxes[k];
@@ -142,27 +146,27 @@ bool ShapeWorld::refit_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs) 
         f.fresh.push_back({std::min(k, i), std::max(k, i)});
       }
     };
-    f.grid.query(q, [&](std::uint32_t i, const SweptBox& /*then*/) {
+    work += f.grid.query(q, [&](std::uint32_t i, const SweptBox& /*then*/) {
       if (f.mark[i] == 0) pair(i);
     });
     for (const std::uint32_t i : f.stale) {
       if (i != k && !(f.mark[i] == 2 && i < k) && boxes_overlap(q, f.fat.boxes[i])) pair(i);
     }
+    work += f.stale.size();
+    if (work > most_work || f.fresh.size() > most_pairs) return false;
   }
-  std::sort(f.fresh.begin(), f.fresh.end(),
-            [](const DiscPair& p, const DiscPair& q) { return pair_key(p) < pair_key(q); });
-  f.merged.clear();
-  auto next = f.fresh.cbegin();
-  for (const DiscPair& p : f.fat.pairs) {
-    if (f.mark[p.a] == 2 || f.mark[p.b] == 2) continue;  // a moved place's: found again
-    for (; next != f.fresh.cend() && pair_key(*next) < pair_key(p); ++next) {
-      f.merged.push_back(*next);
-    }
-    f.merged.push_back(p);
-  }
-  f.merged.insert(f.merged.end(), next, f.fresh.cend());
+  const auto before = [](const DiscPair& p, const DiscPair& q) {
+    return pair_key(p) < pair_key(q);
+  };
+  std::sort(f.fresh.begin(), f.fresh.end(), before);
+  // A moved place's old pairs out (found again), then the two sorted lists merged.
+  std::erase_if(f.fat.pairs,
+                [&](const DiscPair& p) { return f.mark[p.a] == 2 || f.mark[p.b] == 2; });
   for (const std::uint32_t k : f.moved) f.mark[k] = 1;
-  if (f.merged.size() > most_pairs) return false;
+  if (f.fat.pairs.size() + f.fresh.size() > most_pairs) return false;
+  f.merged.resize(f.fat.pairs.size() + f.fresh.size());
+  std::merge(f.fat.pairs.begin(), f.fat.pairs.end(), f.fresh.begin(), f.fresh.end(),
+             f.merged.begin(), before);
   std::swap(f.fat.pairs, f.merged);
   return true;
 }

@@ -42,7 +42,6 @@ struct ShapeFatPairs {
   std::vector<std::uint8_t> mark;       ///< by place: 1 stale, 2 refitted this tick (and stale)
   std::vector<std::uint32_t> moved;     ///< this tick's places outside their fat boxes (scratch)
   std::vector<DiscPair> fresh, merged;  ///< their pairs, and the whole list (scratch)
-  double dt = 0.0;                      ///< the tick's dt (s), for the motion ahead
   std::uint64_t kept_ticks = 0;   ///< ticks served by fat boxes made in an earlier tick (tests)
   std::uint64_t refit_ticks = 0;  ///< of those, ticks that refitted some places (tests)
 };

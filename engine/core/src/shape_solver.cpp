@@ -87,7 +87,6 @@ static_assert(sizeof(ShapeSolveRow) == 192, "make_solve_row assigns every field:
 }
 
 void ShapeWorld::prepare_rows(const ShapeTick& tick, SecondThread* thread) {
-  dt_ = tick.dt;
   // By halves on `thread` in a large world: the live bodies' velocities (velocity_ has a slot
   // for each body and the zero slot; a resting body's holds its velocity, none, from
   // rebuild_rest on), then each row's own and each manifold's block, the halves cut between

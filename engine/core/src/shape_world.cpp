@@ -267,6 +267,7 @@ ShapeTally ShapeWorld::solve(const ShapeTick& tick) {
   SecondThread* const thread = shapes_.size() >= min_split_shapes ? second : nullptr;
   const SecondThreadRun team(thread);
   halved_ = thread != nullptr;
+  dt_ = tick.dt;  // (the fat boxes reach ahead by it, the solver steps by it)
   if (rest_.stale) {
     rebuild_rest(tick.dt);
   } else {

@@ -328,8 +328,8 @@ class ShapeWorld {
   std::vector<std::uint32_t> near_segments_;  ///< near_segments' answer
   std::vector<std::uint32_t> near_statics_;   ///< static_shapes_near's answer
   std::vector<ShapeWarm> next_warm_;
-  std::vector<double> margin_;  ///< each body's speculative margin this tick, m
-  double dt_ = 0.0;
+  std::vector<double> margin_;                     ///< each body's speculative margin this tick, m
+  double dt_ = 0.0;                                ///< this tick's dt (s), set as solve() begins
   std::span<JointRecord> joints_;                  ///< this tick's (ShapeTick::joints)
   JointBodies joint_bodies_;                       ///< the live joints' bodies, numbered
   JointTree tree_;                                 ///< the joints' direct solve
