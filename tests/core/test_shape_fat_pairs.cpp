@@ -123,5 +123,44 @@ TEST(ShapeFatPairs, BodiesFarFasterThanTheirFatMarginsKeepTheBits) {
   EXPECT_FALSE(kept->fault().has_value());
 }
 
+// 400 boxes floating at rest (no gravity, no sleep) and beside them four kinematic boxes rising
+// at 10 km/s, side by side, which leave their fat boxes in the same ticks. Each one's refitted
+// fat box (667 m tall) covers more cells of the grid of the fat boxes than it has buckets, so
+// its pairs are looked for among every entry (about 380 looked at): a refit of all four looks
+// at more than the bound on its work (4 a place and 256), which must stop it and make the fat
+// boxes again whole, with the same bits and pairs as a world that makes them every tick; a refit
+// kept stays within the bound. Without the bound, no refit stops and one kept looks at 4.8 times
+// it.
+TEST(ShapeFatPairs, ARefitStopsAtTheBoundOnItsWork) {
+  auto make = [] {
+    auto w = std::make_unique<detail::WorldKernel<double>>(shape_exact::shape_settings(0.6));
+    for (int i = 0; i < 400; ++i) {
+      BodyDef b = shape_exact::box_body(0.4, 0.4, {2.0 * (i % 20), 2.0 * (i / 20)}, 0.0);
+      b.gravity.reset();
+      w->create_body(b);
+    }
+    for (int i = 0; i < 4; ++i) {
+      BodyDef b = shape_exact::box_body(0.3, 0.3, {60.0 + 1.0 * i, 1.0}, 0.0);
+      b.type = BodyType::kinematic;
+      b.gravity.reset();
+      b.body.velocity = {0.0, 1.0e4};
+      w->create_body(b);
+    }
+    return w;
+  };
+  auto kept = make(), fresh = make();
+  for (int t = 1; t <= 60; ++t) {
+    *fresh = *kept;
+    kept->step(), fresh->step();
+    ASSERT_EQ(kept->state_hash(), fresh->state_hash()) << "first differs after tick " << t;
+    ASSERT_TRUE(same_candidates(*kept, *fresh)) << "tick " << t;
+  }
+  const auto* shapes = kept->shape_world();
+  EXPECT_GE(shapes->fat_pair_ticks(), 20u);
+  EXPECT_GE(shapes->fat_refit_work_stops(), 5u);
+  EXPECT_LE(shapes->fat_refit_share(), 1.0);
+  EXPECT_FALSE(kept->fault().has_value());
+}
+
 }  // namespace
 }  // namespace fixstep

@@ -153,7 +153,11 @@ bool ShapeWorld::refit_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs) 
       if (i != k && !(f.mark[i] == 2 && i < k) && boxes_overlap(q, f.fat.boxes[i])) pair(i);
     }
     work += f.stale.size();
-    if (work > most_work || f.fresh.size() > most_pairs) return false;
+    if (work > most_work) {
+      ++f.work_stops;
+      return false;
+    }
+    if (f.fresh.size() > most_pairs) return false;
   }
   const auto before = [](const DiscPair& p, const DiscPair& q) {
     return pair_key(p) < pair_key(q);
@@ -168,6 +172,8 @@ bool ShapeWorld::refit_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs) 
   std::merge(f.fat.pairs.begin(), f.fat.pairs.end(), f.fresh.begin(), f.fresh.end(),
              f.merged.begin(), before);
   std::swap(f.fat.pairs, f.merged);
+  f.most_refit_share =
+      std::max(f.most_refit_share, static_cast<double>(work) / static_cast<double>(most_work));
   return true;
 }
 
