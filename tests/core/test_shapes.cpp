@@ -366,6 +366,29 @@ TEST(ShapeContinuous, AKnockedBoxStopsAtAThinWallWithFarStaticBodiesToTheSameBit
   EXPECT_LT(furthest, 0.805) << "its centre stays short of the wall's middle";
 }
 
+// The same knock down at a plane, in a world with no static body and no segment: the plane
+// alone must still stop the box (a world with nothing that does not move skips the pass).
+TEST(ShapeContinuous, AKnockedBoxStopsAtAPlaneInAWorldWithoutStaticBodies) {
+  WorldDef def = WorldDef::empty(Precision::f64, shape_world(0.3));
+  def.planes.push_back(PlaneDef{.normal = {0.0, 1.0}, .offset = -0.8});
+  BodyDef box = box_body(0.25, 0.25, {0.0, 0.0});
+  box.gravity.reset();
+  def.add_body(box);
+  BodyDef bat = box_body(0.5, 0.5, {0.0, 1.0});
+  bat.gravity.reset();
+  bat.body.velocity = {0.0, -300.0};
+  def.add_body(bat);
+  World w(def);
+  const Entity knocked = w.bodies()[0];
+  double lowest = 0.0;
+  for (int i = 0; i < 10; ++i) {
+    w.step();
+    lowest = std::min(lowest, w.body(knocked).position.y);
+  }
+  EXPECT_LT(lowest, -0.3) << "it was knocked";
+  EXPECT_GT(lowest, -0.8) << "its centre stays short of the plane (without the pass: -1.05)";
+}
+
 // In f32 a body's angle and angular velocity are floats after every tick, as its position and
 // velocity are. GCC 12 on x86-64 merged the write-back's two double(static_cast<float>(x))
 // stores into one vector store without the rounding (world_kernel.hpp, rounded_to), and f32

@@ -44,6 +44,9 @@ double plane_toi(Vec2 n, double offset, const Convex& c, const Sweep& s, double 
 }  // namespace
 
 void ShapeWorld::continuous(const ShapeTick& tick, ShapeTally& tally) {
+  // Nothing that does not move to sweep against: no pass (what a world does not have, it does
+  // not pay for). A body's rotation made here (pose()) is made again once the push-out ends.
+  if (tick.planes.empty() && tick.segments.empty() && rest_.statics.empty()) return;
   bool ready = false;
   for (const std::uint32_t i : rest_.live) {
     const ShapedBody& b = bodies_[i];
