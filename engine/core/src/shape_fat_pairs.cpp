@@ -172,8 +172,6 @@ bool ShapeWorld::refit_fat_pairs(const FatPlaces& at, std::uint64_t most_pairs) 
   std::merge(f.fat.pairs.begin(), f.fat.pairs.end(), f.fresh.begin(), f.fresh.end(),
              f.merged.begin(), before);
   std::swap(f.fat.pairs, f.merged);
-  f.most_refit_share =
-      std::max(f.most_refit_share, static_cast<double>(work) / static_cast<double>(most_work));
   return true;
 }
 

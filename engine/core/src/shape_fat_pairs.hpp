@@ -45,8 +45,6 @@ struct ShapeFatPairs {
   std::uint64_t kept_ticks = 0;   ///< ticks served by fat boxes made in an earlier tick (tests)
   std::uint64_t refit_ticks = 0;  ///< of those, ticks that refitted some places (tests)
   std::uint64_t work_stops = 0;   ///< refits stopped at their work's bound (tests)
-  /// The largest work of a refit kept, over its bound (refit_fat_pairs: at most 1; tests).
-  double most_refit_share = 0.0;
 };
 
 }  // namespace fixstep::detail

@@ -185,10 +185,8 @@ class ShapeWorld {
   [[nodiscard]] std::uint64_t fat_pair_ticks() const { return fat_.kept_ticks; }
   /// For the tests: of those, the ticks that refitted the fat boxes of some places.
   [[nodiscard]] std::uint64_t fat_refit_ticks() const { return fat_.refit_ticks; }
-  /// For the tests: the refits stopped at the bound of their work so far, and the largest
-  /// work of a refit kept, over its bound (at most 1).
+  /// For the tests: the refits stopped at the bound on their work so far.
   [[nodiscard]] std::uint64_t fat_refit_work_stops() const { return fat_.work_stops; }
-  [[nodiscard]] double fat_refit_share() const { return fat_.most_refit_share; }
   /// For the tests: the forest's steps that keep taken back so far, each halving and each
   /// step dropped after the last halving (joint_keep_search.hpp).
   [[nodiscard]] std::uint64_t kept_step_cuts() const { return keep_search_.cuts_made; }
