@@ -115,20 +115,31 @@ def element(dom, ident):
     return html.unescape(m.group(1)) if m else None
 
 
+# The forms a page's result takes once final (web/page_dom.cpp, page_runs.cpp, page_game.cpp,
+# page_app.cpp). Anything else is a page still at work: "loading" (index.html's text), "running:
+# ...", "fetching the input script", or the empty text of a <pre> the parser has made but not yet
+# filled.
+FINAL_RESULT = re.compile(r"(tick=|verified ticks=|diverged at tick |error: )")
+
+
 def page_settled(result):
-    """True once the page's result is final: neither still loading nor a run in progress."""
-    return isinstance(result, str) and result != "loading" and not result.startswith("running")
+    """True once the page's result is final (FINAL_RESULT)."""
+    return isinstance(result, str) and FINAL_RESULT.match(result) is not None
 
 
 def page_texts(browser, url, ids, wall_s=600):
     """Loads `url` in a tab of `browser` (cdp_pipe.Browser) on the real clock, waits until its
     result settles (page_settled; at most wall_s seconds), and returns the text of each element
-    of `ids` (None for one the page lacks). For pages that need no screenshot: one Chromium
+    of `ids` (None for one the page lacks), all read at the moment the result was seen settled,
+    so the result returned is the one judged. For pages that need no screenshot: one Chromium
     serves them all (a Chromium started per page cost about 4 s of CPU)."""
+    assert ids[0] == "result"
+    texts = "[" + ", ".join(f"document.getElementById('{i}')?.textContent ?? null" for i in ids) + "]"
     browser.open(url)
     try:
-        browser.wait_for("document.getElementById('result')?.textContent", page_settled, wall_s)
-        return [browser.evaluate(f"document.getElementById('{i}')?.textContent") for i in ids]
+        values = browser.wait_for(texts, lambda v: isinstance(v, list) and page_settled(v[0]),
+                                  wall_s)
+        return values if isinstance(values, list) else [None] * len(ids)
     finally:
         browser.close_tab()
 
