@@ -134,7 +134,8 @@ def page_texts(browser, url, ids, wall_s=600):
     so the result returned is the one judged. For pages that need no screenshot: one Chromium
     serves them all (a Chromium started per page cost about 4 s of CPU)."""
     assert ids[0] == "result"
-    texts = "[" + ", ".join(f"document.getElementById('{i}')?.textContent ?? null" for i in ids) + "]"
+    texts = "[" + ", ".join(f"document.getElementById('{i}')?.textContent ?? null"
+                            for i in ids) + "]"
     browser.open(url)
     try:
         values = browser.wait_for(texts, lambda v: isinstance(v, list) and page_settled(v[0]),
