@@ -145,6 +145,18 @@ def page_texts(browser, url, ids, wall_s=600):
         browser.close_tab()
 
 
+def check_settle(args, site, failures):
+    """page_texts's own reading, on tests/web/settle_check.html (a result empty for a second,
+    then "loading", then final): it must return the final result and the summary written with
+    it, not the empty text of a page still being parsed."""
+    texts = page_texts(args.browser, f"{site.url}/tests/settle_check.html", ["result", "summary"],
+                       60)
+    expected = ["tick=5 state_hash=0123456789abcdef", "settled summary"]
+    if texts != expected:
+        failures.append(f"settle: page_texts read {texts!r}, expected {expected!r}")
+    print(f"settle: page_texts waited for {texts[0]!r}", flush=True)
+
+
 def native(fixstep, *args):
     done = subprocess.run([fixstep, *args], capture_output=True, text=True, cwd=ROOT)
     if done.returncode != 0:
@@ -579,8 +591,9 @@ def main():
     scenes = args.scenes or sorted(f for f in os.listdir(os.path.join(ROOT, "assets", "scenes"))
                                    if f.endswith(".toml"))
     failures, start = [], time.monotonic()
-    checks = [(scene, lambda s=scene: check_scene(s, args, site, out, failures))
-              for scene in scenes]
+    checks = [("settle", lambda: check_settle(args, site, failures))]
+    checks += [(scene, lambda s=scene: check_scene(s, args, site, out, failures))
+               for scene in scenes]
     checks.append(("overlay card", lambda: check_overlay_card(args, site, out, failures)))
     if not args.no_games:
         # Five screenshots (each a Chromium of its own): airhockey's and peggle's autopilot runs,
