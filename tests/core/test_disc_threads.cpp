@@ -170,5 +170,23 @@ TEST(DiscThreads, APilePloughedByAKinematicDiscStepsToTheSameBitsOnTwoThreads) {
   EXPECT_GT(most.touching, 1024u);
 }
 
+TEST(DiscThreads, ThreadsUsedSaysWhetherATickSharedItsPasses) {
+  // From 256 awake discs a tick on two threads shares its disc passes with the second thread;
+  // below that, and on one thread, it runs them all on the stepping thread.
+  struct Case {
+    std::size_t discs;
+    int threads, used;
+  };
+  for (const Case c : {Case{400, 2, 2}, Case{400, 1, 1}, Case{100, 2, 1}}) {
+    WorldDef def = gas(c.discs);
+    def.settings.threads = c.threads;
+    World w = test::unchecked_world(def);
+    for (int t = 0; t < 3; ++t) {
+      w.step();
+      EXPECT_EQ(w.threads_used(), c.used) << c.discs << " discs on " << c.threads << ", tick " << t;
+    }
+  }
+}
+
 }  // namespace disc_thread_tests
 }  // namespace fixstep

@@ -53,6 +53,8 @@ TEST(ShapeThreads, TwoThreadsStepAPileToTheSameBitsAsOne) {
     EXPECT_EQ(one->shape_world()->split_colors(), 0u);
     EXPECT_FALSE(one->shape_world()->halved());
     EXPECT_TRUE(two->shape_world()->halved());
+    EXPECT_EQ(one->threads_used(), 1);
+    EXPECT_EQ(two->threads_used(), 2);  // (World::threads_used(): the shape phase's passes too)
     split += two->shape_world()->split_colors();
   }
   EXPECT_GT(split, 60u * 20u);  // at least one colour in every sweep of every tick

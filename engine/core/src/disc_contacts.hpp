@@ -290,6 +290,8 @@ class DiscContacts {
   [[nodiscard]] SecondThread* second_thread(int threads) {
     return threads >= 2 && busy() >= min_parallel_discs ? &broadphase_.second_thread() : nullptr;
   }
+  /// Passes handed to the second thread so far (SecondThread::handed()).
+  [[nodiscard]] std::uint64_t handed_passes() const { return broadphase_.second_thread().handed(); }
   /// For the tests: whether a second thread was ever started (a tick shared its passes).
   [[nodiscard]] bool second_thread_started() const {
     return broadphase_.second_thread().team() != nullptr;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <memory>
 
@@ -53,6 +54,7 @@ class SecondThread {
   template <class Job>
   void both(Job& job) {
     start();
+    ++handed_;
     struct Half {
       Job* job;
       std::exception_ptr error;
@@ -75,6 +77,9 @@ class SecondThread {
     state_->team.wait();
     if (half.error) std::rethrow_exception(half.error);
   }
+  /// Passes handed to the worker so far (both() calls; a copy counts from 0): a tick that
+  /// handed one ran on two threads (World::threads_used()).
+  [[nodiscard]] std::uint64_t handed() const { return handed_; }
   /// For the tests: the team the worker serves (nullptr before the first use).
   [[nodiscard]] const PassTeam* team() const { return state_ ? &state_->team : nullptr; }
 
@@ -93,6 +98,7 @@ class SecondThread {
     state_.reset();  // joins the worker, which leaves serve() at finish()
   }
   std::unique_ptr<State> state_;
+  std::uint64_t handed_ = 0;
   bool open_ = false;
 };
 

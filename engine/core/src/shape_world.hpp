@@ -173,6 +173,9 @@ class ShapeWorld {
     std::uint32_t a, b;
   };
   [[nodiscard]] std::span<const Candidate> candidates() const { return candidates_; }
+  /// Passes handed to the shape world's own second thread so far (SecondThread::handed();
+  /// with disc contacts the shape phase hands its passes to the discs' instead).
+  [[nodiscard]] std::uint64_t handed_passes() const { return second_.handed(); }
   /// Whether the last tick's broadphase and manifolds were made by halves on two threads.
   [[nodiscard]] bool halved() const { return halved_; }
   /// The colours of the last tick's velocity sweeps solved by halves on two threads (a colour

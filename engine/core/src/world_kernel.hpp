@@ -386,7 +386,8 @@ class WorldKernel {
   void accelerations(std::span<Real> ax, std::span<Real> ay, const TickInput& input = {});
   /// Which force terms some body declares (bits of ForceTermBits).
   [[nodiscard]] unsigned active_terms() const;
-  /// Threads the last step used (1 or 2).
+  /// Threads the last step used (1 or 2): 2 when its integration ran on two, or when a pass of
+  /// its disc or shape phases was handed to the second thread.
   [[nodiscard]] int threads_used() const { return threads_used_; }
   /// The thread count the disc phases were given in the last tick that ran them (1 or 2;
   /// below DiscContacts::min_parallel_discs busy discs they run on one either way).
@@ -545,6 +546,8 @@ class WorldKernel {
   std::vector<Real> dissipated_link_;
   double dissipated_gone_ = 0.0;  ///< J, of destroyed bodies and links
   int threads_used_ = 1;
+  /// Passes handed to the second threads of the disc and shape phases so far (world_tick.cpp).
+  [[nodiscard]] std::uint64_t handed_passes() const;
 
   // The force field per body, in dense order, rebuilt from the components when terms_dirty_:
   //   a(x, v) = -K s(d) - γ v + c + push,   d = x - anchor,

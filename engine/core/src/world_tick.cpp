@@ -1,6 +1,7 @@
 // One tick of the world (WorldKernel::step): its phases in order, each named for what it does
 // and defined in the file named beside it. docs/ARCHITECTURE.md lists the same phases.
 #include <algorithm>
+#include <cstdint>
 
 #include "disc_contacts.hpp"
 #include "fixstep/core/float_mode.hpp"
@@ -35,6 +36,12 @@ typename detail::WorldKernel<Real>::TickPlan detail::WorldKernel<Real>::plan_tic
 }
 
 template <class Real>
+std::uint64_t detail::WorldKernel<Real>::handed_passes() const {
+  return (discs_ ? discs_->handed_passes() : 0) +
+         (shape_world_ ? shape_world_->handed_passes() : 0);
+}
+
+template <class Real>
 void detail::WorldKernel<Real>::step(const TickInput& input) {
   const IeeeFloatMode ieee;           // no state depends on the caller's FPU mode (float_mode.hpp)
   if (terms_dirty_) rebuild_terms();  // world_kernel.cpp
@@ -43,6 +50,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (!movers_.data.empty()) move_movers();       // world_movers.cpp: against the tick's start
   if (keep_previous_) keep_previous_positions();  // world_step.cpp
   const TickPlan plan = plan_tick();
+  const std::uint64_t handed = handed_passes();  // threads_used(): 2 if a pass is handed
   // The shape contacts' start (world_shapes.cpp), unless this tick runs no shape phase: then
   // no body with shapes moves, and the next tick that runs one saves its own.
   const bool shapes_run = shape_world_ && (plan.discs || !(plan.quiet || plan.shapes_still));
@@ -87,6 +95,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   contact_stats_.shape_visited = shapes_run ? shape_world_->visited() : 0;
   contact_stats_.joint_visited = shapes_run ? shape_world_->joints_visited() : 0;
   awake_.primed = awake_.on;  // a whole tick has passed over the sleepers (awake_runs.hpp)
+  if (handed_passes() != handed) threads_used_ = 2;
 
   flush_state_subnormals();  // world_step.cpp
   check_energy_account();    // world_step.cpp: the guard's view of the dissipated energy
