@@ -230,8 +230,9 @@ void quality_tables(const View& v, const Line& line) {
   line(
       "\n#### fixstep's own contact statistics (World::contact_stats(), last tick): broadphase "
       "candidate pairs per disc / touching pairs per disc / impacts per disc / its own deepest "
-      "overlap over r; threads used (World::threads_used()). fixstep reports no split of a "
-      "tick's time, so the broadphase's share of the time is not measured.\n");
+      "overlap over r; threads used in the last tick (World::threads_used()). fixstep's split "
+      "of a tick's time (World::profile(): broadphase, impacts, resting solver, events) is "
+      "printed every 10 ticks by `bench_discs --trace SCENE KEY N TICKS`.\n");
   for (SceneKind s : all_scenes) {
     line(fmt::format("\n{}:\n", title(s)));
     table(
