@@ -273,10 +273,11 @@ class World {
   /// Which force terms some body declares (bits of ForceTermBits): a term nobody declares is
   /// not computed.
   [[nodiscard]] unsigned active_terms() const;
-  /// Threads the last step used (1 or 2): 2 when its integration ran on two threads (links,
-  /// from parallel_min_bodies bodies), or when some pass of its disc contacts, shapes or
-  /// joints was shared by halves with the second thread (WorldSettings::threads says from what
-  /// sizes), else 1. The states are the same either way.
+  /// Threads the last step used (1 or 2): 2 when its integration ran on two threads (a world
+  /// with links or the dissipation account, on threads = 2, or automatic from
+  /// parallel_min_bodies bodies), or when some pass of its disc contacts, shapes or joints was
+  /// shared by halves with the second thread (WorldSettings::threads says from what sizes),
+  /// else 1. The states are the same either way.
   [[nodiscard]] int threads_used() const;
   /// Energy dissipated by damping and drag so far, J (World::dissipated_energy()).
   [[nodiscard]] double dissipated_energy() const;
