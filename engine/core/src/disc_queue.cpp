@@ -103,6 +103,14 @@ bool DiscContacts<Real>::run_window(ImpactLane& q, const Tick& tick, ContactStat
     }
     const std::uint32_t a = pairs_[ev.pair].a, b = pairs_[ev.pair].b;
     if (ev.stamp_a != stamp_[a] || ev.stamp_b != stamp_[b]) continue;  // superseded
+    // What predict_after() reads of the two discs once the impact is resolved: asked for now,
+    // it arrives while the impact is computed (in a large gas each is a cache miss).
+    for (const std::uint32_t k : {a, b}) {
+      __builtin_prefetch(&boxes_[k]);
+      __builtin_prefetch(&grown_of_[k]);
+      __builtin_prefetch(&extra_head_[k]);
+      __builtin_prefetch(&offset_[k]);
+    }
     const PastCap past = past_cap(tick, ev.pair, ev.time);
     if (past == PastCap::rest) continue;  // the resting solver's (see disc_contacts.hpp)
     // An impact due that the cap leaves unresolved.
