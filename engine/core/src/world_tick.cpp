@@ -50,7 +50,9 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   if (!movers_.data.empty()) move_movers();       // world_movers.cpp: against the tick's start
   if (keep_previous_) keep_previous_positions();  // world_step.cpp
   const TickPlan plan = plan_tick();
-  const std::uint64_t handed = handed_passes();  // threads_used(): 2 if a pass is handed
+  // threads_used(): 2 if a pass of the disc or shape phases is handed to a second thread.
+  const bool shared = discs_ || shape_world_;
+  const std::uint64_t handed = shared ? handed_passes() : 0;
   // The shape contacts' start (world_shapes.cpp), unless this tick runs no shape phase: then
   // no body with shapes moves, and the next tick that runs one saves its own.
   const bool shapes_run = shape_world_ && (plan.discs || !(plan.quiet || plan.shapes_still));
@@ -95,7 +97,7 @@ void detail::WorldKernel<Real>::step(const TickInput& input) {
   contact_stats_.shape_visited = shapes_run ? shape_world_->visited() : 0;
   contact_stats_.joint_visited = shapes_run ? shape_world_->joints_visited() : 0;
   awake_.primed = awake_.on;  // a whole tick has passed over the sleepers (awake_runs.hpp)
-  if (handed_passes() != handed) threads_used_ = 2;
+  if (shared && handed_passes() != handed) threads_used_ = 2;
 
   flush_state_subnormals();  // world_step.cpp
   check_energy_account();    // world_step.cpp: the guard's view of the dissipated energy
