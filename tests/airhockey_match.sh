@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # airhockey over the network, end to end (three processes on loopback):
-#  (a) for each session kind (lockstep, rollback): a host and a joiner, both scripted bots, play a
-#      match of 600 ticks through the link conditioner (link_relay: latency, jitter, 10 % loss
-#      after the first second, duplicates, reordering); both exit 0 (no desync, no timeout),
+#  (a) for each session kind (lockstep, rollback): a host of that kind and a joiner that names
+#      none (and so plays the host's: its summary's rollback window is 0 in lockstep only), both
+#      scripted bots, play a match of 600 ticks through the link conditioner (link_relay:
+#      latency, jitter, 10 % loss after the first second, duplicates, reordering); both exit 0
+#      (no desync, no timeout),
 #      report the same final state and score (a goal scored), write byte-identical recordings
 #      (cmp), and the recording replays with the game's rules to the same state and score,
 #      every hash verified;
@@ -42,7 +44,7 @@ match() {
   local relay_pid=$!
   for _ in $(seq 100); do [ -s "$kind.relay.port" ] && break; sleep 0.05; done
   rp=$(cat "$kind.relay.port")
-  "$game" --join "127.0.0.1:$rp" --token "$tok" --session "$kind" --bot --ticks 600 --record "$kind.join.rec" \
+  "$game" --join "127.0.0.1:$rp" --token "$tok" --bot --ticks 600 --record "$kind.join.rec" \
     >"$kind.join.out" 2>&1
   join_status=$?
   wait "$host_pid"
@@ -56,6 +58,12 @@ match() {
     cat "$kind.host.out" "$kind.join.out" "$kind.relay.out"
     return
   fi
+  local window
+  window=$(grep -E '^match:' "$kind.join.out" | grep -Eo 'rollback_window=[0-9]+')
+  { [ "$kind" = lockstep ] && [ "$window" = rollback_window=0 ]; } ||
+    { [ "$kind" = rollback ] && [ -n "$window" ] && [ "$window" != rollback_window=0 ]; } &&
+    ok "$kind: the joiner, naming no session, played the host's ($window)" ||
+    fail "$kind: the joiner's session: '$window'"
   grep -Eq 'dropped=[1-9]' "$kind.relay.out" && ok "$kind: the link dropped datagrams" ||
     { fail "$kind: the link dropped nothing"; cat "$kind.relay.out"; }
   [ "$(hash_of "$kind.host.out")" = "$(hash_of "$kind.join.out")" ] &&

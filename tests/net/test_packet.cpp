@@ -96,9 +96,10 @@ TEST(NetPacket, HeaderRefusalsInOrder) {
   EXPECT_EQ(decode(reserved), PacketError::bad_field);
 }
 
-Bytes accept(std::uint8_t players, std::uint8_t slot, std::uint16_t hash_every = 10) {
+Bytes accept(std::uint8_t players, std::uint8_t slot, std::uint16_t hash_every = 10,
+             std::uint8_t flags = 1) {
   Bytes b;
-  b.header(2, 0, 1).u32(77).u8(players).u8(slot).u16(3).u16(hash_every).u64(0xabcdef);
+  b.header(2, 0, 1).u32(77).u8(players).u8(slot).u16(3).u16(hash_every).u8(flags).u64(0xabcdef);
   return b;
 }
 
@@ -109,6 +110,7 @@ TEST(NetPacket, HandshakeAcceptIsNoLargerThanTheRequest) {
   EXPECT_EQ(p.accept.your_slot, 3);
   EXPECT_EQ(p.accept.input_delay, 3);
   EXPECT_EQ(p.accept.hash_every, 10);
+  EXPECT_TRUE(p.accept.host_rollback);
   EXPECT_EQ(p.accept.definition_hash, 0xabcdefu);
   EXPECT_LE(accept(4, 3).v.size(), request().v.size());
   std::vector<std::uint8_t> encoded;
@@ -119,7 +121,10 @@ TEST(NetPacket, HandshakeAcceptIsNoLargerThanTheRequest) {
   EXPECT_EQ(decode(accept(4, 1, 0), {}), PacketError::bad_field);
   EXPECT_EQ(decode(accept(4, 4), {}), PacketError::bad_slot);
   EXPECT_EQ(decode(accept(4, 0), {}), PacketError::bad_slot);
-  ASSERT_EQ(decode(accept(4, 0x81), {}, p), PacketError::none);  // a spectator
+  ASSERT_EQ(decode(accept(4, 0x81), {}, p), PacketError::none);      // a spectator
+  ASSERT_EQ(decode(accept(4, 3, 10, 0), {}, p), PacketError::none);  // a lockstep host
+  EXPECT_FALSE(p.accept.host_rollback);
+  EXPECT_EQ(decode(accept(4, 3, 10, 2), {}), PacketError::bad_field);  // an unknown flag
 }
 
 /// An inputs packet from slot 1 of a 2-player match: acks (10, 9), one run of player 1.

@@ -200,5 +200,42 @@ TEST(Rollback, LongMatchesKeepBoundedInputs) {
   }
 }
 
+/// A joiner that takes the host's kind (MatchSettings::session_from_host) plays rollback with a
+/// rollback host and lockstep with a lockstep one, whichever its own max_rollback named; a
+/// lockstep joiner of a rollback host (the kinds mixed) is still let in and plays lockstep.
+TEST(Rollback, AJoinerTakesTheHostsSessionKindWhenAsked) {
+  struct Case {
+    std::uint16_t host, joiner;
+    bool from_host;
+    bool joiner_rolls_back;
+  };
+  for (const Case c : {Case{8, 0, true, true}, Case{0, 8, true, false}, Case{8, 0, false, false}}) {
+    const std::string label = "host " + std::to_string(c.host) + " joiner " +
+                              std::to_string(c.joiner) + (c.from_host ? " from the host" : "");
+    net::MatchSettings host = match(2, 120);
+    host.input_delay = 2;
+    host.max_rollback = c.host;
+    net::MatchSettings joiner = host;
+    joiner.max_rollback = c.joiner;
+    joiner.session_from_host = c.from_host;
+    Match m;
+    const WorldDef def = billiards().def;
+    m.peers.push_back(
+        std::make_unique<net::MatchPeer>(net::MatchPeer::host(def, host, {"127.0.0.1", 0})));
+    m.link = std::make_unique<net::LinkConditioner>(net::Address{"127.0.0.1", m.peers[0]->port()},
+                                                    net::LinkSettings{.seed = 6});
+    m.peers.push_back(std::make_unique<net::MatchPeer>(
+        net::MatchPeer::join(def, joiner, {"127.0.0.1", m.link->port()}, false)));
+    std::uint16_t window = 0;
+    ASSERT_TRUE(m.run(20000,
+                      [&](std::size_t i) {
+                        if (i == 1) window = std::max(window, m.peers[1]->rollback_window());
+                      }))
+        << label << m.describe();
+    (void)expect_agreement(m, 120);
+    EXPECT_EQ(window > 0, c.joiner_rolls_back) << label << ": window " << window;
+  }
+}
+
 }  // namespace
 }  // namespace fixstep::net_test

@@ -184,10 +184,11 @@ void MatchPeer::Impl::on_request(detail::Remote& r, const Packet& p) {
   a.your_slot = given;
   a.input_delay = settings.input_delay;
   a.hash_every = settings.hash_every;
+  a.host_rollback = settings.max_rollback > 0;
   a.definition_hash = def_hash;
   std::vector<std::uint8_t> bytes;
   encode_handshake_accept(header(r, MessageKind::handshake_accept, Channel::reliable), a, bytes);
-  send_reliable(r, bytes);  // 30 bytes, the request's 64: no amplification
+  send_reliable(r, bytes);  // 31 bytes, the request's 64: no amplification
   // A spectator coming mid-match checks the ticks before it came against our hashes too
   // (sent once it has sent inputs, as every hash is: no amplification).
   for (const auto& [tick, hash] : own_hashes) {
@@ -232,6 +233,10 @@ void MatchPeer::Impl::on_accept(detail::Remote& r, const Packet& p) {
   r.slot = 0;
   settings.input_delay = a.input_delay;
   settings.hash_every = a.hash_every;
+  if (settings.session_from_host && !spectator) {
+    settings.max_rollback =
+        a.host_rollback ? std::max<std::uint16_t>(settings.max_rollback, 1) : std::uint16_t{0};
+  }
   start(a.players, a.your_slot);
 }
 

@@ -12,7 +12,7 @@ namespace fixstep::net {
 
 namespace {
 
-constexpr std::size_t accept_bytes = header_bytes + 18;
+constexpr std::size_t accept_bytes = header_bytes + 19;
 constexpr std::size_t state_hash_bytes = header_bytes + 13;
 constexpr std::size_t disconnect_bytes = header_bytes + 1;
 constexpr std::size_t run_header_bytes = 9;  // player, first tick, ticks, item bytes
@@ -70,7 +70,10 @@ PacketError decode_accept(detail::ByteReader& r, std::size_t size, Packet& p) {
   a.your_slot = r.u8();
   a.input_delay = r.u16();
   a.hash_every = r.u16();
+  const std::uint8_t flags = r.u8();
+  a.host_rollback = (flags & 1u) != 0;
   a.definition_hash = r.u64();
+  if ((flags & ~1u) != 0) return PacketError::bad_field;
   if (p.header.slot != 0) return PacketError::bad_slot;  // the host is player 0
   if (a.players < 2 || a.players > max_players || a.hash_every == 0) return PacketError::bad_field;
   if (!is_slot(a.your_slot, a.players) || a.your_slot == 0) return PacketError::bad_slot;
@@ -205,6 +208,7 @@ void encode_handshake_accept(const Header& h, const HandshakeAccept& m,
   w.u8(m.your_slot);
   w.u16(m.input_delay);
   w.u16(m.hash_every);
+  w.u8(m.host_rollback ? 1 : 0);
   w.u64(m.definition_hash);
 }
 

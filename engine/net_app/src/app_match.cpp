@@ -75,7 +75,8 @@ MatchSettings match_settings(const app::Settings& settings, const Level& level,
   s.token = o.token;
   s.input_delay = o.input_delay;
   s.match_ticks = o.ticks;
-  s.max_rollback = o.rollback ? o.max_rollback : 0;
+  s.max_rollback = o.rollback || o.session_from_host ? o.max_rollback : 0;
+  s.session_from_host = o.session_from_host;
   s.adapt_to_round_trip = o.adapt;
   s.handshake_timeout_ms = o.handshake_timeout_ms;
   s.peer_timeout_ms = o.peer_timeout_ms;
@@ -327,10 +328,15 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
     const Address& to = o.join ? *o.join : *o.spectate;
     std::printf("%s: %s %s:%u (%s)\n", settings.name.c_str(), o.join ? "joining" : "watching",
                 to.host.c_str(), static_cast<unsigned>(to.port),
-                o.rollback ? "rollback" : "lockstep");
+                o.session_from_host ? "the host's session"
+                : o.rollback        ? "rollback"
+                                    : "lockstep");
   }
   std::fflush(stdout);
-  MatchView view(peer.level(), settings, o.rollback ? "rollback" : "lockstep");
+  MatchView view(peer.level(), settings,
+                 o.session_from_host ? ""
+                 : o.rollback        ? "rollback"
+                                     : "lockstep");
   bool quit = false;
   if (o.bot && !o.window) {
     play_bot(peer, settings.name, o.ticks, o.paced);

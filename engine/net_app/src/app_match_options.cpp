@@ -119,7 +119,7 @@ struct MatchFlags {
   unsigned players = 2;
   CLI::Option *host_opt = nullptr, *join_opt = nullptr, *spectate_opt = nullptr,
               *players_opt = nullptr, *delay_opt = nullptr, *rollback_opt = nullptr,
-              *scene_opt = nullptr;
+              *scene_opt = nullptr, *session_opt = nullptr;
 };
 
 /// --host, --join and --spectate: the peer's role.
@@ -162,9 +162,11 @@ void add_session_options(CLI::App& cli, MatchFlags& f, MatchOptions& o, int max_
                      "a host: players in the match (2-" + std::to_string(most) + ", default 2)")
           ->type_name("N")
           ->check(players_check(most));
-  cli.add_option("--session", f.session, "lockstep (default) or rollback")
-      ->type_name("KIND")
-      ->check(CLI::IsMember({"lockstep", "rollback"}));
+  f.session_opt = cli.add_option("--session", f.session,
+                                 "lockstep or rollback (default: a host lockstep, a joiner the "
+                                 "host's)")
+                      ->type_name("KIND")
+                      ->check(CLI::IsMember({"lockstep", "rollback"}));
   cli.add_option("--bind", o.bind, "the local IPv4 address (default 127.0.0.1)")->type_name("ADDR");
   f.delay_opt = cli.add_option("--input-delay", o.input_delay,
                                "ticks between an input and its tick (0-60; default: lockstep "
@@ -216,10 +218,14 @@ void take_flags(const MatchFlags& f, MatchOptions& o) {
   o.players = static_cast<std::uint8_t>(f.players);
   if (f.scene_opt->count() > 0) o.scene = f.scene;
   o.rollback = f.session == "rollback";
+  // A joiner plays the host's kind unless told (both kinds may play one match, but a lockstep
+  // joiner of a rollback host plays at its delay of 2 ticks and waits every round trip).
+  o.session_from_host = o.join.has_value() && f.session_opt->count() == 0;
   // Rollback shows its own input at once and predicts the others': a short delay spares it
   // re-simulation; lockstep waits for every input, so its default covers two send intervals.
   if (f.delay_opt->count() == 0 && o.rollback) o.input_delay = rollback_input_delay;
-  o.adapt = o.rollback ? f.rollback_opt->count() == 0 : f.delay_opt->count() == 0;
+  o.adapt =
+      o.rollback || o.session_from_host ? f.rollback_opt->count() == 0 : f.delay_opt->count() == 0;
   if (f.rollback_opt->count() > 0 && !o.rollback) {
     throw UsageError("--max-rollback needs --session rollback");
   }

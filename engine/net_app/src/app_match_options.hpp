@@ -20,8 +20,11 @@ struct MatchOptions {
   std::optional<Address> spectate;         ///< --spectate HOST:PORT
   std::string token;         ///< --token T: the match's (a host's: "" for a random one, printed)
   std::uint8_t players = 2;  ///< --players N (a host)
-  std::string bind = "127.0.0.1";                                ///< --bind ADDR
-  bool rollback = false;                                         ///< --session rollback
+  std::string bind = "127.0.0.1";  ///< --bind ADDR
+  bool rollback = false;           ///< --session rollback
+  /// A joiner without --session: the host's kind (MatchSettings::session_from_host), known at
+  /// its accept; `rollback` is then false until it is.
+  bool session_from_host = false;
   std::uint16_t input_delay = net::MatchSettings{}.input_delay;  ///< --input-delay N
   std::uint16_t max_rollback = 8;  ///< --max-rollback N (rollback only)
   /// Neither --input-delay (lockstep) nor --max-rollback (rollback) given: picked from the

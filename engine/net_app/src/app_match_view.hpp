@@ -17,7 +17,8 @@ namespace fixstep::net::detail {
 class MatchView {
  public:
   /// Nothing is made yet: the session (and its renderer) when the first frame is drawn, the
-  /// window by open_window(). `kind` names the session in the HUD ("lockstep", "rollback").
+  /// window by open_window(). `kind` names the session in the HUD ("lockstep", "rollback"; empty:
+  /// the match's own, once it plays).
   MatchView(const app::detail::Level& level, const app::Settings& settings, std::string kind);
   MatchView(const MatchView&) = delete;
   MatchView& operator=(const MatchView&) = delete;

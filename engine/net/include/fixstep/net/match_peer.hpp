@@ -66,6 +66,12 @@ struct MatchSettings {
   /// inputs (and so the longest re-simulation); 0: lockstep (the shown world is the confirmed
   /// one). This peer's own choice: peers of either kind play one match.
   std::uint16_t max_rollback = 0;
+  /// A joiner: play the kind the host plays, which its accept says (HandshakeAccept::
+  /// host_rollback): rollback with this max_rollback (at least 1) when the host plays rollback,
+  /// lockstep when it plays lockstep. The input delay is the host's either way, so a lockstep
+  /// joiner of a rollback host plays at its short delay and waits for the host's inputs every
+  /// round trip (docs/NETWORK.md). A host and a spectator ignore it.
+  bool session_from_host = false;
   /// A player's inputs not yet acknowledged are sent again in every inputs packet (redundantly:
   /// a lost packet is made good by the next one, no round trip lost, as GGPO sends every
   /// unacknowledged input) while they encode in at most this many bytes (net_input_codec.hpp:

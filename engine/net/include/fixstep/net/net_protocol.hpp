@@ -17,7 +17,7 @@ namespace fixstep::net {
 /// fixstep's and is dropped before anything else is read.
 inline constexpr std::uint32_t protocol_id = 0x4e535846u;
 /// The protocol version this build speaks; a packet of another version is refused.
-inline constexpr std::uint8_t protocol_version = 6;
+inline constexpr std::uint8_t protocol_version = 7;
 /// Largest packet, bytes (under a 1280-byte IPv6 minimum MTU with UDP and ENet headers).
 inline constexpr std::size_t max_packet_bytes = 1200;
 /// Most players of one match, and most spectators.
@@ -93,11 +93,14 @@ struct HandshakeRequest {
 };
 
 struct HandshakeAccept {
-  std::uint32_t nonce = 0;            ///< the request's
-  std::uint8_t players = 2;           ///< 2 .. max_players
-  std::uint8_t your_slot = 0;         ///< a player's (< players) or a spectator's slot
-  std::uint16_t input_delay = 0;      ///< ticks
-  std::uint16_t hash_every = 0;       ///< ticks between exchanged state hashes, >= 1
+  std::uint32_t nonce = 0;        ///< the request's
+  std::uint8_t players = 2;       ///< 2 .. max_players
+  std::uint8_t your_slot = 0;     ///< a player's (< players) or a spectator's slot
+  std::uint16_t input_delay = 0;  ///< ticks
+  std::uint16_t hash_every = 0;   ///< ticks between exchanged state hashes, >= 1
+  /// The host plays rollback (its MatchSettings::max_rollback > 0), else lockstep: a joiner
+  /// that takes the host's kind (MatchSettings::session_from_host) plays the same.
+  bool host_rollback = false;
   std::uint64_t definition_hash = 0;  ///< the host's world (a joiner with another refuses)
 };
 

@@ -15,8 +15,9 @@
 //                                   host's gate lets in no one else: docs/NETWORK.md)
 //     --players N                   a host: the match's players, 2 .. Settings::max_players
 //                                   (default 2); it starts when all have joined
-//     --session lockstep|rollback   lockstep (default): every peer shows the confirmed world;
-//                                   rollback: the shown world runs ahead on predictions
+//     --session lockstep|rollback   lockstep: every peer shows the confirmed world; rollback:
+//                                   the shown world runs ahead on predictions (default: a
+//                                   host lockstep, a joiner the host's kind)
 //     --input-delay N               ticks between an input and its tick (host decides; 0-60,
 //                                   default 6, or 2 for a rollback host)
 //     --max-rollback N              rollback: most ticks shown ahead (1-60, default 8)
