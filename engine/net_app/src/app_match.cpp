@@ -312,6 +312,13 @@ int finish(Peer& peer, const app::Settings& settings, const MatchOptions& o, boo
   return 0;
 }
 
+/// The session the command line asked for, as the "joining" line and the window's first status
+/// line name it: "lockstep", "rollback", or, for a joiner without --session, the host's.
+const char* session_asked(const MatchOptions& o) {
+  if (o.session_from_host) return "the host's session";
+  return o.rollback ? "rollback" : "lockstep";
+}
+
 int play_match(const AnyGame& game, const app::Settings& settings, const MatchOptions& o) {
   Peer peer(game, settings, o);
   MatchPeer& m = peer.match();
@@ -327,16 +334,10 @@ int play_match(const AnyGame& game, const app::Settings& settings, const MatchOp
   } else {
     const Address& to = o.join ? *o.join : *o.spectate;
     std::printf("%s: %s %s:%u (%s)\n", settings.name.c_str(), o.join ? "joining" : "watching",
-                to.host.c_str(), static_cast<unsigned>(to.port),
-                o.session_from_host ? "the host's session"
-                : o.rollback        ? "rollback"
-                                    : "lockstep");
+                to.host.c_str(), static_cast<unsigned>(to.port), session_asked(o));
   }
   std::fflush(stdout);
-  MatchView view(peer.level(), settings,
-                 o.session_from_host ? ""
-                 : o.rollback        ? "rollback"
-                                     : "lockstep");
+  MatchView view(peer.level(), settings, session_asked(o));
   bool quit = false;
   if (o.bot && !o.window) {
     play_bot(peer, settings.name, o.ticks, o.paced);

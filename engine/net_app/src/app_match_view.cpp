@@ -66,7 +66,7 @@ std::string MatchView::status(const MatchPeer& match) const {
   const MatchStats& s = match.stats();
   switch (match.state()) {
     case MatchState::connecting:
-      return fmt::format("{}: waiting for the other players", kind_.empty() ? "joining" : kind_);
+      return fmt::format("{}: waiting for the other players", kind_);
     case MatchState::playing:
     case MatchState::finished: {
       const std::string who =
@@ -74,16 +74,14 @@ std::string MatchView::status(const MatchPeer& match) const {
               ? fmt::format("player {} of {}", match.slot(), match.players())
               : fmt::format("spectator {} ({} players)", match.slot() - spectator_slot_base,
                             match.players());
+      // The kind played (a joiner taking the host's learns it at its accept): a rollback
+      // player's window is at least 1 tick, a lockstep player's and a spectator's 0.
+      const std::uint16_t window = match.rollback_window();
+      const char* kind = window > 0 ? "rollback" : "lockstep";
       const std::string lag =
-          match.rollback_window() > 0
-              ? fmt::format("delay {}  window {}  rollbacks {} (longest {})", match.input_delay(),
-                            match.rollback_window(), s.rollbacks, s.max_rolled_back)
-              : fmt::format("delay {}", match.input_delay());
-      // (a joiner that takes the host's kind knows it once it plays: a rollback peer's window
-      // is at least 1)
-      const std::string kind = !kind_.empty()                ? kind_
-                               : match.rollback_window() > 0 ? "rollback"
-                                                             : "lockstep";
+          window > 0 ? fmt::format("delay {}  window {}  rollbacks {} (longest {})",
+                                   match.input_delay(), window, s.rollbacks, s.max_rolled_back)
+                     : fmt::format("delay {}", match.input_delay());
       return fmt::format("{}  {}  tick {}  rtt {} ms  {}  stalled {:.1f} s{}", who, kind,
                          match.shown_world().tick(), s.round_trip_ms, lag, s.stalled_ms / 1000.0,
                          match.state() == MatchState::finished ? "  (match over)" : "");

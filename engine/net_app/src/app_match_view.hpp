@@ -17,8 +17,8 @@ namespace fixstep::net::detail {
 class MatchView {
  public:
   /// Nothing is made yet: the session (and its renderer) when the first frame is drawn, the
-  /// window by open_window(). `kind` names the session in the HUD ("lockstep", "rollback"; empty:
-  /// the match's own, once it plays).
+  /// window by open_window(). `kind` names the session asked for while the match connects
+  /// ("lockstep", "rollback", "the host's session"); once it plays, the HUD names the kind played.
   MatchView(const app::detail::Level& level, const app::Settings& settings, std::string kind);
   MatchView(const MatchView&) = delete;
   MatchView& operator=(const MatchView&) = delete;
