@@ -19,29 +19,6 @@
 
 namespace fixstep {
 
-namespace detail {
-
-std::size_t SparseSet::insert(Entity e) {
-  if (e.slot() >= sparse.size()) sparse.resize(e.slot() + 1, 0);
-  dense.push_back(e);
-  sparse[e.slot()] = static_cast<std::uint32_t>(dense.size());
-  return dense.size() - 1;
-}
-
-std::size_t SparseSet::erase(Entity e) {
-  const std::size_t i = index(e);
-  const std::size_t last = dense.size() - 1;
-  if (i != last) {
-    dense[i] = dense[last];
-    sparse[dense[i].slot()] = static_cast<std::uint32_t>(i + 1);
-  }
-  dense.pop_back();
-  sparse[e.slot()] = 0;
-  return i;
-}
-
-}  // namespace detail
-
 namespace {
 
 /// Swap-and-pop element i of every array in the pack (keeps SoA arrays aligned).

@@ -37,8 +37,10 @@
 #include "fixstep/core/world_settings.hpp"
 #include "joint_record.hpp"
 #include "mover_slide.hpp"
+#include "owner_ptrs.hpp"
 #include "scratch_vector.hpp"
 #include "segment_set.hpp"
+#include "sparse_set.hpp"
 #include "thread_choice.hpp"
 
 /// The small phases of a tick (world_tick.cpp): named functions in the files they belong to,
@@ -114,95 +116,6 @@ class QueryGrid;
 struct QueryGridDeleter {
   void operator()(QueryGrid* grid) const;
 };
-/// Deep-copying owner of a T defined elsewhere (its copy, assignment and deletion are
-/// instantiated where T is complete): a copy of the World copies the disc contacts' state,
-/// warm-start impulses included, so a snapshot steps on to the same bits.
-template <class T>
-class ClonePtr {
- public:
-  ClonePtr() = default;
-  ClonePtr(const ClonePtr& other) : p_(other.p_ ? clone(*other.p_) : nullptr) {}
-  ClonePtr& operator=(const ClonePtr& other) {
-    if (this != &other) assign(p_, other.p_);
-    return *this;
-  }
-  ClonePtr(ClonePtr&& other) noexcept : p_(other.p_) { other.p_ = nullptr; }
-  ClonePtr& operator=(ClonePtr&& other) noexcept {
-    std::swap(p_, other.p_);
-    return *this;
-  }
-  ~ClonePtr() { destroy(p_); }
-  [[nodiscard]] T* get() const { return p_; }
-  T* operator->() const { return p_; }
-  T& operator*() const { return *p_; }
-  explicit operator bool() const { return p_ != nullptr; }
-  void reset(T* p = nullptr) {
-    destroy(p_);
-    p_ = p;
-  }
-
- private:
-  static T* clone(const T& t);
-  static void assign(T*& to, const T* from);  ///< reuses *to's storage when both exist
-  static void destroy(T* t);
-  T* p_ = nullptr;
-};
-
-/// Owns a cache that a copy of its owner does not share: a copy starts empty (the owner
-/// rebuilds the cache on demand) and copying into an owner drops its cache; moving moves it.
-/// For parts that hold no state a tick's result depends on: the implicit solver's
-/// factorisation and the name index, so a World can be copied (a snapshot) and stays bit-exact.
-template <class T, class Deleter>
-class CachePtr : public std::unique_ptr<T, Deleter> {
- public:
-  CachePtr() = default;
-  CachePtr(const CachePtr& /*other*/) noexcept : std::unique_ptr<T, Deleter>() {}
-  CachePtr& operator=(const CachePtr& other) noexcept {
-    if (this != &other) this->reset();
-    return *this;
-  }
-  CachePtr(CachePtr&&) noexcept = default;
-  CachePtr& operator=(CachePtr&&) noexcept = default;
-  ~CachePtr() = default;
-};
-
-/// Owns a worker (Workers) that a copy of its owner does not share: a copy starts without one
-/// (its first parallel pass starts it), and copying into an owner keeps the owner's own, since
-/// a thread holds no state a tick's result depends on and a rollback restores every frame;
-/// moving moves it.
-template <class T, class Deleter>
-class KeptPtr : public std::unique_ptr<T, Deleter> {
- public:
-  KeptPtr() = default;
-  KeptPtr(const KeptPtr& /*other*/) noexcept : std::unique_ptr<T, Deleter>() {}
-  KeptPtr& operator=(const KeptPtr& /*other*/) noexcept { return *this; }
-  KeptPtr(KeptPtr&&) noexcept = default;
-  KeptPtr& operator=(KeptPtr&&) noexcept = default;
-  ~KeptPtr() = default;
-};
-
-/// Entity slot -> dense index map with the entities in dense order (swap-and-pop removal).
-struct SparseSet {
-  std::vector<std::uint32_t> sparse;  ///< slot -> dense index + 1; 0 = absent
-  std::vector<Entity> dense;
-
-  [[nodiscard]] bool contains(Entity e) const {
-    return !e.is_null() && e.slot() < sparse.size() && sparse[e.slot()] != 0 &&
-           dense[sparse[e.slot()] - 1] == e;
-  }
-  [[nodiscard]] std::size_t index(Entity e) const { return sparse[e.slot()] - 1; }
-  std::size_t insert(Entity e);
-  /// Removes e and returns the dense index it had; the last element moved into that index.
-  std::size_t erase(Entity e);
-};
-
-/// A component type stored array-of-structs: cold, authoritative data.
-template <class C>
-struct Store {
-  SparseSet set;
-  std::vector<C> data;
-};
-
 /// A world of point bodies stepped at a fixed dt in precision Real (float or double).
 ///
 /// Copies are complete, independent states (a snapshot): bodies, components, links, tick,
