@@ -270,10 +270,11 @@ class DiscContacts {
   static constexpr std::size_t min_split_contacts = 1024;
   /// Candidate pairs from which two threads share the first impact predictions and the
   /// gathering, within the tick's run of the second thread.
-  static constexpr std::size_t min_parallel_pairs = 512;
+  static constexpr std::size_t min_parallel_pairs = 128;
   /// Candidate pairs from which a tick's impacts may run in two lanes (disc_lanes.cpp), within
-  /// the tick's run of the second thread.
-  static constexpr std::size_t min_lane_pairs = 1024;
+  /// the tick's run of the second thread. A gas of 10^3 discs has about 190 (measured in
+  /// docs/perf/contact_solver_plan.md, "The impact lanes from 128 pairs").
+  static constexpr std::size_t min_lane_pairs = 128;
   /// Items from which a pass that only copies each one's values (the tick's start: save_start(),
   /// the plane contacts' start) shares them with the second thread: below, the hand-off costs
   /// about what the half saves.

@@ -84,7 +84,7 @@ struct WorldSettings {
   /// ticks, since what a second core saves depends on the machine and on whether its ticks
   /// run back to back or paced by frames). On two,
   /// disc contacts share their passes from 256 awake discs and run a tick's impacts in two
-  /// lanes of the candidate pairs' groups from 1024 pairs, shapes from 1024 shapes or a sweep's
+  /// lanes of the candidate pairs' groups from 128 pairs, shapes from 1024 shapes or a sweep's
   /// colour of 256 manifolds, joints from 256 joints in two groups that share no body. The states
   /// are bit-identical for every thread count: each body gathers its link forces in a fixed order,
   /// the passes split into halves whose items are independent (docs/JOINTS.md: joints that share a
