@@ -9,6 +9,7 @@
 
 #include "contact_kappa.hpp"
 #include "disc_contacts.hpp"
+#include "owner_ptrs.hpp"
 #include "sorted_lists.hpp"
 #include "workers.hpp"
 #include "world_kernel.hpp"

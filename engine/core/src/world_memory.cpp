@@ -6,6 +6,7 @@
 #include "copy_bytes.hpp"
 #include "disc_contacts.hpp"
 #include "shape_world.hpp"
+#include "sparse_set.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep {

@@ -9,6 +9,7 @@
 #include "contact_kappa.hpp"
 #include "fixstep/core/input.hpp"
 #include "fixstep/core/shape.hpp"
+#include "owner_ptrs.hpp"
 #include "shape_world.hpp"
 #include "world_kernel.hpp"
 

@@ -11,6 +11,7 @@
 #include "fixstep/core/definition_checks.hpp"
 #include "fixstep/core/random.hpp"
 #include "fixstep/core/world.hpp"
+#include "owner_ptrs.hpp"
 #include "world_kernel.hpp"
 
 namespace fixstep::detail {
