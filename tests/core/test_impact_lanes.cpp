@@ -104,7 +104,7 @@ void same_as_one_lane(const GasOptions& o, int ticks, const std::string& what,
 TEST(ImpactLanes, AGasInTwoLanesStepsToTheBitsOfOne) {
   std::uint64_t lanes = 0, undone = 0;
   same_as_one_lane(GasOptions{}, 120, "gas of 6000", lanes, undone);
-  // 1100 pairs a tick or so (from 128 the lanes run): most ticks in two lanes, some run again
+  // 1100 pairs a tick or so, far over min_lane_pairs: most ticks in two lanes, some run again
   // where a disc's new path crossed the cut.
   EXPECT_GT(lanes, 60u);
   EXPECT_GT(undone, 0u);
