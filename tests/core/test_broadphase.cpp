@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -73,6 +74,44 @@ void expect_reference(const BoxSet& s) {
   GridBroadphase bp;
   EXPECT_EQ(find(bp, s, 1), want);
   EXPECT_EQ(find(bp, s, 2), want);
+}
+
+/// A cell's index as std::floor and std::clamp give it, the reference for floor_cell.
+std::int32_t floor_clamped(double v) {
+  constexpr double limit = 1073741824.0;  // 2^30
+  const double f = std::floor(v);
+  return std::isnan(f) ? 0 : static_cast<std::int32_t>(std::clamp(f, -limit, limit));
+}
+
+TEST(GridBroadphase, ACellIndexIsTheFloorClampedToTwoToTheThirty) {
+  // The edges (integers, the doubles next to them, the clamp's bounds, infinities, NaN,
+  // subnormals, signed zeros), then doubles of every exponent from random bits and values
+  // near the cells of the benchmarks' worlds.
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> values{
+      0.0,          -0.0,          0.5,    -0.5,         1e300,
+      -1e300,       inf,           -inf,   4294967296.5, -4294967296.5,
+      1073741824.0, -1073741824.0, 5e-324, -5e-324,      std::numeric_limits<double>::quiet_NaN()};
+  for (double k :
+       {0.0, 1.0, -1.0, 7.0, -7.0, 1073741823.0, -1073741823.0, 1073741825.0, -1073741825.0}) {
+    values.insert(values.end(), {k, std::nextafter(k, inf), std::nextafter(k, -inf)});
+  }
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> near(-3000.0, 3000.0);
+  for (int i = 0; i < 200000; ++i) {
+    const std::uint64_t bits = rng();
+    double v = std::bit_cast<double>(bits);
+    if (std::isnan(v)) v = std::numeric_limits<double>::quiet_NaN();  // (no signalling NaN)
+    const double w = near(rng), k = std::nearbyint(w);
+    values.insert(values.end(), {v, w, k, std::nextafter(k, -inf), std::nextafter(k, inf)});
+  }
+  int wrong = 0;
+  for (const double v : values) {
+    if (floor_cell(v) != floor_clamped(v) && ++wrong <= 5) {
+      ADD_FAILURE() << "v = " << v << ": " << floor_cell(v) << ", want " << floor_clamped(v);
+    }
+  }
+  EXPECT_EQ(wrong, 0) << "of " << values.size();
 }
 
 TEST(GridBroadphase, MatchesBruteForceOnUniformSizes) {

@@ -76,6 +76,18 @@ inline std::uint64_t pair_key(const DiscPair& p) {
   return (std::uint64_t(p.a) << 32) | p.b;
 }
 
+/// ⌊v⌋ clamped to ±2^30 (a grid cell's index from a coordinate over the cell's size), 0 for
+/// NaN: the value std::floor and std::clamp give, taken by a truncation and one comparison
+/// (floor is monotone and ±2^30 are integers, so clamping first gives the same integer, which
+/// truncates exactly), without floor's branches on the argument's size.
+inline std::int32_t floor_cell(double v) {
+  constexpr double limit = 1073741824.0;
+  if (std::isnan(v)) return 0;
+  const double c = std::min(std::max(v, -limit), limit);
+  const auto t = static_cast<std::int32_t>(c);  // towards zero, exact for |c| <= 2^30
+  return t - static_cast<std::int32_t>(static_cast<double>(t) > c);
+}
+
 /// True when the closed boxes overlap (touching counts); false if any coordinate is NaN.
 /// Every comparison is made (`&`, not `&&`): one branch where it is tested, which a scan of
 /// candidates that mostly miss predicts, where the short-circuit gives four it cannot.
@@ -233,9 +245,7 @@ class GridBroadphase {
   /// The cell of coordinate x (m) on a level, clamped to +-2^30 (monotone: neighbours stay
   /// neighbours); 0 for NaN.
   [[nodiscard]] std::int32_t cell_of(double x, std::uint32_t level) const {
-    constexpr double limit = 1073741824.0;
-    const double v = std::floor(x * levels_[level].inv_cell);
-    return std::isnan(v) ? 0 : static_cast<std::int32_t>(std::clamp(v, -limit, limit));
+    return floor_cell(x * levels_[level].inv_cell);
   }
   [[nodiscard]] std::size_t bucket(std::uint32_t level, std::int32_t cx, std::int32_t cy) const {
     const Level& l = levels_[level];
