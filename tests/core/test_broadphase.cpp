@@ -205,6 +205,29 @@ TEST(GridBroadphase, AQueryFindsEveryBoxThatOverlapsItOnce) {
   expect_query_reference(rows_of_boxes(2), queries);
 }
 
+TEST(GridBroadphase, ABoxOfHalfTheLargestExtentIsOnTheNextLevel) {
+  // Level k holds the extents in (e_top 2^-(k+1), e_top 2^-k]; a query visits the levels in
+  // order, and a cell's boxes in index order, so the order shows each box's level. Every box
+  // here has its lower-left corner at the origin (one cell on every level).
+  for (const double top : {1.0, 3.0, 1e-3, 7.3e5, 0x1.fffffffffffffp-3}) {
+    const double above_half = std::nextafter(top / 2, top),
+                 above_quarter = std::nextafter(top / 4, top);
+    const std::vector<double> extents = {top,        top / 2,       above_half,
+                                         0.75 * top, above_quarter, top / 4};
+    for (const bool with_nan : {false, true}) {  // all finite, and one box not (checked alone)
+      BoxSet s;
+      for (const double e : extents)
+        s.boxes.push_back({0.0, 0.0, e, 0.5 * e}), s.active.push_back(1);
+      if (with_nan) s.boxes.push_back({0.0, 0.0, std::nan(""), 1.0}), s.active.push_back(1);
+      GridBroadphase bp;
+      bp.index(s.boxes);
+      std::vector<std::uint32_t> order;
+      bp.query({0.0, 0.0, top, top}, [&](std::uint32_t i, const SweptBox&) { order.push_back(i); });
+      EXPECT_EQ(order, (std::vector<std::uint32_t>{0, 2, 3, 1, 4, 5})) << "e_top " << top;
+    }
+  }
+}
+
 TEST(GridBroadphase, BoxesThatTouchExactlyArePaired) {
   // Unit boxes on an integer lattice (x, y in -5..4) share edges and corners, on cell borders
   // of every level: each pairs with its 8 neighbours.

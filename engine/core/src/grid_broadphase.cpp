@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "binary_exponent.hpp"
 
@@ -35,19 +36,22 @@ void order_pairs(std::span<const DiscPair> first, std::span<const DiscPair> seco
   for (std::size_t k = first.size(); k-- > 0;) out[--offset[first[k].a]] = first[k];
   offset[n] = static_cast<std::uint32_t>(out.size());  // now offset[a] is the start of a's list
   const auto by_b = [](const DiscPair& p, const DiscPair& q) { return p.b < q.b; };
-  for (std::size_t a = 0; a < n; ++a) {
-    DiscPair* begin = out.data() + offset[a];
-    DiscPair* end = out.data() + offset[a + 1];
+  // Each a's list, found as a run of out (O(pairs), not O(n): most a have none).
+  DiscPair* const last = out.data() + out.size();
+  for (DiscPair* begin = out.data(); begin < last;) {
+    DiscPair* end = begin + 1;
+    while (end < last && end->a == begin->a) ++end;
     if (end - begin > 16) {
       std::sort(begin, end, by_b);  // b is unique within a list: any sort gives one order
-      continue;
+    } else {
+      for (DiscPair* i = begin + 1; i < end; ++i) {  // insertion sort
+        const DiscPair p = *i;
+        DiscPair* j = i;
+        for (; j > begin && j[-1].b > p.b; --j) *j = j[-1];
+        *j = p;
+      }
     }
-    for (DiscPair* i = begin + (begin != end); i < end; ++i) {  // insertion sort
-      const DiscPair p = *i;
-      DiscPair* j = i;
-      for (; j > begin && j[-1].b > p.b; --j) *j = j[-1];
-      *j = p;
-    }
+    begin = end;
   }
 }
 
@@ -62,43 +66,68 @@ void GridBroadphase::both(bool split, Job& job) {
 
 void GridBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) const {
   s.e_top = 0;
+  s.not_finite = 0;
   for (std::size_t i = s.begin; i < s.end; ++i) {
-    if (box_finite(boxes[i])) s.e_top = std::max(s.e_top, box_extent(boxes[i]));
+    if (box_finite(boxes[i])) {
+      s.e_top = std::max(s.e_top, box_extent(boxes[i]));
+    } else {
+      ++s.not_finite;
+    }
   }
 }
 
 void GridBroadphase::set_levels(double e_top) {
   if (!(e_top > 0 && e_top < std::numeric_limits<double>::infinity())) e_top = 1.0;  // points
+  first_unplaced_ = max_levels;
   for (unsigned k = 0; k < max_levels; ++k) {
     levels_[k].inv_cell = 1.0 / (cell_factor * std::ldexp(e_top, -static_cast<int>(k)));
+    // (the cell sides fall with k: once infinite, 1 / side stays so)
+    if (!std::isfinite(levels_[k].inv_cell)) first_unplaced_ = std::min(first_unplaced_, k);
   }
   e_top_ = e_top;
 }
 
 void GridBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
   const double e_bottom = std::ldexp(e_top_, -static_cast<int>(max_levels - 1));
+  // From e_top (1 + 2^-50) / 2 up, e_top / e rounds below 2 (it is at most 2 - 2^-50, four
+  // units in the last place below 2): level 0 without the division. Where e_top / 2 would not
+  // be exact (e_top near the least normal number), every box divides.
+  const double e_first = e_top_ >= 0x1p-1000 ? (0.5 * e_top_) * (1.0 + 0x1p-50) : e_top_ * 2.0;
   std::fill(std::begin(s.count), std::end(s.count), 0u);
   s.overflow = 0;
-  for (std::size_t i = s.begin; i < s.end; ++i) {
-    if (!box_finite(boxes[i])) {  // (before any arithmetic: Debug builds trap inf - inf)
-      level_[i] = overflow, ++s.overflow;
-      continue;
+  // A share whose boxes are all finite (largest_extent counted) skips the test of each.
+  auto assign = [&](auto checked) {
+    for (std::size_t i = s.begin; i < s.end; ++i) {
+      if (decltype(checked)::value && !box_finite(boxes[i])) {
+        // (before any arithmetic: Debug builds trap inf - inf)
+        level_[i] = overflow, ++s.overflow;
+        continue;
+      }
+      const double e = box_extent(boxes[i]);
+      // Level k holds e in (e_top 2^-(k+1), e_top 2^-k], the last one everything smaller.
+      std::uint32_t k = max_levels - 1;
+      // (e_top / e is in [1, 2^47): a normal number, whose exponent is ilogb's)
+      if (e >= e_first) {
+        k = 0;
+      } else if (e > e_bottom) {
+        k = static_cast<std::uint32_t>(det::binary_exponent(e_top_ / e));
+      }
+      if (k >= first_unplaced_) {  // cells too small to represent
+        level_[i] = overflow, ++s.overflow;
+        continue;
+      }
+      level_[i] = k;
+      const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
+      home_[i] = {cx, cy};
+      if (s.count[k]++ == 0) s.lo_x[k] = s.hi_x[k] = cx, s.lo_y[k] = s.hi_y[k] = cy;
+      s.lo_x[k] = std::min(s.lo_x[k], cx), s.hi_x[k] = std::max(s.hi_x[k], cx);
+      s.lo_y[k] = std::min(s.lo_y[k], cy), s.hi_y[k] = std::max(s.hi_y[k], cy);
     }
-    const double e = box_extent(boxes[i]);
-    // Level k holds e in (e_top 2^-(k+1), e_top 2^-k], the last one everything smaller.
-    std::uint32_t k = max_levels - 1;
-    // (e_top / e is in [1, 2^47): a normal number, whose exponent is ilogb's)
-    if (e > e_bottom) k = static_cast<std::uint32_t>(det::binary_exponent(e_top_ / e));
-    if (!std::isfinite(levels_[k].inv_cell)) {
-      level_[i] = overflow, ++s.overflow;
-      continue;
-    }
-    level_[i] = k;
-    const std::int32_t cx = cell_of(boxes[i].min_x, k), cy = cell_of(boxes[i].min_y, k);
-    home_[i] = {cx, cy};
-    if (s.count[k]++ == 0) s.lo_x[k] = s.hi_x[k] = cx, s.lo_y[k] = s.hi_y[k] = cy;
-    s.lo_x[k] = std::min(s.lo_x[k], cx), s.hi_x[k] = std::max(s.hi_x[k], cx);
-    s.lo_y[k] = std::min(s.lo_y[k], cy), s.hi_y[k] = std::max(s.hi_y[k], cy);
+  };
+  if (s.not_finite == 0) {
+    assign(std::false_type{});
+  } else {
+    assign(std::true_type{});
   }
 }
 
@@ -156,7 +185,17 @@ std::uint32_t GridBroadphase::start_keys(std::size_t begin, std::size_t end, std
 
 void GridBroadphase::start_keys(bool split) {
   const std::size_t keys = start_.size() - 1;
-  if (!split || keys < min_parallel_keys) {
+  if (!split) {  // every entry counted by the first thread
+    std::uint32_t* const c0 = cursor_[0].data();
+    std::uint32_t* const start = start_.data();
+    std::uint32_t next = 0;
+    for (std::size_t key = 0; key < keys; ++key) {
+      const std::uint32_t n0 = c0[key];
+      start[key] = next, c0[key] = next;
+      next += n0;
+    }
+    start_.back() = next;
+  } else if (keys < min_parallel_keys) {
     start_.back() = start_keys(0, keys, 0);
   } else {
     // Each half of the keys counted, then each started after the entries before it: the same
@@ -234,9 +273,11 @@ void GridBroadphase::scan_overflow(const SweptBox& box, std::uint32_t q, bool ac
   }
 }
 
-bool GridBroadphase::scan_row(const Entry& q, std::size_t from, std::uint32_t level,
-                              std::int32_t x0, std::int32_t x1, std::int32_t cy,
-                              std::vector<DiscPair>& out, std::uint64_t& rejected) const {
+[[gnu::always_inline]] inline bool GridBroadphase::scan_row(const Entry& q, std::size_t from,
+                                                            std::uint32_t level, std::int32_t x0,
+                                                            std::int32_t x1, std::int32_t cy,
+                                                            std::vector<DiscPair>& out,
+                                                            std::uint64_t& rejected) const {
   const Level& l = levels_[level];
   const auto b0 = static_cast<std::uint32_t>(x0) & l.wmask;
   if (b0 + static_cast<std::uint32_t>(x1 - x0) > l.wmask) return false;  // the row wraps
@@ -364,6 +405,7 @@ void GridBroadphase::build(std::span<const SweptBox> boxes, std::span<const std:
   both(split, levels);
   size_tables();
   auto count = [&](int t) {
+    if (t == 1 && !split) return;  // one share: start_keys reads the first thread's counts alone
     cursor_[t].assign(start_.size() - 1, 0);
     count_keys(share_[t], active, cursor_[t]);
   };

@@ -214,13 +214,15 @@ class GridBroadphase {
   };
   static constexpr std::uint32_t overflow = ~std::uint32_t{0};  // level_ of an overflow box
   /// What one thread finds over its share [begin, end) of the boxes: the largest finite extent
-  /// (m), then per level the range of home cells and the count, and the overflow count.
+  /// (m), then per level the range of home cells and the count, and the overflow count and the
+  /// boxes not finite.
   struct Share {
     std::size_t begin = 0, end = 0;
     double e_top = 0;
     std::array<std::int32_t, max_levels> lo_x, lo_y, hi_x, hi_y;
     std::array<std::uint32_t, max_levels> count;
     std::uint32_t overflow = 0;
+    std::uint32_t not_finite = 0;  // boxes with a coordinate not finite
   };
 
   /// Runs job(0) here and job(1) on the worker when it splits, else both here in order.
@@ -285,8 +287,9 @@ class GridBroadphase {
   };
   std::vector<Cell> home_;  // per box on a level: its home cell there
   std::array<Level, max_levels> levels_;
-  double e_top_ = 1;              // the largest finite extent of the call, m
-  std::uint64_t level_mask_ = 0;  // bit k: level k holds a box
+  double e_top_ = 1;                      // the largest finite extent of the call, m
+  unsigned first_unplaced_ = max_levels;  // the first level whose 1 / cell side is infinite
+  std::uint64_t level_mask_ = 0;          // bit k: level k holds a box
   // Bucket h's entries: entry_[start_[2h] .. start_[2h+1]) dynamic, then .. start_[2h+2) static.
   std::vector<std::uint32_t> start_;
   std::array<std::vector<std::uint32_t>, 2>
