@@ -793,9 +793,11 @@ class DiscContacts {
   /// its start, rad/s.
   ScratchVector<double> ew_, ew0_;
   bool rolling_ = false;
-  // Energy per unit mass (J/kg: ½|v|² - a·x, a the constant acceleration) at the tick's start
-  // and after the free step, and the dissipated account at the start.
-  ScratchVector<double> lost_, external_, e_start_, e_begin_, d_begin_;
+  // Per disc: the energy per unit mass the tick's contacts took (lost_, J/kg, from the energy
+  // ½|v|² - a·x at the tick's start or after its free step: finish()), the work done on it by
+  // kinematic and static partners (external_, J), and its dissipated account at the start
+  // (d_begin_, J/kg).
+  ScratchVector<double> lost_, external_, d_begin_;
   GridBroadphase broadphase_;
   std::vector<std::uint32_t> segments_near_;  ///< gather_segment_contacts()'s scratch
   // Sleeping discs (set_asleep(); disc_live.cpp). A tick with sleepers and few discs awake

@@ -59,7 +59,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
   }
   if (!(max_radius_ > 0.0)) max_radius_ = 1.0;
   for (auto* v : {&x0_, &y0_, &vx0_, &vy0_}) v->assign(n, Real(0));
-  for (auto* v : {&ex_, &ey_, &evx_, &evy_, &lost_, &external_, &e_start_, &e_begin_, &d_begin_}) {
+  for (auto* v : {&ex_, &ey_, &evx_, &evy_, &lost_, &external_, &d_begin_}) {
     v->assign(n, 0.0);
   }
   motion_.assign(n, DiscMotion{});
@@ -148,8 +148,6 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
     const double x1 = tick.x[j], y1 = tick.y[j], v1x = tick.vx[j], v1y = tick.vy[j];
     const double x0 = x0_[k], y0 = y0_[k], v0x = vx0_[k], v0y = vy0_[k];
     ex_[k] = x1, ey_[k] = y1, evx_[k] = v1x, evy_[k] = v1y;
-    e_start_[k] = 0.5 * (v1x * v1x + v1y * v1y) - (d.accel_x * x1 + d.accel_y * y1);
-    e_begin_[k] = 0.5 * (v0x * v0x + v0y * v0y) - (d.accel_x * x0 + d.accel_y * y0);
     DiscMotion& m = motion_[k];
     m.dx = (x1 - x0) / dt - 0.5 * (v0x + v1x), m.dy = (y1 - y0) / dt - 0.5 * (v0y + v1y);
     m.t = 0, m.x = x0, m.y = y0, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
@@ -450,11 +448,11 @@ std::size_t DiscContacts<Real>::bytes() const {
                     changed_, walled_, touch_, plane_half_[0], plane_half_[1], events_, contacts_,
                     touching_bodies_, on_moving_segment_, order_, cut_, side_, part_, lane_of_,
                     lane_parent_, lane_log_, warm_, ex_, ey_, evx_, evy_, lost_, external_,
-                    e_start_, e_begin_, d_begin_, ew_, ew0_, rows_, push_rows_, row_moved_, sv_,
-                    slot_moved_, roll_rows_, sw_, asleep_, awake_list_, awake_flips_.discs,
-                    awake_flips_.scratch, live_, in_live_, woken_, sleepers_.grid.discs,
-                    sleepers_.disc, sleepers_.indexed, sleepers_.extra, sleepers_.extras,
-                    live_boxes_, live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
+                    d_begin_, ew_, ew0_, rows_, push_rows_, row_moved_, sv_, slot_moved_,
+                    roll_rows_, sw_, asleep_, awake_list_, awake_flips_.discs, awake_flips_.scratch,
+                    live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc,
+                    sleepers_.indexed, sleepers_.extra, sleepers_.extras, live_boxes_,
+                    live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
          lanes_[0].bytes() + lanes_[1].bytes();
 }
 

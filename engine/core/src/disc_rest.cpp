@@ -285,6 +285,15 @@ void DiscContacts<Real>::finish(const Tick& tick, std::uint32_t k) {
     if (!changed_[k]) return;
     const Disc& d = discs_[k];
     const std::uint32_t j = d.body;
+    // Kinetic plus potential energy per unit mass (J/kg) of the state (m, m/s): at the tick's
+    // start (x0_ ...) or after its free step (the body's state until it is written below).
+    const auto energy = [&d](double x, double y, double vx, double vy) {
+      return 0.5 * (vx * vx + vy * vy) - (d.accel_x * x + d.accel_y * y);
+    };
+    const bool from_start = (changed_[k] & 2) != 0;
+    const double e_ref = from_start ? energy(x0_[k], y0_[k], vx0_[k], vy0_[k])
+                                    : energy(double(tick.x[j]), double(tick.y[j]),
+                                             double(tick.vx[j]), double(tick.vy[j]));
     tick.x[j] = static_cast<Real>(ex_[k]), tick.y[j] = static_cast<Real>(ey_[k]);
     tick.vx[j] = static_cast<Real>(evx_[k]), tick.vy[j] = static_cast<Real>(evy_[k]);
     const double vx = double(tick.vx[j]), vy = double(tick.vy[j]);
@@ -295,12 +304,12 @@ void DiscContacts<Real>::finish(const Tick& tick, std::uint32_t k) {
     // resting contact undoes the free step's own energy error every tick (a semi-implicit
     // Euler step from rest under gravity loses ½ g² dt², which would otherwise pile up in
     // the account of a body at rest).
-    const double since_start = e_begin_[k] -
+    const double since_start = e_ref -
                                (tick.dissipated ? double(tick.dissipated[j]) - d_begin_[k] : 0.0) +
                                (tick.plane_work ? tick.plane_work[j] : 0.0);
-    lost_[k] = ((changed_[k] & 2) ? since_start : e_start_[k]) - e_end + external_[k] * d.inv_mass;
+    lost_[k] = (from_start ? since_start : e_ref) - e_end + external_[k] * d.inv_mass;
     if (rolling_ && d.inv_inertia > 0.0) {  // the turn's ½ (I/m) ω², against the same start
-      const double w_ref = (changed_[k] & 2) ? ew0_[k] : double(tick.spin[j]);  // not yet set
+      const double w_ref = from_start ? ew0_[k] : double(tick.spin[j]);  // not yet set
       const auto w = static_cast<Real>(ew_[k]);
       tick.spin[j] = w;
       lost_[k] += 0.5 * d.inv_mass / d.inv_inertia * (w_ref * w_ref - double(w) * double(w));
