@@ -11,13 +11,63 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "disc_contacts.hpp"
+#include "fixstep/core/simd.hpp"
+#include "simd_targets.hpp"
 
 namespace fixstep::detail {
 
 namespace {
 std::atomic<std::size_t> gather_warm_from{min_gather_warm_pairs};
+
+/// near[i] = 1 where disc i (centre x, y and radius r, m) touches one of the planes by
+/// on(plane, x, y, r), else near[i] as it was, for a block of N discs: loops of a constant trip
+/// count, which the compiler puts on SIMD lanes.
+template <std::size_t N, class On>
+[[gnu::always_inline]] inline void mark_near(std::span<const PlaneDef> planes, const double* x,
+                                             const double* y, const double* r, double* near,
+                                             On on) {
+  for (const PlaneDef& p : planes) {
+    for (std::size_t i = 0; i < N; ++i) near[i] = on(p, x[i], y[i], r[i]) ? 1.0 : near[i];
+  }
+}
+
+// The same block for each SimdLevel (fixstep/core/simd.hpp), everything it calls inlined, as
+// world_plane_blocks.cpp's tests: comparisons of sums and products each rounded alone (no
+// contraction), so every level marks the same discs.
+template <std::size_t N, class On>
+[[gnu::noinline]] void mark_near_baseline(std::span<const PlaneDef> planes, const double* x,
+                                          const double* y, const double* r, double* near, On on) {
+  mark_near<N>(planes, x, y, r, near, on);
+}
+#if FIXSTEP_HAS_SIMD_CLONES
+template <std::size_t N, class On>
+[[gnu::flatten]] FIXSTEP_TARGET_AVX2 void mark_near_avx2(std::span<const PlaneDef> planes,
+                                                         const double* x, const double* y,
+                                                         const double* r, double* near, On on) {
+  mark_near<N>(planes, x, y, r, near, on);
+}
+template <std::size_t N, class On>
+[[gnu::flatten]] FIXSTEP_TARGET_AVX512 void mark_near_avx512(std::span<const PlaneDef> planes,
+                                                             const double* x, const double* y,
+                                                             const double* r, double* near, On on) {
+  mark_near<N>(planes, x, y, r, near, on);
+}
+#endif
+
+template <std::size_t N, class On>
+void mark_near_at(SimdLevel level, std::span<const PlaneDef> planes, const double* x,
+                  const double* y, const double* r, double* near, On on) {
+#if FIXSTEP_HAS_SIMD_CLONES
+  if (level == SimdLevel::avx512) return mark_near_avx512<N>(planes, x, y, r, near, on);
+  if (level == SimdLevel::avx2) return mark_near_avx2<N>(planes, x, y, r, near, on);
+#endif
+  (void)level;
+  mark_near_baseline<N>(planes, x, y, r, near, on);
+}
+
 }  // namespace
 
 void set_gather_warm_pairs(std::size_t pairs) {
@@ -188,8 +238,8 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
 }
 
 // The walls' contacts of live positions [begin, end), in disc then plane order. With every
-// disc live, in blocks of wall_block discs, plane by plane (on_plane's test on SIMD lanes):
-// most discs touch no wall.
+// disc live, in blocks of wall_block discs, plane by plane (on_plane's test on SIMD lanes, for
+// each SimdLevel): most discs touch no wall.
 template <class Real>
 void DiscContacts<Real>::plane_contacts_in(const Tick& tick, std::size_t begin, std::size_t end,
                                            std::vector<RestContact>& out) const {
@@ -197,7 +247,10 @@ void DiscContacts<Real>::plane_contacts_in(const Tick& tick, std::size_t begin, 
     live_range(begin, end, [&](std::uint32_t k) { plane_contacts_of(tick, k, out); });
     return;
   }
-  const std::size_t planes = tick.planes.size();
+  const SimdLevel level = simd_level();
+  const auto on = [](const PlaneDef& p, double x, double y, double r) {
+    return on_plane(p, x, y, r);
+  };
   alignas(64) double x[wall_block], y[wall_block], r[wall_block];
   alignas(64) double near[wall_block];  // 1 where a wall is within the slop (doubles: SIMD)
   for (std::size_t b = begin; b < end; b += wall_block) {
@@ -206,12 +259,7 @@ void DiscContacts<Real>::plane_contacts_in(const Tick& tick, std::size_t begin, 
       const std::size_t k = b + (i < m ? i : 0);
       x[i] = ex_[k], y[i] = ey_[k], r[i] = discs_[k].radius, near[i] = 0.0;
     }
-    for (std::size_t p = 0; p < planes; ++p) {
-      const PlaneDef& plane = tick.planes[p];
-      for (std::size_t i = 0; i < wall_block; ++i) {
-        near[i] = on_plane(plane, x[i], y[i], r[i]) ? 1.0 : near[i];
-      }
-    }
+    mark_near_at<wall_block>(level, tick.planes, x, y, r, near, on);
     for (std::size_t i = 0; i < m; ++i) {
       if (near[i] != 0.0) plane_contacts_of(tick, static_cast<std::uint32_t>(b + i), out);
     }
