@@ -7,6 +7,10 @@
 #include <limits>
 #include <type_traits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "binary_exponent.hpp"
 
 namespace fixstep::detail {
@@ -21,6 +25,44 @@ double box_extent(const SweptBox& b) {
 bool box_finite(const SweptBox& b) {
   return std::isfinite(b.min_x) && std::isfinite(b.min_y) && std::isfinite(b.max_x) &&
          std::isfinite(b.max_y);
+}
+
+/// Starts keys [begin, end) from entry `next` (returns the entry after their last): each key's
+/// start[key] is next plus the counts c0 (and c1, when given) of the keys before it; c0[key]
+/// becomes the first thread's next slot, start[key], and c1[key] the second's, after the
+/// first's c0[key] entries. Four keys at a time where SSE2 is (a vector's sums by two shifted
+/// adds, then the running total): integers, the same starts either way.
+std::uint32_t prefix_keys(std::uint32_t* start, std::uint32_t* c0, std::uint32_t* c1,
+                          std::size_t begin, std::size_t end, std::uint32_t next) {
+  std::size_t key = begin;
+#if defined(__SSE2__)
+  const auto load = [](const std::uint32_t* p) {
+    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+  };
+  const auto store = [](std::uint32_t* p, __m128i v) {
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(p), v);
+  };
+  __m128i total = _mm_set1_epi32(static_cast<int>(next));
+  for (; key + 4 <= end; key += 4) {
+    const __m128i n0 = load(c0 + key);
+    const __m128i n = c1 != nullptr ? _mm_add_epi32(n0, load(c1 + key)) : n0;
+    __m128i within = _mm_add_epi32(n, _mm_slli_si128(n, 4));  // sums up to each key, inclusive
+    within = _mm_add_epi32(within, _mm_slli_si128(within, 8));
+    const __m128i first = _mm_add_epi32(_mm_sub_epi32(within, n), total);
+    store(start + key, first);
+    store(c0 + key, first);
+    if (c1 != nullptr) store(c1 + key, _mm_add_epi32(first, n0));
+    total = _mm_add_epi32(total, _mm_shuffle_epi32(within, 0xff));
+  }
+  next = static_cast<std::uint32_t>(_mm_cvtsi128_si32(total));
+#endif
+  for (; key < end; ++key) {
+    const std::uint32_t n0 = c0[key], n1 = c1 != nullptr ? c1[key] : 0;
+    start[key] = next, c0[key] = next;
+    if (c1 != nullptr) c1[key] = next + n0;
+    next += n0 + n1;
+  }
+  return next;
 }
 
 }  // namespace
@@ -171,30 +213,13 @@ void GridBroadphase::count_keys(const Share& s, std::span<const std::uint8_t> ac
 }
 
 std::uint32_t GridBroadphase::start_keys(std::size_t begin, std::size_t end, std::uint32_t next) {
-  std::uint32_t* const c0 = cursor_[0].data();
-  std::uint32_t* const c1 = cursor_[1].data();
-  std::uint32_t* const start = start_.data();
-  // Each key's entries: the first thread's, then the second's.
-  for (std::size_t key = begin; key < end; ++key) {
-    const std::uint32_t n0 = c0[key], n1 = c1[key];
-    start[key] = next, c0[key] = next, c1[key] = next + n0;
-    next += n0 + n1;
-  }
-  return next;
+  return prefix_keys(start_.data(), cursor_[0].data(), cursor_[1].data(), begin, end, next);
 }
 
 void GridBroadphase::start_keys(bool split) {
   const std::size_t keys = start_.size() - 1;
   if (!split) {  // every entry counted by the first thread
-    std::uint32_t* const c0 = cursor_[0].data();
-    std::uint32_t* const start = start_.data();
-    std::uint32_t next = 0;
-    for (std::size_t key = 0; key < keys; ++key) {
-      const std::uint32_t n0 = c0[key];
-      start[key] = next, c0[key] = next;
-      next += n0;
-    }
-    start_.back() = next;
+    start_.back() = prefix_keys(start_.data(), cursor_[0].data(), nullptr, 0, keys, 0);
   } else if (keys < min_parallel_keys) {
     start_.back() = start_keys(0, keys, 0);
   } else {
