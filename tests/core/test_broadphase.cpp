@@ -275,8 +275,12 @@ TEST(GridBroadphase, NonFiniteAndHugeBoxesTakeTheOverflowPath) {
   s.boxes[30] = {nan, 1.0, 2.0, 2.0};  // overlaps nothing
 #endif
   s.boxes[40] = {1.0, 1.0, 1e300, 1e300};
-  s.active[10] = 0, s.active[20] = 1, s.active[40] = 0;
+  s.boxes[50] = {-1.5e308, 3.0, 1.5e308, 3.5};  // finite corners, an extent past the largest double
+  s.active[10] = 0, s.active[20] = 1, s.active[40] = 0, s.active[50] = 1;
   expect_reference(s);
+  GridBroadphase bp;
+  bp.index(s.boxes);
+  EXPECT_TRUE(std::ranges::find(bp.unindexed(), 50u) != bp.unindexed().end());
   BoxSet all;  // nothing on the grid
   all.boxes = {{-inf, 0, inf, 1}, {0, -inf, 1, inf}, {-inf, -inf, 0, 0}, {2, 2, inf, inf}};
   all.active = {1, 0, 0, 1};

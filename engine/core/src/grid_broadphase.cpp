@@ -27,6 +27,12 @@ bool box_finite(const SweptBox& b) {
          std::isfinite(b.max_y);
 }
 
+/// Whether a level can hold the box: its coordinates and its extent finite (finite corners
+/// near ±1.8e308 can be farther apart than the largest double).
+bool box_placeable(const SweptBox& b) {
+  return box_finite(b) && box_extent(b) <= std::numeric_limits<double>::max();
+}
+
 /// Starts keys [begin, end) from entry `next` (returns the entry after their last): each key's
 /// start[key] is next plus the counts c0 (and c1, when given) of the keys before it; c0[key]
 /// becomes the first thread's next slot, start[key], and c1[key] the second's, after the
@@ -110,7 +116,7 @@ void GridBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) c
   s.e_top = 0;
   s.not_finite = 0;
   for (std::size_t i = s.begin; i < s.end; ++i) {
-    if (box_finite(boxes[i])) {
+    if (box_placeable(boxes[i])) {
       s.e_top = std::max(s.e_top, box_extent(boxes[i]));
     } else {
       ++s.not_finite;
@@ -137,11 +143,12 @@ void GridBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
   const double e_first = e_top_ >= 0x1p-1000 ? (0.5 * e_top_) * (1.0 + 0x1p-50) : e_top_ * 2.0;
   std::fill(std::begin(s.count), std::end(s.count), 0u);
   s.overflow = 0;
-  // A share whose boxes are all finite (largest_extent counted) skips the test of each.
+  // A share whose boxes all have a finite extent (largest_extent counted) skips the test of
+  // each.
   auto assign = [&](auto checked) {
     for (std::size_t i = s.begin; i < s.end; ++i) {
-      if (decltype(checked)::value && !box_finite(boxes[i])) {
-        // (before any arithmetic: Debug builds trap inf - inf)
+      if (decltype(checked)::value && !box_placeable(boxes[i])) {
+        // (finite first, before any arithmetic: Debug builds trap inf - inf)
         level_[i] = overflow, ++s.overflow;
         continue;
       }

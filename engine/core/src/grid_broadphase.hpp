@@ -13,8 +13,9 @@
 // spread further (an outlier far away): cells that share a bucket are told apart by the home
 // cell stored with each box. The table is a counting sort by (bucket, static?), on two threads
 // in two halves of the boxes (each bucket's boxes stay in index order, so the bits do not
-// depend on the split). Non-finite boxes go to an overflow list every box checks. The pairs are
-// then put in (a, b) order by a counting sort on a and a sort of each a's short list.
+// depend on the split). Boxes not finite (a coordinate, or the extent: corners near ±1.8e308
+// can be farther apart than the largest double) go to an overflow list every box checks. The
+// pairs are then put in (a, b) order by a counting sort on a and a sort of each a's short list.
 //
 // Why a grid, measured (bench/bench_broadphase.cpp, GCC 12 -O3, CPU time of one thread, ns per
 // body per call at n = 10^3 / 10^4 / 10^5; preliminary: load average 8.7-9.5 on 2 cores while
@@ -162,8 +163,8 @@ class GridBroadphase {
   /// Makes the table of `boxes` for query() alone, pairing none: O(n). Allocates nothing once
   /// warm. Preconditions: boxes.size() < 2^32 - 1.
   void index(std::span<const SweptBox> boxes);
-  /// The boxes of the last find_pairs or index call that no level holds (a coordinate not
-  /// finite, or cells too small to represent), ascending: query() leaves them out.
+  /// The boxes of the last find_pairs or index call that no level holds (a coordinate or the
+  /// extent not finite, or cells too small to represent), ascending: query() leaves them out.
   [[nodiscard]] std::span<const std::uint32_t> unindexed() const { return overflow_; }
 
   /// Pairs that can never touch, which find_pairs leaves out and does not count against its
@@ -222,7 +223,7 @@ class GridBroadphase {
     std::array<std::int32_t, max_levels> lo_x, lo_y, hi_x, hi_y;
     std::array<std::uint32_t, max_levels> count;
     std::uint32_t overflow = 0;
-    std::uint32_t not_finite = 0;  // boxes with a coordinate not finite
+    std::uint32_t not_finite = 0;  // boxes with a coordinate or the extent not finite
   };
 
   /// Runs job(0) here and job(1) on the worker when it splits, else both here in order.
