@@ -126,11 +126,8 @@ void GridBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) c
 
 void GridBroadphase::set_levels(double e_top) {
   if (!(e_top > 0 && e_top < std::numeric_limits<double>::infinity())) e_top = 1.0;  // points
-  first_unplaced_ = max_levels;
   for (unsigned k = 0; k < max_levels; ++k) {
     levels_[k].inv_cell = 1.0 / (cell_factor * std::ldexp(e_top, -static_cast<int>(k)));
-    // (the cell sides fall with k: once infinite, 1 / side stays so)
-    if (!std::isfinite(levels_[k].inv_cell)) first_unplaced_ = std::min(first_unplaced_, k);
   }
   e_top_ = e_top;
 }
@@ -141,6 +138,10 @@ void GridBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
   // units in the last place below 2): level 0 without the division. Where e_top / 2 would not
   // be exact (e_top near the least normal number), every box divides.
   const double e_first = e_top_ >= 0x1p-1000 ? (0.5 * e_top_) * (1.0 + 0x1p-50) : e_top_ * 2.0;
+  // The first level whose cells are too small to represent (1 / side infinite): the sides fall
+  // with the level, so every level after it too.
+  std::uint32_t unplaced = 0;
+  while (unplaced < max_levels && std::isfinite(levels_[unplaced].inv_cell)) ++unplaced;
   std::fill(std::begin(s.count), std::end(s.count), 0u);
   s.overflow = 0;
   // A share whose boxes all have a finite extent (largest_extent counted) skips the test of
@@ -161,7 +162,7 @@ void GridBroadphase::assign_levels(Share& s, std::span<const SweptBox> boxes) {
       } else if (e > e_bottom) {
         k = static_cast<std::uint32_t>(det::binary_exponent(e_top_ / e));
       }
-      if (k >= first_unplaced_) {  // cells too small to represent
+      if (k >= unplaced) {
         level_[i] = overflow, ++s.overflow;
         continue;
       }
@@ -219,16 +220,17 @@ void GridBroadphase::count_keys(const Share& s, std::span<const std::uint8_t> ac
   }
 }
 
-std::uint32_t GridBroadphase::start_keys(std::size_t begin, std::size_t end, std::uint32_t next) {
-  return prefix_keys(start_.data(), cursor_[0].data(), cursor_[1].data(), begin, end, next);
-}
-
 void GridBroadphase::start_keys(bool split) {
   const std::size_t keys = start_.size() - 1;
+  // Keys [begin, end) started from entry `next`, each key's first thread's entries, then its
+  // second's; returns the entry after their last.
+  auto both_threads = [&](std::size_t begin, std::size_t end, std::uint32_t next) {
+    return prefix_keys(start_.data(), cursor_[0].data(), cursor_[1].data(), begin, end, next);
+  };
   if (!split) {  // every entry counted by the first thread
     start_.back() = prefix_keys(start_.data(), cursor_[0].data(), nullptr, 0, keys, 0);
   } else if (keys < min_parallel_keys) {
-    start_.back() = start_keys(0, keys, 0);
+    start_.back() = both_threads(0, keys, 0);
   } else {
     // Each half of the keys counted, then each started after the entries before it: the same
     // starts as one pass.
@@ -243,7 +245,7 @@ void GridBroadphase::start_keys(bool split) {
     };
     both(true, count);
     auto start = [&](int t) {
-      (void)(t == 0 ? start_keys(0, mid, 0) : start_keys(mid, keys, in_half[0]));
+      (void)(t == 0 ? both_threads(0, mid, 0) : both_threads(mid, keys, in_half[0]));
     };
     both(true, start);
     start_.back() = in_half[0] + in_half[1];

@@ -241,8 +241,6 @@ class GridBroadphase {
   /// Each key's first entry (start_) and each thread's next slot in it (cursor_), from the
   /// counts: by halves of the keys when split, from min_parallel_keys keys.
   void start_keys(bool split);
-  /// Keys [begin, end) started from entry `next`; returns the entry after their last.
-  std::uint32_t start_keys(std::size_t begin, std::size_t end, std::uint32_t next);
   void fill_keys(const Share& s, std::span<const SweptBox> boxes,
                  std::span<const std::uint8_t> active, std::vector<std::uint32_t>& cursor);
   /// The cell of coordinate x (m) on a level, clamped to +-2^30 (monotone: neighbours stay
@@ -288,9 +286,8 @@ class GridBroadphase {
   };
   std::vector<Cell> home_;  // per box on a level: its home cell there
   std::array<Level, max_levels> levels_;
-  double e_top_ = 1;                      // the largest finite extent of the call, m
-  unsigned first_unplaced_ = max_levels;  // the first level whose 1 / cell side is infinite
-  std::uint64_t level_mask_ = 0;          // bit k: level k holds a box
+  double e_top_ = 1;              // the largest finite extent of the call, m
+  std::uint64_t level_mask_ = 0;  // bit k: level k holds a box
   // Bucket h's entries: entry_[start_[2h] .. start_[2h+1]) dynamic, then .. start_[2h+2) static.
   std::vector<std::uint32_t> start_;
   std::array<std::vector<std::uint32_t>, 2>
