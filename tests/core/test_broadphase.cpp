@@ -281,6 +281,16 @@ TEST(GridBroadphase, NonFiniteAndHugeBoxesTakeTheOverflowPath) {
   GridBroadphase bp;
   bp.index(s.boxes);
   EXPECT_TRUE(std::ranges::find(bp.unindexed(), 50u) != bp.unindexed().end());
+  // Extents near the least normal number: the finest levels' cells are too small to represent
+  // (1 / side overflows), and the points that would go there take the overflow path.
+  BoxSet tiny;
+  for (int i = 1; i <= 40; ++i) {
+    const double x = 1e-300 * i, w = i % 4 == 0 ? 0.0 : 1.5e-300;  // every fourth a point
+    tiny.boxes.push_back({x, x, x + w, x + w}), tiny.active.push_back(1);
+  }
+  expect_reference(tiny);
+  bp.index(tiny.boxes);
+  EXPECT_EQ(bp.unindexed().size(), 10u);
   BoxSet all;  // nothing on the grid
   all.boxes = {{-inf, 0, inf, 1}, {0, -inf, 1, inf}, {-inf, -inf, 0, 0}, {2, 2, inf, inf}};
   all.active = {1, 0, 0, 1};
