@@ -1,11 +1,12 @@
 // Disc worlds step to the same bits on one thread and on two, tick by tick, at sizes on both
 // sides of every split: the broadphase (from 512 discs), the second thread's run and the
 // passes by halves (from 256 discs), the shared first impact predictions (from 128 candidate
-// pairs) and the resting solver's halves (cut from 1024 touching pairs, and on two threads
-// from there). Each world here crosses the split it is there for (the counts of discs by
+// pairs), the resting solver's halves (cut from 1024 touching pairs, and on two threads
+// from there), and the fat boxes' pairs and each disc's list of pairs by halves (from 8192
+// pairs). Each world here crosses the split it is there for (the counts of discs by
 // construction, those of pairs asserted): a gas of elastic impacts, a pile of rolling discs on
-// a polyline floor, a pile that falls asleep, a pile ploughed by a kinematic disc; f64 and
-// f32.
+// a polyline floor, a pile that falls asleep, a pile ploughed by a kinematic disc, a pile
+// settling in its fat boxes; f64 and f32.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include "fixstep/core/world_def.hpp"
 #include "fixstep/core/world_settings.hpp"
 #include "unchecked_world.hpp"
+#include "world_kernel.hpp"
 
 namespace fixstep {
 namespace disc_thread_tests {
@@ -173,6 +175,36 @@ TEST(DiscThreads, APilePloughedByAKinematicDiscStepsToTheSameBitsOnTwoThreads) {
   def.bodies.push_back(plough);
   const ContactStats most = same_bits(def, 50, "ploughed pile");
   EXPECT_GT(most.touching, 1024u);
+}
+
+TEST(DiscThreads, ASettlingPileRecyclesItsPairsToTheSameBitsOnTwoThreads) {
+  // Past DiscContacts::min_parallel_copies fat pairs the two threads filter the fat boxes'
+  // pairs by halves (disc_fat.cpp), and past as many candidate pairs they build each disc's
+  // list of pairs by halves (incident_lists()): the same pairs, in the same order.
+  using Kernel = detail::WorldKernel<double>;
+  const WorldDef def = pile(4000, 80);
+  auto world = [&](int threads) {
+    WorldSettings s = def.settings;
+    s.threads = threads;
+    auto w = std::make_unique<Kernel>(s);
+    for (const PlaneDef& p : def.planes) w->add_plane(p);
+    for (const BodyDef& b : def.bodies) w->create_body(b);
+    return w;
+  };
+  auto one = world(1), two = world(2);
+  std::size_t most_fat = 0, most_pairs = 0;
+  for (int t = 0; t < 40; ++t) {
+    one->step(), two->step();
+    ASSERT_EQ(one->state_hash(), two->state_hash()) << "settling pile, tick " << t + 1;
+    const auto a = one->disc_contacts()->candidate_pairs(),
+               b = two->disc_contacts()->candidate_pairs();
+    ASSERT_TRUE(std::equal(a.begin(), a.end(), b.begin(), b.end()))
+        << "settling pile, tick " << t + 1 << ": " << a.size() << " and " << b.size() << " pairs";
+    most_fat = std::max(most_fat, two->disc_contacts()->fat_pairs());
+    most_pairs = std::max(most_pairs, two->disc_contacts()->candidate_pairs().size());
+  }
+  EXPECT_GE(most_fat, detail::DiscContacts<double>::min_parallel_copies) << most_fat;
+  EXPECT_GE(most_pairs, detail::DiscContacts<double>::min_parallel_copies);
 }
 
 TEST(DiscThreads, ThreadsUsedSaysWhetherATickSharedItsPasses) {

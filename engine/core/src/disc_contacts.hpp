@@ -237,6 +237,9 @@ class DiscContacts {
   [[nodiscard]] std::uint64_t lane_ticks() const { return lane_ticks_; }
   [[nodiscard]] std::uint64_t lanes_undone() const { return lanes_undone_; }
   [[nodiscard]] std::uint64_t lane_cuts() const { return lane_cuts_; }
+  /// For the tests: the fat boxes' pairs (disc_fat.cpp) while the tick's pairs come from
+  /// them, else 0.
+  [[nodiscard]] std::size_t fat_pairs() const { return fat_.valid ? fat_.pairs.size() : 0; }
   /// For the tests: the resting contacts' cuts into two halves (cut_pile()) since the discs
   /// were set, before the gather or after it.
   [[nodiscard]] std::uint64_t pile_cuts() const { return pile_cuts_; }
@@ -387,6 +390,9 @@ class DiscContacts {
   /// from the fat boxes (disc_fat.cpp).
   bool find_candidates(const Tick& tick, ContactStats& stats, std::size_t max_pairs,
                        bool whole_tick);
+  /// Each live disc's list of its pairs_ (offset_, degree_, incident_), in pair order; by
+  /// halves of the pairs on two threads from min_parallel_copies pairs.
+  void incident_lists();
   // candidate pairs recycled from fat boxes (disc_fat.cpp)
   /// pairs_ from the fat boxes' pairs, rebuilt when a box left its fat box: 1 found, 0 past
   /// max_pairs, -1 not used (the fat pairs past cap, or resting after a rebuild that lasted
@@ -717,6 +723,10 @@ class DiscContacts {
   ScratchVector<std::uint32_t> offset_, incident_;
   ScratchVector<std::uint32_t> stamp_, impacts_;
   ScratchVector<std::uint32_t> cursor_;  ///< find_candidates()'s fill cursors
+  /// On two threads, the second half of the pairs' degrees and fill cursors (incident_lists()),
+  /// and of the recycled pairs (recycled_pairs()).
+  ScratchVector<std::uint32_t> degree_half_, cursor_half_;
+  ScratchVector<DiscPair> fat_half_;
   ScratchVector<std::uint8_t> changed_;
   ScratchVector<std::uint8_t> walled_;  ///< per disc: met a plane or a segment in the tick
   std::vector<HeldMotion> held_;        ///< per disc: held for the rest of the tick (hold_pair())

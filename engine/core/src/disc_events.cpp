@@ -226,7 +226,45 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
   sensor_pairs_.clear();
   if (!linked_.empty() || !filters_.empty()) sort_out_pairs();
   stats.candidate_pairs = std::max(stats.candidate_pairs, pairs_.size());
+  incident_lists();
+  return true;
+}
+
+template <class Real>
+void DiscContacts<Real>::incident_lists() {
   // Each live disc's pairs (in pair order): incident_[offset_[k] .. offset_[k] + degree_[k]).
+  const auto m = static_cast<std::uint32_t>(pairs_.size());
+  incident_.resize(2 * std::size_t{m});
+  if (live_all_ && sharing() && m >= min_parallel_copies) {
+    // Each thread counts and fills the lists from its half of the pairs: a disc's list holds
+    // the first half's pairs, then the second's, in pair order as one thread fills it.
+    const std::size_t n = discs_.size();
+    degree_half_.resize(n), cursor_half_.resize(n);
+    auto count = [&](int h) {
+      std::uint32_t* const degree = h == 0 ? degree_.data() : degree_half_.data();
+      std::fill(degree, degree + n, 0u);
+      for (std::uint32_t i = h == 0 ? 0 : m / 2; i < (h == 0 ? m / 2 : m); ++i) {
+        ++degree[pairs_[i].a], ++degree[pairs_[i].b];
+      }
+    };
+    both_halves(count);
+    std::uint32_t at = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      offset_[k] = cursor_[k] = at;
+      cursor_half_[k] = at + degree_[k];
+      degree_[k] += degree_half_[k];
+      at += degree_[k];
+    }
+    auto fill = [&](int h) {
+      std::uint32_t* const cursor = h == 0 ? cursor_.data() : cursor_half_.data();
+      for (std::uint32_t i = h == 0 ? 0 : m / 2; i < (h == 0 ? m / 2 : m); ++i) {
+        incident_[cursor[pairs_[i].a]++] = i;
+        incident_[cursor[pairs_[i].b]++] = i;
+      }
+    };
+    both_halves(fill);
+    return;
+  }
   const std::size_t live = live_count();
   live_range(0, live, [&](std::uint32_t k) { degree_[k] = 0; });
   for (const DiscPair& p : pairs_) ++degree_[p.a], ++degree_[p.b];
@@ -235,12 +273,10 @@ bool DiscContacts<Real>::find_candidates(const Tick& tick, ContactStats& stats,
     offset_[k] = cursor_[k] = at;  // fill cursors
     at += degree_[k];
   });
-  incident_.resize(2 * pairs_.size());
-  for (std::uint32_t i = 0; i < pairs_.size(); ++i) {
+  for (std::uint32_t i = 0; i < m; ++i) {
     incident_[cursor_[pairs_[i].a]++] = i;
     incident_[cursor_[pairs_[i].b]++] = i;
   }
-  return true;
 }
 
 template <class Real>
@@ -452,7 +488,8 @@ std::size_t DiscContacts<Real>::bytes() const {
                     roll_rows_, sw_, asleep_, awake_list_, awake_flips_.discs, awake_flips_.scratch,
                     live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc,
                     sleepers_.indexed, sleepers_.extra, sleepers_.extras, live_boxes_,
-                    live_dynamic_, degree_, fat_.boxes, fat_.pairs, segments_near_) +
+                    live_dynamic_, degree_, degree_half_, cursor_half_, fat_half_, fat_.boxes,
+                    fat_.pairs, segments_near_) +
          lanes_[0].bytes() + lanes_[1].bytes();
 }
 

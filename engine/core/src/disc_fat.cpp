@@ -24,7 +24,15 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
   FatBoxes& f = fat_;
   const std::size_t n = discs_.size();
   bool inside = f.valid && f.boxes.size() == n;
-  for (std::size_t k = 0; inside && k < n; ++k) inside = box_within(boxes_[k], f.boxes[k]);
+  if (inside) {  // every box within its fat box: by halves on two threads
+    bool within[2] = {true, true};
+    halves_from(n, min_parallel_copies, [&](std::size_t begin, std::size_t end, int half) {
+      bool all = true;
+      for (std::size_t k = begin; all && k < end; ++k) all = box_within(boxes_[k], f.boxes[k]);
+      within[half] = all;
+    });
+    inside = within[0] && within[1];
+  }
   if (!inside) {
     if (!f.left()) return -1;  // built for one tick: rest a while, longer each time
     // A disc that moves more than the margin in a tick leaves its fat box in the next one.
@@ -50,7 +58,18 @@ int DiscContacts<Real>::recycled_pairs(int threads, std::size_t max_pairs, std::
     f.valid = true, f.age = 0;
   }
   ++f.age;
-  f.overlapping(boxes_, pairs_);
+  const std::size_t m = f.pairs.size();
+  if (sharing() && m >= min_parallel_copies) {  // each half of the fat pairs, then in order
+    fat_half_.clear();
+    auto job = [&](int half) {
+      half == 0 ? f.overlapping(boxes_, pairs_, 0, m / 2)
+                : f.overlapping(boxes_, fat_half_, m / 2, m);
+    };
+    both_halves(job);
+    pairs_.insert(pairs_.end(), fat_half_.begin(), fat_half_.end());
+  } else {
+    f.overlapping(boxes_, pairs_, 0, m);
+  }
   return pairs_.size() <= max_pairs ? 1 : 0;
 }
 

@@ -54,10 +54,13 @@ struct FatBoxes {
       if (boxes_overlap(now[p.a], now[p.b])) f(p);
     }
   }
-  /// Those pairs into `out` (cleared first).
-  void overlapping(std::span<const SweptBox> now, std::vector<DiscPair>& out) const {
+  /// Those pairs among pairs[begin, end) into `out` (cleared first), in their order.
+  void overlapping(std::span<const SweptBox> now, std::vector<DiscPair>& out, std::size_t begin,
+                   std::size_t end) const {
     out.clear();
-    each_overlapping(now, [&](const DiscPair& p) { out.push_back(p); });
+    for (std::size_t i = begin; i < end; ++i) {
+      if (boxes_overlap(now[pairs[i].a], now[pairs[i].b])) out.push_back(pairs[i]);
+    }
   }
 };
 
