@@ -52,8 +52,11 @@ void detail::WorldKernel<Real>::update_contact_events(bool discs) {
   ended_.clear();
   hits_.clear();
   impacts_.clear();
-  touching_.clear();
-  if (discs) add_disc_touching();
+  if (discs) {
+    add_disc_touching();  // every entry of touching_ written anew
+  } else {
+    touching_.clear();
+  }
   if (shape_world_) add_shape_touching();
   if (sleep_ || !asleep_touching_.empty()) set_asleep_pairs_apart();
   diff_contact_events(!discs);  // without discs, touching_ is the shapes' sorted run alone
@@ -141,13 +144,14 @@ void detail::WorldKernel<Real>::add_disc_touching() {
     return b.slot() < a.slot() ? ContactEvent{b, a, speed} : ContactEvent{a, b, speed};
   };
   // The disc pairs come first among the touching contacts; by halves on the discs' second
-  // thread within the tick's run of it (world_step.cpp).
+  // thread within the tick's run of it (world_step.cpp). touching_ holds the list of two ticks
+  // ago (swapped out): resized, it constructs only the entries past its size, each of which
+  // the halves then write.
   const auto touching = dc.touching_bodies();
-  const std::size_t first = touching_.size();
-  touching_.resize(first + dc.disc_pair_contacts());
-  discs_->halves(touching_.size() - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
+  touching_.resize(dc.disc_pair_contacts());
+  discs_->halves(touching_.size(), [&](std::size_t begin, std::size_t end, int /*half*/) {
     for (std::size_t i = begin; i < end; ++i) {
-      touching_[first + i] = pair_of(touching[i].a, touching[i].b, 0.0);
+      touching_[i] = pair_of(touching[i].a, touching[i].b, 0.0);
     }
   });
   for (const DiscImpact& i : dc.impacts()) {
