@@ -122,8 +122,7 @@ void GridBroadphase::largest_extent(Share& s, std::span<const SweptBox> boxes) c
   std::uint32_t not_placeable = 0;
   for (std::size_t i = s.begin; i < s.end; ++i) {
     const SweptBox& b = boxes[i];
-    const bool finite = std::isfinite(b.min_x) & std::isfinite(b.min_y) & std::isfinite(b.max_x) &
-                        std::isfinite(b.max_y);
+    const bool finite = box_finite(b);  // (predicted: boxes are finite but for a fault)
     const double w = (finite ? b.max_x : 0.0) - (finite ? b.min_x : 0.0);
     const double h = (finite ? b.max_y : 0.0) - (finite ? b.min_y : 0.0);
     const bool placeable = finite & (w <= most) & (h <= most);  // box_placeable
