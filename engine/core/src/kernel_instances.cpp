@@ -7,7 +7,8 @@
 // The unit is the per-tick hot path, built at -O3 (engine/CMakeLists.txt): GCC vectorizes the
 // sweeps' loops only there (at -O2 its "very cheap" cost model refuses loops that need a scalar
 // remainder). -ffp-contract=off holds as everywhere, so no level changes a result.
-#include "disc_events.cpp"         // discs: motions, candidates, a pair's impact
+#include "disc_candidates.cpp"     // discs: the candidate pairs
+#include "disc_events.cpp"         // discs: motions, a pair's impact
 #include "disc_fat.cpp"            // discs: candidate pairs recycled from fat boxes
 #include "disc_gather.cpp"         // discs: the resting contacts gathered
 #include "disc_halves.cpp"         // discs: a pile in two halves
