@@ -46,21 +46,23 @@ struct FatBoxes {
   /// Rests the fat boxes for `pause` ticks (a rebuild that served a single tick, or one the
   /// pairs' limit stopped), and doubles the next rest.
   void rest_longer() { rest = pause, pause = std::min(2 * pause, rest_most); }
-  /// `f(pair)` for each fat pair whose `now` boxes overlap (closed intervals), in their order:
-  /// the broadphase's pairs of `now` while each lies in its fat box.
+  /// `f(pair)` for each fat pair among pairs[begin, end) (all of them by default) whose `now`
+  /// boxes overlap (closed intervals), in their order: the broadphase's pairs of `now` while
+  /// each lies in its fat box.
   template <class F>
-  void each_overlapping(std::span<const SweptBox> now, F&& f) const {
-    for (const DiscPair& p : pairs) {
-      if (boxes_overlap(now[p.a], now[p.b])) f(p);
+  void each_overlapping(std::span<const SweptBox> now, F&& f, std::size_t begin = 0,
+                        std::size_t end = SIZE_MAX) const {
+    end = std::min(end, pairs.size());
+    for (std::size_t i = begin; i < end; ++i) {
+      if (boxes_overlap(now[pairs[i].a], now[pairs[i].b])) f(pairs[i]);
     }
   }
   /// Those pairs among pairs[begin, end) into `out` (cleared first), in their order.
   void overlapping(std::span<const SweptBox> now, std::vector<DiscPair>& out, std::size_t begin,
                    std::size_t end) const {
     out.clear();
-    for (std::size_t i = begin; i < end; ++i) {
-      if (boxes_overlap(now[pairs[i].a], now[pairs[i].b])) out.push_back(pairs[i]);
-    }
+    each_overlapping(
+        now, [&](const DiscPair& p) { out.push_back(p); }, begin, end);
   }
 };
 
