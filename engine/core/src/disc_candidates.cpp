@@ -50,48 +50,48 @@ void DiscContacts<Real>::incident_lists() {
   // Each live disc's pairs (in pair order): incident_[offset_[k] .. offset_[k] + degree_[k]).
   const auto m = static_cast<std::uint32_t>(pairs_.size());
   incident_.resize(2 * std::size_t{m});
-  if (live_all_ && sharing() && m >= min_parallel_copies) {
-    // Each thread counts and fills the lists from its half of the pairs: a disc's list holds
-    // the first half's pairs, then the second's, in pair order as one thread fills it.
-    const std::size_t n = discs_.size();
-    degree_half_.resize(n), cursor_half_.resize(n);
-    auto count = [&](int h) {
-      std::uint32_t* const degree = h == 0 ? degree_.data() : degree_half_.data();
-      std::fill(degree, degree + n, 0u);
-      for (std::uint32_t i = h == 0 ? 0 : m / 2; i < (h == 0 ? m / 2 : m); ++i) {
-        ++degree[pairs_[i].a], ++degree[pairs_[i].b];
-      }
-    };
-    both_halves(count);
-    std::uint32_t at = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      offset_[k] = cursor_[k] = at;
-      cursor_half_[k] = at + degree_[k];
-      degree_[k] += degree_half_[k];
-      at += degree_[k];
+  auto count = [&](std::uint32_t from, std::uint32_t to, std::uint32_t* degree) {
+    for (std::uint32_t i = from; i < to; ++i) ++degree[pairs_[i].a], ++degree[pairs_[i].b];
+  };
+  auto fill = [&](std::uint32_t from, std::uint32_t to, std::uint32_t* cursor) {
+    for (std::uint32_t i = from; i < to; ++i) {
+      incident_[cursor[pairs_[i].a]++] = i;
+      incident_[cursor[pairs_[i].b]++] = i;
     }
-    auto fill = [&](int h) {
-      std::uint32_t* const cursor = h == 0 ? cursor_.data() : cursor_half_.data();
-      for (std::uint32_t i = h == 0 ? 0 : m / 2; i < (h == 0 ? m / 2 : m); ++i) {
-        incident_[cursor[pairs_[i].a]++] = i;
-        incident_[cursor[pairs_[i].b]++] = i;
-      }
-    };
-    both_halves(fill);
+  };
+  if (!live_all_ || !sharing() || m < min_parallel_copies) {
+    const std::size_t live = live_count();
+    live_range(0, live, [&](std::uint32_t k) { degree_[k] = 0; });
+    count(0, m, degree_.data());
+    std::uint32_t at = 0;
+    live_range(0, live, [&](std::uint32_t k) {
+      offset_[k] = cursor_[k] = at;  // fill cursors
+      at += degree_[k];
+    });
+    fill(0, m, cursor_.data());
     return;
   }
-  const std::size_t live = live_count();
-  live_range(0, live, [&](std::uint32_t k) { degree_[k] = 0; });
-  for (const DiscPair& p : pairs_) ++degree_[p.a], ++degree_[p.b];
+  // Each thread counts and fills the lists from its half of the pairs: a disc's list holds the
+  // first half's pairs, then the second's, in pair order as one thread fills it.
+  const std::size_t n = discs_.size();
+  degree_half_.resize(n), cursor_half_.resize(n);
+  auto counts = [&](int h) {
+    std::uint32_t* const degree = h == 0 ? degree_.data() : degree_half_.data();
+    std::fill(degree, degree + n, 0u);
+    h == 0 ? count(0, m / 2, degree) : count(m / 2, m, degree);
+  };
+  both_halves(counts);
   std::uint32_t at = 0;
-  live_range(0, live, [&](std::uint32_t k) {
-    offset_[k] = cursor_[k] = at;  // fill cursors
+  for (std::size_t k = 0; k < n; ++k) {
+    offset_[k] = cursor_[k] = at;
+    cursor_half_[k] = at + degree_[k];
+    degree_[k] += degree_half_[k];
     at += degree_[k];
-  });
-  for (std::uint32_t i = 0; i < m; ++i) {
-    incident_[cursor_[pairs_[i].a]++] = i;
-    incident_[cursor_[pairs_[i].b]++] = i;
   }
+  auto fills = [&](int h) {
+    h == 0 ? fill(0, m / 2, cursor_.data()) : fill(m / 2, m, cursor_half_.data());
+  };
+  both_halves(fills);
 }
 
 template <class Real>
