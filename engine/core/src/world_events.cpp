@@ -202,7 +202,7 @@ void detail::WorldKernel<Real>::diff_contact_events(bool touching_sorted) {
   } else {
     // Whether touching_ is sorted (it is until a destroy), by halves (each checks the pairs of
     // neighbours that start in it), the hits sorted beside the second; a touching_ out of order
-    // is sorted here, as sort_by_slots would.
+    // is then sorted here.
     const auto middle = touching_.begin() + static_cast<std::ptrdiff_t>(n / 2);
     bool sorted[2] = {true, true};
     auto sorts = [&](int half) {
@@ -214,7 +214,7 @@ void detail::WorldKernel<Real>::diff_contact_events(bool touching_sorted) {
       }
     };
     discs_->both_halves(sorts);
-    if (!sorted[0] || !sorted[1]) std::sort(touching_.begin(), touching_.end(), slot_less);
+    if (!sorted[0] || !sorted[1]) sort_by_slots(touching_);
     std::size_t mid = n / 2;  // touching_[mid - 1] before touching_[mid] (pairs may repeat)
     while (mid < n && !slot_less(touching_[mid - 1], touching_[mid])) ++mid;
     const auto cut = std::lower_bound(touching_before_.begin(), touching_before_.end(),
