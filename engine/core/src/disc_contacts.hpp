@@ -375,7 +375,9 @@ class DiscContacts {
   void gather_live_boxes(std::span<const SweptBox> boxes);
   // phase 1 (disc_events.cpp)
   void build_motions(const Tick& tick);
-  void build_motions(const Tick& tick, std::size_t begin, std::size_t end);
+  /// Discs [begin, end)'s motions and boxes; those the plane pass bounced go onto `bounced`.
+  void build_motions(const Tick& tick, std::size_t begin, std::size_t end,
+                     ScratchVector<std::uint32_t>& bounced);
   /// The swept box of a disc the plane pass bounced (p, its state at time t, s), on its free
   /// motion `free` until its first plane event and on p's motion from then on, padded by `pad`
   /// (m).
@@ -461,6 +463,10 @@ class DiscContacts {
   /// Disc k's centre at the tick's start on `axis` (0: x, 1: y), m.
   [[nodiscard]] double centre(std::uint32_t k, int axis) const;
   /// Disc k's lane in a split tick: its group's (lane_of_), or, in no pair, its own side.
+  /// Disc k's switch, at its first plane event, to the motion the plane pass bounced it onto.
+  [[nodiscard]] DiscEvent switch_of(const Tick& tick, std::uint32_t k) const {
+    return DiscEvent{tick.after[discs_[k].plane_slot].first, switch_event | k, stamp_[k], 0};
+  }
   [[nodiscard]] std::uint8_t lane(std::uint32_t k) const {
     return degree_[k] != 0 ? lane_of_[k] : (centre(k, lane_axis_) >= lane_cut_ ? 1 : 0);
   }
@@ -714,6 +720,9 @@ class DiscContacts {
   // split_contacts(), build_rows()): a snapshot copies its size only (scratch_vector.hpp).
   ScratchVector<Real> x0_, y0_, vx0_, vy0_;
   ScratchVector<DiscMotion> motion_;
+  /// The discs the plane pass bounced this tick, by build_motions()'s halves: the first
+  /// events' switches (first_events(), first_lane_events()) without a pass over every disc.
+  std::array<ScratchVector<std::uint32_t>, 2> bounced_;
   ScratchVector<SweptBox> boxes_;
   std::vector<std::uint8_t> dynamic_;
   // The candidate pairs and their CSR lists by disc: found anew by every tick before the

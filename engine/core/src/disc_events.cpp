@@ -129,18 +129,21 @@ void DiscContacts<Real>::save_spin_start(const Real* spin) {
 
 template <class Real>
 void DiscContacts<Real>::build_motions(const Tick& tick) {
+  bounced_[0].clear(), bounced_[1].clear();
   if (live_all_) {
-    halves(discs_.size(),
-           [&](std::size_t begin, std::size_t end, int) { build_motions(tick, begin, end); });
+    halves(discs_.size(), [&](std::size_t begin, std::size_t end, int half) {
+      build_motions(tick, begin, end, bounced_[half]);
+    });
     return;
   }
-  halves(live_.size(), [&](std::size_t begin, std::size_t end, int) {
-    live_range(begin, end, [&](std::uint32_t k) { build_motions(tick, k, k + 1); });
+  halves(live_.size(), [&](std::size_t begin, std::size_t end, int half) {
+    live_range(begin, end, [&](std::uint32_t k) { build_motions(tick, k, k + 1, bounced_[half]); });
   });
 }
 
 template <class Real>
-void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std::size_t end) {
+void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std::size_t end,
+                                       ScratchVector<std::uint32_t>& bounced) {
   const double dt = tick.dt;
   for (std::size_t k = begin; k < end; ++k) {
     const Disc& d = discs_[k];
@@ -166,6 +169,7 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
       // change would make energy).
       if (rolling_) ew_[k] = p.free_w;
       plane_box(p, tick.after_t[d.plane_slot], m, pad, dt, b);
+      bounced.push_back(static_cast<std::uint32_t>(k));
     } else {
       // The box of the motion over the whole tick.
       motion_extent(x0, m.ux, m.ax, dt, pad, b.min_x, b.max_x);

@@ -123,10 +123,10 @@ void DiscContacts<Real>::first_lane_events(ImpactLane& q, const Tick& tick) {
     if (lane(pairs_[i].a) == q.id && next_event(i, 0.0, tick.dt, ev)) q.heap.push_back(ev);
   }
   if (!tick.planes.empty()) {  // bounced by the plane pass
-    for (std::uint32_t k = 0; k < discs_.size(); ++k) {
-      const std::int32_t slot = discs_[k].plane_slot;
-      if (slot < 0 || !(tick.after_t[slot] >= 0.0) || lane(k) != q.id) continue;
-      q.heap.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
+    for (const auto& list : bounced_) {
+      for (const std::uint32_t k : list) {
+        if (lane(k) == q.id) q.heap.push_back(switch_of(tick, k));
+      }
     }
   }
   std::make_heap(q.heap.begin(), q.heap.end(), later_event);

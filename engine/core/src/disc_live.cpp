@@ -60,7 +60,7 @@ void DiscContacts<Real>::add_live(const Tick& tick, std::uint32_t k) {
   x0_[k] = tick.x[j], y0_[k] = tick.y[j], vx0_[k] = tick.vx[j], vy0_[k] = tick.vy[j];
   d_begin_[k] = tick.dissipated ? double(tick.dissipated[j]) : 0.0;
   if (rolling_) ew0_[k] = ew_[k] = double(tick.spin[j]);
-  build_motions(tick, k, k + 1);
+  build_motions(tick, k, k + 1, bounced_[0]);
   in_live_[k] = 1;
   if (!live_.empty() && live_.back() > k) live_sorted_ = false;
   live_.push_back(k);

@@ -35,11 +35,9 @@ void DiscContacts<Real>::first_events(const Tick& tick, double from) {
     find(0, m, heap);
   }
   if (from == 0.0 && (!tick.planes.empty() || tick.segments)) {  // bounced by the plane pass
-    live_range(0, live_count(), [&](std::uint32_t k) {
-      const std::int32_t slot = discs_[k].plane_slot;
-      if (slot < 0 || !(tick.after_t[slot] >= 0.0)) return;
-      heap.push_back(DiscEvent{tick.after[slot].first, switch_event | k, stamp_[k], 0});
-    });
+    for (const auto& list : bounced_) {
+      for (const std::uint32_t k : list) heap.push_back(switch_of(tick, k));
+    }
   }
   std::make_heap(heap.begin(), heap.end(), later_event);
 }
