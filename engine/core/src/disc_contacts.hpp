@@ -271,9 +271,14 @@ class DiscContacts {
   /// Contacts from which the resting solver splits them into two halves (split_contacts()),
   /// which run on two threads within the tick's run of the second thread.
   static constexpr std::size_t min_split_contacts = 1024;
-  /// Candidate pairs from which two threads share the first impact predictions and the
-  /// gathering, within the tick's run of the second thread.
+  /// Candidate pairs from which two threads share the first impact predictions, within the
+  /// tick's run of the second thread.
   static constexpr std::size_t min_parallel_pairs = 128;
+  /// Candidate pairs from which two threads gather the touching contacts (gather_contacts()):
+  /// each half tests its pairs, then writes its contacts after the first half's, two hand-offs
+  /// that a few hundred pairs do not pay for (a gas of 10^3 discs: about 190 pairs; see
+  /// docs/perf/contact_solver_plan.md, "The gas's hand-offs at 10^3").
+  static constexpr std::size_t min_parallel_gather = 512;
   /// Candidate pairs from which a tick's impacts may run in two lanes (disc_lanes.cpp), within
   /// the tick's run of the second thread. A gas of 10^3 discs has about 190 (measured in
   /// docs/perf/contact_solver_plan.md, "The impact lanes from 128 pairs").

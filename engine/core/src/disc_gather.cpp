@@ -155,7 +155,7 @@ void DiscContacts<Real>::gather_contacts(const Tick& tick) {
   cut_before_gather();
   const bool cut = cut_state_ == cut_made;  // each pair's part found here (split_contacts())
   bool kinematic[2] = {false, false};
-  if (sharing() && m >= min_parallel_pairs) {
+  if (sharing() && m >= min_parallel_gather) {
     // Two threads: which pairs touch, by halves of the pairs; then each half's contacts,
     // the second half's after the first's (the same contacts in the same order as one pass).
     std::size_t found[2] = {0, 0};
