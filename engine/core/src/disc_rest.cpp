@@ -58,7 +58,7 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   push_out(tick, stats);
   // The discs the passes moved: their slots' marks, by disc (build_rows() cleared every live
   // disc's; only a disc a row moves, 1/m > 0, is marked).
-  halves(live_count(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+  halves_from(live_count(), min_parallel_copies, [&](std::size_t begin, std::size_t end, int) {
     live_range(begin, end, [&](std::uint32_t k) {
       if (slot_moved_[3 + k] != 0) changed_[k] |= 2;
     });
@@ -77,7 +77,8 @@ void DiscContacts<Real>::match_warm() {
     const std::size_t first = bounds[run];
     const WarmImpulse* const from = warm_.data() + warm_bounds[run];
     const WarmImpulse* const last = warm_.data() + warm_bounds[run + 1];
-    halves(bounds[run + 1] - first, [&](std::size_t begin, std::size_t end, int /*half*/) {
+    const std::size_t n = bounds[run + 1] - first;
+    halves_from(n, min_split_contacts, [&](std::size_t begin, std::size_t end, int /*half*/) {
       if (begin == end) return;
       const WarmImpulse* w = first_warm_from(from, last, contacts_[first + begin].key());
       for (std::size_t i = first + begin; i < first + end; ++i) {

@@ -129,7 +129,7 @@ void DiscContacts<Real>::scatter_rows(double kdt) {
   parts_pass(rows);
   // Each moved disc once (its mark goes from 1 to 2), by disc: its slot started at evx_, evy_
   // (untouched since build_rows()).
-  halves(live_count(), [&](std::size_t begin, std::size_t end, int /*half*/) {
+  halves_from(live_count(), min_parallel_copies, [&](std::size_t begin, std::size_t end, int) {
     live_range(begin, end, [&](std::uint32_t k) {
       std::uint8_t& mark = slot_moved_[3 + k];
       if (mark != 1) return;
