@@ -360,7 +360,7 @@ std::size_t DiscContacts<Real>::bytes() const {
                     live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc,
                     sleepers_.indexed, sleepers_.extra, sleepers_.extras, live_boxes_,
                     live_dynamic_, degree_, degree_half_, cursor_half_, fat_half_, fat_.boxes,
-                    fat_.pairs, segments_near_) +
+                    fat_.pairs, segments_near_, bounced_[0], bounced_[1]) +
          lanes_[0].bytes() + lanes_[1].bytes();
 }
 
