@@ -269,7 +269,8 @@ class DiscContacts {
   [[nodiscard]] std::size_t bytes() const;
 
   /// Contacts from which the resting solver splits them into two halves (split_contacts()),
-  /// which run on two threads within the tick's run of the second thread.
+  /// which run on two threads within the tick's run of the second thread; and from which two
+  /// threads match the contacts' warm impulses by halves (match_warm()).
   static constexpr std::size_t min_split_contacts = 1024;
   /// Candidate pairs from which two threads share the first impact predictions, within the
   /// tick's run of the second thread.
@@ -284,8 +285,8 @@ class DiscContacts {
   /// docs/perf/contact_solver_plan.md, "The impact lanes from 128 pairs").
   static constexpr std::size_t min_lane_pairs = 128;
   /// Items from which a pass that only copies each one's values (the tick's start: save_start(),
-  /// the plane contacts' start) shares them with the second thread: below, the hand-off costs
-  /// about what the half saves.
+  /// the plane contacts' start) or marks (the discs the resting rows moved) shares them with
+  /// the second thread: below, the hand-off costs about what the half saves.
   static constexpr std::size_t min_parallel_copies = 8192;
   /// Discs from which a tick with two threads shares its passes with the second thread,
   /// which spins between them (SecondThread::open) rather than waking for each; below, every
@@ -467,11 +468,11 @@ class DiscContacts {
   bool assign_lanes();
   /// Disc k's centre at the tick's start on `axis` (0: x, 1: y), m.
   [[nodiscard]] double centre(std::uint32_t k, int axis) const;
-  /// Disc k's lane in a split tick: its group's (lane_of_), or, in no pair, its own side.
   /// Disc k's switch, at its first plane event, to the motion the plane pass bounced it onto.
   [[nodiscard]] DiscEvent switch_of(const Tick& tick, std::uint32_t k) const {
     return DiscEvent{tick.after[discs_[k].plane_slot].first, switch_event | k, stamp_[k], 0};
   }
+  /// Disc k's lane in a split tick: its group's (lane_of_), or, in no pair, its own side.
   [[nodiscard]] std::uint8_t lane(std::uint32_t k) const {
     return degree_[k] != 0 ? lane_of_[k] : (centre(k, lane_axis_) >= lane_cut_ ? 1 : 0);
   }
