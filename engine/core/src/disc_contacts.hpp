@@ -468,6 +468,14 @@ class DiscContacts {
   bool assign_lanes();
   /// Disc k's centre at the tick's start on `axis` (0: x, 1: y), m.
   [[nodiscard]] double centre(std::uint32_t k, int axis) const;
+  /// f(k) for each disc k the plane pass bounced this tick (bounced_, as build_motions() listed
+  /// them).
+  template <class F>
+  void each_bounced(F&& f) const {
+    for (const auto& list : bounced_) {
+      for (const std::uint32_t k : list) f(k);
+    }
+  }
   /// Disc k's switch, at its first plane event, to the motion the plane pass bounced it onto.
   [[nodiscard]] DiscEvent switch_of(const Tick& tick, std::uint32_t k) const {
     return DiscEvent{tick.after[discs_[k].plane_slot].first, switch_event | k, stamp_[k], 0};

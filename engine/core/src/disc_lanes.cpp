@@ -123,11 +123,9 @@ void DiscContacts<Real>::first_lane_events(ImpactLane& q, const Tick& tick) {
     if (lane(pairs_[i].a) == q.id && next_event(i, 0.0, tick.dt, ev)) q.heap.push_back(ev);
   }
   if (!tick.planes.empty()) {  // bounced by the plane pass
-    for (const auto& list : bounced_) {
-      for (const std::uint32_t k : list) {
-        if (lane(k) == q.id) q.heap.push_back(switch_of(tick, k));
-      }
-    }
+    each_bounced([&](std::uint32_t k) {
+      if (lane(k) == q.id) q.heap.push_back(switch_of(tick, k));
+    });
   }
   std::make_heap(q.heap.begin(), q.heap.end(), later_event);
 }

@@ -35,9 +35,7 @@ void DiscContacts<Real>::first_events(const Tick& tick, double from) {
     find(0, m, heap);
   }
   if (from == 0.0 && (!tick.planes.empty() || tick.segments)) {  // bounced by the plane pass
-    for (const auto& list : bounced_) {
-      for (const std::uint32_t k : list) heap.push_back(switch_of(tick, k));
-    }
+    each_bounced([&](std::uint32_t k) { heap.push_back(switch_of(tick, k)); });
   }
   std::make_heap(heap.begin(), heap.end(), later_event);
 }
