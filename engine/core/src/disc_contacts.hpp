@@ -636,13 +636,14 @@ class DiscContacts {
   /// same run of warm_), 0 for a new contact or one that carried no normal impulse.
   void match_warm();
   // velocity iterations on rows (disc_rows.cpp)
-  /// rows_ from contacts_ in order_'s order, with the solver velocities of their discs.
+  /// rows_ from contacts_ in order_'s order, with the solver velocities of their discs, and
+  /// each row's warm start: last tick's impulses (the contact's λ_n, λ_t) applied to its discs'
+  /// velocities as the row is made, in row order within each part.
   void build_rows(const Tick& tick);
   /// Writes the velocities back and each contact's impulses to warm_ (for the next tick), and
   /// moves each disc an impulse changed by κ dt times its velocity's change (kdt = κ dt, s):
   /// the contact forces over the tick.
   void scatter_rows(double kdt);
-  void warm_start();
   void solve_velocities(ContactStats& stats);
   /// What a sweep's rows need beyond impulses on velocities (row_kind_): the work of moving
   /// kinematic partners, the turn of rolling discs. Worlds without them pay for neither.

@@ -51,8 +51,7 @@ void DiscContacts<Real>::solve_resting(const Tick& tick, ContactStats& stats) {
   const auto& p = part_start_;
   team_on_ = sharing() && p[1] > p[0] && p[2] > p[1];
   match_warm();
-  build_rows(tick);
-  warm_start();
+  build_rows(tick);  // and the warm start
   solve_velocities(stats);
   scatter_rows(tick.kappa * tick.dt);
   push_out(tick, stats);
@@ -110,22 +109,6 @@ void DiscContacts<Real>::with_row_kind(F&& f) {
       f(std::integral_constant<int, kinematic_rows | rolling_rows>{});
       break;
   }
-}
-
-template <class Real>
-void DiscContacts<Real>::warm_start() {
-  auto range = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
-    with_row_kind([&](auto kind) {
-      for (std::uint32_t i = begin; i < end; ++i) {
-        const SolveRow& r = rows_[i];
-        if (r.lambda_n == 0.0 && r.lambda_t == 0.0) continue;
-        row_moved_[i] = 1;
-        push_row<kind()>(i, r, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
-        if constexpr ((kind() & rolling_rows) != 0) turn(i, r.lambda_t);
-      }
-    });
-  };
-  parts_pass(range);
 }
 
 // One row's normal and friction impulses, a Gauss–Seidel step: no approach at the end of the

@@ -7,8 +7,9 @@
 // segment is the velocity-0 slot of the row's part (slots 0, 1, 2); a moving kinematic
 // partner gets a slot of its own per row, past the discs'. No slot is written by both threads,
 // and the two halves' rows are built and scattered on the two threads (on one when a row has a
-// moving kinematic partner: its slot is appended). The push-out's rows hold what it needs of a
-// contact and nothing else, in the same order.
+// moving kinematic partner: its slot is appended). Each row's warm start is applied as the row
+// is made. The push-out's rows hold what it needs of a contact and nothing else, in the same
+// order.
 #include <cassert>
 
 #include "disc_contacts.hpp"
@@ -30,9 +31,26 @@ void DiscContacts<Real>::build_rows(const Tick& tick) {
     sv_[s] = SolveVelocity{}, slot_moved_[s] = 0;
     if (rolling_) sw_[s] = 0.0;
   }
-  // Every live disc's mark cleared, in disc order: the passes after the sweeps find the discs
-  // they moved by disc (scatter_rows(), solve_resting()), not through the rows again.
-  live_range(0, live_count(), [&](std::uint32_t k) { slot_moved_[3 + k] = 0; });
+  // Each moving disc's slot set to its velocity as the tick left it, before any row's warm
+  // start adds to it, and every live disc's mark cleared: the passes after the sweeps find the
+  // discs they moved by disc (scatter_rows(), solve_resting()), not through the rows again.
+  // Where the contacts are at least half as many as the discs (a pile) the slots are set by
+  // disc, in disc order, else (a gas, where few discs touch) by contact.
+  auto set_slot = [&](std::uint32_t k) {
+    sv_[3 + k] = {evx_[k], evy_[k]};
+    if (rolling_) sw_[3 + k] = ew_[k];
+  };
+  if (2 * m >= live_count()) {
+    halves_from(live_count(), min_parallel_copies, [&](std::size_t begin, std::size_t end, int) {
+      live_range(begin, end, [&](std::uint32_t k) { slot_moved_[3 + k] = 0, set_slot(k); });
+    });
+  } else {
+    live_range(0, live_count(), [&](std::uint32_t k) { slot_moved_[3 + k] = 0; });
+    for (const RestContact& c : contacts_) {
+      if (c.inv_a > 0.0) set_slot(c.a);
+      if (c.b < n && c.inv_b > 0.0) set_slot(c.b);
+    }
+  }
   // A moving kinematic partner's slot: its velocity for the tick (appended: one thread only).
   auto fixed = [&](double vx, double vy, double w) {
     sv_.push_back({vx, vy});
@@ -44,54 +62,57 @@ void DiscContacts<Real>::build_rows(const Tick& tick) {
   const auto& p = part_start_;
   auto fill = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
     const std::uint32_t part = begin >= p[2] ? 2 : begin >= p[1] ? 1 : 0;
-    // A moving disc's slot holds its velocity as the tick left it, written by each of its rows
-    // (the same values; only the discs in rows are touched, however many discs there are).
-    auto slot = [&](std::uint32_t k, bool moves, bool kinematic) {
+    // A moving disc's slot is its own (set above), a still partner's its part's.
+    auto slot = [&](std::uint32_t k, bool moves, bool kinematic) -> std::uint32_t {
       if (kinematic) return fixed(evx_[k], evy_[k], spin(k));
-      if (!moves) return part;
-      const std::uint32_t s = 3 + k;
-      sv_[s] = {evx_[k], evy_[k]};
-      if (rolling_) sw_[s] = ew_[k];
-      return s;
+      return moves ? 3 + k : part;
     };
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const RestContact& c = contacts_[order_[i]];
-      SolveRow& r = rows_[i];
-      // Which partner is a moving kinematic one: asked only when some contact has one.
-      const bool pair = c.b < n;
-      const bool kinematic_a = any_kinematic && moving_kinematic(c.a);
-      const bool kinematic_b = any_kinematic && pair && moving_kinematic(c.b);
-      r.a = slot(c.a, c.inv_a > 0.0, kinematic_a);
-      if (pair) {
-        r.b = slot(c.b, c.inv_b > 0.0, kinematic_b);
-      } else if (const Vec2 u = any_kinematic ? wall_velocity(tick, c) : Vec2{};
-                 u.x != 0.0 || u.y != 0.0) {
-        r.b = fixed(u.x, u.y, 0.0);  // a moving segment
-      } else {
-        r.b = part;  // a plane or a still segment
+    with_row_kind([&](auto kind) {
+      for (std::uint32_t i = begin; i < end; ++i) {
+        const RestContact& c = contacts_[order_[i]];
+        SolveRow& r = rows_[i];
+        // Which partner is a moving kinematic one: asked only when some contact has one.
+        const bool pair = c.b < n;
+        const bool kinematic_a = any_kinematic && moving_kinematic(c.a);
+        const bool kinematic_b = any_kinematic && pair && moving_kinematic(c.b);
+        r.a = slot(c.a, c.inv_a > 0.0, kinematic_a);
+        if (pair) {
+          r.b = slot(c.b, c.inv_b > 0.0, kinematic_b);
+        } else if (const Vec2 u = any_kinematic ? wall_velocity(tick, c) : Vec2{};
+                   u.x != 0.0 || u.y != 0.0) {
+          r.b = fixed(u.x, u.y, 0.0);  // a moving segment
+        } else {
+          r.b = part;  // a plane or a still segment
+        }
+        const double inv_a = c.inv_a, inv_b = pair ? c.inv_b : 0.0;
+        // The effective masses as the gather made them: 1 / (1/m_a + 1/m_b), and along the
+        // tangent with the rolling discs' turns.
+        const double mass = 1.0 / (inv_a + inv_b);
+        if (rolling_) {
+          RollRow t = roll_row(c);
+          t.mass_t = 1.0 / (pair ? inv_a + inv_b + t.arm_a * t.turn_a + t.arm_b * t.turn_b
+                                 : inv_a + t.arm_a * t.turn_a);
+          roll_rows_[i] = t;
+        }
+        r.nx = c.nx, r.ny = c.ny, r.mass = mass, r.friction = c.friction;
+        r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
+        r.inv_a = inv_a, r.inv_b = inv_b;
+        const double inv = inv_a + inv_b;
+        push_rows_[i] = PushRow{.a = c.a,
+                                .b = c.b,
+                                .radii = c.radii,
+                                .r_min = c.r_min,
+                                .w_a = inv_a / inv,
+                                .w_b = inv_b / inv};
+        // The warm start: last tick's impulses on the slots, row by row in each part, while the
+        // row is at hand (a pass of its own read every row again).
+        row_moved_[i] = 0;
+        if (r.lambda_n == 0.0 && r.lambda_t == 0.0) continue;
+        row_moved_[i] = 1;
+        push_row<kind()>(i, r, sv_[r.a], sv_[r.b], r.lambda_n, r.lambda_t);
+        if constexpr ((kind() & rolling_rows) != 0) turn(i, r.lambda_t);
       }
-      const double inv_a = c.inv_a, inv_b = pair ? c.inv_b : 0.0;
-      // The effective masses as the gather made them: 1 / (1/m_a + 1/m_b), and along the
-      // tangent with the rolling discs' turns.
-      const double mass = 1.0 / (inv_a + inv_b);
-      if (rolling_) {
-        RollRow t = roll_row(c);
-        t.mass_t = 1.0 / (pair ? inv_a + inv_b + t.arm_a * t.turn_a + t.arm_b * t.turn_b
-                               : inv_a + t.arm_a * t.turn_a);
-        roll_rows_[i] = t;
-      }
-      r.nx = c.nx, r.ny = c.ny, r.mass = mass, r.friction = c.friction;
-      r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
-      r.inv_a = inv_a, r.inv_b = inv_b;
-      row_moved_[i] = 0;
-      const double inv = inv_a + inv_b;
-      push_rows_[i] = PushRow{.a = c.a,
-                              .b = c.b,
-                              .radii = c.radii,
-                              .r_min = c.r_min,
-                              .w_a = inv_a / inv,
-                              .w_b = inv_b / inv};
-    }
+    });
   };
   if (kinematic_contacts_) {  // rows that append slots: on this thread, part by part
     for (int part = 0; part < 3; ++part) fill(p[part], p[part + 1], 0);
