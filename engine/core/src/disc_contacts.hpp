@@ -640,6 +640,10 @@ class DiscContacts {
   /// each row's warm start: last tick's impulses (the contact's λ_n, λ_t) applied to its discs'
   /// velocities as the row is made, in row order within each part.
   void build_rows(const Tick& tick);
+  /// Each moving disc's slot (sv_, sw_) set to its velocity as the tick left it, before any
+  /// row's warm start adds to it, and every live disc's mark (slot_moved_) cleared: the passes
+  /// after the sweeps find the discs they moved by disc (scatter_rows(), solve_resting()).
+  void set_slots();
   /// Writes the velocities back and each contact's impulses to warm_ (for the next tick), and
   /// moves each disc an impulse changed by κ dt times its velocity's change (kdt = κ dt, s):
   /// the contact forces over the tick.

@@ -17,23 +17,8 @@
 namespace fixstep::detail {
 
 template <class Real>
-void DiscContacts<Real>::build_rows(const Tick& tick) {
+void DiscContacts<Real>::set_slots() {
   const std::size_t n = discs_.size(), m = contacts_.size();
-  rows_.resize(m);
-  push_rows_.resize(m);
-  row_moved_.resize(m);
-  roll_rows_.resize(rolling_ ? m : 0);
-  row_kind_ = (rolling_ ? rolling_rows : 0) | (kinematic_contacts_ ? kinematic_rows : 0);
-  sv_.resize(3 + n);
-  sw_.resize(rolling_ ? 3 + n : 0);
-  slot_moved_.resize(3 + n);
-  for (std::size_t s = 0; s < 3; ++s) {  // parts 0, 1 and across the cut: a fixed velocity 0
-    sv_[s] = SolveVelocity{}, slot_moved_[s] = 0;
-    if (rolling_) sw_[s] = 0.0;
-  }
-  // Each moving disc's slot set to its velocity as the tick left it, before any row's warm
-  // start adds to it, and every live disc's mark cleared: the passes after the sweeps find the
-  // discs they moved by disc (scatter_rows(), solve_resting()), not through the rows again.
   // Where the contacts are at least half as many as the discs (a pile) the slots are set by
   // disc, in disc order, else (a gas, where few discs touch) by contact.
   auto set_slot = [&](std::uint32_t k) {
@@ -51,6 +36,24 @@ void DiscContacts<Real>::build_rows(const Tick& tick) {
       if (c.b < n && c.inv_b > 0.0) set_slot(c.b);
     }
   }
+}
+
+template <class Real>
+void DiscContacts<Real>::build_rows(const Tick& tick) {
+  const std::size_t n = discs_.size(), m = contacts_.size();
+  rows_.resize(m);
+  push_rows_.resize(m);
+  row_moved_.resize(m);
+  roll_rows_.resize(rolling_ ? m : 0);
+  row_kind_ = (rolling_ ? rolling_rows : 0) | (kinematic_contacts_ ? kinematic_rows : 0);
+  sv_.resize(3 + n);
+  sw_.resize(rolling_ ? 3 + n : 0);
+  slot_moved_.resize(3 + n);
+  for (std::size_t s = 0; s < 3; ++s) {  // parts 0, 1 and across the cut: a fixed velocity 0
+    sv_[s] = SolveVelocity{}, slot_moved_[s] = 0;
+    if (rolling_) sw_[s] = 0.0;
+  }
+  set_slots();
   // A moving kinematic partner's slot: its velocity for the tick (appended: one thread only).
   auto fixed = [&](double vx, double vy, double w) {
     sv_.push_back({vx, vy});
@@ -62,7 +65,7 @@ void DiscContacts<Real>::build_rows(const Tick& tick) {
   const auto& p = part_start_;
   auto fill = [&](std::uint32_t begin, std::uint32_t end, int /*thread*/) {
     const std::uint32_t part = begin >= p[2] ? 2 : begin >= p[1] ? 1 : 0;
-    // A moving disc's slot is its own (set above), a still partner's its part's.
+    // A moving disc's slot is its own (set_slots()), a still partner's its part's.
     auto slot = [&](std::uint32_t k, bool moves, bool kinematic) -> std::uint32_t {
       if (kinematic) return fixed(evx_[k], evy_[k], spin(k));
       return moves ? 3 + k : part;
