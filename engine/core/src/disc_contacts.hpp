@@ -644,6 +644,9 @@ class DiscContacts {
   /// row's warm start adds to it, and every live disc's mark (slot_moved_) cleared: the passes
   /// after the sweeps find the discs they moved by disc (scatter_rows(), solve_resting()).
   void set_slots();
+  /// Row i of rows_ and push_rows_ (and of roll_rows_ with rolling discs) from contact c, its
+  /// two bodies at the solver's slots a and b.
+  void fill_row(std::uint32_t i, const RestContact& c, std::uint32_t a, std::uint32_t b);
   /// Writes the velocities back and each contact's impulses to warm_ (for the next tick), and
   /// moves each disc an impulse changed by κ dt times its velocity's change (kdt = κ dt, s):
   /// the contact forces over the tick.

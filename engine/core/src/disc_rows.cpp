@@ -38,6 +38,36 @@ void DiscContacts<Real>::set_slots() {
   }
 }
 
+// Inlined into build_rows()' loop, as push_row() into the sweeps'.
+template <class Real>
+[[gnu::always_inline]] inline void DiscContacts<Real>::fill_row(std::uint32_t i,
+                                                                const RestContact& c,
+                                                                std::uint32_t a, std::uint32_t b) {
+  const bool pair = c.b < discs_.size();
+  const double inv_a = c.inv_a, inv_b = pair ? c.inv_b : 0.0;
+  // The effective masses as the gather made them: 1 / (1/m_a + 1/m_b), and along the tangent
+  // with the rolling discs' turns.
+  const double mass = 1.0 / (inv_a + inv_b);
+  if (rolling_) {
+    RollRow t = roll_row(c);
+    t.mass_t = 1.0 / (pair ? inv_a + inv_b + t.arm_a * t.turn_a + t.arm_b * t.turn_b
+                           : inv_a + t.arm_a * t.turn_a);
+    roll_rows_[i] = t;
+  }
+  SolveRow& r = rows_[i];
+  r.a = a, r.b = b;
+  r.nx = c.nx, r.ny = c.ny, r.mass = mass, r.friction = c.friction;
+  r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
+  r.inv_a = inv_a, r.inv_b = inv_b;
+  const double inv = inv_a + inv_b;
+  push_rows_[i] = PushRow{.a = c.a,
+                          .b = c.b,
+                          .radii = c.radii,
+                          .r_min = c.r_min,
+                          .w_a = inv_a / inv,
+                          .w_b = inv_b / inv};
+}
+
 template <class Real>
 void DiscContacts<Real>::build_rows(const Tick& tick) {
   const std::size_t n = discs_.size(), m = contacts_.size();
@@ -73,40 +103,20 @@ void DiscContacts<Real>::build_rows(const Tick& tick) {
     with_row_kind([&](auto kind) {
       for (std::uint32_t i = begin; i < end; ++i) {
         const RestContact& c = contacts_[order_[i]];
-        SolveRow& r = rows_[i];
         // Which partner is a moving kinematic one: asked only when some contact has one.
         const bool pair = c.b < n;
         const bool kinematic_a = any_kinematic && moving_kinematic(c.a);
         const bool kinematic_b = any_kinematic && pair && moving_kinematic(c.b);
-        r.a = slot(c.a, c.inv_a > 0.0, kinematic_a);
+        const std::uint32_t a = slot(c.a, c.inv_a > 0.0, kinematic_a);
+        std::uint32_t b = part;  // a plane or a still segment
         if (pair) {
-          r.b = slot(c.b, c.inv_b > 0.0, kinematic_b);
+          b = slot(c.b, c.inv_b > 0.0, kinematic_b);
         } else if (const Vec2 u = any_kinematic ? wall_velocity(tick, c) : Vec2{};
                    u.x != 0.0 || u.y != 0.0) {
-          r.b = fixed(u.x, u.y, 0.0);  // a moving segment
-        } else {
-          r.b = part;  // a plane or a still segment
+          b = fixed(u.x, u.y, 0.0);  // a moving segment
         }
-        const double inv_a = c.inv_a, inv_b = pair ? c.inv_b : 0.0;
-        // The effective masses as the gather made them: 1 / (1/m_a + 1/m_b), and along the
-        // tangent with the rolling discs' turns.
-        const double mass = 1.0 / (inv_a + inv_b);
-        if (rolling_) {
-          RollRow t = roll_row(c);
-          t.mass_t = 1.0 / (pair ? inv_a + inv_b + t.arm_a * t.turn_a + t.arm_b * t.turn_b
-                                 : inv_a + t.arm_a * t.turn_a);
-          roll_rows_[i] = t;
-        }
-        r.nx = c.nx, r.ny = c.ny, r.mass = mass, r.friction = c.friction;
-        r.lambda_n = c.lambda_n, r.lambda_t = c.lambda_t;
-        r.inv_a = inv_a, r.inv_b = inv_b;
-        const double inv = inv_a + inv_b;
-        push_rows_[i] = PushRow{.a = c.a,
-                                .b = c.b,
-                                .radii = c.radii,
-                                .r_min = c.r_min,
-                                .w_a = inv_a / inv,
-                                .w_b = inv_b / inv};
+        fill_row(i, c, a, b);
+        const SolveRow& r = rows_[i];
         // The warm start: last tick's impulses on the slots, row by row in each part, while the
         // row is at hand (a pass of its own read every row again).
         row_moved_[i] = 0;
