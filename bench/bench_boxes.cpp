@@ -8,10 +8,10 @@
 //   box2d3     Box2D v3.1.1 and v3.2 (where bench/box2d3.cmake built them), b2World_Step(dt, 4)
 //              on 1 and 2 workers (boxes_box2d3.cpp).
 // Every case is built and warmed up untimed, then the same ticks are timed for every engine (5
-// repetitions of 4 ticks, of 20 identical worlds in turn for the pyramid and the tower; the
-// median); after them the deepest overlap is measured on every engine's poses the same way,
-// beside each engine's own from its manifolds. The report (stdout; with --report DIR also
-// DIR/boxes.md) gives ns per body-step, the overlaps and the speed ratios.
+// repetitions of 4 ticks, the median); after them the deepest overlap is measured on every
+// engine's poses the same way, beside each engine's own from its manifolds. The report (stdout;
+// with
+// --report DIR also DIR/boxes.md) gives ns per body-step, the overlaps and the speed ratios.
 //
 //   build/bench/bin/bench_boxes --report docs/perf
 //   build/bench/bin/bench_boxes --quick   (the pile of 10³: a smoke run, 1 repetition)
@@ -32,7 +32,6 @@
 #include "boxes.hpp"
 #include "fixstep/capture/capture.hpp"
 #include "median_run.hpp"
-#include "world_copies.hpp"
 
 using namespace boxes;
 
@@ -143,35 +142,22 @@ int run_checks(const std::optional<std::string>& fixstep_problem) {
 
 // --- benchmarks -----------------------------------------------------------------------------
 
-/// Repetitions of a case, each of `ticks_per_repetition` ticks of each copy.
-constexpr int ticks_per_repetition = 4;
-
-/// The case being timed, built and warmed up once for all its repetitions: `copies()`
-/// identical worlds of a small scene (the pyramid, the tower), each through the same ticks,
-/// one after another within a repetition (world_copies.hpp); one of the pile.
+/// The case being timed, built and warmed up once for all its repetitions.
 struct Live {
   std::string id;
   BoxScene scene;
-  std::vector<std::unique_ptr<BoxStepper>> copies;
-  std::int64_t ticks = 0;  ///< each copy's
+  std::unique_ptr<BoxStepper> stepper;
+  std::int64_t ticks = 0;
 };
-
-/// The identical worlds stepped of a scene of `n` boxes: enough that a repetition of 4 ticks
-/// of the 210-box pyramid lasts some milliseconds on any engine.
-int copies(std::size_t n) {
-  return n < 1000 ? 20 : 1;
-}
 
 Live& live(BoxSceneKind kind, const std::string& key, std::size_t n) {
   static Live current;
   const std::string id = fmt::format("{}/{}/{}", box_scene_name(kind), key, n);
   if (current.id != id) {
-    current.copies.clear();  // the previous engine's memory first
+    current.stepper.reset();  // the previous engine's memory first
     current.scene = make_box_scene(kind, n);
-    for (int k = 0; k < copies(n); ++k) {
-      current.copies.push_back(make_box_stepper(key, current.scene));
-      for (int t = 0; t < current.scene.warmup; ++t) current.copies.back()->step();
-    }
+    current.stepper = make_box_stepper(key, current.scene);
+    for (int t = 0; t < current.scene.warmup; ++t) current.stepper->step();
     current.ticks = current.scene.warmup;
     current.id = id;
   }
@@ -180,20 +166,22 @@ Live& live(BoxSceneKind kind, const std::string& key, std::size_t n) {
 
 void bm_step(benchmark::State& st, BoxSceneKind kind, const std::string& key) {
   Live& c = live(kind, key, static_cast<std::size_t>(st.range(0)));
-  fixstep::bench::step_copies(st, c.copies, ticks_per_repetition);
-  c.ticks += static_cast<std::int64_t>(st.iterations() / std::int64_t(c.copies.size()));
+  for (auto _ : st) {
+    c.stepper->step();
+    benchmark::ClobberMemory();
+  }
+  c.ticks += static_cast<std::int64_t>(st.iterations());
   const double n = double(c.scene.start.size());
   std::vector<Pose> x;
-  const BoxStepper& stepper = *c.copies.back();
-  stepper.poses(x);
+  c.stepper->poses(x);
   const BoxQuality q = measure_boxes(c.scene, x);
   st.counters = {{"bodies", n},
                  {"ticks", double(c.ticks)},
                  {"overlap", q.box_overlap},
                  {"static", q.static_overlap},
-                 {"own", stepper.own_overlap()},
+                 {"own", c.stepper->own_overlap()},
                  {"height", q.height},
-                 {"threads", double(stepper.threads())}};
+                 {"threads", double(c.stepper->threads())}};
 }
 
 struct Options {
@@ -205,6 +193,8 @@ std::vector<std::int64_t> pile_sizes(const Options& o) {
   if (o.quick) return {1000};
   return {10'000};
 }
+constexpr int ticks_per_repetition = 4;
+
 void register_all(const Options& o, bool fixstep) {
   std::vector<std::pair<BoxSceneKind, std::int64_t>> cases = {
       {BoxSceneKind::pyramid, std::int64_t(make_pyramid().start.size())},
@@ -217,10 +207,7 @@ void register_all(const Options& o, bool fixstep) {
       auto* b = benchmark::RegisterBenchmark(
           fmt::format("{}/{}", box_scene_name(kind), key).c_str(),
           [kind, key](benchmark::State& st) { bm_step(st, kind, key); });
-      b->Arg(n)
-          ->Unit(benchmark::kMicrosecond)
-          ->UseRealTime()
-          ->Iterations(ticks_per_repetition * copies(std::size_t(n)));
+      b->Arg(n)->Unit(benchmark::kMicrosecond)->UseRealTime()->Iterations(ticks_per_repetition);
       if (!o.reps_given && !o.quick) b->Repetitions(5)->ReportAggregatesOnly(true);
     }
   }

@@ -39,6 +39,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -47,7 +48,6 @@
 #include "fixstep/capture/capture.hpp"
 #include "median.hpp"
 #include "median_run.hpp"
-#include "world_copies.hpp"
 
 using namespace discs;
 using fixstep::Vec2;
@@ -218,14 +218,30 @@ std::pair<const Scene&, Live&> live(SceneKind kind, const std::string& key, std:
   return {c.scene, l};
 }
 
-/// One round of `key`'s ticks, of each copy in turn (step_copies()); after the last round (`last`),
-/// the last copy's overlaps and energy too. Only then: measuring reads every disc, and the next
-/// round's first tick would find the caches full of it (an asleep world's tick, a microsecond
-/// otherwise, took 20-45).
+/// Untimed, before the next copy's ticks: 3 ms, so that the last copy's helper threads have
+/// stopped spinning (a Box2D v3 helper spins up to about a millisecond before it sleeps,
+/// fixstep's worker 50 µs) and do not take a core from the next copy's first tick.
+void between_copies(benchmark::State& st) {
+  st.PauseTiming();
+  std::this_thread::sleep_for(std::chrono::milliseconds(3));
+  st.ResumeTiming();
+}
+
+/// One round of `key`'s ticks: iteration i steps copy i / ticks_per_round (cycling when Google
+/// Benchmark chooses the iterations); after the last round (`last`), the last copy's overlaps
+/// and energy too. Only then: measuring reads every disc, and the next round's first tick
+/// would find the caches full of it (an asleep world's tick, a microsecond otherwise, took
+/// 20-45).
 void bm_step(benchmark::State& st, SceneKind kind, const std::string& key, bool last) {
   const auto [scene, c] = live(kind, key, static_cast<std::size_t>(st.range(0)));
-  fixstep::bench::step_copies(st, c.copies, ticks_per_round);
-  c.ticks += static_cast<std::int64_t>(st.iterations() / std::int64_t(c.copies.size()));
+  const std::size_t k = c.copies.size();
+  std::size_t i = 0;
+  for (auto _ : st) {
+    if (i > 0 && i % ticks_per_round == 0) between_copies(st);
+    c.copies[(i++ / ticks_per_round) % k]->step();
+    benchmark::ClobberMemory();
+  }
+  c.ticks += static_cast<std::int64_t>(st.iterations() / std::int64_t(k));
   const double n = double(scene.position.size()), r = scene.radius;
   st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * std::int64_t(n));
   const Stepper& stepper = *c.copies.back();
