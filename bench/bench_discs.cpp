@@ -13,12 +13,11 @@
 //   box2d3     Box2D v3.1.1 and v3.2 (where bench/box2d3.cmake built them), b2World_Step(dt, 4)
 //              on 1 and 2 workers (discs_box2d3.cpp).
 // Every case is built and warmed up untimed, then the same ticks are timed for every engine and
-// every N (5 rounds of 4 ticks; at N = 10³ of 12 identical worlds in turn within a round; the
-// contenders at one N taking their rounds in turn, but for the asleep worlds'; the median;
-// --benchmark_min_time makes Google Benchmark choose the ticks instead); after the last, every
-// engine's deepest overlap and kinetic energy are measured on its state the same way. The
-// report (stdout; with --report DIR also DIR/discs.md) gives ns per body-step, the overlaps,
-// fixstep's contact statistics, Box2D's broadphase share and the
+// every N (5 rounds of 4 ticks, the contenders at one N taking their rounds in turn, but for
+// the asleep worlds', the median; --benchmark_min_time makes Google Benchmark choose the ticks
+// instead); after the last, every engine's deepest overlap and kinetic energy are measured on
+// its state the same way. The report (stdout; with --report DIR also DIR/discs.md) gives ns per
+// body-step, the overlaps, fixstep's contact statistics, Box2D's broadphase share and the
 // targets as ratios measured side by side.
 //
 //   build/bench/bin/bench_discs --report docs/perf
@@ -39,7 +38,6 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -164,34 +162,15 @@ int run_checks(bool full) {
 
 // --- benchmarks -----------------------------------------------------------------------------
 
-/// Whether `key` steps a world asleep: its rounds run one after another, not in turn with the
-/// others'. Its tick takes microseconds, which in turn would measure the caches the other
-/// contenders left: the constant an asleep world costs a tick in steady state is the figure.
-bool asleep(const std::string& k) {
-  return k.find("_sleep") != std::string::npos;
-}
-
-/// The ticks of one world in a round (rounds()).
-constexpr int ticks_per_round = 4;
-
 /// The contenders at one scene and N, each built and warmed up once on its first round, then
 /// stepped by its rounds in turn with the others' (a 10⁵-disc world takes seconds to build and
 /// warm up, and a settled pile stays settled). Interleaved rounds let a slow span of the
 /// machine (on a shared VM: the host's other load, which two threads feel most) fall on every
-/// contender alike, not on one case's consecutive repetitions. At N = 10³ each contender steps
-/// `copies()` identical worlds, each through the same ticks, one after another within a round
-/// (copy 0's 4 ticks, then copy 1's, ...): a round of one 10³ world lasts about a millisecond,
-/// where one pause of the machine moved a round's figure by a third.
+/// contender alike, not on one case's consecutive repetitions.
 struct Live {
-  std::vector<std::unique_ptr<Stepper>> copies;
-  std::int64_t ticks = 0;  ///< each copy's
+  std::unique_ptr<Stepper> stepper;
+  std::int64_t ticks = 0;
 };
-
-/// The identical worlds contender `key` steps at N (above): enough that a round of a pile
-/// lasts some milliseconds on any engine; one asleep world, whose steady cost is the figure.
-int copies(const std::string& key, std::int64_t n) {
-  return n <= 1000 && !asleep(key) ? 12 : 1;
-}
 
 struct Contenders {
   std::string group;  // "<scene>/<N>"
@@ -208,44 +187,27 @@ std::pair<const Scene&, Live&> live(SceneKind kind, const std::string& key, std:
     c.group = group;
   }
   Live& l = c.live[key];
-  if (l.copies.empty()) {
-    for (int k = 0; k < copies(key, std::int64_t(n)); ++k) {
-      l.copies.push_back(make_stepper(key, c.scene));
-      for (int t = 0; t < c.scene.warmup; ++t) l.copies.back()->step();
-    }
+  if (!l.stepper) {
+    l.stepper = make_stepper(key, c.scene);
+    for (int t = 0; t < c.scene.warmup; ++t) l.stepper->step();
     l.ticks = c.scene.warmup;
   }
   return {c.scene, l};
 }
 
-/// Untimed, before the next copy's ticks: 3 ms, so that the last copy's helper threads have
-/// stopped spinning (a Box2D v3 helper spins up to about a millisecond before it sleeps,
-/// fixstep's worker 50 µs) and do not take a core from the next copy's first tick.
-void between_copies(benchmark::State& st) {
-  st.PauseTiming();
-  std::this_thread::sleep_for(std::chrono::milliseconds(3));
-  st.ResumeTiming();
-}
-
-/// One round of `key`'s ticks: iteration i steps copy i / ticks_per_round (cycling when Google
-/// Benchmark chooses the iterations); after the last round (`last`), the last copy's overlaps
-/// and energy too. Only then: measuring reads every disc, and the next round's first tick
-/// would find the caches full of it (an asleep world's tick, a microsecond otherwise, took
-/// 20-45).
+/// One round of `key`'s ticks; after the last (`last`), its state's overlaps and energy too.
+/// Only then: measuring reads every disc, and the next round's first tick would find the caches
+/// full of it (an asleep world's tick, a microsecond otherwise, took 20-45).
 void bm_step(benchmark::State& st, SceneKind kind, const std::string& key, bool last) {
   const auto [scene, c] = live(kind, key, static_cast<std::size_t>(st.range(0)));
-  const std::size_t k = c.copies.size();
-  std::size_t i = 0;
   for (auto _ : st) {
-    if (i > 0 && i % ticks_per_round == 0) between_copies(st);
-    c.copies[(i++ / ticks_per_round) % k]->step();
+    c.stepper->step();
     benchmark::ClobberMemory();
   }
-  c.ticks += static_cast<std::int64_t>(st.iterations() / std::int64_t(k));
+  c.ticks += static_cast<std::int64_t>(st.iterations());
   const double n = double(scene.position.size()), r = scene.radius;
   st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * std::int64_t(n));
-  const Stepper& stepper = *c.copies.back();
-  const Stats s = stepper.stats();
+  const Stats s = c.stepper->stats();
   st.counters = {{"bodies", n},
                  {"ticks", double(c.ticks)},
                  {"pairs", s.candidate_pairs},
@@ -257,7 +219,7 @@ void bm_step(benchmark::State& st, SceneKind kind, const std::string& key, bool 
                  {"threads", double(s.threads)}};
   if (!last) return;
   std::vector<Vec2> x, v;
-  stepper.state(x, v);
+  c.stepper->state(x, v);
   const Quality q = measure(scene, x, v);
   const double energy = kind == SceneKind::gas ? q.kinetic / initial_kinetic(scene)
                                                : std::sqrt(2.0 * q.kinetic / (mass * n));
@@ -323,13 +285,21 @@ std::vector<std::int64_t> sizes(const Options& o) {
   return {1000, 10'000, 100'000};
 }
 
-/// Rounds of a case, each of `ticks_per_round` ticks of each copy: every engine and every N times
-/// the same ticks (the pile's ticks 41-60, the settled pile's 361-380, the gas's 6-25), so that
-/// costs compare like with like (a pile still settling costs more per tick than a settled one). The
+/// Rounds of a case, each of `ticks_per_round` ticks: every engine and every N times the same
+/// ticks (the pile's ticks 41-60, the settled pile's 361-380, the gas's 6-25), so that costs
+/// compare like with like (a pile still settling costs more per tick than a settled one). The
 /// contenders at one N take their rounds in turn.
 int rounds(const Options& o) {
   if (o.reps_given || o.quick) return 1;
   return 5;
+}
+constexpr int ticks_per_round = 4;
+
+/// Whether `key` steps a world asleep: its rounds run one after another, not in turn with the
+/// others'. Its tick takes microseconds, which in turn would measure the caches the other
+/// contenders left: the constant an asleep world costs a tick in steady state is the figure.
+bool asleep(const std::string& k) {
+  return k.find("_sleep") != std::string::npos;
 }
 
 /// Whether `key` is timed on `kind`.
@@ -353,7 +323,7 @@ void register_all(const Options& o) {
             fmt::format("{}/{}/round:{}", scene_name(kind), k, round).c_str(),
             [kind, k, last](benchmark::State& st) { bm_step(st, kind, k, last); });
         b->Arg(n)->Unit(benchmark::kMicrosecond)->UseRealTime();
-        if (!o.min_time_given) b->Iterations(ticks_per_round * copies(k, n));
+        if (!o.min_time_given) b->Iterations(ticks_per_round);
       };
       for (int round = 1; round <= rounds(o); ++round) {
         for (const char* key : stepper_keys()) {
