@@ -18,10 +18,13 @@
 // instead); after the last, every engine's deepest overlap and kinetic energy are measured on
 // its state the same way. The report (stdout; with --report DIR also DIR/discs.md) gives ns per
 // body-step, the overlaps, fixstep's contact statistics, Box2D's broadphase share and the
-// targets as ratios measured side by side.
+// targets as ratios measured side by side. After the main run (unless --quick or a filter; or
+// with --scaling), fixstep's cost per disc from 10³ to 10⁵ on the pile and the gas is timed
+// again with the two sizes in turn (discs_scaling.cpp).
 //
 //   build/bench/bin/bench_discs --report docs/perf
 //   build/bench/bin/bench_discs --quick --benchmark_min_time=0.01   (N = 10³: a smoke run)
+//   build/bench/bin/bench_discs --scaling --benchmark_filter=^$  (the cost per disc alone)
 //   build/bench/bin/bench_discs --verify-only  (the checks alone; ctest bench_discs_checks)
 //   build/bench/bin/bench_discs --trace pile box2d 1000 300  (one case, untimed, every 10 ticks)
 //   build/bench/bin/bench_discs --paced gas 10000 120  (one tick a frame at 60 Hz, as a game)
@@ -276,6 +279,7 @@ int trace(const std::string& scene, const std::string& key, std::size_t n, int t
 
 struct Options {
   bool quick = false, verify_only = false, min_time_given = false, reps_given = false;
+  bool filtered = false, scaling = false;  ///< --benchmark_filter given; --scaling given
   std::optional<std::string> report;
   std::vector<std::string> paced;  ///< --paced SCENE N TICKS
 };
@@ -411,11 +415,14 @@ int main(int argc, char** argv) {
       o.report = argv[++a];
     else if (arg == "--trace" && a + 4 < argc)
       return trace(argv[a + 1], argv[a + 2], std::stoul(argv[a + 3]), std::stoi(argv[a + 4]));
+    else if (arg == "--scaling")
+      o.scaling = true;
     else if (arg == "--paced" && a + 3 < argc)
       o.paced = {argv[a + 1], argv[a + 2], argv[a + 3]}, a += 3;
     else {
       o.min_time_given = o.min_time_given || arg.starts_with("--benchmark_min_time");
       o.reps_given = o.reps_given || arg.starts_with("--benchmark_repetitions");
+      o.filtered = o.filtered || arg.starts_with("--benchmark_filter");
       args.push_back(argv[a]);
     }
   }
@@ -451,6 +458,11 @@ int main(int argc, char** argv) {
     benchmark::RunSpecifiedBenchmarks(&collector);
     benchmark::Shutdown();
     Results res = collector.results();
+    if (o.scaling || (!o.quick && !o.filtered)) {
+      for (SceneKind kind : {SceneKind::pile, SceneKind::gas}) {
+        res.scaling[kind] = scaling(kind, rounds(o), ticks_per_round);
+      }
+    }
     res.sizes = sizes(o);
     res.load_start = load_start, res.load_end = load_average();
 

@@ -203,8 +203,26 @@ struct CaseResult {
   Stats stats{};               ///< self_overlap here as a fraction of r
 };
 
+/// fixstep f64's cost per disc at N = 10³ and 10⁵ on one thread, the two sizes timed in turn
+/// in each round (discs_scaling.cpp): the groups of the main run (every 10³ case, then every
+/// 10⁴, then every 10⁵) lie minutes apart, and a shared machine's speed drifts between them.
+inline constexpr std::size_t scaling_small = 1000, scaling_large = 100'000;
+/// Worlds of 10³ stepped in a round, one after another, each through the round's ticks: a round
+/// of one lasts about a millisecond, a round of 10⁵ a few hundred.
+inline constexpr int scaling_copies = 20;
+struct Scaling {
+  std::vector<double> small{}, large{};  ///< ns per body-step, by round
+  /// The median over the rounds of large / small; NaN without rounds.
+  [[nodiscard]] double ratio() const;
+};
+/// Builds `kind`'s worlds (scaling_copies of 10³, one of 10⁵) and warms them up as the main
+/// run does, then times `rounds` rounds of `ticks_per_round` ticks of each size, in turn
+/// (which goes first alternates); a line of progress per round on stderr.
+[[nodiscard]] Scaling scaling(SceneKind kind, int rounds, int ticks_per_round);
+
 struct Results {
   std::map<std::string, CaseResult> cases{};
+  std::map<SceneKind, Scaling> scaling{};  ///< by scene; empty when not run
   std::vector<std::int64_t> sizes{};
   int repetitions = 1, repetitions_largest = 1;
   double load_start = 0.0, load_end = 0.0;  ///< 1-minute load average
