@@ -16,8 +16,6 @@ namespace discs {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 /// fixstep f64 on one thread, built and warmed up as bench_discs' rounds are.
 std::unique_ptr<Stepper> warmed(const Scene& s) {
   auto p = make_stepper("fixstep_f64_t1", s);
@@ -27,11 +25,11 @@ std::unique_ptr<Stepper> warmed(const Scene& s) {
 
 /// ns per body-step of `ticks` ticks of each of `worlds` (each world's ticks in a row).
 double timed(std::vector<std::unique_ptr<Stepper>>& worlds, std::size_t bodies, int ticks) {
-  const auto start = Clock::now();
+  const auto start = std::chrono::steady_clock::now();
   for (auto& w : worlds) {
     for (int t = 0; t < ticks; ++t) w->step();
   }
-  const std::chrono::duration<double, std::nano> spent = Clock::now() - start;
+  const std::chrono::duration<double, std::nano> spent = std::chrono::steady_clock::now() - start;
   return spent.count() / (double(bodies) * double(ticks) * double(worlds.size()));
 }
 
