@@ -742,6 +742,7 @@ class DiscContacts {
   // split_contacts(), build_rows()): a snapshot copies its size only (scratch_vector.hpp).
   ScratchVector<Real> x0_, y0_, vx0_, vy0_;
   ScratchVector<DiscMotion> motion_;
+  ScratchVector<DiscOffset> model_offset_;  ///< by disc, beside motion_
   /// The discs the plane pass bounced this tick, by build_motions()'s halves: the first
   /// events' switches (first_events(), first_lane_events()) without a pass over every disc.
   std::array<ScratchVector<std::uint32_t>, 2> bounced_;

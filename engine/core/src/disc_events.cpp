@@ -63,6 +63,7 @@ void DiscContacts<Real>::rebuild(std::vector<Disc> discs, std::vector<std::uint6
     v->assign(n, 0.0);
   }
   motion_.assign(n, DiscMotion{});
+  model_offset_.assign(n, DiscOffset{});
   boxes_.assign(n, SweptBox{});
   dynamic_.resize(n);
   for (std::size_t k = 0; k < n; ++k) dynamic_[k] = discs_[k].dynamic;
@@ -152,8 +153,9 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
     const double x0 = x0_[k], y0 = y0_[k], v0x = vx0_[k], v0y = vy0_[k];
     ex_[k] = x1, ey_[k] = y1, evx_[k] = v1x, evy_[k] = v1y;
     DiscMotion& m = motion_[k];
-    m.dx = (x1 - x0) / dt - 0.5 * (v0x + v1x), m.dy = (y1 - y0) / dt - 0.5 * (v0y + v1y);
-    m.t = 0, m.x = x0, m.y = y0, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
+    DiscOffset& o = model_offset_[k];
+    o.x = (x1 - x0) / dt - 0.5 * (v0x + v1x), o.y = (y1 - y0) / dt - 0.5 * (v0y + v1y);
+    m.t = 0, m.x = x0, m.y = y0, m.ux = v0x + o.x, m.uy = v0y + o.y, m.radius = d.radius;
     m.ax = (v1x - v0x) / dt, m.ay = (v1y - v0y) / dt;
     const double pad = box_pad(d);
     SweptBox& b = boxes_[k];
@@ -162,7 +164,7 @@ void DiscContacts<Real>::build_motions(const Tick& tick, std::size_t begin, std:
       // its motion after the last one from then on (switch(); a disc impact before then
       // changes its free motion instead, and it meets the walls in the disc pass).
       const PlaneMotion& p = tick.after[d.plane_slot];
-      m.dx = p.free_dx, m.dy = p.free_dy, m.ux = v0x + m.dx, m.uy = v0y + m.dy;
+      o.x = p.free_dx, o.y = p.free_dy, m.ux = v0x + o.x, m.uy = v0y + o.y;
       m.ax = p.free_ax, m.ay = p.free_ay;
       // Its spin too: the plane pass's friction turned it with the same impulse that changed
       // its velocity, so the two go together (a disc pass taking the turn without the velocity
@@ -196,7 +198,7 @@ void DiscContacts<Real>::switch_to_plane_motion(const Tick& tick, std::uint32_t 
   DiscMotion& m = motion_[k];
   m.t = tick.after_t[discs_[k].plane_slot], m.x = p.x, m.y = p.y, m.ux = p.ux, m.uy = p.uy,
   m.ax = p.ax, m.ay = p.ay;
-  m.dx = p.dx, m.dy = p.dy;
+  model_offset_[k] = DiscOffset{p.dx, p.dy};
   if (rolling_) ew_[k] = double(tick.spin[discs_[k].body]);  // the spin after its last event
   ++stamp_[k];
 }
@@ -219,8 +221,8 @@ bool DiscContacts<Real>::next_event(std::uint32_t pair, double now, double dt,
   r.wx = ma.ux + ma.ax * (now - ma.t) - mb.ux - mb.ax * (now - mb.t);
   r.wy = ma.uy + ma.ay * (now - ma.t) - mb.uy - mb.ay * (now - mb.t);
   r.cx = ma.ax - mb.ax, r.cy = ma.ay - mb.ay;
-  r.radius = discs_[a].radius + discs_[b].radius;
-  const double r_min = std::min(discs_[a].radius, discs_[b].radius);
+  r.radius = ma.radius + mb.radius;
+  const double r_min = std::min(ma.radius, mb.radius);
   const double d2 = r.px * r.px + r.py * r.py;
   if (resting_without_root(r, d2, slop * r_min, dt)) return false;
   const double dist = length(r.px, r.py);  // the root of d2 (the same sum, computed once)
@@ -350,12 +352,12 @@ void DiscContacts<Real>::resolve(const Tick& tick, ContactStats& stats, StepProf
 template <class Real>
 std::size_t DiscContacts<Real>::bytes() const {
   return copy_bytes(discs_, linked_, filters_, sensor_pairs_, sensed_, x0_, y0_, vx0_, vy0_,
-                    motion_, boxes_, dynamic_, pairs_, offset_, incident_, cursor_, stamp_, held_,
-                    extra_sorted_, partner_mark_, wall_found_, extra_head_, grown_of_, impacts_,
-                    changed_, walled_, touch_, plane_half_[0], plane_half_[1], events_, contacts_,
-                    touching_bodies_, on_moving_segment_, order_, cut_, side_, part_, lane_of_,
-                    lane_parent_, lane_log_, warm_, ex_, ey_, evx_, evy_, lost_, external_,
-                    d_begin_, ew_, ew0_, rows_, push_rows_, row_moved_, sv_, slot_moved_,
+                    motion_, model_offset_, boxes_, dynamic_, pairs_, offset_, incident_, cursor_,
+                    stamp_, held_, extra_sorted_, partner_mark_, wall_found_, extra_head_,
+                    grown_of_, impacts_, changed_, walled_, touch_, plane_half_[0], plane_half_[1],
+                    events_, contacts_, touching_bodies_, on_moving_segment_, order_, cut_, side_,
+                    part_, lane_of_, lane_parent_, lane_log_, warm_, ex_, ey_, evx_, evy_, lost_,
+                    external_, d_begin_, ew_, ew0_, rows_, push_rows_, row_moved_, sv_, slot_moved_,
                     roll_rows_, sw_, asleep_, awake_list_, awake_flips_.discs, awake_flips_.scratch,
                     live_, in_live_, woken_, sleepers_.grid.discs, sleepers_.disc,
                     sleepers_.indexed, sleepers_.extra, sleepers_.extras, live_boxes_,

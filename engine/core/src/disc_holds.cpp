@@ -49,7 +49,8 @@ bool DiscContacts<Real>::ends_on_a_wall(const Tick& tick, std::uint32_t k) {
   }
   if (tick.segments == nullptr || tick.segments->empty()) return false;
   const double reach = r * (1.0 + slop), s = tick.dt - m.t;
-  const double vx = m.ux + s * m.ax - m.dx, vy = m.uy + s * m.ay - m.dy;  // the integrator's
+  const DiscOffset& o = model_offset_[k];
+  const double vx = m.ux + s * m.ax - o.x, vy = m.uy + s * m.ay - o.y;  // the integrator's
   tick.segments->query(x - reach, y - reach, x + reach, y + reach, wall_found_);
   SegmentTouch t;
   for (const std::uint32_t i : wall_found_) {

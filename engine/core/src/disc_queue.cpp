@@ -151,12 +151,13 @@ void DiscContacts<Real>::run_events(const Tick& tick, ContactStats& stats, int w
   live_range(0, live_count(), [&](std::uint32_t k) {
     if (!changed_[k]) return;
     const DiscMotion& m = motion_[k];
+    const DiscOffset& o = model_offset_[k];
     const double s = dt - m.t;
     ex_[k] = m.px(dt), ey_[k] = m.py(dt);
     if (held_[k].on) {  // where it was held, with the velocity it had there
-      evx_[k] = held_[k].ux - m.dx, evy_[k] = held_[k].uy - m.dy;
+      evx_[k] = held_[k].ux - o.x, evy_[k] = held_[k].uy - o.y;
     } else {
-      evx_[k] = m.ux + s * m.ax - m.dx, evy_[k] = m.uy + s * m.ay - m.dy;
+      evx_[k] = m.ux + s * m.ax - o.x, evy_[k] = m.uy + s * m.ay - o.y;
     }
   });
 }

@@ -23,9 +23,12 @@ struct Disc {
   double inv_inertia = 0;           ///< 1/(kg·m²) with rolling discs; 0: it does not turn
 };
 
-/// A disc's motion within the tick: position X and model velocity U at time t, acceleration a.
-struct DiscMotion {
-  double t = 0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0, dx = 0, dy = 0;  // d: offset δ
+/// A disc's motion within the tick: position X and model velocity U at time t, acceleration a;
+/// and the disc's radius beside them. One cache line: an impact's prediction reads the two
+/// discs' motions and radii in the order of the impacts' times, which no memory order follows.
+struct alignas(64) DiscMotion {
+  double t = 0, x = 0, y = 0, ux = 0, uy = 0, ax = 0, ay = 0;
+  double radius = 0;  ///< m (Disc::radius)
   [[nodiscard]] double px(double s) const {
     return x + ux * (s - t) + 0.5 * ax * (s - t) * (s - t);
   }
@@ -38,6 +41,14 @@ struct DiscMotion {
     x += s * (ux + 0.5 * s * ax), y += s * (uy + 0.5 * s * ay);
     ux += s * ax, uy += s * ay, t = now;
   }
+};
+
+static_assert(sizeof(DiscMotion) == 64);
+
+/// The offset δ of a disc's model velocity U from the integrator's velocity v (U = v + δ, so
+/// that the model's path ends the tick where the integrator put the disc), m/s.
+struct DiscOffset {
+  double x = 0, y = 0;
 };
 
 /// The range [lo, hi] of a + u s + ½ c s² over s in [0, h], widened by `pad`, m.

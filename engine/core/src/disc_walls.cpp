@@ -141,7 +141,7 @@ typename DiscContacts<Real>::WallOutcome DiscContacts<Real>::wall_impact(
                  d.y + s * (d.uy + 0.5 * s * d.ay) - u.y * s};
     const double gap = plane_contact::dot(n, end) - plane.offset - disc.radius;
     const plane_contact::Motion seen{V2{d.x, d.y}, V2{d.ux - u.x, d.uy - u.y}, V2{d.ax, d.ay},
-                                     V2{d.dx, d.dy}, now};
+                                     V2{model_offset_[k].x, model_offset_[k].y}, now};
     const bool bounce = plane_contact::bounces(seen, 0.0, plane, dt);
     const bool inside = bounce ? plane.restitution < 1.0 && gap < 0.0 : gap < -slop * disc.radius;
     if (inside && held_[k].released) return WallOutcome::none;  // the resting solver's
@@ -154,7 +154,8 @@ typename DiscContacts<Real>::WallOutcome DiscContacts<Real>::wall_impact(
     }
     if (!bounce) return WallOutcome::none;
   }
-  plane_contact::Motion m{V2{d.x, d.y}, V2{d.ux, d.uy}, V2{d.ax, d.ay}, V2{d.dx, d.dy}, now};
+  plane_contact::Motion m{V2{d.x, d.y}, V2{d.ux, d.uy}, V2{d.ax, d.ay},
+                          V2{model_offset_[k].x, model_offset_[k].y}, now};
   plane_contact::Spin turn;
   plane_contact::Spin* spin = nullptr;
   if (rolling_ && disc.inv_inertia > 0.0) {
@@ -167,7 +168,7 @@ typename DiscContacts<Real>::WallOutcome DiscContacts<Real>::wall_impact(
   if (spin) ew_[k] = turn.w;
   if (work != 0.0) external_[k] += work / disc.inv_mass;  // J/kg to J
   d.x = m.x.x, d.y = m.x.y, d.ux = m.v.x, d.uy = m.v.y, d.ax = m.a.x, d.ay = m.a.y;
-  d.dx = m.offset.x, d.dy = m.offset.y;
+  model_offset_[k] = DiscOffset{m.offset.x, m.offset.y};
   ++stamp_[k], ++impacts_[k], changed_[k] = 1;
   return WallOutcome::impact;
 }
