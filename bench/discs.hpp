@@ -210,14 +210,18 @@ inline constexpr std::size_t scaling_small = 1000, scaling_large = 100'000;
 /// Worlds of 10³ stepped in a round, one after another, each through the round's ticks: a round
 /// of one lasts about a millisecond, a round of 10⁵ a few hundred.
 inline constexpr int scaling_copies = 20;
+/// Sets of those worlds, each built afresh and stepped through the same ticks: more rounds
+/// than one world's window holds.
+inline constexpr int scaling_sets = 3;
 struct Scaling {
   std::vector<double> small{}, large{};  ///< ns per body-step, by round
   /// The median over the rounds of large / small; NaN without rounds.
   [[nodiscard]] double ratio() const;
 };
-/// Builds `kind`'s worlds (scaling_copies of 10³, one of 10⁵) and warms them up as the main
-/// run does, then times `rounds` rounds of `ticks_per_round` ticks of each size, in turn
-/// (which goes first alternates); a line of progress per round on stderr.
+/// For each of scaling_sets sets: builds `kind`'s worlds (scaling_copies of 10³, one of 10⁵)
+/// and warms them up as the main run does, then times `rounds` rounds of `ticks_per_round` ticks of
+/// each size, in turn (which goes first alternates), each round after a buffer of 256 MiB was
+/// written untimed so that both sizes start from memory; a line of progress per round on stderr.
 [[nodiscard]] Scaling scaling(SceneKind kind, int rounds, int ticks_per_round);
 
 struct Results {

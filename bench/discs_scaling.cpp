@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -23,8 +24,21 @@ std::unique_ptr<Stepper> warmed(const Scene& s) {
   return p;
 }
 
-/// ns per body-step of `ticks` ticks of each of `worlds` (each world's ticks in a row).
+/// Writes and reads a buffer larger than any last-level cache this bench runs on (the Intel
+/// Xeons of these runs have 105 MiB), so that the round after it finds none of its data there:
+/// every round of either size starts from memory, not only the 10³ rounds after a 10⁵ round.
+void empty_caches() {
+  static std::vector<std::uint64_t> buffer(std::size_t{256} << 20 >> 3);
+  static volatile std::uint64_t sink = 0;
+  std::uint64_t sum = 0;
+  for (std::size_t i = 0; i < buffer.size(); ++i) buffer[i] += i, sum += buffer[i];
+  sink = sink + sum;
+}
+
+/// ns per body-step of `ticks` ticks of each of `worlds` (each world's ticks in a row), after
+/// the caches were emptied.
 double timed(std::vector<std::unique_ptr<Stepper>>& worlds, std::size_t bodies, int ticks) {
+  empty_caches();
   const auto start = std::chrono::steady_clock::now();
   for (auto& w : worlds) {
     for (int t = 0; t < ticks; ++t) w->step();
@@ -37,23 +51,27 @@ double timed(std::vector<std::unique_ptr<Stepper>>& worlds, std::size_t bodies, 
 
 Scaling scaling(SceneKind kind, int rounds, int ticks_per_round) {
   const Scene small = make_scene(kind, scaling_small), large = make_scene(kind, scaling_large);
-  std::vector<std::unique_ptr<Stepper>> smalls, larges;
-  for (int c = 0; c < scaling_copies; ++c) smalls.push_back(warmed(small));
-  larges.push_back(warmed(large));
   Scaling out;
-  for (int r = 0; r < rounds; ++r) {
-    // Which size goes first alternates, so neither always finds the other's data in the caches.
-    double ns_small = 0.0, ns_large = 0.0;
-    if (r % 2 == 0) {
-      ns_small = timed(smalls, scaling_small, ticks_per_round);
-      ns_large = timed(larges, scaling_large, ticks_per_round);
-    } else {
-      ns_large = timed(larges, scaling_large, ticks_per_round);
-      ns_small = timed(smalls, scaling_small, ticks_per_round);
+  for (int set = 0; set < scaling_sets; ++set) {
+    std::vector<std::unique_ptr<Stepper>> smalls, larges;  // the last set's memory first
+    for (int c = 0; c < scaling_copies; ++c) smalls.push_back(warmed(small));
+    larges.push_back(warmed(large));
+    for (int r = 0; r < rounds; ++r) {
+      // Which size goes first alternates.
+      double ns_small = 0.0, ns_large = 0.0;
+      if (r % 2 == 0) {
+        ns_small = timed(smalls, scaling_small, ticks_per_round);
+        ns_large = timed(larges, scaling_large, ticks_per_round);
+      } else {
+        ns_large = timed(larges, scaling_large, ticks_per_round);
+        ns_small = timed(smalls, scaling_small, ticks_per_round);
+      }
+      out.small.push_back(ns_small), out.large.push_back(ns_large);
+      std::fprintf(stderr,
+                   "bench_discs: %s, cost per disc in turn, set %d of %d, round %d of %d: %.0f / "
+                   "%.0f ns\n",
+                   scene_name(kind), set + 1, scaling_sets, r + 1, rounds, ns_small, ns_large);
     }
-    out.small.push_back(ns_small), out.large.push_back(ns_large);
-    std::fprintf(stderr, "bench_discs: %s, cost per disc in turn, round %d of %d: %.0f / %.0f ns\n",
-                 scene_name(kind), r + 1, rounds, ns_small, ns_large);
   }
   return out;
 }
