@@ -398,6 +398,27 @@ double load_average() {
   return getloadavg(load, 1) == 1 ? load[0] : std::nan("");
 }
 
+/// --paced SCENE N TICKS: N and TICKS as whole numbers (std::invalid_argument naming the one
+/// that is not), TICKS capped at 10⁶; then paced().
+int paced_run(const std::vector<std::string>& args) {
+  const auto whole = [](const std::string& text, const char* what) {
+    std::size_t used = 0;
+    long value = -1;
+    try {
+      value = std::stol(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != text.size() || value < 0) {
+      throw std::invalid_argument(
+          fmt::format("--paced: {} '{}' is not a whole number", what, text));
+    }
+    return value;
+  };
+  const long n = whole(args[1], "N"), ticks = whole(args[2], "TICKS");
+  return paced(args[0], static_cast<std::size_t>(n), static_cast<int>(std::min(ticks, 1'000'000L)));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -427,25 +448,7 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    if (!o.paced.empty()) {
-      const auto whole = [](const std::string& text, const char* what) {
-        std::size_t used = 0;
-        long value = -1;
-        try {
-          value = std::stol(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used == 0 || used != text.size() || value < 0) {
-          throw std::invalid_argument(
-              fmt::format("--paced: {} '{}' is not a whole number", what, text));
-        }
-        return value;
-      };
-      const long n = whole(o.paced[1], "N"), ticks = whole(o.paced[2], "TICKS");
-      return paced(o.paced[0], static_cast<std::size_t>(n),
-                   static_cast<int>(std::min(ticks, 1'000'000L)));
-    }
+    if (!o.paced.empty()) return paced_run(o.paced);
     if (run_checks(!o.quick && !o.verify_only) != 0) return 1;
     if (o.verify_only) return 0;
 

@@ -53,7 +53,8 @@ Scaling scaling(SceneKind kind, int rounds, int ticks_per_round) {
   const Scene small = make_scene(kind, scaling_small), large = make_scene(kind, scaling_large);
   Scaling out;
   for (int set = 0; set < scaling_sets; ++set) {
-    std::vector<std::unique_ptr<Stepper>> smalls, larges;  // the last set's memory first
+    // Each set's worlds are freed before the next set's are built.
+    std::vector<std::unique_ptr<Stepper>> smalls, larges;
     for (int c = 0; c < scaling_copies; ++c) smalls.push_back(warmed(small));
     larges.push_back(warmed(large));
     for (int r = 0; r < rounds; ++r) {
