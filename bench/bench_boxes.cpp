@@ -31,9 +31,12 @@
 
 #include "boxes.hpp"
 #include "fixstep/capture/capture.hpp"
+#include "machine_probe.hpp"
 #include "median_run.hpp"
 
 using namespace boxes;
+using fixstep::bench::core_round_trip_ns;
+using fixstep::bench::load_average;
 
 namespace {
 
@@ -244,11 +247,6 @@ class Collector : public benchmark::ConsoleReporter {
   }
 };
 
-double load_average() {
-  double load[1] = {0.0};
-  return getloadavg(load, 1) == 1 ? load[0] : std::nan("");
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -274,7 +272,7 @@ int main(int argc, char** argv) {
     if (run_checks(fixstep_problem) != 0) return 1;
     if (o.verify_only) return 0;
 
-    const double load_start = load_average();
+    const double load_start = load_average(), round_trip_start = core_round_trip_ns();
     int bargc = static_cast<int>(args.size());
     benchmark::Initialize(&bargc, args.data());
     if (benchmark::ReportUnrecognizedArguments(bargc, args.data())) return 2;
@@ -285,6 +283,7 @@ int main(int argc, char** argv) {
     BoxResults res = collector.results;
     res.pile_sizes = pile_sizes(o);
     res.load_start = load_start, res.load_end = load_average();
+    res.round_trip_start = round_trip_start, res.round_trip_end = core_round_trip_ns();
     res.fixstep_problem = fixstep_problem;
 
     const std::string md = box_report_markdown(res);

@@ -47,11 +47,14 @@
 #include "discs.hpp"
 #include "discs_paced.hpp"
 #include "fixstep/capture/capture.hpp"
+#include "machine_probe.hpp"
 #include "median.hpp"
 #include "median_run.hpp"
 
 using namespace discs;
 using fixstep::Vec2;
+using fixstep::bench::core_round_trip_ns;
+using fixstep::bench::load_average;
 
 namespace {
 
@@ -120,6 +123,33 @@ void verify_drop() {
   }
 }
 
+/// The report's round-trip probe: a time above zero and under a millisecond where the process
+/// may run on two CPUs, NaN (not a hang) where it may run on one, and the affinity as it was.
+void verify_round_trip() {
+  cpu_set_t before;
+  if (sched_getaffinity(0, sizeof before, &before) != 0) return;
+  if (CPU_COUNT(&before) >= 2) {
+    const double ns = core_round_trip_ns();
+    check(ns > 0.0 && ns < 1e6, fmt::format("the cores' round trip is {} ns", ns));
+  }
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  for (int c = 0; c < CPU_SETSIZE; ++c) {
+    if (CPU_ISSET(c, &before)) {
+      CPU_SET(c, &one);
+      break;
+    }
+  }
+  if (sched_setaffinity(0, sizeof one, &one) != 0) return;
+  const double alone = core_round_trip_ns();
+  sched_setaffinity(0, sizeof before, &before);
+  cpu_set_t after;
+  check(std::isnan(alone),
+        fmt::format("on one CPU the cores' round trip is {} ns, not NaN", alone));
+  check(sched_getaffinity(0, sizeof after, &after) == 0 && CPU_EQUAL(&after, &before),
+        "the round-trip probe left the process's affinity changed");
+}
+
 /// Box2D v3 gives the same state on 1 and 2 workers (it is deterministic across thread counts,
 /// so the task system of its 2 workers hands it every piece once).
 void verify_box2d3_workers(std::size_t n, int ticks, Box2d3Release r) {
@@ -142,6 +172,7 @@ int run_checks(bool full) {
   verify_overlap_grid();
   verify_engines(1000, 60);
   verify_drop();
+  verify_round_trip();
   std::string v3;
   for (const Box2d3Release r : box2d3_releases) {
     if (box2d3_built(r)) verify_box2d3_workers(1000, 60, r);
@@ -157,7 +188,8 @@ int run_checks(bool full) {
     std::printf(
         "checks: the scenes start without overlaps; the overlap grid agrees with all pairs; "
         "every engine starts from the scene and keeps its discs in the box for 60 ticks (N = "
-        "10^3); every engine's dropped disc falls ½ g t² and rests on the ground; %s\n",
+        "10^3); every engine's dropped disc falls ½ g t² and rests on the ground; the cores' "
+        "round-trip probe times two CPUs and gives NaN on one; %s\n",
         v3.c_str());
   }
   return failures;
@@ -393,11 +425,6 @@ class Collector : public benchmark::ConsoleReporter {
   std::map<std::string, std::vector<CaseResult>> rounds_;
 };
 
-double load_average() {
-  double load[1] = {0.0};
-  return getloadavg(load, 1) == 1 ? load[0] : std::nan("");
-}
-
 /// --paced SCENE N TICKS: N and TICKS as whole numbers (std::invalid_argument naming the one
 /// that is not), TICKS capped at 10⁶; then paced().
 int paced_run(const std::vector<std::string>& args) {
@@ -452,7 +479,7 @@ int main(int argc, char** argv) {
     if (run_checks(!o.quick && !o.verify_only) != 0) return 1;
     if (o.verify_only) return 0;
 
-    const double load_start = load_average();
+    const double load_start = load_average(), round_trip_start = core_round_trip_ns();
     int bargc = static_cast<int>(args.size());
     benchmark::Initialize(&bargc, args.data());
     if (benchmark::ReportUnrecognizedArguments(bargc, args.data())) return 2;
@@ -468,6 +495,7 @@ int main(int argc, char** argv) {
     }
     res.sizes = sizes(o);
     res.load_start = load_start, res.load_end = load_average();
+    res.round_trip_start = round_trip_start, res.round_trip_end = core_round_trip_ns();
 
     const std::string md = report_markdown(res);
     std::fputs(md.c_str(), stdout);

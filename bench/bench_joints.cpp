@@ -34,9 +34,12 @@
 
 #include "fixstep/capture/capture.hpp"
 #include "joints.hpp"
+#include "machine_probe.hpp"
 #include "median.hpp"
 
 using namespace joints;
+using fixstep::bench::core_round_trip_ns;
+using fixstep::bench::load_average;
 
 namespace {
 
@@ -205,15 +208,10 @@ struct Options {
   std::optional<std::string> report, scene, stepper;
 };
 
-double load_average() {
-  double load[1] = {0.0};
-  return getloadavg(load, 1) == 1 ? load[0] : std::nan("");
-}
-
 JointResults run_all(const Options& o) {
   JointResults res;
   res.rounds = o.rounds;
-  res.load_start = load_average();
+  res.load_start = load_average(), res.round_trip_start = core_round_trip_ns();
   std::vector<std::string> keys;
   for (const std::string& k : joint_stepper_keys()) {
     if (!o.stepper || *o.stepper == k) keys.push_back(k);
@@ -260,7 +258,7 @@ JointResults run_all(const Options& o) {
                        .threads = r.threads};
     }
   }
-  res.load_end = load_average();
+  res.load_end = load_average(), res.round_trip_end = core_round_trip_ns();
   return res;
 }
 

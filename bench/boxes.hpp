@@ -143,7 +143,10 @@ struct BoxResults {
   std::map<std::string, BoxCase> cases{};
   std::vector<std::int64_t> pile_sizes{};
   int repetitions = 1;
-  double load_start = 0.0, load_end = 0.0;     ///< 1-minute load average
+  double load_start = 0.0, load_end = 0.0;  ///< 1-minute load average
+  /// A cache line's round trip between the first two CPUs (core_round_trip_ns()), ns; NaN
+  /// where not measured.
+  double round_trip_start = 0.0, round_trip_end = 0.0;
   std::optional<std::string> fixstep_problem;  ///< fixstep_shapes_problem() of this run
 };
 

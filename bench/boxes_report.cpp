@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "boxes.hpp"
+#include "machine_probe.hpp"
 
 namespace boxes {
 
@@ -75,8 +76,9 @@ std::string box_report_markdown(const BoxResults& r) {
   }
   line(fmt::format(
       "Load average (1 min) {:.2f} at the start of the timed run, {:.2f} at its end. dt = 1/60 "
-      "s; boxes of 1 m, 1 kg, μ = {}, e = {}, gravity {} m/s²{}.",
-      r.load_start, r.load_end, friction, restitution, gravity, releases));
+      "s; boxes of 1 m, 1 kg, μ = {}, e = {}, gravity {} m/s²{}.{}",
+      r.load_start, r.load_end, friction, restitution, gravity, releases,
+      fixstep::bench::round_trip_sentence(r.round_trip_start, r.round_trip_end)));
   if (r.fixstep_problem) {
     line(fmt::format("\nfixstep: shapes not yet supported ({}); its rows are left out.",
                      *r.fixstep_problem));

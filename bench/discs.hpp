@@ -230,6 +230,9 @@ struct Results {
   std::vector<std::int64_t> sizes{};
   int repetitions = 1, repetitions_largest = 1;
   double load_start = 0.0, load_end = 0.0;  ///< 1-minute load average
+  /// A cache line's round trip between the first two CPUs (core_round_trip_ns()), ns; NaN
+  /// where not measured.
+  double round_trip_start = 0.0, round_trip_end = 0.0;
 };
 
 [[nodiscard]] std::string report_markdown(const Results& r);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "discs.hpp"
+#include "machine_probe.hpp"
 #include "median.hpp"
 
 namespace discs {
@@ -428,10 +429,11 @@ std::string report_markdown(const Results& r) {
       "benchmark itself adds about 1). dt = 1/60 s; r = {} m (pile_large: {} m), m = {} kg; "
       "Chipmunk: {} "
       "iterations, collision slop {} m; Box2D {}: {} velocity / {} position iterations, linear "
-      "slop {:.3g} m{}.",
+      "slop {:.3g} m{}.{}",
       r.load_start, r.load_end, small_radius, large_radius, mass, chipmunk_iterations,
       chipmunk_slop, box2d_version(), box2d_velocity_iterations, box2d_position_iterations,
-      box2d_linear_slop(), box2d3_summary()));
+      box2d_linear_slop(), box2d3_summary(),
+      fixstep::bench::round_trip_sentence(r.round_trip_start, r.round_trip_end)));
   box2d3_table(v, line);
   cost_tables(v, line);
   quality_tables(v, line);

@@ -200,6 +200,9 @@ struct JointResults {
   std::map<std::string, JointCase> cases{};
   int rounds = 1;
   double load_start = 0.0, load_end = 0.0;  ///< 1-minute load average
+  /// A cache line's round trip between the first two CPUs (core_round_trip_ns()), ns; NaN
+  /// where not measured.
+  double round_trip_start = 0.0, round_trip_end = 0.0;
 };
 
 [[nodiscard]] std::string joint_report_markdown(const JointResults& r);

@@ -9,6 +9,7 @@
 
 #include "box2d3_release.hpp"
 #include "joints.hpp"
+#include "machine_probe.hpp"
 
 #ifndef FIXSTEP_HAVE_BOX2D3
 #define FIXSTEP_HAVE_BOX2D3 0
@@ -140,8 +141,9 @@ std::string joint_report_markdown(const JointResults& r) {
   line(fmt::format(
       "Load average (1 min) {:.2f} at the start of the timed run, {:.2f} at its end. dt = 1/60 "
       "s, gravity {} m/s², μ = {} (tyres {}), e = 0; fixstep: WorldSettings::contacts at its "
-      "default iterations{}.",
-      r.load_start, r.load_end, gravity, friction, car_tyre_friction, releases));
+      "default iterations{}.{}",
+      r.load_start, r.load_end, gravity, friction, car_tyre_friction, releases,
+      fixstep::bench::round_trip_sentence(r.round_trip_start, r.round_trip_end)));
   line(fmt::format(
       "\nns per body-step: the window's stepping time / (bodies × ticks), the median of {} "
       "round{} (every case built and warmed up afresh in each round, the cases in turn); spread: "
