@@ -56,7 +56,7 @@ inline bool wait_for(const std::atomic<long>& line, long want,
 /// The round trip of one cache line between a thread on the process's first allowed CPU and
 /// one on its second, ns: the median of 5 batches of 2000 round trips (each thread writes the
 /// line the other waits for). NaN where the process may run on fewer than two CPUs, pinning is
-/// refused, or a batch has not ended within a second (a vCPU not run). Takes a few
+/// refused, or the batches have not ended within 5 s (a vCPU not run). Takes a few
 /// milliseconds; the caller's thread keeps the affinity it had.
 inline double core_round_trip_ns() {
   namespace d = machine_probe_detail;
