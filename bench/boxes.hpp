@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -146,7 +147,8 @@ struct BoxResults {
   double load_start = 0.0, load_end = 0.0;  ///< 1-minute load average
   /// A cache line's round trip between the first two CPUs (core_round_trip_ns()), ns; NaN
   /// where not measured.
-  double round_trip_start = 0.0, round_trip_end = 0.0;
+  double round_trip_start = std::numeric_limits<double>::quiet_NaN(),
+         round_trip_end = std::numeric_limits<double>::quiet_NaN();
   std::optional<std::string> fixstep_problem;  ///< fixstep_shapes_problem() of this run
 };
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -202,7 +203,8 @@ struct JointResults {
   double load_start = 0.0, load_end = 0.0;  ///< 1-minute load average
   /// A cache line's round trip between the first two CPUs (core_round_trip_ns()), ns; NaN
   /// where not measured.
-  double round_trip_start = 0.0, round_trip_end = 0.0;
+  double round_trip_start = std::numeric_limits<double>::quiet_NaN(),
+         round_trip_end = std::numeric_limits<double>::quiet_NaN();
 };
 
 [[nodiscard]] std::string joint_report_markdown(const JointResults& r);

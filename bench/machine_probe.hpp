@@ -1,16 +1,14 @@
 // What a benchmark report says of the machine while it ran: the load average, and how far
 // apart its first two CPUs are. Two threads hand each other the cache lines one writes and the
 // other reads; the time a line takes to go over and back sets what a second thread can gain,
-// and on a virtual machine it changes when the host moves the vCPUs (56 ns and 335 ns on one
-// 2-vCPU AMD EPYC within minutes, docs/perf/contact_solver_plan.md). Linux only, as the
-// benchmarks are.
+// and on a virtual machine it changes when the host moves the vCPUs (docs/perf/
+// contact_solver_plan.md has the figures). Linux only, as the benchmarks are.
 #pragma once
 
 #include <fmt/format.h>
 #include <pthread.h>
 #include <sched.h>
 
-#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
